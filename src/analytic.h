@@ -1,0 +1,50 @@
+/* The analytic model: exact four-bar kinematics at constant crank speed,
+ * sampled on a time grid, and its exact peaks over a crank revolution.
+ * Built on linkage.h; this is the reference every dynamic result is judged
+ * against. */
+#ifndef FB_ANALYTIC_H
+#define FB_ANALYTIC_H
+
+#include "linkage.h"
+#include "series.h"
+
+/* Extremes of one body's angular velocity and acceleration. */
+typedef struct {
+  double omega_max; /* [rad/s] */
+  double omega_min; /* [rad/s] */
+  double alpha_max; /* [rad/s^2] */
+  double alpha_min; /* [rad/s^2] */
+} fb_body_peaks;
+
+/* Extremes of coupler and follower. */
+typedef struct {
+  fb_body_peaks coupler;
+  fb_body_peaks follower;
+} fb_peaks;
+
+/* Crank angles sampled per revolution before refining each extreme: 0.1 deg
+ * spacing brackets every extreme of a non-degenerate crank-rocker. */
+#define FB_ANALYTIC_PEAK_SAMPLES 3600
+
+/* Exact extremes of coupler and follower angular velocity and acceleration
+ * over one full crank revolution at constant crank speed omega2 [rad/s]
+ * (sign gives the direction: negative is clockwise). Each extreme is
+ * bracketed on a FB_ANALYTIC_PEAK_SAMPLES grid and refined with GSL's Brent
+ * minimiser (gsl_min_fminimizer_brent) to 1e-12 rad in crank angle.
+ * Errors: FB_ERR_ASSEMBLY when the crank cannot turn fully (message names the
+ * reachable range); FB_ERR_RANGE for invalid lengths. */
+fb_status fb_analytic_peaks(fb_peaks *out, const fb_linkage *lk, fb_branch branch,
+                            double omega2, fb_diag *diag);
+
+/* Samples the analytic solution at t = t0 + k h, k = 0 .. n - 1, for the crank
+ * angle theta2(t) = theta0 + omega2 t, into a fresh series *out (initialised
+ * here; free with fb_series_free).
+ * Errors: FB_ERR_ASSEMBLY, FB_ERR_RANGE as fb_linkage_solve; FB_ERR_NOMEM. */
+fb_status fb_analytic_sample(fb_series *out, const fb_linkage *lk, fb_branch branch,
+                             double theta0, double omega2, double h, size_t n,
+                             fb_diag *diag);
+
+/* Fills one series sample from a solved state at time t [s]. */
+void fb_analytic_to_sample(fb_sample *x, double t, const fb_linkage_state *st);
+
+#endif

@@ -1,0 +1,133 @@
+#include "case.h"
+
+#include <math.h>
+#include <string.h>
+
+const char *const fb_model_names[] = {"analytic", "analytic-stackup", "ode-ideal-nominal",
+                                      "ode-ideal-stackup", NULL};
+
+int fb_model_known(const char *name) {
+  for (int i = 0; fb_model_names[i]; i++)
+    if (strcmp(fb_model_names[i], name) == 0) return 1;
+  return 0;
+}
+
+void fb_case_default(fb_case *c) {
+  memset(c, 0, sizeof *c);
+  strcpy(c->name, "case");
+  /* the paper's crank-rocker (PAPER.md, "Input data") */
+  c->nominal.length[FB_CRANK] = 0.108;
+  c->nominal.length[FB_COUPLER] = 0.2794;
+  c->nominal.length[FB_FOLLOWER] = 0.2705;
+  c->nominal.length[FB_GROUND] = 0.254;
+  for (int i = 0; i < FB_LINK_COUNT; i++) c->stackup.corner[i] = +1;
+  c->branch = FB_BRANCH_OPEN;
+  c->crank_angle0 = 0.0;
+  c->crank_speed = 1000.0 * 2.0 * M_PI / 60.0;
+  c->direction = -1;
+  c->gravity = 9.80665;
+  /* mass properties (PAPER.md); kg mm^2 -> kg m^2. The paper's two large
+   * moments are about axes across the bar; the larger is taken as the one
+   * about the hinge axis because the links are wider in the plane than they
+   * are thick (cases/paper_crank_rocker.ini says so too). */
+  const double mass[3] = {0.12, 0.29, 0.28};
+  const double izz[3] = {173.92e-6, 2070.46e-6, 1988.39e-6};
+  const double itr[3] = {167.88e-6, 2056.16e-6, 1974.43e-6};
+  const double ilong[3] = {6.69e-6, 15.49e-6, 15.28e-6};
+  for (int i = 0; i < 3; i++) {
+    c->link[i].mass = mass[i];
+    c->link[i].inertia = izz[i];
+    c->link[i].inertia_transverse = itr[i];
+    c->link[i].inertia_long = ilong[i];
+    c->link[i].com_fraction = 0.5;
+  }
+  c->density = 7800.0;
+  c->youngs_modulus = 207e9;
+  c->poisson_ratio = 0.29;
+  c->solver.h = 1e-5;
+  c->solver.stepper = FB_STEPPER_WORLD;
+  c->solver.quick_iterations = 20;
+  c->solver.world_erp = 0.2;
+  c->solver.world_cfm = 1e-10;
+  c->solver.drive_torque_max = 1e4;
+  c->solver.seed = 1;
+  c->revolutions = 3.0;
+  const char *m[] = {"analytic", "analytic-stackup", "ode-ideal-nominal", "ode-ideal-stackup"};
+  c->model_count = 4;
+  for (int i = 0; i < 4; i++) strcpy(c->models[i], m[i]);
+}
+
+double fb_case_omega2(const fb_case *c) { return c->direction * c->crank_speed; }
+
+void fb_case_stackup_lengths(const fb_case *c, fb_linkage *out) {
+  for (int i = 0; i < FB_LINK_COUNT; i++)
+    out->length[i] = c->nominal.length[i] + c->stackup.corner[i] * c->plus_minus[i];
+}
+
+double fb_case_duration(const fb_case *c) {
+  return c->revolutions * 2.0 * M_PI / c->crank_speed;
+}
+
+static fb_status check_drivable(const fb_linkage *lk, const char *which, fb_diag *diag) {
+  double lo, hi;
+  int full;
+  fb_diag inner;
+  fb_status st = fb_linkage_crank_range(lk, &lo, &hi, &full, &inner);
+  if (st != FB_OK)
+    return fb_diag_set(diag, st, "%s linkage cannot be assembled: %s", which, inner.msg);
+  if (!full)
+    return fb_diag_set(diag, FB_ERR_ASSEMBLY,
+                       "%s linkage (%s): the crank is driven through full revolutions "
+                       "but can only reach crank angles with |theta2| in [%.3f, %.3f] deg; "
+                       "a driven crank needs coupler + follower > crank + ground and "
+                       "|coupler - follower| < |ground - crank|",
+                       which, fb_grashof_name(fb_linkage_grashof(lk)), lo * 180.0 / M_PI,
+                       hi * 180.0 / M_PI);
+  return FB_OK;
+}
+
+fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
+  fb_status st = fb_linkage_check(&c->nominal, diag);
+  if (st != FB_OK) return st;
+  for (int i = 0; i < FB_LINK_COUNT; i++)
+    if (!(c->plus_minus[i] >= 0.0) || c->plus_minus[i] >= c->nominal.length[i])
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "%s tolerance = %g m: must be >= 0 and smaller than the length %g m",
+                         fb_link_name(i), c->plus_minus[i], c->nominal.length[i]);
+  for (int i = 0; i < 3; i++) {
+    const fb_link_mass *m = &c->link[i];
+    if (!(m->mass > 0.0) || !isfinite(m->mass))
+      return fb_diag_set(diag, FB_ERR_RANGE, "%s mass = %g kg: a mass must be positive",
+                         fb_link_name(i), m->mass);
+    if (!(m->inertia > 0.0) || !(m->inertia_long > 0.0) || !(m->inertia_transverse > 0.0))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "%s moments of inertia (%g, %g, %g) kg m^2: each must be positive",
+                         fb_link_name(i), m->inertia, m->inertia_long, m->inertia_transverse);
+    /* triangle inequality of principal moments: a physical body */
+    double a = m->inertia, b = m->inertia_long, t = m->inertia_transverse;
+    if (a > b + t || b > a + t || t > a + b)
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "%s moments of inertia (%g, %g, %g) kg m^2 violate the triangle "
+                         "inequality of principal moments: no rigid body has them",
+                         fb_link_name(i), a, b, t);
+  }
+  st = check_drivable(&c->nominal, "nominal", diag);
+  if (st != FB_OK) return st;
+  fb_linkage su;
+  fb_case_stackup_lengths(c, &su);
+  st = check_drivable(&su, "stack-up", diag);
+  if (st != FB_OK) return st;
+  double dur = fb_case_duration(c);
+  if (!(c->solver.h > 0.0) || c->solver.h >= dur)
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "step size h = %g s: must be positive and smaller than the run "
+                       "(%g s for %g revolutions)", c->solver.h, dur, c->revolutions);
+  if (dur / c->solver.h > 1e9)
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "step size h = %g s over %g s is %.3g steps: more than 1e9 steps",
+                       c->solver.h, dur, dur / c->solver.h);
+  for (int i = 0; i < c->model_count; i++)
+    if (!fb_model_known(c->models[i]))
+      return fb_diag_set(diag, FB_ERR_ARG, "unknown model '%s'", c->models[i]);
+  return FB_OK;
+}

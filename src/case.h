@@ -1,0 +1,88 @@
+/* A case: one mechanism, its tolerances, its drive and the models to run,
+ * everything in SI units. Filled by casefile.c from an INI file (the only
+ * place where mm, rpm, degrees and GPa are converted), checked as a whole by
+ * fb_case_check before any simulation starts. */
+#ifndef FB_CASE_H
+#define FB_CASE_H
+
+#include "linkage.h"
+
+#define FB_NAME_SIZE 64
+#define FB_MAX_MODELS 16
+
+/* Mass properties of one moving link; its centre of mass lies on the line
+ * between its two joint centres at com_fraction of the way from the first
+ * (crank: A->B, coupler: B->C, follower: D->C). */
+typedef struct {
+  double mass;                 /* [kg] */
+  double inertia;              /* about the hinge (out-of-plane) axis through the centre of mass [kg m^2] */
+  double inertia_long;         /* about the link's long axis [kg m^2] */
+  double inertia_transverse;   /* about the in-plane axis across the link [kg m^2] */
+  double com_fraction;         /* position of the centre of mass along the link [-] in [0, 1] */
+} fb_link_mass;
+
+/* How the stack-up lengths are chosen from the nominal ones: each link at
+ * nominal + corner * plus_minus, corner in {-1, 0, +1}. */
+typedef struct {
+  int corner[FB_LINK_COUNT]; /* -1 minimum, 0 nominal, +1 maximum (4) */
+} fb_stackup;
+
+typedef enum { FB_STEPPER_WORLD = 0, FB_STEPPER_QUICK = 1 } fb_stepper;
+
+/* Solver parameters of the ODE models. */
+typedef struct {
+  double h;                /* step size h [s] */
+  fb_stepper stepper;      /* dWorldStep (direct) or dWorldQuickStep (SOR) */
+  int quick_iterations;    /* dWorldQuickStep iterations [-] */
+  double world_erp;        /* ERP of the ideal joints [-] in [0, 1] */
+  double world_cfm;        /* CFM of the ideal joints [m/(N s)] >= 0 */
+  double drive_torque_max; /* torque limit of the crank drive motor [N m] */
+  unsigned long seed;      /* dRandSetSeed value (QuickStep row order) */
+} fb_solver;
+
+typedef struct {
+  char name[FB_NAME_SIZE];            /* case name, used for the output folder */
+  fb_linkage nominal;                 /* basic link lengths [m] */
+  double plus_minus[FB_LINK_COUNT];   /* symmetric length tolerance per link [m] (4) */
+  fb_stackup stackup;                 /* corner used by the *-stackup models */
+  fb_branch branch;                   /* assembly branch */
+  double crank_angle0;                /* crank angle at t = 0 [rad] */
+  double crank_speed;                 /* crank speed magnitude [rad/s] > 0 */
+  int direction;                      /* +1 counter-clockwise, -1 clockwise */
+  double gravity;                     /* magnitude of gravity, acting along -y [m/s^2] */
+  fb_link_mass link[3];               /* crank, coupler, follower (3) */
+  double density;                     /* material density [kg/m^3] */
+  double youngs_modulus;              /* Young's modulus E [Pa] */
+  double poisson_ratio;               /* Poisson's ratio nu [-] in (-1, 0.5) */
+  fb_solver solver;                   /* ODE settings */
+  double revolutions;                 /* crank revolutions simulated [-]; the first is a run-in */
+  int model_count;                    /* entries used in models */
+  char models[FB_MAX_MODELS][FB_NAME_SIZE]; /* model names to run, in order */
+} fb_case;
+
+/* Fills every field with its documented default (the paper's case where the
+ * paper gives a value; see cases/README.md). */
+void fb_case_default(fb_case *c);
+
+/* Checks the case as a whole: lengths and masses valid, the nominal and the
+ * stack-up linkage assemble and their crank turns fully (it is driven), the
+ * step size is smaller than one revolution, every model name is known.
+ * Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY, FB_ERR_ARG with the rule in diag. */
+fb_status fb_case_check(const fb_case *c, fb_diag *diag);
+
+/* Signed crank speed omega2 [rad/s]: negative for a clockwise crank. */
+double fb_case_omega2(const fb_case *c);
+
+/* Link lengths at the case's stack-up corner [m]. */
+void fb_case_stackup_lengths(const fb_case *c, fb_linkage *out);
+
+/* Simulated duration [s]: revolutions * 2 pi / crank speed. */
+double fb_case_duration(const fb_case *c);
+
+/* Model names known to this build, NULL-terminated. */
+extern const char *const fb_model_names[];
+
+/* 1 when name is a known model name. */
+int fb_model_known(const char *name);
+
+#endif

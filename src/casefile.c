@@ -1,0 +1,546 @@
+#include "casefile.h"
+
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "units.h"
+
+/* ---- the key table -------------------------------------------------------- */
+
+typedef enum {
+  K_DOUBLE,    /* number, multiplied by scale to SI */
+  K_INT,       /* integer */
+  K_ULONG,     /* unsigned integer */
+  K_NAME,      /* identifier-like string */
+  K_TEXT,      /* free text, kept for the reader only */
+  K_BRANCH,    /* open | crossed */
+  K_DIRECTION, /* cw | ccw */
+  K_STEPPER,   /* world | quick */
+  K_STACKUP,   /* nominal | max | min | four corner characters from + - 0 */
+  K_MODELS     /* comma-separated model names */
+} key_kind;
+
+typedef struct {
+  const char *section;
+  const char *key;
+  key_kind kind;
+  size_t offset; /* into fb_case */
+  double scale;  /* file unit -> SI (K_DOUBLE) */
+  double lo, hi; /* allowed range in file units */
+  int lo_open;   /* 1: lo excluded */
+  int hi_open;   /* 1: hi excluded */
+  const char *unit;
+  const char *def; /* default as written in a file */
+  const char *rule;
+  const char *doc;
+} key_spec;
+
+#define OFF(field) offsetof(fb_case, field)
+#define INF HUGE_VAL
+#define LEN_RULE "a link length must be positive"
+#define TOL_RULE "a tolerance must be >= 0"
+#define MASS_RULE "a mass must be positive"
+#define INERTIA_RULE "a moment of inertia must be positive"
+#define COM_RULE "the centre of mass lies between the link's joints (0 to 1)"
+
+#define LINK_MASS_KEYS(i, nm, m, izz, ilong, itr)                                          \
+  {"mass", nm "_kg", K_DOUBLE, OFF(link[i].mass), 1.0, 0, INF, 1, 1, "kg", m, MASS_RULE,   \
+   "mass of the " nm},                                                                     \
+  {"mass", nm "_inertia_kg_mm2", K_DOUBLE, OFF(link[i].inertia), FB_KG_M2_PER_KG_MM2, 0, INF, 1, 1,       \
+   "kg mm^2", izz, INERTIA_RULE,                                                           \
+   "moment of inertia of the " nm " about the hinge (out-of-plane) axis through its "      \
+   "centre of mass"},                                                                      \
+  {"mass", nm "_inertia_long_kg_mm2", K_DOUBLE, OFF(link[i].inertia_long), FB_KG_M2_PER_KG_MM2, 0, INF,   \
+   1, 1, "kg mm^2", ilong, INERTIA_RULE,                                                   \
+   "moment about the " nm "'s long axis (no effect on planar motion with ideal hinges)"},  \
+  {"mass", nm "_inertia_transverse_kg_mm2", K_DOUBLE, OFF(link[i].inertia_transverse),     \
+   FB_KG_M2_PER_KG_MM2, 0, INF, 1, 1, "kg mm^2", itr, INERTIA_RULE,                                       \
+   "moment about the in-plane axis across the " nm " (no effect on planar motion)"},       \
+  {"mass", nm "_com_fraction", K_DOUBLE, OFF(link[i].com_fraction), 1.0, 0, 1, 0, 0, "-",  \
+   "0.5", COM_RULE, "centre of mass position along the " nm ", from its first joint"}
+
+static const key_spec keys[] = {
+    {"case", "name", K_NAME, OFF(name), 0, 0, 0, 0, 0, "-", "case", "letters, digits, - _ .",
+     "case name; run output goes to results/<name>/"},
+    {"case", "description", K_TEXT, 0, 0, 0, 0, 0, 0, "-", "", "free text",
+     "one line describing the case (not used by the solver)"},
+
+    {"linkage", "crank_mm", K_DOUBLE, OFF(nominal.length[FB_CRANK]), FB_M_PER_MM, 0, INF, 1, 1, "mm",
+     "108", LEN_RULE, "basic crank length, A to B"},
+    {"linkage", "coupler_mm", K_DOUBLE, OFF(nominal.length[FB_COUPLER]), FB_M_PER_MM, 0, INF, 1, 1,
+     "mm", "279.4", LEN_RULE, "basic coupler length, B to C"},
+    {"linkage", "follower_mm", K_DOUBLE, OFF(nominal.length[FB_FOLLOWER]), FB_M_PER_MM, 0, INF, 1, 1,
+     "mm", "270.5", LEN_RULE, "basic follower (rocker) length, D to C"},
+    {"linkage", "ground_mm", K_DOUBLE, OFF(nominal.length[FB_GROUND]), FB_M_PER_MM, 0, INF, 1, 1,
+     "mm", "254", LEN_RULE, "basic ground length, A to D along +x"},
+    {"linkage", "branch", K_BRANCH, OFF(branch), 0, 0, 0, 0, 0, "-", "open", "open or crossed",
+     "assembly branch: open (C left of B->D) or crossed"},
+    {"linkage", "crank_angle0_deg", K_DOUBLE, OFF(crank_angle0), FB_RAD_PER_DEG, -INF, INF, 1, 1,
+     "deg", "0", "a finite angle", "crank angle at t = 0, counter-clockwise from +x"},
+
+    {"tolerance", "crank_plus_minus_mm", K_DOUBLE, OFF(plus_minus[FB_CRANK]), FB_M_PER_MM, 0, INF, 0,
+     1, "mm", "0", TOL_RULE, "symmetric tolerance of the crank length"},
+    {"tolerance", "coupler_plus_minus_mm", K_DOUBLE, OFF(plus_minus[FB_COUPLER]), FB_M_PER_MM, 0, INF,
+     0, 1, "mm", "0", TOL_RULE, "symmetric tolerance of the coupler length"},
+    {"tolerance", "follower_plus_minus_mm", K_DOUBLE, OFF(plus_minus[FB_FOLLOWER]), FB_M_PER_MM, 0,
+     INF, 0, 1, "mm", "0", TOL_RULE, "symmetric tolerance of the follower length"},
+    {"tolerance", "ground_plus_minus_mm", K_DOUBLE, OFF(plus_minus[FB_GROUND]), FB_M_PER_MM, 0, INF, 0,
+     1, "mm", "0", TOL_RULE, "symmetric tolerance of the ground length"},
+    {"tolerance", "stackup", K_STACKUP, OFF(stackup), 0, 0, 0, 0, 0, "-", "max",
+     "nominal, max, min, or 4 characters from + - 0",
+     "stack-up corner for the *-stackup models: every link at max or min, or one "
+     "character per link in the order crank, coupler, follower, ground (e.g. +-+-)"},
+
+    {"drive", "speed_rpm", K_DOUBLE, OFF(crank_speed), FB_RAD_S_PER_RPM, 0, 1e6, 1, 0, "rpm",
+     "1000", "crank speed must be positive (at most 1e6 rpm)",
+     "constant crank speed (magnitude)"},
+    {"drive", "direction", K_DIRECTION, OFF(direction), 0, 0, 0, 0, 0, "-", "cw", "cw or ccw",
+     "crank direction seen from +z: cw (clockwise) or ccw"},
+
+    {"environment", "gravity_m_s2", K_DOUBLE, OFF(gravity), 1.0, 0, 1e3, 0, 0, "m/s^2",
+     "9.80665", "gravity must be between 0 and 1000 m/s^2",
+     "gravity, acting along -y in the (vertical) mechanism plane"},
+
+    LINK_MASS_KEYS(0, "crank", "0.12", "173.92", "6.69", "167.88"),
+    LINK_MASS_KEYS(1, "coupler", "0.29", "2070.46", "15.49", "2056.16"),
+    LINK_MASS_KEYS(2, "follower", "0.28", "1988.39", "15.28", "1974.43"),
+
+    {"material", "density_kg_m3", K_DOUBLE, OFF(density), 1.0, 0, INF, 1, 1, "kg/m^3", "7800",
+     "a density must be positive", "density of links and pins"},
+    {"material", "youngs_modulus_gpa", K_DOUBLE, OFF(youngs_modulus), FB_PA_PER_GPA, 0, INF, 1, 1, "GPa",
+     "207", "Young's modulus must be positive", "Young's modulus E of links and pins"},
+    {"material", "poisson_ratio", K_DOUBLE, OFF(poisson_ratio), 1.0, -1, 0.5, 1, 1, "-", "0.29",
+     "Poisson's ratio must lie in (-1, 0.5)", "Poisson's ratio nu of links and pins"},
+
+    {"solver", "h_s", K_DOUBLE, OFF(solver.h), 1.0, 0, 1, 1, 0, "s", "1e-5",
+     "the step size must be positive (at most 1 s)", "step size h of the ODE models"},
+    {"solver", "stepper", K_STEPPER, OFF(solver.stepper), 0, 0, 0, 0, 0, "-", "world",
+     "world or quick", "world: dWorldStep (direct LCP); quick: dWorldQuickStep (SOR)"},
+    {"solver", "quick_iterations", K_INT, OFF(solver.quick_iterations), 0, 1, 1e6, 0, 0, "-",
+     "20", "iterations must be 1 to 1000000", "dWorldQuickStep iterations"},
+    {"solver", "world_erp", K_DOUBLE, OFF(solver.world_erp), 1.0, 0, 1, 0, 0, "-", "0.2",
+     "ERP must lie in [0, 1]", "error reduction parameter of the ideal joints (dWorldSetERP)"},
+    {"solver", "world_cfm", K_DOUBLE, OFF(solver.world_cfm), 1.0, 0, 1, 0, 0, "m/(N s)", "1e-10",
+     "CFM must lie in [0, 1]", "constraint force mixing of the ideal joints (dWorldSetCFM)"},
+    {"solver", "drive_torque_max_n_m", K_DOUBLE, OFF(solver.drive_torque_max), 1.0, 0, INF, 1, 1,
+     "N m", "1e4", "the drive torque limit must be positive",
+     "torque limit of the crank's velocity motor (dParamFMax); far above the ~1 N m the "
+     "paper's case needs, so the crank speed is held exactly"},
+    {"solver", "seed", K_ULONG, OFF(solver.seed), 0, 0, 0, 0, 0, "-", "1",
+     "a non-negative integer", "seed of ODE's random generator (dRandSetSeed)"},
+
+    {"run", "revolutions", K_INT, OFF(revolutions), 0, 2, 1e6, 0, 0, "-", "3",
+     "at least 2: the first revolution is a run-in and peaks come from the rest",
+     "crank revolutions simulated; peaks are taken over all but the first"},
+    {"run", "models", K_MODELS, OFF(models), 0, 0, 0, 0, 0, "-",
+     "analytic, analytic-stackup, ode-ideal-nominal, ode-ideal-stackup", "known model names",
+     "models to run, comma-separated"},
+};
+
+#define NKEYS ((int)(sizeof keys / sizeof keys[0]))
+
+int fb_casefile_key_count(void) { return NKEYS; }
+
+const char *fb_casefile_key_name(int i, char *buf, size_t size) {
+  snprintf(buf, size, "%s.%s", keys[i].section, keys[i].key);
+  return buf;
+}
+
+void fb_casefile_write_keys(FILE *f) {
+  fprintf(f, "| key | unit | default | rule | meaning |\n|---|---|---|---|---|\n");
+  const char *section = "";
+  for (int i = 0; i < NKEYS; i++) {
+    if (strcmp(section, keys[i].section) != 0) section = keys[i].section;
+    fprintf(f, "| [%s] %s | %s | %s | %s | %s |\n", keys[i].section, keys[i].key, keys[i].unit,
+            keys[i].def, keys[i].rule, keys[i].doc);
+  }
+}
+
+/* ---- raw entries: what the file and --set said, with where -------------- */
+
+#define MAX_ENTRIES 512
+
+typedef struct {
+  char section[64];
+  char key[64];
+  char value[256];
+  char origin[512]; /* "file:line" or "--set" */
+  int line;         /* 0 for --set */
+} entry;
+
+typedef struct {
+  entry e[MAX_ENTRIES];
+  int n;
+  const char *path;
+  int line;         /* line the reader returned last */
+  int too_long;     /* a line exceeded INI_MAX_LINE */
+  fb_status status; /* first error seen by the handler */
+  fb_diag *diag;
+} load_ctx;
+
+static int find_entry(const load_ctx *c, const char *section, const char *key) {
+  for (int i = 0; i < c->n; i++)
+    if (strcmp(c->e[i].section, section) == 0 && strcmp(c->e[i].key, key) == 0) return i;
+  return -1;
+}
+
+static fb_status put_entry(load_ctx *c, const char *section, const char *key,
+                           const char *value, const char *origin, int line, int replace) {
+  if (strlen(section) >= sizeof c->e[0].section || strlen(key) >= sizeof c->e[0].key ||
+      strlen(value) >= sizeof c->e[0].value)
+    return fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [%s] %s: section, key or value is too long",
+                       origin, section, key);
+  int i = find_entry(c, section, key);
+  if (i >= 0 && !replace)
+    return fb_diag_set(c->diag, FB_ERR_PARSE,
+                       "%s: duplicate key '%s' in [%s] (first given at %s); give each key once",
+                       origin, key, section, c->e[i].origin);
+  if (i < 0) {
+    if (c->n == MAX_ENTRIES)
+      return fb_diag_set(c->diag, FB_ERR_PARSE, "%s: more than %d keys", origin, MAX_ENTRIES);
+    i = c->n++;
+  }
+  entry *e = &c->e[i];
+  snprintf(e->section, sizeof e->section, "%s", section);
+  snprintf(e->key, sizeof e->key, "%s", key);
+  snprintf(e->value, sizeof e->value, "%s", value);
+  snprintf(e->origin, sizeof e->origin, "%s", origin);
+  e->line = line;
+  return FB_OK;
+}
+
+/* inih reader that counts lines, so handler errors can name their line */
+typedef struct {
+  FILE *f;
+  load_ctx *ctx;
+} reader_state;
+
+static char *file_reader(char *str, int num, void *stream) {
+  reader_state *r = stream;
+  char *s = fgets(str, num, r->f);
+  if (!s) return NULL;
+  r->ctx->line++;
+  size_t len = strlen(s);
+  if (len > 0 && s[len - 1] != '\n' && !feof(r->f) && !r->ctx->too_long)
+    r->ctx->too_long = r->ctx->line;
+  return s;
+}
+
+static int on_ini_entry(void *user, const char *section, const char *name, const char *value) {
+  load_ctx *c = user;
+  if (c->status != FB_OK) return 1;
+  char origin[512];
+  snprintf(origin, sizeof origin, "%s:%d", c->path, c->line);
+  c->status = put_entry(c, section, name, value, origin, c->line, 0);
+  return 1;
+}
+
+/* ---- interpretation --------------------------------------------------------- */
+
+static int levenshtein(const char *a, const char *b) {
+  size_t la = strlen(a), lb = strlen(b);
+  if (la > 63 || lb > 63) return 99;
+  int d[64][64];
+  for (size_t i = 0; i <= la; i++) d[i][0] = (int)i;
+  for (size_t j = 0; j <= lb; j++) d[0][j] = (int)j;
+  for (size_t i = 1; i <= la; i++)
+    for (size_t j = 1; j <= lb; j++) {
+      int sub = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+      int del = d[i - 1][j] + 1, ins = d[i][j - 1] + 1;
+      d[i][j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
+    }
+  return d[la][lb];
+}
+
+static const key_spec *find_spec(const char *section, const char *key) {
+  for (int i = 0; i < NKEYS; i++)
+    if (strcmp(keys[i].section, section) == 0 && strcmp(keys[i].key, key) == 0) return &keys[i];
+  return NULL;
+}
+
+static int section_known(const char *section) {
+  for (int i = 0; i < NKEYS; i++)
+    if (strcmp(keys[i].section, section) == 0) return 1;
+  return 0;
+}
+
+static fb_status unknown_key(const entry *e, fb_diag *diag) {
+  const key_spec *best = NULL;
+  int bd = 1 << 30;
+  for (int i = 0; i < NKEYS; i++) {
+    int d = levenshtein(e->key, keys[i].key) + (strcmp(keys[i].section, e->section) ? 2 : 0);
+    if (d < bd) bd = d, best = &keys[i];
+  }
+  if (!section_known(e->section)) {
+    int sd = 1 << 30;
+    const char *bs = NULL;
+    for (int i = 0; i < NKEYS; i++) {
+      int d = levenshtein(e->section, keys[i].section);
+      if (d < sd) sd = d, bs = keys[i].section;
+    }
+    return fb_diag_set(diag, FB_ERR_PARSE,
+                       "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
+                       "drive, environment, mass, material, solver, run)",
+                       e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
+                       bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
+  }
+  if (best && bd <= 4)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s]; did you mean [%s] %s?",
+                       e->origin, e->key, e->section, best->section, best->key);
+  return fb_diag_set(diag, FB_ERR_PARSE,
+                     "%s: unknown key '%s' in [%s]; see cases/README.md for the keys", e->origin,
+                     e->key, e->section);
+}
+
+static fb_status parse_double(const entry *e, const key_spec *k, double *out, fb_diag *diag) {
+  char *end;
+  errno = 0;
+  double v = strtod(e->value, &end);
+  while (*end == ' ' || *end == '\t') end++;
+  if (end == e->value || *end != '\0')
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': not a number (%s)", e->origin,
+                       e->section, e->key, e->value, k->unit);
+  if (!isfinite(v))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': must be a finite number",
+                       e->origin, e->section, e->key, e->value);
+  int bad_lo = k->lo_open ? !(v > k->lo) : !(v >= k->lo);
+  int bad_hi = k->hi_open ? !(v < k->hi) : !(v <= k->hi);
+  if (bad_lo || bad_hi)
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = %s: %s", e->origin, e->section,
+                       e->key, e->value, k->rule);
+  *out = v;
+  return FB_OK;
+}
+
+static fb_status bad_word(const entry *e, const key_spec *k, fb_diag *diag) {
+  return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': must be %s", e->origin,
+                     e->section, e->key, e->value, k->rule);
+}
+
+static char *trim(char *s) {
+  while (*s == ' ' || *s == '\t') s++;
+  size_t n = strlen(s);
+  while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t')) s[--n] = '\0';
+  return s;
+}
+
+static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
+  const key_spec *k = find_spec(e->section, e->key);
+  if (!k) return unknown_key(e, diag);
+  void *field = (char *)c + k->offset;
+  double v = 0.0;
+  fb_status st;
+  switch (k->kind) {
+    case K_DOUBLE:
+      st = parse_double(e, k, &v, diag);
+      if (st == FB_OK) *(double *)field = v * k->scale;
+      return st;
+    case K_INT:
+    case K_ULONG: {
+      char *end;
+      errno = 0;
+      long long n = strtoll(e->value, &end, 10);
+      if (end == e->value || *trim(end) != '\0' || errno)
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': not an integer", e->origin,
+                           e->section, e->key, e->value);
+      if (k->kind == K_ULONG) {
+        if (n < 0 || (unsigned long long)n > 0xFFFFFFFFull)
+          return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = %s: %s (at most 4294967295)",
+                             e->origin, e->section, e->key, e->value, k->rule);
+        *(unsigned long *)field = (unsigned long)n;
+        return FB_OK;
+      }
+      if ((double)n < k->lo || (double)n > k->hi)
+        return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = %s: %s", e->origin, e->section,
+                           e->key, e->value, k->rule);
+      if (k->offset == OFF(revolutions))
+        *(double *)field = (double)n;
+      else
+        *(int *)field = (int)n;
+      return FB_OK;
+    }
+    case K_NAME: {
+      size_t n = strlen(e->value);
+      if (n == 0 || n >= FB_NAME_SIZE || strspn(e->value,
+                                                "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUV"
+                                                "WXYZ0123456789-_.") != n ||
+          e->value[0] == '.')
+        return fb_diag_set(diag, FB_ERR_PARSE,
+                           "%s: [%s] %s = '%s': a name is 1 to %d characters from letters, "
+                           "digits, '-', '_' and '.', not starting with '.'",
+                           e->origin, e->section, e->key, e->value, FB_NAME_SIZE - 1);
+      memcpy(field, e->value, n + 1);
+      return FB_OK;
+    }
+    case K_TEXT:
+      return FB_OK;
+    case K_BRANCH:
+      if (strcmp(e->value, "open") == 0) *(fb_branch *)field = FB_BRANCH_OPEN;
+      else if (strcmp(e->value, "crossed") == 0) *(fb_branch *)field = FB_BRANCH_CROSSED;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_DIRECTION:
+      if (strcmp(e->value, "ccw") == 0) *(int *)field = +1;
+      else if (strcmp(e->value, "cw") == 0) *(int *)field = -1;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_STEPPER:
+      if (strcmp(e->value, "world") == 0) *(fb_stepper *)field = FB_STEPPER_WORLD;
+      else if (strcmp(e->value, "quick") == 0) *(fb_stepper *)field = FB_STEPPER_QUICK;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_STACKUP: {
+      fb_stackup *s = field;
+      int corner = 2;
+      if (strcmp(e->value, "nominal") == 0) corner = 0;
+      else if (strcmp(e->value, "max") == 0) corner = +1;
+      else if (strcmp(e->value, "min") == 0) corner = -1;
+      if (corner != 2) {
+        for (int i = 0; i < FB_LINK_COUNT; i++) s->corner[i] = corner;
+        return FB_OK;
+      }
+      if (strlen(e->value) != FB_LINK_COUNT) return bad_word(e, k, diag);
+      for (int i = 0; i < FB_LINK_COUNT; i++) {
+        char ch = e->value[i];
+        if (ch != '+' && ch != '-' && ch != '0') return bad_word(e, k, diag);
+        s->corner[i] = ch == '+' ? 1 : (ch == '-' ? -1 : 0);
+      }
+      return FB_OK;
+    }
+    case K_MODELS: {
+      char buf[sizeof e->value];
+      snprintf(buf, sizeof buf, "%s", e->value);
+      c->model_count = 0;
+      char *save = NULL;
+      for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        tok = trim(tok);
+        if (!fb_model_known(tok)) {
+          char known[512] = "";
+          for (int i = 0; fb_model_names[i]; i++) {
+            strncat(known, i ? ", " : "", sizeof known - strlen(known) - 1);
+            strncat(known, fb_model_names[i], sizeof known - strlen(known) - 1);
+          }
+          return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: unknown model '%s' (known: %s)",
+                             e->origin, e->section, e->key, tok, known);
+        }
+        for (int i = 0; i < c->model_count; i++)
+          if (strcmp(c->models[i], tok) == 0)
+            return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: model '%s' listed twice",
+                               e->origin, e->section, e->key, tok);
+        if (c->model_count == FB_MAX_MODELS)
+          return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: more than %d models", e->origin,
+                             e->section, e->key, FB_MAX_MODELS);
+        snprintf(c->models[c->model_count++], FB_NAME_SIZE, "%s", tok);
+      }
+      if (c->model_count == 0)
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s is empty: name at least one model",
+                           e->origin, e->section, e->key);
+      return FB_OK;
+    }
+  }
+  return FB_ERR_ARG;
+}
+
+/* reads line n of path (1-based) for an error message */
+static void read_line(const char *path, int n, char *buf, size_t size) {
+  buf[0] = '\0';
+  FILE *f = fopen(path, "r");
+  if (!f) return;
+  char line[1024];
+  for (int i = 1; fgets(line, sizeof line, f); i++)
+    if (i == n) {
+      line[strcspn(line, "\r\n")] = '\0';
+      size_t len = strlen(line);
+      if (len >= size) len = size - 1;
+      memcpy(buf, line, len);
+      buf[len] = '\0';
+      break;
+    }
+  fclose(f);
+}
+
+static fb_status parse_override(load_ctx *c, const char *ov, int index) {
+  char origin[64];
+  snprintf(origin, sizeof origin, "--set #%d '%.40s'", index + 1, ov);
+  const char *eq = strchr(ov, '=');
+  const char *dot = strchr(ov, '.');
+  if (!eq || !dot || dot > eq || dot == ov || dot + 1 == eq)
+    return fb_diag_set(c->diag, FB_ERR_PARSE,
+                       "--set '%s': expected section.key=value (for example "
+                       "drive.speed_rpm=1500)",
+                       ov);
+  char section[64], key[64], value[256];
+  size_t ls = (size_t)(dot - ov), lk = (size_t)(eq - dot - 1);
+  if (ls >= sizeof section || lk >= sizeof key || strlen(eq + 1) >= sizeof value)
+    return fb_diag_set(c->diag, FB_ERR_PARSE, "--set '%s': too long", ov);
+  memcpy(section, ov, ls);
+  section[ls] = '\0';
+  memcpy(key, dot + 1, lk);
+  key[lk] = '\0';
+  snprintf(value, sizeof value, "%s", eq + 1);
+  return put_entry(c, trim(section), trim(key), trim(value), origin, 0, 1);
+}
+
+fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *overrides,
+                           int n_overrides, fb_diag *diag) {
+  fb_diag_clear(diag);
+  load_ctx *c = calloc(1, sizeof *c);
+  if (!c) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  c->path = path;
+  c->diag = diag;
+  c->status = FB_OK;
+  fb_status st = FB_OK;
+
+  if (path) {
+    FILE *f = fopen(path, "r");
+    if (!f) {
+      st = fb_diag_set(diag, FB_ERR_IO, "%s: cannot open case file: %s", path, strerror(errno));
+      goto done;
+    }
+    reader_state r = {f, c};
+    int rc = ini_parse_stream(file_reader, &r, on_ini_entry, c);
+    fclose(f);
+    if (c->status != FB_OK) {
+      st = c->status;
+      goto done;
+    }
+    if (c->too_long) {
+      st = fb_diag_set(diag, FB_ERR_PARSE, "%s:%d: line longer than %d characters", path,
+                       c->too_long, INI_MAX_LINE - 2);
+      goto done;
+    }
+    if (rc != 0) {
+      char text[256];
+      read_line(path, rc, text, sizeof text);
+      st = fb_diag_set(diag, FB_ERR_PARSE,
+                       "%s:%d: malformed line '%s': expected '[section]', 'key = value' or "
+                       "a comment starting with ; or #",
+                       path, rc, text);
+      goto done;
+    }
+  }
+  for (int i = 0; i < n_overrides; i++) {
+    st = parse_override(c, overrides[i], i);
+    if (st != FB_OK) goto done;
+  }
+
+  fb_case_default(out);
+  for (int i = 0; i < c->n; i++) {
+    st = apply(out, &c->e[i], diag);
+    if (st != FB_OK) goto done;
+  }
+  {
+    fb_diag inner;
+    st = fb_case_check(out, &inner);
+    if (st != FB_OK)
+      fb_diag_set(diag, st, "%s: %s", path ? path : "case", inner.msg);
+  }
+done:
+  free(c);
+  return st;
+}

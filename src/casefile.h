@@ -1,0 +1,34 @@
+/* Case files: INI (parsed by inih) with the unit in every key name. This is
+ * the one place where non-SI units (mm, rpm, deg, GPa, kg mm^2) are converted
+ * to SI. Every key, its unit, default and rule is in the table of casefile.c
+ * and documented in cases/README.md (a test keeps the two in step). */
+#ifndef FB_CASEFILE_H
+#define FB_CASEFILE_H
+
+#include <stdio.h>
+
+#include "case.h"
+
+/* Loads a case: defaults (fb_case_default), then the file at path (NULL for
+ * none), then overrides, each "section.key=value" as given to --set, applied
+ * in order (a later one wins), then fb_case_check.
+ * Errors (one sentence in diag naming file:line or "--set", section, key,
+ * value and the rule broken; *out is unspecified on error):
+ *   FB_ERR_IO    file missing or unreadable;
+ *   FB_ERR_PARSE malformed line, unknown section or key (with the nearest
+ *                valid key suggested), duplicate key, value of the wrong type,
+ *                NaN or infinity;
+ *   FB_ERR_RANGE value outside its physical range;
+ *   and those of fb_case_check. */
+fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *overrides,
+                           int n_overrides, fb_diag *diag);
+
+/* Writes the key table as Markdown rows "| [section] key | unit | default |
+ * rule | meaning |" to f, for the documentation. */
+void fb_casefile_write_keys(FILE *f);
+
+/* Number of keys and the "section.key" name of key i, for tests. */
+int fb_casefile_key_count(void);
+const char *fb_casefile_key_name(int i, char *buf, size_t size);
+
+#endif

@@ -1,0 +1,21 @@
+/* Helpers shared by the fourbar commands: argument parsing only, no physics. */
+#ifndef FB_CLI_H
+#define FB_CLI_H
+
+/* Prints "fourbar <cmd>: <message>" to stderr and returns exit status 2
+ * (usage) or 1 (failure) as given. */
+int fb_cli_fail(const char *cmd, int status, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* Parses a finite double from a flag value; returns 0 and prints a message
+ * naming the flag on failure. */
+int fb_cli_double(const char *cmd, const char *flag, const char *text, double *out);
+
+/* The directory holding the shipped case files (build-time constant). */
+const char *fb_cli_cases_dir(void);
+
+int fb_cmd_run(int argc, char **argv);
+int fb_cmd_kinematics(int argc, char **argv);
+int fb_cmd_keys(int argc, char **argv);
+
+#endif

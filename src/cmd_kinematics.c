@@ -1,0 +1,114 @@
+/* fourbar kinematics: argument parsing and dispatch only. */
+#include <getopt.h>
+#include <jansson.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "analytic.h"
+#include "cli.h"
+#include "report.h"
+#include "units.h"
+
+static const char kin_help[] =
+    "usage: fourbar kinematics --crank-mm L --coupler-mm L --follower-mm L --ground-mm L\n"
+    "                          --speed-rpm N [--direction cw|ccw] [--branch open|crossed]\n"
+    "                          [--json]\n"
+    "\n"
+    "Exact peaks of coupler and follower angular velocity [rad/s] and angular\n"
+    "acceleration [rad/s^2] over one crank revolution at constant speed, the\n"
+    "Grashof class and the transmission angle range [deg].\n"
+    "\n"
+    "  --direction   crank direction seen from +z (default ccw)\n"
+    "  --branch      assembly branch (default open)\n"
+    "  --json        one JSON object on standard output\n"
+    "Exit status: 0 ok, 1 the crank cannot turn fully, 2 bad input.\n";
+
+int fb_cmd_kinematics(int argc, char **argv) {
+  static const struct option opts[] = {{"crank-mm", required_argument, 0, 'a'},
+                                       {"coupler-mm", required_argument, 0, 'b'},
+                                       {"follower-mm", required_argument, 0, 'c'},
+                                       {"ground-mm", required_argument, 0, 'g'},
+                                       {"speed-rpm", required_argument, 0, 'n'},
+                                       {"direction", required_argument, 0, 'd'},
+                                       {"branch", required_argument, 0, 'r'},
+                                       {"json", no_argument, 0, 'j'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  double mm[FB_LINK_COUNT] = {-1, -1, -1, -1}, rpm = -1;
+  int dir = +1, json = 0, ch;
+  fb_branch branch = FB_BRANCH_OPEN;
+  const char *flag_of[FB_LINK_COUNT] = {"--crank-mm", "--coupler-mm", "--follower-mm",
+                                        "--ground-mm"};
+  optind = 1;
+  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    switch (ch) {
+      case 'a': if (!fb_cli_double("kinematics", "--crank-mm", optarg, &mm[FB_CRANK])) return 2; break;
+      case 'b': if (!fb_cli_double("kinematics", "--coupler-mm", optarg, &mm[FB_COUPLER])) return 2; break;
+      case 'c': if (!fb_cli_double("kinematics", "--follower-mm", optarg, &mm[FB_FOLLOWER])) return 2; break;
+      case 'g': if (!fb_cli_double("kinematics", "--ground-mm", optarg, &mm[FB_GROUND])) return 2; break;
+      case 'n': if (!fb_cli_double("kinematics", "--speed-rpm", optarg, &rpm)) return 2; break;
+      case 'd':
+        if (strcmp(optarg, "cw") == 0) dir = -1;
+        else if (strcmp(optarg, "ccw") == 0) dir = +1;
+        else return fb_cli_fail("kinematics", 2, "--direction '%s': must be cw or ccw", optarg);
+        break;
+      case 'r':
+        if (strcmp(optarg, "open") == 0) branch = FB_BRANCH_OPEN;
+        else if (strcmp(optarg, "crossed") == 0) branch = FB_BRANCH_CROSSED;
+        else return fb_cli_fail("kinematics", 2, "--branch '%s': must be open or crossed", optarg);
+        break;
+      case 'j': json = 1; break;
+      case 'h': fputs(kin_help, stdout); return 0;
+      default: fputs(kin_help, stderr); return 2;
+    }
+  }
+  if (optind < argc) return fb_cli_fail("kinematics", 2, "unexpected argument '%s'", argv[optind]);
+  fb_linkage lk;
+  for (int i = 0; i < FB_LINK_COUNT; i++) {
+    if (mm[i] == -1) return fb_cli_fail("kinematics", 2, "%s is required; see --help", flag_of[i]);
+    if (!(mm[i] > 0)) return fb_cli_fail("kinematics", 2, "%s = %g: a link length must be positive", flag_of[i], mm[i]);
+    lk.length[i] = mm[i] * FB_M_PER_MM;
+  }
+  if (rpm == -1) return fb_cli_fail("kinematics", 2, "--speed-rpm is required; see --help");
+  if (!(rpm > 0)) return fb_cli_fail("kinematics", 2, "--speed-rpm = %g: crank speed must be positive", rpm);
+  const double omega2 = dir * rpm * FB_RAD_S_PER_RPM;
+
+  fb_diag diag;
+  fb_peaks p;
+  double mu_min, mu_max;
+  fb_status st = fb_linkage_transmission_range(&lk, &mu_min, &mu_max, &diag);
+  if (st == FB_OK) st = fb_analytic_peaks(&p, &lk, branch, omega2, &diag);
+  fb_grashof g = fb_linkage_grashof(&lk);
+  if (st != FB_OK) return fb_cli_fail("kinematics", 1, "%s linkage: %s", fb_grashof_name(g), diag.msg);
+  const double deg = 1.0 / FB_RAD_PER_DEG;
+  if (json) {
+    json_t *o = json_object();
+    json_t *l = json_object();
+    for (int i = 0; i < FB_LINK_COUNT; i++) json_object_set_new(l, fb_link_name(i), json_real(lk.length[i]));
+    json_object_set_new(o, "lengths_m", l);
+    json_object_set_new(o, "speed_rpm", json_real(rpm));
+    json_object_set_new(o, "crank_omega_rad_s", json_real(omega2));
+    json_object_set_new(o, "direction", json_string(dir > 0 ? "ccw" : "cw"));
+    json_object_set_new(o, "branch", json_string(branch == FB_BRANCH_OPEN ? "open" : "crossed"));
+    json_object_set_new(o, "grashof", json_string(fb_grashof_name(g)));
+    json_object_set_new(o, "coupler", fb_report_body_peaks_json(&p.coupler));
+    json_object_set_new(o, "follower", fb_report_body_peaks_json(&p.follower));
+    json_object_set_new(o, "transmission_angle_min_deg", json_real(mu_min * deg));
+    json_object_set_new(o, "transmission_angle_max_deg", json_real(mu_max * deg));
+    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
+    fputc('\n', stdout);
+    json_decref(o);
+    return 0;
+  }
+  printf("linkage: crank %g, coupler %g, follower %g, ground %g mm (%s), %g rpm %s, %s branch\n",
+         mm[0], mm[1], mm[2], mm[3], fb_grashof_name(g), rpm, dir > 0 ? "ccw" : "cw",
+         branch == FB_BRANCH_OPEN ? "open" : "crossed");
+  printf("%-9s %12s %12s %14s %14s\n", "body", "omega_max", "omega_min", "alpha_max", "alpha_min");
+  printf("%-9s %12s %12s %14s %14s\n", "", "rad/s", "rad/s", "rad/s2", "rad/s2");
+  printf("%-9s %12.6f %12.6f %14.4f %14.4f\n", "coupler", p.coupler.omega_max, p.coupler.omega_min,
+         p.coupler.alpha_max, p.coupler.alpha_min);
+  printf("%-9s %12.6f %12.6f %14.4f %14.4f\n", "follower", p.follower.omega_max,
+         p.follower.omega_min, p.follower.alpha_max, p.follower.alpha_min);
+  printf("transmission angle: %.4f to %.4f deg\n", mu_min * deg, mu_max * deg);
+  return 0;
+}

@@ -1,0 +1,43 @@
+/* fourbar: the command-line interface. Dispatch only; no physics here. */
+#include <stdio.h>
+#include <string.h>
+
+#include "casefile.h"
+#include "cli.h"
+
+static const char main_help[] =
+    "usage: fourbar COMMAND [options]   (fourbar COMMAND --help for each)\n"
+    "\n"
+    "Planar four-bar linkage with tolerance stack-up and clearance joints in the\n"
+    "Open Dynamics Engine, checked against the exact analytic solution.\n"
+    "\n"
+    "commands:\n"
+    "  run          run a case file's models; write summary.json and CSV series\n"
+    "  kinematics   exact peaks, Grashof class and transmission angle of a linkage\n"
+    "  keys         list every case-file key with unit, default and rule\n"
+    "\n"
+    "All outputs are SI; names carry the unit (omega_max_rad_s, h_s).\n";
+
+int fb_cmd_keys(int argc, char **argv) {
+  if (argc > 1 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
+    puts("usage: fourbar keys\n\nPrints every case-file key as a Markdown table.");
+    return 0;
+  }
+  if (argc > 1) return fb_cli_fail("keys", 2, "unexpected argument '%s'", argv[1]);
+  fb_casefile_write_keys(stdout);
+  return 0;
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
+      strcmp(argv[1], "help") == 0) {
+    fputs(main_help, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  const char *cmd = argv[1];
+  if (strcmp(cmd, "run") == 0) return fb_cmd_run(argc - 1, argv + 1);
+  if (strcmp(cmd, "kinematics") == 0) return fb_cmd_kinematics(argc - 1, argv + 1);
+  if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
+  fprintf(stderr, "fourbar: unknown command '%s'\n\n%s", cmd, main_help);
+  return 2;
+}

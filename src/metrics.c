@@ -1,0 +1,87 @@
+#include "metrics.h"
+
+#include <math.h>
+
+double fb_metrics_rel(double x, double ref) {
+  if (ref == 0.0) return x - ref;
+  return (x - ref) / fabs(ref);
+}
+
+static void peak_update(fb_body_peaks *p, double w, double a, int first) {
+  if (first) {
+    p->omega_max = p->omega_min = w;
+    p->alpha_max = p->alpha_min = a;
+    return;
+  }
+  if (w > p->omega_max) p->omega_max = w;
+  if (w < p->omega_min) p->omega_min = w;
+  if (a > p->alpha_max) p->alpha_max = a;
+  if (a < p->alpha_min) p->alpha_min = a;
+}
+
+fb_status fb_metrics_peaks(fb_peaks *out, const fb_series *s, double t_from, fb_diag *diag) {
+  size_t used = 0;
+  for (size_t i = 0; i < s->n; i++) {
+    if (s->t[i] < t_from) continue;
+    peak_update(&out->coupler, s->coupler_omega[i], s->coupler_alpha[i], used == 0);
+    peak_update(&out->follower, s->follower_omega[i], s->follower_alpha[i], used == 0);
+    used++;
+  }
+  if (used == 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "no sample at or after t = %g s to take peaks from",
+                       t_from);
+  return FB_OK;
+}
+
+typedef struct {
+  double w_max, w_sq, a_max, a_sq;
+} err_acc;
+
+static void acc_add(err_acc *e, double dw, double da) {
+  if (fabs(dw) > e->w_max) e->w_max = fabs(dw);
+  if (fabs(da) > e->a_max) e->a_max = fabs(da);
+  e->w_sq += dw * dw;
+  e->a_sq += da * da;
+}
+
+static void body_error(fb_body_error *out, const err_acc *e, size_t n, const fb_body_peaks *p,
+                       const fb_body_peaks *x) {
+  out->omega_max_rel = fb_metrics_rel(p->omega_max, x->omega_max);
+  out->omega_min_rel = fb_metrics_rel(p->omega_min, x->omega_min);
+  out->alpha_max_rel = fb_metrics_rel(p->alpha_max, x->alpha_max);
+  out->alpha_min_rel = fb_metrics_rel(p->alpha_min, x->alpha_min);
+  out->omega_err_max = e->w_max;
+  out->omega_err_rms = sqrt(e->w_sq / (double)n);
+  out->alpha_err_max = e->a_max;
+  out->alpha_err_rms = sqrt(e->a_sq / (double)n);
+}
+
+fb_status fb_metrics_error(fb_error *out, const fb_series *s, double t_from,
+                           const fb_linkage *lk, fb_branch branch, double theta0, double omega2,
+                           const fb_peaks *exact, fb_diag *diag) {
+  err_acc ec = {0, 0, 0, 0}, ef = {0, 0, 0, 0};
+  double crank_err = 0.0;
+  size_t n = 0;
+  for (size_t i = 0; i < s->n; i++) {
+    if (s->t[i] < t_from) continue;
+    double th = theta0 + omega2 * s->t[i];
+    fb_linkage_state x;
+    fb_status st = fb_linkage_solve(&x, lk, branch, th, omega2, 0.0, diag);
+    if (st != FB_OK) return st;
+    acc_add(&ec, s->coupler_omega[i] - x.coupler_omega, s->coupler_alpha[i] - x.coupler_alpha);
+    acc_add(&ef, s->follower_omega[i] - x.follower_omega,
+            s->follower_alpha[i] - x.follower_alpha);
+    double dc = fabs(s->crank_angle[i] - th);
+    if (dc > crank_err) crank_err = dc;
+    n++;
+  }
+  if (n == 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "no sample at or after t = %g s to compare", t_from);
+  fb_peaks p;
+  fb_status st = fb_metrics_peaks(&p, s, t_from, diag);
+  if (st != FB_OK) return st;
+  body_error(&out->coupler, &ec, n, &p.coupler, &exact->coupler);
+  body_error(&out->follower, &ef, n, &p.follower, &exact->follower);
+  out->crank_angle_err_max = crank_err;
+  return FB_OK;
+}

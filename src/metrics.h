@@ -1,0 +1,43 @@
+/* Metrics of a sampled series: peaks over a time window, and the error of a
+ * dynamic series against the exact analytic solution at the same instants. */
+#ifndef FB_METRICS_H
+#define FB_METRICS_H
+
+#include "analytic.h"
+#include "series.h"
+
+/* Error of one body against the analytic solution. */
+typedef struct {
+  double omega_max_rel;      /* (peak - exact peak) / |exact peak| of max omega [-] */
+  double omega_min_rel;      /* same for min omega [-] */
+  double alpha_max_rel;      /* same for max alpha [-] */
+  double alpha_min_rel;      /* same for min alpha [-] */
+  double omega_err_max;      /* max |omega - omega_exact(t)| [rad/s] */
+  double omega_err_rms;      /* RMS of omega - omega_exact(t) [rad/s] */
+  double alpha_err_max;      /* max |alpha - alpha_exact(t)| [rad/s^2] */
+  double alpha_err_rms;      /* RMS of alpha - alpha_exact(t) [rad/s^2] */
+} fb_body_error;
+
+typedef struct {
+  fb_body_error coupler;
+  fb_body_error follower;
+  double crank_angle_err_max; /* max |theta2 - (theta0 + omega2 t)| [rad] */
+} fb_error;
+
+/* Peaks of coupler and follower over the samples with t >= t_from [s].
+ * Errors: FB_ERR_ARG when no sample lies in the window. */
+fb_status fb_metrics_peaks(fb_peaks *out, const fb_series *s, double t_from, fb_diag *diag);
+
+/* Error of series s against the analytic solution of linkage lk (branch,
+ * theta2(t) = theta0 + omega2 t), over samples with t >= t_from; exact peaks
+ * are those of fb_analytic_peaks, passed in as exact.
+ * Errors: FB_ERR_ARG for an empty window; those of fb_linkage_solve. */
+fb_status fb_metrics_error(fb_error *out, const fb_series *s, double t_from,
+                           const fb_linkage *lk, fb_branch branch, double theta0, double omega2,
+                           const fb_peaks *exact, fb_diag *diag);
+
+/* Signed relative difference (x - ref) / |ref|; 0 when both are 0, and
+ * (x - ref) when ref is 0 (absolute, no division by zero). */
+double fb_metrics_rel(double x, double ref);
+
+#endif

@@ -1,0 +1,209 @@
+#include "report.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "fileio.h"
+
+/* finite number or null */
+static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
+
+json_t *fb_report_body_peaks_json(const fb_body_peaks *p) {
+  json_t *o = json_object();
+  json_object_set_new(o, "omega_max_rad_s", num(p->omega_max));
+  json_object_set_new(o, "omega_min_rad_s", num(p->omega_min));
+  json_object_set_new(o, "alpha_max_rad_s2", num(p->alpha_max));
+  json_object_set_new(o, "alpha_min_rad_s2", num(p->alpha_min));
+  return o;
+}
+
+static json_t *rel_peaks_json(const fb_body_peaks *p) {
+  json_t *o = json_object();
+  json_object_set_new(o, "omega_max_rel", num(p->omega_max));
+  json_object_set_new(o, "omega_min_rel", num(p->omega_min));
+  json_object_set_new(o, "alpha_max_rel", num(p->alpha_max));
+  json_object_set_new(o, "alpha_min_rel", num(p->alpha_min));
+  return o;
+}
+
+static json_t *body_error_json(const fb_body_error *e) {
+  json_t *o = json_object();
+  json_object_set_new(o, "omega_max_rel", num(e->omega_max_rel));
+  json_object_set_new(o, "omega_min_rel", num(e->omega_min_rel));
+  json_object_set_new(o, "alpha_max_rel", num(e->alpha_max_rel));
+  json_object_set_new(o, "alpha_min_rel", num(e->alpha_min_rel));
+  json_object_set_new(o, "omega_err_max_rad_s", num(e->omega_err_max));
+  json_object_set_new(o, "omega_err_rms_rad_s", num(e->omega_err_rms));
+  json_object_set_new(o, "alpha_err_max_rad_s2", num(e->alpha_err_max));
+  json_object_set_new(o, "alpha_err_rms_rad_s2", num(e->alpha_err_rms));
+  return o;
+}
+
+static json_t *lengths_json(const fb_linkage *lk) {
+  json_t *o = json_object();
+  for (int i = 0; i < FB_LINK_COUNT; i++)
+    json_object_set_new(o, fb_link_name(i), num(lk->length[i]));
+  return o;
+}
+
+static json_t *model_json(const fb_model_result *m) {
+  json_t *o = json_object();
+  const fb_model_run *run = &m->run;
+  json_object_set_new(o, "name", json_string(run->name));
+  json_object_set_new(o, "kind", json_string(fb_model_kind_name(run->kind)));
+  json_object_set_new(o, "status", json_string(run->status));
+  json_object_set_new(o, "h_s", num(run->h));
+  json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
+  json_object_set_new(o, "wall_s", num(run->wall_s));
+  json_object_set_new(o, "time_per_step_us",
+                      run->steps ? num(1e6 * run->wall_s / (double)run->steps) : json_null());
+  json_object_set_new(o, "lengths_m", lengths_json(&run->lengths));
+  if (m->has_peaks) {
+    json_object_set_new(o, "coupler", fb_report_body_peaks_json(&m->peaks.coupler));
+    json_object_set_new(o, "follower", fb_report_body_peaks_json(&m->peaks.follower));
+  } else {
+    json_object_set_new(o, "coupler", json_null());
+    json_object_set_new(o, "follower", json_null());
+  }
+  if (m->has_error) {
+    json_t *e = json_object();
+    json_object_set_new(e, "reference",
+                        json_string(run->kind == FB_KIND_ODE
+                                        ? "analytic solution of the same link lengths"
+                                        : "exact (refined) peaks of the same solution: the "
+                                          "sampling floor of the time grid"));
+    json_object_set_new(e, "coupler", body_error_json(&m->error.coupler));
+    json_object_set_new(e, "follower", body_error_json(&m->error.follower));
+    json_object_set_new(e, "crank_angle_err_max_rad", num(m->error.crank_angle_err_max));
+    json_object_set_new(o, "error_vs_analytic", e);
+  } else {
+    json_object_set_new(o, "error_vs_analytic", json_null());
+  }
+  if (m->has_peaks) {
+    json_t *d = json_object();
+    json_object_set_new(d, "coupler", rel_peaks_json(&m->delta_vs_nominal.coupler));
+    json_object_set_new(d, "follower", rel_peaks_json(&m->delta_vs_nominal.follower));
+    json_object_set_new(o, "delta_vs_analytic_nominal", d);
+  } else {
+    json_object_set_new(o, "delta_vs_analytic_nominal", json_null());
+  }
+  if (run->kind == FB_KIND_ODE) json_object_set_new(o, "joint_drift_max_m", num(run->joint_drift_max));
+  return o;
+}
+
+json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
+  const fb_case *c = &r->c;
+  json_t *o = json_object();
+  json_object_set_new(o, "case", json_string(c->name));
+  json_object_set_new(o, "case_file", case_path ? json_string(case_path) : json_null());
+  json_object_set_new(o, "speed_rpm", num(c->crank_speed * 60.0 / (2.0 * M_PI)));
+  json_object_set_new(o, "crank_omega_rad_s", num(fb_case_omega2(c)));
+  json_object_set_new(o, "direction", json_string(c->direction > 0 ? "ccw" : "cw"));
+  json_object_set_new(o, "branch", json_string(c->branch == FB_BRANCH_OPEN ? "open" : "crossed"));
+  json_object_set_new(o, "revolutions", num(c->revolutions));
+  json_object_set_new(o, "peak_window_from_s", num(r->t_window));
+  json_object_set_new(o, "stepper", json_string(c->solver.stepper == FB_STEPPER_WORLD
+                                                    ? "dWorldStep"
+                                                    : "dWorldQuickStep"));
+  json_t *an = json_object();
+  json_object_set_new(an, "coupler", fb_report_body_peaks_json(&r->analytic_nominal.coupler));
+  json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
+  json_object_set_new(o, "analytic_nominal", an);
+  json_t *models = json_array();
+  for (int i = 0; i < r->n; i++) json_array_append_new(models, model_json(&r->model[i]));
+  json_object_set_new(o, "models", models);
+  return o;
+}
+
+fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag) {
+  fb_outfile out;
+  fb_status st = fb_outfile_open(&out, path, diag);
+  if (st != FB_OK) return st;
+  if (json_dumpf(j, out.f, JSON_INDENT(2) | JSON_REAL_PRECISION(12)) != 0) {
+    fb_outfile_abort(&out);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: JSON write failed", path);
+  }
+  fputc('\n', out.f);
+  return fb_outfile_commit(&out, diag);
+}
+
+fb_status fb_report_write_csv(const char *path, const fb_series *s, fb_diag *diag) {
+  fb_outfile out;
+  fb_status st = fb_outfile_open(&out, path, diag);
+  if (st != FB_OK) return st;
+  size_t nc = fb_series_column_count();
+  for (size_t k = 0; k < nc; k++)
+    fprintf(out.f, "%s%s", k ? "," : "", fb_series_column_name(k));
+  fputc('\n', out.f);
+  for (size_t i = 0; i < s->n; i++) {
+    for (size_t k = 0; k < nc; k++) fprintf(out.f, "%s%.12g", k ? "," : "", fb_series_value(s, k, i));
+    fputc('\n', out.f);
+  }
+  return fb_outfile_commit(&out, diag);
+}
+
+fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
+                              fb_diag *diag) {
+  char path[4096];
+  for (int i = 0; i < r->n; i++) {
+    snprintf(path, sizeof path, "%s/%s.csv", dir, r->model[i].run.name);
+    fb_status st = fb_report_write_csv(path, &r->model[i].run.series, diag);
+    if (st != FB_OK) return st;
+  }
+  snprintf(path, sizeof path, "%s/summary.json", dir);
+  json_t *j = fb_report_summary_json(r, case_path);
+  fb_status st = fb_report_write_json(path, j, diag);
+  json_decref(j);
+  return st;
+}
+
+static double worst_rel(const fb_body_error *a, const fb_body_error *b, int alpha) {
+  double v[4] = {alpha ? a->alpha_max_rel : a->omega_max_rel,
+                 alpha ? a->alpha_min_rel : a->omega_min_rel,
+                 alpha ? b->alpha_max_rel : b->omega_max_rel,
+                 alpha ? b->alpha_min_rel : b->omega_min_rel};
+  double w = 0.0;
+  for (int i = 0; i < 4; i++)
+    if (fabs(v[i]) > w) w = fabs(v[i]);
+  return w;
+}
+
+void fb_report_print_table(FILE *f, const fb_run *r) {
+  const fb_case *c = &r->c;
+  fprintf(f, "case %s: %.6g rpm %s, %s branch, %g revolutions, h = %g s (%s); "
+             "peaks over t >= %.6g s (after the first revolution)\n\n",
+          c->name, c->crank_speed * 60.0 / (2.0 * M_PI), c->direction > 0 ? "ccw" : "cw",
+          c->branch == FB_BRANCH_OPEN ? "open" : "crossed", c->revolutions, c->solver.h,
+          c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep",
+          r->t_window);
+  fprintf(f, "%-19s %-35s %-35s %-17s %6s %8s %6s\n", "", "coupler omega / alpha",
+          "follower omega / alpha", "peak err vs exact", "", "", "");
+  fprintf(f, "%-19s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s %s\n", "model",
+          "max", "min", "max", "min", "max", "min", "max", "min", "omega", "alpha", "steps",
+          "wall_s", "us/step", "status");
+  fprintf(f, "%-19s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s\n", "", "rad/s",
+          "rad/s", "rad/s2", "rad/s2", "rad/s", "rad/s", "rad/s2", "rad/s2", "rel", "rel", "",
+          "s", "");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    fprintf(f, "%-19s ", m->run.name);
+    if (m->has_peaks) {
+      const fb_body_peaks *p[2] = {&m->peaks.coupler, &m->peaks.follower};
+      for (int b = 0; b < 2; b++)
+        fprintf(f, "%8.4f %8.4f %9.2f %9.2f ", p[b]->omega_max, p[b]->omega_min,
+                p[b]->alpha_max, p[b]->alpha_min);
+    } else {
+      fprintf(f, "%-71s ", "(no peaks: stopped before the window)");
+    }
+    if (m->has_error)
+      fprintf(f, "%8.1e %8.1e ", worst_rel(&m->error.coupler, &m->error.follower, 0),
+              worst_rel(&m->error.coupler, &m->error.follower, 1));
+    else
+      fprintf(f, "%8s %8s ", "-", "-");
+    fprintf(f, "%8zu %8.3f %7.2f %s\n", m->run.steps, m->run.wall_s,
+            m->run.steps ? 1e6 * m->run.wall_s / (double)m->run.steps : 0.0, m->run.status);
+  }
+  fprintf(f, "\npeak err: largest |relative error| of the four omega (or alpha) peaks of "
+             "coupler and follower against the exact analytic peaks of the same lengths; "
+             "for analytic models it is the sampling floor of the time grid.\n");
+}

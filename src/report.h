@@ -1,0 +1,37 @@
+/* Writers: per-model CSV, summary.json (jansson) and the printed summary
+ * table. Keys and column names carry their SI unit; NaN and infinity are
+ * never written (JSON null stands for "not measured"). */
+#ifndef FB_REPORT_H
+#define FB_REPORT_H
+
+#include <jansson.h>
+#include <stdio.h>
+
+#include "run.h"
+
+/* JSON object {"omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2",
+ * "alpha_min_rad_s2"} of one body's peaks (new reference). */
+json_t *fb_report_body_peaks_json(const fb_body_peaks *p);
+
+/* The summary of a run as documented in the README (new reference):
+ * {"case", "models": [{"name", "kind", "status", "h_s", "steps", "wall_s",
+ *  "coupler", "follower", "error_vs_analytic", ...}], ...}. */
+json_t *fb_report_summary_json(const fb_run *r, const char *case_path);
+
+/* Writes DIR/<model>.csv for every model and DIR/summary.json, each
+ * atomically. Errors: FB_ERR_IO naming the file. */
+fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
+                              fb_diag *diag);
+
+/* Writes one series as CSV (header of unit-suffixed column names). */
+fb_status fb_report_write_csv(const char *path, const fb_series *s, fb_diag *diag);
+
+/* Writes a JSON value to path atomically (indented, keys in insertion order). */
+fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag);
+
+/* Prints the summary table in the spirit of the paper's: per model, peaks of
+ * coupler and follower angular velocity and acceleration, error against the
+ * analytic solution of the same lengths, step size, steps, wall time. */
+void fb_report_print_table(FILE *f, const fb_run *r);
+
+#endif

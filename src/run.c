@@ -1,0 +1,67 @@
+#include "run.h"
+
+#include <math.h>
+#include <string.h>
+
+static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref) {
+  const fb_body_peaks *in[2] = {&p->coupler, &p->follower};
+  const fb_body_peaks *rf[2] = {&ref->coupler, &ref->follower};
+  fb_body_peaks *o[2] = {&out->coupler, &out->follower};
+  for (int i = 0; i < 2; i++) {
+    o[i]->omega_max = fb_metrics_rel(in[i]->omega_max, rf[i]->omega_max);
+    o[i]->omega_min = fb_metrics_rel(in[i]->omega_min, rf[i]->omega_min);
+    o[i]->alpha_max = fb_metrics_rel(in[i]->alpha_max, rf[i]->alpha_max);
+    o[i]->alpha_min = fb_metrics_rel(in[i]->alpha_min, rf[i]->alpha_min);
+  }
+}
+
+static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
+  const fb_case *c = &r->c;
+  const double omega2 = fb_case_omega2(c);
+  fb_status st = fb_analytic_peaks(&m->exact, &m->run.lengths, c->branch, omega2, diag);
+  if (st != FB_OK) return st;
+  const fb_series *s = &m->run.series;
+  if (s->n == 0 || s->t[s->n - 1] < r->t_window) return FB_OK; /* stopped in the run-in */
+  if (m->run.kind == FB_KIND_ANALYTIC) {
+    m->peaks = m->exact;
+  } else {
+    st = fb_metrics_peaks(&m->peaks, s, r->t_window, diag);
+    if (st != FB_OK) return st;
+  }
+  m->has_peaks = 1;
+  /* for the analytic model this measures the sampling floor of the grid */
+  st = fb_metrics_error(&m->error, s, r->t_window, &m->run.lengths, c->branch,
+                        c->crank_angle0, omega2, &m->exact, diag);
+  if (st != FB_OK) return st;
+  m->has_error = 1;
+  rel_peaks(&m->delta_vs_nominal, &m->peaks, &r->analytic_nominal);
+  return FB_OK;
+}
+
+fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
+                      fb_diag *diag) {
+  memset(r, 0, sizeof *r);
+  r->c = *c;
+  r->t_window = 2.0 * M_PI / c->crank_speed; /* after the first revolution */
+  /* a hair below one revolution so the sample at exactly one period counts */
+  r->t_window -= 0.5 * c->solver.h;
+  fb_status st = fb_analytic_peaks(&r->analytic_nominal, &c->nominal, c->branch,
+                                   fb_case_omega2(c), diag);
+  if (st != FB_OK) return st;
+  for (int i = 0; i < c->model_count; i++) {
+    fb_model_result *m = &r->model[i];
+    st = fb_model_run_one(&m->run, c, c->models[i], progress, user, diag);
+    r->n = i + 1;
+    if (st == FB_OK) st = measure(m, r, diag);
+    if (st != FB_OK) {
+      fb_run_free(r);
+      return st;
+    }
+  }
+  return FB_OK;
+}
+
+void fb_run_free(fb_run *r) {
+  for (int i = 0; i < r->n; i++) fb_model_run_free(&r->model[i].run);
+  r->n = 0;
+}

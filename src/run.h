@@ -1,0 +1,38 @@
+/* The run pipeline: case -> models -> metrics. Runs every model a case asks
+ * for, then measures each: peaks over the revolutions after the first, and,
+ * for ODE models, the error against the analytic solution of the same link
+ * lengths. Writers (report.h) take the result from here. */
+#ifndef FB_RUN_H
+#define FB_RUN_H
+
+#include "metrics.h"
+#include "models.h"
+
+/* One model with its metrics. */
+typedef struct {
+  fb_model_run run;        /* series, cost and status */
+  int has_peaks;           /* 1 when the peak window was reached */
+  fb_peaks peaks;          /* analytic: exact (GSL-refined); ode: over samples [rad/s, rad/s^2] */
+  fb_peaks exact;          /* analytic peaks of the same lengths */
+  int has_error;           /* 1 for ode models that reached the window */
+  fb_error error;          /* against the analytic solution of the same lengths */
+  fb_peaks delta_vs_nominal; /* (peak - analytic nominal peak) / |analytic nominal peak| [-] */
+} fb_model_result;
+
+typedef struct {
+  fb_case c;                              /* the case as run */
+  double t_window;                        /* peaks and errors use t >= t_window [s] */
+  int n;                                  /* models run */
+  fb_model_result model[FB_MAX_MODELS];   /* in the case's order */
+  fb_peaks analytic_nominal;              /* exact peaks of the nominal linkage */
+} fb_run;
+
+/* Runs case c. A model that stops on numerical trouble keeps its status and
+ * the others still run. Errors: FB_ERR_ASSEMBLY, FB_ERR_NOMEM, FB_ERR_ARG;
+ * on error *r holds nothing that needs freeing. */
+fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
+                      fb_diag *diag);
+
+void fb_run_free(fb_run *r);
+
+#endif

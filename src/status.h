@@ -1,0 +1,47 @@
+/* Status codes and the caller-owned diagnostic buffer shared by every module.
+ *
+ * Every fallible public function returns an fb_status and, on failure, fills a
+ * caller-owned fb_diag with one sentence naming the field, the value and the
+ * rule it breaks (the pattern of MuJoCo's mj_loadXML error buffer).
+ */
+#ifndef FB_STATUS_H
+#define FB_STATUS_H
+
+#include <stddef.h>
+
+/* X-macro list: code, message. */
+#define FB_STATUS_LIST(X)                                             \
+  X(FB_OK, "ok")                                                      \
+  X(FB_ERR_ARG, "invalid argument")                                   \
+  X(FB_ERR_IO, "input/output error")                                  \
+  X(FB_ERR_PARSE, "malformed input")                                  \
+  X(FB_ERR_RANGE, "value out of range")                               \
+  X(FB_ERR_ASSEMBLY, "linkage cannot be assembled")                   \
+  X(FB_ERR_NUMERIC, "numerical failure")                              \
+  X(FB_ERR_NOMEM, "out of memory")
+
+typedef enum {
+#define FB_STATUS_ENUM(code, msg) code,
+  FB_STATUS_LIST(FB_STATUS_ENUM)
+#undef FB_STATUS_ENUM
+} fb_status;
+
+#define FB_DIAG_SIZE 1024
+
+/* A diagnostic message owned by the caller; empty when nothing went wrong. */
+typedef struct {
+  char msg[FB_DIAG_SIZE]; /* one sentence: where, what value, which rule */
+} fb_diag;
+
+/* Returns the fixed message of a status code (never NULL). */
+const char *fb_status_message(fb_status s);
+
+/* Formats a message into diag (if diag is not NULL) and returns status s,
+ * so that callers can write `return fb_diag_set(d, FB_ERR_RANGE, "...")`. */
+fb_status fb_diag_set(fb_diag *diag, fb_status s, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* Clears diag (if not NULL). */
+void fb_diag_clear(fb_diag *diag);
+
+#endif

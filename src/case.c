@@ -77,8 +77,9 @@ static fb_status check_drivable(const fb_linkage *lk, const char *which, fb_diag
     return fb_diag_set(diag, st, "%s linkage cannot be assembled: %s", which, inner.msg);
   if (!full)
     return fb_diag_set(diag, FB_ERR_ASSEMBLY,
-                       "%s linkage (%s): the crank is driven through full revolutions "
-                       "but can only reach crank angles with |theta2| in [%.3f, %.3f] deg; "
+                       "%s linkage (%s): the crank cannot turn fully, but it is driven "
+                       "at constant speed: it reaches only crank angles with |theta2| in "
+                       "[%.3f, %.3f] deg; "
                        "a driven crank needs coupler + follower > crank + ground and "
                        "|coupler - follower| < |ground - crank|",
                        which, fb_grashof_name(fb_linkage_grashof(lk)), lo * 180.0 / M_PI,

@@ -273,7 +273,11 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
   const key_spec *best = NULL;
   int bd = 1 << 30;
   for (int i = 0; i < NKEYS; i++) {
-    int d = levenshtein(e->key, keys[i].key) + (strcmp(keys[i].section, e->section) ? 2 : 0);
+    /* a key missing its unit suffix ("speed" for "speed_rpm") is a prefix */
+    size_t n = strlen(e->key);
+    int prefix = n >= 3 && strncmp(keys[i].key, e->key, n) == 0;
+    int d = (prefix ? 1 : levenshtein(e->key, keys[i].key)) +
+            (strcmp(keys[i].section, e->section) ? 3 : 0);
     if (d < bd) bd = d, best = &keys[i];
   }
   if (!section_known(e->section)) {

@@ -1,0 +1,42 @@
+/* Shared test helpers: double-precision near-equality (cmocka 1.1's float
+ * assertion casts to float, which hides errors below 1e-7), and an
+ * environment switch FB_TEST_VERBOSE=1 that prints the actual residuals, for
+ * choosing tolerances honestly. */
+#ifndef FB_TEST_H
+#define FB_TEST_H
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <cmocka.h>
+
+static inline int fb_test_verbose(void) {
+  const char *v = getenv("FB_TEST_VERBOSE");
+  return v && *v && *v != '0';
+}
+
+/* |a - b| <= tol, with both values printed on failure */
+#define assert_near(a, b, tol)                                                          \
+  do {                                                                                  \
+    double fb_a_ = (a), fb_b_ = (b), fb_t_ = (tol);                                     \
+    if (!(fabs(fb_a_ - fb_b_) <= fb_t_))                                                \
+      fail_msg("%s = %.17g, %s = %.17g, |diff| = %.3g > tol %.3g", #a, fb_a_, #b, fb_b_, \
+               fabs(fb_a_ - fb_b_), fb_t_);                                             \
+  } while (0)
+
+/* |a - b| <= rel * |b| */
+#define assert_rel(a, b, rel) assert_near((a), (b), (rel) * fabs(b))
+
+/* prints a measured residual when FB_TEST_VERBOSE is set */
+#define report_residual(name, value, tol)                                      \
+  do {                                                                         \
+    if (fb_test_verbose())                                                     \
+      fprintf(stderr, "  residual %-40s %.3e (tol %.1e)\n", name, (double)(value), \
+              (double)(tol));                                                  \
+  } while (0)
+
+#endif

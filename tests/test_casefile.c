@@ -1,0 +1,159 @@
+/* Case files: unit conversion at the edge, overrides, and every class of bad
+ * input giving one message that names where, what and which rule. */
+#include <string.h>
+#include <unistd.h>
+
+#include "casefile.h"
+#include "fb_test.h"
+
+/* conversions are exact multiplications by decimal constants: a few ulp */
+#define SI_TOL 1e-15
+
+static char paper_path[4096];
+
+static const char *cases_dir(void) {
+  const char *d = getenv("FOURBAR_CASES_DIR");
+  return d ? d : "cases";
+}
+
+/* writes text to a fresh temporary case file and returns its path */
+static const char *write_case(const char *text) {
+  static char path[64];
+  snprintf(path, sizeof path, "/tmp/fb_case_XXXXXX");
+  int fd = mkstemp(path);
+  assert_true(fd >= 0);
+  assert_int_equal(write(fd, text, strlen(text)), (ssize_t)strlen(text));
+  close(fd);
+  return path;
+}
+
+static void expect_error(const char *text, const char *const *sets, int nsets, fb_status want,
+                         const char *const *needles) {
+  fb_case c;
+  fb_diag d;
+  const char *p = text ? write_case(text) : NULL;
+  fb_status st = fb_casefile_load(&c, p, sets, nsets, &d);
+  if (fb_test_verbose()) fprintf(stderr, "  message: %s\n", d.msg);
+  assert_int_equal(st, want);
+  for (int i = 0; needles[i]; i++)
+    if (!strstr(d.msg, needles[i])) fail_msg("message '%s' lacks '%s'", d.msg, needles[i]);
+  if (p) unlink(p);
+}
+
+static void test_paper_case_in_si(void **state) {
+  (void)state;
+  fb_case c;
+  fb_diag d;
+  assert_int_equal(fb_casefile_load(&c, paper_path, NULL, 0, &d), FB_OK);
+  assert_string_equal(c.name, "paper_crank_rocker");
+  assert_near(c.nominal.length[FB_CRANK], 0.108, SI_TOL);
+  assert_near(c.nominal.length[FB_COUPLER], 0.2794, SI_TOL);
+  assert_near(c.plus_minus[FB_CRANK], 0.3e-3, SI_TOL);
+  assert_near(c.crank_speed, 1000.0 * 2.0 * M_PI / 60.0, 1e-12);
+  assert_int_equal(c.direction, -1);
+  assert_near(c.youngs_modulus, 207e9, 1.0);
+  assert_near(c.link[FB_COUPLER].inertia, 2070.46e-6, 1e-18);
+  fb_linkage su;
+  fb_case_stackup_lengths(&c, &su);
+  assert_near(su.length[FB_CRANK], 0.1083, SI_TOL);
+  assert_near(su.length[FB_GROUND], 0.2545, SI_TOL);
+  /* in-plane moments against slender rods m L^2 / 12: the links carry pin
+   * bosses, so they exceed the rod, but by less than 1.6 times */
+  for (int i = 0; i < 3; i++) {
+    double rod = c.link[i].mass * c.nominal.length[i] * c.nominal.length[i] / 12.0;
+    assert_true(c.link[i].inertia > rod);
+    assert_true(c.link[i].inertia < 1.6 * rod);
+    assert_true(c.link[i].inertia >= c.link[i].inertia_transverse);
+  }
+}
+
+static void test_overrides(void **state) {
+  (void)state;
+  const char *sets[] = {"drive.speed_rpm=1500", "solver.h_s = 2e-5", "drive.speed_rpm=600",
+                        "tolerance.stackup=+-0+", "run.models=analytic"};
+  fb_case c;
+  fb_diag d;
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 5, &d), FB_OK);
+  assert_near(c.crank_speed, 600.0 * 2.0 * M_PI / 60.0, 1e-12); /* later wins */
+  assert_near(c.solver.h, 2e-5, 0.0);
+  assert_int_equal(c.stackup.corner[FB_COUPLER], -1);
+  assert_int_equal(c.stackup.corner[FB_FOLLOWER], 0);
+  assert_int_equal(c.model_count, 1);
+}
+
+static void test_missing_file(void **state) {
+  (void)state;
+  fb_case c;
+  fb_diag d;
+  assert_int_equal(fb_casefile_load(&c, "/nonexistent/x.ini", NULL, 0, &d), FB_ERR_IO);
+  assert_non_null(strstr(d.msg, "/nonexistent/x.ini"));
+}
+
+static void test_bad_inputs_name_place_value_rule(void **state) {
+  (void)state;
+  expect_error("[linkage]\ncrank_mm = 108\nthis line is wrong\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":3:", "malformed line", "this line is wrong", NULL});
+  expect_error("[linkage]\ncupler_mm = 279\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "unknown key 'cupler_mm'", "coupler_mm", NULL});
+  expect_error("[linkge]\ncrank_mm = 108\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "unknown section [linkge]", "[linkage]", NULL});
+  expect_error("[linkage]\ncrank_mm = 108\ncrank_mm = 100\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":3:", "duplicate key 'crank_mm'", ":2", NULL});
+  expect_error("[linkage]\ncrank_mm = -3\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){":2:", "crank_mm = -3", "must be positive", NULL});
+  expect_error("[linkage]\ncrank_mm = nan\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "finite", NULL});
+  expect_error("[linkage]\ncrank_mm = 12abc\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"not a number", NULL});
+  expect_error("[material]\npoisson_ratio = 0.5\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){"poisson_ratio = 0.5", "(-1, 0.5)", NULL});
+  expect_error("[drive]\ndirection = left\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"direction = 'left'", "cw or ccw", NULL});
+  expect_error("[run]\nmodels = analytic, ode-magic\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"unknown model 'ode-magic'", "ode-ideal-nominal", NULL});
+  /* whole-case rules */
+  expect_error("[linkage]\ncrank_mm = 10\ncoupler_mm = 10\nfollower_mm = 10\nground_mm = 1000\n",
+               NULL, 0, FB_ERR_ASSEMBLY, (const char *[]){"cannot be assembled", NULL});
+  /* a double-rocker: crank cannot turn fully; message names the reachable range */
+  expect_error("[linkage]\ncrank_mm = 300\ncoupler_mm = 100\nfollower_mm = 250\nground_mm = 350\n",
+               NULL, 0, FB_ERR_ASSEMBLY,
+               (const char *[]){"cannot", "crank angles with |theta2| in [", NULL});
+  expect_error("[solver]\nh_s = 0.5\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){"step size h = 0.5 s", "smaller than the run", NULL});
+  expect_error(NULL, (const char *[]){"linkage.crank_mm"}, 1, FB_ERR_PARSE,
+               (const char *[]){"--set", "section.key=value", NULL});
+  expect_error(NULL, (const char *[]){"linkage.crank_mm=-1"}, 1, FB_ERR_RANGE,
+               (const char *[]){"--set", "crank_mm = -1", "positive", NULL});
+}
+
+static void test_every_key_documented(void **state) {
+  (void)state;
+  char path[4096];
+  snprintf(path, sizeof path, "%s/README.md", cases_dir());
+  FILE *f = fopen(path, "r");
+  assert_non_null(f);
+  static char doc[1 << 16];
+  size_t n = fread(doc, 1, sizeof doc - 1, f);
+  doc[n] = '\0';
+  fclose(f);
+  for (int i = 0; i < fb_casefile_key_count(); i++) {
+    char name[128], row[160];
+    fb_casefile_key_name(i, name, sizeof name);
+    char *dot = strchr(name, '.');
+    *dot = '\0';
+    snprintf(row, sizeof row, "| [%s] %s |", name, dot + 1);
+    if (!strstr(doc, row)) fail_msg("cases/README.md does not document %s", row);
+  }
+}
+
+int main(void) {
+  snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", cases_dir());
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_paper_case_in_si),
+      cmocka_unit_test(test_overrides),
+      cmocka_unit_test(test_missing_file),
+      cmocka_unit_test(test_bad_inputs_name_place_value_rule),
+      cmocka_unit_test(test_every_key_documented),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,190 @@
+/* The fourbar binary end to end: the paper case runs and writes what the
+ * README promises; bad input exits non-zero naming file/line or field and
+ * writes nothing. argv[1] is the path of the built binary. */
+#include <jansson.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "fb_test.h"
+
+static const char *exe;
+static char tmpdir[64];
+
+/* runs `exe args` with stdout and stderr captured; returns the exit status */
+static int run(const char *args, char *out, size_t out_size, char *err, size_t err_size) {
+  char cmd[8192];
+  snprintf(cmd, sizeof cmd, "%s %s >%s/out.txt 2>%s/err.txt", exe, args, tmpdir, tmpdir);
+  int rc = system(cmd);
+  char path[256];
+  char *bufs[2] = {out, err};
+  size_t sizes[2] = {out_size, err_size};
+  const char *names[2] = {"out.txt", "err.txt"};
+  for (int i = 0; i < 2; i++) {
+    if (!bufs[i]) continue;
+    snprintf(path, sizeof path, "%s/%s", tmpdir, names[i]);
+    FILE *f = fopen(path, "r");
+    size_t n = f ? fread(bufs[i], 1, sizes[i] - 1, f) : 0;
+    bufs[i][n] = '\0';
+    if (f) fclose(f);
+  }
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+static const char *write_file(const char *name, const char *text) {
+  static char path[256];
+  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+  FILE *f = fopen(path, "w");
+  fputs(text, f);
+  fclose(f);
+  return path;
+}
+
+static void test_paper_case_runs_and_writes_summary(void **state) {
+  (void)state;
+  static char out[1 << 16], err[1 << 16];
+  char args[512];
+  snprintf(args, sizeof args, "run --out %s/paper", tmpdir);
+  assert_int_equal(run(args, out, sizeof out, err, sizeof err), 0);
+  assert_non_null(strstr(out, "ode-ideal-nominal"));
+  char path[256];
+  snprintf(path, sizeof path, "%s/paper/summary.json", tmpdir);
+  json_error_t je;
+  json_t *j = json_load_file(path, 0, &je);
+  if (!j) fail_msg("summary.json does not parse: %s", je.text);
+  assert_string_equal(json_string_value(json_object_get(j, "case")), "paper_crank_rocker");
+  json_t *models = json_object_get(j, "models");
+  assert_int_equal(json_array_size(models), 4);
+  const char *keys[] = {"name", "kind", "status", "h_s", "steps", "wall_s", "coupler",
+                        "follower", "error_vs_analytic", NULL};
+  const char *peak_keys[] = {"omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2",
+                             "alpha_min_rad_s2", NULL};
+  size_t i;
+  json_t *m;
+  json_array_foreach(models, i, m) {
+    for (int k = 0; keys[k]; k++)
+      if (!json_object_get(m, keys[k])) fail_msg("model %zu lacks key %s", i, keys[k]);
+    for (int b = 0; b < 2; b++) {
+      json_t *body = json_object_get(m, b ? "follower" : "coupler");
+      for (int k = 0; peak_keys[k]; k++) assert_true(json_is_number(json_object_get(body, peak_keys[k])));
+    }
+    const char *kind = json_string_value(json_object_get(m, "kind"));
+    assert_true(strcmp(kind, "analytic") == 0 || strcmp(kind, "ode") == 0);
+    assert_string_equal(json_string_value(json_object_get(m, "status")), "ok");
+    /* every model wrote its CSV, with a unit-suffixed header */
+    snprintf(path, sizeof path, "%s/paper/%s.csv", tmpdir,
+             json_string_value(json_object_get(m, "name")));
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char header[512];
+    assert_non_null(fgets(header, sizeof header, f));
+    fclose(f);
+    assert_non_null(strstr(header, "time_s,crank_angle_rad,coupler_angle_rad,coupler_omega_rad_s"));
+  }
+  /* the acceptance bound: ode-ideal-nominal omega peaks within 1e-4 */
+  json_t *ode = json_array_get(models, 2);
+  assert_string_equal(json_string_value(json_object_get(ode, "name")), "ode-ideal-nominal");
+  json_t *e = json_object_get(ode, "error_vs_analytic");
+  for (int b = 0; b < 2; b++) {
+    json_t *body = json_object_get(e, b ? "follower" : "coupler");
+    assert_true(fabs(json_real_value(json_object_get(body, "omega_max_rel"))) < 1e-4);
+    assert_true(fabs(json_real_value(json_object_get(body, "omega_min_rel"))) < 1e-4);
+  }
+  json_decref(j);
+}
+
+static void test_json_flag_and_kinematics(void **state) {
+  (void)state;
+  static char out[1 << 16], err[4096];
+  assert_int_equal(run("kinematics --crank-mm 108 --coupler-mm 279.4 --follower-mm 270.5 "
+                       "--ground-mm 254 --speed-rpm 1000 --direction cw --json",
+                       out, sizeof out, err, sizeof err), 0);
+  json_error_t je;
+  json_t *j = json_loads(out, 0, &je);
+  if (!j) fail_msg("kinematics --json output does not parse: %s", je.text);
+  assert_string_equal(json_string_value(json_object_get(j, "grashof")), "crank-rocker");
+  assert_true(json_is_number(json_object_get(j, "transmission_angle_min_deg")));
+  assert_true(json_is_number(json_object_get(j, "transmission_angle_max_deg")));
+  double amax = json_real_value(json_object_get(json_object_get(j, "coupler"), "alpha_min_rad_s2"));
+  double w = 1000.0 * 2 * M_PI / 60;
+  assert_near(fabs(amax) / (w * w), 1.091571, 5e-7); /* PAPER.md's ratio */
+  json_decref(j);
+}
+
+static void expect_fail(const char *args, const char *const *needles) {
+  static char err[8192];
+  int rc = run(args, NULL, 0, err, sizeof err);
+  if (fb_test_verbose()) fprintf(stderr, "  [%d] %s", rc, err);
+  if (rc == 0) fail_msg("'%s' exited 0", args);
+  for (int i = 0; needles[i]; i++)
+    if (!strstr(err, needles[i])) fail_msg("'%s': stderr '%s' lacks '%s'", args, err, needles[i]);
+}
+
+static void test_bad_input_exits_nonzero_with_message(void **state) {
+  (void)state;
+  char args[1024];
+  snprintf(args, sizeof args, "run %s/none.ini --out %s/x", tmpdir, tmpdir);
+  expect_fail(args, (const char *[]){"none.ini", "cannot open", NULL});
+  const char *p = write_file("malformed.ini", "[linkage]\ncrank_mm 108\n");
+  snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
+  expect_fail(args, (const char *[]){"malformed.ini:2", "malformed line", NULL});
+  p = write_file("unknown.ini", "[drive]\nspeed = 100\n");
+  snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
+  expect_fail(args, (const char *[]){"unknown.ini:2", "unknown key 'speed'", "speed_rpm", NULL});
+  p = write_file("negative.ini", "[linkage]\nfollower_mm = -270.5\n");
+  snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
+  expect_fail(args, (const char *[]){"negative.ini:2", "follower_mm = -270.5", "positive", NULL});
+  p = write_file("apart.ini", "[linkage]\ncrank_mm = 10\ncoupler_mm = 20\nfollower_mm = 20\n"
+                              "ground_mm = 500\n");
+  snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
+  expect_fail(args, (const char *[]){"apart.ini", "cannot be assembled", NULL});
+  p = write_file("rocker.ini", "[linkage]\ncrank_mm = 300\ncoupler_mm = 100\nfollower_mm = 250\n"
+                               "ground_mm = 350\n");
+  snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
+  expect_fail(args, (const char *[]){"rocker.ini", "crank cannot turn fully", "deg", NULL});
+  expect_fail("run --set drive.speed_rpm=-5 --out /tmp/x",
+              (const char *[]){"--set", "speed_rpm = -5", NULL});
+  expect_fail("kinematics --crank-mm 108", (const char *[]){"--coupler-mm is required", NULL});
+  expect_fail("kinematics --crank-mm 300 --coupler-mm 100 --follower-mm 250 --ground-mm 350 "
+              "--speed-rpm 10", (const char *[]){"double-rocker", "cannot turn fully", NULL});
+  expect_fail("frobnicate", (const char *[]){"unknown command 'frobnicate'", NULL});
+  /* nothing was written for the failed runs */
+  snprintf(args, sizeof args, "%s/x/summary.json", tmpdir);
+  struct stat st;
+  assert_int_not_equal(stat(args, &st), 0);
+  /* an unwritable output folder is reported before any simulation */
+  expect_fail("run --out /proc/fourbar-cannot-write", (const char *[]){"/proc/fourbar-cannot-write", NULL});
+}
+
+static void test_help_answers(void **state) {
+  (void)state;
+  static char out[8192];
+  assert_int_equal(run("run --help", out, sizeof out, NULL, 0), 0);
+  assert_non_null(strstr(out, "--set"));
+  assert_int_equal(run("kinematics --help", out, sizeof out, NULL, 0), 0);
+  assert_non_null(strstr(out, "--branch"));
+  assert_int_equal(run("--help", out, sizeof out, NULL, 0), 0);
+  assert_non_null(strstr(out, "kinematics"));
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    fprintf(stderr, "usage: test_cli PATH_TO_FOURBAR\n");
+    return 2;
+  }
+  exe = argv[1];
+  snprintf(tmpdir, sizeof tmpdir, "/tmp/fb_cli_XXXXXX");
+  if (!mkdtemp(tmpdir)) return 2;
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_paper_case_runs_and_writes_summary),
+      cmocka_unit_test(test_json_flag_and_kinematics),
+      cmocka_unit_test(test_bad_input_exits_nonzero_with_message),
+      cmocka_unit_test(test_help_answers),
+  };
+  int rc = cmocka_run_group_tests(tests, NULL, NULL);
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", tmpdir);
+  return rc;
+}

@@ -1,0 +1,133 @@
+/* The ideal four-bar in ODE against the exact analytic solution.
+ *
+ *            C
+ *           / \          hinges at A, B, C, D (axis +z); crank driven by a
+ *  coupler /   \         velocity motor at A; gravity along -y
+ *         B     \ follower
+ *  crank /       \
+ *       A ------- D
+ *
+ * ODE's dWorldStep is semi-implicit Euler: velocities at t_{n+1} satisfy the
+ * constraints of the configuration at t_n, so the velocity series lags the
+ * exact one by about one step (a first-order pointwise error, bounded by
+ * h * max|alpha|), while a peak value, where d omega / dt = 0, is only moved
+ * to second order. The tolerances below come from those two facts. */
+#include <string.h>
+
+#include "casefile.h"
+#include "fb_test.h"
+#include "run.h"
+
+/* the acceptance bound on peak angular velocity at the default step */
+#define PEAK_OMEGA_REL_TOL 1e-4
+/* pointwise error <= LAG_FACTOR * h * max|alpha|: one step of lag plus the
+ * ERP position correction, which adds a fraction of a step */
+#define LAG_FACTOR 1.5
+/* halving h divides a first-order error by 2 and a second-order one by 4;
+ * the bands allow the ratio to wander by 10 % (higher-order terms) */
+#define FIRST_ORDER_LO 1.8
+#define FIRST_ORDER_HI 2.2
+#define SECOND_ORDER_LO 3.6
+#define SECOND_ORDER_HI 4.4
+/* hinge anchors may drift apart by much less than the smallest radial
+ * clearance the project studies (2.5 um for 10 H7/g6): 1 um at h = 1e-5 s */
+#define DRIFT_TOL_M 1e-6
+
+static char paper_path[4096];
+
+static void run_ode(fb_run *r, const char *h, const char *stepper) {
+  char hs[64], ss[64];
+  snprintf(hs, sizeof hs, "solver.h_s=%s", h);
+  snprintf(ss, sizeof ss, "solver.stepper=%s", stepper);
+  const char *sets[] = {hs, ss, "run.revolutions=2", "run.models=ode-ideal-nominal"};
+  fb_case c;
+  fb_diag d;
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 4, &d), FB_OK);
+  fb_status st = fb_run_case(r, &c, NULL, NULL, &d);
+  if (st != FB_OK) fail_msg("run failed: %s", d.msg);
+  assert_string_equal(r->model[0].run.status, "ok");
+  assert_true(r->model[0].has_error);
+}
+
+static double worst_peak_rel(const fb_error *e) {
+  const double v[4] = {e->coupler.omega_max_rel, e->coupler.omega_min_rel,
+                       e->follower.omega_max_rel, e->follower.omega_min_rel};
+  double w = 0;
+  for (int i = 0; i < 4; i++) w = fmax(w, fabs(v[i]));
+  return w;
+}
+
+static void test_ideal_ode_matches_analytic(void **state) {
+  (void)state;
+  static fb_run r;
+  run_ode(&r, "1e-5", "world");
+  const fb_model_result *m = &r.model[0];
+  const double h = 1e-5;
+  double peak = worst_peak_rel(&m->error);
+  report_residual("peak omega rel, h = 1e-5", peak, PEAK_OMEGA_REL_TOL);
+  assert_true(peak < PEAK_OMEGA_REL_TOL);
+  const fb_peaks *x = &m->exact;
+  double amax_c = fmax(fabs(x->coupler.alpha_max), fabs(x->coupler.alpha_min));
+  double amax_f = fmax(fabs(x->follower.alpha_max), fabs(x->follower.alpha_min));
+  report_residual("coupler omega err max [rad/s]", m->error.coupler.omega_err_max,
+                  LAG_FACTOR * h * amax_c);
+  assert_true(m->error.coupler.omega_err_max < LAG_FACTOR * h * amax_c);
+  assert_true(m->error.follower.omega_err_max < LAG_FACTOR * h * amax_f);
+  report_residual("joint drift [m]", m->run.joint_drift_max, DRIFT_TOL_M);
+  assert_true(m->run.joint_drift_max < DRIFT_TOL_M);
+  fb_run_free(&r);
+}
+
+static void test_convergence_orders(void **state) {
+  (void)state;
+  static fb_run a, b;
+  run_ode(&a, "4e-5", "world");
+  run_ode(&b, "2e-5", "world");
+  double rms_ratio = a.model[0].error.coupler.omega_err_rms / b.model[0].error.coupler.omega_err_rms;
+  double peak_ratio = worst_peak_rel(&a.model[0].error) / worst_peak_rel(&b.model[0].error);
+  report_residual("rms omega error ratio h / (h/2)", rms_ratio, FIRST_ORDER_LO);
+  report_residual("peak omega error ratio h / (h/2)", peak_ratio, SECOND_ORDER_LO);
+  assert_true(rms_ratio > FIRST_ORDER_LO && rms_ratio < FIRST_ORDER_HI);
+  assert_true(peak_ratio > SECOND_ORDER_LO && peak_ratio < SECOND_ORDER_HI);
+  fb_run_free(&a);
+  fb_run_free(&b);
+}
+
+static void test_quickstep_runs_and_is_less_accurate(void **state) {
+  (void)state;
+  /* SOR with 20 iterations on a closed loop: finite, close in velocity, but
+   * not converged: its peak error is larger than the direct solver's */
+  static fb_run q, w;
+  run_ode(&q, "1e-5", "quick");
+  run_ode(&w, "1e-5", "world");
+  double eq = worst_peak_rel(&q.model[0].error), ew = worst_peak_rel(&w.model[0].error);
+  report_residual("quickstep peak omega rel", eq, 1e-2);
+  assert_true(eq < 1e-2);
+  assert_true(eq > ew);
+  fb_run_free(&q);
+  fb_run_free(&w);
+}
+
+static void test_same_seed_same_numbers(void **state) {
+  (void)state;
+  static fb_run a, b;
+  run_ode(&a, "1e-4", "quick");
+  run_ode(&b, "1e-4", "quick");
+  const fb_series *sa = &a.model[0].run.series, *sb = &b.model[0].run.series;
+  assert_int_equal(sa->n, sb->n);
+  assert_memory_equal(sa->coupler_omega, sb->coupler_omega, sa->n * sizeof(double));
+  fb_run_free(&a);
+  fb_run_free(&b);
+}
+
+int main(void) {
+  const char *d = getenv("FOURBAR_CASES_DIR");
+  snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", d ? d : "cases");
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_ideal_ode_matches_analytic),
+      cmocka_unit_test(test_convergence_orders),
+      cmocka_unit_test(test_quickstep_runs_and_is_less_accurate),
+      cmocka_unit_test(test_same_seed_same_numbers),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -44,6 +44,9 @@ void fb_case_default(fb_case *c) {
   c->density = 7800.0;
   c->youngs_modulus = 207e9;
   c->poisson_ratio = 0.29;
+  c->pin_diameter = 0.010;
+  c->pin_length = 0.013;
+  c->radial_clearance = 14.5e-6; /* 10 H7/g6 maximum: 29 um diametral */
   c->solver.h = 1e-5;
   c->solver.stepper = FB_STEPPER_WORLD;
   c->solver.quick_iterations = 20;
@@ -112,6 +115,10 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
                          "inequality of principal moments: no rigid body has them",
                          fb_link_name(i), a, b, t);
   }
+  if (!(c->radial_clearance < 0.5 * c->pin_diameter))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "radial clearance %g m: must be smaller than the pin radius %g m",
+                       c->radial_clearance, 0.5 * c->pin_diameter);
   st = check_drivable(&c->nominal, "nominal", diag);
   if (st != FB_OK) return st;
   fb_linkage su;

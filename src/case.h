@@ -54,6 +54,9 @@ typedef struct {
   double density;                     /* material density [kg/m^3] */
   double youngs_modulus;              /* Young's modulus E [Pa] */
   double poisson_ratio;               /* Poisson's ratio nu [-] in (-1, 0.5) */
+  double pin_diameter;                /* nominal pin diameter [m] */
+  double pin_length;                  /* pin length in contact with the hole [m] */
+  double radial_clearance;            /* radial clearance c = R_hole - R_pin [m] */
   fb_solver solver;                   /* ODE settings */
   double revolutions;                 /* crank revolutions simulated [-]; the first is a run-in */
   int model_count;                    /* entries used in models */

@@ -117,6 +117,15 @@ static const key_spec keys[] = {
     {"material", "poisson_ratio", K_DOUBLE, OFF(poisson_ratio), 1.0, -1, 0.5, 1, 1, "-", "0.29",
      "Poisson's ratio must lie in (-1, 0.5)", "Poisson's ratio nu of links and pins"},
 
+    {"pin", "diameter_mm", K_DOUBLE, OFF(pin_diameter), FB_M_PER_MM, 0, INF, 1, 1, "mm", "10",
+     "a pin diameter must be positive", "nominal diameter of the joint pins"},
+    {"pin", "length_mm", K_DOUBLE, OFF(pin_length), FB_M_PER_MM, 0, INF, 1, 1, "mm", "13",
+     "a pin length must be positive", "pin length in contact with its hole"},
+    {"pin", "radial_clearance_um", K_DOUBLE, OFF(radial_clearance), FB_M_PER_UM, 0, INF, 1, 1,
+     "um", "14.5", "a radial clearance must be positive",
+     "radial clearance c = R_hole - R_pin of the clearance joints (default: the 10 H7/g6 "
+     "maximum, 29 um diametral)"},
+
     {"solver", "h_s", K_DOUBLE, OFF(solver.h), 1.0, 0, 1, 1, 0, "s", "1e-5",
      "the step size must be positive (at most 1 s)", "step size h of the ODE models"},
     {"solver", "stepper", K_STEPPER, OFF(solver.stepper), 0, 0, 0, 0, 0, "-", "world",
@@ -129,8 +138,8 @@ static const key_spec keys[] = {
      "CFM must lie in [0, 1]", "constraint force mixing of the ideal joints (dWorldSetCFM)"},
     {"solver", "drive_torque_max_n_m", K_DOUBLE, OFF(solver.drive_torque_max), 1.0, 0, INF, 1, 1,
      "N m", "1e4", "the drive torque limit must be positive",
-     "torque limit of the crank's velocity motor (dParamFMax); far above the ~1 N m the "
-     "paper's case needs, so the crank speed is held exactly"},
+     "torque limit of the crank's velocity motor (dParamFMax); 100 times the 102 N m "
+     "peak the paper's case needs at 1000 rpm, so the crank speed is held exactly"},
     {"solver", "seed", K_ULONG, OFF(solver.seed), 0, 0, 0, 0, 0, "-", "1",
      "a non-negative integer", "seed of ODE's random generator (dRandSetSeed)"},
 
@@ -289,7 +298,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
-                       "drive, environment, mass, material, solver, run)",
+                       "drive, environment, mass, material, pin, solver, run)",
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }

@@ -17,5 +17,7 @@ const char *fb_cli_cases_dir(void);
 int fb_cmd_run(int argc, char **argv);
 int fb_cmd_kinematics(int argc, char **argv);
 int fb_cmd_keys(int argc, char **argv);
+int fb_cmd_impact(int argc, char **argv);
+int fb_cmd_penalty(int argc, char **argv);
 
 #endif

@@ -14,6 +14,8 @@ static const char main_help[] =
     "commands:\n"
     "  run          run a case file's models; write summary.json and CSV series\n"
     "  kinematics   exact peaks, Grashof class and transmission angle of a linkage\n"
+    "  penalty      contact stiffness and penalty parameter per speed (paper or physical)\n"
+    "  impact       one impact in ODE against a reference integration and closed form\n"
     "  keys         list every case-file key with unit, default and rule\n"
     "\n"
     "All outputs are SI; names carry the unit (omega_max_rad_s, h_s).\n";
@@ -37,6 +39,8 @@ int main(int argc, char **argv) {
   const char *cmd = argv[1];
   if (strcmp(cmd, "run") == 0) return fb_cmd_run(argc - 1, argv + 1);
   if (strcmp(cmd, "kinematics") == 0) return fb_cmd_kinematics(argc - 1, argv + 1);
+  if (strcmp(cmd, "impact") == 0) return fb_cmd_impact(argc - 1, argv + 1);
+  if (strcmp(cmd, "penalty") == 0) return fb_cmd_penalty(argc - 1, argv + 1);
   if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
   fprintf(stderr, "fourbar: unknown command '%s'\n\n%s", cmd, main_help);
   return 2;

@@ -2,41 +2,23 @@
 
 #include <math.h>
 #include <ode/ode.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+
+#include "ode_env.h"
 
 struct fb_scene {
   fb_scene_def def;
   dWorldID world;
   dBodyID body[3];   /* crank, coupler, follower */
   dJointID hinge[4]; /* A (ground-crank, driven), B, C, D */
+  dJointFeedback feedback[4];
+  double crank_com_before[2]; /* crank centre of mass at the start of the last step */
   size_t steps;
   double angle[3];     /* unwrapped angles [rad] */
   double omega_prev[3];
   double alpha[3];
 };
-
-static int ode_users = 0;
-
-static void ode_report(int errnum, const char *msg, va_list ap) {
-  fprintf(stderr, "fourbar: ODE message %d: ", errnum);
-  vfprintf(stderr, msg, ap);
-  fputc('\n', stderr);
-}
-
-static void ode_acquire(void) {
-  if (ode_users++ == 0) {
-    dInitODE2(0);
-    dSetErrorHandler(ode_report);
-    dSetDebugHandler(ode_report);
-    dSetMessageHandler(ode_report);
-  }
-}
-
-static void ode_release(void) {
-  if (--ode_users == 0) dCloseODE();
-}
 
 /* sets a link body between joint points p and q, COM at fraction f */
 static void place_body(dBodyID b, const fb_link_mass *lm, const double p[2], const double q[2],
@@ -69,7 +51,7 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
   if (rc != FB_OK) return rc;
   fb_scene *s = calloc(1, sizeof *s);
   if (!s) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the scene");
-  ode_acquire();
+  fb_ode_acquire();
   s->def = *def;
   s->world = dWorldCreate();
   dWorldSetGravity(s->world, 0, -def->gravity, 0);
@@ -96,6 +78,7 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
     dJointAttach(s->hinge[j], b1[j], b2[j]);
     dJointSetHingeAnchor(s->hinge[j], anchor[j][0], anchor[j][1], 0.0);
     dJointSetHingeAxis(s->hinge[j], 0, 0, 1);
+    dJointSetFeedback(s->hinge[j], &s->feedback[j]);
   }
   /* the drive: velocity motor on the ground-crank hinge */
   dJointSetHingeParam(s->hinge[0], dParamVel, def->omega2);
@@ -112,6 +95,9 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
 
 fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
   const double h = s->def.solver.h;
+  const dReal *g1 = dBodyGetPosition(s->body[FB_CRANK]);
+  s->crank_com_before[0] = g1[0];
+  s->crank_com_before[1] = g1[1];
   int ok = s->def.solver.stepper == FB_STEPPER_WORLD ? dWorldStep(s->world, h)
                                                      : dWorldQuickStep(s->world, h);
   if (!ok)
@@ -154,11 +140,30 @@ double fb_scene_joint_drift(const fb_scene *s) {
   return worst;
 }
 
+void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_torque) {
+  if (s->steps == 0) {
+    for (int j = 0; j < 4; j++) force[j][0] = force[j][1] = 0.0;
+    *drive_torque = 0.0;
+    return;
+  }
+  /* A: on the crank (body 1); B: on the coupler (body 2); C: on the follower
+   * (body 2); D: on the follower (body 1) */
+  const int on_body2[4] = {0, 1, 1, 0};
+  for (int j = 0; j < 4; j++) {
+    const dReal *f = on_body2[j] ? s->feedback[j].f2 : s->feedback[j].f1;
+    force[j][0] = f[0];
+    force[j][1] = f[1];
+  }
+  /* ODE's torque is about the crank's centre of mass; move it to the pivot */
+  const double r[2] = {-s->crank_com_before[0], -s->crank_com_before[1]}; /* A - G */
+  *drive_torque = s->feedback[0].t1[2] - (r[0] * force[0][1] - r[1] * force[0][0]);
+}
+
 size_t fb_scene_steps(const fb_scene *s) { return s->steps; }
 
 void fb_scene_destroy(fb_scene *s) {
   if (!s) return;
   dWorldDestroy(s->world);
   free(s);
-  ode_release();
+  fb_ode_release();
 }

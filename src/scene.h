@@ -53,6 +53,13 @@ void fb_scene_sample(const fb_scene *s, fb_sample *x);
  * now [m]: the loop-closure drift of the constrained system. */
 double fb_scene_joint_drift(const fb_scene *s);
 
+/* Joint reactions applied during the last step, from dJointGetFeedback, with
+ * fb_reactions' sign convention (invdyn.h): force[j] on the second-named body
+ * at joint A, B, C, D (x, y) [N], and the drive torque on the crank about +z
+ * [N m]. They belong to the configuration at the start of that step. Zero
+ * before the first step. */
+void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_torque);
+
 /* Steps taken. */
 size_t fb_scene_steps(const fb_scene *s);
 

@@ -112,6 +112,43 @@ static void test_json_flag_and_kinematics(void **state) {
   json_decref(j);
 }
 
+static void test_penalty_and_impact_json(void **state) {
+  (void)state;
+  static char out[1 << 17], err[4096];
+  assert_int_equal(run("penalty --mode paper --speeds-rpm 1000 --json", out, sizeof out, err, sizeof err), 0);
+  json_error_t je;
+  json_t *j = json_loads(out, 0, &je);
+  if (!j) fail_msg("penalty --json does not parse: %s", je.text);
+  assert_string_equal(json_string_value(json_object_get(j, "mode")), "paper");
+  json_t *rows = json_object_get(j, "rows");
+  assert_int_equal(json_array_size(rows), 2);
+  const char *keys[] = {"speed_rpm", "joint", "force_n", "stiffness_n_m", "penalty", "approach_um", NULL};
+  for (int k = 0; keys[k]; k++) assert_non_null(json_object_get(json_array_get(rows, 0), keys[k]));
+  /* Table II at 1000 rpm, crank-coupler: 973.33 */
+  assert_near(json_real_value(json_object_get(json_array_get(rows, 0), "penalty")), 973.33, 0.005);
+  json_decref(j);
+  assert_int_equal(run("penalty --mode physical --speeds-rpm 500,1000 --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  assert_non_null(j);
+  assert_int_equal(json_array_size(json_object_get(j, "rows")), 4);
+  json_decref(j);
+
+  assert_int_equal(run("impact --law hertz --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  if (!j) fail_msg("impact --json does not parse: %s", je.text);
+  const char *groups[] = {"ode", "reference", "closed_form", NULL};
+  const char *ikeys[] = {"penetration_max_m", "contact_duration_s", "force_max_n", "restitution_achieved", NULL};
+  for (int g = 0; groups[g]; g++)
+    for (int k = 0; ikeys[k]; k++)
+      assert_true(json_is_number(json_object_get(json_object_get(j, groups[g]), ikeys[k])));
+  json_decref(j);
+  /* no closed form for a hysteresis law: null, not made up */
+  assert_int_equal(run("impact --law flores --restitution 0.5 --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  assert_true(json_is_null(json_object_get(j, "closed_form")));
+  json_decref(j);
+}
+
 static void expect_fail(const char *args, const char *const *needles) {
   static char err[8192];
   int rc = run(args, NULL, 0, err, sizeof err);
@@ -148,6 +185,11 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   expect_fail("kinematics --crank-mm 108", (const char *[]){"--coupler-mm is required", NULL});
   expect_fail("kinematics --crank-mm 300 --coupler-mm 100 --follower-mm 250 --ground-mm 350 "
               "--speed-rpm 10", (const char *[]){"double-rocker", "cannot turn fully", NULL});
+  expect_fail("penalty --speeds-rpm 0:10:1", (const char *[]){"--speeds-rpm", NULL});
+  expect_fail("penalty --mode guess", (const char *[]){"paper or physical", NULL});
+  expect_fail("impact --restitution 1.5", (const char *[]){"restitution = 1.5", "(0, 1]", NULL});
+  expect_fail("impact --law restitution --restitution 0.1", (const char *[]){"critical damping", NULL});
+  expect_fail("impact --law bouncy", (const char *[]){"--law 'bouncy'", NULL});
   expect_fail("frobnicate", (const char *[]){"unknown command 'frobnicate'", NULL});
   /* nothing was written for the failed runs */
   snprintf(args, sizeof args, "%s/x/summary.json", tmpdir);
@@ -179,6 +221,7 @@ int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_paper_case_runs_and_writes_summary),
       cmocka_unit_test(test_json_flag_and_kinematics),
+      cmocka_unit_test(test_penalty_and_impact_json),
       cmocka_unit_test(test_bad_input_exits_nonzero_with_message),
       cmocka_unit_test(test_help_answers),
   };

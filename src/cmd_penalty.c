@@ -1,0 +1,144 @@
+/* fourbar penalty: argument parsing and dispatch only. */
+#include <getopt.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "casefile.h"
+#include "cli.h"
+#include "penalty.h"
+#include "units.h"
+
+#define MAX_SPEEDS 1000
+#define MAX_SETS 256
+
+static const char penalty_help[] =
+    "usage: fourbar penalty [CASE] [--mode paper|physical] [--speeds-rpm LIST]\n"
+    "                       [--set section.key=value]... [--json]\n"
+    "\n"
+    "Contact stiffness Kc (paper Eq. 7), penalty parameter P = Kc C^1.5 (Eq. 9)\n"
+    "and mutual approach per crank speed, for the crank-coupler and\n"
+    "coupler-follower joints.\n"
+    "\n"
+    "  --mode paper     the recipe that reproduces the paper's Tables I to III\n"
+    "                   (shared/PAPER.md); P in the paper's units (N mm^0.5)\n"
+    "  --mode physical  inverse-dynamics joint reaction, the case's radial\n"
+    "                   clearance and pin length, Johnson's line contact; P in N m^0.5\n"
+    "  --speeds-rpm     FROM:TO:STEP or a comma list (default 100:1500:100)\n"
+    "  CASE             default: the paper's case\n";
+
+static int parse_speeds(const char *text, double *out, int *n) {
+  double a, b, s;
+  char tail;
+  *n = 0;
+  if (sscanf(text, "%lf:%lf:%lf%c", &a, &b, &s, &tail) == 3) {
+    if (!(s > 0) || !(b >= a) || !(a > 0) || (b - a) / s > MAX_SPEEDS) return 0;
+    for (double v = a; v <= b + 1e-9 * s && *n < MAX_SPEEDS; v = a + s * (*n)) out[(*n)++] = v;
+    return *n > 0;
+  }
+  char buf[4096];
+  snprintf(buf, sizeof buf, "%s", text);
+  char *save = NULL;
+  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    char *end;
+    double v = strtod(tok, &end);
+    if (end == tok || *end != '\0' || !(v > 0) || !isfinite(v) || *n == MAX_SPEEDS) return 0;
+    out[(*n)++] = v;
+  }
+  return *n > 0;
+}
+
+int fb_cmd_penalty(int argc, char **argv) {
+  static const struct option opts[] = {{"mode", required_argument, 0, 'm'},
+                                       {"speeds-rpm", required_argument, 0, 's'},
+                                       {"set", required_argument, 0, 'S'},
+                                       {"json", no_argument, 0, 'j'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  fb_penalty_mode mode = FB_PENALTY_PAPER;
+  static double rpm[MAX_SPEEDS];
+  int n = 0, json = 0, nsets = 0, ch;
+  const char *sets[MAX_SETS];
+  parse_speeds("100:1500:100", rpm, &n);
+  optind = 1;
+  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    switch (ch) {
+      case 'm':
+        if (strcmp(optarg, "paper") == 0) mode = FB_PENALTY_PAPER;
+        else if (strcmp(optarg, "physical") == 0) mode = FB_PENALTY_PHYSICAL;
+        else return fb_cli_fail("penalty", 2, "--mode '%s': must be paper or physical", optarg);
+        break;
+      case 's':
+        if (!parse_speeds(optarg, rpm, &n))
+          return fb_cli_fail("penalty", 2,
+                             "--speeds-rpm '%s': expected FROM:TO:STEP or a comma list of "
+                             "positive speeds (at most %d)",
+                             optarg, MAX_SPEEDS);
+        break;
+      case 'S':
+        if (nsets == MAX_SETS) return fb_cli_fail("penalty", 2, "more than %d --set", MAX_SETS);
+        sets[nsets++] = optarg;
+        break;
+      case 'j': json = 1; break;
+      case 'h': fputs(penalty_help, stdout); return 0;
+      default: fputs(penalty_help, stderr); return 2;
+    }
+  }
+  if (argc - optind > 1) return fb_cli_fail("penalty", 2, "one case file at most; see --help");
+  char default_case[4096];
+  const char *case_path = optind < argc ? argv[optind] : NULL;
+  if (!case_path) {
+    snprintf(default_case, sizeof default_case, "%s/paper_crank_rocker.ini", fb_cli_cases_dir());
+    case_path = default_case;
+  }
+  fb_case c;
+  fb_diag diag;
+  if (fb_casefile_load(&c, case_path, sets, nsets, &diag) != FB_OK)
+    return fb_cli_fail("penalty", 2, "%s", diag.msg);
+
+  json_t *rows = json_array();
+  const char *unit = mode == FB_PENALTY_PAPER ? "N mm^0.5 (paper)" : "N m^0.5";
+  if (!json)
+    printf("%s mode, case %s\n%8s  %-17s %12s %16s %14s %12s\n%8s  %-17s %12s %16s %14s %12s\n",
+           mode == FB_PENALTY_PAPER ? "paper" : "physical", c.name, "speed", "joint", "force",
+           "stiffness Kc", "penalty P", "approach", "rpm", "", "N", "N/m", unit, "um");
+  for (int i = 0; i < n; i++) {
+    fb_penalty_row r[2];
+    if (fb_penalty_rows(r, &c, mode, rpm[i] * FB_RAD_S_PER_RPM, &diag) != FB_OK) {
+      json_decref(rows);
+      return fb_cli_fail("penalty", 1, "%s", diag.msg);
+    }
+    for (int j = 0; j < 2; j++) {
+      const double approach_um = r[j].approach / FB_M_PER_UM;
+      if (json) {
+        json_t *o = json_object();
+        json_object_set_new(o, "speed_rpm", json_real(rpm[i]));
+        json_object_set_new(o, "joint", json_string(fb_pin_joint_name(r[j].joint)));
+        json_object_set_new(o, "force_n", json_real(r[j].force));
+        json_object_set_new(o, "stiffness_n_m", json_real(r[j].stiffness));
+        json_object_set_new(o, "penalty", json_real(r[j].penalty));
+        json_object_set_new(o, "approach_um", json_real(approach_um));
+        json_array_append_new(rows, o);
+      } else {
+        printf("%8g  %-17s %12.6g %16.6e %14.6g %12.6g\n", rpm[i],
+               fb_pin_joint_name(r[j].joint), r[j].force, r[j].stiffness, r[j].penalty,
+               approach_um);
+      }
+    }
+  }
+  if (json) {
+    json_t *o = json_object();
+    json_object_set_new(o, "mode", json_string(mode == FB_PENALTY_PAPER ? "paper" : "physical"));
+    json_object_set_new(o, "case", json_string(c.name));
+    json_object_set_new(o, "penalty_units", json_string(unit));
+    json_object_set_new(o, "rows", rows);
+    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
+    fputc('\n', stdout);
+    json_decref(o);
+  } else {
+    json_decref(rows);
+  }
+  return 0;
+}

@@ -1,0 +1,279 @@
+#include "contact.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+#include <math.h>
+#include <string.h>
+
+double fb_contact_modulus(double e1, double nu1, double e2, double nu2) {
+  return 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+}
+
+double fb_contact_hertz_sphere(double e_star, double r1, double r2) {
+  double inv = 1.0 / r1 + 1.0 / r2;
+  if (!(inv > 0.0)) return NAN;
+  return 4.0 / 3.0 * e_star * sqrt(1.0 / inv);
+}
+
+double fb_contact_goldsmith(double e1, double nu1, double e2, double nu2, double r_pin,
+                            double r_hole) {
+  if (!(r_hole > r_pin)) return NAN;
+  double s1 = (1.0 - nu1 * nu1) / e1, s2 = (1.0 - nu2 * nu2) / e2;
+  return 4.0 / (3.0 * (s1 + s2)) * sqrt(r_pin * r_hole / (r_hole - r_pin));
+}
+
+double fb_contact_line_halfwidth(double force, double length, double e_star, double r_star) {
+  return sqrt(4.0 * force * r_star / (M_PI * length * e_star));
+}
+
+double fb_contact_johnson_approach(double force, double length, double e_star, double dr) {
+  double s = M_PI * length * e_star;
+  double arg = 4.0 * s * dr / force;
+  if (!(arg > M_E)) return NAN;
+  return force / s * (log(arg) - 1.0);
+}
+
+double fb_contact_johnson_stiffness(double force, double length, double e_star, double dr) {
+  double s = M_PI * length * e_star;
+  double arg = 4.0 * s * dr / force;
+  if (!(arg > M_E * M_E)) return NAN;
+  return s / (log(arg) - 2.0);
+}
+
+typedef struct {
+  double delta, length, e_star, dr;
+} johnson_ctx;
+
+static double johnson_residual(double f, void *p) {
+  const johnson_ctx *c = p;
+  return fb_contact_johnson_approach(f, c->length, c->e_star, c->dr) - c->delta;
+}
+
+fb_status fb_contact_johnson_force(double *force, double delta, double length, double e_star,
+                                   double dr, fb_diag *diag) {
+  /* delta(F) rises while ln(arg) > 2, i.e. up to F_top = 4 pi L E* dR / e^2 */
+  const double f_top = 4.0 * M_PI * length * e_star * dr / (M_E * M_E);
+  const double d_top = fb_contact_johnson_approach(f_top, length, e_star, dr);
+  if (!(delta > 0.0) || !(delta < d_top))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "approach %g m: Johnson's pin-in-hole relation is monotone only for "
+                       "0 < delta < %g m (F < %g N)",
+                       delta, d_top, f_top);
+  johnson_ctx c = {delta, length, e_star, dr};
+  gsl_function F = {johnson_residual, &c};
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  double lo = f_top * 1e-15, hi = f_top; /* delta(lo) ~ 0: residual < 0 */
+  int st = s ? gsl_root_fsolver_set(s, &F, lo, hi) : GSL_ENOMEM;
+  for (int it = 0; st == GSL_SUCCESS && it < 200; it++) {
+    st = gsl_root_fsolver_iterate(s);
+    lo = gsl_root_fsolver_x_lower(s);
+    hi = gsl_root_fsolver_x_upper(s);
+    if (gsl_root_test_interval(lo, hi, 0.0, 1e-15) == GSL_SUCCESS) break;
+  }
+  double root = s ? gsl_root_fsolver_root(s) : NAN;
+  if (s) gsl_root_fsolver_free(s);
+  gsl_set_error_handler(old);
+  if (st != GSL_SUCCESS)
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "approach %g m: root solve failed (%s)", delta,
+                       gsl_strerror(st));
+  *force = root;
+  return FB_OK;
+}
+
+double fb_contact_pereira(double delta, double length, double e_star, double dr) {
+  /* the law's units: mm and N/mm^2 */
+  const double d_mm = delta * 1e3, l_mm = length * 1e3, dr_mm = dr * 1e3;
+  const double e_nmm2 = e_star * 1e-6;
+  const double a = 0.965, b = 0.0965;
+  const double y = 1.51 * pow(log(1000.0 * dr_mm), -0.151);
+  const double n = y * pow(dr_mm, -0.005);
+  if (!(delta > 0.0)) return 0.0;
+  return (a * dr_mm + b) * l_mm * e_nmm2 * pow(d_mm, n) / dr_mm;
+}
+
+/* ---- laws ------------------------------------------------------------------ */
+
+static const char *const law_names[FB_LAW_COUNT] = {
+    "hertz", "lankarani-nikravesh", "hunt-crossley", "flores", "gonthier", "linear", "impact",
+    "restitution"};
+
+const char *fb_law_name(fb_law_kind k) {
+  return (k >= 0 && k < FB_LAW_COUNT) ? law_names[k] : "?";
+}
+
+fb_law_kind fb_law_parse(const char *name) {
+  for (int i = 0; i < FB_LAW_COUNT; i++)
+    if (strcmp(name, law_names[i]) == 0) return (fb_law_kind)i;
+  return FB_LAW_COUNT;
+}
+
+fb_contact_law fb_contact_law_default(void) {
+  fb_contact_law l = {FB_LAW_HERTZ, 1e10, 1.5, 0.9, 0.0, 1e-5, 1.0};
+  return l;
+}
+
+fb_status fb_contact_law_check(const fb_contact_law *l, fb_diag *diag) {
+  if (l->kind < 0 || l->kind >= FB_LAW_COUNT)
+    return fb_diag_set(diag, FB_ERR_RANGE, "unknown contact law %d", (int)l->kind);
+  if (!(l->stiffness > 0.0) || !isfinite(l->stiffness))
+    return fb_diag_set(diag, FB_ERR_RANGE, "stiffness = %g: must be positive and finite",
+                       l->stiffness);
+  if (!(l->exponent >= 1.0 && l->exponent <= 3.0))
+    return fb_diag_set(diag, FB_ERR_RANGE, "exponent = %g: must lie in [1, 3]", l->exponent);
+  if (!(l->restitution > 0.0 && l->restitution <= 1.0))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "restitution = %g: a coefficient of restitution lies in (0, 1]",
+                       l->restitution);
+  if (l->kind == FB_LAW_RESTITUTION && !(l->restitution > FB_RESTITUTION_MIN))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "restitution = %g: the restitution law (a spring-dashpot that cannot "
+                       "pull) reaches at most critical damping, where cr = e^-2 = %.4f; "
+                       "choose cr above that",
+                       l->restitution, FB_RESTITUTION_MIN);
+  if (!(l->damping >= 0.0) || !isfinite(l->damping))
+    return fb_diag_set(diag, FB_ERR_RANGE, "damping = %g N s/m: must be >= 0", l->damping);
+  if (!(l->damping_depth > 0.0) || !isfinite(l->damping_depth))
+    return fb_diag_set(diag, FB_ERR_RANGE, "damping depth = %g m: must be positive",
+                       l->damping_depth);
+  if (!(l->mass > 0.0) || !isfinite(l->mass))
+    return fb_diag_set(diag, FB_ERR_RANGE, "mass = %g kg: must be positive", l->mass);
+  return FB_OK;
+}
+
+/* restitution of the clamped linear spring-dashpot with damping ratio z */
+static double clamped_restitution(double z, void *p) {
+  const double target = p ? *(const double *)p : 0.0;
+  const double s = sqrt(1.0 - z * z);
+  const double phi = M_PI - atan2(2.0 * z * s, 1.0 - 2.0 * z * z);
+  return exp(-z * phi / s) * fabs(cos(phi) - z / s * sin(phi)) - target;
+}
+
+double fb_contact_restitution_zeta(double cr) {
+  if (cr >= 1.0) return 0.0;
+  if (!(cr > FB_RESTITUTION_MIN)) return NAN;
+  double target = cr;
+  gsl_function F = {clamped_restitution, &target};
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  double lo = 0.0, hi = 0.999999;
+  double root = NAN;
+  if (s && gsl_root_fsolver_set(s, &F, lo, hi) == GSL_SUCCESS) {
+    for (int it = 0; it < 200; it++) {
+      if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) break;
+      lo = gsl_root_fsolver_x_lower(s);
+      hi = gsl_root_fsolver_x_upper(s);
+      if (gsl_root_test_interval(lo, hi, 1e-15, 0.0) == GSL_SUCCESS) break;
+    }
+    root = gsl_root_fsolver_root(s);
+  }
+  if (s) gsl_root_fsolver_free(s);
+  gsl_set_error_handler(old);
+  return root;
+}
+
+static double step3(double x, double x0, double h0, double x1, double h1) {
+  double z = (x - x0) / (x1 - x0);
+  z = z < 0.0 ? 0.0 : (z > 1.0 ? 1.0 : z);
+  return h0 + (h1 - h0) * z * z * (3.0 - 2.0 * z);
+}
+
+/* hysteresis factor chi of the laws K delta^n (1 + chi ddot / v0) */
+static double chi(const fb_contact_law *l) {
+  const double e = l->restitution;
+  switch (l->kind) {
+    case FB_LAW_LANKARANI_NIKRAVESH: return 3.0 * (1.0 - e * e) / 4.0;
+    case FB_LAW_HUNT_CROSSLEY: return 3.0 * (1.0 - e) / 2.0;
+    case FB_LAW_FLORES: return 8.0 * (1.0 - e) / (5.0 * e);
+    case FB_LAW_GONTHIER: return (1.0 - e * e) / e;
+    default: return 0.0;
+  }
+}
+
+/* elastic force, its slope, and the coefficient of ddot */
+static void law_parts(const fb_contact_law *l, double delta, double v0, double *fel,
+                      double *slope, double *cdamp) {
+  switch (l->kind) {
+    case FB_LAW_LINEAR:
+      *fel = l->stiffness * delta;
+      *slope = l->stiffness;
+      *cdamp = l->damping;
+      return;
+    case FB_LAW_RESTITUTION:
+      *fel = l->stiffness * delta;
+      *slope = l->stiffness;
+      *cdamp = 2.0 * fb_contact_restitution_zeta(l->restitution) * sqrt(l->stiffness * l->mass);
+      return;
+    case FB_LAW_IMPACT:
+      *fel = l->stiffness * pow(delta, l->exponent);
+      *slope = l->exponent * l->stiffness * pow(delta, l->exponent - 1.0);
+      *cdamp = step3(delta, 0.0, 0.0, l->damping_depth, l->damping);
+      return;
+    default: {
+      double kd = l->stiffness * pow(delta, l->exponent);
+      *fel = kd;
+      *slope = l->exponent * l->stiffness * pow(delta, l->exponent - 1.0);
+      *cdamp = v0 > 0.0 ? kd * chi(l) / v0 : 0.0;
+      return;
+    }
+  }
+}
+
+double fb_contact_force(const fb_contact_law *l, double delta, double ddot, double v0) {
+  if (!(delta > 0.0)) return 0.0;
+  double fel, slope, c;
+  law_parts(l, delta, v0, &fel, &slope, &c);
+  double f = fel + c * ddot;
+  return f > 0.0 ? f : 0.0;
+}
+
+/* ---- ODE mapping ------------------------------------------------------------ */
+
+fb_status fb_contact_erp_cfm(double h, double kp, double kd, double *erp, double *cfm,
+                             fb_diag *diag) {
+  double d = h * kp + kd;
+  if (!(d > 0.0) || !(h > 0.0) || kp < 0.0 || kd < 0.0)
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "h = %g s, kp = %g N/m, kd = %g N s/m: need h > 0, kp, kd >= 0 and "
+                       "h kp + kd > 0",
+                       h, kp, kd);
+  *erp = h * kp / d;
+  *cfm = 1.0 / d;
+  return FB_OK;
+}
+
+fb_status fb_contact_kp_kd(double h, double erp, double cfm, double *kp, double *kd,
+                           fb_diag *diag) {
+  if (!(cfm > 0.0) || !(h > 0.0) || !(erp >= 0.0 && erp <= 1.0))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "h = %g s, ERP = %g, CFM = %g: need h > 0, ERP in [0, 1], CFM > 0", h, erp,
+                       cfm);
+  *kp = erp / (h * cfm);
+  *kd = (1.0 - erp) / cfm;
+  return FB_OK;
+}
+
+const char *fb_mapping_name(fb_mapping m) {
+  return m == FB_MAPPING_TANGENT ? "tangent" : "secant";
+}
+
+void fb_contact_linearize(const fb_contact_law *l, fb_mapping mapping, double delta,
+                          double ddot, double v0, double *kp, double *kd, double *depth) {
+  (void)ddot;
+  double fel, slope, c;
+  if (!(delta > 0.0)) {
+    *kp = 0.0;
+    *kd = 0.0;
+    *depth = 0.0;
+    return;
+  }
+  law_parts(l, delta, v0, &fel, &slope, &c);
+  *kd = c;
+  if (mapping == FB_MAPPING_TANGENT && slope > 0.0) {
+    *kp = slope;
+    *depth = fel / slope;
+  } else {
+    *kp = fel / delta;
+    *depth = delta;
+  }
+}

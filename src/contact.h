@@ -1,0 +1,153 @@
+/* Contact mechanics: stiffness models, normal-force laws with damping, and
+ * the mapping of a spring-damper into ODE's ERP/CFM. Pure functions, SI
+ * units, no allocation. Sources are named per function; shared/CONTACT.md
+ * restates them. */
+#ifndef FB_CONTACT_H
+#define FB_CONTACT_H
+
+#include "status.h"
+
+/* ---- stiffness ------------------------------------------------------------ */
+
+/* Equivalent (contact) modulus E* [Pa]: 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2
+ * (Johnson, Contact Mechanics, 1985, eq. 4.22). E [Pa], nu [-]. */
+double fb_contact_modulus(double e1, double nu1, double e2, double nu2);
+
+/* Hertz sphere-sphere stiffness K [N/m^1.5] in F = K delta^1.5:
+ * K = (4/3) E* sqrt(R*), 1/R* = 1/r1 + 1/r2 [m] (Johnson 1985, eq. 4.23).
+ * A concave surface (a hole) has a negative radius, so a pin of radius r in
+ * a hole of radius R gives R* = r R / (R - r). Returns NaN if R* <= 0. */
+double fb_contact_hertz_sphere(double e_star, double r1, double r2);
+
+/* Goldsmith's stiffness for internal contact of a pin (radius r_pin) in a
+ * hole (radius r_hole > r_pin) [N/m^1.5]:
+ * K = 4 / (3 (s1 + s2)) sqrt(r_pin r_hole / (r_hole - r_pin)), s_i = (1 - nu_i^2)/E_i
+ * (paper Eq. 3 with the pi of Eqs. 4-5 cancelled; as used by Flores and
+ * Lankarani and in Project Chrono's DEM). Equal to fb_contact_hertz_sphere
+ * with the hole's radius negative. NaN if r_hole <= r_pin. */
+double fb_contact_goldsmith(double e1, double nu1, double e2, double nu2, double r_pin,
+                            double r_hole);
+
+/* Hertz line-contact half-width a [m] of two cylinders of length L [m]
+ * pressed by F [N]: a = sqrt(4 F R* / (pi L E*)) (Johnson 1985, eq. 4.43). */
+double fb_contact_line_halfwidth(double force, double length, double e_star, double r_star);
+
+/* Johnson's approach of a pin in a hole with radial clearance dR [m]:
+ * delta = F / (pi L E*) [ln(4 pi L E* dR / F) - 1] [m] (Johnson 1985, sec.
+ * 5.6; as quoted by Pereira, Ramalho and Ambrosio 2011). Valid while the
+ * logarithm's argument is large (F << 4 pi L E* dR); NaN when it is <= e. */
+double fb_contact_johnson_approach(double force, double length, double e_star, double dr);
+
+/* Inverse of fb_contact_johnson_approach: the force F [N] giving approach
+ * delta [m], found with GSL's Brent root solver on the monotone branch.
+ * Errors: FB_ERR_RANGE when delta is beyond that branch. */
+fb_status fb_contact_johnson_force(double *force, double delta, double length, double e_star,
+                                   double dr, fb_diag *diag);
+
+/* Tangent stiffness dF/d(delta) of Johnson's relation at force F [N/m]:
+ * 1 / { [ln(4 pi L E* dR / F) - 2] / (pi L E*) }. NaN off the valid branch. */
+double fb_contact_johnson_stiffness(double force, double length, double e_star, double dr);
+
+/* Pereira, Ramalho and Ambrosio (2011, Nonlinear Dyn. 63) cylindrical
+ * internal-contact law F = (a dR + b) L E* delta^n / dR, a = 0.965,
+ * b = 0.0965, n = Y dR^-0.005, Y = 1.51 [ln(1000 dR)]^-0.151, evaluated in
+ * the law's own units (mm, N/mm^2) and returned in N. Constants as quoted in
+ * CONTACT.md, NOT verified against the primary paper here: use for
+ * comparison only. Valid for 5 mm <= R <= 25 mm. */
+double fb_contact_pereira(double delta, double length, double e_star, double dr);
+
+/* ---- normal-force laws ---------------------------------------------------- */
+
+typedef enum {
+  FB_LAW_HERTZ,               /* K delta^n */
+  FB_LAW_LANKARANI_NIKRAVESH, /* K delta^n [1 + 3 (1 - cr^2)/4 ddot/v0] (paper Eq. 6) */
+  FB_LAW_HUNT_CROSSLEY,       /* K delta^n [1 + 3 (1 - cr)/2 ddot/v0] */
+  FB_LAW_FLORES,              /* K delta^n [1 + 8 (1 - cr)/(5 cr) ddot/v0] (Flores et al. 2011) */
+  FB_LAW_GONTHIER,            /* K delta^n [1 + (1 - cr^2)/cr ddot/v0] (Gonthier et al. 2004) */
+  FB_LAW_LINEAR,              /* k delta + c ddot (spring-dashpot) */
+  FB_LAW_IMPACT,              /* K delta^n + STEP(delta, 0, 0, d_max, c_max) ddot (Adams IMPACT) */
+  FB_LAW_RESTITUTION,         /* p delta + c(p, cr, m) ddot (POISSON-like; see fb_contact_force) */
+  FB_LAW_COUNT
+} fb_law_kind;
+
+/* Law name as used in case files and flags ("hertz", "lankarani-nikravesh",
+ * "hunt-crossley", "flores", "gonthier", "linear", "impact", "restitution"). */
+const char *fb_law_name(fb_law_kind k);
+
+/* Parses a law name; returns FB_LAW_COUNT if unknown. */
+fb_law_kind fb_law_parse(const char *name);
+
+/* Parameters of one normal-force law. */
+typedef struct {
+  fb_law_kind kind;
+  double stiffness;     /* K [N/m^n]; k or p [N/m] for linear and restitution */
+  double exponent;      /* n [-]; forced to 1 for linear and restitution */
+  double restitution;   /* target coefficient of restitution cr [-] in (0, 1] */
+  double damping;       /* c [N s/m] of the linear law; c_max of the impact law */
+  double damping_depth; /* d_max [m]: penetration of full damping (impact law) */
+  double mass;          /* effective mass [kg] of the restitution law's damper */
+} fb_contact_law;
+
+/* Defaults: undamped Hertz, K = 1e10 N/m^1.5, n = 1.5, cr = 0.9, c = 0,
+ * d_max = 1e-5 m (Adams' suggested 0.01 mm), m = 1 kg. */
+fb_contact_law fb_contact_law_default(void);
+
+/* Checks ranges: K > 0, n in [1, 3], cr in (0, 1], c >= 0, d_max > 0,
+ * m > 0, all finite; the restitution law also needs cr > FB_RESTITUTION_MIN. Errors: FB_ERR_RANGE naming the parameter. */
+fb_status fb_contact_law_check(const fb_contact_law *law, fb_diag *diag);
+
+/* Damping ratio zeta [-] of the restitution law: the linear spring-dashpot
+ * that separates when its force reaches zero (no adhesion) leaves with
+ * exactly cr times its impact speed. Solved with GSL's Brent root finder on
+ * the closed form cr(zeta) = exp(-zeta phi / sqrt(1 - zeta^2))
+ * |cos phi - zeta / sqrt(1 - zeta^2) sin phi|, phi = pi - atan2(2 zeta
+ * sqrt(1 - zeta^2), 1 - 2 zeta^2) (damped oscillator, separation where
+ * k delta + c ddot = 0). cr = 1 gives 0. At critical damping (zeta -> 1)
+ * the clamped oscillator still leaves with cr = e^-2: lower targets have no
+ * underdamped solution and give NaN. */
+double fb_contact_restitution_zeta(double cr);
+
+/* Smallest restitution the restitution law can reach: e^-2 (critical damping). */
+#define FB_RESTITUTION_MIN 0.1353352832366127
+
+/* Normal force F >= 0 [N] at penetration delta [m] (> 0 in contact),
+ * penetration rate ddot [m/s] (> 0 approaching) and impact velocity
+ * v0 = ddot at first contact [m/s] (> 0). Zero for delta <= 0; clamped at 0
+ * (no adhesion). The restitution law is the linear spring p delta plus the
+ * damper c = 2 zeta sqrt(p m), zeta from fb_contact_restitution_zeta: our
+ * documented reading of the penalty-and-restitution (POISSON) model, exact
+ * for a 1-DOF impact of mass m. The impact law's STEP is Adams' cubic
+ * h0 + (h1 - h0) z^2 (3 - 2 z), z = clamp(x / d_max, 0, 1). */
+double fb_contact_force(const fb_contact_law *law, double delta, double ddot, double v0);
+
+/* ---- mapping into ODE ----------------------------------------------------- */
+
+/* ODE soft-constraint parameters of a spring kp [N/m] and damper kd [N s/m]
+ * at step h [s]: ERP = h kp / (h kp + kd), CFM = 1 / (h kp + kd) [m/(N s)]
+ * (ODE manual, "How to use ERP and CFM"). Errors: FB_ERR_RANGE when
+ * h kp + kd <= 0. */
+fb_status fb_contact_erp_cfm(double h, double kp, double kd, double *erp, double *cfm,
+                             fb_diag *diag);
+
+/* The inverse: kp = ERP / (h CFM), kd = (1 - ERP) / CFM. Errors: FB_ERR_RANGE
+ * when CFM <= 0. */
+fb_status fb_contact_kp_kd(double h, double erp, double cfm, double *kp, double *kd,
+                           fb_diag *diag);
+
+typedef enum {
+  FB_MAPPING_SECANT = 0, /* kp = F_el / delta: the spring reproduces the force at delta */
+  FB_MAPPING_TANGENT = 1 /* kp = dF_el/d delta, depth = F_el / kp: force and its slope */
+} fb_mapping;
+
+const char *fb_mapping_name(fb_mapping m);
+
+/* A per-step spring-damper for ODE that reproduces law at the current state:
+ * kp [N/m], kd [N s/m] and the depth [m] to hand to the contact row, so that
+ * kp depth + kd ddot = F(delta, ddot) (before clamping) at this state.
+ * Secant: kp = F_el/delta, depth = delta. Tangent: kp = dF_el/d delta,
+ * depth = F_el / kp (= delta / n for a power law), so the increment over the
+ * step follows the law's slope. kd is the law's coefficient of ddot. */
+void fb_contact_linearize(const fb_contact_law *law, fb_mapping mapping, double delta,
+                          double ddot, double v0, double *kp, double *kd, double *depth);
+
+#endif

@@ -1,0 +1,66 @@
+/* Single-impact fidelity: one body of mass m meets one contact at speed v0
+ * (no gravity) and the normal-force law acts until it lets go. Three answers
+ * to the same question: ODE with the law mapped into ERP/CFM every step
+ * (impact_ode.c), an adaptive high-accuracy integration of the same law
+ * (GSL rk8pd), and closed forms where they exist (undamped Hertz-type power
+ * law; linear spring-dashpot and the restitution law). */
+#ifndef FB_IMPACT_H
+#define FB_IMPACT_H
+
+#include <stddef.h>
+
+#include "case.h"
+#include "contact.h"
+
+typedef struct {
+  fb_contact_law law;  /* normal-force law (law.mass is set to mass) */
+  double mass;         /* body mass m [kg] */
+  double speed;        /* impact speed v0 [m/s] > 0 */
+  double h;            /* ODE step size [s] */
+  fb_stepper stepper;  /* dWorldStep or dWorldQuickStep */
+  int quick_iterations;
+  fb_mapping mapping;  /* per-step linearisation of the law */
+} fb_impact_def;
+
+/* What one impact produced. */
+typedef struct {
+  double penetration_max;  /* [m] */
+  double contact_duration; /* time with a positive contact force [s] */
+  double force_max;        /* [N] */
+  double restitution;      /* exit speed / impact speed [-] */
+  size_t steps;            /* ODE steps or integrator output steps */
+  double wall_s;           /* [s] */
+} fb_impact_result;
+
+/* Checks the definition. Errors: FB_ERR_RANGE naming the parameter. */
+fb_status fb_impact_check(const fb_impact_def *d, fb_diag *diag);
+
+/* Closed form where one exists: returns 1 and fills out for undamped Hertz
+ * (any exponent n: delta_max = ((n + 1) m v0^2 / (2 K))^(1/(n+1)),
+ * T = 2 delta_max / v0 * sqrt(pi) Gamma(1 + 1/(n+1)) / Gamma(1/2 + 1/(n+1)),
+ * so T = 2.943 delta_max / v0 for n = 1.5; Goldsmith 1960 / Johnson 1985
+ * sec. 11.4) and for the linear and restitution laws (damped oscillator that
+ * separates where k delta + c ddot = 0); returns 0 otherwise. */
+int fb_impact_closed_form(fb_impact_result *out, const fb_impact_def *d);
+
+/* Reference: m delta'' = -F(delta, delta', v0) integrated with GSL's rk8pd
+ * (relative tolerance 1e-12), sampled 4000 times per estimated contact
+ * duration, the end of contact located by bisection to 1e-13 of it, and
+ * peaks refined by a parabola through the three samples around each.
+ * Errors: FB_ERR_NUMERIC if the integrator fails. */
+fb_status fb_impact_reference(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag);
+
+/* ODE: a free body meets the ground plane; every step in contact creates one
+ * contact joint with soft ERP/CFM from fb_contact_linearize and
+ * fb_contact_erp_cfm (dContactSoftERP | dContactSoftCFM, no bounce,
+ * frictionless; contact max-correcting velocity and surface layer left at
+ * their defaults, infinite and 0). Force from dJointGetFeedback.
+ * Errors: FB_ERR_NUMERIC on a non-finite state or when the body has not left
+ * the contact after 100 estimated contact durations. */
+fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag);
+
+/* Estimated contact duration [s] used for sampling and default steps: the
+ * undamped closed form of the law's elastic part. */
+double fb_impact_duration_estimate(const fb_impact_def *d);
+
+#endif

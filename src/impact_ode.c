@@ -1,0 +1,111 @@
+/* The single impact in ODE (see impact.h). One of the two files that include
+ * ODE headers; it owns its own world. */
+#include <math.h>
+#include <ode/ode.h>
+#include <string.h>
+#include <time.h>
+
+#include "impact.h"
+#include "ode_env.h"
+
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  fb_status st = fb_impact_check(d, diag);
+  if (st != FB_OK) return st;
+  double t_wall = now_s();
+  fb_contact_law law = d->law;
+  law.mass = d->mass;
+  const double T = fb_impact_duration_estimate(d);
+  const size_t max_steps = (size_t)ceil(100.0 * T / d->h) + 10;
+
+  fb_ode_acquire();
+  dWorldID world = dWorldCreate();
+  dWorldSetGravity(world, 0, 0, 0);
+  dWorldSetQuickStepNumIterations(world, d->quick_iterations);
+  dRandSetSeed(1);
+  dJointGroupID group = dJointGroupCreate(0);
+  dBodyID body = dBodyCreate(world);
+  dMass mass;
+  dMassSetSphereTotal(&mass, d->mass, 0.01);
+  dBodySetMass(body, &mass);
+  dBodySetPosition(body, 0, 0, 0); /* touching: penetration 0 */
+  dBodySetLinearVel(body, 0, 0, -d->speed);
+
+  double v0 = -1.0; /* approach speed at first contact */
+  int in_contact = 0, done = 0;
+  double t_end = 0.0, prev_depth = 0.0;
+  size_t k;
+  dJointFeedback fb;
+  for (k = 0; k < max_steps && !done; k++) {
+    const dReal *p = dBodyGetPosition(body);
+    const dReal *v = dBodyGetLinearVel(body);
+    const double delta = -p[2], ddot = -v[2];
+    dJointID cj = 0;
+    if (delta > 0.0) {
+      if (v0 < 0.0) v0 = ddot;
+      double kp, kd, depth, erp, cfm;
+      fb_contact_linearize(&law, d->mapping, delta, ddot, v0, &kp, &kd, &depth);
+      if (fb_contact_erp_cfm(d->h, kp, kd, &erp, &cfm, NULL) == FB_OK) {
+        dContact c;
+        memset(&c, 0, sizeof c);
+        c.surface.mode = dContactSoftERP | dContactSoftCFM;
+        c.surface.mu = 0.0;
+        c.surface.soft_erp = erp;
+        c.surface.soft_cfm = cfm;
+        c.geom.pos[0] = p[0];
+        c.geom.pos[1] = p[1];
+        c.geom.pos[2] = 0.0;
+        c.geom.normal[2] = 1.0; /* into body 1: moving it along +z removes the depth */
+        c.geom.depth = depth;
+        cj = dJointCreateContact(world, group, &c);
+        dJointAttach(cj, body, 0);
+        dJointSetFeedback(cj, &fb);
+      }
+    }
+    int ok = d->stepper == FB_STEPPER_WORLD ? dWorldStep(world, d->h)
+                                            : dWorldQuickStep(world, d->h);
+    if (!ok) {
+      st = fb_diag_set(diag, FB_ERR_NOMEM, "ODE step %zu failed to allocate", k + 1);
+      break;
+    }
+    double force = cj ? fb.f1[2] : 0.0;
+    dJointGroupEmpty(group);
+    const double t1 = (double)(k + 1) * d->h;
+    const double depth_now = -dBodyGetPosition(body)[2];
+    if (!isfinite(depth_now) || !isfinite(force)) {
+      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE impact: non-finite state at t = %g s", t1);
+      break;
+    }
+    if (depth_now > out->penetration_max) out->penetration_max = depth_now;
+    if (force > out->force_max) out->force_max = force;
+    if (force > 0.0) {
+      in_contact = 1;
+      t_end = t1;
+      /* the body leaves during this step: end where the depth crosses zero */
+      if (depth_now <= 0.0 && prev_depth > 0.0)
+        t_end = t1 - d->h + d->h * prev_depth / (prev_depth - depth_now);
+    } else if (in_contact && dBodyGetLinearVel(body)[2] > 0.0) {
+      done = 1; /* force gone and moving out: free flight from here */
+    }
+    prev_depth = depth_now;
+    if (in_contact && depth_now <= 0.0 && dBodyGetLinearVel(body)[2] > 0.0) done = 1;
+  }
+  out->restitution = dBodyGetLinearVel(body)[2] / d->speed;
+  out->contact_duration = t_end;
+  out->steps = k;
+  dJointGroupDestroy(group);
+  dWorldDestroy(world);
+  fb_ode_release();
+  if (st == FB_OK && !done)
+    st = fb_diag_set(diag, FB_ERR_NUMERIC,
+                     "ODE impact: the body has not left the contact after %zu steps (%g s)", k,
+                     (double)k * d->h);
+  out->wall_s = now_s() - t_wall;
+  return st;
+}

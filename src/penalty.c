@@ -1,0 +1,85 @@
+#include "penalty.h"
+
+#include <math.h>
+
+#include "analytic.h"
+#include "contact.h"
+#include "invdyn.h"
+
+/* the recipe's constants (PAPER.md), in its own units: N, mm */
+#define PAPER_K_KG_M 8.783456e-5   /* F / max|alpha| [kg m] */
+#define PAPER_C_MM 0.042           /* stated maximum clearance [mm] */
+#define PAPER_R_MM (20.0 / 3.0)    /* contact radius of Table III [mm] */
+#define PAPER_UNROUNDED_RPM 100.0  /* the one speed whose force is not rounded */
+
+/* samples per revolution for the physical joint reaction peak: 0.1 deg */
+#define PHYSICAL_SAMPLES 3600
+
+const char *fb_pin_joint_name(fb_pin_joint j) {
+  return j == FB_JOINT_CRANK_COUPLER ? "crank-coupler" : "coupler-follower";
+}
+
+static fb_status paper_rows(fb_penalty_row out[2], const fb_case *c, double omega,
+                            fb_diag *diag) {
+  fb_peaks p;
+  fb_status st = fb_analytic_peaks(&p, &c->nominal, c->branch, omega, diag);
+  if (st != FB_OK) return st;
+  const double e_star_nmm2 = c->youngs_modulus * 1e-6 /
+                             (2.0 * (1.0 - c->poisson_ratio * c->poisson_ratio));
+  const double rpm = omega * 60.0 / (2.0 * M_PI);
+  const double alpha[2] = {fmax(fabs(p.coupler.alpha_max), fabs(p.coupler.alpha_min)),
+                           fmax(fabs(p.follower.alpha_max), fabs(p.follower.alpha_min))};
+  for (int j = 0; j < 2; j++) {
+    double f = PAPER_K_KG_M * alpha[j];
+    double f_used = f;
+    if (j == FB_JOINT_COUPLER_FOLLOWER && fabs(rpm - PAPER_UNROUNDED_RPM) > 1e-9)
+      f_used = round(f * 100.0) / 100.0;
+    const double a_mm = sqrt(f_used / (100.0 * PAPER_C_MM));
+    const double kc_nmm = 2.0 * a_mm * e_star_nmm2;
+    const double delta_mm =
+        cbrt(9.0 * f_used * f_used / (16.0 * PAPER_R_MM * e_star_nmm2 * e_star_nmm2));
+    out[j].speed = omega;
+    out[j].joint = (fb_pin_joint)j;
+    out[j].force = f;
+    out[j].stiffness = kc_nmm * 1e3;
+    out[j].penalty = kc_nmm * pow(PAPER_C_MM, 1.5);
+    out[j].approach = delta_mm * 1e-3;
+  }
+  return FB_OK;
+}
+
+static fb_status physical_rows(fb_penalty_row out[2], const fb_case *c, double omega,
+                               fb_diag *diag) {
+  double fmax_joint[4];
+  fb_status st = fb_invdyn_peaks(fmax_joint, NULL, &c->nominal, c->branch, c->link, c->gravity,
+                                 c->direction * omega, PHYSICAL_SAMPLES, diag);
+  if (st != FB_OK) return st;
+  const double e_star = fb_contact_modulus(c->youngs_modulus, c->poisson_ratio,
+                                           c->youngs_modulus, c->poisson_ratio);
+  const double f[2] = {fmax_joint[1], fmax_joint[2]}; /* joints B and C */
+  for (int j = 0; j < 2; j++) {
+    double kc = fb_contact_johnson_stiffness(f[j], c->pin_length, e_star, c->radial_clearance);
+    double d = fb_contact_johnson_approach(f[j], c->pin_length, e_star, c->radial_clearance);
+    if (!isfinite(kc) || !isfinite(d))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "%s joint at %g rpm: force %g N is beyond Johnson's pin-in-hole "
+                         "relation for L = %g m, c = %g m (needs F < 4 pi L E* c / e^2)",
+                         fb_pin_joint_name((fb_pin_joint)j), omega * 60 / (2 * M_PI), f[j],
+                         c->pin_length, c->radial_clearance);
+    out[j].speed = omega;
+    out[j].joint = (fb_pin_joint)j;
+    out[j].force = f[j];
+    out[j].stiffness = kc;
+    out[j].penalty = kc * pow(c->radial_clearance, 1.5);
+    out[j].approach = d;
+  }
+  return FB_OK;
+}
+
+fb_status fb_penalty_rows(fb_penalty_row out[2], const fb_case *c, fb_penalty_mode mode,
+                          double omega, fb_diag *diag) {
+  if (!(omega > 0.0) || !isfinite(omega))
+    return fb_diag_set(diag, FB_ERR_RANGE, "crank speed %g rad/s: must be positive", omega);
+  return mode == FB_PENALTY_PAPER ? paper_rows(out, c, omega, diag)
+                                  : physical_rows(out, c, omega, diag);
+}

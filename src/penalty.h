@@ -1,0 +1,48 @@
+/* Penalty-parameter estimation per crank speed and clearance joint, two ways.
+ *
+ * Paper mode reproduces the paper's Tables I to III with the recipe recovered
+ * in PAPER.md ("What reproduces the printed Tables I to III"): it is offered
+ * for line-by-line comparison with the paper, not as physics.
+ *   Table I:   F = k max|alpha| over a revolution (coupler for the
+ *              crank-coupler joint, follower for the coupler-follower joint),
+ *              nominal lengths, k = 8.783456e-5 kg m;
+ *   Table II:  P = Kc C^1.5 (paper Eq. 9), Kc = 2 a E* (Eq. 7),
+ *              E* = E / (2 (1 - nu^2)), C = 0.042 mm, a = sqrt(F / (100 C)) mm;
+ *   Table III: delta = (9 F^2 / (16 R E*^2))^(1/3), R = 20/3 mm;
+ *   the coupler-follower column uses F rounded to 0.01 N except at 100 rpm.
+ * Physical mode uses the inverse-dynamics joint reaction (largest magnitude
+ * over a revolution, gravity included), the case's radial clearance c and
+ * pin length L, and Johnson's pin-in-hole line contact: approach
+ * delta(F) = F/(pi L E*) [ln(4 pi L E* c / F) - 1], stiffness Kc = dF/d delta,
+ * penalty P = Kc c^1.5 (Eq. 9 evaluated in SI). */
+#ifndef FB_PENALTY_H
+#define FB_PENALTY_H
+
+#include "case.h"
+
+typedef enum { FB_PENALTY_PAPER = 0, FB_PENALTY_PHYSICAL = 1 } fb_penalty_mode;
+
+/* The two clearance joints the paper tabulates. */
+typedef enum { FB_JOINT_CRANK_COUPLER = 0, FB_JOINT_COUPLER_FOLLOWER = 1 } fb_pin_joint;
+
+/* "crank-coupler" or "coupler-follower". */
+const char *fb_pin_joint_name(fb_pin_joint j);
+
+/* One row: one speed, one joint. */
+typedef struct {
+  double speed;     /* crank speed [rad/s] */
+  fb_pin_joint joint;
+  double force;     /* force used [N] */
+  double stiffness; /* contact stiffness Kc [N/m] */
+  double penalty;   /* P = Kc C^1.5: paper units (N mm^0.5) in paper mode, N m^0.5 in physical */
+  double approach;  /* mutual approach delta [m] */
+} fb_penalty_row;
+
+/* Rows for both joints at crank speed omega [rad/s] > 0 for case c.
+ * Errors: those of fb_analytic_peaks / fb_invdyn_peaks; FB_ERR_RANGE when
+ * Johnson's relation is outside its valid range (force too large for the
+ * clearance). */
+fb_status fb_penalty_rows(fb_penalty_row out[2], const fb_case *c, fb_penalty_mode mode,
+                          double omega, fb_diag *diag);
+
+#endif

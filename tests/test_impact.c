@@ -1,0 +1,164 @@
+/* Single-impact fidelity: the reference integration against closed forms,
+ * the damping laws' achieved restitution against CONTACT.md's table, and ODE
+ * with ERP/CFM mapped every step against both.
+ *
+ *      v0 |
+ *         v
+ *        ( m )      one body, no gravity, meets the ground plane z = 0
+ *   ==============  penetration delta = -z, force F(delta, ddot) >= 0 */
+#include <string.h>
+
+#include "fb_test.h"
+#include "impact.h"
+
+/* rk8pd at relative tolerance 1e-12, peaks by parabola through samples at
+ * T/4000: interpolation error (T/4000)^3-ish, far below 1e-7 */
+#define REF_VS_CLOSED_REL_TOL 1e-7
+/* CONTACT.md prints achieved restitution to 3 decimals from "a quick
+ * simulation": half a unit in the last digit, doubled for that simulation */
+#define TABLE_TOL 1e-3
+/* the issue's acceptance bounds */
+#define ODE_PENETRATION_REL_TOL 0.01
+#define ODE_DURATION_REL_TOL 0.02
+#define ODE_RESTITUTION_REL_TOL 0.02
+/* ODE step for the fidelity tests: T / 400 (the issue allows up to T / 200).
+ * Measured: ODE's mapped spring loses restitution at about 1.1 h omega_c
+ * (omega_c = pi / T), so 1.8 % at T / 200 is too close to the 2 % bound;
+ * at T / 400 it is 0.9 %. The 0.97 keeps h off an exact divisor of T: ODE's
+ * contact duration is counted in whole steps. */
+#define STEPS_PER_CONTACT (400.0 / 0.97)
+
+static fb_impact_def base(fb_law_kind kind, double cr) {
+  fb_impact_def d;
+  memset(&d, 0, sizeof d);
+  d.law = fb_contact_law_default();
+  d.law.kind = kind;
+  d.law.restitution = cr;
+  d.mass = 1.0;
+  d.speed = 1.0;
+  d.stepper = FB_STEPPER_WORLD;
+  d.quick_iterations = 20;
+  d.mapping = FB_MAPPING_SECANT;
+  d.h = fb_impact_duration_estimate(&d) / STEPS_PER_CONTACT;
+  return d;
+}
+
+static void test_reference_matches_closed_forms(void **state) {
+  (void)state;
+  /* undamped Hertz: delta_max = (5 m v0^2 / 4 K)^(2/5), T = 2.943 delta_max / v0 */
+  fb_impact_def d = base(FB_LAW_HERTZ, 1.0);
+  fb_impact_result r, c;
+  assert_int_equal(fb_impact_reference(&r, &d, NULL), FB_OK);
+  assert_true(fb_impact_closed_form(&c, &d));
+  assert_rel(c.penetration_max, pow(5.0 / (4.0 * 1e10), 0.4), 1e-14);
+  assert_rel(c.contact_duration, 2.9432 * c.penetration_max, 1e-4); /* printed 2.943 */
+  assert_rel(r.penetration_max, c.penetration_max, REF_VS_CLOSED_REL_TOL);
+  assert_rel(r.contact_duration, c.contact_duration, REF_VS_CLOSED_REL_TOL);
+  assert_rel(r.force_max, c.force_max, REF_VS_CLOSED_REL_TOL);
+  assert_near(r.restitution, 1.0, REF_VS_CLOSED_REL_TOL);
+  /* damped linear oscillator and the restitution law (which must hit cr) */
+  const fb_law_kind kinds[2] = {FB_LAW_LINEAR, FB_LAW_RESTITUTION};
+  for (int i = 0; i < 2; i++) {
+    d = base(kinds[i], 0.6);
+    d.law.exponent = 1.0;
+    d.law.stiffness = 1e7;
+    d.law.damping = 800.0;
+    assert_int_equal(fb_impact_reference(&r, &d, NULL), FB_OK);
+    assert_true(fb_impact_closed_form(&c, &d));
+    report_residual("linear restitution ref vs closed", fabs(r.restitution - c.restitution), REF_VS_CLOSED_REL_TOL);
+    assert_rel(r.penetration_max, c.penetration_max, REF_VS_CLOSED_REL_TOL);
+    assert_rel(r.contact_duration, c.contact_duration, REF_VS_CLOSED_REL_TOL);
+    assert_rel(r.force_max, c.force_max, REF_VS_CLOSED_REL_TOL);
+    assert_rel(r.restitution, c.restitution, REF_VS_CLOSED_REL_TOL);
+    if (kinds[i] == FB_LAW_RESTITUTION) assert_near(c.restitution, 0.6, 1e-12);
+  }
+}
+
+static void test_damping_laws_restitution_table(void **state) {
+  (void)state;
+  /* CONTACT.md: achieved restitution of each law for a target, n = 1.5 */
+  const double target[4] = {0.9, 0.7, 0.5, 0.3};
+  const fb_law_kind laws[4] = {FB_LAW_LANKARANI_NIKRAVESH, FB_LAW_HUNT_CROSSLEY, FB_LAW_FLORES,
+                               FB_LAW_GONTHIER};
+  const double table[4][4] = {{0.913, 0.909, 0.894, 0.876},
+                              {0.796, 0.768, 0.683, 0.670},
+                              {0.725, 0.663, 0.470, 0.488},
+                              {0.684, 0.581, 0.256, 0.304}};
+  double worst = 0;
+  for (int t = 0; t < 4; t++)
+    for (int l = 0; l < 4; l++) {
+      fb_impact_def d = base(laws[l], target[t]);
+      fb_impact_result r;
+      assert_int_equal(fb_impact_reference(&r, &d, NULL), FB_OK);
+      worst = fmax(worst, fabs(r.restitution - table[t][l]));
+      assert_near(r.restitution, table[t][l], TABLE_TOL);
+    }
+  report_residual("restitution vs CONTACT.md table", worst, TABLE_TOL);
+}
+
+static double rel(double x, double ref) { return fabs(x - ref) / fabs(ref); }
+
+static void test_ode_undamped_hertz_vs_closed_form(void **state) {
+  (void)state;
+  fb_impact_def d = base(FB_LAW_HERTZ, 1.0);
+  fb_impact_result o, c;
+  assert_int_equal(fb_impact_ode(&o, &d, NULL), FB_OK);
+  assert_true(fb_impact_closed_form(&c, &d));
+  report_residual("ODE hertz penetration", rel(o.penetration_max, c.penetration_max), ODE_PENETRATION_REL_TOL);
+  report_residual("ODE hertz duration", rel(o.contact_duration, c.contact_duration), ODE_DURATION_REL_TOL);
+  assert_true(rel(o.penetration_max, c.penetration_max) < ODE_PENETRATION_REL_TOL);
+  assert_true(rel(o.contact_duration, c.contact_duration) < ODE_DURATION_REL_TOL);
+  /* the tangent mapping meets the same bounds */
+  d.mapping = FB_MAPPING_TANGENT;
+  assert_int_equal(fb_impact_ode(&o, &d, NULL), FB_OK);
+  assert_true(rel(o.penetration_max, c.penetration_max) < ODE_PENETRATION_REL_TOL);
+  assert_true(rel(o.contact_duration, c.contact_duration) < ODE_DURATION_REL_TOL);
+}
+
+static void test_ode_restitution_of_each_law(void **state) {
+  (void)state;
+  for (int k = 0; k < FB_LAW_COUNT; k++) {
+    fb_impact_def d = base((fb_law_kind)k, 0.7);
+    if (k == FB_LAW_LINEAR || k == FB_LAW_RESTITUTION) {
+      d.law.exponent = 1.0;
+      d.law.stiffness = 1e7;
+      d.law.damping = 500.0;
+    }
+    if (k == FB_LAW_IMPACT) d.law.damping = 2e4;
+    d.h = fb_impact_duration_estimate(&d) / STEPS_PER_CONTACT;
+    fb_impact_result o, r;
+    assert_int_equal(fb_impact_reference(&r, &d, NULL), FB_OK);
+    assert_int_equal(fb_impact_ode(&o, &d, NULL), FB_OK);
+    char name[96];
+    snprintf(name, sizeof name, "ODE restitution, %s", fb_law_name((fb_law_kind)k));
+    report_residual(name, rel(o.restitution, r.restitution), ODE_RESTITUTION_REL_TOL);
+    assert_true(rel(o.restitution, r.restitution) < ODE_RESTITUTION_REL_TOL);
+  }
+}
+
+static void test_ode_error_grows_with_h_omega(void **state) {
+  (void)state;
+  /* the mapped spring's numerical dissipation is first order in h omega:
+   * ten times the step gives about ten times the restitution loss */
+  fb_impact_def d = base(FB_LAW_HERTZ, 1.0);
+  fb_impact_result a, b;
+  const double t = fb_impact_duration_estimate(&d);
+  d.h = t / 1000.0;
+  assert_int_equal(fb_impact_ode(&a, &d, NULL), FB_OK);
+  d.h = t / 100.0;
+  assert_int_equal(fb_impact_ode(&b, &d, NULL), FB_OK);
+  double ratio = (1.0 - b.restitution) / (1.0 - a.restitution);
+  report_residual("restitution loss ratio, 10x step", ratio, 10.0);
+  assert_true(ratio > 8.0 && ratio < 12.0);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_reference_matches_closed_forms),
+      cmocka_unit_test(test_damping_laws_restitution_table),
+      cmocka_unit_test(test_ode_undamped_hertz_vs_closed_form),
+      cmocka_unit_test(test_ode_restitution_of_each_law),
+      cmocka_unit_test(test_ode_error_grows_with_h_omega),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -31,12 +31,15 @@ static double objective(double theta2, void *p) {
   return c->sign * quantity(&s, c->which);
 }
 
-/* refines a bracketed minimum of the objective; returns the objective value */
-static double refine(peak_ctx *c, double lo, double mid, double hi, double fmid) {
+/* refines a bracketed minimum of the objective; returns the objective value
+ * and its location in *at */
+static double refine(peak_ctx *c, double lo, double mid, double hi, double fmid, double *at) {
   gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+  *at = mid;
   if (!m) return fmid;
   gsl_function F = {objective, c};
   double best = fmid;
+  *at = mid;
   if (gsl_min_fminimizer_set_with_values(m, &F, mid, fmid, lo, objective(lo, c), hi,
                                          objective(hi, c)) == GSL_SUCCESS) {
     for (int it = 0; it < 100; it++) {
@@ -45,7 +48,10 @@ static double refine(peak_ctx *c, double lo, double mid, double hi, double fmid)
       if (gsl_min_test_interval(a, b, 1e-12, 0.0) == GSL_SUCCESS) break;
     }
     double f = gsl_min_fminimizer_f_minimum(m);
-    if (f < best) best = f;
+    if (f < best) {
+      best = f;
+      *at = gsl_min_fminimizer_x_minimum(m);
+    }
   }
   gsl_min_fminimizer_free(m);
   return best;
@@ -53,6 +59,11 @@ static double refine(peak_ctx *c, double lo, double mid, double hi, double fmid)
 
 fb_status fb_analytic_peaks(fb_peaks *out, const fb_linkage *lk, fb_branch branch,
                             double omega2, fb_diag *diag) {
+  return fb_analytic_peaks_where(out, NULL, lk, branch, omega2, diag);
+}
+
+fb_status fb_analytic_peaks_where(fb_peaks *out, double where[8], const fb_linkage *lk,
+                                  fb_branch branch, double omega2, fb_diag *diag) {
   double lo, hi;
   int full;
   fb_status st = fb_linkage_crank_range(lk, &lo, &hi, &full, diag);
@@ -86,7 +97,9 @@ fb_status fb_analytic_peaks(fb_peaks *out, const fb_linkage *lk, fb_branch branc
       double sign = m == 0 ? -1.0 : 1.0;
       peak_ctx c = {lk, branch, omega2, w, sign};
       double th = best_th[w][m];
-      res[w][m] = sign * refine(&c, th - step, th, th + step, sign * best_val[w][m]);
+      double at;
+      res[w][m] = sign * refine(&c, th - step, th, th + step, sign * best_val[w][m], &at);
+      if (where) where[(w / 2) * 4 + (w % 2) * 2 + m] = at;
     }
   }
   gsl_set_error_handler(old);

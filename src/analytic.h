@@ -36,6 +36,12 @@ typedef struct {
 fb_status fb_analytic_peaks(fb_peaks *out, const fb_linkage *lk, fb_branch branch,
                             double omega2, fb_diag *diag);
 
+/* As fb_analytic_peaks, and also the crank angle [rad] of each extreme in
+ * `where` (may be NULL): coupler omega max, min, alpha max, min, then the
+ * same for the follower (8). */
+fb_status fb_analytic_peaks_where(fb_peaks *out, double where[8], const fb_linkage *lk,
+                                  fb_branch branch, double omega2, fb_diag *diag);
+
 /* Samples the analytic solution at t = t0 + k h, k = 0 .. n - 1, for the crank
  * angle theta2(t) = theta0 + omega2 t, into a fresh series *out (initialised
  * here; free with fb_series_free).

@@ -47,6 +47,8 @@ void fb_case_default(fb_case *c) {
   c->pin_diameter = 0.010;
   c->pin_length = 0.013;
   c->radial_clearance = 14.5e-6; /* 10 H7/g6 maximum: 29 um diametral */
+  for (int i = 0; i < FB_LINK_COUNT; i++) strcpy(c->tolerance_source[i], "none (0)");
+  strcpy(c->clearance_source, "default (10 H7/g6 maximum, 29 um diametral / 2)");
   c->solver.h = 1e-5;
   c->solver.stepper = FB_STEPPER_WORLD;
   c->solver.quick_iterations = 20;

@@ -25,6 +25,8 @@ typedef struct {
  * nominal + corner * plus_minus, corner in {-1, 0, +1}. */
 typedef struct {
   int corner[FB_LINK_COUNT]; /* -1 minimum, 0 nominal, +1 maximum (4) */
+  int worst;                 /* 1: corner still to be chosen as the worst for worst_output */
+  int worst_output;          /* output index (tolerance.h) whose |value| the worst corner maximises */
 } fb_stackup;
 
 typedef enum { FB_STEPPER_WORLD = 0, FB_STEPPER_QUICK = 1 } fb_stepper;
@@ -45,6 +47,11 @@ typedef struct {
   fb_linkage nominal;                 /* basic link lengths [m] */
   double plus_minus[FB_LINK_COUNT];   /* symmetric length tolerance per link [m] (4) */
   fb_stackup stackup;                 /* corner used by the *-stackup models */
+  char tolerance_source[FB_LINK_COUNT][96]; /* where each tolerance came from */
+  char tolerance_class;               /* ISO 2768-1 class f, m, c, v for links without an explicit tolerance; 0 for none */
+  int distribution;                   /* Monte Carlo length distribution: 0 normal, 1 uniform */
+  char fit[32];                       /* ISO 286 fit of the clearance joints ("" if none) */
+  char clearance_source[128];         /* where the radial clearance came from */
   fb_branch branch;                   /* assembly branch */
   double crank_angle0;                /* crank angle at t = 0 [rad] */
   double crank_speed;                 /* crank speed magnitude [rad/s] > 0 */

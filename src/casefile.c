@@ -8,6 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "iso2768.h"
+#include "iso286.h"
+#include "tolerance.h"
 #include "units.h"
 
 /* ---- the key table -------------------------------------------------------- */
@@ -22,7 +25,11 @@ typedef enum {
   K_DIRECTION, /* cw | ccw */
   K_STEPPER,   /* world | quick */
   K_STACKUP,   /* nominal | max | min | four corner characters from + - 0 */
-  K_MODELS     /* comma-separated model names */
+  K_MODELS,    /* comma-separated model names */
+  K_CLASS,     /* ISO 2768-1 class letter f m c v */
+  K_DIST,      /* normal | uniform */
+  K_OUTPUT,    /* a stack-up output name */
+  K_FIT        /* an ISO 286 fit string, checked after reading */
 } key_kind;
 
 typedef struct {
@@ -91,10 +98,22 @@ static const key_spec keys[] = {
      INF, 0, 1, "mm", "0", TOL_RULE, "symmetric tolerance of the follower length"},
     {"tolerance", "ground_plus_minus_mm", K_DOUBLE, OFF(plus_minus[FB_GROUND]), FB_M_PER_MM, 0, INF, 0,
      1, "mm", "0", TOL_RULE, "symmetric tolerance of the ground length"},
+    {"tolerance", "class", K_CLASS, OFF(tolerance_class), 0, 0, 0, 0, 0, "-", "(none)",
+     "f, m, c or v",
+     "ISO 2768-1 general tolerance class for every link without an explicit "
+     "<link>_plus_minus_mm"},
     {"tolerance", "stackup", K_STACKUP, OFF(stackup), 0, 0, 0, 0, 0, "-", "max",
-     "nominal, max, min, or 4 characters from + - 0",
-     "stack-up corner for the *-stackup models: every link at max or min, or one "
-     "character per link in the order crank, coupler, follower, ground (e.g. +-+-)"},
+     "nominal, max, min, worst, or 4 characters from + - 0",
+     "stack-up corner for the *-stackup models: every link at max or min, one "
+     "character per link in the order crank, coupler, follower, ground (e.g. +-+-), or "
+     "worst: the corner that maximises |worst_output|"},
+    {"tolerance", "worst_output", K_OUTPUT, OFF(stackup.worst_output), 0, 0, 0, 0, 0, "-",
+     "coupler_omega_max", "a stack-up output name (fourbar stackup --help)",
+     "output whose magnitude the worst corner maximises"},
+    {"tolerance", "distribution", K_DIST, OFF(distribution), 0, 0, 0, 0, 0, "-", "normal",
+     "normal or uniform",
+     "Monte Carlo length distribution: normal with 3 sigma at the tolerance limit, or "
+     "uniform over the tolerance band"},
 
     {"drive", "speed_rpm", K_DOUBLE, OFF(crank_speed), FB_RAD_S_PER_RPM, 0, 1e6, 1, 0, "rpm",
      "1000", "crank speed must be positive (at most 1e6 rpm)",
@@ -121,6 +140,10 @@ static const key_spec keys[] = {
      "a pin diameter must be positive", "nominal diameter of the joint pins"},
     {"pin", "length_mm", K_DOUBLE, OFF(pin_length), FB_M_PER_MM, 0, INF, 1, 1, "mm", "13",
      "a pin length must be positive", "pin length in contact with its hole"},
+    {"pin", "fit", K_FIT, OFF(fit), 0, 0, 0, 0, 0, "-", "(none)",
+     "an ISO 286 clearance fit, e.g. 10H7/g6",
+     "fit of the clearance joints; gives the pin diameter and the radial clearance "
+     "(maximum clearance / 2); do not also give radial_clearance_um"},
     {"pin", "radial_clearance_um", K_DOUBLE, OFF(radial_clearance), FB_M_PER_UM, 0, INF, 1, 1,
      "um", "14.5", "a radial clearance must be positive",
      "radial clearance c = R_hole - R_pin of the clearance joints (default: the 10 H7/g6 "
@@ -407,9 +430,43 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else if (strcmp(e->value, "quick") == 0) *(fb_stepper *)field = FB_STEPPER_QUICK;
       else return bad_word(e, k, diag);
       return FB_OK;
+    case K_CLASS:
+      if (strlen(e->value) != 1 || !strchr("fmcv", e->value[0])) return bad_word(e, k, diag);
+      *(char *)field = e->value[0];
+      return FB_OK;
+    case K_DIST:
+      if (strcmp(e->value, "normal") == 0) *(int *)field = 0;
+      else if (strcmp(e->value, "uniform") == 0) *(int *)field = 1;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_OUTPUT: {
+      int i = fb_tol_output_parse(e->value);
+      if (i < 0) {
+        char known[1024] = "";
+        for (int j = 0; j < FB_TOL_NOUT; j++) {
+          strncat(known, j ? ", " : "", sizeof known - strlen(known) - 1);
+          strncat(known, fb_tol_output_name(j), sizeof known - strlen(known) - 1);
+        }
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': unknown output (known: %s)",
+                           e->origin, e->section, e->key, e->value, known);
+      }
+      *(int *)field = i;
+      return FB_OK;
+    }
+    case K_FIT:
+      if (strlen(e->value) >= sizeof c->fit)
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: too long", e->origin, e->section,
+                           e->key);
+      snprintf(c->fit, sizeof c->fit, "%s", e->value);
+      return FB_OK;
     case K_STACKUP: {
       fb_stackup *s = field;
       int corner = 2;
+      if (strcmp(e->value, "worst") == 0) {
+        s->worst = 1;
+        return FB_OK;
+      }
+      s->worst = 0;
       if (strcmp(e->value, "nominal") == 0) corner = 0;
       else if (strcmp(e->value, "max") == 0) corner = +1;
       else if (strcmp(e->value, "min") == 0) corner = -1;
@@ -457,6 +514,67 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
     }
   }
   return FB_ERR_ARG;
+}
+
+/* origin of an entry ("file:line" or "--set ..."), or NULL if absent */
+static const char *entry_origin(const load_ctx *c, const char *section, const char *key) {
+  int i = find_entry(c, section, key);
+  return i >= 0 ? c->e[i].origin : NULL;
+}
+
+/* tolerances from ISO 2768-1 and the clearance from an ISO 286 fit, with
+ * the source of each recorded for the report */
+static fb_status resolve_standards(fb_case *out, const load_ctx *c, fb_diag *diag) {
+  for (int k = 0; k < FB_LINK_COUNT; k++) {
+    char key[64];
+    snprintf(key, sizeof key, "%s_plus_minus_mm", fb_link_name(k));
+    if (entry_origin(c, "tolerance", key)) {
+      snprintf(out->tolerance_source[k], sizeof out->tolerance_source[k], "explicit");
+    } else if (out->tolerance_class) {
+      fb_diag inner;
+      fb_status st = fb_iso2768_linear(&out->plus_minus[k], out->tolerance_class,
+                                       out->nominal.length[k], out->tolerance_source[k],
+                                       sizeof out->tolerance_source[k], &inner);
+      if (st != FB_OK)
+        return fb_diag_set(diag, st, "%s: [tolerance] class = %c for the %s (%g mm): %s",
+                           entry_origin(c, "tolerance", "class"), out->tolerance_class,
+                           fb_link_name(k), out->nominal.length[k] * 1e3, inner.msg);
+    } else {
+      snprintf(out->tolerance_source[k], sizeof out->tolerance_source[k], "none (0)");
+    }
+  }
+  const char *fit_at = entry_origin(c, "pin", "fit");
+  const char *rc_at = entry_origin(c, "pin", "radial_clearance_um");
+  if (fit_at) {
+    if (rc_at)
+      return fb_diag_set(diag, FB_ERR_PARSE,
+                         "%s: [pin] radial_clearance_um and fit (%s) both given: give one",
+                         rc_at, fit_at);
+    fb_fit f;
+    fb_diag inner;
+    fb_status st = fb_iso286_fit(&f, out->fit, &inner);
+    if (st != FB_OK) return fb_diag_set(diag, st, "%s: [pin] fit = '%s': %s", fit_at, out->fit, inner.msg);
+    if (f.kind != FB_FIT_CLEARANCE)
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "%s: [pin] fit = '%s' is a%s %s fit (clearance %+.1f to %+.1f um): a "
+                         "clearance joint needs a clearance fit (minimum clearance >= 0)",
+                         fit_at, out->fit, f.kind == FB_FIT_INTERFERENCE ? "n" : "",
+                         fb_fit_kind_name(f.kind), f.clearance_min * 1e6, f.clearance_max * 1e6);
+    const char *d_at = entry_origin(c, "pin", "diameter_mm");
+    if (d_at && fabs(out->pin_diameter - f.nominal) > 1e-12)
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "%s: [pin] diameter_mm = %g disagrees with the fit's nominal size %g mm",
+                         d_at, out->pin_diameter * 1e3, f.nominal * 1e3);
+    out->pin_diameter = f.nominal;
+    out->radial_clearance = 0.5 * f.clearance_max;
+    snprintf(out->clearance_source, sizeof out->clearance_source,
+             "ISO 286-1 %s: maximum clearance %.1f um diametral, / 2", out->fit,
+             f.clearance_max * 1e6);
+  } else {
+    snprintf(out->clearance_source, sizeof out->clearance_source, "%s",
+             rc_at ? "explicit" : "default (10 H7/g6 maximum, 29 um diametral / 2)");
+  }
+  return FB_OK;
 }
 
 /* reads line n of path (1-based) for an error message */
@@ -547,6 +665,8 @@ fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *ov
     st = apply(out, &c->e[i], diag);
     if (st != FB_OK) goto done;
   }
+  st = resolve_standards(out, c, diag);
+  if (st != FB_OK) goto done;
   {
     fb_diag inner;
     st = fb_case_check(out, &inner);

@@ -168,3 +168,56 @@ fb_status fb_linkage_transmission_range(const fb_linkage *lk, double *mu_min,
   *mu_max = mu[1];
   return FB_OK;
 }
+
+/* solves [[m11, m12], [m21, m22]] x = r */
+static void solve2(const double m[2][2], const double r[2], double x[2]) {
+  const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+  x[0] = (r[0] * m[1][1] - m[0][1] * r[1]) / det;
+  x[1] = (m[0][0] * r[1] - m[1][0] * r[0]) / det;
+}
+
+fb_status fb_linkage_sensitivity(double out[4][FB_LINK_COUNT], const fb_linkage *lk,
+                                 fb_branch branch, double theta2, double omega2, fb_diag *diag) {
+  fb_linkage_state st;
+  fb_status rc = fb_linkage_solve(&st, lk, branch, theta2, omega2, 0.0, diag);
+  if (rc != FB_OK) return rc;
+  const double b = lk->length[FB_COUPLER], c = lk->length[FB_FOLLOWER];
+  const double s2 = sin(theta2), c2 = cos(theta2);
+  const double s3 = sin(st.coupler_angle), c3 = cos(st.coupler_angle);
+  const double s4 = sin(st.follower_angle), c4 = cos(st.follower_angle);
+  const double w2 = omega2, w3 = st.coupler_omega, w4 = st.follower_omega;
+  const double a3 = st.coupler_alpha, a4 = st.follower_alpha;
+  /* J = d(loop)/d(theta3, theta4); J w = r and J alpha = q (see fb_linkage_solve) */
+  const double J[2][2] = {{-b * s3, c * s4}, {b * c3, -c * c4}};
+  /* explicit partials of the loop vector with respect to a, b, c, g */
+  const double dphi[FB_LINK_COUNT][2] = {{c2, s2}, {c3, s3}, {-c4, -s4}, {-1.0, 0.0}};
+  for (int k = 0; k < FB_LINK_COUNT; k++) {
+    const double da = k == FB_CRANK, db = k == FB_COUPLER, dc = k == FB_FOLLOWER;
+    double dth[2];
+    const double mphi[2] = {-dphi[k][0], -dphi[k][1]};
+    solve2(J, mphi, dth); /* d(theta3, theta4)/dL */
+    /* dJ = explicit + via the angles */
+    const double dJ[2][2] = {{-db * s3 - b * c3 * dth[0], dc * s4 + c * c4 * dth[1]},
+                             {db * c3 - b * s3 * dth[0], -dc * c4 + c * s4 * dth[1]}};
+    const double dr[2] = {da * s2 * w2, -da * c2 * w2};
+    double rhs[2] = {dr[0] - (dJ[0][0] * w3 + dJ[0][1] * w4),
+                     dr[1] - (dJ[1][0] * w3 + dJ[1][1] * w4)};
+    double dw[2];
+    solve2(J, rhs, dw);
+    /* q = (a c2 w2^2 + b c3 w3^2 - c c4 w4^2, a s2 w2^2 + b s3 w3^2 - c s4 w4^2) */
+    const double dq[2] = {
+        da * c2 * w2 * w2 + db * c3 * w3 * w3 + b * (-s3 * dth[0] * w3 * w3 + 2.0 * c3 * w3 * dw[0]) -
+            dc * c4 * w4 * w4 - c * (-s4 * dth[1] * w4 * w4 + 2.0 * c4 * w4 * dw[1]),
+        da * s2 * w2 * w2 + db * s3 * w3 * w3 + b * (c3 * dth[0] * w3 * w3 + 2.0 * s3 * w3 * dw[0]) -
+            dc * s4 * w4 * w4 - c * (c4 * dth[1] * w4 * w4 + 2.0 * s4 * w4 * dw[1])};
+    rhs[0] = dq[0] - (dJ[0][0] * a3 + dJ[0][1] * a4);
+    rhs[1] = dq[1] - (dJ[1][0] * a3 + dJ[1][1] * a4);
+    double dal[2];
+    solve2(J, rhs, dal);
+    out[0][k] = dw[0];
+    out[1][k] = dw[1];
+    out[2][k] = dal[0];
+    out[3][k] = dal[1];
+  }
+  return FB_OK;
+}

@@ -101,6 +101,16 @@ fb_status fb_linkage_solve(fb_linkage_state *out, const fb_linkage *lk,
                            fb_branch branch, double theta2, double omega2,
                            double alpha2, fb_diag *diag);
 
+/* Partial derivatives of coupler and follower angular velocity and
+ * acceleration with respect to each link length, at fixed crank angle theta2,
+ * crank speed omega2 and zero crank acceleration, by implicit differentiation
+ * of the loop-closure equations and their first two time derivatives (exact,
+ * no finite differences). Rows: omega3, omega4, alpha3, alpha4; columns:
+ * crank, coupler, follower, ground. Units [rad/s/m] and [rad/s^2/m].
+ * Errors: those of fb_linkage_solve. */
+fb_status fb_linkage_sensitivity(double out[4][FB_LINK_COUNT], const fb_linkage *lk,
+                                 fb_branch branch, double theta2, double omega2, fb_diag *diag);
+
 /* Crank angles at which the linkage can be assembled. The assemblable set is
  * symmetric about the ground line: |theta2| in [lo, hi] (wrapped to [0, pi]).
  * Full rotation means lo == 0 and hi == pi with no toggle of coupler and

@@ -14,6 +14,9 @@ static const char main_help[] =
     "commands:\n"
     "  run          run a case file's models; write summary.json and CSV series\n"
     "  kinematics   exact peaks, Grashof class and transmission angle of a linkage\n"
+    "  stackup      tolerance stack-up: corners, RSS, Monte Carlo, sensitivities\n"
+    "  fit          limits of an ISO 286 fit, e.g. 10H7/g6\n"
+    "  tolerance    ISO 2768-1 general tolerance of a size\n"
     "  penalty      contact stiffness and penalty parameter per speed (paper or physical)\n"
     "  impact       one impact in ODE against a reference integration and closed form\n"
     "  keys         list every case-file key with unit, default and rule\n"
@@ -41,6 +44,9 @@ int main(int argc, char **argv) {
   if (strcmp(cmd, "kinematics") == 0) return fb_cmd_kinematics(argc - 1, argv + 1);
   if (strcmp(cmd, "impact") == 0) return fb_cmd_impact(argc - 1, argv + 1);
   if (strcmp(cmd, "penalty") == 0) return fb_cmd_penalty(argc - 1, argv + 1);
+  if (strcmp(cmd, "fit") == 0) return fb_cmd_fit(argc - 1, argv + 1);
+  if (strcmp(cmd, "tolerance") == 0) return fb_cmd_tolerance(argc - 1, argv + 1);
+  if (strcmp(cmd, "stackup") == 0) return fb_cmd_stackup(argc - 1, argv + 1);
   if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
   fprintf(stderr, "fourbar: unknown command '%s'\n\n%s", cmd, main_help);
   return 2;

@@ -91,6 +91,31 @@ static json_t *model_json(const fb_model_result *m) {
   return o;
 }
 
+static json_t *stackup_json(const fb_case *c) {
+  json_t *o = json_object();
+  char corner[FB_LINK_COUNT + 1];
+  for (int k = 0; k < FB_LINK_COUNT; k++) corner[k] = "-0+"[c->stackup.corner[k] + 1];
+  corner[FB_LINK_COUNT] = '\0';
+  json_object_set_new(o, "corner", json_string(corner));
+  json_t *links = json_array();
+  fb_linkage su;
+  fb_case_stackup_lengths(c, &su);
+  for (int k = 0; k < FB_LINK_COUNT; k++) {
+    json_t *l = json_object();
+    json_object_set_new(l, "link", json_string(fb_link_name(k)));
+    json_object_set_new(l, "nominal_m", num(c->nominal.length[k]));
+    json_object_set_new(l, "plus_minus_m", num(c->plus_minus[k]));
+    json_object_set_new(l, "stackup_m", num(su.length[k]));
+    json_object_set_new(l, "source", json_string(c->tolerance_source[k]));
+    json_array_append_new(links, l);
+  }
+  json_object_set_new(o, "links", links);
+  json_object_set_new(o, "pin_diameter_m", num(c->pin_diameter));
+  json_object_set_new(o, "radial_clearance_m", num(c->radial_clearance));
+  json_object_set_new(o, "clearance_source", json_string(c->clearance_source));
+  return o;
+}
+
 json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   const fb_case *c = &r->c;
   json_t *o = json_object();
@@ -105,6 +130,7 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_object_set_new(o, "stepper", json_string(c->solver.stepper == FB_STEPPER_WORLD
                                                     ? "dWorldStep"
                                                     : "dWorldQuickStep"));
+  json_object_set_new(o, "stackup", stackup_json(c));
   json_t *an = json_object();
   json_object_set_new(an, "coupler", fb_report_body_peaks_json(&r->analytic_nominal.coupler));
   json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
@@ -176,6 +202,17 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
           c->branch == FB_BRANCH_OPEN ? "open" : "crossed", c->revolutions, c->solver.h,
           c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep",
           r->t_window);
+  fb_linkage su;
+  fb_case_stackup_lengths(c, &su);
+  fprintf(f, "stack-up corner %c%c%c%c:", "-0+"[c->stackup.corner[0] + 1],
+          "-0+"[c->stackup.corner[1] + 1], "-0+"[c->stackup.corner[2] + 1],
+          "-0+"[c->stackup.corner[3] + 1]);
+  for (int k = 0; k < FB_LINK_COUNT; k++)
+    fprintf(f, "%s %s %.4g +- %.3g -> %.4g mm (%s)", k ? ";" : "", fb_link_name(k),
+            c->nominal.length[k] * 1e3, c->plus_minus[k] * 1e3, su.length[k] * 1e3,
+            c->tolerance_source[k]);
+  fprintf(f, "\nclearance joints: pin %.4g mm, radial clearance %.4g um (%s)\n\n",
+          c->pin_diameter * 1e3, c->radial_clearance * 1e6, c->clearance_source);
   fprintf(f, "%-19s %-35s %-35s %-17s %6s %8s %6s\n", "", "coupler omega / alpha",
           "follower omega / alpha", "peak err vs exact", "", "", "");
   fprintf(f, "%-19s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s %s\n", "model",

@@ -3,6 +3,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "tolerance.h"
+
 static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref) {
   const fb_body_peaks *in[2] = {&p->coupler, &p->follower};
   const fb_body_peaks *rf[2] = {&ref->coupler, &ref->follower};
@@ -42,6 +44,11 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
                       fb_diag *diag) {
   memset(r, 0, sizeof *r);
   r->c = *c;
+  /* a "worst" stack-up becomes a concrete corner before any model runs */
+  fb_status rc = fb_tol_resolve_worst(&r->c, diag);
+  if (rc == FB_OK && c->stackup.worst) rc = fb_case_check(&r->c, diag);
+  if (rc != FB_OK) return rc;
+  c = &r->c;
   r->t_window = 2.0 * M_PI / c->crank_speed; /* after the first revolution */
   /* a hair below one revolution so the sample at exactly one period counts */
   r->t_window -= 0.5 * c->solver.h;

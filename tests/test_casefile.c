@@ -48,7 +48,11 @@ static void test_paper_case_in_si(void **state) {
   assert_string_equal(c.name, "paper_crank_rocker");
   assert_near(c.nominal.length[FB_CRANK], 0.108, SI_TOL);
   assert_near(c.nominal.length[FB_COUPLER], 0.2794, SI_TOL);
-  assert_near(c.plus_minus[FB_CRANK], 0.3e-3, SI_TOL);
+  assert_near(c.plus_minus[FB_CRANK], 0.3e-3, SI_TOL); /* from ISO 2768-1 class m */
+  assert_near(c.plus_minus[FB_GROUND], 0.5e-3, SI_TOL);
+  assert_non_null(strstr(c.tolerance_source[FB_CRANK], "ISO 2768-1 class m, over 30 up to 120"));
+  assert_near(c.radial_clearance, 14.5e-6, 1e-18); /* 10H7/g6: 29 um / 2 */
+  assert_non_null(strstr(c.clearance_source, "10H7/g6"));
   assert_near(c.crank_speed, 1000.0 * 2.0 * M_PI / 60.0, 1e-12);
   assert_int_equal(c.direction, -1);
   assert_near(c.youngs_modulus, 207e9, 1.0);

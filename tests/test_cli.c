@@ -149,6 +149,40 @@ static void test_penalty_and_impact_json(void **state) {
   json_decref(j);
 }
 
+static void test_fit_tolerance_stackup_json(void **state) {
+  (void)state;
+  static char out[1 << 17], err[4096];
+  json_error_t je;
+  assert_int_equal(run("fit 10H7/g6 --json", out, sizeof out, err, sizeof err), 0);
+  json_t *j = json_loads(out, 0, &je);
+  if (!j) fail_msg("fit --json does not parse: %s", je.text);
+  assert_near(json_real_value(json_object_get(j, "nominal_mm")), 10, 0);
+  assert_near(json_real_value(json_object_get(json_object_get(j, "hole"), "upper_um")), 15, 1e-9);
+  assert_near(json_real_value(json_object_get(json_object_get(j, "shaft"), "lower_um")), -14, 1e-9);
+  assert_near(json_real_value(json_object_get(j, "clearance_min_um")), 5, 1e-9);
+  assert_near(json_real_value(json_object_get(j, "clearance_max_um")), 29, 1e-9);
+  assert_string_equal(json_string_value(json_object_get(j, "kind")), "clearance");
+  json_decref(j);
+  assert_int_equal(run("fit 25 H8/f7 --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  assert_near(json_real_value(json_object_get(j, "clearance_max_um")), 74, 1e-9);
+  json_decref(j);
+  assert_int_equal(run("tolerance 279.4 --class m --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  assert_near(json_real_value(json_object_get(j, "plus_minus_mm")), 0.5, 1e-12);
+  assert_string_equal(json_string_value(json_object_get(j, "class")), "m");
+  assert_near(json_real_value(json_object_get(j, "size_mm")), 279.4, 1e-12);
+  json_decref(j);
+  assert_int_equal(run("stackup --samples 200 --seed 3 --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  if (!j) fail_msg("stackup --json does not parse: %s", je.text);
+  json_t *o0 = json_array_get(json_object_get(j, "outputs"), 0);
+  assert_string_equal(json_string_value(json_object_get(o0, "name")), "coupler_omega_max_rad_s");
+  const char *groups[] = {"corners", "rss", "montecarlo", "sensitivity_per_m", NULL};
+  for (int g = 0; groups[g]; g++) assert_non_null(json_object_get(o0, groups[g]));
+  json_decref(j);
+}
+
 static void expect_fail(const char *args, const char *const *needles) {
   static char err[8192];
   int rc = run(args, NULL, 0, err, sizeof err);
@@ -190,6 +224,16 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   expect_fail("impact --restitution 1.5", (const char *[]){"restitution = 1.5", "(0, 1]", NULL});
   expect_fail("impact --law restitution --restitution 0.1", (const char *[]){"critical damping", NULL});
   expect_fail("impact --law bouncy", (const char *[]){"--law 'bouncy'", NULL});
+  p = write_file("press.ini", "[pin]\nfit = 30H7/s6\n");
+  snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
+  expect_fail(args, (const char *[]){"press.ini:2", "interference fit", "clearance joint", NULL});
+  p = write_file("both.ini", "[pin]\nfit = 10H7/g6\nradial_clearance_um = 10\n");
+  snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
+  expect_fail(args, (const char *[]){"both.ini:3", "give one", NULL});
+  expect_fail("fit 10Q7/g6", (const char *[]){"letter 'Q'", NULL});
+  expect_fail("fit 10H7-g6", (const char *[]){"expected <size mm>", NULL});
+  expect_fail("tolerance 2 --class v", (const char *[]){"no value", NULL});
+  expect_fail("stackup --method guess", (const char *[]){"corners, rss or montecarlo", NULL});
   expect_fail("frobnicate", (const char *[]){"unknown command 'frobnicate'", NULL});
   /* nothing was written for the failed runs */
   snprintf(args, sizeof args, "%s/x/summary.json", tmpdir);
@@ -222,6 +266,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_paper_case_runs_and_writes_summary),
       cmocka_unit_test(test_json_flag_and_kinematics),
       cmocka_unit_test(test_penalty_and_impact_json),
+      cmocka_unit_test(test_fit_tolerance_stackup_json),
       cmocka_unit_test(test_bad_input_exits_nonzero_with_message),
       cmocka_unit_test(test_help_answers),
   };

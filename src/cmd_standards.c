@@ -1,0 +1,114 @@
+/* fourbar fit and fourbar tolerance: lookups in ISO 286-1 and ISO 2768-1.
+ * Argument parsing and dispatch only. */
+#include <getopt.h>
+#include <jansson.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "iso2768.h"
+#include "iso286.h"
+#include "units.h"
+
+static const char fit_help[] =
+    "usage: fourbar fit FIT [--json]\n"
+    "\n"
+    "Limits of an ISO 286-1 fit such as 10H7/g6, '25 H8/f7' or 50H7/k6 (size in mm,\n"
+    "up to 500 mm): hole and shaft deviations [um], minimum and maximum diametral\n"
+    "clearance [um] (negative is interference) and the kind of fit.\n"
+    "Letters: holes A B C D E F G H JS K M N P R S, shafts a b c d e f g h js k m n p r s;\n"
+    "grades IT01, IT0, IT1..IT18.\n";
+
+static const char tol_help[] =
+    "usage: fourbar tolerance SIZE_MM --class f|m|c|v [--json]\n"
+    "\n"
+    "ISO 2768-1 general tolerance (+-) for a linear size from 0.5 to 4000 mm.\n";
+
+int fb_cmd_fit(int argc, char **argv) {
+  static const struct option opts[] = {
+      {"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+  int json = 0, ch;
+  optind = 1;
+  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    if (ch == 'j') json = 1;
+    else if (ch == 'h') { fputs(fit_help, stdout); return 0; }
+    else { fputs(fit_help, stderr); return 2; }
+  }
+  if (argc - optind < 1) return fb_cli_fail("fit", 2, "a fit is required, e.g. 10H7/g6; see --help");
+  /* "25 H8/f7" may arrive as two words */
+  char text[128] = "";
+  for (int i = optind; i < argc; i++) {
+    strncat(text, argv[i], sizeof text - strlen(text) - 1);
+  }
+  fb_fit f;
+  fb_diag d;
+  if (fb_iso286_fit(&f, text, &d) != FB_OK) return fb_cli_fail("fit", 2, "%s", d.msg);
+  const double um = 1.0 / FB_M_PER_UM;
+  if (json) {
+    json_t *o = json_object(), *h = json_object(), *s = json_object();
+    json_object_set_new(o, "fit", json_string(text));
+    json_object_set_new(o, "nominal_mm", json_real(f.nominal / FB_M_PER_MM));
+    json_object_set_new(h, "class", json_string(f.hole));
+    json_object_set_new(h, "upper_um", json_real(f.h.upper * um));
+    json_object_set_new(h, "lower_um", json_real(f.h.lower * um));
+    json_object_set_new(s, "class", json_string(f.shaft));
+    json_object_set_new(s, "upper_um", json_real(f.s.upper * um));
+    json_object_set_new(s, "lower_um", json_real(f.s.lower * um));
+    json_object_set_new(o, "hole", h);
+    json_object_set_new(o, "shaft", s);
+    json_object_set_new(o, "clearance_min_um", json_real(f.clearance_min * um));
+    json_object_set_new(o, "clearance_max_um", json_real(f.clearance_max * um));
+    json_object_set_new(o, "kind", json_string(fb_fit_kind_name(f.kind)));
+    json_object_set_new(o, "source", json_string("ISO 286-1:2010 Tables 1 to 3"));
+    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
+    fputc('\n', stdout);
+    json_decref(o);
+    return 0;
+  }
+  printf("%g %s/%s (ISO 286-1): %s fit\n", f.nominal / FB_M_PER_MM, f.hole, f.shaft,
+         fb_fit_kind_name(f.kind));
+  printf("  hole  %-4s %+8.1f / %+8.1f um\n", f.hole, f.h.upper * um, f.h.lower * um);
+  printf("  shaft %-4s %+8.1f / %+8.1f um\n", f.shaft, f.s.upper * um, f.s.lower * um);
+  printf("  clearance %+.1f to %+.1f um (diametral; negative is interference)\n",
+         f.clearance_min * um, f.clearance_max * um);
+  return 0;
+}
+
+int fb_cmd_tolerance(int argc, char **argv) {
+  static const struct option opts[] = {{"class", required_argument, 0, 'c'},
+                                       {"json", no_argument, 0, 'j'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  int json = 0, ch;
+  const char *cls = NULL;
+  optind = 1;
+  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    if (ch == 'c') cls = optarg;
+    else if (ch == 'j') json = 1;
+    else if (ch == 'h') { fputs(tol_help, stdout); return 0; }
+    else { fputs(tol_help, stderr); return 2; }
+  }
+  if (argc - optind != 1) return fb_cli_fail("tolerance", 2, "one SIZE_MM is required; see --help");
+  if (!cls) return fb_cli_fail("tolerance", 2, "--class f|m|c|v is required");
+  if (strlen(cls) != 1) return fb_cli_fail("tolerance", 2, "--class '%s': must be f, m, c or v", cls);
+  double mm;
+  if (!fb_cli_double("tolerance", "SIZE_MM", argv[optind], &mm)) return 2;
+  double pm;
+  char clause[128];
+  fb_diag d;
+  if (fb_iso2768_linear(&pm, cls[0], mm * FB_M_PER_MM, clause, sizeof clause, &d) != FB_OK)
+    return fb_cli_fail("tolerance", 2, "%s", d.msg);
+  if (json) {
+    json_t *o = json_object();
+    json_object_set_new(o, "size_mm", json_real(mm));
+    json_object_set_new(o, "class", json_string(cls));
+    json_object_set_new(o, "plus_minus_mm", json_real(pm / FB_M_PER_MM));
+    json_object_set_new(o, "source", json_string(clause));
+    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
+    fputc('\n', stdout);
+    json_decref(o);
+    return 0;
+  }
+  printf("%g mm, class %s: +-%g mm (%s)\n", mm, cls, pm / FB_M_PER_MM, clause);
+  return 0;
+}

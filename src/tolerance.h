@@ -1,0 +1,75 @@
+/* Tolerance stack-up of the four-bar's outputs: worst case over the 2^4
+ * corners of the link-length tolerances, RSS from exact sensitivities, and
+ * Monte Carlo with GSL's Mersenne Twister (gsl_rng_mt19937).
+ *
+ * Outputs (FB_TOL_NOUT): the eight peaks of coupler and follower angular
+ * velocity [rad/s] and acceleration [rad/s^2] over a revolution, and the
+ * transmission angle's minimum and maximum [rad].
+ * Sensitivities dOutput/dLength are exact: for a peak, the envelope theorem
+ * gives the partial derivative at the crank angle of the peak
+ * (fb_linkage_sensitivity); for the transmission angle, the derivative of
+ * mu = acos((b^2 + c^2 - f^2) / (2 b c)) with f = g -+ a at theta2 = 0, pi.
+ * RSS: nominal +- sqrt(sum_k (S_k t_k)^2), each tolerance t_k taken as 3
+ * sigma, so the band is the 3-sigma band of the linearised output.
+ * Monte Carlo: each length nominal + t_k x, x ~ N(0, 1/3) ("normal": 3 sigma
+ * at the tolerance limit) or U(-1, 1) ("uniform"); quantiles at 0.135 %,
+ * 50 % and 99.865 % (GSL gsl_stats_quantile_from_sorted_data). */
+#ifndef FB_TOLERANCE_H
+#define FB_TOLERANCE_H
+
+#include <stddef.h>
+
+#include "case.h"
+
+#define FB_TOL_NOUT 10
+
+/* Output names with SI unit suffix, e.g. "coupler_omega_max_rad_s",
+ * "transmission_angle_min_rad". */
+const char *fb_tol_output_name(int i);
+
+/* Index of an output name (with or without its unit suffix), -1 if none. */
+int fb_tol_output_parse(const char *name);
+
+/* Evaluates the outputs for lengths lk. Errors: those of fb_analytic_peaks. */
+fb_status fb_tol_outputs(double out[FB_TOL_NOUT], const fb_linkage *lk, fb_branch branch,
+                         double omega2, fb_diag *diag);
+
+/* Exact sensitivities [output unit per m] (FB_TOL_NOUT x 4). */
+fb_status fb_tol_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_linkage *lk,
+                               fb_branch branch, double omega2, fb_diag *diag);
+
+typedef enum { FB_DIST_NORMAL = 0, FB_DIST_UNIFORM = 1 } fb_distribution;
+
+/* Result of a stack-up analysis; fields of methods not run are 0. */
+typedef struct {
+  double nominal[FB_TOL_NOUT];
+  double sens[FB_TOL_NOUT][FB_LINK_COUNT];
+  double corner_min[FB_TOL_NOUT], corner_max[FB_TOL_NOUT];
+  int corner_of_max[FB_TOL_NOUT][FB_LINK_COUNT]; /* corner giving the largest |output| */
+  double rss_half[FB_TOL_NOUT];                  /* half-width of the RSS band */
+  double q[FB_TOL_NOUT][3];                      /* Monte Carlo 0.135 %, 50 %, 99.865 % */
+  double mc_mean[FB_TOL_NOUT], mc_std[FB_TOL_NOUT];
+  size_t samples;                                /* Monte Carlo samples used */
+  double mc_wall_s;                              /* Monte Carlo wall time [s] */
+} fb_stackup_result;
+
+/* Methods to run (bit mask). */
+#define FB_TOL_CORNERS 1
+#define FB_TOL_RSS 2
+#define FB_TOL_MONTECARLO 4
+
+/* Runs the methods in mask for the case's nominal lengths and tolerances.
+ * progress (may be NULL) gets the Monte Carlo fraction done.
+ * Errors: FB_ERR_ASSEMBLY when a corner or sample cannot turn its crank
+ * fully (message names the lengths); FB_ERR_NOMEM. */
+fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, size_t samples,
+                         unsigned long seed, fb_distribution dist,
+                         void (*progress)(double fraction, void *user), void *user,
+                         fb_diag *diag);
+
+/* Resolves a "worst" stack-up: sets c->stackup.corner to the corner that
+ * maximises |output c->stackup.worst_output| and clears the worst flag.
+ * Does nothing for other choices. Errors: those of fb_tol_outputs. */
+fb_status fb_tol_resolve_worst(fb_case *c, fb_diag *diag);
+
+#endif

@@ -1,0 +1,136 @@
+/* ISO 286-1 fits and ISO 2768-1 general tolerances against published table
+ * values, range boundaries included (a boundary belongs to the lower range:
+ * upper limit inclusive). Published values: ISO 286-2:2010 tables and ISO
+ * 2768-1:1989 Table 1, as reproduced in machine-design handbooks. */
+#include <string.h>
+
+#include "fb_test.h"
+#include "iso2768.h"
+#include "iso286.h"
+
+/* table values are whole (or half) micrometres: compare to 1e-3 um */
+#define UM_TOL 1e-9
+
+typedef struct {
+  const char *cls;
+  double size_mm;
+  double upper_um, lower_um;
+} published;
+
+static const published classes[] = {
+    {"H7", 10, 15, 0},      {"g6", 10, -5, -14},      /* 10 H7/g6: the paper's pin */
+    {"H7", 3, 10, 0},       {"H7", 3.001, 12, 0},     /* boundary at 3 mm */
+    {"H7", 6, 12, 0},       {"H7", 18, 18, 0},        {"H7", 30, 21, 0},
+    {"H7", 50, 25, 0},      {"H7", 50.01, 30, 0},     {"H7", 500, 63, 0},
+    {"H8", 25, 33, 0},      {"f7", 25, -20, -41},     {"k6", 50, 18, 2},
+    {"k6", 3, 6, 0},        {"k6", 3.01, 9, 1},       {"K7", 50, 7, -18},
+    {"M7", 50, 0, -25},     {"N7", 50, -8, -33},      {"P7", 50, -17, -42},
+    {"R7", 40, -25, -50},   {"S7", 40, -34, -59},     {"G7", 10, 20, 5},
+    {"F8", 18, 43, 16},     {"E9", 120, 159, 72},     {"d10", 120, -120, -260},
+    {"c11", 250, -280, -570}, {"n6", 500, 80, 40},    {"p6", 30, 35, 22},
+    {"s6", 30, 48, 35},     {"r6", 100, 73, 51},      {"r6", 80, 62, 43},
+    {"r6", 80.01, 73, 51},  {"h6", 180, 0, -25},      {"h6", 180.01, 0, -29},
+    {"js6", 10, 4.5, -4.5}, {"JS7", 10, 7.5, -7.5},   {"a11", 10, -280, -370},
+    {"b11", 10, -150, -240}, {"D9", 10, 76, 40},      {"e8", 40, -50, -89},
+    {"H11", 1, 60, 0},      {"h9", 6, 0, -30},        {"N9", 10, 0, -36},
+    {"M8", 30, 4, -29},     {"H01", 10, 0.4, 0},      {"h18", 2, 0, -1400},
+};
+
+static void test_classes_match_published_tables(void **state) {
+  (void)state;
+  for (size_t i = 0; i < sizeof classes / sizeof classes[0]; i++) {
+    fb_deviation d;
+    fb_diag diag;
+    const published *p = &classes[i];
+    if (fb_iso286_class(&d, p->cls, p->size_mm * 1e-3, &diag) != FB_OK)
+      fail_msg("%s at %g mm: %s", p->cls, p->size_mm, diag.msg);
+    if (fabs(d.upper * 1e6 - p->upper_um) > UM_TOL || fabs(d.lower * 1e6 - p->lower_um) > UM_TOL)
+      fail_msg("%s at %g mm: %+g/%+g um, published %+g/%+g", p->cls, p->size_mm, d.upper * 1e6,
+               d.lower * 1e6, p->upper_um, p->lower_um);
+  }
+}
+
+static void test_fits(void **state) {
+  (void)state;
+  fb_fit f;
+  assert_int_equal(fb_iso286_fit(&f, "10H7/g6", NULL), FB_OK);
+  assert_near(f.clearance_min * 1e6, 5, UM_TOL);  /* CONTACT.md: 5 .. 29 um */
+  assert_near(f.clearance_max * 1e6, 29, UM_TOL);
+  assert_int_equal(f.kind, FB_FIT_CLEARANCE);
+  assert_int_equal(fb_iso286_fit(&f, "25 H8/f7", NULL), FB_OK);
+  assert_near(f.clearance_min * 1e6, 20, UM_TOL);
+  assert_near(f.clearance_max * 1e6, 74, UM_TOL);
+  assert_int_equal(fb_iso286_fit(&f, "50H7/k6", NULL), FB_OK);
+  assert_int_equal(f.kind, FB_FIT_TRANSITION);
+  assert_near(f.clearance_min * 1e6, -18, UM_TOL);
+  assert_near(f.clearance_max * 1e6, 23, UM_TOL);
+  assert_int_equal(fb_iso286_fit(&f, "30H7/s6", NULL), FB_OK);
+  assert_int_equal(f.kind, FB_FIT_INTERFERENCE);
+}
+
+static void expect(fb_status want, const char *fit, const char *needle) {
+  fb_fit f;
+  fb_diag d;
+  assert_int_equal(fb_iso286_fit(&f, fit, &d), want);
+  if (!strstr(d.msg, needle)) fail_msg("'%s': message '%s' lacks '%s'", fit, d.msg, needle);
+}
+
+static void test_bad_fits_name_value_and_range(void **state) {
+  (void)state;
+  expect(FB_ERR_RANGE, "10X7/g6", "letter 'X'");
+  expect(FB_ERR_RANGE, "10H19/g6", "IT19");
+  expect(FB_ERR_RANGE, "600H7/g6", "600 mm");
+  expect(FB_ERR_PARSE, "10H7g6", "expected <size mm>");
+  expect(FB_ERR_PARSE, "H7/g6", "expected <size mm>");
+  expect(FB_ERR_PARSE, "10h7/G6", "upper case");
+  expect(FB_ERR_PARSE, "120E9/d10x", "grade");
+  double it;
+  fb_diag d;
+  assert_int_equal(fb_iso286_it(&it, 14, 0.8e-3, &d), FB_ERR_RANGE); /* IT14 not below 1 mm */
+  assert_non_null(strstr(d.msg, "above 1 mm"));
+}
+
+static void test_general_tolerances(void **state) {
+  (void)state;
+  const struct {
+    char cls;
+    double mm, pm;
+  } t[] = {{'m', 0.5, 0.1}, {'m', 3, 0.1},   {'m', 3.01, 0.1}, {'m', 6, 0.1},
+           {'m', 6.01, 0.2}, {'m', 30, 0.2},  {'m', 30.01, 0.3}, {'m', 120, 0.3},
+           {'m', 120.01, 0.5}, {'m', 400, 0.5}, {'m', 400.01, 0.8}, {'m', 1000, 0.8},
+           {'m', 2000, 1.2}, {'m', 4000, 2},  {'f', 3, 0.05},  {'f', 120, 0.15},
+           {'f', 2000, 0.5}, {'c', 3, 0.2},   {'c', 6, 0.3},   {'c', 400, 1.2},
+           {'v', 3.01, 0.5}, {'v', 4000, 8}};
+  for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+    double pm;
+    fb_diag d;
+    if (fb_iso2768_linear(&pm, t[i].cls, t[i].mm * 1e-3, NULL, 0, &d) != FB_OK)
+      fail_msg("%c %g mm: %s", t[i].cls, t[i].mm, d.msg);
+    assert_near(pm * 1e3, t[i].pm, 1e-12);
+  }
+  /* the paper's link tolerances are class m exactly */
+  const double links[4] = {108, 279.4, 270.5, 254}, paper[4] = {0.3, 0.5, 0.5, 0.5};
+  for (int k = 0; k < 4; k++) {
+    double pm;
+    assert_int_equal(fb_iso2768_linear(&pm, 'm', links[k] * 1e-3, NULL, 0, NULL), FB_OK);
+    assert_near(pm * 1e3, paper[k], 1e-12);
+  }
+  /* what the standard leaves empty stays empty */
+  double pm;
+  fb_diag d;
+  assert_int_equal(fb_iso2768_linear(&pm, 'v', 2e-3, NULL, 0, &d), FB_ERR_RANGE);
+  assert_non_null(strstr(d.msg, "no value"));
+  assert_int_equal(fb_iso2768_linear(&pm, 'f', 3000e-3, NULL, 0, &d), FB_ERR_RANGE);
+  assert_int_equal(fb_iso2768_linear(&pm, 'x', 10e-3, NULL, 0, &d), FB_ERR_RANGE);
+  assert_int_equal(fb_iso2768_linear(&pm, 'm', 0.2e-3, NULL, 0, &d), FB_ERR_RANGE);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_classes_match_published_tables),
+      cmocka_unit_test(test_fits),
+      cmocka_unit_test(test_bad_fits_name_value_and_range),
+      cmocka_unit_test(test_general_tolerances),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

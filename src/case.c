@@ -3,8 +3,20 @@
 #include <math.h>
 #include <string.h>
 
-const char *const fb_model_names[] = {"analytic", "analytic-stackup", "ode-ideal-nominal",
-                                      "ode-ideal-stackup", NULL};
+const char *const fb_model_names[] = {"analytic",
+                                      "analytic-stackup",
+                                      "ode-ideal-nominal",
+                                      "ode-ideal-stackup",
+                                      "ode-clearance-restitution",
+                                      "ode-clearance-impact",
+                                      "ode-clearance-faceted",
+                                      NULL};
+
+const char *fb_joint_name(int j) {
+  static const char *const names[4] = {"ground-crank", "crank-coupler", "coupler-follower",
+                                       "follower-ground"};
+  return (j >= 0 && j < 4) ? names[j] : "?";
+}
 
 int fb_model_known(const char *name) {
   for (int i = 0; fb_model_names[i]; i++)
@@ -56,6 +68,18 @@ void fb_case_default(fb_case *c) {
   c->solver.world_cfm = 1e-10;
   c->solver.drive_torque_max = 1e4;
   c->solver.seed = 1;
+  c->clearance.mask = 1 << FB_JOINT_B;
+  c->clearance.penalty = FB_PENALTY_SOURCE_PHYSICAL;
+  c->clearance.restitution = 0.9;
+  c->clearance.stiffness_impact = 1e11;
+  c->clearance.stiffness_linear = 1e9;
+  c->clearance.exponent = 1.5;
+  c->clearance.damping = 1e4;
+  c->clearance.damping_depth = 1e-6;
+  c->clearance.mapping = 0;
+  c->clearance.friction = 0.0;
+  c->clearance.penetration_limit = 0.0;
+  c->clearance.faceted_n = 64;
   c->revolutions = 3.0;
   const char *m[] = {"analytic", "analytic-stackup", "ode-ideal-nominal", "ode-ideal-stackup"};
   c->model_count = 4;
@@ -136,6 +160,15 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_RANGE,
                        "step size h = %g s over %g s is %.3g steps: more than 1e9 steps",
                        c->solver.h, dur, dur / c->solver.h);
+  if (c->clearance.penetration_limit < 0.0)
+    return fb_diag_set(diag, FB_ERR_RANGE, "penetration limit %g m: must be >= 0",
+                       c->clearance.penetration_limit);
+  for (int i = 0; i < c->model_count; i++) {
+    if (strncmp(c->models[i], "ode-clearance", 13) == 0 && c->clearance.mask == 0)
+      return fb_diag_set(diag, FB_ERR_ARG,
+                         "model '%s' needs at least one clearance joint ([clearance] joints)",
+                         c->models[i]);
+  }
   for (int i = 0; i < c->model_count; i++)
     if (!fb_model_known(c->models[i]))
       return fb_diag_set(diag, FB_ERR_ARG, "unknown model '%s'", c->models[i]);

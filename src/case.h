@@ -31,6 +31,40 @@ typedef struct {
 
 typedef enum { FB_STEPPER_WORLD = 0, FB_STEPPER_QUICK = 1 } fb_stepper;
 
+/* The four revolute joints, in loop order. */
+typedef enum {
+  FB_JOINT_A = 0, /* ground-crank (driven) */
+  FB_JOINT_B = 1, /* crank-coupler */
+  FB_JOINT_C = 2, /* coupler-follower */
+  FB_JOINT_D = 3  /* follower-ground */
+} fb_joint;
+
+/* "ground-crank", "crank-coupler", "coupler-follower", "follower-ground". */
+const char *fb_joint_name(int j);
+
+/* Where the penalty stiffness of the clearance models comes from. */
+typedef enum {
+  FB_PENALTY_SOURCE_PHYSICAL = 0, /* Johnson line contact at the inverse-dynamics reaction */
+  FB_PENALTY_SOURCE_PAPER = 1,    /* the paper's Kc and P (Tables II, III recipe), read in N-mm units */
+  FB_PENALTY_SOURCE_EXPLICIT = 2  /* the case's stiffness keys */
+} fb_penalty_source;
+
+/* Clearance joints and the contact parameters of the ode-clearance-* models. */
+typedef struct {
+  int mask;                  /* bit j set: joint j is a clearance joint (pin in hole) */
+  fb_penalty_source penalty; /* source of the stiffness */
+  double restitution;        /* coefficient of restitution cr of the restitution law [-] */
+  double stiffness_impact;   /* explicit K of the impact law [N/m^1.5] */
+  double stiffness_linear;   /* explicit penalty p of the restitution law [N/m] */
+  double exponent;           /* impact-law exponent n [-] */
+  double damping;            /* impact-law maximum damping c_max [N s/m] */
+  double damping_depth;      /* impact-law penetration of full damping d_max [m] */
+  int mapping;               /* fb_mapping: 0 secant, 1 tangent */
+  double friction;           /* Coulomb friction coefficient at the contact [-] */
+  double penetration_limit;  /* stop a model beyond this penetration [m]; 0: the radial clearance */
+  int faceted_n;             /* boxes in the ring of the ode-clearance-faceted model */
+} fb_clearance;
+
 /* Solver parameters of the ODE models. */
 typedef struct {
   double h;                /* step size h [s] */
@@ -65,6 +99,7 @@ typedef struct {
   double pin_length;                  /* pin length in contact with the hole [m] */
   double radial_clearance;            /* radial clearance c = R_hole - R_pin [m] */
   fb_solver solver;                   /* ODE settings */
+  fb_clearance clearance;             /* clearance joints and contact parameters */
   double revolutions;                 /* crank revolutions simulated [-]; the first is a run-in */
   int model_count;                    /* entries used in models */
   char models[FB_MAX_MODELS][FB_NAME_SIZE]; /* model names to run, in order */

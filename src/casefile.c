@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact.h"
 #include "iso2768.h"
 #include "iso286.h"
 #include "tolerance.h"
@@ -29,7 +30,10 @@ typedef enum {
   K_CLASS,     /* ISO 2768-1 class letter f m c v */
   K_DIST,      /* normal | uniform */
   K_OUTPUT,    /* a stack-up output name */
-  K_FIT        /* an ISO 286 fit string, checked after reading */
+  K_FIT,       /* an ISO 286 fit string, checked after reading */
+  K_JOINTS,    /* comma-separated joint names (bit mask) */
+  K_PENALTY,   /* physical | paper | explicit */
+  K_MAPPING    /* secant | tangent */
 } key_kind;
 
 typedef struct {
@@ -148,6 +152,42 @@ static const key_spec keys[] = {
      "um", "14.5", "a radial clearance must be positive",
      "radial clearance c = R_hole - R_pin of the clearance joints (default: the 10 H7/g6 "
      "maximum, 29 um diametral)"},
+
+    {"clearance", "joints", K_JOINTS, OFF(clearance.mask), 0, 0, 0, 0, 0, "-", "crank-coupler",
+     "joint names: ground-crank, crank-coupler, coupler-follower, follower-ground, or none",
+     "joints modelled as a pin in a hole (ode-clearance-* models); the others stay ideal "
+     "hinges and get no contact geometry"},
+    {"clearance", "penalty", K_PENALTY, OFF(clearance.penalty), 0, 0, 0, 0, 0, "-", "physical",
+     "physical, paper or explicit",
+     "stiffness source: physical (Johnson line contact at the inverse-dynamics reaction), "
+     "paper (the paper's Kc and P read in N and mm), explicit (the stiffness keys)"},
+    {"clearance", "restitution", K_DOUBLE, OFF(clearance.restitution), 1.0, FB_RESTITUTION_MIN,
+     1, 1, 0, "-", "0.9", "cr must lie in (0.1353, 1] (the restitution law's range)",
+     "coefficient of restitution of the restitution model"},
+    {"clearance", "stiffness_impact_n_m1_5", K_DOUBLE, OFF(clearance.stiffness_impact), 1.0, 0,
+     INF, 1, 1, "N/m^1.5", "1e11", "a stiffness must be positive",
+     "impact-model stiffness K when penalty = explicit"},
+    {"clearance", "penalty_n_m", K_DOUBLE, OFF(clearance.stiffness_linear), 1.0, 0, INF, 1, 1,
+     "N/m", "1e9", "a penalty must be positive",
+     "restitution-model penalty p when penalty = explicit"},
+    {"clearance", "exponent", K_DOUBLE, OFF(clearance.exponent), 1.0, 1, 3, 0, 0, "-", "1.5",
+     "the exponent must lie in [1, 3]", "impact-model force exponent n"},
+    {"clearance", "damping_n_s_m", K_DOUBLE, OFF(clearance.damping), 1.0, 0, INF, 0, 1, "N s/m",
+     "1e4", "damping must be >= 0", "impact-model maximum damping c_max"},
+    {"clearance", "damping_depth_um", K_DOUBLE, OFF(clearance.damping_depth), FB_M_PER_UM, 0, INF,
+     1, 1, "um", "1", "the full-damping depth must be positive",
+     "impact-model penetration at full damping d_max (cubic STEP below it)"},
+    {"clearance", "mapping", K_MAPPING, OFF(clearance.mapping), 0, 0, 0, 0, 0, "-", "secant",
+     "secant or tangent", "per-step linearisation of the law into ERP/CFM"},
+    {"clearance", "friction", K_DOUBLE, OFF(clearance.friction), 1.0, 0, 10, 0, 0, "-", "0",
+     "a friction coefficient must lie in [0, 10]", "Coulomb friction coefficient at the pin"},
+    {"clearance", "penetration_limit_um", K_DOUBLE, OFF(clearance.penetration_limit), FB_M_PER_UM,
+     0, INF, 0, 1, "um", "0", "the limit must be >= 0",
+     "a model stops ('unstable') beyond this penetration; 0: the radial clearance"},
+
+    {"clearance", "faceted_n", K_INT, OFF(clearance.faceted_n), 0, 3, 4096, 0, 0, "-", "64",
+     "3 to 4096 boxes",
+     "boxes in the hole ring of ode-clearance-faceted (ODE's generic box-cylinder path)"},
 
     {"solver", "h_s", K_DOUBLE, OFF(solver.h), 1.0, 0, 1, 1, 0, "s", "1e-5",
      "the step size must be positive (at most 1 s)", "step size h of the ODE models"},
@@ -321,7 +361,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
-                       "drive, environment, mass, material, pin, solver, run)",
+                       "drive, environment, mass, material, pin, clearance, solver, run)",
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }
@@ -428,6 +468,37 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
     case K_STEPPER:
       if (strcmp(e->value, "world") == 0) *(fb_stepper *)field = FB_STEPPER_WORLD;
       else if (strcmp(e->value, "quick") == 0) *(fb_stepper *)field = FB_STEPPER_QUICK;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_JOINTS: {
+      char buf[sizeof e->value];
+      snprintf(buf, sizeof buf, "%s", e->value);
+      int mask = 0;
+      char *save = NULL;
+      if (strcmp(trim(buf), "none") != 0) {
+        for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+          tok = trim(tok);
+          int j = -1;
+          for (int q = 0; q < 4; q++)
+            if (strcmp(tok, fb_joint_name(q)) == 0) j = q;
+          if (j < 0)
+            return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: unknown joint '%s' (%s)",
+                               e->origin, e->section, e->key, tok, k->rule);
+          mask |= 1 << j;
+        }
+      }
+      *(int *)field = mask;
+      return FB_OK;
+    }
+    case K_PENALTY:
+      if (strcmp(e->value, "physical") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_PHYSICAL;
+      else if (strcmp(e->value, "paper") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_PAPER;
+      else if (strcmp(e->value, "explicit") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_EXPLICIT;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_MAPPING:
+      if (strcmp(e->value, "secant") == 0) *(int *)field = 0;
+      else if (strcmp(e->value, "tangent") == 0) *(int *)field = 1;
       else return bad_word(e, k, diag);
       return FB_OK;
     case K_CLASS:

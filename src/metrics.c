@@ -2,6 +2,8 @@
 
 #include <math.h>
 
+static double fmax_d(double a, double b) { return a > b ? a : b; }
+
 double fb_metrics_rel(double x, double ref) {
   if (ref == 0.0) return x - ref;
   return (x - ref) / fabs(ref);
@@ -83,5 +85,43 @@ fb_status fb_metrics_error(fb_error *out, const fb_series *s, double t_from,
   body_error(&out->coupler, &ec, n, &p.coupler, &exact->coupler);
   body_error(&out->follower, &ef, n, &p.follower, &exact->follower);
   out->crank_angle_err_max = crank_err;
+  return FB_OK;
+}
+
+fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
+                            double alpha_ref_coupler, double alpha_ref_follower,
+                            const fb_error *err, fb_diag *diag) {
+  double ac = -1.0, af = -1.0, thc = 0.0, thf = 0.0, fmax = 0.0, pmax = 0.0;
+  size_t used = 0, free_count = 0, pairs = 0;
+  int impacts = 0;
+  for (size_t i = 0; i < s->n; i++) {
+    if (s->t[i] < t_from) continue;
+    used++;
+    if (fabs(s->coupler_alpha[i]) > ac) ac = fabs(s->coupler_alpha[i]), thc = s->crank_angle[i];
+    if (fabs(s->follower_alpha[i]) > af) af = fabs(s->follower_alpha[i]), thf = s->crank_angle[i];
+    for (int j = 0; j < 4; j++) {
+      if (!(s->contact_mask & (1 << j))) continue;
+      const double f = s->contact[j][FB_C_FORCE][i], p = s->contact[j][FB_C_PEN][i];
+      const int st = (int)s->contact[j][FB_C_STATE][i];
+      const int prev = i > 0 ? (int)s->contact[j][FB_C_STATE][i - 1] : FB_STATE_FREE;
+      if (f > fmax) fmax = f;
+      if (p > pmax) pmax = p;
+      if (st == FB_STATE_IMPACT && prev != FB_STATE_IMPACT) impacts++;
+      free_count += st == FB_STATE_FREE;
+      pairs++;
+    }
+  }
+  if (used == 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "no sample at or after t = %g s for spike metrics", t_from);
+  const double two_pi = 2.0 * M_PI;
+  out->alpha_peak_ratio_coupler = ac / alpha_ref_coupler;
+  out->alpha_peak_ratio_follower = af / alpha_ref_follower;
+  out->omega_dev_max = fmax_d(err->coupler.omega_err_max, err->follower.omega_err_max);
+  out->force_max = fmax;
+  out->penetration_max = pmax;
+  out->impacts = impacts;
+  out->free_flight_fraction = pairs ? (double)free_count / (double)pairs : 0.0;
+  out->alpha_peak_crank_angle_coupler = fmod(fmod(thc, two_pi) + two_pi, two_pi);
+  out->alpha_peak_crank_angle_follower = fmod(fmod(thf, two_pi) + two_pi, two_pi);
   return FB_OK;
 }

@@ -24,6 +24,27 @@ typedef struct {
   double crank_angle_err_max; /* max |theta2 - (theta0 + omega2 t)| [rad] */
 } fb_error;
 
+/* Spike metrics of a clearance model over the samples with t >= t_from. */
+typedef struct {
+  double alpha_peak_ratio_coupler;  /* peak |alpha| / the reference's peak |alpha| [-] */
+  double alpha_peak_ratio_follower; /* [-] */
+  double omega_dev_max;             /* largest |omega - omega_exact(t)| of coupler and follower [rad/s] */
+  double force_max;                 /* largest contact force over the clearance joints [N] */
+  double penetration_max;           /* largest penetration [m] */
+  int impacts;                      /* impact episodes begun in the window, all joints */
+  double free_flight_fraction;      /* share of (sample, joint) pairs in free flight [-] */
+  double alpha_peak_crank_angle_coupler;  /* crank angle of the coupler's largest |alpha| [rad] in [0, 2 pi) */
+  double alpha_peak_crank_angle_follower; /* [rad] in [0, 2 pi) */
+} fb_spikes;
+
+/* Spikes of series s (with contact columns) against reference peak |alpha|
+ * values alpha_ref_coupler, alpha_ref_follower [rad/s^2] (> 0); omega_dev is
+ * taken from err (fb_metrics_error of the same series).
+ * Errors: FB_ERR_ARG for an empty window. */
+fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
+                            double alpha_ref_coupler, double alpha_ref_follower,
+                            const fb_error *err, fb_diag *diag);
+
 /* Peaks of coupler and follower over the samples with t >= t_from [s].
  * Errors: FB_ERR_ARG when no sample lies in the window. */
 fb_status fb_metrics_peaks(fb_peaks *out, const fb_series *s, double t_from, fb_diag *diag);

@@ -25,6 +25,7 @@ typedef struct {
   double wall_s;           /* wall-clock time of the run [s] */
   fb_series series;        /* samples at t = k h */
   double joint_drift_max;  /* ode: largest hinge anchor separation seen [m] */
+  int clearance_mask;      /* bit j: joint j had clearance in this model */
 } fb_model_run;
 
 /* Called during long runs with the model name and the fraction done [0, 1]. */
@@ -41,7 +42,8 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_case *c, const char *name
 void fb_model_run_free(fb_model_run *r);
 
 /* Lengths a model name implies: nominal, or the case's stack-up corner for
- * names ending in "-stackup". */
+ * names ending in "-stackup" and for the ode-clearance-* models (the paper's
+ * clearance cases use the stack-up lengths). */
 void fb_model_lengths(const fb_case *c, const char *name, fb_linkage *out);
 
 #endif

@@ -88,6 +88,27 @@ static json_t *model_json(const fb_model_result *m) {
     json_object_set_new(o, "delta_vs_analytic_nominal", json_null());
   }
   if (run->kind == FB_KIND_ODE) json_object_set_new(o, "joint_drift_max_m", num(run->joint_drift_max));
+  if (m->has_spikes) {
+    const fb_spikes *k = &m->spikes;
+    json_t *sp = json_object();
+    json_object_set_new(sp, "alpha_peak_ratio_coupler", num(k->alpha_peak_ratio_coupler));
+    json_object_set_new(sp, "alpha_peak_ratio_follower", num(k->alpha_peak_ratio_follower));
+    json_object_set_new(sp, "omega_dev_max_rad_s", num(k->omega_dev_max));
+    json_object_set_new(sp, "force_max_n", num(k->force_max));
+    json_object_set_new(sp, "penetration_max_m", num(k->penetration_max));
+    json_object_set_new(sp, "impacts", json_integer(k->impacts));
+    json_object_set_new(sp, "free_flight_fraction", num(k->free_flight_fraction));
+    json_object_set_new(sp, "alpha_peak_crank_angle_coupler_rad", num(k->alpha_peak_crank_angle_coupler));
+    json_object_set_new(sp, "alpha_peak_crank_angle_follower_rad", num(k->alpha_peak_crank_angle_follower));
+    json_object_set_new(sp, "alpha_reference", json_string(m->spikes_reference));
+    json_object_set_new(o, "spikes", sp);
+    json_t *joints = json_array();
+    for (int j = 0; j < 4; j++)
+      if (run->clearance_mask & (1 << j)) json_array_append_new(joints, json_string(fb_joint_name(j)));
+    json_object_set_new(o, "clearance_joints", joints);
+  } else {
+    json_object_set_new(o, "spikes", json_null());
+  }
   return o;
 }
 
@@ -157,9 +178,10 @@ fb_status fb_report_write_csv(const char *path, const fb_series *s, fb_diag *dia
   fb_outfile out;
   fb_status st = fb_outfile_open(&out, path, diag);
   if (st != FB_OK) return st;
-  size_t nc = fb_series_column_count();
+  size_t nc = fb_series_column_count(s);
+  char name[96];
   for (size_t k = 0; k < nc; k++)
-    fprintf(out.f, "%s%s", k ? "," : "", fb_series_column_name(k));
+    fprintf(out.f, "%s%s", k ? "," : "", fb_series_column_name(s, k, name, sizeof name));
   fputc('\n', out.f);
   for (size_t i = 0; i < s->n; i++) {
     for (size_t k = 0; k < nc; k++) fprintf(out.f, "%s%.12g", k ? "," : "", fb_series_value(s, k, i));
@@ -213,17 +235,17 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
             c->tolerance_source[k]);
   fprintf(f, "\nclearance joints: pin %.4g mm, radial clearance %.4g um (%s)\n\n",
           c->pin_diameter * 1e3, c->radial_clearance * 1e6, c->clearance_source);
-  fprintf(f, "%-19s %-35s %-35s %-17s %6s %8s %6s\n", "", "coupler omega / alpha",
+  fprintf(f, "%-26s %-35s %-35s %-17s %6s %8s %6s\n", "", "coupler omega / alpha",
           "follower omega / alpha", "peak err vs exact", "", "", "");
-  fprintf(f, "%-19s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s %s\n", "model",
+  fprintf(f, "%-26s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s %s\n", "model",
           "max", "min", "max", "min", "max", "min", "max", "min", "omega", "alpha", "steps",
           "wall_s", "us/step", "status");
-  fprintf(f, "%-19s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s\n", "", "rad/s",
+  fprintf(f, "%-26s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s\n", "", "rad/s",
           "rad/s", "rad/s2", "rad/s2", "rad/s", "rad/s", "rad/s2", "rad/s2", "rel", "rel", "",
           "s", "");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
-    fprintf(f, "%-19s ", m->run.name);
+    fprintf(f, "%-26s ", m->run.name);
     if (m->has_peaks) {
       const fb_body_peaks *p[2] = {&m->peaks.coupler, &m->peaks.follower};
       for (int b = 0; b < 2; b++)
@@ -239,6 +261,25 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
       fprintf(f, "%8s %8s ", "-", "-");
     fprintf(f, "%8zu %8.3f %7.2f %s\n", m->run.steps, m->run.wall_s,
             m->run.steps ? 1e6 * m->run.wall_s / (double)m->run.steps : 0.0, m->run.status);
+  }
+  int any = 0;
+  for (int i = 0; i < r->n; i++) any |= r->model[i].has_spikes;
+  if (any) {
+    fprintf(f, "\nspikes (clearance models; ratios of peak |alpha| to the ideal stack-up model):\n");
+    fprintf(f, "%-26s %9s %9s %10s %9s %10s %8s %8s %12s %12s\n", "model", "alpha/id", "alpha/id",
+            "omega dev", "force", "penetr.", "impacts", "free", "spike crank", "spike crank");
+    fprintf(f, "%-26s %9s %9s %10s %9s %10s %8s %8s %12s %12s\n", "", "coupler", "follower",
+            "rad/s", "N", "um", "", "fraction", "coupler deg", "follower deg");
+    for (int i = 0; i < r->n; i++) {
+      const fb_model_result *m = &r->model[i];
+      if (!m->has_spikes) continue;
+      const fb_spikes *k = &m->spikes;
+      fprintf(f, "%-26s %9.3f %9.3f %10.4f %9.1f %10.4f %8d %8.4f %12.1f %12.1f\n", m->run.name,
+              k->alpha_peak_ratio_coupler, k->alpha_peak_ratio_follower, k->omega_dev_max,
+              k->force_max, k->penetration_max * 1e6, k->impacts, k->free_flight_fraction,
+              k->alpha_peak_crank_angle_coupler * 180.0 / M_PI,
+              k->alpha_peak_crank_angle_follower * 180.0 / M_PI);
+    }
   }
   fprintf(f, "\npeak err: largest |relative error| of the four omega (or alpha) peaks of "
              "coupler and follower against the exact analytic peaks of the same lengths; "

@@ -1,6 +1,7 @@
 #include "run.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "tolerance.h"
@@ -37,6 +38,22 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   if (st != FB_OK) return st;
   m->has_error = 1;
   rel_peaks(&m->delta_vs_nominal, &m->peaks, &r->analytic_nominal);
+  if (m->run.clearance_mask) {
+    /* ratios against the ideal stack-up ODE model if it ran, else the exact
+     * analytic peaks of the same (stack-up) lengths */
+    const fb_peaks *ref = &m->exact;
+    snprintf(m->spikes_reference, sizeof m->spikes_reference, "analytic-stackup");
+    for (int i = 0; i < r->n; i++)
+      if (strcmp(r->model[i].run.name, "ode-ideal-stackup") == 0 && r->model[i].has_peaks) {
+        ref = &r->model[i].peaks;
+        snprintf(m->spikes_reference, sizeof m->spikes_reference, "ode-ideal-stackup");
+      }
+    const double rc = fmax(fabs(ref->coupler.alpha_max), fabs(ref->coupler.alpha_min));
+    const double rf = fmax(fabs(ref->follower.alpha_max), fabs(ref->follower.alpha_min));
+    st = fb_metrics_spikes(&m->spikes, s, r->t_window, rc, rf, &m->error, diag);
+    if (st != FB_OK) return st;
+    m->has_spikes = 1;
+  }
   return FB_OK;
 }
 

@@ -17,6 +17,9 @@ typedef struct {
   int has_error;           /* 1 for ode models that reached the window */
   fb_error error;          /* against the analytic solution of the same lengths */
   fb_peaks delta_vs_nominal; /* (peak - analytic nominal peak) / |analytic nominal peak| [-] */
+  int has_spikes;          /* 1 for clearance models that reached the window */
+  fb_spikes spikes;
+  char spikes_reference[FB_NAME_SIZE]; /* model whose peak |alpha| the ratios divide by */
 } fb_model_result;
 
 typedef struct {

@@ -4,14 +4,37 @@
 #include <ode/ode.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "ode_env.h"
+
+/* one clearance joint */
+typedef struct {
+  dBodyID pin, hole;    /* hole 0: ground */
+  double pin_local[3];  /* joint centre in the pin body's frame */
+  double hole_local[3]; /* in the hole body's frame, or world point for ground */
+  double v0;            /* penetration rate at the onset of the current contact [m/s] */
+  int in_contact;
+  int state;            /* FB_STATE_* during the last step */
+  int impacts;
+  dJointID cj;          /* contact joint of the last step, or 0 */
+  dJointFeedback fb;
+  dGeomID cyl;          /* faceted: the pin */
+  dGeomID *boxes;       /* faceted: the ring (faceted_n) */
+  dSpaceID ring;        /* faceted: hash space holding the ring (broadphase) */
+  int nfb;              /* faceted: contact joints of the last step */
+  dJointFeedback *fbs;  /* faceted: their feedback (up to FACET_MAX_CONTACTS) */
+  double force;         /* contact force magnitude of the last step [N] */
+} clearance;
 
 struct fb_scene {
   fb_scene_def def;
   dWorldID world;
   dBodyID body[3];   /* crank, coupler, follower */
-  dJointID hinge[4]; /* A (ground-crank, driven), B, C, D */
+  dJointID hinge[4]; /* A (ground-crank, driven), B, C, D; 0 for clearance joints */
+  dJointID amotor;   /* the drive when A is a clearance joint */
+  dJointGroupID contacts;
+  clearance cl[4];
   dJointFeedback feedback[4];
   double crank_com_before[2]; /* crank centre of mass at the start of the last step */
   size_t steps;
@@ -44,6 +67,51 @@ static double body_angle(dBodyID b) {
   return atan2(R[4], R[0]);
 }
 
+#define FACET_THICKNESS_M 2e-3 /* radial thickness of the ring's boxes */
+#define FACET_MAX_CONTACTS 64   /* contacts kept per joint and step */
+
+/* builds the faceted hole and pin of clearance joint j */
+static void facet_create(fb_scene *s, int j) {
+  clearance *c = &s->cl[j];
+  const fb_scene_def *d = &s->def;
+  const int n = d->faceted_n;
+  const double r_in = d->pin_radius + d->radial_clearance;
+  const double t = FACET_THICKNESS_M;
+  const double w = 2.0 * (r_in + t) * tan(M_PI / n) * 1.001; /* closes the ring */
+  c->cyl = dCreateCylinder(0, d->pin_radius, d->pin_length);
+  dGeomSetBody(c->cyl, c->pin);
+  dGeomSetOffsetPosition(c->cyl, c->pin_local[0], c->pin_local[1], c->pin_local[2]);
+  c->boxes = calloc((size_t)n, sizeof(dGeomID));
+  c->ring = dHashSpaceCreate(0);
+  c->fbs = calloc(FACET_MAX_CONTACTS, sizeof(dJointFeedback));
+  for (int k = 0; k < n; k++) {
+    const double phi = 2.0 * M_PI * k / n;
+    dGeomID b = dCreateBox(c->ring, t, w, d->pin_length);
+    dMatrix3 R;
+    dRFromAxisAndAngle(R, 0, 0, 1, phi);
+    const double cx = (r_in + 0.5 * t) * cos(phi), cy = (r_in + 0.5 * t) * sin(phi);
+    if (c->hole) {
+      dGeomSetBody(b, c->hole);
+      /* offsets are in the hole body's frame: the ring is centred on hole_local */
+      dGeomSetOffsetPosition(b, c->hole_local[0] + cx, c->hole_local[1] + cy, 0.0);
+      dGeomSetOffsetRotation(b, R);
+    } else {
+      dGeomSetPosition(b, c->hole_local[0] + cx, c->hole_local[1] + cy, 0.0);
+      dGeomSetRotation(b, R);
+    }
+    c->boxes[k] = b;
+  }
+}
+
+static void facet_destroy(clearance *c, int n) {
+  (void)n;
+  if (!c->boxes) return;
+  dSpaceDestroy(c->ring); /* destroys the boxes it holds (cleanup mode on) */
+  dGeomDestroy(c->cyl);
+  free(c->boxes);
+  free(c->fbs);
+}
+
 fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag) {
   fb_linkage_state st;
   fb_status rc = fb_linkage_solve(&st, &def->lengths, def->branch, def->crank_angle0,
@@ -59,6 +127,13 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
   dWorldSetCFM(s->world, def->solver.world_cfm);
   dWorldSetQuickStepNumIterations(s->world, def->solver.quick_iterations);
   dRandSetSeed(def->solver.seed);
+  if (def->settle_damping > 0.0) {
+    dWorldSetLinearDamping(s->world, def->settle_damping);
+    dWorldSetAngularDamping(s->world, def->settle_damping);
+    /* ODE damps only above these speeds (default 0.01): damp everything */
+    dWorldSetLinearDampingThreshold(s->world, 0.0);
+    dWorldSetAngularDampingThreshold(s->world, 0.0);
+  }
 
   const double a0[2] = {0, 0};
   const double d0[2] = {def->lengths.length[FB_GROUND], 0};
@@ -73,16 +148,56 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
                          s->body[FB_FOLLOWER]};
   const dBodyID b2[4] = {0, s->body[FB_COUPLER], s->body[FB_FOLLOWER], 0};
   const double *anchor[4] = {a0, st.b, st.c, d0};
+  s->contacts = dJointGroupCreate(0);
   for (int j = 0; j < 4; j++) {
+    if (def->clearance_mask & (1 << j)) {
+      /* pin centred in its hole at t = 0 */
+      clearance *c = &s->cl[j];
+      c->pin = b1[j];
+      c->hole = b2[j];
+      dVector3 lp;
+      dBodyGetPosRelPoint(c->pin, anchor[j][0], anchor[j][1], 0.0, lp);
+      for (int q = 0; q < 3; q++) c->pin_local[q] = lp[q];
+      if (c->hole) {
+        dBodyGetPosRelPoint(c->hole, anchor[j][0], anchor[j][1], 0.0, lp);
+        for (int q = 0; q < 3; q++) c->hole_local[q] = lp[q];
+      } else {
+        c->hole_local[0] = anchor[j][0];
+        c->hole_local[1] = anchor[j][1];
+        c->hole_local[2] = 0.0;
+      }
+      continue;
+    }
     s->hinge[j] = dJointCreateHinge(s->world, 0);
     dJointAttach(s->hinge[j], b1[j], b2[j]);
     dJointSetHingeAnchor(s->hinge[j], anchor[j][0], anchor[j][1], 0.0);
     dJointSetHingeAxis(s->hinge[j], 0, 0, 1);
     dJointSetFeedback(s->hinge[j], &s->feedback[j]);
   }
-  /* the drive: velocity motor on the ground-crank hinge */
-  dJointSetHingeParam(s->hinge[0], dParamVel, def->omega2);
-  dJointSetHingeParam(s->hinge[0], dParamFMax, def->solver.drive_torque_max);
+  if (def->faceted_n > 0)
+    for (int j = 0; j < 4; j++)
+      if (def->clearance_mask & (1 << j)) facet_create(s, j);
+  /* the drive: velocity motor on the ground-crank hinge, or an angular motor
+   * on the crank when that joint has clearance */
+  if (s->hinge[0]) {
+    dJointSetHingeParam(s->hinge[0], dParamVel, def->omega2);
+    dJointSetHingeParam(s->hinge[0], dParamFMax, def->solver.drive_torque_max);
+  } else {
+    s->amotor = dJointCreateAMotor(s->world, 0);
+    dJointAttach(s->amotor, s->body[FB_CRANK], 0);
+    dJointSetAMotorNumAxes(s->amotor, 1);
+    dJointSetAMotorAxis(s->amotor, 0, 0, 0, 0, 1);
+    dJointSetAMotorParam(s->amotor, dParamVel, def->omega2);
+    dJointSetAMotorParam(s->amotor, dParamFMax, def->solver.drive_torque_max);
+  }
+  /* a body with no hinge left is held in the plane */
+  const int joints_of[3][2] = {{FB_JOINT_A, FB_JOINT_B}, {FB_JOINT_B, FB_JOINT_C},
+                               {FB_JOINT_C, FB_JOINT_D}};
+  for (int i = 0; i < 3; i++) {
+    if (s->hinge[joints_of[i][0]] || s->hinge[joints_of[i][1]]) continue;
+    dJointID p2 = dJointCreatePlane2D(s->world, 0);
+    dJointAttach(p2, s->body[i], 0);
+  }
 
   for (int i = 0; i < 3; i++) {
     s->angle[i] = body_angle(s->body[i]);
@@ -93,13 +208,165 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
   return FB_OK;
 }
 
+/* eccentricity, penetration rate and hole-wall point of clearance joint c */
+static void clearance_geometry(const clearance *c, double e[2], double *ddot_num, double ev[2]) {
+  dVector3 p, q, vp, vq = {0, 0, 0, 0};
+  dBodyGetRelPointPos(c->pin, c->pin_local[0], c->pin_local[1], c->pin_local[2], p);
+  dBodyGetRelPointVel(c->pin, c->pin_local[0], c->pin_local[1], c->pin_local[2], vp);
+  if (c->hole) {
+    dBodyGetRelPointPos(c->hole, c->hole_local[0], c->hole_local[1], c->hole_local[2], q);
+    dBodyGetRelPointVel(c->hole, c->hole_local[0], c->hole_local[1], c->hole_local[2], vq);
+  } else {
+    q[0] = c->hole_local[0];
+    q[1] = c->hole_local[1];
+  }
+  e[0] = p[0] - q[0];
+  e[1] = p[1] - q[1];
+  ev[0] = vp[0] - vq[0];
+  ev[1] = vp[1] - vq[1];
+  *ddot_num = e[0] * ev[0] + e[1] * ev[1]; /* |e| times the rate of |e| */
+}
+
+typedef struct {
+  dContactGeom *g;
+  int n;
+} facet_hits;
+
+/* broadphase callback: narrowphase of the pin against one box */
+static void facet_near(void *data, dGeomID o1, dGeomID o2) {
+  facet_hits *h = data;
+  if (h->n >= FACET_MAX_CONTACTS) return;
+  h->n += dCollide(o1, o2, FACET_MAX_CONTACTS - h->n, &h->g[h->n], sizeof(dContactGeom));
+}
+
+/* faceted: contact joints from ODE's collider for clearance joint j */
+static void facet_contacts(fb_scene *s, int j) {
+  clearance *c = &s->cl[j];
+  const fb_scene_def *d = &s->def;
+  dContactGeom g[FACET_MAX_CONTACTS];
+  facet_hits hits = {g, 0};
+  dSpaceCollide2(c->cyl, (dGeomID)c->ring, &hits, facet_near);
+  const int n = hits.n;
+  c->nfb = 0;
+  if (n == 0) {
+    c->in_contact = 0;
+    c->state = FB_STATE_FREE;
+    return;
+  }
+  for (int i = 0; i < n; i++) {
+    dBodyID p1 = dGeomGetBody(g[i].g1), p2 = dGeomGetBody(g[i].g2);
+    dVector3 v1 = {0, 0, 0, 0}, v2 = {0, 0, 0, 0};
+    if (p1) dBodyGetPointVel(p1, g[i].pos[0], g[i].pos[1], g[i].pos[2], v1);
+    if (p2) dBodyGetPointVel(p2, g[i].pos[0], g[i].pos[1], g[i].pos[2], v2);
+    /* normal points into body 1: approach rate along it */
+    const double ddot = (v2[0] - v1[0]) * g[i].normal[0] + (v2[1] - v1[1]) * g[i].normal[1] +
+                        (v2[2] - v1[2]) * g[i].normal[2];
+    if (i == 0 && !c->in_contact) {
+      c->in_contact = 1;
+      c->v0 = ddot > d->impact_velocity_min ? ddot : d->impact_velocity_min;
+      c->state = ddot >= d->impact_velocity_min ? FB_STATE_IMPACT : FB_STATE_CONTINUOUS;
+      if (c->state == FB_STATE_IMPACT) c->impacts++;
+    }
+    double kp, kd, depth, erp, cfm;
+    fb_contact_linearize(&d->law[j], d->mapping, g[i].depth, ddot, c->v0, &kp, &kd, &depth);
+    if (fb_contact_erp_cfm(d->solver.h, kp / n, kd / n, &erp, &cfm, NULL) != FB_OK) continue;
+    dContact ct;
+    memset(&ct, 0, sizeof ct);
+    ct.geom = g[i];
+    ct.geom.depth = depth;
+    ct.surface.mode = dContactSoftERP | dContactSoftCFM;
+    if (d->friction > 0.0) ct.surface.mode |= dContactApprox1;
+    ct.surface.mu = d->friction;
+    ct.surface.soft_erp = erp;
+    ct.surface.soft_cfm = cfm;
+    dJointID cj = dJointCreateContact(s->world, s->contacts, &ct);
+    dJointAttach(cj, p1, p2);
+    dJointSetFeedback(cj, &c->fbs[c->nfb++]);
+  }
+}
+
+/* creates the contact joint of clearance joint j for this step, if in contact */
+static void clearance_contact(fb_scene *s, int j) {
+  clearance *c = &s->cl[j];
+  const fb_scene_def *d = &s->def;
+  if (d->faceted_n > 0) {
+    facet_contacts(s, j);
+    return;
+  }
+  double e[2], ev[2], num;
+  clearance_geometry(c, e, &num, ev);
+  const double ecc = hypot(e[0], e[1]);
+  const double delta = ecc - d->radial_clearance;
+  c->cj = 0;
+  if (!(delta > 0.0) || ecc == 0.0) {
+    c->in_contact = 0;
+    c->state = FB_STATE_FREE;
+    return;
+  }
+  const double n[2] = {e[0] / ecc, e[1] / ecc};
+  const double ddot = num / ecc;
+  if (!c->in_contact) {
+    c->in_contact = 1;
+    c->v0 = ddot > d->impact_velocity_min ? ddot : d->impact_velocity_min;
+    c->state = ddot >= d->impact_velocity_min ? FB_STATE_IMPACT : FB_STATE_CONTINUOUS;
+    if (c->state == FB_STATE_IMPACT) c->impacts++;
+  }
+  double kp, kd, depth, erp, cfm;
+  fb_contact_linearize(&d->law[j], d->mapping, delta, ddot, c->v0, &kp, &kd, &depth);
+  if (fb_contact_erp_cfm(d->solver.h, kp, kd, &erp, &cfm, NULL) != FB_OK) return;
+  dContact ct;
+  memset(&ct, 0, sizeof ct);
+  ct.surface.mode = dContactSoftERP | dContactSoftCFM;
+  if (d->friction > 0.0) ct.surface.mode |= dContactApprox1;
+  ct.surface.mu = d->friction;
+  ct.surface.soft_erp = erp;
+  ct.surface.soft_cfm = cfm;
+  /* hole centre + R_hole n, on the hole wall */
+  const double r_hole = d->pin_radius + d->radial_clearance;
+  dVector3 q;
+  if (c->hole)
+    dBodyGetRelPointPos(c->hole, c->hole_local[0], c->hole_local[1], c->hole_local[2], q);
+  else
+    q[0] = c->hole_local[0], q[1] = c->hole_local[1];
+  ct.geom.pos[0] = q[0] + r_hole * n[0];
+  ct.geom.pos[1] = q[1] + r_hole * n[1];
+  ct.geom.pos[2] = 0.0;
+  ct.geom.normal[0] = -n[0]; /* into the pin: moving it along -n removes the depth */
+  ct.geom.normal[1] = -n[1];
+  ct.geom.normal[2] = 0.0;
+  ct.geom.depth = depth;
+  c->cj = dJointCreateContact(s->world, s->contacts, &ct);
+  dJointAttach(c->cj, c->pin, c->hole);
+  dJointSetFeedback(c->cj, &c->fb);
+}
+
 fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
   const double h = s->def.solver.h;
+  for (int j = 0; j < 4; j++)
+    if (s->def.clearance_mask & (1 << j)) clearance_contact(s, j);
   const dReal *g1 = dBodyGetPosition(s->body[FB_CRANK]);
   s->crank_com_before[0] = g1[0];
   s->crank_com_before[1] = g1[1];
   int ok = s->def.solver.stepper == FB_STEPPER_WORLD ? dWorldStep(s->world, h)
                                                      : dWorldQuickStep(s->world, h);
+  for (int j = 0; j < 4; j++) {
+    clearance *c = &s->cl[j];
+    if (s->def.faceted_n > 0) {
+      /* force on the pin (body 1: dCollide(pin, box) keeps that order),
+       * summed over the step's contacts */
+      double fx = 0.0, fy = 0.0;
+      for (int i = 0; i < c->nfb; i++) {
+        fx += c->fbs[i].f1[0];
+        fy += c->fbs[i].f1[1];
+      }
+      c->force = c->nfb ? hypot(fx, fy) : 0.0;
+      c->nfb = 0;
+    } else {
+      c->force = c->cj ? hypot(c->fb.f1[0], c->fb.f1[1]) : 0.0;
+    }
+    c->cj = 0;
+  }
+  dJointGroupEmpty(s->contacts);
   if (!ok)
     return fb_diag_set(diag, FB_ERR_NOMEM, "ODE could not allocate memory for step %zu",
                        s->steps + 1);
@@ -125,11 +392,43 @@ void fb_scene_sample(const fb_scene *s, fb_sample *x) {
   x->follower_angle = s->angle[FB_FOLLOWER];
   x->follower_omega = s->omega_prev[FB_FOLLOWER];
   x->follower_alpha = s->alpha[FB_FOLLOWER];
+  for (int j = 0; j < 4; j++) {
+    for (int q = 0; q < FB_CONTACT_COLS; q++) x->contact[j][q] = 0.0;
+    if (!(s->def.clearance_mask & (1 << j))) continue;
+    const clearance *c = &s->cl[j];
+    double e[2], ev[2], num;
+    clearance_geometry(c, e, &num, ev);
+    const double pen = hypot(e[0], e[1]) - s->def.radial_clearance;
+    x->contact[j][FB_C_FORCE] = c->force;
+    x->contact[j][FB_C_PEN] = pen > 0.0 ? pen : 0.0;
+    x->contact[j][FB_C_EX] = e[0];
+    x->contact[j][FB_C_EY] = e[1];
+    x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->state : (double)FB_STATE_FREE;
+  }
 }
+
+double fb_scene_penetration(const fb_scene *s, int *joint) {
+  double worst = 0.0;
+  *joint = -1;
+  for (int j = 0; j < 4; j++) {
+    if (!(s->def.clearance_mask & (1 << j))) continue;
+    double e[2], ev[2], num;
+    clearance_geometry(&s->cl[j], e, &num, ev);
+    double pen = hypot(e[0], e[1]) - s->def.radial_clearance;
+    if (*joint < 0 || pen > worst) {
+      worst = pen;
+      *joint = j;
+    }
+  }
+  return worst > 0.0 ? worst : 0.0;
+}
+
+int fb_scene_impacts(const fb_scene *s, int j) { return s->cl[j].impacts; }
 
 double fb_scene_joint_drift(const fb_scene *s) {
   double worst = 0.0;
   for (int j = 0; j < 4; j++) {
+    if (!s->hinge[j]) continue;
     dVector3 p1, p2;
     dJointGetHingeAnchor(s->hinge[j], p1);
     dJointGetHingeAnchor2(s->hinge[j], p2);
@@ -150,19 +449,26 @@ void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_tor
    * (body 2); D: on the follower (body 1) */
   const int on_body2[4] = {0, 1, 1, 0};
   for (int j = 0; j < 4; j++) {
+    if (!s->hinge[j]) {
+      force[j][0] = force[j][1] = 0.0;
+      continue;
+    }
     const dReal *f = on_body2[j] ? s->feedback[j].f2 : s->feedback[j].f1;
     force[j][0] = f[0];
     force[j][1] = f[1];
   }
   /* ODE's torque is about the crank's centre of mass; move it to the pivot */
   const double r[2] = {-s->crank_com_before[0], -s->crank_com_before[1]}; /* A - G */
-  *drive_torque = s->feedback[0].t1[2] - (r[0] * force[0][1] - r[1] * force[0][0]);
+  *drive_torque = s->hinge[0] ? s->feedback[0].t1[2] - (r[0] * force[0][1] - r[1] * force[0][0])
+                              : 0.0;
 }
 
 size_t fb_scene_steps(const fb_scene *s) { return s->steps; }
 
 void fb_scene_destroy(fb_scene *s) {
   if (!s) return;
+  for (int j = 0; j < 4; j++) facet_destroy(&s->cl[j], s->def.faceted_n);
+  dJointGroupDestroy(s->contacts);
   dWorldDestroy(s->world);
   free(s);
   fb_ode_release();

@@ -13,11 +13,35 @@
  *
  * The planar loop of four 3-D hinges is over-constrained (20 rows for 18
  * body freedoms + 1 mobility: 3 redundant out-of-plane rows); ODE copes
- * through the world CFM > 0, and tests check the joint drift stays small. */
+ * through the world CFM > 0, and tests check the joint drift stays small.
+ *
+ * Clearance joints: a joint in clearance_mask gets no hinge. The pin is fixed
+ * to the joint's first body (ground-crank: crank; crank-coupler: crank;
+ * coupler-follower: coupler; follower-ground: follower) and the hole to the
+ * second (ground for A and D). Every step, the eccentricity e = pin centre -
+ * hole centre is computed exactly from the two bodies (Flores and Ambrosio's
+ * formulation, CONTACT.md); when |e| exceeds the radial clearance c, one
+ * contact joint is created directly (no ODE geometry: the pin-in-hole pair is
+ * concave and its exact penetration, normal and point are known in closed
+ * form, so a collider would only add cost and error) with soft ERP/CFM from
+ * the joint's law mapped at the current penetration (contact.h), normal along
+ * -e/|e| into the pin, point on the hole wall, no bounce; contact max-correcting
+ * velocity and surface layer stay at ODE's defaults (infinite, 0), which the
+ * exact mapping needs. A clearance ground-crank joint keeps the drive through
+ * an angular motor (dJointCreateAMotor, z axis) at the crank speed. A body left
+ * with no hinge at all is kept in the plane by dJointCreatePlane2D.
+ *
+ * Faceted variant (faceted_n > 0), ODE's generic path for comparison: the hole
+ * is a ring of n boxes (2 mm thick, inner faces tangent to the hole circle) and
+ * the pin an ODE cylinder, collided by dCollide (box-cylinder); every contact
+ * ODE reports gets the law's spring-damper at its own depth divided by the
+ * number of contacts of the step (n contact rows on one penetration act as
+ * parallel springs). Contact point and normal come from the collider. */
 #ifndef FB_SCENE_H
 #define FB_SCENE_H
 
 #include "case.h"
+#include "contact.h"
 #include "series.h"
 
 typedef struct fb_scene fb_scene;
@@ -31,6 +55,18 @@ typedef struct {
   double gravity;       /* along -y [m/s^2] */
   fb_link_mass link[3]; /* crank, coupler, follower */
   fb_solver solver;     /* step size, stepper, ERP/CFM, drive torque, seed */
+  int clearance_mask;          /* bit j: joint j is a clearance joint (fb_joint) */
+  double radial_clearance;     /* c = R_hole - R_pin [m] */
+  double pin_radius;           /* R_pin [m] */
+  fb_contact_law law[4];       /* law of each clearance joint */
+  fb_mapping mapping;          /* per-step linearisation */
+  double friction;             /* Coulomb coefficient [-]; 0 for frictionless */
+  double impact_velocity_min;  /* onset rates below this count as continuous contact [m/s] */
+  int faceted_n;               /* > 0: collide through ODE instead (ring of n boxes around an
+                                  ODE cylinder pin, dCollide); 0: exact eccentricity contact */
+  double pin_length;           /* [m], for the faceted geometry */
+  double settle_damping;       /* ODE body velocity damping per step [-] for static settling
+                                  tests (dWorldSetLinearDamping/AngularDamping); 0 in every model */
 } fb_scene_def;
 
 /* Builds the world at t = 0 with positions and velocities from the analytic
@@ -43,7 +79,8 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
  * ODE could not allocate its step memory. */
 fb_status fb_scene_step(fb_scene *s, fb_diag *diag);
 
-/* Current state as a sample at time t = steps * h: unwrapped angles, angular
+/* Current state as a sample at time t = steps * h (contact columns of the
+ * clearance joints included): unwrapped angles, angular
  * velocities, and angular accelerations as (omega_now - omega_before) / h,
  * the acceleration the last step applied. Before the first step the
  * accelerations are 0. */
@@ -59,6 +96,14 @@ double fb_scene_joint_drift(const fb_scene *s);
  * [N m]. They belong to the configuration at the start of that step. Zero
  * before the first step. */
 void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_torque);
+
+/* Largest penetration over the clearance joints now [m] and the joint it is
+ * at (-1 when there is no clearance joint). */
+double fb_scene_penetration(const fb_scene *s, int *joint);
+
+/* Impact episodes counted so far at joint j (contact onsets whose penetration
+ * rate was at least impact_velocity_min). */
+int fb_scene_impacts(const fb_scene *s, int j);
 
 /* Steps taken. */
 size_t fb_scene_steps(const fb_scene *s);

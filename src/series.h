@@ -18,12 +18,23 @@
   X(follower_omega, "follower_omega_rad_s") \
   X(follower_alpha, "follower_alpha_rad_s2")
 
+/* Contact columns of each clearance joint, after the joint's name:
+ * <joint>_force_n (contact force magnitude on the pin during the last step),
+ * <joint>_penetration_m (max(0, eccentricity - radial clearance)),
+ * <joint>_ecc_x_m, <joint>_ecc_y_m (eccentricity vector pin centre - hole
+ * centre), <joint>_state (0 free flight, 1 impact, 2 continuous contact). */
+#define FB_CONTACT_COLS 5
+enum { FB_C_FORCE = 0, FB_C_PEN = 1, FB_C_EX = 2, FB_C_EY = 3, FB_C_STATE = 4 };
+enum { FB_STATE_FREE = 0, FB_STATE_IMPACT = 1, FB_STATE_CONTINUOUS = 2 };
+
 typedef struct {
   size_t n;   /* samples held */
   size_t cap; /* samples allocated */
 #define FB_SERIES_FIELD(name, col) double *name; /* (n) */
   FB_SERIES_COLUMNS(FB_SERIES_FIELD)
 #undef FB_SERIES_FIELD
+  int contact_mask;                        /* bit j: joint j's contact columns are held */
+  double *contact[4][FB_CONTACT_COLS];     /* (n) each, NULL unless enabled */
 } fb_series;
 
 /* One sample: the values of every column at one instant (SI units). */
@@ -31,7 +42,12 @@ typedef struct {
 #define FB_SAMPLE_FIELD(name, col) double name;
   FB_SERIES_COLUMNS(FB_SAMPLE_FIELD)
 #undef FB_SAMPLE_FIELD
+  double contact[4][FB_CONTACT_COLS]; /* per joint; read only where enabled */
 } fb_sample;
+
+/* Adds contact columns for the joints in mask (call right after init).
+ * Errors: FB_ERR_NOMEM. */
+fb_status fb_series_enable_contact(fb_series *s, int mask);
 
 /* Allocates room for cap samples. Errors: FB_ERR_NOMEM. */
 fb_status fb_series_init(fb_series *s, size_t cap);
@@ -45,9 +61,10 @@ void fb_series_get(const fb_series *s, size_t i, fb_sample *x);
 /* Frees the arrays; s is left empty and may be re-initialised. */
 void fb_series_free(fb_series *s);
 
-/* Number of columns and the CSV name of column k (k < count). */
-size_t fb_series_column_count(void);
-const char *fb_series_column_name(size_t k);
+/* Number of columns (kinematic, then contact columns of enabled joints) and
+ * the CSV name of column k into buf (returned). */
+size_t fb_series_column_count(const fb_series *s);
+const char *fb_series_column_name(const fb_series *s, size_t k, char *buf, size_t size);
 /* Value of column k at sample i. */
 double fb_series_value(const fb_series *s, size_t k, size_t i);
 

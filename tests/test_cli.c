@@ -55,7 +55,7 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   if (!j) fail_msg("summary.json does not parse: %s", je.text);
   assert_string_equal(json_string_value(json_object_get(j, "case")), "paper_crank_rocker");
   json_t *models = json_object_get(j, "models");
-  assert_int_equal(json_array_size(models), 4);
+  assert_int_equal(json_array_size(models), 5);
   const char *keys[] = {"name", "kind", "status", "h_s", "steps", "wall_s", "coupler",
                         "follower", "error_vs_analytic", NULL};
   const char *peak_keys[] = {"omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2",
@@ -83,7 +83,7 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
     assert_non_null(strstr(header, "time_s,crank_angle_rad,coupler_angle_rad,coupler_omega_rad_s"));
   }
   /* the acceptance bound: ode-ideal-nominal omega peaks within 1e-4 */
-  json_t *ode = json_array_get(models, 2);
+  json_t *ode = json_array_get(models, 1);
   assert_string_equal(json_string_value(json_object_get(ode, "name")), "ode-ideal-nominal");
   json_t *e = json_object_get(ode, "error_vs_analytic");
   for (int b = 0; b < 2; b++) {
@@ -91,6 +91,29 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
     assert_true(fabs(json_real_value(json_object_get(body, "omega_max_rel"))) < 1e-4);
     assert_true(fabs(json_real_value(json_object_get(body, "omega_min_rel"))) < 1e-4);
   }
+  /* the paper's two clearance models carry spike metrics; the others null */
+  const char *spike_keys[] = {"alpha_peak_ratio_coupler", "alpha_peak_ratio_follower",
+                              "omega_dev_max_rad_s", "force_max_n", "penetration_max_m",
+                              "impacts", "free_flight_fraction", NULL};
+  for (size_t k = 3; k < 5; k++) {
+    json_t *cm = json_array_get(models, k);
+    assert_non_null(strstr(json_string_value(json_object_get(cm, "name")), "ode-clearance-"));
+    json_t *sp = json_object_get(cm, "spikes");
+    for (int q = 0; spike_keys[q]; q++)
+      if (!json_is_number(json_object_get(sp, spike_keys[q])))
+        fail_msg("model %zu spikes lacks %s", k, spike_keys[q]);
+    /* the clearance makes spikes: peak |alpha| above the ideal stack-up model's */
+    assert_true(json_real_value(json_object_get(sp, "alpha_peak_ratio_coupler")) > 1.0);
+  }
+  assert_true(json_is_null(json_object_get(json_array_get(models, 2), "spikes")));
+  /* the clearance model's CSV has the contact columns */
+  snprintf(path, sizeof path, "%s/paper/ode-clearance-impact.csv", tmpdir);
+  FILE *f = fopen(path, "r");
+  char header[1024];
+  assert_non_null(fgets(header, sizeof header, f));
+  fclose(f);
+  assert_non_null(strstr(header, "crank_coupler_force_n,crank_coupler_penetration_m,"
+                                 "crank_coupler_ecc_x_m,crank_coupler_ecc_y_m,crank_coupler_state"));
   json_decref(j);
 }
 

@@ -1,0 +1,76 @@
+#include "joint_law.h"
+
+#include <math.h>
+
+#include "invdyn.h"
+#include "penalty.h"
+
+/* crank angles per revolution for the largest joint reaction: 0.1 deg */
+#define REACTION_SAMPLES 3600
+
+/* masses on either side of each joint; 0 is ground */
+static double effective_mass(const fb_case *c, int j) {
+  const double crank = c->link[FB_CRANK].mass, coupler = c->link[FB_COUPLER].mass;
+  const double follower = c->link[FB_FOLLOWER].mass;
+  switch (j) {
+    case FB_JOINT_A: return crank;
+    case FB_JOINT_B: return crank * coupler / (crank + coupler);
+    case FB_JOINT_C: return coupler * follower / (coupler + follower);
+    default: return follower;
+  }
+}
+
+fb_status fb_joint_laws(fb_contact_law law[4], const fb_case *c, fb_clearance_model model,
+                        fb_diag *diag) {
+  const fb_clearance *cl = &c->clearance;
+  double fmax[4] = {0, 0, 0, 0};
+  fb_penalty_row paper[2];
+  fb_status st = FB_OK;
+  if (cl->penalty == FB_PENALTY_SOURCE_PHYSICAL) {
+    fb_linkage su;
+    fb_case_stackup_lengths(c, &su);
+    st = fb_invdyn_peaks(fmax, NULL, &su, c->branch, c->link, c->gravity, fb_case_omega2(c),
+                         REACTION_SAMPLES, diag);
+  } else if (cl->penalty == FB_PENALTY_SOURCE_PAPER) {
+    st = fb_penalty_rows(paper, c, FB_PENALTY_PAPER, c->crank_speed, diag);
+  }
+  if (st != FB_OK) return st;
+  const double e_star = fb_contact_modulus(c->youngs_modulus, c->poisson_ratio,
+                                           c->youngs_modulus, c->poisson_ratio);
+  for (int j = 0; j < 4; j++) {
+    if (!(cl->mask & (1 << j))) continue;
+    fb_contact_law l = fb_contact_law_default();
+    l.kind = model == FB_CLEARANCE_IMPACT ? FB_LAW_IMPACT : FB_LAW_RESTITUTION;
+    l.exponent = model == FB_CLEARANCE_IMPACT ? cl->exponent : 1.0;
+    l.restitution = cl->restitution;
+    l.damping = cl->damping;
+    l.damping_depth = cl->damping_depth;
+    l.mass = effective_mass(c, j);
+    if (cl->penalty == FB_PENALTY_SOURCE_EXPLICIT) {
+      l.stiffness = model == FB_CLEARANCE_IMPACT ? cl->stiffness_impact : cl->stiffness_linear;
+    } else if (cl->penalty == FB_PENALTY_SOURCE_PAPER) {
+      const fb_penalty_row *r = &paper[(j == FB_JOINT_A || j == FB_JOINT_B) ? 0 : 1];
+      if (model == FB_CLEARANCE_IMPACT) {
+        l.stiffness = r->stiffness * 1e-3 * pow(1e3, 1.5); /* N/mm read as N/mm^1.5 */
+        l.exponent = 1.5;
+      } else {
+        l.stiffness = r->penalty * 1e3; /* P read as N/mm */
+      }
+    } else {
+      const double d = fb_contact_johnson_approach(fmax[j], c->pin_length, e_star,
+                                                   c->radial_clearance);
+      const double kt = fb_contact_johnson_stiffness(fmax[j], c->pin_length, e_star,
+                                                     c->radial_clearance);
+      if (!isfinite(d) || !isfinite(kt) || !(d > 0.0))
+        return fb_diag_set(diag, FB_ERR_RANGE,
+                           "%s joint: reaction %g N is outside Johnson's pin-in-hole relation "
+                           "for L = %g m, c = %g m",
+                           fb_joint_name(j), fmax[j], c->pin_length, c->radial_clearance);
+      l.stiffness = model == FB_CLEARANCE_IMPACT ? fmax[j] / pow(d, l.exponent) : kt;
+    }
+    st = fb_contact_law_check(&l, diag);
+    if (st != FB_OK) return st;
+    law[j] = l;
+  }
+  return FB_OK;
+}

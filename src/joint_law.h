@@ -1,0 +1,33 @@
+/* The contact law of each clearance joint for the two clearance models,
+ * resolved from the case's penalty source.
+ *
+ * ode-clearance-impact uses the impact law F = K delta^n + STEP(...) ddot;
+ * ode-clearance-restitution the restitution law F = p delta + c ddot with c
+ * giving restitution cr for the joint's effective mass (reduced mass of the
+ * two bodies, or the moving body's mass at a ground joint).
+ *   physical: F_j = largest inverse-dynamics reaction at joint j over a
+ *     revolution (stack-up lengths, gravity included), delta_j = Johnson's
+ *     approach at F_j for the pin length and radial clearance;
+ *     K = F_j / delta_j^n (secant through Johnson's curve at the working
+ *     force), p = Johnson's tangent stiffness at F_j.
+ *   paper: the paper's Kc (Eq. 7, Table II recipe) read as N/mm^1.5 for the
+ *     impact law (K = Kc[N/mm] * 1000^1.5 N/m^1.5, n = 1.5) and its P read as
+ *     N/mm for the restitution law (p = P * 1000 N/m), as a multibody code
+ *     in mm-N units would; crank-coupler values for the ground-crank and
+ *     crank-coupler joints, coupler-follower values for the other two.
+ *   explicit: the case's stiffness keys. */
+#ifndef FB_JOINT_LAW_H
+#define FB_JOINT_LAW_H
+
+#include "case.h"
+#include "contact.h"
+
+typedef enum { FB_CLEARANCE_RESTITUTION = 0, FB_CLEARANCE_IMPACT = 1 } fb_clearance_model;
+
+/* Fills law[j] for every clearance joint j of the case (others untouched).
+ * Errors: those of the penalty estimates (FB_ERR_RANGE when Johnson's
+ * relation does not hold at the force). */
+fb_status fb_joint_laws(fb_contact_law law[4], const fb_case *c, fb_clearance_model model,
+                        fb_diag *diag);
+
+#endif

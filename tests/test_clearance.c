@@ -1,0 +1,271 @@
+/* Clearance revolute joints in ODE: the pin-in-hole contact with mapped
+ * ERP/CFM against statics, the zero-clearance limit, step convergence, and
+ * the stability guard.
+ *
+ *          coupler hole (radius R + c)
+ *            .-----.
+ *           /  .-.  \      e = pin centre - hole centre
+ *          |  ( o )--|-->  penetration = |e| - c when positive
+ *           \  '-'  /      contact normal -e/|e| into the pin
+ *            '-----'
+ *        crank pin (radius R) */
+#include <string.h>
+
+#include "casefile.h"
+#include "fb_test.h"
+#include "invdyn.h"
+#include "joint_law.h"
+#include "run.h"
+#include "scene.h"
+
+/* statics: the issue allows 2 %; after 1 s of settling with velocity damping
+ * the residual is 4e-5 (the 14.5 um clearance shifts the geometry, and so
+ * the reaction, by ~1e-4 at most): 1e-3 is a bound that can still fail */
+#define STATIC_REL_TOL 1e-3
+/* the issue's bound on the zero-clearance limit (measured at c = 0.01 um
+ * with K = 1e11 N/m^1.5, p = 1e9 N/m: omega peaks 2e-4, alpha peaks 2.5e-3) */
+#define SMALL_CLEARANCE_REL_TOL 0.01
+/* spike metrics at h = 5e-6 and 2.5e-6 s (3 revolutions, paper case):
+ * measured differences 4.3 % (coupler alpha ratio, impact model), 3.4 %
+ * (force), 3.3 % (penetration); at h = 1e-5 against 5e-6 they reach 33 %,
+ * so the default step is not converged for spikes (said in the README).
+ * Bound: 10 %. Impact counts and free-flight fractions do not converge (the
+ * contact sequence is chaotic) and are not compared. */
+#define SPIKE_CONVERGENCE_REL_TOL 0.10
+
+static char paper_path[4096];
+
+static void load(fb_case *c, const char **sets, int n) {
+  fb_diag d;
+  if (fb_casefile_load(c, paper_path, sets, n, &d) != FB_OK) fail_msg("%s", d.msg);
+}
+
+static void test_static_penetration_matches_law(void **state) {
+  (void)state;
+  fb_case c;
+  load(&c, NULL, 0);
+  fb_linkage su;
+  fb_case_stackup_lengths(&c, &su);
+  const double theta = 60.0 * M_PI / 180.0;
+  fb_reactions rr;
+  assert_int_equal(fb_invdyn_solve(&rr, &su, c.branch, c.link, c.gravity, theta, 1e-12, NULL), FB_OK);
+  const double load_b = hypot(rr.force[1][0], rr.force[1][1]);
+  for (int model = 0; model < 2; model++) {
+    fb_scene_def def;
+    memset(&def, 0, sizeof def);
+    def.lengths = su;
+    def.branch = c.branch;
+    def.crank_angle0 = theta;
+    def.omega2 = 0.0; /* the drive holds the crank still */
+    def.gravity = c.gravity;
+    for (int i = 0; i < 3; i++) def.link[i] = c.link[i];
+    def.solver = c.solver;
+    def.solver.h = 1e-5;
+    assert_int_equal(fb_joint_laws(def.law, &c, (fb_clearance_model)model, NULL), FB_OK);
+    def.clearance_mask = 1 << FB_JOINT_B;
+    def.radial_clearance = c.radial_clearance;
+    def.pin_radius = 0.5 * c.pin_diameter;
+    def.impact_velocity_min = 1e-3;
+    def.settle_damping = 1e-3; /* frictionless: without it the pin slides along the wall */
+    fb_scene *s;
+    assert_int_equal(fb_scene_create(&s, &def, NULL), FB_OK);
+    for (int k = 0; k < 100000; k++) fb_scene_step(s, NULL);
+    fb_sample x;
+    fb_scene_sample(s, &x);
+    fb_scene_destroy(s);
+    const fb_contact_law *l = &def.law[FB_JOINT_B];
+    const double want = l->kind == FB_LAW_IMPACT ? pow(load_b / l->stiffness, 1.0 / l->exponent)
+                                                 : load_b / l->stiffness;
+    const double pen = x.contact[FB_JOINT_B][FB_C_PEN];
+    char name[64];
+    snprintf(name, sizeof name, "static penetration, %s law", fb_law_name(l->kind));
+    report_residual(name, fabs(pen - want) / want, STATIC_REL_TOL);
+    assert_rel(pen, want, STATIC_REL_TOL);
+    assert_rel(x.contact[FB_JOINT_B][FB_C_FORCE], load_b, STATIC_REL_TOL);
+    /* the pin rests where the load points: e parallel to the force on the coupler */
+    const double ex = x.contact[FB_JOINT_B][FB_C_EX], ey = x.contact[FB_JOINT_B][FB_C_EY];
+    assert_near(atan2(ey, ex), atan2(rr.force[1][1], rr.force[1][0]), 1e-3);
+  }
+}
+
+/* settles the crank-coupler pin statically (crank held at 60 deg, impact
+ * law) with the exact collider (facets = 0) or a ring of facets boxes */
+static fb_sample settle(const fb_case *c, int facets, int steps, double damping) {
+  fb_scene_def def;
+  memset(&def, 0, sizeof def);
+  fb_case_stackup_lengths(c, &def.lengths);
+  def.branch = c->branch;
+  def.crank_angle0 = 60.0 * M_PI / 180.0;
+  def.omega2 = 0.0;
+  def.gravity = c->gravity;
+  for (int i = 0; i < 3; i++) def.link[i] = c->link[i];
+  def.solver = c->solver;
+  def.solver.h = 1e-5;
+  assert_int_equal(fb_joint_laws(def.law, c, FB_CLEARANCE_IMPACT, NULL), FB_OK);
+  def.clearance_mask = 1 << FB_JOINT_B;
+  def.radial_clearance = c->radial_clearance;
+  def.pin_radius = 0.5 * c->pin_diameter;
+  def.pin_length = c->pin_length;
+  def.impact_velocity_min = 1e-3;
+  def.settle_damping = damping;
+  def.faceted_n = facets;
+  fb_scene *s;
+  assert_int_equal(fb_scene_create(&s, &def, NULL), FB_OK);
+  for (int k = 0; k < steps; k++) fb_scene_step(s, NULL);
+  fb_sample x;
+  fb_scene_sample(s, &x);
+  fb_scene_destroy(s);
+  return x;
+}
+
+static void test_faceted_gap_shrinks_with_n(void **state) {
+  (void)state;
+  /* measured static penetration gap to the exact collider: 0.284 um (16
+   * boxes), 0.030 um (48), 0.0096 um (128); the contact force is the same
+   * 1.2868 N in all: the wall's shape, not the law, makes the gap */
+  fb_case c;
+  load(&c, NULL, 0);
+  const int facets[3] = {16, 48, 128};
+  const fb_sample exact = settle(&c, 0, 30000, 3e-3);
+  double prev = INFINITY;
+  for (int i = 0; i < 3; i++) {
+    const fb_sample f = settle(&c, facets[i], 30000, 3e-3);
+    const double gap = fabs(f.contact[FB_JOINT_B][FB_C_PEN] - exact.contact[FB_JOINT_B][FB_C_PEN]);
+    char name[64];
+    snprintf(name, sizeof name, "faceted static gap, %d boxes [m]", facets[i]);
+    report_residual(name, gap, prev);
+    assert_true(gap < prev);
+    prev = gap;
+    assert_rel(f.contact[FB_JOINT_B][FB_C_FORCE], exact.contact[FB_JOINT_B][FB_C_FORCE], STATIC_REL_TOL);
+  }
+}
+
+static const fb_peaks *peaks_of(const fb_run *r, const char *name) {
+  for (int i = 0; i < r->n; i++)
+    if (strcmp(r->model[i].run.name, name) == 0) return &r->model[i].peaks;
+  fail_msg("model %s not run", name);
+  return NULL;
+}
+
+static void test_small_clearance_approaches_ideal(void **state) {
+  (void)state;
+  const char *sets[] = {"run.models=ode-ideal-stackup,ode-clearance-restitution,ode-clearance-impact",
+                        "run.revolutions=2", "clearance.penalty=explicit",
+                        "clearance.penetration_limit_um=10"};
+  fb_case c;
+  load(&c, sets, 4);
+  c.radial_clearance = 0.01e-6; /* 0.01 um (below the case-file's useful range) */
+  static fb_run r;
+  fb_diag d;
+  if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+  const fb_peaks *ideal = peaks_of(&r, "ode-ideal-stackup");
+  const char *models[2] = {"ode-clearance-restitution", "ode-clearance-impact"};
+  double worst = 0;
+  for (int m = 0; m < 2; m++) {
+    const fb_peaks *p = peaks_of(&r, models[m]);
+    const double got[8] = {p->coupler.omega_max, p->coupler.omega_min, p->coupler.alpha_max,
+                           p->coupler.alpha_min, p->follower.omega_max, p->follower.omega_min,
+                           p->follower.alpha_max, p->follower.alpha_min};
+    const double ref[8] = {ideal->coupler.omega_max, ideal->coupler.omega_min,
+                           ideal->coupler.alpha_max, ideal->coupler.alpha_min,
+                           ideal->follower.omega_max, ideal->follower.omega_min,
+                           ideal->follower.alpha_max, ideal->follower.alpha_min};
+    for (int i = 0; i < 8; i++) {
+      worst = fmax(worst, fabs(got[i] - ref[i]) / fabs(ref[i]));
+      assert_rel(got[i], ref[i], SMALL_CLEARANCE_REL_TOL);
+    }
+  }
+  report_residual("clearance 0.01 um vs ideal peaks", worst, SMALL_CLEARANCE_REL_TOL);
+  fb_run_free(&r);
+}
+
+static void test_spike_step_convergence(void **state) {
+  (void)state;
+  static fb_run a, b;
+  const char *sa[] = {"run.models=ode-ideal-stackup,ode-clearance-restitution,ode-clearance-impact",
+                      "solver.h_s=5e-6"};
+  const char *sb[] = {"run.models=ode-ideal-stackup,ode-clearance-restitution,ode-clearance-impact",
+                      "solver.h_s=2.5e-6"};
+  fb_case ca, cb;
+  load(&ca, sa, 2);
+  load(&cb, sb, 2);
+  fb_diag d;
+  if (fb_run_case(&a, &ca, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_run_case(&b, &cb, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+  double worst = 0;
+  for (int m = 1; m < 3; m++) {
+    const fb_spikes *x = &a.model[m].spikes, *y = &b.model[m].spikes;
+    assert_true(a.model[m].has_spikes && b.model[m].has_spikes);
+    const double u[3] = {x->alpha_peak_ratio_coupler, x->force_max, x->penetration_max};
+    const double v[3] = {y->alpha_peak_ratio_coupler, y->force_max, y->penetration_max};
+    for (int i = 0; i < 3; i++) {
+      worst = fmax(worst, fabs(u[i] - v[i]) / fabs(v[i]));
+      assert_rel(u[i], v[i], SPIKE_CONVERGENCE_REL_TOL);
+    }
+  }
+  report_residual("spikes h = 5e-6 vs 2.5e-6", worst, SPIKE_CONVERGENCE_REL_TOL);
+  fb_run_free(&a);
+  fb_run_free(&b);
+}
+
+static void run_joints(const char *joints) {
+  char js[128];
+  snprintf(js, sizeof js, "clearance.joints=%s", joints);
+  const char *sets[] = {js, "run.models=ode-clearance-impact,ode-clearance-restitution",
+                        "run.revolutions=2"};
+  fb_case c;
+  load(&c, sets, 3);
+  static fb_run r;
+  fb_diag d;
+  if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s: %s", joints, d.msg);
+  for (int m = 0; m < r.n; m++) {
+    if (strcmp(r.model[m].run.status, "ok") != 0)
+      fail_msg("%s, %s: %s", joints, r.model[m].run.name, r.model[m].run.status);
+    assert_true(r.model[m].has_spikes);
+    assert_int_equal(r.model[m].run.series.contact_mask, c.clearance.mask);
+    assert_true(r.model[m].spikes.force_max > 0.0);
+  }
+  fb_run_free(&r);
+}
+
+static void test_two_clearance_joints_run(void **state) {
+  (void)state;
+  run_joints("crank-coupler, coupler-follower");
+  run_joints("ground-crank, follower-ground"); /* drive through the angular motor */
+}
+
+static void test_stability_guard_names_reason(void **state) {
+  (void)state;
+  /* the paper's penalty read in N/mm is far too soft for the real joint
+   * reaction: the pin sinks beyond the clearance and the model must stop
+   * with a reason while the others run on */
+  const char *sets[] = {"clearance.penalty=paper",
+                        "run.models=ode-clearance-restitution,ode-ideal-stackup",
+                        "run.revolutions=2"};
+  fb_case c;
+  load(&c, sets, 3);
+  static fb_run r;
+  fb_diag d;
+  assert_int_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+  assert_non_null(strstr(r.model[0].run.status, "unstable: penetration"));
+  assert_non_null(strstr(r.model[0].run.status, "crank-coupler"));
+  assert_string_equal(r.model[1].run.status, "ok");
+  /* what was kept is finite */
+  const fb_series *s = &r.model[0].run.series;
+  for (size_t i = 0; i < s->n; i++) assert_true(isfinite(s->coupler_alpha[i]));
+  fb_run_free(&r);
+}
+
+int main(void) {
+  const char *d = getenv("FOURBAR_CASES_DIR");
+  snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", d ? d : "cases");
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_static_penetration_matches_law),
+      cmocka_unit_test(test_small_clearance_approaches_ideal),
+      cmocka_unit_test(test_spike_step_convergence),
+      cmocka_unit_test(test_two_clearance_joints_run),
+      cmocka_unit_test(test_stability_guard_names_reason),
+      cmocka_unit_test(test_faceted_gap_shrinks_with_n),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

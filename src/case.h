@@ -76,7 +76,7 @@ typedef struct {
   unsigned long seed;      /* dRandSetSeed value (QuickStep row order) */
 } fb_solver;
 
-typedef struct {
+typedef struct fb_case_s {
   char name[FB_NAME_SIZE];            /* case name, used for the output folder */
   fb_linkage nominal;                 /* basic link lengths [m] */
   double plus_minus[FB_LINK_COUNT];   /* symmetric length tolerance per link [m] (4) */

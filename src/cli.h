@@ -2,6 +2,8 @@
 #ifndef FB_CLI_H
 #define FB_CLI_H
 
+#include <stddef.h>
+
 /* Prints "fourbar <cmd>: <message>" to stderr and returns exit status 2
  * (usage) or 1 (failure) as given. */
 int fb_cli_fail(const char *cmd, int status, const char *fmt, ...)
@@ -10,6 +12,15 @@ int fb_cli_fail(const char *cmd, int status, const char *fmt, ...)
 /* Parses a finite double from a flag value; returns 0 and prints a message
  * naming the flag on failure. */
 int fb_cli_double(const char *cmd, const char *flag, const char *text, double *out);
+
+struct fb_case_s;
+
+/* Loads the case file argv[optind] (or the paper's case when there is none)
+ * with the --set overrides; on error prints "fourbar <cmd>: <diagnostic>" and
+ * returns exit status 2, else 0. path receives the file used. Fails with 2
+ * when more than one positional argument is given. */
+int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const char *const *sets,
+                     int nsets, struct fb_case_s *c, char *path, size_t path_size);
 
 /* The directory holding the shipped case files (build-time constant). */
 const char *fb_cli_cases_dir(void);

@@ -86,17 +86,11 @@ int fb_cmd_penalty(int argc, char **argv) {
       default: fputs(penalty_help, stderr); return 2;
     }
   }
-  if (argc - optind > 1) return fb_cli_fail("penalty", 2, "one case file at most; see --help");
-  char default_case[4096];
-  const char *case_path = optind < argc ? argv[optind] : NULL;
-  if (!case_path) {
-    snprintf(default_case, sizeof default_case, "%s/paper_crank_rocker.ini", fb_cli_cases_dir());
-    case_path = default_case;
-  }
   fb_case c;
   fb_diag diag;
-  if (fb_casefile_load(&c, case_path, sets, nsets, &diag) != FB_OK)
-    return fb_cli_fail("penalty", 2, "%s", diag.msg);
+  char case_path[4096];
+  int rc = fb_cli_load_case("penalty", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
+  if (rc) return rc;
 
   json_t *rows = json_array();
   const char *unit = mode == FB_PENALTY_PAPER ? "N mm^0.5 (paper)" : "N m^0.5";

@@ -66,27 +66,18 @@ int fb_cmd_run(int argc, char **argv) {
       default: fputs(run_help, stderr); return 2;
     }
   }
-  if (argc - optind > 1)
-    return fb_cli_fail("run", 2, "one case file at most (got %d); see --help", argc - optind);
-  char default_case[4096];
-  const char *case_path = optind < argc ? argv[optind] : NULL;
-  if (!case_path) {
-    snprintf(default_case, sizeof default_case, "%s/paper_crank_rocker.ini",
-             fb_cli_cases_dir());
-    case_path = default_case;
-  }
-
   fb_diag diag;
   fb_case c;
-  fb_status st = fb_casefile_load(&c, case_path, sets, nsets, &diag);
-  if (st != FB_OK) return fb_cli_fail("run", 2, "%s", diag.msg);
+  char case_path[4096];
+  int rc = fb_cli_load_case("run", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
+  if (rc) return rc;
 
   char dir[4096];
   if (out_dir)
     snprintf(dir, sizeof dir, "%s", out_dir);
   else
     snprintf(dir, sizeof dir, "results/%s", c.name);
-  st = fb_outdir_prepare(dir, &diag);
+  fb_status st = fb_outdir_prepare(dir, &diag);
   if (st != FB_OK) return fb_cli_fail("run", 1, "%s", diag.msg);
 
   static fb_run r;

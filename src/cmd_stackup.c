@@ -75,17 +75,11 @@ int fb_cmd_stackup(int argc, char **argv) {
     }
   }
   if (mask == 0) mask = FB_TOL_CORNERS | FB_TOL_RSS | FB_TOL_MONTECARLO;
-  if (argc - optind > 1) return fb_cli_fail("stackup", 2, "one case file at most; see --help");
-  char default_case[4096];
-  const char *case_path = optind < argc ? argv[optind] : NULL;
-  if (!case_path) {
-    snprintf(default_case, sizeof default_case, "%s/paper_crank_rocker.ini", fb_cli_cases_dir());
-    case_path = default_case;
-  }
   fb_case c;
   fb_diag d;
-  if (fb_casefile_load(&c, case_path, sets, nsets, &d) != FB_OK)
-    return fb_cli_fail("stackup", 2, "%s", d.msg);
+  char case_path[4096];
+  int rc = fb_cli_load_case("stackup", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
+  if (rc) return rc;
   static fb_stackup_result r;
   int tty = isatty(2) && !json;
   fb_status st = fb_tol_analyse(&r, &c, mask, (size_t)samples, (unsigned long)seed,

@@ -1,3 +1,4 @@
+#include "clock.h"
 #include "impact.h"
 
 #include <gsl/gsl_errno.h>
@@ -5,13 +6,6 @@
 #include <gsl/gsl_sf_gamma.h>
 #include <math.h>
 #include <string.h>
-#include <time.h>
-
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int is_linear(fb_law_kind k) { return k == FB_LAW_LINEAR || k == FB_LAW_RESTITUTION; }
 
@@ -115,7 +109,7 @@ static int integrate_to(gsl_odeiv2_driver *drv, double *t, double t1, double y[2
 
 fb_status fb_impact_reference(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag) {
   memset(out, 0, sizeof *out);
-  double t_wall = now_s();
+  double t_wall = fb_clock_s();
   fb_contact_law law = d->law;
   law.mass = d->mass;
   ref_ctx c = {&law, d->mass, d->speed};
@@ -184,6 +178,6 @@ fb_status fb_impact_reference(fb_impact_result *out, const fb_impact_def *d, fb_
   out->penetration_max = dmax;
   out->force_max = fmax;
   out->steps = k;
-  out->wall_s = now_s() - t_wall;
+  out->wall_s = fb_clock_s() - t_wall;
   return st;
 }

@@ -3,22 +3,16 @@
 #include <math.h>
 #include <ode/ode.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "impact.h"
 #include "ode_env.h"
-
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag) {
   memset(out, 0, sizeof *out);
   fb_status st = fb_impact_check(d, diag);
   if (st != FB_OK) return st;
-  double t_wall = now_s();
+  double t_wall = fb_clock_s();
   fb_contact_law law = d->law;
   law.mass = d->mass;
   const double T = fb_impact_duration_estimate(d);
@@ -106,6 +100,6 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
     st = fb_diag_set(diag, FB_ERR_NUMERIC,
                      "ODE impact: the body has not left the contact after %zu steps (%g s)", k,
                      (double)k * d->h);
-  out->wall_s = now_s() - t_wall;
+  out->wall_s = fb_clock_s() - t_wall;
   return st;
 }

@@ -1,9 +1,9 @@
+#include "clock.h"
 #include "models.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
 #include "analytic.h"
 #include "joint_law.h"
@@ -18,12 +18,6 @@
 
 const char *fb_model_kind_name(fb_model_kind k) {
   return k == FB_KIND_ODE ? "ode" : "analytic";
-}
-
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static int ends_with(const char *s, const char *suffix) {
@@ -129,7 +123,7 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_case *c, const char *name
   snprintf(out->status, sizeof out->status, "ok");
   out->h = c->solver.h;
   fb_model_lengths(c, name, &out->lengths);
-  double t0 = now_s();
+  double t0 = fb_clock_s();
   fb_status st;
   if (strcmp(name, "analytic") == 0 || strcmp(name, "analytic-stackup") == 0) {
     out->kind = FB_KIND_ANALYTIC;
@@ -151,7 +145,7 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_case *c, const char *name
   } else {
     st = fb_diag_set(diag, FB_ERR_ARG, "unknown model '%s'", name);
   }
-  out->wall_s = now_s() - t0;
+  out->wall_s = fb_clock_s() - t0;
   if (progress) progress(out->name, 1.0, user);
   return st;
 }

@@ -1,3 +1,4 @@
+#include "clock.h"
 #include "tolerance.h"
 
 #include <gsl/gsl_randist.h>
@@ -7,7 +8,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "analytic.h"
 
@@ -95,12 +95,6 @@ static fb_status corner_outputs(double out[FB_TOL_NOUT], const fb_case *c, const
   return FB_OK;
 }
 
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, size_t samples,
                          unsigned long seed, fb_distribution dist,
                          void (*progress)(double fraction, void *user), void *user,
@@ -139,7 +133,7 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
     }
   }
   if ((mask & FB_TOL_MONTECARLO) && samples > 0) {
-    double t0 = now_s();
+    double t0 = fb_clock_s();
     double *v = malloc(samples * FB_TOL_NOUT * sizeof(double));
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     if (!v || !rng) {
@@ -180,7 +174,7 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
     }
     gsl_rng_free(rng);
     free(v);
-    out->mc_wall_s = now_s() - t0;
+    out->mc_wall_s = fb_clock_s() - t0;
     if (progress) progress(1.0, user);
   }
   return st;

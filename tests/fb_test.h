@@ -39,4 +39,20 @@ static inline int fb_test_verbose(void) {
               (double)(tol));                                                  \
   } while (0)
 
+/* Loads the shipped paper case (FOURBAR_CASES_DIR or ./cases) with overrides;
+ * exits with a message if it does not load, since every test using it
+ * depends on it. */
+#ifdef FB_CASEFILE_H
+static inline void fb_test_paper_case(fb_case *c, const char **sets, int n) {
+  const char *d = getenv("FOURBAR_CASES_DIR");
+  char path[4096];
+  snprintf(path, sizeof path, "%s/paper_crank_rocker.ini", d ? d : "cases");
+  fb_diag diag;
+  if (fb_casefile_load(c, path, sets, n, &diag) != FB_OK) {
+    fprintf(stderr, "cannot load %s: %s\n", path, diag.msg);
+    exit(1);
+  }
+}
+#endif
+
 #endif

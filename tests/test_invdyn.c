@@ -91,14 +91,7 @@ static void test_reactions_match_ode_feedback(void **state) {
 }
 
 int main(void) {
-  const char *d = getenv("FOURBAR_CASES_DIR");
-  char path[4096];
-  snprintf(path, sizeof path, "%s/paper_crank_rocker.ini", d ? d : "cases");
-  fb_diag diag;
-  if (fb_casefile_load(&paper, path, NULL, 0, &diag) != FB_OK) {
-    fprintf(stderr, "%s\n", diag.msg);
-    return 1;
-  }
+  fb_test_paper_case(&paper, NULL, 0);
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_statics_balance_gravity),
       cmocka_unit_test(test_reactions_match_ode_feedback),

@@ -1,7 +1,7 @@
 /* Paper mode reproduces the paper's Tables I to III (PAPER.md) to their
  * printed precision; physical mode is checked against its own formulas. */
-#include "casefile.h"
 #include "contact.h"
+#include "casefile.h"
 #include "fb_test.h"
 #include "invdyn.h"
 #include "penalty.h"
@@ -75,14 +75,7 @@ static void test_physical_mode_formulas(void **state) {
 }
 
 int main(void) {
-  const char *d = getenv("FOURBAR_CASES_DIR");
-  char path[4096];
-  snprintf(path, sizeof path, "%s/paper_crank_rocker.ini", d ? d : "cases");
-  fb_diag diag;
-  if (fb_casefile_load(&paper, path, NULL, 0, &diag) != FB_OK) {
-    fprintf(stderr, "%s\n", diag.msg);
-    return 1;
-  }
+  fb_test_paper_case(&paper, NULL, 0);
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_paper_mode_reproduces_tables),
       cmocka_unit_test(test_paper_mode_shapes),

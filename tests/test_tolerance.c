@@ -116,14 +116,7 @@ static void test_worst_corner(void **state) {
 }
 
 int main(void) {
-  const char *d = getenv("FOURBAR_CASES_DIR");
-  char path[4096];
-  snprintf(path, sizeof path, "%s/paper_crank_rocker.ini", d ? d : "cases");
-  fb_diag diag;
-  if (fb_casefile_load(&paper, path, NULL, 0, &diag) != FB_OK) {
-    fprintf(stderr, "%s\n", diag.msg);
-    return 1;
-  }
+  fb_test_paper_case(&paper, NULL, 0);
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_sensitivities_vs_finite_differences),
       cmocka_unit_test(test_rss_inside_corners_and_mc_converges),

@@ -43,11 +43,22 @@ case "$what" in
   test)
     rc=0
     meson test -C build --print-errorlogs "$@" || rc=$?
-    # one closing line counting the cmocka test cases of every executable
+    # count the cmocka test cases of every executable
     log=build/meson-logs/testlog.txt
     passed=$({ grep -hoE '^\[  PASSED  \] [0-9]+' "$log" || true; } | awk '{s+=$NF} END {print s+0}')
     failed=$({ grep -hoE '^\[  FAILED  \] [0-9]+' "$log" || true; } | awk '{s+=$NF} END {print s+0}')
     if [ "$rc" -ne 0 ] && [ "$failed" -eq 0 ]; then failed=1; fi
-    echo "tests: $passed passed, $failed failed"
-    exit $rc ;;
+    # then the regression of spike magnitudes against results/baselines
+    echo "== fourbar check (spike regression against results/baselines)"
+    crc=0
+    ./build/fourbar check > build/check.txt || crc=$?
+    grep -E 'FAIL|passed' build/check.txt || true
+    cpassed=$(tail -n 1 build/check.txt | awk '/passed/ {print $1+0}')
+    cfailed=$(tail -n 1 build/check.txt | awk '/failed/ {print $3+0}')
+    cpassed=${cpassed:-0}; cfailed=${cfailed:-0}
+    if [ "$crc" -ne 0 ] && [ "$cfailed" -eq 0 ]; then cfailed=1; fi
+    echo "unit tests: $passed passed, $failed failed; check metrics: $cpassed passed, $cfailed failed (build/check.txt)"
+    echo "tests: $((passed + cpassed)) passed, $((failed + cfailed)) failed"
+    [ "$rc" -ne 0 ] && exit $rc
+    exit $crc ;;
 esac

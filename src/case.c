@@ -80,6 +80,7 @@ void fb_case_default(fb_case *c) {
   c->clearance.friction = 0.0;
   c->clearance.penetration_limit = 0.0;
   c->clearance.faceted_n = 64;
+  c->clearance.stiffness_scale = 1.0;
   c->revolutions = 3.0;
   const char *m[] = {"analytic", "analytic-stackup", "ode-ideal-nominal", "ode-ideal-stackup"};
   c->model_count = 4;

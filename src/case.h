@@ -63,6 +63,7 @@ typedef struct {
   double friction;           /* Coulomb friction coefficient at the contact [-] */
   double penetration_limit;  /* stop a model beyond this penetration [m]; 0: the radial clearance */
   int faceted_n;             /* boxes in the ring of the ode-clearance-faceted model */
+  double stiffness_scale;    /* multiplies the stiffness from any source [-] (studies, checks) */
 } fb_clearance;
 
 /* Solver parameters of the ODE models. */

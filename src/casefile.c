@@ -78,6 +78,8 @@ typedef struct {
 static const key_spec keys[] = {
     {"case", "name", K_NAME, OFF(name), 0, 0, 0, 0, 0, "-", "case", "letters, digits, - _ .",
      "case name; run output goes to results/<name>/"},
+    {"case", "base", K_TEXT, 0, 0, 0, 0, 0, 0, "-", "(none)", "a case file path",
+     "case file read first (relative to this one); this file's keys override it"},
     {"case", "description", K_TEXT, 0, 0, 0, 0, 0, 0, "-", "", "free text",
      "one line describing the case (not used by the solver)"},
 
@@ -185,6 +187,8 @@ static const key_spec keys[] = {
      0, INF, 0, 1, "um", "0", "the limit must be >= 0",
      "a model stops ('unstable') beyond this penetration; 0: the radial clearance"},
 
+    {"clearance", "stiffness_scale", K_DOUBLE, OFF(clearance.stiffness_scale), 1.0, 0, 1e6, 1, 0,
+     "-", "1", "a scale must be positive", "multiplies the contact stiffness from any penalty source"},
     {"clearance", "faceted_n", K_INT, OFF(clearance.faceted_n), 0, 3, 4096, 0, 0, "-", "64",
      "3 to 4096 boxes",
      "boxes in the hole ring of ode-clearance-faceted (ODE's generic box-cylinder path)"},
@@ -688,6 +692,75 @@ static fb_status parse_override(load_ctx *c, const char *ov, int index) {
   return put_entry(c, trim(section), trim(key), trim(value), origin, 0, 1);
 }
 
+#define MAX_BASE_DEPTH 4
+
+/* parses one file into ctx entries of its own, then merges: the entries of
+ * its [case] base file (resolved relative to it, recursively) first, its own
+ * keys replacing them */
+static fb_status read_file_entries(load_ctx *top, const char *path, int depth, fb_diag *diag) {
+  load_ctx *c = calloc(1, sizeof *c);
+  if (!c) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  c->path = path;
+  c->diag = diag;
+  c->status = FB_OK;
+  fb_status st = FB_OK;
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    st = fb_diag_set(diag, FB_ERR_IO, "%s: cannot open case file: %s", path, strerror(errno));
+    goto out;
+  }
+  reader_state r = {f, c};
+  int rc = ini_parse_stream(file_reader, &r, on_ini_entry, c);
+  fclose(f);
+  if (c->status != FB_OK) {
+    st = c->status;
+    goto out;
+  }
+  if (c->too_long) {
+    st = fb_diag_set(diag, FB_ERR_PARSE, "%s:%d: line longer than %d characters", path,
+                     c->too_long, INI_MAX_LINE - 2);
+    goto out;
+  }
+  if (rc != 0) {
+    char text[256];
+    read_line(path, rc, text, sizeof text);
+    st = fb_diag_set(diag, FB_ERR_PARSE,
+                     "%s:%d: malformed line '%s': expected '[section]', 'key = value' or "
+                     "a comment starting with ; or #",
+                     path, rc, text);
+    goto out;
+  }
+  int b = find_entry(c, "case", "base");
+  if (b >= 0) {
+    if (depth >= MAX_BASE_DEPTH) {
+      st = fb_diag_set(diag, FB_ERR_PARSE, "%s: [case] base = %s: more than %d nested bases "
+                       "(a cycle?)", c->e[b].origin, c->e[b].value, MAX_BASE_DEPTH);
+      goto out;
+    }
+    char base[4096];
+    const char *slash = strrchr(path, '/');
+    if (c->e[b].value[0] == '/' || !slash)
+      snprintf(base, sizeof base, "%s", c->e[b].value);
+    else
+      snprintf(base, sizeof base, "%.*s/%s", (int)(slash - path), path, c->e[b].value);
+    fb_diag inner;
+    st = read_file_entries(top, base, depth + 1, &inner);
+    if (st != FB_OK) {
+      fb_diag_set(diag, st, "%s: [case] base: %s", c->e[b].origin, inner.msg);
+      goto out;
+    }
+  }
+  for (int i = 0; i < c->n; i++) {
+    const entry *e = &c->e[i];
+    if (strcmp(e->section, "case") == 0 && strcmp(e->key, "base") == 0) continue;
+    st = put_entry(top, e->section, e->key, e->value, e->origin, e->line, 1);
+    if (st != FB_OK) goto out;
+  }
+out:
+  free(c);
+  return st;
+}
+
 fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *overrides,
                            int n_overrides, fb_diag *diag) {
   fb_diag_clear(diag);
@@ -699,32 +772,8 @@ fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *ov
   fb_status st = FB_OK;
 
   if (path) {
-    FILE *f = fopen(path, "r");
-    if (!f) {
-      st = fb_diag_set(diag, FB_ERR_IO, "%s: cannot open case file: %s", path, strerror(errno));
-      goto done;
-    }
-    reader_state r = {f, c};
-    int rc = ini_parse_stream(file_reader, &r, on_ini_entry, c);
-    fclose(f);
-    if (c->status != FB_OK) {
-      st = c->status;
-      goto done;
-    }
-    if (c->too_long) {
-      st = fb_diag_set(diag, FB_ERR_PARSE, "%s:%d: line longer than %d characters", path,
-                       c->too_long, INI_MAX_LINE - 2);
-      goto done;
-    }
-    if (rc != 0) {
-      char text[256];
-      read_line(path, rc, text, sizeof text);
-      st = fb_diag_set(diag, FB_ERR_PARSE,
-                       "%s:%d: malformed line '%s': expected '[section]', 'key = value' or "
-                       "a comment starting with ; or #",
-                       path, rc, text);
-      goto done;
-    }
+    st = read_file_entries(c, path, 0, diag);
+    if (st != FB_OK) goto done;
   }
   for (int i = 0; i < n_overrides; i++) {
     st = parse_override(c, overrides[i], i);

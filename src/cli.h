@@ -33,5 +33,6 @@ int fb_cmd_penalty(int argc, char **argv);
 int fb_cmd_fit(int argc, char **argv);
 int fb_cmd_tolerance(int argc, char **argv);
 int fb_cmd_stackup(int argc, char **argv);
+int fb_cmd_check(int argc, char **argv);
 
 #endif

@@ -68,6 +68,7 @@ fb_status fb_joint_laws(fb_contact_law law[4], const fb_case *c, fb_clearance_mo
                            fb_joint_name(j), fmax[j], c->pin_length, c->radial_clearance);
       l.stiffness = model == FB_CLEARANCE_IMPACT ? fmax[j] / pow(d, l.exponent) : kt;
     }
+    l.stiffness *= cl->stiffness_scale;
     st = fb_contact_law_check(&l, diag);
     if (st != FB_OK) return st;
     law[j] = l;

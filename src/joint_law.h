@@ -15,7 +15,8 @@
  *     N/mm for the restitution law (p = P * 1000 N/m), as a multibody code
  *     in mm-N units would; crank-coupler values for the ground-crank and
  *     crank-coupler joints, coupler-follower values for the other two.
- *   explicit: the case's stiffness keys. */
+ *   explicit: the case's stiffness keys.
+ * Every source's stiffness is then multiplied by [clearance] stiffness_scale. */
 #ifndef FB_JOINT_LAW_H
 #define FB_JOINT_LAW_H
 

@@ -19,6 +19,7 @@ static const char main_help[] =
     "  tolerance    ISO 2768-1 general tolerance of a size\n"
     "  penalty      contact stiffness and penalty parameter per speed (paper or physical)\n"
     "  impact       one impact in ODE against a reference integration and closed form\n"
+    "  check        rerun cases and compare spike metrics with committed baselines\n"
     "  keys         list every case-file key with unit, default and rule\n"
     "\n"
     "All outputs are SI; names carry the unit (omega_max_rad_s, h_s).\n";
@@ -47,6 +48,7 @@ int main(int argc, char **argv) {
   if (strcmp(cmd, "fit") == 0) return fb_cmd_fit(argc - 1, argv + 1);
   if (strcmp(cmd, "tolerance") == 0) return fb_cmd_tolerance(argc - 1, argv + 1);
   if (strcmp(cmd, "stackup") == 0) return fb_cmd_stackup(argc - 1, argv + 1);
+  if (strcmp(cmd, "check") == 0) return fb_cmd_check(argc - 1, argv + 1);
   if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
   fprintf(stderr, "fourbar: unknown command '%s'\n\n%s", cmd, main_help);
   return 2;

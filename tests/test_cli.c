@@ -206,6 +206,43 @@ static void test_fit_tolerance_stackup_json(void **state) {
   json_decref(j);
 }
 
+static void test_check_catches_stiffness_regression(void **state) {
+  (void)state;
+  static char out[1 << 18], err[8192];
+  /* unchanged: passes */
+  assert_int_equal(run("check --cases paper_crank_rocker", out, sizeof out, err, sizeof err), 0);
+  assert_non_null(strstr(out, " 0 failed"));
+  /* contact stiffness scaled by 1.2: fails, naming the moved metrics */
+  assert_int_equal(run("check --cases paper_crank_rocker --set clearance.stiffness_scale=1.2", out,
+                       sizeof out, err, sizeof err), 1);
+  const char *moved[] = {"ode-clearance-impact.spikes.penetration_max_m",
+                         "ode-clearance-restitution.spikes.penetration_max_m", NULL};
+  for (int i = 0; moved[i]; i++) {
+    const char *line = strstr(out, moved[i]);
+    if (!line) fail_msg("check output lacks %s", moved[i]);
+    const char *eol = strchr(line, '\n');
+    const char *fail = strstr(line, "FAIL");
+    if (!fail || (eol && fail > eol)) fail_msg("%s is not marked FAIL", moved[i]);
+  }
+  /* ideal models do not move: the check does not cry wolf */
+  const char *still = strstr(out, "ode-ideal-stackup.coupler.omega_max_rad_s");
+  assert_non_null(still);
+  assert_true(strstr(still, "pass") < strchr(still, '\n'));
+  /* --update on a copy rewrites the values and says what changed */
+  char cmd[1024];
+  snprintf(cmd, sizeof cmd, "mkdir -p %s/bl && cp %s/../results/baselines/paper_crank_rocker.json %s/bl/",
+           tmpdir, getenv("FOURBAR_CASES_DIR"), tmpdir);
+  assert_int_equal(system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "FOURBAR_BASELINES_DIR=%s/bl %s check --update --set clearance.stiffness_scale=1.2 >%s/up.txt 2>&1",
+           tmpdir, exe, tmpdir);
+  assert_int_equal(system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "grep -q 'penetration_max_m: .* -> .* (moved)' %s/up.txt", tmpdir);
+  assert_int_equal(system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "FOURBAR_BASELINES_DIR=%s/bl %s check --set clearance.stiffness_scale=1.2 >/dev/null 2>&1",
+           tmpdir, exe);
+  assert_int_equal(system(cmd), 0);
+}
+
 static void expect_fail(const char *args, const char *const *needles) {
   static char err[8192];
   int rc = run(args, NULL, 0, err, sizeof err);
@@ -290,6 +327,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_json_flag_and_kinematics),
       cmocka_unit_test(test_penalty_and_impact_json),
       cmocka_unit_test(test_fit_tolerance_stackup_json),
+      cmocka_unit_test(test_check_catches_stiffness_regression),
       cmocka_unit_test(test_bad_input_exits_nonzero_with_message),
       cmocka_unit_test(test_help_answers),
   };

@@ -1,0 +1,102 @@
+#include "check.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static int add(fb_metric *out, int n, int max, const char *model, const char *group,
+               const char *key, double v) {
+  if (n >= max || !isfinite(v)) return n;
+  snprintf(out[n].name, sizeof out[n].name, "%s.%s.%s", model, group, key);
+  out[n].value = v;
+  return n + 1;
+}
+
+int fb_check_metrics(const fb_run *r, fb_metric *out, int max) {
+  int n = 0;
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    const char *name = m->run.name;
+    if (m->has_peaks) {
+      const fb_body_peaks *b[2] = {&m->peaks.coupler, &m->peaks.follower};
+      const char *bn[2] = {"coupler", "follower"};
+      for (int k = 0; k < 2; k++) {
+        n = add(out, n, max, name, bn[k], "omega_max_rad_s", b[k]->omega_max);
+        n = add(out, n, max, name, bn[k], "omega_min_rad_s", b[k]->omega_min);
+        n = add(out, n, max, name, bn[k], "alpha_max_rad_s2", b[k]->alpha_max);
+        n = add(out, n, max, name, bn[k], "alpha_min_rad_s2", b[k]->alpha_min);
+      }
+    }
+    if (m->has_spikes) {
+      const fb_spikes *s = &m->spikes;
+      n = add(out, n, max, name, "spikes", "alpha_peak_ratio_coupler", s->alpha_peak_ratio_coupler);
+      n = add(out, n, max, name, "spikes", "alpha_peak_ratio_follower", s->alpha_peak_ratio_follower);
+      n = add(out, n, max, name, "spikes", "omega_dev_max_rad_s", s->omega_dev_max);
+      n = add(out, n, max, name, "spikes", "force_max_n", s->force_max);
+      n = add(out, n, max, name, "spikes", "penetration_max_m", s->penetration_max);
+      n = add(out, n, max, name, "spikes", "impacts", (double)s->impacts);
+      n = add(out, n, max, name, "spikes", "free_flight_fraction", s->free_flight_fraction);
+      n = add(out, n, max, name, "spikes", "alpha_peak_crank_angle_coupler_rad",
+              s->alpha_peak_crank_angle_coupler);
+      n = add(out, n, max, name, "spikes", "alpha_peak_crank_angle_follower_rad",
+              s->alpha_peak_crank_angle_follower);
+    }
+  }
+  return n;
+}
+
+static fb_status run_metrics(fb_metric *out, int *n, const fb_case *c, fb_diag *diag) {
+  static fb_run r;
+  fb_status st = fb_run_case(&r, c, NULL, NULL, diag);
+  if (st != FB_OK) return st;
+  *n = fb_check_metrics(&r, out, FB_CHECK_MAX_METRICS);
+  fb_run_free(&r);
+  return FB_OK;
+}
+
+static double find(const fb_metric *m, int n, const char *name, int *found) {
+  for (int i = 0; i < n; i++)
+    if (strcmp(m[i].name, name) == 0) {
+      *found = 1;
+      return m[i].value;
+    }
+  *found = 0;
+  return 0.0;
+}
+
+fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterministic,
+                             const fb_case *c, fb_diag *diag) {
+  static fb_metric base[FB_CHECK_MAX_METRICS], pert[3][FB_CHECK_MAX_METRICS];
+  int nb = 0, np[3] = {0, 0, 0};
+  fb_status st = run_metrics(base, &nb, c, diag);
+  if (st != FB_OK) return st;
+  fb_case p = *c;
+  p.solver.h = c->solver.h * FB_CHECK_H_FACTOR;
+  st = run_metrics(pert[0], &np[0], &p, diag);
+  if (st != FB_OK) return st;
+  p = *c;
+  p.crank_angle0 = c->crank_angle0 + FB_CHECK_ANGLE_NUDGE_RAD;
+  st = run_metrics(pert[1], &np[1], &p, diag);
+  if (st != FB_OK) return st;
+  st = run_metrics(pert[2], &np[2], c, diag);
+  if (st != FB_OK) return st;
+  *nondeterministic = 0;
+  for (int i = 0; i < nb; i++) {
+    fb_baseline_metric *b = &out[i];
+    memcpy(b->name, base[i].name, sizeof b->name);
+    b->value = base[i].value;
+    b->spread = 0.0;
+    for (int k = 0; k < 3; k++) {
+      int found;
+      double v = find(pert[k], np[k], base[i].name, &found);
+      if (!found) continue; /* a perturbed model that stopped: no information */
+      b->spread = fmax(b->spread, fabs(v - b->value));
+      if (k == 2 && v != b->value) *nondeterministic = 1;
+    }
+    b->tolerance = fmax(FB_CHECK_FLOOR_ABS,
+                        fmax(FB_CHECK_FLOOR_REL * fabs(b->value), FB_CHECK_SAFETY_FACTOR * b->spread));
+    b->chaotic = b->spread > FB_CHECK_CHAOTIC_REL * fabs(b->value);
+  }
+  *n = nb;
+  return FB_OK;
+}

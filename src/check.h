@@ -1,0 +1,51 @@
+/* Regression of spike magnitudes: the metrics of a run, baselines with
+ * measured tolerances, and the comparison.
+ *
+ * Metrics: for every model, the eight peaks (<model>.coupler.omega_max_rad_s
+ * ...) and, for clearance models, the spike metrics (<model>.spikes.force_max_n
+ * ...). Tolerances are measured, not guessed (fb_check_calibrate): the case is
+ * rerun with what should not matter perturbed (h 1 % smaller, the initial
+ * crank angle moved by 1e-12 rad, and the same run repeated), each metric's
+ * spread is the largest change seen, and its tolerance is
+ * max(floor_abs, floor_rel |value|, safety_factor * spread). A metric whose
+ * spread exceeds 5 % of its value is marked chaotic (impact counts and crank
+ * angles of spikes usually are): it is still compared by value, with its wide
+ * measured tolerance. */
+#ifndef FB_CHECK_H
+#define FB_CHECK_H
+
+#include "run.h"
+
+#define FB_CHECK_MAX_METRICS 256
+#define FB_CHECK_SAFETY_FACTOR 3.0   /* tolerance over the measured spread */
+#define FB_CHECK_FLOOR_REL 1e-9      /* relative floor: bit-level changes of a recompile */
+#define FB_CHECK_FLOOR_ABS 1e-12     /* absolute floor for values at or near zero */
+#define FB_CHECK_CHAOTIC_REL 0.05    /* spread above this share of the value: chaotic */
+#define FB_CHECK_H_FACTOR 0.99       /* the "a little smaller" step */
+#define FB_CHECK_ANGLE_NUDGE_RAD 1e-12
+
+typedef struct {
+  char name[128];
+  double value;
+} fb_metric;
+
+/* Collects the metrics of run r into out (at most max); returns the count. */
+int fb_check_metrics(const fb_run *r, fb_metric *out, int max);
+
+/* One baseline metric. */
+typedef struct {
+  char name[128];
+  double value;     /* baseline value */
+  double tolerance; /* absolute */
+  double spread;    /* measured by calibration */
+  int chaotic;
+} fb_baseline_metric;
+
+/* Measures metrics and tolerances for case c (its own file and overrides
+ * already applied): a base run and three perturbed runs. out gets n metrics.
+ * *nondeterministic is set when the repeated run differs from the base.
+ * Errors: those of fb_run_case. */
+fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterministic,
+                             const fb_case *c, fb_diag *diag);
+
+#endif

@@ -1,0 +1,271 @@
+/* fourbar check: regression of spike magnitudes against committed baselines.
+ * Argument parsing, baseline files and printing; the metrics and the
+ * calibration are in check.c. */
+#include <dirent.h>
+#include <getopt.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "casefile.h"
+#include "check.h"
+#include "cli.h"
+#include "report.h"
+
+#ifndef FB_BASELINES_DIR
+#define FB_BASELINES_DIR "results/baselines"
+#endif
+
+#define MAX_SETS 256
+#define MAX_CASES 64
+
+static const char check_help[] =
+    "usage: fourbar check [--cases NAME,...] [--set section.key=value]... [--json]\n"
+    "       fourbar check --update [--cases NAME,...]\n"
+    "       fourbar check --calibrate [CASEFILE...]\n"
+    "\n"
+    "Reruns the cases that have a baseline in results/baselines/<case>.json and\n"
+    "compares every peak and spike metric with its baseline value and measured\n"
+    "tolerance; prints metric, baseline, now, tolerance, verdict, and a last line\n"
+    "'N passed, N failed'. Exit status 1 when any metric moved beyond its tolerance.\n"
+    "\n"
+    "  --cases      only these case names\n"
+    "  --set K=V    override a key in every case (e.g. clearance.stiffness_scale=1.2)\n"
+    "  --update     rewrite the baseline values (tolerances kept); prints what changed\n"
+    "  --calibrate  measure values and tolerances anew: each case is rerun with h 1 %\n"
+    "               smaller, the initial crank angle moved by 1e-12 rad, and once more\n"
+    "               unchanged; tolerance = max(1e-12, 1e-9 |value|, 3 x spread).\n"
+    "               CASEFILE (relative to cases/) adds a case; none: all baselines\n"
+    "  --json       one JSON object with every comparison\n";
+
+static const char *baselines_dir(void) {
+  const char *env = getenv("FOURBAR_BASELINES_DIR");
+  return env && *env ? env : FB_BASELINES_DIR;
+}
+
+static int cmp_str(const void *a, const void *b) {
+  return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+/* baseline file names (sorted), malloc'ed strings */
+static int list_baselines(char **names, int max) {
+  DIR *d = opendir(baselines_dir());
+  if (!d) return 0;
+  int n = 0;
+  struct dirent *e;
+  while ((e = readdir(d)) && n < max) {
+    size_t l = strlen(e->d_name);
+    if (l > 5 && strcmp(e->d_name + l - 5, ".json") == 0) names[n++] = strdup(e->d_name);
+  }
+  closedir(d);
+  qsort(names, (size_t)n, sizeof *names, cmp_str);
+  return n;
+}
+
+static int selected(const char *name, const char *cases) {
+  if (!cases) return 1;
+  char buf[1024];
+  snprintf(buf, sizeof buf, "%s", cases);
+  char *save = NULL;
+  for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save))
+    if (strcmp(t, name) == 0) return 1;
+  return 0;
+}
+
+static int load_case(const char *case_file, const char *const *sets, int nsets, fb_case *c) {
+  char path[4096];
+  if (case_file[0] == '/')
+    snprintf(path, sizeof path, "%s", case_file);
+  else
+    snprintf(path, sizeof path, "%s/%s", fb_cli_cases_dir(), case_file);
+  fb_diag d;
+  if (fb_casefile_load(c, path, sets, nsets, &d) != FB_OK) return fb_cli_fail("check", 2, "%s", d.msg);
+  return 0;
+}
+
+static int calibrate(const char *case_file, const char *const *sets, int nsets) {
+  fb_case c;
+  int rc = load_case(case_file, sets, nsets, &c);
+  if (rc) return rc;
+  static fb_baseline_metric m[FB_CHECK_MAX_METRICS];
+  int n, nondet;
+  fb_diag d;
+  fprintf(stderr, "calibrating %s (4 runs)\n", c.name);
+  if (fb_check_calibrate(m, &n, &nondet, &c, &d) != FB_OK) return fb_cli_fail("check", 1, "%s", d.msg);
+  if (nondet)
+    return fb_cli_fail("check", 1, "%s: a repeated run gave different numbers: the run is not "
+                       "deterministic, so no baseline can hold", c.name);
+  json_t *o = json_object(), *arr = json_array(), *cal = json_object(), *pert = json_array();
+  json_object_set_new(o, "case", json_string(c.name));
+  json_object_set_new(o, "case_file", json_string(case_file));
+  json_object_set_new(cal, "safety_factor", json_real(FB_CHECK_SAFETY_FACTOR));
+  json_object_set_new(cal, "floor_rel", json_real(FB_CHECK_FLOOR_REL));
+  json_object_set_new(cal, "floor_abs", json_real(FB_CHECK_FLOOR_ABS));
+  json_object_set_new(cal, "chaotic_rel", json_real(FB_CHECK_CHAOTIC_REL));
+  json_array_append_new(pert, json_string("step size h times 0.99"));
+  json_array_append_new(pert, json_string("initial crank angle + 1e-12 rad"));
+  json_array_append_new(pert, json_string("the same run repeated (must be identical)"));
+  json_object_set_new(cal, "perturbations", pert);
+  json_object_set_new(cal, "tolerance", json_string("max(floor_abs, floor_rel |value|, safety_factor spread)"));
+  json_object_set_new(o, "calibration", cal);
+  int chaotic = 0;
+  for (int i = 0; i < n; i++) {
+    json_t *x = json_object();
+    json_object_set_new(x, "name", json_string(m[i].name));
+    json_object_set_new(x, "value", json_real(m[i].value));
+    json_object_set_new(x, "tolerance", json_real(m[i].tolerance));
+    json_object_set_new(x, "spread", json_real(m[i].spread));
+    json_object_set_new(x, "chaotic", json_boolean(m[i].chaotic));
+    json_array_append_new(arr, x);
+    chaotic += m[i].chaotic;
+  }
+  json_object_set_new(o, "metrics", arr);
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s.json", baselines_dir(), c.name);
+  fb_status st = fb_report_write_json(path, o, &d);
+  json_decref(o);
+  if (st != FB_OK) return fb_cli_fail("check", 1, "%s", d.msg);
+  printf("%s: %d metrics (%d chaotic), written to %s\n", c.name, n, chaotic, path);
+  return 0;
+}
+
+int fb_cmd_check(int argc, char **argv) {
+  static const struct option opts[] = {{"cases", required_argument, 0, 'c'},
+                                       {"set", required_argument, 0, 's'},
+                                       {"update", no_argument, 0, 'u'},
+                                       {"calibrate", no_argument, 0, 'k'},
+                                       {"json", no_argument, 0, 'j'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  const char *cases = NULL;
+  const char *sets[MAX_SETS];
+  int nsets = 0, update = 0, cal = 0, json = 0, ch;
+  optind = 1;
+  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    switch (ch) {
+      case 'c': cases = optarg; break;
+      case 's':
+        if (nsets == MAX_SETS) return fb_cli_fail("check", 2, "more than %d --set", MAX_SETS);
+        sets[nsets++] = optarg;
+        break;
+      case 'u': update = 1; break;
+      case 'k': cal = 1; break;
+      case 'j': json = 1; break;
+      case 'h': fputs(check_help, stdout); return 0;
+      default: fputs(check_help, stderr); return 2;
+    }
+  }
+  char *files[MAX_CASES];
+  const int nfiles = list_baselines(files, MAX_CASES);
+  if (cal && optind < argc) {
+    int rc = 0;
+    for (int i = optind; i < argc && !rc; i++) rc = calibrate(argv[i], sets, nsets);
+    for (int i = 0; i < nfiles; i++) free(files[i]);
+    return rc;
+  }
+  if (optind < argc) return fb_cli_fail("check", 2, "unexpected argument '%s'; see --help", argv[optind]);
+  if (nfiles == 0)
+    return fb_cli_fail("check", 2, "no baselines in %s: create them with fourbar check "
+                       "--calibrate CASEFILE", baselines_dir());
+  int passed = 0, failed = 0, rc = 0;
+  json_t *all = json_array();
+  for (int f = 0; f < nfiles && rc == 0; f++) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", baselines_dir(), files[f]);
+    json_error_t je;
+    json_t *b = json_load_file(path, 0, &je);
+    const char *case_name = b ? json_string_value(json_object_get(b, "case")) : NULL;
+    const char *case_file = b ? json_string_value(json_object_get(b, "case_file")) : NULL;
+    json_t *metrics = b ? json_object_get(b, "metrics") : NULL;
+    if (!case_name || !case_file || !json_is_array(metrics)) {
+      rc = fb_cli_fail("check", 2, "%s:%d: not a baseline file (%s)", path, je.line,
+                       b ? "needs case, case_file and metrics" : je.text);
+      json_decref(b);
+      break;
+    }
+    if (!selected(case_name, cases)) {
+      json_decref(b);
+      continue;
+    }
+    if (cal) {
+      rc = calibrate(case_file, sets, nsets);
+      json_decref(b);
+      continue;
+    }
+    fb_case c;
+    rc = load_case(case_file, sets, nsets, &c);
+    if (rc) {
+      json_decref(b);
+      break;
+    }
+    static fb_run r;
+    fb_diag d;
+    if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) {
+      rc = fb_cli_fail("check", 1, "%s: %s", case_name, d.msg);
+      json_decref(b);
+      break;
+    }
+    static fb_metric now[FB_CHECK_MAX_METRICS];
+    const int nn = fb_check_metrics(&r, now, FB_CHECK_MAX_METRICS);
+    fb_run_free(&r);
+    if (!json && !update)
+      printf("\n%s (%s)\n%-62s %14s %14s %11s %s\n", case_name, case_file, "metric", "baseline",
+             "now", "tolerance", "verdict");
+    int changed = 0;
+    size_t i;
+    json_t *x;
+    json_array_foreach(metrics, i, x) {
+      const char *name = json_string_value(json_object_get(x, "name"));
+      const double base = json_number_value(json_object_get(x, "value"));
+      const double tol = json_number_value(json_object_get(x, "tolerance"));
+      double v = NAN;
+      for (int k = 0; k < nn; k++)
+        if (name && strcmp(now[k].name, name) == 0) v = now[k].value;
+      const int ok = isfinite(v) && fabs(v - base) <= tol;
+      const char *verdict = !isfinite(v) ? "FAIL (missing)" : ok ? "pass" : "FAIL";
+      if (update) {
+        if (isfinite(v) && v != base) {
+          printf("%s %s: %.10g -> %.10g (%s)\n", case_name, name, base, v, ok ? "within tolerance" : "moved");
+          json_object_set_new(x, "value", json_real(v));
+          changed++;
+        }
+        continue;
+      }
+      ok ? passed++ : failed++;
+      if (json) {
+        json_t *o = json_object();
+        json_object_set_new(o, "case", json_string(case_name));
+        json_object_set_new(o, "metric", json_string(name ? name : "?"));
+        json_object_set_new(o, "baseline", json_real(base));
+        json_object_set_new(o, "now", isfinite(v) ? json_real(v) : json_null());
+        json_object_set_new(o, "tolerance", json_real(tol));
+        json_object_set_new(o, "pass", json_boolean(ok));
+        json_array_append_new(all, o);
+      } else {
+        printf("%-62s %14.8g %14.8g %11.3g %s\n", name ? name : "?", base, v, tol, verdict);
+      }
+    }
+    if (update) {
+      if (changed && fb_report_write_json(path, b, &d) != FB_OK) rc = fb_cli_fail("check", 1, "%s", d.msg);
+      printf("%s: %d values changed%s\n", case_name, changed, changed ? ", baseline rewritten" : "");
+    }
+    json_decref(b);
+  }
+  for (int i = 0; i < nfiles; i++) free(files[i]);
+  if (rc || cal || update) {
+    json_decref(all);
+    return rc;
+  }
+  if (json) {
+    json_t *o = json_pack("{s:o,s:i,s:i}", "comparisons", all, "passed", passed, "failed", failed);
+    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
+    fputc('\n', stdout);
+    json_decref(o);
+  } else {
+    json_decref(all);
+    printf("\n%d passed, %d failed\n", passed, failed);
+  }
+  return failed ? 1 : 0;
+}

@@ -13,8 +13,8 @@ case "$what" in
   *) echo "usage: bash scripts/quickstart.sh run|test|build [fourbar run options]" >&2; exit 2 ;;
 esac
 
-packages=(gcc libc6-dev pkg-config meson ninja-build
-          libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev)
+packages=(gcc libc6-dev pkg-config meson ninja-build python3
+          libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -47,6 +47,9 @@ case "$what" in
     log=build/meson-logs/testlog.txt
     passed=$({ grep -hoE '^\[  PASSED  \] [0-9]+' "$log" || true; } | awk '{s+=$NF} END {print s+0}')
     failed=$({ grep -hoE '^\[  FAILED  \] [0-9]+' "$log" || true; } | awk '{s+=$NF} END {print s+0}')
+    # plus the script tests' own "N passed, N failed" lines
+    passed=$((passed + $({ grep -hE '^[0-9]+ passed, [0-9]+ failed$' "$log" || true; } | awk '{s+=$1} END {print s+0}')))
+    failed=$((failed + $({ grep -hE '^[0-9]+ passed, [0-9]+ failed$' "$log" || true; } | awk '{s+=$3} END {print s+0}')))
     if [ "$rc" -ne 0 ] && [ "$failed" -eq 0 ]; then failed=1; fi
     # then the regression of spike magnitudes against results/baselines
     echo "== fourbar check (spike regression against results/baselines)"

@@ -8,6 +8,8 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "figures.h"
+#include "fileio.h"
 #include "penalty.h"
 #include "units.h"
 
@@ -16,7 +18,7 @@
 
 static const char penalty_help[] =
     "usage: fourbar penalty [CASE] [--mode paper|physical] [--speeds-rpm LIST]\n"
-    "                       [--set section.key=value]... [--json]\n"
+    "                       [--set section.key=value]... [--json] [--out DIR]\n"
     "\n"
     "Contact stiffness Kc (paper Eq. 7), penalty parameter P = Kc C^1.5 (Eq. 9)\n"
     "and mutual approach per crank speed, for the crank-coupler and\n"
@@ -27,6 +29,9 @@ static const char penalty_help[] =
     "  --mode physical  inverse-dynamics joint reaction, the case's radial\n"
     "                   clearance and pin length, Johnson's line contact; P in N m^0.5\n"
     "  --speeds-rpm     FROM:TO:STEP or a comma list (default 100:1500:100)\n"
+    "  --out DIR        also write DIR/penalty_<mode>.csv and the figure\n"
+    "                   DIR/penalty_<mode>.svg (force, stiffness, penalty, approach\n"
+    "                   against speed: the paper's Figures 2 to 4)\n"
     "  CASE             default: the paper's case\n";
 
 static int parse_speeds(const char *text, double *out, int *n) {
@@ -55,11 +60,13 @@ int fb_cmd_penalty(int argc, char **argv) {
                                        {"speeds-rpm", required_argument, 0, 's'},
                                        {"set", required_argument, 0, 'S'},
                                        {"json", no_argument, 0, 'j'},
+                                       {"out", required_argument, 0, 'o'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   fb_penalty_mode mode = FB_PENALTY_PAPER;
   static double rpm[MAX_SPEEDS];
   int n = 0, json = 0, nsets = 0, ch;
+  const char *out_dir = NULL;
   const char *sets[MAX_SETS];
   parse_speeds("100:1500:100", rpm, &n);
   optind = 1;
@@ -82,6 +89,7 @@ int fb_cmd_penalty(int argc, char **argv) {
         sets[nsets++] = optarg;
         break;
       case 'j': json = 1; break;
+      case 'o': out_dir = optarg; break;
       case 'h': fputs(penalty_help, stdout); return 0;
       default: fputs(penalty_help, stderr); return 2;
     }
@@ -92,6 +100,9 @@ int fb_cmd_penalty(int argc, char **argv) {
   int rc = fb_cli_load_case("penalty", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
 
+  if (out_dir && fb_outdir_prepare(out_dir, &diag) != FB_OK)
+    return fb_cli_fail("penalty", 1, "%s", diag.msg);
+  static double col_f[2][MAX_SPEEDS], col_k[2][MAX_SPEEDS], col_p[2][MAX_SPEEDS], col_d[2][MAX_SPEEDS];
   json_t *rows = json_array();
   const char *unit = mode == FB_PENALTY_PAPER ? "N mm^0.5 (paper)" : "N m^0.5";
   if (!json)
@@ -106,6 +117,10 @@ int fb_cmd_penalty(int argc, char **argv) {
     }
     for (int j = 0; j < 2; j++) {
       const double approach_um = r[j].approach / FB_M_PER_UM;
+      col_f[j][i] = r[j].force;
+      col_k[j][i] = r[j].stiffness;
+      col_p[j][i] = r[j].penalty;
+      col_d[j][i] = approach_um;
       if (json) {
         json_t *o = json_object();
         json_object_set_new(o, "speed_rpm", json_real(rpm[i]));
@@ -121,6 +136,32 @@ int fb_cmd_penalty(int argc, char **argv) {
                approach_um);
       }
     }
+  }
+  if (out_dir) {
+    const char *mname = mode == FB_PENALTY_PAPER ? "paper" : "physical";
+    char path[4096];
+    snprintf(path, sizeof path, "%s/penalty_%s.csv", out_dir, mname);
+    fb_outfile of;
+    if (fb_outfile_open(&of, path, &diag) != FB_OK) {
+      json_decref(rows);
+      return fb_cli_fail("penalty", 1, "%s", diag.msg);
+    }
+    fprintf(of.f, "speed_rpm,joint,force_n,stiffness_n_m,penalty,approach_um\n");
+    for (int i = 0; i < n; i++)
+      for (int j = 0; j < 2; j++)
+        fprintf(of.f, "%.10g,%s,%.12g,%.12g,%.12g,%.12g\n", rpm[i],
+                fb_pin_joint_name((fb_pin_joint)j), col_f[j][i], col_k[j][i], col_p[j][i], col_d[j][i]);
+    if (fb_outfile_commit(&of, &diag) != FB_OK) {
+      json_decref(rows);
+      return fb_cli_fail("penalty", 1, "%s", diag.msg);
+    }
+    snprintf(path, sizeof path, "%s/penalty_%s.svg", out_dir, mname);
+    const double *f2[2] = {col_f[0], col_f[1]}, *k2[2] = {col_k[0], col_k[1]};
+    const double *p2[2] = {col_p[0], col_p[1]}, *d2[2] = {col_d[0], col_d[1]};
+    if (fb_figures_penalty(path, FB_FIGURE_SVG, mname, n, rpm, f2, k2, p2, d2, &diag) != FB_OK)
+      fprintf(stderr, "fourbar penalty: warning: %s\n", diag.msg);
+    else if (!json)
+      printf("wrote %s/penalty_%s.csv and penalty_%s.svg\n", out_dir, mname, mname);
   }
   if (json) {
     json_t *o = json_object();

@@ -7,6 +7,7 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "figures.h"
 #include "fileio.h"
 #include "report.h"
 #include "run.h"
@@ -15,9 +16,11 @@
 
 static const char run_help[] =
     "usage: fourbar run [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
+    "                   [--no-figures] [--figure-format svg|png]\n"
     "\n"
     "Runs the models a case file asks for ([run] models), measures each against the\n"
-    "exact analytic solution and writes DIR/summary.json and DIR/<model>.csv.\n"
+    "exact analytic solution and writes DIR/summary.json, DIR/<model>.csv, figures\n"
+    "(gnuplot) and DIR/report.md.\n"
     "\n"
     "  CASE          case file (INI); default: the paper's case,\n"
     "                cases/paper_crank_rocker.ini\n"
@@ -25,6 +28,8 @@ static const char run_help[] =
     "  --set K=V     override case key K (section.key) with V, e.g.\n"
     "                --set drive.speed_rpm=1500 --set solver.h_s=1e-4\n"
     "  --json        print summary.json to standard output instead of the table\n"
+    "  --no-figures  skip the figures (report.md is still written)\n"
+    "  --figure-format svg|png   default svg\n"
     "  -h, --help    this text\n"
     "\n"
     "Units: SI in every output (column and key names carry the unit). Peaks are\n"
@@ -48,11 +53,14 @@ int fb_cmd_run(int argc, char **argv) {
   static const struct option opts[] = {{"out", required_argument, 0, 'o'},
                                        {"set", required_argument, 0, 's'},
                                        {"json", no_argument, 0, 'j'},
+                                       {"no-figures", no_argument, 0, 'n'},
+                                       {"figure-format", required_argument, 0, 'f'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out_dir = NULL;
   const char *sets[MAX_SETS];
-  int nsets = 0, json = 0, ch;
+  int nsets = 0, json = 0, figures = 1, ch;
+  fb_figure_format fmt = FB_FIGURE_SVG;
   optind = 1;
   while ((ch = getopt_long(argc, argv, "o:s:jh", opts, NULL)) != -1) {
     switch (ch) {
@@ -62,6 +70,12 @@ int fb_cmd_run(int argc, char **argv) {
         sets[nsets++] = optarg;
         break;
       case 'j': json = 1; break;
+      case 'n': figures = 0; break;
+      case 'f':
+        if (strcmp(optarg, "svg") == 0) fmt = FB_FIGURE_SVG;
+        else if (strcmp(optarg, "png") == 0) fmt = FB_FIGURE_PNG;
+        else return fb_cli_fail("run", 2, "--figure-format '%s': must be svg or png", optarg);
+        break;
       case 'h': fputs(run_help, stdout); return 0;
       default: fputs(run_help, stderr); return 2;
     }
@@ -89,6 +103,22 @@ int fb_cmd_run(int argc, char **argv) {
     fb_run_free(&r);
     return fb_cli_fail("run", 1, "%s", diag.msg);
   }
+  /* figures and report.md: a figure failure is reported, the results stand */
+  char names[64][128];
+  int nfig = 0;
+  char note[1200] = "Figures were not requested (--no-figures).";
+  if (figures && fb_figures_run(&r, dir, fmt, names, 64, &nfig, &diag) != FB_OK) {
+    fprintf(stderr, "fourbar run: warning: %s\n", diag.msg);
+    snprintf(note, sizeof note, "Figures failed: %s", diag.msg);
+    nfig = 0;
+  }
+  char command[4096] = "fourbar";
+  for (int i = 0; i < argc; i++) {
+    strncat(command, " ", sizeof command - strlen(command) - 1);
+    strncat(command, argv[i], sizeof command - strlen(command) - 1);
+  }
+  if (fb_report_write_markdown(dir, &r, case_path, command, names, nfig, note, &diag) != FB_OK)
+    fprintf(stderr, "fourbar run: warning: %s\n", diag.msg);
   if (json) {
     json_t *j = fb_report_summary_json(&r, case_path);
     json_dumpf(j, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
@@ -96,7 +126,7 @@ int fb_cmd_run(int argc, char **argv) {
     json_decref(j);
   } else {
     fb_report_print_table(stdout, &r);
-    printf("wrote %s/summary.json and %d CSV files\n", dir, r.n);
+    printf("wrote %s/summary.json, %d CSV files, %d figures and report.md\n", dir, r.n, nfig);
   }
   fb_run_free(&r);
   return 0;

@@ -41,6 +41,10 @@ int main(int argc, char **argv) {
     return argc < 2 ? 2 : 0;
   }
   const char *cmd = argv[1];
+  /* getopt's own messages then read "fourbar <command>: ..." */
+  static char prog[64];
+  snprintf(prog, sizeof prog, "fourbar %s", cmd);
+  argv[1] = prog;
   if (strcmp(cmd, "run") == 0) return fb_cmd_run(argc - 1, argv + 1);
   if (strcmp(cmd, "kinematics") == 0) return fb_cmd_kinematics(argc - 1, argv + 1);
   if (strcmp(cmd, "impact") == 0) return fb_cmd_impact(argc - 1, argv + 1);

@@ -285,3 +285,51 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
              "coupler and follower against the exact analytic peaks of the same lengths; "
              "for analytic models it is the sampling floor of the time grid.\n");
 }
+
+fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char *case_path,
+                                   const char *command, char figures[][128], int n,
+                                   const char *figure_note, fb_diag *diag) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/report.md", dir);
+  fb_outfile out;
+  fb_status st = fb_outfile_open(&out, path, diag);
+  if (st != FB_OK) return st;
+  FILE *f = out.f;
+  const fb_case *c = &r->c;
+  fprintf(f, "# fourbar run: %s\n\n", c->name);
+  fprintf(f, "Command: `%s`  \nCase file: `%s`\n\n", command, case_path ? case_path : "-");
+  fprintf(f, "## Summary\n\n```\n");
+  fb_report_print_table(f, r);
+  fprintf(f, "```\n\nPer-model series: `<model>.csv`; every number: `summary.json`.\n\n");
+  fprintf(f, "## Parameters\n\n| quantity | value | source |\n|---|---|---|\n");
+  fb_linkage su;
+  fb_case_stackup_lengths(c, &su);
+  for (int k = 0; k < FB_LINK_COUNT; k++)
+    fprintf(f, "| %s length | %.4f mm nominal, +- %.3f mm, stack-up %.4f mm | %s |\n",
+            fb_link_name(k), c->nominal.length[k] * 1e3, c->plus_minus[k] * 1e3,
+            su.length[k] * 1e3, c->tolerance_source[k]);
+  fprintf(f, "| pin | diameter %.4g mm, length %.4g mm | %s |\n", c->pin_diameter * 1e3,
+          c->pin_length * 1e3, c->fit[0] ? c->fit : "case");
+  fprintf(f, "| radial clearance | %.4g um | %s |\n", c->radial_clearance * 1e6, c->clearance_source);
+  fprintf(f, "| crank speed | %.6g rpm %s | case |\n", c->crank_speed * 60.0 / (2.0 * M_PI),
+          c->direction > 0 ? "ccw" : "cw");
+  fprintf(f, "| step size h | %g s (%s) | case |\n", c->solver.h,
+          c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep");
+  if (c->clearance.mask) {
+    fprintf(f, "| clearance joints |");
+    for (int j = 0; j < 4; j++)
+      if (c->clearance.mask & (1 << j)) fprintf(f, " %s", fb_joint_name(j));
+    const char *src[3] = {"physical (Johnson line contact at the inverse-dynamics reaction)",
+                          "paper (Kc and P read in N-mm units)", "explicit"};
+    fprintf(f, " | case |\n| penalty source | %s, stiffness scale %g | case |\n",
+            src[c->clearance.penalty], c->clearance.stiffness_scale);
+    fprintf(f, "| restitution law | cr = %g | case |\n| impact law | n = %g, c_max = %g N s/m, "
+               "d_max = %g um | case |\n| mapping | %s | case |\n",
+            c->clearance.restitution, c->clearance.exponent, c->clearance.damping,
+            c->clearance.damping_depth * 1e6, c->clearance.mapping ? "tangent" : "secant");
+  }
+  fprintf(f, "\n## Figures\n\n");
+  if (n == 0) fprintf(f, "%s\n", figure_note ? figure_note : "No figures were drawn.");
+  for (int i = 0; i < n; i++) fprintf(f, "![%s](%s)\n\n", figures[i], figures[i]);
+  return fb_outfile_commit(&out, diag);
+}

@@ -29,6 +29,13 @@ fb_status fb_report_write_csv(const char *path, const fb_series *s, fb_diag *dia
 /* Writes a JSON value to path atomically (indented, keys in insertion order). */
 fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag);
 
+/* Writes DIR/report.md atomically: the command line, the summary table (as
+ * printed), the stack-up and contact parameters used, and each figure in
+ * figures (n names, may be 0) embedded. Errors: FB_ERR_IO. */
+fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char *case_path,
+                                   const char *command, char figures[][128], int n,
+                                   const char *figure_note, fb_diag *diag);
+
 /* Prints the summary table in the spirit of the paper's: per model, peaks of
  * coupler and follower angular velocity and acceleration, error against the
  * analytic solution of the same lengths, step size, steps, wall time. */

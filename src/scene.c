@@ -16,6 +16,7 @@ typedef struct {
   double v0;            /* penetration rate at the onset of the current contact [m/s] */
   int in_contact;
   int state;            /* FB_STATE_* during the last step */
+  int restituting;      /* impact: the penetration rate has turned negative */
   int impacts;
   dJointID cj;          /* contact joint of the last step, or 0 */
   dJointFeedback fb;
@@ -227,6 +228,25 @@ static void clearance_geometry(const clearance *c, double e[2], double *ddot_num
   *ddot_num = e[0] * ev[0] + e[1] * ev[1]; /* |e| times the rate of |e| */
 }
 
+/* contact-state bookkeeping at a step in contact with penetration rate
+ * ddot: an episode that begins at ddot >= vmin is an impact through its
+ * compression (ddot > 0) and restitution (ddot < 0); if the pin is still on
+ * the wall when the rate turns non-negative again, it is in continuous
+ * contact from then on. An episode that begins slower is continuous. */
+static void contact_state(clearance *c, double ddot, double vmin) {
+  if (!c->in_contact) {
+    c->in_contact = 1;
+    c->restituting = 0;
+    c->v0 = ddot > vmin ? ddot : vmin;
+    c->state = ddot >= vmin ? FB_STATE_IMPACT : FB_STATE_CONTINUOUS;
+    if (c->state == FB_STATE_IMPACT) c->impacts++;
+    return;
+  }
+  if (c->state != FB_STATE_IMPACT) return;
+  if (ddot < 0.0) c->restituting = 1;
+  else if (c->restituting) c->state = FB_STATE_CONTINUOUS;
+}
+
 typedef struct {
   dContactGeom *g;
   int n;
@@ -261,12 +281,7 @@ static void facet_contacts(fb_scene *s, int j) {
     /* normal points into body 1: approach rate along it */
     const double ddot = (v2[0] - v1[0]) * g[i].normal[0] + (v2[1] - v1[1]) * g[i].normal[1] +
                         (v2[2] - v1[2]) * g[i].normal[2];
-    if (i == 0 && !c->in_contact) {
-      c->in_contact = 1;
-      c->v0 = ddot > d->impact_velocity_min ? ddot : d->impact_velocity_min;
-      c->state = ddot >= d->impact_velocity_min ? FB_STATE_IMPACT : FB_STATE_CONTINUOUS;
-      if (c->state == FB_STATE_IMPACT) c->impacts++;
-    }
+    if (i == 0) contact_state(c, ddot, d->impact_velocity_min);
     double kp, kd, depth, erp, cfm;
     fb_contact_linearize(&d->law[j], d->mapping, g[i].depth, ddot, c->v0, &kp, &kd, &depth);
     if (fb_contact_erp_cfm(d->solver.h, kp / n, kd / n, &erp, &cfm, NULL) != FB_OK) continue;
@@ -305,12 +320,7 @@ static void clearance_contact(fb_scene *s, int j) {
   }
   const double n[2] = {e[0] / ecc, e[1] / ecc};
   const double ddot = num / ecc;
-  if (!c->in_contact) {
-    c->in_contact = 1;
-    c->v0 = ddot > d->impact_velocity_min ? ddot : d->impact_velocity_min;
-    c->state = ddot >= d->impact_velocity_min ? FB_STATE_IMPACT : FB_STATE_CONTINUOUS;
-    if (c->state == FB_STATE_IMPACT) c->impacts++;
-  }
+  contact_state(c, ddot, d->impact_velocity_min);
   double kp, kd, depth, erp, cfm;
   fb_contact_linearize(&d->law[j], d->mapping, delta, ddot, c->v0, &kp, &kd, &depth);
   if (fb_contact_erp_cfm(d->solver.h, kp, kd, &erp, &cfm, NULL) != FB_OK) return;

@@ -1,0 +1,39 @@
+/* Figures of a run, drawn by gnuplot driven through a pipe (gnuplot 5.4,
+ * Debian's gnuplot-nox): SVG by default, PNG (pngcairo) on request. Each
+ * figure is written to a temporary name and renamed into place. Curves are
+ * decimated to at most FB_FIGURE_MAX_POINTS points by keeping the minimum and
+ * maximum of each bucket of samples, so spikes survive the decimation; a
+ * manifest figures.json lists every figure with the number of points of each
+ * curve and the CSV it was drawn from. */
+#ifndef FB_FIGURES_H
+#define FB_FIGURES_H
+
+#include "run.h"
+
+#define FB_FIGURE_MAX_POINTS 2000
+
+typedef enum { FB_FIGURE_SVG = 0, FB_FIGURE_PNG = 1 } fb_figure_format;
+
+/* Draws the run's figures into dir: omega.<ext> (coupler and follower
+ * angular velocity against crank angle over the revolution after the first,
+ * every model overlaid on the analytic curve), alpha.<ext> (the same for
+ * angular acceleration, symlog axis with a linear band of +-1000 rad/s^2),
+ * and for each clearance model and joint contact_<model>_<joint>.<ext> (pin
+ * centre orbit inside the clearance circle coloured by contact state, and the
+ * contact force against crank angle), plus figures.json. names receives the
+ * file names written (up to max), *n their count.
+ * Errors: FB_ERR_IO when gnuplot cannot be started or fails (its messages are
+ * in dir/.gnuplot.log), naming the figure. */
+fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt, char names[][128],
+                         int max, int *n, fb_diag *diag);
+
+/* Draws penalty.<ext>: force, contact stiffness, penalty and approach against
+ * crank speed for both joints (the paper's Figures 2 to 4), from columns of
+ * equal length n: speed [rpm], then per joint (2) force [N], stiffness [N/m],
+ * penalty, approach [um]. Errors as fb_figures_run. */
+fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char *mode, int n,
+                             const double *rpm, const double *force[2], const double *stiffness[2],
+                             const double *penalty[2], const double *approach_um[2],
+                             fb_diag *diag);
+
+#endif

@@ -2,6 +2,9 @@
 # The README's two commands:
 #   bash scripts/quickstart.sh run [fourbar run options]   install, build, run the paper's case
 #   bash scripts/quickstart.sh test                        install, build, run the whole test suite
+# and what CI adds after the second:
+#   bash scripts/quickstart.sh robust   sanitizer build of the whole suite, valgrind on the
+#                                       paper case, bounded libFuzzer runs (FUZZ_SECONDS each)
 # Installs only the Debian packages that are missing (as root, or through sudo).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,12 +12,13 @@ cd "$(dirname "$0")/.."
 what=${1:-}
 [ $# -gt 0 ] && shift
 case "$what" in
-  run|test|build) ;;
-  *) echo "usage: bash scripts/quickstart.sh run|test|build [fourbar run options]" >&2; exit 2 ;;
+  run|test|build|robust) ;;
+  *) echo "usage: bash scripts/quickstart.sh run|test|build|robust [fourbar run options]" >&2; exit 2 ;;
 esac
 
 packages=(gcc libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox)
+[ "$what" = robust ] && packages+=(clang libclang-rt-14-dev valgrind)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -64,4 +68,46 @@ case "$what" in
     echo "tests: $((passed + cpassed)) passed, $((failed + cfailed)) failed"
     [ "$rc" -ne 0 ] && exit $rc
     exit $crc ;;
+  robust)
+    # 1. the whole unit-test suite under AddressSanitizer + UndefinedBehaviorSanitizer
+    echo "== sanitizer build (address, undefined): whole test suite"
+    if [ ! -f build-asan/build.ninja ]; then
+      meson setup build-asan -Db_sanitize=address,undefined -Db_lundef=false \
+        -Dc_args=-fno-sanitize-recover=all -Dwerror=$werror >/dev/null
+    fi
+    ninja -C build-asan >/dev/null
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+      meson test -C build-asan --print-errorlogs >build-asan/sanitize.txt 2>&1 \
+      || { tail -n 40 build-asan/sanitize.txt; echo "sanitizer suite failed (build-asan/meson-logs)"; exit 1; }
+    grep -E '^(Ok|Fail):' build-asan/sanitize.txt
+    # 2. valgrind on the paper's case: no invalid access, no definite or indirect leak
+    echo "== valgrind fourbar run (paper case)"
+    valgrind -q --error-exitcode=3 --leak-check=full --errors-for-leak-kinds=definite,indirect \
+      ./build/fourbar run --out build/valgrind-run --no-figures >build/valgrind.txt 2>&1 \
+      || { tail -n 40 build/valgrind.txt; echo "valgrind found errors (build/valgrind.txt)"; exit 1; }
+    echo "valgrind: clean"
+    # 3. bounded fuzzing of the case-file and fit-string parsers
+    secs=${FUZZ_SECONDS:-60}
+    echo "== libFuzzer, ${secs} s per harness"
+    if [ ! -f build-fuzz/build.ninja ]; then
+      CC=clang meson setup build-fuzz -Dfuzz=true -Dtests=false -Db_sanitize=address,undefined \
+        -Db_lundef=false >/dev/null
+    fi
+    ninja -C build-fuzz >/dev/null
+    mkdir -p build-fuzz/crashes build-fuzz/corpus-casefile build-fuzz/corpus-fit
+    frc=0
+    for h in casefile fit; do
+      seeds=cases; [ "$h" = fit ] && seeds=tests/fuzz/seeds_fit
+      ./build-fuzz/tests/fuzz/fuzz_$h -max_total_time="$secs" -timeout=10 -rss_limit_mb=4096 \
+        -artifact_prefix=build-fuzz/crashes/$h- build-fuzz/corpus-$h "$seeds" tests/fuzz/regressions \
+        >build-fuzz/fuzz-$h.txt 2>&1 || frc=1
+      runs=$(grep -oE 'Done [0-9]+ runs in [0-9]+ second' build-fuzz/fuzz-$h.txt | tail -n 1)
+      echo "fuzz_$h: ${runs:-no summary} ($(grep -oE 'exec/s: [0-9]+' build-fuzz/fuzz-$h.txt | tail -n 1))"
+    done
+    if [ "$frc" -ne 0 ]; then
+      ls -l build-fuzz/crashes
+      echo "a fuzzer found a crash: copy the input into tests/fuzz/regressions/ and fix it"
+      exit 1
+    fi
+    echo "robustness: sanitizers, valgrind and fuzzing clean" ;;
 esac

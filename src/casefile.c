@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "contact.h"
 #include "iso2768.h"
@@ -255,6 +256,8 @@ typedef struct {
   const char *path;
   int line;         /* line the reader returned last */
   int too_long;     /* a line exceeded INI_MAX_LINE */
+  const char *text; /* parse this text instead of the file (fb_casefile_load_text) */
+  size_t text_size;
   fb_status status; /* first error seen by the handler */
   fb_diag *diag;
 } load_ctx;
@@ -409,6 +412,21 @@ static char *trim(char *s) {
   return s;
 }
 
+/* 1 when a comma-separated list has an empty item ("a,,b", "a,", ",a") */
+static int has_empty_item(const char *v) {
+  const char *p = v;
+  for (;;) {
+    const char *q = strchr(p, ',');
+    const char *end = q ? q : p + strlen(p);
+    int blank = 1;
+    for (const char *x = p; x < end; x++)
+      if (*x != ' ' && *x != '\t') blank = 0;
+    if (blank) return 1;
+    if (!q) return 0;
+    p = q + 1;
+  }
+}
+
 static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
   const key_spec *k = find_spec(e->section, e->key);
   if (!k) return unknown_key(e, diag);
@@ -475,6 +493,9 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else return bad_word(e, k, diag);
       return FB_OK;
     case K_JOINTS: {
+      if (has_empty_item(e->value))
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': an empty item in the list",
+                           e->origin, e->section, e->key, e->value);
       char buf[sizeof e->value];
       snprintf(buf, sizeof buf, "%s", e->value);
       int mask = 0;
@@ -558,6 +579,9 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       return FB_OK;
     }
     case K_MODELS: {
+      if (has_empty_item(e->value))
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': an empty item in the list",
+                           e->origin, e->section, e->key, e->value);
       char buf[sizeof e->value];
       snprintf(buf, sizeof buf, "%s", e->value);
       c->model_count = 0;
@@ -697,16 +721,26 @@ static fb_status parse_override(load_ctx *c, const char *ov, int index) {
 /* parses one file into ctx entries of its own, then merges: the entries of
  * its [case] base file (resolved relative to it, recursively) first, its own
  * keys replacing them */
-static fb_status read_file_entries(load_ctx *top, const char *path, int depth, fb_diag *diag) {
+static fb_status read_file_entries(load_ctx *top, const char *path, int depth, fb_diag *diag,
+                                   const char *text, size_t text_size) {
   load_ctx *c = calloc(1, sizeof *c);
   if (!c) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   c->path = path;
+  c->text = text;
+  c->text_size = text_size;
   c->diag = diag;
   c->status = FB_OK;
   fb_status st = FB_OK;
-  FILE *f = fopen(path, "r");
+  FILE *f = c->text ? fmemopen((void *)c->text, c->text_size, "r") : fopen(path, "r");
   if (!f) {
     st = fb_diag_set(diag, FB_ERR_IO, "%s: cannot open case file: %s", path, strerror(errno));
+    goto out;
+  }
+  /* a directory opens and reads as empty, a device may never end: refuse both */
+  struct stat sb;
+  if (!c->text && (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode))) {
+    fclose(f);
+    st = fb_diag_set(diag, FB_ERR_IO, "%s: not a regular file (a case file is a text file)", path);
     goto out;
   }
   reader_state r = {f, c};
@@ -722,12 +756,12 @@ static fb_status read_file_entries(load_ctx *top, const char *path, int depth, f
     goto out;
   }
   if (rc != 0) {
-    char text[256];
-    read_line(path, rc, text, sizeof text);
+    char line[256] = "";
+    if (!c->text) read_line(path, rc, line, sizeof line);
     st = fb_diag_set(diag, FB_ERR_PARSE,
                      "%s:%d: malformed line '%s': expected '[section]', 'key = value' or "
                      "a comment starting with ; or #",
-                     path, rc, text);
+                     path, rc, line);
     goto out;
   }
   int b = find_entry(c, "case", "base");
@@ -744,7 +778,7 @@ static fb_status read_file_entries(load_ctx *top, const char *path, int depth, f
     else
       snprintf(base, sizeof base, "%.*s/%s", (int)(slash - path), path, c->e[b].value);
     fb_diag inner;
-    st = read_file_entries(top, base, depth + 1, &inner);
+    st = read_file_entries(top, base, depth + 1, &inner, NULL, 0);
     if (st != FB_OK) {
       fb_diag_set(diag, st, "%s: [case] base: %s", c->e[b].origin, inner.msg);
       goto out;
@@ -761,8 +795,26 @@ out:
   return st;
 }
 
+static fb_status load(fb_case *out, const char *path, const char *text, size_t text_size,
+                      const char *const *overrides, int n_overrides, fb_diag *diag);
+
 fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *overrides,
                            int n_overrides, fb_diag *diag) {
+  return load(out, path, NULL, 0, overrides, n_overrides, diag);
+}
+
+fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text, size_t size,
+                                fb_diag *diag) {
+  if (size == 0) { /* fmemopen refuses an empty buffer: an empty case is the defaults */
+    static const char empty[] = "\n";
+    text = empty;
+    size = 1;
+  }
+  return load(out, name, text, size, NULL, 0, diag);
+}
+
+static fb_status load(fb_case *out, const char *path, const char *text, size_t text_size,
+                      const char *const *overrides, int n_overrides, fb_diag *diag) {
   fb_diag_clear(diag);
   load_ctx *c = calloc(1, sizeof *c);
   if (!c) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -772,7 +824,7 @@ fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *ov
   fb_status st = FB_OK;
 
   if (path) {
-    st = read_file_entries(c, path, 0, diag);
+    st = read_file_entries(c, path, 0, diag, text, text_size);
     if (st != FB_OK) goto done;
   }
   for (int i = 0; i < n_overrides; i++) {

@@ -23,6 +23,12 @@
 fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *overrides,
                            int n_overrides, fb_diag *diag);
 
+/* As fb_casefile_load for a case given as text (size bytes, need not end in
+ * a newline or NUL) named name in messages, with no overrides; a [case] base
+ * is read from disk relative to name. Used by the fuzzer. */
+fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text, size_t size,
+                                fb_diag *diag);
+
 /* Writes the key table as Markdown rows "| [section] key | unit | default |
  * rule | meaning |" to f, for the documentation. */
 void fb_casefile_write_keys(FILE *f);

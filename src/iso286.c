@@ -142,7 +142,7 @@ static const dev_row *find_shaft(const char *lower) {
 #define SUPPORTED "holes A B C D E F G H JS K M N P R S, shafts a b c d e f g h js k m n p r s"
 
 fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_diag *diag) {
-  char letters[4];
+  char letters[4] = {0, 0, 0, 0};
   int grade = 0;
   fb_status st = split_class(cls, letters, &grade, diag);
   if (st != FB_OK) return st;
@@ -151,8 +151,8 @@ fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_di
   if (st != FB_OK) return st;
   const double mm = size * 1e3;
   const int hole = isupper((unsigned char)letters[0]) != 0;
-  char lower[4];
-  for (int i = 0; i < 4; i++) lower[i] = (char)tolower((unsigned char)letters[i]);
+  char lower[4] = {0, 0, 0, 0};
+  for (int i = 0; i < 3 && letters[i]; i++) lower[i] = (char)tolower((unsigned char)letters[i]);
   int mixed = 0;
   for (int i = 0; letters[i]; i++)
     if ((isupper((unsigned char)letters[i]) != 0) != hole) mixed = 1;

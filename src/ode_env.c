@@ -6,18 +6,29 @@
 
 static int ode_users = 0;
 
-static void ode_report(int errnum, const char *msg, va_list ap) {
-  fprintf(stderr, "fourbar: ODE message %d: ", errnum);
+static void report(const char *kind, int errnum, const char *msg, va_list ap) {
+  fprintf(stderr, "fourbar: ODE %s %d: ", kind, errnum);
   vfprintf(stderr, msg, ap);
   fputc('\n', stderr);
+  fflush(stderr);
 }
+
+/* dError and dDebug end the process after their handler returns (ODE 0.16,
+ * ode/src/error.cpp): the message says so instead of a silent exit */
+static void on_error(int errnum, const char *msg, va_list ap) {
+  report("error (fatal, the run ends)", errnum, msg, ap);
+}
+static void on_debug(int errnum, const char *msg, va_list ap) {
+  report("internal error (fatal, the run ends)", errnum, msg, ap);
+}
+static void on_message(int errnum, const char *msg, va_list ap) { report("message", errnum, msg, ap); }
 
 void fb_ode_acquire(void) {
   if (ode_users++ == 0) {
     dInitODE2(0);
-    dSetErrorHandler(ode_report);
-    dSetDebugHandler(ode_report);
-    dSetMessageHandler(ode_report);
+    dSetErrorHandler(on_error);
+    dSetDebugHandler(on_debug);
+    dSetMessageHandler(on_message);
   }
 }
 

@@ -1,5 +1,6 @@
 /* Case files: unit conversion at the edge, overrides, and every class of bad
  * input giving one message that names where, what and which rule. */
+#include <dirent.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -107,6 +108,12 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                (const char *[]){":2:", "crank_mm = -3", "must be positive", NULL});
   expect_error("[linkage]\ncrank_mm = nan\n", NULL, 0, FB_ERR_PARSE,
                (const char *[]){":2:", "finite", NULL});
+  expect_error("[linkage]\ncrank_mm = -inf\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "crank_mm = '-inf'", "finite", NULL});
+  expect_error("[mass]\ncoupler_kg = -0.29\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){":2:", "coupler_kg = -0.29", "a mass must be positive", NULL});
+  expect_error("[clearance]\nrestitution = 1.5\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){":2:", "restitution = 1.5", "cr must lie in", NULL});
   expect_error("[linkage]\ncrank_mm = 12abc\n", NULL, 0, FB_ERR_PARSE,
                (const char *[]){"not a number", NULL});
   expect_error("[material]\npoisson_ratio = 0.5\n", NULL, 0, FB_ERR_RANGE,
@@ -150,6 +157,39 @@ static void test_every_key_documented(void **state) {
   }
 }
 
+static void test_fuzz_regressions_give_errors_not_crashes(void **state) {
+  (void)state;
+  /* inputs that once crashed, hung or were accepted wrongly: each must now
+   * load or fail with a message (tests/fuzz/regressions) */
+  char dir[4096];
+  snprintf(dir, sizeof dir, "%s/../tests/fuzz/regressions", cases_dir());
+  DIR *d = opendir(dir);
+  assert_non_null(d);
+  struct dirent *e;
+  int n = 0;
+  while ((e = readdir(d))) {
+    if (e->d_name[0] == '.') continue;
+    char path[8192];
+    snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+    FILE *f = fopen(path, "rb");
+    static char buf[1 << 16];
+    size_t len = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    fb_case c;
+    fb_diag diag;
+    fb_status st = fb_casefile_load_text(&c, path, buf, len, &diag);
+    if (fb_test_verbose()) fprintf(stderr, "  %s: %s\n", e->d_name, st == FB_OK ? "ok" : diag.msg);
+    if (st != FB_OK) assert_true(diag.msg[0] != '\0');
+    /* the known bad ones are refused */
+    if (strstr(e->d_name, "base_") || strstr(e->d_name, "infinite") || strstr(e->d_name, "fit_and") ||
+        strstr(e->d_name, "empty_joint"))
+      assert_int_not_equal(st, FB_OK);
+    n++;
+  }
+  closedir(d);
+  assert_true(n >= 5);
+}
+
 int main(void) {
   snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", cases_dir());
   const struct CMUnitTest tests[] = {
@@ -158,6 +198,7 @@ int main(void) {
       cmocka_unit_test(test_missing_file),
       cmocka_unit_test(test_bad_inputs_name_place_value_rule),
       cmocka_unit_test(test_every_key_documented),
+      cmocka_unit_test(test_fuzz_regressions_give_errors_not_crashes),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -34,5 +34,8 @@ int fb_cmd_fit(int argc, char **argv);
 int fb_cmd_tolerance(int argc, char **argv);
 int fb_cmd_stackup(int argc, char **argv);
 int fb_cmd_check(int argc, char **argv);
+int fb_cmd_sweep(int argc, char **argv);
+int fb_cmd_merge(int argc, char **argv);
+int fb_cmd_mapping(int argc, char **argv);
 
 #endif

@@ -253,6 +253,8 @@ fb_status fb_contact_kp_kd(double h, double erp, double cfm, double *kp, double 
   return FB_OK;
 }
 
+double fb_contact_h_omega(double h, double k, double m) { return h * sqrt(k / m); }
+
 const char *fb_mapping_name(fb_mapping m) {
   return m == FB_MAPPING_TANGENT ? "tangent" : "secant";
 }

@@ -141,6 +141,11 @@ typedef enum {
 
 const char *fb_mapping_name(fb_mapping m);
 
+/* h times the contact frequency sqrt(k / m) of a spring k [N/m] on mass m
+ * [kg] at step h [s]: the measure of how many steps resolve one contact
+ * (ODE's mapped spring loses about 1.1 h omega of restitution per impact). */
+double fb_contact_h_omega(double h, double k, double m);
+
 /* A per-step spring-damper for ODE that reproduces law at the current state:
  * kp [N/m], kd [N s/m] and the depth [m] to hand to the contact row, so that
  * kp depth + kd ddot = F(delta, ddot) (before clamping) at this state.

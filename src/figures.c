@@ -292,22 +292,27 @@ fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt,
   return st;
 }
 
+/* "dir/name.ext" -> dir, name (no extension); "name.ext" -> ".", name */
+static void split_path(const char *path, char *dir, size_t dsize, char *name, size_t nsize) {
+  snprintf(dir, dsize, "%s", path);
+  char *slash = strrchr(dir, '/');
+  if (slash) {
+    snprintf(name, nsize, "%s", slash + 1);
+    *slash = '\0';
+  } else {
+    snprintf(name, nsize, "%s", path);
+    snprintf(dir, dsize, ".");
+  }
+  char *dot = strrchr(name, '.');
+  if (dot) *dot = '\0';
+}
+
 fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char *mode, int n,
                              const double *rpm, const double *force[2], const double *stiffness[2],
                              const double *penalty[2], const double *approach_um[2],
                              fb_diag *diag) {
   char dir[4096], name[256];
-  snprintf(dir, sizeof dir, "%s", path);
-  char *slash = strrchr(dir, '/');
-  if (slash) {
-    snprintf(name, sizeof name, "%s", slash + 1);
-    *slash = '\0';
-  } else {
-    snprintf(name, sizeof name, "%s", path);
-    snprintf(dir, sizeof dir, ".");
-  }
-  char *dot = strrchr(name, '.');
-  if (dot) *dot = '\0';
+  split_path(path, dir, sizeof dir, name, sizeof name);
   plot pl;
   fb_status st = plot_open(&pl, dir, name, fmt, 1100, 850, diag);
   if (st != FB_OK) return st;
@@ -327,5 +332,37 @@ fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char 
                   "'coupler-follower'\n",
             labels[q], labels[q], q, q);
   fprintf(pl.p, "unset multiplot\n");
+  return plot_close(&pl, diag);
+}
+
+fb_status fb_figures_mapping(const char *path, fb_figure_format fmt, const char *title, int nk,
+                             const double *k, int nh, const double *h, const double *erp,
+                             const double *h_omega, fb_diag *diag) {
+  char dir[4096], name[256];
+  split_path(path, dir, sizeof dir, name, sizeof name);
+  plot pl;
+  fb_status st = plot_open(&pl, dir, name, fmt, 1000, 760, diag);
+  if (st != FB_OK) return st;
+  fprintf(pl.p, "$map << EOD\n");
+  for (int i = 0; i < nk; i++) {
+    for (int j = 0; j < nh; j++)
+      fprintf(pl.p, "%.6f %.6f %.9g %.9g\n", log10(k[i]), log10(h[j]), erp[i * nh + j],
+              log10(h_omega[i * nh + j]));
+    fprintf(pl.p, "\n");
+  }
+  fprintf(pl.p, "EOD\n");
+  /* contours first (tabulated without pm3d), then the map */
+  fprintf(pl.p, "set view map\nset contour base\nunset surface\nset cntrparam levels discrete 0\n"
+                "set table $hw\nsplot $map using 1:2:4\nunset table\n"
+                "set cntrparam levels discrete 0.1, 0.99\nset table $erpc\n"
+                "splot $map using 1:2:3\nunset table\nunset contour\nset surface\n");
+  fprintf(pl.p, "set title '%s' noenhanced\nset xlabel 'log10 stiffness k [N/m]'\n"
+                "set ylabel 'log10 step size h [s]'\nset cblabel 'ERP'\nset cbrange [0:1]\n"
+                "set pm3d map interpolate 4,4\nset palette rgb 33,13,10\n"
+                "set key outside top center horizontal\n"
+                "splot $map using 1:2:3 with pm3d notitle, "
+                "$hw using 1:2:(1) with lines lw 3 lc rgb 'white' title 'h omega = 1 (above: under-resolved)', "
+                "$erpc using 1:2:(1) with lines lw 2 dt 2 lc rgb 'black' title 'ERP = 0.1 and 0.99'\n",
+          title);
   return plot_close(&pl, diag);
 }

@@ -36,4 +36,11 @@ fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char 
                              const double *penalty[2], const double *approach_um[2],
                              fb_diag *diag);
 
+/* Draws the ERP map over log10 stiffness x log10 step (heat map) with the
+ * h omega = 1 contour and the ERP = 0.1 and 0.99 contours, to path. erp and
+ * h_omega are (nk x nh), row-major by stiffness. Errors as fb_figures_run. */
+fb_status fb_figures_mapping(const char *path, fb_figure_format fmt, const char *title, int nk,
+                             const double *k, int nh, const double *h, const double *erp,
+                             const double *h_omega, fb_diag *diag);
+
 #endif

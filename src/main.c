@@ -20,6 +20,9 @@ static const char main_help[] =
     "  penalty      contact stiffness and penalty parameter per speed (paper or physical)\n"
     "  impact       one impact in ODE against a reference integration and closed form\n"
     "  check        rerun cases and compare spike metrics with committed baselines\n"
+    "  sweep        run a study's grid (jobs, shards for GNU parallel and Slurm, resumable)\n"
+    "  merge        join shard outputs of a sweep\n"
+    "  mapping      ERP and CFM against contact stiffness and step size\n"
     "  keys         list every case-file key with unit, default and rule\n"
     "\n"
     "All outputs are SI; names carry the unit (omega_max_rad_s, h_s).\n";
@@ -53,6 +56,9 @@ int main(int argc, char **argv) {
   if (strcmp(cmd, "tolerance") == 0) return fb_cmd_tolerance(argc - 1, argv + 1);
   if (strcmp(cmd, "stackup") == 0) return fb_cmd_stackup(argc - 1, argv + 1);
   if (strcmp(cmd, "check") == 0) return fb_cmd_check(argc - 1, argv + 1);
+  if (strcmp(cmd, "sweep") == 0) return fb_cmd_sweep(argc - 1, argv + 1);
+  if (strcmp(cmd, "merge") == 0) return fb_cmd_merge(argc - 1, argv + 1);
+  if (strcmp(cmd, "mapping") == 0) return fb_cmd_mapping(argc - 1, argv + 1);
   if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
   fprintf(stderr, "fourbar: unknown command '%s'\n\n%s", cmd, main_help);
   return 2;

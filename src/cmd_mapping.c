@@ -1,0 +1,154 @@
+/* fourbar mapping: ERP and CFM against contact stiffness and step size.
+ * Argument parsing, the grid and printing; the mapping is contact.c's. */
+#include <getopt.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "contact.h"
+#include "figures.h"
+#include "fileio.h"
+
+#define MAX_GRID 64
+
+static const char mapping_help[] =
+    "usage: fourbar mapping [--mass-kg m] [--restitution cr] [--stiffness-n-m FROM:TO]\n"
+    "                       [--h-s FROM:TO] [--per-decade N] [--out DIR] [--json]\n"
+    "\n"
+    "ERP = h k / (h k + c) and CFM = 1 / (h k + c) of a contact spring k [N/m] with the\n"
+    "restitution law's damper c = 2 zeta sqrt(k m) (zeta giving restitution cr for\n"
+    "mass m), on a logarithmic grid of stiffness and step size. Marks where ERP\n"
+    "leaves [0.1, 0.99] ('<' or '>') and where h omega = h sqrt(k/m) passes 1 ('*':\n"
+    "fewer than ~3 steps per contact; ODE's mapped spring then loses most of the\n"
+    "restitution, see fourbar impact).\n"
+    "\n"
+    "  --mass-kg        effective mass (default 0.0852: crank and coupler reduced)\n"
+    "  --restitution    cr of the restitution law (default 0.9)\n"
+    "  --stiffness-n-m  range, default 1e5:1e12\n"
+    "  --h-s            range, default 1e-7:1e-3\n"
+    "  --per-decade     grid points per decade (default 1)\n"
+    "  --figure-format  svg (default) or png\n"
+    "  --out DIR        also write DIR/mapping.csv and DIR/mapping.svg (ERP map with\n"
+    "                   the h omega = 1 and ERP = 0.1, 0.99 contours)\n";
+
+static int parse_range(const char *t, double *a, double *b) {
+  char tail;
+  return sscanf(t, "%lf:%lf%c", a, b, &tail) == 2 && *a > 0 && *b > *a && isfinite(*b);
+}
+
+int fb_cmd_mapping(int argc, char **argv) {
+  static const struct option opts[] = {{"mass-kg", required_argument, 0, 'm'},
+                                       {"restitution", required_argument, 0, 'e'},
+                                       {"stiffness-n-m", required_argument, 0, 'k'},
+                                       {"h-s", required_argument, 0, 't'},
+                                       {"per-decade", required_argument, 0, 'p'},
+                                       {"out", required_argument, 0, 'o'},
+                                       {"json", no_argument, 0, 'j'},
+                                       {"figure-format", required_argument, 0, 'f'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  fb_figure_format fmt = FB_FIGURE_SVG;
+  double m = 0.12 * 0.29 / (0.12 + 0.29), cr = 0.9, k0 = 1e5, k1 = 1e12, h0 = 1e-7, h1 = 1e-3, per = 1;
+  const char *out = NULL;
+  int json = 0, ch;
+  optind = 1;
+  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    switch (ch) {
+      case 'm': if (!fb_cli_double("mapping", "--mass-kg", optarg, &m)) return 2; break;
+      case 'e': if (!fb_cli_double("mapping", "--restitution", optarg, &cr)) return 2; break;
+      case 'k':
+        if (!parse_range(optarg, &k0, &k1))
+          return fb_cli_fail("mapping", 2, "--stiffness-n-m '%s': expected FROM:TO with 0 < FROM < TO", optarg);
+        break;
+      case 't':
+        if (!parse_range(optarg, &h0, &h1))
+          return fb_cli_fail("mapping", 2, "--h-s '%s': expected FROM:TO with 0 < FROM < TO", optarg);
+        break;
+      case 'p': if (!fb_cli_double("mapping", "--per-decade", optarg, &per)) return 2; break;
+      case 'o': out = optarg; break;
+      case 'j': json = 1; break;
+      case 'f':
+        if (strcmp(optarg, "svg") == 0) fmt = FB_FIGURE_SVG;
+        else if (strcmp(optarg, "png") == 0) fmt = FB_FIGURE_PNG;
+        else return fb_cli_fail("mapping", 2, "--figure-format '%s': must be svg or png", optarg);
+        break;
+      case 'h': fputs(mapping_help, stdout); return 0;
+      default: fputs(mapping_help, stderr); return 2;
+    }
+  }
+  if (optind < argc) return fb_cli_fail("mapping", 2, "unexpected argument '%s'", argv[optind]);
+  if (!(m > 0)) return fb_cli_fail("mapping", 2, "--mass-kg %g: a mass must be positive", m);
+  if (!(cr > FB_RESTITUTION_MIN && cr <= 1))
+    return fb_cli_fail("mapping", 2, "--restitution %g: must lie in (%.4f, 1] for the restitution law",
+                       cr, FB_RESTITUTION_MIN);
+  if (!(per >= 1 && per <= 10 && per == floor(per)))
+    return fb_cli_fail("mapping", 2, "--per-decade %g: an integer from 1 to 10", per);
+  const int nk = (int)floor(log10(k1 / k0) * per + 1e-9) + 1, nh = (int)floor(log10(h1 / h0) * per + 1e-9) + 1;
+  if (nk > MAX_GRID || nh > MAX_GRID) return fb_cli_fail("mapping", 2, "grid larger than %d x %d", MAX_GRID, MAX_GRID);
+  double k[MAX_GRID], h[MAX_GRID];
+  static double erp[MAX_GRID * MAX_GRID], cfm[MAX_GRID * MAX_GRID], hw[MAX_GRID * MAX_GRID];
+  for (int i = 0; i < nk; i++) k[i] = k0 * pow(10.0, i / per);
+  for (int j = 0; j < nh; j++) h[j] = h0 * pow(10.0, j / per);
+  const double zeta = fb_contact_restitution_zeta(cr);
+  for (int i = 0; i < nk; i++)
+    for (int j = 0; j < nh; j++) {
+      const double c = 2.0 * zeta * sqrt(k[i] * m);
+      fb_contact_erp_cfm(h[j], k[i], c, &erp[i * nh + j], &cfm[i * nh + j], NULL);
+      hw[i * nh + j] = fb_contact_h_omega(h[j], k[i], m);
+    }
+  if (json) {
+    json_t *o = json_object(), *rows = json_array();
+    json_object_set_new(o, "mass_kg", json_real(m));
+    json_object_set_new(o, "restitution", json_real(cr));
+    json_object_set_new(o, "zeta", json_real(zeta));
+    for (int i = 0; i < nk; i++)
+      for (int j = 0; j < nh; j++)
+        json_array_append_new(rows, json_pack("{s:f,s:f,s:f,s:f,s:f,s:b,s:b}", "stiffness_n_m", k[i],
+                                              "h_s", h[j], "erp", erp[i * nh + j], "cfm_m_n_s",
+                                              cfm[i * nh + j], "h_omega", hw[i * nh + j],
+                                              "erp_in_range", erp[i * nh + j] >= 0.1 && erp[i * nh + j] <= 0.99,
+                                              "resolved", hw[i * nh + j] <= 1.0));
+    json_object_set_new(o, "rows", rows);
+    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
+    fputc('\n', stdout);
+    json_decref(o);
+  } else {
+    printf("ERP (and h omega) of the restitution law, cr = %g (zeta = %.4f), m = %g kg\n"
+           "'<' ERP < 0.1, '>' ERP > 0.99, '*' h omega > 1 (contact under-resolved)\n\n%12s",
+           cr, zeta, m, "k [N/m] \\ h");
+    for (int j = 0; j < nh; j++) printf(" %10.0e", h[j]);
+    printf("\n");
+    for (int i = 0; i < nk; i++) {
+      printf("%12.1e", k[i]);
+      for (int j = 0; j < nh; j++) {
+        const double e = erp[i * nh + j];
+        printf(" %8.4f%c%c", e, e < 0.1 ? '<' : (e > 0.99 ? '>' : ' '), hw[i * nh + j] > 1.0 ? '*' : ' ');
+      }
+      printf("\n");
+    }
+  }
+  if (out) {
+    fb_diag d;
+    if (fb_outdir_prepare(out, &d) != FB_OK) return fb_cli_fail("mapping", 1, "%s", d.msg);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/mapping.csv", out);
+    fb_outfile f;
+    if (fb_outfile_open(&f, path, &d) != FB_OK) return fb_cli_fail("mapping", 1, "%s", d.msg);
+    fprintf(f.f, "stiffness_n_m,h_s,erp,cfm_m_n_s,h_omega\n");
+    for (int i = 0; i < nk; i++)
+      for (int j = 0; j < nh; j++)
+        fprintf(f.f, "%.10g,%.10g,%.12g,%.12g,%.12g\n", k[i], h[j], erp[i * nh + j], cfm[i * nh + j], hw[i * nh + j]);
+    if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("mapping", 1, "%s", d.msg);
+    snprintf(path, sizeof path, "%s/mapping.%s", out, fmt == FB_FIGURE_PNG ? "png" : "svg");
+    char title[160];
+    snprintf(title, sizeof title, "ERP of the restitution law (cr = %g, m = %g kg)", cr, m);
+    if (fb_figures_mapping(path, fmt, title, nk, k, nh, h, erp, hw, &d) != FB_OK)
+      fprintf(stderr, "fourbar mapping: warning: %s\n", d.msg);
+    else if (!json)
+      printf("\nwrote %s/mapping.csv and %s\n", out, path);
+  }
+  return 0;
+}

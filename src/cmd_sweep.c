@@ -1,0 +1,395 @@
+/* fourbar sweep and fourbar merge: parsing, processes and files. The points
+ * themselves are computed by study.c. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <fcntl.h>
+#include <getopt.h>
+#include <limits.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <dirent.h>
+
+#include "cli.h"
+#include "clock.h"
+#include "fileio.h"
+#include "study.h"
+
+static const char sweep_help[] =
+    "usage: fourbar sweep STUDY [--jobs J] [--shard I/N] [--out DIR]\n"
+    "       fourbar sweep STUDY --list N [--out DIR]\n"
+    "\n"
+    "Runs every point of a study's grid (cases/studies/*.ini): one row per point in\n"
+    "DIR/points.jsonl (appended as points finish) and DIR/points.csv (written at the\n"
+    "end, sorted). A rerun skips the points already in the JSON lines, so a killed\n"
+    "sweep resumes without recomputing. A progress bar with ETA is drawn on a terminal.\n"
+    "\n"
+    "  --jobs J     J worker processes on this machine (default 1)\n"
+    "  --shard I/N  only points with index %% N == I (0 <= I < N), into\n"
+    "               DIR/points.shard-I-of-N.jsonl: for Slurm job arrays\n"
+    "               (--shard $SLURM_ARRAY_TASK_ID/N) or GNU parallel\n"
+    "  --list N     print the N shard commands, one per line, for GNU parallel\n"
+    "  --out DIR    default results/studies/<study name>\n"
+    "Then: fourbar merge DIR... joins shard outputs, checking no point is missing\n"
+    "or duplicated.\n";
+
+static const char merge_help[] =
+    "usage: fourbar merge DIR... [--out DIR]\n"
+    "\n"
+    "Joins the points*.jsonl files of the given folders into OUT/points.jsonl and\n"
+    "OUT/points.csv (default OUT: the first DIR), after checking that they belong to\n"
+    "one study and that every point 0..N-1 is present exactly once.\n";
+
+typedef struct {
+  char **rows;
+  size_t n, cap;
+} rowset;
+
+static int rows_add(rowset *r, const char *line) {
+  if (r->n == r->cap) {
+    size_t cap = r->cap ? 2 * r->cap : 64;
+    char **p = realloc(r->rows, cap * sizeof *p);
+    if (!p) return 0;
+    r->rows = p;
+    r->cap = cap;
+  }
+  r->rows[r->n] = strdup(line);
+  return r->rows[r->n++] != NULL;
+}
+
+static void rows_free(rowset *r) {
+  for (size_t k = 0; k < r->n; k++) free(r->rows[k]);
+  free(r->rows);
+  memset(r, 0, sizeof *r);
+}
+
+/* reads the complete rows of a JSON-lines file; a partial last line (a killed
+ * writer) is dropped and the file rewritten without it */
+static int read_rows(const char *path, rowset *r, int repair) {
+  FILE *f = fopen(path, "r");
+  if (!f) return errno == ENOENT ? 0 : -1;
+  char *line = NULL;
+  size_t cap = 0;
+  ssize_t len;
+  int bad = 0;
+  while ((len = getline(&line, &cap, f)) > 0) {
+    if (line[len - 1] == '\n' && fb_study_row_index(line, NULL) >= 0) {
+      if (!rows_add(r, line)) bad = 1;
+    } else {
+      bad = 1;
+    }
+  }
+  free(line);
+  fclose(f);
+  if (bad && repair) {
+    fb_outfile o;
+    fb_diag d;
+    if (fb_outfile_open(&o, path, &d) != FB_OK) return -1;
+    for (size_t k = 0; k < r->n; k++) fputs(r->rows[k], o.f);
+    if (fb_outfile_commit(&o, &d) != FB_OK) return -1;
+    fprintf(stderr, "fourbar sweep: %s: dropped an incomplete last row (an interrupted run)\n", path);
+  }
+  return 0;
+}
+
+static void progress(size_t done, size_t total, double t0, int tty) {
+  if (!tty) return;
+  const int width = 30;
+  const double frac = total ? (double)done / (double)total : 1.0;
+  const double el = fb_clock_s() - t0;
+  const double eta = done ? el * (double)(total - done) / (double)done : 0.0;
+  char bar[64];
+  int filled = (int)(frac * width);
+  for (int k = 0; k < width; k++) bar[k] = k < filled ? '#' : '.';
+  bar[width] = '\0';
+  fprintf(stderr, "\r  [%s] %zu/%zu points, %.0f s elapsed, ETA %.0f s   ", bar, done, total, el, eta);
+  if (done == total) fputc('\n', stderr);
+  fflush(stderr);
+}
+
+static int append_row(int fd, const char *line) {
+  size_t l = strlen(line), off = 0;
+  while (off < l) {
+    ssize_t w = write(fd, line + off, l - off);
+    if (w < 0) {
+      if (errno == EINTR) continue;
+      return -1;
+    }
+    off += (size_t)w;
+  }
+  return fsync(fd);
+}
+
+int fb_cmd_sweep(int argc, char **argv) {
+  static const struct option opts[] = {{"jobs", required_argument, 0, 'j'},
+                                       {"shard", required_argument, 0, 's'},
+                                       {"out", required_argument, 0, 'o'},
+                                       {"list", required_argument, 0, 'l'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  long jobs = 1, shard_i = 0, shard_n = 1, list = 0;
+  const char *out = NULL;
+  int ch;
+  optind = 1;
+  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    char *end;
+    switch (ch) {
+      case 'j':
+        jobs = strtol(optarg, &end, 10);
+        if (*end || jobs < 1 || jobs > 256) return fb_cli_fail("sweep", 2, "--jobs '%s': 1 to 256", optarg);
+        break;
+      case 's':
+        if (sscanf(optarg, "%ld/%ld", &shard_i, &shard_n) != 2 || shard_n < 1 || shard_i < 0 ||
+            shard_i >= shard_n)
+          return fb_cli_fail("sweep", 2, "--shard '%s': expected I/N with 0 <= I < N", optarg);
+        break;
+      case 'o': out = optarg; break;
+      case 'l':
+        list = strtol(optarg, &end, 10);
+        if (*end || list < 1 || list > 100000) return fb_cli_fail("sweep", 2, "--list '%s': 1 to 100000", optarg);
+        break;
+      case 'h': fputs(sweep_help, stdout); return 0;
+      default: fputs(sweep_help, stderr); return 2;
+    }
+  }
+  if (argc - optind != 1) return fb_cli_fail("sweep", 2, "one STUDY file is required; see --help");
+  const char *study_path = argv[optind];
+  static fb_study s;
+  fb_diag d;
+  if (fb_study_load(&s, study_path, &d) != FB_OK) return fb_cli_fail("sweep", 2, "%s", d.msg);
+  char dir[4096];
+  if (out) snprintf(dir, sizeof dir, "%s", out);
+  else snprintf(dir, sizeof dir, "results/studies/%s", s.name);
+
+  if (list) {
+    char exe[PATH_MAX];
+    ssize_t l = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    exe[l > 0 ? l : 0] = '\0';
+    char study_abs[PATH_MAX], dir_abs[PATH_MAX];
+    if (!realpath(study_path, study_abs)) snprintf(study_abs, sizeof study_abs, "%s", study_path);
+    if (fb_outdir_prepare(dir, &d) != FB_OK) return fb_cli_fail("sweep", 1, "%s", d.msg);
+    if (!realpath(dir, dir_abs)) snprintf(dir_abs, sizeof dir_abs, "%s", dir);
+    for (long k = 0; k < list; k++)
+      printf("%s sweep '%s' --shard %ld/%ld --out '%s'\n", l > 0 ? exe : "fourbar", study_abs, k, list,
+             dir_abs);
+    return 0;
+  }
+  if (fb_outdir_prepare(dir, &d) != FB_OK) return fb_cli_fail("sweep", 1, "%s", d.msg);
+  char rows_path[4200];
+  if (shard_n > 1)
+    snprintf(rows_path, sizeof rows_path, "%s/points.shard-%ld-of-%ld.jsonl", dir, shard_i, shard_n);
+  else
+    snprintf(rows_path, sizeof rows_path, "%s/points.jsonl", dir);
+
+  /* resume: what this file already holds */
+  rowset done = {0};
+  if (read_rows(rows_path, &done, 1) != 0) return fb_cli_fail("sweep", 1, "%s: cannot read", rows_path);
+  char *have = calloc(s.points, 1);
+  if (!have) return fb_cli_fail("sweep", 1, "out of memory");
+  for (size_t k = 0; k < done.n; k++) {
+    size_t of = 0;
+    long i = fb_study_row_index(done.rows[k], &of);
+    if (of != s.points) {
+      free(have);
+      rows_free(&done);
+      return fb_cli_fail("sweep", 2, "%s holds rows of a %zu-point grid, this study has %zu points: "
+                         "use another --out", rows_path, of, s.points);
+    }
+    if (i >= 0 && (size_t)i < s.points) have[i] = 1;
+  }
+  size_t *todo = malloc(s.points * sizeof *todo);
+  size_t ntodo = 0, mine = 0;
+  for (size_t i = 0; i < s.points; i++) {
+    if ((long)(i % (size_t)shard_n) != shard_i) continue;
+    mine++;
+    if (!have[i]) todo[ntodo++] = i;
+  }
+  free(have);
+  fprintf(stderr, "study %s: %zu points, %zu in this %s, %zu already done, computing %zu with %ld job%s\n",
+          s.name, s.points, mine, shard_n > 1 ? "shard" : "run", mine - ntodo, ntodo, jobs,
+          jobs > 1 ? "s" : "");
+  int fd = open(rows_path, O_WRONLY | O_CREAT | O_APPEND, 0644);
+  if (fd < 0) {
+    free(todo);
+    rows_free(&done);
+    return fb_cli_fail("sweep", 1, "%s: %s", rows_path, strerror(errno));
+  }
+  const int tty = isatty(2);
+  const double t0 = fb_clock_s();
+  size_t finished = 0;
+  int rc = 0;
+  if (jobs == 1 || ntodo <= 1) {
+    for (size_t k = 0; k < ntodo && rc == 0; k++) {
+      char *line;
+      if (fb_study_point(&s, todo[k], &line, &d) != FB_OK) {
+        rc = fb_cli_fail("sweep", 1, "%s", d.msg);
+        break;
+      }
+      if (append_row(fd, line) != 0) rc = fb_cli_fail("sweep", 1, "%s: write failed", rows_path);
+      free(line);
+      progress(++finished, ntodo, t0, tty);
+    }
+  } else {
+    /* workers: worker w computes todo[k] for k % jobs == w and sends rows
+     * through its pipe; the parent alone writes the file */
+    int nw = (int)(jobs < (long)ntodo ? jobs : (long)ntodo);
+    pid_t pid[256];
+    int rfd[256];
+    char *buf[256];
+    size_t blen[256], bcap[256];
+    fflush(NULL);
+    for (int w = 0; w < nw; w++) {
+      int p[2];
+      if (pipe(p) != 0) return fb_cli_fail("sweep", 1, "pipe: %s", strerror(errno));
+      pid[w] = fork();
+      if (pid[w] == 0) {
+        close(p[0]);
+        close(fd);
+        for (size_t k = (size_t)w; k < ntodo; k += (size_t)nw) {
+          char *line;
+          if (fb_study_point(&s, todo[k], &line, &d) != FB_OK) _exit(3);
+          if (append_row(p[1], line) != 0 && errno != EINVAL) _exit(4);
+          free(line);
+        }
+        _exit(0);
+      }
+      close(p[1]);
+      rfd[w] = p[0];
+      buf[w] = NULL;
+      blen[w] = bcap[w] = 0;
+    }
+    int open_pipes = nw;
+    while (open_pipes > 0) {
+      struct pollfd pf[256];
+      for (int w = 0; w < nw; w++) {
+        pf[w].fd = rfd[w];
+        pf[w].events = POLLIN;
+        pf[w].revents = 0;
+      }
+      if (poll(pf, (nfds_t)nw, -1) < 0 && errno != EINTR) break;
+      for (int w = 0; w < nw; w++) {
+        if (rfd[w] < 0 || !(pf[w].revents & (POLLIN | POLLHUP))) continue;
+        char chunk[65536];
+        ssize_t got = read(rfd[w], chunk, sizeof chunk);
+        if (got <= 0) {
+          close(rfd[w]);
+          rfd[w] = -1;
+          open_pipes--;
+          continue;
+        }
+        if (blen[w] + (size_t)got + 1 > bcap[w]) {
+          bcap[w] = 2 * (blen[w] + (size_t)got + 1);
+          buf[w] = realloc(buf[w], bcap[w]);
+        }
+        memcpy(buf[w] + blen[w], chunk, (size_t)got);
+        blen[w] += (size_t)got;
+        buf[w][blen[w]] = '\0';
+        char *nl;
+        while ((nl = memchr(buf[w], '\n', blen[w]))) {
+          size_t l = (size_t)(nl - buf[w]) + 1;
+          char save = buf[w][l];
+          buf[w][l] = '\0';
+          if (append_row(fd, buf[w]) != 0) rc = 1;
+          buf[w][l] = save;
+          memmove(buf[w], buf[w] + l, blen[w] - l + 1);
+          blen[w] -= l;
+          progress(++finished, ntodo, t0, tty);
+        }
+      }
+    }
+    for (int w = 0; w < nw; w++) {
+      int status;
+      waitpid(pid[w], &status, 0);
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) rc = 1;
+      free(buf[w]);
+    }
+    if (rc) fb_cli_fail("sweep", 1, "a worker failed; rerun to finish the remaining points");
+  }
+  close(fd);
+  free(todo);
+  rows_free(&done);
+  const double wall = fb_clock_s() - t0;
+  if (rc) return rc;
+  /* the CSV of everything this file holds */
+  rowset all = {0};
+  read_rows(rows_path, &all, 0);
+  char csv[4300];
+  snprintf(csv, sizeof csv, "%.*s.csv", (int)(strlen(rows_path) - 6), rows_path);
+  if (fb_study_write_csv(csv, all.rows, all.n, &d) != FB_OK) rc = fb_cli_fail("sweep", 1, "%s", d.msg);
+  printf("%s: %zu rows (%zu computed now in %.1f s) in %s and %s\n", s.name, all.n, finished, wall,
+         rows_path, csv);
+  rows_free(&all);
+  return rc;
+}
+
+int fb_cmd_merge(int argc, char **argv) {
+  static const struct option opts[] = {
+      {"out", required_argument, 0, 'o'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+  const char *out = NULL;
+  int ch;
+  optind = 1;
+  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    if (ch == 'o') out = optarg;
+    else if (ch == 'h') { fputs(merge_help, stdout); return 0; }
+    else { fputs(merge_help, stderr); return 2; }
+  }
+  if (optind >= argc) return fb_cli_fail("merge", 2, "at least one DIR is required; see --help");
+  if (!out) out = argv[optind];
+  rowset all = {0};
+  for (int a = optind; a < argc; a++) {
+    DIR *dd = opendir(argv[a]);
+    if (!dd) return fb_cli_fail("merge", 2, "%s: %s", argv[a], strerror(errno));
+    struct dirent *e;
+    while ((e = readdir(dd))) {
+      size_t l = strlen(e->d_name);
+      if (strncmp(e->d_name, "points", 6) != 0 || l < 6 || strcmp(e->d_name + l - 6, ".jsonl") != 0) continue;
+      char path[8192];
+      snprintf(path, sizeof path, "%s/%s", argv[a], e->d_name);
+      if (strcmp(e->d_name, "points.jsonl") == 0 && strcmp(argv[a], out) == 0 && argc - optind > 1)
+        continue; /* a previous merge result in the output folder */
+      if (read_rows(path, &all, 0) != 0) return fb_cli_fail("merge", 1, "%s: cannot read", path);
+    }
+    closedir(dd);
+  }
+  if (all.n == 0) return fb_cli_fail("merge", 2, "no points*.jsonl rows in the given folders");
+  size_t of = 0;
+  fb_study_row_index(all.rows[0], &of);
+  unsigned char *count = calloc(of ? of : 1, 1);
+  int rc = 0;
+  for (size_t k = 0; k < all.n && !rc; k++) {
+    size_t o2 = 0;
+    long i = fb_study_row_index(all.rows[k], &o2);
+    if (o2 != of) rc = fb_cli_fail("merge", 2, "rows of a %zu-point and a %zu-point grid: not one study", of, o2);
+    else if (i < 0 || (size_t)i >= of) rc = fb_cli_fail("merge", 2, "row index %ld outside 0..%zu", i, of - 1);
+    else if (count[i]++) rc = fb_cli_fail("merge", 2, "point %ld appears more than once", i);
+  }
+  if (!rc) {
+    size_t missing = 0, first = 0;
+    for (size_t i = 0; i < of; i++)
+      if (!count[i] && missing++ == 0) first = i;
+    if (missing) rc = fb_cli_fail("merge", 2, "%zu of %zu points missing (first: %zu): run the missing "
+                                  "shards, then merge again", missing, of, first);
+  }
+  free(count);
+  if (!rc) {
+    fb_diag d;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/points.jsonl", out);
+    fb_outfile o;
+    if (fb_outdir_prepare(out, &d) != FB_OK || fb_outfile_open(&o, path, &d) != FB_OK) {
+      rc = fb_cli_fail("merge", 1, "%s", d.msg);
+    } else {
+      for (size_t k = 0; k < all.n; k++) fputs(all.rows[k], o.f);
+      if (fb_outfile_commit(&o, &d) != FB_OK) rc = fb_cli_fail("merge", 1, "%s", d.msg);
+    }
+    snprintf(path, sizeof path, "%s/points.csv", out);
+    if (!rc && fb_study_write_csv(path, all.rows, all.n, &d) != FB_OK) rc = fb_cli_fail("merge", 1, "%s", d.msg);
+    if (!rc) printf("merged %zu points into %s/points.jsonl and points.csv\n", all.n, out);
+  }
+  rows_free(&all);
+  return rc;
+}

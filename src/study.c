@@ -1,0 +1,398 @@
+#include "study.h"
+
+#include <errno.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <ini.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "casefile.h"
+#include "check.h"
+#include "fileio.h"
+#include "units.h"
+
+/* ---- reading ---------------------------------------------------------------- */
+
+typedef struct {
+  fb_study *s;
+  FILE *f;
+  int line;
+  fb_status st;
+  fb_diag *diag;
+  int current_axis; /* index of the [axis.*] section being read, -1 for none */
+} parse_ctx;
+
+static char *count_lines(char *str, int num, void *stream) {
+  parse_ctx *c = stream;
+  char *r = fgets(str, num, c->f);
+  if (r) c->line++;
+  return r;
+}
+
+static char *trim(char *p) {
+  while (*p == ' ' || *p == '\t') p++;
+  size_t n = strlen(p);
+  while (n && (p[n - 1] == ' ' || p[n - 1] == '\t')) p[--n] = '\0';
+  return p;
+}
+
+static fb_status add_values(fb_axis *a, const char *text, const char *where, fb_diag *diag) {
+  char buf[4096];
+  snprintf(buf, sizeof buf, "%s", text);
+  char *save = NULL;
+  for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+    t = trim(t);
+    if (!*t || strlen(t) >= sizeof a->value[0] || a->n == FB_STUDY_MAX_VALUES)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [axis.%s] values: empty, too long (31 characters) "
+                         "or more than %d values", where, a->name, FB_STUDY_MAX_VALUES);
+    snprintf(a->value[a->n++], sizeof a->value[0], "%s", t);
+  }
+  return FB_OK;
+}
+
+static fb_status add_range(fb_axis *a, const char *text, const char *where, fb_diag *diag) {
+  double from, to, step;
+  char tail;
+  if (sscanf(text, "%lf:%lf:%lf%c", &from, &to, &step, &tail) != 3 || !isfinite(from) ||
+      !isfinite(to) || !(step > 0) || to < from || (to - from) / step > FB_STUDY_MAX_VALUES - 1)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [axis.%s] range = '%s': expected FROM:TO:STEP with "
+                       "STEP > 0, TO >= FROM and at most %d values", where, a->name, text,
+                       FB_STUDY_MAX_VALUES);
+  for (int k = 0;; k++) {
+    double v = from + step * k;
+    if (v > to + 1e-9 * step) break;
+    snprintf(a->value[a->n++], sizeof a->value[0], "%.10g", v);
+  }
+  return FB_OK;
+}
+
+static int handler(void *user, const char *section, const char *key, const char *value) {
+  parse_ctx *c = user;
+  if (c->st != FB_OK) return 1;
+  fb_study *s = c->s;
+  char where[4200];
+  snprintf(where, sizeof where, "%s:%d", s->path, c->line);
+  if (strcmp(section, "study") == 0) {
+    if (strcmp(key, "name") == 0) {
+      snprintf(s->name, sizeof s->name, "%s", value);
+    } else if (strcmp(key, "case") == 0) {
+      const char *slash = strrchr(s->path, '/');
+      if (value[0] == '/' || !slash)
+        snprintf(s->case_path, sizeof s->case_path, "%s", value);
+      else
+        snprintf(s->case_path, sizeof s->case_path, "%.*s/%s", (int)(slash - s->path), s->path, value);
+    } else if (strcmp(key, "set") == 0) {
+      char buf[4096];
+      snprintf(buf, sizeof buf, "%s", value);
+      char *save = NULL;
+      for (char *t = strtok_r(buf, ";", &save); t; t = strtok_r(NULL, ";", &save)) {
+        t = trim(t);
+        if (!*t) continue;
+        if (s->nsets == FB_STUDY_MAX_SETS) {
+          c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [study] set: more than %d overrides", where,
+                              FB_STUDY_MAX_SETS);
+          return 1;
+        }
+        snprintf(s->sets[s->nsets++], sizeof s->sets[0], "%s", t);
+      }
+    } else if (strcmp(key, "metrics") == 0) {
+      char buf[4096];
+      snprintf(buf, sizeof buf, "%s", value);
+      char *save = NULL;
+      for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        t = trim(t);
+        if (*t && s->nmetrics < FB_STUDY_MAX_METRICS)
+          snprintf(s->metrics[s->nmetrics++], sizeof s->metrics[0], "%s", t);
+      }
+    } else {
+      c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: unknown key '%s' in [study] (name, case, set, "
+                          "metrics)", where, key);
+    }
+    return 1;
+  }
+  if (strncmp(section, "axis.", 5) == 0 && section[5]) {
+    int ai = -1;
+    for (int i = 0; i < s->naxes; i++)
+      if (strcmp(s->axis[i].name, section + 5) == 0) ai = i;
+    if (ai < 0) {
+      if (s->naxes == FB_STUDY_MAX_AXES) {
+        c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: more than %d axes", where, FB_STUDY_MAX_AXES);
+        return 1;
+      }
+      ai = s->naxes++;
+      snprintf(s->axis[ai].name, sizeof s->axis[ai].name, "%s", section + 5);
+    }
+    fb_axis *a = &s->axis[ai];
+    if (strcmp(key, "key") == 0) {
+      snprintf(a->key, sizeof a->key, "%s", value);
+    } else if (strcmp(key, "values") == 0) {
+      c->st = add_values(a, value, where, c->diag);
+    } else if (strcmp(key, "range") == 0) {
+      c->st = add_range(a, value, where, c->diag);
+    } else if (strcmp(key, "montecarlo") == 0) {
+      char *end;
+      long n = strtol(value, &end, 10);
+      if (*end || n < 1 || n > FB_STUDY_MAX_VALUES) {
+        c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [%s] montecarlo = '%s': a sample count from 1 "
+                            "to %d", where, section, value, FB_STUDY_MAX_VALUES);
+        return 1;
+      }
+      a->montecarlo = 1;
+      snprintf(a->key, sizeof a->key, "montecarlo");
+      for (long k = 0; k < n; k++) snprintf(a->value[a->n++], sizeof a->value[0], "sample %ld", k);
+    } else if (strcmp(key, "seed") == 0) {
+      a->seed = strtoul(value, NULL, 10);
+    } else {
+      c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (key, values, range, "
+                          "montecarlo, seed)", where, key, section);
+    }
+    return 1;
+  }
+  c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: unknown section [%s] (study, axis.<name>)", where,
+                      section);
+  return 1;
+}
+
+/* overrides of point i: fixed sets, then one per axis */
+static fb_status point_overrides(const fb_study *s, size_t i, char sets[][256], int *n,
+                                 char axis_text[][64], fb_diag *diag) {
+  *n = 0;
+  for (int k = 0; k < s->nsets; k++) snprintf(sets[(*n)++], 256, "%s", s->sets[k]);
+  size_t rest = i;
+  size_t stride[FB_STUDY_MAX_AXES];
+  size_t prod = 1;
+  for (int a = s->naxes - 1; a >= 0; a--) {
+    stride[a] = prod;
+    prod *= (size_t)s->axis[a].n;
+  }
+  for (int a = 0; a < s->naxes; a++) {
+    const fb_axis *ax = &s->axis[a];
+    const size_t j = rest / stride[a];
+    rest %= stride[a];
+    snprintf(axis_text[a], 64, "%s", ax->value[j]);
+    if (!ax->montecarlo) {
+      snprintf(sets[(*n)++], 256, "%s=%s", ax->key, ax->value[j]);
+      continue;
+    }
+    /* a sample of the link lengths from the case's tolerances */
+    fb_case base;
+    const char *fixed[FB_STUDY_MAX_SETS];
+    for (int k = 0; k < s->nsets; k++) fixed[k] = s->sets[k];
+    fb_status st = fb_casefile_load(&base, s->case_path, fixed, s->nsets, diag);
+    if (st != FB_OK) return st;
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+    if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+    gsl_rng_set(r, ax->seed * 1000003ul + (unsigned long)j);
+    for (int k = 0; k < FB_LINK_COUNT; k++) {
+      double x = base.distribution ? gsl_ran_flat(r, -1.0, 1.0) : gsl_ran_gaussian(r, 1.0 / 3.0);
+      snprintf(sets[(*n)++], 256, "linkage.%s_mm=%.17g", fb_link_name(k),
+               (base.nominal.length[k] + x * base.plus_minus[k]) / FB_M_PER_MM);
+    }
+    gsl_rng_free(r);
+    snprintf(sets[(*n)++], 256, "tolerance.stackup=nominal");
+  }
+  return FB_OK;
+}
+
+fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
+  memset(s, 0, sizeof *s);
+  snprintf(s->path, sizeof s->path, "%s", path);
+  FILE *f = fopen(path, "r");
+  if (!f) return fb_diag_set(diag, FB_ERR_IO, "%s: cannot open study file: %s", path, strerror(errno));
+  struct stat sb;
+  if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode)) {
+    fclose(f);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: not a regular file", path);
+  }
+  parse_ctx c = {s, f, 0, FB_OK, diag, -1};
+  int rc = ini_parse_stream(count_lines, &c, handler, &c);
+  fclose(f);
+  if (c.st != FB_OK) return c.st;
+  if (rc != 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s:%d: malformed line: expected '[section]' or "
+                       "'key = value'", path, rc);
+  if (!s->name[0] || !s->case_path[0])
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] needs name and case", path);
+  if (s->naxes == 0) return fb_diag_set(diag, FB_ERR_PARSE, "%s: a study needs at least one [axis.*]", path);
+  s->points = 1;
+  for (int a = 0; a < s->naxes; a++) {
+    if (s->axis[a].n == 0 || !s->axis[a].key[0])
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [axis.%s] needs key and values or range, or "
+                         "montecarlo", path, s->axis[a].name);
+    s->points *= (size_t)s->axis[a].n;
+  }
+  if (s->points > 10000000)
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s: %zu points: more than 1e7", path, s->points);
+  /* the corners of the grid must load: catches a wrong key before any run */
+  size_t probe[2] = {0, s->points - 1};
+  for (int k = 0; k < 2; k++) {
+    char sets[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8][256], axt[FB_STUDY_MAX_AXES][64];
+    int n;
+    fb_status st = point_overrides(s, probe[k], sets, &n, axt, diag);
+    if (st != FB_OK) return st;
+    const char *ov[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8];
+    for (int q = 0; q < n; q++) ov[q] = sets[q];
+    fb_case cs;
+    fb_diag inner;
+    st = fb_casefile_load(&cs, s->case_path, ov, n, &inner);
+    if (st != FB_OK)
+      return fb_diag_set(diag, st, "%s: point %zu of the grid does not load: %s", path, probe[k], inner.msg);
+  }
+  return FB_OK;
+}
+
+/* ---- running a point -------------------------------------------------------- */
+
+static int wanted(const fb_study *s, const char *name) {
+  if (s->nmetrics == 0) return 1;
+  for (int k = 0; k < s->nmetrics; k++) {
+    const char *m = s->metrics[k];
+    size_t l = strlen(m);
+    if (l && m[l - 1] == '*' ? strncmp(name, m, l - 1) == 0 : strcmp(name, m) == 0) return 1;
+  }
+  return 0;
+}
+
+fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag) {
+  char sets[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8][256], axt[FB_STUDY_MAX_AXES][64];
+  int n;
+  json_t *row = json_object(), *axes = json_object(), *metrics = json_object();
+  json_object_set_new(row, "study", json_string(s->name));
+  json_object_set_new(row, "index", json_integer((json_int_t)i));
+  json_object_set_new(row, "of", json_integer((json_int_t)s->points));
+  char status[1200] = "ok";
+  fb_diag inner;
+  fb_status st = point_overrides(s, i, sets, &n, axt, &inner);
+  for (int a = 0; a < s->naxes; a++)
+    json_object_set_new(axes, s->axis[a].key, json_string(st == FB_OK ? axt[a] : "?"));
+  if (st != FB_OK) {
+    snprintf(status, sizeof status, "case: %s", inner.msg);
+  } else {
+    const char *ov[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8];
+    for (int q = 0; q < n; q++) ov[q] = sets[q];
+    fb_case c;
+    static fb_run r;
+    if (fb_casefile_load(&c, s->case_path, ov, n, &inner) != FB_OK) {
+      snprintf(status, sizeof status, "case: %s", inner.msg);
+    } else if (fb_run_case(&r, &c, NULL, NULL, &inner) != FB_OK) {
+      snprintf(status, sizeof status, "run: %s", inner.msg);
+    } else {
+      static fb_metric m[FB_CHECK_MAX_METRICS];
+      int nm = fb_check_metrics(&r, m, FB_CHECK_MAX_METRICS);
+      for (int k = 0; k < nm; k++)
+        if (wanted(s, m[k].name)) json_object_set_new(metrics, m[k].name, json_real(m[k].value));
+      for (int k = 0; k < r.n; k++)
+        if (strcmp(r.model[k].run.status, "ok") != 0) {
+          snprintf(status, sizeof status, "%s: %s", r.model[k].run.name, r.model[k].run.status);
+          break;
+        }
+      fb_run_free(&r);
+    }
+  }
+  json_object_set_new(row, "axes", axes);
+  json_object_set_new(row, "status", json_string(status));
+  json_object_set_new(row, "metrics", metrics);
+  char *text = json_dumps(row, JSON_COMPACT | JSON_REAL_PRECISION(17));
+  json_decref(row);
+  if (!text) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a row");
+  size_t l = strlen(text);
+  *line = malloc(l + 2);
+  if (!*line) {
+    free(text);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a row");
+  }
+  memcpy(*line, text, l);
+  (*line)[l] = '\n';
+  (*line)[l + 1] = '\0';
+  free(text);
+  return FB_OK;
+}
+
+long fb_study_row_index(const char *line, size_t *of) {
+  json_error_t je;
+  json_t *o = json_loads(line, 0, &je);
+  if (!o) return -1;
+  json_t *ix = json_object_get(o, "index"), *n = json_object_get(o, "of");
+  long i = json_is_integer(ix) && json_object_get(o, "metrics") ? (long)json_integer_value(ix) : -1;
+  if (of && json_is_integer(n)) *of = (size_t)json_integer_value(n);
+  json_decref(o);
+  return i;
+}
+
+/* ---- CSV --------------------------------------------------------------------- */
+
+typedef struct {
+  long index;
+  json_t *row;
+} indexed;
+
+static int by_index(const void *a, const void *b) {
+  long x = ((const indexed *)a)->index, y = ((const indexed *)b)->index;
+  return (x > y) - (x < y);
+}
+
+fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *diag) {
+  indexed *v = calloc(n ? n : 1, sizeof *v);
+  if (!v) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  size_t m = 0;
+  for (size_t k = 0; k < n; k++) {
+    json_t *o = json_loads(rows[k], 0, NULL);
+    if (!o) continue;
+    v[m].index = (long)json_integer_value(json_object_get(o, "index"));
+    v[m++].row = o;
+  }
+  qsort(v, m, sizeof *v, by_index);
+  json_t *names = json_array(); /* metric names in first-seen order */
+  json_t *seen = json_object();
+  for (size_t k = 0; k < m; k++) {
+    const char *key;
+    json_t *val;
+    json_object_foreach(json_object_get(v[k].row, "metrics"), key, val) {
+      if (!json_object_get(seen, key)) {
+        json_object_set_new(seen, key, json_true());
+        json_array_append_new(names, json_string(key));
+      }
+    }
+  }
+  fb_outfile out;
+  fb_status st = fb_outfile_open(&out, path, diag);
+  if (st == FB_OK) {
+    fprintf(out.f, "index");
+    const char *key;
+    json_t *val;
+    if (m) json_object_foreach(json_object_get(v[0].row, "axes"), key, val) fprintf(out.f, ",%s", key);
+    fprintf(out.f, ",status");
+    size_t q;
+    json_t *nm;
+    json_array_foreach(names, q, nm) fprintf(out.f, ",%s", json_string_value(nm));
+    fputc('\n', out.f);
+    for (size_t k = 0; k < m; k++) {
+      fprintf(out.f, "%ld", v[k].index);
+      json_object_foreach(json_object_get(v[k].row, "axes"), key, val)
+          fprintf(out.f, ",%s", json_string_value(val));
+      /* status may hold commas: quote it */
+      fprintf(out.f, ",\"");
+      for (const char *p = json_string_value(json_object_get(v[k].row, "status")); p && *p; p++)
+        fprintf(out.f, *p == '"' ? "\"\"" : "%c", *p);
+      fprintf(out.f, "\"");
+      json_t *mets = json_object_get(v[k].row, "metrics");
+      json_array_foreach(names, q, nm) {
+        json_t *x = json_object_get(mets, json_string_value(nm));
+        if (x) fprintf(out.f, ",%.17g", json_number_value(x));
+        else fprintf(out.f, ",");
+      }
+      fputc('\n', out.f);
+    }
+    st = fb_outfile_commit(&out, diag);
+  }
+  for (size_t k = 0; k < m; k++) json_decref(v[k].row);
+  json_decref(names);
+  json_decref(seen);
+  free(v);
+  return st;
+}

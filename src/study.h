@@ -1,0 +1,69 @@
+/* Parameter studies: a base case plus axes, each a list or range of values
+ * for a case key (--set syntax) or a Monte Carlo sample of the case's link
+ * tolerances. The grid is the Cartesian product of the axes in file order
+ * (the first axis varies slowest); point i has fixed overrides, so any
+ * subset of points (a shard, a worker's share, a resumed remainder) gives
+ * the same row for the same i. A row is one JSON line:
+ *   {"study", "index", "of", "axes": {key: value}, "status", "metrics": {name: value}}
+ * with metric names as in fourbar check. Rows hold no wall time, so the same
+ * study run any way gives byte-identical rows.
+ *
+ * Study file (INI):
+ *   [study] name, case (relative to the study file), set (fixed overrides
+ *           separated by ';'), metrics (comma list; a trailing * matches a
+ *           prefix; default all)
+ *   [axis.<name>] key + values (comma list) or range (FROM:TO:STEP), or
+ *           montecarlo = N samples with seed = S (lengths drawn from the
+ *           case's tolerances and distribution, one seed per point). */
+#ifndef FB_STUDY_H
+#define FB_STUDY_H
+
+#include <stddef.h>
+
+#include "case.h"
+
+#define FB_STUDY_MAX_AXES 8
+#define FB_STUDY_MAX_VALUES 1024
+#define FB_STUDY_MAX_SETS 32
+#define FB_STUDY_MAX_METRICS 64
+
+typedef struct {
+  char name[64];
+  char key[128];                         /* section.key, or "montecarlo" */
+  int montecarlo;                        /* 1: samples of the link tolerances */
+  unsigned long seed;                    /* Monte Carlo seed */
+  int n;                                 /* number of values */
+  char value[FB_STUDY_MAX_VALUES][32];   /* values as text (--set syntax) */
+} fb_axis;
+
+typedef struct {
+  char path[4096];                        /* study file */
+  char name[64];
+  char case_path[4096];                   /* resolved case file */
+  int nsets;
+  char sets[FB_STUDY_MAX_SETS][256];      /* fixed overrides */
+  int nmetrics;                           /* 0: all */
+  char metrics[FB_STUDY_MAX_METRICS][128];
+  int naxes;
+  fb_axis axis[FB_STUDY_MAX_AXES];
+  size_t points;                          /* product of the axis sizes */
+} fb_study;
+
+/* Reads and checks a study file: the case loads with the fixed overrides and
+ * with the first and last value of every axis.
+ * Errors: FB_ERR_IO, FB_ERR_PARSE, FB_ERR_RANGE naming file:line and key. */
+fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag);
+
+/* Runs point i (< s->points) and returns its row as a malloc'ed JSON line
+ * ending in '\n' (caller frees). A case that does not load or run gives a row
+ * whose status says why. Errors: FB_ERR_NOMEM only. */
+fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag);
+
+/* Index of a row line, or -1 when the line is not a complete row. */
+long fb_study_row_index(const char *line, size_t *of);
+
+/* Writes rows (JSON lines, any order, one per index) as CSV sorted by index:
+ * index, the axis keys, status, then every metric seen. Errors: FB_ERR_IO. */
+fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *diag);
+
+#endif

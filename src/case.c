@@ -10,6 +10,8 @@ const char *const fb_model_names[] = {"analytic",
                                       "ode-clearance-restitution",
                                       "ode-clearance-impact",
                                       "ode-clearance-faceted",
+                                      "reference",
+                                      "reference-restitution",
                                       NULL};
 
 const char *fb_joint_name(int j) {
@@ -165,7 +167,8 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_RANGE, "penetration limit %g m: must be >= 0",
                        c->clearance.penetration_limit);
   for (int i = 0; i < c->model_count; i++) {
-    if (strncmp(c->models[i], "ode-clearance", 13) == 0 && c->clearance.mask == 0)
+    if ((strncmp(c->models[i], "ode-clearance", 13) == 0 || strncmp(c->models[i], "reference", 9) == 0) &&
+        c->clearance.mask == 0)
       return fb_diag_set(diag, FB_ERR_ARG,
                          "model '%s' needs at least one clearance joint ([clearance] joints)",
                          c->models[i]);

@@ -1,6 +1,7 @@
 #include "metrics.h"
 
 #include <math.h>
+#include <string.h>
 
 static double fmax_d(double a, double b) { return a > b ? a : b; }
 
@@ -123,5 +124,63 @@ fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
   out->free_flight_fraction = pairs ? (double)free_count / (double)pairs : 0.0;
   out->alpha_peak_crank_angle_coupler = fmod(fmod(thc, two_pi) + two_pi, two_pi);
   out->alpha_peak_crank_angle_follower = fmod(fmod(thf, two_pi) + two_pi, two_pi);
+  return FB_OK;
+}
+
+static void window_impacts(const fb_series *s, double t_from, int j, int *count, double angles[8]) {
+  *count = 0;
+  for (size_t i = 1; i < s->n; i++) {
+    if (s->t[i] < t_from) continue;
+    if ((int)s->contact[j][FB_C_STATE][i] == FB_STATE_IMPACT &&
+        (int)s->contact[j][FB_C_STATE][i - 1] != FB_STATE_IMPACT) {
+      if (*count < 8) angles[*count] = fmod(fmod(s->crank_angle[i], 2 * M_PI) + 2 * M_PI, 2 * M_PI);
+      (*count)++;
+    }
+  }
+  for (int k = *count; k < 8; k++) angles[k] = -1.0;
+}
+
+fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, const fb_series *r,
+                                  double t_from, int j, fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  if (!(s->contact_mask & r->contact_mask & (1 << j)))
+    return fb_diag_set(diag, FB_ERR_ARG, "no contact columns to compare");
+  err_acc ec = {0, 0, 0, 0}, ef = {0, 0, 0, 0};
+  double fsq = 0.0;
+  size_t n = 0;
+  const size_t m = s->n < r->n ? s->n : r->n;
+  for (size_t i = 0; i < m; i++) {
+    if (fabs(s->t[i] - r->t[i]) > 1e-9 * (fabs(r->t[i]) + 1e-12))
+      return fb_diag_set(diag, FB_ERR_ARG, "the model and the reference are sampled on different grids");
+    if (s->t[i] < t_from) continue;
+    acc_add(&ec, s->coupler_omega[i] - r->coupler_omega[i], s->coupler_alpha[i] - r->coupler_alpha[i]);
+    acc_add(&ef, s->follower_omega[i] - r->follower_omega[i], s->follower_alpha[i] - r->follower_alpha[i]);
+    const double df = s->contact[j][FB_C_FORCE][i] - r->contact[j][FB_C_FORCE][i];
+    fsq += df * df;
+    n++;
+  }
+  if (n == 0) return fb_diag_set(diag, FB_ERR_ARG, "no common sample after t = %g s", t_from);
+  fb_peaks ps, pr;
+  fb_status st = fb_metrics_peaks(&ps, s, t_from, diag);
+  if (st == FB_OK) st = fb_metrics_peaks(&pr, r, t_from, diag);
+  if (st != FB_OK) return st;
+  body_error(&out->coupler, &ec, n, &ps.coupler, &pr.coupler);
+  body_error(&out->follower, &ef, n, &ps.follower, &pr.follower);
+  double fs = 0, fr = 0, pens = 0, penr = 0;
+  for (size_t i = 0; i < s->n; i++)
+    if (s->t[i] >= t_from) {
+      fs = fmax_d(fs, s->contact[j][FB_C_FORCE][i]);
+      pens = fmax_d(pens, s->contact[j][FB_C_PEN][i]);
+    }
+  for (size_t i = 0; i < r->n; i++)
+    if (r->t[i] >= t_from) {
+      fr = fmax_d(fr, r->contact[j][FB_C_FORCE][i]);
+      penr = fmax_d(penr, r->contact[j][FB_C_PEN][i]);
+    }
+  out->force_max_rel = fb_metrics_rel(fs, fr);
+  out->force_err_rms = sqrt(fsq / (double)n);
+  out->penetration_max_rel = fb_metrics_rel(pens, penr);
+  window_impacts(s, t_from, j, &out->impacts, out->impact_angles);
+  window_impacts(r, t_from, j, &out->impacts_reference, out->impact_angles_reference);
   return FB_OK;
 }

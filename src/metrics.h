@@ -45,6 +45,25 @@ fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
                             double alpha_ref_coupler, double alpha_ref_follower,
                             const fb_error *err, fb_diag *diag);
 
+/* Error of a clearance model's series against the reference series of the
+ * same law, at equal instants (both sampled at t = k h). */
+typedef struct {
+  fb_body_error coupler;        /* peaks: relative to the reference's peaks */
+  fb_body_error follower;
+  double force_max_rel;         /* (peak force - reference's) / reference's [-] */
+  double force_err_rms;         /* RMS of the force difference [N] */
+  double penetration_max_rel;   /* (max penetration - reference's) / reference's [-] */
+  int impacts;                  /* impact episodes in the window */
+  int impacts_reference;
+  double impact_angles[8];      /* crank angles of the first impacts [rad] in [0, 2 pi) */
+  double impact_angles_reference[8];
+} fb_reference_error;
+
+/* Compares series s (model) with r (reference) over t >= t_from at clearance
+ * joint j. Errors: FB_ERR_ARG when the grids differ or the window is empty. */
+fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, const fb_series *r,
+                                  double t_from, int j, fb_diag *diag);
+
 /* Peaks of coupler and follower over the samples with t >= t_from [s].
  * Errors: FB_ERR_ARG when no sample lies in the window. */
 fb_status fb_metrics_peaks(fb_peaks *out, const fb_series *s, double t_from, fb_diag *diag);

@@ -7,6 +7,7 @@
 
 #include "analytic.h"
 #include "joint_law.h"
+#include "reference.h"
 #include "scene.h"
 
 /* A contact that begins with a penetration rate below 1 mm/s is the pin
@@ -17,7 +18,7 @@
 #define IMPACT_VELOCITY_MIN_M_S 1e-3
 
 const char *fb_model_kind_name(fb_model_kind k) {
-  return k == FB_KIND_ODE ? "ode" : "analytic";
+  return k == FB_KIND_ODE ? "ode" : (k == FB_KIND_REFERENCE ? "reference" : "analytic");
 }
 
 static int ends_with(const char *s, const char *suffix) {
@@ -26,7 +27,8 @@ static int ends_with(const char *s, const char *suffix) {
 }
 
 void fb_model_lengths(const fb_case *c, const char *name, fb_linkage *out) {
-  if (ends_with(name, "-stackup") || strncmp(name, "ode-clearance", 13) == 0)
+  if (ends_with(name, "-stackup") || strncmp(name, "ode-clearance", 13) == 0 ||
+      strncmp(name, "reference", 9) == 0)
     fb_case_stackup_lengths(c, out);
   else
     *out = c->nominal;
@@ -142,6 +144,18 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_case *c, const char *name
                  strcmp(name, "ode-clearance-restitution") == 0 ? FB_CLEARANCE_RESTITUTION
                                                                 : FB_CLEARANCE_IMPACT,
                  faceted, progress, user, diag);
+  } else if (strcmp(name, "reference") == 0 || strcmp(name, "reference-restitution") == 0) {
+    out->kind = FB_KIND_REFERENCE;
+    out->clearance_mask = 1 << FB_JOINT_B;
+    fb_contact_law law[4];
+    st = fb_joint_laws(law, c,
+                       strcmp(name, "reference") == 0 ? FB_CLEARANCE_IMPACT : FB_CLEARANCE_RESTITUTION,
+                       diag);
+    if (st == FB_OK) st = fb_reference_run(&out->series, &out->steps, c, &law[FB_JOINT_B], 0, diag);
+    if (st == FB_ERR_NUMERIC) { /* the reference failing is a result, not an error */
+      snprintf(out->status, sizeof out->status, "%.200s", diag->msg);
+      st = FB_OK;
+    }
   } else {
     st = fb_diag_set(diag, FB_ERR_ARG, "unknown model '%s'", name);
   }

@@ -9,9 +9,9 @@
 #include "case.h"
 #include "series.h"
 
-typedef enum { FB_KIND_ANALYTIC = 0, FB_KIND_ODE = 1 } fb_model_kind;
+typedef enum { FB_KIND_ANALYTIC = 0, FB_KIND_ODE = 1, FB_KIND_REFERENCE = 2 } fb_model_kind;
 
-/* "analytic" or "ode". */
+/* "analytic", "ode" or "reference" (reference.h: minimal coordinates, GSL rk8pd). */
 const char *fb_model_kind_name(fb_model_kind k);
 
 /* What a model run produced. */
@@ -42,8 +42,8 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_case *c, const char *name
 void fb_model_run_free(fb_model_run *r);
 
 /* Lengths a model name implies: nominal, or the case's stack-up corner for
- * names ending in "-stackup" and for the ode-clearance-* models (the paper's
- * clearance cases use the stack-up lengths). */
+ * names ending in "-stackup" and for the ode-clearance-* and reference models
+ * (the paper's clearance cases use the stack-up lengths). */
 void fb_model_lengths(const fb_case *c, const char *name, fb_linkage *out);
 
 #endif

@@ -88,6 +88,25 @@ static json_t *model_json(const fb_model_result *m) {
     json_object_set_new(o, "delta_vs_analytic_nominal", json_null());
   }
   if (run->kind == FB_KIND_ODE) json_object_set_new(o, "joint_drift_max_m", num(run->joint_drift_max));
+  if (m->has_ref_error) {
+    const fb_reference_error *e = &m->ref_error;
+    json_t *o2 = json_object(), *a = json_array(), *b = json_array();
+    json_object_set_new(o2, "reference", json_string(m->ref_name));
+    json_object_set_new(o2, "coupler", body_error_json(&e->coupler));
+    json_object_set_new(o2, "follower", body_error_json(&e->follower));
+    json_object_set_new(o2, "force_max_rel", num(e->force_max_rel));
+    json_object_set_new(o2, "force_err_rms_n", num(e->force_err_rms));
+    json_object_set_new(o2, "penetration_max_rel", num(e->penetration_max_rel));
+    json_object_set_new(o2, "impacts", json_integer(e->impacts));
+    json_object_set_new(o2, "impacts_reference", json_integer(e->impacts_reference));
+    for (int k = 0; k < 8; k++) {
+      if (e->impact_angles[k] >= 0) json_array_append_new(a, num(e->impact_angles[k]));
+      if (e->impact_angles_reference[k] >= 0) json_array_append_new(b, num(e->impact_angles_reference[k]));
+    }
+    json_object_set_new(o2, "impact_crank_angles_rad", a);
+    json_object_set_new(o2, "impact_crank_angles_reference_rad", b);
+    json_object_set_new(o, "error_vs_reference", o2);
+  }
   if (m->has_spikes) {
     const fb_spikes *k = &m->spikes;
     json_t *sp = json_object();
@@ -279,6 +298,23 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
               k->force_max, k->penetration_max * 1e6, k->impacts, k->free_flight_fraction,
               k->alpha_peak_crank_angle_coupler * 180.0 / M_PI,
               k->alpha_peak_crank_angle_follower * 180.0 / M_PI);
+    }
+  }
+  int anyref = 0;
+  for (int i = 0; i < r->n; i++) anyref |= r->model[i].has_ref_error;
+  if (anyref) {
+    fprintf(f, "\nagainst the reference (same law, same instants):\n%-26s %-22s %10s %10s %10s %10s %9s %9s %9s\n",
+            "model", "reference", "omega pk", "omega rms", "alpha pk", "alpha rms", "force pk", "penetr.", "impacts");
+    fprintf(f, "%-26s %-22s %10s %10s %10s %10s %9s %9s %9s\n", "", "", "rel", "rad/s", "rel", "rad/s2",
+            "rel", "rel", "model/ref");
+    for (int i = 0; i < r->n; i++) {
+      const fb_model_result *m = &r->model[i];
+      if (!m->has_ref_error) continue;
+      const fb_reference_error *e = &m->ref_error;
+      fprintf(f, "%-26s %-22s %10.2e %10.3g %10.2e %10.4g %+9.2e %+9.2e %5d/%-3d\n", m->run.name, m->ref_name,
+              worst_rel(&e->coupler, &e->follower, 0), fmax(e->coupler.omega_err_rms, e->follower.omega_err_rms),
+              worst_rel(&e->coupler, &e->follower, 1), fmax(e->coupler.alpha_err_rms, e->follower.alpha_err_rms),
+              e->force_max_rel, e->penetration_max_rel, e->impacts, e->impacts_reference);
     }
   }
   fprintf(f, "\npeak err: largest |relative error| of the four omega (or alpha) peaks of "

@@ -82,6 +82,24 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
       return st;
     }
   }
+  /* each exact-collider clearance model against the reference of its law */
+  for (int i = 0; i < r->n; i++) {
+    fb_model_result *m = &r->model[i];
+    const char *want = strcmp(m->run.name, "ode-clearance-impact") == 0        ? "reference"
+                       : strcmp(m->run.name, "ode-clearance-restitution") == 0 ? "reference-restitution"
+                                                                             : NULL;
+    if (!want || !m->has_peaks) continue;
+    for (int k = 0; k < r->n; k++) {
+      const fb_model_result *ref = &r->model[k];
+      if (strcmp(ref->run.name, want) != 0 || !ref->has_peaks) continue;
+      fb_diag inner;
+      if (fb_metrics_vs_reference(&m->ref_error, &m->run.series, &ref->run.series, r->t_window,
+                                  FB_JOINT_B, &inner) == FB_OK) {
+        m->has_ref_error = 1;
+        snprintf(m->ref_name, sizeof m->ref_name, "%s", want);
+      }
+    }
+  }
   return FB_OK;
 }
 

@@ -20,6 +20,9 @@ typedef struct {
   int has_spikes;          /* 1 for clearance models that reached the window */
   fb_spikes spikes;
   char spikes_reference[FB_NAME_SIZE]; /* model whose peak |alpha| the ratios divide by */
+  int has_ref_error;       /* 1 for a clearance model run beside its reference */
+  fb_reference_error ref_error;
+  char ref_name[FB_NAME_SIZE]; /* the reference model compared against */
 } fb_model_result;
 
 typedef struct {

@@ -55,7 +55,7 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   if (!j) fail_msg("summary.json does not parse: %s", je.text);
   assert_string_equal(json_string_value(json_object_get(j, "case")), "paper_crank_rocker");
   json_t *models = json_object_get(j, "models");
-  assert_int_equal(json_array_size(models), 5);
+  assert_int_equal(json_array_size(models), 6);
   const char *keys[] = {"name", "kind", "status", "h_s", "steps", "wall_s", "coupler",
                         "follower", "error_vs_analytic", NULL};
   const char *peak_keys[] = {"omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2",
@@ -70,7 +70,8 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
       for (int k = 0; peak_keys[k]; k++) assert_true(json_is_number(json_object_get(body, peak_keys[k])));
     }
     const char *kind = json_string_value(json_object_get(m, "kind"));
-    assert_true(strcmp(kind, "analytic") == 0 || strcmp(kind, "ode") == 0);
+    assert_true(strcmp(kind, "analytic") == 0 || strcmp(kind, "ode") == 0 ||
+                strcmp(kind, "reference") == 0);
     assert_string_equal(json_string_value(json_object_get(m, "status")), "ok");
     /* every model wrote its CSV, with a unit-suffixed header */
     snprintf(path, sizeof path, "%s/paper/%s.csv", tmpdir,
@@ -106,6 +107,10 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
     assert_true(json_real_value(json_object_get(sp, "alpha_peak_ratio_coupler")) > 1.0);
   }
   assert_true(json_is_null(json_object_get(json_array_get(models, 2), "spikes")));
+  /* the impact model is measured against the reference of its law */
+  json_t *evr = json_object_get(json_array_get(models, 4), "error_vs_reference");
+  assert_string_equal(json_string_value(json_object_get(evr, "reference")), "reference");
+  assert_true(json_is_number(json_object_get(evr, "force_max_rel")));
   /* the clearance model's CSV has the contact columns */
   snprintf(path, sizeof path, "%s/paper/ode-clearance-impact.csv", tmpdir);
   FILE *f = fopen(path, "r");

@@ -1,0 +1,229 @@
+#include "reference.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "linkage.h"
+
+typedef struct {
+  const fb_case *c;
+  const fb_contact_law *law;
+  int ideal;
+  double a, b, cf, g;         /* crank, coupler, follower, ground lengths [m] */
+  double m3, m4, i3, i4, f3, f4;
+  double theta0, omega2, grav, clear;
+  double v0;                  /* hysteresis laws' impact velocity (unused by the models) */
+  /* last evaluation, for sampling */
+  double force, pen, ex, ey, acc[2];
+} ref_ctx;
+
+/* contact geometry and generalised forces at (t, q, q'); fills acc[] */
+static int eom(double t, const double y[], double dydt[], void *p) {
+  ref_ctx *r = p;
+  const double th2 = r->theta0 + r->omega2 * t;
+  const double th3 = y[0], th4 = y[1], w3 = y[2], w4 = y[3];
+  const double s2 = sin(th2), c2 = cos(th2), s3 = sin(th3), c3 = cos(th3);
+  const double s4 = sin(th4), c4 = cos(th4);
+  if (r->ideal) {
+    /* velocity constraint of the closed loop (fb_linkage_solve's 2x2 system):
+     *  -b s3 w3 + c s4 w4 = a s2 w2,  b c3 w3 - c c4 w4 = -a c2 w2 */
+    const double det = r->b * r->cf * sin(th3 - th4);
+    const double r1 = r->a * s2 * r->omega2, r2 = -r->a * c2 * r->omega2;
+    dydt[0] = (r1 * (-r->cf * c4) - r->cf * s4 * r2) / det;
+    dydt[1] = ((-r->b * s3) * r2 - r->b * c3 * r1) / det;
+    dydt[2] = dydt[3] = 0.0;
+    return GSL_SUCCESS;
+  }
+  const double b = r->b, cl = r->cf, f3 = r->f3, f4 = r->f4;
+  /* e3p = d e3 / d theta3 = (-s3, c3), likewise e4p */
+  const double e3[2] = {c3, s3}, e3p[2] = {-s3, c3}, e4[2] = {c4, s4}, e4p[2] = {-s4, c4};
+  const double C[2] = {r->g + cl * c4, cl * s4};
+  const double Bh[2] = {C[0] - b * c3, C[1] - b * s3};
+  const double Bp[2] = {r->a * c2, r->a * s2};
+  /* Jacobian columns (theta3, theta4) of the coupler COM G3, follower COM G4, hole B */
+  const double JG3[2][2] = {{-(1 - f3) * b * e3p[0], cl * e4p[0]}, {-(1 - f3) * b * e3p[1], cl * e4p[1]}};
+  const double JG4_4[2] = {f4 * cl * e4p[0], f4 * cl * e4p[1]};
+  const double JB[2][2] = {{-b * e3p[0], cl * e4p[0]}, {-b * e3p[1], cl * e4p[1]}};
+  /* mass matrix */
+  const double M11 = r->m3 * (1 - f3) * (1 - f3) * b * b + r->i3;
+  const double M12 = -r->m3 * cl * (1 - f3) * b * cos(th4 - th3);
+  const double M22 = r->m3 * cl * cl + r->m4 * f4 * f4 * cl * cl + r->i4;
+  /* quadratic velocity terms of G3: -c w4^2 e4 + (1 - f3) b w3^2 e3 */
+  const double gam[2] = {-cl * w4 * w4 * e4[0] + (1 - f3) * b * w3 * w3 * e3[0],
+                         -cl * w4 * w4 * e4[1] + (1 - f3) * b * w3 * w3 * e3[1]};
+  double Q[2];
+  for (int k = 0; k < 2; k++)
+    Q[k] = -r->m3 * (JG3[0][k] * gam[0] + JG3[1][k] * gam[1]) /* -J^T m gamma */
+           + r->m3 * (-r->grav) * JG3[1][k];                     /* gravity on the coupler */
+  Q[1] += r->m4 * (-r->grav) * JG4_4[1];
+  /* contact */
+  const double e[2] = {Bp[0] - Bh[0], Bp[1] - Bh[1]};
+  const double ecc = hypot(e[0], e[1]);
+  const double delta = ecc - r->clear;
+  double fn = 0.0;
+  if (delta > 0.0 && ecc > 0.0) {
+    const double n[2] = {e[0] / ecc, e[1] / ecc};
+    const double vp[2] = {-r->a * s2 * r->omega2, r->a * c2 * r->omega2};
+    const double vh[2] = {JB[0][0] * w3 + JB[0][1] * w4, JB[1][0] * w3 + JB[1][1] * w4};
+    const double ddot = n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]);
+    fn = fb_contact_force(r->law, delta, ddot, r->v0);
+    /* the pin pushes the hole (coupler) along +n */
+    for (int k = 0; k < 2; k++) Q[k] += fn * (JB[0][k] * n[0] + JB[1][k] * n[1]);
+  }
+  const double det = M11 * M22 - M12 * M12;
+  const double a3 = (Q[0] * M22 - M12 * Q[1]) / det;
+  const double a4 = (M11 * Q[1] - M12 * Q[0]) / det;
+  dydt[0] = w3;
+  dydt[1] = w4;
+  dydt[2] = a3;
+  dydt[3] = a4;
+  r->force = fn;
+  r->pen = delta > 0.0 ? delta : 0.0;
+  r->ex = e[0];
+  r->ey = e[1];
+  r->acc[0] = a3;
+  r->acc[1] = a4;
+  return GSL_SUCCESS;
+}
+
+fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
+                           const fb_contact_law *law, int ideal, fb_diag *diag) {
+  if (!ideal && c->clearance.mask != (1 << FB_JOINT_B))
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "the reference dynamics cover clearance at the crank-coupler joint alone; "
+                       "this case has clearance at other joints");
+  fb_linkage lk;
+  fb_case_stackup_lengths(c, &lk);
+  const double omega2 = fb_case_omega2(c);
+  fb_linkage_state st;
+  fb_status rc = fb_linkage_solve(&st, &lk, c->branch, c->crank_angle0, omega2, 0.0, diag);
+  if (rc != FB_OK) return rc;
+  ref_ctx r;
+  memset(&r, 0, sizeof r);
+  r.c = c;
+  r.law = law;
+  r.ideal = ideal;
+  r.a = lk.length[FB_CRANK];
+  r.b = lk.length[FB_COUPLER];
+  r.cf = lk.length[FB_FOLLOWER];
+  r.g = lk.length[FB_GROUND];
+  r.m3 = c->link[FB_COUPLER].mass;
+  r.m4 = c->link[FB_FOLLOWER].mass;
+  r.i3 = c->link[FB_COUPLER].inertia;
+  r.i4 = c->link[FB_FOLLOWER].inertia;
+  r.f3 = c->link[FB_COUPLER].com_fraction;
+  r.f4 = c->link[FB_FOLLOWER].com_fraction;
+  r.theta0 = c->crank_angle0;
+  r.omega2 = omega2;
+  r.grav = c->gravity;
+  r.clear = c->radial_clearance;
+  r.v0 = 1e-3;
+  /* the pin starts centred in the hole with the ideal mechanism's velocities
+   * (as ODE's scene does) */
+  double y[4] = {st.coupler_angle, st.follower_angle, st.coupler_omega, st.follower_omega};
+  gsl_odeiv2_system sys = {eom, NULL, 4, &r};
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  const char *tol_env = getenv("FOURBAR_REFERENCE_TOL"); /* convergence studies only */
+  const double tol = tol_env ? atof(tol_env) : FB_REFERENCE_TOL;
+  gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, c->solver.h * 1e-3,
+                                                         tol, tol);
+  if (!drv) {
+    gsl_set_error_handler(old);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the reference integrator");
+  }
+  gsl_odeiv2_driver_set_nmax(drv, 0);
+  const size_t n = (size_t)llround(fb_case_duration(c) / c->solver.h);
+  fb_status status = FB_OK;
+  if (fb_series_init(out, n + 1) != FB_OK || (!ideal && fb_series_enable_contact(out, 1 << FB_JOINT_B) != FB_OK)) {
+    gsl_odeiv2_driver_free(drv);
+    gsl_set_error_handler(old);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n + 1);
+  }
+  double t = 0.0;
+  size_t taken = 0;
+  int prev_state = FB_STATE_FREE;
+  int restituting = 0;
+  for (size_t k = 0; k <= n; k++) {
+    const double tk = (double)k * c->solver.h;
+    if (k > 0) {
+      int g = gsl_odeiv2_driver_apply(drv, &t, tk, y);
+      taken += (size_t)drv->n; /* the driver counts per call */
+      if (g != GSL_SUCCESS) {
+        status = fb_diag_set(diag, FB_ERR_NUMERIC, "reference integration failed at t = %g s: %s",
+                             t, gsl_strerror(g));
+        break;
+      }
+    }
+    double dy[4];
+    eom(tk, y, dy, &r); /* accelerations and contact at the sample */
+    double a3 = dy[2], a4 = dy[3];
+    if (ideal) {
+      /* accelerations of the closed loop from the exact solver at the state's
+       * crank angle (the velocity equations carry no second derivative) */
+      fb_linkage_state s2;
+      if (fb_linkage_solve(&s2, &lk, c->branch, r.theta0 + omega2 * tk, omega2, 0.0, diag) != FB_OK) {
+        status = FB_ERR_ASSEMBLY;
+        break;
+      }
+      /* differentiate the constraint along the integrated state: the same
+       * 2x2 matrix with the state's angles */
+      const double th2 = r.theta0 + omega2 * tk;
+      const double s2_ = sin(th2), c2_ = cos(th2), s3 = sin(y[0]), c3 = cos(y[0]);
+      const double s4 = sin(y[1]), c4 = cos(y[1]);
+      const double w3 = dy[0], w4 = dy[1];
+      const double q1 = r.a * c2_ * omega2 * omega2 + r.b * c3 * w3 * w3 - r.cf * c4 * w4 * w4;
+      const double q2 = r.a * s2_ * omega2 * omega2 + r.b * s3 * w3 * w3 - r.cf * s4 * w4 * w4;
+      const double det = r.b * r.cf * sin(y[0] - y[1]);
+      a3 = (q1 * (-r.cf * c4) - r.cf * s4 * q2) / det;
+      a4 = ((-r.b * s3) * q2 - r.b * c3 * q1) / det;
+    }
+    fb_sample x;
+    memset(&x, 0, sizeof x);
+    x.t = tk;
+    x.crank_angle = r.theta0 + omega2 * tk;
+    x.coupler_angle = y[0];
+    x.follower_angle = y[1];
+    x.coupler_omega = ideal ? dy[0] : y[2];
+    x.follower_omega = ideal ? dy[1] : y[3];
+    x.coupler_alpha = a3;
+    x.follower_alpha = a4;
+    if (!ideal) {
+      /* contact state as the ODE scene classifies it, from the sampled rate */
+      int state = FB_STATE_FREE;
+      if (r.force > 0.0) {
+        double ddot_sign = 0.0;
+        const double e_now = hypot(r.ex, r.ey);
+        (void)e_now;
+        if (prev_state == FB_STATE_FREE) {
+          state = FB_STATE_IMPACT;
+          restituting = 0;
+        } else {
+          state = prev_state;
+          /* rate of penetration from the next sample is not known here: use the
+           * force trend (rising: compression) as the impact's phase */
+          ddot_sign = r.force - out->contact[FB_JOINT_B][FB_C_FORCE][out->n - 1];
+          if (ddot_sign < 0.0) restituting = 1;
+          else if (restituting && state == FB_STATE_IMPACT) state = FB_STATE_CONTINUOUS;
+        }
+      }
+      prev_state = state;
+      x.contact[FB_JOINT_B][FB_C_FORCE] = r.force;
+      x.contact[FB_JOINT_B][FB_C_PEN] = r.pen;
+      x.contact[FB_JOINT_B][FB_C_EX] = r.ex;
+      x.contact[FB_JOINT_B][FB_C_EY] = r.ey;
+      x.contact[FB_JOINT_B][FB_C_STATE] = state;
+    }
+    if (!(isfinite(y[0]) && isfinite(y[1]) && isfinite(x.coupler_omega) && isfinite(a3))) {
+      status = fb_diag_set(diag, FB_ERR_NUMERIC, "reference: non-finite state at t = %g s", tk);
+      break;
+    }
+    fb_series_push(out, &x);
+  }
+  *steps = taken;
+  gsl_odeiv2_driver_free(drv);
+  gsl_set_error_handler(old);
+  return status;
+}

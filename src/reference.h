@@ -1,0 +1,45 @@
+/* Reference dynamics of the four-bar with a clearance crank-coupler joint, in
+ * minimal coordinates, integrated by an adaptive high-accuracy integrator: the
+ * yardstick for ODE's clearance models, where no analytic answer exists.
+ *
+ * Crank prescribed (theta2 = theta0 + omega2 t). The coupler hangs from the
+ * follower at the ideal joint C, the follower turns about D: generalised
+ * coordinates q = (theta3, theta4). The pin (on the crank) moves freely inside
+ * the hole at the coupler's B end; e = B_pin(t) - B_hole(q), penetration
+ * |e| - c, and the contact law's force (contact.h) acts on the coupler along
+ * e/|e|, mapped by J_hole^T. Kane's equations in closed form:
+ *   M(q) q'' + h(q, q') = J_G^T m g + J_hole^T F n,
+ *   M = [[m3 ((1 - f3) b)^2 + I3, -m3 c (1 - f3) b cos(theta4 - theta3)],
+ *        [sym, m3 c^2 + m4 (f4 c)^2 + I4]],
+ * with f the centre-of-mass fractions. Integrated with GSL's rk8pd, relative
+ * and absolute tolerances FB_REFERENCE_TOL, sampled on the case's time grid;
+ * accelerations come from the equations of motion, not from differences.
+ * Contact onset is not located as an event: the impact law's force is
+ * continuous in the penetration and the adaptive step shrinks to resolve the
+ * restitution law's jump of c delta' at contact onset (error control, not
+ * event location); both models used here need no impact velocity.
+ *
+ * Ideal limit (ideal = 1): the B joint closes (no clearance); the loop's
+ * velocity constraint J(q) q' = r(t) is integrated from the assembled state,
+ * which must reproduce the analytic solution (tested to 1e-8). */
+#ifndef FB_REFERENCE_H
+#define FB_REFERENCE_H
+
+#include "case.h"
+#include "contact.h"
+#include "series.h"
+
+/* rk8pd error control: a few orders above double precision on angles ~1 rad */
+#define FB_REFERENCE_TOL 1e-10
+
+/* Integrates the case's stack-up linkage with law at the crank-coupler joint
+ * (or ideal) and samples it at t = k h over the case's duration into *out
+ * (initialised here; contact columns of the crank-coupler joint unless ideal).
+ * *steps receives the integrator's accepted steps.
+ * Errors: FB_ERR_ARG when the case has clearance at a joint other than
+ * crank-coupler (no reference for it yet); FB_ERR_ASSEMBLY; FB_ERR_NUMERIC
+ * when the integrator fails (message names the time). */
+fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
+                           const fb_contact_law *law, int ideal, fb_diag *diag);
+
+#endif

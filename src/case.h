@@ -101,6 +101,13 @@ typedef struct fb_case_s {
   double radial_clearance;            /* radial clearance c = R_hole - R_pin [m] */
   fb_solver solver;                   /* ODE settings */
   fb_clearance clearance;             /* clearance joints and contact parameters */
+  struct {
+    char outcome[FB_NAME_SIZE];       /* "stable", "unstable" or "" (no expectation) */
+    char model[FB_NAME_SIZE];         /* model the expectation is about */
+    double omega_peak_rel_max;        /* bound vs analytic [-]; 0: none */
+    double force_peak_rel_max;        /* bound vs reference [-]; 0: none */
+    char reason[FB_NAME_SIZE];        /* word the unstable status contains */
+  } expect;                           /* hard cases' stated outcome (tests check it) */
   double revolutions;                 /* crank revolutions simulated [-]; the first is a run-in */
   int model_count;                    /* entries used in models */
   char models[FB_MAX_MODELS][FB_NAME_SIZE]; /* model names to run, in order */

@@ -150,7 +150,8 @@ static const key_spec keys[] = {
     {"pin", "fit", K_FIT, OFF(fit), 0, 0, 0, 0, 0, "-", "(none)",
      "an ISO 286 clearance fit, e.g. 10H7/g6",
      "fit of the clearance joints; gives the pin diameter and the radial clearance "
-     "(maximum clearance / 2); do not also give radial_clearance_um"},
+     "(maximum clearance / 2); do not also give radial_clearance_um; none cancels a "
+     "base case's fit"},
     {"pin", "radial_clearance_um", K_DOUBLE, OFF(radial_clearance), FB_M_PER_UM, 0, INF, 1, 1,
      "um", "14.5", "a radial clearance must be positive",
      "radial clearance c = R_hole - R_pin of the clearance joints (default: the 10 H7/g6 "
@@ -193,6 +194,19 @@ static const key_spec keys[] = {
     {"clearance", "faceted_n", K_INT, OFF(clearance.faceted_n), 0, 3, 4096, 0, 0, "-", "64",
      "3 to 4096 boxes",
      "boxes in the hole ring of ode-clearance-faceted (ODE's generic box-cylinder path)"},
+
+    {"expect", "outcome", K_NAME, OFF(expect.outcome), 0, 0, 0, 0, 0, "-", "(none)",
+     "stable or unstable", "hard cases: what the expect.model run must do (checked by tests)"},
+    {"expect", "model", K_NAME, OFF(expect.model), 0, 0, 0, 0, 0, "-", "(none)", "a model name",
+     "the model the expectation is about"},
+    {"expect", "omega_peak_rel_max", K_DOUBLE, OFF(expect.omega_peak_rel_max), 1.0, 0, INF, 1, 1,
+     "-", "(none)", "a positive bound",
+     "stable: bound on the model's angular-velocity peak error against the analytic solution"},
+    {"expect", "force_peak_rel_max", K_DOUBLE, OFF(expect.force_peak_rel_max), 1.0, 0, INF, 1, 1,
+     "-", "(none)", "a positive bound",
+     "stable: bound on the clearance model's peak-force error against the reference"},
+    {"expect", "reason", K_NAME, OFF(expect.reason), 0, 0, 0, 0, 0, "-", "(none)",
+     "letters, digits, - _ .", "unstable: a word the model's status must contain"},
 
     {"solver", "h_s", K_DOUBLE, OFF(solver.h), 1.0, 0, 1, 1, 0, "s", "1e-5",
      "the step size must be positive (at most 1 s)", "step size h of the ODE models"},
@@ -368,7 +382,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
-                       "drive, environment, mass, material, pin, clearance, solver, run)",
+                       "drive, environment, mass, material, pin, clearance, expect, solver, run)",
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }
@@ -643,6 +657,10 @@ static fb_status resolve_standards(fb_case *out, const load_ctx *c, fb_diag *dia
     }
   }
   const char *fit_at = entry_origin(c, "pin", "fit");
+  if (fit_at && strcmp(out->fit, "none") == 0) { /* cancels a fit inherited from a base */
+    fit_at = NULL;
+    out->fit[0] = '\0';
+  }
   const char *rc_at = entry_origin(c, "pin", "radial_clearance_um");
   if (fit_at) {
     if (rc_at)

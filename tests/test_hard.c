@@ -1,0 +1,78 @@
+/* Hard cases (the .ini files in cases/hard): each states its expected outcome in its
+ * [expect] section (stable with error bounds at the case's step, or a clean
+ * 'unstable' report with its reason); this test runs every one and checks
+ * it, and that nothing non-finite was kept. */
+#include <dirent.h>
+#include <string.h>
+
+#include "casefile.h"
+#include "fb_test.h"
+#include "run.h"
+
+static void check_case(const char *path) {
+  fb_case c;
+  fb_diag d;
+  if (fb_casefile_load(&c, path, NULL, 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (!c.expect.outcome[0]) fail_msg("%s: no [expect] outcome", path);
+  static fb_run r;
+  if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s: %s", path, d.msg);
+  const fb_model_result *m = NULL;
+  for (int i = 0; i < r.n; i++) {
+    if (strcmp(r.model[i].run.name, c.expect.model) == 0) m = &r.model[i];
+    const fb_series *s = &r.model[i].run.series;
+    for (size_t k = 0; k < s->n; k++)
+      if (!isfinite(s->coupler_alpha[k]) || !isfinite(s->follower_omega[k]))
+        fail_msg("%s: %s kept a non-finite sample", path, r.model[i].run.name);
+  }
+  if (!m) fail_msg("%s: expect.model %s is not run", path, c.expect.model);
+  const char *name = strrchr(path, '/') + 1;
+  if (strcmp(c.expect.outcome, "unstable") == 0) {
+    if (strncmp(m->run.status, "unstable", 8) != 0 || !strstr(m->run.status, c.expect.reason))
+      fail_msg("%s: expected unstable (%s), got '%s'", name, c.expect.reason, m->run.status);
+    if (fb_test_verbose()) fprintf(stderr, "  %-26s unstable as expected: %.60s\n", name, m->run.status);
+  } else {
+    if (strcmp(m->run.status, "ok") != 0) fail_msg("%s: expected stable, got '%s'", name, m->run.status);
+    if (c.expect.omega_peak_rel_max > 0) {
+      const fb_error *e = &m->error;
+      const double w = fmax(fmax(fabs(e->coupler.omega_max_rel), fabs(e->coupler.omega_min_rel)),
+                            fmax(fabs(e->follower.omega_max_rel), fabs(e->follower.omega_min_rel)));
+      report_residual(name, w, c.expect.omega_peak_rel_max);
+      if (!(w <= c.expect.omega_peak_rel_max))
+        fail_msg("%s: omega peak error %.3g > %.3g", name, w, c.expect.omega_peak_rel_max);
+    }
+    if (c.expect.force_peak_rel_max > 0) {
+      if (!m->has_ref_error) fail_msg("%s: no reference to bound the force against", name);
+      const double f = fabs(m->ref_error.force_max_rel);
+      report_residual(name, f, c.expect.force_peak_rel_max);
+      if (!(f <= c.expect.force_peak_rel_max))
+        fail_msg("%s: force peak error %.3g > %.3g", name, f, c.expect.force_peak_rel_max);
+    }
+  }
+  fb_run_free(&r);
+}
+
+static void test_hard_cases_meet_their_expectations(void **state) {
+  (void)state;
+  const char *dir = getenv("FOURBAR_CASES_DIR");
+  char hard[4096];
+  snprintf(hard, sizeof hard, "%s/hard", dir ? dir : "cases");
+  DIR *dd = opendir(hard);
+  assert_non_null(dd);
+  struct dirent *e;
+  int n = 0;
+  while ((e = readdir(dd))) {
+    size_t l = strlen(e->d_name);
+    if (l < 4 || strcmp(e->d_name + l - 4, ".ini") != 0) continue;
+    char path[8192];
+    snprintf(path, sizeof path, "%s/%s", hard, e->d_name);
+    check_case(path);
+    n++;
+  }
+  closedir(dd);
+  assert_true(n >= 10);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {cmocka_unit_test(test_hard_cases_meet_their_expectations)};
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -37,5 +37,6 @@ int fb_cmd_check(int argc, char **argv);
 int fb_cmd_sweep(int argc, char **argv);
 int fb_cmd_merge(int argc, char **argv);
 int fb_cmd_mapping(int argc, char **argv);
+int fb_cmd_bench(int argc, char **argv);
 
 #endif

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "bench.h"
 #include "fileio.h"
 #include "report.h"
 
@@ -364,5 +365,49 @@ fb_status fb_figures_mapping(const char *path, fb_figure_format fmt, const char 
                 "$hw using 1:2:(1) with lines lw 3 lc rgb 'white' title 'h omega = 1 (above: under-resolved)', "
                 "$erpc using 1:2:(1) with lines lw 2 dt 2 lc rgb 'black' title 'ERP = 0.1 and 0.99'\n",
           title);
+  return plot_close(&pl, diag);
+}
+
+static int by_wall(const void *a, const void *b) {
+  const fb_bench_row *x = *(const fb_bench_row *const *)a, *y = *(const fb_bench_row *const *)b;
+  return (x->wall_per_rev > y->wall_per_rev) - (x->wall_per_rev < y->wall_per_rev);
+}
+
+fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *case_name,
+                           const void *rows_, int n, fb_diag *diag) {
+  const fb_bench_row *rows = rows_;
+  char dir[4096], name[256];
+  split_path(path, dir, sizeof dir, name, sizeof name);
+  plot pl;
+  fb_status st = plot_open(&pl, dir, name, fmt, 1000, 700, diag);
+  if (st != FB_OK) return st;
+  const char *models[2] = {"ode-ideal-stackup", "ode-clearance-impact"};
+  for (int q = 0; q < 2; q++) {
+    const fb_bench_row *front[256];
+    int nf = 0;
+    fprintf(pl.p, "$all%d << EOD\n", q);
+    for (int i = 0; i < n; i++)
+      if (strcmp(rows[i].model, models[q]) == 0 && isfinite(rows[i].error)) {
+        fprintf(pl.p, "%.9g %.9g\n", rows[i].wall_per_rev, fmax(rows[i].error, 1e-12));
+        if (rows[i].pareto && nf < 256) front[nf++] = &rows[i];
+      }
+    fprintf(pl.p, "1e9 1e9\nEOD\n$front%d << EOD\n", q);
+    qsort(front, (size_t)nf, sizeof front[0], by_wall);
+    for (int i = 0; i < nf; i++)
+      fprintf(pl.p, "%.9g %.9g\n", front[i]->wall_per_rev, fmax(front[i]->error, 1e-12));
+    fprintf(pl.p, "1e9 1e9\nEOD\n");
+  }
+  char en[160];
+  fprintf(pl.p, "set title '%s: error against cost (fourbar bench)'\nset logscale xy\n"
+                "set format x '10^{%%L}'\nset format y '10^{%%L}'\n"
+                "set xlabel 'wall time per simulated revolution [s]'\n"
+                "set ylabel 'error against the exact yardstick [-]'\nset key top right box\n"
+                "set xrange [*:*] noextend\nset yrange [*:*] noextend\n"
+                "plot $all0 using 1:2 with points pt 7 ps 0.8 lc rgb '#1d3557' title 'ideal stack-up "
+                "(omega peaks vs analytic)', $front0 using 1:2 with linespoints pt 7 lw 2 lc rgb "
+                "'#1d3557' title 'its Pareto front', $all1 using 1:2 with points pt 5 ps 0.8 lc rgb "
+                "'#e63946' title 'clearance impact (force, penetration vs reference)', $front1 using "
+                "1:2 with linespoints pt 5 lw 2 lc rgb '#e63946' title 'its Pareto front'\n",
+          esc(case_name, en, sizeof en));
   return plot_close(&pl, diag);
 }

@@ -43,4 +43,11 @@ fb_status fb_figures_mapping(const char *path, fb_figure_format fmt, const char 
                              const double *k, int nh, const double *h, const double *erp,
                              const double *h_omega, fb_diag *diag);
 
+struct fb_bench_row_s;
+
+/* Draws error against wall time per revolution (log-log), one colour per
+ * model, Pareto front joined, to path. rows as from fb_bench_run. */
+fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *case_name,
+                           const void *rows, int n, fb_diag *diag);
+
 #endif

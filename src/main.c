@@ -23,6 +23,7 @@ static const char main_help[] =
     "  sweep        run a study's grid (jobs, shards for GNU parallel and Slurm, resumable)\n"
     "  merge        join shard outputs of a sweep\n"
     "  mapping      ERP and CFM against contact stiffness and step size\n"
+    "  bench        every solver configuration on one error-against-cost chart\n"
     "  keys         list every case-file key with unit, default and rule\n"
     "\n"
     "All outputs are SI; names carry the unit (omega_max_rad_s, h_s).\n";
@@ -59,6 +60,7 @@ int main(int argc, char **argv) {
   if (strcmp(cmd, "sweep") == 0) return fb_cmd_sweep(argc - 1, argv + 1);
   if (strcmp(cmd, "merge") == 0) return fb_cmd_merge(argc - 1, argv + 1);
   if (strcmp(cmd, "mapping") == 0) return fb_cmd_mapping(argc - 1, argv + 1);
+  if (strcmp(cmd, "bench") == 0) return fb_cmd_bench(argc - 1, argv + 1);
   if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
   fprintf(stderr, "fourbar: unknown command '%s'\n\n%s", cmd, main_help);
   return 2;

@@ -1,0 +1,48 @@
+/* Speed against error: a grid of ODE configurations on one case, each
+ * measured against the exact yardstick (the analytic solution for the ideal
+ * stack-up model, the reference dynamics for the clearance impact model),
+ * with its cost as wall time per simulated revolution (median of repeats).
+ *
+ * Grid: stepper (dWorldStep; dWorldQuickStep at 10, 20, 50 iterations) x
+ * step size h (1e-3, 1e-4, 1e-5, 1e-6 s) x mapping (secant, tangent; the
+ * clearance model only) x world ERP/CFM of the ideal joints ((0.2, 1e-10),
+ * (0.8, 1e-8)). Error of the ideal model: largest |relative error| of the
+ * four angular-velocity peaks; of the clearance model: the larger of
+ * |peak force| and |max penetration| relative errors against the reference.
+ * A row is on the Pareto front of its model when no other row of that model
+ * is both cheaper and at least as accurate. */
+#ifndef FB_BENCH_H
+#define FB_BENCH_H
+
+#include "case.h"
+
+typedef struct fb_bench_row_s {
+  char model[FB_NAME_SIZE];
+  char stepper[32];        /* "world" or "quick-<iterations>" */
+  double h;                /* [s] */
+  int mapping;             /* 0 secant, 1 tangent */
+  double world_erp, world_cfm;
+  char status[256];
+  double error;            /* NaN when the run stopped */
+  double wall_per_rev;     /* median wall time per simulated revolution [s] */
+  int repeats;
+  int pareto;
+} fb_bench_row;
+
+#define FB_BENCH_MAX_ROWS 256
+
+/* Runs the grid on case c (2 revolutions per run; 3 repeats for runs under
+ * 1 s, else 1). rows gets *n rows. progress (may be NULL) gets the fraction
+ * done. Errors: those of fb_run_case. */
+fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c,
+                       void (*progress)(double fraction, void *user), void *user, fb_diag *diag);
+
+/* Marks rows on the Pareto front of their model: no other row of the same
+ * model with a finite error is at least as cheap and as accurate, and
+ * strictly better in one. Rows with a non-finite error are never on it. */
+void fb_bench_mark_pareto(fb_bench_row *rows, int n);
+
+/* Index of the cheapest row of model meeting error <= target, -1 if none. */
+int fb_bench_cheapest(const fb_bench_row *rows, int n, const char *model, double target);
+
+#endif

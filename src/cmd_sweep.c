@@ -16,6 +16,7 @@
 
 #include "cli.h"
 #include "clock.h"
+#include "figures.h"
 #include "fileio.h"
 #include "study.h"
 
@@ -38,11 +39,12 @@ static const char sweep_help[] =
     "or duplicated.\n";
 
 static const char merge_help[] =
-    "usage: fourbar merge DIR... [--out DIR]\n"
+    "usage: fourbar merge DIR... [--out DIR] [--study STUDY]\n"
     "\n"
     "Joins the points*.jsonl files of the given folders into OUT/points.jsonl and\n"
     "OUT/points.csv (default OUT: the first DIR), after checking that they belong to\n"
-    "one study and that every point 0..N-1 is present exactly once.\n";
+    "one study and that every point 0..N-1 is present exactly once. With --study\n"
+    "it also draws OUT/study.svg.\n";
 
 typedef struct {
   char **rows;
@@ -322,18 +324,26 @@ int fb_cmd_sweep(int argc, char **argv) {
   if (fb_study_write_csv(csv, all.rows, all.n, &d) != FB_OK) rc = fb_cli_fail("sweep", 1, "%s", d.msg);
   printf("%s: %zu rows (%zu computed now in %.1f s) in %s and %s\n", s.name, all.n, finished, wall,
          rows_path, csv);
+  /* the study figure, once the whole grid is in this folder's points.csv */
+  if (!rc && shard_n == 1 && all.n == s.points) {
+    if (fb_figures_study(&s, dir, &d) != FB_OK) fprintf(stderr, "fourbar sweep: warning: %s\n", d.msg);
+    else printf("drew %s/study.svg\n", dir);
+  }
   rows_free(&all);
   return rc;
 }
 
 int fb_cmd_merge(int argc, char **argv) {
-  static const struct option opts[] = {
-      {"out", required_argument, 0, 'o'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
-  const char *out = NULL;
+  static const struct option opts[] = {{"out", required_argument, 0, 'o'},
+                                       {"study", required_argument, 0, 's'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  const char *out = NULL, *study_path = NULL;
   int ch;
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
     if (ch == 'o') out = optarg;
+    else if (ch == 's') study_path = optarg;
     else if (ch == 'h') { fputs(merge_help, stdout); return 0; }
     else { fputs(merge_help, stderr); return 2; }
   }
@@ -349,8 +359,8 @@ int fb_cmd_merge(int argc, char **argv) {
       if (strncmp(e->d_name, "points", 6) != 0 || l < 6 || strcmp(e->d_name + l - 6, ".jsonl") != 0) continue;
       char path[8192];
       snprintf(path, sizeof path, "%s/%s", argv[a], e->d_name);
-      if (strcmp(e->d_name, "points.jsonl") == 0 && strcmp(argv[a], out) == 0 && argc - optind > 1)
-        continue; /* a previous merge result in the output folder */
+      if (strcmp(e->d_name, "points.jsonl") == 0 && strcmp(argv[a], out) == 0)
+        continue; /* a previous merge result in the output folder: merged again from the shards */
       if (read_rows(path, &all, 0) != 0) return fb_cli_fail("merge", 1, "%s: cannot read", path);
     }
     closedir(dd);
@@ -389,6 +399,13 @@ int fb_cmd_merge(int argc, char **argv) {
     snprintf(path, sizeof path, "%s/points.csv", out);
     if (!rc && fb_study_write_csv(path, all.rows, all.n, &d) != FB_OK) rc = fb_cli_fail("merge", 1, "%s", d.msg);
     if (!rc) printf("merged %zu points into %s/points.jsonl and points.csv\n", all.n, out);
+    static fb_study st;
+    if (!rc && study_path) {
+      if (fb_study_load(&st, study_path, &d) != FB_OK || fb_figures_study(&st, out, &d) != FB_OK)
+        fprintf(stderr, "fourbar merge: warning: %s\n", d.msg);
+      else
+        printf("drew %s/study.svg\n", out);
+    }
   }
   rows_free(&all);
   return rc;

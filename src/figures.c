@@ -10,6 +10,7 @@
 
 #include "bench.h"
 #include "fileio.h"
+#include "study.h"
 #include "report.h"
 
 typedef struct {
@@ -409,5 +410,94 @@ fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *c
                 "'#e63946' title 'clearance impact (force, penetration vs reference)', $front1 using "
                 "1:2 with linespoints pt 5 lw 2 lc rgb '#e63946' title 'its Pareto front'\n",
           esc(case_name, en, sizeof en));
+  return plot_close(&pl, diag);
+}
+
+/* the metric columns of a study CSV header, after index, axes and status */
+static int csv_metrics(const char *csv, int naxes, char names[][128], int max) {
+  FILE *f = fopen(csv, "r");
+  if (!f) return 0;
+  static char line[1 << 16];
+  int n = 0;
+  if (fgets(line, sizeof line, f)) {
+    line[strcspn(line, "\r\n")] = '\0';
+    int col = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(line, ",", &save); t && n < max; t = strtok_r(NULL, ",", &save), col++)
+      if (col >= naxes + 2) snprintf(names[n++], 128, "%s", t);
+  }
+  fclose(f);
+  return n;
+}
+
+static int numeric_axis(const fb_axis *a) {
+  if (a->montecarlo) return 0;
+  for (int k = 0; k < a->n; k++) {
+    char *end;
+    strtod(a->value[k], &end);
+    if (*end) return 0;
+  }
+  return 1;
+}
+
+fb_status fb_figures_study(const fb_study *s, const char *dir, fb_diag *diag) {
+  char csv[4200];
+  snprintf(csv, sizeof csv, "%s/points.csv", dir);
+  char names[8][128];
+  int n = 0;
+  if (s->nplot) {
+    for (int k = 0; k < s->nplot; k++) snprintf(names[n++], 128, "%s", s->plot[k]);
+  } else {
+    n = csv_metrics(csv, s->naxes, names, 4);
+  }
+  if (n == 0) return FB_OK; /* nothing to draw */
+  plot pl;
+  const int rows = (n + 1) / 2;
+  fb_status st = plot_open(&pl, dir, "study", FB_FIGURE_SVG, 1200, 420 * rows, diag);
+  if (st != FB_OK) return st;
+  const fb_axis *x = &s->axis[0];
+  const int xnum = numeric_axis(x);
+  char en[160];
+  fprintf(pl.p, "set datafile separator ','\nset datafile columnheaders\nset key noenhanced inside top right box\n"
+                "set multiplot layout %d,%d title 'study %s (%s)'\n",
+          rows, n > 1 ? 2 : 1, esc(s->name, en, sizeof en), esc(s->path, en + 80, 80));
+  for (int m = 0; m < n; m++) {
+    fprintf(pl.p, "set title '%s' noenhanced\nunset logscale\n", names[m]);
+    if (s->heatmap) {
+      fprintf(pl.p, "set view map\nset xlabel '%s' noenhanced\nset ylabel '%s' noenhanced\n"
+                    "splot '%s' using (column('%s')):(column('%s')):(column('%s')) with points pt 5 "
+                    "ps 3 palette notitle\n",
+              x->key, s->axis[1].key, csv, x->key, s->axis[1].key, names[m]);
+      continue;
+    }
+    fprintf(pl.p, "set xlabel '%s' noenhanced\nset ylabel '%s' noenhanced\n",
+            xnum ? x->key : "point index", names[m]);
+    /* one series per combination of the other axes' values */
+    int combos = 1;
+    for (int a = 1; a < s->naxes; a++) combos *= s->axis[a].n;
+    if (combos > 12) combos = 12;
+    fprintf(pl.p, "plot ");
+    for (int k = 0; k < combos; k++) {
+      char cond[1024] = "1", title[512] = "";
+      int rest = k;
+      for (int a = s->naxes - 1; a >= 1; a--) {
+        const fb_axis *ax = &s->axis[a];
+        const char *v = ax->value[rest % ax->n];
+        rest /= ax->n;
+        char c2[1024];
+        snprintf(c2, sizeof c2, "%s && strcol('%s') eq '%s'", cond, ax->key, v);
+        snprintf(cond, sizeof cond, "%s", c2);
+        char t2[512];
+        snprintf(t2, sizeof t2, "%s%s%s=%s", title, title[0] ? ", " : "", ax->key, v);
+        snprintf(title, sizeof title, "%s", t2);
+      }
+      char xexpr[256];
+      snprintf(xexpr, sizeof xexpr, "column('%s')", xnum ? x->key : "index");
+      fprintf(pl.p, "%s'%s' using (%s):((%s) ? column('%s') : NaN) with linespoints pt 7 title '%s'",
+              k ? ", " : "", csv, xexpr, cond, names[m], s->naxes > 1 ? title : names[m]);
+    }
+    fprintf(pl.p, "\n");
+  }
+  fprintf(pl.p, "unset multiplot\n");
   return plot_close(&pl, diag);
 }

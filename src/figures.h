@@ -43,6 +43,15 @@ fb_status fb_figures_mapping(const char *path, fb_figure_format fmt, const char 
                              const double *k, int nh, const double *h, const double *erp,
                              const double *h_omega, fb_diag *diag);
 
+struct fb_study_s;
+
+/* Draws DIR/study.svg from DIR/points.csv: one panel per plotted metric
+ * ([study] plot, default the first four metric columns), the metric against
+ * the first axis (or the row index for a Monte Carlo axis) with one series per
+ * combination of the other axes' values, or a heat map over the first two
+ * axes ([study] heatmap = yes). Errors as fb_figures_run. */
+fb_status fb_figures_study(const struct fb_study_s *s, const char *dir, fb_diag *diag);
+
 struct fb_bench_row_s;
 
 /* Draws error against wall time per revolution (log-log), one colour per

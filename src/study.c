@@ -109,9 +109,21 @@ static int handler(void *user, const char *section, const char *key, const char 
         if (*t && s->nmetrics < FB_STUDY_MAX_METRICS)
           snprintf(s->metrics[s->nmetrics++], sizeof s->metrics[0], "%s", t);
       }
+    } else if (strcmp(key, "plot") == 0) {
+      char buf[4096];
+      snprintf(buf, sizeof buf, "%s", value);
+      char *save = NULL;
+      for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        t = trim(t);
+        if (*t && s->nplot < 8) snprintf(s->plot[s->nplot++], sizeof s->plot[0], "%s", t);
+      }
+    } else if (strcmp(key, "heatmap") == 0) {
+      if (strcmp(value, "yes") == 0) s->heatmap = 1;
+      else if (strcmp(value, "no") == 0) s->heatmap = 0;
+      else c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [study] heatmap = '%s': yes or no", where, value);
     } else {
       c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: unknown key '%s' in [study] (name, case, set, "
-                          "metrics)", where, key);
+                          "metrics, plot, heatmap)", where, key);
     }
     return 1;
   }
@@ -226,6 +238,8 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
                          "montecarlo", path, s->axis[a].name);
     s->points *= (size_t)s->axis[a].n;
   }
+  if (s->heatmap && s->naxes < 2)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] heatmap = yes needs two axes", path);
   if (s->points > 10000000)
     return fb_diag_set(diag, FB_ERR_RANGE, "%s: %zu points: more than 1e7", path, s->points);
   /* the corners of the grid must load: catches a wrong key before any run */

@@ -11,7 +11,9 @@
  * Study file (INI):
  *   [study] name, case (relative to the study file), set (fixed overrides
  *           separated by ';'), metrics (comma list; a trailing * matches a
- *           prefix; default all)
+ *           prefix; default all), plot (up to 8 metric names to draw in
+ *           study.svg; default the first four), heatmap (yes: a heat map over
+ *           the first two axes instead of curves)
  *   [axis.<name>] key + values (comma list) or range (FROM:TO:STEP), or
  *           montecarlo = N samples with seed = S (lengths drawn from the
  *           case's tolerances and distribution, one seed per point). */
@@ -36,7 +38,7 @@ typedef struct {
   char value[FB_STUDY_MAX_VALUES][32];   /* values as text (--set syntax) */
 } fb_axis;
 
-typedef struct {
+typedef struct fb_study_s {
   char path[4096];                        /* study file */
   char name[64];
   char case_path[4096];                   /* resolved case file */
@@ -44,6 +46,9 @@ typedef struct {
   char sets[FB_STUDY_MAX_SETS][256];      /* fixed overrides */
   int nmetrics;                           /* 0: all */
   char metrics[FB_STUDY_MAX_METRICS][128];
+  int nplot;                              /* metrics to draw (0: the first four) */
+  char plot[8][128];
+  int heatmap;                            /* 1: draw a heat map over the first two axes */
   int naxes;
   fb_axis axis[FB_STUDY_MAX_AXES];
   size_t points;                          /* product of the axis sizes */

@@ -25,6 +25,14 @@ ok '[ -f "$tmp/shards/points.shard-0-of-2.jsonl" ] && [ -f "$tmp/shards/points.s
 "$exe" merge "$tmp/shards" >/dev/null 2>&1
 ok 'cmp -s "$tmp/one/points.csv" "$tmp/shards/points.csv"' "merged shards give the same rows"
 
+# study figures: curves (tiny) and a heat map (tiny_heat), well-formed SVG
+svg_ok() { python3 -c "import sys, xml.etree.ElementTree as E; r = E.parse(sys.argv[1]).getroot(); sys.exit(0 if r.tag.endswith('svg') and len(list(r.iter())) > 50 else 1)" "$1"; }
+ok 'svg_ok "$tmp/one/study.svg"' "sweep draws study.svg (curves)"
+"$exe" sweep "$here/studies/tiny_heat.ini" --out "$tmp/heat" >/dev/null 2>&1
+ok 'svg_ok "$tmp/heat/study.svg" && grep -q "stiffness" "$tmp/heat/study.svg"' "heatmap = yes draws a heat map"
+"$exe" merge "$tmp/shards" --study "$study" >/dev/null 2>&1
+ok 'svg_ok "$tmp/shards/study.svg"' "merge --study draws study.svg"
+
 # merge refuses a missing shard and a duplicated point
 mkdir -p "$tmp/half" && cp "$tmp/shards/points.shard-0-of-2.jsonl" "$tmp/half/"
 ok '! "$exe" merge "$tmp/half" 2>"$tmp/err" && grep -q "missing" "$tmp/err"' "merge names missing points"

@@ -161,15 +161,8 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
     eom(tk, y, dy, &r); /* accelerations and contact at the sample */
     double a3 = dy[2], a4 = dy[3];
     if (ideal) {
-      /* accelerations of the closed loop from the exact solver at the state's
-       * crank angle (the velocity equations carry no second derivative) */
-      fb_linkage_state s2;
-      if (fb_linkage_solve(&s2, &lk, c->branch, r.theta0 + omega2 * tk, omega2, 0.0, diag) != FB_OK) {
-        status = FB_ERR_ASSEMBLY;
-        break;
-      }
-      /* differentiate the constraint along the integrated state: the same
-       * 2x2 matrix with the state's angles */
+      /* accelerations: the second time derivative of the loop constraint along
+       * the integrated state (the same 2x2 matrix with the state's angles) */
       const double th2 = r.theta0 + omega2 * tk;
       const double s2_ = sin(th2), c2_ = cos(th2), s3 = sin(y[0]), c3 = cos(y[0]);
       const double s4 = sin(y[1]), c4 = cos(y[1]);
@@ -192,20 +185,17 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
     x.follower_alpha = a4;
     if (!ideal) {
       /* contact state as the ODE scene classifies it, from the sampled rate */
+      /* the impact's phase from the force trend between samples (rising:
+       * compression, falling: restitution), as the scene does from the rate */
       int state = FB_STATE_FREE;
       if (r.force > 0.0) {
-        double ddot_sign = 0.0;
-        const double e_now = hypot(r.ex, r.ey);
-        (void)e_now;
         if (prev_state == FB_STATE_FREE) {
           state = FB_STATE_IMPACT;
           restituting = 0;
         } else {
           state = prev_state;
-          /* rate of penetration from the next sample is not known here: use the
-           * force trend (rising: compression) as the impact's phase */
-          ddot_sign = r.force - out->contact[FB_JOINT_B][FB_C_FORCE][out->n - 1];
-          if (ddot_sign < 0.0) restituting = 1;
+          const double trend = r.force - out->contact[FB_JOINT_B][FB_C_FORCE][out->n - 1];
+          if (trend < 0.0) restituting = 1;
           else if (restituting && state == FB_STATE_IMPACT) state = FB_STATE_CONTINUOUS;
         }
       }

@@ -41,6 +41,21 @@ static char *trim(char *p) {
   return p;
 }
 
+/* appends the non-empty, trimmed items of a sep-separated list to the rows
+ * (width bytes each) of dst holding *n; returns 0 when more than max */
+static int add_items(const char *value, const char *sep, char *dst, size_t width, int *n, int max) {
+  char buf[4096];
+  snprintf(buf, sizeof buf, "%s", value);
+  char *save = NULL;
+  for (char *t = strtok_r(buf, sep, &save); t; t = strtok_r(NULL, sep, &save)) {
+    t = trim(t);
+    if (!*t) continue;
+    if (*n == max) return 0;
+    snprintf(dst + (size_t)(*n)++ * width, width, "%s", t);
+  }
+  return 1;
+}
+
 static fb_status add_values(fb_axis *a, const char *text, const char *where, fb_diag *diag) {
   char buf[4096];
   snprintf(buf, sizeof buf, "%s", text);
@@ -87,36 +102,16 @@ static int handler(void *user, const char *section, const char *key, const char 
       else
         snprintf(s->case_path, sizeof s->case_path, "%.*s/%s", (int)(slash - s->path), s->path, value);
     } else if (strcmp(key, "set") == 0) {
-      char buf[4096];
-      snprintf(buf, sizeof buf, "%s", value);
-      char *save = NULL;
-      for (char *t = strtok_r(buf, ";", &save); t; t = strtok_r(NULL, ";", &save)) {
-        t = trim(t);
-        if (!*t) continue;
-        if (s->nsets == FB_STUDY_MAX_SETS) {
-          c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [study] set: more than %d overrides", where,
-                              FB_STUDY_MAX_SETS);
-          return 1;
-        }
-        snprintf(s->sets[s->nsets++], sizeof s->sets[0], "%s", t);
-      }
+      if (!add_items(value, ";", s->sets[0], sizeof s->sets[0], &s->nsets, FB_STUDY_MAX_SETS))
+        c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [study] set: more than %d overrides", where,
+                            FB_STUDY_MAX_SETS);
     } else if (strcmp(key, "metrics") == 0) {
-      char buf[4096];
-      snprintf(buf, sizeof buf, "%s", value);
-      char *save = NULL;
-      for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-        t = trim(t);
-        if (*t && s->nmetrics < FB_STUDY_MAX_METRICS)
-          snprintf(s->metrics[s->nmetrics++], sizeof s->metrics[0], "%s", t);
-      }
+      if (!add_items(value, ",", s->metrics[0], sizeof s->metrics[0], &s->nmetrics, FB_STUDY_MAX_METRICS))
+        c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [study] metrics: more than %d", where,
+                            FB_STUDY_MAX_METRICS);
     } else if (strcmp(key, "plot") == 0) {
-      char buf[4096];
-      snprintf(buf, sizeof buf, "%s", value);
-      char *save = NULL;
-      for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-        t = trim(t);
-        if (*t && s->nplot < 8) snprintf(s->plot[s->nplot++], sizeof s->plot[0], "%s", t);
-      }
+      if (!add_items(value, ",", s->plot[0], sizeof s->plot[0], &s->nplot, 8))
+        c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [study] plot: more than 8 metrics", where);
     } else if (strcmp(key, "heatmap") == 0) {
       if (strcmp(value, "yes") == 0) s->heatmap = 1;
       else if (strcmp(value, "no") == 0) s->heatmap = 0;

@@ -51,6 +51,13 @@ typedef struct {
   size_t n, cap;
 } rowset;
 
+/* prints text as one word for a POSIX shell: in single quotes, each ' as '\'' */
+static void put_shell_word(const char *text) {
+  putchar('\'');
+  for (const char *p = text; *p; p++) fputs(*p == '\'' ? "'\\''" : (char[2]){*p, 0}, stdout);
+  putchar('\'');
+}
+
 static int rows_add(rowset *r, const char *line) {
   if (r->n == r->cap) {
     size_t cap = r->cap ? 2 * r->cap : 64;
@@ -175,9 +182,14 @@ int fb_cmd_sweep(int argc, char **argv) {
     if (!realpath(study_path, study_abs)) snprintf(study_abs, sizeof study_abs, "%s", study_path);
     if (fb_outdir_prepare(dir, &d) != FB_OK) return fb_cli_fail("sweep", 1, "%s", d.msg);
     if (!realpath(dir, dir_abs)) snprintf(dir_abs, sizeof dir_abs, "%s", dir);
-    for (long k = 0; k < list; k++)
-      printf("%s sweep '%s' --shard %ld/%ld --out '%s'\n", l > 0 ? exe : "fourbar", study_abs, k, list,
-             dir_abs);
+    for (long k = 0; k < list; k++) {
+      put_shell_word(l > 0 ? exe : "fourbar");
+      fputs(" sweep ", stdout);
+      put_shell_word(study_abs);
+      printf(" --shard %ld/%ld --out ", k, list);
+      put_shell_word(dir_abs);
+      putchar('\n');
+    }
     return 0;
   }
   if (fb_outdir_prepare(dir, &d) != FB_OK) return fb_cli_fail("sweep", 1, "%s", d.msg);

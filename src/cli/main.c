@@ -1,4 +1,5 @@
 /* fourbar: the command-line interface. Dispatch only; no physics here. */
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -44,6 +45,9 @@ int main(int argc, char **argv) {
     fputs(main_help, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
   }
+  /* a child that stops reading (gnuplot on an error, `| head`) gives EPIPE on
+   * write, reported as an I/O error, never a signal */
+  signal(SIGPIPE, SIG_IGN);
   const char *cmd = argv[1];
   /* getopt's own messages then read "fourbar <command>: ..." */
   static char prog[64];

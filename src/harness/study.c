@@ -94,6 +94,10 @@ static int handler(void *user, const char *section, const char *key, const char 
   snprintf(where, sizeof where, "%s:%d", s->path, c->line);
   if (strcmp(section, "study") == 0) {
     if (strcmp(key, "name") == 0) {
+      if (!fb_casefile_name_ok(value))
+        c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [study] name = '%s': a name is 1 to %d "
+                            "characters from letters, digits, '-', '_' and '.', not starting with "
+                            "'.' (it names the output folder)", where, value, FB_NAME_SIZE - 1);
       snprintf(s->name, sizeof s->name, "%s", value);
     } else if (strcmp(key, "case") == 0) {
       const char *slash = strrchr(s->path, '/');

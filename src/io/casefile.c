@@ -237,6 +237,12 @@ static const key_spec keys[] = {
 
 int fb_casefile_key_count(void) { return NKEYS; }
 
+int fb_casefile_name_ok(const char *name) {
+  size_t n = strlen(name);
+  return n > 0 && n < FB_NAME_SIZE && name[0] != '.' &&
+         strspn(name, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") == n;
+}
+
 const char *fb_casefile_key_name(int i, char *buf, size_t size) {
   snprintf(buf, size, "%s.%s", keys[i].section, keys[i].key);
   return buf;
@@ -478,10 +484,7 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
     }
     case K_NAME: {
       size_t n = strlen(e->value);
-      if (n == 0 || n >= FB_NAME_SIZE || strspn(e->value,
-                                                "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUV"
-                                                "WXYZ0123456789-_.") != n ||
-          e->value[0] == '.')
+      if (!fb_casefile_name_ok(e->value))
         return fb_diag_set(diag, FB_ERR_PARSE,
                            "%s: [%s] %s = '%s': a name is 1 to %d characters from letters, "
                            "digits, '-', '_' and '.', not starting with '.'",

@@ -33,6 +33,11 @@ fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text
  * rule | meaning |" to f, for the documentation. */
 void fb_casefile_write_keys(FILE *f);
 
+/* 1 when name is a valid case or study name: 1 to FB_NAME_SIZE - 1
+ * characters from letters, digits, '-', '_' and '.', not starting with '.'
+ * (it becomes a folder name and enters figure titles), else 0. */
+int fb_casefile_name_ok(const char *name);
+
 /* Number of keys and the "section.key" name of key i, for tests. */
 int fb_casefile_key_count(void);
 const char *fb_casefile_key_name(int i, char *buf, size_t size);

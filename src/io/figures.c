@@ -1,5 +1,10 @@
-#define _POSIX_C_SOURCE 200809L
+/* _GNU_SOURCE (meson.build): posix_spawn_file_actions_addchdir_np, pipe2 (glibc 2.29) */
 #include "figures.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 
 #include <jansson.h>
 #include <math.h>
@@ -8,57 +13,107 @@
 #include <string.h>
 #include <unistd.h>
 
+extern char **environ;
+
 #include "bench.h"
 #include "fileio.h"
 #include "study.h"
 #include "report.h"
 
 typedef struct {
-  FILE *p;
-  char path[4096]; /* final name */
-  char tmp[4200];  /* written by gnuplot, renamed on success */
-  char log[4200];
+  FILE *p;         /* gnuplot's standard input */
+  pid_t pid;       /* gnuplot */
+  char dir[4096];  /* output folder; gnuplot runs in it */
+  char path[4400]; /* final name */
+  char tmp[4400];  /* written by gnuplot (a fixed-form name in dir), renamed on success */
+  char log[4400];
 } plot;
 
 static const char *ext(fb_figure_format f) { return f == FB_FIGURE_PNG ? "png" : "svg"; }
 
-/* text for gnuplot's enhanced mode: underscores would become subscripts */
-static const char *esc(const char *in, char *out, size_t size) {
+/* Text for the inside of a gnuplot single-quoted string: a single quote is
+ * doubled (the only escape gnuplot knows there) and every control character
+ * (a newline would end the command) becomes '?'; gnuplot does no backquote or
+ * macro substitution inside single quotes, so the result is inert data. With
+ * enhanced = 1 the enhanced-text markup characters _ ^ @ & ~ { } \ are
+ * backslash-escaped too. Truncates to size (never inside an escape). */
+static const char *gp_text(const char *in, int enhanced, char *out, size_t size) {
   size_t k = 0;
-  for (; *in && k + 3 < size; in++) {
-    if (*in == '_') out[k++] = '\\';
-    out[k++] = *in;
+  for (const unsigned char *c = (const unsigned char *)in; *c && k + 3 < size; c++) {
+    if (*c < 0x20 || *c == 0x7f) {
+      out[k++] = '?';
+    } else if (*c == '\'') {
+      out[k++] = '\'';
+      out[k++] = '\'';
+    } else {
+      if (enhanced && strchr("_^@&~{}\\", *c)) out[k++] = '\\';
+      out[k++] = (char)*c;
+    }
   }
   out[k] = '\0';
   return out;
 }
 
+/* text for gnuplot's enhanced mode: underscores would become subscripts */
+static const char *esc(const char *in, char *out, size_t size) { return gp_text(in, 1, out, size); }
+
+/* Starts gnuplot with posix_spawn and an argument vector (no shell) in dir,
+ * its standard input a pipe, its output and errors appended to
+ * dir/.gnuplot.log. The script never names a path from the user: gnuplot
+ * writes the temporary name below, relative to dir. */
 static fb_status plot_open(plot *pl, const char *dir, const char *name, fb_figure_format fmt,
                            int width, int height, fb_diag *diag) {
+  static unsigned serial;
+  memset(pl, 0, sizeof *pl);
+  pl->pid = -1;
+  snprintf(pl->dir, sizeof pl->dir, "%s", dir);
   snprintf(pl->path, sizeof pl->path, "%s/%s.%s", dir, name, ext(fmt));
-  snprintf(pl->tmp, sizeof pl->tmp, "%s/.%s.tmp.%ld.%s", dir, name, (long)getpid(), ext(fmt));
+  char tmpname[96];
+  snprintf(tmpname, sizeof tmpname, ".figure.tmp.%ld.%u.%s", (long)getpid(), serial++, ext(fmt));
+  snprintf(pl->tmp, sizeof pl->tmp, "%s/%s", dir, tmpname);
   snprintf(pl->log, sizeof pl->log, "%s/.gnuplot.log", dir);
-  char cmd[8600];
-  snprintf(cmd, sizeof cmd, "gnuplot 2>>'%s' >>'%s'", pl->log, pl->log);
-  pl->p = popen(cmd, "w");
-  if (!pl->p)
-    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot start gnuplot (apt-get install gnuplot-nox, "
-                       "or pass --no-figures)", pl->path);
+  int logfd = open(pl->log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  int fds[2] = {-1, -1};
+  if (logfd < 0 || pipe2(fds, O_CLOEXEC) != 0) {
+    if (logfd >= 0) close(logfd);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot start gnuplot: %s", pl->path, strerror(errno));
+  }
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_adddup2(&fa, fds[0], 0);
+  posix_spawn_file_actions_adddup2(&fa, logfd, 1);
+  posix_spawn_file_actions_adddup2(&fa, logfd, 2);
+  posix_spawn_file_actions_addchdir_np(&fa, dir);
+  char *argv[] = {"gnuplot", NULL};
+  int rc = posix_spawnp(&pl->pid, "gnuplot", &fa, NULL, argv, environ);
+  posix_spawn_file_actions_destroy(&fa);
+  close(fds[0]);
+  close(logfd);
+  if (rc != 0 || !(pl->p = fdopen(fds[1], "w"))) {
+    close(fds[1]);
+    if (rc == 0) waitpid(pl->pid, NULL, 0);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot start gnuplot: %s (apt-get install "
+                       "gnuplot-nox, or pass --no-figures)", pl->path, strerror(rc ? rc : errno));
+  }
   if (fmt == FB_FIGURE_PNG)
     fprintf(pl->p, "set terminal pngcairo size %d,%d enhanced font 'sans,10'\n", width, height);
   else
     fprintf(pl->p, "set terminal svg size %d,%d enhanced font 'sans,11' background '#ffffff'\n",
             width, height);
   fprintf(pl->p, "set output '%s'\nset grid lc rgb '#dddddd'\nset key outside right top box\n",
-          pl->tmp);
+          tmpname);
   return FB_OK;
 }
 
 static fb_status plot_close(plot *pl, fb_diag *diag) {
   fprintf(pl->p, "unset output\nexit\n");
-  int rc = pclose(pl->p);
+  int bad = fclose(pl->p) != 0; /* EPIPE when gnuplot stopped early (SIGPIPE is ignored) */
   pl->p = NULL;
-  if (rc != 0 || access(pl->tmp, F_OK) != 0) {
+  int status = 0;
+  while (waitpid(pl->pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  if (bad || rc != 0 || access(pl->tmp, F_OK) != 0) {
     unlink(pl->tmp);
     return fb_diag_set(diag, FB_ERR_IO, "%s: gnuplot failed (exit %d); see %s", pl->path, rc, pl->log);
   }
@@ -178,8 +233,10 @@ static fb_status kin_figure(const fb_run *r, const char *dir, fb_figure_format f
     fprintf(pl.p, "plot ");
     for (int i = 0; i < r->n; i++) {
       const int an = r->model[i].run.kind == FB_KIND_ANALYTIC;
+      char mn[160];
       fprintf(pl.p, "%s$m%d_%d using 1:2 with lines lw %s %s title '%s'", i ? ", " : "", i, b,
-              an ? "2.5" : "1.2", an ? "lc rgb 'black' dt 2" : "", r->model[i].run.name);
+              an ? "2.5" : "1.2", an ? "lc rgb 'black' dt 2" : "",
+              esc(r->model[i].run.name, mn, sizeof mn));
     }
     fprintf(pl.p, "\n");
   }
@@ -233,8 +290,9 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
   double flo = NAN, fhi = NAN;
   const int force_pts = datablock(pl.p, "force", s, s->contact[j][FB_C_FORCE], t0, t1, &flo, &fhi);
   const double c_um = r->c.radial_clearance * 1e6;
+  char mn[160];
   fprintf(pl.p, "set multiplot layout 1,2 title '%s, %s joint: pin in hole (revolution 2)'\n",
-          m->run.name, fb_joint_name(j)); /* model and joint names have no underscore */
+          esc(m->run.name, mn, sizeof mn), fb_joint_name(j)); /* joint names have no underscore */
   fprintf(pl.p, "set size ratio -1\nset title 'pin centre relative to hole centre'\n"
                 "set xlabel 'eccentricity x [um]'\nset ylabel 'eccentricity y [um]'\n"
                 "set object 1 circle at 0,0 size %.6f fs empty border lc rgb '#888888' lw 1.5\n"
@@ -326,7 +384,9 @@ fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char 
       for (int i = 0; i < n; i++) fprintf(pl.p, "%.6g %.9g\n", rpm[i], cols[q][j][i]);
       fprintf(pl.p, "EOD\n");
     }
-  fprintf(pl.p, "set multiplot layout 2,2 title 'penalty estimate against crank speed (%s mode)'\n", mode);
+  char en[160];
+  fprintf(pl.p, "set multiplot layout 2,2 title 'penalty estimate against crank speed (%s mode)'\n",
+          esc(mode, en, sizeof en));
   fprintf(pl.p, "set xlabel 'crank speed [rpm]'\nset key top left box\n");
   for (int q = 0; q < 4; q++)
     fprintf(pl.p, "set title '%s'\nset ylabel '%s'\nplot $d%d_0 using 1:2 with linespoints pt 7 "
@@ -343,6 +403,7 @@ fb_status fb_figures_mapping(const char *path, fb_figure_format fmt, const char 
   char dir[4096], name[256];
   split_path(path, dir, sizeof dir, name, sizeof name);
   plot pl;
+  char en[512];
   fb_status st = plot_open(&pl, dir, name, fmt, 1000, 760, diag);
   if (st != FB_OK) return st;
   fprintf(pl.p, "$map << EOD\n");
@@ -365,7 +426,7 @@ fb_status fb_figures_mapping(const char *path, fb_figure_format fmt, const char 
                 "splot $map using 1:2:3 with pm3d notitle, "
                 "$hw using 1:2:(1) with lines lw 3 lc rgb 'white' title 'h omega = 1 (above: under-resolved)', "
                 "$erpc using 1:2:(1) with lines lw 2 dt 2 lc rgb 'black' title 'ERP = 0.1 and 0.99'\n",
-          title);
+          gp_text(title, 0, en, sizeof en));
   return plot_close(&pl, diag);
 }
 
@@ -457,44 +518,47 @@ fb_status fb_figures_study(const fb_study *s, const char *dir, fb_diag *diag) {
   if (st != FB_OK) return st;
   const fb_axis *x = &s->axis[0];
   const int xnum = numeric_axis(x);
-  char en[160];
+  /* every text below comes from the study file: escaped, never pasted */
+  char en[160], ep[600], xk[300], yk[300], nm[300];
+  gp_text(x->key, 0, xk, sizeof xk);
+  gp_text(s->naxes > 1 ? s->axis[1].key : "", 0, yk, sizeof yk);
   fprintf(pl.p, "set datafile separator ','\nset datafile columnheaders\nset key noenhanced inside top right box\n"
-                "set multiplot layout %d,%d title 'study %s (%s)'\n",
-          rows, n > 1 ? 2 : 1, esc(s->name, en, sizeof en), esc(s->path, en + 80, 80));
+                "set multiplot layout %d,%d title 'study %s (%s)' noenhanced\n",
+          rows, n > 1 ? 2 : 1, gp_text(s->name, 0, en, sizeof en), gp_text(s->path, 0, ep, sizeof ep));
   for (int m = 0; m < n; m++) {
-    fprintf(pl.p, "set title '%s' noenhanced\nunset logscale\n", names[m]);
+    gp_text(names[m], 0, nm, sizeof nm);
+    fprintf(pl.p, "set title '%s' noenhanced\nunset logscale\n", nm);
     if (s->heatmap) {
       fprintf(pl.p, "set view map\nset xlabel '%s' noenhanced\nset ylabel '%s' noenhanced\n"
-                    "splot '%s' using (column('%s')):(column('%s')):(column('%s')) with points pt 5 "
+                    "splot 'points.csv' using (column('%s')):(column('%s')):(column('%s')) with points pt 5 "
                     "ps 3 palette notitle\n",
-              x->key, s->axis[1].key, csv, x->key, s->axis[1].key, names[m]);
+              xk, yk, xk, yk, nm);
       continue;
     }
     fprintf(pl.p, "set xlabel '%s' noenhanced\nset ylabel '%s' noenhanced\n",
-            xnum ? x->key : "point index", names[m]);
+            xnum ? xk : "point index", nm);
     /* one series per combination of the other axes' values */
     int combos = 1;
     for (int a = 1; a < s->naxes; a++) combos *= s->axis[a].n;
     if (combos > 12) combos = 12;
     fprintf(pl.p, "plot ");
     for (int k = 0; k < combos; k++) {
-      char cond[1024] = "1", title[512] = "";
+      /* bounded: at most 7 axes of (escaped key <= 256, escaped value <= 64) */
+      char cond[8192] = "1", title[8192] = "";
+      size_t lc = 1, lt = 0;
       int rest = k;
       for (int a = s->naxes - 1; a >= 1; a--) {
         const fb_axis *ax = &s->axis[a];
-        const char *v = ax->value[rest % ax->n];
+        char ek[300], ev[80];
+        gp_text(ax->key, 0, ek, sizeof ek);
+        gp_text(ax->value[rest % ax->n], 0, ev, sizeof ev);
         rest /= ax->n;
-        char c2[1024];
-        snprintf(c2, sizeof c2, "%s && strcol('%s') eq '%s'", cond, ax->key, v);
-        snprintf(cond, sizeof cond, "%s", c2);
-        char t2[512];
-        snprintf(t2, sizeof t2, "%s%s%s=%s", title, title[0] ? ", " : "", ax->key, v);
-        snprintf(title, sizeof title, "%s", t2);
+        lc += (size_t)snprintf(cond + lc, sizeof cond - lc, " && strcol('%s') eq '%s'", ek, ev);
+        lt += (size_t)snprintf(title + lt, sizeof title - lt, "%s%s=%s", lt ? ", " : "", ek, ev);
       }
-      char xexpr[256];
-      snprintf(xexpr, sizeof xexpr, "column('%s')", xnum ? x->key : "index");
-      fprintf(pl.p, "%s'%s' using (%s):((%s) ? column('%s') : NaN) with linespoints pt 7 title '%s'",
-              k ? ", " : "", csv, xexpr, cond, names[m], s->naxes > 1 ? title : names[m]);
+      fprintf(pl.p, "%s'points.csv' using (column('%s')):((%s) ? column('%s') : NaN) with linespoints "
+              "pt 7 title '%s'", k ? ", " : "", xnum ? xk : "index", cond, nm,
+              s->naxes > 1 ? title : nm);
     }
     fprintf(pl.p, "\n");
   }

@@ -1,5 +1,7 @@
 /* Figures of a run, drawn by gnuplot driven through a pipe (gnuplot 5.4,
- * Debian's gnuplot-nox): SVG by default, PNG (pngcairo) on request. Each
+ * Debian's gnuplot-nox; started with posix_spawn and an argument vector in
+ * the output folder, no shell; every text entering the script is escaped for
+ * a single-quoted gnuplot string, and the script names no user path): SVG by default, PNG (pngcairo) on request. Each
  * figure is written to a temporary name and renamed into place. Curves are
  * decimated to at most FB_FIGURE_MAX_POINTS points by keeping the minimum and
  * maximum of each bucket of samples, so spikes survive the decimation; a

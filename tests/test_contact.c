@@ -150,6 +150,98 @@ static void test_linearize_reproduces_the_law(void **state) {
   }
 }
 
+/* The discrete pole sum and product of a matched row are evaluated from ERP
+ * and CFM through 1 + det - h^2 a det / m: O(1) numbers formed from terms
+ * of size 1, so agreement to ~100 ulp is what double precision allows. */
+#define POLE_ABS_TOL 1e-13
+/* pole sum and product of the row's update, back to (k, c): acos/acosh of a
+ * number within (omega h)^2 of 1 loses eps / (omega h)^2, ~1e-12 at the
+ * grid's smallest omega h = 0.01 */
+#define MATCHED_ROUNDTRIP_REL_TOL 1e-9
+
+/* pole sum and product of ODE's contact row on one mass m (contact.h):
+ * m (u' - u) = -h (a d + b u'), d' = d + h u' */
+static void row_update(double h, double m, double erp, double cfm, double *tr, double *det) {
+  const double b = 1.0 / cfm, a = erp * b / h;
+  *det = m / (m + h * b);
+  *tr = 1.0 + *det - h * h * a * *det / m;
+}
+
+static void test_matched_poles_are_exact(void **state) {
+  (void)state;
+  const double m = 0.3, k = 2e8, wn = sqrt(k / m);
+  /* under-, critically and over-damped, undamped; h omega from 0.01 to 3 */
+  const double zetas[] = {0.0, 0.03, 0.5, 1.0, 2.5};
+  const double hws[] = {0.01, 0.1, 0.5, 1.0, 1.5, 3.0};
+  for (int i = 0; i < 5; i++)
+    for (int j = 0; j < 6; j++) {
+      const double z = zetas[i], h = hws[j] / wn, c = 2.0 * z * sqrt(k * m);
+      double erp, cfm, tr, det;
+      assert_int_equal(fb_contact_matched(h, k, c, m, &erp, &cfm, NULL), FB_OK);
+      row_update(h, m, erp, cfm, &tr, &det);
+      /* continuous poles s = -zeta wn +- wn sqrt(zeta^2 - 1) */
+      double tr_c, det_c = exp(-2.0 * z * wn * h);
+      if (z < 1.0)
+        tr_c = 2.0 * exp(-z * wn * h) * cos(wn * sqrt(1.0 - z * z) * h);
+      else if (z == 1.0)
+        tr_c = 2.0 * exp(-wn * h);
+      else
+        tr_c = 2.0 * exp(-z * wn * h) * cosh(wn * sqrt(z * z - 1.0) * h);
+      /* undamped: b's floor scales det by 1 - eps, eps = its size, and so shifts
+       * the sum 1 + det (1 - h^2 a / m) by at most 5 eps (h^2 a / m <= 4) */
+      const double tol = z > 0.0 ? POLE_ABS_TOL : POLE_ABS_TOL + 5.0 * FB_MATCHED_B_MIN_REL;
+      report_residual("matched pole sum", fabs(tr - tr_c), tol);
+      assert_near(tr, tr_c, tol);
+      if (z > 0.0) assert_near(det, det_c, POLE_ABS_TOL);
+      else assert_near(det, 1.0, FB_MATCHED_B_MIN_REL * 2.0); /* the floor of b */
+      /* the undamped row is the explicit spring a = (4 m / h^2) sin^2(wn h / 2) */
+      if (z == 0.0) {
+        const double a = erp / (h * cfm), s = sin(0.5 * wn * h);
+        assert_rel(a, 4.0 * m / (h * h) * s * s, 1e-10);
+      }
+    }
+  /* k = c = 0 (zero depth of the impact law): no row */
+  double erp, cfm;
+  fb_diag d;
+  assert_int_equal(fb_contact_matched(1e-5, 0.0, 0.0, m, &erp, &cfm, &d), FB_ERR_RANGE);
+  /* a pure damper (k = 0): pole 1 and beta, so a = 0 */
+  assert_int_equal(fb_contact_matched(1e-5, 0.0, 100.0, m, &erp, &cfm, NULL), FB_OK);
+  assert_near(erp, 0.0, 1e-15);
+  /* a huge c h / m: a rigid, fully inelastic row, finite ERP, CFM -> 0 */
+  assert_int_equal(fb_contact_matched(1.0, 1e9, 1e9, m, &erp, &cfm, NULL), FB_OK);
+  assert_true(isfinite(erp) && erp > 0.0 && cfm >= 0.0 && cfm < 1e-300);
+}
+
+static void test_matched_round_trip(void **state) {
+  (void)state;
+  const double m = 0.09;
+  const double ks[] = {1e6, 3e9};
+  const double zetas[] = {0.05, 0.7, 1.8};
+  const double hws[] = {0.01, 0.3, 1.2};
+  for (int i = 0; i < 2; i++)
+    for (int j = 0; j < 3; j++)
+      for (int q = 0; q < 3; q++) {
+        const double wn = sqrt(ks[i] / m), h = hws[q] / wn;
+        const double c = 2.0 * zetas[j] * sqrt(ks[i] * m);
+        double erp, cfm, k2, c2;
+        assert_int_equal(fb_contact_matched(h, ks[i], c, m, &erp, &cfm, NULL), FB_OK);
+        assert_int_equal(fb_contact_matched_inverse(h, m, erp, cfm, &k2, &c2, NULL), FB_OK);
+        report_residual("matched round trip k", fabs(k2 / ks[i] - 1.0), MATCHED_ROUNDTRIP_REL_TOL);
+        assert_rel(k2, ks[i], MATCHED_ROUNDTRIP_REL_TOL);
+        assert_rel(c2, c, MATCHED_ROUNDTRIP_REL_TOL);
+      }
+  /* the map is the standard one as h -> 0: ERP -> h k / (h k + c); they
+   * differ by the damper h k the standard map adds, h k / c = 2e-7 here */
+  double e1, c1, e2, c2;
+  fb_contact_matched(1e-11, 1e6, 50.0, 1.0, &e1, &c1, NULL);
+  fb_contact_erp_cfm(1e-11, 1e6, 50.0, &e2, &c2, NULL);
+  assert_rel(e1, e2, 1e-6);
+  assert_rel(c1, c2, 1e-6);
+  assert_int_equal(fb_mapping_parse("matched"), FB_MAPPING_MATCHED);
+  assert_string_equal(fb_mapping_name(FB_MAPPING_MATCHED), "matched");
+  assert_int_equal(fb_mapping_parse("exact"), FB_MAPPING_COUNT);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_moduli_and_stiffness),
@@ -158,6 +250,8 @@ int main(void) {
       cmocka_unit_test(test_restitution_zeta),
       cmocka_unit_test(test_erp_cfm_round_trip),
       cmocka_unit_test(test_linearize_reproduces_the_law),
+      cmocka_unit_test(test_matched_poles_are_exact),
+      cmocka_unit_test(test_matched_round_trip),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -12,7 +12,7 @@ static const char impact_help[] =
     "usage: fourbar impact [--law L] [--stiffness K] [--exponent n] [--restitution cr]\n"
     "                      [--damping-n-s-m c] [--damping-depth-m d] [--mass-kg m]\n"
     "                      [--speed-m-s v] [--h-s h] [--stepper world|quick]\n"
-    "                      [--quick-iterations N] [--mapping secant|tangent] [--json]\n"
+    "                      [--quick-iterations N] [--mapping secant|tangent|matched] [--json]\n"
     "\n"
     "One body hits one contact: ODE with the law mapped into ERP/CFM every step,\n"
     "against an adaptive high-accuracy integration of the same law (GSL rk8pd)\n"
@@ -29,7 +29,11 @@ static const char impact_help[] =
     "  --damping-depth-m d_max of the impact law (default 1e-5)\n"
     "  --mass-kg      default 1;  --speed-m-s  impact speed, default 1\n"
     "  --h-s          ODE step; default: estimated contact duration / 200\n"
-    "  --mapping      secant (default) or tangent linearisation of the law\n";
+    "  --mapping      secant (default) or tangent linearisation of the law into\n"
+    "                 ERP = h k/(h k + c), CFM = 1/(h k + c) (a backward-Euler spring\n"
+    "                 that adds a damper h k), or matched: ERP/CFM chosen so the\n"
+    "                 one-step update of the body has the continuous spring-damper's\n"
+    "                 poles exp(s h) (tangent stiffness, the body's mass)\n";
 
 static json_t *result_json(const fb_impact_result *r) {
   json_t *o = json_object();
@@ -96,9 +100,10 @@ int fb_cmd_impact(int argc, char **argv) {
         else return fb_cli_fail("impact", 2, "--stepper '%s': must be world or quick", optarg);
         break;
       case 'M':
-        if (strcmp(optarg, "secant") == 0) d.mapping = FB_MAPPING_SECANT;
-        else if (strcmp(optarg, "tangent") == 0) d.mapping = FB_MAPPING_TANGENT;
-        else return fb_cli_fail("impact", 2, "--mapping '%s': must be secant or tangent", optarg);
+        d.mapping = fb_mapping_parse(optarg);
+        if (d.mapping == FB_MAPPING_COUNT)
+          return fb_cli_fail("impact", 2, "--mapping '%s': must be secant, tangent or matched",
+                             optarg);
         break;
       case 'j': json = 1; break;
       case 'h': fputs(impact_help, stdout); return 0;

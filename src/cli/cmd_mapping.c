@@ -16,7 +16,8 @@
 
 static const char mapping_help[] =
     "usage: fourbar mapping [--mass-kg m] [--restitution cr] [--stiffness-n-m FROM:TO]\n"
-    "                       [--h-s FROM:TO] [--per-decade N] [--out DIR] [--json]\n"
+    "                       [--h-s FROM:TO] [--per-decade N] [--mapping M] [--out DIR]\n"
+    "                       [--json]\n"
     "\n"
     "ERP = h k / (h k + c) and CFM = 1 / (h k + c) of a contact spring k [N/m] with the\n"
     "restitution law's damper c = 2 zeta sqrt(k m) (zeta giving restitution cr for\n"
@@ -24,12 +25,19 @@ static const char mapping_help[] =
     "leaves [0.1, 0.99] ('<' or '>') and where h omega = h sqrt(k/m) passes 1 ('*':\n"
     "fewer than ~3 steps per contact; ODE's mapped spring then loses most of the\n"
     "restitution, see fourbar impact).\n"
+    "With --mapping matched, ERP and CFM of the matched row instead: the one-step\n"
+    "update of mass m has the continuous spring-damper's poles exp(s h)\n"
+    "(b = m (e^{c h/m} - 1)/h, a = m (1 - e^{s1 h})(1 - e^{s2 h}) / (e^{-c h/m} h^2),\n"
+    "ERP = h a / b, CFM = 1 / b); its ERP exceeds 1 wherever h omega is not small\n"
+    "against zeta, which ODE accepts.\n"
     "\n"
     "  --mass-kg        effective mass (default 0.0852: crank and coupler reduced)\n"
     "  --restitution    cr of the restitution law (default 0.9)\n"
     "  --stiffness-n-m  range, default 1e5:1e12\n"
     "  --h-s            range, default 1e-7:1e-3\n"
     "  --per-decade     grid points per decade (default 1)\n"
+    "  --mapping        secant (default: ERP = h k/(h k + c), CFM = 1/(h k + c)) or\n"
+    "                   matched (tangent is secant for this linear law)\n"
     "  --figure-format  svg (default) or png\n"
     "  --out DIR        also write DIR/mapping.csv and DIR/mapping.svg (ERP map with\n"
     "                   the h omega = 1 and ERP = 0.1, 0.99 contours)\n";
@@ -48,12 +56,14 @@ int fb_cmd_mapping(int argc, char **argv) {
                                        {"out", required_argument, 0, 'o'},
                                        {"json", no_argument, 0, 'j'},
                                        {"figure-format", required_argument, 0, 'f'},
+                                       {"mapping", required_argument, 0, 'M'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   fb_figure_format fmt = FB_FIGURE_SVG;
   double m = 0.12 * 0.29 / (0.12 + 0.29), cr = 0.9, k0 = 1e5, k1 = 1e12, h0 = 1e-7, h1 = 1e-3, per = 1;
   const char *out = NULL;
   int json = 0, ch;
+  fb_mapping mapping = FB_MAPPING_SECANT;
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
     switch (ch) {
@@ -74,6 +84,12 @@ int fb_cmd_mapping(int argc, char **argv) {
         if (strcmp(optarg, "svg") == 0) fmt = FB_FIGURE_SVG;
         else if (strcmp(optarg, "png") == 0) fmt = FB_FIGURE_PNG;
         else return fb_cli_fail("mapping", 2, "--figure-format '%s': must be svg or png", optarg);
+        break;
+      case 'M':
+        mapping = fb_mapping_parse(optarg);
+        if (mapping == FB_MAPPING_COUNT)
+          return fb_cli_fail("mapping", 2, "--mapping '%s': must be secant, tangent or matched",
+                             optarg);
         break;
       case 'h': fputs(mapping_help, stdout); return 0;
       default: fputs(mapping_help, stderr); return 2;
@@ -96,7 +112,10 @@ int fb_cmd_mapping(int argc, char **argv) {
   for (int i = 0; i < nk; i++)
     for (int j = 0; j < nh; j++) {
       const double c = 2.0 * zeta * sqrt(k[i] * m);
-      fb_contact_erp_cfm(h[j], k[i], c, &erp[i * nh + j], &cfm[i * nh + j], NULL);
+      if (mapping == FB_MAPPING_MATCHED)
+        fb_contact_matched(h[j], k[i], c, m, &erp[i * nh + j], &cfm[i * nh + j], NULL);
+      else
+        fb_contact_erp_cfm(h[j], k[i], c, &erp[i * nh + j], &cfm[i * nh + j], NULL);
       hw[i * nh + j] = fb_contact_h_omega(h[j], k[i], m);
     }
   if (json) {
@@ -104,6 +123,7 @@ int fb_cmd_mapping(int argc, char **argv) {
     json_object_set_new(o, "mass_kg", json_real(m));
     json_object_set_new(o, "restitution", json_real(cr));
     json_object_set_new(o, "zeta", json_real(zeta));
+    json_object_set_new(o, "mapping", json_string(fb_mapping_name(mapping)));
     for (int i = 0; i < nk; i++)
       for (int j = 0; j < nh; j++)
         json_array_append_new(rows, json_pack("{s:f,s:f,s:f,s:f,s:f,s:b,s:b}", "stiffness_n_m", k[i],
@@ -116,9 +136,9 @@ int fb_cmd_mapping(int argc, char **argv) {
     fputc('\n', stdout);
     json_decref(o);
   } else {
-    printf("ERP (and h omega) of the restitution law, cr = %g (zeta = %.4f), m = %g kg\n"
+    printf("ERP (and h omega) of the restitution law, %s mapping, cr = %g (zeta = %.4f), m = %g kg\n"
            "'<' ERP < 0.1, '>' ERP > 0.99, '*' h omega > 1 (contact under-resolved)\n\n%12s",
-           cr, zeta, m, "k [N/m] \\ h");
+           fb_mapping_name(mapping), cr, zeta, m, "k [N/m] \\ h");
     for (int j = 0; j < nh; j++) printf(" %10.0e", h[j]);
     printf("\n");
     for (int i = 0; i < nk; i++) {

@@ -43,20 +43,21 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
     dJointID cj = 0;
     if (delta > 0.0) {
       if (v0 < 0.0) v0 = ddot;
-      double kp, kd, depth, erp, cfm;
-      fb_contact_linearize(&law, d->mapping, delta, ddot, v0, &kp, &kd, &depth);
-      if (fb_contact_erp_cfm(d->h, kp, kd, &erp, &cfm, NULL) == FB_OK) {
+      fb_contact_row row;
+      /* a single body: its mass is the effective mass along the normal */
+      if (fb_contact_map(&row, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, NULL) ==
+          FB_OK) {
         dContact c;
         memset(&c, 0, sizeof c);
         c.surface.mode = dContactSoftERP | dContactSoftCFM;
         c.surface.mu = 0.0;
-        c.surface.soft_erp = erp;
-        c.surface.soft_cfm = cfm;
+        c.surface.soft_erp = row.erp;
+        c.surface.soft_cfm = row.cfm;
         c.geom.pos[0] = p[0];
         c.geom.pos[1] = p[1];
         c.geom.pos[2] = 0.0;
         c.geom.normal[2] = 1.0; /* into body 1: moving it along +z removes the depth */
-        c.geom.depth = depth;
+        c.geom.depth = row.depth;
         cj = dJointCreateContact(world, group, &c);
         dJointAttach(cj, body, 0);
         dJointSetFeedback(cj, &fb);

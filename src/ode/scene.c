@@ -475,6 +475,82 @@ void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_tor
 
 size_t fb_scene_steps(const fb_scene *s) { return s->steps; }
 
+void fb_scene_mechanism(const fb_scene *s, fb_mechanism *out) {
+  memset(out, 0, sizeof *out);
+  for (int i = 0; i < 3; i++) {
+    const dReal *p = dBodyGetPosition(s->body[i]);
+    out->mass[i] = s->def.link[i].mass;
+    out->inertia[i] = s->def.link[i].inertia;
+    out->com[i][0] = p[0];
+    out->com[i][1] = p[1];
+  }
+  for (int j = 0; j < 4; j++) {
+    dVector3 q;
+    if (s->hinge[j]) {
+      dJointGetHingeAnchor(s->hinge[j], q);
+    } else {
+      const clearance *c = &s->cl[j];
+      dBodyGetRelPointPos(c->pin, c->pin_local[0], c->pin_local[1], c->pin_local[2], q);
+    }
+    out->joint[j][0] = q[0];
+    out->joint[j][1] = q[1];
+  }
+  out->clearance_mask = s->def.clearance_mask;
+  out->crank_driven = 1;
+}
+
+/* penetration rate n . (v_pin - v_hole) at the pin centre of clearance joint c */
+static double probe_rate(const clearance *c, const double n[2]) {
+  dVector3 p, vp, vh = {0, 0, 0, 0};
+  dBodyGetRelPointPos(c->pin, c->pin_local[0], c->pin_local[1], c->pin_local[2], p);
+  dBodyGetRelPointVel(c->pin, c->pin_local[0], c->pin_local[1], c->pin_local[2], vp);
+  if (c->hole) dBodyGetPointVel(c->hole, p[0], p[1], p[2], vh);
+  return n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]);
+}
+
+fb_status fb_scene_probe_inverse_mass(fb_scene *s, int j, const double n[2], double force,
+                                      double *inv_mass, fb_diag *diag) {
+  if (j < 0 || j > 3 || !(s->def.clearance_mask & (1 << j)) || !(force > 0.0))
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "probe: joint %d must be a clearance joint and force %g N positive", j,
+                       force);
+  const clearance *c = &s->cl[j];
+  dReal pos[3][3], quat[3][4], lin[3][3], ang[3][3];
+  for (int i = 0; i < 3; i++) {
+    memcpy(pos[i], dBodyGetPosition(s->body[i]), sizeof pos[i]);
+    memcpy(quat[i], dBodyGetQuaternion(s->body[i]), sizeof quat[i]);
+    memcpy(lin[i], dBodyGetLinearVel(s->body[i]), sizeof lin[i]);
+    memcpy(ang[i], dBodyGetAngularVel(s->body[i]), sizeof ang[i]);
+  }
+  double rate[2];
+  int ok = 1;
+  for (int trial = 0; trial < 2 && ok; trial++) {
+    for (int i = 0; i < 3; i++) {
+      dBodySetPosition(s->body[i], pos[i][0], pos[i][1], pos[i][2]);
+      dBodySetQuaternion(s->body[i], quat[i]);
+      dBodySetLinearVel(s->body[i], lin[i][0], lin[i][1], lin[i][2]);
+      dBodySetAngularVel(s->body[i], ang[i][0], ang[i][1], ang[i][2]);
+    }
+    if (trial == 1) {
+      dVector3 p;
+      dBodyGetRelPointPos(c->pin, c->pin_local[0], c->pin_local[1], c->pin_local[2], p);
+      dBodyAddForceAtPos(c->pin, -force * n[0], -force * n[1], 0.0, p[0], p[1], p[2]);
+      if (c->hole) dBodyAddForceAtPos(c->hole, force * n[0], force * n[1], 0.0, p[0], p[1], p[2]);
+    }
+    ok = dWorldStep(s->world, s->def.solver.h);
+    rate[trial] = probe_rate(c, n);
+  }
+  for (int i = 0; i < 3; i++) {
+    dBodySetPosition(s->body[i], pos[i][0], pos[i][1], pos[i][2]);
+    dBodySetQuaternion(s->body[i], quat[i]);
+    dBodySetLinearVel(s->body[i], lin[i][0], lin[i][1], lin[i][2]);
+    dBodySetAngularVel(s->body[i], ang[i][0], ang[i][1], ang[i][2]);
+  }
+  if (!ok) return fb_diag_set(diag, FB_ERR_NOMEM, "probe: ODE could not step");
+  *inv_mass = (rate[0] - rate[1]) / (s->def.solver.h * force);
+  return FB_OK;
+}
+
 void fb_scene_destroy(fb_scene *s) {
   if (!s) return;
   for (int j = 0; j < 4; j++) facet_destroy(&s->cl[j], s->def.faceted_n);

@@ -42,6 +42,7 @@
 
 #include "case.h"
 #include "contact.h"
+#include "effective_mass.h"
 #include "series.h"
 
 typedef struct fb_scene fb_scene;
@@ -107,6 +108,23 @@ int fb_scene_impacts(const fb_scene *s, int j);
 
 /* Steps taken. */
 size_t fb_scene_steps(const fb_scene *s);
+
+/* The mechanism's configuration now, for fb_effective_mass_tensor: body
+ * masses and inertias from the definition, centres of mass from ODE, joint
+ * centres from the hinge anchors and, for clearance joints, the pin centre;
+ * the crank counts as driven (its motor is a velocity constraint). */
+void fb_scene_mechanism(const fb_scene *s, fb_mechanism *out);
+
+/* ODE test-force probe of the inverse effective mass [1/kg] of clearance
+ * joint j along unit normal n (pin centre minus hole centre direction): from
+ * the current state, one dWorldStep with a force pair force [N] (-force n on
+ * the pin, +force n on the hole, at the pin centre) and one without; the
+ * change of the penetration rate n . (v_pin - v_hole) at the pin centre is
+ * -h force / m_eff. The state is restored afterwards and no step is counted.
+ * Errors: FB_ERR_ARG when j is not a clearance joint or force is not
+ * positive; FB_ERR_NOMEM when ODE cannot step. */
+fb_status fb_scene_probe_inverse_mass(fb_scene *s, int j, const double n[2], double force,
+                                      double *inv_mass, fb_diag *diag);
 
 /* Frees the world and everything in it (NULL is ignored). */
 void fb_scene_destroy(fb_scene *s);

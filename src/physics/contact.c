@@ -255,8 +255,103 @@ fb_status fb_contact_kp_kd(double h, double erp, double cfm, double *kp, double 
 
 double fb_contact_h_omega(double h, double k, double m) { return h * sqrt(k / m); }
 
+static const char *const mapping_names[FB_MAPPING_COUNT] = {"secant", "tangent", "matched"};
+
 const char *fb_mapping_name(fb_mapping m) {
-  return m == FB_MAPPING_TANGENT ? "tangent" : "secant";
+  return (m >= 0 && m < FB_MAPPING_COUNT) ? mapping_names[m] : "?";
+}
+
+fb_mapping fb_mapping_parse(const char *name) {
+  for (int i = 0; i < FB_MAPPING_COUNT; i++)
+    if (strcmp(name, mapping_names[i]) == 0) return (fb_mapping)i;
+  return FB_MAPPING_COUNT;
+}
+
+/* (1 - e^{s1 h})(1 - e^{s2 h}) for the poles s of m s^2 + c s + k = 0,
+ * without cancellation at small h: |expm1(s h)|^2 for a complex pair, the
+ * product of two expm1 for real poles (the smaller root from k / (m s_big)
+ * so k -> 0 keeps its digits). */
+static double pole_gap_product(double h, double k, double c, double m) {
+  const double sigma = -0.5 * c / m;            /* real part of both poles [1/s] */
+  const double disc = sigma * sigma - k / m;    /* (s - sigma)^2 [1/s^2] */
+  if (disc < 0.0) {
+    const double wd = sqrt(-disc) * h;
+    const double em = expm1(sigma * h);
+    const double s2 = sin(0.5 * wd);
+    const double re = em * cos(wd) - 2.0 * s2 * s2; /* e^{sigma h} cos(wd h) - 1 */
+    const double im = exp(sigma * h) * sin(wd);
+    return re * re + im * im;
+  }
+  const double big = sigma - sqrt(disc);              /* the more negative root */
+  const double small = big != 0.0 ? (k / m) / big : 0.0; /* s1 s2 = k / m */
+  return expm1(big * h) * expm1(small * h);
+}
+
+fb_status fb_contact_matched(double h, double k, double c, double m, double *erp, double *cfm,
+                             fb_diag *diag) {
+  if (!(h > 0.0) || !(m > 0.0) || !isfinite(h) || !isfinite(m) || !(k >= 0.0) || !(c >= 0.0) ||
+      !isfinite(k) || !isfinite(c))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "h = %g s, k = %g N/m, c = %g N s/m, m = %g kg: need h, m > 0 and "
+                       "k, c >= 0, all finite",
+                       h, k, c, m);
+  if (k == 0.0 && c == 0.0)
+    return fb_diag_set(diag, FB_ERR_RANGE, "k = c = 0: no contact force, no row (0/0)");
+  const double x = c * h / m;
+  const double gap = pole_gap_product(h, k, c, m);
+  if (expm1(x) > FB_MATCHED_B_MIN_REL) {
+    /* ERP = h a / b = gap / (1 - beta), CFM = 1 / b = h / (m (e^x - 1)): no
+     * overflow when c h / m is large (a rigid, fully inelastic row) */
+    *erp = gap / -expm1(-x);
+    *cfm = h / (m * expm1(x));
+  } else {
+    const double b = FB_MATCHED_B_MIN_REL * m / h;
+    *erp = h * (m * gap / (exp(-x) * h * h)) / b;
+    *cfm = 1.0 / b;
+  }
+  return FB_OK;
+}
+
+fb_status fb_contact_matched_inverse(double h, double m, double erp, double cfm, double *k,
+                                     double *c, fb_diag *diag) {
+  if (!(cfm > 0.0) || !(erp >= 0.0) || !(h > 0.0) || !(m > 0.0))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "h = %g s, m = %g kg, ERP = %g, CFM = %g: need h, m, CFM > 0, ERP >= 0",
+                       h, m, erp, cfm);
+  const double b = 1.0 / cfm, a = erp * b / h;
+  const double beta = m / (m + h * b);       /* det of the update */
+  const double tr = 1.0 + beta - a * beta * h * h / m;
+  const double sigma = 0.5 * log(beta) / h;  /* real part of the poles */
+  const double q = tr / (2.0 * sqrt(beta));  /* cos or cosh of the pole spread times h */
+  double spread2;                            /* (s - sigma)^2 [1/s^2] */
+  if (q >= -1.0 && q <= 1.0) {
+    const double wd = acos(q) / h;
+    spread2 = -wd * wd;
+  } else if (q > 1.0) {
+    const double g = acosh(q) / h;
+    spread2 = g * g;
+  } else {
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "ERP = %g, CFM = %g: the row's update has a negative real pole; no "
+                       "continuous spring-damper maps to it",
+                       erp, cfm);
+  }
+  *c = -2.0 * m * sigma;
+  *k = m * (sigma * sigma - spread2);
+  return FB_OK;
+}
+
+fb_status fb_contact_map(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
+                         double h, double m_eff, int n_rows, double delta, double ddot, double v0,
+                         fb_diag *diag) {
+  const double n = n_rows > 0 ? (double)n_rows : 1.0;
+  const fb_mapping lin = mapping == FB_MAPPING_MATCHED ? FB_MAPPING_TANGENT : mapping;
+  fb_contact_linearize(law, lin, delta, ddot, v0, &row->kp, &row->kd, &row->depth);
+  row->kp /= n;
+  row->kd /= n;
+  if (mapping == FB_MAPPING_MATCHED)
+    return fb_contact_matched(h, row->kp, row->kd, m_eff / n, &row->erp, &row->cfm, diag);
+  return fb_contact_erp_cfm(h, row->kp, row->kd, &row->erp, &row->cfm, diag);
 }
 
 void fb_contact_linearize(const fb_contact_law *l, fb_mapping mapping, double delta,

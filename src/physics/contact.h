@@ -135,11 +135,80 @@ fb_status fb_contact_kp_kd(double h, double erp, double cfm, double *kp, double 
                            fb_diag *diag);
 
 typedef enum {
-  FB_MAPPING_SECANT = 0, /* kp = F_el / delta: the spring reproduces the force at delta */
-  FB_MAPPING_TANGENT = 1 /* kp = dF_el/d delta, depth = F_el / kp: force and its slope */
+  FB_MAPPING_SECANT = 0,  /* kp = F_el / delta: the spring reproduces the force at delta */
+  FB_MAPPING_TANGENT = 1, /* kp = dF_el/d delta, depth = F_el / kp: force and its slope */
+  FB_MAPPING_MATCHED = 2, /* exact discretisation of the tangent spring-damper on the
+                             effective mass (fb_contact_matched) */
+  FB_MAPPING_COUNT
 } fb_mapping;
 
+/* "secant", "tangent" or "matched". */
 const char *fb_mapping_name(fb_mapping m);
+
+/* Parses a mapping name; FB_MAPPING_COUNT if unknown. */
+fb_mapping fb_mapping_parse(const char *name);
+
+/* Matched (exact-discretisation) ERP/CFM of a local linear law: spring k
+ * [N/m] and damper c [N s/m] acting on effective mass m [kg] at step h [s].
+ *
+ * Derivation (ODE 0.16 ode/src/step.cpp and joints/contact.cpp): a contact
+ * row has rhs c_row = ERP depth / h and CFM on its diagonal; the step solves
+ * J v_{n+1} = c_row - CFM lambda, so with b = 1/CFM, a = ERP b / h the row's
+ * force is lambda = a d_n + b u_{n+1} (d_n the depth handed to the row at
+ * the start of the step, u_{n+1} the penetration rate at its end), and
+ * positions follow d_{n+1} = d_n + h u_{n+1} (semi-implicit Euler). On one
+ * degree of freedom of mass m, m (u_{n+1} - u_n) = -h lambda, the update of
+ * (d, u) has det = m / (m + h b) and trace = 1 + det - h^2 a det / m. The
+ * continuous m d'' + c d' + k d = 0 has poles s1, s2 with
+ * exp(s1 h) exp(s2 h) = beta = exp(-c h / m) and
+ * exp(s1 h) + exp(s2 h) = tr. Equating both:
+ *   b = m (exp(c h / m) - 1) / h,
+ *   a = m (1 + beta - tr) / (beta h^2) = m (1 - e^{s1 h})(1 - e^{s2 h}) / (beta h^2),
+ * tr = 2 exp(-zeta omega h) cos(omega_d h) (cosh when over-damped); the
+ * product form is evaluated with expm1 so it loses no digits at small h.
+ * For c = 0, b -> 0 (a symplectic explicit spring with
+ * a = (4 m / h^2) sin^2(omega h / 2)); b is then floored at
+ * FB_MATCHED_B_MIN_REL m / h, a relative damping of that size per step.
+ * Returns ERP = h a / b (not clamped: ODE accepts ERP > 1, and the matched
+ * row needs it) and CFM = 1 / b [m/(N s)]. The discrete poles then equal
+ * exp(s h) for any h; the update stays stable for every h, but a contact
+ * shorter than ~1.5 steps (h omega > ~1.5) is still not resolved.
+ * Errors: FB_ERR_RANGE when h or m is not positive or k, c are negative or
+ * not finite, and when k = c = 0 (zero depth of the impact law: 0/0, skip
+ * the row). */
+fb_status fb_contact_matched(double h, double k, double c, double m, double *erp, double *cfm,
+                             fb_diag *diag);
+
+/* Floor of the matched row's b = 1/CFM relative to m / h when c h / m is
+ * this small or zero: perturbs the pole product by that relative amount. */
+#define FB_MATCHED_B_MIN_REL 1e-12
+
+/* Inverse of fb_contact_matched: the (k, c) whose matched row on mass m at
+ * step h is (ERP, CFM), from the pole product and sum of the row's update.
+ * Errors: FB_ERR_RANGE when CFM <= 0, ERP < 0, or the row's update has no
+ * real-coefficient continuous counterpart (trace outside the reachable range). */
+fb_status fb_contact_matched_inverse(double h, double m, double erp, double cfm, double *k,
+                                     double *c, fb_diag *diag);
+
+/* One contact row as handed to ODE this step. */
+typedef struct {
+  double erp;   /* soft ERP [-] (may exceed 1 for the matched mapping) */
+  double cfm;   /* soft CFM [m/(N s)] */
+  double depth; /* depth handed to the row [m] */
+  double kp;    /* local spring [N/m] the row stands for */
+  double kd;    /* local damper [N s/m] the row stands for */
+} fb_contact_row;
+
+/* The row of law at penetration delta [m] > 0, rate ddot [m/s], impact
+ * velocity v0 [m/s], step h [s] and effective mass m_eff [kg] along the
+ * normal, split over n_rows parallel rows (each gets kp/n, kd/n, and the
+ * matched mapping the mass m_eff/n): fb_contact_linearize, then
+ * fb_contact_erp_cfm (secant, tangent) or fb_contact_matched on the tangent
+ * linearisation (matched; m_eff is used only there). Errors: FB_ERR_RANGE when
+ * no row applies (zero force law at this depth): skip the row. */
+fb_status fb_contact_map(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
+                         double h, double m_eff, int n_rows, double delta, double ddot, double v0,
+                         fb_diag *diag);
 
 /* h times the contact frequency sqrt(k / m) of a spring k [N/m] on mass m
  * [kg] at step h [s]: the measure of how many steps resolve one contact

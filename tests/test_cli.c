@@ -136,9 +136,13 @@ static void test_json_flag_and_kinematics(void **state) {
   assert_true(json_is_number(json_object_get(j, "transmission_angle_max_deg")));
   double amax = json_real_value(json_object_get(json_object_get(j, "coupler"), "alpha_min_rad_s2"));
   double w = 1000.0 * 2 * M_PI / 60;
-  assert_near(fabs(amax) / (w * w), 1.091571, 5e-7); /* PAPER.md's ratio */
+  assert_near(fabs(amax) / (w * w), 1.091571, 5e-7); /* docs/paper.md's ratio */
   json_decref(j);
 }
+
+/* penalty --json prints 12 significant digits: each value rounds by up to
+ * 5e-12 relative, two of them compared: 1e-11 */
+#define JSON12_REL_TOL 1e-11
 
 static void test_penalty_and_impact_json(void **state) {
   (void)state;
@@ -154,11 +158,30 @@ static void test_penalty_and_impact_json(void **state) {
   for (int k = 0; keys[k]; k++) assert_non_null(json_object_get(json_array_get(rows, 0), keys[k]));
   /* Table II at 1000 rpm, crank-coupler: 973.33 */
   assert_near(json_real_value(json_object_get(json_array_get(rows, 0), "penalty")), 973.33, 0.005);
+  /* each unit its own column, in every mode: 1 N mm^0.5 = sqrt(1e-3) N m^0.5 */
+  assert_near(json_real_value(json_object_get(json_array_get(rows, 0), "penalty_n_mm0_5")), 973.33, 0.005);
+  assert_near(json_real_value(json_object_get(json_array_get(rows, 0), "penalty_n_m0_5")),
+              973.33 * sqrt(1e-3), 0.005 * sqrt(1e-3));
   json_decref(j);
   assert_int_equal(run("penalty --mode physical --speeds-rpm 500,1000 --json", out, sizeof out, err, sizeof err), 0);
   j = json_loads(out, 0, &je);
   assert_non_null(j);
   assert_int_equal(json_array_size(json_object_get(j, "rows")), 4);
+  json_t *r0 = json_array_get(json_object_get(j, "rows"), 0);
+  assert_rel(json_real_value(json_object_get(r0, "penalty_n_m0_5")),
+             json_real_value(json_object_get(r0, "penalty_n_mm0_5")) * sqrt(1e-3), JSON12_REL_TOL);
+  json_decref(j);
+  /* one default with fourbar run: the case's [clearance] penalty (physical) */
+  assert_int_equal(run("penalty --speeds-rpm 1000 --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  assert_non_null(j);
+  assert_string_equal(json_string_value(json_object_get(j, "mode")), "physical");
+  json_decref(j);
+  assert_int_equal(run("penalty --speeds-rpm 1000 --json --set clearance.penalty=paper", out, sizeof out,
+                       err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  assert_non_null(j);
+  assert_string_equal(json_string_value(json_object_get(j, "mode")), "paper");
   json_decref(j);
 
   assert_int_equal(run("impact --law hertz --json", out, sizeof out, err, sizeof err), 0);

@@ -15,7 +15,7 @@ static void test_moduli_and_stiffness(void **state) {
   const double e = 207e9, nu = 0.29;
   const double es = fb_contact_modulus(e, nu, e, nu);
   assert_rel(es, e / (2.0 * (1.0 - nu * nu)), FORMULA_REL_TOL); /* 113.0036 GPa */
-  assert_rel(es, 113003.6e6, 1e-7);                               /* PAPER.md's E* */
+  assert_rel(es, 113003.6e6, 1e-7);                               /* docs/paper.md's E* */
   /* sphere on a flat (r2 -> infinity): K = 4/3 E* sqrt(r1) */
   assert_rel(fb_contact_hertz_sphere(es, 0.01, 1e300), 4.0 / 3.0 * es * sqrt(0.01), FORMULA_REL_TOL);
   /* Goldsmith internal contact equals Hertz with the hole's radius negative */

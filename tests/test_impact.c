@@ -1,5 +1,5 @@
 /* Single-impact fidelity: the reference integration against closed forms,
- * the damping laws' achieved restitution against CONTACT.md's table, and ODE
+ * the damping laws' achieved restitution against docs/contact.md's table, and ODE
  * with ERP/CFM mapped every step against both.
  *
  *      v0 |
@@ -14,7 +14,7 @@
 /* rk8pd at relative tolerance 1e-12, peaks by parabola through samples at
  * T/4000: interpolation error (T/4000)^3-ish, far below 1e-7 */
 #define REF_VS_CLOSED_REL_TOL 1e-7
-/* CONTACT.md prints achieved restitution to 3 decimals from "a quick
+/* docs/contact.md prints achieved restitution to 3 decimals from "a quick
  * simulation": half a unit in the last digit, doubled for that simulation */
 #define TABLE_TOL 1e-3
 /* the issue's acceptance bounds */
@@ -76,7 +76,7 @@ static void test_reference_matches_closed_forms(void **state) {
 
 static void test_damping_laws_restitution_table(void **state) {
   (void)state;
-  /* CONTACT.md: achieved restitution of each law for a target, n = 1.5 */
+  /* docs/contact.md: achieved restitution of each law for a target, n = 1.5 */
   const double target[4] = {0.9, 0.7, 0.5, 0.3};
   const fb_law_kind laws[4] = {FB_LAW_LANKARANI_NIKRAVESH, FB_LAW_HUNT_CROSSLEY, FB_LAW_FLORES,
                                FB_LAW_GONTHIER};
@@ -93,7 +93,7 @@ static void test_damping_laws_restitution_table(void **state) {
       worst = fmax(worst, fabs(r.restitution - table[t][l]));
       assert_near(r.restitution, table[t][l], TABLE_TOL);
     }
-  report_residual("restitution vs CONTACT.md table", worst, TABLE_TOL);
+  report_residual("restitution vs docs/contact.md table", worst, TABLE_TOL);
 }
 
 static double rel(double x, double ref) { return fabs(x - ref) / fabs(ref); }

@@ -54,7 +54,7 @@ static void test_fits(void **state) {
   (void)state;
   fb_fit f;
   assert_int_equal(fb_iso286_fit(&f, "10H7/g6", NULL), FB_OK);
-  assert_near(f.clearance_min * 1e6, 5, UM_TOL);  /* CONTACT.md: 5 .. 29 um */
+  assert_near(f.clearance_min * 1e6, 5, UM_TOL);  /* docs/contact.md: 5 .. 29 um */
   assert_near(f.clearance_max * 1e6, 29, UM_TOL);
   assert_int_equal(f.kind, FB_FIT_CLEARANCE);
   assert_int_equal(fb_iso286_fit(&f, "25 H8/f7", NULL), FB_OK);

@@ -27,7 +27,7 @@
 /* Second difference: DTH^2 / 12 * max|theta''''| (~100: 1e-7) plus roundoff
  * 4 eps pi / DTH^2 (~3e-7); 2e-6 per unit crank speed squared. */
 #define FD_ACC_TOL 2e-6
-/* PAPER.md prints peak |alpha| / omega^2 to 7 digits: half a unit in the last
+/* docs/paper.md prints peak |alpha| / omega^2 to 7 digits: half a unit in the last
  * digit is 5e-7 absolute. */
 #define PAPER_RATIO_TOL 5e-7
 /* Transmission angle: acos near 0.5 rad has no conditioning trouble. */
@@ -191,7 +191,7 @@ static void test_transmission_angle_extremes(void **state) {
 
 static void test_paper_peak_ratios(void **state) {
   (void)state;
-  /* PAPER.md: peak |alpha| / omega^2 = 1.091571 (coupler), 1.138543 (follower)
+  /* docs/paper.md: peak |alpha| / omega^2 = 1.091571 (coupler), 1.138543 (follower)
    * for the nominal linkage at constant crank speed: an independent number */
   fb_peaks p;
   const double w = 104.71975511965977;

@@ -1,4 +1,4 @@
-/* Paper mode reproduces the paper's Tables I to III (PAPER.md) to their
+/* Paper mode reproduces the paper's Tables I to III (docs/paper.md) to their
  * printed precision; physical mode is checked against its own formulas. */
 #include "contact.h"
 #include "casefile.h"

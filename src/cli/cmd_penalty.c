@@ -24,15 +24,19 @@ static const char penalty_help[] =
     "and mutual approach per crank speed, for the crank-coupler and\n"
     "coupler-follower joints.\n"
     "\n"
-    "  --mode paper     the recipe that reproduces the paper's Tables I to III\n"
-    "                   (shared/PAPER.md); P in the paper's units (N mm^0.5)\n"
     "  --mode physical  inverse-dynamics joint reaction, the case's radial\n"
-    "                   clearance and pin length, Johnson's line contact; P in N m^0.5\n"
+    "                   clearance and pin length, Johnson's line contact\n"
+    "  --mode paper     the recipe that reproduces the paper's Tables I to III\n"
+    "                   (docs/paper.md)\n"
+    "                   default: the case's [clearance] penalty, as fourbar run\n"
+    "                   uses it (physical unless the case says paper)\n"
     "  --speeds-rpm     FROM:TO:STEP or a comma list (default 100:1500:100)\n"
     "  --out DIR        also write DIR/penalty_<mode>.csv and the figure\n"
     "                   DIR/penalty_<mode>.svg (force, stiffness, penalty, approach\n"
     "                   against speed: the paper's Figures 2 to 4)\n"
-    "  CASE             default: the paper's case\n";
+    "  CASE             default: the paper's case\n"
+    "P is printed in both units, N mm^0.5 (the paper's Table II) and N m^0.5\n"
+    "(SI): columns penalty_n_mm0_5 and penalty_n_m0_5 in every mode.\n";
 
 static int parse_speeds(const char *text, double *out, int *n) {
   double a, b, s;
@@ -63,7 +67,8 @@ int fb_cmd_penalty(int argc, char **argv) {
                                        {"out", required_argument, 0, 'o'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
-  fb_penalty_mode mode = FB_PENALTY_PAPER;
+  int mode_given = 0;
+  fb_penalty_mode mode = FB_PENALTY_PHYSICAL;
   static double rpm[MAX_SPEEDS];
   int n = 0, json = 0, nsets = 0, ch;
   const char *out_dir = NULL;
@@ -76,6 +81,7 @@ int fb_cmd_penalty(int argc, char **argv) {
         if (strcmp(optarg, "paper") == 0) mode = FB_PENALTY_PAPER;
         else if (strcmp(optarg, "physical") == 0) mode = FB_PENALTY_PHYSICAL;
         else return fb_cli_fail("penalty", 2, "--mode '%s': must be paper or physical", optarg);
+        mode_given = 1;
         break;
       case 's':
         if (!parse_speeds(optarg, rpm, &n))
@@ -99,16 +105,23 @@ int fb_cmd_penalty(int argc, char **argv) {
   char case_path[4096];
   int rc = fb_cli_load_case("penalty", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
+  /* one default with fourbar run: the case's penalty source (explicit
+   * stiffness has no estimate to show: physical) */
+  if (!mode_given)
+    mode = c.clearance.penalty == FB_PENALTY_SOURCE_PAPER ? FB_PENALTY_PAPER : FB_PENALTY_PHYSICAL;
 
   if (out_dir && fb_outdir_prepare(out_dir, &diag) != FB_OK)
     return fb_cli_fail("penalty", 1, "%s", diag.msg);
-  static double col_f[2][MAX_SPEEDS], col_k[2][MAX_SPEEDS], col_p[2][MAX_SPEEDS], col_d[2][MAX_SPEEDS];
+  static double col_f[2][MAX_SPEEDS], col_k[2][MAX_SPEEDS], col_p[2][MAX_SPEEDS], col_d[2][MAX_SPEEDS],
+      col_pm[2][MAX_SPEEDS];
   json_t *rows = json_array();
   const char *unit = mode == FB_PENALTY_PAPER ? "N mm^0.5 (paper)" : "N m^0.5";
   if (!json)
-    printf("%s mode, case %s\n%8s  %-17s %12s %16s %14s %12s\n%8s  %-17s %12s %16s %14s %12s\n",
+    printf("%s mode, case %s\n%8s  %-17s %12s %16s %14s %14s %12s\n"
+           "%8s  %-17s %12s %16s %14s %14s %12s\n",
            mode == FB_PENALTY_PAPER ? "paper" : "physical", c.name, "speed", "joint", "force",
-           "stiffness Kc", "penalty P", "approach", "rpm", "", "N", "N/m", unit, "um");
+           "stiffness Kc", "penalty P", "penalty P", "approach", "rpm", "", "N", "N/m", "N mm^0.5",
+           "N m^0.5", "um");
   for (int i = 0; i < n; i++) {
     fb_penalty_row r[2];
     if (fb_penalty_rows(r, &c, mode, rpm[i] * FB_RAD_S_PER_RPM, &diag) != FB_OK) {
@@ -117,6 +130,10 @@ int fb_cmd_penalty(int argc, char **argv) {
     }
     for (int j = 0; j < 2; j++) {
       const double approach_um = r[j].approach / FB_M_PER_UM;
+      /* P = Kc C^1.5 is N m^0.5 in SI; 1 N mm^0.5 = sqrt(1e-3) N m^0.5 */
+      const double p_mm = mode == FB_PENALTY_PAPER ? r[j].penalty : r[j].penalty / sqrt(FB_M_PER_MM);
+      const double p_m = mode == FB_PENALTY_PAPER ? r[j].penalty * sqrt(FB_M_PER_MM) : r[j].penalty;
+      col_pm[j][i] = p_m;
       col_f[j][i] = r[j].force;
       col_k[j][i] = r[j].stiffness;
       col_p[j][i] = r[j].penalty;
@@ -127,13 +144,14 @@ int fb_cmd_penalty(int argc, char **argv) {
         json_object_set_new(o, "joint", json_string(fb_pin_joint_name(r[j].joint)));
         json_object_set_new(o, "force_n", json_real(r[j].force));
         json_object_set_new(o, "stiffness_n_m", json_real(r[j].stiffness));
-        json_object_set_new(o, "penalty", json_real(r[j].penalty));
+        json_object_set_new(o, "penalty", json_real(r[j].penalty)); /* unit: penalty_units */
+        json_object_set_new(o, "penalty_n_mm0_5", json_real(p_mm));
+        json_object_set_new(o, "penalty_n_m0_5", json_real(p_m));
         json_object_set_new(o, "approach_um", json_real(approach_um));
         json_array_append_new(rows, o);
       } else {
-        printf("%8g  %-17s %12.6g %16.6e %14.6g %12.6g\n", rpm[i],
-               fb_pin_joint_name(r[j].joint), r[j].force, r[j].stiffness, r[j].penalty,
-               approach_um);
+        printf("%8g  %-17s %12.6g %16.6e %14.6g %14.6g %12.6g\n", rpm[i],
+               fb_pin_joint_name(r[j].joint), r[j].force, r[j].stiffness, p_mm, p_m, approach_um);
       }
     }
   }
@@ -146,11 +164,12 @@ int fb_cmd_penalty(int argc, char **argv) {
       json_decref(rows);
       return fb_cli_fail("penalty", 1, "%s", diag.msg);
     }
-    fprintf(of.f, "speed_rpm,joint,force_n,stiffness_n_m,penalty,approach_um\n");
+    fprintf(of.f, "speed_rpm,joint,force_n,stiffness_n_m,penalty_n_mm0_5,penalty_n_m0_5,approach_um\n");
     for (int i = 0; i < n; i++)
       for (int j = 0; j < 2; j++)
-        fprintf(of.f, "%.10g,%s,%.12g,%.12g,%.12g,%.12g\n", rpm[i],
-                fb_pin_joint_name((fb_pin_joint)j), col_f[j][i], col_k[j][i], col_p[j][i], col_d[j][i]);
+        fprintf(of.f, "%.10g,%s,%.12g,%.12g,%.12g,%.12g,%.12g\n", rpm[i],
+                fb_pin_joint_name((fb_pin_joint)j), col_f[j][i], col_k[j][i],
+                col_pm[j][i] / sqrt(FB_M_PER_MM), col_pm[j][i], col_d[j][i]);
     if (fb_outfile_commit(&of, &diag) != FB_OK) {
       json_decref(rows);
       return fb_cli_fail("penalty", 1, "%s", diag.msg);

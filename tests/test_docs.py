@@ -89,6 +89,7 @@ for page in ("docs/paper.md", "docs/contact.md", "docs/studies.md", "docs/keys.m
 # ---- nothing points outside the repository ----------------------------------
 notes = ["shared/" + n + ".md" for n in ("PAPER", "CONTACT", "DESIGN", "STYLE")]
 bare = [n + ".md" for n in ("PAPER", "CONTACT", "DESIGN", "STYLE")]
+offenders = []
 if tracked is not None:
     for t in sorted(tracked):
         p = os.path.join(src, t)
@@ -98,8 +99,8 @@ if tracked is not None:
             text = open(p, encoding="utf-8").read()
         except UnicodeDecodeError:
             continue
-        for n in notes + bare:
-            check(n not in text, "%s points to the developer note %s, which a clone lacks" % (t, n))
+        offenders += ["%s (%s)" % (t, n) for n in notes + bare if n in text]
+check(not offenders, "files point to developer notes a clone lacks: %s" % ", ".join(offenders))
 
 # ---- --version -----------------------------------------------------------------
 meson_build = open(os.path.join(src, "meson.build")).read()

@@ -4,11 +4,23 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "casefile.h"
 
 #ifndef FB_CASES_DIR
 #define FB_CASES_DIR "cases"
+#endif
+#ifndef FB_BASELINES_DIR
+#define FB_BASELINES_DIR "results/baselines"
+#endif
+#ifndef FB_DATA_FROM_BIN
+#define FB_DATA_FROM_BIN ""
+#endif
+#ifndef FB_DATA_INSTALLED
+#define FB_DATA_INSTALLED ""
 #endif
 
 int fb_cli_fail(const char *cmd, int status, const char *fmt, ...) {
@@ -32,9 +44,42 @@ int fb_cli_double(const char *cmd, const char *flag, const char *text, double *o
   return 1;
 }
 
+static int is_dir(const char *path) {
+  struct stat sb;
+  return path[0] && stat(path, &sb) == 0 && S_ISDIR(sb.st_mode);
+}
+
+/* the installed data folder <what> (cases, baselines), or the source tree's */
+static const char *data_dir(const char *env_name, const char *what, const char *source_dir,
+                            char *buf, size_t size) {
+  const char *env = getenv(env_name);
+  if (env && *env) return env;
+  /* an installed copy next to the binary: <exe dir>/<FB_DATA_FROM_BIN>/<what> */
+  char exe[4096];
+  ssize_t n = FB_DATA_FROM_BIN[0] ? readlink("/proc/self/exe", exe, sizeof exe - 1) : -1;
+  if (n > 0) {
+    exe[n] = '\0';
+    char *slash = strrchr(exe, '/');
+    if (slash) {
+      *slash = '\0';
+      snprintf(buf, size, "%s/%s/%s", exe, FB_DATA_FROM_BIN, what);
+      if (is_dir(buf)) return buf;
+    }
+  }
+  /* ./build/fourbar without installing: the source tree it was built from */
+  if (is_dir(source_dir)) return source_dir;
+  snprintf(buf, size, "%s/%s", FB_DATA_INSTALLED, what);
+  return FB_DATA_INSTALLED[0] && is_dir(buf) ? buf : source_dir;
+}
+
 const char *fb_cli_cases_dir(void) {
-  const char *env = getenv("FOURBAR_CASES_DIR");
-  return env && *env ? env : FB_CASES_DIR;
+  static char buf[4600];
+  return data_dir("FOURBAR_CASES_DIR", "cases", FB_CASES_DIR, buf, sizeof buf);
+}
+
+const char *fb_cli_baselines_dir(void) {
+  static char buf[4600];
+  return data_dir("FOURBAR_BASELINES_DIR", "baselines", FB_BASELINES_DIR, buf, sizeof buf);
 }
 
 int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const char *const *sets,

@@ -22,8 +22,14 @@ struct fb_case_s;
 int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const char *const *sets,
                      int nsets, struct fb_case_s *c, char *path, size_t path_size);
 
-/* The directory holding the shipped case files (build-time constant). */
+/* The directory holding the shipped case files: $FOURBAR_CASES_DIR, else the
+ * installed share/fourbar/cases beside the binary (meson install), else the
+ * source tree the binary was built from, else the configured prefix's. */
 const char *fb_cli_cases_dir(void);
+
+/* The same for the committed baselines of fourbar check
+ * ($FOURBAR_BASELINES_DIR, share/fourbar/baselines, results/baselines). */
+const char *fb_cli_baselines_dir(void);
 
 int fb_cmd_run(int argc, char **argv);
 int fb_cmd_kinematics(int argc, char **argv);

@@ -14,10 +14,6 @@
 #include "cli.h"
 #include "report.h"
 
-#ifndef FB_BASELINES_DIR
-#define FB_BASELINES_DIR "results/baselines"
-#endif
-
 #define MAX_SETS 256
 #define MAX_CASES 64
 
@@ -40,10 +36,7 @@ static const char check_help[] =
     "               CASEFILE (relative to cases/) adds a case; none: all baselines\n"
     "  --json       one JSON object with every comparison\n";
 
-static const char *baselines_dir(void) {
-  const char *env = getenv("FOURBAR_BASELINES_DIR");
-  return env && *env ? env : FB_BASELINES_DIR;
-}
+static const char *baselines_dir(void) { return fb_cli_baselines_dir(); }
 
 static int cmp_str(const void *a, const void *b) {
   return strcmp(*(const char *const *)a, *(const char *const *)b);

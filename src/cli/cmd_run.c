@@ -33,7 +33,7 @@ static const char run_help[] =
     "  -h, --help    this text\n"
     "\n"
     "Units: SI in every output (column and key names carry the unit). Peaks are\n"
-    "taken over the revolutions after the first. Keys: cases/README.md.\n"
+    "taken over the revolutions after the first. Keys: fourbar keys, docs/keys.md.\n"
     "Exit status: 0 ok (a model that stopped on numerical trouble says so in its\n"
     "status), 1 run failed, 2 bad input.\n";
 

@@ -6,8 +6,13 @@
 #include "casefile.h"
 #include "cli.h"
 
+#ifndef FB_VERSION
+#define FB_VERSION "unknown"
+#endif
+
 static const char main_help[] =
     "usage: fourbar COMMAND [options]   (fourbar COMMAND --help for each)\n"
+    "       fourbar --version\n"
     "\n"
     "Planar four-bar linkage with tolerance stack-up and clearance joints in the\n"
     "Open Dynamics Engine, checked against the exact analytic solution.\n"
@@ -27,7 +32,8 @@ static const char main_help[] =
     "  bench        every solver configuration on one error-against-cost chart\n"
     "  keys         list every case-file key with unit, default and rule\n"
     "\n"
-    "All outputs are SI; names carry the unit (omega_max_rad_s, h_s).\n";
+    "All outputs are SI; names carry the unit (omega_max_rad_s, h_s).\n"
+    "Documentation: README.md and docs/ in the source tree.\n";
 
 int fb_cmd_keys(int argc, char **argv) {
   if (argc > 1 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
@@ -48,6 +54,11 @@ int main(int argc, char **argv) {
   /* a child that stops reading (gnuplot on an error, `| head`) gives EPIPE on
    * write, reported as an I/O error, never a signal */
   signal(SIGPIPE, SIG_IGN);
+  if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "version") == 0) {
+    printf("fourbar %s\ncases: %s\nbaselines: %s\n", FB_VERSION, fb_cli_cases_dir(),
+           fb_cli_baselines_dir());
+    return 0;
+  }
   const char *cmd = argv[1];
   /* getopt's own messages then read "fourbar <command>: ..." */
   static char prog[64];

@@ -29,7 +29,7 @@ int fb_model_known(const char *name) {
 void fb_case_default(fb_case *c) {
   memset(c, 0, sizeof *c);
   strcpy(c->name, "case");
-  /* the paper's crank-rocker (PAPER.md, "Input data") */
+  /* the paper's crank-rocker (docs/paper.md, "Input data") */
   c->nominal.length[FB_CRANK] = 0.108;
   c->nominal.length[FB_COUPLER] = 0.2794;
   c->nominal.length[FB_FOLLOWER] = 0.2705;
@@ -40,7 +40,7 @@ void fb_case_default(fb_case *c) {
   c->crank_speed = 1000.0 * 2.0 * M_PI / 60.0;
   c->direction = -1;
   c->gravity = 9.80665;
-  /* mass properties (PAPER.md); kg mm^2 -> kg m^2. The paper's two large
+  /* mass properties (docs/paper.md); kg mm^2 -> kg m^2. The paper's two large
    * moments are about axes across the bar; the larger is taken as the one
    * about the hinge axis because the links are wider in the plane than they
    * are thick (cases/paper_crank_rocker.ini says so too). */

@@ -396,7 +396,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s]; did you mean [%s] %s?",
                        e->origin, e->key, e->section, best->section, best->key);
   return fb_diag_set(diag, FB_ERR_PARSE,
-                     "%s: unknown key '%s' in [%s]; see cases/README.md for the keys", e->origin,
+                     "%s: unknown key '%s' in [%s]; see fourbar keys (docs/keys.md) for the keys", e->origin,
                      e->key, e->section);
 }
 

@@ -20,7 +20,7 @@
  * coupler-follower: coupler; follower-ground: follower) and the hole to the
  * second (ground for A and D). Every step, the eccentricity e = pin centre -
  * hole centre is computed exactly from the two bodies (Flores and Ambrosio's
- * formulation, CONTACT.md); when |e| exceeds the radial clearance c, one
+ * formulation, docs/contact.md); when |e| exceeds the radial clearance c, one
  * contact joint is created directly (no ODE geometry: the pin-in-hole pair is
  * concave and its exact penetration, normal and point are known in closed
  * form, so a collider would only add cost and error) with soft ERP/CFM from

@@ -1,6 +1,6 @@
 /* Contact mechanics: stiffness models, normal-force laws with damping, and
  * the mapping of a spring-damper into ODE's ERP/CFM. Pure functions, SI
- * units, no allocation. Sources are named per function; shared/CONTACT.md
+ * units, no allocation. Sources are named per function; docs/contact.md
  * restates them. */
 #ifndef FB_CONTACT_H
 #define FB_CONTACT_H
@@ -52,7 +52,7 @@ double fb_contact_johnson_stiffness(double force, double length, double e_star, 
  * internal-contact law F = (a dR + b) L E* delta^n / dR, a = 0.965,
  * b = 0.0965, n = Y dR^-0.005, Y = 1.51 [ln(1000 dR)]^-0.151, evaluated in
  * the law's own units (mm, N/mm^2) and returned in N. Constants as quoted in
- * CONTACT.md, NOT verified against the primary paper here: use for
+ * docs/contact.md, NOT verified against the primary paper here: use for
  * comparison only. Valid for 5 mm <= R <= 25 mm. */
 double fb_contact_pereira(double delta, double length, double e_star, double dr);
 

@@ -6,7 +6,7 @@
 #include "contact.h"
 #include "invdyn.h"
 
-/* the recipe's constants (PAPER.md), in its own units: N, mm */
+/* the recipe's constants (docs/paper.md), in its own units: N, mm */
 #define PAPER_K_KG_M 8.783456e-5   /* F / max|alpha| [kg m] */
 #define PAPER_C_MM 0.042           /* stated maximum clearance [mm] */
 #define PAPER_R_MM (20.0 / 3.0)    /* contact radius of Table III [mm] */

@@ -1,7 +1,7 @@
 /* Penalty-parameter estimation per crank speed and clearance joint, two ways.
  *
  * Paper mode reproduces the paper's Tables I to III with the recipe recovered
- * in PAPER.md ("What reproduces the printed Tables I to III"): it is offered
+ * in docs/paper.md ("What reproduces the printed Tables I to III"): it is offered
  * for line-by-line comparison with the paper, not as physics.
  *   Table I:   F = k max|alpha| over a revolution (coupler for the
  *              crank-coupler joint, follower for the coupler-follower joint),

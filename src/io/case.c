@@ -20,6 +20,11 @@ const char *fb_joint_name(int j) {
   return (j >= 0 && j < 4) ? names[j] : "?";
 }
 
+const char *fb_mujoco_integrator_name(int k) {
+  static const char *const names[] = {"euler", "implicit", "rk4", "auto"};
+  return k >= 0 && k <= FB_MUJOCO_AUTO ? names[k] : "?";
+}
+
 int fb_model_known(const char *name) {
   for (int i = 0; fb_model_names[i]; i++)
     if (strcmp(fb_model_names[i], name) == 0) return 1;
@@ -83,6 +88,11 @@ void fb_case_default(fb_case *c) {
   c->clearance.penetration_limit = 0.0;
   c->clearance.faceted_n = 64;
   c->clearance.stiffness_scale = 1.0;
+  c->mujoco.integrator = FB_MUJOCO_AUTO;
+  c->mujoco.loop_stiffness = 0.0;
+  c->mujoco.loop_damping = 0.0;
+  c->mujoco.loop_impedance = 0.9999;
+  c->mujoco.drive_armature = 1e6;
   c->revolutions = 3.0;
   const char *m[] = {"analytic", "analytic-stackup", "ode-ideal-nominal", "ode-ideal-stackup"};
   c->model_count = 4;

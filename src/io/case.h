@@ -77,6 +77,29 @@ typedef struct {
   unsigned long seed;      /* dRandSetSeed value (QuickStep row order) */
 } fb_solver;
 
+/* Integrator of the mujoco-* models (MuJoCo's mjtIntegrator). */
+typedef enum {
+  FB_MUJOCO_EULER = 0,    /* semi-implicit Euler (mjINT_EULER) */
+  FB_MUJOCO_IMPLICIT = 1, /* implicit in velocity (mjINT_IMPLICIT) */
+  FB_MUJOCO_RK4 = 2,      /* 4th-order Runge-Kutta (mjINT_RK4) */
+  FB_MUJOCO_AUTO = 3      /* euler for ideal models, rk4 for clearance models (measured) */
+} fb_mujoco_integrator;
+
+/* "euler", "implicit", "rk4", "auto". */
+const char *fb_mujoco_integrator_name(int k);
+
+/* MuJoCo's own choices for the mujoco-* models; engine-free (no MuJoCo header
+ * needed to hold or check them). The loop closure is MuJoCo's soft equality
+ * constraint in its direct form: solref = (-stiffness, -damping), solimp =
+ * (impedance, impedance, 0.001, 0.5, 2). */
+typedef struct {
+  int integrator;        /* fb_mujoco_integrator */
+  double loop_stiffness; /* direct-form solref stiffness of the loop closure [1/s^2]; 0: 1/h^2 */
+  double loop_damping;   /* direct-form solref damping of the loop closure [1/s]; 0: 1/h */
+  double loop_impedance; /* solimp dmin = dmax of the loop closure [-] in (0, 1) */
+  double drive_armature; /* armature of the crank hinge (flywheel drive) [kg m^2] */
+} fb_mujoco_opts;
+
 typedef struct fb_case_s {
   char name[FB_NAME_SIZE];            /* case name, used for the output folder */
   fb_linkage nominal;                 /* basic link lengths [m] */
@@ -101,6 +124,7 @@ typedef struct fb_case_s {
   double radial_clearance;            /* radial clearance c = R_hole - R_pin [m] */
   fb_solver solver;                   /* ODE settings */
   fb_clearance clearance;             /* clearance joints and contact parameters */
+  fb_mujoco_opts mujoco;              /* MuJoCo settings of the mujoco-* models */
   struct {
     char outcome[FB_NAME_SIZE];       /* "stable", "unstable" or "" (no expectation) */
     char model[FB_NAME_SIZE];         /* model the expectation is about */

@@ -34,7 +34,8 @@ typedef enum {
   K_FIT,       /* an ISO 286 fit string, checked after reading */
   K_JOINTS,    /* comma-separated joint names (bit mask) */
   K_PENALTY,   /* physical | paper | explicit */
-  K_MAPPING    /* secant | tangent */
+  K_MAPPING,   /* secant | tangent */
+  K_MJINT      /* euler | implicit | rk4 | auto */
 } key_kind;
 
 typedef struct {
@@ -225,6 +226,28 @@ static const key_spec keys[] = {
     {"solver", "seed", K_ULONG, OFF(solver.seed), 0, 0, 0, 0, 0, "-", "1",
      "a non-negative integer", "seed of ODE's random generator (dRandSetSeed)"},
 
+    {"mujoco", "integrator", K_MJINT, OFF(mujoco.integrator), 0, 0, 0, 0, 0, "-", "auto",
+     "euler, implicit, rk4 or auto",
+     "integrator of the mujoco-* models (MuJoCo's option integrator); auto: euler for the "
+     "ideal models, rk4 for the clearance models (the most accurate of the three for each, "
+     "measured at h = 1e-5 s; see README)"},
+    {"mujoco", "loop_stiffness_1_s2", K_DOUBLE, OFF(mujoco.loop_stiffness), 1.0, 0, INF, 0, 1,
+     "1/s^2", "0", "the stiffness must be >= 0",
+     "loop closure (the connect equality at the coupler-follower joint): MuJoCo's direct-form "
+     "solref stiffness (mass-normalised); 0: 1/h^2, which with euler removes a violation in "
+     "one step"},
+    {"mujoco", "loop_damping_1_s", K_DOUBLE, OFF(mujoco.loop_damping), 1.0, 0, INF, 0, 1, "1/s",
+     "0", "the damping must be >= 0",
+     "loop closure: MuJoCo's direct-form solref damping; 0: 1/h"},
+    {"mujoco", "loop_impedance", K_DOUBLE, OFF(mujoco.loop_impedance), 1.0, 0, 1, 1, 1, "-",
+     "0.9999", "the impedance must lie in (0, 1)",
+     "loop closure: MuJoCo's solimp dmin = dmax (how much of the reference acceleration the "
+     "constraint enforces; 1 would be rigid)"},
+    {"mujoco", "drive_armature_kg_m2", K_DOUBLE, OFF(mujoco.drive_armature), 1.0, 0, INF, 1, 1,
+     "kg m^2", "1e6", "the armature must be positive",
+     "armature of the crank hinge: the crank is a flywheel set to the crank speed at t = 0, "
+     "so the reaction torques barely change its speed (the crank-angle error is reported)"},
+
     {"run", "revolutions", K_INT, OFF(revolutions), 0, 2, 1e6, 0, 0, "-", "3",
      "at least 2: the first revolution is a run-in and peaks come from the rest",
      "crank revolutions simulated; peaks are taken over all but the first"},
@@ -388,7 +411,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
-                       "drive, environment, mass, material, pin, clearance, expect, solver, run)",
+                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, run)",
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }
@@ -536,6 +559,13 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       if (strcmp(e->value, "physical") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_PHYSICAL;
       else if (strcmp(e->value, "paper") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_PAPER;
       else if (strcmp(e->value, "explicit") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_EXPLICIT;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_MJINT:
+      if (strcmp(e->value, "euler") == 0) *(int *)field = FB_MUJOCO_EULER;
+      else if (strcmp(e->value, "implicit") == 0) *(int *)field = FB_MUJOCO_IMPLICIT;
+      else if (strcmp(e->value, "rk4") == 0) *(int *)field = FB_MUJOCO_RK4;
+      else if (strcmp(e->value, "auto") == 0) *(int *)field = FB_MUJOCO_AUTO;
       else return bad_word(e, k, diag);
       return FB_OK;
     case K_MAPPING:

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "episode.h"
 #include "ode_env.h"
 
 /* one clearance joint */
@@ -13,11 +14,7 @@ typedef struct {
   dBodyID pin, hole;    /* hole 0: ground */
   double pin_local[3];  /* joint centre in the pin body's frame */
   double hole_local[3]; /* in the hole body's frame, or world point for ground */
-  double v0;            /* penetration rate at the onset of the current contact [m/s] */
-  int in_contact;
-  int state;            /* FB_STATE_* during the last step */
-  int restituting;      /* impact: the penetration rate has turned negative */
-  int impacts;
+  fb_episode ep;        /* contact episodes: state during the last step, impacts, v0 */
   dJointID cj;          /* contact joint of the last step, or 0 */
   dJointFeedback fb;
   dGeomID cyl;          /* faceted: the pin */
@@ -228,25 +225,6 @@ static void clearance_geometry(const clearance *c, double e[2], double *ddot_num
   *ddot_num = e[0] * ev[0] + e[1] * ev[1]; /* |e| times the rate of |e| */
 }
 
-/* contact-state bookkeeping at a step in contact with penetration rate
- * ddot: an episode that begins at ddot >= vmin is an impact through its
- * compression (ddot > 0) and restitution (ddot < 0); if the pin is still on
- * the wall when the rate turns non-negative again, it is in continuous
- * contact from then on. An episode that begins slower is continuous. */
-static void contact_state(clearance *c, double ddot, double vmin) {
-  if (!c->in_contact) {
-    c->in_contact = 1;
-    c->restituting = 0;
-    c->v0 = ddot > vmin ? ddot : vmin;
-    c->state = ddot >= vmin ? FB_STATE_IMPACT : FB_STATE_CONTINUOUS;
-    if (c->state == FB_STATE_IMPACT) c->impacts++;
-    return;
-  }
-  if (c->state != FB_STATE_IMPACT) return;
-  if (ddot < 0.0) c->restituting = 1;
-  else if (c->restituting) c->state = FB_STATE_CONTINUOUS;
-}
-
 typedef struct {
   dContactGeom *g;
   int n;
@@ -269,8 +247,7 @@ static void facet_contacts(fb_scene *s, int j) {
   const int n = hits.n;
   c->nfb = 0;
   if (n == 0) {
-    c->in_contact = 0;
-    c->state = FB_STATE_FREE;
+    fb_episode_update(&c->ep, 0, 0.0, d->impact_velocity_min);
     return;
   }
   for (int i = 0; i < n; i++) {
@@ -281,9 +258,9 @@ static void facet_contacts(fb_scene *s, int j) {
     /* normal points into body 1: approach rate along it */
     const double ddot = (v2[0] - v1[0]) * g[i].normal[0] + (v2[1] - v1[1]) * g[i].normal[1] +
                         (v2[2] - v1[2]) * g[i].normal[2];
-    if (i == 0) contact_state(c, ddot, d->impact_velocity_min);
+    if (i == 0) fb_episode_update(&c->ep, 1, ddot, d->impact_velocity_min);
     double kp, kd, depth, erp, cfm;
-    fb_contact_linearize(&d->law[j], d->mapping, g[i].depth, ddot, c->v0, &kp, &kd, &depth);
+    fb_contact_linearize(&d->law[j], d->mapping, g[i].depth, ddot, c->ep.v0, &kp, &kd, &depth);
     if (fb_contact_erp_cfm(d->solver.h, kp / n, kd / n, &erp, &cfm, NULL) != FB_OK) continue;
     dContact ct;
     memset(&ct, 0, sizeof ct);
@@ -314,15 +291,14 @@ static void clearance_contact(fb_scene *s, int j) {
   const double delta = ecc - d->radial_clearance;
   c->cj = 0;
   if (!(delta > 0.0) || ecc == 0.0) {
-    c->in_contact = 0;
-    c->state = FB_STATE_FREE;
+    fb_episode_update(&c->ep, 0, 0.0, d->impact_velocity_min);
     return;
   }
   const double n[2] = {e[0] / ecc, e[1] / ecc};
   const double ddot = num / ecc;
-  contact_state(c, ddot, d->impact_velocity_min);
+  fb_episode_update(&c->ep, 1, ddot, d->impact_velocity_min);
   double kp, kd, depth, erp, cfm;
-  fb_contact_linearize(&d->law[j], d->mapping, delta, ddot, c->v0, &kp, &kd, &depth);
+  fb_contact_linearize(&d->law[j], d->mapping, delta, ddot, c->ep.v0, &kp, &kd, &depth);
   if (fb_contact_erp_cfm(d->solver.h, kp, kd, &erp, &cfm, NULL) != FB_OK) return;
   dContact ct;
   memset(&ct, 0, sizeof ct);
@@ -413,7 +389,7 @@ void fb_scene_sample(const fb_scene *s, fb_sample *x) {
     x->contact[j][FB_C_PEN] = pen > 0.0 ? pen : 0.0;
     x->contact[j][FB_C_EX] = e[0];
     x->contact[j][FB_C_EY] = e[1];
-    x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->state : (double)FB_STATE_FREE;
+    x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->ep.state : (double)FB_STATE_FREE;
   }
 }
 
@@ -433,7 +409,7 @@ double fb_scene_penetration(const fb_scene *s, int *joint) {
   return worst > 0.0 ? worst : 0.0;
 }
 
-int fb_scene_impacts(const fb_scene *s, int j) { return s->cl[j].impacts; }
+int fb_scene_impacts(const fb_scene *s, int j) { return s->cl[j].ep.impacts; }
 
 double fb_scene_joint_drift(const fb_scene *s) {
   double worst = 0.0;

@@ -1,0 +1,114 @@
+/* The four-bar in MuJoCo 2.2.2: the same scene definition as the ODE scene
+ * (scene.h: lengths, masses, inertias, gravity, drive, initial state from the
+ * analytic solver, clearance joints and their contact laws), generated as
+ * MJCF text and loaded from memory through MuJoCo's virtual file system. The
+ * only folder that includes MuJoCo headers; this header includes none, so a
+ * build without MuJoCo compiles every caller (FB_HAVE_MUJOCO in fb_config.h
+ * says whether these functions exist).
+ *
+ * Model (generalised coordinates, a kinematic tree):
+ *   world -> crank (hinge A at the origin) -> coupler (hinge B at the crank
+ *   pin); world -> follower (hinge D at (ground, 0)). Every hinge axis is +z,
+ *   so the motion stays in the plane by construction. The loop is closed at C
+ *   by a `connect` equality (coupler to follower) in MuJoCo's direct soft form:
+ *   solref = (-k, -b), solimp = (d, d, 0.001, 0.5, 2); with k = 1/h^2, b = 1/h
+ *   and d -> 1, one semi-implicit Euler step removes a violation entirely.
+ *   Gravity along -y. Body frames: x along the link (crank A->B, coupler
+ *   B->C, follower D->C), the centre of mass at com_fraction along x, the
+ *   principal moments (long, transverse, hinge) on (x, y, z).
+ *
+ * Drive (exact to the flywheel's inertia): the crank hinge has an armature of
+ *   fb_mujoco_opts.drive_armature (1e6 kg m^2 by default) and starts at the
+ *   crank speed; with no motor, the reaction torques (~100 N m) change its
+ *   speed by ~1e-4 rad/s^2, so the crank angle stays within ~1e-9 rad of
+ *   theta0 + omega2 t over three revolutions; the run reports the crank-angle
+ *   error (error_vs_analytic.crank_angle_err_max_rad) like ODE's. A velocity
+ *   actuator was measured to diverge with euler and to leave 0.1-0.9 rad/s of
+ *   speed error with implicit, so it is not used.
+ *
+ * Clearance joints (clearance_mask): the joint gets no hinge and no equality;
+ *   the body that carries the hole (or the pin, for the ground joints) gets
+ *   planar freedom instead (slide x, slide y, hinge z; the crank's drive
+ *   armature sits on its hinge z). A site marks the pin centre on the pin
+ *   body and one the hole centre on the hole body (ground: the world), as in
+ *   the ODE scene (pin on the joint's first body). MuJoCo's contact solver is
+ *   not involved: the project's law (contact.h, fb_contact_force with the
+ *   joint's fb_contact_law, exactly as the ODE scene and the reference
+ *   evaluate it) gives the normal force F(delta, ddot) from the site
+ *   positions and velocities, and MuJoCo's passive-force hook (mjcb_passive)
+ *   adds it as generalised forces -F J^T n, J = J_pin - J_hole from
+ *   mj_jacSite, n = e/|e|. This is MuJoCo's integrator with the project's
+ *   contact law, evaluated at every integrator stage (4 per rk4 step).
+ *
+ * Stepping and sampling: a step integrates with the state's accelerations
+ * (mj_Euler, mj_RungeKutta(4), or mj_step2 for implicit) and then runs
+ * mj_forward at the new state, so every sample is instantaneous at
+ * t = steps h: angles and angular velocities from the hinge coordinates,
+ * angular accelerations from qacc (not differences of omega), the contact
+ * force evaluated at the sample's state. Numerical trouble is not caught by
+ * MuJoCo (mj_checkPos/Vel/Acc would silently reset the state): a NaN reaches
+ * the sample and the caller stops the run. MuJoCo's fatal errors (mju_error)
+ * print "fourbar: MuJoCo error: ..." and end the process with status 1. */
+#ifndef FB_MUJOCO_SCENE_H
+#define FB_MUJOCO_SCENE_H
+
+#include <stddef.h>
+
+#include "case.h"
+#include "scene.h"
+#include "series.h"
+
+typedef struct fb_mujoco_scene fb_mujoco_scene;
+
+/* The integrator a run with opts uses: opts->integrator, with auto resolved
+ * to euler for an ideal mechanism (clearance_mask 0) and rk4 with clearance
+ * joints (fb_mujoco_integrator). */
+int fb_mujoco_integrator_for(const fb_mujoco_opts *opts, int clearance_mask);
+
+/* Writes the MJCF text of def with opts into buf (size bytes, NUL
+ * terminated): numbers printed with 17 significant digits, so the compiled
+ * model holds the definition's doubles. Errors: FB_ERR_ASSEMBLY when the
+ * initial configuration does not exist; FB_ERR_RANGE when buf is too small. */
+fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_def *def,
+                         const fb_mujoco_opts *opts, fb_diag *diag);
+
+/* Compiles the model (mj_loadXML from a VFS holding the MJCF text) and sets
+ * the state at t = 0 from the analytic solver (loop closed, velocities
+ * compatible, pins centred in their holes). Uses def's lengths, branch,
+ * crank_angle0, omega2, gravity, link, solver.h, clearance_mask,
+ * radial_clearance, law, impact_velocity_min; ignores ODE's stepper,
+ * ERP/CFM, mapping, friction and faceted_n. Errors: FB_ERR_ASSEMBLY;
+ * FB_ERR_ARG when MuJoCo rejects the model (its message quoted); FB_ERR_NOMEM. */
+fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_def *def,
+                                 const fb_mujoco_opts *opts, fb_diag *diag);
+
+/* Advances one step h. Errors: none today (FB_OK); NaN is reported through
+ * the sample. */
+fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag);
+
+/* Current state as a sample at t = steps h (see the header comment), with
+ * the contact columns of the clearance joints: force [N] at this state,
+ * penetration [m], eccentricity (x, y) [m], state (series.h). */
+void fb_mujoco_scene_sample(const fb_mujoco_scene *s, fb_sample *x);
+
+/* Loop-closure violation now: distance between the coupler's and the
+ * follower's C points [m] (0 when C is a clearance joint). */
+double fb_mujoco_scene_joint_drift(const fb_mujoco_scene *s);
+
+/* Largest penetration over the clearance joints now [m] and its joint (-1
+ * when there is no clearance joint). */
+double fb_mujoco_scene_penetration(const fb_mujoco_scene *s, int *joint);
+
+/* Impact episodes counted so far at joint j. */
+int fb_mujoco_scene_impacts(const fb_mujoco_scene *s, int j);
+
+/* Steps taken. */
+size_t fb_mujoco_scene_steps(const fb_mujoco_scene *s);
+
+/* MuJoCo's library version string ("2.2.2"). */
+const char *fb_mujoco_version(void);
+
+/* Frees the model and data (NULL is ignored). */
+void fb_mujoco_scene_destroy(fb_mujoco_scene *s);
+
+#endif

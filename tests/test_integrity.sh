@@ -43,5 +43,58 @@ sed -i "s|^case = .*|case = $paper|" "$tmp/it's dir/tiny.ini"
 "$exe" sweep "$tmp/it's dir/tiny.ini" --list 2 --out "$tmp/it's dir/out" > "$tmp/cmds.txt" 2>/dev/null
 ok 'eval "set -- $(head -n 1 "$tmp/cmds.txt")" && [ "$3" = "$tmp/it'"'"'s dir/tiny.ini" ] && [ "$7" = "$tmp/it'"'"'s dir/out" ]' "1: sweep --list quotes a path holding ' for the shell"
 
+# ---- 5. one writer per output folder ----------------------------------------
+slow=(--set run.revolutions=30 --set run.models=analytic,ode-clearance-impact --no-figures)
+wait_for() { for _ in $(seq 1 600); do eval "$1" && return 0; sleep 0.05; done; return 1; }
+staged() { compgen -G "$tmp/.$1.staging.*" >/dev/null; }
+"$exe" run "${slow[@]}" --out "$tmp/lock" >/dev/null 2>&1 &
+p1=$!
+wait_for 'staged lock'
+kill -STOP $p1
+"$exe" run "${fast[@]}" --out "$tmp/lock" >/dev/null 2>"$tmp/err"
+rc=$?
+ok '[ $rc -ne 0 ] && grep -q "PID $p1" "$tmp/err" && grep -q "$tmp/lock" "$tmp/err"' "5: a second run into a busy folder fails at once naming the folder and the holder's PID"
+kill -CONT $p1; wait $p1
+ok '[ -s "$tmp/lock/summary.json" ]' "5: the first writer finishes"
+"$exe" sweep "$here/../cases/studies/mapping.ini" --out "$tmp/sw" >/dev/null 2>&1 &
+p1=$!
+wait_for '[ -s "$tmp/sw/points.jsonl" ]'
+"$exe" sweep "$here/../cases/studies/mapping.ini" --out "$tmp/sw" >/dev/null 2>"$tmp/err"
+rc=$?
+kill $p1; wait $p1 2>/dev/null
+ok '[ $rc -ne 0 ] && grep -q "PID $p1" "$tmp/err"' "5: a second sweep into a busy folder fails naming the holder's PID"
+
+# ---- 6. a result set is atomic ----------------------------------------------
+"$exe" run "${fast[@]}" --out "$tmp/keep" >/dev/null 2>&1
+sum_before=$(cd "$tmp/keep" && md5sum * | md5sum)
+"$exe" run "${slow[@]}" --out "$tmp/keep" >/dev/null 2>&1 &
+p1=$!
+wait_for 'staged keep'
+kill -TERM $p1; wait $p1 2>/dev/null
+ok '[ "$(cd "$tmp/keep" && md5sum * | md5sum)" = "$sum_before" ] && ! staged keep && ! compgen -G "$tmp/keep/*.tmp.*" >/dev/null' "6: SIGTERM mid-run: the old set stays whole, no staging or temporary file left"
+"$exe" run "${slow[@]}" --out "$tmp/keep" >/dev/null 2>&1 &
+p1=$!
+wait_for 'staged keep'
+kill -KILL $p1; wait $p1 2>/dev/null
+ok 'staged keep' "6: SIGKILL leaves a staging folder (precondition)"
+"$exe" run --set run.revolutions=2 --set run.models=analytic --no-figures --out "$tmp/keep" >/dev/null 2>&1
+ok '! staged keep && [ -s "$tmp/keep/analytic.csv" ] && [ ! -e "$tmp/keep/ode-ideal-nominal.csv" ] && [ ! -e "$tmp/keep/omega.svg" ]' "6: a rerun cleans a killed run's leftovers and keeps no stale file of a model no longer run"
+mkdir -p "$tmp/notours/sub"
+ok '! "$exe" run "${fast[@]}" --out "$tmp/notours" 2>"$tmp/err" && [ -d "$tmp/notours/sub" ] && grep -q "will not be replaced" "$tmp/err"' "6: a folder that is not a result folder is never replaced"
+"$exe" sweep "$here/../cases/studies/mapping.ini" --out "$tmp/orphan" --jobs 2 >/dev/null 2>&1 &
+p1=$!
+wait_for '[ "$(pgrep -P $p1 | wc -l)" -ge 2 ]'
+workers=$(pgrep -P $p1)
+kill -KILL $p1; wait $p1 2>/dev/null
+alive() { for w in $workers; do kill -0 "$w" 2>/dev/null && return 0; done; return 1; }
+wait_for '! alive'
+ok '[ -n "$workers" ] && ! alive' "6: a sweep's workers die with their parent"
+
+# ---- 13. reruns are reproducible --------------------------------------------
+"$exe" run "${fast[@]}" --out "$tmp/rep1" >/dev/null 2>&1
+"$exe" run "${fast[@]}" --out "$tmp/rep2" >/dev/null 2>&1
+ok 'cmp -s "$tmp/rep1/summary.json" "$tmp/rep2/summary.json" && [ -s "$tmp/rep1/timing.json" ]' "13: summary.json is byte-identical between reruns; wall times in timing.json"
+ok '[ "$(grep -c "fourbar run" "$tmp/rep1/report.md")" -ge 1 ] && ! grep -q "fourbar fourbar" "$tmp/rep1/report.md"' "13: report.md prints the command line once"
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

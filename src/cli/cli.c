@@ -72,6 +72,33 @@ static const char *data_dir(const char *env_name, const char *what, const char *
   return FB_DATA_INSTALLED[0] && is_dir(buf) ? buf : source_dir;
 }
 
+int fb_cli_shell_word(char *out, size_t size, const char *text) {
+  size_t k = strlen(out);
+  const size_t start = k;
+  const size_t n = strlen(text);
+  if (n && strspn(text, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_./=,:+@%-") == n) {
+    if (k + n + 1 > size) return 0; /* a plain word needs no quotes */
+    memcpy(out + k, text, n + 1);
+    return 1;
+  }
+  if (k + 1 >= size) return 0;
+  out[k++] = '\'';
+  for (const char *p = text; *p; p++) {
+    const char *piece = *p == '\'' ? "'\\''" : NULL;
+    const size_t l = piece ? 4 : 1;
+    if (k + l + 2 >= size) {
+      out[start] = '\0';
+      return 0;
+    }
+    if (piece) memcpy(out + k, piece, l);
+    else out[k] = *p;
+    k += l;
+  }
+  out[k++] = '\'';
+  out[k] = '\0';
+  return 1;
+}
+
 const char *fb_cli_cases_dir(void) {
   static char buf[4600];
   return data_dir("FOURBAR_CASES_DIR", "cases", FB_CASES_DIR, buf, sizeof buf);

@@ -22,6 +22,12 @@ struct fb_case_s;
 int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const char *const *sets,
                      int nsets, struct fb_case_s *c, char *path, size_t path_size);
 
+/* Appends text to out (size bytes, NUL-terminated) as one word for a POSIX
+ * shell: as is when it holds only letters, digits and _./=,:+@%-, else in
+ * single quotes with each ' written as '\''. Returns 0 when out is too
+ * small (out is then left as it was). */
+int fb_cli_shell_word(char *out, size_t size, const char *text);
+
 /* The directory holding the shipped case files: $FOURBAR_CASES_DIR, else the
  * installed share/fourbar/cases beside the binary (meson install), else the
  * source tree the binary was built from, else the configured prefix's. */

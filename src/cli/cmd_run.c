@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "figures.h"
 #include "fileio.h"
+#include "outdir.h"
 #include "report.h"
 #include "run.h"
 
@@ -19,15 +20,18 @@ static const char run_help[] =
     "                   [--no-figures] [--figure-format svg|png]\n"
     "\n"
     "Runs the models a case file asks for ([run] models), measures each against the\n"
-    "exact analytic solution and writes DIR/summary.json, DIR/<model>.csv, figures\n"
-    "(gnuplot) and DIR/report.md.\n"
+    "exact analytic solution and writes DIR/summary.json, DIR/timing.json (wall\n"
+    "times), DIR/<model>.csv, figures (gnuplot) and DIR/report.md. The set is\n"
+    "written beside DIR and swapped in whole at the end; a second writer to DIR\n"
+    "fails at once.\n"
     "\n"
     "  CASE          case file (INI); default: the paper's case,\n"
     "                cases/paper_crank_rocker.ini\n"
     "  --out DIR     output folder; default results/<case name>/\n"
     "  --set K=V     override case key K (section.key) with V, e.g.\n"
     "                --set drive.speed_rpm=1500 --set solver.h_s=1e-4\n"
-    "  --json        print summary.json to standard output instead of the table\n"
+    "  --json        print summary.json (with timing.json's wall_s and\n"
+    "                time_per_step_us per model) instead of the table\n"
     "  --no-figures  skip the figures (report.md is still written)\n"
     "  --figure-format svg|png   default svg\n"
     "  -h, --help    this text\n"
@@ -91,42 +95,73 @@ int fb_cmd_run(int argc, char **argv) {
     snprintf(dir, sizeof dir, "%s", out_dir);
   else
     snprintf(dir, sizeof dir, "results/%s", c.name);
-  fb_status st = fb_outdir_prepare(dir, &diag);
-  if (st != FB_OK) return fb_cli_fail("run", 1, "%s", diag.msg);
+  /* one writer per folder; the whole set goes to a staging folder beside it,
+   * swapped in at the end (outdir.h): both checked before any simulation */
+  static fb_outdir od;
+  fb_status st = fb_outdir_lock(&od, dir, 1, NULL, &diag);
+  if (st == FB_OK) st = fb_outdir_stage(&od, &diag);
+  if (st != FB_OK) {
+    fb_outdir_release(&od);
+    return fb_cli_fail("run", 1, "%s", diag.msg);
+  }
 
   static fb_run r;
   progress_state ps = {isatty(2) && !json};
   st = fb_run_case(&r, &c, progress, &ps, &diag);
-  if (st != FB_OK) return fb_cli_fail("run", 1, "%s", diag.msg);
-  st = fb_report_write_run(dir, &r, case_path, &diag);
+  if (st != FB_OK) {
+    fb_outdir_release(&od);
+    return fb_cli_fail("run", 1, "%s", diag.msg);
+  }
+  st = fb_report_write_run(od.stage, &r, case_path, &diag);
   if (st != FB_OK) {
     fb_run_free(&r);
+    fb_outdir_release(&od);
     return fb_cli_fail("run", 1, "%s", diag.msg);
   }
   /* figures and report.md: a figure failure is reported, the results stand */
   char names[64][128];
   int nfig = 0;
   char note[1200] = "Figures were not requested (--no-figures).";
-  if (figures && fb_figures_run(&r, dir, fmt, names, 64, &nfig, &diag) != FB_OK) {
+  if (figures && fb_figures_run(&r, od.stage, fmt, names, 64, &nfig, &diag) != FB_OK) {
     fprintf(stderr, "fourbar run: warning: %s\n", diag.msg);
     snprintf(note, sizeof note, "Figures failed: %s", diag.msg);
     nfig = 0;
   }
-  char command[4096] = "fourbar";
-  for (int i = 0; i < argc; i++) {
+  /* argv[0] is "fourbar run" (main.c); the rest quoted for a POSIX shell */
+  char command[8192];
+  snprintf(command, sizeof command, "%s", argv[0]);
+  for (int i = 1; i < argc; i++) {
     strncat(command, " ", sizeof command - strlen(command) - 1);
-    strncat(command, argv[i], sizeof command - strlen(command) - 1);
+    if (!fb_cli_shell_word(command, sizeof command, argv[i])) {
+      strncat(command, " ...", sizeof command - strlen(command) - 1);
+      break;
+    }
   }
-  if (fb_report_write_markdown(dir, &r, case_path, command, names, nfig, note, &diag) != FB_OK)
+  if (fb_report_write_markdown(od.stage, &r, case_path, command, names, nfig, note, &diag) != FB_OK)
     fprintf(stderr, "fourbar run: warning: %s\n", diag.msg);
+  st = fb_outdir_commit(&od, &diag);
+  fb_outdir_release(&od);
+  if (st != FB_OK) {
+    fb_run_free(&r);
+    return fb_cli_fail("run", 1, "%s", diag.msg);
+  }
   if (json) {
-    json_t *j = fb_report_summary_json(&r, case_path);
+    /* summary.json with each model's wall time from timing.json */
+    json_t *j = fb_report_summary_json(&r, case_path), *t = fb_report_timing_json(&r);
+    for (int i = 0; i < r.n; i++) {
+      json_t *m = json_array_get(json_object_get(j, "models"), (size_t)i);
+      json_t *tm = json_array_get(json_object_get(t, "models"), (size_t)i);
+      json_object_set(m, "wall_s", json_object_get(tm, "wall_s"));
+      json_object_set(m, "time_per_step_us", json_object_get(tm, "time_per_step_us"));
+    }
     json_dumpf(j, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
     fputc('\n', stdout);
     json_decref(j);
+    json_decref(t);
   } else {
     fb_report_print_table(stdout, &r);
-    printf("wrote %s/summary.json, %d CSV files, %d figures and report.md\n", dir, r.n, nfig);
+    printf("wrote %s/summary.json, timing.json, %d CSV files, %d figures and report.md\n", dir,
+           r.n, nfig);
   }
   fb_run_free(&r);
   return 0;

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <dirent.h>
@@ -18,6 +19,7 @@
 #include "clock.h"
 #include "figures.h"
 #include "fileio.h"
+#include "outdir.h"
 #include "study.h"
 
 static const char sweep_help[] =
@@ -50,13 +52,6 @@ typedef struct {
   char **rows;
   size_t n, cap;
 } rowset;
-
-/* prints text as one word for a POSIX shell: in single quotes, each ' as '\'' */
-static void put_shell_word(const char *text) {
-  putchar('\'');
-  for (const char *p = text; *p; p++) fputs(*p == '\'' ? "'\\''" : (char[2]){*p, 0}, stdout);
-  putchar('\'');
-}
 
 static int rows_add(rowset *r, const char *line) {
   if (r->n == r->cap) {
@@ -183,16 +178,24 @@ int fb_cmd_sweep(int argc, char **argv) {
     if (fb_outdir_prepare(dir, &d) != FB_OK) return fb_cli_fail("sweep", 1, "%s", d.msg);
     if (!realpath(dir, dir_abs)) snprintf(dir_abs, sizeof dir_abs, "%s", dir);
     for (long k = 0; k < list; k++) {
-      put_shell_word(l > 0 ? exe : "fourbar");
-      fputs(" sweep ", stdout);
-      put_shell_word(study_abs);
-      printf(" --shard %ld/%ld --out ", k, list);
-      put_shell_word(dir_abs);
-      putchar('\n');
+      static char line[12 * PATH_MAX + 64]; /* a quote takes 4 characters */
+      line[0] = '\0';
+      int fits = fb_cli_shell_word(line, sizeof line, l > 0 ? exe : "fourbar");
+      strcat(line, " sweep ");
+      fits = fits && fb_cli_shell_word(line, sizeof line, study_abs);
+      snprintf(line + strlen(line), sizeof line - strlen(line), " --shard %ld/%ld --out ", k, list);
+      if (!fits || !fb_cli_shell_word(line, sizeof line, dir_abs))
+        return fb_cli_fail("sweep", 2, "%s: path too long for a command line", dir_abs);
+      puts(line);
     }
     return 0;
   }
-  if (fb_outdir_prepare(dir, &d) != FB_OK) return fb_cli_fail("sweep", 1, "%s", d.msg);
+  /* one writer per folder (outdir.h); released when this process ends */
+  static fb_outdir od;
+  char tag[64];
+  snprintf(tag, sizeof tag, "shard-%ld-of-%ld", shard_i, shard_n);
+  if (fb_outdir_lock(&od, dir, 0, shard_n > 1 ? tag : NULL, &d) != FB_OK)
+    return fb_cli_fail("sweep", 1, "%s", d.msg);
   char rows_path[4200];
   if (shard_n > 1)
     snprintf(rows_path, sizeof rows_path, "%s/points.shard-%ld-of-%ld.jsonl", dir, shard_i, shard_n);
@@ -259,8 +262,11 @@ int fb_cmd_sweep(int argc, char **argv) {
     for (int w = 0; w < nw; w++) {
       int p[2];
       if (pipe(p) != 0) return fb_cli_fail("sweep", 1, "pipe: %s", strerror(errno));
+      const pid_t parent = getpid();
       pid[w] = fork();
       if (pid[w] == 0) {
+        /* a worker dies with its parent (a killed sweep leaves no orphan) */
+        if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent) _exit(5);
         close(p[0]);
         close(fd);
         for (size_t k = (size_t)w; k < ntodo; k += (size_t)nw) {
@@ -402,7 +408,8 @@ int fb_cmd_merge(int argc, char **argv) {
     char path[4200];
     snprintf(path, sizeof path, "%s/points.jsonl", out);
     fb_outfile o;
-    if (fb_outdir_prepare(out, &d) != FB_OK || fb_outfile_open(&o, path, &d) != FB_OK) {
+    static fb_outdir od;
+    if (fb_outdir_lock(&od, out, 0, NULL, &d) != FB_OK || fb_outfile_open(&o, path, &d) != FB_OK) {
       rc = fb_cli_fail("merge", 1, "%s", d.msg);
     } else {
       for (size_t k = 0; k < all.n; k++) fputs(all.rows[k], o.f);

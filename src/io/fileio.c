@@ -1,6 +1,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "fileio.h"
 
+#include "outdir.h"
+
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,13 +11,17 @@
 
 fb_status fb_outfile_open(fb_outfile *o, const char *path, fb_diag *diag) {
   memset(o, 0, sizeof *o);
+  o->cleanup = -1;
   if (snprintf(o->path, sizeof o->path, "%s", path) >= (int)sizeof o->path ||
-      snprintf(o->tmp, sizeof o->tmp, "%s.tmp.XXXXXX", path) >= (int)sizeof o->tmp)
+      snprintf(o->tmp, sizeof o->tmp, "%s.tmp.%ld.XXXXXX", path, (long)getpid()) >=
+          (int)sizeof o->tmp)
     return fb_diag_set(diag, FB_ERR_IO, "%s: path too long", path);
   int fd = mkstemp(o->tmp);
   if (fd < 0) return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
+  o->cleanup = fb_cleanup_add(o->tmp, 0);
   o->f = fdopen(fd, "w");
   if (!o->f) {
+    fb_cleanup_forget(o->cleanup);
     close(fd);
     unlink(o->tmp);
     return fb_diag_set(diag, FB_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
@@ -32,8 +38,10 @@ fb_status fb_outfile_commit(fb_outfile *o, fb_diag *diag) {
   if (bad || chmod(o->tmp, 0644) != 0 || rename(o->tmp, o->path) != 0) {
     int e = errno;
     unlink(o->tmp);
+    fb_cleanup_forget(o->cleanup);
     return fb_diag_set(diag, FB_ERR_IO, "%s: write failed: %s", o->path, strerror(e));
   }
+  fb_cleanup_forget(o->cleanup);
   return FB_OK;
 }
 
@@ -41,6 +49,7 @@ void fb_outfile_abort(fb_outfile *o) {
   if (o->f) fclose(o->f);
   o->f = NULL;
   if (o->tmp[0]) unlink(o->tmp);
+  fb_cleanup_forget(o->cleanup);
 }
 
 fb_status fb_outdir_prepare(const char *dir, fb_diag *diag) {

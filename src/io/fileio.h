@@ -12,7 +12,8 @@
 typedef struct {
   FILE *f;          /* write here */
   char path[4096];  /* final name */
-  char tmp[4096];   /* temporary name, same folder */
+  char tmp[4096];   /* temporary name, same folder: <path>.tmp.<pid>.XXXXXX */
+  int cleanup;      /* slot of tmp in the signal-time cleanup table (outdir.h), or -1 */
 } fb_outfile;
 
 /* Opens a temporary file beside path. Errors: FB_ERR_IO naming the folder. */

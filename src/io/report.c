@@ -54,9 +54,6 @@ static json_t *model_json(const fb_model_result *m) {
   json_object_set_new(o, "status", json_string(run->status));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
-  json_object_set_new(o, "wall_s", num(run->wall_s));
-  json_object_set_new(o, "time_per_step_us",
-                      run->steps ? num(1e6 * run->wall_s / (double)run->steps) : json_null());
   json_object_set_new(o, "lengths_m", lengths_json(&run->lengths));
   if (m->has_peaks) {
     json_object_set_new(o, "coupler", fb_report_body_peaks_json(&m->peaks.coupler));
@@ -181,6 +178,19 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   return o;
 }
 
+json_t *fb_report_timing_json(const fb_run *r) {
+  json_t *models = json_array();
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_run *run = &r->model[i].run;
+    json_array_append_new(models, json_pack("{s:s,s:I,s:o,s:o}", "name", run->name, "steps",
+                                            (json_int_t)run->steps, "wall_s", num(run->wall_s),
+                                            "time_per_step_us",
+                                            run->steps ? num(1e6 * run->wall_s / (double)run->steps)
+                                                       : json_null()));
+  }
+  return json_pack("{s:s,s:o}", "case", r->c.name, "models", models);
+}
+
 fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag) {
   fb_outfile out;
   fb_status st = fb_outfile_open(&out, path, diag);
@@ -220,6 +230,11 @@ fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case
   snprintf(path, sizeof path, "%s/summary.json", dir);
   json_t *j = fb_report_summary_json(r, case_path);
   fb_status st = fb_report_write_json(path, j, diag);
+  json_decref(j);
+  if (st != FB_OK) return st;
+  snprintf(path, sizeof path, "%s/timing.json", dir);
+  j = fb_report_timing_json(r);
+  st = fb_report_write_json(path, j, diag);
   json_decref(j);
   return st;
 }

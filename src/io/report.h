@@ -14,12 +14,17 @@
 json_t *fb_report_body_peaks_json(const fb_body_peaks *p);
 
 /* The summary of a run as documented in the README (new reference):
- * {"case", "models": [{"name", "kind", "status", "h_s", "steps", "wall_s",
- *  "coupler", "follower", "error_vs_analytic", ...}], ...}. */
+ * {"case", "models": [{"name", "kind", "status", "h_s", "steps",
+ *  "coupler", "follower", "error_vs_analytic", ...}], ...}. It holds no
+ * wall time, so two runs of the same case give byte-identical summaries. */
 json_t *fb_report_summary_json(const fb_run *r, const char *case_path);
 
-/* Writes DIR/<model>.csv for every model and DIR/summary.json, each
- * atomically. Errors: FB_ERR_IO naming the file. */
+/* The wall times of a run (new reference): {"case", "models": [{"name",
+ * "steps", "wall_s", "time_per_step_us"}]}, in the order of the summary. */
+json_t *fb_report_timing_json(const fb_run *r);
+
+/* Writes DIR/<model>.csv for every model, DIR/summary.json and
+ * DIR/timing.json, each atomically. Errors: FB_ERR_IO naming the file. */
 fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
                               fb_diag *diag);
 

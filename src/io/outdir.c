@@ -1,0 +1,312 @@
+/* _GNU_SOURCE (meson.build): renameat2, syscall */
+#include "outdir.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+/* ---- signal-time cleanup ------------------------------------------------------ */
+
+#define CLEANUP_SLOTS 64
+
+typedef struct {
+  volatile sig_atomic_t used;
+  int is_dir;
+  pid_t owner; /* a forked worker inherits the table: only the owner cleans */
+  char path[FB_OUTDIR_PATH];
+} cleanup_slot;
+
+static cleanup_slot slots[CLEANUP_SLOTS];
+
+/* Removes the regular files of a flat folder, then the folder, with system
+ * calls only (safe in a signal handler). Subfolders are left (rmdir fails). */
+static void remove_flat(const char *dir) {
+  int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    char buf[8192];
+    long n;
+    while ((n = syscall(SYS_getdents64, fd, buf, sizeof buf)) > 0) {
+      for (long off = 0; off < n;) {
+        /* struct linux_dirent64: ino (8), off (8), reclen (2), type (1), name */
+        unsigned short reclen;
+        memcpy(&reclen, buf + off + 16, sizeof reclen);
+        const char *name = buf + off + 19;
+        if (!(name[0] == '.' && (name[1] == '\0' || (name[1] == '.' && name[2] == '\0'))))
+          unlinkat(fd, name, 0);
+        off += reclen;
+      }
+    }
+    close(fd);
+  }
+  rmdir(dir);
+}
+
+static void on_signal(int sig) {
+  const pid_t me = getpid();
+  for (int k = 0; k < CLEANUP_SLOTS; k++) {
+    if (!slots[k].used || slots[k].owner != me) continue;
+    if (slots[k].is_dir) remove_flat(slots[k].path);
+    else unlink(slots[k].path);
+  }
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
+static void install_handlers(void) {
+  static int done;
+  if (done) return;
+  done = 1;
+  const int sigs[3] = {SIGINT, SIGTERM, SIGHUP};
+  for (int k = 0; k < 3; k++) {
+    struct sigaction old, sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue; /* nohup */
+    sigaction(sigs[k], &sa, NULL);
+  }
+}
+
+int fb_cleanup_add(const char *path, int is_dir) {
+  install_handlers();
+  for (int k = 0; k < CLEANUP_SLOTS; k++) {
+    if (slots[k].used && slots[k].owner == getpid()) continue;
+    slots[k].used = 0;
+    snprintf(slots[k].path, sizeof slots[k].path, "%s", path);
+    slots[k].is_dir = is_dir;
+    slots[k].owner = getpid();
+    slots[k].used = 1; /* last: the handler sees a complete slot or none */
+    return k;
+  }
+  return -1;
+}
+
+void fb_cleanup_forget(int slot) {
+  if (slot >= 0 && slot < CLEANUP_SLOTS) slots[slot].used = 0;
+}
+
+/* ---- locking and staging ------------------------------------------------------- */
+
+static fb_status mkdir_p(const char *dir, fb_diag *diag) {
+  char buf[FB_OUTDIR_PATH];
+  if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf)
+    return fb_diag_set(diag, FB_ERR_IO, "%s: path too long", dir);
+  for (char *p = buf + 1;; p++) {
+    if (*p != '/' && *p != '\0') continue;
+    const char c = *p;
+    *p = '\0';
+    if (mkdir(buf, 0755) != 0 && errno != EEXIST)
+      return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create output folder: %s", buf, strerror(errno));
+    *p = c;
+    if (!c) break;
+  }
+  return FB_OK;
+}
+
+/* absolute path of dir (whose parent is created), split at its last '/' */
+static fb_status resolve(const char *dir, char *abs, char *parent, char *base, fb_diag *diag) {
+  char buf[FB_OUTDIR_PATH];
+  if (!dir[0] || snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf)
+    return fb_diag_set(diag, FB_ERR_IO, "'%s': not a usable output folder name", dir);
+  size_t l = strlen(buf);
+  while (l > 1 && buf[l - 1] == '/') buf[--l] = '\0';
+  char rp[PATH_MAX];
+  if (realpath(buf, rp)) {
+    snprintf(abs, FB_OUTDIR_PATH, "%s", rp);
+  } else {
+    char *slash = strrchr(buf, '/');
+    const char *name = slash ? slash + 1 : buf;
+    if (strcmp(name, ".") == 0 || strcmp(name, "..") == 0)
+      return fb_diag_set(diag, FB_ERR_IO, "%s: not a usable output folder name", dir);
+    char par[FB_OUTDIR_PATH];
+    if (slash == buf) snprintf(par, sizeof par, "/");
+    else if (slash) snprintf(par, sizeof par, "%.*s", (int)(slash - buf), buf);
+    else snprintf(par, sizeof par, ".");
+    fb_status st = mkdir_p(par, diag);
+    if (st != FB_OK) return st;
+    if (!realpath(par, rp))
+      return fb_diag_set(diag, FB_ERR_IO, "%s: cannot resolve: %s", par, strerror(errno));
+    if (snprintf(abs, FB_OUTDIR_PATH, "%s/%s", strcmp(rp, "/") ? rp : "", name) >= FB_OUTDIR_PATH)
+      return fb_diag_set(diag, FB_ERR_IO, "%s: path too long", dir);
+  }
+  char *slash = strrchr(abs, '/');
+  if (!slash || !slash[1]) return fb_diag_set(diag, FB_ERR_IO, "%s: the root folder cannot be an output folder", dir);
+  snprintf(parent, FB_OUTDIR_PATH, "%.*s", slash == abs ? 1 : (int)(slash - abs), abs);
+  snprintf(base, NAME_MAX + 1, "%s", slash + 1);
+  return FB_OK;
+}
+
+/* files a fourbar run writes; anything else in the folder is not ours */
+static int ours(const char *name) {
+  if (name[0] == '.') return 1;
+  const char *dot = strrchr(name, '.');
+  const char *known[] = {".csv", ".json", ".jsonl", ".svg", ".png", ".md", ".log", NULL};
+  for (int k = 0; dot && known[k]; k++)
+    if (strcmp(dot, known[k]) == 0) return 1;
+  return 0;
+}
+
+/* removes leftovers of a killed writer; checks the target may be replaced */
+static fb_status clean_and_check(const fb_outdir *o, const char *parent, const char *base,
+                                 int replace, fb_diag *diag) {
+  char prefix[NAME_MAX + 32];
+  DIR *d = opendir(parent);
+  if (d) {
+    struct dirent *e;
+    while ((e = readdir(d))) {
+      const char *kinds[2] = {"staging", "old"};
+      for (int k = 0; k < 2; k++) {
+        snprintf(prefix, sizeof prefix, ".%s.%s.", base, kinds[k]);
+        if (strncmp(e->d_name, prefix, strlen(prefix)) != 0) continue;
+        char path[FB_OUTDIR_PATH + NAME_MAX + 2];
+        snprintf(path, sizeof path, "%s/%s", parent, e->d_name);
+        remove_flat(path);
+      }
+    }
+    closedir(d);
+  }
+  d = opendir(o->target);
+  if (!d) {
+    if (errno == ENOENT) return FB_OK;
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot use as an output folder: %s", o->target,
+                       errno == ENOTDIR ? "not a folder" : strerror(errno));
+  }
+  int visible = 0, summary = 0, foreign = 0;
+  char foreign_name[NAME_MAX + 1] = "";
+  struct dirent *e;
+  while ((e = readdir(d))) {
+    if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
+    char path[FB_OUTDIR_PATH + NAME_MAX + 2];
+    snprintf(path, sizeof path, "%s/%s", o->target, e->d_name);
+    const char *t = strstr(e->d_name, ".tmp.");
+    if (t) { /* a temporary file: removed when its writer (named in it) is gone */
+      char *end;
+      const long pid = strtol(t + 5, &end, 10);
+      if (end != t + 5 && *end == '.' && pid > 0 && kill((pid_t)pid, 0) != 0 && errno == ESRCH)
+        unlink(path);
+      continue;
+    }
+    struct stat sb;
+    if (e->d_name[0] != '.') visible++;
+    if (strcmp(e->d_name, "summary.json") == 0) summary = 1;
+    if (lstat(path, &sb) != 0 || !S_ISREG(sb.st_mode) || !ours(e->d_name)) {
+      if (!foreign++) snprintf(foreign_name, sizeof foreign_name, "%s", e->d_name);
+    }
+  }
+  closedir(d);
+  if (replace && (foreign || (visible && !summary)))
+    return fb_diag_set(diag, FB_ERR_IO, "%s: holds '%s'%s: not a fourbar run's result folder, "
+                       "so it will not be replaced; choose another --out", o->target,
+                       foreign ? foreign_name : "files",
+                       foreign ? ", which a fourbar run does not write" : " but no summary.json");
+  return FB_OK;
+}
+
+fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char *tag,
+                         fb_diag *diag) {
+  memset(o, 0, sizeof *o);
+  o->lock_fd = -1;
+  char parent[FB_OUTDIR_PATH], base[NAME_MAX + 1];
+  fb_status st = resolve(dir, o->target, parent, base, diag);
+  if (st != FB_OK) return st;
+  if (snprintf(o->lock, sizeof o->lock, "%s/.%s%s%s.lock", parent, base, tag ? "." : "",
+               tag ? tag : "") >= (int)sizeof o->lock)
+    return fb_diag_set(diag, FB_ERR_IO, "%s: path too long", dir);
+  int fd = open(o->lock, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0)
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create output folder lock %s: %s", dir, o->lock,
+                       strerror(errno));
+  if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int e = errno;
+    char pid[32] = "";
+    ssize_t n = pread(fd, pid, sizeof pid - 1, 0);
+    pid[n > 0 ? n : 0] = '\0';
+    pid[strcspn(pid, "\n")] = '\0';
+    close(fd);
+    if (e == EWOULDBLOCK)
+      return fb_diag_set(diag, FB_ERR_IO, "%s: another fourbar process (PID %s) is writing this "
+                         "output folder; wait for it to finish or choose another --out", dir,
+                         pid[0] ? pid : "unknown");
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot lock %s: %s", dir, o->lock, strerror(e));
+  }
+  char pid[32];
+  const int n = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+  if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)n, 0) != n) {
+    /* the lock holds; only the PID in the message of a second writer is lost */
+  }
+  o->lock_fd = fd;
+  st = clean_and_check(o, parent, base, replace, diag);
+  if (st == FB_OK && !replace) st = mkdir_p(o->target, diag);
+  if (st != FB_OK) fb_outdir_release(o);
+  return st;
+}
+
+static int stage_slot = -1;
+
+fb_status fb_outdir_stage(fb_outdir *o, fb_diag *diag) {
+  char *slash = strrchr(o->target, '/');
+  if (snprintf(o->stage, sizeof o->stage, "%.*s/.%s.staging.%ld", (int)(slash - o->target),
+               o->target, slash + 1, (long)getpid()) >= (int)sizeof o->stage)
+    return fb_diag_set(diag, FB_ERR_IO, "%s: path too long", o->target);
+  if (mkdir(o->stage, 0755) != 0) {
+    const int e = errno;
+    o->stage[0] = '\0';
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create the staging folder beside it: %s",
+                       o->target, strerror(e));
+  }
+  stage_slot = fb_cleanup_add(o->stage, 1);
+  return FB_OK;
+}
+
+fb_status fb_outdir_commit(fb_outdir *o, fb_diag *diag) {
+  struct stat sb;
+  if (stat(o->target, &sb) != 0) {
+    if (rename(o->stage, o->target) != 0)
+      return fb_diag_set(diag, FB_ERR_IO, "%s: cannot move the results into place: %s", o->target,
+                         strerror(errno));
+  } else if (renameat2(AT_FDCWD, o->stage, AT_FDCWD, o->target, RENAME_EXCHANGE) != 0) {
+    /* a file system without the exchange: the old set leaves, then the new arrives */
+    char old[FB_OUTDIR_PATH + 32];
+    char *slash = strrchr(o->target, '/');
+    snprintf(old, sizeof old, "%.*s/.%s.old.%ld", (int)(slash - o->target), o->target, slash + 1,
+             (long)getpid());
+    if (rename(o->target, old) != 0)
+      return fb_diag_set(diag, FB_ERR_IO, "%s: cannot replace: %s", o->target, strerror(errno));
+    if (rename(o->stage, o->target) != 0) {
+      const int e = errno;
+      rename(old, o->target);
+      return fb_diag_set(diag, FB_ERR_IO, "%s: cannot replace: %s", o->target, strerror(e));
+    }
+    remove_flat(old);
+    fb_cleanup_forget(stage_slot);
+    o->stage[0] = '\0';
+    return FB_OK;
+  }
+  /* after an exchange the staging name holds the old set */
+  remove_flat(o->stage);
+  fb_cleanup_forget(stage_slot);
+  o->stage[0] = '\0';
+  return FB_OK;
+}
+
+void fb_outdir_release(fb_outdir *o) {
+  if (o->stage[0]) {
+    remove_flat(o->stage);
+    fb_cleanup_forget(stage_slot);
+    o->stage[0] = '\0';
+  }
+  if (o->lock_fd >= 0) {
+    flock(o->lock_fd, LOCK_UN);
+    close(o->lock_fd);
+    o->lock_fd = -1;
+  }
+}

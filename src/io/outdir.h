@@ -1,0 +1,65 @@
+/* Result folders: one writer at a time, one run's results whole or nothing
+ * new.
+ *
+ * A writer first locks the folder: an advisory lock (flock(2)) on the file
+ * .<name>.lock beside the folder, which also holds the writer's PID, so a
+ * second writer fails at once with a message naming the folder and the
+ * holder. While holding the lock it removes what a killed writer left
+ * behind (staging folders .<name>.staging.<pid> beside the folder, and
+ * temporary files *.tmp.<pid>.* inside it whose process is gone).
+ *
+ * A run then writes its whole result set into a staging folder beside the
+ * target and swaps it in at the end (renameat2 RENAME_EXCHANGE, then the old
+ * set is removed): until the swap the old set stays whole, after it only the
+ * new set is there. A folder that is not a fourbar result folder (it holds
+ * a subfolder, or files but no summary.json) is never replaced.
+ *
+ * On SIGINT, SIGTERM and SIGHUP the staging folder and registered temporary
+ * files of this process are removed (async-signal-safe code only), then the
+ * signal takes its default action. */
+#ifndef FB_OUTDIR_H
+#define FB_OUTDIR_H
+
+#include "status.h"
+
+#define FB_OUTDIR_PATH 4096
+
+/* A locked output folder. */
+typedef struct {
+  char target[FB_OUTDIR_PATH]; /* the folder as the user named it, absolute */
+  char stage[FB_OUTDIR_PATH];  /* staging folder beside it ("" before fb_outdir_stage) */
+  char lock[FB_OUTDIR_PATH];   /* lock file beside it */
+  int lock_fd;                 /* open lock file, -1 when not held */
+} fb_outdir;
+
+/* Creates the parent folders of dir, takes the lock and cleans a killed
+ * writer's leftovers. With replace = 1 (a run's whole set) also checks that
+ * dir may be replaced; with replace = 0 (an appending writer such as a sweep)
+ * creates dir. tag (NULL for the whole folder) names a part of the folder
+ * that writers of other parts may write at the same time (a sweep shard's
+ * files): the lock file is then .<name>.<tag>.lock.
+ * Errors: FB_ERR_IO naming the folder (and the holder's PID when another
+ * process holds the lock). */
+fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char *tag,
+                         fb_diag *diag);
+
+/* Creates the staging folder (o->stage) and registers it for removal on a
+ * signal. Errors: FB_ERR_IO naming it. */
+fb_status fb_outdir_stage(fb_outdir *o, fb_diag *diag);
+
+/* Swaps the staging folder in as the target and removes the old set.
+ * Errors: FB_ERR_IO (the old set is then untouched). */
+fb_status fb_outdir_commit(fb_outdir *o, fb_diag *diag);
+
+/* Removes the staging folder if still there and releases the lock. */
+void fb_outdir_release(fb_outdir *o);
+
+/* Registers a temporary file (or, with is_dir = 1, a flat folder) for removal
+ * when a signal ends this process; returns a slot for fb_cleanup_forget, or
+ * -1 when the table (64 slots) is full. Installs the handlers once. */
+int fb_cleanup_add(const char *path, int is_dir);
+
+/* Forgets a slot (the file was renamed into place or removed). */
+void fb_cleanup_forget(int slot);
+
+#endif

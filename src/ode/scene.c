@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "collide_ccd.h"
 #include "episode.h"
 #include "ode_env.h"
 
@@ -23,6 +24,7 @@ typedef struct {
   int nfb;              /* faceted: contact joints of the last step */
   dJointFeedback *fbs;  /* faceted: their feedback (up to FACET_MAX_CONTACTS) */
   double force;         /* contact force magnitude of the last step [N] */
+  fb_ccd_bore *bore;    /* ccd: the ring of segments (hole frame) */
 } clearance;
 
 struct fb_scene {
@@ -110,6 +112,24 @@ static void facet_destroy(clearance *c, int n) {
   free(c->fbs);
 }
 
+/* builds the libccd ring of clearance joint j */
+static fb_status ccd_create(fb_scene *s, int j, fb_diag *diag) {
+  const fb_scene_def *d = &s->def;
+  fb_ccd_bore_def bd = fb_ccd_bore_default();
+  bd.pin_radius = d->pin_radius;
+  bd.pin_length = d->pin_length;
+  bd.hole_radius = d->pin_radius + d->radial_clearance;
+  bd.shape = d->bore_ovality > 0.0 ? FB_BORE_ELLIPSE : FB_BORE_CIRCLE;
+  bd.ovality = d->bore_ovality;
+  bd.segments = d->ccd_segments;
+  bd.wall = FACET_THICKNESS_M;
+  fb_status st = fb_ccd_bore_create(&s->cl[j].bore, &bd, diag);
+  if (st != FB_OK) return st;
+  s->cl[j].fbs = calloc(FB_CCD_CONTACTS, sizeof(dJointFeedback));
+  if (!s->cl[j].fbs) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for contact feedback");
+  return FB_OK;
+}
+
 fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag) {
   fb_linkage_state st;
   fb_status rc = fb_linkage_solve(&st, &def->lengths, def->branch, def->crank_angle0,
@@ -175,6 +195,15 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
   if (def->faceted_n > 0)
     for (int j = 0; j < 4; j++)
       if (def->clearance_mask & (1 << j)) facet_create(s, j);
+  if (def->ccd_segments > 0)
+    for (int j = 0; j < 4; j++) {
+      if (!(def->clearance_mask & (1 << j))) continue;
+      fb_status bst = ccd_create(s, j, diag);
+      if (bst != FB_OK) {
+        fb_scene_destroy(s);
+        return bst;
+      }
+    }
   /* the drive: velocity motor on the ground-crank hinge, or an angular motor
    * on the crank when that joint has clearance */
   if (s->hinge[0]) {
@@ -277,10 +306,118 @@ static void facet_contacts(fb_scene *s, int j) {
   }
 }
 
+/* pin centre relative to the hole centre, in the hole body's frame (the
+ * world's for a ground hole) [m] */
+static void pin_in_hole_frame(const clearance *c, double p[2]) {
+  dVector3 w, l;
+  dBodyGetRelPointPos(c->pin, c->pin_local[0], c->pin_local[1], c->pin_local[2], w);
+  if (c->hole) {
+    dBodyGetPosRelPoint(c->hole, w[0], w[1], w[2], l);
+    p[0] = l[0] - c->hole_local[0];
+    p[1] = l[1] - c->hole_local[1];
+  } else {
+    p[0] = w[0] - c->hole_local[0];
+    p[1] = w[1] - c->hole_local[1];
+  }
+}
+
+/* libccd: contact joints from the generic collider for clearance joint j */
+static void ccd_contacts(fb_scene *s, int j) {
+  clearance *c = &s->cl[j];
+  const fb_scene_def *d = &s->def;
+  double p[2];
+  pin_in_hole_frame(c, p);
+  fb_ccd_contact hit[FB_CCD_CONTACTS];
+  const int n = fb_ccd_bore_collide(c->bore, p, hit, FB_CCD_CONTACTS);
+  c->nfb = 0;
+  if (n == 0) {
+    fb_episode_update(&c->ep, 0, 0.0, d->impact_velocity_min);
+    return;
+  }
+  dVector3 nw[FB_CCD_CONTACTS], pw[FB_CCD_CONTACTS];
+  double rate[FB_CCD_CONTACTS] = {0}, sum = 0.0;
+  int deep = 0;
+  for (int i = 0; i < n; i++) {
+    /* to the world: normal (pin into wall) and point */
+    if (c->hole) {
+      dBodyVectorToWorld(c->hole, hit[i].normal[0], hit[i].normal[1], 0.0, nw[i]);
+      dBodyGetRelPointPos(c->hole, c->hole_local[0] + hit[i].point[0],
+                          c->hole_local[1] + hit[i].point[1], c->hole_local[2], pw[i]);
+    } else {
+      nw[i][0] = hit[i].normal[0];
+      nw[i][1] = hit[i].normal[1];
+      nw[i][2] = 0.0;
+      pw[i][0] = c->hole_local[0] + hit[i].point[0];
+      pw[i][1] = c->hole_local[1] + hit[i].point[1];
+      pw[i][2] = 0.0;
+    }
+    /* approach rate: pin velocity minus hole velocity at the point, along the normal */
+    dVector3 vp, vh = {0, 0, 0, 0};
+    dBodyGetPointVel(c->pin, pw[i][0], pw[i][1], pw[i][2], vp);
+    if (c->hole) dBodyGetPointVel(c->hole, pw[i][0], pw[i][1], pw[i][2], vh);
+    rate[i] = (vp[0] - vh[0]) * nw[i][0] + (vp[1] - vh[1]) * nw[i][1];
+    sum += hit[i].depth;
+    if (hit[i].depth > hit[deep].depth) deep = i;
+  }
+  fb_episode_update(&c->ep, 1, rate[deep], d->impact_velocity_min);
+  /* the one row the exact collider would hand ODE at the deepest contact */
+  double kp, kd, depth, erp, cfm;
+  fb_contact_linearize(&d->law[j], d->mapping, hit[deep].depth, rate[deep], c->ep.v0, &kp, &kd,
+                       &depth);
+  const int have_row = fb_contact_erp_cfm(d->solver.h, kp, kd, &erp, &cfm, NULL) == FB_OK;
+  for (int i = 0; i < n; i++) {
+    double erpi = erp, cfmi, di = depth;
+    if (d->ccd_split == 1) {
+      /* the faceted model's rule: own depth, spring divided by the count */
+      double kpi, kdi;
+      fb_contact_linearize(&d->law[j], d->mapping, hit[i].depth, rate[i], c->ep.v0, &kpi, &kdi,
+                           &di);
+      if (fb_contact_erp_cfm(d->solver.h, kpi / n, kdi / n, &erpi, &cfmi, NULL) != FB_OK) continue;
+    } else {
+      /* share w of the row: a and b = 1/CFM scale by w, ERP = h a / b does not */
+      if (!have_row) continue;
+      cfmi = cfm * sum / hit[i].depth;
+    }
+    dContact ct;
+    memset(&ct, 0, sizeof ct);
+    ct.surface.mode = dContactSoftERP | dContactSoftCFM;
+    if (d->friction > 0.0) ct.surface.mode |= dContactApprox1;
+    ct.surface.mu = d->friction;
+    ct.surface.soft_erp = erpi;
+    ct.surface.soft_cfm = cfmi;
+    for (int q = 0; q < 3; q++) {
+      ct.geom.pos[q] = pw[i][q];
+      ct.geom.normal[q] = -nw[i][q]; /* into the pin (body 1) */
+    }
+    ct.geom.depth = di;
+    dJointID cj = dJointCreateContact(s->world, s->contacts, &ct);
+    dJointAttach(cj, c->pin, c->hole);
+    dJointSetFeedback(cj, &c->fbs[c->nfb++]);
+  }
+}
+
+/* penetration of clearance joint c now [m]: into the faceted bore for the
+ * libccd collider, |e| - c otherwise; 0 when free */
+static double clearance_penetration(const fb_scene *s, const clearance *c) {
+  if (c->bore) {
+    double p[2];
+    pin_in_hole_frame(c, p);
+    return fb_ccd_bore_depth(c->bore, p);
+  }
+  double e[2], ev[2], num;
+  clearance_geometry(c, e, &num, ev);
+  const double pen = hypot(e[0], e[1]) - s->def.radial_clearance;
+  return pen > 0.0 ? pen : 0.0;
+}
+
 /* creates the contact joint of clearance joint j for this step, if in contact */
 static void clearance_contact(fb_scene *s, int j) {
   clearance *c = &s->cl[j];
   const fb_scene_def *d = &s->def;
+  if (c->bore) {
+    ccd_contacts(s, j);
+    return;
+  }
   if (d->faceted_n > 0) {
     facet_contacts(s, j);
     return;
@@ -337,7 +474,7 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
                                                      : dWorldQuickStep(s->world, h);
   for (int j = 0; j < 4; j++) {
     clearance *c = &s->cl[j];
-    if (s->def.faceted_n > 0) {
+    if (s->def.faceted_n > 0 || c->bore) {
       /* force on the pin (body 1: dCollide(pin, box) keeps that order),
        * summed over the step's contacts */
       double fx = 0.0, fy = 0.0;
@@ -384,9 +521,8 @@ void fb_scene_sample(const fb_scene *s, fb_sample *x) {
     const clearance *c = &s->cl[j];
     double e[2], ev[2], num;
     clearance_geometry(c, e, &num, ev);
-    const double pen = hypot(e[0], e[1]) - s->def.radial_clearance;
     x->contact[j][FB_C_FORCE] = c->force;
-    x->contact[j][FB_C_PEN] = pen > 0.0 ? pen : 0.0;
+    x->contact[j][FB_C_PEN] = clearance_penetration(s, c);
     x->contact[j][FB_C_EX] = e[0];
     x->contact[j][FB_C_EY] = e[1];
     x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->ep.state : (double)FB_STATE_FREE;
@@ -398,15 +534,22 @@ double fb_scene_penetration(const fb_scene *s, int *joint) {
   *joint = -1;
   for (int j = 0; j < 4; j++) {
     if (!(s->def.clearance_mask & (1 << j))) continue;
-    double e[2], ev[2], num;
-    clearance_geometry(&s->cl[j], e, &num, ev);
-    double pen = hypot(e[0], e[1]) - s->def.radial_clearance;
+    const double pen = clearance_penetration(s, &s->cl[j]);
     if (*joint < 0 || pen > worst) {
       worst = pen;
       *joint = j;
     }
   }
-  return worst > 0.0 ? worst : 0.0;
+  return worst;
+}
+
+void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *contacts) {
+  *calls = *contacts = 0;
+  for (int j = 0; j < 4; j++) {
+    if (!s->cl[j].bore) continue;
+    *calls += fb_ccd_bore_calls(s->cl[j].bore);
+    *contacts += fb_ccd_bore_contacts(s->cl[j].bore);
+  }
 }
 
 int fb_scene_impacts(const fb_scene *s, int j) { return s->cl[j].ep.impacts; }
@@ -529,7 +672,13 @@ fb_status fb_scene_probe_inverse_mass(fb_scene *s, int j, const double n[2], dou
 
 void fb_scene_destroy(fb_scene *s) {
   if (!s) return;
-  for (int j = 0; j < 4; j++) facet_destroy(&s->cl[j], s->def.faceted_n);
+  for (int j = 0; j < 4; j++) {
+    facet_destroy(&s->cl[j], s->def.faceted_n);
+    if (s->cl[j].bore) {
+      fb_ccd_bore_destroy(s->cl[j].bore);
+      free(s->cl[j].fbs);
+    }
+  }
   dJointGroupDestroy(s->contacts);
   dWorldDestroy(s->world);
   free(s);

@@ -36,7 +36,24 @@
  * the pin an ODE cylinder, collided by dCollide (box-cylinder); every contact
  * ODE reports gets the law's spring-damper at its own depth divided by the
  * number of contacts of the step (n contact rows on one penetration act as
- * parallel springs). Contact point and normal come from the collider. */
+ * parallel springs). Contact point and normal come from the collider.
+ *
+ * libccd variant (ccd_segments > 0), the generic collider (collide_ccd.h):
+ * the bore a ring of ccd_segments convex segments tangent to the hole circle
+ * (or to an ellipse, bore_ovality > 0), the pin a convex cylinder, contacts
+ * from ccdMPRPenetration in the hole body's frame, at most FB_CCD_CONTACTS
+ * per joint and step (the deepest). The law is evaluated once per step at the
+ * deepest contact (depth delta*, rate ddot*), as the exact model evaluates it
+ * at the one penetration, and its spring-damper is split over the contacts in
+ * proportion to their depths (w_i = delta_i / sum delta_j: every row gets
+ * the one row's ERP and depth and CFM / w_i, since scaling a row's spring and
+ * damper, or the matched mapping's a and b, by w scales 1/CFM by w and leaves
+ * ERP = h a / b alone): the rows together push with the
+ * law's force along the depth-weighted normal, so the split cannot change the
+ * force when a shallow contact appears or goes. ccd_split = 1 selects the
+ * faceted model's rule instead (each contact at its own depth, divided by
+ * their number), kept to measure the difference. The penetration the scene
+ * reports is the pin's depth into the faceted bore (fb_ccd_bore_depth). */
 #ifndef FB_SCENE_H
 #define FB_SCENE_H
 
@@ -65,7 +82,13 @@ typedef struct {
   double impact_velocity_min;  /* onset rates below this count as continuous contact [m/s] */
   int faceted_n;               /* > 0: collide through ODE instead (ring of n boxes around an
                                   ODE cylinder pin, dCollide); 0: exact eccentricity contact */
-  double pin_length;           /* [m], for the faceted geometry */
+  double pin_length;           /* [m], for the faceted and ccd geometry */
+  int ccd_segments;            /* > 0: collide through libccd (collide_ccd.h), the bore a ring of
+                                  this many convex segments; 0: exact or faceted */
+  double bore_ovality;         /* ccd only: > 0 makes the bore an ellipse whose diameter along the
+                                  hole body's x axis is larger by this [m]; 0: circle */
+  int ccd_split;               /* ccd only: 0 depth-weighted split of the law (default), 1 the
+                                  faceted model's split by contact count */
   double settle_damping;       /* ODE body velocity damping per step [-] for static settling
                                   tests (dWorldSetLinearDamping/AngularDamping); 0 in every model */
 } fb_scene_def;
@@ -105,6 +128,13 @@ double fb_scene_penetration(const fb_scene *s, int *joint);
 /* Impact episodes counted so far at joint j (contact onsets whose penetration
  * rate was at least impact_velocity_min). */
 int fb_scene_impacts(const fb_scene *s, int j);
+
+/* Calls of ccdMPRPenetration made by the libccd collider of every clearance
+ * joint so far, and the contacts they returned (both 0 on the other paths). */
+void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *contacts);
+
+/* Most contacts the libccd collider hands to ODE per joint and step. */
+#define FB_CCD_CONTACTS 4
 
 /* Steps taken. */
 size_t fb_scene_steps(const fb_scene *s);

@@ -1,0 +1,295 @@
+/* The generic pin-in-bore collider (libccd MPR on our support functions)
+ * against closed forms, and the ODE scene's libccd path against the exact
+ * eccentricity collider in statics.
+ *
+ *        n_k                      the bore: N facets tangent to the hole
+ *         ^                       circle (or ellipse), facet k the line
+ *   ------|------  facet k        n_k . x = h_k; a cylinder of radius r
+ *        .-.                      centred at p crosses it by
+ *       ( p )                     d_k(p) = p . n_k + r - h_k, along n_k
+ *        '-'                      (closed form for a face contact)
+ *
+ * Against the exact circle of radius R_hole: the deepest tangent facet
+ * misses e - c by e (1 - cos(pi / N)) at most (e = |p|, c the radial
+ * clearance; collide_ccd.h). */
+#include <string.h>
+
+#include "casefile.h"
+#include "collide_ccd.h"
+#include "fb_test.h"
+#include "joint_law.h"
+#include "scene.h"
+
+/* libccd's depth against the closed-form face depth: MPR stops when a
+ * refinement gains less than the 1e-13 m tolerance; measured residual
+ * 5e-14 m for N = 16 .. 4096 and depths 0.01 .. 1 um. Bound: 2e-13 m. */
+#define FACE_DEPTH_TOL_M 2e-13
+/* libccd's normal against the facet normal: measured 2e-8 .. 1e-6 rad (the
+ * portal's tilt at the tolerance). Bound: 1e-5 rad. */
+#define FACE_NORMAL_TOL_RAD 1e-5
+/* the issue's statics criterion: the ccd collider's penetration within 1 %
+ * of the exact collider's (measured 1.4e-4 at N = 256) */
+#define STATIC_PEN_REL_TOL 0.01
+/* the static contact force carries the joint load whichever the collider
+ * (measured 1e-6 relative at N = 256); 1e-3 as in test_clearance */
+#define STATIC_FORCE_REL_TOL 1e-3
+/* the recommended ring (docs/colliders.md) */
+#define RECOMMENDED_N 256
+
+static double frand(unsigned *state) {
+  *state = *state * 1103515245u + 12345u;
+  return (double)((*state >> 8) & 0xffffff) / (double)0x1000000;
+}
+
+static fb_ccd_bore *bore_make(int n, fb_bore_shape shape, double ovality) {
+  fb_ccd_bore_def d = fb_ccd_bore_default();
+  d.segments = n;
+  d.shape = shape;
+  d.ovality = ovality;
+  fb_ccd_bore *b;
+  fb_diag diag;
+  if (fb_ccd_bore_create(&b, &d, &diag) != FB_OK) fail_msg("%s", diag.msg);
+  return b;
+}
+
+/* every contact libccd returns is the face contact of the closed form */
+static void check_face_contacts(fb_ccd_bore *b, const double p[2], double *worst_depth,
+                                double *worst_normal) {
+  fb_ccd_contact ct[8];
+  const int m = fb_ccd_bore_collide(b, p, ct, 8);
+  const double closed = fb_ccd_bore_depth(b, p);
+  double deepest = 0.0;
+  for (int i = 0; i < m; i++) {
+    double nk[2], h;
+    fb_ccd_bore_facet(b, ct[i].segment, nk, &h);
+    const double want = p[0] * nk[0] + p[1] * nk[1] + fb_ccd_bore_default().pin_radius - h;
+    assert_near(ct[i].depth, want, FACE_DEPTH_TOL_M);
+    const double cosang = ct[i].normal[0] * nk[0] + ct[i].normal[1] * nk[1];
+    const double ang = acos(fmin(1.0, cosang));
+    assert_true(ang < FACE_NORMAL_TOL_RAD);
+    *worst_depth = fmax(*worst_depth, fabs(ct[i].depth - want));
+    *worst_normal = fmax(*worst_normal, ang);
+    deepest = fmax(deepest, ct[i].depth);
+  }
+  /* the deepest facet comes first and the closed form agrees with it */
+  if (m > 0) assert_near(ct[0].depth, closed, FACE_DEPTH_TOL_M);
+  else assert_true(closed == 0.0);
+  assert_near(deepest, closed, FACE_DEPTH_TOL_M);
+}
+
+static void test_face_contacts_match_closed_form(void **state) {
+  (void)state;
+  const fb_ccd_bore_def d = fb_ccd_bore_default();
+  const double c = d.hole_radius - d.pin_radius;
+  const int ns[3] = {16, 256, 1024};
+  unsigned seed = 12345u;
+  double wd = 0.0, wn = 0.0;
+  for (int t = 0; t < 3; t++) {
+    fb_ccd_bore *b = bore_make(ns[t], FB_BORE_CIRCLE, 0.0);
+    for (int i = 0; i < 200; i++) {
+      const double phi = 2.0 * M_PI * frand(&seed);
+      const double e = c + 2e-6 * frand(&seed) - 2e-7; /* some free, up to 1.8 um deep */
+      const double p[2] = {e * cos(phi), e * sin(phi)};
+      check_face_contacts(b, p, &wd, &wn);
+    }
+    fb_ccd_bore_destroy(b);
+  }
+  report_residual("ccd face depth vs closed form [m]", wd, FACE_DEPTH_TOL_M);
+  report_residual("ccd face normal vs facet [rad]", wn, FACE_NORMAL_TOL_RAD);
+}
+
+static void test_circle_error_within_sag_bound(void **state) {
+  (void)state;
+  /* 0 <= (e - c) - depth <= e (1 - cos(pi / N)): the tangent polygon lies
+   * outside the circle, by at most the configuration-space sag */
+  const fb_ccd_bore_def d = fb_ccd_bore_default();
+  const double c = d.hole_radius - d.pin_radius;
+  const int ns[4] = {16, 64, 256, 1024};
+  for (int t = 0; t < 4; t++) {
+    fb_ccd_bore *b = bore_make(ns[t], FB_BORE_CIRCLE, 0.0);
+    double worst = 0.0;
+    for (int i = 0; i < 97; i++) {
+      const double phi = 0.1 + 2.0 * M_PI * i / 97.0, delta = 1e-6, e = c + delta;
+      const double p[2] = {e * cos(phi), e * sin(phi)};
+      fb_ccd_contact ct[FB_CCD_CONTACTS];
+      const int m = fb_ccd_bore_collide(b, p, ct, FB_CCD_CONTACTS);
+      assert_true(m >= 1);
+      const double gap = delta - ct[0].depth;
+      const double bound = e * (1.0 - cos(M_PI / ns[t]));
+      assert_true(gap >= -FACE_DEPTH_TOL_M);
+      assert_true(gap <= bound + FACE_DEPTH_TOL_M);
+      worst = fmax(worst, gap / bound);
+    }
+    char name[64];
+    snprintf(name, sizeof name, "ccd depth gap / sag bound, N = %d", ns[t]);
+    report_residual(name, worst, 1.0);
+    fb_ccd_bore_destroy(b);
+  }
+}
+
+static void test_ellipse_gives_room_along_major_axis(void **state) {
+  (void)state;
+  /* ovality 20 um: semi-axes R + 10 um (x) and R (y); a pin 5 um beyond
+   * the clearance touches along y but is free along x, where the clearance
+   * is c + 10 um */
+  const fb_ccd_bore_def d = fb_ccd_bore_default();
+  const double c = d.hole_radius - d.pin_radius, ov = 20e-6;
+  fb_ccd_bore *b = bore_make(256, FB_BORE_ELLIPSE, ov);
+  const double along_x[2] = {c + 5e-6, 0.0}, along_y[2] = {0.0, c + 5e-6};
+  const double deep_x[2] = {c + 0.5 * ov + 1e-6, 0.0};
+  double wd = 0.0, wn = 0.0;
+  assert_true(fb_ccd_bore_depth(b, along_x) == 0.0);
+  assert_true(fb_ccd_bore_depth(b, along_y) > 4e-6);
+  assert_true(fb_ccd_bore_depth(b, deep_x) > 0.9e-6);
+  check_face_contacts(b, along_x, &wd, &wn);
+  check_face_contacts(b, along_y, &wd, &wn);
+  check_face_contacts(b, deep_x, &wd, &wn);
+  /* random positions: still exact face contacts */
+  unsigned seed = 7u;
+  for (int i = 0; i < 200; i++) {
+    const double phi = 2.0 * M_PI * frand(&seed), e = c + 12e-6 * frand(&seed);
+    const double p[2] = {e * cos(phi), e * sin(phi)};
+    check_face_contacts(b, p, &wd, &wn);
+  }
+  fb_ccd_bore_destroy(b);
+}
+
+static void test_bad_definitions_are_refused(void **state) {
+  (void)state;
+  fb_ccd_bore_def d = fb_ccd_bore_default();
+  fb_diag diag;
+  d.segments = 4;
+  assert_int_equal(fb_ccd_bore_check(&d, &diag), FB_ERR_RANGE);
+  assert_non_null(strstr(diag.msg, "segments = 4"));
+  d = fb_ccd_bore_default();
+  d.hole_radius = d.pin_radius;
+  assert_int_equal(fb_ccd_bore_check(&d, &diag), FB_ERR_RANGE);
+  assert_non_null(strstr(diag.msg, "hole_radius"));
+  d = fb_ccd_bore_default();
+  d.tolerance = 0.0;
+  assert_int_equal(fb_ccd_bore_check(&d, &diag), FB_ERR_RANGE);
+  d = fb_ccd_bore_default();
+  d.ovality = -1e-6;
+  assert_int_equal(fb_ccd_bore_check(&d, &diag), FB_ERR_RANGE);
+  fb_ccd_bore *b = (fb_ccd_bore *)&d;
+  d.segments = 0;
+  assert_int_equal(fb_ccd_bore_create(&b, &d, &diag), FB_ERR_RANGE);
+  assert_null(b);
+}
+
+/* settles the crank-coupler pin under gravity (crank held at 60 deg, impact
+ * law) with the exact collider (segments = 0) or the libccd ring */
+static fb_sample settle(const fb_case *c, int segments, int steps, unsigned long *calls,
+                        unsigned long *contacts) {
+  fb_scene_def def;
+  memset(&def, 0, sizeof def);
+  fb_case_stackup_lengths(c, &def.lengths);
+  def.branch = c->branch;
+  def.crank_angle0 = 60.0 * M_PI / 180.0;
+  def.omega2 = 0.0;
+  def.gravity = c->gravity;
+  for (int i = 0; i < 3; i++) def.link[i] = c->link[i];
+  def.solver = c->solver;
+  def.solver.h = 1e-5;
+  assert_int_equal(fb_joint_laws(def.law, c, FB_CLEARANCE_IMPACT, NULL), FB_OK);
+  def.clearance_mask = 1 << FB_JOINT_B;
+  def.radial_clearance = c->radial_clearance;
+  def.pin_radius = 0.5 * c->pin_diameter;
+  def.pin_length = c->pin_length;
+  def.impact_velocity_min = 1e-3;
+  def.settle_damping = 3e-3; /* frictionless: without it the pin slides along the wall */
+  def.ccd_segments = segments;
+  fb_scene *s;
+  fb_diag d;
+  if (fb_scene_create(&s, &def, &d) != FB_OK) fail_msg("%s", d.msg);
+  for (int k = 0; k < steps; k++) assert_int_equal(fb_scene_step(s, NULL), FB_OK);
+  fb_sample x;
+  fb_scene_sample(s, &x);
+  fb_scene_ccd_calls(s, calls, contacts);
+  fb_scene_destroy(s);
+  return x;
+}
+
+static void test_scene_contacts_come_from_libccd(void **state) {
+  (void)state;
+  fb_case c;
+  fb_test_paper_case(&c, NULL, 0);
+  unsigned long calls, contacts;
+  const int steps = 2000;
+  const fb_sample x = settle(&c, 64, steps, &calls, &contacts);
+  /* the pin rests on the wall: every step calls libccd, and its contacts
+   * carry the force */
+  assert_true(calls >= (unsigned long)steps / 2);
+  assert_true(contacts >= (unsigned long)steps / 2);
+  assert_true(x.contact[FB_JOINT_B][FB_C_FORCE] > 0.0);
+  const fb_sample y = settle(&c, 0, 10, &calls, &contacts);
+  (void)y;
+  assert_true(calls == 0 && contacts == 0);
+}
+
+static void test_statics_match_exact_collider(void **state) {
+  (void)state;
+  fb_case c;
+  fb_test_paper_case(&c, NULL, 0);
+  unsigned long calls, contacts;
+  const fb_sample ex = settle(&c, 0, 30000, &calls, &contacts);
+  const fb_sample cc = settle(&c, RECOMMENDED_N, 30000, &calls, &contacts);
+  const double pe = ex.contact[FB_JOINT_B][FB_C_PEN], pc = cc.contact[FB_JOINT_B][FB_C_PEN];
+  report_residual("static penetration ccd vs exact", fabs(pc - pe) / pe, STATIC_PEN_REL_TOL);
+  assert_rel(pc, pe, STATIC_PEN_REL_TOL);
+  assert_rel(cc.contact[FB_JOINT_B][FB_C_FORCE], ex.contact[FB_JOINT_B][FB_C_FORCE],
+             STATIC_FORCE_REL_TOL);
+  /* normals and points: the ring's contacts at the settled pin, in the
+   * coupler's (hole) frame, against the exact normal e / |e| and point
+   * R_hole e / |e| */
+  const double ee[2] = {ex.contact[FB_JOINT_B][FB_C_EX], ex.contact[FB_JOINT_B][FB_C_EY]};
+  const double ec[2] = {cc.contact[FB_JOINT_B][FB_C_EX], cc.contact[FB_JOINT_B][FB_C_EY]};
+  const double th = cc.coupler_angle;
+  const double p[2] = {cos(th) * ec[0] + sin(th) * ec[1], -sin(th) * ec[0] + cos(th) * ec[1]};
+  fb_ccd_bore_def bd = fb_ccd_bore_default();
+  bd.pin_radius = 0.5 * c.pin_diameter;
+  bd.hole_radius = bd.pin_radius + c.radial_clearance;
+  bd.pin_length = c.pin_length;
+  bd.segments = RECOMMENDED_N;
+  fb_ccd_bore *b;
+  assert_int_equal(fb_ccd_bore_create(&b, &bd, NULL), FB_OK);
+  fb_ccd_contact ct[FB_CCD_CONTACTS];
+  const int m = fb_ccd_bore_collide(b, p, ct, FB_CCD_CONTACTS);
+  fb_ccd_bore_destroy(b);
+  assert_true(m >= 1);
+  double sum = 0.0, nw[2] = {0, 0}, pw[2] = {0, 0}, worst_n = 0.0;
+  const double the = atan2(ee[1], ee[0]) - th; /* exact normal in the hole frame */
+  for (int i = 0; i < m; i++) {
+    sum += ct[i].depth;
+    for (int q = 0; q < 2; q++) {
+      nw[q] += ct[i].depth * ct[i].normal[q];
+      pw[q] += ct[i].depth * ct[i].point[q];
+    }
+    worst_n = fmax(worst_n, fabs(remainder(atan2(ct[i].normal[1], ct[i].normal[0]) - the, 2 * M_PI)));
+  }
+  const double resultant = fabs(remainder(atan2(nw[1], nw[0]) - the, 2 * M_PI));
+  const double point_err = hypot(pw[0] / sum - bd.hole_radius * cos(the),
+                                 pw[1] / sum - bd.hole_radius * sin(the));
+  /* bounds derived in collide_ccd.h: a facet normal is within pi / N of the
+   * direction it faces, the k-th deepest of the chain within k facets; the
+   * point sits on its facet at R_hole n_k */
+  const double facet = M_PI / RECOMMENDED_N;
+  report_residual("static normal (depth-weighted) [rad]", resultant, facet);
+  report_residual("static normal (worst contact) [rad]", worst_n, FB_CCD_CONTACTS * 2 * facet);
+  report_residual("static contact point [m]", point_err, bd.hole_radius * facet);
+  assert_true(resultant <= facet);
+  assert_true(worst_n <= FB_CCD_CONTACTS * 2 * facet);
+  assert_true(point_err <= bd.hole_radius * facet);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_face_contacts_match_closed_form),
+      cmocka_unit_test(test_circle_error_within_sag_bound),
+      cmocka_unit_test(test_ellipse_gives_room_along_major_axis),
+      cmocka_unit_test(test_bad_definitions_are_refused),
+      cmocka_unit_test(test_scene_contacts_come_from_libccd),
+      cmocka_unit_test(test_statics_match_exact_collider),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

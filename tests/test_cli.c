@@ -233,6 +233,10 @@ static void test_fit_tolerance_stackup_json(void **state) {
   assert_string_equal(json_string_value(json_object_get(o0, "name")), "coupler_omega_max_rad_s");
   const char *groups[] = {"corners", "rss", "montecarlo", "sensitivity_per_m", NULL};
   for (int g = 0; groups[g]; g++) assert_non_null(json_object_get(o0, groups[g]));
+  /* 200 samples bound the median on both sides, not the 0.135 % quantile from below */
+  json_t *mc = json_object_get(o0, "montecarlo");
+  assert_true(json_is_real(json_object_get(mc, "q50_ci_lo")) && json_is_real(json_object_get(mc, "q50_ci_hi")));
+  assert_true(json_is_null(json_object_get(mc, "q00135_ci_lo")));
   json_decref(j);
 }
 
@@ -324,6 +328,7 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   expect_fail("fit 10H7-g6", (const char *[]){"expected <size mm>", NULL});
   expect_fail("tolerance 2 --class v", (const char *[]){"no value", NULL});
   expect_fail("stackup --method guess", (const char *[]){"corners, rss or montecarlo", NULL});
+  expect_fail("stackup --jobs 0", (const char *[]){"--jobs 0", "from 1 to", NULL});
   expect_fail("frobnicate", (const char *[]){"unknown command 'frobnicate'", NULL});
   /* nothing was written for the failed runs */
   snprintf(args, sizeof args, "%s/x/summary.json", tmpdir);

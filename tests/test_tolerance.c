@@ -92,6 +92,139 @@ static void test_same_seed_same_numbers(void **state) {
   assert_true(memcmp(a.q, c.q, sizeof a.q) != 0);
 }
 
+/* Quantiles (0.135 %, 50 %, 99.865 %) of the paper case with 500 samples,
+ * recorded with the grid + Brent peak search before the series search
+ * replaced it (`fourbar stackup --method montecarlo --samples 500 --seed S
+ * --set tolerance.distribution=D --json`, 12 digits, commit 1a7a942): the
+ * samples of a seed must not move. The issue's bound is 1e-6 relative; the
+ * two searches agree to ~1e-12 (measured 1.2e-12 on these). */
+#define RECORDED_REL_TOL 1e-6
+static const double RECORDED_S1_NORMAL_500[FB_TOL_NOUT][3] = {
+    {78.2155783693, 78.7064641582, 79.1753586411}, /* coupler_omega_max_rad_s */
+    {-42.3380511431, -42.2004564642, -42.067655953}, /* coupler_omega_min_rad_s */
+    {7507.41238364, 7576.12460752, 7640.81094371}, /* coupler_alpha_max_rad_s2 */
+    {-12065.6525796, -11972.5854566, -11874.8048473}, /* coupler_alpha_min_rad_s2 */
+    {80.0858074096, 80.5663754208, 81.0136703233}, /* follower_omega_max_rad_s */
+    {-43.9392263621, -43.8180668761, -43.687359106}, /* follower_omega_min_rad_s */
+    {12389.4458928, 12487.0638656, 12578.6302828}, /* follower_alpha_max_rad_s2 */
+    {-7577.71614923, -7513.91078312, -7445.93918819}, /* follower_alpha_min_rad_s2 */
+    {0.534407859023, 0.536433911431, 0.538650391202}, /* transmission_angle_min_rad */
+    {1.43346264844, 1.43690033943, 1.43999133132}, /* transmission_angle_max_rad */
+};
+static const double RECORDED_S2_UNIFORM_500[FB_TOL_NOUT][3] = {
+    {78.1186827358, 78.6779570267, 79.3515169595}, /* coupler_omega_max_rad_s */
+    {-42.3963064697, -42.1935904414, -42.0135280729}, /* coupler_omega_min_rad_s */
+    {7486.38288071, 7571.79251828, 7661.68341789}, /* coupler_alpha_max_rad_s2 */
+    {-12103.8198533, -11966.5033588, -11854.5942696}, /* coupler_alpha_min_rad_s2 */
+    {79.8989086744, 80.5420433914, 81.1492205966}, /* follower_omega_max_rad_s */
+    {-43.9956645252, -43.8140851931, -43.6201908909}, /* follower_omega_min_rad_s */
+    {12347.8193019, 12483.0054013, 12610.2888507}, /* follower_alpha_max_rad_s2 */
+    {-7600.97680125, -7510.44803612, -7428.63500205}, /* follower_alpha_min_rad_s2 */
+    {0.533135538763, 0.536478007908, 0.539768392233}, /* transmission_angle_min_rad */
+    {1.43186269895, 1.43683390036, 1.44248111586}, /* transmission_angle_max_rad */
+};
+
+static void check_recorded(const double rec[FB_TOL_NOUT][3], unsigned long seed, fb_distribution dist,
+                           int jobs) {
+  static fb_stackup_result r;
+  assert_int_equal(fb_tol_analyse_jobs(&r, &paper, FB_TOL_MONTECARLO, 500, seed, dist, jobs, NULL, NULL,
+                                       NULL), FB_OK);
+  double worst = 0.0;
+  for (int i = 0; i < FB_TOL_NOUT; i++)
+    for (int j = 0; j < 3; j++) {
+      assert_rel(r.q[i][j], rec[i][j], RECORDED_REL_TOL);
+      worst = fmax(worst, fabs(r.q[i][j] - rec[i][j]) / fabs(rec[i][j]));
+    }
+  report_residual("quantiles vs recorded (rel)", worst, RECORDED_REL_TOL);
+}
+
+static void test_quantiles_equal_recorded(void **state) {
+  (void)state;
+  check_recorded(RECORDED_S1_NORMAL_500, 1, FB_DIST_NORMAL, 1);
+  check_recorded(RECORDED_S2_UNIFORM_500, 2, FB_DIST_UNIFORM, 1);
+  check_recorded(RECORDED_S1_NORMAL_500, 1, FB_DIST_NORMAL, 3);
+}
+
+static void test_jobs_same_numbers(void **state) {
+  (void)state;
+  /* 1000 samples: four blocks of 256, so three threads share the work */
+  static fb_stackup_result a, b;
+  assert_int_equal(fb_tol_analyse_jobs(&a, &paper, FB_TOL_MONTECARLO, 1000, 5, FB_DIST_NORMAL, 1, NULL,
+                                       NULL, NULL), FB_OK);
+  assert_int_equal(fb_tol_analyse_jobs(&b, &paper, FB_TOL_MONTECARLO, 1000, 5, FB_DIST_NORMAL, 3, NULL,
+                                       NULL, NULL), FB_OK);
+  assert_int_equal(b.jobs, 3);
+  assert_memory_equal(a.q, b.q, sizeof a.q);
+  assert_memory_equal(a.q_ci, b.q_ci, sizeof a.q_ci);
+  assert_memory_equal(a.mc_mean, b.mc_mean, sizeof a.mc_mean);
+  assert_memory_equal(a.mc_std, b.mc_std, sizeof a.mc_std);
+  /* a failing sample: the same (lowest) one is named whatever the jobs */
+  fb_case c;
+  const char *sets[] = {"linkage.ground_mm=117.0"}; /* near the change point: samples fail */
+  fb_test_paper_case(&c, sets, 1);
+  fb_diag d1, d3;
+  assert_int_equal(fb_tol_analyse_jobs(&a, &c, FB_TOL_MONTECARLO, 2000, 1, FB_DIST_NORMAL, 1, NULL, NULL,
+                                       &d1), FB_ERR_ASSEMBLY);
+  assert_int_equal(fb_tol_analyse_jobs(&b, &c, FB_TOL_MONTECARLO, 2000, 1, FB_DIST_NORMAL, 3, NULL, NULL,
+                                       &d3), FB_ERR_ASSEMBLY);
+  assert_string_equal(d1.msg, d3.msg);
+  assert_non_null(strstr(d1.msg, "Monte Carlo sample "));
+  assert_int_equal(fb_tol_analyse_jobs(&a, &paper, FB_TOL_MONTECARLO, 10, 1, FB_DIST_NORMAL, 0, NULL, NULL,
+                                       &d1), FB_ERR_ARG);
+}
+
+/* P(B <= k) for B ~ Binomial(n, p) by summing the probability mass in logs:
+ * independent of GSL's incomplete-beta route */
+static double binom_cdf(int k, double p, int n) {
+  double s = 0.0;
+  for (int i = 0; i <= k; i++)
+    s += exp(lgamma(n + 1.0) - lgamma(i + 1.0) - lgamma(n - i + 1.0) + i * log(p) + (n - i) * log1p(-p));
+  return s;
+}
+
+static void test_quantile_confidence_ranks(void **state) {
+  (void)state;
+  size_t lo, hi;
+  /* the textbook case: median of 100 samples, 95 %: X_(40) .. X_(61)
+   * (P(B <= 39) = 0.0176, P(B <= 40) = 0.0284 for B ~ Binomial(100, 1/2)) */
+  fb_tol_quantile_ranks(100, 0.5, 0.95, &lo, &hi);
+  assert_int_equal(lo, 40);
+  assert_int_equal(hi, 61);
+  /* against direct binomial sums: each side's tail is at most 2.5 %, and one
+   * rank further in would exceed it */
+  const int ns[] = {30, 200, 1000, 5000};
+  const double ps[] = {0.00135, 0.1, 0.5, 0.99865};
+  for (int a = 0; a < 4; a++)
+    for (int b = 0; b < 4; b++) {
+      const int n = ns[a];
+      const double p = ps[b];
+      fb_tol_quantile_ranks((size_t)n, p, 0.95, &lo, &hi);
+      if (lo) {
+        assert_true(binom_cdf((int)lo - 1, p, n) <= 0.025 + 1e-12);
+        if ((int)lo < n) assert_true(binom_cdf((int)lo, p, n) > 0.025 - 1e-12);
+      } else {
+        assert_true(binom_cdf(0, p, n) > 0.025 - 1e-12); /* even X_(1) cannot bound it */
+      }
+      if (hi) {
+        assert_true(1.0 - binom_cdf((int)hi - 1, p, n) <= 0.025 + 1e-12);
+        if (hi > 1) assert_true(1.0 - binom_cdf((int)hi - 2, p, n) > 0.025 - 1e-12);
+      } else {
+        assert_true(1.0 - binom_cdf(n - 1, p, n) > 0.025 - 1e-12);
+      }
+    }
+  /* 500 samples cannot bound the 0.135 % quantile from below at 95 %, 10000 can */
+  fb_tol_quantile_ranks(500, 0.00135, 0.95, &lo, &hi);
+  assert_int_equal(lo, 0);
+  fb_tol_quantile_ranks(10000, 0.00135, 0.95, &lo, &hi);
+  assert_true(lo >= 1 && lo < 14 && hi > 14);
+  /* the interval of a result contains its quantile */
+  static fb_stackup_result r;
+  assert_int_equal(fb_tol_analyse(&r, &paper, FB_TOL_MONTECARLO, 3000, 9, FB_DIST_NORMAL, NULL, NULL, NULL),
+                   FB_OK);
+  for (int i = 0; i < FB_TOL_NOUT; i++)
+    for (int j = 0; j < 3; j++) assert_true(r.q_ci[i][j][0] <= r.q[i][j] && r.q[i][j] <= r.q_ci[i][j][1]);
+}
+
 static void test_worst_corner(void **state) {
   (void)state;
   static fb_stackup_result r;
@@ -121,6 +254,9 @@ int main(void) {
       cmocka_unit_test(test_sensitivities_vs_finite_differences),
       cmocka_unit_test(test_rss_inside_corners_and_mc_converges),
       cmocka_unit_test(test_same_seed_same_numbers),
+      cmocka_unit_test(test_quantiles_equal_recorded),
+      cmocka_unit_test(test_jobs_same_numbers),
+      cmocka_unit_test(test_quantile_confidence_ranks),
       cmocka_unit_test(test_worst_corner),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

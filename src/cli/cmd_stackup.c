@@ -9,42 +9,72 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "clock.h"
 #include "tolerance.h"
 
 #define MAX_SETS 256
 
 static const char stackup_help[] =
     "usage: fourbar stackup [CASE] [--method corners|rss|montecarlo] [--samples N]\n"
-    "                       [--seed S] [--set section.key=value]... [--json]\n"
+    "                       [--seed S] [--jobs J] [--set section.key=value]... [--json]\n"
     "\n"
     "How the outputs move within the link-length tolerances. For each output\n"
     "(peaks of coupler and follower angular velocity [rad/s] and acceleration\n"
     "[rad/s^2], transmission angle extremes [rad]): nominal value, exact\n"
     "sensitivity to each link length [unit/m], worst-case range over the 16\n"
     "corners, RSS 3-sigma band, Monte Carlo quantiles at 0.135 %, 50 %, 99.865 %\n"
-    "(GSL mt19937; [tolerance] distribution = normal or uniform).\n"
+    "(GSL mt19937; [tolerance] distribution = normal or uniform), each with a\n"
+    "95 % distribution-free confidence interval from order statistics: a bound\n"
+    "shown as '-' needs more samples.\n"
     "\n"
     "  --method    run one method (repeatable); default all three\n"
     "  --samples   Monte Carlo samples (default 10000)\n"
-    "  --seed      Monte Carlo seed (default 1): same seed, same numbers\n";
+    "  --seed      Monte Carlo seed (default 1): same seed, same numbers\n"
+    "  --jobs      threads evaluating the samples (default 1); the samples are\n"
+    "              drawn in order from the seed, so every J gives the same numbers\n";
+
+/* progress bar on a terminal (quiet otherwise): redrawn at most every 0.1 s */
+typedef struct {
+  int on;         /* standard error is a terminal and the output is text */
+  size_t samples; /* total */
+  double t0;      /* start [s] */
+  double last;    /* last redraw [s] */
+} progress_bar;
 
 static void progress(double fraction, void *user) {
-  if (!*(int *)user) return;
-  fprintf(stderr, "\r  Monte Carlo %3.0f%%", 100.0 * fraction);
+  progress_bar *b = user;
+  if (!b->on) return;
+  const double now = fb_clock_s();
+  if (fraction < 1.0 && now - b->last < 0.1) return;
+  b->last = now;
+  enum { W = 30 };
+  char bar[W + 1];
+  const int full = (int)(fraction * W);
+  for (int i = 0; i < W; i++) bar[i] = i < full ? '#' : '-';
+  bar[W] = 0;
+  const double el = now - b->t0;
+  fprintf(stderr, "\r  Monte Carlo [%s] %3.0f%%  %zu/%zu  %.1f s", bar, 100.0 * fraction,
+          (size_t)(fraction * (double)b->samples), b->samples, el);
+  if (fraction > 0.0 && fraction < 1.0) fprintf(stderr, ", %.1f s left ", el * (1.0 - fraction) / fraction);
+  else fputs("              ", stderr);
   if (fraction >= 1.0) fputc('\n', stderr);
   fflush(stderr);
 }
+
+/* a quantile bound for JSON: null when the sample cannot bound that side */
+static json_t *bound_json(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 
 int fb_cmd_stackup(int argc, char **argv) {
   static const struct option opts[] = {{"method", required_argument, 0, 'm'},
                                        {"samples", required_argument, 0, 'n'},
                                        {"seed", required_argument, 0, 's'},
+                                       {"jobs", required_argument, 0, 'J'},
                                        {"set", required_argument, 0, 'S'},
                                        {"json", no_argument, 0, 'j'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   int mask = 0, json = 0, nsets = 0, ch;
-  double samples = 10000, seed = 1;
+  double samples = 10000, seed = 1, jobs = 1;
   const char *sets[MAX_SETS];
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
@@ -65,6 +95,12 @@ int fb_cmd_stackup(int argc, char **argv) {
         if (!(seed >= 0 && seed <= 4294967295.0 && seed == floor(seed)))
           return fb_cli_fail("stackup", 2, "--seed %s: must be an integer from 0 to 4294967295", optarg);
         break;
+      case 'J':
+        if (!fb_cli_double("stackup", "--jobs", optarg, &jobs)) return 2;
+        if (!(jobs >= 1 && jobs <= FB_TOL_MAX_JOBS && jobs == floor(jobs)))
+          return fb_cli_fail("stackup", 2, "--jobs %s: must be an integer from 1 to %d", optarg,
+                             FB_TOL_MAX_JOBS);
+        break;
       case 'S':
         if (nsets == MAX_SETS) return fb_cli_fail("stackup", 2, "more than %d --set", MAX_SETS);
         sets[nsets++] = optarg;
@@ -81,9 +117,10 @@ int fb_cmd_stackup(int argc, char **argv) {
   int rc = fb_cli_load_case("stackup", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
   static fb_stackup_result r;
-  int tty = isatty(2) && !json;
-  fb_status st = fb_tol_analyse(&r, &c, mask, (size_t)samples, (unsigned long)seed,
-                                c.distribution ? FB_DIST_UNIFORM : FB_DIST_NORMAL, progress, &tty, &d);
+  progress_bar bar = {isatty(2) && !json, (size_t)samples, fb_clock_s(), 0.0};
+  fb_status st = fb_tol_analyse_jobs(&r, &c, mask, (size_t)samples, (unsigned long)seed,
+                                     c.distribution ? FB_DIST_UNIFORM : FB_DIST_NORMAL, (int)jobs,
+                                     progress, &bar, &d);
   if (st != FB_OK) return fb_cli_fail("stackup", 1, "%s", d.msg);
   if (json) {
     json_t *o = json_object(), *outs = json_array();
@@ -91,6 +128,7 @@ int fb_cmd_stackup(int argc, char **argv) {
     json_object_set_new(o, "distribution", json_string(c.distribution ? "uniform" : "normal"));
     json_object_set_new(o, "samples", json_integer((json_int_t)r.samples));
     json_object_set_new(o, "seed", json_integer((json_int_t)seed));
+    json_object_set_new(o, "jobs", json_integer((json_int_t)jobs));
     json_object_set_new(o, "montecarlo_wall_s", json_real(r.mc_wall_s));
     json_t *tol = json_object();
     for (int k = 0; k < FB_LINK_COUNT; k++) {
@@ -101,6 +139,19 @@ int fb_cmd_stackup(int argc, char **argv) {
       json_object_set_new(tol, fb_link_name(k), l);
     }
     json_object_set_new(o, "links", tol);
+    if (mask & FB_TOL_MONTECARLO) {
+      /* which order statistics bound each quantile (null: none at this level) */
+      json_t *ci = json_object(), *ranks = json_object();
+      static const char *const qn[3] = {"q00135", "q50", "q99865"};
+      json_object_set_new(ci, "level", json_real(r.ci_level));
+      json_object_set_new(ci, "method", json_string("distribution-free, order statistics (binomial)"));
+      for (int j = 0; j < 3; j++)
+        json_object_set_new(ranks, qn[j],
+                            json_pack("[o,o]", r.q_rank[j][0] ? json_integer((json_int_t)r.q_rank[j][0]) : json_null(),
+                                      r.q_rank[j][1] ? json_integer((json_int_t)r.q_rank[j][1]) : json_null()));
+      json_object_set_new(ci, "ranks", ranks);
+      json_object_set_new(o, "quantile_ci", ci);
+    }
     for (int i = 0; i < FB_TOL_NOUT; i++) {
       json_t *x = json_object(), *s = json_object();
       json_object_set_new(x, "name", json_string(fb_tol_output_name(i)));
@@ -112,10 +163,17 @@ int fb_cmd_stackup(int argc, char **argv) {
       if (mask & FB_TOL_RSS)
         json_object_set_new(x, "rss", json_pack("{s:f,s:f}", "min", r.nominal[i] - r.rss_half[i], "max",
                                                 r.nominal[i] + r.rss_half[i]));
-      if (mask & FB_TOL_MONTECARLO)
-        json_object_set_new(x, "montecarlo",
-                            json_pack("{s:f,s:f,s:f,s:f,s:f}", "q00135", r.q[i][0], "q50", r.q[i][1],
-                                      "q99865", r.q[i][2], "mean", r.mc_mean[i], "std", r.mc_std[i]));
+      if (mask & FB_TOL_MONTECARLO) {
+        json_t *m = json_pack("{s:f,s:f,s:f,s:f,s:f}", "q00135", r.q[i][0], "q50", r.q[i][1],
+                              "q99865", r.q[i][2], "mean", r.mc_mean[i], "std", r.mc_std[i]);
+        static const char *const lo[3] = {"q00135_ci_lo", "q50_ci_lo", "q99865_ci_lo"};
+        static const char *const hi[3] = {"q00135_ci_hi", "q50_ci_hi", "q99865_ci_hi"};
+        for (int j = 0; j < 3; j++) {
+          json_object_set_new(m, lo[j], bound_json(r.q_ci[i][j][0]));
+          json_object_set_new(m, hi[j], bound_json(r.q_ci[i][j][1]));
+        }
+        json_object_set_new(x, "montecarlo", m);
+      }
       json_array_append_new(outs, x);
     }
     json_object_set_new(o, "outputs", outs);
@@ -141,8 +199,29 @@ int fb_cmd_stackup(int argc, char **argv) {
     else printf(" %12s %12s %12s", "-", "-", "-");
     printf(" %12.5g\n", r.sens[i][FB_CRANK]);
   }
-  if (mask & FB_TOL_MONTECARLO)
-    printf("\nMonte Carlo: %zu samples (%s), %.3f s\n", r.samples,
-           c.distribution ? "uniform" : "normal, 3 sigma at the limit", r.mc_wall_s);
+  if (mask & FB_TOL_MONTECARLO) {
+    printf("\nMonte Carlo quantiles with %.0f %% confidence intervals (order statistics X_(l) .. X_(u)):\n",
+           100.0 * r.ci_level);
+    printf("%-28s %27s %27s %27s\n", "output", "0.135%", "50%", "99.865%");
+    int open_side = 0;
+    for (int i = 0; i < FB_TOL_NOUT; i++) {
+      printf("%-28s", fb_tol_output_name(i));
+      for (int j = 0; j < 3; j++) {
+        char a[32] = "-", b[32] = "-";
+        if (isfinite(r.q_ci[i][j][0])) snprintf(a, sizeof a, "%.6g", r.q_ci[i][j][0]);
+        else open_side = 1;
+        if (isfinite(r.q_ci[i][j][1])) snprintf(b, sizeof b, "%.6g", r.q_ci[i][j][1]);
+        else open_side = 1;
+        printf("   [%11s, %11s]", a, b);
+      }
+      putchar('\n');
+    }
+    if (open_side)
+      printf("('-': %zu samples cannot bound that side of a tail quantile at this level; "
+             "use more samples)\n", r.samples);
+    printf("\nMonte Carlo: %zu samples (%s), %d job%s, %.3f s (%.2f us per sample)\n", r.samples,
+           c.distribution ? "uniform" : "normal, 3 sigma at the limit", r.jobs, r.jobs == 1 ? "" : "s",
+           r.mc_wall_s, 1e6 * r.mc_wall_s / (double)r.samples);
+  }
   return 0;
 }

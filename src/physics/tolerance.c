@@ -1,13 +1,19 @@
 #include "clock.h"
 #include "tolerance.h"
 
+#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
-#include <gsl/gsl_sort.h>
 #include <gsl/gsl_statistics_double.h>
+#include <limits.h>
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "analytic.h"
 
@@ -80,6 +86,179 @@ fb_status fb_tol_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_
   return FB_OK;
 }
 
+/* ---- Monte Carlo -------------------------------------------------------
+ * The samples are drawn in order from one mt19937 stream (the sequence does
+ * not depend on the number of jobs), then evaluated by `jobs` threads taking
+ * blocks of FB_TOL_BLOCK samples from a shared counter; each output lands in
+ * its sample's slot, so the sorted columns, and every statistic, are the
+ * same for any number of jobs. */
+
+/* samples per block handed to a thread: large enough that the shared counter
+ * costs nothing (~1 ms of work), small enough to balance the threads */
+#define FB_TOL_BLOCK 256
+
+typedef struct {
+  const fb_case *c;
+  double omega2;
+  size_t samples;
+  const double *len; /* drawn lengths (samples x 4) [m] */
+  double *v;         /* outputs, column per output (FB_TOL_NOUT x samples) */
+  atomic_size_t next;   /* next block's first sample */
+  atomic_size_t done;   /* samples evaluated */
+  atomic_size_t failed; /* lowest failing sample, or SIZE_MAX */
+  pthread_mutex_t lock; /* guards err */
+  fb_status err_st;
+  size_t err_at;
+  char err_msg[FB_DIAG_SIZE];
+  void (*progress)(double fraction, void *user); /* called by a lone worker */
+  void *user;
+} mc_work;
+
+static void *mc_worker(void *arg) {
+  mc_work *w = arg;
+  for (;;) {
+    const size_t b0 = atomic_fetch_add(&w->next, FB_TOL_BLOCK);
+    if (b0 >= w->samples || b0 > atomic_load(&w->failed)) break;
+    const size_t b1 = b0 + FB_TOL_BLOCK < w->samples ? b0 + FB_TOL_BLOCK : w->samples;
+    for (size_t n = b0; n < b1; n++) {
+      fb_linkage lk;
+      memcpy(lk.length, w->len + 4 * n, sizeof lk.length);
+      double o[FB_TOL_NOUT];
+      fb_diag inner;
+      fb_status st = fb_tol_outputs(o, &lk, w->c->branch, w->omega2, &inner);
+      if (st != FB_OK) {
+        pthread_mutex_lock(&w->lock);
+        if (n < w->err_at) {
+          w->err_at = n, w->err_st = st;
+          snprintf(w->err_msg, sizeof w->err_msg, "%s", inner.msg);
+          atomic_store(&w->failed, n);
+        }
+        pthread_mutex_unlock(&w->lock);
+        return NULL;
+      }
+      for (int i = 0; i < FB_TOL_NOUT; i++) w->v[i * w->samples + n] = o[i];
+    }
+    const size_t d = atomic_fetch_add(&w->done, b1 - b0) + (b1 - b0);
+    if (w->progress) w->progress((double)d / (double)w->samples, w->user);
+  }
+  return NULL;
+}
+
+static int cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+void fb_tol_quantile_ranks(size_t n, double p, double level, size_t *lo, size_t *hi) {
+  /* B ~ Binomial(n, p) counts samples below the p-quantile; the interval
+   * [X_(l), X_(u)] covers it with probability P(l <= B < u) = F(u-1) - F(l-1):
+   * largest l with F(l-1) <= (1-level)/2, smallest u with P(B >= u) <= (1-level)/2 */
+  const double tail = 0.5 * (1.0 - level);
+  const unsigned int N = (unsigned int)n;
+  *lo = *hi = 0;
+  if (n == 0 || n > UINT_MAX) return;
+  if (gsl_cdf_binomial_P(0, p, N) <= tail) { /* some l >= 1 exists */
+    size_t a = 1, b = n;                     /* F(a-1) <= tail; find the largest */
+    while (a < b) {
+      const size_t m = a + (b - a + 1) / 2;
+      if (gsl_cdf_binomial_P((unsigned int)(m - 1), p, N) <= tail) a = m;
+      else b = m - 1;
+    }
+    *lo = a;
+  }
+  if (gsl_cdf_binomial_Q((unsigned int)(n - 1), p, N) <= tail) { /* P(B >= n) */
+    size_t a = 1, b = n;                                         /* find the smallest u */
+    while (a < b) {
+      const size_t m = a + (b - a) / 2;
+      if (gsl_cdf_binomial_Q((unsigned int)(m - 1), p, N) <= tail) b = m;
+      else a = m + 1;
+    }
+    *hi = a;
+  }
+}
+
+static fb_status monte_carlo(fb_stackup_result *out, const fb_case *c, size_t samples,
+                             unsigned long seed, fb_distribution dist, int jobs,
+                             void (*progress)(double fraction, void *user), void *user,
+                             fb_diag *diag) {
+  const double t0 = fb_clock_s();
+  double *v = malloc(samples * FB_TOL_NOUT * sizeof(double));
+  double *len = malloc(samples * FB_LINK_COUNT * sizeof(double));
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  if (!v || !len || !rng) {
+    free(v);
+    free(len);
+    if (rng) gsl_rng_free(rng);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", samples);
+  }
+  /* draw in order: the sequence of today's single-process loop */
+  gsl_rng_set(rng, seed);
+  for (size_t n = 0; n < samples; n++)
+    for (int k = 0; k < FB_LINK_COUNT; k++) {
+      const double x = dist == FB_DIST_UNIFORM ? gsl_ran_flat(rng, -1.0, 1.0)
+                                               : gsl_ran_gaussian(rng, 1.0 / 3.0);
+      len[4 * n + k] = c->nominal.length[k] + x * c->plus_minus[k];
+    }
+  gsl_rng_free(rng);
+  mc_work w;
+  memset(&w, 0, sizeof w);
+  w.c = c, w.omega2 = fb_case_omega2(c), w.samples = samples, w.len = len, w.v = v;
+  w.err_st = FB_OK, w.err_at = SIZE_MAX;
+  atomic_init(&w.next, 0);
+  atomic_init(&w.done, 0);
+  atomic_init(&w.failed, SIZE_MAX);
+  pthread_mutex_init(&w.lock, NULL);
+  if ((size_t)jobs > samples / FB_TOL_BLOCK + 1) jobs = (int)(samples / FB_TOL_BLOCK + 1);
+  if (jobs <= 1) {
+    w.progress = progress, w.user = user;
+    mc_worker(&w);
+  } else {
+    pthread_t th[FB_TOL_MAX_JOBS];
+    int started = 0;
+    for (; started < jobs; started++)
+      if (pthread_create(&th[started], NULL, mc_worker, &w) != 0) break;
+    if (started == 0) mc_worker(&w); /* no thread available: evaluate here */
+    /* report progress from here while the workers run */
+    while (progress && started > 0 && atomic_load(&w.done) < samples &&
+           atomic_load(&w.failed) == SIZE_MAX) {
+      progress((double)atomic_load(&w.done) / (double)samples, user);
+      nanosleep(&(struct timespec){0, 100000000}, NULL);
+    }
+    for (int i = 0; i < started; i++) pthread_join(th[i], NULL);
+  }
+  pthread_mutex_destroy(&w.lock);
+  fb_status st = FB_OK;
+  if (w.err_st != FB_OK) {
+    const double *l = len + 4 * w.err_at;
+    st = fb_diag_set(diag, w.err_st,
+                     "Monte Carlo sample %zu (crank %g, coupler %g, follower %g, ground %g m): %s",
+                     w.err_at, l[0], l[1], l[2], l[3], w.err_msg);
+  } else {
+    static const double qp[3] = {0.00135, 0.5, 0.99865};
+    out->ci_level = FB_TOL_CI_LEVEL;
+    for (int j = 0; j < 3; j++)
+      fb_tol_quantile_ranks(samples, qp[j], FB_TOL_CI_LEVEL, &out->q_rank[j][0], &out->q_rank[j][1]);
+    for (int i = 0; i < FB_TOL_NOUT; i++) {
+      double *col = v + i * samples;
+      out->mc_mean[i] = gsl_stats_mean(col, 1, samples);
+      out->mc_std[i] = samples > 1 ? gsl_stats_sd(col, 1, samples) : 0.0;
+      qsort(col, samples, sizeof *col, cmp_double);
+      for (int j = 0; j < 3; j++) {
+        out->q[i][j] = gsl_stats_quantile_from_sorted_data(col, 1, samples, qp[j]);
+        out->q_ci[i][j][0] = out->q_rank[j][0] ? col[out->q_rank[j][0] - 1] : -INFINITY;
+        out->q_ci[i][j][1] = out->q_rank[j][1] ? col[out->q_rank[j][1] - 1] : INFINITY;
+      }
+    }
+    out->samples = samples;
+    out->jobs = jobs;
+  }
+  free(v);
+  free(len);
+  out->mc_wall_s = fb_clock_s() - t0;
+  if (progress && st == FB_OK) progress(1.0, user);
+  return st;
+}
+
 static fb_status corner_outputs(double out[FB_TOL_NOUT], const fb_case *c, const int corner[4],
                                 fb_diag *diag) {
   fb_linkage lk;
@@ -99,6 +278,15 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
                          unsigned long seed, fb_distribution dist,
                          void (*progress)(double fraction, void *user), void *user,
                          fb_diag *diag) {
+  return fb_tol_analyse_jobs(out, c, mask, samples, seed, dist, 1, progress, user, diag);
+}
+
+fb_status fb_tol_analyse_jobs(fb_stackup_result *out, const fb_case *c, int mask, size_t samples,
+                              unsigned long seed, fb_distribution dist, int jobs,
+                              void (*progress)(double fraction, void *user), void *user,
+                              fb_diag *diag) {
+  if (jobs < 1 || jobs > FB_TOL_MAX_JOBS)
+    return fb_diag_set(diag, FB_ERR_ARG, "jobs = %d: must be from 1 to %d", jobs, FB_TOL_MAX_JOBS);
   memset(out, 0, sizeof *out);
   const double omega2 = fb_case_omega2(c);
   fb_status st = fb_tol_outputs(out->nominal, &c->nominal, c->branch, omega2, diag);
@@ -132,51 +320,7 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
       out->rss_half[i] = sqrt(s2);
     }
   }
-  if ((mask & FB_TOL_MONTECARLO) && samples > 0) {
-    double t0 = fb_clock_s();
-    double *v = malloc(samples * FB_TOL_NOUT * sizeof(double));
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    if (!v || !rng) {
-      free(v);
-      if (rng) gsl_rng_free(rng);
-      return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", samples);
-    }
-    gsl_rng_set(rng, seed);
-    for (size_t n = 0; n < samples && st == FB_OK; n++) {
-      fb_linkage lk;
-      for (int k = 0; k < FB_LINK_COUNT; k++) {
-        double x = dist == FB_DIST_UNIFORM ? gsl_ran_flat(rng, -1.0, 1.0)
-                                           : gsl_ran_gaussian(rng, 1.0 / 3.0);
-        lk.length[k] = c->nominal.length[k] + x * c->plus_minus[k];
-      }
-      double o[FB_TOL_NOUT];
-      fb_diag inner;
-      st = fb_tol_outputs(o, &lk, c->branch, omega2, &inner);
-      if (st != FB_OK) {
-        fb_diag_set(diag, st, "Monte Carlo sample %zu (crank %g, coupler %g, follower %g, ground %g m): %s",
-                    n, lk.length[0], lk.length[1], lk.length[2], lk.length[3], inner.msg);
-        break;
-      }
-      for (int i = 0; i < FB_TOL_NOUT; i++) v[i * samples + n] = o[i];
-      if (progress && (n + 1) % 100 == 0) progress((double)(n + 1) / (double)samples, user);
-    }
-    if (st == FB_OK) {
-      for (int i = 0; i < FB_TOL_NOUT; i++) {
-        double *col = v + i * samples;
-        out->mc_mean[i] = gsl_stats_mean(col, 1, samples);
-        out->mc_std[i] = samples > 1 ? gsl_stats_sd(col, 1, samples) : 0.0;
-        gsl_sort(col, 1, samples);
-        out->q[i][0] = gsl_stats_quantile_from_sorted_data(col, 1, samples, 0.00135);
-        out->q[i][1] = gsl_stats_quantile_from_sorted_data(col, 1, samples, 0.5);
-        out->q[i][2] = gsl_stats_quantile_from_sorted_data(col, 1, samples, 0.99865);
-      }
-      out->samples = samples;
-    }
-    gsl_rng_free(rng);
-    free(v);
-    out->mc_wall_s = fb_clock_s() - t0;
-    if (progress) progress(1.0, user);
-  }
+  if ((mask & FB_TOL_MONTECARLO) && samples > 0) st = monte_carlo(out, c, samples, seed, dist, jobs, progress, user, diag);
   return st;
 }
 

@@ -13,7 +13,11 @@
  * sigma, so the band is the 3-sigma band of the linearised output.
  * Monte Carlo: each length nominal + t_k x, x ~ N(0, 1/3) ("normal": 3 sigma
  * at the tolerance limit) or U(-1, 1) ("uniform"); quantiles at 0.135 %,
- * 50 % and 99.865 % (GSL gsl_stats_quantile_from_sorted_data). */
+ * 50 % and 99.865 % (GSL gsl_stats_quantile_from_sorted_data), each with a
+ * distribution-free confidence interval from order statistics
+ * (fb_tol_quantile_ranks). The samples are drawn in order from one stream
+ * and may be evaluated by several threads: the numbers depend only on the
+ * seed and the sample count. */
 #ifndef FB_TOLERANCE_H
 #define FB_TOLERANCE_H
 
@@ -49,9 +53,30 @@ typedef struct {
   double rss_half[FB_TOL_NOUT];                  /* half-width of the RSS band */
   double q[FB_TOL_NOUT][3];                      /* Monte Carlo 0.135 %, 50 %, 99.865 % */
   double mc_mean[FB_TOL_NOUT], mc_std[FB_TOL_NOUT];
+  double q_ci[FB_TOL_NOUT][3][2];                /* confidence interval of each quantile
+                                                    (lo, hi); -inf / +inf when the sample is
+                                                    too small to bound that side */
+  size_t q_rank[3][2];                           /* 1-based order statistics of those bounds
+                                                    (0: none) */
+  double ci_level;                               /* their confidence level (FB_TOL_CI_LEVEL) */
   size_t samples;                                /* Monte Carlo samples used */
+  int jobs;                                      /* threads that evaluated them */
   double mc_wall_s;                              /* Monte Carlo wall time [s] */
 } fb_stackup_result;
+
+/* Two-sided confidence level of the quantile intervals. */
+#define FB_TOL_CI_LEVEL 0.95
+/* Most threads fb_tol_analyse_jobs will start. */
+#define FB_TOL_MAX_JOBS 256
+
+/* Ranks (1-based) of the order statistics X_(lo) <= X_(hi) of n samples that
+ * bound the p-quantile with probability at least `level`, whatever the
+ * distribution (the number B of samples below the quantile is Binomial(n, p),
+ * so [X_(lo), X_(hi)] covers it with probability P(lo <= B < hi); the
+ * classical order-statistic interval, evaluated with GSL gsl_cdf_binomial_P/Q): lo is the largest rank with P(B < lo) <= (1-level)/2,
+ * hi the smallest with P(B >= hi) <= (1-level)/2. A side that no rank can
+ * bound at that level (too few samples in the tail) is 0. */
+void fb_tol_quantile_ranks(size_t n, double p, double level, size_t *lo, size_t *hi);
 
 /* Methods to run (bit mask). */
 #define FB_TOL_CORNERS 1
@@ -66,6 +91,15 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
                          unsigned long seed, fb_distribution dist,
                          void (*progress)(double fraction, void *user), void *user,
                          fb_diag *diag);
+
+/* As fb_tol_analyse, with the Monte Carlo samples evaluated by `jobs`
+ * threads (1 .. FB_TOL_MAX_JOBS): the same numbers for every jobs. progress
+ * is called from the calling thread. Errors: those of fb_tol_analyse (the
+ * lowest failing sample is the one named); FB_ERR_ARG for jobs out of range. */
+fb_status fb_tol_analyse_jobs(fb_stackup_result *out, const fb_case *c, int mask, size_t samples,
+                              unsigned long seed, fb_distribution dist, int jobs,
+                              void (*progress)(double fraction, void *user), void *user,
+                              fb_diag *diag);
 
 /* Resolves a "worst" stack-up: sets c->stackup.corner to the corner that
  * maximises |output c->stackup.worst_output| and clears the worst flag.

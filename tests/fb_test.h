@@ -55,4 +55,32 @@ static inline void fb_test_paper_case(fb_case *c, const char **sets, int n) {
 }
 #endif
 
+/* Calls fn(path, file name, user) for every .ini file in the shipped
+ * cases/hard folder (FOURBAR_CASES_DIR or ./cases); returns how many. */
+#include <dirent.h>
+#include <string.h>
+static inline int fb_test_each_hard_case(void (*fn)(const char *path, const char *name, void *user),
+                                         void *user) {
+  const char *dir = getenv("FOURBAR_CASES_DIR");
+  char hard[4096];
+  snprintf(hard, sizeof hard, "%s/hard", dir ? dir : "cases");
+  DIR *dd = opendir(hard);
+  if (!dd) {
+    fprintf(stderr, "cannot open %s\n", hard);
+    exit(1);
+  }
+  struct dirent *e;
+  int n = 0;
+  while ((e = readdir(dd))) {
+    size_t l = strlen(e->d_name);
+    if (l < 4 || strcmp(e->d_name + l - 4, ".ini") != 0) continue;
+    char path[8192];
+    snprintf(path, sizeof path, "%s/%s", hard, e->d_name);
+    fn(path, e->d_name, user);
+    n++;
+  }
+  closedir(dd);
+  return n;
+}
+
 #endif

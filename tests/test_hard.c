@@ -2,7 +2,6 @@
  * [expect] section (stable with error bounds at the case's step, or a clean
  * 'unstable' report with its reason); this test runs every one and checks
  * it, and that nothing non-finite was kept. */
-#include <dirent.h>
 #include <string.h>
 
 #include "casefile.h"
@@ -51,25 +50,14 @@ static void check_case(const char *path) {
   fb_run_free(&r);
 }
 
+static void check_one(const char *path, const char *name, void *user) {
+  (void)name, (void)user;
+  check_case(path);
+}
+
 static void test_hard_cases_meet_their_expectations(void **state) {
   (void)state;
-  const char *dir = getenv("FOURBAR_CASES_DIR");
-  char hard[4096];
-  snprintf(hard, sizeof hard, "%s/hard", dir ? dir : "cases");
-  DIR *dd = opendir(hard);
-  assert_non_null(dd);
-  struct dirent *e;
-  int n = 0;
-  while ((e = readdir(dd))) {
-    size_t l = strlen(e->d_name);
-    if (l < 4 || strcmp(e->d_name + l - 4, ".ini") != 0) continue;
-    char path[8192];
-    snprintf(path, sizeof path, "%s/%s", hard, e->d_name);
-    check_case(path);
-    n++;
-  }
-  closedir(dd);
-  assert_true(n >= 10);
+  assert_true(fb_test_each_hard_case(check_one, NULL) >= 10);
 }
 
 int main(void) {

@@ -6,13 +6,19 @@ manifest's plotted extremes == the CSV's extremes over the same window (the
 decimation keeps each bucket's minimum and maximum, so they must be equal).
 Usage: test_figures.py PATH_TO_FOURBAR. Exit 0 on success; prints a
 "N passed, N failed" line."""
-import csv, json, os, re, subprocess, sys, tempfile
+import csv, json, math, os, re, subprocess, sys, tempfile
 import xml.etree.ElementTree as ET
 
 SVG = "{http://www.w3.org/2000/svg}"
 # values pass through "%.17g" text and back: exact for doubles; allow 1e-12
 # relative for the CSV's "%.12g" formatting
 REL_TOL = 1e-11
+# the residual curve and summary.json's omega_err_max_rad_s are the same
+# differences over the same samples (min/max decimation keeps the extremes);
+# both are computed with the same solver: agreement to rounding, 1e-9
+RESIDUAL_REL_TOL = 1e-9
+# alpha.svg's range reaches at least 15 % beyond the largest spike (symlog)
+HEADROOM = 1.15
 
 exe = sys.argv[1]
 passed = failed = 0
@@ -40,12 +46,39 @@ def svg_points(path):
     return root, counts
 
 
+def svg_stroke(root, gid):
+    """colour of the first path drawn in plot group gid, as '#rrggbb'"""
+    for g in root.iter(SVG + "g"):
+        if g.get("id") == gid:
+            for p in g.iter(SVG + "path"):
+                m = re.match(r"rgb\(\s*(\d+),\s*(\d+),\s*(\d+)\)", p.get("stroke") or "")
+                if m:
+                    return "#%02x%02x%02x" % tuple(int(x) for x in m.groups())
+    return None
+
+
+def svg_marks(root, gid):
+    """point symbols (<use>) drawn in plot group gid"""
+    for g in root.iter(SVG + "g"):
+        if g.get("id") == gid:
+            return sum(1 for _ in g.iter(SVG + "use"))
+    return -1
+
+
+def svg_text(root):
+    return " ".join(t for t in root.itertext())
+
+
 with tempfile.TemporaryDirectory() as tmp:
     out = os.path.join(tmp, "run")
     rc = subprocess.run([exe, "run", "--out", out, "--set", "run.revolutions=2"],
                         capture_output=True, text=True)
     check(rc.returncode == 0, "fourbar run exits 0: " + rc.stderr)
     manifest = json.load(open(os.path.join(out, "figures.json")))["figures"]
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    model = {m["name"]: m for m in summary["models"]}
+    kind = {m["name"]: m["kind"] for m in summary["models"]}
+    colors = {}
     names = [f["file"] for f in manifest]
     check(set(names) >= {"omega.svg", "alpha.svg",
                          "contact_ode-clearance-impact_crank_coupler.svg",
@@ -57,18 +90,73 @@ with tempfile.TemporaryDirectory() as tmp:
         root, counts = svg_points(path)
         check(root.tag == SVG + "svg", fig["file"] + " is an SVG document")
         if fig["file"] in ("omega.svg", "alpha.svg"):
-            # plot groups in order: panel a (coupler) then b (follower), one per model
-            curves = fig["curves"]
-            models = len(curves) // 2
-            for k, c in enumerate(curves):
-                body = 0 if c["column"].startswith("coupler") else 1
-                gid = "gnuplot_plot_%d%s" % (k // 2 + 1, "ab"[body])
+            # plot groups: gnuplot_plot_<k><panel>, k counting the curves of one panel
+            letters = {"coupler": "a", "follower": "b", "coupler residual": "c", "follower residual": "d"}
+            seen = {}
+            for c in fig["curves"]:
+                panel = letters[c["panel"]]
+                seen[panel] = seen.get(panel, 0) + 1
+                gid = "gnuplot_plot_%d%s" % (seen[panel], panel)
                 check(counts.get(gid) == c["points"] + 2,
                       "%s %s %s: %s SVG points vs %d plotted" % (fig["file"], c["model"], c["column"],
                                                                   counts.get(gid), c["points"]))
-            check(models >= 2, fig["file"] + " overlays several models")
+                # the curve is drawn in its model's colour
+                check(svg_stroke(root, gid) == c["color"].lower(),
+                      "%s %s: drawn in %s, manifest %s" % (fig["file"], gid, svg_stroke(root, gid), c["color"]))
+            check(seen.get("a", 0) >= 2, fig["file"] + " overlays several models")
+            # yardsticks (analytic, reference) first, so no ODE curve is hidden under them
+            kinds = [kind[c["model"]] for c in fig["curves"] if c["panel"] == "coupler"]
+            check(kinds == sorted(kinds, key=lambda k: k == "ode"),
+                  fig["file"] + " draws the yardsticks first: %s" % kinds)
+            # a clockwise drive runs right to left, and the figure says so
+            check("right to left" in svg_text(root), fig["file"] + " notes that a cw drive runs right to left")
+        if fig["file"] == "omega.svg":
+            # residual panels: model minus analytic of its own lengths, the same
+            # numbers as summary.json's omega_err_max_rad_s
+            res = [c for c in fig["curves"] if "residual" in c["panel"]]
+            check(len(res) == 2 * sum(1 for m in summary["models"] if m["kind"] == "ode"),
+                  "omega.svg has a residual curve per ODE model and body (%d)" % len(res))
+            for c in res:
+                body = c["panel"].split()[0]
+                err = model[c["model"]]["error_vs_analytic"][body]["omega_err_max_rad_s"]
+                got = max(abs(c["y_min"]), abs(c["y_max"]))
+                check(abs(got - err) <= RESIDUAL_REL_TOL * err,
+                      "%s %s residual extreme %g vs summary omega_err_max_rad_s %g" % (c["model"], body, got, err))
+        if fig["file"] == "alpha.svg":
+            ax = fig["axis"]
+            hi = max(c["y_max"] for c in fig["curves"])
+            lo = min(c["y_min"] for c in fig["curves"])
+            check(ax["y_max"] >= HEADROOM * hi and ax["y_min"] <= HEADROOM * lo,
+                  "alpha.svg leaves headroom: range %g..%g, data %g..%g" % (ax["y_min"], ax["y_max"], lo, hi))
+            decades = [t for t in ax["y_tics"] if t > 0]
+            check(max(decades) >= hi and min(t for t in ax["y_tics"]) <= lo,
+                  "alpha.svg labels the decades beyond the data: %s" % ax["y_tics"])
+            text = svg_text(root)
+            check(all(("1e%d" % round(math.log10(t))) in text for t in decades),
+                  "alpha.svg prints every decade label")
+        if fig["file"].startswith("contact_"):
+            orbit, force = fig["curves"][0], fig["curves"][1]
+            rows = list(csv.DictReader(open(os.path.join(out, orbit["csv"]))))
+            joint = orbit["column"].split(",")[0][:-len("_ecc_x_m")]
+            st = [int(float(r[joint + "_state"])) for r in rows
+                  if orbit["time_from_s"] <= float(r["time_s"]) <= orbit["time_to_s"]]
+            impacts = sum(1 for i, x in enumerate(st) if x == 1 and (i == 0 or st[i - 1] != 1))
+            check(orbit["impacts"] == impacts, "%s marks %d impacts, CSV has %d" % (fig["file"], orbit["impacts"], impacts))
+            # the orbit is a path: every sample of the window (stride 1 here)
+            check(orbit["stride"] == 1 and orbit["points"] == len(st),
+                  "%s draws the orbit as a path of all %d samples (%d)" % (fig["file"], len(st), orbit["points"]))
+            marks = svg_marks(root, "gnuplot_plot_2a")
+            check(marks == impacts + 1, "%s: %d impact marks in the SVG (+1 legend) for %d impacts"
+                  % (fig["file"], marks, impacts))
+            ref = model[force["model"]].get("error_vs_reference")
+            if ref:
+                check(len(fig["curves"]) == 3 and fig["curves"][2]["model"] == ref["reference"],
+                      "%s overlays the reference force of %s" % (fig["file"], ref["reference"]))
         for c in fig["curves"]:
-            if "y_min" not in c:
+            if "color" in c:
+                colors.setdefault(c["model"], set()).add((c["color"], c["dash"]))
+        for c in fig["curves"]:
+            if "y_min" not in c or "derived" in c:
                 continue
             rows = list(csv.DictReader(open(os.path.join(out, c["csv"]))))
             ys = [float(r[c["column"]]) for r in rows
@@ -78,6 +166,8 @@ with tempfile.TemporaryDirectory() as tmp:
             check(abs(lo - c["y_min"]) <= tol and abs(hi - c["y_max"]) <= tol,
                   "%s %s: CSV extremes %g..%g vs plotted %g..%g" % (fig["file"], c["column"], lo, hi,
                                                                    c["y_min"], c["y_max"]))
+    for m, styles in sorted(colors.items()):
+        check(len(styles) == 1, "%s has one colour and dash in every figure: %s" % (m, styles))
     report = open(os.path.join(out, "report.md")).read()
     for n in names:
         check("](%s)" % n in report, "report.md embeds " + n)
@@ -96,6 +186,62 @@ with tempfile.TemporaryDirectory() as tmp:
                         capture_output=True, text=True)
     with open(os.path.join(out3, "omega.png"), "rb") as f:
         check(f.read(8) == b"\x89PNG\r\n\x1a\n", "--figure-format png writes PNG")
+
+    # ---- study.svg ----------------------------------------------------------
+    studies = os.path.join(os.path.dirname(os.path.abspath(__file__)), "studies")
+
+    def sweep(name):
+        d = os.path.join(tmp, "study_" + name)
+        r = subprocess.run([exe, "sweep", os.path.join(studies, name + ".ini"), "--out", d],
+                           capture_output=True, text=True)
+        check(r.returncode == 0 and os.path.exists(os.path.join(d, "study.svg")),
+              "sweep %s draws study.svg: %s" % (name, r.stderr[-300:]))
+        root = ET.parse(os.path.join(d, "study.svg")).getroot()
+        return d, json.load(open(os.path.join(d, "study.figure.json"))), svg_text(root)
+
+    # curves: readable labels with units, log axis for log-spaced steps,
+    # every series drawn, stopped points marked
+    d, fig, text = sweep("tiny_stop")
+    rows = list(csv.DictReader(open(os.path.join(d, "points.csv"))))
+    not_ok = sum(1 for r in rows if r["status"] != "ok")
+    check(not_ok == 3, "tiny_stop: 3 of 6 points stop (%d)" % not_ok)
+    for p in fig["panels"]:
+        check(p["xlabel"] == "step size h [s]" and "step size h [s]" in text,
+              "study x label is readable: %r" % p["xlabel"])
+        check(p["xlog"], "log-spaced step sizes on a log axis")
+        check(p["stopped"] == not_ok, "%s marks %d stopped points (%d)" % (p["metric"], not_ok, p["stopped"]))
+        check("[" in p["ylabel"] and "_" not in p["ylabel"].split(" (")[0],
+              "metric label readable with its unit: %r" % p["ylabel"])
+        ok_rows = [r for r in rows if r["status"] == "ok" and r[p["metric"]] != ""]
+        check(sum(x["points"] for x in p["series"]) == len(ok_rows),
+              "%s: every finished point is on a drawn series" % p["metric"])
+    check("stopped (3 points" in text, "study.svg's legend names the stopped points")
+    # Monte Carlo: rows carry the sampled lengths; a CDF and a scatter per metric
+    d, fig, text = sweep("tiny_mc")
+    rows = list(csv.DictReader(open(os.path.join(d, "points.csv"))))
+    nominal = {"crank": 108.0, "coupler": 279.4, "follower": 270.5, "ground": 254.0}
+    tol = {"crank": 0.3, "coupler": 0.5, "follower": 0.5, "ground": 0.5}
+    for link in nominal:
+        col = "linkage.%s_mm" % link
+        vals = [float(r[col]) for r in rows if col in r]
+        check(len(vals) == 5 and len(set(vals)) == 5, "montecarlo rows carry %s (5 distinct)" % col)
+        # normal with 3 sigma at the limit: 5 samples inside +-4 sigma
+        check(all(abs(v - nominal[link]) <= 4.0 / 3.0 * tol[link] for v in vals),
+              "%s samples lie around the nominal %g" % (col, nominal[link]))
+    for p in fig["panels"]:
+        check(p["kind"].startswith("montecarlo") and p["samples"] == 5 and p["lengths_plotted"] == 4,
+              "montecarlo panel %s: CDF of 5 samples and 4 length scatters" % p["metric"])
+    check("sampled length minus nominal [mm]" in text and "sample index" not in text,
+          "montecarlo is drawn against the sampled lengths, not the sample index")
+    # heat map: every cell labelled with its value
+    d, fig, text = sweep("tiny_heat")
+    rows = list(csv.DictReader(open(os.path.join(d, "points.csv"))))
+    for p in fig["panels"]:
+        check(p["kind"] == "heatmap" and p["cells"] == 4, "heat map of 4 cells")
+        for r in rows:
+            label = "%.3g" % float(r[p["metric"]])
+            label = re.sub(r"e\+0?(\d)", r"e+0\1", label) if "e" in label else label
+            check(label in text, "heat map cell labelled %s" % label)
 
 print("%d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)

@@ -89,7 +89,7 @@ int fb_cmd_bench(int argc, char **argv) {
     json_object_set_new(o, "world_cfm", json_real(b->world_cfm));
     json_object_set_new(o, "status", json_string(b->status));
     json_object_set_new(o, "error", isfinite(b->error) ? json_real(b->error) : json_null());
-    json_object_set_new(o, "wall_per_rev_s", json_real(b->wall_per_rev));
+    json_object_set_new(o, "wall_per_rev_s", isfinite(b->wall_per_rev) ? json_real(b->wall_per_rev) : json_null());
     json_object_set_new(o, "pareto", json_boolean(b->pareto));
     json_array_append_new(arr, o);
   }
@@ -123,9 +123,13 @@ int fb_cmd_bench(int argc, char **argv) {
          c.name, n, wall, "model", "stepper", "h_s", "mapping", "ERP", "CFM", "error", "s/rev", "status");
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
-    printf("%-22s %-9s %7.0e %-8s %5.1f %7.0e %12.3e %12.3e %c %.40s\n", b->model, b->stepper, b->h,
-           b->model[4] == 'i' ? "-" : (b->mapping ? "tangent" : "secant"), b->world_erp, b->world_cfm,
-           b->error, b->wall_per_rev, b->pareto ? 'P' : ' ', b->status);
+    /* a run that stopped before a whole step has no cost per revolution */
+    char cost[32];
+    if (isfinite(b->wall_per_rev)) snprintf(cost, sizeof cost, "%12.3e", b->wall_per_rev);
+    else snprintf(cost, sizeof cost, "%12s", "-");
+    printf("%-22s %-9s %7.0e %-8s %5.1f %7.0e %12.3e %s %c %.40s\n", b->model, b->stepper, b->h,
+           strncmp(b->model, "ode-ideal", 9) == 0 ? "-" : (b->mapping ? "tangent" : "secant"),
+           b->world_erp, b->world_cfm, b->error, cost, b->pareto ? 'P' : ' ', b->status);
   }
   printf("\ncheapest configuration meeting each error target:\n");
   for (int q = 0; q < 2; q++)
@@ -136,9 +140,12 @@ int fb_cmd_bench(int argc, char **argv) {
         continue;
       }
       const fb_bench_row *b = &rows[i];
-      printf("  %-22s error <= %.0e: %s, h = %g s, %s, ERP %g, CFM %g: %.3e at %.3e s/rev\n", models[q],
-             targets[t], b->stepper, b->h, b->mapping ? "tangent" : "secant", b->world_erp, b->world_cfm,
-             b->error, b->wall_per_rev);
+      /* the mapping is a contact setting: an ideal model has none */
+      char mapping[32] = "";
+      if (strncmp(b->model, "ode-ideal", 9) != 0)
+        snprintf(mapping, sizeof mapping, "%s, ", b->mapping ? "tangent" : "secant");
+      printf("  %-22s error <= %.0e: %s, h = %g s, %sERP %g, CFM %g: %.3e at %.3e s/rev\n", models[q],
+             targets[t], b->stepper, b->h, mapping, b->world_erp, b->world_cfm, b->error, b->wall_per_rev);
     }
   printf("\nwrote %s/bench.csv, bench.json and bench.svg\n", dir);
   return 0;

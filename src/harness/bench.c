@@ -77,7 +77,11 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c,
                   b->error = fmax(fabs(m->ref_error.force_max_rel), fabs(m->ref_error.penetration_max_rel));
               }
               qsort(walls[q], (size_t)reps, sizeof(double), cmp_double);
-              b->wall_per_rev = walls[q][reps / 2] / k.revolutions;
+              /* per revolution actually simulated: a run that stopped early
+               * covered less; one that stopped within its first step has
+               * no cost per revolution (NaN, printed "-") */
+              const double simulated = (double)m->run.steps * m->run.h * k.crank_speed / (2.0 * M_PI);
+              b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
               b->repeats = reps;
             }
             fb_run_free(&r);

@@ -171,7 +171,8 @@ static int handler(void *user, const char *section, const char *key, const char 
 
 /* overrides of point i: fixed sets, then one per axis */
 static fb_status point_overrides(const fb_study *s, size_t i, char sets[][256], int *n,
-                                 char axis_text[][64], fb_diag *diag) {
+                                 char axis_text[][64], char sampled_mm[FB_LINK_COUNT][32],
+                                 fb_diag *diag) {
   *n = 0;
   for (int k = 0; k < s->nsets; k++) snprintf(sets[(*n)++], 256, "%s", s->sets[k]);
   size_t rest = i;
@@ -201,8 +202,9 @@ static fb_status point_overrides(const fb_study *s, size_t i, char sets[][256], 
     gsl_rng_set(r, ax->seed * 1000003ul + (unsigned long)j);
     for (int k = 0; k < FB_LINK_COUNT; k++) {
       double x = base.distribution ? gsl_ran_flat(r, -1.0, 1.0) : gsl_ran_gaussian(r, 1.0 / 3.0);
-      snprintf(sets[(*n)++], 256, "linkage.%s_mm=%.17g", fb_link_name(k),
-               (base.nominal.length[k] + x * base.plus_minus[k]) / FB_M_PER_MM);
+      const double mm = (base.nominal.length[k] + x * base.plus_minus[k]) / FB_M_PER_MM;
+      snprintf(sets[(*n)++], 256, "linkage.%s_mm=%.17g", fb_link_name(k), mm);
+      if (sampled_mm) snprintf(sampled_mm[k], 32, "%.10g", mm);
     }
     gsl_rng_free(r);
     snprintf(sets[(*n)++], 256, "tolerance.stackup=nominal");
@@ -246,7 +248,7 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
   for (int k = 0; k < 2; k++) {
     char sets[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8][256], axt[FB_STUDY_MAX_AXES][64];
     int n;
-    fb_status st = point_overrides(s, probe[k], sets, &n, axt, diag);
+    fb_status st = point_overrides(s, probe[k], sets, &n, axt, NULL, diag);
     if (st != FB_OK) return st;
     const char *ov[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8];
     for (int q = 0; q < n; q++) ov[q] = sets[q];
@@ -280,9 +282,18 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
   json_object_set_new(row, "of", json_integer((json_int_t)s->points));
   char status[1200] = "ok";
   fb_diag inner;
-  fb_status st = point_overrides(s, i, sets, &n, axt, &inner);
+  char sampled[FB_LINK_COUNT][32] = {{0}};
+  fb_status st = point_overrides(s, i, sets, &n, axt, sampled, &inner);
   for (int a = 0; a < s->naxes; a++)
     json_object_set_new(axes, s->axis[a].key, json_string(st == FB_OK ? axt[a] : "?"));
+  /* a Monte Carlo point also records the lengths it drew (the nominal lengths
+   * of its run, mm as in the case keys), so spikes can be set against them */
+  for (int k = 0; k < FB_LINK_COUNT; k++)
+    if (sampled[k][0]) {
+      char key[64];
+      snprintf(key, sizeof key, "linkage.%s_mm", fb_link_name(k));
+      json_object_set_new(axes, key, json_string(sampled[k]));
+    }
   if (st != FB_OK) {
     snprintf(status, sizeof status, "case: %s", inner.msg);
   } else {

@@ -18,6 +18,9 @@ extern char **environ;
 #include "bench.h"
 #include "fileio.h"
 #include "study.h"
+#include "casefile.h"
+#include "linkage.h"
+#include "units.h"
 #include "report.h"
 
 typedef struct {
@@ -28,6 +31,9 @@ typedef struct {
   char tmp[4400];  /* written by gnuplot (a fixed-form name in dir), renamed on success */
   char log[4400];
 } plot;
+
+/* the orbit of a contact figure is drawn with every sample up to this many */
+#define FB_ORBIT_MAX_POINTS 20000
 
 static const char *ext(fb_figure_format f) { return f == FB_FIGURE_PNG ? "png" : "svg"; }
 
@@ -189,18 +195,110 @@ static json_t *curve(const char *model, const char *column, const char *csv, int
   return o;
 }
 
-/* one figure with coupler (top) and follower (bottom) panels of omega or alpha */
+/* ---- one style per model, the same in every figure ------------------------ */
+
+typedef struct {
+  const char *name;  /* model name */
+  const char *color; /* '#rrggbb' */
+  int dash;          /* gnuplot dash type: 1 solid, 2 dashed, 3 dotted, 4 dash-dot */
+  double width;      /* line width */
+} model_style;
+
+/* docs/figures.md lists the same table */
+static const model_style styles[] = {
+    {"analytic", "#000000", 1, 2.6},
+    {"analytic-stackup", "#7f7f7f", 2, 2.0},
+    {"ode-ideal-nominal", "#1f77b4", 1, 1.3},
+    {"ode-ideal-stackup", "#6baed6", 4, 1.3},
+    {"ode-clearance-restitution", "#2ca02c", 1, 1.3},
+    {"ode-clearance-impact", "#d62728", 1, 1.3},
+    {"ode-clearance-faceted", "#ff7f0e", 3, 1.5},
+    {"reference", "#9467bd", 2, 1.8},
+    {"reference-restitution", "#8c8c00", 2, 1.8},
+};
+
+/* models not in the table: a colour from this list chosen by a hash of the
+ * name, so it is the same in every figure of every run */
+static const char *const fallback_colors[] = {"#17becf", "#e377c2", "#8c564b", "#bcbd22",
+                                              "#393b79", "#637939", "#843c39", "#7b4173"};
+
+static model_style style_of(const char *name) {
+  for (size_t k = 0; k < sizeof styles / sizeof styles[0]; k++)
+    if (strcmp(styles[k].name, name) == 0) return styles[k];
+  unsigned long h = 2166136261ul; /* FNV-1a */
+  for (const unsigned char *c = (const unsigned char *)name; *c; c++) h = (h ^ *c) * 16777619ul;
+  const size_t nf = sizeof fallback_colors / sizeof fallback_colors[0];
+  model_style st = {name, fallback_colors[h % nf], 1 + (int)((h / nf) % 2) * 4, 1.3};
+  return st;
+}
+
+/* "lc rgb '#rrggbb' dt N lw W" of a model */
+static const char *style_spec(const char *model, char *out, size_t size) {
+  const model_style st = style_of(model);
+  snprintf(out, size, "lc rgb '%s' dt %d lw %.1f", st.color, st.dash, st.width);
+  return out;
+}
+
+/* records a curve's style in the manifest */
+static void curve_style(json_t *c, const char *model) {
+  const model_style st = style_of(model);
+  json_object_set_new(c, "color", json_string(st.color));
+  json_object_set_new(c, "dash", json_integer(st.dash));
+}
+
+/* yardsticks (analytic, reference) are drawn first, underneath the ODE models */
+static int draw_order(const fb_run *r, int order[]) {
+  int n = 0;
+  for (int pass = 0; pass < 2; pass++)
+    for (int i = 0; i < r->n; i++)
+      if ((r->model[i].run.kind != FB_KIND_ODE) == (pass == 0)) order[n++] = i;
+  return n;
+}
+
+/* the symlog transform of alpha.svg: linear within +-C, logarithmic beyond */
+#define SYMLOG_C 1000.0
+
+/* the decade at or above |y| * headroom, at least SYMLOG_C */
+static double decade_above(double y, double headroom) {
+  const double a = fabs(y) * headroom;
+  return a <= SYMLOG_C ? SYMLOG_C : pow(10.0, ceil(log10(a) - 1e-12));
+}
+
+/* residual of model i against the analytic solution of its own lengths at
+ * the same instants: resid[k] = y[k] - exact(t[k]) (body 0 coupler, 1
+ * follower); NaN where the linkage cannot be solved */
+static void residual(const fb_run *r, int i, int body, double *resid) {
+  const fb_series *s = &r->model[i].run.series;
+  const double w = r->c.direction * r->c.crank_speed;
+  for (size_t k = 0; k < s->n; k++) {
+    fb_linkage_state x;
+    const double y = body ? s->follower_omega[k] : s->coupler_omega[k];
+    if (fb_linkage_solve(&x, &r->model[i].run.lengths, r->c.branch, r->c.crank_angle0 + w * s->t[k], w,
+                         0.0, NULL) != FB_OK)
+      resid[k] = NAN;
+    else
+      resid[k] = y - (body ? x.follower_omega : x.coupler_omega);
+  }
+}
+
+/* omega.svg: coupler and follower omega (top) and each ODE model's residual
+ * against the analytic solution of its lengths (bottom); alpha.svg: coupler
+ * and follower alpha on a symlog axis */
 static fb_status kin_figure(const fb_run *r, const char *dir, fb_figure_format fmt, int alpha,
                             json_t *figs, fb_diag *diag) {
   const char *name = alpha ? "alpha" : "omega";
   plot pl;
-  fb_status st = plot_open(&pl, dir, name, fmt, 1100, 850, diag);
+  fb_status st = plot_open(&pl, dir, name, fmt, alpha ? 1100 : 1400, alpha ? 850 : 900, diag);
   if (st != FB_OK) return st;
   const double period = 2.0 * M_PI / r->c.crank_speed;
   const double t0 = r->t_window, t1 = r->t_window + period;
   json_t *curves = json_array();
-  int pts[FB_MAX_MODELS][2];
-  for (int i = 0; i < r->n; i++) {
+  int order[FB_MAX_MODELS];
+  const int nm = draw_order(r, order);
+  double amax = 0.0, amin = 0.0;
+  int has_resid[FB_MAX_MODELS] = {0};
+  for (int q = 0; q < nm; q++) {
+    const int i = order[q];
     const fb_series *s = &r->model[i].run.series;
     for (int b = 0; b < 2; b++) {
       char dname[32];
@@ -208,49 +306,126 @@ static fb_status kin_figure(const fb_run *r, const char *dir, fb_figure_format f
       const double *y = alpha ? (b ? s->follower_alpha : s->coupler_alpha)
                               : (b ? s->follower_omega : s->coupler_omega);
       double lo = NAN, hi = NAN;
-      pts[i][b] = datablock(pl.p, dname, s, y, t0, t1, &lo, &hi);
+      const int pts = datablock(pl.p, dname, s, y, t0, t1, &lo, &hi);
+      if (pts > 0) {
+        amax = fmax(amax, hi);
+        amin = fmin(amin, lo);
+      }
       char csv[96], col[48];
       snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
       snprintf(col, sizeof col, "%s_%s", b ? "follower" : "coupler", alpha ? "alpha_rad_s2" : "omega_rad_s");
-      json_array_append_new(curves, curve(r->model[i].run.name, col, csv, pts[i][b], lo, hi, t0, t1));
+      json_t *c = curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
+      json_object_set_new(c, "panel", json_string(b ? "follower" : "coupler"));
+      curve_style(c, r->model[i].run.name);
+      json_array_append_new(curves, c);
     }
   }
+  /* residual panels: ODE models only (the analytic ones are the yardstick) */
+  if (!alpha)
+    for (int q = 0; q < nm; q++) {
+      const int i = order[q];
+      const fb_series *s = &r->model[i].run.series;
+      if (r->model[i].run.kind != FB_KIND_ODE || s->n == 0) continue;
+      double *res = malloc(s->n * sizeof *res);
+      if (!res) continue;
+      has_resid[i] = 1;
+      for (int b = 0; b < 2; b++) {
+        residual(r, i, b, res);
+        char dname[32], col[64], csv[96];
+        snprintf(dname, sizeof dname, "r%d_%d", i, b);
+        double lo = NAN, hi = NAN;
+        const int pts = datablock(pl.p, dname, s, res, t0, t1, &lo, &hi);
+        snprintf(col, sizeof col, "%s_omega_residual_rad_s", b ? "follower" : "coupler");
+        snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
+        json_t *c = curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
+        json_object_set_new(c, "panel", json_string(b ? "follower residual" : "coupler residual"));
+        json_object_set_new(c, "derived", json_string("model minus the analytic solution of its own "
+                                                      "lengths at the same instants"));
+        curve_style(c, r->model[i].run.name);
+        json_array_append_new(curves, c);
+      }
+      free(res);
+    }
   char en[160];
-  fprintf(pl.p, "set multiplot layout 2,1 title '%s: %s against crank angle (revolution 2, %.0f rpm %s)'\n",
-          esc(r->c.name, en, sizeof en), alpha ? "angular acceleration" : "angular velocity",
-          r->c.crank_speed * 60.0 / (2.0 * M_PI), r->c.direction > 0 ? "ccw" : "cw");
-  fprintf(pl.p, "set xrange [0:360]\nset xtics 30\nset xlabel 'crank angle [deg]'\n");
+  const double rpm = r->c.crank_speed * 60.0 / (2.0 * M_PI);
+  /* a clockwise drive decreases the crank angle: its motion runs right to left */
+  const char *dirnote = r->c.direction > 0 ? "ccw drive: motion runs left to right"
+                                           : "cw drive: crank angle decreases, motion runs right to left";
+  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against crank angle (revolution 2, %.0f rpm; %s)'\n",
+          alpha ? 2 : 2, alpha ? 1 : 2, esc(r->c.name, en, sizeof en),
+          alpha ? "angular acceleration" : "angular velocity", rpm, dirnote);
+  fprintf(pl.p, "set xrange [0:360]\nset xtics 30\nset xlabel 'crank angle [deg] (counter-clockwise from +x)'\n");
+  json_t *axis = json_object();
   if (alpha) {
-    /* symlog: linear within +-1000 rad/s^2, logarithmic beyond */
-    fprintf(pl.p, "C = 1000.0\nset nonlinear y via sgn(y)*log10(1+abs(y)/C) inverse "
-                  "sgn(y)*C*(10**abs(y)-1)\n"
-                  "set ytics ('-1e5' -1e5, '-3e4' -3e4, '-1e4' -1e4, '-3e3' -3e3, '-1e3' -1e3, "
-                  "'0' 0, '1e3' 1e3, '3e3' 3e3, '1e4' 1e4, '3e4' 3e4, '1e5' 1e5)\n");
-  }
-  for (int b = 0; b < 2; b++) {
-    fprintf(pl.p, "set title '%s'\nset ylabel '%s %s [%s]'\n", b ? "follower" : "coupler",
-            b ? "follower" : "coupler", alpha ? "alpha" : "omega", alpha ? "rad/s^2 (symlog)" : "rad/s");
-    fprintf(pl.p, "plot ");
-    for (int i = 0; i < r->n; i++) {
-      const int an = r->model[i].run.kind == FB_KIND_ANALYTIC;
-      char mn[160];
-      fprintf(pl.p, "%s$m%d_%d using 1:2 with lines lw %s %s title '%s'", i ? ", " : "", i, b,
-              an ? "2.5" : "1.2", an ? "lc rgb 'black' dt 2" : "",
-              esc(r->model[i].run.name, mn, sizeof mn));
+    /* symlog: linear within +-C, logarithmic beyond; every decade that holds
+     * data labelled; 15 % headroom beyond the largest spike */
+    const double top = decade_above(amax, 1.15), bottom = -decade_above(amin, 1.15);
+    fprintf(pl.p, "C = %.1f\nset nonlinear y via sgn(y)*log10(1+abs(y)/C) inverse "
+                  "sgn(y)*C*(10**abs(y)-1)\nset yrange [%.6g:%.6g]\nset ytics (",
+            SYMLOG_C, bottom, top);
+    json_t *tics = json_array();
+    int first = 1;
+    for (double d = -bottom; d >= SYMLOG_C * 0.999; d /= 10.0) {
+      fprintf(pl.p, "%s'-1e%d' %.6g", first ? "" : ", ", (int)lround(log10(d)), -d);
+      json_array_append_new(tics, json_real(-d));
+      first = 0;
     }
+    fprintf(pl.p, ", '0' 0");
+    json_array_append_new(tics, json_real(0.0));
+    for (double d = SYMLOG_C; d <= top * 1.001; d *= 10.0) {
+      fprintf(pl.p, ", '1e%d' %.6g", (int)lround(log10(d)), d);
+      json_array_append_new(tics, json_real(d));
+    }
+    fprintf(pl.p, ")\n");
+    json_object_set_new(axis, "y_min", json_real(bottom));
+    json_object_set_new(axis, "y_max", json_real(top));
+    json_object_set_new(axis, "y_tics", tics);
+    json_object_set_new(axis, "scale", json_string("symlog, linear within +-1000 rad/s^2"));
+  }
+  json_object_set_new(axis, "direction", json_string(r->c.direction > 0 ? "ccw" : "cw"));
+  json_object_set_new(axis, "note", json_string(dirnote));
+  for (int b = 0; b < (alpha ? 2 : 4); b++) {
+    const int body = b % 2, resid = b >= 2;
+    if (resid) {
+      fprintf(pl.p, "set title '%s: model minus analytic (same link lengths, same instants)'\n"
+                    "set ylabel '%s omega residual [rad/s]'\nset autoscale y\n",
+              body ? "follower" : "coupler", body ? "follower" : "coupler");
+    } else {
+      fprintf(pl.p, "set title '%s'\nset ylabel '%s %s [%s]'\n", body ? "follower" : "coupler",
+              body ? "follower" : "coupler", alpha ? "alpha" : "omega",
+              alpha ? "rad/s^2 (symlog)" : "rad/s");
+    }
+    fprintf(pl.p, "plot ");
+    int any = 0;
+    for (int q = 0; q < nm; q++) {
+      const int i = order[q];
+      if (resid && !has_resid[i]) continue;
+      char mn[160], sp[96];
+      fprintf(pl.p, "%s$%c%d_%d using 1:2 with lines %s title '%s'", any ? ", " : "", resid ? 'r' : 'm', i,
+              body, style_spec(r->model[i].run.name, sp, sizeof sp), esc(r->model[i].run.name, mn, sizeof mn));
+      any = 1;
+    }
+    if (!any) fprintf(pl.p, "0 with lines lc rgb '#888888' title 'no ODE model in this run'");
     fprintf(pl.p, "\n");
   }
   fprintf(pl.p, "unset multiplot\n");
   st = plot_close(&pl, diag);
   char file[128];
   snprintf(file, sizeof file, "%s.%s", name, ext(fmt));
-  if (st == FB_OK)
+  if (st == FB_OK) {
     manifest_add(figs, file, alpha ? "angular acceleration against crank angle"
-                                   : "angular velocity against crank angle", curves);
-  else
+                                   : "angular velocity against crank angle, and residuals", curves);
+    json_object_set_new(json_array_get(figs, json_array_size(figs) - 1), "axis", axis);
+  } else {
     json_decref(curves);
+    json_decref(axis);
+  }
   return st;
 }
+
+/* state colours of the orbit (as gnuplot rgb integers and as text) */
+static const unsigned state_rgb[3] = {0x2a9d8f, 0xe63946, 0x1d3557};
+static const char *const state_name[3] = {"free flight", "impact", "continuous contact"};
 
 /* pin orbit and contact force of one clearance joint of one model */
 static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
@@ -264,49 +439,77 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
     if (*p == '-') *p = '_';
   snprintf(name, sizeof name, "contact_%s_%s", m->run.name, joint);
   plot pl;
-  fb_status st = plot_open(&pl, dir, name, fmt, 1200, 560, diag);
+  fb_status st = plot_open(&pl, dir, name, fmt, 1300, 600, diag);
   if (st != FB_OK) return st;
   const double period = 2.0 * M_PI / r->c.crank_speed;
   const double t0 = r->t_window, t1 = r->t_window + period;
-  /* orbit in um, one block per contact state, decimated by stride */
+  /* the orbit as one path in um, each segment coloured by the state at its
+   * start; a sample is skipped only beyond FB_ORBIT_MAX_POINTS and never at
+   * a change of state, so no impact is under-drawn */
   size_t i0 = 0;
   while (i0 < s->n && s->t[i0] < t0) i0++;
   size_t i1 = i0;
   while (i1 < s->n && s->t[i1] <= t1) i1++;
-  const size_t stride = (i1 - i0) / FB_FIGURE_MAX_POINTS + 1;
-  int orbit_pts = 0, in_state[3] = {0, 0, 0};
-  for (int state = 0; state < 3; state++) {
-    fprintf(pl.p, "$orbit%d << EOD\n", state);
-    for (size_t i = i0; i < i1; i += stride)
-      if ((int)s->contact[j][FB_C_STATE][i] == state) {
-        fprintf(pl.p, "%.6f %.6f\n", s->contact[j][FB_C_EX][i] * 1e6, s->contact[j][FB_C_EY][i] * 1e6);
-        orbit_pts++;
-        in_state[state]++;
-      }
-    /* an empty block would draw nothing and warn: one point off the axes */
-    if (!in_state[state]) fprintf(pl.p, "1e9 1e9\n");
-    fprintf(pl.p, "EOD\n");
+  const size_t stride = (i1 - i0) / FB_ORBIT_MAX_POINTS + 1;
+  const double *ex = s->contact[j][FB_C_EX], *ey = s->contact[j][FB_C_EY], *state = s->contact[j][FB_C_STATE];
+  int orbit_pts = 0, impacts = 0;
+  fprintf(pl.p, "$orbit << EOD\n");
+  for (size_t i = i0; i < i1; i++) {
+    const int changes = i > i0 && state[i] != state[i - 1];
+    if ((i - i0) % stride != 0 && !changes && i + 1 != i1) continue;
+    const int k = (int)state[i] >= 0 && (int)state[i] < 3 ? (int)state[i] : 0;
+    fprintf(pl.p, "%.6f %.6f %u\n", ex[i] * 1e6, ey[i] * 1e6, state_rgb[k]);
+    orbit_pts++;
   }
+  fprintf(pl.p, "EOD\n$impacts << EOD\n");
+  /* an impact: the state turns to 1 from anything else (or starts the window at 1) */
+  for (size_t i = i0; i < i1; i++)
+    if ((int)state[i] == FB_STATE_IMPACT && (i == i0 || (int)state[i - 1] != FB_STATE_IMPACT)) {
+      fprintf(pl.p, "%.6f %.6f\n", ex[i] * 1e6, ey[i] * 1e6);
+      impacts++;
+    }
+  if (!impacts) fprintf(pl.p, "NaN NaN\n");
+  fprintf(pl.p, "EOD\n");
   double flo = NAN, fhi = NAN;
   const int force_pts = datablock(pl.p, "force", s, s->contact[j][FB_C_FORCE], t0, t1, &flo, &fhi);
+  /* the reference dynamics of the same law, when the run has it, overlaid */
+  int ri = -1;
+  if (m->has_ref_error)
+    for (int k = 0; k < r->n; k++)
+      if (strcmp(r->model[k].run.name, m->ref_name) == 0 &&
+          (r->model[k].run.series.contact_mask & (1 << j)))
+        ri = k;
+  double rlo = NAN, rhi = NAN;
+  int ref_pts = 0;
+  if (ri >= 0)
+    ref_pts = datablock(pl.p, "rforce", &r->model[ri].run.series, r->model[ri].run.series.contact[j][FB_C_FORCE],
+                        t0, t1, &rlo, &rhi);
   const double c_um = r->c.radial_clearance * 1e6;
-  char mn[160];
+  char mn[160], rn[160], sp[96];
   fprintf(pl.p, "set multiplot layout 1,2 title '%s, %s joint: pin in hole (revolution 2)'\n",
           esc(m->run.name, mn, sizeof mn), fb_joint_name(j)); /* joint names have no underscore */
-  fprintf(pl.p, "set size ratio -1\nset title 'pin centre relative to hole centre'\n"
+  fprintf(pl.p, "set size ratio -1\nset title 'pin centre relative to hole centre (path)'\n"
                 "set xlabel 'eccentricity x [um]'\nset ylabel 'eccentricity y [um]'\n"
                 "set object 1 circle at 0,0 size %.6f fs empty border lc rgb '#888888' lw 1.5\n"
                 "set xrange [%.4f:%.4f]\nset yrange [%.4f:%.4f]\nset key bottom right box\n",
           c_um, -1.35 * c_um, 1.35 * c_um, -1.35 * c_um, 1.35 * c_um);
-  fprintf(pl.p, "plot $orbit0 using 1:2 with points pt 7 ps 0.3 lc rgb '#2a9d8f' title 'free flight', "
-                "$orbit1 using 1:2 with points pt 7 ps 0.4 lc rgb '#e63946' title 'impact', "
-                "$orbit2 using 1:2 with points pt 7 ps 0.3 lc rgb '#1d3557' title 'continuous contact', "
-                "NaN with lines lc rgb '#888888' title 'clearance circle'\n");
+  fprintf(pl.p, "plot $orbit using 1:2:3 with lines lw 1.2 lc rgb variable notitle, "
+                "$impacts using 1:2 with points pt 2 ps 1.4 lw 1.5 lc rgb 'black' title 'impact start (%d)'",
+          impacts);
+  for (int k = 0; k < 3; k++)
+    fprintf(pl.p, ", NaN with lines lw 2 lc rgb '#%06x' title '%s'", state_rgb[k], state_name[k]);
+  fprintf(pl.p, ", NaN with lines lc rgb '#888888' title 'clearance circle'\n");
   fprintf(pl.p, "unset object 1\nset size noratio\nset autoscale\nset key top right box\n"
                 "set title 'contact force'\nset xrange [0:360]\nset xtics 60\n"
-                "set xlabel 'crank angle [deg]'\nset ylabel 'contact force [N]'\n"
-                "plot $force using 1:2 with lines lc rgb '#e63946' title 'force on the pin'\n");
-  fprintf(pl.p, "unset multiplot\n");
+                "set xlabel 'crank angle [deg]'\nset ylabel 'contact force on the pin [N]'\n"
+                "plot $force using 1:2 with lines %s title '%s'",
+          style_spec(m->run.name, sp, sizeof sp), mn);
+  if (ri >= 0) {
+    char sr[96];
+    fprintf(pl.p, ", $rforce using 1:2 with lines %s title '%s: reference dynamics'",
+            style_spec(r->model[ri].run.name, sr, sizeof sr), esc(r->model[ri].run.name, rn, sizeof rn));
+  }
+  fprintf(pl.p, "\nunset multiplot\n");
   st = plot_close(&pl, diag);
   snprintf(file, fsize, "%s.%s", name, ext(fmt));
   if (st == FB_OK) {
@@ -314,9 +517,22 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
     snprintf(csv, sizeof csv, "%s.csv", m->run.name);
     json_t *curves = json_array();
     snprintf(col, sizeof col, "%s_ecc_x_m,%s_ecc_y_m", joint, joint);
-    json_array_append_new(curves, curve(m->run.name, col, csv, orbit_pts, NAN, NAN, t0, t1));
+    json_t *c = curve(m->run.name, col, csv, orbit_pts, NAN, NAN, t0, t1);
+    json_object_set_new(c, "impacts", json_integer(impacts));
+    json_object_set_new(c, "stride", json_integer((json_int_t)stride));
+    json_object_set_new(c, "time_from_s", json_real(t0));
+    json_object_set_new(c, "time_to_s", json_real(t1));
+    json_array_append_new(curves, c);
     snprintf(col, sizeof col, "%s_force_n", joint);
-    json_array_append_new(curves, curve(m->run.name, col, csv, force_pts, flo, fhi, t0, t1));
+    c = curve(m->run.name, col, csv, force_pts, flo, fhi, t0, t1);
+    curve_style(c, m->run.name);
+    json_array_append_new(curves, c);
+    if (ri >= 0) {
+      snprintf(csv, sizeof csv, "%s.csv", r->model[ri].run.name);
+      c = curve(r->model[ri].run.name, col, csv, ref_pts, rlo, rhi, t0, t1);
+      curve_style(c, r->model[ri].run.name);
+      json_array_append_new(curves, c);
+    }
     manifest_add(figs, file, "pin orbit and contact force", curves);
   }
   return st;
@@ -443,125 +659,510 @@ fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *c
   plot pl;
   fb_status st = plot_open(&pl, dir, name, fmt, 1000, 700, diag);
   if (st != FB_OK) return st;
-  const char *models[2] = {"ode-ideal-stackup", "ode-clearance-impact"};
-  for (int q = 0; q < 2; q++) {
-    const fb_bench_row *front[256];
+  /* the models of the grid, in order of first appearance */
+  const char *models[8];
+  int nm = 0;
+  for (int i = 0; i < n; i++) {
+    int seen = 0;
+    for (int q = 0; q < nm; q++) seen |= strcmp(models[q], rows[i].model) == 0;
+    if (!seen && nm < 8) models[nm++] = rows[i].model;
+  }
+  /* only measured rows are drawn: a run that stopped (NaN error) or whose
+   * cost is not a number has no place on the chart (no placeholder point) */
+  json_t *curves = json_array();
+  int drawn[8] = {0}, fronts[8] = {0};
+  for (int q = 0; q < nm; q++) {
+    const fb_bench_row *front[FB_BENCH_MAX_ROWS];
     int nf = 0;
+    double x0 = NAN, x1 = NAN, y0 = NAN, y1 = NAN;
     fprintf(pl.p, "$all%d << EOD\n", q);
-    for (int i = 0; i < n; i++)
-      if (strcmp(rows[i].model, models[q]) == 0 && isfinite(rows[i].error)) {
-        fprintf(pl.p, "%.9g %.9g\n", rows[i].wall_per_rev, fmax(rows[i].error, 1e-12));
-        if (rows[i].pareto && nf < 256) front[nf++] = &rows[i];
-      }
-    fprintf(pl.p, "1e9 1e9\nEOD\n$front%d << EOD\n", q);
+    for (int i = 0; i < n; i++) {
+      const fb_bench_row *b = &rows[i];
+      if (strcmp(b->model, models[q]) != 0 || !isfinite(b->error) || !(b->wall_per_rev > 0.0) ||
+          !isfinite(b->wall_per_rev))
+        continue;
+      /* an exact result (error 0) sits at the axis floor of 1e-12 */
+      const double y = fmax(b->error, 1e-12);
+      fprintf(pl.p, "%.9g %.9g\n", b->wall_per_rev, y);
+      x0 = drawn[q] ? fmin(x0, b->wall_per_rev) : b->wall_per_rev;
+      x1 = drawn[q] ? fmax(x1, b->wall_per_rev) : b->wall_per_rev;
+      y0 = drawn[q] ? fmin(y0, y) : y;
+      y1 = drawn[q] ? fmax(y1, y) : y;
+      drawn[q]++;
+      if (b->pareto && nf < FB_BENCH_MAX_ROWS) front[nf++] = b;
+    }
+    fprintf(pl.p, "EOD\n$front%d << EOD\n", q);
     qsort(front, (size_t)nf, sizeof front[0], by_wall);
     for (int i = 0; i < nf; i++)
       fprintf(pl.p, "%.9g %.9g\n", front[i]->wall_per_rev, fmax(front[i]->error, 1e-12));
-    fprintf(pl.p, "1e9 1e9\nEOD\n");
+    fprintf(pl.p, "EOD\n");
+    fronts[q] = nf;
+    json_t *c = json_pack("{s:s,s:i,s:i}", "model", models[q], "points", drawn[q], "pareto_points", nf);
+    if (drawn[q]) {
+      json_object_set_new(c, "x_min", json_real(x0));
+      json_object_set_new(c, "x_max", json_real(x1));
+      json_object_set_new(c, "y_min", json_real(y0));
+      json_object_set_new(c, "y_max", json_real(y1));
+    }
+    curve_style(c, models[q]);
+    json_array_append_new(curves, c);
   }
   char en[160];
   fprintf(pl.p, "set title '%s: error against cost (fourbar bench)'\nset logscale xy\n"
                 "set format x '10^{%%L}'\nset format y '10^{%%L}'\n"
                 "set xlabel 'wall time per simulated revolution [s]'\n"
-                "set ylabel 'error against the exact yardstick [-]'\nset key top right box\n"
-                "set xrange [*:*] noextend\nset yrange [*:*] noextend\n"
-                "plot $all0 using 1:2 with points pt 7 ps 0.8 lc rgb '#1d3557' title 'ideal stack-up "
-                "(omega peaks vs analytic)', $front0 using 1:2 with linespoints pt 7 lw 2 lc rgb "
-                "'#1d3557' title 'its Pareto front', $all1 using 1:2 with points pt 5 ps 0.8 lc rgb "
-                "'#e63946' title 'clearance impact (force, penetration vs reference)', $front1 using "
-                "1:2 with linespoints pt 5 lw 2 lc rgb '#e63946' title 'its Pareto front'\n",
+                "set ylabel 'error against the exact yardstick [-]'\nset key outside right top box\n"
+                "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\n",
           esc(case_name, en, sizeof en));
-  return plot_close(&pl, diag);
+  int any = 0;
+  fprintf(pl.p, "plot ");
+  for (int q = 0; q < nm; q++) {
+    if (!drawn[q]) continue;
+    const model_style ms = style_of(models[q]);
+    const char *what = strncmp(models[q], "ode-ideal", 9) == 0 ? "omega peaks vs analytic"
+                                                                 : "force, penetration vs reference";
+    char mn[160];
+    esc(models[q], mn, sizeof mn);
+    fprintf(pl.p, "%s$all%d using 1:2 with points pt 7 ps 0.8 lc rgb '%s' title '%s (%s)'", any ? ", " : "", q,
+            ms.color, mn, what);
+    if (fronts[q])
+      fprintf(pl.p, ", $front%d using 1:2 with linespoints pt 7 lw 2 dt %d lc rgb '%s' title '%s: Pareto front'",
+              q, ms.dash, ms.color, mn);
+    any = 1;
+  }
+  if (!any) fprintf(pl.p, "1 with lines lc rgb '#888888' title 'no configuration finished'");
+  fprintf(pl.p, "\n");
+  st = plot_close(&pl, diag);
+  if (st == FB_OK) {
+    /* the manifest beside it: what was drawn, for the tests and the reader */
+    char mpath[4400], file[300];
+    snprintf(mpath, sizeof mpath, "%s/%s.figure.json", dir, name);
+    snprintf(file, sizeof file, "%s.%s", name, ext(fmt));
+    json_t *figs = json_array();
+    manifest_add(figs, file, "error against cost", curves);
+    json_t *o = json_pack("{s:o}", "figures", figs);
+    st = fb_report_write_json(mpath, o, diag);
+    json_decref(o);
+  } else {
+    json_decref(curves);
+  }
+  return st;
 }
 
-/* the metric columns of a study CSV header, after index, axes and status */
-static int csv_metrics(const char *csv, int naxes, char names[][128], int max) {
-  FILE *f = fopen(csv, "r");
+/* ---- study.svg ------------------------------------------------------------- */
+
+/* points.csv as text cells: header names, then rows (status unquoted) */
+typedef struct {
+  int ncol;
+  char **head;     /* (ncol) */
+  size_t nrow;
+  char ***cell;    /* (nrow x ncol) */
+  int status_col;  /* index of "status" */
+} study_csv;
+
+static void csv_free(study_csv *t) {
+  for (size_t r = 0; r < t->nrow; r++) {
+    for (int c = 0; c < t->ncol; c++) free(t->cell[r][c]);
+    free(t->cell[r]);
+  }
+  for (int c = 0; c < t->ncol; c++) free(t->head[c]);
+  free(t->cell);
+  free(t->head);
+  memset(t, 0, sizeof *t);
+}
+
+/* splits one CSV line of fb_study_write_csv (quotes only around status) */
+static int csv_split(const char *line, char **out, int max) {
+  int n = 0;
+  const char *p = line;
+  while (n < max) {
+    char buf[2048];
+    size_t k = 0;
+    if (*p == '"') {
+      for (p++; *p && !(*p == '"' && p[1] != '"'); p++) {
+        if (*p == '"') p++;
+        if (k + 1 < sizeof buf) buf[k++] = *p;
+      }
+      if (*p == '"') p++;
+    } else {
+      for (; *p && *p != ',' && *p != '\n' && *p != '\r'; p++)
+        if (k + 1 < sizeof buf) buf[k++] = *p;
+    }
+    buf[k] = '\0';
+    out[n++] = strdup(buf);
+    if (*p != ',') break;
+    p++;
+  }
+  return n;
+}
+
+#define STUDY_FIG_MAX_COLS 256
+#define STUDY_FIG_MAX_ROWS 200000 /* a larger grid draws its first rows */
+
+static int csv_read(study_csv *t, const char *path) {
+  memset(t, 0, sizeof *t);
+  t->status_col = -1;
+  FILE *f = fopen(path, "r");
   if (!f) return 0;
   static char line[1 << 16];
-  int n = 0;
+  char *cells[STUDY_FIG_MAX_COLS];
   if (fgets(line, sizeof line, f)) {
-    line[strcspn(line, "\r\n")] = '\0';
-    int col = 0;
-    char *save = NULL;
-    for (char *t = strtok_r(line, ",", &save); t && n < max; t = strtok_r(NULL, ",", &save), col++)
-      if (col >= naxes + 2) snprintf(names[n++], 128, "%s", t);
+    t->ncol = csv_split(line, cells, STUDY_FIG_MAX_COLS);
+    t->head = malloc((size_t)t->ncol * sizeof *t->head);
+    for (int c = 0; c < t->ncol; c++) {
+      t->head[c] = cells[c];
+      if (strcmp(cells[c], "status") == 0) t->status_col = c;
+    }
+  }
+  size_t cap = 0;
+  while (t->ncol && t->nrow < STUDY_FIG_MAX_ROWS && fgets(line, sizeof line, f)) {
+    int n = csv_split(line, cells, STUDY_FIG_MAX_COLS);
+    if (t->nrow == cap) {
+      cap = cap ? 2 * cap : 64;
+      t->cell = realloc(t->cell, cap * sizeof *t->cell);
+    }
+    char **row = calloc((size_t)t->ncol, sizeof *row);
+    for (int c = 0; c < t->ncol; c++) row[c] = c < n ? cells[c] : strdup("");
+    for (int c = t->ncol; c < n; c++) free(cells[c]);
+    t->cell[t->nrow++] = row;
   }
   fclose(f);
-  return n;
+  return t->ncol > 0 && t->status_col >= 0;
+}
+
+static int csv_col(const study_csv *t, const char *name) {
+  for (int c = 0; c < t->ncol; c++)
+    if (strcmp(t->head[c], name) == 0) return c;
+  return -1;
+}
+
+static double cell_num(const char *text) {
+  char *end;
+  double v = strtod(text, &end);
+  return end != text && *end == '\0' && isfinite(v) ? v : NAN;
+}
+
+/* a readable label with its unit for a case key (section.key) or a metric
+ * (model.group.name): "crank speed [rpm]", "force max [N] (ode-clearance-impact)" */
+static const char *readable(const char *key, char *out, size_t size) {
+  static const struct { const char *key, *label; } known[] = {
+      {"drive.speed_rpm", "crank speed [rpm]"},
+      {"solver.h_s", "step size h [s]"},
+      {"clearance.stiffness_scale", "contact stiffness scale [-]"},
+      {"clearance.mapping", "ERP/CFM mapping"},
+      {"clearance.penalty", "penalty source"},
+      {"clearance.restitution", "coefficient of restitution [-]"},
+      {"pin.radial_clearance_um", "radial clearance [um]"},
+      {"solver.stepper", "stepper"},
+  };
+  for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
+    if (strcmp(known[k].key, key) == 0) return snprintf(out, size, "%s", known[k].label), out;
+  static const struct { const char *suffix, *unit; } units[] = {
+      {"_rad_s2", "rad/s^2"}, {"_rad_s", "rad/s"}, {"_rpm", "rpm"}, {"_mm", "mm"}, {"_um", "um"},
+      {"_n_m1_5", "N/m^1.5"}, {"_n_s_m", "N s/m"}, {"_n_m", "N/m"}, {"_n", "N"}, {"_m", "m"},
+      {"_s", "s"}, {"_deg", "deg"}, {"_kg", "kg"}, {"_rad", "rad"}, {"_m_s2", "m/s^2"}};
+  const char *last = strrchr(key, '.');
+  char word[128];
+  snprintf(word, sizeof word, "%s", last ? last + 1 : key);
+  const char *unit = NULL;
+  size_t lw = strlen(word);
+  for (size_t k = 0; k < sizeof units / sizeof units[0] && !unit; k++) {
+    size_t ls = strlen(units[k].suffix);
+    if (lw > ls && strcmp(word + lw - ls, units[k].suffix) == 0) {
+      unit = units[k].unit;
+      word[lw - ls] = '\0';
+    }
+  }
+  for (char *p = word; *p; p++)
+    if (*p == '_') *p = ' ';
+  /* a metric: model.group.name -> "[group ]name [unit] (model)"; spikes
+   * names already say what they are */
+  const char *dot = strchr(key, '.');
+  char owner[128] = "", group[64] = "";
+  if (dot && last && dot != last) {
+    snprintf(owner, sizeof owner, " (%.*s)", (int)(dot - key), key);
+    if (strncmp(dot + 1, "spikes.", 7) != 0) snprintf(group, sizeof group, "%.*s ", (int)(last - dot - 1), dot + 1);
+  }
+  snprintf(out, size, "%s%s%s%s%s%s", group, word, unit ? " [" : "", unit ? unit : "", unit ? "]" : "", owner);
+  return out;
+}
+
+/* values of an axis are log-spaced: all positive, a constant ratio other
+ * than 1 (two values: a ratio of 10 or more) */
+static int log_spaced(const fb_axis *a) {
+  double v[FB_STUDY_MAX_VALUES];
+  for (int k = 0; k < a->n; k++) {
+    v[k] = cell_num(a->value[k]);
+    if (!(v[k] > 0.0)) return 0;
+  }
+  if (a->n < 2) return 0;
+  if (a->n == 2) return fmax(v[0], v[1]) / fmin(v[0], v[1]) >= 10.0;
+  const double ratio = v[1] / v[0];
+  if (fabs(ratio - 1.0) < 1e-9) return 0;
+  for (int k = 2; k < a->n; k++)
+    if (fabs(v[k] / v[k - 1] - ratio) > 1e-6 * fabs(ratio)) return 0;
+  return 1;
 }
 
 static int numeric_axis(const fb_axis *a) {
   if (a->montecarlo) return 0;
-  for (int k = 0; k < a->n; k++) {
-    char *end;
-    strtod(a->value[k], &end);
-    if (*end) return 0;
-  }
+  for (int k = 0; k < a->n; k++)
+    if (isnan(cell_num(a->value[k]))) return 0;
   return 1;
 }
 
+/* index of text among the axis's values, -1 if none */
+static int axis_index(const fb_axis *a, const char *text) {
+  for (int k = 0; k < a->n; k++)
+    if (strcmp(a->value[k], text) == 0) return k;
+  return -1;
+}
+
+static int by_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
 fb_status fb_figures_study(const fb_study *s, const char *dir, fb_diag *diag) {
-  char csv[4200];
-  snprintf(csv, sizeof csv, "%s/points.csv", dir);
+  char csvpath[4200];
+  snprintf(csvpath, sizeof csvpath, "%s/points.csv", dir);
+  study_csv t;
+  if (!csv_read(&t, csvpath)) {
+    csv_free(&t);
+    return FB_OK; /* nothing to draw */
+  }
   char names[8][128];
   int n = 0;
   if (s->nplot) {
     for (int k = 0; k < s->nplot; k++) snprintf(names[n++], 128, "%s", s->plot[k]);
   } else {
-    n = csv_metrics(csv, s->naxes, names, 4);
+    for (int c = t.status_col + 1; c < t.ncol && n < 4; c++) snprintf(names[n++], 128, "%s", t.head[c]);
   }
-  if (n == 0) return FB_OK; /* nothing to draw */
-  plot pl;
-  const int rows = (n + 1) / 2;
-  fb_status st = plot_open(&pl, dir, "study", FB_FIGURE_SVG, 1200, 420 * rows, diag);
-  if (st != FB_OK) return st;
+  if (n == 0) {
+    csv_free(&t);
+    return FB_OK;
+  }
   const fb_axis *x = &s->axis[0];
-  const int xnum = numeric_axis(x);
-  /* every text below comes from the study file: escaped, never pasted */
-  char en[160], ep[600], xk[300], yk[300], nm[300];
-  gp_text(x->key, 0, xk, sizeof xk);
-  gp_text(s->naxes > 1 ? s->axis[1].key : "", 0, yk, sizeof yk);
-  fprintf(pl.p, "set datafile separator ','\nset datafile columnheaders\nset key noenhanced inside top right box\n"
+  const int mc = x->montecarlo;
+  /* Monte Carlo: per metric, its empirical CDF and a scatter against the
+   * sampled lengths (deviation from nominal); grids: one panel per metric */
+  const int cols = mc ? 2 : (n > 1 ? 2 : 1), rows = mc ? n : (n + 1) / 2;
+  plot pl;
+  fb_status st = plot_open(&pl, dir, "study", FB_FIGURE_SVG, mc ? 1300 : 1400, 440 * rows, diag);
+  if (st != FB_OK) {
+    csv_free(&t);
+    return st;
+  }
+  double nominal_mm[FB_LINK_COUNT] = {0};
+  int lcol[FB_LINK_COUNT];
+  if (mc) {
+    fb_case base;
+    const char *fixed[FB_STUDY_MAX_SETS];
+    for (int k = 0; k < s->nsets; k++) fixed[k] = s->sets[k];
+    const int loaded = fb_casefile_load(&base, s->case_path, fixed, s->nsets, NULL) == FB_OK;
+    for (int k = 0; k < FB_LINK_COUNT; k++) {
+      char key[64];
+      snprintf(key, sizeof key, "linkage.%s_mm", fb_link_name(k));
+      lcol[k] = csv_col(&t, key);
+      nominal_mm[k] = loaded ? base.nominal.length[k] / FB_M_PER_MM : NAN;
+    }
+  }
+  json_t *panels = json_array();
+  char en[160], ep[600], lab[300], lab2[300], tmp[600];
+  fprintf(pl.p, "set key noenhanced below box\n"
                 "set multiplot layout %d,%d title 'study %s (%s)' noenhanced\n",
-          rows, n > 1 ? 2 : 1, gp_text(s->name, 0, en, sizeof en), gp_text(s->path, 0, ep, sizeof ep));
+          rows, cols, gp_text(s->name, 0, en, sizeof en), gp_text(s->path, 0, ep, sizeof ep));
   for (int m = 0; m < n; m++) {
-    gp_text(names[m], 0, nm, sizeof nm);
-    fprintf(pl.p, "set title '%s' noenhanced\nunset logscale\n", nm);
-    if (s->heatmap) {
-      fprintf(pl.p, "set view map\nset xlabel '%s' noenhanced\nset ylabel '%s' noenhanced\n"
-                    "splot 'points.csv' using (column('%s')):(column('%s')):(column('%s')) with points pt 5 "
-                    "ps 3 palette notitle\n",
-              xk, yk, xk, yk, nm);
-      continue;
-    }
-    fprintf(pl.p, "set xlabel '%s' noenhanced\nset ylabel '%s' noenhanced\n",
-            xnum ? xk : "point index", nm);
-    /* one series per combination of the other axes' values */
-    int combos = 1;
-    for (int a = 1; a < s->naxes; a++) combos *= s->axis[a].n;
-    if (combos > 12) combos = 12;
-    fprintf(pl.p, "plot ");
-    for (int k = 0; k < combos; k++) {
-      /* bounded: at most 7 axes of (escaped key <= 256, escaped value <= 64) */
-      char cond[8192] = "1", title[8192] = "";
-      size_t lc = 1, lt = 0;
-      int rest = k;
-      for (int a = s->naxes - 1; a >= 1; a--) {
-        const fb_axis *ax = &s->axis[a];
-        char ek[300], ev[80];
-        gp_text(ax->key, 0, ek, sizeof ek);
-        gp_text(ax->value[rest % ax->n], 0, ev, sizeof ev);
-        rest /= ax->n;
-        lc += (size_t)snprintf(cond + lc, sizeof cond - lc, " && strcol('%s') eq '%s'", ek, ev);
-        lt += (size_t)snprintf(title + lt, sizeof title - lt, "%s%s=%s", lt ? ", " : "", ek, ev);
+    const int mcol = csv_col(&t, names[m]);
+    gp_text(readable(names[m], tmp, sizeof tmp), 0, lab, sizeof lab);
+    json_t *panel = json_pack("{s:s,s:s}", "metric", names[m], "ylabel", tmp);
+    int stopped = 0;
+    if (mc) {
+      /* empirical CDF of the finished samples */
+      double *v = malloc((t.nrow + 1) * sizeof *v);
+      size_t nv = 0;
+      for (size_t r = 0; r < t.nrow; r++) {
+        const double y = mcol >= 0 ? cell_num(t.cell[r][mcol]) : NAN;
+        if (strcmp(t.cell[r][t.status_col], "ok") != 0) stopped++;
+        else if (isfinite(y)) v[nv++] = y;
       }
-      fprintf(pl.p, "%s'points.csv' using (column('%s')):((%s) ? column('%s') : NaN) with linespoints "
-              "pt 7 title '%s'", k ? ", " : "", xnum ? xk : "index", cond, nm,
-              s->naxes > 1 ? title : nm);
+      qsort(v, nv, sizeof *v, by_double);
+      fprintf(pl.p, "$cdf%d << EOD\n", m);
+      for (size_t k = 0; k < nv; k++) fprintf(pl.p, "%.17g %.17g\n", v[k], (double)(k + 1) / (double)nv);
+      if (!nv) fprintf(pl.p, "NaN NaN\n");
+      fprintf(pl.p, "EOD\n");
+      free(v);
+      fprintf(pl.p, "unset logscale\nset title 'distribution over %zu samples%s' noenhanced\n"
+                    "set xlabel '%s' noenhanced\nset ylabel 'fraction of samples at or below [-]'\n"
+                    "set yrange [0:1.05]\nplot $cdf%d using 1:2 with steps lw 2 lc rgb '#d62728' "
+                    "title 'empirical CDF', $cdf%d using 1:2 with points pt 7 ps 0.5 lc rgb '#d62728' notitle\n"
+                    "set autoscale y\n",
+              nv, stopped ? " (stopped samples left out)" : "", lab, m, m);
+      /* scatter against each sampled length's deviation from nominal */
+      static const char *const link_color[FB_LINK_COUNT] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd"};
+      int nl = 0;
+      for (int k = 0; k < FB_LINK_COUNT; k++) {
+        fprintf(pl.p, "$sc%d_%d << EOD\n", m, k);
+        int np = 0;
+        for (size_t r = 0; r < t.nrow && lcol[k] >= 0 && mcol >= 0; r++) {
+          const double l = cell_num(t.cell[r][lcol[k]]), y = cell_num(t.cell[r][mcol]);
+          if (isfinite(l) && isfinite(y) && isfinite(nominal_mm[k])) {
+            fprintf(pl.p, "%.17g %.17g\n", l - nominal_mm[k], y);
+            np++;
+          }
+        }
+        if (!np) fprintf(pl.p, "NaN NaN\n");
+        fprintf(pl.p, "EOD\n");
+        nl += np > 0;
+      }
+      fprintf(pl.p, "set title 'against the sampled link lengths' noenhanced\n"
+                    "set xlabel 'sampled length minus nominal [mm]'\nset ylabel '%s' noenhanced\nplot ",
+              lab);
+      for (int k = 0; k < FB_LINK_COUNT; k++)
+        fprintf(pl.p, "%s$sc%d_%d using 1:2 with points pt %d ps 0.9 lc rgb '%s' title '%s'", k ? ", " : "",
+                m, k, 5 + 2 * k, link_color[k], fb_link_name(k));
+      fprintf(pl.p, "\n");
+      json_object_set_new(panel, "kind", json_string("montecarlo: empirical CDF and scatter against "
+                                                     "sampled lengths"));
+      json_object_set_new(panel, "samples", json_integer((json_int_t)nv));
+      json_object_set_new(panel, "lengths_plotted", json_integer(nl));
+    } else if (s->heatmap) {
+      /* cells over the first two axes (their value order), each labelled;
+       * further axes at their first value */
+      const fb_axis *y = &s->axis[1];
+      const int xc = csv_col(&t, x->key), yc = csv_col(&t, y->key);
+      fprintf(pl.p, "$hm%d << EOD\n", m);
+      int cells = 0;
+      for (size_t r = 0; r < t.nrow && xc >= 0 && yc >= 0 && mcol >= 0; r++) {
+        int first = 1;
+        for (int a = 2; a < s->naxes; a++) {
+          const int ac = csv_col(&t, s->axis[a].key);
+          first &= ac >= 0 && strcmp(t.cell[r][ac], s->axis[a].value[0]) == 0;
+        }
+        const int ix = axis_index(x, t.cell[r][xc]), iy = axis_index(y, t.cell[r][yc]);
+        const double z = cell_num(t.cell[r][mcol]);
+        const int ok = strcmp(t.cell[r][t.status_col], "ok") == 0;
+        if (!first || ix < 0 || iy < 0) continue;
+        if (!ok) stopped++;
+        fprintf(pl.p, "%d %d %.17g %s\n", ix, iy, z, ok ? "ok" : "stopped");
+        cells++;
+      }
+      if (!cells) fprintf(pl.p, "0 0 NaN ok\n");
+      fprintf(pl.p, "EOD\n");
+      fprintf(pl.p, "unset logscale\nunset key\nset title '%s' noenhanced\nset xlabel '%s' noenhanced\nset ylabel '%s' noenhanced\n"
+                    "set cblabel '%s' noenhanced\nset palette rgb 33,13,10\nset xrange [-0.5:%d.5]\n"
+                    "set yrange [-0.5:%d.5]\nset xtics (",
+              lab, gp_text(readable(x->key, tmp, sizeof tmp), 0, lab2, sizeof lab2),
+              gp_text(readable(y->key, ep, sizeof ep), 0, en, sizeof en), lab, x->n - 1, y->n - 1);
+      for (int k = 0; k < x->n; k++) fprintf(pl.p, "%s'%s' %d", k ? ", " : "", gp_text(x->value[k], 0, tmp, sizeof tmp), k);
+      fprintf(pl.p, ")\nset ytics (");
+      for (int k = 0; k < y->n; k++) fprintf(pl.p, "%s'%s' %d", k ? ", " : "", gp_text(y->value[k], 0, tmp, sizeof tmp), k);
+      fprintf(pl.p, ")\nplot $hm%d using 1:2:3 with image notitle, "
+                    "$hm%d using 1:2:(strcol(4) eq 'ok' ? sprintf('%%.3g', $3) : sprintf('%%.3g (stopped)', $3)) "
+                    "with labels font ',10' notitle\n"
+                    "unset xtics\nunset ytics\nset xtics\nset ytics\nset autoscale\nset key noenhanced below box\n",
+              m, m);
+      json_object_set_new(panel, "kind", json_string("heatmap"));
+      json_object_set_new(panel, "cells", json_integer(cells));
+      json_object_set_new(panel, "xlabel", json_string(readable(x->key, tmp, sizeof tmp)));
+    } else {
+      /* the metric against the first axis, one series per combination of the
+       * other axes; written per series, so every line is drawn */
+      const int xnum = numeric_axis(x), xlog = xnum && log_spaced(x);
+      const int xc = csv_col(&t, x->key);
+      int combos = 1;
+      for (int a = 1; a < s->naxes; a++) combos *= s->axis[a].n;
+      if (combos > 12) combos = 12;
+      json_t *series = json_array();
+      fprintf(pl.p, "$stop%d << EOD\n", m);
+      double ylo = INFINITY;
+      for (size_t r = 0; r < t.nrow && mcol >= 0; r++) {
+        const double y = cell_num(t.cell[r][mcol]);
+        if (isfinite(y)) ylo = fmin(ylo, y);
+      }
+      for (size_t r = 0; r < t.nrow && xc >= 0; r++)
+        if (strcmp(t.cell[r][t.status_col], "ok") != 0) {
+          /* a stopped point: at its value if it has one, else at the lowest value drawn */
+          const double xv = xnum ? cell_num(t.cell[r][xc]) : axis_index(x, t.cell[r][xc]);
+          double y = mcol >= 0 ? cell_num(t.cell[r][mcol]) : NAN;
+          if (!isfinite(y)) y = isfinite(ylo) ? ylo : 0.0;
+          fprintf(pl.p, "%.17g %.17g\n", xv, y);
+          stopped++;
+        }
+      if (!stopped) fprintf(pl.p, "NaN NaN\n");
+      fprintf(pl.p, "EOD\n");
+      for (int k = 0; k < combos; k++) {
+        char title[1024] = "";
+        size_t lt = 0;
+        int rest = k, want[FB_STUDY_MAX_AXES], acol[FB_STUDY_MAX_AXES];
+        for (int a = s->naxes - 1; a >= 1; a--) {
+          const fb_axis *ax = &s->axis[a];
+          want[a] = rest % ax->n;
+          rest /= ax->n;
+          acol[a] = csv_col(&t, ax->key);
+        }
+        for (int a = 1; a < s->naxes; a++)
+          lt += (size_t)snprintf(title + lt, lt < sizeof title ? sizeof title - lt : 0, "%s%s = %s",
+                                 lt ? ", " : "", readable(s->axis[a].key, tmp, sizeof tmp),
+                                 s->axis[a].value[want[a]]);
+        fprintf(pl.p, "$s%d_%d << EOD\n", m, k);
+        int np = 0;
+        for (size_t r = 0; r < t.nrow && xc >= 0 && mcol >= 0; r++) {
+          int match = 1;
+          for (int a = 1; a < s->naxes; a++)
+            match &= acol[a] >= 0 && strcmp(t.cell[r][acol[a]], s->axis[a].value[want[a]]) == 0;
+          const double y = cell_num(t.cell[r][mcol]);
+          const double xv = xnum ? cell_num(t.cell[r][xc]) : axis_index(x, t.cell[r][xc]);
+          if (!match || !isfinite(y) || !isfinite(xv)) continue;
+          fprintf(pl.p, "%.17g %.17g\n", xv, y);
+          np++;
+        }
+        if (!np) fprintf(pl.p, "NaN NaN\n");
+        fprintf(pl.p, "EOD\n");
+        json_array_append_new(series, json_pack("{s:s,s:i}", "title", s->naxes > 1 ? title : names[m],
+                                                "points", np));
+      }
+      fprintf(pl.p, "set title '%s' noenhanced\nset xlabel '%s' noenhanced\nset ylabel '%s' noenhanced\n%s\n",
+              lab, gp_text(readable(x->key, tmp, sizeof tmp), 0, lab2, sizeof lab2), lab,
+              xlog ? "set logscale x\nset format x '%g'" : "unset logscale x\nset format x '% h'");
+      if (!xnum) {
+        fprintf(pl.p, "set xrange [-0.5:%d.5]\nset xtics (", x->n - 1);
+        for (int k = 0; k < x->n; k++)
+          fprintf(pl.p, "%s'%s' %d", k ? ", " : "", gp_text(x->value[k], 0, tmp, sizeof tmp), k);
+        fprintf(pl.p, ")\n");
+      } else {
+        fprintf(pl.p, "set autoscale x\nset xtics\nset offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\n");
+      }
+      fprintf(pl.p, "plot ");
+      for (int k = 0; k < combos; k++) {
+        const char *title = json_string_value(json_object_get(json_array_get(series, (size_t)k), "title"));
+        fprintf(pl.p, "%s$s%d_%d using 1:2 with linespoints pt 7 lw 1.5 title '%s'", k ? ", " : "", m, k,
+                gp_text(title, 0, tmp, sizeof tmp));
+      }
+      if (stopped)
+        fprintf(pl.p, ", $stop%d using 1:2 with points pt 4 ps 2 lw 2 lc rgb '#d62728' title 'stopped (%d "
+                      "points, status not ok; drawn at their value or the panel floor)'", m, stopped);
+      fprintf(pl.p, "\n");
+      fprintf(pl.p, "set offsets 0, 0, 0, 0\nunset logscale x\n");
+      json_object_set_new(panel, "kind", json_string("curves"));
+      json_object_set_new(panel, "xlabel", json_string(readable(x->key, tmp, sizeof tmp)));
+      json_object_set_new(panel, "xlog", json_boolean(xlog));
+      json_object_set_new(panel, "series", series);
     }
-    fprintf(pl.p, "\n");
+    json_object_set_new(panel, "stopped", json_integer(stopped));
+    json_array_append_new(panels, panel);
   }
   fprintf(pl.p, "unset multiplot\n");
-  return plot_close(&pl, diag);
+  st = plot_close(&pl, diag);
+  csv_free(&t);
+  if (st == FB_OK) {
+    char mpath[4400];
+    snprintf(mpath, sizeof mpath, "%s/study.figure.json", dir);
+    json_t *o = json_pack("{s:s,s:o}", "file", "study.svg", "panels", panels);
+    st = fb_report_write_json(mpath, o, diag);
+    json_decref(o);
+  } else {
+    json_decref(panels);
+  }
+  return st;
 }

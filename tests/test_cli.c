@@ -349,6 +349,37 @@ static void test_help_answers(void **state) {
   assert_non_null(strstr(out, "kinematics"));
 }
 
+/* --set without --out writes into results/<case>/ and says so, the second
+ * time that it replaced a run; the fit/clearance clash names the way out */
+static void test_set_without_out_says_so(void **state) {
+  (void)state;
+  char dir[256], cmd[8192], path[300];
+  snprintf(dir, sizeof dir, "%s/cwd", tmpdir);
+  mkdir(dir, 0755);
+  static char err[1 << 14];
+  for (int pass = 0; pass < 2; pass++) {
+    snprintf(cmd, sizeof cmd, "cd %s && %s run --no-figures --set run.revolutions=2 --set run.models=analytic "
+             ">/dev/null 2>err.txt", dir, exe);
+    assert_int_equal(WEXITSTATUS(system(cmd)), 0);
+    snprintf(path, sizeof path, "%s/err.txt", dir);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    err[fread(err, 1, sizeof err - 1, f)] = '\0';
+    fclose(f);
+    if (!strstr(err, "--set without --out") || !strstr(err, "results/paper_crank_rocker/"))
+      fail_msg("pass %d: no note about --set without --out: %s", pass, err);
+    if (pass == 1 && !strstr(err, "replacing the run that was there"))
+      fail_msg("second run does not say it replaced the first: %s", err);
+  }
+  /* with --out: no note */
+  snprintf(cmd, sizeof cmd, "cd %s && %s run --no-figures --out other --set run.revolutions=2 "
+           "--set run.models=analytic >/dev/null 2>err.txt && ! grep -q 'without --out' err.txt", dir, exe);
+  assert_int_equal(WEXITSTATUS(system(cmd)), 0);
+  static char out[1 << 14];
+  assert_int_equal(run("run --no-figures --set pin.radial_clearance_um=10", out, sizeof out, err, sizeof err), 2);
+  assert_non_null(strstr(err, "pin.fit=none"));
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_cli PATH_TO_FOURBAR\n");
@@ -365,6 +396,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_check_catches_stiffness_regression),
       cmocka_unit_test(test_bad_input_exits_nonzero_with_message),
       cmocka_unit_test(test_help_answers),
+      cmocka_unit_test(test_set_without_out_says_so),
   };
   int rc = cmocka_run_group_tests(tests, NULL, NULL);
   char cmd[128];

@@ -24,11 +24,25 @@ static const char bench_help[] =
     "and the reference dynamics (clearance impact model), with wall time per simulated\n"
     "revolution (median of 3 repeats for runs under 1 s). Marks the Pareto front and\n"
     "names the cheapest configuration for error targets 1e-2, 1e-3 and 1e-4. Writes\n"
-    "DIR/bench.csv, bench.json and bench.svg (default DIR results/<case>/bench).\n";
+    "DIR/bench.csv, bench.json and bench.svg (default DIR results/<case>/bench).\n"
+    "On a terminal a progress bar with the time left is drawn on stderr.\n";
 
+typedef struct {
+  int tty;   /* draw only on a terminal: quiet in pipes, logs and CI */
+  double t0; /* start [s] */
+} bench_progress;
+
+/* "bench [#####     ]  42 % of 64 configurations, 25 s, about 35 s left" */
 static void progress(double f, void *user) {
-  if (!*(int *)user) return;
-  fprintf(stderr, "\r  bench %3.0f%%", 100.0 * f);
+  const bench_progress *p = user;
+  if (!p->tty) return;
+  const double el = fb_clock_s() - p->t0;
+  char bar[21];
+  for (int k = 0; k < 20; k++) bar[k] = k < (int)(20.0 * f) ? '#' : ' ';
+  bar[20] = '\0';
+  fprintf(stderr, "\r  bench [%s] %3.0f %%, %.0f s", bar, 100.0 * f, el);
+  if (f > 0.0 && f < 1.0) fprintf(stderr, ", about %.0f s left ", el * (1.0 - f) / f);
+  else fprintf(stderr, "               ");
   if (f >= 1.0) fputc('\n', stderr);
   fflush(stderr);
 }
@@ -64,9 +78,10 @@ int fb_cmd_bench(int argc, char **argv) {
   fb_diag d;
   if (fb_outdir_prepare(dir, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
   static fb_bench_row rows[FB_BENCH_MAX_ROWS];
-  int n, tty = isatty(2) && !json;
+  int n;
   const double t0 = fb_clock_s();
-  if (fb_bench_run(rows, &n, &c, progress, &tty, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
+  bench_progress bp = {isatty(2) && !json, t0};
+  if (fb_bench_run(rows, &n, &c, progress, &bp, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
   const double wall = fb_clock_s() - t0;
   /* files */
   char path[4200];

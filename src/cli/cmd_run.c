@@ -3,6 +3,7 @@
 #include <jansson.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "casefile.h"
@@ -27,7 +28,8 @@ static const char run_help[] =
     "\n"
     "  CASE          case file (INI); default: the paper's case,\n"
     "                cases/paper_crank_rocker.ini\n"
-    "  --out DIR     output folder; default results/<case name>/\n"
+    "  --out DIR     output folder; default results/<case name>/ (with --set and\n"
+    "                no --out the variant goes there too, and the run says so)\n"
     "  --set K=V     override case key K (section.key) with V, e.g.\n"
     "                --set drive.speed_rpm=1500 --set solver.h_s=1e-4\n"
     "  --json        print summary.json (with timing.json's wall_s and\n"
@@ -95,6 +97,12 @@ int fb_cmd_run(int argc, char **argv) {
     snprintf(dir, sizeof dir, "%s", out_dir);
   else
     snprintf(dir, sizeof dir, "results/%s", c.name);
+  /* --set without --out writes the variant into the case's own folder: said
+   * on stderr (README, "run"), with whether it replaced an earlier run */
+  struct stat prev;
+  char prev_summary[4200];
+  snprintf(prev_summary, sizeof prev_summary, "%s/summary.json", dir);
+  const int replaces = stat(prev_summary, &prev) == 0;
   /* one writer per folder; the whole set goes to a staging folder beside it,
    * swapped in at the end (outdir.h): both checked before any simulation */
   static fb_outdir od;
@@ -144,6 +152,13 @@ int fb_cmd_run(int argc, char **argv) {
   if (st != FB_OK) {
     fb_run_free(&r);
     return fb_cli_fail("run", 1, "%s", diag.msg);
+  }
+  if (nsets > 0 && !out_dir) {
+    fprintf(stderr, "fourbar run: note: --set without --out: %s/ now holds this variant of case %s (",
+            dir, c.name);
+    for (int i = 0; i < nsets; i++) fprintf(stderr, "%s%s", i ? ", " : "", sets[i]);
+    fprintf(stderr, ")%s; give --out DIR to keep runs apart\n",
+            replaces ? ", replacing the run that was there" : "");
   }
   if (json) {
     /* summary.json with each model's wall time from timing.json */

@@ -32,7 +32,7 @@ static const char sweep_help[] =
     "sweep resumes without recomputing. A progress bar with ETA is drawn on a terminal.\n"
     "\n"
     "  --jobs J     J worker processes on this machine (default 1)\n"
-    "  --shard I/N  only points with index %% N == I (0 <= I < N), into\n"
+    "  --shard I/N  only points with index % N == I (0 <= I < N), into\n"
     "               DIR/points.shard-I-of-N.jsonl: for Slurm job arrays\n"
     "               (--shard $SLURM_ARRAY_TASK_ID/N) or GNU parallel\n"
     "  --list N     print the N shard commands, one per line, for GNU parallel\n"

@@ -698,7 +698,9 @@ static fb_status resolve_standards(fb_case *out, const load_ctx *c, fb_diag *dia
   if (fit_at) {
     if (rc_at)
       return fb_diag_set(diag, FB_ERR_PARSE,
-                         "%s: [pin] radial_clearance_um and fit (%s) both given: give one",
+                         "%s: [pin] radial_clearance_um and fit (%s) both given: give one "
+                         "(to replace a base case's fit by an explicit clearance: "
+                         "--set pin.fit=none, or fit = none in the case file)",
                          rc_at, fit_at);
     fb_fit f;
     fb_diag inner;

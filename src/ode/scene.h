@@ -134,7 +134,7 @@ int fb_scene_impacts(const fb_scene *s, int j);
 void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *contacts);
 
 /* Most contacts the libccd collider hands to ODE per joint and step. */
-#define FB_CCD_CONTACTS 4
+#define FB_CCD_CONTACTS 2
 
 /* Steps taken. */
 size_t fb_scene_steps(const fb_scene *s);

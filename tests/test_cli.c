@@ -220,6 +220,9 @@ static void test_fit_tolerance_stackup_json(void **state) {
   j = json_loads(out, 0, &je);
   assert_near(json_real_value(json_object_get(j, "clearance_max_um")), 74, 1e-9);
   json_decref(j);
+  /* a zero deviation prints as 0.0, never -0.0 */
+  assert_int_equal(run("fit 10H7/h6 --json", out, sizeof out, err, sizeof err), 0);
+  assert_null(strstr(out, "-0.0"));
   assert_int_equal(run("tolerance 279.4 --class m --json", out, sizeof out, err, sizeof err), 0);
   j = json_loads(out, 0, &je);
   assert_near(json_real_value(json_object_get(j, "plus_minus_mm")), 0.5, 1e-12);
@@ -325,6 +328,8 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
   expect_fail(args, (const char *[]){"both.ini:3", "give one", NULL});
   expect_fail("fit 10Q7/g6", (const char *[]){"letter 'Q'", NULL});
+  expect_fail("fit 500.0001H7/g6", (const char *[]){"500.0001 mm", NULL}); /* size as typed */
+  expect_fail("fit 1A11/h11", (const char *[]){"A for nominal sizes up to 1 mm", NULL});
   expect_fail("fit 10H7-g6", (const char *[]){"expected <size mm>", NULL});
   expect_fail("tolerance 2 --class v", (const char *[]){"no value", NULL});
   expect_fail("stackup --method guess", (const char *[]){"corners, rss or montecarlo", NULL});

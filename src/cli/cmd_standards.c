@@ -17,7 +17,9 @@ static const char fit_help[] =
     "up to 500 mm): hole and shaft deviations [um], minimum and maximum diametral\n"
     "clearance [um] (negative is interference) and the kind of fit.\n"
     "Letters: holes A B C D E F G H JS K M N P R S, shafts a b c d e f g h js k m n p r s;\n"
-    "grades IT01, IT0, IT1..IT18.\n";
+    "grades IT01, IT0, IT1..IT18. The standard's exceptions apply (M6 over 250 up to\n"
+    "315 mm is -9/-41 um) and its refusals too: A, B, a, b and N9..N11 not up to\n"
+    "1 mm; K above IT8 only as K9, K10 up to 3 mm; IT14..IT18 not up to 1 mm.\n";
 
 static const char tol_help[] =
     "usage: fourbar tolerance SIZE_MM --class f|m|c|v [--json]\n"
@@ -60,13 +62,14 @@ int fb_cmd_fit(int argc, char **argv) {
     json_object_set_new(o, "clearance_max_um", json_real(f.clearance_max * um));
     json_object_set_new(o, "kind", json_string(fb_fit_kind_name(f.kind)));
     json_object_set_new(o, "source", json_string("ISO 286-1:2010 Tables 1 to 3"));
-    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
+    /* 15 digits: every size typed with up to 15 significant digits prints as
+     * typed (500.0001 stays 500.0001); deviations are whole or half um */
+    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(15));
     fputc('\n', stdout);
     json_decref(o);
     return 0;
   }
-  printf("%g %s/%s (ISO 286-1): %s fit\n", f.nominal / FB_M_PER_MM, f.hole, f.shaft,
-         fb_fit_kind_name(f.kind));
+  printf("%s %s/%s (ISO 286-1): %s fit\n", f.size_text, f.hole, f.shaft, fb_fit_kind_name(f.kind));
   printf("  hole  %-4s %+8.1f / %+8.1f um\n", f.hole, f.h.upper * um, f.h.lower * um);
   printf("  shaft %-4s %+8.1f / %+8.1f um\n", f.shaft, f.s.upper * um, f.s.lower * um);
   printf("  clearance %+.1f to %+.1f um (diametral; negative is interference)\n",
@@ -104,11 +107,12 @@ int fb_cmd_tolerance(int argc, char **argv) {
     json_object_set_new(o, "class", json_string(cls));
     json_object_set_new(o, "plus_minus_mm", json_real(pm / FB_M_PER_MM));
     json_object_set_new(o, "source", json_string(clause));
-    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
+    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(15)); /* sizes as typed */
     fputc('\n', stdout);
     json_decref(o);
     return 0;
   }
-  printf("%g mm, class %s: +-%g mm (%s)\n", mm, cls, pm / FB_M_PER_MM, clause);
+  /* the size exactly as typed; the deviation is a table value */
+  printf("%s mm, class %s: +-%g mm (%s)\n", argv[optind], cls, pm / FB_M_PER_MM, clause);
   return 0;
 }

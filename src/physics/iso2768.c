@@ -24,16 +24,18 @@ fb_status fb_iso2768_linear(double *plus_minus, char cls, double size, char *cla
     return fb_diag_set(diag, FB_ERR_RANGE,
                        "general tolerance class '%c': ISO 2768-1 classes are f, m, c, v", cls);
   const double mm = size * 1e3;
+  char num[32];
   if (!(mm >= 0.5 * (1 - 1e-12)) || mm > 4000.0 * (1 + 1e-12))
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "size %g mm: ISO 2768-1 linear tolerances cover 0.5 to 4000 mm", mm);
+                       "size %s mm: ISO 2768-1 linear tolerances cover 0.5 to 4000 mm",
+                       fb_diag_number(num, sizeof num, mm));
   int r = 0;
   while (r < N_RANGES - 1 && mm > upper_mm[r] * (1 + 1e-12)) r++;
   if (isnan(table[c][r]))
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "size %g mm, class %c: ISO 2768-1 gives no value here (class %c covers "
+                       "size %s mm, class %c: ISO 2768-1 gives no value here (class %c covers "
                        "%s)",
-                       mm, cls, cls, cls == 'v' ? "over 3 up to 4000 mm" : "0.5 up to 2000 mm");
+                       fb_diag_number(num, sizeof num, mm), cls, cls, cls == 'v' ? "over 3 up to 4000 mm" : "0.5 up to 2000 mm");
   *plus_minus = table[c][r] * 1e-3;
   if (clause)
     snprintf(clause, clause_size, "ISO 2768-1 class %c, %s %g up to %g mm", cls,

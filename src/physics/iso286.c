@@ -87,15 +87,18 @@ static int range_index(const double *upper, int n, double size_mm) {
 
 fb_status fb_iso286_it(double *out, int grade, double size, fb_diag *diag) {
   const double mm = size * 1e3;
+  char num[32];
   if (!(mm > 0.0) || mm > 500.0 * (1.0 + 1e-12))
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "nominal size %g mm: ISO 286-1 tables here cover over 0 up to 500 mm", mm);
+                       "nominal size %s mm: ISO 286-1 tables here cover over 0 up to 500 mm",
+                       fb_diag_number(num, sizeof num, mm));
   if (grade < -1 || grade > 18)
     return fb_diag_set(diag, FB_ERR_RANGE, "grade IT%d: standard grades are IT01, IT0, IT1..IT18",
                        grade);
-  if (grade >= 14 && mm <= 1.0)
+  if (grade >= 14 && mm <= 1.0) /* ISO 286-1:2010 Table 1, footnote: IT14..IT18 not for <= 1 mm */
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "IT%d at %g mm: ISO 286-1 defines IT14 to IT18 only above 1 mm", grade, mm);
+                       "IT%d at %s mm: ISO 286-1 defines IT14 to IT18 only above 1 mm", grade,
+                       fb_diag_number(num, sizeof num, mm));
   int r = range_index(it_upper_mm, N_IT_RANGES, mm);
   *out = it_um[grade + 1][r] * 1e-6;
   return FB_OK;
@@ -141,7 +144,17 @@ static const dev_row *find_shaft(const char *lower) {
 
 #define SUPPORTED "holes A B C D E F G H JS K M N P R S, shafts a b c d e f g h js k m n p r s"
 
+static fb_status class_limits(fb_deviation *out, const char *cls, double size, fb_diag *diag);
+
 fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_diag *diag) {
+  fb_status st = class_limits(out, cls, size, diag);
+  /* x + 0.0 turns -0.0 into +0.0 (round to nearest), so that no zero
+   * deviation (H's EI, h's es, K9's ES) ever prints as "-0" */
+  if (st == FB_OK) out->upper += 0.0, out->lower += 0.0;
+  return st;
+}
+
+static fb_status class_limits(fb_deviation *out, const char *cls, double size, fb_diag *diag) {
   char letters[4] = {0, 0, 0, 0};
   int grade = 0;
   fb_status st = split_class(cls, letters, &grade, diag);
@@ -169,6 +182,22 @@ fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_di
   if (!row)
     return fb_diag_set(diag, FB_ERR_RANGE, "tolerance class '%s': letter '%s' is not in the "
                        "tables here (" SUPPORTED ")", cls, letters);
+  char num[32];
+  /* ISO 286-1:2010 Tables 2 and 3, footnote a: the fundamental deviations a, b
+   * (shafts) and A, B (holes) are not to be used for nominal sizes up to 1 mm;
+   * ISO 286-2:2010 Tables 2 and 17 start at 1 mm for them */
+  if ((lower[0] == 'a' || lower[0] == 'b') && lower[1] == '\0' && mm <= 1.0 * (1.0 + 1e-12))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "tolerance class '%s' at %s mm: ISO 286-1 does not use fundamental "
+                       "deviation %s for nominal sizes up to 1 mm",
+                       cls, fb_diag_number(num, sizeof num, mm), letters);
+  /* ISO 286-1:2010 Table 3, footnote: N above IT8 is not to be used for
+   * nominal sizes up to 1 mm (ISO 286-2:2010 Table 9: N9..N11 from 1 mm) */
+  if (hole && strcmp(lower, "n") == 0 && grade > 8 && mm <= 1.0 * (1.0 + 1e-12))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "tolerance class '%s' at %s mm: ISO 286-1 does not use N in grades above "
+                       "IT8 for nominal sizes up to 1 mm",
+                       cls, fb_diag_number(num, sizeof num, mm));
   const int r = range_index(dev_upper_mm, N_DEV_RANGES, mm);
   double dev = row->um[strcmp(lower, "h") == 0 ? 0 : r] * 1e-6; /* shaft's fundamental deviation */
   if (strcmp(lower, "k") == 0 && (grade < 4 || grade > 7)) dev = 0.0;
@@ -189,10 +218,24 @@ fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_di
     return FB_OK;
   }
   const int is_kmn = strcmp(lower, "k") == 0 || strcmp(lower, "m") == 0 || strcmp(lower, "n") == 0;
-  if (strcmp(lower, "k") == 0 && grade > 8)
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "tolerance class '%s': K beyond IT8 is not in the tables here (K up to "
-                       "K8)", cls);
+  /* K above IT8: ISO 286-1:2010 Table 3 gives ES = 0 only for nominal sizes
+   * up to 3 mm, and ISO 286-2:2010 Table 8 tabulates just K9 (0/-25 um) and
+   * K10 (0/-40 um) there */
+  if (strcmp(lower, "k") == 0 && grade > 8) {
+    if (grade > 10)
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "tolerance class '%s': ISO 286-2 tabulates K above IT8 only as K9 and "
+                         "K10, up to 3 mm", cls);
+    if (mm > 3.0 * (1.0 + 1e-12))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "tolerance class '%s' at %s mm: ISO 286-2 tabulates K9 and K10 only for "
+                         "nominal sizes up to 3 mm (K above IT8 has no fundamental deviation "
+                         "over 3 mm in ISO 286-1 Table 3)",
+                         cls, fb_diag_number(num, sizeof num, mm));
+    out->upper = 0.0;
+    out->lower = -it;
+    return FB_OK;
+  }
   double es;
   const int special = (is_kmn && grade <= 8) || (!is_kmn && grade <= 7);
   if (special) {
@@ -206,6 +249,12 @@ fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_di
      * IT4..IT7 value too */
     double ei = row->um[r] * 1e-6;
     es = -ei + delta;
+    /* ISO 286-1:2010 Table 3, footnote (special case): M6 over 250 up to
+     * 315 mm has ES = -9 um, not -ei + Delta = -20 + 9 = -11 um (ISO 286-2:2010
+     * Table 9: M6 250..315 is -9/-41 um) */
+    if (strcmp(lower, "m") == 0 && grade == 6 && mm > 250.0 * (1.0 + 1e-12) &&
+        mm <= 315.0 * (1.0 + 1e-12))
+      es = -9e-6;
   } else if (strcmp(lower, "n") == 0) {
     es = mm <= 3.0 ? -4e-6 : 0.0; /* N beyond IT8 */
   } else {
@@ -244,10 +293,11 @@ fb_status fb_iso286_fit(fb_fit *out, const char *text, fb_diag *diag) {
                        text);
   if (!isfinite(mm) || !(mm > 0.0) || mm > 500.0)
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "fit '%s': nominal size %g mm is outside the tables (over 0 up to 500 mm)",
-                       text, mm);
+                       "fit '%s': nominal size %s mm is outside the tables (over 0 up to 500 mm)",
+                       text, num);
   memset(out, 0, sizeof *out);
   out->nominal = mm * 1e-3;
+  snprintf(out->size_text, sizeof out->size_text, "%s", num);
   size_t lh = (size_t)(slash - end);
   if (lh >= sizeof out->hole || strlen(slash + 1) >= sizeof out->shaft)
     return fb_diag_set(diag, FB_ERR_PARSE, "fit '%s': tolerance class too long", text);
@@ -265,8 +315,8 @@ fb_status fb_iso286_fit(fb_fit *out, const char *text, fb_diag *diag) {
   fb_status st = fb_iso286_class(&out->h, out->hole, out->nominal, diag);
   if (st == FB_OK) st = fb_iso286_class(&out->s, out->shaft, out->nominal, diag);
   if (st != FB_OK) return st;
-  out->clearance_min = out->h.lower - out->s.upper;
-  out->clearance_max = out->h.upper - out->s.lower;
+  out->clearance_min = out->h.lower - out->s.upper + 0.0; /* + 0.0: never -0 */
+  out->clearance_max = out->h.upper - out->s.lower + 0.0;
   out->kind = out->clearance_min >= 0.0   ? FB_FIT_CLEARANCE
               : out->clearance_max <= 0.0 ? FB_FIT_INTERFERENCE
                                           : FB_FIT_TRANSITION;

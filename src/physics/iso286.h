@@ -27,6 +27,7 @@ const char *fb_fit_kind_name(fb_fit_kind k);
 /* A parsed and evaluated fit such as 10H7/g6. */
 typedef struct {
   double nominal;       /* nominal size [m] */
+  char size_text[32];   /* the nominal size as written in the fit [mm], e.g. "500.0001" */
   char hole[8];         /* hole letter(s) and grade, e.g. "H7" */
   char shaft[8];        /* shaft letter(s) and grade, e.g. "g6" */
   fb_deviation h;       /* hole deviations [m] */
@@ -46,7 +47,12 @@ fb_status fb_iso286_it(double *out, int grade, double size, fb_diag *diag);
  * class such as "H7", "g6", "js5", "JS8" at nominal size [m].
  * Errors: FB_ERR_PARSE for a malformed class; FB_ERR_RANGE for an unknown
  * letter, a grade outside IT01..IT18, a size outside (0, 500] mm, or a
- * combination the standard leaves undefined (e.g. K beyond IT8 here). */
+ * combination the standard leaves undefined or forbids, with the rule in the
+ * message: A, B, a, b at sizes up to 1 mm and N9..N11 up to 1 mm (ISO 286-1
+ * Tables 2 and 3, footnotes), K above IT8 except K9 and K10 up to 3 mm (ISO
+ * 286-2 Table 8), IT14..IT18 up to 1 mm. Exceptions to the general and
+ * special rules that the standard makes are applied: M6 over 250 up to 315 mm
+ * is -9/-41 um (ISO 286-1 Table 3). A zero deviation is +0, never -0. */
 fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_diag *diag);
 
 /* Parses and evaluates a fit string "<size><hole>/<shaft>" with the size in mm

@@ -2,6 +2,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 const char *fb_status_message(fb_status s) {
   switch (s) {
@@ -26,4 +27,17 @@ fb_status fb_diag_set(fb_diag *diag, fb_status s, const char *fmt, ...) {
 
 void fb_diag_clear(fb_diag *diag) {
   if (diag) diag->msg[0] = '\0';
+}
+
+const char *fb_diag_number(char *buf, size_t size, double x) {
+  /* the fewest significant digits that read back as x: 500.0001 stays
+   * 500.0001 where %g would print 500, and 279.4 stays 279.4; at most 15,
+   * which also hides the last-bit noise of a unit conversion (4000.0001 mm
+   * through metres is 4000.0001000000002) */
+  for (int p = 1; p <= 15; p++) {
+    snprintf(buf, size, "%.*g", p, x);
+    if (strtod(buf, NULL) == x) return buf;
+  }
+  snprintf(buf, size, "%.15g", x);
+  return buf;
 }

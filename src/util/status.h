@@ -41,6 +41,12 @@ const char *fb_status_message(fb_status s);
 fb_status fb_diag_set(fb_diag *diag, fb_status s, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* Writes x into buf (size bytes) with the fewest significant digits (at most
+ * 15) that read back as exactly x, else with 15 (a size typed as 500.0001
+ * prints as 500.0001, not as %g's 500), and returns buf: for numbers a user
+ * typed, quoted in messages. */
+const char *fb_diag_number(char *buf, size_t size, double x);
+
 /* Clears diag (if not NULL). */
 void fb_diag_clear(fb_diag *diag);
 

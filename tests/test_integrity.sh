@@ -43,6 +43,47 @@ sed -i "s|^case = .*|case = $paper|" "$tmp/it's dir/tiny.ini"
 "$exe" sweep "$tmp/it's dir/tiny.ini" --list 2 --out "$tmp/it's dir/out" > "$tmp/cmds.txt" 2>/dev/null
 ok 'eval "set -- $(head -n 1 "$tmp/cmds.txt")" && [ "$3" = "$tmp/it'"'"'s dir/tiny.ini" ] && [ "$7" = "$tmp/it'"'"'s dir/out" ]' "1: sweep --list quotes a path holding ' for the shell"
 
+# ---- 2. no aborts on accepted values ----------------------------------------
+# refused with the physical rule (exit 2, never 134); the ODE guard itself is
+# tested in test_scene.c (test_ode_fatal_error_is_a_status_not_an_abort)
+refuses() { # expected-word, command...
+  local word=$1; shift
+  "$@" >/dev/null 2>"$tmp/err"; local rc=$?
+  [ $rc -eq 2 ] && grep -q -- "$word" "$tmp/err"
+}
+ok 'refuses world_cfm "$exe" run --set solver.world_cfm=0 --set run.models=ode-ideal-nominal --no-figures --out "$tmp/a2"' "2: world_cfm = 0 is refused naming the key (was SIGABRT)"
+ok 'refuses crank_kg "$exe" run --set mass.crank_kg=1e-300 --no-figures --out "$tmp/a2"' "2: crank_kg = 1e-300 is refused naming the key (was SIGABRT)"
+ok 'refuses "mass = " "$exe" impact --mass-kg 1e300' "2: impact --mass-kg 1e300 is refused (was SIGABRT)"
+# a point whose models fail is a row naming every failed model; the sweep goes on
+cat > "$tmp/fail.ini" <<EOS
+[study]
+name = failing
+case = $paper
+set = run.revolutions=2; run.models=analytic,ode-clearance-impact,ode-clearance-restitution
+[axis.h]
+key = solver.h_s
+values = 1e-3, 2e-5
+EOS
+"$exe" sweep "$tmp/fail.ini" --out "$tmp/fsw" >/dev/null 2>&1
+rc=$?
+ok '[ $rc -eq 0 ] && [ "$(wc -l < "$tmp/fsw/points.jsonl")" -eq 2 ] && grep "\"index\":0" "$tmp/fsw/points.jsonl" | grep -q "ode-clearance-impact: unstable.*ode-clearance-restitution: unstable"' "2: a failed point is a row naming every failed model, and the sweep goes on"
+
+# ---- 3. study parser bounds, rows validated when read back -------------------
+study_head() { printf '[study]\nname = s3\ncase = %s\nset = run.revolutions=2; run.models=analytic\n' "$paper"; }
+{ study_head; printf '[axis.a]\nkey = drive.speed_rpm\nrange = 1:1000:1\nrange = 1:1000:1\n'; } > "$tmp/range2.ini"
+ok 'refuses "more than 1024 values" "$exe" sweep "$tmp/range2.ini" --out "$tmp/s3"' "3: repeated range lines past the bound are an error (was a buffer overflow)"
+{ study_head; printf '[axis.a]\nkey = drive.speed_rpm\nvalues = 800, 900\nmontecarlo = 1024\n'; } > "$tmp/mc.ini"
+ok 'refuses "not both" "$exe" sweep "$tmp/mc.ini" --out "$tmp/s3"' "3: montecarlo after values is an error (was a buffer overflow)"
+{ study_head; printf '[axis.a]\nmontecarlo = 3\nseed = x1\n'; } > "$tmp/seed.ini"
+ok 'refuses "seed" "$exe" sweep "$tmp/seed.ini" --out "$tmp/s3"' "3: a seed that is not a number is an error"
+for of in -1 100000000000000 1e14 '"3"'; do
+  mkdir -p "$tmp/m3"
+  printf '{"study":"x","index":0,"of":%s,"axes":{},"status":"ok","metrics":{}}\n' "$of" > "$tmp/m3/points.a.jsonl"
+  "$exe" merge "$tmp/m3" --out "$tmp/m3out" >/dev/null 2>"$tmp/err"
+  rc=$?
+  ok '[ $rc -eq 2 ] && grep -q "points.a.jsonl:1: .*\"of\"" "$tmp/err"' "3: merge refuses a row with \"of\": $of naming file, line and field (was a crash)"
+done
+
 # ---- 5. one writer per output folder ----------------------------------------
 slow=(--set run.revolutions=30 --set run.models=analytic,ode-clearance-impact --no-figures)
 wait_for() { for _ in $(seq 1 600); do eval "$1" && return 0; sleep 0.05; done; return 1; }

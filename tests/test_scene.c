@@ -120,6 +120,26 @@ static void test_same_seed_same_numbers(void **state) {
   fb_run_free(&b);
 }
 
+/* ODE's own fatal check (dxNormalize4's assertion, reached with CFM = 0 on
+ * the closed loop's redundant hinge rows; the case file refuses that value,
+ * so the case is changed after loading) stops the model with a named reason
+ * instead of aborting the process (issue 13 item 2) */
+static void test_ode_fatal_error_is_a_status_not_an_abort(void **state) {
+  (void)state;
+  const char *sets[] = {"run.revolutions=2", "run.models=analytic,ode-ideal-nominal"};
+  fb_case c;
+  fb_diag d;
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 2, &d), FB_OK);
+  c.solver.world_cfm = 0.0;
+  static fb_run r;
+  fb_status st = fb_run_case(&r, &c, NULL, NULL, &d);
+  if (st != FB_OK) fail_msg("run failed: %s", d.msg);
+  assert_string_equal(r.model[0].run.status, "ok");
+  if (strncmp(r.model[1].run.status, "ode-error", 9) != 0)
+    fail_msg("status '%s' does not name the ODE error", r.model[1].run.status);
+  fb_run_free(&r);
+}
+
 int main(void) {
   const char *d = getenv("FOURBAR_CASES_DIR");
   snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", d ? d : "cases");
@@ -128,6 +148,7 @@ int main(void) {
       cmocka_unit_test(test_convergence_orders),
       cmocka_unit_test(test_quickstep_runs_and_is_less_accurate),
       cmocka_unit_test(test_same_seed_same_numbers),
+      cmocka_unit_test(test_ode_fatal_error_is_a_status_not_an_abort),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

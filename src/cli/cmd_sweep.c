@@ -71,21 +71,43 @@ static void rows_free(rowset *r) {
   memset(r, 0, sizeof *r);
 }
 
-/* reads the complete rows of a JSON-lines file; a partial last line (a killed
- * writer) is dropped and the file rewritten without it */
-static int read_rows(const char *path, rowset *r, int repair) {
+/* reads the rows of a JSON-lines file, each checked field by field
+ * (fb_study_row_parse). With repair (a sweep resuming its own file) a broken
+ * or partial line (a killed writer) is dropped, to be computed again, and the
+ * file rewritten without it; without repair (merge) the first one is an error
+ * naming file, line and rule in err. */
+static int read_rows(const char *path, rowset *r, int repair, char *err, size_t err_size) {
   FILE *f = fopen(path, "r");
-  if (!f) return errno == ENOENT ? 0 : -1;
+  if (!f) {
+    snprintf(err, err_size, "%s: cannot read: %s", path, strerror(errno));
+    return errno == ENOENT ? 0 : -1;
+  }
   char *line = NULL;
   size_t cap = 0;
   ssize_t len;
-  int bad = 0;
+  int bad = 0, lineno = 0;
   while ((len = getline(&line, &cap, f)) > 0) {
-    if (line[len - 1] == '\n' && fb_study_row_index(line, NULL) >= 0) {
-      if (!rows_add(r, line)) bad = 1;
-    } else {
-      bad = 1;
+    lineno++;
+    long ix;
+    size_t of;
+    char why[128] = "the line does not end (a writer was killed mid-row)";
+    if (memchr(line, '\0', (size_t)len)) snprintf(why, sizeof why, "a NUL byte in the line");
+    else if (line[len - 1] == '\n' && fb_study_row_parse(line, &ix, &of, why, sizeof why)) {
+      if (!rows_add(r, line)) {
+        snprintf(err, err_size, "%s: out of memory for %zu rows", path, r->n);
+        free(line);
+        fclose(f);
+        return -1;
+      }
+      continue;
     }
+    if (!repair) {
+      snprintf(err, err_size, "%s:%d: not a row of a study: %s", path, lineno, why);
+      free(line);
+      fclose(f);
+      return -1;
+    }
+    bad = 1;
   }
   free(line);
   fclose(f);
@@ -95,7 +117,8 @@ static int read_rows(const char *path, rowset *r, int repair) {
     if (fb_outfile_open(&o, path, &d) != FB_OK) return -1;
     for (size_t k = 0; k < r->n; k++) fputs(r->rows[k], o.f);
     if (fb_outfile_commit(&o, &d) != FB_OK) return -1;
-    fprintf(stderr, "fourbar sweep: %s: dropped an incomplete last row (an interrupted run)\n", path);
+    fprintf(stderr, "fourbar sweep: %s: dropped a broken or incomplete row (an interrupted run); "
+            "it is computed again\n", path);
   }
   return 0;
 }
@@ -204,7 +227,8 @@ int fb_cmd_sweep(int argc, char **argv) {
 
   /* resume: what this file already holds */
   rowset done = {0};
-  if (read_rows(rows_path, &done, 1) != 0) return fb_cli_fail("sweep", 1, "%s: cannot read", rows_path);
+  char err[4400] = "";
+  if (read_rows(rows_path, &done, 1, err, sizeof err) != 0) return fb_cli_fail("sweep", 1, "%s", err);
   char *have = calloc(s.points, 1);
   if (!have) return fb_cli_fail("sweep", 1, "out of memory");
   for (size_t k = 0; k < done.n; k++) {
@@ -219,6 +243,10 @@ int fb_cmd_sweep(int argc, char **argv) {
     if (i >= 0 && (size_t)i < s.points) have[i] = 1;
   }
   size_t *todo = malloc(s.points * sizeof *todo);
+  if (!todo) {
+    rows_free(&done);
+    return fb_cli_fail("sweep", 1, "out of memory for %zu points", s.points);
+  }
   size_t ntodo = 0, mine = 0;
   for (size_t i = 0; i < s.points; i++) {
     if ((long)(i % (size_t)shard_n) != shard_i) continue;
@@ -336,7 +364,10 @@ int fb_cmd_sweep(int argc, char **argv) {
   if (rc) return rc;
   /* the CSV of everything this file holds */
   rowset all = {0};
-  read_rows(rows_path, &all, 0);
+  if (read_rows(rows_path, &all, 0, err, sizeof err) != 0) {
+    rows_free(&all);
+    return fb_cli_fail("sweep", 1, "%s", err);
+  }
   char csv[4300];
   snprintf(csv, sizeof csv, "%.*s.csv", (int)(strlen(rows_path) - 6), rows_path);
   if (fb_study_write_csv(csv, all.rows, all.n, &d) != FB_OK) rc = fb_cli_fail("sweep", 1, "%s", d.msg);
@@ -379,14 +410,23 @@ int fb_cmd_merge(int argc, char **argv) {
       snprintf(path, sizeof path, "%s/%s", argv[a], e->d_name);
       if (strcmp(e->d_name, "points.jsonl") == 0 && strcmp(argv[a], out) == 0)
         continue; /* a previous merge result in the output folder: merged again from the shards */
-      if (read_rows(path, &all, 0) != 0) return fb_cli_fail("merge", 1, "%s: cannot read", path);
+      char err[9000];
+      if (read_rows(path, &all, 0, err, sizeof err) != 0) {
+        closedir(dd);
+        rows_free(&all);
+        return fb_cli_fail("merge", 2, "%s", err);
+      }
     }
     closedir(dd);
   }
   if (all.n == 0) return fb_cli_fail("merge", 2, "no points*.jsonl rows in the given folders");
   size_t of = 0;
-  fb_study_row_index(all.rows[0], &of);
-  unsigned char *count = calloc(of ? of : 1, 1);
+  fb_study_row_index(all.rows[0], &of); /* every row read was checked: 1 <= of <= 1e7 */
+  unsigned char *count = calloc(of, 1);
+  if (!count) {
+    rows_free(&all);
+    return fb_cli_fail("merge", 1, "out of memory for %zu points", of);
+  }
   int rc = 0;
   for (size_t k = 0; k < all.n && !rc; k++) {
     size_t o2 = 0;

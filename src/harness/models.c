@@ -93,6 +93,11 @@ static fb_status run_ode(fb_model_run *r, const fb_case *c, int clearance_model,
   size_t report_every = n / 100 + 1;
   for (size_t k = 1; k <= n; k++) {
     st = fb_scene_step(scene, diag);
+    if (st == FB_ERR_NUMERIC) { /* ODE's own fatal check: this model stops, the others run */
+      snprintf(r->status, sizeof r->status, "%.200s", diag->msg);
+      st = FB_OK;
+      break;
+    }
     if (st != FB_OK) break;
     fb_scene_sample(scene, &x);
     if (!sample_finite(&x)) {

@@ -81,6 +81,9 @@ static fb_status add_range(fb_axis *a, const char *text, const char *where, fb_d
   for (int k = 0;; k++) {
     double v = from + step * k;
     if (v > to + 1e-9 * step) break;
+    if (a->n == FB_STUDY_MAX_VALUES)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [axis.%s] range = '%s': the axis would hold more "
+                         "than %d values", where, a->name, text, FB_STUDY_MAX_VALUES);
     snprintf(a->value[a->n++], sizeof a->value[0], "%.10g", v);
   }
   return FB_OK;
@@ -139,7 +142,20 @@ static int handler(void *user, const char *section, const char *key, const char 
       snprintf(s->axis[ai].name, sizeof s->axis[ai].name, "%s", section + 5);
     }
     fb_axis *a = &s->axis[ai];
+    /* an axis is a list (values, range) or a Monte Carlo sample, not both */
+    const int list_key = strcmp(key, "values") == 0 || strcmp(key, "range") == 0;
+    if ((list_key && a->montecarlo) || (strcmp(key, "montecarlo") == 0 && a->n)) {
+      c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [%s] %s: an axis takes values and ranges, or "
+                          "montecarlo, not both", where, section, key);
+      return 1;
+    }
     if (strcmp(key, "key") == 0) {
+      if (a->montecarlo || strlen(value) >= sizeof a->key) {
+        c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [%s] key = '%s': a case key section.key (at "
+                            "most %zu characters), not with montecarlo", where, section, value,
+                            sizeof a->key - 1);
+        return 1;
+      }
       snprintf(a->key, sizeof a->key, "%s", value);
     } else if (strcmp(key, "values") == 0) {
       c->st = add_values(a, value, where, c->diag);
@@ -153,11 +169,21 @@ static int handler(void *user, const char *section, const char *key, const char 
                             "to %d", where, section, value, FB_STUDY_MAX_VALUES);
         return 1;
       }
+      if (a->key[0]) {
+        c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [%s] montecarlo: this axis already has key "
+                            "= %s; a Monte Carlo axis has none", where, section, a->key);
+        return 1;
+      }
       a->montecarlo = 1;
       snprintf(a->key, sizeof a->key, "montecarlo");
       for (long k = 0; k < n; k++) snprintf(a->value[a->n++], sizeof a->value[0], "sample %ld", k);
     } else if (strcmp(key, "seed") == 0) {
-      a->seed = strtoul(value, NULL, 10);
+      char *end;
+      errno = 0;
+      a->seed = strtoul(value, &end, 10);
+      if (!value[0] || *end || errno || value[0] == '-')
+        c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [%s] seed = '%s': a non-negative decimal "
+                            "integer", where, section, value);
     } else {
       c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (key, values, range, "
                           "montecarlo, seed)", where, key, section);
@@ -238,11 +264,12 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
       return fb_diag_set(diag, FB_ERR_PARSE, "%s: [axis.%s] needs key and values or range, or "
                          "montecarlo", path, s->axis[a].name);
     s->points *= (size_t)s->axis[a].n;
+    if (s->points > FB_STUDY_MAX_POINTS) /* checked per axis: the product cannot wrap */
+      return fb_diag_set(diag, FB_ERR_RANGE, "%s: the grid has more than %d points (at [axis.%s])",
+                         path, FB_STUDY_MAX_POINTS, s->axis[a].name);
   }
   if (s->heatmap && s->naxes < 2)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] heatmap = yes needs two axes", path);
-  if (s->points > 10000000)
-    return fb_diag_set(diag, FB_ERR_RANGE, "%s: %zu points: more than 1e7", path, s->points);
   /* the corners of the grid must load: catches a wrong key before any run */
   size_t probe[2] = {0, s->points - 1};
   for (int k = 0; k < 2; k++) {
@@ -310,11 +337,12 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
       int nm = fb_check_metrics(&r, m, FB_CHECK_MAX_METRICS);
       for (int k = 0; k < nm; k++)
         if (wanted(s, m[k].name)) json_object_set_new(metrics, m[k].name, json_real(m[k].value));
+      /* every model that stopped, each with its reason */
+      size_t l = 0;
       for (int k = 0; k < r.n; k++)
-        if (strcmp(r.model[k].run.status, "ok") != 0) {
-          snprintf(status, sizeof status, "%s: %s", r.model[k].run.name, r.model[k].run.status);
-          break;
-        }
+        if (strcmp(r.model[k].run.status, "ok") != 0 && l + 1 < sizeof status)
+          l += (size_t)snprintf(status + l, sizeof status - l, "%s%s: %s", l ? "; " : "",
+                                r.model[k].run.name, r.model[k].run.status);
       fb_run_free(&r);
     }
   }
@@ -337,14 +365,44 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
   return FB_OK;
 }
 
-long fb_study_row_index(const char *line, size_t *of) {
+int fb_study_row_parse(const char *line, long *index, size_t *of, char *why, size_t why_size) {
   json_error_t je;
-  json_t *o = json_loads(line, 0, &je);
-  if (!o) return -1;
+  json_t *o = json_loads(line, JSON_REJECT_DUPLICATES, &je);
+  const char *bad = NULL;
   json_t *ix = json_object_get(o, "index"), *n = json_object_get(o, "of");
-  long i = json_is_integer(ix) && json_object_get(o, "metrics") ? (long)json_integer_value(ix) : -1;
-  if (of && json_is_integer(n)) *of = (size_t)json_integer_value(n);
+  json_t *axes = json_object_get(o, "axes"), *mets = json_object_get(o, "metrics");
+  if (!o) bad = "not a JSON object";
+  else if (!json_is_string(json_object_get(o, "study"))) bad = "\"study\" is not a string";
+  else if (!json_is_integer(n) || json_integer_value(n) < 1 ||
+           json_integer_value(n) > FB_STUDY_MAX_POINTS)
+    bad = "\"of\" is not an integer from 1 to 1e7";
+  else if (!json_is_integer(ix) || json_integer_value(ix) < 0 ||
+           json_integer_value(ix) >= json_integer_value(n))
+    bad = "\"index\" is not an integer from 0 to of - 1";
+  else if (!json_is_object(axes)) bad = "\"axes\" is not an object";
+  else if (!json_is_string(json_object_get(o, "status"))) bad = "\"status\" is not a string";
+  else if (!json_is_object(mets)) bad = "\"metrics\" is not an object";
+  if (!bad) {
+    const char *key;
+    json_t *v;
+    json_object_foreach(axes, key, v) if (!json_is_string(v)) bad = "an axis value is not a string";
+    json_object_foreach(mets, key, v) if (!json_is_number(v) || !isfinite(json_number_value(v)))
+        bad = "a metric is not a finite number";
+  }
+  if (!bad) {
+    *index = (long)json_integer_value(ix);
+    *of = (size_t)json_integer_value(n);
+  }
+  if (bad && why) snprintf(why, why_size, "%s", bad);
   json_decref(o);
+  return bad == NULL;
+}
+
+long fb_study_row_index(const char *line, size_t *of) {
+  long i;
+  size_t n;
+  if (!fb_study_row_parse(line, &i, &n, NULL, 0)) return -1;
+  if (of) *of = n;
   return i;
 }
 

@@ -28,6 +28,7 @@
 #define FB_STUDY_MAX_VALUES 1024
 #define FB_STUDY_MAX_SETS 32
 #define FB_STUDY_MAX_METRICS 64
+#define FB_STUDY_MAX_POINTS 10000000 /* grid points of one study (rows read back are checked too) */
 
 typedef struct {
   char name[64];
@@ -64,7 +65,15 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag);
  * whose status says why. Errors: FB_ERR_NOMEM only. */
 fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag);
 
-/* Index of a row line, or -1 when the line is not a complete row. */
+/* Checks a row read back from disk, field by field: "study" a string, "of"
+ * an integer from 1 to FB_STUDY_MAX_POINTS, "index" from 0 to of - 1,
+ * "axes" an object of strings, "status" a string, "metrics" an object of
+ * finite numbers. Returns 1 and sets *index and *of, or 0 with the first
+ * broken rule in why (why_size bytes; why may be NULL). */
+int fb_study_row_parse(const char *line, long *index, size_t *of, char *why, size_t why_size);
+
+/* Index of a row line, or -1 when the line is not a valid row
+ * (fb_study_row_parse). */
 long fb_study_row_index(const char *line, size_t *of);
 
 /* Writes rows (JSON lines, any order, one per index) as CSV sorted by index:

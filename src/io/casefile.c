@@ -55,24 +55,27 @@ typedef struct {
 
 #define OFF(field) offsetof(fb_case, field)
 #define INF HUGE_VAL
-#define LEN_RULE "a link length must be positive"
+/* honest physical ranges (issue 13): outside them ODE's closed-loop solve
+ * degenerates (dxNormalize4 aborts were measured at CFM 1e-18 and at
+ * extreme mass ratios) and the mechanism is no four-bar this program models */
+#define LEN_RULE "a link length must be positive, from 0.001 mm to 1e5 mm (1 um to 100 m)"
 #define TOL_RULE "a tolerance must be >= 0"
-#define MASS_RULE "a mass must be positive"
-#define INERTIA_RULE "a moment of inertia must be positive"
+#define MASS_RULE "a mass must be positive, from 1e-6 kg to 1e4 kg (1 mg to 10 t)"
+#define INERTIA_RULE "a moment of inertia must be positive, from 1e-6 to 1e12 kg mm^2"
 #define COM_RULE "the centre of mass lies between the link's joints (0 to 1)"
 
 #define LINK_MASS_KEYS(i, nm, m, izz, ilong, itr)                                          \
-  {"mass", nm "_kg", K_DOUBLE, OFF(link[i].mass), 1.0, 0, INF, 1, 1, "kg", m, MASS_RULE,   \
+  {"mass", nm "_kg", K_DOUBLE, OFF(link[i].mass), 1.0, FB_MASS_MIN_KG, FB_MASS_MAX_KG, 0, 0, "kg", m, MASS_RULE,   \
    "mass of the " nm},                                                                     \
-  {"mass", nm "_inertia_kg_mm2", K_DOUBLE, OFF(link[i].inertia), FB_KG_M2_PER_KG_MM2, 0, INF, 1, 1,       \
+  {"mass", nm "_inertia_kg_mm2", K_DOUBLE, OFF(link[i].inertia), FB_KG_M2_PER_KG_MM2, 1e-6, 1e12, 0, 0,       \
    "kg mm^2", izz, INERTIA_RULE,                                                           \
    "moment of inertia of the " nm " about the hinge (out-of-plane) axis through its "      \
    "centre of mass"},                                                                      \
-  {"mass", nm "_inertia_long_kg_mm2", K_DOUBLE, OFF(link[i].inertia_long), FB_KG_M2_PER_KG_MM2, 0, INF,   \
-   1, 1, "kg mm^2", ilong, INERTIA_RULE,                                                   \
+  {"mass", nm "_inertia_long_kg_mm2", K_DOUBLE, OFF(link[i].inertia_long), FB_KG_M2_PER_KG_MM2, 1e-6, 1e12, \
+   0, 0, "kg mm^2", ilong, INERTIA_RULE,                                                   \
    "moment about the " nm "'s long axis (no effect on planar motion with ideal hinges)"},  \
   {"mass", nm "_inertia_transverse_kg_mm2", K_DOUBLE, OFF(link[i].inertia_transverse),     \
-   FB_KG_M2_PER_KG_MM2, 0, INF, 1, 1, "kg mm^2", itr, INERTIA_RULE,                                       \
+   FB_KG_M2_PER_KG_MM2, 1e-6, 1e12, 0, 0, "kg mm^2", itr, INERTIA_RULE,                                       \
    "moment about the in-plane axis across the " nm " (no effect on planar motion)"},       \
   {"mass", nm "_com_fraction", K_DOUBLE, OFF(link[i].com_fraction), 1.0, 0, 1, 0, 0, "-",  \
    "0.5", COM_RULE, "centre of mass position along the " nm ", from its first joint"}
@@ -85,18 +88,18 @@ static const key_spec keys[] = {
     {"case", "description", K_TEXT, 0, 0, 0, 0, 0, 0, "-", "", "free text",
      "one line describing the case (not used by the solver)"},
 
-    {"linkage", "crank_mm", K_DOUBLE, OFF(nominal.length[FB_CRANK]), FB_M_PER_MM, 0, INF, 1, 1, "mm",
+    {"linkage", "crank_mm", K_DOUBLE, OFF(nominal.length[FB_CRANK]), FB_M_PER_MM, 1e-3, 1e5, 0, 0, "mm",
      "108", LEN_RULE, "basic crank length, A to B"},
-    {"linkage", "coupler_mm", K_DOUBLE, OFF(nominal.length[FB_COUPLER]), FB_M_PER_MM, 0, INF, 1, 1,
+    {"linkage", "coupler_mm", K_DOUBLE, OFF(nominal.length[FB_COUPLER]), FB_M_PER_MM, 1e-3, 1e5, 0, 0,
      "mm", "279.4", LEN_RULE, "basic coupler length, B to C"},
-    {"linkage", "follower_mm", K_DOUBLE, OFF(nominal.length[FB_FOLLOWER]), FB_M_PER_MM, 0, INF, 1, 1,
+    {"linkage", "follower_mm", K_DOUBLE, OFF(nominal.length[FB_FOLLOWER]), FB_M_PER_MM, 1e-3, 1e5, 0, 0,
      "mm", "270.5", LEN_RULE, "basic follower (rocker) length, D to C"},
-    {"linkage", "ground_mm", K_DOUBLE, OFF(nominal.length[FB_GROUND]), FB_M_PER_MM, 0, INF, 1, 1,
+    {"linkage", "ground_mm", K_DOUBLE, OFF(nominal.length[FB_GROUND]), FB_M_PER_MM, 1e-3, 1e5, 0, 0,
      "mm", "254", LEN_RULE, "basic ground length, A to D along +x"},
     {"linkage", "branch", K_BRANCH, OFF(branch), 0, 0, 0, 0, 0, "-", "open", "open or crossed",
      "assembly branch: open (C left of B->D) or crossed"},
-    {"linkage", "crank_angle0_deg", K_DOUBLE, OFF(crank_angle0), FB_RAD_PER_DEG, -INF, INF, 1, 1,
-     "deg", "0", "a finite angle", "crank angle at t = 0, counter-clockwise from +x"},
+    {"linkage", "crank_angle0_deg", K_DOUBLE, OFF(crank_angle0), FB_RAD_PER_DEG, -360, 360, 0, 0,
+     "deg", "0", "an angle from -360 to 360 deg (one turn either way)", "crank angle at t = 0, counter-clockwise from +x"},
 
     {"tolerance", "crank_plus_minus_mm", K_DOUBLE, OFF(plus_minus[FB_CRANK]), FB_M_PER_MM, 0, INF, 0,
      1, "mm", "0", TOL_RULE, "symmetric tolerance of the crank length"},
@@ -217,8 +220,9 @@ static const key_spec keys[] = {
      "20", "iterations must be 1 to 1000000", "dWorldQuickStep iterations"},
     {"solver", "world_erp", K_DOUBLE, OFF(solver.world_erp), 1.0, 0, 1, 0, 0, "-", "0.2",
      "ERP must lie in [0, 1]", "error reduction parameter of the ideal joints (dWorldSetERP)"},
-    {"solver", "world_cfm", K_DOUBLE, OFF(solver.world_cfm), 1.0, 0, 1, 0, 0, "m/(N s)", "1e-10",
-     "CFM must lie in [0, 1]", "constraint force mixing of the ideal joints (dWorldSetCFM)"},
+    {"solver", "world_cfm", K_DOUBLE, OFF(solver.world_cfm), 1.0, 1e-12, 1, 0, 0, "m/(N s)", "1e-10",
+     "CFM must lie in [1e-12, 1] (below, the closed loop's redundant hinge rows make ODE's "
+     "LCP singular and ODE aborts)", "constraint force mixing of the ideal joints (dWorldSetCFM)"},
     {"solver", "drive_torque_max_n_m", K_DOUBLE, OFF(solver.drive_torque_max), 1.0, 0, INF, 1, 1,
      "N m", "1e4", "the drive torque limit must be positive",
      "torque limit of the crank's velocity motor (dParamFMax); 100 times the 102 N m "

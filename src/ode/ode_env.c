@@ -6,6 +6,22 @@
 
 static int ode_users = 0;
 
+jmp_buf *fb_ode_escape = NULL;
+static char last_error[512];
+
+const char *fb_ode_last_error(void) { return last_error; }
+
+/* inside a guard: keep the message and jump back instead of returning to
+ * ODE's abort() */
+static void escape(int errnum, const char *msg, va_list ap) {
+  if (!fb_ode_escape) return;
+  int n = snprintf(last_error, sizeof last_error, "ODE error %d: ", errnum);
+  vsnprintf(last_error + n, sizeof last_error - (size_t)n, msg, ap);
+  jmp_buf *to = fb_ode_escape;
+  fb_ode_escape = NULL;
+  longjmp(*to, 1);
+}
+
 static void report(const char *kind, int errnum, const char *msg, va_list ap) {
   fprintf(stderr, "fourbar: ODE %s %d: ", kind, errnum);
   vfprintf(stderr, msg, ap);
@@ -16,9 +32,11 @@ static void report(const char *kind, int errnum, const char *msg, va_list ap) {
 /* dError and dDebug end the process after their handler returns (ODE 0.16,
  * ode/src/error.cpp): the message says so instead of a silent exit */
 static void on_error(int errnum, const char *msg, va_list ap) {
+  escape(errnum, msg, ap);
   report("error (fatal, the run ends)", errnum, msg, ap);
 }
 static void on_debug(int errnum, const char *msg, va_list ap) {
+  escape(errnum, msg, ap);
   report("internal error (fatal, the run ends)", errnum, msg, ap);
 }
 static void on_message(int errnum, const char *msg, va_list ap) { report("message", errnum, msg, ap); }

@@ -11,4 +11,18 @@ void fb_ode_acquire(void);
 /* Releases one user; closes ODE when none is left. */
 void fb_ode_release(void);
 
+#include <setjmp.h>
+
+/* ODE's dError and dDebug (a failed internal check such as dxNormalize4's
+ * "!bSafeNormalize4Fault") end the process with abort() once their handler
+ * returns. While fb_ode_escape points at a jmp_buf, the handler keeps the
+ * message (fb_ode_last_error) and longjmps there instead, so the caller can
+ * stop that model with a named reason and destroy its world; outside such a
+ * guard ODE's behaviour is unchanged. Set it only around calls into ODE,
+ * restore it right after. */
+extern jmp_buf *fb_ode_escape;
+
+/* The message of the last ODE error caught by the guard. */
+const char *fb_ode_last_error(void);
+
 #endif

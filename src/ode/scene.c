@@ -29,6 +29,7 @@ typedef struct {
 
 struct fb_scene {
   fb_scene_def def;
+  int broken;        /* 1 after an ODE fatal error left its world mid-step: never touched again */
   dWorldID world;
   dBodyID body[3];   /* crank, coupler, follower */
   dJointID hinge[4]; /* A (ground-crank, driven), B, C, D; 0 for clearance joints */
@@ -470,8 +471,19 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
   const dReal *g1 = dBodyGetPosition(s->body[FB_CRANK]);
   s->crank_com_before[0] = g1[0];
   s->crank_com_before[1] = g1[1];
+  /* an ODE fatal error (a failed internal check) stops this scene with its
+   * message instead of aborting the process (ode_env.h); the caller then
+   * only destroys the scene */
+  jmp_buf escape;
+  if (setjmp(escape) != 0) {
+    s->broken = 1;
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "ode-error: %s at t = %.6g s (step %zu)",
+                       fb_ode_last_error(), (double)s->steps * s->def.solver.h, s->steps + 1);
+  }
+  fb_ode_escape = &escape;
   int ok = s->def.solver.stepper == FB_STEPPER_WORLD ? dWorldStep(s->world, h)
                                                      : dWorldQuickStep(s->world, h);
+  fb_ode_escape = NULL;
   for (int j = 0; j < 4; j++) {
     clearance *c = &s->cl[j];
     if (s->def.faceted_n > 0 || c->bore) {
@@ -672,6 +684,18 @@ fb_status fb_scene_probe_inverse_mass(fb_scene *s, int j, const double n[2], dou
 
 void fb_scene_destroy(fb_scene *s) {
   if (!s) return;
+  if (s->broken) {
+    /* ODE's world was left mid-step (its job list still holds the step):
+     * destroying it would fail ODE's own checks, so it is leaked, and ODE is
+     * never closed in this process; the project's own allocations are freed */
+    for (int j = 0; j < 4; j++) {
+      free(s->cl[j].boxes);
+      if (s->cl[j].bore) fb_ccd_bore_destroy(s->cl[j].bore);
+      free(s->cl[j].fbs);
+    }
+    free(s);
+    return;
+  }
   for (int j = 0; j < 4; j++) {
     facet_destroy(&s->cl[j], s->def.faceted_n);
     if (s->cl[j].bore) {

@@ -1,5 +1,6 @@
 #include "clock.h"
 #include "impact.h"
+#include "units.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -12,8 +13,9 @@ static int is_linear(fb_law_kind k) { return k == FB_LAW_LINEAR || k == FB_LAW_R
 fb_status fb_impact_check(const fb_impact_def *d, fb_diag *diag) {
   fb_status st = fb_contact_law_check(&d->law, diag);
   if (st != FB_OK) return st;
-  if (!(d->mass > 0.0) || !isfinite(d->mass))
-    return fb_diag_set(diag, FB_ERR_RANGE, "mass = %g kg: must be positive", d->mass);
+  if (!(d->mass >= FB_MASS_MIN_KG && d->mass <= FB_MASS_MAX_KG))
+    return fb_diag_set(diag, FB_ERR_RANGE, "mass = %g kg: must be positive, from %g kg to %g kg",
+                       d->mass, FB_MASS_MIN_KG, FB_MASS_MAX_KG);
   if (!(d->speed > 0.0) || !isfinite(d->speed))
     return fb_diag_set(diag, FB_ERR_RANGE, "speed = %g m/s: the impact speed must be positive",
                        d->speed);

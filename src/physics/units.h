@@ -13,4 +13,11 @@
 #define FB_PA_PER_GPA 1e9                   /* GPa -> Pa */
 #define FB_KG_M2_PER_KG_MM2 1e-6            /* kg mm^2 -> kg m^2 */
 
+/* The honest range of a body's mass in every command (case files, fourbar
+ * impact): 1 mg to 10 t. Outside it ODE's solve degenerates (dxNormalize4
+ * aborts were measured at 1e-300 and 1e300 kg) and nothing modelled here is
+ * that light or heavy. */
+#define FB_MASS_MIN_KG 1e-6
+#define FB_MASS_MAX_KG 1e4
+
 #endif

@@ -69,9 +69,12 @@ static fb_status run_ode(fb_model_run *r, const fb_case *c, int clearance_model,
     def.pin_length = c->pin_length;
     def.faceted_n = faceted ? c->clearance.faceted_n : 0;
   }
-  const double pen_limit = c->clearance.penetration_limit > 0.0 ? c->clearance.penetration_limit
-                                                                 : c->radial_clearance;
+  const double pen_limit = fb_case_penetration_limit(c);
   def.lengths = r->lengths;
+  /* the case's start, the same state the reference starts from */
+  fb_status sst = fb_start_resolve(&def.start, c, &r->lengths, def.clearance_mask, diag);
+  if (sst != FB_OK) return sst;
+  def.start_given = 1;
   def.branch = c->branch;
   def.crank_angle0 = c->crank_angle0;
   def.omega2 = fb_case_omega2(c);
@@ -107,10 +110,7 @@ static fb_status run_ode(fb_model_run *r, const fb_case *c, int clearance_model,
     int pj;
     const double pen = fb_scene_penetration(scene, &pj);
     if (pen > pen_limit) {
-      snprintf(r->status, sizeof r->status,
-               "unstable: penetration %.4g um at the %s joint exceeds the limit %.4g um at "
-               "t = %.6g s (step %zu)",
-               pen * 1e6, fb_joint_name(pj), pen_limit * 1e6, x.t, k);
+      fb_case_penetration_status(r->status, sizeof r->status, pen, pj, pen_limit, x.t, k);
       break;
     }
     fb_series_push(&r->series, &x);

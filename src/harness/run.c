@@ -66,9 +66,9 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
   if (rc == FB_OK && c->stackup.worst) rc = fb_case_check(&r->c, diag);
   if (rc != FB_OK) return rc;
   c = &r->c;
-  r->t_window = 2.0 * M_PI / c->crank_speed; /* after the first revolution */
-  /* a hair below one revolution so the sample at exactly one period counts */
-  r->t_window -= 0.5 * c->solver.h;
+  /* [run] peaks: from t = 0, or after the first revolution (a hair below one
+   * revolution so the sample at exactly one period counts) */
+  r->t_window = fb_case_peak_window_from(c);
   fb_status st = fb_analytic_peaks(&r->analytic_nominal, &c->nominal, c->branch,
                                    fb_case_omega2(c), diag);
   if (st != FB_OK) return st;

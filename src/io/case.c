@@ -1,6 +1,7 @@
 #include "case.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 const char *const fb_model_names[] = {"analytic",
@@ -99,6 +100,37 @@ void fb_case_default(fb_case *c) {
   for (int i = 0; i < 4; i++) strcpy(c->models[i], m[i]);
 }
 
+double fb_case_penetration_limit(const fb_case *c) {
+  if (c->clearance.penetration_unlimited) return INFINITY;
+  return c->clearance.penetration_limit > 0.0 ? c->clearance.penetration_limit
+                                              : c->radial_clearance;
+}
+
+void fb_case_penetration_status(char *buf, size_t size, double penetration, int joint,
+                                double limit, double t, size_t step) {
+  char at[48] = "";
+  if (step > 0) snprintf(at, sizeof at, " (step %zu)", step);
+  snprintf(buf, size,
+           "unstable: penetration %.4g um at the %s joint exceeds the limit %.4g um at "
+           "t = %.6g s%s",
+           penetration * 1e6, fb_joint_name(joint), limit * 1e6, t, at);
+}
+
+int fb_case_validity_warning(char *buf, size_t size, const fb_case *c, double penetration) {
+  if (!(penetration > FB_PENALTY_VALIDITY_FACTOR * c->radial_clearance)) return 0;
+  snprintf(buf, size,
+           "outside the penalty model's validity: penetration %.4g um is %.2f times the radial "
+           "clearance %.4g um (above %g times)",
+           penetration * 1e6, penetration / c->radial_clearance, c->radial_clearance * 1e6,
+           FB_PENALTY_VALIDITY_FACTOR);
+  return 1;
+}
+
+double fb_case_peak_window_from(const fb_case *c) {
+  if (c->peaks == FB_PEAKS_ALL) return 0.0;
+  return 2.0 * M_PI / c->crank_speed - 0.5 * c->solver.h;
+}
+
 double fb_case_omega2(const fb_case *c) { return c->direction * c->crank_speed; }
 
 void fb_case_stackup_lengths(const fb_case *c, fb_linkage *out) {
@@ -173,6 +205,12 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_RANGE,
                        "step size h = %g s over %g s is %.3g steps: more than 1e9 steps",
                        c->solver.h, dur, dur / c->solver.h);
+  if (c->revolutions < 2.0 && c->peaks == FB_PEAKS_STEADY)
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "revolutions = %g: the steady peak window starts after the first "
+                       "revolution, so run at least 2, or take peaks over the whole run "
+                       "([run] peaks = all)",
+                       c->revolutions);
   if (c->clearance.penetration_limit < 0.0)
     return fb_diag_set(diag, FB_ERR_RANGE, "penetration limit %g m: must be >= 0",
                        c->clearance.penetration_limit);

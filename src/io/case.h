@@ -5,6 +5,8 @@
 #ifndef FB_CASE_H
 #define FB_CASE_H
 
+#include <stddef.h>
+
 #include "linkage.h"
 
 #define FB_NAME_SIZE 64
@@ -62,6 +64,7 @@ typedef struct {
   int mapping;               /* fb_mapping: 0 secant, 1 tangent */
   double friction;           /* Coulomb friction coefficient at the contact [-] */
   double penetration_limit;  /* stop a model beyond this penetration [m]; 0: the radial clearance */
+  int penetration_unlimited; /* 1: no limit (penetration_limit_um = none); penetration_limit ignored */
   int faceted_n;             /* boxes in the ring of the ode-clearance-faceted model */
   double stiffness_scale;    /* multiplies the stiffness from any source [-] (studies, checks) */
 } fb_clearance;
@@ -99,6 +102,31 @@ typedef struct {
   double loop_impedance; /* solimp dmin = dmax of the loop closure [-] in (0, 1) */
   double drive_armature; /* armature of the crank hinge (flywheel drive) [kg m^2] */
 } fb_mujoco_opts;
+/* Initial state of the moving bodies ([run] start; physics/start.h resolves it). */
+typedef enum {
+  FB_START_STEADY = 0, /* every body on the ideal mechanism's motion at t = 0 */
+  FB_START_REST = 1    /* crank at full speed, bodies not rigidly tied to it at rest */
+} fb_start;
+
+/* Pin position in its hole at t = 0 ([run] pin_start), every clearance joint. */
+typedef enum {
+  FB_PIN_CENTRED = 0, /* pin centre on the hole centre */
+  FB_PIN_RESTING = 1, /* on the wall, along the static gravity load the joint carries */
+  FB_PIN_ANGLE = 2    /* on the wall at eccentricity angle pin_start_angle */
+} fb_pin_start;
+
+/* Time window the peaks are taken over ([run] peaks). */
+typedef enum {
+  FB_PEAKS_STEADY = 0, /* from the second revolution on (the first is a run-in) */
+  FB_PEAKS_ALL = 1     /* from t = 0, the start-up included */
+} fb_peak_window;
+
+/* Penetration beyond this multiple of the radial clearance is outside the
+ * penalty model's validity (a run gets a named warning, limit or not): the
+ * laws are fitted to contact approaches of microns, a fraction of the
+ * clearance; at twice the clearance the pin has passed through the wall by
+ * more than the whole gap, which no penalty law describes. */
+#define FB_PENALTY_VALIDITY_FACTOR 2.0
 
 typedef struct fb_case_s {
   char name[FB_NAME_SIZE];            /* case name, used for the output folder */
@@ -133,6 +161,10 @@ typedef struct fb_case_s {
     char reason[FB_NAME_SIZE];        /* word the unstable status contains */
   } expect;                           /* hard cases' stated outcome (tests check it) */
   double revolutions;                 /* crank revolutions simulated [-]; the first is a run-in */
+  fb_start start;                     /* initial state of the bodies */
+  fb_pin_start pin_start;             /* initial pin position of the clearance joints */
+  double pin_start_angle;             /* eccentricity angle for FB_PIN_ANGLE [rad], ccw from +x */
+  fb_peak_window peaks;               /* window of the reported peaks */
   int model_count;                    /* entries used in models */
   char models[FB_MAX_MODELS][FB_NAME_SIZE]; /* model names to run, in order */
 } fb_case;
@@ -155,6 +187,26 @@ void fb_case_stackup_lengths(const fb_case *c, fb_linkage *out);
 
 /* Simulated duration [s]: revolutions * 2 pi / crank speed. */
 double fb_case_duration(const fb_case *c);
+
+/* Penetration limit of the clearance models [m]: the explicit limit, the
+ * radial clearance when none is given, or INFINITY for penetration_limit_um
+ * = none. */
+double fb_case_penetration_limit(const fb_case *c);
+
+/* Writes the status of a model stopped by the penetration limit ("unstable:
+ * penetration ... at the <joint> joint exceeds the limit ... at t = ... (step
+ * k)") into buf; step 0 leaves the step out (adaptive integrators). */
+void fb_case_penetration_status(char *buf, size_t size, double penetration, int joint,
+                                double limit, double t, size_t step);
+
+/* Writes the warning "outside the penalty model's validity: ..." into buf
+ * and returns 1 when penetration exceeds FB_PENALTY_VALIDITY_FACTOR times
+ * the case's radial clearance; returns 0 (buf untouched) otherwise. */
+int fb_case_validity_warning(char *buf, size_t size, const fb_case *c, double penetration);
+
+/* Start of the peak window [s]: 0 for peaks = all, else one revolution less
+ * half a step (so that the sample at exactly one period counts). */
+double fb_case_peak_window_from(const fb_case *c);
 
 /* Model names known to this build, NULL-terminated. */
 extern const char *const fb_model_names[];

@@ -35,7 +35,11 @@ typedef enum {
   K_JOINTS,    /* comma-separated joint names (bit mask) */
   K_PENALTY,   /* physical | paper | explicit */
   K_MAPPING,   /* secant | tangent */
-  K_MJINT      /* euler | implicit | rk4 | auto */
+  K_MJINT,     /* euler | implicit | rk4 | auto */
+  K_START,     /* steady | rest */
+  K_PINSTART,  /* centred | resting | an eccentricity angle in degrees */
+  K_PEAKS,     /* steady | all */
+  K_LIMIT      /* a number (scaled like K_DOUBLE) | none | clearance */
 } key_kind;
 
 typedef struct {
@@ -189,9 +193,12 @@ static const key_spec keys[] = {
      "secant or tangent", "per-step linearisation of the law into ERP/CFM"},
     {"clearance", "friction", K_DOUBLE, OFF(clearance.friction), 1.0, 0, 10, 0, 0, "-", "0",
      "a friction coefficient must lie in [0, 10]", "Coulomb friction coefficient at the pin"},
-    {"clearance", "penetration_limit_um", K_DOUBLE, OFF(clearance.penetration_limit), FB_M_PER_UM,
-     0, INF, 0, 1, "um", "0", "the limit must be >= 0",
-     "a model stops ('unstable') beyond this penetration; 0: the radial clearance"},
+    {"clearance", "penetration_limit_um", K_LIMIT, OFF(clearance.penetration_limit), FB_M_PER_UM,
+     0, INF, 0, 1, "um", "clearance", "a limit >= 0 (0: the radial clearance), clearance or none",
+     "every clearance model, ODE and reference, stops ('unstable') beyond this penetration; "
+     "clearance (or 0): the radial clearance; none: no limit. Either way a run whose "
+     "penetration passes 2 times the radial clearance gets the warning \"outside the penalty "
+     "model's validity\""},
 
     {"clearance", "stiffness_scale", K_DOUBLE, OFF(clearance.stiffness_scale), 1.0, 0, 1e6, 1, 0,
      "-", "1", "a scale must be positive", "multiplies the contact stiffness from any penalty source"},
@@ -252,9 +259,23 @@ static const key_spec keys[] = {
      "armature of the crank hinge: the crank is a flywheel set to the crank speed at t = 0, "
      "so the reaction torques barely change its speed (the crank-angle error is reported)"},
 
-    {"run", "revolutions", K_INT, OFF(revolutions), 0, 2, 1e6, 0, 0, "-", "3",
-     "at least 2: the first revolution is a run-in and peaks come from the rest",
-     "crank revolutions simulated; peaks are taken over all but the first"},
+    {"run", "revolutions", K_INT, OFF(revolutions), 0, 1, 1e6, 0, 0, "-", "3",
+     "at least 2 with peaks = steady (the first revolution is a run-in); at least 1 with "
+     "peaks = all",
+     "crank revolutions simulated"},
+    {"run", "start", K_START, OFF(start), 0, 0, 0, 0, 0, "-", "steady", "steady or rest",
+     "initial state: steady (every body on the ideal mechanism's motion) or rest (the crank "
+     "at full speed from t = 0, every body not rigidly tied to it at rest: coupler and "
+     "follower of the clearance models; the ideal models get the velocities their joints "
+     "impose)"},
+    {"run", "pin_start", K_PINSTART, OFF(pin_start), FB_RAD_PER_DEG, -INF, INF, 1, 1, "deg",
+     "centred", "centred, resting, or a finite eccentricity angle in degrees",
+     "pin position in every clearance joint at t = 0: centred in its hole, resting on the "
+     "wall along the static gravity load the joint carries, or on the wall at this "
+     "eccentricity angle (pin centre - hole centre, counter-clockwise from +x)"},
+    {"run", "peaks", K_PEAKS, OFF(peaks), 0, 0, 0, 0, 0, "-", "steady", "steady or all",
+     "window of the reported peaks: steady (from the second revolution on) or all (from "
+     "t = 0, the start-up included); summary.json reports the first revolution alone too"},
     {"run", "models", K_MODELS, OFF(models), 0, 0, 0, 0, 0, "-",
      "analytic, analytic-stackup, ode-ideal-nominal, ode-ideal-stackup", "known model names",
      "models to run, comma-separated"},
@@ -577,6 +598,48 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else if (strcmp(e->value, "tangent") == 0) *(int *)field = 1;
       else return bad_word(e, k, diag);
       return FB_OK;
+    case K_START:
+      if (strcmp(e->value, "steady") == 0) *(fb_start *)field = FB_START_STEADY;
+      else if (strcmp(e->value, "rest") == 0) *(fb_start *)field = FB_START_REST;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_PEAKS:
+      if (strcmp(e->value, "steady") == 0) *(fb_peak_window *)field = FB_PEAKS_STEADY;
+      else if (strcmp(e->value, "all") == 0) *(fb_peak_window *)field = FB_PEAKS_ALL;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_PINSTART:
+      if (strcmp(e->value, "centred") == 0) {
+        c->pin_start = FB_PIN_CENTRED;
+      } else if (strcmp(e->value, "resting") == 0) {
+        c->pin_start = FB_PIN_RESTING;
+      } else {
+        char *end;
+        double deg = strtod(e->value, &end);
+        while (*end == ' ' || *end == '\t') end++;
+        if (end == e->value || *end != '\0' || !isfinite(deg)) return bad_word(e, k, diag);
+        c->pin_start = FB_PIN_ANGLE;
+        c->pin_start_angle = deg * k->scale;
+      }
+      return FB_OK;
+    case K_LIMIT:
+      if (strcmp(e->value, "none") == 0) {
+        c->clearance.penetration_unlimited = 1;
+        return FB_OK;
+      }
+      c->clearance.penetration_unlimited = 0;
+      if (strcmp(e->value, "clearance") == 0) {
+        *(double *)field = 0.0;
+        return FB_OK;
+      }
+      {
+        char *end;
+        (void)strtod(e->value, &end);
+        if (end == e->value) return bad_word(e, k, diag); /* neither a word nor a number */
+      }
+      st = parse_double(e, k, &v, diag);
+      if (st == FB_OK) *(double *)field = v * k->scale;
+      return st;
     case K_CLASS:
       if (strlen(e->value) != 1 || !strchr("fmcv", e->value[0])) return bad_word(e, k, diag);
       *(char *)field = e->value[0];

@@ -132,10 +132,28 @@ static fb_status ccd_create(fb_scene *s, int j, fb_diag *diag) {
 }
 
 fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag) {
-  fb_linkage_state st;
-  fb_status rc = fb_linkage_solve(&st, &def->lengths, def->branch, def->crank_angle0,
-                                  def->omega2, 0.0, diag);
-  if (rc != FB_OK) return rc;
+  fb_start_state st = def->start;
+  if (!def->start_given) {
+    /* the steady start with every pin centred, from the analytic solver */
+    fb_linkage_state ls;
+    fb_status rc = fb_linkage_solve(&ls, &def->lengths, def->branch, def->crank_angle0,
+                                    def->omega2, 0.0, diag);
+    if (rc != FB_OK) return rc;
+    memset(&st, 0, sizeof st);
+    st.crank_angle = ls.crank_angle;
+    st.crank_omega = def->omega2;
+    st.coupler_angle = ls.coupler_angle;
+    st.coupler_omega = ls.coupler_omega;
+    st.follower_angle = ls.follower_angle;
+    st.follower_omega = ls.follower_omega;
+    for (int k = 0; k < 2; k++) {
+      st.pin[FB_JOINT_B][k] = st.hole[FB_JOINT_B][k] = ls.b[k];
+      st.pin[FB_JOINT_C][k] = st.hole[FB_JOINT_C][k] = ls.c[k];
+    }
+    st.pin[FB_JOINT_D][0] = st.hole[FB_JOINT_D][0] = def->lengths.length[FB_GROUND];
+    st.coupler_b_vel[0] = -def->omega2 * ls.b[1];
+    st.coupler_b_vel[1] = def->omega2 * ls.b[0];
+  }
   fb_scene *s = calloc(1, sizeof *s);
   if (!s) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the scene");
   fb_ode_acquire();
@@ -154,35 +172,37 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
     dWorldSetAngularDampingThreshold(s->world, 0.0);
   }
 
-  const double a0[2] = {0, 0};
-  const double d0[2] = {def->lengths.length[FB_GROUND], 0};
+  /* each body between its joints' pin or hole centres (start.h): crank A_pin
+   * to B_pin, coupler B_hole to C_pin, follower D_pin to C_hole */
   const double zero[2] = {0, 0};
-  const double vb[2] = {-def->omega2 * st.b[1], def->omega2 * st.b[0]};
   for (int i = 0; i < 3; i++) s->body[i] = dBodyCreate(s->world);
-  place_body(s->body[FB_CRANK], &def->link[FB_CRANK], a0, st.b, def->omega2, zero);
-  place_body(s->body[FB_COUPLER], &def->link[FB_COUPLER], st.b, st.c, st.coupler_omega, vb);
-  place_body(s->body[FB_FOLLOWER], &def->link[FB_FOLLOWER], d0, st.c, st.follower_omega, zero);
+  place_body(s->body[FB_CRANK], &def->link[FB_CRANK], st.pin[FB_JOINT_A], st.pin[FB_JOINT_B],
+             st.crank_omega, zero);
+  place_body(s->body[FB_COUPLER], &def->link[FB_COUPLER], st.hole[FB_JOINT_B], st.pin[FB_JOINT_C],
+             st.coupler_omega, st.coupler_b_vel);
+  place_body(s->body[FB_FOLLOWER], &def->link[FB_FOLLOWER], st.pin[FB_JOINT_D],
+             st.hole[FB_JOINT_C], st.follower_omega, zero);
 
   const dBodyID b1[4] = {s->body[FB_CRANK], s->body[FB_CRANK], s->body[FB_COUPLER],
                          s->body[FB_FOLLOWER]};
   const dBodyID b2[4] = {0, s->body[FB_COUPLER], s->body[FB_FOLLOWER], 0};
-  const double *anchor[4] = {a0, st.b, st.c, d0};
+  const double *anchor[4] = {st.pin[0], st.pin[1], st.pin[2], st.pin[3]};
   s->contacts = dJointGroupCreate(0);
   for (int j = 0; j < 4; j++) {
     if (def->clearance_mask & (1 << j)) {
-      /* pin centred in its hole at t = 0 */
+      /* pin and hole centres at t = 0 (the start's eccentricity) */
       clearance *c = &s->cl[j];
       c->pin = b1[j];
       c->hole = b2[j];
       dVector3 lp;
-      dBodyGetPosRelPoint(c->pin, anchor[j][0], anchor[j][1], 0.0, lp);
+      dBodyGetPosRelPoint(c->pin, st.pin[j][0], st.pin[j][1], 0.0, lp);
       for (int q = 0; q < 3; q++) c->pin_local[q] = lp[q];
       if (c->hole) {
-        dBodyGetPosRelPoint(c->hole, anchor[j][0], anchor[j][1], 0.0, lp);
+        dBodyGetPosRelPoint(c->hole, st.hole[j][0], st.hole[j][1], 0.0, lp);
         for (int q = 0; q < 3; q++) c->hole_local[q] = lp[q];
       } else {
-        c->hole_local[0] = anchor[j][0];
-        c->hole_local[1] = anchor[j][1];
+        c->hole_local[0] = st.hole[j][0];
+        c->hole_local[1] = st.hole[j][1];
         c->hole_local[2] = 0.0;
       }
       continue;

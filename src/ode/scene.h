@@ -61,6 +61,7 @@
 #include "contact.h"
 #include "effective_mass.h"
 #include "series.h"
+#include "start.h"
 
 typedef struct fb_scene fb_scene;
 
@@ -89,12 +90,17 @@ typedef struct {
                                   hole body's x axis is larger by this [m]; 0: circle */
   int ccd_split;               /* ccd only: 0 depth-weighted split of the law (default), 1 the
                                   faceted model's split by contact count */
+  int start_given;             /* 1: start the bodies from `start`; 0: the steady start with
+                                  every pin centred (positions and velocities from the
+                                  analytic solver) */
+  fb_start_state start;        /* initial state (start.h) when start_given */
   double settle_damping;       /* ODE body velocity damping per step [-] for static settling
                                   tests (dWorldSetLinearDamping/AngularDamping); 0 in every model */
 } fb_scene_def;
 
-/* Builds the world at t = 0 with positions and velocities from the analytic
- * solver, so the run starts consistent (loop closed, velocities compatible).
+/* Builds the world at t = 0 from def->start (start.h: pins and holes placed,
+ * the case's start velocities) or, without one, with positions and
+ * velocities from the analytic solver (loop closed, velocities compatible).
  * Errors: FB_ERR_ASSEMBLY when the initial configuration does not exist;
  * FB_ERR_NOMEM. */
 fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "linkage.h"
+#include "start.h"
 
 typedef struct {
   const fb_case *c;
@@ -98,9 +99,11 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
   fb_linkage lk;
   fb_case_stackup_lengths(c, &lk);
   const double omega2 = fb_case_omega2(c);
-  fb_linkage_state st;
-  fb_status rc = fb_linkage_solve(&st, &lk, c->branch, c->crank_angle0, omega2, 0.0, diag);
+  /* the case's start ([run] start, pin_start), the same state ODE starts from */
+  fb_start_state st;
+  fb_status rc = fb_start_resolve(&st, c, &lk, ideal ? 0 : 1 << FB_JOINT_B, diag);
   if (rc != FB_OK) return rc;
+  const double pen_limit = fb_case_penetration_limit(c);
   ref_ctx r;
   memset(&r, 0, sizeof r);
   r.c = c;
@@ -121,8 +124,6 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
   r.grav = c->gravity;
   r.clear = c->radial_clearance;
   r.v0 = 1e-3;
-  /* the pin starts centred in the hole with the ideal mechanism's velocities
-   * (as ODE's scene does) */
   double y[4] = {st.coupler_angle, st.follower_angle, st.coupler_omega, st.follower_omega};
   gsl_odeiv2_system sys = {eom, NULL, 4, &r};
   gsl_error_handler_t *old = gsl_set_error_handler_off();
@@ -208,6 +209,12 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
     }
     if (!(isfinite(y[0]) && isfinite(y[1]) && isfinite(x.coupler_omega) && isfinite(a3))) {
       status = fb_diag_set(diag, FB_ERR_NUMERIC, "reference: non-finite state at t = %g s", tk);
+      break;
+    }
+    if (!ideal && r.pen > pen_limit) {
+      char msg[256];
+      fb_case_penetration_status(msg, sizeof msg, r.pen, FB_JOINT_B, pen_limit, tk, 0);
+      status = fb_diag_set(diag, FB_ERR_NUMERIC, "%s", msg);
       break;
     }
     fb_series_push(out, &x);

@@ -19,6 +19,12 @@
  * restitution law's jump of c delta' at contact onset (error control, not
  * event location); both models used here need no impact velocity.
  *
+ * Start: the case's [run] start and pin_start resolved by fb_start_resolve
+ * (start.h) for the stack-up lengths with clearance at B, the state ODE's
+ * scene starts from. The penetration limit (fb_case_penetration_limit)
+ * applies as to ODE's models: a sample beyond it ends the run with the
+ * status "unstable: penetration ..." (FB_ERR_NUMERIC, samples so far kept).
+ *
  * Ideal limit (ideal = 1): the B joint closes (no clearance); the loop's
  * velocity constraint J(q) q' = r(t) is integrated from the assembled state,
  * which must reproduce the analytic solution (tested to 1e-8). */
@@ -38,7 +44,8 @@
  * *steps receives the integrator's accepted steps.
  * Errors: FB_ERR_ARG when the case has clearance at a joint other than
  * crank-coupler (no reference for it yet); FB_ERR_ASSEMBLY; FB_ERR_NUMERIC
- * when the integrator fails (message names the time). */
+ * when the integrator fails or the penetration passes the case's limit
+ * (message names the time). */
 fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
                            const fb_contact_law *law, int ideal, fb_diag *diag);
 

@@ -22,6 +22,81 @@ static void peak_update(fb_body_peaks *p, double w, double a, int first) {
   if (a < p->alpha_min) p->alpha_min = a;
 }
 
+static double wrap_angle(double th) {
+  const double two_pi = 2.0 * M_PI;
+  return fmod(fmod(th, two_pi) + two_pi, two_pi);
+}
+
+static void at_set(fb_peak_at *a, const fb_series *s, size_t i) {
+  a->t = s->t[i];
+  a->crank_angle = wrap_angle(s->crank_angle[i]);
+}
+
+/* peak_update with the sample index of every new extreme recorded */
+static void peak_update_at(fb_body_peaks *p, fb_body_peak_at *a, const fb_series *s, size_t i,
+                           double w, double al, int first) {
+  if (first || w > p->omega_max) p->omega_max = w, at_set(&a->omega_max, s, i);
+  if (first || w < p->omega_min) p->omega_min = w, at_set(&a->omega_min, s, i);
+  if (first || al > p->alpha_max) p->alpha_max = al, at_set(&a->alpha_max, s, i);
+  if (first || al < p->alpha_min) p->alpha_min = al, at_set(&a->alpha_min, s, i);
+}
+
+fb_status fb_metrics_peaks_between(fb_peaks *out, fb_peaks_at *at, const fb_series *s,
+                                   double t_from, double t_to, fb_diag *diag) {
+  fb_peaks_at scratch;
+  if (!at) at = &scratch;
+  size_t used = 0;
+  for (size_t i = 0; i < s->n; i++) {
+    if (s->t[i] < t_from || !(s->t[i] < t_to)) continue;
+    peak_update_at(&out->coupler, &at->coupler, s, i, s->coupler_omega[i], s->coupler_alpha[i],
+                   used == 0);
+    peak_update_at(&out->follower, &at->follower, s, i, s->follower_omega[i],
+                   s->follower_alpha[i], used == 0);
+    used++;
+  }
+  if (used == 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "no sample in [%g, %g) s to take peaks from", t_from,
+                       t_to);
+  return FB_OK;
+}
+
+static double ecc_norm(const fb_series *s, int j, size_t i) {
+  return hypot(s->contact[j][FB_C_EX][i], s->contact[j][FB_C_EY][i]);
+}
+
+void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, double clearance) {
+  memset(out, 0, sizeof *out);
+  if (j < 0 || j > 3 || !(s->contact_mask & (1 << j))) return;
+  for (size_t i = 1; i < s->n; i++) {
+    const double e1 = ecc_norm(s, j, i);
+    if (!(e1 > clearance)) continue;
+    const double e0 = ecc_norm(s, j, i - 1);
+    const double h = s->t[i] - s->t[i - 1];
+    double rate = (e1 - e0) / h, t = s->t[i - 1];
+    if (i >= 2) {
+      /* free flight from i - 2 to i - 1: its rate, and the crossing time */
+      rate = (e0 - ecc_norm(s, j, i - 2)) / (s->t[i - 1] - s->t[i - 2]);
+      if (rate > 0.0) t += fmin(h, fmax(0.0, (clearance - e0) / rate));
+    }
+    out->found = 1;
+    out->t = t;
+    out->speed = rate;
+    /* the crank turns uniformly between samples */
+    const double w = (s->crank_angle[i] - s->crank_angle[i - 1]) / h;
+    out->crank_angle = wrap_angle(s->crank_angle[i - 1] + w * (t - s->t[i - 1]));
+    return;
+  }
+}
+
+double fb_metrics_penetration_max(const fb_series *s) {
+  double pmax = 0.0;
+  for (int j = 0; j < 4; j++) {
+    if (!(s->contact_mask & (1 << j))) continue;
+    for (size_t i = 0; i < s->n; i++) pmax = fmax_d(pmax, s->contact[j][FB_C_PEN][i]);
+  }
+  return pmax;
+}
+
 fb_status fb_metrics_peaks(fb_peaks *out, const fb_series *s, double t_from, fb_diag *diag) {
   size_t used = 0;
   for (size_t i = 0; i < s->n; i++) {

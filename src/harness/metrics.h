@@ -64,6 +64,51 @@ typedef struct {
 fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, const fb_series *r,
                                   double t_from, int j, fb_diag *diag);
 
+/* Where one extreme of a window happened. */
+typedef struct {
+  double t;           /* time of the extreme [s] */
+  double crank_angle; /* crank angle then [rad] in [0, 2 pi) */
+} fb_peak_at;
+
+/* Where each of a body's four extremes happened. */
+typedef struct {
+  fb_peak_at omega_max, omega_min, alpha_max, alpha_min;
+} fb_body_peak_at;
+
+typedef struct {
+  fb_body_peak_at coupler;
+  fb_body_peak_at follower;
+} fb_peaks_at;
+
+/* Peaks of coupler and follower over the samples with t_from <= t < t_to
+ * [s] (t_to = INFINITY: to the end), and, when at is not NULL, the time and
+ * crank angle of each (the first sample reaching it).
+ * Errors: FB_ERR_ARG when no sample lies in the window. */
+fb_status fb_metrics_peaks_between(fb_peaks *out, fb_peaks_at *at, const fb_series *s,
+                                   double t_from, double t_to, fb_diag *diag);
+
+/* The first impact at clearance joint j of a series with contact columns:
+ * the first sample whose eccentricity |e| exceeds the radial clearance c,
+ * with the crossing time interpolated linearly in the free flight before it
+ * and the approach speed d|e|/dt over the last free-flight interval (the
+ * two samples before the crossing; exact for a free flight at constant
+ * relative velocity, which gravity and the crank's centripetal acceleration
+ * bend by ~1e-4 relative over a microsecond step in the paper's case). A pin
+ * that starts on the wall and enters at once (crossing at the first step)
+ * has its speed from that first step, contact force included: an estimate. */
+typedef struct {
+  int found;          /* 0: the pin never touched the wall */
+  double t;           /* crossing time [s] */
+  double speed;       /* approach speed along the normal [m/s] */
+  double crank_angle; /* crank angle at the crossing [rad] in [0, 2 pi) */
+} fb_first_impact;
+
+void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, double clearance);
+
+/* Largest penetration over every clearance joint and sample [m] (0 without
+ * contact columns). */
+double fb_metrics_penetration_max(const fb_series *s);
+
 /* Peaks of coupler and follower over the samples with t >= t_from [s].
  * Errors: FB_ERR_ARG when no sample lies in the window. */
 fb_status fb_metrics_peaks(fb_peaks *out, const fb_series *s, double t_from, fb_diag *diag);

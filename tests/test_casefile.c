@@ -137,6 +137,52 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                (const char *[]){"--set", "crank_mm = -1", "positive", NULL});
 }
 
+/* [run] start, pin_start, peaks and [clearance] penetration_limit_um: the
+ * words, the angle in degrees, and the whole-case rule on revolutions */
+static void test_start_peaks_and_limit_keys(void **state) {
+  (void)state;
+  fb_case c;
+  fb_diag d;
+  const char *p = write_case("[run]\nstart = rest\npin_start = -90\npeaks = all\nrevolutions = 1\n"
+                             "[clearance]\npenetration_limit_um = none\n");
+  assert_int_equal(fb_casefile_load(&c, p, NULL, 0, &d), FB_OK);
+  assert_int_equal(c.start, FB_START_REST);
+  assert_int_equal(c.pin_start, FB_PIN_ANGLE);
+  assert_near(c.pin_start_angle, -0.5 * M_PI, SI_TOL);
+  assert_int_equal(c.peaks, FB_PEAKS_ALL);
+  assert_true(isinf(fb_case_penetration_limit(&c)));
+  assert_near(fb_case_peak_window_from(&c), 0.0, 0.0);
+  /* a later --set replaces none by a number; clearance (or 0) is the radial clearance */
+  const char *num[] = {"clearance.penetration_limit_um=20", "run.pin_start=resting"};
+  assert_int_equal(fb_casefile_load(&c, p, num, 2, &d), FB_OK);
+  assert_near(fb_case_penetration_limit(&c), 20e-6, SI_TOL * 20e-6);
+  assert_int_equal(c.pin_start, FB_PIN_RESTING);
+  const char *cl[] = {"clearance.penetration_limit_um=clearance"};
+  assert_int_equal(fb_casefile_load(&c, p, cl, 1, &d), FB_OK);
+  assert_near(fb_case_penetration_limit(&c), c.radial_clearance, 0.0);
+  /* the defaults: today's start and window */
+  assert_int_equal(fb_casefile_load(&c, NULL, NULL, 0, &d), FB_OK);
+  assert_int_equal(c.start, FB_START_STEADY);
+  assert_int_equal(c.pin_start, FB_PIN_CENTRED);
+  assert_int_equal(c.peaks, FB_PEAKS_STEADY);
+  assert_near(fb_case_penetration_limit(&c), c.radial_clearance, 0.0);
+  /* bad words and the revolutions rule */
+  expect_error("[run]\nstart = moving\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "start = 'moving'", "steady or rest", NULL});
+  expect_error("[run]\npin_start = centered\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "pin_start = 'centered'", "centred, resting", NULL});
+  expect_error("[run]\npeaks = some\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "peaks = 'some'", "steady or all", NULL});
+  expect_error("[clearance]\npenetration_limit_um = off\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "penetration_limit_um = 'off'", "none", NULL});
+  expect_error("[clearance]\npenetration_limit_um = -1\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){":2:", "penetration_limit_um = -1", "none", NULL});
+  expect_error("[run]\nrevolutions = 1\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){"revolutions = 1", "peaks = all", NULL});
+  expect_error("[run]\nrevolutions = 0\npeaks = all\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){"revolutions = 0", "at least 1", NULL});
+}
+
 static void test_every_key_documented(void **state) {
   (void)state;
   char path[4096];
@@ -197,6 +243,7 @@ int main(void) {
       cmocka_unit_test(test_overrides),
       cmocka_unit_test(test_missing_file),
       cmocka_unit_test(test_bad_inputs_name_place_value_rule),
+      cmocka_unit_test(test_start_peaks_and_limit_keys),
       cmocka_unit_test(test_every_key_documented),
       cmocka_unit_test(test_fuzz_regressions_give_errors_not_crashes),
   };

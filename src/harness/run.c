@@ -18,19 +18,66 @@ static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref) {
   }
 }
 
+static void warn(fb_model_result *m, const char *text) {
+  if (m->warning_count < FB_RUN_WARNINGS)
+    snprintf(m->warnings[m->warning_count++], sizeof m->warnings[0], "%s", text);
+}
+
+/* revolution 1 alone (start-up peaks, first impact), and the warnings that
+ * look at the whole run: penalty validity, a saturated crank drive */
+static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
+  const fb_case *c = &r->c;
+  const fb_series *s = &m->run.series;
+  fb_diag inner;
+  m->first_impact_joint = -1;
+  if (fb_metrics_peaks_between(&m->startup, &m->startup_at, s, 0.0, r->t_startup_end, &inner) ==
+      FB_OK) {
+    m->has_startup = 1;
+    if (m->run.kind == FB_KIND_ANALYTIC && s->t[s->n - 1] >= r->t_startup_end - c->solver.h)
+      m->startup = m->exact; /* a whole revolution of the periodic motion */
+  }
+  for (int j = 0; j < 4 && m->first_impact_joint < 0; j++)
+    if (m->run.clearance_mask & s->contact_mask & (1 << j)) m->first_impact_joint = j;
+  if (m->first_impact_joint >= 0)
+    fb_metrics_first_impact(&m->first_impact, s, m->first_impact_joint, c->radial_clearance);
+  for (int j = 0; j < 4; j++) {
+    if (!(s->contact_mask & (1 << j))) continue;
+    for (size_t i = 0; i < s->n && s->t[i] < r->t_startup_end; i++) {
+      m->startup_force_max = fmax(m->startup_force_max, s->contact[j][FB_C_FORCE][i]);
+      m->startup_penetration_max = fmax(m->startup_penetration_max, s->contact[j][FB_C_PEN][i]);
+    }
+  }
+  m->penetration_max_run = fb_metrics_penetration_max(s);
+  char text[256];
+  if (fb_case_validity_warning(text, sizeof text, c, m->penetration_max_run)) warn(m, text);
+  if (m->run.kind == FB_KIND_ODE) {
+    const double omega2 = fb_case_omega2(c);
+    double lag = 0.0, t_lag = 0.0;
+    for (size_t i = 0; i < s->n; i++) {
+      const double d = fabs(s->crank_angle[i] - (c->crank_angle0 + omega2 * s->t[i]));
+      if (d > lag) lag = d, t_lag = s->t[i];
+    }
+    if (lag > FB_DRIVE_LAG_WARN_RAD) {
+      snprintf(text, sizeof text,
+               "crank drive saturated: the crank is %.3g rad off its prescribed angle at "
+               "t = %.6g s (raise [solver] drive_torque_max_n_m)",
+               lag, t_lag);
+      warn(m, text);
+    }
+  }
+}
+
 static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   const fb_case *c = &r->c;
   const double omega2 = fb_case_omega2(c);
   fb_status st = fb_analytic_peaks(&m->exact, &m->run.lengths, c->branch, omega2, diag);
   if (st != FB_OK) return st;
   const fb_series *s = &m->run.series;
+  startup_and_warnings(m, r);
   if (s->n == 0 || s->t[s->n - 1] < r->t_window) return FB_OK; /* stopped in the run-in */
-  if (m->run.kind == FB_KIND_ANALYTIC) {
-    m->peaks = m->exact;
-  } else {
-    st = fb_metrics_peaks(&m->peaks, s, r->t_window, diag);
-    if (st != FB_OK) return st;
-  }
+  st = fb_metrics_peaks_between(&m->peaks, &m->peaks_at, s, r->t_window, INFINITY, diag);
+  if (st != FB_OK) return st;
+  if (m->run.kind == FB_KIND_ANALYTIC) m->peaks = m->exact; /* the refined extremes */
   m->has_peaks = 1;
   /* for the analytic model this measures the sampling floor of the grid */
   st = fb_metrics_error(&m->error, s, r->t_window, &m->run.lengths, c->branch,
@@ -69,6 +116,7 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
   /* [run] peaks: from t = 0, or after the first revolution (a hair below one
    * revolution so the sample at exactly one period counts) */
   r->t_window = fb_case_peak_window_from(c);
+  r->t_startup_end = 2.0 * M_PI / c->crank_speed - 0.5 * c->solver.h;
   fb_status st = fb_analytic_peaks(&r->analytic_nominal, &c->nominal, c->branch,
                                    fb_case_omega2(c), diag);
   if (st != FB_OK) return st;

@@ -8,6 +8,15 @@
 #include "metrics.h"
 #include "models.h"
 
+/* Warnings a model run can carry. */
+#define FB_RUN_WARNINGS 4
+
+/* A crank that lags its prescribed angle by more than this has had its drive
+ * saturate ([solver] drive_torque_max_n_m): the crank tip then trails by
+ * 1e-4 x 0.108 m = 11 um in the paper's case, most of a radial clearance, so
+ * the contact no longer sees the prescribed motion [rad]. */
+#define FB_DRIVE_LAG_WARN_RAD 1e-4
+
 /* One model with its metrics. */
 typedef struct {
   fb_model_run run;        /* series, cost and status */
@@ -20,6 +29,17 @@ typedef struct {
   int has_spikes;          /* 1 for clearance models that reached the window */
   fb_spikes spikes;
   char spikes_reference[FB_NAME_SIZE]; /* model whose peak |alpha| the ratios divide by */
+  fb_peaks_at peaks_at;    /* time and crank angle of each peak of the window */
+  int has_startup;         /* 1 when the run has a sample in revolution 1 */
+  fb_peaks startup;        /* peaks over revolution 1 alone, t < t_startup_end (analytic: exact) */
+  fb_peaks_at startup_at;  /* time and crank angle of each start-up peak */
+  double startup_force_max;       /* largest contact force in revolution 1 [N] (clearance models) */
+  double startup_penetration_max; /* largest penetration in revolution 1 [m] */
+  int first_impact_joint;  /* clearance joint of first_impact (the lowest of the mask), or -1 */
+  fb_first_impact first_impact; /* first impact of the run at that joint */
+  double penetration_max_run; /* largest penetration over the whole run [m] */
+  int warning_count;       /* entries used in warnings */
+  char warnings[FB_RUN_WARNINGS][256]; /* named warnings, e.g. "outside the penalty model's validity: ..." */
   int has_ref_error;       /* 1 for a clearance model run beside its reference */
   fb_reference_error ref_error;
   char ref_name[FB_NAME_SIZE]; /* the reference model compared against */
@@ -28,6 +48,7 @@ typedef struct {
 typedef struct {
   fb_case c;                              /* the case as run */
   double t_window;                        /* peaks and errors use t >= t_window [s] */
+  double t_startup_end;                   /* revolution 1 is t < t_startup_end [s] */
   int n;                                  /* models run */
   fb_model_result model[FB_MAX_MODELS];   /* in the case's order */
   fb_peaks analytic_nominal;              /* exact peaks of the nominal linkage */

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "fileio.h"
+#include "start.h"
 
 /* finite number or null */
 static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
@@ -46,7 +47,38 @@ static json_t *lengths_json(const fb_linkage *lk) {
   return o;
 }
 
-static json_t *model_json(const fb_model_result *m) {
+static json_t *peak_at_json(const fb_peak_at *a) {
+  json_t *o = json_object();
+  json_object_set_new(o, "time_s", num(a->t));
+  json_object_set_new(o, "crank_angle_rad", num(a->crank_angle));
+  return o;
+}
+
+static json_t *body_at_json(const fb_body_peak_at *a) {
+  json_t *o = json_object();
+  json_object_set_new(o, "omega_max", peak_at_json(&a->omega_max));
+  json_object_set_new(o, "omega_min", peak_at_json(&a->omega_min));
+  json_object_set_new(o, "alpha_max", peak_at_json(&a->alpha_max));
+  json_object_set_new(o, "alpha_min", peak_at_json(&a->alpha_min));
+  return o;
+}
+
+/* {"from_s", "to_s", "coupler": PEAKS, "follower": PEAKS, "at": {"coupler": {"omega_max":
+ * {"time_s", "crank_angle_rad"}, ...}, "follower": ...}} */
+static json_t *window_json(const fb_peaks *p, const fb_peaks_at *at, double from, double to) {
+  json_t *o = json_object();
+  json_object_set_new(o, "from_s", num(from));
+  json_object_set_new(o, "to_s", num(to));
+  json_object_set_new(o, "coupler", fb_report_body_peaks_json(&p->coupler));
+  json_object_set_new(o, "follower", fb_report_body_peaks_json(&p->follower));
+  json_t *a = json_object();
+  json_object_set_new(a, "coupler", body_at_json(&at->coupler));
+  json_object_set_new(a, "follower", body_at_json(&at->follower));
+  json_object_set_new(o, "at", a);
+  return o;
+}
+
+static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_t *o = json_object();
   const fb_model_run *run = &m->run;
   json_object_set_new(o, "name", json_string(run->name));
@@ -62,6 +94,42 @@ static json_t *model_json(const fb_model_result *m) {
     json_object_set_new(o, "coupler", json_null());
     json_object_set_new(o, "follower", json_null());
   }
+  const fb_series *ser = &run->series;
+  const double t_end = ser->n ? ser->t[ser->n - 1] : 0.0;
+  if (m->has_peaks) {
+    json_t *w = window_json(&m->peaks, &m->peaks_at, r->t_window, t_end);
+    json_object_set_new(w, "window", json_string(r->c.peaks == FB_PEAKS_ALL ? "all" : "steady"));
+    json_object_set_new(o, "peaks", w);
+  } else {
+    json_object_set_new(o, "peaks", json_null());
+  }
+  if (m->has_startup) {
+    json_t *w = window_json(&m->startup, &m->startup_at, 0.0, fmin(t_end, r->t_startup_end));
+    if (run->clearance_mask) {
+      json_object_set_new(w, "force_max_n", num(m->startup_force_max));
+      json_object_set_new(w, "penetration_max_m", num(m->startup_penetration_max));
+      const fb_first_impact *fi = &m->first_impact;
+      if (m->first_impact_joint >= 0 && fi->found) {
+        json_t *f = json_object();
+        json_object_set_new(f, "joint", json_string(fb_joint_name(m->first_impact_joint)));
+        json_object_set_new(f, "time_s", num(fi->t));
+        json_object_set_new(f, "speed_m_s", num(fi->speed));
+        json_object_set_new(f, "crank_angle_rad", num(fi->crank_angle));
+        json_object_set_new(w, "first_impact", f);
+      } else {
+        json_object_set_new(w, "first_impact", json_null());
+      }
+    }
+    json_object_set_new(o, "startup", w);
+  } else {
+    json_object_set_new(o, "startup", json_null());
+  }
+  json_object_set_new(o, "penetration_max_m", run->clearance_mask ? num(m->penetration_max_run)
+                                                                  : json_null());
+  json_t *warnings = json_array();
+  for (int k = 0; k < m->warning_count; k++)
+    json_array_append_new(warnings, json_string(m->warnings[k]));
+  json_object_set_new(o, "warnings", warnings);
   if (m->has_error) {
     json_t *e = json_object();
     json_object_set_new(e, "reference",
@@ -164,6 +232,14 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_object_set_new(o, "branch", json_string(c->branch == FB_BRANCH_OPEN ? "open" : "crossed"));
   json_object_set_new(o, "revolutions", num(c->revolutions));
   json_object_set_new(o, "peak_window_from_s", num(r->t_window));
+  json_object_set_new(o, "peak_window", json_string(c->peaks == FB_PEAKS_ALL ? "all" : "steady"));
+  json_object_set_new(o, "startup_window_to_s", num(r->t_startup_end));
+  json_object_set_new(o, "start", json_string(fb_start_name(c->start)));
+  json_object_set_new(o, "pin_start", json_string(fb_pin_start_name(c->pin_start)));
+  json_object_set_new(o, "pin_start_angle_rad",
+                      c->pin_start == FB_PIN_ANGLE ? num(c->pin_start_angle) : json_null());
+  json_object_set_new(o, "penetration_limit_m",
+                      num(fb_case_penetration_limit(c))); /* null: none */
   json_object_set_new(o, "stepper", json_string(c->solver.stepper == FB_STEPPER_WORLD
                                                     ? "dWorldStep"
                                                     : "dWorldQuickStep"));
@@ -173,7 +249,7 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
   json_object_set_new(o, "analytic_nominal", an);
   json_t *models = json_array();
-  for (int i = 0; i < r->n; i++) json_array_append_new(models, model_json(&r->model[i]));
+  for (int i = 0; i < r->n; i++) json_array_append_new(models, model_json(&r->model[i], r));
   json_object_set_new(o, "models", models);
   return o;
 }
@@ -250,14 +326,84 @@ static double worst_rel(const fb_body_error *a, const fb_body_error *b, int alph
   return w;
 }
 
+/* one paper-style row: four extremes of coupler and follower, omega or alpha */
+static void paper_row(FILE *f, const char *name, const fb_peaks *p, int alpha) {
+  const fb_body_peaks *b[2] = {&p->coupler, &p->follower};
+  fprintf(f, "%-26s", name);
+  for (int k = 0; k < 2; k++) {
+    if (alpha)
+      fprintf(f, " %14.2f %14.2f", b[k]->alpha_max, b[k]->alpha_min);
+    else
+      fprintf(f, " %12.4f %12.4f", b[k]->omega_max, b[k]->omega_min);
+  }
+  fputc('\n', f);
+}
+
+void fb_report_print_paper_tables(FILE *f, const fb_run *r) {
+  const int all = r->c.peaks == FB_PEAKS_ALL;
+  fprintf(f, "\nthe paper's table, peaks over %s:\n",
+          all ? "the whole run from t = 0 (start-up included; [run] peaks = all)"
+              : "the revolutions after the first ([run] peaks = steady)");
+  fprintf(f, "angular velocity, rad/s\n%-26s %12s %12s %12s %12s\n", "model", "coupler max",
+          "coupler min", "follower max", "follower min");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 0);
+    else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, m->run.status);
+  }
+  fprintf(f, "angular acceleration, rad/s^2\n%-26s %14s %14s %14s %14s\n", "model",
+          "coupler max", "coupler min", "follower max", "follower min");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 1);
+    else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, m->run.status);
+  }
+  /* the start-up of the clearance models: first impact and revolution 1's spikes */
+  int any = 0;
+  for (int i = 0; i < r->n; i++) any |= r->model[i].has_startup && r->model[i].run.clearance_mask;
+  if (any) {
+    fprintf(f, "\nstart-up (revolution 1, t < %.6g s; start = %s, pin %s):\n", r->t_startup_end,
+            fb_start_name(r->c.start), fb_pin_start_name(r->c.pin_start));
+    fprintf(f, "%-26s %12s %10s %10s %14s %10s %12s %10s\n", "model", "1st impact", "speed",
+            "crank", "cpl |alpha|", "at t", "force max", "penetr.");
+    fprintf(f, "%-26s %12s %10s %10s %14s %10s %12s %10s\n", "", "us", "m/s", "deg", "rad/s^2",
+            "ms", "N", "um");
+    for (int i = 0; i < r->n; i++) {
+      const fb_model_result *m = &r->model[i];
+      if (!m->has_startup || !m->run.clearance_mask) continue;
+      const fb_body_peaks *c = &m->startup.coupler;
+      const fb_body_peak_at *a = &m->startup_at.coupler;
+      const int hi = fabs(c->alpha_max) >= fabs(c->alpha_min);
+      fprintf(f, "%-26s ", m->run.name);
+      if (m->first_impact.found)
+        fprintf(f, "%12.4f %10.4f %10.3f ", m->first_impact.t * 1e6, m->first_impact.speed,
+                m->first_impact.crank_angle * 180.0 / M_PI);
+      else
+        fprintf(f, "%12s %10s %10s ", "none", "-", "-");
+      fprintf(f, "%14.4g %10.4f %12.4g %10.4g\n", hi ? c->alpha_max : c->alpha_min,
+              (hi ? a->alpha_max.t : a->alpha_min.t) * 1e3, m->startup_force_max,
+              m->startup_penetration_max * 1e6);
+    }
+  }
+  int warned = 0;
+  for (int i = 0; i < r->n; i++) warned |= r->model[i].warning_count > 0;
+  if (warned) {
+    fprintf(f, "\nwarnings:\n");
+    for (int i = 0; i < r->n; i++)
+      for (int k = 0; k < r->model[i].warning_count; k++)
+        fprintf(f, "  %s: %s\n", r->model[i].run.name, r->model[i].warnings[k]);
+  }
+}
+
 void fb_report_print_table(FILE *f, const fb_run *r) {
   const fb_case *c = &r->c;
   fprintf(f, "case %s: %.6g rpm %s, %s branch, %g revolutions, h = %g s (%s); "
-             "peaks over t >= %.6g s (after the first revolution)\n\n",
+             "peaks over t >= %.6g s (%s); start %s, pin %s\n\n",
           c->name, c->crank_speed * 60.0 / (2.0 * M_PI), c->direction > 0 ? "ccw" : "cw",
           c->branch == FB_BRANCH_OPEN ? "open" : "crossed", c->revolutions, c->solver.h,
           c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep",
-          r->t_window);
+          r->t_window, c->peaks == FB_PEAKS_ALL ? "the whole run" : "after the first revolution",
+          fb_start_name(c->start), fb_pin_start_name(c->pin_start));
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);
   fprintf(f, "stack-up corner %c%c%c%c:", "-0+"[c->stackup.corner[0] + 1],
@@ -332,6 +478,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
               e->force_max_rel, e->penetration_max_rel, e->impacts, e->impacts_reference);
     }
   }
+  fb_report_print_paper_tables(f, r);
   fprintf(f, "\npeak err: largest |relative error| of the four omega (or alpha) peaks of "
              "coupler and follower against the exact analytic peaks of the same lengths; "
              "for analytic models it is the sampling floor of the time grid.\n");

@@ -41,6 +41,14 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
                                    const char *command, char figures[][128], int n,
                                    const char *figure_note, fb_diag *diag);
 
+/* The paper's table for the run's peak window: one row per model with the
+ * coupler and follower omega max/min (rad/s), then a second table with the
+ * four alpha extremes (rad/s^2); then, for clearance models, the start-up
+ * (first impact's time, speed and crank angle; revolution 1's largest
+ * coupler |alpha|, when, peak force and penetration) and every model's
+ * warnings. Part of fb_report_print_table. */
+void fb_report_print_paper_tables(FILE *f, const fb_run *r);
+
 /* Prints the summary table in the spirit of the paper's: per model, peaks of
  * coupler and follower angular velocity and acceleration, error against the
  * analytic solution of the same lengths, step size, steps, wall time. */

@@ -14,7 +14,7 @@
  *            with zero penetration (the static approach, ~0.3 um in the
  *            paper's case, is left out);
  *   angle    |e_j| = c at the given angle, counter-clockwise from +x.
- * The loop then closes through the offsets (CONTACT.md's Flores-Ambrosio
+ * The loop then closes through the offsets (Flores and Ambrosio's clearance-joint
  * geometry):
  *   A_hole = 0, A_pin = A_hole + e_A, B_pin = A_pin + a u(theta2),
  *   B_hole = B_pin - e_B, C_pin = B_hole + b u(theta3), C_hole = C_pin - e_C,

@@ -169,6 +169,21 @@ static void test_whole_run_window_holds_the_startup_peak(void **state) {
   fb_run_free(&r);
 }
 
+/* the paper case's analytic row is `fourbar kinematics` of the nominal lengths */
+static void test_paper_adams_analytic_row_is_the_kinematics(void **state) {
+  (void)state;
+  fb_case c;
+  const char *sets[] = {"run.models=analytic"};
+  load(&c, "paper_adams.ini", sets, 1);
+  fb_run r;
+  fb_diag d;
+  assert_int_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+  fb_peaks k;
+  assert_int_equal(fb_analytic_peaks(&k, &c.nominal, c.branch, fb_case_omega2(&c), &d), FB_OK);
+  assert_true(memcmp(&k, &r.model[0].peaks, sizeof k) == 0);
+  fb_run_free(&r);
+}
+
 /* runs `fourbar check --json` with extra --set arguments into buf */
 static void check_json(char *buf, size_t size, const char *sets) {
   char cmd[4096];
@@ -201,6 +216,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_eccentric_and_rest_starts),
       cmocka_unit_test(test_rest_start_first_impact),
       cmocka_unit_test(test_whole_run_window_holds_the_startup_peak),
+      cmocka_unit_test(test_paper_adams_analytic_row_is_the_kinematics),
       cmocka_unit_test(test_steady_start_and_window_keep_the_baselines),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

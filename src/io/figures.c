@@ -17,6 +17,7 @@ extern char **environ;
 
 #include "bench.h"
 #include "fileio.h"
+#include "start.h"
 #include "study.h"
 #include "casefile.h"
 #include "linkage.h"
@@ -139,8 +140,19 @@ static double crank_deg(double th) {
 /* writes a datablock of (crank deg, y) over the window, min/max-decimated;
  * a blank line where the crank angle wraps; returns the points written and
  * the extremes of what was plotted (equal to the window's: min/max decimation) */
+static int datablock_x(FILE *p, const char *name, const fb_series *s, const double *y, double t0,
+                       double t1, int x_time, double *ymin, double *ymax);
+
 static int datablock(FILE *p, const char *name, const fb_series *s, const double *y, double t0,
                      double t1, double *ymin, double *ymax) {
+  return datablock_x(p, name, s, y, t0, t1, 0, ymin, ymax);
+}
+
+/* as datablock, x either the crank angle [deg] (x_time = 0) or the time [ms]
+ * (x_time = 1: no wrap, buckets equally wide in log t from t0 > 0, so the
+ * first microseconds keep their samples on a log axis) */
+static int datablock_x(FILE *p, const char *name, const fb_series *s, const double *y, double t0,
+                       double t1, int x_time, double *ymin, double *ymax) {
   size_t i0 = 0, i1 = 0;
   while (i0 < s->n && s->t[i0] < t0) i0++;
   i1 = i0;
@@ -151,19 +163,26 @@ static int datablock(FILE *p, const char *name, const fb_series *s, const double
   fprintf(p, "$%s << EOD\n", name);
   int pts = 0;
   double last = -1.0;
-  for (size_t b = i0; b < i1; b += per) {
-    size_t e = b + per < i1 ? b + per : i1;
+  const double lt0 = x_time && t0 > 0.0 ? log(t0) : 0.0;
+  const double lscale = x_time && t0 > 0.0 && t1 > t0 ? (double)buckets / (log(t1) - lt0) : 0.0;
+  for (size_t b = i0, e; b < i1; b = e) {
+    e = b + per < i1 ? b + per : i1;
+    if (lscale > 0.0) {
+      const long kb = (long)floor((log(s->t[b]) - lt0) * lscale);
+      for (e = b + 1; e < i1 && (long)floor((log(s->t[e]) - lt0) * lscale) == kb; e++) {
+      }
+    }
     size_t lo = b, hi = b;
     for (size_t k = b; k < e; k++) {
       if (y[k] < y[lo]) lo = k;
       if (y[k] > y[hi]) hi = k;
     }
     size_t idx[2] = {lo < hi ? lo : hi, lo < hi ? hi : lo};
-    int m = per == 1 || lo == hi ? 1 : 2;
+    int m = e - b == 1 || lo == hi ? 1 : 2;
     for (int q = 0; q < m; q++) {
-      double x = crank_deg(s->crank_angle[idx[q]]);
-      if (last >= 0.0 && fabs(x - last) > 180.0) fprintf(p, "\n");
-      fprintf(p, "%.6f %.17g\n", x, y[idx[q]]);
+      double x = x_time ? s->t[idx[q]] * 1e3 : crank_deg(s->crank_angle[idx[q]]);
+      if (!x_time && last >= 0.0 && fabs(x - last) > 180.0) fprintf(p, "\n");
+      fprintf(p, x_time ? "%.9g %.17g\n" : "%.6f %.17g\n", x, y[idx[q]]);
       if (pts == 0 || y[idx[q]] < *ymin) *ymin = y[idx[q]];
       if (pts == 0 || y[idx[q]] > *ymax) *ymax = y[idx[q]];
       last = x;
@@ -351,9 +370,10 @@ static fb_status kin_figure(const fb_run *r, const char *dir, fb_figure_format f
   /* a clockwise drive decreases the crank angle: its motion runs right to left */
   const char *dirnote = r->c.direction > 0 ? "ccw drive: motion runs left to right"
                                            : "cw drive: crank angle decreases, motion runs right to left";
-  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against crank angle (revolution 2, %.0f rpm; %s)'\n",
+  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against crank angle (revolution %d, %.0f rpm; %s)'\n",
           alpha ? 2 : 2, alpha ? 1 : 2, esc(r->c.name, en, sizeof en),
-          alpha ? "angular acceleration" : "angular velocity", rpm, dirnote);
+          alpha ? "angular acceleration" : "angular velocity", r->c.peaks == FB_PEAKS_ALL ? 1 : 2,
+          rpm, dirnote);
   fprintf(pl.p, "set xrange [0:360]\nset xtics 30\nset xlabel 'crank angle [deg] (counter-clockwise from +x)'\n");
   json_t *axis = json_object();
   if (alpha) {
@@ -430,19 +450,24 @@ static const char *const state_name[3] = {"free flight", "impact", "continuous c
 /* pin orbit and contact force of one clearance joint of one model */
 static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
                                 fb_figure_format fmt, json_t *figs, char *file, size_t fsize,
-                                fb_diag *diag) {
+                                int startup, fb_diag *diag) {
   const fb_model_result *m = &r->model[mi];
   const fb_series *s = &m->run.series;
   char joint[32], name[100];
   snprintf(joint, sizeof joint, "%s", fb_joint_name(j));
   for (char *p = joint; *p; p++)
     if (*p == '-') *p = '_';
-  snprintf(name, sizeof name, "contact_%s_%s", m->run.name, joint);
+  snprintf(name, sizeof name, "%scontact_%s_%s", startup ? "startup_" : "", m->run.name, joint);
   plot pl;
   fb_status st = plot_open(&pl, dir, name, fmt, 1300, 600, diag);
   if (st != FB_OK) return st;
   const double period = 2.0 * M_PI / r->c.crank_speed;
-  const double t0 = r->t_window, t1 = r->t_window + period;
+  /* the peak window's first revolution, or revolution 1 (the start-up); the
+   * start-up's force against log time from the first step */
+  const double t0 = startup ? 0.0 : r->t_window;
+  const double t1 = startup ? r->t_startup_end : r->t_window + period;
+  const double tf0 = startup ? 0.5 * r->c.solver.h : t0;
+  const int rev = startup || r->c.peaks == FB_PEAKS_ALL ? 1 : 2;
   /* the orbit as one path in um, each segment coloured by the state at its
    * start; a sample is skipped only beyond FB_ORBIT_MAX_POINTS and never at
    * a change of state, so no impact is under-drawn */
@@ -471,7 +496,8 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
   if (!impacts) fprintf(pl.p, "NaN NaN\n");
   fprintf(pl.p, "EOD\n");
   double flo = NAN, fhi = NAN;
-  const int force_pts = datablock(pl.p, "force", s, s->contact[j][FB_C_FORCE], t0, t1, &flo, &fhi);
+  const int force_pts =
+      datablock_x(pl.p, "force", s, s->contact[j][FB_C_FORCE], tf0, t1, startup, &flo, &fhi);
   /* the reference dynamics of the same law, when the run has it, overlaid */
   int ri = -1;
   if (m->has_ref_error)
@@ -482,17 +508,23 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
   double rlo = NAN, rhi = NAN;
   int ref_pts = 0;
   if (ri >= 0)
-    ref_pts = datablock(pl.p, "rforce", &r->model[ri].run.series, r->model[ri].run.series.contact[j][FB_C_FORCE],
-                        t0, t1, &rlo, &rhi);
+    ref_pts = datablock_x(pl.p, "rforce", &r->model[ri].run.series,
+                          r->model[ri].run.series.contact[j][FB_C_FORCE], tf0, t1, startup, &rlo, &rhi);
   const double c_um = r->c.radial_clearance * 1e6;
+  /* the clearance circle with a margin, or the whole path when the pin sinks
+   * deeper (a start-up beyond the penalty model's validity) */
+  double e_um = 0.0;
+  for (size_t i = i0; i < i1; i++) e_um = fmax(e_um, 1e6 * hypot(ex[i], ey[i]));
+  const double span = fmax(1.35 * c_um, 1.05 * e_um);
   char mn[160], rn[160], sp[96];
-  fprintf(pl.p, "set multiplot layout 1,2 title '%s, %s joint: pin in hole (revolution 2)'\n",
-          esc(m->run.name, mn, sizeof mn), fb_joint_name(j)); /* joint names have no underscore */
+  fprintf(pl.p, "set multiplot layout 1,2 title '%s, %s joint: pin in hole (revolution %d%s)'\n",
+          esc(m->run.name, mn, sizeof mn), fb_joint_name(j), rev,
+          startup ? ", the start-up" : ""); /* joint names have no underscore */
   fprintf(pl.p, "set size ratio -1\nset title 'pin centre relative to hole centre (path)'\n"
                 "set xlabel 'eccentricity x [um]'\nset ylabel 'eccentricity y [um]'\n"
                 "set object 1 circle at 0,0 size %.6f fs empty border lc rgb '#888888' lw 1.5\n"
                 "set xrange [%.4f:%.4f]\nset yrange [%.4f:%.4f]\nset key bottom right box\n",
-          c_um, -1.35 * c_um, 1.35 * c_um, -1.35 * c_um, 1.35 * c_um);
+          c_um, -span, span, -span, span);
   fprintf(pl.p, "plot $orbit using 1:2:3 with lines lw 1.2 lc rgb variable notitle, "
                 "$impacts using 1:2 with points pt 2 ps 1.4 lw 1.5 lc rgb 'black' title 'impact start (%d)'",
           impacts);
@@ -500,8 +532,14 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
     fprintf(pl.p, ", NaN with lines lw 2 lc rgb '#%06x' title '%s'", state_rgb[k], state_name[k]);
   fprintf(pl.p, ", NaN with lines lc rgb '#888888' title 'clearance circle'\n");
   fprintf(pl.p, "unset object 1\nset size noratio\nset autoscale\nset key top right box\n"
-                "set title 'contact force'\nset xrange [0:360]\nset xtics 60\n"
-                "set xlabel 'crank angle [deg]'\nset ylabel 'contact force on the pin [N]'\n"
+                "set title 'contact force'\n");
+  if (startup)
+    fprintf(pl.p, "set logscale x\nset format x '10^{%%L}'\nset xrange [%.9g:%.9g]\n"
+                  "set xlabel 'time [ms]'\n",
+            tf0 * 1e3, t1 * 1e3);
+  else
+    fprintf(pl.p, "set xrange [0:360]\nset xtics 60\nset xlabel 'crank angle [deg]'\n");
+  fprintf(pl.p, "set ylabel 'contact force on the pin [N]'\n"
                 "plot $force using 1:2 with lines %s title '%s'",
           style_spec(m->run.name, sp, sizeof sp), mn);
   if (ri >= 0) {
@@ -524,17 +562,107 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
     json_object_set_new(c, "time_to_s", json_real(t1));
     json_array_append_new(curves, c);
     snprintf(col, sizeof col, "%s_force_n", joint);
-    c = curve(m->run.name, col, csv, force_pts, flo, fhi, t0, t1);
+    c = curve(m->run.name, col, csv, force_pts, flo, fhi, tf0, t1);
     curve_style(c, m->run.name);
     json_array_append_new(curves, c);
     if (ri >= 0) {
       snprintf(csv, sizeof csv, "%s.csv", r->model[ri].run.name);
-      c = curve(r->model[ri].run.name, col, csv, ref_pts, rlo, rhi, t0, t1);
+      c = curve(r->model[ri].run.name, col, csv, ref_pts, rlo, rhi, tf0, t1);
       curve_style(c, r->model[ri].run.name);
       json_array_append_new(curves, c);
     }
-    manifest_add(figs, file, "pin orbit and contact force", curves);
+    manifest_add(figs, file,
+                 startup ? "pin orbit and contact force, revolution 1 (start-up)"
+                         : "pin orbit and contact force",
+                 curves);
   }
+  return st;
+}
+
+/* startup.<ext>: omega and alpha of coupler and follower against time over
+ * revolution 1 on a logarithmic time axis (from the first step), every model
+ * in its own style: the first impacts of a rest start sit in the first
+ * microseconds, the run-in's decay over the milliseconds after */
+static fb_status startup_figure(const fb_run *r, const char *dir, fb_figure_format fmt,
+                                json_t *figs, fb_diag *diag) {
+  plot pl;
+  fb_status st = plot_open(&pl, dir, "startup", fmt, 1300, 950, diag);
+  if (st != FB_OK) return st;
+  const double t0 = 0.5 * r->c.solver.h, t1 = r->t_startup_end; /* a log axis has no t = 0 */
+  json_t *curves = json_array();
+  int order[FB_MAX_MODELS];
+  const int nm = draw_order(r, order);
+  double amax = 0.0, amin = 0.0;
+  for (int p = 0; p < 4; p++) { /* coupler omega, follower omega, coupler alpha, follower alpha */
+    const int b = p & 1, alpha = p >> 1;
+    for (int q = 0; q < nm; q++) {
+      const int i = order[q];
+      const fb_series *s = &r->model[i].run.series;
+      const double *y = alpha ? (b ? s->follower_alpha : s->coupler_alpha)
+                              : (b ? s->follower_omega : s->coupler_omega);
+      char dname[32], csv[96], col[48];
+      snprintf(dname, sizeof dname, "s%d_%d", p, i);
+      double lo = NAN, hi = NAN;
+      const int pts = datablock_x(pl.p, dname, s, y, t0, t1, 1, &lo, &hi);
+      if (alpha && pts) amax = fmax(amax, hi), amin = fmin(amin, lo);
+      snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
+      snprintf(col, sizeof col, "%s_%s", b ? "follower" : "coupler",
+               alpha ? "alpha_rad_s2" : "omega_rad_s");
+      json_t *c = curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
+      json_object_set_new(c, "panel", json_string(p == 0   ? "coupler omega"
+                                                  : p == 1 ? "follower omega"
+                                                  : p == 2 ? "coupler alpha"
+                                                           : "follower alpha"));
+      curve_style(c, r->model[i].run.name);
+      json_array_append_new(curves, c);
+    }
+  }
+  char en[160];
+  fprintf(pl.p,
+          "set multiplot layout 2,2 title '%s: the start-up, revolution 1 (start = %s, pin %s; "
+          "log time)'\n",
+          esc(r->c.name, en, sizeof en), fb_start_name(r->c.start),
+          fb_pin_start_name(r->c.pin_start));
+  fprintf(pl.p, "set logscale x\nset format x '10^{%%L}'\nset xlabel 'time [ms]'\n"
+                "set xrange [%.9g:%.9g]\nset key inside top left box opaque font ',8'\n",
+          t0 * 1e3, t1 * 1e3);
+  for (int p = 0; p < 4; p++) {
+    const int b = p & 1, alpha = p >> 1;
+    if (p == 1) fprintf(pl.p, "unset key\n"); /* one legend, in the first panel */
+    if (p == 2) {
+      /* symlog as alpha.svg, the range to the decade above the spikes */
+      const double top = decade_above(amax, 1.15), bottom = -decade_above(amin, 1.15);
+      fprintf(pl.p, "C = %.1f\nset nonlinear y via sgn(y)*log10(1+abs(y)/C) inverse "
+                    "sgn(y)*C*(10**abs(y)-1)\nset yrange [%.6g:%.6g]\nset ytics (",
+              SYMLOG_C, bottom, top);
+      int first = 1;
+      for (double d = -bottom; d >= SYMLOG_C * 0.999; d /= 10.0, first = 0)
+        fprintf(pl.p, "%s'-1e%d' %.6g", first ? "" : ", ", (int)lround(log10(d)), -d);
+      fprintf(pl.p, ", '0' 0");
+      for (double d = SYMLOG_C; d <= top * 1.001; d *= 10.0)
+        fprintf(pl.p, ", '1e%d' %.6g", (int)lround(log10(d)), d);
+      fprintf(pl.p, ")\n");
+    }
+    fprintf(pl.p, "set title '%s %s'\nset ylabel '%s [%s]'\nplot ", b ? "follower" : "coupler",
+            alpha ? "angular acceleration" : "angular velocity", alpha ? "alpha" : "omega",
+            alpha ? "rad/s^2 (symlog)" : "rad/s");
+    for (int q = 0; q < nm; q++) {
+      const int i = order[q];
+      char mn[160], sp[96];
+      fprintf(pl.p, "%s$s%d_%d using 1:2 with lines %s title '%s'", q ? ", " : "", p, i,
+              style_spec(r->model[i].run.name, sp, sizeof sp),
+              esc(r->model[i].run.name, mn, sizeof mn));
+    }
+    fprintf(pl.p, "\n");
+  }
+  fprintf(pl.p, "unset multiplot\n");
+  st = plot_close(&pl, diag);
+  char file[128];
+  snprintf(file, sizeof file, "startup.%s", ext(fmt));
+  if (st == FB_OK)
+    manifest_add(figs, file, "start-up: angular velocity and acceleration against log time", curves);
+  else
+    json_decref(curves);
   return st;
 }
 
@@ -552,7 +680,22 @@ fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt,
     for (int j = 0; j < 4 && st == FB_OK; j++) {
       if (!(r->model[i].run.series.contact_mask & (1 << j))) continue;
       char file[128];
-      st = contact_figure(r, i, j, dir, fmt, figs, file, sizeof file, diag);
+      st = contact_figure(r, i, j, dir, fmt, figs, file, sizeof file, 0, diag);
+      if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s", file);
+    }
+  }
+  /* the start-up: revolution 1 against log time, and each clearance model's
+   * pin path and force over it */
+  if (st == FB_OK) {
+    st = startup_figure(r, dir, fmt, figs, diag);
+    if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "startup.%s", ext(fmt));
+  }
+  for (int i = 0; i < r->n && st == FB_OK; i++) {
+    if (!r->model[i].has_startup || !r->model[i].run.clearance_mask) continue;
+    for (int j = 0; j < 4 && st == FB_OK; j++) {
+      if (!(r->model[i].run.series.contact_mask & (1 << j))) continue;
+      char file[128];
+      st = contact_figure(r, i, j, dir, fmt, figs, file, sizeof file, 1, diag);
       if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s", file);
     }
   }

@@ -84,6 +84,17 @@ for of in -1 100000000000000 1e14 '"3"'; do
   ok '[ $rc -eq 2 ] && grep -q "points.a.jsonl:1: .*\"of\"" "$tmp/err"' "3: merge refuses a row with \"of\": $of naming file, line and field (was a crash)"
 done
 
+# ---- 7. no hangs ---------------------------------------------------------------
+# (the reference's step budget: test_reference.c test_step_budget_stops_a_lost_integration)
+mkfifo "$tmp/fifo.ini"
+ok 'refuses "not a regular file" timeout 20 "$exe" run "$tmp/fifo.ini" --out "$tmp/a7"' "7: a FIFO as the case file is refused at once (was a hang)"
+printf '[case]\nbase = %s\n' "$tmp/fifo.ini" > "$tmp/fifo_base.ini"
+ok 'refuses "not a regular file" timeout 20 "$exe" run "$tmp/fifo_base.ini" --out "$tmp/a7"' "7: a FIFO as a base is refused at once (was a hang)"
+ok 'refuses "not a regular file" timeout 20 "$exe" sweep "$tmp/fifo.ini" --out "$tmp/a7"' "7: a FIFO as the study file is refused at once (was a hang)"
+FOURBAR_REFERENCE_TOL=abc timeout 60 "$exe" run --set run.revolutions=2 --set run.models=reference --no-figures --out "$tmp/a7" >/dev/null 2>"$tmp/err"
+rc=$?
+ok '[ $rc -eq 1 ] && grep -q "FOURBAR_REFERENCE_TOL" "$tmp/err"' "7: FOURBAR_REFERENCE_TOL=abc is refused naming the variable (was a hang)"
+
 # ---- 5. one writer per output folder ----------------------------------------
 slow=(--set run.revolutions=30 --set run.models=analytic,ode-clearance-impact --no-figures)
 wait_for() { for _ in $(seq 1 600); do eval "$1" && return 0; sleep 0.05; done; return 1; }

@@ -96,11 +96,37 @@ static void test_ode_converges_to_reference(void **state) {
   assert_true(err[2] < 0.03); /* within 3 % at the finest step */
 }
 
+/* A start the case file now refuses (crank angle 1e9 deg, set after loading)
+ * made the integrator's step collapse, and the reference ran without end:
+ * the step budget stops it with its named reason (issue 13 item 7). */
+static void test_step_budget_stops_a_lost_integration(void **state) {
+  (void)state;
+  fb_case c;
+  const char *sets[] = {"run.revolutions=2", "solver.h_s=1e-4"};
+  fb_test_paper_case(&c, sets, 2);
+  c.crank_angle0 = 1e9 * M_PI / 180.0;
+  fb_contact_law law[4];
+  assert_int_equal(fb_joint_laws(law, &c, FB_CLEARANCE_IMPACT, NULL), FB_OK);
+  fb_series s;
+  size_t steps = 0;
+  fb_diag d;
+  const fb_status st = fb_reference_run(&s, &steps, &c, &law[FB_JOINT_B], 0, &d);
+  const size_t n = (size_t)llround(fb_case_duration(&c) / c.solver.h);
+  if (st == FB_OK) fail_msg("a lost integration finished in %zu steps", steps);
+  assert_int_equal(st, FB_ERR_NUMERIC);
+  if (!strstr(d.msg, "step budget")) fail_msg("'%s' does not name the step budget", d.msg);
+  /* + 1: GSL's driver counts the step that reached its limit */
+  if (steps > (n + 1) * FB_REFERENCE_STEPS_PER_SAMPLE + 1)
+    fail_msg("%zu steps over the budget %zu: %s", steps, (n + 1) * FB_REFERENCE_STEPS_PER_SAMPLE, d.msg);
+  fb_series_free(&s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_ideal_limit_matches_analytic),
       cmocka_unit_test(test_reference_converged_in_tolerance),
       cmocka_unit_test(test_ode_converges_to_reference),
+      cmocka_unit_test(test_step_budget_stops_a_lost_integration),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -241,13 +241,13 @@ static fb_status point_overrides(const fb_study *s, size_t i, char sets[][256], 
 fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
   memset(s, 0, sizeof *s);
   snprintf(s->path, sizeof s->path, "%s", path);
-  FILE *f = fopen(path, "r");
-  if (!f) return fb_diag_set(diag, FB_ERR_IO, "%s: cannot open study file: %s", path, strerror(errno));
-  struct stat sb;
-  if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode)) {
-    fclose(f);
-    return fb_diag_set(diag, FB_ERR_IO, "%s: not a regular file", path);
-  }
+  int not_regular;
+  FILE *f = fb_fopen_regular(path, &not_regular); /* a FIFO never blocks (fileio.h) */
+  if (!f)
+    return not_regular ? fb_diag_set(diag, FB_ERR_IO, "%s: not a regular file (a study file is a "
+                                     "text file)", path)
+                       : fb_diag_set(diag, FB_ERR_IO, "%s: cannot open study file: %s", path,
+                                     strerror(errno));
   parse_ctx c = {s, f, 0, FB_OK, diag, -1};
   int rc = ini_parse_stream(count_lines, &c, handler, &c);
   fclose(f);

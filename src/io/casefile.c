@@ -1,4 +1,5 @@
 #include "casefile.h"
+#include "fileio.h"
 
 #include <errno.h>
 #include <ini.h>
@@ -799,7 +800,8 @@ static fb_status resolve_standards(fb_case *out, const load_ctx *c, fb_diag *dia
 /* reads line n of path (1-based) for an error message */
 static void read_line(const char *path, int n, char *buf, size_t size) {
   buf[0] = '\0';
-  FILE *f = fopen(path, "r");
+  int not_regular;
+  FILE *f = fb_fopen_regular(path, &not_regular);
   if (!f) return;
   char line[1024];
   for (int i = 1; fgets(line, sizeof line, f); i++)
@@ -851,16 +853,16 @@ static fb_status read_file_entries(load_ctx *top, const char *path, int depth, f
   c->diag = diag;
   c->status = FB_OK;
   fb_status st = FB_OK;
-  FILE *f = c->text ? fmemopen((void *)c->text, c->text_size, "r") : fopen(path, "r");
+  /* a directory opens and reads as empty, a device may never end, a FIFO
+   * blocks the open itself: only a regular file is read (fileio.h) */
+  int not_regular = 0;
+  FILE *f = c->text ? fmemopen((void *)c->text, c->text_size, "r")
+                    : fb_fopen_regular(path, &not_regular);
   if (!f) {
-    st = fb_diag_set(diag, FB_ERR_IO, "%s: cannot open case file: %s", path, strerror(errno));
-    goto out;
-  }
-  /* a directory opens and reads as empty, a device may never end: refuse both */
-  struct stat sb;
-  if (!c->text && (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode))) {
-    fclose(f);
-    st = fb_diag_set(diag, FB_ERR_IO, "%s: not a regular file (a case file is a text file)", path);
+    st = not_regular ? fb_diag_set(diag, FB_ERR_IO, "%s: not a regular file (a case file is a "
+                                   "text file)", path)
+                     : fb_diag_set(diag, FB_ERR_IO, "%s: cannot open case file: %s", path,
+                                   strerror(errno));
     goto out;
   }
   reader_state r = {f, c};

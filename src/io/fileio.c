@@ -4,6 +4,7 @@
 #include "outdir.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -50,6 +51,28 @@ void fb_outfile_abort(fb_outfile *o) {
   o->f = NULL;
   if (o->tmp[0]) unlink(o->tmp);
   fb_cleanup_forget(o->cleanup);
+}
+
+FILE *fb_fopen_regular(const char *path, int *not_regular) {
+  struct stat sb;
+  *not_regular = 0;
+  if (stat(path, &sb) != 0) return NULL;
+  if (!S_ISREG(sb.st_mode)) {
+    *not_regular = 1;
+    return NULL;
+  }
+  int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) return NULL;
+  /* swapped between the stat and the open: check what was opened */
+  if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+    close(fd);
+    *not_regular = 1;
+    return NULL;
+  }
+  fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  FILE *f = fdopen(fd, "r");
+  if (!f) close(fd);
+  return f;
 }
 
 fb_status fb_outdir_prepare(const char *dir, fb_diag *diag) {

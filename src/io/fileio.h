@@ -26,6 +26,13 @@ fb_status fb_outfile_commit(fb_outfile *o, fb_diag *diag);
 /* Closes and removes the temporary file. */
 void fb_outfile_abort(fb_outfile *o);
 
+/* Opens path for reading only when it is a regular file: the type is checked
+ * with stat before the open and again on the opened descriptor, and the open
+ * itself is non-blocking, so a FIFO, socket or device never blocks or
+ * streams forever. Returns NULL with *not_regular = 1 for another type, or
+ * with *not_regular = 0 and errno set when the file cannot be opened. */
+FILE *fb_fopen_regular(const char *path, int *not_regular);
+
 /* Creates folder dir and its parents (mkdir -p), then proves it writable by
  * creating and removing a temporary file. Errors: FB_ERR_IO. */
 fb_status fb_outdir_prepare(const char *dir, fb_diag *diag);

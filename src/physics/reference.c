@@ -128,7 +128,17 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
   gsl_odeiv2_system sys = {eom, NULL, 4, &r};
   gsl_error_handler_t *old = gsl_set_error_handler_off();
   const char *tol_env = getenv("FOURBAR_REFERENCE_TOL"); /* convergence studies only */
-  const double tol = tol_env ? atof(tol_env) : FB_REFERENCE_TOL;
+  double tol = FB_REFERENCE_TOL;
+  if (tol_env) {
+    char *end;
+    tol = strtod(tol_env, &end);
+    if (end == tol_env || *end || !(tol >= FB_REFERENCE_TOL_MIN && tol <= FB_REFERENCE_TOL_MAX)) {
+      gsl_set_error_handler(old);
+      return fb_diag_set(diag, FB_ERR_RANGE, "FOURBAR_REFERENCE_TOL = '%s' (environment): the "
+                         "reference tolerance must be a number from %g to %g", tol_env,
+                         FB_REFERENCE_TOL_MIN, FB_REFERENCE_TOL_MAX);
+    }
+  }
   gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, c->solver.h * 1e-3,
                                                          tol, tol);
   if (!drv) {
@@ -145,13 +155,21 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
   }
   double t = 0.0;
   size_t taken = 0;
+  const size_t budget = (n + 1) * FB_REFERENCE_STEPS_PER_SAMPLE;
   int prev_state = FB_STATE_FREE;
   int restituting = 0;
   for (size_t k = 0; k <= n; k++) {
     const double tk = (double)k * c->solver.h;
     if (k > 0) {
+      gsl_odeiv2_driver_set_nmax(drv, budget - taken); /* the rest of the budget */
       int g = gsl_odeiv2_driver_apply(drv, &t, tk, y);
       taken += (size_t)drv->n; /* the driver counts per call */
+      if (g == GSL_EMAXITER || (g == GSL_SUCCESS && taken >= budget && k < n)) {
+        status = fb_diag_set(diag, FB_ERR_NUMERIC, "reference: stopped: step budget of %zu steps "
+                             "(%d per sample) spent at t = %g s of %g s", budget,
+                             FB_REFERENCE_STEPS_PER_SAMPLE, t, fb_case_duration(c));
+        break;
+      }
       if (g != GSL_SUCCESS) {
         status = fb_diag_set(diag, FB_ERR_NUMERIC, "reference integration failed at t = %g s: %s",
                              t, gsl_strerror(g));

@@ -38,6 +38,19 @@
 /* rk8pd error control: a few orders above double precision on angles ~1 rad */
 #define FB_REFERENCE_TOL 1e-10
 
+/* FOURBAR_REFERENCE_TOL (convergence studies) may move the tolerance within
+ * [MIN, MAX]: below 1e-13 rk8pd's error estimate is lost in round-off and the
+ * step shrinks without end; above 1e-3 the reference is no yardstick */
+#define FB_REFERENCE_TOL_MIN 1e-13
+#define FB_REFERENCE_TOL_MAX 1e-3
+
+/* Step budget: at most this many accepted steps per output sample, on
+ * average over the run. The paper's case needs 1.07 per sample at the
+ * default tolerance and 17 at 1e-13; a run that needs more has lost the
+ * solution (a step collapsing at a singular position) and stops with the
+ * named reason "step budget" instead of running on without end. */
+#define FB_REFERENCE_STEPS_PER_SAMPLE 200
+
 /* Integrates the case's stack-up linkage with law at the crank-coupler joint
  * (or ideal) and samples it at t = k h over the case's duration into *out
  * (initialised here; contact columns of the crank-coupler joint unless ideal).

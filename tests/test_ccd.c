@@ -16,9 +16,9 @@
 
 #include "casefile.h"
 #include "collide_ccd.h"
+#include "engine.h"
 #include "fb_test.h"
-#include "joint_law.h"
-#include "scene.h"
+#include "scene.h" /* fb_scene_ccd_calls */
 
 /* libccd's depth against the closed-form face depth: MPR stops when a
  * refinement gains less than the 1e-13 m tolerance; measured residual
@@ -180,35 +180,37 @@ static void test_bad_definitions_are_refused(void **state) {
 /* settles the crank-coupler pin under gravity (crank held at 60 deg, impact
  * law) with the exact collider (segments = 0) or the libccd ring (split 0:
  * by depth; 1: by count, the faceted model's rule) */
+/* the libccd model as its row will read (test-local until the row lands) */
+static const fb_model ccd_row = {"ode-clearance-ccd", FB_ENGINE_ODE, FB_LENGTHS_STACKUP,
+                                 FB_JOINTS_CLEARANCE, FB_MODEL_LAW_IMPACT, FB_COLLIDER_CCD,
+                                 "reference", "ode-ideal-stackup",
+                                 "ODE, clearance joints, impact law, libccd bore ring"};
+
+/* crank held at 60 deg, step 1e-5 s, velocity damping (frictionless: without
+ * it the pin slides along the wall), ring[0] segments split by ring[1] */
+static void hold(fb_scene_def *def, void *user) {
+  const int *ring = user;
+  def->solver.h = 1e-5;
+  def->settle_damping = 3e-3;
+  def->ccd_segments = ring[0];
+  def->ccd_split = ring[1];
+  assert_int_equal(fb_scene_def_set_start(def, 60.0 * M_PI / 180.0, 0.0, NULL), FB_OK);
+}
+
 static fb_sample settle(const fb_case *c, int segments, int split, int steps, unsigned long *calls,
                         unsigned long *contacts) {
   fb_scene_def def;
-  memset(&def, 0, sizeof def);
-  fb_case_stackup_lengths(c, &def.lengths);
-  def.branch = c->branch;
-  def.crank_angle0 = 60.0 * M_PI / 180.0;
-  def.omega2 = 0.0;
-  def.gravity = c->gravity;
-  for (int i = 0; i < 3; i++) def.link[i] = c->link[i];
-  def.solver = c->solver;
-  def.solver.h = 1e-5;
-  assert_int_equal(fb_joint_laws(def.law, c, FB_CLEARANCE_IMPACT, NULL), FB_OK);
-  def.clearance_mask = 1 << FB_JOINT_B;
-  def.radial_clearance = c->radial_clearance;
-  def.pin_radius = 0.5 * c->pin_diameter;
-  def.pin_length = c->pin_length;
-  def.impact_velocity_min = 1e-3;
-  def.settle_damping = 3e-3; /* frictionless: without it the pin slides along the wall */
-  def.ccd_segments = segments;
-  def.ccd_split = split;
-  fb_scene *s;
-  fb_diag d;
-  if (fb_scene_create(&s, &def, &d) != FB_OK) fail_msg("%s", d.msg);
-  for (int k = 0; k < steps; k++) assert_int_equal(fb_scene_step(s, NULL), FB_OK);
+  fb_scene_model sm;
+  const fb_engine *e;
+  int ring[2] = {segments, split};
+  fb_scene *s = fb_test_engine_row(&e, &sm, &def, c,
+                                   segments ? &ccd_row : fb_model_find("ode-clearance-impact"),
+                                   hold, ring);
+  for (int k = 0; k < steps; k++) assert_int_equal(e->step(s, NULL), FB_OK);
   fb_sample x;
-  fb_scene_sample(s, &x);
+  e->sample(s, &x);
   fb_scene_ccd_calls(s, calls, contacts);
-  fb_scene_destroy(s);
+  e->destroy(s);
   return x;
 }
 

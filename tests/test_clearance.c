@@ -12,11 +12,11 @@
 #include <string.h>
 
 #include "casefile.h"
+#include "engine.h"
 #include "fb_test.h"
 #include "invdyn.h"
-#include "joint_law.h"
 #include "run.h"
-#include "scene.h"
+#include "scene.h" /* the ODE probe of the effective mass */
 
 /* statics: the issue allows 2 %; after 1 s of settling with velocity damping
  * the residual is 4e-5 (the 14.5 um clearance shifts the geometry, and so
@@ -40,6 +40,19 @@ static void load(fb_case *c, const char **sets, int n) {
   if (fb_casefile_load(c, paper_path, sets, n, &d) != FB_OK) fail_msg("%s", d.msg);
 }
 
+/* the crank held still at theta by the drive, body velocities damped by
+ * damping per step, step 1e-5 s */
+struct hold {
+  double theta, damping;
+};
+
+static void hold_crank(fb_scene_def *def, void *user) {
+  const struct hold *h = user;
+  def->solver.h = 1e-5;
+  def->settle_damping = h->damping;
+  assert_int_equal(fb_scene_def_set_start(def, h->theta, 0.0, NULL), FB_OK);
+}
+
 static void test_static_penetration_matches_law(void **state) {
   (void)state;
   fb_case c;
@@ -50,30 +63,20 @@ static void test_static_penetration_matches_law(void **state) {
   fb_reactions rr;
   assert_int_equal(fb_invdyn_solve(&rr, &su, c.branch, c.link, c.gravity, theta, 1e-12, NULL), FB_OK);
   const double load_b = hypot(rr.force[1][0], rr.force[1][1]);
+  const char *models[2] = {"ode-clearance-restitution", "ode-clearance-impact"};
   for (int model = 0; model < 2; model++) {
+    /* the crank held at theta by the drive; frictionless: without velocity
+     * damping the pin slides along the wall */
     fb_scene_def def;
-    memset(&def, 0, sizeof def);
-    def.lengths = su;
-    def.branch = c.branch;
-    def.crank_angle0 = theta;
-    def.omega2 = 0.0; /* the drive holds the crank still */
-    def.gravity = c.gravity;
-    for (int i = 0; i < 3; i++) def.link[i] = c.link[i];
-    def.solver = c.solver;
-    def.solver.h = 1e-5;
-    assert_int_equal(fb_joint_laws(def.law, &c, (fb_clearance_model)model, NULL), FB_OK);
-    def.clearance_mask = 1 << FB_JOINT_B;
-    def.radial_clearance = c.radial_clearance;
-    def.pin_radius = 0.5 * c.pin_diameter;
-    def.impact_velocity_min = 1e-3;
-    def.settle_damping = 1e-3; /* frictionless: without it the pin slides along the wall */
-    fb_scene *s;
-    assert_int_equal(fb_scene_create(&s, &def, NULL), FB_OK);
-    for (int k = 0; k < 100000; k++) fb_scene_step(s, NULL);
+    fb_scene_model sm;
+    const fb_engine *e;
+    const struct hold hold = {theta, 1e-3};
+    void *s = fb_test_engine(&e, &sm, &def, &c, models[model], hold_crank, (void *)&hold);
+    for (int k = 0; k < 100000; k++) e->step(s, NULL);
     fb_sample x;
-    fb_scene_sample(s, &x);
-    fb_scene_destroy(s);
-    const fb_contact_law *l = &def.law[FB_JOINT_B];
+    e->sample(s, &x);
+    e->destroy(s);
+    const fb_contact_law *l = &sm.law[FB_JOINT_B];
     const double want = l->kind == FB_LAW_IMPACT ? pow(load_b / l->stiffness, 1.0 / l->exponent)
                                                  : load_b / l->stiffness;
     const double pen = x.contact[FB_JOINT_B][FB_C_PEN];
@@ -91,30 +94,18 @@ static void test_static_penetration_matches_law(void **state) {
 /* settles the crank-coupler pin statically (crank held at 60 deg, impact
  * law) with the exact collider (facets = 0) or a ring of facets boxes */
 static fb_sample settle(const fb_case *c, int facets, int steps, double damping) {
+  fb_case k = *c;
+  if (facets) k.clearance.faceted_n = facets;
   fb_scene_def def;
-  memset(&def, 0, sizeof def);
-  fb_case_stackup_lengths(c, &def.lengths);
-  def.branch = c->branch;
-  def.crank_angle0 = 60.0 * M_PI / 180.0;
-  def.omega2 = 0.0;
-  def.gravity = c->gravity;
-  for (int i = 0; i < 3; i++) def.link[i] = c->link[i];
-  def.solver = c->solver;
-  def.solver.h = 1e-5;
-  assert_int_equal(fb_joint_laws(def.law, c, FB_CLEARANCE_IMPACT, NULL), FB_OK);
-  def.clearance_mask = 1 << FB_JOINT_B;
-  def.radial_clearance = c->radial_clearance;
-  def.pin_radius = 0.5 * c->pin_diameter;
-  def.pin_length = c->pin_length;
-  def.impact_velocity_min = 1e-3;
-  def.settle_damping = damping;
-  def.faceted_n = facets;
-  fb_scene *s;
-  assert_int_equal(fb_scene_create(&s, &def, NULL), FB_OK);
-  for (int k = 0; k < steps; k++) fb_scene_step(s, NULL);
+  fb_scene_model sm;
+  const fb_engine *e;
+  const struct hold hold = {60.0 * M_PI / 180.0, damping};
+  void *s = fb_test_engine(&e, &sm, &def, &k, facets ? "ode-clearance-faceted" : "ode-clearance-impact",
+                           hold_crank, (void *)&hold);
+  for (int i = 0; i < steps; i++) e->step(s, NULL);
   fb_sample x;
-  fb_scene_sample(s, &x);
-  fb_scene_destroy(s);
+  e->sample(s, &x);
+  e->destroy(s);
   return x;
 }
 
@@ -265,35 +256,31 @@ static void test_stability_guard_names_reason(void **state) {
  * dominates). Bound 1e-3. */
 #define PROBE_REL_TOL 1e-3
 
+/* the crank at start[0] turning at the case's speed, step start[1] */
+static void probe_start(fb_scene_def *def, void *user) {
+  const double *start = user;
+  def->solver.h = start[1];
+  assert_int_equal(fb_scene_def_set_start(def, start[0], def->omega2, NULL), FB_OK);
+}
+
 static void test_effective_mass_matches_ode_probe(void **state) {
   (void)state;
   fb_case c;
   load(&c, NULL, 0);
-  fb_linkage su;
-  fb_case_stackup_lengths(&c, &su);
   /* one joint at a time, and the two coupler pins at once */
   const int masks[4] = {1 << FB_JOINT_A, 1 << FB_JOINT_B, 1 << FB_JOINT_D,
                         (1 << FB_JOINT_B) | (1 << FB_JOINT_C)};
   double worst = 0.0;
   for (int mi = 0; mi < 4; mi++)
     for (double theta = 0.3; theta < 6.3; theta += 1.5) {
+      fb_case k = c;
+      k.clearance.mask = masks[mi];
       fb_scene_def def;
-      memset(&def, 0, sizeof def);
-      def.lengths = su;
-      def.branch = c.branch;
-      def.crank_angle0 = theta;
-      def.omega2 = fb_case_omega2(&c);
-      def.gravity = c.gravity;
-      for (int i = 0; i < 3; i++) def.link[i] = c.link[i];
-      def.solver = c.solver;
-      def.solver.h = 1e-6;
-      def.clearance_mask = masks[mi];
-      assert_int_equal(fb_joint_laws(def.law, &c, FB_CLEARANCE_IMPACT, NULL), FB_OK);
-      def.radial_clearance = c.radial_clearance;
-      def.pin_radius = 0.5 * c.pin_diameter;
-      def.impact_velocity_min = 1e-3;
-      fb_scene *s;
-      assert_int_equal(fb_scene_create(&s, &def, NULL), FB_OK);
+      fb_scene_model sm;
+      const fb_engine *e;
+      const double start[2] = {theta, 1e-6};
+      fb_scene *s = fb_test_engine(&e, &sm, &def, &k, "ode-clearance-impact", probe_start,
+                                   (void *)start);
       fb_mechanism m;
       fb_scene_mechanism(s, &m);
       double w[4][2][2];
@@ -311,7 +298,7 @@ static void test_effective_mass_matches_ode_probe(void **state) {
           assert_rel(1.0 / inv, me, PROBE_REL_TOL);
         }
       }
-      fb_scene_destroy(s);
+      e->destroy(s);
     }
   report_residual("ODE probe vs KKT effective mass", worst, PROBE_REL_TOL);
 }

@@ -10,9 +10,9 @@
 #include <string.h>
 
 #include "casefile.h"
+#include "engine.h"
 #include "fb_test.h"
 #include "invdyn.h"
-#include "scene.h"
 
 /* a 9x9 LU solve of well-scaled equations: roundoff ~1e-13 of the forces */
 #define STATICS_TOL_N 1e-9
@@ -51,29 +51,30 @@ static void test_statics_balance_gravity(void **state) {
   }
 }
 
+/* crank angle 0 at t = 0, speed w, step h */
+static void set_start(fb_scene_def *def, void *user) {
+  const double *hw = user;
+  def->solver.h = hw[0];
+  assert_int_equal(fb_scene_def_set_start(def, 0.0, hw[1], NULL), FB_OK);
+}
+
 static void test_reactions_match_ode_feedback(void **state) {
   (void)state;
   const double h = 1e-5, w = fb_case_omega2(&paper);
   fb_scene_def def;
-  memset(&def, 0, sizeof def);
-  def.lengths = paper.nominal;
-  def.branch = paper.branch;
-  def.omega2 = w;
-  def.gravity = paper.gravity;
-  for (int i = 0; i < 3; i++) def.link[i] = paper.link[i];
-  def.solver = paper.solver;
-  def.solver.h = h;
-  fb_scene *s;
-  assert_int_equal(fb_scene_create(&s, &def, NULL), FB_OK);
+  fb_scene_model sm;
+  const fb_engine *e;
+  double start[2] = {h, w};
+  void *s = fb_test_engine(&e, &sm, &def, &paper, "ode-ideal-nominal", set_start, start);
   const double period = 2 * M_PI / fabs(w);
   const size_t n = (size_t)llround(2 * period / h);
   double err = 0, fbig = 0, terr = 0, tmax = 0;
   for (size_t k = 1; k <= n; k++) {
-    fb_scene_step(s, NULL);
+    e->step(s, NULL);
     const double t0 = (double)(k - 1) * h; /* the step's forces belong to its start */
     if (t0 < period) continue;              /* after a run-in revolution */
     double f[4][2], torque;
-    fb_scene_reactions(s, f, &torque);
+    e->reactions(s, f, &torque);
     fb_reactions r;
     fb_invdyn_solve(&r, &paper.nominal, paper.branch, paper.link, paper.gravity, w * t0, w, NULL);
     for (int j = 0; j < 4; j++) {
@@ -83,7 +84,7 @@ static void test_reactions_match_ode_feedback(void **state) {
     terr = fmax(terr, fabs(torque - r.drive_torque));
     tmax = fmax(tmax, fabs(r.drive_torque));
   }
-  fb_scene_destroy(s);
+  e->destroy(s);
   report_residual("joint reactions, ODE vs inverse dynamics", err / fbig, FEEDBACK_REL_TOL);
   report_residual("drive torque, ODE vs inverse dynamics", terr / tmax, FEEDBACK_REL_TOL);
   assert_true(err / fbig < FEEDBACK_REL_TOL);

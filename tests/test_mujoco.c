@@ -19,7 +19,6 @@
 #include "analytic.h"
 #include "casefile.h"
 #include "fb_test.h"
-#include "joint_law.h"
 #include "metrics.h"
 #include "mujoco_scene.h"
 #include "reference.h"
@@ -51,29 +50,30 @@
  * measured 5e-6; the ideal model's bound */
 #define CLEARANCE_OMEGA_REL_TOL 1e-4
 
-/* the scene definition of case c for one model: clearance law of model clr
- * (FB_CLEARANCE_*), or ideal for clr < 0, at lengths lk */
-static void scene_def(fb_scene_def *def, const fb_case *c, int clr, const fb_linkage *lk) {
-  memset(def, 0, sizeof *def);
+/* the mujoco models' rows as the model table will hold them (test-local
+ * until the engine adapter lands with them) */
+static const fb_model mj_ideal = {"mujoco-ideal-nominal", FB_ENGINE_MUJOCO, FB_LENGTHS_NOMINAL,
+                                  FB_JOINTS_IDEAL, FB_MODEL_LAW_NONE, FB_COLLIDER_NONE, NULL, NULL,
+                                  "MuJoCo, ideal hinges, nominal lengths"};
+static const fb_model mj_impact = {"mujoco-clearance-impact", FB_ENGINE_MUJOCO, FB_LENGTHS_STACKUP,
+                                   FB_JOINTS_CLEARANCE, FB_MODEL_LAW_IMPACT, FB_COLLIDER_EXACT,
+                                   "reference", NULL, "MuJoCo, clearance joints, impact law"};
+
+/* the scene of case c through the scene stage and the view of the ideal
+ * (nominal lengths) or clearance impact (stack-up lengths) model on it */
+static void scene_model(fb_scene_model *sm, const fb_case *c, int clearance) {
+  static fb_scene_def scene; /* the view points into it */
+  fb_case k = *c;
+  k.model_count = 1; /* a listed model with the impact law: its law is resolved */
+  snprintf(k.models[0], sizeof k.models[0], "%s", clearance ? "reference" : "analytic");
   fb_diag d;
-  if (clr >= 0) {
-    if (fb_joint_laws(def->law, c, (fb_clearance_model)clr, &d) != FB_OK) fail_msg("%s", d.msg);
-    def->clearance_mask = c->clearance.mask;
-    def->radial_clearance = c->radial_clearance;
-    def->pin_radius = 0.5 * c->pin_diameter;
-    def->impact_velocity_min = 1e-3;
-  }
-  def->lengths = *lk;
-  def->branch = c->branch;
-  def->crank_angle0 = c->crank_angle0;
-  def->omega2 = fb_case_omega2(c);
-  def->gravity = c->gravity;
-  for (int i = 0; i < 3; i++) def->link[i] = c->link[i];
-  def->solver = c->solver;
+  if (fb_scene_def_from_case(&scene, &k, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_scene_def_select(sm, &scene, clearance ? &mj_impact : &mj_ideal, &d) != FB_OK)
+    fail_msg("%s", d.msg);
 }
 
 /* runs the scene over the case's duration into s (initialised here) */
-static double run_scene(fb_series *s, const fb_scene_def *def, const fb_case *c) {
+static double run_scene(fb_series *s, const fb_scene_model *def, const fb_case *c) {
   fb_mujoco_scene *sc = NULL;
   fb_diag d;
   if (fb_mujoco_scene_create(&sc, def, &c->mujoco, &d) != FB_OK) fail_msg("%s", d.msg);
@@ -109,8 +109,8 @@ static void ideal_error(fb_error *e, double *drift, const char *h) {
   const char *sets[] = {hs};
   fb_case c;
   fb_test_paper_case(&c, sets, 1);
-  fb_scene_def def;
-  scene_def(&def, &c, -1, &c.nominal);
+  fb_scene_model def;
+  scene_model(&def, &c, 0);
   fb_series s;
   *drift = run_scene(&s, &def, &c);
   fb_peaks exact;
@@ -156,10 +156,8 @@ static void test_clearance_impact_matches_reference(void **state) {
   (void)state;
   fb_case c;
   fb_test_paper_case(&c, NULL, 0);
-  fb_linkage lk;
-  fb_case_stackup_lengths(&c, &lk);
-  fb_scene_def def;
-  scene_def(&def, &c, FB_CLEARANCE_IMPACT, &lk);
+  fb_scene_model def;
+  scene_model(&def, &c, 1);
   assert_int_equal(fb_mujoco_integrator_for(&c.mujoco, def.clearance_mask), FB_MUJOCO_RK4);
   fb_series s, ref;
   run_scene(&s, &def, &c);
@@ -185,8 +183,8 @@ static void test_mjcf_from_the_definition(void **state) {
   (void)state;
   fb_case c;
   fb_test_paper_case(&c, NULL, 0);
-  fb_scene_def def;
-  scene_def(&def, &c, -1, &c.nominal);
+  fb_scene_model def;
+  scene_model(&def, &c, 0);
   static char buf[16384];
   fb_diag d;
   assert_int_equal(fb_mujoco_mjcf(buf, sizeof buf, &def, &c.mujoco, &d), FB_OK);

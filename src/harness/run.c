@@ -4,7 +4,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "tolerance.h"
 
 static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref) {
   const fb_body_peaks *in[2] = {&p->coupler, &p->follower};
@@ -33,7 +32,7 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
   if (fb_metrics_peaks_between(&m->startup, &m->startup_at, s, 0.0, r->t_startup_end, &inner) ==
       FB_OK) {
     m->has_startup = 1;
-    if (m->run.kind == FB_KIND_ANALYTIC && s->t[s->n - 1] >= r->t_startup_end - c->solver.h)
+    if (m->run.model->engine == FB_ENGINE_ANALYTIC && s->t[s->n - 1] >= r->t_startup_end - c->solver.h)
       m->startup = m->exact; /* a whole revolution of the periodic motion */
   }
   for (int j = 0; j < 4 && m->first_impact_joint < 0; j++)
@@ -50,7 +49,7 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
   m->penetration_max_run = fb_metrics_penetration_max(s);
   char text[256];
   if (fb_case_validity_warning(text, sizeof text, c, m->penetration_max_run)) warn(m, text);
-  if (m->run.kind == FB_KIND_ODE) {
+  if (fb_engine_steps_world(m->run.model->engine)) {
     const double omega2 = fb_case_omega2(c);
     double lag = 0.0, t_lag = 0.0;
     for (size_t i = 0; i < s->n; i++) {
@@ -77,7 +76,7 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   if (s->n == 0 || s->t[s->n - 1] < r->t_window) return FB_OK; /* stopped in the run-in */
   st = fb_metrics_peaks_between(&m->peaks, &m->peaks_at, s, r->t_window, INFINITY, diag);
   if (st != FB_OK) return st;
-  if (m->run.kind == FB_KIND_ANALYTIC) m->peaks = m->exact; /* the refined extremes */
+  if (m->run.model->engine == FB_ENGINE_ANALYTIC) m->peaks = m->exact; /* the refined extremes */
   m->has_peaks = 1;
   /* for the analytic model this measures the sampling floor of the grid */
   st = fb_metrics_error(&m->error, s, r->t_window, &m->run.lengths, c->branch,
@@ -86,14 +85,15 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   m->has_error = 1;
   rel_peaks(&m->delta_vs_nominal, &m->peaks, &r->analytic_nominal);
   if (m->run.clearance_mask) {
-    /* ratios against the ideal stack-up ODE model if it ran, else the exact
-     * analytic peaks of the same (stack-up) lengths */
+    /* ratios against the model's ideal model (model table) if it ran, else
+     * the exact analytic peaks of the same (stack-up) lengths */
     const fb_peaks *ref = &m->exact;
     snprintf(m->spikes_reference, sizeof m->spikes_reference, "analytic-stackup");
+    const fb_model *ideal = fb_model_find(m->run.model->spikes_vs);
     for (int i = 0; i < r->n; i++)
-      if (strcmp(r->model[i].run.name, "ode-ideal-stackup") == 0 && r->model[i].has_peaks) {
+      if (ideal && r->model[i].run.model == ideal && r->model[i].has_peaks) {
         ref = &r->model[i].peaks;
-        snprintf(m->spikes_reference, sizeof m->spikes_reference, "ode-ideal-stackup");
+        snprintf(m->spikes_reference, sizeof m->spikes_reference, "%s", ideal->name);
       }
     const double rc = fmax(fabs(ref->coupler.alpha_max), fabs(ref->coupler.alpha_min));
     const double rf = fmax(fabs(ref->follower.alpha_max), fabs(ref->follower.alpha_min));
@@ -107,11 +107,10 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
 fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                       fb_diag *diag) {
   memset(r, 0, sizeof *r);
-  r->c = *c;
-  /* a "worst" stack-up becomes a concrete corner before any model runs */
-  fb_status rc = fb_tol_resolve_worst(&r->c, diag);
-  if (rc == FB_OK && c->stackup.worst) rc = fb_case_check(&r->c, diag);
+  /* the scene stage: the case resolved once for every model */
+  fb_status rc = fb_scene_def_from_case(&r->scene, c, diag);
   if (rc != FB_OK) return rc;
+  r->c = r->scene.source;
   c = &r->c;
   /* [run] peaks: from t = 0, or after the first revolution (a hair below one
    * revolution so the sample at exactly one period counts) */
@@ -122,7 +121,9 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
   if (st != FB_OK) return st;
   for (int i = 0; i < c->model_count; i++) {
     fb_model_result *m = &r->model[i];
-    st = fb_model_run_one(&m->run, c, c->models[i], progress, user, diag);
+    const fb_model *row;
+    st = fb_model_lookup(&row, c->models[i], diag);
+    if (st == FB_OK) st = fb_model_run_one(&m->run, &r->scene, row, progress, user, diag);
     r->n = i + 1;
     if (st == FB_OK) st = measure(m, r, diag);
     if (st != FB_OK) {
@@ -133,18 +134,16 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
   /* each exact-collider clearance model against the reference of its law */
   for (int i = 0; i < r->n; i++) {
     fb_model_result *m = &r->model[i];
-    const char *want = strcmp(m->run.name, "ode-clearance-impact") == 0        ? "reference"
-                       : strcmp(m->run.name, "ode-clearance-restitution") == 0 ? "reference-restitution"
-                                                                             : NULL;
+    const fb_model *want = fb_model_find(m->run.model->reference);
     if (!want || !m->has_peaks) continue;
     for (int k = 0; k < r->n; k++) {
       const fb_model_result *ref = &r->model[k];
-      if (strcmp(ref->run.name, want) != 0 || !ref->has_peaks) continue;
+      if (ref->run.model != want || !ref->has_peaks) continue;
       fb_diag inner;
       if (fb_metrics_vs_reference(&m->ref_error, &m->run.series, &ref->run.series, r->t_window,
                                   FB_JOINT_B, &inner) == FB_OK) {
         m->has_ref_error = 1;
-        snprintf(m->ref_name, sizeof m->ref_name, "%s", want);
+        snprintf(m->ref_name, sizeof m->ref_name, "%s", want->name);
       }
     }
   }

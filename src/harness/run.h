@@ -7,6 +7,7 @@
 
 #include "metrics.h"
 #include "models.h"
+#include "scene_def.h"
 
 /* Warnings a model run can carry. */
 #define FB_RUN_WARNINGS 4
@@ -46,7 +47,8 @@ typedef struct {
 } fb_model_result;
 
 typedef struct {
-  fb_case c;                              /* the case as run */
+  fb_case c;                              /* the case as run (worst corner resolved) */
+  fb_scene_def scene;                     /* the case resolved once; every model's scene */
   double t_window;                        /* peaks and errors use t >= t_window [s] */
   double t_startup_end;                   /* revolution 1 is t < t_startup_end [s] */
   int n;                                  /* models run */

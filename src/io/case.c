@@ -4,16 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-const char *const fb_model_names[] = {"analytic",
-                                      "analytic-stackup",
-                                      "ode-ideal-nominal",
-                                      "ode-ideal-stackup",
-                                      "ode-clearance-restitution",
-                                      "ode-clearance-impact",
-                                      "ode-clearance-faceted",
-                                      "reference",
-                                      "reference-restitution",
-                                      NULL};
+#include "model_table.h"
 
 const char *fb_joint_name(int j) {
   static const char *const names[4] = {"ground-crank", "crank-coupler", "coupler-follower",
@@ -24,12 +15,6 @@ const char *fb_joint_name(int j) {
 const char *fb_mujoco_integrator_name(int k) {
   static const char *const names[] = {"euler", "implicit", "rk4", "auto"};
   return k >= 0 && k <= FB_MUJOCO_AUTO ? names[k] : "?";
-}
-
-int fb_model_known(const char *name) {
-  for (int i = 0; fb_model_names[i]; i++)
-    if (strcmp(fb_model_names[i], name) == 0) return 1;
-  return 0;
 }
 
 void fb_case_default(fb_case *c) {
@@ -215,14 +200,13 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_RANGE, "penetration limit %g m: must be >= 0",
                        c->clearance.penetration_limit);
   for (int i = 0; i < c->model_count; i++) {
-    if ((strncmp(c->models[i], "ode-clearance", 13) == 0 || strncmp(c->models[i], "reference", 9) == 0) &&
-        c->clearance.mask == 0)
+    const fb_model *m;
+    st = fb_model_lookup(&m, c->models[i], diag);
+    if (st != FB_OK) return st;
+    if (fb_model_has_clearance(m) && c->clearance.mask == 0)
       return fb_diag_set(diag, FB_ERR_ARG,
                          "model '%s' needs at least one clearance joint ([clearance] joints)",
                          c->models[i]);
   }
-  for (int i = 0; i < c->model_count; i++)
-    if (!fb_model_known(c->models[i]))
-      return fb_diag_set(diag, FB_ERR_ARG, "unknown model '%s'", c->models[i]);
   return FB_OK;
 }

@@ -175,7 +175,8 @@ void fb_case_default(fb_case *c);
 
 /* Checks the case as a whole: lengths and masses valid, the nominal and the
  * stack-up linkage assemble and their crank turns fully (it is driven), the
- * step size is smaller than one revolution, every model name is known.
+ * step size is smaller than one revolution, every model name is in the
+ * model table (model_table.h) and has the clearance joints it needs.
  * Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY, FB_ERR_ARG with the rule in diag. */
 fb_status fb_case_check(const fb_case *c, fb_diag *diag);
 
@@ -207,11 +208,5 @@ int fb_case_validity_warning(char *buf, size_t size, const fb_case *c, double pe
 /* Start of the peak window [s]: 0 for peaks = all, else one revolution less
  * half a step (so that the sample at exactly one period counts). */
 double fb_case_peak_window_from(const fb_case *c);
-
-/* Model names known to this build, NULL-terminated. */
-extern const char *const fb_model_names[];
-
-/* 1 when name is a known model name. */
-int fb_model_known(const char *name);
 
 #endif

@@ -13,6 +13,7 @@
 #include "contact.h"
 #include "iso2768.h"
 #include "iso286.h"
+#include "model_table.h"
 #include "tolerance.h"
 #include "units.h"
 
@@ -703,12 +704,9 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       char *save = NULL;
       for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
         tok = trim(tok);
-        if (!fb_model_known(tok)) {
-          char known[512] = "";
-          for (int i = 0; fb_model_names[i]; i++) {
-            strncat(known, i ? ", " : "", sizeof known - strlen(known) - 1);
-            strncat(known, fb_model_names[i], sizeof known - strlen(known) - 1);
-          }
+        if (!fb_model_find(tok)) {
+          char known[768];
+          fb_model_list(known, sizeof known);
           return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: unknown model '%s' (known: %s)",
                              e->origin, e->section, e->key, tok, known);
         }

@@ -265,12 +265,12 @@ static void curve_style(json_t *c, const char *model) {
   json_object_set_new(c, "dash", json_integer(st.dash));
 }
 
-/* yardsticks (analytic, reference) are drawn first, underneath the ODE models */
+/* yardsticks (analytic, reference) are drawn first, underneath the simulated models */
 static int draw_order(const fb_run *r, int order[]) {
   int n = 0;
   for (int pass = 0; pass < 2; pass++)
     for (int i = 0; i < r->n; i++)
-      if ((r->model[i].run.kind != FB_KIND_ODE) == (pass == 0)) order[n++] = i;
+      if (!fb_engine_steps_world(r->model[i].run.model->engine) == (pass == 0)) order[n++] = i;
   return n;
 }
 
@@ -344,7 +344,7 @@ static fb_status kin_figure(const fb_run *r, const char *dir, fb_figure_format f
     for (int q = 0; q < nm; q++) {
       const int i = order[q];
       const fb_series *s = &r->model[i].run.series;
-      if (r->model[i].run.kind != FB_KIND_ODE || s->n == 0) continue;
+      if (!fb_engine_steps_world(r->model[i].run.model->engine) || s->n == 0) continue;
       double *res = malloc(s->n * sizeof *res);
       if (!res) continue;
       has_resid[i] = 1;

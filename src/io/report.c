@@ -82,7 +82,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_t *o = json_object();
   const fb_model_run *run = &m->run;
   json_object_set_new(o, "name", json_string(run->name));
-  json_object_set_new(o, "kind", json_string(fb_model_kind_name(run->kind)));
+  json_object_set_new(o, "kind", json_string(fb_engine_name(run->model->engine)));
   json_object_set_new(o, "status", json_string(run->status));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
@@ -133,7 +133,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   if (m->has_error) {
     json_t *e = json_object();
     json_object_set_new(e, "reference",
-                        json_string(run->kind == FB_KIND_ODE
+                        json_string(run->model->engine != FB_ENGINE_ANALYTIC
                                         ? "analytic solution of the same link lengths"
                                         : "exact (refined) peaks of the same solution: the "
                                           "sampling floor of the time grid"));
@@ -152,7 +152,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   } else {
     json_object_set_new(o, "delta_vs_analytic_nominal", json_null());
   }
-  if (run->kind == FB_KIND_ODE) json_object_set_new(o, "joint_drift_max_m", num(run->joint_drift_max));
+  if (fb_engine_steps_world(run->model->engine)) json_object_set_new(o, "joint_drift_max_m", num(run->joint_drift_max));
   if (m->has_ref_error) {
     const fb_reference_error *e = &m->ref_error;
     json_t *o2 = json_object(), *a = json_array(), *b = json_array();

@@ -26,7 +26,7 @@ typedef struct {
 } mj_clearance;
 
 struct fb_mujoco_scene {
-  fb_scene_def def;
+  fb_scene_model def;
   int integrator; /* fb_mujoco_integrator, resolved */
   mjModel *m;
   mjData *d;
@@ -97,7 +97,7 @@ static void put_inertial(text *t, const fb_link_mass *lm, double len) {
       lm->com_fraction * len, lm->mass, lm->inertia_long, it, lm->inertia);
 }
 
-fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_def *def,
+fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *def,
                          const fb_mujoco_opts *opts, fb_diag *diag) {
   fb_linkage_state st;
   fb_status rc = fb_linkage_solve(&st, &def->lengths, def->branch, def->crank_angle0,
@@ -240,7 +240,7 @@ static mjModel *load_mjcf(const char *mjcf, fb_diag *diag) {
   return m;
 }
 
-fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_def *def,
+fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *def,
                                  const fb_mujoco_opts *opts, fb_diag *diag) {
   fb_linkage_state st;
   fb_status rc = fb_linkage_solve(&st, &def->lengths, def->branch, def->crank_angle0,

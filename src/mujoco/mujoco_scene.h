@@ -1,5 +1,5 @@
 /* The four-bar in MuJoCo 2.2.2: the same scene definition as the ODE scene
- * (scene.h: lengths, masses, inertias, gravity, drive, initial state from the
+ * (scene_def.h, fb_scene_model: lengths, masses, inertias, gravity, drive, initial state from the
  * analytic solver, clearance joints and their contact laws), generated as
  * MJCF text and loaded from memory through MuJoCo's virtual file system. The
  * only folder that includes MuJoCo headers; this header includes none, so a
@@ -55,7 +55,7 @@
 #include <stddef.h>
 
 #include "case.h"
-#include "scene.h"
+#include "scene_def.h"
 #include "series.h"
 
 typedef struct fb_mujoco_scene fb_mujoco_scene;
@@ -69,7 +69,7 @@ int fb_mujoco_integrator_for(const fb_mujoco_opts *opts, int clearance_mask);
  * terminated): numbers printed with 17 significant digits, so the compiled
  * model holds the definition's doubles. Errors: FB_ERR_ASSEMBLY when the
  * initial configuration does not exist; FB_ERR_RANGE when buf is too small. */
-fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_def *def,
+fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *def,
                          const fb_mujoco_opts *opts, fb_diag *diag);
 
 /* Compiles the model (mj_loadXML from a VFS holding the MJCF text) and sets
@@ -79,7 +79,7 @@ fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_def *def,
  * radial_clearance, law, impact_velocity_min; ignores ODE's stepper,
  * ERP/CFM, mapping, friction and faceted_n. Errors: FB_ERR_ASSEMBLY;
  * FB_ERR_ARG when MuJoCo rejects the model (its message quoted); FB_ERR_NOMEM. */
-fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_def *def,
+fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *def,
                                  const fb_mujoco_opts *opts, fb_diag *diag);
 
 /* Advances one step h. Errors: none today (FB_OK); NaN is reported through

@@ -1,11 +1,11 @@
-/* The single impact in ODE (see impact.h). One of the two files that include
- * ODE headers; it owns its own world. */
+/* The single impact in ODE (see impact.h); it owns its own world. */
 #include <math.h>
 #include <ode/ode.h>
 #include <string.h>
 
 #include "clock.h"
 #include "impact.h"
+#include "ode_contact.h"
 #include "ode_env.h"
 
 fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag) {
@@ -43,21 +43,14 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
     dJointID cj = 0;
     if (delta > 0.0) {
       if (v0 < 0.0) v0 = ddot;
-      fb_contact_row row;
+      dContact c;
+      memset(&c, 0, sizeof c);
       /* a single body: its mass is the effective mass along the normal */
-      if (fb_contact_map(&row, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, NULL) ==
-          FB_OK) {
-        dContact c;
-        memset(&c, 0, sizeof c);
-        c.surface.mode = dContactSoftERP | dContactSoftCFM;
-        c.surface.mu = 0.0;
-        c.surface.soft_erp = row.erp;
-        c.surface.soft_cfm = row.cfm;
+      if (fb_ode_soft_contact(&c, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, 0.0, NULL)) {
         c.geom.pos[0] = p[0];
         c.geom.pos[1] = p[1];
         c.geom.pos[2] = 0.0;
         c.geom.normal[2] = 1.0; /* into body 1: moving it along +z removes the depth */
-        c.geom.depth = row.depth;
         cj = dJointCreateContact(world, group, &c);
         dJointAttach(cj, body, 0);
         dJointSetFeedback(cj, &fb);

@@ -8,6 +8,7 @@
 
 #include "collide_ccd.h"
 #include "episode.h"
+#include "ode_contact.h"
 #include "ode_env.h"
 
 /* one clearance joint */
@@ -25,10 +26,23 @@ typedef struct {
   dJointFeedback *fbs;  /* faceted: their feedback (up to FACET_MAX_CONTACTS) */
   double force;         /* contact force magnitude of the last step [N] */
   fb_ccd_bore *bore;    /* ccd: the ring of segments (hole frame) */
+  fb_contact_provenance prov; /* what its contact rows received */
 } clearance;
 
+/* records one contact row of a clearance joint */
+static void note_row(clearance *c, const fb_contact_row *u, double share, double mass, double h) {
+  fb_contact_provenance *p = &c->prov;
+  if (p->contact_steps == 0 || u->erp > p->erp_max) p->erp_max = u->erp;
+  if (p->contact_steps == 0 || u->cfm < p->cfm_min) p->cfm_min = u->cfm;
+  const double hw = fb_contact_h_omega(h, u->kp * share, mass); /* rows in parallel */
+  if (p->contact_steps == 0 || hw > p->h_omega_max) p->h_omega_max = hw;
+  if (p->contact_steps == 0 || mass < p->mass_eff_min) p->mass_eff_min = mass;
+  if (p->contact_steps == 0 || mass > p->mass_eff_max) p->mass_eff_max = mass;
+  p->contact_steps++;
+}
+
 struct fb_scene {
-  fb_scene_def def;
+  fb_scene_model def;
   int broken;        /* 1 after an ODE fatal error left its world mid-step: never touched again */
   dWorldID world;
   dBodyID body[3];   /* crank, coupler, follower */
@@ -74,7 +88,7 @@ static double body_angle(dBodyID b) {
 /* builds the faceted hole and pin of clearance joint j */
 static void facet_create(fb_scene *s, int j) {
   clearance *c = &s->cl[j];
-  const fb_scene_def *d = &s->def;
+  const fb_scene_model *d = &s->def;
   const int n = d->faceted_n;
   const double r_in = d->pin_radius + d->radial_clearance;
   const double t = FACET_THICKNESS_M;
@@ -115,7 +129,7 @@ static void facet_destroy(clearance *c, int n) {
 
 /* builds the libccd ring of clearance joint j */
 static fb_status ccd_create(fb_scene *s, int j, fb_diag *diag) {
-  const fb_scene_def *d = &s->def;
+  const fb_scene_model *d = &s->def;
   fb_ccd_bore_def bd = fb_ccd_bore_default();
   bd.pin_radius = d->pin_radius;
   bd.pin_length = d->pin_length;
@@ -131,7 +145,14 @@ static fb_status ccd_create(fb_scene *s, int j, fb_diag *diag) {
   return FB_OK;
 }
 
-fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag) {
+fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *diag) {
+  fb_status rc0 = fb_scene_def_check(sm->def, diag);
+  if (rc0 != FB_OK) return rc0;
+  if (sm->clearance_mask && sm->model->collider != FB_COLLIDER_EXACT &&
+      sm->model->collider != FB_COLLIDER_FACETED && sm->model->collider != FB_COLLIDER_CCD)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the ODE engine has no such collider",
+                       sm->model->name);
+  const fb_scene_model *def = sm;
   fb_start_state st = def->start;
   if (!def->start_given) {
     /* the steady start with every pin centred, from the analytic solver */
@@ -157,7 +178,7 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag
   fb_scene *s = calloc(1, sizeof *s);
   if (!s) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the scene");
   fb_ode_acquire();
-  s->def = *def;
+  s->def = *sm;
   s->world = dWorldCreate();
   dWorldSetGravity(s->world, 0, -def->gravity, 0);
   dWorldSetERP(s->world, def->solver.world_erp);
@@ -290,7 +311,7 @@ static void facet_near(void *data, dGeomID o1, dGeomID o2) {
 /* faceted: contact joints from ODE's collider for clearance joint j */
 static void facet_contacts(fb_scene *s, int j) {
   clearance *c = &s->cl[j];
-  const fb_scene_def *d = &s->def;
+  const fb_scene_model *d = &s->def;
   dContactGeom g[FACET_MAX_CONTACTS];
   facet_hits hits = {g, 0};
   dSpaceCollide2(c->cyl, (dGeomID)c->ring, &hits, facet_near);
@@ -309,18 +330,14 @@ static void facet_contacts(fb_scene *s, int j) {
     const double ddot = (v2[0] - v1[0]) * g[i].normal[0] + (v2[1] - v1[1]) * g[i].normal[1] +
                         (v2[2] - v1[2]) * g[i].normal[2];
     if (i == 0) fb_episode_update(&c->ep, 1, ddot, d->impact_velocity_min);
-    double kp, kd, depth, erp, cfm;
-    fb_contact_linearize(&d->law[j], d->mapping, g[i].depth, ddot, c->ep.v0, &kp, &kd, &depth);
-    if (fb_contact_erp_cfm(d->solver.h, kp / n, kd / n, &erp, &cfm, NULL) != FB_OK) continue;
     dContact ct;
     memset(&ct, 0, sizeof ct);
     ct.geom = g[i];
-    ct.geom.depth = depth;
-    ct.surface.mode = dContactSoftERP | dContactSoftCFM;
-    if (d->friction > 0.0) ct.surface.mode |= dContactApprox1;
-    ct.surface.mu = d->friction;
-    ct.surface.soft_erp = erp;
-    ct.surface.soft_cfm = cfm;
+    fb_contact_row used;
+    if (!fb_ode_soft_contact(&ct, &d->law[j], d->mapping, d->solver.h, d->law[j].mass, n,
+                             g[i].depth, ddot, c->ep.v0, d->friction, &used))
+      continue;
+    note_row(c, &used, (double)n, d->law[j].mass, d->solver.h);
     dJointID cj = dJointCreateContact(s->world, s->contacts, &ct);
     dJointAttach(cj, p1, p2);
     dJointSetFeedback(cj, &c->fbs[c->nfb++]);
@@ -345,7 +362,7 @@ static void pin_in_hole_frame(const clearance *c, double p[2]) {
 /* libccd: contact joints from the generic collider for clearance joint j */
 static void ccd_contacts(fb_scene *s, int j) {
   clearance *c = &s->cl[j];
-  const fb_scene_def *d = &s->def;
+  const fb_scene_model *d = &s->def;
   double p[2];
   pin_in_hole_frame(c, p);
   fb_ccd_contact hit[FB_CCD_CONTACTS];
@@ -382,35 +399,29 @@ static void ccd_contacts(fb_scene *s, int j) {
   }
   fb_episode_update(&c->ep, 1, rate[deep], d->impact_velocity_min);
   /* the one row the exact collider would hand ODE at the deepest contact */
-  double kp, kd, depth, erp, cfm;
-  fb_contact_linearize(&d->law[j], d->mapping, hit[deep].depth, rate[deep], c->ep.v0, &kp, &kd,
-                       &depth);
-  const int have_row = fb_contact_erp_cfm(d->solver.h, kp, kd, &erp, &cfm, NULL) == FB_OK;
+  fb_contact_row base;
+  const int have_row = fb_contact_map(&base, &d->law[j], d->mapping, d->solver.h, d->law[j].mass,
+                                      1, hit[deep].depth, rate[deep], c->ep.v0, NULL) == FB_OK;
   for (int i = 0; i < n; i++) {
-    double erpi = erp, cfmi, di = depth;
+    dContact ct;
+    memset(&ct, 0, sizeof ct);
+    fb_contact_row row = base;
     if (d->ccd_split == 1) {
       /* the faceted model's rule: own depth, spring divided by the count */
-      double kpi, kdi;
-      fb_contact_linearize(&d->law[j], d->mapping, hit[i].depth, rate[i], c->ep.v0, &kpi, &kdi,
-                           &di);
-      if (fb_contact_erp_cfm(d->solver.h, kpi / n, kdi / n, &erpi, &cfmi, NULL) != FB_OK) continue;
+      if (!fb_ode_soft_contact(&ct, &d->law[j], d->mapping, d->solver.h, d->law[j].mass, n,
+                               hit[i].depth, rate[i], c->ep.v0, d->friction, &row))
+        continue;
     } else {
       /* share w of the row: a and b = 1/CFM scale by w, ERP = h a / b does not */
       if (!have_row) continue;
-      cfmi = cfm * sum / hit[i].depth;
+      row.cfm = base.cfm * sum / hit[i].depth;
+      fb_ode_soft_fill(&ct, &row, d->friction);
     }
-    dContact ct;
-    memset(&ct, 0, sizeof ct);
-    ct.surface.mode = dContactSoftERP | dContactSoftCFM;
-    if (d->friction > 0.0) ct.surface.mode |= dContactApprox1;
-    ct.surface.mu = d->friction;
-    ct.surface.soft_erp = erpi;
-    ct.surface.soft_cfm = cfmi;
+    note_row(c, &row, d->ccd_split == 1 ? (double)n : 1.0, d->law[j].mass, d->solver.h);
     for (int q = 0; q < 3; q++) {
       ct.geom.pos[q] = pw[i][q];
       ct.geom.normal[q] = -nw[i][q]; /* into the pin (body 1) */
     }
-    ct.geom.depth = di;
     dJointID cj = dJointCreateContact(s->world, s->contacts, &ct);
     dJointAttach(cj, c->pin, c->hole);
     dJointSetFeedback(cj, &c->fbs[c->nfb++]);
@@ -434,7 +445,7 @@ static double clearance_penetration(const fb_scene *s, const clearance *c) {
 /* creates the contact joint of clearance joint j for this step, if in contact */
 static void clearance_contact(fb_scene *s, int j) {
   clearance *c = &s->cl[j];
-  const fb_scene_def *d = &s->def;
+  const fb_scene_model *d = &s->def;
   if (c->bore) {
     ccd_contacts(s, j);
     return;
@@ -455,16 +466,13 @@ static void clearance_contact(fb_scene *s, int j) {
   const double n[2] = {e[0] / ecc, e[1] / ecc};
   const double ddot = num / ecc;
   fb_episode_update(&c->ep, 1, ddot, d->impact_velocity_min);
-  double kp, kd, depth, erp, cfm;
-  fb_contact_linearize(&d->law[j], d->mapping, delta, ddot, c->ep.v0, &kp, &kd, &depth);
-  if (fb_contact_erp_cfm(d->solver.h, kp, kd, &erp, &cfm, NULL) != FB_OK) return;
   dContact ct;
   memset(&ct, 0, sizeof ct);
-  ct.surface.mode = dContactSoftERP | dContactSoftCFM;
-  if (d->friction > 0.0) ct.surface.mode |= dContactApprox1;
-  ct.surface.mu = d->friction;
-  ct.surface.soft_erp = erp;
-  ct.surface.soft_cfm = cfm;
+  fb_contact_row used;
+  if (!fb_ode_soft_contact(&ct, &d->law[j], d->mapping, d->solver.h, d->law[j].mass, 1, delta,
+                           ddot, c->ep.v0, d->friction, &used))
+    return;
+  note_row(c, &used, 1.0, d->law[j].mass, d->solver.h);
   /* hole centre + R_hole n, on the hole wall */
   const double r_hole = d->pin_radius + d->radial_clearance;
   dVector3 q;
@@ -478,7 +486,6 @@ static void clearance_contact(fb_scene *s, int j) {
   ct.geom.normal[0] = -n[0]; /* into the pin: moving it along -n removes the depth */
   ct.geom.normal[1] = -n[1];
   ct.geom.normal[2] = 0.0;
-  ct.geom.depth = depth;
   c->cj = dJointCreateContact(s->world, s->contacts, &ct);
   dJointAttach(c->cj, c->pin, c->hole);
   dJointSetFeedback(c->cj, &c->fb);
@@ -585,6 +592,12 @@ void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *
 }
 
 int fb_scene_impacts(const fb_scene *s, int j) { return s->cl[j].ep.impacts; }
+
+void fb_scene_provenance(const fb_scene *s, int j, fb_contact_provenance *out) {
+  *out = s->cl[j].prov;
+  if (out->contact_steps == 0)
+    out->mass_eff_min = out->mass_eff_max = out->erp_max = out->cfm_min = out->h_omega_max = NAN;
+}
 
 double fb_scene_joint_drift(const fb_scene *s) {
   double worst = 0.0;

@@ -1,7 +1,8 @@
 /* The four-bar in ODE: crank, coupler and follower as rigid bodies joined by
  * four ideal hinges (axis +z), gravity along -y in the mechanism plane, the
- * crank driven at constant speed by a hinge velocity motor. The only module
- * that includes ODE headers; it owns the world and its joints.
+ * crank driven at constant speed by a hinge velocity motor. It owns the
+ * world and its joints; engine_ode.c puts it behind the engine interface
+ * (engine.h), and nothing outside src/ode includes this header.
  *
  * Crank drive: the ground hinge's motor (dParamVel = omega2, dParamFMax =
  * drive_torque_max) is a velocity constraint row solved with the others each
@@ -31,14 +32,14 @@
  * an angular motor (dJointCreateAMotor, z axis) at the crank speed. A body left
  * with no hinge at all is kept in the plane by dJointCreatePlane2D.
  *
- * Faceted variant (faceted_n > 0), ODE's generic path for comparison: the hole
+ * Faceted variant (FB_COLLIDER_FACETED, faceted_n > 0), ODE's generic path for comparison: the hole
  * is a ring of n boxes (2 mm thick, inner faces tangent to the hole circle) and
  * the pin an ODE cylinder, collided by dCollide (box-cylinder); every contact
  * ODE reports gets the law's spring-damper at its own depth divided by the
  * number of contacts of the step (n contact rows on one penetration act as
  * parallel springs). Contact point and normal come from the collider.
  *
- * libccd variant (ccd_segments > 0), the generic collider (collide_ccd.h):
+ * libccd variant (FB_COLLIDER_CCD, ccd_segments > 0), the generic collider (collide_ccd.h):
  * the bore a ring of ccd_segments convex segments tangent to the hole circle
  * (or to an ellipse, bore_ovality > 0), the pin a convex cylinder, contacts
  * from ccdMPRPenetration in the hole body's frame, at most FB_CCD_CONTACTS
@@ -57,53 +58,23 @@
 #ifndef FB_SCENE_H
 #define FB_SCENE_H
 
-#include "case.h"
-#include "contact.h"
 #include "effective_mass.h"
+#include "engine.h"
+#include "scene_def.h"
 #include "series.h"
 #include "start.h"
 
 typedef struct fb_scene fb_scene;
 
-/* Everything a scene needs, in SI units. */
-typedef struct {
-  fb_linkage lengths;   /* link lengths [m] */
-  fb_branch branch;     /* assembly branch of the initial configuration */
-  double crank_angle0;  /* crank angle at t = 0 [rad] */
-  double omega2;        /* signed crank speed [rad/s] */
-  double gravity;       /* along -y [m/s^2] */
-  fb_link_mass link[3]; /* crank, coupler, follower */
-  fb_solver solver;     /* step size, stepper, ERP/CFM, drive torque, seed */
-  int clearance_mask;          /* bit j: joint j is a clearance joint (fb_joint) */
-  double radial_clearance;     /* c = R_hole - R_pin [m] */
-  double pin_radius;           /* R_pin [m] */
-  fb_contact_law law[4];       /* law of each clearance joint */
-  fb_mapping mapping;          /* per-step linearisation */
-  double friction;             /* Coulomb coefficient [-]; 0 for frictionless */
-  double impact_velocity_min;  /* onset rates below this count as continuous contact [m/s] */
-  int faceted_n;               /* > 0: collide through ODE instead (ring of n boxes around an
-                                  ODE cylinder pin, dCollide); 0: exact eccentricity contact */
-  double pin_length;           /* [m], for the faceted and ccd geometry */
-  int ccd_segments;            /* > 0: collide through libccd (collide_ccd.h), the bore a ring of
-                                  this many convex segments; 0: exact or faceted */
-  double bore_ovality;         /* ccd only: > 0 makes the bore an ellipse whose diameter along the
-                                  hole body's x axis is larger by this [m]; 0: circle */
-  int ccd_split;               /* ccd only: 0 depth-weighted split of the law (default), 1 the
-                                  faceted model's split by contact count */
-  int start_given;             /* 1: start the bodies from `start`; 0: the steady start with
-                                  every pin centred (positions and velocities from the
-                                  analytic solver) */
-  fb_start_state start;        /* initial state (start.h) when start_given */
-  double settle_damping;       /* ODE body velocity damping per step [-] for static settling
-                                  tests (dWorldSetLinearDamping/AngularDamping); 0 in every model */
-} fb_scene_def;
-
-/* Builds the world at t = 0 from def->start (start.h: pins and holes placed,
- * the case's start velocities) or, without one, with positions and
- * velocities from the analytic solver (loop closed, velocities compatible).
- * Errors: FB_ERR_ASSEMBLY when the initial configuration does not exist;
- * FB_ERR_NOMEM. */
-fb_status fb_scene_create(fb_scene **out, const fb_scene_def *def, fb_diag *diag);
+/* Builds the world of model sm->model at t = 0 from sm->start (start.h:
+ * pins and holes placed, the case's start velocities) or, when the start was
+ * moved (start_given 0), with positions and velocities from the analytic
+ * solver (loop closed, velocities compatible, pins centred). Checks
+ * the definition first (fb_scene_def_check). The model's collider picks the
+ * clearance contact: FB_COLLIDER_EXACT (eccentricity), FB_COLLIDER_FACETED
+ * (ring of faceted_n boxes) or FB_COLLIDER_CCD (libccd ring of ccd_segments). Errors: those of fb_scene_def_check;
+ * FB_ERR_ARG for a collider this engine lacks; FB_ERR_NOMEM. */
+fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *diag);
 
 /* Advances one step h with the configured stepper. Errors: FB_ERR_NOMEM if
  * ODE could not allocate its step memory. */
@@ -141,6 +112,9 @@ void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *
 
 /* Most contacts the libccd collider hands to ODE per joint and step. */
 #define FB_CCD_CONTACTS 2
+
+/* What the contact rows of clearance joint j received so far (engine.h). */
+void fb_scene_provenance(const fb_scene *s, int j, fb_contact_provenance *out);
 
 /* Steps taken. */
 size_t fb_scene_steps(const fb_scene *s);

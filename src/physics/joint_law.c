@@ -1,9 +1,12 @@
 #include "joint_law.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "invdyn.h"
 #include "penalty.h"
+
+typedef enum { FB_CLEARANCE_RESTITUTION = 0, FB_CLEARANCE_IMPACT = 1 } fb_clearance_model;
 
 /* crank angles per revolution for the largest joint reaction: 0.1 deg */
 #define REACTION_SAMPLES 3600
@@ -20,21 +23,11 @@ static double effective_mass(const fb_case *c, int j) {
   }
 }
 
-fb_status fb_joint_laws(fb_contact_law law[4], const fb_case *c, fb_clearance_model model,
-                        fb_diag *diag) {
+/* fills law[j] for one model from the reactions or paper rows resolved once */
+static fb_status laws_of(fb_contact_law law[4], const fb_case *c, fb_clearance_model model,
+                         const double fmax[4], const fb_penalty_row paper[2], fb_diag *diag) {
   const fb_clearance *cl = &c->clearance;
-  double fmax[4] = {0, 0, 0, 0};
-  fb_penalty_row paper[2];
   fb_status st = FB_OK;
-  if (cl->penalty == FB_PENALTY_SOURCE_PHYSICAL) {
-    fb_linkage su;
-    fb_case_stackup_lengths(c, &su);
-    st = fb_invdyn_peaks(fmax, NULL, &su, c->branch, c->link, c->gravity, fb_case_omega2(c),
-                         REACTION_SAMPLES, diag);
-  } else if (cl->penalty == FB_PENALTY_SOURCE_PAPER) {
-    st = fb_penalty_rows(paper, c, FB_PENALTY_PAPER, c->crank_speed, diag);
-  }
-  if (st != FB_OK) return st;
   const double e_star = fb_contact_modulus(c->youngs_modulus, c->poisson_ratio,
                                            c->youngs_modulus, c->poisson_ratio);
   for (int j = 0; j < 4; j++) {
@@ -74,4 +67,26 @@ fb_status fb_joint_laws(fb_contact_law law[4], const fb_case *c, fb_clearance_mo
     law[j] = l;
   }
   return FB_OK;
+}
+
+fb_status fb_joint_laws(fb_contact_law impact[4], fb_contact_law restitution[4],
+                        const fb_case *c, fb_diag *diag) {
+  const fb_clearance *cl = &c->clearance;
+  double fmax[4] = {0, 0, 0, 0};
+  fb_penalty_row paper[2];
+  memset(paper, 0, sizeof paper);
+  fb_status st = FB_OK;
+  if (cl->penalty == FB_PENALTY_SOURCE_PHYSICAL) {
+    fb_linkage su;
+    fb_case_stackup_lengths(c, &su);
+    st = fb_invdyn_peaks(fmax, NULL, &su, c->branch, c->link, c->gravity, fb_case_omega2(c),
+                         REACTION_SAMPLES, diag);
+  } else if (cl->penalty == FB_PENALTY_SOURCE_PAPER) {
+    st = fb_penalty_rows(paper, c, FB_PENALTY_PAPER, c->crank_speed, diag);
+  }
+  if (st != FB_OK) return st;
+  if (impact) st = laws_of(impact, c, FB_CLEARANCE_IMPACT, fmax, paper, diag);
+  if (st == FB_OK && restitution)
+    st = laws_of(restitution, c, FB_CLEARANCE_RESTITUTION, fmax, paper, diag);
+  return st;
 }

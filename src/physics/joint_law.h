@@ -23,12 +23,12 @@
 #include "case.h"
 #include "contact.h"
 
-typedef enum { FB_CLEARANCE_RESTITUTION = 0, FB_CLEARANCE_IMPACT = 1 } fb_clearance_model;
-
-/* Fills law[j] for every clearance joint j of the case (others untouched).
+/* Fills impact[j] and restitution[j] for every clearance joint j of the
+ * case (others untouched); either array may be NULL when not wanted. The
+ * inverse-dynamics reactions (or the paper's rows) are solved once for both.
  * Errors: those of the penalty estimates (FB_ERR_RANGE when Johnson's
  * relation does not hold at the force). */
-fb_status fb_joint_laws(fb_contact_law law[4], const fb_case *c, fb_clearance_model model,
-                        fb_diag *diag);
+fb_status fb_joint_laws(fb_contact_law impact[4], fb_contact_law restitution[4],
+                        const fb_case *c, fb_diag *diag);
 
 #endif

@@ -1,0 +1,80 @@
+/* The engine interface: what the harness (models.c, and through it run,
+ * bench, check and sweep) knows of an engine. An engine is a table of
+ * function pointers; an instance is an opaque pointer the engine owns.
+ *
+ *   create   builds the world of one model (fb_scene_model: the scene
+ *            definition with the model's row applied) at t = 0; it calls
+ *            fb_scene_def_check first
+ *   step     advances one step of def->solver.h
+ *   sample   the state now as an fb_sample (contact columns of the model's
+ *            clearance joints included)
+ *   contact  penetration now and impacts so far (fb_engine_contact)
+ *   provenance  optional: per clearance joint, the range of the effective
+ *            mass, ERP, CFM and h omega_c the engine used (NULL: not kept)
+ *   reactions   optional: joint reactions and drive torque of the last step
+ *   drift    loop-closure drift of the ideal joints now [m]
+ *   steps    steps taken (for the reference: the integrator's accepted steps)
+ *   destroy  frees the instance (NULL is ignored)
+ *
+ * Engines today: analytic and reference (engines.c, the exact kinematics and
+ * the GSL reference behind the same interface, which compute their series
+ * in create and replay it), ODE (src/ode/engine_ode.c). A new engine fills
+ * one fb_engine and is returned by fb_engine_get for its fb_engine_id. */
+#ifndef FB_ENGINE_H
+#define FB_ENGINE_H
+
+#include <stddef.h>
+
+#include "model_table.h"
+#include "scene_def.h"
+#include "series.h"
+
+/* Contact data of an instance now. */
+typedef struct {
+  double penetration;  /* largest penetration over the clearance joints [m] (>= 0) */
+  int joint;           /* joint it is at (fb_joint), -1 without clearance joints */
+  int impacts[4];      /* impact episodes counted so far per joint [-] */
+} fb_engine_contact;
+
+/* What an engine did at one clearance joint, over the steps so far (for the
+ * validity warnings of the penalty model and the mapping). NAN where the
+ * engine keeps no such figure. */
+typedef struct {
+  double mass_eff_min;    /* smallest effective mass at the contact [kg] */
+  double mass_eff_max;    /* largest [kg] */
+  double erp_max;         /* largest contact ERP handed to the solver [-] */
+  double cfm_min;         /* smallest contact CFM [m/(N s)] */
+  double h_omega_max;     /* largest h sqrt(kp / m_eff) [-] */
+  size_t contact_steps;   /* steps with a contact row at this joint [-] */
+} fb_contact_provenance;
+
+typedef struct fb_engine {
+  const char *name;                 /* fb_engine_name of its id */
+  int guarded;                      /* 1: the harness stops a run whose penetration exceeds
+                                       def->penetration_limit; 0: the engine controls its own
+                                       accuracy (reference) */
+  fb_status (*create)(void **self, const fb_scene_model *sm, fb_diag *diag);
+  fb_status (*step)(void *self, fb_diag *diag);
+  void (*sample)(const void *self, fb_sample *x);
+  void (*contact)(const void *self, fb_engine_contact *out);
+  void (*provenance)(const void *self, int joint, fb_contact_provenance *out);
+  void (*reactions)(const void *self, double force[4][2], double *drive_torque);
+  double (*drift)(const void *self);
+  size_t (*steps)(const void *self);
+  void (*destroy)(void *self);
+} fb_engine;
+
+/* The engine for id, or NULL when this build has none (message in diag:
+ * FB_ERR_ARG). */
+const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag);
+
+/* Steps instance self of engine e (step size h [s]) until its sampled time
+ * reaches t - h/2 [s]. Errors: those of e->step. */
+fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, fb_diag *diag);
+
+/* The engines (defined next to their code). */
+extern const fb_engine fb_engine_analytic;
+extern const fb_engine fb_engine_reference;
+extern const fb_engine fb_engine_ode;
+
+#endif

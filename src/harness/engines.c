@@ -1,0 +1,159 @@
+/* The analytic and reference engines behind the engine interface, and the
+ * registry of engines. Both compute exact or high-accuracy answers rather
+ * than step a world: in create, the analytic engine samples the exact loop
+ * solution over the run (analytic.h) and the reference engine integrates it
+ * (GSL rk8pd with error control, reference.h); step then replays one sample. */
+#include "engine.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analytic.h"
+#include "reference.h"
+
+const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
+  switch (id) {
+    case FB_ENGINE_ANALYTIC: return &fb_engine_analytic;
+    case FB_ENGINE_REFERENCE: return &fb_engine_reference;
+    case FB_ENGINE_ODE: return &fb_engine_ode;
+    default: break;
+  }
+  fb_diag_set(diag, FB_ERR_ARG, "engine '%s' is not part of this build", fb_engine_name(id));
+  return NULL;
+}
+
+fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, fb_diag *diag) {
+  fb_sample x;
+  e->sample(self, &x);
+  while (x.t < t - 0.5 * h) {
+    fb_status st = e->step(self, diag);
+    if (st != FB_OK) return st;
+    e->sample(self, &x);
+  }
+  return FB_OK;
+}
+
+/* ---- a series computed in create, replayed one sample per step ---------- */
+
+typedef struct {
+  fb_series s;
+  size_t steps;      /* samples computed (analytic), accepted integrator steps (reference) */
+  size_t i;          /* sample replayed now */
+  int failed;        /* the computation stopped early */
+  char why[FB_DIAG_SIZE];
+} replay;
+
+static fb_status replay_step(void *self, fb_diag *diag) {
+  replay *r = self;
+  if (r->i + 1 >= r->s.n)
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "%s",
+                       r->failed ? r->why : "no sample beyond the run's duration");
+  r->i++;
+  return FB_OK;
+}
+
+static void replay_sample(const void *self, fb_sample *x) {
+  const replay *r = self;
+  fb_series_get(&r->s, r->i, x);
+}
+
+static size_t replay_steps(const void *self) { return ((const replay *)self)->steps; }
+
+static void replay_destroy(void *self) {
+  replay *r = self;
+  if (!r) return;
+  fb_series_free(&r->s);
+  free(r);
+}
+
+static void no_contact(const void *self, fb_engine_contact *out) {
+  (void)self;
+  memset(out, 0, sizeof *out);
+  out->joint = -1;
+}
+
+static double no_drift(const void *self) {
+  (void)self;
+  return 0.0;
+}
+
+/* ---- analytic ------------------------------------------------------------ */
+
+static fb_status analytic_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+  const fb_scene_def *d = sm->def;
+  fb_status st = fb_scene_def_check(d, diag);
+  if (st != FB_OK) return st;
+  replay *r = calloc(1, sizeof *r);
+  if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the analytic engine");
+  r->steps = d->steps + 1;
+  st = fb_analytic_sample(&r->s, &sm->lengths, sm->branch, sm->crank_angle0, sm->omega2,
+                          sm->solver.h, r->steps, diag);
+  if (st != FB_OK) {
+    free(r);
+    return st;
+  }
+  *self = r;
+  return FB_OK;
+}
+
+const fb_engine fb_engine_analytic = {
+    .name = "analytic",
+    .guarded = 0,
+    .create = analytic_create,
+    .step = replay_step,
+    .sample = replay_sample,
+    .contact = no_contact,
+    .provenance = NULL,
+    .reactions = NULL,
+    .drift = no_drift,
+    .steps = replay_steps,
+    .destroy = replay_destroy,
+};
+
+/* ---- reference ----------------------------------------------------------- */
+
+static fb_status reference_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+  fb_status st = fb_scene_def_check(sm->def, diag);
+  if (st != FB_OK) return st;
+  if (sm->model->law == FB_MODEL_LAW_NONE || !(sm->clearance_mask & (1 << FB_JOINT_B)))
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the reference engine needs a contact law "
+                       "at the crank-coupler joint", sm->model->name);
+  replay *r = calloc(1, sizeof *r);
+  if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the reference engine");
+  st = fb_reference_run(&r->s, &r->steps, &sm->def->source, &sm->law[FB_JOINT_B], 0, diag);
+  if (st == FB_ERR_NUMERIC) { /* the reference failing is a result, not an error */
+    r->failed = 1;
+    snprintf(r->why, sizeof r->why, "%.200s", diag ? diag->msg : "reference integration failed");
+    st = r->s.n ? FB_OK : fb_diag_set(diag, FB_ERR_NUMERIC, "%s", r->why);
+  }
+  if (st != FB_OK) {
+    fb_series_free(&r->s);
+    free(r);
+    return st;
+  }
+  *self = r;
+  return FB_OK;
+}
+
+static void reference_contact(const void *self, fb_engine_contact *out) {
+  const replay *r = self;
+  memset(out, 0, sizeof *out);
+  out->joint = FB_JOINT_B;
+  out->penetration = r->s.contact[FB_JOINT_B][FB_C_PEN] ? r->s.contact[FB_JOINT_B][FB_C_PEN][r->i] : 0.0;
+}
+
+const fb_engine fb_engine_reference = {
+    .name = "reference",
+    .guarded = 0,
+    .create = reference_create,
+    .step = replay_step,
+    .sample = replay_sample,
+    .contact = reference_contact,
+    .provenance = NULL,
+    .reactions = NULL,
+    .drift = no_drift,
+    .steps = replay_steps,
+    .destroy = replay_destroy,
+};

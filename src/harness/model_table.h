@@ -1,0 +1,98 @@
+/* The model table: every model the harness can run, one row each, and the
+ * only place in the code where model names are compared.
+ *
+ * A row says which engine runs the model, which link lengths it uses, which
+ * joints have clearance, which contact law and collider the clearance joints
+ * use, and what the model is measured against (always the analytic solution
+ * of its own lengths; for clearance models also a reference model of the
+ * same law and the ideal model whose peak accelerations its spike ratios
+ * divide by). Adding a model is one row in model_table.c, plus the engine's
+ * support for the row's law and collider.
+ *
+ * Callers hold a model as `const fb_model *` (a row of the table) and compare
+ * rows or their fields, never names. */
+#ifndef FB_MODEL_TABLE_H
+#define FB_MODEL_TABLE_H
+
+#include "status.h"
+
+/* Engines a model can run on (engine.h has their interface). */
+typedef enum {
+  FB_ENGINE_ANALYTIC = 0,  /* exact kinematics (analytic.h) sampled on the grid */
+  FB_ENGINE_REFERENCE = 1, /* minimal-coordinate dynamics, GSL rk8pd (reference.h) */
+  FB_ENGINE_ODE = 2,       /* Open Dynamics Engine (src/ode) */
+  FB_ENGINE_MUJOCO = 3,    /* MuJoCo (src/mujoco), when built */
+  FB_ENGINE_COUNT
+} fb_engine_id;
+
+/* "analytic", "reference", "ode", "mujoco": the "kind" written in summary.json. */
+const char *fb_engine_name(fb_engine_id e);
+
+/* 1 for engines that step a world of bodies and joints (ODE, MuJoCo): they
+ * have a loop-closure drift and a stability guard. */
+int fb_engine_steps_world(fb_engine_id e);
+
+/* Which link lengths a model uses. */
+typedef enum {
+  FB_LENGTHS_NOMINAL = 0, /* the case's basic lengths */
+  FB_LENGTHS_STACKUP = 1  /* the case's stack-up corner (worst corner resolved) */
+} fb_lengths_kind;
+
+/* Which joints are modelled with clearance. */
+typedef enum {
+  FB_JOINTS_IDEAL = 0,    /* four ideal revolute joints */
+  FB_JOINTS_CLEARANCE = 1 /* the case's [clearance] joints are pin-in-hole contacts */
+} fb_joint_set;
+
+/* Contact law of the clearance joints (scene_def.h holds the resolved laws). */
+typedef enum {
+  FB_MODEL_LAW_NONE = 0,        /* no clearance joint */
+  FB_MODEL_LAW_IMPACT = 1,      /* Adams-style IMPACT, K delta^n + STEP(...) ddot */
+  FB_MODEL_LAW_RESTITUTION = 2, /* POISSON-like, p delta + c ddot for restitution cr */
+  FB_MODEL_LAW_COUNT
+} fb_model_law;
+
+/* How a clearance joint's contact is found. */
+typedef enum {
+  FB_COLLIDER_NONE = 0,    /* no clearance joint */
+  FB_COLLIDER_EXACT = 1,   /* closed-form pin-in-hole eccentricity */
+  FB_COLLIDER_FACETED = 2, /* ring of boxes against a cylinder, the engine's own collider */
+  FB_COLLIDER_CCD = 3,     /* libccd GJK/MPR on convex pieces */
+  FB_COLLIDER_NATIVE = 4,  /* the engine's own contact model */
+  FB_COLLIDER_COUNT
+} fb_collider;
+
+/* One model. */
+typedef struct fb_model {
+  const char *name;        /* name in case files and outputs */
+  fb_engine_id engine;     /* engine that runs it */
+  fb_lengths_kind lengths; /* nominal or stack-up lengths */
+  fb_joint_set joints;     /* ideal, or the case's clearance joints */
+  fb_model_law law;        /* contact law of the clearance joints */
+  fb_collider collider;    /* how the clearance contact is found */
+  const char *reference;   /* reference model it is compared with (same law), or NULL */
+  const char *spikes_vs;   /* ideal model whose peak |alpha| its spike ratios divide by when
+                              that model ran in the same case (else the analytic peaks of the
+                              same lengths), or NULL for models without clearance */
+  const char *summary;     /* one line for help texts */
+} fb_model;
+
+/* The rows, in the order help texts list them. */
+extern const fb_model fb_models[];
+/* Number of rows. */
+extern const int fb_model_count;
+
+/* The row named name, or NULL. */
+const fb_model *fb_model_find(const char *name);
+
+/* The row named name; for an unknown name returns FB_ERR_ARG with the list
+ * of known names in diag ("unknown model 'x' (known: analytic, ...)"). */
+fb_status fb_model_lookup(const fb_model **out, const char *name, fb_diag *diag);
+
+/* The known names, comma-separated, into buf (returned; truncated to size). */
+const char *fb_model_list(char *buf, size_t size);
+
+/* 1 when the model has clearance joints (and so contact columns and spikes). */
+int fb_model_has_clearance(const fb_model *m);
+
+#endif

@@ -1,0 +1,48 @@
+/* The ODE engine behind the engine interface (engine.h): thin wrappers over
+ * the scene (scene.h). */
+#include "engine.h"
+#include "scene.h"
+
+static fb_status ode_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+  fb_scene *s = NULL;
+  fb_status st = fb_scene_create(&s, sm, diag);
+  if (st == FB_OK) *self = s;
+  return st;
+}
+
+static fb_status ode_step(void *self, fb_diag *diag) { return fb_scene_step(self, diag); }
+
+static void ode_sample(const void *self, fb_sample *x) { fb_scene_sample(self, x); }
+
+static void ode_contact(const void *self, fb_engine_contact *out) {
+  out->penetration = fb_scene_penetration(self, &out->joint);
+  for (int j = 0; j < 4; j++) out->impacts[j] = fb_scene_impacts(self, j);
+}
+
+static void ode_provenance(const void *self, int joint, fb_contact_provenance *out) {
+  fb_scene_provenance(self, joint, out);
+}
+
+static void ode_reactions(const void *self, double force[4][2], double *drive_torque) {
+  fb_scene_reactions(self, force, drive_torque);
+}
+
+static double ode_drift(const void *self) { return fb_scene_joint_drift(self); }
+
+static size_t ode_steps(const void *self) { return fb_scene_steps(self); }
+
+static void ode_destroy(void *self) { fb_scene_destroy(self); }
+
+const fb_engine fb_engine_ode = {
+    .name = "ode",
+    .guarded = 1,
+    .create = ode_create,
+    .step = ode_step,
+    .sample = ode_sample,
+    .contact = ode_contact,
+    .provenance = ode_provenance,
+    .reactions = ode_reactions,
+    .drift = ode_drift,
+    .steps = ode_steps,
+    .destroy = ode_destroy,
+};

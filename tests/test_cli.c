@@ -41,6 +41,16 @@ static const char *write_file(const char *name, const char *text) {
   return path;
 }
 
+/* ODE's joint feedback belongs to the configuration at the start of each
+ * step (a crank-angle lag of omega h = 1e-3 rad at 1000 rpm, h = 1e-5 s) and
+ * its hinges are softened by CFM 1e-10: measured 3e-5 relative on the peaks;
+ * 1e-3 is the lag's first-order bound */
+#define LOADS_ODE_VS_INVDYN_REL 1e-3
+/* the same inverse dynamics sampled every 0.06 deg (the run) and on
+ * penalty's grid: a smooth peak sampled off its top by half a step moves by
+ * ~(half step)^2 / 2 relative, well under 1e-5; 1e-4 for margin */
+#define LOADS_GRID_REL 1e-4
+
 static void test_paper_case_runs_and_writes_summary(void **state) {
   (void)state;
   static char out[1 << 16], err[1 << 16];
@@ -121,6 +131,35 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   fclose(f);
   assert_non_null(strstr(header, "crank_coupler_force_n,crank_coupler_penetration_m,"
                                  "crank_coupler_ecc_x_m,crank_coupler_ecc_y_m,crank_coupler_state"));
+  /* ... and the loads: drive torque and every joint's reaction, in N */
+  assert_non_null(strstr(header, "drive_torque_n_m,ground_crank_reaction_x_n,ground_crank_reaction_y_n,"
+                                 "ground_crank_reaction_n,crank_coupler_reaction_x_n"));
+  assert_non_null(strstr(header, "follower_ground_reaction_n"));
+  /* loads: the ODE model's joint feedback against the analytic model's inverse
+   * dynamics (independent methods), and the analytic crank-coupler peak
+   * against penalty --mode physical's force (the same inverse dynamics,
+   * sampled on another grid) */
+  json_t *la = json_object_get(json_array_get(models, 0), "loads");
+  json_t *lo = json_object_get(ode, "loads");
+  assert_true(json_is_object(la) && json_is_object(lo));
+  const char *tk[3] = {"drive_torque_max_n_m", "drive_torque_min_n_m", "drive_torque_abs_max_n_m"};
+  for (int k = 0; k < 3; k++)
+    assert_rel(json_real_value(json_object_get(lo, tk[k])), json_real_value(json_object_get(la, tk[k])),
+               LOADS_ODE_VS_INVDYN_REL);
+  const char *jn[4] = {"ground_crank", "crank_coupler", "coupler_follower", "follower_ground"};
+  for (int k = 0; k < 4; k++)
+    assert_rel(json_real_value(json_object_get(json_object_get(lo, "reaction_max_n"), jn[k])),
+               json_real_value(json_object_get(json_object_get(la, "reaction_max_n"), jn[k])),
+               LOADS_ODE_VS_INVDYN_REL);
+  assert_true(json_is_null(json_object_get(json_array_get(models, 5), "loads"))); /* reference: none */
+  static char pout[1 << 14], perr[4096];
+  assert_int_equal(run("penalty --mode physical --speeds-rpm 1000 --json", pout, sizeof pout, perr, sizeof perr), 0);
+  json_t *pj = json_loads(pout, 0, NULL);
+  assert_non_null(pj);
+  assert_rel(json_real_value(json_object_get(json_object_get(la, "reaction_max_n"), "crank_coupler")),
+             json_real_value(json_object_get(json_array_get(json_object_get(pj, "rows"), 0), "force_n")),
+             LOADS_GRID_REL);
+  json_decref(pj);
   json_decref(j);
 }
 

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "analytic.h"
+#include "invdyn.h"
 #include "reference.h"
 
 const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
@@ -39,6 +40,7 @@ fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, 
 
 typedef struct {
   fb_series s;
+  const fb_scene_model *sm; /* analytic: the model, for its inverse dynamics */
   size_t steps;      /* samples computed (analytic), accepted integrator steps (reference) */
   size_t i;          /* sample replayed now */
   int failed;        /* the computation stopped early */
@@ -94,8 +96,28 @@ static fb_status analytic_create(void **self, const fb_scene_model *sm, fb_diag 
     free(r);
     return st;
   }
+  r->sm = sm;
   *self = r;
   return FB_OK;
+}
+
+/* joint reactions and drive torque of the ideal mechanism at the replayed
+ * sample's crank angle: inverse dynamics (invdyn.h), gravity included */
+static void analytic_reactions(const void *self, double force[4][2], double *drive_torque) {
+  const replay *r = self;
+  const fb_scene_model *sm = r->sm;
+  fb_reactions q;
+  if (fb_invdyn_solve(&q, &sm->lengths, sm->branch, sm->link, sm->gravity, r->s.crank_angle[r->i],
+                      sm->omega2, NULL) != FB_OK) {
+    for (int j = 0; j < 4; j++) force[j][0] = force[j][1] = NAN;
+    *drive_torque = NAN;
+    return;
+  }
+  for (int j = 0; j < 4; j++) {
+    force[j][0] = q.force[j][0];
+    force[j][1] = q.force[j][1];
+  }
+  *drive_torque = q.drive_torque;
 }
 
 const fb_engine fb_engine_analytic = {
@@ -106,7 +128,7 @@ const fb_engine fb_engine_analytic = {
     .sample = replay_sample,
     .contact = no_contact,
     .provenance = NULL,
-    .reactions = NULL,
+    .reactions = analytic_reactions,
     .drift = no_drift,
     .steps = replay_steps,
     .destroy = replay_destroy,

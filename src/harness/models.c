@@ -26,12 +26,14 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
   if (st != FB_OK) return st;
   const size_t n = def->steps;
   if (fb_series_init(&r->series, n + 1) != FB_OK ||
-      fb_series_enable_contact(&r->series, sm->clearance_mask) != FB_OK) {
+      fb_series_enable_contact(&r->series, sm->clearance_mask) != FB_OK ||
+      (e->reactions && fb_series_enable_loads(&r->series) != FB_OK)) {
     e->destroy(self);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n + 1);
   }
   fb_sample x;
   e->sample(self, &x);
+  if (e->reactions) e->reactions(self, x.reaction, &x.drive_torque);
   fb_series_push(&r->series, &x);
   const size_t report_every = n / 100 + 1;
   for (size_t k = 1; k <= n; k++) {
@@ -44,6 +46,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
     }
     if (st != FB_OK) break;
     e->sample(self, &x);
+    if (e->reactions) e->reactions(self, x.reaction, &x.drive_torque);
     if (!sample_finite(&x)) {
       snprintf(r->status, sizeof r->status, "nan at t = %.6g s (step %zu)", x.t, k);
       break;

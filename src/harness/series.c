@@ -1,5 +1,6 @@
 #include "series.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,9 +53,37 @@ fb_status fb_series_enable_contact(fb_series *s, int mask) {
   return FB_OK;
 }
 
+/* the load arrays, drive torque first (1 + 4 x 2) */
+static int load_arrays(fb_series *s, double ***out) {
+  out[0] = &s->drive_torque;
+  for (int j = 0; j < 4; j++)
+    for (int c = 0; c < 2; c++) out[1 + 2 * j + c] = &s->reaction[j][c];
+  return 9;
+}
+
+fb_status fb_series_enable_loads(fb_series *s) {
+  double **a[9];
+  const int n = load_arrays(s, a);
+  for (int k = 0; k < n; k++) {
+    *a[k] = calloc(s->cap ? s->cap : 1, sizeof(double));
+    if (!*a[k]) return FB_ERR_NOMEM;
+  }
+  s->has_loads = 1;
+  return FB_OK;
+}
+
 fb_status fb_series_push(fb_series *s, const fb_sample *x) {
   if (s->n == s->cap) {
     size_t cap = s->cap ? 2 * s->cap : 16;
+    if (s->has_loads) {
+      double **a[9];
+      const int na = load_arrays(s, a);
+      for (int k = 0; k < na; k++) {
+        double *p = realloc(*a[k], cap * sizeof(double));
+        if (!p) return FB_ERR_NOMEM;
+        *a[k] = p;
+      }
+    }
     for (int j = 0; j < 4; j++)
       for (int q = 0; q < FB_CONTACT_COLS && (s->contact_mask & (1 << j)); q++) {
         double *p = realloc(s->contact[j][q], cap * sizeof(double));
@@ -77,6 +106,11 @@ fb_status fb_series_push(fb_series *s, const fb_sample *x) {
   for (int j = 0; j < 4; j++)
     if (s->contact_mask & (1 << j))
       for (int q = 0; q < FB_CONTACT_COLS; q++) s->contact[j][q][s->n] = x->contact[j][q];
+  if (s->has_loads) {
+    s->drive_torque[s->n] = x->drive_torque;
+    for (int j = 0; j < 4; j++)
+      for (int c = 0; c < 2; c++) s->reaction[j][c][s->n] = x->reaction[j][c];
+  }
   s->n++;
   return FB_OK;
 }
@@ -88,9 +122,15 @@ void fb_series_get(const fb_series *s, size_t i, fb_sample *x) {
   for (int j = 0; j < 4; j++)
     for (int q = 0; q < FB_CONTACT_COLS; q++)
       x->contact[j][q] = (s->contact_mask & (1 << j)) ? s->contact[j][q][i] : 0.0;
+  x->drive_torque = s->has_loads ? s->drive_torque[i] : 0.0;
+  for (int j = 0; j < 4; j++)
+    for (int c = 0; c < 2; c++) x->reaction[j][c] = s->has_loads ? s->reaction[j][c][i] : 0.0;
 }
 
 void fb_series_free(fb_series *s) {
+  double **a[9];
+  const int na = load_arrays(s, a);
+  for (int k = 0; k < na; k++) free(*a[k]);
   for (int j = 0; j < 4; j++)
     for (int q = 0; q < FB_CONTACT_COLS; q++) free(s->contact[j][q]);
 #define FB_SERIES_FREE(name, col) free(s->name);
@@ -121,8 +161,19 @@ static void contact_column(const fb_series *s, size_t x, int *joint, int *col) {
   *col = -1;
 }
 
+/* columns: the kinematic ones, the contact columns of enabled joints, then
+ * the load columns when held */
+static size_t contact_columns(const fb_series *s) { return (size_t)enabled_count(s) * FB_CONTACT_COLS; }
+
 size_t fb_series_column_count(const fb_series *s) {
-  return FB_NCOLUMNS + (size_t)enabled_count(s) * FB_CONTACT_COLS;
+  return FB_NCOLUMNS + contact_columns(s) + (s->has_loads ? FB_LOAD_COLS : 0);
+}
+
+static const char *joint_word(int j, char *buf, size_t size) {
+  snprintf(buf, size, "%s", fb_joint_name(j));
+  for (char *p = buf; *p; p++)
+    if (*p == '-') *p = '_';
+  return buf;
 }
 
 const char *fb_series_column_name(const fb_series *s, size_t k, char *buf, size_t size) {
@@ -130,14 +181,19 @@ const char *fb_series_column_name(const fb_series *s, size_t k, char *buf, size_
     snprintf(buf, size, "%s", column_names[k]);
     return buf;
   }
+  char joint[32];
+  if (k >= FB_NCOLUMNS + contact_columns(s)) {
+    const size_t q = k - FB_NCOLUMNS - contact_columns(s);
+    if (!s->has_loads || q >= FB_LOAD_COLS) return NULL;
+    static const char *const part[3] = {"reaction_x_n", "reaction_y_n", "reaction_n"};
+    if (q == 0) snprintf(buf, size, "drive_torque_n_m");
+    else snprintf(buf, size, "%s_%s", joint_word((int)(q - 1) / 3, joint, sizeof joint), part[(q - 1) % 3]);
+    return buf;
+  }
   int j, q;
   contact_column(s, k - FB_NCOLUMNS, &j, &q);
   if (j < 0) return NULL;
-  char joint[32];
-  snprintf(joint, sizeof joint, "%s", fb_joint_name(j));
-  for (char *p = joint; *p; p++)
-    if (*p == '-') *p = '_';
-  snprintf(buf, size, "%s_%s", joint, contact_suffix[q]);
+  snprintf(buf, size, "%s_%s", joint_word(j, joint, sizeof joint), contact_suffix[q]);
   return buf;
 }
 
@@ -146,6 +202,13 @@ double fb_series_value(const fb_series *s, size_t k, size_t i) {
     double *cols[FB_NCOLUMNS];
     columns((fb_series *)s, cols);
     return cols[k][i];
+  }
+  if (k >= FB_NCOLUMNS + contact_columns(s)) {
+    const size_t q = k - FB_NCOLUMNS - contact_columns(s);
+    if (!s->has_loads || q >= FB_LOAD_COLS) return 0.0;
+    if (q == 0) return s->drive_torque[i];
+    const int j = (int)(q - 1) / 3, c = (int)(q - 1) % 3;
+    return c < 2 ? s->reaction[j][c][i] : hypot(s->reaction[j][0][i], s->reaction[j][1][i]);
   }
   int j, q;
   contact_column(s, k - FB_NCOLUMNS, &j, &q);

@@ -27,6 +27,14 @@
 enum { FB_C_FORCE = 0, FB_C_PEN = 1, FB_C_EX = 2, FB_C_EY = 3, FB_C_STATE = 4 };
 enum { FB_STATE_FREE = 0, FB_STATE_IMPACT = 1, FB_STATE_CONTINUOUS = 2 };
 
+/* Load columns (models whose engine reports joint reactions): the drive
+ * torque on the crank about +z, drive_torque_n_m, then per joint (ground-crank,
+ * crank-coupler, coupler-follower, follower-ground) the force on the
+ * second-named body from the first, <joint>_reaction_x_n, <joint>_reaction_y_n
+ * and its magnitude <joint>_reaction_n (invdyn.h's convention). At a
+ * clearance joint the reaction is the contact force. */
+#define FB_LOAD_COLS 13
+
 typedef struct {
   size_t n;   /* samples held */
   size_t cap; /* samples allocated */
@@ -35,6 +43,9 @@ typedef struct {
 #undef FB_SERIES_FIELD
   int contact_mask;                        /* bit j: joint j's contact columns are held */
   double *contact[4][FB_CONTACT_COLS];     /* (n) each, NULL unless enabled */
+  int has_loads;                           /* 1: the load columns are held */
+  double *drive_torque;                    /* drive torque on the crank [N m] (n), NULL unless has_loads */
+  double *reaction[4][2];                  /* joint force x, y [N] (4 x 2 x n), NULL unless has_loads */
 } fb_series;
 
 /* One sample: the values of every column at one instant (SI units). */
@@ -43,11 +54,17 @@ typedef struct {
   FB_SERIES_COLUMNS(FB_SAMPLE_FIELD)
 #undef FB_SAMPLE_FIELD
   double contact[4][FB_CONTACT_COLS]; /* per joint; read only where enabled */
+  double drive_torque;                /* [N m]; read only when loads are enabled */
+  double reaction[4][2];              /* joint force x, y [N]; read only when loads are enabled */
 } fb_sample;
 
 /* Adds contact columns for the joints in mask (call right after init).
  * Errors: FB_ERR_NOMEM. */
 fb_status fb_series_enable_contact(fb_series *s, int mask);
+
+/* Adds the load columns (drive torque, joint reactions; call right after
+ * init). Errors: FB_ERR_NOMEM. */
+fb_status fb_series_enable_loads(fb_series *s);
 
 /* Allocates room for cap samples. Errors: FB_ERR_NOMEM. */
 fb_status fb_series_init(fb_series *s, size_t cap);

@@ -78,6 +78,36 @@ static json_t *window_json(const fb_peaks *p, const fb_peaks_at *at, double from
   return o;
 }
 
+/* peaks of the load columns over t >= t_from: {"drive_torque_max_n_m",
+ * "drive_torque_min_n_m", "drive_torque_abs_max_n_m", "reaction_max_n":
+ * {joint: largest |force|}}, or null when the model reports no loads */
+static json_t *loads_json(const fb_series *s, double t_from) {
+  if (!s->has_loads) return json_null();
+  double tmax = -INFINITY, tmin = INFINITY, rmax[4] = {0, 0, 0, 0};
+  size_t n = 0;
+  for (size_t i = 0; i < s->n; i++) {
+    if (s->t[i] < t_from) continue;
+    tmax = fmax(tmax, s->drive_torque[i]);
+    tmin = fmin(tmin, s->drive_torque[i]);
+    for (int j = 0; j < 4; j++) rmax[j] = fmax(rmax[j], hypot(s->reaction[j][0][i], s->reaction[j][1][i]));
+    n++;
+  }
+  if (n == 0) return json_null();
+  json_t *o = json_object(), *r = json_object();
+  json_object_set_new(o, "drive_torque_max_n_m", num(tmax));
+  json_object_set_new(o, "drive_torque_min_n_m", num(tmin));
+  json_object_set_new(o, "drive_torque_abs_max_n_m", num(fmax(fabs(tmax), fabs(tmin))));
+  for (int j = 0; j < 4; j++) {
+    char key[32];
+    snprintf(key, sizeof key, "%s", fb_joint_name(j));
+    for (char *p = key; *p; p++)
+      if (*p == '-') *p = '_';
+    json_object_set_new(r, key, num(rmax[j]));
+  }
+  json_object_set_new(o, "reaction_max_n", r);
+  return o;
+}
+
 static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_t *o = json_object();
   const fb_model_run *run = &m->run;
@@ -153,6 +183,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o, "delta_vs_analytic_nominal", json_null());
   }
   if (fb_engine_steps_world(run->model->engine)) json_object_set_new(o, "joint_drift_max_m", num(run->joint_drift_max));
+  json_object_set_new(o, "loads", loads_json(&run->series, r->t_window));
   if (m->has_ref_error) {
     const fb_reference_error *e = &m->ref_error;
     json_t *o2 = json_object(), *a = json_array(), *b = json_array();
@@ -365,7 +396,7 @@ void fb_report_print_paper_tables(FILE *f, const fb_run *r) {
     fprintf(f, "\nstart-up (revolution 1, t < %.6g s; start = %s, pin %s):\n", r->t_startup_end,
             fb_start_name(r->c.start), fb_pin_start_name(r->c.pin_start));
     fprintf(f, "%-26s %12s %10s %10s %14s %10s %12s %10s\n", "model", "1st impact", "speed",
-            "crank", "cpl alpha pk", "at t", "force max", "penetr.");
+            "crank", "cpl |alpha|", "at t", "force max", "penetr.");
     fprintf(f, "%-26s %12s %10s %10s %14s %10s %12s %10s\n", "", "us", "m/s", "deg", "rad/s^2",
             "ms", "N", "um");
     for (int i = 0; i < r->n; i++) {
@@ -459,6 +490,29 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
               k->force_max, k->penetration_max * 1e6, k->impacts, k->free_flight_fraction,
               k->alpha_peak_crank_angle_coupler * 180.0 / M_PI,
               k->alpha_peak_crank_angle_follower * 180.0 / M_PI);
+    }
+  }
+  int anyload = 0;
+  for (int i = 0; i < r->n; i++) anyload |= r->model[i].run.series.has_loads;
+  if (anyload) {
+    fprintf(f, "\nloads (peaks after the first revolution; reaction: force on the second-named body):\n"
+               "%-26s %10s %10s %12s %12s %12s %12s\n%-26s %10s %10s %12s %12s %12s %12s\n", "model",
+            "torque max", "torque min", "|R| ground-", "|R| crank-", "|R| coupler-", "|R| follower-", "",
+            "N m", "N m", "crank N", "coupler N", "follower N", "ground N");
+    for (int i = 0; i < r->n; i++) {
+      const fb_model_result *m = &r->model[i];
+      json_t *l = loads_json(&m->run.series, r->t_window);
+      if (json_is_object(l)) {
+        json_t *rm = json_object_get(l, "reaction_max_n");
+        fprintf(f, "%-26s %10.3f %10.3f %12.2f %12.2f %12.2f %12.2f\n", m->run.name,
+                json_real_value(json_object_get(l, "drive_torque_max_n_m")),
+                json_real_value(json_object_get(l, "drive_torque_min_n_m")),
+                json_real_value(json_object_get(rm, "ground_crank")),
+                json_real_value(json_object_get(rm, "crank_coupler")),
+                json_real_value(json_object_get(rm, "coupler_follower")),
+                json_real_value(json_object_get(rm, "follower_ground")));
+      }
+      json_decref(l);
     }
   }
   int anyref = 0;

@@ -25,6 +25,7 @@ typedef struct {
   int nfb;              /* faceted: contact joints of the last step */
   dJointFeedback *fbs;  /* faceted: their feedback (up to FACET_MAX_CONTACTS) */
   double force;         /* contact force magnitude of the last step [N] */
+  double force_pin[2];  /* contact force on the pin in the last step, x, y [N] */
   fb_ccd_bore *bore;    /* ccd: the ring of segments (hole frame) */
   fb_contact_provenance prov; /* what its contact rows received */
 } clearance;
@@ -522,9 +523,13 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
         fy += c->fbs[i].f1[1];
       }
       c->force = c->nfb ? hypot(fx, fy) : 0.0;
+      c->force_pin[0] = c->nfb ? fx : 0.0;
+      c->force_pin[1] = c->nfb ? fy : 0.0;
       c->nfb = 0;
     } else {
       c->force = c->cj ? hypot(c->fb.f1[0], c->fb.f1[1]) : 0.0;
+      c->force_pin[0] = c->cj ? c->fb.f1[0] : 0.0; /* body 1 is the pin */
+      c->force_pin[1] = c->cj ? c->fb.f1[1] : 0.0;
     }
     c->cj = 0;
   }
@@ -624,7 +629,11 @@ void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_tor
   const int on_body2[4] = {0, 1, 1, 0};
   for (int j = 0; j < 4; j++) {
     if (!s->hinge[j]) {
-      force[j][0] = force[j][1] = 0.0;
+      /* a clearance joint: the contact force; its pin is on body 1 (the
+       * crank at A and B, the coupler at C, the follower at D) */
+      const double sign = on_body2[j] ? -1.0 : 1.0;
+      force[j][0] = sign * s->cl[j].force_pin[0];
+      force[j][1] = sign * s->cl[j].force_pin[1];
       continue;
     }
     const dReal *f = on_body2[j] ? s->feedback[j].f2 : s->feedback[j].f1;

@@ -95,7 +95,9 @@ double fb_scene_joint_drift(const fb_scene *s);
  * fb_reactions' sign convention (invdyn.h): force[j] on the second-named body
  * at joint A, B, C, D (x, y) [N], and the drive torque on the crank about +z
  * [N m]. They belong to the configuration at the start of that step. Zero
- * before the first step. */
+ * before the first step. At a clearance joint the force is the contact force
+ * of the last step (zero in free flight); the drive torque is reported only
+ * when the ground-crank joint is a hinge (0 otherwise). */
 void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_torque);
 
 /* Largest penetration over the clearance joints now [m] and the joint it is

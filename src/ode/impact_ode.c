@@ -15,6 +15,7 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
   double t_wall = fb_clock_s();
   fb_contact_law law = d->law;
   law.mass = d->mass;
+  fb_contact_law_prepare(&law, NULL); /* zeta solved once, not on every step */
   const double T = fb_impact_duration_estimate(d);
   const size_t max_steps = (size_t)ceil(100.0 * T / d->h) + 10;
 

@@ -109,7 +109,7 @@ fb_law_kind fb_law_parse(const char *name) {
 }
 
 fb_contact_law fb_contact_law_default(void) {
-  fb_contact_law l = {FB_LAW_HERTZ, 1e10, 1.5, 0.9, 0.0, 1e-5, 1.0};
+  fb_contact_law l = {FB_LAW_HERTZ, 1e10, 1.5, 0.9, 0.0, 1e-5, 1.0, 0.0, 0.0};
   return l;
 }
 
@@ -172,6 +172,19 @@ double fb_contact_restitution_zeta(double cr) {
   return root;
 }
 
+fb_status fb_contact_law_prepare(fb_contact_law *l, fb_diag *diag) {
+  fb_status st = fb_contact_law_check(l, diag);
+  if (st != FB_OK) return st;
+  l->zeta = fb_contact_restitution_zeta(l->restitution);
+  l->zeta_cr = l->restitution;
+  return FB_OK;
+}
+
+double fb_contact_law_zeta(const fb_contact_law *l) {
+  return l->zeta_cr == l->restitution && l->zeta_cr > 0.0 ? l->zeta
+                                                           : fb_contact_restitution_zeta(l->restitution);
+}
+
 static double step3(double x, double x0, double h0, double x1, double h1) {
   double z = (x - x0) / (x1 - x0);
   z = z < 0.0 ? 0.0 : (z > 1.0 ? 1.0 : z);
@@ -202,7 +215,7 @@ static void law_parts(const fb_contact_law *l, double delta, double v0, double *
     case FB_LAW_RESTITUTION:
       *fel = l->stiffness * delta;
       *slope = l->stiffness;
-      *cdamp = 2.0 * fb_contact_restitution_zeta(l->restitution) * sqrt(l->stiffness * l->mass);
+      *cdamp = 2.0 * fb_contact_law_zeta(l) * sqrt(l->stiffness * l->mass);
       return;
     case FB_LAW_IMPACT:
       *fel = l->stiffness * pow(delta, l->exponent);

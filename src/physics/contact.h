@@ -86,6 +86,9 @@ typedef struct {
   double damping;       /* c [N s/m] of the linear law; c_max of the impact law */
   double damping_depth; /* d_max [m]: penetration of full damping (impact law) */
   double mass;          /* effective mass [kg] of the restitution law's damper */
+  double zeta;          /* prepared damping ratio of the restitution law for cr = zeta_cr [-]
+                           (fb_contact_law_prepare); used only while zeta_cr == restitution */
+  double zeta_cr;       /* the restitution zeta was prepared for [-]; 0: not prepared */
 } fb_contact_law;
 
 /* Defaults: undamped Hertz, K = 1e10 N/m^1.5, n = 1.5, cr = 0.9, c = 0,
@@ -95,6 +98,19 @@ fb_contact_law fb_contact_law_default(void);
 /* Checks ranges: K > 0, n in [1, 3], cr in (0, 1], c >= 0, d_max > 0,
  * m > 0, all finite; the restitution law also needs cr > FB_RESTITUTION_MIN. Errors: FB_ERR_RANGE naming the parameter. */
 fb_status fb_contact_law_check(const fb_contact_law *law, fb_diag *diag);
+
+/* Checks law (fb_contact_law_check) and prepares it for the step loop: the
+ * restitution law's damping ratio zeta (a GSL root solve, depending on cr
+ * only) is solved here once, so that evaluating the law (fb_contact_force,
+ * fb_contact_linearize, fb_contact_map) solves and allocates nothing. A law
+ * whose restitution is changed afterwards is simply unprepared again (the
+ * evaluation then solves zeta each time, as an unprepared law does).
+ * Errors: those of fb_contact_law_check. */
+fb_status fb_contact_law_prepare(fb_contact_law *law, fb_diag *diag);
+
+/* The damping ratio of law's restitution damper: the prepared value, or
+ * fb_contact_restitution_zeta(law->restitution) for an unprepared law. */
+double fb_contact_law_zeta(const fb_contact_law *law);
 
 /* Damping ratio zeta [-] of the restitution law: the linear spring-dashpot
  * that separates when its force reaches zero (no adhesion) leaves with
@@ -114,7 +130,8 @@ double fb_contact_restitution_zeta(double cr);
  * penetration rate ddot [m/s] (> 0 approaching) and impact velocity
  * v0 = ddot at first contact [m/s] (> 0). Zero for delta <= 0; clamped at 0
  * (no adhesion). The restitution law is the linear spring p delta plus the
- * damper c = 2 zeta sqrt(p m), zeta from fb_contact_restitution_zeta: our
+ * damper c = 2 zeta sqrt(p m), zeta from fb_contact_law_zeta (prepared once
+ * by fb_contact_law_prepare, else fb_contact_restitution_zeta): our
  * documented reading of the penalty-and-restitution (POISSON) model, exact
  * for a 1-DOF impact of mass m. The impact law's STEP is Adams' cubic
  * h0 + (h1 - h0) z^2 (3 - 2 z), z = clamp(x / d_max, 0, 1). */

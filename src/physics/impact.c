@@ -59,7 +59,7 @@ int fb_impact_closed_form(fb_impact_result *out, const fb_impact_def *d) {
   const double k = l->stiffness;
   const double c = l->kind == FB_LAW_LINEAR
                        ? l->damping
-                       : 2.0 * fb_contact_restitution_zeta(l->restitution) * sqrt(k * m);
+                       : 2.0 * fb_contact_law_zeta(l) * sqrt(k * m);
   const double wn = sqrt(k / m), z = c / (2.0 * sqrt(k * m));
   if (!(z < 1.0)) return 0;
   const double s = sqrt(1.0 - z * z), wd = wn * s, a = z * wn;
@@ -114,6 +114,7 @@ fb_status fb_impact_reference(fb_impact_result *out, const fb_impact_def *d, fb_
   double t_wall = fb_clock_s();
   fb_contact_law law = d->law;
   law.mass = d->mass;
+  fb_contact_law_prepare(&law, NULL); /* zeta solved once, not on every step */
   ref_ctx c = {&law, d->mass, d->speed};
   const double T = fb_impact_duration_estimate(d);
   const double dt = T / 4000.0;

@@ -62,7 +62,7 @@ static fb_status laws_of(fb_contact_law law[4], const fb_case *c, fb_clearance_m
       l.stiffness = model == FB_CLEARANCE_IMPACT ? fmax[j] / pow(d, l.exponent) : kt;
     }
     l.stiffness *= cl->stiffness_scale;
-    st = fb_contact_law_check(&l, diag);
+    st = fb_contact_law_prepare(&l, diag); /* checked, and zeta solved once */
     if (st != FB_OK) return st;
     law[j] = l;
   }

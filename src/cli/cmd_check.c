@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "casefile.h"
 #include "check.h"
@@ -35,6 +36,17 @@ static const char check_help[] =
     "               unchanged; tolerance = max(1e-12, 1e-9 |value|, 3 x spread).\n"
     "               CASEFILE (relative to cases/) adds a case; none: all baselines\n"
     "  --json       one JSON object with every comparison\n";
+
+typedef struct {
+  int tty;
+  const char *case_name;
+} check_progress;
+
+static void progress(const char *model, double fraction, void *user) {
+  const check_progress *p = user;
+  fprintf(stderr, "\r\033[K  check %s: %s %3.0f %%", p->case_name, model, 100.0 * fraction);
+  fflush(stderr);
+}
 
 static const char *baselines_dir(void) { return fb_cli_baselines_dir(); }
 
@@ -195,11 +207,14 @@ int fb_cmd_check(int argc, char **argv) {
     }
     static fb_run r;
     fb_diag d;
-    if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) {
+    /* on a terminal, which case and model is running (stderr; quiet otherwise) */
+    check_progress cp = {isatty(2) != 0, case_name};
+    if (fb_run_case(&r, &c, cp.tty ? progress : NULL, &cp, &d) != FB_OK) {
       rc = fb_cli_fail("check", 1, "%s: %s", case_name, d.msg);
       json_decref(b);
       break;
     }
+    if (cp.tty) fprintf(stderr, "\r\033[K");
     static fb_metric now[FB_CHECK_MAX_METRICS];
     const int nn = fb_check_metrics(&r, now, FB_CHECK_MAX_METRICS);
     fb_run_free(&r);

@@ -736,7 +736,10 @@ fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char 
   fb_status st = plot_open(&pl, dir, name, fmt, 1100, 850, diag);
   if (st != FB_OK) return st;
   const double **cols[4] = {force, stiffness, penalty, approach_um};
-  const char *labels[4] = {"force [N]", "contact stiffness Kc [N/m]", "penalty P", "approach [um]"};
+  /* P = Kc C^1.5: the paper's Table II unit in paper mode, SI otherwise */
+  const char *labels[4] = {"force [N]", "contact stiffness Kc [N/m]",
+                           strcmp(mode, "paper") == 0 ? "penalty P [N mm^{0.5}]" : "penalty P [N m^{0.5}]",
+                           "approach [um]"};
   for (int q = 0; q < 4; q++)
     for (int j = 0; j < 2; j++) {
       fprintf(pl.p, "$d%d_%d << EOD\n", q, j);

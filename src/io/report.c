@@ -396,7 +396,7 @@ void fb_report_print_paper_tables(FILE *f, const fb_run *r) {
     fprintf(f, "\nstart-up (revolution 1, t < %.6g s; start = %s, pin %s):\n", r->t_startup_end,
             fb_start_name(r->c.start), fb_pin_start_name(r->c.pin_start));
     fprintf(f, "%-26s %12s %10s %10s %14s %10s %12s %10s\n", "model", "1st impact", "speed",
-            "crank", "cpl |alpha|", "at t", "force max", "penetr.");
+            "crank", "cpl alpha pk", "at t", "force max", "penetr.");
     fprintf(f, "%-26s %12s %10s %10s %14s %10s %12s %10s\n", "", "us", "m/s", "deg", "rad/s^2",
             "ms", "N", "um");
     for (int i = 0; i < r->n; i++) {

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "fb_config.h"
 #include "fb_test.h"
 
 static const char *exe;
@@ -382,6 +383,44 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   expect_fail("run --out /proc/fourbar-cannot-write", (const char *[]){"/proc/fourbar-cannot-write", NULL});
 }
 
+/* cases/engines.ini: both engines in one run, or, in a build without MuJoCo,
+ * a refusal that says how to get it */
+static void test_engines_case(void **state) {
+  (void)state;
+  static char out[1 << 16], err[1 << 16];
+  char args[1024];
+  const char *cases = getenv("FOURBAR_CASES_DIR");
+  snprintf(args, sizeof args, "run %s/engines.ini --set run.revolutions=2 --out %s/engines --json",
+           cases ? cases : "cases", tmpdir);
+  const int rc = run(args, out, sizeof out, err, sizeof err);
+  if (!FB_HAVE_MUJOCO) {
+    assert_int_not_equal(rc, 0);
+    assert_non_null(strstr(err, "mujoco-ideal-nominal"));
+    assert_non_null(strstr(err, "libmujoco-dev"));
+    assert_non_null(strstr(err, "-Dmujoco=enabled"));
+    return;
+  }
+  if (rc != 0) fail_msg("engines.ini: exit %d: %s", rc, err);
+  json_error_t je;
+  json_t *j = json_loads(out, 0, &je);
+  if (!j) fail_msg("--json output does not parse: %s", je.text);
+  int kinds[2] = {0, 0};
+  json_t *m;
+  size_t i;
+  json_array_foreach(json_object_get(j, "models"), i, m) {
+    const char *kind = json_string_value(json_object_get(m, "kind"));
+    assert_string_equal(json_string_value(json_object_get(m, "status")), "ok");
+    if (strcmp(kind, "ode") == 0) kinds[0]++;
+    if (strcmp(kind, "mujoco") == 0) {
+      kinds[1]++;
+      assert_non_null(json_object_get(json_object_get(m, "mujoco"), "integrator"));
+    }
+  }
+  assert_int_equal(kinds[0], 3);
+  assert_int_equal(kinds[1], 3);
+  json_decref(j);
+}
+
 static void test_help_answers(void **state) {
   (void)state;
   static char out[8192];
@@ -439,6 +478,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_fit_tolerance_stackup_json),
       cmocka_unit_test(test_check_catches_stiffness_regression),
       cmocka_unit_test(test_bad_input_exits_nonzero_with_message),
+      cmocka_unit_test(test_engines_case),
       cmocka_unit_test(test_help_answers),
       cmocka_unit_test(test_set_without_out_says_so),
   };

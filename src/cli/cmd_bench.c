@@ -18,14 +18,39 @@
 static const char bench_help[] =
     "usage: fourbar bench [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
     "\n"
-    "Speed against error: every configuration of stepper (dWorldStep; dWorldQuickStep\n"
-    "at 10, 20, 50 iterations), step size (1e-3 to 1e-6 s), mapping (secant, tangent)\n"
-    "and world ERP/CFM, measured against the analytic solution (ideal stack-up model)\n"
-    "and the reference dynamics (clearance impact model), with wall time per simulated\n"
-    "revolution (median of 3 repeats for runs under 1 s). Marks the Pareto front and\n"
-    "names the cheapest configuration for error targets 1e-2, 1e-3 and 1e-4. Writes\n"
-    "DIR/bench.csv, bench.json and bench.svg (default DIR results/<case>/bench).\n"
+    "Speed against error on both engines: ODE's stepper (dWorldStep; dWorldQuickStep\n"
+    "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s) x mapping (secant, tangent)\n"
+    "x world ERP/CFM, and (in builds with MuJoCo) MuJoCo's integrator (euler,\n"
+    "implicit, rk4) x step size (1e-3 to 1e-6 s, 7 values), measured against the\n"
+    "analytic solution (ideal stack-up models) and the reference dynamics (clearance\n"
+    "impact models), with wall time per simulated revolution (median of 3 repeats for\n"
+    "runs under 1 s) measured in the same run. Marks one Pareto front per engine and\n"
+    "model and names the cheapest configuration for error targets 1e-2, 1e-3 and 1e-4,\n"
+    "per engine and across engines. Writes DIR/bench.csv, bench.json and bench.svg\n"
+    "(default DIR results/<case>/bench).\n"
     "On a terminal a progress bar with the time left is drawn on stderr.\n";
+
+static const char *mapping_name(int m) { return m < 0 ? "-" : (m ? "tangent" : "secant"); }
+
+/* 1 when a row of model ran (MuJoCo's rows exist only in builds with it) */
+static int has_model(const fb_bench_row *rows, int n, const char *model) {
+  for (int i = 0; i < n; i++)
+    if (strcmp(rows[i].model, model) == 0) return 1;
+  return 0;
+}
+
+static void print_config(const char *model, double target, const fb_bench_row *b) {
+  /* the mapping is a contact setting: an ideal model has none */
+  char mapping[32] = "";
+  if (b->mapping >= 0) snprintf(mapping, sizeof mapping, "%s, ", mapping_name(b->mapping));
+  if (strcmp(b->engine, "ode") == 0)
+    printf("  %-24s error <= %.0e: %s, h = %g s, %sERP %g, CFM %g: %.3e at %.3e s/rev\n", model,
+           target, b->stepper, b->h, mapping, b->world_erp, b->world_cfm, b->error,
+           b->wall_per_rev);
+  else
+    printf("  %-24s error <= %.0e: %s, h = %g s: %.3e at %.3e s/rev\n", model, target, b->stepper,
+           b->h, b->error, b->wall_per_rev);
+}
 
 typedef struct {
   int tty;   /* draw only on a terminal: quiet in pipes, logs and CI */
@@ -88,20 +113,25 @@ int fb_cmd_bench(int argc, char **argv) {
   snprintf(path, sizeof path, "%s/bench.csv", dir);
   fb_outfile f;
   if (fb_outfile_open(&f, path, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
-  fprintf(f.f, "model,stepper,h_s,mapping,world_erp,world_cfm,status,error,wall_per_rev_s,repeats,pareto\n");
+  fprintf(f.f, "model,engine,stepper,h_s,mapping,world_erp,world_cfm,status,error,wall_per_rev_s,"
+               "repeats,pareto\n");
   json_t *arr = json_array();
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
-    fprintf(f.f, "%s,%s,%g,%s,%g,%g,\"%s\",%.6g,%.6g,%d,%d\n", b->model, b->stepper, b->h,
-            b->mapping ? "tangent" : "secant", b->world_erp, b->world_cfm, b->status, b->error,
-            b->wall_per_rev, b->repeats, b->pareto);
+    char erp[32] = "", cfm[32] = "";
+    if (isfinite(b->world_erp)) snprintf(erp, sizeof erp, "%g", b->world_erp);
+    if (isfinite(b->world_cfm)) snprintf(cfm, sizeof cfm, "%g", b->world_cfm);
+    fprintf(f.f, "%s,%s,%s,%g,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d\n", b->model, b->engine, b->stepper,
+            b->h, mapping_name(b->mapping), erp, cfm, b->status, b->error, b->wall_per_rev,
+            b->repeats, b->pareto);
     json_t *o = json_object();
     json_object_set_new(o, "model", json_string(b->model));
+    json_object_set_new(o, "engine", json_string(b->engine));
     json_object_set_new(o, "stepper", json_string(b->stepper));
     json_object_set_new(o, "h_s", json_real(b->h));
-    json_object_set_new(o, "mapping", json_string(b->mapping ? "tangent" : "secant"));
-    json_object_set_new(o, "world_erp", json_real(b->world_erp));
-    json_object_set_new(o, "world_cfm", json_real(b->world_cfm));
+    json_object_set_new(o, "mapping", json_string(mapping_name(b->mapping)));
+    json_object_set_new(o, "world_erp", isfinite(b->world_erp) ? json_real(b->world_erp) : json_null());
+    json_object_set_new(o, "world_cfm", isfinite(b->world_cfm) ? json_real(b->world_cfm) : json_null());
     json_object_set_new(o, "status", json_string(b->status));
     json_object_set_new(o, "error", isfinite(b->error) ? json_real(b->error) : json_null());
     json_object_set_new(o, "wall_per_rev_s", isfinite(b->wall_per_rev) ? json_real(b->wall_per_rev) : json_null());
@@ -109,16 +139,27 @@ int fb_cmd_bench(int argc, char **argv) {
     json_array_append_new(arr, o);
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
-  const char *models[2] = {"ode-ideal-stackup", "ode-clearance-impact"};
+  /* models by kind (ideal, clearance impact) and engine (ode, mujoco) */
+  const char *models[2][2] = {{"ode-ideal-stackup", "mujoco-ideal-stackup"},
+                              {"ode-clearance-impact", "mujoco-clearance-impact"}};
+  const char *kinds[2] = {"ideal", "clearance-impact"};
   const double targets[3] = {1e-2, 1e-3, 1e-4};
-  json_t *cheap = json_array();
+  json_t *cheap = json_array(), *across = json_array();
   for (int q = 0; q < 2; q++)
     for (int t = 0; t < 3; t++) {
-      int i = fb_bench_cheapest(rows, n, models[q], targets[t]);
-      json_array_append_new(cheap, json_pack("{s:s,s:f,s:o}", "model", models[q], "target", targets[t],
-                                             "row", i >= 0 ? json_integer(i) : json_null()));
+      int best = -1;
+      for (int e = 0; e < 2; e++) {
+        int i = fb_bench_cheapest(rows, n, models[q][e], targets[t]);
+        if (e == 1 && !has_model(rows, n, models[q][e])) continue; /* no MuJoCo in this build */
+        json_array_append_new(cheap, json_pack("{s:s,s:f,s:o}", "model", models[q][e], "target",
+                                               targets[t], "row", i >= 0 ? json_integer(i) : json_null()));
+        if (i >= 0 && (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev)) best = i;
+      }
+      json_array_append_new(across, json_pack("{s:s,s:f,s:o}", "kind", kinds[q], "target", targets[t],
+                                              "row", best >= 0 ? json_integer(best) : json_null()));
     }
-  json_t *o = json_pack("{s:s,s:f,s:o,s:o}", "case", c.name, "wall_s", wall, "rows", arr, "cheapest", cheap);
+  json_t *o = json_pack("{s:s,s:f,s:o,s:o,s:o}", "case", c.name, "wall_s", wall, "rows", arr,
+                        "cheapest", cheap, "cheapest_across_engines", across);
   snprintf(path, sizeof path, "%s/bench.json", dir);
   if (fb_report_write_json(path, o, &d) != FB_OK) {
     json_decref(o);
@@ -134,33 +175,37 @@ int fb_cmd_bench(int argc, char **argv) {
     return 0;
   }
   json_decref(o);
-  printf("bench of %s: %d configurations in %.1f s ('P': Pareto front)\n\n%-22s %-9s %7s %-8s %5s %7s %12s %12s  %s\n",
+  printf("bench of %s: %d configurations in %.1f s ('P': Pareto front of its engine and model)\n\n"
+         "%-24s %-9s %7s %-8s %5s %7s %12s %12s  %s\n",
          c.name, n, wall, "model", "stepper", "h_s", "mapping", "ERP", "CFM", "error", "s/rev", "status");
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
+    char erp[16] = "-", cfm[16] = "-";
+    if (isfinite(b->world_erp)) snprintf(erp, sizeof erp, "%5.1f", b->world_erp);
+    if (isfinite(b->world_cfm)) snprintf(cfm, sizeof cfm, "%7.0e", b->world_cfm);
     /* a run that stopped before a whole step has no cost per revolution */
     char cost[32];
     if (isfinite(b->wall_per_rev)) snprintf(cost, sizeof cost, "%12.3e", b->wall_per_rev);
     else snprintf(cost, sizeof cost, "%12s", "-");
-    printf("%-22s %-9s %7.0e %-8s %5.1f %7.0e %12.3e %s %c %.40s\n", b->model, b->stepper, b->h,
-           strncmp(b->model, "ode-ideal", 9) == 0 ? "-" : (b->mapping ? "tangent" : "secant"),
-           b->world_erp, b->world_cfm, b->error, cost, b->pareto ? 'P' : ' ', b->status);
+    printf("%-24s %-9s %7.0e %-8s %5s %7s %12.3e %s %c %.40s\n", b->model, b->stepper, b->h,
+           mapping_name(b->mapping), erp, cfm, b->error, cost, b->pareto ? 'P' : ' ', b->status);
   }
-  printf("\ncheapest configuration meeting each error target:\n");
+  printf("\ncheapest configuration meeting each error target (per engine, then across engines):\n");
   for (int q = 0; q < 2; q++)
     for (int t = 0; t < 3; t++) {
-      int i = fb_bench_cheapest(rows, n, models[q], targets[t]);
-      if (i < 0) {
-        printf("  %-22s error <= %.0e: none in the grid\n", models[q], targets[t]);
-        continue;
+      int best = -1;
+      for (int e = 0; e < 2; e++) {
+        if (e == 1 && !has_model(rows, n, models[q][e])) continue;
+        int i = fb_bench_cheapest(rows, n, models[q][e], targets[t]);
+        if (i < 0) {
+          printf("  %-24s error <= %.0e: none in the grid\n", models[q][e], targets[t]);
+          continue;
+        }
+        print_config(models[q][e], targets[t], &rows[i]);
+        if (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev) best = i;
       }
-      const fb_bench_row *b = &rows[i];
-      /* the mapping is a contact setting: an ideal model has none */
-      char mapping[32] = "";
-      if (strncmp(b->model, "ode-ideal", 9) != 0)
-        snprintf(mapping, sizeof mapping, "%s, ", b->mapping ? "tangent" : "secant");
-      printf("  %-22s error <= %.0e: %s, h = %g s, %sERP %g, CFM %g: %.3e at %.3e s/rev\n", models[q],
-             targets[t], b->stepper, b->h, mapping, b->world_erp, b->world_cfm, b->error, b->wall_per_rev);
+      if (best >= 0) printf("  -> %s error <= %.0e: cheapest on %s\n", kinds[q], targets[t],
+                            rows[best].engine);
     }
   printf("\nwrote %s/bench.csv, bench.json and bench.svg\n", dir);
   return 0;

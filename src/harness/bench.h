@@ -1,4 +1,4 @@
-/* Speed against error: a grid of ODE configurations on one case, each
+/* Speed against error: a grid of ODE and MuJoCo configurations on one case, each
  * measured against the exact yardstick (the analytic solution for the ideal
  * stack-up model, the reference dynamics for the clearance impact model),
  * with its cost as wall time per simulated revolution (median of repeats).
@@ -6,11 +6,14 @@
  * Grid: stepper (dWorldStep; dWorldQuickStep at 10, 20, 50 iterations) x
  * step size h (1e-3, 1e-4, 1e-5, 1e-6 s) x mapping (secant, tangent; the
  * clearance model only) x world ERP/CFM of the ideal joints ((0.2, 1e-10),
- * (0.8, 1e-8)). Error of the ideal model: largest |relative error| of the
+ * (0.8, 1e-8)); and, in builds with MuJoCo, MuJoCo's integrator (euler,
+ * implicit, rk4) x h (1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6 s) with the
+ * case's loop closure and drive (models mujoco-ideal-stackup and
+ * mujoco-clearance-impact). Error of the ideal model: largest |relative error| of the
  * four angular-velocity peaks; of the clearance model: the larger of
  * |peak force| and |max penetration| relative errors against the reference.
- * A row is on the Pareto front of its model when no other row of that model
- * is both cheaper and at least as accurate. */
+ * A row is on the Pareto front of its model (so of its engine) when no other
+ * row of that model is both cheaper and at least as accurate. */
 #ifndef FB_BENCH_H
 #define FB_BENCH_H
 
@@ -18,10 +21,11 @@
 
 typedef struct fb_bench_row_s {
   char model[FB_NAME_SIZE];
-  char stepper[32];        /* "world" or "quick-<iterations>" */
+  char engine[16];         /* "ode" or "mujoco" */
+  char stepper[32];        /* ode: "world" or "quick-<iterations>"; mujoco: its integrator */
   double h;                /* [s] */
-  int mapping;             /* 0 secant, 1 tangent */
-  double world_erp, world_cfm;
+  int mapping;             /* 0 secant, 1 tangent; -1 where none applies (ideal, mujoco) */
+  double world_erp, world_cfm; /* ode's ideal joints; NaN for mujoco */
   char status[256];
   double error;            /* NaN when the run stopped */
   double wall_per_rev;     /* median wall time per simulated revolution [s] */
@@ -30,6 +34,7 @@ typedef struct fb_bench_row_s {
 } fb_bench_row;
 
 #define FB_BENCH_MAX_ROWS 256
+#define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
 
 /* Runs the grid on case c (2 revolutions per run; 3 repeats for runs under
  * 1 s, else 1). rows gets *n rows. progress (may be NULL) gets the fraction

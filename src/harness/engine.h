@@ -76,5 +76,6 @@ fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, 
 extern const fb_engine fb_engine_analytic;
 extern const fb_engine fb_engine_reference;
 extern const fb_engine fb_engine_ode;
+extern const fb_engine fb_engine_mujoco; /* only in builds with MuJoCo (FB_HAVE_MUJOCO) */
 
 #endif

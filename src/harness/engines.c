@@ -12,6 +12,7 @@
 
 #include "analytic.h"
 #include "invdyn.h"
+#include "fb_config.h"
 #include "reference.h"
 
 const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
@@ -19,9 +20,13 @@ const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
     case FB_ENGINE_ANALYTIC: return &fb_engine_analytic;
     case FB_ENGINE_REFERENCE: return &fb_engine_reference;
     case FB_ENGINE_ODE: return &fb_engine_ode;
+#if FB_HAVE_MUJOCO
+    case FB_ENGINE_MUJOCO: return &fb_engine_mujoco;
+#endif
     default: break;
   }
-  fb_diag_set(diag, FB_ERR_ARG, "engine '%s' is not part of this build", fb_engine_name(id));
+  fb_diag_set(diag, FB_ERR_ARG, "engine '%s' is not part of this build%s", fb_engine_name(id),
+              id == FB_ENGINE_MUJOCO ? ": " FB_MUJOCO_HOWTO : "");
   return NULL;
 }
 

@@ -3,9 +3,15 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fb_config.h"
+
 const char *fb_engine_name(fb_engine_id e) {
   static const char *const names[FB_ENGINE_COUNT] = {"analytic", "reference", "ode", "mujoco"};
   return (e >= 0 && e < FB_ENGINE_COUNT) ? names[e] : "?";
+}
+
+int fb_engine_available(fb_engine_id e) {
+  return e == FB_ENGINE_MUJOCO ? FB_HAVE_MUJOCO : (e >= 0 && e < FB_ENGINE_COUNT);
 }
 
 int fb_engine_steps_world(fb_engine_id e) { return e == FB_ENGINE_ODE || e == FB_ENGINE_MUJOCO; }
@@ -34,6 +40,19 @@ const fb_model fb_models[] = {
      "ODE, clearance joints, impact law, exact pin-in-hole contact"},
     {"ode-clearance-faceted", FB_ENGINE_ODE, STK, CLEAR, FB_MODEL_LAW_IMPACT, FB_COLLIDER_FACETED,
      NULL, "ode-ideal-stackup", "ODE, clearance joints, impact law, ring of boxes (dCollide)"},
+    {"mujoco-ideal-nominal", FB_ENGINE_MUJOCO, NOM, IDEAL, FB_MODEL_LAW_NONE, FB_COLLIDER_NONE,
+     NULL, NULL, "MuJoCo, hinge tree closed by a connect equality, nominal lengths"},
+    {"mujoco-ideal-stackup", FB_ENGINE_MUJOCO, STK, IDEAL, FB_MODEL_LAW_NONE, FB_COLLIDER_NONE,
+     NULL, NULL, "MuJoCo, hinge tree closed by a connect equality, stack-up lengths"},
+    {"mujoco-clearance-restitution", FB_ENGINE_MUJOCO, STK, CLEAR, FB_MODEL_LAW_RESTITUTION,
+     FB_COLLIDER_EXACT, "reference-restitution", "mujoco-ideal-stackup",
+     "MuJoCo, clearance joints, restitution law applied through mjcb_passive"},
+    {"mujoco-clearance-impact", FB_ENGINE_MUJOCO, STK, CLEAR, FB_MODEL_LAW_IMPACT,
+     FB_COLLIDER_EXACT, "reference", "mujoco-ideal-stackup",
+     "MuJoCo, clearance joints, impact law applied through mjcb_passive"},
+    {"mujoco-clearance-native", FB_ENGINE_MUJOCO, STK, CLEAR, FB_MODEL_LAW_RESTITUTION,
+     FB_COLLIDER_NATIVE, "reference-restitution", "mujoco-ideal-stackup",
+     "MuJoCo's own contacts (pin sphere in a ring of boxes), restitution law as direct solref"},
     {"reference", FB_ENGINE_REFERENCE, STK, CLEAR, FB_MODEL_LAW_IMPACT, FB_COLLIDER_EXACT, NULL,
      "ode-ideal-stackup", "minimal-coordinate dynamics (GSL rk8pd), impact law"},
     {"reference-restitution", FB_ENGINE_REFERENCE, STK, CLEAR, FB_MODEL_LAW_RESTITUTION,

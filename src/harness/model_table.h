@@ -28,6 +28,15 @@ typedef enum {
 /* "analytic", "reference", "ode", "mujoco": the "kind" written in summary.json. */
 const char *fb_engine_name(fb_engine_id e);
 
+/* 1 when this build has engine e (MuJoCo only when built with it). */
+int fb_engine_available(fb_engine_id e);
+
+/* How to get the MuJoCo engine into a build that lacks it. */
+#define FB_MUJOCO_HOWTO                                                                  \
+  "the mujoco-* models need MuJoCo 2.2.2: install it (apt-get install libmujoco-dev, or " \
+  "bash scripts/quickstart.sh build, which installs it) and rebuild with meson setup "   \
+  "--reconfigure build -Dmujoco=enabled"
+
 /* 1 for engines that step a world of bodies and joints (ODE, MuJoCo): they
  * have a loop-closure drift and a stability guard. */
 int fb_engine_steps_world(fb_engine_id e);

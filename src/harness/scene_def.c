@@ -16,6 +16,7 @@
 void fb_scene_def_default(fb_scene_def *def) {
   memset(def, 0, sizeof *def);
   def->impact_velocity_min = IMPACT_VELOCITY_MIN_M_S;
+  def->mujoco = fb_mujoco_opts_default();
 }
 
 /* assembles both linkages at crank_angle0, omega2 (a moved start) */
@@ -65,6 +66,7 @@ fb_status fb_scene_def_from_case(fb_scene_def *def, const fb_case *c, fb_diag *d
   def->faceted_n = r->clearance.faceted_n;
   def->crank_angle0 = r->crank_angle0;
   def->omega2 = fb_case_omega2(r);
+  def->mujoco = r->mujoco;
   /* the laws the listed models use, with the penalty the run uses: the
    * inverse-dynamics reactions are solved once for all of them; the start
    * of every lengths and joint set a listed model uses */
@@ -180,6 +182,23 @@ fb_status fb_scene_def_check(const fb_scene_def *def, fb_diag *diag) {
   if (!(def->settle_damping >= 0.0 && def->settle_damping < 1.0))
     return fb_diag_set(diag, FB_ERR_RANGE, "scene: settle_damping = %g: must be in [0, 1)",
                        def->settle_damping);
+  const fb_mujoco_opts *mj = &def->mujoco;
+  if (mj->integrator < FB_MUJOCO_EULER || mj->integrator > FB_MUJOCO_AUTO)
+    return fb_diag_set(diag, FB_ERR_RANGE, "scene: mujoco.integrator = %d: not a known integrator",
+                       mj->integrator);
+  if (!(mj->loop_stiffness >= 0.0 && isfinite(mj->loop_stiffness)) ||
+      !(mj->loop_damping >= 0.0 && isfinite(mj->loop_damping)))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "scene: mujoco loop stiffness %g 1/s^2, damping %g 1/s: must be finite "
+                       "and >= 0 (0: 1/h^2 and 1/h)",
+                       mj->loop_stiffness, mj->loop_damping);
+  if (!(mj->loop_impedance > 0.0 && mj->loop_impedance < 1.0))
+    return fb_diag_set(diag, FB_ERR_RANGE, "scene: mujoco.loop_impedance = %g: must lie in (0, 1)",
+                       mj->loop_impedance);
+  if (!(mj->drive_armature > 0.0 && isfinite(mj->drive_armature)))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "scene: mujoco.drive_armature = %g kg m^2: must be positive and finite",
+                       mj->drive_armature);
   return FB_OK;
 }
 
@@ -191,6 +210,7 @@ fb_status fb_scene_def_select(fb_scene_model *out, const fb_scene_def *def, cons
   out->lengths = def->lengths[m->lengths];
   out->start = def->start[m->lengths][m->joints];
   out->start_given = def->start_given;
+  out->mujoco = def->mujoco;
   out->branch = def->branch;
   out->crank_angle0 = def->crank_angle0;
   out->omega2 = def->omega2;
@@ -230,5 +250,32 @@ fb_status fb_scene_def_select(fb_scene_model *out, const fb_scene_def *def, cons
     out->bore_ovality = def->bore_ovality;
     out->ccd_split = def->ccd_split;
   }
+  return FB_OK;
+}
+
+fb_status fb_scene_model_start(fb_start_state *out, const fb_scene_model *sm, fb_diag *diag) {
+  if (sm->start_given) {
+    *out = sm->start;
+    return FB_OK;
+  }
+  /* the steady start with every pin centred, from the analytic solver */
+  fb_linkage_state ls;
+  fb_status rc = fb_linkage_solve(&ls, &sm->lengths, sm->branch, sm->crank_angle0, sm->omega2,
+                                  0.0, diag);
+  if (rc != FB_OK) return rc;
+  memset(out, 0, sizeof *out);
+  out->crank_angle = ls.crank_angle;
+  out->crank_omega = sm->omega2;
+  out->coupler_angle = ls.coupler_angle;
+  out->coupler_omega = ls.coupler_omega;
+  out->follower_angle = ls.follower_angle;
+  out->follower_omega = ls.follower_omega;
+  for (int k = 0; k < 2; k++) {
+    out->pin[FB_JOINT_B][k] = out->hole[FB_JOINT_B][k] = ls.b[k];
+    out->pin[FB_JOINT_C][k] = out->hole[FB_JOINT_C][k] = ls.c[k];
+  }
+  out->pin[FB_JOINT_D][0] = out->hole[FB_JOINT_D][0] = sm->lengths.length[FB_GROUND];
+  out->coupler_b_vel[0] = -sm->omega2 * ls.b[1];
+  out->coupler_b_vel[1] = sm->omega2 * ls.b[0];
   return FB_OK;
 }

@@ -55,6 +55,7 @@ typedef struct {
   int ccd_split;                  /* libccd: 0 depth-weighted split of the law, 1 by contact count */
   double settle_damping;          /* body velocity damping per step [-] for static settling
                                      tests; 0 in every model */
+  fb_mujoco_opts mujoco;          /* MuJoCo's own choices (integrator, loop closure, drive) */
   fb_case source;                 /* the case as resolved (worst corner set), for engines
                                      that take a case (reference.h) */
 } fb_scene_def;
@@ -90,7 +91,14 @@ typedef struct {
   int ccd_split;                  /* libccd only: 0 depth-weighted split of the law (default),
                                      1 the faceted model's split by contact count */
   double settle_damping;          /* body velocity damping per step [-]; 0 in every model */
+  fb_mujoco_opts mujoco;          /* MuJoCo's own choices (mujoco-* models) */
 } fb_scene_model;
+
+/* The state at t = 0 of model sm: sm->start when the case's start holds
+ * (start_given), else the steady start from the analytic solver at
+ * crank_angle0 and omega2 with every pin centred in its hole.
+ * Errors: FB_ERR_ASSEMBLY when that start does not exist. */
+fb_status fb_scene_model_start(fb_start_state *out, const fb_scene_model *sm, fb_diag *diag);
 
 /* Zeroes *def and sets the fields no case carries: impact_velocity_min. */
 void fb_scene_def_default(fb_scene_def *def);
@@ -110,7 +118,9 @@ fb_status fb_scene_def_set_start(fb_scene_def *def, double theta0, double omega2
 /* Checks every field: lengths valid (and assembled at crank_angle0 when the
  * start was moved), masses
  * and inertias positive, step size positive and below the duration, solver
- * ERP in [0, 1], CFM >= 0, clearance smaller than the pin radius, each
+ * ERP in [0, 1], CFM >= 0, MuJoCo's integrator known, loop stiffness and
+ * damping >= 0, loop impedance in (0, 1), drive armature > 0, clearance
+ * smaller than the pin radius, each
  * resolved law valid (contact.h), penetration limit positive, faceted_n >= 3
  * when the faceted collider is used. Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY
  * naming the field, its value and the rule. */

@@ -12,6 +12,21 @@ const char *fb_joint_name(int j) {
   return (j >= 0 && j < 4) ? names[j] : "?";
 }
 
+fb_mujoco_opts fb_mujoco_opts_default(void) {
+  fb_mujoco_opts o;
+  o.integrator = FB_MUJOCO_AUTO;
+  o.loop_stiffness = 0.0; /* 1/h^2 */
+  o.loop_damping = 0.0;   /* 1/h */
+  o.loop_impedance = 0.9999;
+  o.drive_armature = 1e6;
+  return o;
+}
+
+int fb_mujoco_integrator_resolve(const fb_mujoco_opts *o, int clearance_mask) {
+  if (o->integrator != FB_MUJOCO_AUTO) return o->integrator;
+  return clearance_mask ? FB_MUJOCO_RK4 : FB_MUJOCO_EULER;
+}
+
 const char *fb_mujoco_integrator_name(int k) {
   static const char *const names[] = {"euler", "implicit", "rk4", "auto"};
   return k >= 0 && k <= FB_MUJOCO_AUTO ? names[k] : "?";
@@ -74,11 +89,7 @@ void fb_case_default(fb_case *c) {
   c->clearance.penetration_limit = 0.0;
   c->clearance.faceted_n = 64;
   c->clearance.stiffness_scale = 1.0;
-  c->mujoco.integrator = FB_MUJOCO_AUTO;
-  c->mujoco.loop_stiffness = 0.0;
-  c->mujoco.loop_damping = 0.0;
-  c->mujoco.loop_impedance = 0.9999;
-  c->mujoco.drive_armature = 1e6;
+  c->mujoco = fb_mujoco_opts_default();
   c->revolutions = 3.0;
   const char *m[] = {"analytic", "analytic-stackup", "ode-ideal-nominal", "ode-ideal-stackup"};
   c->model_count = 4;

@@ -710,6 +710,12 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
           return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: unknown model '%s' (known: %s)",
                              e->origin, e->section, e->key, tok, known);
         }
+        if (!fb_engine_available(fb_model_find(tok)->engine))
+          return fb_diag_set(diag, FB_ERR_ARG, "%s: [%s] %s: model '%s' is not in this build: %s",
+                             e->origin, e->section, e->key, tok,
+                             fb_model_find(tok)->engine == FB_ENGINE_MUJOCO
+                                 ? FB_MUJOCO_HOWTO
+                                 : "its engine was left out");
         for (int i = 0; i < c->model_count; i++)
           if (strcmp(c->models[i], tok) == 0)
             return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: model '%s' listed twice",

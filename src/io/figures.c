@@ -234,6 +234,12 @@ static const model_style styles[] = {
     {"ode-clearance-faceted", "#ff7f0e", 3, 1.5},
     {"reference", "#9467bd", 2, 1.8},
     {"reference-restitution", "#8c8c00", 2, 1.8},
+    /* MuJoCo: the colour of the ODE counterpart, dotted */
+    {"mujoco-ideal-nominal", "#1f77b4", 3, 1.8},
+    {"mujoco-ideal-stackup", "#6baed6", 3, 1.8},
+    {"mujoco-clearance-restitution", "#2ca02c", 3, 1.8},
+    {"mujoco-clearance-impact", "#d62728", 3, 1.8},
+    {"mujoco-clearance-native", "#ff7f0e", 5, 1.8},
 };
 
 /* models not in the table: a colour from this list chosen by a hash of the
@@ -854,7 +860,7 @@ fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *c
     json_array_append_new(curves, c);
   }
   char en[160];
-  fprintf(pl.p, "set title '%s: error against cost (fourbar bench)'\nset logscale xy\n"
+  fprintf(pl.p, "set title '%s: error against cost, both engines (fourbar bench)'\nset logscale xy\n"
                 "set format x '10^{%%L}'\nset format y '10^{%%L}'\n"
                 "set xlabel 'wall time per simulated revolution [s]'\n"
                 "set ylabel 'error against the exact yardstick [-]'\nset key outside right top box\n"
@@ -865,8 +871,8 @@ fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *c
   for (int q = 0; q < nm; q++) {
     if (!drawn[q]) continue;
     const model_style ms = style_of(models[q]);
-    const char *what = strncmp(models[q], "ode-ideal", 9) == 0 ? "omega peaks vs analytic"
-                                                                 : "force, penetration vs reference";
+    const char *what = strstr(models[q], "-ideal-") ? "omega peaks vs analytic"
+                                                    : "force, penetration vs reference";
     char mn[160];
     esc(models[q], mn, sizeof mn);
     fprintf(pl.p, "%s$all%d using 1:2 with points pt 7 ps 0.8 lc rgb '%s' title '%s (%s)'", any ? ", " : "", q,

@@ -184,6 +184,19 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   }
   if (fb_engine_steps_world(run->model->engine)) json_object_set_new(o, "joint_drift_max_m", num(run->joint_drift_max));
   json_object_set_new(o, "loads", loads_json(&run->series, r->t_window));
+  if (run->model->engine == FB_ENGINE_MUJOCO) {
+    /* MuJoCo's own choices as the model used them (0 in the case: 1/h^2, 1/h) */
+    const fb_mujoco_opts *mj = &r->c.mujoco;
+    const int integ = fb_mujoco_integrator_resolve(mj, run->clearance_mask);
+    json_object_set_new(
+        o, "mujoco",
+        json_pack("{s:s,s:o,s:o,s:o,s:o}", "integrator", fb_mujoco_integrator_name(integ),
+                  "loop_stiffness_1_s2",
+                  num(mj->loop_stiffness > 0.0 ? mj->loop_stiffness : 1.0 / (run->h * run->h)),
+                  "loop_damping_1_s", num(mj->loop_damping > 0.0 ? mj->loop_damping : 1.0 / run->h),
+                  "loop_impedance", num(mj->loop_impedance), "drive_armature_kg_m2",
+                  num(mj->drive_armature)));
+  }
   if (m->has_ref_error) {
     const fb_reference_error *e = &m->ref_error;
     json_t *o2 = json_object(), *a = json_array(), *b = json_array();
@@ -435,6 +448,22 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
           c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep",
           r->t_window, c->peaks == FB_PEAKS_ALL ? "the whole run" : "after the first revolution",
           fb_start_name(c->start), fb_pin_start_name(c->pin_start));
+  int mj_ideal = 0, mj_clear = 0;
+  for (int i = 0; i < r->n; i++)
+    if (r->model[i].run.model->engine == FB_ENGINE_MUJOCO) {
+      if (r->model[i].run.clearance_mask) mj_clear = 1;
+      else mj_ideal = 1;
+    }
+  if (mj_ideal || mj_clear)
+    fprintf(f, "MuJoCo models: integrator %s%s%s%s%s; loop closure solref (-k, -b) with k = %g "
+               "1/s^2, b = %g 1/s, solimp %g\n\n",
+            mj_ideal ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 0)) : "",
+            mj_ideal ? " (ideal models)" : "", mj_ideal && mj_clear ? ", " : "",
+            mj_clear ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 1)) : "",
+            mj_clear ? " (clearance models)" : "",
+            c->mujoco.loop_stiffness > 0 ? c->mujoco.loop_stiffness : 1.0 / (c->solver.h * c->solver.h),
+            c->mujoco.loop_damping > 0 ? c->mujoco.loop_damping : 1.0 / c->solver.h,
+            c->mujoco.loop_impedance);
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);
   fprintf(f, "stack-up corner %c%c%c%c:", "-0+"[c->stackup.corner[0] + 1],

@@ -23,18 +23,63 @@ typedef struct {
   double ddot;   /* penetration rate [m/s] */
   double force;  /* normal force [N] */
   fb_episode ep; /* episodes, updated once per step */
+  fb_contact_provenance prov; /* effective mass and h omega_c over the contact steps */
 } mj_clearance;
 
+/* what this scene was built from: the scene definition with the model's row
+ * applied */
+typedef struct {
+  fb_linkage lengths;
+  fb_start_state start;
+  double omega2;
+  double gravity;
+  fb_link_mass link[3];
+  double h;
+  int clearance_mask;
+  double radial_clearance;
+  fb_contact_law law[4];
+  double impact_velocity_min;
+  fb_mujoco_opts opts;
+  int native;           /* 1: MuJoCo's own contacts (FB_COLLIDER_NATIVE) */
+  int ring_n;           /* boxes in each hole's ring (native) */
+  double pin_radius;    /* R_pin [m] (native) */
+  double pin_length;    /* [m] (native: the ring's height) */
+} mj_def;
+
+static fb_status def_from_model(mj_def *d, const fb_scene_model *sm, fb_diag *diag) {
+  memset(d, 0, sizeof *d);
+  fb_status st = fb_scene_model_start(&d->start, sm, diag);
+  if (st != FB_OK) return st;
+  d->lengths = sm->lengths;
+  d->omega2 = sm->omega2;
+  d->gravity = sm->gravity;
+  for (int i = 0; i < 3; i++) d->link[i] = sm->link[i];
+  d->h = sm->solver.h;
+  d->clearance_mask = sm->clearance_mask;
+  d->radial_clearance = sm->radial_clearance;
+  for (int j = 0; j < 4; j++) d->law[j] = sm->law[j];
+  d->impact_velocity_min = sm->impact_velocity_min;
+  d->opts = sm->mujoco;
+  d->native = sm->model->collider == FB_COLLIDER_NATIVE;
+  d->ring_n = sm->def->faceted_n;
+  d->pin_radius = sm->pin_radius;
+  d->pin_length = sm->pin_length;
+  return FB_OK;
+}
+
 struct fb_mujoco_scene {
-  fb_scene_model def;
+  mj_def def;
   int integrator; /* fb_mujoco_integrator, resolved */
   mjModel *m;
   mjData *d;
   double *jac;        /* 2 x (3 x nv): pin and hole site Jacobians */
+  double *w;          /* 4 x nv: J^T n of each joint at its last evaluation, then 1 x nv scratch */
   int hinge_dof[3];   /* dof of each body's own hinge z (crank A, coupler B, follower D) */
   int hinge_qpos[3];  /* its qpos address */
   int site_pin[4];    /* site of each joint's pin centre */
   int site_hole[4];   /* site of each joint's hole centre */
+  int pin_geom[4];    /* native: the pin's sphere geom, or -1 */
+  int hole_body[4];   /* native: the body carrying the hole's ring (0: world) */
   double angle0[3];   /* body angles at qpos0 [rad] */
   mj_clearance cl[4];
   size_t steps;
@@ -42,11 +87,6 @@ struct fb_mujoco_scene {
 
 /* the scene whose model is being stepped: mjcb_passive is one global hook */
 static _Thread_local fb_mujoco_scene *stepping;
-
-int fb_mujoco_integrator_for(const fb_mujoco_opts *opts, int clearance_mask) {
-  if (opts->integrator != FB_MUJOCO_AUTO) return opts->integrator;
-  return clearance_mask ? FB_MUJOCO_RK4 : FB_MUJOCO_EULER;
-}
 
 const char *fb_mujoco_version(void) { return mj_versionString(); }
 
@@ -97,50 +137,111 @@ static void put_inertial(text *t, const fb_link_mass *lm, double len) {
       lm->com_fraction * len, lm->mass, lm->inertia_long, it, lm->inertia);
 }
 
-fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *def,
-                         const fb_mujoco_opts *opts, fb_diag *diag) {
-  fb_linkage_state st;
-  fb_status rc = fb_linkage_solve(&st, &def->lengths, def->branch, def->crank_angle0,
-                                  def->omega2, 0.0, diag);
-  if (rc != FB_OK) return rc;
+/* radial thickness of a ring's boxes (as the ODE faceted collider) */
+#define RING_THICKNESS_M 2e-3
+
+/* native contact: the direct-form solref of the restitution law's spring
+ * p [N/m] and damper c [N s/m] on its effective mass m: MuJoCo's direct
+ * stiffness and damping are per unit mass (k = p/m [1/s^2], b = c/m [1/s]) */
+static void native_solref(const fb_contact_law *law, double *k, double *b) {
+  const double zeta = fb_contact_restitution_zeta(law->restitution);
+  const double c = 2.0 * zeta * sqrt(law->stiffness * law->mass);
+  *k = law->stiffness / law->mass;
+  *b = c / law->mass;
+}
+
+/* native contact geoms of the joints whose pin (pin = 1) or hole (pin = 0)
+ * lies on this body, at the given body-frame points: a sphere of the pin's
+ * radius, or a ring of ring_n boxes whose inner faces are tangent to the
+ * hole's circle. Pins collide with rings only (contype 1, conaffinity 2). */
+static void put_native(text *t, const mj_def *def, int j, int pin, double x, double y,
+                       const char *ind) {
+  if (!def->native || !(def->clearance_mask & (1 << j))) return;
+  const char jn = (char)('A' + j);
+  double k, b;
+  native_solref(&def->law[j], &k, &b);
+  char contact[256];
+  snprintf(contact, sizeof contact,
+           "condim=\"1\" margin=\"0\" solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " LOOP_SOLIMP_TAIL
+           "\"",
+           -k, -b, def->opts.loop_impedance, def->opts.loop_impedance);
+  if (pin) {
+    put(t, "%s<geom name=\"%c_pin_geom\" type=\"sphere\" size=\"%.17g\" pos=\"%.17g %.17g 0\" "
+           "contype=\"1\" conaffinity=\"0\" %s/>\n",
+        ind, jn, def->pin_radius, x, y, contact);
+    return;
+  }
+  const double r_in = def->pin_radius + def->radial_clearance;
+  const double th = RING_THICKNESS_M;
+  const double half_w = (r_in + th) * tan(M_PI / def->ring_n) * 1.001; /* closes the ring */
+  for (int q = 0; q < def->ring_n; q++) {
+    const double phi = 2.0 * M_PI * q / def->ring_n;
+    put(t, "%s<geom type=\"box\" size=\"%.17g %.17g %.17g\" pos=\"%.17g %.17g 0\" "
+           "euler=\"0 0 %.17g\" contype=\"0\" conaffinity=\"1\" %s/>\n",
+        ind, 0.5 * th, half_w, 0.5 * def->pin_length, x + (r_in + 0.5 * th) * cos(phi),
+        y + (r_in + 0.5 * th) * sin(phi), phi, contact);
+  }
+}
+
+static fb_status write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *diag) {
+  const fb_start_state st = def->start;
+  const fb_mujoco_opts *opts = &def->opts;
   const double a = def->lengths.length[FB_CRANK], b = def->lengths.length[FB_COUPLER];
-  const double c = def->lengths.length[FB_FOLLOWER], g = def->lengths.length[FB_GROUND];
-  const double h = def->solver.h;
+  const double c = def->lengths.length[FB_FOLLOWER];
+  const double h = def->h;
   const int mask = def->clearance_mask;
   static const char *const intname[3] = {"Euler", "implicit", "RK4"};
-  const int integ = fb_mujoco_integrator_for(opts, mask);
+  const int integ = fb_mujoco_integrator_resolve(opts, mask);
   const double k = opts->loop_stiffness > 0.0 ? opts->loop_stiffness : 1.0 / (h * h);
   const double damp = opts->loop_damping > 0.0 ? opts->loop_damping : 1.0 / h;
   text t = {buf, size, 0, 0};
   put(&t, "<mujoco model=\"fourbar\">\n");
   put(&t, "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n");
-  put(&t, "  <option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\"/>\n", h,
-      -def->gravity, intname[integ]);
+  /* native contacts: a pin and its hole are on parent and child bodies,
+   * which MuJoCo keeps from colliding unless filterparent is off */
+  put(&t, "  <option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\">%s</option>\n", h,
+      -def->gravity, intname[integ], def->native ? "<flag filterparent=\"disable\"/>" : "");
   put(&t, "  <worldbody>\n");
-  put(&t, "    <site name=\"A_hole\" pos=\"0 0 0\"/>\n");
-  put(&t, "    <site name=\"D_hole\" pos=\"%.17g 0 0\"/>\n", g);
-  /* crank: A at the origin, x along A->B */
-  put(&t, "    <body name=\"crank\" pos=\"0 0 0\" euler=\"0 0 %.17g\">\n", st.crank_angle);
+  /* the joint points of the start (start.h): holes of A and D on the ground,
+   * the crank's frame at A's pin, the coupler's at B's hole, the follower's at
+   * D's pin; the other points follow from the link lengths */
+  const double *ha = st.hole[FB_JOINT_A], *hd = st.hole[FB_JOINT_D];
+  const double *pa = st.pin[FB_JOINT_A], *pd = st.pin[FB_JOINT_D];
+  const double bx = st.hole[FB_JOINT_B][0] - pa[0], by = st.hole[FB_JOINT_B][1] - pa[1];
+  const double c2 = cos(st.crank_angle), s2 = sin(st.crank_angle);
+  put(&t, "    <site name=\"A_hole\" pos=\"%.17g %.17g 0\"/>\n", ha[0], ha[1]);
+  put(&t, "    <site name=\"D_hole\" pos=\"%.17g %.17g 0\"/>\n", hd[0], hd[1]);
+  put_native(&t, def, FB_JOINT_A, 0, ha[0], ha[1], "    ");
+  put_native(&t, def, FB_JOINT_D, 0, hd[0], hd[1], "    ");
+  /* crank: at A's pin, x along A->B */
+  put(&t, "    <body name=\"crank\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pa[0], pa[1],
+      st.crank_angle);
   put_inertial(&t, &def->link[FB_CRANK], a);
   put_joint(&t, "A", mask & (1 << FB_JOINT_A), opts->drive_armature);
   put(&t, "      <site name=\"A_pin\" pos=\"0 0 0\"/>\n");
   put(&t, "      <site name=\"B_pin\" pos=\"%.17g 0 0\"/>\n", a);
-  /* coupler: B at the crank pin, x along B->C */
-  put(&t, "      <body name=\"coupler\" pos=\"%.17g 0 0\" euler=\"0 0 %.17g\">\n", a,
-      st.coupler_angle - st.crank_angle);
+  put_native(&t, def, FB_JOINT_A, 1, 0.0, 0.0, "      ");
+  put_native(&t, def, FB_JOINT_B, 1, a, 0.0, "      ");
+  /* coupler: at B's hole (in the crank's frame), x along B->C */
+  put(&t, "      <body name=\"coupler\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n",
+      c2 * bx + s2 * by, -s2 * bx + c2 * by, st.coupler_angle - st.crank_angle);
   put_inertial(&t, &def->link[FB_COUPLER], b);
   put_joint(&t, "B", mask & (1 << FB_JOINT_B), 0.0);
   put(&t, "      <site name=\"B_hole\" pos=\"0 0 0\"/>\n");
   put(&t, "      <site name=\"C_pin\" pos=\"%.17g 0 0\"/>\n", b);
+  put_native(&t, def, FB_JOINT_B, 0, 0.0, 0.0, "      ");
+  put_native(&t, def, FB_JOINT_C, 1, b, 0.0, "      ");
   put(&t, "      </body>\n");
   put(&t, "    </body>\n");
-  /* follower: D on +x, x along D->C */
-  put(&t, "    <body name=\"follower\" pos=\"%.17g 0 0\" euler=\"0 0 %.17g\">\n", g,
-      st.follower_angle);
+  /* follower: at D's pin, x along D->C */
+  put(&t, "    <body name=\"follower\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pd[0],
+      pd[1], st.follower_angle);
   put_inertial(&t, &def->link[FB_FOLLOWER], c);
   put_joint(&t, "D", mask & (1 << FB_JOINT_D), 0.0);
   put(&t, "      <site name=\"D_pin\" pos=\"0 0 0\"/>\n");
   put(&t, "      <site name=\"C_hole\" pos=\"%.17g 0 0\"/>\n", c);
+  put_native(&t, def, FB_JOINT_D, 1, 0.0, 0.0, "      ");
+  put_native(&t, def, FB_JOINT_C, 0, c, 0.0, "      ");
   put(&t, "    </body>\n");
   put(&t, "  </worldbody>\n");
   if (!(mask & (1 << FB_JOINT_C))) {
@@ -155,6 +256,15 @@ fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *def,
   if (t.overflow)
     return fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than its %zu-byte buffer", size);
   return FB_OK;
+}
+
+fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag) {
+  fb_status st = fb_scene_def_check(sm->def, diag);
+  if (st != FB_OK) return st;
+  mj_def d;
+  st = def_from_model(&d, sm, diag);
+  if (st != FB_OK) return st;
+  return write_mjcf(buf, size, &d, diag);
 }
 
 /* ---- contact through the passive-force hook ------------------------------- */
@@ -180,17 +290,18 @@ static void clearance_force(fb_mujoco_scene *s, const mjModel *m, mjData *d, int
   const double n[2] = {c->e[0] / ecc, c->e[1] / ecc};
   /* w = J^T n (x and y rows), ddot = w . qvel */
   double ddot = 0.0;
+  double *w = s->w + j * nv;
   for (int k = 0; k < nv; k++) {
-    const double w = (jp[k] - jh[k]) * n[0] + (jp[nv + k] - jh[nv + k]) * n[1];
-    jp[k] = w; /* row 0 reused as w */
-    ddot += w * d->qvel[k];
+    w[k] = (jp[k] - jh[k]) * n[0] + (jp[nv + k] - jh[nv + k]) * n[1];
+    ddot += w[k] * d->qvel[k];
   }
   c->ddot = ddot;
+  if (s->def.native) return; /* MuJoCo's contacts push (native_force reads them) */
   /* impact velocity: the episode's, or this rate at an onset (as the step's
    * bookkeeping will record it) */
   const double v0 = c->ep.in_contact ? c->ep.v0 : fmax(ddot, s->def.impact_velocity_min);
   c->force = fb_contact_force(&s->def.law[j], c->delta, ddot, v0);
-  for (int k = 0; k < nv; k++) d->qfrc_passive[k] -= c->force * jp[k];
+  for (int k = 0; k < nv; k++) d->qfrc_passive[k] -= c->force * w[k];
 }
 
 static void passive_hook(const mjModel *m, mjData *d) {
@@ -213,6 +324,26 @@ static void forward(fb_mujoco_scene *s) {
   mjcb_passive = passive_hook;
   mj_forward(s->m, s->d);
   stepping = NULL;
+}
+
+/* native contacts: the force on joint j's pin from MuJoCo's contacts of
+ * this forward pass, |sum of f_n n| over the contacts between the pin's
+ * sphere and the hole's ring [N] */
+static void native_force(fb_mujoco_scene *s, int j) {
+  const mjModel *m = s->m;
+  const mjData *d = s->d;
+  double f[2] = {0.0, 0.0};
+  for (int i = 0; i < d->ncon; i++) {
+    const mjContact *ct = &d->contact[i];
+    const int g1 = ct->geom1, g2 = ct->geom2;
+    const int other = g1 == s->pin_geom[j] ? g2 : (g2 == s->pin_geom[j] ? g1 : -1);
+    if (other < 0 || m->geom_bodyid[other] != s->hole_body[j]) continue;
+    mjtNum r[6];
+    mj_contactForce(m, d, i, r);
+    f[0] += r[0] * ct->frame[0];
+    f[1] += r[0] * ct->frame[1];
+  }
+  s->cl[j].force = hypot(f[0], f[1]);
 }
 
 /* ---- create, step, sample ------------------------------------------------- */
@@ -240,15 +371,25 @@ static mjModel *load_mjcf(const char *mjcf, fb_diag *diag) {
   return m;
 }
 
-fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *def,
-                                 const fb_mujoco_opts *opts, fb_diag *diag) {
-  fb_linkage_state st;
-  fb_status rc = fb_linkage_solve(&st, &def->lengths, def->branch, def->crank_angle0,
-                                  def->omega2, 0.0, diag);
+fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm,
+                                 fb_diag *diag) {
+  fb_status rc = fb_scene_def_check(sm->def, diag);
   if (rc != FB_OK) return rc;
-  char *mjcf = malloc(MJCF_SIZE);
+  if (sm->clearance_mask && sm->model->collider != FB_COLLIDER_EXACT &&
+      sm->model->collider != FB_COLLIDER_NATIVE)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the MuJoCo engine has no such collider",
+                       sm->model->name);
+  mj_def dd;
+  rc = def_from_model(&dd, sm, diag);
+  if (rc != FB_OK) return rc;
+  const mj_def *def = &dd;
+  const fb_start_state st = def->start;
+  int rings = 0;
+  for (int j = 0; j < 4; j++) rings += def->native && (def->clearance_mask & (1 << j));
+  const size_t mjcf_size = MJCF_SIZE + (size_t)rings * (size_t)def->ring_n * 512;
+  char *mjcf = malloc(mjcf_size);
   if (!mjcf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the MJCF text");
-  rc = fb_mujoco_mjcf(mjcf, MJCF_SIZE, def, opts, diag);
+  rc = write_mjcf(mjcf, mjcf_size, def, diag);
   if (rc != FB_OK) {
     free(mjcf);
     return rc;
@@ -261,23 +402,31 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *de
   fb_mujoco_scene *s = calloc(1, sizeof *s);
   mjData *d = mj_makeData(m);
   double *jac = calloc((size_t)(6 * m->nv), sizeof *jac);
-  if (!s || !d || !jac) {
+  double *w = calloc((size_t)(5 * m->nv), sizeof *w);
+  if (!s || !d || !jac || !w) {
     free(s);
     free(jac);
+    free(w);
     if (d) mj_deleteData(d);
     mj_deleteModel(m);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the MuJoCo scene");
   }
   s->def = *def;
-  s->integrator = fb_mujoco_integrator_for(opts, def->clearance_mask);
+  s->integrator = fb_mujoco_integrator_resolve(&def->opts, def->clearance_mask);
   s->m = m;
   s->d = d;
   s->jac = jac;
+  s->w = w;
   static const char *const pins[4] = {"A_pin", "B_pin", "C_pin", "D_pin"};
   static const char *const holes[4] = {"A_hole", "B_hole", "C_hole", "D_hole"};
   for (int j = 0; j < 4; j++) {
     s->site_pin[j] = mj_name2id(m, mjOBJ_SITE, pins[j]);
     s->site_hole[j] = mj_name2id(m, mjOBJ_SITE, holes[j]);
+  }
+  static const char *const pin_geoms[4] = {"A_pin_geom", "B_pin_geom", "C_pin_geom", "D_pin_geom"};
+  for (int j = 0; j < 4; j++) {
+    s->pin_geom[j] = mj_name2id(m, mjOBJ_GEOM, pin_geoms[j]);
+    s->hole_body[j] = m->site_bodyid[s->site_hole[j]];
   }
   static const char *const hinges[3] = {"A", "B", "D"};
   for (int i = 0; i < 3; i++) {
@@ -288,15 +437,84 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *de
   s->angle0[FB_CRANK] = st.crank_angle;
   s->angle0[FB_COUPLER] = st.coupler_angle;
   s->angle0[FB_FOLLOWER] = st.follower_angle;
-  /* t = 0: qpos = qpos0 is the assembled configuration written into the
-   * MJCF; hinge speeds relative to the parent body, slides at rest (the pins
-   * start centred and moving with their holes) */
-  d->qvel[s->hinge_dof[FB_CRANK]] = def->omega2;
-  d->qvel[s->hinge_dof[FB_COUPLER]] = st.coupler_omega - def->omega2;
+  /* t = 0: qpos = qpos0 is the start written into the MJCF; hinge speeds
+   * relative to the parent body. Slides: the crank's pin at A and the
+   * follower's at D start at rest (steady: they move with their fixed holes;
+   * rest: the crank turns about its pin, the follower is still); the
+   * coupler's B hole moves at coupler_b_vel, relative to the crank's
+   * material point there, in the slide axes (the coupler's frame at t = 0) */
+  d->qvel[s->hinge_dof[FB_CRANK]] = st.crank_omega;
+  d->qvel[s->hinge_dof[FB_COUPLER]] = st.coupler_omega - st.crank_omega;
   d->qvel[s->hinge_dof[FB_FOLLOWER]] = st.follower_omega;
+  if (def->clearance_mask & (1 << FB_JOINT_B)) {
+    const double rx = st.hole[FB_JOINT_B][0] - st.pin[FB_JOINT_A][0];
+    const double ry = st.hole[FB_JOINT_B][1] - st.pin[FB_JOINT_A][1];
+    const double vx = st.coupler_b_vel[0] + st.crank_omega * ry;
+    const double vy = st.coupler_b_vel[1] - st.crank_omega * rx;
+    const double c3 = cos(st.coupler_angle), s3 = sin(st.coupler_angle);
+    const int bx = m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, "B_x")];
+    const int by = m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, "B_y")];
+    d->qvel[bx] = c3 * vx + s3 * vy;
+    d->qvel[by] = -s3 * vx + c3 * vy;
+  }
   forward(s);
+  for (int j = 0; j < 4; j++)
+    if (def->native && (def->clearance_mask & (1 << j))) native_force(s, j);
   *out = s;
   return FB_OK;
+}
+
+/* provenance of a step in contact at joint j: the effective mass along the
+ * normal of the constrained mechanism, 1 / (w^T P w), w = J^T n of the last
+ * evaluation (this state), P = M^-1 - M^-1 G^T (G M^-1 G^T)^-1 G M^-1 the
+ * inverse mass in the freedoms the loop closure leaves (G: the in-plane rows
+ * of the connect equality at C; the tree's own joints are exact), as
+ * effective_mass.h defines it; the crank's armature makes the driven crank
+ * nearly immovable, as ODE's motor does. And h omega_c with the law's
+ * secant stiffness. */
+static void note_contact(fb_mujoco_scene *s, int j) {
+  mj_clearance *c = &s->cl[j];
+  const mjModel *m = s->m;
+  mjData *d = s->d;
+  const int nv = m->nv;
+  const double *w = s->w + j * nv;
+  double *x = s->w + 4 * nv;
+  mj_solveM(m, d, x, w, 1);
+  double wpw = 0.0;
+  for (int k = 0; k < nv; k++) wpw += w[k] * x[k];
+  if (!(s->def.clearance_mask & (1 << FB_JOINT_C))) {
+    /* G (2 x nv) = in-plane rows of J_C,coupler - J_C,follower; Y = M^-1 G^T */
+    double *g = s->jac, *jf = s->jac + 3 * nv; /* g uses rows 0, 1 of the first block */
+    mj_jacSite(m, d, g, NULL, s->site_pin[FB_JOINT_C]);
+    mj_jacSite(m, d, jf, NULL, s->site_hole[FB_JOINT_C]);
+    for (int k = 0; k < 2 * nv; k++) g[k] -= jf[k];
+    double *y = jf; /* 2 x nv, M^-1 G^T row-wise (M^-1 symmetric) */
+    mj_solveM(m, d, y, g, 2);
+    double a[2][2] = {{0, 0}, {0, 0}}, gx[2] = {0, 0};
+    for (int k = 0; k < nv; k++) {
+      for (int r = 0; r < 2; r++) {
+        for (int q = 0; q < 2; q++) a[r][q] += g[r * nv + k] * y[q * nv + k];
+        gx[r] += g[r * nv + k] * x[k];
+      }
+    }
+    const double det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    if (det != 0.0) {
+      const double z[2] = {(a[1][1] * gx[0] - a[0][1] * gx[1]) / det,
+                           (a[0][0] * gx[1] - a[1][0] * gx[0]) / det};
+      wpw -= gx[0] * z[0] + gx[1] * z[1];
+    }
+  }
+  if (!(wpw > 0.0)) return;
+  const double mass = 1.0 / wpw;
+  double kp, kd, depth;
+  fb_contact_linearize(&s->def.law[j], FB_MAPPING_SECANT, c->delta, c->ddot, c->ep.v0, &kp, &kd,
+                       &depth);
+  const double hw = fb_contact_h_omega(s->def.h, kp, mass);
+  fb_contact_provenance *p = &c->prov;
+  if (p->contact_steps == 0 || mass < p->mass_eff_min) p->mass_eff_min = mass;
+  if (p->contact_steps == 0 || mass > p->mass_eff_max) p->mass_eff_max = mass;
+  if (p->contact_steps == 0 || hw > p->h_omega_max) p->h_omega_max = hw;
+  p->contact_steps++;
 }
 
 fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
@@ -315,7 +533,9 @@ fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
   for (int j = 0; j < 4; j++) {
     if (!(s->def.clearance_mask & (1 << j))) continue;
     mj_clearance *c = &s->cl[j];
+    if (s->def.native) native_force(s, j);
     fb_episode_update(&c->ep, c->delta > 0.0, c->ddot, s->def.impact_velocity_min);
+    if (c->delta > 0.0) note_contact(s, j);
   }
   return FB_OK;
 }
@@ -326,7 +546,7 @@ void fb_mujoco_scene_sample(const fb_mujoco_scene *s, fb_sample *x) {
   /* planar chain: a body turns by its own hinge plus its parent's */
   const double q[3] = {d->qpos[s->hinge_qpos[0]], d->qpos[s->hinge_qpos[1]],
                        d->qpos[s->hinge_qpos[2]]};
-  x->t = (double)s->steps * s->def.solver.h;
+  x->t = (double)s->steps * s->def.h;
   x->crank_angle = s->angle0[FB_CRANK] + q[0];
   x->coupler_angle = s->angle0[FB_COUPLER] + q[0] + q[1];
   x->coupler_omega = d->qvel[dof[0]] + d->qvel[dof[1]];
@@ -367,6 +587,13 @@ double fb_mujoco_scene_penetration(const fb_mujoco_scene *s, int *joint) {
   return worst > 0.0 ? worst : 0.0;
 }
 
+void fb_mujoco_scene_provenance(const fb_mujoco_scene *s, int j, fb_contact_provenance *out) {
+  *out = s->cl[j].prov;
+  out->erp_max = NAN; /* no constraint row: the law is a force */
+  out->cfm_min = NAN;
+  if (out->contact_steps == 0) out->mass_eff_min = out->mass_eff_max = out->h_omega_max = NAN;
+}
+
 int fb_mujoco_scene_impacts(const fb_mujoco_scene *s, int j) { return s->cl[j].ep.impacts; }
 
 size_t fb_mujoco_scene_steps(const fb_mujoco_scene *s) { return s->steps; }
@@ -376,5 +603,6 @@ void fb_mujoco_scene_destroy(fb_mujoco_scene *s) {
   mj_deleteData(s->d);
   mj_deleteModel(s->m);
   free(s->jac);
+  free(s->w);
   free(s);
 }

@@ -1,5 +1,5 @@
 /* The four-bar in MuJoCo 2.2.2: the same scene definition as the ODE scene
- * (scene_def.h, fb_scene_model: lengths, masses, inertias, gravity, drive, initial state from the
+ * (scene.h: lengths, masses, inertias, gravity, drive, initial state from the
  * analytic solver, clearance joints and their contact laws), generated as
  * MJCF text and loaded from memory through MuJoCo's virtual file system. The
  * only folder that includes MuJoCo headers; this header includes none, so a
@@ -55,32 +55,30 @@
 #include <stddef.h>
 
 #include "case.h"
+#include "engine.h"
 #include "scene_def.h"
 #include "series.h"
 
 typedef struct fb_mujoco_scene fb_mujoco_scene;
 
-/* The integrator a run with opts uses: opts->integrator, with auto resolved
- * to euler for an ideal mechanism (clearance_mask 0) and rk4 with clearance
- * joints (fb_mujoco_integrator). */
-int fb_mujoco_integrator_for(const fb_mujoco_opts *opts, int clearance_mask);
+/* Writes the MJCF text of model sm (the scene definition with the model's
+ * row applied) into buf (size bytes, NUL terminated): numbers printed with
+ * 17 significant digits, so the compiled model holds the definition's
+ * doubles. Errors: those of fb_scene_def_check; FB_ERR_RANGE when buf is too
+ * small. */
+fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
 
-/* Writes the MJCF text of def with opts into buf (size bytes, NUL
- * terminated): numbers printed with 17 significant digits, so the compiled
- * model holds the definition's doubles. Errors: FB_ERR_ASSEMBLY when the
- * initial configuration does not exist; FB_ERR_RANGE when buf is too small. */
-fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *def,
-                         const fb_mujoco_opts *opts, fb_diag *diag);
-
-/* Compiles the model (mj_loadXML from a VFS holding the MJCF text) and sets
- * the state at t = 0 from the analytic solver (loop closed, velocities
- * compatible, pins centred in their holes). Uses def's lengths, branch,
- * crank_angle0, omega2, gravity, link, solver.h, clearance_mask,
- * radial_clearance, law, impact_velocity_min; ignores ODE's stepper,
- * ERP/CFM, mapping, friction and faceted_n. Errors: FB_ERR_ASSEMBLY;
- * FB_ERR_ARG when MuJoCo rejects the model (its message quoted); FB_ERR_NOMEM. */
-fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *def,
-                                 const fb_mujoco_opts *opts, fb_diag *diag);
+/* Checks the definition (fb_scene_def_check), compiles the model
+ * (mj_loadXML from a VFS holding the MJCF text) and sets the state at t = 0
+ * from the definition's assembled start (loop closed, velocities compatible,
+ * pins centred in their holes). Uses the model's lengths, start and
+ * clearance joints and laws, and the definition's crank speed, gravity,
+ * masses, solver.h, radial clearance, impact_velocity_min and mujoco
+ * options; ignores ODE's stepper, ERP/CFM, mapping, friction and faceted_n.
+ * Errors: those of fb_scene_def_check; FB_ERR_ARG when MuJoCo rejects the
+ * model (its message quoted); FB_ERR_NOMEM. */
+fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm,
+                                 fb_diag *diag);
 
 /* Advances one step h. Errors: none today (FB_OK); NaN is reported through
  * the sample. */
@@ -98,6 +96,12 @@ double fb_mujoco_scene_joint_drift(const fb_mujoco_scene *s);
 /* Largest penetration over the clearance joints now [m] and its joint (-1
  * when there is no clearance joint). */
 double fb_mujoco_scene_penetration(const fb_mujoco_scene *s, int *joint);
+
+/* What the engine did at clearance joint j over the contact steps so far:
+ * effective mass along the normal [kg] (range), h omega_c [-] (largest, with
+ * the law's secant stiffness), contact steps; ERP and CFM are NaN (no
+ * constraint row); NaN everywhere before the first contact. */
+void fb_mujoco_scene_provenance(const fb_mujoco_scene *s, int j, fb_contact_provenance *out);
 
 /* Impact episodes counted so far at joint j. */
 int fb_mujoco_scene_impacts(const fb_mujoco_scene *s, int j);

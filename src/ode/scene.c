@@ -154,28 +154,9 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *dia
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the ODE engine has no such collider",
                        sm->model->name);
   const fb_scene_model *def = sm;
-  fb_start_state st = def->start;
-  if (!def->start_given) {
-    /* the steady start with every pin centred, from the analytic solver */
-    fb_linkage_state ls;
-    fb_status rc = fb_linkage_solve(&ls, &def->lengths, def->branch, def->crank_angle0,
-                                    def->omega2, 0.0, diag);
-    if (rc != FB_OK) return rc;
-    memset(&st, 0, sizeof st);
-    st.crank_angle = ls.crank_angle;
-    st.crank_omega = def->omega2;
-    st.coupler_angle = ls.coupler_angle;
-    st.coupler_omega = ls.coupler_omega;
-    st.follower_angle = ls.follower_angle;
-    st.follower_omega = ls.follower_omega;
-    for (int k = 0; k < 2; k++) {
-      st.pin[FB_JOINT_B][k] = st.hole[FB_JOINT_B][k] = ls.b[k];
-      st.pin[FB_JOINT_C][k] = st.hole[FB_JOINT_C][k] = ls.c[k];
-    }
-    st.pin[FB_JOINT_D][0] = st.hole[FB_JOINT_D][0] = def->lengths.length[FB_GROUND];
-    st.coupler_b_vel[0] = -def->omega2 * ls.b[1];
-    st.coupler_b_vel[1] = def->omega2 * ls.b[0];
-  }
+  fb_start_state st;
+  fb_status rc = fb_scene_model_start(&st, def, diag);
+  if (rc != FB_OK) return rc;
   fb_scene *s = calloc(1, sizeof *s);
   if (!s) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the scene");
   fb_ode_acquire();

@@ -1,0 +1,44 @@
+/* The MuJoCo engine behind the engine interface (engine.h): thin wrappers
+ * over the MuJoCo scene (mujoco_scene.h). */
+#include "engine.h"
+#include "mujoco_scene.h"
+
+static fb_status mujoco_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+  fb_mujoco_scene *s = NULL;
+  fb_status st = fb_mujoco_scene_create(&s, sm, diag);
+  if (st == FB_OK) *self = s;
+  return st;
+}
+
+static fb_status mujoco_step(void *self, fb_diag *diag) { return fb_mujoco_scene_step(self, diag); }
+
+static void mujoco_sample(const void *self, fb_sample *x) { fb_mujoco_scene_sample(self, x); }
+
+static void mujoco_contact(const void *self, fb_engine_contact *out) {
+  out->penetration = fb_mujoco_scene_penetration(self, &out->joint);
+  for (int j = 0; j < 4; j++) out->impacts[j] = fb_mujoco_scene_impacts(self, j);
+}
+
+static void mujoco_provenance(const void *self, int joint, fb_contact_provenance *out) {
+  fb_mujoco_scene_provenance(self, joint, out);
+}
+
+static double mujoco_drift(const void *self) { return fb_mujoco_scene_joint_drift(self); }
+
+static size_t mujoco_steps(const void *self) { return fb_mujoco_scene_steps(self); }
+
+static void mujoco_destroy(void *self) { fb_mujoco_scene_destroy(self); }
+
+const fb_engine fb_engine_mujoco = {
+    .name = "mujoco",
+    .guarded = 1,
+    .create = mujoco_create,
+    .step = mujoco_step,
+    .sample = mujoco_sample,
+    .contact = mujoco_contact,
+    .provenance = mujoco_provenance,
+    .reactions = NULL,
+    .drift = mujoco_drift,
+    .steps = mujoco_steps,
+    .destroy = mujoco_destroy,
+};

@@ -203,6 +203,25 @@ static void test_every_key_documented(void **state) {
   }
 }
 
+/* one source of defaults: fb_case_default is the key table's defaults read
+ * by the file parser, so a key's documented default and the value a case
+ * without that key gets are the same double (they differed in the last place
+ * for coupler_inertia_transverse_kg_mm2 and pin length_mm before) */
+static void test_defaults_come_from_the_key_table(void **state) {
+  (void)state;
+  fb_diag d;
+  if (fb_casefile_defaults_check(&d) != FB_OK) fail_msg("%s", d.msg);
+  fb_case c;
+  fb_case_default(&c);
+  const char *sets[] = {"pin.length_mm=13", "mass.coupler_inertia_transverse_kg_mm2=2056.16"};
+  fb_case k;
+  if (fb_casefile_load_text(&k, "sets", "", 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_true(k.pin_length == c.pin_length);
+  if (fb_casefile_load(&k, NULL, sets, 2, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_true(k.pin_length == c.pin_length);
+  assert_true(k.link[FB_COUPLER].inertia_transverse == c.link[FB_COUPLER].inertia_transverse);
+}
+
 static void test_fuzz_regressions_give_errors_not_crashes(void **state) {
   (void)state;
   /* inputs that once crashed, hung or were accepted wrongly: each must now
@@ -245,6 +264,7 @@ int main(void) {
       cmocka_unit_test(test_bad_inputs_name_place_value_rule),
       cmocka_unit_test(test_start_peaks_and_limit_keys),
       cmocka_unit_test(test_every_key_documented),
+      cmocka_unit_test(test_defaults_come_from_the_key_table),
       cmocka_unit_test(test_fuzz_regressions_give_errors_not_crashes),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

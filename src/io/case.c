@@ -32,69 +32,6 @@ const char *fb_mujoco_integrator_name(int k) {
   return k >= 0 && k <= FB_MUJOCO_AUTO ? names[k] : "?";
 }
 
-void fb_case_default(fb_case *c) {
-  memset(c, 0, sizeof *c);
-  strcpy(c->name, "case");
-  /* the paper's crank-rocker (docs/paper.md, "Input data") */
-  c->nominal.length[FB_CRANK] = 0.108;
-  c->nominal.length[FB_COUPLER] = 0.2794;
-  c->nominal.length[FB_FOLLOWER] = 0.2705;
-  c->nominal.length[FB_GROUND] = 0.254;
-  for (int i = 0; i < FB_LINK_COUNT; i++) c->stackup.corner[i] = +1;
-  c->branch = FB_BRANCH_OPEN;
-  c->crank_angle0 = 0.0;
-  c->crank_speed = 1000.0 * 2.0 * M_PI / 60.0;
-  c->direction = -1;
-  c->gravity = 9.80665;
-  /* mass properties (docs/paper.md); kg mm^2 -> kg m^2. The paper's two large
-   * moments are about axes across the bar; the larger is taken as the one
-   * about the hinge axis because the links are wider in the plane than they
-   * are thick (cases/paper_crank_rocker.ini says so too). */
-  const double mass[3] = {0.12, 0.29, 0.28};
-  const double izz[3] = {173.92e-6, 2070.46e-6, 1988.39e-6};
-  const double itr[3] = {167.88e-6, 2056.16e-6, 1974.43e-6};
-  const double ilong[3] = {6.69e-6, 15.49e-6, 15.28e-6};
-  for (int i = 0; i < 3; i++) {
-    c->link[i].mass = mass[i];
-    c->link[i].inertia = izz[i];
-    c->link[i].inertia_transverse = itr[i];
-    c->link[i].inertia_long = ilong[i];
-    c->link[i].com_fraction = 0.5;
-  }
-  c->density = 7800.0;
-  c->youngs_modulus = 207e9;
-  c->poisson_ratio = 0.29;
-  c->pin_diameter = 0.010;
-  c->pin_length = 0.013;
-  c->radial_clearance = 14.5e-6; /* 10 H7/g6 maximum: 29 um diametral */
-  for (int i = 0; i < FB_LINK_COUNT; i++) strcpy(c->tolerance_source[i], "none (0)");
-  strcpy(c->clearance_source, "default (10 H7/g6 maximum, 29 um diametral / 2)");
-  c->solver.h = 1e-5;
-  c->solver.stepper = FB_STEPPER_WORLD;
-  c->solver.quick_iterations = 20;
-  c->solver.world_erp = 0.2;
-  c->solver.world_cfm = 1e-10;
-  c->solver.drive_torque_max = 1e4;
-  c->solver.seed = 1;
-  c->clearance.mask = 1 << FB_JOINT_B;
-  c->clearance.penalty = FB_PENALTY_SOURCE_PHYSICAL;
-  c->clearance.restitution = 0.9;
-  c->clearance.stiffness_impact = 1e11;
-  c->clearance.stiffness_linear = 1e9;
-  c->clearance.exponent = 1.5;
-  c->clearance.damping = 1e4;
-  c->clearance.damping_depth = 1e-6;
-  c->clearance.mapping = 0;
-  c->clearance.friction = 0.0;
-  c->clearance.penetration_limit = 0.0;
-  c->clearance.faceted_n = 64;
-  c->clearance.stiffness_scale = 1.0;
-  c->mujoco = fb_mujoco_opts_default();
-  c->revolutions = 3.0;
-  const char *m[] = {"analytic", "analytic-stackup", "ode-ideal-nominal", "ode-ideal-stackup"};
-  c->model_count = 4;
-  for (int i = 0; i < 4; i++) strcpy(c->models[i], m[i]);
-}
 
 double fb_case_penetration_limit(const fb_case *c) {
   if (c->clearance.penetration_unlimited) return INFINITY;

@@ -153,7 +153,6 @@ typedef struct fb_case_s {
   int direction;                      /* +1 counter-clockwise, -1 clockwise */
   double gravity;                     /* magnitude of gravity, acting along -y [m/s^2] */
   fb_link_mass link[3];               /* crank, coupler, follower (3) */
-  double density;                     /* material density [kg/m^3] */
   double youngs_modulus;              /* Young's modulus E [Pa] */
   double poisson_ratio;               /* Poisson's ratio nu [-] in (-1, 0.5) */
   double pin_diameter;                /* nominal pin diameter [m] */

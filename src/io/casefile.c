@@ -41,7 +41,8 @@ typedef enum {
   K_START,     /* steady | rest */
   K_PINSTART,  /* centred | resting | an eccentricity angle in degrees */
   K_PEAKS,     /* steady | all */
-  K_LIMIT      /* a number (scaled like K_DOUBLE) | none | clearance */
+  K_LIMIT,     /* a number (scaled like K_DOUBLE) | none | clearance */
+  K_UNUSED     /* a number checked against its range and not stored (no model uses it) */
 } key_kind;
 
 typedef struct {
@@ -146,8 +147,9 @@ static const key_spec keys[] = {
     LINK_MASS_KEYS(1, "coupler", "0.29", "2070.46", "15.49", "2056.16"),
     LINK_MASS_KEYS(2, "follower", "0.28", "1988.39", "15.28", "1974.43"),
 
-    {"material", "density_kg_m3", K_DOUBLE, OFF(density), 1.0, 0, INF, 1, 1, "kg/m^3", "7800",
-     "a density must be positive", "density of links and pins"},
+    {"material", "density_kg_m3", K_UNUSED, 0, 1.0, 0, INF, 1, 1, "kg/m^3", "7800",
+     "a density must be positive",
+     "density of links and pins; checked and not used (the masses and inertias are given)"},
     {"material", "youngs_modulus_gpa", K_DOUBLE, OFF(youngs_modulus), FB_PA_PER_GPA, 0, INF, 1, 1, "GPa",
      "207", "Young's modulus must be positive", "Young's modulus E of links and pins"},
     {"material", "poisson_ratio", K_DOUBLE, OFF(poisson_ratio), 1.0, -1, 0.5, 1, 1, "-", "0.29",
@@ -508,6 +510,8 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       st = parse_double(e, k, &v, diag);
       if (st == FB_OK) *(double *)field = v * k->scale;
       return st;
+    case K_UNUSED:
+      return parse_double(e, k, &v, diag);
     case K_INT:
     case K_ULONG: {
       char *end;
@@ -732,6 +736,57 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
     }
   }
   return FB_ERR_ARG;
+}
+
+/* 1 when a key's default is a value to apply ("(none)", "-" and "" are not) */
+static int has_default(const key_spec *k) {
+  return k->kind != K_TEXT && k->kind != K_UNUSED && k->def[0] != '\0' &&
+         strcmp(k->def, "(none)") != 0 &&
+         strcmp(k->def, "-") != 0;
+}
+
+void fb_case_default(fb_case *c) {
+  memset(c, 0, sizeof *c);
+  /* what no key sets: where the tolerances and the clearance came from, and
+   * the stack-up corner (every link at its maximum) */
+  for (int i = 0; i < FB_LINK_COUNT; i++) {
+    snprintf(c->tolerance_source[i], sizeof c->tolerance_source[i], "none (0)");
+    c->stackup.corner[i] = +1;
+  }
+  snprintf(c->clearance_source, sizeof c->clearance_source,
+           "default (10 H7/g6 maximum, 29 um diametral / 2)");
+  /* every other default is the key table's, read by the same parser as a
+   * file (a test checks that each one applies) */
+  for (int i = 0; i < NKEYS; i++) {
+    if (!has_default(&keys[i])) continue;
+    entry e;
+    memset(&e, 0, sizeof e);
+    snprintf(e.section, sizeof e.section, "%s", keys[i].section);
+    snprintf(e.key, sizeof e.key, "%s", keys[i].key);
+    snprintf(e.value, sizeof e.value, "%s", keys[i].def);
+    snprintf(e.origin, sizeof e.origin, "key table default");
+    fb_diag d;
+    (void)apply(c, &e, &d);
+  }
+}
+
+int fb_casefile_defaults_check(fb_diag *diag) {
+  for (int i = 0; i < NKEYS; i++) {
+    if (!has_default(&keys[i])) continue;
+    fb_case c;
+    memset(&c, 0, sizeof c);
+    entry e;
+    memset(&e, 0, sizeof e);
+    snprintf(e.section, sizeof e.section, "%s", keys[i].section);
+    snprintf(e.key, sizeof e.key, "%s", keys[i].key);
+    snprintf(e.value, sizeof e.value, "%s", keys[i].def);
+    snprintf(e.origin, sizeof e.origin, "key table default");
+    fb_diag inner;
+    if (apply(&c, &e, &inner) != FB_OK)
+      return fb_diag_set(diag, FB_ERR_PARSE, "default of [%s] %s = '%s' does not apply: %s",
+                         keys[i].section, keys[i].key, keys[i].def, inner.msg);
+  }
+  return FB_OK;
 }
 
 /* origin of an entry ("file:line" or "--set ..."), or NULL if absent */

@@ -42,4 +42,8 @@ int fb_casefile_name_ok(const char *name);
 int fb_casefile_key_count(void);
 const char *fb_casefile_key_name(int i, char *buf, size_t size);
 
+/* Checks that every key's default in the key table applies through the
+ * parser (fb_case_default relies on it). Errors: FB_ERR_PARSE naming the key. */
+int fb_casefile_defaults_check(fb_diag *diag);
+
 #endif

@@ -1,5 +1,6 @@
 #include "report.h"
 
+#include <jansson.h>
 #include <math.h>
 #include <string.h>
 

@@ -504,7 +504,8 @@ fb_status fb_analytic_peaks_where(fb_peaks *out, double where[8], const fb_linka
   return FB_OK;
 }
 
-void fb_analytic_to_sample(fb_sample *x, double t, const fb_linkage_state *st) {
+/* fills one series sample from a solved state at time t [s] */
+static void analytic_to_sample(fb_sample *x, double t, const fb_linkage_state *st) {
   x->t = t;
   x->crank_angle = st->crank_angle;
   x->coupler_angle = st->coupler_angle;
@@ -529,7 +530,7 @@ fb_status fb_analytic_sample(fb_series *out, const fb_linkage *lk, fb_branch bra
       return st;
     }
     fb_sample x;
-    fb_analytic_to_sample(&x, t, &s);
+    analytic_to_sample(&x, t, &s);
     x.crank_angle = theta0 + omega2 * t; /* unwrapped, as the ODE series */
     fb_series_push(out, &x);
   }

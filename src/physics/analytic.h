@@ -67,7 +67,4 @@ fb_status fb_analytic_sample(fb_series *out, const fb_linkage *lk, fb_branch bra
                              double theta0, double omega2, double h, size_t n,
                              fb_diag *diag);
 
-/* Fills one series sample from a solved state at time t [s]. */
-void fb_analytic_to_sample(fb_sample *x, double t, const fb_linkage_state *st);
-
 #endif

@@ -81,17 +81,6 @@ fb_status fb_contact_johnson_force(double *force, double delta, double length, d
   return FB_OK;
 }
 
-double fb_contact_pereira(double delta, double length, double e_star, double dr) {
-  /* the law's units: mm and N/mm^2 */
-  const double d_mm = delta * 1e3, l_mm = length * 1e3, dr_mm = dr * 1e3;
-  const double e_nmm2 = e_star * 1e-6;
-  const double a = 0.965, b = 0.0965;
-  const double y = 1.51 * pow(log(1000.0 * dr_mm), -0.151);
-  const double n = y * pow(dr_mm, -0.005);
-  if (!(delta > 0.0)) return 0.0;
-  return (a * dr_mm + b) * l_mm * e_nmm2 * pow(d_mm, n) / dr_mm;
-}
-
 /* ---- laws ------------------------------------------------------------------ */
 
 static const char *const law_names[FB_LAW_COUNT] = {

@@ -48,14 +48,6 @@ fb_status fb_contact_johnson_force(double *force, double delta, double length, d
  * 1 / { [ln(4 pi L E* dR / F) - 2] / (pi L E*) }. NaN off the valid branch. */
 double fb_contact_johnson_stiffness(double force, double length, double e_star, double dr);
 
-/* Pereira, Ramalho and Ambrosio (2011, Nonlinear Dyn. 63) cylindrical
- * internal-contact law F = (a dR + b) L E* delta^n / dR, a = 0.965,
- * b = 0.0965, n = Y dR^-0.005, Y = 1.51 [ln(1000 dR)]^-0.151, evaluated in
- * the law's own units (mm, N/mm^2) and returned in N. Constants as quoted in
- * docs/contact.md, NOT verified against the primary paper here: use for
- * comparison only. Valid for 5 mm <= R <= 25 mm. */
-double fb_contact_pereira(double delta, double length, double e_star, double dr);
-
 /* ---- normal-force laws ---------------------------------------------------- */
 
 typedef enum {

@@ -4,17 +4,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-const char *fb_status_message(fb_status s) {
-  switch (s) {
-#define FB_STATUS_CASE(code, msg) \
-  case code:                      \
-    return msg;
-    FB_STATUS_LIST(FB_STATUS_CASE)
-#undef FB_STATUS_CASE
-  }
-  return "unknown status";
-}
-
 fb_status fb_diag_set(fb_diag *diag, fb_status s, const char *fmt, ...) {
   if (diag) {
     va_list ap;

@@ -33,9 +33,6 @@ typedef struct {
   char msg[FB_DIAG_SIZE]; /* one sentence: where, what value, which rule */
 } fb_diag;
 
-/* Returns the fixed message of a status code (never NULL). */
-const char *fb_status_message(fb_status s);
-
 /* Formats a message into diag (if diag is not NULL) and returns status s,
  * so that callers can write `return fb_diag_set(d, FB_ERR_RANGE, "...")`. */
 fb_status fb_diag_set(fb_diag *diag, fb_status s, const char *fmt, ...)

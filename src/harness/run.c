@@ -57,10 +57,13 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
       if (d > lag) lag = d, t_lag = s->t[i];
     }
     if (lag > FB_DRIVE_LAG_WARN_RAD) {
+      /* ODE's drive is a capped velocity motor, MuJoCo's a flywheel */
       snprintf(text, sizeof text,
                "crank drive saturated: the crank is %.3g rad off its prescribed angle at "
-               "t = %.6g s (raise [solver] drive_torque_max_n_m)",
-               lag, t_lag);
+               "t = %.6g s (raise %s)",
+               lag, t_lag,
+               m->run.model->engine == FB_ENGINE_MUJOCO ? "[mujoco] drive_armature_kg_m2"
+                                                        : "[solver] drive_torque_max_n_m");
       warn(m, text);
     }
   }

@@ -13,7 +13,8 @@
 #define FB_RUN_WARNINGS 4
 
 /* A crank that lags its prescribed angle by more than this has had its drive
- * saturate ([solver] drive_torque_max_n_m): the crank tip then trails by
+ * saturate (ODE: [solver] drive_torque_max_n_m; MuJoCo: the flywheel's
+ * [mujoco] drive_armature_kg_m2): the crank tip then trails by
  * 1e-4 x 0.108 m = 11 um in the paper's case, most of a radial clearance, so
  * the contact no longer sees the prescribed motion [rad]. */
 #define FB_DRIVE_LAG_WARN_RAD 1e-4

@@ -95,6 +95,22 @@ FOURBAR_REFERENCE_TOL=abc timeout 60 "$exe" run --set run.revolutions=2 --set ru
 rc=$?
 ok '[ $rc -eq 1 ] && grep -q "FOURBAR_REFERENCE_TOL" "$tmp/err"' "7: FOURBAR_REFERENCE_TOL=abc is refused naming the variable (was a hang)"
 
+# ---- 9. input parsing ------------------------------------------------------------
+printf '[linkage]\n\0crank_mm = 5\n' > "$tmp/nul.ini"
+ok 'refuses "nul.ini:2: a NUL byte" "$exe" run "$tmp/nul.ini" --no-figures --out "$tmp/a9"' "9: a line starting with a NUL byte is refused with its line (was silently dropped)"
+printf '[linkage]\ncrank_mm = 108\n  coupler_mm = 300\n' > "$tmp/indent.ini"
+"$exe" run "$tmp/indent.ini" --set run.revolutions=2 --set run.models=analytic --no-figures --json --out "$tmp/a9" > "$tmp/indent.json" 2>"$tmp/err"
+ok 'python3 -c "import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if abs(d[\"models\"][0][\"lengths_m\"][\"coupler\"] - 0.3) < 1e-12 else 1)" "$tmp/indent.json"' "9: an indented key line is a key of its own (was a 'duplicate key' of the line before)"
+ok 'refuses "decimal" "$exe" run --set drive.speed_rpm=0x10 --no-figures --out "$tmp/a9"' "9: 0x10 is not a number (was 16)"
+ok 'refuses "decimal" "$exe" run --set linkage.crank_mm=0x1p3 --no-figures --out "$tmp/a9"' "9: 0x1p3 is not a number (was 8)"
+ok 'refuses "base" "$exe" run --set case.base=/nonexistent.ini --no-figures --out "$tmp/a9"' "9: --set case.base is refused (was silently ignored)"
+
+# ---- 10. exit status tells the truth ------------------------------------------
+ok 'refuses "unknown case .paper_crank_rockr.*paper_crank_rocker" "$exe" check --cases paper_crank_rockr' "10: check --cases with an unknown name exits 2 listing the known ones (was 0)"
+ok 'refuses "speed" "$exe" kinematics --crank-mm 108 --coupler-mm 279.4 --follower-mm 270.5 --ground-mm 254 --speed-rpm 1e308' "10: kinematics --speed-rpm 1e308 is refused with run's range (was 0 with null accelerations)"
+ok 'refuses "stiffness" "$exe" mapping --stiffness-n-m 1e-300:1e300' "10: mapping --stiffness-n-m 1e-300:1e300 is refused (was 0 with an empty grid)"
+ok 'refuses "shard" "$exe" sweep "$here/studies/tiny.ini" --shard 0/2junk --out "$tmp/a10"' "10: --shard 0/2junk is refused"
+
 # ---- 5. one writer per output folder ----------------------------------------
 slow=(--set run.revolutions=30 --set run.models=analytic,ode-clearance-impact --no-figures)
 wait_for() { for _ in $(seq 1 600); do eval "$1" && return 0; sleep 0.05; done; return 1; }

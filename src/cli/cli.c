@@ -34,10 +34,9 @@ int fb_cli_fail(const char *cmd, int status, const char *fmt, ...) {
 }
 
 int fb_cli_double(const char *cmd, const char *flag, const char *text, double *out) {
-  char *end;
-  double v = strtod(text, &end);
-  if (end == text || *end != '\0' || !isfinite(v)) {
-    fb_cli_fail(cmd, 2, "%s '%s': not a finite number", flag, text);
+  double v;
+  if (!fb_casefile_decimal(text, &v) || !isfinite(v)) {
+    fb_cli_fail(cmd, 2, "%s '%s': not a finite decimal number", flag, text);
     return 0;
   }
   *out = v;

@@ -194,6 +194,32 @@ int fb_cmd_check(int argc, char **argv) {
   if (nfiles == 0)
     return fb_cli_fail("check", 2, "no baselines in %s: create them with fourbar check "
                        "--calibrate CASEFILE", baselines_dir());
+  if (cases) {
+    /* every name in --cases must have a baseline: a typo must not pass CI */
+    static char names[MAX_CASES][128];
+    char known[4096] = "", buf[1024];
+    for (int f = 0; f < nfiles; f++) {
+      char path[4096];
+      snprintf(path, sizeof path, "%s/%s", baselines_dir(), files[f]);
+      json_t *b = json_load_file(path, 0, NULL);
+      const char *name = json_string_value(json_object_get(b, "case"));
+      snprintf(names[f], sizeof names[f], "%s", name ? name : "");
+      if (name && strlen(known) + strlen(name) + 3 < sizeof known)
+        snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", known[0] ? ", " : "", name);
+      json_decref(b);
+    }
+    snprintf(buf, sizeof buf, "%s", cases);
+    char *save = NULL;
+    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+      int found = 0;
+      for (int f = 0; f < nfiles; f++) found |= strcmp(names[f], t) == 0;
+      if (!found) {
+        for (int i = 0; i < nfiles; i++) free(files[i]);
+        return fb_cli_fail("check", 2, "--cases: unknown case '%s' (cases with a baseline: %s)", t,
+                           known);
+      }
+    }
+  }
   int passed = 0, failed = 0, rc = 0;
   json_t *all = json_array();
   for (int f = 0; f < nfiles && rc == 0; f++) {

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "analytic.h"
+#include "casefile.h"
 #include "cli.h"
 #include "report.h"
 #include "units.h"
@@ -66,11 +67,17 @@ int fb_cmd_kinematics(int argc, char **argv) {
   fb_linkage lk;
   for (int i = 0; i < FB_LINK_COUNT; i++) {
     if (mm[i] == -1) return fb_cli_fail("kinematics", 2, "%s is required; see --help", flag_of[i]);
-    if (!(mm[i] > 0)) return fb_cli_fail("kinematics", 2, "%s = %g: a link length must be positive", flag_of[i], mm[i]);
+    char key[32];
+    snprintf(key, sizeof key, "%s_mm", fb_link_name(i));
+    fb_diag rd; /* the ranges of fourbar run's case keys */
+    if (fb_casefile_check_range("linkage", key, mm[i], flag_of[i], &rd) != FB_OK)
+      return fb_cli_fail("kinematics", 2, "%s", rd.msg);
     lk.length[i] = mm[i] * FB_M_PER_MM;
   }
   if (rpm == -1) return fb_cli_fail("kinematics", 2, "--speed-rpm is required; see --help");
-  if (!(rpm > 0)) return fb_cli_fail("kinematics", 2, "--speed-rpm = %g: crank speed must be positive", rpm);
+  fb_diag rd;
+  if (fb_casefile_check_range("drive", "speed_rpm", rpm, "--speed-rpm", &rd) != FB_OK)
+    return fb_cli_fail("kinematics", 2, "%s", rd.msg);
   const double omega2 = dir * rpm * FB_RAD_S_PER_RPM;
 
   fb_diag diag;

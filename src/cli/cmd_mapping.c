@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "casefile.h"
 #include "cli.h"
 #include "contact.h"
 #include "figures.h"
@@ -96,7 +97,14 @@ int fb_cmd_mapping(int argc, char **argv) {
     }
   }
   if (optind < argc) return fb_cli_fail("mapping", 2, "unexpected argument '%s'", argv[optind]);
-  if (!(m > 0)) return fb_cli_fail("mapping", 2, "--mass-kg %g: a mass must be positive", m);
+  /* the ranges of fourbar run's case keys for the same quantities */
+  fb_diag rd;
+  if (fb_casefile_check_range("mass", "coupler_kg", m, "--mass-kg", &rd) != FB_OK ||
+      fb_casefile_check_range("clearance", "penalty_n_m", k0, "--stiffness-n-m FROM", &rd) != FB_OK ||
+      fb_casefile_check_range("clearance", "penalty_n_m", k1, "--stiffness-n-m TO", &rd) != FB_OK ||
+      fb_casefile_check_range("solver", "h_s", h0, "--h-s FROM", &rd) != FB_OK ||
+      fb_casefile_check_range("solver", "h_s", h1, "--h-s TO", &rd) != FB_OK)
+    return fb_cli_fail("mapping", 2, "%s", rd.msg);
   if (!(cr > FB_RESTITUTION_MIN && cr <= 1))
     return fb_cli_fail("mapping", 2, "--restitution %g: must lie in (%.4f, 1] for the restitution law",
                        cr, FB_RESTITUTION_MIN);

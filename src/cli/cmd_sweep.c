@@ -170,9 +170,14 @@ int fb_cmd_sweep(int argc, char **argv) {
         if (*end || jobs < 1 || jobs > 256) return fb_cli_fail("sweep", 2, "--jobs '%s': 1 to 256", optarg);
         break;
       case 's':
-        if (sscanf(optarg, "%ld/%ld", &shard_i, &shard_n) != 2 || shard_n < 1 || shard_i < 0 ||
-            shard_i >= shard_n)
-          return fb_cli_fail("sweep", 2, "--shard '%s': expected I/N with 0 <= I < N", optarg);
+        {
+          int used = -1; /* the whole value: "0/2junk" is not a shard */
+          if (sscanf(optarg, "%ld/%ld%n", &shard_i, &shard_n, &used) != 2 ||
+              used != (int)strlen(optarg) || strspn(optarg, "0123456789/") != strlen(optarg))
+            shard_n = 0;
+        }
+        if (shard_n < 1 || shard_n > 100000 || shard_i < 0 || shard_i >= shard_n)
+          return fb_cli_fail("sweep", 2, "--shard '%s': expected I/N, decimal integers with 0 <= I < N <= 100000", optarg);
         break;
       case 'o': out = optarg; break;
       case 'l':

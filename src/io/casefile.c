@@ -183,8 +183,9 @@ static const key_spec keys[] = {
     {"clearance", "stiffness_impact_n_m1_5", K_DOUBLE, OFF(clearance.stiffness_impact), 1.0, 0,
      INF, 1, 1, "N/m^1.5", "1e11", "a stiffness must be positive",
      "impact-model stiffness K when penalty = explicit"},
-    {"clearance", "penalty_n_m", K_DOUBLE, OFF(clearance.stiffness_linear), 1.0, 0, INF, 1, 1,
-     "N/m", "1e9", "a penalty must be positive",
+    {"clearance", "penalty_n_m", K_DOUBLE, OFF(clearance.stiffness_linear), 1.0, 1e2, 1e16, 0, 0,
+     "N/m", "1e9", "a penalty must be positive, from 1e2 to 1e16 N/m (a rubber pad to "
+     "hardened steel, with margin)",
      "restitution-model penalty p when penalty = explicit"},
     {"clearance", "exponent", K_DOUBLE, OFF(clearance.exponent), 1.0, 1, 3, 0, 0, "-", "1.5",
      "the exponent must lie in [1, 3]", "impact-model force exponent n"},
@@ -328,6 +329,7 @@ typedef struct {
   const char *path;
   int line;         /* line the reader returned last */
   int too_long;     /* a line exceeded INI_MAX_LINE */
+  int nul_line;     /* first line holding a NUL byte, 0 for none */
   const char *text; /* parse this text instead of the file (fb_casefile_load_text) */
   size_t text_size;
   fb_status status; /* first error seen by the handler */
@@ -373,13 +375,25 @@ typedef struct {
 
 static char *file_reader(char *str, int num, void *stream) {
   reader_state *r = stream;
-  char *s = fgets(str, num, r->f);
-  if (!s) return NULL;
+  /* byte by byte: fgets would hide a NUL byte (the line would silently end
+   * there), which is refused with its line instead */
+  int k = 0, ch = EOF, nul = 0;
+  while (k < num - 1 && (ch = getc(r->f)) != EOF) {
+    if (ch == '\0') nul = 1;
+    str[k++] = ch ? (char)ch : ' ';
+    if (ch == '\n') break;
+  }
+  if (k == 0) return NULL;
+  str[k] = '\0';
   r->ctx->line++;
-  size_t len = strlen(s);
-  if (len > 0 && s[len - 1] != '\n' && !feof(r->f) && !r->ctx->too_long)
-    r->ctx->too_long = r->ctx->line;
-  return s;
+  if (nul && !r->ctx->nul_line) r->ctx->nul_line = r->ctx->line;
+  if (str[k - 1] != '\n' && !feof(r->f) && !r->ctx->too_long) r->ctx->too_long = r->ctx->line;
+  /* case files have no continuation lines: leading blanks are dropped, so an
+   * indented key line is a key line of its own (inih would otherwise append
+   * it to the previous key's value) */
+  const size_t lead = strspn(str, " \t");
+  if (lead) memmove(str, str + lead, (size_t)k - lead + 1);
+  return str;
 }
 
 static int on_ini_entry(void *user, const char *section, const char *name, const char *value) {
@@ -452,9 +466,33 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
                      e->key, e->section);
 }
 
+int fb_casefile_decimal(const char *text, double *out) {
+  while (*text == ' ' || *text == '\t') text++;
+  char *end;
+  const double v = strtod(text, &end);
+  /* strtod also reads hexadecimal (0x10, 0x1p3), inf and nan: refused */
+  const size_t used = (size_t)(end - text);
+  if (used == 0 || strspn(text, "0123456789+-.eE") < used) return 0;
+  while (*end == ' ' || *end == '\t') end++;
+  if (*end != '\0') return 0;
+  *out = v;
+  return 1;
+}
+
+fb_status fb_casefile_check_range(const char *section, const char *key, double value,
+                                  const char *origin, fb_diag *diag) {
+  const key_spec *k = find_spec(section, key);
+  if (!k) return FB_OK;
+  const int bad_lo = k->lo_open ? !(value > k->lo) : !(value >= k->lo);
+  const int bad_hi = k->hi_open ? !(value < k->hi) : !(value <= k->hi);
+  if (bad_lo || bad_hi || !isfinite(value))
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s = %g: %s (as [%s] %s)", origin, value, k->rule,
+                       section, key);
+  return FB_OK;
+}
+
 static fb_status parse_double(const entry *e, const key_spec *k, double *out, fb_diag *diag) {
   char *end;
-  errno = 0;
   double v = strtod(e->value, &end);
   while (*end == ' ' || *end == '\t') end++;
   if (end == e->value || *end != '\0')
@@ -463,6 +501,10 @@ static fb_status parse_double(const entry *e, const key_spec *k, double *out, fb
   if (!isfinite(v))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': must be a finite number",
                        e->origin, e->section, e->key, e->value);
+  if (!fb_casefile_decimal(e->value, &v))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': numbers are decimal (digits, "
+                       "sign, point, exponent), not hexadecimal (%s)", e->origin, e->section,
+                       e->key, e->value, k->unit);
   int bad_lo = k->lo_open ? !(v > k->lo) : !(v >= k->lo);
   int bad_hi = k->hi_open ? !(v < k->hi) : !(v <= k->hi);
   if (bad_lo || bad_hi)
@@ -620,10 +662,8 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       } else if (strcmp(e->value, "resting") == 0) {
         c->pin_start = FB_PIN_RESTING;
       } else {
-        char *end;
-        double deg = strtod(e->value, &end);
-        while (*end == ' ' || *end == '\t') end++;
-        if (end == e->value || *end != '\0' || !isfinite(deg)) return bad_word(e, k, diag);
+        double deg;
+        if (!fb_casefile_decimal(e->value, &deg) || !isfinite(deg)) return bad_word(e, k, diag);
         c->pin_start = FB_PIN_ANGLE;
         c->pin_start_angle = deg * k->scale;
       }
@@ -894,6 +934,10 @@ static fb_status parse_override(load_ctx *c, const char *ov, int index) {
   memcpy(key, dot + 1, lk);
   key[lk] = '\0';
   snprintf(value, sizeof value, "%s", eq + 1);
+  if (strcmp(trim(section), "case") == 0 && strcmp(trim(key), "base") == 0)
+    return fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [case] base cannot be set from the command "
+                       "line (it would be read after the case file it extends): write a case "
+                       "file with base = %s and run that", origin, trim(value));
   return put_entry(c, trim(section), trim(key), trim(value), origin, 0, 1);
 }
 
@@ -927,6 +971,11 @@ static fb_status read_file_entries(load_ctx *top, const char *path, int depth, f
   reader_state r = {f, c};
   int rc = ini_parse_stream(file_reader, &r, on_ini_entry, c);
   fclose(f);
+  if (c->nul_line) {
+    st = fb_diag_set(diag, FB_ERR_PARSE, "%s:%d: a NUL byte in the line (a case file is text)",
+                     path, c->nul_line);
+    goto out;
+  }
   if (c->status != FB_OK) {
     st = c->status;
     goto out;

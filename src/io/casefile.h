@@ -33,6 +33,18 @@ fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text
  * rule | meaning |" to f, for the documentation. */
 void fb_casefile_write_keys(FILE *f);
 
+/* Reads text (blanks around it allowed) as a decimal number: digits, sign,
+ * point and exponent only, so 0x10, 0x1p3, inf and nan are not numbers.
+ * Returns 1 and sets *out (which may overflow to infinity), or 0. */
+int fb_casefile_decimal(const char *text, double *out);
+
+/* Checks value (in the key's file unit) against the range of case key
+ * [section] key, for a command-line flag (origin, e.g. "--speed-rpm") that
+ * sets the same quantity, so every command applies the same physical range.
+ * Errors: FB_ERR_RANGE naming origin, value, rule and key. */
+fb_status fb_casefile_check_range(const char *section, const char *key, double value,
+                                  const char *origin, fb_diag *diag);
+
 /* 1 when name is a valid case or study name: 1 to FB_NAME_SIZE - 1
  * characters from letters, digits, '-', '_' and '.', not starting with '.'
  * (it becomes a folder name and enters figure titles), else 0. */

@@ -181,10 +181,15 @@ static void test_bad_definitions_are_refused(void **state) {
  * law) with the exact collider (segments = 0) or the libccd ring (split 0:
  * by depth; 1: by count, the faceted model's rule) */
 /* the libccd model as its row will read (test-local until the row lands) */
-static const fb_model ccd_row = {"ode-clearance-ccd", FB_ENGINE_ODE, FB_LENGTHS_STACKUP,
-                                 FB_JOINTS_CLEARANCE, FB_MODEL_LAW_IMPACT, FB_COLLIDER_CCD,
-                                 "reference", "ode-ideal-stackup",
-                                 "ODE, clearance joints, impact law, libccd bore ring"};
+static const fb_model ccd_row = {.name = "ode-clearance-ccd",
+                                 .engine = FB_ENGINE_ODE,
+                                 .lengths = FB_LENGTHS_STACKUP,
+                                 .joints = FB_JOINTS_CLEARANCE,
+                                 .law = FB_MODEL_LAW_IMPACT,
+                                 .collider = FB_COLLIDER_CCD,
+                                 .reference = "reference",
+                                 .spikes_vs = "ode-ideal-stackup",
+                                 .summary = "ODE, clearance joints, impact law, libccd bore ring"};
 
 /* crank held at 60 deg, step 1e-5 s, velocity damping (frictionless: without
  * it the pin slides along the wall), ring[0] segments split by ring[1] */

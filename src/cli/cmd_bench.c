@@ -33,9 +33,9 @@ static const char bench_help[] =
 static const char *mapping_name(int m) { return m < 0 ? "-" : (m ? "tangent" : "secant"); }
 
 /* 1 when a row of model ran (MuJoCo's rows exist only in builds with it) */
-static int has_model(const fb_bench_row *rows, int n, const char *model) {
+static int has_model(const fb_bench_row *rows, int n, const fb_model *model) {
   for (int i = 0; i < n; i++)
-    if (strcmp(rows[i].model, model) == 0) return 1;
+    if (rows[i].row == model) return 1;
   return 0;
 }
 
@@ -140,8 +140,9 @@ int fb_cmd_bench(int argc, char **argv) {
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
   /* models by kind (ideal, clearance impact) and engine (ode, mujoco) */
-  const char *models[2][2] = {{"ode-ideal-stackup", "mujoco-ideal-stackup"},
-                              {"ode-clearance-impact", "mujoco-clearance-impact"}};
+  const fb_model *models[2][2];
+  fb_bench_models(FB_ENGINE_ODE, &models[0][0], &models[1][0]);
+  fb_bench_models(FB_ENGINE_MUJOCO, &models[0][1], &models[1][1]);
   const char *kinds[2] = {"ideal", "clearance-impact"};
   const double targets[3] = {1e-2, 1e-3, 1e-4};
   json_t *cheap = json_array(), *across = json_array();
@@ -151,7 +152,7 @@ int fb_cmd_bench(int argc, char **argv) {
       for (int e = 0; e < 2; e++) {
         int i = fb_bench_cheapest(rows, n, models[q][e], targets[t]);
         if (e == 1 && !has_model(rows, n, models[q][e])) continue; /* no MuJoCo in this build */
-        json_array_append_new(cheap, json_pack("{s:s,s:f,s:o}", "model", models[q][e], "target",
+        json_array_append_new(cheap, json_pack("{s:s,s:f,s:o}", "model", models[q][e]->name, "target",
                                                targets[t], "row", i >= 0 ? json_integer(i) : json_null()));
         if (i >= 0 && (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev)) best = i;
       }
@@ -198,10 +199,10 @@ int fb_cmd_bench(int argc, char **argv) {
         if (e == 1 && !has_model(rows, n, models[q][e])) continue;
         int i = fb_bench_cheapest(rows, n, models[q][e], targets[t]);
         if (i < 0) {
-          printf("  %-24s error <= %.0e: none in the grid\n", models[q][e], targets[t]);
+          printf("  %-24s error <= %.0e: none in the grid\n", models[q][e]->name, targets[t]);
           continue;
         }
-        print_config(models[q][e], targets[t], &rows[i]);
+        print_config(models[q][e]->name, targets[t], &rows[i]);
         if (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev) best = i;
       }
       if (best >= 0) printf("  -> %s error <= %.0e: cheapest on %s\n", kinds[q], targets[t],

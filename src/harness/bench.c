@@ -45,6 +45,7 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
       fb_bench_row *b = &rows[(*n)++];
       const fb_model_result *m = &r.model[q];
       memset(b, 0, sizeof *b);
+      b->row = m->run.model;
       snprintf(b->model, sizeof b->model, "%s", m->run.name);
       snprintf(b->engine, sizeof b->engine, "%s", engine);
       snprintf(b->stepper, sizeof b->stepper, "%s", stepper);
@@ -76,14 +77,23 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
 /* the case of one configuration: 2 revolutions, the engine's ideal stack-up
  * model, and its clearance impact model beside the reference when the case
  * has clearance at the crank-coupler joint alone (the reference's scope) */
-static void bench_case(fb_case *k, const fb_case *c, double h, const char *ideal,
-                       const char *clearance) {
+void fb_bench_models(fb_engine_id e, const fb_model **ideal, const fb_model **clearance) {
+  *ideal = fb_model_match(e, FB_LENGTHS_STACKUP, FB_JOINTS_IDEAL, FB_MODEL_LAW_NONE,
+                          FB_COLLIDER_NONE);
+  *clearance = fb_model_match(e, FB_LENGTHS_STACKUP, FB_JOINTS_CLEARANCE, FB_MODEL_LAW_IMPACT,
+                              FB_COLLIDER_EXACT);
+}
+
+static void bench_case(fb_case *k, const fb_case *c, double h, fb_engine_id engine) {
   *k = *c;
   k->revolutions = 2;
   k->solver.h = h;
-  const char *models[3] = {ideal, clearance, "reference"};
+  const fb_model *models[3];
+  fb_bench_models(engine, &models[0], &models[1]);
+  models[2] = fb_model_reference_of(models[1]);
   k->model_count = k->clearance.mask == (1 << FB_JOINT_B) ? 3 : 1;
-  for (int q = 0; q < k->model_count; q++) snprintf(k->models[q], FB_NAME_SIZE, "%s", models[q]);
+  for (int q = 0; q < k->model_count; q++)
+    snprintf(k->models[q], FB_NAME_SIZE, "%s", models[q]->name);
 }
 
 fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c,
@@ -100,7 +110,7 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c,
       for (int mi = 0; mi < 2; mi++)
         for (int ei = 0; ei < 2; ei++) {
           fb_case k;
-          bench_case(&k, c, hs[hi], "ode-ideal-stackup", "ode-clearance-impact");
+          bench_case(&k, c, hs[hi], FB_ENGINE_ODE);
           k.solver.stepper = iters[si] ? FB_STEPPER_QUICK : FB_STEPPER_WORLD;
           k.solver.quick_iterations = iters[si] ? iters[si] : 20;
           k.solver.world_erp = erp[ei];
@@ -121,7 +131,7 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c,
     for (int ii = 0; ii < 3; ii++)
       for (int hi = 0; hi < FB_BENCH_MUJOCO_STEPS; hi++) {
         fb_case k;
-        bench_case(&k, c, mh[hi], "mujoco-ideal-stackup", "mujoco-clearance-impact");
+        bench_case(&k, c, mh[hi], FB_ENGINE_MUJOCO);
         k.mujoco.integrator = integ[ii];
         fb_status st = bench_point(rows, n, &k, "mujoco", fb_mujoco_integrator_name(integ[ii]),
                                    -1, 1, diag);
@@ -141,7 +151,7 @@ void fb_bench_mark_pareto(fb_bench_row *rows, int n) {
     a->pareto = 1;
     for (int j = 0; j < *nn && a->pareto; j++) {
       const fb_bench_row *b = &rows[j];
-      if (j == i || strcmp(a->model, b->model) != 0 || !isfinite(b->error)) continue;
+      if (j == i || a->row != b->row || !isfinite(b->error)) continue;
       if (b->error <= a->error && b->wall_per_rev <= a->wall_per_rev &&
           (b->error < a->error || b->wall_per_rev < a->wall_per_rev))
         a->pareto = 0;
@@ -149,10 +159,10 @@ void fb_bench_mark_pareto(fb_bench_row *rows, int n) {
   }
 }
 
-int fb_bench_cheapest(const fb_bench_row *rows, int n, const char *model, double target) {
+int fb_bench_cheapest(const fb_bench_row *rows, int n, const fb_model *model, double target) {
   int best = -1;
   for (int i = 0; i < n; i++)
-    if (strcmp(rows[i].model, model) == 0 && isfinite(rows[i].error) && rows[i].error <= target &&
+    if (rows[i].row == model && isfinite(rows[i].error) && rows[i].error <= target &&
         (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev))
       best = i;
   return best;

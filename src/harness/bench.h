@@ -18,9 +18,11 @@
 #define FB_BENCH_H
 
 #include "case.h"
+#include "model_table.h"
 
 typedef struct fb_bench_row_s {
-  char model[FB_NAME_SIZE];
+  const fb_model *row;     /* the model (rows compare by it) */
+  char model[FB_NAME_SIZE]; /* its name, for the writers */
   char engine[16];         /* "ode" or "mujoco" */
   char stepper[32];        /* ode: "world" or "quick-<iterations>"; mujoco: its integrator */
   double h;                /* [s] */
@@ -48,6 +50,11 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c,
 void fb_bench_mark_pareto(fb_bench_row *rows, int n);
 
 /* Index of the cheapest row of model meeting error <= target, -1 if none. */
-int fb_bench_cheapest(const fb_bench_row *rows, int n, const char *model, double target);
+int fb_bench_cheapest(const fb_bench_row *rows, int n, const fb_model *model, double target);
+
+/* The models a bench of engine e measures: its ideal stack-up model
+ * (*ideal) and its clearance impact model with the exact collider
+ * (*clearance); NULL where the table has none. */
+void fb_bench_models(fb_engine_id e, const fb_model **ideal, const fb_model **clearance);
 
 #endif

@@ -71,6 +71,13 @@ typedef enum {
   FB_COLLIDER_COUNT
 } fb_collider;
 
+/* How a model is drawn in every figure. */
+typedef struct {
+  const char *color; /* '#rrggbb' */
+  int dash;          /* gnuplot dash type: 1 solid, 2 dashed, 3 dotted, 4 dash-dot, 5 */
+  double width;      /* line width */
+} fb_model_style;
+
 /* One model. */
 typedef struct fb_model {
   const char *name;        /* name in case files and outputs */
@@ -84,6 +91,7 @@ typedef struct fb_model {
                               that model ran in the same case (else the analytic peaks of the
                               same lengths), or NULL for models without clearance */
   const char *summary;     /* one line for help texts */
+  fb_model_style style;    /* its line in every figure; color NULL: figures.c picks one */
 } fb_model;
 
 /* The rows, in the order help texts list them. */
@@ -103,5 +111,16 @@ const char *fb_model_list(char *buf, size_t size);
 
 /* 1 when the model has clearance joints (and so contact columns and spikes). */
 int fb_model_has_clearance(const fb_model *m);
+
+/* The first row with these properties, or NULL: how code picks a model
+ * ("the ideal stack-up model of engine e") without naming it. */
+const fb_model *fb_model_match(fb_engine_id engine, fb_lengths_kind lengths, fb_joint_set joints,
+                               fb_model_law law, fb_collider collider);
+
+/* The row of m's reference model, or NULL (m->reference). */
+const fb_model *fb_model_reference_of(const fb_model *m);
+
+/* The row of the ideal model m's spike ratios divide by, or NULL (m->spikes_vs). */
+const fb_model *fb_model_ideal_of(const fb_model *m);
 
 #endif

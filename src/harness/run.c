@@ -92,7 +92,7 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
      * the exact analytic peaks of the same (stack-up) lengths */
     const fb_peaks *ref = &m->exact;
     snprintf(m->spikes_reference, sizeof m->spikes_reference, "analytic-stackup");
-    const fb_model *ideal = fb_model_find(m->run.model->spikes_vs);
+    const fb_model *ideal = fb_model_ideal_of(m->run.model);
     for (int i = 0; i < r->n; i++)
       if (ideal && r->model[i].run.model == ideal && r->model[i].has_peaks) {
         ref = &r->model[i].peaks;
@@ -137,7 +137,7 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
   /* each exact-collider clearance model against the reference of its law */
   for (int i = 0; i < r->n; i++) {
     fb_model_result *m = &r->model[i];
-    const fb_model *want = fb_model_find(m->run.model->reference);
+    const fb_model *want = fb_model_reference_of(m->run.model);
     if (!want || !m->has_peaks) continue;
     for (int k = 0; k < r->n; k++) {
       const fb_model_result *ref = &r->model[k];

@@ -223,33 +223,20 @@ typedef struct {
   double width;      /* line width */
 } model_style;
 
-/* docs/figures.md lists the same table */
-static const model_style styles[] = {
-    {"analytic", "#000000", 1, 2.6},
-    {"analytic-stackup", "#7f7f7f", 2, 2.0},
-    {"ode-ideal-nominal", "#1f77b4", 1, 1.3},
-    {"ode-ideal-stackup", "#6baed6", 4, 1.3},
-    {"ode-clearance-restitution", "#2ca02c", 1, 1.3},
-    {"ode-clearance-impact", "#d62728", 1, 1.3},
-    {"ode-clearance-faceted", "#ff7f0e", 3, 1.5},
-    {"reference", "#9467bd", 2, 1.8},
-    {"reference-restitution", "#8c8c00", 2, 1.8},
-    /* MuJoCo: the colour of the ODE counterpart, dotted */
-    {"mujoco-ideal-nominal", "#1f77b4", 3, 1.8},
-    {"mujoco-ideal-stackup", "#6baed6", 3, 1.8},
-    {"mujoco-clearance-restitution", "#2ca02c", 3, 1.8},
-    {"mujoco-clearance-impact", "#d62728", 3, 1.8},
-    {"mujoco-clearance-native", "#ff7f0e", 5, 1.8},
-};
 
-/* models not in the table: a colour from this list chosen by a hash of the
+/* models without a style in the table: a colour from this list chosen by a hash of the
  * name, so it is the same in every figure of every run */
 static const char *const fallback_colors[] = {"#17becf", "#e377c2", "#8c564b", "#bcbd22",
                                               "#393b79", "#637939", "#843c39", "#7b4173"};
 
+/* the model table's style of a model (model_table.c; docs/figures.md lists
+ * it), else one derived from the name */
 static model_style style_of(const char *name) {
-  for (size_t k = 0; k < sizeof styles / sizeof styles[0]; k++)
-    if (strcmp(styles[k].name, name) == 0) return styles[k];
+  const fb_model *m = fb_model_find(name);
+  if (m && m->style.color) {
+    const model_style st = {m->name, m->style.color, m->style.dash, m->style.width};
+    return st;
+  }
   unsigned long h = 2166136261ul; /* FNV-1a */
   for (const unsigned char *c = (const unsigned char *)name; *c; c++) h = (h ^ *c) * 16777619ul;
   const size_t nf = sizeof fallback_colors / sizeof fallback_colors[0];
@@ -508,7 +495,7 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
   int ri = -1;
   if (m->has_ref_error)
     for (int k = 0; k < r->n; k++)
-      if (strcmp(r->model[k].run.name, m->ref_name) == 0 &&
+      if (r->model[k].run.model == fb_model_reference_of(m->run.model) &&
           (r->model[k].run.series.contact_mask & (1 << j)))
         ri = k;
   double rlo = NAN, rhi = NAN;
@@ -813,11 +800,15 @@ fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *c
   if (st != FB_OK) return st;
   /* the models of the grid, in order of first appearance */
   const char *models[8];
+  const fb_model *model_rows[8];
   int nm = 0;
   for (int i = 0; i < n; i++) {
     int seen = 0;
-    for (int q = 0; q < nm; q++) seen |= strcmp(models[q], rows[i].model) == 0;
-    if (!seen && nm < 8) models[nm++] = rows[i].model;
+    for (int q = 0; q < nm; q++) seen |= model_rows[q] == rows[i].row;
+    if (!seen && nm < 8) {
+      model_rows[nm] = rows[i].row;
+      models[nm++] = rows[i].model;
+    }
   }
   /* only measured rows are drawn: a run that stopped (NaN error) or whose
    * cost is not a number has no place on the chart (no placeholder point) */
@@ -830,7 +821,7 @@ fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *c
     fprintf(pl.p, "$all%d << EOD\n", q);
     for (int i = 0; i < n; i++) {
       const fb_bench_row *b = &rows[i];
-      if (strcmp(b->model, models[q]) != 0 || !isfinite(b->error) || !(b->wall_per_rev > 0.0) ||
+      if (b->row != model_rows[q] || !isfinite(b->error) || !(b->wall_per_rev > 0.0) ||
           !isfinite(b->wall_per_rev))
         continue;
       /* an exact result (error 0) sits at the axis floor of 1e-12 */

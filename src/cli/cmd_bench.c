@@ -24,7 +24,8 @@ static const char bench_help[] =
     "implicit, rk4) x step size (1e-3 to 1e-6 s, 7 values), measured against the\n"
     "analytic solution (ideal stack-up models) and the reference dynamics (clearance\n"
     "impact models), with wall time per simulated revolution (median of 3 repeats for\n"
-    "runs under 1 s) measured in the same run. Marks one Pareto front per engine and\n"
+    "runs under 1 s; the engine's setup, MuJoCo's model compile, apart as setup_s)\n"
+    "measured in the same run. Marks one Pareto front per engine and\n"
     "model and names the cheapest configuration for error targets 1e-2, 1e-3 and 1e-4,\n"
     "per engine and across engines. Writes DIR/bench.csv, bench.json and bench.svg\n"
     "(default DIR results/<case>/bench).\n"
@@ -114,16 +115,16 @@ int fb_cmd_bench(int argc, char **argv) {
   fb_outfile f;
   if (fb_outfile_open(&f, path, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
   fprintf(f.f, "model,engine,stepper,h_s,mapping,world_erp,world_cfm,status,error,wall_per_rev_s,"
-               "repeats,pareto\n");
+               "repeats,pareto,setup_s\n");
   json_t *arr = json_array();
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
     char erp[32] = "", cfm[32] = "";
     if (isfinite(b->world_erp)) snprintf(erp, sizeof erp, "%g", b->world_erp);
     if (isfinite(b->world_cfm)) snprintf(cfm, sizeof cfm, "%g", b->world_cfm);
-    fprintf(f.f, "%s,%s,%s,%g,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d\n", b->model, b->engine, b->stepper,
-            b->h, mapping_name(b->mapping), erp, cfm, b->status, b->error, b->wall_per_rev,
-            b->repeats, b->pareto);
+    fprintf(f.f, "%s,%s,%s,%g,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d,%.6g\n", b->model, b->engine,
+            b->stepper, b->h, mapping_name(b->mapping), erp, cfm, b->status, b->error,
+            b->wall_per_rev, b->repeats, b->pareto, b->setup_s);
     json_t *o = json_object();
     json_object_set_new(o, "model", json_string(b->model));
     json_object_set_new(o, "engine", json_string(b->engine));
@@ -136,6 +137,7 @@ int fb_cmd_bench(int argc, char **argv) {
     json_object_set_new(o, "error", isfinite(b->error) ? json_real(b->error) : json_null());
     json_object_set_new(o, "wall_per_rev_s", isfinite(b->wall_per_rev) ? json_real(b->wall_per_rev) : json_null());
     json_object_set_new(o, "pareto", json_boolean(b->pareto));
+    json_object_set_new(o, "setup_s", json_real(b->setup_s));
     json_array_append_new(arr, o);
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);

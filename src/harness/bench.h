@@ -30,7 +30,9 @@ typedef struct fb_bench_row_s {
   double world_erp, world_cfm; /* ode's ideal joints; NaN for mujoco */
   char status[256];
   double error;            /* NaN when the run stopped */
-  double wall_per_rev;     /* median wall time per simulated revolution [s] */
+  double wall_per_rev;     /* median wall time per simulated revolution, the engine's setup
+                              excluded [s] */
+  double setup_s;          /* median wall time of the engine's setup (create) [s] */
   int repeats;
   int pareto;
 } fb_bench_row;

@@ -18,7 +18,9 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
                             fb_progress_fn progress, void *user, fb_diag *diag) {
   const fb_scene_def *def = sm->def;
   void *self = NULL;
+  const double t0 = fb_clock_s();
   fb_status st = e->create(&self, sm, diag);
+  r->setup_s = fb_clock_s() - t0;
   if (st == FB_ERR_NUMERIC) { /* nothing to sample: a result, not an error */
     snprintf(r->status, sizeof r->status, "%.200s", diag ? diag->msg : "numerical failure");
     return FB_OK;

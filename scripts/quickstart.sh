@@ -4,7 +4,8 @@
 #   bash scripts/quickstart.sh test                        install, build, run the whole test suite
 # and what CI adds after the second:
 #   bash scripts/quickstart.sh robust   sanitizer build of the whole suite, valgrind on the
-#                                       paper case, bounded libFuzzer runs (FUZZ_SECONDS each)
+#                                       paper case, bounded libFuzzer runs (FUZZ_SECONDS each),
+#                                       a short seeded mutation run (tests/mutate.py)
 # Installs only the Debian packages that are missing (as root, or through sudo).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -110,5 +111,13 @@ case "$what" in
       echo "a fuzzer found a crash: copy the input into tests/fuzz/regressions/ and fix it"
       exit 1
     fi
-    echo "robustness: sanitizers, valgrind and fuzzing clean" ;;
+    # 4. a short seeded mutation run of case and study files on the sanitizer build
+    #    (the full run: python3 tests/mutate.py build/fourbar, 2000 + 500 files)
+    echo "== mutation run (tests/mutate.py, short: ${MUTATE_CASES:-120} case and ${MUTATE_STUDIES:-30} study files)"
+    ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 python3 tests/mutate.py build-asan/fourbar \
+      --cases "${MUTATE_CASES:-120}" --studies "${MUTATE_STUDIES:-30}" --jobs 2 --timeout 300 \
+      --keep build-asan/mutants >build-asan/mutate.txt 2>&1 \
+      || { tail -n 20 build-asan/mutate.txt; echo "mutation run failed: mutants in build-asan/mutants"; exit 1; }
+    tail -n 1 build-asan/mutate.txt
+    echo "robustness: sanitizers, valgrind, fuzzing and mutation clean" ;;
 esac

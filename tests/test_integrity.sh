@@ -111,6 +111,12 @@ ok 'refuses "speed" "$exe" kinematics --crank-mm 108 --coupler-mm 279.4 --follow
 ok 'refuses "stiffness" "$exe" mapping --stiffness-n-m 1e-300:1e300' "10: mapping --stiffness-n-m 1e-300:1e300 is refused (was 0 with an empty grid)"
 ok 'refuses "shard" "$exe" sweep "$here/studies/tiny.ini" --shard 0/2junk --out "$tmp/a10"' "10: --shard 0/2junk is refused"
 
+# ---- 8. up-front cost estimate ---------------------------------------------------
+timeout 60 "$exe" run --set run.revolutions=100000 --no-figures --out "$tmp/a8" >/dev/null 2>"$tmp/err"
+rc=$?
+ok '[ $rc -eq 1 ] && grep -q "estimated .* GB" "$tmp/err" && grep -q "revolutions" "$tmp/err" && [ ! -e "$tmp/a8/summary.json" ]' "8: revolutions = 100000 is refused before simulating, with the memory estimate"
+ok '! "$exe" run --set run.max_wall_s=0.001 --no-figures --out "$tmp/a8" 2>"$tmp/err" && grep -q "max_wall_s = 0.001" "$tmp/err"' "8: a run estimated over [run] max_wall_s is refused with the estimate"
+
 # ---- 5. one writer per output folder ----------------------------------------
 slow=(--set run.revolutions=30 --set run.models=analytic,ode-clearance-impact --no-figures)
 wait_for() { for _ in $(seq 1 600); do eval "$1" && return 0; sleep 0.05; done; return 1; }

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 
 static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref) {
@@ -107,9 +108,39 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   return FB_OK;
 }
 
+void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {
+  const double steps = fb_case_duration(c) / c->solver.h + 1.0;
+  *bytes = (double)c->model_count * steps * (double)sizeof(fb_sample);
+  *seconds = (double)c->model_count * steps * FB_COST_S_PER_STEP;
+}
+
+/* refuses what cannot fit, before anything is reserved */
+static fb_status check_cost(const fb_case *c, fb_diag *diag) {
+  double bytes, seconds;
+  fb_run_estimate(c, &bytes, &seconds);
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  const double memory = pages > 0 && page > 0 ? (double)pages * (double)page : 0.0;
+  const double steps = fb_case_duration(c) / c->solver.h + 1.0;
+  if (memory > 0.0 && bytes > FB_COST_MEMORY_FRACTION * memory)
+    return fb_diag_set(diag, FB_ERR_RANGE, "[run] revolutions = %g with [solver] h_s = %g s: %d "
+                       "models x %.3g samples would reserve an estimated %.3g GB, more than %.0f %% "
+                       "of this machine's %.3g GB (estimated wall time %.3g s): lower revolutions "
+                       "or raise h_s", c->revolutions, c->solver.h, c->model_count, steps,
+                       bytes / 1e9, 100.0 * FB_COST_MEMORY_FRACTION, memory / 1e9, seconds);
+  if (seconds > c->max_wall_s)
+    return fb_diag_set(diag, FB_ERR_RANGE, "[run] revolutions = %g with [solver] h_s = %g s: %d "
+                       "models x %.3g steps take an estimated %.3g s (%.3g GB), more than [run] "
+                       "max_wall_s = %g s: lower revolutions, raise h_s or raise max_wall_s",
+                       c->revolutions, c->solver.h, c->model_count, steps, seconds, bytes / 1e9,
+                       c->max_wall_s);
+  return FB_OK;
+}
+
 fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                       fb_diag *diag) {
   memset(r, 0, sizeof *r);
+  fb_status cost = check_cost(c, diag);
+  if (cost != FB_OK) return cost;
   /* the scene stage: the case resolved once for every model */
   fb_status rc = fb_scene_def_from_case(&r->scene, c, diag);
   if (rc != FB_OK) return rc;

@@ -57,8 +57,21 @@ typedef struct {
   fb_peaks analytic_nominal;              /* exact peaks of the nominal linkage */
 } fb_run;
 
+/* Up-front cost of running case c (issue 13): per model, the samples its
+ * series holds (duration / h + 1) times the bytes of one sample of every
+ * column (sizeof(fb_sample)), and the steps times FB_COST_S_PER_STEP (the
+ * slowest model's cost per step measured on the paper's case, 3 times over
+ * for a loaded machine). Sums over the case's models. */
+#define FB_COST_S_PER_STEP 30e-6
+/* at most this fraction of the machine's physical memory may be reserved */
+#define FB_COST_MEMORY_FRACTION 0.5
+void fb_run_estimate(const fb_case *c, double *bytes, double *seconds);
+
 /* Runs case c. A model that stops on numerical trouble keeps its status and
- * the others still run. Errors: FB_ERR_ASSEMBLY, FB_ERR_NOMEM, FB_ERR_ARG;
+ * the others still run. Refused before any model runs (FB_ERR_RANGE, with
+ * the estimate) when the estimated memory exceeds FB_COST_MEMORY_FRACTION
+ * of physical memory or the estimated wall time exceeds [run] max_wall_s.
+ * Errors: FB_ERR_ASSEMBLY, FB_ERR_NOMEM, FB_ERR_ARG, FB_ERR_RANGE;
  * on error *r holds nothing that needs freeing. */
 fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                       fb_diag *diag);

@@ -169,6 +169,7 @@ typedef struct fb_case_s {
     char reason[FB_NAME_SIZE];        /* word the unstable status contains */
   } expect;                           /* hard cases' stated outcome (tests check it) */
   double revolutions;                 /* crank revolutions simulated [-]; the first is a run-in */
+  double max_wall_s;                  /* a run whose estimated wall time exceeds this is refused [s] */
   fb_start start;                     /* initial state of the bodies */
   fb_pin_start pin_start;             /* initial pin position of the clearance joints */
   double pin_start_angle;             /* eccentricity angle for FB_PIN_ANGLE [rad], ccw from +x */

@@ -268,6 +268,11 @@ static const key_spec keys[] = {
      "at least 2 with peaks = steady (the first revolution is a run-in); at least 1 with "
      "peaks = all",
      "crank revolutions simulated"},
+    {"run", "max_wall_s", K_DOUBLE, OFF(max_wall_s), 1.0, 0, INF, 1, 1, "s", "86400",
+     "the wall-time limit must be positive",
+     "before simulating, fourbar estimates each model's memory and wall time from its step "
+     "count; a run estimated to take longer than this is refused (one that cannot fit in "
+     "memory always is)"},
     {"run", "start", K_START, OFF(start), 0, 0, 0, 0, 0, "-", "steady", "steady or rest",
      "initial state: steady (every body on the ideal mechanism's motion) or rest (the crank "
      "at full speed from t = 0, every body not rigidly tied to it at rest: coupler and "

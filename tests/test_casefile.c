@@ -122,7 +122,19 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                (const char *[]){"direction = 'left'", "cw or ccw", NULL});
   expect_error("[run]\nmodels = analytic, ode-magic\n", NULL, 0, FB_ERR_PARSE,
                (const char *[]){"unknown model 'ode-magic'", "ode-ideal-nominal", NULL});
+  expect_error("[clearance]\ncollider = libccd\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "collider = 'libccd'", "exact, faceted or ccd", NULL});
+  expect_error("[clearance]\nsegments = 4\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){":2:", "segments = 4", "8 to 65536", NULL});
+  expect_error("[clearance]\nbore = oval\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"bore = 'oval'", "circle or ellipse", NULL});
+  expect_error("[clearance]\novality_um = -2\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){"ovality_um = -2", "[0, 1000) um", NULL});
   /* whole-case rules */
+  expect_error("[clearance]\novality_um = 5\n", NULL, 0, FB_ERR_ARG,
+               (const char *[]){"ovality_um = 5 with bore = circle", "bore = ellipse", NULL});
+  expect_error("[clearance]\nbore = ellipse\novality_um = 5\n[run]\nmodels = ode-clearance-impact\n",
+               NULL, 0, FB_ERR_ARG, (const char *[]){"bore = ellipse", "ode-clearance-ccd", NULL});
   expect_error("[linkage]\ncrank_mm = 10\ncoupler_mm = 10\nfollower_mm = 10\nground_mm = 1000\n",
                NULL, 0, FB_ERR_ASSEMBLY, (const char *[]){"cannot be assembled", NULL});
   /* a double-rocker: crank cannot turn fully; message names the reachable range */

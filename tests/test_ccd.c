@@ -18,6 +18,7 @@
 #include "collide_ccd.h"
 #include "engine.h"
 #include "fb_test.h"
+#include "run.h"
 #include "scene.h" /* fb_scene_ccd_calls */
 
 /* libccd's depth against the closed-form face depth: MPR stops when a
@@ -152,6 +153,27 @@ static void test_ellipse_gives_room_along_major_axis(void **state) {
     check_face_contacts(b, p, &wd, &wn);
   }
   fb_ccd_bore_destroy(b);
+  /* ovality 40 um: the bore's end curvature radius b^2 / a = 4.980 mm is
+   * below the pin's 4.9855 mm, so the pin wedges into the end of the major
+   * axis on two patches, one each side: the depth is the deepest facet over
+   * the whole ring, and both patches get a contact */
+  b = bore_make(256, FB_BORE_ELLIPSE, 40e-6);
+  for (int i = 0; i < 400; i++) {
+    const double phi = 0.2 * (frand(&seed) - 0.5), e = c + 20e-6 + 3e-6 * frand(&seed);
+    const double p[2] = {e * cos(phi), e * sin(phi)};
+    double brute = 0.0;
+    for (int k = 0; k < 256; k++) {
+      double nk[2], h;
+      fb_ccd_bore_facet(b, k, nk, &h);
+      brute = fmax(brute, p[0] * nk[0] + p[1] * nk[1] + d.pin_radius - h);
+    }
+    assert_near(fb_ccd_bore_depth(b, p), brute, 0.0);
+  }
+  const double wedged[2] = {c + 20e-6 + 1e-6, 0.0};
+  fb_ccd_contact ct[2];
+  assert_int_equal(fb_ccd_bore_collide(b, wedged, ct, 2), 2);
+  assert_true(ct[0].normal[1] * ct[1].normal[1] < 0.0); /* one each side of the x axis */
+  fb_ccd_bore_destroy(b);
 }
 
 static void test_bad_definitions_are_refused(void **state) {
@@ -177,20 +199,6 @@ static void test_bad_definitions_are_refused(void **state) {
   assert_null(b);
 }
 
-/* settles the crank-coupler pin under gravity (crank held at 60 deg, impact
- * law) with the exact collider (segments = 0) or the libccd ring (split 0:
- * by depth; 1: by count, the faceted model's rule) */
-/* the libccd model as its row will read (test-local until the row lands) */
-static const fb_model ccd_row = {.name = "ode-clearance-ccd",
-                                 .engine = FB_ENGINE_ODE,
-                                 .lengths = FB_LENGTHS_STACKUP,
-                                 .joints = FB_JOINTS_CLEARANCE,
-                                 .law = FB_MODEL_LAW_IMPACT,
-                                 .collider = FB_COLLIDER_CCD,
-                                 .reference = "reference",
-                                 .spikes_vs = "ode-ideal-stackup",
-                                 .summary = "ODE, clearance joints, impact law, libccd bore ring"};
-
 /* crank held at 60 deg, step 1e-5 s, velocity damping (frictionless: without
  * it the pin slides along the wall), ring[0] segments split by ring[1] */
 static void hold(fb_scene_def *def, void *user) {
@@ -202,6 +210,9 @@ static void hold(fb_scene_def *def, void *user) {
   assert_int_equal(fb_scene_def_set_start(def, 60.0 * M_PI / 180.0, 0.0, NULL), FB_OK);
 }
 
+/* settles the crank-coupler pin under gravity (crank held at 60 deg, impact
+ * law) with the exact collider (segments = 0) or the libccd ring (split 0:
+ * by depth; 1: by count, the faceted model's rule) */
 static fb_sample settle(const fb_case *c, int segments, int split, int steps, unsigned long *calls,
                         unsigned long *contacts) {
   fb_scene_def def;
@@ -209,7 +220,7 @@ static fb_sample settle(const fb_case *c, int segments, int split, int steps, un
   const fb_engine *e;
   int ring[2] = {segments, split};
   fb_scene *s = fb_test_engine_row(&e, &sm, &def, c,
-                                   segments ? &ccd_row : fb_model_find("ode-clearance-impact"),
+                                   fb_model_find(segments ? "ode-clearance-ccd" : "ode-clearance-impact"),
                                    hold, ring);
   for (int k = 0; k < steps; k++) assert_int_equal(e->step(s, NULL), FB_OK);
   fb_sample x;
@@ -326,6 +337,34 @@ static void test_statics_match_exact_collider(void **state) {
     }
 }
 
+static void test_case_collider_key_runs_each_model_through_it(void **state) {
+  (void)state;
+  /* collider = ccd: ode-clearance-impact (whose row names the exact
+   * collider) runs through the same libccd ring as ode-clearance-ccd, so
+   * the two series are identical; the collider used is reported */
+  const char *sets[] = {"run.models=ode-clearance-impact,ode-clearance-ccd,ode-clearance-faceted",
+                        "run.revolutions=2", "clearance.collider=ccd", "clearance.segments=64"};
+  fb_case c;
+  fb_test_paper_case(&c, sets, 4);
+  static fb_run r;
+  fb_diag d;
+  if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+  const fb_model_run *a = &r.model[0].run, *b = &r.model[1].run, *f = &r.model[2].run;
+  assert_int_equal(a->collider, FB_COLLIDER_CCD);
+  assert_int_equal(b->collider, FB_COLLIDER_CCD);
+  assert_int_equal(a->segments, 64);
+  assert_int_equal(f->collider, FB_COLLIDER_FACETED);
+  assert_int_equal(f->segments, 64); /* segments, when given, also sizes the box ring */
+  assert_string_equal(a->status, "ok");
+  assert_int_equal(a->series.n, b->series.n);
+  for (size_t i = 0; i < a->series.n; i++) {
+    assert_true(a->series.coupler_alpha[i] == b->series.coupler_alpha[i]);
+    assert_true(a->series.contact[FB_JOINT_B][FB_C_FORCE][i] ==
+                b->series.contact[FB_JOINT_B][FB_C_FORCE][i]);
+  }
+  fb_run_free(&r);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_face_contacts_match_closed_form),
@@ -334,6 +373,7 @@ int main(void) {
       cmocka_unit_test(test_bad_definitions_are_refused),
       cmocka_unit_test(test_scene_contacts_come_from_libccd),
       cmocka_unit_test(test_statics_match_exact_collider),
+      cmocka_unit_test(test_case_collider_key_runs_each_model_through_it),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -17,6 +17,7 @@
 
 static const char bench_help[] =
     "usage: fourbar bench [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
+    "                     [--grid all|solvers|colliders]\n"
     "\n"
     "Speed against error on both engines: ODE's stepper (dWorldStep; dWorldQuickStep\n"
     "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s) x mapping (secant, tangent)\n"
@@ -27,9 +28,15 @@ static const char bench_help[] =
     "runs under 1 s; the engine's setup, MuJoCo's model compile, apart as setup_s)\n"
     "measured in the same run. Marks one Pareto front per engine and\n"
     "model and names the cheapest configuration for error targets 1e-2, 1e-3 and 1e-4,\n"
-    "per engine and across engines. Writes DIR/bench.csv, bench.json and bench.svg\n"
+    "per engine and across engines. Collider axis: the impact law through the libccd\n"
+    "ring (16, 64, 256, 1024 segments) and the faceted ring against ODE's exact collider\n"
+    "at h = 1e-5 and 1e-6 s: error against the reference, differences from the exact\n"
+    "collider and cost per step (docs/colliders.md). --grid runs one of the two\n"
+    "(default all). Writes DIR/bench.csv, bench.json and bench.svg\n"
     "(default DIR results/<case>/bench).\n"
     "On a terminal a progress bar with the time left is drawn on stderr.\n";
+
+static json_t *finite_or_null(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 
 static const char *mapping_name(int m) { return m < 0 ? "-" : (m ? "tangent" : "secant"); }
 
@@ -77,10 +84,11 @@ int fb_cmd_bench(int argc, char **argv) {
   static const struct option opts[] = {{"out", required_argument, 0, 'o'},
                                        {"set", required_argument, 0, 's'},
                                        {"json", no_argument, 0, 'j'},
+                                       {"grid", required_argument, 0, 'g'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out = NULL, *sets[MAX_SETS];
-  int nsets = 0, json = 0, ch;
+  int nsets = 0, json = 0, ch, grids = FB_BENCH_SOLVERS | FB_BENCH_COLLIDERS;
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
     switch (ch) {
@@ -90,6 +98,13 @@ int fb_cmd_bench(int argc, char **argv) {
         sets[nsets++] = optarg;
         break;
       case 'j': json = 1; break;
+      case 'g':
+        if (strcmp(optarg, "all") == 0) grids = FB_BENCH_SOLVERS | FB_BENCH_COLLIDERS;
+        else if (strcmp(optarg, "solvers") == 0) grids = FB_BENCH_SOLVERS;
+        else if (strcmp(optarg, "colliders") == 0) grids = FB_BENCH_COLLIDERS;
+        else
+          return fb_cli_fail("bench", 2, "--grid '%s': must be all, solvers or colliders", optarg);
+        break;
       case 'h': fputs(bench_help, stdout); return 0;
       default: fputs(bench_help, stderr); return 2;
     }
@@ -107,7 +122,7 @@ int fb_cmd_bench(int argc, char **argv) {
   int n;
   const double t0 = fb_clock_s();
   bench_progress bp = {isatty(2) && !json, t0};
-  if (fb_bench_run(rows, &n, &c, progress, &bp, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
+  if (fb_bench_run(rows, &n, &c, grids, progress, &bp, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
   const double wall = fb_clock_s() - t0;
   /* files */
   char path[4200];
@@ -115,16 +130,20 @@ int fb_cmd_bench(int argc, char **argv) {
   fb_outfile f;
   if (fb_outfile_open(&f, path, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
   fprintf(f.f, "model,engine,stepper,h_s,mapping,world_erp,world_cfm,status,error,wall_per_rev_s,"
-               "repeats,pareto,setup_s\n");
+               "repeats,pareto,setup_s,"
+               "collider,segments,us_per_step,force_vs_exact_rel,penetration_vs_exact_rel,"
+               "alpha_coupler_vs_exact_rel,impacts,impacts_exact,cost_vs_exact\n");
   json_t *arr = json_array();
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
     char erp[32] = "", cfm[32] = "";
     if (isfinite(b->world_erp)) snprintf(erp, sizeof erp, "%g", b->world_erp);
     if (isfinite(b->world_cfm)) snprintf(cfm, sizeof cfm, "%g", b->world_cfm);
-    fprintf(f.f, "%s,%s,%s,%g,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d,%.6g\n", b->model, b->engine,
-            b->stepper, b->h, mapping_name(b->mapping), erp, cfm, b->status, b->error,
-            b->wall_per_rev, b->repeats, b->pareto, b->setup_s);
+    fprintf(f.f, "%s,%s,%s,%g,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d,%.6g,%s,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g\n",
+            b->model, b->engine, b->stepper, b->h, mapping_name(b->mapping), erp, cfm, b->status,
+            b->error, b->wall_per_rev, b->repeats, b->pareto, b->setup_s, b->collider,
+            b->segments, b->us_per_step, b->force_vs_exact, b->pen_vs_exact, b->alpha_vs_exact,
+            b->impacts, b->impacts_exact, b->cost_vs_exact);
     json_t *o = json_object();
     json_object_set_new(o, "model", json_string(b->model));
     json_object_set_new(o, "engine", json_string(b->engine));
@@ -137,6 +156,20 @@ int fb_cmd_bench(int argc, char **argv) {
     json_object_set_new(o, "error", isfinite(b->error) ? json_real(b->error) : json_null());
     json_object_set_new(o, "wall_per_rev_s", isfinite(b->wall_per_rev) ? json_real(b->wall_per_rev) : json_null());
     json_object_set_new(o, "pareto", json_boolean(b->pareto));
+    json_object_set_new(o, "collider", json_string(b->collider));
+    json_object_set_new(o, "segments", b->segments > 0 ? json_integer(b->segments) : json_null());
+    json_object_set_new(o, "us_per_step", finite_or_null(b->us_per_step));
+    json_object_set_new(o, "collider_axis", json_boolean(b->collider_axis));
+    if (b->has_vs_exact)
+      json_object_set_new(o, "vs_exact",
+                          json_pack("{s:o,s:o,s:o,s:i,s:i,s:o}", "force_max_rel",
+                                    finite_or_null(b->force_vs_exact), "penetration_max_rel",
+                                    finite_or_null(b->pen_vs_exact), "alpha_peak_ratio_coupler_rel",
+                                    finite_or_null(b->alpha_vs_exact), "impacts", b->impacts,
+                                    "impacts_exact", b->impacts_exact, "cost_rel",
+                                    finite_or_null(b->cost_vs_exact)));
+    else
+      json_object_set_new(o, "vs_exact", json_null());
     json_object_set_new(o, "setup_s", json_real(b->setup_s));
     json_array_append_new(arr, o);
   }
@@ -192,6 +225,28 @@ int fb_cmd_bench(int argc, char **argv) {
     else snprintf(cost, sizeof cost, "%12s", "-");
     printf("%-24s %-9s %7.0e %-8s %5s %7s %12.3e %s %c %.40s\n", b->model, b->stepper, b->h,
            mapping_name(b->mapping), erp, cfm, b->error, cost, b->pareto ? 'P' : ' ', b->status);
+  }
+  int ncol = 0;
+  for (int i = 0; i < n; i++) ncol += rows[i].collider_axis;
+  if (ncol) {
+    printf("\ncollider axis (impact law, dWorldStep): differences from the exact collider of the "
+           "same run\n%-22s %-8s %5s %7s %9s %9s %9s %8s %10s %9s %9s\n", "model", "collider", "N",
+           "h_s", "force", "pen", "alpha_c", "impacts", "us/step", "cost", "error");
+    for (int i = 0; i < n; i++) {
+      const fb_bench_row *b = &rows[i];
+      if (!b->collider_axis) continue;
+      char ring[16] = "-";
+      if (b->segments > 0) snprintf(ring, sizeof ring, "%d", b->segments);
+      if (!b->has_vs_exact) {
+        printf("%-22s %-8s %5s %7.0e %.60s\n", b->model, b->collider, ring, b->h, b->status);
+        continue;
+      }
+      char imp[32];
+      snprintf(imp, sizeof imp, "%d/%d", b->impacts, b->impacts_exact);
+      printf("%-22s %-8s %5s %7.0e %+8.2f%% %+8.2f%% %+8.2f%% %8s %10.2f %8.2fx %9.2e\n", b->model,
+             b->collider, ring, b->h, 100 * b->force_vs_exact, 100 * b->pen_vs_exact,
+             100 * b->alpha_vs_exact, imp, b->us_per_step, b->cost_vs_exact, b->error);
+    }
   }
   printf("\ncheapest configuration meeting each error target (per engine, then across engines):\n");
   for (int q = 0; q < 2; q++)

@@ -22,63 +22,72 @@ static double omega_peak_error(const fb_error *e) {
  * with clearance at B the clearance impact model and the reference) up to 3
  * times, and appends one row per engine model (the ideal one only when
  * with_ideal) */
+/* runs case k up to 3 times, again while its first `timed` models (1 or 2)
+ * together took at most 1 s; r keeps the last run, walls[q][rep] the wall
+ * times of model q without the engine's setup (MuJoCo compiles its model,
+ * 5-45 ms here), setups[q][rep] the setup (0 when not timed), *reps the runs */
+static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, double walls[2][3],
+                            double setups[2][3], int *reps, fb_diag *diag) {
+  for (int rep = 0; rep < 3; rep++) {
+    fb_status st = fb_run_case(r, k, NULL, NULL, diag);
+    if (st != FB_OK) return st;
+    for (int q = 0; q < 2; q++) {
+      const fb_model_run *mr = &r->model[q].run;
+      walls[q][rep] = q < timed ? mr->wall_s - mr->setup_s : 0.0;
+      setups[q][rep] = q < timed ? mr->setup_s : 0.0;
+    }
+    *reps = rep + 1;
+    if (rep == 2 || walls[0][rep] + walls[1][rep] > 1.0) break;
+    fb_run_free(r);
+  }
+  return FB_OK;
+}
+
 static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char *engine,
                              const char *stepper, int mapping, int with_ideal, fb_diag *diag) {
   const int with_clearance = k->model_count > 1;
   double walls[2][3], setups[2][3];
-  int reps = 0;
+  int reps;
   static fb_run r;
-  for (int rep = 0; rep < 3; rep++) {
-    fb_status st = fb_run_case(&r, k, NULL, NULL, diag);
-    if (st != FB_OK) return st;
-    /* steady-state cost: the engine's setup (MuJoCo compiles its model,
-     * 5-45 ms here) is kept apart */
-    for (int q = 0; q < 2; q++) {
-      const fb_model_run *mr = &r.model[q].run;
-      const int has = q == 0 || with_clearance;
-      walls[q][rep] = has ? mr->wall_s - mr->setup_s : 0.0;
-      setups[q][rep] = has ? mr->setup_s : 0.0;
+  fb_status st0 = timed_runs(&r, k, with_clearance ? 2 : 1, walls, setups, &reps, diag);
+  if (st0 != FB_OK) return st0;
+  for (int q = 0; q < (with_clearance ? 2 : 1); q++) {
+    if (q == 0 && !with_ideal) continue;
+    if (*n == FB_BENCH_MAX_ROWS) break;
+    fb_bench_row *b = &rows[(*n)++];
+    const fb_model_result *m = &r.model[q];
+    memset(b, 0, sizeof *b);
+    b->row = m->run.model;
+    snprintf(b->model, sizeof b->model, "%s", m->run.name);
+    snprintf(b->engine, sizeof b->engine, "%s", engine);
+    snprintf(b->stepper, sizeof b->stepper, "%s", stepper);
+    b->h = k->solver.h;
+    b->mapping = q == 0 ? -1 : mapping;
+    b->world_erp = mapping >= 0 ? k->solver.world_erp : NAN;
+    b->world_cfm = mapping >= 0 ? k->solver.world_cfm : NAN;
+    snprintf(b->status, sizeof b->status, "%s", m->run.status);
+    b->error = NAN;
+    if (strcmp(m->run.status, "ok") == 0) {
+      if (q == 0 && m->has_error) b->error = omega_peak_error(&m->error);
+      if (q == 1 && m->has_ref_error)
+        b->error = fmax(fabs(m->ref_error.force_max_rel), fabs(m->ref_error.penetration_max_rel));
     }
-    reps++;
-    const int last = rep == 2 || walls[0][rep] + walls[1][rep] > 1.0;
-    if (!last) {
-      fb_run_free(&r);
-      continue;
-    }
-    for (int q = 0; q < (with_clearance ? 2 : 1); q++) {
-      if (q == 0 && !with_ideal) continue;
-      if (*n == FB_BENCH_MAX_ROWS) break;
-      fb_bench_row *b = &rows[(*n)++];
-      const fb_model_result *m = &r.model[q];
-      memset(b, 0, sizeof *b);
-      b->row = m->run.model;
-      snprintf(b->model, sizeof b->model, "%s", m->run.name);
-      snprintf(b->engine, sizeof b->engine, "%s", engine);
-      snprintf(b->stepper, sizeof b->stepper, "%s", stepper);
-      b->h = k->solver.h;
-      b->mapping = q == 0 ? -1 : mapping;
-      b->world_erp = mapping >= 0 ? k->solver.world_erp : NAN;
-      b->world_cfm = mapping >= 0 ? k->solver.world_cfm : NAN;
-      snprintf(b->status, sizeof b->status, "%s", m->run.status);
-      b->error = NAN;
-      if (strcmp(m->run.status, "ok") == 0) {
-        if (q == 0 && m->has_error) b->error = omega_peak_error(&m->error);
-        if (q == 1 && m->has_ref_error)
-          b->error = fmax(fabs(m->ref_error.force_max_rel), fabs(m->ref_error.penetration_max_rel));
-      }
-      qsort(walls[q], (size_t)reps, sizeof(double), cmp_double);
-      qsort(setups[q], (size_t)reps, sizeof(double), cmp_double);
-      b->setup_s = setups[q][reps / 2];
-      /* per revolution actually simulated: a run that stopped early covered
-       * less; one that stopped within its first step has no cost per
-       * revolution (NaN, printed "-") */
-      const double simulated = (double)m->run.steps * m->run.h * k->crank_speed / (2.0 * M_PI);
-      b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
-      b->repeats = reps;
-    }
-    fb_run_free(&r);
-    break;
+    qsort(walls[q], (size_t)reps, sizeof(double), cmp_double);
+    qsort(setups[q], (size_t)reps, sizeof(double), cmp_double);
+    b->setup_s = setups[q][reps / 2];
+    /* per revolution actually simulated: a run that stopped early covered
+     * less; one that stopped within its first step has no cost per
+     * revolution (NaN, printed "-") */
+    const double simulated = (double)m->run.steps * m->run.h * k->crank_speed / (2.0 * M_PI);
+    b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
+    b->repeats = reps;
+    snprintf(b->collider, sizeof b->collider, "%s",
+             q == 0 ? "-" : fb_collider_name(m->run.collider));
+    b->segments = q == 0 ? 0 : m->run.segments;
+    b->us_per_step = m->run.steps > 0 ? 1e6 * walls[q][reps / 2] / (double)m->run.steps : NAN;
+    b->force_vs_exact = b->pen_vs_exact = b->alpha_vs_exact = b->cost_vs_exact = NAN;
   }
+  fb_run_free(&r);
   return FB_OK;
 }
 
@@ -104,16 +113,104 @@ static void bench_case(fb_case *k, const fb_case *c, double h, fb_engine_id engi
     snprintf(k->models[q], FB_NAME_SIZE, "%s", models[q]->name);
 }
 
-fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c,
+/* the collider axis: segments of the ccd rings; 0 stands for the faceted
+ * model with the case's ring */
+static const int collider_rings[] = {16, 64, 256, 1024, 0};
+#define COLLIDER_RINGS ((int)(sizeof collider_rings / sizeof collider_rings[0]))
+static const double collider_hs[2] = {1e-5, 1e-6};
+
+static double rel(double a, double b) { return b != 0.0 ? (a - b) / fabs(b) : NAN; }
+
+/* one run of the collider axis: ODE's exact collider, the model of ring
+ * ring, the reference; rows for the model (and, with the first ring, the
+ * exact collider) */
+static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, double h, int ring,
+                              fb_diag *diag) {
+  fb_case k = *c;
+  k.revolutions = 2;
+  k.solver.h = h;
+  k.solver.stepper = FB_STEPPER_WORLD;
+  k.solver.world_erp = 0.2;
+  k.solver.world_cfm = 1e-10;
+  k.clearance.collider = FB_CASE_COLLIDER_EXACT;
+  if (ring > 0) {
+    k.clearance.segments = ring;
+    k.clearance.segments_given = 0; /* the faceted ring stays the case's */
+  }
+  const fb_model *exact = fb_model_match(FB_ENGINE_ODE, FB_LENGTHS_STACKUP, FB_JOINTS_CLEARANCE,
+                                         FB_MODEL_LAW_IMPACT, FB_COLLIDER_EXACT);
+  const fb_model *model = fb_model_match(FB_ENGINE_ODE, FB_LENGTHS_STACKUP, FB_JOINTS_CLEARANCE,
+                                         FB_MODEL_LAW_IMPACT,
+                                         ring > 0 ? FB_COLLIDER_CCD : FB_COLLIDER_FACETED);
+  const fb_model *models[3] = {exact, model, fb_model_reference_of(exact)};
+  k.model_count = 3;
+  for (int q = 0; q < 3; q++) snprintf(k.models[q], FB_NAME_SIZE, "%s", models[q]->name);
+  double walls[2][3], setups[2][3];
+  int reps;
+  static fb_run r;
+  fb_status st = timed_runs(&r, &k, 2, walls, setups, &reps, diag);
+  if (st != FB_OK) return st;
+  const fb_model_result *ex = &r.model[0], *ref = &r.model[2];
+  double us[2];
+  for (int q = 0; q < 2; q++) {
+    qsort(walls[q], (size_t)reps, sizeof(double), cmp_double);
+    const fb_model_run *m = &r.model[q].run;
+    us[q] = m->steps > 0 ? 1e6 * walls[q][reps / 2] / (double)m->steps : NAN;
+  }
+  for (int q = ring == collider_rings[0] ? 0 : 1; q < 2 && *n < FB_BENCH_MAX_ROWS; q++) {
+    const fb_model_result *m = &r.model[q];
+    fb_bench_row *b = &rows[(*n)++];
+    memset(b, 0, sizeof *b);
+    b->row = m->run.model;
+    snprintf(b->model, sizeof b->model, "%s", m->run.name);
+    snprintf(b->engine, sizeof b->engine, "ode");
+    snprintf(b->stepper, sizeof b->stepper, "world");
+    b->h = h;
+    b->mapping = k.clearance.mapping;
+    b->world_erp = k.solver.world_erp;
+    b->world_cfm = k.solver.world_cfm;
+    snprintf(b->status, sizeof b->status, "%s", m->run.status);
+    snprintf(b->collider, sizeof b->collider, "%s", fb_collider_name(m->run.collider));
+    b->segments = m->run.segments;
+    b->repeats = reps;
+    b->collider_axis = 1;
+    b->us_per_step = us[q];
+    const double simulated = (double)m->run.steps * m->run.h * k.crank_speed / (2.0 * M_PI);
+    b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
+    b->error = NAN;
+    b->force_vs_exact = b->pen_vs_exact = b->alpha_vs_exact = b->cost_vs_exact = NAN;
+    if (strcmp(m->run.status, "ok") != 0 || !m->has_spikes || !ex->has_spikes) continue;
+    /* against the reference (the faceted row names none: compared here) */
+    fb_reference_error re;
+    fb_diag inner;
+    if (ref->has_peaks && fb_metrics_vs_reference(&re, &m->run.series, &ref->run.series,
+                                                  r.t_window, FB_JOINT_B, &inner) == FB_OK)
+      b->error = fmax(fabs(re.force_max_rel), fabs(re.penetration_max_rel));
+    b->has_vs_exact = 1;
+    b->force_vs_exact = rel(m->spikes.force_max, ex->spikes.force_max);
+    b->pen_vs_exact = rel(m->spikes.penetration_max, ex->spikes.penetration_max);
+    b->alpha_vs_exact = rel(m->spikes.alpha_peak_ratio_coupler, ex->spikes.alpha_peak_ratio_coupler);
+    b->impacts = m->spikes.impacts;
+    b->impacts_exact = ex->spikes.impacts;
+    b->cost_vs_exact = us[q] / us[0];
+  }
+  fb_run_free(&r);
+  return FB_OK;
+}
+
+fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag) {
   const double hs[4] = {1e-3, 1e-4, 1e-5, 1e-6};
   const int iters[4] = {0, 10, 20, 50}; /* 0: dWorldStep */
   const double erp[2] = {0.2, 0.8}, cfm[2] = {1e-10, 1e-8};
-  const int mujoco = fb_engine_available(FB_ENGINE_MUJOCO);
-  const int total = 4 * 4 * 2 * 2 + (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS : 0);
+  const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
+  const int mujoco = solvers && fb_engine_available(FB_ENGINE_MUJOCO);
+  const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
+  const int total = (solvers ? 4 * 4 * 2 * 2 : 0) + (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS : 0) +
+                    (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
   *n = 0;
-  for (int si = 0; si < 4; si++)
+  for (int si = 0; si < (solvers ? 4 : 0); si++)
     for (int hi = 0; hi < 4; hi++)
       for (int mi = 0; mi < 2; mi++)
         for (int ei = 0; ei < 2; ei++) {
@@ -147,6 +244,12 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c,
         if (progress) progress((double)++done / total, user);
       }
   }
+  for (int hi = 0; hi < (colliders ? 2 : 0); hi++)
+    for (int ri = 0; ri < COLLIDER_RINGS; ri++) {
+      fb_status st = collider_run(rows, n, c, collider_hs[hi], collider_rings[ri], diag);
+      if (st != FB_OK) return st;
+      if (progress) progress((double)++done / total, user);
+    }
   fb_bench_mark_pareto(rows, *n);
   return FB_OK;
 }

@@ -13,7 +13,17 @@
  * four angular-velocity peaks; of the clearance model: the larger of
  * |peak force| and |max penetration| relative errors against the reference.
  * A row is on the Pareto front of its model (so of its engine) when no other
- * row of that model is both cheaper and at least as accurate. */
+ * row of that model is both cheaper and at least as accurate.
+ *
+ * Collider axis (docs/colliders.md): the impact law through each ODE
+ * collider, dWorldStep, the case's mapping, world ERP/CFM (0.2, 1e-10),
+ * h = 1e-5 and 1e-6 s: ode-clearance-ccd with rings of 16, 64, 256 and 1024
+ * segments and ode-clearance-faceted with the case's box ring, each run
+ * beside ode-clearance-impact (the exact collider) and the reference; a row
+ * holds its error against the reference as above, its differences from the
+ * exact collider of the same run (peak force, peak penetration, impacts,
+ * coupler spike ratio) and its cost per step, also relative to the exact
+ * collider's. */
 #ifndef FB_BENCH_H
 #define FB_BENCH_H
 
@@ -35,15 +45,34 @@ typedef struct fb_bench_row_s {
   double setup_s;          /* median wall time of the engine's setup (create) [s] */
   int repeats;
   int pareto;
+  char collider[32];       /* "-" (ideal), "exact", "faceted", "ccd" or "native" */
+  int segments;            /* ring of the faceted and ccd colliders [-]; 0 for the others */
+  double us_per_step;      /* median wall time per step [us] */
+  int collider_axis;       /* 1: a row of the collider axis */
+  int has_vs_exact;        /* collider axis row that ran: the fields below are set */
+  double force_vs_exact;   /* (peak force - exact collider's) / exact's [-] */
+  double pen_vs_exact;     /* the same for the peak penetration [-] */
+  double alpha_vs_exact;   /* the same for the coupler spike ratio alpha_peak_ratio_coupler [-] */
+  int impacts;             /* impacts counted over the peak window [-] */
+  int impacts_exact;       /* by the exact collider [-] */
+  double cost_vs_exact;    /* us_per_step / the exact collider's [-] */
 } fb_bench_row;
+
+/* Which grids fb_bench_run runs. */
+enum {
+  FB_BENCH_SOLVERS = 1,  /* ODE stepper x h x mapping x world ERP/CFM, and MuJoCo's grid */
+  FB_BENCH_COLLIDERS = 2 /* the collider axis */
+};
 
 #define FB_BENCH_MAX_ROWS 256
 #define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
 
-/* Runs the grid on case c (2 revolutions per run; 3 repeats for runs under
- * 1 s, else 1). rows gets *n rows. progress (may be NULL) gets the fraction
- * done. Errors: those of fb_run_case. */
-fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c,
+/* Runs the grids named in grids (FB_BENCH_* bits) on case c (2 revolutions
+ * per run; 3 repeats for runs under 1 s, else 1). rows gets *n rows.
+ * progress (may be NULL) gets the fraction done. The collider axis needs a
+ * case whose only clearance joint is the crank-coupler one (else it adds no
+ * row). Errors: those of fb_run_case. */
+fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag);
 
 /* Marks rows on the Pareto front of their model: no other row of the same

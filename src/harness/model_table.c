@@ -14,6 +14,11 @@ int fb_engine_available(fb_engine_id e) {
   return e == FB_ENGINE_MUJOCO ? FB_HAVE_MUJOCO : (e >= 0 && e < FB_ENGINE_COUNT);
 }
 
+const char *fb_collider_name(fb_collider c) {
+  static const char *const names[FB_COLLIDER_COUNT] = {"none", "exact", "faceted", "ccd", "native"};
+  return (c >= 0 && c < FB_COLLIDER_COUNT) ? names[c] : "?";
+}
+
 int fb_engine_steps_world(fb_engine_id e) { return e == FB_ENGINE_ODE || e == FB_ENGINE_MUJOCO; }
 
 /* short names for the rows */
@@ -96,6 +101,17 @@ const fb_model fb_models[] = {
      .spikes_vs = "ode-ideal-stackup",
      .summary = "ODE, clearance joints, impact law, ring of boxes (dCollide)",
      .style = {"#ff7f0e", 3, 1.5}},
+    {.name = "ode-clearance-ccd",
+     .engine = FB_ENGINE_ODE,
+     .lengths = STK,
+     .joints = CLEAR,
+     .law = FB_MODEL_LAW_IMPACT,
+     .collider = FB_COLLIDER_CCD,
+     .reference = "reference",
+     .spikes_vs = "ode-ideal-stackup",
+     .summary = "ODE, clearance joints, impact law, libccd ring of convex segments "
+                "(docs/colliders.md)",
+     .style = {"#e377c2", 5, 1.5}},
     {.name = "mujoco-ideal-nominal",
      .engine = FB_ENGINE_MUJOCO,
      .lengths = NOM,

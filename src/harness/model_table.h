@@ -78,6 +78,9 @@ typedef struct {
   double width;      /* line width */
 } fb_model_style;
 
+/* "none", "exact", "faceted", "ccd", "native". */
+const char *fb_collider_name(fb_collider c);
+
 /* One model. */
 typedef struct fb_model {
   const char *name;        /* name in case files and outputs */
@@ -85,7 +88,8 @@ typedef struct fb_model {
   fb_lengths_kind lengths; /* nominal or stack-up lengths */
   fb_joint_set joints;     /* ideal, or the case's clearance joints */
   fb_model_law law;        /* contact law of the clearance joints */
-  fb_collider collider;    /* how the clearance contact is found */
+  fb_collider collider;    /* how the clearance contact is found; for ODE rows naming the exact
+                              collider the case's [clearance] collider replaces it */
   const char *reference;   /* reference model it is compared with (same law), or NULL */
   const char *spikes_vs;   /* ideal model whose peak |alpha| its spike ratios divide by when
                               that model ran in the same case (else the analytic peaks of the

@@ -92,6 +92,9 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene_def *def, const fb_
   if (st == FB_OK && !e) st = FB_ERR_ARG;
   if (st == FB_OK) {
     out->clearance_mask = sm.clearance_mask;
+    out->collider = sm.clearance_mask ? sm.collider : FB_COLLIDER_NONE;
+    out->segments = sm.collider == FB_COLLIDER_CCD ? sm.ccd_segments : sm.faceted_n;
+    out->bore_ovality = sm.bore_ovality;
     st = run_engine(out, e, &sm, progress, user, diag);
   }
   out->wall_s = fb_clock_s() - t0;

@@ -26,6 +26,9 @@ typedef struct {
   fb_series series;        /* samples at t = k h */
   double joint_drift_max;  /* ode: largest hinge anchor separation seen [m] */
   int clearance_mask;      /* bit j: joint j had clearance in this model */
+  fb_collider collider;    /* collider of its clearance joints (FB_COLLIDER_NONE without) */
+  int segments;            /* faceted boxes or ccd segments of the ring [-]; 0 for the others */
+  double bore_ovality;     /* ccd: the ellipse bore's diameter excess [m]; 0: circle */
   int has_provenance;      /* 1 when the engine kept provenance[] */
   fb_contact_provenance provenance[4]; /* per clearance joint, at the end of the run */
 } fb_model_run;

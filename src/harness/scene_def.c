@@ -15,6 +15,7 @@
 
 void fb_scene_def_default(fb_scene_def *def) {
   memset(def, 0, sizeof *def);
+  def->case_collider = FB_COLLIDER_EXACT;
   def->impact_velocity_min = IMPACT_VELOCITY_MIN_M_S;
   def->mujoco = fb_mujoco_opts_default();
 }
@@ -63,7 +64,11 @@ fb_status fb_scene_def_from_case(fb_scene_def *def, const fb_case *c, fb_diag *d
   def->mapping = (fb_mapping)r->clearance.mapping;
   def->friction = r->clearance.friction;
   def->penetration_limit = fb_case_penetration_limit(r);
-  def->faceted_n = r->clearance.faceted_n;
+  /* [clearance] segments, when given, sizes both generic rings */
+  def->faceted_n = r->clearance.segments_given ? r->clearance.segments : r->clearance.faceted_n;
+  def->ccd_segments = r->clearance.segments;
+  def->bore_ovality = r->clearance.bore == FB_CASE_BORE_ELLIPSE ? r->clearance.ovality : 0.0;
+  def->case_collider = fb_case_collider_of(r);
   def->crank_angle0 = r->crank_angle0;
   def->omega2 = fb_case_omega2(r);
   def->mujoco = r->mujoco;
@@ -229,10 +234,11 @@ fb_status fb_scene_def_select(fb_scene_model *out, const fb_scene_def *def, cons
                        "model '%s': the scene has no resolved law for it (build the scene from "
                        "a case that lists the model)",
                        m->name);
-  if (m->collider == FB_COLLIDER_FACETED && def->faceted_n < 3)
+  const fb_collider col = fb_model_collider(m, def->case_collider);
+  if (col == FB_COLLIDER_FACETED && def->faceted_n < 3)
     return fb_diag_set(diag, FB_ERR_RANGE, "model '%s': faceted_n = %d: a ring needs >= 3 boxes",
                        m->name, def->faceted_n);
-  if (m->collider == FB_COLLIDER_CCD && def->ccd_segments < 3)
+  if (col == FB_COLLIDER_CCD && def->ccd_segments < 3)
     return fb_diag_set(diag, FB_ERR_RANGE,
                        "model '%s': ccd_segments = %d: a bore ring needs >= 3 segments",
                        m->name, def->ccd_segments);
@@ -244,8 +250,9 @@ fb_status fb_scene_def_select(fb_scene_model *out, const fb_scene_def *def, cons
   out->mapping = def->mapping;
   out->friction = def->friction;
   out->pin_length = def->pin_length;
-  out->faceted_n = m->collider == FB_COLLIDER_FACETED ? def->faceted_n : 0;
-  if (m->collider == FB_COLLIDER_CCD) {
+  out->collider = col;
+  out->faceted_n = col == FB_COLLIDER_FACETED ? def->faceted_n : 0;
+  if (col == FB_COLLIDER_CCD) {
     out->ccd_segments = def->ccd_segments;
     out->bore_ovality = def->bore_ovality;
     out->ccd_split = def->ccd_split;
@@ -278,4 +285,19 @@ fb_status fb_scene_model_start(fb_start_state *out, const fb_scene_model *sm, fb
   out->coupler_b_vel[0] = -sm->omega2 * ls.b[1];
   out->coupler_b_vel[1] = sm->omega2 * ls.b[0];
   return FB_OK;
+}
+
+fb_collider fb_case_collider_of(const fb_case *c) {
+  switch (c->clearance.collider) {
+    case FB_CASE_COLLIDER_FACETED: return FB_COLLIDER_FACETED;
+    case FB_CASE_COLLIDER_CCD: return FB_COLLIDER_CCD;
+    default: return FB_COLLIDER_EXACT;
+  }
+}
+
+fb_collider fb_model_collider(const fb_model *m, fb_collider case_collider) {
+  if (m->engine == FB_ENGINE_ODE && m->collider == FB_COLLIDER_EXACT &&
+      case_collider != FB_COLLIDER_NONE)
+    return case_collider;
+  return m->collider;
 }

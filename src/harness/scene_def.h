@@ -49,6 +49,7 @@ typedef struct {
   double impact_velocity_min;     /* onset rates below this count as continuous contact [m/s] */
   double penetration_limit;       /* a model stops beyond this penetration [m] (> 0) */
   int faceted_n;                  /* boxes in the ring of the faceted collider [-] */
+  fb_collider case_collider;      /* [clearance] collider: replaces FB_COLLIDER_EXACT in ODE rows */
   int ccd_segments;               /* convex segments of the libccd bore ring [-] (collide_ccd.h) */
   double bore_ovality;            /* libccd bore: diameter excess along the hole body's x [m];
                                      0: circle */
@@ -82,6 +83,8 @@ typedef struct {
   fb_mapping mapping;             /* per-step linearisation */
   double friction;                /* Coulomb coefficient [-] */
   double impact_velocity_min;     /* onset rates below this count as continuous contact [m/s] */
+  fb_collider collider;           /* the collider used: the row's, or for an ODE row naming the
+                                     exact one the case's [clearance] collider */
   int faceted_n;                  /* > 0: the faceted collider with this many boxes; else 0 */
   double pin_length;              /* [m], for the faceted and libccd geometry */
   int ccd_segments;               /* > 0: the libccd collider with a ring of this many convex
@@ -125,6 +128,14 @@ fb_status fb_scene_def_set_start(fb_scene_def *def, double theta0, double omega2
  * when the faceted collider is used. Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY
  * naming the field, its value and the rule. */
 fb_status fb_scene_def_check(const fb_scene_def *def, fb_diag *diag);
+
+/* The model table's collider for [clearance] collider of case c. */
+fb_collider fb_case_collider_of(const fb_case *c);
+
+/* The collider model m uses when the case asks for case_collider: the
+ * row's, except that an ODE row naming the exact collider takes the case's
+ * (so one case runs ode-clearance-impact and -restitution with each). */
+fb_collider fb_model_collider(const fb_model *m, fb_collider case_collider);
 
 /* The view of model m on def: lengths, start, clearance joints and laws.
  * Errors: FB_ERR_ARG when m needs a law def did not resolve or clearance

@@ -147,6 +147,16 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
   if (c->clearance.penetration_limit < 0.0)
     return fb_diag_set(diag, FB_ERR_RANGE, "penetration limit %g m: must be >= 0",
                        c->clearance.penetration_limit);
+  if (c->clearance.ovality > 0.0 && c->clearance.bore != FB_CASE_BORE_ELLIPSE)
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "[clearance] ovality_um = %g with bore = circle: an ovality needs "
+                       "bore = ellipse", c->clearance.ovality * 1e6);
+  if (c->clearance.ovality >= c->radial_clearance + 0.5 * c->pin_diameter)
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "[clearance] ovality_um = %g: must be smaller than the hole radius %g um",
+                       c->clearance.ovality * 1e6,
+                       (c->radial_clearance + 0.5 * c->pin_diameter) * 1e6);
+  int uses_ccd = 0;
   for (int i = 0; i < c->model_count; i++) {
     const fb_model *m;
     st = fb_model_lookup(&m, c->models[i], diag);
@@ -155,6 +165,15 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
       return fb_diag_set(diag, FB_ERR_ARG,
                          "model '%s' needs at least one clearance joint ([clearance] joints)",
                          c->models[i]);
+    if (fb_model_has_clearance(m) &&
+        (m->collider == FB_COLLIDER_CCD ||
+         (m->engine == FB_ENGINE_ODE && m->collider == FB_COLLIDER_EXACT &&
+          c->clearance.collider == FB_CASE_COLLIDER_CCD)))
+      uses_ccd = 1;
   }
+  if (c->clearance.bore == FB_CASE_BORE_ELLIPSE && !uses_ccd)
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "[clearance] bore = ellipse: only the libccd collider models a non-circular "
+                       "bore; list ode-clearance-ccd or set collider = ccd");
   return FB_OK;
 }

@@ -51,6 +51,19 @@ typedef enum {
   FB_PENALTY_SOURCE_EXPLICIT = 2  /* the case's stiffness keys */
 } fb_penalty_source;
 
+/* How the ODE clearance models find the pin-in-hole contact (docs/colliders.md). */
+typedef enum {
+  FB_CASE_COLLIDER_EXACT = 0,   /* closed-form eccentricity (the models' own) */
+  FB_CASE_COLLIDER_FACETED = 1, /* ring of ODE boxes, dCollide */
+  FB_CASE_COLLIDER_CCD = 2      /* ring of convex segments, libccd MPR */
+} fb_case_collider;
+
+/* Bore shape of the libccd collider. */
+typedef enum {
+  FB_CASE_BORE_CIRCLE = 0, /* circular hole */
+  FB_CASE_BORE_ELLIPSE = 1 /* worn hole: diameter larger by ovality along the hole body's x */
+} fb_case_bore;
+
 /* Clearance joints and the contact parameters of the ode-clearance-* models. */
 typedef struct {
   int mask;                  /* bit j set: joint j is a clearance joint (pin in hole) */
@@ -66,6 +79,12 @@ typedef struct {
   double penetration_limit;  /* stop a model beyond this penetration [m]; 0: the radial clearance */
   int penetration_unlimited; /* 1: no limit (penetration_limit_um = none); penetration_limit ignored */
   int faceted_n;             /* boxes in the ring of the ode-clearance-faceted model */
+  fb_case_collider collider; /* collider of the ODE models whose row names the exact one */
+  int segments;              /* convex segments of the libccd bore ring [-]; with the faceted
+                                collider also its boxes (overrides faceted_n) when given */
+  int segments_given;        /* 1: [clearance] segments was set in the case */
+  fb_case_bore bore;         /* bore shape of the libccd collider */
+  double ovality;            /* ellipse bore: major minus minor diameter [m] >= 0 */
   double stiffness_scale;    /* multiplies the stiffness from any source [-] (studies, checks) */
 } fb_clearance;
 

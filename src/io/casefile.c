@@ -42,7 +42,9 @@ typedef enum {
   K_PINSTART,  /* centred | resting | an eccentricity angle in degrees */
   K_PEAKS,     /* steady | all */
   K_LIMIT,     /* a number (scaled like K_DOUBLE) | none | clearance */
-  K_UNUSED     /* a number checked against its range and not stored (no model uses it) */
+  K_UNUSED,    /* a number checked against its range and not stored (no model uses it) */
+  K_COLLIDER,  /* exact | faceted | ccd */
+  K_BORE       /* circle | ellipse */
 } key_kind;
 
 typedef struct {
@@ -210,6 +212,19 @@ static const key_spec keys[] = {
     {"clearance", "faceted_n", K_INT, OFF(clearance.faceted_n), 0, 3, 4096, 0, 0, "-", "64",
      "3 to 4096 boxes",
      "boxes in the hole ring of ode-clearance-faceted (ODE's generic box-cylinder path)"},
+    {"clearance", "collider", K_COLLIDER, OFF(clearance.collider), 0, 0, 0, 0, 0, "-", "exact",
+     "exact, faceted or ccd",
+     "how ode-clearance-impact and ode-clearance-restitution find the contact: closed form, "
+     "ring of ODE boxes, or libccd ring of convex segments (docs/colliders.md)"},
+    {"clearance", "segments", K_INT, OFF(clearance.segments), 0, 8, 65536, 0, 0, "-", "256",
+     "8 to 65536 segments",
+     "convex segments in the libccd bore ring (ode-clearance-ccd, collider = ccd); when given, "
+     "also the faceted collider's boxes"},
+    {"clearance", "bore", K_BORE, OFF(clearance.bore), 0, 0, 0, 0, 0, "-", "circle",
+     "circle or ellipse", "bore shape of the libccd collider (ellipse: a worn hole)"},
+    {"clearance", "ovality_um", K_DOUBLE, OFF(clearance.ovality), FB_M_PER_UM, 0, 1000, 0, 1, "um",
+     "0", "ovality must lie in [0, 1000) um",
+     "bore = ellipse: diameter along the hole body's x axis minus the hole diameter"},
 
     {"expect", "outcome", K_NAME, OFF(expect.outcome), 0, 0, 0, 0, 0, "-", "(none)",
      "stable or unstable", "hard cases: what the expect.model run must do (checked by tests)"},
@@ -646,6 +661,17 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else if (strcmp(e->value, "auto") == 0) *(int *)field = FB_MUJOCO_AUTO;
       else return bad_word(e, k, diag);
       return FB_OK;
+    case K_COLLIDER:
+      if (strcmp(e->value, "exact") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_EXACT;
+      else if (strcmp(e->value, "faceted") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_FACETED;
+      else if (strcmp(e->value, "ccd") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_CCD;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_BORE:
+      if (strcmp(e->value, "circle") == 0) *(fb_case_bore *)field = FB_CASE_BORE_CIRCLE;
+      else if (strcmp(e->value, "ellipse") == 0) *(fb_case_bore *)field = FB_CASE_BORE_ELLIPSE;
+      else return bad_word(e, k, diag);
+      return FB_OK;
     case K_MAPPING:
       if (strcmp(e->value, "secant") == 0) *(int *)field = 0;
       else if (strcmp(e->value, "tangent") == 0) *(int *)field = 1;
@@ -1074,6 +1100,7 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   }
   st = resolve_standards(out, c, diag);
   if (st != FB_OK) goto done;
+  out->clearance.segments_given = entry_origin(c, "clearance", "segments") != NULL;
   {
     fb_diag inner;
     st = fb_case_check(out, &inner);

@@ -114,6 +114,19 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   const fb_model_run *run = &m->run;
   json_object_set_new(o, "name", json_string(run->name));
   json_object_set_new(o, "kind", json_string(fb_engine_name(run->model->engine)));
+  /* how its clearance contact was found (docs/colliders.md); null without clearance joints */
+  if (run->clearance_mask) {
+    json_object_set_new(o, "collider", json_string(fb_collider_name(run->collider)));
+    json_object_set_new(o, "collider_segments",
+                        run->segments > 0 ? json_integer(run->segments) : json_null());
+    json_object_set_new(o, "bore", json_string(run->bore_ovality > 0.0 ? "ellipse" : "circle"));
+    json_object_set_new(o, "bore_ovality_m", num(run->bore_ovality));
+  } else {
+    json_object_set_new(o, "collider", json_null());
+    json_object_set_new(o, "collider_segments", json_null());
+    json_object_set_new(o, "bore", json_null());
+    json_object_set_new(o, "bore_ovality_m", json_null());
+  }
   json_object_set_new(o, "status", json_string(run->status));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));

@@ -12,6 +12,11 @@ struct fb_ccd_bore {
   double (*normal)[2]; /* n_k (n) */
   double *h;           /* h_k: facet line n_k . x = h_k (n) */
   double *alpha;       /* polar angle of the eroded vertex W_k, unwrapped, increasing (n + 1) */
+  int *cand;           /* scratch: candidate segments of one call (n) */
+  double *cdep;        /* scratch: their closed-form depths (n) */
+  int *patch;          /* scratch: their contact patch (n) */
+  char *taken;         /* scratch: 1 once handed to libccd (n) */
+  int *pbest;          /* scratch: deepest candidate of each patch (n) */
   unsigned long calls;
   unsigned long contacts;
 };
@@ -85,6 +90,11 @@ void fb_ccd_bore_destroy(fb_ccd_bore *b) {
   free(b->normal);
   free(b->h);
   free(b->alpha);
+  free(b->cand);
+  free(b->cdep);
+  free(b->patch);
+  free(b->taken);
+  free(b->pbest);
   free(b);
 }
 
@@ -102,8 +112,14 @@ fb_status fb_ccd_bore_create(fb_ccd_bore **out, const fb_ccd_bore_def *def, fb_d
     b->normal = malloc((size_t)n * sizeof *b->normal);
     b->h = malloc((size_t)n * sizeof *b->h);
     b->alpha = malloc((size_t)(n + 1) * sizeof *b->alpha);
+    b->cand = malloc((size_t)n * sizeof *b->cand);
+    b->cdep = malloc((size_t)n * sizeof *b->cdep);
+    b->patch = malloc((size_t)n * sizeof *b->patch);
+    b->taken = malloc((size_t)n);
+    b->pbest = malloc((size_t)n * sizeof *b->pbest);
   }
-  if (!b || !b->inner || !b->outer || !b->normal || !b->h || !b->alpha) {
+  if (!b || !b->inner || !b->outer || !b->normal || !b->h || !b->alpha || !b->cand || !b->cdep ||
+      !b->patch || !b->taken || !b->pbest) {
     fb_ccd_bore_destroy(b);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a ring of %d segments", n);
   }
@@ -177,11 +193,49 @@ static int chain(const fb_ccd_bore *b, const double p[2], int *k0, int *before, 
 }
 
 double fb_ccd_bore_depth(const fb_ccd_bore *b, const double p[2]) {
+  double worst = 0.0;
+  if (b->def.shape == FB_BORE_ELLIPSE) {
+    for (int k = 0; k < b->n; k++) worst = fmax(worst, facet_depth(b, k, p));
+    return worst;
+  }
   int k0, before, after;
   if (!chain(b, p, &k0, &before, &after)) return 0.0;
-  double worst = 0.0;
   for (int i = -before; i <= after; i++) worst = fmax(worst, facet_depth(b, (k0 + i + b->n) % b->n, p));
   return worst;
+}
+
+/* the segments the pin centre p lies beyond, in ring order, with their depths
+ * and contact patch (runs of neighbours); returns how many */
+static int candidates(fb_ccd_bore *b, const double p[2]) {
+  const int n = b->n;
+  int m = 0;
+  if (b->def.shape == FB_BORE_ELLIPSE) {
+    /* an ellipse whose end curvature is tighter than the pin (ovality above
+     * about 2 c R_hole / R_pin) has a non-convex configuration space: the pin
+     * touches both sides of the major axis, so every facet is tested */
+    for (int k = 0; k < n; k++) {
+      const double d = facet_depth(b, k, p);
+      if (d > 0.0) {
+        b->cand[m] = k;
+        b->cdep[m] = d;
+        b->patch[m] = m > 0 && b->cand[m - 1] == k - 1 ? b->patch[m - 1] : m;
+        m++;
+      }
+    }
+    /* a run through index 0 is one patch */
+    if (m > 1 && b->cand[0] == 0 && b->cand[m - 1] == n - 1)
+      for (int i = m - 1; i >= 0 && b->patch[i] == b->patch[m - 1]; i--) b->patch[i] = b->patch[0];
+    return m;
+  }
+  int k0, before, after;
+  if (!chain(b, p, &k0, &before, &after)) return 0;
+  for (int i = -before; i <= after; i++) {
+    b->cand[m] = (k0 + i + n) % n;
+    b->cdep[m] = facet_depth(b, b->cand[m], p);
+    b->patch[m] = 0;
+    m++;
+  }
+  return m;
 }
 
 /* ---- libccd objects and support functions ------------------------------- */
@@ -234,8 +288,8 @@ static void seg_center(const void *obj, ccd_vec3_t *c) {
 }
 
 int fb_ccd_bore_collide(fb_ccd_bore *b, const double p[2], fb_ccd_contact *out, int max) {
-  int k0, before, after;
-  if (max < 1 || !chain(b, p, &k0, &before, &after)) return 0;
+  const int m = max < 1 ? 0 : candidates(b, p);
+  if (m == 0) return 0;
   const int n = b->n;
   pin_obj pin = {{p[0], p[1]}, b->def.pin_radius, 0.5 * b->def.pin_length};
   ccd_t ccd;
@@ -246,22 +300,29 @@ int fb_ccd_bore_collide(fb_ccd_bore *b, const double p[2], fb_ccd_contact *out, 
   ccd.center2 = seg_center;
   ccd.mpr_tolerance = b->def.tolerance;
   ccd.max_iterations = b->def.max_iterations;
-  /* deepest facet of the chain, then outwards taking the deeper neighbour:
-   * the depths fall monotonically on both sides, so this is depth order */
-  int top = -before;
-  for (int i = -before + 1; i <= after; i++)
-    if (facet_depth(b, (k0 + i + n) % n, p) > facet_depth(b, (k0 + top + n) % n, p)) top = i;
-  int lo = top, hi = top, count = 0;
-  for (int taken = 0; taken < max && taken <= before + after; taken++) {
-    int i;
-    if (taken == 0) {
-      i = top;
-    } else {
-      const double dl = lo > -before ? facet_depth(b, (k0 + lo - 1 + n) % n, p) : -INFINITY;
-      const double dh = hi < after ? facet_depth(b, (k0 + hi + 1) % n, p) : -INFINITY;
-      i = dl >= dh ? --lo : ++hi;
-    }
-    const int k = (k0 + i + n) % n, k1 = (k + 1) % n;
+  /* the deepest segment of each contact patch first (deepest patch first),
+   * then the deepest of the rest */
+  /* pbest[patch]: its deepest candidate (patch ids are candidate indices) */
+  int *pbest = b->pbest;
+  for (int i = 0; i < m; i++) {
+    b->taken[i] = 0;
+    pbest[i] = -1;
+  }
+  for (int i = 0; i < m; i++)
+    if (pbest[b->patch[i]] < 0 || b->cdep[i] > b->cdep[pbest[b->patch[i]]]) pbest[b->patch[i]] = i;
+  int count = 0;
+  for (int taken = 0; taken < max && taken < m; taken++) {
+    int i = -1;
+    for (int pass = 0; pass < 2 && i < 0; pass++)
+      for (int q = 0; q < m; q++) {
+        if (b->taken[q]) continue;
+        /* first pass: the deepest of a patch none of whose segments is taken */
+        if (pass == 0 && (pbest[b->patch[q]] != q)) continue;
+        if (i < 0 || b->cdep[q] > b->cdep[i]) i = q;
+      }
+    if (pbest[b->patch[i]] == i) pbest[b->patch[i]] = -2; /* patch served */
+    b->taken[i] = 1;
+    const int k = b->cand[i], k1 = (k + 1) % n;
     seg_obj seg;
     seg.hl = pin.hl;
     const double *q[4] = {b->inner[k], b->inner[k1], b->outer[k1], b->outer[k]};

@@ -39,7 +39,11 @@
  * by the ray from the hole centre through p (edges visible from an exterior
  * point of a convex polygon are contiguous), found by bisection on the
  * eroded vertices' polar angles and scanned outwards: O(log N + contacts)
- * per call, not O(N).
+ * per call, not O(N). For an ellipse that argument fails once the bore's
+ * end curvature radius b^2 / a drops below R_pin (ovality above about
+ * 2 c R_hole / R_pin, 29 um for the paper's joint): the pin then wedges
+ * into the end of the major axis on two separate patches, so every facet is
+ * tested (O(N) dot products, no libccd call).
  *
  * Error against the exact circle (derived in docs/colliders.md): a cylinder
  * against a tangent facet has depth d_k = e cos(theta_k - phi) - c (e, phi
@@ -106,17 +110,18 @@ typedef struct {
 } fb_ccd_contact;
 
 /* Contacts of a pin whose centre is at p (hole frame) [m] with the ring: at
- * most max contacts, returns how many. The segments of the chain (see
- * above) are taken deepest first by their closed-form depth d_k(p), and
- * ccdMPRPenetration is called on the first max of them only, so the cost per
- * call is bounded by max however fine the ring; a call that reports no
- * intersection or zero depth adds no contact. Deeper segments the cap leaves
- * out are all shallower than the ones kept. */
+ * most max contacts, returns how many. Of the candidate segments (see
+ * above; runs of neighbours form one contact patch) the deepest of each
+ * patch is taken first, deepest patch first, then the deepest of the rest,
+ * by their closed-form depth d_k(p); ccdMPRPenetration is called on those
+ * max only, so the libccd cost per call is bounded by max however fine the
+ * ring. A call that reports no intersection or zero depth adds no contact. */
 int fb_ccd_bore_collide(fb_ccd_bore *b, const double p[2], fb_ccd_contact *out, int max);
 
 /* Penetration of the pin at p into the faceted bore [m] (0 when free), in
- * closed form: max_k d_k(p) over the chain, no libccd call. For a face
- * contact it equals the depth libccd reports (tested). */
+ * closed form: max_k d_k(p) (over the chain for a circle, every facet for an
+ * ellipse), no libccd call. For a face contact it equals the depth libccd
+ * reports (tested). */
 double fb_ccd_bore_depth(const fb_ccd_bore *b, const double p[2]);
 
 /* ccdMPRPenetration calls made and contacts returned since creation. */

@@ -149,8 +149,8 @@ static fb_status ccd_create(fb_scene *s, int j, fb_diag *diag) {
 fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *diag) {
   fb_status rc0 = fb_scene_def_check(sm->def, diag);
   if (rc0 != FB_OK) return rc0;
-  if (sm->clearance_mask && sm->model->collider != FB_COLLIDER_EXACT &&
-      sm->model->collider != FB_COLLIDER_FACETED && sm->model->collider != FB_COLLIDER_CCD)
+  if (sm->clearance_mask && sm->collider != FB_COLLIDER_EXACT &&
+      sm->collider != FB_COLLIDER_FACETED && sm->collider != FB_COLLIDER_CCD)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the ODE engine has no such collider",
                        sm->model->name);
   const fb_scene_model *def = sm;

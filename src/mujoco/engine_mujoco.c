@@ -23,6 +23,10 @@ static void mujoco_provenance(const void *self, int joint, fb_contact_provenance
   fb_mujoco_scene_provenance(self, joint, out);
 }
 
+static void mujoco_reactions(const void *self, double force[4][2], double *drive_torque) {
+  fb_mujoco_scene_reactions(self, force, drive_torque);
+}
+
 static double mujoco_drift(const void *self) { return fb_mujoco_scene_joint_drift(self); }
 
 static size_t mujoco_steps(const void *self) { return fb_mujoco_scene_steps(self); }
@@ -37,7 +41,7 @@ const fb_engine fb_engine_mujoco = {
     .sample = mujoco_sample,
     .contact = mujoco_contact,
     .provenance = mujoco_provenance,
-    .reactions = NULL,
+    .reactions = mujoco_reactions,
     .drift = mujoco_drift,
     .steps = mujoco_steps,
     .destroy = mujoco_destroy,

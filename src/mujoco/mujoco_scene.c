@@ -82,6 +82,9 @@ struct fb_mujoco_scene {
   int hole_body[4];   /* native: the body carrying the hole's ring (0: world) */
   double angle0[3];   /* body angles at qpos0 [rad] */
   mj_clearance cl[4];
+  int body[3];        /* body id of crank, coupler, follower */
+  double reaction[4][2]; /* joint forces now, invdyn.h's convention [N] */
+  double drive_torque;   /* on the crank from the flywheel about +z [N m] */
   size_t steps;
 };
 
@@ -346,6 +349,44 @@ static void native_force(fb_mujoco_scene *s, int j) {
   s->cl[j].force = hypot(f[0], f[1]);
 }
 
+/* joint reactions at this state (after a forward pass), with invdyn.h's
+ * convention (the force on the second-named body from the first): MuJoCo's
+ * recursive Newton-Euler after the constraint stage (mj_rnePostConstraint)
+ * gives each body's interaction force with its parent, the connect
+ * equality's force on the follower is -efc_force (body2), and the drive
+ * torque is what the flywheel gives the crank, -armature * alpha. At a
+ * clearance joint the slides transmit nothing, so the parent's force is the
+ * contact law's (applied through qfrc_passive). */
+static void reactions_now(fb_mujoco_scene *s) {
+  const mjModel *m = s->m;
+  mjData *d = s->d;
+  mj_rnePostConstraint(m, d);
+  const double *fa = d->cfrc_int + 6 * s->body[FB_CRANK] + 3;    /* on the crank from ground */
+  const double *fb = d->cfrc_int + 6 * s->body[FB_COUPLER] + 3;  /* on the coupler from the crank */
+  const double *fd = d->cfrc_int + 6 * s->body[FB_FOLLOWER] + 3; /* on the follower from ground */
+  for (int k = 0; k < 2; k++) {
+    s->reaction[FB_JOINT_A][k] = fa[k];
+    s->reaction[FB_JOINT_B][k] = fb[k];
+    s->reaction[FB_JOINT_D][k] = fd[k];
+    s->reaction[FB_JOINT_C][k] = 0.0;
+  }
+  if (s->def.clearance_mask & (1 << FB_JOINT_C)) {
+    /* the law's force on the follower's hole: +F n, n = e / |e| */
+    const mj_clearance *c = &s->cl[FB_JOINT_C];
+    const double ecc = hypot(c->e[0], c->e[1]);
+    if (ecc > 0.0)
+      for (int k = 0; k < 2; k++) s->reaction[FB_JOINT_C][k] = c->force * c->e[k] / ecc;
+  } else {
+    for (int i = 0; i < d->ne; i++)
+      if (d->efc_type[i] == mjCNSTR_EQUALITY && m->eq_type[d->efc_id[i]] == mjEQ_CONNECT) {
+        s->reaction[FB_JOINT_C][0] = -d->efc_force[i];
+        s->reaction[FB_JOINT_C][1] = -d->efc_force[i + 1];
+        break;
+      }
+  }
+  s->drive_torque = -s->def.opts.drive_armature * d->qacc[s->hinge_dof[FB_CRANK]];
+}
+
 /* ---- create, step, sample ------------------------------------------------- */
 
 static mjModel *load_mjcf(const char *mjcf, fb_diag *diag) {
@@ -428,6 +469,8 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm
     s->pin_geom[j] = mj_name2id(m, mjOBJ_GEOM, pin_geoms[j]);
     s->hole_body[j] = m->site_bodyid[s->site_hole[j]];
   }
+  static const char *const bodies[3] = {"crank", "coupler", "follower"};
+  for (int i = 0; i < 3; i++) s->body[i] = mj_name2id(m, mjOBJ_BODY, bodies[i]);
   static const char *const hinges[3] = {"A", "B", "D"};
   for (int i = 0; i < 3; i++) {
     const int jid = mj_name2id(m, mjOBJ_JOINT, hinges[i]);
@@ -460,6 +503,7 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm
   forward(s);
   for (int j = 0; j < 4; j++)
     if (def->native && (def->clearance_mask & (1 << j))) native_force(s, j);
+  reactions_now(s);
   *out = s;
   return FB_OK;
 }
@@ -537,6 +581,7 @@ fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
     fb_episode_update(&c->ep, c->delta > 0.0, c->ddot, s->def.impact_velocity_min);
     if (c->delta > 0.0) note_contact(s, j);
   }
+  reactions_now(s);
   return FB_OK;
 }
 
@@ -592,6 +637,13 @@ void fb_mujoco_scene_provenance(const fb_mujoco_scene *s, int j, fb_contact_prov
   out->erp_max = NAN; /* no constraint row: the law is a force */
   out->cfm_min = NAN;
   if (out->contact_steps == 0) out->mass_eff_min = out->mass_eff_max = out->h_omega_max = NAN;
+}
+
+void fb_mujoco_scene_reactions(const fb_mujoco_scene *s, double force[4][2],
+                               double *drive_torque) {
+  for (int j = 0; j < 4; j++)
+    for (int k = 0; k < 2; k++) force[j][k] = s->reaction[j][k];
+  *drive_torque = s->drive_torque;
 }
 
 int fb_mujoco_scene_impacts(const fb_mujoco_scene *s, int j) { return s->cl[j].ep.impacts; }

@@ -103,6 +103,15 @@ double fb_mujoco_scene_penetration(const fb_mujoco_scene *s, int *joint);
  * constraint row); NaN everywhere before the first contact. */
 void fb_mujoco_scene_provenance(const fb_mujoco_scene *s, int j, fb_contact_provenance *out);
 
+/* Joint reactions at the current state (instantaneous, like the sample),
+ * with invdyn.h's convention: force[j] on the second-named body from the
+ * first at joint A, B, C, D (x, y) [N] (at a clearance joint the contact
+ * force), and the drive torque the flywheel gives the crank about +z,
+ * -armature * crank alpha [N m]. From MuJoCo's mj_rnePostConstraint and the
+ * connect equality's force. */
+void fb_mujoco_scene_reactions(const fb_mujoco_scene *s, double force[4][2],
+                               double *drive_torque);
+
 /* Impact episodes counted so far at joint j. */
 int fb_mujoco_scene_impacts(const fb_mujoco_scene *s, int j);
 

@@ -6,6 +6,7 @@
 
 #include "casefile.h"
 #include "fb_test.h"
+#include "outcome_text.h"
 #include "run.h"
 
 static void check_case(const char *path) {
@@ -26,11 +27,15 @@ static void check_case(const char *path) {
   if (!m) fail_msg("%s: expect.model %s is not run", path, c.expect.model);
   const char *name = strrchr(path, '/') + 1;
   if (strcmp(c.expect.outcome, "unstable") == 0) {
-    if (strncmp(m->run.status, "unstable", 8) != 0 || !strstr(m->run.status, c.expect.reason))
-      fail_msg("%s: expected unstable (%s), got '%s'", name, c.expect.reason, m->run.status);
-    if (fb_test_verbose()) fprintf(stderr, "  %-26s unstable as expected: %.60s\n", name, m->run.status);
+    if (m->run.stop.kind != fb_stop_kind_parse(c.expect.reason))
+      fail_msg("%s: expected stop '%s', got '%s'", name, c.expect.reason,
+               fb_stop_kind_name(m->run.stop.kind));
+    if (fb_test_verbose())
+      fprintf(stderr, "  %-26s stopped as expected: %s at t = %g s\n", name,
+              fb_stop_kind_name(m->run.stop.kind), m->run.stop.t);
   } else {
-    if (strcmp(m->run.status, "ok") != 0) fail_msg("%s: expected stable, got '%s'", name, m->run.status);
+    if (m->run.stop.kind != FB_STOP_NONE)
+      fail_msg("%s: expected stable, got stop '%s'", name, fb_stop_kind_name(m->run.stop.kind));
     if (c.expect.omega_peak_rel_max > 0) {
       const fb_error *e = &m->error;
       const double w = fmax(fmax(fabs(e->coupler.omega_max_rel), fabs(e->coupler.omega_min_rel)),

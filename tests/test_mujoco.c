@@ -22,6 +22,7 @@
 #include "fb_test.h"
 #include "invdyn.h"
 #include "mujoco_scene.h"
+#include "outcome_text.h"
 #include "run.h"
 
 /* the issue's acceptance bound on peak angular velocity at the default step
@@ -79,8 +80,8 @@ static void run(fb_run *r, const char *models, const char **sets, int n) {
   fb_diag d;
   if (fb_run_case(r, &c, NULL, NULL, &d) != FB_OK) fail_msg("run failed: %s", d.msg);
   for (int i = 0; i < r->n; i++)
-    if (strcmp(r->model[i].run.status, "ok") != 0)
-      fail_msg("%s: %s", r->model[i].run.name, r->model[i].run.status);
+    if (r->model[i].run.stop.kind != FB_STOP_NONE)
+      fail_msg("%s: stopped (%s)", r->model[i].run.name, fb_stop_kind_name(r->model[i].run.stop.kind));
 }
 
 static double worst(double a, double b, double c, double d) {

@@ -22,7 +22,7 @@ static void test_ideal_limit_matches_analytic(void **state) {
   fb_test_paper_case(&c, sets, 1);
   fb_series s;
   size_t steps;
-  assert_int_equal(fb_reference_run(&s, &steps, &c, NULL, 1, NULL), FB_OK);
+  assert_int_equal(fb_reference_run(&s, &steps, &c, NULL, 1, NULL, NULL), FB_OK);
   fb_linkage lk;
   fb_case_stackup_lengths(&c, &lk);
   const double w = fb_case_omega2(&c);
@@ -59,9 +59,9 @@ static void test_reference_converged_in_tolerance(void **state) {
   assert_int_equal(fb_joint_laws(law, NULL, &c, NULL), FB_OK);
   fb_series a, b;
   size_t sa, sb;
-  assert_int_equal(fb_reference_run(&a, &sa, &c, &law[FB_JOINT_B], 0, NULL), FB_OK);
+  assert_int_equal(fb_reference_run(&a, &sa, &c, &law[FB_JOINT_B], 0, NULL, NULL), FB_OK);
   setenv("FOURBAR_REFERENCE_TOL", "1e-12", 1);
-  assert_int_equal(fb_reference_run(&b, &sb, &c, &law[FB_JOINT_B], 0, NULL), FB_OK);
+  assert_int_equal(fb_reference_run(&b, &sb, &c, &law[FB_JOINT_B], 0, NULL, NULL), FB_OK);
   unsetenv("FOURBAR_REFERENCE_TOL");
   const double t0 = 2 * M_PI / c.crank_speed;
   report_residual("reference force peak, tol 1e-10 vs 1e-12",
@@ -110,10 +110,12 @@ static void test_step_budget_stops_a_lost_integration(void **state) {
   fb_series s;
   size_t steps = 0;
   fb_diag d;
-  const fb_status st = fb_reference_run(&s, &steps, &c, &law[FB_JOINT_B], 0, &d);
+  fb_stop stop;
+  const fb_status st = fb_reference_run(&s, &steps, &c, &law[FB_JOINT_B], 0, &stop, &d);
   const size_t n = (size_t)llround(fb_case_duration(&c) / c.solver.h);
   if (st == FB_OK) fail_msg("a lost integration finished in %zu steps", steps);
   assert_int_equal(st, FB_ERR_NUMERIC);
+  assert_int_equal(stop.kind, FB_STOP_STEP_BUDGET);
   if (!strstr(d.msg, "step budget")) fail_msg("'%s' does not name the step budget", d.msg);
   /* + 1: GSL's driver counts the step that reached its limit */
   if (steps > (n + 1) * FB_REFERENCE_STEPS_PER_SAMPLE + 1)

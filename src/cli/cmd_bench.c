@@ -11,6 +11,7 @@
 #include "clock.h"
 #include "figures.h"
 #include "fileio.h"
+#include "outcome_text.h"
 #include "report.h"
 
 #define MAX_SETS 256
@@ -136,11 +137,13 @@ int fb_cmd_bench(int argc, char **argv) {
   json_t *arr = json_array();
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
+    char stop[256];
     char erp[32] = "", cfm[32] = "";
     if (isfinite(b->world_erp)) snprintf(erp, sizeof erp, "%g", b->world_erp);
     if (isfinite(b->world_cfm)) snprintf(cfm, sizeof cfm, "%g", b->world_cfm);
     fprintf(f.f, "%s,%s,%s,%g,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d,%.6g,%s,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g\n",
-            b->model, b->engine, b->stepper, b->h, mapping_name(b->mapping), erp, cfm, b->status,
+            b->model, b->engine, b->stepper, b->h, mapping_name(b->mapping), erp, cfm,
+            fb_stop_text(stop, sizeof stop, &b->stop),
             b->error, b->wall_per_rev, b->repeats, b->pareto, b->setup_s, b->collider,
             b->segments, b->us_per_step, b->force_vs_exact, b->pen_vs_exact, b->alpha_vs_exact,
             b->impacts, b->impacts_exact, b->cost_vs_exact);
@@ -152,7 +155,7 @@ int fb_cmd_bench(int argc, char **argv) {
     json_object_set_new(o, "mapping", json_string(mapping_name(b->mapping)));
     json_object_set_new(o, "world_erp", isfinite(b->world_erp) ? json_real(b->world_erp) : json_null());
     json_object_set_new(o, "world_cfm", isfinite(b->world_cfm) ? json_real(b->world_cfm) : json_null());
-    json_object_set_new(o, "status", json_string(b->status));
+    json_object_set_new(o, "status", json_string(fb_stop_text(stop, sizeof stop, &b->stop)));
     json_object_set_new(o, "error", isfinite(b->error) ? json_real(b->error) : json_null());
     json_object_set_new(o, "wall_per_rev_s", isfinite(b->wall_per_rev) ? json_real(b->wall_per_rev) : json_null());
     json_object_set_new(o, "pareto", json_boolean(b->pareto));
@@ -216,6 +219,7 @@ int fb_cmd_bench(int argc, char **argv) {
          c.name, n, wall, "model", "stepper", "h_s", "mapping", "ERP", "CFM", "error", "s/rev", "status");
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
+    char stop[256];
     char erp[16] = "-", cfm[16] = "-";
     if (isfinite(b->world_erp)) snprintf(erp, sizeof erp, "%5.1f", b->world_erp);
     if (isfinite(b->world_cfm)) snprintf(cfm, sizeof cfm, "%7.0e", b->world_cfm);
@@ -224,7 +228,8 @@ int fb_cmd_bench(int argc, char **argv) {
     if (isfinite(b->wall_per_rev)) snprintf(cost, sizeof cost, "%12.3e", b->wall_per_rev);
     else snprintf(cost, sizeof cost, "%12s", "-");
     printf("%-24s %-9s %7.0e %-8s %5s %7s %12.3e %s %c %.40s\n", b->model, b->stepper, b->h,
-           mapping_name(b->mapping), erp, cfm, b->error, cost, b->pareto ? 'P' : ' ', b->status);
+           mapping_name(b->mapping), erp, cfm, b->error, cost, b->pareto ? 'P' : ' ',
+           fb_stop_text(stop, sizeof stop, &b->stop));
   }
   int ncol = 0;
   for (int i = 0; i < n; i++) ncol += rows[i].collider_axis;
@@ -234,11 +239,13 @@ int fb_cmd_bench(int argc, char **argv) {
            "h_s", "force", "pen", "alpha_c", "impacts", "us/step", "cost", "error");
     for (int i = 0; i < n; i++) {
       const fb_bench_row *b = &rows[i];
+      char stop[256];
       if (!b->collider_axis) continue;
       char ring[16] = "-";
       if (b->segments > 0) snprintf(ring, sizeof ring, "%d", b->segments);
       if (!b->has_vs_exact) {
-        printf("%-22s %-8s %5s %7.0e %.60s\n", b->model, b->collider, ring, b->h, b->status);
+        printf("%-22s %-8s %5s %7.0e %.60s\n", b->model, b->collider, ring, b->h,
+               fb_stop_text(stop, sizeof stop, &b->stop));
         continue;
       }
       char imp[32];

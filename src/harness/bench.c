@@ -65,9 +65,9 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     b->mapping = q == 0 ? -1 : mapping;
     b->world_erp = mapping >= 0 ? k->solver.world_erp : NAN;
     b->world_cfm = mapping >= 0 ? k->solver.world_cfm : NAN;
-    snprintf(b->status, sizeof b->status, "%s", m->run.status);
+    b->stop = m->run.stop;
     b->error = NAN;
-    if (strcmp(m->run.status, "ok") == 0) {
+    if (m->run.stop.kind == FB_STOP_NONE) {
       if (q == 0 && m->has_error) b->error = omega_peak_error(&m->error);
       if (q == 1 && m->has_ref_error)
         b->error = fmax(fabs(m->ref_error.force_max_rel), fabs(m->ref_error.penetration_max_rel));
@@ -169,7 +169,7 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
     b->mapping = k.clearance.mapping;
     b->world_erp = k.solver.world_erp;
     b->world_cfm = k.solver.world_cfm;
-    snprintf(b->status, sizeof b->status, "%s", m->run.status);
+    b->stop = m->run.stop;
     snprintf(b->collider, sizeof b->collider, "%s", fb_collider_name(m->run.collider));
     b->segments = m->run.segments;
     b->repeats = reps;
@@ -179,7 +179,7 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
     b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
     b->error = NAN;
     b->force_vs_exact = b->pen_vs_exact = b->alpha_vs_exact = b->cost_vs_exact = NAN;
-    if (strcmp(m->run.status, "ok") != 0 || !m->has_spikes || !ex->has_spikes) continue;
+    if (m->run.stop.kind != FB_STOP_NONE || !m->has_spikes || !ex->has_spikes) continue;
     /* against the reference (the faceted row names none: compared here) */
     fb_reference_error re;
     fb_diag inner;

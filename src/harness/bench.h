@@ -29,6 +29,7 @@
 
 #include "case.h"
 #include "model_table.h"
+#include "outcome.h"
 
 typedef struct fb_bench_row_s {
   const fb_model *row;     /* the model (rows compare by it) */
@@ -38,7 +39,7 @@ typedef struct fb_bench_row_s {
   double h;                /* [s] */
   int mapping;             /* 0 secant, 1 tangent; -1 where none applies (ideal, mujoco) */
   double world_erp, world_cfm; /* ode's ideal joints; NaN for mujoco */
-  char status[256];
+  fb_stop stop;            /* why the model's run stopped (FB_STOP_NONE: it did not) */
   double error;            /* NaN when the run stopped */
   double wall_per_rev;     /* median wall time per simulated revolution, the engine's setup
                               excluded [s] */

@@ -5,7 +5,8 @@
  *   create   builds the world of one model (fb_scene_model: the scene
  *            definition with the model's row applied) at t = 0; it calls
  *            fb_scene_def_check first
- *   step     advances one step of def->solver.h
+ *   step     advances one step of def->solver.h; FB_ERR_NUMERIC (or
+ *            FB_ERR_NOMEM) ends this model's run, and stopped() says why
  *   sample   the state now as an fb_sample (contact columns of the model's
  *            clearance joints included)
  *   contact  penetration now and impacts so far (fb_engine_contact)
@@ -26,6 +27,7 @@
 #include <stddef.h>
 
 #include "model_table.h"
+#include "outcome.h"
 #include "scene_def.h"
 #include "series.h"
 
@@ -55,6 +57,9 @@ typedef struct fb_engine {
                                        accuracy (reference) */
   fb_status (*create)(void **self, const fb_scene_model *sm, fb_diag *diag);
   fb_status (*step)(void *self, fb_diag *diag);
+  void (*stopped)(const void *self, fb_stop *out); /* optional: why step returned
+                                       FB_ERR_NUMERIC or FB_ERR_NOMEM (NULL: a solver stop with
+                                       the step's message as detail) */
   void (*sample)(const void *self, fb_sample *x);
   void (*contact)(const void *self, fb_engine_contact *out);
   void (*provenance)(const void *self, int joint, fb_contact_provenance *out);

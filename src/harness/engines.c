@@ -50,6 +50,7 @@ typedef struct {
   size_t i;          /* sample replayed now */
   int failed;        /* the computation stopped early */
   char why[FB_DIAG_SIZE];
+  fb_stop stop;      /* why (the reference's reason) */
 } replay;
 
 static fb_status replay_step(void *self, fb_diag *diag) {
@@ -65,6 +66,8 @@ static void replay_sample(const void *self, fb_sample *x) {
   const replay *r = self;
   fb_series_get(&r->s, r->i, x);
 }
+
+static void replay_stopped(const void *self, fb_stop *out) { *out = ((const replay *)self)->stop; }
 
 static size_t replay_steps(const void *self) { return ((const replay *)self)->steps; }
 
@@ -149,7 +152,8 @@ static fb_status reference_create(void **self, const fb_scene_model *sm, fb_diag
                        "at the crank-coupler joint", sm->model->name);
   replay *r = calloc(1, sizeof *r);
   if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the reference engine");
-  st = fb_reference_run(&r->s, &r->steps, &sm->def->source, &sm->law[FB_JOINT_B], 0, diag);
+  st = fb_reference_run(&r->s, &r->steps, &sm->def->source, &sm->law[FB_JOINT_B], 0, &r->stop,
+                        diag);
   if (st == FB_ERR_NUMERIC) { /* the reference failing is a result, not an error */
     r->failed = 1;
     snprintf(r->why, sizeof r->why, "%.200s", diag ? diag->msg : "reference integration failed");
@@ -176,6 +180,7 @@ const fb_engine fb_engine_reference = {
     .guarded = 0,
     .create = reference_create,
     .step = replay_step,
+    .stopped = replay_stopped,
     .sample = replay_sample,
     .contact = reference_contact,
     .provenance = NULL,

@@ -13,6 +13,23 @@ static int sample_finite(const fb_sample *x) {
          isfinite(x->follower_alpha);
 }
 
+/* the engine's reason for a failed step (or create, self NULL) */
+static void engine_stop(fb_stop *out, const fb_engine *e, const void *self, fb_status st,
+                        double t, size_t k, const fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  out->engine = e->name;
+  out->joint = -1;
+  if (self && e->stopped) {
+    e->stopped(self, out);
+    if (!out->engine) out->engine = e->name;
+    if (out->kind != FB_STOP_NONE) return;
+  }
+  out->kind = st == FB_ERR_NOMEM ? FB_STOP_ALLOCATION : FB_STOP_SOLVER;
+  out->t = t;
+  out->step = k;
+  snprintf(out->detail, sizeof out->detail, "%.150s", diag ? diag->msg : "");
+}
+
 /* create, then def->steps steps, each sampled and checked */
 static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_model *sm,
                             fb_progress_fn progress, void *user, fb_diag *diag) {
@@ -22,7 +39,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
   fb_status st = e->create(&self, sm, diag);
   r->setup_s = fb_clock_s() - t0;
   if (st == FB_ERR_NUMERIC) { /* nothing to sample: a result, not an error */
-    snprintf(r->status, sizeof r->status, "%.200s", diag ? diag->msg : "numerical failure");
+    engine_stop(&r->stop, e, NULL, st, 0.0, 0, diag);
     return FB_OK;
   }
   if (st != FB_OK) return st;
@@ -40,9 +57,10 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
   const size_t report_every = n / 100 + 1;
   for (size_t k = 1; k <= n; k++) {
     st = e->step(self, diag);
-    if (st == FB_ERR_NUMERIC) { /* the engine gave up (ODE's own fatal check, the reference's
-                                   integrator): this model stops with its message, the others run */
-      snprintf(r->status, sizeof r->status, "%.200s", diag ? diag->msg : "numerical failure");
+    if (st == FB_ERR_NUMERIC || st == FB_ERR_NOMEM) { /* the engine gave up (ODE's own fatal
+                                   check or its step memory, the reference's integrator): this
+                                   model stops with its reason, the others run */
+      engine_stop(&r->stop, e, self, st, x.t, k, diag);
       st = FB_OK;
       break;
     }
@@ -50,15 +68,21 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
     e->sample(self, &x);
     if (e->reactions) e->reactions(self, x.reaction, &x.drive_torque);
     if (!sample_finite(&x)) {
-      snprintf(r->status, sizeof r->status, "nan at t = %.6g s (step %zu)", x.t, k);
+      r->stop.kind = FB_STOP_NONFINITE;
+      r->stop.t = x.t;
+      r->stop.step = k;
       break;
     }
     if (e->guarded) {
       fb_engine_contact ct;
       e->contact(self, &ct);
       if (ct.penetration > def->penetration_limit) {
-        fb_case_penetration_status(r->status, sizeof r->status, ct.penetration, ct.joint,
-                                   def->penetration_limit, x.t, k);
+        r->stop.kind = FB_STOP_PENETRATION;
+        r->stop.t = x.t;
+        r->stop.step = k;
+        r->stop.joint = ct.joint;
+        r->stop.value = ct.penetration;
+        r->stop.limit = def->penetration_limit;
         break;
       }
     }
@@ -81,7 +105,9 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene_def *def, const fb_
                            fb_progress_fn progress, void *user, fb_diag *diag) {
   memset(out, 0, sizeof *out);
   snprintf(out->name, sizeof out->name, "%s", m->name);
-  snprintf(out->status, sizeof out->status, "ok");
+  out->stop.kind = FB_STOP_NONE;
+  out->stop.engine = fb_engine_name(m->engine);
+  out->stop.joint = -1;
   out->model = m;
   out->h = def->solver.h;
   out->lengths = def->lengths[m->lengths];

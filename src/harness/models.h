@@ -1,5 +1,5 @@
 /* Running one model of a case on its engine (engine.h), on the case's time
- * grid, with its cost (steps, wall time) and a status that names why a run
+ * grid, with its cost (steps, wall time) and a typed stop reason (outcome.h) for a run
  * stopped early. The model is a row of the model table (model_table.h); the
  * scene is the case resolved once (scene_def.h). */
 #ifndef FB_MODELS_H
@@ -9,6 +9,7 @@
 
 #include "engine.h"
 #include "model_table.h"
+#include "outcome.h"
 #include "scene_def.h"
 #include "series.h"
 
@@ -16,7 +17,8 @@
 typedef struct {
   char name[FB_NAME_SIZE]; /* model name (the row's) */
   const fb_model *model;   /* the row of the model table */
-  char status[256];        /* "ok", or the reason and time the run stopped */
+  fb_stop stop;            /* why the run stopped early (kind FB_STOP_NONE: it did not);
+                              writers render it (outcome_text.h) */
   fb_linkage lengths;      /* link lengths the model used [m] */
   double h;                /* step size (ode) or sampling interval (analytic) [s] */
   size_t steps;            /* steps taken (ode), samples computed (analytic), accepted
@@ -41,7 +43,7 @@ typedef void (*fb_progress_fn)(const char *model, double fraction, void *user);
  * engine: create, then step and sample def->steps times. A numerical failure
  * (NaN or infinity in the state, penetration beyond def->penetration_limit
  * on a guarded engine, the reference integrator giving up) is not an error:
- * the run stops, the status names the reason and the time, and the samples
+ * the run stops, stop names the reason, time, step and joint, and the samples
  * so far are kept (all finite).
  * Errors: FB_ERR_ARG (engine not built, model needs what the scene lacks);
  * FB_ERR_ASSEMBLY, FB_ERR_RANGE (scene check), FB_ERR_NOMEM. */

@@ -18,9 +18,8 @@ static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref) {
   }
 }
 
-static void warn(fb_model_result *m, const char *text) {
-  if (m->warning_count < FB_RUN_WARNINGS)
-    snprintf(m->warnings[m->warning_count++], sizeof m->warnings[0], "%s", text);
+static void warn(fb_model_result *m, const fb_warning *w) {
+  if (m->warning_count < FB_RUN_WARNINGS) m->warnings[m->warning_count++] = *w;
 }
 
 /* revolution 1 alone (start-up peaks, first impact), and the warnings that
@@ -48,8 +47,15 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
     }
   }
   m->penetration_max_run = fb_metrics_penetration_max(s);
-  char text[256];
-  if (fb_case_validity_warning(text, sizeof text, c, m->penetration_max_run)) warn(m, text);
+  if (m->penetration_max_run > FB_PENALTY_VALIDITY_FACTOR * c->radial_clearance) {
+    const fb_warning w = {.kind = FB_WARN_PENALTY_VALIDITY,
+                          .value = m->penetration_max_run,
+                          .limit = c->radial_clearance,
+                          .ratio = m->penetration_max_run / c->radial_clearance,
+                          .factor = FB_PENALTY_VALIDITY_FACTOR,
+                          .t = NAN};
+    warn(m, &w);
+  }
   if (fb_engine_steps_world(m->run.model->engine)) {
     const double omega2 = fb_case_omega2(c);
     double lag = 0.0, t_lag = 0.0;
@@ -59,13 +65,12 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
     }
     if (lag > FB_DRIVE_LAG_WARN_RAD) {
       /* ODE's drive is a capped velocity motor, MuJoCo's a flywheel */
-      snprintf(text, sizeof text,
-               "crank drive saturated: the crank is %.3g rad off its prescribed angle at "
-               "t = %.6g s (raise %s)",
-               lag, t_lag,
+      fb_warning w = {.kind = FB_WARN_DRIVE_SATURATED, .value = lag, .limit = FB_DRIVE_LAG_WARN_RAD,
+                      .t = t_lag};
+      snprintf(w.what, sizeof w.what, "%s",
                m->run.model->engine == FB_ENGINE_MUJOCO ? "[mujoco] drive_armature_kg_m2"
                                                         : "[solver] drive_torque_max_n_m");
-      warn(m, text);
+      warn(m, &w);
     }
   }
 }

@@ -41,7 +41,7 @@ typedef struct {
   fb_first_impact first_impact; /* first impact of the run at that joint */
   double penetration_max_run; /* largest penetration over the whole run [m] */
   int warning_count;       /* entries used in warnings */
-  char warnings[FB_RUN_WARNINGS][256]; /* named warnings, e.g. "outside the penalty model's validity: ..." */
+  fb_warning warnings[FB_RUN_WARNINGS]; /* typed warnings (outcome.h; writers render them) */
   int has_ref_error;       /* 1 for a clearance model run beside its reference */
   fb_reference_error ref_error;
   char ref_name[FB_NAME_SIZE]; /* the reference model compared against */

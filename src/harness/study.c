@@ -14,6 +14,7 @@
 #include "casefile.h"
 #include "check.h"
 #include "fileio.h"
+#include "outcome_text.h"
 #include "units.h"
 
 /* ---- reading ---------------------------------------------------------------- */
@@ -340,9 +341,11 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
       /* every model that stopped, each with its reason */
       size_t l = 0;
       for (int k = 0; k < r.n; k++)
-        if (strcmp(r.model[k].run.status, "ok") != 0 && l + 1 < sizeof status)
+        if (r.model[k].run.stop.kind != FB_STOP_NONE && l + 1 < sizeof status) {
+          char why[256];
           l += (size_t)snprintf(status + l, sizeof status - l, "%s%s: %s", l ? "; " : "",
-                                r.model[k].run.name, r.model[k].run.status);
+                                r.model[k].run.name, fb_stop_text(why, sizeof why, &r.model[k].run.stop));
+        }
       fb_run_free(&r);
     }
   }

@@ -39,26 +39,6 @@ double fb_case_penetration_limit(const fb_case *c) {
                                               : c->radial_clearance;
 }
 
-void fb_case_penetration_status(char *buf, size_t size, double penetration, int joint,
-                                double limit, double t, size_t step) {
-  char at[48] = "";
-  if (step > 0) snprintf(at, sizeof at, " (step %zu)", step);
-  snprintf(buf, size,
-           "unstable: penetration %.4g um at the %s joint exceeds the limit %.4g um at "
-           "t = %.6g s%s",
-           penetration * 1e6, fb_joint_name(joint), limit * 1e6, t, at);
-}
-
-int fb_case_validity_warning(char *buf, size_t size, const fb_case *c, double penetration) {
-  if (!(penetration > FB_PENALTY_VALIDITY_FACTOR * c->radial_clearance)) return 0;
-  snprintf(buf, size,
-           "outside the penalty model's validity: penetration %.4g um is %.2f times the radial "
-           "clearance %.4g um (above %g times)",
-           penetration * 1e6, penetration / c->radial_clearance, c->radial_clearance * 1e6,
-           FB_PENALTY_VALIDITY_FACTOR);
-  return 1;
-}
-
 double fb_case_peak_window_from(const fb_case *c) {
   if (c->peaks == FB_PEAKS_ALL) return 0.0;
   return 2.0 * M_PI / c->crank_speed - 0.5 * c->solver.h;

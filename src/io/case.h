@@ -222,17 +222,6 @@ double fb_case_duration(const fb_case *c);
  * = none. */
 double fb_case_penetration_limit(const fb_case *c);
 
-/* Writes the status of a model stopped by the penetration limit ("unstable:
- * penetration ... at the <joint> joint exceeds the limit ... at t = ... (step
- * k)") into buf; step 0 leaves the step out (adaptive integrators). */
-void fb_case_penetration_status(char *buf, size_t size, double penetration, int joint,
-                                double limit, double t, size_t step);
-
-/* Writes the warning "outside the penalty model's validity: ..." into buf
- * and returns 1 when penetration exceeds FB_PENALTY_VALIDITY_FACTOR times
- * the case's radial clearance; returns 0 (buf untouched) otherwise. */
-int fb_case_validity_warning(char *buf, size_t size, const fb_case *c, double penetration);
-
 /* Start of the peak window [s]: 0 for peaks = all, else one revolution less
  * half a step (so that the sample at exactly one period counts). */
 double fb_case_peak_window_from(const fb_case *c);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fileio.h"
+#include "outcome_text.h"
 #include "start.h"
 
 /* finite number or null */
@@ -127,7 +128,8 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o, "bore", json_null());
     json_object_set_new(o, "bore_ovality_m", json_null());
   }
-  json_object_set_new(o, "status", json_string(run->status));
+  char stop[256];
+  json_object_set_new(o, "status", json_string(fb_stop_text(stop, sizeof stop, &run->stop)));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
   json_object_set_new(o, "lengths_m", lengths_json(&run->lengths));
@@ -171,8 +173,9 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "penetration_max_m", run->clearance_mask ? num(m->penetration_max_run)
                                                                   : json_null());
   json_t *warnings = json_array();
+  char wt[256];
   for (int k = 0; k < m->warning_count; k++)
-    json_array_append_new(warnings, json_string(m->warnings[k]));
+    json_array_append_new(warnings, json_string(fb_warning_text(wt, sizeof wt, &m->warnings[k])));
   json_object_set_new(o, "warnings", warnings);
   if (m->has_error) {
     json_t *e = json_object();
@@ -406,15 +409,17 @@ void fb_report_print_paper_tables(FILE *f, const fb_run *r) {
           "coupler min", "follower max", "follower min");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
+    char stop[256];
     if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 0);
-    else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, m->run.status);
+    else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, fb_stop_text(stop, sizeof stop, &m->run.stop));
   }
   fprintf(f, "angular acceleration, rad/s^2\n%-26s %14s %14s %14s %14s\n", "model",
           "coupler max", "coupler min", "follower max", "follower min");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
+    char stop[256];
     if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 1);
-    else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, m->run.status);
+    else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, fb_stop_text(stop, sizeof stop, &m->run.stop));
   }
   /* the start-up of the clearance models: first impact and revolution 1's spikes */
   int any = 0;
@@ -446,10 +451,12 @@ void fb_report_print_paper_tables(FILE *f, const fb_run *r) {
   int warned = 0;
   for (int i = 0; i < r->n; i++) warned |= r->model[i].warning_count > 0;
   if (warned) {
+    char wt[256];
     fprintf(f, "\nwarnings:\n");
     for (int i = 0; i < r->n; i++)
       for (int k = 0; k < r->model[i].warning_count; k++)
-        fprintf(f, "  %s: %s\n", r->model[i].run.name, r->model[i].warnings[k]);
+        fprintf(f, "  %s: %s\n", r->model[i].run.name,
+                fb_warning_text(wt, sizeof wt, &r->model[i].warnings[k]));
   }
 }
 
@@ -499,6 +506,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
           "s", "");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
+    char stop[256];
     fprintf(f, "%-26s ", m->run.name);
     if (m->has_peaks) {
       const fb_body_peaks *p[2] = {&m->peaks.coupler, &m->peaks.follower};
@@ -514,7 +522,8 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
     else
       fprintf(f, "%8s %8s ", "-", "-");
     fprintf(f, "%8zu %8.3f %7.2f %s\n", m->run.steps, m->run.wall_s,
-            m->run.steps ? 1e6 * m->run.wall_s / (double)m->run.steps : 0.0, m->run.status);
+            m->run.steps ? 1e6 * m->run.wall_s / (double)m->run.steps : 0.0,
+            fb_stop_text(stop, sizeof stop, &m->run.stop));
   }
   int any = 0;
   for (int i = 0; i < r->n; i++) any |= r->model[i].has_spikes;

@@ -12,6 +12,8 @@ static fb_status ode_create(void **self, const fb_scene_model *sm, fb_diag *diag
 
 static fb_status ode_step(void *self, fb_diag *diag) { return fb_scene_step(self, diag); }
 
+static void ode_stopped(const void *self, fb_stop *out) { fb_scene_stopped(self, out); }
+
 static void ode_sample(const void *self, fb_sample *x) { fb_scene_sample(self, x); }
 
 static void ode_contact(const void *self, fb_engine_contact *out) {
@@ -38,6 +40,7 @@ const fb_engine fb_engine_ode = {
     .guarded = 1,
     .create = ode_create,
     .step = ode_step,
+    .stopped = ode_stopped,
     .sample = ode_sample,
     .contact = ode_contact,
     .provenance = ode_provenance,

@@ -45,6 +45,7 @@ static void note_row(clearance *c, const fb_contact_row *u, double share, double
 struct fb_scene {
   fb_scene_model def;
   int broken;        /* 1 after an ODE fatal error left its world mid-step: never touched again */
+  fb_stop stop;      /* why the last step failed (FB_STOP_NONE while none did) */
   dWorldID world;
   dBodyID body[3];   /* crank, coupler, follower */
   dJointID hinge[4]; /* A (ground-crank, driven), B, C, D; 0 for clearance joints */
@@ -486,6 +487,10 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
   jmp_buf escape;
   if (setjmp(escape) != 0) {
     s->broken = 1;
+    s->stop.kind = FB_STOP_SOLVER;
+    s->stop.t = (double)s->steps * s->def.solver.h;
+    s->stop.step = s->steps + 1;
+    snprintf(s->stop.detail, sizeof s->stop.detail, "%s", fb_ode_last_error());
     return fb_diag_set(diag, FB_ERR_NUMERIC, "ode-error: %s at t = %.6g s (step %zu)",
                        fb_ode_last_error(), (double)s->steps * s->def.solver.h, s->steps + 1);
   }
@@ -515,9 +520,13 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
     c->cj = 0;
   }
   dJointGroupEmpty(s->contacts);
-  if (!ok)
+  if (!ok) {
+    s->stop.kind = FB_STOP_ALLOCATION;
+    s->stop.t = (double)s->steps * s->def.solver.h;
+    s->stop.step = s->steps + 1;
     return fb_diag_set(diag, FB_ERR_NOMEM, "ODE could not allocate memory for step %zu",
                        s->steps + 1);
+  }
   s->steps++;
   for (int i = 0; i < 3; i++) {
     double w = dBodyGetAngularVel(s->body[i])[2];
@@ -578,6 +587,12 @@ void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *
 }
 
 int fb_scene_impacts(const fb_scene *s, int j) { return s->cl[j].ep.impacts; }
+
+void fb_scene_stopped(const fb_scene *s, fb_stop *out) {
+  *out = s->stop;
+  out->engine = "ode";
+  out->joint = -1;
+}
 
 void fb_scene_provenance(const fb_scene *s, int j, fb_contact_provenance *out) {
   *out = s->cl[j].prov;

@@ -115,6 +115,10 @@ void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *
 /* Most contacts the libccd collider hands to ODE per joint and step. */
 #define FB_CCD_CONTACTS 2
 
+/* Why the last step failed: FB_STOP_SOLVER (ODE's internal check, its
+ * message as detail) or FB_STOP_ALLOCATION; FB_STOP_NONE while none did. */
+void fb_scene_stopped(const fb_scene *s, fb_stop *out);
+
 /* What the contact rows of clearance joint j received so far (engine.h). */
 void fb_scene_provenance(const fb_scene *s, int j, fb_contact_provenance *out);
 

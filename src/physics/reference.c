@@ -3,10 +3,12 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "linkage.h"
+#include "outcome_text.h"
 #include "start.h"
 
 typedef struct {
@@ -91,7 +93,13 @@ static int eom(double t, const double y[], double dydt[], void *p) {
 }
 
 fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
-                           const fb_contact_law *law, int ideal, fb_diag *diag) {
+                           const fb_contact_law *law, int ideal, fb_stop *stop, fb_diag *diag) {
+  fb_stop why;
+  memset(&why, 0, sizeof why);
+  why.engine = "reference";
+  why.joint = -1;
+  if (!stop) stop = &why;
+  *stop = why;
   if (!ideal && c->clearance.mask != (1 << FB_JOINT_B))
     return fb_diag_set(diag, FB_ERR_ARG,
                        "the reference dynamics cover clearance at the crank-coupler joint alone; "
@@ -165,14 +173,17 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
       int g = gsl_odeiv2_driver_apply(drv, &t, tk, y);
       taken += (size_t)drv->n; /* the driver counts per call */
       if (g == GSL_EMAXITER || (g == GSL_SUCCESS && taken >= budget && k < n)) {
-        status = fb_diag_set(diag, FB_ERR_NUMERIC, "reference: stopped: step budget of %zu steps "
-                             "(%d per sample) spent at t = %g s of %g s", budget,
-                             FB_REFERENCE_STEPS_PER_SAMPLE, t, fb_case_duration(c));
+        stop->kind = FB_STOP_STEP_BUDGET;
+        stop->t = t;
+        stop->value = (double)budget;
+        stop->limit = FB_REFERENCE_STEPS_PER_SAMPLE;
+        stop->t_end = fb_case_duration(c);
         break;
       }
       if (g != GSL_SUCCESS) {
-        status = fb_diag_set(diag, FB_ERR_NUMERIC, "reference integration failed at t = %g s: %s",
-                             t, gsl_strerror(g));
+        stop->kind = FB_STOP_SOLVER;
+        stop->t = t;
+        snprintf(stop->detail, sizeof stop->detail, "%s", gsl_strerror(g));
         break;
       }
     }
@@ -226,13 +237,16 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
       x.contact[FB_JOINT_B][FB_C_STATE] = state;
     }
     if (!(isfinite(y[0]) && isfinite(y[1]) && isfinite(x.coupler_omega) && isfinite(a3))) {
-      status = fb_diag_set(diag, FB_ERR_NUMERIC, "reference: non-finite state at t = %g s", tk);
+      stop->kind = FB_STOP_NONFINITE;
+      stop->t = tk;
       break;
     }
     if (!ideal && r.pen > pen_limit) {
-      char msg[256];
-      fb_case_penetration_status(msg, sizeof msg, r.pen, FB_JOINT_B, pen_limit, tk, 0);
-      status = fb_diag_set(diag, FB_ERR_NUMERIC, "%s", msg);
+      stop->kind = FB_STOP_PENETRATION;
+      stop->t = tk;
+      stop->joint = FB_JOINT_B;
+      stop->value = r.pen;
+      stop->limit = pen_limit;
       break;
     }
     fb_series_push(out, &x);
@@ -240,5 +254,9 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
   *steps = taken;
   gsl_odeiv2_driver_free(drv);
   gsl_set_error_handler(old);
+  if (status == FB_OK && stop->kind != FB_STOP_NONE) {
+    char text[256];
+    status = fb_diag_set(diag, FB_ERR_NUMERIC, "%s", fb_stop_text(text, sizeof text, stop));
+  }
   return status;
 }

@@ -33,6 +33,7 @@
 
 #include "case.h"
 #include "contact.h"
+#include "outcome.h"
 #include "series.h"
 
 /* rk8pd error control: a few orders above double precision on angles ~1 rad */
@@ -55,11 +56,15 @@
  * (or ideal) and samples it at t = k h over the case's duration into *out
  * (initialised here; contact columns of the crank-coupler joint unless ideal).
  * *steps receives the integrator's accepted steps.
+ * *stop (if not NULL) receives why the integration stopped early
+ * (FB_STOP_NONE when it reached the end): step budget, solver failure,
+ * non-finite state, penetration beyond the case's limit; the samples before
+ * the stop are kept in *out.
  * Errors: FB_ERR_ARG when the case has clearance at a joint other than
  * crank-coupler (no reference for it yet); FB_ERR_ASSEMBLY; FB_ERR_NUMERIC
  * when the integrator fails or the penetration passes the case's limit
  * (message names the time). */
 fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
-                           const fb_contact_law *law, int ideal, fb_diag *diag);
+                           const fb_contact_law *law, int ideal, fb_stop *stop, fb_diag *diag);
 
 #endif

@@ -1,0 +1,79 @@
+#include "outcome_text.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "case.h"
+
+const char *fb_stop_text(char *buf, size_t size, const fb_stop *s) {
+  const char *engine = s->engine ? s->engine : "engine";
+  char at[48] = "";
+  if (s->step > 0) snprintf(at, sizeof at, " (step %zu)", s->step);
+  switch (s->kind) {
+    case FB_STOP_NONE: snprintf(buf, size, "ok"); break;
+    case FB_STOP_PENETRATION:
+      snprintf(buf, size,
+               "unstable: penetration %.4g um at the %s joint exceeds the limit %.4g um at "
+               "t = %.6g s%s",
+               s->value * 1e6, fb_joint_name(s->joint), s->limit * 1e6, s->t, at);
+      break;
+    case FB_STOP_NONFINITE:
+      if (s->step > 0) snprintf(buf, size, "nan at t = %.6g s%s", s->t, at);
+      else snprintf(buf, size, "%s: non-finite state at t = %g s", engine, s->t);
+      break;
+    case FB_STOP_STEP_BUDGET:
+      snprintf(buf, size,
+               "%s: stopped: step budget of %.0f steps (%.0f per sample) spent at t = %g s of "
+               "%g s",
+               engine, s->value, s->limit, s->t, s->t_end);
+      break;
+    case FB_STOP_ALLOCATION:
+      snprintf(buf, size, "%s: out of memory at t = %.6g s%s", engine, s->t, at);
+      break;
+    case FB_STOP_SOLVER:
+      if (s->step > 0) snprintf(buf, size, "%s-error: %s at t = %.6g s%s", engine, s->detail, s->t, at);
+      else snprintf(buf, size, "%s integration failed at t = %g s: %s", engine, s->t, s->detail);
+      break;
+    default: snprintf(buf, size, "stopped (%d)", (int)s->kind); break;
+  }
+  return buf;
+}
+
+static const char *const stop_names[FB_STOP_COUNT] = {"ok", "penetration", "non-finite",
+                                                      "step-budget", "allocation", "solver"};
+
+const char *fb_stop_kind_name(fb_stop_kind k) {
+  return (k >= 0 && k < FB_STOP_COUNT) ? stop_names[k] : "?";
+}
+
+fb_stop_kind fb_stop_kind_parse(const char *word) {
+  if (!word) return FB_STOP_COUNT;
+  if (strcmp(word, "nan") == 0) return FB_STOP_NONFINITE;
+  for (int k = 0; k < FB_STOP_COUNT; k++)
+    if (strcmp(word, stop_names[k]) == 0) return (fb_stop_kind)k;
+  return FB_STOP_COUNT;
+}
+
+const char *fb_warning_text(char *buf, size_t size, const fb_warning *w) {
+  switch (w->kind) {
+    case FB_WARN_PENALTY_VALIDITY:
+      snprintf(buf, size,
+               "outside the penalty model's validity: penetration %.4g um is %.2f times the "
+               "radial clearance %.4g um (above %g times)",
+               w->value * 1e6, w->ratio, w->limit * 1e6, w->factor);
+      break;
+    case FB_WARN_DRIVE_SATURATED:
+      snprintf(buf, size,
+               "crank drive saturated: the crank is %.3g rad off its prescribed angle at "
+               "t = %.6g s (raise %s)",
+               w->value, w->t, w->what[0] ? w->what : "the drive's limit");
+      break;
+    case FB_WARN_ERROR_BOUND:
+      snprintf(buf, size, "%s error %.3g is beyond the bound %.3g", w->what[0] ? w->what : "the",
+               w->value, w->limit);
+      break;
+    default: snprintf(buf, size, "warning (%d)", (int)w->kind); break;
+  }
+  return buf;
+}

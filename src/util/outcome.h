@@ -1,0 +1,54 @@
+/* How a model's run ended and what it warns about, as data: the stop reason
+ * (an enum with the time, step and joint) and a typed list of warnings.
+ * Callers compare kinds; only the writers turn them into text
+ * (outcome_text.h). */
+#ifndef FB_OUTCOME_H
+#define FB_OUTCOME_H
+
+#include <stddef.h>
+
+/* Why a run stopped before its end. */
+typedef enum {
+  FB_STOP_NONE = 0,        /* ran to its end */
+  FB_STOP_PENETRATION = 1, /* a clearance joint's penetration passed the limit (unstable) */
+  FB_STOP_NONFINITE = 2,   /* NaN or infinity in the state */
+  FB_STOP_STEP_BUDGET = 3, /* the integrator spent its step budget */
+  FB_STOP_ALLOCATION = 4,  /* the engine could not allocate memory */
+  FB_STOP_SOLVER = 5,      /* the engine's solver failed (ODE's internal check, GSL) */
+  FB_STOP_COUNT
+} fb_stop_kind;
+
+/* A stop reason with where it happened. */
+typedef struct {
+  fb_stop_kind kind;  /* FB_STOP_NONE: the run is complete */
+  const char *engine; /* name of the engine that stopped ("ode", "reference", ...) */
+  double t;           /* time of the stop [s] */
+  size_t step;        /* step at which it stopped; 0 for adaptive integrators */
+  int joint;          /* clearance joint (fb_joint) for FB_STOP_PENETRATION, else -1 */
+  double value;       /* penetration [m] (PENETRATION); steps spent (STEP_BUDGET) */
+  double limit;       /* penetration limit [m] (PENETRATION); steps per sample (STEP_BUDGET) */
+  double t_end;       /* the run's duration [s] (STEP_BUDGET) */
+  char detail[160];   /* the solver's own words (ODE's error message, GSL's error string) */
+} fb_stop;
+
+/* What a completed or stopped run warns about. */
+typedef enum {
+  FB_WARN_PENALTY_VALIDITY = 0, /* penetration beyond FB_PENALTY_VALIDITY_FACTOR x clearance */
+  FB_WARN_DRIVE_SATURATED = 1,  /* the crank left its prescribed angle */
+  FB_WARN_ERROR_BOUND = 2,      /* the error against a yardstick passed a stated bound */
+  FB_WARN_COUNT
+} fb_warning_kind;
+
+/* One warning with its figures. */
+typedef struct {
+  fb_warning_kind kind;
+  double value;  /* penetration [m]; crank angle lag [rad]; error [-] */
+  double limit;  /* radial clearance [m]; -; the bound [-] */
+  double ratio;  /* penetration / clearance [-]; -; - */
+  double factor; /* the validity factor [-]; -; - */
+  double t;      /* time [s] where it applies, or NaN */
+  char what[64]; /* the case key that lifts the limit (DRIVE_SATURATED); what the error is of
+                    (ERROR_BOUND); else "" */
+} fb_warning;
+
+#endif

@@ -1,0 +1,141 @@
+/* The model table, the scene stage and the engine interface: the table is
+ * consistent (names unique, every reference and ideal model a row of the
+ * right kind), unknown names are refused with the known ones, the analytic
+ * engine behind the interface is the closed form (fb_linkage_solve) at every
+ * step, the scene check names a broken field, and stop reasons render to
+ * the texts summary.json has always carried.
+ *
+ *   case --fb_scene_def_from_case--> scene definition (once per run)
+ *        --fb_scene_def_select(row)--> what one model sees
+ *        --engine->create / step / sample--> samples */
+#include <string.h>
+
+#include "casefile.h"
+#include "engine.h"
+#include "fb_test.h"
+#include "outcome_text.h"
+
+/* both sides evaluate the same closed form at the same time value: equal to
+ * the last bit, a bound of 1e-15 rad/s only allows for nothing */
+#define SAME_FORMULA_TOL 1e-15
+
+static void test_table_is_consistent(void **state) {
+  (void)state;
+  for (int i = 0; i < fb_model_count; i++) {
+    const fb_model *m = &fb_models[i];
+    assert_ptr_equal(fb_model_find(m->name), m); /* names unique */
+    assert_non_null(m->style.color);
+    if (m->reference) {
+      const fb_model *r = fb_model_reference_of(m);
+      assert_non_null(r);
+      assert_int_equal(r->engine, FB_ENGINE_REFERENCE);
+      assert_int_equal(r->law, m->law); /* measured against the reference of its own law */
+    }
+    if (m->spikes_vs) {
+      const fb_model *ideal = fb_model_ideal_of(m);
+      assert_non_null(ideal);
+      assert_int_equal(ideal->joints, FB_JOINTS_IDEAL);
+      assert_int_equal(ideal->lengths, m->lengths);
+    }
+    /* a clearance model has a law and a collider, an ideal one neither */
+    assert_int_equal(fb_model_has_clearance(m), m->law != FB_MODEL_LAW_NONE);
+    assert_int_equal(fb_model_has_clearance(m), m->collider != FB_COLLIDER_NONE);
+  }
+  assert_ptr_equal(fb_model_match(FB_ENGINE_ODE, FB_LENGTHS_STACKUP, FB_JOINTS_IDEAL,
+                                  FB_MODEL_LAW_NONE, FB_COLLIDER_NONE),
+                   fb_model_find("ode-ideal-stackup"));
+}
+
+static void test_unknown_model_refused_with_list(void **state) {
+  (void)state;
+  const fb_model *m = NULL;
+  fb_diag d;
+  assert_int_equal(fb_model_lookup(&m, "ode-magic", &d), FB_ERR_ARG);
+  assert_null(m);
+  assert_non_null(strstr(d.msg, "unknown model 'ode-magic'"));
+  assert_non_null(strstr(d.msg, "ode-clearance-impact"));
+  assert_non_null(strstr(d.msg, "reference-restitution"));
+}
+
+static void test_analytic_engine_is_the_closed_form(void **state) {
+  (void)state;
+  fb_case c;
+  const char *sets[] = {"run.revolutions=2", "solver.h_s=1e-4"};
+  fb_test_paper_case(&c, sets, 2);
+  fb_scene_def def;
+  fb_scene_model sm;
+  const fb_engine *e;
+  void *self = fb_test_engine(&e, &sm, &def, &c, "analytic-stackup", NULL, NULL);
+  assert_string_equal(e->name, "analytic");
+  /* advance to a time: a whole number of steps */
+  assert_int_equal(fb_engine_advance(e, self, 0.01, def.solver.h, NULL), FB_OK);
+  fb_sample x;
+  e->sample(self, &x);
+  assert_near(x.t, 0.01, 0.5 * def.solver.h);
+  fb_linkage_state ls;
+  assert_int_equal(fb_linkage_solve(&ls, &def.lengths[FB_LENGTHS_STACKUP], def.branch,
+                                    def.crank_angle0 + def.omega2 * x.t, def.omega2, 0.0, NULL),
+                   FB_OK);
+  assert_near(x.coupler_omega, ls.coupler_omega, SAME_FORMULA_TOL * fabs(ls.coupler_omega));
+  assert_near(x.follower_omega, ls.follower_omega, SAME_FORMULA_TOL * fabs(ls.follower_omega));
+  fb_engine_contact ct;
+  e->contact(self, &ct);
+  assert_int_equal(ct.joint, -1);
+  e->destroy(self);
+}
+
+static void test_scene_check_names_the_field(void **state) {
+  (void)state;
+  fb_case c;
+  const char *sets[] = {"run.models=analytic,ode-ideal-stackup"};
+  fb_test_paper_case(&c, sets, 1);
+  fb_scene_def def;
+  fb_diag d;
+  assert_int_equal(fb_scene_def_from_case(&def, &c, &d), FB_OK);
+  assert_int_equal(fb_scene_def_check(&def, &d), FB_OK);
+  def.solver.world_erp = 1.5;
+  assert_int_equal(fb_scene_def_check(&def, &d), FB_ERR_RANGE);
+  assert_non_null(strstr(d.msg, "world_erp"));
+  /* a model the scene resolved no law for (none of the case's models uses
+   * it) is refused, not run with zeros */
+  fb_scene_model sm;
+  assert_int_equal(fb_scene_def_select(&sm, &def, fb_model_find("ode-clearance-impact"), &d),
+                   FB_ERR_ARG);
+}
+
+static void test_stop_texts(void **state) {
+  (void)state;
+  char buf[256];
+  fb_stop s;
+  memset(&s, 0, sizeof s);
+  s.engine = "ode";
+  assert_string_equal(fb_stop_text(buf, sizeof buf, &s), "ok");
+  s.kind = FB_STOP_PENETRATION;
+  s.joint = FB_JOINT_B;
+  s.value = 20e-6;
+  s.limit = 14.5e-6;
+  s.t = 0.0125;
+  s.step = 1250;
+  assert_string_equal(fb_stop_text(buf, sizeof buf, &s),
+                      "unstable: penetration 20 um at the crank-coupler joint exceeds the limit "
+                      "14.5 um at t = 0.0125 s (step 1250)");
+  s.kind = FB_STOP_SOLVER;
+  snprintf(s.detail, sizeof s.detail, "LCP internal error");
+  assert_string_equal(fb_stop_text(buf, sizeof buf, &s),
+                      "ode-error: LCP internal error at t = 0.0125 s (step 1250)");
+  for (int k = 0; k < FB_STOP_COUNT; k++)
+    assert_int_equal(fb_stop_kind_parse(fb_stop_kind_name((fb_stop_kind)k)), k);
+  assert_int_equal(fb_stop_kind_parse("nan"), FB_STOP_NONFINITE);
+  assert_int_equal(fb_stop_kind_parse("wobble"), FB_STOP_COUNT);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_table_is_consistent),
+      cmocka_unit_test(test_unknown_model_refused_with_list),
+      cmocka_unit_test(test_analytic_engine_is_the_closed_form),
+      cmocka_unit_test(test_scene_check_names_the_field),
+      cmocka_unit_test(test_stop_texts),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -117,6 +117,23 @@ rc=$?
 ok '[ $rc -eq 1 ] && grep -q "estimated .* GB" "$tmp/err" && grep -q "revolutions" "$tmp/err" && [ ! -e "$tmp/a8/summary.json" ]' "8: revolutions = 100000 is refused before simulating, with the memory estimate"
 ok '! "$exe" run --set run.max_wall_s=0.001 --no-figures --out "$tmp/a8" 2>"$tmp/err" && grep -q "max_wall_s = 0.001" "$tmp/err"' "8: a run estimated over [run] max_wall_s is refused with the estimate"
 
+# ---- 4. resume never reuses another study's rows ----------------------------------
+cp "$paper" "$tmp/base4.ini"
+mk4() { printf '[study]\nname = s4\ncase = %s\nset = run.revolutions=2; run.models=analytic%s\n[axis.speed]\nkey = drive.speed_rpm\nvalues = %s\n' "$tmp/base4.ini" "$1" "$2" > "$tmp/s4.ini"; }
+mk4 "" "800, 1000"
+"$exe" sweep "$tmp/s4.ini" --out "$tmp/r4" >/dev/null 2>&1
+mk4 "" "900, 1100"
+"$exe" sweep "$tmp/s4.ini" --out "$tmp/r4" >/dev/null 2>"$tmp/err"
+rc=$?
+ok '[ $rc -eq 2 ] && grep -q "study changed" "$tmp/err" && grep -q -- "--restart" "$tmp/err" && ! grep -q "900" "$tmp/r4/points.csv" 2>/dev/null' "4: changed axis values (same count) are refused, saying what changed and how to start fresh (was: old rows returned)"
+"$exe" sweep "$tmp/s4.ini" --out "$tmp/r4" --restart >/dev/null 2>"$tmp/err"
+ok 'grep -q "computing 2" "$tmp/err" && grep -q "^0,900" "$tmp/r4/points.csv"' "4: --restart recomputes every point"
+mk4 "; drive.direction=ccw" "900, 1100"
+ok '! "$exe" sweep "$tmp/s4.ini" --out "$tmp/r4" 2>"$tmp/err" && grep -q "study changed" "$tmp/err"' "4: a changed set is refused"
+mk4 "" "900, 1100"
+sed -i 's/^crank_mm = .*/crank_mm = 100/' "$tmp/base4.ini"
+ok '! "$exe" sweep "$tmp/s4.ini" --out "$tmp/r4" 2>"$tmp/err" && grep -q "case file .*base4.ini changed" "$tmp/err"' "4: a changed base case file is refused naming it"
+
 # ---- 5. one writer per output folder ----------------------------------------
 slow=(--set run.revolutions=30 --set run.models=analytic,ode-clearance-impact --no-figures)
 wait_for() { for _ in $(seq 1 600); do eval "$1" && return 0; sleep 0.05; done; return 1; }

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <getopt.h>
+#include <jansson.h>
 #include <limits.h>
 #include <poll.h>
 #include <signal.h>
@@ -20,6 +21,11 @@
 #include "figures.h"
 #include "fileio.h"
 #include "outdir.h"
+
+#ifndef FB_VERSION
+#define FB_VERSION "unknown"
+#endif
+#include "report.h"
 #include "study.h"
 
 static const char sweep_help[] =
@@ -29,13 +35,17 @@ static const char sweep_help[] =
     "Runs every point of a study's grid (cases/studies/*.ini): one row per point in\n"
     "DIR/points.jsonl (appended as points finish) and DIR/points.csv (written at the\n"
     "end, sorted). A rerun skips the points already in the JSON lines, so a killed\n"
-    "sweep resumes without recomputing. A progress bar with ETA is drawn on a terminal.\n"
+    "sweep resumes without recomputing. Rows are resumed only when computed from the\n"
+    "same study, case files and fourbar version (recorded in DIR/points.provenance.json);\n"
+    "otherwise the sweep refuses and says what changed. A progress bar with ETA is\n"
+    "drawn on a terminal.\n"
     "\n"
     "  --jobs J     J worker processes on this machine (default 1)\n"
     "  --shard I/N  only points with index % N == I (0 <= I < N), into\n"
     "               DIR/points.shard-I-of-N.jsonl: for Slurm job arrays\n"
     "               (--shard $SLURM_ARRAY_TASK_ID/N) or GNU parallel\n"
     "  --list N     print the N shard commands, one per line, for GNU parallel\n"
+    "  --restart    discard the rows already in DIR (of this shard) and start fresh\n"
     "  --out DIR    default results/studies/<study name>\n"
     "Then: fourbar merge DIR... joins shard outputs, checking no point is missing\n"
     "or duplicated.\n";
@@ -123,6 +133,48 @@ static int read_rows(const char *path, rowset *r, int repair, char *err, size_t 
   return 0;
 }
 
+/* 1 when the provenance stored at path differs from now (or is missing), with
+ * what differs in what */
+static int provenance_differs(const char *path, const json_t *now, char *what, size_t size) {
+  json_t *old = json_load_file(path, 0, NULL);
+  if (!old) {
+    snprintf(what, size, "%s is missing, so what they were computed from is unknown", path);
+    return 1;
+  }
+  const char *ov = json_string_value(json_object_get(old, "fourbar_version"));
+  const char *nv = json_string_value(json_object_get(now, "fourbar_version"));
+  int differs = 1;
+  if (!ov || !nv || strcmp(ov, nv) != 0) {
+    snprintf(what, size, "they were computed by fourbar %s, this is fourbar %s", ov ? ov : "(unknown)",
+             nv ? nv : "(unknown)");
+  } else if (!json_equal(json_object_get(old, "resolved_study_fnv1a64"),
+                         json_object_get(now, "resolved_study_fnv1a64"))) {
+    snprintf(what, size, "the study changed (its case, set, metrics or an axis's key, seed or "
+             "values)");
+  } else {
+    json_t *oc = json_object_get(old, "case_files"), *nc = json_object_get(now, "case_files");
+    differs = 0;
+    for (size_t k = 0; k < json_array_size(nc) || k < json_array_size(oc); k++) {
+      json_t *o = json_array_get(oc, k), *n = json_array_get(nc, k);
+      const char *np = json_string_value(json_object_get(n, "path"));
+      const char *op = json_string_value(json_object_get(o, "path"));
+      if (!o || !n || !op || !np || strcmp(op, np) != 0) {
+        snprintf(what, size, "the study now reads case file %s where they read %s",
+                 np ? np : "(none)", op ? op : "(none)");
+        differs = 1;
+        break;
+      }
+      if (!json_equal(json_object_get(o, "fnv1a64"), json_object_get(n, "fnv1a64"))) {
+        snprintf(what, size, "case file %s changed since they were computed", np);
+        differs = 1;
+        break;
+      }
+    }
+  }
+  json_decref(old);
+  return differs;
+}
+
 static void progress(size_t done, size_t total, double t0, int tty) {
   if (!tty) return;
   const int width = 30;
@@ -156,9 +208,11 @@ int fb_cmd_sweep(int argc, char **argv) {
                                        {"shard", required_argument, 0, 's'},
                                        {"out", required_argument, 0, 'o'},
                                        {"list", required_argument, 0, 'l'},
+                                       {"restart", no_argument, 0, 'r'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   long jobs = 1, shard_i = 0, shard_n = 1, list = 0;
+  int restart = 0;
   const char *out = NULL;
   int ch;
   optind = 1;
@@ -180,6 +234,7 @@ int fb_cmd_sweep(int argc, char **argv) {
           return fb_cli_fail("sweep", 2, "--shard '%s': expected I/N, decimal integers with 0 <= I < N <= 100000", optarg);
         break;
       case 'o': out = optarg; break;
+      case 'r': restart = 1; break;
       case 'l':
         list = strtol(optarg, &end, 10);
         if (*end || list < 1 || list > 100000) return fb_cli_fail("sweep", 2, "--list '%s': 1 to 100000", optarg);
@@ -230,10 +285,39 @@ int fb_cmd_sweep(int argc, char **argv) {
   else
     snprintf(rows_path, sizeof rows_path, "%s/points.jsonl", dir);
 
+  /* what the rows are computed from, beside them */
+  char prov_path[4300];
+  snprintf(prov_path, sizeof prov_path, "%.*s.provenance.json", (int)(strlen(rows_path) - 6), rows_path);
+  if (restart) {
+    char csv_path[4300];
+    snprintf(csv_path, sizeof csv_path, "%.*s.csv", (int)(strlen(rows_path) - 6), rows_path);
+    unlink(rows_path);
+    unlink(csv_path);
+    unlink(prov_path);
+  }
   /* resume: what this file already holds */
   rowset done = {0};
   char err[4400] = "";
   if (read_rows(rows_path, &done, 1, err, sizeof err) != 0) return fb_cli_fail("sweep", 1, "%s", err);
+  json_t *prov = fb_study_provenance(&s);
+  json_object_set_new(prov, "fourbar_version", json_string(FB_VERSION));
+  if (done.n) {
+    /* resume only rows computed from the same study, case files and program */
+    char what[4400];
+    if (provenance_differs(prov_path, prov, what, sizeof what)) {
+      json_decref(prov);
+      rows_free(&done);
+      return fb_cli_fail("sweep", 2, "%s holds %zu rows computed from other inputs: %s; start "
+                         "fresh with --restart (discards them) or choose another --out",
+                         rows_path, done.n, what);
+    }
+  }
+  fb_status pst = fb_report_write_json(prov_path, prov, &d);
+  json_decref(prov);
+  if (pst != FB_OK) {
+    rows_free(&done);
+    return fb_cli_fail("sweep", 1, "%s", d.msg);
+  }
   char *have = calloc(s.points, 1);
   if (!have) return fb_cli_fail("sweep", 1, "out of memory");
   for (size_t k = 0; k < done.n; k++) {

@@ -289,6 +289,86 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
   return FB_OK;
 }
 
+/* ---- provenance ----------------------------------------------------------------- */
+
+/* FNV-1a, 64 bit: detects a changed input (not an adversary's collision) */
+static unsigned long long fnv(unsigned long long h, const void *data, size_t n) {
+  const unsigned char *p = data;
+  for (size_t k = 0; k < n; k++) h = (h ^ p[k]) * 1099511628211ull;
+  return h;
+}
+#define FNV_START 14695981039346656037ull
+
+/* hash of a file's bytes; 0 when it cannot be read (regular files only) */
+static unsigned long long file_hash(const char *path) {
+  int not_regular;
+  FILE *f = fb_fopen_regular(path, &not_regular);
+  if (!f) return 0;
+  unsigned long long h = FNV_START;
+  char buf[65536];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, f)) > 0) h = fnv(h, buf, n);
+  fclose(f);
+  return h;
+}
+
+typedef struct {
+  char base[4096];
+} base_find;
+
+static int find_base(void *user, const char *section, const char *key, const char *value) {
+  base_find *b = user;
+  if (strcmp(section, "case") == 0 && strcmp(key, "base") == 0)
+    snprintf(b->base, sizeof b->base, "%s", value);
+  return 1;
+}
+
+json_t *fb_study_provenance(const fb_study *s) {
+  /* the resolved study: everything a row depends on, in a fixed order */
+  unsigned long long h = FNV_START;
+  h = fnv(h, s->name, strlen(s->name) + 1);
+  h = fnv(h, s->case_path, strlen(s->case_path) + 1);
+  for (int k = 0; k < s->nsets; k++) h = fnv(h, s->sets[k], strlen(s->sets[k]) + 1);
+  h = fnv(h, "|", 1);
+  for (int k = 0; k < s->nmetrics; k++) h = fnv(h, s->metrics[k], strlen(s->metrics[k]) + 1);
+  for (int a = 0; a < s->naxes; a++) {
+    const fb_axis *ax = &s->axis[a];
+    char head[256];
+    snprintf(head, sizeof head, "|%s|%d|%lu|", ax->key, ax->montecarlo, ax->seed);
+    h = fnv(h, head, strlen(head));
+    for (int k = 0; k < ax->n; k++) h = fnv(h, ax->value[k], strlen(ax->value[k]) + 1);
+  }
+  char hex[32];
+  snprintf(hex, sizeof hex, "%016llx", h);
+  json_t *cases = json_array();
+  /* every case file the points read: the study's case and its bases */
+  char path[4096];
+  snprintf(path, sizeof path, "%s", s->case_path);
+  for (int depth = 0; depth < 8 && path[0]; depth++) {
+    char fh[32];
+    snprintf(fh, sizeof fh, "%016llx", file_hash(path));
+    json_array_append_new(cases, json_pack("{s:s,s:s}", "path", path, "fnv1a64", fh));
+    base_find b = {""};
+    int not_regular;
+    FILE *f = fb_fopen_regular(path, &not_regular);
+    if (f) {
+      ini_parse_file(f, find_base, &b);
+      fclose(f);
+    }
+    if (!b.base[0]) break;
+    const char *slash = strrchr(path, '/');
+    char next[4096];
+    if (b.base[0] == '/' || !slash) snprintf(next, sizeof next, "%s", b.base);
+    else snprintf(next, sizeof next, "%.*s/%s", (int)(slash - path), path, b.base);
+    snprintf(path, sizeof path, "%s", next);
+  }
+  char sh[32];
+  snprintf(sh, sizeof sh, "%016llx", file_hash(s->path));
+  return json_pack("{s:s,s:s,s:s,s:o,s:I}", "study_file", s->path, "study_file_fnv1a64", sh,
+                   "resolved_study_fnv1a64", hex, "case_files", cases, "points",
+                   (json_int_t)s->points);
+}
+
 /* ---- running a point -------------------------------------------------------- */
 
 static int wanted(const fb_study *s, const char *name) {

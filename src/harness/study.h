@@ -60,6 +60,17 @@ typedef struct fb_study_s {
  * Errors: FB_ERR_IO, FB_ERR_PARSE, FB_ERR_RANGE naming file:line and key. */
 fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag);
 
+#include <jansson.h>
+
+/* What a study's rows are computed from (issue 13): {"study_file",
+ * "study_file_fnv1a64" (its bytes), "resolved_study_fnv1a64" (name, case
+ * path, sets, metrics, every axis's key, seed and values), "case_files":
+ * [{"path", "fnv1a64"}] (the case file and every base it reads), "points"}.
+ * Hashes are FNV-1a 64 bit in hex: they detect a changed input, they do not
+ * authenticate one. A sweep stores it beside its rows and refuses to resume
+ * rows computed from anything else. */
+json_t *fb_study_provenance(const fb_study *s);
+
 /* Runs point i (< s->points) and returns its row as a malloc'ed JSON line
  * ending in '\n' (caller frees). A case that does not load or run gives a row
  * whose status says why. Errors: FB_ERR_NOMEM only. */

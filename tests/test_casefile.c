@@ -142,7 +142,7 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                NULL, 0, FB_ERR_ASSEMBLY,
                (const char *[]){"cannot", "crank angles with |theta2| in [", NULL});
   expect_error("[solver]\nh_s = 0.5\n", NULL, 0, FB_ERR_RANGE,
-               (const char *[]){"step size h = 0.5 s", "smaller than the run", NULL});
+               (const char *[]){"[solver] h_s = 0.5", "smaller than the run", "h_s at", ":2)", NULL});
   expect_error(NULL, (const char *[]){"linkage.crank_mm"}, 1, FB_ERR_PARSE,
                (const char *[]){"--set", "section.key=value", NULL});
   expect_error(NULL, (const char *[]){"linkage.crank_mm=-1"}, 1, FB_ERR_RANGE,

@@ -134,6 +134,16 @@ mk4 "" "900, 1100"
 sed -i 's/^crank_mm = .*/crank_mm = 100/' "$tmp/base4.ini"
 ok '! "$exe" sweep "$tmp/s4.ini" --out "$tmp/r4" 2>"$tmp/err" && grep -q "case file .*base4.ini changed" "$tmp/err"' "4: a changed base case file is refused naming it"
 
+# ---- 12. messages name what to fix ------------------------------------------------
+ok 'refuses "crank_inertia_kg_mm2 at --set #1" "$exe" run --set mass.crank_inertia_kg_mm2=1e6 --no-figures --out "$tmp/a12"' "12: the inertia triangle rule names the key and where it was set"
+ok 'refuses "h_s at --set #1" "$exe" run --set solver.h_s=1 --no-figures --out "$tmp/a12"' "12: the step rule names h_s, revolutions and speed and where they were set"
+printf '[tolerance]\nclass = v\n' > "$tmp/cls.ini"
+ok 'refuses "crank_mm = 2 (given at --set #1" "$exe" run "$tmp/cls.ini" --set linkage.crank_mm=2 --no-figures --out "$tmp/a12"' "12: an ISO-class error names the --set that gave the length"
+printf 'crank_mm = 5\n[linkage]\n' > "$tmp/nosec.ini"
+ok 'refuses "before any \[section\] header; it belongs under \[linkage\]" "$exe" run "$tmp/nosec.ini" --no-figures --out "$tmp/a12"' "12: a key before any section says so (was 'unknown section []')"
+"$exe" run --set drive.speed_rpm=1e5 --no-figures --out "$tmp/a12" >/dev/null 2>"$tmp/err"
+ok 'grep -q "paper_crank_rocker.ini: \[clearance\] penalty = physical.*speed_rpm = 100000.*length_mm = 13" "$tmp/err"' "12: Johnson's relation names the file and the keys"
+
 # ---- 5. one writer per output folder ----------------------------------------
 slow=(--set run.revolutions=30 --set run.models=analytic,ode-clearance-impact --no-figures)
 wait_for() { for _ in $(seq 1 600); do eval "$1" && return 0; sleep 0.05; done; return 1; }

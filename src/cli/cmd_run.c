@@ -121,7 +121,7 @@ int fb_cmd_run(int argc, char **argv) {
   st = fb_run_case(&r, &c, progress, &ps, &diag);
   if (st != FB_OK) {
     fb_outdir_release(&od);
-    return fb_cli_fail("run", 1, "%s", diag.msg);
+    return fb_cli_fail("run", 1, "%s: %s", case_path, diag.msg); /* the file whose keys to fix */
   }
   st = fb_report_write_run(od.stage, &r, case_path, &diag);
   if (st != FB_OK) {

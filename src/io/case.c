@@ -80,8 +80,10 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < FB_LINK_COUNT; i++)
     if (!(c->plus_minus[i] >= 0.0) || c->plus_minus[i] >= c->nominal.length[i])
       return fb_diag_set(diag, FB_ERR_RANGE,
-                         "%s tolerance = %g m: must be >= 0 and smaller than the length %g m",
-                         fb_link_name(i), c->plus_minus[i], c->nominal.length[i]);
+                         "[tolerance] %s_plus_minus_mm = %g: a tolerance must be >= 0 and smaller "
+                         "than the length [linkage] %s_mm = %g",
+                         fb_link_name(i), c->plus_minus[i] * 1e3, fb_link_name(i),
+                         c->nominal.length[i] * 1e3);
   for (int i = 0; i < 3; i++) {
     const fb_link_mass *m = &c->link[i];
     if (!(m->mass > 0.0) || !isfinite(m->mass))
@@ -95,14 +97,18 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
     double a = m->inertia, b = m->inertia_long, t = m->inertia_transverse;
     if (a > b + t || b > a + t || t > a + b)
       return fb_diag_set(diag, FB_ERR_RANGE,
-                         "%s moments of inertia (%g, %g, %g) kg m^2 violate the triangle "
-                         "inequality of principal moments: no rigid body has them",
-                         fb_link_name(i), a, b, t);
+                         "[mass] %s_inertia_kg_mm2 = %g, %s_inertia_long_kg_mm2 = %g and "
+                         "%s_inertia_transverse_kg_mm2 = %g violate the triangle inequality of "
+                         "principal moments (each at most the sum of the other two): no rigid "
+                         "body has them",
+                         fb_link_name(i), a * 1e6, fb_link_name(i), b * 1e6, fb_link_name(i),
+                         t * 1e6);
   }
   if (!(c->radial_clearance < 0.5 * c->pin_diameter))
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "radial clearance %g m: must be smaller than the pin radius %g m",
-                       c->radial_clearance, 0.5 * c->pin_diameter);
+                       "[pin] radial_clearance_um = %g (or the clearance of [pin] fit): must be "
+                       "smaller than the pin radius, [pin] diameter_mm / 2 = %g mm",
+                       c->radial_clearance * 1e6, 0.5 * c->pin_diameter * 1e3);
   st = check_drivable(&c->nominal, "nominal", diag);
   if (st != FB_OK) return st;
   fb_linkage su;
@@ -112,21 +118,24 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
   double dur = fb_case_duration(c);
   if (!(c->solver.h > 0.0) || c->solver.h >= dur)
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "step size h = %g s: must be positive and smaller than the run "
-                       "(%g s for %g revolutions)", c->solver.h, dur, c->revolutions);
+                       "[solver] h_s = %g: the step size must be positive and smaller than the "
+                       "run (%g s for [run] revolutions = %g at [drive] speed_rpm = %g)",
+                       c->solver.h, dur, c->revolutions, c->crank_speed * 60.0 / (2.0 * M_PI));
   if (dur / c->solver.h > 1e9)
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "step size h = %g s over %g s is %.3g steps: more than 1e9 steps",
-                       c->solver.h, dur, dur / c->solver.h);
+                       "[solver] h_s = %g over %g s ([run] revolutions = %g at [drive] "
+                       "speed_rpm = %g) is %.3g steps: more than 1e9 steps",
+                       c->solver.h, dur, c->revolutions, c->crank_speed * 60.0 / (2.0 * M_PI),
+                       dur / c->solver.h);
   if (c->revolutions < 2.0 && c->peaks == FB_PEAKS_STEADY)
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "revolutions = %g: the steady peak window starts after the first "
+                       "[run] revolutions = %g: the steady peak window starts after the first "
                        "revolution, so run at least 2, or take peaks over the whole run "
                        "([run] peaks = all)",
                        c->revolutions);
   if (c->clearance.penetration_limit < 0.0)
-    return fb_diag_set(diag, FB_ERR_RANGE, "penetration limit %g m: must be >= 0",
-                       c->clearance.penetration_limit);
+    return fb_diag_set(diag, FB_ERR_RANGE, "[clearance] penetration_limit_um = %g: must be >= 0",
+                       c->clearance.penetration_limit * 1e6);
   if (c->clearance.ovality > 0.0 && c->clearance.bore != FB_CASE_BORE_ELLIPSE)
     return fb_diag_set(diag, FB_ERR_ARG,
                        "[clearance] ovality_um = %g with bore = circle: an ovality needs "

@@ -465,6 +465,15 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
             (strcmp(keys[i].section, e->section) ? 3 : 0);
     if (d < bd) bd = d, best = &keys[i];
   }
+  if (!e->section[0]) {
+    /* a key above the first [section] header */
+    const key_spec *k = NULL;
+    for (int i = 0; i < NKEYS && !k; i++)
+      if (strcmp(keys[i].key, e->key) == 0) k = &keys[i];
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: key '%s' comes before any [section] header%s%s%s",
+                       e->origin, e->key, k ? "; it belongs under [" : "", k ? k->section : "",
+                       k ? "]" : "");
+  }
   if (!section_known(e->section)) {
     int sd = 1 << 30;
     const char *bs = NULL;
@@ -880,9 +889,15 @@ static fb_status resolve_standards(fb_case *out, const load_ctx *c, fb_diag *dia
                                        out->nominal.length[k], out->tolerance_source[k],
                                        sizeof out->tolerance_source[k], &inner);
       if (st != FB_OK)
-        return fb_diag_set(diag, st, "%s: [tolerance] class = %c for the %s (%g mm): %s",
-                           entry_origin(c, "tolerance", "class"), out->tolerance_class,
-                           fb_link_name(k), out->nominal.length[k] * 1e3, inner.msg);
+      {
+        char lkey[64];
+        snprintf(lkey, sizeof lkey, "%s_mm", fb_link_name(k));
+        const char *len_at = entry_origin(c, "linkage", lkey);
+        return fb_diag_set(diag, st, "%s: [tolerance] class = %c for [linkage] %s = %g (%s%s): %s",
+                           entry_origin(c, "tolerance", "class"), out->tolerance_class, lkey,
+                           out->nominal.length[k] * 1e3, len_at ? "given at " : "the default",
+                           len_at ? len_at : "", inner.msg);
+      }
     } else {
       snprintf(out->tolerance_source[k], sizeof out->tolerance_source[k], "none (0)");
     }
@@ -1104,8 +1119,28 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   {
     fb_diag inner;
     st = fb_case_check(out, &inner);
-    if (st != FB_OK)
-      fb_diag_set(diag, st, "%s: %s", path ? path : "case", inner.msg);
+    if (st != FB_OK) {
+      /* a cross-key rule: where each key it names was given (its last entry) */
+      char where[FB_DIAG_SIZE] = "";
+      size_t l = 0;
+      for (int i = c->n - 1; i >= 0 && l + 1 < sizeof where; i--) {
+        const entry *e = &c->e[i];
+        char sk[160];
+        snprintf(sk, sizeof sk, " %s", e->key);
+        const char *at = strstr(inner.msg, sk);
+        const int named = at && (at[strlen(sk)] == ' ' || at[strlen(sk)] == '\0' ||
+                                 at[strlen(sk)] == ',') &&
+                          strstr(inner.msg, e->section) != NULL;
+        int later = 0; /* only the entry that counts: the last for its key */
+        for (int q = i + 1; q < c->n; q++)
+          later |= strcmp(c->e[q].section, e->section) == 0 && strcmp(c->e[q].key, e->key) == 0;
+        if (named && !later)
+          l += (size_t)snprintf(where + l, sizeof where - l, "%s[%s] %s at %s", l ? "; " : "",
+                                e->section, e->key, e->origin);
+      }
+      fb_diag_set(diag, st, "%s: %s%s%s%s", path ? path : "case", inner.msg, l ? " (given: " : "",
+                  where, l ? ")" : "");
+    }
   }
 done:
   free(c);

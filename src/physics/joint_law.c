@@ -56,9 +56,13 @@ static fb_status laws_of(fb_contact_law law[4], const fb_case *c, fb_clearance_m
                                                      c->radial_clearance);
       if (!isfinite(d) || !isfinite(kt) || !(d > 0.0))
         return fb_diag_set(diag, FB_ERR_RANGE,
-                           "%s joint: reaction %g N is outside Johnson's pin-in-hole relation "
-                           "for L = %g m, c = %g m",
-                           fb_joint_name(j), fmax[j], c->pin_length, c->radial_clearance);
+                           "[clearance] penalty = physical: the %s joint's peak reaction %g N "
+                           "(inverse dynamics at [drive] speed_rpm = %g with the [mass] keys) is "
+                           "outside Johnson's pin-in-hole relation for [pin] length_mm = %g and "
+                           "radial_clearance_um = %g (or [pin] fit): use penalty = paper or "
+                           "explicit, a longer pin or a smaller clearance",
+                           fb_joint_name(j), fmax[j], c->crank_speed * 60.0 / (2.0 * M_PI),
+                           c->pin_length * 1e3, c->radial_clearance * 1e6);
       l.stiffness = model == FB_CLEARANCE_IMPACT ? fmax[j] / pow(d, l.exponent) : kt;
     }
     l.stiffness *= cl->stiffness_scale;

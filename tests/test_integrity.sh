@@ -144,6 +144,15 @@ ok 'refuses "before any \[section\] header; it belongs under \[linkage\]" "$exe"
 "$exe" run --set drive.speed_rpm=1e5 --no-figures --out "$tmp/a12" >/dev/null 2>"$tmp/err"
 ok 'grep -q "paper_crank_rocker.ini: \[clearance\] penalty = physical.*speed_rpm = 100000.*length_mm = 13" "$tmp/err"' "12: Johnson's relation names the file and the keys"
 
+# ---- 11. wrong results are not "ok" ----------------------------------------------
+ok 'refuses crank_angle0_deg "$exe" run --set linkage.crank_angle0_deg=1e20 --no-figures --out "$tmp/a11"' "11: crank_angle0_deg = 1e20 is refused (was ok with an error of 1.5)"
+ok 'refuses coupler_kg "$exe" run --set mass.coupler_kg=1e300 --no-figures --out "$tmp/a11"' "11: coupler_kg = 1e300 is refused (was ok with an error of 5e4)"
+"$exe" run --set run.revolutions=2 --set solver.h_s=1e-3 --set run.models=analytic,ode-ideal-nominal --no-figures --out "$tmp/a11" >/dev/null 2>&1
+ok 'python3 -c "
+import json, sys
+m = json.load(open(sys.argv[1]))[\"models\"][1]
+sys.exit(0 if m[\"status\"] == \"ok\" and any(\"against the analytic\" in w and \"beyond the bound 0.05\" in w for w in m[\"warnings\"]) else 1)" "$tmp/a11/summary.json"' "11: an ideal model beyond the stated error bound is ok with a named warning"
+
 # ---- 5. one writer per output folder ----------------------------------------
 slow=(--set run.revolutions=30 --set run.models=analytic,ode-clearance-impact --no-figures)
 wait_for() { for _ in $(seq 1 600); do eval "$1" && return 0; sleep 0.05; done; return 1; }

@@ -92,6 +92,21 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
                         c->crank_angle0, omega2, &m->exact, diag);
   if (st != FB_OK) return st;
   m->has_error = 1;
+  if (m->run.model->engine != FB_ENGINE_ANALYTIC && m->run.model->joints == FB_JOINTS_IDEAL) {
+    const fb_body_error *b[2] = {&m->error.coupler, &m->error.follower};
+    double worst = 0.0;
+    for (int k = 0; k < 2; k++) {
+      const double v[4] = {b[k]->omega_max_rel, b[k]->omega_min_rel, b[k]->alpha_max_rel,
+                           b[k]->alpha_min_rel};
+      for (int q = 0; q < 4; q++) worst = isfinite(v[q]) ? fmax(worst, fabs(v[q])) : INFINITY;
+    }
+    if (worst > FB_IDEAL_PEAK_ERROR_BOUND) {
+      fb_warning w = {.kind = FB_WARN_ERROR_BOUND, .value = worst,
+                      .limit = FB_IDEAL_PEAK_ERROR_BOUND, .t = NAN};
+      snprintf(w.what, sizeof w.what, "largest peak omega/alpha relative (against the analytic)");
+      warn(m, &w);
+    }
+  }
   rel_peaks(&m->delta_vs_nominal, &m->peaks, &r->analytic_nominal);
   if (m->run.clearance_mask) {
     /* ratios against the model's ideal model (model table) if it ran, else

@@ -19,6 +19,16 @@
  * the contact no longer sees the prescribed motion [rad]. */
 #define FB_DRIVE_LAG_WARN_RAD 1e-4
 
+/* An ideal model (no clearance) of an engine, measured against the analytic
+ * solution of the same lengths, carries the warning "peak error against the
+ * analytic solution" (FB_WARN_ERROR_BOUND) when the largest |relative error|
+ * of its coupler and follower omega and alpha peaks passes this bound: 5 %,
+ * about 3000 times ODE's error at the paper's step (1.7e-5 on alpha) and 5
+ * times dWorldQuickStep's at 20 iterations (< 1e-2, test_scene.c), so only a
+ * lost solution passes it (a crank angle of 1e20 deg gave 1.5, a coupler of
+ * 1e300 kg 5e4, both once reported "ok") [-]. */
+#define FB_IDEAL_PEAK_ERROR_BOUND 0.05
+
 /* One model with its metrics. */
 typedef struct {
   fb_model_run run;        /* series, cost and status */

@@ -18,14 +18,10 @@ static double omega_peak_error(const fb_error *e) {
               fmax(fabs(e->follower.omega_max_rel), fabs(e->follower.omega_min_rel)));
 }
 
-/* one configuration: runs case k (its models: an ideal stack-up model, and
- * with clearance at B the clearance impact model and the reference) up to 3
- * times, and appends one row per engine model (the ideal one only when
- * with_ideal) */
 /* runs case k up to 3 times, again while its first `timed` models (1 or 2)
  * together took at most 1 s; r keeps the last run, walls[q][rep] the wall
  * times of model q without the engine's setup (MuJoCo compiles its model,
- * 5-45 ms here), setups[q][rep] the setup (0 when not timed), *reps the runs */
+ * 0.6 to 14 ms here), setups[q][rep] the setup (0 when not timed), *reps the runs */
 static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, double walls[2][3],
                             double setups[2][3], int *reps, fb_diag *diag) {
   for (int rep = 0; rep < 3; rep++) {
@@ -43,6 +39,10 @@ static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, double walls
   return FB_OK;
 }
 
+/* one configuration: runs case k (its models: an ideal stack-up model, and
+ * with clearance at B the clearance impact model and the reference) up to 3
+ * times, and appends one row per engine model (the ideal one only when
+ * with_ideal) */
 static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char *engine,
                              const char *stepper, int mapping, int with_ideal, fb_diag *diag) {
   const int with_clearance = k->model_count > 1;

@@ -2,6 +2,7 @@
  * README promises; bad input exits non-zero naming file/line or field and
  * writes nothing. argv[1] is the path of the built binary. */
 #include <jansson.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -463,6 +464,47 @@ static void test_set_without_out_says_so(void **state) {
   assert_non_null(strstr(err, "pin.fit=none"));
 }
 
+/* the printed loads table names the window its peaks come from: the steady
+ * window by default, the whole run with [run] peaks = all (it once said
+ * "after the first revolution" for both) */
+static void test_loads_table_names_its_window(void **state) {
+  (void)state;
+  static char out[1 << 16];
+  char args[512];
+  snprintf(args, sizeof args, "run --no-figures --out %s/loads_steady --set run.revolutions=2 "
+           "--set run.models=analytic", tmpdir);
+  assert_int_equal(run(args, out, sizeof out, NULL, 0), 0);
+  if (!strstr(out, "loads (peaks over the revolutions after the first;"))
+    fail_msg("steady window: loads header does not name it:\n%s", out);
+  snprintf(args, sizeof args, "run --no-figures --out %s/loads_all --set run.revolutions=1 "
+           "--set run.peaks=all --set run.models=analytic", tmpdir);
+  assert_int_equal(run(args, out, sizeof out, NULL, 0), 0);
+  if (!strstr(out, "loads (peaks over the whole run;"))
+    fail_msg("peaks = all: loads header does not name the whole run:\n%s", out);
+}
+
+/* a default quoted in --help is the one the command uses: mapping's
+ * effective mass (help rounds it to 3 significant digits) */
+#define HELP_DEFAULT_ROUNDING_REL 1e-3
+static void test_mapping_help_default_mass(void **state) {
+  (void)state;
+  static char out[1 << 16];
+  assert_int_equal(run("mapping --help", out, sizeof out, NULL, 0), 0);
+  const char *q = strstr(out, "--mass-kg        effective mass");
+  assert_non_null(q);
+  const char *p = strstr(q, "(default ");
+  assert_non_null(p);
+  const double help_m = atof(p + strlen("(default "));
+  assert_int_equal(run("mapping --json", out, sizeof out, NULL, 0), 0);
+  json_error_t e;
+  json_t *j = json_loads(out, 0, &e);
+  assert_non_null(j);
+  const double m = json_real_value(json_object_get(j, "mass_kg"));
+  json_decref(j);
+  if (!(fabs(help_m - m) <= HELP_DEFAULT_ROUNDING_REL * m))
+    fail_msg("mapping --help says default mass %g kg, the command uses %g kg", help_m, m);
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_cli PATH_TO_FOURBAR\n");
@@ -481,6 +523,8 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_engines_case),
       cmocka_unit_test(test_help_answers),
       cmocka_unit_test(test_set_without_out_says_so),
+      cmocka_unit_test(test_loads_table_names_its_window),
+      cmocka_unit_test(test_mapping_help_default_mass),
   };
   int rc = cmocka_run_group_tests(tests, NULL, NULL);
   char cmd[128];

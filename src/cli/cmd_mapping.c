@@ -17,8 +17,8 @@
 
 static const char mapping_help[] =
     "usage: fourbar mapping [--mass-kg m] [--restitution cr] [--stiffness-n-m FROM:TO]\n"
-    "                       [--h-s FROM:TO] [--per-decade N] [--mapping M] [--out DIR]\n"
-    "                       [--json]\n"
+    "                       [--h-s FROM:TO] [--per-decade N] [--mapping secant|matched]\n"
+    "                       [--out DIR] [--figure-format svg|png] [--json]\n"
     "\n"
     "ERP = h k / (h k + c) and CFM = 1 / (h k + c) of a contact spring k [N/m] with the\n"
     "restitution law's damper c = 2 zeta sqrt(k m) (zeta giving restitution cr for\n"
@@ -32,7 +32,8 @@ static const char mapping_help[] =
     "ERP = h a / b, CFM = 1 / b); its ERP exceeds 1 wherever h omega is not small\n"
     "against zeta, which ODE accepts.\n"
     "\n"
-    "  --mass-kg        effective mass (default 0.0852: crank and coupler reduced)\n"
+    "  --mass-kg        effective mass (default 0.0849 kg: the reduced mass of the\n"
+    "                   paper's crank and coupler, 0.12 x 0.29 / 0.41 kg)\n"
     "  --restitution    cr of the restitution law (default 0.9)\n"
     "  --stiffness-n-m  range, default 1e5:1e12\n"
     "  --h-s            range, default 1e-7:1e-3\n"

@@ -25,9 +25,9 @@ static const char run_help[] =
     "times), DIR/<model>.csv, figures (gnuplot) and DIR/report.md. The set is\n"
     "written beside DIR and swapped in whole at the end; a second writer to DIR\n"
     "fails at once. Each CSV holds the kinematics, the contact columns of the\n"
-    "clearance joints and, for analytic and ODE models, the drive torque and every\n"
-    "joint's reaction (drive_torque_n_m, <joint>_reaction_n, ...); summary.json\n"
-    "has their peaks under \"loads\". Figures: see docs/figures.md.\n"
+    "clearance joints and, for analytic, ODE and MuJoCo models, the drive torque\n"
+    "and every joint's reaction (drive_torque_n_m, <joint>_reaction_n, ...);\n"
+    "summary.json has their peaks under \"loads\". Figures: see docs/figures.md.\n"
     "\n"
     "  CASE          case file (INI); default: the paper's case,\n"
     "                cases/paper_crank_rocker.ini\n"
@@ -42,7 +42,8 @@ static const char run_help[] =
     "  -h, --help    this text\n"
     "\n"
     "Units: SI in every output (column and key names carry the unit). Peaks are\n"
-    "taken over the revolutions after the first. Keys: fourbar keys, docs/keys.md.\n"
+    "taken over the revolutions after the first ([run] peaks = steady, the default)\n"
+    "or from t = 0 ([run] peaks = all). Keys: fourbar keys, docs/keys.md.\n"
     "Exit status: 0 ok (a model that stopped on numerical trouble says so in its\n"
     "status), 1 run failed, 2 bad input.\n";
 

@@ -547,8 +547,9 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   int anyload = 0;
   for (int i = 0; i < r->n; i++) anyload |= r->model[i].run.series.has_loads;
   if (anyload) {
-    fprintf(f, "\nloads (peaks after the first revolution; reaction: force on the second-named body):\n"
-               "%-26s %10s %10s %12s %12s %12s %12s\n%-26s %10s %10s %12s %12s %12s %12s\n", "model",
+    fprintf(f, "\nloads (peaks over %s; reaction: force on the second-named body):\n"
+               "%-26s %10s %10s %12s %12s %12s %12s\n%-26s %10s %10s %12s %12s %12s %12s\n",
+            c->peaks == FB_PEAKS_ALL ? "the whole run" : "the revolutions after the first", "model",
             "torque max", "torque min", "|R| ground-", "|R| crank-", "|R| coupler-", "|R| follower-", "",
             "N m", "N m", "crank N", "coupler N", "follower N", "ground N");
     for (int i = 0; i < r->n; i++) {

@@ -222,8 +222,11 @@ static fb_status point_overrides(const fb_study *s, size_t i, char sets[][256], 
     fb_case base;
     const char *fixed[FB_STUDY_MAX_SETS];
     for (int k = 0; k < s->nsets; k++) fixed[k] = s->sets[k];
-    fb_status st = fb_casefile_load(&base, s->case_path, fixed, s->nsets, diag);
-    if (st != FB_OK) return st;
+    fb_diag inner;
+    fb_status st = fb_casefile_load(&base, s->case_path, fixed, s->nsets, &inner);
+    if (st != FB_OK)
+      return fb_diag_set(diag, st, "%s: [study] case (with its set) does not load: %s", s->path,
+                         inner.msg);
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
     if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
     gsl_rng_set(r, ax->seed * 1000003ul + (unsigned long)j);

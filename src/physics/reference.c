@@ -102,8 +102,10 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
   *stop = why;
   if (!ideal && c->clearance.mask != (1 << FB_JOINT_B))
     return fb_diag_set(diag, FB_ERR_ARG,
-                       "the reference dynamics cover clearance at the crank-coupler joint alone; "
-                       "this case has clearance at other joints");
+                       "[run] models names a reference model, whose dynamics cover clearance "
+                       "at the crank-coupler joint alone; [clearance] joints gives others: set "
+                       "joints = crank-coupler or drop reference and reference-restitution from "
+                       "models");
   fb_linkage lk;
   fb_case_stackup_lengths(c, &lk);
   const double omega2 = fb_case_omega2(c);

@@ -825,6 +825,15 @@ static int has_default(const key_spec *k) {
          strcmp(k->def, "-") != 0;
 }
 
+/* key i's default as an entry, as if a file had said it */
+static void default_entry(entry *e, int i) {
+  memset(e, 0, sizeof *e);
+  snprintf(e->section, sizeof e->section, "%s", keys[i].section);
+  snprintf(e->key, sizeof e->key, "%s", keys[i].key);
+  snprintf(e->value, sizeof e->value, "%s", keys[i].def);
+  snprintf(e->origin, sizeof e->origin, "key table default");
+}
+
 void fb_case_default(fb_case *c) {
   memset(c, 0, sizeof *c);
   /* what no key sets: where the tolerances and the clearance came from, and
@@ -840,11 +849,7 @@ void fb_case_default(fb_case *c) {
   for (int i = 0; i < NKEYS; i++) {
     if (!has_default(&keys[i])) continue;
     entry e;
-    memset(&e, 0, sizeof e);
-    snprintf(e.section, sizeof e.section, "%s", keys[i].section);
-    snprintf(e.key, sizeof e.key, "%s", keys[i].key);
-    snprintf(e.value, sizeof e.value, "%s", keys[i].def);
-    snprintf(e.origin, sizeof e.origin, "key table default");
+    default_entry(&e, i);
     fb_diag d;
     (void)apply(c, &e, &d);
   }
@@ -856,11 +861,7 @@ int fb_casefile_defaults_check(fb_diag *diag) {
     fb_case c;
     memset(&c, 0, sizeof c);
     entry e;
-    memset(&e, 0, sizeof e);
-    snprintf(e.section, sizeof e.section, "%s", keys[i].section);
-    snprintf(e.key, sizeof e.key, "%s", keys[i].key);
-    snprintf(e.value, sizeof e.value, "%s", keys[i].def);
-    snprintf(e.origin, sizeof e.origin, "key table default");
+    default_entry(&e, i);
     fb_diag inner;
     if (apply(&c, &e, &inner) != FB_OK)
       return fb_diag_set(diag, FB_ERR_PARSE, "default of [%s] %s = '%s' does not apply: %s",

@@ -340,7 +340,8 @@ fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag)
   return fb_outfile_commit(&out, diag);
 }
 
-fb_status fb_report_write_csv(const char *path, const fb_series *s, fb_diag *diag) {
+/* writes one series as CSV (header of unit-suffixed column names) */
+static fb_status write_csv(const char *path, const fb_series *s, fb_diag *diag) {
   fb_outfile out;
   fb_status st = fb_outfile_open(&out, path, diag);
   if (st != FB_OK) return st;
@@ -361,7 +362,7 @@ fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case
   char path[4096];
   for (int i = 0; i < r->n; i++) {
     snprintf(path, sizeof path, "%s/%s.csv", dir, r->model[i].run.name);
-    fb_status st = fb_report_write_csv(path, &r->model[i].run.series, diag);
+    fb_status st = write_csv(path, &r->model[i].run.series, diag);
     if (st != FB_OK) return st;
   }
   snprintf(path, sizeof path, "%s/summary.json", dir);
@@ -400,7 +401,13 @@ static void paper_row(FILE *f, const char *name, const fb_peaks *p, int alpha) {
   fputc('\n', f);
 }
 
-void fb_report_print_paper_tables(FILE *f, const fb_run *r) {
+/* the paper's table for the run's peak window: one row per model with the
+ * coupler and follower omega max/min (rad/s), then a second table with the
+ * four alpha extremes (rad/s^2); then, for clearance models, the start-up
+ * (first impact's time, speed and crank angle; revolution 1's largest
+ * coupler |alpha|, when, peak force and penetration) and every model's
+ * warnings. Part of fb_report_print_table. */
+static void print_paper_tables(FILE *f, const fb_run *r) {
   const int all = r->c.peaks == FB_PEAKS_ALL;
   fprintf(f, "\nthe paper's table, peaks over %s:\n",
           all ? "the whole run from t = 0 (start-up included; [run] peaks = all)"
@@ -585,7 +592,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
               e->force_max_rel, e->penetration_max_rel, e->impacts, e->impacts_reference);
     }
   }
-  fb_report_print_paper_tables(f, r);
+  print_paper_tables(f, r);
   fprintf(f, "\npeak err: largest |relative error| of the four omega (or alpha) peaks of "
              "coupler and follower against the exact analytic peaks of the same lengths; "
              "for analytic models it is the sampling floor of the time grid.\n");

@@ -30,9 +30,6 @@ json_t *fb_report_timing_json(const fb_run *r);
 fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
                               fb_diag *diag);
 
-/* Writes one series as CSV (header of unit-suffixed column names). */
-fb_status fb_report_write_csv(const char *path, const fb_series *s, fb_diag *diag);
-
 /* Writes a JSON value to path atomically (indented, keys in insertion order). */
 fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag);
 
@@ -42,14 +39,6 @@ fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag)
 fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char *case_path,
                                    const char *command, char figures[][128], int n,
                                    const char *figure_note, fb_diag *diag);
-
-/* The paper's table for the run's peak window: one row per model with the
- * coupler and follower omega max/min (rad/s), then a second table with the
- * four alpha extremes (rad/s^2); then, for clearance models, the start-up
- * (first impact's time, speed and crank angle; revolution 1's largest
- * coupler |alpha|, when, peak force and penetration) and every model's
- * warnings. Part of fb_report_print_table. */
-void fb_report_print_paper_tables(FILE *f, const fb_run *r);
 
 /* Prints the summary table in the spirit of the paper's: per model, peaks of
  * coupler and follower angular velocity and acceleration, error against the

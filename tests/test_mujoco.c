@@ -53,13 +53,16 @@
 #define CLEARANCE_OMEGA_REL_TOL 1e-4
 /* the restitution law's damper force c ddot jumps at contact onset, which a
  * fixed step does not locate: measured -4.3 % peak force at h = 1e-5 s
- * (rk4), +2.1 % at 5e-6; 78 impacts, each onset within one step of the
+ * (rk4), +2.1 % at 5e-6 (+0.3 % at 1e-5 with the damper on the effective
+ * mass, issue 15); 78 impacts, each onset within one step of the
  * reference's. 5 %: the measured error with a margin of a sixth */
 #define RESTITUTION_FORCE_REL_TOL 0.05
-/* impact episodes: equal to the reference's count (78) at h = 1e-5 s; a
- * 2-impact band allows one grazing contact either way at the end of the
- * window */
-#define RESTITUTION_IMPACTS_TOL 2
+/* impact episodes: with the restitution law's damper on the mechanism's
+ * effective mass (issue 15; 78 impacts before, on the reduced mass) the
+ * reference has 29 at h = 1e-5 s and MuJoCo 33: the contact sequence is
+ * chaotic after the first impacts, so the count is held to the issue's 15 %
+ * of the reference's */
+#define RESTITUTION_IMPACTS_REL_TOL 0.15
 
 /* MuJoCo's effective mass along the contact normal (from its own mass
  * matrix) must lie within the range the engine-free model gives over all
@@ -70,13 +73,16 @@
 
 /* runs the paper case with the given models and overrides into *r */
 static void run(fb_run *r, const char *models, const char **sets, int n) {
-  const char *all[8];
+  const char *all[9];
   char ms[256];
   snprintf(ms, sizeof ms, "run.models=%s", models);
   all[0] = ms;
-  for (int i = 0; i < n; i++) all[i + 1] = sets[i];
+  /* the step these figures were measured at (the paper case's default is
+   * h_s = auto); a later --set wins */
+  all[1] = "solver.h_s=1e-5";
+  for (int i = 0; i < n; i++) all[i + 2] = sets[i];
   fb_case c;
-  fb_test_paper_case(&c, all, n + 1);
+  fb_test_paper_case(&c, all, n + 2);
   fb_diag d;
   if (fb_run_case(r, &c, NULL, NULL, &d) != FB_OK) fail_msg("run failed: %s", d.msg);
   for (int i = 0; i < r->n; i++)
@@ -189,10 +195,10 @@ static void test_clearance_restitution_matches_reference(void **state) {
   const fb_reference_error *re = &m->ref_error;
   report_residual("mujoco restitution force peak rel", re->force_max_rel,
                   RESTITUTION_FORCE_REL_TOL);
-  report_residual("mujoco restitution impacts - reference's",
-                  re->impacts - re->impacts_reference, RESTITUTION_IMPACTS_TOL);
+  const double impacts_rel = (double)re->impacts / re->impacts_reference - 1.0;
+  report_residual("mujoco restitution impacts rel", impacts_rel, RESTITUTION_IMPACTS_REL_TOL);
   assert_true(fabs(re->force_max_rel) < RESTITUTION_FORCE_REL_TOL);
-  assert_true(abs(re->impacts - re->impacts_reference) <= RESTITUTION_IMPACTS_TOL);
+  assert_true(re->impacts_reference > 0 && fabs(impacts_rel) <= RESTITUTION_IMPACTS_REL_TOL);
   fb_run_free(&r);
 }
 
@@ -206,7 +212,7 @@ static void test_clearance_restitution_matches_reference(void **state) {
  * The bands guard those measured differences (a change of the collider or
  * the mapping moves them out) */
 #define NATIVE_FORCE_REL_LO 0.5
-#define NATIVE_FORCE_REL_HI 1.1
+#define NATIVE_FORCE_REL_HI 1.4
 #define NATIVE_PEN_REL_LO (-0.7)
 #define NATIVE_PEN_REL_HI (-0.35)
 
@@ -270,7 +276,11 @@ static void test_reactions_match_inverse_dynamics(void **state) {
 static void view(fb_scene_def *def, fb_scene_model *sm, const char *model, const char **sets,
                  int n) {
   fb_case c;
-  fb_test_paper_case(&c, sets, n);
+  /* the step the MJCF figures were written for (the paper case's default is
+   * h_s = auto); a later --set wins */
+  const char *all[9] = {"solver.h_s=1e-5"};
+  for (int i = 0; i < n && i < 8; i++) all[i + 1] = sets[i];
+  fb_test_paper_case(&c, all, n + 1);
   c.model_count = 1;
   snprintf(c.models[0], sizeof c.models[0], "%s", model);
   fb_diag d;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "contact.h"
 #include "cli.h"
 #include "clock.h"
 #include "figures.h"
@@ -21,7 +22,8 @@ static const char bench_help[] =
     "                     [--grid all|solvers|colliders]\n"
     "\n"
     "Speed against error on both engines: ODE's stepper (dWorldStep; dWorldQuickStep\n"
-    "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s) x mapping (secant, tangent)\n"
+    "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s, and auto: the largest with\n"
+    "h omega_c <= 0.5 at the stiffest contact) x mapping (secant, tangent, matched)\n"
     "x world ERP/CFM, and (in builds with MuJoCo) MuJoCo's integrator (euler,\n"
     "implicit, rk4) x step size (1e-3 to 1e-6 s, 7 values), measured against the\n"
     "analytic solution (ideal stack-up models) and the reference dynamics (clearance\n"
@@ -39,7 +41,7 @@ static const char bench_help[] =
 
 static json_t *finite_or_null(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 
-static const char *mapping_name(int m) { return m < 0 ? "-" : (m ? "tangent" : "secant"); }
+static const char *mapping_name(int m) { return m < 0 ? "-" : fb_mapping_name((fb_mapping)m); }
 
 /* 1 when a row of model ran (MuJoCo's rows exist only in builds with it) */
 static int has_model(const fb_bench_row *rows, int n, const fb_model *model) {
@@ -53,9 +55,9 @@ static void print_config(const char *model, double target, const fb_bench_row *b
   char mapping[32] = "";
   if (b->mapping >= 0) snprintf(mapping, sizeof mapping, "%s, ", mapping_name(b->mapping));
   if (strcmp(b->engine, "ode") == 0)
-    printf("  %-24s error <= %.0e: %s, h = %g s, %sERP %g, CFM %g: %.3e at %.3e s/rev\n", model,
-           target, b->stepper, b->h, mapping, b->world_erp, b->world_cfm, b->error,
-           b->wall_per_rev);
+    printf("  %-24s error <= %.0e: %s, h = %g s%s, %sERP %g, CFM %g: %.3e at %.3e s/rev\n", model,
+           target, b->stepper, b->h, b->h_auto ? " (auto)" : "", mapping, b->world_erp,
+           b->world_cfm, b->error, b->wall_per_rev);
   else
     printf("  %-24s error <= %.0e: %s, h = %g s: %.3e at %.3e s/rev\n", model, target, b->stepper,
            b->h, b->error, b->wall_per_rev);
@@ -130,7 +132,7 @@ int fb_cmd_bench(int argc, char **argv) {
   snprintf(path, sizeof path, "%s/bench.csv", dir);
   fb_outfile f;
   if (fb_outfile_open(&f, path, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
-  fprintf(f.f, "model,engine,stepper,h_s,mapping,world_erp,world_cfm,status,error,wall_per_rev_s,"
+  fprintf(f.f, "model,engine,stepper,h_s,h_auto,mapping,world_erp,world_cfm,status,error,wall_per_rev_s,"
                "repeats,pareto,setup_s,"
                "collider,segments,us_per_step,force_vs_exact_rel,penetration_vs_exact_rel,"
                "alpha_coupler_vs_exact_rel,impacts,impacts_exact,cost_vs_exact\n");
@@ -141,8 +143,8 @@ int fb_cmd_bench(int argc, char **argv) {
     char erp[32] = "", cfm[32] = "";
     if (isfinite(b->world_erp)) snprintf(erp, sizeof erp, "%g", b->world_erp);
     if (isfinite(b->world_cfm)) snprintf(cfm, sizeof cfm, "%g", b->world_cfm);
-    fprintf(f.f, "%s,%s,%s,%g,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d,%.6g,%s,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g\n",
-            b->model, b->engine, b->stepper, b->h, mapping_name(b->mapping), erp, cfm,
+    fprintf(f.f, "%s,%s,%s,%g,%d,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d,%.6g,%s,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g\n",
+            b->model, b->engine, b->stepper, b->h, b->h_auto, mapping_name(b->mapping), erp, cfm,
             fb_stop_text(stop, sizeof stop, &b->stop),
             b->error, b->wall_per_rev, b->repeats, b->pareto, b->setup_s, b->collider,
             b->segments, b->us_per_step, b->force_vs_exact, b->pen_vs_exact, b->alpha_vs_exact,
@@ -152,6 +154,7 @@ int fb_cmd_bench(int argc, char **argv) {
     json_object_set_new(o, "engine", json_string(b->engine));
     json_object_set_new(o, "stepper", json_string(b->stepper));
     json_object_set_new(o, "h_s", json_real(b->h));
+    json_object_set_new(o, "h_auto", json_boolean(b->h_auto));
     json_object_set_new(o, "mapping", json_string(mapping_name(b->mapping)));
     json_object_set_new(o, "world_erp", isfinite(b->world_erp) ? json_real(b->world_erp) : json_null());
     json_object_set_new(o, "world_cfm", isfinite(b->world_cfm) ? json_real(b->world_cfm) : json_null());
@@ -214,8 +217,8 @@ int fb_cmd_bench(int argc, char **argv) {
     return 0;
   }
   json_decref(o);
-  printf("bench of %s: %d configurations in %.1f s ('P': Pareto front of its engine and model)\n\n"
-         "%-24s %-9s %7s %-8s %5s %7s %12s %12s  %s\n",
+  printf("bench of %s: %d configurations in %.1f s ('P': Pareto front of its engine and model; "
+         "h_s 'a': auto)\n\n%-24s %-9s %8s %-8s %5s %7s %12s %12s  %s\n",
          c.name, n, wall, "model", "stepper", "h_s", "mapping", "ERP", "CFM", "error", "s/rev", "status");
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
@@ -227,7 +230,9 @@ int fb_cmd_bench(int argc, char **argv) {
     char cost[32];
     if (isfinite(b->wall_per_rev)) snprintf(cost, sizeof cost, "%12.3e", b->wall_per_rev);
     else snprintf(cost, sizeof cost, "%12s", "-");
-    printf("%-24s %-9s %7.0e %-8s %5s %7s %12.3e %s %c %.40s\n", b->model, b->stepper, b->h,
+    char hs[24];
+    snprintf(hs, sizeof hs, b->h_auto ? "a%.2g" : "%.0e", b->h);
+    printf("%-24s %-9s %8s %-8s %5s %7s %12.3e %s %c %.40s\n", b->model, b->stepper, hs,
            mapping_name(b->mapping), erp, cfm, b->error, cost, b->pareto ? 'P' : ' ',
            fb_stop_text(stop, sizeof stop, &b->stop));
   }

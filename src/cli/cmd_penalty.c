@@ -11,6 +11,9 @@
 #include "figures.h"
 #include "fileio.h"
 #include "penalty.h"
+#include "report.h"
+#include "resolution.h"
+#include "scene_def.h"
 #include "units.h"
 
 #define MAX_SPEEDS 1000
@@ -36,7 +39,11 @@ static const char penalty_help[] =
     "                   against speed: the paper's Figures 2 to 4)\n"
     "  CASE             default: the paper's case\n"
     "P is printed in both units, N mm^0.5 (the paper's Table II) and N m^0.5\n"
-    "(SI): columns penalty_n_mm0_5 and penalty_n_m0_5 in every mode.\n";
+    "(SI): columns penalty_n_mm0_5 and penalty_n_m0_5 in every mode.\n"
+    "Then, for a case with clearance joints, the contact a fourbar run of the case\n"
+    "uses (the same code path: its laws, stiffness and damping per joint, which\n"
+    "lengths and which rule), the effective-mass range, expected force and contact\n"
+    "frequency, and the step [solver] h_s = auto gives (JSON: \"contact\").\n";
 
 static int parse_speeds(const char *text, double *out, int *n) {
   double a, b, s;
@@ -57,6 +64,88 @@ static int parse_speeds(const char *text, double *out, int *n) {
     out[(*n)++] = v;
   }
   return *n > 0;
+}
+
+/* the rule that turned the case's penalty source into the laws' stiffness */
+static const char *stiffness_rule(const fb_case *c) {
+  switch (c->clearance.penalty) {
+    case FB_PENALTY_SOURCE_PHYSICAL:
+      return "physical: F_j = the joint's largest inverse-dynamics reaction over a revolution, "
+             "delta_j = Johnson's pin-in-hole approach at F_j; impact law K = F_j / delta_j^n "
+             "(secant through Johnson's curve), restitution law p = dF/d delta at F_j (tangent)";
+    case FB_PENALTY_SOURCE_PAPER:
+      return "paper: Kc (Eq. 7) read as N/mm^1.5 for the impact law (n = 1.5), P read as N/mm "
+             "for the restitution law";
+    default: return "explicit: the case's stiffness keys";
+  }
+}
+
+/* the contact a run of case c uses, through the run's own law resolution */
+static int contact_used(const fb_case *in, int json, json_t *out) {
+  if (!in->clearance.mask) return 0;
+  /* the scene stage a run goes through, with both clearance laws asked for */
+  static fb_case c;
+  static fb_scene_def def;
+  c = *in;
+  c.model_count = 2;
+  snprintf(c.models[0], FB_NAME_SIZE, "ode-clearance-impact");
+  snprintf(c.models[1], FB_NAME_SIZE, "ode-clearance-restitution");
+  fb_diag d;
+  if (fb_scene_def_from_case(&def, &c, &d) != FB_OK) return fb_cli_fail("penalty", 1, "%s", d.msg);
+  c = def.source;
+  fb_contact_law laws[2][4];
+  fb_contact_estimate est[2][4];
+  memcpy(laws[0], def.law[FB_MODEL_LAW_IMPACT], sizeof laws[0]);
+  memcpy(laws[1], def.law[FB_MODEL_LAW_RESTITUTION], sizeof laws[1]);
+  for (int m = 0; m < 2; m++)
+    if (fb_contact_estimates(est[m], &c, laws[m], &d) != FB_OK)
+      return fb_cli_fail("penalty", 1, "%s", d.msg);
+  double h, w;
+  if (fb_step_auto(&h, &w, &c, &d) != FB_OK) return fb_cli_fail("penalty", 1, "%s", d.msg);
+  const fb_linkage su = def.lengths[FB_LENGTHS_STACKUP];
+  char corner[FB_LINK_COUNT + 1];
+  for (int k = 0; k < FB_LINK_COUNT; k++) corner[k] = "-0+"[c.stackup.corner[k] + 1];
+  corner[FB_LINK_COUNT] = '\0';
+  const fb_mapping mapping = (fb_mapping)c.clearance.mapping;
+  if (json) {
+    json_t *arr = json_array();
+    for (int j = 0; j < 4; j++)
+      for (int m = 0; m < 2; m++) {
+        if (!(c.clearance.mask & (1 << j))) continue;
+        json_t *o = fb_report_contact_law_json(j, &laws[m][j], mapping);
+        json_object_set_new(o, "model", json_string(m == 0 ? "ode-clearance-impact" : "ode-clearance-restitution"));
+        json_object_set_new(o, "effective_mass_estimate_kg",
+                            json_pack("{s:f,s:f}", "min", est[m][j].m_eff_min, "max", est[m][j].m_eff_max));
+        json_object_set_new(o, "force_expected_n", json_real(est[m][j].force_expected));
+        json_object_set_new(o, "omega_c_rad_s", json_real(est[m][j].omega_c));
+        json_array_append_new(arr, o);
+      }
+    json_object_set_new(out, "contact", arr);
+    json_object_set_new(out, "contact_lengths", json_string("stack-up"));
+    json_object_set_new(out, "contact_stackup_corner", json_string(corner));
+    json_object_set_new(out, "contact_rule", json_string(stiffness_rule(&c)));
+    json_object_set_new(out, "h_auto_s", json_real(h));
+    json_object_set_new(out, "h_omega_c_bound", json_real(FB_H_OMEGA_C_BOUND));
+    return 0;
+  }
+  printf("\ncontact a fourbar run of %s uses (stack-up lengths, corner %s: crank %.6g, coupler "
+         "%.6g, follower %.6g, ground %.6g mm; %s):\n",
+         c.name, corner, su.length[0] * 1e3, su.length[1] * 1e3, su.length[2] * 1e3,
+         su.length[3] * 1e3, stiffness_rule(&c));
+  for (int j = 0; j < 4; j++)
+    for (int m = 0; m < 2; m++) {
+      if (!(c.clearance.mask & (1 << j))) continue;
+      fb_report_print_contact_law(stdout, j, &laws[m][j], mapping);
+      printf("  %-17s %-12s effective mass %.4g .. %.4g kg over a revolution, expected force "
+             "%.6g N, omega_c %.4g rad/s\n",
+             "", "", est[m][j].m_eff_min, est[m][j].m_eff_max, est[m][j].force_expected,
+             est[m][j].omega_c);
+    }
+  printf("[solver] h_s = auto: h = %.4g s (h omega_c <= %g at the stiffest contact, omega_c = "
+         "%.4g rad/s; at most one revolution / %g)%s\n",
+         h, FB_H_OMEGA_C_BOUND, w, FB_H_AUTO_STEPS_PER_REV,
+         c.solver.h_mode == FB_STEP_FIXED ? "; this case fixes h_s instead" : "");
+  return 0;
 }
 
 int fb_cmd_penalty(int argc, char **argv) {
@@ -188,11 +277,16 @@ int fb_cmd_penalty(int argc, char **argv) {
     json_object_set_new(o, "case", json_string(c.name));
     json_object_set_new(o, "penalty_units", json_string(unit));
     json_object_set_new(o, "rows", rows);
+    if ((rc = contact_used(&c, 1, o)) != 0) {
+      json_decref(o);
+      return rc;
+    }
     json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
     fputc('\n', stdout);
     json_decref(o);
   } else {
     json_decref(rows);
+    if ((rc = contact_used(&c, 0, NULL)) != 0) return rc;
   }
   return 0;
 }

@@ -61,7 +61,8 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     snprintf(b->model, sizeof b->model, "%s", m->run.name);
     snprintf(b->engine, sizeof b->engine, "%s", engine);
     snprintf(b->stepper, sizeof b->stepper, "%s", stepper);
-    b->h = k->solver.h;
+    b->h = m->run.h; /* as run: [solver] h_s = auto resolved */
+    b->h_auto = k->solver.h_mode == FB_STEP_AUTO;
     b->mapping = q == 0 ? -1 : mapping;
     b->world_erp = mapping >= 0 ? k->solver.world_erp : NAN;
     b->world_cfm = mapping >= 0 ? k->solver.world_cfm : NAN;
@@ -104,7 +105,9 @@ void fb_bench_models(fb_engine_id e, const fb_model **ideal, const fb_model **cl
 static void bench_case(fb_case *k, const fb_case *c, double h, fb_engine_id engine) {
   *k = *c;
   k->revolutions = 2;
-  k->solver.h = h;
+  /* h = 0: [solver] h_s = auto, resolved by the run's scene stage */
+  k->solver.h = h > 0.0 ? h : c->solver.h;
+  k->solver.h_mode = h > 0.0 ? FB_STEP_FIXED : FB_STEP_AUTO;
   const fb_model *models[3];
   fb_bench_models(engine, &models[0], &models[1]);
   models[2] = fb_model_reference_of(models[1]);
@@ -129,6 +132,7 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
   fb_case k = *c;
   k.revolutions = 2;
   k.solver.h = h;
+  k.solver.h_mode = FB_STEP_FIXED;
   k.solver.stepper = FB_STEPPER_WORLD;
   k.solver.world_erp = 0.2;
   k.solver.world_cfm = 1e-10;
@@ -200,19 +204,20 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
 
 fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag) {
-  const double hs[4] = {1e-3, 1e-4, 1e-5, 1e-6};
+  const double hs[FB_BENCH_STEPS] = {1e-3, 1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
   const int iters[4] = {0, 10, 20, 50}; /* 0: dWorldStep */
   const double erp[2] = {0.2, 0.8}, cfm[2] = {1e-10, 1e-8};
   const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
   const int mujoco = solvers && fb_engine_available(FB_ENGINE_MUJOCO);
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
-  const int total = (solvers ? 4 * 4 * 2 * 2 : 0) + (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS : 0) +
+  const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
+                    (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS : 0) +
                     (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
   *n = 0;
   for (int si = 0; si < (solvers ? 4 : 0); si++)
-    for (int hi = 0; hi < 4; hi++)
-      for (int mi = 0; mi < 2; mi++)
+    for (int hi = 0; hi < FB_BENCH_STEPS; hi++)
+      for (int mi = 0; mi < FB_MAPPING_COUNT; mi++)
         for (int ei = 0; ei < 2; ei++) {
           fb_case k;
           bench_case(&k, c, hs[hi], FB_ENGINE_ODE);

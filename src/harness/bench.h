@@ -4,8 +4,8 @@
  * with its cost as wall time per simulated revolution (median of repeats).
  *
  * Grid: stepper (dWorldStep; dWorldQuickStep at 10, 20, 50 iterations) x
- * step size h (1e-3, 1e-4, 1e-5, 1e-6 s) x mapping (secant, tangent; the
- * clearance model only) x world ERP/CFM of the ideal joints ((0.2, 1e-10),
+ * step size h (1e-3, 1e-4, 1e-5, 1e-6 s and auto: resolution.h) x mapping
+ * (secant, tangent, matched; the clearance model only) x world ERP/CFM of the ideal joints ((0.2, 1e-10),
  * (0.8, 1e-8)); and, in builds with MuJoCo, MuJoCo's integrator (euler,
  * implicit, rk4) x h (1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6 s) with the
  * case's loop closure and drive (models mujoco-ideal-stackup and
@@ -37,7 +37,8 @@ typedef struct fb_bench_row_s {
   char engine[16];         /* "ode" or "mujoco" */
   char stepper[32];        /* ode: "world" or "quick-<iterations>"; mujoco: its integrator */
   double h;                /* [s] */
-  int mapping;             /* 0 secant, 1 tangent; -1 where none applies (ideal, mujoco) */
+  int h_auto;              /* 1: h came from [solver] h_s = auto */
+  int mapping;             /* fb_mapping; -1 where none applies (ideal, mujoco) */
   double world_erp, world_cfm; /* ode's ideal joints; NaN for mujoco */
   fb_stop stop;            /* why the model's run stopped (FB_STOP_NONE: it did not) */
   double error;            /* NaN when the run stopped */
@@ -66,6 +67,9 @@ enum {
 };
 
 #define FB_BENCH_MAX_ROWS 256
+
+/* ODE step sizes of the grid: 1e-3, 1e-4, 1e-5, 1e-6 s and auto. */
+#define FB_BENCH_STEPS 5
 #define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
 
 /* Runs the grids named in grids (FB_BENCH_* bits) on case c (2 revolutions

@@ -1,5 +1,8 @@
 #include "check.h"
 
+#include "resolution.h"
+#include "tolerance.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -71,7 +74,12 @@ fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterminis
   fb_status st = run_metrics(base, &nb, c, diag);
   if (st != FB_OK) return st;
   fb_case p = *c;
-  p.solver.h = c->solver.h * FB_CHECK_H_FACTOR;
+  /* the step the run used (auto resolved at the resolved corner), a little smaller */
+  st = fb_tol_resolve_worst(&p, diag);
+  if (st == FB_OK) st = fb_case_resolve_step(&p, diag);
+  if (st != FB_OK) return st;
+  p.solver.h *= FB_CHECK_H_FACTOR;
+  p.solver.h_mode = FB_STEP_FIXED;
   st = run_metrics(pert[0], &np[0], &p, diag);
   if (st != FB_OK) return st;
   p = *c;

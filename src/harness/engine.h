@@ -55,6 +55,13 @@ typedef struct fb_engine {
   int guarded;                      /* 1: the harness stops a run whose penetration exceeds
                                        def->penetration_limit; 0: the engine controls its own
                                        accuracy (reference) */
+  int step_values_lag;              /* 1: sample() after the step from t_n reports that step's
+                                       acceleration (omega_{n+1} - omega_n) / h and contact
+                                       force, which belong to t_n: the harness moves them one
+                                       sample earlier (fb_series_attribute_to_step_start) */
+  int refine_peaks;                 /* 1: the samples lie on a discrete motion whose spikes the
+                                       harness refines by parabola (fb_series_refine_peaks); 0:
+                                       exact (analytic) or refined by the engine (reference) */
   fb_status (*create)(void **self, const fb_scene_model *sm, fb_diag *diag);
   fb_status (*step)(void *self, fb_diag *diag);
   void (*stopped)(const void *self, fb_stop *out); /* optional: why step returned

@@ -215,6 +215,28 @@ static void window_impacts(const fb_series *s, double t_from, int j, int *count,
   for (int k = *count; k < 8; k++) angles[k] = -1.0;
 }
 
+/* peak force and penetration of the first FB_FIRST_IMPACTS impacts of the run */
+static int first_impacts(const fb_series *s, int j, double force[FB_FIRST_IMPACTS],
+                         double pen[FB_FIRST_IMPACTS]) {
+  const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
+  const double *p = s->contact[j][FB_C_PEN];
+  int k = -1;
+  for (size_t i = 0; i < s->n; i++) {
+    const int in = (int)st[i] == FB_STATE_IMPACT && f[i] > 0.0;
+    const int onset = in && (i == 0 || (int)st[i - 1] != FB_STATE_IMPACT || !(f[i - 1] > 0.0));
+    if (onset) {
+      if (k + 1 == FB_FIRST_IMPACTS) break;
+      k++;
+      force[k] = pen[k] = 0.0;
+    }
+    if (in && k >= 0) {
+      force[k] = fmax_d(force[k], f[i]);
+      pen[k] = fmax_d(pen[k], p[i]);
+    }
+  }
+  return k + 1;
+}
+
 fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, const fb_series *r,
                                   double t_from, int j, fb_diag *diag) {
   memset(out, 0, sizeof *out);
@@ -257,5 +279,12 @@ fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, c
   out->penetration_max_rel = fb_metrics_rel(pens, penr);
   window_impacts(s, t_from, j, &out->impacts, out->impact_angles);
   window_impacts(r, t_from, j, &out->impacts_reference, out->impact_angles_reference);
+  double fa[FB_FIRST_IMPACTS], pa[FB_FIRST_IMPACTS], fb[FB_FIRST_IMPACTS], pb[FB_FIRST_IMPACTS];
+  const int na = first_impacts(s, j, fa, pa), nb = first_impacts(r, j, fb, pb);
+  out->first_impacts = na < nb ? na : nb;
+  for (int k = 0; k < out->first_impacts; k++) {
+    out->first_impact_force_rel[k] = fb_metrics_rel(fa[k], fb[k]);
+    out->first_impact_penetration_rel[k] = fb_metrics_rel(pa[k], pb[k]);
+  }
   return FB_OK;
 }

@@ -57,10 +57,20 @@ typedef struct {
   int impacts_reference;
   double impact_angles[8];      /* crank angles of the first impacts [rad] in [0, 2 pi) */
   double impact_angles_reference[8];
+  int first_impacts;            /* impacts of the run (t >= 0) compared below, <= FB_FIRST_IMPACTS */
+  double first_impact_force_rel[3];       /* (peak force - reference's) / reference's of the
+                                             run's k-th impact [-] (3) */
+  double first_impact_penetration_rel[3]; /* same for the peak penetration [-] (3) */
 } fb_reference_error;
 
+/* Impacts of a run compared one by one (from t = 0, before the clearance
+ * motion's chaos separates the model's sequence from the reference's). */
+#define FB_FIRST_IMPACTS 3
+
 /* Compares series s (model) with r (reference) over t >= t_from at clearance
- * joint j. Errors: FB_ERR_ARG when the grids differ or the window is empty. */
+ * joint j; the first impacts of the run (an impact: samples in the impact
+ * state from its onset until the state leaves it or the force vanishes; its
+ * peaks over those samples) one by one from t = 0. Errors: FB_ERR_ARG when the grids differ or the window is empty. */
 fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, const fb_series *r,
                                   double t_from, int j, fb_diag *diag);
 

@@ -2,9 +2,11 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "clock.h"
+#include "reference.h"
 
 static int sample_finite(const fb_sample *x) {
   return isfinite(x->t) && isfinite(x->crank_angle) && isfinite(x->coupler_angle) &&
@@ -91,6 +93,11 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
     if (drift > r->joint_drift_max) r->joint_drift_max = drift;
     if (progress && k % report_every == 0) progress(r->name, (double)k / (double)n, user);
   }
+  /* values an engine reports one step late belong to the step's start, and
+   * spikes of a discrete motion are refined between its steps (series.h),
+   * so every model's accelerations and peaks compare like with like */
+  if (e->step_values_lag) fb_series_attribute_to_step_start(&r->series);
+  if (e->refine_peaks) fb_series_refine_peaks(&r->series, FB_REFERENCE_REFINE_FRACTION);
   r->steps = e->steps(self);
   if (e->provenance && sm->clearance_mask) {
     r->has_provenance = 1;

@@ -5,6 +5,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "resolution.h"
+
 
 static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref) {
   const fb_body_peaks *in[2] = {&p->coupler, &p->follower};
@@ -54,6 +56,20 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
                           .ratio = m->penetration_max_run / c->radial_clearance,
                           .factor = FB_PENALTY_VALIDITY_FACTOR,
                           .t = NAN};
+    warn(m, &w);
+  }
+  /* the named warning of a contact the step does not resolve (resolution.h) */
+  for (int j = 0; j < 4 && m->run.has_provenance; j++) {
+    const fb_contact_provenance *p = &m->run.provenance[j];
+    if (!(m->run.clearance_mask & (1 << j)) || p->contact_steps == 0 ||
+        !(p->h_omega_max > FB_H_OMEGA_C_BOUND))
+      continue;
+    fb_warning w = {.kind = FB_WARN_UNDER_RESOLVED,
+                    .value = p->h_omega_max,
+                    .limit = FB_H_OMEGA_C_BOUND,
+                    .ratio = M_PI / p->h_omega_max,
+                    .t = NAN};
+    snprintf(w.what, sizeof w.what, "%s", fb_joint_name(j));
     warn(m, &w);
   }
   if (fb_engine_steps_world(m->run.model->engine)) {

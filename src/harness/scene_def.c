@@ -1,5 +1,7 @@
 #include "scene_def.h"
 
+#include "resolution.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -46,7 +48,13 @@ fb_status fb_scene_def_from_case(fb_scene_def *def, const fb_case *c, fb_diag *d
   def->source = *c;
   fb_case *r = &def->source;
   fb_status st = fb_tol_resolve_worst(r, diag);
-  if (st == FB_OK && c->stackup.worst) st = fb_case_check(r, diag);
+  /* [solver] h_s = auto (or not given, with clearance joints): the step from
+   * the contact at the resolved corner (resolution.h); the case is checked
+   * again with it */
+  const int auto_step = r->solver.h_mode == FB_STEP_AUTO ||
+                        (r->solver.h_mode == FB_STEP_DEFAULT && r->clearance.mask);
+  if (st == FB_OK) st = fb_case_resolve_step(r, diag);
+  if (st == FB_OK && (c->stackup.worst || auto_step)) st = fb_case_check(r, diag);
   if (st != FB_OK) return st;
   def->stackup = r->stackup;
   def->lengths[FB_LENGTHS_NOMINAL] = r->nominal;
@@ -167,8 +175,9 @@ fb_status fb_scene_def_check(const fb_scene_def *def, fb_diag *diag) {
                          def->impact_velocity_min);
     if (!(def->friction >= 0.0) || !isfinite(def->friction))
       return fb_diag_set(diag, FB_ERR_RANGE, "scene: friction = %g: must be >= 0", def->friction);
-    if (def->mapping != FB_MAPPING_SECANT && def->mapping != FB_MAPPING_TANGENT)
-      return fb_diag_set(diag, FB_ERR_RANGE, "scene: mapping = %d: secant (0) or tangent (1)",
+    if (!(def->mapping >= 0 && def->mapping < FB_MAPPING_COUNT))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "scene: mapping = %d: secant (0), tangent (1) or matched (2)",
                          (int)def->mapping);
     for (int k = 0; k < FB_MODEL_LAW_COUNT; k++) {
       if (!def->has_law[k]) continue;

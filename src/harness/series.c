@@ -214,3 +214,66 @@ double fb_series_value(const fb_series *s, size_t k, size_t i) {
   contact_column(s, k - FB_NCOLUMNS, &j, &q);
   return j < 0 ? 0.0 : s->contact[j][q][i];
 }
+
+int fb_series_is_spike(const double *v, size_t k, int sign, double fraction, double big) {
+  const double a = sign * v[k];
+  return a > 0.0 && a >= sign * v[k - 1] && a >= sign * v[k + 1] && a >= fraction * big;
+}
+
+double fb_series_largest_abs(const double *v, size_t n) {
+  double m = 0.0;
+  for (size_t i = 0; i < n; i++) m = fmax(m, fabs(v[i]));
+  return m;
+}
+
+/* vertex of the parabola through (-1, ym), (0, y0), (1, yp), for the
+ * extreme of sign `sign` at y0 */
+static double vertex(double ym, double y0, double yp, int sign) {
+  const double den = ym - 2.0 * y0 + yp;
+  if (!(sign * den < 0.0) || !(sign * ym > 0.0) || !(sign * yp > 0.0)) return y0;
+  return y0 - 0.125 * (yp - ym) * (yp - ym) / den;
+}
+
+static void refine_column(double *v, size_t n, double fraction) {
+  if (!v || n < 3) return;
+  const double big = fb_series_largest_abs(v, n);
+  if (!(big > 0.0)) return;
+  /* vertices from the original samples: a refined value must not feed its
+   * neighbour's parabola */
+  double prev = v[0];
+  for (size_t k = 1; k + 1 < n; k++) {
+    const double here = v[k];
+    const double vk[3] = {prev, here, v[k + 1]};
+    for (int sign = -1; sign <= 1; sign += 2)
+      if (fb_series_is_spike(vk, 1, sign, fraction, big)) v[k] = vertex(prev, here, v[k + 1], sign);
+    prev = here;
+  }
+}
+
+void fb_series_refine_peaks(fb_series *s, double fraction) {
+  refine_column(s->coupler_alpha, s->n, fraction);
+  refine_column(s->follower_alpha, s->n, fraction);
+  for (int j = 0; j < 4; j++) {
+    if (!(s->contact_mask & (1 << j))) continue;
+    refine_column(s->contact[j][FB_C_FORCE], s->n, fraction);
+    refine_column(s->contact[j][FB_C_PEN], s->n, fraction);
+  }
+}
+
+void fb_series_attribute_to_step_start(fb_series *s) {
+  if (s->n < 2) return;
+  double *cols[2 + 2 * 4];
+  int nc = 0;
+  cols[nc++] = s->coupler_alpha;
+  cols[nc++] = s->follower_alpha;
+  for (int j = 0; j < 4; j++)
+    if (s->contact_mask & (1 << j)) {
+      cols[nc++] = s->contact[j][FB_C_FORCE];
+      cols[nc++] = s->contact[j][FB_C_STATE];
+    }
+  for (int q = 0; q < nc; q++) {
+    memmove(cols[q], cols[q] + 1, (s->n - 1) * sizeof(double));
+    /* the last sample's step was never taken: hold the last value */
+    cols[q][s->n - 1] = cols[q][s->n - 2];
+  }
+}

@@ -75,6 +75,32 @@ fb_status fb_series_push(fb_series *s, const fb_sample *x);
 /* Reads sample i (i < n) into *x. */
 void fb_series_get(const fb_series *s, size_t i, fb_sample *x);
 
+/* 1 when sample k (0 < k < n - 1) of column v is a spike: a local extreme
+ * of sign `sign` (+1 maximum, -1 minimum) whose magnitude is at least
+ * fraction times big (> 0, the column's largest magnitude). */
+int fb_series_is_spike(const double *v, size_t k, int sign, double fraction, double big);
+
+/* Largest |v[i]| over n values. */
+double fb_series_largest_abs(const double *v, size_t n);
+
+/* Peak refinement of a series whose samples lie on a smooth motion (an
+ * engine's steps): every spike (fb_series_is_spike with fraction) of the
+ * angular accelerations and of the contact force and penetration is
+ * replaced by the vertex of the parabola through it and its two
+ * neighbours, when both neighbours have its sign (a one-sample pulse is
+ * left alone). The vertex of a peak sampled at h is exact to O(h^4) where
+ * the sample alone misses up to |y''| h^2 / 8. */
+void fb_series_refine_peaks(fb_series *s, double fraction);
+
+/* For an engine that reports at t_{n+1} what its step from t_n applied
+ * (ODE: the angular acceleration (omega_{n+1} - omega_n) / h, which is the
+ * solver's forces at the configuration of t_n, and the contact force and
+ * state of that step): moves the angular accelerations and every contact
+ * force and state column one sample earlier, so each sample holds the
+ * acceleration and force at its own configuration, as the reference's
+ * instantaneous values do. The last sample keeps the value before it. */
+void fb_series_attribute_to_step_start(fb_series *s);
+
 /* Frees the arrays; s is left empty and may be re-initialised. */
 void fb_series_free(fb_series *s);
 

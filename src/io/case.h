@@ -33,6 +33,13 @@ typedef struct {
 
 typedef enum { FB_STEPPER_WORLD = 0, FB_STEPPER_QUICK = 1 } fb_stepper;
 
+/* How [solver] h_s was given. */
+typedef enum {
+  FB_STEP_DEFAULT = 0, /* not given: auto with clearance joints, else 1e-5 s */
+  FB_STEP_FIXED = 1,   /* a number */
+  FB_STEP_AUTO = 2     /* "auto": from the contact (resolution.h, fb_step_auto) */
+} fb_step_mode;
+
 /* The four revolute joints, in loop order. */
 typedef enum {
   FB_JOINT_A = 0, /* ground-crank (driven) */
@@ -90,7 +97,8 @@ typedef struct {
 
 /* Solver parameters of the ODE models. */
 typedef struct {
-  double h;                /* step size h [s] */
+  double h;                /* step size h [s] (resolved when h_mode is not FB_STEP_FIXED) */
+  int h_mode;              /* fb_step_mode: how h was chosen */
   fb_stepper stepper;      /* dWorldStep (direct) or dWorldQuickStep (SOR) */
   int quick_iterations;    /* dWorldQuickStep iterations [-] */
   double world_erp;        /* ERP of the ideal joints [-] in [0, 1] */

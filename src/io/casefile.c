@@ -28,6 +28,7 @@ typedef enum {
   K_BRANCH,    /* open | crossed */
   K_DIRECTION, /* cw | ccw */
   K_STEPPER,   /* world | quick */
+  K_STEP,      /* a step size in seconds, or auto */
   K_STACKUP,   /* nominal | max | min | four corner characters from + - 0 */
   K_MODELS,    /* comma-separated model names */
   K_CLASS,     /* ISO 2768-1 class letter f m c v */
@@ -36,7 +37,7 @@ typedef enum {
   K_FIT,       /* an ISO 286 fit string, checked after reading */
   K_JOINTS,    /* comma-separated joint names (bit mask) */
   K_PENALTY,   /* physical | paper | explicit */
-  K_MAPPING,   /* secant | tangent */
+  K_MAPPING,   /* secant | tangent | matched */
   K_MJINT,     /* euler | implicit | rk4 | auto */
   K_START,     /* steady | rest */
   K_PINSTART,  /* centred | resting | an eccentricity angle in degrees */
@@ -196,8 +197,10 @@ static const key_spec keys[] = {
     {"clearance", "damping_depth_um", K_DOUBLE, OFF(clearance.damping_depth), FB_M_PER_UM, 0, INF,
      1, 1, "um", "1", "the full-damping depth must be positive",
      "impact-model penetration at full damping d_max (cubic STEP below it)"},
-    {"clearance", "mapping", K_MAPPING, OFF(clearance.mapping), 0, 0, 0, 0, 0, "-", "secant",
-     "secant or tangent", "per-step linearisation of the law into ERP/CFM"},
+    {"clearance", "mapping", K_MAPPING, OFF(clearance.mapping), 0, 0, 0, 0, 0, "-", "matched",
+     "secant, tangent or matched",
+     "per-step mapping of the law into ERP/CFM (matched: exact discretisation on the effective "
+     "mass along the normal)"},
     {"clearance", "friction", K_DOUBLE, OFF(clearance.friction), 1.0, 0, 10, 0, 0, "-", "0",
      "a friction coefficient must lie in [0, 10]", "Coulomb friction coefficient at the pin"},
     {"clearance", "penetration_limit_um", K_LIMIT, OFF(clearance.penetration_limit), FB_M_PER_UM,
@@ -239,8 +242,11 @@ static const key_spec keys[] = {
     {"expect", "reason", K_NAME, OFF(expect.reason), 0, 0, 0, 0, 0, "-", "(none)",
      "letters, digits, - _ .", "unstable: a word the model's status must contain"},
 
-    {"solver", "h_s", K_DOUBLE, OFF(solver.h), 1.0, 0, 1, 1, 0, "s", "1e-5",
-     "the step size must be positive (at most 1 s)", "step size h of the ODE models"},
+    {"solver", "h_s", K_STEP, OFF(solver.h), 1.0, 0, 1, 1, 0, "s", "1e-5",
+     "the step size must be positive (at most 1 s), or auto",
+     "step size h of the ODE models; auto: the largest with h omega_c <= 0.5 at the stiffest "
+     "contact, at most one revolution / 6000; not given: auto for a case with clearance "
+     "joints, else the default"},
     {"solver", "stepper", K_STEPPER, OFF(solver.stepper), 0, 0, 0, 0, 0, "-", "world",
      "world or quick", "world: dWorldStep (direct LCP); quick: dWorldQuickStep (SOR)"},
     {"solver", "quick_iterations", K_INT, OFF(solver.quick_iterations), 0, 1, 1e6, 0, 0, "-",
@@ -629,6 +635,19 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else if (strcmp(e->value, "cw") == 0) *(int *)field = -1;
       else return bad_word(e, k, diag);
       return FB_OK;
+    case K_STEP:
+      if (strcmp(e->value, "auto") == 0) {
+        c->solver.h_mode = FB_STEP_AUTO;
+        return FB_OK;
+      }
+      st = parse_double(e, k, &v, diag);
+      if (st == FB_OK) {
+        *(double *)field = v * k->scale;
+        /* the key table's own default leaves the choice to the clearance joints */
+        c->solver.h_mode =
+            strcmp(e->origin, "key table default") == 0 ? FB_STEP_DEFAULT : FB_STEP_FIXED;
+      }
+      return st;
     case K_STEPPER:
       if (strcmp(e->value, "world") == 0) *(fb_stepper *)field = FB_STEPPER_WORLD;
       else if (strcmp(e->value, "quick") == 0) *(fb_stepper *)field = FB_STEPPER_QUICK;
@@ -681,11 +700,12 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else if (strcmp(e->value, "ellipse") == 0) *(fb_case_bore *)field = FB_CASE_BORE_ELLIPSE;
       else return bad_word(e, k, diag);
       return FB_OK;
-    case K_MAPPING:
-      if (strcmp(e->value, "secant") == 0) *(int *)field = 0;
-      else if (strcmp(e->value, "tangent") == 0) *(int *)field = 1;
-      else return bad_word(e, k, diag);
+    case K_MAPPING: {
+      const fb_mapping m = fb_mapping_parse(e->value);
+      if (m == FB_MAPPING_COUNT) return bad_word(e, k, diag);
+      *(int *)field = (int)m;
       return FB_OK;
+    }
     case K_START:
       if (strcmp(e->value, "steady") == 0) *(fb_start *)field = FB_START_STEADY;
       else if (strcmp(e->value, "rest") == 0) *(fb_start *)field = FB_START_REST;

@@ -73,6 +73,12 @@ const char *fb_warning_text(char *buf, size_t size, const fb_warning *w) {
       snprintf(buf, size, "%s error %.3g is beyond the bound %.3g", w->what[0] ? w->what : "the",
                w->value, w->limit);
       break;
+    case FB_WARN_UNDER_RESOLVED:
+      snprintf(buf, size,
+               "under-resolved: h omega_c = %.3g at the %s joint exceeds %g (a contact lasts "
+               "about %.2g steps); [solver] h_s = auto keeps it below",
+               w->value, w->what[0] ? w->what : "clearance", w->limit, w->ratio);
+      break;
     default: snprintf(buf, size, "warning (%d)", (int)w->kind); break;
   }
   return buf;

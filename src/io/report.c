@@ -1,6 +1,8 @@
 #include "report.h"
 
 #include <jansson.h>
+#include "resolution.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -108,6 +110,80 @@ static json_t *loads_json(const fb_series *s, double t_from) {
   }
   json_object_set_new(o, "reaction_max_n", r);
   return o;
+}
+
+/* the law of a clearance model's joint j as its run used it, NULL if none */
+static const fb_contact_law *model_law(const fb_run *r, const fb_model_result *m, int j) {
+  const fb_model *row = m->run.model;
+  if (!row || row->law == FB_MODEL_LAW_NONE || !(m->run.clearance_mask & (1 << j)) ||
+      !r->scene.has_law[row->law])
+    return NULL;
+  return &r->scene.law[row->law][j];
+}
+
+/* summary.json's `contact`: one object per clearance joint (report.h) */
+static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
+  json_t *arr = json_array();
+  for (int j = 0; j < 4; j++) {
+    const fb_contact_law *law = model_law(r, m, j);
+    if (!law) continue;
+    json_t *o = fb_report_contact_law_json(j, law, r->scene.mapping);
+    const fb_contact_provenance *p = &m->run.provenance[j];
+    const int have = m->run.has_provenance && p->contact_steps > 0;
+    if (!m->run.has_provenance) json_object_set_new(o, "mapping", json_null());
+    if (have && law->kind == FB_LAW_RESTITUTION) {
+      const double z = fb_contact_law_zeta(law);
+      json_object_set_new(o, "damping_n_s_m",
+                          json_pack("{s:f,s:f}", "min", 2.0 * z * sqrt(law->stiffness * p->mass_eff_min),
+                                    "max", 2.0 * z * sqrt(law->stiffness * p->mass_eff_max)));
+    }
+    json_object_set_new(o, "effective_mass_kg",
+                        have ? json_pack("{s:f,s:f}", "min", p->mass_eff_min, "max", p->mass_eff_max)
+                             : json_null());
+    json_object_set_new(o, "erp_max", have ? num(p->erp_max) : json_null());
+    json_object_set_new(o, "cfm_min", have ? num(p->cfm_min) : json_null());
+    json_object_set_new(o, "h_omega_c_max", have ? num(p->h_omega_max) : json_null());
+    json_object_set_new(o, "h_omega_c_bound", num(FB_H_OMEGA_C_BOUND));
+    json_object_set_new(o, "contact_steps", json_integer((json_int_t)(have ? p->contact_steps : 0)));
+    json_object_set_new(o, "resolved",
+                        have ? json_boolean(p->h_omega_max <= FB_H_OMEGA_C_BOUND) : json_null());
+    json_array_append_new(arr, o);
+  }
+  return arr;
+}
+
+/* the printed contact table: what each clearance model's rows received */
+static void print_contact(FILE *f, const fb_run *r) {
+  int any = 0;
+  for (int i = 0; i < r->n; i++)
+    for (int j = 0; j < 4; j++) any |= model_law(r, &r->model[i], j) != NULL;
+  if (!any) return;
+  fprintf(f, "\ncontact (per clearance joint; stiffness in N/m^n; m_eff, ERP, CFM and h omega_c = "
+             "h sqrt(k / m_eff) over the run's contact steps; resolved: h omega_c <= %g):\n",
+          FB_H_OMEGA_C_BOUND);
+  fprintf(f, "%-26s %-17s %-12s %-8s %12s %5s %19s %10s %10s %9s %s\n", "model", "joint", "law",
+          "mapping", "stiffness", "n", "m_eff kg", "ERP max", "CFM min", "h omega_c", "resolved");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    for (int j = 0; j < 4; j++) {
+      const fb_contact_law *law = model_law(r, m, j);
+      if (!law) continue;
+      const fb_contact_provenance *p = &m->run.provenance[j];
+      const int have = m->run.has_provenance && p->contact_steps > 0;
+      char mass[48] = "-", erp[24] = "-", cfm[24] = "-", hw[24] = "-";
+      if (have) {
+        snprintf(mass, sizeof mass, "%.4g .. %.4g", p->mass_eff_min, p->mass_eff_max);
+        snprintf(erp, sizeof erp, "%.4g", p->erp_max);
+        snprintf(cfm, sizeof cfm, "%.3e", p->cfm_min);
+        snprintf(hw, sizeof hw, "%.3g", p->h_omega_max);
+      }
+      fprintf(f, "%-26s %-17s %-12s %-8s %12.6g %5.3g %19s %10s %10s %9s %s\n", m->run.name,
+              fb_joint_name(j), fb_law_name(law->kind),
+              m->run.has_provenance ? fb_mapping_name(r->scene.mapping) : "-", law->stiffness,
+              law->exponent, mass, erp, cfm, hw,
+              !have ? "-" : (p->h_omega_max <= FB_H_OMEGA_C_BOUND ? "yes" : "no: under-resolved"));
+    }
+  }
 }
 
 static json_t *model_json(const fb_model_result *m, const fb_run *r) {
@@ -231,6 +307,12 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     }
     json_object_set_new(o2, "impact_crank_angles_rad", a);
     json_object_set_new(o2, "impact_crank_angles_reference_rad", b);
+    json_t *fi = json_array();
+    for (int k = 0; k < e->first_impacts; k++)
+      json_array_append_new(fi, json_pack("{s:o,s:o}", "force_max_rel", num(e->first_impact_force_rel[k]),
+                                          "penetration_max_rel",
+                                          num(e->first_impact_penetration_rel[k])));
+    json_object_set_new(o2, "first_impacts", fi);
     json_object_set_new(o, "error_vs_reference", o2);
   }
   if (m->has_spikes) {
@@ -251,11 +333,13 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     for (int j = 0; j < 4; j++)
       if (run->clearance_mask & (1 << j)) json_array_append_new(joints, json_string(fb_joint_name(j)));
     json_object_set_new(o, "clearance_joints", joints);
+    json_object_set_new(o, "contact", contact_json(r, m));
   } else {
     json_object_set_new(o, "spikes", json_null());
   }
   return o;
 }
+
 
 static json_t *stackup_json(const fb_case *c) {
   json_t *o = json_object();
@@ -592,6 +676,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
               e->force_max_rel, e->penetration_max_rel, e->impacts, e->impacts_reference);
     }
   }
+  print_contact(f, r);
   print_paper_tables(f, r);
   fprintf(f, "\npeak err: largest |relative error| of the four omega (or alpha) peaks of "
              "coupler and follower against the exact analytic peaks of the same lengths; "
@@ -625,8 +710,11 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
   fprintf(f, "| radial clearance | %.4g um | %s |\n", c->radial_clearance * 1e6, c->clearance_source);
   fprintf(f, "| crank speed | %.6g rpm %s | case |\n", c->crank_speed * 60.0 / (2.0 * M_PI),
           c->direction > 0 ? "ccw" : "cw");
-  fprintf(f, "| step size h | %g s (%s) | case |\n", c->solver.h,
-          c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep");
+  const int h_auto = c->solver.h_mode == FB_STEP_AUTO ||
+                     (c->solver.h_mode == FB_STEP_DEFAULT && c->clearance.mask);
+  fprintf(f, "| step size h | %.6g s (%s) | %s |\n", c->solver.h,
+          c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep",
+          h_auto ? "auto: h omega_c <= 0.5 at the stiffest contact (fourbar penalty CASE)" : "case");
   if (c->clearance.mask) {
     fprintf(f, "| clearance joints |");
     for (int j = 0; j < 4; j++)
@@ -644,4 +732,46 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
   if (n == 0) fprintf(f, "%s\n", figure_note ? figure_note : "No figures were drawn.");
   for (int i = 0; i < n; i++) fprintf(f, "![%s](%s)\n\n", figures[i], figures[i]);
   return fb_outfile_commit(&out, diag);
+}
+
+json_t *fb_report_contact_law_json(int joint, const fb_contact_law *law, fb_mapping mapping) {
+  json_t *o = json_object();
+  json_object_set_new(o, "joint", json_string(fb_joint_name(joint)));
+  json_object_set_new(o, "law", json_string(fb_law_name(law->kind)));
+  json_object_set_new(o, "mapping", json_string(fb_mapping_name(mapping)));
+  json_object_set_new(o, "stiffness", json_real(law->stiffness));
+  json_object_set_new(o, "exponent", json_real(law->exponent));
+  switch (law->kind) {
+    case FB_LAW_IMPACT:
+      json_object_set_new(o, "damping_n_s_m", json_real(law->damping));
+      json_object_set_new(o, "damping_depth_m", json_real(law->damping_depth));
+      break;
+    case FB_LAW_RESTITUTION:
+      json_object_set_new(o, "restitution", json_real(law->restitution));
+      json_object_set_new(o, "damping_ratio",
+                          json_real(fb_contact_law_zeta(law)));
+      break;
+    case FB_LAW_LINEAR: json_object_set_new(o, "damping_n_s_m", json_real(law->damping)); break;
+    case FB_LAW_HERTZ: break;
+    default: json_object_set_new(o, "restitution", json_real(law->restitution)); break;
+  }
+  return o;
+}
+
+void fb_report_print_contact_law(FILE *f, int joint, const fb_contact_law *law,
+                                 fb_mapping mapping) {
+  fprintf(f, "  %-17s %-12s %-8s stiffness %.6g N/m^%.6g", fb_joint_name(joint),
+          fb_law_name(law->kind), fb_mapping_name(mapping), law->stiffness, law->exponent);
+  switch (law->kind) {
+    case FB_LAW_IMPACT:
+      fprintf(f, ", c_max %.6g N s/m over d_max %.6g m\n", law->damping, law->damping_depth);
+      break;
+    case FB_LAW_RESTITUTION:
+      fprintf(f, ", cr %.6g: damping ratio %.6g, c = 2 zeta sqrt(p m_eff) at each step\n",
+              law->restitution, fb_contact_law_zeta(law));
+      break;
+    case FB_LAW_LINEAR: fprintf(f, ", c %.6g N s/m\n", law->damping); break;
+    case FB_LAW_HERTZ: fputc('\n', f); break;
+    default: fprintf(f, ", cr %.6g\n", law->restitution); break;
+  }
 }

@@ -9,6 +9,7 @@
 typedef struct json_t json_t;
 #include <stdio.h>
 
+#include "contact.h"
 #include "run.h"
 
 /* JSON object {"omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2",
@@ -39,6 +40,19 @@ fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag)
 fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char *case_path,
                                    const char *command, char figures[][128], int n,
                                    const char *figure_note, fb_diag *diag);
+
+/* The law-and-mapping part of one clearance joint's `contact` object (the
+ * keys fourbar run's summary.json and fourbar penalty --json share):
+ * {"joint", "law", "mapping", "stiffness" (N/m^n), "exponent", then for the
+ * impact law "damping_n_s_m" (c_max) and "damping_depth_m" (d_max), for the
+ * restitution law "restitution" and "damping_ratio" (zeta: the damper is
+ * 2 zeta sqrt(p m_eff) at each step's effective mass), for other laws
+ * "damping_n_s_m" (linear) or "restitution"}. */
+json_t *fb_report_contact_law_json(int joint, const fb_contact_law *law, fb_mapping mapping);
+
+/* Prints the same as text, one line per joint and law, with %.6g digits. */
+void fb_report_print_contact_law(FILE *f, int joint, const fb_contact_law *law,
+                                 fb_mapping mapping);
 
 /* Prints the summary table in the spirit of the paper's: per model, peaks of
  * coupler and follower angular velocity and acceleration, error against the

@@ -276,6 +276,8 @@ fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_di
  * velocities of this forward pass): fills cl[j] and adds the generalised force
  * -F J^T n, J = J_pin - J_hole, to qfrc_passive (the force on the pin is -F n,
  * on the hole +F n, n = e/|e|) */
+static double joint_effective_mass(fb_mujoco_scene *s, const mjModel *m, mjData *d, int j);
+
 static void clearance_force(fb_mujoco_scene *s, const mjModel *m, mjData *d, int j) {
   mj_clearance *c = &s->cl[j];
   const int nv = m->nv;
@@ -303,7 +305,14 @@ static void clearance_force(fb_mujoco_scene *s, const mjModel *m, mjData *d, int
   /* impact velocity: the episode's, or this rate at an onset (as the step's
    * bookkeeping will record it) */
   const double v0 = c->ep.in_contact ? c->ep.v0 : fmax(ddot, s->def.impact_velocity_min);
-  c->force = fb_contact_force(&s->def.law[j], c->delta, ddot, v0);
+  fb_contact_law law = s->def.law[j];
+  if (law.kind == FB_LAW_RESTITUTION) {
+    /* the damper on the mechanism's effective mass along n (as ODE's scene
+     * and the reference do), so the achieved restitution is the one asked */
+    const double me = joint_effective_mass(s, m, d, j);
+    if (me > 0.0) law.mass = me;
+  }
+  c->force = fb_contact_force(&law, c->delta, ddot, v0);
   for (int k = 0; k < nv; k++) d->qfrc_passive[k] -= c->force * w[k];
 }
 
@@ -516,10 +525,7 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm
  * effective_mass.h defines it; the crank's armature makes the driven crank
  * nearly immovable, as ODE's motor does. And h omega_c with the law's
  * secant stiffness. */
-static void note_contact(fb_mujoco_scene *s, int j) {
-  mj_clearance *c = &s->cl[j];
-  const mjModel *m = s->m;
-  mjData *d = s->d;
+static double joint_effective_mass(fb_mujoco_scene *s, const mjModel *m, mjData *d, int j) {
   const int nv = m->nv;
   const double *w = s->w + j * nv;
   double *x = s->w + 4 * nv;
@@ -548,8 +554,13 @@ static void note_contact(fb_mujoco_scene *s, int j) {
       wpw -= gx[0] * z[0] + gx[1] * z[1];
     }
   }
-  if (!(wpw > 0.0)) return;
-  const double mass = 1.0 / wpw;
+  return wpw > 0.0 ? 1.0 / wpw : NAN;
+}
+
+static void note_contact(fb_mujoco_scene *s, int j) {
+  mj_clearance *c = &s->cl[j];
+  const double mass = joint_effective_mass(s, s->m, s->d, j);
+  if (!(mass > 0.0)) return;
   double kp, kd, depth;
   fb_contact_linearize(&s->def.law[j], FB_MAPPING_SECANT, c->delta, c->ddot, c->ep.v0, &kp, &kd,
                        &depth);

@@ -38,6 +38,8 @@ static void ode_destroy(void *self) { fb_scene_destroy(self); }
 const fb_engine fb_engine_ode = {
     .name = "ode",
     .guarded = 1,
+    .step_values_lag = 1,
+    .refine_peaks = 1,
     .create = ode_create,
     .step = ode_step,
     .stopped = ode_stopped,

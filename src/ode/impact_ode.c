@@ -42,12 +42,17 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
     const dReal *v = dBodyGetLinearVel(body);
     const double delta = -p[2], ddot = -v[2];
     dJointID cj = 0;
+    double share = 1.0;
     if (delta > 0.0) {
-      if (v0 < 0.0) v0 = ddot;
+      const int onset = v0 < 0.0;
+      if (onset) v0 = ddot;
       dContact c;
       memset(&c, 0, sizeof c);
+      fb_contact_row row;
       /* a single body: its mass is the effective mass along the normal */
-      if (fb_ode_soft_contact(&c, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, 0.0, NULL)) {
+      if (fb_ode_soft_contact(&c, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, onset, 0.0,
+                              &row)) {
+        share = row.step_share;
         c.geom.pos[0] = p[0];
         c.geom.pos[1] = p[1];
         c.geom.pos[2] = 0.0;
@@ -63,7 +68,7 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
       st = fb_diag_set(diag, FB_ERR_NOMEM, "ODE step %zu failed to allocate", k + 1);
       break;
     }
-    double force = cj ? fb.f1[2] : 0.0;
+    double force = cj ? share * fb.f1[2] : 0.0;
     dJointGroupEmpty(group);
     const double t1 = (double)(k + 1) * d->h;
     const double depth_now = -dBodyGetPosition(body)[2];

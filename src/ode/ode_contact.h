@@ -13,12 +13,13 @@
  * effective mass m_eff [kg] along the normal (fb_contact_map: secant,
  * tangent or matched mapping), and fills ct->surface (soft ERP and CFM,
  * Coulomb friction mu = friction with ODE's friction pyramid when > 0) and
- * ct->geom.depth. The caller zeroes ct first and sets the geometry (point,
+ * ct->geom.depth. onset = 1 at the first step of a contact episode: a single
+ * matched row of a linear law gets fb_contact_row_onset. The caller zeroes ct first and sets the geometry (point,
  * normal, geoms). *row (if not NULL) receives what the row got.
  * Returns 1 when filled, 0 when the law gives no row at this state. */
 int fb_ode_soft_contact(dContact *ct, const fb_contact_law *law, fb_mapping mapping, double h,
                         double m_eff, int n_rows, double delta, double ddot, double v0,
-                        double friction, fb_contact_row *row);
+                        int onset, double friction, fb_contact_row *row);
 
 /* Fills ct->surface and ct->geom.depth from a row already mapped
  * (fb_contact_map), with Coulomb friction mu = friction (friction pyramid

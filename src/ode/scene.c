@@ -28,6 +28,7 @@ typedef struct {
   double force_pin[2];  /* contact force on the pin in the last step, x, y [N] */
   fb_ccd_bore *bore;    /* ccd: the ring of segments (hole frame) */
   fb_contact_provenance prov; /* what its contact rows received */
+  double step_share;    /* share of the last row's impulse that is its step's force (contact.h) */
 } clearance;
 
 /* records one contact row of a clearance joint */
@@ -58,7 +59,32 @@ struct fb_scene {
   double angle[3];     /* unwrapped angles [rad] */
   double omega_prev[3];
   double alpha[3];
+  double w_inv[4][2][2]; /* inverse-mass tensors of the clearance joints this step [1/kg] */
+  int w_valid;           /* w_inv holds this step's configuration */
 };
+
+/* the effective mass of clearance joint j along unit n (pin minus hole
+ * direction) [kg], from this step's inverse-mass tensor (effective_mass.h),
+ * computed at the step's first call; the law's mass if that fails */
+static double step_effective_mass(fb_scene *s, int j, const double n[2]) {
+  if (!s->w_valid) {
+    fb_mechanism m;
+    fb_scene_mechanism(s, &m);
+    if (fb_effective_mass_tensor(s->w_inv, &m, NULL) != FB_OK) return s->def.law[j].mass;
+    s->w_valid = 1;
+  }
+  const double me = fb_effective_mass_along(s->w_inv[j], n);
+  return isfinite(me) && me > 0.0 ? me : s->def.law[j].mass;
+}
+
+/* the joint's law at this step: the restitution law's damper acts on the
+ * effective mass along the normal (c = 2 zeta sqrt(p m_eff)), so the
+ * achieved restitution is the one asked */
+static fb_contact_law step_law(const fb_contact_law *law, double m_eff) {
+  fb_contact_law l = *law;
+  if (l.kind == FB_LAW_RESTITUTION) l.mass = m_eff;
+  return l;
+}
 
 /* sets a link body between joint points p and q, COM at fraction f */
 static void place_body(dBodyID b, const fb_link_mass *lm, const double p[2], const double q[2],
@@ -313,14 +339,18 @@ static void facet_contacts(fb_scene *s, int j) {
     const double ddot = (v2[0] - v1[0]) * g[i].normal[0] + (v2[1] - v1[1]) * g[i].normal[1] +
                         (v2[2] - v1[2]) * g[i].normal[2];
     if (i == 0) fb_episode_update(&c->ep, 1, ddot, d->impact_velocity_min);
+    /* the collider's normal points into the pin: the pin-minus-hole direction is -normal */
+    const double nn[2] = {-g[i].normal[0], -g[i].normal[1]};
+    const double m_eff = step_effective_mass(s, j, nn);
+    const fb_contact_law law = step_law(&d->law[j], m_eff);
     dContact ct;
     memset(&ct, 0, sizeof ct);
     ct.geom = g[i];
     fb_contact_row used;
-    if (!fb_ode_soft_contact(&ct, &d->law[j], d->mapping, d->solver.h, d->law[j].mass, n,
-                             g[i].depth, ddot, c->ep.v0, d->friction, &used))
+    if (!fb_ode_soft_contact(&ct, &law, d->mapping, d->solver.h, m_eff, n, g[i].depth, ddot,
+                             c->ep.v0, 0, d->friction, &used))
       continue;
-    note_row(c, &used, (double)n, d->law[j].mass, d->solver.h);
+    note_row(c, &used, (double)n, m_eff, d->solver.h);
     dJointID cj = dJointCreateContact(s->world, s->contacts, &ct);
     dJointAttach(cj, p1, p2);
     dJointSetFeedback(cj, &c->fbs[c->nfb++]);
@@ -381,18 +411,22 @@ static void ccd_contacts(fb_scene *s, int j) {
     if (hit[i].depth > hit[deep].depth) deep = i;
   }
   fb_episode_update(&c->ep, 1, rate[deep], d->impact_velocity_min);
+  /* the effective mass along the deepest contact's normal (pin into wall) */
+  const double n_deep[2] = {nw[deep][0], nw[deep][1]};
+  const double m_eff = step_effective_mass(s, j, n_deep);
+  const fb_contact_law law = step_law(&d->law[j], m_eff);
   /* the one row the exact collider would hand ODE at the deepest contact */
   fb_contact_row base;
-  const int have_row = fb_contact_map(&base, &d->law[j], d->mapping, d->solver.h, d->law[j].mass,
-                                      1, hit[deep].depth, rate[deep], c->ep.v0, NULL) == FB_OK;
+  const int have_row = fb_contact_map(&base, &law, d->mapping, d->solver.h, m_eff, 1,
+                                      hit[deep].depth, rate[deep], c->ep.v0, NULL) == FB_OK;
   for (int i = 0; i < n; i++) {
     dContact ct;
     memset(&ct, 0, sizeof ct);
     fb_contact_row row = base;
     if (d->ccd_split == 1) {
       /* the faceted model's rule: own depth, spring divided by the count */
-      if (!fb_ode_soft_contact(&ct, &d->law[j], d->mapping, d->solver.h, d->law[j].mass, n,
-                               hit[i].depth, rate[i], c->ep.v0, d->friction, &row))
+      if (!fb_ode_soft_contact(&ct, &law, d->mapping, d->solver.h, m_eff, n, hit[i].depth,
+                               rate[i], c->ep.v0, 0, d->friction, &row))
         continue;
     } else {
       /* share w of the row: a and b = 1/CFM scale by w, ERP = h a / b does not */
@@ -400,7 +434,7 @@ static void ccd_contacts(fb_scene *s, int j) {
       row.cfm = base.cfm * sum / hit[i].depth;
       fb_ode_soft_fill(&ct, &row, d->friction);
     }
-    note_row(c, &row, d->ccd_split == 1 ? (double)n : 1.0, d->law[j].mass, d->solver.h);
+    note_row(c, &row, d->ccd_split == 1 ? (double)n : 1.0, m_eff, d->solver.h);
     for (int q = 0; q < 3; q++) {
       ct.geom.pos[q] = pw[i][q];
       ct.geom.normal[q] = -nw[i][q]; /* into the pin (body 1) */
@@ -448,14 +482,18 @@ static void clearance_contact(fb_scene *s, int j) {
   }
   const double n[2] = {e[0] / ecc, e[1] / ecc};
   const double ddot = num / ecc;
+  const int onset = !c->ep.in_contact;
   fb_episode_update(&c->ep, 1, ddot, d->impact_velocity_min);
+  const double m_eff = step_effective_mass(s, j, n);
+  const fb_contact_law law = step_law(&d->law[j], m_eff);
   dContact ct;
   memset(&ct, 0, sizeof ct);
   fb_contact_row used;
-  if (!fb_ode_soft_contact(&ct, &d->law[j], d->mapping, d->solver.h, d->law[j].mass, 1, delta,
-                           ddot, c->ep.v0, d->friction, &used))
+  if (!fb_ode_soft_contact(&ct, &law, d->mapping, d->solver.h, m_eff, 1, delta, ddot, c->ep.v0,
+                           onset, d->friction, &used))
     return;
-  note_row(c, &used, 1.0, d->law[j].mass, d->solver.h);
+  c->step_share = used.step_share;
+  note_row(c, &used, 1.0, m_eff, d->solver.h);
   /* hole centre + R_hole n, on the hole wall */
   const double r_hole = d->pin_radius + d->radial_clearance;
   dVector3 q;
@@ -476,6 +514,7 @@ static void clearance_contact(fb_scene *s, int j) {
 
 fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
   const double h = s->def.solver.h;
+  s->w_valid = 0;
   for (int j = 0; j < 4; j++)
     if (s->def.clearance_mask & (1 << j)) clearance_contact(s, j);
   const dReal *g1 = dBodyGetPosition(s->body[FB_CRANK]);
@@ -513,9 +552,11 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
       c->force_pin[1] = c->nfb ? fy : 0.0;
       c->nfb = 0;
     } else {
-      c->force = c->cj ? hypot(c->fb.f1[0], c->fb.f1[1]) : 0.0;
-      c->force_pin[0] = c->cj ? c->fb.f1[0] : 0.0; /* body 1 is the pin */
-      c->force_pin[1] = c->cj ? c->fb.f1[1] : 0.0;
+      /* an onset row's impulse also covers the contact before the step (contact.h) */
+      const double share = c->cj ? c->step_share : 0.0;
+      c->force = share * hypot(c->fb.f1[0], c->fb.f1[1]);
+      c->force_pin[0] = share * c->fb.f1[0]; /* body 1 is the pin */
+      c->force_pin[1] = share * c->fb.f1[1];
     }
     c->cj = 0;
   }

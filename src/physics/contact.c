@@ -343,11 +343,45 @@ fb_status fb_contact_matched_inverse(double h, double m, double erp, double cfm,
   return FB_OK;
 }
 
+/* delta(t) = u (e^{s1 t} - e^{s2 t}) / (s1 - s2) of m d'' + c d' + k d = 0
+ * from d(0) = 0, d'(0) = u */
+static double linear_from_zero(double t, double k, double c, double m, double u) {
+  const double sigma = -0.5 * c / m, disc = sigma * sigma - k / m;
+  if (disc < 0.0) {
+    const double wd = sqrt(-disc);
+    return u * exp(sigma * t) * sin(wd * t) / wd;
+  }
+  if (disc == 0.0) return u * t * exp(sigma * t);
+  const double g = sqrt(disc);
+  return u * exp(sigma * t) * sinh(g * t) / g;
+}
+
+double fb_contact_matched_onset_depth(double h, double k, double c, double m, double d_n,
+                                      double u_n, double erp, double cfm) {
+  const double b = 1.0 / cfm, a = erp * b / h;
+  if (!(u_n > 0.0) || !(a > 0.0) || !(d_n > 0.0)) return d_n;
+  /* the time tau after the crossing at which the exact motion has depth d_n
+   * (Newton from d_n / u_n: the unbraked depth runs a little ahead) */
+  double tau = fmin(d_n / u_n, h);
+  for (int it = 0; it < 8; it++) {
+    const double f = linear_from_zero(tau, k, c, m, u_n) - d_n;
+    const double dt = 1e-6 * tau;
+    const double df = (linear_from_zero(tau + dt, k, c, m, u_n) - linear_from_zero(tau - dt, k, c, m, u_n)) / (2.0 * dt);
+    if (!(df > 0.0)) break;
+    tau -= f / df;
+    if (!(tau > 0.0)) return d_n;
+  }
+  const double target = linear_from_zero(tau + h, k, c, m, u_n);
+  const double u_next = (target - d_n) / h;
+  return (m * u_n - (m + h * b) * u_next) / (h * a);
+}
+
 fb_status fb_contact_map(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
                          double h, double m_eff, int n_rows, double delta, double ddot, double v0,
                          fb_diag *diag) {
   const double n = n_rows > 0 ? (double)n_rows : 1.0;
   const fb_mapping lin = mapping == FB_MAPPING_MATCHED ? FB_MAPPING_TANGENT : mapping;
+  row->step_share = 1.0;
   fb_contact_linearize(law, lin, delta, ddot, v0, &row->kp, &row->kd, &row->depth);
   row->kp /= n;
   row->kd /= n;
@@ -375,4 +409,14 @@ void fb_contact_linearize(const fb_contact_law *l, fb_mapping mapping, double de
     *kp = fel / delta;
     *depth = delta;
   }
+}
+
+void fb_contact_row_onset(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
+                          double h, double m_eff, double delta, double ddot) {
+  if (mapping != FB_MAPPING_MATCHED ||
+      !(law->kind == FB_LAW_LINEAR || law->kind == FB_LAW_RESTITUTION))
+    return;
+  row->depth = fb_contact_matched_onset_depth(h, row->kp, row->kd, m_eff, delta, ddot, row->erp,
+                                              row->cfm);
+  if (ddot > 0.0) row->step_share = h / (h + fmin(delta / ddot, h));
 }

@@ -199,6 +199,19 @@ fb_status fb_contact_matched(double h, double k, double c, double m, double *erp
 fb_status fb_contact_matched_inverse(double h, double m, double erp, double cfm, double *k,
                                      double *c, fb_diag *diag);
 
+/* Onset correction of a matched row for a linear law (linear and
+ * restitution: k, c constant, so the force jumps to c ddot at first
+ * contact). The contact began inside the step that ended at t_n, at
+ * tau0 = d_n / u_n before it (d_n the depth, u_n > 0 the approach rate,
+ * tau0 capped at h), and no force acted over tau0. Returns the depth to hand
+ * to the row (a = ERP b / h, b = 1 / CFM) instead of d_n, so that on one mass
+ * m the step ends on the exact solution from the crossing,
+ * delta(tau0 + h) = u_n (e^{s1 t} - e^{s2 t}) / (s1 - s2): with
+ * U = (delta(tau0 + h) - d_n) / h, depth = (m u_n - (m + h b) U) / (h a).
+ * Returns d_n unchanged when u_n <= 0 or a <= 0. */
+double fb_contact_matched_onset_depth(double h, double k, double c, double m, double d_n,
+                                      double u_n, double erp, double cfm);
+
 /* One contact row as handed to ODE this step. */
 typedef struct {
   double erp;   /* soft ERP [-] (may exceed 1 for the matched mapping) */
@@ -206,6 +219,9 @@ typedef struct {
   double depth; /* depth handed to the row [m] */
   double kp;    /* local spring [N/m] the row stands for */
   double kd;    /* local damper [N s/m] the row stands for */
+  double step_share; /* share of the row's impulse that is this step's force [-]: 1, except at
+                        an onset step corrected by fb_contact_row_onset, whose impulse also
+                        carries the contact's part of the step before: h / (h + tau0) */
 } fb_contact_row;
 
 /* The row of law at penetration delta [m] > 0, rate ddot [m/s], impact
@@ -218,6 +234,17 @@ typedef struct {
 fb_status fb_contact_map(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
                          double h, double m_eff, int n_rows, double delta, double ddot, double v0,
                          fb_diag *diag);
+
+/* At the first step of a contact: for a matched row of a linear or
+ * restitution law, replaces row->depth by fb_contact_matched_onset_depth
+ * (the force jump c ddot at the crossing, inside the step before, is
+ * otherwise lost) and row->step_share by h / (h + tau0), tau0 = delta /
+ * ddot (at most h) the contact's time before the step: the row's force is
+ * then an impulse over h + tau0, and force samples divide it over that
+ * time. Other rows are left alone. delta, ddot as for fb_contact_map; m_eff
+ * the mass the row was matched on. */
+void fb_contact_row_onset(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
+                          double h, double m_eff, double delta, double ddot);
 
 /* h times the contact frequency sqrt(k / m) of a spring k [N/m] on mass m
  * [kg] at step h [s]: the measure of how many steps resolve one contact

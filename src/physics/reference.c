@@ -72,7 +72,15 @@ static int eom(double t, const double y[], double dydt[], void *p) {
     const double vp[2] = {-r->a * s2 * r->omega2, r->a * c2 * r->omega2};
     const double vh[2] = {JB[0][0] * w3 + JB[0][1] * w4, JB[1][0] * w3 + JB[1][1] * w4};
     const double ddot = n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]);
-    fn = fb_contact_force(r->law, delta, ddot, r->v0);
+    fb_contact_law l = *r->law;
+    if (l.kind == FB_LAW_RESTITUTION) {
+      /* the damper's mass: the mechanism's effective mass along n,
+       * 1 / (w^T M^-1 w), w = J_hole^T n (the pin's crank is driven) */
+      const double w[2] = {JB[0][0] * n[0] + JB[1][0] * n[1], JB[0][1] * n[0] + JB[1][1] * n[1]};
+      const double dm = M11 * M22 - M12 * M12;
+      l.mass = dm / (w[0] * (M22 * w[0] - M12 * w[1]) + w[1] * (M11 * w[1] - M12 * w[0]));
+    }
+    fn = fb_contact_force(&l, delta, ddot, r->v0);
     /* the pin pushes the hole (coupler) along +n */
     for (int k = 0; k < 2; k++) Q[k] += fn * (JB[0][k] * n[0] + JB[1][k] * n[1]);
   }
@@ -90,6 +98,70 @@ static int eom(double t, const double y[], double dydt[], void *p) {
   r->acc[0] = a3;
   r->acc[1] = a4;
   return GSL_SUCCESS;
+}
+
+/* extremes of the contact force, penetration and both accelerations over
+ * (t_{k-1}, t_{k+1}), from a fresh integration of the samples' state at
+ * k - 1 evaluated FB_REFERENCE_REFINE times per sample interval */
+typedef struct {
+  double force, pen, a3max, a3min, a4max, a4min;
+} extremes;
+
+static int refine_interval(extremes *x, ref_ctx *r, const fb_series *s, size_t k, double h,
+                           double tol) {
+  double y[4] = {s->coupler_angle[k - 1], s->follower_angle[k - 1], s->coupler_omega[k - 1],
+                 s->follower_omega[k - 1]};
+  double t = s->t[k - 1];
+  gsl_odeiv2_system sys = {eom, NULL, 4, r};
+  gsl_odeiv2_driver *drv =
+      gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, h * 1e-3, tol, tol);
+  if (!drv) return 0;
+  gsl_odeiv2_driver_set_nmax(drv, 0);
+  x->force = x->pen = 0.0;
+  x->a3max = x->a4max = -INFINITY;
+  x->a3min = x->a4min = INFINITY;
+  const int n = 2 * FB_REFERENCE_REFINE;
+  int ok = 1;
+  for (int i = 1; i <= n && ok; i++) {
+    const double ti = s->t[k - 1] + 2.0 * h * i / n;
+    ok = gsl_odeiv2_driver_apply(drv, &t, ti, y) == GSL_SUCCESS;
+    double dy[4];
+    eom(ti, y, dy, r);
+    x->force = fmax(x->force, r->force);
+    x->pen = fmax(x->pen, r->pen);
+    x->a3max = fmax(x->a3max, dy[2]);
+    x->a3min = fmin(x->a3min, dy[2]);
+    x->a4max = fmax(x->a4max, dy[3]);
+    x->a4min = fmin(x->a4min, dy[3]);
+  }
+  gsl_odeiv2_driver_free(drv);
+  return ok;
+}
+
+/* replaces the samples at the spikes of out with their refined extremes */
+static void refine_peaks(fb_series *out, ref_ctx *r, double h, double tol) {
+  const size_t n = out->n;
+  if (n < 3) return;
+  double *f = out->contact[FB_JOINT_B][FB_C_FORCE], *p = out->contact[FB_JOINT_B][FB_C_PEN];
+  double *a3 = out->coupler_alpha, *a4 = out->follower_alpha;
+  const double fbig = fb_series_largest_abs(f, n), pbig = fb_series_largest_abs(p, n);
+  const double a3big = fb_series_largest_abs(a3, n), a4big = fb_series_largest_abs(a4, n);
+  for (size_t k = 1; k + 1 < n; k++) {
+#define SPIKE(v, sign, big) fb_series_is_spike(v, k, sign, FB_REFERENCE_REFINE_FRACTION, big)
+    const int sf = SPIKE(f, 1, fbig), sp = SPIKE(p, 1, pbig);
+    const int s3x = SPIKE(a3, 1, a3big), s3n = SPIKE(a3, -1, a3big);
+    const int s4x = SPIKE(a4, 1, a4big), s4n = SPIKE(a4, -1, a4big);
+#undef SPIKE
+    if (!(sf || sp || s3x || s3n || s4x || s4n)) continue;
+    extremes x;
+    if (!refine_interval(&x, r, out, k, h, tol)) continue;
+    if (sf) f[k] = fmax(f[k], x.force);
+    if (sp) p[k] = fmax(p[k], x.pen);
+    if (s3x) a3[k] = fmax(a3[k], x.a3max);
+    if (s3n) a3[k] = fmin(a3[k], x.a3min);
+    if (s4x) a4[k] = fmax(a4[k], x.a4max);
+    if (s4n) a4[k] = fmin(a4[k], x.a4min);
+  }
 }
 
 fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
@@ -253,6 +325,7 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
     }
     fb_series_push(out, &x);
   }
+  if (!ideal && status == FB_OK) refine_peaks(out, &r, c->solver.h, tol);
   *steps = taken;
   gsl_odeiv2_driver_free(drv);
   gsl_set_error_handler(old);

@@ -36,19 +36,20 @@ typedef enum {
   FB_WARN_PENALTY_VALIDITY = 0, /* penetration beyond FB_PENALTY_VALIDITY_FACTOR x clearance */
   FB_WARN_DRIVE_SATURATED = 1,  /* the crank left its prescribed angle */
   FB_WARN_ERROR_BOUND = 2,      /* the error against a yardstick passed a stated bound */
+  FB_WARN_UNDER_RESOLVED = 3,   /* h omega_c of a contact above the bound (resolution.h) */
   FB_WARN_COUNT
 } fb_warning_kind;
 
 /* One warning with its figures. */
 typedef struct {
   fb_warning_kind kind;
-  double value;  /* penetration [m]; crank angle lag [rad]; error [-] */
-  double limit;  /* radial clearance [m]; -; the bound [-] */
-  double ratio;  /* penetration / clearance [-]; -; - */
+  double value;  /* penetration [m]; crank angle lag [rad]; error [-]; h omega_c [-] */
+  double limit;  /* radial clearance [m]; -; the bound [-]; the bound [-] */
+  double ratio;  /* penetration / clearance [-]; -; -; steps per contact (pi / h omega_c) */
   double factor; /* the validity factor [-]; -; - */
   double t;      /* time [s] where it applies, or NaN */
   char what[64]; /* the case key that lifts the limit (DRIVE_SATURATED); what the error is of
-                    (ERROR_BOUND); else "" */
+                    (ERROR_BOUND); the joint (UNDER_RESOLVED); else "" */
 } fb_warning;
 
 #endif

@@ -1,0 +1,91 @@
+#include "resolution.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "effective_mass.h"
+#include "invdyn.h"
+#include "joint_law.h"
+
+/* crank angles per revolution for the largest joint reaction (joint_law.c's) */
+#define REACTION_SAMPLES 3600
+
+double fb_contact_tangent_at_force(const fb_contact_law *law, double force) {
+  if (law->kind == FB_LAW_LINEAR || law->kind == FB_LAW_RESTITUTION) return law->stiffness;
+  const double n = law->exponent;
+  return n * pow(law->stiffness, 1.0 / n) * pow(force, (n - 1.0) / n);
+}
+
+fb_status fb_contact_estimates(fb_contact_estimate est[4], const fb_case *c,
+                               const fb_contact_law law[4], fb_diag *diag) {
+  memset(est, 0, 4 * sizeof est[0]);
+  const int mask = c->clearance.mask;
+  if (!mask) return FB_OK;
+  fb_linkage su;
+  fb_case_stackup_lengths(c, &su);
+  const double omega2 = fb_case_omega2(c);
+  double reaction[4];
+  fb_status st = fb_invdyn_peaks(reaction, NULL, &su, c->branch, c->link, c->gravity, omega2,
+                                 REACTION_SAMPLES, diag);
+  if (st != FB_OK) return st;
+  for (int j = 0; j < 4; j++) {
+    est[j].m_eff_min = INFINITY;
+    est[j].m_eff_max = 0.0;
+  }
+  for (int k = 0; k < FB_RESOLUTION_SAMPLES; k++) {
+    fb_linkage_state ls;
+    const double th = c->crank_angle0 + 2.0 * M_PI * k / FB_RESOLUTION_SAMPLES;
+    st = fb_linkage_solve(&ls, &su, c->branch, th, omega2, 0.0, diag);
+    if (st != FB_OK) return st;
+    fb_mechanism m;
+    fb_mechanism_from_state(&m, &su, &ls, c->link, mask);
+    double w[4][2][2];
+    st = fb_effective_mass_tensor(w, &m, diag);
+    if (st != FB_OK) return st;
+    for (int j = 0; j < 4; j++) {
+      if (!(mask & (1 << j))) continue;
+      double lo, hi;
+      fb_effective_mass_range(w[j], &lo, &hi);
+      est[j].m_eff_min = fmin(est[j].m_eff_min, lo);
+      est[j].m_eff_max = fmax(est[j].m_eff_max, hi);
+    }
+  }
+  for (int j = 0; j < 4; j++) {
+    if (!(mask & (1 << j))) {
+      memset(&est[j], 0, sizeof est[j]);
+      continue;
+    }
+    est[j].force_expected = FB_IMPACT_LOAD_FACTOR * reaction[j];
+    est[j].stiffness_tangent = fb_contact_tangent_at_force(&law[j], est[j].force_expected);
+    est[j].omega_c = sqrt(est[j].stiffness_tangent / est[j].m_eff_min);
+  }
+  return FB_OK;
+}
+
+fb_status fb_step_auto(double *h, double *omega_c_max, const fb_case *c, fb_diag *diag) {
+  double hv = 2.0 * M_PI / (c->crank_speed * FB_H_AUTO_STEPS_PER_REV);
+  double wmax = 0.0;
+  if (c->clearance.mask) {
+    fb_contact_law laws[2][4];
+    fb_status st = fb_joint_laws(laws[0], laws[1], c, diag);
+    for (int model = 0; model < 2 && st == FB_OK; model++) {
+      fb_contact_estimate est[4];
+      st = fb_contact_estimates(est, c, laws[model], diag);
+      if (st != FB_OK) break;
+      for (int j = 0; j < 4; j++)
+        if (c->clearance.mask & (1 << j)) wmax = fmax(wmax, est[j].omega_c);
+    }
+    if (st != FB_OK) return st;
+    if (wmax > 0.0) hv = fmin(hv, FB_H_OMEGA_C_BOUND / wmax);
+  }
+  *h = hv;
+  if (omega_c_max) *omega_c_max = wmax;
+  return FB_OK;
+}
+
+fb_status fb_case_resolve_step(fb_case *c, fb_diag *diag) {
+  const int automatic =
+      c->solver.h_mode == FB_STEP_AUTO || (c->solver.h_mode == FB_STEP_DEFAULT && c->clearance.mask);
+  if (!automatic) return FB_OK;
+  return fb_step_auto(&c->solver.h, NULL, c, diag);
+}

@@ -1,0 +1,80 @@
+/* How well a step resolves a case's clearance contacts, before any run:
+ * the effective mass along the contact normal over a revolution, the force
+ * to expect, the contact frequency that follows, and the automatic step
+ * (`[solver] h_s = auto`) that keeps h omega_c below a stated bound.
+ *
+ *   m_eff range: fb_effective_mass_tensor on the ideal stack-up linkage at
+ *     FB_RESOLUTION_SAMPLES crank angles, every direction (the smallest and
+ *     largest eigen-masses); the contact's normal turns freely, so its
+ *     worst direction is the one to resolve.
+ *   expected force: FB_IMPACT_LOAD_FACTOR times the joint's largest ideal
+ *     reaction over a revolution (inverse dynamics, gravity included): the
+ *     pin leaves the wall and strikes it again under the load it carried; a
+ *     suddenly applied load on a spring peaks at twice its static value
+ *     (dynamic load factor 2, e.g. Timoshenko, Vibration Problems in
+ *     Engineering). Measured on the paper case at 1000 rpm: 2 x 1505 N
+ *     against a largest contact force of 2490 N (reference).
+ *   omega_c = sqrt(k_t / m_eff_min), k_t the tangent stiffness of the law's
+ *     elastic part at the expected force (n K^(1/n) F^((n-1)/n); p for the
+ *     restitution law).
+ *   h auto = min(FB_H_OMEGA_C_BOUND / omega_c over the clearance joints and
+ *     both clearance laws, one revolution / FB_H_AUTO_STEPS_PER_REV). */
+#ifndef FB_RESOLUTION_H
+#define FB_RESOLUTION_H
+
+#include "case.h"
+#include "contact.h"
+
+/* The bound on h omega_c that `auto` keeps and beyond which a run is
+ * flagged `under-resolved`. The matched mapping (contact.h) stays stable up
+ * to h omega_c ~ 1.5, where a contact lasts one step (measured: the paper
+ * case's restitution model leaves the hole at h = 2e-5, h omega_c = 1.5 on
+ * this estimate); at 0.5 the paper case's impact model is within 0.8 % of
+ * the reference in force and penetration (h = 5e-6 gives 0.75). */
+#define FB_H_OMEGA_C_BOUND 0.5
+
+/* The ideal model's accuracy cap of the automatic step: steps per crank
+ * revolution (1e-5 s at 1000 rpm, where the ideal stack-up model's omega
+ * peaks are within 1e-3 of the exact ones). */
+#define FB_H_AUTO_STEPS_PER_REV 6000.0
+
+/* Crank angles sampled over a revolution for the effective-mass range. */
+#define FB_RESOLUTION_SAMPLES 720
+
+/* Dynamic load factor of an impact against the joint's largest reaction. */
+#define FB_IMPACT_LOAD_FACTOR 2.0
+
+/* Resolution estimate of one clearance joint under one law. */
+typedef struct {
+  double m_eff_min;         /* smallest effective mass over a revolution and directions [kg] */
+  double m_eff_max;         /* largest [kg] */
+  double force_expected;    /* FB_IMPACT_LOAD_FACTOR x the largest ideal reaction [N] */
+  double stiffness_tangent; /* k_t of the law's elastic part at force_expected [N/m] */
+  double omega_c;           /* sqrt(k_t / m_eff_min) [rad/s] */
+} fb_contact_estimate;
+
+/* Tangent stiffness dF_el/d delta [N/m] of law's elastic part where it
+ * carries force [N] > 0: n K^(1/n) F^((n-1)/n); k for the linear and
+ * restitution laws. */
+double fb_contact_tangent_at_force(const fb_contact_law *law, double force);
+
+/* Estimates for every clearance joint j of case c (law[j] its law; others
+ * zeroed). Errors: those of fb_linkage_solve, fb_invdyn_peaks and
+ * fb_effective_mass_tensor. */
+fb_status fb_contact_estimates(fb_contact_estimate est[4], const fb_case *c,
+                               const fb_contact_law law[4], fb_diag *diag);
+
+/* The automatic step [s] of case c: the rule in this header's comment over
+ * both clearance laws of the case's clearance joints (one revolution /
+ * FB_H_AUTO_STEPS_PER_REV alone without clearance joints). *omega_c_max
+ * (may be NULL) receives the largest omega_c [rad/s] (0 without clearance).
+ * Errors: those of fb_joint_laws and fb_contact_estimates. */
+fb_status fb_step_auto(double *h, double *omega_c_max, const fb_case *c, fb_diag *diag);
+
+/* Sets c->solver.h from fb_step_auto when h_mode is FB_STEP_AUTO, or
+ * FB_STEP_DEFAULT with clearance joints (h_mode is left as it was, so a
+ * later change of the case can resolve it again). Errors: those of
+ * fb_step_auto. */
+fb_status fb_case_resolve_step(fb_case *c, fb_diag *diag);
+
+#endif

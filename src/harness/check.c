@@ -24,25 +24,16 @@ int fb_check_metrics(const fb_run *r, fb_metric *out, int max) {
       const fb_body_peaks *b[2] = {&m->peaks.coupler, &m->peaks.follower};
       const char *bn[2] = {"coupler", "follower"};
       for (int k = 0; k < 2; k++) {
-        n = add(out, n, max, name, bn[k], "omega_max_rad_s", b[k]->omega_max);
-        n = add(out, n, max, name, bn[k], "omega_min_rad_s", b[k]->omega_min);
-        n = add(out, n, max, name, bn[k], "alpha_max_rad_s2", b[k]->alpha_max);
-        n = add(out, n, max, name, bn[k], "alpha_min_rad_s2", b[k]->alpha_min);
+#define FB_CHECK_PEAK(field, key) n = add(out, n, max, name, bn[k], key, b[k]->field);
+        FB_BODY_PEAK_KEYS(FB_CHECK_PEAK)
+#undef FB_CHECK_PEAK
       }
     }
     if (m->has_spikes) {
       const fb_spikes *s = &m->spikes;
-      n = add(out, n, max, name, "spikes", "alpha_peak_ratio_coupler", s->alpha_peak_ratio_coupler);
-      n = add(out, n, max, name, "spikes", "alpha_peak_ratio_follower", s->alpha_peak_ratio_follower);
-      n = add(out, n, max, name, "spikes", "omega_dev_max_rad_s", s->omega_dev_max);
-      n = add(out, n, max, name, "spikes", "force_max_n", s->force_max);
-      n = add(out, n, max, name, "spikes", "penetration_max_m", s->penetration_max);
-      n = add(out, n, max, name, "spikes", "impacts", (double)s->impacts);
-      n = add(out, n, max, name, "spikes", "free_flight_fraction", s->free_flight_fraction);
-      n = add(out, n, max, name, "spikes", "alpha_peak_crank_angle_coupler_rad",
-              s->alpha_peak_crank_angle_coupler);
-      n = add(out, n, max, name, "spikes", "alpha_peak_crank_angle_follower_rad",
-              s->alpha_peak_crank_angle_follower);
+#define FB_CHECK_SPIKE(field, key) n = add(out, n, max, name, "spikes", key, (double)s->field);
+      FB_SPIKE_KEYS(FB_CHECK_SPIKE)
+#undef FB_CHECK_SPIKE
     }
   }
   return n;

@@ -37,6 +37,25 @@ typedef struct {
   double alpha_peak_crank_angle_follower; /* [rad] in [0, 2 pi) */
 } fb_spikes;
 
+/* The output keys of one body's peaks (fb_body_peaks) and of the spike
+ * metrics (fb_spikes), in output order, X(field, key): summary.json
+ * (report.c) and the checked metrics (check.c) both spell them from here. */
+#define FB_BODY_PEAK_KEYS(X)          \
+  X(omega_max, "omega_max_rad_s")     \
+  X(omega_min, "omega_min_rad_s")     \
+  X(alpha_max, "alpha_max_rad_s2")    \
+  X(alpha_min, "alpha_min_rad_s2")
+#define FB_SPIKE_KEYS(X)                                                   \
+  X(alpha_peak_ratio_coupler, "alpha_peak_ratio_coupler")                  \
+  X(alpha_peak_ratio_follower, "alpha_peak_ratio_follower")                \
+  X(omega_dev_max, "omega_dev_max_rad_s")                                  \
+  X(force_max, "force_max_n")                                              \
+  X(penetration_max, "penetration_max_m")                                  \
+  X(impacts, "impacts")                                                    \
+  X(free_flight_fraction, "free_flight_fraction")                          \
+  X(alpha_peak_crank_angle_coupler, "alpha_peak_crank_angle_coupler_rad")  \
+  X(alpha_peak_crank_angle_follower, "alpha_peak_crank_angle_follower_rad")
+
 /* Spikes of series s (with contact columns) against reference peak |alpha|
  * values alpha_ref_coupler, alpha_ref_follower [rad/s^2] (> 0); omega_dev is
  * taken from err (fb_metrics_error of the same series).

@@ -15,10 +15,9 @@ static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); 
 
 json_t *fb_report_body_peaks_json(const fb_body_peaks *p) {
   json_t *o = json_object();
-  json_object_set_new(o, "omega_max_rad_s", num(p->omega_max));
-  json_object_set_new(o, "omega_min_rad_s", num(p->omega_min));
-  json_object_set_new(o, "alpha_max_rad_s2", num(p->alpha_max));
-  json_object_set_new(o, "alpha_min_rad_s2", num(p->alpha_min));
+#define FB_JSON_PEAK(field, key) json_object_set_new(o, key, num(p->field));
+  FB_BODY_PEAK_KEYS(FB_JSON_PEAK)
+#undef FB_JSON_PEAK
   return o;
 }
 
@@ -318,15 +317,12 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   if (m->has_spikes) {
     const fb_spikes *k = &m->spikes;
     json_t *sp = json_object();
-    json_object_set_new(sp, "alpha_peak_ratio_coupler", num(k->alpha_peak_ratio_coupler));
-    json_object_set_new(sp, "alpha_peak_ratio_follower", num(k->alpha_peak_ratio_follower));
-    json_object_set_new(sp, "omega_dev_max_rad_s", num(k->omega_dev_max));
-    json_object_set_new(sp, "force_max_n", num(k->force_max));
-    json_object_set_new(sp, "penetration_max_m", num(k->penetration_max));
-    json_object_set_new(sp, "impacts", json_integer(k->impacts));
-    json_object_set_new(sp, "free_flight_fraction", num(k->free_flight_fraction));
-    json_object_set_new(sp, "alpha_peak_crank_angle_coupler_rad", num(k->alpha_peak_crank_angle_coupler));
-    json_object_set_new(sp, "alpha_peak_crank_angle_follower_rad", num(k->alpha_peak_crank_angle_follower));
+    /* counts as JSON integers, the rest as numbers (null when not finite) */
+#define FB_JSON_SPIKE(field, key)                                                         \
+  json_object_set_new(sp, key, _Generic((k->field), int: json_integer((json_int_t)(k->field)), \
+                                        default: num((double)(k->field))));
+    FB_SPIKE_KEYS(FB_JSON_SPIKE)
+#undef FB_JSON_SPIKE
     json_object_set_new(sp, "alpha_reference", json_string(m->spikes_reference));
     json_object_set_new(o, "spikes", sp);
     json_t *joints = json_array();

@@ -79,7 +79,7 @@ case "$what" in
     fi
     ninja -C build-asan >/dev/null
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-      meson test -C build-asan --print-errorlogs >build-asan/sanitize.txt 2>&1 \
+      LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp meson test -C build-asan --print-errorlogs >build-asan/sanitize.txt 2>&1 \
       || { tail -n 40 build-asan/sanitize.txt; echo "sanitizer suite failed (build-asan/meson-logs)"; exit 1; }
     grep -E '^(Ok|Fail):' build-asan/sanitize.txt
     # 2. valgrind on the paper's case: no invalid access, no definite or indirect leak

@@ -11,6 +11,13 @@ static char last_error[512];
 
 const char *fb_ode_last_error(void) { return last_error; }
 
+static void *quarantined[64];
+static int nquarantined;
+
+void fb_ode_quarantine(void *object) {
+  if (object && nquarantined < 64) quarantined[nquarantined++] = object;
+}
+
 /* inside a guard: keep the message and jump back instead of returning to
  * ODE's abort() */
 static void escape(int errnum, const char *msg, va_list ap) {

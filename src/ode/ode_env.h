@@ -25,4 +25,10 @@ extern jmp_buf *fb_ode_escape;
 /* The message of the last ODE error caught by the guard. */
 const char *fb_ode_last_error(void);
 
+/* Keeps ODE objects that an escaped error left mid-step and that must never
+ * be touched again (destroying them fails ODE's own checks): they stay
+ * reachable for the life of the process, so leak checkers see retained
+ * memory, not a leak. At most 64 are kept; later ones are dropped. */
+void fb_ode_quarantine(void *object);
+
 #endif

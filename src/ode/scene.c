@@ -767,6 +767,8 @@ void fb_scene_destroy(fb_scene *s) {
     /* ODE's world was left mid-step (its job list still holds the step):
      * destroying it would fail ODE's own checks, so it is leaked, and ODE is
      * never closed in this process; the project's own allocations are freed */
+    fb_ode_quarantine(s->world);
+    fb_ode_quarantine(s->contacts);
     for (int j = 0; j < 4; j++) {
       free(s->cl[j].boxes);
       if (s->cl[j].bore) fb_ccd_bore_destroy(s->cl[j].bore);

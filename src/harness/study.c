@@ -388,6 +388,7 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
   char sets[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8][256], axt[FB_STUDY_MAX_AXES][64];
   int n;
   json_t *row = json_object(), *axes = json_object(), *metrics = json_object();
+  json_t *warnings = json_array(); /* "<model>: <warning>", as the run prints them */
   json_object_set_new(row, "study", json_string(s->name));
   json_object_set_new(row, "index", json_integer((json_int_t)i));
   json_object_set_new(row, "of", json_integer((json_int_t)s->points));
@@ -429,11 +430,21 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
           l += (size_t)snprintf(status + l, sizeof status - l, "%s%s: %s", l ? "; " : "",
                                 r.model[k].run.name, fb_stop_text(why, sizeof why, &r.model[k].run.stop));
         }
+      /* every warning of every model: a point can be "ok" and still outside
+       * the penalty model's validity, or with a saturated drive */
+      for (int k = 0; k < r.n; k++)
+        for (int w = 0; w < r.model[k].warning_count; w++) {
+          char wt[512], entry[640];
+          snprintf(entry, sizeof entry, "%s: %s", r.model[k].run.name,
+                   fb_warning_text(wt, sizeof wt, &r.model[k].warnings[w]));
+          json_array_append_new(warnings, json_string(entry));
+        }
       fb_run_free(&r);
     }
   }
   json_object_set_new(row, "axes", axes);
   json_object_set_new(row, "status", json_string(status));
+  json_object_set_new(row, "warnings", warnings);
   json_object_set_new(row, "metrics", metrics);
   char *text = json_dumps(row, JSON_COMPACT | JSON_REAL_PRECISION(17));
   json_decref(row);
@@ -468,12 +479,17 @@ int fb_study_row_parse(const char *line, long *index, size_t *of, char *why, siz
   else if (!json_is_object(axes)) bad = "\"axes\" is not an object";
   else if (!json_is_string(json_object_get(o, "status"))) bad = "\"status\" is not a string";
   else if (!json_is_object(mets)) bad = "\"metrics\" is not an object";
+  else if (json_object_get(o, "warnings") && !json_is_array(json_object_get(o, "warnings")))
+    bad = "\"warnings\" is not an array";
   if (!bad) {
     const char *key;
     json_t *v;
     json_object_foreach(axes, key, v) if (!json_is_string(v)) bad = "an axis value is not a string";
     json_object_foreach(mets, key, v) if (!json_is_number(v) || !isfinite(json_number_value(v)))
         bad = "a metric is not a finite number";
+    size_t q;
+    json_array_foreach(json_object_get(o, "warnings"), q, v) if (!json_is_string(v))
+        bad = "a warning is not a string";
   }
   if (!bad) {
     *index = (long)json_integer_value(ix);
@@ -538,6 +554,7 @@ fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *d
     size_t q;
     json_t *nm;
     json_array_foreach(names, q, nm) fprintf(out.f, ",%s", json_string_value(nm));
+    fprintf(out.f, ",warnings"); /* last, so the metric columns keep their places */
     fputc('\n', out.f);
     for (size_t k = 0; k < m; k++) {
       fprintf(out.f, "%ld", v[k].index);
@@ -554,6 +571,14 @@ fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *d
         if (x) fprintf(out.f, ",%.17g", json_number_value(x));
         else fprintf(out.f, ",");
       }
+      /* warnings hold commas and quotes: one quoted field, "; "-joined */
+      fprintf(out.f, ",\"");
+      json_array_foreach(json_object_get(v[k].row, "warnings"), q, val) {
+        if (q) fprintf(out.f, "; ");
+        for (const char *p = json_string_value(val); p && *p; p++)
+          fprintf(out.f, *p == '"' ? "\"\"" : "%c", *p);
+      }
+      fprintf(out.f, "\"");
       fputc('\n', out.f);
     }
     st = fb_outfile_commit(&out, diag);

@@ -1079,7 +1079,8 @@ fb_status fb_figures_study(const fb_study *s, const char *dir, fb_diag *diag) {
   if (s->nplot) {
     for (int k = 0; k < s->nplot; k++) snprintf(names[n++], 128, "%s", s->plot[k]);
   } else {
-    for (int c = t.status_col + 1; c < t.ncol && n < 4; c++) snprintf(names[n++], 128, "%s", t.head[c]);
+    for (int c = t.status_col + 1; c < t.ncol && n < 4; c++)
+      if (strcmp(t.head[c], "warnings") != 0) snprintf(names[n++], 128, "%s", t.head[c]);
   }
   if (n == 0) {
     csv_free(&t);

@@ -58,7 +58,9 @@ ok 'cmp -s "$tmp/kill/points.csv" "$tmp/clean/points.csv"' "resumed sweep equals
 printf '[study]\nname = x\ncase = %s\n[axis.a]\nkey = drive.speed_rpn\nvalues = 100\n' "$here/../cases/paper_crank_rocker.ini" > "$tmp/bad.ini"
 ok '! "$exe" sweep "$tmp/bad.ini" --out "$tmp/b" 2>"$tmp/err" && grep -q "speed_rpn" "$tmp/err"' "a bad axis key is refused before any run"
 # a point that finishes "ok" outside the penalty model's validity says so in
-# its row (JSON "warnings", CSV last column); a point without warnings has none
+# its row (JSON "warnings", CSV last column); the physical penalty's point
+# does not carry that warning (it may carry others, e.g. under-resolved at
+# this coarse step)
 "$exe" sweep "$here/studies/tiny_warn.ini" --out "$tmp/warn" >/dev/null 2>&1
 ok 'python3 - "$tmp/warn" <<"PY"
 import csv, json, sys
@@ -67,10 +69,10 @@ rows.sort(key=lambda r: r["index"])
 assert [r["status"] for r in rows] == ["ok", "ok"], rows
 assert len(rows[0]["warnings"]) == 1 and "outside the penalty model" in rows[0]["warnings"][0], rows[0]
 assert rows[0]["warnings"][0].startswith("ode-clearance-impact: "), rows[0]
-assert rows[1]["warnings"] == [], rows[1]
+assert not any("outside the penalty model" in w for w in rows[1]["warnings"]), rows[1]
 c = list(csv.reader(open(sys.argv[1] + "/points.csv")))
 assert c[0][-1] == "warnings" and c[0].index("status") == 2, c[0]
-assert "outside the penalty model" in c[1][-1] and c[2][-1] == "", c
+assert "outside the penalty model" in c[1][-1] and "outside the penalty model" not in c[2][-1], c
 PY' "sweep rows carry the models' warnings (JSON and CSV)"
 
 # fourbar mapping: ERP and CFM invert to the grid's stiffness, h omega as defined

@@ -54,7 +54,7 @@ static void print_config(const char *model, double target, const fb_bench_row *b
   /* the mapping is a contact setting: an ideal model has none */
   char mapping[32] = "";
   if (b->mapping >= 0) snprintf(mapping, sizeof mapping, "%s, ", mapping_name(b->mapping));
-  if (strcmp(b->engine, "ode") == 0)
+  if (b->row && b->row->engine == FB_ENGINE_ODE)
     printf("  %-24s error <= %.0e: %s, h = %g s%s, %sERP %g, CFM %g: %.3e at %.3e s/rev\n", model,
            target, b->stepper, b->h, b->h_auto ? " (auto)" : "", mapping, b->world_erp,
            b->world_cfm, b->error, b->wall_per_rev);

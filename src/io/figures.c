@@ -862,8 +862,9 @@ fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *c
   for (int q = 0; q < nm; q++) {
     if (!drawn[q]) continue;
     const model_style ms = style_of(models[q]);
-    const char *what = strstr(models[q], "-ideal-") ? "omega peaks vs analytic"
-                                                    : "force, penetration vs reference";
+    const char *what = model_rows[q] && !fb_model_has_clearance(model_rows[q])
+                           ? "omega peaks vs analytic"
+                           : "force, penetration vs reference";
     char mn[160];
     esc(models[q], mn, sizeof mn);
     fprintf(pl.p, "%s$all%d using 1:2 with points pt 7 ps 0.8 lc rgb '%s' title '%s (%s)'", any ? ", " : "", q,

@@ -284,6 +284,66 @@ static void test_fit_tolerance_stackup_json(void **state) {
   json_decref(j);
 }
 
+/* fourbar penalty prints the contact a run uses through the same scene stage:
+ * the summary's `contact` objects and the penalty's agree in every law
+ * figure, printed alike (%.6g in text; in JSON to 12 digits, the penalty's
+ * precision) */
+#define CONTACT_AGREE_REL_TOL 1e-11
+
+static void test_penalty_contact_is_the_runs(void **state) {
+  (void)state;
+  static char out[1 << 20], err[8192];
+  assert_int_equal(run("penalty --json --speeds-rpm 1000", out, sizeof out, err, sizeof err), 0);
+  json_t *pj = json_loads(out, 0, NULL);
+  assert_non_null(pj);
+  char cmd[512];
+  snprintf(cmd, sizeof cmd,
+           "run --json --out %s/contact --set run.revolutions=1 "
+           "--set run.models=ode-clearance-impact,ode-clearance-restitution --set run.peaks=all",
+           tmpdir);
+  assert_int_equal(run(cmd, out, sizeof out, err, sizeof err), 0);
+  json_t *rj = json_loads(out, 0, NULL);
+  assert_non_null(rj);
+  const char *keys[] = {"stiffness", "exponent", "damping_n_s_m", "damping_depth_m",
+                        "restitution", "damping_ratio", NULL};
+  size_t i;
+  json_t *pc;
+  int compared = 0;
+  json_array_foreach(json_object_get(pj, "contact"), i, pc) {
+    const char *model = json_string_value(json_object_get(pc, "model"));
+    size_t k;
+    json_t *m;
+    json_array_foreach(json_object_get(rj, "models"), k, m) {
+      if (strcmp(json_string_value(json_object_get(m, "name")), model) != 0) continue;
+      json_t *rc = json_array_get(json_object_get(m, "contact"), 0);
+      assert_non_null(rc);
+      assert_string_equal(json_string_value(json_object_get(rc, "law")),
+                          json_string_value(json_object_get(pc, "law")));
+      assert_string_equal(json_string_value(json_object_get(rc, "mapping")),
+                          json_string_value(json_object_get(pc, "mapping")));
+      for (int q = 0; keys[q]; q++) {
+        json_t *a = json_object_get(pc, keys[q]), *b = json_object_get(rc, keys[q]);
+        if (!a || !json_is_number(a) || !b || !json_is_number(b)) continue;
+        assert_rel(json_number_value(b), json_number_value(a), CONTACT_AGREE_REL_TOL);
+        compared++;
+      }
+      /* the run's provenance: its effective mass lies in the penalty's estimate */
+      json_t *em = json_object_get(rc, "effective_mass_kg");
+      json_t *ee = json_object_get(pc, "effective_mass_estimate_kg");
+      assert_true(json_number_value(json_object_get(em, "min")) >=
+                  0.99 * json_number_value(json_object_get(ee, "min")));
+      assert_true(json_number_value(json_object_get(em, "max")) <=
+                  1.01 * json_number_value(json_object_get(ee, "max")));
+      assert_true(json_is_true(json_object_get(rc, "resolved")));
+    }
+  }
+  /* impact: stiffness, exponent, c_max, d_max; restitution: stiffness,
+   * exponent, restitution, damping ratio */
+  assert_int_equal(compared, 8);
+  json_decref(pj);
+  json_decref(rj);
+}
+
 static void test_check_catches_stiffness_regression(void **state) {
   (void)state;
   static char out[1 << 18], err[8192];
@@ -530,6 +590,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_json_flag_and_kinematics),
       cmocka_unit_test(test_penalty_and_impact_json),
       cmocka_unit_test(test_fit_tolerance_stackup_json),
+      cmocka_unit_test(test_penalty_contact_is_the_runs),
       cmocka_unit_test(test_check_catches_stiffness_regression),
       cmocka_unit_test(test_bad_input_exits_nonzero_with_message),
       cmocka_unit_test(test_engines_case),

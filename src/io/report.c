@@ -329,10 +329,11 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     for (int j = 0; j < 4; j++)
       if (run->clearance_mask & (1 << j)) json_array_append_new(joints, json_string(fb_joint_name(j)));
     json_object_set_new(o, "clearance_joints", joints);
-    json_object_set_new(o, "contact", contact_json(r, m));
   } else {
     json_object_set_new(o, "spikes", json_null());
   }
+  /* what the contact rows received, also for a run that stopped early */
+  if (run->clearance_mask) json_object_set_new(o, "contact", contact_json(r, m));
   return o;
 }
 

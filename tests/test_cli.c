@@ -503,6 +503,18 @@ static void test_help_answers(void **state) {
   assert_non_null(strstr(out, "--branch"));
   assert_int_equal(run("--help", out, sizeof out, NULL, 0), 0);
   assert_non_null(strstr(out, "kinematics"));
+  /* every command answers --help with its usage and its exit status */
+  static const char *const cmds[] = {"run", "kinematics", "stackup", "fit", "tolerance", "penalty",
+                                     "impact", "check", "sweep", "merge", "mapping", "bench", NULL};
+  for (int i = 0; cmds[i]; i++) {
+    char args[64], usage[64];
+    snprintf(args, sizeof args, "%s --help", cmds[i]);
+    snprintf(usage, sizeof usage, "usage: fourbar %s", cmds[i]);
+    static char text[16384];
+    assert_int_equal(run(args, text, sizeof text, NULL, 0), 0);
+    if (!strstr(text, usage)) fail_msg("%s --help lacks '%s'", cmds[i], usage);
+    if (!strstr(text, "Exit status")) fail_msg("%s --help does not state its exit status", cmds[i]);
+  }
 }
 
 /* --set without --out writes into results/<case>/ and says so, the second

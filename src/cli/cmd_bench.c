@@ -37,7 +37,8 @@ static const char bench_help[] =
     "collider and cost per step (docs/colliders.md). --grid runs one of the two\n"
     "(default all). Writes DIR/bench.csv, bench.json and bench.svg\n"
     "(default DIR results/<case>/bench).\n"
-    "On a terminal a progress bar with the time left is drawn on stderr.\n";
+    "On a terminal a progress bar with the time left is drawn on stderr.\n"
+    "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static json_t *finite_or_null(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 

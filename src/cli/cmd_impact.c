@@ -33,7 +33,8 @@ static const char impact_help[] =
     "                 ERP = h k/(h k + c), CFM = 1/(h k + c) (a backward-Euler spring\n"
     "                 that adds a damper h k), or matched: ERP/CFM chosen so the\n"
     "                 one-step update of the body has the continuous spring-damper's\n"
-    "                 poles exp(s h) (tangent stiffness, the body's mass)\n";
+    "                 poles exp(s h) (tangent stiffness, the body's mass)\n"
+    "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static json_t *result_json(const fb_impact_result *r) {
   json_t *o = json_object();

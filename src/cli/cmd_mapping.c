@@ -42,7 +42,8 @@ static const char mapping_help[] =
     "                   matched (tangent is secant for this linear law)\n"
     "  --figure-format  svg (default) or png\n"
     "  --out DIR        also write DIR/mapping.csv and DIR/mapping.svg (ERP map with\n"
-    "                   the h omega = 1 and ERP = 0.1, 0.99 contours)\n";
+    "                   the h omega = 1 and ERP = 0.1, 0.99 contours)\n"
+    "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static int parse_range(const char *t, double *a, double *b) {
   char tail;

@@ -43,7 +43,8 @@ static const char penalty_help[] =
     "Then, for a case with clearance joints, the contact a fourbar run of the case\n"
     "uses (the same code path: its laws, stiffness and damping per joint, which\n"
     "lengths and which rule), the effective-mass range, expected force and contact\n"
-    "frequency, and the step [solver] h_s = auto gives (JSON: \"contact\").\n";
+    "frequency, and the step [solver] h_s = auto gives (JSON: \"contact\").\n"
+    "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static int parse_speeds(const char *text, double *out, int *n) {
   double a, b, s;

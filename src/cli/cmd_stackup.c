@@ -31,7 +31,12 @@ static const char stackup_help[] =
     "  --samples   Monte Carlo samples (default 10000)\n"
     "  --seed      Monte Carlo seed (default 1): same seed, same numbers\n"
     "  --jobs      threads evaluating the samples (default 1); the samples are\n"
-    "              drawn in order from the seed, so every J gives the same numbers\n";
+    "              drawn in order from the seed, so every J gives the same numbers\n"
+    "  --set K=V   override case key K (section.key), as fourbar run takes it\n"
+    "  --json      one JSON object on standard output (keys: README, stackup)\n"
+    "  CASE        default: the paper's case, cases/paper_crank_rocker.ini\n"
+    "A progress bar goes to standard error on a terminal only.\n"
+    "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 /* progress bar on a terminal (quiet otherwise): redrawn at most every 0.1 s */
 typedef struct {

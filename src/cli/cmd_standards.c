@@ -19,12 +19,19 @@ static const char fit_help[] =
     "Letters: holes A B C D E F G H JS K M N P R S, shafts a b c d e f g h js k m n p r s;\n"
     "grades IT01, IT0, IT1..IT18. The standard's exceptions apply (M6 over 250 up to\n"
     "315 mm is -9/-41 um) and its refusals too: A, B, a, b and N9..N11 not up to\n"
-    "1 mm; K above IT8 only as K9, K10 up to 3 mm; IT14..IT18 not up to 1 mm.\n";
+    "1 mm; K above IT8 only as K9, K10 up to 3 mm; IT14..IT18 not up to 1 mm.\n"
+    "\n"
+    "  --json   one JSON object (deviations and clearances in um, as the standard's\n"
+    "           tables give them; the unit is in every key)\n"
+    "Exit status: 0 ok, 2 bad input (a fit the standard does not define).\n";
 
 static const char tol_help[] =
     "usage: fourbar tolerance SIZE_MM --class f|m|c|v [--json]\n"
     "\n"
-    "ISO 2768-1 general tolerance (+-) for a linear size from 0.5 to 4000 mm.\n";
+    "ISO 2768-1 general tolerance (+-) for a linear size from 0.5 to 4000 mm.\n"
+    "\n"
+    "  --json   one JSON object: size_mm, class, plus_minus_mm, source\n"
+    "Exit status: 0 ok, 2 bad input.\n";
 
 int fb_cmd_fit(int argc, char **argv) {
   static const struct option opts[] = {

@@ -48,7 +48,8 @@ static const char sweep_help[] =
     "  --restart    discard the rows already in DIR (of this shard) and start fresh\n"
     "  --out DIR    default results/studies/<study name>\n"
     "Then: fourbar merge DIR... joins shard outputs, checking no point is missing\n"
-    "or duplicated.\n";
+    "or duplicated.\n"
+    "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static const char merge_help[] =
     "usage: fourbar merge DIR... [--out DIR] [--study STUDY]\n"
@@ -56,7 +57,8 @@ static const char merge_help[] =
     "Joins the points*.jsonl files of the given folders into OUT/points.jsonl and\n"
     "OUT/points.csv (default OUT: the first DIR), after checking that they belong to\n"
     "one study and that every point 0..N-1 is present exactly once. With --study\n"
-    "it also draws OUT/study.svg.\n";
+    "it also draws OUT/study.svg.\n"
+    "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 typedef struct {
   char **rows;

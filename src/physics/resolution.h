@@ -26,11 +26,15 @@
 #include "contact.h"
 
 /* The bound on h omega_c that `auto` keeps and beyond which a run is
- * flagged `under-resolved`. The matched mapping (contact.h) stays stable up
- * to h omega_c ~ 1.5, where a contact lasts one step (measured: the paper
- * case's restitution model leaves the hole at h = 2e-5, h omega_c = 1.5 on
- * this estimate); at 0.5 the paper case's impact model is within 0.8 % of
- * the reference in force and penetration (h = 5e-6 gives 0.75). */
+ * flagged `under-resolved` (an accuracy bound, not a stability one).
+ * Measured on the paper case with the matched mapping (h omega_c as the run
+ * reports it, h sqrt(k_t / m_eff) over its contact steps): both clearance
+ * models still run at h = 3e-5 s (h omega_c 4.1 and 3.8) and leave the hole
+ * at 4e-5 s (5.1 and 5.0); accuracy goes much earlier: at 1e-5 s (1.1) the
+ * coupler spike is 19 % low, at 5e-6 s (0.54) force, penetration and spike
+ * are within 0.4 % of the reference, and `auto` (3.3e-6 s, 0.36) within
+ * 0.13 %. A single impact loses 40 % of its penetration's accuracy at
+ * h omega_c = 1.5 (pi / contact duration), where the contact lasts two steps. */
 #define FB_H_OMEGA_C_BOUND 0.5
 
 /* The ideal model's accuracy cap of the automatic step: steps per crank

@@ -61,6 +61,10 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   assert_int_equal(run(args, out, sizeof out, err, sizeof err), 0);
   assert_non_null(strstr(out, "ode-ideal-nominal"));
   char path[256];
+  /* gnuplot's log stays only when gnuplot said something: no empty hidden file */
+  snprintf(path, sizeof path, "%s/paper/.gnuplot.log", tmpdir);
+  struct stat lst;
+  if (stat(path, &lst) == 0 && lst.st_size == 0) fail_msg("an empty %s is left behind", path);
   snprintf(path, sizeof path, "%s/paper/summary.json", tmpdir);
   json_error_t je;
   json_t *j = json_load_file(path, 0, &je);

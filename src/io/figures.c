@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <jansson.h>
@@ -128,6 +129,9 @@ static fb_status plot_close(plot *pl, fb_diag *diag) {
     unlink(pl->tmp);
     return fb_diag_set(diag, FB_ERR_IO, "%s: cannot rename into place", pl->path);
   }
+  /* an empty log says nothing: no hidden empty file in the result folder */
+  struct stat lst;
+  if (stat(pl->log, &lst) == 0 && lst.st_size == 0) unlink(pl->log);
   return FB_OK;
 }
 

@@ -84,6 +84,10 @@ for of in -1 100000000000000 1e14 '"3"'; do
   ok '[ $rc -eq 2 ] && grep -q "points.a.jsonl:1: .*\"of\"" "$tmp/err"' "3: merge refuses a row with \"of\": $of naming file, line and field (was a crash)"
 done
 
+mkdir -p "$tmp/m3b"
+printf '{"study":"x","index":0,"of":2,"axes":{},"status":"ok","metrics":{}}\n{"study":"y","index":1,"of":2,"axes":{},"status":"ok","metrics":{}}\n' > "$tmp/m3b/points.a.jsonl"
+ok 'refuses "studies .x. and .y." "$exe" merge "$tmp/m3b" --out "$tmp/m3bout"' "3: merge refuses rows of two studies"
+
 # ---- 7. no hangs ---------------------------------------------------------------
 # (the reference's step budget: test_reference.c test_step_budget_stops_a_lost_integration)
 mkfifo "$tmp/fifo.ini"

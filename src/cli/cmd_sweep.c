@@ -519,10 +519,20 @@ int fb_cmd_merge(int argc, char **argv) {
     return fb_cli_fail("merge", 1, "out of memory for %zu points", of);
   }
   int rc = 0;
+  json_t *row0 = json_loads(all.rows[0], 0, NULL);
+  char study0[256];
+  snprintf(study0, sizeof study0, "%s", json_string_value(json_object_get(row0, "study")));
+  json_decref(row0);
   for (size_t k = 0; k < all.n && !rc; k++) {
     size_t o2 = 0;
     long i = fb_study_row_index(all.rows[k], &o2);
-    if (o2 != of) rc = fb_cli_fail("merge", 2, "rows of a %zu-point and a %zu-point grid: not one study", of, o2);
+    json_t *row = json_loads(all.rows[k], 0, NULL); /* checked when read: "study" is a string */
+    char study[256];
+    snprintf(study, sizeof study, "%s", json_string_value(json_object_get(row, "study")));
+    json_decref(row);
+    if (strcmp(study, study0) != 0)
+      rc = fb_cli_fail("merge", 2, "rows of studies '%s' and '%s': not one study", study0, study);
+    else if (o2 != of) rc = fb_cli_fail("merge", 2, "rows of a %zu-point and a %zu-point grid: not one study", of, o2);
     else if (i < 0 || (size_t)i >= of) rc = fb_cli_fail("merge", 2, "row index %ld outside 0..%zu", i, of - 1);
     else if (count[i]++) rc = fb_cli_fail("merge", 2, "point %ld appears more than once", i);
   }

@@ -39,7 +39,7 @@ ok '! "$exe" merge "$tmp/half" 2>"$tmp/err" && grep -q "missing" "$tmp/err"' "me
 mkdir -p "$tmp/dup" && cp "$tmp/shards/points.shard-0-of-2.jsonl" "$tmp/dup/points.a.jsonl" && cp "$tmp/shards/points.shard-0-of-2.jsonl" "$tmp/dup/points.b.jsonl"
 ok '! "$exe" merge "$tmp/dup" 2>"$tmp/err" && grep -q "more than once" "$tmp/err"' "merge names duplicated points"
 
-# kill a sweep after 3 of 18 points, rerun: resumes, recomputes nothing done
+# kill a sweep after 3 of 27 points, rerun: resumes, recomputes nothing done
 "$exe" sweep "$slow" --out "$tmp/kill" >/dev/null 2>&1 &
 pid=$!
 for _ in $(seq 1 300); do
@@ -48,9 +48,9 @@ for _ in $(seq 1 300); do
 done
 kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
 before=$(wc -l < "$tmp/kill/points.jsonl")
-ok '[ "$before" -ge 3 ] && [ "$before" -lt 18 ]' "killed halfway ($before of 18 rows)"
+ok '[ "$before" -ge 3 ] && [ "$before" -lt 27 ]' "killed halfway ($before of 27 rows)"
 "$exe" sweep "$slow" --out "$tmp/kill" --jobs 2 >/dev/null 2>"$tmp/resume.txt"
-ok 'grep -q "$before already done, computing $((18 - before))" "$tmp/resume.txt"' "rerun computes only the rest"
+ok 'grep -q "$before already done, computing $((27 - before))" "$tmp/resume.txt"' "rerun computes only the rest"
 "$exe" sweep "$slow" --out "$tmp/clean" --jobs 2 >/dev/null 2>&1
 ok 'cmp -s "$tmp/kill/points.csv" "$tmp/clean/points.csv"' "resumed sweep equals an uninterrupted one"
 

@@ -550,10 +550,11 @@ static void print_paper_tables(FILE *f, const fb_run *r) {
 
 void fb_report_print_table(FILE *f, const fb_run *r) {
   const fb_case *c = &r->c;
-  fprintf(f, "case %s: %.6g rpm %s, %s branch, %g revolutions, h = %g s (%s); "
+  fprintf(f, "case %s: %.6g rpm %s, %s branch, %g revolution%s, h = %g s (%s); "
              "peaks over t >= %.6g s (%s); start %s, pin %s\n\n",
           c->name, c->crank_speed * 60.0 / (2.0 * M_PI), c->direction > 0 ? "ccw" : "cw",
-          c->branch == FB_BRANCH_OPEN ? "open" : "crossed", c->revolutions, c->solver.h,
+          c->branch == FB_BRANCH_OPEN ? "open" : "crossed", c->revolutions,
+          c->revolutions == 1 ? "" : "s", c->solver.h,
           c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep",
           r->t_window, c->peaks == FB_PEAKS_ALL ? "the whole run" : "after the first revolution",
           fb_start_name(c->start), fb_pin_start_name(c->pin_start));

@@ -591,7 +591,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
           "max", "min", "max", "min", "max", "min", "max", "min", "omega", "alpha", "steps",
           "wall_s", "us/step", "status");
   fprintf(f, "%-26s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s\n", "", "rad/s",
-          "rad/s", "rad/s2", "rad/s2", "rad/s", "rad/s", "rad/s2", "rad/s2", "rel", "rel", "",
+          "rad/s", "rad/s^2", "rad/s^2", "rad/s", "rad/s", "rad/s^2", "rad/s^2", "rel", "rel", "",
           "s", "");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
@@ -662,7 +662,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   if (anyref) {
     fprintf(f, "\nagainst the reference (same law, same instants):\n%-26s %-22s %10s %10s %10s %10s %9s %9s %9s\n",
             "model", "reference", "omega pk", "omega rms", "alpha pk", "alpha rms", "force pk", "penetr.", "impacts");
-    fprintf(f, "%-26s %-22s %10s %10s %10s %10s %9s %9s %9s\n", "", "", "rel", "rad/s", "rel", "rad/s2",
+    fprintf(f, "%-26s %-22s %10s %10s %10s %10s %9s %9s %9s\n", "", "", "rel", "rad/s", "rel", "rad/s^2",
             "rel", "rel", "model/ref");
     for (int i = 0; i < r->n; i++) {
       const fb_model_result *m = &r->model[i];

@@ -111,7 +111,7 @@ int fb_cmd_kinematics(int argc, char **argv) {
          mm[0], mm[1], mm[2], mm[3], fb_grashof_name(g), rpm, dir > 0 ? "ccw" : "cw",
          branch == FB_BRANCH_OPEN ? "open" : "crossed");
   printf("%-9s %12s %12s %14s %14s\n", "body", "omega_max", "omega_min", "alpha_max", "alpha_min");
-  printf("%-9s %12s %12s %14s %14s\n", "", "rad/s", "rad/s", "rad/s2", "rad/s2");
+  printf("%-9s %12s %12s %14s %14s\n", "", "rad/s", "rad/s", "rad/s^2", "rad/s^2");
   printf("%-9s %12.6f %12.6f %14.4f %14.4f\n", "coupler", p.coupler.omega_max, p.coupler.omega_min,
          p.coupler.alpha_max, p.coupler.alpha_min);
   printf("%-9s %12.6f %12.6f %14.4f %14.4f\n", "follower", p.follower.omega_max,

@@ -8,6 +8,18 @@
 #include "ode_contact.h"
 #include "ode_env.h"
 
+/* one step under the ODE error guard (ode_env.h): 1 stepped, 0 ODE could
+ * not allocate, -1 ODE's own fatal check fired (the world is then left
+ * mid-step and must not be touched again) */
+static int guarded_step(dWorldID world, int quick, double h) {
+  jmp_buf escape;
+  if (setjmp(escape) != 0) return -1;
+  fb_ode_escape = &escape;
+  const int ok = quick ? dWorldQuickStep(world, h) : dWorldStep(world, h);
+  fb_ode_escape = NULL;
+  return ok ? 1 : 0;
+}
+
 fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag) {
   memset(out, 0, sizeof *out);
   fb_status st = fb_impact_check(d, diag);
@@ -33,7 +45,7 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
   dBodySetLinearVel(body, 0, 0, -d->speed);
 
   double v0 = -1.0; /* approach speed at first contact */
-  int in_contact = 0, done = 0;
+  int in_contact = 0, done = 0, broken = 0;
   double t_end = 0.0, prev_depth = 0.0;
   size_t k;
   dJointFeedback fb;
@@ -62,8 +74,13 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
         dJointSetFeedback(cj, &fb);
       }
     }
-    int ok = d->stepper == FB_STEPPER_WORLD ? dWorldStep(world, d->h)
-                                            : dWorldQuickStep(world, d->h);
+    const int ok = guarded_step(world, d->stepper != FB_STEPPER_WORLD, d->h);
+    if (ok < 0) {
+      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE impact: ode-error: %s at step %zu",
+                       fb_ode_last_error(), k + 1);
+      broken = 1;
+      break;
+    }
     if (!ok) {
       st = fb_diag_set(diag, FB_ERR_NOMEM, "ODE step %zu failed to allocate", k + 1);
       break;
@@ -90,9 +107,15 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
     prev_depth = depth_now;
     if (in_contact && depth_now <= 0.0 && dBodyGetLinearVel(body)[2] > 0.0) done = 1;
   }
-  out->restitution = dBodyGetLinearVel(body)[2] / d->speed;
-  out->contact_duration = t_end;
   out->steps = k;
+  out->contact_duration = t_end;
+  if (broken) { /* kept, never touched again (ode_env.h) */
+    fb_ode_quarantine(world);
+    fb_ode_quarantine(group);
+    out->wall_s = fb_clock_s() - t_wall;
+    return st;
+  }
+  out->restitution = dBodyGetLinearVel(body)[2] / d->speed;
   dJointGroupDestroy(group);
   dWorldDestroy(world);
   fb_ode_release();

@@ -61,7 +61,8 @@ ok '! "$exe" sweep "$tmp/bad.ini" --out "$tmp/b" 2>"$tmp/err" && grep -q "speed_
 # its row (JSON "warnings", CSV last column); the physical penalty's point
 # does not carry that warning (it may carry others, e.g. under-resolved at
 # this coarse step)
-"$exe" sweep "$here/studies/tiny_warn.ini" --out "$tmp/warn" >/dev/null 2>&1
+"$exe" sweep "$here/studies/tiny_warn.ini" --out "$tmp/warn" >"$tmp/warn.txt" 2>&1
+ok 'grep -q "^0 of them stopped (column status), [12] carry warnings" "$tmp/warn.txt"' "sweep's last lines count stopped and warned points"
 ok 'python3 - "$tmp/warn" <<"PY"
 import csv, json, sys
 rows = [json.loads(l) for l in open(sys.argv[1] + "/points.jsonl")]

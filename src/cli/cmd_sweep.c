@@ -464,6 +464,11 @@ int fb_cmd_sweep(int argc, char **argv) {
   if (fb_study_write_csv(csv, all.rows, all.n, &d) != FB_OK) rc = fb_cli_fail("sweep", 1, "%s", d.msg);
   printf("%s: %zu rows (%zu computed now in %.1f s) in %s and %s\n", s.name, all.n, finished, wall,
          rows_path, csv);
+  size_t stopped, warned;
+  fb_study_tally(all.rows, all.n, &stopped, &warned);
+  if (stopped || warned)
+    printf("%zu of them stopped (column status), %zu carry warnings (column warnings)\n", stopped,
+           warned);
   /* the study figure, once the whole grid is in this folder's points.csv */
   if (!rc && shard_n == 1 && all.n == s.points) {
     if (fb_figures_study(&s, dir, &d) != FB_OK) fprintf(stderr, "fourbar sweep: warning: %s\n", d.msg);

@@ -520,6 +520,18 @@ static int by_index(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+void fb_study_tally(char **rows, size_t n, size_t *stopped, size_t *warned) {
+  *stopped = *warned = 0;
+  for (size_t k = 0; k < n; k++) {
+    json_t *o = json_loads(rows[k], 0, NULL);
+    if (!o) continue;
+    const char *st = json_string_value(json_object_get(o, "status"));
+    if (st && strcmp(st, "ok") != 0) (*stopped)++;
+    if (json_array_size(json_object_get(o, "warnings")) > 0) (*warned)++;
+    json_decref(o);
+  }
+}
+
 fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *diag) {
   indexed *v = calloc(n ? n : 1, sizeof *v);
   if (!v) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");

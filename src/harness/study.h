@@ -88,7 +88,13 @@ int fb_study_row_parse(const char *line, long *index, size_t *of, char *why, siz
 long fb_study_row_index(const char *line, size_t *of);
 
 /* Writes rows (JSON lines, any order, one per index) as CSV sorted by index:
- * index, the axis keys, status, then every metric seen. Errors: FB_ERR_IO. */
+ * index, the axis keys, status, every metric seen, then warnings ("; "-joined).
+ * Errors: FB_ERR_IO. */
 fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *diag);
+
+/* Counts the rows (JSON lines as fb_study_point writes them) whose status is
+ * not "ok" (*stopped) and those with at least one warning (*warned); a row
+ * that does not parse counts as neither. */
+void fb_study_tally(char **rows, size_t n, size_t *stopped, size_t *warned);
 
 #endif

@@ -17,6 +17,8 @@
 
 #include "casefile.h"
 #include "fb_test.h"
+#include "outcome_text.h"
+#include "resolution.h"
 #include "run.h"
 #include "start.h"
 
@@ -193,6 +195,44 @@ static void test_saturated_drive_is_named(void **state) {
   }
 }
 
+/* the under-resolved warning says what to change, true to how the step was
+ * chosen: at 100 rpm `auto` (the default with clearance joints) picks its
+ * step from an expected force the contacts exceed (measured h omega_c 0.745
+ * at h = 4.8e-6 s), so it must not advise `auto` again but give the fixed
+ * step that keeps the bound; a fixed 2e-5 s (h omega_c ~3) is told to use
+ * auto or a smaller step */
+static void test_under_resolved_says_what_to_change(void **state) {
+  (void)state;
+  const char *sets[] = {"drive.speed_rpm=100", "run.revolutions=2",
+                        "run.models=ode-clearance-impact", "solver.h_s=2e-5"};
+  for (int fixed = 0; fixed < 2; fixed++) {
+    fb_case c;
+    fb_test_paper_case(&c, sets, fixed ? 4 : 3);
+    fb_run r;
+    fb_diag d;
+    assert_int_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+    const fb_model_result *m = &r.model[0];
+    const fb_warning *w = NULL;
+    for (int k = 0; k < m->warning_count; k++)
+      if (m->warnings[k].kind == FB_WARN_UNDER_RESOLVED) w = &m->warnings[k];
+    if (!w) fail_msg("%s run: no under-resolved warning", fixed ? "fixed" : "auto");
+    char t[512];
+    fb_warning_text(t, sizeof t, w);
+    assert_int_equal(w->h_auto, fixed ? FB_WARN_STEP_FIXED : FB_WARN_STEP_AUTO_CONTACT);
+    if (fixed) {
+      if (!strstr(t, "set [solver] h_s = auto, or a fixed step of")) fail_msg("fixed: %s", t);
+    } else {
+      if (strstr(t, "auto keeps it below") || !strstr(t, "[solver] h_s = auto chose h ="))
+        fail_msg("auto: %s", t);
+    }
+    /* the advised step is the one that brings the measured h omega_c to the bound */
+    char want[64];
+    snprintf(want, sizeof want, "%.2g", w->h * FB_H_OMEGA_C_BOUND / w->value);
+    if (!strstr(t, want)) fail_msg("no advised step %s in: %s", want, t);
+    fb_run_free(&r);
+  }
+}
+
 /* the paper case's analytic row is `fourbar kinematics` of the nominal lengths */
 static void test_paper_adams_analytic_row_is_the_kinematics(void **state) {
   (void)state;
@@ -241,6 +281,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_rest_start_first_impact),
       cmocka_unit_test(test_whole_run_window_holds_the_startup_peak),
       cmocka_unit_test(test_saturated_drive_is_named),
+      cmocka_unit_test(test_under_resolved_says_what_to_change),
       cmocka_unit_test(test_paper_adams_analytic_row_is_the_kinematics),
       cmocka_unit_test(test_steady_start_and_window_keep_the_baselines),
   };

@@ -64,11 +64,19 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
     if (!(m->run.clearance_mask & (1 << j)) || p->contact_steps == 0 ||
         !(p->h_omega_max > FB_H_OMEGA_C_BOUND))
       continue;
+    /* how the step was chosen, so the warning can say what to change */
+    const fb_solver *sv = &r->scene.source.solver;
+    const double h_cap = 2.0 * M_PI / (c->crank_speed * FB_H_AUTO_STEPS_PER_REV);
+    int how = FB_WARN_STEP_FIXED;
+    if (sv->h_mode == FB_STEP_AUTO || (sv->h_mode == FB_STEP_DEFAULT && c->clearance.mask))
+      how = sv->h >= h_cap * (1.0 - 1e-9) ? FB_WARN_STEP_AUTO_CAP : FB_WARN_STEP_AUTO_CONTACT;
     fb_warning w = {.kind = FB_WARN_UNDER_RESOLVED,
                     .value = p->h_omega_max,
                     .limit = FB_H_OMEGA_C_BOUND,
                     .ratio = M_PI / p->h_omega_max,
-                    .t = NAN};
+                    .t = NAN,
+                    .h = sv->h,
+                    .h_auto = how};
     snprintf(w.what, sizeof w.what, "%s", fb_joint_name(j));
     warn(m, &w);
   }

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "case.h"
+#include "resolution.h"
 
 const char *fb_stop_text(char *buf, size_t size, const fb_stop *s) {
   const char *engine = s->engine ? s->engine : "engine";
@@ -55,6 +56,41 @@ fb_stop_kind fb_stop_kind_parse(const char *word) {
   return FB_STOP_COUNT;
 }
 
+/* The under-resolved warning says what the user can change: with a fixed
+ * step, auto or a smaller step; with auto, why auto did not keep the bound
+ * (its contact estimate, resolution.h, fell short of the contact the run
+ * met) and the fixed step that would. */
+static void under_resolved_text(char *buf, size_t size, const fb_warning *w) {
+  /* the step that would have kept the bound at this contact's measured h omega_c */
+  const double h_fix = w->h > 0.0 && w->value > 0.0 ? w->h * w->limit / w->value : NAN;
+  int n = snprintf(buf, size,
+                   "under-resolved: h omega_c = %.3g at the %s joint exceeds %g (a contact "
+                   "lasts about %.2g steps); ",
+                   w->value, w->what[0] ? w->what : "clearance", w->limit, w->ratio);
+  if (n < 0 || (size_t)n >= size) return;
+  buf += n, size -= (size_t)n;
+  switch (w->h_auto) {
+    case FB_WARN_STEP_AUTO_CONTACT:
+      snprintf(buf, size,
+               "[solver] h_s = auto chose h = %.3g s for a force of 2 x the joint's largest "
+               "ideal reaction and the contacts were stiffer; set [solver] h_s = %.2g or "
+               "smaller to keep it below",
+               w->h, h_fix);
+      break;
+    case FB_WARN_STEP_AUTO_CAP:
+      snprintf(buf, size,
+               "[solver] h_s = auto ran at its cap of one revolution / %g steps (h = %.3g s), "
+               "its contact estimate asking for no smaller step; set [solver] h_s = %.2g or "
+               "smaller to keep it below",
+               FB_H_AUTO_STEPS_PER_REV, w->h, h_fix);
+      break;
+    default:
+      snprintf(buf, size, "set [solver] h_s = auto, or a fixed step of %.2g s or smaller, to keep it below",
+               h_fix);
+      break;
+  }
+}
+
 const char *fb_warning_text(char *buf, size_t size, const fb_warning *w) {
   switch (w->kind) {
     case FB_WARN_PENALTY_VALIDITY:
@@ -74,10 +110,7 @@ const char *fb_warning_text(char *buf, size_t size, const fb_warning *w) {
                w->value, w->limit);
       break;
     case FB_WARN_UNDER_RESOLVED:
-      snprintf(buf, size,
-               "under-resolved: h omega_c = %.3g at the %s joint exceeds %g (a contact lasts "
-               "about %.2g steps); [solver] h_s = auto keeps it below",
-               w->value, w->what[0] ? w->what : "clearance", w->limit, w->ratio);
+      under_resolved_text(buf, size, w);
       break;
     default: snprintf(buf, size, "warning (%d)", (int)w->kind); break;
   }

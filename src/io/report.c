@@ -248,7 +248,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "penetration_max_m", run->clearance_mask ? num(m->penetration_max_run)
                                                                   : json_null());
   json_t *warnings = json_array();
-  char wt[256];
+  char wt[512];
   for (int k = 0; k < m->warning_count; k++)
     json_array_append_new(warnings, json_string(fb_warning_text(wt, sizeof wt, &m->warnings[k])));
   json_object_set_new(o, "warnings", warnings);
@@ -539,7 +539,7 @@ static void print_paper_tables(FILE *f, const fb_run *r) {
   int warned = 0;
   for (int i = 0; i < r->n; i++) warned |= r->model[i].warning_count > 0;
   if (warned) {
-    char wt[256];
+    char wt[512];
     fprintf(f, "\nwarnings:\n");
     for (int i = 0; i < r->n; i++)
       for (int k = 0; k < r->model[i].warning_count; k++)

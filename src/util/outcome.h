@@ -50,6 +50,15 @@ typedef struct {
   double t;      /* time [s] where it applies, or NaN */
   char what[64]; /* the case key that lifts the limit (DRIVE_SATURATED); what the error is of
                     (ERROR_BOUND); the joint (UNDER_RESOLVED); else "" */
+  double h;      /* UNDER_RESOLVED: the step the run used [s]; else 0 */
+  int h_auto;    /* UNDER_RESOLVED: fb_warning_step, how that step was chosen; else 0 */
 } fb_warning;
+
+/* How the step of an UNDER_RESOLVED run was chosen (fb_warning.h_auto). */
+typedef enum {
+  FB_WARN_STEP_FIXED = 0,       /* [solver] h_s = a number */
+  FB_WARN_STEP_AUTO_CONTACT = 1, /* h_s = auto, set by the contact estimate (resolution.h) */
+  FB_WARN_STEP_AUTO_CAP = 2      /* h_s = auto, set by its steps-per-revolution cap */
+} fb_warning_step;
 
 #endif

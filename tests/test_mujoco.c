@@ -16,6 +16,8 @@
  * same equations as the reference (minimal coordinates, rk8pd at 1e-10). */
 #include <string.h>
 
+#include <jansson.h>
+
 #include "casefile.h"
 #include "effective_mass.h"
 #include "engine.h"
@@ -23,6 +25,7 @@
 #include "invdyn.h"
 #include "mujoco_scene.h"
 #include "outcome_text.h"
+#include "report.h"
 #include "run.h"
 
 /* the issue's acceptance bound on peak angular velocity at the default step
@@ -183,6 +186,31 @@ static void test_clearance_impact_matches_reference(void **state) {
   assert_true(p->mass_eff_min >= lo * (1.0 - EFFECTIVE_MASS_REL_TOL));
   assert_true(p->mass_eff_max <= hi * (1.0 + EFFECTIVE_MASS_REL_TOL));
   assert_true(isnan(p->erp_max));
+  /* MuJoCo has no ERP/CFM and maps nothing: its law is an applied force.
+   * summary.json keeps the contact keys with null figures and says so in
+   * `mapping`; the printed table shows "-", never "nan" */
+  json_t *sum = fb_report_summary_json(&r, NULL);
+  json_t *c0 = json_array_get(json_object_get(json_array_get(json_object_get(sum, "models"), 0),
+                                              "contact"), 0);
+  assert_non_null(c0);
+  assert_true(json_is_null(json_object_get(c0, "erp_max")));
+  assert_true(json_is_null(json_object_get(c0, "cfm_min")));
+  assert_string_equal(json_string_value(json_object_get(c0, "mapping")), "none (applied force)");
+  assert_true(json_is_real(json_object_get(c0, "h_omega_c_max")));
+  json_decref(sum);
+  char *text = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&text, &len);
+  fb_report_print_table(f, &r);
+  fclose(f);
+  const char *row = strstr(text, "\nmujoco-clearance-impact    crank-coupler");
+  assert_non_null(row);
+  const char *eol = strchr(row + 1, '\n');
+  char line[256];
+  snprintf(line, sizeof line, "%.*s", (int)(eol ? eol - row - 1 : 200), row + 1);
+  if (strstr(line, "nan") || strstr(line, "matched") || !strstr(line, "none (applied force)"))
+    fail_msg("contact row: %s", line);
+  free(text);
   fb_run_free(&r);
 }
 

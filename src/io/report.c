@@ -120,6 +120,24 @@ static const fb_contact_law *model_law(const fb_run *r, const fb_model_result *m
   return &r->scene.law[row->law][j];
 }
 
+/* how model m's contact reaches its engine: ODE's mapping of the law into
+ * ERP/CFM (fb_mapping_name); MuJoCo's law is a generalised force through
+ * the passive-force hook and its native model MuJoCo's own solref contact,
+ * neither mapped; NULL where the engine keeps no provenance (reference) */
+static const char *model_mapping(const fb_run *r, const fb_model_result *m) {
+  if (!m->run.has_provenance) return NULL;
+  if (m->run.model->engine == FB_ENGINE_MUJOCO)
+    return m->run.collider == FB_COLLIDER_NATIVE ? "none (MuJoCo contact)" : "none (applied force)";
+  return fb_mapping_name(r->scene.mapping);
+}
+
+/* a figure of the printed tables: "-" where the engine has none (NaN) */
+static const char *figure_text(char *buf, size_t size, const char *fmt, double x) {
+  if (isfinite(x)) snprintf(buf, size, fmt, x);
+  else snprintf(buf, size, "-");
+  return buf;
+}
+
 /* summary.json's `contact`: one object per clearance joint (report.h) */
 static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
   json_t *arr = json_array();
@@ -129,7 +147,8 @@ static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
     json_t *o = fb_report_contact_law_json(j, law, r->scene.mapping);
     const fb_contact_provenance *p = &m->run.provenance[j];
     const int have = m->run.has_provenance && p->contact_steps > 0;
-    if (!m->run.has_provenance) json_object_set_new(o, "mapping", json_null());
+    const char *mapping = model_mapping(r, m);
+    json_object_set_new(o, "mapping", mapping ? json_string(mapping) : json_null());
     if (have && law->kind == FB_LAW_RESTITUTION) {
       const double z = fb_contact_law_zeta(law);
       json_object_set_new(o, "damping_n_s_m",
@@ -137,8 +156,9 @@ static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
                                     "max", 2.0 * z * sqrt(law->stiffness * p->mass_eff_max)));
     }
     json_object_set_new(o, "effective_mass_kg",
-                        have ? json_pack("{s:f,s:f}", "min", p->mass_eff_min, "max", p->mass_eff_max)
-                             : json_null());
+                        have && isfinite(p->mass_eff_min) && isfinite(p->mass_eff_max)
+                            ? json_pack("{s:f,s:f}", "min", p->mass_eff_min, "max", p->mass_eff_max)
+                            : json_null());
     json_object_set_new(o, "erp_max", have ? num(p->erp_max) : json_null());
     json_object_set_new(o, "cfm_min", have ? num(p->cfm_min) : json_null());
     json_object_set_new(o, "h_omega_c_max", have ? num(p->h_omega_max) : json_null());
@@ -160,7 +180,7 @@ static void print_contact(FILE *f, const fb_run *r) {
   fprintf(f, "\ncontact (per clearance joint; stiffness in N/m^n; m_eff, ERP, CFM and h omega_c = "
              "h sqrt(k / m_eff) over the run's contact steps; resolved: h omega_c <= %g):\n",
           FB_H_OMEGA_C_BOUND);
-  fprintf(f, "%-26s %-17s %-12s %-8s %12s %5s %19s %10s %10s %9s %s\n", "model", "joint", "law",
+  fprintf(f, "%-26s %-17s %-12s %-21s %12s %5s %19s %10s %10s %9s %s\n", "model", "joint", "law",
           "mapping", "stiffness", "n", "m_eff kg", "ERP max", "CFM min", "h omega_c", "resolved");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
@@ -171,14 +191,15 @@ static void print_contact(FILE *f, const fb_run *r) {
       const int have = m->run.has_provenance && p->contact_steps > 0;
       char mass[48] = "-", erp[24] = "-", cfm[24] = "-", hw[24] = "-";
       if (have) {
-        snprintf(mass, sizeof mass, "%.4g .. %.4g", p->mass_eff_min, p->mass_eff_max);
-        snprintf(erp, sizeof erp, "%.4g", p->erp_max);
-        snprintf(cfm, sizeof cfm, "%.3e", p->cfm_min);
-        snprintf(hw, sizeof hw, "%.3g", p->h_omega_max);
+        if (isfinite(p->mass_eff_min) && isfinite(p->mass_eff_max))
+          snprintf(mass, sizeof mass, "%.4g .. %.4g", p->mass_eff_min, p->mass_eff_max);
+        figure_text(erp, sizeof erp, "%.4g", p->erp_max);
+        figure_text(cfm, sizeof cfm, "%.3e", p->cfm_min);
+        figure_text(hw, sizeof hw, "%.3g", p->h_omega_max);
       }
-      fprintf(f, "%-26s %-17s %-12s %-8s %12.6g %5.3g %19s %10s %10s %9s %s\n", m->run.name,
-              fb_joint_name(j), fb_law_name(law->kind),
-              m->run.has_provenance ? fb_mapping_name(r->scene.mapping) : "-", law->stiffness,
+      const char *mapping = model_mapping(r, m);
+      fprintf(f, "%-26s %-17s %-12s %-21s %12.6g %5.3g %19s %10s %10s %9s %s\n", m->run.name,
+              fb_joint_name(j), fb_law_name(law->kind), mapping ? mapping : "-", law->stiffness,
               law->exponent, mass, erp, cfm, hw,
               !have ? "-" : (p->h_omega_max <= FB_H_OMEGA_C_BOUND ? "yes" : "no: under-resolved"));
     }

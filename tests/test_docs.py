@@ -6,6 +6,7 @@
   to a file tracked by git (so it exists in a fresh clone), and every
   #anchor to a heading of that file;
 - no tracked file points to the developer notes outside the repository;
+- a hard case whose comment says it is stable at h = X s sets h_s = X;
 - `fourbar --version` prints the project version;
 - `meson install` into a scratch DESTDIR gives a `fourbar` that finds its
   cases and baselines from any folder, with FOURBAR_*_DIR unset.
@@ -85,6 +86,18 @@ check(links >= 10, "README and docs link to each other (%d relative links)" % li
 readme = open(os.path.join(src, "README.md")).read()
 for page in ("docs/paper.md", "docs/contact.md", "docs/studies.md", "docs/keys.md", "docs/figures.md"):
     check("](%s" % page in readme, "README links to " + page)
+
+# ---- hard cases: a comment naming a step is true ------------------------------
+# a case file's comment that says it is stable "at h = X s" must set
+# [solver] h_s = X; the others run at the automatic step and say so
+import glob
+for f in sorted(glob.glob(os.path.join(src, "cases", "hard", "*.ini"))):
+    text = open(f).read()
+    comments = "".join(l for l in text.splitlines(True) if l.lstrip().startswith(";"))
+    for h in re.findall(r"stable at h = ([0-9.e+-]+) s", comments):
+        check(re.search(r"^\s*h_s\s*=\s*%s\s*$" % re.escape(h), text, re.M) is not None,
+              "%s: the comment says stable at h = %s s, the case does not set h_s = %s"
+              % (os.path.basename(f), h, h))
 
 # ---- nothing points outside the repository ----------------------------------
 notes = ["shared/" + n + ".md" for n in ("PAPER", "CONTACT", "DESIGN", "STYLE")]

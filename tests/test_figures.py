@@ -172,6 +172,11 @@ with tempfile.TemporaryDirectory() as tmp:
     for n in names:
         check("](%s)" % n in report, "report.md embeds " + n)
     check("fourbar run --out" in report, "report.md gives the command line")
+    # the parameters table names the mapping the ODE clearance models used
+    used = {c["mapping"] for m in summary["models"] if m["kind"] == "ode"
+            for c in m.get("contact", [])}
+    for u in used:
+        check("| mapping | %s | case |" % u in report, "report.md names the mapping used: " + u)
 
     out2 = os.path.join(tmp, "nofig")
     rc = subprocess.run([exe, "run", "--out", out2, "--no-figures", "--set", "run.revolutions=2"],

@@ -81,7 +81,7 @@ typedef struct {
   double exponent;           /* impact-law exponent n [-] */
   double damping;            /* impact-law maximum damping c_max [N s/m] */
   double damping_depth;      /* impact-law penetration of full damping d_max [m] */
-  int mapping;               /* fb_mapping: 0 secant, 1 tangent */
+  int mapping;               /* fb_mapping: 0 secant, 1 tangent, 2 matched */
   double friction;           /* Coulomb friction coefficient at the contact [-] */
   double penetration_limit;  /* stop a model beyond this penetration [m]; 0: the radial clearance */
   int penetration_unlimited; /* 1: no limit (penetration_limit_um = none); penetration_limit ignored */

@@ -745,7 +745,7 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
     fprintf(f, "| restitution law | cr = %g | case |\n| impact law | n = %g, c_max = %g N s/m, "
                "d_max = %g um | case |\n| mapping | %s | case |\n",
             c->clearance.restitution, c->clearance.exponent, c->clearance.damping,
-            c->clearance.damping_depth * 1e6, c->clearance.mapping ? "tangent" : "secant");
+            c->clearance.damping_depth * 1e6, fb_mapping_name((fb_mapping)c->clearance.mapping));
   }
   fprintf(f, "\n## Figures\n\n");
   if (n == 0) fprintf(f, "%s\n", figure_note ? figure_note : "No figures were drawn.");

@@ -663,6 +663,26 @@ static fb_status startup_figure(const fb_run *r, const char *dir, fb_figure_form
   return st;
 }
 
+/* contact_figure for every clearance joint of every model that has the
+ * window's metrics (startup 0: the steady window, spikes measured; 1: the
+ * start-up of a clearance model), each file name appended to names */
+static fb_status contact_figures(const fb_run *r, const char *dir, fb_figure_format fmt,
+                                 int startup, json_t *figs, char names[][128], int max, int *n,
+                                 fb_diag *diag) {
+  fb_status st = FB_OK;
+  for (int i = 0; i < r->n && st == FB_OK; i++) {
+    const fb_model_result *m = &r->model[i];
+    if (startup ? !(m->has_startup && m->run.clearance_mask) : !m->has_spikes) continue;
+    for (int j = 0; j < 4 && st == FB_OK; j++) {
+      if (!(m->run.series.contact_mask & (1 << j))) continue;
+      char file[128];
+      st = contact_figure(r, i, j, dir, fmt, figs, file, sizeof file, startup, diag);
+      if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s", file);
+    }
+  }
+  return st;
+}
+
 fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt, char names[][128],
                          int max, int *n, fb_diag *diag) {
   *n = 0;
@@ -672,30 +692,14 @@ fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt,
     st = kin_figure(r, dir, fmt, alpha, figs, diag);
     if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s.%s", alpha ? "alpha" : "omega", ext(fmt));
   }
-  for (int i = 0; i < r->n && st == FB_OK; i++) {
-    if (!r->model[i].has_spikes) continue;
-    for (int j = 0; j < 4 && st == FB_OK; j++) {
-      if (!(r->model[i].run.series.contact_mask & (1 << j))) continue;
-      char file[128];
-      st = contact_figure(r, i, j, dir, fmt, figs, file, sizeof file, 0, diag);
-      if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s", file);
-    }
-  }
+  if (st == FB_OK) st = contact_figures(r, dir, fmt, 0, figs, names, max, n, diag);
   /* the start-up: revolution 1 against log time, and each clearance model's
    * pin path and force over it */
   if (st == FB_OK) {
     st = startup_figure(r, dir, fmt, figs, diag);
     if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "startup.%s", ext(fmt));
   }
-  for (int i = 0; i < r->n && st == FB_OK; i++) {
-    if (!r->model[i].has_startup || !r->model[i].run.clearance_mask) continue;
-    for (int j = 0; j < 4 && st == FB_OK; j++) {
-      if (!(r->model[i].run.series.contact_mask & (1 << j))) continue;
-      char file[128];
-      st = contact_figure(r, i, j, dir, fmt, figs, file, sizeof file, 1, diag);
-      if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s", file);
-    }
-  }
+  if (st == FB_OK) st = contact_figures(r, dir, fmt, 1, figs, names, max, n, diag);
   if (st == FB_OK) {
     char path[4096];
     snprintf(path, sizeof path, "%s/figures.json", dir);

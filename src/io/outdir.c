@@ -12,6 +12,7 @@
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 /* ---- signal-time cleanup ------------------------------------------------------ */
@@ -50,8 +51,18 @@ static void remove_flat(const char *dir) {
   rmdir(dir);
 }
 
+/* a child (gnuplot) writing into a registered folder: ended first */
+static volatile pid_t child_pid;
+
+void fb_cleanup_child(pid_t pid) { child_pid = pid; }
+
 static void on_signal(int sig) {
   const pid_t me = getpid();
+  const pid_t child = child_pid;
+  if (child > 0) { /* it could otherwise write into the folder after it is removed */
+    kill(child, SIGKILL);
+    waitpid(child, NULL, 0);
+  }
   for (int k = 0; k < CLEANUP_SLOTS; k++) {
     if (!slots[k].used || slots[k].owner != me) continue;
     if (slots[k].is_dir) remove_flat(slots[k].path);
@@ -145,9 +156,11 @@ static fb_status resolve(const char *dir, char *abs, char *parent, char *base, f
   return FB_OK;
 }
 
-/* files a fourbar run writes; anything else in the folder is not ours */
+/* files a fourbar run writes; anything else in the folder is not ours. A
+ * dot-file is ours only by its exact name: .env, .git or .bashrc in a folder
+ * make it a user's folder, never a result folder. */
 static int ours(const char *name) {
-  if (name[0] == '.') return 1;
+  if (name[0] == '.') return strcmp(name, ".gnuplot.log") == 0;
   const char *dot = strrchr(name, '.');
   const char *known[] = {".csv", ".json", ".jsonl", ".svg", ".png", ".md", ".log", NULL};
   for (int k = 0; dot && known[k]; k++)
@@ -155,77 +168,166 @@ static int ours(const char *name) {
   return 0;
 }
 
-/* removes leftovers of a killed writer; checks the target may be replaced */
+/* 1 when text[0..n) is a decimal number > 0 (a PID as fourbar writes it) */
+static long pid_in(const char *text, size_t n) {
+  if (n == 0 || n > 9 || text[0] == '0') return 0;
+  long v = 0;
+  for (size_t k = 0; k < n; k++) {
+    if (text[k] < '0' || text[k] > '9') return 0;
+    v = v * 10 + (text[k] - '0');
+  }
+  return v;
+}
+
+static int pid_gone(long pid) { return pid > 0 && kill((pid_t)pid, 0) != 0 && errno == ESRCH; }
+
+/* The PID in a temporary file's name when the name has exactly a form this
+ * program writes, else 0:
+ *   <result file>.tmp.<pid>.XXXXXX  (fileio.c: mkstemp's six characters)
+ *   .figure.tmp.<pid>.<serial>.svg|png  (figures.c: gnuplot's output)
+ * A user's file that merely contains ".tmp.<number>." is none of these. */
+long fb_outdir_temp_pid(const char *name) {
+  const size_t n = strlen(name);
+  if (strncmp(name, ".figure.tmp.", 12) == 0) {
+    const char *p = name + 12, *d1 = strchr(p, '.');
+    const char *d2 = d1 ? strchr(d1 + 1, '.') : NULL;
+    if (!d2 || (strcmp(d2, ".svg") != 0 && strcmp(d2, ".png") != 0)) return 0;
+    if (!pid_in(d1 + 1, (size_t)(d2 - d1 - 1)) && strncmp(d1 + 1, "0.", 2) != 0) return 0;
+    return pid_in(p, (size_t)(d1 - p));
+  }
+  if (n < 7 || name[n - 7] != '.') return 0; /* ".XXXXXX" */
+  for (size_t k = n - 6; k < n; k++)
+    if (!((name[k] >= '0' && name[k] <= '9') || (name[k] >= 'a' && name[k] <= 'z') ||
+          (name[k] >= 'A' && name[k] <= 'Z')))
+      return 0;
+  /* back over the PID to ".tmp." */
+  size_t e = n - 7, b = e;
+  while (b > 0 && name[b - 1] >= '0' && name[b - 1] <= '9') b--;
+  if (b < 5 || strncmp(name + b - 5, ".tmp.", 5) != 0) return 0;
+  char result[NAME_MAX + 1];
+  snprintf(result, sizeof result, "%.*s", (int)(b - 5), name);
+  if (!result[0] || result[0] == '.' || !ours(result)) return 0;
+  return pid_in(name + b, e - b);
+}
+
+/* 1 when name is .<base>.<kind>.<pid> exactly (a staging or old folder of
+ * this output folder), with *pid set */
+static int beside_name(const char *name, const char *base, const char *kind, long *pid) {
+  char prefix[NAME_MAX + 32];
+  snprintf(prefix, sizeof prefix, ".%s.%s.", base, kind);
+  const size_t l = strlen(prefix);
+  if (strncmp(name, prefix, l) != 0) return 0;
+  *pid = pid_in(name + l, strlen(name + l));
+  return *pid > 0;
+}
+
+/* Checks the target may be used (replaced, with replace = 1), then removes
+ * what a killed writer left: staging and old folders beside the target and
+ * temporary files in it, each only when its name has this program's exact
+ * form and the process named in it is gone. Nothing is removed from a folder
+ * that is refused. */
 static fb_status clean_and_check(const fb_outdir *o, const char *parent, const char *base,
                                  int replace, fb_diag *diag) {
-  char prefix[NAME_MAX + 32];
-  DIR *d = opendir(parent);
+  DIR *d = opendir(o->target);
+  if (!d && errno != ENOENT)
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot use as an output folder: %s", o->target,
+                       errno == ENOTDIR ? "not a folder" : strerror(errno));
   if (d) {
+    int visible = 0, summary = 0, foreign = 0;
+    char foreign_name[NAME_MAX + 1] = "";
     struct dirent *e;
     while ((e = readdir(d))) {
-      const char *kinds[2] = {"staging", "old"};
-      for (int k = 0; k < 2; k++) {
-        snprintf(prefix, sizeof prefix, ".%s.%s.", base, kinds[k]);
-        if (strncmp(e->d_name, prefix, strlen(prefix)) != 0) continue;
-        char path[FB_OUTDIR_PATH + NAME_MAX + 2];
-        snprintf(path, sizeof path, "%s/%s", parent, e->d_name);
-        remove_flat(path);
+      if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
+      if (fb_outdir_temp_pid(e->d_name)) continue; /* ours, removed below if its writer is gone */
+      char path[FB_OUTDIR_PATH + NAME_MAX + 2];
+      snprintf(path, sizeof path, "%s/%s", o->target, e->d_name);
+      struct stat sb;
+      if (e->d_name[0] != '.') visible++;
+      if (strcmp(e->d_name, "summary.json") == 0) summary = 1;
+      if (lstat(path, &sb) != 0 || !S_ISREG(sb.st_mode) || !ours(e->d_name)) {
+        if (!foreign++) snprintf(foreign_name, sizeof foreign_name, "%s", e->d_name);
       }
+    }
+    if (replace && (foreign || (visible && !summary))) {
+      closedir(d);
+      return fb_diag_set(diag, FB_ERR_IO, "%s: holds '%s'%s: not a fourbar run's result folder, "
+                         "so it will not be replaced; choose another --out", o->target,
+                         foreign ? foreign_name : "files",
+                         foreign ? ", which a fourbar run does not write" : " but no summary.json");
+    }
+    rewinddir(d);
+    while ((e = readdir(d))) {
+      const long pid = fb_outdir_temp_pid(e->d_name);
+      if (!pid_gone(pid)) continue;
+      char path[FB_OUTDIR_PATH + NAME_MAX + 2];
+      snprintf(path, sizeof path, "%s/%s", o->target, e->d_name);
+      struct stat sb;
+      if (lstat(path, &sb) == 0 && S_ISREG(sb.st_mode)) unlink(path);
     }
     closedir(d);
   }
-  d = opendir(o->target);
-  if (!d) {
-    if (errno == ENOENT) return FB_OK;
-    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot use as an output folder: %s", o->target,
-                       errno == ENOTDIR ? "not a folder" : strerror(errno));
-  }
-  int visible = 0, summary = 0, foreign = 0;
-  char foreign_name[NAME_MAX + 1] = "";
-  struct dirent *e;
-  while ((e = readdir(d))) {
-    if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
-    char path[FB_OUTDIR_PATH + NAME_MAX + 2];
-    snprintf(path, sizeof path, "%s/%s", o->target, e->d_name);
-    const char *t = strstr(e->d_name, ".tmp.");
-    if (t) { /* a temporary file: removed when its writer (named in it) is gone */
-      char *end;
-      const long pid = strtol(t + 5, &end, 10);
-      if (end != t + 5 && *end == '.' && pid > 0 && kill((pid_t)pid, 0) != 0 && errno == ESRCH)
-        unlink(path);
-      continue;
+  d = opendir(parent);
+  if (d) {
+    struct dirent *e;
+    while ((e = readdir(d))) {
+      long pid = 0;
+      if (!beside_name(e->d_name, base, "staging", &pid) && !beside_name(e->d_name, base, "old", &pid))
+        continue;
+      if (!pid_gone(pid)) continue; /* a live writer's (it holds the lock: never ours to take) */
+      char path[FB_OUTDIR_PATH + NAME_MAX + 2];
+      snprintf(path, sizeof path, "%s/%s", parent, e->d_name);
+      remove_flat(path);
     }
-    struct stat sb;
-    if (e->d_name[0] != '.') visible++;
-    if (strcmp(e->d_name, "summary.json") == 0) summary = 1;
-    if (lstat(path, &sb) != 0 || !S_ISREG(sb.st_mode) || !ours(e->d_name)) {
-      if (!foreign++) snprintf(foreign_name, sizeof foreign_name, "%s", e->d_name);
-    }
+    closedir(d);
   }
-  closedir(d);
-  if (replace && (foreign || (visible && !summary)))
-    return fb_diag_set(diag, FB_ERR_IO, "%s: holds '%s'%s: not a fourbar run's result folder, "
-                       "so it will not be replaced; choose another --out", o->target,
-                       foreign ? foreign_name : "files",
-                       foreign ? ", which a fourbar run does not write" : " but no summary.json");
   return FB_OK;
 }
 
-fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char *tag,
-                         fb_diag *diag) {
-  memset(o, 0, sizeof *o);
-  o->lock_fd = -1;
-  char parent[FB_OUTDIR_PATH], base[NAME_MAX + 1];
-  fb_status st = resolve(dir, o->target, parent, base, diag);
-  if (st != FB_OK) return st;
-  if (snprintf(o->lock, sizeof o->lock, "%s/.%s%s%s.lock", parent, base, tag ? "." : "",
-               tag ? tag : "") >= (int)sizeof o->lock)
-    return fb_diag_set(diag, FB_ERR_IO, "%s: path too long", dir);
-  int fd = open(o->lock, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+/* Refuses, before any work, an output folder that cannot be committed: a
+ * symbolic link to nothing, a mount point or the current folder (or one
+ * above it) for a writer that replaces the folder whole. */
+static fb_status check_target(const char *dir, const char *target, const char *parent, int replace,
+                              fb_diag *diag) {
+  struct stat sb, pb;
+  char given[FB_OUTDIR_PATH];
+  snprintf(given, sizeof given, "%s", dir);
+  size_t l = strlen(given);
+  while (l > 1 && given[l - 1] == '/') given[--l] = '\0';
+  if (lstat(given, &sb) == 0 && S_ISLNK(sb.st_mode) && stat(given, &pb) != 0) {
+    char to[PATH_MAX];
+    const ssize_t n = readlink(given, to, sizeof to - 1);
+    to[n > 0 ? n : 0] = '\0';
+    return fb_diag_set(diag, FB_ERR_IO, "%s: a symbolic link to '%s', which does not exist; "
+                       "create that folder or choose another --out", dir, to);
+  }
+  if (stat(target, &sb) != 0) return FB_OK;
+  if (!S_ISDIR(sb.st_mode))
+    return fb_diag_set(diag, FB_ERR_IO, "%s: not a folder; choose another --out", dir);
+  if (!replace) return FB_OK;
+  if (stat(parent, &pb) == 0 && pb.st_dev != sb.st_dev)
+    return fb_diag_set(diag, FB_ERR_IO, "%s: a mount point; a run replaces its output folder whole, "
+                       "which cannot be done to a mount point: give a folder inside it, e.g. "
+                       "--out %s/run", dir, dir);
+  char cwd[PATH_MAX];
+  if (getcwd(cwd, sizeof cwd)) {
+    const size_t t = strlen(target);
+    if (strncmp(cwd, target, t) == 0 && (cwd[t] == '\0' || cwd[t] == '/'))
+      return fb_diag_set(diag, FB_ERR_IO, "%s: the current folder%s; a run replaces its output "
+                         "folder whole, which would leave this shell in a removed folder: give a "
+                         "new folder, e.g. --out %s/run", dir, cwd[t] ? " is inside it" : "",
+                         strcmp(dir, ".") == 0 ? "." : dir);
+  }
+  return FB_OK;
+}
+
+/* takes an advisory lock on path (exclusive or shared), writing this PID */
+static fb_status take_lock(const char *path, const char *dir, int exclusive, int *out_fd,
+                           fb_diag *diag) {
+  int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0)
-    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create output folder lock %s: %s", dir, o->lock,
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create output folder lock %s: %s", dir, path,
                        strerror(errno));
-  if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+  if (flock(fd, (exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0) {
     const int e = errno;
     char pid[32] = "";
     ssize_t n = pread(fd, pid, sizeof pid - 1, 0);
@@ -236,14 +338,44 @@ fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char 
       return fb_diag_set(diag, FB_ERR_IO, "%s: another fourbar process (PID %s) is writing this "
                          "output folder; wait for it to finish or choose another --out", dir,
                          pid[0] ? pid : "unknown");
-    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot lock %s: %s", dir, o->lock, strerror(e));
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot lock %s: %s", dir, path, strerror(e));
   }
   char pid[32];
   const int n = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
   if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)n, 0) != n) {
     /* the lock holds; only the PID in the message of a second writer is lost */
   }
-  o->lock_fd = fd;
+  *out_fd = fd;
+  return FB_OK;
+}
+
+fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char *tag,
+                         fb_diag *diag) {
+  memset(o, 0, sizeof *o);
+  o->lock_fd = -1;
+  o->tag_fd = -1;
+  char parent[FB_OUTDIR_PATH], base[NAME_MAX + 1];
+  fb_status st = resolve(dir, o->target, parent, base, diag);
+  if (st != FB_OK) return st;
+  st = check_target(dir, o->target, parent, replace, diag);
+  if (st != FB_OK) return st;
+  /* every writer of the folder takes .<name>.lock: a whole-folder writer
+   * (run, sweep, merge) exclusively, a writer of one part (a sweep shard)
+   * shared, plus .<name>.<tag>.lock exclusively for its part; so a run and
+   * a shard sweep never write one folder at the same time */
+  if (snprintf(o->lock, sizeof o->lock, "%s/.%s.lock", parent, base) >= (int)sizeof o->lock)
+    return fb_diag_set(diag, FB_ERR_IO, "%s: path too long", dir);
+  st = take_lock(o->lock, dir, tag == NULL, &o->lock_fd, diag);
+  if (st != FB_OK) return st;
+  if (tag) {
+    char tag_lock[FB_OUTDIR_PATH + NAME_MAX + 16];
+    snprintf(tag_lock, sizeof tag_lock, "%s/.%s.%s.lock", parent, base, tag);
+    st = take_lock(tag_lock, dir, 1, &o->tag_fd, diag);
+    if (st != FB_OK) {
+      fb_outdir_release(o);
+      return st;
+    }
+  }
   st = clean_and_check(o, parent, base, replace, diag);
   if (st == FB_OK && !replace) st = mkdir_p(o->target, diag);
   if (st != FB_OK) fb_outdir_release(o);
@@ -303,6 +435,11 @@ void fb_outdir_release(fb_outdir *o) {
     remove_flat(o->stage);
     fb_cleanup_forget(stage_slot);
     o->stage[0] = '\0';
+  }
+  if (o->tag_fd >= 0) {
+    flock(o->tag_fd, LOCK_UN);
+    close(o->tag_fd);
+    o->tag_fd = -1;
   }
   if (o->lock_fd >= 0) {
     flock(o->lock_fd, LOCK_UN);

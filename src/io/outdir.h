@@ -4,21 +4,29 @@
  * A writer first locks the folder: an advisory lock (flock(2)) on the file
  * .<name>.lock beside the folder, which also holds the writer's PID, so a
  * second writer fails at once with a message naming the folder and the
- * holder. While holding the lock it removes what a killed writer left
- * behind (staging folders .<name>.staging.<pid> beside the folder, and
- * temporary files *.tmp.<pid>.* inside it whose process is gone).
+ * holder. Every writer takes that lock: a whole-folder writer (run, sweep,
+ * merge) exclusively, a writer of one part (a sweep shard) shared, plus a
+ * lock of its own part. While holding the lock it removes what a killed
+ * writer left behind: staging folders .<name>.staging.<pid> beside the
+ * folder, and temporary files inside it, each only when its name has exactly
+ * the form this program writes (fb_outdir_temp_pid) and its process is gone.
+ * A folder that is refused loses nothing.
  *
  * A run then writes its whole result set into a staging folder beside the
  * target and swaps it in at the end (renameat2 RENAME_EXCHANGE, then the old
  * set is removed): until the swap the old set stays whole, after it only the
  * new set is there. A folder that is not a fourbar result folder (it holds
- * a subfolder, or files but no summary.json) is never replaced.
+ * a subfolder, a dot-file other than .gnuplot.log, a file of another kind,
+ * or files but no summary.json) is never replaced; neither is a mount point
+ * or the current folder, and a symbolic link to nothing is refused.
  *
  * On SIGINT, SIGTERM and SIGHUP the staging folder and registered temporary
  * files of this process are removed (async-signal-safe code only), then the
  * signal takes its default action. */
 #ifndef FB_OUTDIR_H
 #define FB_OUTDIR_H
+
+#include <sys/types.h>
 
 #include "status.h"
 
@@ -29,7 +37,8 @@ typedef struct {
   char target[FB_OUTDIR_PATH]; /* the folder as the user named it, absolute */
   char stage[FB_OUTDIR_PATH];  /* staging folder beside it ("" before fb_outdir_stage) */
   char lock[FB_OUTDIR_PATH];   /* lock file beside it */
-  int lock_fd;                 /* open lock file, -1 when not held */
+  int lock_fd;                 /* open lock file .<name>.lock, -1 when not held */
+  int tag_fd;                  /* open lock file .<name>.<tag>.lock of a part, -1 for none */
 } fb_outdir;
 
 /* Creates the parent folders of dir, takes the lock and cleans a killed
@@ -42,6 +51,10 @@ typedef struct {
  * process holds the lock). */
 fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char *tag,
                          fb_diag *diag);
+
+/* The PID named in a temporary file name of this program's exact forms
+ * (<result file>.tmp.<pid>.XXXXXX, .figure.tmp.<pid>.<n>.svg|png), else 0. */
+long fb_outdir_temp_pid(const char *name);
 
 /* Creates the staging folder (o->stage) and registers it for removal on a
  * signal. Errors: FB_ERR_IO naming it. */
@@ -61,5 +74,10 @@ int fb_cleanup_add(const char *path, int is_dir);
 
 /* Forgets a slot (the file was renamed into place or removed). */
 void fb_cleanup_forget(int slot);
+
+/* Names the child process (gnuplot) writing into a registered folder, 0 for
+ * none: on a signal it is killed and reaped before the folder is removed, so
+ * it neither writes into a removed folder nor outlives this process. */
+void fb_cleanup_child(pid_t pid);
 
 #endif

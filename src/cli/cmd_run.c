@@ -107,6 +107,8 @@ int fb_cmd_run(int argc, char **argv) {
   char prev_summary[4200];
   snprintf(prev_summary, sizeof prev_summary, "%s/summary.json", dir);
   const int replaces = stat(prev_summary, &prev) == 0;
+  /* figures need gnuplot: found out before the simulation, not after it */
+  if (figures && fb_figures_check_gnuplot(&diag) != FB_OK) return fb_cli_fail("run", 1, "%s", diag.msg);
   /* one writer per folder; the whole set goes to a staging folder beside it,
    * swapped in at the end (outdir.h): both checked before any simulation */
   static fb_outdir od;
@@ -130,14 +132,17 @@ int fb_cmd_run(int argc, char **argv) {
     fb_outdir_release(&od);
     return fb_cli_fail("run", 1, "%s", diag.msg);
   }
-  /* figures and report.md: a figure failure is reported, the results stand */
+  /* figures and report.md belong to the set: a set with a figure or the
+   * report missing or damaged (a full disk) is not committed, and the
+   * folder keeps the set it had */
   char names[64][128];
   int nfig = 0;
   char note[1200] = "Figures were not requested (--no-figures).";
   if (figures && fb_figures_run(&r, od.stage, fmt, names, 64, &nfig, &diag) != FB_OK) {
-    fprintf(stderr, "fourbar run: warning: %s\n", diag.msg);
-    snprintf(note, sizeof note, "Figures failed: %s", diag.msg);
-    nfig = 0;
+    fb_run_free(&r);
+    fb_outdir_release(&od);
+    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
+                       dir);
   }
   /* argv[0] is "fourbar run" (main.c); the rest quoted for a POSIX shell */
   char command[8192];
@@ -149,8 +154,12 @@ int fb_cmd_run(int argc, char **argv) {
       break;
     }
   }
-  if (fb_report_write_markdown(od.stage, &r, case_path, command, names, nfig, note, &diag) != FB_OK)
-    fprintf(stderr, "fourbar run: warning: %s\n", diag.msg);
+  if (fb_report_write_markdown(od.stage, &r, case_path, command, names, nfig, note, &diag) != FB_OK) {
+    fb_run_free(&r);
+    fb_outdir_release(&od);
+    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
+                       dir);
+  }
   st = fb_outdir_commit(&od, &diag);
   fb_outdir_release(&od);
   if (st != FB_OK) {

@@ -18,6 +18,7 @@ extern char **environ;
 
 #include "bench.h"
 #include "fileio.h"
+#include "outdir.h"
 #include "start.h"
 #include "study.h"
 #include "casefile.h"
@@ -95,6 +96,7 @@ static fb_status plot_open(plot *pl, const char *dir, const char *name, fb_figur
   char *argv[] = {"gnuplot", NULL};
   int rc = posix_spawnp(&pl->pid, "gnuplot", &fa, NULL, argv, environ);
   posix_spawn_file_actions_destroy(&fa);
+  if (rc == 0) fb_cleanup_child(pl->pid);
   close(fds[0]);
   close(logfd);
   if (rc != 0 || !(pl->p = fdopen(fds[1], "w"))) {
@@ -113,6 +115,45 @@ static fb_status plot_open(plot *pl, const char *dir, const char *name, fb_figur
   return FB_OK;
 }
 
+/* 1 when the figure file at path is whole: flushed to the disk without error,
+ * not empty, and ending as its format ends (an SVG's closing </svg> tag, a
+ * PNG's IEND chunk); else 0 with the reason in why */
+static int figure_whole(const char *path, char *why, size_t size) {
+  int fd = open(path, O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    snprintf(why, size, "cannot open it: %s", strerror(errno));
+    return 0;
+  }
+  struct stat sb;
+  unsigned char tail[64];
+  ssize_t n = 0;
+  int ok = fstat(fd, &sb) == 0;
+  if (!ok) snprintf(why, size, "cannot stat it: %s", strerror(errno));
+  else if (fsync(fd) != 0 && errno != EINVAL) {
+    snprintf(why, size, "cannot flush it: %s", strerror(errno));
+    ok = 0;
+  } else if (sb.st_size == 0) {
+    snprintf(why, size, "it is empty");
+    ok = 0;
+  } else {
+    const off_t from = sb.st_size > (off_t)sizeof tail ? sb.st_size - (off_t)sizeof tail : 0;
+    n = pread(fd, tail, sizeof tail, from);
+  }
+  close(fd);
+  if (!ok) return 0;
+  const size_t l = strlen(path);
+  if (l > 4 && strcmp(path + l - 4, ".png") == 0) {
+    static const unsigned char iend[8] = {'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+    if (n >= 8 && memcmp(tail + n - 8, iend, 8) == 0) return 1;
+    snprintf(why, size, "%lld bytes without the PNG end chunk", (long long)sb.st_size);
+    return 0;
+  }
+  while (n > 0 && (tail[n - 1] == '\n' || tail[n - 1] == ' ' || tail[n - 1] == '\r')) n--;
+  if (n >= 6 && memcmp(tail + n - 6, "</svg>", 6) == 0) return 1;
+  snprintf(why, size, "%lld bytes without the closing </svg>", (long long)sb.st_size);
+  return 0;
+}
+
 static fb_status plot_close(plot *pl, fb_diag *diag) {
   fprintf(pl->p, "unset output\nexit\n");
   int bad = fclose(pl->p) != 0; /* EPIPE when gnuplot stopped early (SIGPIPE is ignored) */
@@ -120,10 +161,19 @@ static fb_status plot_close(plot *pl, fb_diag *diag) {
   int status = 0;
   while (waitpid(pl->pid, &status, 0) < 0 && errno == EINTR) {
   }
+  fb_cleanup_child(0);
   const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   if (bad || rc != 0 || access(pl->tmp, F_OK) != 0) {
     unlink(pl->tmp);
     return fb_diag_set(diag, FB_ERR_IO, "%s: gnuplot failed (exit %d); see %s", pl->path, rc, pl->log);
+  }
+  /* gnuplot exits 0 when its output could not be written (a full disk):
+   * the file itself must be whole before it is renamed into place */
+  char why[160];
+  if (!figure_whole(pl->tmp, why, sizeof why)) {
+    unlink(pl->tmp);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: gnuplot wrote a damaged figure (%s; a full disk?); "
+                       "see %s", pl->path, why, pl->log);
   }
   if (rename(pl->tmp, pl->path) != 0) {
     unlink(pl->tmp);
@@ -133,6 +183,20 @@ static fb_status plot_close(plot *pl, fb_diag *diag) {
   struct stat lst;
   if (stat(pl->log, &lst) == 0 && lst.st_size == 0) unlink(pl->log);
   return FB_OK;
+}
+
+fb_status fb_figures_check_gnuplot(fb_diag *diag) {
+  const char *path = getenv("PATH");
+  char buf[4096];
+  snprintf(buf, sizeof buf, "%s", path && *path ? path : "/usr/bin:/bin");
+  char *save = NULL;
+  for (char *d = strtok_r(buf, ":", &save); d; d = strtok_r(NULL, ":", &save)) {
+    char exe[4200];
+    snprintf(exe, sizeof exe, "%s/gnuplot", *d ? d : ".");
+    if (access(exe, X_OK) == 0) return FB_OK;
+  }
+  return fb_diag_set(diag, FB_ERR_IO, "gnuplot is not on PATH, and the figures need it: apt-get "
+                     "install gnuplot-nox, or pass --no-figures");
 }
 
 /* crank angle in degrees in [0, 360) */

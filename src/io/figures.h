@@ -29,6 +29,11 @@ typedef enum { FB_FIGURE_SVG = 0, FB_FIGURE_PNG = 1 } fb_figure_format;
 fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt, char names[][128],
                          int max, int *n, fb_diag *diag);
 
+/* Checks, before any work, that gnuplot can be started (an executable
+ * gnuplot on PATH). Errors: FB_ERR_IO saying how to install it or to pass
+ * --no-figures. */
+fb_status fb_figures_check_gnuplot(fb_diag *diag);
+
 /* Draws penalty.<ext>: force, contact stiffness, penalty and approach against
  * crank speed for both joints (the paper's Figures 2 to 4), from columns of
  * equal length n: speed [rpm], then per joint (2) force [N], stiffness [N/m],

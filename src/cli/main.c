@@ -1,4 +1,5 @@
 /* fourbar: the command-line interface. Dispatch only; no physics here. */
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -46,7 +47,28 @@ int fb_cmd_keys(int argc, char **argv) {
   return 0;
 }
 
+static int dispatch(int argc, char **argv);
+
+/* Output lost without notice is an error: whatever a command printed must
+ * reach standard output (a full disk, /dev/full, a closed pipe). */
+static int stdout_written(const char *cmd, int rc) {
+  errno = 0;
+  if (fflush(stdout) == 0 && !ferror(stdout)) return rc;
+  const int e = errno;
+  if (e == EPIPE) return rc ? rc : 1; /* the reader stopped reading (| head): it knows */
+  fprintf(stderr, "fourbar %s: cannot write to standard output: %s\n", cmd,
+          e ? strerror(e) : "write error");
+  return rc ? rc : 1;
+}
+
 int main(int argc, char **argv) {
+  const char *cmd = argc > 1 ? argv[1] : "";
+  char name[64];
+  snprintf(name, sizeof name, "%s", cmd);
+  return stdout_written(name, dispatch(argc, argv));
+}
+
+static int dispatch(int argc, char **argv) {
   if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
       strcmp(argv[1], "help") == 0) {
     fputs(main_help, argc < 2 ? stderr : stdout);

@@ -26,8 +26,8 @@ plot = x' noenhanced; system "touch $tmp/PWNED_PLOT"; set title 'y
 key = drive.speed_rpm
 values = 800, 1000
 EOS
-"$exe" sweep "$tmp/inject_plot.ini" --out "$tmp/s_plot" >/dev/null 2>&1
-ok '[ ! -e "$tmp/PWNED_PLOT" ] && [ -s "$tmp/s_plot/points.csv" ]' "1: a study's plot value never runs a command"
+"$exe" sweep "$tmp/inject_plot.ini" --out "$tmp/s_plot" >/dev/null 2>"$tmp/err"
+ok '[ ! -e "$tmp/PWNED_PLOT" ] && grep -q "names no metric" "$tmp/err"' "1: a study's plot value never runs a command (refused: it names no metric)"
 # a study name with a shell substitution: refused as a name
 sed "s|^name = inject|name = '\$(touch $tmp/PWNED_NAME)'|" "$tmp/inject_plot.ini" > "$tmp/inject_name.ini"
 ok '! "$exe" sweep "$tmp/inject_name.ini" --out "$tmp/s_name" 2>"$tmp/err" && [ ! -e "$tmp/PWNED_NAME" ] && grep -q "name = " "$tmp/err"' "1: a study name with \$( ) is refused, nothing runs"

@@ -1,5 +1,6 @@
 #include "check.h"
 
+#include "model_table.h"
 #include "resolution.h"
 #include "tolerance.h"
 
@@ -37,6 +38,44 @@ int fb_check_metrics(const fb_run *r, fb_metric *out, int max) {
     }
   }
   return n;
+}
+
+int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
+  const size_t l = strlen(name);
+  const int prefix = l && name[l - 1] == '*';
+  const size_t cmp = prefix ? l - 1 : l;
+  static const char *groups[3] = {"coupler", "follower", "spikes"};
+  static const char *peak_keys[] = {
+#define FB_NAME_PEAK(field, key) key,
+      FB_BODY_PEAK_KEYS(FB_NAME_PEAK)
+#undef FB_NAME_PEAK
+  };
+  static const char *spike_keys[] = {
+#define FB_NAME_SPIKE(field, key) key,
+      FB_SPIKE_KEYS(FB_NAME_SPIKE)
+#undef FB_NAME_SPIKE
+  };
+  const int np = (int)(sizeof peak_keys / sizeof peak_keys[0]);
+  const int ns = (int)(sizeof spike_keys / sizeof spike_keys[0]);
+  for (int m = 0; m < fb_model_count; m++)
+    for (int g = 0; g < 3; g++)
+      for (int k = 0; k < (g < 2 ? np : ns); k++) {
+        char full[160];
+        snprintf(full, sizeof full, "%s.%s.%s", fb_models[m].name, groups[g],
+                 g < 2 ? peak_keys[k] : spike_keys[k]);
+        if (prefix ? strncmp(full, name, cmp) == 0 : strcmp(full, name) == 0) return 1;
+      }
+  if (known) {
+    /* the groups and keys, for the message */
+    size_t w = (size_t)snprintf(known, size, "group coupler or follower with key");
+    for (int k = 0; k < np && w < size; k++)
+      w += (size_t)snprintf(known + w, size - w, "%s %s", k ? "," : "", peak_keys[k]);
+    if (w < size) w += (size_t)snprintf(known + w, size - w, ", or group spikes with key");
+    for (int k = 0; k < ns && w < size; k++)
+      w += (size_t)snprintf(known + w, size - w, "%s %s", k ? "," : "", spike_keys[k]);
+    if (w < size) snprintf(known + w, size - w, "; models as in fourbar run --help");
+  }
+  return 0;
 }
 
 static fb_status run_metrics(fb_metric *out, int *n, const fb_case *c, fb_diag *diag) {

@@ -32,6 +32,12 @@ typedef struct {
 /* Collects the metrics of run r into out (at most max); returns the count. */
 int fb_check_metrics(const fb_run *r, fb_metric *out, int max);
 
+/* 1 when name is a metric some run can give (<model>.<group>.<key>, the
+ * names fb_check_metrics writes for every model of the table), or, ending in
+ * '*', a prefix of one; else 0 with the groups and keys listed in known
+ * (size bytes; may be NULL). */
+int fb_check_metric_name_ok(const char *name, char *known, size_t size);
+
 /* One baseline metric. */
 typedef struct {
   char name[128];

@@ -1,5 +1,6 @@
 #include "casefile.h"
 #include "fileio.h"
+#include "ini_lines.h"
 
 #include <errno.h>
 #include <ini.h>
@@ -353,9 +354,7 @@ typedef struct {
   entry e[MAX_ENTRIES];
   int n;
   const char *path;
-  int line;         /* line the reader returned last */
-  int too_long;     /* a line exceeded INI_MAX_LINE */
-  int nul_line;     /* first line holding a NUL byte, 0 for none */
+  fb_ini_lines *lines; /* the line reader: the line it returned last */
   const char *text; /* parse this text instead of the file (fb_casefile_load_text) */
   size_t text_size;
   fb_status status; /* first error seen by the handler */
@@ -393,41 +392,12 @@ static fb_status put_entry(load_ctx *c, const char *section, const char *key,
   return FB_OK;
 }
 
-/* inih reader that counts lines, so handler errors can name their line */
-typedef struct {
-  FILE *f;
-  load_ctx *ctx;
-} reader_state;
-
-static char *file_reader(char *str, int num, void *stream) {
-  reader_state *r = stream;
-  /* byte by byte: fgets would hide a NUL byte (the line would silently end
-   * there), which is refused with its line instead */
-  int k = 0, ch = EOF, nul = 0;
-  while (k < num - 1 && (ch = getc(r->f)) != EOF) {
-    if (ch == '\0') nul = 1;
-    str[k++] = ch ? (char)ch : ' ';
-    if (ch == '\n') break;
-  }
-  if (k == 0) return NULL;
-  str[k] = '\0';
-  r->ctx->line++;
-  if (nul && !r->ctx->nul_line) r->ctx->nul_line = r->ctx->line;
-  if (str[k - 1] != '\n' && !feof(r->f) && !r->ctx->too_long) r->ctx->too_long = r->ctx->line;
-  /* case files have no continuation lines: leading blanks are dropped, so an
-   * indented key line is a key line of its own (inih would otherwise append
-   * it to the previous key's value) */
-  const size_t lead = strspn(str, " \t");
-  if (lead) memmove(str, str + lead, (size_t)k - lead + 1);
-  return str;
-}
-
 static int on_ini_entry(void *user, const char *section, const char *name, const char *value) {
   load_ctx *c = user;
   if (c->status != FB_OK) return 1;
   char origin[512];
-  snprintf(origin, sizeof origin, "%s:%d", c->path, c->line);
-  c->status = put_entry(c, section, name, value, origin, c->line, 0);
+  snprintf(origin, sizeof origin, "%s:%d", c->path, c->lines->line);
+  c->status = put_entry(c, section, name, value, origin, c->lines->line, 0);
   return 1;
 }
 
@@ -1035,21 +1005,18 @@ static fb_status read_file_entries(load_ctx *top, const char *path, int depth, f
                                    strerror(errno));
     goto out;
   }
-  reader_state r = {f, c};
-  int rc = ini_parse_stream(file_reader, &r, on_ini_entry, c);
+  fb_ini_lines lines = {0};
+  lines.f = f;
+  c->lines = &lines;
+  int rc = ini_parse_stream(fb_ini_lines_read, &lines, on_ini_entry, c);
   fclose(f);
-  if (c->nul_line) {
-    st = fb_diag_set(diag, FB_ERR_PARSE, "%s:%d: a NUL byte in the line (a case file is text)",
-                     path, c->nul_line);
-    goto out;
-  }
   if (c->status != FB_OK) {
     st = c->status;
     goto out;
   }
-  if (c->too_long) {
-    st = fb_diag_set(diag, FB_ERR_PARSE, "%s:%d: line longer than %d characters", path,
-                     c->too_long, INI_MAX_LINE - 2);
+  if (lines.problem != FB_INI_LINE_OK) {
+    char msg[FB_DIAG_SIZE];
+    st = fb_diag_set(diag, FB_ERR_PARSE, "%s", fb_ini_lines_problem(&lines, path, msg, sizeof msg));
     goto out;
   }
   if (rc != 0) {

@@ -1,0 +1,121 @@
+#include "ini_lines.h"
+
+#include <string.h>
+
+/* copies a [section] name or key (up to '=', ']' or the end) without blanks */
+static void copy_word(char *dst, size_t size, const char *from, const char *stop) {
+  while (*from == ' ' || *from == '\t') from++;
+  size_t n = strcspn(from, stop);
+  while (n && (from[n - 1] == ' ' || from[n - 1] == '\t')) n--;
+  if (n >= size) n = size - 1;
+  memcpy(dst, from, n);
+  dst[n] = '\0';
+}
+
+/* 1 when what follows a header's ']' is blank or a comment */
+static int header_tail_ok(const char *p) {
+  while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') p++;
+  return *p == '\0' || *p == ';' || *p == '#';
+}
+
+char *fb_ini_lines_read(char *str, int num, void *state) {
+  fb_ini_lines *s = state;
+  if (s->problem != FB_INI_LINE_OK) return NULL;
+  /* byte by byte: fgets would hide a NUL byte (the line would silently end
+   * there) and does not end a line at a lone CR */
+  int k = 0, ch = EOF, nul = 0, ended = 0;
+  while ((ch = getc(s->f)) != EOF) {
+    if (ch == '\n') {
+      ended = 1;
+      break;
+    }
+    if (ch == '\r') {
+      const int next = getc(s->f);
+      if (next != '\n' && next != EOF) ungetc(next, s->f);
+      ended = 1;
+      break;
+    }
+    if (k < num - 2) {
+      if (ch == '\0') nul = 1;
+      str[k] = ch ? (char)ch : ' ';
+    }
+    k++;
+  }
+  if (k == 0 && !ended) return NULL; /* end of file */
+  s->line++;
+  const size_t kept = (size_t)(k < num - 2 ? k : num - 2);
+  const size_t lead0 = strspn(str, " \t");
+  const int comment = lead0 < kept && (str[lead0] == ';' || str[lead0] == '#');
+  if ((k > num - 2 || k > FB_INI_LINE_MAX) && comment) {
+    k = (int)kept; /* a long comment loses only comment text: kept whole as one line */
+    if (k > FB_INI_LINE_MAX) k = FB_INI_LINE_MAX;
+  } else if (k > num - 2 || k > FB_INI_LINE_MAX) {
+    s->problem = FB_INI_LINE_TOO_LONG;
+    s->problem_line = s->line;
+    s->length = k;
+    return NULL;
+  }
+  if (nul) {
+    s->problem = FB_INI_LINE_NUL;
+    s->problem_line = s->line;
+    return NULL;
+  }
+  str[k] = '\n';
+  str[k + 1] = '\0';
+  const size_t lead = strspn(str, " \t");
+  const char *body = str + lead;
+  if (*body == '[') {
+    const char *close = strchr(body, ']');
+    if (close && !header_tail_ok(close + 1)) {
+      s->problem = FB_INI_LINE_BAD_HEADER;
+      s->problem_line = s->line;
+      return NULL;
+    }
+    copy_word(s->section, sizeof s->section, body + 1, "]");
+    s->key[0] = '\0';
+  } else if (*body && *body != ';' && *body != '#' && *body != '\n') {
+    const int continues = s->continuation && lead > 0 && s->key[0];
+    if (!continues && strchr(body, '=')) copy_word(s->key, sizeof s->key, body, "=");
+  }
+  /* in [study] set, ';' separates overrides: blanks before it are dropped so
+   * inih never takes " ;" for the start of an inline comment */
+  if (s->continuation && strcmp(s->section, "study") == 0 && strcmp(s->key, "set") == 0 &&
+      *body != ';' && *body != '#') {
+    char *w = str + lead;
+    for (const char *r = str + lead; *r; r++) {
+      if (*r == ';')
+        while (w > str + lead && (w[-1] == ' ' || w[-1] == '\t')) w--;
+      *w++ = *r;
+    }
+    *w = '\0';
+  }
+  /* case files have no continuation lines: leading blanks are dropped, so an
+   * indented key line is a key line of its own (inih would otherwise append
+   * it to the previous key's value) */
+  if (!s->continuation && lead) memmove(str, str + lead, strlen(str + lead) + 1);
+  return str;
+}
+
+const char *fb_ini_lines_problem(const fb_ini_lines *s, const char *path, char *buf, size_t size) {
+  switch (s->problem) {
+    case FB_INI_LINE_TOO_LONG:
+      snprintf(buf, size, "%s:%d: the line is %d characters long, longer than %d%s", path,
+               s->problem_line, s->length, FB_INI_LINE_MAX,
+               s->continuation ? ": split its value over continuation lines (an indented line "
+                                 "continues the value above it)"
+                               : ": shorten it (a value is at most 255 characters)");
+      break;
+    case FB_INI_LINE_NUL:
+      snprintf(buf, size, "%s:%d: a NUL byte in the line (a %s file is text)", path,
+               s->problem_line, s->continuation ? "study" : "case");
+      break;
+    case FB_INI_LINE_BAD_HEADER:
+      snprintf(buf, size, "%s:%d: text after a [section] header's closing ']': a header stands "
+               "alone on its line ('[section]', then 'key = value' on the next lines)", path,
+               s->problem_line);
+      break;
+    default:
+      snprintf(buf, size, "%s: no problem", path);
+  }
+  return buf;
+}

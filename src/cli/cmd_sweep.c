@@ -143,36 +143,9 @@ static int provenance_differs(const char *path, const json_t *now, char *what, s
     snprintf(what, size, "%s is missing, so what they were computed from is unknown", path);
     return 1;
   }
-  const char *ov = json_string_value(json_object_get(old, "fourbar_version"));
-  const char *nv = json_string_value(json_object_get(now, "fourbar_version"));
-  int differs = 1;
-  if (!ov || !nv || strcmp(ov, nv) != 0) {
-    snprintf(what, size, "they were computed by fourbar %s, this is fourbar %s", ov ? ov : "(unknown)",
-             nv ? nv : "(unknown)");
-  } else if (!json_equal(json_object_get(old, "resolved_study_fnv1a64"),
-                         json_object_get(now, "resolved_study_fnv1a64"))) {
-    snprintf(what, size, "the study changed (its case, set, metrics or an axis's key, seed or "
-             "values)");
-  } else {
-    json_t *oc = json_object_get(old, "case_files"), *nc = json_object_get(now, "case_files");
-    differs = 0;
-    for (size_t k = 0; k < json_array_size(nc) || k < json_array_size(oc); k++) {
-      json_t *o = json_array_get(oc, k), *n = json_array_get(nc, k);
-      const char *np = json_string_value(json_object_get(n, "path"));
-      const char *op = json_string_value(json_object_get(o, "path"));
-      if (!o || !n || !op || !np || strcmp(op, np) != 0) {
-        snprintf(what, size, "the study now reads case file %s where they read %s",
-                 np ? np : "(none)", op ? op : "(none)");
-        differs = 1;
-        break;
-      }
-      if (!json_equal(json_object_get(o, "fnv1a64"), json_object_get(n, "fnv1a64"))) {
-        snprintf(what, size, "case file %s changed since they were computed", np);
-        differs = 1;
-        break;
-      }
-    }
-  }
+  char why[3000];
+  const int differs = fb_study_provenance_differs(old, now, why, sizeof why);
+  if (differs) snprintf(what, size, "they and this sweep differ: %s", why);
   json_decref(old);
   return differs;
 }
@@ -478,6 +451,21 @@ int fb_cmd_sweep(int argc, char **argv) {
   return rc;
 }
 
+/* the provenance file beside a rows file: points[.X].jsonl -> points[.X].provenance.json */
+static void provenance_path(char *out, size_t size, const char *rows_path) {
+  snprintf(out, size, "%.*s.provenance.json", (int)(strlen(rows_path) - 6), rows_path);
+}
+
+/* 1 when the folder's points.jsonl is a merge's output (its provenance says so) */
+static int merged_output(const char *dir) {
+  char path[4300];
+  snprintf(path, sizeof path, "%s/points.provenance.json", dir);
+  json_t *p = json_load_file(path, 0, NULL);
+  const int merged = json_is_true(json_object_get(p, "merged"));
+  json_decref(p);
+  return merged;
+}
+
 int fb_cmd_merge(int argc, char **argv) {
   static const struct option opts[] = {{"out", required_argument, 0, 'o'},
                                        {"study", required_argument, 0, 's'},
@@ -494,52 +482,103 @@ int fb_cmd_merge(int argc, char **argv) {
   }
   if (optind >= argc) return fb_cli_fail("merge", 2, "at least one DIR is required; see --help");
   if (!out) out = argv[optind];
+  /* the output folder, locked before anything is read: no shard may be
+   * writing it; compared by its real path, not its spelling (D and D/) */
+  static fb_outdir od;
+  fb_diag d;
+  if (fb_outdir_lock(&od, out, 0, NULL, &d) != FB_OK) return fb_cli_fail("merge", 1, "%s", d.msg);
+  char out_real[PATH_MAX];
+  if (!realpath(out, out_real)) snprintf(out_real, sizeof out_real, "%s", od.target);
+  /* a study given to draw with must be the shards' study: loaded first */
+  static fb_study st;
+  json_t *study_prov = NULL;
+  if (study_path) {
+    if (fb_study_load(&st, study_path, &d) != FB_OK) return fb_cli_fail("merge", 2, "--study: %s", d.msg);
+    study_prov = fb_study_provenance(&st);
+    json_object_set_new(study_prov, "fourbar_version", json_string(FB_VERSION));
+  }
   rowset all = {0};
-  for (int a = optind; a < argc; a++) {
+  json_t *prov = NULL; /* the shards' common provenance */
+  char prov_from[8300] = "";
+  static char prov_problem[20000];
+  prov_problem[0] = '\0';
+  int rc = 0;
+  for (int a = optind; a < argc && !rc; a++) {
     DIR *dd = opendir(argv[a]);
-    if (!dd) return fb_cli_fail("merge", 2, "%s: %s", argv[a], strerror(errno));
+    if (!dd) {
+      rc = fb_cli_fail("merge", 2, "%s: %s", argv[a], strerror(errno));
+      break;
+    }
+    char real[PATH_MAX];
+    const int is_out = realpath(argv[a], real) && strcmp(real, out_real) == 0;
     struct dirent *e;
-    while ((e = readdir(dd))) {
+    while (!rc && (e = readdir(dd))) {
       size_t l = strlen(e->d_name);
       if (strncmp(e->d_name, "points", 6) != 0 || l < 6 || strcmp(e->d_name + l - 6, ".jsonl") != 0) continue;
       char path[8192];
       snprintf(path, sizeof path, "%s/%s", argv[a], e->d_name);
-      if (strcmp(e->d_name, "points.jsonl") == 0 && strcmp(argv[a], out) == 0)
-        continue; /* a previous merge result in the output folder: merged again from the shards */
+      if (strcmp(e->d_name, "points.jsonl") == 0 && merged_output(argv[a]))
+        continue; /* a previous merge's output: merged again from the shards */
+      if (strcmp(e->d_name, "points.jsonl") == 0 && is_out) {
+        rc = fb_cli_fail("merge", 2, "%s holds a sweep's own rows (not a merge's output), which "
+                         "merging into %s would replace: give another --out", path, out);
+        break;
+      }
       char err[9000];
       if (read_rows(path, &all, 0, err, sizeof err) != 0) {
-        closedir(dd);
-        rows_free(&all);
-        return fb_cli_fail("merge", 2, "%s", err);
+        rc = fb_cli_fail("merge", 2, "%s", err);
+        break;
       }
+      /* each file's provenance, all equal: rows of two studies, builds or
+       * environments are never mixed */
+      char pp[8300];
+      provenance_path(pp, sizeof pp, path);
+      json_t *p = json_load_file(pp, 0, NULL);
+      char what[3000];
+      if (prov_problem[0]) {
+        /* the first problem is reported, after the rows' own checks */
+      } else if (!p) {
+        snprintf(prov_problem, sizeof prov_problem, "%s: its provenance %s is missing or "
+                 "unreadable, so which study its rows belong to is unknown: run that shard again "
+                 "(with --restart)", path, pp);
+      } else if (!prov) {
+        prov = p;
+        snprintf(prov_from, sizeof prov_from, "%s", pp);
+        p = NULL;
+      } else if (fb_study_provenance_differs(prov, p, what, sizeof what)) {
+        snprintf(prov_problem, sizeof prov_problem, "%s and %s: not one study's shards: %s",
+                 prov_from, pp, what);
+      }
+      json_decref(p);
     }
     closedir(dd);
   }
-  if (all.n == 0) return fb_cli_fail("merge", 2, "no points*.jsonl rows in the given folders");
+  if (!rc && all.n == 0) rc = fb_cli_fail("merge", 2, "no points*.jsonl rows in the given folders");
   size_t of = 0;
-  fb_study_row_index(all.rows[0], &of); /* every row read was checked: 1 <= of <= 1e7 */
-  unsigned char *count = calloc(of, 1);
-  if (!count) {
-    rows_free(&all);
-    return fb_cli_fail("merge", 1, "out of memory for %zu points", of);
+  unsigned char *count = NULL;
+  if (!rc) {
+    fb_study_row_index(all.rows[0], &of); /* every row read was checked: 1 <= of <= 1e7 */
+    count = calloc(of, 1);
+    if (!count) rc = fb_cli_fail("merge", 1, "out of memory for %zu points", of);
   }
-  int rc = 0;
-  json_t *row0 = json_loads(all.rows[0], 0, NULL);
-  char study0[256];
-  snprintf(study0, sizeof study0, "%s", json_string_value(json_object_get(row0, "study")));
-  json_decref(row0);
-  for (size_t k = 0; k < all.n && !rc; k++) {
-    size_t o2 = 0;
-    long i = fb_study_row_index(all.rows[k], &o2);
-    json_t *row = json_loads(all.rows[k], 0, NULL); /* checked when read: "study" is a string */
-    char study[256];
-    snprintf(study, sizeof study, "%s", json_string_value(json_object_get(row, "study")));
-    json_decref(row);
-    if (strcmp(study, study0) != 0)
-      rc = fb_cli_fail("merge", 2, "rows of studies '%s' and '%s': not one study", study0, study);
-    else if (o2 != of) rc = fb_cli_fail("merge", 2, "rows of a %zu-point and a %zu-point grid: not one study", of, o2);
-    else if (i < 0 || (size_t)i >= of) rc = fb_cli_fail("merge", 2, "row index %ld outside 0..%zu", i, of - 1);
-    else if (count[i]++) rc = fb_cli_fail("merge", 2, "point %ld appears more than once", i);
+  if (!rc) {
+    json_t *row0 = json_loads(all.rows[0], 0, NULL);
+    char study0[256];
+    snprintf(study0, sizeof study0, "%s", json_string_value(json_object_get(row0, "study")));
+    json_decref(row0);
+    for (size_t k = 0; k < all.n && !rc; k++) {
+      size_t o2 = 0;
+      long i = fb_study_row_index(all.rows[k], &o2);
+      json_t *row = json_loads(all.rows[k], 0, NULL); /* checked when read: "study" is a string */
+      char study[256];
+      snprintf(study, sizeof study, "%s", json_string_value(json_object_get(row, "study")));
+      json_decref(row);
+      if (strcmp(study, study0) != 0)
+        rc = fb_cli_fail("merge", 2, "rows of studies '%s' and '%s': not one study", study0, study);
+      else if (o2 != of) rc = fb_cli_fail("merge", 2, "rows of a %zu-point and a %zu-point grid: not one study", of, o2);
+      else if (i < 0 || (size_t)i >= of) rc = fb_cli_fail("merge", 2, "row index %ld outside 0..%zu", i, of - 1);
+      else if (count[i]++) rc = fb_cli_fail("merge", 2, "point %ld appears more than once", i);
+    }
   }
   if (!rc) {
     size_t missing = 0, first = 0;
@@ -549,29 +588,36 @@ int fb_cmd_merge(int argc, char **argv) {
                                   "shards, then merge again", missing, of, first);
   }
   free(count);
+  if (!rc && prov_problem[0]) rc = fb_cli_fail("merge", 2, "%s", prov_problem);
+  char what[3000];
+  if (!rc && study_prov && fb_study_provenance_differs(prov, study_prov, what, sizeof what))
+    rc = fb_cli_fail("merge", 2, "--study %s is not the study of these shards (%s): give the study "
+                     "file they were computed from", study_path, what);
   if (!rc) {
-    fb_diag d;
+    /* rows, their provenance (marked as a merge's), then the table */
     char path[4200];
     snprintf(path, sizeof path, "%s/points.jsonl", out);
     fb_outfile o;
-    static fb_outdir od;
-    if (fb_outdir_lock(&od, out, 0, NULL, &d) != FB_OK || fb_outfile_open(&o, path, &d) != FB_OK) {
+    if (fb_outfile_open(&o, path, &d) != FB_OK) {
       rc = fb_cli_fail("merge", 1, "%s", d.msg);
     } else {
       for (size_t k = 0; k < all.n; k++) fputs(all.rows[k], o.f);
       if (fb_outfile_commit(&o, &d) != FB_OK) rc = fb_cli_fail("merge", 1, "%s", d.msg);
     }
+    json_object_set_new(prov, "merged", json_true());
+    snprintf(path, sizeof path, "%s/points.provenance.json", out);
+    if (!rc && fb_report_write_json(path, prov, &d) != FB_OK) rc = fb_cli_fail("merge", 1, "%s", d.msg);
     snprintf(path, sizeof path, "%s/points.csv", out);
     if (!rc && fb_study_write_csv(path, all.rows, all.n, &d) != FB_OK) rc = fb_cli_fail("merge", 1, "%s", d.msg);
     if (!rc) printf("merged %zu points into %s/points.jsonl and points.csv\n", all.n, out);
-    static fb_study st;
     if (!rc && study_path) {
-      if (fb_study_load(&st, study_path, &d) != FB_OK || fb_figures_study(&st, out, &d) != FB_OK)
-        fprintf(stderr, "fourbar merge: warning: %s\n", d.msg);
-      else
-        printf("drew %s/study.svg\n", out);
+      if (fb_figures_study(&st, out, &d) != FB_OK) rc = fb_cli_fail("merge", 1, "%s", d.msg);
+      else printf("drew %s/study.svg\n", out);
     }
   }
+  json_decref(prov);
+  json_decref(study_prov);
   rows_free(&all);
+  fb_outdir_release(&od);
   return rc;
 }

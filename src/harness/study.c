@@ -10,10 +10,14 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
+
+extern char **environ;
 
 #include "casefile.h"
 #include "check.h"
 #include "fileio.h"
+#include "ini_lines.h"
 #include "outcome_text.h"
 #include "units.h"
 
@@ -21,19 +25,11 @@
 
 typedef struct {
   fb_study *s;
-  FILE *f;
-  int line;
+  fb_ini_lines lines; /* the line reader (ini_lines.h): lines.line is the current line */
   fb_status st;
   fb_diag *diag;
   int current_axis; /* index of the [axis.*] section being read, -1 for none */
 } parse_ctx;
-
-static char *count_lines(char *str, int num, void *stream) {
-  parse_ctx *c = stream;
-  char *r = fgets(str, num, c->f);
-  if (r) c->line++;
-  return r;
-}
 
 static char *trim(char *p) {
   while (*p == ' ' || *p == '\t') p++;
@@ -95,7 +91,7 @@ static int handler(void *user, const char *section, const char *key, const char 
   if (c->st != FB_OK) return 1;
   fb_study *s = c->s;
   char where[4200];
-  snprintf(where, sizeof where, "%s:%d", s->path, c->line);
+  snprintf(where, sizeof where, "%s:%d", s->path, c->lines.line);
   if (strcmp(section, "study") == 0) {
     if (strcmp(key, "name") == 0) {
       if (!fb_casefile_name_ok(value))
@@ -252,10 +248,21 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
                                      "text file)", path)
                        : fb_diag_set(diag, FB_ERR_IO, "%s: cannot open study file: %s", path,
                                      strerror(errno));
-  parse_ctx c = {s, f, 0, FB_OK, diag, -1};
-  int rc = ini_parse_stream(count_lines, &c, handler, &c);
+  static parse_ctx c;
+  memset(&c, 0, sizeof c);
+  c.s = s;
+  c.lines.f = f;
+  c.lines.continuation = 1;
+  c.st = FB_OK;
+  c.diag = diag;
+  c.current_axis = -1;
+  int rc = ini_parse_stream(fb_ini_lines_read, &c.lines, handler, &c);
   fclose(f);
   if (c.st != FB_OK) return c.st;
+  if (c.lines.problem != FB_INI_LINE_OK) {
+    char msg[FB_DIAG_SIZE];
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s", fb_ini_lines_problem(&c.lines, path, msg, sizeof msg));
+  }
   if (rc != 0)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s:%d: malformed line: expected '[section]' or "
                        "'key = value'", path, rc);
@@ -271,6 +278,39 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
     if (s->points > FB_STUDY_MAX_POINTS) /* checked per axis: the product cannot wrap */
       return fb_diag_set(diag, FB_ERR_RANGE, "%s: the grid has more than %d points (at [axis.%s])",
                          path, FB_STUDY_MAX_POINTS, s->axis[a].name);
+  }
+  /* one key, one place: two axes on one key, or an axis on a key the fixed
+   * set also gives, would let one value silently win */
+  for (int a = 0; a < s->naxes; a++) {
+    for (int b = 0; b < a; b++)
+      if (strcmp(s->axis[a].key, s->axis[b].key) == 0)
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [axis.%s] and [axis.%s] both vary %s: give "
+                           "each key one axis (one would silently win)", path, s->axis[b].name,
+                           s->axis[a].name, s->axis[a].key);
+    for (int k = 0; k < s->nsets; k++) {
+      const size_t l = strcspn(s->sets[k], "=");
+      char key[256];
+      snprintf(key, sizeof key, "%.*s", (int)l, s->sets[k]);
+      const char *kt = key;
+      while (*kt == ' ') kt++;
+      size_t kl = strlen(kt);
+      while (kl && kt[kl - 1] == ' ') kl--;
+      if (s->axis[a].montecarlo ? strncmp(kt, "linkage.", 8) == 0 && kl > 3 &&
+                                      strncmp(kt + kl - 3, "_mm", 3) == 0
+                                : strlen(s->axis[a].key) == kl && strncmp(kt, s->axis[a].key, kl) == 0)
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] set gives %.*s, which [axis.%s] varies: "
+                           "remove it from set (the axis would silently win)", path, (int)kl, kt,
+                           s->axis[a].name);
+    }
+  }
+  /* metric names and patterns: each must name a metric a run can give */
+  for (int k = 0; k < s->nmetrics + s->nplot; k++) {
+    const char *m = k < s->nmetrics ? s->metrics[k] : s->plot[k - s->nmetrics];
+    char known[512];
+    if (!fb_check_metric_name_ok(m, known, sizeof known))
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] %s: '%s' names no metric; a metric is "
+                         "<model>.<group>.<key>, %s (a trailing * matches a prefix)", path,
+                         k < s->nmetrics ? "metrics" : "plot", m, known);
   }
   if (s->heatmap && s->naxes < 2)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] heatmap = yes needs two axes", path);
@@ -367,9 +407,71 @@ json_t *fb_study_provenance(const fb_study *s) {
   }
   char sh[32];
   snprintf(sh, sizeof sh, "%016llx", file_hash(s->path));
-  return json_pack("{s:s,s:s,s:s,s:o,s:I}", "study_file", s->path, "study_file_fnv1a64", sh,
+  /* the program: the executable's own bytes, so rows of two builds (whose
+   * peak forces can differ in the last digits) never resume together */
+  char bh[32];
+  snprintf(bh, sizeof bh, "%016llx", file_hash("/proc/self/exe"));
+  /* every FOURBAR_* setting of the environment (FOURBAR_REFERENCE_TOL moves
+   * the reference's results) */
+  json_t *env = json_object();
+  for (char **e = environ; e && *e; e++) {
+    if (strncmp(*e, "FOURBAR_", 8) != 0) continue;
+    const char *eq = strchr(*e, '=');
+    if (!eq) continue;
+    char name[128];
+    snprintf(name, sizeof name, "%.*s", (int)(eq - *e), *e);
+    json_object_set_new(env, name, json_string(eq + 1));
+  }
+  return json_pack("{s:s,s:s,s:s,s:o,s:I,s:s,s:o}", "study_file", s->path, "study_file_fnv1a64", sh,
                    "resolved_study_fnv1a64", hex, "case_files", cases, "points",
-                   (json_int_t)s->points);
+                   (json_int_t)s->points, "fourbar_build_fnv1a64", bh, "environment", env);
+}
+
+int fb_study_provenance_differs(const json_t *old, const json_t *now, char *what, size_t size) {
+  const char *ov = json_string_value(json_object_get(old, "fourbar_version"));
+  const char *nv = json_string_value(json_object_get(now, "fourbar_version"));
+  const char *ob = json_string_value(json_object_get(old, "fourbar_build_fnv1a64"));
+  const char *nb = json_string_value(json_object_get(now, "fourbar_build_fnv1a64"));
+  if (!ov || !nv || strcmp(ov, nv) != 0) {
+    snprintf(what, size, "fourbar %s against fourbar %s", ov ? ov : "(unknown)", nv ? nv : "(unknown)");
+    return 1;
+  }
+  if (!ob || !nb || strcmp(ob, nb) != 0) {
+    snprintf(what, size, "two builds of fourbar (executable fnv1a64 %s against %s)",
+             ob ? ob : "(not recorded)", nb ? nb : "(not recorded)");
+    return 1;
+  }
+  if (!json_equal(json_object_get(old, "resolved_study_fnv1a64"),
+                  json_object_get(now, "resolved_study_fnv1a64"))) {
+    snprintf(what, size, "the study changed (its case, set, metrics or an axis's key, seed or "
+             "values)");
+    return 1;
+  }
+  json_t *oe = json_object_get(old, "environment"), *ne = json_object_get(now, "environment");
+  if (!oe || !json_equal(oe, ne)) {
+    char *a = oe ? json_dumps(oe, JSON_COMPACT | JSON_SORT_KEYS) : NULL;
+    char *b = json_dumps(ne, JSON_COMPACT | JSON_SORT_KEYS);
+    snprintf(what, size, "the FOURBAR_* environment differs (%s against %s)", a ? a : "not recorded",
+             b ? b : "{}");
+    free(a);
+    free(b);
+    return 1;
+  }
+  json_t *oc = json_object_get(old, "case_files"), *nc = json_object_get(now, "case_files");
+  for (size_t k = 0; k < json_array_size(nc) || k < json_array_size(oc); k++) {
+    json_t *o = json_array_get(oc, k), *n = json_array_get(nc, k);
+    const char *np = json_string_value(json_object_get(n, "path"));
+    const char *op = json_string_value(json_object_get(o, "path"));
+    if (!o || !n || !op || !np || strcmp(op, np) != 0) {
+      snprintf(what, size, "case file %s against %s", op ? op : "(none)", np ? np : "(none)");
+      return 1;
+    }
+    if (!json_equal(json_object_get(o, "fnv1a64"), json_object_get(n, "fnv1a64"))) {
+      snprintf(what, size, "case file %s changed", np);
+      return 1;
+    }
+  }
+  return 0;
 }
 
 /* ---- running a point -------------------------------------------------------- */
@@ -532,6 +634,27 @@ void fb_study_tally(char **rows, size_t n, size_t *stopped, size_t *warned) {
   }
 }
 
+/* writes ",<field>", quoted as RFC 4180 asks when it holds a comma, a quote,
+ * a line break, a ';' (the separator of many spreadsheets' locales) or blanks
+ * at either end, with each quote doubled; else as it is */
+static void csv_field(FILE *f, const char *text) {
+  const size_t n = strlen(text);
+  const int quote = strpbrk(text, ",\";\r\n") != NULL ||
+                    (n && (text[0] == ' ' || text[n - 1] == ' ' || text[0] == '\t' ||
+                           text[n - 1] == '\t'));
+  fputc(',', f);
+  if (!quote) {
+    fputs(text, f);
+    return;
+  }
+  fputc('"', f);
+  for (const char *p = text; *p; p++) {
+    if (*p == '"') fputc('"', f);
+    fputc(*p, f);
+  }
+  fputc('"', f);
+}
+
 fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *diag) {
   indexed *v = calloc(n ? n : 1, sizeof *v);
   if (!v) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -561,17 +684,17 @@ fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *d
     fprintf(out.f, "index");
     const char *key;
     json_t *val;
-    if (m) json_object_foreach(json_object_get(v[0].row, "axes"), key, val) fprintf(out.f, ",%s", key);
+    if (m) json_object_foreach(json_object_get(v[0].row, "axes"), key, val) csv_field(out.f, key);
     fprintf(out.f, ",status");
     size_t q;
     json_t *nm;
-    json_array_foreach(names, q, nm) fprintf(out.f, ",%s", json_string_value(nm));
+    json_array_foreach(names, q, nm) csv_field(out.f, json_string_value(nm));
     fprintf(out.f, ",warnings"); /* last, so the metric columns keep their places */
     fputc('\n', out.f);
     for (size_t k = 0; k < m; k++) {
       fprintf(out.f, "%ld", v[k].index);
       json_object_foreach(json_object_get(v[k].row, "axes"), key, val)
-          fprintf(out.f, ",%s", json_string_value(val));
+          csv_field(out.f, json_string_value(val));
       /* status may hold commas: quote it */
       fprintf(out.f, ",\"");
       for (const char *p = json_string_value(json_object_get(v[k].row, "status")); p && *p; p++)

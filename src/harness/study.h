@@ -65,11 +65,19 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag);
 /* What a study's rows are computed from (issue 13): {"study_file",
  * "study_file_fnv1a64" (its bytes), "resolved_study_fnv1a64" (name, case
  * path, sets, metrics, every axis's key, seed and values), "case_files":
- * [{"path", "fnv1a64"}] (the case file and every base it reads), "points"}.
- * Hashes are FNV-1a 64 bit in hex: they detect a changed input, they do not
- * authenticate one. A sweep stores it beside its rows and refuses to resume
- * rows computed from anything else. */
+ * [{"path", "fnv1a64"}] (the case file and every base it reads), "points",
+ * "fourbar_build_fnv1a64" (the running executable's bytes: the build),
+ * "environment": {every FOURBAR_* variable set: its value}}. The caller adds
+ * "fourbar_version". Hashes are FNV-1a 64 bit in hex: they detect a changed
+ * input, they do not authenticate one. A sweep stores it beside its rows and
+ * refuses to resume rows computed from anything else; merge refuses shards
+ * whose provenance differs. */
 json_t *fb_study_provenance(const fb_study *s);
+
+/* 1 when rows of provenance old and now cannot stand in one table (another
+ * version or build of fourbar, another resolved study, FOURBAR_* environment
+ * or case file bytes), with what differs in what (size bytes); else 0. */
+int fb_study_provenance_differs(const json_t *old, const json_t *now, char *what, size_t size);
 
 /* Runs point i (< s->points) and returns its row as a malloc'ed JSON line
  * ending in '\n' (caller frees). A case that does not load or run gives a row

@@ -387,13 +387,26 @@ static void test_check_catches_stiffness_regression(void **state) {
   snprintf(cmd, sizeof cmd, "mkdir -p %s/bl && cp %s/../results/baselines/paper_crank_rocker.json %s/bl/",
            tmpdir, getenv("FOURBAR_CASES_DIR"), tmpdir);
   assert_int_equal(system(cmd), 0);
+  /* a variant (--set) never rewrites a baseline (issue 24 item 5): refused,
+   * the baseline byte-identical */
   snprintf(cmd, sizeof cmd, "FOURBAR_BASELINES_DIR=%s/bl %s check --update --set clearance.stiffness_scale=1.2 >%s/up.txt 2>&1",
            tmpdir, exe, tmpdir);
+  assert_int_equal(WEXITSTATUS(system(cmd)), 2);
+  snprintf(cmd, sizeof cmd, "grep -q 'variant' %s/up.txt && cmp -s %s/bl/paper_crank_rocker.json "
+           "%s/../results/baselines/paper_crank_rocker.json", tmpdir, tmpdir, getenv("FOURBAR_CASES_DIR"));
+  assert_int_equal(system(cmd), 0);
+  /* the case file itself changed: --update rewrites the values and says what moved */
+  snprintf(cmd, sizeof cmd, "mkdir -p %s/cs && sed 's/^\\[clearance\\]$/[clearance]\\nstiffness_scale = 1.2/' "
+           "%s/paper_crank_rocker.ini > %s/cs/paper_crank_rocker.ini && grep -q '^stiffness_scale = 1.2' "
+           "%s/cs/paper_crank_rocker.ini", tmpdir, getenv("FOURBAR_CASES_DIR"), tmpdir, tmpdir);
+  assert_int_equal(system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "FOURBAR_CASES_DIR=%s/cs FOURBAR_BASELINES_DIR=%s/bl %s check --update >%s/up.txt 2>&1",
+           tmpdir, tmpdir, exe, tmpdir);
   assert_int_equal(system(cmd), 0);
   snprintf(cmd, sizeof cmd, "grep -q 'penetration_max_m: .* -> .* (moved)' %s/up.txt", tmpdir);
   assert_int_equal(system(cmd), 0);
-  snprintf(cmd, sizeof cmd, "FOURBAR_BASELINES_DIR=%s/bl %s check --set clearance.stiffness_scale=1.2 >/dev/null 2>&1",
-           tmpdir, exe);
+  snprintf(cmd, sizeof cmd, "FOURBAR_CASES_DIR=%s/cs FOURBAR_BASELINES_DIR=%s/bl %s check >/dev/null 2>&1",
+           tmpdir, tmpdir, exe);
   assert_int_equal(system(cmd), 0);
 }
 

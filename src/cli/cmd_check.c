@@ -3,6 +3,7 @@
  * calibration are in check.c. */
 #include <dirent.h>
 #include <getopt.h>
+#include <limits.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdio.h>
@@ -91,10 +92,39 @@ static int load_case(const char *case_file, const char *const *sets, int nsets, 
   return 0;
 }
 
+/* a case file as check reads it: absolute, or relative to the cases folder */
+static void case_path(char *out, size_t size, const char *case_file) {
+  if (case_file[0] == '/') snprintf(out, size, "%s", case_file);
+  else snprintf(out, size, "%s/%s", fb_cli_cases_dir(), case_file);
+}
+
+/* 1 when the two case file names (as baselines record them) are one file */
+static int same_case_file(const char *a, const char *b) {
+  char pa[4096], pb[4096], ra[PATH_MAX], rb[PATH_MAX];
+  case_path(pa, sizeof pa, a);
+  case_path(pb, sizeof pb, b);
+  if (realpath(pa, ra) && realpath(pb, rb)) return strcmp(ra, rb) == 0;
+  return strcmp(pa, pb) == 0;
+}
+
 static int calibrate(const char *case_file, const char *const *sets, int nsets) {
   fb_case c;
   int rc = load_case(case_file, sets, nsets, &c);
   if (rc) return rc;
+  /* a baseline belongs to one case file: another file with the same [case]
+   * name must not replace it */
+  char existing[4096];
+  snprintf(existing, sizeof existing, "%s/%s.json", baselines_dir(), c.name);
+  json_t *old = json_load_file(existing, 0, NULL);
+  const char *old_file = json_string_value(json_object_get(old, "case_file"));
+  if (old_file && !same_case_file(old_file, case_file)) {
+    rc = fb_cli_fail("check", 2, "%s: [case] name = %s, but the baseline %s belongs to case file "
+                     "%s: give %s a [case] name of its own (the baseline is named after it)",
+                     case_file, c.name, existing, old_file, case_file);
+    json_decref(old);
+    return rc;
+  }
+  json_decref(old);
   static fb_baseline_metric m[FB_CHECK_MAX_METRICS];
   int n, nondet;
   fb_diag d;
@@ -182,6 +212,12 @@ int fb_cmd_check(int argc, char **argv) {
       default: fputs(check_help, stderr); return 2;
     }
   }
+  /* a baseline is the committed case file's: a variant never replaces it */
+  if ((update || cal) && nsets > 0)
+    return fb_cli_fail("check", 2, "--set with --%s would write the values of a variant (%s%s) into "
+                       "the committed baseline of the case: change the case file itself, or "
+                       "calibrate a new case file with its own [case] name", update ? "update" : "calibrate",
+                       sets[0], nsets > 1 ? ", ..." : "");
   char *files[MAX_CASES];
   const int nfiles = list_baselines(files, MAX_CASES);
   if (cal && optind < argc) {

@@ -128,6 +128,7 @@ int fb_cmd_impact(int argc, char **argv) {
   const double t_est = fb_impact_duration_estimate(&d);
   if (h < 0.0) return fb_cli_fail("impact", 2, "--h-s %g: the step size must be positive", h);
   d.h = h > 0.0 ? h : t_est / 200.0;
+  if (fb_impact_check(&d, &diag) != FB_OK) return fb_cli_fail("impact", 2, "%s", diag.msg);
 
   fb_impact_result ode, ref, cf;
   if (fb_impact_reference(&ref, &d, &diag) != FB_OK) return fb_cli_fail("impact", 1, "%s", diag.msg);

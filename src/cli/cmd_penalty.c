@@ -179,6 +179,12 @@ int fb_cmd_penalty(int argc, char **argv) {
                              "--speeds-rpm '%s': expected FROM:TO:STEP or a comma list of "
                              "positive speeds (at most %d)",
                              optarg, MAX_SPEEDS);
+        /* each speed within the range a case's [drive] speed_rpm has */
+        for (int k = 0; k < n; k++) {
+          fb_diag rd;
+          if (fb_casefile_check_range("drive", "speed_rpm", rpm[k], "--speeds-rpm", &rd) != FB_OK)
+            return fb_cli_fail("penalty", 2, "%s", rd.msg);
+        }
         break;
       case 'S':
         if (nsets == MAX_SETS) return fb_cli_fail("penalty", 2, "more than %d --set", MAX_SETS);

@@ -12,6 +12,8 @@
 #include "clock.h"
 #include "tolerance.h"
 
+/* a Monte Carlo estimated longer than this is announced on stderr [s] */
+#define STACKUP_NOTE_S 10.0
 #define MAX_SETS 256
 
 static const char stackup_help[] =
@@ -121,6 +123,17 @@ int fb_cmd_stackup(int argc, char **argv) {
   char case_path[4096];
   int rc = fb_cli_load_case("stackup", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
+  /* a long Monte Carlo says what it will cost before it starts */
+  if (mask & FB_TOL_MONTECARLO) {
+    if (fb_tol_check_cost((size_t)samples, (int)jobs, &d) != FB_OK)
+      return fb_cli_fail("stackup", 2, "%s", d.msg);
+    double bytes, seconds;
+    fb_tol_estimate((size_t)samples, (int)jobs, &bytes, &seconds);
+    if (seconds > STACKUP_NOTE_S)
+      fprintf(stderr, "fourbar stackup: %.0f Monte Carlo samples: an estimated %.3g s and %.3g GB "
+              "with %d job%s (--jobs J divides the time)\n", samples, seconds, bytes / 1e9,
+              (int)jobs, jobs > 1 ? "s" : "");
+  }
   static fb_stackup_result r;
   progress_bar bar = {isatty(2) && !json, (size_t)samples, fb_clock_s(), 0.0};
   fb_status st = fb_tol_analyse_jobs(&r, &c, mask, (size_t)samples, (unsigned long)seed,

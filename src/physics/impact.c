@@ -19,8 +19,26 @@ fb_status fb_impact_check(const fb_impact_def *d, fb_diag *diag) {
   if (!(d->speed > 0.0) || !isfinite(d->speed))
     return fb_diag_set(diag, FB_ERR_RANGE, "speed = %g m/s: the impact speed must be positive",
                        d->speed);
+  if (!(d->speed <= FB_IMPACT_SPEED_MAX_M_S))
+    return fb_diag_set(diag, FB_ERR_RANGE, "speed = %g m/s: the impact speed must be at most %g m/s "
+                       "(an elastic contact law does not hold beyond)", d->speed,
+                       FB_IMPACT_SPEED_MAX_M_S);
   if (!(d->h > 0.0) || !isfinite(d->h))
     return fb_diag_set(diag, FB_ERR_RANGE, "h = %g s: the step size must be positive", d->h);
+  /* the contact the inputs make must be one a double can follow: a duration
+   * and penetration that are finite and not vanishingly small */
+  const double T = fb_impact_duration_estimate(d);
+  if (!(T >= FB_IMPACT_DURATION_MIN_S && T <= FB_IMPACT_DURATION_MAX_S))
+    return fb_diag_set(diag, FB_ERR_RANGE, "stiffness = %g, mass = %g kg, speed = %g m/s give a "
+                       "contact lasting %g s, outside %g s to %g s: the contact law cannot be "
+                       "integrated there; bring stiffness, mass or speed nearer to a mechanism's",
+                       d->law.stiffness, d->mass, d->speed, T, FB_IMPACT_DURATION_MIN_S,
+                       FB_IMPACT_DURATION_MAX_S);
+  /* the ODE impact runs for up to about the contact duration in steps of h */
+  if (T / d->h > FB_IMPACT_MAX_STEPS)
+    return fb_diag_set(diag, FB_ERR_RANGE, "h = %g s: the contact lasts about %.3g s, so the impact "
+                       "would take about %.3g steps, more than %.0e: give h >= %.2g s", d->h, T,
+                       T / d->h, FB_IMPACT_MAX_STEPS, T / FB_IMPACT_MAX_STEPS);
   if (d->quick_iterations < 1)
     return fb_diag_set(diag, FB_ERR_RANGE, "quick iterations = %d: must be >= 1",
                        d->quick_iterations);

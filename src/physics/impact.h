@@ -12,6 +12,19 @@
 #include "case.h"
 #include "contact.h"
 
+/* Highest impact speed [m/s]: pins in mechanisms hit at well under 10 m/s;
+ * far beyond, the elastic laws here stop describing the contact (plastic
+ * flow), and the duration estimate leaves double range sooner. */
+#define FB_IMPACT_SPEED_MAX_M_S 100.0
+/* Range of the estimated contact duration [s] an impact may have: below 1e-12
+ * s the penetration is a few ulps of the position; above 1e3 s the "impact"
+ * is a quasi-static load, not an impact. */
+#define FB_IMPACT_DURATION_MIN_S 1e-12
+#define FB_IMPACT_DURATION_MAX_S 1e3
+/* Most ODE steps one impact may take: about 10 s at ODE's 1 us per step, the
+ * same order as [run] max_wall_s's default for a run. */
+#define FB_IMPACT_MAX_STEPS 1e7
+
 typedef struct {
   fb_contact_law law;  /* normal-force law (law.mass is set to mass) */
   double mass;         /* body mass m [kg] */
@@ -32,7 +45,10 @@ typedef struct {
   double wall_s;           /* [s] */
 } fb_impact_result;
 
-/* Checks the definition. Errors: FB_ERR_RANGE naming the parameter. */
+/* Checks the definition: the law, mass, speed (<= FB_IMPACT_SPEED_MAX_M_S),
+ * h, the estimated contact duration (FB_IMPACT_DURATION_MIN_S to _MAX_S) and
+ * the step count it gives (<= FB_IMPACT_MAX_STEPS). Errors: FB_ERR_RANGE
+ * naming the parameter and the rule. */
 fb_status fb_impact_check(const fb_impact_def *d, fb_diag *diag);
 
 /* Closed form where one exists: returns 1 and fills out for undamped Hertz

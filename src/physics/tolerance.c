@@ -7,6 +7,7 @@
 #include <gsl/gsl_statistics_double.h>
 #include <limits.h>
 #include <math.h>
+#include <unistd.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdint.h>
@@ -340,5 +341,23 @@ fb_status fb_tol_resolve_worst(fb_case *c, fb_diag *diag) {
     }
   }
   c->stackup.worst = 0;
+  return FB_OK;
+}
+
+void fb_tol_estimate(size_t samples, int jobs, double *bytes, double *seconds) {
+  *bytes = (double)samples * (double)(FB_TOL_NOUT + FB_LINK_COUNT) * (double)sizeof(double);
+  *seconds = (double)samples * FB_TOL_S_PER_SAMPLE / (double)(jobs > 0 ? jobs : 1);
+}
+
+fb_status fb_tol_check_cost(size_t samples, int jobs, fb_diag *diag) {
+  double bytes, seconds;
+  fb_tol_estimate(samples, jobs, &bytes, &seconds);
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  const double memory = pages > 0 && page > 0 ? (double)pages * (double)page : 0.0;
+  if (memory > 0.0 && bytes > FB_TOL_MEMORY_FRACTION * memory)
+    return fb_diag_set(diag, FB_ERR_RANGE, "--samples %zu: the samples would reserve an estimated "
+                       "%.3g GB, more than %.0f %% of this machine's %.3g GB (estimated wall time "
+                       "%.3g s): use fewer samples", samples, bytes / 1e9,
+                       100.0 * FB_TOL_MEMORY_FRACTION, memory / 1e9, seconds);
   return FB_OK;
 }

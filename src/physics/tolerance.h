@@ -96,6 +96,23 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
  * threads (1 .. FB_TOL_MAX_JOBS): the same numbers for every jobs. progress
  * is called from the calling thread. Errors: those of fb_tol_analyse (the
  * lowest failing sample is the one named); FB_ERR_ARG for jobs out of range. */
+/* Monte Carlo cost per sample and job [s], for the up-front estimate: 26 us
+ * measured (fourbar stackup --method montecarlo --samples 200000, paper
+ * case, 1 job, 2-core machine under load), rounded up. */
+#define FB_TOL_S_PER_SAMPLE 30e-6
+/* Share of the machine's memory a Monte Carlo run may reserve. */
+#define FB_TOL_MEMORY_FRACTION 0.5
+
+/* Estimated memory [bytes] and wall time [s] of a Monte Carlo analysis of
+ * samples samples on jobs threads (the samples and their outputs are kept
+ * for the quantiles). */
+void fb_tol_estimate(size_t samples, int jobs, double *bytes, double *seconds);
+
+/* Refuses, before anything is reserved, a Monte Carlo analysis whose memory
+ * estimate passes FB_TOL_MEMORY_FRACTION of this machine's memory.
+ * Errors: FB_ERR_RANGE naming the samples, the estimate and what to lower. */
+fb_status fb_tol_check_cost(size_t samples, int jobs, fb_diag *diag);
+
 fb_status fb_tol_analyse_jobs(fb_stackup_result *out, const fb_case *c, int mask, size_t samples,
                               unsigned long seed, fb_distribution dist, int jobs,
                               void (*progress)(double fraction, void *user), void *user,

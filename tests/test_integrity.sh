@@ -210,5 +210,187 @@ ok '[ -n "$workers" ] && ! alive' "6: a sweep's workers die with their parent"
 ok 'cmp -s "$tmp/rep1/summary.json" "$tmp/rep2/summary.json" && [ -s "$tmp/rep1/timing.json" ]' "13: summary.json is byte-identical between reruns; wall times in timing.json"
 ok '[ "$(grep -c "fourbar run" "$tmp/rep1/report.md")" -ge 1 ] && ! grep -q "fourbar fourbar" "$tmp/rep1/report.md"' "13: report.md prints the command line once"
 
+# ==== issue 24: integrity, round two ==========================================
+# a PID no process has (for names of leftovers of a killed writer)
+deadpid=$(( $(cat /proc/sys/kernel/pid_max) - 7 ))
+while kill -0 $deadpid 2>/dev/null; do deadpid=$((deadpid - 1)); done
+tiny=(--set run.revolutions=2 --set run.models=analytic --no-figures)
+
+# ---- 24.1 a folder of dot-files is a user's folder ----------------------------
+mkdir -p "$tmp/dots/.git"; echo SECRET=1 > "$tmp/dots/.env"; echo alias > "$tmp/dots/.bashrc"
+"$exe" run "${tiny[@]}" --out "$tmp/dots" >/dev/null 2>"$tmp/err"
+rc=$?
+ok '[ $rc -ne 0 ] && [ -f "$tmp/dots/.env" ] && [ -f "$tmp/dots/.bashrc" ] && [ -d "$tmp/dots/.git" ] && grep -q "will not be replaced" "$tmp/err"' "24.1: run --out a folder holding only .env, .bashrc and .git is refused, the files kept (was: replaced)"
+mkdir -p "$tmp/dots2"; echo x > "$tmp/dots2/.env"; echo '{}' > "$tmp/dots2/summary.json"
+ok '! "$exe" run "${tiny[@]}" --out "$tmp/dots2" 2>/dev/null && [ -f "$tmp/dots2/.env" ]' "24.1: a dot-file beside a summary.json is not ours either"
+
+# ---- 24.2 only this program's own leftovers are removed -----------------------
+"$exe" run "${tiny[@]}" --out "$tmp/left" >/dev/null 2>&1
+echo keep > "$tmp/left/report.tmp.$deadpid.docx"
+"$exe" run "${tiny[@]}" --out "$tmp/left" >/dev/null 2>&1
+ok '[ -f "$tmp/left/report.tmp.$deadpid.docx" ]' "24.2: report.tmp.<dead pid>.docx is not deleted as a leftover (was: deleted)"
+"$exe" run "${tiny[@]}" --out "$tmp/left1" >/dev/null 2>&1
+echo gone > "$tmp/left1/summary.json.tmp.$deadpid.AbC123"
+"$exe" run "${tiny[@]}" --out "$tmp/left1" >/dev/null 2>&1
+ok '[ ! -e "$tmp/left1/summary.json.tmp.$deadpid.AbC123" ] && [ -s "$tmp/left1/summary.json" ]' "24.2: a real leftover summary.json.tmp.<dead pid>.XXXXXX of a killed run is removed"
+mkdir -p "$tmp/left2"; echo keep > "$tmp/left2/notes.txt"; echo keep > "$tmp/left2/summary.json.tmp.$deadpid.AbC123"
+"$exe" run "${tiny[@]}" --out "$tmp/left2" >/dev/null 2>&1
+ok '[ -f "$tmp/left2/summary.json.tmp.$deadpid.AbC123" ]' "24.2: a refused folder loses nothing, not even a leftover-looking file"
+mkdir -p "$tmp/left3"; echo keep > "$tmp/left3/data.tmp.$deadpid.csv"
+"$exe" sweep "$here/studies/tiny.ini" --shard 0/2 --out "$tmp/left3" >/dev/null 2>&1
+ok '[ -f "$tmp/left3/data.tmp.$deadpid.csv" ]' "24.2: sweep --shard keeps a user's data.tmp.<dead pid>.csv"
+
+# ---- 24.3 a full disk never commits a damaged set ------------------------------
+if unshare -m true 2>/dev/null; then
+  "$exe" run --set run.revolutions=2 --set run.models=analytic,ode-ideal-nominal --out "$tmp/sized" >/dev/null 2>&1
+  data_kb=$(cd "$tmp/sized" && du -sk --exclude='*.svg' . | cut -f1)
+  fig_kb=$(cd "$tmp/sized" && cat ./*.svg | wc -c | awk '{print int($1 / 1024) + 1}')
+  size_kb=$(( 2 * data_kb + fig_kb + fig_kb / 2 + 64 ))
+  cat > "$tmp/fulldisk.sh" <<EOS
+set -u
+mount -t tmpfs -o size=${size_kb}k tmpfs "$tmp/tfs" || exit 99
+"$exe" run --set run.revolutions=2 --set run.models=analytic,ode-ideal-nominal --out "$tmp/tfs/r" >/dev/null 2>&1 || exit 98
+(cd "$tmp/tfs/r" && md5sum ./* | sort) > "$tmp/sum_before"
+"$exe" run --set run.revolutions=2 --set run.models=analytic,ode-ideal-nominal --set drive.direction=ccw --out "$tmp/tfs/r" >/dev/null 2>"$tmp/fd_err"
+echo \$? > "$tmp/fd_rc"
+(cd "$tmp/tfs/r" && md5sum ./* | sort) > "$tmp/sum_after"
+ls -a "$tmp/tfs" > "$tmp/fd_ls"
+EOS
+  mkdir -p "$tmp/tfs"
+  unshare -m bash "$tmp/fulldisk.sh"; frc=$?
+  if [ $frc -eq 99 ]; then echo "SKIP: 24.3 (tmpfs cannot be mounted here)"; else
+    ok '[ $frc -eq 0 ] && [ "$(cat "$tmp/fd_rc")" -eq 1 ] && cmp -s "$tmp/sum_before" "$tmp/sum_after" && ! grep -q staging "$tmp/fd_ls" && grep -q "nothing was written" "$tmp/fd_err"' "24.3: a disk that fills while figures are drawn: exit 1, the previous set byte-identical, no staging left (was: damaged SVGs committed, exit 0)"
+  fi
+else
+  echo "SKIP: 24.3 (unshare -m is not permitted here)"
+fi
+
+# ---- 24.4 / 24.8 / 24.13 merge ----------------------------------------------------
+"$exe" sweep "$here/studies/tiny.ini" --out "$tmp/own" >/dev/null 2>&1
+"$exe" sweep "$here/studies/tiny.ini" --list 2 --out "$tmp/shm" > "$tmp/cmds24.txt" 2>/dev/null
+bash "$tmp/cmds24.txt" >/dev/null 2>&1
+cp "$tmp/shm"/points.shard-* "$tmp/own/"
+own_before=$(md5sum < "$tmp/own/points.jsonl")
+"$exe" merge "$tmp/own" >/dev/null 2>"$tmp/err"
+rc=$?
+ok '[ $rc -eq 2 ] && [ "$(md5sum < "$tmp/own/points.jsonl")" = "$own_before" ] && grep -q "own rows" "$tmp/err"' "24.4: merge into a folder holding a sweep's own rows is refused, the rows unchanged (was: overwritten, old provenance kept)"
+"$exe" merge "$tmp/shm" >/dev/null 2>&1
+"$exe" merge "$tmp/shm" --out "$tmp/shm/" >/dev/null 2>"$tmp/err"
+rc=$?
+ok '[ $rc -eq 0 ] && [ "$(wc -l < "$tmp/shm/points.jsonl")" -eq 6 ] && grep -q "\"merged\": true" "$tmp/shm/points.provenance.json"' "24.13: merge D --out D/ merges the shards again, not its own output (6 rows), and marks its provenance"
+sed 's/values = 800, 1000, 1200/values = 800, 1100, 1200/' "$here/studies/tiny.ini" > "$tmp/tiny_other.ini"
+sed -i "s|^case = .*|case = $paper|" "$tmp/tiny_other.ini"
+"$exe" sweep "$tmp/tiny_other.ini" --shard 1/2 --out "$tmp/mix" >/dev/null 2>&1
+cp "$tmp/shm/points.shard-0-of-2.jsonl" "$tmp/shm/points.shard-0-of-2.provenance.json" "$tmp/mix/"
+"$exe" merge "$tmp/mix" >/dev/null 2>"$tmp/err"
+rc=$?
+ok '[ $rc -eq 2 ] && [ ! -e "$tmp/mix/points.csv" ] && grep -q "not one study" "$tmp/err"' "24.8: merge refuses shards of two studies (same name and size, other values) by their provenance (was: one mixed points.csv)"
+"$exe" merge "$tmp/shm" --study "$tmp/tiny_other.ini" >/dev/null 2>"$tmp/err"
+ok '[ $? -eq 2 ] && grep -q "not the study of these shards" "$tmp/err"' "24.13: merge --study with another study is refused (was: a gnuplot warning)"
+
+# ---- 24.5 check: a baseline is the committed case file's ----------------------------
+mkdir -p "$tmp/bl5" && cp "$here/../results/baselines/paper_crank_rocker.json" "$tmp/bl5/"
+sed 's/^name = .*/name = paper_crank_rocker/' "$paper" > "$tmp/other5.ini"
+sed -i 's/^speed_rpm = .*/speed_rpm = 900/' "$tmp/other5.ini"
+FOURBAR_BASELINES_DIR="$tmp/bl5" "$exe" check --calibrate "$tmp/other5.ini" >/dev/null 2>"$tmp/err"
+rc=$?
+ok '[ $rc -eq 2 ] && cmp -s "$tmp/bl5/paper_crank_rocker.json" "$here/../results/baselines/paper_crank_rocker.json" && grep -q "belongs to case file" "$tmp/err"' "24.5: check --calibrate OTHER.ini with a shipped case's [case] name is refused, the baseline kept (was: replaced)"
+FOURBAR_BASELINES_DIR="$tmp/bl5" "$exe" check --calibrate paper_crank_rocker.ini --set drive.speed_rpm=900 >/dev/null 2>"$tmp/err"
+ok '[ $? -eq 2 ] && cmp -s "$tmp/bl5/paper_crank_rocker.json" "$here/../results/baselines/paper_crank_rocker.json"' "24.5: check --calibrate with --set is refused, the baseline kept"
+
+# ---- 24.6 one writer per folder across commands --------------------------------------
+"$exe" run "${slow[@]}" --out "$tmp/x6" >/dev/null 2>&1 &
+p1=$!
+wait_for 'staged x6'
+kill -STOP $p1
+"$exe" sweep "$here/studies/tiny.ini" --shard 0/2 --out "$tmp/x6" >/dev/null 2>"$tmp/err"
+rc=$?
+kill -CONT $p1; wait $p1; rc1=$?
+ok '[ $rc -ne 0 ] && grep -q "PID $p1" "$tmp/err" && [ $rc1 -eq 0 ] && [ -s "$tmp/x6/summary.json" ]' "24.6: a shard sweep into a folder a run is writing is refused, the run finishes (was: its staging folder deleted)"
+"$exe" sweep "$here/../cases/studies/mapping.ini" --shard 0/2 --out "$tmp/y6" >/dev/null 2>&1 &
+p1=$!
+wait_for '[ -s "$tmp/y6/points.shard-0-of-2.jsonl" ]'
+"$exe" run "${tiny[@]}" --out "$tmp/y6" >/dev/null 2>"$tmp/err"
+rc=$?
+"$exe" sweep "$here/../cases/studies/mapping.ini" --shard 1/2 --out "$tmp/y6" >/dev/null 2>"$tmp/err2" &
+p2=$!
+wait_for '[ -s "$tmp/y6/points.shard-1-of-2.jsonl" ]'
+kill $p1 $p2; wait $p1 $p2 2>/dev/null
+ok '[ $rc -ne 0 ] && grep -q "PID $p1" "$tmp/err" && [ -s "$tmp/y6/points.shard-0-of-2.jsonl" ] && [ -s "$tmp/y6/points.shard-1-of-2.jsonl" ]' "24.6: a run into a folder shards are writing is refused; two shards still write side by side"
+
+# ---- 24.7 case and study files ----------------------------------------------------------
+printf '[case]\nbase = %s\n[drive] speed_rpm = 500\n' "$paper" > "$tmp/hdr.ini"
+ok 'refuses "hdr.ini:3: text after a \[section\] header" "$exe" run "$tmp/hdr.ini" "${tiny[@]}" --out "$tmp/a24"' "24.7: '[drive] speed_rpm = 500' is refused naming the line (was: the key ignored)"
+printf '[case]\nbase = %s\n[drive]]\n' "$paper" > "$tmp/hdr2.ini"
+ok 'refuses "hdr2.ini:3" "$exe" run "$tmp/hdr2.ini" "${tiny[@]}" --out "$tmp/a24"' "24.7: '[drive]]' is refused"
+printf '[case]\rbase = %s\r[drive]\rspeed_rpm = 500\r' "$paper" > "$tmp/cr.ini"
+"$exe" run "$tmp/cr.ini" "${tiny[@]}" --json --out "$tmp/a24" > "$tmp/cr.json" 2>/dev/null
+ok 'grep -q "\"speed_rpm\": 500" "$tmp/cr.json"' "24.7: a file with CR-only line endings is read line by line (was: every key ignored, exit 0)"
+study7() { printf '[study]\nname = s7\ncase = %s\nset = run.revolutions=2 ; run.models=analytic\n' "$paper"; }
+{ study7; printf '[axis.a]\nkey = drive.speed_rpm\nvalues = 800\n'; } > "$tmp/s7a.ini"
+"$exe" sweep "$tmp/s7a.ini" --out "$tmp/s7a" >/dev/null 2>&1
+ok '! grep -q "ode-" "$tmp/s7a/points.jsonl" && grep -q "analytic.coupler" "$tmp/s7a/points.jsonl"' "24.7: 'set = a=1 ; b=2' keeps b=2 (was: cut off as an inline comment)"
+{ study7; printf '; %0250d\n[axis.a]\nkey = drive.speed_rpm\nvalues = 800, %0200d\n' 0 0; } > "$tmp/s7b.ini"
+ok 'refuses "s7b.ini:8: the line is 214 characters long, longer than 198" "$exe" sweep "$tmp/s7b.ini" --out "$tmp/s7b"' "24.7: a study line over 198 characters is refused naming its line and length (a long comment is fine)"
+{ study7; printf '[axis.a]\nkey = drive.speed_rpm\nvalues = 800\n[axis.b]\nkey = drive.speed_rpm\nvalues = 900\n'; } > "$tmp/s7c.ini"
+ok 'refuses "both vary drive.speed_rpm" "$exe" sweep "$tmp/s7c.ini" --out "$tmp/s7c"' "24.7: two axes on one key are refused (was: one silently won)"
+{ study7; printf 'metrics = analytic.coupler.omega_maxx\n[axis.a]\nkey = drive.speed_rpm\nvalues = 800\n'; } > "$tmp/s7d.ini"
+ok 'refuses "omega_maxx. names no metric" "$exe" sweep "$tmp/s7d.ini" --out "$tmp/s7d"' "24.7: an unknown metric name is refused (was: accepted)"
+
+# ---- 24.9 provenance tells builds and environments apart --------------------------------
+"$exe" sweep "$here/studies/tiny.ini" --out "$tmp/p9" >/dev/null 2>&1
+head -n 3 "$tmp/p9/points.jsonl" > "$tmp/p9/h" && mv "$tmp/p9/h" "$tmp/p9/points.jsonl"
+FOURBAR_REFERENCE_TOL=1e-8 "$exe" sweep "$here/studies/tiny.ini" --out "$tmp/p9" >/dev/null 2>"$tmp/err"
+ok '[ $? -eq 2 ] && grep -q "FOURBAR_REFERENCE_TOL" "$tmp/err"' "24.9: a resume under another FOURBAR_REFERENCE_TOL is refused naming it (was: old rows kept)"
+cp "$exe" "$tmp/fourbar_other" && printf 'x' >> "$tmp/fourbar_other"
+"$tmp/fourbar_other" sweep "$here/studies/tiny.ini" --out "$tmp/p9" >/dev/null 2>"$tmp/err"
+ok '[ $? -eq 2 ] && grep -q "two builds of fourbar" "$tmp/err"' "24.9: a resume by another build of the same version is refused (was: rows of two builds together)"
+
+# ---- 24.10 output lost is an error ----------------------------------------------------
+for c in "fit 10H7/g6" "kinematics --crank-mm 108 --coupler-mm 279.4 --follower-mm 270.5 --ground-mm 254 --speed-rpm 1000" "impact" "keys" "tolerance 50 --class m"; do
+  $exe $c > /dev/full 2>"$tmp/err"
+  ok '[ $? -eq 1 ] && grep -q "cannot write to standard output" "$tmp/err"' "24.10: fourbar ${c%% *} > /dev/full exits 1 naming the error (was: 0)"
+done
+"$exe" run "${tiny[@]}" --json --out "$tmp/a10" > /dev/full 2>"$tmp/err"
+ok '[ $? -eq 1 ] && grep -q "cannot write to standard output" "$tmp/err"' "24.10: fourbar run --json > /dev/full exits 1"
+
+# ---- 24.11 points.csv quotes what needs quoting ------------------------------------------
+printf '[study]\nname = q11\ncase = %s\nset = run.revolutions=2; run.models=analytic\n[axis.d]\nkey = case.description\nvalues = plain, say "hi"; twice\n' "$paper" > "$tmp/q11.ini"
+"$exe" sweep "$tmp/q11.ini" --out "$tmp/q11" >/dev/null 2>&1
+ok 'python3 -c "
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1], newline=\"\")))
+sys.exit(0 if rows[2][1] == \"say \\\"hi\\\"; twice\" and len(rows[2]) == len(rows[0]) else 1)" "$tmp/q11/points.csv"' "24.11: a value with \" and ; reads back unchanged through a CSV reader"
+
+# ---- 24.12 range checks before any work ----------------------------------------------------
+ok 'refuses "at most 100 m/s" timeout 20 "$exe" impact --speed-m-s 1e6' "24.12: impact at 1e6 m/s is refused with the speed rule (was: inf/nan in the table)"
+ok 'refuses "contact lasting" timeout 20 "$exe" impact --stiffness 1e300' "24.12: impact at stiffness 1e300 is refused naming the contact it makes"
+ok 'refuses "give h >= " timeout 20 "$exe" impact --h-s 1e-12' "24.12: impact --h-s 1e-12 is refused at once with the smallest usable step (was: minutes)"
+ok 'refuses "speed_rpm" "$exe" penalty --speeds-rpm 1e7' "24.12: penalty --speeds-rpm beyond the speed range names the rule (was: a singular inverse dynamics)"
+timeout 5 "$exe" stackup --method montecarlo --samples 1e8 >/dev/null 2>"$tmp/err"
+ok 'grep -q "an estimated .* s and .* GB" "$tmp/err"' "24.12: stackup --samples 1e8 says its estimated time and memory before it starts"
+
+# ---- 24.13 output folders checked up front; the environment is decimal; SIGINT ------------
+ln -s "$tmp/nowhere/at/all" "$tmp/dangling"
+ok '! timeout 20 "$exe" run "${slow[@]}" --out "$tmp/dangling" 2>"$tmp/err" && grep -q "symbolic link" "$tmp/err" && [ ! -e "$tmp/dangling/summary.json" ]' "24.13: a dangling symlink as --out is refused before the simulation"
+mkdir -p "$tmp/here13" && (cd "$tmp/here13" && "$exe" run "${tiny[@]}" --out . >/dev/null 2>"$tmp/err"; echo $? > "$tmp/rc13")
+ok '[ "$(cat "$tmp/rc13")" -ne 0 ] && [ -d "$tmp/here13" ] && grep -q "current folder" "$tmp/err"' "24.13: run --out . is refused (the shell's folder would be removed)"
+FOURBAR_REFERENCE_TOL=0x1p-30 "$exe" run --set run.revolutions=2 --set run.models=reference --no-figures --out "$tmp/a13" >/dev/null 2>"$tmp/err"
+ok '[ $? -eq 1 ] && grep -q "FOURBAR_REFERENCE_TOL = .0x1p-30.*decimal" "$tmp/err"' "24.13: FOURBAR_REFERENCE_TOL=0x1p-30 is refused by name as not decimal (was: read as hex)"
+if unshare -m true 2>/dev/null; then
+  mkdir -p "$tmp/mnt13"
+  unshare -m bash -c "mount -t tmpfs -o size=4m tmpfs '$tmp/mnt13' && '$exe' run ${tiny[*]} --out '$tmp/mnt13' >/dev/null 2>'$tmp/err'; echo \$? > '$tmp/rc13m'"
+  ok '[ "$(cat "$tmp/rc13m")" -ne 0 ] && grep -q "mount point" "$tmp/err"' "24.13: a mount point as --out is refused before the simulation"
+else
+  echo "SKIP: 24.13 mount point (unshare -m is not permitted here)"
+fi
+"$exe" run --set run.revolutions=2 --set run.models=analytic,ode-ideal-nominal --out "$tmp/int13" >/dev/null 2>&1 &
+p1=$!
+wait_for 'pgrep -P $p1 -x gnuplot >/dev/null || ! kill -0 $p1 2>/dev/null'
+g=$(pgrep -P $p1 -x gnuplot | head -n 1)
+kill -INT $p1; wait $p1 2>/dev/null
+sleep 0.3
+ok '[ -n "$g" ] && ! kill -0 "$g" 2>/dev/null && ! staged int13' "24.13: SIGINT while gnuplot draws leaves no staging folder and no orphan gnuplot"
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

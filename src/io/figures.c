@@ -172,8 +172,9 @@ static fb_status plot_close(plot *pl, fb_diag *diag) {
   char why[160];
   if (!figure_whole(pl->tmp, why, sizeof why)) {
     unlink(pl->tmp);
-    return fb_diag_set(diag, FB_ERR_IO, "%s: gnuplot wrote a damaged figure (%s; a full disk?); "
-                       "see %s", pl->path, why, pl->log);
+    const char *slash = strrchr(pl->path, '/');
+    return fb_diag_set(diag, FB_ERR_IO, "%s: gnuplot wrote a damaged figure (%s; a full disk?)",
+                       slash ? slash + 1 : pl->path, why);
   }
   if (rename(pl->tmp, pl->path) != 0) {
     unlink(pl->tmp);

@@ -214,10 +214,13 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
   if (tol_env) {
     char *end;
     tol = strtod(tol_env, &end);
-    if (end == tol_env || *end || !(tol >= FB_REFERENCE_TOL_MIN && tol <= FB_REFERENCE_TOL_MAX)) {
+    /* decimal only: strtod also reads 0x1p-30, inf and nan */
+    const int decimal = strspn(tol_env, "0123456789+-.eE") == strlen(tol_env);
+    if (!decimal || end == tol_env || *end ||
+        !(tol >= FB_REFERENCE_TOL_MIN && tol <= FB_REFERENCE_TOL_MAX)) {
       gsl_set_error_handler(old);
       return fb_diag_set(diag, FB_ERR_RANGE, "FOURBAR_REFERENCE_TOL = '%s' (environment): the "
-                         "reference tolerance must be a number from %g to %g", tol_env,
+                         "reference tolerance must be a decimal number from %g to %g", tol_env,
                          FB_REFERENCE_TOL_MIN, FB_REFERENCE_TOL_MAX);
     }
   }

@@ -113,9 +113,9 @@ case "$what" in
     fi
     # 4. a short seeded mutation run of case and study files on the sanitizer build
     #    (the full run: python3 tests/mutate.py build/fourbar, 2000 + 500 files)
-    echo "== mutation run (tests/mutate.py, short: ${MUTATE_CASES:-120} case and ${MUTATE_STUDIES:-30} study files)"
+    echo "== mutation run (tests/mutate.py, short: ${MUTATE_CASES:-120} case and ${MUTATE_STUDIES:-30} study files, ${MUTATE_MERGES:-10} merges)"
     ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 python3 tests/mutate.py build-asan/fourbar \
-      --cases "${MUTATE_CASES:-120}" --studies "${MUTATE_STUDIES:-30}" --jobs 2 --timeout 300 \
+      --cases "${MUTATE_CASES:-120}" --studies "${MUTATE_STUDIES:-30}" --merges "${MUTATE_MERGES:-10}" --jobs 2 --timeout 300 \
       --keep build-asan/mutants >build-asan/mutate.txt 2>&1 \
       || { tail -n 20 build-asan/mutate.txt; echo "mutation run failed: mutants in build-asan/mutants"; exit 1; }
     tail -n 1 build-asan/mutate.txt

@@ -9,7 +9,17 @@ the built binary and checks the contract for data:
   - no hang: every command finishes within --timeout seconds;
   - no NaN or infinity in any output file (JSON, CSV, JSON lines);
   - every non-zero exit prints a message that names a file (the mutant, a base
-    or an output path) or a flag (--...).
+    or an output path) or a flag (--...);
+  - no foreign file deleted: a third of the output folders are seeded with a
+    user's files (.env, a .git folder, report.tmp.<dead pid>.docx) before the
+    run, and every one must be there after it, whatever the exit;
+  - no mixed result set: a run that exits 0 leaves summary.json and one CSV
+    per model it lists; a run that fails leaves no staging folder.
+
+Merges (issue 24): --merges pairs of shard folders, each pair two studies
+that differ in one mutated axis value, set item or axis key, are merged; a
+merge that exits 0 joining rows of two different provenances is a mixed
+result set.
 
 Cases run as `fourbar run MUTANT --set run.revolutions=2 --set
 run.max_wall_s=S --no-figures` (two revolutions: the first is the run-in;
@@ -18,11 +28,12 @@ would run for minutes). Studies run as `fourbar sweep MUTANT --shard 0/97`
 (point 0 of the grid, and every 97th: the study is loaded and checked whole,
 then one point or a few run). Both run in a fresh folder per mutant.
 
-Usage: mutate.py FOURBAR [--cases N] [--studies N] [--seed S] [--timeout T]
-                 [--jobs J] [--max-wall-s S] [--keep DIR]
+Usage: mutate.py FOURBAR [--cases N] [--studies N] [--merges N] [--seed S]
+                 [--timeout T] [--jobs J] [--max-wall-s S] [--keep DIR]
 Prints one line per failure and a summary line
-  "mutation: N case files, M study files: C crashes, H hangs, X NaN outputs,
-   U unnamed errors (exit 0: a, 1: b, 2: c)"
+  "mutation: N case files, M study files, K merges: C crashes, H hangs, X NaN
+   outputs, U unnamed errors, D deleted foreign files, S mixed result sets
+   (exit 0: a, 1: b, 2: c)"
 and exits 1 when any count of failures is not zero. The summary's first
 numbers come before any failure is looked at, so a run is bounded by
 count * timeout / jobs seconds at worst.
@@ -139,6 +150,37 @@ def mutate_lines(rng, lines, keys, models, nasty, study=False):
         elif op == 11 and lines:  # two lines swapped
             j = rng.randrange(len(lines))
             lines[i], lines[j] = lines[j], lines[i]
+        if study and rng.random() < 0.5:
+            lines = mutate_study(rng, lines)
+    return lines
+
+
+def mutate_study(rng, lines):
+    """edits only a study file has: ';' in set, long values, axes twice, metrics"""
+    op = rng.randrange(5)
+    if op == 0:  # " ;" between set items, or an inline comment after them
+        for j, l in enumerate(lines):
+            if l.startswith("set"):
+                lines[j] = l.replace(";", rng.choice([" ;", " ; ", ";  "])) + rng.choice(["", " ; c", " ;"])
+    elif op == 1:  # a long set or values line (over and under inih's 198)
+        n = rng.choice([40, 60, 100])
+        where = rng.randrange(len(lines) + 1)
+        lines.insert(where, rng.choice(["set = " + "; ".join(["run.revolutions=2"] * (n // 10)),
+                                        "values = " + ", ".join(["800"] * n),
+                                        "; " + "c" * (n * 5)]))
+    elif op == 2:  # an axis section repeated under another name (a key varied twice)
+        heads = [j for j, l in enumerate(lines) if l.startswith("[axis.")]
+        if heads:
+            j = rng.choice(heads)
+            end = next((k for k in range(j + 1, len(lines)) if lines[k].startswith("[")), len(lines))
+            lines += ["[axis.twice]"] + lines[j + 1:end]
+    elif op == 3:  # metrics and plot names, known and not
+        name = rng.choice(["analytic.coupler.omega_max_rad_s", "analytic.coupler.omega_maxx",
+                           "ode-ideal-nominal.spikes.*", "nomodel.spikes.force_max_n", "*", "x.*",
+                           "ode-clearance-impact.spikes.force_max_n", "a.b.c"])
+        lines.insert(1 if lines else 0, rng.choice(["metrics = ", "plot = "]) + name)
+    else:  # an axis on a key the set also gives
+        lines.insert(1 if lines else 0, "set = drive.speed_rpm=900")
     return lines
 
 
@@ -167,8 +209,28 @@ def has_nonfinite(path):
     return 0
 
 
-def run_one(exe, kind, path, work, timeout, max_wall):
+def dead_pid():
+    pid = int(open("/proc/sys/kernel/pid_max").read()) - 11
+    while os.path.exists("/proc/%d" % pid):
+        pid -= 1
+    return pid
+
+
+CANARIES = [".env", ".git/HEAD", "report.tmp.%d.docx" % dead_pid()]
+
+
+def plant_canaries(out):
+    """a user's files in the output folder before the run"""
+    os.makedirs(os.path.join(out, ".git"), exist_ok=True)
+    for c in CANARIES:
+        with open(os.path.join(out, c), "w") as f:
+            f.write("a user's file\n")
+
+
+def run_one(exe, kind, path, work, timeout, max_wall, canaries=False):
     out = os.path.join(work, "out")
+    if canaries:
+        plant_canaries(out)
     if kind == "case":
         cmd = [exe, "run", path, "--set", "run.revolutions=2", "--set", "run.max_wall_s=%g" % max_wall,
                "--no-figures", "--out", out]
@@ -184,6 +246,21 @@ def run_one(exe, kind, path, work, timeout, max_wall):
     for f in glob.glob(os.path.join(out, "*")):
         if has_nonfinite(f):
             return ("nan", path, "%s holds NaN or infinity" % f)
+    if canaries:
+        lost = [c for c in CANARIES if not os.path.exists(os.path.join(out, c))]
+        if lost:
+            return ("deleted", path, "exit %d deleted a user's %s" % (p.returncode, ", ".join(lost)))
+    if glob.glob(os.path.join(work, ".out.staging.*")):
+        return ("mixed", path, "a staging folder was left beside the output folder")
+    if kind == "case" and p.returncode == 0:
+        try:
+            summ = json.load(open(os.path.join(out, "summary.json")))
+            names = [m["name"] for m in summ["models"]]
+        except (OSError, ValueError, KeyError, TypeError):
+            return ("mixed", path, "exit 0 without a readable summary.json")
+        missing = [n for n in names if not os.path.exists(os.path.join(out, n + ".csv"))]
+        if missing:
+            return ("mixed", path, "exit 0 but the set lacks %s" % ", ".join(n + ".csv" for n in missing))
     if p.returncode != 0:
         named = os.path.basename(path) in err or "--" in err or out in err
         if not named or not err.strip():
@@ -192,11 +269,59 @@ def run_one(exe, kind, path, work, timeout, max_wall):
     return ("exit%d" % p.returncode, path, "")
 
 
+MERGE_STUDY = """[study]
+name = m
+case = %s
+set = run.revolutions=2; run.models=analytic%s
+[axis.speed]
+key = %s
+values = %s
+"""
+
+
+def merge_pair(exe, rng, top, n, timeout):
+    """two shards of two studies that differ in one thing, merged: must be refused"""
+    case = os.path.join(ROOT, "cases", "paper_crank_rocker.ini")
+    base = ("", "drive.speed_rpm", "800, 1000")
+    other = rng.choice([("", "drive.speed_rpm", "800, 1100"),
+                        ("; drive.direction=ccw", "drive.speed_rpm", "800, 1000"),
+                        ("", "clearance.stiffness_scale", "800, 1000"),
+                        base])  # the same study: the merge must join it
+    work = os.path.join(top, "merge%03d" % n)
+    os.makedirs(work)
+    out = os.path.join(work, "shards")
+    for k, (extra, key, values) in enumerate((base, other)):
+        study = os.path.join(work, "s%d.ini" % k)
+        with open(study, "w") as f:
+            f.write(MERGE_STUDY % (case, extra, key, values))
+        cmd = [exe, "sweep", study, "--shard", "%d/2" % k, "--out", out]
+        try:
+            subprocess.run(cmd, capture_output=True, timeout=timeout, cwd=work)
+        except subprocess.TimeoutExpired:
+            return "hang", " ".join(cmd)
+    try:
+        p = subprocess.run([exe, "merge", out], capture_output=True, timeout=timeout, cwd=work)
+    except subprocess.TimeoutExpired:
+        return "hang", "merge " + out
+    if p.returncode not in (0, 1, 2):
+        return "crash", "merge exit %d" % p.returncode
+    provs = [json.load(open(f)) for f in sorted(glob.glob(os.path.join(out, "points.shard-*.provenance.json")))]
+    same = len(provs) == 2 and provs[0].get("resolved_study_fnv1a64") == provs[1].get("resolved_study_fnv1a64")
+    if p.returncode == 0 and not same:
+        return "mixed", "merge joined shards of two studies (%s)" % (other,)
+    if p.returncode != 0 and same and len(provs) == 2:
+        return "mixed", "merge refused one study's shards: %s" % p.stderr.decode()[:200]
+    if p.returncode != 0 and not p.stderr.strip():
+        return "unnamed", "merge exit %d without a message" % p.returncode
+    return ("joined" if p.returncode == 0 else "refused"), ""
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("exe")
     ap.add_argument("--cases", type=int, default=2000)
     ap.add_argument("--studies", type=int, default=500)
+    ap.add_argument("--merges", type=int, default=10)
     ap.add_argument("--seed", type=int, default=13)
     ap.add_argument("--timeout", type=float, default=120.0)
     ap.add_argument("--jobs", type=int, default=2)
@@ -226,16 +351,16 @@ def main():
             text = "\n".join(lines) + ("\n" if rng.random() < 0.9 else "")
             with open(os.path.join(work, "mutant.ini"), "wb") as f:
                 f.write(text.encode("utf-8", "surrogateescape"))
-            jobs.append((kind, path, work))
+            jobs.append((kind, path, work, rng.random() < 1.0 / 3.0))
     counts = {}
     failures = []
     done = 0
 
     def one(job):
-        kind, path, work = job
+        kind, path, work, canaries = job
         shutil.copy(os.path.join(work, "mutant.ini"), path)
         try:
-            return kind, run_one(exe, kind, path, work, a.timeout, a.max_wall_s)
+            return kind, run_one(exe, kind, path, work, a.timeout, a.max_wall_s, canaries)
         finally:
             try:
                 os.unlink(path)
@@ -249,19 +374,27 @@ def main():
         for kind, (verdict, path, why) in pool.map(one, jobs):
             counts[verdict] = counts.get(verdict, 0) + 1
             done += 1
-            if verdict in ("crash", "hang", "nan", "unnamed"):
+            if verdict in ("crash", "hang", "nan", "unnamed", "deleted", "mixed"):
                 failures.append((verdict, path, why))
                 print("%s: %s: %s" % (verdict.upper(), os.path.basename(path), why), flush=True)
                 if a.keep:
                     os.makedirs(a.keep, exist_ok=True)
                     n = re.search(r"(case|study)\d+", path).group(0)
                     shutil.copy(os.path.join(top, n, "mutant.ini"), os.path.join(a.keep, n + ".ini"))
+    for n in range(a.merges):
+        verdict, why = merge_pair(exe, rng, top, n, a.timeout)
+        counts["merge-" + verdict] = counts.get("merge-" + verdict, 0) + 1
+        if verdict in ("crash", "hang", "mixed", "unnamed"):
+            failures.append((verdict, "merge%03d" % n, why))
+            print("%s: merge%03d: %s" % (verdict.upper(), n, why), flush=True)
     shutil.rmtree(top, ignore_errors=True)
     c = lambda k: sum(1 for f in failures if f[0] == k)
-    print("mutation: %d case files, %d study files (seed %d): %d crashes, %d hangs, %d NaN outputs, "
-          "%d unnamed errors (exit 0: %d, 1: %d, 2: %d)"
-          % (a.cases, a.studies, a.seed, c("crash"), c("hang"), c("nan"), c("unnamed"),
-             counts.get("exit0", 0), counts.get("exit1", 0), counts.get("exit2", 0)))
+    print("mutation: %d case files, %d study files, %d merges (seed %d): %d crashes, %d hangs, "
+          "%d NaN outputs, %d unnamed errors, %d deleted foreign files, %d mixed result sets "
+          "(exit 0: %d, 1: %d, 2: %d; merges refused: %d, joined: %d)"
+          % (a.cases, a.studies, a.merges, a.seed, c("crash"), c("hang"), c("nan"), c("unnamed"),
+             c("deleted"), c("mixed"), counts.get("exit0", 0), counts.get("exit1", 0),
+             counts.get("exit2", 0), counts.get("merge-refused", 0), counts.get("merge-joined", 0)))
     return 1 if failures else 0
 
 

@@ -2,7 +2,10 @@
  * values, range boundaries included (a boundary belongs to the lower range:
  * upper limit inclusive). Then the standard's exceptions and refusals (M6
  * over 250 up to 315 mm, K9/K10 up to 3 mm, A/B/a/b and N9-N11 up to 1 mm),
- * and sizes and signs as printed. */
+ * and sizes and signs as printed; the letters computed from ISO 286-1's
+ * formulae (cd, ef, fg, t..zc and their holes) against values worked by hand,
+ * and their refusals. Every row of the published tables is checked by
+ * iso_published (test_iso_published.c) where the reference folder exists. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

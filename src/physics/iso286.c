@@ -155,9 +155,11 @@ static double range_mean_mm(int r) {
 /* ISO 286-1:1988 Annex A, rounding of calculated fundamental deviations:
  * the step [um] for a calculated magnitude v [um]; column a..g (upper
  * deviations of shafts a to g, used here for cd, ef, fg) or column k..zc.
- * The k..zc steps were checked against every published t..zc cell over 50 mm
- * (tests/test_iso_published.c): 1 up to 100, 2 up to 300, 5 up to 600, 10 up
- * to 800, 20 up to 1000, 50 up to 2000, 100 above. */
+ * The k..zc steps were checked against every published t..zc cell the
+ * program derives (tests/test_iso_published.c): 1 up to 100, 2 up to 300, 5
+ * up to 600, 10 up to 800, 20 up to 1000, 50 up to 2000, 100 above. Of the
+ * a..g column only the steps up to 60 um are used (cd, ef, fg stay below 60
+ * um up to 10 mm): 1 up to 45, 2 up to 60. */
 static double round_fd(double v, int column_ag) {
   static const double limit[] = {45, 60, 100, 200, 300, 500, 600, 800, 1000, 2000, 5000};
   static const double step_ag[] = {1, 2, 5, 5, 10, 10, 20, 20, 20, 50, 100};

@@ -454,6 +454,17 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   p = write_file("press.ini", "[pin]\nfit = 30H7/s6\n");
   snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
   expect_fail(args, (const char *[]){"press.ini:2", "interference fit", "clearance joint", NULL});
+  /* the shipped press-fit case (issue 31): 30 H7/u6 is refused as bad input */
+  snprintf(args, sizeof args, "run %s/press_fit.ini --out %s/x", getenv("FOURBAR_CASES_DIR"),
+           tmpdir);
+  {
+    static char err[8192];
+    assert_int_equal(run(args, NULL, 0, err, sizeof err), 2); /* 2: bad input (README) */
+    const char *needles[] = {"press_fit.ini:11", "30H7/u6", "interference fit",
+                             "an interference fit has no clearance", "-61.0 to -27.0 um", NULL};
+    for (int i = 0; needles[i]; i++)
+      if (!strstr(err, needles[i])) fail_msg("'%s': stderr '%s' lacks '%s'", args, err, needles[i]);
+  }
   p = write_file("both.ini", "[pin]\nfit = 10H7/g6\nradial_clearance_um = 10\n");
   snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
   expect_fail(args, (const char *[]){"both.ini:3", "give one", NULL});

@@ -2,7 +2,10 @@
  * values, range boundaries included (a boundary belongs to the lower range:
  * upper limit inclusive). Then the standard's exceptions and refusals (M6
  * over 250 up to 315 mm, K9/K10 up to 3 mm, A/B/a/b and N9-N11 up to 1 mm),
- * and sizes and signs as printed. */
+ * and sizes and signs as printed; the letters computed from ISO 286-1's
+ * formulae (cd, ef, fg, t..zc and their holes) against values worked by hand,
+ * and their refusals. Every row of the published tables is checked by
+ * iso_published (test_iso_published.c) where the reference folder exists. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -80,7 +83,7 @@ static void expect(fb_status want, const char *fit, const char *needle) {
 
 static void test_bad_fits_name_value_and_range(void **state) {
   (void)state;
-  expect(FB_ERR_RANGE, "10X7/g6", "letter 'X'");
+  expect(FB_ERR_RANGE, "10W7/g6", "letter 'W'"); /* ISO 286 has no W (nor I, L, O, Q) */
   expect(FB_ERR_RANGE, "10H19/g6", "IT19");
   expect(FB_ERR_RANGE, "600H7/g6", "600 mm");
   expect(FB_ERR_PARSE, "10H7g6", "expected <size mm>");
@@ -163,6 +166,82 @@ static void test_iso286_refusals(void **state) {
   assert_int_equal(fb_iso286_fit(&f, "1A11/h11", &dd), FB_ERR_RANGE);
 }
 
+/* the letters derived from ISO 286-1's formulae (iso286.h), each oracle
+ * worked by hand from the formula, the range's mean D and the rounding step */
+static void test_formula_letters(void **state) {
+  (void)state;
+  const published derived[] = {
+      /* u, 24..30 mm: IT7 21 + sqrt(24 x 30) = 47.83 -> 48 (step 1); IT6 13 */
+      {"u6", 30, 61, 48},
+      /* U7 there: special rule ES = -ei + Delta, Delta = IT7 - IT6 = 8 */
+      {"U7", 30, -40, -61},
+      /* U8: above IT7 the general rule ES = -ei */
+      {"U8", 30, -48, -81},
+      /* zc, 80..100 mm: IT10 140 + 5 sqrt(8000) = 587.2 -> 585 (step 5 over 300) */
+      {"zc9", 100, 672, 585},
+      /* t, 180..200 mm: IT7 46 + 0.63 sqrt(36000) = 165.5 -> 166 (step 2 over 100) */
+      {"t7", 200, 212, 166},
+      /* t, 50..65 mm, the first range where the table follows the formula:
+       * IT7 30 + 0.63 sqrt(3250) = 65.9 -> 66 */
+      {"t6", 50.001, 85, 66},
+      /* cd, 3..6 mm: sqrt(52 D^0.2 x 16 D^0.44), D = sqrt 18: 45.8 -> 46 (step 2 over 45) */
+      {"CD7", 5, 58, 46},
+      /* ef, up to 3 mm: sqrt(11 x 5.5) D^0.41, D = sqrt 3: 9.74 -> 10 */
+      {"ef6", 2, -10, -16},
+  };
+  for (size_t i = 0; i < sizeof derived / sizeof derived[0]; i++) {
+    fb_deviation d;
+    fb_diag diag;
+    const published *p = &derived[i];
+    if (fb_iso286_class(&d, p->cls, p->size_mm * 1e-3, &diag) != FB_OK)
+      fail_msg("%s at %g mm: %s", p->cls, p->size_mm, diag.msg);
+    if (fabs(d.upper * 1e6 - p->upper_um) > UM_TOL || fabs(d.lower * 1e6 - p->lower_um) > UM_TOL)
+      fail_msg("%s at %g mm: %+g/%+g um, by the rule %+g/%+g", p->cls, p->size_mm,
+               d.upper * 1e6, d.lower * 1e6, p->upper_um, p->lower_um);
+  }
+  fb_fit f;
+  assert_int_equal(fb_iso286_fit(&f, "30H7/u6", NULL), FB_OK);
+  assert_int_equal(f.kind, FB_FIT_INTERFERENCE);
+  /* refusals: the standard does not define the class there (UNDEFINED), or
+   * it does by a tabulated value this program does not derive (NOT_DERIVED) */
+  const struct {
+    const char *cls;
+    double mm;
+    fb_iso286_why why;
+    const char *needle;
+  } r[] = {
+      {"t6", 24, FB_ISO286_UNDEFINED, "over 24 mm"},   {"T7", 20, FB_ISO286_UNDEFINED, "over 24 mm"},
+      {"v6", 14, FB_ISO286_UNDEFINED, "over 14 mm"},   {"Y7", 18, FB_ISO286_UNDEFINED, "over 18 mm"},
+      {"cd7", 10.001, FB_ISO286_UNDEFINED, "up to 10 mm"},
+      {"EF7", 12, FB_ISO286_UNDEFINED, "up to 10 mm"}, {"j9", 10, FB_ISO286_UNDEFINED, "IT5 to IT8"},
+      {"J5", 10, FB_ISO286_UNDEFINED, "IT6 to IT8"},   {"j8", 4, FB_ISO286_UNDEFINED, "up to 3 mm"},
+      {"K11", 2, FB_ISO286_UNDEFINED, "K9 and K10"},
+      {"j6", 10, FB_ISO286_NOT_DERIVED, "without a formula"},
+      {"J7", 10, FB_ISO286_NOT_DERIVED, "without a formula"},
+      {"u6", 10, FB_ISO286_NOT_DERIVED, "IT7 + 1 D"},  {"U7", 450, FB_ISO286_NOT_DERIVED, "Table 3"},
+      {"zb8", 16, FB_ISO286_NOT_DERIVED, "over 14 up to 18 mm"},
+      {"fg6", 2, FB_ISO286_NOT_DERIVED, "geometric mean"},
+  };
+  for (size_t i = 0; i < sizeof r / sizeof r[0]; i++) {
+    fb_deviation d;
+    fb_diag diag;
+    fb_iso286_why why = FB_ISO286_OK;
+    if (fb_iso286_lookup(&d, &why, r[i].cls, r[i].mm * 1e-3, &diag) != FB_ERR_RANGE)
+      fail_msg("%s at %g mm is accepted", r[i].cls, r[i].mm);
+    if (why != r[i].why || !strstr(diag.msg, r[i].needle) || !strstr(diag.msg, "ISO 286"))
+      fail_msg("%s at %g mm: reason %d (want %d), message '%s' lacks '%s'", r[i].cls, r[i].mm,
+               (int)why, (int)r[i].why, diag.msg, r[i].needle);
+  }
+  /* just past each definition limit the class is accepted */
+  fb_deviation d;
+  assert_int_equal(fb_iso286_class(&d, "cd7", 10e-3, NULL), FB_OK);
+  assert_int_equal(fb_iso286_class(&d, "y6", 18.001e-3, NULL), FB_OK);
+  assert_int_equal(fb_iso286_class(&d, "u6", 24.001e-3, NULL), FB_OK);
+  fb_iso286_why why = FB_ISO286_NOT_DERIVED;
+  assert_int_equal(fb_iso286_lookup(&d, &why, "Z8", 250e-3, NULL), FB_OK);
+  assert_int_equal(why, FB_ISO286_OK);
+}
+
 /* sizes in messages as given (shortest round trip), and no negative zero */
 static void test_sizes_and_signs(void **state) {
   (void)state;
@@ -170,6 +249,9 @@ static void test_sizes_and_signs(void **state) {
   fb_diag d;
   assert_int_equal(fb_iso286_fit(&f, "500.0001H7/g6", &d), FB_ERR_RANGE);
   if (!strstr(d.msg, "500.0001 mm")) fail_msg("message '%s' does not name 500.0001 mm", d.msg);
+  /* a whole size prints whole, not as %g's 1e+01 */
+  assert_int_equal(fb_iso286_fit(&f, "10K10/h10", &d), FB_ERR_RANGE);
+  if (!strstr(d.msg, "at 10 mm")) fail_msg("message '%s' does not name 10 mm", d.msg);
   double pm;
   assert_int_equal(fb_iso2768_linear(&pm, 'm', 4000.0001e-3, NULL, 0, &d), FB_ERR_RANGE);
   if (!strstr(d.msg, "4000.0001 mm")) fail_msg("message '%s' does not name 4000.0001 mm", d.msg);
@@ -190,6 +272,7 @@ int main(void) {
       cmocka_unit_test(test_bad_fits_name_value_and_range),
       cmocka_unit_test(test_general_tolerances),
       cmocka_unit_test(test_iso286_refusals),
+      cmocka_unit_test(test_formula_letters),
       cmocka_unit_test(test_sizes_and_signs),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

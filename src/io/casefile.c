@@ -912,10 +912,14 @@ static fb_status resolve_standards(fb_case *out, const load_ctx *c, fb_diag *dia
     if (st != FB_OK) return fb_diag_set(diag, st, "%s: [pin] fit = '%s': %s", fit_at, out->fit, inner.msg);
     if (f.kind != FB_FIT_CLEARANCE)
       return fb_diag_set(diag, FB_ERR_RANGE,
-                         "%s: [pin] fit = '%s' is a%s %s fit (clearance %+.1f to %+.1f um): a "
+                         "%s: [pin] fit = '%s' is a%s %s fit (clearance %+.1f to %+.1f um): %sa "
                          "clearance joint needs a clearance fit (minimum clearance >= 0)",
                          fit_at, out->fit, f.kind == FB_FIT_INTERFERENCE ? "n" : "",
-                         fb_fit_kind_name(f.kind), f.clearance_min * 1e6, f.clearance_max * 1e6);
+                         fb_fit_kind_name(f.kind), f.clearance_min * 1e6, f.clearance_max * 1e6,
+                         f.kind == FB_FIT_INTERFERENCE
+                             ? "an interference fit has no clearance (a press fit holds the pin "
+                               "fast); "
+                             : "");
     const char *d_at = entry_origin(c, "pin", "diameter_mm");
     if (d_at && fabs(out->pin_diameter - f.nominal) > 1e-12)
       return fb_diag_set(diag, FB_ERR_RANGE,

@@ -142,19 +142,114 @@ static const dev_row *find_shaft(const char *lower) {
   return NULL;
 }
 
-#define SUPPORTED "holes A B C D E F G H JS K M N P R S, shafts a b c d e f g h js k m n p r s"
+/* ---- letters derived from the formulae behind ISO 286-1 Tables 2 and 3 ---- */
 
-static fb_status class_limits(fb_deviation *out, const char *cls, double size, fb_diag *diag);
+/* D [mm]: the geometric mean of the limits of deviation range r; the first
+ * range (up to 3 mm) uses 1 and 3 (ISO 286-1:1988 Annex A, the basis of the
+ * 2010 tables) */
+static double range_mean_mm(int r) {
+  const double lo = r == 0 ? 1.0 : dev_upper_mm[r - 1];
+  return sqrt(lo * dev_upper_mm[r]);
+}
 
-fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_diag *diag) {
-  fb_status st = class_limits(out, cls, size, diag);
+/* ISO 286-1:1988 Annex A, rounding of calculated fundamental deviations:
+ * the step [um] for a calculated magnitude v [um]; column a..g (upper
+ * deviations of shafts a to g, used here for cd, ef, fg) or column k..zc.
+ * The k..zc steps were checked against every published t..zc cell the
+ * program derives (tests/test_iso_published.c): 1 up to 100, 2 up to 300, 5
+ * up to 600, 10 up to 800, 20 up to 1000, 50 up to 2000, 100 above. Of the
+ * a..g column only the steps up to 60 um are used (cd, ef, fg stay below 60
+ * um up to 10 mm): 1 up to 45, 2 up to 60. */
+static double round_fd(double v, int column_ag) {
+  static const double limit[] = {45, 60, 100, 200, 300, 500, 600, 800, 1000, 2000, 5000};
+  static const double step_ag[] = {1, 2, 5, 5, 10, 10, 20, 20, 20, 50, 100};
+  static const double step_kz[] = {1, 1, 1, 2, 2, 5, 5, 10, 20, 50, 100};
+  const int n = (int)(sizeof limit / sizeof limit[0]);
+  double step = 100.0;
+  for (int i = 0; i < n; i++)
+    if (v <= limit[i]) {
+      step = column_ag ? step_ag[i] : step_kz[i];
+      break;
+    }
+  return step * floor(v / step + 0.5);
+}
+
+/* ISO 286-1:1988 Annex A formulae for the upper deviations of shafts c..g,
+ * magnitude [um] unrounded at mean size D [mm]: c 52 D^0.2 (D <= 40), d 16
+ * D^0.44, e 11 D^0.41, f 5.5 D^0.41, g 2.5 D^0.34 */
+static double formula_ag(char letter, double d_mm) {
+  switch (letter) {
+  case 'c': return d_mm <= 40.0 ? 52.0 * pow(d_mm, 0.2) : 95.0 + 0.8 * d_mm;
+  case 'd': return 16.0 * pow(d_mm, 0.44);
+  case 'e': return 11.0 * pow(d_mm, 0.41);
+  case 'f': return 5.5 * pow(d_mm, 0.41);
+  default: return 2.5 * pow(d_mm, 0.34); /* g */
+  }
+}
+
+/* the lower deviations ei = IT_n + c D of shafts t..zc (ISO 286-1:1988
+ * Annex A): grade n of the IT term, coefficient c of D [mm], the size [mm]
+ * over which the letter is defined (ISO 286-1:2010 Table 2 gives t only over
+ * 24 mm, v over 14 mm, y over 18 mm), and the sizes where Table 2 tabulates a
+ * value that the formula, rounded, does not give (found against ISO 286-2's
+ * published tables; the program refuses there rather than print a value the
+ * standard does not hold): up to depart_mm, and over depart_over_mm */
+typedef struct {
+  const char *letter;
+  int it_grade;           /* n of the IT_n term */
+  double coeff;           /* c of c D */
+  double defined_over_mm; /* the letter is defined over this size [mm] */
+  double depart_upto_mm;  /* the table departs from the formula up to this size [mm] (0: nowhere) */
+  double depart_over_mm;  /* ... and over this size [mm] (0: nowhere) */
+  double depart_a_mm[2];  /* ... and in the deviation ranges up to these sizes [mm] (0: none) */
+} formula_row;
+
+static const formula_row formula_rows[] = {
+    {"t", 7, 0.63, 24, 50, 0, {0, 0}},
+    {"u", 7, 1.0, 0, 24, 400, {0, 0}},
+    {"v", 7, 1.25, 14, 18, 0, {0, 0}},
+    {"x", 7, 1.6, 0, 18, 0, {0, 0}},
+    {"y", 7, 2.0, 18, 0, 0, {0, 0}},
+    {"z", 7, 2.5, 0, 18, 0, {0, 0}},
+    {"za", 8, 3.15, 0, 10, 0, {0, 0}},
+    {"zb", 9, 4.0, 0, 6, 0, {18, 50}},
+    {"zc", 10, 5.0, 0, 6, 0, {0, 0}},
+};
+#define N_FORMULA_ROWS ((int)(sizeof formula_rows / sizeof formula_rows[0]))
+
+static const formula_row *find_formula(const char *lower) {
+  for (int i = 0; i < N_FORMULA_ROWS; i++)
+    if (strcmp(formula_rows[i].letter, lower) == 0) return &formula_rows[i];
+  return NULL;
+}
+
+#define SUPPORTED                                                                          \
+  "holes A B C CD D E EF F FG G H JS K M N P R S T U V X Y Z ZA ZB ZC, shafts a b c cd d e " \
+  "ef f fg g h js k m n p r s t u v x y z za zb zc"
+
+static fb_status class_limits(fb_deviation *out, fb_iso286_why *why, const char *cls,
+                              double size, fb_diag *diag);
+
+fb_status fb_iso286_lookup(fb_deviation *out, fb_iso286_why *why, const char *cls, double size,
+                           fb_diag *diag) {
+  fb_iso286_why w = FB_ISO286_OK;
+  fb_status st = class_limits(out, &w, cls, size, diag);
+  if (st != FB_OK && w == FB_ISO286_OK) w = FB_ISO286_INVALID;
+  if (why) *why = w;
   /* x + 0.0 turns -0.0 into +0.0 (round to nearest), so that no zero
    * deviation (H's EI, h's es, K9's ES) ever prints as "-0" */
   if (st == FB_OK) out->upper += 0.0, out->lower += 0.0;
   return st;
 }
 
-static fb_status class_limits(fb_deviation *out, const char *cls, double size, fb_diag *diag) {
+fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_diag *diag) {
+  return fb_iso286_lookup(out, NULL, cls, size, diag);
+}
+
+#define TOL_MM(x) ((x) * (1.0 + 1e-12)) /* a size typed as a range limit belongs to it */
+
+static fb_status class_limits(fb_deviation *out, fb_iso286_why *why, const char *cls,
+                              double size, fb_diag *diag) {
   char letters[4] = {0, 0, 0, 0};
   int grade = 0;
   fb_status st = split_class(cls, letters, &grade, diag);
@@ -178,31 +273,119 @@ static fb_status class_limits(fb_deviation *out, const char *cls, double size, f
     out->lower = -0.5 * it;
     return FB_OK;
   }
+  char num[32];
+  fb_diag_number(num, sizeof num, mm);
+  const int r = range_index(dev_upper_mm, N_DEV_RANGES, mm);
+  /* j and J: ISO 286-1:2010 Table 2 gives j for IT5 and IT6, IT7 and IT8
+   * (IT8 up to 3 mm only), Table 3 gives J for IT6, IT7 and IT8; both as
+   * tabulated numbers with no formula behind them */
+  if (strcmp(lower, "j") == 0) {
+    *why = FB_ISO286_UNDEFINED;
+    if (!hole && (grade < 5 || grade > 8))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "tolerance class '%s': ISO 286-1 Table 2 defines j only in grades IT5 "
+                         "to IT8", cls);
+    if (!hole && grade == 8 && mm > TOL_MM(3.0))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "tolerance class '%s' at %s mm: ISO 286-1 Table 2 defines j8 only for "
+                         "nominal sizes up to 3 mm", cls, num);
+    if (hole && (grade < 6 || grade > 8))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "tolerance class '%s': ISO 286-1 Table 3 defines J only in grades IT6 "
+                         "to IT8", cls);
+    *why = FB_ISO286_NOT_DERIVED;
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "tolerance class '%s': ISO 286-1 tabulates %s without a formula, and "
+                       "this program computes deviations from the standard's rules and carries "
+                       "no such table (use %s%d for a symmetric class)",
+                       cls, hole ? "J6 to J8" : "j5 to j8", hole ? "JS" : "js", grade);
+  }
+  /* the fundamental deviation of the shaft letter [m] and whether it is es
+   * (a..h, cd, ef, fg) or ei (k..zc) */
+  double dev;
+  int upper;
   const dev_row *row = find_shaft(lower);
-  if (!row)
+  const formula_row *frow = find_formula(lower);
+  if (strcmp(lower, "cd") == 0 || strcmp(lower, "ef") == 0 || strcmp(lower, "fg") == 0) {
+    /* ISO 286-1:2010 Tables 2 and 3 give the intermediate deviations cd, ef,
+     * fg (CD, EF, FG) only for nominal sizes up to 10 mm */
+    if (mm > TOL_MM(10.0)) {
+      *why = FB_ISO286_UNDEFINED;
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "tolerance class '%s' at %s mm: ISO 286-1 defines the intermediate "
+                         "deviations %s only for nominal sizes up to 10 mm",
+                         cls, num, hole ? "CD, EF, FG" : "cd, ef, fg");
+    }
+    /* ISO 286-1:1988 Annex A: cd, ef, fg are the geometric means of the
+     * (unrounded) c and d, e and f, f and g, rounded in the a..g column;
+     * Table 2's fg up to 3 mm (a value the mean does not give) departs */
+    if (strcmp(lower, "fg") == 0 && mm <= TOL_MM(3.0)) {
+      *why = FB_ISO286_NOT_DERIVED;
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "tolerance class '%s' at %s mm: ISO 286-1 Table %d tabulates %s up to "
+                         "3 mm with a value that its rule (geometric mean of f and g) does not "
+                         "give; this program derives %s from the rule and refuses there", cls,
+                         num, hole ? 3 : 2, letters, letters);
+    }
+    const double d_mm = range_mean_mm(r);
+    const double mean = sqrt(formula_ag(lower[0], d_mm) * formula_ag(lower[1], d_mm));
+    dev = -round_fd(mean, 1) * 1e-6;
+    upper = 1;
+  } else if (frow) {
+    if (mm <= TOL_MM(frow->defined_over_mm)) {
+      *why = FB_ISO286_UNDEFINED;
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "tolerance class '%s' at %s mm: ISO 286-1 defines fundamental deviation "
+                         "%s only for nominal sizes over %g mm", cls, num, letters,
+                         frow->defined_over_mm);
+    }
+    const double lo = r == 0 ? 0.0 : dev_upper_mm[r - 1];
+    const int departs = (frow->depart_upto_mm > 0 && mm <= TOL_MM(frow->depart_upto_mm)) ||
+                        (frow->depart_over_mm > 0 && mm > TOL_MM(frow->depart_over_mm)) ||
+                        dev_upper_mm[r] == frow->depart_a_mm[0] ||
+                        dev_upper_mm[r] == frow->depart_a_mm[1];
+    if (departs) {
+      *why = FB_ISO286_NOT_DERIVED;
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "tolerance class '%s' at %s mm: ISO 286-1 Table %d tabulates %s over %g "
+                         "up to %g mm with a value that its formula (shaft ei = IT%d + %g D) does "
+                         "not give; this program derives %s from the formula and refuses there",
+                         cls, num, hole ? 3 : 2, letters, lo, dev_upper_mm[r], frow->it_grade,
+                         frow->coeff, letters);
+    }
+    double it_n;
+    fb_iso286_it(&it_n, frow->it_grade, size, NULL);
+    dev = round_fd(it_n * 1e6 + frow->coeff * range_mean_mm(r), 0) * 1e-6;
+    upper = 0;
+  } else if (row) {
+    dev = row->um[strcmp(lower, "h") == 0 ? 0 : r] * 1e-6;
+    upper = row->upper;
+  } else {
     return fb_diag_set(diag, FB_ERR_RANGE, "tolerance class '%s': letter '%s' is not in the "
                        "tables here (" SUPPORTED ")", cls, letters);
-  char num[32];
+  }
   /* ISO 286-1:2010 Tables 2 and 3, footnote a: the fundamental deviations a, b
    * (shafts) and A, B (holes) are not to be used for nominal sizes up to 1 mm;
    * ISO 286-2:2010 Tables 2 and 17 start at 1 mm for them */
-  if ((lower[0] == 'a' || lower[0] == 'b') && lower[1] == '\0' && mm <= 1.0 * (1.0 + 1e-12))
+  if ((lower[0] == 'a' || lower[0] == 'b') && lower[1] == '\0' && mm <= TOL_MM(1.0)) {
+    *why = FB_ISO286_UNDEFINED;
     return fb_diag_set(diag, FB_ERR_RANGE,
                        "tolerance class '%s' at %s mm: ISO 286-1 does not use fundamental "
                        "deviation %s for nominal sizes up to 1 mm",
-                       cls, fb_diag_number(num, sizeof num, mm), letters);
+                       cls, num, letters);
+  }
   /* ISO 286-1:2010 Table 3, footnote: N above IT8 is not to be used for
    * nominal sizes up to 1 mm (ISO 286-2:2010 Table 9: N9..N11 from 1 mm) */
-  if (hole && strcmp(lower, "n") == 0 && grade > 8 && mm <= 1.0 * (1.0 + 1e-12))
+  if (hole && strcmp(lower, "n") == 0 && grade > 8 && mm <= TOL_MM(1.0)) {
+    *why = FB_ISO286_UNDEFINED;
     return fb_diag_set(diag, FB_ERR_RANGE,
                        "tolerance class '%s' at %s mm: ISO 286-1 does not use N in grades above "
                        "IT8 for nominal sizes up to 1 mm",
-                       cls, fb_diag_number(num, sizeof num, mm));
-  const int r = range_index(dev_upper_mm, N_DEV_RANGES, mm);
-  double dev = row->um[strcmp(lower, "h") == 0 ? 0 : r] * 1e-6; /* shaft's fundamental deviation */
+                       cls, num);
+  }
   if (strcmp(lower, "k") == 0 && (grade < 4 || grade > 7)) dev = 0.0;
   if (!hole) {
-    if (row->upper) {
+    if (upper) {
       out->upper = dev;
       out->lower = dev - it;
     } else {
@@ -212,7 +395,7 @@ static fb_status class_limits(fb_deviation *out, const char *cls, double size, f
     return FB_OK;
   }
   /* holes: general rule mirrors the shaft; special rule adds Delta */
-  if (row->upper) { /* A..H: EI = -es */
+  if (upper) { /* A..H, CD, EF, FG: EI = -es */
     out->lower = -dev;
     out->upper = -dev + it;
     return FB_OK;
@@ -222,21 +405,25 @@ static fb_status class_limits(fb_deviation *out, const char *cls, double size, f
    * up to 3 mm, and ISO 286-2:2010 Table 8 tabulates just K9 (0/-25 um) and
    * K10 (0/-40 um) there */
   if (strcmp(lower, "k") == 0 && grade > 8) {
+    *why = FB_ISO286_UNDEFINED;
     if (grade > 10)
       return fb_diag_set(diag, FB_ERR_RANGE,
                          "tolerance class '%s': ISO 286-2 tabulates K above IT8 only as K9 and "
                          "K10, up to 3 mm", cls);
-    if (mm > 3.0 * (1.0 + 1e-12))
+    if (mm > TOL_MM(3.0))
       return fb_diag_set(diag, FB_ERR_RANGE,
                          "tolerance class '%s' at %s mm: ISO 286-2 tabulates K9 and K10 only for "
                          "nominal sizes up to 3 mm (K above IT8 has no fundamental deviation "
                          "over 3 mm in ISO 286-1 Table 3)",
-                         cls, fb_diag_number(num, sizeof num, mm));
+                         cls, num);
+    *why = FB_ISO286_OK;
     out->upper = 0.0;
     out->lower = -it;
     return FB_OK;
   }
   double es;
+  /* ISO 286-1:2010 Table 3: the special rule ES = -ei + Delta holds for K, M,
+   * N up to IT8 and for P to ZC up to IT7; the general rule ES = -ei above */
   const int special = (is_kmn && grade <= 8) || (!is_kmn && grade <= 7);
   if (special) {
     double delta = 0.0;
@@ -247,18 +434,17 @@ static fb_status class_limits(fb_deviation *out, const char *cls, double size, f
     }
     /* K's shaft value applies for IT4..IT7; for K8 the standard uses k's
      * IT4..IT7 value too */
-    double ei = row->um[r] * 1e-6;
+    double ei = strcmp(lower, "k") == 0 ? row->um[r] * 1e-6 : dev;
     es = -ei + delta;
     /* ISO 286-1:2010 Table 3, footnote (special case): M6 over 250 up to
      * 315 mm has ES = -9 um, not -ei + Delta = -20 + 9 = -11 um (ISO 286-2:2010
      * Table 9: M6 250..315 is -9/-41 um) */
-    if (strcmp(lower, "m") == 0 && grade == 6 && mm > 250.0 * (1.0 + 1e-12) &&
-        mm <= 315.0 * (1.0 + 1e-12))
+    if (strcmp(lower, "m") == 0 && grade == 6 && mm > TOL_MM(250.0) && mm <= TOL_MM(315.0))
       es = -9e-6;
   } else if (strcmp(lower, "n") == 0) {
     es = mm <= 3.0 ? -4e-6 : 0.0; /* N beyond IT8 */
   } else {
-    es = -row->um[r] * 1e-6; /* M beyond IT8, P..S beyond IT7 */
+    es = -dev; /* M beyond IT8, P..ZC beyond IT7 */
   }
   out->upper = es;
   out->lower = es - it;

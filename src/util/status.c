@@ -1,8 +1,10 @@
 #include "status.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 fb_status fb_diag_set(fb_diag *diag, fb_status s, const char *fmt, ...) {
   if (diag) {
@@ -22,9 +24,11 @@ const char *fb_diag_number(char *buf, size_t size, double x) {
   /* the fewest significant digits that read back as x: 500.0001 stays
    * 500.0001 where %g would print 500, and 279.4 stays 279.4; at most 15,
    * which also hides the last-bit noise of a unit conversion (4000.0001 mm
-   * through metres is 4000.0001000000002) */
+   * through metres is 4000.0001000000002); no exponent for a whole part
+   * %g would shorten (10 is "10", not "1e+01") */
   for (int p = 1; p <= 15; p++) {
     snprintf(buf, size, "%.*g", p, x);
+    if (strchr(buf, 'e') && fabs(x) >= 1.0 && fabs(x) < 1e15) continue;
     if (strtod(buf, NULL) == x) return buf;
   }
   snprintf(buf, size, "%.15g", x);

@@ -217,10 +217,11 @@ while kill -0 $deadpid 2>/dev/null; do deadpid=$((deadpid - 1)); done
 tiny=(--set run.revolutions=2 --set run.models=analytic --no-figures)
 
 # ---- 24.1 a folder of dot-files is a user's folder ----------------------------
-mkdir -p "$tmp/dots/.git"; echo SECRET=1 > "$tmp/dots/.env"; echo alias > "$tmp/dots/.bashrc"
+mkdir -p "$tmp/dots"; echo SECRET=1 > "$tmp/dots/.env"; echo alias > "$tmp/dots/.bashrc"
+echo "gitdir: /elsewhere/.git/worktrees/x" > "$tmp/dots/.git"  # a worktree's .git is a file
 "$exe" run "${tiny[@]}" --out "$tmp/dots" >/dev/null 2>"$tmp/err"
 rc=$?
-ok '[ $rc -ne 0 ] && [ -f "$tmp/dots/.env" ] && [ -f "$tmp/dots/.bashrc" ] && [ -d "$tmp/dots/.git" ] && grep -q "will not be replaced" "$tmp/err"' "24.1: run --out a folder holding only .env, .bashrc and .git is refused, the files kept (was: replaced)"
+ok '[ $rc -ne 0 ] && [ -f "$tmp/dots/.env" ] && [ -f "$tmp/dots/.bashrc" ] && [ -f "$tmp/dots/.git" ] && grep -q "will not be replaced" "$tmp/err"' "24.1: run --out a folder holding only .env, .bashrc and .git (files) is refused, the files kept (was: replaced)"
 mkdir -p "$tmp/dots2"; echo x > "$tmp/dots2/.env"; echo '{}' > "$tmp/dots2/summary.json"
 ok '! "$exe" run "${tiny[@]}" --out "$tmp/dots2" 2>/dev/null && [ -f "$tmp/dots2/.env" ]' "24.1: a dot-file beside a summary.json is not ours either"
 
@@ -384,13 +385,21 @@ if unshare -m true 2>/dev/null; then
 else
   echo "SKIP: 24.13 mount point (unshare -m is not permitted here)"
 fi
+# job control on: a background job of a script otherwise starts with SIGINT ignored
+set -m
 "$exe" run --set run.revolutions=2 --set run.models=analytic,ode-ideal-nominal --out "$tmp/int13" >/dev/null 2>&1 &
 p1=$!
+set +m
 wait_for 'pgrep -P $p1 -x gnuplot >/dev/null || ! kill -0 $p1 2>/dev/null'
 g=$(pgrep -P $p1 -x gnuplot | head -n 1)
+# gnuplot held still: it could otherwise write its figure after the staging
+# folder was emptied (the race of the issue), and live on as an orphan
+[ -n "$g" ] && kill -STOP "$g"
 kill -INT $p1; wait $p1 2>/dev/null
 sleep 0.3
-ok '[ -n "$g" ] && ! kill -0 "$g" 2>/dev/null && ! staged int13' "24.13: SIGINT while gnuplot draws leaves no staging folder and no orphan gnuplot"
+orphan=0; [ -n "$g" ] && kill -0 "$g" 2>/dev/null && orphan=1
+[ -n "$g" ] && kill -CONT "$g" 2>/dev/null && sleep 0.5
+ok '[ -n "$g" ] && [ $orphan -eq 0 ] && ! staged int13' "24.13: SIGINT while gnuplot draws leaves no staging folder and no orphan gnuplot"
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

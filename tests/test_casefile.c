@@ -298,6 +298,50 @@ static void test_masses_derived_from_bars(void **state) {
                (const char *[]){":2:", "density_kg_m3 = 0", "a density must lie in", NULL});
 }
 
+/* [run] models not given: a case with clearance joints runs the clearance
+ * models with their references after the ideal list; one without, the
+ * ideal list alone; a given list is run as given */
+static void test_default_models_follow_the_joints(void **state) {
+  (void)state;
+  fb_case c;
+  fb_diag d;
+  static const char *const ideal[] = {"analytic", "analytic-stackup", "ode-ideal-nominal",
+                                      "ode-ideal-stackup"};
+  static const char *const clear[] = {"ode-clearance-impact", "ode-clearance-restitution",
+                                      "reference", "reference-restitution"};
+  /* the default joint is crank-coupler */
+  if (fb_casefile_load_text(&c, "t", "", 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(c.clearance.mask, 1 << FB_JOINT_B);
+  assert_int_equal(c.model_count, 8);
+  for (int i = 0; i < 4; i++) assert_string_equal(c.models[i], ideal[i]);
+  for (int i = 0; i < 4; i++) assert_string_equal(c.models[4 + i], clear[i]);
+  static const char none[] = "[clearance]\njoints = none\n";
+  if (fb_casefile_load_text(&c, "t", none, sizeof none - 1, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(c.model_count, 4);
+  static const char given[] = "[run]\nmodels = analytic\n";
+  if (fb_casefile_load_text(&c, "t", given, sizeof given - 1, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(c.model_count, 1);
+  assert_string_equal(c.models[0], "analytic");
+}
+
+/* the shipped template loads as shipped: its masses derived from its bars
+ * (crank 7800 * 0.015 * 0.005 * 0.06 = 0.0351 kg by hand), the clearance
+ * models run by default */
+static void test_template_loads(void **state) {
+  (void)state;
+  char path[4200];
+  snprintf(path, sizeof path, "%s/templates/own_fourbar.ini", cases_dir());
+  fb_case c;
+  fb_diag d;
+  if (fb_casefile_load(&c, path, NULL, 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_rel(c.link[FB_CRANK].mass, 0.0351, BAR_REL_TOL);
+  assert_int_equal(c.link_source[FB_CRANK].mass, FB_SOURCE_DERIVED);
+  assert_int_equal(c.link_source[FB_FOLLOWER].inertia, FB_SOURCE_DERIVED);
+  assert_int_equal(c.direction, +1);
+  assert_int_equal(c.model_count, 8);
+  assert_string_equal(c.models[7], "reference-restitution");
+}
+
 /* the paper's case gives every mass and inertia: read as "case", to the
  * digit (173.92 kg mm^2 = 1.7392e-4 kg m^2), also through a base file */
 static void test_paper_masses_are_the_case(void **state) {
@@ -369,6 +413,8 @@ int main(void) {
       cmocka_unit_test(test_defaults_come_from_the_key_table),
       cmocka_unit_test(test_masses_derived_from_bars),
       cmocka_unit_test(test_paper_masses_are_the_case),
+      cmocka_unit_test(test_default_models_follow_the_joints),
+      cmocka_unit_test(test_template_loads),
       cmocka_unit_test(test_fuzz_regressions_give_errors_not_crashes),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

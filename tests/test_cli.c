@@ -174,6 +174,10 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   json_decref(j);
 }
 
+/* --json prints 12 significant digits: each value rounds by up to 5e-12
+ * relative, two of them compared: 1e-11 */
+#define JSON12_REL_TOL 1e-11
+
 static void test_json_flag_and_kinematics(void **state) {
   (void)state;
   static char out[1 << 16], err[4096];
@@ -189,12 +193,27 @@ static void test_json_flag_and_kinematics(void **state) {
   double amax = json_real_value(json_object_get(json_object_get(j, "coupler"), "alpha_min_rad_s2"));
   double w = 1000.0 * 2 * M_PI / 60;
   assert_near(fabs(amax) / (w * w), 1.091571, 5e-7); /* docs/paper.md's ratio */
+  const double peak = json_real_value(json_object_get(json_object_get(j, "coupler"), "alpha_min_rad_s2"));
+  json_decref(j);
+  /* the case file gives the same linkage, speed and direction (the same
+   * computation on the same doubles: equal to the printed 12 digits) */
+  assert_int_equal(run("kinematics paper_crank_rocker --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  if (!j) fail_msg("kinematics CASE --json does not parse: %s (%s)", je.text, err);
+  assert_string_equal(json_string_value(json_object_get(j, "direction")), "cw");
+  assert_rel(json_real_value(json_object_get(json_object_get(j, "coupler"), "alpha_min_rad_s2")),
+             peak, JSON12_REL_TOL);
+  json_decref(j);
+  /* without a case and without --direction: cw, as case files */
+  assert_int_equal(run("kinematics --crank-mm 108 --coupler-mm 279.4 --follower-mm 270.5 "
+                       "--ground-mm 254 --speed-rpm 1000 --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  assert_non_null(j);
+  assert_string_equal(json_string_value(json_object_get(j, "direction")), "cw");
+  assert_true(json_real_value(json_object_get(j, "crank_omega_rad_s")) < 0.0);
   json_decref(j);
 }
 
-/* penalty --json prints 12 significant digits: each value rounds by up to
- * 5e-12 relative, two of them compared: 1e-11 */
-#define JSON12_REL_TOL 1e-11
 
 static void test_penalty_and_impact_json(void **state) {
   (void)state;
@@ -244,6 +263,8 @@ static void test_penalty_and_impact_json(void **state) {
   for (int g = 0; groups[g]; g++)
     for (int k = 0; ikeys[k]; k++)
       assert_true(json_is_number(json_object_get(json_object_get(j, groups[g]), ikeys[k])));
+  /* one default with fourbar run: the matched mapping */
+  assert_string_equal(json_string_value(json_object_get(j, "mapping")), "matched");
   json_decref(j);
   /* no closed form for a hysteresis law: null, not made up */
   assert_int_equal(run("impact --law flores --restitution 0.5 --json", out, sizeof out, err, sizeof err), 0);

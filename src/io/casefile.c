@@ -75,6 +75,14 @@ typedef struct {
 #define INERTIA_RULE "a moment of inertia must be positive, from 1e-6 to 1e12 kg mm^2"
 #define COM_RULE "the centre of mass lies between the link's joints (0 to 1)"
 
+/* run by default, after the key's default list, when a case has clearance
+ * joints and does not give [run] models: each clearance model with its
+ * reference (issue 25: the step was shrunk for a contact no model ran) */
+#define FB_CLEARANCE_DEFAULT_MODELS \
+  "ode-clearance-impact, ode-clearance-restitution, reference, reference-restitution"
+static const char *const clearance_default_models[] = {
+    "ode-clearance-impact", "ode-clearance-restitution", "reference", "reference-restitution"};
+
 #define DERIVED "(derived)"
 #define DERIVED_DOC(what) "; default: " what " of the link's bar (docs/keys.md, Masses and inertias)"
 #define LINK_MASS_KEYS(i, nm, w, t)                                                        \
@@ -323,7 +331,8 @@ static const key_spec keys[] = {
      "t = 0, the start-up included); summary.json reports the first revolution alone too"},
     {"run", "models", K_MODELS, OFF(models), 0, 0, 0, 0, 0, "-",
      "analytic, analytic-stackup, ode-ideal-nominal, ode-ideal-stackup", "known model names",
-     "models to run, comma-separated"},
+     "models to run, comma-separated; not given: the default list, and for a case with "
+     "clearance joints also " FB_CLEARANCE_DEFAULT_MODELS},
 };
 
 #define NKEYS ((int)(sizeof keys / sizeof keys[0]))
@@ -1215,6 +1224,10 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   if (st != FB_OK) goto done;
   for (int i = 0; i < NKEYS; i++)
     out->given[i] = entry_origin(c, keys[i].section, keys[i].key) != NULL;
+  if (!fb_casefile_given(out, "run", "models") && out->clearance.mask)
+    for (size_t i = 0; i < sizeof clearance_default_models / sizeof clearance_default_models[0] &&
+                       out->model_count < FB_MAX_MODELS; i++)
+      snprintf(out->models[out->model_count++], FB_NAME_SIZE, "%s", clearance_default_models[i]);
   st = resolve_masses(out, diag);
   if (st != FB_OK) {
     char msg[FB_DIAG_SIZE];

@@ -77,6 +77,25 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   assert_near(json_real_value(json_object_get(crank, "mass_kg")), 0.12, 0.0);
   assert_string_equal(json_string_value(json_object_get(crank, "mass_source")), "case");
   assert_string_equal(json_string_value(json_object_get(crank, "inertia_source")), "case");
+  /* the paper case's impact model stays with the reference: it does not
+   * leave it within the run, and every impact is matched one to one within
+   * the bound (issue 25) */
+  int with_divergence = 0;
+  for (size_t q = 0; q < json_array_size(models); q++) {
+    json_t *dv = json_object_get(json_array_get(models, q), "divergence");
+    if (!dv) continue;
+    with_divergence++;
+    assert_true(json_is_false(json_object_get(dv, "diverged")));
+    assert_true(json_is_null(json_object_get(dv, "time_s")));
+    assert_true(json_is_true(json_object_get(dv, "one_to_one")));
+    const json_int_t n = json_integer_value(json_object_get(dv, "impacts_matched"));
+    assert_true(n >= 10);
+    assert_int_equal(n, json_integer_value(json_object_get(dv, "impacts_reference")));
+    assert_int_equal((int)json_array_size(json_object_get(dv, "matched_impacts")), (int)n);
+    assert_true(json_real_value(json_object_get(dv, "force_rel_max")) <= 0.05);
+    assert_int_equal(json_array_size(json_object_get(json_array_get(models, q), "warnings")), 0);
+  }
+  assert_int_equal(with_divergence, 1); /* ode-clearance-impact against reference */
   /* wall times live in timing.json, so summary.json is the same on every rerun */
   const char *keys[] = {"name", "kind", "status", "h_s", "steps", "coupler",
                         "follower", "error_vs_analytic", NULL};
@@ -490,7 +509,8 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
  * a refusal that says how to get it */
 static void test_engines_case(void **state) {
   (void)state;
-  static char out[1 << 16], err[1 << 16];
+  /* --json holds each clearance model's matched impacts (issue 25): ~90 kB */
+  static char out[1 << 19], err[1 << 16];
   char args[1024];
   const char *cases = getenv("FOURBAR_CASES_DIR");
   snprintf(args, sizeof args, "run %s/engines.ini --set run.revolutions=2 --out %s/engines --json",

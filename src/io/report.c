@@ -337,6 +337,37 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o2, "first_impacts", fi);
     json_object_set_new(o, "error_vs_reference", o2);
   }
+  if (m->has_divergence) {
+    const fb_divergence *d = &m->divergence;
+    json_t *dv = json_object();
+    json_object_set_new(dv, "reference", json_string(m->ref_name));
+    json_object_set_new(dv, "diverged", json_boolean(d->diverged));
+    json_object_set_new(dv, "time_s", num(d->t)); /* null: stays with it to the end */
+    json_object_set_new(dv, "crank_angle_rad", num(d->crank_angle));
+    json_object_set_new(dv, "compared_to_s", num(d->t_end));
+    json_object_set_new(dv, "eccentricity_tolerance_m", num(d->ecc_tol));
+    json_object_set_new(dv, "coupler_angle_tolerance_rad", num(d->angle_tol));
+    json_object_set_new(dv, "impacts", json_integer(d->impacts_model));
+    json_object_set_new(dv, "impacts_reference", json_integer(d->impacts_reference));
+    json_object_set_new(dv, "impacts_matched", json_integer(d->matched));
+    json_object_set_new(dv, "one_to_one", json_boolean(d->one_to_one));
+    json_object_set_new(dv, "force_rel_max", num(d->force_rel_max));
+    json_object_set_new(dv, "penetration_rel_max", num(d->penetration_rel_max));
+    json_t *list = json_array();
+    for (int k = 0; k < d->matched && k < FB_DIVERGE_MAX_IMPACTS; k++) {
+      const fb_matched_impact *q = &d->impact[k];
+      json_t *e = json_object();
+      json_object_set_new(e, "time_s", num(q->t));
+      json_object_set_new(e, "time_error_s", num(q->t_error));
+      json_object_set_new(e, "force_n", num(q->force));
+      json_object_set_new(e, "force_rel", num(q->force_rel));
+      json_object_set_new(e, "penetration_m", num(q->penetration));
+      json_object_set_new(e, "penetration_rel", num(q->penetration_rel));
+      json_array_append_new(list, e);
+    }
+    json_object_set_new(dv, "matched_impacts", list);
+    json_object_set_new(o, "divergence", dv);
+  }
   if (m->has_spikes) {
     const fb_spikes *k = &m->spikes;
     json_t *sp = json_object();
@@ -559,6 +590,41 @@ static void paper_row(FILE *f, const char *name, const fb_peaks *p, int alpha) {
  * (first impact's time, speed and crank angle; revolution 1's largest
  * coupler |alpha|, when, peak force and penetration) and every model's
  * warnings. Part of fb_report_print_table. */
+/* each clearance model against its reference: where it leaves it and the
+ * impacts matched one to one before */
+static void print_divergence(FILE *f, const fb_run *r) {
+  int any = 0;
+  for (int i = 0; i < r->n; i++) any |= r->model[i].has_divergence;
+  if (!any) return;
+  fprintf(f, "\ndivergence from the reference (pin eccentricity beyond %g x clearance or coupler "
+             "angle beyond %g x clearance / coupler length):\n",
+          FB_DIVERGE_ECC_FRACTION, FB_DIVERGE_ANGLE_FRACTION);
+  fprintf(f, "%-26s %-22s %12s %9s %15s %9s %9s\n", "model", "reference", "leaves at", "crank",
+          "impacts before", "force", "penetr.");
+  fprintf(f, "%-26s %-22s %12s %9s %15s %9s %9s\n", "", "", "ms", "deg", "model/ref/match",
+          "err max", "err max");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    if (!m->has_divergence) continue;
+    const fb_divergence *d = &m->divergence;
+    char at[32], ang[32], counts[48];
+    if (d->diverged) {
+      snprintf(at, sizeof at, "%.4f", d->t * 1e3);
+      snprintf(ang, sizeof ang, "%.1f", d->crank_angle * 180.0 / M_PI);
+    } else {
+      snprintf(at, sizeof at, "beyond run");
+      snprintf(ang, sizeof ang, "-");
+    }
+    snprintf(counts, sizeof counts, "%d/%d/%d%s", d->impacts_model, d->impacts_reference,
+             d->matched, d->one_to_one ? "" : "*");
+    fprintf(f, "%-26s %-22s %12s %9s %15s %9.2e %9.2e\n", m->run.name, m->ref_name, at, ang,
+            counts, d->force_rel_max, d->penetration_rel_max);
+  }
+  fprintf(f, "(* not one to one: an impact before the divergence has no partner; err max: "
+             "largest |relative error| of the matched impacts' peak force and penetration, "
+             "bound %g)\n", FB_MATCHED_IMPACT_ERROR_BOUND);
+}
+
 static void print_paper_tables(FILE *f, const fb_run *r) {
   const int all = r->c.peaks == FB_PEAKS_ALL;
   fprintf(f, "\nthe paper's table, peaks over %s:\n",
@@ -607,6 +673,7 @@ static void print_paper_tables(FILE *f, const fb_run *r) {
               m->startup_penetration_max * 1e6);
     }
   }
+  print_divergence(f, r);
   int warned = 0;
   for (int i = 0; i < r->n; i++) warned |= r->model[i].warning_count > 0;
   if (warned) {

@@ -225,13 +225,147 @@ static void test_defaults_come_from_the_key_table(void **state) {
   if (fb_casefile_defaults_check(&d) != FB_OK) fail_msg("%s", d.msg);
   fb_case c;
   fb_case_default(&c);
-  const char *sets[] = {"pin.length_mm=13", "mass.coupler_inertia_transverse_kg_mm2=2056.16"};
+  const char *sets[] = {"pin.length_mm=13", "mass.coupler_width_mm=20"};
   fb_case k;
   if (fb_casefile_load_text(&k, "sets", "", 0, &d) != FB_OK) fail_msg("%s", d.msg);
   assert_true(k.pin_length == c.pin_length);
+  /* masses and inertias have no table default: both derive them from the
+   * same default bar, to the same double */
+  assert_true(k.link[FB_COUPLER].inertia_transverse == c.link[FB_COUPLER].inertia_transverse);
   if (fb_casefile_load(&k, NULL, sets, 2, &d) != FB_OK) fail_msg("%s", d.msg);
   assert_true(k.pin_length == c.pin_length);
   assert_true(k.link[FB_COUPLER].inertia_transverse == c.link[FB_COUPLER].inertia_transverse);
+}
+
+/* a product of decimal constants and a sum of squares, against the same
+ * arithmetic done by hand to all digits: a few roundings, each 1.1e-16 */
+#define BAR_REL_TOL 1e-14
+
+/* An own four-bar without masses: each link a steel bar, crank 60 x 15 x 5
+ * mm, rho = 7800 kg/m^3. By hand: m = 7800 * 0.015 * 0.005 * 0.06 = 0.0351
+ * kg; I (hinge) = m (L^2 + w^2) / 12 = 0.0351 * 0.003825 / 12 =
+ * 1.1188125e-5 kg m^2; I (long) = m (w^2 + t^2) / 12 = 0.0351 * 0.00025 / 12
+ * = 7.3125e-7; I (across) = m (L^2 + t^2) / 12 = 0.0351 * 0.003625 / 12 =
+ * 1.0603125e-5. Coupler 160 mm: m = 0.0936 kg, I = 0.0936 * 0.025825 / 12 =
+ * 2.01435e-4 kg m^2. */
+static void test_masses_derived_from_bars(void **state) {
+  (void)state;
+  static const char own[] =
+      "[linkage]\ncrank_mm = 60\ncoupler_mm = 160\nfollower_mm = 140\nground_mm = 150\n"
+      "[mass]\ncrank_width_mm = 15\ncrank_thickness_mm = 5\ncoupler_width_mm = 15\n"
+      "coupler_thickness_mm = 5\nfollower_width_mm = 15\nfollower_thickness_mm = 5\n"
+      "[material]\ndensity_kg_m3 = 7800\n";
+  fb_case c;
+  fb_diag d;
+  const char *p = write_case(own);
+  if (fb_casefile_load(&c, p, NULL, 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_rel(c.link[FB_CRANK].mass, 0.0351, BAR_REL_TOL);
+  assert_rel(c.link[FB_CRANK].inertia, 1.1188125e-5, BAR_REL_TOL);
+  assert_rel(c.link[FB_CRANK].inertia_long, 7.3125e-7, BAR_REL_TOL);
+  assert_rel(c.link[FB_CRANK].inertia_transverse, 1.0603125e-5, BAR_REL_TOL);
+  assert_rel(c.link[FB_COUPLER].mass, 0.0936, BAR_REL_TOL);
+  assert_rel(c.link[FB_COUPLER].inertia, 2.01435e-4, BAR_REL_TOL);
+  assert_near(c.link[FB_CRANK].com_fraction, 0.5, 0.0);
+  for (int i = 0; i < 3; i++) {
+    assert_int_equal(c.link_source[i].mass, FB_SOURCE_DERIVED);
+    assert_int_equal(c.link_source[i].inertia, FB_SOURCE_DERIVED);
+    assert_int_equal(c.link_source[i].inertia_long, FB_SOURCE_DERIVED);
+    assert_int_equal(c.link_source[i].inertia_transverse, FB_SOURCE_DERIVED);
+    assert_int_equal(c.link_source[i].com_fraction, FB_SOURCE_DEFAULT);
+  }
+  assert_string_equal(fb_value_source_name(c.link_source[0].mass), "derived");
+  /* a given mass is kept and the bar's shape scales it: I = 0.05 * 0.003825
+   * / 12 = 1.59375e-5 kg m^2; a given inertia is kept as given */
+  const char *sets[] = {"mass.crank_kg=0.05", "mass.follower_inertia_kg_mm2=134"};
+  if (fb_casefile_load(&c, p, sets, 2, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_near(c.link[FB_CRANK].mass, 0.05, 0.0);
+  assert_int_equal(c.link_source[FB_CRANK].mass, FB_SOURCE_CASE);
+  assert_rel(c.link[FB_CRANK].inertia, 1.59375e-5, BAR_REL_TOL);
+  assert_int_equal(c.link_source[FB_CRANK].inertia, FB_SOURCE_DERIVED);
+  assert_rel(c.link[FB_FOLLOWER].inertia, 134e-6, BAR_REL_TOL);
+  assert_int_equal(c.link_source[FB_FOLLOWER].inertia, FB_SOURCE_CASE);
+  assert_int_equal(c.link_source[FB_FOLLOWER].mass, FB_SOURCE_DERIVED);
+  assert_true(fb_casefile_given(&c, "mass", "crank_kg"));
+  assert_false(fb_casefile_given(&c, "mass", "coupler_kg"));
+  assert_true(fb_casefile_given(&c, "material", "density_kg_m3"));
+  unlink(p);
+  /* a bar too light for the mass rule: named, with the keys to change */
+  expect_error("[mass]\ncrank_width_mm = 0.001\ncrank_thickness_mm = 0.001\n", NULL, 0,
+               FB_ERR_RANGE,
+               (const char *[]){"[mass] crank_kg not given", "crank_width_mm = 0.001",
+                                "a mass must be positive", NULL});
+  expect_error("[material]\ndensity_kg_m3 = 0\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){":2:", "density_kg_m3 = 0", "a density must lie in", NULL});
+}
+
+/* [run] models not given: a case with clearance joints runs the clearance
+ * models with their references after the ideal list; one without, the
+ * ideal list alone; a given list is run as given */
+static void test_default_models_follow_the_joints(void **state) {
+  (void)state;
+  fb_case c;
+  fb_diag d;
+  static const char *const ideal[] = {"analytic", "analytic-stackup", "ode-ideal-nominal",
+                                      "ode-ideal-stackup"};
+  static const char *const clear[] = {"ode-clearance-impact", "ode-clearance-restitution",
+                                      "reference", "reference-restitution"};
+  /* the default joint is crank-coupler */
+  if (fb_casefile_load_text(&c, "t", "", 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(c.clearance.mask, 1 << FB_JOINT_B);
+  assert_int_equal(c.model_count, 8);
+  for (int i = 0; i < 4; i++) assert_string_equal(c.models[i], ideal[i]);
+  for (int i = 0; i < 4; i++) assert_string_equal(c.models[4 + i], clear[i]);
+  static const char none[] = "[clearance]\njoints = none\n";
+  if (fb_casefile_load_text(&c, "t", none, sizeof none - 1, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(c.model_count, 4);
+  static const char given[] = "[run]\nmodels = analytic\n";
+  if (fb_casefile_load_text(&c, "t", given, sizeof given - 1, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(c.model_count, 1);
+  assert_string_equal(c.models[0], "analytic");
+}
+
+/* the shipped template loads as shipped: its masses derived from its bars
+ * (crank 7800 * 0.015 * 0.005 * 0.06 = 0.0351 kg by hand), the clearance
+ * models run by default */
+static void test_template_loads(void **state) {
+  (void)state;
+  char path[4200];
+  snprintf(path, sizeof path, "%s/templates/own_fourbar.ini", cases_dir());
+  fb_case c;
+  fb_diag d;
+  if (fb_casefile_load(&c, path, NULL, 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_rel(c.link[FB_CRANK].mass, 0.0351, BAR_REL_TOL);
+  assert_int_equal(c.link_source[FB_CRANK].mass, FB_SOURCE_DERIVED);
+  assert_int_equal(c.link_source[FB_FOLLOWER].inertia, FB_SOURCE_DERIVED);
+  assert_int_equal(c.direction, +1);
+  assert_int_equal(c.model_count, 8);
+  assert_string_equal(c.models[7], "reference-restitution");
+}
+
+/* the paper's case gives every mass and inertia: read as "case", to the
+ * digit (173.92 kg mm^2 = 1.7392e-4 kg m^2), also through a base file */
+static void test_paper_masses_are_the_case(void **state) {
+  (void)state;
+  const char *files[] = {"paper_crank_rocker.ini", "engines.ini", "hard/crossed_branch.ini"};
+  for (int f = 0; f < 3; f++) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", cases_dir(), files[f]);
+    fb_case c;
+    fb_diag d;
+    if (fb_casefile_load(&c, path, NULL, 0, &d) != FB_OK) fail_msg("%s", d.msg);
+    assert_near(c.link[FB_CRANK].mass, 0.12, 0.0);
+    assert_near(c.link[FB_COUPLER].mass, 0.29, 0.0);
+    assert_near(c.link[FB_FOLLOWER].mass, 0.28, 0.0);
+    assert_rel(c.link[FB_CRANK].inertia, 173.92e-6, SI_TOL);
+    assert_rel(c.link[FB_COUPLER].inertia_long, 15.49e-6, SI_TOL);
+    assert_rel(c.link[FB_FOLLOWER].inertia_transverse, 1974.43e-6, SI_TOL);
+    for (int i = 0; i < 3; i++) {
+      assert_int_equal(c.link_source[i].mass, FB_SOURCE_CASE);
+      assert_int_equal(c.link_source[i].inertia, FB_SOURCE_CASE);
+      assert_int_equal(c.link_source[i].inertia_long, FB_SOURCE_CASE);
+      assert_int_equal(c.link_source[i].inertia_transverse, FB_SOURCE_CASE);
+    }
+  }
 }
 
 static void test_fuzz_regressions_give_errors_not_crashes(void **state) {
@@ -277,6 +411,10 @@ int main(void) {
       cmocka_unit_test(test_start_peaks_and_limit_keys),
       cmocka_unit_test(test_every_key_documented),
       cmocka_unit_test(test_defaults_come_from_the_key_table),
+      cmocka_unit_test(test_masses_derived_from_bars),
+      cmocka_unit_test(test_paper_masses_are_the_case),
+      cmocka_unit_test(test_default_models_follow_the_joints),
+      cmocka_unit_test(test_template_loads),
       cmocka_unit_test(test_fuzz_regressions_give_errors_not_crashes),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -72,6 +72,30 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   assert_string_equal(json_string_value(json_object_get(j, "case")), "paper_crank_rocker");
   json_t *models = json_object_get(j, "models");
   assert_int_equal(json_array_size(models), 6);
+  /* the paper gives its masses: used as given and listed as the case's */
+  json_t *crank = json_array_get(json_object_get(json_object_get(j, "masses"), "links"), 0);
+  assert_near(json_real_value(json_object_get(crank, "mass_kg")), 0.12, 0.0);
+  assert_string_equal(json_string_value(json_object_get(crank, "mass_source")), "case");
+  assert_string_equal(json_string_value(json_object_get(crank, "inertia_source")), "case");
+  /* the paper case's impact model stays with the reference: it does not
+   * leave it within the run, and every impact is matched one to one within
+   * the bound (issue 25) */
+  int with_divergence = 0;
+  for (size_t q = 0; q < json_array_size(models); q++) {
+    json_t *dv = json_object_get(json_array_get(models, q), "divergence");
+    if (!dv) continue;
+    with_divergence++;
+    assert_true(json_is_false(json_object_get(dv, "diverged")));
+    assert_true(json_is_null(json_object_get(dv, "time_s")));
+    assert_true(json_is_true(json_object_get(dv, "one_to_one")));
+    const json_int_t n = json_integer_value(json_object_get(dv, "impacts_matched"));
+    assert_true(n >= 10);
+    assert_int_equal(n, json_integer_value(json_object_get(dv, "impacts_reference")));
+    assert_int_equal((int)json_array_size(json_object_get(dv, "matched_impacts")), (int)n);
+    assert_true(json_real_value(json_object_get(dv, "force_rel_max")) <= 0.05);
+    assert_int_equal(json_array_size(json_object_get(json_array_get(models, q), "warnings")), 0);
+  }
+  assert_int_equal(with_divergence, 1); /* ode-clearance-impact against reference */
   /* wall times live in timing.json, so summary.json is the same on every rerun */
   const char *keys[] = {"name", "kind", "status", "h_s", "steps", "coupler",
                         "follower", "error_vs_analytic", NULL};
@@ -169,6 +193,10 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   json_decref(j);
 }
 
+/* --json prints 12 significant digits: each value rounds by up to 5e-12
+ * relative, two of them compared: 1e-11 */
+#define JSON12_REL_TOL 1e-11
+
 static void test_json_flag_and_kinematics(void **state) {
   (void)state;
   static char out[1 << 16], err[4096];
@@ -184,12 +212,27 @@ static void test_json_flag_and_kinematics(void **state) {
   double amax = json_real_value(json_object_get(json_object_get(j, "coupler"), "alpha_min_rad_s2"));
   double w = 1000.0 * 2 * M_PI / 60;
   assert_near(fabs(amax) / (w * w), 1.091571, 5e-7); /* docs/paper.md's ratio */
+  const double peak = json_real_value(json_object_get(json_object_get(j, "coupler"), "alpha_min_rad_s2"));
+  json_decref(j);
+  /* the case file gives the same linkage, speed and direction (the same
+   * computation on the same doubles: equal to the printed 12 digits) */
+  assert_int_equal(run("kinematics paper_crank_rocker --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  if (!j) fail_msg("kinematics CASE --json does not parse: %s (%s)", je.text, err);
+  assert_string_equal(json_string_value(json_object_get(j, "direction")), "cw");
+  assert_rel(json_real_value(json_object_get(json_object_get(j, "coupler"), "alpha_min_rad_s2")),
+             peak, JSON12_REL_TOL);
+  json_decref(j);
+  /* without a case and without --direction: cw, as case files */
+  assert_int_equal(run("kinematics --crank-mm 108 --coupler-mm 279.4 --follower-mm 270.5 "
+                       "--ground-mm 254 --speed-rpm 1000 --json", out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  assert_non_null(j);
+  assert_string_equal(json_string_value(json_object_get(j, "direction")), "cw");
+  assert_true(json_real_value(json_object_get(j, "crank_omega_rad_s")) < 0.0);
   json_decref(j);
 }
 
-/* penalty --json prints 12 significant digits: each value rounds by up to
- * 5e-12 relative, two of them compared: 1e-11 */
-#define JSON12_REL_TOL 1e-11
 
 static void test_penalty_and_impact_json(void **state) {
   (void)state;
@@ -239,6 +282,8 @@ static void test_penalty_and_impact_json(void **state) {
   for (int g = 0; groups[g]; g++)
     for (int k = 0; ikeys[k]; k++)
       assert_true(json_is_number(json_object_get(json_object_get(j, groups[g]), ikeys[k])));
+  /* one default with fourbar run: the matched mapping */
+  assert_string_equal(json_string_value(json_object_get(j, "mapping")), "matched");
   json_decref(j);
   /* no closed form for a hysteresis law: null, not made up */
   assert_int_equal(run("impact --law flores --restitution 0.5 --json", out, sizeof out, err, sizeof err), 0);
@@ -488,7 +533,8 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
  * a refusal that says how to get it */
 static void test_engines_case(void **state) {
   (void)state;
-  static char out[1 << 16], err[1 << 16];
+  /* --json holds each clearance model's matched impacts (issue 25): ~90 kB */
+  static char out[1 << 19], err[1 << 16];
   char args[1024];
   const char *cases = getenv("FOURBAR_CASES_DIR");
   snprintf(args, sizeof args, "run %s/engines.ini --set run.revolutions=2 --out %s/engines --json",
@@ -617,6 +663,56 @@ static void test_mapping_help_default_mass(void **state) {
     fail_msg("mapping --help says default mass %g kg, the command uses %g kg", help_m, m);
 }
 
+/* An own four-bar that gives no masses and no drive: each link is the default
+ * bar (20 x 6.5 mm steel, docs/keys.md), by hand crank 60 mm: m = 7800 *
+ * 0.02 * 0.0065 * 0.06 = 0.06084 kg, I = m (0.06^2 + 0.02^2) / 12 =
+ * 0.06084 * 0.004 / 12 = 2.028e-5 kg m^2; coupler 160 mm: m = 0.16224 kg,
+ * I = 0.16224 * 0.0260 / 12 = 3.5152e-4 kg m^2. The run lists them as
+ * derived in summary.json, report.md and the printed header, and report.md
+ * no longer says "case" for the drive the case never set. */
+static void test_own_fourbar_derived_masses(void **state) {
+  (void)state;
+  const char *path = write_file("own.ini",
+                                "[case]\nname = own\n[linkage]\ncrank_mm = 60\ncoupler_mm = 160\n"
+                                "follower_mm = 140\nground_mm = 150\n[clearance]\njoints = none\n"
+                                "[run]\nrevolutions = 2\nmodels = analytic, ode-ideal-nominal\n");
+  static char out[1 << 16], err[1 << 14];
+  char args[1024];
+  snprintf(args, sizeof args, "run --no-figures --out %s/own %s", tmpdir, path);
+  if (run(args, out, sizeof out, err, sizeof err) != 0) fail_msg("own case failed: %s", err);
+  if (!strstr(out, "link masses: crank 0.06084 kg, I 20.28 kg mm^2") || !strstr(out, "(derived"))
+    fail_msg("the printed header does not list the derived masses:\n%s", out);
+  char p[512];
+  snprintf(p, sizeof p, "%s/own/summary.json", tmpdir);
+  json_error_t je;
+  json_t *j = json_load_file(p, 0, &je);
+  if (!j) fail_msg("summary.json does not parse: %s", je.text);
+  json_t *links = json_object_get(json_object_get(j, "masses"), "links");
+  assert_int_equal(json_array_size(links), 3);
+  const double mass[2] = {0.06084, 0.16224}, inertia[2] = {2.028e-5, 3.5152e-4};
+  for (int i = 0; i < 2; i++) {
+    json_t *l = json_array_get(links, (size_t)i);
+    assert_rel(json_real_value(json_object_get(l, "mass_kg")), mass[i], JSON12_REL_TOL);
+    assert_rel(json_real_value(json_object_get(l, "inertia_kg_m2")), inertia[i], JSON12_REL_TOL);
+    assert_string_equal(json_string_value(json_object_get(l, "mass_source")), "derived");
+    assert_string_equal(json_string_value(json_object_get(l, "inertia_source")), "derived");
+    assert_string_equal(json_string_value(json_object_get(l, "com_fraction_source")), "default");
+  }
+  assert_string_equal(json_string_value(json_object_get(json_object_get(j, "masses"),
+                                                        "density_source")), "default");
+  json_decref(j);
+  snprintf(p, sizeof p, "%s/own/report.md", tmpdir);
+  FILE *f = fopen(p, "r");
+  assert_non_null(f);
+  static char md[1 << 16];
+  md[fread(md, 1, sizeof md - 1, f)] = '\0';
+  fclose(f);
+  if (!strstr(md, "| crank mass | 0.06084 kg | derived |"))
+    fail_msg("report.md does not list the derived crank mass:\n%s", md);
+  if (!strstr(md, "| crank speed | 1000 rpm cw | default |"))
+    fail_msg("report.md gives a source other than default for the drive the case never set");
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_cli PATH_TO_FOURBAR\n");
@@ -638,6 +734,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_set_without_out_says_so),
       cmocka_unit_test(test_loads_table_names_its_window),
       cmocka_unit_test(test_mapping_help_default_mass),
+      cmocka_unit_test(test_own_fourbar_derived_masses),
   };
   int rc = cmocka_run_group_tests(tests, NULL, NULL);
   char cmd[128];

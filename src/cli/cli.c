@@ -108,12 +108,33 @@ const char *fb_cli_baselines_dir(void) {
   return data_dir("FOURBAR_BASELINES_DIR", "baselines", FB_BASELINES_DIR, buf, sizeof buf);
 }
 
+static int is_file(const char *path) {
+  struct stat sb;
+  return path[0] && stat(path, &sb) == 0 && !S_ISDIR(sb.st_mode);
+}
+
+const char *fb_cli_case_path(char *out, size_t size, const char *arg) {
+  snprintf(out, size, "%s", arg);
+  if (is_file(arg) || arg[0] == '/') return out;
+  /* a relative name not found here: the shipped case of that name, with or
+   * without .ini (as the default case is found from any folder) */
+  const char *dir = fb_cli_cases_dir();
+  const size_t n = strlen(arg);
+  const int has_ini = n > 4 && strcmp(arg + n - 4, ".ini") == 0;
+  char cand[8192];
+  snprintf(cand, sizeof cand, "%s/%s%s", dir, arg, has_ini ? "" : ".ini");
+  if (is_file(cand) && strlen(cand) < size) snprintf(out, size, "%s", cand);
+  else if (strlen(dir) + n + 30 < size) /* the load's error names both places */
+    snprintf(out, size, "%s (not in %s either)", arg, dir);
+  return out;
+}
+
 int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const char *const *sets,
                      int nsets, fb_case *c, char *path, size_t path_size) {
   if (argc - optind_ > 1)
     return fb_cli_fail(cmd, 2, "one case file at most (got %d); see --help", argc - optind_);
   if (optind_ < argc)
-    snprintf(path, path_size, "%s", argv[optind_]);
+    fb_cli_case_path(path, path_size, argv[optind_]);
   else
     snprintf(path, path_size, "%s/paper_crank_rocker.ini", fb_cli_cases_dir());
   fb_diag d;

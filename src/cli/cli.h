@@ -15,9 +15,17 @@ int fb_cli_double(const char *cmd, const char *flag, const char *text, double *o
 
 struct fb_case_s;
 
+/* The case file named by arg into out (size bytes), returned: arg itself when
+ * it names a file here or is absolute; else the shipped case of that name
+ * (<cases folder>/<arg> or <arg>.ini, fb_cli_cases_dir) when there is one;
+ * else "arg (not in <cases folder> either)", which the load refuses naming
+ * both places. */
+const char *fb_cli_case_path(char *out, size_t size, const char *arg);
+
 /* Loads the case file argv[optind] (or the paper's case when there is none)
  * with the --set overrides; on error prints "fourbar <cmd>: <diagnostic>" and
- * returns exit status 2, else 0. path receives the file used. Fails with 2
+ * returns exit status 2, else 0. path receives the file used: a bare name
+ * resolves in the shipped cases folder (fb_cli_case_path). Fails with 2
  * when more than one positional argument is given. */
 int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const char *const *sets,
                      int nsets, struct fb_case_s *c, char *path, size_t path_size);

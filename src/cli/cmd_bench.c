@@ -36,7 +36,8 @@ static const char bench_help[] =
     "at h = 1e-5 and 1e-6 s: error against the reference, differences from the exact\n"
     "collider and cost per step (docs/colliders.md). --grid runs one of the two\n"
     "(default all). Writes DIR/bench.csv, bench.json and bench.svg\n"
-    "(default DIR results/<case>/bench).\n"
+    "(default DIR results/<case>-bench/, beside the run folder results/<case>/, so\n"
+    "that a run can still replace its own folder).\n"
     "On a terminal a progress bar with the time left is drawn on stderr.\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
@@ -119,7 +120,7 @@ int fb_cmd_bench(int argc, char **argv) {
   if (rc) return rc;
   char dir[4096];
   if (out) snprintf(dir, sizeof dir, "%s", out);
-  else snprintf(dir, sizeof dir, "results/%s/bench", c.name);
+  else snprintf(dir, sizeof dir, "results/%s-bench", c.name); /* beside, not inside, results/<case>/ */
   fb_diag d;
   if (fb_outdir_prepare(dir, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
   static fb_bench_row rows[FB_BENCH_MAX_ROWS];

@@ -29,11 +29,12 @@ static const char impact_help[] =
     "  --damping-depth-m d_max of the impact law (default 1e-5)\n"
     "  --mass-kg      default 1;  --speed-m-s  impact speed, default 1\n"
     "  --h-s          ODE step; default: estimated contact duration / 200\n"
-    "  --mapping      secant (default) or tangent linearisation of the law into\n"
+    "  --mapping      matched (default, as fourbar run: [clearance] mapping): ERP/CFM\n"
+    "                 chosen so the one-step update of the body has the continuous\n"
+    "                 spring-damper's poles exp(s h) (tangent stiffness, the body's\n"
+    "                 mass); or secant or tangent linearisation of the law into\n"
     "                 ERP = h k/(h k + c), CFM = 1/(h k + c) (a backward-Euler spring\n"
-    "                 that adds a damper h k), or matched: ERP/CFM chosen so the\n"
-    "                 one-step update of the body has the continuous spring-damper's\n"
-    "                 poles exp(s h) (tangent stiffness, the body's mass)\n"
+    "                 that adds a damper h k)\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static json_t *result_json(const fb_impact_result *r) {
@@ -75,7 +76,7 @@ int fb_cmd_impact(int argc, char **argv) {
   d.speed = 1.0;
   d.stepper = FB_STEPPER_WORLD;
   d.quick_iterations = 20;
-  d.mapping = FB_MAPPING_SECANT;
+  d.mapping = FB_MAPPING_MATCHED; /* the case key's default: one default with fourbar run */
   double h = 0.0, q = 20;
   int json = 0, ch, exponent_given = 0;
   optind = 1;

@@ -11,16 +11,21 @@
 #include "units.h"
 
 static const char kin_help[] =
-    "usage: fourbar kinematics --crank-mm L --coupler-mm L --follower-mm L --ground-mm L\n"
-    "                          --speed-rpm N [--direction cw|ccw] [--branch open|crossed]\n"
-    "                          [--json]\n"
+    "usage: fourbar kinematics [CASE] [--crank-mm L] [--coupler-mm L] [--follower-mm L]\n"
+    "                          [--ground-mm L] [--speed-rpm N] [--direction cw|ccw]\n"
+    "                          [--branch open|crossed] [--json]\n"
     "\n"
     "Exact peaks of coupler and follower angular velocity [rad/s] and angular\n"
     "acceleration [rad/s^2] over one crank revolution at constant speed, the\n"
     "Grashof class and the transmission angle range [deg].\n"
     "\n"
-    "  --direction   crank direction seen from +z (default ccw)\n"
-    "  --branch      assembly branch (default open)\n"
+    "CASE: a case file (or the name of a shipped case, e.g. paper_crank_rocker);\n"
+    "its nominal lengths, speed, direction and branch, each replaced by a flag\n"
+    "given. Without CASE the four lengths and --speed-rpm are required.\n"
+    "\n"
+    "  --direction   crank direction seen from +z (default: the case's, else cw as\n"
+    "                in case files)\n"
+    "  --branch      assembly branch (default: the case's, else open)\n"
     "  --json        one JSON object on standard output\n"
     "Exit status: 0 ok, 1 the crank cannot turn fully, 2 bad input.\n";
 
@@ -36,7 +41,7 @@ int fb_cmd_kinematics(int argc, char **argv) {
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   double mm[FB_LINK_COUNT] = {-1, -1, -1, -1}, rpm = -1;
-  int dir = +1, json = 0, ch;
+  int dir = 0, json = 0, ch, branch_given = 0; /* dir 0: not given */
   fb_branch branch = FB_BRANCH_OPEN;
   const char *flag_of[FB_LINK_COUNT] = {"--crank-mm", "--coupler-mm", "--follower-mm",
                                         "--ground-mm"};
@@ -54,6 +59,7 @@ int fb_cmd_kinematics(int argc, char **argv) {
         else return fb_cli_fail("kinematics", 2, "--direction '%s': must be cw or ccw", optarg);
         break;
       case 'r':
+        branch_given = 1;
         if (strcmp(optarg, "open") == 0) branch = FB_BRANCH_OPEN;
         else if (strcmp(optarg, "crossed") == 0) branch = FB_BRANCH_CROSSED;
         else return fb_cli_fail("kinematics", 2, "--branch '%s': must be open or crossed", optarg);
@@ -63,7 +69,20 @@ int fb_cmd_kinematics(int argc, char **argv) {
       default: fputs(kin_help, stderr); return 2;
     }
   }
-  if (optind < argc) return fb_cli_fail("kinematics", 2, "unexpected argument '%s'", argv[optind]);
+  /* a case gives what no flag gave; without one the case files' defaults */
+  char case_path[4096] = "";
+  if (optind < argc) {
+    static fb_case c;
+    if (fb_cli_load_case("kinematics", argc, argv, optind, NULL, 0, &c, case_path,
+                         sizeof case_path) != 0)
+      return 2;
+    for (int i = 0; i < FB_LINK_COUNT; i++)
+      if (mm[i] == -1) mm[i] = c.nominal.length[i] / FB_M_PER_MM;
+    if (rpm == -1) rpm = c.crank_speed / FB_RAD_S_PER_RPM;
+    if (dir == 0) dir = c.direction;
+    if (!branch_given) branch = c.branch;
+  }
+  if (dir == 0) dir = -1; /* cw, the [drive] direction default */
   fb_linkage lk;
   for (int i = 0; i < FB_LINK_COUNT; i++) {
     if (mm[i] == -1) return fb_cli_fail("kinematics", 2, "%s is required; see --help", flag_of[i]);
@@ -93,6 +112,7 @@ int fb_cmd_kinematics(int argc, char **argv) {
     json_t *l = json_object();
     for (int i = 0; i < FB_LINK_COUNT; i++) json_object_set_new(l, fb_link_name(i), json_real(lk.length[i]));
     json_object_set_new(o, "lengths_m", l);
+    json_object_set_new(o, "case_file", case_path[0] ? json_string(case_path) : json_null());
     json_object_set_new(o, "speed_rpm", json_real(rpm));
     json_object_set_new(o, "crank_omega_rad_s", json_real(omega2));
     json_object_set_new(o, "direction", json_string(dir > 0 ? "ccw" : "cw"));
@@ -107,6 +127,7 @@ int fb_cmd_kinematics(int argc, char **argv) {
     json_decref(o);
     return 0;
   }
+  if (case_path[0]) printf("case: %s\n", case_path);
   printf("linkage: crank %g, coupler %g, follower %g, ground %g mm (%s), %g rpm %s, %s branch\n",
          mm[0], mm[1], mm[2], mm[3], fb_grashof_name(g), rpm, dir > 0 ? "ccw" : "cw",
          branch == FB_BRANCH_OPEN ? "open" : "crossed");

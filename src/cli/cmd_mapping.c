@@ -20,13 +20,13 @@ static const char mapping_help[] =
     "                       [--h-s FROM:TO] [--per-decade N] [--mapping secant|matched]\n"
     "                       [--out DIR] [--figure-format svg|png] [--json]\n"
     "\n"
-    "ERP = h k / (h k + c) and CFM = 1 / (h k + c) of a contact spring k [N/m] with the\n"
+    "ERP and CFM (secant: ERP = h k / (h k + c), CFM = 1 / (h k + c)) of a contact spring k [N/m] with the\n"
     "restitution law's damper c = 2 zeta sqrt(k m) (zeta giving restitution cr for\n"
     "mass m), on a logarithmic grid of stiffness and step size. Marks where ERP\n"
     "leaves [0.1, 0.99] ('<' or '>') and where h omega = h sqrt(k/m) passes 1 ('*':\n"
     "fewer than ~3 steps per contact; ODE's mapped spring then loses most of the\n"
     "restitution, see fourbar impact).\n"
-    "With --mapping matched, ERP and CFM of the matched row instead: the one-step\n"
+    "By default (--mapping matched, as runs) ERP and CFM of the matched row: the one-step\n"
     "update of mass m has the continuous spring-damper's poles exp(s h)\n"
     "(b = m (e^{c h/m} - 1)/h, a = m (1 - e^{s1 h})(1 - e^{s2 h}) / (e^{-c h/m} h^2),\n"
     "ERP = h a / b, CFM = 1 / b); its ERP exceeds 1 wherever h omega is not small\n"
@@ -38,8 +38,9 @@ static const char mapping_help[] =
     "  --stiffness-n-m  range, default 1e5:1e12\n"
     "  --h-s            range, default 1e-7:1e-3\n"
     "  --per-decade     grid points per decade (default 1)\n"
-    "  --mapping        secant (default: ERP = h k/(h k + c), CFM = 1/(h k + c)) or\n"
-    "                   matched (tangent is secant for this linear law)\n"
+    "  --mapping        matched (default, as fourbar run: [clearance] mapping) or\n"
+    "                   secant: ERP = h k/(h k + c), CFM = 1/(h k + c) (tangent is\n"
+    "                   secant for this linear law)\n"
     "  --figure-format  svg (default) or png\n"
     "  --out DIR        also write DIR/mapping.csv and DIR/mapping.svg (ERP map with\n"
     "                   the h omega = 1 and ERP = 0.1, 0.99 contours)\n"
@@ -66,7 +67,7 @@ int fb_cmd_mapping(int argc, char **argv) {
   double m = 0.12 * 0.29 / (0.12 + 0.29), cr = 0.9, k0 = 1e5, k1 = 1e12, h0 = 1e-7, h1 = 1e-3, per = 1;
   const char *out = NULL;
   int json = 0, ch;
-  fb_mapping mapping = FB_MAPPING_SECANT;
+  fb_mapping mapping = FB_MAPPING_MATCHED; /* the case key's default, as runs */
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
     switch (ch) {

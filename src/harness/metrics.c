@@ -1,6 +1,7 @@
 #include "metrics.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static double fmax_d(double a, double b) { return a > b ? a : b; }
@@ -286,5 +287,84 @@ fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, c
     out->first_impact_force_rel[k] = fb_metrics_rel(fa[k], fb[k]);
     out->first_impact_penetration_rel[k] = fb_metrics_rel(pa[k], pb[k]);
   }
+  return FB_OK;
+}
+
+/* impacts of series s at joint j starting before t_end: onset time, peak
+ * force and penetration (the same episodes as first_impacts); returns the
+ * count, at most cap stored */
+static int impact_list(const fb_series *s, int j, double t_end, double *t0, double *force,
+                       double *pen, int cap) {
+  const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
+  const double *p = s->contact[j][FB_C_PEN];
+  int k = -1;
+  for (size_t i = 0; i < s->n; i++) {
+    const int in = (int)st[i] == FB_STATE_IMPACT && f[i] > 0.0;
+    const int onset = in && (i == 0 || (int)st[i - 1] != FB_STATE_IMPACT || !(f[i - 1] > 0.0));
+    if (onset) {
+      if (!(s->t[i] < t_end)) break;
+      k++;
+      if (k < cap) {
+        t0[k] = s->t[i];
+        force[k] = pen[k] = 0.0;
+      }
+    }
+    if (in && k >= 0 && k < cap) {
+      force[k] = fmax_d(force[k], f[i]);
+      pen[k] = fmax_d(pen[k], p[i]);
+    }
+  }
+  return k + 1;
+}
+
+fb_status fb_metrics_divergence(fb_divergence *out, const fb_series *s, const fb_series *r, int j,
+                                double clearance, double coupler_length, double period,
+                                fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  if (!(s->contact_mask & r->contact_mask & (1 << j)))
+    return fb_diag_set(diag, FB_ERR_ARG, "no contact columns to compare");
+  out->ecc_tol = FB_DIVERGE_ECC_FRACTION * clearance;
+  out->angle_tol = FB_DIVERGE_ANGLE_FRACTION * clearance / coupler_length;
+  out->t = INFINITY;
+  out->crank_angle = NAN;
+  const size_t m = s->n < r->n ? s->n : r->n;
+  out->t_end = m ? r->t[m - 1] : 0.0;
+  for (size_t i = 0; i < m; i++) {
+    if (fabs(s->t[i] - r->t[i]) > 1e-9 * (fabs(r->t[i]) + 1e-12))
+      return fb_diag_set(diag, FB_ERR_ARG, "the model and the reference are sampled on different grids");
+    const double dx = s->contact[j][FB_C_EX][i] - r->contact[j][FB_C_EX][i];
+    const double dy = s->contact[j][FB_C_EY][i] - r->contact[j][FB_C_EY][i];
+    const double da = s->coupler_angle[i] - r->coupler_angle[i];
+    const double dwrap = fabs(remainder(da, 2.0 * M_PI));
+    if (!(hypot(dx, dy) <= out->ecc_tol) || !(dwrap <= out->angle_tol)) {
+      out->diverged = 1;
+      out->t = s->t[i];
+      out->crank_angle = fmod(fmod(s->crank_angle[i], 2 * M_PI) + 2 * M_PI, 2 * M_PI);
+      break;
+    }
+  }
+  const double t_cut = out->diverged ? out->t : INFINITY;
+  enum { CAP = 4096 }; /* impacts listed per series; more are counted, not matched */
+  double *buf = malloc(6 * CAP * sizeof *buf);
+  if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the impact lists");
+  double *ta = buf, *fa = buf + CAP, *pa = buf + 2 * CAP, *tb = buf + 3 * CAP;
+  double *fb = buf + 4 * CAP, *pb = buf + 5 * CAP;
+  out->impacts_model = impact_list(s, j, t_cut, ta, fa, pa, CAP);
+  out->impacts_reference = impact_list(r, j, t_cut, tb, fb, pb, CAP);
+  const int both = out->impacts_model < out->impacts_reference ? out->impacts_model
+                                                               : out->impacts_reference;
+  const double window = FB_IMPACT_MATCH_REV_FRACTION * period;
+  int k = 0;
+  for (; k < both && k < CAP; k++) {
+    if (!(fabs(ta[k] - tb[k]) <= window)) break;
+    const double frel = fb_metrics_rel(fa[k], fb[k]), prel = fb_metrics_rel(pa[k], pb[k]);
+    out->force_rel_max = fmax_d(out->force_rel_max, fabs(frel));
+    out->penetration_rel_max = fmax_d(out->penetration_rel_max, fabs(prel));
+    if (k < FB_DIVERGE_MAX_IMPACTS)
+      out->impact[k] = (fb_matched_impact){ta[k], ta[k] - tb[k], fa[k], frel, pa[k], prel};
+  }
+  free(buf);
+  out->matched = k;
+  out->one_to_one = k == out->impacts_model && k == out->impacts_reference;
   return FB_OK;
 }

@@ -93,6 +93,69 @@ typedef struct {
 fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, const fb_series *r,
                                   double t_from, int j, fb_diag *diag);
 
+/* A model parts from its reference when the pin's eccentricity vector differs
+ * from the reference's by more than this fraction of the radial clearance:
+ * half the gap, so the two pins are on different sides of the clearance
+ * circle's centre, not one impact a few steps late (the paper case's
+ * models stay within ~1e-2 of it) [-]. */
+#define FB_DIVERGE_ECC_FRACTION 0.5
+/* ... or when the coupler angles differ by more than this fraction of
+ * c / L_coupler, the rotation that moves the coupler's far joint by the
+ * same half clearance [-]. */
+#define FB_DIVERGE_ANGLE_FRACTION 0.5
+/* Two impacts, the k-th of the model and of the reference, match when their
+ * onsets lie within this fraction of a crank revolution: 1e-3 (60 us at
+ * 1000 rpm, ~18 automatic steps); the paper case's first onsets agree to
+ * 0.01 us, and an impact missed or extra shifts the sequence by a whole
+ * free flight (~1 ms) [-]. */
+#define FB_IMPACT_MATCH_REV_FRACTION 1e-3
+/* Matched impacts whose peak force or penetration differ from the
+ * reference's by more than this are an error of the model (warning "error
+ * bound"), the bound of the ideal models (run.h, FB_IDEAL_PEAK_ERROR_BOUND):
+ * the paper case's matched impacts agree to ~1e-3 [-]. */
+#define FB_MATCHED_IMPACT_ERROR_BOUND 0.05
+/* matched impacts listed per model (the rest counted) */
+#define FB_DIVERGE_MAX_IMPACTS 64
+
+/* One impact of a model matched with the reference's. */
+typedef struct {
+  double t;               /* onset of the model's impact [s] */
+  double t_error;         /* its onset minus the reference's [s] */
+  double force;           /* the model's peak force over the impact [N] */
+  double force_rel;       /* (force - reference's) / reference's [-] */
+  double penetration;     /* the model's peak penetration [m] */
+  double penetration_rel; /* (penetration - reference's) / reference's [-] */
+} fb_matched_impact;
+
+/* Where a model's trajectory leaves its reference's, and its impacts before. */
+typedef struct {
+  int diverged;              /* 1: it leaves the reference within the common run */
+  double t;                  /* time it leaves [s]; INFINITY when it does not */
+  double crank_angle;        /* crank angle then [rad] in [0, 2 pi); NAN when it does not */
+  double ecc_tol;            /* the eccentricity tolerance used [m] */
+  double angle_tol;          /* the coupler-angle tolerance used [rad] */
+  double t_end;              /* end of the common run compared [s] */
+  int impacts_model;         /* impacts of the model beginning before t */
+  int impacts_reference;     /* impacts of the reference beginning before t */
+  int matched;               /* impacts matched one to one, in order, before t */
+  int one_to_one;            /* 1: every impact before t matched (matched = both counts) */
+  double force_rel_max;      /* largest |force_rel| of the matched impacts [-] (0: none) */
+  double penetration_rel_max; /* largest |penetration_rel| [-] */
+  fb_matched_impact impact[FB_DIVERGE_MAX_IMPACTS]; /* the first matched (matched, at most the cap) */
+} fb_divergence;
+
+/* Compares model series s with reference series r (same grid, from t = 0) at
+ * clearance joint j: the first sample where the eccentricity vectors differ
+ * by more than FB_DIVERGE_ECC_FRACTION x clearance [m] or the coupler angles
+ * by more than FB_DIVERGE_ANGLE_FRACTION x clearance / coupler_length [m],
+ * and the impacts (onset: the state enters impact with a positive force;
+ * peaks over the episode) before it, matched k-th to k-th while their onsets
+ * lie within FB_IMPACT_MATCH_REV_FRACTION x period [s].
+ * Errors: FB_ERR_ARG without contact columns at j or on different grids. */
+fb_status fb_metrics_divergence(fb_divergence *out, const fb_series *s, const fb_series *r, int j,
+                                double clearance, double coupler_length, double period,
+                                fb_diag *diag);
+
 /* Where one extreme of a window happened. */
 typedef struct {
   double t;           /* time of the extreme [s] */

@@ -99,6 +99,25 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
   }
 }
 
+/* a model whose matched impacts miss the bound is wrong; one that leaves
+ * its reference is divergent (its later peaks compare two histories) */
+static void divergence_warnings(fb_model_result *m, const char *ref) {
+  const fb_divergence *d = &m->divergence;
+  const double worst = fmax(d->force_rel_max, d->penetration_rel_max);
+  if (d->matched > 0 && !(worst <= FB_MATCHED_IMPACT_ERROR_BOUND)) {
+    fb_warning w = {.kind = FB_WARN_ERROR_BOUND, .value = worst,
+                    .limit = FB_MATCHED_IMPACT_ERROR_BOUND, .t = NAN};
+    snprintf(w.what, sizeof w.what, "matched-impact peaks against %s", ref);
+    warn(m, &w);
+  }
+  if (d->diverged) {
+    fb_warning w = {.kind = FB_WARN_DIVERGENT, .value = d->crank_angle, .t = d->t,
+                    .limit = d->t_end, .ratio = (double)d->matched};
+    snprintf(w.what, sizeof w.what, "%s", ref);
+    warn(m, &w);
+  }
+}
+
 static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   const fb_case *c = &r->c;
   const double omega2 = fb_case_omega2(c);
@@ -222,6 +241,12 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
                                   FB_JOINT_B, &inner) == FB_OK) {
         m->has_ref_error = 1;
         snprintf(m->ref_name, sizeof m->ref_name, "%s", want->name);
+      }
+      if (fb_metrics_divergence(&m->divergence, &m->run.series, &ref->run.series, FB_JOINT_B,
+                                c->radial_clearance, m->run.lengths.length[FB_COUPLER],
+                                2.0 * M_PI / c->crank_speed, &inner) == FB_OK) {
+        m->has_divergence = 1;
+        divergence_warnings(m, want->name);
       }
     }
   }

@@ -10,7 +10,7 @@
 #include "scene_def.h"
 
 /* Warnings a model run can carry. */
-#define FB_RUN_WARNINGS 4
+#define FB_RUN_WARNINGS 6
 
 /* A crank that lags its prescribed angle by more than this has had its drive
  * saturate (ODE: [solver] drive_torque_max_n_m; MuJoCo: the flywheel's
@@ -55,6 +55,8 @@ typedef struct {
   int has_ref_error;       /* 1 for a clearance model run beside its reference */
   fb_reference_error ref_error;
   char ref_name[FB_NAME_SIZE]; /* the reference model compared against */
+  int has_divergence;      /* 1 for a clearance model run beside its reference */
+  fb_divergence divergence; /* where it leaves the reference, impacts matched before */
 } fb_model_result;
 
 typedef struct {

@@ -12,6 +12,11 @@ const char *fb_joint_name(int j) {
   return (j >= 0 && j < 4) ? names[j] : "?";
 }
 
+const char *fb_value_source_name(int s) {
+  static const char *const names[3] = {"case", "derived", "default"};
+  return (s >= 0 && s < 3) ? names[s] : "?";
+}
+
 fb_mujoco_opts fb_mujoco_opts_default(void) {
   fb_mujoco_opts o;
   o.integrator = FB_MUJOCO_AUTO;

@@ -23,6 +23,30 @@ typedef struct {
   double com_fraction;         /* position of the centre of mass along the link [-] in [0, 1] */
 } fb_link_mass;
 
+/* Where a value the run uses came from: the case file (or a base file, or
+ * --set), derived from other values (a link's mass and inertias from its bar
+ * and the material density: bar_mass.h), or the key table's default. */
+typedef enum {
+  FB_SOURCE_CASE = 0,
+  FB_SOURCE_DERIVED = 1,
+  FB_SOURCE_DEFAULT = 2
+} fb_value_source;
+
+/* "case", "derived", "default". */
+const char *fb_value_source_name(int s);
+
+/* Source of each field of one link's fb_link_mass (fb_value_source). */
+typedef struct {
+  int mass;
+  int inertia;
+  int inertia_long;
+  int inertia_transverse;
+  int com_fraction;
+} fb_link_mass_source;
+
+/* Slots of fb_case.given: at least the key table's size (casefile.c asserts it). */
+#define FB_CASE_MAX_KEYS 192
+
 /* How the stack-up lengths are chosen from the nominal ones: each link at
  * nominal + corner * plus_minus, corner in {-1, 0, +1}. */
 typedef struct {
@@ -180,6 +204,12 @@ typedef struct fb_case_s {
   int direction;                      /* +1 counter-clockwise, -1 clockwise */
   double gravity;                     /* magnitude of gravity, acting along -y [m/s^2] */
   fb_link_mass link[3];               /* crank, coupler, follower (3) */
+  fb_link_mass_source link_source[3]; /* where each field of link[i] came from (3) */
+  double link_width[3];               /* bar width in the plane, across the link [m] (3) */
+  double link_thickness[3];           /* bar thickness out of the plane [m] (3) */
+  double density;                     /* material density of the links [kg/m^3] */
+  unsigned char given[FB_CASE_MAX_KEYS]; /* 1: key i of the key table was set by the case
+                                         file, a base file or --set (fb_casefile_given) */
   double youngs_modulus;              /* Young's modulus E [Pa] */
   double poisson_ratio;               /* Poisson's ratio nu [-] in (-1, 0.5) */
   double pin_diameter;                /* nominal pin diameter [m] */

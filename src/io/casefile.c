@@ -11,6 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "bar_mass.h"
 #include "contact.h"
 #include "iso2768.h"
 #include "iso286.h"
@@ -75,21 +76,41 @@ typedef struct {
 #define INERTIA_RULE "a moment of inertia must be positive, from 1e-6 to 1e12 kg mm^2"
 #define COM_RULE "the centre of mass lies between the link's joints (0 to 1)"
 
-#define LINK_MASS_KEYS(i, nm, m, izz, ilong, itr)                                          \
-  {"mass", nm "_kg", K_DOUBLE, OFF(link[i].mass), 1.0, FB_MASS_MIN_KG, FB_MASS_MAX_KG, 0, 0, "kg", m, MASS_RULE,   \
-   "mass of the " nm},                                                                     \
+/* run by default, after the key's default list, when a case has clearance
+ * joints and does not give [run] models: each clearance model with its
+ * reference (issue 25: the step was shrunk for a contact no model ran) */
+#define FB_CLEARANCE_DEFAULT_MODELS \
+  "ode-clearance-impact, ode-clearance-restitution, reference, reference-restitution"
+static const char *const clearance_default_models[] = {
+    "ode-clearance-impact", "ode-clearance-restitution", "reference", "reference-restitution"};
+
+#define DERIVED "(derived)"
+#define DERIVED_DOC(what) "; default: " what " of the link's bar (docs/keys.md, Masses and inertias)"
+#define LINK_MASS_KEYS(i, nm, w, t)                                                        \
+  {"mass", nm "_kg", K_DOUBLE, OFF(link[i].mass), 1.0, FB_MASS_MIN_KG, FB_MASS_MAX_KG, 0, 0, "kg", \
+   DERIVED, MASS_RULE, "mass of the " nm DERIVED_DOC("density x width x thickness x length")}, \
   {"mass", nm "_inertia_kg_mm2", K_DOUBLE, OFF(link[i].inertia), FB_KG_M2_PER_KG_MM2, 1e-6, 1e12, 0, 0,       \
-   "kg mm^2", izz, INERTIA_RULE,                                                           \
+   "kg mm^2", DERIVED, INERTIA_RULE,                                                       \
    "moment of inertia of the " nm " about the hinge (out-of-plane) axis through its "      \
-   "centre of mass"},                                                                      \
+   "centre of mass" DERIVED_DOC("m (L^2 + w^2) / 12")},                                   \
   {"mass", nm "_inertia_long_kg_mm2", K_DOUBLE, OFF(link[i].inertia_long), FB_KG_M2_PER_KG_MM2, 1e-6, 1e12, \
-   0, 0, "kg mm^2", ilong, INERTIA_RULE,                                                   \
-   "moment about the " nm "'s long axis (no effect on planar motion with ideal hinges)"},  \
+   0, 0, "kg mm^2", DERIVED, INERTIA_RULE,                                                 \
+   "moment about the " nm "'s long axis (no effect on planar motion with ideal hinges)"    \
+   DERIVED_DOC("m (w^2 + t^2) / 12")},                                                     \
   {"mass", nm "_inertia_transverse_kg_mm2", K_DOUBLE, OFF(link[i].inertia_transverse),     \
-   FB_KG_M2_PER_KG_MM2, 1e-6, 1e12, 0, 0, "kg mm^2", itr, INERTIA_RULE,                                       \
-   "moment about the in-plane axis across the " nm " (no effect on planar motion)"},       \
+   FB_KG_M2_PER_KG_MM2, 1e-6, 1e12, 0, 0, "kg mm^2", DERIVED, INERTIA_RULE,                \
+   "moment about the in-plane axis across the " nm " (no effect on planar motion)"         \
+   DERIVED_DOC("m (L^2 + t^2) / 12")},                                                     \
   {"mass", nm "_com_fraction", K_DOUBLE, OFF(link[i].com_fraction), 1.0, 0, 1, 0, 0, "-",  \
-   "0.5", COM_RULE, "centre of mass position along the " nm ", from its first joint"}
+   "0.5", COM_RULE, "centre of mass position along the " nm ", from its first joint"},     \
+  {"mass", nm "_width_mm", K_DOUBLE, OFF(link_width[i]), FB_M_PER_MM, 1e-3, 1e5, 0, 0, "mm", w, \
+   "a bar width must be positive, from 0.001 mm to 1e5 mm",                                \
+   "width w of the " nm "'s bar in the mechanism plane, across the link (for the masses "  \
+   "and inertias the case does not give)"},                                                \
+  {"mass", nm "_thickness_mm", K_DOUBLE, OFF(link_thickness[i]), FB_M_PER_MM, 1e-3, 1e5, 0, 0, "mm", t, \
+   "a bar thickness must be positive, from 0.001 mm to 1e5 mm",                            \
+   "thickness t of the " nm "'s bar out of the mechanism plane (for the masses and "       \
+   "inertias the case does not give)"}
 
 static const key_spec keys[] = {
     {"case", "name", K_NAME, OFF(name), 0, 0, 0, 0, 0, "-", "case", "letters, digits, - _ .",
@@ -147,13 +168,14 @@ static const key_spec keys[] = {
      "9.80665", "gravity must be between 0 and 1000 m/s^2",
      "gravity, acting along -y in the (vertical) mechanism plane"},
 
-    LINK_MASS_KEYS(0, "crank", "0.12", "173.92", "6.69", "167.88"),
-    LINK_MASS_KEYS(1, "coupler", "0.29", "2070.46", "15.49", "2056.16"),
-    LINK_MASS_KEYS(2, "follower", "0.28", "1988.39", "15.28", "1974.43"),
+    LINK_MASS_KEYS(0, "crank", "20", "6.5"),
+    LINK_MASS_KEYS(1, "coupler", "20", "6.5"),
+    LINK_MASS_KEYS(2, "follower", "20", "6.5"),
 
-    {"material", "density_kg_m3", K_UNUSED, 0, 1.0, 0, INF, 1, 1, "kg/m^3", "7800",
-     "a density must be positive",
-     "density of links and pins; checked and not used (the masses and inertias are given)"},
+    {"material", "density_kg_m3", K_DOUBLE, OFF(density), 1.0, 1, 1e5, 0, 0, "kg/m^3", "7800",
+     "a density must lie in [1, 1e5] kg/m^3 (foam to beyond osmium)",
+     "density of the links (steel by default): gives the masses and inertias the case does "
+     "not give"},
     {"material", "youngs_modulus_gpa", K_DOUBLE, OFF(youngs_modulus), FB_PA_PER_GPA, 0, INF, 1, 1, "GPa",
      "207", "Young's modulus must be positive", "Young's modulus E of links and pins"},
     {"material", "poisson_ratio", K_DOUBLE, OFF(poisson_ratio), 1.0, -1, 0.5, 1, 1, "-", "0.29",
@@ -310,10 +332,13 @@ static const key_spec keys[] = {
      "t = 0, the start-up included); summary.json reports the first revolution alone too"},
     {"run", "models", K_MODELS, OFF(models), 0, 0, 0, 0, 0, "-",
      "analytic, analytic-stackup, ode-ideal-nominal, ode-ideal-stackup", "known model names",
-     "models to run, comma-separated"},
+     "models to run, comma-separated; not given: the default list, and for a case with "
+     "clearance joints also " FB_CLEARANCE_DEFAULT_MODELS},
 };
 
 #define NKEYS ((int)(sizeof keys / sizeof keys[0]))
+_Static_assert(sizeof keys / sizeof keys[0] <= FB_CASE_MAX_KEYS,
+               "fb_case.given has a slot per key: raise FB_CASE_MAX_KEYS");
 
 int fb_casefile_key_count(void) { return NKEYS; }
 
@@ -811,7 +836,7 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
 /* 1 when a key's default is a value to apply ("(none)", "-" and "" are not) */
 static int has_default(const key_spec *k) {
   return k->kind != K_TEXT && k->kind != K_UNUSED && k->def[0] != '\0' &&
-         strcmp(k->def, "(none)") != 0 &&
+         strcmp(k->def, "(none)") != 0 && strcmp(k->def, DERIVED) != 0 &&
          strcmp(k->def, "-") != 0;
 }
 
@@ -822,6 +847,63 @@ static void default_entry(entry *e, int i) {
   snprintf(e->key, sizeof e->key, "%s", keys[i].key);
   snprintf(e->value, sizeof e->value, "%s", keys[i].def);
   snprintf(e->origin, sizeof e->origin, "key table default");
+}
+
+static int key_index(const char *section, const char *key) {
+  for (int i = 0; i < NKEYS; i++)
+    if (strcmp(keys[i].section, section) == 0 && strcmp(keys[i].key, key) == 0) return i;
+  return -1;
+}
+
+int fb_casefile_given(const fb_case *c, const char *section, const char *key) {
+  const int i = key_index(section, key);
+  return i >= 0 && c->given[i];
+}
+
+/* each link's mass and inertias the case does not give, from its bar (nominal
+ * length, width, thickness) and the density (bar_mass.h); the source of every
+ * field recorded for the writers */
+static fb_status resolve_masses(fb_case *c, fb_diag *diag) {
+  for (int i = 0; i < 3; i++) {
+    const char *nm = fb_link_name(i);
+    char k_m[64], k_i[64], k_l[64], k_t[64], k_f[64];
+    snprintf(k_m, sizeof k_m, "%s_kg", nm);
+    snprintf(k_i, sizeof k_i, "%s_inertia_kg_mm2", nm);
+    snprintf(k_l, sizeof k_l, "%s_inertia_long_kg_mm2", nm);
+    snprintf(k_t, sizeof k_t, "%s_inertia_transverse_kg_mm2", nm);
+    snprintf(k_f, sizeof k_f, "%s_com_fraction", nm);
+    const fb_bar b = {c->nominal.length[i], c->link_width[i], c->link_thickness[i], c->density};
+    fb_link_mass *m = &c->link[i];
+    fb_link_mass_source *src = &c->link_source[i];
+    const int given_mass = fb_casefile_given(c, "mass", k_m);
+    const double mass = given_mass ? m->mass : fb_bar_mass(&b);
+    if (!given_mass && !(mass >= FB_MASS_MIN_KG && mass <= FB_MASS_MAX_KG))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "[mass] %s not given: the %s's bar gives %g kg ([material] "
+                         "density_kg_m3 = %g x [mass] %s_width_mm = %g x %s_thickness_mm = %g x "
+                         "[linkage] %s_mm = %g): %s; give [mass] %s or change the bar",
+                         k_m, nm, mass, c->density, nm, c->link_width[i] * 1e3, nm,
+                         c->link_thickness[i] * 1e3, nm, c->nominal.length[i] * 1e3, MASS_RULE,
+                         k_m);
+    fb_link_mass bar;
+    fb_diag inner;
+    fb_status st = fb_bar_fill(&bar, &b, mass, &inner);
+    if (st != FB_OK) return fb_diag_set(diag, st, "[mass] the %s's bar: %s", nm, inner.msg);
+    src->mass = given_mass ? FB_SOURCE_CASE : FB_SOURCE_DERIVED;
+    m->mass = mass;
+#define FB_TAKE(field, key)                                                 \
+  do {                                                                      \
+    src->field = fb_casefile_given(c, "mass", key) ? FB_SOURCE_CASE : FB_SOURCE_DERIVED; \
+    if (src->field == FB_SOURCE_DERIVED) m->field = bar.field;              \
+  } while (0)
+    FB_TAKE(inertia, k_i);
+    FB_TAKE(inertia_long, k_l);
+    FB_TAKE(inertia_transverse, k_t);
+#undef FB_TAKE
+    /* the key table's 0.5 is a default, not derived from the bar */
+    src->com_fraction = fb_casefile_given(c, "mass", k_f) ? FB_SOURCE_CASE : FB_SOURCE_DEFAULT;
+  }
+  return FB_OK;
 }
 
 void fb_case_default(fb_case *c) {
@@ -843,6 +925,10 @@ void fb_case_default(fb_case *c) {
     fb_diag d;
     (void)apply(c, &e, &d);
   }
+  /* nothing given: every mass and inertia from the default bar (the key
+   * table's defaults make a valid bar, test_casefile checks it) */
+  fb_diag d;
+  (void)resolve_masses(c, &d);
 }
 
 int fb_casefile_defaults_check(fb_diag *diag) {
@@ -1107,6 +1193,19 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   }
   st = resolve_standards(out, c, diag);
   if (st != FB_OK) goto done;
+  for (int i = 0; i < NKEYS; i++)
+    out->given[i] = entry_origin(c, keys[i].section, keys[i].key) != NULL;
+  if (!fb_casefile_given(out, "run", "models") && out->clearance.mask)
+    for (size_t i = 0; i < sizeof clearance_default_models / sizeof clearance_default_models[0] &&
+                       out->model_count < FB_MAX_MODELS; i++)
+      snprintf(out->models[out->model_count++], FB_NAME_SIZE, "%s", clearance_default_models[i]);
+  st = resolve_masses(out, diag);
+  if (st != FB_OK) {
+    char msg[FB_DIAG_SIZE];
+    snprintf(msg, sizeof msg, "%s", diag->msg);
+    fb_diag_set(diag, st, "%s: %s", path ? path : "case", msg);
+    goto done;
+  }
   out->clearance.segments_given = entry_origin(c, "clearance", "segments") != NULL;
   {
     fb_diag inner;

@@ -51,6 +51,11 @@ fb_status fb_casefile_check_range(const char *section, const char *key, double v
 int fb_casefile_name_ok(const char *name);
 
 /* Number of keys and the "section.key" name of key i, for tests. */
+/* 1 when key [section] key was set for case c by its file, a base file or
+ * --set (the writers' "source: case"); 0 when it kept its default or the
+ * key is unknown. */
+int fb_casefile_given(const fb_case *c, const char *section, const char *key);
+
 int fb_casefile_key_count(void);
 const char *fb_casefile_key_name(int i, char *buf, size_t size);
 

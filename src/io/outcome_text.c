@@ -112,6 +112,14 @@ const char *fb_warning_text(char *buf, size_t size, const fb_warning *w) {
     case FB_WARN_UNDER_RESOLVED:
       under_resolved_text(buf, size, w);
       break;
+    case FB_WARN_DIVERGENT:
+      snprintf(buf, size,
+               "divergent: the trajectory leaves %s's at t = %.6g s (crank angle %.1f deg; pin "
+               "eccentricity or coupler angle beyond tolerance, %d impacts matched before it); "
+               "peaks after it compare two different impact sequences",
+               w->what[0] ? w->what : "the reference", w->t, w->value * 180.0 / M_PI,
+               (int)w->ratio);
+      break;
     default: snprintf(buf, size, "warning (%d)", (int)w->kind); break;
   }
   return buf;

@@ -4,8 +4,10 @@
 #include "resolution.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <string.h>
 
+#include "casefile.h"
 #include "fileio.h"
 #include "outcome_text.h"
 #include "start.h"
@@ -335,6 +337,37 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o2, "first_impacts", fi);
     json_object_set_new(o, "error_vs_reference", o2);
   }
+  if (m->has_divergence) {
+    const fb_divergence *d = &m->divergence;
+    json_t *dv = json_object();
+    json_object_set_new(dv, "reference", json_string(m->ref_name));
+    json_object_set_new(dv, "diverged", json_boolean(d->diverged));
+    json_object_set_new(dv, "time_s", num(d->t)); /* null: stays with it to the end */
+    json_object_set_new(dv, "crank_angle_rad", num(d->crank_angle));
+    json_object_set_new(dv, "compared_to_s", num(d->t_end));
+    json_object_set_new(dv, "eccentricity_tolerance_m", num(d->ecc_tol));
+    json_object_set_new(dv, "coupler_angle_tolerance_rad", num(d->angle_tol));
+    json_object_set_new(dv, "impacts", json_integer(d->impacts_model));
+    json_object_set_new(dv, "impacts_reference", json_integer(d->impacts_reference));
+    json_object_set_new(dv, "impacts_matched", json_integer(d->matched));
+    json_object_set_new(dv, "one_to_one", json_boolean(d->one_to_one));
+    json_object_set_new(dv, "force_rel_max", num(d->force_rel_max));
+    json_object_set_new(dv, "penetration_rel_max", num(d->penetration_rel_max));
+    json_t *list = json_array();
+    for (int k = 0; k < d->matched && k < FB_DIVERGE_MAX_IMPACTS; k++) {
+      const fb_matched_impact *q = &d->impact[k];
+      json_t *e = json_object();
+      json_object_set_new(e, "time_s", num(q->t));
+      json_object_set_new(e, "time_error_s", num(q->t_error));
+      json_object_set_new(e, "force_n", num(q->force));
+      json_object_set_new(e, "force_rel", num(q->force_rel));
+      json_object_set_new(e, "penetration_m", num(q->penetration));
+      json_object_set_new(e, "penetration_rel", num(q->penetration_rel));
+      json_array_append_new(list, e);
+    }
+    json_object_set_new(dv, "matched_impacts", list);
+    json_object_set_new(o, "divergence", dv);
+  }
   if (m->has_spikes) {
     const fb_spikes *k = &m->spikes;
     json_t *sp = json_object();
@@ -384,6 +417,53 @@ static json_t *stackup_json(const fb_case *c) {
   return o;
 }
 
+/* every mass and inertia the run used, with its source (case, derived, default) */
+static json_t *masses_json(const fb_case *c) {
+  json_t *o = json_object();
+  json_object_set_new(o, "density_kg_m3", num(c->density));
+  json_object_set_new(o, "density_source",
+                      json_string(fb_value_source_name(fb_casefile_given(c, "material",
+                                                                        "density_kg_m3")
+                                                           ? FB_SOURCE_CASE
+                                                           : FB_SOURCE_DEFAULT)));
+  json_t *links = json_array();
+  for (int i = 0; i < 3; i++) {
+    const fb_link_mass *m = &c->link[i];
+    const fb_link_mass_source *s = &c->link_source[i];
+    char kw[64], kt[64];
+    snprintf(kw, sizeof kw, "%s_width_mm", fb_link_name(i));
+    snprintf(kt, sizeof kt, "%s_thickness_mm", fb_link_name(i));
+    json_t *l = json_object();
+    json_object_set_new(l, "link", json_string(fb_link_name(i)));
+    json_object_set_new(l, "mass_kg", num(m->mass));
+    json_object_set_new(l, "mass_source", json_string(fb_value_source_name(s->mass)));
+    json_object_set_new(l, "inertia_kg_m2", num(m->inertia));
+    json_object_set_new(l, "inertia_source", json_string(fb_value_source_name(s->inertia)));
+    json_object_set_new(l, "inertia_long_kg_m2", num(m->inertia_long));
+    json_object_set_new(l, "inertia_long_source",
+                        json_string(fb_value_source_name(s->inertia_long)));
+    json_object_set_new(l, "inertia_transverse_kg_m2", num(m->inertia_transverse));
+    json_object_set_new(l, "inertia_transverse_source",
+                        json_string(fb_value_source_name(s->inertia_transverse)));
+    json_object_set_new(l, "com_fraction", num(m->com_fraction));
+    json_object_set_new(l, "com_fraction_source",
+                        json_string(fb_value_source_name(s->com_fraction)));
+    json_object_set_new(l, "bar_width_m", num(c->link_width[i]));
+    json_object_set_new(l, "bar_width_source",
+                        json_string(fb_value_source_name(fb_casefile_given(c, "mass", kw)
+                                                             ? FB_SOURCE_CASE
+                                                             : FB_SOURCE_DEFAULT)));
+    json_object_set_new(l, "bar_thickness_m", num(c->link_thickness[i]));
+    json_object_set_new(l, "bar_thickness_source",
+                        json_string(fb_value_source_name(fb_casefile_given(c, "mass", kt)
+                                                             ? FB_SOURCE_CASE
+                                                             : FB_SOURCE_DEFAULT)));
+    json_array_append_new(links, l);
+  }
+  json_object_set_new(o, "links", links);
+  return o;
+}
+
 json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   const fb_case *c = &r->c;
   json_t *o = json_object();
@@ -407,6 +487,7 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
                                                     ? "dWorldStep"
                                                     : "dWorldQuickStep"));
   json_object_set_new(o, "stackup", stackup_json(c));
+  json_object_set_new(o, "masses", masses_json(c));
   json_t *an = json_object();
   json_object_set_new(an, "coupler", fb_report_body_peaks_json(&r->analytic_nominal.coupler));
   json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
@@ -509,6 +590,41 @@ static void paper_row(FILE *f, const char *name, const fb_peaks *p, int alpha) {
  * (first impact's time, speed and crank angle; revolution 1's largest
  * coupler |alpha|, when, peak force and penetration) and every model's
  * warnings. Part of fb_report_print_table. */
+/* each clearance model against its reference: where it leaves it and the
+ * impacts matched one to one before */
+static void print_divergence(FILE *f, const fb_run *r) {
+  int any = 0;
+  for (int i = 0; i < r->n; i++) any |= r->model[i].has_divergence;
+  if (!any) return;
+  fprintf(f, "\ndivergence from the reference (pin eccentricity beyond %g x clearance or coupler "
+             "angle beyond %g x clearance / coupler length):\n",
+          FB_DIVERGE_ECC_FRACTION, FB_DIVERGE_ANGLE_FRACTION);
+  fprintf(f, "%-26s %-22s %12s %9s %15s %9s %9s\n", "model", "reference", "leaves at", "crank",
+          "impacts before", "force", "penetr.");
+  fprintf(f, "%-26s %-22s %12s %9s %15s %9s %9s\n", "", "", "ms", "deg", "model/ref/match",
+          "err max", "err max");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    if (!m->has_divergence) continue;
+    const fb_divergence *d = &m->divergence;
+    char at[32], ang[32], counts[48];
+    if (d->diverged) {
+      snprintf(at, sizeof at, "%.4f", d->t * 1e3);
+      snprintf(ang, sizeof ang, "%.1f", d->crank_angle * 180.0 / M_PI);
+    } else {
+      snprintf(at, sizeof at, "beyond run");
+      snprintf(ang, sizeof ang, "-");
+    }
+    snprintf(counts, sizeof counts, "%d/%d/%d%s", d->impacts_model, d->impacts_reference,
+             d->matched, d->one_to_one ? "" : "*");
+    fprintf(f, "%-26s %-22s %12s %9s %15s %9.2e %9.2e\n", m->run.name, m->ref_name, at, ang,
+            counts, d->force_rel_max, d->penetration_rel_max);
+  }
+  fprintf(f, "(* not one to one: an impact before the divergence has no partner; err max: "
+             "largest |relative error| of the matched impacts' peak force and penetration, "
+             "bound %g)\n", FB_MATCHED_IMPACT_ERROR_BOUND);
+}
+
 static void print_paper_tables(FILE *f, const fb_run *r) {
   const int all = r->c.peaks == FB_PEAKS_ALL;
   fprintf(f, "\nthe paper's table, peaks over %s:\n",
@@ -557,6 +673,7 @@ static void print_paper_tables(FILE *f, const fb_run *r) {
               m->startup_penetration_max * 1e6);
     }
   }
+  print_divergence(f, r);
   int warned = 0;
   for (int i = 0; i < r->n; i++) warned |= r->model[i].warning_count > 0;
   if (warned) {
@@ -567,6 +684,42 @@ static void print_paper_tables(FILE *f, const fb_run *r) {
         fprintf(f, "  %s: %s\n", r->model[i].run.name,
                 fb_warning_text(wt, sizeof wt, &r->model[i].warnings[k]));
   }
+}
+
+/* "case", or "derived" / "default" with the bar when a field was not given */
+static const char *mass_sources(char *buf, size_t size, const fb_link_mass_source *s) {
+  const int v[4] = {s->mass, s->inertia, s->inertia_long, s->inertia_transverse};
+  const int same = v[0] == v[1] && v[1] == v[2] && v[2] == v[3];
+  if (same)
+    snprintf(buf, size, "%s", fb_value_source_name(v[0]));
+  else
+    snprintf(buf, size, "m %s, I %s, I_long %s, I_tr %s", fb_value_source_name(v[0]),
+             fb_value_source_name(v[1]), fb_value_source_name(v[2]), fb_value_source_name(v[3]));
+  return buf;
+}
+
+/* one line per run header: every mass and hinge-axis inertia, with sources */
+static void print_masses(FILE *f, const fb_case *c) {
+  int derived = 0;
+  fprintf(f, "link masses:");
+  for (int i = 0; i < 3; i++) {
+    const fb_link_mass *m = &c->link[i];
+    const fb_link_mass_source *s = &c->link_source[i];
+    char src[128];
+    derived |= s->mass == FB_SOURCE_DERIVED || s->inertia == FB_SOURCE_DERIVED ||
+               s->inertia_long == FB_SOURCE_DERIVED || s->inertia_transverse == FB_SOURCE_DERIVED;
+    fprintf(f, "%s %s %.5g kg, I %.5g kg mm^2, centre of mass at %.3g (%s%s)", i ? ";" : "",
+            fb_link_name(i), m->mass, m->inertia * 1e6, m->com_fraction,
+            mass_sources(src, sizeof src, s),
+            s->com_fraction == FB_SOURCE_CASE ? "" : ", centre default");
+  }
+  fputc('\n', f);
+  if (derived)
+    fprintf(f, "derived from bars (width x thickness, mm) crank %.4g x %.4g, coupler %.4g x "
+               "%.4g, follower %.4g x %.4g, density %.6g kg/m^3 (docs/keys.md)\n",
+            c->link_width[0] * 1e3, c->link_thickness[0] * 1e3, c->link_width[1] * 1e3,
+            c->link_thickness[1] * 1e3, c->link_width[2] * 1e3, c->link_thickness[2] * 1e3,
+            c->density);
 }
 
 void fb_report_print_table(FILE *f, const fb_run *r) {
@@ -604,8 +757,10 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
     fprintf(f, "%s %s %.4g +- %.3g -> %.4g mm (%s)", k ? ";" : "", fb_link_name(k),
             c->nominal.length[k] * 1e3, c->plus_minus[k] * 1e3, su.length[k] * 1e3,
             c->tolerance_source[k]);
-  fprintf(f, "\nclearance joints: pin %.4g mm, radial clearance %.4g um (%s)\n\n",
+  fprintf(f, "\nclearance joints: pin %.4g mm, radial clearance %.4g um (%s)\n",
           c->pin_diameter * 1e3, c->radial_clearance * 1e6, c->clearance_source);
+  print_masses(f, c);
+  fputc('\n', f);
   fprintf(f, "%-26s %-35s %-35s %-17s %6s %8s %6s\n", "", "coupler omega / alpha",
           "follower omega / alpha", "peak err vs exact", "", "", "");
   fprintf(f, "%-26s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s %s\n", "model",
@@ -702,6 +857,29 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
              "for analytic models it is the sampling floor of the time grid.\n");
 }
 
+/* 1 when a mass or an inertia of some link was derived from its bar */
+static int any_derived(const fb_case *c) {
+  for (int i = 0; i < 3; i++) {
+    const fb_link_mass_source *s = &c->link_source[i];
+    if (s->mass == FB_SOURCE_DERIVED || s->inertia == FB_SOURCE_DERIVED ||
+        s->inertia_long == FB_SOURCE_DERIVED || s->inertia_transverse == FB_SOURCE_DERIVED)
+      return 1;
+  }
+  return 0;
+}
+
+/* "case" when the case set any of the keys of section (a NULL-terminated
+ * list), else "default" */
+static const char *given_src(const fb_case *c, const char *section, ...) {
+  va_list ap;
+  va_start(ap, section);
+  int given = 0;
+  for (const char *k = va_arg(ap, const char *); k; k = va_arg(ap, const char *))
+    given |= fb_casefile_given(c, section, k);
+  va_end(ap);
+  return fb_value_source_name(given ? FB_SOURCE_CASE : FB_SOURCE_DEFAULT);
+}
+
 fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char *case_path,
                                    const char *command, char figures[][128], int n,
                                    const char *figure_note, fb_diag *diag) {
@@ -725,27 +903,57 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
             fb_link_name(k), c->nominal.length[k] * 1e3, c->plus_minus[k] * 1e3,
             su.length[k] * 1e3, c->tolerance_source[k]);
   fprintf(f, "| pin | diameter %.4g mm, length %.4g mm | %s |\n", c->pin_diameter * 1e3,
-          c->pin_length * 1e3, c->fit[0] ? c->fit : "case");
+          c->pin_length * 1e3,
+          c->fit[0] ? c->fit : given_src(c, "pin", "diameter_mm", "length_mm", NULL));
   fprintf(f, "| radial clearance | %.4g um | %s |\n", c->radial_clearance * 1e6, c->clearance_source);
-  fprintf(f, "| crank speed | %.6g rpm %s | case |\n", c->crank_speed * 60.0 / (2.0 * M_PI),
-          c->direction > 0 ? "ccw" : "cw");
+  for (int i = 0; i < 3; i++) {
+    const fb_link_mass *m = &c->link[i];
+    const fb_link_mass_source *s = &c->link_source[i];
+    fprintf(f, "| %s mass | %.6g kg | %s |\n", fb_link_name(i), m->mass,
+            fb_value_source_name(s->mass));
+    fprintf(f, "| %s inertia (hinge axis, long axis, across) | %.6g, %.6g, %.6g kg mm^2 | %s, "
+               "%s, %s |\n",
+            fb_link_name(i), m->inertia * 1e6, m->inertia_long * 1e6, m->inertia_transverse * 1e6,
+            fb_value_source_name(s->inertia), fb_value_source_name(s->inertia_long),
+            fb_value_source_name(s->inertia_transverse));
+    fprintf(f, "| %s centre of mass | %.4g of the length from its first joint | %s |\n",
+            fb_link_name(i), m->com_fraction, fb_value_source_name(s->com_fraction));
+  }
+  fprintf(f, "| link bars (width x thickness) | crank %.4g x %.4g mm, coupler %.4g x %.4g mm, "
+             "follower %.4g x %.4g mm | %s |\n",
+          c->link_width[0] * 1e3, c->link_thickness[0] * 1e3, c->link_width[1] * 1e3,
+          c->link_thickness[1] * 1e3, c->link_width[2] * 1e3, c->link_thickness[2] * 1e3,
+          any_derived(c) ? given_src(c, "mass", "crank_width_mm", "crank_thickness_mm",
+                                     "coupler_width_mm", "coupler_thickness_mm",
+                                     "follower_width_mm", "follower_thickness_mm", NULL)
+                         : "not used (the case gives every mass and inertia)");
+  fprintf(f, "| density | %.6g kg/m^3 | %s |\n", c->density,
+          given_src(c, "material", "density_kg_m3", NULL));
+  fprintf(f, "| crank speed | %.6g rpm %s | %s |\n", c->crank_speed * 60.0 / (2.0 * M_PI),
+          c->direction > 0 ? "ccw" : "cw", given_src(c, "drive", "speed_rpm", "direction", NULL));
   const int h_auto = c->solver.h_mode == FB_STEP_AUTO ||
                      (c->solver.h_mode == FB_STEP_DEFAULT && c->clearance.mask);
   fprintf(f, "| step size h | %.6g s (%s) | %s |\n", c->solver.h,
           c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep",
-          h_auto ? "auto: h omega_c <= 0.5 at the stiffest contact (fourbar penalty CASE)" : "case");
+          h_auto ? "auto: h omega_c <= 0.5 at the stiffest contact (fourbar penalty CASE)"
+                 : given_src(c, "solver", "h_s", NULL));
   if (c->clearance.mask) {
     fprintf(f, "| clearance joints |");
     for (int j = 0; j < 4; j++)
       if (c->clearance.mask & (1 << j)) fprintf(f, " %s", fb_joint_name(j));
     const char *src[3] = {"physical (Johnson line contact at the inverse-dynamics reaction)",
                           "paper (Kc and P read in N-mm units)", "explicit"};
-    fprintf(f, " | case |\n| penalty source | %s, stiffness scale %g | case |\n",
-            src[c->clearance.penalty], c->clearance.stiffness_scale);
-    fprintf(f, "| restitution law | cr = %g | case |\n| impact law | n = %g, c_max = %g N s/m, "
-               "d_max = %g um | case |\n| mapping | %s | case |\n",
-            c->clearance.restitution, c->clearance.exponent, c->clearance.damping,
-            c->clearance.damping_depth * 1e6, fb_mapping_name((fb_mapping)c->clearance.mapping));
+    fprintf(f, " | %s |\n| penalty source | %s, stiffness scale %g | %s |\n",
+            given_src(c, "clearance", "joints", NULL), src[c->clearance.penalty],
+            c->clearance.stiffness_scale,
+            given_src(c, "clearance", "penalty", "stiffness_scale", NULL));
+    fprintf(f, "| restitution law | cr = %g | %s |\n", c->clearance.restitution,
+            given_src(c, "clearance", "restitution", NULL));
+    fprintf(f, "| impact law | n = %g, c_max = %g N s/m, d_max = %g um | %s |\n",
+            c->clearance.exponent, c->clearance.damping, c->clearance.damping_depth * 1e6,
+            given_src(c, "clearance", "exponent", "damping_n_s_m", "damping_depth_um", NULL));
+    fprintf(f, "| mapping | %s | %s |\n", fb_mapping_name((fb_mapping)c->clearance.mapping),
+            given_src(c, "clearance", "mapping", NULL));
   }
   fprintf(f, "\n## Figures\n\n");
   if (n == 0) fprintf(f, "%s\n", figure_note ? figure_note : "No figures were drawn.");

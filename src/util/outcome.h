@@ -37,19 +37,22 @@ typedef enum {
   FB_WARN_DRIVE_SATURATED = 1,  /* the crank left its prescribed angle */
   FB_WARN_ERROR_BOUND = 2,      /* the error against a yardstick passed a stated bound */
   FB_WARN_UNDER_RESOLVED = 3,   /* h omega_c of a contact above the bound (resolution.h) */
+  FB_WARN_DIVERGENT = 4,        /* the trajectory left its reference's (metrics.h, fb_divergence) */
   FB_WARN_COUNT
 } fb_warning_kind;
 
 /* One warning with its figures. */
 typedef struct {
   fb_warning_kind kind;
-  double value;  /* penetration [m]; crank angle lag [rad]; error [-]; h omega_c [-] */
+  double value;  /* penetration [m]; crank angle lag [rad]; error [-]; h omega_c [-];
+                    DIVERGENT: crank angle where it left [rad] */
   double limit;  /* radial clearance [m]; -; the bound [-]; the bound [-] */
   double ratio;  /* penetration / clearance [-]; -; -; steps per contact (pi / h omega_c) */
   double factor; /* the validity factor [-]; -; - */
-  double t;      /* time [s] where it applies, or NaN */
+  double t;      /* time [s] where it applies (DIVERGENT: where it left), or NaN */
   char what[64]; /* the case key that lifts the limit (DRIVE_SATURATED); what the error is of
-                    (ERROR_BOUND); the joint (UNDER_RESOLVED); else "" */
+                    (ERROR_BOUND); the joint (UNDER_RESOLVED); the reference (DIVERGENT);
+                    else "" */
   double h;      /* UNDER_RESOLVED: the step the run used [s]; else 0 */
   int h_auto;    /* UNDER_RESOLVED: fb_warning_step, how that step was chosen; else 0 */
 } fb_warning;

@@ -29,6 +29,7 @@ typedef struct {
   fb_ccd_bore *bore;    /* ccd: the ring of segments (hole frame) */
   fb_contact_provenance prov; /* what its contact rows received */
   double step_share;    /* share of the last row's impulse that is its step's force (contact.h) */
+  double step_wdh;      /* largest omega_d h of this step's rows [-] (contact.h) */
 } clearance;
 
 /* records one contact row of a clearance joint */
@@ -41,6 +42,8 @@ static void note_row(clearance *c, const fb_contact_row *u, double share, double
   if (p->contact_steps == 0 || mass < p->mass_eff_min) p->mass_eff_min = mass;
   if (p->contact_steps == 0 || mass > p->mass_eff_max) p->mass_eff_max = mass;
   p->contact_steps++;
+  const double wdh = fb_contact_omega_d_h(h, u->kp * share, u->kd * share, mass);
+  if (wdh > c->step_wdh) c->step_wdh = wdh;
 }
 
 struct fb_scene {
@@ -515,8 +518,30 @@ static void clearance_contact(fb_scene *s, int j) {
 fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
   const double h = s->def.solver.h;
   s->w_valid = 0;
-  for (int j = 0; j < 4; j++)
-    if (s->def.clearance_mask & (1 << j)) clearance_contact(s, j);
+  for (int j = 0; j < 4; j++) {
+    if (!(s->def.clearance_mask & (1 << j))) continue;
+    s->cl[j].step_wdh = 0.0;
+    clearance_contact(s, j);
+  }
+  /* a matched row past the aliasing bound has lost its spring's meaning:
+   * stop, naming the largest usable step (contact.h) */
+  for (int j = 0; j < 4; j++) {
+    const double wdh = s->cl[j].step_wdh;
+    if (s->def.mapping != FB_MAPPING_MATCHED || !(wdh > FB_MATCHED_ALIAS_BOUND)) continue;
+    dJointGroupEmpty(s->contacts);
+    for (int q = 0; q < 4; q++) s->cl[q].cj = 0, s->cl[q].nfb = 0;
+    s->stop.kind = FB_STOP_ALIASED;
+    s->stop.t = (double)s->steps * h;
+    s->stop.step = s->steps + 1;
+    s->stop.joint = j;
+    s->stop.value = wdh;
+    s->stop.limit = FB_MATCHED_ALIAS_BOUND;
+    s->stop.h_max = h * FB_MATCHED_ALIAS_BOUND / wdh;
+    return fb_diag_set(diag, FB_ERR_NUMERIC,
+                       "aliased: omega_d h = %.3g at the %s joint (bound %.3g); largest usable "
+                       "step %.3g s",
+                       wdh, fb_joint_name(j), FB_MATCHED_ALIAS_BOUND, s->stop.h_max);
+  }
   const dReal *g1 = dBodyGetPosition(s->body[FB_CRANK]);
   s->crank_com_before[0] = g1[0];
   s->crank_com_before[1] = g1[1];
@@ -632,7 +657,7 @@ int fb_scene_impacts(const fb_scene *s, int j) { return s->cl[j].ep.impacts; }
 void fb_scene_stopped(const fb_scene *s, fb_stop *out) {
   *out = s->stop;
   out->engine = "ode";
-  out->joint = -1;
+  if (out->kind != FB_STOP_ALIASED) out->joint = -1;
 }
 
 void fb_scene_provenance(const fb_scene *s, int j, fb_contact_provenance *out) {

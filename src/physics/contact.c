@@ -289,6 +289,12 @@ static double pole_gap_product(double h, double k, double c, double m) {
   return expm1(big * h) * expm1(small * h);
 }
 
+double fb_contact_omega_d_h(double h, double k, double c, double m) {
+  const double sigma = 0.5 * c / m;
+  const double wd2 = k / m - sigma * sigma;
+  return wd2 > 0.0 ? h * sqrt(wd2) : 0.0;
+}
+
 fb_status fb_contact_matched(double h, double k, double c, double m, double *erp, double *cfm,
                              fb_diag *diag) {
   if (!(h > 0.0) || !(m > 0.0) || !isfinite(h) || !isfinite(m) || !(k >= 0.0) || !(c >= 0.0) ||

@@ -188,6 +188,29 @@ fb_mapping fb_mapping_parse(const char *name);
 fb_status fb_contact_matched(double h, double k, double c, double m, double *erp, double *cfm,
                              fb_diag *diag);
 
+/* omega_d h of a local linear law on mass m at step h: h sqrt(k/m - (c/(2m))^2)
+ * for an under-damped row, 0 for a critically or over-damped one (real
+ * poles: nothing to alias). The matched row puts its poles at exp(s h); once
+ * omega_d h passes pi, exp(i omega_d h) is the pole of a slower oscillator
+ * (aliasing) and the row's spring falls towards zero at 2 pi
+ * (a = (4 m / h^2) sin^2(omega h / 2) for c = 0). k, c >= 0, m, h > 0. */
+double fb_contact_omega_d_h(double h, double k, double c, double m);
+
+/* The largest omega_d h a matched row is used at; beyond it an ODE run stops
+ * ("aliased", FB_STOP_ALIASED) and names the largest usable step,
+ * h FB_MATCHED_ALIAS_BOUND / (omega_d h). At pi the row's two discrete poles
+ * meet at -1 (half a period per step); past it the row stands for a slower
+ * oscillator than the law's, and its spring vanishes at 2 pi. Why 0.9 pi:
+ * the row is linearised at the start of its step and a Hertz-type law
+ * stiffens within it, so a 10 % margin keeps the step's end below pi too.
+ * Measured on the paper case (steady start, matched, largest omega_d h of
+ * the run; `fourbar run --set solver.h_s=H`): 2e-5 s finishes (largest
+ * h omega_c 2.6 impact, 2.5 restitution); 3e-5 s, which used to finish with
+ * a wrong answer, stops "aliased" at steps 12 and 16 (omega_d h 2.85, 3.74);
+ * 5e-5 s, which used to stop "unstable" (pin out of the hole), stops
+ * "aliased" at step 5 (6.2, 4.1). */
+#define FB_MATCHED_ALIAS_BOUND (0.9 * 3.14159265358979323846)
+
 /* Floor of the matched row's b = 1/CFM relative to m / h when c h / m is
  * this small or zero: perturbs the pole product by that relative amount. */
 #define FB_MATCHED_B_MIN_REL 1e-12

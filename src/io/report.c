@@ -738,8 +738,9 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
     fprintf(f, "| clearance joints |");
     for (int j = 0; j < 4; j++)
       if (c->clearance.mask & (1 << j)) fprintf(f, " %s", fb_joint_name(j));
-    const char *src[3] = {"physical (Johnson line contact at the inverse-dynamics reaction)",
-                          "paper (Kc and P read in N-mm units)", "explicit"};
+    const char *src[4] = {"physical (Johnson line contact at the inverse-dynamics reaction)",
+                          "paper (Kc and P read in N-mm units)", "explicit",
+                          "goldsmith (paper Eq. 3-5, internal contact of pin and hole)"};
     fprintf(f, " | case |\n| penalty source | %s, stiffness scale %g | case |\n",
             src[c->clearance.penalty], c->clearance.stiffness_scale);
     fprintf(f, "| restitution law | cr = %g | case |\n| impact law | n = %g, c_max = %g N s/m, "

@@ -439,6 +439,50 @@ static void test_matched_restitution_model_against_reference(void **state) {
   }
 }
 
+/* issue 28 item 1, the done-when: the persistent-contact penetration
+ * (summary.json's persistent_penetration_rel: penetration summed over the
+ * samples where model and reference are both in continuous contact) of
+ * the paper case at the automatic step within 1 % of the reference with
+ * mapping = matched-static, for the impact law and the restitution law at
+ * cr 0.9 and the heavily damped cr 0.14. Measured: impact -0.005 %,
+ * restitution +0.19 % (cr 0.9) and -0.03 % (cr 0.14); the matched mapping
+ * gives -0.59 %, +0.09 % and -7.1 % (its static stiffness a > k, and the
+ * steady drift of ODE's position update that its damper sees: contact.md),
+ * so the heavily damped case also shows the test can fail. */
+#define PERSISTENT_PENETRATION_REL_TOL 0.01
+
+static void test_persistent_contact_penetration(void **state) {
+  (void)state;
+  const char *crs[2] = {"clearance.restitution=0.14", "clearance.restitution=0.9"};
+  for (int i = 0; i < 2; i++) {
+    const char *maps[2] = {"clearance.mapping=matched-static", "clearance.mapping=matched"};
+    for (int k = 0; k < (i == 0 ? 2 : 1); k++) {
+      const char *sets[] = {i == 0 && k == 0
+                                ? "run.models=ode-clearance-restitution,reference-restitution,"
+                                  "ode-clearance-impact,reference"
+                                : "run.models=ode-clearance-restitution,reference-restitution",
+                            maps[k], crs[i]};
+      fb_case c;
+      load(&c, sets, 3);
+      static fb_run r;
+      fb_diag d;
+      if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+      const char *models[2] = {"ode-clearance-restitution", "ode-clearance-impact"};
+      for (int m = 0; m < (i == 0 && k == 0 ? 2 : 1); m++) {
+        const fb_reference_error *e = &result_of(&r, models[m])->ref_error;
+        assert_true(e->persistent_samples > 1000);
+        char name[128];
+        snprintf(name, sizeof name, "persistent penetration, %s, %s, %s", models[m], maps[k] + 18,
+                 crs[i] + 10);
+        report_residual(name, e->persistent_penetration_rel, PERSISTENT_PENETRATION_REL_TOL);
+        if (k == 0) assert_true(fabs(e->persistent_penetration_rel) < PERSISTENT_PENETRATION_REL_TOL);
+        else assert_true(fabs(e->persistent_penetration_rel) > PERSISTENT_PENETRATION_REL_TOL);
+      }
+      fb_run_free(&r);
+    }
+  }
+}
+
 int main(void) {
   const char *d = getenv("FOURBAR_CASES_DIR");
   snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", d ? d : "cases");
@@ -453,6 +497,7 @@ int main(void) {
       cmocka_unit_test(test_effective_mass_matches_ode_probe),
       cmocka_unit_test(test_matched_impact_model_against_reference),
       cmocka_unit_test(test_matched_restitution_model_against_reference),
+      cmocka_unit_test(test_persistent_contact_penetration),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

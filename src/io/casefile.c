@@ -200,9 +200,10 @@ static const key_spec keys[] = {
      1, 1, "um", "1", "the full-damping depth must be positive",
      "impact-model penetration at full damping d_max (cubic STEP below it)"},
     {"clearance", "mapping", K_MAPPING, OFF(clearance.mapping), 0, 0, 0, 0, 0, "-", "matched",
-     "secant, tangent or matched",
+     "secant, tangent, matched or matched-static",
      "per-step mapping of the law into ERP/CFM (matched: exact discretisation on the effective "
-     "mass along the normal)"},
+     "mass along the normal; matched-static: matched, then the law's own stiffness once a "
+     "contact has lasted one contact period, so a sustained load rests at the law's depth)"},
     {"clearance", "friction", K_DOUBLE, OFF(clearance.friction), 1.0, 0, 10, 0, 0, "-", "0",
      "a friction coefficient must lie in [0, 10]", "Coulomb friction coefficient at the pin"},
     {"clearance", "penetration_limit_um", K_LIMIT, OFF(clearance.penetration_limit), FB_M_PER_UM,

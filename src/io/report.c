@@ -337,6 +337,22 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o2, "first_impacts", fi);
     json_object_set_new(o, "error_vs_reference", o2);
   }
+  if (m->has_ref_estimate) {
+    /* the reference against its own integration at a tighter tolerance */
+    const fb_reference_error *e = &m->ref_estimate;
+    json_t *o3 = json_object();
+    json_object_set_new(o3, "tolerance", num(m->ref_tol));
+    json_object_set_new(o3, "check_tolerance", num(m->ref_check_tol));
+    json_object_set_new(o3, "check_steps", json_integer((json_int_t)m->ref_check_steps));
+    json_object_set_new(o3, "coupler", body_error_json(&e->coupler));
+    json_object_set_new(o3, "follower", body_error_json(&e->follower));
+    json_object_set_new(o3, "force_max_rel", num(e->force_max_rel));
+    json_object_set_new(o3, "force_err_rms_n", num(e->force_err_rms));
+    json_object_set_new(o3, "penetration_max_rel", num(e->penetration_max_rel));
+    json_object_set_new(o3, "impacts", json_integer(e->impacts));
+    json_object_set_new(o3, "impacts_check", json_integer(e->impacts_reference));
+    json_object_set_new(o, "error_estimate", o3);
+  }
   if (m->has_spikes) {
     const fb_spikes *k = &m->spikes;
     json_t *sp = json_object();

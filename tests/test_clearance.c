@@ -15,6 +15,7 @@
 #include "engine.h"
 #include "fb_test.h"
 #include "invdyn.h"
+#include "outcome_text.h"
 #include "run.h"
 #include "scene.h" /* the ODE probe of the effective mass */
 
@@ -252,6 +253,50 @@ static void test_stability_guard_names_reason(void **state) {
   fb_run_free(&r);
 }
 
+/* issue 28 item 2: a step at which the matched row aliases (omega_d h past
+ * FB_MATCHED_ALIAS_BOUND) is refused at the first such contact step with
+ * the largest usable step, instead of running on a row that has lost its
+ * spring (the paper case at 5e-5 s used to stop "unstable": the pin left the
+ * hole). 2e-5 s (largest omega_d h ~2.6 measured) still finishes; the
+ * tangent row, which has no aliasing, is not refused at 5e-5 s. */
+static void test_aliased_step_is_refused(void **state) {
+  (void)state;
+  const char *sets[] = {"solver.h_s=5e-5", "run.revolutions=2",
+                        "run.models=ode-clearance-impact,ode-clearance-restitution"};
+  fb_case c;
+  load(&c, sets, 3);
+  static fb_run r;
+  fb_diag d;
+  assert_int_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+  for (int m = 0; m < 2; m++) {
+    const fb_stop *st = &r.model[m].run.stop;
+    assert_int_equal(st->kind, FB_STOP_ALIASED);
+    assert_int_equal(st->joint, FB_JOINT_B);
+    assert_true(st->value > FB_MATCHED_ALIAS_BOUND);
+    assert_near(st->limit, FB_MATCHED_ALIAS_BOUND, 0.0);
+    /* the named step is the one that brings this contact's omega_d h to the bound */
+    assert_rel(st->h_max, 5e-5 * FB_MATCHED_ALIAS_BOUND / st->value, 1e-12);
+    assert_true(st->h_max < 5e-5);
+    char text[512];
+    fb_stop_text(text, sizeof text, st);
+    assert_non_null(strstr(text, "aliased"));
+    assert_non_null(strstr(text, "largest usable step"));
+  }
+  fb_run_free(&r);
+  const char *fine[] = {"solver.h_s=2e-5", "run.revolutions=2",
+                        "run.models=ode-clearance-impact,ode-clearance-restitution"};
+  load(&c, fine, 3);
+  assert_int_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+  for (int m = 0; m < 2; m++) assert_int_equal(r.model[m].run.stop.kind, FB_STOP_NONE);
+  fb_run_free(&r);
+  const char *tangent[] = {"solver.h_s=5e-5", "run.revolutions=2", "clearance.mapping=tangent",
+                           "run.models=ode-clearance-impact"};
+  load(&c, tangent, 4);
+  assert_int_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+  assert_true(r.model[0].run.stop.kind != FB_STOP_ALIASED);
+  fb_run_free(&r);
+}
+
 /* ODE's probe against the engine-free KKT effective mass, at h = 1e-6 s:
  * the probe's velocity change (~1e-3 m/s against speeds ~10 m/s) carries
  * ~1e-12 of rounding; the hinges' world CFM (1e-10 m/(N s)) softens them by
@@ -394,6 +439,50 @@ static void test_matched_restitution_model_against_reference(void **state) {
   }
 }
 
+/* issue 28 item 1, the done-when: the persistent-contact penetration
+ * (summary.json's persistent_penetration_rel: penetration summed over the
+ * samples where model and reference are both in continuous contact) of
+ * the paper case at the automatic step within 1 % of the reference with
+ * mapping = matched-static, for the impact law and the restitution law at
+ * cr 0.9 and the heavily damped cr 0.14. Measured: impact -0.005 %,
+ * restitution +0.19 % (cr 0.9) and -0.03 % (cr 0.14); the matched mapping
+ * gives -0.59 %, +0.09 % and -7.1 % (its static stiffness a > k, and the
+ * steady drift of ODE's position update that its damper sees: contact.md),
+ * so the heavily damped case also shows the test can fail. */
+#define PERSISTENT_PENETRATION_REL_TOL 0.01
+
+static void test_persistent_contact_penetration(void **state) {
+  (void)state;
+  const char *crs[2] = {"clearance.restitution=0.14", "clearance.restitution=0.9"};
+  for (int i = 0; i < 2; i++) {
+    const char *maps[2] = {"clearance.mapping=matched-static", "clearance.mapping=matched"};
+    for (int k = 0; k < (i == 0 ? 2 : 1); k++) {
+      const char *sets[] = {i == 0 && k == 0
+                                ? "run.models=ode-clearance-restitution,reference-restitution,"
+                                  "ode-clearance-impact,reference"
+                                : "run.models=ode-clearance-restitution,reference-restitution",
+                            maps[k], crs[i]};
+      fb_case c;
+      load(&c, sets, 3);
+      static fb_run r;
+      fb_diag d;
+      if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+      const char *models[2] = {"ode-clearance-restitution", "ode-clearance-impact"};
+      for (int m = 0; m < (i == 0 && k == 0 ? 2 : 1); m++) {
+        const fb_reference_error *e = &result_of(&r, models[m])->ref_error;
+        assert_true(e->persistent_samples > 1000);
+        char name[128];
+        snprintf(name, sizeof name, "persistent penetration, %s, %s, %s", models[m], maps[k] + 18,
+                 crs[i] + 10);
+        report_residual(name, e->persistent_penetration_rel, PERSISTENT_PENETRATION_REL_TOL);
+        if (k == 0) assert_true(fabs(e->persistent_penetration_rel) < PERSISTENT_PENETRATION_REL_TOL);
+        else assert_true(fabs(e->persistent_penetration_rel) > PERSISTENT_PENETRATION_REL_TOL);
+      }
+      fb_run_free(&r);
+    }
+  }
+}
+
 int main(void) {
   const char *d = getenv("FOURBAR_CASES_DIR");
   snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", d ? d : "cases");
@@ -403,10 +492,12 @@ int main(void) {
       cmocka_unit_test(test_spike_step_convergence),
       cmocka_unit_test(test_two_clearance_joints_run),
       cmocka_unit_test(test_stability_guard_names_reason),
+      cmocka_unit_test(test_aliased_step_is_refused),
       cmocka_unit_test(test_faceted_gap_shrinks_with_n),
       cmocka_unit_test(test_effective_mass_matches_ode_probe),
       cmocka_unit_test(test_matched_impact_model_against_reference),
       cmocka_unit_test(test_matched_restitution_model_against_reference),
+      cmocka_unit_test(test_persistent_contact_penetration),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -212,6 +212,61 @@ static void test_matched_poles_are_exact(void **state) {
   assert_true(isfinite(erp) && erp > 0.0 && cfm >= 0.0 && cfm < 1e-300);
 }
 
+/* issue 28 item 1: the matched-static row (fb_contact_row_static). Its a is
+ * the law's k, so a sustained load rests at F / k; its b makes the slowest
+ * pole of the row's update as slow as the law's: modulus
+ * exp(-zeta wn h) (zeta <= 1) or exp(-wn (zeta - sqrt(zeta^2 - 1)) h),
+ * written out here, or 1 / (1 + h wn), the fastest decay a row with a = k
+ * has (its double root), when the law decays faster than that. Rounding
+ * only: 1e-12 absolute on a modulus <= 1. */
+#define STATIC_POLE_ABS_TOL 1e-12
+
+static void test_matched_static_row(void **state) {
+  (void)state;
+  const double m = 0.3, k = 2e8, wn = sqrt(k / m);
+  const double zetas[] = {0.03, 0.5, 0.99, 1.0, 1.01, 2.0};
+  const double hws[] = {0.1, 0.5, 1.0};
+  for (int i = 0; i < 6; i++)
+    for (int j = 0; j < 3; j++) {
+      const double z = zetas[i], h = hws[j] / wn, c = 2.0 * z * sqrt(k * m);
+      fb_contact_row row = {.kp = k, .kd = c, .depth = 1e-6, .step_share = 1.0};
+      assert_int_equal(fb_contact_matched(h, k, c, m, &row.erp, &row.cfm, NULL), FB_OK);
+      const fb_contact_row matched = row;
+      fb_contact_row_static(&row, h, m, 1.0);
+      assert_rel(row.erp / (h * row.cfm), k, 1e-13); /* a = k */
+      double tr, det;
+      row_update(h, m, row.erp, row.cfm, &tr, &det);
+      const double disc = tr * tr - 4.0 * det;
+      const double slowest = disc < 0.0 ? sqrt(det) : 0.5 * (tr + sqrt(disc));
+      const double law = z <= 1.0 ? exp(-z * wn * h) : exp(-wn * (z - sqrt(z * z - 1.0)) * h);
+      const double want = fmax(law, 1.0 / (1.0 + hws[j]));
+      char name[96];
+      snprintf(name, sizeof name, "static row slowest pole, zeta %g, h omega %g", z, hws[j]);
+      report_residual(name, fabs(slowest - want), STATIC_POLE_ABS_TOL);
+      assert_near(slowest, want, STATIC_POLE_ABS_TOL);
+      /* stable: both poles inside the unit circle */
+      assert_true(det < 1.0 && fabs(tr) < 1.0 + det);
+      /* half weight: a and b halfway between the matched and the static row */
+      fb_contact_row half = matched;
+      fb_contact_row_static(&half, h, m, 0.5);
+      const double am = matched.erp / (h * matched.cfm), bm = 1.0 / matched.cfm;
+      assert_rel(half.erp / (h * half.cfm), 0.5 * (am + k), 1e-12);
+      assert_rel(1.0 / half.cfm, 0.5 * (bm + 1.0 / row.cfm), 1e-12);
+      /* weight 0 leaves the matched row alone */
+      fb_contact_row none = matched;
+      fb_contact_row_static(&none, h, m, 0.0);
+      assert_true(none.erp == matched.erp && none.cfm == matched.cfm);
+    }
+  /* the persistence weight: 0 up to one period of phase, 1 from two */
+  assert_near(fb_contact_persistence(0.0), 0.0, 0.0);
+  assert_near(fb_contact_persistence(FB_PERSISTENT_PHASE_RAD), 0.0, 0.0);
+  assert_near(fb_contact_persistence(FB_PERSISTENT_PHASE_RAD + 0.5 * FB_PERSISTENT_RAMP_RAD), 0.5,
+              1e-15);
+  assert_near(fb_contact_persistence(FB_PERSISTENT_PHASE_RAD + FB_PERSISTENT_RAMP_RAD), 1.0, 0.0);
+  assert_int_equal(fb_mapping_parse("matched-static"), FB_MAPPING_MATCHED_STATIC);
+  assert_string_equal(fb_mapping_name(FB_MAPPING_MATCHED_STATIC), "matched-static");
+}
+
 static void test_matched_round_trip(void **state) {
   (void)state;
   const double m = 0.09;
@@ -252,6 +307,7 @@ int main(void) {
       cmocka_unit_test(test_linearize_reproduces_the_law),
       cmocka_unit_test(test_matched_poles_are_exact),
       cmocka_unit_test(test_matched_round_trip),
+      cmocka_unit_test(test_matched_static_row),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -187,6 +187,102 @@ static void test_ode_matched_mapping_at_h_omega_0_1(void **state) {
   }
 }
 
+/* issue 28 item 1: the matched-static row under a sustained load.
+ *
+ *         | F (constant from t = 0)
+ *        ( m )      rests touching z = 0 at t = 0, linear law k, c = 2 zeta sqrt(k m)
+ *   ==============  static depth F / k (the law's), F / a for a matched row
+ *
+ * The issue's bound on the static penetration: 0.5 % of F / k for zeta up to
+ * 2 and h omega up to 1 (measured residual after 80 / omega: below 1e-9,
+ * the motion's decay). The matched row's static depth is F / a with its
+ * a = m (1 + beta - tr) / (beta h^2), written out here from the poles
+ * (beta = exp(-c h / m), tr = 2 exp(-zeta omega h) cos or cosh of the pole
+ * spread times h): that closed form holds the harness itself, and shows the
+ * matched row 10 % too shallow at zeta 1, h omega 0.1. Both to 1e-6 (the
+ * residual motion after 80 / omega, ~1e-9, with margin). */
+#define STATIC_PENETRATION_REL_TOL 0.005
+#define STATIC_MATCHED_CLOSED_REL_TOL 1e-6
+#define STATIC_SETTLE_PERIODS 80.0 /* duration x omega: the slowest mode (zeta 0.25:
+                                      exp(-0.25 x 80) = 2e-9) has died out */
+
+static double matched_a(double k, double c, double m, double h) {
+  const double w = sqrt(k / m), z = c / (2.0 * sqrt(k * m)), beta = exp(-c * h / m);
+  const double tr = z < 1.0 ? 2.0 * exp(-z * w * h) * cos(w * sqrt(1.0 - z * z) * h)
+                            : 2.0 * exp(-z * w * h) * cosh(w * sqrt(z * z - 1.0) * h);
+  return m * (1.0 + beta - tr) / (beta * h * h);
+}
+
+static void test_matched_static_rests_at_the_law_depth(void **state) {
+  (void)state;
+  const double zetas[4] = {0.25, 0.5, 1.0, 2.0}, hws[3] = {0.1, 0.5, 1.0};
+  const double k = 1e9, m = 0.1, load = 100.0, w = sqrt(k / m);
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 3; j++) {
+      fb_impact_def d = base(FB_LAW_LINEAR, 1.0);
+      d.law.stiffness = k;
+      d.law.exponent = 1.0;
+      d.law.damping = 2.0 * zetas[i] * sqrt(k * m);
+      d.mass = m;
+      d.h = hws[j] / w;
+      double pen, pen_matched;
+      d.mapping = FB_MAPPING_MATCHED_STATIC;
+      assert_int_equal(fb_impact_ode_static(&pen, &d, load, STATIC_SETTLE_PERIODS / w, NULL), FB_OK);
+      d.mapping = FB_MAPPING_MATCHED;
+      assert_int_equal(fb_impact_ode_static(&pen_matched, &d, load, STATIC_SETTLE_PERIODS / w, NULL),
+                       FB_OK);
+      char name[96];
+      snprintf(name, sizeof name, "matched-static depth / (F/k), zeta %.2g, h omega %.2g",
+               zetas[i], hws[j]);
+      report_residual(name, rel(pen, load / k), STATIC_PENETRATION_REL_TOL);
+      assert_true(fabs(rel(pen, load / k)) < STATIC_PENETRATION_REL_TOL);
+      const double a = matched_a(k, d.law.damping, m, d.h);
+      snprintf(name, sizeof name, "matched depth / (F/a), zeta %.2g, h omega %.2g", zetas[i],
+               hws[j]);
+      report_residual(name, rel(pen_matched, load / a), STATIC_MATCHED_CLOSED_REL_TOL);
+      assert_true(fabs(rel(pen_matched, load / a)) < STATIC_MATCHED_CLOSED_REL_TOL);
+      /* and the matched row misses F / k by more than the bound (by 2.4 % at
+       * zeta 0.25, h omega 0.1, the mildest of these; 0.904 F/k at zeta 1) */
+      assert_true(fabs(rel(pen_matched, load / k)) > STATIC_PENETRATION_REL_TOL);
+    }
+}
+
+/* A single impact never reaches the persistent row (FB_PERSISTENT_PHASE_RAD):
+ * at h omega_c = 0.1 matched-static gives the matched row's figures exactly
+ * and keeps the issue's 1 % on restitution against the reference, for the
+ * laws of both clearance models (restitution law from cr 0.9 down to 0.14,
+ * the heavily damped case) and undamped Hertz. */
+#define MATCHED_STATIC_RESTITUTION_REL_TOL 0.01
+
+static void test_matched_static_single_impact(void **state) {
+  (void)state;
+  const fb_law_kind kinds[4] = {FB_LAW_HERTZ, FB_LAW_RESTITUTION, FB_LAW_RESTITUTION,
+                                FB_LAW_IMPACT};
+  const double crs[4] = {1.0, 0.9, 0.14, 1.0};
+  for (int i = 0; i < 4; i++) {
+    fb_impact_def d = base(kinds[i], crs[i]);
+    if (kinds[i] == FB_LAW_RESTITUTION) d.law.exponent = 1.0;
+    if (kinds[i] == FB_LAW_IMPACT) {
+      d.law.damping = 1e3;      /* c_max [N s/m]: zeta ~0.1 at full depth for K = 1e10, m = 1 */
+      d.law.damping_depth = 1e-4;
+    }
+    fb_impact_result r, o, mt;
+    assert_int_equal(fb_impact_reference(&r, &d, NULL), FB_OK);
+    d.h = MATCHED_H_OMEGA * r.contact_duration / M_PI;
+    d.mapping = FB_MAPPING_MATCHED_STATIC;
+    assert_int_equal(fb_impact_ode(&o, &d, NULL), FB_OK);
+    d.mapping = FB_MAPPING_MATCHED;
+    assert_int_equal(fb_impact_ode(&mt, &d, NULL), FB_OK);
+    char name[96];
+    snprintf(name, sizeof name, "matched-static restitution, %s cr %g", fb_law_name(kinds[i]),
+             crs[i]);
+    report_residual(name, rel(o.restitution, r.restitution), MATCHED_STATIC_RESTITUTION_REL_TOL);
+    assert_true(fabs(rel(o.restitution, r.restitution)) < MATCHED_STATIC_RESTITUTION_REL_TOL);
+    assert_true(o.restitution == mt.restitution);
+    assert_true(o.penetration_max == mt.penetration_max);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_reference_matches_closed_forms),
@@ -195,6 +291,8 @@ int main(void) {
       cmocka_unit_test(test_ode_restitution_of_each_law),
       cmocka_unit_test(test_ode_error_grows_with_h_omega),
       cmocka_unit_test(test_ode_matched_mapping_at_h_omega_0_1),
+      cmocka_unit_test(test_matched_static_rests_at_the_law_depth),
+      cmocka_unit_test(test_matched_static_single_impact),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

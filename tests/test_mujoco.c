@@ -64,7 +64,10 @@
  * effective mass (issue 15; 78 impacts before, on the reduced mass) the
  * reference has 29 at h = 1e-5 s and MuJoCo 33: the contact sequence is
  * chaotic after the first impacts, so the count is held to the issue's 15 %
- * of the reference's */
+ * of the reference's, widened by the reference's own uncertainty in that
+ * count (issue 28: its error_estimate, a second integration at 1e-13; at
+ * its tolerance 1e-12 the reference counts 28, at 1e-13 29, so a bound on
+ * 28 alone would test noise) */
 #define RESTITUTION_IMPACTS_REL_TOL 0.15
 
 /* MuJoCo's effective mass along the contact normal (from its own mass
@@ -223,10 +226,15 @@ static void test_clearance_restitution_matches_reference(void **state) {
   const fb_reference_error *re = &m->ref_error;
   report_residual("mujoco restitution force peak rel", re->force_max_rel,
                   RESTITUTION_FORCE_REL_TOL);
-  const double impacts_rel = (double)re->impacts / re->impacts_reference - 1.0;
-  report_residual("mujoco restitution impacts rel", impacts_rel, RESTITUTION_IMPACTS_REL_TOL);
+  const fb_model_result *ref = &r.model[1];
+  assert_true(ref->has_ref_estimate);
+  const double ref_spread =
+      fabs((double)(ref->ref_estimate.impacts - ref->ref_estimate.impacts_reference));
+  const double impacts_off = fabs((double)(re->impacts - re->impacts_reference));
+  const double impacts_bound = RESTITUTION_IMPACTS_REL_TOL * re->impacts_reference + ref_spread;
+  report_residual("mujoco restitution impacts off (count)", impacts_off, impacts_bound);
   assert_true(fabs(re->force_max_rel) < RESTITUTION_FORCE_REL_TOL);
-  assert_true(re->impacts_reference > 0 && fabs(impacts_rel) <= RESTITUTION_IMPACTS_REL_TOL);
+  assert_true(re->impacts_reference > 0 && impacts_off <= impacts_bound);
   fb_run_free(&r);
 }
 

@@ -12,7 +12,7 @@ static const char impact_help[] =
     "usage: fourbar impact [--law L] [--stiffness K] [--exponent n] [--restitution cr]\n"
     "                      [--damping-n-s-m c] [--damping-depth-m d] [--mass-kg m]\n"
     "                      [--speed-m-s v] [--h-s h] [--stepper world|quick]\n"
-    "                      [--quick-iterations N] [--mapping secant|tangent|matched] [--json]\n"
+    "                      [--quick-iterations N] [--mapping M] [--json]\n"
     "\n"
     "One body hits one contact: ODE with the law mapped into ERP/CFM every step,\n"
     "against an adaptive high-accuracy integration of the same law (GSL rk8pd)\n"
@@ -34,7 +34,9 @@ static const char impact_help[] =
     "                 spring-damper's poles exp(s h) (tangent stiffness, the body's\n"
     "                 mass); or secant or tangent linearisation of the law into\n"
     "                 ERP = h k/(h k + c), CFM = 1/(h k + c) (a backward-Euler spring\n"
-    "                 that adds a damper h k)\n"
+    "                 that adds a damper h k); or matched-static: matched, turning to\n"
+    "                 the law's own stiffness once a contact lasts one contact period\n"
+    "                 (a single impact never does: the matched figures)\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static json_t *result_json(const fb_impact_result *r) {
@@ -104,7 +106,8 @@ int fb_cmd_impact(int argc, char **argv) {
       case 'M':
         d.mapping = fb_mapping_parse(optarg);
         if (d.mapping == FB_MAPPING_COUNT)
-          return fb_cli_fail("impact", 2, "--mapping '%s': must be secant, tangent or matched",
+          return fb_cli_fail("impact", 2, "--mapping '%s': must be secant, tangent, matched or "
+                             "matched-static",
                              optarg);
         break;
       case 'j': json = 1; break;

@@ -92,7 +92,8 @@ int fb_cmd_mapping(int argc, char **argv) {
       case 'M':
         mapping = fb_mapping_parse(optarg);
         if (mapping == FB_MAPPING_COUNT)
-          return fb_cli_fail("mapping", 2, "--mapping '%s': must be secant, tangent or matched",
+          return fb_cli_fail("mapping", 2, "--mapping '%s': must be secant, tangent, matched or "
+                             "matched-static",
                              optarg);
         break;
       case 'h': fputs(mapping_help, stdout); return 0;
@@ -123,7 +124,7 @@ int fb_cmd_mapping(int argc, char **argv) {
   for (int i = 0; i < nk; i++)
     for (int j = 0; j < nh; j++) {
       const double c = 2.0 * zeta * sqrt(k[i] * m);
-      if (mapping == FB_MAPPING_MATCHED)
+      if (fb_mapping_is_matched(mapping)) /* a map of the impulsive row */
         fb_contact_matched(h[j], k[i], c, m, &erp[i * nh + j], &cfm[i * nh + j], NULL);
       else
         fb_contact_erp_cfm(h[j], k[i], c, &erp[i * nh + j], &cfm[i * nh + j], NULL);

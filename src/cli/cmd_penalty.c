@@ -77,6 +77,10 @@ static const char *stiffness_rule(const fb_case *c) {
     case FB_PENALTY_SOURCE_PAPER:
       return "paper: Kc (Eq. 7) read as N/mm^1.5 for the impact law (n = 1.5), P read as N/mm "
              "for the restitution law";
+    case FB_PENALTY_SOURCE_GOLDSMITH:
+      return "goldsmith: paper Eq. 3-5, K = 4 / (3 (s1 + s2)) sqrt(R_pin R_hole / (R_hole - "
+             "R_pin)), s_i = (1 - nu_i^2) / E_i, for the impact law (n = 1.5); restitution law "
+             "p = dF/d delta of K delta^1.5 at the joint's largest inverse-dynamics reaction";
     default: return "explicit: the case's stiffness keys";
   }
 }

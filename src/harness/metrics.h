@@ -72,6 +72,11 @@ typedef struct {
   double force_max_rel;         /* (peak force - reference's) / reference's [-] */
   double force_err_rms;         /* RMS of the force difference [N] */
   double penetration_max_rel;   /* (max penetration - reference's) / reference's [-] */
+  double persistent_penetration_rel; /* persistent-contact penetration: over the samples where
+                                        both are in continuous contact (FB_STATE_CONTINUOUS),
+                                        sum of the model's penetration / sum of the reference's
+                                        - 1 [-]; NaN without such samples */
+  size_t persistent_samples;    /* those samples [-] */
   int impacts;                  /* impact episodes in the window */
   int impacts_reference;
   double impact_angles[8];      /* crank angles of the first impacts [rad] in [0, 2 pi) */

@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "reference.h"
 #include "resolution.h"
 
 
@@ -199,6 +200,35 @@ static fb_status check_cost(const fb_case *c, fb_diag *diag) {
   return FB_OK;
 }
 
+/* the reference's own error estimate: the same integration at a tighter
+ * tolerance, compared with it like a model with its reference (reference.h) */
+static void reference_estimate(fb_model_result *m, const fb_run *r) {
+  fb_scene_model sm;
+  fb_diag inner;
+  double tol;
+  if (fb_scene_def_select(&sm, &r->scene, m->run.model, &inner) != FB_OK ||
+      fb_reference_tolerance(&tol, &inner) != FB_OK)
+    return;
+  const double check = fmax(tol / FB_REFERENCE_CHECK_FACTOR, FB_REFERENCE_TOL_MIN);
+  if (!(check < tol)) return; /* already at the floor: nothing tighter to compare with */
+  fb_series s;
+  memset(&s, 0, sizeof s);
+  size_t steps = 0;
+  fb_stop stop;
+  memset(&stop, 0, sizeof stop);
+  if (fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[FB_JOINT_B], 0, check, &stop,
+                           &inner) == FB_OK &&
+      stop.kind == FB_STOP_NONE &&
+      fb_metrics_vs_reference(&m->ref_estimate, &m->run.series, &s, r->t_window, FB_JOINT_B,
+                              &inner) == FB_OK) {
+    m->has_ref_estimate = 1;
+    m->ref_tol = tol;
+    m->ref_check_tol = check;
+    m->ref_check_steps = steps;
+  }
+  fb_series_free(&s);
+}
+
 fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                       fb_diag *diag) {
   memset(r, 0, sizeof *r);
@@ -249,6 +279,12 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
         divergence_warnings(m, want->name);
       }
     }
+  }
+  for (int i = 0; i < r->n; i++) {
+    fb_model_result *m = &r->model[i];
+    if (m->run.model->engine == FB_ENGINE_REFERENCE && m->has_peaks &&
+        m->run.stop.kind == FB_STOP_NONE)
+      reference_estimate(m, r);
   }
   return FB_OK;
 }

@@ -57,6 +57,12 @@ typedef struct {
   char ref_name[FB_NAME_SIZE]; /* the reference model compared against */
   int has_divergence;      /* 1 for a clearance model run beside its reference */
   fb_divergence divergence; /* where it leaves the reference, impacts matched before */
+  int has_ref_estimate;    /* 1 for a reference model that ran to its end and whose check
+                              integration did (reference.h, FB_REFERENCE_CHECK_FACTOR) */
+  fb_reference_error ref_estimate; /* this reference against its check integration */
+  double ref_tol;          /* the reference's tolerance [-] */
+  double ref_check_tol;    /* the check integration's tolerance [-] */
+  size_t ref_check_steps;  /* the check integration's accepted steps [-] */
 } fb_model_result;
 
 typedef struct {

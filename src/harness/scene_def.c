@@ -177,7 +177,8 @@ fb_status fb_scene_def_check(const fb_scene_def *def, fb_diag *diag) {
       return fb_diag_set(diag, FB_ERR_RANGE, "scene: friction = %g: must be >= 0", def->friction);
     if (!(def->mapping >= 0 && def->mapping < FB_MAPPING_COUNT))
       return fb_diag_set(diag, FB_ERR_RANGE,
-                         "scene: mapping = %d: secant (0), tangent (1) or matched (2)",
+                         "scene: mapping = %d: secant (0), tangent (1), matched (2) or "
+                         "matched-static (3)",
                          (int)def->mapping);
     for (int k = 0; k < FB_MODEL_LAW_COUNT; k++) {
       if (!def->has_law[k]) continue;

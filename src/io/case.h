@@ -79,7 +79,9 @@ const char *fb_joint_name(int j);
 typedef enum {
   FB_PENALTY_SOURCE_PHYSICAL = 0, /* Johnson line contact at the inverse-dynamics reaction */
   FB_PENALTY_SOURCE_PAPER = 1,    /* the paper's Kc and P (Tables II, III recipe), read in N-mm units */
-  FB_PENALTY_SOURCE_EXPLICIT = 2  /* the case's stiffness keys */
+  FB_PENALTY_SOURCE_EXPLICIT = 2, /* the case's stiffness keys */
+  FB_PENALTY_SOURCE_GOLDSMITH = 3 /* Goldsmith's internal-contact K (paper Eq. 3-5) from the pin
+                                     and hole radii and the case's material */
 } fb_penalty_source;
 
 /* How the ODE clearance models find the pin-in-hole contact (docs/colliders.md). */

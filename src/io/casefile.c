@@ -200,9 +200,11 @@ static const key_spec keys[] = {
      "joints modelled as a pin in a hole (ode-clearance-* models); the others stay ideal "
      "hinges and get no contact geometry"},
     {"clearance", "penalty", K_PENALTY, OFF(clearance.penalty), 0, 0, 0, 0, 0, "-", "physical",
-     "physical, paper or explicit",
+     "physical, paper, explicit or goldsmith",
      "stiffness source: physical (Johnson line contact at the inverse-dynamics reaction), "
-     "paper (the paper's Kc and P read in N and mm), explicit (the stiffness keys)"},
+     "paper (the paper's Kc and P read in N and mm), explicit (the stiffness keys), goldsmith "
+     "(paper Eq. 3-5: K = 4 / (3 (s1 + s2)) sqrt(R_pin R_hole / c), s = (1 - nu^2)/E, n = 1.5; "
+     "the restitution law's p is its tangent at the joint's largest ideal reaction)"},
     {"clearance", "restitution", K_DOUBLE, OFF(clearance.restitution), 1.0, FB_RESTITUTION_MIN,
      1, 1, 0, "-", "0.9", "cr must lie in (0.1353, 1] (the restitution law's range)",
      "coefficient of restitution of the restitution model"},
@@ -221,9 +223,10 @@ static const key_spec keys[] = {
      1, 1, "um", "1", "the full-damping depth must be positive",
      "impact-model penetration at full damping d_max (cubic STEP below it)"},
     {"clearance", "mapping", K_MAPPING, OFF(clearance.mapping), 0, 0, 0, 0, 0, "-", "matched",
-     "secant, tangent or matched",
+     "secant, tangent, matched or matched-static",
      "per-step mapping of the law into ERP/CFM (matched: exact discretisation on the effective "
-     "mass along the normal)"},
+     "mass along the normal; matched-static: matched, then the law's own stiffness once a "
+     "contact has lasted one contact period, so a sustained load rests at the law's depth)"},
     {"clearance", "friction", K_DOUBLE, OFF(clearance.friction), 1.0, 0, 10, 0, 0, "-", "0",
      "a friction coefficient must lie in [0, 10]", "Coulomb friction coefficient at the pin"},
     {"clearance", "penetration_limit_um", K_LIMIT, OFF(clearance.penetration_limit), FB_M_PER_UM,
@@ -675,6 +678,7 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       if (strcmp(e->value, "physical") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_PHYSICAL;
       else if (strcmp(e->value, "paper") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_PAPER;
       else if (strcmp(e->value, "explicit") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_EXPLICIT;
+      else if (strcmp(e->value, "goldsmith") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_GOLDSMITH;
       else return bad_word(e, k, diag);
       return FB_OK;
     case K_MJINT:

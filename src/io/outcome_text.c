@@ -36,13 +36,21 @@ const char *fb_stop_text(char *buf, size_t size, const fb_stop *s) {
       if (s->step > 0) snprintf(buf, size, "%s-error: %s at t = %.6g s%s", engine, s->detail, s->t, at);
       else snprintf(buf, size, "%s integration failed at t = %g s: %s", engine, s->t, s->detail);
       break;
+    case FB_STOP_ALIASED:
+      snprintf(buf, size,
+               "aliased: the matched contact row at the %s joint met omega_d h = %.3g at "
+               "t = %.6g s%s, past %.3g (pi would lose the row's spring); the largest usable "
+               "step is %.3g s (or h_s = auto)",
+               fb_joint_name(s->joint), s->value, s->t, at, s->limit, s->h_max);
+      break;
     default: snprintf(buf, size, "stopped (%d)", (int)s->kind); break;
   }
   return buf;
 }
 
 static const char *const stop_names[FB_STOP_COUNT] = {"ok", "penetration", "non-finite",
-                                                      "step-budget", "allocation", "solver"};
+                                                      "step-budget", "allocation", "solver",
+                                                      "aliased"};
 
 const char *fb_stop_kind_name(fb_stop_kind k) {
   return (k >= 0 && k < FB_STOP_COUNT) ? stop_names[k] : "?";

@@ -321,6 +321,8 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o2, "force_max_rel", num(e->force_max_rel));
     json_object_set_new(o2, "force_err_rms_n", num(e->force_err_rms));
     json_object_set_new(o2, "penetration_max_rel", num(e->penetration_max_rel));
+    json_object_set_new(o2, "persistent_penetration_rel", num(e->persistent_penetration_rel));
+    json_object_set_new(o2, "persistent_samples", json_integer((json_int_t)e->persistent_samples));
     json_object_set_new(o2, "impacts", json_integer(e->impacts));
     json_object_set_new(o2, "impacts_reference", json_integer(e->impacts_reference));
     for (int k = 0; k < 8; k++) {
@@ -367,6 +369,22 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     }
     json_object_set_new(dv, "matched_impacts", list);
     json_object_set_new(o, "divergence", dv);
+  }
+  if (m->has_ref_estimate) {
+    /* the reference against its own integration at a tighter tolerance */
+    const fb_reference_error *e = &m->ref_estimate;
+    json_t *o3 = json_object();
+    json_object_set_new(o3, "tolerance", num(m->ref_tol));
+    json_object_set_new(o3, "check_tolerance", num(m->ref_check_tol));
+    json_object_set_new(o3, "check_steps", json_integer((json_int_t)m->ref_check_steps));
+    json_object_set_new(o3, "coupler", body_error_json(&e->coupler));
+    json_object_set_new(o3, "follower", body_error_json(&e->follower));
+    json_object_set_new(o3, "force_max_rel", num(e->force_max_rel));
+    json_object_set_new(o3, "force_err_rms_n", num(e->force_err_rms));
+    json_object_set_new(o3, "penetration_max_rel", num(e->penetration_max_rel));
+    json_object_set_new(o3, "impacts", json_integer(e->impacts));
+    json_object_set_new(o3, "impacts_check", json_integer(e->impacts_reference));
+    json_object_set_new(o, "error_estimate", o3);
   }
   if (m->has_spikes) {
     const fb_spikes *k = &m->spikes;
@@ -941,8 +959,9 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
     fprintf(f, "| clearance joints |");
     for (int j = 0; j < 4; j++)
       if (c->clearance.mask & (1 << j)) fprintf(f, " %s", fb_joint_name(j));
-    const char *src[3] = {"physical (Johnson line contact at the inverse-dynamics reaction)",
-                          "paper (Kc and P read in N-mm units)", "explicit"};
+    const char *src[4] = {"physical (Johnson line contact at the inverse-dynamics reaction)",
+                          "paper (Kc and P read in N-mm units)", "explicit",
+                          "goldsmith (paper Eq. 3-5, internal contact of pin and hole)"};
     fprintf(f, " | %s |\n| penalty source | %s, stiffness scale %g | %s |\n",
             given_src(c, "clearance", "joints", NULL), src[c->clearance.penalty],
             c->clearance.stiffness_scale,

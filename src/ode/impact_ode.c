@@ -47,6 +47,7 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
   double v0 = -1.0; /* approach speed at first contact */
   int in_contact = 0, done = 0, broken = 0;
   double t_end = 0.0, prev_depth = 0.0;
+  double phase = 0.0; /* contact phase so far [rad] (matched-static, contact.h) */
   size_t k;
   dJointFeedback fb;
   for (k = 0; k < max_steps && !done; k++) {
@@ -62,9 +63,10 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
       memset(&c, 0, sizeof c);
       fb_contact_row row;
       /* a single body: its mass is the effective mass along the normal */
-      if (fb_ode_soft_contact(&c, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, onset, 0.0,
-                              &row)) {
+      if (fb_ode_soft_contact(&c, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, onset,
+                              fb_contact_persistence(phase), 0.0, &row)) {
         share = row.step_share;
+        phase += fb_contact_h_omega(d->h, row.kp, d->mass);
         c.geom.pos[0] = p[0];
         c.geom.pos[1] = p[1];
         c.geom.pos[2] = 0.0;
@@ -124,5 +126,86 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
                      "ODE impact: the body has not left the contact after %zu steps (%g s)", k,
                      (double)k * d->h);
   out->wall_s = fb_clock_s() - t_wall;
+  return st;
+}
+
+fb_status fb_impact_ode_static(double *penetration, const fb_impact_def *d, double load,
+                               double duration, fb_diag *diag) {
+  *penetration = NAN;
+  fb_status st = fb_impact_check(d, diag);
+  if (st != FB_OK) return st;
+  if (!(load > 0.0) || !isfinite(load) || !(duration > 0.0) || !isfinite(duration))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "static load %g N over %g s: need a positive, finite load and duration",
+                       load, duration);
+  fb_contact_law law = d->law;
+  law.mass = d->mass;
+  fb_contact_law_prepare(&law, NULL);
+  const size_t steps = (size_t)ceil(duration / d->h);
+
+  fb_ode_acquire();
+  dWorldID world = dWorldCreate();
+  dWorldSetGravity(world, 0, 0, 0);
+  dWorldSetQuickStepNumIterations(world, d->quick_iterations);
+  dRandSetSeed(1);
+  dJointGroupID group = dJointGroupCreate(0);
+  dBodyID body = dBodyCreate(world);
+  dMass mass;
+  dMassSetSphereTotal(&mass, d->mass, 0.01);
+  dBodySetMass(body, &mass);
+  dBodySetPosition(body, 0, 0, 0); /* touching, at rest: the load is applied suddenly */
+  double v0 = -1.0, phase = 0.0;
+  int broken = 0;
+  for (size_t k = 0; k < steps; k++) {
+    const dReal *p = dBodyGetPosition(body);
+    const dReal *v = dBodyGetLinearVel(body);
+    const double delta = -p[2], ddot = -v[2];
+    if (delta > 0.0) {
+      const int onset = v0 < 0.0;
+      if (onset) v0 = fmax(ddot, 1e-300);
+      dContact c;
+      memset(&c, 0, sizeof c);
+      fb_contact_row row;
+      if (fb_ode_soft_contact(&c, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, onset,
+                              fb_contact_persistence(phase), 0.0, &row)) {
+        phase += fb_contact_h_omega(d->h, row.kp, d->mass);
+        c.geom.pos[0] = p[0];
+        c.geom.pos[1] = p[1];
+        c.geom.normal[2] = 1.0; /* into body 1 */
+        dJointID cj = dJointCreateContact(world, group, &c);
+        dJointAttach(cj, body, 0);
+      }
+    } else {
+      v0 = -1.0; /* left the contact: the next one is a new contact */
+      phase = 0.0;
+    }
+    dBodyAddForce(body, 0, 0, -load);
+    const int ok = guarded_step(world, d->stepper != FB_STEPPER_WORLD, d->h);
+    if (ok < 0) {
+      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE static load: ode-error: %s at step %zu",
+                       fb_ode_last_error(), k + 1);
+      broken = 1;
+      break;
+    }
+    dJointGroupEmpty(group);
+    if (!ok) {
+      st = fb_diag_set(diag, FB_ERR_NOMEM, "ODE step %zu failed to allocate", k + 1);
+      break;
+    }
+    if (!isfinite(dBodyGetPosition(body)[2])) {
+      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE static load: non-finite state at step %zu",
+                       k + 1);
+      break;
+    }
+  }
+  if (broken) {
+    fb_ode_quarantine(world);
+    fb_ode_quarantine(group);
+    return st;
+  }
+  if (st == FB_OK) *penetration = -dBodyGetPosition(body)[2];
+  dJointGroupDestroy(group);
+  dWorldDestroy(world);
+  fb_ode_release();
   return st;
 }

@@ -14,12 +14,15 @@
  * tangent or matched mapping), and fills ct->surface (soft ERP and CFM,
  * Coulomb friction mu = friction with ODE's friction pyramid when > 0) and
  * ct->geom.depth. onset = 1 at the first step of a contact episode: a single
- * matched row of a linear law gets fb_contact_row_onset. The caller zeroes ct first and sets the geometry (point,
+ * matched row of a linear law gets fb_contact_row_onset. A matched-static
+ * row with persistence w > 0 (fb_contact_persistence of its contact's
+ * phase) gets fb_contact_row_static with that weight instead. The caller zeroes ct first and sets the geometry (point,
  * normal, geoms). *row (if not NULL) receives what the row got.
  * Returns 1 when filled, 0 when the law gives no row at this state. */
 int fb_ode_soft_contact(dContact *ct, const fb_contact_law *law, fb_mapping mapping, double h,
                         double m_eff, int n_rows, double delta, double ddot, double v0,
-                        int onset, double friction, fb_contact_row *row);
+                        int onset, double persistence, double friction,
+                        fb_contact_row *row);
 
 /* Fills ct->surface and ct->geom.depth from a row already mapped
  * (fb_contact_map), with Coulomb friction mu = friction (friction pyramid

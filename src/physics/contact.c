@@ -257,7 +257,48 @@ fb_status fb_contact_kp_kd(double h, double erp, double cfm, double *kp, double 
 
 double fb_contact_h_omega(double h, double k, double m) { return h * sqrt(k / m); }
 
-static const char *const mapping_names[FB_MAPPING_COUNT] = {"secant", "tangent", "matched"};
+static const char *const mapping_names[FB_MAPPING_COUNT] = {"secant", "tangent", "matched",
+                                                            "matched-static"};
+
+int fb_mapping_is_matched(fb_mapping m) {
+  return m == FB_MAPPING_MATCHED || m == FB_MAPPING_MATCHED_STATIC;
+}
+
+double fb_contact_persistence(double phase) {
+  const double z = (phase - FB_PERSISTENT_PHASE_RAD) / FB_PERSISTENT_RAMP_RAD;
+  if (!(z > 0.0)) return 0.0;
+  if (z >= 1.0) return 1.0;
+  return z * z * (3.0 - 2.0 * z);
+}
+
+void fb_contact_row_static(fb_contact_row *row, double h, double m, double w) {
+  if (!(w > 0.0)) return;
+  if (w > 1.0) w = 1.0;
+  const double a_m = row->erp / (h * row->cfm), b_m = 1.0 / row->cfm; /* the matched row */
+  const double k = row->kp, sigma = 0.5 * row->kd / m, disc = sigma * sigma - k / m;
+  const double w2h2 = k * h * h / m; /* (h omega)^2 */
+  /* log of the modulus of the law's slowest pole, times h */
+  const double lr = disc < 0.0 ? -sigma * h : -(k / m) / (sigma + sqrt(disc)) * h;
+  double det = exp(2.0 * lr);
+  double one_minus = -expm1(2.0 * lr); /* 1 - det without cancellation */
+  const double tr = 1.0 + det * (1.0 - w2h2);
+  const double r = exp(lr), omr = -expm1(lr), x = sqrt(w2h2);
+  if (omr > x * r) {
+    /* r < 1 / (1 + h omega): faster than a row with a = k can decay; the
+     * double root 1 / (1 + h omega) is the fastest it can */
+    det = 1.0 / ((1.0 + x) * (1.0 + x));
+    one_minus = x * (2.0 + x) * det;
+  } else if (tr * tr >= 4.0 * det) { /* real roots: the larger one is r */
+    det = r * omr / (omr + w2h2 * r);
+    one_minus = (omr * omr + w2h2 * r) / (omr + w2h2 * r);
+  }
+  double b = det > 0.0 ? m * one_minus / (det * h) : INFINITY;
+  if (!(b > FB_MATCHED_B_MIN_REL * m / h)) b = FB_MATCHED_B_MIN_REL * m / h;
+  /* blend a and b from the matched row to the static one */
+  const double a_w = a_m + w * (k - a_m), b_w = b_m + w * (b - b_m);
+  row->cfm = 1.0 / b_w;
+  row->erp = h * a_w / b_w;
+}
 
 const char *fb_mapping_name(fb_mapping m) {
   return (m >= 0 && m < FB_MAPPING_COUNT) ? mapping_names[m] : "?";
@@ -287,6 +328,12 @@ static double pole_gap_product(double h, double k, double c, double m) {
   const double big = sigma - sqrt(disc);              /* the more negative root */
   const double small = big != 0.0 ? (k / m) / big : 0.0; /* s1 s2 = k / m */
   return expm1(big * h) * expm1(small * h);
+}
+
+double fb_contact_omega_d_h(double h, double k, double c, double m) {
+  const double sigma = 0.5 * c / m;
+  const double wd2 = k / m - sigma * sigma;
+  return wd2 > 0.0 ? h * sqrt(wd2) : 0.0;
 }
 
 fb_status fb_contact_matched(double h, double k, double c, double m, double *erp, double *cfm,
@@ -380,12 +427,12 @@ fb_status fb_contact_map(fb_contact_row *row, const fb_contact_law *law, fb_mapp
                          double h, double m_eff, int n_rows, double delta, double ddot, double v0,
                          fb_diag *diag) {
   const double n = n_rows > 0 ? (double)n_rows : 1.0;
-  const fb_mapping lin = mapping == FB_MAPPING_MATCHED ? FB_MAPPING_TANGENT : mapping;
+  const fb_mapping lin = fb_mapping_is_matched(mapping) ? FB_MAPPING_TANGENT : mapping;
   row->step_share = 1.0;
   fb_contact_linearize(law, lin, delta, ddot, v0, &row->kp, &row->kd, &row->depth);
   row->kp /= n;
   row->kd /= n;
-  if (mapping == FB_MAPPING_MATCHED)
+  if (fb_mapping_is_matched(mapping))
     return fb_contact_matched(h, row->kp, row->kd, m_eff / n, &row->erp, &row->cfm, diag);
   return fb_contact_erp_cfm(h, row->kp, row->kd, &row->erp, &row->cfm, diag);
 }
@@ -413,7 +460,7 @@ void fb_contact_linearize(const fb_contact_law *l, fb_mapping mapping, double de
 
 void fb_contact_row_onset(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
                           double h, double m_eff, double delta, double ddot) {
-  if (mapping != FB_MAPPING_MATCHED ||
+  if (!fb_mapping_is_matched(mapping) ||
       !(law->kind == FB_LAW_LINEAR || law->kind == FB_LAW_RESTITUTION))
     return;
   row->depth = fb_contact_matched_onset_depth(h, row->kp, row->kd, m_eff, delta, ddot, row->erp,

@@ -148,11 +148,18 @@ typedef enum {
   FB_MAPPING_TANGENT = 1, /* kp = dF_el/d delta, depth = F_el / kp: force and its slope */
   FB_MAPPING_MATCHED = 2, /* exact discretisation of the tangent spring-damper on the
                              effective mass (fb_contact_matched) */
+  FB_MAPPING_MATCHED_STATIC = 3, /* matched while the contact is impulsive, the law's own
+                                    stiffness under a sustained load (fb_contact_row_static)
+                                    once it is persistent (FB_PERSISTENT_PHASE_RAD) */
   FB_MAPPING_COUNT
 } fb_mapping;
 
-/* "secant", "tangent" or "matched". */
+/* "secant", "tangent", "matched" or "matched-static". */
 const char *fb_mapping_name(fb_mapping m);
+
+/* 1 for the mappings whose rows are matched on the effective mass (matched,
+ * matched-static), else 0. */
+int fb_mapping_is_matched(fb_mapping m);
 
 /* Parses a mapping name; FB_MAPPING_COUNT if unknown. */
 fb_mapping fb_mapping_parse(const char *name);
@@ -187,6 +194,29 @@ fb_mapping fb_mapping_parse(const char *name);
  * the row). */
 fb_status fb_contact_matched(double h, double k, double c, double m, double *erp, double *cfm,
                              fb_diag *diag);
+
+/* omega_d h of a local linear law on mass m at step h: h sqrt(k/m - (c/(2m))^2)
+ * for an under-damped row, 0 for a critically or over-damped one (real
+ * poles: nothing to alias). The matched row puts its poles at exp(s h); once
+ * omega_d h passes pi, exp(i omega_d h) is the pole of a slower oscillator
+ * (aliasing) and the row's spring falls towards zero at 2 pi
+ * (a = (4 m / h^2) sin^2(omega h / 2) for c = 0). k, c >= 0, m, h > 0. */
+double fb_contact_omega_d_h(double h, double k, double c, double m);
+
+/* The largest omega_d h a matched row is used at; beyond it an ODE run stops
+ * ("aliased", FB_STOP_ALIASED) and names the largest usable step,
+ * h FB_MATCHED_ALIAS_BOUND / (omega_d h). At pi the row's two discrete poles
+ * meet at -1 (half a period per step); past it the row stands for a slower
+ * oscillator than the law's, and its spring vanishes at 2 pi. Why 0.9 pi:
+ * the row is linearised at the start of its step and a Hertz-type law
+ * stiffens within it, so a 10 % margin keeps the step's end below pi too.
+ * Measured on the paper case (steady start, matched, largest omega_d h of
+ * the run; `fourbar run --set solver.h_s=H`): 2e-5 s finishes (largest
+ * h omega_c 2.6 impact, 2.5 restitution); 3e-5 s, which used to finish with
+ * a wrong answer, stops "aliased" at steps 12 and 16 (omega_d h 2.85, 3.74);
+ * 5e-5 s, which used to stop "unstable" (pin out of the hole), stops
+ * "aliased" at step 5 (6.2, 4.1). */
+#define FB_MATCHED_ALIAS_BOUND (0.9 * 3.14159265358979323846)
 
 /* Floor of the matched row's b = 1/CFM relative to m / h when c h / m is
  * this small or zero: perturbs the pole product by that relative amount. */
@@ -223,6 +253,60 @@ typedef struct {
                         an onset step corrected by fb_contact_row_onset, whose impulse also
                         carries the contact's part of the step before: h / (h + tau0) */
 } fb_contact_row;
+
+/* The matched-static row of a contact that has become persistent, on mass
+ * m [kg] at step h [s]: a = ERP b / h is set to the law's tangent stiffness
+ * kp, so that a sustained load F rests at depth F / kp, the law's own static
+ * penetration; b = 1/CFM is chosen so that the slowest pole of the row's
+ * update has the modulus of the continuous law's slowest pole, so that a
+ * load change is followed at the law's rate.
+ * Derivation (one mass, m (u1 - u0) = h (F - lambda), lambda = a d_n + b u1):
+ * at rest u = 0 and lambda = a d = F, so the static depth is F / a for any
+ * b; a matched a is m (1 + beta - tr) / (beta h^2)
+ * = k (1 + zeta omega h - (omega h)^2 / 12 + ...), not k (static depth
+ * 0.904 F/k at zeta 1, h omega 0.1; 0.594 at h omega 0.5). With a = k the
+ * update is z^2 - (1 + D - (h omega)^2 D) z + D, D = m / (m + h b). The
+ * law's slowest pole has modulus r = exp(-zeta omega h) (zeta <= 1) or
+ * exp(s_slow h), s_slow = -omega (zeta - sqrt(zeta^2 - 1)) (zeta > 1). If
+ * D = r^2 leaves the pair complex, its modulus is r (this is the matched b,
+ * m (exp(c h / m) - 1) / h); otherwise D is the one whose larger real root
+ * is r, D = r (1 - r) / (1 - r + (h omega)^2 r) (both roots in (0, 1)).
+ * No D makes the update decay faster than its double root
+ * 1 / (1 + h omega) (D = 1 / (1 + h omega)^2), so when r is below that (near
+ * critical damping at small h omega, e.g. zeta 0.99 at h omega 0.1, 0.4 %
+ * per step slower) the double root is taken. The branches meet where they
+ * switch, so b is continuous in zeta. The free response is not exact (frequency off by O(zeta h omega)),
+ * which is why this row is used only for persistent contact. b is floored
+ * at FB_MATCHED_B_MIN_REL m / h as in fb_contact_matched.
+ * Blended with weight w in [0, 1] (fb_contact_persistence): a and b move
+ * linearly from the row's matched values (as fb_contact_map left them) to
+ * these; w <= 0 leaves the row alone.
+ * ERP = h a / b, CFM = 1 / b; kp, m, h > 0, kd >= 0. */
+void fb_contact_row_static(fb_contact_row *row, double h, double m, double w);
+
+/* Weight [0, 1] of the static row at an accumulated contact phase [rad]: 0
+ * up to FB_PERSISTENT_PHASE_RAD, then a smoothstep z^2 (3 - 2 z),
+ * z = (phase - FB_PERSISTENT_PHASE_RAD) / FB_PERSISTENT_RAMP_RAD, to 1. */
+double fb_contact_persistence(double phase);
+
+/* Phase over which a persistent contact's row turns from matched to static
+ * [rad]: one period of the local oscillator, so the row's stiffness changes
+ * (by ~zeta h omega) slowly against the contact's own frequency and does
+ * not ring it (a one-step switch did: on the paper case's impact law,
+ * zeta ~0.2, it tripled the force error in continuous contact). */
+#define FB_PERSISTENT_RAMP_RAD (2.0 * 3.14159265358979323846)
+
+/* Accumulated contact phase [rad] (sum over the contact's steps of
+ * h sqrt(k_t / m_eff), with k_t the rows' total tangent stiffness) beyond
+ * which the matched-static mapping treats a contact as persistent. 2 pi,
+ * one period of the local undamped oscillator: a single free impact of a
+ * linear spring-damper of any damping lets go within pi (at zeta = 0,
+ * earlier with damping), and of an undamped power law F = K delta^n within
+ * 3.44 rad (n = 1.5) to 3.85 rad (n = 3) measured by integrating
+ * m delta'' = -K delta^n and accumulating the tangent frequency; so no
+ * single impact reaches the persistent row, and a contact still on the
+ * wall after one full period is carried by a load, not by its impact. */
+#define FB_PERSISTENT_PHASE_RAD (2.0 * 3.14159265358979323846)
 
 /* The row of law at penetration delta [m] > 0, rate ddot [m/s], impact
  * velocity v0 [m/s], step h [s] and effective mass m_eff [kg] along the

@@ -75,6 +75,18 @@ fb_status fb_impact_reference(fb_impact_result *out, const fb_impact_def *d, fb_
  * the contact after 100 estimated contact durations. */
 fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag);
 
+/* ODE under a sustained load: the body of d (mass, law, step, stepper,
+ * mapping; d->speed is not used) rests touching the contact at t = 0 and a
+ * constant force load [N] presses it in from then on, for duration [s]
+ * (ceil(duration / h) steps). *penetration receives the depth at the end
+ * [m]: the law's static penetration F^-1(load) once the motion has died
+ * out, for a row whose sustained-load stiffness is the law's (secant,
+ * tangent, matched-static), and load / a for a matched row
+ * (fb_contact_row_static). Errors: FB_ERR_RANGE for a bad d, load or
+ * duration; FB_ERR_NUMERIC on a non-finite state or an ODE fatal check. */
+fb_status fb_impact_ode_static(double *penetration, const fb_impact_def *d, double load,
+                               double duration, fb_diag *diag);
+
 /* Estimated contact duration [s] used for sampling and default steps: the
  * undamped closed form of the law's elastic part. */
 double fb_impact_duration_estimate(const fb_impact_def *d);

@@ -49,6 +49,23 @@ static fb_status laws_of(fb_contact_law law[4], const fb_case *c, fb_clearance_m
       } else {
         l.stiffness = r->penalty * 1e3; /* P read as N/mm */
       }
+    } else if (cl->penalty == FB_PENALTY_SOURCE_GOLDSMITH) {
+      const double r_pin = 0.5 * c->pin_diameter;
+      const double k = fb_contact_goldsmith(c->youngs_modulus, c->poisson_ratio, c->youngs_modulus,
+                                            c->poisson_ratio, r_pin, r_pin + c->radial_clearance);
+      if (!isfinite(k) || !(k > 0.0) || !(fmax[j] > 0.0))
+        return fb_diag_set(diag, FB_ERR_RANGE,
+                           "[clearance] penalty = goldsmith: no stiffness for the %s joint "
+                           "(K = %g N/m^1.5 from [pin] diameter_mm = %g and radial clearance "
+                           "%g um, peak reaction %g N): both must be positive",
+                           fb_joint_name(j), k, c->pin_diameter * 1e3, c->radial_clearance * 1e6,
+                           fmax[j]);
+      if (model == FB_CLEARANCE_IMPACT) {
+        l.stiffness = k;
+        l.exponent = 1.5;
+      } else {
+        l.stiffness = 1.5 * pow(k, 2.0 / 3.0) * cbrt(fmax[j]); /* dF/d delta of K delta^1.5 */
+      }
     } else {
       const double d = fb_contact_johnson_approach(fmax[j], c->pin_length, e_star,
                                                    c->radial_clearance);
@@ -80,7 +97,7 @@ fb_status fb_joint_laws(fb_contact_law impact[4], fb_contact_law restitution[4],
   fb_penalty_row paper[2];
   memset(paper, 0, sizeof paper);
   fb_status st = FB_OK;
-  if (cl->penalty == FB_PENALTY_SOURCE_PHYSICAL) {
+  if (cl->penalty == FB_PENALTY_SOURCE_PHYSICAL || cl->penalty == FB_PENALTY_SOURCE_GOLDSMITH) {
     fb_linkage su;
     fb_case_stackup_lengths(c, &su);
     st = fb_invdyn_peaks(fmax, NULL, &su, c->branch, c->link, c->gravity, fb_case_omega2(c),

@@ -16,6 +16,16 @@
  *     in mm-N units would; crank-coupler values for the ground-crank and
  *     crank-coupler joints, coupler-follower values for the other two.
  *   explicit: the case's stiffness keys.
+ *   goldsmith: paper Eq. (3)-(5), Goldsmith's equivalent stiffness of the
+ *     internal contact of the pin (radius R_pin = [pin] diameter / 2) in its
+ *     hole (R_hole = R_pin + radial clearance c), both of the case's
+ *     material: K = 4 / (3 (s1 + s2)) sqrt(R_pin R_hole / (R_hole - R_pin))
+ *     [N/m^1.5], s_i = (1 - nu_i^2) / E_i (the paper writes
+ *     s_i = (1 - nu_i^2)/(pi E_i) and 4 / (3 pi (s1 + s2)): the two pi
+ *     cancel; fb_contact_goldsmith). The impact law gets K with n = 1.5 (the
+ *     law Eq. 3 is the stiffness of); the restitution law its tangent
+ *     p = 1.5 K^(2/3) F_j^(1/3) at the joint's largest inverse-dynamics
+ *     reaction F_j (the working force, as for physical).
  * Every source's stiffness is then multiplied by [clearance] stiffness_scale. */
 #ifndef FB_JOINT_LAW_H
 #define FB_JOINT_LAW_H

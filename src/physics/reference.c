@@ -164,8 +164,36 @@ static void refine_peaks(fb_series *out, ref_ctx *r, double h, double tol) {
   }
 }
 
+fb_status fb_reference_tolerance(double *tol, fb_diag *diag) {
+  const char *tol_env = getenv("FOURBAR_REFERENCE_TOL"); /* convergence studies only */
+  *tol = FB_REFERENCE_TOL;
+  if (!tol_env) return FB_OK;
+  char *end;
+  const double t = strtod(tol_env, &end);
+  /* decimal only: strtod also reads 0x1p-30, inf and nan */
+  const int decimal = strspn(tol_env, "0123456789+-.eE") == strlen(tol_env);
+  if (!decimal || end == tol_env || *end || !(t >= FB_REFERENCE_TOL_MIN && t <= FB_REFERENCE_TOL_MAX))
+    return fb_diag_set(diag, FB_ERR_RANGE, "FOURBAR_REFERENCE_TOL = '%s' (environment): the "
+                       "reference tolerance must be a decimal number from %g to %g", tol_env,
+                       FB_REFERENCE_TOL_MIN, FB_REFERENCE_TOL_MAX);
+  *tol = t;
+  return FB_OK;
+}
+
 fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
                            const fb_contact_law *law, int ideal, fb_stop *stop, fb_diag *diag) {
+  double tol;
+  fb_status st = fb_reference_tolerance(&tol, diag);
+  if (st != FB_OK) return st;
+  return fb_reference_run_tol(out, steps, c, law, ideal, tol, stop, diag);
+}
+
+fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
+                               const fb_contact_law *law, int ideal, double tol, fb_stop *stop,
+                               fb_diag *diag) {
+  if (!(tol >= FB_REFERENCE_TOL_MIN && tol <= FB_REFERENCE_TOL_MAX))
+    return fb_diag_set(diag, FB_ERR_RANGE, "reference tolerance %g: must lie in [%g, %g]", tol,
+                       FB_REFERENCE_TOL_MIN, FB_REFERENCE_TOL_MAX);
   fb_stop why;
   memset(&why, 0, sizeof why);
   why.engine = "reference";
@@ -209,21 +237,6 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
   double y[4] = {st.coupler_angle, st.follower_angle, st.coupler_omega, st.follower_omega};
   gsl_odeiv2_system sys = {eom, NULL, 4, &r};
   gsl_error_handler_t *old = gsl_set_error_handler_off();
-  const char *tol_env = getenv("FOURBAR_REFERENCE_TOL"); /* convergence studies only */
-  double tol = FB_REFERENCE_TOL;
-  if (tol_env) {
-    char *end;
-    tol = strtod(tol_env, &end);
-    /* decimal only: strtod also reads 0x1p-30, inf and nan */
-    const int decimal = strspn(tol_env, "0123456789+-.eE") == strlen(tol_env);
-    if (!decimal || end == tol_env || *end ||
-        !(tol >= FB_REFERENCE_TOL_MIN && tol <= FB_REFERENCE_TOL_MAX)) {
-      gsl_set_error_handler(old);
-      return fb_diag_set(diag, FB_ERR_RANGE, "FOURBAR_REFERENCE_TOL = '%s' (environment): the "
-                         "reference tolerance must be a decimal number from %g to %g", tol_env,
-                         FB_REFERENCE_TOL_MIN, FB_REFERENCE_TOL_MAX);
-    }
-  }
   gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, c->solver.h * 1e-3,
                                                          tol, tol);
   if (!drv) {

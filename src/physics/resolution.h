@@ -29,8 +29,9 @@
  * flagged `under-resolved` (an accuracy bound, not a stability one).
  * Measured on the paper case with the matched mapping (h omega_c as the run
  * reports it, h sqrt(k_t / m_eff) over its contact steps): both clearance
- * models still run at h = 3e-5 s (h omega_c 4.1 and 3.8) and leave the hole
- * at 4e-5 s (5.1 and 5.0); accuracy goes much earlier: at 1e-5 s (1.1) the
+ * models ran at h = 3e-5 s (h omega_c 4.1 and 3.8) and left the hole at
+ * 4e-5 s (5.1 and 5.0) before such steps were refused as aliasing
+ * (contact.h, FB_MATCHED_ALIAS_BOUND); accuracy goes much earlier: at 1e-5 s (1.1) the
  * coupler spike is 19 % low, at 5e-6 s (0.54) force, penetration and spike
  * are within 0.4 % of the reference, and `auto` (3.3e-6 s, 0.36) within
  * 0.13 %. A single impact loses 40 % of its penetration's accuracy at

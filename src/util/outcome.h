@@ -15,6 +15,7 @@ typedef enum {
   FB_STOP_STEP_BUDGET = 3, /* the integrator spent its step budget */
   FB_STOP_ALLOCATION = 4,  /* the engine could not allocate memory */
   FB_STOP_SOLVER = 5,      /* the engine's solver failed (ODE's internal check, GSL) */
+  FB_STOP_ALIASED = 6,     /* a matched contact row's omega_d h passed FB_MATCHED_ALIAS_BOUND */
   FB_STOP_COUNT
 } fb_stop_kind;
 
@@ -24,10 +25,14 @@ typedef struct {
   const char *engine; /* name of the engine that stopped ("ode", "reference", ...) */
   double t;           /* time of the stop [s] */
   size_t step;        /* step at which it stopped; 0 for adaptive integrators */
-  int joint;          /* clearance joint (fb_joint) for FB_STOP_PENETRATION, else -1 */
-  double value;       /* penetration [m] (PENETRATION); steps spent (STEP_BUDGET) */
-  double limit;       /* penetration limit [m] (PENETRATION); steps per sample (STEP_BUDGET) */
+  int joint;          /* clearance joint (fb_joint) for FB_STOP_PENETRATION and
+                         FB_STOP_ALIASED, else -1 */
+  double value;       /* penetration [m] (PENETRATION); steps spent (STEP_BUDGET);
+                         omega_d h [-] (ALIASED) */
+  double limit;       /* penetration limit [m] (PENETRATION); steps per sample (STEP_BUDGET);
+                         the bound on omega_d h [-] (ALIASED) */
   double t_end;       /* the run's duration [s] (STEP_BUDGET) */
+  double h_max;       /* ALIASED: the largest usable step, h limit / value [s] */
   char detail[160];   /* the solver's own words (ODE's error message, GSL's error string) */
 } fb_stop;
 

@@ -216,9 +216,11 @@ static void window_impacts(const fb_series *s, double t_from, int j, int *count,
   for (int k = *count; k < 8; k++) angles[k] = -1.0;
 }
 
-/* peak force and penetration of the first FB_FIRST_IMPACTS impacts of the run */
-static int first_impacts(const fb_series *s, int j, double force[FB_FIRST_IMPACTS],
-                         double pen[FB_FIRST_IMPACTS]) {
+/* impacts of series s at joint j starting before t_end: onset time, peak
+ * force and penetration (the same episodes as first_impacts); returns the
+ * count, at most cap stored */
+static int impact_list(const fb_series *s, int j, double t_end, double *t0, double *force,
+                       double *pen, int cap) {
   const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
   const double *p = s->contact[j][FB_C_PEN];
   int k = -1;
@@ -226,16 +228,27 @@ static int first_impacts(const fb_series *s, int j, double force[FB_FIRST_IMPACT
     const int in = (int)st[i] == FB_STATE_IMPACT && f[i] > 0.0;
     const int onset = in && (i == 0 || (int)st[i - 1] != FB_STATE_IMPACT || !(f[i - 1] > 0.0));
     if (onset) {
-      if (k + 1 == FB_FIRST_IMPACTS) break;
+      if (!(s->t[i] < t_end)) break;
       k++;
-      force[k] = pen[k] = 0.0;
+      if (k < cap) {
+        t0[k] = s->t[i];
+        force[k] = pen[k] = 0.0;
+      }
     }
-    if (in && k >= 0) {
+    if (in && k >= 0 && k < cap) {
       force[k] = fmax_d(force[k], f[i]);
       pen[k] = fmax_d(pen[k], p[i]);
     }
   }
   return k + 1;
+}
+
+/* peak force and penetration of the first FB_FIRST_IMPACTS impacts of the run */
+static int first_impacts(const fb_series *s, int j, double force[FB_FIRST_IMPACTS],
+                         double pen[FB_FIRST_IMPACTS]) {
+  double t0[FB_FIRST_IMPACTS];
+  const int n = impact_list(s, j, INFINITY, t0, force, pen, FB_FIRST_IMPACTS);
+  return n < FB_FIRST_IMPACTS ? n : FB_FIRST_IMPACTS;
 }
 
 fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, const fb_series *r,
@@ -299,33 +312,6 @@ fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, c
     out->first_impact_penetration_rel[k] = fb_metrics_rel(pa[k], pb[k]);
   }
   return FB_OK;
-}
-
-/* impacts of series s at joint j starting before t_end: onset time, peak
- * force and penetration (the same episodes as first_impacts); returns the
- * count, at most cap stored */
-static int impact_list(const fb_series *s, int j, double t_end, double *t0, double *force,
-                       double *pen, int cap) {
-  const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
-  const double *p = s->contact[j][FB_C_PEN];
-  int k = -1;
-  for (size_t i = 0; i < s->n; i++) {
-    const int in = (int)st[i] == FB_STATE_IMPACT && f[i] > 0.0;
-    const int onset = in && (i == 0 || (int)st[i - 1] != FB_STATE_IMPACT || !(f[i - 1] > 0.0));
-    if (onset) {
-      if (!(s->t[i] < t_end)) break;
-      k++;
-      if (k < cap) {
-        t0[k] = s->t[i];
-        force[k] = pen[k] = 0.0;
-      }
-    }
-    if (in && k >= 0 && k < cap) {
-      force[k] = fmax_d(force[k], f[i]);
-      pen[k] = fmax_d(pen[k], p[i]);
-    }
-  }
-  return k + 1;
 }
 
 fb_status fb_metrics_divergence(fb_divergence *out, const fb_series *s, const fb_series *r, int j,

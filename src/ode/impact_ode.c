@@ -20,6 +20,21 @@ static int guarded_step(dWorldID world, int quick, double h) {
   return ok ? 1 : 0;
 }
 
+/* the impact's world: no gravity, one body of mass d->mass (a sphere's
+ * inertia, which a normal contact never uses), a joint group for contacts */
+static void impact_world(const fb_impact_def *d, dWorldID *world, dJointGroupID *group,
+                         dBodyID *body) {
+  *world = dWorldCreate();
+  dWorldSetGravity(*world, 0, 0, 0);
+  dWorldSetQuickStepNumIterations(*world, d->quick_iterations);
+  dRandSetSeed(1);
+  *group = dJointGroupCreate(0);
+  *body = dBodyCreate(*world);
+  dMass mass;
+  dMassSetSphereTotal(&mass, d->mass, 0.01);
+  dBodySetMass(*body, &mass);
+}
+
 fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag) {
   memset(out, 0, sizeof *out);
   fb_status st = fb_impact_check(d, diag);
@@ -32,15 +47,10 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
   const size_t max_steps = (size_t)ceil(100.0 * T / d->h) + 10;
 
   fb_ode_acquire();
-  dWorldID world = dWorldCreate();
-  dWorldSetGravity(world, 0, 0, 0);
-  dWorldSetQuickStepNumIterations(world, d->quick_iterations);
-  dRandSetSeed(1);
-  dJointGroupID group = dJointGroupCreate(0);
-  dBodyID body = dBodyCreate(world);
-  dMass mass;
-  dMassSetSphereTotal(&mass, d->mass, 0.01);
-  dBodySetMass(body, &mass);
+  dWorldID world;
+  dJointGroupID group;
+  dBodyID body;
+  impact_world(d, &world, &group, &body);
   dBodySetPosition(body, 0, 0, 0); /* touching: penetration 0 */
   dBodySetLinearVel(body, 0, 0, -d->speed);
 
@@ -144,15 +154,10 @@ fb_status fb_impact_ode_static(double *penetration, const fb_impact_def *d, doub
   const size_t steps = (size_t)ceil(duration / d->h);
 
   fb_ode_acquire();
-  dWorldID world = dWorldCreate();
-  dWorldSetGravity(world, 0, 0, 0);
-  dWorldSetQuickStepNumIterations(world, d->quick_iterations);
-  dRandSetSeed(1);
-  dJointGroupID group = dJointGroupCreate(0);
-  dBodyID body = dBodyCreate(world);
-  dMass mass;
-  dMassSetSphereTotal(&mass, d->mass, 0.01);
-  dBodySetMass(body, &mass);
+  dWorldID world;
+  dJointGroupID group;
+  dBodyID body;
+  impact_world(d, &world, &group, &body);
   dBodySetPosition(body, 0, 0, 0); /* touching, at rest: the load is applied suddenly */
   double v0 = -1.0, phase = 0.0;
   int broken = 0;

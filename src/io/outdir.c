@@ -168,7 +168,8 @@ static int ours(const char *name) {
   return 0;
 }
 
-/* 1 when text[0..n) is a decimal number > 0 (a PID as fourbar writes it) */
+/* the number text[0..n) is, when it is a decimal number > 0 without a leading
+ * zero (a PID as fourbar writes it), else 0 */
 static long pid_in(const char *text, size_t n) {
   if (n == 0 || n > 9 || text[0] == '0') return 0;
   long v = 0;
@@ -192,7 +193,8 @@ long fb_outdir_temp_pid(const char *name) {
     const char *p = name + 12, *d1 = strchr(p, '.');
     const char *d2 = d1 ? strchr(d1 + 1, '.') : NULL;
     if (!d2 || (strcmp(d2, ".svg") != 0 && strcmp(d2, ".png") != 0)) return 0;
-    if (!pid_in(d1 + 1, (size_t)(d2 - d1 - 1)) && strncmp(d1 + 1, "0.", 2) != 0) return 0;
+    const size_t serial = (size_t)(d2 - d1 - 1); /* figures.c's counter, from 0 */
+    if (serial == 0 || strspn(d1 + 1, "0123456789") != serial) return 0;
     return pid_in(p, (size_t)(d1 - p));
   }
   if (n < 7 || name[n - 7] != '.') return 0; /* ".XXXXXX" */

@@ -29,7 +29,7 @@
 /* spike metrics at h = 5e-6 and 2.5e-6 s (3 revolutions, paper case):
  * measured differences 4.3 % (coupler alpha ratio, impact model), 3.4 %
  * (force), 3.3 % (penetration); at h = 1e-5 against 5e-6 they reach 33 %,
- * so the default step is not converged for spikes (said in the README).
+ * so the default step is not converged for spikes (said in docs/models.md).
  * Bound: 10 %. Impact counts and free-flight fractions do not converge (the
  * contact sequence is chaotic) and are not compared. */
 #define SPIKE_CONVERGENCE_REL_TOL 0.10

@@ -102,7 +102,7 @@ int fb_cmd_run(int argc, char **argv) {
   else
     snprintf(dir, sizeof dir, "results/%s", c.name);
   /* --set without --out writes the variant into the case's own folder: said
-   * on stderr (README, "run"), with whether it replaced an earlier run */
+   * on stderr (docs/commands.md, "run"), with whether it replaced an earlier run */
   struct stat prev;
   char prev_summary[4200];
   snprintf(prev_summary, sizeof prev_summary, "%s/summary.json", dir);

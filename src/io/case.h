@@ -182,12 +182,12 @@ typedef enum {
 #define FB_PENALTY_VALIDITY_FACTOR 2.0
 
 /* Defaults: auto, loop stiffness 0 (1/h^2), damping 0 (1/h), impedance
- * 0.9999, armature 1e6 kg m^2 (README, "The second engine: MuJoCo"). */
+ * 0.9999, armature 1e6 kg m^2 (docs/engines.md, "MuJoCo"). */
 fb_mujoco_opts fb_mujoco_opts_default(void);
 
 /* The integrator a MuJoCo model with these options runs: o->integrator, with
  * auto resolved to euler for an ideal mechanism (clearance_mask 0) and rk4
- * with clearance joints (measured: README, "The second engine: MuJoCo"). */
+ * with clearance joints (measured: docs/engines.md, "MuJoCo"). */
 int fb_mujoco_integrator_resolve(const fb_mujoco_opts *o, int clearance_mask);
 
 typedef struct fb_case_s {

@@ -293,7 +293,7 @@ static const key_spec keys[] = {
      "euler, implicit, rk4 or auto",
      "integrator of the mujoco-* models (MuJoCo's option integrator); auto: euler for the "
      "ideal models, rk4 for the clearance models (the most accurate of the three for each, "
-     "measured at h = 1e-5 s; see README)"},
+     "measured at h = 1e-5 s; see docs/engines.md)"},
     {"mujoco", "loop_stiffness_1_s2", K_DOUBLE, OFF(mujoco.loop_stiffness), 1.0, 0, INF, 0, 1,
      "1/s^2", "0", "the stiffness must be >= 0",
      "loop closure (the connect equality at the coupler-follower joint): MuJoCo's direct-form "

@@ -16,7 +16,7 @@ typedef struct json_t json_t;
  * "alpha_min_rad_s2"} of one body's peaks (new reference). */
 json_t *fb_report_body_peaks_json(const fb_body_peaks *p);
 
-/* The summary of a run as documented in the README (new reference):
+/* The summary of a run as documented in docs/outputs.md (new reference):
  * {"case", "models": [{"name", "kind", "status", "h_s", "steps",
  *  "coupler", "follower", "error_vs_analytic", ...}], ...}. It holds no
  * wall time, so two runs of the same case give byte-identical summaries. */

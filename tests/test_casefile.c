@@ -6,6 +6,7 @@
 
 #include "casefile.h"
 #include "fb_test.h"
+#include "model_table.h"
 
 /* conversions are exact multiplications by decimal constants: a few ulp */
 #define SI_TOL 1e-15
@@ -86,6 +87,28 @@ static void test_overrides(void **state) {
   assert_int_equal(c.model_count, 1);
 }
 
+/* a pattern adds every model of the table it matches that this build has,
+ * in table order, once; a name listed before it is not repeated */
+static void test_model_patterns(void **state) {
+  (void)state;
+  const char *sets[] = {"run.models=ode-ideal-stackup, *-ideal-*, reference"};
+  fb_case c;
+  fb_diag d;
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 1, &d), FB_OK);
+  const char *want[8];
+  int n = 0;
+  want[n++] = "ode-ideal-stackup";
+  for (int i = 0; i < fb_model_count; i++)
+    if (strstr(fb_models[i].name, "-ideal-") && fb_engine_available(fb_models[i].engine) &&
+        strcmp(fb_models[i].name, "ode-ideal-stackup") != 0)
+      want[n++] = fb_models[i].name;
+  want[n++] = "reference";
+  assert_true(n >= 4); /* ode-ideal-nominal at least, whatever the build */
+  assert_int_equal(c.model_count, n);
+  for (int i = 0; i < n; i++) assert_string_equal(c.models[i], want[i]);
+  assert_string_equal(c.models[1], "ode-ideal-nominal"); /* table order: ODE first */
+}
+
 static void test_missing_file(void **state) {
   (void)state;
   fb_case c;
@@ -122,6 +145,8 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                (const char *[]){"direction = 'left'", "cw or ccw", NULL});
   expect_error("[run]\nmodels = analytic, ode-magic\n", NULL, 0, FB_ERR_PARSE,
                (const char *[]){"unknown model 'ode-magic'", "ode-ideal-nominal", NULL});
+  expect_error("[run]\nmodels = analytic, zz-*\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "pattern 'zz-*' matches no model", "ode-ideal-nominal", NULL});
   expect_error("[clearance]\ncollider = libccd\n", NULL, 0, FB_ERR_PARSE,
                (const char *[]){":2:", "collider = 'libccd'", "exact, faceted or ccd", NULL});
   expect_error("[clearance]\nsegments = 4\n", NULL, 0, FB_ERR_RANGE,
@@ -406,6 +431,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_paper_case_in_si),
       cmocka_unit_test(test_overrides),
+      cmocka_unit_test(test_model_patterns),
       cmocka_unit_test(test_missing_file),
       cmocka_unit_test(test_bad_inputs_name_place_value_rule),
       cmocka_unit_test(test_start_peaks_and_limit_keys),

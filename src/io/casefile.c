@@ -3,6 +3,7 @@
 #include "ini_lines.h"
 
 #include <errno.h>
+#include <fnmatch.h>
 #include <ini.h>
 #include <math.h>
 #include <stddef.h>
@@ -335,7 +336,8 @@ static const key_spec keys[] = {
      "t = 0, the start-up included); summary.json reports the first revolution alone too"},
     {"run", "models", K_MODELS, OFF(models), 0, 0, 0, 0, 0, "-",
      "analytic, analytic-stackup, ode-ideal-nominal, ode-ideal-stackup", "known model names",
-     "models to run, comma-separated; not given: the default list, and for a case with "
+     "models to run, comma-separated; a name with * is a pattern that adds every model "
+     "of this build it matches (e.g. *-clearance-impact: every engine's); not given: the default list, and for a case with "
      "clearance joints also " FB_CLEARANCE_DEFAULT_MODELS},
 };
 
@@ -807,6 +809,31 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       char *save = NULL;
       for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
         tok = trim(tok);
+        if (strchr(tok, '*')) {
+          /* a pattern: every model of the table it matches that this build
+           * has, in table order, each once */
+          const int before = c->model_count;
+          for (int q = 0; q < fb_model_count; q++) {
+            const fb_model *m = &fb_models[q];
+            if (fnmatch(tok, m->name, 0) != 0 || !fb_engine_available(m->engine)) continue;
+            int dup = 0;
+            for (int i = 0; i < c->model_count; i++) dup |= strcmp(c->models[i], m->name) == 0;
+            if (dup) continue;
+            if (c->model_count == FB_MAX_MODELS)
+              return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: more than %d models", e->origin,
+                                 e->section, e->key, FB_MAX_MODELS);
+            snprintf(c->models[c->model_count++], FB_NAME_SIZE, "%s", m->name);
+          }
+          if (c->model_count == before) {
+            char known[768];
+            fb_model_list(known, sizeof known);
+            return fb_diag_set(diag, FB_ERR_PARSE,
+                               "%s: [%s] %s: pattern '%s' matches no model of this build "
+                               "(known: %s)",
+                               e->origin, e->section, e->key, tok, known);
+          }
+          continue;
+        }
         if (!fb_model_find(tok)) {
           char known[768];
           fb_model_list(known, sizeof known);

@@ -31,6 +31,7 @@ static const char main_help[] =
     "  sweep        run a study's grid (jobs, shards for GNU parallel and Slurm, resumable)\n"
     "  merge        join shard outputs of a sweep\n"
     "  mapping      ERP and CFM against contact stiffness and step size\n"
+    "  contact-params  a physical contact as ODE, Gazebo, MuJoCo and Bullet parameters\n"
     "  bench        every solver configuration of both engines on one error-against-cost chart\n"
     "  keys         list every case-file key with unit, default and rule\n"
     "\n"
@@ -98,6 +99,7 @@ static int dispatch(int argc, char **argv) {
   if (strcmp(cmd, "sweep") == 0) return fb_cmd_sweep(argc - 1, argv + 1);
   if (strcmp(cmd, "merge") == 0) return fb_cmd_merge(argc - 1, argv + 1);
   if (strcmp(cmd, "mapping") == 0) return fb_cmd_mapping(argc - 1, argv + 1);
+  if (strcmp(cmd, "contact-params") == 0) return fb_cmd_contact_params(argc - 1, argv + 1);
   if (strcmp(cmd, "bench") == 0) return fb_cmd_bench(argc - 1, argv + 1);
   if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
   fprintf(stderr, "fourbar: unknown command '%s'\n\n%s", cmd, main_help);

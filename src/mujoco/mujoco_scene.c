@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "episode.h"
+#include "mujoco_load.h"
 
 /* MJCF text of the paper's model is ~3 kB */
 #define MJCF_SIZE 16384
@@ -398,7 +399,9 @@ static void reactions_now(fb_mujoco_scene *s) {
 
 /* ---- create, step, sample ------------------------------------------------- */
 
-static mjModel *load_mjcf(const char *mjcf, fb_diag *diag) {
+mjModel *fb_mujoco_load_mjcf(const char *mjcf, fb_diag *diag) {
+  mju_user_error = on_error;
+  mju_user_warning = on_warning;
   mjVFS *vfs = calloc(1, sizeof *vfs); /* ~2 MB of file-name slots: not on the stack */
   if (!vfs) {
     fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for MuJoCo's virtual file system");
@@ -446,7 +449,7 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm
   }
   mju_user_error = on_error;
   mju_user_warning = on_warning;
-  mjModel *m = load_mjcf(mjcf, diag);
+  mjModel *m = fb_mujoco_load_mjcf(mjcf, diag);
   free(mjcf);
   if (!m) return FB_ERR_ARG;
   fb_mujoco_scene *s = calloc(1, sizeof *s);

@@ -214,3 +214,101 @@ fb_status fb_impact_ode_static(double *penetration, const fb_impact_def *d, doub
   fb_ode_release();
   return st;
 }
+
+fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, double h, double erp,
+                            double cfm, double max_vel, double t_max, fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  if (!(mass > 0.0) || !(speed > 0.0) || !(h > 0.0) || !(cfm > 0.0) || !(erp >= 0.0) ||
+      !(max_vel > 0.0) || !(t_max > h) || !isfinite(mass) || !isfinite(speed) || !isfinite(erp))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "ODE row impact: mass %g kg, speed %g m/s, h %g s, ERP %g, CFM %g, "
+                       "max_vel %g m/s, t_max %g s: need positive, finite values, ERP >= 0",
+                       mass, speed, h, erp, cfm, max_vel, t_max);
+  const double steps_max = ceil(t_max / h);
+  if (steps_max > FB_IMPACT_MAX_STEPS)
+    return fb_diag_set(diag, FB_ERR_RANGE, "ODE row impact: %g steps of %g s: more than %g",
+                       steps_max, h, FB_IMPACT_MAX_STEPS);
+  const double t_wall = fb_clock_s();
+  fb_impact_def d;
+  memset(&d, 0, sizeof d);
+  d.mass = mass;
+  d.quick_iterations = 20;
+  fb_ode_acquire();
+  dWorldID world;
+  dJointGroupID group;
+  dBodyID body;
+  impact_world(&d, &world, &group, &body);
+  dWorldSetContactMaxCorrectingVel(world, isfinite(max_vel) ? max_vel : dInfinity);
+  dWorldSetContactSurfaceLayer(world, 0.0);
+  dBodySetPosition(body, 0, 0, 0);
+  dBodySetLinearVel(body, 0, 0, -speed);
+  fb_status st = FB_OK;
+  int in_contact = 0, done = 0, broken = 0;
+  double prev_depth = 0.0, t_end = 0.0;
+  size_t k;
+  dJointFeedback fb;
+  for (k = 0; (double)k < steps_max && !done; k++) {
+    const dReal *p = dBodyGetPosition(body);
+    const double delta = -p[2];
+    dJointID cj = 0;
+    if (delta >= 0.0) {
+      dContact c;
+      memset(&c, 0, sizeof c);
+      c.surface.mode = dContactSoftERP | dContactSoftCFM;
+      c.surface.soft_erp = erp;
+      c.surface.soft_cfm = cfm;
+      c.geom.pos[0] = p[0];
+      c.geom.pos[1] = p[1];
+      c.geom.normal[2] = 1.0;
+      c.geom.depth = delta;
+      cj = dJointCreateContact(world, group, &c);
+      dJointAttach(cj, body, 0);
+      dJointSetFeedback(cj, &fb);
+    }
+    const int ok = guarded_step(world, 0, h);
+    if (ok < 0) {
+      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE row impact: ode-error: %s at step %zu",
+                       fb_ode_last_error(), k + 1);
+      broken = 1;
+      break;
+    }
+    if (!ok) {
+      st = fb_diag_set(diag, FB_ERR_NOMEM, "ODE step %zu failed to allocate", k + 1);
+      break;
+    }
+    const double force = cj ? fb.f1[2] : 0.0;
+    dJointGroupEmpty(group);
+    const double t1 = (double)(k + 1) * h;
+    const double depth_now = -dBodyGetPosition(body)[2];
+    if (!isfinite(depth_now) || !isfinite(force)) {
+      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE row impact: non-finite state at t = %g s", t1);
+      break;
+    }
+    if (depth_now > out->penetration_max) out->penetration_max = depth_now;
+    if (force > out->force_max) out->force_max = force;
+    if (depth_now > 0.0) in_contact = 1;
+    if (in_contact && depth_now < 0.0) {
+      t_end = t1 - h + h * prev_depth / (prev_depth - depth_now);
+      done = 1;
+    }
+    prev_depth = depth_now;
+  }
+  out->steps = k;
+  out->contact_duration = t_end;
+  if (broken) {
+    fb_ode_quarantine(world);
+    fb_ode_quarantine(group);
+    out->wall_s = fb_clock_s() - t_wall;
+    return st;
+  }
+  out->restitution = dBodyGetLinearVel(body)[2] / speed;
+  dJointGroupDestroy(group);
+  dWorldDestroy(world);
+  fb_ode_release();
+  if (st == FB_OK && !done)
+    st = fb_diag_set(diag, FB_ERR_NUMERIC,
+                     "ODE row impact: the body has not left the contact after %zu steps (%g s)",
+                     k, (double)k * h);
+  out->wall_s = fb_clock_s() - t_wall;
+  return st;
+}

@@ -314,7 +314,7 @@ fb_mapping fb_mapping_parse(const char *name) {
  * without cancellation at small h: |expm1(s h)|^2 for a complex pair, the
  * product of two expm1 for real poles (the smaller root from k / (m s_big)
  * so k -> 0 keeps its digits). */
-static double pole_gap_product(double h, double k, double c, double m) {
+double fb_contact_pole_gap(double h, double k, double c, double m) {
   const double sigma = -0.5 * c / m;            /* real part of both poles [1/s] */
   const double disc = sigma * sigma - k / m;    /* (s - sigma)^2 [1/s^2] */
   if (disc < 0.0) {
@@ -347,7 +347,7 @@ fb_status fb_contact_matched(double h, double k, double c, double m, double *erp
   if (k == 0.0 && c == 0.0)
     return fb_diag_set(diag, FB_ERR_RANGE, "k = c = 0: no contact force, no row (0/0)");
   const double x = c * h / m;
-  const double gap = pole_gap_product(h, k, c, m);
+  const double gap = fb_contact_pole_gap(h, k, c, m);
   if (expm1(x) > FB_MATCHED_B_MIN_REL) {
     /* ERP = h a / b = gap / (1 - beta), CFM = 1 / b = h / (m (e^x - 1)): no
      * overflow when c h / m is large (a rigid, fully inelastic row) */

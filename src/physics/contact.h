@@ -195,6 +195,12 @@ fb_mapping fb_mapping_parse(const char *name);
 fb_status fb_contact_matched(double h, double k, double c, double m, double *erp, double *cfm,
                              fb_diag *diag);
 
+/* (1 - e^{s1 h})(1 - e^{s2 h}) for the poles s1, s2 of m s^2 + c s + k = 0
+ * (k, c >= 0, m, h > 0), evaluated without cancellation at small h: the
+ * quantity an exact discretisation of the spring-damper needs (h^2 k / m
+ * to leading order). */
+double fb_contact_pole_gap(double h, double k, double c, double m);
+
 /* omega_d h of a local linear law on mass m at step h: h sqrt(k/m - (c/(2m))^2)
  * for an under-damped row, 0 for a critically or over-damped one (real
  * poles: nothing to alias). The matched row puts its poles at exp(s h); once

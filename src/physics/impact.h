@@ -87,6 +87,27 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
 fb_status fb_impact_ode_static(double *penetration, const fb_impact_def *d, double load,
                                double duration, fb_diag *diag);
 
+/* One body of mass [kg] meets the ground plane at speed [m/s] (no gravity)
+ * with one FIXED contact row, as a user pastes it into an engine: ODE with
+ * soft ERP erp and CFM cfm [m/(N s)] (dContactSoftERP | dContactSoftCFM,
+ * frictionless, no bounce), world contact_max_correcting_vel max_vel [m/s]
+ * (INFINITY: ODE's default) and surface layer 0, step h [s]; a row is
+ * created whenever the depth is >= 0 (touching counts, as ODE's colliders
+ * report it). Runs until the body leaves or t_max [s]. Errors:
+ * FB_ERR_NUMERIC (non-finite state, ODE fatal check, still in contact at
+ * t_max), FB_ERR_NOMEM. */
+fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, double h, double erp,
+                            double cfm, double max_vel, double t_max, fb_diag *diag);
+
+/* The same impact in MuJoCo (builds with it; src/mujoco/impact_mujoco.c):
+ * a sphere of mass [kg] on a vertical slide joint meets a plane, both geoms
+ * with the given solref and solimp (condim 1: frictionless), Euler
+ * integrator, step h [s], no gravity. Errors: FB_ERR_ARG in a build without
+ * MuJoCo (how to enable it in the message), FB_ERR_NUMERIC, FB_ERR_NOMEM. */
+fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, double h,
+                           const double solref[2], const double solimp[5], double t_max,
+                           fb_diag *diag);
+
 /* Estimated contact duration [s] used for sampling and default steps: the
  * undamped closed form of the law's elastic part. */
 double fb_impact_duration_estimate(const fb_impact_def *d);

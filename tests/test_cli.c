@@ -292,6 +292,41 @@ static void test_penalty_and_impact_json(void **state) {
   json_decref(j);
 }
 
+/* contact-params --json: the contract keys (issue 27) and a verification
+ * row per engine and form this build has */
+static void test_contact_params_json(void **state) {
+  (void)state;
+  static char out[1 << 17], err[4096];
+  json_error_t je;
+  assert_int_equal(run("contact-params --verify --json", out, sizeof out, err, sizeof err), 0);
+  json_t *j = json_loads(out, 0, &je);
+  if (!j) fail_msg("contact-params --json does not parse: %s", je.text);
+  json_t *p = json_object_get(j, "params");
+  const char *engines[] = {"ode", "gazebo", "mujoco", "bullet", NULL};
+  for (int i = 0; engines[i]; i++) assert_non_null(json_object_get(p, engines[i]));
+  json_t *v = json_object_get(j, "verify");
+  assert_true(json_array_size(v) >= 4);
+  size_t i;
+  json_t *x;
+  int ode_matched = 0;
+  json_array_foreach(v, i, x) {
+    const char *keys[] = {"restitution", "restitution_target", "penetration_max_m",
+                          "penetration_target_m", NULL};
+    for (int k = 0; keys[k]; k++) assert_true(json_is_number(json_object_get(x, keys[k])));
+    assert_non_null(json_string_value(json_object_get(x, "engine")));
+    assert_non_null(json_string_value(json_object_get(x, "form")));
+    if (strcmp(json_string_value(json_object_get(x, "engine")), "ode") == 0 &&
+        strcmp(json_string_value(json_object_get(x, "form")), "matched") == 0) {
+      ode_matched = 1;
+      /* the test of the numbers is test_contact_params; here: one impact,
+       * the law's cr 0.9 as its target */
+      assert_near(json_real_value(json_object_get(x, "restitution_target")), 0.9, 1e-6);
+    }
+  }
+  assert_true(ode_matched);
+  json_decref(j);
+}
+
 static void test_fit_tolerance_stackup_json(void **state) {
   (void)state;
   static char out[1 << 17], err[4096];
@@ -496,6 +531,13 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   expect_fail("impact --restitution 1.5", (const char *[]){"restitution = 1.5", "(0, 1]", NULL});
   expect_fail("impact --law restitution --restitution 0.1", (const char *[]){"critical damping", NULL});
   expect_fail("impact --law bouncy", (const char *[]){"--law 'bouncy'", NULL});
+  expect_fail("contact-params --stiffness -5", (const char *[]){"--stiffness -5", "positive", NULL});
+  expect_fail("contact-params --mass-kg 0.9:0.1", (const char *[]){"--mass-kg", "A <= B", NULL});
+  expect_fail("contact-params --mass-kg 1e-5:1", (const char *[]){"B/A <= ", NULL});
+  expect_fail("contact-params --restitution 0.1", (const char *[]){"(0.135, 1]", NULL});
+  expect_fail("contact-params --law hertz --restitution 0.5", (const char *[]){"undamped", NULL});
+  expect_fail("contact-params --h-s 1e-3", (const char *[]){"aliases", "use h <=", NULL});
+  expect_fail("contact-params --speed-m-s 500", (const char *[]){"--speed-m-s 500", "m/s", NULL});
   p = write_file("press.ini", "[pin]\nfit = 30H7/s6\n");
   snprintf(args, sizeof args, "run %s --out %s/x", p, tmpdir);
   expect_fail(args, (const char *[]){"press.ini:2", "interference fit", "clearance joint", NULL});
@@ -726,6 +768,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_json_flag_and_kinematics),
       cmocka_unit_test(test_penalty_and_impact_json),
       cmocka_unit_test(test_fit_tolerance_stackup_json),
+      cmocka_unit_test(test_contact_params_json),
       cmocka_unit_test(test_penalty_contact_is_the_runs),
       cmocka_unit_test(test_check_catches_stiffness_regression),
       cmocka_unit_test(test_bad_input_exits_nonzero_with_message),

@@ -81,6 +81,7 @@ struct fb_mujoco_scene {
   int site_hole[4];   /* site of each joint's hole centre */
   int pin_geom[4];    /* native: the pin's sphere geom, or -1 */
   int hole_body[4];   /* native: the body carrying the hole's ring (0: world) */
+  int ring_first[4];  /* native: the first of the hole's ring_n box geoms (consecutive), or -1 */
   double angle0[3];   /* body angles at qpos0 [rad] */
   mj_clearance cl[4];
   int body[3];        /* body id of crank, coupler, follower */
@@ -278,6 +279,7 @@ fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_di
  * -F J^T n, J = J_pin - J_hole, to qfrc_passive (the force on the pin is -F n,
  * on the hole +F n, n = e/|e|) */
 static double joint_effective_mass(fb_mujoco_scene *s, const mjModel *m, mjData *d, int j);
+static void native_solref_update(fb_mujoco_scene *s, int j);
 
 static void clearance_force(fb_mujoco_scene *s, const mjModel *m, mjData *d, int j) {
   mj_clearance *c = &s->cl[j];
@@ -289,7 +291,9 @@ static void clearance_force(fb_mujoco_scene *s, const mjModel *m, mjData *d, int
   c->delta = ecc - s->def.radial_clearance;
   c->force = 0.0;
   c->ddot = 0.0;
-  if (!(c->delta > 0.0) || ecc == 0.0) return;
+  /* native contacts need w (the effective mass along e) in free flight too:
+   * the next contact's solref is set from it (native_solref_update) */
+  if (!(c->delta > 0.0 || s->def.native) || ecc == 0.0) return;
   double *jp = s->jac, *jh = s->jac + 3 * nv;
   mj_jacSite(m, d, jp, NULL, s->site_pin[j]);
   mj_jacSite(m, d, jh, NULL, s->site_hole[j]);
@@ -303,6 +307,7 @@ static void clearance_force(fb_mujoco_scene *s, const mjModel *m, mjData *d, int
   }
   c->ddot = ddot;
   if (s->def.native) return; /* MuJoCo's contacts push (native_force reads them) */
+  if (!(c->delta > 0.0)) return;
   /* impact velocity: the episode's, or this rate at an onset (as the step's
    * bookkeeping will record it) */
   const double v0 = c->ep.in_contact ? c->ep.v0 : fmax(ddot, s->def.impact_velocity_min);
@@ -480,6 +485,16 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm
   for (int j = 0; j < 4; j++) {
     s->pin_geom[j] = mj_name2id(m, mjOBJ_GEOM, pin_geoms[j]);
     s->hole_body[j] = m->site_bodyid[s->site_hole[j]];
+    /* the ring: ring_n consecutive box geoms of the hole's body that collide
+     * with pins (conaffinity 1), written in one loop by put_native */
+    s->ring_first[j] = -1;
+    /* the world carries the rings of A and D, A's first (write_mjcf) */
+    int skip = j == FB_JOINT_D && (def->clearance_mask & (1 << FB_JOINT_A)) ? def->ring_n : 0;
+    if (s->pin_geom[j] >= 0)
+      for (int g = 0; g < m->ngeom && s->ring_first[j] < 0; g++)
+        if (m->geom_bodyid[g] == s->hole_body[j] && m->geom_type[g] == mjGEOM_BOX &&
+            m->geom_conaffinity[g] == 1 && skip-- <= 0)
+          s->ring_first[j] = g;
   }
   static const char *const bodies[3] = {"crank", "coupler", "follower"};
   for (int i = 0; i < 3; i++) s->body[i] = mj_name2id(m, mjOBJ_BODY, bodies[i]);
@@ -514,7 +529,10 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm
   }
   forward(s);
   for (int j = 0; j < 4; j++)
-    if (def->native && (def->clearance_mask & (1 << j))) native_force(s, j);
+    if (def->native && (def->clearance_mask & (1 << j))) {
+      native_force(s, j);
+      native_solref_update(s, j);
+    }
   reactions_now(s);
   *out = s;
   return FB_OK;
@@ -575,6 +593,33 @@ static void note_contact(fb_mujoco_scene *s, int j) {
   p->contact_steps++;
 }
 
+/* native contacts of joint j: the direct-form solref of the restitution
+ * law on the mechanism's effective mass along the pin's eccentricity now,
+ * m_eff (joint_effective_mass), written into the pin's sphere and the hole's
+ * ring boxes, so that the contacts of the next forward pass carry it.
+ * MuJoCo's direct stiffness and damping are per unit of effective mass
+ * (docs/contact-params.md): k/m_eff and c/m_eff with c = 2 zeta sqrt(k m_eff),
+ * the damper ODE's scene and the reference put on the same mass; and
+ * solref[0] = -d k/m_eff at impedance d, since MuJoCo's K is s0/dmax^2 and
+ * the contact applies d K. One step late (the state of the last forward
+ * pass): m_eff changes with the configuration, over many steps. */
+static void native_solref_update(fb_mujoco_scene *s, int j) {
+  if (s->pin_geom[j] < 0 || s->ring_first[j] < 0) return;
+  const double me = joint_effective_mass(s, s->m, s->d, j);
+  if (!(me > 0.0) || !isfinite(me)) return;
+  const fb_contact_law *law = &s->def.law[j];
+  const double zeta = fb_contact_restitution_zeta(law->restitution);
+  const double d = s->def.opts.loop_impedance;
+  const double sr0 = -d * law->stiffness / me, sr1 = -2.0 * zeta * sqrt(law->stiffness / me);
+  mjModel *m = s->m;
+  m->geom_solref[2 * s->pin_geom[j]] = sr0;
+  m->geom_solref[2 * s->pin_geom[j] + 1] = sr1;
+  for (int q = 0; q < s->def.ring_n; q++) {
+    m->geom_solref[2 * (s->ring_first[j] + q)] = sr0;
+    m->geom_solref[2 * (s->ring_first[j] + q) + 1] = sr1;
+  }
+}
+
 fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
   (void)diag;
   stepping = s;
@@ -591,7 +636,10 @@ fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
   for (int j = 0; j < 4; j++) {
     if (!(s->def.clearance_mask & (1 << j))) continue;
     mj_clearance *c = &s->cl[j];
-    if (s->def.native) native_force(s, j);
+    if (s->def.native) {
+      native_force(s, j);
+      native_solref_update(s, j);
+    }
     fb_episode_update(&c->ep, c->delta > 0.0, c->ddot, s->def.impact_velocity_min);
     if (c->delta > 0.0) note_contact(s, j);
   }

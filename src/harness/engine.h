@@ -89,5 +89,6 @@ extern const fb_engine fb_engine_analytic;
 extern const fb_engine fb_engine_reference;
 extern const fb_engine fb_engine_ode;
 extern const fb_engine fb_engine_mujoco; /* only in builds with MuJoCo (FB_HAVE_MUJOCO) */
+extern const fb_engine fb_engine_bullet; /* only in builds with Bullet (FB_HAVE_BULLET) */
 
 #endif

@@ -467,3 +467,15 @@ void fb_contact_row_onset(fb_contact_row *row, const fb_contact_law *law, fb_map
                                               row->cfm);
   if (ddot > 0.0) row->step_share = h / (h + fmin(delta / ddot, h));
 }
+
+fb_status fb_contact_row_step(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
+                              double h, double m_eff, int n_rows, double delta, double ddot,
+                              double v0, int onset, double persistence) {
+  fb_status st = fb_contact_map(row, law, mapping, h, m_eff, n_rows, delta, ddot, v0, NULL);
+  if (st != FB_OK) return st;
+  if (persistence > 0.0 && mapping == FB_MAPPING_MATCHED_STATIC)
+    fb_contact_row_static(row, h, m_eff / (n_rows > 0 ? n_rows : 1), persistence);
+  else if (onset && n_rows == 1)
+    fb_contact_row_onset(row, law, mapping, h, m_eff, delta, ddot);
+  return FB_OK;
+}

@@ -330,6 +330,19 @@ fb_status fb_contact_map(fb_contact_row *row, const fb_contact_law *law, fb_mapp
 void fb_contact_row_onset(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
                           double h, double m_eff, double delta, double ddot);
 
+/* The row one contact step hands its engine (ODE's contact joint, Bullet's
+ * contact constraint row: the same code): fb_contact_map of law at
+ * penetration delta [m], rate ddot [m/s], onset rate v0 [m/s], step h [s],
+ * effective mass m_eff [kg] along the normal, split over n_rows parallel
+ * rows; then, for the matched-static mapping with persistence w > 0
+ * (fb_contact_persistence of the contact's phase), fb_contact_row_static
+ * on m_eff / n_rows with weight w; else at the contact's first step
+ * (onset = 1) of a single row, fb_contact_row_onset. Errors: those of
+ * fb_contact_map (FB_ERR_RANGE: no row at this state, skip it). */
+fb_status fb_contact_row_step(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
+                              double h, double m_eff, int n_rows, double delta, double ddot,
+                              double v0, int onset, double persistence);
+
 /* h times the contact frequency sqrt(k / m) of a spring k [N/m] on mass m
  * [kg] at step h [s]: the measure of how many steps resolve one contact
  * (ODE's mapped spring loses about 1.1 h omega of restitution per impact). */

@@ -108,20 +108,7 @@ void fb_bullet_scene_destroy(fb_bullet_scene *s);
 /* Bullet's version number (btGetVersion(): 324 for 3.24). */
 int fb_bullet_version(void);
 
-/* The single impact (impact.h) in Bullet: one free body of mass d->mass
- * meets the ground through the same soft row as the clearance joints
- * (one row per step in contact, ERP/CFM of fb_contact_row_step with
- * d->mapping on the body's mass), solved by bt->solver with bt->iterations.
- * d->mapping = FB_MAPPING_SECANT (or tangent) on a linear or restitution law
- * is exactly Bullet's own conversion of a contact stiffness k and damping c
- * (btSequentialImpulseConstraintSolver::setupContactConstraint with
- * BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING: erp = h k / (h k + c),
- * cfm = 1 / (h k + c)); FB_MAPPING_MATCHED the project's matched row.
- * d->stepper and d->quick_iterations are not used. Errors: those of
- * fb_impact_check; FB_ERR_NUMERIC on a non-finite state or when the body has
- * not left the contact after 100 estimated contact durations. */
-fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def *d,
-                           const fb_bullet_opts *bt, fb_diag *diag);
+/* fb_impact_bullet, the single impact in Bullet, is declared in impact.h. */
 
 #ifdef __cplusplus
 }

@@ -232,11 +232,12 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
   const double erp[2] = {0.2, 0.8}, cfm[2] = {1e-10, 1e-8};
   const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
   const int mujoco = solvers && fb_engine_available(FB_ENGINE_MUJOCO);
-  const int bullet = solvers && fb_engine_available(FB_ENGINE_BULLET);
+  const int bullet_only = grids == FB_BENCH_BULLET;
+  const int bullet = (solvers || bullet_only) && fb_engine_available(FB_ENGINE_BULLET);
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
   const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
                     (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS : 0) +
-                    (bullet ? FB_BENCH_BULLET_SOLVERS * FB_BENCH_BULLET_STEPS : 0) +
+                    (bullet ? FB_BENCH_BULLET_SOLVERS * FB_BENCH_BULLET_STEPS : 0) + bullet_only +
                     (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
   *n = 0;
@@ -273,6 +274,19 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
         if (st != FB_OK) return st;
         if (progress) progress((double)++done / total, user);
       }
+  }
+  if (bullet_only) {
+    /* ODE at the case's own settings, measured in the same run */
+    fb_case k;
+    bench_case(&k, c, c->solver.h_mode == FB_STEP_FIXED ? c->solver.h : 0.0, FB_ENGINE_ODE);
+    char stepper[32];
+    if (c->solver.stepper == FB_STEPPER_QUICK)
+      snprintf(stepper, sizeof stepper, "quick-%d", c->solver.quick_iterations);
+    else
+      snprintf(stepper, sizeof stepper, "world");
+    fb_status st = bench_point(rows, n, &k, "ode", stepper, k.clearance.mapping, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
   }
   if (bullet) {
     fb_status st = bullet_grid(rows, n, c, progress, user, &done, total, diag);

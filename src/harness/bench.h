@@ -66,7 +66,9 @@ typedef struct fb_bench_row_s {
 /* Which grids fb_bench_run runs. */
 enum {
   FB_BENCH_SOLVERS = 1,  /* ODE stepper x h x mapping x world ERP/CFM, and MuJoCo's grid */
-  FB_BENCH_COLLIDERS = 2 /* the collider axis */
+  FB_BENCH_COLLIDERS = 2, /* the collider axis */
+  FB_BENCH_BULLET = 4     /* Bullet's grid alone (part of FB_BENCH_SOLVERS), beside ODE at the
+                             case's own settings (one configuration, the same run's yardstick) */
 };
 
 #define FB_BENCH_MAX_ROWS 320

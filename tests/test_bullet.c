@@ -21,7 +21,10 @@
 #include "fb_test.h"
 #include "impact.h"
 #include "outcome_text.h"
+#include "report.h"
 #include "run.h"
+
+#include <jansson.h>
 
 /* the issue's acceptance bound on the ideal models' omega and alpha peaks
  * against the analytic solution, at Bullet's default (mlcp-dantzig, the
@@ -55,6 +58,11 @@
  * (hertz) and -12.4 % (restitution law) at h omega_c = 0.1; the loss must
  * be at least this many times the matched row's (measured > 100x) */
 #define OWN_CONVERSION_LOSS_FACTOR 5.0
+/* joint reactions and drive torque of the ideal loop (pin rows' and drive
+ * row's impulses / h) against the inverse dynamics of the analytic model:
+ * peaks measured 2e-6 to 3e-6 apart (ODE's: the same); 1e-4 is the ideal
+ * models' kinematic bound */
+#define LOADS_REL_TOL 1e-4
 /* sequential impulse on one soft row converges in one sweep (its diagonal
  * holds the CFM, as Bullet's contacts do): against the MLCP's exact solve */
 #define SI_VS_MLCP_TOL 1e-9
@@ -146,6 +154,36 @@ static void test_clearance_impact_matches_reference_and_ode(void **state) {
   assert_true(p->contact_steps > 0);
   assert_true(p->mass_eff_min > 0.0 && p->mass_eff_min < p->mass_eff_max);
   assert_true(p->cfm_min > 0.0);
+  fb_run_free(&r);
+}
+
+static double load(json_t *sum, int i, const char *key, const char *joint) {
+  json_t *l = json_object_get(json_array_get(json_object_get(sum, "models"), (size_t)i), "loads");
+  if (joint) l = json_object_get(json_object_get(l, "reaction_max_n"), joint);
+  else l = json_object_get(l, key);
+  assert_true(json_is_number(l));
+  return json_number_value(l);
+}
+
+static void test_reactions_match_inverse_dynamics(void **state) {
+  (void)state;
+  NEEDS_BULLET();
+  static fb_run r;
+  run(&r, "analytic, bullet-ideal-nominal", NULL, 0);
+  json_t *sum = fb_report_summary_json(&r, NULL);
+  const char *joints[4] = {"ground_crank", "crank_coupler", "coupler_follower", "follower_ground"};
+  double w = 0.0;
+  for (int j = 0; j < 4; j++) {
+    const double a = load(sum, 0, NULL, joints[j]), b = load(sum, 1, NULL, joints[j]);
+    w = fmax(w, fabs(b - a) / a);
+  }
+  const double ta = load(sum, 0, "drive_torque_abs_max_n_m", NULL);
+  const double tb = load(sum, 1, "drive_torque_abs_max_n_m", NULL);
+  report_residual("bullet reaction peaks vs inverse dynamics", w, LOADS_REL_TOL);
+  report_residual("bullet drive torque peak vs inverse dynamics", fabs(tb - ta) / ta, LOADS_REL_TOL);
+  assert_true(w < LOADS_REL_TOL);
+  assert_true(fabs(tb - ta) / ta < LOADS_REL_TOL);
+  json_decref(sum);
   fb_run_free(&r);
 }
 
@@ -248,6 +286,7 @@ int main(void) {
       cmocka_unit_test(test_bullet_keys_and_refusal),
       cmocka_unit_test(test_ideal_models_match_analytic),
       cmocka_unit_test(test_clearance_impact_matches_reference_and_ode),
+      cmocka_unit_test(test_reactions_match_inverse_dynamics),
       cmocka_unit_test(test_single_impact_matched_and_own_conversion),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

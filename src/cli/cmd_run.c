@@ -25,7 +25,7 @@ static const char run_help[] =
     "times), DIR/<model>.csv, figures (gnuplot) and DIR/report.md. The set is\n"
     "written beside DIR and swapped in whole at the end; a second writer to DIR\n"
     "fails at once. Each CSV holds the kinematics, the contact columns of the\n"
-    "clearance joints and, for analytic, ODE and MuJoCo models, the drive torque\n"
+    "clearance joints and, for analytic, ODE, MuJoCo and Bullet models, the drive torque\n"
     "and every joint's reaction (drive_torque_n_m, <joint>_reaction_n, ...);\n"
     "summary.json has their peaks under \"loads\". Figures: see docs/figures.md.\n"
     "\n"

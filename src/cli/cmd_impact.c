@@ -43,7 +43,7 @@ static const char impact_help[] =
     "  --engine       ode (default), or bullet: Bullet too, beside ODE, with the same\n"
     "                 row (docs/engines.md); secant/tangent on a linear law is then\n"
     "                 Bullet's own stiffness/damping conversion\n"
-    "  --bullet-solver  sequential-impulse or mlcp-dantzig (default), as [bullet] solver\n"
+    "  --bullet-solver  sequential-impulse or mlcp-dantzig (default)\n"
     "  --bullet-iterations  sequential-impulse sweeps, 1 to 100000 (default 100)\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 

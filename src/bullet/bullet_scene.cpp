@@ -316,12 +316,9 @@ static void clearance_row(fb_bullet_scene *s, int j) {
   if (d->mapping == FB_MAPPING_MATCHED_STATIC && u.erp > 0.0) {
     /* as ODE's scene: the penetration's drift over the step the row cannot
      * see (rotation of both points, curvature of the circle) */
-    const btVector3 dp = point_drift(c->pin, p, h), dq = point_drift(c->hole, q, h);
-    const double en = ev[0] * n[0] + ev[1] * n[1];
-    const double et[2] = {ev[0] - en * n[0], ev[1] - en * n[1]};
-    const double drift = n[0] * (dp[0] - dq[0]) + n[1] * (dp[1] - dq[1]) +
-                         h * h * (et[0] * et[0] + et[1] * et[1]) / (2.0 * ecc);
-    u.depth += drift / u.erp;
+    const btVector3 bp = point_drift(c->pin, p, h), bq = point_drift(c->hole, q, h);
+    const double dp[2] = {bp[0], bp[1]}, dq[2] = {bq[0], bq[1]}, e_rate[2] = {ev[0], ev[1]};
+    u.depth += fb_contact_step_drift(n, dp, dq, e_rate, ecc, h) / u.erp;
   }
   c->share = u.step_share;
   note_row(c, &u, m_eff, h);

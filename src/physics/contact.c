@@ -468,6 +468,14 @@ void fb_contact_row_onset(fb_contact_row *row, const fb_contact_law *law, fb_map
   if (ddot > 0.0) row->step_share = h / (h + fmin(delta / ddot, h));
 }
 
+double fb_contact_step_drift(const double n[2], const double dp[2], const double dq[2],
+                             const double ev[2], double ecc, double h) {
+  const double en = ev[0] * n[0] + ev[1] * n[1];
+  const double et[2] = {ev[0] - en * n[0], ev[1] - en * n[1]};
+  return n[0] * (dp[0] - dq[0]) + n[1] * (dp[1] - dq[1]) +
+         h * h * (et[0] * et[0] + et[1] * et[1]) / (2.0 * ecc);
+}
+
 fb_status fb_contact_row_step(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
                               double h, double m_eff, int n_rows, double delta, double ddot,
                               double v0, int onset, double persistence) {

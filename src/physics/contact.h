@@ -343,6 +343,19 @@ fb_status fb_contact_row_step(fb_contact_row *row, const fb_contact_law *law, fb
                               double h, double m_eff, int n_rows, double delta, double ddot,
                               double v0, int onset, double persistence);
 
+/* The change of a pin-in-hole penetration |e| - c over the coming step that
+ * a contact row on the normal n (unit, pin minus hole) does not see [m]: a
+ * row constrains the normal rate n . de/dt at the start of the step, while
+ * the penetration also moves by the second-order terms of both bodies'
+ * points under the engine's rotation update, dp (pin) and dq (hole) [m]
+ * (each engine computes its own: ODE's quaternion update, Bullet's
+ * exponential map), and by the curvature of the circle |e| = const under
+ * the tangential part of the eccentricity rate ev [m/s]:
+ * n . (dp - dq) + h^2 |ev_t|^2 / (2 |e|), ecc = |e| > 0 [m], h [s]. The
+ * matched-static row hands depth + drift / ERP to its row (scene.h). */
+double fb_contact_step_drift(const double n[2], const double dp[2], const double dq[2],
+                             const double ev[2], double ecc, double h);
+
 /* h times the contact frequency sqrt(k / m) of a spring k [N/m] on mass m
  * [kg] at step h [s]: the measure of how many steps resolve one contact
  * (ODE's mapped spring loses about 1.1 h omega of restitution per impact). */

@@ -218,8 +218,10 @@ static fb_status bullet_grid(fb_bench_row *rows, int *n, const fb_case *c,
       char stepper[32];
       if (iters[si]) snprintf(stepper, sizeof stepper, "si-%d", iters[si]);
       else snprintf(stepper, sizeof stepper, "mlcp");
+      const int first = *n;
       fb_status st = bench_point(rows, n, &k, "bullet", stepper, k.clearance.mapping, 1, diag);
       if (st != FB_OK) return st;
+      for (int i = first; i < *n; i++) rows[i].world_cfm = 0.0; /* Bullet's pin rows are hard */
       if (progress) progress((double)++*done / total, user);
     }
   return FB_OK;

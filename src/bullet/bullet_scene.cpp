@@ -383,7 +383,24 @@ extern "C" fb_status fb_bullet_scene_step(fb_bullet_scene *s, fb_diag *diag) {
   dr.cfm_h = 0.0;
   dr.lo = -s->def.solver.drive_torque_max * h;
   dr.hi = s->def.solver.drive_torque_max * h;
+  FbMlcp *mlcp = s->def.bullet.solver == FB_BULLET_MLCP_DANTZIG
+                     ? static_cast<FbMlcp *>(s->w->solver.s)
+                     : nullptr;
+  const int fallbacks = mlcp ? mlcp->getNumFallbacks() : 0;
   s->w->world.stepSimulation(h, 0, h);
+  if (mlcp && mlcp->getNumFallbacks() > fallbacks) {
+    /* btMLCPSolver falls back to sequential impulse when the Dantzig solve
+     * fails; that step is no longer the direct solver's: stop, say so */
+    s->stop.kind = FB_STOP_SOLVER;
+    s->stop.t = (double)s->steps * h;
+    s->stop.step = s->steps + 1;
+    snprintf(s->stop.detail, sizeof s->stop.detail,
+             "btDantzigSolver failed (btMLCPSolver fell back to sequential impulse)");
+    return fb_diag_set(diag, FB_ERR_NUMERIC,
+                       "bullet: the Dantzig MLCP solve failed at t = %.6g s (step %zu); "
+                       "[bullet] solver = sequential-impulse runs the iterative solver on purpose",
+                       s->stop.t, s->stop.step);
+  }
   s->steps++;
   s->drive_torque = s->drive->getAppliedImpulse() / h;
   for (int j = 0; j < 4; j++) {

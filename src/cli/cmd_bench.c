@@ -19,13 +19,15 @@
 
 static const char bench_help[] =
     "usage: fourbar bench [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
-    "                     [--grid all|solvers|colliders]\n"
+    "                     [--grid all|solvers|colliders|bullet]\n"
     "\n"
-    "Speed against error on both engines: ODE's stepper (dWorldStep; dWorldQuickStep\n"
+    "Speed against error on every engine: ODE's stepper (dWorldStep; dWorldQuickStep\n"
     "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s, and auto: the largest with\n"
     "h omega_c <= 0.5 at the stiffest contact) x mapping (secant, tangent, matched)\n"
     "x world ERP/CFM, and (in builds with MuJoCo) MuJoCo's integrator (euler,\n"
-    "implicit, rk4) x step size (1e-3 to 1e-6 s, 7 values), measured against the\n"
+    "implicit, rk4) x step size (1e-3 to 1e-6 s, 7 values), and (in builds with\n"
+    "Bullet) Bullet's solver (sequential impulse at 10, 50, 100 iterations: si-N;\n"
+    "mlcp-dantzig: mlcp) x step size (1e-4, 1e-5, 1e-6 s, auto), measured against the\n"
     "analytic solution (ideal stack-up models) and the reference dynamics (clearance\n"
     "impact models), with wall time per simulated revolution (median of 3 repeats for\n"
     "runs under 1 s; the engine's setup, MuJoCo's model compile, apart as setup_s)\n"
@@ -35,7 +37,8 @@ static const char bench_help[] =
     "ring (16, 64, 256, 1024 segments) and the faceted ring against ODE's exact collider\n"
     "at h = 1e-5 and 1e-6 s: error against the reference, differences from the exact\n"
     "collider and cost per step (docs/colliders.md). --grid runs one of the two\n"
-    "(default all). Writes DIR/bench.csv, bench.json and bench.svg\n"
+    "(default all); --grid bullet runs Bullet's grid alone beside one ODE row at the\n"
+    "case's own settings. Writes DIR/bench.csv, bench.json and bench.svg\n"
     "(default DIR results/<case>-bench/, beside the run folder results/<case>/, so\n"
     "that a run can still replace its own folder).\n"
     "On a terminal a progress bar with the time left is drawn on stderr.\n"
@@ -107,8 +110,9 @@ int fb_cmd_bench(int argc, char **argv) {
         if (strcmp(optarg, "all") == 0) grids = FB_BENCH_SOLVERS | FB_BENCH_COLLIDERS;
         else if (strcmp(optarg, "solvers") == 0) grids = FB_BENCH_SOLVERS;
         else if (strcmp(optarg, "colliders") == 0) grids = FB_BENCH_COLLIDERS;
+        else if (strcmp(optarg, "bullet") == 0) grids = FB_BENCH_BULLET;
         else
-          return fb_cli_fail("bench", 2, "--grid '%s': must be all, solvers or colliders", optarg);
+          return fb_cli_fail("bench", 2, "--grid '%s': must be all, solvers, colliders or bullet", optarg);
         break;
       case 'h': fputs(bench_help, stdout); return 0;
       default: fputs(bench_help, stderr); return 2;
@@ -182,19 +186,20 @@ int fb_cmd_bench(int argc, char **argv) {
     json_array_append_new(arr, o);
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
-  /* models by kind (ideal, clearance impact) and engine (ode, mujoco) */
-  const fb_model *models[2][2];
+  /* models by kind (ideal, clearance impact) and engine (ode, mujoco, bullet) */
+  const fb_model *models[2][3];
   fb_bench_models(FB_ENGINE_ODE, &models[0][0], &models[1][0]);
   fb_bench_models(FB_ENGINE_MUJOCO, &models[0][1], &models[1][1]);
+  fb_bench_models(FB_ENGINE_BULLET, &models[0][2], &models[1][2]);
   const char *kinds[2] = {"ideal", "clearance-impact"};
   const double targets[3] = {1e-2, 1e-3, 1e-4};
   json_t *cheap = json_array(), *across = json_array();
   for (int q = 0; q < 2; q++)
     for (int t = 0; t < 3; t++) {
       int best = -1;
-      for (int e = 0; e < 2; e++) {
+      for (int e = 0; e < 3; e++) {
         int i = fb_bench_cheapest(rows, n, models[q][e], targets[t]);
-        if (e == 1 && !has_model(rows, n, models[q][e])) continue; /* no MuJoCo in this build */
+        if (e > 0 && !has_model(rows, n, models[q][e])) continue; /* no MuJoCo/Bullet here */
         json_array_append_new(cheap, json_pack("{s:s,s:f,s:o}", "model", models[q][e]->name, "target",
                                                targets[t], "row", i >= 0 ? json_integer(i) : json_null()));
         if (i >= 0 && (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev)) best = i;
@@ -266,8 +271,8 @@ int fb_cmd_bench(int argc, char **argv) {
   for (int q = 0; q < 2; q++)
     for (int t = 0; t < 3; t++) {
       int best = -1;
-      for (int e = 0; e < 2; e++) {
-        if (e == 1 && !has_model(rows, n, models[q][e])) continue;
+      for (int e = 0; e < 3; e++) {
+        if (e > 0 && !has_model(rows, n, models[q][e])) continue;
         int i = fb_bench_cheapest(rows, n, models[q][e], targets[t]);
         if (i < 0) {
           printf("  %-24s error <= %.0e: none in the grid\n", models[q][e]->name, targets[t]);

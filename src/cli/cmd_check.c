@@ -278,10 +278,10 @@ int fb_cmd_check(int argc, char **argv) {
     }
     const char *missing = missing_engine(metrics);
     if (missing) {
-      /* a build without MuJoCo: its baseline cannot run here, and that is
-       * not a regression */
+      /* a build without MuJoCo or Bullet: its baseline cannot run here,
+       * and that is not a regression */
       if (!json) printf("\n%s (%s): skipped: model %s is not in this build (%s)\n", case_name,
-                        case_file, missing, FB_MUJOCO_HOWTO);
+                        case_file, missing, fb_engine_howto(fb_model_find(missing)->engine));
       json_decref(b);
       continue;
     }

@@ -6,13 +6,16 @@
 #include <string.h>
 
 #include "cli.h"
+#include "fb_config.h"
 #include "impact.h"
+#include "model_table.h"
 
 static const char impact_help[] =
     "usage: fourbar impact [--law L] [--stiffness K] [--exponent n] [--restitution cr]\n"
     "                      [--damping-n-s-m c] [--damping-depth-m d] [--mass-kg m]\n"
     "                      [--speed-m-s v] [--h-s h] [--stepper world|quick]\n"
-    "                      [--quick-iterations N] [--mapping M] [--json]\n"
+    "                      [--quick-iterations N] [--mapping M] [--engine ode|bullet]\n"
+    "                      [--bullet-solver S] [--bullet-iterations N] [--json]\n"
     "\n"
     "One body hits one contact: ODE with the law mapped into ERP/CFM every step,\n"
     "against an adaptive high-accuracy integration of the same law (GSL rk8pd)\n"
@@ -37,6 +40,11 @@ static const char impact_help[] =
     "                 that adds a damper h k); or matched-static: matched, turning to\n"
     "                 the law's own stiffness once a contact lasts one contact period\n"
     "                 (a single impact never does: the matched figures)\n"
+    "  --engine       ode (default), or bullet: Bullet too, beside ODE, with the same\n"
+    "                 row (docs/engines.md); secant/tangent on a linear law is then\n"
+    "                 Bullet's own stiffness/damping conversion\n"
+    "  --bullet-solver  sequential-impulse or mlcp-dantzig (default)\n"
+    "  --bullet-iterations  sequential-impulse sweeps, 1 to 100000 (default 100)\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static json_t *result_json(const fb_impact_result *r) {
@@ -70,6 +78,8 @@ int fb_cmd_impact(int argc, char **argv) {
       {"h-s", required_argument, 0, 'H'},           {"stepper", required_argument, 0, 'S'},
       {"quick-iterations", required_argument, 0, 'q'},
       {"mapping", required_argument, 0, 'M'},       {"json", no_argument, 0, 'j'},
+      {"engine", required_argument, 0, 'E'},        {"bullet-solver", required_argument, 0, 'B'},
+      {"bullet-iterations", required_argument, 0, 'I'},
       {"help", no_argument, 0, 'h'},                {0, 0, 0, 0}};
   fb_impact_def d;
   memset(&d, 0, sizeof d);
@@ -79,7 +89,9 @@ int fb_cmd_impact(int argc, char **argv) {
   d.stepper = FB_STEPPER_WORLD;
   d.quick_iterations = 20;
   d.mapping = FB_MAPPING_MATCHED; /* the case key's default: one default with fourbar run */
-  double h = 0.0, q = 20;
+  double h = 0.0, q = 20, bt_iter = 100;
+  int with_bullet = 0;
+  fb_bullet_opts bt = fb_bullet_opts_default();
   int json = 0, ch, exponent_given = 0;
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
@@ -111,6 +123,18 @@ int fb_cmd_impact(int argc, char **argv) {
                              optarg);
         break;
       case 'j': json = 1; break;
+      case 'E':
+        if (strcmp(optarg, "ode") == 0) with_bullet = 0;
+        else if (strcmp(optarg, "bullet") == 0) with_bullet = 1;
+        else return fb_cli_fail("impact", 2, "--engine '%s': must be ode or bullet", optarg);
+        break;
+      case 'B':
+        if (strcmp(optarg, "sequential-impulse") == 0) bt.solver = FB_BULLET_SEQUENTIAL_IMPULSE;
+        else if (strcmp(optarg, "mlcp-dantzig") == 0) bt.solver = FB_BULLET_MLCP_DANTZIG;
+        else return fb_cli_fail("impact", 2, "--bullet-solver '%s': must be sequential-impulse or "
+                                "mlcp-dantzig", optarg);
+        break;
+      case 'I': if (!fb_cli_double("impact", "--bullet-iterations", optarg, &bt_iter)) return 2; break;
       case 'h': fputs(impact_help, stdout); return 0;
       default: fputs(impact_help, stderr); return 2;
     }
@@ -125,6 +149,13 @@ int fb_cmd_impact(int argc, char **argv) {
   if (!(q >= 1 && q <= 1e6 && q == floor(q)))
     return fb_cli_fail("impact", 2, "--quick-iterations %g: must be an integer >= 1", q);
   d.quick_iterations = (int)q;
+  if (!(bt_iter >= 1 && bt_iter <= 100000 && bt_iter == floor(bt_iter)))
+    return fb_cli_fail("impact", 2, "--bullet-iterations %g: must be an integer 1 to 100000",
+                       bt_iter);
+  bt.iterations = (int)bt_iter;
+  if (with_bullet && !fb_engine_available(FB_ENGINE_BULLET))
+    return fb_cli_fail("impact", 2, "--engine bullet: Bullet is not in this build: %s",
+                       FB_BULLET_HOWTO);
   d.law.mass = d.mass;
   d.h = 1.0; /* checked below once the default is known */
   fb_diag diag;
@@ -138,6 +169,13 @@ int fb_cmd_impact(int argc, char **argv) {
   if (fb_impact_reference(&ref, &d, &diag) != FB_OK) return fb_cli_fail("impact", 1, "%s", diag.msg);
   fb_status st = fb_impact_ode(&ode, &d, &diag);
   int has_cf = fb_impact_closed_form(&cf, &d);
+  fb_impact_result btr;
+  fb_diag bdiag;
+  fb_status bst = FB_ERR_ARG;
+  memset(&btr, 0, sizeof btr);
+#if FB_HAVE_BULLET
+  if (with_bullet) bst = fb_impact_bullet(&btr, &d, &bt, &bdiag);
+#endif
   const double h_omega = d.h * M_PI / ref.contact_duration;
   if (json) {
     json_t *o = json_object();
@@ -158,10 +196,18 @@ int fb_cmd_impact(int argc, char **argv) {
     json_object_set_new(o, "error_vs_reference", st == FB_OK ? error_json(&ode, &ref) : json_null());
     json_object_set_new(o, "error_vs_closed_form",
                         st == FB_OK && has_cf ? error_json(&ode, &cf) : json_null());
+    if (with_bullet) {
+      json_object_set_new(o, "bullet_solver", json_string(fb_bullet_solver_name(bt.solver)));
+      json_object_set_new(o, "bullet_iterations", json_integer(bt.iterations));
+      json_object_set_new(o, "bullet_status", json_string(bst == FB_OK ? "ok" : bdiag.msg));
+      json_object_set_new(o, "bullet", bst == FB_OK ? result_json(&btr) : json_null());
+      json_object_set_new(o, "bullet_error_vs_reference",
+                          bst == FB_OK ? error_json(&btr, &ref) : json_null());
+    }
     json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
     fputc('\n', stdout);
     json_decref(o);
-    return st == FB_OK ? 0 : 1;
+    return st == FB_OK && (!with_bullet || bst == FB_OK) ? 0 : 1;
   }
   printf("%s law, K = %g, n = %g, cr = %g, m = %g kg, v0 = %g m/s; ODE %s, %s mapping, "
          "h = %.4g s (h omega_c = %.3g, omega_c = pi / contact duration)\n\n",
@@ -170,9 +216,10 @@ int fb_cmd_impact(int argc, char **argv) {
          fb_mapping_name(d.mapping), d.h, h_omega);
   printf("%-12s %16s %16s %14s %12s %10s\n", "", "penetration_m", "duration_s", "force_max_n",
          "restitution", "steps");
-  const fb_impact_result *rows[3] = {&ode, &ref, has_cf ? &cf : NULL};
-  const char *names[3] = {"ode", "reference", "closed form"};
-  for (int i = 0; i < 3; i++) {
+  const fb_impact_result *rows[4] = {&ode, with_bullet && bst == FB_OK ? &btr : NULL, &ref,
+                                     has_cf ? &cf : NULL};
+  const char *names[4] = {"ode", "bullet", "reference", "closed form"};
+  for (int i = 0; i < 4; i++) {
     if (!rows[i] || (i == 0 && st != FB_OK)) continue;
     printf("%-12s %16.8e %16.8e %14.6e %12.6f %10zu\n", names[i], rows[i]->penetration_max,
            rows[i]->contact_duration, rows[i]->force_max, rows[i]->restitution, rows[i]->steps);
@@ -182,5 +229,14 @@ int fb_cmd_impact(int argc, char **argv) {
          "restitution %+.3e\n",
          rel(ode.penetration_max, ref.penetration_max), rel(ode.contact_duration, ref.contact_duration),
          rel(ode.force_max, ref.force_max), rel(ode.restitution, ref.restitution));
+  if (with_bullet) {
+    if (bst != FB_OK) return fb_cli_fail("impact", 1, "%s", bdiag.msg);
+    printf("Bullet (%s, %d iterations) relative error vs reference: penetration %+.3e, "
+           "duration %+.3e, force %+.3e, restitution %+.3e\n",
+           fb_bullet_solver_name(bt.solver), bt.iterations,
+           rel(btr.penetration_max, ref.penetration_max),
+           rel(btr.contact_duration, ref.contact_duration), rel(btr.force_max, ref.force_max),
+           rel(btr.restitution, ref.restitution));
+  }
   return 0;
 }

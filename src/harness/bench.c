@@ -202,6 +202,31 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
   return FB_OK;
 }
 
+/* Bullet's own knobs: solver (and its iterations) x h, with the case's
+ * mapping; *done counts the points for progress over total */
+static fb_status bullet_grid(fb_bench_row *rows, int *n, const fb_case *c,
+                             void (*progress)(double fraction, void *user), void *user, int *done,
+                             int total, fb_diag *diag) {
+  const double bh[FB_BENCH_BULLET_STEPS] = {1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
+  const int iters[FB_BENCH_BULLET_SOLVERS] = {10, 50, 100, 0};   /* 0: mlcp-dantzig */
+  for (int si = 0; si < FB_BENCH_BULLET_SOLVERS; si++)
+    for (int hi = 0; hi < FB_BENCH_BULLET_STEPS; hi++) {
+      fb_case k;
+      bench_case(&k, c, bh[hi], FB_ENGINE_BULLET);
+      k.bullet.solver = iters[si] ? FB_BULLET_SEQUENTIAL_IMPULSE : FB_BULLET_MLCP_DANTZIG;
+      k.bullet.iterations = iters[si] ? iters[si] : c->bullet.iterations;
+      char stepper[32];
+      if (iters[si]) snprintf(stepper, sizeof stepper, "si-%d", iters[si]);
+      else snprintf(stepper, sizeof stepper, "mlcp");
+      const int first = *n;
+      fb_status st = bench_point(rows, n, &k, "bullet", stepper, k.clearance.mapping, 1, diag);
+      if (st != FB_OK) return st;
+      for (int i = first; i < *n; i++) rows[i].world_cfm = 0.0; /* Bullet's pin rows are hard */
+      if (progress) progress((double)++*done / total, user);
+    }
+  return FB_OK;
+}
+
 fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag) {
   const double hs[FB_BENCH_STEPS] = {1e-3, 1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
@@ -209,9 +234,12 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
   const double erp[2] = {0.2, 0.8}, cfm[2] = {1e-10, 1e-8};
   const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
   const int mujoco = solvers && fb_engine_available(FB_ENGINE_MUJOCO);
+  const int bullet_only = grids == FB_BENCH_BULLET;
+  const int bullet = (solvers || bullet_only) && fb_engine_available(FB_ENGINE_BULLET);
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
   const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
                     (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS : 0) +
+                    (bullet ? FB_BENCH_BULLET_SOLVERS * FB_BENCH_BULLET_STEPS : 0) + bullet_only +
                     (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
   *n = 0;
@@ -248,6 +276,23 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
         if (st != FB_OK) return st;
         if (progress) progress((double)++done / total, user);
       }
+  }
+  if (bullet_only) {
+    /* ODE at the case's own settings, measured in the same run */
+    fb_case k;
+    bench_case(&k, c, c->solver.h_mode == FB_STEP_FIXED ? c->solver.h : 0.0, FB_ENGINE_ODE);
+    char stepper[32];
+    if (c->solver.stepper == FB_STEPPER_QUICK)
+      snprintf(stepper, sizeof stepper, "quick-%d", c->solver.quick_iterations);
+    else
+      snprintf(stepper, sizeof stepper, "world");
+    fb_status st = bench_point(rows, n, &k, "ode", stepper, k.clearance.mapping, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  if (bullet) {
+    fb_status st = bullet_grid(rows, n, c, progress, user, &done, total, diag);
+    if (st != FB_OK) return st;
   }
   for (int hi = 0; hi < (colliders ? 2 : 0); hi++)
     for (int ri = 0; ri < COLLIDER_RINGS; ri++) {

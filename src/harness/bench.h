@@ -9,7 +9,10 @@
  * (0.8, 1e-8)); and, in builds with MuJoCo, MuJoCo's integrator (euler,
  * implicit, rk4) x h (1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6 s) with the
  * case's loop closure and drive (models mujoco-ideal-stackup and
- * mujoco-clearance-impact). Error of the ideal model: largest |relative error| of the
+ * mujoco-clearance-impact); and, in builds with Bullet, Bullet's solver
+ * (sequential impulse at 10, 50 and 100 iterations, "si-N"; mlcp-dantzig,
+ * "mlcp") x h (1e-4, 1e-5, 1e-6 s and auto) with the case's mapping (models
+ * bullet-ideal-stackup and bullet-clearance-impact). Error of the ideal model: largest |relative error| of the
  * four angular-velocity peaks; of the clearance model: the larger of
  * |peak force| and |max penetration| relative errors against the reference.
  * A row is on the Pareto front of its model (so of its engine) when no other
@@ -63,14 +66,18 @@ typedef struct fb_bench_row_s {
 /* Which grids fb_bench_run runs. */
 enum {
   FB_BENCH_SOLVERS = 1,  /* ODE stepper x h x mapping x world ERP/CFM, and MuJoCo's grid */
-  FB_BENCH_COLLIDERS = 2 /* the collider axis */
+  FB_BENCH_COLLIDERS = 2, /* the collider axis */
+  FB_BENCH_BULLET = 4     /* Bullet's grid alone (part of FB_BENCH_SOLVERS), beside ODE at the
+                             case's own settings (one configuration, the same run's yardstick) */
 };
 
-#define FB_BENCH_MAX_ROWS 256
+#define FB_BENCH_MAX_ROWS 320
 
 /* ODE step sizes of the grid: 1e-3, 1e-4, 1e-5, 1e-6 s and auto. */
 #define FB_BENCH_STEPS 5
 #define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
+#define FB_BENCH_BULLET_STEPS 4 /* step sizes of the Bullet grid: 1e-4, 1e-5, 1e-6 s and auto */
+#define FB_BENCH_BULLET_SOLVERS 4 /* sequential impulse at 10, 50, 100 iterations; mlcp-dantzig */
 
 /* Runs the grids named in grids (FB_BENCH_* bits) on case c (2 revolutions
  * per run; 3 repeats for runs under 1 s, else 1). rows gets *n rows.

@@ -24,10 +24,13 @@ const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
 #if FB_HAVE_MUJOCO
     case FB_ENGINE_MUJOCO: return &fb_engine_mujoco;
 #endif
+#if FB_HAVE_BULLET
+    case FB_ENGINE_BULLET: return &fb_engine_bullet;
+#endif
     default: break;
   }
-  fb_diag_set(diag, FB_ERR_ARG, "engine '%s' is not part of this build%s", fb_engine_name(id),
-              id == FB_ENGINE_MUJOCO ? ": " FB_MUJOCO_HOWTO : "");
+  fb_diag_set(diag, FB_ERR_ARG, "engine '%s' is not part of this build%s%s", fb_engine_name(id),
+              fb_engine_howto(id)[0] ? ": " : "", fb_engine_howto(id));
   return NULL;
 }
 

@@ -6,12 +6,21 @@
 #include "fb_config.h"
 
 const char *fb_engine_name(fb_engine_id e) {
-  static const char *const names[FB_ENGINE_COUNT] = {"analytic", "reference", "ode", "mujoco"};
+  static const char *const names[FB_ENGINE_COUNT] = {"analytic", "reference", "ode", "mujoco",
+                                                             "bullet"};
   return (e >= 0 && e < FB_ENGINE_COUNT) ? names[e] : "?";
 }
 
 int fb_engine_available(fb_engine_id e) {
-  return e == FB_ENGINE_MUJOCO ? FB_HAVE_MUJOCO : (e >= 0 && e < FB_ENGINE_COUNT);
+  if (e == FB_ENGINE_MUJOCO) return FB_HAVE_MUJOCO;
+  if (e == FB_ENGINE_BULLET) return FB_HAVE_BULLET;
+  return e >= 0 && e < FB_ENGINE_COUNT;
+}
+
+const char *fb_engine_howto(fb_engine_id e) {
+  if (e == FB_ENGINE_MUJOCO) return FB_MUJOCO_HOWTO;
+  if (e == FB_ENGINE_BULLET) return FB_BULLET_HOWTO;
+  return "";
 }
 
 const char *fb_collider_name(fb_collider c) {
@@ -19,7 +28,9 @@ const char *fb_collider_name(fb_collider c) {
   return (c >= 0 && c < FB_COLLIDER_COUNT) ? names[c] : "?";
 }
 
-int fb_engine_steps_world(fb_engine_id e) { return e == FB_ENGINE_ODE || e == FB_ENGINE_MUJOCO; }
+int fb_engine_steps_world(fb_engine_id e) {
+  return e == FB_ENGINE_ODE || e == FB_ENGINE_MUJOCO || e == FB_ENGINE_BULLET;
+}
 
 /* short names for the rows */
 #define NOM FB_LENGTHS_NOMINAL
@@ -162,6 +173,46 @@ const fb_model fb_models[] = {
      .spikes_vs = "mujoco-ideal-stackup",
      .summary = "MuJoCo's own contacts (pin sphere in a ring of boxes), restitution law as direct solref",
      .style = {"#ff7f0e", 5, 1.8}},
+    {.name = "bullet-ideal-nominal",
+     .engine = FB_ENGINE_BULLET,
+     .lengths = NOM,
+     .joints = IDEAL,
+     .law = FB_MODEL_LAW_NONE,
+     .collider = FB_COLLIDER_NONE,
+     .reference = NULL,
+     .spikes_vs = NULL,
+     .summary = "Bullet, planar pin constraint rows in btDiscreteDynamicsWorld, nominal lengths",
+     .style = {"#1f77b4", 5, 1.6}},
+    {.name = "bullet-ideal-stackup",
+     .engine = FB_ENGINE_BULLET,
+     .lengths = STK,
+     .joints = IDEAL,
+     .law = FB_MODEL_LAW_NONE,
+     .collider = FB_COLLIDER_NONE,
+     .reference = NULL,
+     .spikes_vs = NULL,
+     .summary = "Bullet, planar pin constraint rows in btDiscreteDynamicsWorld, stack-up lengths",
+     .style = {"#6baed6", 5, 1.6}},
+    {.name = "bullet-clearance-restitution",
+     .engine = FB_ENGINE_BULLET,
+     .lengths = STK,
+     .joints = CLEAR,
+     .law = FB_MODEL_LAW_RESTITUTION,
+     .collider = FB_COLLIDER_EXACT,
+     .reference = "reference-restitution",
+     .spikes_vs = "bullet-ideal-stackup",
+     .summary = "Bullet, clearance joints, restitution law as a soft constraint row (ODE's mapping)",
+     .style = {"#2ca02c", 5, 1.6}},
+    {.name = "bullet-clearance-impact",
+     .engine = FB_ENGINE_BULLET,
+     .lengths = STK,
+     .joints = CLEAR,
+     .law = FB_MODEL_LAW_IMPACT,
+     .collider = FB_COLLIDER_EXACT,
+     .reference = "reference",
+     .spikes_vs = "bullet-ideal-stackup",
+     .summary = "Bullet, clearance joints, impact law as a soft constraint row (ODE's mapping)",
+     .style = {"#d62728", 5, 1.6}},
     {.name = "reference",
      .engine = FB_ENGINE_REFERENCE,
      .lengths = STK,

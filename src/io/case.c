@@ -27,6 +27,18 @@ fb_mujoco_opts fb_mujoco_opts_default(void) {
   return o;
 }
 
+fb_bullet_opts fb_bullet_opts_default(void) {
+  fb_bullet_opts o;
+  o.solver = FB_BULLET_MLCP_DANTZIG;
+  o.iterations = 100;
+  return o;
+}
+
+const char *fb_bullet_solver_name(int k) {
+  static const char *const names[] = {"sequential-impulse", "mlcp-dantzig"};
+  return k >= 0 && k <= FB_BULLET_MLCP_DANTZIG ? names[k] : "?";
+}
+
 int fb_mujoco_integrator_resolve(const fb_mujoco_opts *o, int clearance_mask) {
   if (o->integrator != FB_MUJOCO_AUTO) return o->integrator;
   return clearance_mask ? FB_MUJOCO_RK4 : FB_MUJOCO_EULER;

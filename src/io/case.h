@@ -155,6 +155,26 @@ typedef struct {
   double loop_impedance; /* solimp dmin = dmax of the loop closure [-] in (0, 1) */
   double drive_armature; /* armature of the crank hinge (flywheel drive) [kg m^2] */
 } fb_mujoco_opts;
+/* Constraint solver of the bullet-* models. */
+typedef enum {
+  FB_BULLET_SEQUENTIAL_IMPULSE = 0, /* btSequentialImpulseConstraintSolver (projected Gauss-Seidel) */
+  FB_BULLET_MLCP_DANTZIG = 1        /* btMLCPSolver with btDantzigSolver (direct, pivoting) */
+} fb_bullet_solver;
+
+/* "sequential-impulse", "mlcp-dantzig". */
+const char *fb_bullet_solver_name(int k);
+
+/* Bullet's own choices for the bullet-* models; engine-free (no Bullet
+ * header needed to hold or check them). */
+typedef struct {
+  int solver;     /* fb_bullet_solver */
+  int iterations; /* btContactSolverInfo::m_numIterations: sequential-impulse sweeps per step
+                     (and the fallback's when the MLCP fails) [-] in [1, 100000] */
+} fb_bullet_opts;
+
+/* Defaults: mlcp-dantzig, 100 iterations (docs/engines.md, "Bullet"). */
+fb_bullet_opts fb_bullet_opts_default(void);
+
 /* Initial state of the moving bodies ([run] start; physics/start.h resolves it). */
 typedef enum {
   FB_START_STEADY = 0, /* every body on the ideal mechanism's motion at t = 0 */
@@ -220,6 +240,7 @@ typedef struct fb_case_s {
   fb_solver solver;                   /* ODE settings */
   fb_clearance clearance;             /* clearance joints and contact parameters */
   fb_mujoco_opts mujoco;              /* MuJoCo settings of the mujoco-* models */
+  fb_bullet_opts bullet;              /* Bullet settings of the bullet-* models */
   struct {
     char outcome[FB_NAME_SIZE];       /* "stable", "unstable" or "" (no expectation) */
     char model[FB_NAME_SIZE];         /* model the expectation is about */

@@ -48,7 +48,8 @@ typedef enum {
   K_LIMIT,     /* a number (scaled like K_DOUBLE) | none | clearance */
   K_UNUSED,    /* a number checked against its range and not stored (no model uses it) */
   K_COLLIDER,  /* exact | faceted | ccd */
-  K_BORE       /* circle | ellipse */
+  K_BORE,      /* circle | ellipse */
+  K_BTSOLVER   /* sequential-impulse | mlcp-dantzig */
 } key_kind;
 
 typedef struct {
@@ -312,6 +313,16 @@ static const key_spec keys[] = {
      "armature of the crank hinge: the crank is a flywheel set to the crank speed at t = 0, "
      "so the reaction torques barely change its speed (the crank-angle error is reported)"},
 
+    {"bullet", "solver", K_BTSOLVER, OFF(bullet.solver), 0, 0, 0, 0, 0, "-", "mlcp-dantzig",
+     "sequential-impulse or mlcp-dantzig",
+     "constraint solver of the bullet-* models: btSequentialImpulseConstraintSolver "
+     "(iterative) or btMLCPSolver with btDantzigSolver (direct; the default, which reaches the "
+     "analytic solution to 1e-4: docs/engines.md)"},
+    {"bullet", "iterations", K_INT, OFF(bullet.iterations), 0, 1, 100000, 0, 0, "-", "100",
+     "iterations must be 1 to 100000",
+     "sequential-impulse sweeps per step of the bullet-* models (btContactSolverInfo "
+     "m_numIterations; also the MLCP's fallback)"},
+
     {"run", "revolutions", K_INT, OFF(revolutions), 0, 1, 1e6, 0, 0, "-", "3",
      "at least 2 with peaks = steady (the first revolution is a run-in); at least 1 with "
      "peaks = all",
@@ -489,7 +500,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
-                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, run)",
+                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, bullet, run)",
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }
@@ -690,6 +701,11 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else if (strcmp(e->value, "auto") == 0) *(int *)field = FB_MUJOCO_AUTO;
       else return bad_word(e, k, diag);
       return FB_OK;
+    case K_BTSOLVER:
+      if (strcmp(e->value, "sequential-impulse") == 0) *(int *)field = FB_BULLET_SEQUENTIAL_IMPULSE;
+      else if (strcmp(e->value, "mlcp-dantzig") == 0) *(int *)field = FB_BULLET_MLCP_DANTZIG;
+      else return bad_word(e, k, diag);
+      return FB_OK;
     case K_COLLIDER:
       if (strcmp(e->value, "exact") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_EXACT;
       else if (strcmp(e->value, "faceted") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_FACETED;
@@ -843,9 +859,9 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
         if (!fb_engine_available(fb_model_find(tok)->engine))
           return fb_diag_set(diag, FB_ERR_ARG, "%s: [%s] %s: model '%s' is not in this build: %s",
                              e->origin, e->section, e->key, tok,
-                             fb_model_find(tok)->engine == FB_ENGINE_MUJOCO
-                                 ? FB_MUJOCO_HOWTO
-                                 : "its engine was left out");
+                             fb_model_find(tok)->engine == FB_ENGINE_MUJOCO   ? FB_MUJOCO_HOWTO
+                             : fb_model_find(tok)->engine == FB_ENGINE_BULLET ? FB_BULLET_HOWTO
+                                                                              : "its engine was left out");
         for (int i = 0; i < c->model_count; i++)
           if (strcmp(c->models[i], tok) == 0)
             return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: model '%s' listed twice",

@@ -312,6 +312,13 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
                   "loop_impedance", num(mj->loop_impedance), "drive_armature_kg_m2",
                   num(mj->drive_armature)));
   }
+  if (run->model->engine == FB_ENGINE_BULLET) {
+    /* Bullet's own choices as the model used them */
+    const fb_bullet_opts *bt = &r->c.bullet;
+    json_object_set_new(o, "bullet",
+                        json_pack("{s:s,s:i,s:s}", "solver", fb_bullet_solver_name(bt->solver),
+                                  "iterations", bt->iterations, "world", "btDiscreteDynamicsWorld"));
+  }
   if (m->has_ref_error) {
     const fb_reference_error *e = &m->ref_error;
     json_t *o2 = json_object(), *a = json_array(), *b = json_array();
@@ -766,6 +773,11 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
             c->mujoco.loop_stiffness > 0 ? c->mujoco.loop_stiffness : 1.0 / (c->solver.h * c->solver.h),
             c->mujoco.loop_damping > 0 ? c->mujoco.loop_damping : 1.0 / c->solver.h,
             c->mujoco.loop_impedance);
+  int bt_models = 0;
+  for (int i = 0; i < r->n; i++) bt_models |= r->model[i].run.model->engine == FB_ENGINE_BULLET;
+  if (bt_models)
+    fprintf(f, "Bullet models: %s, %d iterations (sequential impulse; the MLCP's fallback)\n\n",
+            fb_bullet_solver_name(c->bullet.solver), c->bullet.iterations);
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);
   fprintf(f, "stack-up corner %c%c%c%c:", "-0+"[c->stackup.corner[0] + 1],

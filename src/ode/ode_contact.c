@@ -5,11 +5,9 @@ int fb_ode_soft_contact(dContact *ct, const fb_contact_law *law, fb_mapping mapp
                         int onset, double persistence, double friction,
                         fb_contact_row *row) {
   fb_contact_row r;
-  if (fb_contact_map(&r, law, mapping, h, m_eff, n_rows, delta, ddot, v0, NULL) != FB_OK) return 0;
-  if (persistence > 0.0 && mapping == FB_MAPPING_MATCHED_STATIC)
-    fb_contact_row_static(&r, h, m_eff / (n_rows > 0 ? n_rows : 1), persistence);
-  else if (onset && n_rows == 1)
-    fb_contact_row_onset(&r, law, mapping, h, m_eff, delta, ddot);
+  if (fb_contact_row_step(&r, law, mapping, h, m_eff, n_rows, delta, ddot, v0, onset,
+                          persistence) != FB_OK)
+    return 0;
   fb_ode_soft_fill(ct, &r, friction);
   if (row) *row = r;
   return 1;

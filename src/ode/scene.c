@@ -347,10 +347,7 @@ static double step_drift(const clearance *c, const double n[2], const double ev[
   double dp[2], dq[2];
   point_drift(c->pin, c->pin_local, h, dp);
   point_drift(c->hole, c->hole_local, h, dq);
-  const double en = ev[0] * n[0] + ev[1] * n[1];
-  const double et[2] = {ev[0] - en * n[0], ev[1] - en * n[1]};
-  return n[0] * (dp[0] - dq[0]) + n[1] * (dp[1] - dq[1]) +
-         h * h * (et[0] * et[0] + et[1] * et[1]) / (2.0 * ecc);
+  return fb_contact_step_drift(n, dp, dq, ev, ecc, h);
 }
 
 typedef struct {

@@ -467,3 +467,23 @@ void fb_contact_row_onset(fb_contact_row *row, const fb_contact_law *law, fb_map
                                               row->cfm);
   if (ddot > 0.0) row->step_share = h / (h + fmin(delta / ddot, h));
 }
+
+double fb_contact_step_drift(const double n[2], const double dp[2], const double dq[2],
+                             const double ev[2], double ecc, double h) {
+  const double en = ev[0] * n[0] + ev[1] * n[1];
+  const double et[2] = {ev[0] - en * n[0], ev[1] - en * n[1]};
+  return n[0] * (dp[0] - dq[0]) + n[1] * (dp[1] - dq[1]) +
+         h * h * (et[0] * et[0] + et[1] * et[1]) / (2.0 * ecc);
+}
+
+fb_status fb_contact_row_step(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
+                              double h, double m_eff, int n_rows, double delta, double ddot,
+                              double v0, int onset, double persistence) {
+  fb_status st = fb_contact_map(row, law, mapping, h, m_eff, n_rows, delta, ddot, v0, NULL);
+  if (st != FB_OK) return st;
+  if (persistence > 0.0 && mapping == FB_MAPPING_MATCHED_STATIC)
+    fb_contact_row_static(row, h, m_eff / (n_rows > 0 ? n_rows : 1), persistence);
+  else if (onset && n_rows == 1)
+    fb_contact_row_onset(row, law, mapping, h, m_eff, delta, ddot);
+  return FB_OK;
+}

@@ -336,6 +336,32 @@ fb_status fb_contact_map(fb_contact_row *row, const fb_contact_law *law, fb_mapp
 void fb_contact_row_onset(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
                           double h, double m_eff, double delta, double ddot);
 
+/* The row one contact step hands its engine (ODE's contact joint, Bullet's
+ * contact constraint row: the same code): fb_contact_map of law at
+ * penetration delta [m], rate ddot [m/s], onset rate v0 [m/s], step h [s],
+ * effective mass m_eff [kg] along the normal, split over n_rows parallel
+ * rows; then, for the matched-static mapping with persistence w > 0
+ * (fb_contact_persistence of the contact's phase), fb_contact_row_static
+ * on m_eff / n_rows with weight w; else at the contact's first step
+ * (onset = 1) of a single row, fb_contact_row_onset. Errors: those of
+ * fb_contact_map (FB_ERR_RANGE: no row at this state, skip it). */
+fb_status fb_contact_row_step(fb_contact_row *row, const fb_contact_law *law, fb_mapping mapping,
+                              double h, double m_eff, int n_rows, double delta, double ddot,
+                              double v0, int onset, double persistence);
+
+/* The change of a pin-in-hole penetration |e| - c over the coming step that
+ * a contact row on the normal n (unit, pin minus hole) does not see [m]: a
+ * row constrains the normal rate n . de/dt at the start of the step, while
+ * the penetration also moves by the second-order terms of both bodies'
+ * points under the engine's rotation update, dp (pin) and dq (hole) [m]
+ * (each engine computes its own: ODE's quaternion update, Bullet's
+ * exponential map), and by the curvature of the circle |e| = const under
+ * the tangential part of the eccentricity rate ev [m/s]:
+ * n . (dp - dq) + h^2 |ev_t|^2 / (2 |e|), ecc = |e| > 0 [m], h [s]. The
+ * matched-static row hands depth + drift / ERP to its row (scene.h). */
+double fb_contact_step_drift(const double n[2], const double dp[2], const double dq[2],
+                             const double ev[2], double ecc, double h);
+
 /* h times the contact frequency sqrt(k / m) of a spring k [N/m] on mass m
  * [kg] at step h [s]: the measure of how many steps resolve one contact
  * (ODE's mapped spring loses about 1.1 h omega of restitution per impact). */

@@ -75,6 +75,22 @@ fb_status fb_impact_reference(fb_impact_result *out, const fb_impact_def *d, fb_
  * the contact after 100 estimated contact durations. */
 fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag);
 
+/* Bullet (src/bullet/impact_bullet.cpp; only in builds with Bullet,
+ * FB_HAVE_BULLET): one free body of mass d->mass
+ * meets the ground through the same soft row as the clearance joints
+ * (one row per step in contact, ERP/CFM of fb_contact_row_step with
+ * d->mapping on the body's mass), solved by bt->solver with bt->iterations.
+ * d->mapping = FB_MAPPING_SECANT (or tangent) on a linear or restitution law
+ * is exactly Bullet's own conversion of a contact stiffness k and damping c
+ * (btSequentialImpulseConstraintSolver::setupContactConstraint with
+ * BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING: erp = h k / (h k + c),
+ * cfm = 1 / (h k + c)); FB_MAPPING_MATCHED the project's matched row.
+ * d->stepper and d->quick_iterations are not used. Errors: those of
+ * fb_impact_check; FB_ERR_NUMERIC on a non-finite state or when the body has
+ * not left the contact after 100 estimated contact durations. */
+fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def *d,
+                           const fb_bullet_opts *bt, fb_diag *diag);
+
 /* ODE under a sustained load: the body of d (mass, law, step, stepper,
  * mapping; d->speed is not used) rests touching the contact at t = 0 and a
  * constant force load [N] presses it in from then on, for duration [s]

@@ -1,0 +1,514 @@
+/* The four-bar in Bullet (bullet_scene.h). */
+#include "bullet_scene.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <new>
+
+#include "bt_rows.h"
+extern "C" {
+#include "effective_mass.h"
+#include "episode.h"
+}
+
+namespace {
+
+/* one clearance joint */
+struct Clearance {
+  btRigidBody *pin = nullptr, *hole = nullptr; /* hole nullptr: ground */
+  btVector3 pin_local, hole_local;             /* centre in the body's frame (world for ground) */
+  FbRows *row = nullptr;                       /* its soft row (nrows 0 when free) */
+  fb_episode ep;
+  double force = 0.0;                          /* contact force of the last step [N] */
+  double force_pin[2] = {0, 0};                /* on the pin [N] */
+  double share = 1.0;                          /* step share of the last row (contact.h) */
+  fb_contact_provenance prov;
+  double phase = 0.0;                          /* contact phase so far [rad] (matched-static) */
+  double step_wdh = 0.0, step_hw = 0.0;
+};
+
+/* the solver the options ask for */
+struct Solver {
+  btDantzigSolver dantzig;
+  btConstraintSolver *s = nullptr;
+  explicit Solver(int kind) {
+    if (kind == FB_BULLET_MLCP_DANTZIG)
+      s = new FbMlcp(&dantzig);
+    else
+      s = new FbSequentialImpulse();
+  }
+  ~Solver() { delete s; }
+};
+
+/* a world without collision pairs */
+struct World {
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  Solver solver;
+  btDiscreteDynamicsWorld world;
+  btEmptyShape shape;
+  World(int kind, int iterations, double g)
+      : solver(kind), world(&dispatcher, &broadphase, solver.s, &config) {
+    world.setGravity(btVector3(0, -g, 0));
+    btContactSolverInfo &info = world.getSolverInfo();
+    info.m_numIterations = iterations;
+    info.m_globalCfm = 0.0;
+    info.m_minimumSolverBatchSize = 1; /* one island, one solve */
+    info.m_leastSquaresResidualThreshold = 0.0;
+  }
+  /* a planar body of mass m and principal moments (long, transverse, hinge) */
+  btRigidBody *body(double m, const btVector3 &inertia) {
+    btRigidBody::btRigidBodyConstructionInfo ci(m, nullptr, &shape, inertia);
+    btRigidBody *b = new btRigidBody(ci);
+    b->setLinearFactor(btVector3(1, 1, 0));
+    b->setAngularFactor(btVector3(0, 0, 1));
+    b->setFlags(0); /* no gyroscopic term: planar rotation about a principal axis */
+    b->setDamping(0, 0);
+    b->setSleepingThresholds(0, 0);
+    b->setActivationState(DISABLE_DEACTIVATION);
+    world.addRigidBody(b, 0, 0); /* no collision group: never a contact pair */
+    return b;
+  }
+  void add(btTypedConstraint *c) { world.addConstraint(c, true); }
+};
+
+}  // namespace
+
+struct fb_bullet_scene {
+  fb_scene_model def;
+  World *w = nullptr;
+  btRigidBody *body[3] = {nullptr, nullptr, nullptr};
+  FbRows *pin[4] = {nullptr, nullptr, nullptr, nullptr};  /* ideal joints: 2 rows */
+  btVector3 pin_local[4][2];                              /* joint point on body 1 and 2 */
+  btRigidBody *b1[4] = {nullptr, nullptr, nullptr, nullptr}, *b2[4] = {nullptr, nullptr, nullptr,
+                                                                        nullptr};
+  btJointFeedback feedback[4];
+  FbRows *drive = nullptr;
+  Clearance cl[4];
+  size_t steps = 0;
+  double angle[3] = {0, 0, 0};
+  double omega_prev[3] = {0, 0, 0};
+  double alpha[3] = {0, 0, 0};
+  double drive_torque = 0.0;
+  double w_inv[4][2][2];
+  int w_valid = 0;
+  fb_stop stop;
+};
+
+static btVector3 world_point(const btRigidBody *b, const btVector3 &local) {
+  return b ? b->getCenterOfMassTransform() * local : local;
+}
+
+static btVector3 point_velocity(const btRigidBody *b, const btVector3 &p) {
+  if (!b) return btVector3(0, 0, 0);
+  return b->getLinearVelocity() + b->getAngularVelocity().cross(p - b->getCenterOfMassPosition());
+}
+
+static double body_angle(const btRigidBody *b) {
+  const btMatrix3x3 &R = b->getCenterOfMassTransform().getBasis();
+  return atan2(R[1][0], R[0][0]);
+}
+
+/* a link body between joint points p and q, centre of mass at com_fraction */
+static btRigidBody *make_link(World *w, const fb_link_mass *lm, const double p[2],
+                              const double q[2], double omega, const double vp[2]) {
+  const double dx = q[0] - p[0], dy = q[1] - p[1];
+  const double phi = atan2(dy, dx);
+  const double rx = lm->com_fraction * dx, ry = lm->com_fraction * dy;
+  btRigidBody *b =
+      w->body(lm->mass, btVector3(lm->inertia_long, lm->inertia_transverse, lm->inertia));
+  btTransform t;
+  t.setIdentity();
+  t.setOrigin(btVector3(p[0] + rx, p[1] + ry, 0));
+  t.setRotation(btQuaternion(btVector3(0, 0, 1), phi));
+  b->setCenterOfMassTransform(t);
+  b->setLinearVelocity(btVector3(vp[0] - omega * ry, vp[1] + omega * rx, 0));
+  b->setAngularVelocity(btVector3(0, 0, omega));
+  return b;
+}
+
+extern "C" int fb_bullet_version(void) { return btGetVersion(); }
+
+static void scene_free(fb_bullet_scene *s) {
+  if (!s) return;
+  if (s->w) {
+    for (int j = 0; j < 4; j++) {
+      if (s->pin[j]) s->w->world.removeConstraint(s->pin[j]), delete s->pin[j];
+      if (s->cl[j].row) s->w->world.removeConstraint(s->cl[j].row), delete s->cl[j].row;
+    }
+    if (s->drive) s->w->world.removeConstraint(s->drive), delete s->drive;
+    for (int i = 0; i < 3; i++)
+      if (s->body[i]) s->w->world.removeRigidBody(s->body[i]), delete s->body[i];
+    delete s->w;
+  }
+  delete s;
+}
+
+extern "C" fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_scene_model *sm,
+                                            fb_diag *diag) {
+  fb_status rc = fb_scene_def_check(sm->def, diag);
+  if (rc != FB_OK) return rc;
+  if (sm->clearance_mask && sm->collider != FB_COLLIDER_EXACT)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the Bullet engine has no such collider",
+                       sm->model->name);
+  fb_start_state st;
+  rc = fb_scene_model_start(&st, sm, diag);
+  if (rc != FB_OK) return rc;
+  fb_bullet_scene *s = new (std::nothrow) fb_bullet_scene();
+  if (!s) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Bullet scene");
+  try {
+    s->def = *sm;
+    memset(&s->stop, 0, sizeof s->stop);
+    for (int j = 0; j < 4; j++) memset(&s->cl[j].ep, 0, sizeof s->cl[j].ep);
+    for (int j = 0; j < 4; j++) memset(&s->cl[j].prov, 0, sizeof s->cl[j].prov);
+    s->w = new World(sm->bullet.solver, sm->bullet.iterations, sm->gravity);
+    const double zero[2] = {0, 0};
+    s->body[FB_CRANK] = make_link(s->w, &sm->link[FB_CRANK], st.pin[FB_JOINT_A],
+                                  st.pin[FB_JOINT_B], st.crank_omega, zero);
+    s->body[FB_COUPLER] = make_link(s->w, &sm->link[FB_COUPLER], st.hole[FB_JOINT_B],
+                                    st.pin[FB_JOINT_C], st.coupler_omega, st.coupler_b_vel);
+    s->body[FB_FOLLOWER] = make_link(s->w, &sm->link[FB_FOLLOWER], st.pin[FB_JOINT_D],
+                                     st.hole[FB_JOINT_C], st.follower_omega, zero);
+    btRigidBody *const first[4] = {s->body[FB_CRANK], s->body[FB_CRANK], s->body[FB_COUPLER],
+                                   s->body[FB_FOLLOWER]};
+    btRigidBody *const second[4] = {nullptr, s->body[FB_COUPLER], s->body[FB_FOLLOWER], nullptr};
+    for (int j = 0; j < 4; j++) {
+      s->b1[j] = first[j];
+      s->b2[j] = second[j];
+      const btVector3 pw(st.pin[j][0], st.pin[j][1], 0), hw(st.hole[j][0], st.hole[j][1], 0);
+      if (sm->clearance_mask & (1 << j)) {
+        Clearance *c = &s->cl[j];
+        c->pin = first[j];
+        c->hole = second[j];
+        c->pin_local = c->pin->getCenterOfMassTransform().inverse() * pw;
+        c->hole_local = c->hole ? c->hole->getCenterOfMassTransform().inverse() * hw : hw;
+        c->row = c->hole ? new FbRows(*c->pin, *c->hole) : new FbRows(*c->pin);
+        c->row->enableFeedback(true);
+        s->w->add(c->row);
+        continue;
+      }
+      /* the joint point on each body (the start's pin position) */
+      s->pin_local[j][0] = first[j]->getCenterOfMassTransform().inverse() * pw;
+      s->pin_local[j][1] = second[j] ? second[j]->getCenterOfMassTransform().inverse() * pw : pw;
+      s->pin[j] = second[j] ? new FbRows(*first[j], *second[j]) : new FbRows(*first[j]);
+      s->pin[j]->nrows = 2;
+      s->pin[j]->setJointFeedback(&s->feedback[j]);
+      s->pin[j]->enableFeedback(true);
+      s->w->add(s->pin[j]);
+    }
+    /* the drive: the crank's angular velocity about +z held at omega2 */
+    s->drive = new FbRows(*s->body[FB_CRANK]);
+    s->drive->nrows = 1;
+    s->w->add(s->drive);
+  } catch (const std::bad_alloc &) {
+    scene_free(s);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Bullet scene");
+  }
+  for (int i = 0; i < 3; i++) {
+    s->angle[i] = body_angle(s->body[i]);
+    s->omega_prev[i] = s->body[i]->getAngularVelocity()[2];
+  }
+  *out = s;
+  return FB_OK;
+}
+
+/* the mechanism now, for the effective mass (effective_mass.h) */
+static void mechanism(const fb_bullet_scene *s, fb_mechanism *m) {
+  memset(m, 0, sizeof *m);
+  for (int i = 0; i < 3; i++) {
+    const btVector3 p = s->body[i]->getCenterOfMassPosition();
+    m->mass[i] = s->def.link[i].mass;
+    m->inertia[i] = s->def.link[i].inertia;
+    m->com[i][0] = p[0];
+    m->com[i][1] = p[1];
+  }
+  for (int j = 0; j < 4; j++) {
+    const btVector3 q = (s->def.clearance_mask & (1 << j))
+                            ? world_point(s->cl[j].pin, s->cl[j].pin_local)
+                            : world_point(s->b1[j], s->pin_local[j][0]);
+    m->joint[j][0] = q[0];
+    m->joint[j][1] = q[1];
+  }
+  m->clearance_mask = s->def.clearance_mask;
+  m->crank_driven = 1;
+}
+
+static double step_effective_mass(fb_bullet_scene *s, int j, const double n[2]) {
+  if (!s->w_valid) {
+    fb_mechanism m;
+    mechanism(s, &m);
+    if (fb_effective_mass_tensor(s->w_inv, &m, NULL) != FB_OK) return s->def.law[j].mass;
+    s->w_valid = 1;
+  }
+  const double me = fb_effective_mass_along(s->w_inv[j], n);
+  return isfinite(me) && me > 0.0 ? me : s->def.law[j].mass;
+}
+
+/* eccentricity e = pin centre - hole centre [m] and its rate [m/s] */
+static void geometry(const Clearance *c, btVector3 *p, btVector3 *q, btVector3 *ev) {
+  *p = world_point(c->pin, c->pin_local);
+  *q = world_point(c->hole, c->hole_local);
+  *ev = point_velocity(c->pin, *p) - point_velocity(c->hole, *q);
+}
+
+/* what the coming step's position update adds to a body point's motion
+ * beyond the linear h (v + w x r) a row sees: Bullet turns the body by
+ * exactly h w (btTransformUtil::integrateTransform, exponential map), so the
+ * point at r moves (cos(h w) - 1) r + (sin(h w) - h w) z x r more [m] (the
+ * Bullet counterpart of scene.c's point_drift) */
+static btVector3 point_drift(const btRigidBody *b, const btVector3 &p, double h) {
+  if (!b) return btVector3(0, 0, 0);
+  const btVector3 r = p - b->getCenterOfMassPosition();
+  const double th = h * b->getAngularVelocity()[2];
+  const double cm1 = cos(th) - 1.0, sw = sin(th) - th;
+  return btVector3(cm1 * r[0] - sw * r[1], cm1 * r[1] + sw * r[0], 0);
+}
+
+static void note_row(Clearance *c, const fb_contact_row *u, double mass, double h) {
+  fb_contact_provenance *p = &c->prov;
+  if (p->contact_steps == 0 || u->erp > p->erp_max) p->erp_max = u->erp;
+  if (p->contact_steps == 0 || u->cfm < p->cfm_min) p->cfm_min = u->cfm;
+  const double hw = fb_contact_h_omega(h, u->kp, mass);
+  if (p->contact_steps == 0 || hw > p->h_omega_max) p->h_omega_max = hw;
+  if (hw > c->step_hw) c->step_hw = hw;
+  if (p->contact_steps == 0 || mass < p->mass_eff_min) p->mass_eff_min = mass;
+  if (p->contact_steps == 0 || mass > p->mass_eff_max) p->mass_eff_max = mass;
+  p->contact_steps++;
+  const double wdh = fb_contact_omega_d_h(h, u->kp, u->kd, mass);
+  if (wdh > c->step_wdh) c->step_wdh = wdh;
+}
+
+/* the soft row of clearance joint j for this step, or none when free */
+static void clearance_row(fb_bullet_scene *s, int j) {
+  Clearance *c = &s->cl[j];
+  const fb_scene_model *d = &s->def;
+  const double h = d->solver.h;
+  c->row->nrows = 0;
+  c->share = 1.0;
+  btVector3 p, q, ev;
+  geometry(c, &p, &q, &ev);
+  const double ex = p[0] - q[0], ey = p[1] - q[1];
+  const double ecc = hypot(ex, ey);
+  const double delta = ecc - d->radial_clearance;
+  if (!(delta > 0.0) || ecc == 0.0) {
+    fb_episode_update(&c->ep, 0, 0.0, d->impact_velocity_min);
+    return;
+  }
+  const double n[2] = {ex / ecc, ey / ecc};
+  const double ddot = n[0] * ev[0] + n[1] * ev[1];
+  const int onset = !c->ep.in_contact;
+  fb_episode_update(&c->ep, 1, ddot, d->impact_velocity_min);
+  const double m_eff = step_effective_mass(s, j, n);
+  fb_contact_law law = d->law[j];
+  if (law.kind == FB_LAW_RESTITUTION) law.mass = m_eff; /* damper on the effective mass */
+  const double persistence =
+      d->mapping == FB_MAPPING_MATCHED_STATIC ? fb_contact_persistence(c->phase) : 0.0;
+  fb_contact_row u;
+  if (fb_contact_row_step(&u, &law, d->mapping, h, m_eff, 1, delta, ddot, c->ep.v0, onset,
+                          persistence) != FB_OK)
+    return;
+  /* the contact point on the hole wall, normal N = -n into the pin */
+  const double r_hole = d->pin_radius + d->radial_clearance;
+  const btVector3 pt(q[0] + r_hole * n[0], q[1] + r_hole * n[1], 0);
+  if (d->mapping == FB_MAPPING_MATCHED_STATIC && u.erp > 0.0) {
+    /* as ODE's scene: the penetration's drift over the step the row cannot
+     * see (rotation of both points, curvature of the circle) */
+    const btVector3 bp = point_drift(c->pin, p, h), bq = point_drift(c->hole, q, h);
+    const double dp[2] = {bp[0], bp[1]}, dq[2] = {bq[0], bq[1]}, e_rate[2] = {ev[0], ev[1]};
+    u.depth += fb_contact_step_drift(n, dp, dq, e_rate, ecc, h) / u.erp;
+  }
+  c->share = u.step_share;
+  note_row(c, &u, m_eff, h);
+  FbRow &r = c->row->row[0];
+  r.n = btVector3(-n[0], -n[1], 0);
+  r.p = pt;
+  r.angular = 0;
+  r.rhs = u.erp * u.depth / h;
+  r.cfm_h = u.cfm / h;
+  r.lo = 0.0;
+  r.hi = SIMD_INFINITY;
+  c->row->nrows = 1;
+}
+
+/* the two rows of ideal joint j: the bodies' joint points coincide */
+static void pin_rows(fb_bullet_scene *s, int j) {
+  const double h = s->def.solver.h, erp = s->def.solver.world_erp;
+  const btVector3 pa = world_point(s->b1[j], s->pin_local[j][0]);
+  const btVector3 pb = world_point(s->b2[j], s->pin_local[j][1]);
+  for (int k = 0; k < 2; k++) {
+    FbRow &r = s->pin[j]->row[k];
+    r.n = btVector3(k == 0, k == 1, 0);
+    r.p = pa;
+    r.angular = 0;
+    r.rhs = erp * (pb[k] - pa[k]) / h; /* J v = d(pa - pb)/dt: closes the gap at rate erp/h */
+    r.cfm_h = 0.0;
+    r.lo = -SIMD_INFINITY;
+    r.hi = SIMD_INFINITY;
+  }
+}
+
+extern "C" fb_status fb_bullet_scene_step(fb_bullet_scene *s, fb_diag *diag) {
+  const double h = s->def.solver.h;
+  s->w_valid = 0;
+  for (int j = 0; j < 4; j++) {
+    if (s->pin[j]) pin_rows(s, j);
+    if (!(s->def.clearance_mask & (1 << j))) continue;
+    Clearance *c = &s->cl[j];
+    c->step_wdh = c->step_hw = 0.0;
+    clearance_row(s, j);
+    c->phase = c->step_hw > 0.0 ? c->phase + c->step_hw : 0.0;
+  }
+  for (int j = 0; j < 4; j++) {
+    const double wdh = s->cl[j].step_wdh;
+    if (!fb_mapping_is_matched(s->def.mapping) || !(wdh > FB_MATCHED_ALIAS_BOUND)) continue;
+    s->stop.kind = FB_STOP_ALIASED;
+    s->stop.t = (double)s->steps * h;
+    s->stop.step = s->steps + 1;
+    s->stop.joint = j;
+    s->stop.value = wdh;
+    s->stop.limit = FB_MATCHED_ALIAS_BOUND;
+    s->stop.h_max = h * FB_MATCHED_ALIAS_BOUND / wdh;
+    return fb_diag_set(diag, FB_ERR_NUMERIC,
+                       "aliased: omega_d h = %.3g at the %s joint (bound %.3g); largest usable "
+                       "step %.3g s",
+                       wdh, fb_joint_name(j), FB_MATCHED_ALIAS_BOUND, s->stop.h_max);
+  }
+  FbRow &dr = s->drive->row[0];
+  dr.n = btVector3(0, 0, 1);
+  dr.angular = 1;
+  dr.rhs = s->def.omega2;
+  dr.cfm_h = 0.0;
+  dr.lo = -s->def.solver.drive_torque_max * h;
+  dr.hi = s->def.solver.drive_torque_max * h;
+  FbMlcp *mlcp = s->def.bullet.solver == FB_BULLET_MLCP_DANTZIG
+                     ? static_cast<FbMlcp *>(s->w->solver.s)
+                     : nullptr;
+  const int fallbacks = mlcp ? mlcp->getNumFallbacks() : 0;
+  s->w->world.stepSimulation(h, 0, h);
+  if (mlcp && mlcp->getNumFallbacks() > fallbacks) {
+    /* btMLCPSolver falls back to sequential impulse when the Dantzig solve
+     * fails; that step is no longer the direct solver's: stop, say so */
+    s->stop.kind = FB_STOP_SOLVER;
+    s->stop.t = (double)s->steps * h;
+    s->stop.step = s->steps + 1;
+    snprintf(s->stop.detail, sizeof s->stop.detail,
+             "btDantzigSolver failed (btMLCPSolver fell back to sequential impulse)");
+    return fb_diag_set(diag, FB_ERR_NUMERIC,
+                       "bullet: the Dantzig MLCP solve failed at t = %.6g s (step %zu); "
+                       "[bullet] solver = sequential-impulse runs the iterative solver on purpose",
+                       s->stop.t, s->stop.step);
+  }
+  s->steps++;
+  s->drive_torque = s->drive->getAppliedImpulse() / h;
+  for (int j = 0; j < 4; j++) {
+    Clearance *c = &s->cl[j];
+    if (!c->row) continue;
+    const double imp = c->row->nrows ? c->row->getAppliedImpulse() : 0.0;
+    const FbRow &r = c->row->row[0];
+    c->force = c->row->nrows ? c->share * imp / h : 0.0;
+    c->force_pin[0] = c->row->nrows ? c->force * r.n[0] : 0.0; /* N pushes the pin */
+    c->force_pin[1] = c->row->nrows ? c->force * r.n[1] : 0.0;
+  }
+  for (int i = 0; i < 3; i++) {
+    const double w = s->body[i]->getAngularVelocity()[2];
+    s->alpha[i] = (w - s->omega_prev[i]) / h;
+    s->omega_prev[i] = w;
+    const double a = body_angle(s->body[i]);
+    s->angle[i] += remainder(a - s->angle[i], 2.0 * M_PI);
+  }
+  return FB_OK;
+}
+
+extern "C" void fb_bullet_scene_stopped(const fb_bullet_scene *s, fb_stop *out) {
+  *out = s->stop;
+  out->engine = "bullet";
+  if (out->kind != FB_STOP_ALIASED) out->joint = -1;
+}
+
+static double penetration_of(const fb_bullet_scene *s, const Clearance *c) {
+  btVector3 p, q, ev;
+  geometry(c, &p, &q, &ev);
+  const double pen = hypot(p[0] - q[0], p[1] - q[1]) - s->def.radial_clearance;
+  return pen > 0.0 ? pen : 0.0;
+}
+
+extern "C" void fb_bullet_scene_sample(const fb_bullet_scene *s, fb_sample *x) {
+  x->t = (double)s->steps * s->def.solver.h;
+  x->crank_angle = s->angle[FB_CRANK];
+  x->coupler_angle = s->angle[FB_COUPLER];
+  x->coupler_omega = s->omega_prev[FB_COUPLER];
+  x->coupler_alpha = s->alpha[FB_COUPLER];
+  x->follower_angle = s->angle[FB_FOLLOWER];
+  x->follower_omega = s->omega_prev[FB_FOLLOWER];
+  x->follower_alpha = s->alpha[FB_FOLLOWER];
+  for (int j = 0; j < 4; j++) {
+    for (int k = 0; k < FB_CONTACT_COLS; k++) x->contact[j][k] = 0.0;
+    if (!(s->def.clearance_mask & (1 << j))) continue;
+    const Clearance *c = &s->cl[j];
+    btVector3 p, q, ev;
+    geometry(c, &p, &q, &ev);
+    x->contact[j][FB_C_FORCE] = c->force;
+    x->contact[j][FB_C_PEN] = penetration_of(s, c);
+    x->contact[j][FB_C_EX] = p[0] - q[0];
+    x->contact[j][FB_C_EY] = p[1] - q[1];
+    x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->ep.state : (double)FB_STATE_FREE;
+  }
+}
+
+extern "C" double fb_bullet_scene_joint_drift(const fb_bullet_scene *s) {
+  double worst = 0.0;
+  for (int j = 0; j < 4; j++) {
+    if (!s->pin[j]) continue;
+    const btVector3 d =
+        world_point(s->b1[j], s->pin_local[j][0]) - world_point(s->b2[j], s->pin_local[j][1]);
+    if (d.length() > worst) worst = d.length();
+  }
+  return worst;
+}
+
+extern "C" double fb_bullet_scene_penetration(const fb_bullet_scene *s, int *joint) {
+  double worst = 0.0;
+  *joint = -1;
+  for (int j = 0; j < 4; j++) {
+    if (!(s->def.clearance_mask & (1 << j))) continue;
+    const double pen = penetration_of(s, &s->cl[j]);
+    if (*joint < 0 || pen > worst) worst = pen, *joint = j;
+  }
+  return worst;
+}
+
+extern "C" void fb_bullet_scene_provenance(const fb_bullet_scene *s, int j,
+                                           fb_contact_provenance *out) {
+  *out = s->cl[j].prov;
+  if (out->contact_steps == 0)
+    out->mass_eff_min = out->mass_eff_max = out->erp_max = out->cfm_min = out->h_omega_max = NAN;
+}
+
+extern "C" void fb_bullet_scene_reactions(const fb_bullet_scene *s, double force[4][2],
+                                          double *drive_torque) {
+  const int on_body2[4] = {0, 1, 1, 0};
+  for (int j = 0; j < 4; j++) {
+    if (!s->pin[j]) {
+      const double sign = on_body2[j] ? -1.0 : 1.0;
+      force[j][0] = sign * s->cl[j].force_pin[0];
+      force[j][1] = sign * s->cl[j].force_pin[1];
+      continue;
+    }
+    const btVector3 &f = on_body2[j] ? s->feedback[j].m_appliedForceBodyB
+                                     : s->feedback[j].m_appliedForceBodyA;
+    force[j][0] = s->steps ? f[0] : 0.0;
+    force[j][1] = s->steps ? f[1] : 0.0;
+  }
+  *drive_torque = s->steps ? s->drive_torque : 0.0;
+}
+
+extern "C" int fb_bullet_scene_impacts(const fb_bullet_scene *s, int j) {
+  return s->cl[j].ep.impacts;
+}
+
+extern "C" size_t fb_bullet_scene_steps(const fb_bullet_scene *s) { return s->steps; }
+
+extern "C" void fb_bullet_scene_destroy(fb_bullet_scene *s) { scene_free(s); }

@@ -1,0 +1,53 @@
+/* The Bullet engine behind the engine interface (engine.h): thin wrappers
+ * over the Bullet scene (bullet_scene.h, C++ behind C linkage). */
+#include "bullet_scene.h"
+#include "engine.h"
+
+static fb_status bullet_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+  fb_bullet_scene *s = NULL;
+  fb_status st = fb_bullet_scene_create(&s, sm, diag);
+  if (st == FB_OK) *self = s;
+  return st;
+}
+
+static fb_status bullet_step(void *self, fb_diag *diag) { return fb_bullet_scene_step(self, diag); }
+
+static void bullet_stopped(const void *self, fb_stop *out) { fb_bullet_scene_stopped(self, out); }
+
+static void bullet_sample(const void *self, fb_sample *x) { fb_bullet_scene_sample(self, x); }
+
+static void bullet_contact(const void *self, fb_engine_contact *out) {
+  out->penetration = fb_bullet_scene_penetration(self, &out->joint);
+  for (int j = 0; j < 4; j++) out->impacts[j] = fb_bullet_scene_impacts(self, j);
+}
+
+static void bullet_provenance(const void *self, int joint, fb_contact_provenance *out) {
+  fb_bullet_scene_provenance(self, joint, out);
+}
+
+static void bullet_reactions(const void *self, double force[4][2], double *drive_torque) {
+  fb_bullet_scene_reactions(self, force, drive_torque);
+}
+
+static double bullet_drift(const void *self) { return fb_bullet_scene_joint_drift(self); }
+
+static size_t bullet_steps(const void *self) { return fb_bullet_scene_steps(self); }
+
+static void bullet_destroy(void *self) { fb_bullet_scene_destroy(self); }
+
+const fb_engine fb_engine_bullet = {
+    .name = "bullet",
+    .guarded = 1,
+    .step_values_lag = 1,
+    .refine_peaks = 1,
+    .create = bullet_create,
+    .step = bullet_step,
+    .stopped = bullet_stopped,
+    .sample = bullet_sample,
+    .contact = bullet_contact,
+    .provenance = bullet_provenance,
+    .reactions = bullet_reactions,
+    .drift = bullet_drift,
+    .steps = bullet_steps,
+    .destroy = bullet_destroy,
+};

@@ -11,6 +11,10 @@
 #include "fileio.h"
 #include "outcome_text.h"
 #include "start.h"
+#include "clock.h"
+#include "series_write.h"
+#include <stdlib.h>
+#include <sys/stat.h>
 
 /* finite number or null */
 static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
@@ -482,6 +486,10 @@ static json_t *masses_json(const fb_case *c) {
   return o;
 }
 
+static const char *series_format_name(fb_series_format f) {
+  return f == FB_SERIES_HDF5 ? "hdf5" : f == FB_SERIES_NONE ? "none" : "csv";
+}
+
 json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   const fb_case *c = &r->c;
   json_t *o = json_object();
@@ -506,6 +514,9 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
                                                     : "dWorldQuickStep"));
   json_object_set_new(o, "stackup", stackup_json(c));
   json_object_set_new(o, "masses", masses_json(c));
+  json_object_set_new(o, "series",
+                      json_pack("{s:s,s:i,s:s}", "format", series_format_name(c->series), "every",
+                                c->series_every, "rule", FB_SERIES_KEEP_RULE));
   json_t *an = json_object();
   json_object_set_new(an, "coupler", fb_report_body_peaks_json(&r->analytic_nominal.coupler));
   json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
@@ -541,38 +552,66 @@ fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag)
   return fb_outfile_commit(&out, diag);
 }
 
-/* writes one series as CSV (header of unit-suffixed column names) */
-static fb_status write_csv(const char *path, const fb_series *s, fb_diag *diag) {
-  fb_outfile out;
-  fb_status st = fb_outfile_open(&out, path, diag);
-  if (st != FB_OK) return st;
-  size_t nc = fb_series_column_count(s);
-  char name[96];
-  for (size_t k = 0; k < nc; k++)
-    fprintf(out.f, "%s%s", k ? "," : "", fb_series_column_name(s, k, name, sizeof name));
-  fputc('\n', out.f);
-  for (size_t i = 0; i < s->n; i++) {
-    for (size_t k = 0; k < nc; k++) fprintf(out.f, "%s%.12g", k ? "," : "", fb_series_value(s, k, i));
-    fputc('\n', out.f);
+/* bytes of the file at path (0 when it cannot be read) */
+static double file_bytes(const char *path) {
+  struct stat sb;
+  return stat(path, &sb) == 0 ? (double)sb.st_size : 0.0;
+}
+
+/* the time series in the case's format ([run] series, series_every); the
+ * wall time and bytes written go to *write_s and *bytes */
+static fb_status write_series(const char *dir, const fb_run *r, const char *case_path,
+                              double *write_s, double *bytes, fb_diag *diag) {
+  char path[4096];
+  const fb_case *c = &r->c;
+  *write_s = 0.0;
+  *bytes = 0.0;
+  if (c->series == FB_SERIES_NONE) return FB_OK;
+  const double t0 = fb_clock_s();
+  unsigned char *keep[FB_MAX_MODELS] = {0};
+  fb_status st = FB_OK;
+  if (c->series_every > 1)
+    for (int i = 0; i < r->n && st == FB_OK; i++) {
+      const fb_series *s = &r->model[i].run.series;
+      keep[i] = malloc(s->n ? s->n : 1);
+      if (!keep[i]) st = fb_diag_set(diag, FB_ERR_NOMEM, "series selection: out of memory");
+      else fb_series_keep(s, c->series_every, keep[i]);
+    }
+  if (st == FB_OK && c->series == FB_SERIES_HDF5) {
+    snprintf(path, sizeof path, "%s/series.h5", dir);
+    json_t *j = fb_report_summary_json(r, case_path);
+    char *text = json_dumps(j, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
+    json_decref(j);
+    st = fb_series_write_hdf5(path, r, keep, text, diag);
+    free(text);
+    *bytes = file_bytes(path);
   }
-  return fb_outfile_commit(&out, diag);
+  if (c->series == FB_SERIES_CSV)
+    for (int i = 0; i < r->n && st == FB_OK; i++) {
+      snprintf(path, sizeof path, "%s/%s.csv", dir, r->model[i].run.name);
+      st = fb_series_write_csv(path, &r->model[i].run.series, keep[i], diag);
+      *bytes += file_bytes(path);
+    }
+  for (int i = 0; i < r->n; i++) free(keep[i]);
+  *write_s = fb_clock_s() - t0;
+  return st;
 }
 
 fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
                               fb_diag *diag) {
   char path[4096];
-  for (int i = 0; i < r->n; i++) {
-    snprintf(path, sizeof path, "%s/%s.csv", dir, r->model[i].run.name);
-    fb_status st = write_csv(path, &r->model[i].run.series, diag);
-    if (st != FB_OK) return st;
-  }
+  double write_s, bytes;
+  fb_status st = write_series(dir, r, case_path, &write_s, &bytes, diag);
+  if (st != FB_OK) return st;
   snprintf(path, sizeof path, "%s/summary.json", dir);
   json_t *j = fb_report_summary_json(r, case_path);
-  fb_status st = fb_report_write_json(path, j, diag);
+  st = fb_report_write_json(path, j, diag);
   json_decref(j);
   if (st != FB_OK) return st;
   snprintf(path, sizeof path, "%s/timing.json", dir);
   j = fb_report_timing_json(r);
+  json_object_set_new(j, "series_write_s", json_real(write_s));
+  json_object_set_new(j, "series_bytes", json_integer((json_int_t)bytes));
   st = fb_report_write_json(path, j, diag);
   json_decref(j);
   return st;

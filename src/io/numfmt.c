@@ -3,11 +3,17 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <string.h>
 
 /* exact powers of ten: every 10^k with 0 <= k <= 22 is a double */
 static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+/* 10^k for -10 <= k <= 12 (index k + 10), for the exponent estimate */
+static const double pow10_range[23] = {1e-10, 1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3,
+                                       1e-2,  1e-1, 1e0,  1e1,  1e2,  1e3,  1e4,  1e5,
+                                       1e6,   1e7,  1e8,  1e9,  1e10, 1e11, 1e12};
 
 /* the product x 10^k (or quotient) has one rounding error of at most half
  * an ulp: below 2^40 (12 digits) that is 2^-13 < 1.3e-4, so a fractional
@@ -38,10 +44,30 @@ static int scaled(double a, int e, uint64_t *m) {
   return 1;
 }
 
+/* floor(log10(a)) for a normal double, or one less next to a power of
+ * ten (the caller corrects it): the binary exponent times log10(2) */
+static int decimal_exponent(double a) {
+  uint64_t bits;
+  memcpy(&bits, &a, sizeof bits);
+  const int e2 = (int)((bits >> 52) & 0x7ff) - 1023;
+  /* 78913 / 2^18 = 0.30102920532 ~ log10(2); the arithmetic shift floors */
+  int e = (e2 * 78913) >> 18;
+  if (e + 1 >= -10 && e + 1 <= 12 && a >= pow10_range[e + 1 + 10]) e++;
+  return e;
+}
+
 size_t fb_numfmt_g12(char *buf, double x) {
+  if (x == 0.0) { /* the free-flight contact columns: many zeros */
+    if (signbit(x)) {
+      memcpy(buf, "-0", 3);
+      return 2;
+    }
+    memcpy(buf, "0", 2);
+    return 1;
+  }
   const double a = fabs(x);
-  if (!(a >= 1e-10 && a < 1e12)) return slow(buf, x); /* 0, tiny, huge, inf, nan */
-  int e = (int)floor(log10(a));
+  if (!(a >= 1e-10 && a < 1e12)) return slow(buf, x); /* tiny, huge, inf, nan */
+  int e = decimal_exponent(a);
   uint64_t m;
   if (!scaled(a, e, &m)) return slow(buf, x);
   /* log10 can be one off next to a power of ten; rounding can carry to 1e12 */

@@ -100,7 +100,7 @@ int fb_cmd_run(int argc, char **argv) {
         sets[series_at] = series_set;
         break;
       case 'h': fputs(run_help, stdout); return 0;
-      default: fputs(run_help, stderr); return 2;
+      default: return fb_cli_bad_option(argv, "o:s:jh");
     }
   }
   fb_diag diag;

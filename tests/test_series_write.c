@@ -127,8 +127,13 @@ static void read_attr_string(hid_t obj, const char *name, char *out, size_t size
   hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
   assert_true(a >= 0);
   hid_t t = H5Aget_type(a);
-  assert_true(H5Tget_size(t) <= size);
-  assert_true(H5Aread(a, t, out) >= 0);
+  assert_true(H5Tis_variable_str(t) > 0);
+  char *text = NULL;
+  assert_true(H5Aread(a, t, &text) >= 0);
+  assert_non_null(text);
+  assert_true(strlen(text) < size);
+  snprintf(out, size, "%s", text);
+  H5free_memory(text);
   H5Tclose(t);
   H5Aclose(a);
 }

@@ -341,7 +341,7 @@ static const key_spec keys[] = {
     {"run", "series_every", K_INT, OFF(series_every), 0, 1, 1e9, 0, 0, "-", "1",
      "a whole number from 1 to 1000000000",
      "write every N-th sample of the time series, and every sample of each impact episode "
-     "(contact state not free, with one sample either side)"},
+     "(contact state impact, with one sample either side)"},
     {"run", "models", K_MODELS, OFF(models), 0, 0, 0, 0, 0, "-",
      "analytic, analytic-stackup, ode-ideal-nominal, ode-ideal-stackup", "known model names",
      "models to run, comma-separated; not given: the default list, and for a case with "

@@ -16,14 +16,16 @@
  * level 9 at a fraction of its time (measured in docs/series.md) */
 #define FB_H5_DEFLATE 4
 
+/* a variable-length UTF-8 string attribute: h5py reads it as str, pandas
+ * and MATLAB (h5readatt) as text */
 static int attr_string(hid_t obj, const char *name, const char *value) {
   hid_t type = H5Tcopy(H5T_C_S1);
   if (type < 0) return -1;
-  H5Tset_size(type, strlen(value) + 1);
+  H5Tset_size(type, H5T_VARIABLE);
   H5Tset_cset(type, H5T_CSET_UTF8);
   hid_t space = H5Screate(H5S_SCALAR);
   hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-  int rc = a < 0 ? -1 : H5Awrite(a, type, value);
+  int rc = a < 0 ? -1 : H5Awrite(a, type, &value);
   if (a >= 0) H5Aclose(a);
   H5Sclose(space);
   H5Tclose(type);

@@ -17,7 +17,7 @@ size_t fb_series_keep(const fb_series *s, int every, unsigned char *keep) {
     if (!(s->contact_mask & (1 << j))) continue;
     const double *state = s->contact[j][FB_C_STATE];
     for (size_t i = 0; i < n; i++) {
-      if (state[i] == FB_STATE_FREE) continue;
+      if (state[i] != FB_STATE_IMPACT) continue;
       keep[i] = 1;
       if (i > 0) keep[i - 1] = 1;
       if (i + 1 < n) keep[i + 1] = 1;

@@ -14,10 +14,11 @@
 
 /* The sample selection rule, in words (written into series.h5 and
  * summary.json's "series" object). */
-#define FB_SERIES_KEEP_RULE                                                              \
-  "every N-th sample (i mod N = 0), the last sample, and every sample of an impact "    \
-  "episode: a sample whose contact state is not free in any clearance joint, with one " \
-  "sample either side"
+#define FB_SERIES_KEEP_RULE                                                                \
+  "every N-th sample (i mod N = 0), the last sample, and every sample of an impact "      \
+  "episode (contact state impact, 1, in any clearance joint: its compression and "        \
+  "restitution) with one sample either side; free flight and continuous contact are kept " \
+  "every N-th sample"
 
 /* Marks in keep (s->n bytes, 1 kept, 0 dropped) the samples written with
  * series_every = every (>= 1; 1 keeps all), by FB_SERIES_KEEP_RULE.

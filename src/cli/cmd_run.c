@@ -201,8 +201,11 @@ int fb_cmd_run(int argc, char **argv) {
     json_decref(t);
   } else {
     fb_report_print_table(stdout, &r);
-    printf("wrote %s/summary.json, timing.json, %d CSV files, %d figures and report.md\n", dir,
-           r.n, nfig);
+    char series[64];
+    if (r.c.series == FB_SERIES_CSV) snprintf(series, sizeof series, "%d CSV files", r.n);
+    else if (r.c.series == FB_SERIES_HDF5) snprintf(series, sizeof series, "series.h5 (%d models)", r.n);
+    else snprintf(series, sizeof series, "no time series");
+    printf("wrote %s/summary.json, timing.json, %s, %d figures and report.md\n", dir, series, nfig);
   }
   fb_run_free(&r);
   return 0;

@@ -1072,7 +1072,10 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
   fprintf(f, "Command: `%s`  \nCase file: `%s`\n\n", command, case_path ? case_path : "-");
   fprintf(f, "## Summary\n\n```\n");
   fb_report_print_table(f, r);
-  fprintf(f, "```\n\nPer-model series: `<model>.csv`; every number: `summary.json`.\n\n");
+  fprintf(f, "```\n\nPer-model series: %s; every number: `summary.json`.\n\n",
+          r->c.series == FB_SERIES_HDF5   ? "`series.h5`, a group per model (docs/series.md)"
+          : r->c.series == FB_SERIES_NONE ? "none written (`[run] series = none`)"
+                                          : "`<model>.csv`");
   fprintf(f, "## Parameters\n\n| quantity | value | source |\n|---|---|---|\n");
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);

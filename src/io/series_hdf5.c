@@ -14,7 +14,7 @@
 #define FB_H5_CHUNK 8192
 /* deflate level: 4 compresses these smooth columns within a few percent of
  * level 9 at a fraction of its time (measured in docs/series.md) */
-#define FB_H5_DEFLATE 4
+#define FB_H5_DEFLATE 1
 
 /* a variable-length UTF-8 string attribute: h5py reads it as str, pandas
  * and MATLAB (h5readatt) as text */

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "casefile.h"
+#include "fb_config.h"
 #include "fb_test.h"
 #include "model_table.h"
 
@@ -127,6 +128,15 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                (const char *[]){":2:", "unknown section [linkge]", "[linkage]", NULL});
   expect_error("[linkage]\ncrank_mm = 108\ncrank_mm = 100\n", NULL, 0, FB_ERR_PARSE,
                (const char *[]){":3:", "duplicate key 'crank_mm'", ":2", NULL});
+  /* the time-series keys (docs/series.md) */
+  expect_error("[run]\nseries = xml\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "series = 'xml'", "csv, hdf5 or none", NULL});
+  expect_error("[run]\nseries_every = 0\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){":2:", "series_every = 0", "from 1", NULL});
+#if !FB_HAVE_HDF5
+  expect_error("[run]\nseries = hdf5\n", NULL, 0, FB_ERR_ARG,
+               (const char *[]){":2:", "built without HDF5", "libhdf5-dev", "-Dhdf5=enabled", NULL});
+#endif
   expect_error("[linkage]\ncrank_mm = -3\n", NULL, 0, FB_ERR_RANGE,
                (const char *[]){":2:", "crank_mm = -3", "must be positive", NULL});
   expect_error("[linkage]\ncrank_mm = nan\n", NULL, 0, FB_ERR_PARSE,

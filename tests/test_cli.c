@@ -755,6 +755,106 @@ static void test_own_fourbar_derived_masses(void **state) {
     fail_msg("report.md gives a source other than default for the drive the case never set");
 }
 
+/* The printed run table (issue 30): a verdict per model first, every line
+ * at most 120 columns with the longest model name of the build, the peaks
+ * printed once, the clearance effect not called an error; the terminal is
+ * the oracle's width */
+#define TABLE_COLUMNS 120
+static void test_run_table_fits_and_says_it_once(void **state) {
+  (void)state;
+  static char out[1 << 16], err[1 << 14];
+  char args[512];
+  snprintf(args, sizeof args,
+           "run --no-figures --out %s/table --set run.revolutions=1 --set run.peaks=all "
+           "--set run.models=analytic,ode-clearance-impact,reference%s",
+           tmpdir, FB_HAVE_MUJOCO ? ",mujoco-clearance-restitution" : "");
+  if (run(args, out, sizeof out, err, sizeof err) != 0) fail_msg("run failed: %s", err);
+  int lineno = 0;
+  for (const char *p = out; *p;) {
+    const char *nl = strchr(p, '\n');
+    const size_t len = nl ? (size_t)(nl - p) : strlen(p);
+    lineno++;
+    if (len > TABLE_COLUMNS) fail_msg("line %d is %zu columns wide:\n%.*s", lineno, len, (int)len, p);
+    p = nl ? nl + 1 : p + len;
+  }
+  /* the verdict is the first table, before the header's stack-up lines */
+  const char *verdict = strstr(out, "\nverdict (");
+  const char *stackup = strstr(out, "stack-up corner");
+  if (!verdict || !stackup || verdict > stackup) fail_msg("the verdict does not come first:\n%s", out);
+  assert_non_null(strstr(verdict, "\nanalytic "));
+  assert_null(strstr(out, "peak err vs exact"));
+  assert_null(strstr(out, "angular velocity, rad/s\n")); /* the old second copy of the peaks */
+  assert_non_null(strstr(out, "clearance effect"));
+  /* the model column holds the longest name: its row's verdict column
+   * starts where the header's does */
+  const char *name = FB_HAVE_MUJOCO ? "mujoco-clearance-restitution" : "ode-clearance-impact";
+  const char *row = strstr(verdict, name);
+  assert_non_null(row);
+  assert_true(row[strlen(name)] == ' ');
+  /* each model's coupler omega max appears once, in the peaks table */
+  json_error_t je;
+  char path[512];
+  snprintf(path, sizeof path, "%s/table/summary.json", tmpdir);
+  json_t *j = json_load_file(path, 0, &je);
+  assert_non_null(j);
+  json_t *m0 = json_array_get(json_object_get(j, "models"), 0);
+  char peak[32];
+  snprintf(peak, sizeof peak, " %.4f ", json_real_value(json_object_get(json_object_get(m0, "coupler"), "omega_max_rad_s")));
+  const char *first = strstr(out, peak);
+  if (!first || strstr(first + 1, peak)) fail_msg("'%s' is not printed exactly once:\n%s", peak, out);
+  json_decref(j);
+}
+
+/* an unknown option is one line naming it and pointing at --help, exit 2
+ * (it printed the whole help) */
+static void test_unknown_option_is_one_line(void **state) {
+  (void)state;
+  static char out[1 << 14], err[1 << 14];
+  const char *cmds[] = {"run --bogus", "stackup --nope=3", "sweep -q", "fit --zzz 10H7/g6"};
+  const char *names[] = {"'--bogus'", "'--nope'", "'-q'", "'--zzz'"};
+  for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+    assert_int_equal(run(cmds[i], out, sizeof out, err, sizeof err), 2);
+    const char *nl = strchr(err, '\n');
+    if (!nl || nl[1] != '\0') fail_msg("%s: not one line:\n%s", cmds[i], err);
+    if (!strstr(err, names[i]) || !strstr(err, "--help") || strstr(err, "usage:"))
+      fail_msg("%s: %s", cmds[i], err);
+  }
+  assert_int_equal(run("run --out", out, sizeof out, err, sizeof err), 2);
+  assert_non_null(strstr(err, "'--out' needs a value"));
+}
+
+/* stackup prints all four length sensitivities of every output, with the
+ * unit, equal to --json's sensitivity_per_m (printed with 5 digits) */
+#define SENS_PRINT_REL 5e-5
+static void test_stackup_prints_every_sensitivity(void **state) {
+  (void)state;
+  static char out[1 << 16], err[1 << 14];
+  assert_int_equal(run("stackup --method corners", out, sizeof out, err, sizeof err), 0);
+  const char *t = strstr(out, "\nsensitivities ");
+  assert_non_null(t);
+  const char *row = strstr(t, "\ncoupler_alpha_max_rad_s2 ");
+  assert_non_null(row);
+  double v[4];
+  char unit[32];
+  assert_int_equal(sscanf(row, " coupler_alpha_max_rad_s2 %lf %lf %lf %lf %31[^\n]", &v[0], &v[1], &v[2], &v[3], unit), 5);
+  assert_string_equal(unit, "rad/s^2 per m");
+  assert_int_equal(run("stackup --method corners --json", out, sizeof out, err, sizeof err), 0);
+  json_error_t je;
+  json_t *j = json_loads(out, 0, &je);
+  assert_non_null(j);
+  json_t *outs = json_object_get(j, "outputs");
+  const char *links[4] = {"crank", "coupler", "follower", "ground"};
+  for (size_t i = 0; i < json_array_size(outs); i++) {
+    json_t *o = json_array_get(outs, i);
+    if (strcmp(json_string_value(json_object_get(o, "name")), "coupler_alpha_max_rad_s2") != 0) continue;
+    for (int k = 0; k < 4; k++) {
+      const double want = json_real_value(json_object_get(json_object_get(o, "sensitivity_per_m"), links[k]));
+      assert_rel(v[k], want, SENS_PRINT_REL);
+    }
+  }
+  json_decref(j);
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_cli PATH_TO_FOURBAR\n");
@@ -778,6 +878,9 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_loads_table_names_its_window),
       cmocka_unit_test(test_mapping_help_default_mass),
       cmocka_unit_test(test_own_fourbar_derived_masses),
+      cmocka_unit_test(test_run_table_fits_and_says_it_once),
+      cmocka_unit_test(test_unknown_option_is_one_line),
+      cmocka_unit_test(test_stackup_prints_every_sensitivity),
   };
   int rc = cmocka_run_group_tests(tests, NULL, NULL);
   char cmd[128];

@@ -91,7 +91,8 @@ with tempfile.TemporaryDirectory() as tmp:
         check(root.tag == SVG + "svg", fig["file"] + " is an SVG document")
         if fig["file"] in ("omega.svg", "alpha.svg"):
             # plot groups: gnuplot_plot_<k><panel>, k counting the curves of one panel
-            letters = {"coupler": "a", "follower": "b", "coupler residual": "c", "follower residual": "d"}
+            letters = {"coupler": "a", "follower": "b", "coupler residual": "c", "follower residual": "d",
+                       "coupler engine difference": "e", "follower engine difference": "f"}
             seen = {}
             for c in fig["curves"]:
                 panel = letters[c["panel"]]
@@ -191,6 +192,57 @@ with tempfile.TemporaryDirectory() as tmp:
                         capture_output=True, text=True)
     with open(os.path.join(out3, "omega.png"), "rb") as f:
         check(f.read(8) == b"\x89PNG\r\n\x1a\n", "--figure-format png writes PNG")
+
+    # ---- engines apart: colour families, the difference row, no empty row --
+    def run_models(name, models):
+        d = os.path.join(tmp, name)
+        r = subprocess.run([exe, "run", "--out", d, "--set", "run.revolutions=1", "--set", "run.peaks=all",
+                            "--set", "run.models=" + models], capture_output=True, text=True)
+        return d, r
+
+    d, r = run_models("analytic_only", "analytic,analytic-stackup")
+    check(r.returncode == 0, "analytic-only run: " + r.stderr[-300:])
+    om = [f for f in json.load(open(os.path.join(d, "figures.json")))["figures"] if f["file"] == "omega.svg"][0]
+    check(not [c for c in om["curves"] if "residual" in c["panel"]], "analytic-only omega.svg has no residual curve")
+    text = svg_text(ET.parse(os.path.join(d, "omega.svg")).getroot())
+    check("model minus analytic" not in text and "no ODE model" not in text,
+          "analytic-only omega.svg draws no empty residual panel")
+
+    d, r = run_models("engines", "analytic,ode-ideal-stackup,mujoco-ideal-stackup")
+    if r.returncode == 0:
+        figs = json.load(open(os.path.join(d, "figures.json")))["figures"]
+        om = [f for f in figs if f["file"] == "omega.svg"][0]
+        col = {c["model"]: c["color"] for f in figs for c in f["curves"] if "color" in c}
+        check(col["ode-ideal-stackup"] != col["mujoco-ideal-stackup"],
+              "ODE and MuJoCo models have their own colours: %s" % col)
+        diff = [c for c in om["curves"] if "engine difference" in c["panel"]]
+        check(len(diff) == 2 and all(c["derived"] == "mujoco-ideal-stackup minus ode-ideal-stackup at the same instants"
+                                     for c in diff), "omega.svg has the engine difference row: %s" % diff)
+        # the same step for both engines: the difference at the same samples,
+        # min/max decimation keeps its extremes
+        a = list(csv.DictReader(open(os.path.join(d, "ode-ideal-stackup.csv"))))
+        b = list(csv.DictReader(open(os.path.join(d, "mujoco-ideal-stackup.csv"))))
+        for c in diff:
+            body = c["panel"].split()[0]
+            k = body + "_omega_rad_s"
+            dv = [float(y[k]) - float(x[k]) for x, y in zip(a, b)
+                  if c["time_from_s"] <= float(x["time_s"]) <= c["time_to_s"]]
+            tol = REL_TOL * max(abs(v) for v in dv) + 1e-9
+            check(abs(max(dv) - c["y_max"]) <= tol and abs(min(dv) - c["y_min"]) <= tol,
+                  "%s difference extremes %g..%g vs CSV %g..%g" % (body, c["y_min"], c["y_max"], min(dv), max(dv)))
+    else:
+        check("unknown model" in r.stderr or "mujoco" in r.stderr, "engines run: " + r.stderr[-300:])
+
+    # a Monte Carlo study that lists the ideal model's metrics first still
+    # draws the spike distribution it exists for
+    studies = os.path.join(os.path.dirname(os.path.abspath(__file__)), "studies")
+    d = os.path.join(tmp, "study_mixed")
+    r = subprocess.run([exe, "sweep", os.path.join(studies, "tiny_mc_mixed.ini"), "--out", d],
+                       capture_output=True, text=True)
+    check(r.returncode == 0, "sweep tiny_mc_mixed: " + r.stderr[-300:])
+    panels = json.load(open(os.path.join(d, "study.figure.json")))["panels"]
+    check(panels and all(".spikes." in p["metric"] for p in panels),
+          "the Monte Carlo figure draws spike metrics: %s" % [p["metric"] for p in panels])
 
     # ---- study.svg ----------------------------------------------------------
     studies = os.path.join(os.path.dirname(os.path.abspath(__file__)), "studies")

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <getopt.h>
 #include <unistd.h>
 
 #include "casefile.h"
@@ -140,4 +141,22 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
   fb_diag d;
   if (fb_casefile_load(c, path, sets, nsets, &d) != FB_OK) return fb_cli_fail(cmd, 2, "%s", d.msg);
   return 0;
+}
+
+int fb_cli_bad_option(char **argv, const char *shortopts) {
+  const char *token = optind > 0 ? argv[optind - 1] : "";
+  char name[128];
+  int needs_value = 0;
+  if (token && strncmp(token, "--", 2) == 0) {
+    /* a long option: the whole word up to '=' */
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(token, "="), token);
+    needs_value = optopt != 0; /* getopt_long sets optopt for a known option without its value */
+  } else {
+    snprintf(name, sizeof name, "-%c", optopt ? optopt : '?');
+    needs_value = optopt != 0 && optopt != ':' && strchr(shortopts, optopt) != NULL;
+  }
+  fprintf(stderr, "%s: %s '%s'%s (%s --help lists the options)\n", argv[0],
+          needs_value ? "option" : "unknown option", name, needs_value ? " needs a value" : "",
+          argv[0]);
+  return 2;
 }

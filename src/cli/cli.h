@@ -9,6 +9,13 @@
 int fb_cli_fail(const char *cmd, int status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* After getopt_long returned '?' (opterr is 0, main.c): prints one line,
+ * "fourbar <cmd>: unknown option '--x' (fourbar <cmd> --help lists the
+ * options)" or "...: option '--out' needs a value (...)", naming the option
+ * from argv, optind and optopt; shortopts is the string given to
+ * getopt_long. Returns exit status 2. */
+int fb_cli_bad_option(char **argv, const char *shortopts);
+
 /* Parses a finite double from a flag value; returns 0 and prints a message
  * naming the flag on failure. */
 int fb_cli_double(const char *cmd, const char *flag, const char *text, double *out);

@@ -115,7 +115,7 @@ int fb_cmd_bench(int argc, char **argv) {
           return fb_cli_fail("bench", 2, "--grid '%s': must be all, solvers, colliders or bullet", optarg);
         break;
       case 'h': fputs(bench_help, stdout); return 0;
-      default: fputs(bench_help, stderr); return 2;
+      default: return fb_cli_bad_option(argv, "h");
     }
   }
   fb_case c;

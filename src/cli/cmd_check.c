@@ -209,7 +209,7 @@ int fb_cmd_check(int argc, char **argv) {
       case 'k': cal = 1; break;
       case 'j': json = 1; break;
       case 'h': fputs(check_help, stdout); return 0;
-      default: fputs(check_help, stderr); return 2;
+      default: return fb_cli_bad_option(argv, "h");
     }
   }
   /* a baseline is the committed case file's: a variant never replaces it */

@@ -136,7 +136,7 @@ int fb_cmd_impact(int argc, char **argv) {
         break;
       case 'I': if (!fb_cli_double("impact", "--bullet-iterations", optarg, &bt_iter)) return 2; break;
       case 'h': fputs(impact_help, stdout); return 0;
-      default: fputs(impact_help, stderr); return 2;
+      default: return fb_cli_bad_option(argv, "h");
     }
   }
   if (optind < argc) return fb_cli_fail("impact", 2, "unexpected argument '%s'", argv[optind]);

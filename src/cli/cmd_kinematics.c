@@ -66,7 +66,7 @@ int fb_cmd_kinematics(int argc, char **argv) {
         break;
       case 'j': json = 1; break;
       case 'h': fputs(kin_help, stdout); return 0;
-      default: fputs(kin_help, stderr); return 2;
+      default: return fb_cli_bad_option(argv, "h");
     }
   }
   /* a case gives what no flag gave; without one the case files' defaults */

@@ -97,7 +97,7 @@ int fb_cmd_mapping(int argc, char **argv) {
                              optarg);
         break;
       case 'h': fputs(mapping_help, stdout); return 0;
-      default: fputs(mapping_help, stderr); return 2;
+      default: return fb_cli_bad_option(argv, "h");
     }
   }
   if (optind < argc) return fb_cli_fail("mapping", 2, "unexpected argument '%s'", argv[optind]);

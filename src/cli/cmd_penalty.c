@@ -197,7 +197,7 @@ int fb_cmd_penalty(int argc, char **argv) {
       case 'j': json = 1; break;
       case 'o': out_dir = optarg; break;
       case 'h': fputs(penalty_help, stdout); return 0;
-      default: fputs(penalty_help, stderr); return 2;
+      default: return fb_cli_bad_option(argv, "h");
     }
   }
   fb_case c;

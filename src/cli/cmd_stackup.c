@@ -114,7 +114,7 @@ int fb_cmd_stackup(int argc, char **argv) {
         break;
       case 'j': json = 1; break;
       case 'h': fputs(stackup_help, stdout); return 0;
-      default: fputs(stackup_help, stderr); return 2;
+      default: return fb_cli_bad_option(argv, "h");
     }
   }
   if (mask == 0) mask = FB_TOL_CORNERS | FB_TOL_RSS | FB_TOL_MONTECARLO;
@@ -204,9 +204,8 @@ int fb_cmd_stackup(int argc, char **argv) {
   for (int k = 0; k < FB_LINK_COUNT; k++)
     printf("%s %s %.4g +- %.3g mm", k ? "," : "", fb_link_name(k), c.nominal.length[k] * 1e3,
            c.plus_minus[k] * 1e3);
-  printf("\n\n%-28s %12s %12s %12s %12s %12s %12s %12s %12s %12s\n", "output", "nominal",
-         "corner min", "corner max", "rss min", "rss max", "mc 0.135%", "mc 50%", "mc 99.865%",
-         "dOut/dcrank");
+  printf("\n\n%-28s %12s %12s %12s %12s %12s %12s %12s %12s\n", "output", "nominal",
+         "corner min", "corner max", "rss min", "rss max", "mc 0.135%", "mc 50%", "mc 99.865%");
   for (int i = 0; i < FB_TOL_NOUT; i++) {
     printf("%-28s %12.6g", fb_tol_output_name(i), r.nominal[i]);
     if (mask & FB_TOL_CORNERS) printf(" %12.6g %12.6g", r.corner_min[i], r.corner_max[i]);
@@ -215,7 +214,22 @@ int fb_cmd_stackup(int argc, char **argv) {
     else printf(" %12s %12s", "-", "-");
     if (mask & FB_TOL_MONTECARLO) printf(" %12.6g %12.6g %12.6g", r.q[i][0], r.q[i][1], r.q[i][2]);
     else printf(" %12s %12s %12s", "-", "-", "-");
-    printf(" %12.5g\n", r.sens[i][FB_CRANK]);
+    putchar('\n');
+  }
+  /* the exact sensitivities of every output to every link length, each with
+   * its unit (the output's unit per metre of length) */
+  printf("\nsensitivities d(output)/d(link length), exact derivatives (per metre of length):\n");
+  printf("%-28s %12s %12s %12s %12s  %s\n", "output", "crank", "coupler", "follower", "ground",
+         "unit");
+  for (int i = 0; i < FB_TOL_NOUT; i++) {
+    const char *name = fb_tol_output_name(i);
+    const char *unit = strstr(name, "_rad_s2") ? "rad/s^2 per m"
+                       : strstr(name, "_rad_s") ? "rad/s per m"
+                       : strstr(name, "_rad") ? "rad per m"
+                                              : "per m";
+    printf("%-28s", name);
+    for (int k = 0; k < FB_LINK_COUNT; k++) printf(" %12.5g", r.sens[i][k]);
+    printf("  %s\n", unit);
   }
   if (mask & FB_TOL_MONTECARLO) {
     printf("\nMonte Carlo quantiles with %.0f %% confidence intervals (order statistics X_(l) .. X_(u)):\n",

@@ -41,7 +41,7 @@ int fb_cmd_fit(int argc, char **argv) {
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
     if (ch == 'j') json = 1;
     else if (ch == 'h') { fputs(fit_help, stdout); return 0; }
-    else { fputs(fit_help, stderr); return 2; }
+    else { return fb_cli_bad_option(argv, "h"); }
   }
   if (argc - optind < 1) return fb_cli_fail("fit", 2, "a fit is required, e.g. 10H7/g6; see --help");
   /* "25 H8/f7" may arrive as two words */
@@ -96,7 +96,7 @@ int fb_cmd_tolerance(int argc, char **argv) {
     if (ch == 'c') cls = optarg;
     else if (ch == 'j') json = 1;
     else if (ch == 'h') { fputs(tol_help, stdout); return 0; }
-    else { fputs(tol_help, stderr); return 2; }
+    else { return fb_cli_bad_option(argv, "h"); }
   }
   if (argc - optind != 1) return fb_cli_fail("tolerance", 2, "one SIZE_MM is required; see --help");
   if (!cls) return fb_cli_fail("tolerance", 2, "--class f|m|c|v is required");

@@ -215,7 +215,7 @@ int fb_cmd_sweep(int argc, char **argv) {
         if (*end || list < 1 || list > 100000) return fb_cli_fail("sweep", 2, "--list '%s': 1 to 100000", optarg);
         break;
       case 'h': fputs(sweep_help, stdout); return 0;
-      default: fputs(sweep_help, stderr); return 2;
+      default: return fb_cli_bad_option(argv, "h");
     }
   }
   if (argc - optind != 1) return fb_cli_fail("sweep", 2, "one STUDY file is required; see --help");
@@ -478,7 +478,7 @@ int fb_cmd_merge(int argc, char **argv) {
     if (ch == 'o') out = optarg;
     else if (ch == 's') study_path = optarg;
     else if (ch == 'h') { fputs(merge_help, stdout); return 0; }
-    else { fputs(merge_help, stderr); return 2; }
+    else { return fb_cli_bad_option(argv, "h"); }
   }
   if (optind >= argc) return fb_cli_fail("merge", 2, "at least one DIR is required; see --help");
   if (!out) out = argv[optind];

@@ -1,5 +1,6 @@
 /* fourbar: the command-line interface. Dispatch only; no physics here. */
 #include <errno.h>
+#include <getopt.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -84,7 +85,10 @@ static int dispatch(int argc, char **argv) {
     return 0;
   }
   const char *cmd = argv[1];
-  /* getopt's own messages then read "fourbar <command>: ..." */
+  /* getopt prints nothing: an unknown option or a missing value is one line
+   * of the command's own (fb_cli_bad_option) */
+  opterr = 0;
+  /* argv[0] then reads "fourbar <command>" in every message */
   static char prog[64];
   snprintf(prog, sizeof prog, "fourbar %s", cmd);
   argv[1] = prog;

@@ -215,6 +215,24 @@ double fb_series_value(const fb_series *s, size_t k, size_t i) {
   return j < 0 ? 0.0 : s->contact[j][q][i];
 }
 
+const double *fb_series_column(const fb_series *s, size_t k) {
+  if (k < FB_NCOLUMNS) {
+    double *cols[FB_NCOLUMNS];
+    columns((fb_series *)s, cols);
+    return cols[k];
+  }
+  if (k >= FB_NCOLUMNS + contact_columns(s)) {
+    const size_t q = k - FB_NCOLUMNS - contact_columns(s);
+    if (!s->has_loads || q >= FB_LOAD_COLS) return NULL;
+    if (q == 0) return s->drive_torque;
+    const int j = (int)(q - 1) / 3, c = (int)(q - 1) % 3;
+    return c < 2 ? s->reaction[j][c] : NULL;
+  }
+  int j, q;
+  contact_column(s, k - FB_NCOLUMNS, &j, &q);
+  return j < 0 ? NULL : s->contact[j][q];
+}
+
 int fb_series_is_spike(const double *v, size_t k, int sign, double fraction, double big) {
   const double a = sign * v[k];
   return a > 0.0 && a >= sign * v[k - 1] && a >= sign * v[k + 1] && a >= fraction * big;

@@ -110,5 +110,8 @@ size_t fb_series_column_count(const fb_series *s);
 const char *fb_series_column_name(const fb_series *s, size_t k, char *buf, size_t size);
 /* Value of column k at sample i. */
 double fb_series_value(const fb_series *s, size_t k, size_t i);
+/* The array (n) holding column k, or NULL for a column computed from others
+ * (a reaction magnitude; read it with fb_series_value). */
+const double *fb_series_column(const fb_series *s, size_t k);
 
 #endif

@@ -194,6 +194,13 @@ typedef enum {
   FB_PEAKS_ALL = 1     /* from t = 0, the start-up included */
 } fb_peak_window;
 
+/* Format of the per-model time series a run writes ([run] series). */
+typedef enum {
+  FB_SERIES_CSV = 0,  /* DIR/<model>.csv, one per model */
+  FB_SERIES_HDF5 = 1, /* DIR/series.h5, one group per model (builds with libhdf5) */
+  FB_SERIES_NONE = 2  /* no time series (summary.json, figures and report.md only) */
+} fb_series_format;
+
 /* Penetration beyond this multiple of the radial clearance is outside the
  * penalty model's validity (a run gets a named warning, limit or not): the
  * laws are fitted to contact approaches of microns, a fraction of the
@@ -254,6 +261,9 @@ typedef struct fb_case_s {
   fb_pin_start pin_start;             /* initial pin position of the clearance joints */
   double pin_start_angle;             /* eccentricity angle for FB_PIN_ANGLE [rad], ccw from +x */
   fb_peak_window peaks;               /* window of the reported peaks */
+  fb_series_format series;            /* format of the written time series */
+  int series_every;                   /* keep every N-th sample (>= 1), and every sample of
+                                         an impact episode */
   int model_count;                    /* entries used in models */
   char models[FB_MAX_MODELS][FB_NAME_SIZE]; /* model names to run, in order */
 } fb_case;

@@ -19,6 +19,7 @@
 #include "model_table.h"
 #include "tolerance.h"
 #include "units.h"
+#include "fb_config.h"
 
 /* ---- the key table -------------------------------------------------------- */
 
@@ -45,6 +46,7 @@ typedef enum {
   K_START,     /* steady | rest */
   K_PINSTART,  /* centred | resting | an eccentricity angle in degrees */
   K_PEAKS,     /* steady | all */
+  K_SERIES,    /* csv | hdf5 | none */
   K_LIMIT,     /* a number (scaled like K_DOUBLE) | none | clearance */
   K_UNUSED,    /* a number checked against its range and not stored (no model uses it) */
   K_COLLIDER,  /* exact | faceted | ccd */
@@ -345,6 +347,13 @@ static const key_spec keys[] = {
     {"run", "peaks", K_PEAKS, OFF(peaks), 0, 0, 0, 0, 0, "-", "steady", "steady or all",
      "window of the reported peaks: steady (from the second revolution on) or all (from "
      "t = 0, the start-up included); summary.json reports the first revolution alone too"},
+    {"run", "series", K_SERIES, OFF(series), 0, 0, 0, 0, 0, "-", "csv", "csv, hdf5 or none",
+     "time series written per run: csv (DIR/<model>.csv), hdf5 (DIR/series.h5, one group per "
+     "model; needs a build with libhdf5) or none (docs/series.md)"},
+    {"run", "series_every", K_INT, OFF(series_every), 0, 1, 1e9, 0, 0, "-", "1",
+     "a whole number from 1 to 1000000000",
+     "write every N-th sample of the time series, and every sample of each impact episode "
+     "(contact state impact, with one sample either side)"},
     {"run", "models", K_MODELS, OFF(models), 0, 0, 0, 0, 0, "-",
      "analytic, analytic-stackup, ode-ideal-nominal, ode-ideal-stackup", "known model names",
      "models to run, comma-separated; a name with * is a pattern that adds every model "
@@ -732,6 +741,19 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       if (strcmp(e->value, "steady") == 0) *(fb_peak_window *)field = FB_PEAKS_STEADY;
       else if (strcmp(e->value, "all") == 0) *(fb_peak_window *)field = FB_PEAKS_ALL;
       else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_SERIES:
+      if (strcmp(e->value, "csv") == 0) *(fb_series_format *)field = FB_SERIES_CSV;
+      else if (strcmp(e->value, "none") == 0) *(fb_series_format *)field = FB_SERIES_NONE;
+      else if (strcmp(e->value, "hdf5") == 0) {
+        if (!FB_HAVE_HDF5)
+          return fb_diag_set(diag, FB_ERR_ARG,
+                             "%s: [%s] %s = hdf5: this fourbar was built without HDF5; install "
+                             "libhdf5-dev (Debian) and rebuild (meson setup --reconfigure build "
+                             "-Dhdf5=enabled; ninja -C build), or use csv",
+                             e->origin, e->section, e->key);
+        *(fb_series_format *)field = FB_SERIES_HDF5;
+      } else return bad_word(e, k, diag);
       return FB_OK;
     case K_PINSTART:
       if (strcmp(e->value, "centred") == 0) {

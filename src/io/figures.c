@@ -298,12 +298,46 @@ typedef struct {
 static const char *const fallback_colors[] = {"#17becf", "#e377c2", "#8c564b", "#bcbd22",
                                               "#393b79", "#637939", "#843c39", "#7b4173"};
 
-/* the model table's style of a model (model_table.c; docs/figures.md lists
- * it), else one derived from the name */
+/* Colour families: every model of one simulation engine is drawn in shades
+ * of that engine's hue (ODE blues, MuJoCo oranges; greens and purples kept
+ * for Simbody and Bullet), so that two engines are told apart at a glance
+ * in every figure; the yardsticks (analytic, reference) keep the model
+ * table's black and grey. The shade is the row's rank among the rows of
+ * its engine in the model table, the dash and width the table's. */
+typedef struct {
+  const char *engine;       /* fb_engine_name of the engine */
+  const char *shade[8];     /* dark to light, in an order that keeps neighbours apart */
+} color_family;
+
+static const color_family families[] = {
+    {"ode", {"#08519c", "#3182bd", "#6baed6", "#2171b5", "#4292c6", "#9ecae1", "#084594", "#5a8fc4"}},
+    {"mujoco", {"#a63603", "#e6550d", "#fd8d3c", "#d94801", "#f16913", "#fdae6b", "#7f2704", "#c8640a"}},
+    {"simbody", {"#006d2c", "#31a354", "#74c476", "#238b45", "#41ab5d", "#a1d99b", "#00441b", "#4f9a5f"}},
+    {"bullet", {"#54278f", "#756bb1", "#9e9ac8", "#6a51a3", "#807dba", "#bcbddc", "#3f007d", "#8a6fb3"}},
+};
+
+/* the colour of row m from its engine's family, or NULL (a yardstick or an
+ * engine without a family) */
+static const char *family_color(const fb_model *m) {
+  const char *engine = fb_engine_name(m->engine);
+  for (size_t f = 0; f < sizeof families / sizeof families[0]; f++) {
+    if (strcmp(families[f].engine, engine) != 0) continue;
+    int rank = 0;
+    for (int k = 0; k < fb_model_count && &fb_models[k] != m; k++) rank += fb_models[k].engine == m->engine;
+    return families[f].shade[rank % 8];
+  }
+  return NULL;
+}
+
+/* the model's style: its engine's colour family (or the model table's
+ * colour for a yardstick) with the table's dash and width (model_table.c;
+ * docs/figures.md), else one derived from the name */
 static model_style style_of(const char *name) {
   const fb_model *m = fb_model_find(name);
-  if (m && m->style.color) {
-    const model_style st = {m->name, m->style.color, m->style.dash, m->style.width};
+  if (m && (m->style.color || family_color(m))) {
+    const char *color = family_color(m);
+    const model_style st = {m->name, color ? color : m->style.color, m->style.dash,
+                            m->style.width};
     return st;
   }
   unsigned long h = 2166136261ul; /* FNV-1a */
@@ -362,6 +396,41 @@ static void residual(const fb_run *r, int i, int body, double *resid) {
   }
 }
 
+/* the ODE model of the run that model i is compared with: the same
+ * lengths, joints and law run by ODE, when model i is another simulation
+ * engine's; -1 when there is none */
+static int engine_partner(const fb_run *r, int i) {
+  const fb_model *m = r->model[i].run.model;
+  if (m->engine == FB_ENGINE_ODE || !fb_engine_steps_world(m->engine)) return -1;
+  for (int j = 0; j < r->n; j++) {
+    const fb_model *o = r->model[j].run.model;
+    if (o->engine == FB_ENGINE_ODE && o->lengths == m->lengths && o->joints == m->joints &&
+        o->law == m->law && r->model[j].run.series.n > 1)
+      return j;
+  }
+  return -1;
+}
+
+/* diff[k] = omega of model i at its sample k minus model j's at the same
+ * instant (linear interpolation between j's samples; NaN outside them) */
+static void engine_difference(const fb_run *r, int i, int j, int body, double *diff) {
+  const fb_series *a = &r->model[i].run.series, *b = &r->model[j].run.series;
+  const double *ya = body ? a->follower_omega : a->coupler_omega;
+  const double *yb = body ? b->follower_omega : b->coupler_omega;
+  size_t q = 0;
+  for (size_t k = 0; k < a->n; k++) {
+    const double t = a->t[k];
+    while (q + 2 < b->n && b->t[q + 1] < t) q++;
+    if (b->n < 2 || t < b->t[0] || t > b->t[b->n - 1]) {
+      diff[k] = NAN;
+      continue;
+    }
+    const double dt = b->t[q + 1] - b->t[q];
+    const double w = dt > 0.0 ? (t - b->t[q]) / dt : 0.0;
+    diff[k] = ya[k] - (yb[q] + w * (yb[q + 1] - yb[q]));
+  }
+}
+
 /* omega.svg: coupler and follower omega (top) and each ODE model's residual
  * against the analytic solution of its lengths (bottom); alpha.svg: coupler
  * and follower alpha on a symlog axis */
@@ -369,7 +438,17 @@ static fb_status kin_figure(const fb_run *r, const char *dir, fb_figure_format f
                             json_t *figs, fb_diag *diag) {
   const char *name = alpha ? "alpha" : "omega";
   plot pl;
-  fb_status st = plot_open(&pl, dir, name, fmt, alpha ? 1100 : 1400, alpha ? 850 : 900, diag);
+  /* omega.svg's rows: values, residuals, engine differences (450 px each) */
+  int nrows = 1;
+  if (!alpha) {
+    int res = 0, dif = 0;
+    for (int i = 0; i < r->n; i++) {
+      res |= fb_engine_steps_world(r->model[i].run.model->engine) && r->model[i].run.series.n > 0;
+      dif |= engine_partner(r, i) >= 0;
+    }
+    nrows += res + dif;
+  }
+  fb_status st = plot_open(&pl, dir, name, fmt, alpha ? 1100 : 1400, alpha ? 850 : 450 * nrows, diag);
   if (st != FB_OK) return st;
   const double period = 2.0 * M_PI / r->c.crank_speed;
   const double t0 = r->t_window, t1 = r->t_window + period;
@@ -387,7 +466,14 @@ static fb_status kin_figure(const fb_run *r, const char *dir, fb_figure_format f
       const double *y = alpha ? (b ? s->follower_alpha : s->coupler_alpha)
                               : (b ? s->follower_omega : s->coupler_omega);
       double lo = NAN, hi = NAN;
-      const int pts = datablock(pl.p, dname, s, y, t0, t1, &lo, &hi);
+      /* a stepping engine's acceleration at t = 0 is its first step's start
+       * artefact (ODE: the velocity-level step has no drift to correct yet
+       * and applies almost none), not the mechanism's: drawn from the first
+       * step on */
+      const double ta = alpha && fb_engine_steps_world(r->model[i].run.model->engine)
+                            ? fmax(t0, 0.5 * r->model[i].run.h)
+                            : t0;
+      const int pts = datablock(pl.p, dname, s, y, ta, t1, &lo, &hi);
       if (pts > 0) {
         amax = fmax(amax, hi);
         amin = fmin(amin, lo);
@@ -427,13 +513,48 @@ static fb_status kin_figure(const fb_run *r, const char *dir, fb_figure_format f
       }
       free(res);
     }
+  /* engine difference panels: another engine's model minus ODE's of the
+   * same kind, at the same instants */
+  int partner[FB_MAX_MODELS];
+  int any_resid = 0, any_diff = 0;
+  for (int i = 0; i < r->n; i++) {
+    any_resid |= has_resid[i];
+    partner[i] = alpha ? -1 : engine_partner(r, i);
+    if (partner[i] < 0) continue;
+    const fb_series *s = &r->model[i].run.series;
+    double *d = malloc((s->n ? s->n : 1) * sizeof *d);
+    if (!d) {
+      partner[i] = -1;
+      continue;
+    }
+    any_diff = 1;
+    for (int b = 0; b < 2; b++) {
+      engine_difference(r, i, partner[i], b, d);
+      char dname[32], col[64], csv[96];
+      snprintf(dname, sizeof dname, "d%d_%d", i, b);
+      double lo = NAN, hi = NAN;
+      const int pts = datablock(pl.p, dname, s, d, t0, t1, &lo, &hi);
+      snprintf(col, sizeof col, "%s_omega_engine_difference_rad_s", b ? "follower" : "coupler");
+      snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
+      json_t *c = curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
+      json_object_set_new(c, "panel", json_string(b ? "follower engine difference" : "coupler engine difference"));
+      char what[256];
+      snprintf(what, sizeof what, "%s minus %s at the same instants", r->model[i].run.name,
+               r->model[partner[i]].run.name);
+      json_object_set_new(c, "derived", json_string(what));
+      curve_style(c, r->model[i].run.name);
+      json_array_append_new(curves, c);
+    }
+    free(d);
+  }
+  const int rows = 1 + any_resid + any_diff;
   char en[160];
   const double rpm = r->c.crank_speed * 60.0 / (2.0 * M_PI);
   /* a clockwise drive decreases the crank angle: its motion runs right to left */
   const char *dirnote = r->c.direction > 0 ? "ccw drive: motion runs left to right"
                                            : "cw drive: crank angle decreases, motion runs right to left";
   fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against crank angle (revolution %d, %.0f rpm; %s)'\n",
-          alpha ? 2 : 2, alpha ? 1 : 2, esc(r->c.name, en, sizeof en),
+          alpha ? 2 : rows, alpha ? 1 : 2, esc(r->c.name, en, sizeof en),
           alpha ? "angular acceleration" : "angular velocity", r->c.peaks == FB_PEAKS_ALL ? 1 : 2,
           rpm, dirnote);
   fprintf(pl.p, "set xrange [0:360]\nset xtics 30\nset xlabel 'crank angle [deg] (counter-clockwise from +x)'\n");
@@ -466,8 +587,33 @@ static fb_status kin_figure(const fb_run *r, const char *dir, fb_figure_format f
   }
   json_object_set_new(axis, "direction", json_string(r->c.direction > 0 ? "ccw" : "cw"));
   json_object_set_new(axis, "note", json_string(dirnote));
-  for (int b = 0; b < (alpha ? 2 : 4); b++) {
-    const int body = b % 2, resid = b >= 2;
+  for (int b = 0; b < (alpha ? 2 : 2 * rows); b++) {
+    const int body = b % 2;
+    /* rows: values, then residuals (when an ODE-like model ran), then the
+     * engine differences (when two engines ran the same kind of model) */
+    const int row = b / 2;
+    const int resid = row == 1 && any_resid;
+    const int diffrow = row >= 1 && !resid;
+    if (diffrow) {
+      /* the legend inside the panel: its long entries would squeeze the plot beside it */
+      fprintf(pl.p, "set title '%s: engine difference (minus the ODE model of the same kind, same instants)'\n"
+                    "set ylabel '%s omega difference [rad/s]'\nset autoscale y\n"
+                    "set key inside bottom left opaque box font ',8'\n",
+              body ? "follower" : "coupler", body ? "follower" : "coupler");
+      fprintf(pl.p, "plot ");
+      int anyd = 0;
+      for (int q = 0; q < nm; q++) {
+        const int i = order[q];
+        if (partner[i] < 0) continue;
+        char mn[160], pn[160], sp[96];
+        fprintf(pl.p, "%s$d%d_%d using 1:2 with lines %s title '%s - %s'", anyd ? ", " : "", i, body,
+                style_spec(r->model[i].run.name, sp, sizeof sp), esc(r->model[i].run.name, mn, sizeof mn),
+                esc(r->model[partner[i]].run.name, pn, sizeof pn));
+        anyd = 1;
+      }
+      fprintf(pl.p, "\n");
+      continue;
+    }
     if (resid) {
       fprintf(pl.p, "set title '%s: model minus analytic (same link lengths, same instants)'\n"
                     "set ylabel '%s omega residual [rad/s]'\nset autoscale y\n",
@@ -815,7 +961,9 @@ fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char 
   char en[160];
   fprintf(pl.p, "set multiplot layout 2,2 title 'penalty estimate against crank speed (%s mode)'\n",
           esc(mode, en, sizeof en));
-  fprintf(pl.p, "set xlabel 'crank speed [rpm]'\nset key top left box\n");
+  /* inside the panel, where the rising curves leave room (outside, the
+   * legends of the right column sat on the left column's plots) */
+  fprintf(pl.p, "set xlabel 'crank speed [rpm]'\nset key inside top left box opaque\n");
   for (int q = 0; q < 4; q++)
     fprintf(pl.p, "set title '%s'\nset ylabel '%s'\nplot $d%d_0 using 1:2 with linespoints pt 7 "
                   "title 'crank-coupler', $d%d_1 using 1:2 with linespoints pt 5 title "
@@ -1153,8 +1301,12 @@ fb_status fb_figures_study(const fb_study *s, const char *dir, fb_diag *diag) {
   if (s->nplot) {
     for (int k = 0; k < s->nplot; k++) snprintf(names[n++], 128, "%s", s->plot[k]);
   } else {
-    for (int c = t.status_col + 1; c < t.ncol && n < 4; c++)
-      if (strcmp(t.head[c], "warnings") != 0) snprintf(names[n++], 128, "%s", t.head[c]);
+    /* the spike metrics first (the distribution a clearance study exists
+     * for), then the others in column order, up to four */
+    for (int pass = 0; pass < 2; pass++)
+      for (int c = t.status_col + 1; c < t.ncol && n < 4; c++)
+        if (strcmp(t.head[c], "warnings") != 0 && (strstr(t.head[c], ".spikes.") != NULL) == (pass == 0))
+          snprintf(names[n++], 128, "%s", t.head[c]);
   }
   if (n == 0) {
     csv_free(&t);
@@ -1187,7 +1339,7 @@ fb_status fb_figures_study(const fb_study *s, const char *dir, fb_diag *diag) {
   }
   json_t *panels = json_array();
   char en[160], ep[600], lab[300], lab2[300], tmp[600];
-  fprintf(pl.p, "set key noenhanced below box\n"
+  fprintf(pl.p, "set key noenhanced outside right top vertical box\n"
                 "set multiplot layout %d,%d title 'study %s (%s)' noenhanced\n",
           rows, cols, gp_text(s->name, 0, en, sizeof en), gp_text(s->path, 0, ep, sizeof ep));
   for (int m = 0; m < n; m++) {
@@ -1278,7 +1430,7 @@ fb_status fb_figures_study(const fb_study *s, const char *dir, fb_diag *diag) {
       fprintf(pl.p, ")\nplot $hm%d using 1:2:3 with image notitle, "
                     "$hm%d using 1:2:(strcol(4) eq 'ok' ? sprintf('%%.3g', $3) : sprintf('%%.3g (stopped)', $3)) "
                     "with labels font ',10' notitle\n"
-                    "unset xtics\nunset ytics\nset xtics\nset ytics\nset autoscale\nset key noenhanced below box\n",
+                    "unset xtics\nunset ytics\nset xtics\nset ytics\nset autoscale\nset key noenhanced outside right top vertical box\n",
               m, m);
       json_object_set_new(panel, "kind", json_string("heatmap"));
       json_object_set_new(panel, "cells", json_integer(cells));

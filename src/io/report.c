@@ -11,6 +11,11 @@
 #include "fileio.h"
 #include "outcome_text.h"
 #include "start.h"
+#include "clock.h"
+#include "series_write.h"
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <time.h>
 
 /* finite number or null */
 static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
@@ -174,16 +179,25 @@ static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
 }
 
 /* the printed contact table: what each clearance model's rows received */
-static void print_contact(FILE *f, const fb_run *r) {
+/* prose, defined with the printed table below */
+static void say(FILE *f, const char *fmt, ...);
+
+static void print_contact(FILE *f, const fb_run *r, int W) {
   int any = 0;
   for (int i = 0; i < r->n; i++)
     for (int j = 0; j < 4; j++) any |= model_law(r, &r->model[i], j) != NULL;
   if (!any) return;
-  fprintf(f, "\ncontact (per clearance joint; stiffness in N/m^n; m_eff, ERP, CFM and h omega_c = "
-             "h sqrt(k / m_eff) over the run's contact steps; resolved: h omega_c <= %g):\n",
-          FB_H_OMEGA_C_BOUND);
-  fprintf(f, "%-26s %-17s %-12s %-21s %12s %5s %19s %10s %10s %9s %s\n", "model", "joint", "law",
-          "mapping", "stiffness", "n", "m_eff kg", "ERP max", "CFM min", "h omega_c", "resolved");
+  fputc('\n', f);
+  say(f, "contact (per clearance joint; stiffness in N/m^n; m_eff, ERP, CFM and h omega_c = "
+         "h sqrt(k / m_eff) over the run's contact steps; resolved: h omega_c <= %g):",
+      FB_H_OMEGA_C_BOUND);
+  for (int part = 0; part < 2; part++) {
+  if (part == 0)
+    fprintf(f, "%-*s %-16s %-11s %-20s %11s %4s\n", W, "model", "joint", "law", "mapping",
+            "stiffness", "n");
+  else
+    fprintf(f, "%-*s %-16s %17s %9s %9s %9s %s\n", W, "model", "joint", "m_eff kg", "ERP max",
+            "CFM min", "h omega_c", "resolved");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     for (int j = 0; j < 4; j++) {
@@ -200,11 +214,14 @@ static void print_contact(FILE *f, const fb_run *r) {
         figure_text(hw, sizeof hw, "%.3g", p->h_omega_max);
       }
       const char *mapping = model_mapping(r, m);
-      fprintf(f, "%-26s %-17s %-12s %-21s %12.6g %5.3g %19s %10s %10s %9s %s\n", m->run.name,
-              fb_joint_name(j), fb_law_name(law->kind), mapping ? mapping : "-", law->stiffness,
-              law->exponent, mass, erp, cfm, hw,
-              !have ? "-" : (p->h_omega_max <= FB_H_OMEGA_C_BOUND ? "yes" : "no: under-resolved"));
+      if (part == 0)
+        fprintf(f, "%-*s %-16s %-11s %-20s %11.5g %4.3g\n", W, m->run.name, fb_joint_name(j),
+                fb_law_name(law->kind), mapping ? mapping : "-", law->stiffness, law->exponent);
+      else
+        fprintf(f, "%-*s %-16s %17s %9s %9s %9s %s\n", W, m->run.name, fb_joint_name(j), mass, erp,
+                cfm, hw, !have ? "-" : (p->h_omega_max <= FB_H_OMEGA_C_BOUND ? "yes" : "no: under-resolved"));
     }
+  }
   }
 }
 
@@ -489,6 +506,10 @@ static json_t *masses_json(const fb_case *c) {
   return o;
 }
 
+static const char *series_format_name(fb_series_format f) {
+  return f == FB_SERIES_HDF5 ? "hdf5" : f == FB_SERIES_NONE ? "none" : "csv";
+}
+
 json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   const fb_case *c = &r->c;
   json_t *o = json_object();
@@ -513,6 +534,9 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
                                                     : "dWorldQuickStep"));
   json_object_set_new(o, "stackup", stackup_json(c));
   json_object_set_new(o, "masses", masses_json(c));
+  json_object_set_new(o, "series",
+                      json_pack("{s:s,s:i,s:s}", "format", series_format_name(c->series), "every",
+                                c->series_every, "rule", FB_SERIES_KEEP_RULE));
   json_t *an = json_object();
   json_object_set_new(an, "coupler", fb_report_body_peaks_json(&r->analytic_nominal.coupler));
   json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
@@ -548,38 +572,77 @@ fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag)
   return fb_outfile_commit(&out, diag);
 }
 
-/* writes one series as CSV (header of unit-suffixed column names) */
-static fb_status write_csv(const char *path, const fb_series *s, fb_diag *diag) {
-  fb_outfile out;
-  fb_status st = fb_outfile_open(&out, path, diag);
-  if (st != FB_OK) return st;
-  size_t nc = fb_series_column_count(s);
-  char name[96];
-  for (size_t k = 0; k < nc; k++)
-    fprintf(out.f, "%s%s", k ? "," : "", fb_series_column_name(s, k, name, sizeof name));
-  fputc('\n', out.f);
-  for (size_t i = 0; i < s->n; i++) {
-    for (size_t k = 0; k < nc; k++) fprintf(out.f, "%s%.12g", k ? "," : "", fb_series_value(s, k, i));
-    fputc('\n', out.f);
+/* bytes of the file at path (0 when it cannot be read) */
+static double file_bytes(const char *path) {
+  struct stat sb;
+  return stat(path, &sb) == 0 ? (double)sb.st_size : 0.0;
+}
+
+/* the time series in the case's format ([run] series, series_every); the
+ * wall time and bytes written go to *write_s and *bytes */
+/* CPU time of this process [s] (the writer's cost without the waits of a
+ * busy machine or of the disk) */
+static double cpu_s(void) {
+  struct timespec ts;
+  return clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) == 0 ? (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec
+                                                           : 0.0;
+}
+
+static fb_status write_series(const char *dir, const fb_run *r, const char *case_path,
+                              double *write_s, double *cpu, double *bytes, fb_diag *diag) {
+  char path[4096];
+  const fb_case *c = &r->c;
+  *write_s = 0.0;
+  *cpu = 0.0;
+  *bytes = 0.0;
+  if (c->series == FB_SERIES_NONE) return FB_OK;
+  const double t0 = fb_clock_s(), c0 = cpu_s();
+  unsigned char *keep[FB_MAX_MODELS] = {0};
+  fb_status st = FB_OK;
+  if (c->series_every > 1)
+    for (int i = 0; i < r->n && st == FB_OK; i++) {
+      const fb_series *s = &r->model[i].run.series;
+      keep[i] = malloc(s->n ? s->n : 1);
+      if (!keep[i]) st = fb_diag_set(diag, FB_ERR_NOMEM, "series selection: out of memory");
+      else fb_series_keep(s, c->series_every, keep[i]);
+    }
+  if (st == FB_OK && c->series == FB_SERIES_HDF5) {
+    snprintf(path, sizeof path, "%s/series.h5", dir);
+    json_t *j = fb_report_summary_json(r, case_path);
+    char *text = json_dumps(j, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
+    json_decref(j);
+    st = fb_series_write_hdf5(path, r, keep, text, diag);
+    free(text);
+    *bytes = file_bytes(path);
   }
-  return fb_outfile_commit(&out, diag);
+  if (c->series == FB_SERIES_CSV)
+    for (int i = 0; i < r->n && st == FB_OK; i++) {
+      snprintf(path, sizeof path, "%s/%s.csv", dir, r->model[i].run.name);
+      st = fb_series_write_csv(path, &r->model[i].run.series, keep[i], diag);
+      *bytes += file_bytes(path);
+    }
+  for (int i = 0; i < r->n; i++) free(keep[i]);
+  *write_s = fb_clock_s() - t0;
+  *cpu = cpu_s() - c0;
+  return st;
 }
 
 fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
                               fb_diag *diag) {
   char path[4096];
-  for (int i = 0; i < r->n; i++) {
-    snprintf(path, sizeof path, "%s/%s.csv", dir, r->model[i].run.name);
-    fb_status st = write_csv(path, &r->model[i].run.series, diag);
-    if (st != FB_OK) return st;
-  }
+  double write_s, write_cpu_s, bytes;
+  fb_status st = write_series(dir, r, case_path, &write_s, &write_cpu_s, &bytes, diag);
+  if (st != FB_OK) return st;
   snprintf(path, sizeof path, "%s/summary.json", dir);
   json_t *j = fb_report_summary_json(r, case_path);
-  fb_status st = fb_report_write_json(path, j, diag);
+  st = fb_report_write_json(path, j, diag);
   json_decref(j);
   if (st != FB_OK) return st;
   snprintf(path, sizeof path, "%s/timing.json", dir);
   j = fb_report_timing_json(r);
+  json_object_set_new(j, "series_write_s", json_real(write_s));
+  json_object_set_new(j, "series_write_cpu_s", json_real(write_cpu_s));
+  json_object_set_new(j, "series_bytes", json_integer((json_int_t)bytes));
   st = fb_report_write_json(path, j, diag);
   json_decref(j);
   return st;
@@ -596,38 +659,62 @@ static double worst_rel(const fb_body_error *a, const fb_body_error *b, int alph
   return w;
 }
 
-/* one paper-style row: four extremes of coupler and follower, omega or alpha */
-static void paper_row(FILE *f, const char *name, const fb_peaks *p, int alpha) {
-  const fb_body_peaks *b[2] = {&p->coupler, &p->follower};
-  fprintf(f, "%-26s", name);
-  for (int k = 0; k < 2; k++) {
-    if (alpha)
-      fprintf(f, " %14.2f %14.2f", b[k]->alpha_max, b[k]->alpha_min);
-    else
-      fprintf(f, " %12.4f %12.4f", b[k]->omega_max, b[k]->omega_min);
+/* Every printed line is at most this wide (a terminal of 120 columns shows
+ * the table without wrapping; issue 30). Prose is wrapped to it; tables
+ * size their model column to the longest model name of the run. */
+#define FB_TABLE_COLUMNS 120
+
+/* prose: printf-formatted text wrapped at spaces to FB_TABLE_COLUMNS,
+ * continuation lines indented by two spaces */
+static void say(FILE *f, const char *fmt, ...) {
+  char text[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(text, sizeof text, fmt, ap);
+  va_end(ap);
+  for (char *line = text; line;) {
+    char *nl = strchr(line, '\n');
+    if (nl) *nl = '\0';
+    const char *p = line;
+    int indent = 0;
+    while (strlen(p) + (size_t)indent > FB_TABLE_COLUMNS) {
+      const int room = FB_TABLE_COLUMNS - indent;
+      int cut = room;
+      while (cut > 0 && p[cut] != ' ') cut--;
+      if (cut == 0) break; /* one word longer than a line: printed whole */
+      fprintf(f, "%*s%.*s\n", indent, "", cut, p);
+      p += cut + 1;
+      indent = 2;
+    }
+    fprintf(f, "%*s%s\n", indent, "", p);
+    line = nl ? nl + 1 : NULL;
   }
-  fputc('\n', f);
 }
 
-/* the paper's table for the run's peak window: one row per model with the
- * coupler and follower omega max/min (rad/s), then a second table with the
- * four alpha extremes (rad/s^2); then, for clearance models, the start-up
- * (first impact's time, speed and crank angle; revolution 1's largest
- * coupler |alpha|, when, peak force and penetration) and every model's
- * warnings. Part of fb_report_print_table. */
+/* width of the model column: the longest model name of the run */
+static int model_width(const fb_run *r) {
+  int w = 5; /* "model" */
+  for (int i = 0; i < r->n; i++) {
+    const int n = (int)strlen(r->model[i].run.name);
+    if (n > w) w = n;
+  }
+  return w;
+}
+
 /* each clearance model against its reference: where it leaves it and the
  * impacts matched one to one before */
-static void print_divergence(FILE *f, const fb_run *r) {
+static void print_divergence(FILE *f, const fb_run *r, int W) {
   int any = 0;
   for (int i = 0; i < r->n; i++) any |= r->model[i].has_divergence;
   if (!any) return;
-  fprintf(f, "\ndivergence from the reference (pin eccentricity beyond %g x clearance or coupler "
-             "angle beyond %g x clearance / coupler length):\n",
-          FB_DIVERGE_ECC_FRACTION, FB_DIVERGE_ANGLE_FRACTION);
-  fprintf(f, "%-26s %-22s %12s %9s %15s %9s %9s\n", "model", "reference", "leaves at", "crank",
-          "impacts before", "force", "penetr.");
-  fprintf(f, "%-26s %-22s %12s %9s %15s %9s %9s\n", "", "", "ms", "deg", "model/ref/match",
-          "err max", "err max");
+  fputc('\n', f);
+  say(f, "divergence from the reference (pin eccentricity beyond %g x clearance or coupler "
+         "angle beyond %g x clearance / coupler length):",
+      FB_DIVERGE_ECC_FRACTION, FB_DIVERGE_ANGLE_FRACTION);
+  fprintf(f, "%-*s %12s %9s %15s %9s %9s\n", W, "model", "leaves at", "crank", "impacts before",
+          "force", "penetr.");
+  fprintf(f, "%-*s %12s %9s %15s %9s %9s\n", W, "", "ms", "deg", "model/ref/match", "err max",
+          "err max");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     if (!m->has_divergence) continue;
@@ -642,72 +729,172 @@ static void print_divergence(FILE *f, const fb_run *r) {
     }
     snprintf(counts, sizeof counts, "%d/%d/%d%s", d->impacts_model, d->impacts_reference,
              d->matched, d->one_to_one ? "" : "*");
-    fprintf(f, "%-26s %-22s %12s %9s %15s %9.2e %9.2e\n", m->run.name, m->ref_name, at, ang,
-            counts, d->force_rel_max, d->penetration_rel_max);
+    fprintf(f, "%-*s %12s %9s %15s %9.2e %9.2e\n", W, m->run.name, at, ang, counts,
+            d->force_rel_max, d->penetration_rel_max);
   }
-  fprintf(f, "(* not one to one: an impact before the divergence has no partner; err max: "
-             "largest |relative error| of the matched impacts' peak force and penetration, "
-             "bound %g)\n", FB_MATCHED_IMPACT_ERROR_BOUND);
+  say(f, "(* not one to one: an impact before the divergence has no partner; err max: "
+         "largest |relative error| of the matched impacts' peak force and penetration, "
+         "bound %g)", FB_MATCHED_IMPACT_ERROR_BOUND);
 }
 
-static void print_paper_tables(FILE *f, const fb_run *r) {
-  const int all = r->c.peaks == FB_PEAKS_ALL;
-  fprintf(f, "\nthe paper's table, peaks over %s:\n",
-          all ? "the whole run from t = 0 (start-up included; [run] peaks = all)"
-              : "the revolutions after the first ([run] peaks = steady)");
-  fprintf(f, "angular velocity, rad/s\n%-26s %12s %12s %12s %12s\n", "model", "coupler max",
-          "coupler min", "follower max", "follower min");
-  for (int i = 0; i < r->n; i++) {
-    const fb_model_result *m = &r->model[i];
-    char stop[256];
-    if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 0);
-    else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, fb_stop_text(stop, sizeof stop, &m->run.stop));
-  }
-  fprintf(f, "angular acceleration, rad/s^2\n%-26s %14s %14s %14s %14s\n", "model",
-          "coupler max", "coupler min", "follower max", "follower min");
-  for (int i = 0; i < r->n; i++) {
-    const fb_model_result *m = &r->model[i];
-    char stop[256];
-    if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 1);
-    else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, fb_stop_text(stop, sizeof stop, &m->run.stop));
-  }
-  /* the start-up of the clearance models: first impact and revolution 1's spikes */
+/* the start-up of the clearance models (first impact's time, speed and
+ * crank angle; revolution 1's largest coupler |alpha|, when, peak force and
+ * penetration) */
+static void print_startup(FILE *f, const fb_run *r, int W) {
   int any = 0;
   for (int i = 0; i < r->n; i++) any |= r->model[i].has_startup && r->model[i].run.clearance_mask;
-  if (any) {
-    fprintf(f, "\nstart-up (revolution 1, t < %.6g s; start = %s, pin %s):\n", r->t_startup_end,
-            fb_start_name(r->c.start), fb_pin_start_name(r->c.pin_start));
-    fprintf(f, "%-26s %12s %10s %10s %14s %10s %12s %10s\n", "model", "1st impact", "speed",
-            "crank", "cpl alpha pk", "at t", "force max", "penetr.");
-    fprintf(f, "%-26s %12s %10s %10s %14s %10s %12s %10s\n", "", "us", "m/s", "deg", "rad/s^2",
-            "ms", "N", "um");
-    for (int i = 0; i < r->n; i++) {
-      const fb_model_result *m = &r->model[i];
-      if (!m->has_startup || !m->run.clearance_mask) continue;
-      const fb_body_peaks *c = &m->startup.coupler;
-      const fb_body_peak_at *a = &m->startup_at.coupler;
-      const int hi = fabs(c->alpha_max) >= fabs(c->alpha_min);
-      fprintf(f, "%-26s ", m->run.name);
-      if (m->first_impact.found)
-        fprintf(f, "%12.4f %10.4f %10.3f ", m->first_impact.t * 1e6, m->first_impact.speed,
-                m->first_impact.crank_angle * 180.0 / M_PI);
-      else
-        fprintf(f, "%12s %10s %10s ", "none", "-", "-");
-      fprintf(f, "%14.4g %10.4f %12.4g %10.4g\n", hi ? c->alpha_max : c->alpha_min,
-              (hi ? a->alpha_max.t : a->alpha_min.t) * 1e3, m->startup_force_max,
-              m->startup_penetration_max * 1e6);
-    }
+  if (!any) return;
+  fputc('\n', f);
+  say(f, "start-up (revolution 1, t < %.6g s; start = %s, pin %s):", r->t_startup_end,
+      fb_start_name(r->c.start), fb_pin_start_name(r->c.pin_start));
+  fprintf(f, "%-*s %12s %10s %10s %14s %10s %12s %10s\n", W, "model", "1st impact", "speed",
+          "crank", "cpl alpha pk", "at t", "force max", "penetr.");
+  fprintf(f, "%-*s %12s %10s %10s %14s %10s %12s %10s\n", W, "", "us", "m/s", "deg", "rad/s^2",
+          "ms", "N", "um");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    if (!m->has_startup || !m->run.clearance_mask) continue;
+    const fb_body_peaks *c = &m->startup.coupler;
+    const fb_body_peak_at *a = &m->startup_at.coupler;
+    const int hi = fabs(c->alpha_max) >= fabs(c->alpha_min);
+    fprintf(f, "%-*s ", W, m->run.name);
+    if (m->first_impact.found)
+      fprintf(f, "%12.4f %10.4f %10.3f ", m->first_impact.t * 1e6, m->first_impact.speed,
+              m->first_impact.crank_angle * 180.0 / M_PI);
+    else
+      fprintf(f, "%12s %10s %10s ", "none", "-", "-");
+    fprintf(f, "%14.4g %10.4f %12.4g %10.4g\n", hi ? c->alpha_max : c->alpha_min,
+            (hi ? a->alpha_max.t : a->alpha_min.t) * 1e3, m->startup_force_max,
+            m->startup_penetration_max * 1e6);
   }
-  print_divergence(f, r);
+}
+
+static void print_warnings(FILE *f, const fb_run *r) {
   int warned = 0;
   for (int i = 0; i < r->n; i++) warned |= r->model[i].warning_count > 0;
-  if (warned) {
-    char wt[512];
-    fprintf(f, "\nwarnings:\n");
-    for (int i = 0; i < r->n; i++)
-      for (int k = 0; k < r->model[i].warning_count; k++)
-        fprintf(f, "  %s: %s\n", r->model[i].run.name,
-                fb_warning_text(wt, sizeof wt, &r->model[i].warnings[k]));
+  if (!warned) return;
+  char wt[512];
+  fprintf(f, "\nwarnings:\n");
+  for (int i = 0; i < r->n; i++)
+    for (int k = 0; k < r->model[i].warning_count; k++)
+      say(f, "  %s: %s", r->model[i].run.name, fb_warning_text(wt, sizeof wt, &r->model[i].warnings[k]));
+}
+
+/* the worst relative peak error of a clearance model against its reference:
+ * omega and alpha peaks of coupler and follower, and the peak force */
+static double ref_error_worst(const fb_reference_error *e) {
+  double w = fmax(worst_rel(&e->coupler, &e->follower, 0), worst_rel(&e->coupler, &e->follower, 1));
+  if (isfinite(e->force_max_rel)) w = fmax(w, fabs(e->force_max_rel));
+  return w;
+}
+
+/* one line per model, first: ok or warn, its error against its yardstick,
+ * and its impacts */
+static void print_verdict(FILE *f, const fb_run *r, int W) {
+  say(f, "verdict (ok: ran to its end with no warning and an error within its bound; error: "
+         "largest relative peak error of an ideal model against the exact analytic peaks of "
+         "its own lengths (bound %g), of a clearance model against its reference of the same "
+         "law (omega, alpha and force peaks), of a reference against its check integration):",
+      FB_IDEAL_PEAK_ERROR_BOUND);
+  fprintf(f, "%-*s %-7s %9s  %-28s %11s\n", W, "model", "verdict", "error", "against", "impacts");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    char err[32] = "-", against[64] = "-", impacts[32] = "-", why[160] = "";
+    int warn = m->run.stop.kind != FB_STOP_NONE || m->warning_count > 0;
+    if (m->run.clearance_mask && m->has_ref_error) {
+      snprintf(err, sizeof err, "%.2e", ref_error_worst(&m->ref_error));
+      snprintf(against, sizeof against, "%s", m->ref_name);
+    } else if (m->has_ref_estimate) {
+      snprintf(err, sizeof err, "%.2e", ref_error_worst(&m->ref_estimate));
+      snprintf(against, sizeof against, "check integration");
+    } else if (!m->run.clearance_mask && m->has_error) {
+      const double e = fmax(worst_rel(&m->error.coupler, &m->error.follower, 0),
+                            worst_rel(&m->error.coupler, &m->error.follower, 1));
+      snprintf(err, sizeof err, "%.2e", e);
+      snprintf(against, sizeof against, "%s",
+               m->run.model->engine == FB_ENGINE_ANALYTIC ? "exact peaks (sampling floor)"
+                                                          : "exact analytic peaks");
+      if (e > FB_IDEAL_PEAK_ERROR_BOUND) {
+        warn = 1;
+        snprintf(why, sizeof why, "error above %g", FB_IDEAL_PEAK_ERROR_BOUND);
+      }
+    } else if (m->run.clearance_mask) {
+      snprintf(against, sizeof against, "no reference in this run");
+    }
+    if (m->has_spikes) {
+      if (m->has_ref_error)
+        snprintf(impacts, sizeof impacts, "%d (ref %d)", m->spikes.impacts, m->ref_error.impacts_reference);
+      else
+        snprintf(impacts, sizeof impacts, "%d", m->spikes.impacts);
+    }
+    if (m->has_divergence && m->divergence.diverged) {
+      warn = 1;
+      snprintf(why, sizeof why, "leaves the reference at %.4g ms", m->divergence.t * 1e3);
+    }
+    if (m->run.stop.kind != FB_STOP_NONE) {
+      char stop[256];
+      snprintf(why, sizeof why, "%.150s", fb_stop_text(stop, sizeof stop, &m->run.stop));
+    } else if (m->warning_count > 0) {
+      snprintf(why, sizeof why, "%d warning%s (below)", m->warning_count, m->warning_count > 1 ? "s" : "");
+    }
+    char line[512];
+    snprintf(line, sizeof line, "%-*s %-7s %9s  %-28s %11s%s%s", W, m->run.name, warn ? "warn" : "ok",
+             err, against, impacts, why[0] ? "  " : "", why);
+    say(f, "%s", line);
+  }
+}
+
+/* the run's peaks (the paper's table): coupler and follower omega and alpha
+ * extremes, one row per model */
+static void print_peaks(FILE *f, const fb_run *r, int W) {
+  const int all = r->c.peaks == FB_PEAKS_ALL;
+  fputc('\n', f);
+  say(f, "peaks (the paper's table) over %s:",
+      all ? "the whole run from t = 0 (start-up included; [run] peaks = all)"
+          : "the revolutions after the first ([run] peaks = steady)");
+  fprintf(f, "%-*s %-40s %s\n", W, "", "coupler omega / alpha", "follower omega / alpha");
+  fprintf(f, "%-*s %9s %9s %10s %10s %9s %9s %10s %10s\n", W, "model", "max", "min", "max", "min",
+          "max", "min", "max", "min");
+  fprintf(f, "%-*s %9s %9s %10s %10s %9s %9s %10s %10s\n", W, "", "rad/s", "rad/s", "rad/s^2",
+          "rad/s^2", "rad/s", "rad/s", "rad/s^2", "rad/s^2");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    char stop[256];
+    fprintf(f, "%-*s", W, m->run.name);
+    if (m->has_peaks) {
+      const fb_body_peaks *p[2] = {&m->peaks.coupler, &m->peaks.follower};
+      for (int b = 0; b < 2; b++)
+        fprintf(f, " %9.4f %9.4f %10.2f %10.2f", p[b]->omega_max, p[b]->omega_min,
+                p[b]->alpha_max, p[b]->alpha_min);
+      fputc('\n', f);
+    } else {
+      fprintf(f, " (no peaks: %.60s)\n", fb_stop_text(stop, sizeof stop, &m->run.stop));
+    }
+  }
+}
+
+/* per model: its peaks against the exact analytic peaks of its own lengths
+ * (an error for ideal models, the clearance effect for clearance models),
+ * and its cost */
+static void print_cost(FILE *f, const fb_run *r, int W) {
+  fputc('\n', f);
+  say(f, "against the exact analytic peaks of the same lengths (largest |relative difference| of "
+         "the four omega, or alpha, peaks): an error for an ideal model (for analytic ones the "
+         "sampling floor of the time grid), the clearance effect for a clearance model; and cost:");
+  fprintf(f, "%-*s %9s %9s  %-16s %9s %9s %8s\n", W, "model", "omega", "alpha", "meaning", "steps",
+          "wall", "per step");
+  fprintf(f, "%-*s %9s %9s  %-16s %9s %9s %8s\n", W, "", "rel", "rel", "", "", "s", "us");
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i];
+    fprintf(f, "%-*s ", W, m->run.name);
+    if (m->has_error)
+      fprintf(f, "%9.2e %9.2e  %-16s ", worst_rel(&m->error.coupler, &m->error.follower, 0),
+              worst_rel(&m->error.coupler, &m->error.follower, 1),
+              m->run.clearance_mask ? "clearance effect" : "error");
+    else
+      fprintf(f, "%9s %9s  %-16s ", "-", "-", "-");
+    fprintf(f, "%9zu %9.3f %8.2f\n", m->run.steps, m->run.wall_s,
+            m->run.steps ? 1e6 * m->run.wall_s / (double)m->run.steps : 0.0);
   }
 }
 
@@ -723,40 +910,44 @@ static const char *mass_sources(char *buf, size_t size, const fb_link_mass_sourc
   return buf;
 }
 
-/* one line per run header: every mass and hinge-axis inertia, with sources */
+/* the run header's masses: one line per link, every mass and hinge-axis
+ * inertia, with sources */
 static void print_masses(FILE *f, const fb_case *c) {
   int derived = 0;
-  fprintf(f, "link masses:");
   for (int i = 0; i < 3; i++) {
     const fb_link_mass *m = &c->link[i];
     const fb_link_mass_source *s = &c->link_source[i];
     char src[128];
     derived |= s->mass == FB_SOURCE_DERIVED || s->inertia == FB_SOURCE_DERIVED ||
                s->inertia_long == FB_SOURCE_DERIVED || s->inertia_transverse == FB_SOURCE_DERIVED;
-    fprintf(f, "%s %s %.5g kg, I %.5g kg mm^2, centre of mass at %.3g (%s%s)", i ? ";" : "",
-            fb_link_name(i), m->mass, m->inertia * 1e6, m->com_fraction,
-            mass_sources(src, sizeof src, s),
-            s->com_fraction == FB_SOURCE_CASE ? "" : ", centre default");
+    say(f, "%s%s %.5g kg, I %.5g kg mm^2, centre of mass at %.3g (%s%s)",
+        i ? "             " : "link masses: ", fb_link_name(i), m->mass, m->inertia * 1e6,
+        m->com_fraction, mass_sources(src, sizeof src, s),
+        s->com_fraction == FB_SOURCE_CASE ? "" : ", centre default");
   }
-  fputc('\n', f);
   if (derived)
-    fprintf(f, "derived from bars (width x thickness, mm) crank %.4g x %.4g, coupler %.4g x "
-               "%.4g, follower %.4g x %.4g, density %.6g kg/m^3 (docs/keys.md)\n",
-            c->link_width[0] * 1e3, c->link_thickness[0] * 1e3, c->link_width[1] * 1e3,
-            c->link_thickness[1] * 1e3, c->link_width[2] * 1e3, c->link_thickness[2] * 1e3,
-            c->density);
+    say(f, "derived from bars (width x thickness, mm) crank %.4g x %.4g, coupler %.4g x "
+           "%.4g, follower %.4g x %.4g, density %.6g kg/m^3 (docs/keys.md)",
+        c->link_width[0] * 1e3, c->link_thickness[0] * 1e3, c->link_width[1] * 1e3,
+        c->link_thickness[1] * 1e3, c->link_width[2] * 1e3, c->link_thickness[2] * 1e3,
+        c->density);
 }
 
 void fb_report_print_table(FILE *f, const fb_run *r) {
   const fb_case *c = &r->c;
-  fprintf(f, "case %s: %.6g rpm %s, %s branch, %g revolution%s, h = %g s (%s); "
-             "peaks over t >= %.6g s (%s); start %s, pin %s\n\n",
-          c->name, c->crank_speed * 60.0 / (2.0 * M_PI), c->direction > 0 ? "ccw" : "cw",
-          c->branch == FB_BRANCH_OPEN ? "open" : "crossed", c->revolutions,
-          c->revolutions == 1 ? "" : "s", c->solver.h,
-          c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep",
-          r->t_window, c->peaks == FB_PEAKS_ALL ? "the whole run" : "after the first revolution",
-          fb_start_name(c->start), fb_pin_start_name(c->pin_start));
+  const int W = model_width(r);
+  say(f, "case %s: %.6g rpm %s, %s branch, %g revolution%s, h = %g s (%s); "
+         "peaks over t >= %.6g s (%s); start %s, pin %s",
+      c->name, c->crank_speed * 60.0 / (2.0 * M_PI), c->direction > 0 ? "ccw" : "cw",
+      c->branch == FB_BRANCH_OPEN ? "open" : "crossed", c->revolutions,
+      c->revolutions == 1 ? "" : "s", c->solver.h,
+      c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep", r->t_window,
+      c->peaks == FB_PEAKS_ALL ? "the whole run" : "after the first revolution",
+      fb_start_name(c->start), fb_pin_start_name(c->pin_start));
+  fputc('\n', f);
+  /* one screen first: the verdict per model */
+  print_verdict(f, r, W);
+  fputc('\n', f);
   int mj_ideal = 0, mj_clear = 0;
   for (int i = 0; i < r->n; i++)
     if (r->model[i].run.model->engine == FB_ENGINE_MUJOCO) {
@@ -764,75 +955,49 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
       else mj_ideal = 1;
     }
   if (mj_ideal || mj_clear)
-    fprintf(f, "MuJoCo models: integrator %s%s%s%s%s; loop closure solref (-k, -b) with k = %g "
-               "1/s^2, b = %g 1/s, solimp %g\n\n",
-            mj_ideal ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 0)) : "",
-            mj_ideal ? " (ideal models)" : "", mj_ideal && mj_clear ? ", " : "",
-            mj_clear ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 1)) : "",
-            mj_clear ? " (clearance models)" : "",
-            c->mujoco.loop_stiffness > 0 ? c->mujoco.loop_stiffness : 1.0 / (c->solver.h * c->solver.h),
-            c->mujoco.loop_damping > 0 ? c->mujoco.loop_damping : 1.0 / c->solver.h,
-            c->mujoco.loop_impedance);
+    say(f, "MuJoCo models: integrator %s%s%s%s%s; loop closure solref (-k, -b) with k = %g "
+           "1/s^2, b = %g 1/s, solimp %g",
+        mj_ideal ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 0)) : "",
+        mj_ideal ? " (ideal models)" : "", mj_ideal && mj_clear ? ", " : "",
+        mj_clear ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 1)) : "",
+        mj_clear ? " (clearance models)" : "",
+        c->mujoco.loop_stiffness > 0 ? c->mujoco.loop_stiffness : 1.0 / (c->solver.h * c->solver.h),
+        c->mujoco.loop_damping > 0 ? c->mujoco.loop_damping : 1.0 / c->solver.h,
+        c->mujoco.loop_impedance);
   int bt_models = 0;
   for (int i = 0; i < r->n; i++) bt_models |= r->model[i].run.model->engine == FB_ENGINE_BULLET;
   if (bt_models)
-    fprintf(f, "Bullet models: %s, %d iterations (sequential impulse; the MLCP's fallback)\n\n",
-            fb_bullet_solver_name(c->bullet.solver), c->bullet.iterations);
+    say(f, "Bullet models: %s, %d iterations (sequential impulse; the MLCP's fallback)",
+        fb_bullet_solver_name(c->bullet.solver), c->bullet.iterations);
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);
-  fprintf(f, "stack-up corner %c%c%c%c:", "-0+"[c->stackup.corner[0] + 1],
-          "-0+"[c->stackup.corner[1] + 1], "-0+"[c->stackup.corner[2] + 1],
-          "-0+"[c->stackup.corner[3] + 1]);
+  char corner[24];
+  snprintf(corner, sizeof corner, "stack-up corner %c%c%c%c:", "-0+"[c->stackup.corner[0] + 1],
+           "-0+"[c->stackup.corner[1] + 1], "-0+"[c->stackup.corner[2] + 1],
+           "-0+"[c->stackup.corner[3] + 1]);
   for (int k = 0; k < FB_LINK_COUNT; k++)
-    fprintf(f, "%s %s %.4g +- %.3g -> %.4g mm (%s)", k ? ";" : "", fb_link_name(k),
-            c->nominal.length[k] * 1e3, c->plus_minus[k] * 1e3, su.length[k] * 1e3,
-            c->tolerance_source[k]);
-  fprintf(f, "\nclearance joints: pin %.4g mm, radial clearance %.4g um (%s)\n",
-          c->pin_diameter * 1e3, c->radial_clearance * 1e6, c->clearance_source);
+    say(f, "%-20s %s %.4g +- %.3g -> %.4g mm (%s)", k ? "" : corner, fb_link_name(k),
+        c->nominal.length[k] * 1e3, c->plus_minus[k] * 1e3, su.length[k] * 1e3,
+        c->tolerance_source[k]);
+  say(f, "clearance joints: pin %.4g mm, radial clearance %.4g um (%s)", c->pin_diameter * 1e3,
+      c->radial_clearance * 1e6, c->clearance_source);
   print_masses(f, c);
-  fputc('\n', f);
-  fprintf(f, "%-26s %-35s %-35s %-17s %6s %8s %6s\n", "", "coupler omega / alpha",
-          "follower omega / alpha", "peak err vs exact", "", "", "");
-  fprintf(f, "%-26s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s %s\n", "model",
-          "max", "min", "max", "min", "max", "min", "max", "min", "omega", "alpha", "steps",
-          "wall_s", "us/step", "status");
-  fprintf(f, "%-26s %8s %8s %9s %9s %8s %8s %9s %9s %8s %8s %8s %8s %7s\n", "", "rad/s",
-          "rad/s", "rad/s^2", "rad/s^2", "rad/s", "rad/s", "rad/s^2", "rad/s^2", "rel", "rel", "",
-          "s", "");
-  for (int i = 0; i < r->n; i++) {
-    const fb_model_result *m = &r->model[i];
-    char stop[256];
-    fprintf(f, "%-26s ", m->run.name);
-    if (m->has_peaks) {
-      const fb_body_peaks *p[2] = {&m->peaks.coupler, &m->peaks.follower};
-      for (int b = 0; b < 2; b++)
-        fprintf(f, "%8.4f %8.4f %9.2f %9.2f ", p[b]->omega_max, p[b]->omega_min,
-                p[b]->alpha_max, p[b]->alpha_min);
-    } else {
-      fprintf(f, "%-71s ", "(no peaks: stopped before the window)");
-    }
-    if (m->has_error)
-      fprintf(f, "%8.1e %8.1e ", worst_rel(&m->error.coupler, &m->error.follower, 0),
-              worst_rel(&m->error.coupler, &m->error.follower, 1));
-    else
-      fprintf(f, "%8s %8s ", "-", "-");
-    fprintf(f, "%8zu %8.3f %7.2f %s\n", m->run.steps, m->run.wall_s,
-            m->run.steps ? 1e6 * m->run.wall_s / (double)m->run.steps : 0.0,
-            fb_stop_text(stop, sizeof stop, &m->run.stop));
-  }
+  print_peaks(f, r, W);
+  print_cost(f, r, W);
   int any = 0;
   for (int i = 0; i < r->n; i++) any |= r->model[i].has_spikes;
   if (any) {
-    fprintf(f, "\nspikes (clearance models; ratios of peak |alpha| to the ideal stack-up model):\n");
-    fprintf(f, "%-26s %9s %9s %10s %9s %10s %8s %8s %12s %12s\n", "model", "alpha/id", "alpha/id",
-            "omega dev", "force", "penetr.", "impacts", "free", "spike crank", "spike crank");
-    fprintf(f, "%-26s %9s %9s %10s %9s %10s %8s %8s %12s %12s\n", "", "coupler", "follower",
-            "rad/s", "N", "um", "", "fraction", "coupler deg", "follower deg");
+    fputc('\n', f);
+    say(f, "spikes (clearance models; ratios of peak |alpha| to the ideal stack-up model):");
+    fprintf(f, "%-*s %9s %9s %10s %9s %9s %7s %8s %9s %9s\n", W, "model", "alpha/id", "alpha/id",
+            "omega dev", "force", "penetr.", "impacts", "free", "spike at", "spike at");
+    fprintf(f, "%-*s %9s %9s %10s %9s %9s %7s %8s %9s %9s\n", W, "", "coupler", "follower",
+            "rad/s", "N", "um", "", "fraction", "cpl deg", "flw deg");
     for (int i = 0; i < r->n; i++) {
       const fb_model_result *m = &r->model[i];
       if (!m->has_spikes) continue;
       const fb_spikes *k = &m->spikes;
-      fprintf(f, "%-26s %9.3f %9.3f %10.4f %9.1f %10.4f %8d %8.4f %12.1f %12.1f\n", m->run.name,
+      fprintf(f, "%-*s %9.3f %9.3f %10.4f %9.1f %9.4f %7d %8.4f %9.1f %9.1f\n", W, m->run.name,
               k->alpha_peak_ratio_coupler, k->alpha_peak_ratio_follower, k->omega_dev_max,
               k->force_max, k->penetration_max * 1e6, k->impacts, k->free_flight_fraction,
               k->alpha_peak_crank_angle_coupler * 180.0 / M_PI,
@@ -842,17 +1007,18 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   int anyload = 0;
   for (int i = 0; i < r->n; i++) anyload |= r->model[i].run.series.has_loads;
   if (anyload) {
-    fprintf(f, "\nloads (peaks over %s; reaction: force on the second-named body):\n"
-               "%-26s %10s %10s %12s %12s %12s %12s\n%-26s %10s %10s %12s %12s %12s %12s\n",
-            c->peaks == FB_PEAKS_ALL ? "the whole run" : "the revolutions after the first", "model",
-            "torque max", "torque min", "|R| ground-", "|R| crank-", "|R| coupler-", "|R| follower-", "",
-            "N m", "N m", "crank N", "coupler N", "follower N", "ground N");
+    fputc('\n', f);
+    say(f, "loads (peaks over %s; reaction: force on the second-named body):",
+        c->peaks == FB_PEAKS_ALL ? "the whole run" : "the revolutions after the first");
+    fprintf(f, "%-*s %10s %10s %12s %12s %12s %12s\n%-*s %10s %10s %12s %12s %12s %12s\n", W,
+            "model", "torque max", "torque min", "|R| ground-", "|R| crank-", "|R| coupler-",
+            "|R| follower-", W, "", "N m", "N m", "crank N", "coupler N", "follower N", "ground N");
     for (int i = 0; i < r->n; i++) {
       const fb_model_result *m = &r->model[i];
       json_t *l = loads_json(&m->run.series, r->t_window);
       if (json_is_object(l)) {
         json_t *rm = json_object_get(l, "reaction_max_n");
-        fprintf(f, "%-26s %10.3f %10.3f %12.2f %12.2f %12.2f %12.2f\n", m->run.name,
+        fprintf(f, "%-*s %10.3f %10.3f %12.2f %12.2f %12.2f %12.2f\n", W, m->run.name,
                 json_real_value(json_object_get(l, "drive_torque_max_n_m")),
                 json_real_value(json_object_get(l, "drive_torque_min_n_m")),
                 json_real_value(json_object_get(rm, "ground_crank")),
@@ -866,25 +1032,31 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   int anyref = 0;
   for (int i = 0; i < r->n; i++) anyref |= r->model[i].has_ref_error;
   if (anyref) {
-    fprintf(f, "\nagainst the reference (same law, same instants):\n%-26s %-22s %10s %10s %10s %10s %9s %9s %9s\n",
-            "model", "reference", "omega pk", "omega rms", "alpha pk", "alpha rms", "force pk", "penetr.", "impacts");
-    fprintf(f, "%-26s %-22s %10s %10s %10s %10s %9s %9s %9s\n", "", "", "rel", "rad/s", "rel", "rad/s^2",
-            "rel", "rel", "model/ref");
+    fputc('\n', f);
+    say(f, "against the reference (same law, same instants; the reference of each model is named "
+           "in the verdict):");
+    fprintf(f, "%-*s %9s %9s %9s %9s %9s %9s %9s\n", W, "model", "omega pk", "omega rms",
+            "alpha pk", "alpha rms", "force pk", "penetr.", "impacts");
+    fprintf(f, "%-*s %9s %9s %9s %9s %9s %9s %9s\n", W, "", "rel", "rad/s", "rel", "rad/s^2", "rel",
+            "rel", "model/ref");
     for (int i = 0; i < r->n; i++) {
       const fb_model_result *m = &r->model[i];
       if (!m->has_ref_error) continue;
       const fb_reference_error *e = &m->ref_error;
-      fprintf(f, "%-26s %-22s %10.2e %10.3g %10.2e %10.4g %+9.2e %+9.2e %5d/%-3d\n", m->run.name, m->ref_name,
-              worst_rel(&e->coupler, &e->follower, 0), fmax(e->coupler.omega_err_rms, e->follower.omega_err_rms),
-              worst_rel(&e->coupler, &e->follower, 1), fmax(e->coupler.alpha_err_rms, e->follower.alpha_err_rms),
-              e->force_max_rel, e->penetration_max_rel, e->impacts, e->impacts_reference);
+      char counts[32];
+      snprintf(counts, sizeof counts, "%d/%d", e->impacts, e->impacts_reference);
+      fprintf(f, "%-*s %9.2e %9.3g %9.2e %9.4g %+9.2e %+9.2e %9s\n", W, m->run.name,
+              worst_rel(&e->coupler, &e->follower, 0),
+              fmax(e->coupler.omega_err_rms, e->follower.omega_err_rms),
+              worst_rel(&e->coupler, &e->follower, 1),
+              fmax(e->coupler.alpha_err_rms, e->follower.alpha_err_rms), e->force_max_rel,
+              e->penetration_max_rel, counts);
     }
   }
-  print_contact(f, r);
-  print_paper_tables(f, r);
-  fprintf(f, "\npeak err: largest |relative error| of the four omega (or alpha) peaks of "
-             "coupler and follower against the exact analytic peaks of the same lengths; "
-             "for analytic models it is the sampling floor of the time grid.\n");
+  print_contact(f, r, W);
+  print_startup(f, r, W);
+  print_divergence(f, r, W);
+  print_warnings(f, r);
 }
 
 /* 1 when a mass or an inertia of some link was derived from its bar */
@@ -924,7 +1096,10 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
   fprintf(f, "Command: `%s`  \nCase file: `%s`\n\n", command, case_path ? case_path : "-");
   fprintf(f, "## Summary\n\n```\n");
   fb_report_print_table(f, r);
-  fprintf(f, "```\n\nPer-model series: `<model>.csv`; every number: `summary.json`.\n\n");
+  fprintf(f, "```\n\nPer-model series: %s; every number: `summary.json`.\n\n",
+          r->c.series == FB_SERIES_HDF5   ? "`series.h5`, a group per model (docs/series.md)"
+          : r->c.series == FB_SERIES_NONE ? "none written (`[run] series = none`)"
+                                          : "`<model>.csv`");
   fprintf(f, "## Parameters\n\n| quantity | value | source |\n|---|---|---|\n");
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);

@@ -18,7 +18,7 @@
 
 static const char run_help[] =
     "usage: fourbar run [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
-    "                   [--no-figures] [--figure-format svg|png]\n"
+    "                   [--no-figures] [--figure-format svg|png] [--jobs J]\n"
     "\n"
     "Runs the models a case file asks for ([run] models), measures each against the\n"
     "exact analytic solution and writes DIR/summary.json, DIR/timing.json (wall\n"
@@ -39,6 +39,8 @@ static const char run_help[] =
     "                time_per_step_us per model) instead of the table\n"
     "  --no-figures  skip the figures (report.md is still written)\n"
     "  --figure-format svg|png   default svg\n"
+    "  --jobs J      run the [run] ensemble members in J worker processes\n"
+    "                (default 1); the numbers do not depend on J\n"
     "  -h, --help    this text\n"
     "\n"
     "Units: SI in every output (column and key names carry the unit). Peaks are\n"
@@ -65,9 +67,11 @@ int fb_cmd_run(int argc, char **argv) {
                                        {"json", no_argument, 0, 'j'},
                                        {"no-figures", no_argument, 0, 'n'},
                                        {"figure-format", required_argument, 0, 'f'},
+                                       {"jobs", required_argument, 0, 'J'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out_dir = NULL;
+  int jobs = 1;
   const char *sets[MAX_SETS];
   int nsets = 0, json = 0, figures = 1, ch;
   fb_figure_format fmt = FB_FIGURE_SVG;
@@ -86,6 +90,15 @@ int fb_cmd_run(int argc, char **argv) {
         else if (strcmp(optarg, "png") == 0) fmt = FB_FIGURE_PNG;
         else return fb_cli_fail("run", 2, "--figure-format '%s': must be svg or png", optarg);
         break;
+      case 'J': {
+        char *end;
+        const long j = strtol(optarg, &end, 10);
+        if (end == optarg || *end || j < 1 || j > FB_ENSEMBLE_MAX)
+          return fb_cli_fail("run", 2, "--jobs %s: must be an integer from 1 to %d", optarg,
+                             FB_ENSEMBLE_MAX);
+        jobs = (int)j;
+        break;
+      }
       case 'h': fputs(run_help, stdout); return 0;
       default: fputs(run_help, stderr); return 2;
     }
@@ -95,6 +108,7 @@ int fb_cmd_run(int argc, char **argv) {
   char case_path[4096];
   int rc = fb_cli_load_case("run", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
+  c.jobs = jobs;
 
   char dir[4096];
   if (out_dir)

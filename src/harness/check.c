@@ -13,7 +13,35 @@ static int add(fb_metric *out, int n, int max, const char *model, const char *gr
   if (n >= max || !isfinite(v)) return n;
   snprintf(out[n].name, sizeof out[n].name, "%s.%s.%s", model, group, key);
   out[n].value = v;
+  out[n].ensemble_sd = 0.0;
   return n + 1;
+}
+
+/* the pooled impact statistics of a model with an ensemble of several runs */
+static int add_stats(fb_metric *out, int n, int max, const fb_model_result *m) {
+  const fb_ensemble *e = &m->ensemble;
+  const fb_impact_stats *p = &e->pooled, *sd = &e->spread;
+  char key[96];
+  int k = n;
+  k = add(out, k, max, m->run.name, "stats", "impacts", (double)p->force.n);
+  if (k > n) out[k - 1].ensemble_sd = (double)sd->force.n * sqrt((double)e->members);
+#define FB_CHECK_DIST(field, dkey)                                          \
+  snprintf(key, sizeof key, "%s_%s_%s", prefix, dkey, unit);                \
+  {                                                                         \
+    const int before = k;                                                   \
+    k = add(out, k, max, m->run.name, "stats", key, d->field);              \
+    if (k > before) out[k - 1].ensemble_sd = s->field;                      \
+  }
+#define FB_CHECK_STATS(sfield, sprefix, sunit)                              \
+  {                                                                         \
+    const fb_dist *d = &p->sfield, *s = &sd->sfield;                        \
+    const char *prefix = sprefix, *unit = sunit;                            \
+    FB_DIST_KEYS(FB_CHECK_DIST)                                             \
+  }
+  FB_IMPACT_STATS_KEYS(FB_CHECK_STATS)
+#undef FB_CHECK_STATS
+#undef FB_CHECK_DIST
+  return k;
 }
 
 int fb_check_metrics(const fb_run *r, fb_metric *out, int max) {
@@ -21,6 +49,9 @@ int fb_check_metrics(const fb_run *r, fb_metric *out, int max) {
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     const char *name = m->run.name;
+    const int stats = m->has_ensemble && m->ensemble.members > 1;
+    if (stats) n = add_stats(out, n, max, m);
+    if (stats && m->peaks_unconverged) continue; /* chaotic: its statistics, not its peaks */
     if (m->has_peaks) {
       const fb_body_peaks *b[2] = {&m->peaks.coupler, &m->peaks.follower};
       const char *bn[2] = {"coupler", "follower"};
@@ -45,6 +76,16 @@ int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
   const int prefix = l && name[l - 1] == '*';
   const size_t cmp = prefix ? l - 1 : l;
   static const char *groups[3] = {"coupler", "follower", "spikes"};
+  /* <model>.stats.<key>: the statistics metrics (add_stats) */
+  if (strstr(name, ".stats.") || (prefix && strstr(name, ".stats"))) {
+    for (int m = 0; m < fb_model_count; m++) {
+      char head[160];
+      snprintf(head, sizeof head, "%s.stats.", fb_models[m].name);
+      const size_t hl = strlen(head);
+      if (prefix ? strncmp(head, name, cmp < hl ? cmp : hl) == 0 : strncmp(head, name, hl) == 0)
+        return 1;
+    }
+  }
   static const char *peak_keys[] = {
 #define FB_NAME_PEAK(field, key) key,
       FB_BODY_PEAK_KEYS(FB_NAME_PEAK)
@@ -124,6 +165,7 @@ fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterminis
     memcpy(b->name, base[i].name, sizeof b->name);
     b->value = base[i].value;
     b->spread = 0.0;
+    b->ensemble_sd = base[i].ensemble_sd;
     for (int k = 0; k < 3; k++) {
       int found;
       double v = find(pert[k], np[k], base[i].name, &found);
@@ -133,6 +175,7 @@ fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterminis
     }
     b->tolerance = fmax(FB_CHECK_FLOOR_ABS,
                         fmax(FB_CHECK_FLOOR_REL * fabs(b->value), FB_CHECK_SAFETY_FACTOR * b->spread));
+    b->tolerance = fmax(b->tolerance, FB_CHECK_ENSEMBLE_SIGMAS * b->ensemble_sd);
     b->chaotic = b->spread > FB_CHECK_CHAOTIC_REL * fabs(b->value);
   }
   *n = nb;

@@ -10,7 +10,16 @@
  * max(floor_abs, floor_rel |value|, safety_factor * spread). A metric whose
  * spread exceeds 5 % of its value is marked chaotic (impact counts and crank
  * angles of spikes usually are): it is still compared by value, with its wide
- * measured tolerance. */
+ * measured tolerance.
+ *
+ * A case with [run] ensemble = N > 1 adds, for every clearance model, the
+ * pooled impact statistics (<model>.stats.impact_force_p90_n, ...; mean,
+ * p50, p90, max of the per-impact peak force and coupler and follower alpha
+ * spikes, and the impact count), with a tolerance of at least
+ * FB_CHECK_ENSEMBLE_SIGMAS x the members' standard deviation; and a model
+ * whose window peaks are not converged (divergent from its reference, or a
+ * reference whose check integration moves them: run.h, peaks_unconverged)
+ * is checked by these statistics alone, not by its peaks and spikes. */
 #ifndef FB_CHECK_H
 #define FB_CHECK_H
 
@@ -24,9 +33,17 @@
 #define FB_CHECK_H_FACTOR 0.99       /* the "a little smaller" step */
 #define FB_CHECK_ANGLE_NUDGE_RAD 1e-12
 
+/* A statistics metric's tolerance is at least this many standard deviations
+ * of the statistic over the case's [run] ensemble members (ensemble.h): a
+ * chaotic case's pooled statistics move by about sd / sqrt(members) when
+ * anything at all changes (the step, a compiler), so 3 sd of one member
+ * covers them with room, yet a spike that doubles still fails [-]. */
+#define FB_CHECK_ENSEMBLE_SIGMAS 3.0
+
 typedef struct {
   char name[128];
   double value;
+  double ensemble_sd; /* statistics metrics: the members' standard deviation; else 0 */
 } fb_metric;
 
 /* Collects the metrics of run r into out (at most max); returns the count. */
@@ -44,6 +61,7 @@ typedef struct {
   double value;     /* baseline value */
   double tolerance; /* absolute */
   double spread;    /* measured by calibration */
+  double ensemble_sd; /* statistics metrics: the members' standard deviation; else 0 */
   int chaotic;
 } fb_baseline_metric;
 

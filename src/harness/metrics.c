@@ -348,17 +348,25 @@ fb_status fb_metrics_divergence(fb_divergence *out, const fb_series *s, const fb
   double *fb = buf + 4 * CAP, *pb = buf + 5 * CAP;
   out->impacts_model = impact_list(s, j, t_cut, ta, fa, pa, CAP);
   out->impacts_reference = impact_list(r, j, t_cut, tb, fb, pb, CAP);
-  const int both = out->impacts_model < out->impacts_reference ? out->impacts_model
-                                                               : out->impacts_reference;
+  const int na = out->impacts_model < CAP ? out->impacts_model : CAP;
+  const int nb = out->impacts_reference < CAP ? out->impacts_reference : CAP;
   const double window = FB_IMPACT_MATCH_REV_FRACTION * period;
+  /* pairs by time: walk both onset lists in order; two onsets within the
+   * window match, else the earlier one has no partner (an extra impact of
+   * a rattling pin no longer shifts every later pair) */
   int k = 0;
-  for (; k < both && k < CAP; k++) {
-    if (!(fabs(ta[k] - tb[k]) <= window)) break;
-    const double frel = fb_metrics_rel(fa[k], fb[k]), prel = fb_metrics_rel(pa[k], pb[k]);
+  for (int a = 0, b = 0; a < na && b < nb;) {
+    if (!(fabs(ta[a] - tb[b]) <= window)) {
+      if (ta[a] < tb[b]) a++;
+      else b++;
+      continue;
+    }
+    const double frel = fb_metrics_rel(fa[a], fb[b]), prel = fb_metrics_rel(pa[a], pb[b]);
     out->force_rel_max = fmax_d(out->force_rel_max, fabs(frel));
     out->penetration_rel_max = fmax_d(out->penetration_rel_max, fabs(prel));
     if (k < FB_DIVERGE_MAX_IMPACTS)
-      out->impact[k] = (fb_matched_impact){ta[k], ta[k] - tb[k], fa[k], frel, pa[k], prel};
+      out->impact[k] = (fb_matched_impact){ta[a], ta[a] - tb[b], fa[a], frel, pa[a], prel};
+    k++, a++, b++;
   }
   free(buf);
   out->matched = k;

@@ -233,6 +233,14 @@ typedef struct fb_case_s {
   fb_pin_start pin_start;             /* initial pin position of the clearance joints */
   double pin_start_angle;             /* eccentricity angle for FB_PIN_ANGLE [rad], ccw from +x */
   fb_peak_window peaks;               /* window of the reported peaks */
+  int ensemble;                       /* [run] ensemble: runs of the clearance models with the
+                                         start perturbed (ensemble.h); 1: the run alone [-] */
+  double pin_start_offset[2];         /* not a key: added to every clearance joint's initial
+                                         eccentricity [m] (an ensemble member's perturbation) */
+  int member;                         /* not a key: 1 in an ensemble member's run (no ensemble,
+                                         no reference check integration, no step re-choice) */
+  int jobs;                           /* not a key: worker processes of the ensemble (--jobs);
+                                         0 or 1: one; the results do not depend on it */
   int model_count;                    /* entries used in models */
   char models[FB_MAX_MODELS][FB_NAME_SIZE]; /* model names to run, in order */
 } fb_case;

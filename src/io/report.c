@@ -10,6 +10,7 @@
 #include "casefile.h"
 #include "fileio.h"
 #include "outcome_text.h"
+#include "report_chaos.h"
 #include "start.h"
 
 /* finite number or null */
@@ -227,7 +228,9 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o, "bore_ovality_m", json_null());
   }
   char stop[256];
-  json_object_set_new(o, "status", json_string(fb_stop_text(stop, sizeof stop, &run->stop)));
+  json_object_set_new(o, "status", json_string(fb_report_model_status(stop, sizeof stop, m)));
+  json_object_set_new(o, "peaks_converged", fb_report_converged_json(m));
+  json_object_set_new(o, "impact_statistics", fb_report_ensemble_json(m, r));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
   json_object_set_new(o, "lengths_m", lengths_json(&run->lengths));
@@ -506,6 +509,7 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
                                                     : "dWorldQuickStep"));
   json_object_set_new(o, "stackup", stackup_json(c));
   json_object_set_new(o, "masses", masses_json(c));
+  json_object_set_new(o, "step", fb_report_step_json(r));
   json_t *an = json_object();
   json_object_set_new(an, "coupler", fb_report_body_peaks_json(&r->analytic_nominal.coupler));
   json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
@@ -590,14 +594,17 @@ static double worst_rel(const fb_body_error *a, const fb_body_error *b, int alph
 }
 
 /* one paper-style row: four extremes of coupler and follower, omega or alpha */
-static void paper_row(FILE *f, const char *name, const fb_peaks *p, int alpha) {
+static void paper_row(FILE *f, const char *name, const fb_peaks *p, int alpha, int u) {
   const fb_body_peaks *b[2] = {&p->coupler, &p->follower};
+  char c0[24], c1[24];
   fprintf(f, "%-26s", name);
   for (int k = 0; k < 2; k++) {
     if (alpha)
-      fprintf(f, " %14.2f %14.2f", b[k]->alpha_max, b[k]->alpha_min);
+      fprintf(f, " %14s %14s", fb_report_figure(c0, sizeof c0, "%.2f", b[k]->alpha_max, u),
+              fb_report_figure(c1, sizeof c1, "%.2f", b[k]->alpha_min, u));
     else
-      fprintf(f, " %12.4f %12.4f", b[k]->omega_max, b[k]->omega_min);
+      fprintf(f, " %12s %12s", fb_report_figure(c0, sizeof c0, "%.4f", b[k]->omega_max, u),
+              fb_report_figure(c1, sizeof c1, "%.4f", b[k]->omega_min, u));
   }
   fputc('\n', f);
 }
@@ -653,7 +660,7 @@ static void print_paper_tables(FILE *f, const fb_run *r) {
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     char stop[256];
-    if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 0);
+    if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 0, m->peaks_unconverged);
     else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, fb_stop_text(stop, sizeof stop, &m->run.stop));
   }
   fprintf(f, "angular acceleration, rad/s^2\n%-26s %14s %14s %14s %14s\n", "model",
@@ -661,7 +668,7 @@ static void print_paper_tables(FILE *f, const fb_run *r) {
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     char stop[256];
-    if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 1);
+    if (m->has_peaks) paper_row(f, m->run.name, &m->peaks, 1, m->peaks_unconverged);
     else fprintf(f, "%-26s (no peaks: %s)\n", m->run.name, fb_stop_text(stop, sizeof stop, &m->run.stop));
   }
   /* the start-up of the clearance models: first impact and revolution 1's spikes */
@@ -793,9 +800,13 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
     fprintf(f, "%-26s ", m->run.name);
     if (m->has_peaks) {
       const fb_body_peaks *p[2] = {&m->peaks.coupler, &m->peaks.follower};
+      const int u = m->peaks_unconverged; /* marked "~", 3 figures (report_chaos.h) */
+      char c0[24], c1[24], c2[24], c3[24];
       for (int b = 0; b < 2; b++)
-        fprintf(f, "%8.4f %8.4f %9.2f %9.2f ", p[b]->omega_max, p[b]->omega_min,
-                p[b]->alpha_max, p[b]->alpha_min);
+        fprintf(f, "%8s %8s %9s %9s ", fb_report_figure(c0, sizeof c0, "%.4f", p[b]->omega_max, u),
+                fb_report_figure(c1, sizeof c1, "%.4f", p[b]->omega_min, u),
+                fb_report_figure(c2, sizeof c2, "%.2f", p[b]->alpha_max, u),
+                fb_report_figure(c3, sizeof c3, "%.2f", p[b]->alpha_min, u));
     } else {
       fprintf(f, "%-71s ", "(no peaks: stopped before the window)");
     }
@@ -806,7 +817,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
       fprintf(f, "%8s %8s ", "-", "-");
     fprintf(f, "%8zu %8.3f %7.2f %s\n", m->run.steps, m->run.wall_s,
             m->run.steps ? 1e6 * m->run.wall_s / (double)m->run.steps : 0.0,
-            fb_stop_text(stop, sizeof stop, &m->run.stop));
+            fb_report_model_status(stop, sizeof stop, m));
   }
   int any = 0;
   for (int i = 0; i < r->n; i++) any |= r->model[i].has_spikes;
@@ -820,9 +831,14 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
       const fb_model_result *m = &r->model[i];
       if (!m->has_spikes) continue;
       const fb_spikes *k = &m->spikes;
-      fprintf(f, "%-26s %9.3f %9.3f %10.4f %9.1f %10.4f %8d %8.4f %12.1f %12.1f\n", m->run.name,
-              k->alpha_peak_ratio_coupler, k->alpha_peak_ratio_follower, k->omega_dev_max,
-              k->force_max, k->penetration_max * 1e6, k->impacts, k->free_flight_fraction,
+      const int u = m->peaks_unconverged;
+      char c0[24], c1[24], c2[24], c3[24];
+      fprintf(f, "%-26s %9s %9s %10.4f %9s %10s %8d %8.4f %12.1f %12.1f\n", m->run.name,
+              fb_report_figure(c0, sizeof c0, "%.3f", k->alpha_peak_ratio_coupler, u),
+              fb_report_figure(c1, sizeof c1, "%.3f", k->alpha_peak_ratio_follower, u),
+              k->omega_dev_max, fb_report_figure(c2, sizeof c2, "%.1f", k->force_max, u),
+              fb_report_figure(c3, sizeof c3, "%.4f", k->penetration_max * 1e6, u), k->impacts,
+              k->free_flight_fraction,
               k->alpha_peak_crank_angle_coupler * 180.0 / M_PI,
               k->alpha_peak_crank_angle_follower * 180.0 / M_PI);
     }
@@ -870,6 +886,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   }
   print_contact(f, r);
   print_paper_tables(f, r);
+  fb_report_print_chaos(f, r);
   fprintf(f, "\npeak err: largest |relative error| of the four omega (or alpha) peaks of "
              "coupler and follower against the exact analytic peaks of the same lengths; "
              "for analytic models it is the sampling floor of the time grid.\n");
@@ -974,6 +991,7 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
     fprintf(f, "| mapping | %s | %s |\n", fb_mapping_name((fb_mapping)c->clearance.mapping),
             given_src(c, "clearance", "mapping", NULL));
   }
+  fb_report_markdown_chaos(f, r);
   fprintf(f, "\n## Figures\n\n");
   if (n == 0) fprintf(f, "%s\n", figure_note ? figure_note : "No figures were drawn.");
   for (int i = 0; i < n; i++) fprintf(f, "![%s](%s)\n\n", figures[i], figures[i]);

@@ -156,8 +156,9 @@ static int calibrate(const char *case_file, const char *const *sets, int nsets) 
     /* [run] ensemble: statistics metrics with the members' spread (check.h) */
     json_object_set_new(cal, "ensemble_sigmas", json_real(FB_CHECK_ENSEMBLE_SIGMAS));
     json_object_set_new(cal, "tolerance", json_string("max(floor_abs, floor_rel |value|, "
-                                                      "safety_factor spread, ensemble_sigmas "
-                                                      "ensemble_sd)"));
+                                                      "safety_factor spread); statistics "
+                                                      "metrics: max(floor_abs, floor_rel "
+                                                      "|value|, ensemble_sigmas ensemble_sd)"));
   } else {
     json_object_set_new(cal, "tolerance", json_string("max(floor_abs, floor_rel |value|, safety_factor spread)"));
   }

@@ -23,14 +23,18 @@ static int add_stats(fb_metric *out, int n, int max, const fb_model_result *m) {
   const fb_impact_stats *p = &e->pooled, *sd = &e->spread;
   char key[96];
   int k = n;
+  /* two ensembles of N members differing in roundoff alone: a pooled
+   * statistic's difference has sd_member sqrt(2 / N); the pooled impact
+   * count (a sum of N counts) sd_count sqrt(2 N) */
+  const double two_over_n = sqrt(2.0 / (double)e->members);
   k = add(out, k, max, m->run.name, "stats", "impacts", (double)p->force.n);
-  if (k > n) out[k - 1].ensemble_sd = (double)sd->force.n * sqrt((double)e->members);
+  if (k > n) out[k - 1].ensemble_sd = (double)sd->force.n * sqrt(2.0 * (double)e->members);
 #define FB_CHECK_DIST(field, dkey)                                          \
   snprintf(key, sizeof key, "%s_%s_%s", prefix, dkey, unit);                \
   {                                                                         \
     const int before = k;                                                   \
     k = add(out, k, max, m->run.name, "stats", key, d->field);              \
-    if (k > before) out[k - 1].ensemble_sd = s->field;                      \
+    if (k > before) out[k - 1].ensemble_sd = s->field * two_over_n;                      \
   }
 #define FB_CHECK_STATS(sfield, sprefix, sunit)                              \
   {                                                                         \
@@ -175,7 +179,10 @@ fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterminis
     }
     b->tolerance = fmax(FB_CHECK_FLOOR_ABS,
                         fmax(FB_CHECK_FLOOR_REL * fabs(b->value), FB_CHECK_SAFETY_FACTOR * b->spread));
-    b->tolerance = fmax(b->tolerance, FB_CHECK_ENSEMBLE_SIGMAS * b->ensemble_sd);
+    /* a statistics metric: from the ensemble's spread alone (check.h) */
+    if (b->ensemble_sd > 0.0)
+      b->tolerance = fmax(FB_CHECK_FLOOR_ABS, fmax(FB_CHECK_FLOOR_REL * fabs(b->value),
+                                                   FB_CHECK_ENSEMBLE_SIGMAS * b->ensemble_sd));
     b->chaotic = b->spread > FB_CHECK_CHAOTIC_REL * fabs(b->value);
   }
   *n = nb;

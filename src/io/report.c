@@ -878,10 +878,17 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
       const fb_model_result *m = &r->model[i];
       if (!m->has_ref_error) continue;
       const fb_reference_error *e = &m->ref_error;
-      fprintf(f, "%-26s %-22s %10.2e %10.3g %10.2e %10.4g %+9.2e %+9.2e %5d/%-3d\n", m->run.name, m->ref_name,
-              worst_rel(&e->coupler, &e->follower, 0), fmax(e->coupler.omega_err_rms, e->follower.omega_err_rms),
-              worst_rel(&e->coupler, &e->follower, 1), fmax(e->coupler.alpha_err_rms, e->follower.alpha_err_rms),
-              e->force_max_rel, e->penetration_max_rel, e->impacts, e->impacts_reference);
+      /* a divergent model's peaks compare two histories: marked (report_chaos.h) */
+      const int u = m->peaks_unconverged;
+      char c0[24], c1[24], c2[24], c3[24];
+      fprintf(f, "%-26s %-22s %10s %10.3g %10s %10.4g %9s %9s %5d/%-3d\n", m->run.name, m->ref_name,
+              fb_report_figure(c0, sizeof c0, "%.2e", worst_rel(&e->coupler, &e->follower, 0), u),
+              fmax(e->coupler.omega_err_rms, e->follower.omega_err_rms),
+              fb_report_figure(c1, sizeof c1, "%.2e", worst_rel(&e->coupler, &e->follower, 1), u),
+              fmax(e->coupler.alpha_err_rms, e->follower.alpha_err_rms),
+              fb_report_figure(c2, sizeof c2, "%+.2e", e->force_max_rel, u),
+              fb_report_figure(c3, sizeof c3, "%+.2e", e->penetration_max_rel, u), e->impacts,
+              e->impacts_reference);
     }
   }
   print_contact(f, r);

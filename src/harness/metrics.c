@@ -361,6 +361,16 @@ fb_status fb_metrics_divergence(fb_divergence *out, const fb_series *s, const fb
       else b++;
       continue;
     }
+    /* the nearest partner: a split episode (a micro-bounce) puts two onsets
+     * in one window; the closer one pairs, the other stays unmatched */
+    if (b + 1 < nb && fabs(ta[a] - tb[b + 1]) < fabs(ta[a] - tb[b])) {
+      b++;
+      continue;
+    }
+    if (a + 1 < na && fabs(ta[a + 1] - tb[b]) < fabs(ta[a] - tb[b])) {
+      a++;
+      continue;
+    }
     const double frel = fb_metrics_rel(fa[a], fb[b]), prel = fb_metrics_rel(pa[a], pb[b]);
     out->force_rel_max = fmax_d(out->force_rel_max, fabs(frel));
     out->penetration_rel_max = fmax_d(out->penetration_rel_max, fabs(prel));

@@ -27,27 +27,32 @@ fb_status fb_impact_values_add(fb_impact_values *v, const fb_series *s, int j, d
   if (j < 0 || j > 3 || !(s->contact_mask & (1 << j)))
     return fb_diag_set(diag, FB_ERR_ARG, "no contact columns at joint %d for impact statistics", j);
   const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
-  int open = 0; /* 1 inside an impact that counts */
-  for (size_t i = 0; i < s->n; i++) {
-    const int in = (int)st[i] == FB_STATE_IMPACT && f[i] > 0.0;
-    const int onset = in && (i == 0 || (int)st[i - 1] != FB_STATE_IMPACT || !(f[i - 1] > 0.0));
-    if (onset) {
-      open = s->t[i] >= t_from;
-      if (open) {
-        if (!grow(v)) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for impact statistics");
-        v->force[v->n] = v->alpha_coupler[v->n] = v->alpha_follower[v->n] = 0.0;
-        v->n++;
-      }
+  size_t i = 0;
+  while (i < s->n) {
+    if (!(f[i] > 0.0)) {
+      i++;
+      continue;
     }
-    if (!open) continue;
-    const size_t k = v->n - 1;
-    if (in) v->force[k] = fmax(v->force[k], f[i]);
+    size_t e = i;
+    int impact = 0;
+    double fm = 0.0, ac = 0.0, af = 0.0;
+    for (; e < s->n && f[e] > 0.0; e++) {
+      impact |= (int)st[e] == FB_STATE_IMPACT;
+      fm = fmax(fm, f[e]);
+    }
     /* the episode's samples and the one after it */
-    if (in || (i > 0 && (int)st[i - 1] == FB_STATE_IMPACT && f[i - 1] > 0.0)) {
-      v->alpha_coupler[k] = fmax(v->alpha_coupler[k], fabs(s->coupler_alpha[i]));
-      v->alpha_follower[k] = fmax(v->alpha_follower[k], fabs(s->follower_alpha[i]));
+    for (size_t q = i; q <= e && q < s->n; q++) {
+      ac = fmax(ac, fabs(s->coupler_alpha[q]));
+      af = fmax(af, fabs(s->follower_alpha[q]));
     }
-    if (!in) open = 0;
+    if (impact && s->t[i] >= t_from) {
+      if (!grow(v)) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for impact statistics");
+      v->force[v->n] = fm;
+      v->alpha_coupler[v->n] = ac;
+      v->alpha_follower[v->n] = af;
+      v->n++;
+    }
+    i = e;
   }
   return FB_OK;
 }

@@ -123,10 +123,12 @@ int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
   return 0;
 }
 
-static fb_status run_metrics(fb_metric *out, int *n, const fb_case *c, fb_diag *diag) {
+static fb_status run_metrics(fb_metric *out, int *n, const fb_case *c, double *h_used,
+                             fb_diag *diag) {
   static fb_run r;
   fb_status st = fb_run_case(&r, c, NULL, NULL, diag);
   if (st != FB_OK) return st;
+  if (h_used) *h_used = r.c.solver.h; /* auto resolved, and re-chosen if it was */
   *n = fb_check_metrics(&r, out, FB_CHECK_MAX_METRICS);
   fb_run_free(&r);
   return FB_OK;
@@ -146,22 +148,23 @@ fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterminis
                              const fb_case *c, fb_diag *diag) {
   static fb_metric base[FB_CHECK_MAX_METRICS], pert[3][FB_CHECK_MAX_METRICS];
   int nb = 0, np[3] = {0, 0, 0};
-  fb_status st = run_metrics(base, &nb, c, diag);
+  double h_used = 0.0;
+  fb_status st = run_metrics(base, &nb, c, &h_used, diag);
   if (st != FB_OK) return st;
   fb_case p = *c;
-  /* the step the run used (auto resolved at the resolved corner), a little smaller */
+  /* the step the run used (auto resolved at the resolved corner, and
+   * re-chosen when the run passed its bound), a little smaller */
   st = fb_tol_resolve_worst(&p, diag);
-  if (st == FB_OK) st = fb_case_resolve_step(&p, diag);
   if (st != FB_OK) return st;
-  p.solver.h *= FB_CHECK_H_FACTOR;
+  p.solver.h = h_used * FB_CHECK_H_FACTOR;
   p.solver.h_mode = FB_STEP_FIXED;
-  st = run_metrics(pert[0], &np[0], &p, diag);
+  st = run_metrics(pert[0], &np[0], &p, NULL, diag);
   if (st != FB_OK) return st;
   p = *c;
   p.crank_angle0 = c->crank_angle0 + FB_CHECK_ANGLE_NUDGE_RAD;
-  st = run_metrics(pert[1], &np[1], &p, diag);
+  st = run_metrics(pert[1], &np[1], &p, NULL, diag);
   if (st != FB_OK) return st;
-  st = run_metrics(pert[2], &np[2], c, diag);
+  st = run_metrics(pert[2], &np[2], c, NULL, diag);
   if (st != FB_OK) return st;
   *nondeterministic = 0;
   for (int i = 0; i < nb; i++) {

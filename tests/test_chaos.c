@@ -7,6 +7,7 @@
  * reference's own peaks are unconverged, the ensemble spreads), a model
  * that keeps the reference's trajectory with wrong impacts (status error),
  * and an ensemble whose numbers do not depend on --jobs. */
+#include <jansson.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -206,23 +207,49 @@ static void test_chaotic_rattling_pin(void **state) {
   fb_run_free(&r);
 }
 
-/* the same ensemble with 1 and 2 worker processes: bit for bit */
+/* the rattling case's check metrics with 1 and 2 worker processes: the
+ * same bit for bit, and each within the committed baseline's tolerance
+ * (results/baselines/rattling_pin.json): `fourbar check` passes on
+ * repeated runs and on --jobs 1 against --jobs 2 */
 static void test_jobs_do_not_change_the_numbers(void **state) {
   (void)state;
-  const char *sets[] = {"run.ensemble=3", "run.models=reference"};
+  static fb_metric met[2][FB_CHECK_MAX_METRICS];
+  int n[2];
   fb_ensemble e[2];
   for (int jobs = 1; jobs <= 2; jobs++) {
     fb_case c;
-    load(&c, "hard/rattling_pin.ini", sets, 2);
+    load(&c, "hard/rattling_pin.ini", NULL, 0);
     c.jobs = jobs;
     static fb_run r;
     fb_diag d;
     assert_int_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
     e[jobs - 1] = find(&r, "reference")->ensemble;
+    n[jobs - 1] = fb_check_metrics(&r, met[jobs - 1], FB_CHECK_MAX_METRICS);
     fb_run_free(&r);
   }
-  assert_int_equal(e[0].members, 3);
+  assert_int_equal(e[0].members, 5);
   assert_memory_equal(&e[0], &e[1], sizeof e[0]);
+  assert_int_equal(n[0], n[1]);
+  const char *dir = getenv("FOURBAR_CASES_DIR");
+  char path[4096];
+  snprintf(path, sizeof path, "%s/../results/baselines/rattling_pin.json", dir ? dir : "cases");
+  json_error_t je;
+  json_t *b = json_load_file(path, 0, &je);
+  if (!b) fail_msg("%s: %s", path, je.text);
+  json_t *list = json_object_get(b, "metrics");
+  assert_int_equal((int)json_array_size(list), n[0]);
+  for (int i = 0; i < n[0]; i++) {
+    assert_string_equal(met[0][i].name, met[1][i].name);
+    assert_true(met[0][i].value == met[1][i].value);
+    json_t *x = json_array_get(list, (size_t)i);
+    assert_string_equal(json_string_value(json_object_get(x, "name")), met[0][i].name);
+    const double v = json_number_value(json_object_get(x, "value"));
+    const double tol = json_number_value(json_object_get(x, "tolerance"));
+    if (!(fabs(met[0][i].value - v) <= tol))
+      fail_msg("%s: %g against the baseline %g (tolerance %g)", met[0][i].name, met[0][i].value, v,
+               tol);
+  }
+  json_decref(b);
 }
 
 /* the paper case at a fixed h = 1e-5 s (h omega_c ~1.1): the model keeps

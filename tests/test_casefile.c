@@ -228,6 +228,10 @@ static void test_start_peaks_and_limit_keys(void **state) {
                (const char *[]){"revolutions = 1", "peaks = all", NULL});
   expect_error("[run]\nrevolutions = 0\npeaks = all\n", NULL, 0, FB_ERR_RANGE,
                (const char *[]){"revolutions = 0", "at least 1", NULL});
+  expect_error("[run]\nensemble = 0\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){":2:", "ensemble = 0", "from 1 to 64", NULL});
+  expect_error("[run]\nensemble = 2.5\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "ensemble = '2.5'", "not an integer", NULL});
 }
 
 static void test_every_key_documented(void **state) {

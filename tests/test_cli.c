@@ -528,6 +528,8 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
               "--speed-rpm 10", (const char *[]){"double-rocker", "cannot turn fully", NULL});
   expect_fail("penalty --speeds-rpm 0:10:1", (const char *[]){"--speeds-rpm", NULL});
   expect_fail("penalty --mode guess", (const char *[]){"paper or physical", NULL});
+  expect_fail("run --jobs 0 --out /tmp/x", (const char *[]){"--jobs 0", "from 1 to 64", NULL});
+  expect_fail("check --jobs two", (const char *[]){"--jobs two", "from 1 to 64", NULL});
   expect_fail("impact --restitution 1.5", (const char *[]){"restitution = 1.5", "(0, 1]", NULL});
   expect_fail("impact --law restitution --restitution 0.1", (const char *[]){"critical damping", NULL});
   expect_fail("impact --law bouncy", (const char *[]){"--law 'bouncy'", NULL});

@@ -21,7 +21,7 @@
 #define MAX_CASES 64
 
 static const char check_help[] =
-    "usage: fourbar check [--cases NAME,...] [--set section.key=value]... [--json]\n"
+    "usage: fourbar check [--cases NAME,...] [--set section.key=value]... [--json] [--jobs J]\n"
     "       fourbar check --update [--cases NAME,...]\n"
     "       fourbar check --calibrate [CASEFILE...]\n"
     "\n"
@@ -37,7 +37,9 @@ static const char check_help[] =
     "               smaller, the initial crank angle moved by 1e-12 rad, and once more\n"
     "               unchanged; tolerance = max(1e-12, 1e-9 |value|, 3 x spread).\n"
     "               CASEFILE (relative to cases/) adds a case; none: all baselines\n"
-    "  --json       one JSON object with every comparison\n";
+    "  --json       one JSON object with every comparison\n"
+    "  --jobs J     run a case's [run] ensemble members in J worker processes\n"
+    "               (default 1); the numbers do not depend on J\n";
 
 typedef struct {
   int tty;
@@ -81,6 +83,9 @@ static int selected(const char *name, const char *cases) {
   return 0;
 }
 
+/* --jobs: worker processes of a case's [run] ensemble (ensemble.h) */
+static int check_jobs = 1;
+
 static int load_case(const char *case_file, const char *const *sets, int nsets, fb_case *c) {
   char path[4096];
   if (case_file[0] == '/')
@@ -89,6 +94,7 @@ static int load_case(const char *case_file, const char *const *sets, int nsets, 
     snprintf(path, sizeof path, "%s/%s", fb_cli_cases_dir(), case_file);
   fb_diag d;
   if (fb_casefile_load(c, path, sets, nsets, &d) != FB_OK) return fb_cli_fail("check", 2, "%s", d.msg);
+  c->jobs = check_jobs;
   return 0;
 }
 
@@ -144,7 +150,18 @@ static int calibrate(const char *case_file, const char *const *sets, int nsets) 
   json_array_append_new(pert, json_string("initial crank angle + 1e-12 rad"));
   json_array_append_new(pert, json_string("the same run repeated (must be identical)"));
   json_object_set_new(cal, "perturbations", pert);
-  json_object_set_new(cal, "tolerance", json_string("max(floor_abs, floor_rel |value|, safety_factor spread)"));
+  int ens = 0;
+  for (int i = 0; i < n; i++) ens |= m[i].ensemble_sd > 0.0;
+  if (ens) {
+    /* [run] ensemble: statistics metrics with the members' spread (check.h) */
+    json_object_set_new(cal, "ensemble_sigmas", json_real(FB_CHECK_ENSEMBLE_SIGMAS));
+    json_object_set_new(cal, "tolerance", json_string("max(floor_abs, floor_rel |value|, "
+                                                      "safety_factor spread); statistics "
+                                                      "metrics: max(floor_abs, floor_rel "
+                                                      "|value|, ensemble_sigmas ensemble_sd)"));
+  } else {
+    json_object_set_new(cal, "tolerance", json_string("max(floor_abs, floor_rel |value|, safety_factor spread)"));
+  }
   json_object_set_new(o, "calibration", cal);
   int chaotic = 0;
   for (int i = 0; i < n; i++) {
@@ -154,6 +171,7 @@ static int calibrate(const char *case_file, const char *const *sets, int nsets) 
     json_object_set_new(x, "tolerance", json_real(m[i].tolerance));
     json_object_set_new(x, "spread", json_real(m[i].spread));
     json_object_set_new(x, "chaotic", json_boolean(m[i].chaotic));
+    if (m[i].ensemble_sd > 0.0) json_object_set_new(x, "ensemble_sd", json_real(m[i].ensemble_sd));
     json_array_append_new(arr, x);
     chaotic += m[i].chaotic;
   }
@@ -192,6 +210,7 @@ int fb_cmd_check(int argc, char **argv) {
                                        {"update", no_argument, 0, 'u'},
                                        {"calibrate", no_argument, 0, 'k'},
                                        {"json", no_argument, 0, 'j'},
+                                       {"jobs", required_argument, 0, 'J'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *cases = NULL;
@@ -208,6 +227,15 @@ int fb_cmd_check(int argc, char **argv) {
       case 'u': update = 1; break;
       case 'k': cal = 1; break;
       case 'j': json = 1; break;
+      case 'J': {
+        char *end;
+        const long j = strtol(optarg, &end, 10);
+        if (end == optarg || *end || j < 1 || j > FB_ENSEMBLE_MAX)
+          return fb_cli_fail("check", 2, "--jobs %s: must be an integer from 1 to %d", optarg,
+                             FB_ENSEMBLE_MAX);
+        check_jobs = (int)j;
+        break;
+      }
       case 'h': fputs(check_help, stdout); return 0;
       default: return fb_cli_bad_option(argv, "h");
     }

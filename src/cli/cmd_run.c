@@ -19,6 +19,7 @@
 static const char run_help[] =
     "usage: fourbar run [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
     "                   [--no-figures] [--figure-format svg|png] [--series csv|hdf5|none]\n"
+    "                   [--jobs J]\n"
     "\n"
     "Runs the models a case file asks for ([run] models), measures each against the\n"
     "exact analytic solution and writes DIR/summary.json, DIR/timing.json (wall\n"
@@ -43,6 +44,8 @@ static const char run_help[] =
     "                csv (default) DIR/<model>.csv; hdf5 DIR/series.h5 (one group\n"
     "                per model; needs a build with libhdf5); none. [run] series_every\n"
     "                = N keeps every N-th sample and every impact's (docs/series.md)\n"
+    "  --jobs J      run the [run] ensemble members in J worker processes\n"
+    "                (default 1); the numbers do not depend on J\n"
     "  -h, --help    this text\n"
     "\n"
     "Units: SI in every output (column and key names carry the unit). Peaks are\n"
@@ -70,9 +73,11 @@ int fb_cmd_run(int argc, char **argv) {
                                        {"no-figures", no_argument, 0, 'n'},
                                        {"figure-format", required_argument, 0, 'f'},
                                        {"series", required_argument, 0, 'S'},
+                                       {"jobs", required_argument, 0, 'J'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out_dir = NULL;
+  int jobs = 1;
   const char *sets[MAX_SETS + 1];
   char series_set[64];
   int series_at = -1; /* the slot of --series in sets */
@@ -99,6 +104,15 @@ int fb_cmd_run(int argc, char **argv) {
         if (series_at < 0) series_at = nsets++;
         sets[series_at] = series_set;
         break;
+      case 'J': {
+        char *end;
+        const long j = strtol(optarg, &end, 10);
+        if (end == optarg || *end || j < 1 || j > FB_ENSEMBLE_MAX)
+          return fb_cli_fail("run", 2, "--jobs %s: must be an integer from 1 to %d", optarg,
+                             FB_ENSEMBLE_MAX);
+        jobs = (int)j;
+        break;
+      }
       case 'h': fputs(run_help, stdout); return 0;
       default: return fb_cli_bad_option(argv, "o:s:jh");
     }
@@ -108,6 +122,7 @@ int fb_cmd_run(int argc, char **argv) {
   char case_path[4096];
   int rc = fb_cli_load_case("run", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
+  c.jobs = jobs;
 
   char dir[4096];
   if (out_dir)

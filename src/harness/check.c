@@ -13,7 +13,39 @@ static int add(fb_metric *out, int n, int max, const char *model, const char *gr
   if (n >= max || !isfinite(v)) return n;
   snprintf(out[n].name, sizeof out[n].name, "%s.%s.%s", model, group, key);
   out[n].value = v;
+  out[n].ensemble_sd = 0.0;
   return n + 1;
+}
+
+/* the pooled impact statistics of a model with an ensemble of several runs */
+static int add_stats(fb_metric *out, int n, int max, const fb_model_result *m) {
+  const fb_ensemble *e = &m->ensemble;
+  const fb_impact_stats *p = &e->pooled, *sd = &e->spread;
+  char key[96];
+  int k = n;
+  /* two ensembles of N members differing in roundoff alone: a pooled
+   * statistic's difference has sd_member sqrt(2 / N); the pooled impact
+   * count (a sum of N counts) sd_count sqrt(2 N) */
+  const double two_over_n = sqrt(2.0 / (double)e->members);
+  k = add(out, k, max, m->run.name, "stats", "impacts", (double)p->force.n);
+  if (k > n) out[k - 1].ensemble_sd = (double)sd->force.n * sqrt(2.0 * (double)e->members);
+#define FB_CHECK_DIST(field, dkey)                                          \
+  snprintf(key, sizeof key, "%s_%s_%s", prefix, dkey, unit);                \
+  {                                                                         \
+    const int before = k;                                                   \
+    k = add(out, k, max, m->run.name, "stats", key, d->field);              \
+    if (k > before) out[k - 1].ensemble_sd = s->field * two_over_n;                      \
+  }
+#define FB_CHECK_STATS(sfield, sprefix, sunit)                              \
+  {                                                                         \
+    const fb_dist *d = &p->sfield, *s = &sd->sfield;                        \
+    const char *prefix = sprefix, *unit = sunit;                            \
+    FB_DIST_KEYS(FB_CHECK_DIST)                                             \
+  }
+  FB_IMPACT_STATS_KEYS(FB_CHECK_STATS)
+#undef FB_CHECK_STATS
+#undef FB_CHECK_DIST
+  return k;
 }
 
 int fb_check_metrics(const fb_run *r, fb_metric *out, int max) {
@@ -21,6 +53,9 @@ int fb_check_metrics(const fb_run *r, fb_metric *out, int max) {
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     const char *name = m->run.name;
+    const int stats = m->has_ensemble && m->ensemble.members > 1;
+    if (stats) n = add_stats(out, n, max, m);
+    if (stats && m->peaks_unconverged) continue; /* chaotic: its statistics, not its peaks */
     if (m->has_peaks) {
       const fb_body_peaks *b[2] = {&m->peaks.coupler, &m->peaks.follower};
       const char *bn[2] = {"coupler", "follower"};
@@ -45,6 +80,16 @@ int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
   const int prefix = l && name[l - 1] == '*';
   const size_t cmp = prefix ? l - 1 : l;
   static const char *groups[3] = {"coupler", "follower", "spikes"};
+  /* <model>.stats.<key>: the statistics metrics (add_stats) */
+  if (strstr(name, ".stats.") || (prefix && strstr(name, ".stats"))) {
+    for (int m = 0; m < fb_model_count; m++) {
+      char head[160];
+      snprintf(head, sizeof head, "%s.stats.", fb_models[m].name);
+      const size_t hl = strlen(head);
+      if (prefix ? strncmp(head, name, cmp < hl ? cmp : hl) == 0 : strncmp(head, name, hl) == 0)
+        return 1;
+    }
+  }
   static const char *peak_keys[] = {
 #define FB_NAME_PEAK(field, key) key,
       FB_BODY_PEAK_KEYS(FB_NAME_PEAK)
@@ -78,10 +123,12 @@ int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
   return 0;
 }
 
-static fb_status run_metrics(fb_metric *out, int *n, const fb_case *c, fb_diag *diag) {
+static fb_status run_metrics(fb_metric *out, int *n, const fb_case *c, double *h_used,
+                             fb_diag *diag) {
   static fb_run r;
   fb_status st = fb_run_case(&r, c, NULL, NULL, diag);
   if (st != FB_OK) return st;
+  if (h_used) *h_used = r.c.solver.h; /* auto resolved, and re-chosen if it was */
   *n = fb_check_metrics(&r, out, FB_CHECK_MAX_METRICS);
   fb_run_free(&r);
   return FB_OK;
@@ -101,22 +148,23 @@ fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterminis
                              const fb_case *c, fb_diag *diag) {
   static fb_metric base[FB_CHECK_MAX_METRICS], pert[3][FB_CHECK_MAX_METRICS];
   int nb = 0, np[3] = {0, 0, 0};
-  fb_status st = run_metrics(base, &nb, c, diag);
+  double h_used = 0.0;
+  fb_status st = run_metrics(base, &nb, c, &h_used, diag);
   if (st != FB_OK) return st;
   fb_case p = *c;
-  /* the step the run used (auto resolved at the resolved corner), a little smaller */
+  /* the step the run used (auto resolved at the resolved corner, and
+   * re-chosen when the run passed its bound), a little smaller */
   st = fb_tol_resolve_worst(&p, diag);
-  if (st == FB_OK) st = fb_case_resolve_step(&p, diag);
   if (st != FB_OK) return st;
-  p.solver.h *= FB_CHECK_H_FACTOR;
+  p.solver.h = h_used * FB_CHECK_H_FACTOR;
   p.solver.h_mode = FB_STEP_FIXED;
-  st = run_metrics(pert[0], &np[0], &p, diag);
+  st = run_metrics(pert[0], &np[0], &p, NULL, diag);
   if (st != FB_OK) return st;
   p = *c;
   p.crank_angle0 = c->crank_angle0 + FB_CHECK_ANGLE_NUDGE_RAD;
-  st = run_metrics(pert[1], &np[1], &p, diag);
+  st = run_metrics(pert[1], &np[1], &p, NULL, diag);
   if (st != FB_OK) return st;
-  st = run_metrics(pert[2], &np[2], c, diag);
+  st = run_metrics(pert[2], &np[2], c, NULL, diag);
   if (st != FB_OK) return st;
   *nondeterministic = 0;
   for (int i = 0; i < nb; i++) {
@@ -124,6 +172,7 @@ fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterminis
     memcpy(b->name, base[i].name, sizeof b->name);
     b->value = base[i].value;
     b->spread = 0.0;
+    b->ensemble_sd = base[i].ensemble_sd;
     for (int k = 0; k < 3; k++) {
       int found;
       double v = find(pert[k], np[k], base[i].name, &found);
@@ -133,6 +182,10 @@ fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterminis
     }
     b->tolerance = fmax(FB_CHECK_FLOOR_ABS,
                         fmax(FB_CHECK_FLOOR_REL * fabs(b->value), FB_CHECK_SAFETY_FACTOR * b->spread));
+    /* a statistics metric: from the ensemble's spread alone (check.h) */
+    if (b->ensemble_sd > 0.0)
+      b->tolerance = fmax(FB_CHECK_FLOOR_ABS, fmax(FB_CHECK_FLOOR_REL * fabs(b->value),
+                                                   FB_CHECK_ENSEMBLE_SIGMAS * b->ensemble_sd));
     b->chaotic = b->spread > FB_CHECK_CHAOTIC_REL * fabs(b->value);
   }
   *n = nb;

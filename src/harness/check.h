@@ -10,7 +10,16 @@
  * max(floor_abs, floor_rel |value|, safety_factor * spread). A metric whose
  * spread exceeds 5 % of its value is marked chaotic (impact counts and crank
  * angles of spikes usually are): it is still compared by value, with its wide
- * measured tolerance. */
+ * measured tolerance.
+ *
+ * A case with [run] ensemble = N > 1 adds, for every clearance model, the
+ * pooled impact statistics (<model>.stats.impact_force_p90_n, ...; mean,
+ * p50, p90, max of the per-impact peak force and coupler and follower alpha
+ * spikes, and the impact count), with a tolerance of
+ * FB_CHECK_ENSEMBLE_SIGMAS x its ensemble_sd; and a model
+ * whose window peaks are not converged (divergent from its reference, or a
+ * reference whose check integration moves them: run.h, peaks_unconverged)
+ * is checked by these statistics alone, not by its peaks and spikes. */
 #ifndef FB_CHECK_H
 #define FB_CHECK_H
 
@@ -24,9 +33,25 @@
 #define FB_CHECK_H_FACTOR 0.99       /* the "a little smaller" step */
 #define FB_CHECK_ANGLE_NUDGE_RAD 1e-12
 
+/* A statistics metric's tolerance is this many times its ensemble_sd: the
+ * standard deviation of the difference of the pooled statistic between two
+ * ensembles that differ in roundoff alone (a rebuild, another machine),
+ * which a chaotic sequence turns into two independent samples:
+ * sd_member sqrt(2 / N) for N members (sd_count sqrt(2 N) for the pooled
+ * impact count). 4 of them: a normal difference passes it once in ~16000
+ * per metric, while a spike distribution that doubles fails (the rattling
+ * pin's force mean: tolerance 0.56 of its value with 5 members over 2
+ * revolutions; more members or revolutions narrow it). The calibration's
+ * perturbed runs are reported as spread but not used for these metrics:
+ * a 1 % smaller step is itself another ensemble sample of a chaotic
+ * sequence [-]. */
+#define FB_CHECK_ENSEMBLE_SIGMAS 4.0
+
 typedef struct {
   char name[128];
   double value;
+  double ensemble_sd; /* statistics metrics: sd of its difference between two ensembles
+                         (FB_CHECK_ENSEMBLE_SIGMAS); else 0 */
 } fb_metric;
 
 /* Collects the metrics of run r into out (at most max); returns the count. */
@@ -44,6 +69,7 @@ typedef struct {
   double value;     /* baseline value */
   double tolerance; /* absolute */
   double spread;    /* measured by calibration */
+  double ensemble_sd; /* statistics metrics: as in fb_metric; else 0 */
   int chaotic;
 } fb_baseline_metric;
 

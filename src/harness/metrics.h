@@ -92,9 +92,9 @@ typedef struct {
 #define FB_FIRST_IMPACTS 3
 
 /* Compares series s (model) with r (reference) over t >= t_from at clearance
- * joint j; the first impacts of the run (an impact: samples in the impact
- * state from its onset until the state leaves it or the force vanishes; its
- * peaks over those samples) one by one from t = 0. Errors: FB_ERR_ARG when the grids differ or the window is empty. */
+ * joint j; the first impacts of the run (an impact: a contact episode, one
+ * unbroken run of positive force, with a sample in the impact state; its
+ * peaks over the episode) one by one from t = 0. Errors: FB_ERR_ARG when the grids differ or the window is empty. */
 fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, const fb_series *r,
                                   double t_from, int j, fb_diag *diag);
 
@@ -108,7 +108,7 @@ fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, c
  * c / L_coupler, the rotation that moves the coupler's far joint by the
  * same half clearance [-]. */
 #define FB_DIVERGE_ANGLE_FRACTION 0.5
-/* Two impacts, the k-th of the model and of the reference, match when their
+/* Two impacts, one of the model and one of the reference, match when their
  * onsets lie within this fraction of a crank revolution: 1e-3 (60 us at
  * 1000 rpm, ~18 automatic steps); the paper case's first onsets agree to
  * 0.01 us, and an impact missed or extra shifts the sequence by a whole
@@ -142,7 +142,7 @@ typedef struct {
   double t_end;              /* end of the common run compared [s] */
   int impacts_model;         /* impacts of the model beginning before t */
   int impacts_reference;     /* impacts of the reference beginning before t */
-  int matched;               /* impacts matched one to one, in order, before t */
+  int matched;               /* impacts paired by time (one to one, in order) before t */
   int one_to_one;            /* 1: every impact before t matched (matched = both counts) */
   double force_rel_max;      /* largest |force_rel| of the matched impacts [-] (0: none) */
   double penetration_rel_max; /* largest |penetration_rel| [-] */
@@ -153,9 +153,14 @@ typedef struct {
  * clearance joint j: the first sample where the eccentricity vectors differ
  * by more than FB_DIVERGE_ECC_FRACTION x clearance [m] or the coupler angles
  * by more than FB_DIVERGE_ANGLE_FRACTION x clearance / coupler_length [m],
- * and the impacts (onset: the state enters impact with a positive force;
- * peaks over the episode) before it, matched k-th to k-th while their onsets
- * lie within FB_IMPACT_MATCH_REV_FRACTION x period [s].
+ * and the impacts (a contact episode, one unbroken run of positive force,
+ * with a sample in the impact state; peaks over the episode) before it, paired by time: both onset lists in
+ * order, two onsets within FB_IMPACT_MATCH_REV_FRACTION x period [s] match,
+ * an onset with none is left unmatched (so an extra impact of a rattling
+ * pin does not shift every later pair); a pair's peaks (and errors) are
+ * both series' largest force and penetration over the span of the two
+ * episodes together, so a contact one integration splits into two (its
+ * force touching zero) and the other does not is compared whole.
  * Errors: FB_ERR_ARG without contact columns at j or on different grids. */
 fb_status fb_metrics_divergence(fb_divergence *out, const fb_series *s, const fb_series *r, int j,
                                 double clearance, double coupler_length, double period,

@@ -106,12 +106,15 @@ static void divergence_warnings(fb_model_result *m, const char *ref) {
   const fb_divergence *d = &m->divergence;
   const double worst = fmax(d->force_rel_max, d->penetration_rel_max);
   if (d->matched > 0 && !(worst <= FB_MATCHED_IMPACT_ERROR_BOUND)) {
+    /* both still together: the model is wrong, not the sequence chaotic */
+    m->matched_error = !d->diverged;
     fb_warning w = {.kind = FB_WARN_ERROR_BOUND, .value = worst,
                     .limit = FB_MATCHED_IMPACT_ERROR_BOUND, .t = NAN};
     snprintf(w.what, sizeof w.what, "matched-impact peaks against %s", ref);
     warn(m, &w);
   }
   if (d->diverged) {
+    m->peaks_unconverged = 1;
     fb_warning w = {.kind = FB_WARN_DIVERGENT, .value = d->crank_angle, .t = d->t,
                     .limit = d->t_end, .ratio = (double)d->matched};
     snprintf(w.what, sizeof w.what, "%s", ref);
@@ -222,6 +225,11 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
       fb_metrics_vs_reference(&m->ref_estimate, &m->run.series, &s, r->t_window, FB_JOINT_B,
                               &inner) == FB_OK) {
     m->has_ref_estimate = 1;
+    const fb_reference_error *e = &m->ref_estimate;
+    const double moved[5] = {e->force_max_rel, e->coupler.alpha_max_rel, e->coupler.alpha_min_rel,
+                             e->follower.alpha_max_rel, e->follower.alpha_min_rel};
+    for (int q = 0; q < 5; q++)
+      if (!(fabs(moved[q]) <= FB_UNCONVERGED_REL)) m->peaks_unconverged = 1;
     m->ref_tol = tol;
     m->ref_check_tol = check;
     m->ref_check_steps = steps;
@@ -229,8 +237,8 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
   fb_series_free(&s);
 }
 
-fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
-                      fb_diag *diag) {
+static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
+                         fb_diag *diag) {
   memset(r, 0, sizeof *r);
   fb_status cost = check_cost(c, diag);
   if (cost != FB_OK) return cost;
@@ -280,11 +288,61 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
       }
     }
   }
-  for (int i = 0; i < r->n; i++) {
+  for (int i = 0; i < r->n && !c->member; i++) {
     fb_model_result *m = &r->model[i];
     if (m->run.model->engine == FB_ENGINE_REFERENCE && m->has_peaks &&
         m->run.stop.kind == FB_STOP_NONE)
       reference_estimate(m, r);
+  }
+  return FB_OK;
+}
+
+/* largest h omega_c over the clearance models' contact steps (0: none) */
+static double h_omega_c_max(const fb_run *r) {
+  double w = 0.0;
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_run *m = &r->model[i].run;
+    for (int j = 0; j < 4 && m->has_provenance; j++)
+      if ((m->clearance_mask & (1 << j)) && m->provenance[j].contact_steps > 0 &&
+          isfinite(m->provenance[j].h_omega_max))
+        w = fmax(w, m->provenance[j].h_omega_max);
+  }
+  return w;
+}
+
+fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
+                      fb_diag *diag) {
+  fb_status st = run_once(r, c, progress, user, diag);
+  if (st != FB_OK) return st;
+  const int auto_step = c->solver.h_mode == FB_STEP_AUTO ||
+                        (c->solver.h_mode == FB_STEP_DEFAULT && c->clearance.mask);
+  r->h_auto = auto_step && !c->member;
+  r->h_auto_estimate = r->c.solver.h;
+  r->h_omega_c_max = h_omega_c_max(r);
+  /* h_s = auto: the stiffest contact state the run reached decides; a run
+   * that passed the bound is redone at the step that keeps it, with a margin */
+  int tries = 0;
+  while (r->h_auto && r->h_omega_c_max > FB_H_OMEGA_C_BOUND && tries < FB_H_AUTO_RETRIES) {
+    fb_case again = r->c;
+    again.solver.h = r->c.solver.h * FB_H_OMEGA_C_BOUND / r->h_omega_c_max * FB_H_AUTO_MARGIN;
+    again.solver.h_mode = FB_STEP_FIXED;
+    const double estimate = r->h_auto_estimate;
+    fb_run_free(r);
+    st = run_once(r, &again, progress, user, diag);
+    if (st != FB_OK) return st;
+    tries++;
+    r->h_auto = 1;
+    r->h_auto_estimate = estimate;
+    r->h_rechosen = tries;
+    r->h_omega_c_max = h_omega_c_max(r);
+    r->c.solver.h_mode = c->solver.h_mode; /* the case asked for auto */
+  }
+  if (!c->member) {
+    st = fb_ensemble_measure(r, diag);
+    if (st != FB_OK) {
+      fb_run_free(r);
+      return st;
+    }
   }
   return FB_OK;
 }

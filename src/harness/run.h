@@ -5,6 +5,7 @@
 #ifndef FB_RUN_H
 #define FB_RUN_H
 
+#include "ensemble.h"
 #include "metrics.h"
 #include "models.h"
 #include "scene_def.h"
@@ -28,6 +29,23 @@
  * lost solution passes it (a crank angle of 1e20 deg gave 1.5, a coupler of
  * 1e300 kg 5e4, both once reported "ok") [-]. */
 #define FB_IDEAL_PEAK_ERROR_BOUND 0.05
+
+/* A reference whose window peaks (force, coupler and follower alpha) move
+ * by more than this when its integration is repeated at a tighter tolerance
+ * (reference.h, FB_REFERENCE_CHECK_FACTOR) has unconverged peaks: they are
+ * printed marked and with fewer digits. The paper case's reference moves
+ * them by < 1e-6; a rattling pin's by tens of percent (its impact sequence
+ * is chaotic) [-]. */
+#define FB_UNCONVERGED_REL 1e-3
+
+/* h_s = auto re-chooses its step when the run met a contact stiffer than
+ * its estimate (h omega_c above FB_H_OMEGA_C_BOUND): the step is scaled by
+ * bound / measured h omega_c times this margin and the run redone, because
+ * the new step reaches the stiffer states a little more often [-]. */
+#define FB_H_AUTO_MARGIN 0.9
+/* and at most this many times (the margin has converged in one on every
+ * case measured, docs/chaos.md) [-]. */
+#define FB_H_AUTO_RETRIES 3
 
 /* One model with its metrics. */
 typedef struct {
@@ -63,9 +81,19 @@ typedef struct {
   double ref_tol;          /* the reference's tolerance [-] */
   double ref_check_tol;    /* the check integration's tolerance [-] */
   size_t ref_check_steps;  /* the check integration's accepted steps [-] */
+  int has_ensemble;        /* 1 for a clearance model that reached its window (ensemble.h) */
+  fb_ensemble ensemble;    /* its impact statistics, pooled over [run] ensemble members */
+  int has_stats_compare;   /* 1 when its reference has an ensemble too */
+  fb_stats_compare stats_compare; /* those statistics against the reference's */
+  int matched_error;       /* 1: matched-impact peak errors beyond FB_MATCHED_IMPACT_ERROR_BOUND
+                              while the trajectory stays with the reference: status "error"
+                              (fb_run_model_status) */
+  int peaks_unconverged;   /* 1: its window peaks are not to be read as converged numbers
+                              (divergent from its reference, or a reference whose own check
+                              integration moves them, FB_UNCONVERGED_REL): printed marked */
 } fb_model_result;
 
-typedef struct {
+typedef struct fb_run_s {
   fb_case c;                              /* the case as run (worst corner resolved) */
   fb_scene_def scene;                     /* the case resolved once; every model's scene */
   double t_window;                        /* peaks and errors use t >= t_window [s] */
@@ -73,6 +101,12 @@ typedef struct {
   int n;                                  /* models run */
   fb_model_result model[FB_MAX_MODELS];   /* in the case's order */
   fb_peaks analytic_nominal;              /* exact peaks of the nominal linkage */
+  int h_auto;                             /* 1: the step came from [solver] h_s = auto */
+  double h_auto_estimate;                 /* auto's step from the contact estimate [s] */
+  int h_rechosen;                         /* times the run was redone at a smaller step because
+                                             a contact passed FB_H_OMEGA_C_BOUND [-] */
+  double h_omega_c_max;                   /* largest h omega_c over the clearance models'
+                                             contact steps (0: none measured) [-] */
 } fb_run;
 
 /* Up-front cost of running case c (issue 13): per model, the samples its

@@ -264,6 +264,14 @@ typedef struct fb_case_s {
   fb_series_format series;            /* format of the written time series */
   int series_every;                   /* keep every N-th sample (>= 1), and every sample of
                                          an impact episode */
+  int ensemble;                       /* [run] ensemble: runs of the clearance models with the
+                                         start perturbed (ensemble.h); 1: the run alone [-] */
+  double pin_start_offset[2];         /* not a key: added to every clearance joint's initial
+                                         eccentricity [m] (an ensemble member's perturbation) */
+  int member;                         /* not a key: 1 in an ensemble member's run (no ensemble,
+                                         no reference check integration, no step re-choice) */
+  int jobs;                           /* not a key: worker processes of the ensemble (--jobs);
+                                         0 or 1: one; the results do not depend on it */
   int model_count;                    /* entries used in models */
   char models[FB_MAX_MODELS][FB_NAME_SIZE]; /* model names to run, in order */
 } fb_case;

@@ -344,6 +344,12 @@ static const key_spec keys[] = {
      "pin position in every clearance joint at t = 0: centred in its hole, resting on the "
      "wall along the static gravity load the joint carries, or on the wall at this "
      "eccentricity angle (pin centre - hole centre, counter-clockwise from +x)"},
+    {"run", "ensemble", K_INT, OFF(ensemble), 0, 1, 64, 0, 0, "-", "1",
+     "an integer from 1 to 64",
+     "runs of the clearance models and their references, each with the pins' initial "
+     "eccentricity moved by 1e-6 x the radial clearance in another direction (the first run "
+     "unmoved); the impact statistics (peak force, coupler and follower alpha spikes per "
+     "impact) are pooled over them and their spread reported (docs/chaos.md)"},
     {"run", "peaks", K_PEAKS, OFF(peaks), 0, 0, 0, 0, 0, "-", "steady", "steady or all",
      "window of the reported peaks: steady (from the second revolution on) or all (from "
      "t = 0, the start-up included); summary.json reports the first revolution alone too"},

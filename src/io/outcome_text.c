@@ -6,6 +6,7 @@
 
 #include "case.h"
 #include "resolution.h"
+#include "run.h"
 
 const char *fb_stop_text(char *buf, size_t size, const fb_stop *s) {
   const char *engine = s->engine ? s->engine : "engine";
@@ -69,8 +70,12 @@ fb_stop_kind fb_stop_kind_parse(const char *word) {
  * (its contact estimate, resolution.h, fell short of the contact the run
  * met) and the fixed step that would. */
 static void under_resolved_text(char *buf, size_t size, const fb_warning *w) {
-  /* the step that would have kept the bound at this contact's measured h omega_c */
-  const double h_fix = w->h > 0.0 && w->value > 0.0 ? w->h * w->limit / w->value : NAN;
+  /* the step that keeps the bound at this contact's measured h omega_c, with
+   * the margin h_s = auto re-chooses with (run.h, FB_H_AUTO_MARGIN): the
+   * smaller step meets the stiffer states a little more often, and the
+   * advice followed must not draw the warning again */
+  const double h_fix =
+      w->h > 0.0 && w->value > 0.0 ? w->h * w->limit / w->value * FB_H_AUTO_MARGIN : NAN;
   int n = snprintf(buf, size,
                    "under-resolved: h omega_c = %.3g at the %s joint exceeds %g (a contact "
                    "lasts about %.2g steps); ",

@@ -10,6 +10,7 @@
 #include "casefile.h"
 #include "fileio.h"
 #include "outcome_text.h"
+#include "report_chaos.h"
 #include "start.h"
 #include "clock.h"
 #include "series_write.h"
@@ -244,7 +245,9 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o, "bore_ovality_m", json_null());
   }
   char stop[256];
-  json_object_set_new(o, "status", json_string(fb_stop_text(stop, sizeof stop, &run->stop)));
+  json_object_set_new(o, "status", json_string(fb_report_model_status(stop, sizeof stop, m)));
+  json_object_set_new(o, "peaks_converged", fb_report_converged_json(m));
+  json_object_set_new(o, "impact_statistics", fb_report_ensemble_json(m, r));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
   json_object_set_new(o, "lengths_m", lengths_json(&run->lengths));
@@ -537,6 +540,7 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_object_set_new(o, "series",
                       json_pack("{s:s,s:i,s:s}", "format", series_format_name(c->series), "every",
                                 c->series_every, "rule", FB_SERIES_KEEP_RULE));
+  json_object_set_new(o, "step", fb_report_step_json(r));
   json_t *an = json_object();
   json_object_set_new(an, "coupler", fb_report_body_peaks_json(&r->analytic_nominal.coupler));
   json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
@@ -791,7 +795,9 @@ static double ref_error_worst(const fb_reference_error *e) {
 /* one line per model, first: ok or warn, its error against its yardstick,
  * and its impacts */
 static void print_verdict(FILE *f, const fb_run *r, int W) {
-  say(f, "verdict (ok: ran to its end with no warning and an error within its bound; error: "
+  say(f, "verdict (ok: ran to its end with no warning and an error within its bound; warn: a "
+         "warning or a stop (below); error: a clearance model that keeps its reference's "
+         "trajectory but misses its matched impacts' bound; error column: "
          "largest relative peak error of an ideal model against the exact analytic peaks of "
          "its own lengths (bound %g), of a clearance model against its reference of the same "
          "law (omega, alpha and force peaks), of a reference against its check integration):",
@@ -837,9 +843,16 @@ static void print_verdict(FILE *f, const fb_run *r, int W) {
     } else if (m->warning_count > 0) {
       snprintf(why, sizeof why, "%d warning%s (below)", m->warning_count, m->warning_count > 1 ? "s" : "");
     }
+    /* a clearance model that keeps its reference's trajectory but misses its
+     * matched impacts: status error (report_chaos.h) */
+    char status[512];
+    fb_report_model_status(status, sizeof status, m);
+    const int is_error = strncmp(status, "error", 5) == 0;
+    if (is_error) snprintf(why, sizeof why, "%.150s", status);
     char line[512];
-    snprintf(line, sizeof line, "%-*s %-7s %9s  %-28s %11s%s%s", W, m->run.name, warn ? "warn" : "ok",
-             err, against, impacts, why[0] ? "  " : "", why);
+    snprintf(line, sizeof line, "%-*s %-7s %9s  %-28s %11s%s%s", W, m->run.name,
+             is_error ? "error" : warn ? "warn" : "ok", err, against, impacts, why[0] ? "  " : "",
+             why);
     say(f, "%s", line);
   }
 }
@@ -863,9 +876,13 @@ static void print_peaks(FILE *f, const fb_run *r, int W) {
     fprintf(f, "%-*s", W, m->run.name);
     if (m->has_peaks) {
       const fb_body_peaks *p[2] = {&m->peaks.coupler, &m->peaks.follower};
+      const int u = m->peaks_unconverged; /* marked "~", 3 figures (report_chaos.h) */
+      char c0[24], c1[24], c2[24], c3[24];
       for (int b = 0; b < 2; b++)
-        fprintf(f, " %9.4f %9.4f %10.2f %10.2f", p[b]->omega_max, p[b]->omega_min,
-                p[b]->alpha_max, p[b]->alpha_min);
+        fprintf(f, " %9s %9s %10s %10s", fb_report_figure(c0, sizeof c0, "%.4f", p[b]->omega_max, u),
+                fb_report_figure(c1, sizeof c1, "%.4f", p[b]->omega_min, u),
+                fb_report_figure(c2, sizeof c2, "%.2f", p[b]->alpha_max, u),
+                fb_report_figure(c3, sizeof c3, "%.2f", p[b]->alpha_min, u));
       fputc('\n', f);
     } else {
       fprintf(f, " (no peaks: %.60s)\n", fb_stop_text(stop, sizeof stop, &m->run.stop));
@@ -997,9 +1014,14 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
       const fb_model_result *m = &r->model[i];
       if (!m->has_spikes) continue;
       const fb_spikes *k = &m->spikes;
-      fprintf(f, "%-*s %9.3f %9.3f %10.4f %9.1f %9.4f %7d %8.4f %9.1f %9.1f\n", W, m->run.name,
-              k->alpha_peak_ratio_coupler, k->alpha_peak_ratio_follower, k->omega_dev_max,
-              k->force_max, k->penetration_max * 1e6, k->impacts, k->free_flight_fraction,
+      const int u = m->peaks_unconverged; /* marked "~", 3 figures (report_chaos.h) */
+      char c0[24], c1[24], c2[24], c3[24];
+      fprintf(f, "%-*s %9s %9s %10.4f %9s %9s %7d %8.4f %9.1f %9.1f\n", W, m->run.name,
+              fb_report_figure(c0, sizeof c0, "%.3f", k->alpha_peak_ratio_coupler, u),
+              fb_report_figure(c1, sizeof c1, "%.3f", k->alpha_peak_ratio_follower, u),
+              k->omega_dev_max, fb_report_figure(c2, sizeof c2, "%.1f", k->force_max, u),
+              fb_report_figure(c3, sizeof c3, "%.4f", k->penetration_max * 1e6, u), k->impacts,
+              k->free_flight_fraction,
               k->alpha_peak_crank_angle_coupler * 180.0 / M_PI,
               k->alpha_peak_crank_angle_follower * 180.0 / M_PI);
     }
@@ -1045,17 +1067,22 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
       const fb_reference_error *e = &m->ref_error;
       char counts[32];
       snprintf(counts, sizeof counts, "%d/%d", e->impacts, e->impacts_reference);
-      fprintf(f, "%-*s %9.2e %9.3g %9.2e %9.4g %+9.2e %+9.2e %9s\n", W, m->run.name,
-              worst_rel(&e->coupler, &e->follower, 0),
+      /* a divergent model's peaks compare two histories: marked (report_chaos.h) */
+      const int u = m->peaks_unconverged;
+      char c0[24], c1[24], c2[24], c3[24];
+      fprintf(f, "%-*s %9s %9.3g %9s %9.4g %9s %9s %9s\n", W, m->run.name,
+              fb_report_figure(c0, sizeof c0, "%.2e", worst_rel(&e->coupler, &e->follower, 0), u),
               fmax(e->coupler.omega_err_rms, e->follower.omega_err_rms),
-              worst_rel(&e->coupler, &e->follower, 1),
-              fmax(e->coupler.alpha_err_rms, e->follower.alpha_err_rms), e->force_max_rel,
-              e->penetration_max_rel, counts);
+              fb_report_figure(c1, sizeof c1, "%.2e", worst_rel(&e->coupler, &e->follower, 1), u),
+              fmax(e->coupler.alpha_err_rms, e->follower.alpha_err_rms),
+              fb_report_figure(c2, sizeof c2, "%+.2e", e->force_max_rel, u),
+              fb_report_figure(c3, sizeof c3, "%+.2e", e->penetration_max_rel, u), counts);
     }
   }
   print_contact(f, r, W);
   print_startup(f, r, W);
   print_divergence(f, r, W);
+  fb_report_print_chaos(f, r);
   print_warnings(f, r);
 }
 
@@ -1161,6 +1188,7 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
     fprintf(f, "| mapping | %s | %s |\n", fb_mapping_name((fb_mapping)c->clearance.mapping),
             given_src(c, "clearance", "mapping", NULL));
   }
+  fb_report_markdown_chaos(f, r);
   fprintf(f, "\n## Figures\n\n");
   if (n == 0) fprintf(f, "%s\n", figure_note ? figure_note : "No figures were drawn.");
   for (int i = 0; i < n; i++) fprintf(f, "![%s](%s)\n\n", figures[i], figures[i]);

@@ -15,6 +15,9 @@ const char *fb_pin_start_name(fb_pin_start p) {
 static fb_status eccentricities(double ecc[4][2], const fb_case *c, const fb_linkage *lk,
                                 int mask, fb_diag *diag) {
   memset(ecc, 0, 4 * sizeof ecc[0]);
+  /* an ensemble member's perturbation (ensemble.h), on top of the pin start */
+  for (int j = 0; j < 4; j++)
+    if (mask & (1 << j)) ecc[j][0] = c->pin_start_offset[0], ecc[j][1] = c->pin_start_offset[1];
   if (!mask || c->pin_start == FB_PIN_CENTRED) return FB_OK;
   double dir[4][2];
   if (c->pin_start == FB_PIN_ANGLE) {
@@ -38,8 +41,8 @@ static fb_status eccentricities(double ecc[4][2], const fb_case *c, const fb_lin
   }
   for (int j = 0; j < 4; j++)
     if (mask & (1 << j)) {
-      ecc[j][0] = c->radial_clearance * dir[j][0];
-      ecc[j][1] = c->radial_clearance * dir[j][1];
+      ecc[j][0] += c->radial_clearance * dir[j][0];
+      ecc[j][1] += c->radial_clearance * dir[j][1];
     }
   return FB_OK;
 }

@@ -1,0 +1,40 @@
+/* The writers of what tells a chaotic impact sequence from a wrong model:
+ * each model's status word (an error when its matched impacts miss the
+ * bound while it stays with its reference), the impact statistics of
+ * `[run] ensemble` (ensemble.h) and their comparison with the reference,
+ * the step h_s = auto ran at and its h omega_c, and the marks on figures
+ * that are not converged numbers. summary.json, the printed table and
+ * report.md take them from here (report.c). */
+#ifndef FB_REPORT_CHAOS_H
+#define FB_REPORT_CHAOS_H
+
+#include <jansson.h>
+#include <stdio.h>
+
+#include "run.h"
+
+/* The model's status: "ok"; the stop reason (outcome_text.h, fb_stop_text);
+ * or "error: ..." when its matched-impact peaks miss
+ * FB_MATCHED_IMPACT_ERROR_BOUND while its trajectory stays with the
+ * reference's (fb_model_result.matched_error). Returns buf. */
+const char *fb_report_model_status(char *buf, size_t size, const fb_model_result *m);
+
+/* A figure cell: x printed with fmt when the quantity is converged, else
+ * "~" and 3 significant figures (the mark of a divergent or unconverged
+ * quantity, docs/chaos.md). Returns buf. */
+const char *fb_report_figure(char *buf, size_t size, const char *fmt, double x, int unconverged);
+
+/* summary.json: the model's "impact_statistics" (null without), its
+ * "peaks_converged" reason, and the run's "step" object. */
+json_t *fb_report_ensemble_json(const fb_model_result *m, const fb_run *r);
+json_t *fb_report_converged_json(const fb_model_result *m);
+json_t *fb_report_step_json(const fb_run *r);
+
+/* The printed lines: the step and its h omega_c, then the impact
+ * statistics table (nothing without clearance models). */
+void fb_report_print_chaos(FILE *f, const fb_run *r);
+
+/* report.md's section of the same. */
+void fb_report_markdown_chaos(FILE *f, const fb_run *r);
+
+#endif

@@ -181,7 +181,7 @@ static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
 
 /* the printed contact table: what each clearance model's rows received */
 /* prose, defined with the printed table below */
-static void say(FILE *f, const char *fmt, ...);
+#define say fb_report_say
 
 static void print_contact(FILE *f, const fb_run *r, int W) {
   int any = 0;
@@ -670,7 +670,7 @@ static double worst_rel(const fb_body_error *a, const fb_body_error *b, int alph
 
 /* prose: printf-formatted text wrapped at spaces to FB_TABLE_COLUMNS,
  * continuation lines indented by two spaces */
-static void say(FILE *f, const char *fmt, ...) {
+void fb_report_say(FILE *f, const char *fmt, ...) {
   char text[4096];
   va_list ap;
   va_start(ap, fmt);

@@ -105,15 +105,19 @@ static int any_ensemble(const fb_run *r) {
 
 static void step_line(FILE *f, const fb_run *r, const char *pre) {
   if (!(r->h_omega_c_max > 0.0) && !r->h_auto) return;
-  fprintf(f, "%sstep h = %.4g s%s", pre, r->c.solver.h, r->h_auto ? " (h_s = auto" : "");
-  if (r->h_auto && r->h_rechosen)
-    fprintf(f, ", re-chosen %d time%s from its estimate %.4g s", r->h_rechosen,
-            r->h_rechosen > 1 ? "s" : "", r->h_auto_estimate);
-  if (r->h_auto) fputc(')', f);
-  if (r->h_omega_c_max > 0.0)
-    fprintf(f, ": largest h omega_c over the contact steps %.3g, bound %g: %s", r->h_omega_c_max,
-            FB_H_OMEGA_C_BOUND, r->h_omega_c_max <= FB_H_OMEGA_C_BOUND ? "within" : "beyond");
-  fputc('\n', f);
+  char line[512];
+  size_t n = (size_t)snprintf(line, sizeof line, "step h = %.4g s%s", r->c.solver.h,
+                              r->h_auto ? " (h_s = auto" : "");
+  if (r->h_auto && r->h_rechosen && n < sizeof line)
+    n += (size_t)snprintf(line + n, sizeof line - n, ", re-chosen %d time%s from its estimate %.4g s",
+                          r->h_rechosen, r->h_rechosen > 1 ? "s" : "", r->h_auto_estimate);
+  if (r->h_auto && n < sizeof line) n += (size_t)snprintf(line + n, sizeof line - n, ")");
+  if (r->h_omega_c_max > 0.0 && n < sizeof line)
+    snprintf(line + n, sizeof line - n, ": largest h omega_c over the contact steps %.3g, bound %g: %s",
+             r->h_omega_c_max, FB_H_OMEGA_C_BOUND,
+             r->h_omega_c_max <= FB_H_OMEGA_C_BOUND ? "within" : "beyond");
+  fputs(pre, f);
+  fb_report_say(f, "%s", line);
 }
 
 /* one row: model, quantity, pooled mean / p50 / p90 / max (spread), vs ref */
@@ -132,10 +136,11 @@ static void stats_rows(FILE *f, const fb_model_result *m, const char *bar) {
       fprintf(f, "| %s | %s | %d | %.4g | %.4g | %.4g | %.4g | %.3g / %.3g | %s |\n",
               q ? "" : m->run.name, what[q], d[q]->n, d[q]->mean, d[q]->p50, d[q]->p90,
               d[q]->max, s[q]->mean, s[q]->p90, agree);
-    else
-      fprintf(f, "%-26s %-18s %6d %10.4g %10.4g %10.4g %10.4g %9.3g %9.3g %13s\n",
-              q ? "" : m->run.name, what[q], d[q]->n, d[q]->mean, d[q]->p50, d[q]->p90,
-              d[q]->max, s[q]->mean, s[q]->p90, agree);
+    else {
+      if (q == 0) fprintf(f, "%s\n", m->run.name); /* the model on a line of its own: <= 120 */
+      fprintf(f, "  %-18s %6d %10.4g %10.4g %10.4g %10.4g %9.3g %9.3g %13s\n", what[q], d[q]->n,
+              d[q]->mean, d[q]->p50, d[q]->p90, d[q]->max, s[q]->mean, s[q]->p90, agree);
+    }
   }
 }
 
@@ -149,18 +154,19 @@ void fb_report_print_chaos(FILE *f, const fb_run *r) {
   step_line(f, r, "\n");
   if (!any_ensemble(r)) return;
   const int members = r->c.ensemble > 1 ? r->c.ensemble : 1;
-  fprintf(f, "\nimpact statistics over the window t >= %.6g s, pooled over %d run%s (the pins' "
-             "start moved by %g x clearance per member), spread: standard deviation over the "
-             "members:\n",
-          r->t_window, members, members > 1 ? "s" : "", FB_ENSEMBLE_ECC_FRACTION);
-  fprintf(f, "%-26s %-18s %6s %10s %10s %10s %10s %9s %9s %13s\n", "model", "per impact",
-          "count", "mean", "p50", "p90", "max", "sd mean", "sd p90", "rel mean/p90");
+  fputc('\n', f);
+  fb_report_say(f, "impact statistics over the window t >= %.6g s, pooled over %d run%s (the pins' "
+                   "start moved by %g x clearance per member), spread: standard deviation over the "
+                   "members:",
+                r->t_window, members, members > 1 ? "s" : "", FB_ENSEMBLE_ECC_FRACTION);
+  fprintf(f, "model\n  %-18s %6s %10s %10s %10s %10s %9s %9s %13s\n", "per impact", "count",
+          "mean", "p50", "p90", "max", "sd mean", "sd p90", "rel mean/p90");
   for (int i = 0; i < r->n; i++)
     if (r->model[i].has_ensemble) stats_rows(f, &r->model[i], NULL);
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     if (!m->has_stats_compare) continue;
-    fprintf(f, "%s against %s's distribution (within %g sd): %s%s\n", m->run.name, m->ref_name,
+    fb_report_say(f, "%s against %s's distribution (within %g sd): %s%s", m->run.name, m->ref_name,
             FB_ENSEMBLE_AGREE_SIGMAS, agree_word(m),
             m->has_divergence && m->divergence.diverged ? " (divergent: compare these, not peaks)"
                                                         : "");
@@ -168,9 +174,9 @@ void fb_report_print_chaos(FILE *f, const fb_run *r) {
   int marked = 0;
   for (int i = 0; i < r->n; i++) marked |= r->model[i].peaks_unconverged;
   if (marked)
-    fprintf(f, "(~: a peak of a divergent model, or of a reference whose tighter integration "
-               "moves it by > %g, printed to 3 significant figures: not a converged number)\n",
-            FB_UNCONVERGED_REL);
+    fb_report_say(f, "(~: a peak of a divergent model, or of a reference whose tighter integration "
+                     "moves it by > %g, printed to 3 significant figures: not a converged number)",
+                  FB_UNCONVERGED_REL);
 }
 
 void fb_report_markdown_chaos(FILE *f, const fb_run *r) {

@@ -34,6 +34,10 @@ json_t *fb_report_step_json(const fb_run *r);
  * statistics table (nothing without clearance models). */
 void fb_report_print_chaos(FILE *f, const fb_run *r);
 
+/* Prose for the printed table: printf-formatted text wrapped at spaces to
+ * 120 columns, continuation lines indented by two (report.c). */
+void fb_report_say(FILE *f, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 /* report.md's section of the same. */
 void fb_report_markdown_chaos(FILE *f, const fb_run *r);
 

@@ -12,13 +12,14 @@
 #include "fileio.h"
 #include "outdir.h"
 #include "report.h"
+#include "report_html.h"
 #include "run.h"
 
 #define MAX_SETS 256
 
 static const char run_help[] =
     "usage: fourbar run [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
-    "                   [--no-figures] [--figure-format svg|png]\n"
+    "                   [--no-figures] [--figure-format svg|png] [--no-report]\n"
     "\n"
     "Runs the models a case file asks for ([run] models), measures each against the\n"
     "exact analytic solution and writes DIR/summary.json, DIR/timing.json (wall\n"
@@ -39,6 +40,7 @@ static const char run_help[] =
     "                time_per_step_us per model) instead of the table\n"
     "  --no-figures  skip the figures (report.md is still written)\n"
     "  --figure-format svg|png   default svg\n"
+    "  --no-report   skip DIR/report.html, the interactive page (docs/report.md)\n"
     "  -h, --help    this text\n"
     "\n"
     "Units: SI in every output (column and key names carry the unit). Peaks are\n"
@@ -65,11 +67,12 @@ int fb_cmd_run(int argc, char **argv) {
                                        {"json", no_argument, 0, 'j'},
                                        {"no-figures", no_argument, 0, 'n'},
                                        {"figure-format", required_argument, 0, 'f'},
+                                       {"no-report", no_argument, 0, 'R'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out_dir = NULL;
   const char *sets[MAX_SETS];
-  int nsets = 0, json = 0, figures = 1, ch;
+  int nsets = 0, json = 0, figures = 1, html = 1, charts = 0, ch;
   fb_figure_format fmt = FB_FIGURE_SVG;
   optind = 1;
   while ((ch = getopt_long(argc, argv, "o:s:jh", opts, NULL)) != -1) {
@@ -81,6 +84,7 @@ int fb_cmd_run(int argc, char **argv) {
         break;
       case 'j': json = 1; break;
       case 'n': figures = 0; break;
+      case 'R': html = 0; break;
       case 'f':
         if (strcmp(optarg, "svg") == 0) fmt = FB_FIGURE_SVG;
         else if (strcmp(optarg, "png") == 0) fmt = FB_FIGURE_PNG;
@@ -144,6 +148,18 @@ int fb_cmd_run(int argc, char **argv) {
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        dir);
   }
+  /* report.html belongs to the set too (report_html.h) */
+  if (html) {
+    json_t *sj = fb_report_summary_json(&r, case_path);
+    st = fb_report_html_write(od.stage, &r, sj, &charts, &diag);
+    json_decref(sj);
+    if (st != FB_OK) {
+      fb_run_free(&r);
+      fb_outdir_release(&od);
+      return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
+                         dir);
+    }
+  }
   /* argv[0] is "fourbar run" (main.c); the rest quoted for a POSIX shell */
   char command[8192];
   snprintf(command, sizeof command, "%s", argv[0]);
@@ -188,9 +204,13 @@ int fb_cmd_run(int argc, char **argv) {
     json_decref(t);
   } else {
     fb_report_print_table(stdout, &r);
-    printf("wrote %s/summary.json, timing.json, %d CSV files, %d figures and report.md\n", dir,
-           r.n, nfig);
+    printf("wrote %s/summary.json, timing.json, %d CSV files, %d figures, report.md%s\n", dir,
+           r.n, nfig, html ? " and report.html" : "");
   }
+  if (html && !charts)
+    fprintf(stderr, "fourbar run: note: %s/report.html has no charts: the charting library uPlot "
+            "was not found (run npm ci in the fourbar source folder, or bash scripts/quickstart.sh "
+            "build, then run again; or set FOURBAR_UPLOT_DIR)\n", dir);
   fb_run_free(&r);
   return 0;
 }

@@ -40,11 +40,14 @@
   }
 
   /* ---- panels ------------------------------------------------------------ */
+  /* the spikes first: alpha, then the contact columns, then omega */
   var defs = [
-    { id: 'coupler_omega', title: 'coupler angular velocity', unit: 'rad/s', get: function (m) { return m.coupler_omega; } },
-    { id: 'follower_omega', title: 'follower angular velocity', unit: 'rad/s', get: function (m) { return m.follower_omega; } },
     { id: 'coupler_alpha', title: 'coupler angular acceleration', unit: 'rad/s^2', alpha: true, get: function (m) { return m.coupler_alpha; } },
     { id: 'follower_alpha', title: 'follower angular acceleration', unit: 'rad/s^2', alpha: true, get: function (m) { return m.follower_alpha; } }
+  ];
+  var omegaDefs = [
+    { id: 'coupler_omega', title: 'coupler angular velocity', unit: 'rad/s', get: function (m) { return m.coupler_omega; } },
+    { id: 'follower_omega', title: 'follower angular velocity', unit: 'rad/s', get: function (m) { return m.follower_omega; } }
   ];
   var jointNames = [];
   D.models.forEach(function (m) { m.joints.forEach(function (j) { if (jointNames.indexOf(j.joint) < 0) jointNames.push(j.joint); }); });
@@ -53,6 +56,7 @@
     defs.push({ id: 'force_' + jn, title: jn + ' contact force on the pin', unit: 'N', get: function (m) { var j = jointOf(m, jn); return j && j.force_n; } });
     defs.push({ id: 'penetration_' + jn, title: jn + ' penetration', unit: 'um', get: function (m) { var j = jointOf(m, jn); return j && j.penetration_um; } });
   });
+  defs = defs.concat(omegaDefs);
 
   function lowerBound(a, v) { var lo = 0, hi = a.length; while (lo < hi) { var mid = (lo + hi) >> 1; if (a[mid] < v) lo = mid + 1; else hi = mid; } return lo; }
 
@@ -285,7 +289,28 @@
     var flat = models.map(function (m) { return flatten(m, '', []); });
     var keys = [];
     flat.forEach(function (f) { f.forEach(function (kv) { if (keys.indexOf(kv[0]) < 0) keys.push(kv[0]); }); });
-    var det = el('details'); det.open = true;
+    /* the headline numbers, engines side by side */
+    var head = [['status', 'status'], ['steps', 'steps'], ['coupler.omega_max_rad_s', 'coupler omega max [rad/s]'],
+      ['coupler.omega_min_rad_s', 'coupler omega min [rad/s]'], ['coupler.alpha_max_rad_s2', 'coupler alpha max [rad/s^2]'],
+      ['coupler.alpha_min_rad_s2', 'coupler alpha min [rad/s^2]'], ['follower.omega_max_rad_s', 'follower omega max [rad/s]'],
+      ['follower.omega_min_rad_s', 'follower omega min [rad/s]'], ['follower.alpha_max_rad_s2', 'follower alpha max [rad/s^2]'],
+      ['follower.alpha_min_rad_s2', 'follower alpha min [rad/s^2]'], ['spikes.force_max_n', 'contact force max [N]'],
+      ['spikes.penetration_max_m', 'penetration max [m]'], ['spikes.impacts', 'impacts (peak window)'],
+      ['spikes.alpha_peak_ratio_coupler', 'coupler peak |alpha| / ideal'], ['spikes.alpha_peak_ratio_follower', 'follower peak |alpha| / ideal']];
+    var th0 = el('table'); th0.id = 'summary_head';
+    var hr0 = el('tr'); hr0.appendChild(el('th', 'summary.json', 'name'));
+    models.forEach(function (m) { hr0.appendChild(el('th', m.name)); });
+    th0.appendChild(hr0);
+    head.forEach(function (h) {
+      var tr = el('tr'); tr.appendChild(el('td', h[1], 'name'));
+      flat.forEach(function (f, i) {
+        var hit = f.filter(function (kv) { return kv[0] === h[0]; });
+        tr.appendChild(hit.length ? cell(hit[0][1], h[0], models[i].name) : el('td', ''));
+      });
+      th0.appendChild(tr);
+    });
+    var wrap0 = el('div', null, 'scroll'); wrap0.appendChild(th0); box.appendChild(wrap0);
+    var det = el('details');
     det.appendChild(el('summary', 'models (' + keys.length + ' values each; summary.json "models")'));
     var t = el('table'); t.id = 'summary_models';
     var hr = el('tr'); hr.appendChild(el('th', 'key', 'name'));
@@ -300,7 +325,8 @@
       });
       tb.appendChild(tr);
     });
-    t.appendChild(tb); det.appendChild(t); box.appendChild(det);
+    t.appendChild(tb);
+    var wrap = el('div', null, 'scroll'); wrap.appendChild(t); det.appendChild(wrap); box.appendChild(det);
     var det2 = el('details');
     det2.appendChild(el('summary', 'the run (summary.json, every key but "models")'));
     var t2 = el('table'); t2.id = 'summary_run';

@@ -115,6 +115,9 @@
     var width = Math.max(600, box.clientWidth || 1100);
     defs.forEach(function (def) {
       var ms = D.models.filter(function (m) { var y = def.get(m); return y && y.length === m.t.length && m.t.length > 0; });
+      /* yardsticks (analytic, reference) first and wider, the models over them */
+      var yard = function (m) { return m.engine === 'analytic' || m.engine === 'reference' ? 0 : 1; };
+      ms.sort(function (a, b) { return yard(a) - yard(b); });
       if (!ms.length) return;
       var div = el('div', null, 'panel');
       div.id = 'panel_' + def.id;
@@ -124,10 +127,18 @@
       var series = [{ label: state.xmode === 'time' ? 'time [ms]' : 'crank angle [deg]',
         value: function (u, v) { return v === null || v === undefined ? '' : state.xmode === 'time' ? v.toFixed(6) : crankLabel(v) + ' (' + v.toFixed(3) + ' travelled)'; } }];
       ms.forEach(function (m) {
-        series.push({ label: m.name, stroke: m.colorUsed, dash: m.dashUsed || undefined, width: 1.4, spanGaps: true,
+        series.push({ label: m.name, stroke: m.colorUsed, dash: m.dashUsed || undefined, width: yard(m) ? 1.4 : 2.6, spanGaps: true,
           points: { show: false }, value: function (u, v) { return v === null || v === undefined ? '-' : Number(v).toPrecision(6); } });
       });
-      var yscale = def.alpha && state.ymode === 'symlog' ? { distr: 4, asinh: 1000 } : {};
+      var symlog = def.alpha && state.ymode === 'symlog';
+      /* symlog: 15 % headroom beyond the data, a tick at 0 and at each decade from 1e3 */
+      var yscale = symlog ? { distr: 4, asinh: 1000, range: function (u, lo, hi) {
+        return [Math.min(lo * 1.15, -1000), Math.max(hi * 1.15, 1000)]; } } : {};
+      var decades = function (u, ai, lo, hi) {
+        var v = [0];
+        for (var d = 1000; d <= Math.max(-lo, hi); d *= 10) { if (d <= hi) v.push(d); if (-d >= lo) v.unshift(-d); }
+        return v;
+      };
       var opts = {
         width: width, height: def.alpha ? 260 : 200,
         cursor: { sync: { key: 'fourbar', setSeries: false }, drag: { x: true, y: false }, bind: { dblclick: function () { return null; } } },
@@ -135,7 +146,9 @@
         axes: [
           { label: state.xmode === 'time' ? 'time [ms]' : 'crank angle [deg] (labels: the drive\'s angle, mod 360)',
             values: state.xmode === 'crank' ? function (u, vals) { return vals.map(crankLabel); } : undefined },
-          { label: def.unit, size: 70 }
+          symlog ? { label: def.unit, size: 70, splits: decades, values: function (u, vals) {
+            return vals.map(function (v) { return v === null || v === undefined ? '' : v === 0 ? '0' : (v < 0 ? '-' : '') + '1e' + Math.round(Math.log10(Math.abs(v))); }); } }
+            : { label: def.unit, size: 70 }
         ],
         series: series,
         hooks: {

@@ -19,7 +19,11 @@ esac
 
 packages=(gcc libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel
-          libmujoco-dev nodejs npm)
+          libmujoco-dev)
+# node and npm for report.html's library (and its browser test): Debian's nodejs and npm
+# unless a node with its own npm is there already (NodeSource's nodejs conflicts with them)
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 # report.html's browser test drives Debian's chromium headless (tests/test_report_html.js)
 [ "$what" = test ] && packages+=(chromium)
 [ "$what" = robust ] && packages+=(clang libclang-rt-14-dev valgrind)

@@ -14,7 +14,10 @@
  *   3. a click on the largest impact zooms every panel to it: each panel's
  *      x-range holds the impact's onset and is narrow (FB_NARROW_S), the
  *      reference shown;
- *   4. every number of the page's summary tables equals summary.json's.
+ *   4. every number of the page's summary tables equals summary.json's;
+ * and a run without the charting library ($FOURBAR_UPLOT_DIR pointing at
+ * nothing) loads with no error, says how to get the charts, lists the
+ * impacts and the numbers.
  * Writes BUILD_ROOT/report-html-test/report.png (a screenshot; not committed).
  * Exit 77 (skipped) when chromium or node_modules/playwright-core is missing. */
 'use strict';
@@ -162,6 +165,25 @@ function flatten(v, p, outList) {
     const crank = await page.evaluate(() => window.fourbarReport.panels());
     check(crank.length === panels.length && crank.every((p) => p.points > 0), 'crank-angle axis, linear alpha: every panel has data');
     check(errors.length === 0, 'no console error after clicks and axis changes: ' + errors.join('; '));
+
+    /* without the charting library: the page loads with no error, says how
+     * to get the charts, and still lists the impacts and the numbers */
+    const bare = path.join(work, 'nolib');
+    execFileSync(fourbar, ['run', '--out', bare, '--no-figures', '--set', 'run.revolutions=2',
+      '--set', 'run.models=analytic,ode-clearance-impact'],
+    { stdio: ['ignore', 'ignore', 'ignore'], env: Object.assign({}, process.env, { FOURBAR_UPLOT_DIR: path.join(work, 'none') }) });
+    const page2 = await browser.newPage();
+    const errors2 = [];
+    page2.on('console', (m) => { if (m.type() === 'error') errors2.push('console: ' + m.text()); });
+    page2.on('pageerror', (e) => errors2.push('page error: ' + e.message));
+    page2.on('requestfailed', (r) => errors2.push('request failed: ' + r.url()));
+    await page2.goto('file://' + path.join(bare, 'report.html'));
+    await page2.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
+    check(errors2.length === 0, 'no library: no console error: ' + errors2.join('; '));
+    check(await page2.isVisible('#nocharts') && (await page2.textContent('#nocharts')).includes('npm ci'),
+      'no library: the page says how to get the charts');
+    check((await page2.$$('#impacts tbody tr')).length > 0 && (await page2.$$('#summary_models td[data-key]')).length > 100,
+      'no library: the impacts and the summary tables are there');
   } finally {
     await browser.close();
   }

@@ -20,6 +20,12 @@ esac
 packages=(gcc libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel
           libmujoco-dev libbullet-dev libhdf5-dev python3-h5py)
+# node and npm for report.html's library (and its browser test): Debian's nodejs and npm
+# unless a node with its own npm is there already (NodeSource's nodejs conflicts with them)
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
+# report.html's browser test drives Debian's chromium headless (tests/test_report_html.js)
+[ "$what" = test ] && packages+=(chromium)
 [ "$what" = robust ] && packages+=(clang libclang-rt-14-dev valgrind)
 missing=()
 for p in "${packages[@]}"; do
@@ -31,6 +37,15 @@ if [ ${#missing[@]} -gt 0 ]; then
   [ "$(id -u)" -ne 0 ] && sudo="sudo"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# npm packages into ./node_modules (package-lock.json): uplot, copied into each run's
+# report.html folder, and playwright-core for the browser test; without them a run
+# still works and its report.html says how to get the charts (docs/report.md)
+if [ ! -f node_modules/.package-lock.json ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
+  echo "== npm ci (uplot, playwright-core into ./node_modules)"
+  npm ci --no-audit --no-fund --loglevel=error >/dev/null \
+    || echo "npm ci failed: report.html will have no charts, and its browser test is skipped"
 fi
 
 # warnings are errors in CI (CI=true), warnings elsewhere

@@ -19,6 +19,12 @@ REL_TOL = 1e-11
 RESIDUAL_REL_TOL = 1e-9
 # alpha.svg's range reaches at least 15 % beyond the largest spike (symlog)
 HEADROOM = 1.15
+# spikes.svg's window: the contact episode (at most 2 x 50 samples) widened by
+# one length before and two after: 400 steps, 1.3 ms at the paper's step; a
+# window that missed the spike or took the whole revolution (60 ms) fails
+SPIKE_WINDOW_MAX_S = 2e-3
+# report-data.js writes the series with 10 significant digits (report_html.c)
+PAGE_REL_TOL = 1e-9
 
 exe = sys.argv[1]
 passed = failed = 0
@@ -167,6 +173,66 @@ with tempfile.TemporaryDirectory() as tmp:
             check(abs(lo - c["y_min"]) <= tol and abs(hi - c["y_max"]) <= tol,
                   "%s %s: CSV extremes %g..%g vs plotted %g..%g" % (fig["file"], c["column"], lo, hi,
                                                                    c["y_min"], c["y_max"]))
+    # ---- spikes.svg: each clearance model's largest alpha spikes -------------
+    spikes = [f for f in manifest if f["file"] == "spikes.svg"]
+    check(len(spikes) == 1, "spikes.svg listed")
+    clear = [m for m in summary["models"] if m["kind"] == "ode" and m.get("spikes")]
+    for fig in spikes:
+        for m in clear:
+            for body in ("coupler", "follower"):
+                panel = "%s %s spike" % (m["name"], body)
+                cs = {c["role"]: c for c in fig["curves"] if c["panel"] == panel}
+                fs = {c["role"]: c for c in fig["curves"] if c["panel"] == panel + " force"}
+                c = cs.get("model")
+                check(c is not None and c["model"] == m["name"], "spikes.svg has %s" % panel)
+                if c is None:
+                    continue
+                # the plotted spike is the model's peak |alpha| of summary.json (same window)
+                want = max(abs(m[body]["alpha_max_rad_s2"]), abs(m[body]["alpha_min_rad_s2"]))
+                got = max(abs(c["y_min"]), abs(c["y_max"]))
+                check(abs(got - want) <= REL_TOL * want,
+                      "%s: plotted spike %g vs summary.json peak |alpha| %g" % (panel, got, want))
+                # a microsecond window around the spike, every sample of it
+                span = c["time_to_s"] - c["time_from_s"]
+                check(c["time_from_s"] < c["spike_time_s"] < c["time_to_s"] and span < SPIKE_WINDOW_MAX_S,
+                      "%s: window %g s around the spike at %g s" % (panel, span, c["spike_time_s"]))
+                check(c["points"] >= round(span / m["h_s"]), "%s: every sample drawn (%d)" % (panel, c["points"]))
+                ideal = m["spikes"]["alpha_reference"]
+                check("ideal" in cs and cs["ideal"]["model"] == ideal and cs["ideal"]["points"] == c["points"],
+                      "%s overlays the ideal model %s" % (panel, ideal))
+                ref = m.get("error_vs_reference")
+                if ref:
+                    check("reference" in cs and cs["reference"]["model"] == ref["reference"]
+                          and "reference" in fs, "%s overlays the reference %s, alpha and force" % (panel, ref["reference"]))
+                check("model" in fs and fs["model"]["y_max"] > 0.0, "%s: the contact force below" % panel)
+
+    # ---- report.html's files ---------------------------------------------------
+    files = set(os.listdir(out))
+    check({"report.html", "report-data.js"} <= files, "report.html and report-data.js written")
+    lib = {"uPlot.iife.min.js", "uPlot.min.css"} <= files
+    check(lib or "npm ci" in rc.stderr, "the charting library copied, or the run says how to get it")
+    data = open(os.path.join(out, "report-data.js")).read()
+    head, tail = "window.FOURBAR_DATA = ", ";\nwindow.FOURBAR_DATA.summary = "
+    i, k = data.index(head), data.index(tail)
+    rdata = json.loads(data[i + len(head):k])
+    check(json.loads(data[k + len(tail):].rstrip().rstrip(";")) == summary,
+          "report-data.js carries summary.json's value, equal number for number")
+    check(all(ord(ch) < 128 for ch in data) and "</" not in data, "report-data.js is ASCII with '/' escaped")
+    for m in rdata["models"]:
+        check(len(m["t"]) == m["kept"] and 0 < m["kept"] <= m["samples"],
+              "%s: %d of %d samples kept" % (m["name"], m["kept"], m["samples"]))
+        sm = model[m["name"]]
+        if sm.get("spikes") and len(m["joints"]) == 1:
+            # the page's impact list counts the window's impacts as summary.json does
+            n = sum(1 for im in m["impacts"] if im["t_s"] >= summary["peak_window_from_s"])
+            check(n == sm["spikes"]["impacts"], "%s: %d impacts listed in the peak window, summary %d"
+                  % (m["name"], n, sm["spikes"]["impacts"]))
+            # the decimation keeps each column's extremes: the window's peak |alpha|
+            a = [abs(y) for t, y in zip(m["t"], m["coupler_alpha"]) if t >= summary["peak_window_from_s"]]
+            want = max(abs(sm["coupler"]["alpha_max_rad_s2"]), abs(sm["coupler"]["alpha_min_rad_s2"]))
+            check(abs(max(a) - want) <= PAGE_REL_TOL * want, "%s: the page's data keep the coupler spike %g (%g)"
+                  % (m["name"], want, max(a)))
+
     for m, styles in sorted(colors.items()):
         check(len(styles) == 1, "%s has one colour and dash in every figure: %s" % (m, styles))
     report = open(os.path.join(out, "report.md")).read()
@@ -185,13 +251,26 @@ with tempfile.TemporaryDirectory() as tmp:
     check(rc.returncode == 0 and not [f for f in os.listdir(out2) if f.endswith(".svg")],
           "--no-figures draws nothing")
     check(os.path.exists(os.path.join(out2, "report.md")), "--no-figures still writes report.md")
+    # no charting library (npm not run): the run succeeds, writes the page
+    # without charts and says how to get them
+    out4 = os.path.join(tmp, "nolib")
+    env = dict(os.environ, FOURBAR_UPLOT_DIR=os.path.join(tmp, "no-such-folder"))
+    rc = subprocess.run([exe, "run", "--out", out4, "--no-figures", "--set", "run.revolutions=2",
+                         "--set", "run.models=analytic,ode-clearance-impact"], capture_output=True, text=True, env=env)
+    page = open(os.path.join(out4, "report.html")).read() if rc.returncode == 0 else ""
+    check(rc.returncode == 0 and "report.html has no charts" in rc.stderr and "npm ci" in rc.stderr,
+          "without the charting library the run succeeds and says how to get it: " + rc.stderr[-300:])
+    check("uPlot.iife.min.js\"></script>" not in page and not os.path.exists(os.path.join(out4, "uPlot.iife.min.js"))
+          and "npm ci" in page, "the page without the library loads no missing file and says how to get the charts")
 
     out3 = os.path.join(tmp, "png")
     rc = subprocess.run([exe, "run", "--out", out3, "--figure-format", "png",
-                         "--set", "run.models=analytic,ode-ideal-nominal", "--set", "run.revolutions=2"],
+                         "--set", "run.models=analytic,ode-ideal-nominal", "--set", "run.revolutions=2",
+                         "--no-report"],
                         capture_output=True, text=True)
     with open(os.path.join(out3, "omega.png"), "rb") as f:
         check(f.read(8) == b"\x89PNG\r\n\x1a\n", "--figure-format png writes PNG")
+    check(not {"report.html", "report-data.js"} & set(os.listdir(out3)), "--no-report writes no report.html")
 
     # ---- engines apart: colour families, the difference row, no empty row --
     def run_models(name, models):

@@ -12,6 +12,7 @@
 #include "fileio.h"
 #include "outdir.h"
 #include "report.h"
+#include "report_html.h"
 #include "run.h"
 
 #define MAX_SETS 256
@@ -19,11 +20,12 @@
 static const char run_help[] =
     "usage: fourbar run [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
     "                   [--no-figures] [--figure-format svg|png] [--series csv|hdf5|none]\n"
-    "                   [--jobs J]\n"
+    "                   [--jobs J] [--no-report]\n"
     "\n"
     "Runs the models a case file asks for ([run] models), measures each against the\n"
     "exact analytic solution and writes DIR/summary.json, DIR/timing.json (wall\n"
-    "times), DIR/<model>.csv, figures (gnuplot) and DIR/report.md. The set is\n"
+    "times), DIR/<model>.csv, figures (gnuplot), DIR/report.md and DIR/report.html\n"
+    "(interactive, opens with no server: docs/report.md). The set is\n"
     "written beside DIR and swapped in whole at the end; a second writer to DIR\n"
     "fails at once. Each CSV holds the kinematics, the contact columns of the\n"
     "clearance joints and, for analytic, ODE, MuJoCo and Bullet models, the drive\n"
@@ -46,6 +48,7 @@ static const char run_help[] =
     "                = N keeps every N-th sample and every impact's (docs/series.md)\n"
     "  --jobs J      run the [run] ensemble members in J worker processes\n"
     "                (default 1); the numbers do not depend on J\n"
+    "  --no-report   skip DIR/report.html, the interactive page (docs/report.md)\n"
     "  -h, --help    this text\n"
     "\n"
     "Units: SI in every output (column and key names carry the unit). Peaks are\n"
@@ -74,6 +77,7 @@ int fb_cmd_run(int argc, char **argv) {
                                        {"figure-format", required_argument, 0, 'f'},
                                        {"series", required_argument, 0, 'S'},
                                        {"jobs", required_argument, 0, 'J'},
+                                       {"no-report", no_argument, 0, 'R'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out_dir = NULL;
@@ -81,7 +85,7 @@ int fb_cmd_run(int argc, char **argv) {
   const char *sets[MAX_SETS + 1];
   char series_set[64];
   int series_at = -1; /* the slot of --series in sets */
-  int nsets = 0, json = 0, figures = 1, ch;
+  int nsets = 0, json = 0, figures = 1, html = 1, charts = 0, ch;
   fb_figure_format fmt = FB_FIGURE_SVG;
   optind = 1;
   while ((ch = getopt_long(argc, argv, "o:s:jh", opts, NULL)) != -1) {
@@ -93,6 +97,7 @@ int fb_cmd_run(int argc, char **argv) {
         break;
       case 'j': json = 1; break;
       case 'n': figures = 0; break;
+      case 'R': html = 0; break;
       case 'f':
         if (strcmp(optarg, "svg") == 0) fmt = FB_FIGURE_SVG;
         else if (strcmp(optarg, "png") == 0) fmt = FB_FIGURE_PNG;
@@ -172,6 +177,18 @@ int fb_cmd_run(int argc, char **argv) {
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        dir);
   }
+  /* report.html belongs to the set too (report_html.h) */
+  if (html) {
+    json_t *sj = fb_report_summary_json(&r, case_path);
+    st = fb_report_html_write(od.stage, &r, sj, &charts, &diag);
+    json_decref(sj);
+    if (st != FB_OK) {
+      fb_run_free(&r);
+      fb_outdir_release(&od);
+      return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
+                         dir);
+    }
+  }
   /* argv[0] is "fourbar run" (main.c); the rest quoted for a POSIX shell */
   char command[8192];
   snprintf(command, sizeof command, "%s", argv[0]);
@@ -220,8 +237,13 @@ int fb_cmd_run(int argc, char **argv) {
     if (r.c.series == FB_SERIES_CSV) snprintf(series, sizeof series, "%d CSV files", r.n);
     else if (r.c.series == FB_SERIES_HDF5) snprintf(series, sizeof series, "series.h5 (%d models)", r.n);
     else snprintf(series, sizeof series, "no time series");
-    printf("wrote %s/summary.json, timing.json, %s, %d figures and report.md\n", dir, series, nfig);
+    printf("wrote %s/summary.json, timing.json, %s, %d figures, report.md%s\n", dir, series, nfig,
+           html ? " and report.html" : "");
   }
+  if (html && !charts)
+    fprintf(stderr, "fourbar run: note: %s/report.html has no charts: the charting library uPlot "
+            "was not found (run npm ci in the fourbar source folder, or bash scripts/quickstart.sh "
+            "build, then run again; or set FOURBAR_UPLOT_DIR)\n", dir);
   fb_run_free(&r);
   return 0;
 }

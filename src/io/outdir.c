@@ -162,7 +162,9 @@ static fb_status resolve(const char *dir, char *abs, char *parent, char *base, f
 static int ours(const char *name) {
   if (name[0] == '.') return strcmp(name, ".gnuplot.log") == 0;
   const char *dot = strrchr(name, '.');
-  const char *known[] = {".csv", ".h5", ".json", ".jsonl", ".svg", ".png", ".md", ".log", NULL};
+  const char *known[] = {".csv", ".h5", ".json", ".jsonl", ".svg", ".png", ".md", ".log",
+                         ".html", ".js", ".css", /* report.html, its data and library */
+                         NULL};
   for (int k = 0; dot && known[k]; k++)
     if (strcmp(dot, known[k]) == 0) return 1;
   return 0;

@@ -1,0 +1,280 @@
+#include "report_html.h"
+
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "fileio.h"
+#include "report.h"
+#include "report_page.h" /* fb_report_page_html[], fb_report_page_js[] (generated, meson.build) */
+
+#ifndef FB_UPLOT_DIR
+#define FB_UPLOT_DIR "node_modules/uplot/dist"
+#endif
+
+static const char *const lib_files[2] = {"uPlot.iife.min.js", "uPlot.min.css"};
+
+/* the plotted series are written with this many significant digits: 1e-10
+ * relative, 2e-11 s on the paper case's 0.18 s run, far below a step */
+#define SERIES_DIGITS 10
+
+int fb_report_html_library(char *out, size_t size) {
+  const char *env = getenv("FOURBAR_UPLOT_DIR");
+  snprintf(out, size, "%s", env && *env ? env : FB_UPLOT_DIR);
+  for (int k = 0; k < 2; k++) {
+    char p[4400];
+    snprintf(p, sizeof p, "%s/%s", out, lib_files[k]);
+    if (access(p, R_OK) != 0) return 0;
+  }
+  return 1;
+}
+
+/* crank angle in degrees in [0, 360) */
+static double deg360(double th) {
+  double d = fmod(th * 180.0 / M_PI, 360.0);
+  return d < 0.0 ? d + 360.0 : d;
+}
+
+/* marks the minimum and maximum of y in each bucket of [0, n) */
+static void mark_extremes(unsigned char *keep, const double *y, size_t n, size_t per) {
+  for (size_t b = 0; b < n; b += per) {
+    const size_t e = b + per < n ? b + per : n;
+    size_t lo = b, hi = b;
+    for (size_t k = b; k < e; k++) {
+      if (y[k] < y[lo]) lo = k;
+      if (y[k] > y[hi]) hi = k;
+    }
+    keep[lo] = keep[hi] = 1;
+  }
+}
+
+/* one impact episode: the samples [i0, i1] in the impact state with a
+ * positive force (metrics.c's definition of an impact) */
+typedef struct {
+  size_t i0, i1;
+} episode;
+
+/* the impact episodes of joint j, at most cap; returns the count found */
+static size_t episodes(const fb_series *s, int j, episode *out, size_t cap) {
+  const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
+  size_t k = 0;
+  int open = 0;
+  for (size_t i = 0; i < s->n; i++) {
+    const int in = (int)st[i] == FB_STATE_IMPACT && f[i] > 0.0;
+    if (in && !open) {
+      if (k < cap) out[k].i0 = out[k].i1 = i;
+      open = 1;
+      k++;
+    } else if (in && k <= cap) {
+      out[k - 1].i1 = i;
+    }
+    if (!in) open = 0;
+  }
+  return k;
+}
+
+static json_t *column(const double *y, const size_t *idx, size_t m, double scale) {
+  json_t *a = json_array();
+  for (size_t k = 0; k < m; k++) {
+    const double v = y[idx[k]] * scale;
+    json_array_append_new(a, isfinite(v) ? json_real(v) : json_null());
+  }
+  return a;
+}
+
+/* the sample of largest |y| over [i0, i1] */
+static double largest(const double *y, size_t i0, size_t i1) {
+  double v = y[i0];
+  for (size_t i = i0; i <= i1; i++)
+    if (fabs(y[i]) > fabs(v)) v = y[i];
+  return v;
+}
+
+/* one model's data: decimated series, contact columns, impacts */
+static fb_status model_json(json_t **out, const fb_run *r, int mi) {
+  const fb_model_result *m = &r->model[mi];
+  const fb_series *s = &m->run.series;
+  const fb_model *row = m->run.model;
+  const fb_model *ref = fb_model_reference_of(row), *ideal = fb_model_ideal_of(row);
+  json_t *o = json_pack("{s:s,s:s,s:b,s:s?,s:s?,s:s?,s:i}", "name", m->run.name, "engine",
+                        fb_engine_name(row->engine), "clearance", m->run.clearance_mask != 0,
+                        "reference", ref ? ref->name : NULL, "ideal", ideal ? ideal->name : NULL,
+                        "color", row->style.color, "dash", row->style.dash);
+  unsigned char *keep = calloc(s->n ? s->n : 1, 1);
+  size_t *idx = malloc((s->n ? s->n : 1) * sizeof *idx);
+  episode *ep = malloc(FB_REPORT_MAX_IMPACTS * sizeof *ep);
+  if (!o || !keep || !idx || !ep) {
+    free(keep), free(idx), free(ep), json_decref(o);
+    return FB_ERR_NOMEM;
+  }
+  const size_t per = s->n > 2 * FB_REPORT_BUCKETS ? (s->n + FB_REPORT_BUCKETS - 1) / FB_REPORT_BUCKETS : 1;
+  const double *cols[4] = {s->coupler_omega, s->coupler_alpha, s->follower_omega, s->follower_alpha};
+  if (s->n) {
+    for (int c = 0; c < 4; c++) mark_extremes(keep, cols[c], s->n, per);
+    keep[0] = keep[s->n - 1] = 1;
+  }
+  json_t *impacts = json_array(), *joints = json_array();
+  for (int j = 0; j < 4; j++) {
+    if (!(s->contact_mask & (1 << j))) continue;
+    mark_extremes(keep, s->contact[j][FB_C_FORCE], s->n, per);
+    mark_extremes(keep, s->contact[j][FB_C_PEN], s->n, per);
+    /* every change of contact state: the orbit's colours change there */
+    for (size_t i = 1; i < s->n; i++)
+      if (s->contact[j][FB_C_STATE][i] != s->contact[j][FB_C_STATE][i - 1]) keep[i - 1] = keep[i] = 1;
+    const size_t ne = episodes(s, j, ep, FB_REPORT_MAX_IMPACTS);
+    const size_t listed = ne < FB_REPORT_MAX_IMPACTS ? ne : FB_REPORT_MAX_IMPACTS;
+    for (size_t k = 0; k < listed; k++) {
+      const size_t a = ep[k].i0 > FB_REPORT_IMPACT_PAD ? ep[k].i0 - FB_REPORT_IMPACT_PAD : 0;
+      const size_t b = ep[k].i1 + FB_REPORT_IMPACT_PAD < s->n ? ep[k].i1 + FB_REPORT_IMPACT_PAD : s->n - 1;
+      memset(keep + a, 1, b - a + 1);
+      double fmax_n = 0.0, pmax = 0.0;
+      for (size_t i = ep[k].i0; i <= ep[k].i1; i++) {
+        fmax_n = fmax(fmax_n, s->contact[j][FB_C_FORCE][i]);
+        pmax = fmax(pmax, s->contact[j][FB_C_PEN][i]);
+      }
+      /* alpha over the episode and the free flight it ends in (the rebound
+       * spike follows the force peak by a step or two) */
+      const size_t a2 = ep[k].i1 + 3 < s->n ? ep[k].i1 + 3 : s->n - 1;
+      json_t *im = json_pack("{s:s,s:s,s:f,s:f,s:f,s:f,s:f,s:f,s:f}", "model", m->run.name,
+                             "joint", fb_joint_name(j), "t_s", s->t[ep[k].i0], "t_end_s",
+                             s->t[ep[k].i1], "crank_angle_deg", deg360(s->crank_angle[ep[k].i0]),
+                             "force_n", fmax_n, "penetration_m", pmax, "coupler_alpha_rad_s2",
+                             largest(s->coupler_alpha, ep[k].i0, a2), "follower_alpha_rad_s2",
+                             largest(s->follower_alpha, ep[k].i0, a2));
+      json_array_append_new(impacts, im);
+    }
+    json_t *jo = json_pack("{s:s,s:i,s:i}", "joint", fb_joint_name(j), "impacts", (int)ne,
+                           "listed", (int)listed);
+    json_array_append_new(joints, jo);
+  }
+  size_t nk = 0;
+  for (size_t i = 0; i < s->n; i++)
+    if (keep[i]) idx[nk++] = i;
+  json_object_set_new(o, "samples", json_integer((json_int_t)s->n));
+  json_object_set_new(o, "kept", json_integer((json_int_t)nk));
+  json_object_set_new(o, "t", column(s->t, idx, nk, 1.0));
+  json_object_set_new(o, "coupler_omega", column(s->coupler_omega, idx, nk, 1.0));
+  json_object_set_new(o, "coupler_alpha", column(s->coupler_alpha, idx, nk, 1.0));
+  json_object_set_new(o, "follower_omega", column(s->follower_omega, idx, nk, 1.0));
+  json_object_set_new(o, "follower_alpha", column(s->follower_alpha, idx, nk, 1.0));
+  size_t q = 0;
+  for (int j = 0; j < 4; j++) {
+    if (!(s->contact_mask & (1 << j))) continue;
+    json_t *jo = json_array_get(joints, q++);
+    json_object_set_new(jo, "force_n", column(s->contact[j][FB_C_FORCE], idx, nk, 1.0));
+    json_object_set_new(jo, "penetration_um", column(s->contact[j][FB_C_PEN], idx, nk, 1e6));
+    json_object_set_new(jo, "ecc_x_um", column(s->contact[j][FB_C_EX], idx, nk, 1e6));
+    json_object_set_new(jo, "ecc_y_um", column(s->contact[j][FB_C_EY], idx, nk, 1e6));
+    json_object_set_new(jo, "state", column(s->contact[j][FB_C_STATE], idx, nk, 1.0));
+  }
+  json_object_set_new(o, "joints", joints);
+  json_object_set_new(o, "impacts", impacts);
+  free(keep), free(idx), free(ep);
+  *out = o;
+  return FB_OK;
+}
+
+/* copies the library file name from folder lib into dir, atomically */
+static fb_status copy_file(const char *lib, const char *name, const char *dir, fb_diag *diag) {
+  char from[4400], to[4400];
+  snprintf(from, sizeof from, "%s/%s", lib, name);
+  snprintf(to, sizeof to, "%s/%s", dir, name);
+  int not_regular = 0;
+  FILE *in = fb_fopen_regular(from, &not_regular);
+  if (!in)
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot read: %s", from,
+                       not_regular ? "not a regular file" : strerror(errno));
+  fb_outfile out;
+  fb_status st = fb_outfile_open(&out, to, diag);
+  if (st != FB_OK) {
+    fclose(in);
+    return st;
+  }
+  char buf[65536];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+    if (fwrite(buf, 1, n, out.f) != n) break;
+  const int bad = ferror(in);
+  fclose(in);
+  if (bad) {
+    fb_outfile_abort(&out);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: read failed", from);
+  }
+  return fb_outfile_commit(&out, diag);
+}
+
+/* writes report-data.js: the run's data, then summary.json's value */
+static fb_status write_data(const char *dir, const fb_run *r, const json_t *summary, int charts,
+                            fb_diag *diag) {
+  json_t *d = json_object(), *models = json_array();
+  const fb_case *c = &r->c;
+  json_object_set_new(d, "format", json_integer(1));
+  json_object_set_new(d, "case", json_string(c->name));
+  json_object_set_new(d, "speed_rpm", json_real(c->crank_speed * 60.0 / (2.0 * M_PI)));
+  json_object_set_new(d, "direction", json_integer(c->direction));
+  json_object_set_new(d, "crank_angle0_deg", json_real(c->crank_angle0 * 180.0 / M_PI));
+  json_object_set_new(d, "radial_clearance_um", json_real(c->radial_clearance * 1e6));
+  json_object_set_new(d, "t_window_s", json_real(r->t_window));
+  json_object_set_new(d, "h_s", json_real(c->solver.h));
+  json_object_set_new(d, "charts", json_boolean(charts));
+  for (int i = 0; i < r->n; i++) {
+    json_t *m = NULL;
+    if (model_json(&m, r, i) != FB_OK) {
+      json_decref(d), json_decref(models);
+      return fb_diag_set(diag, FB_ERR_NOMEM, "report.html: out of memory");
+    }
+    json_array_append_new(models, m);
+  }
+  json_object_set_new(d, "models", models);
+  char path[4400];
+  snprintf(path, sizeof path, "%s/report-data.js", dir);
+  fb_outfile out;
+  fb_status st = fb_outfile_open(&out, path, diag);
+  if (st != FB_OK) {
+    json_decref(d);
+    return st;
+  }
+  /* JSON_ENSURE_ASCII | JSON_ESCAPE_SLASH: no "</script>", no U+2028 */
+  const size_t flags = JSON_COMPACT | JSON_ENSURE_ASCII | JSON_ESCAPE_SLASH;
+  fputs("/* fourbar run data for report.html (docs/report.md) */\nwindow.FOURBAR_DATA = ", out.f);
+  int bad = json_dumpf(d, out.f, flags | JSON_REAL_PRECISION(SERIES_DIGITS)) != 0;
+  fputs(";\nwindow.FOURBAR_DATA.summary = ", out.f);
+  bad |= json_dumpf(summary, out.f, flags | JSON_REAL_PRECISION(12)) != 0; /* as summary.json */
+  fputs(";\n", out.f);
+  json_decref(d);
+  if (bad) {
+    fb_outfile_abort(&out);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: JSON write failed", path);
+  }
+  return fb_outfile_commit(&out, diag);
+}
+
+fb_status fb_report_html_write(const char *dir, const fb_run *r, const json_t *summary, int *charts,
+                               fb_diag *diag) {
+  char lib[4096];
+  *charts = fb_report_html_library(lib, sizeof lib);
+  fb_status st = FB_OK;
+  for (int k = 0; k < 2 && *charts && st == FB_OK; k++) st = copy_file(lib, lib_files[k], dir, diag);
+  if (st == FB_OK) st = write_data(dir, r, summary, *charts, diag);
+  if (st != FB_OK) return st;
+  /* the page: static markup, then the static script inline */
+  char path[4400];
+  snprintf(path, sizeof path, "%s/report.html", dir);
+  fb_outfile out;
+  st = fb_outfile_open(&out, path, diag);
+  if (st != FB_OK) return st;
+  fwrite(fb_report_page_html, 1, sizeof fb_report_page_html, out.f);
+  /* the library only when it was copied: a missing file would be a failed
+   * request and a console error */
+  if (*charts)
+    fputs("<link rel=\"stylesheet\" href=\"uPlot.min.css\">\n"
+          "<script src=\"uPlot.iife.min.js\"></script>\n", out.f);
+  fputs("<script src=\"report-data.js\"></script>\n<script>\n", out.f);
+  fwrite(fb_report_page_js, 1, sizeof fb_report_page_js, out.f);
+  fputs("</script>\n</body>\n</html>\n", out.f);
+  return fb_outfile_commit(&out, diag);
+}

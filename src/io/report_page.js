@@ -1,0 +1,376 @@
+/* fourbar report.html: the page's script (docs/report.md). Reads
+ * window.FOURBAR_DATA (report-data.js); every text of the run reaches the
+ * page through textContent, never as markup. */
+(function () {
+  'use strict';
+  var D = window.FOURBAR_DATA;
+  var $ = function (id) { return document.getElementById(id); };
+  function el(tag, text, cls) {
+    var e = document.createElement(tag);
+    if (text !== undefined && text !== null) e.textContent = String(text);
+    if (cls) e.className = cls;
+    return e;
+  }
+  if (!D) { $('meta').textContent = 'report-data.js is missing or damaged: run fourbar run again.'; return; }
+  var charts = typeof window.uPlot === 'function';
+  if (!charts) $('nocharts').style.display = 'block';
+
+  /* ---- the run ------------------------------------------------------------ */
+  var S = D.summary || {};
+  document.title = 'fourbar report: ' + D['case'];
+  $('title').textContent = 'fourbar report: ' + D['case'];
+  $('meta').textContent = (S.case_file ? S.case_file + ': ' : '') + D.speed_rpm.toFixed(0) + ' rpm ' +
+    (D.direction > 0 ? 'ccw' : 'cw') + ', radial clearance ' + D.radial_clearance_um.toPrecision(4) +
+    ' um, step h = ' + D.h_s.toPrecision(4) + ' s, ' + D.models.length + ' models; peaks over t >= ' +
+    (1e3 * D.t_window_s).toPrecision(5) + ' ms';
+  var palette = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#17becf'];
+  D.models.forEach(function (m, i) {
+    m.colorUsed = m.color || palette[i % palette.length];
+    m.dashUsed = m.dash === 2 ? [8, 4] : m.dash === 3 ? [2, 3] : m.dash === 4 ? [8, 3, 2, 3] : m.dash === 5 ? [12, 6] : null;
+  });
+  var t0 = Infinity, t1 = -Infinity;
+  D.models.forEach(function (m) { if (m.t.length) { t0 = Math.min(t0, m.t[0]); t1 = Math.max(t1, m.t[m.t.length - 1]); } });
+  var degPerS = D.speed_rpm * 6.0;
+  var state = { xmode: 'time', ymode: 'symlog', lo: t0, hi: t1, cursorT: NaN, sel: -1 };
+  function xOf(t) { return state.xmode === 'time' ? t * 1e3 : t * degPerS; }
+  function tOf(x) { return state.xmode === 'time' ? x * 1e-3 : x / degPerS; }
+  function crankLabel(x) {
+    var a = (D.crank_angle0_deg + D.direction * x) % 360;
+    return (a < 0 ? a + 360 : a).toFixed(0);
+  }
+
+  /* ---- panels ------------------------------------------------------------ */
+  /* the spikes first: alpha, then the contact columns, then omega */
+  var defs = [
+    { id: 'coupler_alpha', title: 'coupler angular acceleration', unit: 'rad/s^2', alpha: true, get: function (m) { return m.coupler_alpha; } },
+    { id: 'follower_alpha', title: 'follower angular acceleration', unit: 'rad/s^2', alpha: true, get: function (m) { return m.follower_alpha; } }
+  ];
+  var omegaDefs = [
+    { id: 'coupler_omega', title: 'coupler angular velocity', unit: 'rad/s', get: function (m) { return m.coupler_omega; } },
+    { id: 'follower_omega', title: 'follower angular velocity', unit: 'rad/s', get: function (m) { return m.follower_omega; } }
+  ];
+  var jointNames = [];
+  D.models.forEach(function (m) { m.joints.forEach(function (j) { if (jointNames.indexOf(j.joint) < 0) jointNames.push(j.joint); }); });
+  function jointOf(m, name) { for (var k = 0; k < m.joints.length; k++) if (m.joints[k].joint === name) return m.joints[k]; return null; }
+  jointNames.forEach(function (jn) {
+    defs.push({ id: 'force_' + jn, title: jn + ' contact force on the pin', unit: 'N', get: function (m) { var j = jointOf(m, jn); return j && j.force_n; } });
+    defs.push({ id: 'penetration_' + jn, title: jn + ' penetration', unit: 'um', get: function (m) { var j = jointOf(m, jn); return j && j.penetration_um; } });
+  });
+  defs = defs.concat(omegaDefs);
+
+  function lowerBound(a, v) { var lo = 0, hi = a.length; while (lo < hi) { var mid = (lo + hi) >> 1; if (a[mid] < v) lo = mid + 1; else hi = mid; } return lo; }
+
+  /* the samples of model m over [lo, hi] s (one beyond each end), min/max
+   * decimated to about w buckets: the page's per-zoom level */
+  function slice(m, y, lo, hi, w) {
+    var i0 = Math.max(0, lowerBound(m.t, lo) - 1), i1 = Math.min(m.t.length, lowerBound(m.t, hi) + 1);
+    var xs = [], ys = [], n = i1 - i0;
+    if (n <= 4 * w) {
+      for (var i = i0; i < i1; i++) { xs.push(xOf(m.t[i])); ys.push(y[i]); }
+      return [xs, ys];
+    }
+    var per = Math.ceil(n / w);
+    for (var b = i0; b < i1; b += per) {
+      var e = Math.min(b + per, i1), l = b, h = b;
+      for (var k = b; k < e; k++) { if (y[k] < y[l]) l = k; if (y[k] > y[h]) h = k; }
+      var a = Math.min(l, h), c = Math.max(l, h);
+      xs.push(xOf(m.t[a])); ys.push(y[a]);
+      if (c !== a) { xs.push(xOf(m.t[c])); ys.push(y[c]); }
+    }
+    return [xs, ys];
+  }
+
+  var panels = [];
+  function panelData(p) {
+    var w = Math.max(200, Math.round(p.width || 1000));
+    var tables = p.models.map(function (m) { return slice(m, p.def.get(m), state.lo, state.hi, w); });
+    p.points = tables.reduce(function (s, t) { return s + t[0].length; }, 0);
+    return window.uPlot.join(tables);
+  }
+
+  var syncing = false;
+  /* every panel to [lo, hi] s, its data decimated again for that range */
+  function setRange(lo, hi) {
+    if (!(hi > lo)) return;
+    state.lo = Math.max(t0, lo); state.hi = Math.min(t1, hi);
+    if (!(state.hi > state.lo)) { state.lo = t0; state.hi = t1; }
+    syncing = true;
+    panels.forEach(function (p) {
+      if (!p.u) return;
+      p.u.setData(panelData(p), false);
+      p.u.setScale('x', { min: xOf(state.lo), max: xOf(state.hi) });
+    });
+    syncing = false;
+    $('range').textContent = 'showing t = ' + (1e3 * state.lo).toPrecision(7) + ' .. ' + (1e3 * state.hi).toPrecision(7) +
+      ' ms (' + ((state.hi - state.lo) * 1e6).toPrecision(4) + ' us)';
+    drawOrbit();
+  }
+
+  function build() {
+    panels.forEach(function (p) { if (p.u) p.u.destroy(); });
+    panels = [];
+    var box = $('panels');
+    box.textContent = '';
+    if (!charts) { box.appendChild(el('p', 'No charts: the charting library was not found when the run wrote this page (see above).', 'note')); return; }
+    var width = Math.max(600, box.clientWidth || 1100);
+    defs.forEach(function (def) {
+      var ms = D.models.filter(function (m) { var y = def.get(m); return y && y.length === m.t.length && m.t.length > 0; });
+      /* yardsticks (analytic, reference) first and wider, the models over them */
+      var yard = function (m) { return m.engine === 'analytic' || m.engine === 'reference' ? 0 : 1; };
+      ms.sort(function (a, b) { return yard(a) - yard(b); });
+      if (!ms.length) return;
+      var div = el('div', null, 'panel');
+      div.id = 'panel_' + def.id;
+      div.appendChild(el('div', def.title + ' [' + def.unit + ']' + (def.alpha && state.ymode === 'symlog' ? ' (symlog)' : ''), 'ptitle'));
+      box.appendChild(div);
+      var p = { def: def, models: ms, div: div, width: width - 80 };
+      var series = [{ label: state.xmode === 'time' ? 'time [ms]' : 'crank angle [deg]',
+        value: function (u, v) { return v === null || v === undefined ? '' : state.xmode === 'time' ? v.toFixed(6) : crankLabel(v) + ' (' + v.toFixed(3) + ' travelled)'; } }];
+      ms.forEach(function (m) {
+        series.push({ label: m.name, stroke: m.colorUsed, dash: m.dashUsed || undefined, width: yard(m) ? 1.4 : 2.6, spanGaps: true,
+          points: { show: false }, value: function (u, v) { return v === null || v === undefined ? '-' : Number(v).toPrecision(6); } });
+      });
+      var symlog = def.alpha && state.ymode === 'symlog';
+      /* symlog: 15 % headroom beyond the data, a tick at 0 and at each decade from 1e3 */
+      var yscale = symlog ? { distr: 4, asinh: 1000, range: function (u, lo, hi) {
+        return [Math.min(lo * 1.15, -1000), Math.max(hi * 1.15, 1000)]; } } : {};
+      var decades = function (u, ai, lo, hi) {
+        var v = [0];
+        for (var d = 1000; d <= Math.max(-lo, hi); d *= 10) { if (d <= hi) v.push(d); if (-d >= lo) v.unshift(-d); }
+        return v;
+      };
+      var opts = {
+        width: width, height: def.alpha ? 260 : 200,
+        cursor: { sync: { key: 'fourbar', setSeries: false }, drag: { x: true, y: false }, bind: { dblclick: function () { return null; } } },
+        scales: { x: { time: false }, y: yscale },
+        axes: [
+          { label: state.xmode === 'time' ? 'time [ms]' : 'crank angle [deg] (labels: the drive\'s angle, mod 360)',
+            values: state.xmode === 'crank' ? function (u, vals) { return vals.map(crankLabel); } : undefined },
+          symlog ? { label: def.unit, size: 70, splits: decades, values: function (u, vals) {
+            return vals.map(function (v) { return v === null || v === undefined ? '' : v === 0 ? '0' : (v < 0 ? '-' : '') + '1e' + Math.round(Math.log10(Math.abs(v))); }); } }
+            : { label: def.unit, size: 70 }
+        ],
+        series: series,
+        hooks: {
+          setScale: [function (u, key) {
+            if (key !== 'x' || syncing) return;
+            var lo = tOf(u.scales.x.min), hi = tOf(u.scales.x.max);
+            setTimeout(function () { setRange(lo, hi); }, 0);
+          }],
+          setCursor: [function (u) {
+            var i = u.cursor.idx;
+            if (i === null || i === undefined || u.cursor.left < 0) return;
+            var x = u.posToVal(u.cursor.left, 'x');
+            state.cursorT = tOf(x);
+            drawOrbit();
+          }],
+          ready: [function (u) {
+            u.over.addEventListener('dblclick', function () { setRange(t0, t1); });
+            u.over.addEventListener('wheel', function (ev) {
+              ev.preventDefault();
+              var span = state.hi - state.lo;
+              if (ev.shiftKey) { var d = 0.15 * span * Math.sign(ev.deltaY || ev.deltaX); setRange(state.lo + d, state.hi + d); return; }
+              var at = tOf(u.posToVal(ev.offsetX, 'x')), f = ev.deltaY > 0 ? 1.25 : 0.8;
+              setRange(at - (at - state.lo) * f, at + (state.hi - at) * f);
+            }, { passive: false });
+          }]
+        }
+      };
+      p.u = new window.uPlot(opts, panelData(p), div);
+      panels.push(p);
+    });
+    setRange(state.lo, state.hi);
+  }
+
+  /* ---- impacts ------------------------------------------------------------ */
+  var impacts = [];
+  D.models.forEach(function (m) { m.impacts.forEach(function (im) { impacts.push(im); }); });
+  impacts.forEach(function (im, k) { im.index = k; });
+  var modelByName = {};
+  D.models.forEach(function (m) { modelByName[m.name] = m; });
+  var imodel = $('imodel');
+  imodel.appendChild(el('option', 'all'));
+  imodel.options[0].value = '';
+  D.models.forEach(function (m) { if (m.impacts.length) { var o = el('option', m.name); o.value = m.name; imodel.appendChild(o); } });
+  function fmt(v, d) { return v === null || v === undefined ? '-' : Number(v).toFixed(d); }
+  function showImpacts() {
+    var tb = $('impacts').tBodies[0];
+    tb.textContent = '';
+    var list = impacts.filter(function (im) { return !imodel.value || im.model === imodel.value; });
+    if ($('iorder').value === 'force') list.sort(function (a, b) { return b.force_n - a.force_n; });
+    list.forEach(function (im) {
+      var tr = document.createElement('tr');
+      tr.dataset.index = String(im.index);
+      if (im.index === state.sel) tr.className = 'sel';
+      [[im.model, 'name'], [im.joint, 'name'], [fmt(1e3 * im.t_s, 4)], [fmt(im.crank_angle_deg, 2)], [fmt(im.force_n, 1)],
+        [fmt(1e6 * im.penetration_m, 4)], [fmt(im.coupler_alpha_rad_s2, 0)], [fmt(im.follower_alpha_rad_s2, 0)]].forEach(function (c) {
+        tr.appendChild(el('td', c[0], c[1]));
+      });
+      tr.addEventListener('click', function () { zoomImpact(im.index); });
+      tb.appendChild(tr);
+    });
+    var notes = [];
+    D.models.forEach(function (m) { m.joints.forEach(function (j) { if (j.impacts > j.listed) notes.push(m.name + ' ' + j.joint + ': ' + j.listed + ' of ' + j.impacts + ' impacts listed'); }); });
+    $('impactnote').textContent = impacts.length ? notes.join('; ') : 'No impact in this run (no clearance model, or the pin never struck the wall).';
+  }
+  $('iorder').addEventListener('change', showImpacts);
+  imodel.addEventListener('change', showImpacts);
+
+  /* every panel to the impact's episode, padded by three times its length
+   * (at least 20 steps) each side; the model and its reference shown */
+  function zoomImpact(k) {
+    var im = impacts[k];
+    state.sel = k;
+    var pad = Math.max(3 * (im.t_end_s - im.t_s), 20 * D.h_s);
+    var m = modelByName[im.model];
+    panels.forEach(function (p) {
+      p.models.forEach(function (pm, i) {
+        if (pm === m || (m && pm.name === m.reference)) p.u.setSeries(i + 1, { show: true });
+      });
+    });
+    for (var q = 0; q < orbitChoices.length; q++)
+      if (orbitChoices[q].m === m && orbitChoices[q].j.joint === im.joint) { $('omodel').value = String(q); break; }
+    state.cursorT = im.t_s;
+    setRange(im.t_s - pad, im.t_end_s + pad);
+    showImpacts();
+  }
+
+  /* ---- orbit ------------------------------------------------------------- */
+  var stateColor = ['#2a9d8f', '#e63946', '#1d3557'], stateName = ['free flight', 'impact', 'continuous contact'];
+  var orbitChoices = [];
+  D.models.forEach(function (m) { m.joints.forEach(function (j) { if (j.ecc_x_um && j.ecc_x_um.length) orbitChoices.push({ m: m, j: j }); }); });
+  var omodel = $('omodel');
+  orbitChoices.forEach(function (c, q) { var o = el('option', c.m.name + ', ' + c.j.joint); o.value = String(q); omodel.appendChild(o); });
+  omodel.addEventListener('change', drawOrbit);
+  var lg = $('orbitlegend');
+  stateName.forEach(function (n, k) { var s = el('span', null, 'swatch'); s.style.background = stateColor[k]; lg.appendChild(s); lg.appendChild(document.createTextNode(n)); });
+  lg.appendChild(document.createTextNode('; ring: the cursor\'s instant; the visible time range is drawn'));
+  function drawOrbit() {
+    var cv = $('orbit'), g = cv.getContext('2d');
+    g.clearRect(0, 0, cv.width, cv.height);
+    var c = orbitChoices[Number(omodel.value || 0)];
+    cv.dataset.points = '0';
+    if (!c) { g.fillText('no clearance joint in this run', 20, 20); return; }
+    var m = c.m, j = c.j, cl = D.radial_clearance_um;
+    var i0 = Math.max(0, lowerBound(m.t, state.lo) - 1), i1 = Math.min(m.t.length, lowerBound(m.t, state.hi) + 1);
+    var span = 1.35 * cl;
+    for (var i = i0; i < i1; i++) span = Math.max(span, 1.05 * Math.hypot(j.ecc_x_um[i], j.ecc_y_um[i]));
+    var cx = cv.width / 2, cy = cv.height / 2, s = (cv.width / 2 - 10) / span;
+    g.strokeStyle = '#888'; g.lineWidth = 1.5; g.beginPath(); g.arc(cx, cy, cl * s, 0, 2 * Math.PI); g.stroke();
+    g.fillStyle = '#555'; g.font = '11px sans-serif';
+    g.fillText('clearance circle ' + cl.toPrecision(3) + ' um; ' + m.name + ', ' + j.joint, 6, 14);
+    var drawn = 0;
+    g.lineWidth = 1.3;
+    for (var k = Math.max(i0 + 1, 1); k < i1; k++) {
+      g.strokeStyle = stateColor[j.state[k - 1] | 0] || '#000';
+      g.beginPath();
+      g.moveTo(cx + s * j.ecc_x_um[k - 1], cy - s * j.ecc_y_um[k - 1]);
+      g.lineTo(cx + s * j.ecc_x_um[k], cy - s * j.ecc_y_um[k]);
+      g.stroke();
+      drawn++;
+    }
+    cv.dataset.points = String(drawn);
+    if (isFinite(state.cursorT)) {
+      var q = Math.min(m.t.length - 1, lowerBound(m.t, state.cursorT));
+      g.strokeStyle = '#000'; g.lineWidth = 2; g.beginPath();
+      g.arc(cx + s * j.ecc_x_um[q], cy - s * j.ecc_y_um[q], 5, 0, 2 * Math.PI); g.stroke();
+      g.fillText('t = ' + (1e3 * m.t[q]).toFixed(5) + ' ms: ' + stateName[j.state[q] | 0], 6, cv.height - 8);
+    }
+  }
+
+  /* ---- summary tables ------------------------------------------------------ */
+  function flatten(v, path, out) {
+    if (v !== null && typeof v === 'object') {
+      Object.keys(v).forEach(function (k) { flatten(v[k], path ? path + '.' + k : k, out); });
+    } else if (path) {
+      out.push([path, v]);
+    }
+    return out;
+  }
+  function cell(v, key, model) {
+    var td = el('td', v === null ? 'null' : typeof v === 'number' ? String(v) : v, typeof v === 'number' ? '' : 'name');
+    td.dataset.key = key;
+    if (model !== undefined) td.dataset.model = model;
+    return td;
+  }
+  function summaryTables() {
+    var box = $('summary');
+    box.textContent = '';
+    var run = {};
+    Object.keys(S).forEach(function (k) { if (k !== 'models') run[k] = S[k]; });
+    var models = S.models || [];
+    var flat = models.map(function (m) { return flatten(m, '', []); });
+    var keys = [];
+    flat.forEach(function (f) { f.forEach(function (kv) { if (keys.indexOf(kv[0]) < 0) keys.push(kv[0]); }); });
+    /* the headline numbers, engines side by side */
+    var head = [['status', 'status'], ['steps', 'steps'], ['coupler.omega_max_rad_s', 'coupler omega max [rad/s]'],
+      ['coupler.omega_min_rad_s', 'coupler omega min [rad/s]'], ['coupler.alpha_max_rad_s2', 'coupler alpha max [rad/s^2]'],
+      ['coupler.alpha_min_rad_s2', 'coupler alpha min [rad/s^2]'], ['follower.omega_max_rad_s', 'follower omega max [rad/s]'],
+      ['follower.omega_min_rad_s', 'follower omega min [rad/s]'], ['follower.alpha_max_rad_s2', 'follower alpha max [rad/s^2]'],
+      ['follower.alpha_min_rad_s2', 'follower alpha min [rad/s^2]'], ['spikes.force_max_n', 'contact force max [N]'],
+      ['spikes.penetration_max_m', 'penetration max [m]'], ['spikes.impacts', 'impacts (peak window)'],
+      ['spikes.alpha_peak_ratio_coupler', 'coupler peak |alpha| / ideal'], ['spikes.alpha_peak_ratio_follower', 'follower peak |alpha| / ideal']];
+    var th0 = el('table'); th0.id = 'summary_head';
+    var hr0 = el('tr'); hr0.appendChild(el('th', 'summary.json', 'name'));
+    models.forEach(function (m) { hr0.appendChild(el('th', m.name)); });
+    th0.appendChild(hr0);
+    head.forEach(function (h) {
+      var tr = el('tr'); tr.appendChild(el('td', h[1], 'name'));
+      flat.forEach(function (f, i) {
+        var hit = f.filter(function (kv) { return kv[0] === h[0]; });
+        tr.appendChild(hit.length ? cell(hit[0][1], h[0], models[i].name) : el('td', ''));
+      });
+      th0.appendChild(tr);
+    });
+    var wrap0 = el('div', null, 'scroll'); wrap0.appendChild(th0); box.appendChild(wrap0);
+    var det = el('details');
+    det.appendChild(el('summary', 'models (' + keys.length + ' values each; summary.json "models")'));
+    var t = el('table'); t.id = 'summary_models';
+    var hr = el('tr'); hr.appendChild(el('th', 'key', 'name'));
+    models.forEach(function (m) { hr.appendChild(el('th', m.name)); });
+    var th = el('thead'); th.appendChild(hr); t.appendChild(th);
+    var tb = el('tbody');
+    keys.forEach(function (k) {
+      var tr = el('tr'); tr.appendChild(el('td', k, 'name'));
+      flat.forEach(function (f, i) {
+        var hit = f.filter(function (kv) { return kv[0] === k; });
+        tr.appendChild(hit.length ? cell(hit[0][1], k, models[i].name) : el('td', ''));
+      });
+      tb.appendChild(tr);
+    });
+    t.appendChild(tb);
+    var wrap = el('div', null, 'scroll'); wrap.appendChild(t); det.appendChild(wrap); box.appendChild(det);
+    var det2 = el('details');
+    det2.appendChild(el('summary', 'the run (summary.json, every key but "models")'));
+    var t2 = el('table'); t2.id = 'summary_run';
+    flatten(run, '', []).forEach(function (kv) { var tr = el('tr'); tr.appendChild(el('td', kv[0], 'name')); tr.appendChild(cell(kv[1], kv[0])); t2.appendChild(tr); });
+    det2.appendChild(t2); box.appendChild(det2);
+  }
+
+  /* ---- controls ------------------------------------------------------------ */
+  $('xmode').addEventListener('change', function () { state.xmode = this.value; build(); });
+  $('ymode').addEventListener('change', function () { state.ymode = this.value; build(); });
+  $('whole').addEventListener('click', function () { setRange(t0, t1); });
+  $('panl').addEventListener('click', function () { var d = 0.25 * (state.hi - state.lo); setRange(state.lo - d, state.hi - d); });
+  $('panr').addEventListener('click', function () { var d = 0.25 * (state.hi - state.lo); setRange(state.lo + d, state.hi + d); });
+
+  showImpacts();
+  summaryTables();
+  build();
+  drawOrbit();
+
+  /* for tests and the console: the panels' state */
+  window.fourbarReport = {
+    charts: charts,
+    impacts: impacts,
+    range: function () { return { lo_s: state.lo, hi_s: state.hi }; },
+    panels: function () {
+      return panels.map(function (p) {
+        return { id: p.def.id, models: p.models.map(function (m) { return m.name; }), points: p.points,
+          shown: p.u.series.slice(1).map(function (s) { return s.show; }),
+          x_min_s: tOf(p.u.scales.x.min), x_max_s: tOf(p.u.scales.x.max) };
+      });
+    },
+    orbitPoints: function () { return Number($('orbit').dataset.points); }
+  };
+})();

@@ -1,0 +1,192 @@
+#!/usr/bin/env node
+/* report.html in a real browser: Debian's chromium, headless, driven by
+ * playwright-core from the project's node_modules (no downloaded browser).
+ *
+ * usage: node tests/test_report_html.js FOURBAR SOURCE_ROOT BUILD_ROOT
+ *
+ * A short run of the paper case (2 revolutions: the start-up's impacts and
+ * a steady stretch; models analytic, ode-ideal-stackup, ode-clearance-impact
+ * and its reference), its case file copied under a name holding markup and
+ * script, so the page must show that name as text and run none of it. Then:
+ *   1. the page loads with no console error, no page error, no failed request;
+ *   2. every panel has data for every model that has the column, and the
+ *      orbit draws;
+ *   3. a click on the largest impact zooms every panel to it: each panel's
+ *      x-range holds the impact's onset and is narrow (FB_NARROW_S), the
+ *      reference shown;
+ *   4. every number of the page's summary tables equals summary.json's;
+ * and a run without the charting library ($FOURBAR_UPLOT_DIR pointing at
+ * nothing) loads with no error, says how to get the charts, lists the
+ * impacts and the numbers.
+ * Writes BUILD_ROOT/report-html-test/report.png (a screenshot; not committed).
+ * Exit 77 (skipped) when chromium or node_modules/playwright-core is missing. */
+'use strict';
+const fs = require('fs');
+const path = require('path');
+const { execFileSync } = require('child_process');
+
+const [fourbar, root, buildRoot] = process.argv.slice(2);
+const chromium = process.env.FOURBAR_CHROMIUM || '/usr/bin/chromium';
+let pw;
+try {
+  pw = require(path.join(root, 'node_modules', 'playwright-core'));
+} catch (e) {
+  console.log('SKIP: node_modules/playwright-core is missing (npm ci in ' + root + ')');
+  process.exit(77);
+}
+if (!fs.existsSync(chromium)) {
+  console.log('SKIP: ' + chromium + ' is missing (apt-get install chromium)');
+  process.exit(77);
+}
+if (!fs.existsSync(path.join(root, 'node_modules', 'uplot', 'dist', 'uPlot.iife.min.js'))) {
+  console.log('SKIP: node_modules/uplot is missing (npm ci in ' + root + ')');
+  process.exit(77);
+}
+
+/* a zoom to one impact is narrow when it spans less than 1 ms: the paper
+ * case's impact episodes last 5-60 us and the zoom pads them by three
+ * lengths each side (at least 20 steps, 66 us), while the run spans 120 ms;
+ * a click that zoomed nowhere would leave the whole run (120 ms) */
+const FB_NARROW_S = 1e-3;
+
+let passed = 0, failed = 0;
+function check(ok, what) {
+  if (ok) passed++;
+  else { failed++; console.log('FAIL: ' + what); }
+}
+
+const work = path.join(buildRoot, 'report-html-test');
+fs.rmSync(work, { recursive: true, force: true });
+fs.mkdirSync(work, { recursive: true });
+const nasty = path.join(work, 'paper <img src=x onerror="window.__pwned=1"> &amp; <b>.ini');
+fs.copyFileSync(path.join(root, 'cases', 'paper_crank_rocker.ini'), nasty);
+const out = path.join(work, 'run');
+execFileSync(fourbar, ['run', nasty, '--out', out, '--no-figures',
+  '--set', 'run.revolutions=2',
+  '--set', 'run.models=analytic,ode-ideal-stackup,ode-clearance-impact,reference'],
+{ stdio: ['ignore', 'ignore', 'inherit'] });
+const summary = JSON.parse(fs.readFileSync(path.join(out, 'summary.json'), 'utf8'));
+for (const f of ['report.html', 'report-data.js', 'uPlot.iife.min.js', 'uPlot.min.css'])
+  check(fs.existsSync(path.join(out, f)), f + ' written');
+
+function flatten(v, p, outList) {
+  if (v !== null && typeof v === 'object') for (const k of Object.keys(v)) flatten(v[k], p ? p + '.' + k : k, outList);
+  else if (p) outList.push([p, v]);
+  return outList;
+}
+
+(async () => {
+  const browser = await pw.chromium.launch({ executablePath: chromium, headless: true,
+    args: ['--no-sandbox', '--disable-gpu'] });
+  try {
+    const page = await browser.newPage({ viewport: { width: 1400, height: 1000 } });
+    const errors = [];
+    page.on('console', (m) => { if (m.type() === 'error') errors.push('console: ' + m.text()); });
+    page.on('pageerror', (e) => errors.push('page error: ' + e.message));
+    page.on('requestfailed', (r) => errors.push('request failed: ' + r.url()));
+    page.on('dialog', (d) => { errors.push('dialog: ' + d.message()); d.dismiss(); });
+    await page.goto('file://' + path.join(out, 'report.html'));
+    await page.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
+    await page.waitForTimeout(300);
+
+    /* 1. no console error */
+    check(errors.length === 0, 'no console error on load: ' + errors.join('; '));
+    check(await page.evaluate(() => window.fourbarReport.charts), 'charts drawn (uPlot loaded)');
+    check(await page.evaluate(() => window.__pwned === undefined), 'the case file name ran as script');
+    const meta = await page.textContent('#meta');
+    check(meta.includes('<img src=x onerror="window.__pwned=1"> &amp; <b>'), 'the case file name shown as text: ' + meta);
+
+    /* 2. each panel has data */
+    const panels = await page.evaluate(() => window.fourbarReport.panels());
+    const ids = panels.map((p) => p.id);
+    for (const want of ['coupler_omega', 'follower_omega', 'coupler_alpha', 'follower_alpha',
+      'force_crank-coupler', 'penetration_crank-coupler'])
+      check(ids.includes(want), 'panel ' + want + ' present (have ' + ids.join(', ') + ')');
+    for (const p of panels) {
+      check(p.points > 0, 'panel ' + p.id + ' has data');
+      check(p.models.length === (p.id.startsWith('force') || p.id.startsWith('penetration') ? 2 : 4),
+        'panel ' + p.id + ' shows every model that has the column: ' + p.models.join(', '));
+    }
+    check(await page.evaluate(() => window.fourbarReport.orbitPoints()) > 0, 'the orbit draws');
+
+    /* 3. a click on the largest impact of ode-clearance-impact zooms to it */
+    await page.selectOption('#imodel', 'ode-clearance-impact');
+    await page.selectOption('#iorder', 'force');
+    const row = await page.$('#impacts tbody tr');
+    check(row !== null, 'the impact list has a row');
+    const idx = Number(await row.getAttribute('data-index'));
+    const im = await page.evaluate((k) => window.fourbarReport.impacts[k], idx);
+    const forces = await page.evaluate(() => window.fourbarReport.impacts
+      .filter((x) => x.model === 'ode-clearance-impact').map((x) => x.force_n));
+    check(im.force_n === Math.max(...forces), 'the first row of "peak force" order is the largest impact');
+    await row.click();
+    await page.waitForTimeout(300);
+    const zoomed = await page.evaluate(() => window.fourbarReport.panels());
+    for (const p of zoomed) {
+      check(p.x_min_s <= im.t_s && im.t_s <= p.x_max_s, 'panel ' + p.id + ' x-range [' + p.x_min_s + ', ' +
+        p.x_max_s + '] s holds the impact at ' + im.t_s + ' s');
+      check(p.x_max_s - p.x_min_s < FB_NARROW_S, 'panel ' + p.id + ' zoomed narrow: ' + (p.x_max_s - p.x_min_s) + ' s');
+      const r = p.models.indexOf('reference');
+      check(r >= 0 && p.shown[r], 'panel ' + p.id + ' overlays the reference');
+      check(p.points > 0, 'panel ' + p.id + ' has data after the zoom');
+    }
+    await page.screenshot({ path: path.join(work, 'report.png'), fullPage: false });
+
+    /* 4. the page's numbers equal summary.json's */
+    const cells = await page.$$eval('#summary_models td[data-key]', (tds) =>
+      tds.map((td) => [td.dataset.model, td.dataset.key, td.textContent]));
+    const byKey = new Map(cells.map((c) => [c[0] + '\u0000' + c[1], c[2]]));
+    let compared = 0, differ = [];
+    for (const m of summary.models)
+      for (const [k, v] of flatten(m, '', [])) {
+        const text = byKey.get(m.name + '\u0000' + k);
+        const same = typeof v === 'number' ? text !== undefined && Number(text) === v
+          : text === (v === null ? 'null' : String(v));
+        compared++;
+        if (!same) differ.push(m.name + ' ' + k + ': page ' + text + ', summary.json ' + v);
+      }
+    const runCells = await page.$$eval('#summary_run td[data-key]', (tds) => tds.map((td) => [td.dataset.key, td.textContent]));
+    const runMap = new Map(runCells);
+    const run = Object.assign({}, summary);
+    delete run.models;
+    for (const [k, v] of flatten(run, '', [])) {
+      const text = runMap.get(k);
+      compared++;
+      if (!(typeof v === 'number' ? Number(text) === v : text === (v === null ? 'null' : String(v))))
+        differ.push('run ' + k + ': page ' + text + ', summary.json ' + v);
+    }
+    check(compared > 100 && differ.length === 0, 'page numbers equal summary.json (' + compared + ' compared): ' +
+      differ.slice(0, 5).join('; '));
+
+    /* the other axes: crank angle and linear alpha still draw, still no error */
+    await page.selectOption('#xmode', 'crank');
+    await page.selectOption('#ymode', 'linear');
+    await page.waitForTimeout(300);
+    const crank = await page.evaluate(() => window.fourbarReport.panels());
+    check(crank.length === panels.length && crank.every((p) => p.points > 0), 'crank-angle axis, linear alpha: every panel has data');
+    check(errors.length === 0, 'no console error after clicks and axis changes: ' + errors.join('; '));
+
+    /* without the charting library: the page loads with no error, says how
+     * to get the charts, and still lists the impacts and the numbers */
+    const bare = path.join(work, 'nolib');
+    execFileSync(fourbar, ['run', '--out', bare, '--no-figures', '--set', 'run.revolutions=2',
+      '--set', 'run.models=analytic,ode-clearance-impact'],
+    { stdio: ['ignore', 'ignore', 'ignore'], env: Object.assign({}, process.env, { FOURBAR_UPLOT_DIR: path.join(work, 'none') }) });
+    const page2 = await browser.newPage();
+    const errors2 = [];
+    page2.on('console', (m) => { if (m.type() === 'error') errors2.push('console: ' + m.text()); });
+    page2.on('pageerror', (e) => errors2.push('page error: ' + e.message));
+    page2.on('requestfailed', (r) => errors2.push('request failed: ' + r.url()));
+    await page2.goto('file://' + path.join(bare, 'report.html'));
+    await page2.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
+    check(errors2.length === 0, 'no library: no console error: ' + errors2.join('; '));
+    check(await page2.isVisible('#nocharts') && (await page2.textContent('#nocharts')).includes('npm ci'),
+      'no library: the page says how to get the charts');
+    check((await page2.$$('#impacts tbody tr')).length > 0 && (await page2.$$('#summary_models td[data-key]')).length > 100,
+      'no library: the impacts and the summary tables are there');
+  } finally {
+    await browser.close();
+  }
+  console.log(passed + ' passed, ' + failed + ' failed');
+  process.exit(failed ? 1 : 0);
+})().catch((e) => { console.log('FAIL: ' + (e && e.stack || e)); console.log(passed + ' passed, ' + (failed + 1) + ' failed'); process.exit(1); });

@@ -19,7 +19,8 @@
  *
  * Engines today: analytic and reference (engines.c, the exact kinematics and
  * the GSL reference behind the same interface, which compute their series
- * in create and replay it), ODE (src/ode/engine_ode.c). A new engine fills
+ * in create and replay it), ODE (src/ode/engine_ode.c), MuJoCo
+ * (src/mujoco/engine_mujoco.c), Simbody (src/simbody/engine_simbody.c). A new engine fills
  * one fb_engine and is returned by fb_engine_get for its fb_engine_id. */
 #ifndef FB_ENGINE_H
 #define FB_ENGINE_H
@@ -89,5 +90,6 @@ extern const fb_engine fb_engine_analytic;
 extern const fb_engine fb_engine_reference;
 extern const fb_engine fb_engine_ode;
 extern const fb_engine fb_engine_mujoco; /* only in builds with MuJoCo (FB_HAVE_MUJOCO) */
+extern const fb_engine fb_engine_simbody; /* only in builds with Simbody (FB_HAVE_SIMBODY) */
 
 #endif

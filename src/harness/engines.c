@@ -23,10 +23,15 @@ const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
 #if FB_HAVE_MUJOCO
     case FB_ENGINE_MUJOCO: return &fb_engine_mujoco;
 #endif
+#if FB_HAVE_SIMBODY
+    case FB_ENGINE_SIMBODY: return &fb_engine_simbody;
+#endif
     default: break;
   }
   fb_diag_set(diag, FB_ERR_ARG, "engine '%s' is not part of this build%s", fb_engine_name(id),
-              id == FB_ENGINE_MUJOCO ? ": " FB_MUJOCO_HOWTO : "");
+              id == FB_ENGINE_MUJOCO    ? ": " FB_MUJOCO_HOWTO
+              : id == FB_ENGINE_SIMBODY ? ": " FB_SIMBODY_HOWTO
+                                        : "");
   return NULL;
 }
 

@@ -22,10 +22,11 @@ typedef enum {
   FB_ENGINE_REFERENCE = 1, /* minimal-coordinate dynamics, GSL rk8pd (reference.h) */
   FB_ENGINE_ODE = 2,       /* Open Dynamics Engine (src/ode) */
   FB_ENGINE_MUJOCO = 3,    /* MuJoCo (src/mujoco), when built */
+  FB_ENGINE_SIMBODY = 4,   /* Simbody (src/simbody), when built */
   FB_ENGINE_COUNT
 } fb_engine_id;
 
-/* "analytic", "reference", "ode", "mujoco": the "kind" written in summary.json. */
+/* "analytic", "reference", "ode", "mujoco", "simbody": the "kind" written in summary.json. */
 const char *fb_engine_name(fb_engine_id e);
 
 /* 1 when this build has engine e (MuJoCo only when built with it). */
@@ -36,6 +37,12 @@ int fb_engine_available(fb_engine_id e);
   "the mujoco-* models need MuJoCo 2.2.2: install it (apt-get install libmujoco-dev, or " \
   "bash scripts/quickstart.sh build, which installs it) and rebuild with meson setup "   \
   "--reconfigure build -Dmujoco=enabled"
+
+/* How to get the Simbody engine into a build that lacks it. */
+#define FB_SIMBODY_HOWTO                                                                   \
+  "the simbody-* models need Simbody 3.7: install it (apt-get install libsimbody-dev, or " \
+  "bash scripts/quickstart.sh build, which installs it) and rebuild with meson setup "     \
+  "--reconfigure build -Dsimbody=enabled"
 
 /* 1 for engines that step a world of bodies and joints (ODE, MuJoCo): they
  * have a loop-closure drift and a stability guard. */

@@ -57,6 +57,7 @@ typedef struct {
   double settle_damping;          /* body velocity damping per step [-] for static settling
                                      tests; 0 in every model */
   fb_mujoco_opts mujoco;          /* MuJoCo's own choices (integrator, loop closure, drive) */
+  fb_simbody_opts simbody;        /* Simbody's own choices (integrator, accuracy) */
   fb_case source;                 /* the case as resolved (worst corner set), for engines
                                      that take a case (reference.h) */
 } fb_scene_def;
@@ -95,6 +96,7 @@ typedef struct {
                                      1 the faceted model's split by contact count */
   double settle_damping;          /* body velocity damping per step [-]; 0 in every model */
   fb_mujoco_opts mujoco;          /* MuJoCo's own choices (mujoco-* models) */
+  fb_simbody_opts simbody;        /* Simbody's own choices (simbody-* models) */
 } fb_scene_model;
 
 /* The state at t = 0 of model sm: sm->start when the case's start holds

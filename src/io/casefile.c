@@ -47,7 +47,8 @@ typedef enum {
   K_LIMIT,     /* a number (scaled like K_DOUBLE) | none | clearance */
   K_UNUSED,    /* a number checked against its range and not stored (no model uses it) */
   K_COLLIDER,  /* exact | faceted | ccd */
-  K_BORE       /* circle | ellipse */
+  K_BORE,      /* circle | ellipse */
+  K_SBINT      /* rkmerson | rkfeldberg | rk3 | cpodes | verlet */
 } key_kind;
 
 typedef struct {
@@ -311,6 +312,17 @@ static const key_spec keys[] = {
      "armature of the crank hinge: the crank is a flywheel set to the crank speed at t = 0, "
      "so the reaction torques barely change its speed (the crank-angle error is reported)"},
 
+    {"simbody", "integrator", K_SBINT, OFF(simbody.integrator), 0, 0, 0, 0, 0, "-", "rkmerson",
+     "rkmerson, rkfeldberg, rk3, cpodes or verlet",
+     "integrator of the simbody-* models: Simbody's RungeKuttaMerson, RungeKuttaFeldberg, "
+     "RungeKutta3, CPodes (BDF, for stiff problems) or Verlet integrator, each with its own "
+     "error control (docs/engines.md)"},
+    {"simbody", "accuracy", K_DOUBLE, OFF(simbody.accuracy), 1.0, FB_SIMBODY_ACCURACY_MIN,
+     FB_SIMBODY_ACCURACY_MAX, 0, 0, "-", FB_SIMBODY_ACCURACY_DEFAULT_TEXT,
+     "the accuracy must lie in [1e-12, 0.1]",
+     "the simbody-* models' integrator accuracy (Integrator::setAccuracy, a relative error "
+     "per step); the output is sampled every h whatever the internal steps are"},
+
     {"run", "revolutions", K_INT, OFF(revolutions), 0, 1, 1e6, 0, 0, "-", "3",
      "at least 2 with peaks = steady (the first revolution is a run-in); at least 1 with "
      "peaks = all",
@@ -487,7 +499,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
-                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, run)",
+                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, simbody, run)",
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }
@@ -688,6 +700,14 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else if (strcmp(e->value, "auto") == 0) *(int *)field = FB_MUJOCO_AUTO;
       else return bad_word(e, k, diag);
       return FB_OK;
+    case K_SBINT: {
+      int found = -1;
+      for (int i = 0; i < FB_SIMBODY_INTEGRATOR_COUNT; i++)
+        if (strcmp(e->value, fb_simbody_integrator_name(i)) == 0) found = i;
+      if (found < 0) return bad_word(e, k, diag);
+      *(int *)field = found;
+      return FB_OK;
+    }
     case K_COLLIDER:
       if (strcmp(e->value, "exact") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_EXACT;
       else if (strcmp(e->value, "faceted") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_FACETED;
@@ -818,6 +838,8 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
                              e->origin, e->section, e->key, tok,
                              fb_model_find(tok)->engine == FB_ENGINE_MUJOCO
                                  ? FB_MUJOCO_HOWTO
+                             : fb_model_find(tok)->engine == FB_ENGINE_SIMBODY
+                                 ? FB_SIMBODY_HOWTO
                                  : "its engine was left out");
         for (int i = 0; i < c->model_count; i++)
           if (strcmp(c->models[i], tok) == 0)

@@ -63,10 +63,12 @@ typedef struct fb_bench_row_s {
 /* Which grids fb_bench_run runs. */
 enum {
   FB_BENCH_SOLVERS = 1,  /* ODE stepper x h x mapping x world ERP/CFM, and MuJoCo's grid */
-  FB_BENCH_COLLIDERS = 2 /* the collider axis */
+  FB_BENCH_COLLIDERS = 2, /* the collider axis */
+  FB_BENCH_SIMBODY = 4    /* Simbody's integrator x accuracy (bench.c, simbody_grid); alone,
+                             with ODE's dWorldStep rows at the matched mapping */
 };
 
-#define FB_BENCH_MAX_ROWS 256
+#define FB_BENCH_MAX_ROWS 320
 
 /* ODE step sizes of the grid: 1e-3, 1e-4, 1e-5, 1e-6 s and auto. */
 #define FB_BENCH_STEPS 5

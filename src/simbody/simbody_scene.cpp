@@ -41,6 +41,29 @@ struct ContactEval {
 
 struct Scene;
 
+// The crank drive: the crank angle prescribed at position level,
+// theta2(t) = theta0 + omega2 t, so the crank follows the analytic angle
+// exactly (a velocity-level Motion::Steady leaves the angle to the
+// integrator and to the constraint projection, which moved it by 7e-6 rad
+// over 3 revolutions at accuracy 1e-6). The drive torque is the Motion's
+// multiplier (SimbodyMatterSubsystem::findMotionForces).
+class SteadyAngle : public Motion::Custom::Implementation {
+ public:
+  SteadyAngle(double theta0, double omega) : theta0_(theta0), omega_(omega) {}
+  Motion::Level getLevel(const State &) const override { return Motion::Position; }
+  void calcPrescribedPosition(const State &s, int, Real *q) const override {
+    q[0] = theta0_ + omega_ * s.getTime();
+  }
+  void calcPrescribedPositionDot(const State &, int, Real *qdot) const override { qdot[0] = omega_; }
+  void calcPrescribedPositionDotDot(const State &, int, Real *qdotdot) const override {
+    qdotdot[0] = 0.0;
+  }
+  Implementation *clone() const override { return new SteadyAngle(*this); }
+
+ private:
+  double theta0_, omega_;
+};
+
 // The project's contact law (contact.h) as a Simbody custom force: +F n on
 // the coupler's hole centre, -F n on the crank's pin centre.
 class ClearanceForce : public Force::Custom::Implementation {
@@ -75,6 +98,8 @@ struct Scene {
   fb_sample x;
   double reaction[4][2], drive_torque, drift;
   double pen_now;
+  Vector_<SpatialVec> mob_reactions; // per mobilized body, reused every sample
+  Vector motion_forces;              // per mobility, reused every sample
   // provenance
   double me_min, me_max;
   size_t contact_steps;
@@ -173,18 +198,18 @@ void read_sample(Scene *s, const State &state) {
   x.coupler_alpha = a4 + a3;
   // loads: reactions of the mobilizers (parent on child), of the ball or
   // the contact at B, and the drive torque the Motion applies
-  const Vec3 fa = s->crank.findMobilizerReactionOnBodyAtMInGround(state)[1];
-  const Vec3 fd = s->follower.findMobilizerReactionOnBodyAtMInGround(state)[1];
-  const Vec3 fc = s->coupler.findMobilizerReactionOnBodyAtMInGround(state)[1];
+  s->matter.calcMobilizerReactionForces(state, s->mob_reactions);
+  const Vec3 fa = s->mob_reactions[s->crank.getMobilizedBodyIndex()][1];
+  const Vec3 fd = s->mob_reactions[s->follower.getMobilizedBodyIndex()][1];
+  const Vec3 fc = s->mob_reactions[s->coupler.getMobilizedBodyIndex()][1];
   s->reaction[FB_JOINT_A][0] = fa[0];
   s->reaction[FB_JOINT_A][1] = fa[1];
   s->reaction[FB_JOINT_D][0] = fd[0];
   s->reaction[FB_JOINT_D][1] = fd[1];
   s->reaction[FB_JOINT_C][0] = -fc[0]; // on the follower from the coupler
   s->reaction[FB_JOINT_C][1] = -fc[1];
-  Vector mf;
-  s->matter.findMotionForces(state, mf);
-  s->drive_torque = -mf[s->crank.getFirstUIndex(state)];
+  s->matter.findMotionForces(state, s->motion_forces);
+  s->drive_torque = -s->motion_forces[s->crank.getFirstUIndex(state)];
   s->pen_now = 0.0;
   s->drift = 0.0;
   if (s->clearance) {
@@ -310,7 +335,7 @@ extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_sc
                                      link_body(sm->link[2], s->c), Transform());
     s->coupler = MobilizedBody::Pin(s->follower, Transform(Vec3(s->c, 0, 0)),
                                     link_body(sm->link[1], s->b), Transform(Vec3(s->b, 0, 0)));
-    Motion::Steady(s->crank, sm->omega2);
+    Motion::Custom(s->crank, new SteadyAngle(start.crank_angle, sm->omega2));
     if (s->clearance)
       Force::Custom(s->forces, new ClearanceForce(s));
     else

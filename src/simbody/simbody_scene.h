@@ -10,11 +10,11 @@
  *           /   clearance: Force::Custom       ||  Pin (coupler on follower)
  *  crank   /    ideal: Constraint::Ball        ||  follower
  *  Pin +  /     (the loop closure)             ||
- *  Motion::Steady                              ||
+ *  Motion (angle)                              ||
  *        A (origin)                            D (ground, +x)  Pin
  *
  * The tree is cut at the crank-coupler joint B: ground -> crank (Pin, speed
- * prescribed by Motion::Steady), ground -> follower (Pin at D), follower ->
+ * prescribed as theta0 + omega2 t by a position-level Motion), ground -> follower (Pin at D), follower ->
  * coupler (Pin at C). The ideal models close the loop with a
  * Constraint::Ball at B (its out-of-plane row is redundant; Simbody's
  * constraint solver tolerates redundant rows); the clearance models leave

@@ -19,7 +19,7 @@ esac
 
 packages=(gcc libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel
-          libmujoco-dev)
+          libmujoco-dev libsimbody-dev)
 [ "$what" = robust ] && packages+=(clang libclang-rt-14-dev valgrind)
 missing=()
 for p in "${packages[@]}"; do

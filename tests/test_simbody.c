@@ -47,14 +47,14 @@
  * penetration against the reference (measured: -0.029 %, -0.105 %) */
 #define FORCE_PEAK_REL_TOL 0.01
 #define PEN_PEAK_REL_TOL 0.01
-/* the restitution law's damper force jumps at contact onset; the error
- * control locates it (measured +0.58 % force, +0.54 % penetration): the
- * impact model's 1 % bound, doubled for that jump */
-#define RESTITUTION_PEAK_REL_TOL 0.02
-/* restitution impact count: chaotic past the first impacts (the reference's
- * own count moves by one between its tolerances 1e-12 and 1e-13, issue 28);
- * measured 29 against 27. The MuJoCo test's 15 % of the reference's count */
-#define RESTITUTION_IMPACTS_REL_TOL 0.15
+/* The restitution model over revolution 2 (the reference's count and peaks
+ * converge there: its error estimate 1.4e-5; revolution 3 converges at no
+ * tolerance, reference.h). The rattling after the first impacts amplifies
+ * every difference: at the default accuracy 1e-6 Simbody's revolution-2
+ * peak force is -4.3 % off (14/14 impacts), at 1e-8 +0.24 % (penetration
+ * +0.21 %). Held at 1e-8 to the impact model's 1 % bound */
+#define RESTITUTION_ACCURACY "simbody.accuracy=1e-8"
+#define RESTITUTION_PEAK_REL_TOL 0.01
 /* a looser accuracy must cost fewer steps and give a larger error: the
  * ideal peak error at accuracy 1e-3 is at least 10 times that at 1e-8
  * (an error control that controls nothing would fail this) */
@@ -166,7 +166,8 @@ static void test_clearance_restitution_matches_reference(void **state) {
   (void)state;
   SKIP_WITHOUT_SIMBODY();
   static fb_run r;
-  run(&r, "simbody-clearance-restitution, reference-restitution", NULL, 0);
+  const char *sets[] = {"run.revolutions=2", RESTITUTION_ACCURACY};
+  run(&r, "simbody-clearance-restitution, reference-restitution", sets, 2);
   const fb_model_result *m = &r.model[0];
   assert_true(m->has_ref_error);
   assert_string_equal(m->ref_name, "reference-restitution");
@@ -178,8 +179,7 @@ static void test_clearance_restitution_matches_reference(void **state) {
   assert_true(fabs(re->force_max_rel) < RESTITUTION_PEAK_REL_TOL);
   assert_true(fabs(re->penetration_max_rel) < RESTITUTION_PEAK_REL_TOL);
   assert_true(re->impacts_reference > 0);
-  assert_true(fabs((double)re->impacts - re->impacts_reference) <=
-              RESTITUTION_IMPACTS_REL_TOL * re->impacts_reference);
+  assert_int_equal(re->impacts, re->impacts_reference);
   /* the damper's mass: the effective mass along the normal was evaluated */
   const fb_contact_provenance *p = &m->run.provenance[FB_JOINT_B];
   assert_true(p->mass_eff_min > 0.0 && p->mass_eff_max >= p->mass_eff_min);
@@ -239,6 +239,16 @@ static void test_keys_and_refusal(void **state) {
     assert_int_equal(st, FB_OK);
     assert_true(fb_engine_available(FB_ENGINE_SIMBODY));
     assert_non_null(fb_engine_get(FB_ENGINE_SIMBODY, &d));
+    /* the tree is cut at the crank-coupler joint only: clearance elsewhere
+     * is refused before any step */
+    static fb_case k;
+    const char *sets[] = {"run.models=simbody-clearance-impact", "clearance.joints=coupler-follower",
+                          "run.revolutions=2"};
+    fb_test_paper_case(&k, sets, 3);
+    static fb_run r;
+    assert_int_equal(fb_run_case(&r, &k, NULL, NULL, &d), FB_ERR_ARG);
+    assert_non_null(strstr(d.msg, "crank-coupler joint only"));
+    fb_run_free(&r);
   } else {
     assert_int_not_equal(st, FB_OK);
     assert_non_null(strstr(d.msg, "simbody-ideal-nominal"));

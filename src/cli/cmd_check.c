@@ -278,10 +278,12 @@ int fb_cmd_check(int argc, char **argv) {
     }
     const char *missing = missing_engine(metrics);
     if (missing) {
-      /* a build without MuJoCo: its baseline cannot run here, and that is
-       * not a regression */
-      if (!json) printf("\n%s (%s): skipped: model %s is not in this build (%s)\n", case_name,
-                        case_file, missing, FB_MUJOCO_HOWTO);
+      /* a build without MuJoCo or Simbody: its baseline cannot run here,
+       * and that is not a regression */
+      const fb_model *mm = fb_model_find(missing);
+      if (!json)
+        printf("\n%s (%s): skipped: model %s is not in this build (%s)\n", case_name, case_file,
+               missing, mm && mm->engine == FB_ENGINE_SIMBODY ? FB_SIMBODY_HOWTO : FB_MUJOCO_HOWTO);
       json_decref(b);
       continue;
     }

@@ -79,7 +79,11 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     /* per revolution actually simulated: a run that stopped early covered
      * less; one that stopped within its first step has no cost per
      * revolution (NaN, printed "-") */
-    const double simulated = (double)m->run.steps * m->run.h * k->crank_speed / (2.0 * M_PI);
+    /* the time the samples cover: steps x h for a fixed-step engine, not for
+     * one whose steps are its integrator's own (Simbody) */
+    const fb_series *ser = &m->run.series;
+    const double covered = ser->n > 1 ? ser->t[ser->n - 1] : 0.0;
+    const double simulated = covered * k->crank_speed / (2.0 * M_PI);
     b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
     b->repeats = reps;
     snprintf(b->collider, sizeof b->collider, "%s",

@@ -19,7 +19,7 @@ esac
 
 packages=(gcc libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel
-          libmujoco-dev libbullet-dev libhdf5-dev python3-h5py)
+          libmujoco-dev libbullet-dev libsimbody-dev libhdf5-dev python3-h5py)
 # node and npm for report.html's library (and its browser test): Debian's nodejs and npm
 # unless a node with its own npm is there already (NodeSource's nodejs conflicts with them)
 command -v node >/dev/null 2>&1 || packages+=(nodejs)

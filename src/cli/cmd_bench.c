@@ -19,7 +19,7 @@
 
 static const char bench_help[] =
     "usage: fourbar bench [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
-    "                     [--grid all|solvers|colliders|bullet]\n"
+    "                     [--grid all|solvers|colliders|bullet|simbody]\n"
     "\n"
     "Speed against error on every engine: ODE's stepper (dWorldStep; dWorldQuickStep\n"
     "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s, and auto: the largest with\n"
@@ -36,9 +36,13 @@ static const char bench_help[] =
     "per engine and across engines. Collider axis: the impact law through the libccd\n"
     "ring (16, 64, 256, 1024 segments) and the faceted ring against ODE's exact collider\n"
     "at h = 1e-5 and 1e-6 s: error against the reference, differences from the exact\n"
-    "collider and cost per step (docs/colliders.md). --grid runs one of the two\n"
+    "collider and cost per step (docs/colliders.md). --grid runs one of them\n"
     "(default all); --grid bullet runs Bullet's grid alone beside one ODE row at the\n"
-    "case's own settings. Writes DIR/bench.csv, bench.json and bench.svg\n"
+    "case's own settings. In builds with Simbody: Simbody's integrator (rkmerson,\n"
+    "rkfeldberg, rk3, cpodes, verlet) x accuracy (1e-3 to 1e-8) at the case's output\n"
+    "step (docs/engines.md); --grid simbody runs that grid alone, with ODE's\n"
+    "dWorldStep rows (matched mapping; h 1e-4, 1e-5, 1e-6 s and auto) for the\n"
+    "comparison. Writes DIR/bench.csv, bench.json and bench.svg\n"
     "(default DIR results/<case>-bench/, beside the run folder results/<case>/, so\n"
     "that a run can still replace its own folder).\n"
     "On a terminal a progress bar with the time left is drawn on stderr.\n"
@@ -96,7 +100,7 @@ int fb_cmd_bench(int argc, char **argv) {
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out = NULL, *sets[MAX_SETS];
-  int nsets = 0, json = 0, ch, grids = FB_BENCH_SOLVERS | FB_BENCH_COLLIDERS;
+  int nsets = 0, json = 0, ch, grids = FB_BENCH_SOLVERS | FB_BENCH_SIMBODY | FB_BENCH_COLLIDERS;
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
     switch (ch) {
@@ -107,12 +111,16 @@ int fb_cmd_bench(int argc, char **argv) {
         break;
       case 'j': json = 1; break;
       case 'g':
-        if (strcmp(optarg, "all") == 0) grids = FB_BENCH_SOLVERS | FB_BENCH_COLLIDERS;
-        else if (strcmp(optarg, "solvers") == 0) grids = FB_BENCH_SOLVERS;
+        if (strcmp(optarg, "all") == 0)
+          grids = FB_BENCH_SOLVERS | FB_BENCH_SIMBODY | FB_BENCH_COLLIDERS;
+        else if (strcmp(optarg, "solvers") == 0) grids = FB_BENCH_SOLVERS | FB_BENCH_SIMBODY;
         else if (strcmp(optarg, "colliders") == 0) grids = FB_BENCH_COLLIDERS;
         else if (strcmp(optarg, "bullet") == 0) grids = FB_BENCH_BULLET;
+        else if (strcmp(optarg, "simbody") == 0) grids = FB_BENCH_SIMBODY;
         else
-          return fb_cli_fail("bench", 2, "--grid '%s': must be all, solvers, colliders or bullet", optarg);
+          return fb_cli_fail("bench", 2,
+                             "--grid '%s': must be all, solvers, colliders, bullet or simbody",
+                             optarg);
         break;
       case 'h': fputs(bench_help, stdout); return 0;
       default: return fb_cli_bad_option(argv, "h");
@@ -186,20 +194,22 @@ int fb_cmd_bench(int argc, char **argv) {
     json_array_append_new(arr, o);
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
-  /* models by kind (ideal, clearance impact) and engine (ode, mujoco, bullet) */
-  const fb_model *models[2][3];
+  /* models by kind (ideal, clearance impact) and engine (ode, mujoco, bullet, simbody) */
+  enum { NE = 4 };
+  const fb_model *models[2][NE];
   fb_bench_models(FB_ENGINE_ODE, &models[0][0], &models[1][0]);
   fb_bench_models(FB_ENGINE_MUJOCO, &models[0][1], &models[1][1]);
   fb_bench_models(FB_ENGINE_BULLET, &models[0][2], &models[1][2]);
+  fb_bench_models(FB_ENGINE_SIMBODY, &models[0][3], &models[1][3]);
   const char *kinds[2] = {"ideal", "clearance-impact"};
   const double targets[3] = {1e-2, 1e-3, 1e-4};
   json_t *cheap = json_array(), *across = json_array();
   for (int q = 0; q < 2; q++)
     for (int t = 0; t < 3; t++) {
       int best = -1;
-      for (int e = 0; e < 3; e++) {
+      for (int e = 0; e < NE; e++) {
         int i = fb_bench_cheapest(rows, n, models[q][e], targets[t]);
-        if (e > 0 && !has_model(rows, n, models[q][e])) continue; /* no MuJoCo/Bullet here */
+        if (e >= 1 && !has_model(rows, n, models[q][e])) continue; /* not in this build or grid */
         json_array_append_new(cheap, json_pack("{s:s,s:f,s:o}", "model", models[q][e]->name, "target",
                                                targets[t], "row", i >= 0 ? json_integer(i) : json_null()));
         if (i >= 0 && (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev)) best = i;
@@ -271,8 +281,8 @@ int fb_cmd_bench(int argc, char **argv) {
   for (int q = 0; q < 2; q++)
     for (int t = 0; t < 3; t++) {
       int best = -1;
-      for (int e = 0; e < 3; e++) {
-        if (e > 0 && !has_model(rows, n, models[q][e])) continue;
+      for (int e = 0; e < NE; e++) {
+        if (e >= 1 && !has_model(rows, n, models[q][e])) continue;
         int i = fb_bench_cheapest(rows, n, models[q][e], targets[t]);
         if (i < 0) {
           printf("  %-24s error <= %.0e: none in the grid\n", models[q][e]->name, targets[t]);

@@ -306,7 +306,7 @@ int fb_cmd_check(int argc, char **argv) {
     }
     const char *missing = missing_engine(metrics);
     if (missing) {
-      /* a build without MuJoCo or Bullet: its baseline cannot run here,
+      /* a build without MuJoCo, Bullet or Simbody: its baseline cannot run here,
        * and that is not a regression */
       if (!json) printf("\n%s (%s): skipped: model %s is not in this build (%s)\n", case_name,
                         case_file, missing, fb_engine_howto(fb_model_find(missing)->engine));

@@ -79,7 +79,11 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     /* per revolution actually simulated: a run that stopped early covered
      * less; one that stopped within its first step has no cost per
      * revolution (NaN, printed "-") */
-    const double simulated = (double)m->run.steps * m->run.h * k->crank_speed / (2.0 * M_PI);
+    /* the time the samples cover: steps x h for a fixed-step engine, not for
+     * one whose steps are its integrator's own (Simbody) */
+    const fb_series *ser = &m->run.series;
+    const double covered = ser->n > 1 ? ser->t[ser->n - 1] : 0.0;
+    const double simulated = covered * k->crank_speed / (2.0 * M_PI);
     b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
     b->repeats = reps;
     snprintf(b->collider, sizeof b->collider, "%s",
@@ -227,6 +231,46 @@ static fb_status bullet_grid(fb_bench_row *rows, int *n, const fb_case *c,
   return FB_OK;
 }
 
+/* Simbody's grid (docs/engines.md): integrator x accuracy at the case's
+ * output step, models simbody-ideal-stackup and simbody-clearance-impact
+ * beside the reference; with ODE's dWorldStep rows (matched mapping, world
+ * ERP/CFM 0.2, 1e-10, h 1e-4, 1e-5, 1e-6 s and auto) when ode_rows, so that
+ * one run compares the two engines' costs. */
+static fb_status simbody_grid(fb_bench_row *rows, int *n, const fb_case *c, int ode_rows,
+                              void (*progress)(double fraction, void *user), void *user,
+                              fb_diag *diag) {
+  const double acc[6] = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
+  const double oh[4] = {1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
+  const int total = FB_SIMBODY_INTEGRATOR_COUNT * 6 + (ode_rows ? 4 : 0);
+  int done = 0;
+  for (int ii = 0; ii < FB_SIMBODY_INTEGRATOR_COUNT; ii++)
+    for (int ai = 0; ai < 6; ai++) {
+      fb_case k;
+      bench_case(&k, c, 0.0, FB_ENGINE_SIMBODY);
+      k.solver.h = c->solver.h; /* the case's output step, as run */
+      k.solver.h_mode = c->solver.h_mode;
+      k.simbody.integrator = ii;
+      k.simbody.accuracy = acc[ai];
+      char stepper[32];
+      snprintf(stepper, sizeof stepper, "%s %.0e", fb_simbody_integrator_name(ii), acc[ai]);
+      fb_status st = bench_point(rows, n, &k, "simbody", stepper, -1, 1, diag);
+      if (st != FB_OK) return st;
+      if (progress) progress((double)++done / total, user);
+    }
+  for (int hi = 0; hi < (ode_rows ? 4 : 0); hi++) {
+    fb_case k;
+    bench_case(&k, c, oh[hi], FB_ENGINE_ODE);
+    k.solver.stepper = FB_STEPPER_WORLD;
+    k.solver.world_erp = 0.2;
+    k.solver.world_cfm = 1e-10;
+    k.clearance.mapping = FB_MAPPING_MATCHED;
+    fb_status st = bench_point(rows, n, &k, "ode", "world", FB_MAPPING_MATCHED, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  return FB_OK;
+}
+
 fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag) {
   const double hs[FB_BENCH_STEPS] = {1e-3, 1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
@@ -243,6 +287,13 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
                     (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
   *n = 0;
+  if (grids & FB_BENCH_SIMBODY) {
+    /* alone (--grid simbody): with ODE's dWorldStep rows for the comparison */
+    fb_status st = fb_engine_available(FB_ENGINE_SIMBODY)
+                       ? simbody_grid(rows, n, c, !solvers, progress, user, diag)
+                       : FB_OK;
+    if (st != FB_OK) return st;
+  }
   for (int si = 0; si < (solvers ? 4 : 0); si++)
     for (int hi = 0; hi < FB_BENCH_STEPS; hi++)
       for (int mi = 0; mi < FB_MAPPING_COUNT; mi++)

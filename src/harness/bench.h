@@ -67,8 +67,10 @@ typedef struct fb_bench_row_s {
 enum {
   FB_BENCH_SOLVERS = 1,  /* ODE stepper x h x mapping x world ERP/CFM, and MuJoCo's grid */
   FB_BENCH_COLLIDERS = 2, /* the collider axis */
-  FB_BENCH_BULLET = 4     /* Bullet's grid alone (part of FB_BENCH_SOLVERS), beside ODE at the
+  FB_BENCH_BULLET = 4,    /* Bullet's grid alone (part of FB_BENCH_SOLVERS), beside ODE at the
                              case's own settings (one configuration, the same run's yardstick) */
+  FB_BENCH_SIMBODY = 8    /* Simbody's integrator x accuracy (bench.c, simbody_grid); alone,
+                             with ODE's dWorldStep rows at the matched mapping */
 };
 
 #define FB_BENCH_MAX_ROWS 320

@@ -20,8 +20,9 @@
  * Engines today: analytic and reference (engines.c, the exact kinematics and
  * the GSL reference behind the same interface, which compute their series
  * in create and replay it), ODE (src/ode/engine_ode.c), MuJoCo
- * (src/mujoco/engine_mujoco.c) and Bullet (src/bullet/engine_bullet.c, C++
- * behind C linkage; docs/engines.md). A new engine fills
+ * (src/mujoco/engine_mujoco.c), Bullet (src/bullet/engine_bullet.c, C++
+ * behind C linkage; docs/engines.md) and Simbody (src/simbody/engine_simbody.c,
+ * likewise). A new engine fills
  * one fb_engine and is returned by fb_engine_get for its fb_engine_id. */
 #ifndef FB_ENGINE_H
 #define FB_ENGINE_H
@@ -92,5 +93,6 @@ extern const fb_engine fb_engine_reference;
 extern const fb_engine fb_engine_ode;
 extern const fb_engine fb_engine_mujoco; /* only in builds with MuJoCo (FB_HAVE_MUJOCO) */
 extern const fb_engine fb_engine_bullet; /* only in builds with Bullet (FB_HAVE_BULLET) */
+extern const fb_engine fb_engine_simbody; /* only in builds with Simbody (FB_HAVE_SIMBODY) */
 
 #endif

@@ -27,6 +27,9 @@ const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
 #if FB_HAVE_BULLET
     case FB_ENGINE_BULLET: return &fb_engine_bullet;
 #endif
+#if FB_HAVE_SIMBODY
+    case FB_ENGINE_SIMBODY: return &fb_engine_simbody;
+#endif
     default: break;
   }
   fb_diag_set(diag, FB_ERR_ARG, "engine '%s' is not part of this build%s%s", fb_engine_name(id),

@@ -7,19 +7,22 @@
 
 const char *fb_engine_name(fb_engine_id e) {
   static const char *const names[FB_ENGINE_COUNT] = {"analytic", "reference", "ode", "mujoco",
-                                                             "bullet"};
+                                                             "bullet",
+                                                             "simbody"};
   return (e >= 0 && e < FB_ENGINE_COUNT) ? names[e] : "?";
 }
 
 int fb_engine_available(fb_engine_id e) {
   if (e == FB_ENGINE_MUJOCO) return FB_HAVE_MUJOCO;
   if (e == FB_ENGINE_BULLET) return FB_HAVE_BULLET;
+  if (e == FB_ENGINE_SIMBODY) return FB_HAVE_SIMBODY;
   return e >= 0 && e < FB_ENGINE_COUNT;
 }
 
 const char *fb_engine_howto(fb_engine_id e) {
   if (e == FB_ENGINE_MUJOCO) return FB_MUJOCO_HOWTO;
   if (e == FB_ENGINE_BULLET) return FB_BULLET_HOWTO;
+  if (e == FB_ENGINE_SIMBODY) return FB_SIMBODY_HOWTO;
   return "";
 }
 
@@ -29,7 +32,8 @@ const char *fb_collider_name(fb_collider c) {
 }
 
 int fb_engine_steps_world(fb_engine_id e) {
-  return e == FB_ENGINE_ODE || e == FB_ENGINE_MUJOCO || e == FB_ENGINE_BULLET;
+  return e == FB_ENGINE_ODE || e == FB_ENGINE_MUJOCO || e == FB_ENGINE_BULLET ||
+         e == FB_ENGINE_SIMBODY;
 }
 
 /* short names for the rows */
@@ -40,7 +44,8 @@ int fb_engine_steps_world(fb_engine_id e) {
 
 /* One row per model. The style (colour, gnuplot dash type, line width) is the
  * same in every figure (docs/figures.md lists it); the MuJoCo rows take the
- * colour of their ODE counterpart, dotted. */
+ * colour of their ODE counterpart, dotted; the Simbody rows dash-dot (ideal
+ * stack-up dash type 5), thin. */
 const fb_model fb_models[] = {
     {.name = "analytic",
      .engine = FB_ENGINE_ANALYTIC,
@@ -173,6 +178,46 @@ const fb_model fb_models[] = {
      .spikes_vs = "mujoco-ideal-stackup",
      .summary = "MuJoCo's own contacts (pin sphere in a ring of boxes), restitution law as direct solref",
      .style = {"#ff7f0e", 5, 1.8}},
+    {.name = "simbody-ideal-nominal",
+     .engine = FB_ENGINE_SIMBODY,
+     .lengths = NOM,
+     .joints = IDEAL,
+     .law = FB_MODEL_LAW_NONE,
+     .collider = FB_COLLIDER_NONE,
+     .reference = NULL,
+     .spikes_vs = NULL,
+     .summary = "Simbody, pin tree closed by a ball constraint, nominal lengths",
+     .style = {"#1f77b4", 4, 1.0}},
+    {.name = "simbody-ideal-stackup",
+     .engine = FB_ENGINE_SIMBODY,
+     .lengths = STK,
+     .joints = IDEAL,
+     .law = FB_MODEL_LAW_NONE,
+     .collider = FB_COLLIDER_NONE,
+     .reference = NULL,
+     .spikes_vs = NULL,
+     .summary = "Simbody, pin tree closed by a ball constraint, stack-up lengths",
+     .style = {"#6baed6", 5, 1.0}},
+    {.name = "simbody-clearance-restitution",
+     .engine = FB_ENGINE_SIMBODY,
+     .lengths = STK,
+     .joints = CLEAR,
+     .law = FB_MODEL_LAW_RESTITUTION,
+     .collider = FB_COLLIDER_EXACT,
+     .reference = "reference-restitution",
+     .spikes_vs = "simbody-ideal-stackup",
+     .summary = "Simbody, tree cut at the clearance joint, restitution law as Force::Custom",
+     .style = {"#2ca02c", 4, 1.0}},
+    {.name = "simbody-clearance-impact",
+     .engine = FB_ENGINE_SIMBODY,
+     .lengths = STK,
+     .joints = CLEAR,
+     .law = FB_MODEL_LAW_IMPACT,
+     .collider = FB_COLLIDER_EXACT,
+     .reference = "reference",
+     .spikes_vs = "simbody-ideal-stackup",
+     .summary = "Simbody, tree cut at the clearance joint, impact law as Force::Custom",
+     .style = {"#d62728", 4, 1.0}},
     {.name = "bullet-ideal-nominal",
      .engine = FB_ENGINE_BULLET,
      .lengths = NOM,

@@ -23,10 +23,11 @@ typedef enum {
   FB_ENGINE_ODE = 2,       /* Open Dynamics Engine (src/ode) */
   FB_ENGINE_MUJOCO = 3,    /* MuJoCo (src/mujoco), when built */
   FB_ENGINE_BULLET = 4,    /* Bullet Physics, double precision (src/bullet), when built */
+  FB_ENGINE_SIMBODY = 5,   /* Simbody (src/simbody), when built */
   FB_ENGINE_COUNT
 } fb_engine_id;
 
-/* "analytic", "reference", "ode", "mujoco", "bullet": the "kind" written in summary.json. */
+/* "analytic", "reference", "ode", "mujoco", "bullet", "simbody": the "kind" written in summary.json. */
 const char *fb_engine_name(fb_engine_id e);
 
 /* 1 when this build has engine e (MuJoCo only when built with it). */
@@ -47,6 +48,11 @@ int fb_engine_available(fb_engine_id e);
 /* The how-to for engine e when this build lacks it ("" for engines every
  * build has). */
 const char *fb_engine_howto(fb_engine_id e);
+/* How to get the Simbody engine into a build that lacks it. */
+#define FB_SIMBODY_HOWTO                                                                   \
+  "the simbody-* models need Simbody 3.7: install it (apt-get install libsimbody-dev, or " \
+  "bash scripts/quickstart.sh build, which installs it) and rebuild with meson setup "     \
+  "--reconfigure build -Dsimbody=enabled"
 
 /* 1 for engines that step a world of bodies and joints (ODE, MuJoCo): they
  * have a loop-closure drift and a stability guard. */

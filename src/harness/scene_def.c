@@ -21,6 +21,7 @@ void fb_scene_def_default(fb_scene_def *def) {
   def->impact_velocity_min = IMPACT_VELOCITY_MIN_M_S;
   def->mujoco = fb_mujoco_opts_default();
   def->bullet = fb_bullet_opts_default();
+  def->simbody = fb_simbody_opts_default();
 }
 
 /* assembles both linkages at crank_angle0, omega2 (a moved start) */
@@ -82,6 +83,7 @@ fb_status fb_scene_def_from_case(fb_scene_def *def, const fb_case *c, fb_diag *d
   def->omega2 = fb_case_omega2(r);
   def->mujoco = r->mujoco;
   def->bullet = r->bullet;
+  def->simbody = r->simbody;
   /* the laws the listed models use, with the penalty the run uses: the
    * inverse-dynamics reactions are solved once for all of them; the start
    * of every lengths and joint set a listed model uses */
@@ -224,6 +226,13 @@ fb_status fb_scene_def_check(const fb_scene_def *def, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_RANGE,
                        "scene: bullet.iterations = %d: iterations must be 1 to 100000",
                        bt->iterations);
+  const fb_simbody_opts *sb = &def->simbody;
+  if (sb->integrator < 0 || sb->integrator >= FB_SIMBODY_INTEGRATOR_COUNT)
+    return fb_diag_set(diag, FB_ERR_RANGE, "scene: simbody.integrator = %d: not a known integrator",
+                       sb->integrator);
+  if (!(sb->accuracy >= FB_SIMBODY_ACCURACY_MIN && sb->accuracy <= FB_SIMBODY_ACCURACY_MAX))
+    return fb_diag_set(diag, FB_ERR_RANGE, "scene: simbody.accuracy = %g: must lie in [%g, %g]",
+                       sb->accuracy, FB_SIMBODY_ACCURACY_MIN, FB_SIMBODY_ACCURACY_MAX);
   return FB_OK;
 }
 
@@ -237,6 +246,7 @@ fb_status fb_scene_def_select(fb_scene_model *out, const fb_scene_def *def, cons
   out->start_given = def->start_given;
   out->mujoco = def->mujoco;
   out->bullet = def->bullet;
+  out->simbody = def->simbody;
   out->branch = def->branch;
   out->crank_angle0 = def->crank_angle0;
   out->omega2 = def->omega2;

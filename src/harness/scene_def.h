@@ -58,6 +58,7 @@ typedef struct {
                                      tests; 0 in every model */
   fb_mujoco_opts mujoco;          /* MuJoCo's own choices (integrator, loop closure, drive) */
   fb_bullet_opts bullet;          /* Bullet's own choices (solver, iterations) */
+  fb_simbody_opts simbody;        /* Simbody's own choices (integrator, accuracy) */
   fb_case source;                 /* the case as resolved (worst corner set), for engines
                                      that take a case (reference.h) */
 } fb_scene_def;
@@ -97,6 +98,7 @@ typedef struct {
   double settle_damping;          /* body velocity damping per step [-]; 0 in every model */
   fb_mujoco_opts mujoco;          /* MuJoCo's own choices (mujoco-* models) */
   fb_bullet_opts bullet;          /* Bullet's own choices (bullet-* models) */
+  fb_simbody_opts simbody;        /* Simbody's own choices (simbody-* models) */
 } fb_scene_model;
 
 /* The state at t = 0 of model sm: sm->start when the case's start holds

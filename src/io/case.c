@@ -39,6 +39,19 @@ const char *fb_bullet_solver_name(int k) {
   return k >= 0 && k <= FB_BULLET_MLCP_DANTZIG ? names[k] : "?";
 }
 
+fb_simbody_opts fb_simbody_opts_default(void) {
+  fb_simbody_opts o;
+  o.integrator = FB_SIMBODY_RKMERSON;
+  o.accuracy = FB_SIMBODY_ACCURACY_DEFAULT;
+  return o;
+}
+
+const char *fb_simbody_integrator_name(int k) {
+  static const char *const names[FB_SIMBODY_INTEGRATOR_COUNT] = {"rkmerson", "rkfeldberg", "rk3",
+                                                                 "cpodes", "verlet"};
+  return k >= 0 && k < FB_SIMBODY_INTEGRATOR_COUNT ? names[k] : "?";
+}
+
 int fb_mujoco_integrator_resolve(const fb_mujoco_opts *o, int clearance_mask) {
   if (o->integrator != FB_MUJOCO_AUTO) return o->integrator;
   return clearance_mask ? FB_MUJOCO_RK4 : FB_MUJOCO_EULER;

@@ -208,6 +208,43 @@ typedef enum {
  * more than the whole gap, which no penalty law describes. */
 #define FB_PENALTY_VALIDITY_FACTOR 2.0
 
+/* Integrator of the simbody-* models (Simbody's error-controlled
+ * integrators, simmath's Integrator classes). */
+typedef enum {
+  FB_SIMBODY_RKMERSON = 0,   /* RungeKuttaMersonIntegrator (4th order, 5 stages) */
+  FB_SIMBODY_RKFELDBERG = 1, /* RungeKuttaFeldbergIntegrator (4th/5th order, 6 stages) */
+  FB_SIMBODY_RK3 = 2,        /* RungeKutta3Integrator (3rd order) */
+  FB_SIMBODY_CPODES = 3,     /* CPodesIntegrator (BDF, Newton iteration: stiff problems) */
+  FB_SIMBODY_VERLET = 4,     /* VerletIntegrator (2nd order, error-controlled) */
+  FB_SIMBODY_INTEGRATOR_COUNT
+} fb_simbody_integrator;
+
+/* "rkmerson", "rkfeldberg", "rk3", "cpodes", "verlet" ("?" outside). */
+const char *fb_simbody_integrator_name(int k);
+
+/* Accuracy range of [simbody] accuracy (Integrator::setAccuracy): above
+ * 1e-1 the error control controls nothing; below 1e-12 the error estimate
+ * of the double-precision integrators is lost in round-off (the reference's
+ * own floor is 1e-13 for rk8pd, an 8th-order method). */
+#define FB_SIMBODY_ACCURACY_MIN 1e-12
+#define FB_SIMBODY_ACCURACY_MAX 1e-1
+/* Default accuracy of the simbody-* models: the loosest of 1e-3 .. 1e-8 at
+ * which the paper case's ideal peaks are within 1e-4 of the analytic ones
+ * and the impact model's peak force and penetration within 1 % of the
+ * reference (measured: docs/engines.md, "Simbody"). Simbody's own default
+ * is 1e-3. */
+#define FB_SIMBODY_ACCURACY_DEFAULT 1e-6
+#define FB_SIMBODY_ACCURACY_DEFAULT_TEXT "1e-6"
+
+/* Simbody's own choices for the simbody-* models; engine-free. */
+typedef struct {
+  int integrator;  /* fb_simbody_integrator */
+  double accuracy; /* Integrator::setAccuracy [-] in [FB_SIMBODY_ACCURACY_MIN, _MAX] */
+} fb_simbody_opts;
+
+/* Defaults: rkmerson, accuracy FB_SIMBODY_ACCURACY_DEFAULT (docs/engines.md). */
+fb_simbody_opts fb_simbody_opts_default(void);
+
 /* Defaults: auto, loop stiffness 0 (1/h^2), damping 0 (1/h), impedance
  * 0.9999, armature 1e6 kg m^2 (docs/engines.md, "MuJoCo"). */
 fb_mujoco_opts fb_mujoco_opts_default(void);
@@ -248,6 +285,7 @@ typedef struct fb_case_s {
   fb_clearance clearance;             /* clearance joints and contact parameters */
   fb_mujoco_opts mujoco;              /* MuJoCo settings of the mujoco-* models */
   fb_bullet_opts bullet;              /* Bullet settings of the bullet-* models */
+  fb_simbody_opts simbody;            /* Simbody settings of the simbody-* models */
   struct {
     char outcome[FB_NAME_SIZE];       /* "stable", "unstable" or "" (no expectation) */
     char model[FB_NAME_SIZE];         /* model the expectation is about */

@@ -51,7 +51,8 @@ typedef enum {
   K_UNUSED,    /* a number checked against its range and not stored (no model uses it) */
   K_COLLIDER,  /* exact | faceted | ccd */
   K_BORE,      /* circle | ellipse */
-  K_BTSOLVER   /* sequential-impulse | mlcp-dantzig */
+  K_BTSOLVER   /* sequential-impulse | mlcp-dantzig */,
+  K_SBINT      /* rkmerson | rkfeldberg | rk3 | cpodes | verlet */
 } key_kind;
 
 typedef struct {
@@ -324,6 +325,16 @@ static const key_spec keys[] = {
      "iterations must be 1 to 100000",
      "sequential-impulse sweeps per step of the bullet-* models (btContactSolverInfo "
      "m_numIterations; also the MLCP's fallback)"},
+    {"simbody", "integrator", K_SBINT, OFF(simbody.integrator), 0, 0, 0, 0, 0, "-", "rkmerson",
+     "rkmerson, rkfeldberg, rk3, cpodes or verlet",
+     "integrator of the simbody-* models: Simbody's RungeKuttaMerson, RungeKuttaFeldberg, "
+     "RungeKutta3, CPodes (BDF, for stiff problems) or Verlet integrator, each with its own "
+     "error control (docs/engines.md)"},
+    {"simbody", "accuracy", K_DOUBLE, OFF(simbody.accuracy), 1.0, FB_SIMBODY_ACCURACY_MIN,
+     FB_SIMBODY_ACCURACY_MAX, 0, 0, "-", FB_SIMBODY_ACCURACY_DEFAULT_TEXT,
+     "the accuracy must lie in [1e-12, 0.1]",
+     "the simbody-* models' integrator accuracy (Integrator::setAccuracy, a relative error "
+     "per step); the output is sampled every h whatever the internal steps are"},
 
     {"run", "revolutions", K_INT, OFF(revolutions), 0, 1, 1e6, 0, 0, "-", "3",
      "at least 2 with peaks = steady (the first revolution is a run-in); at least 1 with "
@@ -515,7 +526,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
-                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, bullet, run)",
+                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, bullet, simbody, run)",
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }
@@ -721,6 +732,14 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else if (strcmp(e->value, "mlcp-dantzig") == 0) *(int *)field = FB_BULLET_MLCP_DANTZIG;
       else return bad_word(e, k, diag);
       return FB_OK;
+    case K_SBINT: {
+      int found = -1;
+      for (int i = 0; i < FB_SIMBODY_INTEGRATOR_COUNT; i++)
+        if (strcmp(e->value, fb_simbody_integrator_name(i)) == 0) found = i;
+      if (found < 0) return bad_word(e, k, diag);
+      *(int *)field = found;
+      return FB_OK;
+    }
     case K_COLLIDER:
       if (strcmp(e->value, "exact") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_EXACT;
       else if (strcmp(e->value, "faceted") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_FACETED;
@@ -887,9 +906,9 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
         if (!fb_engine_available(fb_model_find(tok)->engine))
           return fb_diag_set(diag, FB_ERR_ARG, "%s: [%s] %s: model '%s' is not in this build: %s",
                              e->origin, e->section, e->key, tok,
-                             fb_model_find(tok)->engine == FB_ENGINE_MUJOCO   ? FB_MUJOCO_HOWTO
-                             : fb_model_find(tok)->engine == FB_ENGINE_BULLET ? FB_BULLET_HOWTO
-                                                                              : "its engine was left out");
+                             fb_engine_howto(fb_model_find(tok)->engine)[0]
+                                 ? fb_engine_howto(fb_model_find(tok)->engine)
+                                 : "its engine was left out");
         for (int i = 0; i < c->model_count; i++)
           if (strcmp(c->models[i], tok) == 0)
             return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: model '%s' listed twice",

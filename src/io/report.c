@@ -136,6 +136,7 @@ static const char *model_mapping(const fb_run *r, const fb_model_result *m) {
   if (!m->run.has_provenance) return NULL;
   if (m->run.model->engine == FB_ENGINE_MUJOCO)
     return m->run.collider == FB_COLLIDER_NATIVE ? "none (MuJoCo contact)" : "none (applied force)";
+  if (m->run.model->engine == FB_ENGINE_SIMBODY) return "none (applied force)";
   return fb_mapping_name(r->scene.mapping);
 }
 
@@ -172,8 +173,10 @@ static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
     json_object_set_new(o, "h_omega_c_max", have ? num(p->h_omega_max) : json_null());
     json_object_set_new(o, "h_omega_c_bound", num(FB_H_OMEGA_C_BOUND));
     json_object_set_new(o, "contact_steps", json_integer((json_int_t)(have ? p->contact_steps : 0)));
-    json_object_set_new(o, "resolved",
-                        have ? json_boolean(p->h_omega_max <= FB_H_OMEGA_C_BOUND) : json_null());
+    /* an engine without a step-size figure (Simbody's error control) has no verdict */
+    json_object_set_new(o, "resolved", have && isfinite(p->h_omega_max)
+                                           ? json_boolean(p->h_omega_max <= FB_H_OMEGA_C_BOUND)
+                                           : json_null());
     json_array_append_new(arr, o);
   }
   return arr;
@@ -220,7 +223,7 @@ static void print_contact(FILE *f, const fb_run *r, int W) {
                 fb_law_name(law->kind), mapping ? mapping : "-", law->stiffness, law->exponent);
       else
         fprintf(f, "%-*s %-16s %17s %9s %9s %9s %s\n", W, m->run.name, fb_joint_name(j), mass, erp,
-                cfm, hw, !have ? "-" : (p->h_omega_max <= FB_H_OMEGA_C_BOUND ? "yes" : "no: under-resolved"));
+                cfm, hw, !have || !isfinite(p->h_omega_max) ? "-" : (p->h_omega_max <= FB_H_OMEGA_C_BOUND ? "yes" : "no: under-resolved"));
     }
   }
   }
@@ -339,6 +342,11 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
                         json_pack("{s:s,s:i,s:s}", "solver", fb_bullet_solver_name(bt->solver),
                                   "iterations", bt->iterations, "world", "btDiscreteDynamicsWorld"));
   }
+  if (run->model->engine == FB_ENGINE_SIMBODY)
+    json_object_set_new(o, "simbody",
+                        json_pack("{s:s,s:o}", "integrator",
+                                  fb_simbody_integrator_name(r->c.simbody.integrator), "accuracy",
+                                  num(r->c.simbody.accuracy)));
   if (m->has_ref_error) {
     const fb_reference_error *e = &m->ref_error;
     json_t *o2 = json_object(), *a = json_array(), *b = json_array();
@@ -986,6 +994,13 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   if (bt_models)
     say(f, "Bullet models: %s, %d iterations (sequential impulse; the MLCP's fallback)",
         fb_bullet_solver_name(c->bullet.solver), c->bullet.iterations);
+  for (int i = 0; i < r->n; i++)
+    if (r->model[i].run.model->engine == FB_ENGINE_SIMBODY) {
+      say(f, "Simbody models: integrator %s, accuracy %g (error-controlled internal steps, "
+             "sampled every h)",
+          fb_simbody_integrator_name(c->simbody.integrator), c->simbody.accuracy);
+      break;
+    }
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);
   char corner[24];

@@ -1,0 +1,55 @@
+/* The Simbody engine behind the engine interface (engine.h): thin wrappers
+ * over the Simbody scene (simbody_scene.h, the folder's one C++ file). */
+#include "engine.h"
+#include "simbody_scene.h"
+
+static fb_status simbody_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+  fb_simbody_scene *s = NULL;
+  fb_status st = fb_simbody_scene_create(&s, sm, diag);
+  if (st == FB_OK) *self = s;
+  return st;
+}
+
+static fb_status simbody_step(void *self, fb_diag *diag) { return fb_simbody_scene_step(self, diag); }
+
+static void simbody_stopped(const void *self, fb_stop *out) { fb_simbody_scene_stopped(self, out); }
+
+static void simbody_sample(const void *self, fb_sample *x) { fb_simbody_scene_sample(self, x); }
+
+static void simbody_contact(const void *self, fb_engine_contact *out) {
+  fb_simbody_scene_contact(self, out);
+}
+
+static void simbody_provenance(const void *self, int joint, fb_contact_provenance *out) {
+  fb_simbody_scene_provenance(self, joint, out);
+}
+
+static void simbody_reactions(const void *self, double force[4][2], double *drive_torque) {
+  fb_simbody_scene_reactions(self, force, drive_torque);
+}
+
+static double simbody_drift(const void *self) { return fb_simbody_scene_drift(self); }
+
+static size_t simbody_steps(const void *self) { return fb_simbody_scene_steps(self); }
+
+static void simbody_destroy(void *self) { fb_simbody_scene_destroy(self); }
+
+/* guarded: the penetration limit applies as to every clearance model; the
+ * samples are the integrator's own (interpolated) states, exact in time, and
+ * the engine keeps the peaks between samples itself: no lag, no refinement */
+const fb_engine fb_engine_simbody = {
+    .name = "simbody",
+    .guarded = 1,
+    .step_values_lag = 0,
+    .refine_peaks = 0,
+    .create = simbody_create,
+    .step = simbody_step,
+    .stopped = simbody_stopped,
+    .sample = simbody_sample,
+    .contact = simbody_contact,
+    .provenance = simbody_provenance,
+    .reactions = simbody_reactions,
+    .drift = simbody_drift,
+    .steps = simbody_steps,
+    .destroy = simbody_destroy,
+};

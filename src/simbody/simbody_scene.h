@@ -1,0 +1,92 @@
+/* The Simbody scene: one simbody-* model as a Simbody MultibodySystem,
+ * integrated by one of Simbody's error-controlled integrators. The only
+ * header of the Simbody engine the C side sees; the implementation
+ * (simbody_scene.cpp) is the only translation unit that includes Simbody.
+ *
+ * The mechanism (SI, planar in x-y, every mobilizer a Pin about +z):
+ *
+ *        B_pin (crank)  B_hole (coupler)       C
+ *            o . . . . . o======================o
+ *           /   clearance: Force::Custom       ||  Pin (coupler on follower)
+ *  crank   /    ideal: Constraint::Ball        ||  follower
+ *  Pin +  /     (the loop closure)             ||
+ *  Motion (angle)                              ||
+ *        A (origin)                            D (ground, +x)  Pin
+ *
+ * The tree is cut at the crank-coupler joint B: ground -> crank (Pin, speed
+ * prescribed as theta0 + omega2 t by a position-level Motion), ground -> follower (Pin at D), follower ->
+ * coupler (Pin at C). The ideal models close the loop with a
+ * Constraint::Ball at B (its out-of-plane row is redundant; Simbody's
+ * constraint solver tolerates redundant rows); the clearance models leave
+ * B free (two degrees of freedom, the reference's theta3, theta4) and apply
+ * the project's contact law (contact.h, fb_contact_force) as a
+ * Force::Custom at the exact pin-in-hole eccentricity, with the restitution
+ * law's damper on the mechanism's effective mass along the normal
+ * (effective_mass.h), as ODE's scene, MuJoCo's and the reference do.
+ *
+ * Sampling: fb_simbody_scene_step advances the integrator to the next
+ * sample time k h, returning at every internal step on the way; contact
+ * episodes (episode.h) are updated at every internal step end, and the
+ * sample at k h holds the extremes of the contact force, penetration and
+ * angular accelerations over the internal step ends of ((k-1) h, k h] in
+ * intervals with contact, so peaks and impacts between samples are kept. */
+#ifndef FB_SIMBODY_SCENE_H
+#define FB_SIMBODY_SCENE_H
+
+#include <stddef.h>
+
+#include "engine.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fb_simbody_scene fb_simbody_scene;
+
+/* Builds model sm's system at t = 0 and initialises the integrator
+ * (sm->simbody: integrator and accuracy). Errors: those of
+ * fb_scene_def_check and fb_scene_model_start; FB_ERR_ARG for clearance at
+ * a joint other than crank-coupler (the tree is cut there only);
+ * FB_ERR_NUMERIC when Simbody refuses the multibody system, with its message;
+ * FB_ERR_NOMEM. */
+fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_scene_model *sm,
+                                  fb_diag *diag);
+
+/* Advances to the next sample time. Errors: FB_ERR_NUMERIC when the
+ * integrator fails or spends its step budget (fb_simbody_scene_stopped says
+ * which). */
+fb_status fb_simbody_scene_step(fb_simbody_scene *s, fb_diag *diag);
+
+/* Why the last step failed (FB_STOP_NONE when it did not). */
+void fb_simbody_scene_stopped(const fb_simbody_scene *s, fb_stop *out);
+
+/* The state at the last sample time (see the header comment for peaks). */
+void fb_simbody_scene_sample(const fb_simbody_scene *s, fb_sample *x);
+
+/* Penetration at the crank-coupler joint now [m] and impacts so far. */
+void fb_simbody_scene_contact(const fb_simbody_scene *s, fb_engine_contact *out);
+
+/* Effective mass range over the contact evaluations so far (NAN for the
+ * mapping figures Simbody has none of: ERP, CFM, h omega). */
+void fb_simbody_scene_provenance(const fb_simbody_scene *s, int joint, fb_contact_provenance *out);
+
+/* Joint reactions (invdyn.h's convention: on the second-named body) and the
+ * drive torque on the crank about +z [N m], at the last sample. */
+void fb_simbody_scene_reactions(const fb_simbody_scene *s, double force[4][2],
+                                double *drive_torque);
+
+/* Distance between the crank's and the coupler's B points [m] for the ideal
+ * models (the Ball constraint's violation); 0 for the clearance models. */
+double fb_simbody_scene_drift(const fb_simbody_scene *s);
+
+/* The integrator's accepted steps so far. */
+size_t fb_simbody_scene_steps(const fb_simbody_scene *s);
+
+/* Frees s (NULL is ignored). */
+void fb_simbody_scene_destroy(fb_simbody_scene *s);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

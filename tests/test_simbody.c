@@ -1,0 +1,271 @@
+/* The four-bar in Simbody against the exact analytic solution (ideal loop)
+ * and the reference dynamics (crank-coupler clearance joint), on the paper
+ * case at its own step (h_s = auto) and Simbody's default accuracy
+ * (FB_SIMBODY_ACCURACY_DEFAULT).
+ *
+ *            C  Pin (coupler on follower)
+ *           / \
+ *  coupler /   \ follower      Pin mobilizers about +z: ground -> crank (A,
+ *         B     \              angle prescribed by a Motion), ground ->
+ *  crank /       \             follower (D), follower -> coupler (C); B is a
+ *       A ------- D            Constraint::Ball (ideal) or the contact law as
+ *                              a Force::Custom (clearance); gravity along -y
+ *
+ * An error-controlled integrator (RungeKuttaMerson) sampled on the output
+ * grid: the ideal peaks' error follows the accuracy, not h; the clearance
+ * models integrate the same two-degree-of-freedom equations as the reference
+ * (minimal coordinates, rk8pd at 1e-12), so they must agree with it as
+ * closely as the accuracy allows.
+ *
+ * In a build without Simbody every test is skipped, except the one that
+ * checks the refusal and its message. */
+#include <string.h>
+
+#include "casefile.h"
+#include "engine.h"
+#include "fb_config.h"
+#include "fb_test.h"
+#include "outcome_text.h"
+#include "run.h"
+
+/* the issue's acceptance bound on the ideal models' omega and alpha peaks
+ * against the analytic ones at the default accuracy (measured 1e-6: omega
+ * 5.7e-7, alpha 1.9e-6) */
+#define PEAK_OMEGA_REL_TOL 1e-4
+#define PEAK_ALPHA_REL_TOL 1e-4
+/* a position-level Motion prescribes the crank angle theta0 + omega2 t:
+ * exact to round-off (1e-9 rad is 1e-10 of a revolution) */
+#define CRANK_ANGLE_TOL_RAD 1e-9
+/* the Ball constraint's violation, projected every step to the accuracy
+ * (relative to the link lengths, ~0.3 m): 1e-6 x 0.3 m, with a factor of
+ * 10 for the interpolated samples between steps */
+#define DRIFT_TOL_M 3e-6
+/* joint reactions and drive torque peaks against the inverse dynamics
+ * (invdyn.h): the ideal motion within the omega/alpha bound */
+#define LOADS_REL_TOL 1e-4
+/* the issue's acceptance bounds on the impact model's peak force and
+ * penetration against the reference (measured: -0.029 %, -0.105 %) */
+#define FORCE_PEAK_REL_TOL 0.01
+#define PEN_PEAK_REL_TOL 0.01
+/* The restitution model over revolution 2 (the reference's count and peaks
+ * converge there: its error estimate 1.4e-5; revolution 3 converges at no
+ * tolerance, reference.h). The rattling after the first impacts amplifies
+ * every difference: at the default accuracy 1e-6 Simbody's revolution-2
+ * peak force is -4.3 % off (14/14 impacts), at 1e-8 +0.24 % (penetration
+ * +0.21 %). Held at 1e-8 to the impact model's 1 % bound */
+#define RESTITUTION_ACCURACY "simbody.accuracy=1e-8"
+#define RESTITUTION_PEAK_REL_TOL 0.01
+/* a looser accuracy must cost fewer steps and give a larger error: the
+ * ideal peak error at accuracy 1e-3 is at least 10 times that at 1e-8
+ * (an error control that controls nothing would fail this) */
+#define ACCURACY_ERROR_RATIO_MIN 10.0
+
+static double worst(double a, double b, double c, double d) {
+  return fmax(fmax(fabs(a), fabs(b)), fmax(fabs(c), fabs(d)));
+}
+
+static double omega_peak_rel(const fb_error *e) {
+  return worst(e->coupler.omega_max_rel, e->coupler.omega_min_rel, e->follower.omega_max_rel,
+               e->follower.omega_min_rel);
+}
+
+static double alpha_peak_rel(const fb_error *e) {
+  return worst(e->coupler.alpha_max_rel, e->coupler.alpha_min_rel, e->follower.alpha_max_rel,
+               e->follower.alpha_min_rel);
+}
+
+/* runs the paper case with the given models and overrides into *r */
+static void run(fb_run *r, const char *models, const char **sets, int n) {
+  const char *all[8];
+  char ms[256];
+  snprintf(ms, sizeof ms, "run.models=%s", models);
+  all[0] = ms;
+  for (int i = 0; i < n; i++) all[i + 1] = sets[i];
+  fb_case c;
+  fb_test_paper_case(&c, all, n + 1);
+  fb_diag d;
+  if (fb_run_case(r, &c, NULL, NULL, &d) != FB_OK) fail_msg("run failed: %s", d.msg);
+  for (int i = 0; i < r->n; i++)
+    if (r->model[i].run.stop.kind != FB_STOP_NONE)
+      fail_msg("%s: stopped (%s)", r->model[i].run.name,
+               fb_stop_kind_name(r->model[i].run.stop.kind));
+}
+
+#define SKIP_WITHOUT_SIMBODY() \
+  do {                         \
+    if (!FB_HAVE_SIMBODY) skip(); \
+  } while (0)
+
+static void test_ideal_models_match_analytic(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SIMBODY();
+  static fb_run r;
+  run(&r, "analytic, analytic-stackup, simbody-ideal-nominal, simbody-ideal-stackup", NULL, 0);
+  for (int i = 2; i < 4; i++) {
+    const fb_model_result *m = &r.model[i];
+    const fb_model_result *a = &r.model[i - 2]; /* analytic of the same lengths */
+    assert_string_equal(fb_engine_name(m->run.model->engine), "simbody");
+    assert_true(m->has_error);
+    const double wo = omega_peak_rel(&m->error), wa = alpha_peak_rel(&m->error);
+    report_residual(m->run.name, 0, 0);
+    report_residual("  peak omega rel", wo, PEAK_OMEGA_REL_TOL);
+    report_residual("  peak alpha rel", wa, PEAK_ALPHA_REL_TOL);
+    report_residual("  crank angle err [rad]", m->error.crank_angle_err_max, CRANK_ANGLE_TOL_RAD);
+    report_residual("  loop drift [m]", m->run.joint_drift_max, DRIFT_TOL_M);
+    assert_true(wo < PEAK_OMEGA_REL_TOL);
+    assert_true(wa < PEAK_ALPHA_REL_TOL);
+    assert_true(m->error.crank_angle_err_max < CRANK_ANGLE_TOL_RAD);
+    assert_true(m->run.joint_drift_max < DRIFT_TOL_M);
+    /* loads: drive torque and every joint's reaction against the analytic
+     * model's inverse dynamics, sample by sample at the peaks */
+    const fb_series *s = &m->run.series, *t = &a->run.series;
+    assert_true(s->has_loads && t->has_loads);
+    assert_int_equal(s->n, t->n);
+    double tq = 0.0, tq_ref = 0.0, rx = 0.0, rx_ref = 0.0;
+    for (size_t k = 0; k < s->n; k++) {
+      tq = fmax(tq, fabs(s->drive_torque[k]));
+      tq_ref = fmax(tq_ref, fabs(t->drive_torque[k]));
+      for (int j = 0; j < 4; j++) {
+        rx = fmax(rx, hypot(s->reaction[j][0][k], s->reaction[j][1][k]));
+        rx_ref = fmax(rx_ref, hypot(t->reaction[j][0][k], t->reaction[j][1][k]));
+      }
+    }
+    report_residual("  drive torque peak rel", tq / tq_ref - 1.0, LOADS_REL_TOL);
+    report_residual("  reaction peak rel", rx / rx_ref - 1.0, LOADS_REL_TOL);
+    assert_true(fabs(tq / tq_ref - 1.0) < LOADS_REL_TOL);
+    assert_true(fabs(rx / rx_ref - 1.0) < LOADS_REL_TOL);
+  }
+  fb_run_free(&r);
+}
+
+static void test_clearance_impact_matches_reference(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SIMBODY();
+  static fb_run r;
+  run(&r, "simbody-clearance-impact, reference", NULL, 0);
+  const fb_model_result *m = &r.model[0];
+  assert_true(m->has_ref_error);
+  assert_string_equal(m->ref_name, "reference");
+  const fb_reference_error *re = &m->ref_error;
+  report_residual("simbody impact force peak rel", re->force_max_rel, FORCE_PEAK_REL_TOL);
+  report_residual("simbody impact penetration peak rel", re->penetration_max_rel, PEN_PEAK_REL_TOL);
+  report_residual("simbody impacts", re->impacts, re->impacts_reference);
+  assert_true(fabs(re->force_max_rel) < FORCE_PEAK_REL_TOL);
+  assert_true(fabs(re->penetration_max_rel) < PEN_PEAK_REL_TOL);
+  assert_true(re->impacts > 0);
+  assert_int_equal(re->impacts, re->impacts_reference);
+  /* Simbody maps nothing: no ERP, CFM or h omega_c; the effective mass is
+   * kept only for the restitution law's damper */
+  const fb_contact_provenance *p = &m->run.provenance[FB_JOINT_B];
+  assert_true(p->contact_steps > 0);
+  assert_true(isnan(p->erp_max) && isnan(p->h_omega_max));
+  fb_run_free(&r);
+}
+
+static void test_clearance_restitution_matches_reference(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SIMBODY();
+  static fb_run r;
+  const char *sets[] = {"run.revolutions=2", RESTITUTION_ACCURACY};
+  run(&r, "simbody-clearance-restitution, reference-restitution", sets, 2);
+  const fb_model_result *m = &r.model[0];
+  assert_true(m->has_ref_error);
+  assert_string_equal(m->ref_name, "reference-restitution");
+  const fb_reference_error *re = &m->ref_error;
+  report_residual("simbody restitution force peak rel", re->force_max_rel, RESTITUTION_PEAK_REL_TOL);
+  report_residual("simbody restitution penetration peak rel", re->penetration_max_rel,
+                  RESTITUTION_PEAK_REL_TOL);
+  report_residual("simbody restitution impacts", re->impacts, re->impacts_reference);
+  assert_true(fabs(re->force_max_rel) < RESTITUTION_PEAK_REL_TOL);
+  assert_true(fabs(re->penetration_max_rel) < RESTITUTION_PEAK_REL_TOL);
+  assert_true(re->impacts_reference > 0);
+  assert_int_equal(re->impacts, re->impacts_reference);
+  /* the damper's mass: the effective mass along the normal was evaluated */
+  const fb_contact_provenance *p = &m->run.provenance[FB_JOINT_B];
+  assert_true(p->mass_eff_min > 0.0 && p->mass_eff_max >= p->mass_eff_min);
+  fb_run_free(&r);
+}
+
+/* every integrator runs; the accuracy knob moves error and cost */
+static void test_integrators_and_accuracy(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SIMBODY();
+  const char *names[] = {"rkmerson", "rkfeldberg", "rk3", "cpodes", "verlet"};
+  for (int i = 0; i < 5; i++) {
+    static fb_run r;
+    char integ[64];
+    snprintf(integ, sizeof integ, "simbody.integrator=%s", names[i]);
+    const char *sets[] = {integ, "run.revolutions=2", "simbody.accuracy=1e-5"};
+    run(&r, "simbody-ideal-nominal", sets, 3);
+    const double wo = omega_peak_rel(&r.model[0].error);
+    report_residual(names[i], wo, PEAK_OMEGA_REL_TOL);
+    assert_true(wo < PEAK_OMEGA_REL_TOL);
+    assert_true(r.model[0].run.steps > 0);
+    fb_run_free(&r);
+  }
+  static fb_run lo, hi;
+  const char *s_lo[] = {"run.revolutions=2", "simbody.accuracy=1e-3"};
+  const char *s_hi[] = {"run.revolutions=2", "simbody.accuracy=1e-8"};
+  run(&lo, "simbody-ideal-nominal", s_lo, 2);
+  run(&hi, "simbody-ideal-nominal", s_hi, 2);
+  const double e_lo = alpha_peak_rel(&lo.model[0].error), e_hi = alpha_peak_rel(&hi.model[0].error);
+  report_residual("alpha peak err at 1e-3 / at 1e-8", e_lo / e_hi, ACCURACY_ERROR_RATIO_MIN);
+  assert_true(e_lo > ACCURACY_ERROR_RATIO_MIN * e_hi);
+  assert_true(lo.model[0].run.steps < hi.model[0].run.steps);
+  fb_run_free(&lo);
+  fb_run_free(&hi);
+}
+
+/* [simbody] keys: bad values are refused naming the key; without Simbody
+ * the models are refused with how to enable them */
+static void test_keys_and_refusal(void **state) {
+  (void)state;
+  static fb_case c;
+  fb_diag d;
+#define LOAD(text) fb_casefile_load_text(&c, "t.ini", text, strlen(text), &d)
+  assert_int_not_equal(LOAD("[simbody]\nintegrator = rk4\n"), FB_OK);
+  assert_non_null(strstr(d.msg, "integrator"));
+  assert_non_null(strstr(d.msg, "rkmerson"));
+  assert_int_not_equal(LOAD("[simbody]\naccuracy = 1\n"), FB_OK);
+  assert_non_null(strstr(d.msg, "accuracy"));
+  assert_int_not_equal(LOAD("[simbody]\naccuracy = 1e-13\n"), FB_OK);
+  assert_non_null(strstr(d.msg, "accuracy"));
+  assert_int_equal(LOAD("[simbody]\nintegrator = cpodes\naccuracy = 1e-8\n"), FB_OK);
+  assert_int_equal(c.simbody.integrator, FB_SIMBODY_CPODES);
+  assert_true(c.simbody.accuracy == 1e-8);
+  const fb_status st = LOAD("[run]\nmodels = simbody-ideal-nominal\n");
+#undef LOAD
+  if (FB_HAVE_SIMBODY) {
+    assert_int_equal(st, FB_OK);
+    assert_true(fb_engine_available(FB_ENGINE_SIMBODY));
+    assert_non_null(fb_engine_get(FB_ENGINE_SIMBODY, &d));
+    /* the tree is cut at the crank-coupler joint only: clearance elsewhere
+     * is refused before any step */
+    static fb_case k;
+    const char *sets[] = {"run.models=simbody-clearance-impact", "clearance.joints=coupler-follower",
+                          "run.revolutions=2"};
+    fb_test_paper_case(&k, sets, 3);
+    static fb_run r;
+    assert_int_equal(fb_run_case(&r, &k, NULL, NULL, &d), FB_ERR_ARG);
+    assert_non_null(strstr(d.msg, "crank-coupler joint only"));
+    fb_run_free(&r);
+  } else {
+    assert_int_not_equal(st, FB_OK);
+    assert_non_null(strstr(d.msg, "simbody-ideal-nominal"));
+    assert_non_null(strstr(d.msg, "libsimbody-dev"));
+    assert_non_null(strstr(d.msg, "-Dsimbody=enabled"));
+    assert_null(fb_engine_get(FB_ENGINE_SIMBODY, &d));
+    assert_non_null(strstr(d.msg, "-Dsimbody=enabled"));
+  }
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_keys_and_refusal),
+      cmocka_unit_test(test_ideal_models_match_analytic),
+      cmocka_unit_test(test_clearance_impact_matches_reference),
+      cmocka_unit_test(test_clearance_restitution_matches_reference),
+      cmocka_unit_test(test_integrators_and_accuracy),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -10,8 +10,13 @@
  * implicit, rk4) x h (1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6 s) with the
  * case's loop closure and drive (models mujoco-ideal-stackup and
  * mujoco-clearance-impact). Error of the ideal model: largest |relative error| of the
- * four angular-velocity peaks; of the clearance model: the larger of
- * |peak force| and |max penetration| relative errors against the reference.
+ * four angular-velocity peaks; of the clearance model: the largest of the
+ * |relative errors| of peak force, max penetration and the coupler and
+ * follower alpha spikes (peak |alpha|) against the reference, each part kept
+ * in the row. Every fixed-step row also has a step-halving consistency
+ * figure: the same case run once more at h/2 (no reference), the largest
+ * relative change of the same peaks, an error estimate where no reference
+ * exists.
  * A row is on the Pareto front of its model (so of its engine) when no other
  * row of that model is both cheaper and at least as accurate.
  *
@@ -27,6 +32,7 @@
 #ifndef FB_BENCH_H
 #define FB_BENCH_H
 
+#include "analytic.h"
 #include "case.h"
 #include "model_table.h"
 #include "outcome.h"
@@ -58,7 +64,36 @@ typedef struct fb_bench_row_s {
   int impacts;             /* impacts counted over the peak window [-] */
   int impacts_exact;       /* by the exact collider [-] */
   double cost_vs_exact;    /* us_per_step / the exact collider's [-] */
+  double part[4];          /* clearance rows beside the reference: the parts of error, signed
+                              (model - reference) / |reference| of peak force, max penetration,
+                              coupler and follower alpha spike (FB_BENCH_PART_*) [-]; NaN else */
+  double halving;          /* step-halving consistency of a fixed-step row: largest |relative
+                              change| of the peaks its error compares (ideal: the four omega
+                              peaks; clearance: the four parts) from h to h/2 [-]; NaN for
+                              auto rows and when either run stopped */
+  double halving_part[4];  /* clearance rows: each part's change from h to h/2, signed
+                              (peak at h - peak at h/2) / |peak at h/2| [-]; NaN else */
 } fb_bench_row;
+
+/* The parts of a clearance row's error, in order (fb_bench_row.part). */
+enum {
+  FB_BENCH_PART_FORCE = 0,          /* peak contact force */
+  FB_BENCH_PART_PENETRATION = 1,    /* max penetration depth */
+  FB_BENCH_PART_ALPHA_COUPLER = 2,  /* coupler alpha spike: peak |alpha| */
+  FB_BENCH_PART_ALPHA_FOLLOWER = 3, /* follower alpha spike */
+  FB_BENCH_PARTS = 4
+};
+
+/* A body's alpha spike: max(|alpha_max|, |alpha_min|) over the peak window
+ * [rad/s^2]. */
+double fb_bench_alpha_spike(const fb_body_peaks *p);
+
+/* rel[i] = (a[i] - b[i]) / |b[i]| for i < n (signed relative difference of
+ * peak a from peak b); returns the largest |rel[i]|, the combined error
+ * (NaN when any is not finite, b[i] = 0 included). A clearance row's error
+ * is this over FB_BENCH_PARTS peaks against the reference's; its halving
+ * figure the same with a = peaks at h, b = peaks at h/2. */
+double fb_bench_rel_parts(double *rel, const double *a, const double *b, int n);
 
 /* Which grids fb_bench_run runs. */
 enum {
@@ -70,6 +105,9 @@ enum {
 
 /* ODE step sizes of the grid: 1e-3, 1e-4, 1e-5, 1e-6 s and auto. */
 #define FB_BENCH_STEPS 5
+/* ODE ideal rows beyond the grid: dWorldStep, world ERP 1, CFM 1e-10 at
+ * h = 1.5e-5 and 2e-5 s (the 1e-5 error target at half the 1e-5 s cost). */
+#define FB_BENCH_IDEAL_TUNED 2
 #define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
 
 /* Runs the grids named in grids (FB_BENCH_* bits) on case c (2 revolutions

@@ -31,7 +31,8 @@ static const char bench_help[] =
     "penetration and coupler and follower alpha spike errors, each also reported),\n"
     "a step-halving figure for every fixed-step row (the largest change of those peaks\n"
     "from h to h/2: an error estimate without a reference), two ODE ideal rows at\n"
-    "world ERP 1 (h = 1.5e-5 and 2e-5 s), with wall time per simulated revolution (median of 3 repeats for\n"
+    "world ERP 1 (h = 1.5e-5 and 2e-5 s), two ODE rows with h_s = adaptive (accuracy\n"
+    "0.3 and 0.1, stepper world-a<accuracy>), with wall time per simulated revolution (median of 3 repeats for\n"
     "runs under 1 s; the engine's setup, MuJoCo's model compile, apart as setup_s)\n"
     "measured in the same run. Marks one Pareto front per engine and\n"
     "model and names the cheapest configuration for error targets 1e-2, 1e-3 and 1e-4,\n"
@@ -144,7 +145,7 @@ int fb_cmd_bench(int argc, char **argv) {
                "alpha_coupler_vs_exact_rel,impacts,impacts_exact,cost_vs_exact,"
                "force_rel,penetration_rel,alpha_spike_coupler_rel,alpha_spike_follower_rel,"
                "halving_rel,halving_force_rel,halving_penetration_rel,"
-               "halving_alpha_spike_coupler_rel,halving_alpha_spike_follower_rel\n");
+               "halving_alpha_spike_coupler_rel,halving_alpha_spike_follower_rel,h_adaptive,steps_taken\n");
   json_t *arr = json_array();
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
@@ -161,7 +162,7 @@ int fb_cmd_bench(int argc, char **argv) {
     for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->part[p]);
     fprintf(f.f, ",%.6g", b->halving);
     for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->halving_part[p]);
-    fputc('\n', f.f);
+    fprintf(f.f, ",%d,%.0f\n", b->h_adaptive, b->steps_taken);
     json_t *o = json_object();
     json_object_set_new(o, "model", json_string(b->model));
     json_object_set_new(o, "engine", json_string(b->engine));
@@ -208,6 +209,8 @@ int fb_cmd_bench(int argc, char **argv) {
     json_object_set_new(o, "error_parts", parts);
     json_object_set_new(o, "halving_rel", finite_or_null(b->halving));
     json_object_set_new(o, "halving_parts", hparts);
+    json_object_set_new(o, "h_adaptive", json_boolean(b->h_adaptive));
+    json_object_set_new(o, "steps_taken", json_real(b->steps_taken));
     json_array_append_new(arr, o);
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
@@ -249,7 +252,7 @@ int fb_cmd_bench(int argc, char **argv) {
   }
   json_decref(o);
   printf("bench of %s: %d configurations in %.1f s ('P': Pareto front of its engine and model; "
-         "h_s 'a': auto; error of a clearance row: the largest of its force, penetration and "
+         "h_s 'a': auto, 'ad': adaptive on that output grid; error of a clearance row: the largest of its force, penetration and "
          "coupler and follower alpha spike errors; h/2: the step-halving change)\n\n"
          "%-24s %-9s %8s %-8s %5s %7s %12s %9s %9s %9s %9s %9s %12s  %s\n",
          c.name, n, wall, "model", "stepper", "h_s", "mapping", "ERP", "CFM", "error", "force",
@@ -265,7 +268,7 @@ int fb_cmd_bench(int argc, char **argv) {
     if (isfinite(b->wall_per_rev)) snprintf(cost, sizeof cost, "%12.3e", b->wall_per_rev);
     else snprintf(cost, sizeof cost, "%12s", "-");
     char hs[24];
-    snprintf(hs, sizeof hs, b->h_auto ? "a%.2g" : "%.0e", b->h);
+    snprintf(hs, sizeof hs, b->h_auto ? "a%.2g" : b->h_adaptive ? "ad%.0e" : "%.0e", b->h);
     char parts[FB_BENCH_PARTS][16], half[16];
     for (int p = 0; p < FB_BENCH_PARTS; p++) {
       if (isfinite(b->part[p])) snprintf(parts[p], sizeof parts[p], "%+9.1e", b->part[p]);

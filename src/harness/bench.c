@@ -125,6 +125,8 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     snprintf(b->stepper, sizeof b->stepper, "%s", stepper);
     b->h = m->run.h; /* as run: [solver] h_s = auto resolved */
     b->h_auto = k->solver.h_mode == FB_STEP_AUTO;
+    b->h_adaptive = k->solver.h_mode == FB_STEP_ADAPTIVE;
+    b->steps_taken = m->run.has_step_stats ? (double)m->run.step_stats.steps : (double)m->run.steps;
     b->mapping = q == 0 ? -1 : mapping;
     b->world_erp = mapping >= 0 ? k->solver.world_erp : NAN;
     b->world_cfm = mapping >= 0 ? k->solver.world_cfm : NAN;
@@ -294,7 +296,7 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
   const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
   const int mujoco = solvers && fb_engine_available(FB_ENGINE_MUJOCO);
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
-  const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 + FB_BENCH_IDEAL_TUNED : 0) +
+  const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 + FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE : 0) +
                     (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS : 0) +
                     (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
@@ -329,6 +331,23 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
     k.solver.world_erp = tuned[ti][1];
     k.solver.world_cfm = tuned[ti][2];
     fb_status st = bench_point(rows, n, &k, "ode", "world", 0, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  /* ODE with [solver] h_s = adaptive (step_control.h) at two accuracies */
+  for (int ai = 0; ai < (solvers ? FB_BENCH_ADAPTIVE : 0); ai++) {
+    const double accuracy[FB_BENCH_ADAPTIVE] = {0.3, 0.1};
+    fb_case k;
+    bench_case(&k, c, 0.0, FB_ENGINE_ODE);
+    k.solver.h_mode = FB_STEP_ADAPTIVE;
+    k.solver.h = k.solver.h_min;
+    k.solver.accuracy = accuracy[ai];
+    k.solver.stepper = FB_STEPPER_WORLD;
+    char stepper[32];
+    snprintf(stepper, sizeof stepper, "world-a%g", accuracy[ai]);
+    const int mapping = k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
+                                                                  : k.clearance.mapping;
+    fb_status st = bench_point(rows, n, &k, "ode", stepper, mapping, 1, diag);
     if (st != FB_OK) return st;
     if (progress) progress((double)++done / total, user);
   }

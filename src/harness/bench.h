@@ -44,6 +44,8 @@ typedef struct fb_bench_row_s {
   char stepper[32];        /* ode: "world" or "quick-<iterations>"; mujoco: its integrator */
   double h;                /* [s] */
   int h_auto;              /* 1: h came from [solver] h_s = auto */
+  int h_adaptive;          /* 1: [solver] h_s = adaptive; h is the output grid (h_min_s) */
+  double steps_taken;      /* engine steps of the run [-] (adaptive: its own steps) */
   int mapping;             /* fb_mapping; -1 where none applies (ideal, mujoco) */
   double world_erp, world_cfm; /* ode's ideal joints; NaN for mujoco */
   fb_stop stop;            /* why the model's run stopped (FB_STOP_NONE: it did not) */
@@ -108,6 +110,9 @@ enum {
 /* ODE ideal rows beyond the grid: dWorldStep, world ERP 1, CFM 1e-10 at
  * h = 1.5e-5 and 2e-5 s (the 1e-5 error target at half the 1e-5 s cost). */
 #define FB_BENCH_IDEAL_TUNED 2
+/* ODE rows with [solver] h_s = adaptive: accuracy 0.3 and 0.1, dWorldStep,
+ * the case's world ERP/CFM and mapping (stepper "world-a<accuracy>"). */
+#define FB_BENCH_ADAPTIVE 2
 #define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
 
 /* Runs the grids named in grids (FB_BENCH_* bits) on case c (2 revolutions

@@ -297,7 +297,7 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
   const int mujoco = solvers && fb_engine_available(FB_ENGINE_MUJOCO);
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
   const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 + FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE : 0) +
-                    (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS : 0) +
+                    (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS + FB_BENCH_ADAPTIVE : 0) +
                     (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
   *n = 0;
@@ -348,6 +348,21 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
     const int mapping = k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
                                                                   : k.clearance.mapping;
     fb_status st = bench_point(rows, n, &k, "ode", stepper, mapping, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  /* MuJoCo with [solver] h_s = adaptive, the case's integrators */
+  for (int ai = 0; ai < (mujoco ? FB_BENCH_ADAPTIVE : 0); ai++) {
+    const double accuracy[FB_BENCH_ADAPTIVE] = {0.3, 0.1};
+    fb_case k;
+    bench_case(&k, c, 0.0, FB_ENGINE_MUJOCO);
+    k.solver.h_mode = FB_STEP_ADAPTIVE;
+    k.solver.h = k.solver.h_min;
+    k.solver.accuracy = accuracy[ai];
+    char stepper[32];
+    snprintf(stepper, sizeof stepper, "%s-a%g", fb_mujoco_integrator_name(k.mujoco.integrator),
+             accuracy[ai]);
+    fb_status st = bench_point(rows, n, &k, "mujoco", stepper, -1, 1, diag);
     if (st != FB_OK) return st;
     if (progress) progress((double)++done / total, user);
   }

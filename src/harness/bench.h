@@ -110,8 +110,10 @@ enum {
 /* ODE ideal rows beyond the grid: dWorldStep, world ERP 1, CFM 1e-10 at
  * h = 1.5e-5 and 2e-5 s (the 1e-5 error target at half the 1e-5 s cost). */
 #define FB_BENCH_IDEAL_TUNED 2
-/* ODE rows with [solver] h_s = adaptive: accuracy 0.3 and 0.1, dWorldStep,
- * the case's world ERP/CFM and mapping (stepper "world-a<accuracy>"). */
+/* Rows with [solver] h_s = adaptive: accuracy 0.3 and 0.1; ODE with
+ * dWorldStep, the case's world ERP/CFM and mapping (stepper
+ * "world-a<accuracy>"), MuJoCo with the case's integrator
+ * ("<integrator>-a<accuracy>"). */
 #define FB_BENCH_ADAPTIVE 2
 #define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
 

@@ -248,6 +248,21 @@ static void test_clearance_impact_adaptive(void **state) {
   fb_run_free(&r);
 }
 
+/* the adaptive step follows the project's law only: MuJoCo's native
+ * contacts are refused before the model runs */
+static void test_adaptive_refuses_native(void **state) {
+  (void)state;
+  const char *sets[] = {"run.models=mujoco-clearance-native", "solver.h_s=adaptive",
+                        "run.revolutions=2"};
+  fb_case c;
+  fb_test_paper_case(&c, sets, 3);
+  fb_diag d;
+  static fb_run r;
+  assert_int_not_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+  assert_non_null(strstr(d.msg, "h_s = adaptive"));
+  assert_non_null(strstr(d.msg, "native"));
+}
+
 static void test_clearance_restitution_matches_reference(void **state) {
   (void)state;
   static fb_run r;
@@ -392,6 +407,7 @@ int main(void) {
       cmocka_unit_test(test_clearance_impact_matches_reference),
       cmocka_unit_test(test_clearance_restitution_matches_reference),
       cmocka_unit_test(test_clearance_impact_adaptive),
+      cmocka_unit_test(test_adaptive_refuses_native),
       cmocka_unit_test(test_clearance_native_characterised),
       cmocka_unit_test(test_reactions_match_inverse_dynamics),
   };

@@ -19,7 +19,7 @@
 
 static const char bench_help[] =
     "usage: fourbar bench [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
-    "                     [--grid all|solvers|colliders]\n"
+    "                     [--grid all|solvers|colliders|frontier]\n"
     "\n"
     "Speed against error on both engines: ODE's stepper (dWorldStep; dWorldQuickStep\n"
     "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s, and auto: the largest with\n"
@@ -40,7 +40,9 @@ static const char bench_help[] =
     "ring (16, 64, 256, 1024 segments) and the faceted ring against ODE's exact collider\n"
     "at h = 1e-5 and 1e-6 s: error against the reference, differences from the exact\n"
     "collider and cost per step (docs/colliders.md). --grid runs one of the two\n"
-    "(default all). Writes DIR/bench.csv, bench.json and bench.svg\n"
+    "(default all), or frontier: only the step-size frontier (the case's settings at\n"
+    "h = 1e-5, 3e-6, 1e-6 s and auto, the ideal rows at ERP 0.8 and 1, and the\n"
+    "adaptive rows; docs/step-size.md). Writes DIR/bench.csv, bench.json and bench.svg\n"
     "(default DIR results/<case>-bench/, beside the run folder results/<case>/, so\n"
     "that a run can still replace its own folder).\n"
     "On a terminal a progress bar with the time left is drawn on stderr.\n"
@@ -112,8 +114,10 @@ int fb_cmd_bench(int argc, char **argv) {
         if (strcmp(optarg, "all") == 0) grids = FB_BENCH_SOLVERS | FB_BENCH_COLLIDERS;
         else if (strcmp(optarg, "solvers") == 0) grids = FB_BENCH_SOLVERS;
         else if (strcmp(optarg, "colliders") == 0) grids = FB_BENCH_COLLIDERS;
+        else if (strcmp(optarg, "frontier") == 0) grids = FB_BENCH_FRONTIER;
         else
-          return fb_cli_fail("bench", 2, "--grid '%s': must be all, solvers or colliders", optarg);
+          return fb_cli_fail("bench", 2, "--grid '%s': must be all, solvers, colliders or frontier",
+                             optarg);
         break;
       case 'h': fputs(bench_help, stdout); return 0;
       default: fputs(bench_help, stderr); return 2;

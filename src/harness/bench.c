@@ -294,9 +294,15 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
   const int iters[4] = {0, 10, 20, 50}; /* 0: dWorldStep */
   const double erp[2] = {0.2, 0.8}, cfm[2] = {1e-10, 1e-8};
   const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
+  const int frontier = !solvers && (grids & FB_BENCH_FRONTIER) != 0; /* solvers holds it */
   const int mujoco = solvers && fb_engine_available(FB_ENGINE_MUJOCO);
+  const int mj_frontier = frontier && fb_engine_available(FB_ENGINE_MUJOCO);
+  const int extra = solvers || frontier; /* the tuned ideal and adaptive rows */
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
-  const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 + FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE : 0) +
+  const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
+                    (extra ? FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE : 0) +
+                    (frontier ? FB_BENCH_FRONTIER_STEPS + 1 : 0) +
+                    (mj_frontier ? FB_BENCH_FRONTIER_STEPS + FB_BENCH_ADAPTIVE : 0) +
                     (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS + FB_BENCH_ADAPTIVE : 0) +
                     (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
@@ -322,7 +328,39 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
         }
   /* the ideal model at its cheapest setting for 1e-5 (issue 29): world
    * ERP 1 (the whole joint error corrected each step) lets the step double */
-  for (int ti = 0; ti < (solvers ? FB_BENCH_IDEAL_TUNED : 0); ti++) {
+  /* the frontier (--grid frontier): the case's stepper, world ERP/CFM and
+   * mapping at the fixed steps of FB_BENCH_FRONTIER_STEPS and auto, the
+   * ideal model at ERP 0.8, CFM 1e-8, h = 1e-5 s; MuJoCo with the case's
+   * integrators at the fixed steps */
+  const double fh[FB_BENCH_FRONTIER_STEPS] = {1e-5, 3e-6, 1e-6, 0.0}; /* 0: auto */
+  for (int hi = 0; hi < (frontier ? FB_BENCH_FRONTIER_STEPS : 0); hi++) {
+    fb_case k;
+    bench_case(&k, c, fh[hi], FB_ENGINE_ODE);
+    fb_status st = bench_point(rows, n, &k, "ode", k.solver.stepper == FB_STEPPER_WORLD ? "world" : "quick",
+                               k.clearance.mapping, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  if (frontier) {
+    fb_case k;
+    bench_case(&k, c, 1e-5, FB_ENGINE_ODE);
+    k.model_count = 1;
+    k.solver.stepper = FB_STEPPER_WORLD;
+    k.solver.world_erp = 0.8;
+    k.solver.world_cfm = 1e-8;
+    fb_status st = bench_point(rows, n, &k, "ode", "world", 0, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  for (int hi = 0; hi < (mj_frontier ? FB_BENCH_FRONTIER_STEPS - 1 : 0); hi++) {
+    fb_case k;
+    bench_case(&k, c, fh[hi], FB_ENGINE_MUJOCO);
+    fb_status st = bench_point(rows, n, &k, "mujoco", fb_mujoco_integrator_name(k.mujoco.integrator),
+                               -1, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  for (int ti = 0; ti < (extra ? FB_BENCH_IDEAL_TUNED : 0); ti++) {
     const double tuned[FB_BENCH_IDEAL_TUNED][3] = {{1.5e-5, 1.0, 1e-10}, {2e-5, 1.0, 1e-10}};
     fb_case k;
     bench_case(&k, c, tuned[ti][0], FB_ENGINE_ODE);
@@ -335,7 +373,7 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
     if (progress) progress((double)++done / total, user);
   }
   /* ODE with [solver] h_s = adaptive (step_control.h) at two accuracies */
-  for (int ai = 0; ai < (solvers ? FB_BENCH_ADAPTIVE : 0); ai++) {
+  for (int ai = 0; ai < (extra ? FB_BENCH_ADAPTIVE : 0); ai++) {
     const double accuracy[FB_BENCH_ADAPTIVE] = {0.3, 0.1};
     fb_case k;
     bench_case(&k, c, 0.0, FB_ENGINE_ODE);
@@ -352,7 +390,7 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
     if (progress) progress((double)++done / total, user);
   }
   /* MuJoCo with [solver] h_s = adaptive, the case's integrators */
-  for (int ai = 0; ai < (mujoco ? FB_BENCH_ADAPTIVE : 0); ai++) {
+  for (int ai = 0; ai < (mujoco || mj_frontier ? FB_BENCH_ADAPTIVE : 0); ai++) {
     const double accuracy[FB_BENCH_ADAPTIVE] = {0.3, 0.1};
     fb_case k;
     bench_case(&k, c, 0.0, FB_ENGINE_MUJOCO);

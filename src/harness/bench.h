@@ -100,7 +100,10 @@ double fb_bench_rel_parts(double *rel, const double *a, const double *b, int n);
 /* Which grids fb_bench_run runs. */
 enum {
   FB_BENCH_SOLVERS = 1,  /* ODE stepper x h x mapping x world ERP/CFM, and MuJoCo's grid */
-  FB_BENCH_COLLIDERS = 2 /* the collider axis */
+  FB_BENCH_COLLIDERS = 2, /* the collider axis */
+  FB_BENCH_FRONTIER = 4   /* the step-size frontier alone (a subset of FB_BENCH_SOLVERS'
+                             rows): fixed h = 1e-5, 3e-6, 1e-6 s and auto with the case's
+                             settings, the tuned ideal rows and the adaptive rows */
 };
 
 #define FB_BENCH_MAX_ROWS 256
@@ -115,6 +118,9 @@ enum {
  * "world-a<accuracy>"), MuJoCo with the case's integrator
  * ("<integrator>-a<accuracy>"). */
 #define FB_BENCH_ADAPTIVE 2
+/* Steps of the frontier grid: 1e-5, 3e-6, 1e-6 s and auto (ODE; MuJoCo the
+ * three fixed ones). */
+#define FB_BENCH_FRONTIER_STEPS 4
 #define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
 
 /* Runs the grids named in grids (FB_BENCH_* bits) on case c (2 revolutions

@@ -272,7 +272,7 @@ int fb_cmd_bench(int argc, char **argv) {
     if (isfinite(b->wall_per_rev)) snprintf(cost, sizeof cost, "%12.3e", b->wall_per_rev);
     else snprintf(cost, sizeof cost, "%12s", "-");
     char hs[24];
-    snprintf(hs, sizeof hs, b->h_auto ? "a%.2g" : b->h_adaptive ? "ad%.0e" : "%.0e", b->h);
+    snprintf(hs, sizeof hs, b->h_auto ? "a%.2g" : b->h_adaptive ? "ad%.0e" : "%.2g", b->h);
     char parts[FB_BENCH_PARTS][16], half[16];
     for (int p = 0; p < FB_BENCH_PARTS; p++) {
       if (isfinite(b->part[p])) snprintf(parts[p], sizeof parts[p], "%+9.1e", b->part[p]);

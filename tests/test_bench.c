@@ -1,6 +1,7 @@
 /* fourbar bench's bookkeeping: the Pareto front and the cheapest
  * configuration per error target, on rows whose answer is known. */
 #include <jansson.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -100,8 +101,43 @@ static void test_bench_figure_extremes(void **state) {
   rmdir(dir);
 }
 
+/* the clearance error and its parts, by hand: peaks of a model and of its
+ * reference (force 103 N vs 100 N, penetration 9.9e-6 vs 1e-5 m, coupler
+ * alpha max 2.1e4 vs min -2e4, follower min -5.05e3 vs max 5e3 rad/s^2):
+ * parts +0.03, -0.01, +0.05, +0.01; error 0.05, the coupler spike, where
+ * force and penetration alone (the old metric) give 0.03 */
+/* a relative difference computed in double from exact decimal inputs:
+ * a few ulps [-] */
+#define PART_TOL 1e-12
+static void test_clearance_error_by_hand(void **state) {
+  (void)state;
+  const fb_body_peaks mc = {.omega_max = 1.0, .omega_min = -1.0, .alpha_max = 2.1e4, .alpha_min = -1.9e4};
+  const fb_body_peaks rc = {.omega_max = 1.0, .omega_min = -1.0, .alpha_max = 1.5e4, .alpha_min = -2e4};
+  const fb_body_peaks mf = {.omega_max = 1.0, .omega_min = -1.0, .alpha_max = 4e3, .alpha_min = -5.05e3};
+  const fb_body_peaks rf = {.omega_max = 1.0, .omega_min = -1.0, .alpha_max = 5e3, .alpha_min = -4e3};
+  assert_rel(fb_bench_alpha_spike(&mc), 2.1e4, PART_TOL);
+  assert_rel(fb_bench_alpha_spike(&rc), 2e4, PART_TOL); /* |min| is the spike */
+  const double model[FB_BENCH_PARTS] = {103.0, 9.9e-6, fb_bench_alpha_spike(&mc), fb_bench_alpha_spike(&mf)};
+  const double ref[FB_BENCH_PARTS] = {100.0, 1e-5, fb_bench_alpha_spike(&rc), fb_bench_alpha_spike(&rf)};
+  double part[FB_BENCH_PARTS];
+  const double err = fb_bench_rel_parts(part, model, ref, FB_BENCH_PARTS);
+  const double want[FB_BENCH_PARTS] = {0.03, -0.01, 0.05, 0.01};
+  for (int p = 0; p < FB_BENCH_PARTS; p++) assert_near(part[p], want[p], PART_TOL);
+  assert_near(err, 0.05, PART_TOL);
+  /* force and penetration alone: the bench's error before the spike joined */
+  assert_near(fb_bench_rel_parts(part, model, ref, 2), 0.03, PART_TOL);
+  /* step halving: peaks at h against h/2 (a = h, b = h/2): (1.002 - 1) / 1 */
+  const double at_h[2] = {1.002, -0.999}, at_h2[2] = {1.0, -1.0};
+  assert_near(fb_bench_rel_parts(part, at_h, at_h2, 2), 2e-3, PART_TOL);
+  assert_near(part[1], 1e-3, PART_TOL); /* -0.999 - -1 over |-1| */
+  /* a zero or missing peak makes the whole figure unknown, not small */
+  const double zero[2] = {1.0, 0.0};
+  assert_true(isnan(fb_bench_rel_parts(part, at_h, zero, 2)));
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_pareto_and_cheapest),
-                                     cmocka_unit_test(test_bench_figure_extremes)};
+                                     cmocka_unit_test(test_bench_figure_extremes),
+                                     cmocka_unit_test(test_clearance_error_by_hand)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -147,6 +147,10 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                (const char *[]){":2:", "coupler_kg = -0.29", "a mass must be positive", NULL});
   expect_error("[clearance]\nrestitution = 1.5\n", NULL, 0, FB_ERR_RANGE,
                (const char *[]){":2:", "restitution = 1.5", "cr must lie in", NULL});
+  expect_error("[solver]\nh_s = adaptive\nh_min_s = 1e-5\nh_max_s = 1e-6\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){"h_max_s = 1e-06", "must not be below", "h_min_s = 1e-05", NULL});
+  expect_error("[solver]\naccuracy = 0\n", NULL, 0, FB_ERR_RANGE,
+               (const char *[]){":2:", "accuracy = 0", "(0, 1]", NULL});
   expect_error("[linkage]\ncrank_mm = 12abc\n", NULL, 0, FB_ERR_PARSE,
                (const char *[]){"not a number", NULL});
   expect_error("[material]\npoisson_ratio = 0.5\n", NULL, 0, FB_ERR_RANGE,

@@ -222,6 +222,52 @@ static void test_clearance_impact_matches_reference(void **state) {
   fb_run_free(&r);
 }
 
+/* [solver] h_s = adaptive (step_control.h) on the paper case: the issue's
+ * targets, peak force and penetration within 1e-3 and the coupler alpha
+ * spike within 1e-2 of the reference, impacts equal (measured 2.0e-4,
+ * -5.4e-4, -2.0e-3 with about 3,700 steps per revolution against 50,000 at
+ * the 1e-6 s grid) */
+#define ADAPTIVE_PEAK_REL_TOL 1e-3
+#define ADAPTIVE_SPIKE_REL_TOL 1e-2
+static void test_clearance_impact_adaptive(void **state) {
+  (void)state;
+  static fb_run r;
+  const char *sets[] = {"solver.h_s=adaptive", "run.revolutions=2"};
+  run(&r, "mujoco-clearance-impact, reference", sets, 2);
+  const fb_model_result *m = &r.model[0], *ref = &r.model[1];
+  assert_true(m->has_ref_error);
+  const fb_reference_error *re = &m->ref_error;
+  const double spike = fmax(fabs(m->peaks.coupler.alpha_max), fabs(m->peaks.coupler.alpha_min));
+  const double spike_ref = fmax(fabs(ref->peaks.coupler.alpha_max), fabs(ref->peaks.coupler.alpha_min));
+  report_residual("mujoco adaptive force peak rel", re->force_max_rel, ADAPTIVE_PEAK_REL_TOL);
+  report_residual("mujoco adaptive penetration peak rel", re->penetration_max_rel, ADAPTIVE_PEAK_REL_TOL);
+  report_residual("mujoco adaptive coupler spike rel", spike / spike_ref - 1.0, ADAPTIVE_SPIKE_REL_TOL);
+  assert_true(fabs(re->force_max_rel) < ADAPTIVE_PEAK_REL_TOL);
+  assert_true(fabs(re->penetration_max_rel) < ADAPTIVE_PEAK_REL_TOL);
+  assert_true(fabs(spike / spike_ref - 1.0) < ADAPTIVE_SPIKE_REL_TOL);
+  assert_int_equal(re->impacts, re->impacts_reference);
+  /* the steps: on the grid's multiples, far fewer than the samples */
+  assert_true(m->run.has_step_stats);
+  assert_true(m->run.step_stats.steps < m->run.series.n / 5);
+  assert_true(m->run.step_stats.h_max <= 2e-5 * (1 + 1e-12));
+  fb_run_free(&r);
+}
+
+/* the adaptive step follows the project's law only: MuJoCo's native
+ * contacts are refused before the model runs */
+static void test_adaptive_refuses_native(void **state) {
+  (void)state;
+  const char *sets[] = {"run.models=mujoco-clearance-native", "solver.h_s=adaptive",
+                        "run.revolutions=2"};
+  fb_case c;
+  fb_test_paper_case(&c, sets, 3);
+  fb_diag d;
+  static fb_run r;
+  assert_int_not_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+  assert_non_null(strstr(d.msg, "h_s = adaptive"));
+  assert_non_null(strstr(d.msg, "native"));
+}
+
 static void test_clearance_restitution_matches_reference(void **state) {
   (void)state;
   static fb_run r;
@@ -366,6 +412,8 @@ int main(void) {
       cmocka_unit_test(test_ideal_second_order_peaks),
       cmocka_unit_test(test_clearance_impact_matches_reference),
       cmocka_unit_test(test_clearance_restitution_matches_reference),
+      cmocka_unit_test(test_clearance_impact_adaptive),
+      cmocka_unit_test(test_adaptive_refuses_native),
       cmocka_unit_test(test_clearance_native_characterised),
       cmocka_unit_test(test_reactions_match_inverse_dynamics),
   };

@@ -12,6 +12,7 @@
  * exact one by about one step (a first-order pointwise error, bounded by
  * h * max|alpha|), while a peak value, where d omega / dt = 0, is only moved
  * to second order. The tolerances below come from those two facts. */
+#include <math.h>
 #include <string.h>
 
 #include "casefile.h"
@@ -142,6 +143,52 @@ static void test_ode_fatal_error_is_a_status_not_an_abort(void **state) {
   fb_run_free(&r);
 }
 
+/* [solver] h_s = adaptive on the ideal four-bar (no contact: every step
+ * asks for h_max_s, reached by the ramp): samples on the grid of h_min_s,
+ * about one ODE step per h_max_s, and the peaks as accurate as the issue's
+ * bound for the default step (the samples inside a step are interpolated) */
+static void test_adaptive_ideal_lands_on_the_grid(void **state) {
+  (void)state;
+  const char *sets[] = {"run.revolutions=2", "run.models=ode-ideal-nominal", "solver.h_s=adaptive",
+                        "solver.h_min_s=1e-6", "solver.h_max_s=2e-5"};
+  fb_case c;
+  fb_diag d;
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 5, &d), FB_OK);
+  static fb_run r;
+  if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("run failed: %s", d.msg);
+  const fb_model_run *m = &r.model[0].run;
+  assert_int_equal(m->stop.kind, FB_STOP_NONE);
+  const double dur = fb_case_duration(&c);
+  assert_int_equal(m->series.n, (size_t)llround(dur / 1e-6) + 1);
+  for (size_t i = 0; i < m->series.n; i += 997) assert_near(m->series.t[i], 1e-6 * (double)i, 1e-15);
+  assert_true(m->has_step_stats);
+  /* the ramp from one grid step (the start) to 20 takes 11 steps before
+   * the first at 20 (2, 3, 4, 5, 6, 7, 8, 10, 12, 15, 18): the rest are
+   * 2e-5 s, the last one perhaps past the run's end */
+  assert_near(m->step_stats.h_max, 2e-5, 1e-18);
+  assert_near(m->step_stats.h_min, 2e-6, 1e-18);
+  assert_int_equal(m->step_stats.steps - m->step_stats.n_h_max, 11);
+  assert_true(m->step_stats.steps <= (size_t)(dur / 2e-5) + 11);
+  const double w = worst_peak_rel(&r.model[0].error);
+  report_residual("adaptive ideal, worst omega peak", w, PEAK_OMEGA_REL_TOL);
+  assert_true(w < PEAK_OMEGA_REL_TOL);
+  fb_run_free(&r);
+}
+
+/* the adaptive step follows the exact collider's contact only: a faceted
+ * model is refused before it runs, naming the collider */
+static void test_adaptive_refuses_other_colliders(void **state) {
+  (void)state;
+  const char *sets[] = {"run.revolutions=2", "run.models=ode-clearance-faceted", "solver.h_s=adaptive"};
+  fb_case c;
+  fb_diag d;
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 3, &d), FB_OK);
+  static fb_run r;
+  assert_int_not_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+  assert_non_null(strstr(d.msg, "h_s = adaptive"));
+  assert_non_null(strstr(d.msg, "faceted"));
+}
+
 int main(void) {
   const char *d = getenv("FOURBAR_CASES_DIR");
   snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", d ? d : "cases");
@@ -151,6 +198,8 @@ int main(void) {
       cmocka_unit_test(test_quickstep_runs_and_is_less_accurate),
       cmocka_unit_test(test_same_seed_same_numbers),
       cmocka_unit_test(test_ode_fatal_error_is_a_status_not_an_abort),
+      cmocka_unit_test(test_adaptive_ideal_lands_on_the_grid),
+      cmocka_unit_test(test_adaptive_refuses_other_colliders),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -19,7 +19,7 @@
 
 static const char bench_help[] =
     "usage: fourbar bench [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
-    "                     [--grid all|solvers|colliders|bullet|simbody]\n"
+    "                     [--grid all|solvers|colliders|bullet|simbody|frontier]\n"
     "\n"
     "Speed against error on every engine: ODE's stepper (dWorldStep; dWorldQuickStep\n"
     "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s, and auto: the largest with\n"
@@ -29,7 +29,12 @@ static const char bench_help[] =
     "Bullet) Bullet's solver (sequential impulse at 10, 50, 100 iterations: si-N;\n"
     "mlcp-dantzig: mlcp) x step size (1e-4, 1e-5, 1e-6 s, auto), measured against the\n"
     "analytic solution (ideal stack-up models) and the reference dynamics (clearance\n"
-    "impact models), with wall time per simulated revolution (median of 3 repeats for\n"
+    "impact models; a clearance row's error is the largest of its peak force, max\n"
+    "penetration and coupler and follower alpha spike errors, each also reported),\n"
+    "a step-halving figure for every fixed-step row (the largest change of those peaks\n"
+    "from h to h/2: an error estimate without a reference), two ODE ideal rows at\n"
+    "world ERP 1 (h = 1.5e-5 and 2e-5 s), rows with h_s = adaptive on both engines\n"
+    "(accuracy 0.3 and 0.1, stepper world-a<accuracy>, <integrator>-a<accuracy>), with wall time per simulated revolution (median of 3 repeats for\n"
     "runs under 1 s; the engine's setup, MuJoCo's model compile, apart as setup_s)\n"
     "measured in the same run. Marks one Pareto front per engine and\n"
     "model and names the cheapest configuration for error targets 1e-2, 1e-3 and 1e-4,\n"
@@ -42,7 +47,9 @@ static const char bench_help[] =
     "rkfeldberg, rk3, cpodes, verlet) x accuracy (1e-3 to 1e-8) at the case's output\n"
     "step (docs/engines.md); --grid simbody runs that grid alone, with ODE's\n"
     "dWorldStep rows (matched mapping; h 1e-4, 1e-5, 1e-6 s and auto) for the\n"
-    "comparison. Writes DIR/bench.csv, bench.json and bench.svg\n"
+    "comparison; frontier: only the step-size frontier (the case's settings at\n"
+    "h = 1e-5, 3e-6, 1e-6 s and auto, the ideal rows at ERP 0.8 and 1, and the\n"
+    "adaptive rows; docs/step-size.md). Writes DIR/bench.csv, bench.json and bench.svg\n"
     "(default DIR results/<case>-bench/, beside the run folder results/<case>/, so\n"
     "that a run can still replace its own folder).\n"
     "On a terminal a progress bar with the time left is drawn on stderr.\n"
@@ -117,9 +124,11 @@ int fb_cmd_bench(int argc, char **argv) {
         else if (strcmp(optarg, "colliders") == 0) grids = FB_BENCH_COLLIDERS;
         else if (strcmp(optarg, "bullet") == 0) grids = FB_BENCH_BULLET;
         else if (strcmp(optarg, "simbody") == 0) grids = FB_BENCH_SIMBODY;
+        else if (strcmp(optarg, "frontier") == 0) grids = FB_BENCH_FRONTIER;
         else
           return fb_cli_fail("bench", 2,
-                             "--grid '%s': must be all, solvers, colliders, bullet or simbody",
+                             "--grid '%s': must be all, solvers, colliders, bullet, simbody or "
+                             "frontier",
                              optarg);
         break;
       case 'h': fputs(bench_help, stdout); return 0;
@@ -149,7 +158,10 @@ int fb_cmd_bench(int argc, char **argv) {
   fprintf(f.f, "model,engine,stepper,h_s,h_auto,mapping,world_erp,world_cfm,status,error,wall_per_rev_s,"
                "repeats,pareto,setup_s,"
                "collider,segments,us_per_step,force_vs_exact_rel,penetration_vs_exact_rel,"
-               "alpha_coupler_vs_exact_rel,impacts,impacts_exact,cost_vs_exact\n");
+               "alpha_coupler_vs_exact_rel,impacts,impacts_exact,cost_vs_exact,"
+               "force_rel,penetration_rel,alpha_spike_coupler_rel,alpha_spike_follower_rel,"
+               "halving_rel,halving_force_rel,halving_penetration_rel,"
+               "halving_alpha_spike_coupler_rel,halving_alpha_spike_follower_rel,h_adaptive,steps_taken\n");
   json_t *arr = json_array();
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
@@ -157,12 +169,16 @@ int fb_cmd_bench(int argc, char **argv) {
     char erp[32] = "", cfm[32] = "";
     if (isfinite(b->world_erp)) snprintf(erp, sizeof erp, "%g", b->world_erp);
     if (isfinite(b->world_cfm)) snprintf(cfm, sizeof cfm, "%g", b->world_cfm);
-    fprintf(f.f, "%s,%s,%s,%g,%d,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d,%.6g,%s,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g\n",
+    fprintf(f.f, "%s,%s,%s,%g,%d,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d,%.6g,%s,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g",
             b->model, b->engine, b->stepper, b->h, b->h_auto, mapping_name(b->mapping), erp, cfm,
             fb_stop_text(stop, sizeof stop, &b->stop),
             b->error, b->wall_per_rev, b->repeats, b->pareto, b->setup_s, b->collider,
             b->segments, b->us_per_step, b->force_vs_exact, b->pen_vs_exact, b->alpha_vs_exact,
             b->impacts, b->impacts_exact, b->cost_vs_exact);
+    for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->part[p]);
+    fprintf(f.f, ",%.6g", b->halving);
+    for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->halving_part[p]);
+    fprintf(f.f, ",%d,%.0f\n", b->h_adaptive, b->steps_taken);
     json_t *o = json_object();
     json_object_set_new(o, "model", json_string(b->model));
     json_object_set_new(o, "engine", json_string(b->engine));
@@ -191,6 +207,26 @@ int fb_cmd_bench(int argc, char **argv) {
     else
       json_object_set_new(o, "vs_exact", json_null());
     json_object_set_new(o, "setup_s", json_real(b->setup_s));
+    /* the parts of a clearance row's error, and the step-halving figure */
+    static const char *part_keys[FB_BENCH_PARTS] = {"force_max_rel", "penetration_max_rel",
+                                                    "alpha_spike_coupler_rel",
+                                                    "alpha_spike_follower_rel"};
+    json_t *parts = json_null(), *hparts = json_null();
+    if (isfinite(b->part[0])) {
+      parts = json_object();
+      for (int p = 0; p < FB_BENCH_PARTS; p++)
+        json_object_set_new(parts, part_keys[p], finite_or_null(b->part[p]));
+    }
+    if (isfinite(b->halving_part[0])) {
+      hparts = json_object();
+      for (int p = 0; p < FB_BENCH_PARTS; p++)
+        json_object_set_new(hparts, part_keys[p], finite_or_null(b->halving_part[p]));
+    }
+    json_object_set_new(o, "error_parts", parts);
+    json_object_set_new(o, "halving_rel", finite_or_null(b->halving));
+    json_object_set_new(o, "halving_parts", hparts);
+    json_object_set_new(o, "h_adaptive", json_boolean(b->h_adaptive));
+    json_object_set_new(o, "steps_taken", json_real(b->steps_taken));
     json_array_append_new(arr, o);
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
@@ -235,8 +271,11 @@ int fb_cmd_bench(int argc, char **argv) {
   }
   json_decref(o);
   printf("bench of %s: %d configurations in %.1f s ('P': Pareto front of its engine and model; "
-         "h_s 'a': auto)\n\n%-24s %-9s %8s %-8s %5s %7s %12s %12s  %s\n",
-         c.name, n, wall, "model", "stepper", "h_s", "mapping", "ERP", "CFM", "error", "s/rev", "status");
+         "h_s 'a': auto, 'ad': adaptive on that output grid; error of a clearance row: the largest of its force, penetration and "
+         "coupler and follower alpha spike errors; h/2: the step-halving change)\n\n"
+         "%-24s %-9s %8s %-8s %5s %7s %12s %9s %9s %9s %9s %9s %12s  %s\n",
+         c.name, n, wall, "model", "stepper", "h_s", "mapping", "ERP", "CFM", "error", "force",
+         "pen", "alpha_c", "alpha_f", "h/2", "s/rev", "status");
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
     char stop[256];
@@ -248,9 +287,17 @@ int fb_cmd_bench(int argc, char **argv) {
     if (isfinite(b->wall_per_rev)) snprintf(cost, sizeof cost, "%12.3e", b->wall_per_rev);
     else snprintf(cost, sizeof cost, "%12s", "-");
     char hs[24];
-    snprintf(hs, sizeof hs, b->h_auto ? "a%.2g" : "%.0e", b->h);
-    printf("%-24s %-9s %8s %-8s %5s %7s %12.3e %s %c %.40s\n", b->model, b->stepper, hs,
-           mapping_name(b->mapping), erp, cfm, b->error, cost, b->pareto ? 'P' : ' ',
+    snprintf(hs, sizeof hs, b->h_auto ? "a%.2g" : b->h_adaptive ? "ad%.0e" : "%.2g", b->h);
+    char parts[FB_BENCH_PARTS][16], half[16];
+    for (int p = 0; p < FB_BENCH_PARTS; p++) {
+      if (isfinite(b->part[p])) snprintf(parts[p], sizeof parts[p], "%+9.1e", b->part[p]);
+      else snprintf(parts[p], sizeof parts[p], "%9s", "-");
+    }
+    if (isfinite(b->halving)) snprintf(half, sizeof half, "%9.1e", b->halving);
+    else snprintf(half, sizeof half, "%9s", "-");
+    printf("%-24s %-9s %8s %-8s %5s %7s %12.3e %s %s %s %s %s %s %c %.40s\n", b->model,
+           b->stepper, hs, mapping_name(b->mapping), erp, cfm, b->error, parts[0], parts[1],
+           parts[2], parts[3], half, cost, b->pareto ? 'P' : ' ',
            fb_stop_text(stop, sizeof stop, &b->stop));
   }
   int ncol = 0;

@@ -18,6 +18,65 @@ static double omega_peak_error(const fb_error *e) {
               fmax(fabs(e->follower.omega_max_rel), fabs(e->follower.omega_min_rel)));
 }
 
+double fb_bench_alpha_spike(const fb_body_peaks *p) {
+  return fmax(fabs(p->alpha_max), fabs(p->alpha_min));
+}
+
+double fb_bench_rel_parts(double *rel, const double *a, const double *b, int n) {
+  double worst = 0.0;
+  for (int i = 0; i < n; i++) {
+    rel[i] = b[i] != 0.0 ? (a[i] - b[i]) / fabs(b[i]) : NAN;
+    worst = isfinite(rel[i]) && isfinite(worst) ? fmax(worst, fabs(rel[i])) : NAN;
+  }
+  return worst;
+}
+
+/* the peaks a row's error compares: clearance (q = 1) force, penetration and
+ * the two alpha spikes; ideal (q = 0) the four omega peaks. 0: the model did
+ * not reach its window */
+static int row_peaks(double out[4], const fb_model_result *m, int q) {
+  if (m->run.stop.kind != FB_STOP_NONE || !m->has_peaks) return 0;
+  if (q == 0) {
+    out[0] = m->peaks.coupler.omega_max;
+    out[1] = m->peaks.coupler.omega_min;
+    out[2] = m->peaks.follower.omega_max;
+    out[3] = m->peaks.follower.omega_min;
+    return 1;
+  }
+  if (!m->has_spikes) return 0;
+  out[FB_BENCH_PART_FORCE] = m->spikes.force_max;
+  out[FB_BENCH_PART_PENETRATION] = m->spikes.penetration_max;
+  out[FB_BENCH_PART_ALPHA_COUPLER] = fb_bench_alpha_spike(&m->peaks.coupler);
+  out[FB_BENCH_PART_ALPHA_FOLLOWER] = fb_bench_alpha_spike(&m->peaks.follower);
+  return 1;
+}
+
+/* the step-halving figure of rows[0..nrows): case k once more at h/2 (its
+ * reference left out), row i's peaks (kept in its halving_part by the caller)
+ * against those of model idx[i] there, of kind kind[i] (row_peaks' q) */
+static fb_status halving(fb_bench_row *rows, int nrows, const int *idx, const int *kind,
+                         const fb_case *k, fb_diag *diag) {
+  fb_case k2 = *k;
+  k2.solver.h = 0.5 * k->solver.h;
+  k2.solver.h_mode = FB_STEP_FIXED;
+  if (k2.model_count > 2) k2.model_count = 2; /* the reference is not needed */
+  static fb_run r2;
+  fb_status st = fb_run_case(&r2, &k2, NULL, NULL, diag);
+  if (st != FB_OK) return st;
+  for (int i = 0; i < nrows; i++) {
+    fb_bench_row *b = &rows[i];
+    double at_h[4], at_h2[4], rel[4];
+    for (int p = 0; p < 4; p++) at_h[p] = b->halving_part[p];
+    for (int p = 0; p < 4; p++) b->halving_part[p] = NAN;
+    if (!isfinite(at_h[0]) || !row_peaks(at_h2, &r2.model[idx[i]], kind[i])) continue;
+    b->halving = fb_bench_rel_parts(rel, at_h, at_h2, 4);
+    if (kind[i])
+      for (int p = 0; p < 4; p++) b->halving_part[p] = rel[p];
+  }
+  fb_run_free(&r2);
+  return FB_OK;
+}
+
 /* runs case k up to 3 times, again while its first `timed` models (1 or 2)
  * together took at most 1 s; r keeps the last run, walls[q][rep] the wall
  * times of model q without the engine's setup (MuJoCo compiles its model,
@@ -51,9 +110,14 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
   static fb_run r;
   fb_status st0 = timed_runs(&r, k, with_clearance ? 2 : 1, walls, setups, &reps, diag);
   if (st0 != FB_OK) return st0;
+  const int first = *n;
+  int qs[2];
   for (int q = 0; q < (with_clearance ? 2 : 1); q++) {
     if (q == 0 && !with_ideal) continue;
-    if (*n == FB_BENCH_MAX_ROWS) break;
+    if (*n == FB_BENCH_MAX_ROWS)
+      return fb_diag_set(diag, FB_ERR_NOMEM, "bench: more than %d rows (FB_BENCH_MAX_ROWS)",
+                         FB_BENCH_MAX_ROWS);
+    qs[*n - first] = q;
     fb_bench_row *b = &rows[(*n)++];
     const fb_model_result *m = &r.model[q];
     memset(b, 0, sizeof *b);
@@ -63,6 +127,8 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     snprintf(b->stepper, sizeof b->stepper, "%s", stepper);
     b->h = m->run.h; /* as run: [solver] h_s = auto resolved */
     b->h_auto = k->solver.h_mode == FB_STEP_AUTO;
+    b->h_adaptive = k->solver.h_mode == FB_STEP_ADAPTIVE;
+    b->steps_taken = m->run.has_step_stats ? (double)m->run.step_stats.steps : (double)m->run.steps;
     b->mapping = q == 0 ? -1 : mapping;
     b->world_erp = mapping >= 0 ? k->solver.world_erp : NAN;
     b->world_cfm = mapping >= 0 ? k->solver.world_cfm : NAN;
@@ -70,9 +136,18 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     b->error = NAN;
     if (m->run.stop.kind == FB_STOP_NONE) {
       if (q == 0 && m->has_error) b->error = omega_peak_error(&m->error);
-      if (q == 1 && m->has_ref_error)
-        b->error = fmax(fabs(m->ref_error.force_max_rel), fabs(m->ref_error.penetration_max_rel));
     }
+    for (int p = 0; p < FB_BENCH_PARTS; p++) b->part[p] = b->halving_part[p] = NAN;
+    b->halving = NAN;
+    double mine[4];
+    if (q == 1 && m->has_ref_error && row_peaks(mine, m, 1)) {
+      double theirs[4];
+      if (row_peaks(theirs, &r.model[2], 1))
+        b->error = fb_bench_rel_parts(b->part, mine, theirs, FB_BENCH_PARTS);
+    }
+    /* this row's peaks, for the halving run below */
+    if (!b->h_auto && row_peaks(mine, m, q))
+      for (int p = 0; p < 4; p++) b->halving_part[p] = mine[p];
     qsort(walls[q], (size_t)reps, sizeof(double), cmp_double);
     qsort(setups[q], (size_t)reps, sizeof(double), cmp_double);
     b->setup_s = setups[q][reps / 2];
@@ -93,6 +168,8 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     b->force_vs_exact = b->pen_vs_exact = b->alpha_vs_exact = b->cost_vs_exact = NAN;
   }
   fb_run_free(&r);
+  if (k->solver.h_mode == FB_STEP_FIXED && *n > first)
+    return halving(rows + first, *n - first, qs, qs, k, diag);
   return FB_OK;
 }
 
@@ -165,6 +242,8 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
     const fb_model_run *m = &r.model[q].run;
     us[q] = m->steps > 0 ? 1e6 * walls[q][reps / 2] / (double)m->steps : NAN;
   }
+  const int first = *n, kinds[2] = {1, 1};
+  int idx[2];
   for (int q = ring == collider_rings[0] ? 0 : 1; q < 2 && *n < FB_BENCH_MAX_ROWS; q++) {
     const fb_model_result *m = &r.model[q];
     fb_bench_row *b = &rows[(*n)++];
@@ -187,13 +266,20 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
     b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
     b->error = NAN;
     b->force_vs_exact = b->pen_vs_exact = b->alpha_vs_exact = b->cost_vs_exact = NAN;
+    for (int p = 0; p < FB_BENCH_PARTS; p++) b->part[p] = b->halving_part[p] = NAN;
+    b->halving = NAN;
+    idx[*n - first - 1] = q;
+    double mine[4], theirs[4];
+    if (row_peaks(mine, m, 1))
+      for (int p = 0; p < 4; p++) b->halving_part[p] = mine[p];
     if (m->run.stop.kind != FB_STOP_NONE || !m->has_spikes || !ex->has_spikes) continue;
     /* against the reference (the faceted row names none: compared here) */
     fb_reference_error re;
     fb_diag inner;
     if (ref->has_peaks && fb_metrics_vs_reference(&re, &m->run.series, &ref->run.series,
-                                                  r.t_window, FB_JOINT_B, &inner) == FB_OK)
-      b->error = fmax(fabs(re.force_max_rel), fabs(re.penetration_max_rel));
+                                                  r.t_window, FB_JOINT_B, &inner) == FB_OK &&
+        row_peaks(mine, m, 1) && row_peaks(theirs, ref, 1))
+      b->error = fb_bench_rel_parts(b->part, mine, theirs, FB_BENCH_PARTS);
     b->has_vs_exact = 1;
     b->force_vs_exact = rel(m->spikes.force_max, ex->spikes.force_max);
     b->pen_vs_exact = rel(m->spikes.penetration_max, ex->spikes.penetration_max);
@@ -203,6 +289,8 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
     b->cost_vs_exact = us[q] / us[0];
   }
   fb_run_free(&r);
+  k.model_count = 2;
+  if (*n > first) return halving(rows + first, *n - first, idx, kinds, &k, diag);
   return FB_OK;
 }
 
@@ -277,12 +365,18 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
   const int iters[4] = {0, 10, 20, 50}; /* 0: dWorldStep */
   const double erp[2] = {0.2, 0.8}, cfm[2] = {1e-10, 1e-8};
   const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
+  const int frontier = !solvers && (grids & FB_BENCH_FRONTIER) != 0; /* solvers holds it */
   const int mujoco = solvers && fb_engine_available(FB_ENGINE_MUJOCO);
   const int bullet_only = grids == FB_BENCH_BULLET;
   const int bullet = (solvers || bullet_only) && fb_engine_available(FB_ENGINE_BULLET);
+  const int mj_frontier = frontier && fb_engine_available(FB_ENGINE_MUJOCO);
+  const int extra = solvers || frontier; /* the tuned ideal and adaptive rows */
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
   const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
-                    (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS : 0) +
+                    (extra ? FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE : 0) +
+                    (frontier ? FB_BENCH_FRONTIER_STEPS + 1 : 0) +
+                    (mj_frontier ? FB_BENCH_FRONTIER_STEPS + FB_BENCH_ADAPTIVE : 0) +
+                    (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS + FB_BENCH_ADAPTIVE : 0) +
                     (bullet ? FB_BENCH_BULLET_SOLVERS * FB_BENCH_BULLET_STEPS : 0) + bullet_only +
                     (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
@@ -313,6 +407,84 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
           if (st != FB_OK) return st;
           if (progress) progress((double)++done / total, user);
         }
+  /* the ideal model at its cheapest setting for 1e-5 (issue 29): world
+   * ERP 1 (the whole joint error corrected each step) lets the step double */
+  /* the frontier (--grid frontier): the case's stepper, world ERP/CFM and
+   * mapping at the fixed steps of FB_BENCH_FRONTIER_STEPS and auto, the
+   * ideal model at ERP 0.8, CFM 1e-8, h = 1e-5 s; MuJoCo with the case's
+   * integrators at the fixed steps */
+  const double fh[FB_BENCH_FRONTIER_STEPS] = {1e-5, 3e-6, 1e-6, 0.0}; /* 0: auto */
+  for (int hi = 0; hi < (frontier ? FB_BENCH_FRONTIER_STEPS : 0); hi++) {
+    fb_case k;
+    bench_case(&k, c, fh[hi], FB_ENGINE_ODE);
+    fb_status st = bench_point(rows, n, &k, "ode", k.solver.stepper == FB_STEPPER_WORLD ? "world" : "quick",
+                               k.clearance.mapping, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  if (frontier) {
+    fb_case k;
+    bench_case(&k, c, 1e-5, FB_ENGINE_ODE);
+    k.model_count = 1;
+    k.solver.stepper = FB_STEPPER_WORLD;
+    k.solver.world_erp = 0.8;
+    k.solver.world_cfm = 1e-8;
+    fb_status st = bench_point(rows, n, &k, "ode", "world", 0, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  for (int hi = 0; hi < (mj_frontier ? FB_BENCH_FRONTIER_STEPS - 1 : 0); hi++) {
+    fb_case k;
+    bench_case(&k, c, fh[hi], FB_ENGINE_MUJOCO);
+    fb_status st = bench_point(rows, n, &k, "mujoco", fb_mujoco_integrator_name(k.mujoco.integrator),
+                               -1, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  for (int ti = 0; ti < (extra ? FB_BENCH_IDEAL_TUNED : 0); ti++) {
+    const double tuned[FB_BENCH_IDEAL_TUNED][3] = {{1.5e-5, 1.0, 1e-10}, {2e-5, 1.0, 1e-10}};
+    fb_case k;
+    bench_case(&k, c, tuned[ti][0], FB_ENGINE_ODE);
+    k.model_count = 1;
+    k.solver.stepper = FB_STEPPER_WORLD;
+    k.solver.world_erp = tuned[ti][1];
+    k.solver.world_cfm = tuned[ti][2];
+    fb_status st = bench_point(rows, n, &k, "ode", "world", 0, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  /* ODE with [solver] h_s = adaptive (step_control.h) at two accuracies */
+  for (int ai = 0; ai < (extra ? FB_BENCH_ADAPTIVE : 0); ai++) {
+    const double accuracy[FB_BENCH_ADAPTIVE] = {0.3, 0.1};
+    fb_case k;
+    bench_case(&k, c, 0.0, FB_ENGINE_ODE);
+    k.solver.h_mode = FB_STEP_ADAPTIVE;
+    k.solver.h = k.solver.h_min;
+    k.solver.accuracy = accuracy[ai];
+    k.solver.stepper = FB_STEPPER_WORLD;
+    char stepper[32];
+    snprintf(stepper, sizeof stepper, "world-a%g", accuracy[ai]);
+    const int mapping = k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
+                                                                  : k.clearance.mapping;
+    fb_status st = bench_point(rows, n, &k, "ode", stepper, mapping, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  /* MuJoCo with [solver] h_s = adaptive, the case's integrators */
+  for (int ai = 0; ai < (mujoco || mj_frontier ? FB_BENCH_ADAPTIVE : 0); ai++) {
+    const double accuracy[FB_BENCH_ADAPTIVE] = {0.3, 0.1};
+    fb_case k;
+    bench_case(&k, c, 0.0, FB_ENGINE_MUJOCO);
+    k.solver.h_mode = FB_STEP_ADAPTIVE;
+    k.solver.h = k.solver.h_min;
+    k.solver.accuracy = accuracy[ai];
+    char stepper[32];
+    snprintf(stepper, sizeof stepper, "%s-a%g", fb_mujoco_integrator_name(k.mujoco.integrator),
+             accuracy[ai]);
+    fb_status st = bench_point(rows, n, &k, "mujoco", stepper, -1, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
   /* MuJoCo: integrator x step, with the case's loop closure and drive */
   if (mujoco) {
     const double mh[FB_BENCH_MUJOCO_STEPS] = {1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6};

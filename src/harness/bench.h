@@ -13,8 +13,13 @@
  * (sequential impulse at 10, 50 and 100 iterations, "si-N"; mlcp-dantzig,
  * "mlcp") x h (1e-4, 1e-5, 1e-6 s and auto) with the case's mapping (models
  * bullet-ideal-stackup and bullet-clearance-impact). Error of the ideal model: largest |relative error| of the
- * four angular-velocity peaks; of the clearance model: the larger of
- * |peak force| and |max penetration| relative errors against the reference.
+ * four angular-velocity peaks; of the clearance model: the largest of the
+ * |relative errors| of peak force, max penetration and the coupler and
+ * follower alpha spikes (peak |alpha|) against the reference, each part kept
+ * in the row. Every fixed-step row also has a step-halving consistency
+ * figure: the same case run once more at h/2 (no reference), the largest
+ * relative change of the same peaks, an error estimate where no reference
+ * exists.
  * A row is on the Pareto front of its model (so of its engine) when no other
  * row of that model is both cheaper and at least as accurate.
  *
@@ -30,6 +35,7 @@
 #ifndef FB_BENCH_H
 #define FB_BENCH_H
 
+#include "analytic.h"
 #include "case.h"
 #include "model_table.h"
 #include "outcome.h"
@@ -41,6 +47,8 @@ typedef struct fb_bench_row_s {
   char stepper[32];        /* ode: "world" or "quick-<iterations>"; mujoco: its integrator */
   double h;                /* [s] */
   int h_auto;              /* 1: h came from [solver] h_s = auto */
+  int h_adaptive;          /* 1: [solver] h_s = adaptive; h is the output grid (h_min_s) */
+  double steps_taken;      /* engine steps of the run [-] (adaptive: its own steps) */
   int mapping;             /* fb_mapping; -1 where none applies (ideal, mujoco) */
   double world_erp, world_cfm; /* ode's ideal joints; NaN for mujoco */
   fb_stop stop;            /* why the model's run stopped (FB_STOP_NONE: it did not) */
@@ -61,7 +69,36 @@ typedef struct fb_bench_row_s {
   int impacts;             /* impacts counted over the peak window [-] */
   int impacts_exact;       /* by the exact collider [-] */
   double cost_vs_exact;    /* us_per_step / the exact collider's [-] */
+  double part[4];          /* clearance rows beside the reference: the parts of error, signed
+                              (model - reference) / |reference| of peak force, max penetration,
+                              coupler and follower alpha spike (FB_BENCH_PART_*) [-]; NaN else */
+  double halving;          /* step-halving consistency of a fixed-step row: largest |relative
+                              change| of the peaks its error compares (ideal: the four omega
+                              peaks; clearance: the four parts) from h to h/2 [-]; NaN for
+                              auto rows and when either run stopped */
+  double halving_part[4];  /* clearance rows: each part's change from h to h/2, signed
+                              (peak at h - peak at h/2) / |peak at h/2| [-]; NaN else */
 } fb_bench_row;
+
+/* The parts of a clearance row's error, in order (fb_bench_row.part). */
+enum {
+  FB_BENCH_PART_FORCE = 0,          /* peak contact force */
+  FB_BENCH_PART_PENETRATION = 1,    /* max penetration depth */
+  FB_BENCH_PART_ALPHA_COUPLER = 2,  /* coupler alpha spike: peak |alpha| */
+  FB_BENCH_PART_ALPHA_FOLLOWER = 3, /* follower alpha spike */
+  FB_BENCH_PARTS = 4
+};
+
+/* A body's alpha spike: max(|alpha_max|, |alpha_min|) over the peak window
+ * [rad/s^2]. */
+double fb_bench_alpha_spike(const fb_body_peaks *p);
+
+/* rel[i] = (a[i] - b[i]) / |b[i]| for i < n (signed relative difference of
+ * peak a from peak b); returns the largest |rel[i]|, the combined error
+ * (NaN when any is not finite, b[i] = 0 included). A clearance row's error
+ * is this over FB_BENCH_PARTS peaks against the reference's; its halving
+ * figure the same with a = peaks at h, b = peaks at h/2. */
+double fb_bench_rel_parts(double *rel, const double *a, const double *b, int n);
 
 /* Which grids fb_bench_run runs. */
 enum {
@@ -69,14 +106,31 @@ enum {
   FB_BENCH_COLLIDERS = 2, /* the collider axis */
   FB_BENCH_BULLET = 4,    /* Bullet's grid alone (part of FB_BENCH_SOLVERS), beside ODE at the
                              case's own settings (one configuration, the same run's yardstick) */
-  FB_BENCH_SIMBODY = 8    /* Simbody's integrator x accuracy (bench.c, simbody_grid); alone,
+  FB_BENCH_SIMBODY = 8,   /* Simbody's integrator x accuracy (bench.c, simbody_grid); alone,
                              with ODE's dWorldStep rows at the matched mapping */
+  FB_BENCH_FRONTIER = 16  /* the step-size frontier alone (a subset of FB_BENCH_SOLVERS'
+                             rows): fixed h = 1e-5, 3e-6, 1e-6 s and auto with the case's
+                             settings, the tuned ideal rows and the adaptive rows */
 };
 
-#define FB_BENCH_MAX_ROWS 320
+/* Rows one bench run may hold: every engine's grid (ODE 320 rows, MuJoCo,
+ * Bullet, Simbody, the adaptive and tuned rows and the collider axis come to
+ * about 500); a run that would pass it stops with an error, never a silent cut. */
+#define FB_BENCH_MAX_ROWS 1024
 
 /* ODE step sizes of the grid: 1e-3, 1e-4, 1e-5, 1e-6 s and auto. */
 #define FB_BENCH_STEPS 5
+/* ODE ideal rows beyond the grid: dWorldStep, world ERP 1, CFM 1e-10 at
+ * h = 1.5e-5 and 2e-5 s (the 1e-5 error target at half the 1e-5 s cost). */
+#define FB_BENCH_IDEAL_TUNED 2
+/* Rows with [solver] h_s = adaptive: accuracy 0.3 and 0.1; ODE with
+ * dWorldStep, the case's world ERP/CFM and mapping (stepper
+ * "world-a<accuracy>"), MuJoCo with the case's integrator
+ * ("<integrator>-a<accuracy>"). */
+#define FB_BENCH_ADAPTIVE 2
+/* Steps of the frontier grid: 1e-5, 3e-6, 1e-6 s and auto (ODE; MuJoCo the
+ * three fixed ones). */
+#define FB_BENCH_FRONTIER_STEPS 4
 #define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
 #define FB_BENCH_BULLET_STEPS 4 /* step sizes of the Bullet grid: 1e-4, 1e-5, 1e-6 s and auto */
 #define FB_BENCH_BULLET_SOLVERS 4 /* sequential impulse at 10, 50, 100 iterations; mlcp-dantzig */

@@ -53,6 +53,16 @@ typedef struct {
   size_t contact_steps;   /* steps with a contact row at this joint [-] */
 } fb_contact_provenance;
 
+/* The steps an instance took ([solver] h_s = adaptive: ODE steps of varying
+ * size; fixed: every step h). */
+typedef struct {
+  size_t steps;    /* engine steps taken [-] */
+  double h_min;    /* shortest step taken [s] */
+  double h_max;    /* longest step taken [s] */
+  size_t n_h_min;  /* steps of the shortest size [-] */
+  size_t n_h_max;  /* steps of the longest size [-] */
+} fb_step_stats;
+
 typedef struct fb_engine {
   const char *name;                 /* fb_engine_name of its id */
   int guarded;                      /* 1: the harness stops a run whose penetration exceeds
@@ -77,6 +87,8 @@ typedef struct fb_engine {
   double (*drift)(const void *self);
   size_t (*steps)(const void *self);
   void (*destroy)(void *self);
+  void (*step_stats)(const void *self, fb_step_stats *out); /* optional: the steps taken
+                                       (engines that follow [solver] h_s = adaptive) */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:

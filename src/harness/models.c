@@ -99,6 +99,10 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
   if (e->step_values_lag) fb_series_attribute_to_step_start(&r->series);
   if (e->refine_peaks) fb_series_refine_peaks(&r->series, FB_REFERENCE_REFINE_FRACTION);
   r->steps = e->steps(self);
+  if (e->step_stats && sm->solver.h_mode == FB_STEP_ADAPTIVE) {
+    r->has_step_stats = 1;
+    e->step_stats(self, &r->step_stats);
+  }
   if (e->provenance && sm->clearance_mask) {
     r->has_provenance = 1;
     for (int j = 0; j < 4; j++)

@@ -31,6 +31,8 @@ typedef struct {
   fb_collider collider;    /* collider of its clearance joints (FB_COLLIDER_NONE without) */
   int segments;            /* faceted boxes or ccd segments of the ring [-]; 0 for the others */
   double bore_ovality;     /* ccd: the ellipse bore's diameter excess [m]; 0: circle */
+  int has_step_stats;      /* 1 for a model that followed [solver] h_s = adaptive */
+  fb_step_stats step_stats; /* its steps: count, shortest and longest h and their counts */
   int has_provenance;      /* 1 when the engine kept provenance[] */
   fb_contact_provenance provenance[4]; /* per clearance joint, at the end of the run */
 } fb_model_run;

@@ -54,6 +54,7 @@ fb_status fb_scene_def_from_case(fb_scene_def *def, const fb_case *c, fb_diag *d
    * the contact at the resolved corner (resolution.h); the case is checked
    * again with it */
   const int auto_step = r->solver.h_mode == FB_STEP_AUTO ||
+                        r->solver.h_mode == FB_STEP_ADAPTIVE ||
                         (r->solver.h_mode == FB_STEP_DEFAULT && r->clearance.mask);
   if (st == FB_OK) st = fb_case_resolve_step(r, diag);
   if (st == FB_OK && (c->stackup.worst || auto_step)) st = fb_case_check(r, diag);
@@ -72,6 +73,10 @@ fb_status fb_scene_def_from_case(fb_scene_def *def, const fb_case *c, fb_diag *d
   def->pin_radius = 0.5 * r->pin_diameter;
   def->pin_length = r->pin_length;
   def->mapping = (fb_mapping)r->clearance.mapping;
+  /* the adaptive step's long steps in continuous contact need a row whose
+   * static stiffness does not depend on h: matched turns matched-static */
+  if (r->solver.h_mode == FB_STEP_ADAPTIVE && def->mapping == FB_MAPPING_MATCHED)
+    def->mapping = FB_MAPPING_MATCHED_STATIC;
   def->friction = r->clearance.friction;
   def->penetration_limit = fb_case_penetration_limit(r);
   /* [clearance] segments, when given, sizes both generic rings */

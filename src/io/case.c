@@ -145,6 +145,11 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
   fb_case_stackup_lengths(c, &su);
   st = check_drivable(&su, "stack-up", diag);
   if (st != FB_OK) return st;
+  if (c->solver.h_mode == FB_STEP_ADAPTIVE && !(c->solver.h_max >= c->solver.h_min))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "[solver] h_max_s = %g: the longest adaptive step must not be below "
+                       "h_min_s = %g",
+                       c->solver.h_max, c->solver.h_min);
   double dur = fb_case_duration(c);
   if (!(c->solver.h > 0.0) || c->solver.h >= dur)
     return fb_diag_set(diag, FB_ERR_RANGE,

@@ -61,7 +61,9 @@ typedef enum { FB_STEPPER_WORLD = 0, FB_STEPPER_QUICK = 1 } fb_stepper;
 typedef enum {
   FB_STEP_DEFAULT = 0, /* not given: auto with clearance joints, else 1e-5 s */
   FB_STEP_FIXED = 1,   /* a number */
-  FB_STEP_AUTO = 2     /* "auto": from the contact (resolution.h, fb_step_auto) */
+  FB_STEP_AUTO = 2,    /* "auto": from the contact (resolution.h, fb_step_auto) */
+  FB_STEP_ADAPTIVE = 3 /* "adaptive": ODE steps from h_min to h_max that follow the contact,
+                          landing on the output grid of step h = h_min (ode/adaptive.h) */
 } fb_step_mode;
 
 /* The four revolute joints, in loop order. */
@@ -125,6 +127,9 @@ typedef struct {
 typedef struct {
   double h;                /* step size h [s] (resolved when h_mode is not FB_STEP_FIXED) */
   int h_mode;              /* fb_step_mode: how h was chosen */
+  double h_min;            /* adaptive: shortest step and the output grid's step [s] */
+  double h_max;            /* adaptive: longest step [s] >= h_min */
+  double accuracy;         /* adaptive: largest h omega_c in an impact or free flight [-] */
   fb_stepper stepper;      /* dWorldStep (direct) or dWorldQuickStep (SOR) */
   int quick_iterations;    /* dWorldQuickStep iterations [-] */
   double world_erp;        /* ERP of the ideal joints [-] in [0, 1] */

@@ -274,10 +274,22 @@ static const key_spec keys[] = {
      "letters, digits, - _ .", "unstable: a word the model's status must contain"},
 
     {"solver", "h_s", K_STEP, OFF(solver.h), 1.0, 0, 1, 1, 0, "s", "1e-5",
-     "the step size must be positive (at most 1 s), or auto",
+     "the step size must be positive (at most 1 s), auto or adaptive",
      "step size h of the ODE models; auto: the largest with h omega_c <= 0.5 at the stiffest "
-     "contact, at most one revolution / 6000; not given: auto for a case with clearance "
-     "joints, else the default"},
+     "contact, at most one revolution / 6000; adaptive: from h_min_s to h_max_s following the "
+     "contact (docs/step-size.md); not given: auto for a case with clearance joints, else the "
+     "default"},
+    {"solver", "h_min_s", K_DOUBLE, OFF(solver.h_min), 1.0, 0, 1e-3, 1, 0, "s", "1e-6",
+     "the shortest adaptive step must be positive, at most 1e-3 s",
+     "h_s = adaptive: the shortest step, and the output grid's step"},
+    {"solver", "h_max_s", K_DOUBLE, OFF(solver.h_max), 1.0, 0, 1e-2, 1, 0, "s", "2e-5",
+     "the longest adaptive step must be positive, at most 1e-2 s, and not below h_min_s",
+     "h_s = adaptive: the longest step (continuous contact, ideal joints)"},
+    {"solver", "accuracy", K_DOUBLE, OFF(solver.accuracy), 1.0, 0, 1, 1, 0, "-", "0.3",
+     "the adaptive accuracy must lie in (0, 1]",
+     "h_s = adaptive: the largest h omega_c (omega_c the contact's local frequency on the "
+     "effective mass) in an impact and before one; the penetration's largest relative change "
+     "per step in continuous contact"},
     {"solver", "stepper", K_STEPPER, OFF(solver.stepper), 0, 0, 0, 0, 0, "-", "world",
      "world or quick", "world: dWorldStep (direct LCP); quick: dWorldQuickStep (SOR)"},
     {"solver", "quick_iterations", K_INT, OFF(solver.quick_iterations), 0, 1, 1e6, 0, 0, "-",
@@ -675,6 +687,10 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
     case K_STEP:
       if (strcmp(e->value, "auto") == 0) {
         c->solver.h_mode = FB_STEP_AUTO;
+        return FB_OK;
+      }
+      if (strcmp(e->value, "adaptive") == 0) {
+        c->solver.h_mode = FB_STEP_ADAPTIVE;
         return FB_OK;
       }
       st = parse_double(e, k, &v, diag);

@@ -253,6 +253,17 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "impact_statistics", fb_report_ensemble_json(m, r));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
+  /* [solver] h_s = adaptive: the engine's own steps (steps above counts the
+   * output grid's samples) */
+  if (run->has_step_stats)
+    json_object_set_new(
+        o, "adaptive_steps",
+        json_pack("{s:I,s:o,s:I,s:o,s:I}", "steps_taken", (json_int_t)run->step_stats.steps,
+                  "h_min_s", num(run->step_stats.h_min), "h_min_count",
+                  (json_int_t)run->step_stats.n_h_min, "h_max_s", num(run->step_stats.h_max),
+                  "h_max_count", (json_int_t)run->step_stats.n_h_max));
+  else
+    json_object_set_new(o, "adaptive_steps", json_null());
   json_object_set_new(o, "lengths_m", lengths_json(&run->lengths));
   if (m->has_peaks) {
     json_object_set_new(o, "coupler", fb_report_body_peaks_json(&m->peaks.coupler));

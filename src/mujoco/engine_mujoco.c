@@ -33,6 +33,10 @@ static size_t mujoco_steps(const void *self) { return fb_mujoco_scene_steps(self
 
 static void mujoco_destroy(void *self) { fb_mujoco_scene_destroy(self); }
 
+static void mujoco_step_stats(const void *self, fb_step_stats *out) {
+  fb_mujoco_scene_step_stats(self, out);
+}
+
 const fb_engine fb_engine_mujoco = {
     .name = "mujoco",
     .guarded = 1,
@@ -45,4 +49,5 @@ const fb_engine fb_engine_mujoco = {
     .drift = mujoco_drift,
     .steps = mujoco_steps,
     .destroy = mujoco_destroy,
+    .step_stats = mujoco_step_stats,
 };

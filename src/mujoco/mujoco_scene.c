@@ -1,4 +1,5 @@
 #include "mujoco_scene.h"
+#include "step_control.h"
 
 #include <math.h>
 #include <mujoco/mujoco.h>
@@ -36,6 +37,9 @@ typedef struct {
   double gravity;
   fb_link_mass link[3];
   double h;
+  int adaptive;         /* 1: [solver] h_s = adaptive (h is the output grid, h_min) */
+  double h_max;         /* adaptive: the longest step [s] */
+  double accuracy;      /* adaptive: step_control.h's accuracy [-] */
   int clearance_mask;
   double radial_clearance;
   fb_contact_law law[4];
@@ -51,11 +55,19 @@ static fb_status def_from_model(mj_def *d, const fb_scene_model *sm, fb_diag *di
   memset(d, 0, sizeof *d);
   fb_status st = fb_scene_model_start(&d->start, sm, diag);
   if (st != FB_OK) return st;
+  if (sm->solver.h_mode == FB_STEP_ADAPTIVE && sm->collider == FB_COLLIDER_NATIVE)
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "model '%s': [solver] h_s = adaptive follows the project's contact law "
+                       "only; run MuJoCo's native contacts at a fixed or auto step",
+                       sm->model->name);
   d->lengths = sm->lengths;
   d->omega2 = sm->omega2;
   d->gravity = sm->gravity;
   for (int i = 0; i < 3; i++) d->link[i] = sm->link[i];
   d->h = sm->solver.h;
+  d->adaptive = sm->solver.h_mode == FB_STEP_ADAPTIVE;
+  d->h_max = sm->solver.h_max;
+  d->accuracy = sm->solver.accuracy;
   d->clearance_mask = sm->clearance_mask;
   d->radial_clearance = sm->radial_clearance;
   for (int j = 0; j < 4; j++) d->law[j] = sm->law[j];
@@ -88,6 +100,17 @@ struct fb_mujoco_scene {
   double reaction[4][2]; /* joint forces now, invdyn.h's convention [N] */
   double drive_torque;   /* on the crank from the flywheel about +z [N m] */
   size_t steps;
+  /* [solver] h_s = adaptive (step_control.h): each MuJoCo step spans mc grid
+   * steps of h; the samples inside it are interpolated between its ends */
+  struct {
+    int m_max, m_prev, mc, k; /* grid steps: largest, of the last step; sample k of mc */
+    double h_prev;            /* the last step [s] */
+    double ddot_prev[4];      /* penetration rate at its start [m/s] */
+    double m_eff[4];          /* effective mass at the last contact [kg] */
+    double phase[4];          /* contact phase so far, sum of h omega_c [rad] (contact.h) */
+    fb_sample x0, x1;         /* samples at the last step's start and end */
+    fb_step_stats stats;
+  } ad;
 };
 
 /* the scene whose model is being stepped: mjcb_passive is one global hook */
@@ -197,8 +220,11 @@ static fb_status write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   const int mask = def->clearance_mask;
   static const char *const intname[3] = {"Euler", "implicit", "RK4"};
   const int integ = fb_mujoco_integrator_resolve(opts, mask);
-  const double k = opts->loop_stiffness > 0.0 ? opts->loop_stiffness : 1.0 / (h * h);
-  const double damp = opts->loop_damping > 0.0 ? opts->loop_damping : 1.0 / h;
+  /* the loop's default softness follows the step; an adaptive run's
+   * steps reach h_max, so its loop is set for that one */
+  const double hl = def->adaptive ? def->h_max : h;
+  const double k = opts->loop_stiffness > 0.0 ? opts->loop_stiffness : 1.0 / (hl * hl);
+  const double damp = opts->loop_damping > 0.0 ? opts->loop_damping : 1.0 / hl;
   text t = {buf, size, 0, 0};
   put(&t, "<mujoco model=\"fourbar\">\n");
   put(&t, "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n");
@@ -534,6 +560,12 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm
       native_solref_update(s, j);
     }
   reactions_now(s);
+  if (def->adaptive) {
+    s->ad.m_max = (int)floor(def->h_max / def->h * (1.0 + 1e-9));
+    if (s->ad.m_max < 1) s->ad.m_max = 1;
+    s->ad.m_prev = 1;
+    for (int j = 0; j < 4; j++) s->ad.m_eff[j] = def->law[j].mass; /* until the first contact */
+  }
   *out = s;
   return FB_OK;
 }
@@ -585,7 +617,7 @@ static void note_contact(fb_mujoco_scene *s, int j) {
   double kp, kd, depth;
   fb_contact_linearize(&s->def.law[j], FB_MAPPING_SECANT, c->delta, c->ddot, c->ep.v0, &kp, &kd,
                        &depth);
-  const double hw = fb_contact_h_omega(s->def.h, kp, mass);
+  const double hw = fb_contact_h_omega(s->m->opt.timestep, kp, mass);
   fb_contact_provenance *p = &c->prov;
   if (p->contact_steps == 0 || mass < p->mass_eff_min) p->mass_eff_min = mass;
   if (p->contact_steps == 0 || mass > p->mass_eff_max) p->mass_eff_max = mass;
@@ -620,8 +652,10 @@ static void native_solref_update(fb_mujoco_scene *s, int j) {
   }
 }
 
-fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
-  (void)diag;
+static void sample_now(const fb_mujoco_scene *s, fb_sample *x);
+
+/* one MuJoCo step of the model's timestep from the state now */
+static void step_once(fb_mujoco_scene *s) {
   stepping = s;
   mjcb_passive = passive_hook;
   /* integrate with the accelerations of the last forward pass (this state) */
@@ -632,7 +666,6 @@ fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
   }
   mj_forward(s->m, s->d);
   stepping = NULL;
-  s->steps++;
   for (int j = 0; j < 4; j++) {
     if (!(s->def.clearance_mask & (1 << j))) continue;
     mj_clearance *c = &s->cl[j];
@@ -644,10 +677,110 @@ fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
     if (c->delta > 0.0) note_contact(s, j);
   }
   reactions_now(s);
+}
+
+/* the next adaptive step as grid steps: the shortest any clearance joint's
+ * contact asks for (step_control.h; persistence from the contact phase, as
+ * ODE's matched-static row counts it), ramped */
+static int adapt_multiple(fb_mujoco_scene *s) {
+  const double hg = s->def.h;
+  double h = s->def.h_max;
+  for (int j = 0; j < 4; j++) {
+    if (!(s->def.clearance_mask & (1 << j))) continue;
+    const mj_clearance *c = &s->cl[j];
+    if (c->delta > 0.0) {
+      const double me = joint_effective_mass(s, s->m, s->d, j);
+      if (me > 0.0) s->ad.m_eff[j] = me;
+    }
+    fb_step_joint sj;
+    sj.delta = c->delta;
+    sj.ddot = c->ddot;
+    sj.m_eff = s->ad.m_eff[j];
+    sj.dddot = s->ad.stats.steps > 0 ? (c->ddot - s->ad.ddot_prev[j]) / s->ad.h_prev : 0.0;
+    s->ad.ddot_prev[j] = c->ddot;
+    sj.persistence = c->delta > 0.0 ? fb_contact_persistence(s->ad.phase[j]) : 0.0;
+    fb_contact_law law = s->def.law[j];
+    if (law.kind == FB_LAW_RESTITUTION) law.mass = sj.m_eff;
+    h = fmin(h, fb_step_adaptive(&law, &sj, s->def.accuracy, hg, s->def.h_max));
+  }
+  const int want = (int)floor(h / hg * (1.0 + 1e-9));
+  return fb_step_ramp(want < 1 ? 1 : want, s->ad.m_prev, s->ad.m_max);
+}
+
+fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
+  (void)diag;
+  if (!s->def.adaptive) {
+    step_once(s);
+    s->steps++;
+    return FB_OK;
+  }
+  if (s->ad.k < s->ad.mc) { /* a sample inside the last step */
+    s->ad.k++;
+    s->steps++;
+    return FB_OK;
+  }
+  const int mult = adapt_multiple(s);
+  const double h = mult * s->def.h;
+  sample_now(s, &s->ad.x0);
+  s->m->opt.timestep = h;
+  step_once(s);
+  sample_now(s, &s->ad.x1);
+  /* the contact phase (contact.h): h omega_c at each joint in contact */
+  for (int j = 0; j < 4; j++) {
+    if (!(s->def.clearance_mask & (1 << j))) continue;
+    const mj_clearance *c = &s->cl[j];
+    if (!(c->delta > 0.0)) {
+      s->ad.phase[j] = 0.0;
+      continue;
+    }
+    double kp, kd, depth;
+    fb_contact_linearize(&s->def.law[j], FB_MAPPING_TANGENT, c->delta, c->ddot, c->ep.v0, &kp,
+                         &kd, &depth);
+    s->ad.phase[j] += fb_contact_h_omega(h, kp, s->ad.m_eff[j]);
+  }
+  fb_step_stats *t = &s->ad.stats;
+  if (t->steps == 0 || h < t->h_min * (1.0 - 1e-9)) t->h_min = h, t->n_h_min = 0;
+  if (t->steps == 0 || h > t->h_max * (1.0 + 1e-9)) t->h_max = h, t->n_h_max = 0;
+  t->n_h_min += fabs(h - t->h_min) <= 1e-9 * h;
+  t->n_h_max += fabs(h - t->h_max) <= 1e-9 * h;
+  t->steps++;
+  s->ad.m_prev = mult;
+  s->ad.h_prev = h;
+  s->ad.mc = mult;
+  s->ad.k = 1;
+  s->steps++;
   return FB_OK;
 }
 
+void fb_mujoco_scene_step_stats(const fb_mujoco_scene *s, fb_step_stats *out) {
+  if (s->def.adaptive) {
+    *out = s->ad.stats;
+    return;
+  }
+  out->steps = s->steps;
+  out->h_min = out->h_max = s->def.h;
+  out->n_h_min = out->n_h_max = s->steps;
+}
+
 void fb_mujoco_scene_sample(const fb_mujoco_scene *s, fb_sample *x) {
+  if (s->def.adaptive && s->ad.k < s->ad.mc) {
+    /* inside a step: every column linear between its ends (MuJoCo's values
+     * are those of each end's state), the contact state the end's */
+    const double f = (double)s->ad.k / (double)s->ad.mc;
+    const size_t n = sizeof *x / sizeof(double);
+    double a[sizeof *x / sizeof(double)], b[sizeof *x / sizeof(double)], v[sizeof *x / sizeof(double)];
+    memcpy(a, &s->ad.x0, sizeof a);
+    memcpy(b, &s->ad.x1, sizeof b);
+    for (size_t i = 0; i < n; i++) v[i] = a[i] + f * (b[i] - a[i]);
+    memcpy(x, v, sizeof v);
+    for (int j = 0; j < 4; j++) x->contact[j][FB_C_STATE] = s->ad.x1.contact[j][FB_C_STATE];
+    x->t = (double)s->steps * s->def.h;
+    return;
+  }
+  sample_now(s, x);
+}
+
+static void sample_now(const fb_mujoco_scene *s, fb_sample *x) {
   const mjData *d = s->d;
   const int *dof = s->hinge_dof;
   /* planar chain: a body turns by its own hinge plus its parent's */

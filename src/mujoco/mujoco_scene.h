@@ -118,6 +118,10 @@ int fb_mujoco_scene_impacts(const fb_mujoco_scene *s, int j);
 /* Steps taken. */
 size_t fb_mujoco_scene_steps(const fb_mujoco_scene *s);
 
+/* The MuJoCo steps taken: with [solver] h_s = adaptive their count,
+ * shortest and longest size and how many of each; else every step h. */
+void fb_mujoco_scene_step_stats(const fb_mujoco_scene *s, fb_step_stats *out);
+
 /* MuJoCo's library version string ("2.2.2"). */
 const char *fb_mujoco_version(void);
 

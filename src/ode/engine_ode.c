@@ -35,6 +35,10 @@ static size_t ode_steps(const void *self) { return fb_scene_steps(self); }
 
 static void ode_destroy(void *self) { fb_scene_destroy(self); }
 
+static void ode_step_stats(const void *self, fb_step_stats *out) {
+  fb_scene_step_stats(self, out);
+}
+
 const fb_engine fb_engine_ode = {
     .name = "ode",
     .guarded = 1,
@@ -50,4 +54,5 @@ const fb_engine fb_engine_ode = {
     .drift = ode_drift,
     .steps = ode_steps,
     .destroy = ode_destroy,
+    .step_stats = ode_step_stats,
 };

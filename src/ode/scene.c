@@ -1,4 +1,5 @@
 #include "scene.h"
+#include "step_control.h"
 
 #include <math.h>
 #include <ode/ode.h>
@@ -68,6 +69,23 @@ struct fb_scene {
   double alpha[3];
   double w_inv[4][2][2]; /* inverse-mass tensors of the clearance joints this step [1/kg] */
   int w_valid;           /* w_inv holds this step's configuration */
+  double h_now;          /* step of the ODE step being taken [s]: solver.h, or the adaptive one */
+  /* [solver] h_s = adaptive (step_control.h): each ODE step spans mc grid
+   * steps of solver.h (= h_min); the samples inside it are interpolated */
+  struct {
+    int on;               /* 1: adaptive */
+    int m_max;            /* h_max / h_min, rounded down [-] */
+    int m_prev;           /* grid steps of the last ODE step [-] */
+    double h_prev;        /* the last ODE step [s] */
+    double ddot_prev[4];  /* penetration rate at its start, per clearance joint [m/s] */
+    int mc, k;            /* the last ODE step spans mc samples; sample k of them is reported */
+    double ang0[3], ang1[3], w0[3], w1[3]; /* angles [rad] and omega [rad/s] at its ends */
+    double pen0[4], pen1[4], ex0[4], ex1[4], ey0[4], ey1[4]; /* penetration, eccentricity [m] */
+    fb_step_stats stats;  /* steps taken, shortest and longest h and their counts */
+    double pen_end;       /* largest penetration at the last ODE step's end [m] */
+    int pen_joint_end;    /* its joint */
+    double drift_end;     /* hinge drift at the last ODE step's end [m] */
+  } ad;
 };
 
 /* the effective mass of clearance joint j along unit n (pin minus hole
@@ -187,6 +205,12 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *dia
       sm->collider != FB_COLLIDER_FACETED && sm->collider != FB_COLLIDER_CCD)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the ODE engine has no such collider",
                        sm->model->name);
+  if (sm->solver.h_mode == FB_STEP_ADAPTIVE && sm->clearance_mask &&
+      sm->collider != FB_COLLIDER_EXACT)
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "model '%s': [solver] h_s = adaptive follows the exact collider's contact "
+                       "only; run the %s collider at a fixed or auto step",
+                       sm->model->name, fb_collider_name(sm->collider));
   const fb_scene_model *def = sm;
   fb_start_state st;
   fb_status rc = fb_scene_model_start(&st, def, diag);
@@ -288,6 +312,13 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *dia
     s->angle[i] = body_angle(s->body[i]);
     s->omega_prev[i] = dBodyGetAngularVel(s->body[i])[2];
     s->alpha[i] = 0.0;
+  }
+  s->h_now = def->solver.h;
+  if (def->solver.h_mode == FB_STEP_ADAPTIVE) {
+    s->ad.on = 1;
+    s->ad.m_max = (int)floor(def->solver.h_max / def->solver.h * (1.0 + 1e-9));
+    if (s->ad.m_max < 1) s->ad.m_max = 1;
+    s->ad.m_prev = 1;
   }
   *out = s;
   return FB_OK;
@@ -536,17 +567,17 @@ static void clearance_contact(fb_scene *s, int j) {
   dContact ct;
   memset(&ct, 0, sizeof ct);
   fb_contact_row used;
-  if (!fb_ode_soft_contact(&ct, &law, d->mapping, d->solver.h, m_eff, 1, delta, ddot, c->ep.v0,
+  if (!fb_ode_soft_contact(&ct, &law, d->mapping, s->h_now, m_eff, 1, delta, ddot, c->ep.v0,
                            onset, c->persistence, d->friction, &used))
     return;
   if (d->mapping == FB_MAPPING_MATCHED_STATIC && used.erp > 0.0) {
     /* the row's lambda = a d_n + b u: handing it d_n + drift / ERP makes its
      * b act on the penetration's true rate u + drift / h (contact.h) */
-    used.depth += step_drift(c, n, ev, ecc, d->solver.h) / used.erp;
+    used.depth += step_drift(c, n, ev, ecc, s->h_now) / used.erp;
     ct.geom.depth = used.depth;
   }
   c->step_share = used.step_share;
-  note_row(c, &used, 1.0, m_eff, d->solver.h);
+  note_row(c, &used, 1.0, m_eff, s->h_now);
   /* hole centre + R_hole n, on the hole wall */
   const double r_hole = d->pin_radius + d->radial_clearance;
   dVector3 q;
@@ -565,8 +596,10 @@ static void clearance_contact(fb_scene *s, int j) {
   dJointSetFeedback(c->cj, &c->fb);
 }
 
-fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
-  const double h = s->def.solver.h;
+/* one ODE step of size h from the state now (the step's contact rows,
+ * dWorldStep or dWorldQuickStep, the forces and accelerations it left) */
+static fb_status world_step(fb_scene *s, double h, fb_diag *diag) {
+  s->h_now = h;
   s->w_valid = 0;
   for (int j = 0; j < 4; j++) {
     if (!(s->def.clearance_mask & (1 << j))) continue;
@@ -649,7 +682,6 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_NOMEM, "ODE could not allocate memory for step %zu",
                        s->steps + 1);
   }
-  s->steps++;
   for (int i = 0; i < 3; i++) {
     double w = dBodyGetAngularVel(s->body[i])[2];
     s->alpha[i] = (w - s->omega_prev[i]) / h;
@@ -662,6 +694,97 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
   return FB_OK;
 }
 
+/* penetration (0 when free) and eccentricity of every clearance joint now */
+static void adapt_geometry(const fb_scene *s, double pen[4], double ex[4], double ey[4]) {
+  for (int j = 0; j < 4; j++) {
+    pen[j] = ex[j] = ey[j] = 0.0;
+    if (!(s->def.clearance_mask & (1 << j))) continue;
+    double e[2], ev[2], num;
+    clearance_geometry(&s->cl[j], e, &num, ev);
+    pen[j] = clearance_penetration(s, &s->cl[j]);
+    ex[j] = e[0];
+    ey[j] = e[1];
+  }
+}
+
+static double penetration_now(const fb_scene *s, int *joint);
+static double joint_drift_now(const fb_scene *s);
+
+/* the next adaptive step as grid steps: the shortest any clearance joint's
+ * contact asks for (step_control.h), ramped */
+static int adapt_multiple(fb_scene *s) {
+  const fb_scene_model *d = &s->def;
+  const double hg = d->solver.h;
+  double h = d->solver.h_max;
+  s->w_valid = 0;
+  for (int j = 0; j < 4; j++) {
+    if (!(d->clearance_mask & (1 << j))) continue;
+    const clearance *c = &s->cl[j];
+    double e[2], ev[2], num;
+    clearance_geometry(c, e, &num, ev);
+    const double ecc = hypot(e[0], e[1]);
+    const double n[2] = {ecc > 0.0 ? e[0] / ecc : 1.0, ecc > 0.0 ? e[1] / ecc : 0.0};
+    fb_step_joint sj;
+    sj.delta = ecc - d->radial_clearance;
+    sj.ddot = ecc > 0.0 ? num / ecc : 0.0;
+    sj.m_eff = step_effective_mass(s, j, n);
+    sj.dddot = s->ad.stats.steps > 0 ? (sj.ddot - s->ad.ddot_prev[j]) / s->ad.h_prev : 0.0;
+    s->ad.ddot_prev[j] = sj.ddot;
+    sj.persistence = d->mapping == FB_MAPPING_MATCHED_STATIC && sj.delta > 0.0
+                         ? fb_contact_persistence(c->phase)
+                         : 0.0;
+    const fb_contact_law law = step_law(&d->law[j], sj.m_eff);
+    h = fmin(h, fb_step_adaptive(&law, &sj, d->solver.accuracy, hg, d->solver.h_max));
+  }
+  int want = (int)floor(h / hg * (1.0 + 1e-9));
+  return fb_step_ramp(want < 1 ? 1 : want, s->ad.m_prev, s->ad.m_max);
+}
+
+fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
+  if (!s->ad.on) {
+    fb_status st = world_step(s, s->def.solver.h, diag);
+    if (st == FB_OK) s->steps++;
+    return st;
+  }
+  if (s->ad.k < s->ad.mc) { /* a sample inside the last ODE step */
+    s->ad.k++;
+    s->steps++;
+    return FB_OK;
+  }
+  const int m = adapt_multiple(s);
+  for (int i = 0; i < 3; i++) s->ad.ang0[i] = s->angle[i], s->ad.w0[i] = s->omega_prev[i];
+  adapt_geometry(s, s->ad.pen0, s->ad.ex0, s->ad.ey0);
+  const double h = m * s->def.solver.h;
+  fb_status st = world_step(s, h, diag);
+  if (st != FB_OK) return st;
+  for (int i = 0; i < 3; i++) s->ad.ang1[i] = s->angle[i], s->ad.w1[i] = s->omega_prev[i];
+  adapt_geometry(s, s->ad.pen1, s->ad.ex1, s->ad.ey1);
+  s->ad.pen_end = penetration_now(s, &s->ad.pen_joint_end);
+  s->ad.drift_end = joint_drift_now(s);
+  fb_step_stats *t = &s->ad.stats;
+  if (t->steps == 0 || h < t->h_min * (1.0 - 1e-9)) t->h_min = h, t->n_h_min = 0;
+  if (t->steps == 0 || h > t->h_max * (1.0 + 1e-9)) t->h_max = h, t->n_h_max = 0;
+  t->n_h_min += fabs(h - t->h_min) <= 1e-9 * h;
+  t->n_h_max += fabs(h - t->h_max) <= 1e-9 * h;
+  t->steps++;
+  s->ad.m_prev = m;
+  s->ad.h_prev = h;
+  s->ad.mc = m;
+  s->ad.k = 1;
+  s->steps++;
+  return FB_OK;
+}
+
+void fb_scene_step_stats(const fb_scene *s, fb_step_stats *out) {
+  if (s->ad.on) {
+    *out = s->ad.stats;
+    return;
+  }
+  out->steps = s->steps;
+  out->h_min = out->h_max = s->def.solver.h;
+  out->n_h_min = out->n_h_max = s->steps;
+}
+
 void fb_scene_sample(const fb_scene *s, fb_sample *x) {
   x->t = (double)s->steps * s->def.solver.h;
   x->crank_angle = s->angle[FB_CRANK];
@@ -671,10 +794,28 @@ void fb_scene_sample(const fb_scene *s, fb_sample *x) {
   x->follower_angle = s->angle[FB_FOLLOWER];
   x->follower_omega = s->omega_prev[FB_FOLLOWER];
   x->follower_alpha = s->alpha[FB_FOLLOWER];
+  if (s->ad.on && s->ad.k < s->ad.mc) {
+    /* inside an ODE step: angles and omega linear, alpha the step's */
+    const double f = (double)s->ad.k / (double)s->ad.mc;
+    double *ang[3] = {&x->crank_angle, &x->coupler_angle, &x->follower_angle};
+    for (int i = 0; i < 3; i++) *ang[i] = s->ad.ang0[i] + f * (s->ad.ang1[i] - s->ad.ang0[i]);
+    x->coupler_omega = s->ad.w0[FB_COUPLER] + f * (s->ad.w1[FB_COUPLER] - s->ad.w0[FB_COUPLER]);
+    x->follower_omega =
+        s->ad.w0[FB_FOLLOWER] + f * (s->ad.w1[FB_FOLLOWER] - s->ad.w0[FB_FOLLOWER]);
+  }
   for (int j = 0; j < 4; j++) {
     for (int q = 0; q < FB_CONTACT_COLS; q++) x->contact[j][q] = 0.0;
     if (!(s->def.clearance_mask & (1 << j))) continue;
     const clearance *c = &s->cl[j];
+    if (s->ad.on && s->ad.k < s->ad.mc) { /* inside an ODE step: interpolated */
+      const double f = (double)s->ad.k / (double)s->ad.mc;
+      x->contact[j][FB_C_FORCE] = c->force;
+      x->contact[j][FB_C_PEN] = s->ad.pen0[j] + f * (s->ad.pen1[j] - s->ad.pen0[j]);
+      x->contact[j][FB_C_EX] = s->ad.ex0[j] + f * (s->ad.ex1[j] - s->ad.ex0[j]);
+      x->contact[j][FB_C_EY] = s->ad.ey0[j] + f * (s->ad.ey1[j] - s->ad.ey0[j]);
+      x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->ep.state : (double)FB_STATE_FREE;
+      continue;
+    }
     double e[2], ev[2], num;
     clearance_geometry(c, e, &num, ev);
     x->contact[j][FB_C_FORCE] = c->force;
@@ -685,7 +826,7 @@ void fb_scene_sample(const fb_scene *s, fb_sample *x) {
   }
 }
 
-double fb_scene_penetration(const fb_scene *s, int *joint) {
+static double penetration_now(const fb_scene *s, int *joint) {
   double worst = 0.0;
   *joint = -1;
   for (int j = 0; j < 4; j++) {
@@ -722,7 +863,7 @@ void fb_scene_provenance(const fb_scene *s, int j, fb_contact_provenance *out) {
     out->mass_eff_min = out->mass_eff_max = out->erp_max = out->cfm_min = out->h_omega_max = NAN;
 }
 
-double fb_scene_joint_drift(const fb_scene *s) {
+static double joint_drift_now(const fb_scene *s) {
   double worst = 0.0;
   for (int j = 0; j < 4; j++) {
     if (!s->hinge[j]) continue;
@@ -734,6 +875,18 @@ double fb_scene_joint_drift(const fb_scene *s) {
     if (d > worst) worst = d;
   }
   return worst;
+}
+
+/* inside an adaptive ODE step the bodies rest at its end: the values of
+ * its end, kept when it was taken */
+double fb_scene_joint_drift(const fb_scene *s) {
+  return s->ad.on ? s->ad.drift_end : joint_drift_now(s);
+}
+
+double fb_scene_penetration(const fb_scene *s, int *joint) {
+  if (!s->ad.on) return penetration_now(s, joint);
+  *joint = s->ad.pen_joint_end;
+  return s->ad.pen_end;
 }
 
 void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_torque) {

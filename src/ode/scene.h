@@ -125,6 +125,11 @@ void fb_scene_provenance(const fb_scene *s, int j, fb_contact_provenance *out);
 /* Steps taken. */
 size_t fb_scene_steps(const fb_scene *s);
 
+/* The ODE steps taken: with [solver] h_s = adaptive their count, shortest
+ * and longest size and how many of each (a grid sample inside a step is not
+ * a step); else every step h. */
+void fb_scene_step_stats(const fb_scene *s, fb_step_stats *out);
+
 /* The mechanism's configuration now, for fb_effective_mass_tensor: body
  * masses and inertias from the definition, centres of mass from ODE, joint
  * centres from the hinge anchors and, for clearance joints, the pin centre;

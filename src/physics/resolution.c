@@ -86,6 +86,15 @@ fb_status fb_step_auto(double *h, double *omega_c_max, const fb_case *c, fb_diag
 fb_status fb_case_resolve_step(fb_case *c, fb_diag *diag) {
   const int automatic =
       c->solver.h_mode == FB_STEP_AUTO || (c->solver.h_mode == FB_STEP_DEFAULT && c->clearance.mask);
+  if (c->solver.h_mode == FB_STEP_ADAPTIVE) {
+    if (!(c->solver.h_max >= c->solver.h_min))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "[solver] h_max_s = %g: the longest adaptive step must not be below "
+                         "h_min_s = %g",
+                         c->solver.h_max, c->solver.h_min);
+    c->solver.h = c->solver.h_min; /* the output grid */
+    return FB_OK;
+  }
   if (!automatic) return FB_OK;
   return fb_step_auto(&c->solver.h, NULL, c, diag);
 }

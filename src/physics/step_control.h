@@ -1,0 +1,68 @@
+/* The contact-adaptive step ([solver] h_s = adaptive): the step a clearance
+ * joint's contact state asks for, engine-free. An engine takes the smallest
+ * over its clearance joints, rounds it down onto the output grid (a whole
+ * number of grid steps h_min, so every step lands on the grid) and ramps it
+ * (fb_step_ramp): an abrupt change of the step changes the contact row at
+ * once and fires an artificial acceleration spike.
+ *
+ * The rules (docs/step-size.md):
+ * - free flight and impacts (the contact row still matched, persistence < 1):
+ *   h omega_c <= accuracy, omega_c = sqrt(k_t / m_eff) the local contact
+ *   frequency on the true effective mass, k_t the law's tangent stiffness at
+ *   the larger of the current penetration and the depth an undamped impact
+ *   at the approach speed reaches (energy: 1/2 m v^2 = K d^(n+1) / (n + 1)),
+ *   the approach speed floored at FB_STEP_V_FLOOR_M_S;
+ * - persistent contact (the matched-static row, exact in statics, fully
+ *   static: persistence = 1): the penetration may change by at most
+ *   FB_STEP_DEPTH_CHANGE x accuracy of itself per step, predicted from its
+ *   rate and the rate's own change over the last step, (|ddot| + |dddot| h) h
+ *   (this also bounds the force rate, dF/F = n d delta / delta for a power
+ *   law), and h omega_c <=
+ *   FB_STEP_PERSISTENT_H_OMEGA (below the matched row's aliasing bound);
+ * - then clamped to [h_min, h_max]. */
+#ifndef FB_STEP_CONTROL_H
+#define FB_STEP_CONTROL_H
+
+#include "contact.h"
+
+/* One clearance joint's contact state at the start of a step. */
+typedef struct {
+  double delta;       /* penetration [m]; <= 0: free flight, -delta the gap */
+  double ddot;        /* penetration rate [m/s] (> 0: closing) */
+  double m_eff;       /* effective mass along the normal [kg] > 0 */
+  double persistence; /* weight of the static row this step, [0, 1] (contact.h) */
+  double dddot;       /* rate of change of ddot over the last step [m/s^2]: (ddot now - ddot
+                         then) / that step; 0 when unknown */
+} fb_step_joint;
+
+/* Approach speed floor of the impact estimate [m/s]: a pin drifting slowly
+ * towards the wall still meets it at the speed the joint's motion gives it;
+ * 0.05 m/s is below the paper case's impacts (0.1 to 0.4 m/s measured by
+ * the reference) so the estimate errs towards a short step. */
+#define FB_STEP_V_FLOOR_M_S 0.05
+/* Largest relative penetration change per step in persistent contact, as a
+ * fraction of the accuracy key [-]: 0.2 (6 % per step at the default
+ * accuracy 0.3); 0.3 to 0.6 halved the paper case's steps and doubled to
+ * quintupled its peak-force error (docs/step-size.md). */
+#define FB_STEP_DEPTH_CHANGE 0.2
+/* Largest h omega_c in persistent contact [-]: below the matched row's
+ * aliasing bound FB_MATCHED_ALIAS_BOUND (0.9 pi) with a margin; on the paper
+ * case 2.0 rang the contact (force 2.7x the reference's) before the ramp
+ * down was added, 0.7 to 2.0 measured alike since (the penetration-change
+ * rule binds first). */
+#define FB_STEP_PERSISTENT_H_OMEGA 1.5
+
+/* The step [s] joint j's state asks for under law (its stiffness and
+ * exponent; the restitution law's penalty is linear), accuracy in (0, 1],
+ * clamped to [h_min, h_max]. */
+double fb_step_adaptive(const fb_contact_law *law, const fb_step_joint *j, double accuracy,
+                        double h_min, double h_max);
+
+/* The grid multiple of the next step: want (from fb_step_adaptive, as
+ * multiples of the grid step, >= 1) kept within prev -+ max(1, prev / 4)
+ * (at most 25 % change per step past the first grid steps, up and down: on
+ * the paper case an unramped drop from 5 grid steps to 1 fired a coupler
+ * alpha spike 3.7 times the reference's), then within [1, max]. */
+int fb_step_ramp(int want, int prev, int max);
+
+#endif

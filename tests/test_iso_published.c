@@ -13,10 +13,8 @@
  *
  * A row is either checked (all three sizes agree: passed; else failed), or
  * listed with the reason it could not be checked: the standard does not
- * define that letter at that size (ISO 286-1's refusals), or it does, by a
- * tabulated value this program does not derive from a rule (j, J; small sizes
- * of t..zc; see iso286.h). A row refused in part, or refused for any other
- * reason, fails. The last line is "N passed, M failed", counted by
+ * define that letter at that size (ISO 286-1's refusals). A row refused in
+ * part, or refused for any other reason, fails. The last line is "N passed, M failed", counted by
  * scripts/quickstart.sh. */
 #include <dirent.h>
 #include <math.h>
@@ -84,7 +82,7 @@ static int check_iso286(const char *path) {
   }
   char line[1024];
   char *head[16], *f[16];
-  int nh = 0, rows = 0, checked = 0, ok_rows = 0, bad_rows = 0, undefined = 0, not_derived = 0;
+  int nh = 0, rows = 0, checked = 0, ok_rows = 0, bad_rows = 0, undefined = 0;
   int ck = -1, cl = -1, cg = -1, co = -1, cu = -1, cup = -1, clo = -1;
   char header[1024] = "";
   while (fgets(line, sizeof line, fp)) {
@@ -120,7 +118,7 @@ static int check_iso286(const char *path) {
     snprintf(row, sizeof row, "%s %s over %s up to %s mm", f[ck], cls, f[co], f[cu]);
     double pts[N_POINTS];
     row_points(pts, over, upto, -1.0);
-    int n_ok = 0, n_undef = 0, n_nd = 0, mismatch = 0;
+    int n_ok = 0, n_undef = 0, mismatch = 0;
     char why_msg[FB_DIAG_SIZE] = "";
     for (int k = 0; k < N_POINTS; k++) {
       char fit_text[64];
@@ -145,7 +143,6 @@ static int check_iso286(const char *path) {
       fb_iso286_lookup(&dev, &why, cls, pts[k] * 1e-3, &dc);
       snprintf(why_msg, sizeof why_msg, "%s", dc.msg);
       if (why == FB_ISO286_UNDEFINED) n_undef++;
-      else if (why == FB_ISO286_NOT_DERIVED) n_nd++;
       else printf("FAIL: %s at %s (%s): refused: %s\n", row, point_name[k], fit_text, d.msg);
     }
     if (n_ok == N_POINTS) {
@@ -155,23 +152,19 @@ static int check_iso286(const char *path) {
     } else if (n_undef == N_POINTS) {
       undefined++;
       printf("not defined by the standard: %s: %s\n", row, why_msg);
-    } else if (n_nd == N_POINTS) {
-      not_derived++;
-      printf("not derived by the program: %s: %s\n", row, why_msg);
     } else {
       checked++;
       bad_rows++;
-      printf("FAIL: %s: %d of %d sizes accepted, %d refused as undefined, %d as not derived\n",
-             row, n_ok, N_POINTS, n_undef, n_nd);
+      printf("FAIL: %s: %d of %d sizes accepted, %d refused as undefined\n", row, n_ok,
+             N_POINTS, n_undef);
     }
   }
   fclose(fp);
   printf("%s: %d rows: %d checked (%d sizes each: %d agree, %d differ), %d not defined by the "
-         "standard and %d not derived by the program (each listed above)\n",
-         path, rows, checked, N_POINTS, ok_rows, bad_rows, undefined, not_derived);
-  if (checked != rows - undefined - not_derived) {
-    printf("FAIL: %d checked is not %d rows less %d listed\n", checked, rows,
-           undefined + not_derived);
+         "standard (each listed above)\n",
+         path, rows, checked, N_POINTS, ok_rows, bad_rows, undefined);
+  if (checked != rows - undefined) {
+    printf("FAIL: %d checked is not %d rows less %d listed\n", checked, rows, undefined);
     failed++;
   }
   if (rows == 0) {

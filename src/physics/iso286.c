@@ -42,40 +42,79 @@ static const double dev_upper_mm[N_DEV_RANGES] = {
     3,   6,   10,  14,  18,  24,  30,  40,  50,  65,  80,  100, 120,
     140, 160, 180, 200, 225, 250, 280, 315, 355, 400, 450, 500};
 
+/* one column of Table 2 (shafts): the letter, the grades it holds for (j
+ * has one column for IT5 and IT6, one for IT7, one for IT8; 0..0 is every
+ * grade), es or ei, and the deviation of each range; ND where the standard
+ * does not define the letter at that size */
+#define ND NAN
 typedef struct {
   const char *letter;
-  int upper; /* 1: the value is es (a..h); 0: ei (k..s) */
+  int grade_lo, grade_hi; /* the grades of this column (0, 0: all) */
+  int upper;              /* 1: the value is es (a..h, cd, ef, fg); 0: ei (j..zc) */
   double um[N_DEV_RANGES];
 } dev_row;
 
 static const dev_row shaft_dev[] = {
-    {"a", 1, {-270, -270, -280, -290, -290, -300, -300, -310, -320, -340, -360, -380, -410,
-              -460, -520, -580, -660, -740, -820, -920, -1050, -1200, -1350, -1500, -1650}},
-    {"b", 1, {-140, -140, -150, -150, -150, -160, -160, -170, -180, -190, -200, -220, -240,
-              -260, -280, -310, -340, -380, -420, -480, -540, -600, -680, -760, -840}},
-    {"c", 1, {-60, -70, -80, -95, -95, -110, -110, -120, -130, -140, -150, -170, -180,
-              -200, -210, -230, -240, -260, -280, -300, -330, -360, -400, -440, -480}},
-    {"d", 1, {-20, -30, -40, -50, -50, -65, -65, -80, -80, -100, -100, -120, -120,
-              -145, -145, -145, -170, -170, -170, -190, -190, -210, -210, -230, -230}},
-    {"e", 1, {-14, -20, -25, -32, -32, -40, -40, -50, -50, -60, -60, -72, -72,
-              -85, -85, -85, -100, -100, -100, -110, -110, -125, -125, -135, -135}},
-    {"f", 1, {-6, -10, -13, -16, -16, -20, -20, -25, -25, -30, -30, -36, -36,
-              -43, -43, -43, -50, -50, -50, -56, -56, -62, -62, -68, -68}},
-    {"g", 1, {-2, -4, -5, -6, -6, -7, -7, -9, -9, -10, -10, -12, -12,
-              -14, -14, -14, -15, -15, -15, -17, -17, -18, -18, -20, -20}},
-    {"h", 1, {0}},
+    {"a", 0, 0, 1, {-270, -270, -280, -290, -290, -300, -300, -310, -320, -340, -360, -380, -410,
+                    -460, -520, -580, -660, -740, -820, -920, -1050, -1200, -1350, -1500, -1650}},
+    {"b", 0, 0, 1, {-140, -140, -150, -150, -150, -160, -160, -170, -180, -190, -200, -220, -240,
+                    -260, -280, -310, -340, -380, -420, -480, -540, -600, -680, -760, -840}},
+    {"c", 0, 0, 1, {-60, -70, -80, -95, -95, -110, -110, -120, -130, -140, -150, -170, -180,
+                    -200, -210, -230, -240, -260, -280, -300, -330, -360, -400, -440, -480}},
+    /* cd, ef, fg: intermediate deviations, defined only up to 10 mm */
+    {"cd", 0, 0, 1, {-34, -46, -56, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND,
+                     ND,  ND,  ND,  ND, ND, ND, ND, ND, ND, ND, ND, ND}},
+    {"d", 0, 0, 1, {-20, -30, -40, -50, -50, -65, -65, -80, -80, -100, -100, -120, -120,
+                    -145, -145, -145, -170, -170, -170, -190, -190, -210, -210, -230, -230}},
+    {"e", 0, 0, 1, {-14, -20, -25, -32, -32, -40, -40, -50, -50, -60, -60, -72, -72,
+                    -85, -85, -85, -100, -100, -100, -110, -110, -125, -125, -135, -135}},
+    {"ef", 0, 0, 1, {-10, -14, -18, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND,
+                     ND,  ND,  ND,  ND, ND, ND, ND, ND, ND, ND, ND, ND}},
+    {"f", 0, 0, 1, {-6, -10, -13, -16, -16, -20, -20, -25, -25, -30, -30, -36, -36,
+                    -43, -43, -43, -50, -50, -50, -56, -56, -62, -62, -68, -68}},
+    {"fg", 0, 0, 1, {-4, -6, -8, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND,
+                     ND, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND}},
+    {"g", 0, 0, 1, {-2, -4, -5, -6, -6, -7, -7, -9, -9, -10, -10, -12, -12,
+                    -14, -14, -14, -15, -15, -15, -17, -17, -18, -18, -20, -20}},
+    {"h", 0, 0, 1, {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
+    /* j: three columns, IT5 and IT6, IT7, IT8 (IT8 up to 3 mm only) */
+    {"j", 5, 6, 0, {-2, -2, -2, -3, -3, -4, -4, -5, -5, -7, -7, -9, -9,
+                    -11, -11, -11, -13, -13, -13, -16, -16, -18, -18, -20, -20}},
+    {"j", 7, 7, 0, {-4, -4, -5, -6, -6, -8, -8, -10, -10, -12, -12, -15, -15,
+                    -18, -18, -18, -21, -21, -21, -26, -26, -28, -28, -32, -32}},
+    {"j", 8, 8, 0, {-6, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND,
+                    ND, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND, ND}},
     /* k: IT4 to IT7 only; 0 for the other grades (handled in code) */
-    {"k", 0, {0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 5, 5}},
-    {"m", 0, {2, 4, 6, 7, 7, 8, 8, 9, 9, 11, 11, 13, 13, 15, 15, 15, 17, 17, 17, 20, 20,
-              21, 21, 23, 23}},
-    {"n", 0, {4, 8, 10, 12, 12, 15, 15, 17, 17, 20, 20, 23, 23, 27, 27, 27, 31, 31, 31, 34,
-              34, 37, 37, 40, 40}},
-    {"p", 0, {6, 12, 15, 18, 18, 22, 22, 26, 26, 32, 32, 37, 37, 43, 43, 43, 50, 50, 50, 56,
-              56, 62, 62, 68, 68}},
-    {"r", 0, {10, 15, 19, 23, 23, 28, 28, 34, 34, 41, 43, 51, 54, 63, 65, 68, 77, 80, 84, 94,
-              98, 108, 114, 126, 132}},
-    {"s", 0, {14, 19, 23, 28, 28, 35, 35, 43, 43, 53, 59, 71, 79, 92, 100, 108, 122, 130, 140,
-              158, 170, 190, 208, 232, 252}},
+    {"k", 0, 0, 0, {0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 5, 5}},
+    {"m", 0, 0, 0, {2, 4, 6, 7, 7, 8, 8, 9, 9, 11, 11, 13, 13, 15, 15, 15, 17, 17, 17, 20, 20,
+                    21, 21, 23, 23}},
+    {"n", 0, 0, 0, {4, 8, 10, 12, 12, 15, 15, 17, 17, 20, 20, 23, 23, 27, 27, 27, 31, 31, 31, 34,
+                    34, 37, 37, 40, 40}},
+    {"p", 0, 0, 0, {6, 12, 15, 18, 18, 22, 22, 26, 26, 32, 32, 37, 37, 43, 43, 43, 50, 50, 50, 56,
+                    56, 62, 62, 68, 68}},
+    {"r", 0, 0, 0, {10, 15, 19, 23, 23, 28, 28, 34, 34, 41, 43, 51, 54, 63, 65, 68, 77, 80, 84, 94,
+                    98, 108, 114, 126, 132}},
+    {"s", 0, 0, 0, {14, 19, 23, 28, 28, 35, 35, 43, 43, 53, 59, 71, 79, 92, 100, 108, 122, 130,
+                    140, 158, 170, 190, 208, 232, 252}},
+    /* t over 24 mm, v over 14 mm, y over 18 mm */
+    {"t", 0, 0, 0, {ND, ND, ND, ND, ND, ND, 41, 48, 54, 66, 75, 91, 104, 122, 134, 146, 166, 180,
+                    196, 218, 240, 268, 294, 330, 360}},
+    {"u", 0, 0, 0, {18, 23, 28, 33, 33, 41, 48, 60, 70, 87, 102, 124, 144, 170, 190, 210, 236,
+                    258, 284, 315, 350, 390, 435, 490, 540}},
+    {"v", 0, 0, 0, {ND, ND, ND, ND, 39, 47, 55, 68, 81, 102, 120, 146, 172, 202, 228, 252, 284,
+                    310, 340, 385, 425, 475, 530, 595, 660}},
+    {"x", 0, 0, 0, {20, 28, 34, 40, 45, 54, 64, 80, 97, 122, 146, 178, 210, 248, 280, 310, 350,
+                    385, 425, 475, 525, 590, 660, 740, 820}},
+    {"y", 0, 0, 0, {ND, ND, ND, ND, ND, 63, 75, 94, 114, 144, 174, 214, 254, 300, 340, 380, 425,
+                    470, 520, 580, 650, 730, 820, 920, 1000}},
+    {"z", 0, 0, 0, {26, 35, 42, 50, 60, 73, 88, 112, 136, 172, 210, 258, 310, 365, 415, 465, 520,
+                    575, 640, 710, 790, 900, 1000, 1100, 1250}},
+    {"za", 0, 0, 0, {32, 42, 52, 64, 77, 98, 118, 148, 180, 226, 274, 335, 400, 470, 535, 600,
+                     670, 740, 820, 920, 1000, 1150, 1300, 1450, 1600}},
+    {"zb", 0, 0, 0, {40, 50, 67, 90, 108, 136, 160, 200, 242, 300, 360, 445, 525, 620, 700, 780,
+                     880, 960, 1050, 1200, 1300, 1500, 1650, 1850, 2100}},
+    {"zc", 0, 0, 0, {60, 80, 97, 130, 150, 188, 218, 274, 325, 405, 480, 585, 690, 800, 900,
+                     1000, 1150, 1250, 1350, 1550, 1700, 1900, 2100, 2400, 2600}},
 };
 #define N_SHAFT_LETTERS ((int)(sizeof shaft_dev / sizeof shaft_dev[0]))
 
@@ -136,96 +175,32 @@ static fb_status split_class(const char *cls, char *letters, int *grade, fb_diag
   return FB_OK;
 }
 
-static const dev_row *find_shaft(const char *lower) {
-  for (int i = 0; i < N_SHAFT_LETTERS; i++)
-    if (strcmp(shaft_dev[i].letter, lower) == 0) return &shaft_dev[i];
-  return NULL;
-}
-
-/* ---- letters derived from the formulae behind ISO 286-1 Tables 2 and 3 ---- */
-
-/* D [mm]: the geometric mean of the limits of deviation range r; the first
- * range (up to 3 mm) uses 1 and 3 (ISO 286-1:1988 Annex A, the basis of the
- * 2010 tables) */
-static double range_mean_mm(int r) {
-  const double lo = r == 0 ? 1.0 : dev_upper_mm[r - 1];
-  return sqrt(lo * dev_upper_mm[r]);
-}
-
-/* ISO 286-1:1988 Annex A, rounding of calculated fundamental deviations:
- * the step [um] for a calculated magnitude v [um]; column a..g (upper
- * deviations of shafts a to g, used here for cd, ef, fg) or column k..zc.
- * The k..zc steps were checked against every published t..zc cell the
- * program derives (tests/test_iso_published.c): 1 up to 100, 2 up to 300, 5
- * up to 600, 10 up to 800, 20 up to 1000, 50 up to 2000, 100 above. Of the
- * a..g column only the steps up to 60 um are used (cd, ef, fg stay below 60
- * um up to 10 mm): 1 up to 45, 2 up to 60. */
-static double round_fd(double v, int column_ag) {
-  static const double limit[] = {45, 60, 100, 200, 300, 500, 600, 800, 1000, 2000, 5000};
-  static const double step_ag[] = {1, 2, 5, 5, 10, 10, 20, 20, 20, 50, 100};
-  static const double step_kz[] = {1, 1, 1, 2, 2, 5, 5, 10, 20, 50, 100};
-  const int n = (int)(sizeof limit / sizeof limit[0]);
-  double step = 100.0;
-  for (int i = 0; i < n; i++)
-    if (v <= limit[i]) {
-      step = column_ag ? step_ag[i] : step_kz[i];
-      break;
-    }
-  return step * floor(v / step + 0.5);
-}
-
-/* ISO 286-1:1988 Annex A formulae for the upper deviations of shafts c..g,
- * magnitude [um] unrounded at mean size D [mm]: c 52 D^0.2 (D <= 40), d 16
- * D^0.44, e 11 D^0.41, f 5.5 D^0.41, g 2.5 D^0.34 */
-static double formula_ag(char letter, double d_mm) {
-  switch (letter) {
-  case 'c': return d_mm <= 40.0 ? 52.0 * pow(d_mm, 0.2) : 95.0 + 0.8 * d_mm;
-  case 'd': return 16.0 * pow(d_mm, 0.44);
-  case 'e': return 11.0 * pow(d_mm, 0.41);
-  case 'f': return 5.5 * pow(d_mm, 0.41);
-  default: return 2.5 * pow(d_mm, 0.34); /* g */
-  }
-}
-
-/* the lower deviations ei = IT_n + c D of shafts t..zc (ISO 286-1:1988
- * Annex A): grade n of the IT term, coefficient c of D [mm], the size [mm]
- * over which the letter is defined (ISO 286-1:2010 Table 2 gives t only over
- * 24 mm, v over 14 mm, y over 18 mm), and the sizes where Table 2 tabulates a
- * value that the formula, rounded, does not give (found against ISO 286-2's
- * published tables; the program refuses there rather than print a value the
- * standard does not hold): up to depart_mm, and over depart_over_mm */
-typedef struct {
-  const char *letter;
-  int it_grade;           /* n of the IT_n term */
-  double coeff;           /* c of c D */
-  double defined_over_mm; /* the letter is defined over this size [mm] */
-  double depart_upto_mm;  /* the table departs from the formula up to this size [mm] (0: nowhere) */
-  double depart_over_mm;  /* ... and over this size [mm] (0: nowhere) */
-  double depart_a_mm[2];  /* ... and in the deviation ranges up to these sizes [mm] (0: none) */
-} formula_row;
-
-static const formula_row formula_rows[] = {
-    {"t", 7, 0.63, 24, 50, 0, {0, 0}},
-    {"u", 7, 1.0, 0, 24, 400, {0, 0}},
-    {"v", 7, 1.25, 14, 18, 0, {0, 0}},
-    {"x", 7, 1.6, 0, 18, 0, {0, 0}},
-    {"y", 7, 2.0, 18, 0, 0, {0, 0}},
-    {"z", 7, 2.5, 0, 18, 0, {0, 0}},
-    {"za", 8, 3.15, 0, 10, 0, {0, 0}},
-    {"zb", 9, 4.0, 0, 6, 0, {18, 50}},
-    {"zc", 10, 5.0, 0, 6, 0, {0, 0}},
+/* Table 3, column J (holes): ES [um] for IT6, IT7 and IT8 at each range;
+ * the standard tabulates these without deriving them from j by a rule */
+static const double hole_j_es_um[3][N_DEV_RANGES] = {
+    {2, 5, 5, 6, 6, 8, 8, 10, 10, 13, 13, 16, 16, 18, 18, 18, 22, 22, 22, 25, 25, 29, 29, 33, 33},
+    {4, 6, 8, 10, 10, 12, 12, 14, 14, 18, 18, 22, 22, 26, 26, 26, 30, 30, 30, 36, 36, 39, 39, 43,
+     43},
+    {6, 10, 12, 15, 15, 20, 20, 24, 24, 28, 28, 34, 34, 41, 41, 41, 47, 47, 47, 55, 55, 60, 60, 66,
+     66},
 };
-#define N_FORMULA_ROWS ((int)(sizeof formula_rows / sizeof formula_rows[0]))
 
-static const formula_row *find_formula(const char *lower) {
-  for (int i = 0; i < N_FORMULA_ROWS; i++)
-    if (strcmp(formula_rows[i].letter, lower) == 0) return &formula_rows[i];
+/* the Table 2 column of a shaft letter at a grade; *letter_known says
+ * whether the letter has any column */
+static const dev_row *find_shaft(const char *lower, int grade, int *letter_known) {
+  *letter_known = 0;
+  for (int i = 0; i < N_SHAFT_LETTERS; i++) {
+    const dev_row *row = &shaft_dev[i];
+    if (strcmp(row->letter, lower) != 0) continue;
+    *letter_known = 1;
+    if (row->grade_lo == 0 || (grade >= row->grade_lo && grade <= row->grade_hi)) return row;
+  }
   return NULL;
 }
 
-#define SUPPORTED                                                                          \
-  "holes A B C CD D E EF F FG G H JS K M N P R S T U V X Y Z ZA ZB ZC, shafts a b c cd d e " \
-  "ef f fg g h js k m n p r s t u v x y z za zb zc"
+#define SUPPORTED                                                                             \
+  "holes A B C CD D E EF F FG G H J JS K M N P R S T U V X Y Z ZA ZB ZC, shafts a b c cd d e " \
+  "ef f fg g h j js k m n p r s t u v x y z za zb zc"
 
 static fb_status class_limits(fb_deviation *out, fb_iso286_why *why, const char *cls,
                               double size, fb_diag *diag);
@@ -247,6 +222,15 @@ fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_di
 }
 
 #define TOL_MM(x) ((x) * (1.0 + 1e-12)) /* a size typed as a range limit belongs to it */
+
+/* the sizes [mm] over which and up to which a Table 2 column is defined */
+static void defined_span(const dev_row *row, double *over_mm, double *upto_mm) {
+  int first = 0, last = N_DEV_RANGES - 1;
+  while (first < N_DEV_RANGES && isnan(row->um[first])) first++;
+  while (last > 0 && isnan(row->um[last])) last--;
+  *over_mm = first == 0 ? 0.0 : dev_upper_mm[first - 1];
+  *upto_mm = dev_upper_mm[last];
+}
 
 static fb_status class_limits(fb_deviation *out, fb_iso286_why *why, const char *cls,
                               double size, fb_diag *diag) {
@@ -276,94 +260,46 @@ static fb_status class_limits(fb_deviation *out, fb_iso286_why *why, const char 
   char num[32];
   fb_diag_number(num, sizeof num, mm);
   const int r = range_index(dev_upper_mm, N_DEV_RANGES, mm);
-  /* j and J: ISO 286-1:2010 Table 2 gives j for IT5 and IT6, IT7 and IT8
-   * (IT8 up to 3 mm only), Table 3 gives J for IT6, IT7 and IT8; both as
-   * tabulated numbers with no formula behind them */
-  if (strcmp(lower, "j") == 0) {
-    *why = FB_ISO286_UNDEFINED;
-    if (!hole && (grade < 5 || grade > 8))
-      return fb_diag_set(diag, FB_ERR_RANGE,
-                         "tolerance class '%s': ISO 286-1 Table 2 defines j only in grades IT5 "
-                         "to IT8", cls);
-    if (!hole && grade == 8 && mm > TOL_MM(3.0))
-      return fb_diag_set(diag, FB_ERR_RANGE,
-                         "tolerance class '%s' at %s mm: ISO 286-1 Table 2 defines j8 only for "
-                         "nominal sizes up to 3 mm", cls, num);
-    if (hole && (grade < 6 || grade > 8))
+  /* J (holes): ISO 286-1:2010 Table 3 tabulates ES for IT6, IT7 and IT8 only */
+  if (hole && strcmp(lower, "j") == 0) {
+    if (grade < 6 || grade > 8) {
+      *why = FB_ISO286_UNDEFINED;
       return fb_diag_set(diag, FB_ERR_RANGE,
                          "tolerance class '%s': ISO 286-1 Table 3 defines J only in grades IT6 "
-                         "to IT8", cls);
-    *why = FB_ISO286_NOT_DERIVED;
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "tolerance class '%s': ISO 286-1 tabulates %s without a formula, and "
-                       "this program computes deviations from the standard's rules and carries "
-                       "no such table (use %s%d for a symmetric class)",
-                       cls, hole ? "J6 to J8" : "j5 to j8", hole ? "JS" : "js", grade);
+                         "to IT8 (JS%d is the symmetric class)", cls, grade);
+    }
+    out->upper = hole_j_es_um[grade - 6][r] * 1e-6;
+    out->lower = out->upper - it;
+    return FB_OK;
   }
-  /* the fundamental deviation of the shaft letter [m] and whether it is es
-   * (a..h, cd, ef, fg) or ei (k..zc) */
-  double dev;
-  int upper;
-  const dev_row *row = find_shaft(lower);
-  const formula_row *frow = find_formula(lower);
-  if (strcmp(lower, "cd") == 0 || strcmp(lower, "ef") == 0 || strcmp(lower, "fg") == 0) {
-    /* ISO 286-1:2010 Tables 2 and 3 give the intermediate deviations cd, ef,
-     * fg (CD, EF, FG) only for nominal sizes up to 10 mm */
-    if (mm > TOL_MM(10.0)) {
-      *why = FB_ISO286_UNDEFINED;
-      return fb_diag_set(diag, FB_ERR_RANGE,
-                         "tolerance class '%s' at %s mm: ISO 286-1 defines the intermediate "
-                         "deviations %s only for nominal sizes up to 10 mm",
-                         cls, num, hole ? "CD, EF, FG" : "cd, ef, fg");
-    }
-    /* ISO 286-1:1988 Annex A: cd, ef, fg are the geometric means of the
-     * (unrounded) c and d, e and f, f and g, rounded in the a..g column;
-     * Table 2's fg up to 3 mm (a value the mean does not give) departs */
-    if (strcmp(lower, "fg") == 0 && mm <= TOL_MM(3.0)) {
-      *why = FB_ISO286_NOT_DERIVED;
-      return fb_diag_set(diag, FB_ERR_RANGE,
-                         "tolerance class '%s' at %s mm: ISO 286-1 Table %d tabulates %s up to "
-                         "3 mm with a value that its rule (geometric mean of f and g) does not "
-                         "give; this program derives %s from the rule and refuses there", cls,
-                         num, hole ? 3 : 2, letters, letters);
-    }
-    const double d_mm = range_mean_mm(r);
-    const double mean = sqrt(formula_ag(lower[0], d_mm) * formula_ag(lower[1], d_mm));
-    dev = -round_fd(mean, 1) * 1e-6;
-    upper = 1;
-  } else if (frow) {
-    if (mm <= TOL_MM(frow->defined_over_mm)) {
-      *why = FB_ISO286_UNDEFINED;
-      return fb_diag_set(diag, FB_ERR_RANGE,
-                         "tolerance class '%s' at %s mm: ISO 286-1 defines fundamental deviation "
-                         "%s only for nominal sizes over %g mm", cls, num, letters,
-                         frow->defined_over_mm);
-    }
-    const double lo = r == 0 ? 0.0 : dev_upper_mm[r - 1];
-    const int departs = (frow->depart_upto_mm > 0 && mm <= TOL_MM(frow->depart_upto_mm)) ||
-                        (frow->depart_over_mm > 0 && mm > TOL_MM(frow->depart_over_mm)) ||
-                        dev_upper_mm[r] == frow->depart_a_mm[0] ||
-                        dev_upper_mm[r] == frow->depart_a_mm[1];
-    if (departs) {
-      *why = FB_ISO286_NOT_DERIVED;
-      return fb_diag_set(diag, FB_ERR_RANGE,
-                         "tolerance class '%s' at %s mm: ISO 286-1 Table %d tabulates %s over %g "
-                         "up to %g mm with a value that its formula (shaft ei = IT%d + %g D) does "
-                         "not give; this program derives %s from the formula and refuses there",
-                         cls, num, hole ? 3 : 2, letters, lo, dev_upper_mm[r], frow->it_grade,
-                         frow->coeff, letters);
-    }
-    double it_n;
-    fb_iso286_it(&it_n, frow->it_grade, size, NULL);
-    dev = round_fd(it_n * 1e6 + frow->coeff * range_mean_mm(r), 0) * 1e-6;
-    upper = 0;
-  } else if (row) {
-    dev = row->um[strcmp(lower, "h") == 0 ? 0 : r] * 1e-6;
-    upper = row->upper;
-  } else {
+  /* the shaft letter's column of Table 2 (a hole's letter mirrors it) */
+  int known = 0;
+  const dev_row *row = find_shaft(lower, grade, &known);
+  if (!known)
     return fb_diag_set(diag, FB_ERR_RANGE, "tolerance class '%s': letter '%s' is not in the "
                        "tables here (" SUPPORTED ")", cls, letters);
+  if (!row) { /* j outside its three columns */
+    *why = FB_ISO286_UNDEFINED;
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "tolerance class '%s': ISO 286-1 Table 2 defines j only in grades IT5 to "
+                       "IT8 (js%d is the symmetric class)", cls, grade);
   }
+  /* Tables 2 and 3 leave a cell empty where the letter is not defined:
+   * t over 24 mm only, v over 14 mm, y over 18 mm, the intermediate cd, ef,
+   * fg up to 10 mm, j8 up to 3 mm */
+  if (isnan(row->um[r])) {
+    *why = FB_ISO286_UNDEFINED;
+    double over_mm, upto_mm;
+    defined_span(row, &over_mm, &upto_mm);
+    char span[64];
+    if (over_mm > 0.0) snprintf(span, sizeof span, "over %g mm", over_mm);
+    else snprintf(span, sizeof span, "up to %g mm", upto_mm);
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "tolerance class '%s' at %s mm: ISO 286-1 Table %d defines %s only for "
+                       "nominal sizes %s", cls, num, hole ? 3 : 2, row->grade_lo ? cls : letters, span);
+  }
+  const double dev = row->um[r] * 1e-6; /* es (a..h, cd, ef, fg) or ei (j..zc) [m] */
+  const int upper = row->upper;
   /* ISO 286-1:2010 Tables 2 and 3, footnote a: the fundamental deviations a, b
    * (shafts) and A, B (holes) are not to be used for nominal sizes up to 1 mm;
    * ISO 286-2:2010 Tables 2 and 17 start at 1 mm for them */
@@ -383,18 +319,19 @@ static fb_status class_limits(fb_deviation *out, fb_iso286_why *why, const char 
                        "IT8 for nominal sizes up to 1 mm",
                        cls, num);
   }
-  if (strcmp(lower, "k") == 0 && (grade < 4 || grade > 7)) dev = 0.0;
   if (!hole) {
+    /* k: ISO 286-1:2010 Table 2 gives ei > 0 for IT4 to IT7 only, 0 otherwise */
+    const double d = strcmp(lower, "k") == 0 && (grade < 4 || grade > 7) ? 0.0 : dev;
     if (upper) {
-      out->upper = dev;
-      out->lower = dev - it;
+      out->upper = d;
+      out->lower = d - it;
     } else {
-      out->lower = dev;
-      out->upper = dev + it;
+      out->lower = d;
+      out->upper = d + it;
     }
     return FB_OK;
   }
-  /* holes: general rule mirrors the shaft; special rule adds Delta */
+  /* holes (Table 3): general rule mirrors the shaft; special rule adds Delta */
   if (upper) { /* A..H, CD, EF, FG: EI = -es */
     out->lower = -dev;
     out->upper = -dev + it;
@@ -434,8 +371,7 @@ static fb_status class_limits(fb_deviation *out, fb_iso286_why *why, const char 
     }
     /* K's shaft value applies for IT4..IT7; for K8 the standard uses k's
      * IT4..IT7 value too */
-    double ei = strcmp(lower, "k") == 0 ? row->um[r] * 1e-6 : dev;
-    es = -ei + delta;
+    es = -dev + delta;
     /* ISO 286-1:2010 Table 3, footnote (special case): M6 over 250 up to
      * 315 mm has ES = -9 um, not -ei + Delta = -20 + 9 = -11 um (ISO 286-2:2010
      * Table 9: M6 250..315 is -9/-41 um) */

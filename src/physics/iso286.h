@@ -1,23 +1,14 @@
 /* ISO 286-1:2010 limits and fits: standard tolerance grades IT01 to IT18 and
  * fundamental deviations for nominal sizes up to 500 mm (ranges with the upper
  * limit inclusive). Values are those of ISO 286-1:2010 Table 1 (IT grades),
- * Table 2 (shaft deviations a..h: es; js, k..s: ei) and Table 3 (hole
- * deviations by the general rule EI = -es, ES = -ei, and the special rule
- * ES = -ei + Delta for K, M, N up to IT8 and P to S up to IT7, with
- * Delta = IT_n - IT_(n-1) of the size range, for sizes over 3 mm); the same
- * numbers appear in ISO 286-2 and in machine-design handbooks. The letters
- * the standard derives by formula rather than tabulates are computed from
- * those formulae (ISO 286-1:1988 Annex A, the basis of the 2010 tables) and
- * its rounding rules: shafts cd, ef, fg (geometric means of c and d, e and f,
- * f and g) and t, u, v, x, y, z, za, zb, zc (ei = IT7 + 0.63 D, IT7 + D,
- * IT7 + 1.25 D, IT7 + 1.6 D, IT7 + 2 D, IT7 + 2.5 D, IT8 + 3.15 D, IT9 + 4 D,
- * IT10 + 5 D, D the geometric mean of the size range [mm]), and their holes.
- * Where the standard tabulates a value its formula does not give (small
- * sizes of t..zc, fg up to 3 mm, u over 400 mm) and for j/J, which it
- * tabulates with no formula, the program refuses rather than carry a copy of
- * the table. Letters implemented: holes A B C CD D E EF F FG G H JS K M N P R
- * S T U V X Y Z ZA ZB ZC, shafts the same in lower case. Interface in SI (m);
- * the tables are in micrometres inside. */
+ * Table 2 (shaft deviations a..h with cd, ef, fg: es; j, k..zc: ei) and
+ * Table 3 (holes: J tabulated; the others by the general rule EI = -es,
+ * ES = -ei, and the special rule ES = -ei + Delta for K, M, N up to IT8 and
+ * P to ZC up to IT7, with Delta = IT_n - IT_(n-1) of the size range, for
+ * sizes over 3 mm; the M6 exception over 250 up to 315 mm); the same numbers
+ * appear in ISO 286-2 and in machine-design handbooks. Letters: holes A B C
+ * CD D E EF F FG G H J JS K M N P R S T U V X Y Z ZA ZB ZC, shafts the same
+ * in lower case. Interface in SI (m); the tables are in micrometres inside. */
 #ifndef FB_ISO286_H
 #define FB_ISO286_H
 
@@ -54,12 +45,11 @@ typedef struct {
 fb_status fb_iso286_it(double *out, int grade, double size, fb_diag *diag);
 
 /* Why a class was refused (or not): the standard does not define it there,
- * or it does but by a tabulated value this program does not derive. */
+ * or the input is not a class of the tables. */
 typedef enum {
-  FB_ISO286_OK,          /* accepted */
-  FB_ISO286_INVALID,     /* malformed, unknown letter, grade or size outside the tables */
-  FB_ISO286_UNDEFINED,   /* ISO 286-1 does not define (or use) the letter, grade and size */
-  FB_ISO286_NOT_DERIVED, /* defined by a value the standard tabulates without its rule */
+  FB_ISO286_OK,        /* accepted */
+  FB_ISO286_INVALID,   /* malformed, unknown letter, grade or size outside the tables */
+  FB_ISO286_UNDEFINED, /* ISO 286-1 does not define (or use) the letter, grade and size */
 } fb_iso286_why;
 
 /* Deviations of one hole (upper-case letters) or shaft (lower-case) tolerance
@@ -71,19 +61,15 @@ typedef enum {
  * Tables 2 and 3, footnotes), K above IT8 except K9 and K10 up to 3 mm (ISO
  * 286-2 Table 8), IT14..IT18 up to 1 mm, t/T up to 24 mm, v/V up to 14 mm,
  * y/Y up to 18 mm, cd/ef/fg (CD/EF/FG) over 10 mm, j outside IT5..IT8 (j8
- * over 3 mm), J outside IT6..IT8 (ISO 286-1 Tables 2 and 3); and where the
- * program does not derive the standard's tabulated value: j5..j8, J6..J8, fg
- * up to 3 mm, t up to 50 mm, u up to 24 and over 400 mm, v up to 18 mm, x
- * and z up to 18 mm, za up to 10 mm, zb up to 6 mm and over 14 up to 18 and
- * over 40 up to 50 mm, zc up to 6 mm (and the same holes). Exceptions to the general and
- * special rules that the standard makes are applied: M6 over 250 up to 315 mm
- * is -9/-41 um (ISO 286-1 Table 3). A zero deviation is +0, never -0. */
+ * over 3 mm), J outside IT6..IT8 (ISO 286-1 Tables 2 and 3). Exceptions to
+ * the general and special rules that the standard makes are applied: M6 over
+ * 250 up to 315 mm is -9/-41 um (ISO 286-1 Table 3). A zero deviation is +0,
+ * never -0. */
 fb_status fb_iso286_class(fb_deviation *out, const char *cls, double size, fb_diag *diag);
 
 /* fb_iso286_class that also says why a class was refused (*why, if not
  * NULL): FB_ISO286_UNDEFINED where the standard itself does not define it,
- * FB_ISO286_NOT_DERIVED where it does by a tabulated value the program does
- * not derive, FB_ISO286_INVALID for the other errors, FB_ISO286_OK. */
+ * FB_ISO286_INVALID for the other errors, FB_ISO286_OK. */
 fb_status fb_iso286_lookup(fb_deviation *out, fb_iso286_why *why, const char *cls, double size,
                            fb_diag *diag);
 

@@ -1,5 +1,5 @@
 /* fourbar contact-params: the translations of a linear contact into ODE,
- * Gazebo and MuJoCo parameters (engine_params.h), each verified by a single
+ * Gazebo, MuJoCo and Bullet parameters (engine_params.h), each verified by a single
  * impact simulated in the engine with exactly those parameters against the
  * continuous law (the GSL reference of impact.h).
  *
@@ -190,11 +190,50 @@ static void test_mujoco_forms(void **state) {
 #endif
 }
 
+/* Bullet: the printed stiffness and damping through Bullet's own contact
+ * (setContactStiffnessAndDamping, btSequentialImpulseConstraintSolver), on
+ * the single impact and at both ends of the paper joint's mass range; the
+ * law's k and c pasted as they are lose like ODE's standard row */
+static void test_bullet_contact(void **state) {
+  (void)state;
+  if (!FB_HAVE_BULLET) skip();
+  fb_linear_contact lc = single();
+  target t = law_impact(&lc);
+  fb_diag d;
+  fb_ode_row matched;
+  assert_int_equal(fb_params_ode_matched(&lc, &matched, &d), FB_OK);
+  fb_spring_damper sd;
+  fb_params_spring_damper_of_row(&matched, lc.h, &sd);
+  fb_impact_result r;
+  assert_int_equal(fb_impact_bullet_contact(&r, lc.m, V, lc.h, sd.kp, sd.kd, t.t_max, &d), FB_OK);
+  expect_close("bullet stiffness/damping", &r, &t);
+  assert_int_equal(fb_impact_bullet_contact(&r, lc.m, V, lc.h, lc.k, lc.c, t.t_max, &d), FB_OK);
+  assert_true(rel(r.restitution, t.ref.restitution) < -STANDARD_LOSS_MIN);
+  /* the paper's crank-coupler joint: one pair designed at the geometric mean */
+  const double m_min = 0.09, m_max = 0.95, m0 = sqrt(m_min * m_max);
+  const double c = fb_params_damper_for_restitution(K, m0, CR);
+  const double h = 0.1 / sqrt(K / m_min);
+  fb_linear_contact lc0 = {K, c, m0, h};
+  assert_int_equal(fb_params_ode_matched(&lc0, &matched, &d), FB_OK);
+  fb_params_spring_damper_of_row(&matched, h, &sd);
+  const double masses[2] = {m_min, m_max};
+  for (int i = 0; i < 2; i++) {
+    fb_linear_contact lm = {K, c, masses[i], h};
+    target tm = law_impact(&lm);
+    assert_int_equal(fb_impact_bullet_contact(&r, lm.m, V, h, sd.kp, sd.kd, tm.t_max, &d), FB_OK);
+    expect_close(i ? "bullet at 0.95 kg" : "bullet at 0.09 kg", &r, &tm);
+  }
+  /* bad input: h k + c <= 0 is refused with the rule */
+  assert_int_equal(fb_impact_bullet_contact(&r, 0.1, V, 1e-5, 1e6, -20.0, 1.0, &d), FB_ERR_RANGE);
+  assert_non_null(strstr(d.msg, "h stiffness + damping > 0"));
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_ode_and_gazebo_single_impact),
       cmocka_unit_test(test_ode_over_the_mass_range),
       cmocka_unit_test(test_mujoco_forms),
+      cmocka_unit_test(test_bullet_contact),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

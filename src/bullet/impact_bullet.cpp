@@ -113,3 +113,106 @@ extern "C" fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def
   out->wall_s = fb_clock_s() - t_wall;
   return st;
 }
+
+/* The single impact through Bullet's own contact pipeline: collision
+ * detection (sphere against a static plane), a manifold point flagged
+ * BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING, and
+ * btSequentialImpulseConstraintSolver::setupContactConstraint turning the
+ * combined stiffness and damping into erp = h k / (h k + c),
+ * cfm = 1 / (h k + c). What a user's setContactStiffnessAndDamping gets. */
+extern "C" fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass, double speed,
+                                              double h, double stiffness, double damping,
+                                              double t_max, fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  if (!(mass > 0.0) || !(speed > 0.0) || !(h > 0.0) || !(stiffness > 0.0) ||
+      !isfinite(damping) || !(h * stiffness + damping > 0.0) || !(t_max > 0.0))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "Bullet contact impact: need mass, speed, h, stiffness > 0 and "
+                       "h stiffness + damping > 0 (mass %g kg, speed %g m/s, h %g s, stiffness "
+                       "%g N/m, damping %g N s/m)", mass, speed, h, stiffness, damping);
+  const double t_wall = fb_clock_s();
+  const double R = 0.01; /* sphere radius [m]; a normal contact through the centre */
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher(&config);
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
+  world.setGravity(btVector3(0, 0, 0));
+  btContactSolverInfo &info = world.getSolverInfo();
+  info.m_splitImpulse = 0;   /* split impulse would turn the spring into a position fix */
+  info.m_linearSlop = 0.0;   /* the contact starts at distance 0 */
+  info.m_sor = 1.0;          /* no over-relaxation */
+  info.m_numIterations = 50; /* one contact: converged in the first */
+  info.m_restitutionVelocityThreshold = 0.0;
+  btStaticPlaneShape ground_shape(btVector3(0, 0, 1), 0.0);
+  btRigidBody::btRigidBodyConstructionInfo gi(0.0, nullptr, &ground_shape);
+  btRigidBody ground(gi);
+  btSphereShape ball_shape(R);
+  btVector3 inertia(0, 0, 0);
+  ball_shape.calculateLocalInertia(mass, inertia);
+  btDefaultMotionState *no_state = nullptr;
+  btRigidBody::btRigidBodyConstructionInfo bi(mass, no_state, &ball_shape, inertia);
+  btRigidBody ball(bi);
+  for (btRigidBody *b : {&ground, &ball}) {
+    b->setFriction(0.0);
+    b->setRestitution(0.0);
+    b->setRollingFriction(0.0);
+    b->setSpinningFriction(0.0);
+  }
+  /* the combined stiffness is the two bodies' in series, the damping their
+   * sum (btManifoldResult): the ground gets an infinite spring and no damper
+   * (its defaults would add 0.1 N s/m) */
+  ball.setContactStiffnessAndDamping(stiffness, damping);
+  ground.setContactStiffnessAndDamping(BT_LARGE_FLOAT, 0.0);
+  ball.setActivationState(DISABLE_DEACTIVATION);
+  btTransform tr;
+  tr.setIdentity();
+  tr.setOrigin(btVector3(0, 0, R)); /* touching */
+  ball.setWorldTransform(tr);
+  world.addRigidBody(&ground);
+  world.addRigidBody(&ball);
+  ball.setLinearVelocity(btVector3(0, 0, -speed));
+
+  fb_status st = FB_OK;
+  const size_t max_steps = (size_t)ceil(t_max / h) + 1;
+  int in_contact = 0, done = 0;
+  double t_end = 0.0, prev_depth = 0.0;
+  size_t k;
+  for (k = 0; k < max_steps && !done; k++) {
+    world.stepSimulation(h, 0, h);
+    double impulse = 0.0;
+    for (int i = 0; i < dispatcher.getNumManifolds(); i++) {
+      const btPersistentManifold *pm = dispatcher.getManifoldByIndexInternal(i);
+      for (int c = 0; c < pm->getNumContacts(); c++) impulse += pm->getContactPoint(c).getAppliedImpulse();
+    }
+    const double force = impulse / h;
+    const double t1 = (double)(k + 1) * h;
+    const double depth_now = R - ball.getCenterOfMassPosition()[2];
+    if (!isfinite(depth_now) || !isfinite(force)) {
+      st = fb_diag_set(diag, FB_ERR_NUMERIC, "Bullet contact impact: non-finite state at t = %g s",
+                       t1);
+      break;
+    }
+    if (depth_now > out->penetration_max) out->penetration_max = depth_now;
+    if (force > out->force_max) out->force_max = force;
+    if (force > 0.0) {
+      in_contact = 1;
+      t_end = t1;
+      if (depth_now <= 0.0 && prev_depth > 0.0)
+        t_end = t1 - h + h * prev_depth / (prev_depth - depth_now);
+    }
+    prev_depth = depth_now;
+    if (in_contact && depth_now <= 0.0 && ball.getLinearVelocity()[2] > 0.0) done = 1;
+  }
+  out->steps = k;
+  out->contact_duration = t_end;
+  out->restitution = ball.getLinearVelocity()[2] / speed;
+  world.removeRigidBody(&ball);
+  world.removeRigidBody(&ground);
+  if (st == FB_OK && !done)
+    st = fb_diag_set(diag, FB_ERR_NUMERIC,
+                     "Bullet contact impact: the body has not left the contact after %zu steps "
+                     "(%g s)", k, (double)k * h);
+  out->wall_s = fb_clock_s() - t_wall;
+  return st;
+}

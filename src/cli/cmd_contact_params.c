@@ -292,21 +292,26 @@ int fb_cmd_contact_params(int argc, char **argv) {
       fb_params_mujoco_direct_matched(&lm, &mj_at_mass);
       struct {
         const char *engine, *form;
-        int kind; /* 0 ODE row, 1 MuJoCo */
+        int kind; /* 0 ODE row, 1 MuJoCo, 2 Bullet's contact stiffness and damping */
         const fb_ode_row *row;
         const fb_mujoco_params *mj;
-      } runs[] = {{"ode", "matched", 0, &matched, NULL},
-                  {"ode", "standard", 0, &standard, NULL},
-                  {"gazebo", "matched", 0, &gz_row, NULL},
-                  {"gazebo", "naive", 0, &gz_naive_row, NULL},
-                  {"mujoco", "direct", 1, NULL, &mj_direct},
-                  {"mujoco", "direct-at-mass", 1, NULL, nm > 1 ? &mj_at_mass : NULL},
-                  {"mujoco", "direct-continuous", 1, NULL, &mj_cont},
-                  {"mujoco", "standard", 1, NULL, has_std ? &mj_std : NULL},
-                  {"mujoco", "naive", 1, NULL, &mj_naive}};
+        const fb_spring_damper *sd;
+      } runs[] = {{"ode", "matched", 0, &matched, NULL, NULL},
+                  {"ode", "standard", 0, &standard, NULL, NULL},
+                  {"gazebo", "matched", 0, &gz_row, NULL, NULL},
+                  {"gazebo", "naive", 0, &gz_naive_row, NULL, NULL},
+                  {"mujoco", "direct", 1, NULL, &mj_direct, NULL},
+                  {"mujoco", "direct-at-mass", 1, NULL, nm > 1 ? &mj_at_mass : NULL, NULL},
+                  {"mujoco", "direct-continuous", 1, NULL, &mj_cont, NULL},
+                  {"mujoco", "standard", 1, NULL, has_std ? &mj_std : NULL, NULL},
+                  {"mujoco", "naive", 1, NULL, &mj_naive, NULL},
+                  /* the printed stiffness and damping, and the law's k, c pasted as they are */
+                  {"bullet", "matched", 2, NULL, NULL, &gz},
+                  {"bullet", "naive", 2, NULL, NULL, &gz_naive}};
       for (size_t r = 0; r < sizeof runs / sizeof runs[0]; r++) {
         if (runs[r].kind == 1 && !runs[r].mj) continue;
         if (runs[r].kind == 1 && !FB_HAVE_MUJOCO) continue;
+        if (runs[r].kind == 2 && !FB_HAVE_BULLET) continue;
         check_row *x = &rows[nrows++];
         memset(x, 0, sizeof *x);
         x->engine = runs[r].engine;
@@ -316,14 +321,21 @@ int fb_cmd_contact_params(int argc, char **argv) {
         x->penetration_target = ref.penetration_max;
         x->force_target = ref.force_max;
         fb_impact_result res;
-        fb_status st = runs[r].kind == 0
-                           ? fb_impact_ode_row(&res, m, q.v, q.h, runs[r].row->erp,
-                                               runs[r].row->cfm,
-                                               strcmp(x->engine, "gazebo") == 0 ? max_vel
-                                                                                : INFINITY,
-                                               t_max, &diag)
-                           : fb_impact_mujoco(&res, m, q.v, q.h, runs[r].mj->solref,
-                                              runs[r].mj->solimp, t_max, &diag);
+        fb_status st;
+        if (runs[r].kind == 0)
+          st = fb_impact_ode_row(&res, m, q.v, q.h, runs[r].row->erp, runs[r].row->cfm,
+                                 strcmp(x->engine, "gazebo") == 0 ? max_vel : INFINITY, t_max,
+                                 &diag);
+        else if (runs[r].kind == 1)
+          st = fb_impact_mujoco(&res, m, q.v, q.h, runs[r].mj->solref, runs[r].mj->solimp, t_max,
+                                &diag);
+        else
+#if FB_HAVE_BULLET
+          st = fb_impact_bullet_contact(&res, m, q.v, q.h, runs[r].sd->kp, runs[r].sd->kd, t_max,
+                                        &diag);
+#else
+          st = FB_ERR_ARG; /* not reached: skipped above */
+#endif
         x->ok = st == FB_OK;
         if (!x->ok) {
           snprintf(x->why, sizeof x->why, "%s", diag.msg);
@@ -452,7 +464,11 @@ int fb_cmd_contact_params(int argc, char **argv) {
   else
     printf("  standard form: %s\n", std_diag.msg);
   printf("\nBullet (btCollisionObject::setContactStiffnessAndDamping at fixed step h = %.6g s):\n"
-         "  stiffness = %.10g, damping = %.10g\n",
+         "  body.setContactStiffnessAndDamping(%.10g, %.10g);\n"
+         "  other.setContactStiffnessAndDamping(BT_LARGE_FLOAT, 0);  (Bullet combines the two in\n"
+         "    series for stiffness and adds the dampers: the default 0.1 N s/m would be added)\n"
+         "  solverInfo.m_splitImpulse = 0; m_linearSlop = 0; m_sor = 1  (split impulse turns the\n"
+         "    spring's position term into a position fix with no force)\n",
          q.h, gz.kp, gz.kd);
   if (!q.verify) return 0;
   printf("\nverification: one impact at %g m/s per mass, against the continuous law "
@@ -471,6 +487,6 @@ int fb_cmd_contact_params(int argc, char **argv) {
            rel(x->force, x->force_target));
   }
   if (!FB_HAVE_MUJOCO) printf("(mujoco: not in this build)\n");
-  printf("(bullet: no single-impact verification in this build yet)\n");
+  if (!FB_HAVE_BULLET) printf("(bullet: not in this build)\n");
   return failed ? 1 : 0;
 }

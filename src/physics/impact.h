@@ -91,6 +91,20 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
 fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def *d,
                            const fb_bullet_opts *bt, fb_diag *diag);
 
+/* The same impact through Bullet's own contact (builds with Bullet,
+ * FB_HAVE_BULLET; src/bullet/impact_bullet.cpp): a sphere of mass [kg] meets
+ * a static plane at speed [m/s] (no gravity, frictionless, restitution 0),
+ * the sphere's btCollisionObject::setContactStiffnessAndDamping(stiffness
+ * [N/m], damping [N s/m]) and the plane's (BT_LARGE_FLOAT, 0), split impulse
+ * off, linear slop 0, SOR 1, step h [s]; Bullet turns them into erp =
+ * h k / (h k + c), cfm = 1 / (h k + c) (btSequentialImpulseConstraintSolver::
+ * setupContactConstraint). Runs until the body leaves or t_max [s].
+ * Errors: FB_ERR_RANGE (a parameter not positive, h k + c <= 0),
+ * FB_ERR_NUMERIC (non-finite state, still in contact at t_max). */
+fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass, double speed, double h,
+                                   double stiffness, double damping, double t_max,
+                                   fb_diag *diag);
+
 /* ODE under a sustained load: the body of d (mass, law, step, stepper,
  * mapping; d->speed is not used) rests touching the contact at t = 0 and a
  * constant force load [N] presses it in from then on, for duration [s]

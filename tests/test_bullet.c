@@ -187,6 +187,7 @@ static void test_reactions_match_inverse_dynamics(void **state) {
   fb_run_free(&r);
 }
 
+#if FB_HAVE_BULLET /* used only by the single-impact test of builds with Bullet */
 static fb_impact_def impact_def(fb_law_kind kind) {
   fb_impact_def d;
   memset(&d, 0, sizeof d);
@@ -202,6 +203,7 @@ static fb_impact_def impact_def(fb_law_kind kind) {
   d.h = 1e-6;
   return d;
 }
+#endif
 
 static void test_single_impact_matched_and_own_conversion(void **state) {
   (void)state;

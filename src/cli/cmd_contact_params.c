@@ -7,17 +7,23 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "case.h"
+#include "casefile.h"
 #include "cli.h"
 #include "contact.h"
 #include "engine_params.h"
 #include "fb_config.h"
 #include "impact.h"
+#include "resolution.h"
 
 static const char params_help[] =
     "usage: fourbar contact-params [--law linear|restitution|hertz] [--stiffness K]\n"
-    "                              [--exponent n] [--damping-n-s-m c | --restitution cr]\n"
-    "                              [--mass-kg m | --mass-kg A:B] [--h-s h] [--speed-m-s v]\n"
-    "                              [--load-n F] [--verify] [--json]\n"
+    "         [--exponent n] [--damping-n-s-m c | --restitution cr]\n"
+    "         [--mass-kg m | --mass-kg A:B] [--h-s h] [--speed-m-s v]\n"
+    "         [--load-n F] [--verify] [--json]\n"
+    "       fourbar contact-params --case CASE [--joint NAME]\n"
+    "         [--law restitution|hertz] [--h-s h] [--speed-m-s v]\n"
+    "         [--verify] [--json]\n"
     "\n"
     "The engine parameters that make a soft contact behave like a given physical\n"
     "contact at step h: ODE (per-contact ERP/CFM), Gazebo (SDF kp, kd, max_vel,\n"
@@ -26,22 +32,33 @@ static const char params_help[] =
     "With --verify, each is simulated on a single impact of the given mass and\n"
     "speed and compared with the continuous law (docs/contact-params.md).\n"
     "\n"
-    "  --law          restitution (default: a linear spring with the damper that gives\n"
-    "                 coefficient of restitution cr), linear (spring and damper), hertz\n"
-    "                 (K delta^n, undamped: turned into a linear spring at an operating\n"
-    "                 point, see --load-n)\n"
+    "  --law          restitution (default: a linear spring with the damper\n"
+    "                 that gives coefficient of restitution cr), linear (spring\n"
+    "                 and damper), hertz (K delta^n, undamped: turned into a\n"
+    "                 linear spring at an operating point, see --load-n)\n"
     "  --stiffness    k [N/m] (hertz: K [N/m^n]); default 1e7\n"
     "  --exponent     n of the hertz law (default 1.5)\n"
     "  --restitution  cr of the restitution law, in (0.135, 1] (default 0.9)\n"
     "  --damping-n-s-m  c of the linear law [N s/m] (default 0)\n"
     "  --mass-kg      effective mass along the contact normal [kg], or a range A:B\n"
-    "                 (the rows are designed at the geometric mean and verified at\n"
-    "                 both ends); default 0.1\n"
+    "                 (the rows are designed at the geometric mean and verified\n"
+    "                 at both ends); default 0.1\n"
     "  --h-s          step size [s]; default: h omega_c = 0.1 at the smallest mass\n"
-    "  --speed-m-s    impact speed for --verify and the hertz operating point (default 1)\n"
-    "  --load-n       hertz only: linearise at the static penetration of this load\n"
-    "                 (tangent stiffness) instead of the impact at --speed-m-s (the\n"
-    "                 linear spring with the same peak penetration)\n"
+    "  --speed-m-s    impact speed for --verify and the hertz operating point\n"
+    "                 (default 1)\n"
+    "  --load-n       hertz only: linearise at the static penetration of this\n"
+    "                 load (tangent stiffness) instead of the impact at\n"
+    "                 --speed-m-s (the linear spring with the same peak\n"
+    "                 penetration)\n"
+    "  --case         take the contact from a case file (a path, or a shipped\n"
+    "                 case's name): the law of its clearance-restitution models\n"
+    "                 (--law restitution: k, cr) or of its clearance-impact models\n"
+    "                 (--law hertz: K, n, linearised at the joint's expected\n"
+    "                 force; its damper is not carried), the joint's\n"
+    "                 effective-mass range over a revolution and every\n"
+    "                 direction, and the run's step (unless --h-s)\n"
+    "  --joint        the case's clearance joint (crank-coupler,\n"
+    "                 coupler-follower, ...); needed when the case has several\n"
     "  --verify       simulate each engine's parameters on one impact\n"
     "  --json         one JSON object: params per engine and verify (see docs)\n"
     "Exit status: 0 ok, 1 a verification failed to run, 2 bad input.\n";
@@ -63,6 +80,9 @@ typedef struct {
   double m_min, m_max, m0;
   double h, v, load;
   int has_load, verify, json;
+  /* --case: the file, the joint and the law's model */
+  char case_path[4096];
+  int joint;
 } request;
 
 static double rel(double x, double ref) { return ref != 0.0 ? (x - ref) / fabs(ref) : x - ref; }
@@ -154,10 +174,12 @@ int fb_cmd_contact_params(int argc, char **argv) {
       {"h-s", required_argument, 0, 'H'},       {"speed-m-s", required_argument, 0, 'v'},
       {"load-n", required_argument, 0, 'F'},    {"verify", no_argument, 0, 'V'},
       {"json", no_argument, 0, 'j'},            {"help", no_argument, 0, 'h'},
+      {"case", required_argument, 0, 'C'},      {"joint", required_argument, 0, 'J'},
       {0, 0, 0, 0}};
   request q = {.law = FB_LAW_RESTITUTION, .K = 1e7, .n = 1.5, .c = 0.0, .cr = 0.9,
                .m_min = 0.1, .m_max = 0.1, .h = 0.0, .v = 1.0};
-  int ch, cr_given = 0, c_given = 0, n_given = 0;
+  int ch, cr_given = 0, c_given = 0, n_given = 0, k_given = 0, m_given = 0, law_given = 0;
+  const char *case_arg = NULL, *joint_arg = NULL;
   const char *P = "contact-params";
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
@@ -167,15 +189,19 @@ int fb_cmd_contact_params(int argc, char **argv) {
         else if (strcmp(optarg, "restitution") == 0) q.law = FB_LAW_RESTITUTION;
         else if (strcmp(optarg, "hertz") == 0) q.law = FB_LAW_HERTZ;
         else return fb_cli_fail(P, 2, "--law '%s': must be linear, restitution or hertz", optarg);
+        law_given = 1;
         break;
-      case 'k': if (!fb_cli_double(P, "--stiffness", optarg, &q.K)) return 2; break;
+      case 'k': if (!fb_cli_double(P, "--stiffness", optarg, &q.K)) return 2; k_given = 1; break;
       case 'n': if (!fb_cli_double(P, "--exponent", optarg, &q.n)) return 2; n_given = 1; break;
       case 'e': if (!fb_cli_double(P, "--restitution", optarg, &q.cr)) return 2; cr_given = 1; break;
       case 'c': if (!fb_cli_double(P, "--damping-n-s-m", optarg, &q.c)) return 2; c_given = 1; break;
       case 'm':
         if (!parse_mass(optarg, &q))
           return fb_cli_fail(P, 2, "--mass-kg '%s': a mass in kg or a range A:B", optarg);
+        m_given = 1;
         break;
+      case 'C': case_arg = optarg; break;
+      case 'J': joint_arg = optarg; break;
       case 'H': if (!fb_cli_double(P, "--h-s", optarg, &q.h)) return 2; break;
       case 'v': if (!fb_cli_double(P, "--speed-m-s", optarg, &q.v)) return 2; break;
       case 'F': if (!fb_cli_double(P, "--load-n", optarg, &q.load)) return 2; q.has_load = 1; break;
@@ -187,6 +213,58 @@ int fb_cmd_contact_params(int argc, char **argv) {
     }
   }
   if (optind < argc) return fb_cli_fail(P, 2, "unexpected argument '%s'", argv[optind]);
+  (void)law_given;
+  fb_case_contact cc;
+  q.joint = -1;
+  if (joint_arg && !case_arg)
+    return fb_cli_fail(P, 2, "--joint %s: names a joint of a case; give --case too", joint_arg);
+  if (case_arg) {
+    if (k_given || cr_given || c_given || n_given || m_given || q.has_load)
+      return fb_cli_fail(P, 2, "--case takes the stiffness, exponent, damping or restitution, "
+                         "effective mass and operating point from the case: drop %s",
+                         k_given ? "--stiffness" : cr_given ? "--restitution"
+                         : c_given ? "--damping-n-s-m" : n_given ? "--exponent"
+                         : m_given ? "--mass-kg" : "--load-n");
+    if (q.law == FB_LAW_LINEAR)
+      return fb_cli_fail(P, 2, "--law linear with --case: a case's clearance models use the "
+                         "restitution law (--law restitution, the default) and the impact law "
+                         "(--law hertz)");
+    fb_cli_case_path(q.case_path, sizeof q.case_path, case_arg);
+    fb_case cs;
+    fb_diag cd;
+    if (fb_casefile_load(&cs, q.case_path, NULL, 0, &cd) != FB_OK)
+      return fb_cli_fail(P, 2, "%s", cd.msg);
+    if (joint_arg) {
+      for (int j = 0; j < 4; j++)
+        if (strcmp(joint_arg, fb_joint_name(j)) == 0) q.joint = j;
+      if (q.joint < 0)
+        return fb_cli_fail(P, 2, "--joint '%s': must be ground-crank, crank-coupler, "
+                           "coupler-follower or follower-ground", joint_arg);
+    } else {
+      int n = 0;
+      for (int j = 0; j < 4; j++)
+        if (cs.clearance.mask & (1 << j)) q.joint = j, n++;
+      if (n > 1)
+        return fb_cli_fail(P, 2, "--case %s has %d clearance joints: name one with --joint",
+                           q.case_path, n);
+    }
+    if (fb_case_contact_of(&cc, &cs, q.joint, &cd) != FB_OK)
+      return fb_cli_fail(P, 2, "--case %s: %s", q.case_path, cd.msg);
+    if (q.law == FB_LAW_HERTZ) {
+      q.K = cc.impact.stiffness;
+      q.n = cc.impact.exponent;
+      /* the operating point: the joint's expected force (resolution.h) */
+      q.load = cc.est.force_expected;
+      q.has_load = 1;
+    } else {
+      q.K = cc.restitution.stiffness;
+      q.cr = cc.restitution.restitution;
+      cr_given = 1;
+    }
+    q.m_min = cc.est.m_eff_min;
+    q.m_max = cc.est.m_eff_max;
+    if (q.h == 0.0) q.h = cc.h;
+  }
   /* every parameter with its range and unit */
   if (!(q.K > 0.0) || !isfinite(q.K) || q.K > 1e20)
     return fb_cli_fail(P, 2, "--stiffness %g: must be positive, at most 1e20 (N/m, or N/m^n "
@@ -367,6 +445,12 @@ int fb_cmd_contact_params(int argc, char **argv) {
                                                : "equal peak penetration of the impact",
                                     "penetration_m", dop));
     json_object_set_new(o, "contact", c);
+    json_object_set_new(o, "case",
+                        q.joint < 0 ? json_null()
+                                    : json_pack("{s:s,s:s,s:s}", "file", q.case_path, "joint",
+                                                fb_joint_name(q.joint), "model",
+                                                q.law == FB_LAW_HERTZ ? "clearance-impact"
+                                                                      : "clearance-restitution"));
     json_object_set_new(o, "mass_kg", json_pack("{s:f,s:f,s:f}", "min", q.m_min, "max", q.m_max,
                                                 "design", q.m0));
     json_object_set_new(o, "h_s", json_real(q.h));
@@ -420,6 +504,13 @@ int fb_cmd_contact_params(int argc, char **argv) {
     return failed ? 1 : 0;
   }
 
+  if (q.joint >= 0)
+    printf("case %s, joint %s: the law of its clearance-%s models%s; effective mass over a "
+           "revolution and every direction\n",
+           q.case_path, fb_joint_name(q.joint), q.law == FB_LAW_HERTZ ? "impact" : "restitution",
+           q.law == FB_LAW_HERTZ ? " (its damper not carried), linearised at the joint's "
+                                   "expected force"
+                                 : "");
   printf("contact: %s law, ", q.law == FB_LAW_HERTZ ? "hertz"
                              : q.law == FB_LAW_LINEAR ? "linear" : "restitution");
   if (q.law == FB_LAW_HERTZ)

@@ -98,3 +98,33 @@ fb_status fb_case_resolve_step(fb_case *c, fb_diag *diag) {
   if (!automatic) return FB_OK;
   return fb_step_auto(&c->solver.h, NULL, c, diag);
 }
+
+fb_status fb_case_contact_of(fb_case_contact *out, const fb_case *c, int j, fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  if (j < 0 || j > 3 || !(c->clearance.mask & (1 << j))) {
+    char names[128] = "";
+    for (int i = 0; i < 4; i++)
+      if (c->clearance.mask & (1 << i)) {
+        if (names[0]) strcat(names, ", ");
+        strcat(names, fb_joint_name(i));
+      }
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "joint '%s' is not a clearance joint of this case (its [clearance] joints: "
+                       "%s)", j >= 0 && j <= 3 ? fb_joint_name(j) : "?",
+                       names[0] ? names : "none");
+  }
+  fb_contact_law imp[4], res[4];
+  fb_status st = fb_joint_laws(imp, res, c, diag);
+  if (st != FB_OK) return st;
+  out->impact = imp[j];
+  out->restitution = res[j];
+  fb_contact_estimate est[4];
+  st = fb_contact_estimates(est, c, res, diag);
+  if (st != FB_OK) return st;
+  out->est = est[j];
+  fb_case step = *c;
+  st = fb_case_resolve_step(&step, diag);
+  if (st != FB_OK) return st;
+  out->h = step.solver.h;
+  return FB_OK;
+}

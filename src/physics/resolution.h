@@ -76,6 +76,22 @@ fb_status fb_contact_estimates(fb_contact_estimate est[4], const fb_case *c,
  * Errors: those of fb_joint_laws and fb_contact_estimates. */
 fb_status fb_step_auto(double *h, double *omega_c_max, const fb_case *c, fb_diag *diag);
 
+/* One clearance joint of a case as a contact on its own (`fourbar
+ * contact-params --case`): the laws of its two clearance models, its
+ * effective-mass range over a revolution and every direction, the force to
+ * expect, and the step the run would take. */
+typedef struct {
+  fb_contact_law impact;      /* the *-clearance-impact model's law */
+  fb_contact_law restitution; /* the *-clearance-restitution model's law */
+  fb_contact_estimate est;    /* m_eff range [kg], expected force [N], omega_c [rad/s] */
+  double h;                   /* the run's step [s] (fb_case_resolve_step; h_min_s if adaptive) */
+} fb_case_contact;
+
+/* Fills out for joint j (FB_JOINT_A..D) of case c. Errors: FB_ERR_ARG when
+ * j is not one of the case's clearance joints (the message names those);
+ * those of fb_joint_laws, fb_contact_estimates and fb_case_resolve_step. */
+fb_status fb_case_contact_of(fb_case_contact *out, const fb_case *c, int j, fb_diag *diag);
+
 /* Sets c->solver.h from fb_step_auto when h_mode is FB_STEP_AUTO, or
  * FB_STEP_DEFAULT with clearance joints (h_mode is left as it was, so a
  * later change of the case can resolve it again). Errors: those of

@@ -53,10 +53,10 @@ extern "C" fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def
   body.setLinearVelocity(btVector3(0, 0, -d->speed)); /* touching: penetration 0 */
 
   double v0 = -1.0;
-  int in_contact = 0, done = 0;
-  double t_end = 0.0, prev_depth = 0.0, phase = 0.0;
+  fb_impact_tally tally = {0, 0, 0.0, 0.0};
+  double phase = 0.0;
   size_t k;
-  for (k = 0; k < max_steps && !done; k++) {
+  for (k = 0; k < max_steps && !tally.done; k++) {
     const double delta = -body.getCenterOfMassPosition()[2];
     const double ddot = -body.getLinearVelocity()[2];
     double share = 1.0;
@@ -88,25 +88,14 @@ extern "C" fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def
       st = fb_diag_set(diag, FB_ERR_NUMERIC, "Bullet impact: non-finite state at t = %g s", t1);
       break;
     }
-    if (depth_now > out->penetration_max) out->penetration_max = depth_now;
-    if (force > out->force_max) out->force_max = force;
-    if (force > 0.0) {
-      in_contact = 1;
-      t_end = t1;
-      if (depth_now <= 0.0 && prev_depth > 0.0)
-        t_end = t1 - h + h * prev_depth / (prev_depth - depth_now);
-    } else if (in_contact && body.getLinearVelocity()[2] > 0.0) {
-      done = 1;
-    }
-    prev_depth = depth_now;
-    if (in_contact && depth_now <= 0.0 && body.getLinearVelocity()[2] > 0.0) done = 1;
+    fb_impact_tally_force(&tally, out, t1, h, depth_now, force, body.getLinearVelocity()[2]);
   }
   out->steps = k;
-  out->contact_duration = t_end;
+  out->contact_duration = tally.t_end;
   out->restitution = body.getLinearVelocity()[2] / d->speed;
   world.removeConstraint(&row);
   world.removeRigidBody(&body);
-  if (st == FB_OK && !done)
+  if (st == FB_OK && !tally.done)
     st = fb_diag_set(diag, FB_ERR_NUMERIC,
                      "Bullet impact: the body has not left the contact after %zu steps (%g s)", k,
                      (double)k * h);
@@ -175,10 +164,9 @@ extern "C" fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass
 
   fb_status st = FB_OK;
   const size_t max_steps = (size_t)ceil(t_max / h) + 1;
-  int in_contact = 0, done = 0;
-  double t_end = 0.0, prev_depth = 0.0;
+  fb_impact_tally tally = {0, 0, 0.0, 0.0};
   size_t k;
-  for (k = 0; k < max_steps && !done; k++) {
+  for (k = 0; k < max_steps && !tally.done; k++) {
     world.stepSimulation(h, 0, h);
     double impulse = 0.0;
     for (int i = 0; i < dispatcher.getNumManifolds(); i++) {
@@ -193,23 +181,14 @@ extern "C" fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass
                        t1);
       break;
     }
-    if (depth_now > out->penetration_max) out->penetration_max = depth_now;
-    if (force > out->force_max) out->force_max = force;
-    if (force > 0.0) {
-      in_contact = 1;
-      t_end = t1;
-      if (depth_now <= 0.0 && prev_depth > 0.0)
-        t_end = t1 - h + h * prev_depth / (prev_depth - depth_now);
-    }
-    prev_depth = depth_now;
-    if (in_contact && depth_now <= 0.0 && ball.getLinearVelocity()[2] > 0.0) done = 1;
+    fb_impact_tally_force(&tally, out, t1, h, depth_now, force, ball.getLinearVelocity()[2]);
   }
   out->steps = k;
-  out->contact_duration = t_end;
+  out->contact_duration = tally.t_end;
   out->restitution = ball.getLinearVelocity()[2] / speed;
   world.removeRigidBody(&ball);
   world.removeRigidBody(&ground);
-  if (st == FB_OK && !done)
+  if (st == FB_OK && !tally.done)
     st = fb_diag_set(diag, FB_ERR_NUMERIC,
                      "Bullet contact impact: the body has not left the contact after %zu steps "
                      "(%g s)", k, (double)k * h);

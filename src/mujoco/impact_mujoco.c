@@ -55,10 +55,9 @@ fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, dou
   d->qpos[0] = 0.0; /* the sphere touches the plane: penetration 0 */
   d->qvel[0] = -speed;
   fb_status st = FB_OK;
-  int in_contact = 0, done = 0;
-  double prev_depth = 0.0, t_end = 0.0;
+  fb_impact_tally tally = {0, 0, 0.0, 0.0};
   size_t k;
-  for (k = 0; (double)k < steps_max && !done; k++) {
+  for (k = 0; (double)k < steps_max && !tally.done; k++) {
     mj_step(m, d);
     const double depth = -d->qpos[0];
     if (!isfinite(depth) || !isfinite(d->qvel[0])) {
@@ -67,27 +66,21 @@ fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, dou
       break;
     }
     /* the contact force of this step's constraint stage (state at its start) */
+    double force = 0.0;
     for (int i = 0; i < d->ncon; i++) {
       mjtNum f[6];
       mj_contactForce(m, d, i, f);
-      if (f[0] > out->force_max) out->force_max = f[0];
+      if (f[0] > force) force = f[0];
     }
-    if (depth > out->penetration_max) out->penetration_max = depth;
-    if (depth > 0.0) in_contact = 1;
-    if (in_contact && depth < 0.0) {
-      const double t1 = (double)(k + 1) * h;
-      t_end = t1 - h + h * prev_depth / (prev_depth - depth);
-      done = 1;
-    }
-    prev_depth = depth;
+    fb_impact_tally_depth(&tally, out, (double)(k + 1) * h, h, depth, force);
   }
   out->steps = k;
-  out->contact_duration = t_end;
+  out->contact_duration = tally.t_end;
   out->restitution = d->qvel[0] / speed;
   mjcb_passive = passive;
   mj_deleteData(d);
   mj_deleteModel(m);
-  if (st == FB_OK && !done)
+  if (st == FB_OK && !tally.done)
     st = fb_diag_set(diag, FB_ERR_NUMERIC,
                      "MuJoCo impact: the body has not left the contact after %zu steps (%g s)", k,
                      (double)k * h);

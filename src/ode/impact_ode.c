@@ -55,12 +55,12 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
   dBodySetLinearVel(body, 0, 0, -d->speed);
 
   double v0 = -1.0; /* approach speed at first contact */
-  int in_contact = 0, done = 0, broken = 0;
-  double t_end = 0.0, prev_depth = 0.0;
+  int broken = 0;
+  fb_impact_tally tally = {0, 0, 0.0, 0.0};
   double phase = 0.0; /* contact phase so far [rad] (matched-static, contact.h) */
   size_t k;
   dJointFeedback fb;
-  for (k = 0; k < max_steps && !done; k++) {
+  for (k = 0; k < max_steps && !tally.done; k++) {
     const dReal *p = dBodyGetPosition(body);
     const dReal *v = dBodyGetLinearVel(body);
     const double delta = -p[2], ddot = -v[2];
@@ -105,22 +105,10 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
       st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE impact: non-finite state at t = %g s", t1);
       break;
     }
-    if (depth_now > out->penetration_max) out->penetration_max = depth_now;
-    if (force > out->force_max) out->force_max = force;
-    if (force > 0.0) {
-      in_contact = 1;
-      t_end = t1;
-      /* the body leaves during this step: end where the depth crosses zero */
-      if (depth_now <= 0.0 && prev_depth > 0.0)
-        t_end = t1 - d->h + d->h * prev_depth / (prev_depth - depth_now);
-    } else if (in_contact && dBodyGetLinearVel(body)[2] > 0.0) {
-      done = 1; /* force gone and moving out: free flight from here */
-    }
-    prev_depth = depth_now;
-    if (in_contact && depth_now <= 0.0 && dBodyGetLinearVel(body)[2] > 0.0) done = 1;
+    fb_impact_tally_force(&tally, out, t1, d->h, depth_now, force, dBodyGetLinearVel(body)[2]);
   }
   out->steps = k;
-  out->contact_duration = t_end;
+  out->contact_duration = tally.t_end;
   if (broken) { /* kept, never touched again (ode_env.h) */
     fb_ode_quarantine(world);
     fb_ode_quarantine(group);
@@ -131,7 +119,7 @@ fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *
   dJointGroupDestroy(group);
   dWorldDestroy(world);
   fb_ode_release();
-  if (st == FB_OK && !done)
+  if (st == FB_OK && !tally.done)
     st = fb_diag_set(diag, FB_ERR_NUMERIC,
                      "ODE impact: the body has not left the contact after %zu steps (%g s)", k,
                      (double)k * d->h);
@@ -243,11 +231,11 @@ fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, do
   dBodySetPosition(body, 0, 0, 0);
   dBodySetLinearVel(body, 0, 0, -speed);
   fb_status st = FB_OK;
-  int in_contact = 0, done = 0, broken = 0;
-  double prev_depth = 0.0, t_end = 0.0;
+  int broken = 0;
+  fb_impact_tally tally = {0, 0, 0.0, 0.0};
   size_t k;
   dJointFeedback fb;
-  for (k = 0; (double)k < steps_max && !done; k++) {
+  for (k = 0; (double)k < steps_max && !tally.done; k++) {
     const dReal *p = dBodyGetPosition(body);
     const double delta = -p[2];
     dJointID cj = 0;
@@ -284,17 +272,10 @@ fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, do
       st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE row impact: non-finite state at t = %g s", t1);
       break;
     }
-    if (depth_now > out->penetration_max) out->penetration_max = depth_now;
-    if (force > out->force_max) out->force_max = force;
-    if (depth_now > 0.0) in_contact = 1;
-    if (in_contact && depth_now < 0.0) {
-      t_end = t1 - h + h * prev_depth / (prev_depth - depth_now);
-      done = 1;
-    }
-    prev_depth = depth_now;
+    fb_impact_tally_depth(&tally, out, t1, h, depth_now, force);
   }
   out->steps = k;
-  out->contact_duration = t_end;
+  out->contact_duration = tally.t_end;
   if (broken) {
     fb_ode_quarantine(world);
     fb_ode_quarantine(group);
@@ -305,7 +286,7 @@ fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, do
   dJointGroupDestroy(group);
   dWorldDestroy(world);
   fb_ode_release();
-  if (st == FB_OK && !done)
+  if (st == FB_OK && !tally.done)
     st = fb_diag_set(diag, FB_ERR_NUMERIC,
                      "ODE row impact: the body has not left the contact after %zu steps (%g s)",
                      k, (double)k * h);

@@ -202,3 +202,32 @@ fb_status fb_impact_reference(fb_impact_result *out, const fb_impact_def *d, fb_
   out->wall_s = fb_clock_s() - t_wall;
   return st;
 }
+
+void fb_impact_tally_force(fb_impact_tally *t, fb_impact_result *out, double t1, double h,
+                           double depth, double force, double v_out) {
+  if (depth > out->penetration_max) out->penetration_max = depth;
+  if (force > out->force_max) out->force_max = force;
+  if (force > 0.0) {
+    t->in_contact = 1;
+    t->t_end = t1;
+    /* the body leaves during this step: end where the depth crosses zero */
+    if (depth <= 0.0 && t->prev_depth > 0.0)
+      t->t_end = t1 - h + h * t->prev_depth / (t->prev_depth - depth);
+  } else if (t->in_contact && v_out > 0.0) {
+    t->done = 1; /* force gone and moving out: free flight from here */
+  }
+  t->prev_depth = depth;
+  if (t->in_contact && depth <= 0.0 && v_out > 0.0) t->done = 1;
+}
+
+void fb_impact_tally_depth(fb_impact_tally *t, fb_impact_result *out, double t1, double h,
+                           double depth, double force) {
+  if (depth > out->penetration_max) out->penetration_max = depth;
+  if (force > out->force_max) out->force_max = force;
+  if (depth > 0.0) t->in_contact = 1;
+  if (t->in_contact && depth < 0.0) {
+    t->t_end = t1 - h + h * t->prev_depth / (t->prev_depth - depth);
+    t->done = 1;
+  }
+  t->prev_depth = depth;
+}

@@ -138,6 +138,33 @@ fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, dou
                            const double solref[2], const double solimp[5], double t_max,
                            fb_diag *diag);
 
+/* The bookkeeping every engine's single impact shares, step by step: peak
+ * penetration and force into an fb_impact_result, the contact's end, and
+ * when the body has left. Zero-initialise, then call one of the two rules
+ * after each step with the state at its end. */
+typedef struct {
+  int in_contact;    /* the contact has begun */
+  int done;          /* the body has left: stop stepping */
+  double t_end;      /* end of the contact [s] (the result's contact_duration) */
+  double prev_depth; /* depth after the step before [m] */
+} fb_impact_tally;
+
+/* Force rule (engines whose contact force is known per step: ODE's world
+ * impact, Bullet's): a step whose force [N] > 0 is in contact, and the
+ * contact ends with it, or where the depth [m] crosses zero inside it
+ * (linear interpolation); the body has left once the force is gone, or the
+ * depth is <= 0, while it moves out (v_out [m/s] > 0). t1 [s] is the time
+ * at the step's end, h [s] its length. */
+void fb_impact_tally_force(fb_impact_tally *t, fb_impact_result *out, double t1, double h,
+                           double depth, double force, double v_out);
+
+/* Depth rule (a fixed row created whenever the depth >= 0, MuJoCo's
+ * contacts): in contact once the depth [m] > 0; the contact ends, and the
+ * body has left, where the depth crosses below zero (interpolated). force
+ * [N] only enters the peak. */
+void fb_impact_tally_depth(fb_impact_tally *t, fb_impact_result *out, double t1, double h,
+                           double depth, double force);
+
 /* Estimated contact duration [s] used for sampling and default steps: the
  * undamped closed form of the law's elastic part. */
 double fb_impact_duration_estimate(const fb_impact_def *d);

@@ -662,6 +662,19 @@ static void test_engines_case(void **state) {
                                  NULL});
 }
 
+/* a help text fits a terminal of HELP_COLUMNS columns */
+#define HELP_COLUMNS 80
+static void expect_width(const char *cmd, const char *text) {
+  for (const char *line = text; *line;) {
+    const char *end = strchr(line, '\n');
+    const size_t n = end ? (size_t)(end - line) : strlen(line);
+    if (n > HELP_COLUMNS)
+      fail_msg("%s --help: a line of %zu columns (at most %d): '%.*s'", cmd, n, HELP_COLUMNS,
+               (int)n, line);
+    line += n + (end != NULL);
+  }
+}
+
 static void test_help_answers(void **state) {
   (void)state;
   static char out[8192];
@@ -673,7 +686,8 @@ static void test_help_answers(void **state) {
   assert_non_null(strstr(out, "kinematics"));
   /* every command answers --help with its usage and its exit status */
   static const char *const cmds[] = {"run", "kinematics", "stackup", "fit", "tolerance", "penalty",
-                                     "impact", "check", "sweep", "merge", "mapping", "bench", NULL};
+                                     "impact", "check", "sweep", "merge", "mapping", "bench",
+                                     "contact-params", NULL};
   for (int i = 0; cmds[i]; i++) {
     char args[64], usage[64];
     snprintf(args, sizeof args, "%s --help", cmds[i]);
@@ -682,7 +696,10 @@ static void test_help_answers(void **state) {
     assert_int_equal(run(args, text, sizeof text, NULL, 0), 0);
     if (!strstr(text, usage)) fail_msg("%s --help lacks '%s'", cmds[i], usage);
     if (!strstr(text, "Exit status")) fail_msg("%s --help does not state its exit status", cmds[i]);
+    expect_width(cmds[i], text);
   }
+  assert_int_equal(run("--help", out, sizeof out, NULL, 0), 0);
+  expect_width("fourbar", out);
 }
 
 /* --set without --out writes into results/<case>/ and says so, the second

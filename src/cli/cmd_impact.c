@@ -11,7 +11,8 @@
 #include "model_table.h"
 
 static const char impact_help[] =
-    "usage: fourbar impact [--law L] [--stiffness K] [--exponent n] [--restitution cr]\n"
+    "usage: fourbar impact [--law L] [--stiffness K] [--exponent n]\n"
+    "                      [--restitution cr]\n"
     "                      [--damping-n-s-m c] [--damping-depth-m d] [--mass-kg m]\n"
     "                      [--speed-m-s v] [--h-s h] [--stepper world|quick]\n"
     "                      [--quick-iterations N] [--mapping M] [--engine ode|bullet]\n"

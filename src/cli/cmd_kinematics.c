@@ -11,9 +11,9 @@
 #include "units.h"
 
 static const char kin_help[] =
-    "usage: fourbar kinematics [CASE] [--crank-mm L] [--coupler-mm L] [--follower-mm L]\n"
-    "                          [--ground-mm L] [--speed-rpm N] [--direction cw|ccw]\n"
-    "                          [--branch open|crossed] [--json]\n"
+    "usage: fourbar kinematics [CASE] [--crank-mm L] [--coupler-mm L]\n"
+    "                          [--follower-mm L] [--ground-mm L] [--speed-rpm N]\n"
+    "                          [--direction cw|ccw] [--branch open|crossed] [--json]\n"
     "\n"
     "Exact peaks of coupler and follower angular velocity [rad/s] and angular\n"
     "acceleration [rad/s^2] over one crank revolution at constant speed, the\n"

@@ -19,8 +19,8 @@
 
 static const char run_help[] =
     "usage: fourbar run [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
-    "                   [--no-figures] [--figure-format svg|png] [--series csv|hdf5|none]\n"
-    "                   [--jobs J] [--no-report]\n"
+    "                   [--no-figures] [--figure-format svg|png]\n"
+    "                   [--series csv|hdf5|none] [--jobs J] [--no-report]\n"
     "\n"
     "Runs the models a case file asks for ([run] models), measures each against the\n"
     "exact analytic solution and writes DIR/summary.json, DIR/timing.json (wall\n"

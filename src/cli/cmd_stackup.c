@@ -18,7 +18,8 @@
 
 static const char stackup_help[] =
     "usage: fourbar stackup [CASE] [--method corners|rss|montecarlo] [--samples N]\n"
-    "                       [--seed S] [--jobs J] [--set section.key=value]... [--json]\n"
+    "                       [--seed S] [--jobs J] [--set section.key=value]...\n"
+    "                       [--json]\n"
     "\n"
     "How the outputs move within the link-length tolerances. For each output\n"
     "(peaks of coupler and follower angular velocity [rad/s] and acceleration\n"
@@ -35,7 +36,8 @@ static const char stackup_help[] =
     "  --jobs      threads evaluating the samples (default 1); the samples are\n"
     "              drawn in order from the seed, so every J gives the same numbers\n"
     "  --set K=V   override case key K (section.key), as fourbar run takes it\n"
-    "  --json      one JSON object on standard output (keys: docs/commands.md, stackup)\n"
+    "  --json      one JSON object on standard output (keys: docs/commands.md,\n"
+    "              stackup)\n"
     "  CASE        default: the paper's case, cases/paper_crank_rocker.ini\n"
     "A progress bar goes to standard error on a terminal only.\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";

@@ -47,6 +47,26 @@ source, `case` (the case file, a base file or `--set`), `derived` (from the
 bar) or `default`, in summary.json (`masses`), report.md and the printed
 header.
 
+## Variants and published values
+
+A case may run variants of itself beside it, each a section
+`[variant.NAME]` (NAME: letters, digits, `-`, `_`, `.`; at most 8 variants):
+
+| key | meaning |
+|---|---|
+| `set` | the overrides that make the variant, `section.key=value` separated by `;`, applied after the command line's `--set` (required; `[case]` keys cannot vary) |
+| `models` | the variant's `[run] models` (default: the case's) |
+| `description` | one line printed with it |
+
+`fourbar run` runs each variant after the case's own models and prints its
+models' peaks; summary.json has them under `variants` (docs/outputs.md).
+The `[published]`, `[published.impact]` and `[published.restitution]` keys
+below hold what a publication reports for the clearance model of each
+contact law: the run prints every model of that law, its own and each
+variant's, beside the published value with the difference in percent
+(`cases/paper_adams.ini` does this for the source paper's rows). Variants run
+only in `fourbar run`; `check`, `bench` and `sweep` ignore them.
+
 ## Keys
 
 The table below is the output of `fourbar keys`, copied by

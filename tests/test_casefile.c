@@ -252,7 +252,7 @@ static void test_every_key_documented(void **state) {
   for (int i = 0; i < fb_casefile_key_count(); i++) {
     char name[128], row[160];
     fb_casefile_key_name(i, name, sizeof name);
-    char *dot = strchr(name, '.');
+    char *dot = strrchr(name, '.'); /* a section may hold a dot, a key not */
     *dot = '\0';
     snprintf(row, sizeof row, "| [%s] %s |", name, dot + 1);
     if (!strstr(doc, row)) fail_msg("docs/keys.md does not document %s", row);
@@ -386,6 +386,70 @@ static void test_template_loads(void **state) {
   assert_string_equal(c.models[7], "reference-restitution");
 }
 
+/* [variant.NAME] sections and published values: read as written, a
+ * variant loads as the case with its overrides after the command line's,
+ * and every malformed variant is refused naming the variant and the rule */
+static void test_variants_and_published(void **state) {
+  (void)state;
+  const char *text = "[published]\nsource = a book\n[published.impact]\n"
+                     "coupler_omega_max_rad_s = 134.5\n"
+                     "[variant.stiff]\nset = clearance.stiffness_scale=2; drive.speed_rpm=500\n"
+                     "models = reference\ndescription = twice as stiff\n"
+                     "[variant.slow]\nset = drive.speed_rpm = 300 ; clearance.restitution=0.5\n";
+  const char *p = write_case(text);
+  fb_case c, v;
+  fb_diag d;
+  if (fb_casefile_load(&c, p, NULL, 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_string_equal(c.published_source, "a book");
+  assert_true(c.published[FB_PUBLISHED_IMPACT].coupler.omega_max == 134.5);
+  assert_true(isnan(c.published[FB_PUBLISHED_IMPACT].coupler.alpha_max));
+  assert_true(isnan(c.published[FB_PUBLISHED_RESTITUTION].follower.omega_max));
+  assert_int_equal(c.variant_count, 2);
+  assert_string_equal(c.variant[0].name, "stiff");
+  assert_string_equal(c.variant[0].models, "reference");
+  assert_string_equal(c.variant[1].name, "slow");
+  /* the variant's overrides come after the command line's */
+  const char *sets[] = {"drive.speed_rpm=700", "clearance.stiffness_scale=3"};
+  if (fb_casefile_load_variant(&v, p, sets, 2, &c.variant[0], &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_rel(v.crank_speed, 500.0 * 2.0 * M_PI / 60.0, SI_TOL);
+  assert_rel(v.clearance.stiffness_scale, 2.0, SI_TOL);
+  assert_int_equal(v.model_count, 1);
+  assert_string_equal(v.models[0], "reference");
+  assert_int_equal(v.variant_count, 0); /* a variant runs none of its own */
+  if (fb_casefile_load_variant(&v, p, sets, 2, &c.variant[1], &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_rel(v.crank_speed, 300.0 * 2.0 * M_PI / 60.0, SI_TOL);
+  assert_rel(v.clearance.restitution, 0.5, SI_TOL); /* " ;" separates, it starts no comment */
+  assert_rel(v.clearance.stiffness_scale, 3.0, SI_TOL);
+  assert_int_equal(v.model_count, c.model_count);
+  unlink(p);
+  /* a value the variant's case refuses: named with the variant */
+  p = write_case("[variant.bad]\nset = drive.speed_rpm=-5\n");
+  if (fb_casefile_load(&c, p, NULL, 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(fb_casefile_load_variant(&v, p, NULL, 0, &c.variant[0], &d), FB_ERR_RANGE);
+  assert_non_null(strstr(d.msg, "variant bad"));
+  assert_non_null(strstr(d.msg, "crank speed must be positive"));
+  unlink(p);
+  expect_error("[variant.x]\nmodels = reference\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"[variant.x] has no set", NULL});
+  expect_error("[variant.x]\nset =;;\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"[variant.x] set is empty", NULL});
+  expect_error("[variant.x]\nset = drive.speed=5\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"'drive.speed=5' is not section.key=value", NULL});
+  expect_error("[variant.x]\nset = case.name=y\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"[case] keys cannot vary", NULL});
+  expect_error("[variant.x]\nset = drive.speed_rpm=5\nspeed = 3\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"unknown key 'speed' in [variant.x]", NULL});
+  expect_error("[variant./x]\nset = drive.speed_rpm=5\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"a variant name is", NULL});
+  expect_error("[published.impact]\ncoupler_omega_max_rad_s = fast\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){"not a number", NULL});
+  char many[2048] = "";
+  for (int i = 0; i <= FB_MAX_VARIANTS; i++)
+    snprintf(many + strlen(many), sizeof many - strlen(many), "[variant.v%d]\nset = drive.speed_rpm=%d\n",
+             i, 100 + i);
+  expect_error(many, NULL, 0, FB_ERR_PARSE, (const char *[]){"more than 8 variants", NULL});
+}
+
 /* the paper's case gives every mass and inertia: read as "case", to the
  * digit (173.92 kg mm^2 = 1.7392e-4 kg m^2), also through a base file */
 static void test_paper_masses_are_the_case(void **state) {
@@ -460,6 +524,7 @@ int main(void) {
       cmocka_unit_test(test_paper_masses_are_the_case),
       cmocka_unit_test(test_default_models_follow_the_joints),
       cmocka_unit_test(test_template_loads),
+      cmocka_unit_test(test_variants_and_published),
       cmocka_unit_test(test_fuzz_regressions_give_errors_not_crashes),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -128,6 +128,15 @@ int fb_cmd_run(int argc, char **argv) {
   int rc = fb_cli_load_case("run", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
   c.jobs = jobs;
+  /* the case's variants ([variant.NAME]) load now, so a bad one fails before
+   * any simulation */
+  static fb_case variants[FB_MAX_VARIANTS];
+  for (int v = 0; v < c.variant_count; v++) {
+    fb_diag vd;
+    if (fb_casefile_load_variant(&variants[v], case_path, sets, nsets, &c.variant[v], &vd) != FB_OK)
+      return fb_cli_fail("run", 2, "%s", vd.msg);
+    variants[v].jobs = jobs;
+  }
 
   char dir[4096];
   if (out_dir)
@@ -155,6 +164,10 @@ int fb_cmd_run(int argc, char **argv) {
   static fb_run r;
   progress_state ps = {isatty(2) && !json};
   st = fb_run_case(&r, &c, progress, &ps, &diag);
+  if (st == FB_OK) {
+    st = fb_run_variants(&r, variants, c.variant_count, progress, &ps, &diag);
+    if (st != FB_OK) fb_run_free(&r);
+  }
   if (st != FB_OK) {
     fb_outdir_release(&od);
     return fb_cli_fail("run", 1, "%s: %s", case_path, diag.msg); /* the file whose keys to fix */

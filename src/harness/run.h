@@ -9,6 +9,7 @@
 #include "metrics.h"
 #include "models.h"
 #include "scene_def.h"
+#include "variants.h"
 
 /* Warnings a model run can carry. */
 #define FB_RUN_WARNINGS 6
@@ -107,6 +108,8 @@ typedef struct fb_run_s {
                                              a contact passed FB_H_OMEGA_C_BOUND [-] */
   double h_omega_c_max;                   /* largest h omega_c over the clearance models'
                                              contact steps (0: none measured) [-] */
+  int variant_count;                      /* variants run (fb_run_variants; 0: none) */
+  fb_variant_result variant[FB_MAX_VARIANTS]; /* their models' peaks, in c.variant order */
 } fb_run;
 
 /* Up-front cost of running case c (issue 13): per model, the samples its

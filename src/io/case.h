@@ -259,6 +259,37 @@ fb_mujoco_opts fb_mujoco_opts_default(void);
  * with clearance joints (measured: docs/engines.md, "MuJoCo"). */
 int fb_mujoco_integrator_resolve(const fb_mujoco_opts *o, int clearance_mask);
 
+/* Most variants a case may define ([variant.NAME] sections). */
+#define FB_MAX_VARIANTS 8
+
+/* A variant of the case, run beside it by fourbar run ([variant.NAME]): the
+ * same case file with more overrides, as --set takes them, applied after the
+ * command line's. Its models are the case's unless it names its own. */
+typedef struct {
+  char name[FB_NAME_SIZE]; /* NAME of the [variant.NAME] section */
+  char set[256];           /* "section.key=value; ..." (at least one) */
+  char models[256];        /* [run] models of the variant ("" : the case's) */
+  char description[160];   /* one line for the reader ("" : none) */
+  char origin[160];        /* file:line of its set key, for messages */
+} fb_case_variant;
+
+/* One body's extremes as a publication reports them, NaN where it gives
+ * none (the fields of fb_body_peaks, analytic.h) [rad/s, rad/s^2]. */
+typedef struct {
+  double omega_max, omega_min, alpha_max, alpha_min;
+} fb_case_body_values;
+
+/* What a publication reports for the clearance model of one contact law
+ * ([published.impact], [published.restitution]): the run prints every
+ * model of that law, and every variant's, beside it with the difference. */
+typedef struct {
+  fb_case_body_values coupler;
+  fb_case_body_values follower;
+} fb_case_published;
+
+/* Index of fb_case.published: the contact law a published row belongs to. */
+enum { FB_PUBLISHED_IMPACT = 0, FB_PUBLISHED_RESTITUTION = 1, FB_PUBLISHED_LAWS = 2 };
+
 typedef struct fb_case_s {
   char name[FB_NAME_SIZE];            /* case name, used for the output folder */
   fb_linkage nominal;                 /* basic link lengths [m] */
@@ -315,6 +346,10 @@ typedef struct fb_case_s {
                                          no reference check integration, no step re-choice) */
   int jobs;                           /* not a key: worker processes of the ensemble (--jobs);
                                          0 or 1: one; the results do not depend on it */
+  char published_source[160];         /* where the published values come from ("" : none) */
+  fb_case_published published[FB_PUBLISHED_LAWS]; /* the publication's values per law */
+  int variant_count;                  /* entries used in variant */
+  fb_case_variant variant[FB_MAX_VARIANTS]; /* [variant.NAME] sections, in file order */
   int model_count;                    /* entries used in models */
   char models[FB_MAX_MODELS][FB_NAME_SIZE]; /* model names to run, in order */
 } fb_case;

@@ -29,6 +29,7 @@ typedef enum {
   K_ULONG,     /* unsigned integer */
   K_NAME,      /* identifier-like string */
   K_TEXT,      /* free text, kept for the reader only */
+  K_STRING,    /* free text the writers print (fb_case.published_source) */
   K_BRANCH,    /* open | crossed */
   K_DIRECTION, /* cw | ccw */
   K_STEPPER,   /* world | quick */
@@ -116,6 +117,22 @@ static const char *const clearance_default_models[] = {
    "a bar thickness must be positive, from 0.001 mm to 1e5 mm",                            \
    "thickness t of the " nm "'s bar out of the mechanism plane (for the masses and "       \
    "inertias the case does not give)"}
+
+/* a publication's peaks of one law's clearance model: compared, never used */
+#define PUBLISHED_KEY(sec, law, nm, body, field, suffix, unit)                            \
+  {sec, #body "_" #field "_" suffix, K_DOUBLE, OFF(published[law].body.field), 1.0, -INF, INF, \
+   1, 1, unit, "(none)", "a finite number",                                                 \
+   "the published " #body " " #field " of the " nm "-law clearance model (compared, not "   \
+   "used: fourbar run prints every model of that law, and every variant's, beside it)"}
+#define PUBLISHED_KEYS(sec, law, nm)                                                        \
+  PUBLISHED_KEY(sec, law, nm, coupler, omega_max, "rad_s", "rad/s"),                        \
+  PUBLISHED_KEY(sec, law, nm, coupler, omega_min, "rad_s", "rad/s"),                        \
+  PUBLISHED_KEY(sec, law, nm, coupler, alpha_max, "rad_s2", "rad/s^2"),                     \
+  PUBLISHED_KEY(sec, law, nm, coupler, alpha_min, "rad_s2", "rad/s^2"),                     \
+  PUBLISHED_KEY(sec, law, nm, follower, omega_max, "rad_s", "rad/s"),                       \
+  PUBLISHED_KEY(sec, law, nm, follower, omega_min, "rad_s", "rad/s"),                       \
+  PUBLISHED_KEY(sec, law, nm, follower, alpha_max, "rad_s2", "rad/s^2"),                    \
+  PUBLISHED_KEY(sec, law, nm, follower, alpha_min, "rad_s2", "rad/s^2")
 
 static const key_spec keys[] = {
     {"case", "name", K_NAME, OFF(name), 0, 0, 0, 0, 0, "-", "case", "letters, digits, - _ .",
@@ -348,6 +365,13 @@ static const key_spec keys[] = {
      "the simbody-* models' integrator accuracy (Integrator::setAccuracy, a relative error "
      "per step); the output is sampled every h whatever the internal steps are"},
 
+    {"published", "source", K_STRING, OFF(published_source), 0, 0, 0, 0, 0, "-", "(none)",
+     "free text, at most 159 characters",
+     "where the [published.impact] and [published.restitution] values come from (printed "
+     "with them)"},
+    PUBLISHED_KEYS("published.impact", FB_PUBLISHED_IMPACT, "impact"),
+    PUBLISHED_KEYS("published.restitution", FB_PUBLISHED_RESTITUTION, "restitution"),
+
     {"run", "revolutions", K_INT, OFF(revolutions), 0, 1, 1e6, 0, 0, "-", "3",
      "at least 2 with peaks = steady (the first revolution is a run-in); at least 1 with "
      "peaks = all",
@@ -538,7 +562,9 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
-                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, bullet, simbody, run)",
+                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, bullet, "
+                       "simbody, run, published, published.impact, published.restitution, "
+                       "variant.<name>)",
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }
@@ -673,6 +699,13 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       return FB_OK;
     }
     case K_TEXT:
+      return FB_OK;
+    case K_STRING: /* the one such key: [published] source */
+      if (strlen(e->value) >= sizeof c->published_source)
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: %zu characters, at most %zu",
+                           e->origin, e->section, e->key, strlen(e->value),
+                           sizeof c->published_source - 1);
+      snprintf(field, sizeof c->published_source, "%s", e->value);
       return FB_OK;
     case K_BRANCH:
       if (strcmp(e->value, "open") == 0) *(fb_branch *)field = FB_BRANCH_OPEN;
@@ -1026,6 +1059,11 @@ void fb_case_default(fb_case *c) {
   }
   snprintf(c->clearance_source, sizeof c->clearance_source,
            "default (10 H7/g6 maximum, 29 um diametral / 2)");
+  /* no published value until a case gives one */
+  for (int l = 0; l < FB_PUBLISHED_LAWS; l++) {
+    fb_case_body_values *b[2] = {&c->published[l].coupler, &c->published[l].follower};
+    for (int q = 0; q < 2; q++) b[q]->omega_max = b[q]->omega_min = b[q]->alpha_max = b[q]->alpha_min = NAN;
+  }
   /* every other default is the key table's, read by the same parser as a
    * file (a test checks that each one applies) */
   for (int i = 0; i < NKEYS; i++) {
@@ -1156,8 +1194,11 @@ static fb_status parse_override(load_ctx *c, const char *ov, int index) {
   char origin[64];
   snprintf(origin, sizeof origin, "--set #%d '%.40s'", index + 1, ov);
   const char *eq = strchr(ov, '=');
-  const char *dot = strchr(ov, '.');
-  if (!eq || !dot || dot > eq || dot == ov || dot + 1 == eq)
+  /* the key has no dot, a section may ([published.impact]): the last dot before '=' */
+  const char *dot = NULL;
+  for (const char *q = ov; eq && q < eq; q++)
+    if (*q == '.') dot = q;
+  if (!eq || !dot || dot == ov || dot + 1 == eq)
     return fb_diag_set(c->diag, FB_ERR_PARSE,
                        "--set '%s': expected section.key=value (for example "
                        "drive.speed_rpm=1500)",
@@ -1259,6 +1300,125 @@ out:
   return st;
 }
 
+/* the section prefix of a variant ([variant.NAME]) */
+#define VARIANT_PREFIX "variant."
+
+/* splits a variant's set ("a.b=1; c.d=2") into items, each checked to be
+ * section.key=value with a key of the table; items[] point into buf */
+static fb_status variant_items(const fb_case_variant *v, char *buf, size_t size, char **items,
+                               int max, int *n, fb_diag *diag) {
+  snprintf(buf, size, "%s", v->set);
+  *n = 0;
+  char *save = NULL;
+  for (char *tok = strtok_r(buf, ";", &save); tok; tok = strtok_r(NULL, ";", &save)) {
+    tok = trim(tok);
+    if (!*tok) continue;
+    const char *eq = strchr(tok, '='), *dot = NULL;
+    for (const char *q = tok; eq && q < eq; q++)
+      if (*q == '.') dot = q; /* the last dot before '=' (sections may hold one) */
+    char section[64] = "", key[64] = "";
+    if (eq && dot && (size_t)(dot - tok) < sizeof section &&
+        (size_t)(eq - dot - 1) < sizeof key) {
+      snprintf(section, sizeof section, "%.*s", (int)(dot - tok), tok);
+      snprintf(key, sizeof key, "%.*s", (int)(eq - dot - 1), dot + 1);
+    }
+    if (!find_spec(trim(section), trim(key)) || strcmp(trim(section), "case") == 0)
+      return fb_diag_set(diag, FB_ERR_PARSE,
+                         "%s: [variant.%s] set: '%s' is not section.key=value with a case key "
+                         "(for example clearance.penalty=goldsmith; fourbar keys lists them; "
+                         "[case] keys cannot vary)",
+                         v->origin, v->name, tok);
+    if (*n == max)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [variant.%s] set: more than %d overrides",
+                         v->origin, v->name, max);
+    items[(*n)++] = tok;
+  }
+  if (*n == 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [variant.%s] set is empty: give at least one "
+                       "section.key=value (separated by ;)", v->origin, v->name);
+  return FB_OK;
+}
+
+/* one key of a [variant.NAME] section into out->variant */
+static fb_status take_variant(fb_case *out, const entry *e, fb_diag *diag) {
+  const char *name = e->section + strlen(VARIANT_PREFIX);
+  if (!fb_casefile_name_ok(name))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: a variant name is 1 to %d characters from "
+                       "letters, digits, '-', '_' and '.', not starting with '.'",
+                       e->origin, e->section, FB_NAME_SIZE - 1);
+  int i = 0;
+  while (i < out->variant_count && strcmp(out->variant[i].name, name) != 0) i++;
+  if (i == out->variant_count) {
+    if (i == FB_MAX_VARIANTS)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: more than %d variants", e->origin,
+                         e->section, FB_MAX_VARIANTS);
+    memset(&out->variant[i], 0, sizeof out->variant[i]);
+    snprintf(out->variant[i].name, sizeof out->variant[i].name, "%s", name);
+    out->variant_count++;
+  }
+  fb_case_variant *v = &out->variant[i];
+  char *dst;
+  size_t size;
+  if (strcmp(e->key, "set") == 0) {
+    dst = v->set;
+    size = sizeof v->set;
+    snprintf(v->origin, sizeof v->origin, "%s", e->origin);
+  } else if (strcmp(e->key, "models") == 0) {
+    dst = v->models;
+    size = sizeof v->models;
+  } else if (strcmp(e->key, "description") == 0) {
+    dst = v->description;
+    size = sizeof v->description;
+  } else {
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a variant has set, "
+                       "models and description)", e->origin, e->key, e->section);
+  }
+  if (strlen(e->value) >= size)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: %zu characters, at most %zu", e->origin,
+                       e->section, e->key, strlen(e->value), size - 1);
+  snprintf(dst, size, "%s", e->value);
+  return FB_OK;
+}
+
+/* every variant has a set whose items name case keys */
+static fb_status check_variants(const fb_case *out, fb_diag *diag) {
+  for (int i = 0; i < out->variant_count; i++) {
+    const fb_case_variant *v = &out->variant[i];
+    if (!v->set[0])
+      return fb_diag_set(diag, FB_ERR_PARSE, "[variant.%s] has no set: give set = "
+                         "section.key=value; ... (the overrides that make the variant)", v->name);
+    char buf[sizeof v->set], *items[FB_VARIANT_MAX_SETS];
+    int n;
+    fb_status st = variant_items(v, buf, sizeof buf, items, FB_VARIANT_MAX_SETS, &n, diag);
+    if (st != FB_OK) return st;
+  }
+  return FB_OK;
+}
+
+fb_status fb_casefile_load_variant(fb_case *out, const char *path, const char *const *sets,
+                                   int nsets, const fb_case_variant *v, fb_diag *diag) {
+  const char *all[FB_CASEFILE_MAX_SETS + FB_VARIANT_MAX_SETS + 1];
+  if (nsets > FB_CASEFILE_MAX_SETS)
+    return fb_diag_set(diag, FB_ERR_ARG, "more than %d --set", FB_CASEFILE_MAX_SETS);
+  char buf[sizeof v->set], *items[FB_VARIANT_MAX_SETS], models[sizeof v->models + 16];
+  int n;
+  fb_status st = variant_items(v, buf, sizeof buf, items, FB_VARIANT_MAX_SETS, &n, diag);
+  if (st != FB_OK) return st;
+  int k = 0;
+  for (int i = 0; i < nsets; i++) all[k++] = sets[i];
+  for (int i = 0; i < n; i++) all[k++] = items[i];
+  if (v->models[0]) {
+    snprintf(models, sizeof models, "run.models=%s", v->models);
+    all[k++] = models;
+  }
+  fb_diag inner;
+  st = fb_casefile_load(out, path, all, k, &inner);
+  if (st != FB_OK)
+    return fb_diag_set(diag, st, "variant %s (%s): %s", v->name, v->origin, inner.msg);
+  out->variant_count = 0; /* a variant runs no variants of its own */
+  return FB_OK;
+}
+
 static fb_status load(fb_case *out, const char *path, const char *text, size_t text_size,
                       const char *const *overrides, int n_overrides, fb_diag *diag);
 
@@ -1298,9 +1458,14 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
 
   fb_case_default(out);
   for (int i = 0; i < c->n; i++) {
-    st = apply(out, &c->e[i], diag);
+    const entry *e = &c->e[i];
+    st = strncmp(e->section, VARIANT_PREFIX, strlen(VARIANT_PREFIX)) == 0
+             ? take_variant(out, e, diag)
+             : apply(out, e, diag);
     if (st != FB_OK) goto done;
   }
+  st = check_variants(out, diag);
+  if (st != FB_OK) goto done;
   st = resolve_standards(out, c, diag);
   if (st != FB_OK) goto done;
   for (int i = 0; i < NKEYS; i++)

@@ -23,6 +23,17 @@
 fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *overrides,
                            int n_overrides, fb_diag *diag);
 
+/* Most --set overrides fb_casefile_load_variant passes on, and most items
+ * in one variant's set. */
+#define FB_CASEFILE_MAX_SETS 256
+#define FB_VARIANT_MAX_SETS 16
+/* Loads variant v of the case at path: fb_casefile_load with overrides sets
+ * (the command line's, nsets of them) followed by the items of v->set and,
+ * when v names models, run.models; the result runs no variants. Errors:
+ * those of fb_casefile_load, the message naming the variant and where its
+ * set was given; FB_ERR_ARG for more than FB_CASEFILE_MAX_SETS sets. */
+fb_status fb_casefile_load_variant(fb_case *out, const char *path, const char *const *sets,
+                                   int nsets, const fb_case_variant *v, fb_diag *diag);
 /* As fb_casefile_load for a case given as text (size bytes, need not end in
  * a newline or NUL) named name in messages, with no overrides; a [case] base
  * is read from disk relative to name. Used by the fuzzer. */

@@ -77,10 +77,13 @@ char *fb_ini_lines_read(char *str, int num, void *state) {
     const int continues = s->continuation && lead > 0 && s->key[0];
     if (!continues && strchr(body, '=')) copy_word(s->key, sizeof s->key, body, "=");
   }
-  /* in [study] set, ';' separates overrides: blanks before it are dropped so
-   * inih never takes " ;" for the start of an inline comment */
-  if (s->continuation && strcmp(s->section, "study") == 0 && strcmp(s->key, "set") == 0 &&
-      *body != ';' && *body != '#') {
+  /* in [study] set and a case's [variant.NAME] set, ';' separates
+   * overrides: blanks before it are dropped so inih never takes " ;" for the
+   * start of an inline comment */
+  const int set_line = strcmp(s->key, "set") == 0 &&
+                       (s->continuation ? strcmp(s->section, "study") == 0
+                                        : strncmp(s->section, "variant.", 8) == 0);
+  if (set_line && *body != ';' && *body != '#') {
     char *w = str + lead;
     for (const char *r = str + lead; *r; r++) {
       if (*r == ';')

@@ -11,6 +11,7 @@
 #include "fileio.h"
 #include "outcome_text.h"
 #include "report_chaos.h"
+#include "report_variants.h"
 #include "start.h"
 #include "clock.h"
 #include "series_write.h"
@@ -250,6 +251,8 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   char stop[256];
   json_object_set_new(o, "status", json_string(fb_report_model_status(stop, sizeof stop, m)));
   json_object_set_new(o, "peaks_converged", fb_report_converged_json(m));
+  json_object_set_new(o, "vs_published",
+                      fb_report_vs_published_json(&r->c, run->model, &m->peaks, m->has_peaks));
   json_object_set_new(o, "impact_statistics", fb_report_ensemble_json(m, r));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
@@ -567,6 +570,8 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_t *models = json_array();
   for (int i = 0; i < r->n; i++) json_array_append_new(models, model_json(&r->model[i], r));
   json_object_set_new(o, "models", models);
+  json_object_set_new(o, "published", fb_report_published_json(c));
+  json_object_set_new(o, "variants", fb_report_variants_json(r));
   return o;
 }
 
@@ -1026,6 +1031,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
       c->radial_clearance * 1e6, c->clearance_source);
   print_masses(f, c);
   print_peaks(f, r, W);
+  fb_report_print_variants(f, r, W);
   print_cost(f, r, W);
   int any = 0;
   for (int i = 0; i < r->n; i++) any |= r->model[i].has_spikes;

@@ -14,6 +14,7 @@
 #include "engine_params.h"
 #include "fb_config.h"
 #include "impact.h"
+#include "model_table.h"
 #include "resolution.h"
 
 static const char params_help[] =
@@ -577,7 +578,8 @@ int fb_cmd_contact_params(int argc, char **argv) {
            x->penetration, rel(x->penetration, x->penetration_target), x->force,
            rel(x->force, x->force_target));
   }
-  if (!FB_HAVE_MUJOCO) printf("(mujoco: not in this build)\n");
-  if (!FB_HAVE_BULLET) printf("(bullet: not in this build)\n");
+  /* an engine this build lacks: named, with how to get it */
+  if (!FB_HAVE_MUJOCO) printf("(mujoco not verified: %s)\n", fb_engine_howto(FB_ENGINE_MUJOCO));
+  if (!FB_HAVE_BULLET) printf("(bullet not verified: %s)\n", fb_engine_howto(FB_ENGINE_BULLET));
   return failed ? 1 : 0;
 }

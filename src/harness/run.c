@@ -106,8 +106,9 @@ static void divergence_warnings(fb_model_result *m, const char *ref) {
   const fb_divergence *d = &m->divergence;
   const double worst = fmax(d->force_rel_max, d->penetration_rel_max);
   if (d->matched > 0 && !(worst <= FB_MATCHED_IMPACT_ERROR_BOUND)) {
-    /* both still together: the model is wrong, not the sequence chaotic */
-    m->matched_error = !d->diverged;
+    /* both still together: the model is wrong, not the sequence chaotic;
+     * parted later: the model missed the bound before it diverged */
+    m->matched_error = d->diverged ? FB_MATCHED_ERROR_THEN_DIVERGENT : FB_MATCHED_ERROR_KEPT;
     fb_warning w = {.kind = FB_WARN_ERROR_BOUND, .value = worst,
                     .limit = FB_MATCHED_IMPACT_ERROR_BOUND, .t = NAN};
     snprintf(w.what, sizeof w.what, "matched-impact peaks against %s", ref);

@@ -48,6 +48,11 @@
  * case measured, docs/chaos.md) [-]. */
 #define FB_H_AUTO_RETRIES 3
 
+/* fb_model_result.matched_error: the matched impacts miss the bound while the
+ * model keeps the reference's trajectory, or before it leaves it. */
+#define FB_MATCHED_ERROR_KEPT 1
+#define FB_MATCHED_ERROR_THEN_DIVERGENT 2
+
 /* One model with its metrics. */
 typedef struct {
   fb_model_run run;        /* series, cost and status */
@@ -86,9 +91,10 @@ typedef struct {
   fb_ensemble ensemble;    /* its impact statistics, pooled over [run] ensemble members */
   int has_stats_compare;   /* 1 when its reference has an ensemble too */
   fb_stats_compare stats_compare; /* those statistics against the reference's */
-  int matched_error;       /* 1: matched-impact peak errors beyond FB_MATCHED_IMPACT_ERROR_BOUND
-                              while the trajectory stays with the reference: status "error"
-                              (fb_run_model_status) */
+  int matched_error;       /* matched-impact peak errors beyond FB_MATCHED_IMPACT_ERROR_BOUND:
+                              0 none; FB_MATCHED_ERROR_KEPT while the trajectory stays with the
+                              reference (status "error"); FB_MATCHED_ERROR_THEN_DIVERGENT
+                              before it leaves it (status "divergent"; report_chaos.h) */
   int peaks_unconverged;   /* 1: its window peaks are not to be read as converged numbers
                               (divergent from its reference, or a reference whose own check
                               integration moves them, FB_UNCONVERGED_REL): printed marked */

@@ -230,6 +230,8 @@ static void print_contact(FILE *f, const fb_run *r, int W) {
   }
 }
 
+static const char *model_verdict(const fb_model_result *m, char *why, size_t why_size);
+
 static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_t *o = json_object();
   const fb_model_run *run = &m->run;
@@ -250,6 +252,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   }
   char stop[256];
   json_object_set_new(o, "status", json_string(fb_report_model_status(stop, sizeof stop, m)));
+  json_object_set_new(o, "verdict", json_string(model_verdict(m, NULL, 0)));
   json_object_set_new(o, "peaks_converged", fb_report_converged_json(m));
   json_object_set_new(o, "vs_published",
                       fb_report_vs_published_json(&r->c, run->model, &m->peaks, m->has_peaks));
@@ -818,6 +821,42 @@ static double ref_error_worst(const fb_reference_error *e) {
 
 /* one line per model, first: ok or warn, its error against its yardstick,
  * and its impacts */
+/* the printed verdict of a model: "ok" (ran to its end, no warning, error
+ * within its bound), "warn" (a warning or a stop) or "error" (status error);
+ * why (may be NULL) gets the reason printed beside it */
+static const char *model_verdict(const fb_model_result *m, char *why, size_t why_size) {
+  char tmp[160];
+  if (!why) why = tmp, why_size = sizeof tmp;
+  why[0] = '\0';
+  int warn = m->run.stop.kind != FB_STOP_NONE || m->warning_count > 0;
+  if (!m->run.clearance_mask && !m->has_ref_estimate && m->has_error &&
+      fmax(worst_rel(&m->error.coupler, &m->error.follower, 0),
+           worst_rel(&m->error.coupler, &m->error.follower, 1)) > FB_IDEAL_PEAK_ERROR_BOUND) {
+    warn = 1;
+    snprintf(why, why_size, "error above %g", FB_IDEAL_PEAK_ERROR_BOUND);
+  }
+  if (m->has_divergence && m->divergence.diverged) {
+    warn = 1;
+    snprintf(why, why_size, "leaves the reference at %.4g ms", m->divergence.t * 1e3);
+  }
+  if (m->run.stop.kind != FB_STOP_NONE) {
+    char stop[256];
+    snprintf(why, why_size, "%.150s", fb_stop_text(stop, sizeof stop, &m->run.stop));
+  } else if (m->warning_count > 0) {
+    snprintf(why, why_size, "%d warning%s (below)", m->warning_count,
+             m->warning_count > 1 ? "s" : "");
+  }
+  /* a clearance model that keeps its reference's trajectory but misses its
+   * matched impacts: status error (report_chaos.h) */
+  char status[512];
+  fb_report_model_status(status, sizeof status, m);
+  if (strncmp(status, "error", 5) == 0) {
+    snprintf(why, why_size, "%.150s", status);
+    return "error";
+  }
+  return warn ? "warn" : "ok";
+}
+
 static void print_verdict(FILE *f, const fb_run *r, int W) {
   say(f, "verdict (ok: ran to its end with no warning and an error within its bound; warn: a "
          "warning or a stop (below); error: a clearance model that keeps its reference's "
@@ -830,7 +869,6 @@ static void print_verdict(FILE *f, const fb_run *r, int W) {
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     char err[32] = "-", against[64] = "-", impacts[32] = "-", why[160] = "";
-    int warn = m->run.stop.kind != FB_STOP_NONE || m->warning_count > 0;
     if (m->run.clearance_mask && m->has_ref_error) {
       snprintf(err, sizeof err, "%.2e", ref_error_worst(&m->ref_error));
       snprintf(against, sizeof against, "%s", m->ref_name);
@@ -844,10 +882,6 @@ static void print_verdict(FILE *f, const fb_run *r, int W) {
       snprintf(against, sizeof against, "%s",
                m->run.model->engine == FB_ENGINE_ANALYTIC ? "exact peaks (sampling floor)"
                                                           : "exact analytic peaks");
-      if (e > FB_IDEAL_PEAK_ERROR_BOUND) {
-        warn = 1;
-        snprintf(why, sizeof why, "error above %g", FB_IDEAL_PEAK_ERROR_BOUND);
-      }
     } else if (m->run.clearance_mask) {
       snprintf(against, sizeof against, "no reference in this run");
     }
@@ -857,26 +891,10 @@ static void print_verdict(FILE *f, const fb_run *r, int W) {
       else
         snprintf(impacts, sizeof impacts, "%d", m->spikes.impacts);
     }
-    if (m->has_divergence && m->divergence.diverged) {
-      warn = 1;
-      snprintf(why, sizeof why, "leaves the reference at %.4g ms", m->divergence.t * 1e3);
-    }
-    if (m->run.stop.kind != FB_STOP_NONE) {
-      char stop[256];
-      snprintf(why, sizeof why, "%.150s", fb_stop_text(stop, sizeof stop, &m->run.stop));
-    } else if (m->warning_count > 0) {
-      snprintf(why, sizeof why, "%d warning%s (below)", m->warning_count, m->warning_count > 1 ? "s" : "");
-    }
-    /* a clearance model that keeps its reference's trajectory but misses its
-     * matched impacts: status error (report_chaos.h) */
-    char status[512];
-    fb_report_model_status(status, sizeof status, m);
-    const int is_error = strncmp(status, "error", 5) == 0;
-    if (is_error) snprintf(why, sizeof why, "%.150s", status);
+    const char *verdict = model_verdict(m, why, sizeof why);
     char line[512];
-    snprintf(line, sizeof line, "%-*s %-7s %9s  %-28s %11s%s%s", W, m->run.name,
-             is_error ? "error" : warn ? "warn" : "ok", err, against, impacts, why[0] ? "  " : "",
-             why);
+    snprintf(line, sizeof line, "%-*s %-7s %9s  %-28s %11s%s%s", W, m->run.name, verdict, err,
+             against, impacts, why[0] ? "  " : "", why);
     say(f, "%s", line);
   }
 }

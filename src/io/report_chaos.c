@@ -11,6 +11,15 @@ static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); 
 const char *fb_report_model_status(char *buf, size_t size, const fb_model_result *m) {
   if (m->run.stop.kind != FB_STOP_NONE || !m->matched_error) return fb_stop_text(buf, size, &m->run.stop);
   const fb_divergence *d = &m->divergence;
+  if (m->matched_error == FB_MATCHED_ERROR_THEN_DIVERGENT) {
+    snprintf(buf, size,
+             "divergent: matched-impact peak error %.3g beyond the bound %g against %s before "
+             "its trajectory leaves %s's at t = %.6g s (%d impacts matched); compare the impact "
+             "statistics, not peaks",
+             fmax(d->force_rel_max, d->penetration_rel_max), FB_MATCHED_IMPACT_ERROR_BOUND,
+             m->ref_name, m->ref_name, d->t, d->matched);
+    return buf;
+  }
   snprintf(buf, size,
            "error: matched-impact peak error %.3g beyond the bound %g against %s, whose "
            "trajectory it keeps (%d impacts matched)",

@@ -14,9 +14,12 @@
 #include "run.h"
 
 /* The model's status: "ok"; the stop reason (outcome_text.h, fb_stop_text);
- * or "error: ..." when its matched-impact peaks miss
+ * "error: ..." when its matched-impact peaks miss
  * FB_MATCHED_IMPACT_ERROR_BOUND while its trajectory stays with the
- * reference's (fb_model_result.matched_error). Returns buf. */
+ * reference's; or "divergent: ..." when they miss it before the trajectory
+ * leaves the reference's (fb_model_result.matched_error). A model that
+ * leaves its reference with its matched impacts within the bound stays
+ * "ok" with the warning divergent. Returns buf. */
 const char *fb_report_model_status(char *buf, size_t size, const fb_model_result *m);
 
 /* A figure cell: x printed with fmt when the quantity is converged, else

@@ -157,6 +157,18 @@ function flatten(v, p, outList) {
     }
     check(compared > 100 && differ.length === 0, 'page numbers equal summary.json (' + compared + ' compared): ' +
       differ.slice(0, 5).join('; '));
+    /* the impact list counts impacts as summary.json does (one contact
+     * episode with an impact-state sample, its peaks over the whole
+     * episode): each matched impact's onset and peak force are a row's */
+    const listed = await page.evaluate(() => window.fourbarReport.impacts
+      .filter((x) => x.model === 'ode-clearance-impact'));
+    const model = summary.models.find((m) => m.name === 'ode-clearance-impact');
+    const matched = model.divergence.matched_impacts;
+    const missing = matched.filter((mi) => !listed.some((x) =>
+      Math.abs(x.t_s - mi.time_s) < 1e-9 && Math.abs(x.force_n - mi.force_n) <= 1e-9 * mi.force_n));
+    check(matched.length > 0 && missing.length === 0, 'the impact list holds every matched impact of ' +
+      'summary.json with its onset and peak force (' + matched.length + ' compared; missing: ' +
+      missing.slice(0, 3).map((mi) => mi.time_s + ' s ' + mi.force_n + ' N').join(', ') + ')');
 
     /* the other axes: crank angle and linear alpha still draw, still no error */
     await page.selectOption('#xmode', 'crank');

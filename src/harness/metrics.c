@@ -226,12 +226,10 @@ static void window_impacts(const fb_series *s, double t_from, int j, int *count,
  * step, so the reference's first impact at 1500 rpm peaked at 4203 N as
  * "impact" and 10276 N as "continuous" while the model's, one phase, peaked
  * at 10268 N (paired: +144 %). */
-static int impact_list(const fb_series *s, int j, double t_end, double *t0, double *t1,
-                       double *force, double *pen, int cap) {
+size_t fb_metrics_impact_episodes(const fb_series *s, int j, double t_end, size_t *first,
+                                  size_t *last, size_t cap) {
   const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
-  const double *p = s->contact[j][FB_C_PEN];
-  int k = -1;
-  size_t i = 0;
+  size_t k = 0, i = 0;
   while (i < s->n) {
     if (!(f[i] > 0.0)) {
       i++;
@@ -239,23 +237,35 @@ static int impact_list(const fb_series *s, int j, double t_end, double *t0, doub
     }
     size_t e = i;
     int impact = 0;
-    double fm = 0.0, pm = 0.0;
-    for (; e < s->n && f[e] > 0.0; e++) {
-      impact |= (int)st[e] == FB_STATE_IMPACT;
-      fm = fmax_d(fm, f[e]);
-      pm = fmax_d(pm, p[e]);
-    }
+    for (; e < s->n && f[e] > 0.0; e++) impact |= (int)st[e] == FB_STATE_IMPACT;
     if (impact) {
       if (!(s->t[i] < t_end)) break;
+      if (k < cap) first[k] = i, last[k] = e - 1;
       k++;
-      if (k < cap) {
-        t0[k] = s->t[i], force[k] = fm, pen[k] = pm;
-        if (t1) t1[k] = s->t[e - 1];
-      }
     }
     i = e;
   }
-  return k + 1;
+  return k;
+}
+
+/* the impacts of joint j beginning before t_end (fb_metrics_impact_episodes):
+ * onset and end times and peak force and penetration of the first cap;
+ * returns the count */
+static int impact_list(const fb_series *s, int j, double t_end, double *t0, double *t1,
+                       double *force, double *pen, int cap) {
+  size_t first[FB_METRICS_MAX_EPISODES], last[FB_METRICS_MAX_EPISODES];
+  const size_t want = cap < FB_METRICS_MAX_EPISODES ? (size_t)cap : FB_METRICS_MAX_EPISODES;
+  const size_t n = fb_metrics_impact_episodes(s, j, t_end, first, last, want);
+  for (size_t k = 0; k < n && k < want; k++) {
+    double fm = 0.0, pm = 0.0;
+    for (size_t i = first[k]; i <= last[k]; i++) {
+      fm = fmax_d(fm, s->contact[j][FB_C_FORCE][i]);
+      pm = fmax_d(pm, s->contact[j][FB_C_PEN][i]);
+    }
+    t0[k] = s->t[first[k]], force[k] = fm, pen[k] = pm;
+    if (t1) t1[k] = s->t[last[k]];
+  }
+  return (int)n;
 }
 
 /* peak force and penetration of the first FB_FIRST_IMPACTS impacts of the run */

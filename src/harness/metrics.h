@@ -56,6 +56,18 @@ typedef struct {
   X(alpha_peak_crank_angle_coupler, "alpha_peak_crank_angle_coupler_rad")  \
   X(alpha_peak_crank_angle_follower, "alpha_peak_crank_angle_follower_rad")
 
+/* Impacts of clearance joint j of series s (with contact columns) that begin
+ * before t_end [s] (INFINITY: all): each a contact episode, one unbroken run
+ * of samples with positive force holding at least one sample in the impact
+ * state (so the force peak of an impact that turns into continuous contact
+ * belongs to it). The first and last sample index of the first cap, in time
+ * order. Returns the count found, which may exceed cap. The metrics, the
+ * divergence pairing and report.html's impact list all count impacts so. */
+size_t fb_metrics_impact_episodes(const fb_series *s, int j, double t_end, size_t *first,
+                                  size_t *last, size_t cap);
+/* Most episodes one metric lists per series (more are counted). */
+#define FB_METRICS_MAX_EPISODES 4096
+
 /* Spikes of series s (with contact columns) against reference peak |alpha|
  * values alpha_ref_coupler, alpha_ref_follower [rad/s^2] (> 0); omega_dev is
  * taken from err (fb_metrics_error of the same series).

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "fileio.h"
+#include "metrics.h"
 #include "report.h"
 #include "report_page.h" /* fb_report_page_html[], fb_report_page_js[] (generated, meson.build) */
 
@@ -58,23 +59,14 @@ typedef struct {
   size_t i0, i1;
 } episode;
 
-/* the impact episodes of joint j, at most cap; returns the count found */
+/* the impact episodes of joint j (fb_metrics_impact_episodes: the same
+ * episodes as summary.json's), at most cap; returns the count found */
 static size_t episodes(const fb_series *s, int j, episode *out, size_t cap) {
-  const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
-  size_t k = 0;
-  int open = 0;
-  for (size_t i = 0; i < s->n; i++) {
-    const int in = (int)st[i] == FB_STATE_IMPACT && f[i] > 0.0;
-    if (in && !open) {
-      if (k < cap) out[k].i0 = out[k].i1 = i;
-      open = 1;
-      k++;
-    } else if (in && k <= cap) {
-      out[k - 1].i1 = i;
-    }
-    if (!in) open = 0;
-  }
-  return k;
+  size_t first[FB_REPORT_MAX_IMPACTS], last[FB_REPORT_MAX_IMPACTS];
+  const size_t want = cap < FB_REPORT_MAX_IMPACTS ? cap : FB_REPORT_MAX_IMPACTS;
+  const size_t n = fb_metrics_impact_episodes(s, j, INFINITY, first, last, want);
+  for (size_t k = 0; k < n && k < want; k++) out[k].i0 = first[k], out[k].i1 = last[k];
+  return n;
 }
 
 static json_t *column(const double *y, const size_t *idx, size_t m, double scale) {

@@ -168,6 +168,8 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                (const char *[]){":2:", "segments = 4", "8 to 65536", NULL});
   expect_error("[clearance]\nbore = oval\n", NULL, 0, FB_ERR_PARSE,
                (const char *[]){"bore = 'oval'", "circle or ellipse", NULL});
+  expect_error("[mujoco]\nnative_bore = ring\n", NULL, 0, FB_ERR_PARSE,
+               (const char *[]){":2:", "native_bore = 'ring'", "tendon or facets", NULL});
   expect_error("[clearance]\novality_um = -2\n", NULL, 0, FB_ERR_RANGE,
                (const char *[]){"ovality_um = -2", "[0, 1000) um", NULL});
   /* whole-case rules */

@@ -289,35 +289,96 @@ static void test_clearance_restitution_matches_reference(void **state) {
   fb_run_free(&r);
 }
 
-/* MuJoCo's own contacts (pin sphere in a ring of 64 boxes, the restitution
- * law as direct solref per unit of the mechanism's effective mass along the
- * eccentricity, updated every step: docs/contact-params.md): a
+/* MuJoCo's own constraint solver on the clearance, bore = tendon (the
+ * default): a spatial tendon from the hole's centre to the pin's limited to
+ * the radial clearance, its limit row carrying the restitution law's spring
+ * and damper in the force form (solref per unit of MuJoCo's diagonal
+ * approximation, impedance 1e-4: mujoco_scene.c, native_solref_update). At
+ * the automatic step on the paper case it measured peak force +3.0 %,
+ * penetration +3.0 %, 27 contact episodes of the reference's 27 (the facets
+ * before it: +27 %, +3.5 %, 282). Issue 27's target: peak force within
+ * 10 % at the automatic step; the penetration is held to the same 10 % */
+#define NATIVE_FORCE_REL_TOL 0.10
+#define NATIVE_PEN_REL_TOL 0.10
+/* in continuous contact (FB_STATE_CONTINUOUS at both) the penetration
+ * carries the load as the law's spring does: measured +0.010 %. The
+ * acceleration-level form contact-params prints (impedance 0.9999, per unit
+ * of the effective mass) gives the row MuJoCo's reference acceleration
+ * whatever else pushes, and measured -94 % here (and 1190 episodes) */
+#define NATIVE_PERSISTENT_PEN_REL_TOL 0.05
+
+static void test_clearance_native_tendon_matches_reference(void **state) {
+  (void)state;
+  static fb_run r;
+  const char *sets[] = {"solver.h_s=auto"};
+  run(&r, "mujoco-clearance-native, reference-restitution", sets, 1);
+  const fb_model_result *m = &r.model[0], *ref = &r.model[1];
+  assert_true(m->has_ref_error);
+  const fb_reference_error *re = &m->ref_error;
+  report_residual("mujoco native (tendon) force peak rel, auto", re->force_max_rel,
+                  NATIVE_FORCE_REL_TOL);
+  report_residual("mujoco native (tendon) penetration peak rel, auto", re->penetration_max_rel,
+                  NATIVE_PEN_REL_TOL);
+  report_residual("mujoco native (tendon) persistent penetration rel",
+                  re->persistent_penetration_rel, NATIVE_PERSISTENT_PEN_REL_TOL);
+  /* episodes: the bound of the passive-force model's test (the sequence is
+   * chaotic past the first impacts; the reference's own spread added) */
+  assert_true(ref->has_ref_estimate);
+  const double ref_spread =
+      fabs((double)(ref->ref_estimate.impacts - ref->ref_estimate.impacts_reference));
+  const double impacts_off = fabs((double)(re->impacts - re->impacts_reference));
+  const double impacts_bound = RESTITUTION_IMPACTS_REL_TOL * re->impacts_reference + ref_spread;
+  report_residual("mujoco native (tendon) impacts off (count)", impacts_off, impacts_bound);
+  assert_true(fabs(re->force_max_rel) < NATIVE_FORCE_REL_TOL);
+  assert_true(fabs(re->penetration_max_rel) < NATIVE_PEN_REL_TOL);
+  assert_true(re->persistent_samples > 0);
+  assert_true(fabs(re->persistent_penetration_rel) < NATIVE_PERSISTENT_PEN_REL_TOL);
+  assert_true(re->impacts_reference > 0 && impacts_off <= impacts_bound);
+  /* summary.json names the bore */
+  json_t *sum = fb_report_summary_json(&r, NULL);
+  json_t *mj = json_object_get(json_array_get(json_object_get(sum, "models"), 0), "mujoco");
+  assert_string_equal(json_string_value(json_object_get(mj, "native_bore")), "tendon");
+  json_decref(sum);
+  fb_run_free(&r);
+}
+
+/* bore = facets (the pin a sphere in a ring of 64 boxes, the law as direct
+ * solref per unit of the mechanism's effective mass along the eccentricity
+ * at impedance 0.9999, updated every step: docs/contact-params.md), kept
+ * selectable so that the facet study stays reproducible: a
  * characterisation, not a faithful model. Before the per-step effective
  * mass (the law's 0.085 kg for every contact) it measured at h = 1e-5 s
  * peak force +113 %, penetration -44 %; with it +26 %, -11 %, and still
- * 472 contact episodes against the reference's 28 (the pin chatters on the
- * facets, whose corners add up to 6 um of clearance). The bands guard the
- * measured differences: the old mass moves the force above the band and the
- * penetration below it, a faithful collider would move the force below it */
-#define NATIVE_FORCE_REL_LO 0.1
-#define NATIVE_FORCE_REL_HI 0.5
-#define NATIVE_PEN_REL_LO (-0.25)
-#define NATIVE_PEN_REL_HI 0.1
+ * 472 contact episodes against the reference's 28 (several boxes touch the
+ * conformal pin at once, and the contacts carry no steady load: continuous
+ * contact penetration -85 %). The bands guard the measured differences: the
+ * old mass moves the force above the band and the penetration below it, a
+ * faithful collider would move the force below it */
+#define FACETS_FORCE_REL_LO 0.1
+#define FACETS_FORCE_REL_HI 0.5
+#define FACETS_PEN_REL_LO (-0.25)
+#define FACETS_PEN_REL_HI 0.1
 
-static void test_clearance_native_characterised(void **state) {
+static void test_clearance_native_facets_characterised(void **state) {
   (void)state;
   static fb_run r;
-  run(&r, "mujoco-clearance-native, reference-restitution", NULL, 0);
+  const char *sets[] = {"mujoco.native_bore=facets"};
+  run(&r, "mujoco-clearance-native, reference-restitution", sets, 1);
   const fb_model_result *m = &r.model[0];
   assert_true(m->has_ref_error);
   const fb_reference_error *re = &m->ref_error;
-  report_residual("mujoco native force peak rel", re->force_max_rel, NATIVE_FORCE_REL_HI);
-  report_residual("mujoco native penetration peak rel", re->penetration_max_rel, NATIVE_PEN_REL_LO);
-  report_residual("mujoco native impacts", re->impacts, re->impacts_reference);
-  assert_true(re->force_max_rel > NATIVE_FORCE_REL_LO && re->force_max_rel < NATIVE_FORCE_REL_HI);
-  assert_true(re->penetration_max_rel > NATIVE_PEN_REL_LO &&
-              re->penetration_max_rel < NATIVE_PEN_REL_HI);
+  report_residual("mujoco native (facets) force peak rel", re->force_max_rel, FACETS_FORCE_REL_HI);
+  report_residual("mujoco native (facets) penetration peak rel", re->penetration_max_rel,
+                  FACETS_PEN_REL_LO);
+  report_residual("mujoco native (facets) impacts", re->impacts, re->impacts_reference);
+  assert_true(re->force_max_rel > FACETS_FORCE_REL_LO && re->force_max_rel < FACETS_FORCE_REL_HI);
+  assert_true(re->penetration_max_rel > FACETS_PEN_REL_LO &&
+              re->penetration_max_rel < FACETS_PEN_REL_HI);
   assert_true(re->impacts > re->impacts_reference); /* chatter on the facets */
+  json_t *sum = fb_report_summary_json(&r, NULL);
+  json_t *mj = json_object_get(json_array_get(json_object_get(sum, "models"), 0), "mujoco");
+  assert_string_equal(json_string_value(json_object_get(mj, "native_bore")), "facets");
+  json_decref(sum);
   fb_run_free(&r);
 }
 
@@ -395,6 +456,25 @@ static void test_mjcf_from_the_definition(void **state) {
   assert_int_equal(fb_mujoco_mjcf(buf, sizeof buf, &sm, &d), FB_OK);
   assert_null(strstr(buf, "<connect"));
   assert_non_null(strstr(buf, "integrator=\"RK4\""));
+  /* the native model's bore: a tendon from the hole's centre to the pin's,
+   * limited to the radial clearance (14.5 um), and no contact geoms; or the
+   * ring of boxes (64) and a sphere pin */
+  static char big[65536];
+  view(&def, &sm, "mujoco-clearance-native", NULL, 0);
+  assert_int_equal(fb_mujoco_mjcf(big, sizeof big, &sm, &d), FB_OK);
+  assert_non_null(strstr(big, "<spatial name=\"B_bore\" limited=\"true\" range=\"0 1.45"));
+  assert_non_null(strstr(big, "<site site=\"B_hole\"/>"));
+  assert_null(strstr(big, "type=\"box\""));
+  assert_null(strstr(big, "B_pin_geom"));
+  const char *facets[] = {"mujoco.native_bore=facets"};
+  view(&def, &sm, "mujoco-clearance-native", facets, 1);
+  assert_int_equal(fb_mujoco_mjcf(big, sizeof big, &sm, &d), FB_OK);
+  assert_null(strstr(big, "<tendon>"));
+  assert_non_null(strstr(big, "B_pin_geom"));
+  size_t boxes = 0;
+  for (const char *q = big; (q = strstr(q, "type=\"box\"")) != NULL; q++) boxes++;
+  assert_int_equal(boxes, 64);
+  view(&def, &sm, "mujoco-clearance-impact", at_c, 1);
   /* too small a buffer is an error, not a truncated model */
   assert_int_equal(fb_mujoco_mjcf(buf, 100, &sm, &d), FB_ERR_RANGE);
   /* the definition is checked first */
@@ -414,7 +494,8 @@ int main(void) {
       cmocka_unit_test(test_clearance_restitution_matches_reference),
       cmocka_unit_test(test_clearance_impact_adaptive),
       cmocka_unit_test(test_adaptive_refuses_native),
-      cmocka_unit_test(test_clearance_native_characterised),
+      cmocka_unit_test(test_clearance_native_tendon_matches_reference),
+      cmocka_unit_test(test_clearance_native_facets_characterised),
       cmocka_unit_test(test_reactions_match_inverse_dynamics),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -176,7 +176,8 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NATIVE,
      .reference = "reference-restitution",
      .spikes_vs = "mujoco-ideal-stackup",
-     .summary = "MuJoCo's own contacts (pin sphere in a ring of boxes), restitution law as direct solref",
+     .summary = "MuJoCo's own constraint solver on the clearance (a tendon limited to it, or a ring "
+                "of boxes: [mujoco] native_bore), restitution law as solref",
      .style = {"#ff7f0e", 5, 1.8}},
     {.name = "simbody-ideal-nominal",
      .engine = FB_ENGINE_SIMBODY,

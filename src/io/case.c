@@ -24,6 +24,7 @@ fb_mujoco_opts fb_mujoco_opts_default(void) {
   o.loop_damping = 0.0;   /* 1/h */
   o.loop_impedance = 0.9999;
   o.drive_armature = 1e6;
+  o.native_bore = FB_MUJOCO_BORE_TENDON;
   return o;
 }
 
@@ -55,6 +56,11 @@ const char *fb_simbody_integrator_name(int k) {
 int fb_mujoco_integrator_resolve(const fb_mujoco_opts *o, int clearance_mask) {
   if (o->integrator != FB_MUJOCO_AUTO) return o->integrator;
   return clearance_mask ? FB_MUJOCO_RK4 : FB_MUJOCO_EULER;
+}
+
+const char *fb_mujoco_bore_name(int k) {
+  static const char *const names[] = {"tendon", "facets"};
+  return k >= 0 && k <= FB_MUJOCO_BORE_FACETS ? names[k] : "?";
 }
 
 const char *fb_mujoco_integrator_name(int k) {

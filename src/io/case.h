@@ -149,6 +149,18 @@ typedef enum {
 /* "euler", "implicit", "rk4", "auto". */
 const char *fb_mujoco_integrator_name(int k);
 
+/* The hole of mujoco-clearance-native (MuJoCo's own constraint solver on the
+ * clearance; docs/engines.md, "MuJoCo"). */
+typedef enum {
+  FB_MUJOCO_BORE_TENDON = 0, /* a spatial tendon from the hole's centre to the pin's, length
+                              * |e|, limited to [0, c]: one limit row along e, no facets */
+  FB_MUJOCO_BORE_FACETS = 1  /* the pin a sphere, the hole a ring of [clearance] faceted_n
+                              * boxes, collided by MuJoCo (one contact per touching box) */
+} fb_mujoco_bore;
+
+/* "tendon", "facets". */
+const char *fb_mujoco_bore_name(int k);
+
 /* MuJoCo's own choices for the mujoco-* models; engine-free (no MuJoCo header
  * needed to hold or check them). The loop closure is MuJoCo's soft equality
  * constraint in its direct form: solref = (-stiffness, -damping), solimp =
@@ -159,6 +171,7 @@ typedef struct {
   double loop_damping;   /* direct-form solref damping of the loop closure [1/s]; 0: 1/h */
   double loop_impedance; /* solimp dmin = dmax of the loop closure [-] in (0, 1) */
   double drive_armature; /* armature of the crank hinge (flywheel drive) [kg m^2] */
+  int native_bore;       /* fb_mujoco_bore of mujoco-clearance-native */
 } fb_mujoco_opts;
 /* Constraint solver of the bullet-* models. */
 typedef enum {

@@ -44,6 +44,7 @@ typedef enum {
   K_PENALTY,   /* physical | paper | explicit */
   K_MAPPING,   /* secant | tangent | matched */
   K_MJINT,     /* euler | implicit | rk4 | auto */
+  K_MJBORE,    /* tendon | facets */
   K_START,     /* steady | rest */
   K_PINSTART,  /* centred | resting | an eccentricity angle in degrees */
   K_PEAKS,     /* steady | all */
@@ -344,6 +345,12 @@ static const key_spec keys[] = {
      "kg m^2", "1e6", "the armature must be positive",
      "armature of the crank hinge: the crank is a flywheel set to the crank speed at t = 0, "
      "so the reaction torques barely change its speed (the crank-angle error is reported)"},
+    {"mujoco", "native_bore", K_MJBORE, OFF(mujoco.native_bore), 0, 0, 0, 0, 0, "-", "tendon",
+     "tendon or facets",
+     "the hole of mujoco-clearance-native, solved by MuJoCo's constraint solver: tendon, a "
+     "spatial tendon from the hole's centre to the pin's limited to the radial clearance (one "
+     "limit row along the eccentricity); facets, a sphere pin in a ring of [clearance] "
+     "faceted_n boxes (one contact per touching box; see docs/engines.md)"},
 
     {"bullet", "solver", K_BTSOLVER, OFF(bullet.solver), 0, 0, 0, 0, 0, "-", "mlcp-dantzig",
      "sequential-impulse or mlcp-dantzig",
@@ -774,6 +781,11 @@ static fb_status apply(fb_case *c, const entry *e, fb_diag *diag) {
       else if (strcmp(e->value, "implicit") == 0) *(int *)field = FB_MUJOCO_IMPLICIT;
       else if (strcmp(e->value, "rk4") == 0) *(int *)field = FB_MUJOCO_RK4;
       else if (strcmp(e->value, "auto") == 0) *(int *)field = FB_MUJOCO_AUTO;
+      else return bad_word(e, k, diag);
+      return FB_OK;
+    case K_MJBORE:
+      if (strcmp(e->value, "tendon") == 0) *(int *)field = FB_MUJOCO_BORE_TENDON;
+      else if (strcmp(e->value, "facets") == 0) *(int *)field = FB_MUJOCO_BORE_FACETS;
       else return bad_word(e, k, diag);
       return FB_OK;
     case K_BTSOLVER:

@@ -351,6 +351,9 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
                   "loop_damping_1_s", num(mj->loop_damping > 0.0 ? mj->loop_damping : 1.0 / run->h),
                   "loop_impedance", num(mj->loop_impedance), "drive_armature_kg_m2",
                   num(mj->drive_armature)));
+    if (run->collider == FB_COLLIDER_NATIVE)
+      json_object_set_new(json_object_get(o, "mujoco"), "native_bore",
+                          json_string(fb_mujoco_bore_name(mj->native_bore)));
   }
   if (run->model->engine == FB_ENGINE_BULLET) {
     /* Bullet's own choices as the model used them */
@@ -1007,11 +1010,12 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   /* one screen first: the verdict per model */
   print_verdict(f, r, W);
   fputc('\n', f);
-  int mj_ideal = 0, mj_clear = 0;
+  int mj_ideal = 0, mj_clear = 0, mj_native = 0;
   for (int i = 0; i < r->n; i++)
     if (r->model[i].run.model->engine == FB_ENGINE_MUJOCO) {
       if (r->model[i].run.clearance_mask) mj_clear = 1;
       else mj_ideal = 1;
+      if (r->model[i].run.collider == FB_COLLIDER_NATIVE) mj_native = 1;
     }
   if (mj_ideal || mj_clear)
     say(f, "MuJoCo models: integrator %s%s%s%s%s; loop closure solref (-k, -b) with k = %g "
@@ -1023,6 +1027,13 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
         c->mujoco.loop_stiffness > 0 ? c->mujoco.loop_stiffness : 1.0 / (c->solver.h * c->solver.h),
         c->mujoco.loop_damping > 0 ? c->mujoco.loop_damping : 1.0 / c->solver.h,
         c->mujoco.loop_impedance);
+  if (mj_native)
+    say(f, "mujoco-clearance-native: bore %s ([mujoco] native_bore; %s)",
+        fb_mujoco_bore_name(c->mujoco.native_bore),
+        c->mujoco.native_bore == FB_MUJOCO_BORE_FACETS
+            ? "a sphere pin in a ring of boxes, MuJoCo's contacts"
+            : "a tendon limited to the radial clearance, MuJoCo's limit row along the "
+              "eccentricity");
   int bt_models = 0;
   for (int i = 0; i < r->n; i++) bt_models |= r->model[i].run.model->engine == FB_ENGINE_BULLET;
   if (bt_models)

@@ -40,6 +40,22 @@
  *   mj_jacSite, n = e/|e|. This is MuJoCo's integrator with the project's
  *   contact law, evaluated at every integrator stage (4 per rk4 step).
  *
+ * MuJoCo's own constraint solver (mujoco-clearance-native; the model row's
+ *   collider FB_COLLIDER_NATIVE), [mujoco] native_bore:
+ *   - tendon (default): a spatial tendon from the hole's site to the pin's
+ *     (length |e|) limited to [0, c]; MuJoCo adds one limit row along e when
+ *     |e| > c. Its solref is the law's spring and damper in the force form,
+ *     per unit of MuJoCo's diagonal approximation of the row's inverse mass
+ *     at impedance 1e-4 (mujoco_scene.c, native_solref_update), so the row's
+ *     force is k delta + c ddot whatever else acts along e;
+ *   - facets: the pin a sphere and the hole a ring of faceted_n boxes,
+ *     collided by MuJoCo (filterparent disabled), with the direct form per
+ *     unit of the effective mass at impedance 0.9999 (the study before the
+ *     tendon; docs/engines.md).
+ *   The passive-force hook then only measures (e, delta, ddot, J^T n for the
+ *   effective mass); the contact force is read from MuJoCo's constraint
+ *   forces.
+ *
  * Stepping and sampling: a step integrates with the state's accelerations
  * (mj_Euler, mj_RungeKutta(4), or mj_step2 for implicit) and then runs
  * mj_forward at the new state, so every sample is instantaneous at
@@ -74,7 +90,8 @@ fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_di
  * pins centred in their holes). Uses the model's lengths, start and
  * clearance joints and laws, and the definition's crank speed, gravity,
  * masses, solver.h, radial clearance, impact_velocity_min and mujoco
- * options; ignores ODE's stepper, ERP/CFM, mapping, friction and faceted_n.
+ * options; ignores ODE's stepper, ERP/CFM, mapping and friction, and
+ * faceted_n except for mujoco-clearance-native with native_bore = facets.
  * Errors: those of fb_scene_def_check; FB_ERR_ARG when MuJoCo rejects the
  * model (its message quoted); FB_ERR_NOMEM. */
 fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm,

@@ -46,6 +46,8 @@ typedef struct {
   int has_loads;                           /* 1: the load columns are held */
   double *drive_torque;                    /* drive torque on the crank [N m] (n), NULL unless has_loads */
   double *reaction[4][2];                  /* joint force x, y [N] (4 x 2 x n), NULL unless has_loads */
+  double *arena;                           /* the columns' storage (series.c), cap per column */
+  size_t arena_bytes;                      /* its size [bytes] */
 } fb_series;
 
 /* One sample: the values of every column at one instant (SI units). */

@@ -110,6 +110,8 @@ struct fb_mujoco_scene {
     double h_prev;            /* the last step [s] */
     double ddot_prev[4];      /* penetration rate at its start [m/s] */
     double m_eff[4];          /* effective mass at the last contact [kg] */
+    double m_eff_now[4];      /* effective mass at the state now, where m_eff_fresh [kg] */
+    int m_eff_fresh;          /* 1: m_eff_now holds this state's (step_once left it) */
     double phase[4];          /* contact phase so far, sum of h omega_c [rad] (contact.h) */
     fb_sample x0, x1;         /* samples at the last step's start and end */
     fb_step_stats stats;
@@ -670,9 +672,10 @@ static double joint_effective_mass(fb_mujoco_scene *s, const mjModel *m, mjData 
   return wpw > 0.0 ? 1.0 / wpw : NAN;
 }
 
-static void note_contact(fb_mujoco_scene *s, int j) {
+/* the contact provenance of joint j at this state, whose effective mass is
+ * mass [kg] */
+static void note_contact(fb_mujoco_scene *s, int j, double mass) {
   mj_clearance *c = &s->cl[j];
-  const double mass = joint_effective_mass(s, s->m, s->d, j);
   if (!(mass > 0.0)) return;
   double kp, kd, depth;
   fb_contact_linearize(&s->def.law[j], FB_MAPPING_SECANT, c->delta, c->ddot, c->ep.v0, &kp, &kd,
@@ -754,8 +757,14 @@ static void step_once(fb_mujoco_scene *s) {
       native_solref_update(s, j);
     }
     fb_episode_update(&c->ep, c->delta > 0.0, c->ddot, s->def.impact_velocity_min);
-    if (c->delta > 0.0) note_contact(s, j);
+    if (c->delta > 0.0) {
+      /* one solve serves the provenance and the next adaptive step */
+      const double me = joint_effective_mass(s, s->m, s->d, j);
+      s->ad.m_eff_now[j] = me;
+      note_contact(s, j, me);
+    }
   }
+  s->ad.m_eff_fresh = 1;
   reactions_now(s);
 }
 
@@ -769,7 +778,8 @@ static int adapt_multiple(fb_mujoco_scene *s) {
     if (!(s->def.clearance_mask & (1 << j))) continue;
     const mj_clearance *c = &s->cl[j];
     if (c->delta > 0.0) {
-      const double me = joint_effective_mass(s, s->m, s->d, j);
+      const double me =
+          s->ad.m_eff_fresh ? s->ad.m_eff_now[j] : joint_effective_mass(s, s->m, s->d, j);
       if (me > 0.0) s->ad.m_eff[j] = me;
     }
     fb_step_joint sj;
@@ -847,13 +857,18 @@ void fb_mujoco_scene_sample(const fb_mujoco_scene *s, fb_sample *x) {
     /* inside a step: every column linear between its ends (MuJoCo's values
      * are those of each end's state), the contact state the end's */
     const double f = (double)s->ad.k / (double)s->ad.mc;
-    const size_t n = sizeof *x / sizeof(double);
-    double a[sizeof *x / sizeof(double)], b[sizeof *x / sizeof(double)], v[sizeof *x / sizeof(double)];
-    memcpy(a, &s->ad.x0, sizeof a);
-    memcpy(b, &s->ad.x1, sizeof b);
-    for (size_t i = 0; i < n; i++) v[i] = a[i] + f * (b[i] - a[i]);
-    memcpy(x, v, sizeof v);
-    for (int j = 0; j < 4; j++) x->contact[j][FB_C_STATE] = s->ad.x1.contact[j][FB_C_STATE];
+    const fb_sample *a = &s->ad.x0, *b = &s->ad.x1;
+#define FB_LERP(name, col) x->name = a->name + f * (b->name - a->name);
+    FB_SERIES_COLUMNS(FB_LERP)
+#undef FB_LERP
+    for (int j = 0; j < 4; j++) {
+      for (int q = 0; q < FB_CONTACT_COLS; q++)
+        x->contact[j][q] = a->contact[j][q] + f * (b->contact[j][q] - a->contact[j][q]);
+      x->contact[j][FB_C_STATE] = b->contact[j][FB_C_STATE];
+      for (int q = 0; q < 2; q++)
+        x->reaction[j][q] = a->reaction[j][q] + f * (b->reaction[j][q] - a->reaction[j][q]);
+    }
+    x->drive_torque = a->drive_torque + f * (b->drive_torque - a->drive_torque);
     x->t = (double)s->steps * s->def.h;
     return;
   }

@@ -49,6 +49,35 @@ static void make(fb_series *s) {
   }
 }
 
+/* Pushing past the initial room moves every column into a doubled mapping
+ * (series.c): each value pushed must read back exactly, in the kinematic,
+ * contact and load columns, across several growths (16 -> 1024). */
+static void test_growth_keeps_every_column(void **state) {
+  (void)state;
+  fb_series s;
+  make(&s);
+  assert_int_equal(s.n, N_SAMPLES);
+  assert_true(s.cap >= N_SAMPLES);
+  for (int i = 0; i < N_SAMPLES; i++) {
+    fb_sample x;
+    fb_series_get(&s, (size_t)i, &x);
+    assert_true(x.t == i * 3.3e-6);
+    assert_true(x.crank_angle == -104.71975511965977 * (i * 3.3e-6));
+    assert_true(x.coupler_alpha == 1234.5 * sin(0.01 * i) + 1.0 / 3.0);
+    assert_true(x.follower_omega == -exp(0.001 * i));
+    const int in = i >= IMPACT_FROM && i <= IMPACT_TO;
+    assert_true(x.contact[1][FB_C_STATE] == (in ? FB_STATE_IMPACT : FB_STATE_FREE));
+    assert_true(x.contact[1][FB_C_FORCE] == (in ? 1e4 / 7.0 : 0.0));
+    assert_true(x.contact[1][FB_C_PEN] == (in ? 1.234567e-7 : 0.0));
+    assert_true(x.reaction[2][0] == 3.0);
+    assert_true(x.reaction[2][1] == 4.0 + i);
+    assert_true(x.drive_torque == 1e-9 * i);
+  }
+  fb_series_free(&s);
+  assert_null(s.t);
+  assert_int_equal(s.n, 0);
+}
+
 static void test_keep_rule(void **state) {
   (void)state;
   fb_series s;
@@ -232,6 +261,7 @@ static void test_hdf5_reads_back(void **state) {
 int main(void) {
   if (!mkdtemp(dir)) return 1;
   const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_growth_keeps_every_column),
       cmocka_unit_test(test_keep_rule),
       cmocka_unit_test(test_csv_reads_back),
 #if FB_HAVE_HDF5

@@ -25,7 +25,7 @@ static double **columns(fb_series *s, double **cols) {
 }
 
 /* Column storage: every column a series can hold (the kinematic ones, 4 x
- * FB_CONTACT_COLS contact columns, the 9 load arrays) lives in one anonymous
+ * FB_CONTACT_COLS contact columns, the FB_LOAD_ARRAYS load arrays) lives in one anonymous
  * mapping of cap samples per column, advised into transparent huge pages
  * (madvise MADV_HUGEPAGE; a hint, ignored where THP is off). A column is
  * first written sample by sample as the run goes, so with 4 KiB pages a run
@@ -34,7 +34,9 @@ static double **columns(fb_series *s, double **cols) {
  * adaptive, 2 revolutions, 8,370 page faults and 138 ms of model time with
  * separate mallocs, 2,412 and 109 ms with huge pages (perf stat). Columns
  * never enabled are never touched and take no memory. */
-#define FB_SERIES_SLOTS (FB_NCOLUMNS + 4 * FB_CONTACT_COLS + 9)
+/* the load arrays: drive torque, then x and y of each joint's reaction */
+#define FB_LOAD_ARRAYS (1 + 4 * 2)
+#define FB_SERIES_SLOTS (FB_NCOLUMNS + 4 * FB_CONTACT_COLS + FB_LOAD_ARRAYS)
 #define FB_SERIES_HUGE_PAGE ((size_t)2 << 20)
 
 static double *arena_map(size_t cap, size_t *bytes) {
@@ -124,11 +126,11 @@ static int load_arrays(fb_series *s, double ***out) {
   out[0] = &s->drive_torque;
   for (int j = 0; j < 4; j++)
     for (int c = 0; c < 2; c++) out[1 + 2 * j + c] = &s->reaction[j][c];
-  return 9;
+  return FB_LOAD_ARRAYS;
 }
 
 fb_status fb_series_enable_loads(fb_series *s) {
-  double **a[9];
+  double **a[FB_LOAD_ARRAYS];
   const int n = load_arrays(s, a);
   for (int k = 0; k < n; k++) {
     *a[k] = slot(s, a[k]); /* zero: a fresh mapping */

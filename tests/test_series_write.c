@@ -52,15 +52,12 @@ static void make(fb_series *s) {
 /* Pushing past the initial room moves every column into a doubled mapping
  * (series.c): each value pushed must read back exactly, in the kinematic,
  * contact and load columns, across several growths (16 -> 1024). */
-static void test_growth_keeps_every_column(void **state) {
-  (void)state;
-  fb_series s;
-  make(&s);
-  assert_int_equal(s.n, N_SAMPLES);
-  assert_true(s.cap >= N_SAMPLES);
+/* every value make() pushed reads back exactly */
+static void check_made(const fb_series *s) {
+  assert_int_equal(s->n, N_SAMPLES);
   for (int i = 0; i < N_SAMPLES; i++) {
     fb_sample x;
-    fb_series_get(&s, (size_t)i, &x);
+    fb_series_get(s, (size_t)i, &x);
     assert_true(x.t == i * 3.3e-6);
     assert_true(x.crank_angle == -104.71975511965977 * (i * 3.3e-6));
     assert_true(x.coupler_alpha == 1234.5 * sin(0.01 * i) + 1.0 / 3.0);
@@ -73,9 +70,40 @@ static void test_growth_keeps_every_column(void **state) {
     assert_true(x.reaction[2][1] == 4.0 + i);
     assert_true(x.drive_torque == 1e-9 * i);
   }
+}
+
+static void test_growth_keeps_every_column(void **state) {
+  (void)state;
+  fb_series s;
+  make(&s);
+  assert_true(s.cap >= N_SAMPLES);
+  check_made(&s);
   fb_series_free(&s);
   assert_null(s.t);
   assert_int_equal(s.n, 0);
+}
+
+/* fb_series_touch maps the room after the held samples (one write per page,
+ * series.h): the 1000 held samples span two 4 KiB pages of each column, so
+ * a touch that wrote from sample 0 instead of n would zero sample 512 of
+ * every column; a sample pushed after it reads back. */
+static void test_touch_keeps_held_samples(void **state) {
+  (void)state;
+  fb_series s;
+  make(&s);
+  const size_t cap = s.cap;
+  fb_series_touch(&s);
+  assert_int_equal(s.cap, cap);
+  check_made(&s);
+  fb_sample x, y;
+  memset(&x, 0, sizeof x);
+  x.t = 1.5;
+  x.contact[1][FB_C_FORCE] = 2.5;
+  x.reaction[3][1] = -7.0;
+  assert_int_equal(fb_series_push(&s, &x), FB_OK);
+  fb_series_get(&s, N_SAMPLES, &y);
+  assert_true(y.t == 1.5 && y.contact[1][FB_C_FORCE] == 2.5 && y.reaction[3][1] == -7.0);
+  fb_series_free(&s);
 }
 
 static void test_keep_rule(void **state) {
@@ -262,6 +290,7 @@ int main(void) {
   if (!mkdtemp(dir)) return 1;
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_growth_keeps_every_column),
+      cmocka_unit_test(test_touch_keeps_held_samples),
       cmocka_unit_test(test_keep_rule),
       cmocka_unit_test(test_csv_reads_back),
 #if FB_HAVE_HDF5

@@ -55,7 +55,8 @@ typedef struct fb_bench_row_s {
   double error;            /* NaN when the run stopped */
   double wall_per_rev;     /* median wall time per simulated revolution, the engine's setup
                               excluded [s] */
-  double setup_s;          /* median wall time of the engine's setup (create) [s] */
+  double setup_s;          /* median wall time of the set-up (the engine's create, the
+                              series' storage mapped) [s] */
   int repeats;
   int pareto;
   char collider[32];       /* "-" (ideal), "exact", "faceted", "ccd" or "native" */

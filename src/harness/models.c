@@ -32,7 +32,8 @@ static void engine_stop(fb_stop *out, const fb_engine *e, const void *self, fb_s
   snprintf(out->detail, sizeof out->detail, "%.150s", diag ? diag->msg : "");
 }
 
-/* create, then def->steps steps, each sampled and checked */
+/* create and the series storage (timed together as setup_s), then
+ * def->steps steps, each sampled and checked */
 static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_model *sm,
                             fb_progress_fn progress, void *user, fb_diag *diag) {
   const fb_scene_def *def = sm->def;
@@ -52,6 +53,8 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
     e->destroy(self);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n + 1);
   }
+  fb_series_touch(&r->series); /* its page faults are set-up, not stepping */
+  r->setup_s = fb_clock_s() - t0;
   fb_sample x;
   e->sample(self, &x);
   if (e->reactions) e->reactions(self, x.reaction, &x.drive_torque);

@@ -24,7 +24,8 @@ typedef struct {
   size_t steps;            /* steps taken (ode), samples computed (analytic), accepted
                               integrator steps (reference) */
   double wall_s;           /* wall-clock time of the run [s] */
-  double setup_s;          /* of which the engine's create [s] (MuJoCo: the MJCF compile) */
+  double setup_s;          /* of which set-up [s]: the engine's create (MuJoCo: the MJCF
+                              compile) and mapping the series' storage (fb_series_touch) */
   fb_series series;        /* samples at t = k h */
   double joint_drift_max;  /* ode: largest hinge anchor separation seen [m] */
   int clearance_mask;      /* bit j: joint j had clearance in this model */

@@ -33,7 +33,9 @@ static double **columns(fb_series *s, double **cols) {
  * `fourbar run cases/engines.ini` with mujoco-clearance-impact, h_s =
  * adaptive, 2 revolutions, 8,370 page faults and 138 ms of model time with
  * separate mallocs, 2,412 and 109 ms with huge pages (perf stat). Columns
- * never enabled are never touched and take no memory. */
+ * never enabled are never touched and take no memory. A run maps its
+ * columns' pages before its first step (fb_series_touch): the first write to
+ * a page costs what the machine makes it cost (series.h). */
 /* the load arrays: drive torque, then x and y of each joint's reaction */
 #define FB_LOAD_ARRAYS (1 + 4 * 2)
 #define FB_SERIES_SLOTS (FB_NCOLUMNS + 4 * FB_CONTACT_COLS + FB_LOAD_ARRAYS)
@@ -170,6 +172,17 @@ void fb_series_get(const fb_series *s, size_t i, fb_sample *x) {
   x->drive_torque = s->has_loads ? s->drive_torque[i] : 0.0;
   for (int j = 0; j < 4; j++)
     for (int c = 0; c < 2; c++) x->reaction[j][c] = s->has_loads ? s->reaction[j][c][i] : 0.0;
+}
+
+void fb_series_touch(fb_series *s) {
+  double **c[FB_SERIES_SLOTS];
+  const int n = slots(s, c);
+  const size_t page = 4096 / sizeof(double); /* the smallest page: one write maps it */
+  for (int k = 0; k < n; k++) {
+    double *v = *c[k];
+    if (!v) continue;
+    for (size_t i = s->n; i < s->cap; i += page) v[i] = 0.0;
+  }
 }
 
 void fb_series_free(fb_series *s) {

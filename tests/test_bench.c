@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "casefile.h"
 #include "fb_test.h"
 #include "figures.h"
 
@@ -135,9 +136,42 @@ static void test_clearance_error_by_hand(void **state) {
   assert_true(isnan(fb_bench_rel_parts(part, at_h, zero, 2)));
 }
 
+/* fb_bench_run's timing (bench.h): a configuration whose first run took at
+ * most FB_BENCH_REPEAT_BELOW_S is timed again in the later rounds, so its
+ * rows hold FB_BENCH_ROUNDS repeats and a finite, positive cost. The
+ * frontier grid on the paper case made cheap (no clearance joint, so no
+ * reference; 20,000 rpm, so 2 revolutions are 6 ms of motion, at most 6,000
+ * steps at 1e-6 s; the drive torque limit raised with the speed squared)
+ * qualifies in every row. Rows left at their first run have 1 repeat. */
+static void test_rounds_time_every_row(void **state) {
+  (void)state;
+  static fb_case c;
+  const char *sets[] = {"clearance.joints=none", "drive.speed_rpm=20000",
+                        "solver.drive_torque_max_n_m=1e7", "run.models=ode-ideal-stackup"};
+  fb_test_paper_case(&c, sets, 4);
+  static fb_bench_row rows[FB_BENCH_MAX_ROWS];
+  int n = 0;
+  fb_diag d;
+  if (fb_bench_run(rows, &n, &c, FB_BENCH_FRONTIER, NULL, NULL, &d) != FB_OK)
+    fail_msg("%s", d.msg);
+  /* ODE's rows at least: the frontier's steps, the ERP 0.8 and tuned rows, the adaptive ones */
+  assert_true(n >= FB_BENCH_FRONTIER_STEPS + 1 + FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE);
+  for (int i = 0; i < n; i++) {
+    const fb_bench_row *b = &rows[i];
+    if (b->repeats != FB_BENCH_ROUNDS)
+      fail_msg("row %d (%s %s h %g): %d repeats, expected %d", i, b->model, b->stepper, b->h,
+               b->repeats, FB_BENCH_ROUNDS);
+    assert_true(isfinite(b->wall_per_rev) && b->wall_per_rev > 0.0);
+    assert_true(isfinite(b->us_per_step) && b->us_per_step > 0.0);
+    assert_true(b->setup_s >= 0.0);
+    assert_true(isfinite(b->error)); /* the analytic solution is every row's yardstick */
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_pareto_and_cheapest),
                                      cmocka_unit_test(test_bench_figure_extremes),
-                                     cmocka_unit_test(test_clearance_error_by_hand)};
+                                     cmocka_unit_test(test_clearance_error_by_hand),
+                                     cmocka_unit_test(test_rounds_time_every_row)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

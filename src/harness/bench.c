@@ -77,13 +77,14 @@ static fb_status halving(fb_bench_row *rows, int nrows, const int *idx, const in
   return FB_OK;
 }
 
-/* runs case k up to 3 times, again while its first `timed` models (1 or 2)
- * together took at most 1 s; r keeps the last run, walls[q][rep] the wall
- * times of model q without the engine's setup (MuJoCo compiles its model,
- * 0.6 to 14 ms here), setups[q][rep] the setup (0 when not timed), *reps the runs */
-static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, double walls[2][3],
-                            double setups[2][3], int *reps, fb_diag *diag) {
-  for (int rep = 0; rep < 3; rep++) {
+/* runs case k up to max_reps (<= 3) times, again while its first `timed`
+ * models (1 or 2) together took at most FB_BENCH_REPEAT_BELOW_S; r keeps the
+ * last run, walls[q][rep] the wall times of model q without the set-up
+ * (MuJoCo compiles its model, 0.6 to 14 ms here), setups[q][rep] the set-up
+ * (0 when not timed), *reps the runs */
+static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, int max_reps,
+                            double walls[2][3], double setups[2][3], int *reps, fb_diag *diag) {
+  for (int rep = 0; rep < max_reps; rep++) {
     fb_status st = fb_run_case(r, k, NULL, NULL, diag);
     if (st != FB_OK) return st;
     for (int q = 0; q < 2; q++) {
@@ -92,23 +93,74 @@ static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, double walls
       setups[q][rep] = q < timed ? mr->setup_s : 0.0;
     }
     *reps = rep + 1;
-    if (rep == 2 || walls[0][rep] + walls[1][rep] > 1.0) break;
+    if (rep == max_reps - 1 || walls[0][rep] + walls[1][rep] > FB_BENCH_REPEAT_BELOW_S) break;
     fb_run_free(r);
   }
   return FB_OK;
 }
 
+/* One configuration's timing, kept by bench_point for the rounds that
+ * retime() runs after the whole grid: its case without the untimed
+ * reference, its rows and what a row's cost divides by. */
+typedef struct {
+  fb_case k;
+  int timed;          /* models timed (1 or 2), the first of k's */
+  int row[2];         /* row of model q, -1 where it has none */
+  double revs[2];     /* revolutions model q simulated; 0: no cost per revolution */
+  double steps[2];    /* its steps */
+  double walls[2][3]; /* wall time of each round, set-up excluded [s] */
+  double setups[2][3];
+  int reps;
+} bench_timing;
+
+/* the configurations bench_point has timed in this fb_bench_run (one bench
+ * at a time, as bench_point's static run) */
+static struct {
+  bench_timing *t;
+  int n, cap;
+} timings;
+
+static fb_status timing_add(const bench_timing *t, fb_diag *diag) {
+  if (timings.n == timings.cap) {
+    const int cap = timings.cap ? 2 * timings.cap : 64;
+    bench_timing *g = realloc(timings.t, (size_t)cap * sizeof *g);
+    if (!g) return fb_diag_set(diag, FB_ERR_NOMEM, "bench: out of memory for the timings");
+    timings.t = g;
+    timings.cap = cap;
+  }
+  timings.t[timings.n++] = *t;
+  return FB_OK;
+}
+
+/* a row's cost from its configuration's rounds: the median wall time per
+ * simulated revolution and per step, the median set-up */
+static void timing_apply(fb_bench_row *rows, bench_timing *t) {
+  for (int q = 0; q < t->timed; q++) {
+    qsort(t->walls[q], (size_t)t->reps, sizeof(double), cmp_double);
+    qsort(t->setups[q], (size_t)t->reps, sizeof(double), cmp_double);
+    if (t->row[q] < 0) continue;
+    fb_bench_row *b = &rows[t->row[q]];
+    const double wall = t->walls[q][t->reps / 2];
+    b->repeats = t->reps;
+    b->setup_s = t->setups[q][t->reps / 2];
+    b->wall_per_rev = t->revs[q] > 0.0 ? wall / t->revs[q] : NAN;
+    b->us_per_step = t->steps[q] > 0.0 ? 1e6 * wall / t->steps[q] : NAN;
+  }
+}
+
 /* one configuration: runs case k (its models: an ideal stack-up model, and
- * with clearance at B the clearance impact model and the reference) up to 3
- * times, and appends one row per engine model (the ideal one only when
- * with_ideal) */
+ * with clearance at B the clearance impact model and the reference) once,
+ * appends one row per engine model (the ideal one only when with_ideal) and
+ * keeps its timing for the rounds of retime() */
 static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char *engine,
                              const char *stepper, int mapping, int with_ideal, fb_diag *diag) {
   const int with_clearance = k->model_count > 1;
-  double walls[2][3], setups[2][3];
-  int reps;
+  bench_timing tm;
+  memset(&tm, 0, sizeof tm);
+  tm.timed = with_clearance ? 2 : 1;
+  tm.row[0] = tm.row[1] = -1;
   static fb_run r;
-  fb_status st0 = timed_runs(&r, k, with_clearance ? 2 : 1, walls, setups, &reps, diag);
+  fb_status st0 = timed_runs(&r, k, tm.timed, 1, tm.walls, tm.setups, &tm.reps, diag);
   if (st0 != FB_OK) return st0;
   const int first = *n;
   int qs[2];
@@ -118,6 +170,7 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
       return fb_diag_set(diag, FB_ERR_NOMEM, "bench: more than %d rows (FB_BENCH_MAX_ROWS)",
                          FB_BENCH_MAX_ROWS);
     qs[*n - first] = q;
+    tm.row[q] = *n;
     fb_bench_row *b = &rows[(*n)++];
     const fb_model_result *m = &r.model[q];
     memset(b, 0, sizeof *b);
@@ -148,26 +201,30 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     /* this row's peaks, for the halving run below */
     if (!b->h_auto && row_peaks(mine, m, q))
       for (int p = 0; p < 4; p++) b->halving_part[p] = mine[p];
-    qsort(walls[q], (size_t)reps, sizeof(double), cmp_double);
-    qsort(setups[q], (size_t)reps, sizeof(double), cmp_double);
-    b->setup_s = setups[q][reps / 2];
-    /* per revolution actually simulated: a run that stopped early covered
-     * less; one that stopped within its first step has no cost per
-     * revolution (NaN, printed "-") */
-    /* the time the samples cover: steps x h for a fixed-step engine, not for
-     * one whose steps are its integrator's own (Simbody) */
-    const fb_series *ser = &m->run.series;
-    const double covered = ser->n > 1 ? ser->t[ser->n - 1] : 0.0;
-    const double simulated = covered * k->crank_speed / (2.0 * M_PI);
-    b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
-    b->repeats = reps;
     snprintf(b->collider, sizeof b->collider, "%s",
              q == 0 ? "-" : fb_collider_name(m->run.collider));
     b->segments = q == 0 ? 0 : m->run.segments;
-    b->us_per_step = m->run.steps > 0 ? 1e6 * walls[q][reps / 2] / (double)m->run.steps : NAN;
     b->force_vs_exact = b->pen_vs_exact = b->alpha_vs_exact = b->cost_vs_exact = NAN;
   }
+  /* per revolution actually simulated: a run that stopped early covered
+   * less; one that stopped within its first step has no cost per revolution
+   * (NaN, printed "-"). The time the samples cover: steps x h for a
+   * fixed-step engine, not for one whose steps are its integrator's own
+   * (Simbody) */
+  for (int q = 0; q < tm.timed; q++) {
+    const fb_model_run *mr = &r.model[q].run;
+    const fb_series *ser = &mr->series;
+    const double covered = ser->n > 1 ? ser->t[ser->n - 1] : 0.0;
+    const double simulated = covered * k->crank_speed / (2.0 * M_PI);
+    tm.revs[q] = mr->steps > 1 && simulated > 0.0 ? simulated : 0.0;
+    tm.steps[q] = (double)mr->steps;
+  }
   fb_run_free(&r);
+  tm.k = *k;
+  tm.k.model_count = tm.timed; /* the rounds time; the reference is not needed */
+  fb_status st1 = timing_add(&tm, diag);
+  if (st1 != FB_OK) return st1;
+  timing_apply(rows, &timings.t[timings.n - 1]);
   if (k->solver.h_mode == FB_STEP_FIXED && *n > first)
     return halving(rows + first, *n - first, qs, qs, k, diag);
   return FB_OK;
@@ -233,7 +290,7 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
   double walls[2][3], setups[2][3];
   int reps;
   static fb_run r;
-  fb_status st = timed_runs(&r, &k, 2, walls, setups, &reps, diag);
+  fb_status st = timed_runs(&r, &k, 2, 3, walls, setups, &reps, diag);
   if (st != FB_OK) return st;
   const fb_model_result *ex = &r.model[0], *ref = &r.model[2];
   double us[2];
@@ -359,8 +416,79 @@ static fb_status simbody_grid(fb_bench_row *rows, int *n, const fb_case *c, int 
   return FB_OK;
 }
 
+/* the rounds of the timing: each configuration bench_point ran is run again
+ * (its timed models only) FB_BENCH_ROUNDS - 1 times, one configuration after
+ * the other in grid order, round after round, while its first run took at
+ * most FB_BENCH_REPEAT_BELOW_S; then every row's cost is the median of its
+ * rounds. Back-to-back repeats of one configuration share the machine's
+ * state of that moment; rounds spread over the whole bench put a slow
+ * phase of the machine into one round of many rows instead of every round of
+ * a few (two frontier runs 26 minutes apart had the same rows' cost ratios
+ * differ by up to 1.9 times with back-to-back repeats). progress gets the
+ * fraction from `from` to 1. */
+static fb_status retime(fb_bench_row *rows, double from,
+                        void (*progress)(double fraction, void *user), void *user,
+                        fb_diag *diag) {
+  int todo = 0;
+  for (int i = 0; i < timings.n; i++) {
+    const bench_timing *t = &timings.t[i];
+    todo += t->walls[0][0] + t->walls[1][0] <= FB_BENCH_REPEAT_BELOW_S;
+  }
+  int done = 0;
+  for (int round = 1; round < FB_BENCH_ROUNDS; round++)
+    for (int i = 0; i < timings.n; i++) {
+      bench_timing *t = &timings.t[i];
+      if (t->reps != round || t->walls[0][0] + t->walls[1][0] > FB_BENCH_REPEAT_BELOW_S) continue;
+      static fb_run r;
+      double walls[2][3], setups[2][3];
+      int reps;
+      fb_status st = timed_runs(&r, &t->k, t->timed, 1, walls, setups, &reps, diag);
+      if (st != FB_OK) return st;
+      fb_run_free(&r);
+      for (int q = 0; q < t->timed; q++) {
+        t->walls[q][round] = walls[q][0];
+        t->setups[q][round] = setups[q][0];
+      }
+      t->reps = round + 1;
+      if (progress && todo > 0)
+        progress(from + (1.0 - from) * (double)++done / ((FB_BENCH_ROUNDS - 1) * todo), user);
+    }
+  for (int i = 0; i < timings.n; i++) timing_apply(rows, &timings.t[i]);
+  return FB_OK;
+}
+
+static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int grids,
+                             void (*progress)(double fraction, void *user), void *user,
+                             fb_diag *diag);
+
 fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag) {
+  timings.n = 0;
+  fb_status st = bench_grids(rows, n, c, grids, progress, user, diag);
+  if (st == FB_OK) st = retime(rows, FB_BENCH_FIRST_PASS_SHARE, progress, user, diag);
+  free(timings.t);
+  memset(&timings, 0, sizeof timings);
+  if (st == FB_OK) fb_bench_mark_pareto(rows, *n);
+  return st;
+}
+
+/* the progress of the grids' first pass, scaled into [0, share) */
+typedef struct {
+  void (*progress)(double fraction, void *user);
+  void *user;
+} first_pass;
+
+static void first_pass_progress(double fraction, void *user) {
+  const first_pass *f = user;
+  f->progress(FB_BENCH_FIRST_PASS_SHARE * fraction, f->user);
+}
+
+static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int grids,
+                             void (*progress_all)(double fraction, void *user), void *user_all,
+                             fb_diag *diag) {
+  first_pass fp = {progress_all, user_all};
+  void (*progress)(double fraction, void *user) = progress_all ? first_pass_progress : NULL;
+  void *user = &fp;
   const double hs[FB_BENCH_STEPS] = {1e-3, 1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
   const int iters[4] = {0, 10, 20, 50}; /* 0: dWorldStep */
   const double erp[2] = {0.2, 0.8}, cfm[2] = {1e-10, 1e-8};
@@ -523,7 +651,6 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
       if (st != FB_OK) return st;
       if (progress) progress((double)++done / total, user);
     }
-  fb_bench_mark_pareto(rows, *n);
   return FB_OK;
 }
 

@@ -136,8 +136,23 @@ enum {
 #define FB_BENCH_BULLET_STEPS 4 /* step sizes of the Bullet grid: 1e-4, 1e-5, 1e-6 s and auto */
 #define FB_BENCH_BULLET_SOLVERS 4 /* sequential impulse at 10, 50, 100 iterations; mlcp-dantzig */
 
+/* Timing: a configuration is run once for its errors, then again, its timed
+ * models only, in FB_BENCH_ROUNDS - 1 further rounds over the whole grid
+ * when its first run took at most FB_BENCH_REPEAT_BELOW_S (timed models
+ * together); a row's cost is the median of its rounds. A round visits every
+ * configuration once, so repeats of one configuration lie far apart in time
+ * and a slow phase of the machine lands in one round of many rows, not in
+ * every repeat of a few. The collider axis keeps back-to-back repeats (its
+ * costs compare with the exact collider's of the same runs). */
+#define FB_BENCH_ROUNDS 3
+#define FB_BENCH_REPEAT_BELOW_S 1.0
+/* The share of the progress fraction the first pass reports (the rounds
+ * time the timed models alone, without the reference or the step-halving
+ * runs). */
+#define FB_BENCH_FIRST_PASS_SHARE 0.6
+
 /* Runs the grids named in grids (FB_BENCH_* bits) on case c (2 revolutions
- * per run; 3 repeats for runs under 1 s, else 1). rows gets *n rows.
+ * per run; timing above). rows gets *n rows.
  * progress (may be NULL) gets the fraction done. The collider axis needs a
  * case whose only clearance joint is the crank-coupler one (else it adds no
  * row). Errors: those of fb_run_case. */

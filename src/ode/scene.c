@@ -68,7 +68,9 @@ struct fb_scene {
   double omega_prev[3];
   double alpha[3];
   double w_inv[4][2][2]; /* inverse-mass tensors of the clearance joints this step [1/kg] */
-  int w_valid;           /* w_inv holds this step's configuration */
+  int w_valid;           /* w_inv holds the configuration now (the next step's start); reset
+                            when a step moves the bodies, so the adaptive step and the contact
+                            rows share one computation */
   double h_now;          /* step of the ODE step being taken [s]: solver.h, or the adaptive one */
   /* [solver] h_s = adaptive (step_control.h): each ODE step spans mc grid
    * steps of solver.h (= h_min); the samples inside it are interpolated */
@@ -600,7 +602,6 @@ static void clearance_contact(fb_scene *s, int j) {
  * dWorldStep or dWorldQuickStep, the forces and accelerations it left) */
 static fb_status world_step(fb_scene *s, double h, fb_diag *diag) {
   s->h_now = h;
-  s->w_valid = 0;
   for (int j = 0; j < 4; j++) {
     if (!(s->def.clearance_mask & (1 << j))) continue;
     clearance *c = &s->cl[j];
@@ -651,6 +652,7 @@ static fb_status world_step(fb_scene *s, double h, fb_diag *diag) {
   int ok = s->def.solver.stepper == FB_STEPPER_WORLD ? dWorldStep(s->world, h)
                                                      : dWorldQuickStep(s->world, h);
   fb_ode_escape = NULL;
+  s->w_valid = 0; /* the bodies moved: the next step's tensors are its own */
   for (int j = 0; j < 4; j++) {
     clearance *c = &s->cl[j];
     if (s->def.faceted_n > 0 || c->bore) {
@@ -716,7 +718,6 @@ static int adapt_multiple(fb_scene *s) {
   const fb_scene_model *d = &s->def;
   const double hg = d->solver.h;
   double h = d->solver.h_max;
-  s->w_valid = 0;
   for (int j = 0; j < 4; j++) {
     if (!(d->clearance_mask & (1 << j))) continue;
     const clearance *c = &s->cl[j];

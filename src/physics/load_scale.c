@@ -1,0 +1,80 @@
+#include "load_scale.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "invdyn.h"
+
+void fb_load_scale_free(fb_load_scale *ls) {
+  for (int j = 0; j < 4; j++) free(ls->ahead[j]), free(ls->force[j]);
+  memset(ls, 0, sizeof *ls);
+}
+
+fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branch branch,
+                              const fb_link_mass link[3], double gravity, double omega2,
+                              int joint_mask, double lookahead_s, fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  if (!(joint_mask & 15)) return FB_OK; /* no joint asked: no table */
+  const int n = FB_LOAD_SCALE_SAMPLES;
+  double(*f)[4][2] = malloc(sizeof *f * (size_t)n);
+  double *tau = malloc(sizeof *tau * (size_t)n);
+  if (!f || !tau) {
+    free(f);
+    free(tau);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "load time-scale table: %d crank angles", n);
+  }
+  fb_status st = FB_OK;
+  for (int k = 0; k < n && st == FB_OK; k++) {
+    fb_reactions r;
+    st = fb_invdyn_solve(&r, lk, branch, link, gravity, 2.0 * M_PI * k / n, omega2, diag);
+    if (st == FB_OK) memcpy(f[k], r.force, sizeof r.force);
+  }
+  out->n = n;
+  out->omega2 = omega2;
+  /* crank angles swept in the lookahead, as table steps, and the direction */
+  const int w = (int)ceil(fabs(omega2) * lookahead_s / (2.0 * M_PI / n));
+  const int dir = omega2 < 0.0 ? -1 : 1;
+  for (int j = 0; j < 4 && st == FB_OK; j++) {
+    if (!(joint_mask & (1 << j))) continue;
+    out->ahead[j] = malloc(sizeof(double) * (size_t)n);
+    out->force[j] = malloc(sizeof(double) * (size_t)n);
+    if (!out->ahead[j] || !out->force[j]) {
+      st = fb_diag_set(diag, FB_ERR_NOMEM, "load time-scale table: %d crank angles", n);
+      break;
+    }
+    for (int k = 0; k < n; k++) {
+      /* dF/dt by central differences over the table */
+      const double *a = f[(k + n - 1) % n][j], *b = f[(k + 1) % n][j];
+      const double dt_dth = fabs(omega2) / (2.0 * (2.0 * M_PI / n));
+      const double rate = hypot(b[0] - a[0], b[1] - a[1]) * dt_dth;
+      tau[k] = rate > 0.0 ? hypot(f[k][j][0], f[k][j][1]) / rate : INFINITY;
+    }
+    for (int k = 0; k < n; k++) {
+      double m = tau[k], fm = hypot(f[k][j][0], f[k][j][1]);
+      for (int q = 1; q <= w && q < n; q++) {
+        const int i = ((k + dir * q) % n + n) % n;
+        m = fmin(m, tau[i]);
+        fm = fmax(fm, hypot(f[i][j][0], f[i][j][1]));
+      }
+      out->ahead[j][k] = m;
+      out->force[j][k] = fm;
+    }
+  }
+  free(f);
+  free(tau);
+  if (st != FB_OK) fb_load_scale_free(out);
+  return st;
+}
+
+void fb_load_scale_at(const fb_load_scale *ls, int j, double theta, double *tau, double *force) {
+  if (tau) *tau = INFINITY;
+  if (force) *force = 0.0;
+  if (j < 0 || j > 3 || !ls->ahead[j] || ls->n < 1) return;
+  double u = fmod(theta, 2.0 * M_PI);
+  if (u < 0.0) u += 2.0 * M_PI;
+  int k = (int)(u / (2.0 * M_PI) * ls->n);
+  if (k >= ls->n) k = ls->n - 1;
+  if (tau) *tau = ls->ahead[j][k];
+  if (force) *force = ls->force[j][k];
+}

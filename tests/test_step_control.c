@@ -4,7 +4,8 @@
  *   pin ( ) approaching the wall |  gap -delta, speed ddot
  *   free flight: h from the undamped Hertz impact's depth at that speed
  *   impact:      h omega_c <= accuracy at that depth (or deeper)
- *   persistent:  penetration change per step and h omega_c bounded */
+ *   persistent:  penetration change per step and h omega_c bounded (MuJoCo),
+ *                or the ideal load's schedule (ODE) */
 #include <math.h>
 
 #include "fb_test.h"
@@ -76,6 +77,43 @@ static void test_persistent_contact(void **state) {
   assert_true(h2 < h1);
 }
 
+/* persistent contact on ODE's schedule: h omega_c <= FB_STEP_PERSISTENT_H_OMEGA
+ * with omega_c at the static depth of the load ahead, (F / K)^(1 / n), and
+ * h <= FB_STEP_LOAD_SHARE tau_load; the contact's own penetration and rate
+ * do not enter (a step that follows them pumps the row's ringing) */
+static void test_persistent_load_schedule(void **state) {
+  (void)state;
+  const fb_contact_law law = hertz();
+  const double m = 0.2, f = 800.0, acc = 0.3;
+  const double d = pow(f / 1e10, 1.0 / 1.5);
+  const double w = sqrt(1.5e10 * sqrt(d) / m);
+  fb_step_joint j = {.delta = 5e-7, .ddot = 0.0, .m_eff = m, .persistence = 1.0,
+                     .rule = FB_PERSIST_LOAD_SCHEDULE, .tau_load = INFINITY, .load_force = f};
+  const double cap = FB_STEP_PERSISTENT_H_OMEGA / w;
+  assert_rel(fb_step_adaptive(&law, &j, acc, 1e-9, 1.0), cap, STEP_REL_TOL);
+  /* another depth and a fast rate: the same step */
+  j.delta = 2e-6;
+  j.ddot = -5e-2;
+  j.dddot = 300.0;
+  assert_rel(fb_step_adaptive(&law, &j, acc, 1e-9, 1.0), cap, STEP_REL_TOL);
+  /* a load turning fast binds */
+  j.tau_load = 0.1 * cap / FB_STEP_LOAD_SHARE;
+  assert_rel(fb_step_adaptive(&law, &j, acc, 1e-9, 1.0), 0.1 * cap, STEP_REL_TOL);
+  /* no load known: omega_c at the current depth */
+  j.tau_load = INFINITY;
+  j.load_force = 0.0;
+  assert_rel(fb_step_adaptive(&law, &j, acc, 1e-9, 1.0),
+             FB_STEP_PERSISTENT_H_OMEGA / sqrt(1.5e10 * sqrt(2e-6) / m), STEP_REL_TOL);
+  /* before persistence the impact rule holds, whatever the schedule: here
+   * the depth an impact at |ddot| = 5e-2 m/s reaches, deeper than 2e-6 m */
+  j.persistence = 0.5;
+  j.load_force = f;
+  const double di = pow(5.0 * m * 5e-2 * 5e-2 / 4e10, 0.4);
+  assert_true(di > j.delta);
+  assert_rel(fb_step_adaptive(&law, &j, acc, 1e-9, 1.0), acc / sqrt(1.5e10 * sqrt(di) / m),
+             STEP_REL_TOL);
+}
+
 static void test_ramp(void **state) {
   (void)state;
   assert_int_equal(fb_step_ramp(20, 1, 20), 2);  /* up by one grid step from 1 */
@@ -91,6 +129,7 @@ int main(void) {
       cmocka_unit_test(test_free_flight_is_the_impact_step),
       cmocka_unit_test(test_impact_uses_the_deeper_depth),
       cmocka_unit_test(test_persistent_contact),
+      cmocka_unit_test(test_persistent_load_schedule),
       cmocka_unit_test(test_ramp),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

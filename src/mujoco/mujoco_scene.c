@@ -782,7 +782,7 @@ static int adapt_multiple(fb_mujoco_scene *s) {
           s->ad.m_eff_fresh ? s->ad.m_eff_now[j] : joint_effective_mass(s, s->m, s->d, j);
       if (me > 0.0) s->ad.m_eff[j] = me;
     }
-    fb_step_joint sj;
+    fb_step_joint sj = {.rule = FB_PERSIST_DEPTH_CHANGE};
     sj.delta = c->delta;
     sj.ddot = c->ddot;
     sj.m_eff = s->ad.m_eff[j];

@@ -9,6 +9,7 @@
 
 #include "collide_ccd.h"
 #include "episode.h"
+#include "load_scale.h"
 #include "ode_contact.h"
 #include "ode_env.h"
 
@@ -78,8 +79,6 @@ struct fb_scene {
     int on;               /* 1: adaptive */
     int m_max;            /* h_max / h_min, rounded down [-] */
     int m_prev;           /* grid steps of the last ODE step [-] */
-    double h_prev;        /* the last ODE step [s] */
-    double ddot_prev[4];  /* penetration rate at its start, per clearance joint [m/s] */
     int mc, k;            /* the last ODE step spans mc samples; sample k of them is reported */
     double ang0[3], ang1[3], w0[3], w1[3]; /* angles [rad] and omega [rad/s] at its ends */
     double pen0[4], pen1[4], ex0[4], ex1[4], ey0[4], ey1[4]; /* penetration, eccentricity [m] */
@@ -87,6 +86,7 @@ struct fb_scene {
     double pen_end;       /* largest penetration at the last ODE step's end [m] */
     int pen_joint_end;    /* its joint */
     double drift_end;     /* hinge drift at the last ODE step's end [m] */
+    fb_load_scale load;   /* the clearance joints' ideal load time scale (load_scale.h) */
   } ad;
 };
 
@@ -321,6 +321,14 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *dia
     s->ad.m_max = (int)floor(def->solver.h_max / def->solver.h * (1.0 + 1e-9));
     if (s->ad.m_max < 1) s->ad.m_max = 1;
     s->ad.m_prev = 1;
+    /* persistent contact steps on the ideal load's schedule (step_control.h) */
+    fb_status lst = fb_load_scale_build(&s->ad.load, &def->lengths, def->branch, def->link,
+                                        def->gravity, def->omega2, def->clearance_mask,
+                                        FB_STEP_LOAD_LOOKAHEAD * def->solver.h_max, diag);
+    if (lst != FB_OK) {
+      fb_scene_destroy(s);
+      return lst;
+    }
   }
   *out = s;
   return FB_OK;
@@ -725,12 +733,11 @@ static int adapt_multiple(fb_scene *s) {
     clearance_geometry(c, e, &num, ev);
     const double ecc = hypot(e[0], e[1]);
     const double n[2] = {ecc > 0.0 ? e[0] / ecc : 1.0, ecc > 0.0 ? e[1] / ecc : 0.0};
-    fb_step_joint sj;
+    fb_step_joint sj = {.rule = FB_PERSIST_LOAD_SCHEDULE};
+    fb_load_scale_at(&s->ad.load, j, s->angle[FB_CRANK], &sj.tau_load, &sj.load_force);
     sj.delta = ecc - d->radial_clearance;
     sj.ddot = ecc > 0.0 ? num / ecc : 0.0;
     sj.m_eff = step_effective_mass(s, j, n);
-    sj.dddot = s->ad.stats.steps > 0 ? (sj.ddot - s->ad.ddot_prev[j]) / s->ad.h_prev : 0.0;
-    s->ad.ddot_prev[j] = sj.ddot;
     sj.persistence = d->mapping == FB_MAPPING_MATCHED_STATIC && sj.delta > 0.0
                          ? fb_contact_persistence(c->phase)
                          : 0.0;
@@ -769,7 +776,6 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
   t->n_h_max += fabs(h - t->h_max) <= 1e-9 * h;
   t->steps++;
   s->ad.m_prev = m;
-  s->ad.h_prev = h;
   s->ad.mc = m;
   s->ad.k = 1;
   s->steps++;
@@ -1009,6 +1015,7 @@ void fb_scene_destroy(fb_scene *s) {
       if (s->cl[j].bore) fb_ccd_bore_destroy(s->cl[j].bore);
       free(s->cl[j].fbs);
     }
+    fb_load_scale_free(&s->ad.load);
     free(s);
     return;
   }
@@ -1021,6 +1028,7 @@ void fb_scene_destroy(fb_scene *s) {
   }
   dJointGroupDestroy(s->contacts);
   dWorldDestroy(s->world);
+  fb_load_scale_free(&s->ad.load);
   free(s);
   fb_ode_release();
 }

@@ -13,7 +13,13 @@ double fb_step_adaptive(const fb_contact_law *law, const fb_step_joint *j, doubl
   const double n = law->kind == FB_LAW_RESTITUTION ? 1.0 : law->exponent;
   const double m = j->m_eff;
   double h;
-  if (j->delta > 0.0 && j->persistence >= 1.0) {
+  if (j->delta > 0.0 && j->persistence >= 1.0 && j->rule == FB_PERSIST_LOAD_SCHEDULE) {
+    /* omega_c at the depth where the law carries the load ahead: a
+     * schedule of the crank angle, blind to the contact's own ringing */
+    const double d = j->load_force > 0.0 ? pow(j->load_force / law->stiffness, 1.0 / n) : j->delta;
+    h = FB_STEP_PERSISTENT_H_OMEGA / sqrt(tangent(law, d) / m);
+    h = fmin(h, FB_STEP_LOAD_SHARE * j->tau_load);
+  } else if (j->delta > 0.0 && j->persistence >= 1.0) {
     const double w = sqrt(tangent(law, j->delta) / m);
     h = FB_STEP_PERSISTENT_H_OMEGA / w;
     /* (|ddot| + |dddot| h) h <= r delta: the positive root of a h^2 + b h - c */

@@ -12,18 +12,36 @@
  *   the larger of the current penetration and the depth an undamped impact
  *   at the approach speed reaches (energy: 1/2 m v^2 = K d^(n+1) / (n + 1)),
  *   the approach speed floored at FB_STEP_V_FLOOR_M_S;
- * - persistent contact (the matched-static row, exact in statics, fully
- *   static: persistence = 1): the penetration may change by at most
- *   FB_STEP_DEPTH_CHANGE x accuracy of itself per step, predicted from its
- *   rate and the rate's own change over the last step, (|ddot| + |dddot| h) h
- *   (this also bounds the force rate, dF/F = n d delta / delta for a power
- *   law), and h omega_c <=
- *   FB_STEP_PERSISTENT_H_OMEGA (below the matched row's aliasing bound);
+ * - persistent contact (the contact past the matched row's two periods,
+ *   persistence = 1), by the engine's rule (fb_persistent_rule):
+ *   - FB_PERSIST_DEPTH_CHANGE (an explicit law integrated at the bodies'
+ *     velocities: MuJoCo): the penetration may change by at most
+ *     FB_STEP_DEPTH_CHANGE x accuracy of itself per step, predicted from its
+ *     rate and the rate's own change over the last step, (|ddot| + |dddot| h) h
+ *     (this also bounds the force rate, dF/F = n d delta / delta for a power
+ *     law), and h omega_c <= FB_STEP_PERSISTENT_H_OMEGA, omega_c at the
+ *     current penetration;
+ *   - FB_PERSIST_LOAD_SCHEDULE (a contact row whose update depends on h:
+ *     ODE's matched-static row): a schedule from the ideal linkage's joint
+ *     load ahead (load_scale.h), not from the contact's own state:
+ *     h <= FB_STEP_LOAD_SHARE x tau_load and h omega_c <=
+ *     FB_STEP_PERSISTENT_H_OMEGA with omega_c at the static depth of
+ *     load_force. A step that follows the penetration changes the row in
+ *     step with the contact's own ringing and pumps it (docs/step-size.md:
+ *     the force rang at 41 to 276 N RMS on the paper case, and a step
+ *     following omega_c at the current depth made the pin rattle at 500
+ *     rpm);
  * - then clamped to [h_min, h_max]. */
 #ifndef FB_STEP_CONTROL_H
 #define FB_STEP_CONTROL_H
 
 #include "contact.h"
+
+/* How a step in persistent contact is chosen (above). */
+typedef enum {
+  FB_PERSIST_DEPTH_CHANGE = 0, /* from the penetration's rate (MuJoCo) */
+  FB_PERSIST_LOAD_SCHEDULE     /* from the ideal joint load ahead (ODE) */
+} fb_persistent_rule;
 
 /* One clearance joint's contact state at the start of a step. */
 typedef struct {
@@ -33,6 +51,11 @@ typedef struct {
   double persistence; /* weight of the static row this step, [0, 1] (contact.h) */
   double dddot;       /* rate of change of ddot over the last step [m/s^2]: (ddot now - ddot
                          then) / that step; 0 when unknown */
+  fb_persistent_rule rule; /* the engine's rule in persistent contact */
+  double tau_load;    /* FB_PERSIST_LOAD_SCHEDULE: the ideal load's shortest time scale
+                         over the next steps [s] (load_scale.h); INFINITY: it does not change */
+  double load_force;  /* FB_PERSIST_LOAD_SCHEDULE: the largest ideal load over the next
+                         steps [N]; <= 0: unknown (omega_c at the current penetration) */
 } fb_step_joint;
 
 /* Approach speed floor of the impact estimate [m/s]: a pin drifting slowly
@@ -51,6 +74,20 @@ typedef struct {
  * down was added, 0.7 to 2.0 measured alike since (the penetration-change
  * rule binds first). */
 #define FB_STEP_PERSISTENT_H_OMEGA 1.5
+/* FB_PERSIST_LOAD_SCHEDULE: the longest step as a share of the ideal
+ * load's time scale tau_load [-]. On the paper case (2 revolutions against
+ * the reference; the bench's error, the largest of force, penetration and
+ * both alpha spikes) shares of 0.004, 0.005, 0.0065 and 0.008 gave the
+ * impact model 3.3e-3, 6.0e-3, 8.3e-3 and 1.1e-2 at 9,032 to 7,942 steps,
+ * the restitution model 2.4e-2, 1.0e-2, 2.8e-2 and 1.5e-2 with 15, 16, 16
+ * and 14 impacts against 14: 0.005 is the best of both together
+ * (docs/step-size.md). */
+#define FB_STEP_LOAD_SHARE 0.005
+/* FB_PERSIST_LOAD_SCHEDULE: how far ahead the schedule looks, in longest
+ * steps h_max [-]: the ramp (fb_step_ramp) takes about 11 steps, about 5
+ * h_max, from h_max down to one grid step, so the step is short when the
+ * load's fast phase arrives; 5, 10 and 20 measured alike on the paper case. */
+#define FB_STEP_LOAD_LOOKAHEAD 10.0
 
 /* The step [s] joint j's state asks for under law (its stiffness and
  * exponent; the restitution law's penalty is linear), accuracy in (0, 1],

@@ -306,8 +306,9 @@ static const key_spec keys[] = {
     {"solver", "accuracy", K_DOUBLE, OFF(solver.accuracy), 1.0, 0, 1, 1, 0, "-", "0.3",
      "the adaptive accuracy must lie in (0, 1]",
      "h_s = adaptive: the largest h omega_c (omega_c the contact's local frequency on the "
-     "effective mass) in an impact and before one; the penetration's largest relative change "
-     "per step in continuous contact"},
+     "effective mass) in an impact and before one; MuJoCo: also the penetration's largest "
+     "relative change per step in continuous contact (ODE steps continuous contact on the "
+     "ideal load's schedule: docs/step-size.md)"},
     {"solver", "stepper", K_STEPPER, OFF(solver.stepper), 0, 0, 0, 0, 0, "-", "world",
      "world or quick", "world: dWorldStep (direct LCP); quick: dWorldQuickStep (SOR)"},
     {"solver", "quick_iterations", K_INT, OFF(solver.quick_iterations), 0, 1, 1e6, 0, 0, "-",

@@ -111,18 +111,26 @@ static void test_matches_minimal_coordinates(void **state) {
   fb_case c;
   fb_linkage su;
   fb_linkage_state st;
-  double worst = 0.0;
+  double worst = 0.0, worst_closed = 0.0;
   for (double crank = 0.0; crank < 6.3; crank += 0.1) {
     paper_state(&c, &su, &st, crank);
     fb_mechanism m;
     fb_mechanism_from_state(&m, &su, &st, c.link, 1 << FB_JOINT_B);
-    double w[4][2][2], wm[2][2];
+    double w[4][2][2], wk[4][2][2], wm[2][2];
+    /* the closed form (B alone, crank driven) and the general KKT solve */
     assert_int_equal(fb_effective_mass_tensor(w, &m, NULL), FB_OK);
+    assert_int_equal(fb_effective_mass_tensor_kkt(wk, &m, NULL), FB_OK);
     minimal_tensor(wm, &c, &su, &st);
-    worst = fmax(worst, tensor_diff(w[1], wm));
+    worst = fmax(worst, tensor_diff(wk[1], wm));
+    worst_closed = fmax(worst_closed, fmax(tensor_diff(w[1], wm), tensor_diff(w[1], wk[1])));
+    for (int j = 0; j < 4; j++) /* the other joints' tensors are zero in both */
+      if (j != 1)
+        for (int r = 0; r < 4; r++) assert_true(w[j][r / 2][r % 2] == 0.0 && wk[j][r / 2][r % 2] == 0.0);
   }
   report_residual("KKT vs minimal coordinates (B)", worst, TENSOR_REL_TOL);
+  report_residual("closed form vs KKT and minimal coordinates (B)", worst_closed, TENSOR_REL_TOL);
   assert_true(worst < TENSOR_REL_TOL);
+  assert_true(worst_closed < TENSOR_REL_TOL);
 }
 
 /* the issue's measured range of the paper four-bar's effective mass at the

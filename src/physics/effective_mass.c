@@ -43,7 +43,63 @@ static void point_rows(double rows[][NQ], int r, const fb_mechanism *m, int i, c
   rows[r + 1][3 * i + 2] += s * (p[0] - m->com[i][0]);
 }
 
+/* the paper's case: a driven crank and one clearance joint, B (crank pin in
+ * the coupler's hole). The crank is then held (the drive and hinge A) and
+ * what moves is the coupler-follower chain hinged at C and D: coordinates
+ * (omega_follower, omega_coupler), generalised mass M (2 x 2) from the
+ * kinetic energy, T = 1/2 I_D w4^2 + 1/2 m3 |w4 perp(a) + w3 perp(r3)|^2
+ * + 1/2 I3 w3^2 with a = C - D, r3 = com3 - C, I_D the follower's inertia
+ * about D; the hole point p on the coupler moves at v = J (w4, w3)^T with
+ * J = [perp(a), perp(p - C)] (2 x 2), and W = J M^-1 J^T. The same tensor
+ * as the general KKT form (test_effective_mass cross-checks them); no
+ * factorisation, about 60 flops. */
+static void tensor_crank_pin(double w[2][2], const fb_mechanism *m) {
+  const double *c = m->joint[FB_JOINT_C], *d = m->joint[FB_JOINT_D], *p = m->joint[FB_JOINT_B];
+  const double a[2] = {c[0] - d[0], c[1] - d[1]};
+  const double r3[2] = {m->com[FB_COUPLER][0] - c[0], m->com[FB_COUPLER][1] - c[1]};
+  const double r4[2] = {m->com[FB_FOLLOWER][0] - d[0], m->com[FB_FOLLOWER][1] - d[1]};
+  const double m3 = m->mass[FB_COUPLER], m4 = m->mass[FB_FOLLOWER];
+  const double m11 = m->inertia[FB_FOLLOWER] + m4 * (r4[0] * r4[0] + r4[1] * r4[1]) +
+                     m3 * (a[0] * a[0] + a[1] * a[1]);
+  const double m12 = m3 * (a[0] * r3[0] + a[1] * r3[1]);
+  const double m22 = m->inertia[FB_COUPLER] + m3 * (r3[0] * r3[0] + r3[1] * r3[1]);
+  const double det = m11 * m22 - m12 * m12;
+  /* M^-1 */
+  const double i11 = m22 / det, i12 = -m12 / det, i22 = m11 / det;
+  /* columns of J: perp(a) for w4, perp(p - C) for w3 */
+  const double j0[2] = {-a[1], a[0]}, j1[2] = {-(p[1] - c[1]), p[0] - c[0]};
+  for (int r = 0; r < 2; r++)
+    for (int q = 0; q < 2; q++)
+      w[r][q] = j0[r] * (i11 * j0[q] + i12 * j1[q]) + j1[r] * (i12 * j0[q] + i22 * j1[q]);
+  const double off = 0.5 * (w[0][1] + w[1][0]);
+  w[0][1] = w[1][0] = off;
+}
+
+static fb_status check_inertia(const fb_mechanism *m, fb_diag *diag) {
+  for (int i = 0; i < 3; i++)
+    if (!(m->mass[i] > 0.0) || !(m->inertia[i] > 0.0) || !isfinite(m->mass[i]) ||
+        !isfinite(m->inertia[i]))
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "body %d: mass %g kg, inertia %g kg m^2: both must be positive and "
+                         "finite",
+                         i, m->mass[i], m->inertia[i]);
+  return FB_OK;
+}
+
 fb_status fb_effective_mass_tensor(double w[4][2][2], const fb_mechanism *m, fb_diag *diag) {
+  if (m->crank_driven && m->clearance_mask == (1 << FB_JOINT_B)) {
+    fb_status st = check_inertia(m, diag);
+    if (st != FB_OK) return st;
+    memset(w, 0, 4 * sizeof w[0]);
+    tensor_crank_pin(w[FB_JOINT_B], m);
+    /* a chain at its dead point (C on the line D-B with no inertia to spare)
+     * leaves M singular: the general form regularises it */
+    if (isfinite(w[FB_JOINT_B][0][0]) && isfinite(w[FB_JOINT_B][1][1])) return FB_OK;
+  }
+  return fb_effective_mass_tensor_kkt(w, m, diag);
+}
+
+fb_status fb_effective_mass_tensor_kkt(double w[4][2][2], const fb_mechanism *m, fb_diag *diag) {
   double minv[NQ];
   for (int i = 0; i < 3; i++) {
     if (!(m->mass[i] > 0.0) || !(m->inertia[i] > 0.0) || !isfinite(m->mass[i]) ||

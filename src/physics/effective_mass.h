@@ -55,6 +55,15 @@ void fb_mechanism_from_state(fb_mechanism *out, const fb_linkage *lengths,
  * FB_ERR_NUMERIC when the Cholesky factorisation fails (NaN input). */
 fb_status fb_effective_mass_tensor(double w[4][2][2], const fb_mechanism *m, fb_diag *diag);
 
+/* The same tensor, always by the general form above (G M^-1 G^T factorised
+ * by GSL's Cholesky, gsl_linalg_cholesky_decomp1). fb_effective_mass_tensor
+ * uses a closed form instead when the crank is driven and B is the only
+ * clearance joint (the paper's case, about a quarter of a clearance step's
+ * time with the factorisation): M^-1 of the coupler-follower chain's 2 x 2
+ * generalised mass, effective_mass.c gives the derivation. For tests and
+ * other masks. Errors: as fb_effective_mass_tensor. */
+fb_status fb_effective_mass_tensor_kkt(double w[4][2][2], const fb_mechanism *m, fb_diag *diag);
+
 /* m_eff = 1 / (n^T W n) [kg] along unit normal n of a tensor (not modified) from
  * fb_effective_mass_tensor; +infinity when n^T W n <= 0 (no motion along n). */
 double fb_effective_mass_along(double w[2][2], const double n[2]);

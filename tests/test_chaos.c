@@ -183,8 +183,10 @@ static void test_chaotic_rattling_pin(void **state) {
   assert_true(m->divergence.diverged);
   assert_true(m->divergence.t < m->divergence.t_end);
   assert_true(m->peaks_unconverged);
-  /* the reference's own check integration parts from it: its peaks too */
-  assert_true(ref->peaks_unconverged);
+  /* whether the reference's own check integration (tolerance / 100) parts
+   * from it within the run is itself an outcome of the chaos: it did before
+   * the effective mass's closed form (2ec98b8 moved m_eff by 1e-12) and does
+   * not since; what check takes from each model follows it (below) */
   /* the first impact happens before the chaos: matched within the bound */
   assert_true(m->divergence.matched >= 1);
   if (!(fabs(m->divergence.impact[0].force_rel) <= FB_MATCHED_IMPACT_ERROR_BOUND))
@@ -209,13 +211,20 @@ static void test_chaotic_rattling_pin(void **state) {
   /* check takes its statistics, not its peaks */
   static fb_metric met[FB_CHECK_MAX_METRICS];
   const int n = fb_check_metrics(&r, met, FB_CHECK_MAX_METRICS);
-  int stats = 0, peaks = 0;
+  int stats = 0, peaks = 0, ref_stats = 0, ref_peaks = 0;
   for (int i = 0; i < n; i++) {
-    stats += strcmp(met[i].name, "reference.stats.impact_force_p90_n") == 0 && met[i].ensemble_sd > 0.0;
-    peaks += strncmp(met[i].name, "reference.spikes.", 17) == 0;
+    stats += strcmp(met[i].name, "ode-clearance-impact.stats.impact_force_p90_n") == 0 &&
+             met[i].ensemble_sd > 0.0;
+    peaks += strncmp(met[i].name, "ode-clearance-impact.spikes.", 28) == 0;
+    ref_stats += strcmp(met[i].name, "reference.stats.impact_force_p90_n") == 0 &&
+                 met[i].ensemble_sd > 0.0;
+    ref_peaks += strncmp(met[i].name, "reference.spikes.", 17) == 0;
   }
   assert_int_equal(stats, 1);
-  assert_int_equal(peaks, 0);
+  assert_int_equal(peaks, 0); /* unconverged: statistics alone */
+  assert_int_equal(ref_stats, 1);
+  if (ref->peaks_unconverged) assert_int_equal(ref_peaks, 0);
+  else assert_true(ref_peaks > 0);
   fb_run_free(&r);
 }
 

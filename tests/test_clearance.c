@@ -488,13 +488,16 @@ static void test_persistent_contact_penetration(void **state) {
  * Measured: impact model force -1.9e-3, penetration +6.0e-3, coupler spike
  * +1.8e-4, impacts 3 / 3 (8,476 steps); over load shares 0.004 to 0.008 the
  * force and penetration stayed within 8.4e-3 and the spike within 1.1e-2
- * (docs/step-size.md). The contact's sequence is sensitive to any change of
- * the steps (a 3,600-angle table moved the restitution model's force error
- * from 2.6e-3 to 4.3e-2), so the bounds are the issue's impact-count target
- * and, for the peaks, 1e-2 (force, penetration) and 2e-2 (spike), which the
- * penetration-rate rule before it missed (force -4.2e-3, penetration
- * +6.4e-3, coupler spike +2.4e-2; restitution force -1.7e-1 with 26
- * impacts against 14). Restitution model: 16 impacts against 14. */
+ * (docs/step-size.md). The restitution model's sequence after the pin
+ * leaves the wall is chaotic: a single run counted 16 impacts against the
+ * reference's 14, and 19 after a 1e-12 change of the effective mass (the
+ * closed form), while the reference itself counts 12 to 15 over starts
+ * 1.45e-11 m apart; so its count is the mean over an 8-member ensemble
+ * (run.ensemble, docs/chaos.md; measured 15.25 against 13.75, +11 %), held
+ * to the issue's 15 %. Peaks: 1e-2 (force, penetration) and 2e-2 (spike),
+ * which the penetration-rate rule before the schedule missed (force
+ * -4.2e-3, penetration +6.4e-3, coupler spike +2.4e-2; restitution force
+ * -1.7e-1 with 26 impacts against 14). */
 #define ODE_ADAPTIVE_PEAK_REL_TOL 1e-2
 #define ODE_ADAPTIVE_SPIKE_REL_TOL 2e-2
 static void test_adaptive_against_reference(void **state) {
@@ -504,9 +507,9 @@ static void test_adaptive_against_reference(void **state) {
   for (int i = 0; i < 2; i++) {
     char list[128];
     snprintf(list, sizeof list, "run.models=%s,%s", models[i][0], models[i][1]);
-    const char *sets[] = {list, "solver.h_s=adaptive", "run.revolutions=2"};
+    const char *sets[] = {list, "solver.h_s=adaptive", "run.revolutions=2", "run.ensemble=8"};
     fb_case c;
-    load(&c, sets, 3);
+    load(&c, sets, i == 0 ? 3 : 4);
     static fb_run r;
     fb_diag d;
     if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
@@ -514,7 +517,14 @@ static void test_adaptive_against_reference(void **state) {
     assert_true(m->has_ref_error);
     const fb_reference_error *e = &m->ref_error;
     const double sp = spike(&m->peaks) / spike(&ref->peaks) - 1.0;
-    const double count = (double)e->impacts / e->impacts_reference - 1.0;
+    /* the impact model's count in its one run; the restitution model's
+     * ensemble mean against the reference's */
+    const double count =
+        i == 0 ? (double)e->impacts / e->impacts_reference - 1.0
+               : ((double)m->ensemble.pooled.force.n / m->ensemble.members) /
+                         ((double)ref->ensemble.pooled.force.n / ref->ensemble.members) -
+                     1.0;
+    if (i == 1) assert_int_equal(m->ensemble.members, 8);
     char name[128];
     snprintf(name, sizeof name, "%s adaptive force", models[i][0]);
     report_residual(name, e->force_max_rel, ODE_ADAPTIVE_PEAK_REL_TOL);

@@ -55,6 +55,13 @@
  * +0.21 %). Held at 1e-8 to the impact model's 1 % bound */
 #define RESTITUTION_ACCURACY "simbody.accuracy=1e-8"
 #define RESTITUTION_PEAK_REL_TOL 0.01
+/* the impact count over revolution 2: the sequence is chaotic after the
+ * first impacts (the reference-restitution count moved 12 to 15 over an
+ * 8-member ensemble of 1.45e-11 m starts, docs/chaos.md; Simbody counted 14
+ * of the reference's 14 before the effective mass's closed form, 15 of 14
+ * after, from a 1e-12 change of m_eff), so it is held to the issue's 15 %
+ * of the reference's count, as MuJoCo's and ODE's are */
+#define RESTITUTION_IMPACTS_REL_TOL 0.15
 /* a looser accuracy must cost fewer steps and give a larger error: the
  * ideal peak error at accuracy 1e-3 is at least 10 times that at 1e-8
  * (an error control that controls nothing would fail this) */
@@ -175,11 +182,13 @@ static void test_clearance_restitution_matches_reference(void **state) {
   report_residual("simbody restitution force peak rel", re->force_max_rel, RESTITUTION_PEAK_REL_TOL);
   report_residual("simbody restitution penetration peak rel", re->penetration_max_rel,
                   RESTITUTION_PEAK_REL_TOL);
-  report_residual("simbody restitution impacts", re->impacts, re->impacts_reference);
+  const double off = fabs((double)(re->impacts - re->impacts_reference));
+  report_residual("simbody restitution impacts off (count)", off,
+                  RESTITUTION_IMPACTS_REL_TOL * re->impacts_reference);
   assert_true(fabs(re->force_max_rel) < RESTITUTION_PEAK_REL_TOL);
   assert_true(fabs(re->penetration_max_rel) < RESTITUTION_PEAK_REL_TOL);
   assert_true(re->impacts_reference > 0);
-  assert_int_equal(re->impacts, re->impacts_reference);
+  assert_true(off <= RESTITUTION_IMPACTS_REL_TOL * re->impacts_reference);
   /* the damper's mass: the effective mass along the normal was evaluated */
   const fb_contact_provenance *p = &m->run.provenance[FB_JOINT_B];
   assert_true(p->mass_eff_min > 0.0 && p->mass_eff_max >= p->mass_eff_min);

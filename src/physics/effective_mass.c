@@ -100,14 +100,10 @@ fb_status fb_effective_mass_tensor(double w[4][2][2], const fb_mechanism *m, fb_
 }
 
 fb_status fb_effective_mass_tensor_kkt(double w[4][2][2], const fb_mechanism *m, fb_diag *diag) {
+  fb_status st = check_inertia(m, diag);
+  if (st != FB_OK) return st;
   double minv[NQ];
   for (int i = 0; i < 3; i++) {
-    if (!(m->mass[i] > 0.0) || !(m->inertia[i] > 0.0) || !isfinite(m->mass[i]) ||
-        !isfinite(m->inertia[i]))
-      return fb_diag_set(diag, FB_ERR_RANGE,
-                         "body %d: mass %g kg, inertia %g kg m^2: both must be positive and "
-                         "finite",
-                         i, m->mass[i], m->inertia[i]);
     minv[3 * i] = minv[3 * i + 1] = 1.0 / m->mass[i];
     minv[3 * i + 2] = 1.0 / m->inertia[i];
   }

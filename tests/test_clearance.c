@@ -484,20 +484,22 @@ static void test_persistent_contact_penetration(void **state) {
 }
 
 /* [solver] h_s = adaptive in ODE (step_control.h: persistent contact on the
- * ideal load's schedule), paper case, 2 revolutions against the reference.
- * Measured: impact model force -1.9e-3, penetration +6.0e-3, coupler spike
- * +1.8e-4, impacts 3 / 3 (8,476 steps); over load shares 0.004 to 0.008 the
- * force and penetration stayed within 8.4e-3 and the spike within 1.1e-2
- * (docs/step-size.md). The restitution model's sequence after the pin
- * leaves the wall is chaotic: a single run counted 16 impacts against the
- * reference's 14, and 19 after a 1e-12 change of the effective mass (the
- * closed form), while the reference itself counts 12 to 15 over starts
- * 1.45e-11 m apart; so its count is the mean over an 8-member ensemble
- * (run.ensemble, docs/chaos.md; measured 15.25 against 13.75, +11 %), held
- * to the issue's 15 %. Peaks: 1e-2 (force, penetration) and 2e-2 (spike),
- * which the penetration-rate rule before the schedule missed (force
- * -4.2e-3, penetration +6.4e-3, coupler spike +2.4e-2; restitution force
- * -1.7e-1 with 26 impacts against 14). */
+ * ideal load's schedule, the step held inside impacts), paper case, 2
+ * revolutions against the reference. Impact model (it follows the
+ * reference through revolution 2): measured force -8.2e-3, penetration
+ * +3.0e-3, coupler spike +4.0e-4, impacts 3 / 3; over load shares 0.004 to
+ * 0.008 (before the hold) force and penetration stayed within 8.4e-3 and
+ * the spike within 1.1e-2 (docs/step-size.md). Bounds: 1e-2 (force,
+ * penetration) and 2e-2 (spike), which the penetration-rate rule before the
+ * schedule missed (force -4.2e-3, penetration +6.4e-3, coupler spike
+ * +2.4e-2). Restitution model: its first three impacts (from t = 0, before
+ * any chaos) to the issue's 2 % (measured 0.75 %, force or penetration;
+ * +8.5 % without the hold); after its sixth impact in revolution 2 it parts
+ * from the reference, whose own count spans 12 to 15 over starts 1.45e-11 m
+ * apart, so its count is the mean over an 8-member ensemble (run.ensemble,
+ * docs/chaos.md; measured 14.9 against 13.75, +8 %) held to the issue's
+ * 15 %, and its peaks are compared by the ensemble's statistics (agree:
+ * every pooled statistic within the product's bound; force p90 -0.1 %). */
 #define ODE_ADAPTIVE_PEAK_REL_TOL 1e-2
 #define ODE_ADAPTIVE_SPIKE_REL_TOL 2e-2
 static void test_adaptive_against_reference(void **state) {
@@ -524,7 +526,18 @@ static void test_adaptive_against_reference(void **state) {
                : ((double)m->ensemble.pooled.force.n / m->ensemble.members) /
                          ((double)ref->ensemble.pooled.force.n / ref->ensemble.members) -
                      1.0;
-    if (i == 1) assert_int_equal(m->ensemble.members, 8);
+    if (i == 1) {
+      /* the first three impacts (from t = 0, before any chaos) */
+      assert_int_equal(m->ensemble.members, 8);
+      assert_int_equal(e->first_impacts, FB_FIRST_IMPACTS);
+      double worst = 0.0;
+      for (int k = 0; k < FB_FIRST_IMPACTS; k++)
+        worst = fmax(worst, fmax(fabs(e->first_impact_force_rel[k]),
+                                 fabs(e->first_impact_penetration_rel[k])));
+      report_residual("ode-clearance-restitution adaptive first three impacts", worst,
+                      FIRST_IMPACTS_REL_TOL);
+      assert_true(worst < FIRST_IMPACTS_REL_TOL);
+    }
     char name[128];
     snprintf(name, sizeof name, "%s adaptive force", models[i][0]);
     report_residual(name, e->force_max_rel, ODE_ADAPTIVE_PEAK_REL_TOL);
@@ -534,9 +547,20 @@ static void test_adaptive_against_reference(void **state) {
     report_residual(name, sp, ODE_ADAPTIVE_SPIKE_REL_TOL);
     snprintf(name, sizeof name, "%s adaptive impact count", models[i][0]);
     report_residual(name, count, IMPACT_COUNT_REL_TOL);
-    assert_true(fabs(e->force_max_rel) < ODE_ADAPTIVE_PEAK_REL_TOL);
-    assert_true(fabs(e->penetration_max_rel) < ODE_ADAPTIVE_PEAK_REL_TOL);
-    assert_true(fabs(sp) < ODE_ADAPTIVE_SPIKE_REL_TOL);
+    if (i == 0) {
+      assert_false(m->divergence.diverged);
+      assert_true(fabs(e->force_max_rel) < ODE_ADAPTIVE_PEAK_REL_TOL);
+      assert_true(fabs(e->penetration_max_rel) < ODE_ADAPTIVE_PEAK_REL_TOL);
+      assert_true(fabs(sp) < ODE_ADAPTIVE_SPIKE_REL_TOL);
+    } else {
+      /* the restitution model parts from the reference after its sixth
+       * impact in revolution 2: its window peaks are one sample of a chaotic
+       * sequence, compared by the ensemble's statistics (docs/chaos.md) */
+      assert_true(m->has_stats_compare);
+      report_residual("ode-clearance-restitution adaptive pooled force p90",
+                      m->stats_compare.rel.force.p90, FB_MATCHED_IMPACT_ERROR_BOUND);
+      assert_int_equal(m->stats_compare.agree, 1);
+    }
     assert_true(e->impacts_reference > 0 && fabs(count) <= IMPACT_COUNT_REL_TOL);
     /* the steps: on the grid, far fewer than the samples, none above h_max */
     assert_true(m->run.has_step_stats);

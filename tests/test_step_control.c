@@ -124,6 +124,14 @@ static void test_ramp(void **state) {
   assert_int_equal(fb_step_ramp(0, 1, 20), 1);   /* never below one grid step */
 }
 
+/* inside an impact the step may shrink but not grow */
+static void test_hold_in_impact(void **state) {
+  (void)state;
+  assert_int_equal(fb_step_hold_in_impact(7, 3, 1), 3); /* held */
+  assert_int_equal(fb_step_hold_in_impact(2, 3, 1), 2); /* shortened */
+  assert_int_equal(fb_step_hold_in_impact(7, 3, 0), 7); /* free flight, persistent contact */
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_free_flight_is_the_impact_step),
@@ -131,6 +139,7 @@ int main(void) {
       cmocka_unit_test(test_persistent_contact),
       cmocka_unit_test(test_persistent_load_schedule),
       cmocka_unit_test(test_ramp),
+      cmocka_unit_test(test_hold_in_impact),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -726,6 +726,7 @@ static int adapt_multiple(fb_scene *s) {
   const fb_scene_model *d = &s->def;
   const double hg = d->solver.h;
   double h = d->solver.h_max;
+  int impulsive = 0; /* a joint penetrating with the matched row (step_control.h) */
   for (int j = 0; j < 4; j++) {
     if (!(d->clearance_mask & (1 << j))) continue;
     const clearance *c = &s->cl[j];
@@ -741,11 +742,14 @@ static int adapt_multiple(fb_scene *s) {
     sj.persistence = d->mapping == FB_MAPPING_MATCHED_STATIC && sj.delta > 0.0
                          ? fb_contact_persistence(c->phase)
                          : 0.0;
+    if (sj.delta > 0.0 && d->mapping == FB_MAPPING_MATCHED_STATIC && sj.persistence < 1.0)
+      impulsive = 1;
     const fb_contact_law law = step_law(&d->law[j], sj.m_eff);
     h = fmin(h, fb_step_adaptive(&law, &sj, d->solver.accuracy, hg, d->solver.h_max));
   }
   int want = (int)floor(h / hg * (1.0 + 1e-9));
-  return fb_step_ramp(want < 1 ? 1 : want, s->ad.m_prev, s->ad.m_max);
+  want = fb_step_hold_in_impact(want < 1 ? 1 : want, s->ad.m_prev, impulsive);
+  return fb_step_ramp(want, s->ad.m_prev, s->ad.m_max);
 }
 
 fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {

@@ -45,3 +45,7 @@ int fb_step_ramp(int want, int prev, int max) {
   if (m > max) m = max;
   return m < 1 ? 1 : m;
 }
+
+int fb_step_hold_in_impact(int want, int prev, int impulsive) {
+  return impulsive && want > prev ? prev : want;
+}

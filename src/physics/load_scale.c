@@ -18,10 +18,11 @@ fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branc
   if (!(joint_mask & 15)) return FB_OK; /* no joint asked: no table */
   const int n = FB_LOAD_SCALE_SAMPLES;
   double(*f)[4][2] = malloc(sizeof *f * (size_t)n);
-  double *tau = malloc(sizeof *tau * (size_t)n);
-  if (!f || !tau) {
+  double *tau = malloc(sizeof *tau * (size_t)n), *mag = malloc(sizeof *mag * (size_t)n);
+  if (!f || !tau || !mag) {
     free(f);
     free(tau);
+    free(mag);
     return fb_diag_set(diag, FB_ERR_NOMEM, "load time-scale table: %d crank angles", n);
   }
   fb_status st = FB_OK;
@@ -31,7 +32,6 @@ fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branc
     if (st == FB_OK) memcpy(f[k], r.force, sizeof r.force);
   }
   out->n = n;
-  out->omega2 = omega2;
   /* crank angles swept in the lookahead, as table steps, and the direction */
   const int w = (int)ceil(fabs(omega2) * lookahead_s / (2.0 * M_PI / n));
   const int dir = omega2 < 0.0 ? -1 : 1;
@@ -43,19 +43,21 @@ fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branc
       st = fb_diag_set(diag, FB_ERR_NOMEM, "load time-scale table: %d crank angles", n);
       break;
     }
+    /* dF/dt by central differences over the table: |F(k+1) - F(k-1)| times
+     * |omega2| / (2 dtheta) */
+    const double dt_dth = fabs(omega2) / (2.0 * (2.0 * M_PI / n));
     for (int k = 0; k < n; k++) {
-      /* dF/dt by central differences over the table */
       const double *a = f[(k + n - 1) % n][j], *b = f[(k + 1) % n][j];
-      const double dt_dth = fabs(omega2) / (2.0 * (2.0 * M_PI / n));
       const double rate = hypot(b[0] - a[0], b[1] - a[1]) * dt_dth;
-      tau[k] = rate > 0.0 ? hypot(f[k][j][0], f[k][j][1]) / rate : INFINITY;
+      mag[k] = hypot(f[k][j][0], f[k][j][1]);
+      tau[k] = rate > 0.0 ? mag[k] / rate : INFINITY;
     }
     for (int k = 0; k < n; k++) {
-      double m = tau[k], fm = hypot(f[k][j][0], f[k][j][1]);
+      double m = tau[k], fm = mag[k];
       for (int q = 1; q <= w && q < n; q++) {
         const int i = ((k + dir * q) % n + n) % n;
         m = fmin(m, tau[i]);
-        fm = fmax(fm, hypot(f[i][j][0], f[i][j][1]));
+        fm = fmax(fm, mag[i]);
       }
       out->ahead[j][k] = m;
       out->force[j][k] = fm;
@@ -63,6 +65,7 @@ fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branc
   }
   free(f);
   free(tau);
+  free(mag);
   if (st != FB_OK) fb_load_scale_free(out);
   return st;
 }

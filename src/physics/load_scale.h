@@ -32,7 +32,6 @@
 /* tau ahead of each crank angle for each joint of a mask. */
 typedef struct {
   int n;               /* crank angles in the table [-] (FB_LOAD_SCALE_SAMPLES) */
-  double omega2;       /* signed crank speed [rad/s] */
   double *ahead[4];    /* per joint: the smallest tau [s] over the crank angles the crank
                           sweeps in the next lookahead seconds, at crank angle 2 pi k / n
                           (n); NULL for joints outside the mask */

@@ -13,18 +13,23 @@ double fb_step_adaptive(const fb_contact_law *law, const fb_step_joint *j, doubl
   const double n = law->kind == FB_LAW_RESTITUTION ? 1.0 : law->exponent;
   const double m = j->m_eff;
   double h;
-  if (j->delta > 0.0 && j->persistence >= 1.0 && j->rule == FB_PERSIST_LOAD_SCHEDULE) {
-    /* omega_c at the depth where the law carries the load ahead: a
-     * schedule of the crank angle, blind to the contact's own ringing */
-    const double d = j->load_force > 0.0 ? pow(j->load_force / law->stiffness, 1.0 / n) : j->delta;
+  if (j->delta > 0.0 && j->persistence >= 1.0) {
+    /* ODE's schedule takes omega_c at the depth where the law carries the
+     * load ahead (a function of the crank angle, blind to the contact's own
+     * ringing), MuJoCo's rule at the current penetration */
+    const int schedule = j->rule == FB_PERSIST_LOAD_SCHEDULE;
+    const double d = schedule && j->load_force > 0.0
+                         ? pow(j->load_force / law->stiffness, 1.0 / n)
+                         : j->delta;
     h = FB_STEP_PERSISTENT_H_OMEGA / sqrt(tangent(law, d) / m);
-    h = fmin(h, FB_STEP_LOAD_SHARE * j->tau_load);
-  } else if (j->delta > 0.0 && j->persistence >= 1.0) {
-    const double w = sqrt(tangent(law, j->delta) / m);
-    h = FB_STEP_PERSISTENT_H_OMEGA / w;
-    /* (|ddot| + |dddot| h) h <= r delta: the positive root of a h^2 + b h - c */
-    const double a = fabs(j->dddot), b = fabs(j->ddot), c = FB_STEP_DEPTH_CHANGE * accuracy * j->delta;
-    if (a > 0.0 || b > 0.0) h = fmin(h, 2.0 * c / (b + sqrt(b * b + 4.0 * a * c)));
+    if (schedule) {
+      h = fmin(h, FB_STEP_LOAD_SHARE * j->tau_load);
+    } else {
+      /* (|ddot| + |dddot| h) h <= r delta: the positive root of a h^2 + b h - c */
+      const double a = fabs(j->dddot), b = fabs(j->ddot);
+      const double c = FB_STEP_DEPTH_CHANGE * accuracy * j->delta;
+      if (a > 0.0 || b > 0.0) h = fmin(h, 2.0 * c / (b + sqrt(b * b + 4.0 * a * c)));
+    }
   } else {
     /* the depth an undamped impact at the approach speed reaches, or the
      * current one if deeper */

@@ -739,11 +739,10 @@ static int adapt_multiple(fb_scene *s) {
     sj.delta = ecc - d->radial_clearance;
     sj.ddot = ecc > 0.0 ? num / ecc : 0.0;
     sj.m_eff = step_effective_mass(s, j, n);
-    sj.persistence = d->mapping == FB_MAPPING_MATCHED_STATIC && sj.delta > 0.0
-                         ? fb_contact_persistence(c->phase)
-                         : 0.0;
-    if (sj.delta > 0.0 && d->mapping == FB_MAPPING_MATCHED_STATIC && sj.persistence < 1.0)
-      impulsive = 1;
+    if (d->mapping == FB_MAPPING_MATCHED_STATIC && sj.delta > 0.0) {
+      sj.persistence = fb_contact_persistence(c->phase);
+      if (sj.persistence < 1.0) impulsive = 1;
+    }
     const fb_contact_law law = step_law(&d->law[j], sj.m_eff);
     h = fmin(h, fb_step_adaptive(&law, &sj, d->solver.accuracy, hg, d->solver.h_max));
   }

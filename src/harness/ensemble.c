@@ -1,6 +1,7 @@
 #include "ensemble.h"
 
 #include <errno.h>
+#include <gsl/gsl_cdf.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -131,12 +132,14 @@ static int recv_member(int fd, member_values *mv) {
  * jobs worker processes, worker w running members k = 1 + w, 1 + w + jobs,
  * ...; either way mv[k] holds member k, so pooling (in member order) does
  * not depend on jobs */
-static fb_status run_members(member_values *mv, const fb_run *r, int n, int jobs, fb_diag *diag) {
+static fb_status run_members(member_values *mv, const fb_run *r, int n, int jobs,
+                             fb_progress_fn progress, void *user, fb_diag *diag) {
   if (jobs > n - 1) jobs = n - 1;
   if (jobs <= 1) {
     for (int k = 1; k < n; k++) {
       fb_status st = run_member(&mv[k], r, k, n, diag);
       if (st != FB_OK) return st;
+      if (progress) progress("ensemble", (double)k / (double)(n - 1), user);
     }
     return FB_OK;
   }
@@ -173,11 +176,15 @@ static fb_status run_members(member_values *mv, const fb_run *r, int n, int jobs
     started++;
   }
   /* a worker blocked on a full pipe waits until its turn is read */
+  int done = 0;
   for (int w = 0; w < started; w++) {
-    for (int k = 1 + w; k < n && st == FB_OK; k += jobs)
+    for (int k = 1 + w; k < n && st == FB_OK; k += jobs) {
       if (!recv_member(fd[w], &mv[k]))
         st = fb_diag_set(diag, FB_ERR_IO, "ensemble: worker %d of %d failed on member %d", w + 1,
                          jobs, k);
+      else if (progress)
+        progress("ensemble", (double)++done / (double)(n - 1), user);
+    }
     close(fd[w]);
     int status = 0;
     while (waitpid(pid[w], &status, 0) < 0 && errno == EINTR) {}
@@ -237,6 +244,7 @@ static fb_status pool(fb_ensemble *e, member_values *mv, int n, int i, fb_diag *
     for (int k = 0; k < m; k++)
       if (isfinite(*stat_at(&each[k], q))) sq += pow(*stat_at(&each[k], q) - mean, 2);
     *stat_at(&e->spread, q) = used > 1 ? sqrt(sq / (used - 1)) : 0.0;
+    *stat_at(&e->member_mean, q) = used ? mean : NAN;
   }
   double cm = 0.0, cs = 0.0;
   for (int k = 0; k < m; k++) cm += each[k].force.n;
@@ -250,12 +258,13 @@ static fb_status pool(fb_ensemble *e, member_values *mv, int n, int i, fb_diag *
 
 static void compare(fb_stats_compare *out, const fb_ensemble *m, const fb_ensemble *r) {
   out->agree = m->members > 1 && r->members > 1 ? 1 : -1;
+  out->agree_sigmas = FB_ENSEMBLE_AGREE_SIGMAS;
   fb_impact_stats pm = m->pooled, pr = r->pooled, sm = m->spread, sr = r->spread;
   for (int q = 0; q < NSTAT; q++) {
     const double a = *stat_at(&pm, q), b = *stat_at(&pr, q);
     *stat_at(&out->rel, q) = fb_metrics_rel(a, b);
     const double s = hypot(*stat_at(&sm, q), *stat_at(&sr, q));
-    const double z = out->agree > 0 && s > 0.0 ? fabs(a - b) / s : NAN;
+    const double z = out->agree >= 0 && s > 0.0 ? fabs(a - b) / s : NAN;
     *stat_at(&out->sigmas, q) = z;
     /* beyond the spread and beyond the bound a matched impact is held to */
     const double allowed = fmax(FB_ENSEMBLE_AGREE_SIGMAS * s, FB_MATCHED_IMPACT_ERROR_BOUND * fabs(b));
@@ -265,7 +274,35 @@ static void compare(fb_stats_compare *out, const fb_ensemble *m, const fb_ensemb
   out->sigmas.force.n = out->sigmas.alpha_coupler.n = out->sigmas.alpha_follower.n = 0;
 }
 
-fb_status fb_ensemble_measure(fb_run *r, fb_diag *diag) {
+void fb_ensemble_compare_one(fb_stats_compare *out, const fb_impact_stats *one,
+                             const fb_ensemble *e) {
+  memset(out, 0, sizeof *out);
+  out->agree = e->members > 1 ? 1 : -1;
+  fb_impact_stats po = *one, pm = e->member_mean, sm = e->spread;
+  /* a prediction interval for one more sample: Student's t on the members'
+   * N - 1 degrees of freedom at the two-sided level of
+   * FB_ENSEMBLE_AGREE_SIGMAS normal standard deviations (6.4 for 5 members,
+   * 3.6 for 16), times sd_member sqrt(1 + 1 / N) */
+  const int n = e->members;
+  const double widen = n > 0 ? sqrt(1.0 + 1.0 / (double)n) : 1.0;
+  out->agree_sigmas = n > 1 ? gsl_cdf_tdist_Qinv(gsl_cdf_ugaussian_Q(FB_ENSEMBLE_AGREE_SIGMAS),
+                                                 (double)(n - 1))
+                            : FB_ENSEMBLE_AGREE_SIGMAS;
+  /* neither has an impact in the window: nothing differs */
+  if (one->force.n == 0 && e->pooled.force.n == 0) return;
+  for (int q = 0; q < NSTAT; q++) {
+    const double a = *stat_at(&po, q), b = *stat_at(&pm, q);
+    *stat_at(&out->rel, q) = fb_metrics_rel(a, b);
+    const double s = *stat_at(&sm, q) * widen;
+    *stat_at(&out->sigmas, q) = out->agree >= 0 && s > 0.0 ? fabs(a - b) / s : NAN;
+    const double allowed = fmax(out->agree_sigmas * s, FB_MATCHED_IMPACT_ERROR_BOUND * fabs(b));
+    if (out->agree > 0 && !(isfinite(a) && isfinite(b) && fabs(a - b) <= allowed)) out->agree = 0;
+  }
+  out->rel.force.n = out->rel.alpha_coupler.n = out->rel.alpha_follower.n = 0;
+  out->sigmas.force.n = out->sigmas.alpha_coupler.n = out->sigmas.alpha_follower.n = 0;
+}
+
+fb_status fb_ensemble_measure(fb_run *r, fb_progress_fn progress, void *user, fb_diag *diag) {
   const int n = r->c.ensemble > 1 ? (r->c.ensemble < FB_ENSEMBLE_MAX ? r->c.ensemble
                                                                      : FB_ENSEMBLE_MAX)
                                   : 1;
@@ -278,7 +315,7 @@ fb_status fb_ensemble_measure(fb_run *r, fb_diag *diag) {
       st = fb_impact_values_add(&mv[0].v[i], &r->model[i].run.series, FB_JOINT_B, r->t_window,
                                 diag);
     }
-  if (st == FB_OK && n > 1) st = run_members(mv, r, n, r->c.jobs, diag);
+  if (st == FB_OK && n > 1) st = run_members(mv, r, n, r->c.jobs, progress, user, diag);
   for (int i = 0; i < r->n && st == FB_OK; i++)
     if (mv[0].ran[i]) {
       st = pool(&r->model[i].ensemble, mv, n, i, diag);
@@ -296,6 +333,12 @@ fb_status fb_ensemble_measure(fb_run *r, fb_diag *diag) {
         compare(&m->stats_compare, &m->ensemble, &r->model[k].ensemble);
         m->has_stats_compare = 1;
       }
+  }
+  /* a reference's check integration: one more sample of its distribution */
+  for (int i = 0; i < r->n; i++) {
+    fb_model_result *m = &r->model[i];
+    m->has_check_compare = m->has_check_stats && m->has_ensemble;
+    if (m->has_check_compare) fb_ensemble_compare_one(&m->check_compare, &m->check_stats, &m->ensemble);
   }
   return FB_OK;
 }

@@ -234,6 +234,17 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
     m->ref_tol = tol;
     m->ref_check_tol = check;
     m->ref_check_steps = steps;
+    /* what else converged: how long it stays with its check, and the
+     * check's impact statistics (compared with an ensemble, ensemble.c) */
+    const fb_case *c = &r->c;
+    m->has_check_divergence =
+        fb_metrics_divergence(&m->check_divergence, &m->run.series, &s, FB_JOINT_B,
+                              c->radial_clearance, m->run.lengths.length[FB_COUPLER],
+                              2.0 * M_PI / c->crank_speed, &inner) == FB_OK;
+    fb_impact_values v = {0};
+    m->has_check_stats = fb_impact_values_add(&v, &s, FB_JOINT_B, r->t_window, &inner) == FB_OK &&
+                         v.n > 0 && fb_impact_stats_of(&m->check_stats, &v, &inner) == FB_OK;
+    fb_impact_values_free(&v);
   }
   fb_series_free(&s);
 }
@@ -339,7 +350,8 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
     r->c.solver.h_mode = c->solver.h_mode; /* the case asked for auto */
   }
   if (!c->member) {
-    st = fb_ensemble_measure(r, diag);
+    st = fb_ensemble_measure(r, progress, user, diag);
+    if (st == FB_OK) fb_verdict_assess(r);
     if (st != FB_OK) {
       fb_run_free(r);
       return st;

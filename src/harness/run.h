@@ -10,6 +10,7 @@
 #include "models.h"
 #include "scene_def.h"
 #include "variants.h"
+#include "verdict.h"
 
 /* Warnings a model run can carry. */
 #define FB_RUN_WARNINGS 6
@@ -98,6 +99,17 @@ typedef struct {
   int peaks_unconverged;   /* 1: its window peaks are not to be read as converged numbers
                               (divergent from its reference, or a reference whose own check
                               integration moves them, FB_UNCONVERGED_REL): printed marked */
+  /* a reference's check integration beyond its peaks (has_ref_estimate): */
+  int has_check_divergence; /* 1 when check_divergence was measured */
+  fb_divergence check_divergence; /* where this reference leaves its check integration (the
+                              check in the reference's place), impacts matched before */
+  int has_check_stats;     /* 1 when the check integration had impacts in the window */
+  fb_impact_stats check_stats; /* its impact statistics over the window */
+  int has_check_compare;   /* 1 when this reference has an ensemble to compare them with */
+  fb_stats_compare check_compare; /* check_stats against the ensemble's members (ensemble.h,
+                              fb_ensemble_compare_one) */
+  fb_verdict_word verdict; /* the printed word, and what it rests on (verdict.h) */
+  fb_verdict_basis basis;
 } fb_model_result;
 
 typedef struct fb_run_s {

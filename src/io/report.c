@@ -230,7 +230,8 @@ static void print_contact(FILE *f, const fb_run *r, int W) {
   }
 }
 
-static const char *model_verdict(const fb_model_result *m, char *why, size_t why_size);
+static const char *model_verdict(const fb_model_result *m, const fb_run *r, char *why,
+                                 size_t why_size);
 
 static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_t *o = json_object();
@@ -252,7 +253,11 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   }
   char stop[256];
   json_object_set_new(o, "status", json_string(fb_report_model_status(stop, sizeof stop, m)));
-  json_object_set_new(o, "verdict", json_string(model_verdict(m, NULL, 0)));
+  char why[1024];
+  json_object_set_new(o, "verdict", json_string(model_verdict(m, r, why, sizeof why)));
+  const char *basis = fb_verdict_basis_name(m->basis);
+  json_object_set_new(o, "verdict_basis", basis ? json_string(basis) : json_null());
+  json_object_set_new(o, "verdict_reason", json_string(why));
   json_object_set_new(o, "peaks_converged", fb_report_converged_json(m));
   json_object_set_new(o, "vs_published",
                       fb_report_vs_published_json(&r->c, run->model, &m->peaks, m->has_peaks));
@@ -439,6 +444,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o3, "penetration_max_rel", num(e->penetration_max_rel));
     json_object_set_new(o3, "impacts", json_integer(e->impacts));
     json_object_set_new(o3, "impacts_check", json_integer(e->impacts_reference));
+    fb_report_check_json(o3, m);
     json_object_set_new(o, "error_estimate", o3);
   }
   if (m->has_spikes) {
@@ -814,70 +820,35 @@ static void print_warnings(FILE *f, const fb_run *r) {
       say(f, "  %s: %s", r->model[i].run.name, fb_warning_text(wt, sizeof wt, &r->model[i].warnings[k]));
 }
 
-/* the worst relative peak error of a clearance model against its reference:
- * omega and alpha peaks of coupler and follower, and the peak force */
-static double ref_error_worst(const fb_reference_error *e) {
-  double w = fmax(worst_rel(&e->coupler, &e->follower, 0), worst_rel(&e->coupler, &e->follower, 1));
-  if (isfinite(e->force_max_rel)) w = fmax(w, fabs(e->force_max_rel));
-  return w;
-}
-
 /* one line per model, first: ok or warn, its error against its yardstick,
  * and its impacts */
-/* the printed verdict of a model: "ok" (ran to its end, no warning, error
- * within its bound), "warn" (a warning or a stop) or "error" (status error);
- * why (may be NULL) gets the reason printed beside it */
-static const char *model_verdict(const fb_model_result *m, char *why, size_t why_size) {
-  char tmp[160];
-  if (!why) why = tmp, why_size = sizeof tmp;
-  why[0] = '\0';
-  int warn = m->run.stop.kind != FB_STOP_NONE || m->warning_count > 0;
-  if (!m->run.clearance_mask && !m->has_ref_estimate && m->has_error &&
-      fmax(worst_rel(&m->error.coupler, &m->error.follower, 0),
-           worst_rel(&m->error.coupler, &m->error.follower, 1)) > FB_IDEAL_PEAK_ERROR_BOUND) {
-    warn = 1;
-    snprintf(why, why_size, "error above %g", FB_IDEAL_PEAK_ERROR_BOUND);
-  }
-  if (m->has_divergence && m->divergence.diverged) {
-    warn = 1;
-    snprintf(why, why_size, "leaves the reference at %.4g ms", m->divergence.t * 1e3);
-  }
-  if (m->run.stop.kind != FB_STOP_NONE) {
-    char stop[256];
-    snprintf(why, why_size, "%.150s", fb_stop_text(stop, sizeof stop, &m->run.stop));
-  } else if (m->warning_count > 0) {
-    snprintf(why, why_size, "%d warning%s (below)", m->warning_count,
-             m->warning_count > 1 ? "s" : "");
-  }
-  /* a clearance model that keeps its reference's trajectory but misses its
-   * matched impacts: status error (report_chaos.h) */
-  char status[512];
-  fb_report_model_status(status, sizeof status, m);
-  if (strncmp(status, "error", 5) == 0) {
-    snprintf(why, why_size, "%.150s", status);
-    return "error";
-  }
-  return warn ? "warn" : "ok";
+/* the printed verdict of a model and what it rests on (verdict.h); why
+ * gets the reason printed beside it (report_chaos.h) */
+static const char *model_verdict(const fb_model_result *m, const fb_run *r, char *why,
+                                 size_t why_size) {
+  fb_report_verdict_why(why, why_size, m, r);
+  return fb_verdict_name(m->verdict);
 }
 
 static void print_verdict(FILE *f, const fb_run *r, int W) {
   say(f, "verdict (ok: ran to its end with no warning and an error within its bound; warn: a "
-         "warning or a stop (below); error: a clearance model that keeps its reference's "
-         "trajectory but misses its matched impacts' bound; error column: "
-         "largest relative peak error of an ideal model against the exact analytic peaks of "
-         "its own lengths (bound %g), of a clearance model against its reference of the same "
-         "law (omega, alpha and force peaks), of a reference against its check integration):",
+         "warning, a stop, or a yardstick that does not settle it (the reason beside it, warnings "
+         "below); error: a clearance model that keeps its reference's trajectory but misses its "
+         "matched impacts' bound; unchecked: nothing in the run to measure it against. basis: "
+         "pointwise (it stays with its yardstick, peaks compared), statistics (its trajectory "
+         "parted, or its yardstick's peaks did not converge: an ensemble's impact statistics "
+         "decide), unsettled (the same, with no ensemble). error column: largest relative peak "
+         "error of an ideal model against the exact analytic peaks of its own lengths (bound %g), "
+         "of a clearance model against its reference of the same law (omega, alpha and force "
+         "peaks; on statistics, of its pooled impact statistics), of a reference against its "
+         "check integration):",
       FB_IDEAL_PEAK_ERROR_BOUND);
-  fprintf(f, "%-*s %-7s %9s  %-28s %11s\n", W, "model", "verdict", "error", "against", "impacts");
+  fprintf(f, "%-*s %-9s %-10s %9s  %-28s %11s\n", W, "model", "verdict", "basis", "error",
+          "against", "impacts");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
-    char err[32] = "-", against[64] = "-", impacts[32] = "-", why[160] = "";
-    if (m->run.clearance_mask && m->has_ref_error) {
-      snprintf(err, sizeof err, "%.2e", ref_error_worst(&m->ref_error));
-      snprintf(against, sizeof against, "%s", m->ref_name);
-    } else if (m->has_ref_estimate) {
-      snprintf(err, sizeof err, "%.2e", ref_error_worst(&m->ref_estimate));
-      snprintf(against, sizeof against, "check integration");
+    char err[32] = "-", against[64] = "-", impacts[32] = "-", why[1024] = "";
+    if (fb_report_verdict_error(err, sizeof err, against, sizeof against, m)) {
     } else if (!m->run.clearance_mask && m->has_error) {
       const double e = fmax(worst_rel(&m->error.coupler, &m->error.follower, 0),
                             worst_rel(&m->error.coupler, &m->error.follower, 1));
@@ -894,11 +865,18 @@ static void print_verdict(FILE *f, const fb_run *r, int W) {
       else
         snprintf(impacts, sizeof impacts, "%d", m->spikes.impacts);
     }
-    const char *verdict = model_verdict(m, why, sizeof why);
-    char line[512];
-    snprintf(line, sizeof line, "%-*s %-7s %9s  %-28s %11s%s%s", W, m->run.name, verdict, err,
-             against, impacts, why[0] ? "  " : "", why);
-    say(f, "%s", line);
+    const char *verdict = model_verdict(m, r, why, sizeof why);
+    const char *basis = fb_verdict_basis_name(m->basis);
+    char line[1400];
+    const int n = snprintf(line, sizeof line, "%-*s %-9s %-10s %9s  %-28s %11s", W, m->run.name,
+                           verdict, basis ? basis : "-", err, against, impacts);
+    /* the reason beside the row when it fits, else on lines of its own under it */
+    if (why[0] && (size_t)n + 2 + strlen(why) <= FB_TABLE_COLUMNS)
+      fprintf(f, "%s  %s\n", line, why);
+    else if (why[0])
+      fprintf(f, "%s\n", line), say(f, "  %s", why);
+    else
+      fprintf(f, "%s\n", line);
   }
 }
 

@@ -37,6 +37,27 @@ json_t *fb_report_step_json(const fb_run *r);
  * statistics table (nothing without clearance models). */
 void fb_report_print_chaos(FILE *f, const fb_run *r);
 
+/* The verdict's reason (verdict.h): what it rests on and what settles it,
+ * printed beside the verdict and written to summary.json as
+ * verdict_reason. Returns buf ("" when there is nothing to add). */
+const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result *m,
+                                  const fb_run *r);
+
+/* The verdict table's error cell and what it is against, for a clearance
+ * model or a reference: on statistics, the largest |relative difference|
+ * of the pooled impact statistics; else the
+ * largest relative peak error (omega, alpha, force) against the reference
+ * or the check integration. 0 when the model has neither. */
+int fb_report_verdict_error(char *err, size_t err_size, char *against, size_t against_size,
+                            const fb_model_result *m);
+
+/* Adds to a reference's summary.json error_estimate what else its check
+ * integration measured: "divergence" (where the reference leaves its check,
+ * impacts matched before; null: not measured), "impact_statistics" (the
+ * check's, over the window; null without impacts) and "vs_ensemble" (those
+ * against the reference's ensemble members; null without an ensemble). */
+void fb_report_check_json(json_t *estimate, const fb_model_result *m);
+
 /* Prose for the printed table: printf-formatted text wrapped at spaces to
  * 120 columns, continuation lines indented by two (report.c). */
 void fb_report_say(FILE *f, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -1,0 +1,143 @@
+#include "verdict.h"
+
+#include <math.h>
+#include <stddef.h>
+
+#include "model_table.h"
+#include "run.h"
+
+const char *fb_verdict_name(fb_verdict_word w) {
+  switch (w) {
+    case FB_VERDICT_OK: return "ok";
+    case FB_VERDICT_WARN: return "warn";
+    case FB_VERDICT_ERROR: return "error";
+    case FB_VERDICT_UNCHECKED: return "unchecked";
+  }
+  return "warn";
+}
+
+const char *fb_verdict_basis_name(fb_verdict_basis b) {
+  switch (b) {
+    case FB_BASIS_POINTWISE: return "pointwise";
+    case FB_BASIS_STATISTICS: return "statistics";
+    case FB_BASIS_UNSETTLED: return "unsettled";
+    case FB_BASIS_NONE: break;
+  }
+  return NULL;
+}
+
+/* warnings the basis does not answer: on statistics, the divergence and
+ * the matched-impact error before it are what the statistics decide */
+static int open_warnings(const fb_model_result *m, int statistics) {
+  int n = 0;
+  for (int k = 0; k < m->warning_count; k++) {
+    const fb_warning_kind w = m->warnings[k].kind;
+    if (statistics && m->run.clearance_mask &&
+        (w == FB_WARN_DIVERGENT || w == FB_WARN_ERROR_BOUND))
+      continue;
+    n++;
+  }
+  return n;
+}
+
+/* a reference's peaks converged against its check integration */
+static int ref_pointwise(const fb_model_result *ref) {
+  return ref->has_ref_estimate && !ref->peaks_unconverged;
+}
+
+/* ... or at least its impact statistics did (its check integration within
+ * its ensemble's spread) */
+static int ref_statistics(const fb_model_result *ref) {
+  return ref_pointwise(ref) || (ref->has_check_compare && ref->check_compare.agree == 1);
+}
+
+static void assess_reference(fb_model_result *m) {
+  if (!m->has_ref_estimate) { /* stopped, or no tighter tolerance to check with */
+    m->basis = FB_BASIS_NONE;
+    m->verdict = m->run.stop.kind != FB_STOP_NONE || m->warning_count ? FB_VERDICT_WARN
+                                                                       : FB_VERDICT_UNCHECKED;
+    return;
+  }
+  if (!m->peaks_unconverged) {
+    m->basis = FB_BASIS_POINTWISE;
+    m->verdict = m->warning_count ? FB_VERDICT_WARN : FB_VERDICT_OK;
+    return;
+  }
+  /* its peaks moved: never ok, whatever else converged */
+  m->verdict = FB_VERDICT_WARN;
+  m->basis = m->has_check_compare && m->check_compare.agree >= 0 ? FB_BASIS_STATISTICS
+                                                                 : FB_BASIS_UNSETTLED;
+}
+
+static const fb_model_result *reference_of(const fb_run *r, const fb_model_result *m) {
+  const fb_model *want = fb_model_reference_of(m->run.model);
+  for (int k = 0; want && k < r->n; k++)
+    if (r->model[k].run.model == want) return &r->model[k];
+  return NULL;
+}
+
+static void assess_clearance(fb_model_result *m, const fb_run *r) {
+  const fb_model_result *ref = reference_of(r, m);
+  const int stopped = m->run.stop.kind != FB_STOP_NONE;
+  if (!m->has_divergence || !ref) { /* nothing to compare with */
+    m->basis = FB_BASIS_NONE;
+    m->verdict = stopped || m->warning_count ? FB_VERDICT_WARN : FB_VERDICT_UNCHECKED;
+    return;
+  }
+  if (m->matched_error == FB_MATCHED_ERROR_KEPT) { /* the same history, wrong impacts */
+    m->basis = FB_BASIS_POINTWISE;
+    m->verdict = FB_VERDICT_ERROR;
+    return;
+  }
+  if (!m->divergence.diverged && ref_pointwise(ref)) {
+    m->basis = FB_BASIS_POINTWISE;
+    m->verdict = stopped || m->warning_count ? FB_VERDICT_WARN : FB_VERDICT_OK;
+    return;
+  }
+  if (!(m->has_stats_compare && m->stats_compare.agree >= 0)) {
+    m->basis = FB_BASIS_UNSETTLED;
+    m->verdict = FB_VERDICT_WARN;
+    return;
+  }
+  m->basis = FB_BASIS_STATISTICS;
+  m->verdict = m->stats_compare.agree == 1 && ref_statistics(ref) && !stopped &&
+                       !open_warnings(m, 1)
+                   ? FB_VERDICT_OK
+                   : FB_VERDICT_WARN;
+}
+
+/* the largest |relative error| of an ideal or analytic model's omega and
+ * alpha peaks against the analytic solution of its lengths */
+static double analytic_error(const fb_error *e) {
+  const fb_body_error *b[2] = {&e->coupler, &e->follower};
+  double w = 0.0;
+  for (int k = 0; k < 2; k++) {
+    const double v[4] = {b[k]->omega_max_rel, b[k]->omega_min_rel, b[k]->alpha_max_rel,
+                         b[k]->alpha_min_rel};
+    for (int q = 0; q < 4; q++) w = fmax(w, fabs(v[q]));
+  }
+  return w;
+}
+
+int fb_verdict_assess(fb_run *r) {
+  int unsettled = 0;
+  for (int i = 0; i < r->n; i++) {
+    fb_model_result *m = &r->model[i];
+    if (m->run.model->engine == FB_ENGINE_REFERENCE) assess_reference(m);
+  }
+  for (int i = 0; i < r->n; i++) {
+    fb_model_result *m = &r->model[i];
+    if (m->run.model->engine == FB_ENGINE_REFERENCE) {
+    } else if (m->run.clearance_mask) {
+      assess_clearance(m, r);
+    } else { /* ideal and analytic models: against the analytic solution */
+      m->basis = m->has_error ? FB_BASIS_POINTWISE : FB_BASIS_NONE;
+      m->verdict = m->run.stop.kind != FB_STOP_NONE || m->warning_count ||
+                           (m->has_error && analytic_error(&m->error) > FB_IDEAL_PEAK_ERROR_BOUND)
+                       ? FB_VERDICT_WARN
+                       : FB_VERDICT_OK;
+    }
+    unsettled += m->basis == FB_BASIS_UNSETTLED;
+  }
+  return unsettled;
+}

@@ -3,7 +3,8 @@
  * a reference whose peaks did not converge against its check integration
  * is not ok; a clearance model with no reference in the run is unchecked,
  * not ok; a divergent model whose ensemble agrees is ok on statistics; no
- * ok rests on a yardstick that did not converge. The
+ * ok rests on a yardstick that did not converge; a case without [run]
+ * ensemble gets one from `fourbar run` when a verdict is unsettled. The
  * untuned crank-rocker (cases/untuned_crank_rocker.ini) is the case the
  * issue brought. argv[1] is the path of the built binary. */
 #include <jansson.h>
@@ -268,6 +269,8 @@ static void test_regular_case_is_pointwise(void **state) {
   assert_string_equal(str(ref, "verdict_basis"), "pointwise");
   assert_int_equal(assert_no_ok_on_an_unconverged_yardstick(j), 2);
   assert_row(table, "ode-clearance-impact", "ok", "pointwise");
+  /* nothing unsettled: the run adds no ensemble */
+  assert_string_equal(str(json_object_get(j, "ensemble"), "source"), "none");
   json_decref(j);
 }
 
@@ -285,22 +288,31 @@ static void test_divergent_without_ensemble_is_unsettled(void **state) {
   assert_string_equal(str(m, "verdict"), "warn");
   assert_string_equal(str(m, "verdict_basis"), "unsettled");
   assert_non_null(strstr(str(m, "verdict_reason"), "set [run] ensemble = 5"));
+  assert_string_equal(str(json_object_get(j, "ensemble"), "source"), "none");
   assert_row(table, "ode-clearance-impact", "warn", "unsettled");
   json_decref(j);
 }
 
-/* The shipped untuned crank-rocker with an ensemble of 5. Measured: every
- * engine leaves the reference (ODE 72.4 ms, MuJoCo 11.8, Simbody 10.8,
- * Bullet 46.0), every one's 5-run impact statistics agree with the
- * reference's (largest relative difference 0.20 to 0.37, within 3 sd): ok
- * on statistics; the reference's peaks move 201 % against its check
- * integration while the check's statistics lie within 6.6 sd (t, 4 degrees
- * of freedom) of its runs' mean: warn on statistics. */
+/* The shipped untuned crank-rocker as `fourbar run` runs it: [run] ensemble
+ * unset, so the run adds 5 runs by itself. Measured: every engine leaves the
+ * reference (ODE 72.4 ms, MuJoCo 11.8, Simbody 10.8, Bullet 46.0), every
+ * one's 5-run impact statistics agree with the reference's (largest
+ * relative difference 0.20 to 0.37, within 3 sd): ok on statistics; the
+ * reference's peaks move 201 % against its check integration while the
+ * check's statistics lie within 6.6 sd (t, 4 degrees of freedom) of its
+ * runs' mean: warn on statistics. */
 static void test_untuned_crank_rocker(void **state) {
   (void)state;
   static char table[1 << 16];
-  json_t *j = run_case("untuned", "untuned_crank_rocker.ini", "--set run.ensemble=5 --jobs 2",
-                       table, sizeof table, NULL);
+  json_t *timing = NULL;
+  json_t *j = run_case("untuned", "untuned_crank_rocker.ini", "--jobs 2", table, sizeof table,
+                       &timing);
+  json_t *ens = json_object_get(j, "ensemble");
+  assert_int_equal(json_integer_value(json_object_get(ens, "members")), 5);
+  assert_string_equal(str(ens, "source"), "run");
+  json_t *cost = json_object_get(timing, "ensemble");
+  assert_true(real(cost, "wall_s") > 0.0);
+  assert_non_null(strstr(table, "ensemble: a model's verdict was unsettled, so the run added 5"));
   json_t *ref = model(j, "reference");
   assert_string_equal(str(ref, "verdict"), "warn");
   assert_string_equal(str(ref, "verdict_basis"), "statistics");
@@ -316,6 +328,7 @@ static void test_untuned_crank_rocker(void **state) {
   }
   assert_true(clearance >= 1);
   assert_int_equal(assert_no_ok_on_an_unconverged_yardstick(j), clearance);
+  json_decref(timing);
   json_decref(j);
 }
 

@@ -48,6 +48,10 @@ static const char run_help[] =
     "                = N keeps every N-th sample and every impact's (docs/series.md)\n"
     "  --jobs J      run the [run] ensemble members in J worker processes\n"
     "                (default 1); the numbers do not depend on J\n"
+    "                A case without [run] ensemble gets an ensemble of 5 runs of\n"
+    "                its clearance models and references when a verdict is\n"
+    "                unsettled (a model left its reference, or a reference its\n"
+    "                check integration); --set run.ensemble=1 turns it off\n"
     "  --no-report   skip DIR/report.html, the interactive page (docs/report.md)\n"
     "  -h, --help    this text\n"
     "\n"
@@ -128,6 +132,9 @@ int fb_cmd_run(int argc, char **argv) {
   int rc = fb_cli_load_case("run", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
   c.jobs = jobs;
+  /* a case that leaves [run] ensemble unset lets the run add one where a
+   * verdict is unsettled (run.h, FB_ENSEMBLE_AUTO_MEMBERS; docs/chaos.md) */
+  if (!fb_casefile_given(&c, "run", "ensemble")) c.ensemble_auto = FB_ENSEMBLE_AUTO_MEMBERS;
   /* the case's variants ([variant.NAME]) load now, so a bad one fails before
    * any simulation */
   static fb_case variants[FB_MAX_VARIANTS];

@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "reference.h"
 #include "resolution.h"
 
@@ -322,8 +323,36 @@ static double h_omega_c_max(const fb_run *r) {
   return w;
 }
 
+/* the verdicts; and, where one is unsettled and the case leaves [run]
+ * ensemble to the run (c.ensemble_auto), an ensemble of that many members
+ * when its estimate (the ensemble's models once, times the members beyond
+ * the first, over the worker processes) fits [run] max_wall_s */
+static fb_status settle(fb_run *r, double t_start, fb_progress_fn progress, void *user,
+                        fb_diag *diag) {
+  const double t0 = fb_clock_s();
+  int unsettled = fb_verdict_assess(r);
+  const int members = r->c.ensemble_auto;
+  for (int i = 0; i < r->n; i++)
+    if (r->model[i].has_ensemble) r->models_wall_s += r->model[i].run.wall_s;
+  if (!unsettled || r->c.ensemble > 1 || members <= 1) return FB_OK;
+  const int jobs = r->c.jobs > 1 ? (r->c.jobs < members - 1 ? r->c.jobs : members - 1) : 1;
+  r->ensemble_estimate_s = r->models_wall_s * (double)(members - 1) / (double)jobs;
+  if (t0 - t_start + r->ensemble_estimate_s > r->c.max_wall_s) {
+    r->ensemble_auto_skipped = 1;
+    return FB_OK;
+  }
+  r->c.ensemble = members;
+  r->ensemble_auto = members;
+  fb_status st = fb_ensemble_measure(r, progress, user, diag);
+  if (st != FB_OK) return st;
+  r->ensemble_wall_s = fb_clock_s() - t0;
+  fb_verdict_assess(r);
+  return FB_OK;
+}
+
 fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                       fb_diag *diag) {
+  const double t_start = fb_clock_s();
   fb_status st = run_once(r, c, progress, user, diag);
   if (st != FB_OK) return st;
   const int auto_step = c->solver.h_mode == FB_STEP_AUTO ||
@@ -350,8 +379,10 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
     r->c.solver.h_mode = c->solver.h_mode; /* the case asked for auto */
   }
   if (!c->member) {
+    const double t0 = fb_clock_s();
     st = fb_ensemble_measure(r, progress, user, diag);
-    if (st == FB_OK) fb_verdict_assess(r);
+    if (r->c.ensemble > 1) r->ensemble_wall_s = fb_clock_s() - t0;
+    if (st == FB_OK) st = settle(r, t_start, progress, user, diag);
     if (st != FB_OK) {
       fb_run_free(r);
       return st;

@@ -15,6 +15,15 @@
 /* Warnings a model run can carry. */
 #define FB_RUN_WARNINGS 6
 
+/* Members `fourbar run` runs by itself when the case does not set [run]
+ * ensemble and a model is unsettled (verdict.h: a clearance model left its
+ * reference, or a reference parted from its check integration): the
+ * rattling pin's ensemble size (docs/chaos.md), the fewest that gives each
+ * statistic a standard deviation on four degrees of freedom; on the
+ * untuned crank-rocker it costs about four times the clearance models'
+ * and references' first run (docs/chaos.md measures it) [-]. */
+#define FB_ENSEMBLE_AUTO_MEMBERS 5
+
 /* A crank that lags its prescribed angle by more than this has had its drive
  * saturate (ODE: [solver] drive_torque_max_n_m; MuJoCo: the flywheel's
  * [mujoco] drive_armature_kg_m2): the crank tip then trails by
@@ -126,6 +135,13 @@ typedef struct fb_run_s {
                                              a contact passed FB_H_OMEGA_C_BOUND [-] */
   double h_omega_c_max;                   /* largest h omega_c over the clearance models'
                                              contact steps (0: none measured) [-] */
+  int ensemble_auto;                      /* members the run added by itself because a model
+                                             was unsettled (case ensemble_auto; 0: none) */
+  int ensemble_auto_skipped;              /* 1: it would have, but the estimate passed
+                                             [run] max_wall_s */
+  double ensemble_estimate_s;             /* its estimated wall time [s] (auto or skipped) */
+  double ensemble_wall_s;                 /* wall time of the members beyond the first [s] */
+  double models_wall_s;                   /* wall time of the ensemble's models' first run [s] */
   int variant_count;                      /* variants run (fb_run_variants; 0: none) */
   fb_variant_result variant[FB_MAX_VARIANTS]; /* their models' peaks, in c.variant order */
 } fb_run;

@@ -359,6 +359,10 @@ typedef struct fb_case_s {
                                          no reference check integration, no step re-choice) */
   int jobs;                           /* not a key: worker processes of the ensemble (--jobs);
                                          0 or 1: one; the results do not depend on it */
+  int ensemble_auto;                  /* not a key: members to run when the case leaves
+                                         ensemble at 1 and a model's verdict is unsettled
+                                         (fourbar run sets it when [run] ensemble is not
+                                         given; run.h); 0 or 1: none */
   char published_source[160];         /* where the published values come from ("" : none) */
   fb_case_published published[FB_PUBLISHED_LAWS]; /* the publication's values per law */
   int variant_count;                  /* entries used in variant */

@@ -575,6 +575,7 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
                       json_pack("{s:s,s:i,s:s}", "format", series_format_name(c->series), "every",
                                 c->series_every, "rule", FB_SERIES_KEEP_RULE));
   json_object_set_new(o, "step", fb_report_step_json(r));
+  json_object_set_new(o, "ensemble", fb_report_ensemble_run_json(r));
   json_t *an = json_object();
   json_object_set_new(an, "coupler", fb_report_body_peaks_json(&r->analytic_nominal.coupler));
   json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
@@ -597,7 +598,14 @@ json_t *fb_report_timing_json(const fb_run *r) {
                                             run->steps ? num(1e6 * run->wall_s / (double)run->steps)
                                                        : json_null()));
   }
-  return json_pack("{s:s,s:o}", "case", r->c.name, "models", models);
+  /* the ensemble's members beyond the first (docs/chaos.md): its cost */
+  json_t *ens = json_pack("{s:i,s:s,s:o,s:o,s:o}", "members", r->c.ensemble > 1 ? r->c.ensemble : 1,
+                          "source", r->ensemble_auto > 1 ? "run" : r->c.ensemble > 1 ? "case" : "none",
+                          "wall_s", num(r->ensemble_wall_s), "models_wall_s", num(r->models_wall_s),
+                          "estimate_s", r->ensemble_auto > 1 || r->ensemble_auto_skipped
+                                            ? num(r->ensemble_estimate_s)
+                                            : json_null());
+  return json_pack("{s:s,s:o,s:o}", "case", r->c.name, "models", models, "ensemble", ens);
 }
 
 fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag) {
@@ -878,6 +886,7 @@ static void print_verdict(FILE *f, const fb_run *r, int W) {
     else
       fprintf(f, "%s\n", line);
   }
+  fb_report_print_ensemble_auto(f, r);
 }
 
 /* the run's peaks (the paper's table): coupler and follower omega and alpha

@@ -311,7 +311,13 @@ static size_t settle_hint(char *buf, size_t size, const fb_run *r, const char *w
   if (r->c.ensemble > 1)
     return (size_t)snprintf(buf, size, "; its %d-run ensemble has no impact statistics to %s "
                             "(no impacts in the window)", r->c.ensemble, what);
-  return (size_t)snprintf(buf, size, "; no ensemble ran: set [run] ensemble = 5 to %s", what);
+  if (r->ensemble_auto_skipped)
+    return (size_t)snprintf(buf, size, "; no ensemble ran (%d runs estimated at %.3g s, beyond "
+                            "[run] max_wall_s = %g s): set [run] ensemble = %d to %s",
+                            FB_ENSEMBLE_AUTO_MEMBERS, r->ensemble_estimate_s, r->c.max_wall_s,
+                            FB_ENSEMBLE_AUTO_MEMBERS, what);
+  return (size_t)snprintf(buf, size, "; no ensemble ran: set [run] ensemble = %d to %s",
+                          FB_ENSEMBLE_AUTO_MEMBERS, what);
 }
 
 static const char *reference_why(char *buf, size_t size, const fb_model_result *m,
@@ -458,6 +464,38 @@ const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result 
       snprintf(buf + n, size - n, "; %d other warning%s (below)", open, open > 1 ? "s" : "");
   }
   return buf;
+}
+
+void fb_report_print_ensemble_auto(FILE *f, const fb_run *r) {
+  if (r->ensemble_auto > 1)
+    fb_report_say(f, "ensemble: a model's verdict was unsettled, so the run added %d runs by "
+                     "itself (the case leaves [run] ensemble unset; set it to choose, 1: none): "
+                     "%.3g s of wall time for the %d runs beyond the first, against %.3g s for "
+                     "those models once",
+                  r->ensemble_auto, r->ensemble_wall_s, r->ensemble_auto - 1, r->models_wall_s);
+  else if (r->ensemble_auto_skipped)
+    fb_report_say(f, "ensemble: a model's verdict is unsettled, but %d runs, estimated at %.3g s, "
+                     "would pass [run] max_wall_s = %g s: none ran",
+                  FB_ENSEMBLE_AUTO_MEMBERS, r->ensemble_estimate_s, r->c.max_wall_s);
+}
+
+json_t *fb_report_ensemble_run_json(const fb_run *r) {
+  const int members = r->c.ensemble > 1 ? r->c.ensemble : 1;
+  const char *source = r->ensemble_auto > 1 ? "run" : members > 1 ? "case" : "none";
+  json_t *o = json_object();
+  json_object_set_new(o, "members", json_integer(members));
+  json_object_set_new(o, "source", json_string(source));
+  json_object_set_new(
+      o, "reason",
+      r->ensemble_auto > 1
+          ? json_string("a model's verdict was unsettled (it left its reference, or a reference "
+                        "parted from its check integration) and the case leaves [run] ensemble "
+                        "unset")
+      : r->ensemble_auto_skipped
+          ? json_string("a model's verdict is unsettled, but the ensemble's estimated wall time "
+                        "passes [run] max_wall_s: none ran")
+          : json_null());
+  return o;
 }
 
 void fb_report_check_json(json_t *o, const fb_model_result *m) {

@@ -58,6 +58,14 @@ int fb_report_verdict_error(char *err, size_t err_size, char *against, size_t ag
  * against the reference's ensemble members; null without an ensemble). */
 void fb_report_check_json(json_t *estimate, const fb_model_result *m);
 
+/* The printed line on an ensemble the run added by itself, or would have
+ * (nothing when it neither did nor would). */
+void fb_report_print_ensemble_auto(FILE *f, const fb_run *r);
+
+/* summary.json's "ensemble": {"members", "source": "case"|"run"|"none",
+ * "reason"} (docs/outputs.md). */
+json_t *fb_report_ensemble_run_json(const fb_run *r);
+
 /* Prose for the printed table: printf-formatted text wrapped at spaces to
  * 120 columns, continuation lines indented by two (report.c). */
 void fb_report_say(FILE *f, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -6,6 +6,17 @@
 
 static double fmax_d(double a, double b) { return a > b ? a : b; }
 
+double fb_metrics_peak_rel_worst(const fb_body_error *coupler, const fb_body_error *follower) {
+  const fb_body_error *b[2] = {coupler, follower};
+  double w = 0.0;
+  for (int k = 0; k < 2; k++) {
+    const double v[4] = {b[k]->omega_max_rel, b[k]->omega_min_rel, b[k]->alpha_max_rel,
+                         b[k]->alpha_min_rel};
+    for (int q = 0; q < 4; q++) w = fmax(w, fabs(v[q]));
+  }
+  return w;
+}
+
 double fb_metrics_rel(double x, double ref) {
   if (ref == 0.0) return x - ref;
   return (x - ref) / fabs(ref);

@@ -239,4 +239,8 @@ fb_status fb_metrics_error(fb_error *out, const fb_series *s, double t_from,
  * (x - ref) when ref is 0 (absolute, no division by zero). */
 double fb_metrics_rel(double x, double ref);
 
+/* The largest |relative error| of the eight omega and alpha peak errors of
+ * coupler and follower (NaN entries skipped; 0 when all are) [-]. */
+double fb_metrics_peak_rel_worst(const fb_body_error *coupler, const fb_body_error *follower);
+
 #endif

@@ -1,6 +1,5 @@
 #include "verdict.h"
 
-#include <math.h>
 #include <stddef.h>
 
 #include "model_table.h"
@@ -106,19 +105,6 @@ static void assess_clearance(fb_model_result *m, const fb_run *r) {
                    : FB_VERDICT_WARN;
 }
 
-/* the largest |relative error| of an ideal or analytic model's omega and
- * alpha peaks against the analytic solution of its lengths */
-static double analytic_error(const fb_error *e) {
-  const fb_body_error *b[2] = {&e->coupler, &e->follower};
-  double w = 0.0;
-  for (int k = 0; k < 2; k++) {
-    const double v[4] = {b[k]->omega_max_rel, b[k]->omega_min_rel, b[k]->alpha_max_rel,
-                         b[k]->alpha_min_rel};
-    for (int q = 0; q < 4; q++) w = fmax(w, fabs(v[q]));
-  }
-  return w;
-}
-
 int fb_verdict_assess(fb_run *r) {
   int unsettled = 0;
   for (int i = 0; i < r->n; i++) {
@@ -128,12 +114,15 @@ int fb_verdict_assess(fb_run *r) {
   for (int i = 0; i < r->n; i++) {
     fb_model_result *m = &r->model[i];
     if (m->run.model->engine == FB_ENGINE_REFERENCE) {
+      /* assessed above */
     } else if (m->run.clearance_mask) {
       assess_clearance(m, r);
     } else { /* ideal and analytic models: against the analytic solution */
+      const int beyond = m->has_error && fb_metrics_peak_rel_worst(&m->error.coupler,
+                                                                   &m->error.follower) >
+                                             FB_IDEAL_PEAK_ERROR_BOUND;
       m->basis = m->has_error ? FB_BASIS_POINTWISE : FB_BASIS_NONE;
-      m->verdict = m->run.stop.kind != FB_STOP_NONE || m->warning_count ||
-                           (m->has_error && analytic_error(&m->error) > FB_IDEAL_PEAK_ERROR_BOUND)
+      m->verdict = m->run.stop.kind != FB_STOP_NONE || m->warning_count || beyond
                        ? FB_VERDICT_WARN
                        : FB_VERDICT_OK;
     }

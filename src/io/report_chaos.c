@@ -272,17 +272,10 @@ static double peak_alpha_rel(const fb_reference_error *e) {
   return w;
 }
 
+/* omega, alpha and force peaks against the reference (or the check) */
 static double peak_worst(const fb_reference_error *e) {
-  const fb_body_error *b[2] = {&e->coupler, &e->follower};
-  double w = 0.0;
-  for (int k = 0; k < 2; k++) {
-    const double v[4] = {b[k]->omega_max_rel, b[k]->omega_min_rel, b[k]->alpha_max_rel,
-                         b[k]->alpha_min_rel};
-    for (int q = 0; q < 4; q++)
-      if (fabs(v[q]) > w) w = fabs(v[q]);
-  }
-  if (isfinite(e->force_max_rel)) w = fmax(w, fabs(e->force_max_rel));
-  return w;
+  const double w = fb_metrics_peak_rel_worst(&e->coupler, &e->follower);
+  return isfinite(e->force_max_rel) ? fmax(w, fabs(e->force_max_rel)) : w;
 }
 
 int fb_report_verdict_error(char *err, size_t err_size, char *against, size_t against_size,

@@ -140,6 +140,10 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
     snprintf(path, path_size, "%s/paper_crank_rocker.ini", fb_cli_cases_dir());
   fb_diag d;
   if (fb_casefile_load(c, path, sets, nsets, &d) != FB_OK) return fb_cli_fail(cmd, 2, "%s", d.msg);
+  /* values within the rules yet unlikely to be meant: said, and run as given */
+  char notes[8][FB_DIAG_SIZE];
+  const int n = fb_casefile_plausibility(c, notes, 8);
+  for (int i = 0; i < n; i++) fprintf(stderr, "fourbar %s: warning: %s: %s\n", cmd, path, notes[i]);
   return 0;
 }
 

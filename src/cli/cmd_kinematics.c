@@ -96,6 +96,10 @@ int fb_cmd_kinematics(int argc, char **argv) {
     if (fb_casefile_check_range("linkage", key, mm[i], flag_of[i], &rd) != FB_OK)
       return fb_cli_fail("kinematics", 2, "%s", rd.msg);
     lk.length[i] = mm[i] * FB_M_PER_MM;
+    const char *why = fb_casefile_length_implausible(lk.length[i]);
+    if (why && !case_path[0]) /* (a case's lengths: said by fb_cli_load_case) */
+      fprintf(stderr, "fourbar kinematics: warning: %s %g: a link length %s; the flag is in "
+              "millimetres\n", flag_of[i], mm[i], why);
   }
   if (rpm == -1) return fb_cli_fail("kinematics", 2, "--speed-rpm is required; see --help");
   fb_diag rd;

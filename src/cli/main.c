@@ -66,6 +66,14 @@ static int stdout_written(const char *cmd, int rc) {
 }
 
 int main(int argc, char **argv) {
+  /* whole lines: with standard output and error on one file or pipe (2>&1),
+   * standard output goes out a line at a time, so a message on standard
+   * error (unbuffered) never lands inside one of its lines; the buffer holds
+   * the longest line we print. Elsewhere the usual full buffering. */
+  static char out_buf[1 << 16];
+  struct stat so, se;
+  if (fstat(1, &so) == 0 && fstat(2, &se) == 0 && so.st_dev == se.st_dev && so.st_ino == se.st_ino)
+    setvbuf(stdout, out_buf, _IOLBF, sizeof out_buf);
   const char *cmd = argc > 1 ? argv[1] : "";
   char name[64];
   snprintf(name, sizeof name, "%s", cmd);

@@ -17,15 +17,19 @@ case "$what" in
   *) echo "usage: bash scripts/quickstart.sh run|test|build|robust [fourbar run options]" >&2; exit 2 ;;
 esac
 
-packages=(gcc libc6-dev pkg-config meson ninja-build python3
+# every compiler and library the build enables (meson.build; tests/test_quickstart.py
+# fails when meson.build needs a package this list lacks): C, and C++ for the Bullet and
+# Simbody engines (src/bullet, src/simbody)
+packages=(gcc g++ libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel
           libmujoco-dev libbullet-dev libsimbody-dev libhdf5-dev python3-h5py)
 # node and npm for report.html's library (and its browser test): Debian's nodejs and npm
 # unless a node with its own npm is there already (NodeSource's nodejs conflicts with them)
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
 command -v npm >/dev/null 2>&1 || packages+=(npm)
-# report.html's browser test drives Debian's chromium headless (tests/test_report_html.js)
-[ "$what" = test ] && packages+=(chromium)
+# report.html's browser test drives Debian's chromium headless (tests/test_report_html.js);
+# the integrity test finds a run's workers and gnuplot with pgrep (procps)
+[ "$what" = test ] && packages+=(chromium procps)
 [ "$what" = robust ] && packages+=(clang libclang-rt-14-dev valgrind)
 missing=()
 for p in "${packages[@]}"; do
@@ -44,19 +48,39 @@ fi
 # still works and its report.html says how to get the charts (docs/report.md)
 if [ ! -f node_modules/.package-lock.json ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
   echo "== npm ci (uplot, playwright-core into ./node_modules)"
-  npm ci --no-audit --no-fund --loglevel=error >/dev/null \
-    || echo "npm ci failed: report.html will have no charts, and its browser test is skipped"
+  mkdir -p build
+  if ! npm ci --no-audit --no-fund --loglevel=error >build/npm-ci.txt 2>&1; then
+    tail -n 20 build/npm-ci.txt
+    # the test suite needs them (report.html's browser test); a run does not
+    if [ "$what" = test ]; then
+      echo "npm ci failed (build/npm-ci.txt): the browser test of report.html needs uplot and playwright-core" >&2
+      exit 1
+    fi
+    echo "npm ci failed (build/npm-ci.txt): report.html will have no charts"
+  fi
 fi
 
 # warnings are errors in CI (CI=true), warnings elsewhere
 werror=false
 [ "${CI:-}" = "true" ] && werror=true
+# a set-up step, quiet when it works: `quiet LOG command...` keeps the output in LOG and,
+# when the step fails, prints its error (ninja's first failed command on, else the end)
+# and where the whole output is, and stops
+quiet() {
+  local log=$1
+  shift
+  mkdir -p "$(dirname "$log")"
+  "$@" >"$log" 2>&1 && return 0
+  { if grep -q '^FAILED' "$log"; then sed -n '/^FAILED/,$p' "$log"; else tail -n 40 "$log"; fi; } | head -n 60
+  echo "quickstart: '$*' failed; its whole output: $log" >&2
+  exit 1
+}
 if [ ! -f build/build.ninja ]; then
-  meson setup build -Dwerror=$werror >/dev/null
+  quiet build/meson-setup.txt meson setup build -Dwerror=$werror
 else
-  meson configure build -Dwerror=$werror >/dev/null
+  quiet build/meson-setup.txt meson configure build -Dwerror=$werror
 fi
-ninja -C build >/dev/null
+quiet build/ninja.txt ninja -C build
 
 case "$what" in
   build) ;;
@@ -89,10 +113,10 @@ case "$what" in
     # 1. the whole unit-test suite under AddressSanitizer + UndefinedBehaviorSanitizer
     echo "== sanitizer build (address, undefined): whole test suite"
     if [ ! -f build-asan/build.ninja ]; then
-      meson setup build-asan -Db_sanitize=address,undefined -Db_lundef=false \
-        -Dc_args=-fno-sanitize-recover=all -Dwerror=$werror >/dev/null
+      quiet build/build-asan-setup.txt meson setup build-asan -Db_sanitize=address,undefined -Db_lundef=false \
+        -Dc_args=-fno-sanitize-recover=all -Dwerror=$werror
     fi
-    ninja -C build-asan >/dev/null
+    quiet build-asan/ninja.txt ninja -C build-asan
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
       LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp meson test -C build-asan --print-errorlogs >build-asan/sanitize.txt 2>&1 \
       || { tail -n 40 build-asan/sanitize.txt; echo "sanitizer suite failed (build-asan/meson-logs)"; exit 1; }
@@ -109,12 +133,11 @@ case "$what" in
     if [ ! -f build-fuzz/build.ninja ]; then
       # the harnesses read case files and fit strings: the C++ engines (Simbody,
       # Bullet) stay out, so the link is clang's, which has -fsanitize=fuzzer
-      CC=clang CXX=clang++ meson setup build-fuzz -Dfuzz=true -Dtests=false \
-        -Dsimbody=disabled -Dbullet=disabled -Db_sanitize=address,undefined \
-        -Db_lundef=false >/dev/null
+      quiet build/build-fuzz-setup.txt env CC=clang CXX=clang++ meson setup build-fuzz -Dfuzz=true \
+        -Dtests=false -Dsimbody=disabled -Dbullet=disabled -Db_sanitize=address,undefined \
+        -Db_lundef=false
     fi
-    ninja -C build-fuzz >build-fuzz/build.txt 2>&1 \
-      || { tail -n 20 build-fuzz/build.txt; echo "the fuzz build failed (build-fuzz/build.txt)"; exit 1; }
+    quiet build-fuzz/build.txt ninja -C build-fuzz
     mkdir -p build-fuzz/crashes build-fuzz/corpus-casefile build-fuzz/corpus-fit
     frc=0
     for h in casefile fit; do

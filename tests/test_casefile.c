@@ -8,6 +8,7 @@
 #include "fb_config.h"
 #include "fb_test.h"
 #include "model_table.h"
+#include "suggest.h"
 
 /* conversions are exact multiplications by decimal constants: a few ulp */
 #define SI_TOL 1e-15
@@ -511,6 +512,32 @@ static void test_fuzz_regressions_give_errors_not_crashes(void **state) {
   assert_true(n >= 5);
 }
 
+/* suggestions by edit distance (a swap of neighbours is one error) and the
+ * plausibility of lengths */
+static void test_suggest_and_plausibility(void **state) {
+  (void)state;
+  assert_int_equal(fb_edit_distance("lenght", "length"), 1);
+  assert_int_equal(fb_edit_distance("kinemtics", "kinematics"), 1);
+  assert_int_equal(fb_edit_distance("", "abc"), 3);
+  assert_int_equal(fb_edit_distance("crank_mm", "crank_mm"), 0);
+  static const char *const names[] = {"run", "kinematics", "sweep"};
+  assert_string_equal(fb_suggest("sweap", names, 3), "sweep");
+  assert_null(fb_suggest("xyzzy", names, 3));
+  fb_case c;
+  fb_diag d;
+  char notes[4][FB_DIAG_SIZE];
+  if (fb_casefile_load(&c, paper_path, NULL, 0, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(fb_casefile_plausibility(&c, notes, 4), 0);
+  static const char metres[] = "[linkage]\ncrank_mm = 0.045\ncoupler_mm = 170\nfollower_mm = 120\n"
+                               "ground_mm = 150\n[pin]\nlength_mm = 13000\n";
+  if (fb_casefile_load_text(&c, "m", metres, sizeof metres - 1, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(fb_casefile_plausibility(&c, notes, 4), 2);
+  assert_non_null(strstr(notes[0], "[linkage] crank_mm = 0.045: a length below 1 mm"));
+  assert_non_null(strstr(notes[1], "[pin] length_mm = 13000: a length above 10 m"));
+  assert_null(fb_casefile_length_implausible(FB_PLAUSIBLE_LENGTH_MIN_M));
+  assert_null(fb_casefile_length_implausible(FB_PLAUSIBLE_LENGTH_MAX_M));
+}
+
 int main(void) {
   snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", cases_dir());
   const struct CMUnitTest tests[] = {
@@ -528,6 +555,7 @@ int main(void) {
       cmocka_unit_test(test_template_loads),
       cmocka_unit_test(test_variants_and_published),
       cmocka_unit_test(test_fuzz_regressions_give_errors_not_crashes),
+      cmocka_unit_test(test_suggest_and_plausibility),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

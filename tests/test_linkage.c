@@ -35,6 +35,10 @@
 
 static const fb_linkage paper = {{0.108, 0.2794, 0.2705, 0.254}};
 
+/* A sum of two lengths near 0.4 m: the decimal inputs and the sum each round
+ * by half an ulp (5.6e-17 m); 1e-15 m is a few ulps. */
+#define GRASHOF_SUM_TOL 1e-15
+
 static double loop_residual(const fb_linkage *lk, const fb_linkage_state *s) {
   const double a = lk->length[FB_CRANK], b = lk->length[FB_COUPLER];
   const double c = lk->length[FB_FOLLOWER], g = lk->length[FB_GROUND];
@@ -129,6 +133,48 @@ static void test_grashof_classes(void **state) {
     assert_int_equal(fb_linkage_grashof(&cases[i].lk), cases[i].want);
   assert_string_equal(fb_grashof_name(FB_GRASHOF_CRANK_ROCKER), "crank-rocker");
   assert_string_equal(fb_grashof_name(FB_GRASHOF_NON_GRASHOF), "non-Grashof");
+}
+
+/* The sums the class compares, and where a change-point linkage folds flat:
+ * at a fold the velocity problem is singular (fb_linkage_solve refuses the
+ * toggle), a little way off it solves: an independent check of the angles.
+ *
+ *   kite 1 / 1 / 2 / 2 (crank, coupler, follower, ground):
+ *     theta2 = 0:  A --- B --- D, C on the line beyond (|BD| = 1 = |b - c|)
+ *     theta2 = pi: B --- A ----- D, C folded back (|BD| = 3 = b + c) */
+static void test_grashof_sums_and_folds(void **state) {
+  (void)state;
+  double sl, pq, th[2];
+  int s, l;
+  fb_linkage_grashof_sums(&paper, &sl, &pq, &s, &l);
+  assert_near(sl, 0.3874, GRASHOF_SUM_TOL);
+  assert_near(pq, 0.5245, GRASHOF_SUM_TOL);
+  assert_int_equal(s, FB_CRANK);
+  assert_int_equal(l, FB_COUPLER);
+  assert_int_equal(fb_linkage_fold_angles(&paper, th), 0);
+  char text[512];
+  fb_linkage_grashof_text(text, sizeof text, &paper);
+  assert_non_null(strstr(text, "Grashof crank-rocker: s + l = 108 + 279.4 = 387.4 mm < p + q = 524.5 mm"));
+  assert_non_null(strstr(text, "margin 137.1 mm"));
+
+  const fb_linkage kite = {{1.0, 1.0, 2.0, 2.0}};
+  assert_int_equal(fb_linkage_grashof(&kite), FB_GRASHOF_CHANGE_POINT);
+  assert_int_equal(fb_linkage_fold_angles(&kite, th), 2);
+  assert_near(th[0], 0.0, 0.0);
+  assert_near(th[1], M_PI, 0.0);
+  const fb_linkage cp = {{2.0, 4.0, 3.0, 3.0}}; /* folds at theta2 = 0 only */
+  assert_int_equal(fb_linkage_fold_angles(&cp, th), 1);
+  assert_near(th[0], 0.0, 0.0);
+  const double off[3] = {0.0, 0.1, M_PI};
+  const fb_status want[3] = {FB_ERR_ASSEMBLY, FB_OK, FB_ERR_ASSEMBLY};
+  for (int k = 0; k < 3; k++) {
+    fb_linkage_state st;
+    fb_diag d;
+    assert_int_equal(fb_linkage_solve(&st, &kite, FB_BRANCH_OPEN, off[k], 1.0, 0.0, &d), want[k]);
+  }
+  fb_linkage_grashof_text(text, sizeof text, &kite);
+  assert_non_null(strstr(text, "change-point"));
+  assert_non_null(strstr(text, "0 deg and 180 deg"));
 }
 
 static void test_unassemblable_gives_error_not_nan(void **state) {
@@ -241,6 +287,7 @@ int main(void) {
       cmocka_unit_test(test_branches_are_mirror_sides),
       cmocka_unit_test(test_velocity_acceleration_vs_central_differences),
       cmocka_unit_test(test_grashof_classes),
+      cmocka_unit_test(test_grashof_sums_and_folds),
       cmocka_unit_test(test_unassemblable_gives_error_not_nan),
       cmocka_unit_test(test_crank_range_closed_form),
       cmocka_unit_test(test_transmission_angle_extremes),

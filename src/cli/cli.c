@@ -134,12 +134,33 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
                      int nsets, fb_case *c, char *path, size_t path_size) {
   if (argc - optind_ > 1)
     return fb_cli_fail(cmd, 2, "one case file at most (got %d); see --help", argc - optind_);
-  if (optind_ < argc)
-    fb_cli_case_path(path, path_size, argv[optind_]);
-  else
+  if (optind_ < argc) {
+    const char *arg = argv[optind_];
+    fb_cli_case_path(path, path_size, arg);
+    struct stat sb;
+    if (arg[0] && stat(arg, &sb) != 0 && stat(path, &sb) != 0) {
+      /* found nowhere: how a case argument resolves, and where it looked */
+      const size_t n = strlen(arg);
+      const int has_ini = n > 4 && strcmp(arg + n - 4, ".ini") == 0;
+      char cwd[4096];
+      if (!getcwd(cwd, sizeof cwd)) snprintf(cwd, sizeof cwd, ".");
+      if (arg[0] == '/') return fb_cli_fail(cmd, 2, "%s: cannot open case file: no such file", arg);
+      return fb_cli_fail(cmd, 2,
+                         "%s: cannot open case file: a case is a path (from the current folder: "
+                         "%s/%s) or the name of a shipped case (%s/%s%s), and neither exists (ls %s "
+                         "lists the shipped cases)",
+                         arg, cwd, arg, fb_cli_cases_dir(), arg, has_ini ? "" : ".ini",
+                         fb_cli_cases_dir());
+    }
+  } else {
     snprintf(path, path_size, "%s/paper_crank_rocker.ini", fb_cli_cases_dir());
+  }
   fb_diag d;
   if (fb_casefile_load(c, path, sets, nsets, &d) != FB_OK) return fb_cli_fail(cmd, 2, "%s", d.msg);
+  /* values within the rules yet unlikely to be meant: said, and run as given */
+  char notes[8][FB_DIAG_SIZE];
+  const int n = fb_casefile_plausibility(c, notes, 8);
+  for (int i = 0; i < n; i++) fprintf(stderr, "fourbar %s: warning: %s: %s\n", cmd, path, notes[i]);
   return 0;
 }
 

@@ -27,7 +27,11 @@ static const char kin_help[] =
     "                in case files)\n"
     "  --branch      assembly branch (default: the case's, else open)\n"
     "  --json        one JSON object on standard output\n"
-    "Exit status: 0 ok, 1 the crank cannot turn fully, 2 bad input.\n";
+    "The Grashof line compares s + l (shortest and longest link) with p + q (the\n"
+    "other two): below, the shortest link turns fully; equal, a change-point\n"
+    "linkage, which folds flat at crank angle 0 or 180 deg (no exact peaks: exit 1).\n"
+    "Exit status: 0 ok, 1 the crank cannot turn fully (or the linkage folds flat),\n"
+    "2 bad input.\n";
 
 int fb_cmd_kinematics(int argc, char **argv) {
   static const struct option opts[] = {{"crank-mm", required_argument, 0, 'a'},
@@ -92,6 +96,10 @@ int fb_cmd_kinematics(int argc, char **argv) {
     if (fb_casefile_check_range("linkage", key, mm[i], flag_of[i], &rd) != FB_OK)
       return fb_cli_fail("kinematics", 2, "%s", rd.msg);
     lk.length[i] = mm[i] * FB_M_PER_MM;
+    const char *why = fb_casefile_length_implausible(lk.length[i]);
+    if (why && !case_path[0]) /* (a case's lengths: said by fb_cli_load_case) */
+      fprintf(stderr, "fourbar kinematics: warning: %s %g: a link length %s; the flag is in "
+              "millimetres\n", flag_of[i], mm[i], why);
   }
   if (rpm == -1) return fb_cli_fail("kinematics", 2, "--speed-rpm is required; see --help");
   fb_diag rd;
@@ -102,10 +110,19 @@ int fb_cmd_kinematics(int argc, char **argv) {
   fb_diag diag;
   fb_peaks p;
   double mu_min, mu_max;
+  fb_grashof g = fb_linkage_grashof(&lk);
+  char grashof[512];
+  fb_linkage_grashof_text(grashof, sizeof grashof, &lk);
+  /* a change-point linkage folds flat on its way round: no peaks to give */
+  if (g == FB_GRASHOF_CHANGE_POINT)
+    return fb_cli_fail("kinematics", 1,
+                       "crank %g, coupler %g, follower %g, ground %g mm: %s; a crank driven "
+                       "through a fold has no exact peaks: make s + l differ from p + q (s + l < "
+                       "p + q for a crank-rocker)",
+                       mm[0], mm[1], mm[2], mm[3], grashof);
   fb_status st = fb_linkage_transmission_range(&lk, &mu_min, &mu_max, &diag);
   if (st == FB_OK) st = fb_analytic_peaks(&p, &lk, branch, omega2, &diag);
-  fb_grashof g = fb_linkage_grashof(&lk);
-  if (st != FB_OK) return fb_cli_fail("kinematics", 1, "%s linkage: %s", fb_grashof_name(g), diag.msg);
+  if (st != FB_OK) return fb_cli_fail("kinematics", 1, "%s; %s", grashof, diag.msg);
   const double deg = 1.0 / FB_RAD_PER_DEG;
   if (json) {
     json_t *o = json_object();
@@ -118,6 +135,10 @@ int fb_cmd_kinematics(int argc, char **argv) {
     json_object_set_new(o, "direction", json_string(dir > 0 ? "ccw" : "cw"));
     json_object_set_new(o, "branch", json_string(branch == FB_BRANCH_OPEN ? "open" : "crossed"));
     json_object_set_new(o, "grashof", json_string(fb_grashof_name(g)));
+    double sl, pq;
+    fb_linkage_grashof_sums(&lk, &sl, &pq, NULL, NULL);
+    json_object_set_new(o, "grashof_s_plus_l_m", json_real(sl));
+    json_object_set_new(o, "grashof_p_plus_q_m", json_real(pq));
     json_object_set_new(o, "coupler", fb_report_body_peaks_json(&p.coupler));
     json_object_set_new(o, "follower", fb_report_body_peaks_json(&p.follower));
     json_object_set_new(o, "transmission_angle_min_deg", json_real(mu_min * deg));
@@ -131,6 +152,7 @@ int fb_cmd_kinematics(int argc, char **argv) {
   printf("linkage: crank %g, coupler %g, follower %g, ground %g mm (%s), %g rpm %s, %s branch\n",
          mm[0], mm[1], mm[2], mm[3], fb_grashof_name(g), rpm, dir > 0 ? "ccw" : "cw",
          branch == FB_BRANCH_OPEN ? "open" : "crossed");
+  printf("%s\n", grashof);
   printf("%-9s %12s %12s %14s %14s\n", "body", "omega_max", "omega_min", "alpha_max", "alpha_min");
   printf("%-9s %12s %12s %14s %14s\n", "", "rad/s", "rad/s", "rad/s^2", "rad/s^2");
   printf("%-9s %12.6f %12.6f %14.4f %14.4f\n", "coupler", p.coupler.omega_max, p.coupler.omega_min,

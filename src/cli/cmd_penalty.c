@@ -17,15 +17,18 @@
 #include "units.h"
 
 #define MAX_SPEEDS 1000
+/* the speeds of the paper's Tables I to III (--table) */
+#define PAPER_SPEEDS_RPM "100:1500:100"
 #define MAX_SETS 256
 
 static const char penalty_help[] =
-    "usage: fourbar penalty [CASE] [--mode paper|physical] [--speeds-rpm LIST]\n"
+    "usage: fourbar penalty [CASE] [--mode paper|physical]\n"
+    "                       [--speeds-rpm LIST | --table]\n"
     "                       [--set section.key=value]... [--json] [--out DIR]\n"
     "\n"
     "Contact stiffness Kc (paper Eq. 7), penalty parameter P = Kc C^1.5 (Eq. 9)\n"
-    "and mutual approach per crank speed, for the crank-coupler and\n"
-    "coupler-follower joints.\n"
+    "and mutual approach at the case's crank speed (or per speed of a list), for\n"
+    "the crank-coupler and coupler-follower joints.\n"
     "\n"
     "  --mode physical  inverse-dynamics joint reaction, the case's radial\n"
     "                   clearance and pin length, Johnson's line contact\n"
@@ -33,17 +36,26 @@ static const char penalty_help[] =
     "                   (docs/paper.md)\n"
     "                   default: the case's [clearance] penalty, as fourbar run\n"
     "                   uses it (physical unless the case says paper)\n"
-    "  --speeds-rpm     FROM:TO:STEP or a comma list (default 100:1500:100)\n"
+    "  --speeds-rpm     FROM:TO:STEP or a comma list (default: the case's\n"
+    "                   [drive] speed_rpm)\n"
+    "  --table          the paper's speeds, 100:1500:100 rpm (its Tables I to III)\n"
     "  --out DIR        also write DIR/penalty_<mode>.csv and the figure\n"
     "                   DIR/penalty_<mode>.svg (force, stiffness, penalty, approach\n"
     "                   against speed: the paper's Figures 2 to 4)\n"
     "  CASE             default: the paper's case\n"
     "P is printed in both units, N mm^0.5 (the paper's Table II) and N m^0.5\n"
     "(SI): columns penalty_n_mm0_5 and penalty_n_m0_5 in every mode.\n"
+    "Two forces, two purposes. The table's force is the load Kc is taken at:\n"
+    "physical mode, the joint's largest ideal reaction over a revolution (inverse\n"
+    "dynamics of the rigid linkage at its nominal lengths, gravity included);\n"
+    "paper mode, the paper's F = k max|alpha| (docs/paper.md). The contact block's\n"
+    "expected impact force is twice the largest ideal reaction at the stack-up\n"
+    "corner's lengths (a load applied suddenly peaks at twice its static value);\n"
+    "it sets the contact frequency omega_c and so the automatic step.\n"
     "Then, for a case with clearance joints, the contact a fourbar run of the case\n"
     "uses (the same code path: its laws, stiffness and damping per joint, which\n"
-    "lengths and which rule), the effective-mass range, expected force and contact\n"
-    "frequency, and the step [solver] h_s = auto gives (JSON: \"contact\").\n"
+    "lengths and which rule), the effective-mass range, expected impact force and\n"
+    "contact frequency, and the step [solver] h_s = auto gives (JSON: \"contact\").\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static int parse_speeds(const char *text, double *out, int *n) {
@@ -122,6 +134,8 @@ static int contact_used(const fb_case *in, int json, json_t *out) {
         json_object_set_new(o, "effective_mass_estimate_kg",
                             json_pack("{s:f,s:f}", "min", est[m][j].m_eff_min, "max", est[m][j].m_eff_max));
         json_object_set_new(o, "force_expected_n", json_real(est[m][j].force_expected));
+        json_object_set_new(o, "reaction_stackup_n",
+                            json_real(est[m][j].force_expected / FB_IMPACT_LOAD_FACTOR));
         json_object_set_new(o, "omega_c_rad_s", json_real(est[m][j].omega_c));
         json_array_append_new(arr, o);
       }
@@ -130,6 +144,10 @@ static int contact_used(const fb_case *in, int json, json_t *out) {
     json_object_set_new(out, "contact_stackup_corner", json_string(corner));
     json_object_set_new(out, "contact_rule", json_string(stiffness_rule(&c)));
     json_object_set_new(out, "h_auto_s", json_real(h));
+    json_object_set_new(out, "force_expected_is",
+                        json_string("impact load factor x reaction_stackup_n, the joint's largest "
+                                    "ideal reaction over a revolution at the stack-up lengths"));
+    json_object_set_new(out, "impact_load_factor", json_real(FB_IMPACT_LOAD_FACTOR));
     json_object_set_new(out, "h_omega_c_bound", json_real(FB_H_OMEGA_C_BOUND));
     return 0;
   }
@@ -141,11 +159,16 @@ static int contact_used(const fb_case *in, int json, json_t *out) {
     for (int m = 0; m < 2; m++) {
       if (!(c.clearance.mask & (1 << j))) continue;
       fb_report_print_contact_law(stdout, j, &laws[m][j], mapping);
-      printf("  %-17s %-12s effective mass %.4g .. %.4g kg over a revolution, expected force "
-             "%.6g N, omega_c %.4g rad/s\n",
+      printf("  %-17s %-12s effective mass %.4g .. %.4g kg over a revolution, expected impact "
+             "force %.6g N (%g x the ideal reaction %.6g N), omega_c %.4g rad/s\n",
              "", "", est[m][j].m_eff_min, est[m][j].m_eff_max, est[m][j].force_expected,
+             FB_IMPACT_LOAD_FACTOR, est[m][j].force_expected / FB_IMPACT_LOAD_FACTOR,
              est[m][j].omega_c);
     }
+  printf("expected impact force: %g x the joint's largest ideal reaction at the stack-up "
+         "lengths (a load applied suddenly peaks at twice its static value), at %.6g rpm; it "
+         "sets omega_c = sqrt(k_t / m_eff_min)\n",
+         FB_IMPACT_LOAD_FACTOR, c.crank_speed / FB_RAD_S_PER_RPM);
   printf("[solver] h_s = auto: h = %.4g s (h omega_c <= %g at the stiffest contact, omega_c = "
          "%.4g rad/s; at most one revolution / %g)%s\n",
          h, FB_H_OMEGA_C_BOUND, w, FB_H_AUTO_STEPS_PER_REV,
@@ -156,6 +179,7 @@ static int contact_used(const fb_case *in, int json, json_t *out) {
 int fb_cmd_penalty(int argc, char **argv) {
   static const struct option opts[] = {{"mode", required_argument, 0, 'm'},
                                        {"speeds-rpm", required_argument, 0, 's'},
+                                       {"table", no_argument, 0, 'T'},
                                        {"set", required_argument, 0, 'S'},
                                        {"json", no_argument, 0, 'j'},
                                        {"out", required_argument, 0, 'o'},
@@ -164,10 +188,9 @@ int fb_cmd_penalty(int argc, char **argv) {
   int mode_given = 0;
   fb_penalty_mode mode = FB_PENALTY_PHYSICAL;
   static double rpm[MAX_SPEEDS];
-  int n = 0, json = 0, nsets = 0, ch;
+  int n = 0, json = 0, nsets = 0, ch, speeds_given = 0;
   const char *out_dir = NULL;
   const char *sets[MAX_SETS];
-  parse_speeds("100:1500:100", rpm, &n);
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
     switch (ch) {
@@ -177,7 +200,15 @@ int fb_cmd_penalty(int argc, char **argv) {
         else return fb_cli_fail("penalty", 2, "--mode '%s': must be paper or physical", optarg);
         mode_given = 1;
         break;
+      case 'T':
       case 's':
+        if (speeds_given)
+          return fb_cli_fail("penalty", 2, "give the speeds once: --speeds-rpm or --table");
+        speeds_given = 1;
+        if (ch == 'T') {
+          parse_speeds(PAPER_SPEEDS_RPM, rpm, &n);
+          break;
+        }
         if (!parse_speeds(optarg, rpm, &n))
           return fb_cli_fail("penalty", 2,
                              "--speeds-rpm '%s': expected FROM:TO:STEP or a comma list of "
@@ -209,6 +240,11 @@ int fb_cmd_penalty(int argc, char **argv) {
    * stiffness has no estimate to show: physical) */
   if (!mode_given)
     mode = c.clearance.penalty == FB_PENALTY_SOURCE_PAPER ? FB_PENALTY_PAPER : FB_PENALTY_PHYSICAL;
+  /* one speed by default: the case's, the one its run and contact block use */
+  if (!speeds_given) {
+    rpm[0] = c.crank_speed / FB_RAD_S_PER_RPM;
+    n = 1;
+  }
 
   if (out_dir && fb_outdir_prepare(out_dir, &diag) != FB_OK)
     return fb_cli_fail("penalty", 1, "%s", diag.msg);
@@ -219,7 +255,8 @@ int fb_cmd_penalty(int argc, char **argv) {
   if (!json)
     printf("%s mode, case %s\n%8s  %-17s %12s %16s %14s %14s %12s\n"
            "%8s  %-17s %12s %16s %14s %14s %12s\n",
-           mode == FB_PENALTY_PAPER ? "paper" : "physical", c.name, "speed", "joint", "force",
+           mode == FB_PENALTY_PAPER ? "paper" : "physical", c.name, "speed", "joint",
+           mode == FB_PENALTY_PAPER ? "force F" : "reaction",
            "stiffness Kc", "penalty P", "penalty P", "approach", "rpm", "", "N", "N/m", "N mm^0.5",
            "N m^0.5", "um");
   for (int i = 0; i < n; i++) {
@@ -255,6 +292,16 @@ int fb_cmd_penalty(int argc, char **argv) {
       }
     }
   }
+  /* which force the table's is (the contact block's expected impact force is another) */
+  const char *force_is =
+      mode == FB_PENALTY_PAPER
+          ? "the paper's F = k max|alpha| over a revolution, nominal lengths (its Table I recipe, "
+            "docs/paper.md)"
+          : "the joint's largest ideal reaction over a revolution (inverse dynamics of the rigid "
+            "linkage, nominal lengths, gravity included)";
+  if (!json)
+    printf("%s: %s; Kc, P and the approach are taken at it\n",
+           mode == FB_PENALTY_PAPER ? "force F" : "reaction", force_is);
   if (out_dir) {
     const char *mname = mode == FB_PENALTY_PAPER ? "paper" : "physical";
     char path[4096];
@@ -287,6 +334,7 @@ int fb_cmd_penalty(int argc, char **argv) {
     json_object_set_new(o, "mode", json_string(mode == FB_PENALTY_PAPER ? "paper" : "physical"));
     json_object_set_new(o, "case", json_string(c.name));
     json_object_set_new(o, "penalty_units", json_string(unit));
+    json_object_set_new(o, "force_n_is", json_string(force_is));
     json_object_set_new(o, "rows", rows);
     if ((rc = contact_used(&c, 1, o)) != 0) {
       json_decref(o);

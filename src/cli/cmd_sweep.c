@@ -222,7 +222,8 @@ int fb_cmd_sweep(int argc, char **argv) {
   const char *study_path = argv[optind];
   static fb_study s;
   fb_diag d;
-  if (fb_study_load(&s, study_path, &d) != FB_OK) return fb_cli_fail("sweep", 2, "%s", d.msg);
+  if (fb_study_load_with_cases(&s, study_path, fb_cli_cases_dir(), &d) != FB_OK)
+    return fb_cli_fail("sweep", 2, "%s", d.msg);
   char dir[4096];
   if (out) snprintf(dir, sizeof dir, "%s", out);
   else snprintf(dir, sizeof dir, "results/studies/%s", s.name);
@@ -493,7 +494,8 @@ int fb_cmd_merge(int argc, char **argv) {
   static fb_study st;
   json_t *study_prov = NULL;
   if (study_path) {
-    if (fb_study_load(&st, study_path, &d) != FB_OK) return fb_cli_fail("merge", 2, "--study: %s", d.msg);
+    if (fb_study_load_with_cases(&st, study_path, fb_cli_cases_dir(), &d) != FB_OK)
+      return fb_cli_fail("merge", 2, "--study: %s", d.msg);
     study_prov = fb_study_provenance(&st);
     json_object_set_new(study_prov, "fourbar_version", json_string(FB_VERSION));
   }

@@ -4,9 +4,11 @@
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "casefile.h"
 #include "cli.h"
+#include "suggest.h"
 
 #ifndef FB_VERSION
 #define FB_VERSION "unknown"
@@ -64,6 +66,14 @@ static int stdout_written(const char *cmd, int rc) {
 }
 
 int main(int argc, char **argv) {
+  /* whole lines: with standard output and error on one file or pipe (2>&1),
+   * standard output goes out a line at a time, so a message on standard
+   * error (unbuffered) never lands inside one of its lines; the buffer holds
+   * the longest line we print. Elsewhere the usual full buffering. */
+  static char out_buf[1 << 16];
+  struct stat so, se;
+  if (fstat(1, &so) == 0 && fstat(2, &se) == 0 && so.st_dev == se.st_dev && so.st_ino == se.st_ino)
+    setvbuf(stdout, out_buf, _IOLBF, sizeof out_buf);
   const char *cmd = argc > 1 ? argv[1] : "";
   char name[64];
   snprintf(name, sizeof name, "%s", cmd);
@@ -106,6 +116,15 @@ static int dispatch(int argc, char **argv) {
   if (strcmp(cmd, "contact-params") == 0) return fb_cmd_contact_params(argc - 1, argv + 1);
   if (strcmp(cmd, "bench") == 0) return fb_cmd_bench(argc - 1, argv + 1);
   if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
-  fprintf(stderr, "fourbar: unknown command '%s'\n\n%s", cmd, main_help);
+  /* a misspelt command: the nearest by edit distance, then the list */
+  static const char *const commands[] = {"run", "kinematics", "stackup", "fit", "tolerance",
+                                         "penalty", "impact", "check", "sweep", "merge",
+                                         "mapping", "contact-params", "bench", "keys", "version", "help"};
+  const char *near = fb_suggest(cmd, commands, (int)(sizeof commands / sizeof commands[0]));
+  if (near)
+    fprintf(stderr, "fourbar: unknown command '%s'; did you mean 'fourbar %s'?\n\n%s", cmd, near,
+            main_help);
+  else
+    fprintf(stderr, "fourbar: unknown command '%s'\n\n%s", cmd, main_help);
   return 2;
 }

@@ -29,7 +29,42 @@ typedef struct {
   fb_status st;
   fb_diag *diag;
   int current_axis; /* index of the [axis.*] section being read, -1 for none */
+  const char *cases_dir; /* the shipped cases, for [study] case (NULL: none) */
 } parse_ctx;
+
+static int regular_file(const char *path) {
+  struct stat sb;
+  return stat(path, &sb) == 0 && S_ISREG(sb.st_mode);
+}
+
+/* [study] case = value into s->case_path: an absolute path as is; a relative
+ * one from the study file's folder, else (as fourbar run finds a name) the
+ * shipped case <cases_dir>/value or value.ini; neither: an error saying
+ * where it looked */
+static fb_status resolve_case(parse_ctx *c, const char *value, const char *where) {
+  fb_study *s = c->s;
+  const char *slash = strrchr(s->path, '/');
+  if (value[0] == '/' || !slash)
+    snprintf(s->case_path, sizeof s->case_path, "%s", value);
+  else
+    snprintf(s->case_path, sizeof s->case_path, "%.*s/%s", (int)(slash - s->path), s->path, value);
+  if (value[0] == '/' || regular_file(s->case_path) || !c->cases_dir) return FB_OK;
+  const size_t n = strlen(value);
+  const int has_ini = n > 4 && strcmp(value + n - 4, ".ini") == 0;
+  char shipped[sizeof s->case_path];
+  snprintf(shipped, sizeof shipped, "%s/%s%s", c->cases_dir, value, has_ini ? "" : ".ini");
+  if (regular_file(shipped)) {
+    snprintf(s->case_path, sizeof s->case_path, "%s", shipped);
+    return FB_OK;
+  }
+  struct stat sb;
+  if (stat(s->case_path, &sb) == 0) return FB_OK; /* there but not a file: the load says so */
+  return fb_diag_set(c->diag, FB_ERR_IO,
+                     "%s: [study] case = %s: cannot open case file: a relative path is read from "
+                     "the study file's folder (%s), then as the name of a shipped case (%s), and "
+                     "neither exists (fourbar --version names the shipped cases' folder)",
+                     where, value, s->case_path, shipped);
+}
 
 static char *trim(char *p) {
   while (*p == ' ' || *p == '\t') p++;
@@ -100,11 +135,7 @@ static int handler(void *user, const char *section, const char *key, const char 
                             "'.' (it names the output folder)", where, value, FB_NAME_SIZE - 1);
       snprintf(s->name, sizeof s->name, "%s", value);
     } else if (strcmp(key, "case") == 0) {
-      const char *slash = strrchr(s->path, '/');
-      if (value[0] == '/' || !slash)
-        snprintf(s->case_path, sizeof s->case_path, "%s", value);
-      else
-        snprintf(s->case_path, sizeof s->case_path, "%.*s/%s", (int)(slash - s->path), s->path, value);
+      c->st = resolve_case(c, value, where);
     } else if (strcmp(key, "set") == 0) {
       if (!add_items(value, ";", s->sets[0], sizeof s->sets[0], &s->nsets, FB_STUDY_MAX_SETS))
         c->st = fb_diag_set(c->diag, FB_ERR_PARSE, "%s: [study] set: more than %d overrides", where,
@@ -239,6 +270,11 @@ static fb_status point_overrides(const fb_study *s, size_t i, char sets[][256], 
 }
 
 fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
+  return fb_study_load_with_cases(s, path, NULL, diag);
+}
+
+fb_status fb_study_load_with_cases(fb_study *s, const char *path, const char *cases_dir,
+                                   fb_diag *diag) {
   memset(s, 0, sizeof *s);
   snprintf(s->path, sizeof s->path, "%s", path);
   int not_regular;
@@ -256,6 +292,7 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag) {
   c.st = FB_OK;
   c.diag = diag;
   c.current_axis = -1;
+  c.cases_dir = cases_dir;
   int rc = ini_parse_stream(fb_ini_lines_read, &c.lines, handler, &c);
   fclose(f);
   if (c.st != FB_OK) return c.st;

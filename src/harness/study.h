@@ -9,7 +9,8 @@
  * study run any way gives byte-identical rows.
  *
  * Study file (INI):
- *   [study] name, case (relative to the study file), set (fixed overrides
+ *   [study] name, case (relative to the study file, else a shipped case
+ *           name: fb_study_load_with_cases), set (fixed overrides
  *           separated by ';'), metrics (comma list; a trailing * matches a
  *           prefix; default all), plot (up to 8 metric names to draw in
  *           study.svg; default the first four), heatmap (yes: a heat map over
@@ -59,6 +60,14 @@ typedef struct fb_study_s {
  * with the first and last value of every axis.
  * Errors: FB_ERR_IO, FB_ERR_PARSE, FB_ERR_RANGE naming file:line and key. */
 fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag);
+
+/* fb_study_load with the shipped cases' folder (NULL: none): a [study] case
+ * not found from the study file's folder is then the shipped case of that
+ * name (<cases_dir>/<case> or <case>.ini), as `fourbar run NAME` finds it.
+ * Errors as fb_study_load; a case found in neither place: FB_ERR_IO naming
+ * both paths it tried. */
+fb_status fb_study_load_with_cases(fb_study *s, const char *path, const char *cases_dir,
+                                   fb_diag *diag);
 
 #include <jansson.h>
 

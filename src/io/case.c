@@ -98,6 +98,16 @@ static fb_status check_drivable(const fb_linkage *lk, const char *which, fb_diag
   fb_status st = fb_linkage_crank_range(lk, &lo, &hi, &full, &inner);
   if (st != FB_OK)
     return fb_diag_set(diag, st, "%s linkage cannot be assembled: %s", which, inner.msg);
+  /* (by the class's tolerance: the strict test alone can pass on roundoff) */
+  if (fb_linkage_grashof(lk) == FB_GRASHOF_CHANGE_POINT) {
+    char g[512];
+    fb_linkage_grashof_text(g, sizeof g, lk);
+    return fb_diag_set(diag, FB_ERR_ASSEMBLY,
+                       "%s linkage: %s; a crank driven at constant speed cannot pass a fold: "
+                       "make s + l differ from p + q (s + l < p + q for a crank-rocker) with "
+                       "[linkage] crank_mm, coupler_mm, follower_mm, ground_mm",
+                       which, g);
+  }
   if (!full)
     return fb_diag_set(diag, FB_ERR_ASSEMBLY,
                        "%s linkage (%s): the crank cannot turn fully, but it is driven "
@@ -108,6 +118,22 @@ static fb_status check_drivable(const fb_linkage *lk, const char *which, fb_diag
                        which, fb_grashof_name(fb_linkage_grashof(lk)), lo * 180.0 / M_PI,
                        hi * 180.0 / M_PI);
   return FB_OK;
+}
+
+void fb_case_grashof_text(const fb_case *c, char *out, size_t size) {
+  fb_linkage_grashof_text(out, size, &c->nominal);
+  size_t n = strlen(out);
+  fb_linkage su;
+  fb_case_stackup_lengths(c, &su);
+  const fb_grashof gn = fb_linkage_grashof(&c->nominal), gs = fb_linkage_grashof(&su);
+  if (gs != gn && n < size)
+    n += (size_t)snprintf(out + n, size - n, "; at the stack-up corner: %s", fb_grashof_name(gs));
+  double sl, pq, tol = 0.0;
+  fb_linkage_grashof_sums(&c->nominal, &sl, &pq, NULL, NULL);
+  for (int i = 0; i < FB_LINK_COUNT; i++) tol += c->plus_minus[i];
+  if (gn != FB_GRASHOF_CHANGE_POINT && tol > 0.0 && fabs(pq - sl) <= tol && n < size)
+    snprintf(out + n, size - n, "; within the length tolerances (+- %.4g mm summed) the linkage "
+             "can reach the change point, %.4g mm away", tol * 1e3, fabs(pq - sl) * 1e3);
 }
 
 fb_status fb_case_check(const fb_case *c, fb_diag *diag) {

@@ -388,6 +388,13 @@ double fb_case_omega2(const fb_case *c);
 /* Link lengths at the case's stack-up corner [m]. */
 void fb_case_stackup_lengths(const fb_case *c, fb_linkage *out);
 
+/* The linkage's Grashof class for a run's header, one sentence into out
+ * (size bytes): fb_linkage_grashof_text of the nominal lengths, then the
+ * stack-up corner's class when it differs, and a note when the length
+ * tolerances can reach the change point (|p + q - (s + l)| at most the sum
+ * of the four tolerances, each of which moves the margin by its own size). */
+void fb_case_grashof_text(const fb_case *c, char *out, size_t size);
+
 /* Simulated duration [s]: revolutions * 2 pi / crank speed. */
 double fb_case_duration(const fb_case *c);
 

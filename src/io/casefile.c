@@ -17,6 +17,7 @@
 #include "iso2768.h"
 #include "iso286.h"
 #include "model_table.h"
+#include "suggest.h"
 #include "tolerance.h"
 #include "units.h"
 #include "fb_config.h"
@@ -516,19 +517,28 @@ static int on_ini_entry(void *user, const char *section, const char *name, const
 
 /* ---- interpretation --------------------------------------------------------- */
 
-static int levenshtein(const char *a, const char *b) {
-  size_t la = strlen(a), lb = strlen(b);
-  if (la > 63 || lb > 63) return 99;
-  int d[64][64];
-  for (size_t i = 0; i <= la; i++) d[i][0] = (int)i;
-  for (size_t j = 0; j <= lb; j++) d[0][j] = (int)j;
-  for (size_t i = 1; i <= la; i++)
-    for (size_t j = 1; j <= lb; j++) {
-      int sub = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
-      int del = d[i - 1][j] + 1, ins = d[i][j - 1] + 1;
-      d[i][j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
-    }
-  return d[la][lb];
+/* 1 when every '_'-separated word of key appears in typed, in order (a word
+ * of 4 or more letters also with one typo), with at most two words of typed
+ * besides: "crank_lenght_mm" holds crank_mm's words */
+static int words_within(const char *typed, const char *key) {
+  char t[128], k[128];
+  snprintf(t, sizeof t, "%s", typed);
+  snprintf(k, sizeof k, "%s", key);
+  char *tw[16], *kw[16], *save = NULL;
+  int nt = 0, nk = 0;
+  for (char *w = strtok_r(t, "_", &save); w && nt < 16; w = strtok_r(NULL, "_", &save)) tw[nt++] = w;
+  save = NULL;
+  for (char *w = strtok_r(k, "_", &save); w && nk < 16; w = strtok_r(NULL, "_", &save)) kw[nk++] = w;
+  if (nk == 0 || nk >= nt || nt - nk > 2) return 0;
+  int at = 0;
+  for (int i = 0; i < nk; i++) {
+    while (at < nt && strcmp(tw[at], kw[i]) != 0 &&
+           !(strlen(kw[i]) >= 4 && fb_edit_distance(tw[at], kw[i]) <= 1))
+      at++;
+    if (at == nt) return 0;
+    at++;
+  }
+  return 1;
 }
 
 static const key_spec *find_spec(const char *section, const char *key) {
@@ -546,14 +556,19 @@ static int section_known(const char *section) {
 static fb_status unknown_key(const entry *e, fb_diag *diag) {
   const key_spec *best = NULL;
   int bd = 1 << 30;
+  const key_spec *words = NULL; /* a key whose words the typed one holds */
+  int wd = 1 << 30;
   for (int i = 0; i < NKEYS; i++) {
     /* a key missing its unit suffix ("speed" for "speed_rpm") is a prefix */
     size_t n = strlen(e->key);
     int prefix = n >= 3 && strncmp(keys[i].key, e->key, n) == 0;
-    int d = (prefix ? 1 : levenshtein(e->key, keys[i].key)) +
-            (strcmp(keys[i].section, e->section) ? 3 : 0);
+    const int other = strcmp(keys[i].section, e->section) ? 3 : 0;
+    int d = (prefix ? 1 : fb_edit_distance(e->key, keys[i].key)) + other;
     if (d < bd) bd = d, best = &keys[i];
+    /* one with a word too many ("crank_length_mm"): the key's words, in order */
+    if (other < wd && words_within(e->key, keys[i].key)) wd = other, words = &keys[i];
   }
+  if (!(best && (bd <= 4 || bd <= fb_suggest_bound(e->key))) && words) best = words, bd = 0;
   if (!e->section[0]) {
     /* a key above the first [section] header */
     const key_spec *k = NULL;
@@ -567,7 +582,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     int sd = 1 << 30;
     const char *bs = NULL;
     for (int i = 0; i < NKEYS; i++) {
-      int d = levenshtein(e->section, keys[i].section);
+      int d = fb_edit_distance(e->section, keys[i].section);
       if (d < sd) sd = d, bs = keys[i].section;
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
@@ -578,7 +593,7 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }
-  if (best && bd <= 4)
+  if (best && (bd <= 4 || bd <= fb_suggest_bound(e->key)))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s]; did you mean [%s] %s?",
                        e->origin, e->key, e->section, best->section, best->key);
   return fb_diag_set(diag, FB_ERR_PARSE,
@@ -1133,10 +1148,13 @@ static fb_status resolve_standards(fb_case *out, const load_ctx *c, fb_diag *dia
         char lkey[64];
         snprintf(lkey, sizeof lkey, "%s_mm", fb_link_name(k));
         const char *len_at = entry_origin(c, "linkage", lkey);
-        return fb_diag_set(diag, st, "%s: [tolerance] class = %c for [linkage] %s = %g (%s%s): %s",
+        /* a length in the wrong unit shows here first: say so */
+        const char *why = fb_casefile_length_implausible(out->nominal.length[k]);
+        return fb_diag_set(diag, st, "%s: [tolerance] class = %c for [linkage] %s = %g (%s%s): %s%s%s%s",
                            entry_origin(c, "tolerance", "class"), out->tolerance_class, lkey,
                            out->nominal.length[k] * 1e3, len_at ? "given at " : "the default",
-                           len_at ? len_at : "", inner.msg);
+                           len_at ? len_at : "", inner.msg, why ? "; a link length " : "",
+                           why ? why : "", why ? " (the key is in millimetres)" : "");
       }
     } else {
       snprintf(out->tolerance_source[k], sizeof out->tolerance_source[k], "none (0)");
@@ -1526,4 +1544,56 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
 done:
   free(c);
   return st;
+}
+
+/* ---- plausibility ----------------------------------------------------------- */
+
+const char *fb_casefile_length_implausible(double length_m) {
+  if (length_m < FB_PLAUSIBLE_LENGTH_MIN_M) return "below 1 mm";
+  if (length_m > FB_PLAUSIBLE_LENGTH_MAX_M) return "above 10 m";
+  return NULL;
+}
+
+int fb_casefile_plausibility(const fb_case *c, char notes[][FB_DIAG_SIZE], int max) {
+  int n = 0;
+  /* every length key the case gives, in millimetres */
+  for (int i = 0; i < NKEYS && n < max; i++) {
+    const key_spec *k = &keys[i];
+    if (k->kind != K_DOUBLE || strcmp(k->unit, "mm") != 0 || !c->given[i]) continue;
+    if (strcmp(k->section, "tolerance") == 0) continue; /* a tolerance is small by nature */
+    double v;
+    memcpy(&v, (const char *)c + k->offset, sizeof v);
+    const char *why = fb_casefile_length_implausible(v);
+    const double mm = v / FB_M_PER_MM;
+    if (why)
+      snprintf(notes[n++], FB_DIAG_SIZE,
+               "[%s] %s = %g: a length %s; the key is in millimetres (if %g is in %s, write "
+               "%s = %g)", k->section, k->key, mm, why, mm,
+               v < FB_PLAUSIBLE_LENGTH_MIN_M ? "metres" : "micrometres", k->key,
+               v < FB_PLAUSIBLE_LENGTH_MIN_M ? mm * 1e3 : mm * 1e-3);
+  }
+  /* the pin against the bars it passes through: links at a clearance joint */
+  static const int link_at[4][2] = {{-1, FB_CRANK}, {FB_CRANK, FB_COUPLER},
+                                    {FB_COUPLER, FB_FOLLOWER}, {FB_FOLLOWER, -1}};
+  int warned[3] = {0, 0, 0};
+  for (int j = 0; j < 4 && n < max; j++) {
+    if (!(c->clearance.mask & (1 << j))) continue;
+    for (int s = 0; s < 2 && n < max; s++) {
+      const int l = link_at[j][s];
+      if (l < 0 || warned[l]) continue;
+      char wkey[64];
+      snprintf(wkey, sizeof wkey, "%s_width_mm", fb_link_name(l));
+      const int width_counts = fb_casefile_given(c, "mass", wkey) ||
+                               c->link_source[l].mass == FB_SOURCE_DERIVED;
+      if (!width_counts || c->pin_diameter < c->link_width[l]) continue;
+      warned[l] = 1;
+      snprintf(notes[n++], FB_DIAG_SIZE,
+               "[pin] diameter_mm = %g is not smaller than [mass] %s = %g: the pin of the %s "
+               "joint is as wide as the %s's bar it passes through, or wider",
+               c->pin_diameter / FB_M_PER_MM, wkey, c->link_width[l] / FB_M_PER_MM,
+               fb_joint_name(j), fb_link_name(l));
+    }
+  }
+  /* (a radial clearance as large as the pin's radius is an error: fb_case_check) */
+  return n;
 }

@@ -74,4 +74,27 @@ const char *fb_casefile_key_name(int i, char *buf, size_t size);
  * parser (fb_case_default relies on it). Errors: FB_ERR_PARSE naming the key. */
 int fb_casefile_defaults_check(fb_diag *diag);
 
+/* Lengths a case may give but hardly means: below FB_PLAUSIBLE_LENGTH_MIN_M
+ * a link, pin or bar dimension is a watch part, above
+ * FB_PLAUSIBLE_LENGTH_MAX_M a crane; either is most often a length typed in
+ * the wrong unit (crank_mm = 0.045: metres in a millimetre key). */
+#define FB_PLAUSIBLE_LENGTH_MIN_M 1e-3
+#define FB_PLAUSIBLE_LENGTH_MAX_M 10.0
+
+/* NULL when length_m [m] lies within [FB_PLAUSIBLE_LENGTH_MIN_M,
+ * FB_PLAUSIBLE_LENGTH_MAX_M], else the reason ("below 1 mm" or "above 10 m"). */
+const char *fb_casefile_length_implausible(double length_m);
+
+/* Plausibility of a loaded case: what passes every rule of the key table
+ * yet is unlikely to be meant, one sentence each naming the key and its
+ * value into notes[0 .. max-1] (FB_DIAG_SIZE each); returns how many (at
+ * most max). Checked: every length the case gives ([linkage] <link>_mm,
+ * [pin] diameter_mm and length_mm, [mass] <link>_width_mm and
+ * _thickness_mm) against fb_casefile_length_implausible; a pin not narrower
+ * than the bar of a link at one of the clearance joints (when that bar's
+ * width is given or its masses come from it). These are warnings, not
+ * errors: the case runs as given. (A radial clearance as large as the pin's
+ * radius is an error: fb_case_check.) */
+int fb_casefile_plausibility(const fb_case *c, char notes[][FB_DIAG_SIZE], int max);
+
 #endif

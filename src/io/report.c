@@ -993,6 +993,9 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
       c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep", r->t_window,
       c->peaks == FB_PEAKS_ALL ? "the whole run" : "after the first revolution",
       fb_start_name(c->start), fb_pin_start_name(c->pin_start));
+  char grashof[1024];
+  fb_case_grashof_text(c, grashof, sizeof grashof);
+  say(f, "linkage: %s", grashof);
   fputc('\n', f);
   /* one screen first: the verdict per model */
   print_verdict(f, r, W);

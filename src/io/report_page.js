@@ -139,6 +139,25 @@
         for (var d = 1000; d <= Math.max(-lo, hi); d *= 10) { if (d <= hi) v.push(d); if (-d >= lo) v.unshift(-d); }
         return v;
       };
+      /* which decades get a label: 0, then outwards on each side every decade
+       * at least FB_TICK_GAP_PX from the last labelled one (uPlot's own filter
+       * is a log axis's, which on an asinh scale keeps one side only) */
+      var FB_TICK_GAP_PX = 16;
+      var decadeLabels = function (u, splits) {
+        var gap = FB_TICK_GAP_PX * (window.devicePixelRatio || 1), keep = splits.map(function () { return null; });
+        var z = splits.indexOf(0);
+        if (z < 0) return splits;
+        keep[z] = 0;
+        [-1, 1].forEach(function (dir) {
+          var last = u.valToPos(0, 'y', true);
+          for (var i = z + dir; i >= 0 && i < splits.length; i += dir) {
+            var at = u.valToPos(splits[i], 'y', true);
+            if (Math.abs(at - last) >= gap) { keep[i] = splits[i]; last = at; }
+          }
+        });
+        p.yLabels = keep.filter(function (v) { return v !== null; });
+        return keep;
+      };
       var opts = {
         width: width, height: def.alpha ? 260 : 200,
         cursor: { sync: { key: 'fourbar', setSeries: false }, drag: { x: true, y: false }, bind: { dblclick: function () { return null; } } },
@@ -146,12 +165,27 @@
         axes: [
           { label: state.xmode === 'time' ? 'time [ms]' : 'crank angle [deg] (labels: the drive\'s angle, mod 360)',
             values: state.xmode === 'crank' ? function (u, vals) { return vals.map(crankLabel); } : undefined },
-          symlog ? { label: def.unit, size: 70, splits: decades, values: function (u, vals) {
+          symlog ? { label: def.unit, size: 70, splits: decades, filter: decadeLabels, values: function (u, vals) {
             return vals.map(function (v) { return v === null || v === undefined ? '' : v === 0 ? '0' : (v < 0 ? '-' : '') + '1e' + Math.round(Math.log10(Math.abs(v))); }); } }
             : { label: def.unit, size: 70 }
         ],
         series: series,
         hooks: {
+          /* the start-up (before the peaks' window) shaded, labelled once */
+          drawClear: [function (u) {
+            if (!(D.t_window_s > t0)) return;
+            var x0 = u.valToPos(xOf(t0), 'x', true), x1 = u.valToPos(xOf(D.t_window_s), 'x', true);
+            var l = Math.max(x0, u.bbox.left), r = Math.min(x1, u.bbox.left + u.bbox.width);
+            if (!(r > l)) return;
+            var g = u.ctx;
+            g.save();
+            g.fillStyle = 'rgba(120, 120, 120, 0.08)';
+            g.fillRect(l, u.bbox.top, r - l, u.bbox.height);
+            g.fillStyle = '#777';
+            g.font = Math.round(11 * (window.devicePixelRatio || 1)) + 'px sans-serif';
+            if (r - l > 60) g.fillText('start-up', l + 4, u.bbox.top + 12 * (window.devicePixelRatio || 1));
+            g.restore();
+          }],
           setScale: [function (u, key) {
             if (key !== 'x' || syncing) return;
             var lo = tOf(u.scales.x.min), hi = tOf(u.scales.x.max);
@@ -193,22 +227,45 @@
   imodel.options[0].value = '';
   D.models.forEach(function (m) { if (m.impacts.length) { var o = el('option', m.name); o.value = m.name; imodel.appendChild(o); } });
   function fmt(v, d) { return v === null || v === undefined ? '-' : Number(v).toFixed(d); }
+  /* the steady state (the window the run's peaks are taken over) first, the
+   * start-up's impacts after it: each group in the order asked for */
+  var tw = D.t_window_s || 0;
   function showImpacts() {
     var tb = $('impacts').tBodies[0];
     tb.textContent = '';
     var list = impacts.filter(function (im) { return !imodel.value || im.model === imodel.value; });
     if ($('iorder').value === 'force') list.sort(function (a, b) { return b.force_n - a.force_n; });
-    list.forEach(function (im) {
-      var tr = document.createElement('tr');
-      tr.dataset.index = String(im.index);
-      if (im.index === state.sel) tr.className = 'sel';
-      [[im.model, 'name'], [im.joint, 'name'], [fmt(1e3 * im.t_s, 4)], [fmt(im.crank_angle_deg, 2)], [fmt(im.force_n, 1)],
-        [fmt(1e6 * im.penetration_m, 4)], [fmt(im.coupler_alpha_rad_s2, 0)], [fmt(im.follower_alpha_rad_s2, 0)]].forEach(function (c) {
-        tr.appendChild(el('td', c[0], c[1]));
+    var groups = tw > 0 ? [
+      { name: 'steady', title: 'steady state: t >= ' + (1e3 * tw).toPrecision(5) + ' ms, the window the run\'s peaks are taken over',
+        rows: list.filter(function (im) { return im.t_s >= tw; }) },
+      { name: 'startup', title: 'start-up: t < ' + (1e3 * tw).toPrecision(5) + ' ms, the first revolution (not in the peaks)',
+        rows: list.filter(function (im) { return im.t_s < tw; }) }]
+      : [{ name: 'steady', title: 'the whole run (peaks over the whole run)', rows: list }];
+    groups.forEach(function (g) {
+      var hr = document.createElement('tr');
+      hr.className = 'group';
+      hr.dataset.group = g.name;
+      var th = el('th');
+      th.colSpan = 8;
+      th.appendChild(el('span', g.title + ': ' + g.rows.length + ' impact' + (g.rows.length === 1 ? '' : 's')));
+      hr.appendChild(th);
+      tb.appendChild(hr);
+      g.rows.forEach(function (im) {
+        var tr = document.createElement('tr');
+        tr.dataset.index = String(im.index);
+        tr.dataset.group = g.name;
+        if (im.index === state.sel) tr.className = 'sel';
+        [[im.model, 'name pin1'], [fmt(1e3 * im.t_s, 4), 'pin2'], [im.joint, 'name'], [fmt(im.crank_angle_deg, 2)], [fmt(im.force_n, 1)],
+          [fmt(1e6 * im.penetration_m, 4)], [fmt(im.coupler_alpha_rad_s2, 0)], [fmt(im.follower_alpha_rad_s2, 0)]].forEach(function (c) {
+          tr.appendChild(el('td', c[0], c[1]));
+        });
+        tr.addEventListener('click', function () { zoomImpact(im.index); });
+        tb.appendChild(tr);
       });
-      tr.addEventListener('click', function () { zoomImpact(im.index); });
-      tb.appendChild(tr);
     });
+    /* the time column pinned right of the model column, whatever its width */
+    var first = $('impacts').querySelector('th.pin1');
+    if (first) $('impacts').style.setProperty('--pin1w', first.getBoundingClientRect().width + 'px');
     var notes = [];
     D.models.forEach(function (m) { m.joints.forEach(function (j) { if (j.impacts > j.listed) notes.push(m.name + ' ' + j.joint + ': ' + j.listed + ' of ' + j.impacts + ' impacts listed'); }); });
     $('impactnote').textContent = impacts.length ? notes.join('; ') : 'No impact in this run (no clearance model, or the pin never struck the wall).';
@@ -250,7 +307,7 @@
     g.clearRect(0, 0, cv.width, cv.height);
     var c = orbitChoices[Number(omodel.value || 0)];
     cv.dataset.points = '0';
-    if (!c) { g.fillText('no clearance joint in this run', 20, 20); return; }
+    if (!c) { $('orbittitle').textContent = 'no clearance joint in this run'; return; }
     var m = c.m, j = c.j, cl = D.radial_clearance_um;
     var i0 = Math.max(0, lowerBound(m.t, state.lo) - 1), i1 = Math.min(m.t.length, lowerBound(m.t, state.hi) + 1);
     var span = 1.35 * cl;
@@ -258,7 +315,7 @@
     var cx = cv.width / 2, cy = cv.height / 2, s = (cv.width / 2 - 10) / span;
     g.strokeStyle = '#888'; g.lineWidth = 1.5; g.beginPath(); g.arc(cx, cy, cl * s, 0, 2 * Math.PI); g.stroke();
     g.fillStyle = '#555'; g.font = '11px sans-serif';
-    g.fillText('clearance circle ' + cl.toPrecision(3) + ' um; ' + m.name + ', ' + j.joint, 6, 14);
+    $('orbittitle').textContent = 'clearance circle ' + cl.toPrecision(3) + ' um (radial); ' + m.name + ', ' + j.joint;
     var drawn = 0;
     g.lineWidth = 1.3;
     for (var k = Math.max(i0 + 1, 1); k < i1; k++) {
@@ -274,7 +331,9 @@
       var q = Math.min(m.t.length - 1, lowerBound(m.t, state.cursorT));
       g.strokeStyle = '#000'; g.lineWidth = 2; g.beginPath();
       g.arc(cx + s * j.ecc_x_um[q], cy - s * j.ecc_y_um[q], 5, 0, 2 * Math.PI); g.stroke();
-      g.fillText('t = ' + (1e3 * m.t[q]).toFixed(5) + ' ms: ' + stateName[j.state[q] | 0], 6, cv.height - 8);
+      var label = 't = ' + (1e3 * m.t[q]).toFixed(5) + ' ms: ' + stateName[j.state[q] | 0];
+      g.fillText(label, 6, cv.height - 8);
+      cv.dataset.textWidth = String(6 + g.measureText(label).width);
     }
   }
 
@@ -368,6 +427,10 @@
       return panels.map(function (p) {
         return { id: p.def.id, models: p.models.map(function (m) { return m.name; }), points: p.points,
           shown: p.u.series.slice(1).map(function (s) { return s.show; }),
+          symlog: !!(p.def.alpha && state.ymode === 'symlog'), y_labels: p.yLabels || null,
+          /* the y tick labels uPlot drew (its axis state: the filtered values' text) */
+          y_tick_text: (p.u.axes[1]._values || []).filter(function (v) { return v !== null && v !== ''; }),
+          y_min: p.u.scales.y.min, y_max: p.u.scales.y.max,
           x_min_s: tOf(p.u.scales.x.min), x_max_s: tOf(p.u.scales.x.max) };
       });
     },

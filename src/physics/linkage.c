@@ -1,6 +1,7 @@
 #include "linkage.h"
 
 #include <math.h>
+#include <stdio.h>
 
 static const char *const link_names[FB_LINK_COUNT] = {"crank", "coupler",
                                                       "follower", "ground"};
@@ -32,7 +33,8 @@ fb_status fb_linkage_check(const fb_linkage *lk, fb_diag *diag) {
   return FB_OK;
 }
 
-fb_grashof fb_linkage_grashof(const fb_linkage *lk) {
+void fb_linkage_grashof_sums(const fb_linkage *lk, double *sl, double *pq, int *shortest,
+                             int *longest) {
   int s = 0, l = 0;
   double sum = 0.0;
   for (int i = 0; i < FB_LINK_COUNT; i++) {
@@ -40,8 +42,60 @@ fb_grashof fb_linkage_grashof(const fb_linkage *lk) {
     if (lk->length[i] > lk->length[l]) l = i;
     sum += lk->length[i];
   }
-  double sl = lk->length[s] + lk->length[l];
-  double pq = sum - sl;
+  *sl = lk->length[s] + lk->length[l];
+  *pq = sum - *sl;
+  if (shortest) *shortest = s;
+  if (longest) *longest = l;
+}
+
+int fb_linkage_fold_angles(const fb_linkage *lk, double out[2]) {
+  const double a = lk->length[FB_CRANK], b = lk->length[FB_COUPLER];
+  const double c = lk->length[FB_FOLLOWER], g = lk->length[FB_GROUND];
+  const double tol = FB_GRASHOF_REL_TOL * (a + b + c + g);
+  /* B on the ground line: |BD| = |g - a| at theta2 = 0, g + a at pi */
+  const double bd[2] = {fabs(g - a), g + a}, th[2] = {0.0, M_PI};
+  int n = 0;
+  for (int k = 0; k < 2; k++)
+    if (fabs(bd[k] - fabs(b - c)) <= tol || fabs(bd[k] - (b + c)) <= tol) out[n++] = th[k];
+  return n;
+}
+
+void fb_linkage_grashof_text(char *out, size_t size, const fb_linkage *lk) {
+  double sl, pq;
+  int s, l;
+  fb_linkage_grashof_sums(lk, &sl, &pq, &s, &l);
+  const fb_grashof g = fb_linkage_grashof(lk);
+  const double mm = 1e3;
+  if (g == FB_GRASHOF_CHANGE_POINT) {
+    double th[2];
+    const int n = fb_linkage_fold_angles(lk, th);
+    snprintf(out, size,
+             "Grashof change-point: s + l = %.6g + %.6g = %.6g mm equals p + q: the links fold flat "
+             "(all four pivots on one line) at crank angle %s%s, where it can switch between "
+             "its open and crossed assemblies and the velocities are undefined",
+             lk->length[s] * mm, lk->length[l] * mm, sl * mm,
+             n == 0 ? "?" : th[0] == 0.0 ? "0 deg" : "180 deg", n == 2 ? " and 180 deg" : "");
+    return;
+  }
+  static const char *const turns[] = {
+      [FB_GRASHOF_CRANK_ROCKER] = "the crank, the shortest link, turns fully; the follower rocks",
+      [FB_GRASHOF_DOUBLE_CRANK] = "the ground is the shortest link: crank and follower both turn "
+                                  "fully",
+      [FB_GRASHOF_DOUBLE_ROCKER] = "the coupler is the shortest link and turns fully; crank and "
+                                   "follower rock",
+      [FB_GRASHOF_ROCKER_CRANK] = "the follower is the shortest link and turns fully; the crank "
+                                  "rocks",
+      [FB_GRASHOF_NON_GRASHOF] = "no link turns fully (a triple rocker)"};
+  snprintf(out, size, "%s%s: s + l = %.6g + %.6g = %.6g mm %s p + q = %.6g mm (margin %.4g mm): %s",
+           g == FB_GRASHOF_NON_GRASHOF ? "" : "Grashof ", fb_grashof_name(g), lk->length[s] * mm,
+           lk->length[l] * mm, sl * mm, sl < pq ? "<" : ">", pq * mm, (pq - sl) * mm, turns[g]);
+}
+
+fb_grashof fb_linkage_grashof(const fb_linkage *lk) {
+  int s;
+  double sl, pq, sum = 0.0;
+  for (int i = 0; i < FB_LINK_COUNT; i++) sum += lk->length[i];
+  fb_linkage_grashof_sums(lk, &sl, &pq, &s, NULL);
   if (fabs(sl - pq) <= FB_GRASHOF_REL_TOL * sum) return FB_GRASHOF_CHANGE_POINT;
   if (sl > pq) return FB_GRASHOF_NON_GRASHOF;
   switch ((fb_link)s) {

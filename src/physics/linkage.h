@@ -23,6 +23,8 @@
 #ifndef FB_LINKAGE_H
 #define FB_LINKAGE_H
 
+#include <stddef.h>
+
 #include "status.h"
 
 /* Index of each link in length arrays. */
@@ -89,6 +91,31 @@ fb_status fb_linkage_check(const fb_linkage *lk, fb_diag *diag);
 
 /* Grashof class of a linkage with valid lengths. */
 fb_grashof fb_linkage_grashof(const fb_linkage *lk);
+
+/* The sums the Grashof class compares, for a linkage with valid lengths:
+ * *sl = s + l (shortest plus longest link) and *pq = p + q (the other two)
+ * [m]; *shortest and *longest receive the links' indices (fb_link; may be
+ * NULL). s + l < p + q: the shortest link turns fully (Grashof); equal:
+ * change-point; greater: no link turns fully (Norton, Design of Machinery,
+ * sec. 2.12). */
+void fb_linkage_grashof_sums(const fb_linkage *lk, double *sl, double *pq, int *shortest,
+                             int *longest);
+
+/* One sentence on the Grashof class of a linkage with valid lengths into
+ * out (size bytes): the class, the sums it compares in mm with the margin
+ * p + q - (s + l), and what turns fully; for a change-point linkage, the
+ * crank angles where it folds flat (fb_linkage_fold_angles). E.g.
+ * "Grashof crank-rocker: s + l = 45 + 170 = 215 mm < p + q = 270 mm (margin
+ * 55 mm): the crank, the shortest link, turns fully; the follower rocks". */
+void fb_linkage_grashof_text(char *out, size_t size, const fb_linkage *lk);
+
+/* Crank angles theta2 [rad] (0 and/or pi) at which all four pivots lie on
+ * one line: the folded positions a change-point linkage passes through,
+ * where its assembly branch may switch and the velocity problem is singular
+ * (|BD| equals |coupler - follower| or coupler + follower with B on the
+ * ground line; to FB_GRASHOF_REL_TOL of the length sum). Writes up to 2
+ * angles to out and returns how many. */
+int fb_linkage_fold_angles(const fb_linkage *lk, double out[2]);
 
 /* Solves positions, velocities and accelerations at crank angle theta2 [rad]
  * with crank speed omega2 [rad/s] and crank angular acceleration alpha2

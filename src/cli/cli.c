@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "casefile.h"
+#include "textsafe.h"
 
 #ifndef FB_CASES_DIR
 #define FB_CASES_DIR "cases"
@@ -83,16 +84,23 @@ int fb_cli_shell_word(char *out, size_t size, const char *text) {
   }
   if (k + 1 >= size) return 0;
   out[k++] = '\'';
-  for (const char *p = text; *p; p++) {
-    const char *piece = *p == '\'' ? "'\\''" : NULL;
-    const size_t l = piece ? 4 : 1;
+  for (const char *p = text; *p;) {
+    /* a control character (textsafe.h) as bash's $'\xHH', so the word
+     * stays one line and nothing raw reaches a terminal */
+    size_t unit;
+    char esc[16];
+    const int control = fb_text_unit(p, strlen(p), &unit);
+    if (control) unit = 1;
+    if (control) snprintf(esc, sizeof esc, "'$'\\x%02x''", (unsigned char)*p);
+    const char *piece = control ? esc : *p == '\'' ? "'\\''" : NULL;
+    const size_t l = piece ? strlen(piece) : unit;
     if (k + l + 2 >= size) {
       out[start] = '\0';
       return 0;
     }
-    if (piece) memcpy(out + k, piece, l);
-    else out[k] = *p;
+    memcpy(out + k, piece ? piece : p, l);
     k += l;
+    p += unit;
   }
   out[k++] = '\'';
   out[k] = '\0';

@@ -39,8 +39,9 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
 
 /* Appends text to out (size bytes, NUL-terminated) as one word for a POSIX
  * shell: as is when it holds only letters, digits and _./=,:+@%-, else in
- * single quotes with each ' written as '\''. Returns 0 when out is too
- * small (out is then left as it was). */
+ * single quotes with each ' written as '\'' and each control character
+ * (textsafe.h) as $'\xHH' (bash, ksh, zsh; POSIX.1-2024 sh). Returns 0 when
+ * out is too small (out is then left as it was). */
 int fb_cli_shell_word(char *out, size_t size, const char *text);
 
 /* The directory holding the shipped case files: $FOURBAR_CASES_DIR, else the

@@ -15,6 +15,7 @@
 #include "check.h"
 #include "model_table.h"
 #include "cli.h"
+#include "textsafe.h"
 #include "report.h"
 
 #define MAX_SETS 256
@@ -52,7 +53,8 @@ typedef struct {
 
 static void progress(const char *model, double fraction, void *user) {
   const check_progress *p = user;
-  fprintf(stderr, "\r\033[K  check %s: %s %3.0f %%", p->case_name, model, 100.0 * fraction);
+  fputs("\r\033[K", fb_text_raw_stderr()); /* ours: never escaped */
+  fprintf(stderr, "  check %s: %s %3.0f %%", p->case_name, model, 100.0 * fraction);
   fflush(stderr);
 }
 
@@ -337,7 +339,7 @@ int fb_cmd_check(int argc, char **argv) {
       json_decref(b);
       break;
     }
-    if (cp.tty) fprintf(stderr, "\r\033[K");
+    if (cp.tty) fputs("\r\033[K", fb_text_raw_stderr());
     static fb_metric now[FB_CHECK_MAX_METRICS];
     const int nn = fb_check_metrics(&r, now, FB_CHECK_MAX_METRICS);
     fb_run_free(&r);

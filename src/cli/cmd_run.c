@@ -8,6 +8,7 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "textsafe.h"
 #include "figures.h"
 #include "fileio.h"
 #include "outdir.h"
@@ -64,7 +65,8 @@ typedef struct {
 static void progress(const char *model, double fraction, void *user) {
   progress_state *p = user;
   if (!p->tty) return;
-  fprintf(stderr, "\r  %-22s %3.0f%%", model, 100.0 * fraction);
+  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
+  fprintf(stderr, "  %-22s %3.0f%%", model, 100.0 * fraction);
   if (fraction >= 1.0) fputc('\n', stderr);
   fflush(stderr);
 }

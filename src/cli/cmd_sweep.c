@@ -17,6 +17,7 @@
 #include <dirent.h>
 
 #include "cli.h"
+#include "textsafe.h"
 #include "clock.h"
 #include "figures.h"
 #include "fileio.h"
@@ -160,7 +161,8 @@ static void progress(size_t done, size_t total, double t0, int tty) {
   int filled = (int)(frac * width);
   for (int k = 0; k < width; k++) bar[k] = k < filled ? '#' : '.';
   bar[width] = '\0';
-  fprintf(stderr, "\r  [%s] %zu/%zu points, %.0f s elapsed, ETA %.0f s   ", bar, done, total, el, eta);
+  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
+  fprintf(stderr, "  [%s] %zu/%zu points, %.0f s elapsed, ETA %.0f s   ", bar, done, total, el, eta);
   if (done == total) fputc('\n', stderr);
   fflush(stderr);
 }

@@ -7,6 +7,7 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "textsafe.h"
 
 #ifndef FB_VERSION
 #define FB_VERSION "unknown"
@@ -64,6 +65,9 @@ static int stdout_written(const char *cmd, int rc) {
 }
 
 int main(int argc, char **argv) {
+  /* no control character of data (a case file's text, a flag, a path) reaches
+   * the terminal raw: stdout and stderr escape them (textsafe.h) */
+  fb_text_safe_std();
   const char *cmd = argc > 1 ? argv[1] : "";
   char name[64];
   snprintf(name, sizeof name, "%s", cmd);

@@ -107,6 +107,18 @@ int fb_cli_shell_word(char *out, size_t size, const char *text) {
   return 1;
 }
 
+void fb_cli_command_line(char *out, size_t size, int argc, char **argv, const char *drop) {
+  snprintf(out, size, "%s", argv[0]);
+  for (int i = 1; i < argc; i++) {
+    if (drop && strcmp(argv[i], drop) == 0) continue;
+    strncat(out, " ", size - strlen(out) - 1);
+    if (!fb_cli_shell_word(out, size, argv[i])) {
+      strncat(out, " ...", size - strlen(out) - 1);
+      break;
+    }
+  }
+}
+
 const char *fb_cli_cases_dir(void) {
   static char buf[4600];
   return data_dir("FOURBAR_CASES_DIR", "cases", FB_CASES_DIR, buf, sizeof buf);

@@ -162,6 +162,14 @@ int fb_cmd_run(int argc, char **argv) {
     fb_outdir_release(&od);
     return fb_cli_fail("run", 1, "%s", diag.msg);
   }
+  /* stopped by a signal: what the folder keeps and the command that runs it again */
+  static char note_text[4096 + 64], note_tail[8192 + 64], esc_dir[4 * 4096];
+  static char again[8192];
+  fb_cli_command_line(again, sizeof again, argc, argv, NULL);
+  snprintf(note_text, sizeof note_text, "%s keeps the results it held (nothing of this run "
+           "was written)", fb_text_escape(esc_dir, sizeof esc_dir, dir));
+  snprintf(note_tail, sizeof note_tail, "; to run it again: %s", again);
+  fb_cleanup_note("fourbar run: stopped", note_text, NULL, note_tail);
 
   static fb_run r;
   progress_state ps = {isatty(2) && !json};

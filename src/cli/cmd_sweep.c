@@ -22,6 +22,7 @@
 #include "figures.h"
 #include "fileio.h"
 #include "outdir.h"
+#include "worker.h"
 
 #ifndef FB_VERSION
 #define FB_VERSION "unknown"
@@ -333,6 +334,15 @@ int fb_cmd_sweep(int argc, char **argv) {
   const double t0 = fb_clock_s();
   size_t finished = 0;
   int rc = 0;
+  /* stopped by a signal: the rows kept and the command that resumes */
+  static volatile long kept;
+  static char note_tail[4 * 4300 + 8192 + 128], esc_rows[4 * 4300], again[8192];
+  kept = (long)(mine - ntodo);
+  fb_cli_command_line(again, sizeof again, argc, argv, "--restart");
+  snprintf(note_tail, sizeof note_tail, " of %zu points of this %s kept in %s; resume with: %s",
+           mine, shard_n > 1 ? "shard" : "study", fb_text_escape(esc_rows, sizeof esc_rows, rows_path),
+           again);
+  fb_cleanup_note("fourbar sweep: stopped", "", &kept, note_tail);
   if (jobs == 1 || ntodo <= 1) {
     for (size_t k = 0; k < ntodo && rc == 0; k++) {
       char *line;
@@ -341,6 +351,7 @@ int fb_cmd_sweep(int argc, char **argv) {
         break;
       }
       if (append_row(fd, line) != 0) rc = fb_cli_fail("sweep", 1, "%s: write failed", rows_path);
+      else kept++;
       free(line);
       progress(++finished, ntodo, t0, tty);
     }
@@ -359,10 +370,9 @@ int fb_cmd_sweep(int argc, char **argv) {
       const pid_t parent = getpid();
       pid[w] = fork();
       if (pid[w] == 0) {
-        /* a worker dies with its parent (a killed sweep leaves no orphan) */
-        if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent) _exit(5);
-        close(p[0]);
-        close(fd);
+        /* a worker dies with its parent (a killed sweep leaves no orphan)
+         * and holds none of its locks (worker.h) */
+        if (fb_worker_tie_to_parent(parent, p[1]) != 0) _exit(5);
         for (size_t k = (size_t)w; k < ntodo; k += (size_t)nw) {
           char *line;
           if (fb_study_point(&s, todo[k], &line, &d) != FB_OK) _exit(3);
@@ -408,6 +418,7 @@ int fb_cmd_sweep(int argc, char **argv) {
           char save = buf[w][l];
           buf[w][l] = '\0';
           if (append_row(fd, buf[w]) != 0) rc = 1;
+          else kept++;
           buf[w][l] = save;
           memmove(buf[w], buf[w] + l, blen[w] - l + 1);
           blen[w] -= l;

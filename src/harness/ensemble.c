@@ -10,6 +10,7 @@
 
 #include "model_table.h"
 #include "run.h"
+#include "worker.h"
 
 /* the statistics of fb_impact_stats as a flat list, for loops */
 #define NSTAT 12
@@ -145,6 +146,7 @@ static fb_status run_members(member_values *mv, const fb_run *r, int n, int jobs
   int started = 0;
   fb_status st = FB_OK;
   fflush(NULL);
+  const pid_t parent = getpid();
   for (int w = 0; w < jobs; w++) {
     int p[2];
     if (pipe(p) != 0) {
@@ -158,7 +160,8 @@ static fb_status run_members(member_values *mv, const fb_run *r, int n, int jobs
       break;
     }
     if (pid[w] == 0) {
-      close(p[0]);
+      /* dies with its parent, holding none of its locks (worker.h) */
+      if (fb_worker_tie_to_parent(parent, p[1]) != 0) _exit(5);
       int ok = 1;
       for (int k = 1 + w; k < n && ok; k += jobs) {
         member_values one;

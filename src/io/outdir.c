@@ -56,6 +56,38 @@ static volatile pid_t child_pid;
 
 void fb_cleanup_child(pid_t pid) { child_pid = pid; }
 
+/* the note written on a signal (fb_cleanup_note) */
+static const char *volatile note_head;
+static const char *note_text, *note_tail;
+static const volatile long *note_count;
+static pid_t note_owner; /* a forked worker inherits the note: only the owner writes it */
+
+static void write_str(const char *s) {
+  size_t n = strlen(s);
+  while (n) {
+    const ssize_t w = write(2, s, n);
+    if (w <= 0) return;
+    s += w, n -= (size_t)w;
+  }
+}
+
+static void write_note(int sig) {
+  if (!note_head) return;
+  char num[24];
+  int k = (int)sizeof num - 1;
+  num[k] = '\0';
+  long v = note_count ? *note_count : 0;
+  if (v < 0) v = 0;
+  do num[--k] = (char)('0' + v % 10), v /= 10; while (v && k > 0);
+  write_str("\n");
+  write_str(note_head);
+  write_str(sig == SIGINT ? " by SIGINT: " : sig == SIGTERM ? " by SIGTERM: " : " by SIGHUP: ");
+  write_str(note_text ? note_text : "");
+  if (note_count) write_str(num + k);
+  write_str(note_tail ? note_tail : "");
+  write_str("\n");
+}
+
 static void on_signal(int sig) {
   const pid_t me = getpid();
   const pid_t child = child_pid;
@@ -68,6 +100,7 @@ static void on_signal(int sig) {
     if (slots[k].is_dir) remove_flat(slots[k].path);
     else unlink(slots[k].path);
   }
+  if (note_owner == me) write_note(sig);
   signal(sig, SIG_DFL);
   raise(sig);
 }
@@ -99,6 +132,17 @@ int fb_cleanup_add(const char *path, int is_dir) {
     return k;
   }
   return -1;
+}
+
+void fb_cleanup_note(const char *head, const char *text, const volatile long *count,
+                     const char *tail) {
+  install_handlers();
+  note_head = NULL; /* the handler sees a whole note or none */
+  note_text = text;
+  note_count = count;
+  note_tail = tail;
+  note_owner = getpid();
+  note_head = head;
 }
 
 void fb_cleanup_forget(int slot) {

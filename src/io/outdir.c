@@ -368,12 +368,27 @@ static fb_status check_target(const char *dir, const char *target, const char *p
   return FB_OK;
 }
 
+static fb_status take_lock_of(const char *path, const char *dir, const char *what,
+                              const char *fix, int exclusive, int *out_fd, fb_diag *diag);
+
 /* takes an advisory lock on path (exclusive or shared), writing this PID */
 static fb_status take_lock(const char *path, const char *dir, int exclusive, int *out_fd,
                            fb_diag *diag) {
+  return take_lock_of(path, dir, "this output folder", " or choose another --out", exclusive,
+                      out_fd, diag);
+}
+
+fb_status fb_lock_take(const char *lock_path, const char *name, const char *what, int *fd,
+                       fb_diag *diag) {
+  return take_lock_of(lock_path, name, what, "", 1, fd, diag);
+}
+
+/* take_lock for a lock guarding what (of dir), fix said after "wait for it to finish" */
+static fb_status take_lock_of(const char *path, const char *dir, const char *what,
+                              const char *fix, int exclusive, int *out_fd, fb_diag *diag) {
   int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0)
-    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create output folder lock %s: %s", dir, path,
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create the lock %s: %s", dir, path,
                        strerror(errno));
   if (flock(fd, (exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0) {
     const int e = errno;
@@ -383,9 +398,8 @@ static fb_status take_lock(const char *path, const char *dir, int exclusive, int
     pid[strcspn(pid, "\n")] = '\0';
     close(fd);
     if (e == EWOULDBLOCK)
-      return fb_diag_set(diag, FB_ERR_IO, "%s: another fourbar process (PID %s) is writing this "
-                         "output folder; wait for it to finish or choose another --out", dir,
-                         pid[0] ? pid : "unknown");
+      return fb_diag_set(diag, FB_ERR_IO, "%s: another fourbar process (PID %s) is writing %s; "
+                         "wait for it to finish%s", dir, pid[0] ? pid : "unknown", what, fix);
     return fb_diag_set(diag, FB_ERR_IO, "%s: cannot lock %s: %s", dir, path, strerror(e));
   }
   char pid[32];

@@ -53,6 +53,16 @@ typedef struct {
 fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char *tag,
                          fb_diag *diag);
 
+/* One writer per file that is rewritten in place of the old (a baseline of
+ * fourbar check): takes an exclusive advisory lock (flock, without waiting)
+ * on lock_path, created if missing, and writes this PID into it; *fd
+ * receives the open lock file (close it to release; O_CLOEXEC, and closed
+ * in forked workers, worker.h). name and what word the message. Errors:
+ * FB_ERR_IO "<name>: another fourbar process (PID N) is writing <what>;
+ * wait for it to finish", or why the lock file cannot be made. */
+fb_status fb_lock_take(const char *lock_path, const char *name, const char *what, int *fd,
+                       fb_diag *diag);
+
 /* The PID named in a temporary file name of this program's exact forms
  * (<result file>.tmp.<pid>.XXXXXX, .figure.tmp.<pid>.<n>.svg|png), else 0. */
 long fb_outdir_temp_pid(const char *name);

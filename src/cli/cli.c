@@ -37,6 +37,11 @@ int fb_cli_fail(const char *cmd, int status, const char *fmt, ...) {
 
 int fb_cli_double(const char *cmd, const char *flag, const char *text, double *out) {
   double v;
+  if (fb_casefile_underflows(text)) {
+    fb_cli_fail(cmd, 2, "%s '%s': below the smallest normal double (2.2e-308), so it would read "
+                "as %g: give a larger number", flag, text, strtod(text, NULL));
+    return 0;
+  }
   if (!fb_casefile_decimal(text, &v) || !isfinite(v)) {
     fb_cli_fail(cmd, 2, "%s '%s': not a finite decimal number", flag, text);
     return 0;

@@ -3,6 +3,7 @@
 #include "ini_lines.h"
 
 #include <errno.h>
+#include <float.h>
 #include <fnmatch.h>
 #include <ini.h>
 #include <math.h>
@@ -584,8 +585,15 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
                      e->key, e->section);
 }
 
+int fb_casefile_underflows(const char *text) {
+  errno = 0;
+  const double v = strtod(text, NULL);
+  return errno == ERANGE && fabs(v) < DBL_MIN;
+}
+
 int fb_casefile_decimal(const char *text, double *out) {
   while (*text == ' ' || *text == '\t') text++;
+  if (fb_casefile_underflows(text)) return 0;
   char *end;
   const double v = strtod(text, &end);
   /* strtod also reads hexadecimal (0x10, 0x1p3), inf and nan: refused */
@@ -604,8 +612,8 @@ fb_status fb_casefile_check_range(const char *section, const char *key, double v
   const int bad_lo = k->lo_open ? !(value > k->lo) : !(value >= k->lo);
   const int bad_hi = k->hi_open ? !(value < k->hi) : !(value <= k->hi);
   if (bad_lo || bad_hi || !isfinite(value))
-    return fb_diag_set(diag, FB_ERR_RANGE, "%s = %g: %s (as [%s] %s)", origin, value, k->rule,
-                       section, key);
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s = %s: %s (as [%s] %s)", origin, FB_NUM(value),
+                       k->rule, section, key);
   return FB_OK;
 }
 
@@ -619,6 +627,10 @@ static fb_status parse_double(const entry *e, const key_spec *k, double *out, fb
   if (!isfinite(v))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': must be a finite number",
                        e->origin, e->section, e->key, e->value);
+  if (fb_casefile_underflows(e->value))
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = '%s': below the smallest normal "
+                       "double (2.2e-308), so it would read as %g: give 0 or a larger number (%s)",
+                       e->origin, e->section, e->key, e->value, v, k->unit);
   if (!fb_casefile_decimal(e->value, &v))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': numbers are decimal (digits, "
                        "sign, point, exponent), not hexadecimal (%s)", e->origin, e->section,

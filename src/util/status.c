@@ -34,3 +34,18 @@ const char *fb_diag_number(char *buf, size_t size, double x) {
   snprintf(buf, size, "%.15g", x);
   return buf;
 }
+
+const char *fb_diag_exact(char *buf, size_t size, double x) {
+  if (!isfinite(x)) { /* a computed value, never a typed one: said in words */
+    snprintf(buf, size, "%s", x != x ? "not a number" : x > 0 ? "beyond the largest double"
+                                                               : "below the lowest double");
+    return buf;
+  }
+  for (int p = 1; p <= 17; p++) {
+    snprintf(buf, size, "%.*g", p, x);
+    if (strchr(buf, 'e') && fabs(x) >= 1.0 && fabs(x) < 1e15) continue;
+    if (strtod(buf, NULL) == x) return buf;
+  }
+  snprintf(buf, size, "%.17g", x);
+  return buf;
+}

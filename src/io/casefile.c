@@ -1356,6 +1356,23 @@ static fb_status variant_items(const fb_case_variant *v, char *buf, size_t size,
     if (*n == max)
       return fb_diag_set(diag, FB_ERR_PARSE, "%s: [variant.%s] set: more than %d overrides",
                          v->origin, v->name, max);
+    /* one key once, as in a case file: a second value never silently wins */
+    for (int q = 0; q < *n; q++) {
+      const size_t lq = strcspn(items[q], "=");
+      char other[128];
+      snprintf(other, sizeof other, "%.*s", (int)lq, items[q]);
+      char *ot = trim(other);
+      char mine[128];
+      snprintf(mine, sizeof mine, "%s.%s", trim(section), trim(key));
+      if (strcmp(ot, mine) == 0)
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [variant.%s] set: duplicate key %s ('%s' "
+                           "and '%s'); give each key once", v->origin, v->name, mine, items[q],
+                           tok);
+    }
+    if (v->models[0] && strcmp(trim(section), "run") == 0 && strcmp(trim(key), "models") == 0)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [variant.%s] set gives run.models and the "
+                         "variant has its own models key too: give the models once", v->origin,
+                         v->name);
     items[(*n)++] = tok;
   }
   if (*n == 0)
@@ -1367,10 +1384,13 @@ static fb_status variant_items(const fb_case_variant *v, char *buf, size_t size,
 /* one key of a [variant.NAME] section into out->variant */
 static fb_status take_variant(fb_case *out, const entry *e, fb_diag *diag) {
   const char *name = e->section + strlen(VARIANT_PREFIX);
-  if (!fb_casefile_name_ok(name))
+  /* the INI parser keeps a section name of FB_INI_NAME_MAX characters whole
+   * (ini_lines.h), "variant." included */
+  const int name_max = FB_INI_NAME_MAX - (int)strlen(VARIANT_PREFIX);
+  if (!fb_casefile_name_ok(name) || (int)strlen(name) > name_max)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: a variant name is 1 to %d characters from "
                        "letters, digits, '-', '_' and '.', not starting with '.'",
-                       e->origin, e->section, FB_NAME_SIZE - 1);
+                       e->origin, e->section, name_max);
   int i = 0;
   while (i < out->variant_count && strcmp(out->variant[i].name, name) != 0) i++;
   if (i == out->variant_count) {

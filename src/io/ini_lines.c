@@ -12,6 +12,24 @@ static void copy_word(char *dst, size_t size, const char *from, const char *stop
   dst[n] = '\0';
 }
 
+/* length of the name from (up to '=', ']' or the end) without blanks */
+static size_t word_length(const char *from, const char *stop) {
+  while (*from == ' ' || *from == '\t') from++;
+  size_t n = strcspn(from, stop);
+  while (n && (from[n - 1] == ' ' || from[n - 1] == '\t')) n--;
+  return n;
+}
+
+/* records a name longer than inih keeps; returns NULL (the parse stops) */
+static char *long_name(fb_ini_lines *s, const char *from, size_t n, int section) {
+  s->problem = FB_INI_LINE_LONG_NAME;
+  s->problem_line = s->line;
+  s->length = (int)n;
+  s->name_is_section = section;
+  copy_word(s->name, sizeof s->name, from, section ? "]" : "=");
+  return NULL;
+}
+
 /* 1 when what follows a header's ']' is blank or a comment */
 static int header_tail_ok(const char *p) {
   while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') p++;
@@ -71,11 +89,17 @@ char *fb_ini_lines_read(char *str, int num, void *state) {
       s->problem_line = s->line;
       return NULL;
     }
+    const size_t n = word_length(body + 1, "]\n");
+    if (n > FB_INI_NAME_MAX) return long_name(s, body + 1, n, 1);
     copy_word(s->section, sizeof s->section, body + 1, "]");
     s->key[0] = '\0';
   } else if (*body && *body != ';' && *body != '#' && *body != '\n') {
     const int continues = s->continuation && lead > 0 && s->key[0];
-    if (!continues && strchr(body, '=')) copy_word(s->key, sizeof s->key, body, "=");
+    if (!continues && strchr(body, '=')) {
+      const size_t n = word_length(body, "=");
+      if (n > FB_INI_NAME_MAX) return long_name(s, body, n, 0);
+      copy_word(s->key, sizeof s->key, body, "=");
+    }
   }
   /* in [study] set and a case's [variant.NAME] set, ';' separates
    * overrides: blanks before it are dropped so inih never takes " ;" for the
@@ -116,6 +140,18 @@ const char *fb_ini_lines_problem(const fb_ini_lines *s, const char *path, char *
       snprintf(buf, size, "%s:%d: text after a [section] header's closing ']': a header stands "
                "alone on its line ('[section]', then 'key = value' on the next lines)", path,
                s->problem_line);
+      break;
+    case FB_INI_LINE_LONG_NAME:
+      snprintf(buf, size, "%s:%d: the %s name '%s...' is %d characters long, longer than the "
+               "%d the INI parser keeps whole (it would cut it silently)%s", path,
+               s->problem_line, s->name_is_section ? "section" : "key", s->name, s->length,
+               FB_INI_NAME_MAX,
+               !s->name_is_section ? ""
+               : strncmp(s->name, "variant.", 8) == 0
+                   ? ": a [variant.NAME] name is at most 41 characters"
+                   : strncmp(s->name, "axis.", 5) == 0
+                         ? ": an [axis.NAME] name is at most 44 characters"
+                         : "");
       break;
     default:
       snprintf(buf, size, "%s: no problem", path);

@@ -139,6 +139,15 @@ int fb_cmd_run(int argc, char **argv) {
       return fb_cli_fail("run", 2, "%s", vd.msg);
     variants[v].jobs = jobs;
   }
+  /* what fb_run_case refuses before its first model (the step resolved, the
+   * cost against memory and [run] max_wall_s) is found now, for the case
+   * and every variant: none waits for the models before it */
+  fb_diag pre;
+  if (fb_run_preflight(&c, &pre) != FB_OK) return fb_cli_fail("run", 1, "%s: %s", case_path, pre.msg);
+  for (int v = 0; v < c.variant_count; v++)
+    if (fb_run_preflight(&variants[v], &pre) != FB_OK)
+      return fb_cli_fail("run", 1, "%s: variant %s (%s): %s", case_path, c.variant[v].name,
+                         c.variant[v].origin, pre.msg);
 
   char dir[4096];
   if (out_dir)

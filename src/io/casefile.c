@@ -388,8 +388,9 @@ static const key_spec keys[] = {
     {"run", "max_wall_s", K_DOUBLE, OFF(max_wall_s), 1.0, 0, INF, 1, 1, "s", "86400",
      "the wall-time limit must be positive",
      "before simulating, fourbar estimates each model's memory and wall time from its step "
-     "count; a run estimated to take longer than this is refused (one that cannot fit in "
-     "memory always is)"},
+     "count, its engine's options and the [run] ensemble's members; a run estimated to take "
+     "longer than this is refused (one that cannot fit in memory always is), and a model "
+     "still running this long after the run began stops there (status wall-time)"},
     {"run", "start", K_START, OFF(start), 0, 0, 0, 0, 0, "-", "steady", "steady or rest",
      "initial state: steady (every body on the ideal mechanism's motion) or rest (the crank "
      "at full speed from t = 0, every body not rigidly tied to it at rest: coupler and "

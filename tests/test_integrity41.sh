@@ -110,6 +110,9 @@ ok '! grep -qiE "[-+]?inf( |$)|nan" "$tmp/out" "$tmp/pub/report.md" && grep -q "
 if have_model bullet-clearance-impact; then
   ok 'refuses "Bullet steps at a fixed h" "$exe" run --set solver.h_s=adaptive --set run.models=analytic,bullet-clearance-impact --out "$tmp/x3"' "3: h_s = adaptive with a Bullet model is refused (was: a fixed 1e-6 s, silently)"
 else skip "3: adaptive with Bullet (no Bullet in this build)"; fi
+printf '[case]\nbase = %s\ndescription = bad \377 text\n' "$paper" > "$tmp/latin.ini"
+ok 'refuses "latin.ini:3: byte 0xff at column 19 is not UTF-8" "$exe" run "$tmp/latin.ini" --out "$tmp/x3"' "3: a case value that is not UTF-8 is refused naming line and column (was: dropped from summary.json silently)"
+ok 'refuses "not UTF-8" "$exe" run --set case.description=$'"'"'\xfe'"'"' --out "$tmp/x3"' "3: a --set value that is not UTF-8 is refused"
 ok 'refuses "faceted and libccd" "$exe" run --set solver.h_s=adaptive --set run.models=ode-clearance-faceted --out "$tmp/x3"' "3: h_s = adaptive with the faceted collider is refused as bad input (exit 2, before anything runs)"
 
 # ---- 4. crashes and runaway runs -----------------------------------------------------

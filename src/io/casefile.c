@@ -18,6 +18,7 @@
 #include "iso2768.h"
 #include "iso286.h"
 #include "model_table.h"
+#include "textsafe.h"
 #include "tolerance.h"
 #include "units.h"
 #include "fb_config.h"
@@ -1219,6 +1220,11 @@ static void read_line(const char *path, int n, char *buf, size_t size) {
 static fb_status parse_override(load_ctx *c, const char *ov, int index) {
   char origin[64];
   snprintf(origin, sizeof origin, "--set #%d '%.40s'", index + 1, ov);
+  size_t bad;
+  if (!fb_text_utf8_ok(ov, strlen(ov), &bad))
+    return fb_diag_set(c->diag, FB_ERR_PARSE, "%s: byte 0x%02x at position %zu is not UTF-8 text "
+                       "(its value goes into JSON, which holds UTF-8 only)", origin,
+                       (unsigned char)ov[bad], bad + 1);
   const char *eq = strchr(ov, '=');
   /* the key has no dot, a section may ([published.impact]): the last dot before '=' */
   const char *dot = NULL;

@@ -2,6 +2,8 @@
 
 #include <string.h>
 
+#include "textsafe.h"
+
 /* copies a [section] name or key (up to '=', ']' or the end) without blanks */
 static void copy_word(char *dst, size_t size, const char *from, const char *stop) {
   while (*from == ' ' || *from == '\t') from++;
@@ -78,6 +80,14 @@ char *fb_ini_lines_read(char *str, int num, void *state) {
     s->problem_line = s->line;
     return NULL;
   }
+  size_t bad;
+  if (!comment && !fb_text_utf8_ok(str, (size_t)k, &bad)) {
+    s->problem = FB_INI_LINE_NOT_UTF8;
+    s->problem_line = s->line;
+    s->length = (int)bad + 1;
+    s->bad_byte = (unsigned char)str[bad];
+    return NULL;
+  }
   str[k] = '\n';
   str[k + 1] = '\0';
   const size_t lead = strspn(str, " \t");
@@ -152,6 +162,11 @@ const char *fb_ini_lines_problem(const fb_ini_lines *s, const char *path, char *
                    : strncmp(s->name, "axis.", 5) == 0
                          ? ": an [axis.NAME] name is at most 44 characters"
                          : "");
+      break;
+    case FB_INI_LINE_NOT_UTF8:
+      snprintf(buf, size, "%s:%d: byte 0x%02x at column %d is not UTF-8 text: save the %s file as "
+               "UTF-8 (its values go into JSON, which holds UTF-8 only)", path, s->problem_line,
+               s->bad_byte, s->length, s->continuation ? "study" : "case");
       break;
     default:
       snprintf(buf, size, "%s: no problem", path);

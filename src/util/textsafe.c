@@ -50,6 +50,19 @@ int fb_text_unit(const char *p, size_t n, size_t *len) {
   return next_unit((const unsigned char *)p, n, 1, len) != UNIT_RAW;
 }
 
+int fb_text_utf8_ok(const char *p, size_t n, size_t *bad_at) {
+  const unsigned char *u = (const unsigned char *)p;
+  for (size_t i = 0; i < n;) {
+    size_t len;
+    if (u[i] >= 0x80 && next_unit(u + i, n - i, 1, &len) == UNIT_HEX) {
+      if (bad_at) *bad_at = i;
+      return 0;
+    }
+    i += u[i] < 0x80 ? 1 : len;
+  }
+  return 1;
+}
+
 /* where escaped text goes: a stream, or a string */
 typedef struct {
   FILE *f;     /* a stream, or NULL */

@@ -31,6 +31,10 @@ char *fb_text_escape(char *out, size_t size, const char *in);
  * two bytes). For writers with their own escape syntax (a shell word). */
 int fb_text_unit(const char *p, size_t n, size_t *len);
 
+/* 1 when p[0..n) is well-formed UTF-8 (RFC 3629), else 0 with *bad_at (may
+ * be NULL) the offset of the first byte that is not. */
+int fb_text_utf8_ok(const char *p, size_t n, size_t *bad_at);
+
 /* A write-only stream that passes what is written to it on to `to` with
  * every control character escaped (above). Closing it flushes it and, with
  * close_to = 1, closes `to`; with close_to = 0 `to` stays open (and holds

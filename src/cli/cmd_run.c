@@ -172,7 +172,7 @@ int fb_cmd_run(int argc, char **argv) {
     return fb_cli_fail("run", 1, "%s", diag.msg);
   }
   /* stopped by a signal: what the folder keeps and the command that runs it again */
-  static char note_text[4096 + 64], note_tail[8192 + 64], esc_dir[4 * 4096];
+  static char note_text[4 * 4096 + 64], note_tail[8192 + 64], esc_dir[4 * 4096];
   static char again[8192];
   fb_cli_command_line(again, sizeof again, argc, argv, NULL);
   snprintf(note_text, sizeof note_text, "%s keeps the results it held (nothing of this run "
@@ -238,6 +238,10 @@ int fb_cmd_run(int argc, char **argv) {
                        dir);
   }
   st = fb_outdir_commit(&od, &diag);
+  if (st == FB_OK) { /* a signal from here on finds this run's set in place */
+    snprintf(note_text, sizeof note_text, "%s holds this run's results, whole", esc_dir);
+    fb_cleanup_note("fourbar run: stopped", note_text, NULL, NULL);
+  }
   fb_outdir_release(&od);
   if (st != FB_OK) {
     fb_run_free(&r);

@@ -142,12 +142,16 @@ int fb_cmd_run(int argc, char **argv) {
   /* what fb_run_case refuses before its first model (the step resolved, the
    * cost against memory and [run] max_wall_s) is found now, for the case
    * and every variant: none waits for the models before it */
+  /* (a case that cannot fit the machine or max_wall_s: exit 1, as a run
+   * refused by its estimate always was; a scene the keys cannot make: 2) */
   fb_diag pre;
-  if (fb_run_preflight(&c, &pre) != FB_OK) return fb_cli_fail("run", 1, "%s: %s", case_path, pre.msg);
+  int over_cost;
+  if (fb_run_preflight(&c, &over_cost, &pre) != FB_OK)
+    return fb_cli_fail("run", over_cost ? 1 : 2, "%s: %s", case_path, pre.msg);
   for (int v = 0; v < c.variant_count; v++)
-    if (fb_run_preflight(&variants[v], &pre) != FB_OK)
-      return fb_cli_fail("run", 1, "%s: variant %s (%s): %s", case_path, c.variant[v].name,
-                         c.variant[v].origin, pre.msg);
+    if (fb_run_preflight(&variants[v], &over_cost, &pre) != FB_OK)
+      return fb_cli_fail("run", over_cost ? 1 : 2, "%s: variant %s (%s): %s", case_path,
+                         c.variant[v].name, c.variant[v].origin, pre.msg);
 
   char dir[4096];
   if (out_dir)

@@ -239,7 +239,10 @@ void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {
     const fb_model *m = fb_model_find(c->models[i]);
     if (!m) continue;
     const int member = m->joints == FB_JOINTS_CLEARANCE || m->engine == FB_ENGINE_REFERENCE;
-    *bytes += steps * (double)sizeof(fb_sample) * (1.0 + (member && n > 1 ? jobs : 0));
+    /* an HDF5 series is built in memory before it is written (series_hdf5.c):
+     * at most the samples' own size again */
+    const double copies = 1.0 + (c->series == FB_SERIES_HDF5) + (member && n > 1 ? jobs : 0);
+    *bytes += steps * (double)sizeof(fb_sample) * copies;
     *seconds += steps * FB_COST_LOAD_FACTOR * model_cost(m, c) * (1.0 + (member ? rounds : 0.0));
   }
 }
@@ -282,13 +285,14 @@ static fb_status check_cost(const fb_case *c, fb_diag *diag) {
 /* check_cost at the step the models will take (the corner and h_s = auto
  * or adaptive resolved, as fb_scene_def_from_case does: an adaptive run
  * samples every h_min_s), before anything else checks or reserves */
-static fb_status check_cost_resolved(const fb_case *c, fb_diag *diag) {
+static fb_status check_cost_resolved(const fb_case *c, int *over_cost, fb_diag *diag) {
+  *over_cost = 0;
   fb_case *k = malloc(sizeof *k);
   if (!k) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   *k = *c;
   fb_status st = fb_tol_resolve_worst(k, diag);
   if (st == FB_OK) st = fb_case_resolve_step(k, diag);
-  if (st == FB_OK) st = check_cost(k, diag);
+  if (st == FB_OK) *over_cost = (st = check_cost(k, diag)) != FB_OK;
   free(k);
   return st;
 }
@@ -330,7 +334,8 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
 static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                          fb_diag *diag) {
   memset(r, 0, sizeof *r);
-  fb_status cost = check_cost_resolved(c, diag);
+  int over_cost;
+  fb_status cost = check_cost_resolved(c, &over_cost, diag);
   if (cost != FB_OK) return cost;
   /* the scene stage: the case resolved once for every model */
   fb_status rc = fb_scene_def_from_case(&r->scene, c, diag);
@@ -400,10 +405,11 @@ static double h_omega_c_max(const fb_run *r) {
   return w;
 }
 
-fb_status fb_run_preflight(const fb_case *c, fb_diag *diag) {
+fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag) {
+  *over_cost = 0;
   fb_scene_def *def = malloc(sizeof *def);
   if (!def) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  fb_status st = check_cost_resolved(c, diag);
+  fb_status st = check_cost_resolved(c, over_cost, diag);
   if (st == FB_OK) st = fb_scene_def_from_case(def, c, diag);
   free(def);
   return st;

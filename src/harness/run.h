@@ -164,11 +164,12 @@ typedef struct fb_run_s {
 void fb_run_estimate(const fb_case *c, double *bytes, double *seconds);
 
 /* Checks case c as fb_run_case would before its first model runs: the scene
- * resolves (the step chosen, the corner found) and the estimated cost fits
- * (fb_run_estimate against memory and [run] max_wall_s). For the CLI, which
+ * resolves (the step chosen, the corner found; its errors are the case's)
+ * and the estimated cost fits (fb_run_estimate against memory and [run]
+ * max_wall_s; *over_cost = 1 when that refused it). For the CLI, which
  * checks a case and every variant before any simulation. Errors: those of
  * fb_scene_def_from_case; FB_ERR_RANGE with the estimate. */
-fb_status fb_run_preflight(const fb_case *c, fb_diag *diag);
+fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag);
 
 /* Runs case c. A model that stops on numerical trouble keeps its status and
  * the others still run. Refused before any model runs (FB_ERR_RANGE, with

@@ -16,6 +16,7 @@
 #include <unistd.h>
 #include <dirent.h>
 
+#include "casefile.h"
 #include "cli.h"
 #include "textsafe.h"
 #include "clock.h"
@@ -226,6 +227,15 @@ int fb_cmd_sweep(int argc, char **argv) {
   static fb_study s;
   fb_diag d;
   if (fb_study_load(&s, study_path, &d) != FB_OK) return fb_cli_fail("sweep", 2, "%s", d.msg);
+  {
+    /* a point runs its case alone: said when the case has variants */
+    static fb_case probe;
+    fb_diag pd;
+    if (!list && fb_casefile_load(&probe, s.case_path, NULL, 0, &pd) == FB_OK && probe.variant_count)
+      fprintf(stderr, "fourbar sweep: note: %s has %d [variant.*] section%s; a sweep runs each "
+              "point's case alone, without them (fourbar run runs them)\n", s.case_path,
+              probe.variant_count, probe.variant_count > 1 ? "s" : "");
+  }
   char dir[4096];
   if (out) snprintf(dir, sizeof dir, "%s", out);
   else snprintf(dir, sizeof dir, "results/studies/%s", s.name);

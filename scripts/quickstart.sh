@@ -111,6 +111,8 @@ case "$what" in
     exit $crc ;;
   robust)
     # 1. the whole unit-test suite under AddressSanitizer + UndefinedBehaviorSanitizer
+    #    (about 3 times slower: the timeouts, which only catch a hang, 3 times longer;
+    #    tests/meson.build sizes them for a loaded 2-core machine)
     echo "== sanitizer build (address, undefined): whole test suite"
     if [ ! -f build-asan/build.ninja ]; then
       quiet build/build-asan-setup.txt meson setup build-asan -Db_sanitize=address,undefined -Db_lundef=false \
@@ -118,7 +120,8 @@ case "$what" in
     fi
     quiet build-asan/ninja.txt ninja -C build-asan
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-      LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp meson test -C build-asan --print-errorlogs >build-asan/sanitize.txt 2>&1 \
+      LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp meson test -C build-asan --print-errorlogs \
+      --timeout-multiplier 3 >build-asan/sanitize.txt 2>&1 \
       || { tail -n 40 build-asan/sanitize.txt; echo "sanitizer suite failed (build-asan/meson-logs)"; exit 1; }
     grep -E '^(Ok|Fail):' build-asan/sanitize.txt
     # 2. valgrind on the paper's case: no invalid access, no definite or indirect leak

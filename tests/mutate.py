@@ -14,7 +14,11 @@ the built binary and checks the contract for data:
     user's files (.env, a .git folder, report.tmp.<dead pid>.docx) before the
     run, and every one must be there after it, whatever the exit;
   - no mixed result set: a run that exits 0 leaves summary.json and one CSV
-    per model it lists; a run that fails leaves no staging folder.
+    per model it lists; a run that fails leaves no staging folder;
+  - no raw control character (C0 but TAB and LF, DEL, C1) on stdout, stderr
+    or in report.md, and no "inf %" (issue 41: mutants add variants with long
+    names, keys twice and control characters in their text, published values
+    of 0 and 1e308, numbers below the smallest normal double).
 
 Merges (issue 24): --merges pairs of shard folders, each pair two studies
 that differ in one mutated axis value, set item or axis key, are merged; a
@@ -60,13 +64,17 @@ NASTY = ["0", "-0", "-1", "1e-300", "1e300", "1e308", "-1e308", "nan", "inf", "-
          "none", "yes", "no", "cw", "ccw", "open", "crossed", "world", "quick", "secant",
          "tangent", "matched", "physical", "paper", "explicit", "10H7/g6", "30H7/s6", "m", "v",
          "+-+-", "worst", "all", "rest", "resting", "centred", "\x00", "\xff\xfe", "\t", "é",
-         "/dev/zero", "/dev/null", "/proc/self/fd/0", "..", "/", "%s%s%n"]
+         "/dev/zero", "/dev/null", "/proc/self/fd/0", "..", "/", "%s%s%n",
+         # issue 41: numbers below the smallest normal double, control characters of data
+         "1e-400", "1e-320", "-4e-324", "\x1b[2J", "x\x1b]52;c;SGVsbG8=\x07", "\u009b2J", "a\rb",
+         "\x7f", "1.0000000000000002", "adaptive", "auto"]
 
 STUDY_NASTY = ["1:1000:1", "0:1:0", "1:0:1", "nan:1:1", "1e308:1e309:1", "-5:5:1", "1025",
                "0", "-1", "99999999999", "a,b,c", ",,", "1," * 600, "solver.h_s", "linkage.crank_mm",
                "mass.coupler_kg", "drive.speed_rpm", "clearance.mapping", "run.models",
                "montecarlo", "run.revolutions=2; run.models=analytic", "x=1", "linkage.crank_mm=1e9",
-               "*", "ode-ideal-nominal.*", "yes", "no"]
+               "*", "ode-ideal-nominal.*", "yes", "no", "variant.x.set", "published.impact.x",
+               "case.description"]
 
 
 def run_keys(exe):
@@ -101,7 +109,7 @@ def mutate_lines(rng, lines, keys, models, nasty, study=False):
     """one to three random edits of an INI file's lines"""
     lines = list(lines)
     for _ in range(rng.randint(1, 3)):
-        op = rng.randrange(12)
+        op = rng.randrange(14)
         i = rng.randrange(len(lines)) if lines else 0
         if op == 0 and lines:  # a value replaced by a nasty one
             if "=" in lines[i]:
@@ -150,6 +158,21 @@ def mutate_lines(rng, lines, keys, models, nasty, study=False):
         elif op == 11 and lines:  # two lines swapped
             j = rng.randrange(len(lines))
             lines[i], lines[j] = lines[j], lines[i]
+        elif op == 12 and not study:  # issue 41: a variant (long name, keys twice, nasty text)
+            name = rng.choice(["v", "x" * 41, "y" * 42, "z" * 60, "a.b", ".v"])
+            sec, key, default = rng.choice(keys)
+            item = "%s.%s=%s" % (sec, key, rng.choice([default, scaled(rng, default), rng.choice(nasty)]))
+            lines += ["[variant.%s]" % name,
+                      "set = " + rng.choice([item, item + "; " + item, "drive.speed_rpm=900; " + item]),
+                      "description = " + rng.choice(["plain", "\x1b[2J", rng.choice(nasty)])]
+            if rng.random() < 0.3:
+                lines.append("models = " + rng.choice(models))
+        elif op == 13 and not study:  # issue 41: published values and their source
+            lines += ["[published]", "source = " + rng.choice(["paper", "\x1b[8mhidden", rng.choice(nasty)]),
+                      "[published.%s]" % rng.choice(["impact", "restitution"]),
+                      "%s = %s" % (rng.choice(["coupler_omega_max_rad_s", "follower_alpha_min_rad_s2"]),
+                                   rng.choice(["0", "-0", "1e308", "-1e308", "1e-300", "78.8",
+                                               rng.choice(nasty)]))]
         if study and rng.random() < 0.5:
             lines = mutate_study(rng, lines)
     return lines
@@ -209,6 +232,10 @@ def has_nonfinite(path):
     return 0
 
 
+# a raw control character other than TAB and LF: C0, DEL, C1 in UTF-8 (textsafe.h)
+CONTROL = re.compile(rb"[\x00-\x08\x0b-\x1f\x7f]|\xc2[\x80-\x9f]")
+
+
 def dead_pid():
     pid = int(open("/proc/sys/kernel/pid_max").read()) - 11
     while os.path.exists("/proc/%d" % pid):
@@ -246,6 +273,18 @@ def run_one(exe, kind, path, work, timeout, max_wall, canaries=False):
     for f in glob.glob(os.path.join(out, "*")):
         if has_nonfinite(f):
             return ("nan", path, "%s holds NaN or infinity" % f)
+    # issue 41: no control character of data on the terminal or in report.md,
+    # no "inf %" of a published value of 0
+    texts = [("stdout", p.stdout), ("stderr", p.stderr)]
+    report = os.path.join(out, "report.md")
+    if os.path.exists(report):
+        texts.append(("report.md", open(report, "rb").read()))
+    for what, data in texts:
+        if CONTROL.search(data):
+            return ("control", path, "a raw control character in %s: %r"
+                    % (what, CONTROL.search(data).group(0)))
+        if re.search(rb"[-+]inf %", data):
+            return ("nan", path, "an infinite difference in %s" % what)
     if canaries:
         lost = [c for c in CANARIES if not os.path.exists(os.path.join(out, c))]
         if lost:
@@ -374,7 +413,7 @@ def main():
         for kind, (verdict, path, why) in pool.map(one, jobs):
             counts[verdict] = counts.get(verdict, 0) + 1
             done += 1
-            if verdict in ("crash", "hang", "nan", "unnamed", "deleted", "mixed"):
+            if verdict in ("crash", "hang", "nan", "unnamed", "deleted", "mixed", "control"):
                 failures.append((verdict, path, why))
                 print("%s: %s: %s" % (verdict.upper(), os.path.basename(path), why), flush=True)
                 if a.keep:
@@ -390,10 +429,11 @@ def main():
     shutil.rmtree(top, ignore_errors=True)
     c = lambda k: sum(1 for f in failures if f[0] == k)
     print("mutation: %d case files, %d study files, %d merges (seed %d): %d crashes, %d hangs, "
-          "%d NaN outputs, %d unnamed errors, %d deleted foreign files, %d mixed result sets "
+          "%d NaN outputs, %d unnamed errors, %d deleted foreign files, %d mixed result sets, "
+          "%d raw control characters "
           "(exit 0: %d, 1: %d, 2: %d; merges refused: %d, joined: %d)"
           % (a.cases, a.studies, a.merges, a.seed, c("crash"), c("hang"), c("nan"), c("unnamed"),
-             c("deleted"), c("mixed"), counts.get("exit0", 0), counts.get("exit1", 0),
+             c("deleted"), c("mixed"), c("control"), counts.get("exit0", 0), counts.get("exit1", 0),
              counts.get("exit2", 0), counts.get("merge-refused", 0), counts.get("merge-joined", 0)))
     return 1 if failures else 0
 

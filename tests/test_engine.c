@@ -11,9 +11,11 @@
 #include <string.h>
 
 #include "casefile.h"
+#include "clock.h"
 #include "engine.h"
 #include "fb_test.h"
 #include "outcome_text.h"
+#include "run.h"
 
 /* both sides evaluate the same closed form at the same time value: equal to
  * the last bit, a bound of 1e-15 rad/s only allows for nothing */
@@ -129,6 +131,55 @@ static void test_stop_texts(void **state) {
   assert_int_equal(fb_stop_kind_parse("wobble"), FB_STOP_COUNT);
 }
 
+/* [run] max_wall_s holds for every kind of model while it runs (issue 41):
+ * with the run's deadline already past, the analytic model (replayed), an
+ * ODE model (stepped), the reference (integrated in its create) and a
+ * clearance model each stop at once with the wall-time reason; the up-front
+ * estimate counts an ensemble's members and an engine's options */
+static void test_wall_time_limit_holds(void **state) {
+  (void)state;
+  fb_case c;
+  fb_diag d;
+  const char *sets[] = {"run.revolutions=2",
+                        "run.models=analytic,ode-ideal-nominal,ode-clearance-impact,reference"};
+  char paper[4096];
+  const char *dir = getenv("FOURBAR_CASES_DIR");
+  snprintf(paper, sizeof paper, "%s/paper_crank_rocker.ini", dir ? dir : "cases");
+  if (fb_casefile_load(&c, paper, sets, 2, &d) != FB_OK) fail_msg("%s", d.msg);
+  c.member = 1;                      /* keeps the deadline it is given */
+  c.wall_deadline = fb_clock_s() - 1; /* already past */
+  static fb_run r;
+  if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+  for (int i = 0; i < r.n; i++) {
+    const fb_model_result *m = &r.model[i];
+    if (m->run.stop.kind != FB_STOP_WALL_TIME)
+      fail_msg("%s: stop kind %d, expected the wall-time limit", m->run.name, m->run.stop.kind);
+    /* stopped within FB_WALL_CHECK_STEPS steps of its start (the reference:
+     * within 16 samples, reference.c) */
+    assert_true(m->run.series.n <= FB_WALL_CHECK_STEPS + 1);
+  }
+  char text[512];
+  assert_non_null(strstr(fb_stop_text(text, sizeof text, &r.model[0].run.stop),
+                         "[run] max_wall_s"));
+  fb_run_free(&r);
+  /* the estimate: 8 members cost about 8 runs of the clearance model, 2000
+   * quick-step iterations about 60 world steps each */
+  double b1, s1, b8, s8, sq;
+  c.member = 0;
+  c.wall_deadline = 0;
+  c.model_count = 1;
+  snprintf(c.models[0], sizeof c.models[0], "ode-clearance-impact");
+  fb_run_estimate(&c, &b1, &s1);
+  c.ensemble = 8;
+  fb_run_estimate(&c, &b8, &s8);
+  assert_near(s8 / s1, 8.0, 1e-12);
+  c.ensemble = 1;
+  c.solver.stepper = FB_STEPPER_QUICK;
+  c.solver.quick_iterations = 2000;
+  fb_run_estimate(&c, &b1, &sq);
+  assert_true(sq / s1 > 100.0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_table_is_consistent),
@@ -136,6 +187,7 @@ int main(void) {
       cmocka_unit_test(test_analytic_engine_is_the_closed_form),
       cmocka_unit_test(test_scene_check_names_the_field),
       cmocka_unit_test(test_stop_texts),
+      cmocka_unit_test(test_wall_time_limit_holds),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -176,17 +176,28 @@ static void test_adaptive_ideal_lands_on_the_grid(void **state) {
 }
 
 /* the adaptive step follows the exact collider's contact only: a faceted
- * model is refused before it runs, naming the collider */
+ * model is refused, naming the collider, by the case check (before anything
+ * runs) and, should a case reach it unchecked, by the scene itself */
 static void test_adaptive_refuses_other_colliders(void **state) {
   (void)state;
   const char *sets[] = {"run.revolutions=2", "run.models=ode-clearance-faceted", "solver.h_s=adaptive"};
   fb_case c;
   fb_diag d;
-  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 3, &d), FB_OK);
-  static fb_run r;
-  assert_int_not_equal(fb_run_case(&r, &c, NULL, NULL, &d), FB_OK);
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 3, &d), FB_ERR_ARG);
   assert_non_null(strstr(d.msg, "h_s = adaptive"));
   assert_non_null(strstr(d.msg, "faceted"));
+  /* the scene of a case with the same law, and the faceted model run in it */
+  sets[1] = "run.models=ode-clearance-impact";
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 3, &d), FB_OK);
+  fb_scene_def *def = malloc(sizeof *def);
+  assert_int_equal(fb_scene_def_from_case(def, &c, &d), FB_OK);
+  fb_model_run mr;
+  assert_int_not_equal(fb_model_run_one(&mr, def, fb_model_find("ode-clearance-faceted"), NULL, NULL, &d),
+                       FB_OK);
+  fb_model_run_free(&mr);
+  assert_non_null(strstr(d.msg, "h_s = adaptive"));
+  assert_non_null(strstr(d.msg, "faceted"));
+  free(def);
 }
 
 int main(void) {

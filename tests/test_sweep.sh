@@ -42,7 +42,9 @@ ok '! "$exe" merge "$tmp/dup" 2>"$tmp/err" && grep -q "more than once" "$tmp/err
 # kill a sweep after 3 of 27 points, rerun: resumes, recomputes nothing done
 "$exe" sweep "$slow" --out "$tmp/kill" >/dev/null 2>&1 &
 pid=$!
-for _ in $(seq 1 300); do
+# (waits up to 120 s for 3 rows: the sanitizer build on a loaded machine is slow;
+# the wait ends as soon as they are there)
+for _ in $(seq 1 2400); do
   sleep 0.05
   [ -f "$tmp/kill/points.jsonl" ] && [ "$(wc -l < "$tmp/kill/points.jsonl")" -ge 3 ] && break
 done

@@ -119,6 +119,12 @@ extern "C" fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass
                        "Bullet contact impact: need mass, speed, h, stiffness > 0 and "
                        "h stiffness + damping > 0 (mass %g kg, speed %g m/s, h %g s, stiffness "
                        "%g N/m, damping %g N s/m)", mass, speed, h, stiffness, damping);
+  /* the step bound every engine's single impact keeps (impact.h), as the
+   * ODE and MuJoCo rows do: no call runs away at a tiny h */
+  const double steps_max = ceil(t_max / h);
+  if (steps_max > FB_IMPACT_MAX_STEPS)
+    return fb_diag_set(diag, FB_ERR_RANGE, "Bullet contact impact: %g steps of %g s: more than %g",
+                       steps_max, h, FB_IMPACT_MAX_STEPS);
   const double t_wall = fb_clock_s();
   const double R = 0.01; /* sphere radius [m]; a normal contact through the centre */
   btDefaultCollisionConfiguration config;

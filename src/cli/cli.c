@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "casefile.h"
+#include "textsafe.h"
 
 #ifndef FB_CASES_DIR
 #define FB_CASES_DIR "cases"
@@ -36,6 +37,11 @@ int fb_cli_fail(const char *cmd, int status, const char *fmt, ...) {
 
 int fb_cli_double(const char *cmd, const char *flag, const char *text, double *out) {
   double v;
+  if (fb_casefile_underflows(text)) {
+    fb_cli_fail(cmd, 2, "%s '%s': below the smallest normal double (2.2e-308), so it would read "
+                "as %g: give a larger number", flag, text, strtod(text, NULL));
+    return 0;
+  }
   if (!fb_casefile_decimal(text, &v) || !isfinite(v)) {
     fb_cli_fail(cmd, 2, "%s '%s': not a finite decimal number", flag, text);
     return 0;
@@ -83,20 +89,39 @@ int fb_cli_shell_word(char *out, size_t size, const char *text) {
   }
   if (k + 1 >= size) return 0;
   out[k++] = '\'';
-  for (const char *p = text; *p; p++) {
-    const char *piece = *p == '\'' ? "'\\''" : NULL;
-    const size_t l = piece ? 4 : 1;
+  for (const char *p = text; *p;) {
+    /* a control character (textsafe.h) as bash's $'\xHH', so the word
+     * stays one line and nothing raw reaches a terminal */
+    size_t unit;
+    char esc[16];
+    const int control = fb_text_unit(p, strlen(p), &unit);
+    if (control) unit = 1;
+    if (control) snprintf(esc, sizeof esc, "'$'\\x%02x''", (unsigned char)*p);
+    const char *piece = control ? esc : *p == '\'' ? "'\\''" : NULL;
+    const size_t l = piece ? strlen(piece) : unit;
     if (k + l + 2 >= size) {
       out[start] = '\0';
       return 0;
     }
-    if (piece) memcpy(out + k, piece, l);
-    else out[k] = *p;
+    memcpy(out + k, piece ? piece : p, l);
     k += l;
+    p += unit;
   }
   out[k++] = '\'';
   out[k] = '\0';
   return 1;
+}
+
+void fb_cli_command_line(char *out, size_t size, int argc, char **argv, const char *drop) {
+  snprintf(out, size, "%s", argv[0]);
+  for (int i = 1; i < argc; i++) {
+    if (drop && strcmp(argv[i], drop) == 0) continue;
+    strncat(out, " ", size - strlen(out) - 1);
+    if (!fb_cli_shell_word(out, size, argv[i])) {
+      strncat(out, " ...", size - strlen(out) - 1);
+      break;
+    }
+  }
 }
 
 const char *fb_cli_cases_dir(void) {

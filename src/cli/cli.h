@@ -39,9 +39,16 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
 
 /* Appends text to out (size bytes, NUL-terminated) as one word for a POSIX
  * shell: as is when it holds only letters, digits and _./=,:+@%-, else in
- * single quotes with each ' written as '\''. Returns 0 when out is too
- * small (out is then left as it was). */
+ * single quotes with each ' written as '\'' and each control character
+ * (textsafe.h) as $'\xHH' (bash, ksh, zsh; POSIX.1-2024 sh). Returns 0 when
+ * out is too small (out is then left as it was). */
 int fb_cli_shell_word(char *out, size_t size, const char *text);
+
+/* The command line argv[0..argc) (argv[0] is "fourbar <command>", main.c)
+ * as one line for a POSIX shell (fb_cli_shell_word), leaving out the
+ * option drop (NULL: none) wherever it appears: the command that runs the
+ * same thing again. Cut with " ..." when out (size bytes) is too small. */
+void fb_cli_command_line(char *out, size_t size, int argc, char **argv, const char *drop);
 
 /* The directory holding the shipped case files: $FOURBAR_CASES_DIR, else the
  * installed share/fourbar/cases beside the binary (meson install), else the

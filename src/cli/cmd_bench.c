@@ -9,6 +9,7 @@
 #include "bench.h"
 #include "contact.h"
 #include "cli.h"
+#include "textsafe.h"
 #include "clock.h"
 #include "figures.h"
 #include "fileio.h"
@@ -94,7 +95,8 @@ static void progress(double f, void *user) {
   char bar[21];
   for (int k = 0; k < 20; k++) bar[k] = k < (int)(20.0 * f) ? '#' : ' ';
   bar[20] = '\0';
-  fprintf(stderr, "\r  bench [%s] %3.0f %%, %.0f s", bar, 100.0 * f, el);
+  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
+  fprintf(stderr, "  bench [%s] %3.0f %%, %.0f s", bar, 100.0 * f, el);
   if (f > 0.0 && f < 1.0) fprintf(stderr, ", about %.0f s left ", el * (1.0 - f) / f);
   else fprintf(stderr, "               ");
   if (f >= 1.0) fputc('\n', stderr);

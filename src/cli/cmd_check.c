@@ -14,7 +14,9 @@
 #include "casefile.h"
 #include "check.h"
 #include "model_table.h"
+#include "outdir.h"
 #include "cli.h"
+#include "textsafe.h"
 #include "report.h"
 
 #define MAX_SETS 256
@@ -52,7 +54,8 @@ typedef struct {
 
 static void progress(const char *model, double fraction, void *user) {
   const check_progress *p = user;
-  fprintf(stderr, "\r\033[K  check %s: %s %3.0f %%", p->case_name, model, 100.0 * fraction);
+  fputs("\r\033[K", fb_text_raw_stderr()); /* ours: never escaped */
+  fprintf(stderr, "  check %s: %s %3.0f %%", p->case_name, model, 100.0 * fraction);
   fflush(stderr);
 }
 
@@ -117,6 +120,80 @@ static int same_case_file(const char *a, const char *b) {
   return strcmp(pa, pb) == 0;
 }
 
+/* A baseline being rewritten: its lock (.<case>.json.lock beside it) held
+ * from the read to the write, so a --calibrate and an --update never write
+ * over each other; and its bytes as read, compared before the write, so a
+ * file changed meanwhile by another program is never overwritten. */
+typedef struct {
+  int fd;          /* the lock file, -1 when not held */
+  char path[4096]; /* the baseline */
+  char *bytes;     /* its content when locked (NULL: it did not exist) */
+  size_t n;
+} baseline_hold;
+
+/* the whole file at path (malloc'ed, *n bytes), or NULL when it cannot be read */
+static char *file_bytes(const char *path, size_t *n) {
+  *n = 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  char *b = NULL;
+  size_t cap = 0;
+  for (;;) {
+    if (*n + 65536 > cap) {
+      char *g = realloc(b, cap = *n + 65536);
+      if (!g) break;
+      b = g;
+    }
+    const size_t got = fread(b + *n, 1, cap - *n, f);
+    *n += got;
+    if (got == 0) break;
+  }
+  fclose(f);
+  return b ? b : malloc(1);
+}
+
+static int hold_baseline(baseline_hold *h, const char *path) {
+  h->fd = -1;
+  h->bytes = NULL;
+  snprintf(h->path, sizeof h->path, "%s", path);
+  char lock[4200];
+  const char *slash = strrchr(path, '/');
+  snprintf(lock, sizeof lock, "%.*s.%s.lock", slash ? (int)(slash - path + 1) : 0, path,
+           slash ? slash + 1 : path);
+  fb_diag d;
+  if (fb_lock_take(lock, path, "this baseline", &h->fd, &d) != FB_OK)
+    return fb_cli_fail("check", 1, "%s", d.msg);
+  h->bytes = file_bytes(path, &h->n);
+  return 0;
+}
+
+/* 0 when the baseline still holds the bytes read when it was locked */
+static int baseline_changed(const baseline_hold *h) {
+  size_t n;
+  char *now = file_bytes(h->path, &n);
+  const int same = (!now && !h->bytes) ||
+                   (now && h->bytes && n == h->n && memcmp(now, h->bytes, n) == 0);
+  free(now);
+  if (same) return 0;
+  return fb_cli_fail("check", 1, "%s changed while this check ran (not by fourbar, which holds "
+                     "its lock): nothing written, so no change of either is lost; run again",
+                     h->path);
+}
+
+static void release_baseline(baseline_hold *h) {
+  if (h->fd >= 0) close(h->fd);
+  h->fd = -1;
+  free(h->bytes);
+  h->bytes = NULL;
+}
+
+/* the value a baseline file holds once v is written (its JSON's %.12g) */
+static double as_written(double v) {
+  char t[64];
+  snprintf(t, sizeof t, "%.12g", v);
+  return strtod(t, NULL);
+}
+
 static int calibrate(const char *case_file, const char *const *sets, int nsets) {
   fb_case c;
   int rc = load_case(case_file, sets, nsets, &c);
@@ -125,6 +202,9 @@ static int calibrate(const char *case_file, const char *const *sets, int nsets) 
    * name must not replace it */
   char existing[4096];
   snprintf(existing, sizeof existing, "%s/%s.json", baselines_dir(), c.name);
+  baseline_hold hold;
+  rc = hold_baseline(&hold, existing);
+  if (rc) return rc;
   json_t *old = json_load_file(existing, 0, NULL);
   const char *old_file = json_string_value(json_object_get(old, "case_file"));
   if (old_file && !same_case_file(old_file, case_file)) {
@@ -132,6 +212,7 @@ static int calibrate(const char *case_file, const char *const *sets, int nsets) 
                      "%s: give %s a [case] name of its own (the baseline is named after it)",
                      case_file, c.name, existing, old_file, case_file);
     json_decref(old);
+    release_baseline(&hold);
     return rc;
   }
   json_decref(old);
@@ -139,10 +220,15 @@ static int calibrate(const char *case_file, const char *const *sets, int nsets) 
   int n, nondet;
   fb_diag d;
   fprintf(stderr, "calibrating %s (4 runs)\n", c.name);
-  if (fb_check_calibrate(m, &n, &nondet, &c, &d) != FB_OK) return fb_cli_fail("check", 1, "%s", d.msg);
-  if (nondet)
+  if (fb_check_calibrate(m, &n, &nondet, &c, &d) != FB_OK) {
+    release_baseline(&hold);
+    return fb_cli_fail("check", 1, "%s", d.msg);
+  }
+  if (nondet) {
+    release_baseline(&hold);
     return fb_cli_fail("check", 1, "%s: a repeated run gave different numbers: the run is not "
                        "deterministic, so no baseline can hold", c.name);
+  }
   json_t *o = json_object(), *arr = json_array(), *cal = json_object(), *pert = json_array();
   json_object_set_new(o, "case", json_string(c.name));
   json_object_set_new(o, "case_file", json_string(case_file));
@@ -182,8 +268,11 @@ static int calibrate(const char *case_file, const char *const *sets, int nsets) 
   json_object_set_new(o, "metrics", arr);
   char path[4096];
   snprintf(path, sizeof path, "%s/%s.json", baselines_dir(), c.name);
-  fb_status st = fb_report_write_json(path, o, &d);
+  rc = baseline_changed(&hold);
+  fb_status st = rc ? FB_OK : fb_report_write_json(path, o, &d);
   json_decref(o);
+  release_baseline(&hold);
+  if (rc) return rc;
   if (st != FB_OK) return fb_cli_fail("check", 1, "%s", d.msg);
   printf("%s: %d metrics (%d chaotic), written to %s\n", c.name, n, chaotic, path);
   return 0;
@@ -293,6 +382,7 @@ int fb_cmd_check(int argc, char **argv) {
   for (int f = 0; f < nfiles && rc == 0; f++) {
     char path[4096];
     snprintf(path, sizeof path, "%s/%s", baselines_dir(), files[f]);
+    baseline_hold hold = {.fd = -1};
     json_error_t je;
     json_t *b = json_load_file(path, 0, &je);
     const char *case_name = b ? json_string_value(json_object_get(b, "case")) : NULL;
@@ -322,9 +412,27 @@ int fb_cmd_check(int argc, char **argv) {
       json_decref(b);
       continue;
     }
+    if (update) {
+      /* --update rewrites the file it read: read again under its lock,
+       * which is held until the write */
+      json_decref(b);
+      if ((rc = hold_baseline(&hold, path)) != 0) break;
+      b = json_load_file(path, 0, &je);
+      case_name = b ? json_string_value(json_object_get(b, "case")) : NULL;
+      case_file = b ? json_string_value(json_object_get(b, "case_file")) : NULL;
+      metrics = b ? json_object_get(b, "metrics") : NULL;
+      if (!case_name || !case_file || !json_is_array(metrics)) {
+        rc = fb_cli_fail("check", 2, "%s:%d: not a baseline file (%s)", path, je.line,
+                         b ? "needs case, case_file and metrics" : je.text);
+        release_baseline(&hold);
+        json_decref(b);
+        break;
+      }
+    }
     fb_case c;
     rc = load_case(case_file, sets, nsets, &c);
     if (rc) {
+      release_baseline(&hold);
       json_decref(b);
       break;
     }
@@ -334,10 +442,11 @@ int fb_cmd_check(int argc, char **argv) {
     check_progress cp = {isatty(2) != 0, case_name};
     if (fb_run_case(&r, &c, cp.tty ? progress : NULL, &cp, &d) != FB_OK) {
       rc = fb_cli_fail("check", 1, "%s: %s", case_name, d.msg);
+      release_baseline(&hold);
       json_decref(b);
       break;
     }
-    if (cp.tty) fprintf(stderr, "\r\033[K");
+    if (cp.tty) fputs("\r\033[K", fb_text_raw_stderr());
     static fb_metric now[FB_CHECK_MAX_METRICS];
     const int nn = fb_check_metrics(&r, now, FB_CHECK_MAX_METRICS);
     fb_run_free(&r);
@@ -357,7 +466,9 @@ int fb_cmd_check(int argc, char **argv) {
       const int ok = isfinite(v) && fabs(v - base) <= tol;
       const char *verdict = !isfinite(v) ? "FAIL (missing)" : ok ? "pass" : "FAIL";
       if (update) {
-        if (isfinite(v) && v != base) {
+        /* compared as the file will hold it: a value equal to its baseline
+         * to the written digits is no change */
+        if (isfinite(v) && as_written(v) != base) {
           printf("%s %s: %.10g -> %.10g (%s)\n", case_name, name, base, v, ok ? "within tolerance" : "moved");
           json_object_set_new(x, "value", json_real(v));
           changed++;
@@ -379,9 +490,13 @@ int fb_cmd_check(int argc, char **argv) {
       }
     }
     if (update) {
-      if (changed && fb_report_write_json(path, b, &d) != FB_OK) rc = fb_cli_fail("check", 1, "%s", d.msg);
-      printf("%s: %d values changed%s\n", case_name, changed, changed ? ", baseline rewritten" : "");
+      if (changed && (rc = baseline_changed(&hold)) == 0 &&
+          fb_report_write_json(path, b, &d) != FB_OK)
+        rc = fb_cli_fail("check", 1, "%s", d.msg);
+      if (!rc)
+        printf("%s: %d values changed%s\n", case_name, changed, changed ? ", baseline rewritten" : "");
     }
+    release_baseline(&hold);
     json_decref(b);
   }
   for (int i = 0; i < nfiles; i++) free(files[i]);

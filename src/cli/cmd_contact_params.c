@@ -16,6 +16,7 @@
 #include "impact.h"
 #include "model_table.h"
 #include "resolution.h"
+#include "units.h"
 
 static const char params_help[] =
     "usage: fourbar contact-params [--law linear|restitution|hertz] [--stiffness K]\n"
@@ -70,6 +71,9 @@ static const char params_help[] =
 /* Default h omega_c when --h-s is not given: the single-impact accuracy
  * point of the issue (h omega_c = 0.1, about 31 steps per contact). */
 #define DEFAULT_H_OMEGA 0.1
+/* --verify runs each row until the body leaves, or for this many contact
+ * durations of the continuous law (a row that never lets go fails there). */
+#define VERIFY_DURATIONS 100.0
 /* The max_vel / contact_max_correcting_vel printed: this multiple of the
  * largest correcting velocity the row asks for at the law's peak
  * penetration, so that no impact up to twice the speed is cut. */
@@ -110,8 +114,9 @@ static fb_linear_contact linear_of(const request *q, double m, double *delta_op)
   return lc;
 }
 
-/* the continuous law's single impact of mass m at speed v (the target) */
-static fb_status target(const request *q, double m, fb_impact_result *out, fb_diag *diag) {
+/* the continuous law's single impact of mass m at speed v (the target),
+ * as the reference integrates it */
+static void target_def(const request *q, double m, fb_impact_def *out) {
   fb_impact_def d;
   memset(&d, 0, sizeof d);
   d.law = fb_contact_law_default();
@@ -127,6 +132,12 @@ static fb_status target(const request *q, double m, fb_impact_result *out, fb_di
   d.stepper = FB_STEPPER_WORLD;
   d.quick_iterations = 20;
   d.mapping = FB_MAPPING_MATCHED;
+  *out = d;
+}
+
+static fb_status target(const request *q, double m, fb_impact_result *out, fb_diag *diag) {
+  fb_impact_def d;
+  target_def(q, m, &d);
   fb_status st = fb_impact_check(&d, diag);
   if (st != FB_OK) return st;
   return fb_impact_reference(out, &d, diag);
@@ -180,6 +191,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
   request q = {.law = FB_LAW_RESTITUTION, .K = 1e7, .n = 1.5, .c = 0.0, .cr = 0.9,
                .m_min = 0.1, .m_max = 0.1, .h = 0.0, .v = 1.0};
   int ch, cr_given = 0, c_given = 0, n_given = 0, k_given = 0, m_given = 0, law_given = 0;
+  int h_given = 0; /* --h-s given: its value is checked, never replaced by the default */
   const char *case_arg = NULL, *joint_arg = NULL;
   const char *P = "contact-params";
   optind = 1;
@@ -203,7 +215,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
         break;
       case 'C': case_arg = optarg; break;
       case 'J': joint_arg = optarg; break;
-      case 'H': if (!fb_cli_double(P, "--h-s", optarg, &q.h)) return 2; break;
+      case 'H': if (!fb_cli_double(P, "--h-s", optarg, &q.h)) return 2; h_given = 1; break;
       case 'v': if (!fb_cli_double(P, "--speed-m-s", optarg, &q.v)) return 2; break;
       case 'F': if (!fb_cli_double(P, "--load-n", optarg, &q.load)) return 2; q.has_load = 1; break;
       case 'V': q.verify = 1; break;
@@ -264,39 +276,49 @@ int fb_cmd_contact_params(int argc, char **argv) {
     }
     q.m_min = cc.est.m_eff_min;
     q.m_max = cc.est.m_eff_max;
-    if (q.h == 0.0) q.h = cc.h;
+    if (!h_given) q.h = cc.h;
   }
   /* every parameter with its range and unit */
   if (!(q.K > 0.0) || !isfinite(q.K) || q.K > 1e20)
-    return fb_cli_fail(P, 2, "--stiffness %g: must be positive, at most 1e20 (N/m, or N/m^n "
-                       "for hertz)", q.K);
-  if (!(q.m_min > 0.0) || !(q.m_max >= q.m_min) || !isfinite(q.m_max) ||
-      q.m_max > MASS_RATIO_MAX * q.m_min || q.m_max > 1e6)
-    return fb_cli_fail(P, 2, "--mass-kg %g:%g: need 0 < A <= B <= 1e6 kg and B/A <= %g",
-                       q.m_min, q.m_max, MASS_RATIO_MAX);
+    return fb_cli_fail(P, 2, "--stiffness %s: must be positive, at most 1e20 (N/m, or N/m^n "
+                       "for hertz)", FB_NUM(q.K));
+  /* the effective mass a single impact can take (impact.h, --verify's and
+   * impact --mass-kg's range) */
+  if (!(q.m_min >= FB_MASS_MIN_KG) || !(q.m_max >= q.m_min) || !isfinite(q.m_max) ||
+      q.m_max > MASS_RATIO_MAX * q.m_min || q.m_max > FB_MASS_MAX_KG)
+    return fb_cli_fail(P, 2, "--mass-kg %s:%s: need %g kg <= A <= B <= %g kg and B/A <= %g",
+                       FB_NUM(q.m_min), FB_NUM(q.m_max), FB_MASS_MIN_KG, FB_MASS_MAX_KG,
+                       MASS_RATIO_MAX);
   if (!(q.v > 0.0) || q.v > FB_IMPACT_SPEED_MAX_M_S)
-    return fb_cli_fail(P, 2, "--speed-m-s %g: must lie in (0, %g] m/s", q.v,
+    return fb_cli_fail(P, 2, "--speed-m-s %s: must lie in (0, %g] m/s", FB_NUM(q.v),
                        FB_IMPACT_SPEED_MAX_M_S);
   if (q.law == FB_LAW_HERTZ) {
     if (cr_given || c_given)
       return fb_cli_fail(P, 2, "--law hertz is undamped here: give a linear or restitution law "
                          "for a damped contact (or drop --restitution/--damping-n-s-m)");
     if (!(q.n >= 1.0 && q.n <= 3.0))
-      return fb_cli_fail(P, 2, "--exponent %g: must lie in [1, 3]", q.n);
+      return fb_cli_fail(P, 2, "--exponent %s: must lie in [1, 3]", FB_NUM(q.n));
   } else {
     if (n_given && q.n != 1.0)
-      return fb_cli_fail(P, 2, "--exponent %g: the %s law is linear (n = 1)", q.n,
+      return fb_cli_fail(P, 2, "--exponent %s: the %s law is linear (n = 1)", FB_NUM(q.n),
                          q.law == FB_LAW_LINEAR ? "linear" : "restitution");
     if (q.has_load) return fb_cli_fail(P, 2, "--load-n: only for --law hertz");
     q.n = 1.0;
   }
+  /* a flag the law does not use is refused, never ignored */
+  if (q.law == FB_LAW_RESTITUTION && c_given)
+    return fb_cli_fail(P, 2, "--damping-n-s-m with the restitution law: its damper follows from "
+                       "--restitution (cr); give --law linear for a damper of your own");
+  if (q.law == FB_LAW_LINEAR && cr_given)
+    return fb_cli_fail(P, 2, "--restitution with --law linear: the linear law's damper is "
+                       "--damping-n-s-m; drop --law linear for the restitution law (cr)");
   if (q.law == FB_LAW_RESTITUTION && !(q.cr > exp(-2.0) && q.cr <= 1.0))
-    return fb_cli_fail(P, 2, "--restitution %g: cr must lie in (0.135, 1] (below e^-2 the "
-                       "spring-damper is over-damped)", q.cr);
+    return fb_cli_fail(P, 2, "--restitution %s: cr must lie in (0.135, 1] (below e^-2 the "
+                       "spring-damper is over-damped)", FB_NUM(q.cr));
   if (q.law == FB_LAW_LINEAR && (!(q.c >= 0.0) || !isfinite(q.c)))
-    return fb_cli_fail(P, 2, "--damping-n-s-m %g: must be >= 0 and finite", q.c);
+    return fb_cli_fail(P, 2, "--damping-n-s-m %s: must be >= 0 and finite", FB_NUM(q.c));
   if (q.has_load && !(q.load > 0.0 && isfinite(q.load)))
-    return fb_cli_fail(P, 2, "--load-n %g: must be positive and finite", q.load);
+    return fb_cli_fail(P, 2, "--load-n %s: must be positive and finite", FB_NUM(q.load));
   q.m0 = sqrt(q.m_min * q.m_max);
   double dop;
   {
@@ -305,13 +327,45 @@ int fb_cmd_contact_params(int argc, char **argv) {
     fb_linear_contact lmin = linear_of(&q, q.m_min, &dop);
     const double h_auto = DEFAULT_H_OMEGA / sqrt(lmin.k / q.m_min);
     q.h = h_keep;
-    if (q.h < 0.0 || !isfinite(q.h))
-      return fb_cli_fail(P, 2, "--h-s %g: the step size must be positive", q.h);
-    if (q.h == 0.0) q.h = h_auto;
+    if (h_given && (!(q.h > 0.0) || !isfinite(q.h)))
+      return fb_cli_fail(P, 2, "--h-s %s: the step size must be positive", FB_NUM(q.h));
+    if (!h_given && !(q.h > 0.0)) q.h = h_auto;
   }
   fb_diag diag;
   fb_linear_contact lc = linear_of(&q, q.m0, &dop);
   if (fb_linear_contact_check(&lc, &diag) != FB_OK) return fb_cli_fail(P, 2, "%s", diag.msg);
+  /* the impacts these parameters describe, at both ends of the mass range:
+   * the law's own and the linear contact the engines get, each a contact a
+   * double can follow in at most FB_IMPACT_MAX_STEPS steps of h (impact.h);
+   * --verify steps each row up to 100 contact durations, so there every
+   * duration must fit in FB_IMPACT_MAX_STEPS / 100 steps */
+  for (int e = 0; e < 2; e++) {
+    const double m = e ? q.m_max : q.m_min;
+    fb_impact_def d[2];
+    target_def(&q, m, &d[0]);
+    d[1] = d[0];
+    double dm;
+    const fb_linear_contact lm = linear_of(&q, m, &dm);
+    d[1].law.kind = FB_LAW_LINEAR;
+    d[1].law.exponent = 1.0;
+    d[1].law.stiffness = lm.k;
+    d[1].law.damping = lm.c;
+    for (int k = 0; k < 2; k++) {
+      if (fb_impact_check(&d[k], &diag) != FB_OK)
+        return fb_cli_fail(P, 2, "%s (the %s at %s kg, %s m/s)", diag.msg,
+                           k ? "linear contact the engines get" : "law's impact", FB_NUM(m),
+                           FB_NUM(q.v));
+      fb_impact_result cf;
+      const double T = fb_impact_closed_form(&cf, &d[k]) ? cf.contact_duration
+                                                         : fb_impact_duration_estimate(&d[k]);
+      if (q.verify && VERIFY_DURATIONS * T / q.h + 10.0 > FB_IMPACT_MAX_STEPS)
+        return fb_cli_fail(P, 2, "--h-s %s with --verify: each row runs for up to %g contact "
+                           "durations (%.3g s at %s kg), %.3g steps, more than %.0e: give h >= "
+                           "%.2g s", FB_NUM(q.h), VERIFY_DURATIONS, T, FB_NUM(m),
+                           VERIFY_DURATIONS * T / q.h, FB_IMPACT_MAX_STEPS,
+                           VERIFY_DURATIONS * T / FB_IMPACT_MAX_STEPS);
+    }
+  }
   const double h_omega_max = q.h * sqrt(lc.k / q.m_min);
   const double omega_d_h = fb_contact_omega_d_h(q.h, lc.k, lc.c, q.m_min);
   if (omega_d_h > FB_MATCHED_ALIAS_BOUND)
@@ -362,7 +416,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
       const double m = masses[i];
       fb_impact_result ref;
       if (target(&q, m, &ref, &diag) != FB_OK) return fb_cli_fail(P, 1, "%s", diag.msg);
-      const double t_max = 100.0 * ref.contact_duration + 10.0 * q.h;
+      const double t_max = VERIFY_DURATIONS * ref.contact_duration + 10.0 * q.h;
       /* MuJoCo's parameters are per unit of effective mass: the direct form
        * recomputed at this mass (what a per-contact update would hand it) */
       double dm;

@@ -8,6 +8,7 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "textsafe.h"
 #include "figures.h"
 #include "fileio.h"
 #include "outdir.h"
@@ -68,7 +69,8 @@ typedef struct {
 static void progress(const char *model, double fraction, void *user) {
   progress_state *p = user;
   if (!p->tty) return;
-  fprintf(stderr, "\r  %-22s %3.0f%%", model, 100.0 * fraction);
+  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
+  fprintf(stderr, "  %-22s %3.0f%%", model, 100.0 * fraction);
   if (fraction >= 1.0) fputc('\n', stderr);
   fflush(stderr);
 }
@@ -144,6 +146,19 @@ int fb_cmd_run(int argc, char **argv) {
       return fb_cli_fail("run", 2, "%s", vd.msg);
     variants[v].jobs = jobs;
   }
+  /* what fb_run_case refuses before its first model (the step resolved, the
+   * cost against memory and [run] max_wall_s) is found now, for the case
+   * and every variant: none waits for the models before it */
+  /* (a case that cannot fit the machine or max_wall_s: exit 1, as a run
+   * refused by its estimate always was; a scene the keys cannot make: 2) */
+  fb_diag pre;
+  int over_cost;
+  if (fb_run_preflight(&c, &over_cost, &pre) != FB_OK)
+    return fb_cli_fail("run", over_cost ? 1 : 2, "%s: %s", case_path, pre.msg);
+  for (int v = 0; v < c.variant_count; v++)
+    if (fb_run_preflight(&variants[v], &over_cost, &pre) != FB_OK)
+      return fb_cli_fail("run", over_cost ? 1 : 2, "%s: variant %s (%s): %s", case_path,
+                         c.variant[v].name, c.variant[v].origin, pre.msg);
 
   char dir[4096];
   if (out_dir)
@@ -167,6 +182,14 @@ int fb_cmd_run(int argc, char **argv) {
     fb_outdir_release(&od);
     return fb_cli_fail("run", 1, "%s", diag.msg);
   }
+  /* stopped by a signal: what the folder keeps and the command that runs it again */
+  static char note_text[4 * 4096 + 64], note_tail[8192 + 64], esc_dir[4 * 4096];
+  static char again[8192];
+  fb_cli_command_line(again, sizeof again, argc, argv, NULL);
+  snprintf(note_text, sizeof note_text, "%s keeps the results it held (nothing of this run "
+           "was written)", fb_text_escape(esc_dir, sizeof esc_dir, dir));
+  snprintf(note_tail, sizeof note_tail, "; to run it again: %s", again);
+  fb_cleanup_note("fourbar run: stopped", note_text, NULL, note_tail);
 
   static fb_run r;
   progress_state ps = {isatty(2) && !json};
@@ -226,6 +249,10 @@ int fb_cmd_run(int argc, char **argv) {
                        dir);
   }
   st = fb_outdir_commit(&od, &diag);
+  if (st == FB_OK) { /* a signal from here on finds this run's set in place */
+    snprintf(note_text, sizeof note_text, "%s holds this run's results, whole", esc_dir);
+    fb_cleanup_note("fourbar run: stopped", note_text, NULL, NULL);
+  }
   fb_outdir_release(&od);
   if (st != FB_OK) {
     fb_run_free(&r);

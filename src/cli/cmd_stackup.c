@@ -9,6 +9,7 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "textsafe.h"
 #include "clock.h"
 #include "tolerance.h"
 
@@ -62,7 +63,8 @@ static void progress(double fraction, void *user) {
   for (int i = 0; i < W; i++) bar[i] = i < full ? '#' : '-';
   bar[W] = 0;
   const double el = now - b->t0;
-  fprintf(stderr, "\r  Monte Carlo [%s] %3.0f%%  %zu/%zu  %.1f s", bar, 100.0 * fraction,
+  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
+  fprintf(stderr, "  Monte Carlo [%s] %3.0f%%  %zu/%zu  %.1f s", bar, 100.0 * fraction,
           (size_t)(fraction * (double)b->samples), b->samples, el);
   if (fraction > 0.0 && fraction < 1.0) fprintf(stderr, ", %.1f s left ", el * (1.0 - fraction) / fraction);
   else fputs("              ", stderr);

@@ -16,11 +16,14 @@
 #include <unistd.h>
 #include <dirent.h>
 
+#include "casefile.h"
 #include "cli.h"
+#include "textsafe.h"
 #include "clock.h"
 #include "figures.h"
 #include "fileio.h"
 #include "outdir.h"
+#include "worker.h"
 
 #ifndef FB_VERSION
 #define FB_VERSION "unknown"
@@ -160,7 +163,8 @@ static void progress(size_t done, size_t total, double t0, int tty) {
   int filled = (int)(frac * width);
   for (int k = 0; k < width; k++) bar[k] = k < filled ? '#' : '.';
   bar[width] = '\0';
-  fprintf(stderr, "\r  [%s] %zu/%zu points, %.0f s elapsed, ETA %.0f s   ", bar, done, total, el, eta);
+  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
+  fprintf(stderr, "  [%s] %zu/%zu points, %.0f s elapsed, ETA %.0f s   ", bar, done, total, el, eta);
   if (done == total) fputc('\n', stderr);
   fflush(stderr);
 }
@@ -224,6 +228,15 @@ int fb_cmd_sweep(int argc, char **argv) {
   fb_diag d;
   if (fb_study_load_with_cases(&s, study_path, fb_cli_cases_dir(), &d) != FB_OK)
     return fb_cli_fail("sweep", 2, "%s", d.msg);
+  {
+    /* a point runs its case alone: said when the case has variants */
+    static fb_case probe;
+    fb_diag pd;
+    if (!list && fb_casefile_load(&probe, s.case_path, NULL, 0, &pd) == FB_OK && probe.variant_count)
+      fprintf(stderr, "fourbar sweep: note: %s has %d [variant.*] section%s; a sweep runs each "
+              "point's case alone, without them (fourbar run runs them)\n", s.case_path,
+              probe.variant_count, probe.variant_count > 1 ? "s" : "");
+  }
   char dir[4096];
   if (out) snprintf(dir, sizeof dir, "%s", out);
   else snprintf(dir, sizeof dir, "results/studies/%s", s.name);
@@ -332,6 +345,15 @@ int fb_cmd_sweep(int argc, char **argv) {
   const double t0 = fb_clock_s();
   size_t finished = 0;
   int rc = 0;
+  /* stopped by a signal: the rows kept and the command that resumes */
+  static volatile long kept;
+  static char note_tail[4 * 4300 + 8192 + 128], esc_rows[4 * 4300], again[8192];
+  kept = (long)(mine - ntodo);
+  fb_cli_command_line(again, sizeof again, argc, argv, "--restart");
+  snprintf(note_tail, sizeof note_tail, " of %zu points of this %s kept in %s; resume with: %s",
+           mine, shard_n > 1 ? "shard" : "study", fb_text_escape(esc_rows, sizeof esc_rows, rows_path),
+           again);
+  fb_cleanup_note("fourbar sweep: stopped", "", &kept, note_tail);
   if (jobs == 1 || ntodo <= 1) {
     for (size_t k = 0; k < ntodo && rc == 0; k++) {
       char *line;
@@ -340,6 +362,7 @@ int fb_cmd_sweep(int argc, char **argv) {
         break;
       }
       if (append_row(fd, line) != 0) rc = fb_cli_fail("sweep", 1, "%s: write failed", rows_path);
+      else kept++;
       free(line);
       progress(++finished, ntodo, t0, tty);
     }
@@ -358,10 +381,9 @@ int fb_cmd_sweep(int argc, char **argv) {
       const pid_t parent = getpid();
       pid[w] = fork();
       if (pid[w] == 0) {
-        /* a worker dies with its parent (a killed sweep leaves no orphan) */
-        if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent) _exit(5);
-        close(p[0]);
-        close(fd);
+        /* a worker dies with its parent (a killed sweep leaves no orphan)
+         * and holds none of its locks (worker.h) */
+        if (fb_worker_tie_to_parent(parent, p[1]) != 0) _exit(5);
         for (size_t k = (size_t)w; k < ntodo; k += (size_t)nw) {
           char *line;
           if (fb_study_point(&s, todo[k], &line, &d) != FB_OK) _exit(3);
@@ -407,6 +429,7 @@ int fb_cmd_sweep(int argc, char **argv) {
           char save = buf[w][l];
           buf[w][l] = '\0';
           if (append_row(fd, buf[w]) != 0) rc = 1;
+          else kept++;
           buf[w][l] = save;
           memmove(buf[w], buf[w] + l, blen[w] - l + 1);
           blen[w] -= l;

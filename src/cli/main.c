@@ -4,11 +4,11 @@
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "casefile.h"
 #include "cli.h"
 #include "suggest.h"
+#include "textsafe.h"
 
 #ifndef FB_VERSION
 #define FB_VERSION "unknown"
@@ -66,14 +66,11 @@ static int stdout_written(const char *cmd, int rc) {
 }
 
 int main(int argc, char **argv) {
-  /* whole lines: with standard output and error on one file or pipe (2>&1),
-   * standard output goes out a line at a time, so a message on standard
-   * error (unbuffered) never lands inside one of its lines; the buffer holds
-   * the longest line we print. Elsewhere the usual full buffering. */
-  static char out_buf[1 << 16];
-  struct stat so, se;
-  if (fstat(1, &so) == 0 && fstat(2, &se) == 0 && so.st_dev == se.st_dev && so.st_ino == se.st_ino)
-    setvbuf(stdout, out_buf, _IOLBF, sizeof out_buf);
+  /* no control character of data (a case file's text, a flag, a path) reaches
+   * the terminal raw: stdout and stderr escape them (textsafe.h); with both on
+   * one file or pipe (2>&1) stdout goes out a line at a time, so a message on
+   * stderr never lands inside one of its lines */
+  fb_text_safe_std();
   const char *cmd = argc > 1 ? argv[1] : "";
   char name[64];
   snprintf(name, sizeof name, "%s", cmd);

@@ -11,6 +11,7 @@
 
 #include "model_table.h"
 #include "run.h"
+#include "worker.h"
 
 /* the statistics of fb_impact_stats as a flat list, for loops */
 #define NSTAT 12
@@ -58,6 +59,16 @@ static fb_status run_member(member_values *mv, const fb_run *r, int k, int n, fb
   fb_run *m = malloc(sizeof *m);
   if (!m) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for an ensemble member");
   fb_status st = fb_run_case(m, &c, NULL, NULL, diag);
+  /* a member cut short by the run's wall-time limit would pool fewer
+   * impacts than it has: the ensemble fails, saying so */
+  for (int q = 0; st == FB_OK && q < m->n; q++)
+    if (m->model[q].run.stop.kind == FB_STOP_WALL_TIME) {
+      st = fb_diag_set(diag, FB_ERR_RANGE, "ensemble member %d of %d: [run] max_wall_s = %g s was "
+                       "reached at t = %.6g s of %s: raise max_wall_s, or lower [run] ensemble or "
+                       "revolutions", k, n, c.max_wall_s, m->model[q].run.stop.t,
+                       m->model[q].run.name);
+      fb_run_free(m);
+    }
   if (st == FB_OK) {
     for (int q = 0; q < m->n && st == FB_OK; q++) {
       if (!counted(&m->model[q])) continue;
@@ -148,6 +159,7 @@ static fb_status run_members(member_values *mv, const fb_run *r, int n, int jobs
   int started = 0;
   fb_status st = FB_OK;
   fflush(NULL);
+  const pid_t parent = getpid();
   for (int w = 0; w < jobs; w++) {
     int p[2];
     if (pipe(p) != 0) {
@@ -161,12 +173,18 @@ static fb_status run_members(member_values *mv, const fb_run *r, int n, int jobs
       break;
     }
     if (pid[w] == 0) {
-      close(p[0]);
+      /* dies with its parent, holding none of its locks (worker.h) */
+      if (fb_worker_tie_to_parent(parent, p[1]) != 0) _exit(5);
       int ok = 1;
       for (int k = 1 + w; k < n && ok; k += jobs) {
         member_values one;
         fb_diag inner;
-        ok = run_member(&one, r, k, n, &inner) == FB_OK && send_member(p[1], &one);
+        /* each member's status first, with its message when it failed, so
+         * the parent says why as a run with --jobs 1 would */
+        const long long status = run_member(&one, r, k, n, &inner);
+        ok = write_all(p[1], &status, sizeof status) &&
+             (status == FB_OK ? send_member(p[1], &one)
+                              : write_all(p[1], inner.msg, sizeof inner.msg) && 0);
         member_free(&one);
       }
       _exit(ok ? 0 : 1);
@@ -179,11 +197,18 @@ static fb_status run_members(member_values *mv, const fb_run *r, int n, int jobs
   int done = 0;
   for (int w = 0; w < started; w++) {
     for (int k = 1 + w; k < n && st == FB_OK; k += jobs) {
-      if (!recv_member(fd[w], &mv[k]))
+      long long status = FB_ERR_IO;
+      fb_diag inner;
+      if (read_all(fd[w], &status, sizeof status) && status != FB_OK &&
+          read_all(fd[w], inner.msg, sizeof inner.msg)) {
+        inner.msg[sizeof inner.msg - 1] = '\0';
+        st = fb_diag_set(diag, (fb_status)status, "%s", inner.msg);
+      } else if (status != FB_OK || !recv_member(fd[w], &mv[k])) {
         st = fb_diag_set(diag, FB_ERR_IO, "ensemble: worker %d of %d failed on member %d", w + 1,
                          jobs, k);
-      else if (progress)
+      } else if (progress) {
         progress("ensemble", (double)++done / (double)(n - 1), user);
+      }
     }
     close(fd[w]);
     int status = 0;

@@ -60,7 +60,19 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
   if (e->reactions) e->reactions(self, x.reaction, &x.drive_torque);
   fb_series_push(&r->series, &x);
   const size_t report_every = n / 100 + 1;
+  const double deadline = def->source.wall_deadline;
   for (size_t k = 1; k <= n; k++) {
+    /* [run] max_wall_s holds for every engine: a model still stepping at
+     * the run's deadline stops there, with its reason (the clock is read
+     * every FB_WALL_CHECK_STEPS steps) */
+    if (deadline > 0.0 && k % FB_WALL_CHECK_STEPS == 0 && fb_clock_s() > deadline) {
+      r->stop.kind = FB_STOP_WALL_TIME;
+      r->stop.t = x.t;
+      r->stop.step = k;
+      r->stop.limit = def->source.max_wall_s;
+      r->stop.t_end = def->duration;
+      break;
+    }
     st = e->step(self, diag);
     if (st == FB_ERR_NUMERIC || st == FB_ERR_NOMEM) { /* the engine gave up (ODE's own fatal
                                    check or its step memory, the reference's integrator): this

@@ -2,12 +2,15 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "clock.h"
+#include "model_table.h"
 #include "reference.h"
 #include "resolution.h"
+#include "tolerance.h"
 
 
 static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref) {
@@ -177,32 +180,121 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   return FB_OK;
 }
 
-void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {
-  const double steps = fb_case_duration(c) / c->solver.h + 1.0;
-  *bytes = (double)c->model_count * steps * (double)sizeof(fb_sample);
-  *seconds = (double)c->model_count * steps * FB_COST_S_PER_STEP;
+/* one model's wall time per sample on an idle machine [s], from the
+ * options that set its cost (run.h, FB_COST_*); 0 for an unknown name */
+static double model_cost(const fb_model *m, const fb_case *c) {
+  const int clearance = m->joints == FB_JOINTS_CLEARANCE;
+  switch (m->engine) {
+    case FB_ENGINE_ANALYTIC: return FB_COST_ANALYTIC_S;
+    case FB_ENGINE_REFERENCE:
+      /* with its check integration at a tighter tolerance (not in a member) */
+      return FB_COST_REFERENCE_S * (c->member ? 1.0 : 1.0 + FB_COST_REFERENCE_CHECK);
+    case FB_ENGINE_ODE: {
+      double s = c->solver.stepper == FB_STEPPER_QUICK
+                     ? FB_COST_ODE_QUICK_S + FB_COST_ODE_QUICK_ITERATION_S * c->solver.quick_iterations
+                     : FB_COST_ODE_S;
+      const int collider = m->collider != FB_COLLIDER_EXACT ? (int)m->collider
+                           : c->clearance.collider == FB_CASE_COLLIDER_FACETED ? FB_COLLIDER_FACETED
+                           : c->clearance.collider == FB_CASE_COLLIDER_CCD ? FB_COLLIDER_CCD
+                                                                           : FB_COLLIDER_EXACT;
+      if (clearance && collider == FB_COLLIDER_FACETED)
+        s += FB_COST_ODE_BOX_S *
+             (c->clearance.segments_given ? c->clearance.segments : c->clearance.faceted_n);
+      if (clearance && collider == FB_COLLIDER_CCD)
+        s += FB_COST_ODE_CCD_S + FB_COST_ODE_CCD_SEGMENT_S * c->clearance.segments;
+      return s;
+    }
+    case FB_ENGINE_MUJOCO:
+      return !clearance ? FB_COST_MUJOCO_S
+             : m->collider == FB_COLLIDER_NATIVE ? FB_COST_MUJOCO_NATIVE_S
+                                                 : FB_COST_MUJOCO_CLEARANCE_S;
+    case FB_ENGINE_BULLET:
+      return c->bullet.solver == FB_BULLET_SEQUENTIAL_IMPULSE
+                 ? FB_COST_BULLET_SI_S + FB_COST_BULLET_ITERATION_S * c->bullet.iterations
+                 : FB_COST_BULLET_S;
+    case FB_ENGINE_SIMBODY: {
+      /* sampling, plus the integrator's own steps, which grow as the
+       * accuracy tightens (measured: x2.2 to x3.6 per factor 100) */
+      const double steps_rev = (clearance ? FB_COST_SIMBODY_STEPS_REV_CLEARANCE
+                                          : FB_COST_SIMBODY_STEPS_REV_IDEAL) *
+                               pow(FB_SIMBODY_ACCURACY_DEFAULT / c->simbody.accuracy,
+                                   FB_COST_SIMBODY_ACCURACY_POWER);
+      const double samples = fb_case_duration(c) / c->solver.h + 1.0;
+      return FB_COST_SIMBODY_SAMPLE_S + FB_COST_SIMBODY_STEP_S * steps_rev * c->revolutions / samples;
+    }
+    default: return FB_COST_ODE_S;
+  }
 }
 
-/* refuses what cannot fit, before anything is reserved */
+void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {
+  const double steps = fb_case_duration(c) / c->solver.h + 1.0;
+  /* an ensemble's members (ensemble.h) run its clearance models and
+   * references again, in ceil((n - 1) / jobs) rounds of jobs workers */
+  const int n = c->member ? 1 : c->ensemble > 1 ? c->ensemble : 1;
+  const int jobs = c->jobs > 1 ? (c->jobs < n - 1 ? c->jobs : n - 1) : 1;
+  const double rounds = n > 1 ? ceil((double)(n - 1) / (double)jobs) : 0.0;
+  *bytes = 0.0;
+  *seconds = 0.0;
+  for (int i = 0; i < c->model_count; i++) {
+    const fb_model *m = fb_model_find(c->models[i]);
+    if (!m) continue;
+    const int member = m->joints == FB_JOINTS_CLEARANCE || m->engine == FB_ENGINE_REFERENCE;
+    /* an HDF5 series is built in memory before it is written (series_hdf5.c):
+     * at most the samples' own size again */
+    const double copies = 1.0 + (c->series == FB_SERIES_HDF5) + (member && n > 1 ? jobs : 0);
+    *bytes += steps * (double)sizeof(fb_sample) * copies;
+    *seconds += steps * FB_COST_LOAD_FACTOR * model_cost(m, c) * (1.0 + (member ? rounds : 0.0));
+  }
+}
+
+/* refuses what cannot fit, before anything is reserved (c: the step resolved) */
 static fb_status check_cost(const fb_case *c, fb_diag *diag) {
   double bytes, seconds;
   fb_run_estimate(c, &bytes, &seconds);
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
   const double memory = pages > 0 && page > 0 ? (double)pages * (double)page : 0.0;
   const double steps = fb_case_duration(c) / c->solver.h + 1.0;
+  /* the step as the case gave it: an adaptive run samples every h_min_s */
+  const int adaptive = c->solver.h_mode == FB_STEP_ADAPTIVE;
+  char step[96];
+  snprintf(step, sizeof step, adaptive ? "[solver] h_s = adaptive, sampled every h_min_s = %g s"
+                                       : "[solver] h_s = %g s", c->solver.h);
+  const char *raise = adaptive ? "raise h_min_s" : "raise h_s";
   if (memory > 0.0 && bytes > FB_COST_MEMORY_FRACTION * memory)
-    return fb_diag_set(diag, FB_ERR_RANGE, "[run] revolutions = %g with [solver] h_s = %g s: %d "
+    return fb_diag_set(diag, FB_ERR_RANGE, "[run] revolutions = %g with %s: %d "
                        "models x %.3g samples would reserve an estimated %.3g GB, more than %.0f %% "
                        "of this machine's %.3g GB (estimated wall time %.3g s): lower revolutions "
-                       "or raise h_s", c->revolutions, c->solver.h, c->model_count, steps,
-                       bytes / 1e9, 100.0 * FB_COST_MEMORY_FRACTION, memory / 1e9, seconds);
-  if (seconds > c->max_wall_s)
-    return fb_diag_set(diag, FB_ERR_RANGE, "[run] revolutions = %g with [solver] h_s = %g s: %d "
-                       "models x %.3g steps take an estimated %.3g s (%.3g GB), more than [run] "
-                       "max_wall_s = %g s: lower revolutions, raise h_s or raise max_wall_s",
-                       c->revolutions, c->solver.h, c->model_count, steps, seconds, bytes / 1e9,
-                       c->max_wall_s);
+                       "or %s", c->revolutions, step, c->model_count, steps,
+                       bytes / 1e9, 100.0 * FB_COST_MEMORY_FRACTION, memory / 1e9, seconds, raise);
+  if (seconds > c->max_wall_s) {
+    char what[160] = "";
+    if (!c->member && c->ensemble > 1)
+      snprintf(what, sizeof what, ", with [run] ensemble = %d (its members run the clearance "
+               "models and references again)", c->ensemble);
+    return fb_diag_set(diag, FB_ERR_RANGE, "[run] revolutions = %g with %s: %d "
+                       "models x %.3g steps%s take an estimated %.3g s (%.3g GB; each engine's "
+                       "cost per step with its options: [solver] stepper and quick_iterations, "
+                       "[bullet] solver and iterations, [simbody] accuracy, the collider), more "
+                       "than [run] max_wall_s = %g s: lower revolutions, %s or raise max_wall_s",
+                       c->revolutions, step, c->model_count, steps, what, seconds, bytes / 1e9,
+                       c->max_wall_s, raise);
+  }
   return FB_OK;
+}
+
+/* check_cost at the step the models will take (the corner and h_s = auto
+ * or adaptive resolved, as fb_scene_def_from_case does: an adaptive run
+ * samples every h_min_s), before anything else checks or reserves */
+static fb_status check_cost_resolved(const fb_case *c, int *over_cost, fb_diag *diag) {
+  *over_cost = 0;
+  fb_case *k = malloc(sizeof *k);
+  if (!k) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  *k = *c;
+  fb_status st = fb_tol_resolve_worst(k, diag);
+  if (st == FB_OK) st = fb_case_resolve_step(k, diag);
+  if (st == FB_OK) *over_cost = (st = check_cost(k, diag)) != FB_OK;
+  free(k);
+  return st;
 }
 
 /* the reference's own error estimate: the same integration at a tighter
@@ -253,7 +345,8 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
 static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                          fb_diag *diag) {
   memset(r, 0, sizeof *r);
-  fb_status cost = check_cost(c, diag);
+  int over_cost;
+  fb_status cost = check_cost_resolved(c, &over_cost, diag);
   if (cost != FB_OK) return cost;
   /* the scene stage: the case resolved once for every model */
   fb_status rc = fb_scene_def_from_case(&r->scene, c, diag);
@@ -350,8 +443,36 @@ static fb_status settle(fb_run *r, double t_start, fb_progress_fn progress, void
   return FB_OK;
 }
 
+fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag) {
+  *over_cost = 0;
+  fb_scene_def *def = malloc(sizeof *def);
+  if (!def) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_status st = check_cost_resolved(c, over_cost, diag);
+  if (st == FB_OK) st = fb_scene_def_from_case(def, c, diag);
+  free(def);
+  return st;
+}
+
+static fb_status run_case_timed(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
+                                fb_diag *diag);
+
 fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                       fb_diag *diag) {
+  if (c->member && c->wall_deadline > 0.0) return run_case_timed(r, c, progress, user, diag);
+  /* [run] max_wall_s holds while the models run, not only in the estimate:
+   * a model still running at the deadline stops there (FB_STOP_WALL_TIME);
+   * an ensemble's members keep the deadline of the run they belong to */
+  fb_case *timed = malloc(sizeof *timed);
+  if (!timed) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  *timed = *c;
+  timed->wall_deadline = fb_clock_s() + c->max_wall_s;
+  fb_status st = run_case_timed(r, timed, progress, user, diag);
+  free(timed);
+  return st;
+}
+
+static fb_status run_case_timed(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
+                                fb_diag *diag) {
   const double t_start = fb_clock_s();
   fb_status st = run_once(r, c, progress, user, diag);
   if (st != FB_OK) return st;

@@ -316,6 +316,49 @@ fb_status fb_study_load_with_cases(fb_study *s, const char *path, const char *ca
       return fb_diag_set(diag, FB_ERR_RANGE, "%s: the grid has more than %d points (at [axis.%s])",
                          path, FB_STUDY_MAX_POINTS, s->axis[a].name);
   }
+  /* every varied or fixed key is a key of the case table: a point runs its
+   * case alone (no [variant.*] section is run by a sweep), so an axis on
+   * anything else would vary nothing */
+  for (int k = 0; k < s->naxes + s->nsets; k++) {
+    const int is_axis = k < s->naxes;
+    if (is_axis && s->axis[k].montecarlo) continue;
+    char key[256];
+    const char *item = is_axis ? s->axis[k].key : s->sets[k - s->naxes];
+    snprintf(key, sizeof key, "%.*s", (int)strcspn(item, "="), item);
+    char *kt = key;
+    while (*kt == ' ') kt++;
+    for (size_t l = strlen(kt); l && kt[l - 1] == ' '; l--) kt[l - 1] = '\0';
+    int known = 0;
+    for (int i = 0; i < fb_casefile_key_count() && !known; i++) {
+      char name[160];
+      known = strcmp(fb_casefile_key_name(i, name, sizeof name), kt) == 0;
+    }
+    if (!known) {
+      char where[128];
+      if (is_axis) snprintf(where, sizeof where, "[axis.%s] key", s->axis[k].name);
+      else snprintf(where, sizeof where, "[study] set");
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: %s: '%s' is not a case key (fourbar keys lists "
+                         "them)%s", path, where, kt,
+                         strncmp(kt, "variant.", 8) == 0
+                             ? "; a sweep runs each point's case alone, never its [variant.*] "
+                               "sections, so it would vary nothing: vary the keys the variant "
+                               "sets instead"
+                             : "");
+    }
+    /* and a fixed key is given once */
+    for (int q = s->naxes; q < k && !is_axis; q++) {
+      char other[256];
+      snprintf(other, sizeof other, "%.*s", (int)strcspn(s->sets[q - s->naxes], "="),
+               s->sets[q - s->naxes]);
+      char *ot = other;
+      while (*ot == ' ') ot++;
+      for (size_t l = strlen(ot); l && ot[l - 1] == ' '; l--) ot[l - 1] = '\0';
+      if (strcmp(ot, kt) == 0)
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] set gives %s twice ('%s' and '%s'): "
+                           "give each key once (one would silently win)", path, kt,
+                           s->sets[q - s->naxes], item);
+    }
+  }
   /* one key, one place: two axes on one key, or an axis on a key the fixed
    * set also gives, would let one value silently win */
   for (int a = 0; a < s->naxes; a++) {

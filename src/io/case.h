@@ -363,6 +363,10 @@ typedef struct fb_case_s {
                                          ensemble at 1 and a model's verdict is unsettled
                                          (fourbar run sets it when [run] ensemble is not
                                          given; run.h); 0 or 1: none */
+  double wall_deadline;               /* not a key: the fb_clock_s() time [s] at which every model
+                                         still running stops (FB_STOP_WALL_TIME); 0: none. Set by
+                                         fb_run_case from max_wall_s for each run; an ensemble
+                                         member (member = 1) keeps its run's */
   char published_source[160];         /* where the published values come from ("" : none) */
   fb_case_published published[FB_PUBLISHED_LAWS]; /* the publication's values per law */
   int variant_count;                  /* entries used in variant */

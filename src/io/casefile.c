@@ -3,6 +3,7 @@
 #include "ini_lines.h"
 
 #include <errno.h>
+#include <float.h>
 #include <fnmatch.h>
 #include <ini.h>
 #include <math.h>
@@ -18,6 +19,7 @@
 #include "iso286.h"
 #include "model_table.h"
 #include "suggest.h"
+#include "textsafe.h"
 #include "tolerance.h"
 #include "units.h"
 #include "fb_config.h"
@@ -388,8 +390,9 @@ static const key_spec keys[] = {
     {"run", "max_wall_s", K_DOUBLE, OFF(max_wall_s), 1.0, 0, INF, 1, 1, "s", "86400",
      "the wall-time limit must be positive",
      "before simulating, fourbar estimates each model's memory and wall time from its step "
-     "count; a run estimated to take longer than this is refused (one that cannot fit in "
-     "memory always is)"},
+     "count, its engine's options and the [run] ensemble's members; a run estimated to take "
+     "longer than this is refused (one that cannot fit in memory always is), and a model "
+     "still running this long after the run began stops there (status wall-time)"},
     {"run", "start", K_START, OFF(start), 0, 0, 0, 0, 0, "-", "steady", "steady or rest",
      "initial state: steady (every body on the ideal mechanism's motion) or rest (the crank "
      "at full speed from t = 0, every body not rigidly tied to it at rest: coupler and "
@@ -601,8 +604,15 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
                      e->key, e->section);
 }
 
+int fb_casefile_underflows(const char *text) {
+  errno = 0;
+  const double v = strtod(text, NULL);
+  return errno == ERANGE && fabs(v) < DBL_MIN;
+}
+
 int fb_casefile_decimal(const char *text, double *out) {
   while (*text == ' ' || *text == '\t') text++;
+  if (fb_casefile_underflows(text)) return 0;
   char *end;
   const double v = strtod(text, &end);
   /* strtod also reads hexadecimal (0x10, 0x1p3), inf and nan: refused */
@@ -621,8 +631,8 @@ fb_status fb_casefile_check_range(const char *section, const char *key, double v
   const int bad_lo = k->lo_open ? !(value > k->lo) : !(value >= k->lo);
   const int bad_hi = k->hi_open ? !(value < k->hi) : !(value <= k->hi);
   if (bad_lo || bad_hi || !isfinite(value))
-    return fb_diag_set(diag, FB_ERR_RANGE, "%s = %g: %s (as [%s] %s)", origin, value, k->rule,
-                       section, key);
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s = %s: %s (as [%s] %s)", origin, FB_NUM(value),
+                       k->rule, section, key);
   return FB_OK;
 }
 
@@ -636,6 +646,10 @@ static fb_status parse_double(const entry *e, const key_spec *k, double *out, fb
   if (!isfinite(v))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': must be a finite number",
                        e->origin, e->section, e->key, e->value);
+  if (fb_casefile_underflows(e->value))
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = '%s': below the smallest normal "
+                       "double (2.2e-308), so it would read as %g: give 0 or a larger number (%s)",
+                       e->origin, e->section, e->key, e->value, v, k->unit);
   if (!fb_casefile_decimal(e->value, &v))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': numbers are decimal (digits, "
                        "sign, point, exponent), not hexadecimal (%s)", e->origin, e->section,
@@ -1226,6 +1240,11 @@ static void read_line(const char *path, int n, char *buf, size_t size) {
 static fb_status parse_override(load_ctx *c, const char *ov, int index) {
   char origin[64];
   snprintf(origin, sizeof origin, "--set #%d '%.40s'", index + 1, ov);
+  size_t bad;
+  if (!fb_text_utf8_ok(ov, strlen(ov), &bad))
+    return fb_diag_set(c->diag, FB_ERR_PARSE, "%s: byte 0x%02x at position %zu is not UTF-8 text "
+                       "(its value goes into JSON, which holds UTF-8 only)", origin,
+                       (unsigned char)ov[bad], bad + 1);
   const char *eq = strchr(ov, '=');
   /* the key has no dot, a section may ([published.impact]): the last dot before '=' */
   const char *dot = NULL;
@@ -1364,6 +1383,23 @@ static fb_status variant_items(const fb_case_variant *v, char *buf, size_t size,
     if (*n == max)
       return fb_diag_set(diag, FB_ERR_PARSE, "%s: [variant.%s] set: more than %d overrides",
                          v->origin, v->name, max);
+    /* one key once, as in a case file: a second value never silently wins */
+    for (int q = 0; q < *n; q++) {
+      const size_t lq = strcspn(items[q], "=");
+      char other[128];
+      snprintf(other, sizeof other, "%.*s", (int)lq, items[q]);
+      char *ot = trim(other);
+      char mine[128];
+      snprintf(mine, sizeof mine, "%s.%s", trim(section), trim(key));
+      if (strcmp(ot, mine) == 0)
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [variant.%s] set: duplicate key %s ('%s' "
+                           "and '%s'); give each key once", v->origin, v->name, mine, items[q],
+                           tok);
+    }
+    if (v->models[0] && strcmp(trim(section), "run") == 0 && strcmp(trim(key), "models") == 0)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [variant.%s] set gives run.models and the "
+                         "variant has its own models key too: give the models once", v->origin,
+                         v->name);
     items[(*n)++] = tok;
   }
   if (*n == 0)
@@ -1375,10 +1411,13 @@ static fb_status variant_items(const fb_case_variant *v, char *buf, size_t size,
 /* one key of a [variant.NAME] section into out->variant */
 static fb_status take_variant(fb_case *out, const entry *e, fb_diag *diag) {
   const char *name = e->section + strlen(VARIANT_PREFIX);
-  if (!fb_casefile_name_ok(name))
+  /* the INI parser keeps a section name of FB_INI_NAME_MAX characters whole
+   * (ini_lines.h), "variant." included */
+  const int name_max = FB_INI_NAME_MAX - (int)strlen(VARIANT_PREFIX);
+  if (!fb_casefile_name_ok(name) || (int)strlen(name) > name_max)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: a variant name is 1 to %d characters from "
                        "letters, digits, '-', '_' and '.', not starting with '.'",
-                       e->origin, e->section, FB_NAME_SIZE - 1);
+                       e->origin, e->section, name_max);
   int i = 0;
   while (i < out->variant_count && strcmp(out->variant[i].name, name) != 0) i++;
   if (i == out->variant_count) {

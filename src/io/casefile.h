@@ -45,9 +45,16 @@ fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text
 void fb_casefile_write_keys(FILE *f);
 
 /* Reads text (blanks around it allowed) as a decimal number: digits, sign,
- * point and exponent only, so 0x10, 0x1p3, inf and nan are not numbers.
+ * point and exponent only, so 0x10, 0x1p3, inf and nan are not numbers;
+ * nor is a non-zero number below the smallest normal double (1e-400 would
+ * read as 0, 1e-320 with lost digits: fb_casefile_underflows).
  * Returns 1 and sets *out (which may overflow to infinity), or 0. */
 int fb_casefile_decimal(const char *text, double *out);
+
+/* 1 when text is a decimal number whose magnitude, not zero as written, is
+ * below the smallest normal double, DBL_MIN = 2.2e-308 (strtod's ERANGE:
+ * it would read as 0 or a subnormal), else 0. */
+int fb_casefile_underflows(const char *text);
 
 /* Checks value (in the key's file unit) against the range of case key
  * [section] key, for a command-line flag (origin, e.g. "--speed-rpm") that

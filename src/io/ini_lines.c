@@ -2,6 +2,8 @@
 
 #include <string.h>
 
+#include "textsafe.h"
+
 /* copies a [section] name or key (up to '=', ']' or the end) without blanks */
 static void copy_word(char *dst, size_t size, const char *from, const char *stop) {
   while (*from == ' ' || *from == '\t') from++;
@@ -10,6 +12,24 @@ static void copy_word(char *dst, size_t size, const char *from, const char *stop
   if (n >= size) n = size - 1;
   memcpy(dst, from, n);
   dst[n] = '\0';
+}
+
+/* length of the name from (up to '=', ']' or the end) without blanks */
+static size_t word_length(const char *from, const char *stop) {
+  while (*from == ' ' || *from == '\t') from++;
+  size_t n = strcspn(from, stop);
+  while (n && (from[n - 1] == ' ' || from[n - 1] == '\t')) n--;
+  return n;
+}
+
+/* records a name longer than inih keeps; returns NULL (the parse stops) */
+static char *long_name(fb_ini_lines *s, const char *from, size_t n, int section) {
+  s->problem = FB_INI_LINE_LONG_NAME;
+  s->problem_line = s->line;
+  s->length = (int)n;
+  s->name_is_section = section;
+  copy_word(s->name, sizeof s->name, from, section ? "]" : "=");
+  return NULL;
 }
 
 /* 1 when what follows a header's ']' is blank or a comment */
@@ -60,6 +80,14 @@ char *fb_ini_lines_read(char *str, int num, void *state) {
     s->problem_line = s->line;
     return NULL;
   }
+  size_t bad;
+  if (!comment && !fb_text_utf8_ok(str, (size_t)k, &bad)) {
+    s->problem = FB_INI_LINE_NOT_UTF8;
+    s->problem_line = s->line;
+    s->length = (int)bad + 1;
+    s->bad_byte = (unsigned char)str[bad];
+    return NULL;
+  }
   str[k] = '\n';
   str[k + 1] = '\0';
   const size_t lead = strspn(str, " \t");
@@ -71,11 +99,17 @@ char *fb_ini_lines_read(char *str, int num, void *state) {
       s->problem_line = s->line;
       return NULL;
     }
+    const size_t n = word_length(body + 1, "]\n");
+    if (n > FB_INI_NAME_MAX) return long_name(s, body + 1, n, 1);
     copy_word(s->section, sizeof s->section, body + 1, "]");
     s->key[0] = '\0';
   } else if (*body && *body != ';' && *body != '#' && *body != '\n') {
     const int continues = s->continuation && lead > 0 && s->key[0];
-    if (!continues && strchr(body, '=')) copy_word(s->key, sizeof s->key, body, "=");
+    if (!continues && strchr(body, '=')) {
+      const size_t n = word_length(body, "=");
+      if (n > FB_INI_NAME_MAX) return long_name(s, body, n, 0);
+      copy_word(s->key, sizeof s->key, body, "=");
+    }
   }
   /* in [study] set and a case's [variant.NAME] set, ';' separates
    * overrides: blanks before it are dropped so inih never takes " ;" for the
@@ -116,6 +150,23 @@ const char *fb_ini_lines_problem(const fb_ini_lines *s, const char *path, char *
       snprintf(buf, size, "%s:%d: text after a [section] header's closing ']': a header stands "
                "alone on its line ('[section]', then 'key = value' on the next lines)", path,
                s->problem_line);
+      break;
+    case FB_INI_LINE_LONG_NAME:
+      snprintf(buf, size, "%s:%d: the %s name '%s...' is %d characters long, longer than the "
+               "%d the INI parser keeps whole (it would cut it silently)%s", path,
+               s->problem_line, s->name_is_section ? "section" : "key", s->name, s->length,
+               FB_INI_NAME_MAX,
+               !s->name_is_section ? ""
+               : strncmp(s->name, "variant.", 8) == 0
+                   ? ": a [variant.NAME] name is at most 41 characters"
+                   : strncmp(s->name, "axis.", 5) == 0
+                         ? ": an [axis.NAME] name is at most 44 characters"
+                         : "");
+      break;
+    case FB_INI_LINE_NOT_UTF8:
+      snprintf(buf, size, "%s:%d: byte 0x%02x at column %d is not UTF-8 text: save the %s file as "
+               "UTF-8 (its values go into JSON, which holds UTF-8 only)", path, s->problem_line,
+               s->bad_byte, s->length, s->continuation ? "study" : "case");
       break;
     default:
       snprintf(buf, size, "%s: no problem", path);

@@ -9,8 +9,10 @@
  * and cut "set = a=1 ; b=2" at " ;". This reader:
  * - ends a line at LF, CR LF or a lone CR (classic Mac text);
  * - stops the parse at the first line longer than FB_INI_LINE_MAX, holding
- *   a NUL byte, or whose [section] header has text after its closing ']'
- *   (other than a comment), recording which line and why;
+ *   a NUL byte, whose [section] header has text after its closing ']'
+ *   (other than a comment), whose section or key name is longer than
+ *   FB_INI_NAME_MAX, or which (not a comment) is not UTF-8 text (its value
+ *   would be dropped by a JSON writer), recording which line and why;
  * - in a case file (continuation = 0) drops leading blanks, so an indented
  *   key line is a key of its own;
  * - in a study file (continuation = 1) keeps them (an indented line
@@ -23,12 +25,18 @@
 
 /* Longest line, newline excluded, that inih can take whole [characters]. */
 #define FB_INI_LINE_MAX 198
+/* Longest [section] name and key name inih keeps whole (its MAX_SECTION
+ * and MAX_NAME, 50 with the NUL, in Debian's build): a longer one it cuts
+ * silently, so two long names could become one [characters]. */
+#define FB_INI_NAME_MAX 49
 
 typedef enum {
   FB_INI_LINE_OK = 0,
   FB_INI_LINE_TOO_LONG,   /* longer than FB_INI_LINE_MAX */
   FB_INI_LINE_NUL,        /* holds a NUL byte */
   FB_INI_LINE_BAD_HEADER, /* [section] followed by other text */
+  FB_INI_LINE_LONG_NAME,  /* a section or key name longer than FB_INI_NAME_MAX */
+  FB_INI_LINE_NOT_UTF8,   /* a line other than a comment holds a byte that is not UTF-8 */
 } fb_ini_line_problem;
 
 /* State of one file being read. Zero it, then set f and continuation. */
@@ -38,7 +46,10 @@ typedef struct {
   int line;                     /* lines read so far (1-based number of the last line) */
   fb_ini_line_problem problem;  /* why the parse stopped early, FB_INI_LINE_OK if it did not */
   int problem_line;             /* the line of the problem */
-  int length;                   /* length of a too-long line [characters] */
+  int length;                   /* length of a too-long line or name [characters] */
+  char name[FB_INI_NAME_MAX + 16]; /* the start of a too-long name */
+  int name_is_section;          /* 1: the too-long name is a [section]'s, 0: a key's */
+  int bad_byte;                 /* FB_INI_LINE_NOT_UTF8: the byte; its column is length */
   char section[64];             /* the section being read (as the reader saw its header) */
   char key[64];                 /* the key of the last key line */
 } fb_ini_lines;

@@ -44,6 +44,12 @@ const char *fb_stop_text(char *buf, size_t size, const fb_stop *s) {
                "step is %.3g s (or h_s = auto)",
                fb_joint_name(s->joint), s->value, s->t, at, s->limit, s->h_max);
       break;
+    case FB_STOP_WALL_TIME:
+      snprintf(buf, size,
+               "%s: stopped: the run's wall-time limit [run] max_wall_s = %g s was reached at "
+               "t = %.6g s of %g s%s (raise max_wall_s, or lower revolutions or the cost of a step)",
+               engine, s->limit, s->t, s->t_end, at);
+      break;
     default: snprintf(buf, size, "stopped (%d)", (int)s->kind); break;
   }
   return buf;
@@ -51,7 +57,7 @@ const char *fb_stop_text(char *buf, size_t size, const fb_stop *s) {
 
 static const char *const stop_names[FB_STOP_COUNT] = {"ok", "penetration", "non-finite",
                                                       "step-budget", "allocation", "solver",
-                                                      "aliased"};
+                                                      "aliased", "wall-time"};
 
 const char *fb_stop_kind_name(fb_stop_kind k) {
   return (k >= 0 && k < FB_STOP_COUNT) ? stop_names[k] : "?";

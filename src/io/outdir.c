@@ -56,6 +56,38 @@ static volatile pid_t child_pid;
 
 void fb_cleanup_child(pid_t pid) { child_pid = pid; }
 
+/* the note written on a signal (fb_cleanup_note) */
+static const char *volatile note_head;
+static const char *note_text, *note_tail;
+static const volatile long *note_count;
+static pid_t note_owner; /* a forked worker inherits the note: only the owner writes it */
+
+static void write_str(const char *s) {
+  size_t n = strlen(s);
+  while (n) {
+    const ssize_t w = write(2, s, n);
+    if (w <= 0) return;
+    s += w, n -= (size_t)w;
+  }
+}
+
+static void write_note(int sig) {
+  if (!note_head) return;
+  char num[24];
+  int k = (int)sizeof num - 1;
+  num[k] = '\0';
+  long v = note_count ? *note_count : 0;
+  if (v < 0) v = 0;
+  do num[--k] = (char)('0' + v % 10), v /= 10; while (v && k > 0);
+  write_str("\n");
+  write_str(note_head);
+  write_str(sig == SIGINT ? " by SIGINT: " : sig == SIGTERM ? " by SIGTERM: " : " by SIGHUP: ");
+  write_str(note_text ? note_text : "");
+  if (note_count) write_str(num + k);
+  write_str(note_tail ? note_tail : "");
+  write_str("\n");
+}
+
 static void on_signal(int sig) {
   const pid_t me = getpid();
   const pid_t child = child_pid;
@@ -68,6 +100,7 @@ static void on_signal(int sig) {
     if (slots[k].is_dir) remove_flat(slots[k].path);
     else unlink(slots[k].path);
   }
+  if (note_owner == me) write_note(sig);
   signal(sig, SIG_DFL);
   raise(sig);
 }
@@ -99,6 +132,17 @@ int fb_cleanup_add(const char *path, int is_dir) {
     return k;
   }
   return -1;
+}
+
+void fb_cleanup_note(const char *head, const char *text, const volatile long *count,
+                     const char *tail) {
+  install_handlers();
+  note_head = NULL; /* the handler sees a whole note or none */
+  note_text = text;
+  note_count = count;
+  note_tail = tail;
+  note_owner = getpid();
+  note_head = head;
 }
 
 void fb_cleanup_forget(int slot) {
@@ -324,12 +368,27 @@ static fb_status check_target(const char *dir, const char *target, const char *p
   return FB_OK;
 }
 
+static fb_status take_lock_of(const char *path, const char *dir, const char *what,
+                              const char *fix, int exclusive, int *out_fd, fb_diag *diag);
+
 /* takes an advisory lock on path (exclusive or shared), writing this PID */
 static fb_status take_lock(const char *path, const char *dir, int exclusive, int *out_fd,
                            fb_diag *diag) {
+  return take_lock_of(path, dir, "this output folder", " or choose another --out", exclusive,
+                      out_fd, diag);
+}
+
+fb_status fb_lock_take(const char *lock_path, const char *name, const char *what, int *fd,
+                       fb_diag *diag) {
+  return take_lock_of(lock_path, name, what, "", 1, fd, diag);
+}
+
+/* take_lock for a lock guarding what (of dir), fix said after "wait for it to finish" */
+static fb_status take_lock_of(const char *path, const char *dir, const char *what,
+                              const char *fix, int exclusive, int *out_fd, fb_diag *diag) {
   int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0)
-    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create output folder lock %s: %s", dir, path,
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create the lock %s: %s", dir, path,
                        strerror(errno));
   if (flock(fd, (exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0) {
     const int e = errno;
@@ -339,9 +398,8 @@ static fb_status take_lock(const char *path, const char *dir, int exclusive, int
     pid[strcspn(pid, "\n")] = '\0';
     close(fd);
     if (e == EWOULDBLOCK)
-      return fb_diag_set(diag, FB_ERR_IO, "%s: another fourbar process (PID %s) is writing this "
-                         "output folder; wait for it to finish or choose another --out", dir,
-                         pid[0] ? pid : "unknown");
+      return fb_diag_set(diag, FB_ERR_IO, "%s: another fourbar process (PID %s) is writing %s; "
+                         "wait for it to finish%s", dir, pid[0] ? pid : "unknown", what, fix);
     return fb_diag_set(diag, FB_ERR_IO, "%s: cannot lock %s: %s", dir, path, strerror(e));
   }
   char pid[32];

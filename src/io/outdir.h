@@ -21,8 +21,9 @@
  * or the current folder, and a symbolic link to nothing is refused.
  *
  * On SIGINT, SIGTERM and SIGHUP the staging folder and registered temporary
- * files of this process are removed (async-signal-safe code only), then the
- * signal takes its default action. */
+ * files of this process are removed (async-signal-safe code only), a note
+ * (fb_cleanup_note) is written, then the signal takes its default action
+ * (exit status 128 + the signal's number in a shell). */
 #ifndef FB_OUTDIR_H
 #define FB_OUTDIR_H
 
@@ -52,6 +53,16 @@ typedef struct {
 fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char *tag,
                          fb_diag *diag);
 
+/* One writer per file that is rewritten in place of the old (a baseline of
+ * fourbar check): takes an exclusive advisory lock (flock, without waiting)
+ * on lock_path, created if missing, and writes this PID into it; *fd
+ * receives the open lock file (close it to release; O_CLOEXEC, and closed
+ * in forked workers, worker.h). name and what word the message. Errors:
+ * FB_ERR_IO "<name>: another fourbar process (PID N) is writing <what>;
+ * wait for it to finish", or why the lock file cannot be made. */
+fb_status fb_lock_take(const char *lock_path, const char *name, const char *what, int *fd,
+                       fb_diag *diag);
+
 /* The PID named in a temporary file name of this program's exact forms
  * (<result file>.tmp.<pid>.XXXXXX, .figure.tmp.<pid>.<n>.svg|png), else 0. */
 long fb_outdir_temp_pid(const char *name);
@@ -74,6 +85,16 @@ int fb_cleanup_add(const char *path, int is_dir);
 
 /* Forgets a slot (the file was renamed into place or removed). */
 void fb_cleanup_forget(int slot);
+
+/* What to say when SIGINT, SIGTERM or SIGHUP ends this process, after the
+ * clean-up, on standard error (async-signal-safe writes only): one line
+ * "<head> by SIG<NAME>: <text><count><tail>" (count NULL: no number; tail
+ * may be NULL). The strings are the caller's and must live as long as the
+ * process (static); the caller escapes any data in them (textsafe.h). Used
+ * by run and sweep to say what was kept and the command that resumes.
+ * Installs the handlers once. */
+void fb_cleanup_note(const char *head, const char *text, const volatile long *count,
+                     const char *tail);
 
 /* Names the child process (gnuplot) writing into a registered folder, 0 for
  * none: on a signal it is killed and reaped before the folder is removed, so

@@ -15,6 +15,7 @@
 #include "start.h"
 #include "clock.h"
 #include "series_write.h"
+#include "textsafe.h"
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <time.h>
@@ -1168,7 +1169,12 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
   fb_outfile out;
   fb_status st = fb_outfile_open(&out, path, diag);
   if (st != FB_OK) return st;
-  FILE *f = out.f;
+  /* a text report: every control character of data escaped (textsafe.h) */
+  FILE *f = fb_text_safe_stream(out.f, 0);
+  if (!f) {
+    fb_outfile_abort(&out);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory", path);
+  }
   const fb_case *c = &r->c;
   fprintf(f, "# fourbar run: %s\n\n", c->name);
   fprintf(f, "Command: `%s`  \nCase file: `%s`\n\n", command, case_path ? case_path : "-");
@@ -1243,6 +1249,7 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
   fprintf(f, "\n## Figures\n\n");
   if (n == 0) fprintf(f, "%s\n", figure_note ? figure_note : "No figures were drawn.");
   for (int i = 0; i < n; i++) fprintf(f, "![%s](%s)\n\n", figures[i], figures[i]);
+  fclose(f); /* into out.f, whose write errors the commit reports */
   return fb_outfile_commit(&out, diag);
 }
 

@@ -118,6 +118,22 @@ json_t *fb_report_variants_json(const fb_run *r) {
   return a;
 }
 
+/* a column's value as printed: fixed decimals (fmt) for the magnitudes a
+ * peak has, else 4 significant digits (a published 1e308 is not 309 digits) */
+static const char *cell_number(char *buf, size_t size, const char *fmt, double v) {
+  snprintf(buf, size, fabs(v) < 1e9 ? fmt : "%.4g", v);
+  return buf;
+}
+
+/* a model's difference from a published value, in percent; a published 0
+ * has no relative difference (never "inf %") */
+static const char *difference(char *buf, size_t size, double x, double pub) {
+  if (pub == 0.0) return snprintf(buf, size, "n/a: published 0"), buf;
+  const double pct = 100.0 * ((x - pub) / fabs(pub)); /* no overflow at 1e308 */
+  snprintf(buf, size, fabs(pct) < 1e6 ? "%+.2f %%" : "%+.3g %%", pct);
+  return buf;
+}
+
 /* one row of the published comparison: the model's value and its
  * difference in each column the publication gives */
 static void published_row(FILE *f, int W, const char *label, const fb_peaks *p, int unconverged,
@@ -128,9 +144,9 @@ static void published_row(FILE *f, int W, const char *label, const fb_peaks *p, 
   fprintf(f, "%-*s", W, label);
   for (int k = 0; k < ncol; k++) {
     const int q = col[k];
-    char v[32], cell[64];
+    char v[32], cell[100], d[32];
     fb_report_figure(v, sizeof v, q % 4 < 2 ? "%.2f" : "%.4g", x[q], unconverged);
-    snprintf(cell, sizeof cell, "%s (%+.2f %%)", v, 100.0 * (x[q] - pub[q]) / fabs(pub[q]));
+    snprintf(cell, sizeof cell, "%s (%s)", v, difference(d, sizeof d, x[q], pub[q]));
     fprintf(f, " %24s", cell);
   }
   fputc('\n', f);
@@ -166,8 +182,7 @@ static void print_published(FILE *f, const fb_run *r, int W) {
     fprintf(f, "\n%-*s", W, "published");
     for (int k = 0; k < ncol; k++) {
       char cell[32];
-      snprintf(cell, sizeof cell, col[k] % 4 < 2 ? "%.2f" : "%.4g", v[col[k]]);
-      fprintf(f, " %24s", cell);
+      fprintf(f, " %24s", cell_number(cell, sizeof cell, col[k] % 4 < 2 ? "%.2f" : "%.4g", v[col[k]]));
     }
     fputc('\n', f);
     for (int i = 0; i < r->n; i++) {

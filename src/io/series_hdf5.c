@@ -1,6 +1,8 @@
 /* The HDF5 series writer (series_write.h): the only file that includes
  * HDF5 headers; built when meson finds libhdf5 (FB_HAVE_HDF5). */
+#include <errno.h>
 #include <hdf5.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,6 +18,8 @@
  * (37.0 MB at level 4, in twice the time; without shuffle 48.1 MB in 1.7
  * times the time; chunks of 4096 or 16384 samples no faster; docs/series.md) */
 #define FB_H5_DEFLATE 1
+/* the in-memory file grows in steps of this many bytes (H5Pset_fapl_core) */
+#define FB_H5_CORE_INCREMENT (4 << 20)
 
 /* a variable-length UTF-8 string attribute: h5py reads it as str, pandas
  * and MATLAB (h5readatt) as text */
@@ -126,8 +130,15 @@ fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char 
   /* HDF5 prints its error stack to stderr by default: the diagnostic
    * below says what failed instead */
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  hid_t file = H5Fcreate(out.tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  int rc = file < 0;
+  /* the file is built in memory (HDF5's core driver without a backing
+   * store) and written here: a full disk is then this program's write
+   * error with its cause (No space left on device, as for a CSV), and
+   * HDF5 never holds a file whose close failed (its clean-up at exit
+   * crashes on one: SIGSEGV in H5F__close_cb, HDF5 1.10.8) */
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  int rc = fapl < 0 || H5Pset_fapl_core(fapl, FB_H5_CORE_INCREMENT, 0) < 0;
+  hid_t file = rc ? -1 : H5Fcreate(out.tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  rc |= file < 0;
   if (!rc) {
     rc |= attr_string(file, "fourbar_version", FB_PROJECT_VERSION);
     rc |= attr_string(file, "case", r->c.name);
@@ -139,12 +150,32 @@ fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char 
     if (summary_json) rc |= attr_string(file, "summary_json", summary_json);
     for (int i = 0; i < r->n && !rc; i++)
       rc |= write_group(file, &r->model[i].run, keep ? keep[i] : NULL, r->c.series_every, buf);
-    rc |= H5Fclose(file) < 0;
   }
+  /* the finished file's bytes (H5Fget_file_image), then closed in memory */
+  void *image = NULL;
+  ssize_t size = -1;
+  if (!rc) rc |= H5Fflush(file, H5F_SCOPE_GLOBAL) < 0;
+  if (!rc) size = H5Fget_file_image(file, NULL, 0);
+  if (!rc && size > 0 && (image = malloc((size_t)size)) != NULL)
+    rc |= H5Fget_file_image(file, image, (size_t)size) != size;
+  else
+    rc = 1;
+  if (file >= 0) rc |= H5Fclose(file) < 0;
+  if (fapl >= 0) H5Pclose(fapl);
   free(buf);
   if (rc) {
+    free(image);
     fb_outfile_abort(&out);
-    return fb_diag_set(diag, FB_ERR_IO, "%s: HDF5 write failed", path);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: HDF5 could not build the file (%s)", path,
+                       size > 0 && !image ? "out of memory" : "an HDF5 library error");
+  }
+  errno = 0;
+  const int written = fwrite(image, 1, (size_t)size, out.f) == (size_t)size && fflush(out.f) == 0;
+  const int e = errno;
+  free(image);
+  if (!written) {
+    fb_outfile_abort(&out);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: write failed: %s", path, strerror(e ? e : EIO));
   }
   return fb_outfile_commit(&out, diag);
 }

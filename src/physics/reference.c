@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "linkage.h"
 #include "outcome_text.h"
 #include "start.h"
@@ -258,6 +259,14 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   int restituting = 0;
   for (size_t k = 0; k <= n; k++) {
     const double tk = (double)k * c->solver.h;
+    /* the run's wall-time deadline ([run] max_wall_s, case.h) holds here too */
+    if (k > 0 && c->wall_deadline > 0.0 && k % 16 == 0 && fb_clock_s() > c->wall_deadline) {
+      stop->kind = FB_STOP_WALL_TIME;
+      stop->t = t;
+      stop->limit = c->max_wall_s;
+      stop->t_end = fb_case_duration(c);
+      break;
+    }
     if (k > 0) {
       gsl_odeiv2_driver_set_nmax(drv, budget - taken); /* the rest of the budget */
       int g = gsl_odeiv2_driver_apply(drv, &t, tk, y);

@@ -16,6 +16,7 @@ typedef enum {
   FB_STOP_ALLOCATION = 4,  /* the engine could not allocate memory */
   FB_STOP_SOLVER = 5,      /* the engine's solver failed (ODE's internal check, GSL) */
   FB_STOP_ALIASED = 6,     /* a matched contact row's omega_d h passed FB_MATCHED_ALIAS_BOUND */
+  FB_STOP_WALL_TIME = 7,   /* the run reached its wall-time limit ([run] max_wall_s) */
   FB_STOP_COUNT
 } fb_stop_kind;
 
@@ -30,8 +31,8 @@ typedef struct {
   double value;       /* penetration [m] (PENETRATION); steps spent (STEP_BUDGET);
                          omega_d h [-] (ALIASED) */
   double limit;       /* penetration limit [m] (PENETRATION); steps per sample (STEP_BUDGET);
-                         the bound on omega_d h [-] (ALIASED) */
-  double t_end;       /* the run's duration [s] (STEP_BUDGET) */
+                         the bound on omega_d h [-] (ALIASED); max_wall_s [s] (WALL_TIME) */
+  double t_end;       /* the run's duration [s] (STEP_BUDGET, WALL_TIME) */
   double h_max;       /* ALIASED: the largest usable step, h limit / value [s] */
   char detail[160];   /* the solver's own words (ODE's error message, GSL's error string) */
 } fb_stop;

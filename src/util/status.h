@@ -44,6 +44,16 @@ fb_status fb_diag_set(fb_diag *diag, fb_status s, const char *fmt, ...)
  * typed, quoted in messages. */
 const char *fb_diag_number(char *buf, size_t size, double x);
 
+/* As fb_diag_number with up to 17 significant digits, so that every double
+ * reads back exactly: a value a user typed (a flag) echoed in the message
+ * that refuses it is never rounded into the range it breaks
+ * (1.0000000000000002 is not "1"). Returns buf. */
+const char *fb_diag_exact(char *buf, size_t size, double x);
+
+/* fb_diag_exact in a buffer of its own, for a printf argument ("%s"); the
+ * buffer lives until the end of the enclosing block (C11 6.5.2.5). */
+#define FB_NUM(x) fb_diag_exact((char[32]){0}, 32, (x))
+
 /* Clears diag (if not NULL). */
 void fb_diag_clear(fb_diag *diag);
 

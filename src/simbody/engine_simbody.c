@@ -35,8 +35,9 @@ static size_t simbody_steps(const void *self) { return fb_simbody_scene_steps(se
 static void simbody_destroy(void *self) { fb_simbody_scene_destroy(self); }
 
 /* guarded: the penetration limit applies as to every clearance model; the
- * samples are the integrator's own (interpolated) states, exact in time, and
- * the engine keeps the peaks between samples itself: no lag, no refinement */
+ * samples are the integrator's own interpolant on the grid, exact in time,
+ * realized exactly at the peaks, and the engine keeps the peaks between
+ * samples itself: no lag, no refinement */
 const fb_engine fb_engine_simbody = {
     .name = "simbody",
     .guarded = 1,

@@ -37,6 +37,7 @@
 #include <algorithm>
 
 extern "C" {
+#include "clock.h"
 #include "contact.h"
 #include "effective_mass.h"
 #include "episode.h"
@@ -67,6 +68,8 @@ const int kLoads = 9;
 // magnitudes and the two angular velocities (the peaks summary.json, check
 // and the tests take).
 const int kTracked = 9;
+// the columns whose minimum no metric takes: the reaction magnitudes
+const int kMaxOnly[kTracked] = {0, 0, 0, 1, 1, 1, 1, 0, 0};
 
 // Exact states a knot interval holding a peak is refined with: the interval
 // is cut into kRefine pieces at grid samples realized exactly, and the
@@ -74,8 +77,11 @@ const int kTracked = 9;
 // the interval) is interpolated between them and taken off the others. On
 // the paper case (1 ms steps, errors up to 1.5e-3 rad/s in omega, 5 rad/s^2
 // in alpha, 2e-3 of the loads) the refined samples lie within the
-// projection's own scatter of the exact ones.
-const int kRefine = 8;
+// projection's own scatter of the exact ones. Exact samples of the ideal
+// model over 2 revolutions: 3 pieces 2.4 % of the grid, 4: 1.7 %, 6: 1.4 %,
+// 8: 1.5 %, 12: 1.8 % (fewer pieces leave more refined samples above a
+// peak, each then realized; more cost more nodes).
+const int kRefine = 6;
 
 // Knot intervals a peak's search may refine, at most: the exact peak lies in
 // the interval of the interpolated one or a neighbour, and the samples an
@@ -223,8 +229,10 @@ struct Scene {
   long knot_ids;          // knots made so far
   long knot_done;         // id of the newest knot whose bookkeeping a record took
   fb_episode ep_done;     // the episodes after that knot
-  std::deque<Record> recs; // records rec_base .. gen_next - 1
+  std::vector<Record> recs; // records rec_base .. gen_next - 1, record k at k mod size
+                            // (a power of two, grown when the lookahead needs more)
   size_t rec_base;
+  double gap_max;         // the longest knot interval held [s]
   std::deque<Peak> pending; // extremes of the interpolated series not yet made exact
   size_t k;               // the sample now (time k h)
   size_t k_open;          // the first record not handed out yet
@@ -245,6 +253,7 @@ struct Scene {
   size_t contact_steps;
   fb_stop stop;
   size_t exact_samples;   // samples realized exactly
+  double stepping_s;      // wall time in the integrator's steps (stepTo) [s]
 
   Scene() : matter(system), forces(system) {}
 };
@@ -522,10 +531,13 @@ void fail(Scene *s, size_t k, fb_stop_kind kind, const char *detail) {
 int advance(Scene *s, double target, size_t k) {
   try {
     for (;;) {
+      const double t0 = fb_clock_s();
       const Integrator::SuccessfulStepStatus r = s->integ->stepTo(target);
+      s->stepping_s += fb_clock_s() - t0;
       if (r == Integrator::StartOfContinuousInterval) continue;
       const State &adv = s->integ->getAdvancedState();
       if (adv.getTime() > s->knots.back().t) {
+        s->gap_max = std::fmax(s->gap_max, adv.getTime() - s->knots.back().t);
         s->knots.push_back(make_knot(s, adv));
         return 1;
       }
@@ -623,7 +635,18 @@ void record_between(const Scene *s, Record *r, double t, const Knot *before, con
   r->drift = std::fmax(k0.drift, k1.drift);
 }
 
-Record *rec(Scene *s, size_t k) { return &s->recs[k - s->rec_base]; }
+Record *rec(Scene *s, size_t k) { return &s->recs[k & (s->recs.size() - 1)]; }
+
+// room for record k in the ring of records rec_base .. k
+void ring_reserve(Scene *s, size_t k) {
+  const size_t need = k - s->rec_base + 1;
+  if (need <= s->recs.size()) return;
+  size_t size = s->recs.size() ? s->recs.size() : 1024;
+  while (size < need) size *= 2;
+  std::vector<Record> grown(size);
+  for (size_t j = s->rec_base; j < k; j++) grown[j & (size - 1)] = *rec(s, j);
+  s->recs.swap(grown);
+}
 
 // index in s->knots of the knot interval (i, i + 1) holding t: knots[i].t <
 // t <= knots[i + 1].t; the first interval for t at or before the first knot
@@ -643,8 +666,8 @@ size_t interval_of(const Scene *s, double t) {
 // the run; takes the bookkeeping of the knots in ((k-1) h, k h] and fills
 // the record
 void generate(Scene *s, size_t k) {
-  s->recs.emplace_back();
-  Record *r = &s->recs.back();
+  ring_reserve(s, k);
+  Record *r = rec(s, k);
   std::memset(r, 0, sizeof *r);
   if (s->failed && k >= s->fail_k) return;
   const double t = (double)k * s->h;
@@ -659,10 +682,10 @@ void generate(Scene *s, size_t k) {
     }
     if (!advance(s, target, k)) return;
   }
-  // bookkeeping of the knots in ((k-1) h, k h]
-  for (size_t i = 0; i < s->knots.size() && s->knots[i].t <= t; i++) {
+  // bookkeeping of the knots in ((k-1) h, k h] (the knots' ids count up by one)
+  const long from = s->knot_done + 1 - s->knots.front().id;
+  for (size_t i = from > 0 ? (size_t)from : 0; i < s->knots.size() && s->knots[i].t <= t; i++) {
     const Knot &kn = s->knots[i];
-    if (kn.id <= s->knot_done) continue;
     if (kn.pen > 0.0) r->knot_contact = 1;
     r->kmax_force = std::fmax(r->kmax_force, kn.force);
     r->kmax_pen = std::fmax(r->kmax_pen, kn.pen);
@@ -829,7 +852,8 @@ void find_peaks(Scene *s, size_t k) {
   for (int m = 0; m < kTracked; m++) {
     const double y0 = a.track[m], y1 = b.track[m], y2 = c.track[m];
     const int sign = (y1 > y0 && y1 >= y2) ? 1 : (y1 < y0 && y1 <= y2) ? -1 : 0;
-    if (sign) s->pending.push_back(Peak{k - 1, m, sign});
+    // a reaction's magnitude is taken at its largest only
+    if (sign > 0 || (sign < 0 && !kMaxOnly[m])) s->pending.push_back(Peak{k - 1, m, sign});
   }
 }
 
@@ -914,8 +938,7 @@ void make_peak_exact(Scene *s, const Peak &p) {
 // records to generate ahead of the one handed out: kLookaheadIntervals of
 // the longest knot interval held
 size_t lookahead(const Scene *s) {
-  double gap = 0.0;
-  for (size_t i = 1; i < s->knots.size(); i++) gap = std::fmax(gap, s->knots[i].t - s->knots[i - 1].t);
+  const double gap = s->gap_max;
   const double n = std::fmax(std::ceil(kLookaheadIntervals * gap / s->h), (double)s->dominance) + 2.0;
   return n < (double)kLookaheadMax ? (size_t)n : kLookaheadMax;
 }
@@ -925,12 +948,14 @@ size_t lookahead(const Scene *s) {
 // exactly, the knots' extremes of k's interval kept
 fb_status emit(Scene *s, size_t k, fb_diag *diag) {
   s->k_open = k;
-  while (s->rec_base < k && !s->recs.empty()) {
-    s->recs.pop_front();
-    s->rec_base++;
-  }
+  if (s->rec_base < k) s->rec_base = k;
   const double t_open = (double)k * s->h;
-  while (s->knots.size() > 3 && s->knots[2].t < t_open) s->knots.pop_front();
+  if (s->knots.size() > 3 && s->knots[2].t < t_open) {
+    while (s->knots.size() > 3 && s->knots[2].t < t_open) s->knots.pop_front();
+    s->gap_max = 0.0; /* of the knots still held */
+    for (size_t i = 1; i < s->knots.size(); i++)
+      s->gap_max = std::fmax(s->gap_max, s->knots[i].t - s->knots[i - 1].t);
+  }
   int ended = 0;
   size_t reach = lookahead(s);
   for (;;) {
@@ -938,7 +963,7 @@ fb_status emit(Scene *s, size_t k, fb_diag *diag) {
     while (s->gen_next <= frontier) {
       generate(s, s->gen_next);
       s->gen_next++;
-      if (!s->recs.back().valid) {
+      if (!rec(s, s->gen_next - 1)->valid) {
         ended = 1;
         break;
       }
@@ -1032,6 +1057,7 @@ extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_sc
     s->me_min = s->me_max = NAN;
     s->contact_steps = 0;
     s->exact_samples = 0;
+    s->stepping_s = 0.0;
     std::memset(&s->stop, 0, sizeof s->stop);
     s->stop.engine = "simbody";
     s->stop.joint = -1;
@@ -1064,7 +1090,12 @@ extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_sc
     s->integ->initialize(state);
     s->scratch = s->integ->getState(); // the one copy: exact samples are realized in it
     s->knots.push_back(make_knot(s, s->integ->getState()));
-    s->rec_base = 0;
+    // sample 0 is the initial knot (below); records are generated from 1 on
+    s->rec_base = 1;
+    s->gen_next = 1;
+    s->knot_done = s->knots.front().id;
+    s->ep_done = s->knots.front().ep;
+    s->gap_max = 0.0;
   } catch (const std::bad_alloc &) {
     fb_simbody_scene_destroy(h);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Simbody scene");
@@ -1156,6 +1187,10 @@ extern "C" double fb_simbody_scene_drift(const fb_simbody_scene *h) { return h->
 
 extern "C" size_t fb_simbody_scene_steps(const fb_simbody_scene *h) {
   return (size_t)h->s->integ->getNumStepsTaken();
+}
+
+extern "C" double fb_simbody_scene_stepping_s(const fb_simbody_scene *h) {
+  return h->s->stepping_s;
 }
 
 extern "C" size_t fb_simbody_scene_exact_samples(const fb_simbody_scene *h) {

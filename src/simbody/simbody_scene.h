@@ -87,6 +87,11 @@ double fb_simbody_scene_drift(const fb_simbody_scene *s);
 /* The integrator's accepted steps so far. */
 size_t fb_simbody_scene_steps(const fb_simbody_scene *s);
 
+/* Wall time so far in the integrator's own steps (Integrator::stepTo) [s]:
+ * the engine's stepping, apart from filling the output grid (the
+ * interpolation and the exact samples). */
+double fb_simbody_scene_stepping_s(const fb_simbody_scene *s);
+
 /* Samples so far that were realized exactly (next to a local extreme of an
  * acceleration or a load, and the run's first and last) instead of
  * interpolated between the integrator's steps. */

@@ -248,6 +248,7 @@ fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *
         break;
       }
       p->harness_s[round] = m->run.wall_s - m->run.setup_s;
+      const long harness_samples = (long)m->run.series.n;
       const double hp[4] = {m->peaks.coupler.omega_max, m->peaks.coupler.omega_min,
                             m->peaks.follower.omega_max, m->peaks.follower.omega_min};
       if (round == 0) {
@@ -268,6 +269,12 @@ fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *
       if (run_peer(path, &args, out, sizeof out, p->status, sizeof p->status) != 0 ||
           read_peer(out, &p->bare_s[round], &p->samples, &p->peer_steps, peaks, p->status,
                     sizeof p->status) != 0) {
+        ok = 0;
+        break;
+      }
+      if (p->samples != harness_samples) { /* not the same grid: no comparison */
+        snprintf(p->status, sizeof p->status, "the peer kept %ld samples, the harness %ld",
+                 p->samples, harness_samples);
         ok = 0;
         break;
       }

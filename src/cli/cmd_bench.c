@@ -20,7 +20,8 @@
 
 static const char bench_help[] =
     "usage: fourbar bench [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
-    "                     [--grid default|peers|all|solvers|colliders|bullet|simbody|frontier]\n"
+    "                     [--grid default|peers|all|solvers|colliders|bullet|\n"
+    "                             simbody|frontier]\n"
     "\n"
     "Default grid (--grid default; about a minute on the paper case, within 3 on a\n"
     "shared 2-core machine): each engine at its recommended settings (ODE\n"

@@ -135,6 +135,30 @@ static inline void peer_series_init(peer_series *s, long cap) {
   }
 }
 
+/* the kinematic columns of the sample at t from the bodies' (crank, coupler,
+ * follower) angles, angular velocities and accelerations (al NULL: none yet) */
+static inline void peer_bodies(double v[P_COLS], double t, const double ang[3], const double w[3],
+                               const double al[3]) {
+  v[P_T] = t;
+  v[P_CRANK] = ang[0];
+  v[P_COUPLER] = ang[1];
+  v[P_COUPLER_W] = w[1];
+  v[P_COUPLER_A] = al ? al[1] : 0.0;
+  v[P_FOLLOWER] = ang[2];
+  v[P_FOLLOWER_W] = w[2];
+  v[P_FOLLOWER_A] = al ? al[2] : 0.0;
+}
+
+/* a body after a step of h: its angle unwrapped from the one before, its
+ * angular velocity, and the acceleration the step applied (the change of
+ * angular velocity over h) */
+static inline void peer_body_step(double *ang, double *w, double *al, double angle_now,
+                                  double w_now, double h) {
+  *al = (w_now - *w) / h;
+  *w = w_now;
+  *ang += remainder(angle_now - *ang, 2.0 * M_PI);
+}
+
 /* keeps one sample (its columns in P_ order) */
 static inline void peer_push(peer_series *s, const double v[P_COLS]) {
   if (s->n == s->cap) return;

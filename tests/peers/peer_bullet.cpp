@@ -148,31 +148,16 @@ int main(int argc, char **argv) {
   peer_series_init(&s, f.steps + 1);
   double v[P_COLS] = {0}, ang[3], w[3];
   for (int i = 0; i < 3; i++) ang[i] = angle_of(body[i]), w[i] = body[i]->getAngularVelocity()[2];
-  v[P_CRANK] = ang[0];
-  v[P_COUPLER] = ang[1];
-  v[P_COUPLER_W] = w[1];
-  v[P_FOLLOWER] = ang[2];
-  v[P_FOLLOWER_W] = w[2];
+  peer_bodies(v, 0.0, ang, w, nullptr);
   peer_push(&s, v);
   const double t1 = peer_clock();
   const int on2[4] = {0, 1, 1, 0};
   for (long k = 1; k <= f.steps; k++) {
     world.stepSimulation(f.h, 0, f.h);
     double al[3];
-    for (int i = 0; i < 3; i++) {
-      const double wi = body[i]->getAngularVelocity()[2];
-      al[i] = (wi - w[i]) / f.h;
-      w[i] = wi;
-      ang[i] += remainder(angle_of(body[i]) - ang[i], 2.0 * M_PI);
-    }
-    v[P_T] = (double)k * f.h;
-    v[P_CRANK] = ang[0];
-    v[P_COUPLER] = ang[1];
-    v[P_COUPLER_W] = w[1];
-    v[P_COUPLER_A] = al[1];
-    v[P_FOLLOWER] = ang[2];
-    v[P_FOLLOWER_W] = w[2];
-    v[P_FOLLOWER_A] = al[2];
+    for (int i = 0; i < 3; i++)
+      peer_body_step(&ang[i], &w[i], &al[i], angle_of(body[i]), body[i]->getAngularVelocity()[2], f.h);
+    peer_bodies(v, (double)k * f.h, ang, w, al);
     for (int j = 0; j < 4; j++) {
       const btVector3 &fj = on2[j] ? fb[j].m_appliedForceBodyB : fb[j].m_appliedForceBodyA;
       v[P_RX + 2 * j] = fj[0];

@@ -75,11 +75,7 @@ int main(int argc, char **argv) {
   double ang[3], om[3];
   for (int i = 0; i < 3; i++) ang[i] = angle_of(body[i]), om[i] = dBodyGetAngularVel(body[i])[2];
   double v[P_COLS] = {0};
-  v[P_CRANK] = ang[0];
-  v[P_COUPLER] = ang[1];
-  v[P_COUPLER_W] = om[1];
-  v[P_FOLLOWER] = ang[2];
-  v[P_FOLLOWER_W] = om[2];
+  peer_bodies(v, 0.0, ang, om, NULL);
   peer_push(&s, v);
   const double t1 = peer_clock();
   for (long k = 1; k <= f.steps; k++) {
@@ -88,20 +84,9 @@ int main(int argc, char **argv) {
     if (quick) dWorldQuickStep(w, f.h);
     else dWorldStep(w, f.h);
     double al[3];
-    for (int i = 0; i < 3; i++) {
-      const double wi = dBodyGetAngularVel(body[i])[2];
-      al[i] = (wi - om[i]) / f.h;
-      om[i] = wi;
-      ang[i] += remainder(angle_of(body[i]) - ang[i], 2.0 * M_PI);
-    }
-    v[P_T] = (double)k * f.h;
-    v[P_CRANK] = ang[0];
-    v[P_COUPLER] = ang[1];
-    v[P_COUPLER_W] = om[1];
-    v[P_COUPLER_A] = al[1];
-    v[P_FOLLOWER] = ang[2];
-    v[P_FOLLOWER_W] = om[2];
-    v[P_FOLLOWER_A] = al[2];
+    for (int i = 0; i < 3; i++)
+      peer_body_step(&ang[i], &om[i], &al[i], angle_of(body[i]), dBodyGetAngularVel(body[i])[2], f.h);
+    peer_bodies(v, (double)k * f.h, ang, om, al);
     /* reactions on the second-named body; the motor's torque about the pivot */
     const int on2[4] = {0, 1, 1, 0};
     for (int j = 0; j < 4; j++) {

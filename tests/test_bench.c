@@ -10,6 +10,18 @@
 #include "casefile.h"
 #include "fb_test.h"
 #include "figures.h"
+#include "peers.h"
+
+/* a row's stepping and sampling come from the same round as its cost: they
+ * sum to it, to rounding */
+#define SPLIT_SUM_REL_TOL 1e-9
+/* a row's samples per revolution: its grid's, period / h (+1 for the first
+ * sample, and the last step's rounding) */
+#define SAMPLES_REL_TOL 1e-3
+/* a peer simulates the harness's four-bar: omega peaks within 1e-5 (measured
+ * on the paper case: ODE 2e-13, MuJoCo 0, Bullet 1e-12, Simbody 2.8e-7, the
+ * last two exact samples projected from slightly different interpolants) */
+#define PEER_PEAK_REL_TOL 1e-5
 
 /* a row of the model named model ("a" and "b": two rows of the table) */
 static fb_bench_row row(const char *model, double error, double wall) {
@@ -143,12 +155,19 @@ static void test_clearance_error_by_hand(void **state) {
  * reference; 20,000 rpm, so 2 revolutions are 6 ms of motion, at most 6,000
  * steps at 1e-6 s; the drive torque limit raised with the speed squared)
  * qualifies in every row. Rows left at their first run have 1 repeat. */
+/* the paper case made cheap: no clearance joint (so no reference), 20,000
+ * rpm (2 revolutions are 6 ms of motion, at most 6,000 steps at 1e-6 s), the
+ * drive torque limit raised with the speed squared */
+static void cheap_case(fb_case *c) {
+  const char *sets[] = {"clearance.joints=none", "drive.speed_rpm=20000",
+                        "solver.drive_torque_max_n_m=1e7", "run.models=ode-ideal-stackup"};
+  fb_test_paper_case(c, sets, 4);
+}
+
 static void test_rounds_time_every_row(void **state) {
   (void)state;
   static fb_case c;
-  const char *sets[] = {"clearance.joints=none", "drive.speed_rpm=20000",
-                        "solver.drive_torque_max_n_m=1e7", "run.models=ode-ideal-stackup"};
-  fb_test_paper_case(&c, sets, 4);
+  cheap_case(&c);
   static fb_bench_row rows[FB_BENCH_MAX_ROWS];
   int n = 0;
   fb_diag d;
@@ -165,6 +184,76 @@ static void test_rounds_time_every_row(void **state) {
     assert_true(isfinite(b->us_per_step) && b->us_per_step > 0.0);
     assert_true(b->setup_s >= 0.0);
     assert_true(isfinite(b->error)); /* the analytic solution is every row's yardstick */
+    /* like for like: the cost split into the engine's stepping and the
+     * harness's sampling of the row's own output grid, from the same round */
+    assert_true(b->stepping_per_rev > 0.0 && b->sampling_per_rev >= 0.0);
+    assert_true(fabs(b->stepping_per_rev + b->sampling_per_rev - b->wall_per_rev) <=
+                SPLIT_SUM_REL_TOL * b->wall_per_rev);
+    const double grid = b->h_adaptive ? c.solver.h_min : b->h;
+    const double period = 2.0 * M_PI / c.crank_speed;
+    assert_true(fabs(b->samples_per_rev - period / grid) <= 1.0 + SAMPLES_REL_TOL * period / grid);
+  }
+}
+
+/* The default grid: every engine of the build at its recommended settings,
+ * Simbody on the case's output grid, each row's cost split (the cheap case
+ * of test_rounds_time_every_row) */
+static void test_default_grid(void **state) {
+  (void)state;
+  static fb_case c;
+  cheap_case(&c);
+  static fb_bench_row rows[FB_BENCH_MAX_ROWS];
+  int n = 0;
+  fb_diag d;
+  if (fb_bench_run(rows, &n, &c, FB_BENCH_DEFAULT, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+  int per[4] = {0};
+  const char *engines[4] = {"ode", "mujoco", "bullet", "simbody"};
+  const fb_engine_id ids[4] = {FB_ENGINE_ODE, FB_ENGINE_MUJOCO, FB_ENGINE_BULLET, FB_ENGINE_SIMBODY};
+  for (int i = 0; i < n; i++) {
+    for (int e = 0; e < 4; e++) per[e] += strcmp(rows[i].engine, engines[e]) == 0;
+    assert_true(isfinite(rows[i].error));
+    assert_true(rows[i].stepping_per_rev > 0.0 && rows[i].sampling_per_rev >= 0.0);
+  }
+  /* Simbody samples the case's own grid: the step ODE's auto row resolved */
+  double h_case = NAN;
+  for (int i = 0; i < n; i++)
+    if (strcmp(rows[i].engine, "ode") == 0 && rows[i].h_auto) h_case = rows[i].h;
+  for (int i = 0; i < n; i++)
+    if (strcmp(rows[i].engine, "simbody") == 0) assert_true(rows[i].h == h_case);
+  /* ODE: 1e-5 s, auto, adaptive and the two ERP 1 rows; MuJoCo 3; Bullet 2; Simbody 3 */
+  const int want[4] = {5, 3, 2, 3};
+  for (int e = 0; e < 4; e++)
+    if (fb_engine_available(ids[e])) {
+      report_residual(engines[e], per[e], want[e]);
+      assert_int_equal(per[e], want[e]);
+    }
+}
+
+/* The peers: each engine's bare program (tests/peers) simulates the same
+ * four-bar with the same settings on the same grid as the harness's ideal
+ * nominal model: their omega peaks agree, the sample counts are the grid's,
+ * every round is timed. The cost ratio is printed, never asserted (speed
+ * lives in benchmarks). */
+static void test_peers_beside_harness(void **state) {
+  (void)state;
+  static fb_case c;
+  cheap_case(&c);
+  fb_peer_row rows[4];
+  int n = 0;
+  fb_diag d;
+  if (fb_peers_run(rows, &n, &c, NULL, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_true(n >= 1);
+  assert_string_equal(rows[0].engine, "ode");
+  for (int i = 0; i < n; i++) {
+    const fb_peer_row *p = &rows[i];
+    if (!p->ran) fail_msg("peer %s: %s", p->engine, p->status);
+    report_residual(p->engine, p->peak_rel, PEER_PEAK_REL_TOL);
+    report_residual("  harness over bare (not asserted)", p->harness_over_bare, 0.0);
+    assert_true(p->peak_rel <= PEER_PEAK_REL_TOL);
+    assert_int_equal(p->rounds, FB_PEER_ROUNDS);
+    assert_true(p->samples > 1000);
+    assert_true(isfinite(p->harness_over_bare) && p->harness_over_bare > 0.0);
+    for (int q = 0; q < p->rounds; q++) assert_true(p->harness_s[q] > 0.0 && p->bare_s[q] > 0.0);
   }
 }
 
@@ -172,6 +261,8 @@ int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_pareto_and_cheapest),
                                      cmocka_unit_test(test_bench_figure_extremes),
                                      cmocka_unit_test(test_clearance_error_by_hand),
-                                     cmocka_unit_test(test_rounds_time_every_row)};
+                                     cmocka_unit_test(test_rounds_time_every_row),
+                                     cmocka_unit_test(test_default_grid),
+                                     cmocka_unit_test(test_peers_beside_harness)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -482,6 +482,37 @@ static void test_penalty_contact_is_the_runs(void **state) {
   json_decref(rj);
 }
 
+/* fourbar bench --grid peers: bench.json's peers[] under the contract's
+ * names (issue 43: peers[].engine, peers[].harness_over_bare), one per
+ * engine of the build, each run; the case made cheap (no clearance joint,
+ * 20,000 rpm: 2 revolutions are 6 ms of motion) */
+static void test_bench_peers_json(void **state) {
+  (void)state;
+  static char out[1 << 20], err[8192];
+  char args[1024];
+  snprintf(args, sizeof args,
+           "bench --grid peers --json --out %s/peers --set clearance.joints=none "
+           "--set drive.speed_rpm=20000 --set solver.drive_torque_max_n_m=1e7 "
+           "--set run.models=ode-ideal-stackup",
+           tmpdir);
+  assert_int_equal(run(args, out, sizeof out, err, sizeof err), 0);
+  json_error_t je;
+  json_t *j = json_loads(out, 0, &je);
+  assert_non_null(j);
+  assert_string_equal(json_string_value(json_object_get(j, "grid")), "peers");
+  json_t *peers = json_object_get(j, "peers");
+  const size_t want = 1 + FB_HAVE_MUJOCO + FB_HAVE_BULLET + FB_HAVE_SIMBODY;
+  assert_int_equal(json_array_size(peers), want);
+  for (size_t i = 0; i < json_array_size(peers); i++) {
+    json_t *p = json_array_get(peers, i);
+    assert_non_null(json_string_value(json_object_get(p, "engine")));
+    assert_true(json_is_true(json_object_get(p, "ran")));
+    assert_true(json_number_value(json_object_get(p, "harness_over_bare")) > 0.0);
+  }
+  assert_string_equal(json_string_value(json_object_get(json_array_get(peers, 0), "engine")), "ode");
+  json_decref(j);
+}
+
 static void test_check_catches_stiffness_regression(void **state) {
   (void)state;
   static char out[1 << 18], err[8192];
@@ -1031,6 +1062,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_run_table_fits_and_says_it_once),
       cmocka_unit_test(test_unknown_option_is_one_line),
       cmocka_unit_test(test_stackup_prints_every_sensitivity),
+      cmocka_unit_test(test_bench_peers_json),
   };
   int rc = cmocka_run_group_tests(tests, NULL, NULL);
   char cmd[128];

@@ -14,13 +14,28 @@
 #include "figures.h"
 #include "fileio.h"
 #include "outcome_text.h"
+#include "peers.h"
 #include "report.h"
 
 #define MAX_SETS 256
 
 static const char bench_help[] =
     "usage: fourbar bench [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
-    "                     [--grid all|solvers|colliders|bullet|simbody|frontier]\n"
+    "                     [--grid default|peers|all|solvers|colliders|bullet|\n"
+    "                             simbody|frontier]\n"
+    "\n"
+    "Default grid (--grid default; about a minute on the paper case, within 3 on a\n"
+    "shared 2-core machine): each engine at its recommended settings (ODE\n"
+    "dWorldStep at h = 1e-5 s, auto and adaptive; MuJoCo at 1e-5 s, 3e-6 s and\n"
+    "adaptive; Bullet's MLCP at 1e-5 s and auto; Simbody rkmerson at accuracy 1e-4\n"
+    "and 1e-6 and cpodes at 1e-6 on the case's output grid; ODE's ideal rows at\n"
+    "world ERP 1), each row's cost split into the engine's stepping and the\n"
+    "harness's sampling of its output grid, then the peers. --grid peers: each\n"
+    "engine's bare program (tests/peers, built with the tests; $FOURBAR_PEERS_DIR\n"
+    "names another folder) beside the harness's ideal nominal model on the same\n"
+    "grid, 3 alternating rounds: the harness's cost over the bare program's\n"
+    "(bench.json peers[].engine, peers[].harness_over_bare) and their omega peaks'\n"
+    "agreement. --grid all is the full grid below (15 minutes and more):\n"
     "\n"
     "Speed against error on every engine: ODE's stepper (dWorldStep; dWorldQuickStep\n"
     "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s, and auto: the largest\n"
@@ -111,7 +126,8 @@ int fb_cmd_bench(int argc, char **argv) {
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out = NULL, *sets[MAX_SETS];
-  int nsets = 0, json = 0, ch, grids = FB_BENCH_SOLVERS | FB_BENCH_SIMBODY | FB_BENCH_COLLIDERS;
+  int nsets = 0, json = 0, ch, grids = FB_BENCH_DEFAULT | FB_BENCH_PEERS;
+  const char *grid_name = "default";
   optind = 1;
   while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
     switch (ch) {
@@ -122,8 +138,11 @@ int fb_cmd_bench(int argc, char **argv) {
         break;
       case 'j': json = 1; break;
       case 'g':
-        if (strcmp(optarg, "all") == 0)
-          grids = FB_BENCH_SOLVERS | FB_BENCH_SIMBODY | FB_BENCH_COLLIDERS;
+        grid_name = optarg;
+        if (strcmp(optarg, "default") == 0) grids = FB_BENCH_DEFAULT | FB_BENCH_PEERS;
+        else if (strcmp(optarg, "peers") == 0) grids = FB_BENCH_PEERS;
+        else if (strcmp(optarg, "all") == 0)
+          grids = FB_BENCH_SOLVERS | FB_BENCH_SIMBODY | FB_BENCH_COLLIDERS | FB_BENCH_PEERS;
         else if (strcmp(optarg, "solvers") == 0) grids = FB_BENCH_SOLVERS | FB_BENCH_SIMBODY;
         else if (strcmp(optarg, "colliders") == 0) grids = FB_BENCH_COLLIDERS;
         else if (strcmp(optarg, "bullet") == 0) grids = FB_BENCH_BULLET;
@@ -131,8 +150,8 @@ int fb_cmd_bench(int argc, char **argv) {
         else if (strcmp(optarg, "frontier") == 0) grids = FB_BENCH_FRONTIER;
         else
           return fb_cli_fail("bench", 2,
-                             "--grid '%s': must be all, solvers, colliders, bullet, simbody or "
-                             "frontier",
+                             "--grid '%s': must be default, peers, all, solvers, colliders, "
+                             "bullet, simbody or frontier",
                              optarg);
         break;
       case 'h': fputs(bench_help, stdout); return 0;
@@ -152,7 +171,13 @@ int fb_cmd_bench(int argc, char **argv) {
   int n;
   const double t0 = fb_clock_s();
   bench_progress bp = {isatty(2) && !json, t0};
-  if (fb_bench_run(rows, &n, &c, grids, progress, &bp, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
+  if (fb_bench_run(rows, &n, &c, grids & ~FB_BENCH_PEERS, progress, &bp, &d) != FB_OK)
+    return fb_cli_fail("bench", 1, "%s", d.msg);
+  /* the peers: each engine's bare program beside the harness (peers.h) */
+  fb_peer_row peers[4];
+  int npeers = 0;
+  if ((grids & FB_BENCH_PEERS) && fb_peers_run(peers, &npeers, &c, NULL, NULL, NULL, &d) != FB_OK)
+    return fb_cli_fail("bench", 1, "%s", d.msg);
   const double wall = fb_clock_s() - t0;
   /* files */
   char path[4200];
@@ -165,7 +190,8 @@ int fb_cmd_bench(int argc, char **argv) {
                "alpha_coupler_vs_exact_rel,impacts,impacts_exact,cost_vs_exact,"
                "force_rel,penetration_rel,alpha_spike_coupler_rel,alpha_spike_follower_rel,"
                "halving_rel,halving_force_rel,halving_penetration_rel,"
-               "halving_alpha_spike_coupler_rel,halving_alpha_spike_follower_rel,h_adaptive,steps_taken\n");
+               "halving_alpha_spike_coupler_rel,halving_alpha_spike_follower_rel,h_adaptive,steps_taken,"
+               "stepping_per_rev_s,sampling_per_rev_s,samples_per_rev\n");
   json_t *arr = json_array();
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
@@ -182,7 +208,8 @@ int fb_cmd_bench(int argc, char **argv) {
     for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->part[p]);
     fprintf(f.f, ",%.6g", b->halving);
     for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->halving_part[p]);
-    fprintf(f.f, ",%d,%.0f\n", b->h_adaptive, b->steps_taken);
+    fprintf(f.f, ",%d,%.0f,%.6g,%.6g,%.6g\n", b->h_adaptive, b->steps_taken, b->stepping_per_rev,
+            b->sampling_per_rev, b->samples_per_rev);
     json_t *o = json_object();
     json_object_set_new(o, "model", json_string(b->model));
     json_object_set_new(o, "engine", json_string(b->engine));
@@ -231,6 +258,9 @@ int fb_cmd_bench(int argc, char **argv) {
     json_object_set_new(o, "halving_parts", hparts);
     json_object_set_new(o, "h_adaptive", json_boolean(b->h_adaptive));
     json_object_set_new(o, "steps_taken", json_real(b->steps_taken));
+    json_object_set_new(o, "stepping_per_rev_s", finite_or_null(b->stepping_per_rev));
+    json_object_set_new(o, "sampling_per_rev_s", finite_or_null(b->sampling_per_rev));
+    json_object_set_new(o, "samples_per_rev", finite_or_null(b->samples_per_rev));
     json_array_append_new(arr, o);
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);
@@ -257,15 +287,42 @@ int fb_cmd_bench(int argc, char **argv) {
       json_array_append_new(across, json_pack("{s:s,s:f,s:o}", "kind", kinds[q], "target", targets[t],
                                               "row", best >= 0 ? json_integer(best) : json_null()));
     }
-  json_t *o = json_pack("{s:s,s:f,s:o,s:o,s:o}", "case", c.name, "wall_s", wall, "rows", arr,
-                        "cheapest", cheap, "cheapest_across_engines", across);
+  json_t *pj = json_array();
+  for (int i = 0; i < npeers; i++) {
+    const fb_peer_row *p = &peers[i];
+    json_t *hs = json_array(), *bs = json_array();
+    for (int q = 0; q < p->rounds; q++) {
+      json_array_append_new(hs, json_real(p->harness_s[q]));
+      json_array_append_new(bs, json_real(p->bare_s[q]));
+    }
+    json_t *po = json_object();
+    json_object_set_new(po, "engine", json_string(p->engine));
+    json_object_set_new(po, "model", json_string(p->model ? p->model->name : ""));
+    json_object_set_new(po, "peer", json_string(p->peer));
+    json_object_set_new(po, "ran", json_boolean(p->ran));
+    json_object_set_new(po, "status", json_string(p->status));
+    json_object_set_new(po, "h_s", finite_or_null(p->h));
+    json_object_set_new(po, "samples", json_integer(p->samples));
+    json_object_set_new(po, "peer_steps", json_integer(p->peer_steps));
+    json_object_set_new(po, "rounds", json_integer(p->rounds));
+    json_object_set_new(po, "harness_s", hs);
+    json_object_set_new(po, "bare_s", bs);
+    json_object_set_new(po, "harness_per_rev_s", finite_or_null(p->harness_per_rev));
+    json_object_set_new(po, "bare_per_rev_s", finite_or_null(p->bare_per_rev));
+    json_object_set_new(po, "harness_over_bare", finite_or_null(p->harness_over_bare));
+    json_object_set_new(po, "omega_peak_rel", finite_or_null(p->peak_rel));
+    json_array_append_new(pj, po);
+  }
+  json_t *o = json_pack("{s:s,s:s,s:f,s:o,s:o,s:o,s:o}", "case", c.name, "grid", grid_name,
+                        "wall_s", wall, "rows", arr, "cheapest", cheap,
+                        "cheapest_across_engines", across, "peers", pj);
   snprintf(path, sizeof path, "%s/bench.json", dir);
   if (fb_report_write_json(path, o, &d) != FB_OK) {
     json_decref(o);
     return fb_cli_fail("bench", 1, "%s", d.msg);
   }
   snprintf(path, sizeof path, "%s/bench.svg", dir);
-  if (fb_figures_bench(path, FB_FIGURE_SVG, c.name, rows, n, &d) != FB_OK)
+  if (n > 0 && fb_figures_bench(path, FB_FIGURE_SVG, c.name, rows, n, &d) != FB_OK)
     fprintf(stderr, "fourbar bench: warning: %s\n", d.msg);
   if (json) {
     json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
@@ -276,10 +333,11 @@ int fb_cmd_bench(int argc, char **argv) {
   json_decref(o);
   printf("bench of %s: %d configurations in %.1f s ('P': Pareto front of its engine and model; "
          "h_s 'a': auto, 'ad': adaptive on that output grid; error of a clearance row: the largest of its force, penetration and "
-         "coupler and follower alpha spike errors; h/2: the step-halving change)\n\n"
-         "%-24s %-9s %8s %-8s %5s %7s %12s %9s %9s %9s %9s %9s %12s  %s\n",
+         "coupler and follower alpha spike errors; h/2: the step-halving change; s/rev split into "
+         "the engine's stepping and the harness's sampling of samples/rev output samples)\n\n"
+         "%-24s %-9s %8s %-8s %5s %7s %12s %9s %9s %9s %9s %9s %12s  %9s %9s %8s %s\n",
          c.name, n, wall, "model", "stepper", "h_s", "mapping", "ERP", "CFM", "error", "force",
-         "pen", "alpha_c", "alpha_f", "h/2", "s/rev", "status");
+         "pen", "alpha_c", "alpha_f", "h/2", "s/rev", "stepping", "sampling", "samp/rev", "status");
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
     char stop[256];
@@ -299,9 +357,13 @@ int fb_cmd_bench(int argc, char **argv) {
     }
     if (isfinite(b->halving)) snprintf(half, sizeof half, "%9.1e", b->halving);
     else snprintf(half, sizeof half, "%9s", "-");
-    printf("%-24s %-9s %8s %-8s %5s %7s %12.3e %s %s %s %s %s %s %c %.40s\n", b->model,
+    char split[64] = "        -         -        -";
+    if (isfinite(b->stepping_per_rev) && isfinite(b->sampling_per_rev))
+      snprintf(split, sizeof split, "%9.2e %9.2e %8.0f", b->stepping_per_rev, b->sampling_per_rev,
+               b->samples_per_rev);
+    printf("%-24s %-9s %8s %-8s %5s %7s %12.3e %s %s %s %s %s %s %c %s %.40s\n", b->model,
            b->stepper, hs, mapping_name(b->mapping), erp, cfm, b->error, parts[0], parts[1],
-           parts[2], parts[3], half, cost, b->pareto ? 'P' : ' ',
+           parts[2], parts[3], half, cost, b->pareto ? 'P' : ' ', split,
            fb_stop_text(stop, sizeof stop, &b->stop));
   }
   int ncol = 0;
@@ -327,6 +389,28 @@ int fb_cmd_bench(int argc, char **argv) {
              b->collider, ring, b->h, 100 * b->force_vs_exact, 100 * b->pen_vs_exact,
              100 * b->alpha_vs_exact, imp, b->us_per_step, b->cost_vs_exact, b->error);
     }
+  }
+  if (npeers) {
+    printf("\npeers: each engine's bare program (tests/peers) beside the harness's ideal nominal "
+           "model, the same four-bar, settings and output grid; %d alternating rounds, medians "
+           "(harness: the model's wall time without its set-up; peer: its loop)\n"
+           "%-8s %-22s %10s %8s %12s %12s %10s %12s  %s\n",
+           FB_PEER_ROUNDS, "engine", "model", "h_s", "samples", "harness s/rev", "bare s/rev",
+           "harness/bare", "omega peaks", "status");
+    for (int i = 0; i < npeers; i++) {
+      const fb_peer_row *p = &peers[i];
+      if (!p->ran) {
+        printf("%-8s %-22s %.200s\n", p->engine, p->model ? p->model->name : "-", p->status);
+        continue;
+      }
+      printf("%-8s %-22s %10.3g %8ld %12.4f %12.4f %10.2f   %10.1e  %s\n", p->engine,
+             p->model->name, p->h, p->samples, p->harness_per_rev, p->bare_per_rev,
+             p->harness_over_bare, p->peak_rel, p->status);
+    }
+  }
+  if (n == 0) {
+    printf("\nwrote %s/bench.csv and bench.json\n", dir);
+    return 0;
   }
   printf("\ncheapest configuration meeting each error target (per engine, then across engines):\n");
   for (int q = 0; q < 2; q++)

@@ -83,7 +83,8 @@ static fb_status halving(fb_bench_row *rows, int nrows, const int *idx, const in
  * (MuJoCo compiles its model, 0.6 to 14 ms here), setups[q][rep] the set-up
  * (0 when not timed), *reps the runs */
 static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, int max_reps,
-                            double walls[2][3], double setups[2][3], int *reps, fb_diag *diag) {
+                            double walls[2][3], double setups[2][3], double stepping[2][3],
+                            int *reps, fb_diag *diag) {
   for (int rep = 0; rep < max_reps; rep++) {
     fb_status st = fb_run_case(r, k, NULL, NULL, diag);
     if (st != FB_OK) return st;
@@ -91,6 +92,7 @@ static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, int max_reps
       const fb_model_run *mr = &r->model[q].run;
       walls[q][rep] = q < timed ? mr->wall_s - mr->setup_s : 0.0;
       setups[q][rep] = q < timed ? mr->setup_s : 0.0;
+      stepping[q][rep] = q < timed ? mr->stepping_s : 0.0;
     }
     *reps = rep + 1;
     if (rep == max_reps - 1 || walls[0][rep] + walls[1][rep] > FB_BENCH_REPEAT_BELOW_S) break;
@@ -110,6 +112,8 @@ typedef struct {
   double steps[2];    /* its steps */
   double walls[2][3]; /* wall time of each round, set-up excluded [s] */
   double setups[2][3];
+  double stepping[2][3]; /* of walls, the engine's stepping [s] */
+  double samples[2];     /* output samples of each model's run [-] */
   int reps;
 } bench_timing;
 
@@ -136,6 +140,17 @@ static fb_status timing_add(const bench_timing *t, fb_diag *diag) {
  * simulated revolution and per step, the median set-up */
 static void timing_apply(fb_bench_row *rows, bench_timing *t) {
   for (int q = 0; q < t->timed; q++) {
+    /* the round of the median wall time gives the split too */
+    int order[3] = {0, 1, 2};
+    for (int i = 0; i < t->reps; i++)
+      for (int j = i + 1; j < t->reps; j++)
+        if (t->walls[q][order[j]] < t->walls[q][order[i]]) {
+          const int o = order[i];
+          order[i] = order[j];
+          order[j] = o;
+        }
+    const int mid = order[t->reps / 2];
+    const double stepping = t->stepping[q][mid];
     qsort(t->walls[q], (size_t)t->reps, sizeof(double), cmp_double);
     qsort(t->setups[q], (size_t)t->reps, sizeof(double), cmp_double);
     if (t->row[q] < 0) continue;
@@ -144,6 +159,9 @@ static void timing_apply(fb_bench_row *rows, bench_timing *t) {
     b->repeats = t->reps;
     b->setup_s = t->setups[q][t->reps / 2];
     b->wall_per_rev = t->revs[q] > 0.0 ? wall / t->revs[q] : NAN;
+    b->stepping_per_rev = t->revs[q] > 0.0 ? stepping / t->revs[q] : NAN;
+    b->sampling_per_rev = t->revs[q] > 0.0 ? (wall - stepping) / t->revs[q] : NAN;
+    b->samples_per_rev = t->revs[q] > 0.0 ? t->samples[q] / t->revs[q] : NAN;
     b->us_per_step = t->steps[q] > 0.0 ? 1e6 * wall / t->steps[q] : NAN;
   }
 }
@@ -160,7 +178,7 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
   tm.timed = with_clearance ? 2 : 1;
   tm.row[0] = tm.row[1] = -1;
   static fb_run r;
-  fb_status st0 = timed_runs(&r, k, tm.timed, 1, tm.walls, tm.setups, &tm.reps, diag);
+  fb_status st0 = timed_runs(&r, k, tm.timed, 1, tm.walls, tm.setups, tm.stepping, &tm.reps, diag);
   if (st0 != FB_OK) return st0;
   const int first = *n;
   int qs[2];
@@ -218,6 +236,7 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     const double simulated = covered * k->crank_speed / (2.0 * M_PI);
     tm.revs[q] = mr->steps > 1 && simulated > 0.0 ? simulated : 0.0;
     tm.steps[q] = (double)mr->steps;
+    tm.samples[q] = (double)ser->n;
   }
   fb_run_free(&r);
   tm.k = *k;
@@ -287,10 +306,10 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
   const fb_model *models[3] = {exact, model, fb_model_reference_of(exact)};
   k.model_count = 3;
   for (int q = 0; q < 3; q++) snprintf(k.models[q], FB_NAME_SIZE, "%s", models[q]->name);
-  double walls[2][3], setups[2][3];
+  double walls[2][3], setups[2][3], stepping[2][3];
   int reps;
   static fb_run r;
-  fb_status st = timed_runs(&r, &k, 2, 3, walls, setups, &reps, diag);
+  fb_status st = timed_runs(&r, &k, 2, 3, walls, setups, stepping, &reps, diag);
   if (st != FB_OK) return st;
   const fb_model_result *ex = &r.model[0], *ref = &r.model[2];
   double us[2];
@@ -321,6 +340,8 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
     b->us_per_step = us[q];
     const double simulated = (double)m->run.steps * m->run.h * k.crank_speed / (2.0 * M_PI);
     b->wall_per_rev = m->run.steps > 1 && simulated > 0.0 ? walls[q][reps / 2] / simulated : NAN;
+    b->stepping_per_rev = b->sampling_per_rev = NAN; /* the axis compares cost per step */
+    b->samples_per_rev = simulated > 0.0 ? (double)m->run.series.n / simulated : NAN;
     b->error = NAN;
     b->force_vs_exact = b->pen_vs_exact = b->alpha_vs_exact = b->cost_vs_exact = NAN;
     for (int p = 0; p < FB_BENCH_PARTS; p++) b->part[p] = b->halving_part[p] = NAN;
@@ -416,6 +437,87 @@ static fb_status simbody_grid(fb_bench_row *rows, int *n, const fb_case *c, int 
   return FB_OK;
 }
 
+/* The default grid (FB_BENCH_DEFAULT): each engine at the settings its
+ * section of docs/engines.md recommends for this stiff closed loop, every
+ * model on the case's output grid unless the row is a fixed step of its
+ * own (the cost split into stepping and sampling says what the grid costs):
+ * ODE dWorldStep at h = 1e-5 s, auto and adaptive (accuracy 0.3); MuJoCo
+ * with the case's integrators at h = 1e-5 s, 3e-6 s and adaptive (0.3);
+ * Bullet's MLCP at h = 1e-5 s and auto; Simbody rkmerson at accuracy 1e-4
+ * and 1e-6 and cpodes at 1e-6 on the case's grid. *done counts the points
+ * for progress over total. */
+#define DEFAULT_POINTS 13
+static fb_status default_grid(fb_bench_row *rows, int *n, const fb_case *c,
+                              void (*progress)(double fraction, void *user), void *user,
+                              int *done, int total, fb_diag *diag) {
+  const int mujoco = fb_engine_available(FB_ENGINE_MUJOCO);
+  const int bullet = fb_engine_available(FB_ENGINE_BULLET);
+  const int simbody = fb_engine_available(FB_ENGINE_SIMBODY);
+  for (int p = 0; p < DEFAULT_POINTS; p++) {
+    fb_case k;
+    char stepper[32];
+    const char *engine = "ode";
+    int mapping = -1;
+    if (p < 3) { /* ODE: 1e-5 s, auto, adaptive */
+      bench_case(&k, c, p == 0 ? 1e-5 : 0.0, FB_ENGINE_ODE);
+      if (p == 2) {
+        k.solver.h_mode = FB_STEP_ADAPTIVE;
+        k.solver.h = k.solver.h_min;
+        k.solver.accuracy = 0.3;
+      }
+      if (k.solver.stepper == FB_STEPPER_QUICK)
+        snprintf(stepper, sizeof stepper, "quick-%d%s", k.solver.quick_iterations, p == 2 ? "-a0.3" : "");
+      else
+        snprintf(stepper, sizeof stepper, "world%s", p == 2 ? "-a0.3" : "");
+      mapping = p == 2 && k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
+                                                                     : (int)k.clearance.mapping;
+    } else if (p < 6) { /* MuJoCo: 1e-5 s, 3e-6 s, adaptive */
+      if (!mujoco) continue;
+      engine = "mujoco";
+      bench_case(&k, c, p == 3 ? 1e-5 : p == 4 ? 3e-6 : 0.0, FB_ENGINE_MUJOCO);
+      if (p == 5) {
+        k.solver.h_mode = FB_STEP_ADAPTIVE;
+        k.solver.h = k.solver.h_min;
+        k.solver.accuracy = 0.3;
+      }
+      snprintf(stepper, sizeof stepper, "%s%s", fb_mujoco_integrator_name(k.mujoco.integrator),
+               p == 5 ? "-a0.3" : "");
+    } else if (p < 8) { /* Bullet: MLCP at 1e-5 s and auto */
+      if (!bullet) continue;
+      engine = "bullet";
+      bench_case(&k, c, p == 6 ? 1e-5 : 0.0, FB_ENGINE_BULLET);
+      k.bullet.solver = FB_BULLET_MLCP_DANTZIG;
+      snprintf(stepper, sizeof stepper, "mlcp");
+      mapping = (int)k.clearance.mapping;
+    } else if (p < 11) { /* Simbody on the case's grid */
+      if (!simbody) continue;
+      engine = "simbody";
+      bench_case(&k, c, 0.0, FB_ENGINE_SIMBODY);
+      k.solver.h = c->solver.h;
+      k.solver.h_mode = c->solver.h_mode;
+      k.simbody.integrator = p == 10 ? FB_SIMBODY_CPODES : FB_SIMBODY_RKMERSON;
+      k.simbody.accuracy = p == 8 ? 1e-4 : 1e-6;
+      snprintf(stepper, sizeof stepper, "%s %.0e", fb_simbody_integrator_name(k.simbody.integrator),
+               k.simbody.accuracy);
+    } else { /* ODE's tuned ideal rows: world ERP 1 at 1.5e-5 and 2e-5 s */
+      bench_case(&k, c, p == 11 ? 1.5e-5 : 2e-5, FB_ENGINE_ODE);
+      k.model_count = 1;
+      k.solver.stepper = FB_STEPPER_WORLD;
+      k.solver.world_erp = 1.0;
+      k.solver.world_cfm = 1e-10;
+      snprintf(stepper, sizeof stepper, "world");
+      mapping = 0;
+    }
+    const int first = *n;
+    fb_status st = bench_point(rows, n, &k, engine, stepper, mapping, 1, diag);
+    if (st != FB_OK) return st;
+    if (strcmp(engine, "bullet") == 0)
+      for (int i = first; i < *n; i++) rows[i].world_cfm = 0.0; /* Bullet's pin rows are hard */
+    if (progress) progress((double)++*done / total, user);
+  }
+  return FB_OK;
+}
+
 /* the rounds of the timing: each configuration bench_point ran is run again
  * (its timed models only) FB_BENCH_ROUNDS - 1 times, one configuration after
  * the other in grid order, round after round, while its first run took at
@@ -440,14 +542,15 @@ static fb_status retime(fb_bench_row *rows, double from,
       bench_timing *t = &timings.t[i];
       if (t->reps != round || t->walls[0][0] + t->walls[1][0] > FB_BENCH_REPEAT_BELOW_S) continue;
       static fb_run r;
-      double walls[2][3], setups[2][3];
+      double walls[2][3], setups[2][3], stepping[2][3];
       int reps;
-      fb_status st = timed_runs(&r, &t->k, t->timed, 1, walls, setups, &reps, diag);
+      fb_status st = timed_runs(&r, &t->k, t->timed, 1, walls, setups, stepping, &reps, diag);
       if (st != FB_OK) return st;
       fb_run_free(&r);
       for (int q = 0; q < t->timed; q++) {
         t->walls[q][round] = walls[q][0];
         t->setups[q][round] = setups[q][0];
+        t->stepping[q][round] = stepping[q][0];
       }
       t->reps = round + 1;
       if (progress && todo > 0)
@@ -500,7 +603,8 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
   const int mj_frontier = frontier && fb_engine_available(FB_ENGINE_MUJOCO);
   const int extra = solvers || frontier; /* the tuned ideal and adaptive rows */
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
-  const int total = (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
+  const int dflt = (grids & FB_BENCH_DEFAULT) != 0;
+  const int total = (dflt ? DEFAULT_POINTS : 0) + (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
                     (extra ? FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE : 0) +
                     (frontier ? FB_BENCH_FRONTIER_STEPS + 1 : 0) +
                     (mj_frontier ? FB_BENCH_FRONTIER_STEPS + FB_BENCH_ADAPTIVE : 0) +
@@ -509,6 +613,10 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
                     (colliders ? 2 * COLLIDER_RINGS : 0);
   int done = 0;
   *n = 0;
+  if (dflt) {
+    fb_status st = default_grid(rows, n, c, progress, user, &done, total, diag);
+    if (st != FB_OK) return st;
+  }
   if (grids & FB_BENCH_SIMBODY) {
     /* alone (--grid simbody): with ODE's dWorldStep rows for the comparison */
     fb_status st = fb_engine_available(FB_ENGINE_SIMBODY)

@@ -57,6 +57,12 @@ typedef struct fb_bench_row_s {
                               excluded [s] */
   double setup_s;          /* median wall time of the set-up (the engine's create, the
                               series' storage mapped) [s] */
+  double stepping_per_rev; /* of wall_per_rev, the engine's stepping (models.h stepping_s;
+                              Simbody: its integrator's steps) [s]; the median of the rounds */
+  double sampling_per_rev; /* the rest: the harness's sampling of the output grid (reading,
+                              checking and storing each sample; Simbody: also its
+                              interpolation and exact samples) [s] */
+  double samples_per_rev;  /* output samples per revolution (the grid it samples) [-] */
   int repeats;
   int pareto;
   char collider[32];       /* "-" (ideal), "exact", "faceted", "ccd" or "native" */
@@ -109,9 +115,13 @@ enum {
                              case's own settings (one configuration, the same run's yardstick) */
   FB_BENCH_SIMBODY = 8,   /* Simbody's integrator x accuracy (bench.c, simbody_grid); alone,
                              with ODE's dWorldStep rows at the matched mapping */
-  FB_BENCH_FRONTIER = 16  /* the step-size frontier alone (a subset of FB_BENCH_SOLVERS'
+  FB_BENCH_FRONTIER = 16, /* the step-size frontier alone (a subset of FB_BENCH_SOLVERS'
                              rows): fixed h = 1e-5, 3e-6, 1e-6 s and auto with the case's
                              settings, the tuned ideal rows and the adaptive rows */
+  FB_BENCH_PEERS = 32,    /* each engine's bare program beside the harness's model
+                             (peers.h; run by the CLI, not by fb_bench_run) */
+  FB_BENCH_DEFAULT = 64   /* the default grid: each engine at its recommended settings
+                             (bench.c, default_grid), a few minutes on 2 cores */
 };
 
 /* Rows one bench run may hold: every engine's grid (ODE 320 rows, MuJoCo,

@@ -89,6 +89,11 @@ typedef struct fb_engine {
   void (*destroy)(void *self);
   void (*step_stats)(const void *self, fb_step_stats *out); /* optional: the steps taken
                                        (engines that follow [solver] h_s = adaptive) */
+  double (*stepping_s)(const void *self); /* optional: of the time spent in step(), the
+                                       engine's own stepping [s], for an engine whose step()
+                                       also fills the output grid (Simbody: its integrator's
+                                       steps, the interpolation and exact samples being the
+                                       sampling); NULL: all of step() is stepping */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:

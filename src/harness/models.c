@@ -61,6 +61,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
   fb_series_push(&r->series, &x);
   const size_t report_every = n / 100 + 1;
   const double deadline = def->source.wall_deadline;
+  double stepping = 0.0;
   for (size_t k = 1; k <= n; k++) {
     /* [run] max_wall_s holds for every engine: a model still stepping at
      * the run's deadline stops there, with its reason (the clock is read
@@ -73,7 +74,9 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
       r->stop.t_end = def->duration;
       break;
     }
+    const double ts = fb_clock_s();
     st = e->step(self, diag);
+    stepping += fb_clock_s() - ts;
     if (st == FB_ERR_NUMERIC || st == FB_ERR_NOMEM) { /* the engine gave up (ODE's own fatal
                                    check or its step memory, the reference's integrator): this
                                    model stops with its reason, the others run */
@@ -113,6 +116,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
    * so every model's accelerations and peaks compare like with like */
   if (e->step_values_lag) fb_series_attribute_to_step_start(&r->series);
   if (e->refine_peaks) fb_series_refine_peaks(&r->series, FB_REFERENCE_REFINE_FRACTION);
+  r->stepping_s = e->stepping_s ? e->stepping_s(self) : stepping;
   r->steps = e->steps(self);
   if (e->step_stats && sm->solver.h_mode == FB_STEP_ADAPTIVE) {
     r->has_step_stats = 1;

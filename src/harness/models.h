@@ -32,6 +32,10 @@ typedef struct {
   double wall_s;           /* wall-clock time of the run [s] */
   double setup_s;          /* of which set-up [s]: the engine's create (MuJoCo: the MJCF
                               compile) and mapping the series' storage (fb_series_touch) */
+  double stepping_s;       /* of which the engine's stepping [s]: its step() calls (or the
+                              share of them its stepping_s op names); the rest of wall_s -
+                              setup_s is the harness's sampling (sample, reactions, checks,
+                              the series) */
   fb_series series;        /* samples at t = k h */
   double joint_drift_max;  /* ode: largest hinge anchor separation seen [m] */
   int clearance_mask;      /* bit j: joint j had clearance in this model */

@@ -1,18 +1,18 @@
-/* Figures of a run, drawn by gnuplot driven through a pipe (gnuplot 5.4,
- * Debian's gnuplot-nox; started with posix_spawn and an argument vector in
- * the output folder, no shell; every text entering the script is escaped for
- * a single-quoted gnuplot string, and the script names no user path): SVG by default, PNG (pngcairo) on request. Each
- * figure is written to a temporary name and renamed into place. Curves are
- * decimated to at most FB_FIGURE_MAX_POINTS points by keeping the minimum and
- * maximum of each bucket of samples, so spikes survive the decimation; a
- * manifest figures.json lists every figure with the number of points of each
- * curve and the CSV it was drawn from. */
+/* Figures of a run, drawn by gnuplot (gnuplot 5.4, Debian's gnuplot-nox)
+ * from a script file per figure written into the output folder (started
+ * with posix_spawn and an argument vector in that folder, no shell; every
+ * text entering the script is escaped for a single-quoted gnuplot string,
+ * and the script names no user path); a run's figures are drawn side by
+ * side, one gnuplot per processor. SVG by default, PNG (pngcairo) on
+ * request. Each figure is written to a temporary name and renamed into
+ * place. Curves are decimated to the figure's pixel columns, keeping each
+ * column's minimum and maximum (decimate.h), so spikes survive; a pin's
+ * orbit to the pixels it crosses. A manifest figures.json lists every figure
+ * with the number of points of each curve and the CSV it was drawn from. */
 #ifndef FB_FIGURES_H
 #define FB_FIGURES_H
 
 #include "run.h"
-
-#define FB_FIGURE_MAX_POINTS 2000
 
 typedef enum { FB_FIGURE_SVG = 0, FB_FIGURE_PNG = 1 } fb_figure_format;
 

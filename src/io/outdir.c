@@ -51,10 +51,28 @@ static void remove_flat(const char *dir) {
   rmdir(dir);
 }
 
-/* a child (gnuplot) writing into a registered folder: ended first */
-static volatile pid_t child_pid;
+/* the children (gnuplot, drawing figures side by side) writing into a
+ * registered folder: ended first */
+static volatile pid_t child_pid[FB_CLEANUP_CHILDREN];
 
-void fb_cleanup_child(pid_t pid) { child_pid = pid; }
+void fb_cleanup_child(pid_t pid) {
+  for (int k = 0; k < FB_CLEANUP_CHILDREN; k++) child_pid[k] = 0;
+  child_pid[0] = pid;
+}
+
+int fb_cleanup_child_add(pid_t pid) {
+  for (int k = 0; k < FB_CLEANUP_CHILDREN; k++)
+    if (child_pid[k] == 0) {
+      child_pid[k] = pid;
+      return 0;
+    }
+  return -1;
+}
+
+void fb_cleanup_child_forget(pid_t pid) {
+  for (int k = 0; k < FB_CLEANUP_CHILDREN; k++)
+    if (child_pid[k] == pid) child_pid[k] = 0;
+}
 
 /* the note written on a signal (fb_cleanup_note) */
 static const char *volatile note_head;
@@ -90,10 +108,12 @@ static void write_note(int sig) {
 
 static void on_signal(int sig) {
   const pid_t me = getpid();
-  const pid_t child = child_pid;
-  if (child > 0) { /* it could otherwise write into the folder after it is removed */
-    kill(child, SIGKILL);
-    waitpid(child, NULL, 0);
+  for (int k = 0; k < FB_CLEANUP_CHILDREN; k++) {
+    const pid_t child = child_pid[k];
+    if (child > 0) { /* it could otherwise write into the folder after it is removed */
+      kill(child, SIGKILL);
+      waitpid(child, NULL, 0);
+    }
   }
   for (int k = 0; k < CLEANUP_SLOTS; k++) {
     if (!slots[k].used || slots[k].owner != me) continue;

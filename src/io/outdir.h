@@ -98,7 +98,17 @@ void fb_cleanup_note(const char *head, const char *text, const volatile long *co
 
 /* Names the child process (gnuplot) writing into a registered folder, 0 for
  * none: on a signal it is killed and reaped before the folder is removed, so
- * it neither writes into a removed folder nor outlives this process. */
+ * it neither writes into a removed folder nor outlives this process. Forgets
+ * the children fb_cleanup_child_add named. */
 void fb_cleanup_child(pid_t pid);
+
+/* Children that may run side by side (figures drawn in parallel). */
+#define FB_CLEANUP_CHILDREN 8
+
+/* Adds one more such child (several gnuplots drawing side by side); -1 when
+ * FB_CLEANUP_CHILDREN are named already. fb_cleanup_child_forget(pid) when
+ * it has been reaped. */
+int fb_cleanup_child_add(pid_t pid);
+void fb_cleanup_child_forget(pid_t pid);
 
 #endif

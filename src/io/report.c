@@ -593,11 +593,12 @@ json_t *fb_report_timing_json(const fb_run *r) {
   json_t *models = json_array();
   for (int i = 0; i < r->n; i++) {
     const fb_model_run *run = &r->model[i].run;
-    json_array_append_new(models, json_pack("{s:s,s:I,s:o,s:o,s:o}", "name", run->name, "steps",
+    json_array_append_new(models, json_pack("{s:s,s:I,s:o,s:o,s:o,s:o}", "name", run->name, "steps",
                                             (json_int_t)run->steps, "wall_s", num(run->wall_s),
                                             "setup_s", num(run->setup_s), "time_per_step_us",
                                             run->steps ? num(1e6 * run->wall_s / (double)run->steps)
-                                                       : json_null()));
+                                                       : json_null(),
+                                            "stepping_s", num(run->stepping_s)));
   }
   /* the ensemble's members beyond the first (docs/chaos.md): its cost */
   json_t *ens = json_pack("{s:i,s:s,s:o,s:o,s:o}", "members", r->c.ensemble > 1 ? r->c.ensemble : 1,

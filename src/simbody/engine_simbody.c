@@ -34,9 +34,12 @@ static size_t simbody_steps(const void *self) { return fb_simbody_scene_steps(se
 
 static void simbody_destroy(void *self) { fb_simbody_scene_destroy(self); }
 
+static double simbody_stepping_s(const void *self) { return fb_simbody_scene_stepping_s(self); }
+
 /* guarded: the penetration limit applies as to every clearance model; the
- * samples are the integrator's own (interpolated) states, exact in time, and
- * the engine keeps the peaks between samples itself: no lag, no refinement */
+ * samples are the integrator's own interpolant on the grid, exact in time,
+ * realized exactly at the peaks, and the engine keeps the peaks between
+ * samples itself: no lag, no refinement */
 const fb_engine fb_engine_simbody = {
     .name = "simbody",
     .guarded = 1,
@@ -52,4 +55,5 @@ const fb_engine fb_engine_simbody = {
     .drift = simbody_drift,
     .steps = simbody_steps,
     .destroy = simbody_destroy,
+    .stepping_s = simbody_stepping_s,
 };

@@ -24,12 +24,16 @@
  * law's damper on the mechanism's effective mass along the normal
  * (effective_mass.h), as ODE's scene, MuJoCo's and the reference do.
  *
- * Sampling: fb_simbody_scene_step advances the integrator to the next
- * sample time k h, returning at every internal step on the way; contact
- * episodes (episode.h) are updated at every internal step end, and the
- * sample at k h holds the extremes of the contact force, penetration and
- * angular accelerations over the internal step ends of ((k-1) h, k h] in
- * intervals with contact, so peaks and impacts between samples are kept. */
+ * Sampling (simbody_scene.cpp says how): the integrator runs on its own
+ * error-controlled steps to the run's end, returning after each; the output
+ * grid k h is filled between its steps by Simbody's cubic Hermite
+ * interpolant (accelerations its derivative), and the samples around a
+ * peak of a velocity, acceleration or load are realized exactly, as Simbody
+ * realizes an interpolated report. Contact episodes (episode.h) are updated
+ * at every step end, and the sample at k h holds the extremes of the contact
+ * force, penetration and angular accelerations over the step ends of
+ * ((k-1) h, k h] in intervals with contact, so peaks and impacts between
+ * samples are kept. */
 #ifndef FB_SIMBODY_SCENE_H
 #define FB_SIMBODY_SCENE_H
 
@@ -52,9 +56,10 @@ typedef struct fb_simbody_scene fb_simbody_scene;
 fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_scene_model *sm,
                                   fb_diag *diag);
 
-/* Advances to the next sample time. Errors: FB_ERR_NUMERIC when the
+/* Advances to the next sample time (the integrator runs ahead of it by a
+ * few of its steps, to find the peaks). Errors: FB_ERR_NUMERIC when the
  * integrator fails or spends its step budget (fb_simbody_scene_stopped says
- * which). */
+ * which), reported at the first sample it could not reach. */
 fb_status fb_simbody_scene_step(fb_simbody_scene *s, fb_diag *diag);
 
 /* Why the last step failed (FB_STOP_NONE when it did not). */
@@ -81,6 +86,16 @@ double fb_simbody_scene_drift(const fb_simbody_scene *s);
 
 /* The integrator's accepted steps so far. */
 size_t fb_simbody_scene_steps(const fb_simbody_scene *s);
+
+/* Wall time so far in the integrator's own steps (Integrator::stepTo) [s]:
+ * the engine's stepping, apart from filling the output grid (the
+ * interpolation and the exact samples). */
+double fb_simbody_scene_stepping_s(const fb_simbody_scene *s);
+
+/* Samples so far that were realized exactly (next to a local extreme of an
+ * acceleration or a load, and the run's first and last) instead of
+ * interpolated between the integrator's steps. */
+size_t fb_simbody_scene_exact_samples(const fb_simbody_scene *s);
 
 /* Frees s (NULL is ignored). */
 void fb_simbody_scene_destroy(fb_simbody_scene *s);

@@ -806,6 +806,18 @@ static void test_dynamics_zero_clearance_limit(void **state) {
   assert_true(e2.guide < e1.guide / (ratio / 3) && e2.torque < e1.torque / (ratio / 3));
 }
 
+/* x = A^-1 b for a row-major n x n A (overwritten by its LU factors): GSL */
+static void lu_solve(double *x, double *A, double *b, size_t n) {
+  gsl_matrix_view Av = gsl_matrix_view_array(A, n, n);
+  gsl_vector_view bv = gsl_vector_view_array(b, n), xv = gsl_vector_view_array(x, n);
+  gsl_permutation *p = gsl_permutation_alloc(n);
+  assert_non_null(p);
+  int sg;
+  assert_int_equal(gsl_linalg_LU_decomp(&Av.matrix, p, &sg), GSL_SUCCESS);
+  assert_int_equal(gsl_linalg_LU_solve(&Av.matrix, p, &bv.vector, &xv.vector), GSL_SUCCESS);
+  gsl_permutation_free(p);
+}
+
 /* The effective mass along n against the constrained inverse mass of the
  * absolute-coordinate model (q as in abs_rhs below): P = M^-1 - M^-1 Jc^T
  * (Jc M^-1 Jc^T)^-1 Jc M^-1, W = Je P Je^T with Je the rate of e = P - H,
@@ -858,13 +870,7 @@ static void test_dynamics_effective_mass(void **state) {
     }
     double rn[4], x[4];
     for (int r = 0; r < 4; r++) rn[r] = R[r * 2] * n[0] + R[r * 2 + 1] * n[1];
-    gsl_matrix_view Sv = gsl_matrix_view_array(S, 4, 4);
-    gsl_vector_view bv = gsl_vector_view_array(rn, 4), xv = gsl_vector_view_array(x, 4);
-    gsl_permutation *p = gsl_permutation_alloc(4);
-    int sg;
-    gsl_linalg_LU_decomp(&Sv.matrix, p, &sg);
-    gsl_linalg_LU_solve(&Sv.matrix, p, &bv.vector, &xv.vector);
-    gsl_permutation_free(p);
+    lu_solve(x, S, rn, 4);
     double constrained = 0;
     for (int r = 0; r < 4; r++) constrained += rn[r] * x[r];
     const double want = 1.0 / (free_part - constrained);
@@ -933,13 +939,7 @@ static int abs_rhs(double t, const double z[], double dz[], void *params) {
     }
     rhs[6 + c] = gam[c];
   }
-  gsl_matrix_view Av = gsl_matrix_view_array(A, 10, 10);
-  gsl_vector_view bv = gsl_vector_view_array(rhs, 10), xv = gsl_vector_view_array(sol, 10);
-  gsl_permutation *p = gsl_permutation_alloc(10);
-  int sg;
-  gsl_linalg_LU_decomp(&Av.matrix, p, &sg);
-  gsl_linalg_LU_solve(&Av.matrix, p, &bv.vector, &xv.vector);
-  gsl_permutation_free(p);
+  lu_solve(sol, A, rhs, 10);
   for (int i = 0; i < 6; i++) {
     dz[i] = qd[i];
     dz[6 + i] = sol[i];

@@ -180,7 +180,20 @@ FILE *fb_text_safe_stream(FILE *to, int close_to) {
   return f;
 }
 
-static FILE *raw_stderr;
+static FILE *raw_stdout, *raw_stderr;
+
+/* at exit: the safe streams are closed (flushing what they hold into the
+ * originals, freeing their cookies) and the originals put back, so nothing
+ * written at exit is lost and a leak checker finds nothing held */
+static void close_safe_std(void) {
+  FILE *so = stdout, *se = stderr;
+  if (!raw_stderr || so == raw_stdout) return;
+  stdout = raw_stdout;
+  stderr = raw_stderr;
+  fclose(so);
+  fclose(se);
+  raw_stderr = NULL;
+}
 
 void fb_text_safe_std(void) {
   if (raw_stderr) return;
@@ -205,7 +218,9 @@ void fb_text_safe_std(void) {
   setvbuf(se, NULL, _IONBF, 0);
   stdout = so;
   stderr = se;
+  raw_stdout = out;
   raw_stderr = err;
+  atexit(close_safe_std);
 }
 
 FILE *fb_text_raw_stderr(void) { return raw_stderr ? raw_stderr : stderr; }

@@ -135,6 +135,11 @@ static inline void peer_series_init(peer_series *s, long cap) {
   }
 }
 
+/* frees the columns (after the report; a sanitizer build checks for leaks) */
+static inline void peer_series_free(peer_series *s) {
+  for (int c = 0; c < P_COLS; c++) free(s->col[c]);
+}
+
 /* the kinematic columns of the sample at t from the bodies' (crank, coupler,
  * follower) angles, angular velocities and accelerations (al NULL: none yet) */
 static inline void peer_bodies(double v[P_COLS], double t, const double ang[3], const double w[3],

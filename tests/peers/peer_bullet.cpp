@@ -168,6 +168,7 @@ int main(int argc, char **argv) {
   }
   const double t2 = peer_clock();
   peer_report("bullet", &s, f.steps, t1 - t0, t2 - t1, f.window);
+  peer_series_free(&s);
   world.removeConstraint(&drive);
   for (int j = 0; j < 4; j++) world.removeConstraint(pin[j]), delete pin[j];
   for (int i = 0; i < 3; i++) world.removeRigidBody(body[i]), delete body[i];

@@ -109,6 +109,7 @@ int main(int argc, char **argv) {
   }
   const double t2 = peer_clock();
   peer_report("mujoco", &s, f.steps, t1 - t0, t2 - t1, f.window);
+  peer_series_free(&s);
   mj_deleteData(d);
   mj_deleteModel(m);
   return 0;

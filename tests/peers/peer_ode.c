@@ -99,6 +99,7 @@ int main(int argc, char **argv) {
   }
   const double t2 = peer_clock();
   peer_report("ode", &s, f.steps, t1 - t0, t2 - t1, f.window);
+  peer_series_free(&s);
   dWorldDestroy(w);
   dCloseODE();
   return 0;

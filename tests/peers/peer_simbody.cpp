@@ -248,6 +248,7 @@ int main(int argc, char **argv) {
   }
   const double t2 = peer_clock();
   peer_report("simbody", &s, (long)in->getNumStepsTaken(), t1 - t0, t2 - t1, f.window);
+  peer_series_free(&s);
   delete in;
   return 0;
 }

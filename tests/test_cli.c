@@ -816,7 +816,7 @@ static void test_help_answers(void **state) {
   /* every command answers --help with its usage and its exit status */
   static const char *const cmds[] = {"run", "kinematics", "stackup", "fit", "tolerance", "penalty",
                                      "impact", "check", "sweep", "merge", "mapping", "bench",
-                                     "contact-params", NULL};
+                                     "contact-params", "export", NULL};
   for (int i = 0; cmds[i]; i++) {
     char args[64], usage[64];
     snprintf(args, sizeof args, "%s --help", cmds[i]);

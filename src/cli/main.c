@@ -35,7 +35,7 @@ static const char main_help[] =
     "  merge        join shard outputs of a sweep\n"
     "  mapping      ERP and CFM against contact stiffness and step size\n"
     "  contact-params  a physical contact as ODE, Gazebo, MuJoCo, Bullet settings\n"
-    "  export       a case's mechanism as MuJoCo MJCF\n"
+    "  export       a case's mechanism as MuJoCo MJCF or SDFormat for Gazebo\n"
     "  bench        every engine's configurations on one error-against-cost chart\n"
     "  keys         list every case-file key with unit, default and rule\n"
     "\n"

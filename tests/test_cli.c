@@ -364,6 +364,28 @@ static void test_contact_params_coarse_step(void **state) {
   assert_true(json_real_value(json_object_get(a, "contact_duration_s")) > 0.0);
   assert_non_null(json_object_get(json_object_get(a, "params"), "mujoco"));
   expect_all_faithful(json_object_get(a, "verify"), "at_step 2 ms");
+  /* with --h-s: no engine default steps */
+  assert_int_equal(json_array_size(json_object_get(j, "at_default_steps")), 0);
+  json_decref(j);
+  /* without --h-s: at_step also at MuJoCo's 2 ms and Gazebo's 1 ms */
+  assert_int_equal(run("contact-params --law hertz --stiffness 1.5e10 --restitution 0.8 "
+                       "--mass-kg 0.5 --speed-m-s 0.3 --json",
+                       out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  if (!j) fail_msg("contact-params --json does not parse: %s", je.text);
+  json_t *ds = json_object_get(j, "at_default_steps");
+  assert_int_equal(json_array_size(ds), 2);
+  const char *engines[] = {"mujoco", "gazebo"};
+  const double hs[] = {2e-3, 1e-3};
+  for (size_t i = 0; i < 2; i++) {
+    json_t *e = json_array_get(ds, i);
+    assert_string_equal(json_string_value(json_object_get(e, "engine")), engines[i]);
+    assert_near(json_real_value(json_object_get(e, "h_s")), hs[i], 1e-15);
+    assert_true(json_real_value(json_object_get(e, "penetration_m")) > 0.0);
+    assert_non_null(json_object_get(json_object_get(e, "params"), "gazebo"));
+    expect_all_faithful(json_object_get(e, "verify"), engines[i]);
+  }
+  assert_int_equal(json_integer_value(json_object_get(j, "failed_recommended_rows")), 0);
   json_decref(j);
   assert_int_equal(run("contact-params --law lankarani-nikravesh --stiffness 1.5e10 --exponent 1.5 "
                        "--restitution 0.8 --mass-kg 0.5 --speed-m-s 0.3 --verify --json",

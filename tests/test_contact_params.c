@@ -350,6 +350,46 @@ static void test_issue_user_at_coarse_steps(void **state) {
   }
 }
 
+/* item 2 "without special flags": the issue's user with no step (the
+ * automatic one) and engine_steps on (the CLI without --h-s) gets the
+ * at_step contact at MuJoCo's 2 ms and Gazebo's 1 ms as well, each with the
+ * same restitution, verified in every engine; without engine_steps none */
+static void test_engine_default_steps(void **state) {
+  (void)state;
+  fb_cp_request q;
+  fb_cp_request_default(&q);
+  q.law = FB_LAW_HERTZ;
+  q.stiffness = 1.5e10;
+  q.restitution = 0.8;
+  q.mass_min = q.mass_max = 0.5;
+  q.speed = 0.3;
+  static fb_cp_result o;
+  fb_diag d;
+  assert_int_equal(fb_cp_run(&o, &q, &d), FB_OK);
+  assert_int_equal(o.n_engine_steps, 0);
+  q.engine_steps = 1;
+  assert_int_equal(fb_cp_run(&o, &q, &d), FB_OK);
+  assert_int_equal(o.failed, 0);
+  assert_true(o.given.recommended);
+  assert_int_equal(o.n_engine_steps, FB_CP_ENGINE_STEPS);
+  const char *engines[] = {"mujoco", "gazebo"};
+  const double hs[] = {2e-3, 1e-3};
+  for (int i = 0; i < FB_CP_ENGINE_STEPS; i++) {
+    assert_string_equal(o.engine_step[i].engine, engines[i]);
+    assert_near(o.engine_step[i].h, hs[i], 0.0);
+    assert_near(o.engine_step[i].step.rows.lc.h, hs[i], 0.0);
+    char what[64];
+    snprintf(what, sizeof what, "%s default %g s", engines[i], hs[i]);
+    assert_int_equal(expect_faithful(what, &o.engine_step[i].step), engines_built());
+    expect_printable(what, &o.engine_step[i].step.rows);
+    assert_near(o.engine_step[i].step.rows.restitution[0], 0.8, 1e-6);
+    /* the largest faithful step's h omega_c, so the same at both steps */
+    assert_near(o.engine_step[i].step.rows.h_omega_c, o.largest_h_omega, 1e-9 * o.largest_h_omega);
+  }
+  /* at half the step, four times the stiffness (k' = k (h* / h)^2) */
+  assert_near(o.engine_step[1].k, 4.0 * o.engine_step[0].k, 1e-9 * o.engine_step[1].k);
+}
+
 /* the damped Hertz laws in one command: the linear spring-damper with the
  * law's own restitution and peak penetration, every recommended row
  * verified at the automatic step; the issue's command (lankarani-nikravesh,
@@ -410,6 +450,7 @@ int main(void) {
       cmocka_unit_test(test_bullet_contact),
       cmocka_unit_test(test_linear_equivalent),
       cmocka_unit_test(test_issue_user_at_coarse_steps),
+      cmocka_unit_test(test_engine_default_steps),
       cmocka_unit_test(test_damped_hertz_laws),
       cmocka_unit_test(test_failed_row_counts),
   };

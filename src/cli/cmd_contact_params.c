@@ -49,7 +49,9 @@ static const char params_help[] =
     "                 (rows designed at the geometric mean, verified at A, it, B);\n"
     "                 default 0.1\n"
     "  --h-s          step size [s]; default: h omega_c = 0.1 at the smallest mass,\n"
-    "                 or the largest faithful step when that is smaller\n"
+    "                 or the largest faithful step when that is smaller; without\n"
+    "                 --h-s the stiffest faithful contact is also given at\n"
+    "                 MuJoCo's default step (2 ms) and Gazebo's (1 ms)\n"
     "  --speed-m-s    impact speed of the verification and of the Hertz laws'\n"
     "                 operating point [m/s] (default 1)\n"
     "  --load-n       hertz only: linearise at the static penetration of this load\n"
@@ -160,6 +162,31 @@ static json_t *checks_json(const fb_cp_step *st) {
   return v;
 }
 
+/* an at_step contact: the stiffest faithful contact of the same restitution
+ * at its step, k [N/m], c [N s/m] */
+static json_t *at_step_json(const fb_cp_step *st, double k, double c) {
+  const fb_cp_rows *rw = &st->rows;
+  json_t *a = json_object();
+  json_object_set_new(a, "h_s", json_real(rw->lc.h));
+  json_object_set_new(a, "stiffness_n_m", json_real(k));
+  json_object_set_new(a, "damping_n_s_m", json_real(c));
+  json_object_set_new(a, "h_omega_c", json_real(rw->h_omega_c));
+  json_t *im = json_array();
+  for (int i = 0; i < rw->n_masses; i++)
+    json_array_append_new(im, json_pack("{s:f,s:o,s:o,s:o}", "mass_kg", rw->masses[i],
+                                        "restitution", num(rw->restitution[i]), "penetration_m",
+                                        num(rw->penetration[i]), "contact_duration_s",
+                                        num(rw->duration[i])));
+  json_object_set_new(a, "impacts", im);
+  const int d = rw->n_masses > 1 ? 1 : 0;
+  json_object_set_new(a, "restitution", num(rw->restitution[d]));
+  json_object_set_new(a, "penetration_m", num(rw->penetration[d]));
+  json_object_set_new(a, "contact_duration_s", num(rw->duration[d]));
+  json_object_set_new(a, "params", params_json(rw));
+  json_object_set_new(a, "verify", checks_json(st));
+  return a;
+}
+
 static void print_json(const fb_cp_result *o, const char *case_path, int joint) {
   const fb_cp_request *q = &o->q;
   json_t *j = json_object();
@@ -214,30 +241,15 @@ static void print_json(const fb_cp_result *o, const char *case_path, int joint) 
   json_object_set_new(j, "largest_step_h_omega_c", num(o->largest_h_omega));
   json_object_set_new(j, "largest_step_limited_by",
                       isfinite(o->largest_step) ? json_string(o->largest_limited_by) : json_null());
-  if (o->has_at_step) {
-    const fb_cp_rows *rw = &o->at_step.rows;
-    json_t *a = json_object();
-    json_object_set_new(a, "h_s", json_real(rw->lc.h));
-    json_object_set_new(a, "stiffness_n_m", json_real(o->at_k));
-    json_object_set_new(a, "damping_n_s_m", json_real(o->at_c));
-    json_object_set_new(a, "h_omega_c", json_real(rw->h_omega_c));
-    json_t *im = json_array();
-    for (int i = 0; i < rw->n_masses; i++)
-      json_array_append_new(im, json_pack("{s:f,s:o,s:o,s:o}", "mass_kg", rw->masses[i],
-                                          "restitution", num(rw->restitution[i]), "penetration_m",
-                                          num(rw->penetration[i]), "contact_duration_s",
-                                          num(rw->duration[i])));
-    json_object_set_new(a, "impacts", im);
-    const int d = rw->n_masses > 1 ? 1 : 0;
-    json_object_set_new(a, "restitution", num(rw->restitution[d]));
-    json_object_set_new(a, "penetration_m", num(rw->penetration[d]));
-    json_object_set_new(a, "contact_duration_s", num(rw->duration[d]));
-    json_object_set_new(a, "params", params_json(rw));
-    json_object_set_new(a, "verify", checks_json(&o->at_step));
-    json_object_set_new(j, "at_step", a);
-  } else {
-    json_object_set_new(j, "at_step", json_null());
+  json_object_set_new(j, "at_step", o->has_at_step ? at_step_json(&o->at_step, o->at_k, o->at_c)
+                                                   : json_null());
+  json_t *es = json_array();
+  for (int i = 0; i < o->n_engine_steps; i++) {
+    json_t *a = at_step_json(&o->engine_step[i].step, o->engine_step[i].k, o->engine_step[i].c);
+    json_object_set_new(a, "engine", json_string(o->engine_step[i].engine));
+    json_array_append_new(es, a);
   }
+  json_object_set_new(j, "at_default_steps", es);
   if (o->per_step.present) {
     const fb_cp_per_step *ps = &o->per_step;
     json_t *p = json_pack("{s:s,s:b,s:f}", "mapping",
@@ -319,6 +331,18 @@ static void print_checks(const fb_cp_step *st) {
   for (int i = 0; i < st->n_checks; i++) print_check(&st->checks[i]);
 }
 
+/* an at_step contact's heading: its step, k [N/m], c [N s/m], and what it
+ * implies at the design mass and speed v [m/s] */
+static void print_at_step(const char *which, const fb_cp_step *st, double k, double c, double v) {
+  const fb_cp_rows *rw = &st->rows;
+  const int d = rw->n_masses > 1 ? 1 : 0;
+  printf("\n== at %sh = %.4g s, the stiffest faithful contact with the same restitution:\n"
+         "   k = %.6g N/m, c = %.6g N s/m (h omega_c %.3g); at %.4g kg and %g m/s: restitution "
+         "%.4g, peak penetration %.4g m, contact duration %.4g s\n",
+         which, rw->lc.h, k, c, rw->h_omega_c, rw->masses[d], v, rw->restitution[d],
+         rw->penetration[d], rw->duration[d]);
+}
+
 static void print_text(const fb_cp_result *o, const char *case_path, int joint) {
   const fb_cp_request *q = &o->q;
   if (joint >= 0)
@@ -375,16 +399,16 @@ static void print_text(const fb_cp_result *o, const char *case_path, int joint) 
     printf("== your contact at h = %.4g s: not recommended: %s\n", q->h, o->given.why_not);
   }
   if (o->has_at_step) {
-    const fb_cp_rows *rw = &o->at_step.rows;
-    const int d = rw->n_masses > 1 ? 1 : 0;
-    printf("\n== at h = %.4g s, the stiffest faithful contact with the same restitution:\n"
-           "   k = %.6g N/m, c = %.6g N s/m (h omega_c %.3g); at %.4g kg and %g m/s: restitution "
-           "%.4g, peak penetration %.4g m, contact duration %.4g s\n",
-           rw->lc.h, o->at_k, o->at_c, rw->h_omega_c, rw->masses[d], q->speed,
-           rw->restitution[d], rw->penetration[d], rw->duration[d]);
+    print_at_step("", &o->at_step, o->at_k, o->at_c, q->speed);
     if (o->at_k > o->k)
       printf("   (stiffer than your contact, which is faithful at this step already)\n");
-    print_rows(rw);
+    print_rows(&o->at_step.rows);
+  }
+  for (int i = 0; i < o->n_engine_steps; i++) {
+    print_at_step(strcmp(o->engine_step[i].engine, "mujoco") == 0 ? "MuJoCo's default step, "
+                                                                   : "Gazebo's default step, ",
+                  &o->engine_step[i].step, o->engine_step[i].k, o->engine_step[i].c, q->speed);
+    print_rows(&o->engine_step[i].step.rows);
   }
   if (o->per_step.present) {
     const fb_cp_per_step *ps = &o->per_step;
@@ -411,6 +435,12 @@ static void print_text(const fb_cp_result *o, const char *case_path, int joint) 
     printf("\nat_step contact at h = %.4g s:\n", q->h);
     print_checks(&o->at_step);
   }
+  for (int i = 0; i < o->n_engine_steps; i++) {
+    printf("\nat_step contact at %s's default step h = %.4g s:\n",
+           strcmp(o->engine_step[i].engine, "mujoco") == 0 ? "MuJoCo" : "Gazebo",
+           o->engine_step[i].h);
+    print_checks(&o->engine_step[i].step);
+  }
   if (o->per_step.present && o->per_step.h_omega_t <= FB_H_OMEGA_C_BOUND) {
     printf("\nper-step mapping, against the law's own impact at onset phase 0:\n");
     print_check(&o->per_step.check);
@@ -435,7 +465,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
       {"joint", required_argument, 0, 'J'},     {0, 0, 0, 0}};
   fb_cp_request q;
   fb_cp_request_default(&q);
-  int ch, json = 0, m_given = 0, k_given = 0;
+  int ch, json = 0, m_given = 0, k_given = 0, h_given = 0;
   const char *case_arg = NULL, *joint_arg = NULL;
   const char *P = "contact-params";
   optind = 1;
@@ -460,7 +490,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
         break;
       case 'C': case_arg = optarg; break;
       case 'J': joint_arg = optarg; break;
-      case 'H': if (!fb_cli_double(P, "--h-s", optarg, &q.h)) return 2; break;
+      case 'H': if (!fb_cli_double(P, "--h-s", optarg, &q.h)) return 2; h_given = 1; break;
       case 'v': if (!fb_cli_double(P, "--speed-m-s", optarg, &q.speed)) return 2; break;
       case 'F': if (!fb_cli_double(P, "--load-n", optarg, &q.load)) return 2; break;
       case 'V': q.verify = 1; break;
@@ -522,6 +552,8 @@ int fb_cmd_contact_params(int argc, char **argv) {
     q.mass_max = cc.est.m_eff_max;
     if (isnan(q.h)) q.h = cc.h;
   }
+  /* no step given: also the answers at MuJoCo's and Gazebo's default steps */
+  q.engine_steps = !h_given;
   static fb_cp_result o;
   fb_diag diag;
   fb_status st = fb_cp_run(&o, &q, &diag);

@@ -34,6 +34,7 @@ void fb_cp_request_default(fb_cp_request *q) {
   q->speed = 1.0;
   q->load = NAN;
   q->verify = 1;
+  q->engine_steps = 0;
 }
 
 /* the request with its defaults filled: cr 0.9 for the restitution and
@@ -478,6 +479,21 @@ static void per_step(fb_cp_result *o, const fb_cp_request *r) {
 
 /* ---- the whole command --------------------------------------------------- */
 
+/* the stiffest contact of o's restitution faithful at step h: o's contact
+ * with h omega moved to that of the largest faithful step (k' = k s^2,
+ * c' = c s, s = largest_step / h), its rows at h, recommended */
+static fb_status at_step(fb_cp_step *out, double *k, double *c, const fb_cp_result *o,
+                         const fb_cp_request *r, double h, fb_diag *diag) {
+  const double s = o->largest_step / h;
+  *k = o->k * s * s;
+  *c = o->c * s;
+  memset(out, 0, sizeof *out);
+  fb_status st = fb_cp_rows_make(&out->rows, *k, *c, r->mass_min, r->mass_max, h, r->speed, diag);
+  if (st != FB_OK) return st;
+  out->recommended = 1;
+  return FB_OK;
+}
+
 fb_status fb_cp_run(fb_cp_result *o, const fb_cp_request *q, fb_diag *diag) {
   memset(o, 0, sizeof *o);
   fb_status st = fb_cp_request_check(q, diag);
@@ -555,15 +571,24 @@ fb_status fb_cp_run(fb_cp_result *o, const fb_cp_request *q, fb_diag *diag) {
     o->failed += fb_cp_verify(g, v, g->recommended);
   /* at_step: the stiffest faithful contact of the same restitution at h */
   if (r.verify && isfinite(o->largest_step)) {
-    const double s = o->largest_step / r.h;
     o->has_at_step = 1;
-    o->at_k = o->k * s * s;
-    o->at_c = o->c * s;
-    if ((st = fb_cp_rows_make(&o->at_step.rows, o->at_k, o->at_c, r.mass_min, r.mass_max, r.h, v,
-                              diag)) != FB_OK)
-      return st;
-    o->at_step.recommended = 1;
+    if ((st = at_step(&o->at_step, &o->at_k, &o->at_c, o, &r, r.h, diag)) != FB_OK) return st;
     o->failed += fb_cp_verify(&o->at_step, v, 1);
+    /* and at the engines' default steps */
+    static const struct {
+      const char *engine;
+      double h;
+    } defaults[FB_CP_ENGINE_STEPS] = {{"mujoco", FB_CP_MUJOCO_DEFAULT_H},
+                                      {"gazebo", FB_CP_GAZEBO_DEFAULT_H}};
+    for (int i = 0; r.engine_steps && i < FB_CP_ENGINE_STEPS; i++) {
+      o->engine_step[i].engine = defaults[i].engine;
+      o->engine_step[i].h = defaults[i].h;
+      if ((st = at_step(&o->engine_step[i].step, &o->engine_step[i].k, &o->engine_step[i].c, o,
+                        &r, defaults[i].h, diag)) != FB_OK)
+        return st;
+      o->failed += fb_cp_verify(&o->engine_step[i].step, v, 1);
+      o->n_engine_steps = i + 1;
+    }
   }
   per_step(o, &r);
   if (o->per_step.recommended && r.verify && !o->per_step.check.faithful) o->failed++;

@@ -82,6 +82,13 @@ extern const double fb_cp_onset_phases[FB_CP_ONSET_PHASES];
  * faithful, and a user has mistyped a unit. */
 #define FB_CP_MASS_RATIO_MAX 1e4
 
+/* The default steps of the engines users most often ask about: MuJoCo's
+ * opt.timestep (2 ms) and Gazebo's physics max_step_size (1 ms). With
+ * fb_cp_request.engine_steps, fb_cp_run gives the at_step contact at each. */
+#define FB_CP_MUJOCO_DEFAULT_H 2e-3
+#define FB_CP_GAZEBO_DEFAULT_H 1e-3
+#define FB_CP_ENGINE_STEPS 2
+
 /* What the user asks for. Laws: FB_LAW_RESTITUTION, FB_LAW_LINEAR,
  * FB_LAW_HERTZ and the damped Hertz laws. */
 typedef struct {
@@ -97,10 +104,13 @@ typedef struct {
   double load;        /* hertz: linearise at the static penetration of this load [N];
                          NAN: at the impact */
   int verify;         /* 1: search the largest step, build at_step, verify every row */
+  int engine_steps;   /* 1 (with verify): also the at_step contact at MuJoCo's and Gazebo's
+                         default steps (FB_CP_MUJOCO_DEFAULT_H, FB_CP_GAZEBO_DEFAULT_H);
+                         the CLI sets it when no --h-s is given */
 } fb_cp_request;
 
 /* Defaults: restitution law, k = 1e7 N/m, cr 0.9, 0.1 kg, automatic step,
- * 1 m/s, verification on. */
+ * 1 m/s, verification on, no engine default steps. */
 void fb_cp_request_default(fb_cp_request *q);
 
 /* Checks q (each parameter with its range, unit and the flag that sets it:
@@ -193,6 +203,14 @@ typedef struct {
   int has_at_step;
   double at_k, at_c;        /* the at_step contact [N/m], [N s/m] */
   fb_cp_step at_step;
+  int n_engine_steps;       /* at_step at the engines' default steps (engine_steps) */
+  struct {
+    const char *engine;     /* "mujoco" (2 ms), "gazebo" (1 ms) */
+    double h;               /* [s] */
+    double k, c;            /* the stiffest faithful contact of the same restitution there
+                               [N/m], [N s/m] */
+    fb_cp_step step;        /* its rows, recommended, verified */
+  } engine_step[FB_CP_ENGINE_STEPS];
   fb_cp_per_step per_step;
   int failed;               /* a recommended row failed its verification (or could not run) */
 } fb_cp_result;

@@ -77,12 +77,17 @@ static void put_surface(text *t, double kp, double kd, double max_vel, double mu
 typedef struct {
   fb_spring_damper sd; /* Gazebo kp, kd at the step */
   double max_vel;      /* [m/s] */
-  double h_omega_c;    /* [-] */
+  double k, c, m;      /* the law's spring [N/m], damper [N s/m], design mass [kg] */
+  double h_omega_c;    /* h sqrt(k / m) [-] */
 } sdf_contact;
 
 /* joint j's pin: a cylinder on its pin body at (x, y) in that body's frame */
 static void put_pin(text *t, const fb_scene_model *sm, int j, double x, double y,
                     const sdf_contact *ct) {
+  put(t, "        <!-- %s: restitution law k = %.6g N/m, c = %.6g N s/m on its design mass "
+         "%.4g kg; h omega_c = %.3g there (a run holds <= 0.5; fourbar contact-params --case "
+         "verifies it over the joint's mass range) -->\n",
+      fb_joint_name(j), ct->k, ct->c, ct->m, ct->h_omega_c);
   put(t, "        <collision name=\"%s_pin\">\n", fb_joint_name(j));
   put(t, "          <pose>%.17g %.17g 0 0 0 0</pose>\n", x, y);
   put(t, "          <max_contacts>1</max_contacts>\n");
@@ -239,6 +244,9 @@ fb_status fb_export_sdf_model(char *buf, size_t size, const fb_scene_model *sm, 
       ct[j].sd = rows->gazebo;
       ct[j].max_vel = rows->max_vel;
       ct[j].h_omega_c = rows->h_omega_c;
+      ct[j].k = k;
+      ct[j].c = cd;
+      ct[j].m = m;
     }
     free(rows);
     if (st != FB_OK) return st;

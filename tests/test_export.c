@@ -157,10 +157,36 @@ static void test_clearance_export_force_matches_reference(void **state) {
              fref, rel);
 }
 
+/* an export at a step beyond the run's resolution rule is written, and
+ * says so (the note the command prints as a warning); at the case's own
+ * step (h omega_c 0.43 at the law's design mass) it says nothing */
+static void test_export_notes_an_unresolved_contact(void **state) {
+  (void)state;
+  static fb_case c;
+  static char text[1 << 20];
+  fb_diag d;
+  fb_test_paper_case(&c, NULL, 0);
+  assert_int_equal(fb_export_sdf(text, sizeof text, &c, 0, &d), FB_OK);
+  assert_string_equal(d.msg, "");
+  assert_int_equal(fb_export_mjcf(text, sizeof text, &c, 0, &d), FB_OK);
+  assert_string_equal(d.msg, "");
+  const char *sets[] = {"solver.h_s=2e-3"};
+  fb_test_paper_case(&c, sets, 1);
+  assert_int_equal(fb_export_sdf(text, sizeof text, &c, 0, &d), FB_OK);
+  assert_non_null(strstr(d.msg, "crank-coupler: h omega_c"));
+  assert_non_null(strstr(text, "<max_step_size>0.002</max_step_size>"));
+  assert_int_equal(fb_export_mjcf(text, sizeof text, &c, 0, &d), FB_OK);
+  assert_non_null(strstr(d.msg, "not faithful at this step"));
+  /* the ideal mechanism has no contact to note */
+  assert_int_equal(fb_export_sdf(text, sizeof text, &c, 1, &d), FB_OK);
+  assert_string_equal(d.msg, "");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_ideal_export_matches_analytic),
       cmocka_unit_test(test_clearance_export_force_matches_reference),
+      cmocka_unit_test(test_export_notes_an_unresolved_contact),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

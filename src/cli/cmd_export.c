@@ -76,6 +76,7 @@ int fb_cmd_export(int argc, char **argv) {
     free(text);
     return fb_cli_fail(P, st == FB_ERR_NOMEM ? 1 : 2, "%s: %s", path, d.msg);
   }
+  if (d.msg[0]) fprintf(stderr, "fourbar export: warning: %s\n", d.msg);
   if (!out) {
     fputs(text, stdout);
     free(text);

@@ -15,14 +15,18 @@
  * mujoco-ideal-nominal; else mujoco-clearance-native with its bore as a
  * limited tendon (fb_mujoco_export). Errors: those of
  * fb_scene_def_from_case and fb_mujoco_export; FB_ERR_ARG in a build
- * without MuJoCo (the MJCF is checked by compiling it). */
+ * without MuJoCo (the MJCF is checked by compiling it). On FB_OK,
+ * diag->msg is empty, or a note that a clearance contact is beyond the
+ * run's resolution rule at the case's step (h omega_c > 0.5): the file is
+ * written, the command prints the note as a warning. */
 fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag);
 
 /* Writes case c's mechanism as an SDFormat 1.9 world for Gazebo's ODE
  * physics into buf (size bytes, NUL terminated): with ideal = 1, or when c
  * has no clearance joint, model ode-ideal-nominal's mechanism, else
  * ode-clearance-restitution's (fb_export_sdf_model). Errors: those of
- * fb_scene_def_from_case and fb_export_sdf_model. */
+ * fb_scene_def_from_case and fb_export_sdf_model. On FB_OK, diag->msg as
+ * fb_export_mjcf's. */
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag);
 
 /* The SDFormat 1.9 world of model sm (export_sdf.c): world "fourbar" with

@@ -19,10 +19,12 @@ esac
 
 # every compiler and library the build enables (meson.build; tests/test_quickstart.py
 # fails when meson.build needs a package this list lacks): C, and C++ for the Bullet and
-# Simbody engines (src/bullet, src/simbody)
+# Simbody engines (src/bullet, src/simbody); SDFormat 12 for the test that loads
+# fourbar export --format sdf (tests/test_export_sdf.cpp)
 packages=(gcc g++ libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel
-          libmujoco-dev libbullet-dev libsimbody-dev libhdf5-dev python3-h5py)
+          libmujoco-dev libbullet-dev libsimbody-dev libhdf5-dev python3-h5py
+          libsdformat-dev)
 # node and npm for report.html's library (and its browser test): Debian's nodejs and npm
 # unless a node with its own npm is there already (NodeSource's nodejs conflicts with them)
 command -v node >/dev/null 2>&1 || packages+=(nodejs)

@@ -327,6 +327,77 @@ static void test_contact_params_json(void **state) {
   json_decref(j);
 }
 
+/* contact-params at a user's coarse step (issue 44): the issue's steel
+ * Hertz contact at MuJoCo's 2 ms is not recommended there, exit 0, and the
+ * JSON carries largest_step_s and at_step rows whose verify[] entries are
+ * all recommended and faithful; the issue's lankarani-nikravesh command
+ * exits 0 with every recommended row faithful */
+static void expect_all_faithful(json_t *verify, const char *what) {
+  size_t i, n = 0;
+  json_t *x;
+  json_array_foreach(verify, i, x) {
+    if (!json_is_true(json_object_get(x, "recommended"))) continue;
+    n++;
+    if (!json_is_true(json_object_get(x, "faithful")))
+      fail_msg("%s: %s %s not faithful", what, json_string_value(json_object_get(x, "engine")),
+               json_string_value(json_object_get(x, "form")));
+  }
+  assert_true(n >= 2); /* ODE and Gazebo at least */
+}
+
+static void test_contact_params_coarse_step(void **state) {
+  (void)state;
+  static char out[1 << 18], err[4096];
+  json_error_t je;
+  assert_int_equal(run("contact-params --law hertz --stiffness 1.5e10 --restitution 0.8 "
+                       "--mass-kg 0.5 --speed-m-s 0.3 --h-s 2e-3 --json",
+                       out, sizeof out, err, sizeof err), 0);
+  json_t *j = json_loads(out, 0, &je);
+  if (!j) fail_msg("contact-params --json does not parse: %s", je.text);
+  assert_true(json_is_false(json_object_get(j, "recommended")));
+  assert_true(json_is_null(json_object_get(j, "params")));
+  const double hl = json_real_value(json_object_get(j, "largest_step_s"));
+  assert_true(hl > 0.0 && hl < 2e-3);
+  json_t *a = json_object_get(j, "at_step");
+  assert_near(json_real_value(json_object_get(a, "h_s")), 2e-3, 1e-15);
+  assert_true(json_real_value(json_object_get(a, "penetration_m")) > 0.0);
+  assert_true(json_real_value(json_object_get(a, "contact_duration_s")) > 0.0);
+  assert_non_null(json_object_get(json_object_get(a, "params"), "mujoco"));
+  expect_all_faithful(json_object_get(a, "verify"), "at_step 2 ms");
+  /* with --h-s: no engine default steps */
+  assert_int_equal(json_array_size(json_object_get(j, "at_default_steps")), 0);
+  json_decref(j);
+  /* without --h-s: at_step also at MuJoCo's 2 ms and Gazebo's 1 ms */
+  assert_int_equal(run("contact-params --law hertz --stiffness 1.5e10 --restitution 0.8 "
+                       "--mass-kg 0.5 --speed-m-s 0.3 --json",
+                       out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  if (!j) fail_msg("contact-params --json does not parse: %s", je.text);
+  json_t *ds = json_object_get(j, "at_default_steps");
+  assert_int_equal(json_array_size(ds), 2);
+  const char *engines[] = {"mujoco", "gazebo"};
+  const double hs[] = {2e-3, 1e-3};
+  for (size_t i = 0; i < 2; i++) {
+    json_t *e = json_array_get(ds, i);
+    assert_string_equal(json_string_value(json_object_get(e, "engine")), engines[i]);
+    assert_near(json_real_value(json_object_get(e, "h_s")), hs[i], 1e-15);
+    assert_true(json_real_value(json_object_get(e, "penetration_m")) > 0.0);
+    assert_non_null(json_object_get(json_object_get(e, "params"), "gazebo"));
+    expect_all_faithful(json_object_get(e, "verify"), engines[i]);
+  }
+  assert_int_equal(json_integer_value(json_object_get(j, "failed_recommended_rows")), 0);
+  json_decref(j);
+  assert_int_equal(run("contact-params --law lankarani-nikravesh --stiffness 1.5e10 --exponent 1.5 "
+                       "--restitution 0.8 --mass-kg 0.5 --speed-m-s 0.3 --verify --json",
+                       out, sizeof out, err, sizeof err), 0);
+  j = json_loads(out, 0, &je);
+  if (!j) fail_msg("contact-params --json does not parse: %s", je.text);
+  assert_true(json_is_true(json_object_get(j, "recommended")));
+  expect_all_faithful(json_object_get(j, "verify"), "lankarani-nikravesh");
+  assert_int_equal(json_integer_value(json_object_get(j, "failed_recommended_rows")), 0);
+  json_decref(j);
+}
+
 /* contact-params --case: the paper's crank-coupler joint with the run's own
  * restitution law and its effective-mass range (0.09 to 0.95 kg, issue 27),
  * at h omega_c = 0.1; the matched rows of ODE, Gazebo and Bullet within 1 %
@@ -622,8 +693,9 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   expect_fail("contact-params --mass-kg 0.9:0.1", (const char *[]){"--mass-kg", "A <= B", NULL});
   expect_fail("contact-params --mass-kg 1e-5:1", (const char *[]){"B/A <= ", NULL});
   expect_fail("contact-params --restitution 0.1", (const char *[]){"(0.135, 1]", NULL});
-  expect_fail("contact-params --law hertz --restitution 0.5", (const char *[]){"undamped", NULL});
-  expect_fail("contact-params --h-s 1e-3", (const char *[]){"aliases", "use h <=", NULL});
+  expect_fail("contact-params --law hertz --damping-n-s-m 5",
+              (const char *[]){"--damping-n-s-m", "--restitution", NULL});
+  expect_fail("contact-params --h-s -1e-3", (const char *[]){"--h-s", "positive", NULL});
   expect_fail("contact-params --speed-m-s 500", (const char *[]){"--speed-m-s 500", "m/s", NULL});
   expect_fail("contact-params --case two_clearance_joints",
               (const char *[]){"2 clearance joints", "--joint", NULL});
@@ -797,7 +869,7 @@ static void test_help_answers(void **state) {
   /* every command answers --help with its usage and its exit status */
   static const char *const cmds[] = {"run", "kinematics", "stackup", "fit", "tolerance", "penalty",
                                      "impact", "check", "sweep", "merge", "mapping", "bench",
-                                     "contact-params", NULL};
+                                     "contact-params", "export", NULL};
   for (int i = 0; cmds[i]; i++) {
     char args[64], usage[64];
     snprintf(args, sizeof args, "%s --help", cmds[i]);
@@ -1049,6 +1121,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_fit_tolerance_stackup_json),
       cmocka_unit_test(test_contact_params_json),
       cmocka_unit_test(test_contact_params_case),
+      cmocka_unit_test(test_contact_params_coarse_step),
       cmocka_unit_test(test_penalty_contact_is_the_runs),
       cmocka_unit_test(test_check_catches_stiffness_regression),
       cmocka_unit_test(test_bad_input_exits_nonzero_with_message),

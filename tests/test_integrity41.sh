@@ -128,7 +128,7 @@ EOS
   elif grep -q "built without HDF5" "$tmp/h5err"; then skip "4: hdf5 on a full disk (no HDF5 in this build)"
   else ok '[ "$(cat "$tmp/h5rc")" -eq 1 ] && grep -q "No space left on device" "$tmp/h5err"' "4: --series hdf5 into a full file system: exit 1 with the cause (was: SIGSEGV at exit, 'HDF5 write failed')"; fi
 else skip "4: hdf5 on a full disk (unshare -m is not permitted here)"; fi
-ok 'refuses "with --verify" timeout 300 "$exe" contact-params --verify --h-s 3.2e-11' "4: contact-params --verify at --h-s 3.2e-11 is refused at once with the smallest step (was: minutes in its Bullet rows)"
+ok 'refuses "with verification" timeout 300 "$exe" contact-params --verify --h-s 3.2e-11' "4: contact-params --verify at --h-s 3.2e-11 is refused at once with the smallest step (was: minutes in its Bullet rows)"
 ok 'refuses "mass-kg" "$exe" contact-params --mass-kg 1e6 --verify' "4/5: --mass-kg 1e6 is refused as bad input (exit 2) by the flag's own range (was: exit 1 from the verifier)"
 mw() { "$exe" run --set run.revolutions=2 --set run.max_wall_s=2 --no-figures --series none --out "$tmp/x4" "$@" >/dev/null 2>"$tmp/err"; [ $? -eq 1 ] && grep -q "more than \[run\] max_wall_s = 2 s" "$tmp/err"; }
 ok 'mw --set run.models=ode-clearance-impact --set run.ensemble=64' "4: max_wall_s counts an ensemble's members (was: one member)"
@@ -183,7 +183,9 @@ ok 'refuses "1.0000000000000002" "$exe" contact-params --restitution 1.000000000
 ok 'refuses "give h >=" "$exe" contact-params --h-s 1e-300 && ! grep -qi nan "$tmp/err"' "5: contact-params --h-s 1e-300 names the smallest step (was: kp = -nan)"
 ok 'refuses "smallest normal double" "$exe" impact --stiffness 1e-320 && ! grep -q "inf s" "$tmp/err"' "5: impact --stiffness 1e-320 is refused without 'inf s'"
 ok 'refuses "1000000.0000001" "$exe" kinematics --crank-mm 108 --coupler-mm 279.4 --follower-mm 270.5 --ground-mm 254 --speed-rpm 1000000.0000001' "5: a flag checked against a case key's range is echoed exactly"
-"$exe" contact-params --h-s 3.2e-11 --mass-kg 1e-6:1e-2 > "$tmp/out" 2>&1
+# (verification, the default since issue 44, refuses this step as above: the
+# rows alone here)
+"$exe" contact-params --no-verify --h-s 3.2e-11 --mass-kg 1e-6:1e-2 > "$tmp/out" 2>&1
 ok '[ $? -eq 0 ] && ! grep -qiw "nan\|inf\|-nan" "$tmp/out"' "5: contact-params at the edge of its ranges prints no nan or inf"
 
 echo "$passed passed, $failed failed ($skipped skipped)"

@@ -42,6 +42,7 @@ MESON_PACKAGES = {
     "dependency:bullet-float64": ["libbullet-dev"],
     "dependency:hdf5": ["libhdf5-dev"],
     "dependency:simbody": ["libsimbody-dev"],
+    "dependency:sdformat12": ["libsdformat-dev"],
     "dependency:threads": ["libc6-dev"],
     "library:m": ["libc6-dev"],
     "library:mujoco": ["libmujoco-dev"],

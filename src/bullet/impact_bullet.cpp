@@ -111,7 +111,7 @@ extern "C" fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def
  * cfm = 1 / (h k + c). What a user's setContactStiffnessAndDamping gets. */
 extern "C" fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass, double speed,
                                               double h, double stiffness, double damping,
-                                              double t_max, fb_diag *diag) {
+                                              double t_max, double onset_phase, fb_diag *diag) {
   memset(out, 0, sizeof *out);
   if (!(mass > 0.0) || !(speed > 0.0) || !(h > 0.0) || !(stiffness > 0.0) ||
       !isfinite(damping) || !(h * stiffness + damping > 0.0) || !(t_max > 0.0))
@@ -119,9 +119,15 @@ extern "C" fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass
                        "Bullet contact impact: need mass, speed, h, stiffness > 0 and "
                        "h stiffness + damping > 0 (mass %g kg, speed %g m/s, h %g s, stiffness "
                        "%g N/m, damping %g N s/m)", mass, speed, h, stiffness, damping);
+  if (!(onset_phase >= 0.0 && onset_phase < 1.0))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "Bullet contact impact: onset phase %g: must lie in [0, 1)", onset_phase);
+  /* the sphere touches the plane (phase 0), or is a free step short of the
+   * crossing: the first step that sees the contact sees the depth phase h v */
+  const double t_free = onset_phase > 0.0 ? (1.0 - onset_phase) * h : 0.0;
   /* the step bound every engine's single impact keeps (impact.h), as the
    * ODE and MuJoCo rows do: no call runs away at a tiny h */
-  const double steps_max = ceil(t_max / h);
+  const double steps_max = ceil((t_max + t_free) / h);
   if (steps_max > FB_IMPACT_MAX_STEPS)
     return fb_diag_set(diag, FB_ERR_RANGE, "Bullet contact impact: %g steps of %g s: more than %g",
                        steps_max, h, FB_IMPACT_MAX_STEPS);
@@ -160,16 +166,21 @@ extern "C" fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass
   ball.setContactStiffnessAndDamping(stiffness, damping);
   ground.setContactStiffnessAndDamping(BT_LARGE_FLOAT, 0.0);
   ball.setActivationState(DISABLE_DEACTIVATION);
+  /* only touching or penetrating points are solved: Bullet otherwise solves
+   * the manifold's points at positive distance too (speculative contact),
+   * which starts the spring before the contact (measured: peak penetration
+   * -2.9 % at h omega 0.3 for a contact that begins mid-step) */
+  ball.setContactProcessingThreshold(0.0);
   btTransform tr;
   tr.setIdentity();
-  tr.setOrigin(btVector3(0, 0, R)); /* touching */
+  tr.setOrigin(btVector3(0, 0, R + t_free * speed));
   ball.setWorldTransform(tr);
   world.addRigidBody(&ground);
   world.addRigidBody(&ball);
   ball.setLinearVelocity(btVector3(0, 0, -speed));
 
   fb_status st = FB_OK;
-  const size_t max_steps = (size_t)ceil(t_max / h) + 1;
+  const size_t max_steps = (size_t)steps_max + 1;
   fb_impact_tally tally = {0, 0, 0.0, 0.0};
   size_t k;
   for (k = 0; k < max_steps && !tally.done; k++) {
@@ -180,7 +191,7 @@ extern "C" fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass
       for (int c = 0; c < pm->getNumContacts(); c++) impulse += pm->getContactPoint(c).getAppliedImpulse();
     }
     const double force = impulse / h;
-    const double t1 = (double)(k + 1) * h;
+    const double t1 = (double)(k + 1) * h - t_free; /* from the crossing */
     const double depth_now = R - ball.getCenterOfMassPosition()[2];
     if (!isfinite(depth_now) || !isfinite(force)) {
       st = fb_diag_set(diag, FB_ERR_NUMERIC, "Bullet contact impact: non-finite state at t = %g s",

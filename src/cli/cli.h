@@ -64,6 +64,7 @@ int fb_cmd_kinematics(int argc, char **argv);
 int fb_cmd_keys(int argc, char **argv);
 int fb_cmd_impact(int argc, char **argv);
 int fb_cmd_contact_params(int argc, char **argv);
+int fb_cmd_export(int argc, char **argv);
 int fb_cmd_penalty(int argc, char **argv);
 int fb_cmd_fit(int argc, char **argv);
 int fb_cmd_tolerance(int argc, char **argv);

@@ -35,6 +35,7 @@ static const char main_help[] =
     "  merge        join shard outputs of a sweep\n"
     "  mapping      ERP and CFM against contact stiffness and step size\n"
     "  contact-params  a physical contact as ODE, Gazebo, MuJoCo, Bullet settings\n"
+    "  export       a case's mechanism as MuJoCo MJCF or SDFormat for Gazebo\n"
     "  bench        every engine's configurations on one error-against-cost chart\n"
     "  keys         list every case-file key with unit, default and rule\n"
     "\n"
@@ -111,12 +112,13 @@ static int dispatch(int argc, char **argv) {
   if (strcmp(cmd, "merge") == 0) return fb_cmd_merge(argc - 1, argv + 1);
   if (strcmp(cmd, "mapping") == 0) return fb_cmd_mapping(argc - 1, argv + 1);
   if (strcmp(cmd, "contact-params") == 0) return fb_cmd_contact_params(argc - 1, argv + 1);
+  if (strcmp(cmd, "export") == 0) return fb_cmd_export(argc - 1, argv + 1);
   if (strcmp(cmd, "bench") == 0) return fb_cmd_bench(argc - 1, argv + 1);
   if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
   /* a misspelt command: the nearest by edit distance, then the list */
   static const char *const commands[] = {"run", "kinematics", "stackup", "fit", "tolerance",
                                          "penalty", "impact", "check", "sweep", "merge",
-                                         "mapping", "contact-params", "bench", "keys", "version", "help"};
+                                         "mapping", "contact-params", "export", "bench", "keys", "version", "help"};
   const char *near = fb_suggest(cmd, commands, (int)(sizeof commands / sizeof commands[0]));
   if (near)
     fprintf(stderr, "fourbar: unknown command '%s'; did you mean 'fourbar %s'?\n\n%s", cmd, near,

@@ -41,8 +41,8 @@ const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
 /* the single-impact verification of a build without MuJoCo (impact.h) */
 fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, double h,
                            const double solref[2], const double solimp[5], double t_max,
-                           fb_diag *diag) {
-  (void)mass, (void)speed, (void)h, (void)solref, (void)solimp, (void)t_max;
+                           double onset_phase, fb_diag *diag) {
+  (void)mass, (void)speed, (void)h, (void)solref, (void)solimp, (void)t_max, (void)onset_phase;
   memset(out, 0, sizeof *out);
   return fb_diag_set(diag, FB_ERR_ARG, "engine 'mujoco' is not part of this build: "
                      FB_MUJOCO_HOWTO);

@@ -12,7 +12,7 @@
 
 fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, double h,
                            const double solref[2], const double solimp[5], double t_max,
-                           fb_diag *diag) {
+                           double onset_phase, fb_diag *diag) {
   memset(out, 0, sizeof *out);
   if (!(mass > 0.0) || !(speed > 0.0) || !(h > 0.0) || !(t_max > h) || !isfinite(mass) ||
       !isfinite(speed) || !isfinite(solref[0]) || !isfinite(solref[1]))
@@ -20,7 +20,13 @@ fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, dou
                        "MuJoCo impact: mass %g kg, speed %g m/s, h %g s, solref (%g, %g), "
                        "t_max %g s: need positive, finite values",
                        mass, speed, h, solref[0], solref[1], t_max);
-  const double steps_max = ceil(t_max / h);
+  if (!(onset_phase >= 0.0 && onset_phase < 1.0))
+    return fb_diag_set(diag, FB_ERR_RANGE, "MuJoCo impact: onset phase %g: must lie in [0, 1)",
+                       onset_phase);
+  /* the sphere touches the plane (phase 0), or is a free step short of the
+   * crossing: the first step that sees the contact sees the depth phase h v */
+  const double t_free = onset_phase > 0.0 ? (1.0 - onset_phase) * h : 0.0;
+  const double steps_max = ceil((t_max + t_free) / h);
   if (steps_max > FB_IMPACT_MAX_STEPS)
     return fb_diag_set(diag, FB_ERR_RANGE, "MuJoCo impact: %g steps of %g s: more than %g",
                        steps_max, h, FB_IMPACT_MAX_STEPS);
@@ -52,7 +58,7 @@ fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, dou
   /* no hook of a four-bar scene may act on this model */
   mjfGeneric passive = mjcb_passive;
   mjcb_passive = NULL;
-  d->qpos[0] = 0.0; /* the sphere touches the plane: penetration 0 */
+  d->qpos[0] = t_free * speed;
   d->qvel[0] = -speed;
   fb_status st = FB_OK;
   fb_impact_tally tally = {0, 0, 0.0, 0.0};
@@ -72,7 +78,7 @@ fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, dou
       mj_contactForce(m, d, i, f);
       if (f[0] > force) force = f[0];
     }
-    fb_impact_tally_depth(&tally, out, (double)(k + 1) * h, h, depth, force);
+    fb_impact_tally_depth(&tally, out, (double)(k + 1) * h - t_free, h, depth, force);
   }
   out->steps = k;
   out->contact_duration = tally.t_end;

@@ -50,6 +50,10 @@ typedef struct {
   int ring_n;           /* boxes in each hole's ring (native, facets) */
   double pin_radius;    /* R_pin [m] (native) */
   double pin_length;    /* [m] (native: the ring's height) */
+  int exported;         /* 1: a user's file (fb_mujoco_export): sites named after the joints
+                           (crank-coupler_pin), a velocity actuator on the crank, a keyframe
+                           with the start, the bore's solref fixed (bore_solref) */
+  double bore_solref[4][2]; /* exported: each bore tendon's solreflimit; NAN: the scene's */
 } mj_def;
 
 static fb_status def_from_model(mj_def *d, const fb_scene_model *sm, fb_diag *diag) {
@@ -143,6 +147,17 @@ static void put(text *t, const char *fmt, ...) {
     return;
   }
   t->len += (size_t)n;
+}
+
+/* the site at joint j's pin (pin = 1) or hole centre: "A_pin" in the
+ * scene's own model, "crank-coupler_pin" in an exported one */
+static const char *site_name(const mj_def *def, int j, int pin) {
+  static const char *const own[2][4] = {{"A_hole", "B_hole", "C_hole", "D_hole"},
+                                        {"A_pin", "B_pin", "C_pin", "D_pin"}};
+  static const char *const named[2][4] = {
+      {"ground-crank_hole", "crank-coupler_hole", "coupler-follower_hole", "follower-ground_hole"},
+      {"ground-crank_pin", "crank-coupler_pin", "coupler-follower_pin", "follower-ground_pin"}};
+  return def->exported ? named[pin][j] : own[pin][j];
 }
 
 /* the body's own joint: a hinge about z, or planar freedom (slide x, slide y,
@@ -251,14 +266,59 @@ static void put_bore_tendons(text *t, const mj_def *def) {
     const double zeta = fb_contact_restitution_zeta(law->restitution);
     const double c = 2.0 * zeta * sqrt(law->stiffness * law->mass);
     const double keep = (1.0 - BORE_IMPEDANCE) / law->mass;
-    put(t, "    <spatial name=\"%c_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
-           "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
-        jn, def->radial_clearance, -law->stiffness * keep, -c * keep, BORE_IMPEDANCE,
-        BORE_IMPEDANCE);
-    put(t, "      <site site=\"%c_hole\"/>\n      <site site=\"%c_pin\"/>\n", jn, jn);
+    double sr[2] = {-law->stiffness * keep, -c * keep};
+    if (def->exported && !isnan(def->bore_solref[j][0])) {
+      sr[0] = def->bore_solref[j][0];
+      sr[1] = def->bore_solref[j][1];
+    }
+    if (def->exported)
+      put(t, "    <spatial name=\"%s_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
+             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
+          fb_joint_name(j), def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
+    else
+      put(t, "    <spatial name=\"%c_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
+             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
+          jn, def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
+    put(t, "      <site site=\"%s\"/>\n      <site site=\"%s\"/>\n", site_name(def, j, 0),
+        site_name(def, j, 1));
     put(t, "    </spatial>\n");
   }
   put(t, "  </tendon>\n");
+}
+
+/* exported: the drive, a velocity actuator on the crank's hinge at the
+ * case's speed (its gain kv = armature / (EXPORT_DRIVE_STEPS h): a speed
+ * error decays over about that many steps, well inside explicit Euler's
+ * stability kv h / I < 2), beside the flywheel armature the scene's own
+ * models use; and a keyframe "start" with the start's velocities and the
+ * actuator's control (mj_resetDataKeyframe(m, d, 0)) */
+#define EXPORT_DRIVE_STEPS 10.0
+static void put_drive(text *t, const mj_def *def) {
+  const fb_start_state st = def->start;
+  const double kv = def->opts.drive_armature / (EXPORT_DRIVE_STEPS * def->h);
+  put(t, "  <actuator>\n    <velocity name=\"drive\" joint=\"%s\" kv=\"%.17g\"/>\n  </actuator>\n",
+      fb_joint_name(FB_JOINT_A), kv);
+  /* qvel in the tree's order: each body's slides (clearance) then its hinge */
+  const int mask = def->clearance_mask;
+  double qvel[9];
+  int n = 0;
+  if (mask & (1 << FB_JOINT_A)) qvel[n++] = 0.0, qvel[n++] = 0.0;
+  qvel[n++] = st.crank_omega;
+  if (mask & (1 << FB_JOINT_B)) {
+    const double rx = st.hole[FB_JOINT_B][0] - st.pin[FB_JOINT_A][0];
+    const double ry = st.hole[FB_JOINT_B][1] - st.pin[FB_JOINT_A][1];
+    const double vx = st.coupler_b_vel[0] + st.crank_omega * ry;
+    const double vy = st.coupler_b_vel[1] - st.crank_omega * rx;
+    const double c3 = cos(st.coupler_angle), s3 = sin(st.coupler_angle);
+    qvel[n++] = c3 * vx + s3 * vy;
+    qvel[n++] = -s3 * vx + c3 * vy;
+  }
+  qvel[n++] = st.coupler_omega - st.crank_omega;
+  if (mask & (1 << FB_JOINT_D)) qvel[n++] = 0.0, qvel[n++] = 0.0;
+  qvel[n++] = st.follower_omega;
+  put(t, "  <keyframe>\n    <key name=\"start\" qvel=\"");
+  for (int i = 0; i < n; i++) put(t, "%s%.17g", i ? " " : "", qvel[i]);
+  put(t, "\" ctrl=\"%.17g\"/>\n  </keyframe>\n", st.crank_omega);
 }
 
 static fb_status write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *diag) {
@@ -290,26 +350,26 @@ static fb_status write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   const double *pa = st.pin[FB_JOINT_A], *pd = st.pin[FB_JOINT_D];
   const double bx = st.hole[FB_JOINT_B][0] - pa[0], by = st.hole[FB_JOINT_B][1] - pa[1];
   const double c2 = cos(st.crank_angle), s2 = sin(st.crank_angle);
-  put(&t, "    <site name=\"A_hole\" pos=\"%.17g %.17g 0\"/>\n", ha[0], ha[1]);
-  put(&t, "    <site name=\"D_hole\" pos=\"%.17g %.17g 0\"/>\n", hd[0], hd[1]);
+  put(&t, "    <site name=\"%s\" pos=\"%.17g %.17g 0\"/>\n", site_name(def, FB_JOINT_A, 0), ha[0], ha[1]);
+  put(&t, "    <site name=\"%s\" pos=\"%.17g %.17g 0\"/>\n", site_name(def, FB_JOINT_D, 0), hd[0], hd[1]);
   put_native(&t, def, FB_JOINT_A, 0, ha[0], ha[1], "    ");
   put_native(&t, def, FB_JOINT_D, 0, hd[0], hd[1], "    ");
   /* crank: at A's pin, x along A->B */
   put(&t, "    <body name=\"crank\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pa[0], pa[1],
       st.crank_angle);
   put_inertial(&t, &def->link[FB_CRANK], a);
-  put_joint(&t, "A", mask & (1 << FB_JOINT_A), opts->drive_armature);
-  put(&t, "      <site name=\"A_pin\" pos=\"0 0 0\"/>\n");
-  put(&t, "      <site name=\"B_pin\" pos=\"%.17g 0 0\"/>\n", a);
+  put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_A) : "A", mask & (1 << FB_JOINT_A), opts->drive_armature);
+  put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_A, 1));
+  put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_B, 1), a);
   put_native(&t, def, FB_JOINT_A, 1, 0.0, 0.0, "      ");
   put_native(&t, def, FB_JOINT_B, 1, a, 0.0, "      ");
   /* coupler: at B's hole (in the crank's frame), x along B->C */
   put(&t, "      <body name=\"coupler\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n",
       c2 * bx + s2 * by, -s2 * bx + c2 * by, st.coupler_angle - st.crank_angle);
   put_inertial(&t, &def->link[FB_COUPLER], b);
-  put_joint(&t, "B", mask & (1 << FB_JOINT_B), 0.0);
-  put(&t, "      <site name=\"B_hole\" pos=\"0 0 0\"/>\n");
-  put(&t, "      <site name=\"C_pin\" pos=\"%.17g 0 0\"/>\n", b);
+  put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_B) : "B", mask & (1 << FB_JOINT_B), 0.0);
+  put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_B, 0));
+  put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 1), b);
   put_native(&t, def, FB_JOINT_B, 0, 0.0, 0.0, "      ");
   put_native(&t, def, FB_JOINT_C, 1, b, 0.0, "      ");
   put(&t, "      </body>\n");
@@ -318,9 +378,9 @@ static fb_status write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   put(&t, "    <body name=\"follower\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pd[0],
       pd[1], st.follower_angle);
   put_inertial(&t, &def->link[FB_FOLLOWER], c);
-  put_joint(&t, "D", mask & (1 << FB_JOINT_D), 0.0);
-  put(&t, "      <site name=\"D_pin\" pos=\"0 0 0\"/>\n");
-  put(&t, "      <site name=\"C_hole\" pos=\"%.17g 0 0\"/>\n", c);
+  put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_D) : "D", mask & (1 << FB_JOINT_D), 0.0);
+  put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_D, 1));
+  put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 0), c);
   put_native(&t, def, FB_JOINT_D, 1, 0.0, 0.0, "      ");
   put_native(&t, def, FB_JOINT_C, 0, c, 0.0, "      ");
   put(&t, "    </body>\n");
@@ -334,6 +394,7 @@ static fb_status write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
         b, -k, -damp, opts->loop_impedance, opts->loop_impedance);
     put(&t, "  </equality>\n");
   }
+  if (def->exported) put_drive(&t, def);
   put(&t, "</mujoco>\n");
   if (t.overflow)
     return fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than its %zu-byte buffer", size);
@@ -346,6 +407,41 @@ fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_di
   mj_def d;
   st = def_from_model(&d, sm, diag);
   if (st != FB_OK) return st;
+  return write_mjcf(buf, size, &d, diag);
+}
+
+fb_status fb_mujoco_export(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag) {
+  fb_status st = fb_scene_def_check(sm->def, diag);
+  if (st != FB_OK) return st;
+  if (sm->clearance_mask && sm->model->collider != FB_COLLIDER_NATIVE)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s': an exported MJCF carries clearance joints "
+                       "as MuJoCo's own constraints (mujoco-clearance-native) only",
+                       sm->model->name);
+  mj_def d;
+  if ((st = def_from_model(&d, sm, diag)) != FB_OK) return st;
+  d.exported = 1;
+  d.facets = 0; /* the bore as a limited tendon: no hook needed to hold its load */
+  for (int j = 0; j < 4; j++) d.bore_solref[j][0] = d.bore_solref[j][1] = NAN;
+  if ((st = write_mjcf(buf, size, &d, diag)) != FB_OK || !d.clearance_mask) return st;
+  /* the bore's force form needs MuJoCo's diagonal approximation of the row's
+   * inverse mass (tendon_invweight0), which exists once the model compiles:
+   * compile, read it, write again (the damper on the law's design mass;
+   * the scene's own model recomputes it from the effective mass every step) */
+  mjModel *m = fb_mujoco_load_mjcf(buf, diag);
+  if (!m) return FB_ERR_ARG;
+  for (int j = 0; j < 4; j++) {
+    if (!(d.clearance_mask & (1 << j))) continue;
+    char name[64];
+    snprintf(name, sizeof name, "%s_bore", fb_joint_name(j));
+    const int t = mj_name2id(m, mjOBJ_TENDON, name);
+    if (t < 0) continue;
+    const fb_contact_law *law = &d.law[j];
+    const double zeta = fb_contact_restitution_zeta(law->restitution);
+    const double keep = (1.0 - BORE_IMPEDANCE) * m->tendon_invweight0[t];
+    d.bore_solref[j][0] = -law->stiffness * keep;
+    d.bore_solref[j][1] = -2.0 * zeta * sqrt(law->stiffness * law->mass) * keep;
+  }
+  mj_deleteModel(m);
   return write_mjcf(buf, size, &d, diag);
 }
 

@@ -204,7 +204,8 @@ fb_status fb_impact_ode_static(double *penetration, const fb_impact_def *d, doub
 }
 
 fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, double h, double erp,
-                            double cfm, double max_vel, double t_max, fb_diag *diag) {
+                            double cfm, double max_vel, double t_max, double onset_phase,
+                            fb_diag *diag) {
   memset(out, 0, sizeof *out);
   if (!(mass > 0.0) || !(speed > 0.0) || !(h > 0.0) || !(cfm > 0.0) || !(erp >= 0.0) ||
       !(max_vel > 0.0) || !(t_max > h) || !isfinite(mass) || !isfinite(speed) || !isfinite(erp))
@@ -212,7 +213,13 @@ fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, do
                        "ODE row impact: mass %g kg, speed %g m/s, h %g s, ERP %g, CFM %g, "
                        "max_vel %g m/s, t_max %g s: need positive, finite values, ERP >= 0",
                        mass, speed, h, erp, cfm, max_vel, t_max);
-  const double steps_max = ceil(t_max / h);
+  if (!(onset_phase >= 0.0 && onset_phase < 1.0))
+    return fb_diag_set(diag, FB_ERR_RANGE, "ODE row impact: onset phase %g: must lie in [0, 1)",
+                       onset_phase);
+  /* touching (phase 0), or a free step short of the crossing: the first
+   * step that sees the contact then sees the depth phase h v */
+  const double t_free = onset_phase > 0.0 ? (1.0 - onset_phase) * h : 0.0;
+  const double steps_max = ceil((t_max + t_free) / h);
   if (steps_max > FB_IMPACT_MAX_STEPS)
     return fb_diag_set(diag, FB_ERR_RANGE, "ODE row impact: %g steps of %g s: more than %g",
                        steps_max, h, FB_IMPACT_MAX_STEPS);
@@ -228,7 +235,7 @@ fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, do
   impact_world(&d, &world, &group, &body);
   dWorldSetContactMaxCorrectingVel(world, isfinite(max_vel) ? max_vel : dInfinity);
   dWorldSetContactSurfaceLayer(world, 0.0);
-  dBodySetPosition(body, 0, 0, 0);
+  dBodySetPosition(body, 0, 0, t_free * speed);
   dBodySetLinearVel(body, 0, 0, -speed);
   fb_status st = FB_OK;
   int broken = 0;
@@ -266,7 +273,7 @@ fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, do
     }
     const double force = cj ? fb.f1[2] : 0.0;
     dJointGroupEmpty(group);
-    const double t1 = (double)(k + 1) * h;
+    const double t1 = (double)(k + 1) * h - t_free; /* from the crossing */
     const double depth_now = -dBodyGetPosition(body)[2];
     if (!isfinite(depth_now) || !isfinite(force)) {
       st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE row impact: non-finite state at t = %g s", t1);

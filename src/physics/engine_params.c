@@ -23,6 +23,29 @@ double fb_params_damper_for_restitution(double k, double m, double cr) {
   return 2.0 * fb_contact_restitution_zeta(cr) * sqrt(k * m);
 }
 
+double fb_params_peak_factor(double zeta) {
+  if (!(zeta >= 0.0 && zeta < 1.0)) return NAN;
+  const double s = sqrt(1.0 - zeta * zeta);
+  return exp(-zeta / s * atan2(s, zeta));
+}
+
+fb_status fb_params_linear_equivalent(double cr, double delta, double m, double v, double *k,
+                                      double *c, fb_diag *diag) {
+  *k = *c = NAN;
+  if (!(cr > FB_RESTITUTION_MIN && cr <= 1.0))
+    return fb_diag_set(diag, FB_ERR_RANGE, "restitution %g: a linear spring-damper reaches only "
+                       "(%.4g, 1]", cr, FB_RESTITUTION_MIN);
+  if (!(delta > 0.0) || !isfinite(delta) || !(m > 0.0) || !isfinite(m) || !(v > 0.0) ||
+      !isfinite(v))
+    return fb_diag_set(diag, FB_ERR_RANGE, "penetration %g m, mass %g kg, speed %g m/s: must be "
+                       "positive and finite", delta, m, v);
+  const double zeta = fb_contact_restitution_zeta(cr);
+  const double omega = fb_params_peak_factor(zeta) * v / delta;
+  *k = m * omega * omega;
+  *c = 2.0 * zeta * sqrt(*k * m);
+  return FB_OK;
+}
+
 fb_status fb_params_ode_matched(const fb_linear_contact *lc, fb_ode_row *out, fb_diag *diag) {
   fb_status st = fb_linear_contact_check(lc, diag);
   if (st != FB_OK) return st;

@@ -54,6 +54,26 @@ fb_status fb_linear_contact_check(const fb_linear_contact *lc, fb_diag *diag);
  * zeta from fb_contact_restitution_zeta. */
 double fb_params_damper_for_restitution(double k, double m, double cr);
 
+/* Peak penetration of a linear spring-damper's single impact, in units of
+ * v0 / omega (omega = sqrt(k / m), v0 the impact speed), at damping ratio
+ * zeta in [0, 1): delta(t) = (v0 / omega_d) e^{-zeta omega t} sin(omega_d t)
+ * peaks where tan(omega_d t) = sqrt(1 - zeta^2) / zeta, at
+ * exp(-zeta / sqrt(1 - zeta^2) atan2(sqrt(1 - zeta^2), zeta)) v0 / omega
+ * (1 for zeta = 0). NaN outside [0, 1). */
+double fb_params_peak_factor(double zeta);
+
+/* The linear spring k [N/m] and damper c [N s/m] whose single impact of
+ * mass m [kg] at speed v [m/s] leaves with coefficient of restitution cr
+ * (in (FB_RESTITUTION_MIN, 1]; separation where the force returns to 0,
+ * fb_contact_restitution_zeta) and reaches the peak penetration delta [m]:
+ * zeta from cr, omega = fb_params_peak_factor(zeta) v / delta, k = m omega^2,
+ * c = 2 zeta sqrt(k m). The translation of a nonlinear law's impact (the
+ * damped Hertz laws, measured by fb_impact_reference) into the engines'
+ * linear spring-damper with the same restitution and peak penetration at
+ * that speed and mass. Errors: FB_ERR_RANGE naming the value and rule. */
+fb_status fb_params_linear_equivalent(double cr, double delta, double m, double v, double *k,
+                                      double *c, fb_diag *diag);
+
 /* An ODE (or Bullet, or Gazebo-converted) contact row. */
 typedef struct {
   double erp; /* [-] (may exceed 1) */

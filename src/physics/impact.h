@@ -98,12 +98,18 @@ fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def *d,
  * [N/m], damping [N s/m]) and the plane's (BT_LARGE_FLOAT, 0), split impulse
  * off, linear slop 0, SOR 1, step h [s]; Bullet turns them into erp =
  * h k / (h k + c), cfm = 1 / (h k + c) (btSequentialImpulseConstraintSolver::
- * setupContactConstraint). Runs until the body leaves or t_max [s].
- * Errors: FB_ERR_RANGE (a parameter not positive, h k + c <= 0),
+ * setupContactConstraint); the sphere's contact processing threshold 0 (no
+ * speculative points). Runs until the body leaves or t_max [s].
+ * onset_phase in [0, 1): where inside a step the contact begins; 0: the body
+ * touches at t = 0; p > 0: it starts (1 - p) h of free flight short of the
+ * crossing, so the first step that sees the contact sees the depth p h v
+ * (times and depths are reported from the crossing). Errors: FB_ERR_RANGE (a parameter
+ * not positive, h k + c <= 0, onset_phase outside [0, 1), more than
+ * FB_IMPACT_MAX_STEPS steps),
  * FB_ERR_NUMERIC (non-finite state, still in contact at t_max). */
 fb_status fb_impact_bullet_contact(fb_impact_result *out, double mass, double speed, double h,
                                    double stiffness, double damping, double t_max,
-                                   fb_diag *diag);
+                                   double onset_phase, fb_diag *diag);
 
 /* ODE under a sustained load: the body of d (mass, law, step, stepper,
  * mapping; d->speed is not used) rests touching the contact at t = 0 and a
@@ -123,20 +129,25 @@ fb_status fb_impact_ode_static(double *penetration, const fb_impact_def *d, doub
  * frictionless, no bounce), world contact_max_correcting_vel max_vel [m/s]
  * (INFINITY: ODE's default) and surface layer 0, step h [s]; a row is
  * created whenever the depth is >= 0 (touching counts, as ODE's colliders
- * report it). Runs until the body leaves or t_max [s]. Errors:
- * FB_ERR_NUMERIC (non-finite state, ODE fatal check, still in contact at
+ * report it). Runs until the body leaves or t_max [s].
+ * onset_phase as for fb_impact_bullet_contact. Errors:
+ * FB_ERR_RANGE (bad parameter or onset_phase), FB_ERR_NUMERIC (non-finite
+ * state, ODE fatal check, still in contact at
  * t_max), FB_ERR_NOMEM. */
 fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, double h, double erp,
-                            double cfm, double max_vel, double t_max, fb_diag *diag);
+                            double cfm, double max_vel, double t_max, double onset_phase,
+                            fb_diag *diag);
 
 /* The same impact in MuJoCo (builds with it; src/mujoco/impact_mujoco.c):
  * a sphere of mass [kg] on a vertical slide joint meets a plane, both geoms
  * with the given solref and solimp (condim 1: frictionless), Euler
- * integrator, step h [s], no gravity. Errors: FB_ERR_ARG in a build without
+ * integrator, step h [s], no gravity.
+ * onset_phase as for fb_impact_bullet_contact. Errors:
+ * FB_ERR_RANGE (bad parameter or onset_phase), FB_ERR_ARG in a build without
  * MuJoCo (how to enable it in the message), FB_ERR_NUMERIC, FB_ERR_NOMEM. */
 fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, double h,
                            const double solref[2], const double solimp[5], double t_max,
-                           fb_diag *diag);
+                           double onset_phase, fb_diag *diag);
 
 /* The bookkeeping every engine's single impact shares, step by step: peak
  * penetration and force into an fb_impact_result, the contact's end, and

@@ -1,0 +1,90 @@
+/* fourbar export below the command (export.h). */
+#include "export.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "fb_config.h"
+#include "resolution.h"
+#include "model_table.h"
+#include "scene_def.h"
+#if FB_HAVE_MUJOCO
+#include "mujoco_scene.h"
+#endif
+
+/* after a successful export: diag->msg empty, or the note that a clearance
+ * contact of sm is beyond the run's resolution rule at the exported step
+ * (h sqrt(k / m) > FB_H_OMEGA_C_BOUND with the law's spring k and design
+ * mass m): the file is then not the verified contact, and says so nowhere
+ * else a user looks first */
+static void resolution_note(const fb_scene_model *sm, fb_diag *diag) {
+  if (!diag) return;
+  diag->msg[0] = '\0';
+  for (int j = 0; j < 4; j++) {
+    if (!(sm->clearance_mask & (1 << j))) continue;
+    const double w = sm->solver.h * sqrt(sm->law[j].stiffness / sm->law[j].mass);
+    if (w > FB_H_OMEGA_C_BOUND) {
+      snprintf(diag->msg, sizeof diag->msg,
+               "%s: h omega_c = %.3g at h = %.4g s passes %g, the bound a run holds its contacts "
+               "to: this contact is not faithful at this step (fourbar contact-params --case "
+               "gives the largest faithful step and the stiffest faithful contact at yours)",
+               fb_joint_name(j), w, sm->solver.h, FB_H_OMEGA_C_BOUND);
+      return;
+    }
+  }
+}
+
+fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
+#if FB_HAVE_MUJOCO
+  const char *name = ideal || !c->clearance.mask ? "mujoco-ideal-nominal"
+                                                 : "mujoco-clearance-native";
+  fb_case *k = malloc(sizeof *k);
+  fb_scene_def *def = malloc(sizeof *def);
+  if (!k || !def) {
+    free(k);
+    free(def);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the export");
+  }
+  /* the case with the one model exported (its law and start resolved) */
+  *k = *c;
+  k->model_count = 1;
+  snprintf(k->models[0], sizeof k->models[0], "%s", name);
+  k->mujoco.native_bore = FB_MUJOCO_BORE_TENDON;
+  fb_status st = fb_scene_def_from_case(def, k, diag);
+  fb_scene_model sm;
+  if (st == FB_OK) st = fb_scene_def_select(&sm, def, fb_model_find(name), diag);
+  if (st == FB_OK) st = fb_mujoco_export(buf, size, &sm, diag);
+  if (st == FB_OK) resolution_note(&sm, diag);
+  free(k);
+  free(def);
+  return st;
+#else
+  (void)buf, (void)size, (void)c, (void)ideal;
+  return fb_diag_set(diag, FB_ERR_ARG, "the MJCF export needs MuJoCo in the build: "
+                     "install libmujoco-dev and rebuild (bash scripts/quickstart.sh build)");
+#endif
+}
+
+fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
+  const char *name = ideal || !c->clearance.mask ? "ode-ideal-nominal" : "ode-clearance-restitution";
+  fb_case *k = malloc(sizeof *k);
+  fb_scene_def *def = malloc(sizeof *def);
+  if (!k || !def) {
+    free(k);
+    free(def);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the export");
+  }
+  /* the case with the one model exported (its law and start resolved) */
+  *k = *c;
+  k->model_count = 1;
+  snprintf(k->models[0], sizeof k->models[0], "%s", name);
+  fb_status st = fb_scene_def_from_case(def, k, diag);
+  fb_scene_model sm;
+  if (st == FB_OK) st = fb_scene_def_select(&sm, def, fb_model_find(name), diag);
+  if (st == FB_OK) st = fb_export_sdf_model(buf, size, &sm, diag);
+  if (st == FB_OK) resolution_note(&sm, diag);
+  free(k);
+  free(def);
+  return st;
+}

@@ -184,6 +184,8 @@ static void test_rounds_time_every_row(void **state) {
     assert_true(isfinite(b->us_per_step) && b->us_per_step > 0.0);
     assert_true(b->setup_s >= 0.0);
     assert_true(isfinite(b->error)); /* the analytic solution is every row's yardstick */
+    /* no clearance joint, no reference: no eccentricity direction to compare */
+    assert_true(isnan(b->ecc_direction_rms));
     /* like for like: the cost split into the engine's stepping and the
      * harness's sampling of the row's own output grid, from the same round */
     assert_true(b->stepping_per_rev > 0.0 && b->sampling_per_rev >= 0.0);

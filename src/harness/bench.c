@@ -210,6 +210,9 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     }
     for (int p = 0; p < FB_BENCH_PARTS; p++) b->part[p] = b->halving_part[p] = NAN;
     b->halving = NAN;
+    b->ecc_direction_rms = m->has_ref_error && m->run.stop.kind == FB_STOP_NONE
+                               ? m->ref_error.ecc_direction_rms
+                               : NAN;
     double mine[4];
     if (q == 1 && m->has_ref_error && row_peaks(mine, m, 1)) {
       double theirs[4];
@@ -346,6 +349,9 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
     b->force_vs_exact = b->pen_vs_exact = b->alpha_vs_exact = b->cost_vs_exact = NAN;
     for (int p = 0; p < FB_BENCH_PARTS; p++) b->part[p] = b->halving_part[p] = NAN;
     b->halving = NAN;
+    b->ecc_direction_rms = m->has_ref_error && m->run.stop.kind == FB_STOP_NONE
+                               ? m->ref_error.ecc_direction_rms
+                               : NAN;
     idx[*n - first - 1] = q;
     double mine[4], theirs[4];
     if (row_peaks(mine, m, 1))

@@ -85,6 +85,9 @@ typedef struct fb_bench_row_s {
                               auto rows and when either run stopped */
   double halving_part[4];  /* clearance rows: each part's change from h to h/2, signed
                               (peak at h - peak at h/2) / |peak at h/2| [-]; NaN else */
+  double ecc_direction_rms; /* clearance rows beside the reference: the eccentricity
+                              direction's RMS error in continuous contact (metrics.h,
+                              fb_reference_error.ecc_direction_rms) [rad]; NaN else */
 } fb_bench_row;
 
 /* The parts of a clearance row's error, in order (fb_bench_row.part). */

@@ -174,7 +174,8 @@ static void test_rounds_time_every_row(void **state) {
   if (fb_bench_run(rows, &n, &c, FB_BENCH_FRONTIER, NULL, NULL, &d) != FB_OK)
     fail_msg("%s", d.msg);
   /* ODE's rows at least: the frontier's steps, the ERP 0.8 and tuned rows, the adaptive ones */
-  assert_true(n >= FB_BENCH_FRONTIER_STEPS + 1 + FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE);
+  assert_true(n >= FB_BENCH_FRONTIER_STEPS + 1 + FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE +
+                       FB_BENCH_ADAPTIVE_ROCKING);
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
     if (b->repeats != FB_BENCH_ROUNDS)

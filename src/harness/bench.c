@@ -611,7 +611,7 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
   const int dflt = (grids & FB_BENCH_DEFAULT) != 0;
   const int total = (dflt ? DEFAULT_POINTS : 0) + (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
-                    (extra ? FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE : 0) +
+                    (extra ? FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE + FB_BENCH_ADAPTIVE_ROCKING : 0) +
                     (frontier ? FB_BENCH_FRONTIER_STEPS + 1 : 0) +
                     (mj_frontier ? FB_BENCH_FRONTIER_STEPS + FB_BENCH_ADAPTIVE : 0) +
                     (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS + FB_BENCH_ADAPTIVE : 0) +
@@ -706,6 +706,23 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
     k.solver.stepper = FB_STEPPER_WORLD;
     char stepper[32];
     snprintf(stepper, sizeof stepper, "world-a%g", accuracy[ai]);
+    const int mapping = k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
+                                                                  : k.clearance.mapping;
+    fb_status st = bench_point(rows, n, &k, "ode", stepper, mapping, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  /* ODE's adaptive row with the rocking bound (bench.h) */
+  for (int ri = 0; ri < (extra ? FB_BENCH_ADAPTIVE_ROCKING : 0); ri++) {
+    fb_case k;
+    bench_case(&k, c, 0.0, FB_ENGINE_ODE);
+    k.solver.h_mode = FB_STEP_ADAPTIVE;
+    k.solver.h = k.solver.h_min;
+    k.solver.accuracy = 0.3;
+    k.solver.rocking_h_omega = FB_BENCH_ROCKING_H_OMEGA;
+    k.solver.stepper = FB_STEPPER_WORLD;
+    char stepper[32];
+    snprintf(stepper, sizeof stepper, "world-a0.3-r%g", FB_BENCH_ROCKING_H_OMEGA);
     const int mapping = k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
                                                                   : k.clearance.mapping;
     fb_status st = bench_point(rows, n, &k, "ode", stepper, mapping, 1, diag);

@@ -297,6 +297,50 @@ static void test_matched_round_trip(void **state) {
   assert_int_equal(fb_mapping_parse("exact"), FB_MAPPING_COUNT);
 }
 
+/* the mean-force correction (contact.h, fb_contact_row_mean_force): a
+ * matched row of a Hertz law on a mass m under a constant load F, stepped
+ * as ODE steps one row (m (u1 - u0) = h (F - lambda), lambda = a d_n + b u1,
+ * d_{n+1} = d_n + h u1), the row rebuilt every step at the current depth,
+ * the mean force low-passed from 0: it comes to rest at the law's static
+ * depth (F / K)^(1/n); without the correction at a depth off by the matched
+ * row's a / k - 1 (the check that the correction is what moves it) */
+#define REST_STEPS 200000
+/* the rest depth after REST_STEPS (zeta 0.3: settled to roundoff) [-] */
+#define REST_DEPTH_REL_TOL 1e-9
+static double rest_depth(int corrected) {
+  fb_contact_law law = fb_contact_law_default(); /* Hertz, K 1e10, n 1.5 */
+  law.kind = FB_LAW_HERTZ;
+  const double m = 0.2, f = 500.0, h = 2e-6;
+  const double d_static = pow(f / law.stiffness, 1.0 / law.exponent);
+  const double k_t = law.exponent * law.stiffness * sqrt(d_static);
+  const double c = 2.0 * 0.3 * sqrt(k_t * m); /* a damper on the row, zeta 0.3 at rest */
+  double d = 0.5 * d_static, u = 0.0, f_mean = 0.0;
+  for (int i = 0; i < REST_STEPS; i++) {
+    fb_contact_row row;
+    fb_contact_linearize(&law, FB_MAPPING_TANGENT, d, u, 0.0, &row.kp, &row.kd, &row.depth);
+    row.kd = c;
+    assert_int_equal(fb_contact_matched(h, row.kp, row.kd, m, &row.erp, &row.cfm, NULL), FB_OK);
+    if (corrected) fb_contact_row_mean_force(&row, h, f_mean);
+    const double a = row.erp / (h * row.cfm), b = 1.0 / row.cfm;
+    /* m (u1 - u) = h (f - a depth - b u1) */
+    const double u1 = (m * u + h * (f - a * row.depth)) / (m + h * b);
+    const double lambda = a * row.depth + b * u1;
+    u = u1;
+    d += h * u1;
+    f_mean = fb_contact_mean_force_step(f_mean, lambda, h, sqrt(row.kp / m));
+  }
+  return d / d_static - 1.0;
+}
+
+static void test_mean_force_row(void **state) {
+  (void)state;
+  const double with = rest_depth(1), without = rest_depth(0);
+  report_residual("rest depth, corrected", with, REST_DEPTH_REL_TOL);
+  report_residual("rest depth, matched row alone", without, REST_DEPTH_REL_TOL);
+  assert_true(fabs(with) < REST_DEPTH_REL_TOL);
+  assert_true(fabs(without) > 1e3 * REST_DEPTH_REL_TOL);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_moduli_and_stiffness),
@@ -308,6 +352,7 @@ int main(void) {
       cmocka_unit_test(test_matched_poles_are_exact),
       cmocka_unit_test(test_matched_round_trip),
       cmocka_unit_test(test_matched_static_row),
+      cmocka_unit_test(test_mean_force_row),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,4 +1,5 @@
-/* Divergence of a model from its reference (metrics.h, fb_metrics_divergence)
+/* Divergence of a model from its reference (metrics.h, fb_metrics_divergence),
+ * and the eccentricity-direction error in continuous contact,
  * on hand-made series whose answer is known by construction:
  *
  *   reference  pin  . . . . .|impact|. . . . . .|impact|. . . . .
@@ -7,6 +8,7 @@
  *
  * the model's pin follows the reference's until it drifts linearly from
  * t = 4 ms, crossing the tolerance at a sample computed by hand. */
+#include <math.h>
 #include <string.h>
 
 #include "metrics.h"
@@ -98,10 +100,63 @@ static void test_parts_from_the_reference(void **state) {
   fb_series_free(&r);
 }
 
+/* the eccentricity-direction error in continuous contact
+ * (fb_reference_error.ecc_direction_rms): the reference's pin rides the wall
+ * at angle phi_r (near pi, so the model's angle crosses the +-pi cut), the
+ * model's at phi_r + (-1)^i EPS on the samples where both are in continuous
+ * contact, so the RMS is EPS exactly; where only the model is in continuous
+ * contact (its first CONT_0 samples, the reference still in impact) the
+ * model's pin is 1 rad away, and those samples must not count. */
+#define EPS_RAD 0.01
+#define CONT_0 1000
+#define CONT_1 5000
+static void make_wall(fb_series *s, int model) {
+  assert_int_equal(fb_series_init(s, N_SAMPLES), FB_OK);
+  assert_int_equal(fb_series_enable_contact(s, 1 << 1), FB_OK);
+  for (int i = 0; i < N_SAMPLES; i++) {
+    fb_sample x;
+    memset(&x, 0, sizeof x);
+    x.t = i * H_S;
+    x.crank_angle = 2.0 * M_PI * x.t / PERIOD_S;
+    const int both = i >= CONT_0 && i < CONT_1;
+    double phi = M_PI - 0.004 + 0.002 * sin(2.0 * M_PI * i / 700.0);
+    if (model) phi += both ? (i % 2 ? EPS_RAD : -EPS_RAD) : 1.0;
+    x.contact[1][FB_C_STATE] = both || (model && i < CONT_1) ? FB_STATE_CONTINUOUS
+                               : i < CONT_1                  ? FB_STATE_IMPACT
+                                                             : FB_STATE_FREE;
+    x.contact[1][FB_C_FORCE] = i < CONT_1 ? 500.0 : 0.0;
+    x.contact[1][FB_C_PEN] = i < CONT_1 ? 1e-6 : 0.0;
+    x.contact[1][FB_C_EX] = (C_M + 1e-6) * cos(phi);
+    x.contact[1][FB_C_EY] = (C_M + 1e-6) * sin(phi);
+    assert_int_equal(fb_series_push(s, &x), FB_OK);
+  }
+}
+
+/* sums of squares of EPS over 4,000 samples: a few ulp of the sum */
+#define RMS_REL_TOL 1e-9
+
+static void test_ecc_direction_rms(void **state) {
+  (void)state;
+  fb_series s, r;
+  make_wall(&r, 0);
+  make_wall(&s, 1);
+  fb_reference_error e;
+  fb_diag diag;
+  assert_int_equal(fb_metrics_vs_reference(&e, &s, &r, 0.0, 1, &diag), FB_OK);
+  assert_int_equal((int)e.persistent_samples, CONT_1 - CONT_0);
+  assert_rel(e.ecc_direction_rms, EPS_RAD, RMS_REL_TOL);
+  /* a window after the continuous contact holds no such sample: NaN */
+  assert_int_equal(fb_metrics_vs_reference(&e, &s, &r, (CONT_1 + 10) * H_S, 1, &diag), FB_OK);
+  assert_true(isnan(e.ecc_direction_rms));
+  fb_series_free(&s);
+  fb_series_free(&r);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_stays_with_the_reference),
       cmocka_unit_test(test_parts_from_the_reference),
+      cmocka_unit_test(test_ecc_direction_rms),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -114,6 +114,44 @@ static void test_persistent_load_schedule(void **state) {
              STEP_REL_TOL);
 }
 
+/* the rocking bound ([solver] rocking_h_omega): the pin rides the wall as a
+ * pendulum of length |e| under the load F on the mass m_t along the wall,
+ * omega_t = sqrt(F / (m_t |e|)); in contact h omega_t <= the bound, in
+ * impacts and persistent contact alike, and nothing in free flight */
+static void test_rocking_bound(void **state) {
+  (void)state;
+  const fb_contact_law law = hertz();
+  const double m = 0.2, f = 500.0, ecc = 15e-6, mt = 0.1, r = 0.1;
+  fb_step_joint j = {.delta = 5e-7, .ddot = 0.0, .m_eff = m, .persistence = 1.0,
+                     .rule = FB_PERSIST_LOAD_SCHEDULE, .tau_load = INFINITY, .load_force = f,
+                     .rocking_h_omega = r, .m_t = mt, .ecc = ecc};
+  const double h_t = r / sqrt(f / (mt * ecc)); /* 0.1 / 1.83e4 rad/s = 5.5 us */
+  assert_rel(fb_step_adaptive(&law, &j, 0.3, 1e-9, 1.0), h_t, STEP_REL_TOL);
+  /* in an impact the shorter of the two binds: the rocking bound at the
+   * accuracy 0.3 (h_i 16 us), the impact's own step at 0.01 (0.5 us) */
+  j.persistence = 0.5;
+  j.ddot = 0.3;
+  const double di = pow(5.0 * m * 0.3 * 0.3 / 4e10, 0.4);
+  const double w_i = sqrt(1.5e10 * sqrt(di) / m);
+  assert_true(0.3 / w_i > h_t && 0.01 / w_i < h_t);
+  assert_rel(fb_step_adaptive(&law, &j, 0.3, 1e-9, 1.0), h_t, STEP_REL_TOL);
+  assert_rel(fb_step_adaptive(&law, &j, 0.01, 1e-9, 1.0), 0.01 / w_i, STEP_REL_TOL);
+  /* free flight: no rocking */
+  j.delta = -1e-6;
+  j.ddot = 0.0;
+  j.persistence = 0.0;
+  const double d0 = pow(5.0 * m * FB_STEP_V_FLOOR_M_S * FB_STEP_V_FLOOR_M_S / 4e10, 0.4);
+  assert_rel(fb_step_adaptive(&law, &j, 0.3, 1e-9, 1.0), 0.3 / sqrt(1.5e10 * sqrt(d0) / m),
+             STEP_REL_TOL);
+  /* off (0) or no load known: the schedule alone */
+  j.delta = 5e-7;
+  j.persistence = 1.0;
+  j.rocking_h_omega = 0.0;
+  const double d = pow(f / 1e10, 1.0 / 1.5);
+  const double cap = FB_STEP_PERSISTENT_H_OMEGA / sqrt(1.5e10 * sqrt(d) / m);
+  assert_rel(fb_step_adaptive(&law, &j, 0.3, 1e-9, 1.0), cap, STEP_REL_TOL);
+}
+
 static void test_ramp(void **state) {
   (void)state;
   assert_int_equal(fb_step_ramp(20, 1, 20), 2);  /* up by one grid step from 1 */
@@ -138,6 +176,7 @@ int main(void) {
       cmocka_unit_test(test_impact_uses_the_deeper_depth),
       cmocka_unit_test(test_persistent_contact),
       cmocka_unit_test(test_persistent_load_schedule),
+      cmocka_unit_test(test_rocking_bound),
       cmocka_unit_test(test_ramp),
       cmocka_unit_test(test_hold_in_impact),
   };

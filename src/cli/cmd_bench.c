@@ -191,7 +191,7 @@ int fb_cmd_bench(int argc, char **argv) {
                "force_rel,penetration_rel,alpha_spike_coupler_rel,alpha_spike_follower_rel,"
                "halving_rel,halving_force_rel,halving_penetration_rel,"
                "halving_alpha_spike_coupler_rel,halving_alpha_spike_follower_rel,h_adaptive,steps_taken,"
-               "stepping_per_rev_s,sampling_per_rev_s,samples_per_rev\n");
+               "stepping_per_rev_s,sampling_per_rev_s,samples_per_rev,ecc_direction_rms_rad\n");
   json_t *arr = json_array();
   for (int i = 0; i < n; i++) {
     const fb_bench_row *b = &rows[i];
@@ -208,8 +208,8 @@ int fb_cmd_bench(int argc, char **argv) {
     for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->part[p]);
     fprintf(f.f, ",%.6g", b->halving);
     for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->halving_part[p]);
-    fprintf(f.f, ",%d,%.0f,%.6g,%.6g,%.6g\n", b->h_adaptive, b->steps_taken, b->stepping_per_rev,
-            b->sampling_per_rev, b->samples_per_rev);
+    fprintf(f.f, ",%d,%.0f,%.6g,%.6g,%.6g,%.6g\n", b->h_adaptive, b->steps_taken,
+            b->stepping_per_rev, b->sampling_per_rev, b->samples_per_rev, b->ecc_direction_rms);
     json_t *o = json_object();
     json_object_set_new(o, "model", json_string(b->model));
     json_object_set_new(o, "engine", json_string(b->engine));
@@ -261,6 +261,7 @@ int fb_cmd_bench(int argc, char **argv) {
     json_object_set_new(o, "stepping_per_rev_s", finite_or_null(b->stepping_per_rev));
     json_object_set_new(o, "sampling_per_rev_s", finite_or_null(b->sampling_per_rev));
     json_object_set_new(o, "samples_per_rev", finite_or_null(b->samples_per_rev));
+    json_object_set_new(o, "ecc_direction_rms_rad", finite_or_null(b->ecc_direction_rms));
     json_array_append_new(arr, o);
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("bench", 1, "%s", d.msg);

@@ -210,6 +210,9 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     }
     for (int p = 0; p < FB_BENCH_PARTS; p++) b->part[p] = b->halving_part[p] = NAN;
     b->halving = NAN;
+    b->ecc_direction_rms = m->has_ref_error && m->run.stop.kind == FB_STOP_NONE
+                               ? m->ref_error.ecc_direction_rms
+                               : NAN;
     double mine[4];
     if (q == 1 && m->has_ref_error && row_peaks(mine, m, 1)) {
       double theirs[4];
@@ -346,6 +349,9 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
     b->force_vs_exact = b->pen_vs_exact = b->alpha_vs_exact = b->cost_vs_exact = NAN;
     for (int p = 0; p < FB_BENCH_PARTS; p++) b->part[p] = b->halving_part[p] = NAN;
     b->halving = NAN;
+    b->ecc_direction_rms = m->has_ref_error && m->run.stop.kind == FB_STOP_NONE
+                               ? m->ref_error.ecc_direction_rms
+                               : NAN;
     idx[*n - first - 1] = q;
     double mine[4], theirs[4];
     if (row_peaks(mine, m, 1))
@@ -605,7 +611,7 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
   const int dflt = (grids & FB_BENCH_DEFAULT) != 0;
   const int total = (dflt ? DEFAULT_POINTS : 0) + (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
-                    (extra ? FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE : 0) +
+                    (extra ? FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE + FB_BENCH_ADAPTIVE_ROCKING : 0) +
                     (frontier ? FB_BENCH_FRONTIER_STEPS + 1 : 0) +
                     (mj_frontier ? FB_BENCH_FRONTIER_STEPS + FB_BENCH_ADAPTIVE : 0) +
                     (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS + FB_BENCH_ADAPTIVE : 0) +
@@ -700,6 +706,23 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
     k.solver.stepper = FB_STEPPER_WORLD;
     char stepper[32];
     snprintf(stepper, sizeof stepper, "world-a%g", accuracy[ai]);
+    const int mapping = k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
+                                                                  : k.clearance.mapping;
+    fb_status st = bench_point(rows, n, &k, "ode", stepper, mapping, 1, diag);
+    if (st != FB_OK) return st;
+    if (progress) progress((double)++done / total, user);
+  }
+  /* ODE's adaptive row with the rocking bound (bench.h) */
+  for (int ri = 0; ri < (extra ? FB_BENCH_ADAPTIVE_ROCKING : 0); ri++) {
+    fb_case k;
+    bench_case(&k, c, 0.0, FB_ENGINE_ODE);
+    k.solver.h_mode = FB_STEP_ADAPTIVE;
+    k.solver.h = k.solver.h_min;
+    k.solver.accuracy = 0.3;
+    k.solver.rocking_h_omega = FB_BENCH_ROCKING_H_OMEGA;
+    k.solver.stepper = FB_STEPPER_WORLD;
+    char stepper[32];
+    snprintf(stepper, sizeof stepper, "world-a0.3-r%g", FB_BENCH_ROCKING_H_OMEGA);
     const int mapping = k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
                                                                   : k.clearance.mapping;
     fb_status st = bench_point(rows, n, &k, "ode", stepper, mapping, 1, diag);

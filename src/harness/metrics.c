@@ -328,16 +328,23 @@ fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, c
   out->force_err_rms = sqrt(fsq / (double)n);
   out->penetration_max_rel = fb_metrics_rel(pens, penr);
   /* persistent contact: both on the wall, in continuous contact */
-  double sp = 0.0, rp = 0.0;
+  double sp = 0.0, rp = 0.0, dsq = 0.0;
   out->persistent_samples = 0;
   for (size_t i = 0; i < m; i++)
     if (s->t[i] >= t_from && s->contact[j][FB_C_STATE][i] == (double)FB_STATE_CONTINUOUS &&
         r->contact[j][FB_C_STATE][i] == (double)FB_STATE_CONTINUOUS) {
       sp += s->contact[j][FB_C_PEN][i];
       rp += r->contact[j][FB_C_PEN][i];
+      /* the pin's direction on the wall: the eccentricity vector's angle */
+      const double dphi = remainder(atan2(s->contact[j][FB_C_EY][i], s->contact[j][FB_C_EX][i]) -
+                                        atan2(r->contact[j][FB_C_EY][i], r->contact[j][FB_C_EX][i]),
+                                    2.0 * M_PI);
+      dsq += dphi * dphi;
       out->persistent_samples++;
     }
   out->persistent_penetration_rel = rp > 0.0 ? sp / rp - 1.0 : NAN;
+  out->ecc_direction_rms =
+      out->persistent_samples ? sqrt(dsq / (double)out->persistent_samples) : NAN;
   window_impacts(s, t_from, j, &out->impacts, out->impact_angles);
   window_impacts(r, t_from, j, &out->impacts_reference, out->impact_angles_reference);
   double fa[FB_FIRST_IMPACTS], pa[FB_FIRST_IMPACTS], fb[FB_FIRST_IMPACTS], pb[FB_FIRST_IMPACTS];

@@ -89,6 +89,11 @@ typedef struct {
                                         sum of the model's penetration / sum of the reference's
                                         - 1 [-]; NaN without such samples */
   size_t persistent_samples;    /* those samples [-] */
+  double ecc_direction_rms;     /* eccentricity-direction error in continuous contact: RMS over
+                                   the same samples (both FB_STATE_CONTINUOUS, t >= t_from) of
+                                   the angle from the reference's eccentricity vector to the
+                                   model's, atan2(ey, ex) differences wrapped to (-pi, pi] [rad];
+                                   NaN without such samples */
   int impacts;                  /* impact episodes in the window */
   int impacts_reference;
   double impact_angles[8];      /* crank angles of the first impacts [rad] in [0, 2 pi) */

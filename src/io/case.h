@@ -130,6 +130,8 @@ typedef struct {
   double h_min;            /* adaptive: shortest step and the output grid's step [s] */
   double h_max;            /* adaptive: longest step [s] >= h_min */
   double accuracy;         /* adaptive: largest h omega_c in an impact or free flight [-] */
+  double rocking_h_omega;  /* adaptive, ODE: largest h omega_t in contact, omega_t the pin's
+                              rocking along the wall (step_control.h) [-]; 0: off */
   fb_stepper stepper;      /* dWorldStep (direct) or dWorldQuickStep (SOR) */
   int quick_iterations;    /* dWorldQuickStep iterations [-] */
   double world_erp;        /* ERP of the ideal joints [-] in [0, 1] */

@@ -312,6 +312,13 @@ static const key_spec keys[] = {
      "effective mass) in an impact and before one; MuJoCo: also the penetration's largest "
      "relative change per step in continuous contact (ODE steps continuous contact on the "
      "ideal load's schedule: docs/step-size.md)"},
+    {"solver", "rocking_h_omega", K_DOUBLE, OFF(solver.rocking_h_omega), 1.0, 0, 1, 0, 0, "-", "0",
+     "the rocking bound must lie in [0, 1]",
+     "h_s = adaptive, ODE: in contact, the largest h omega_t, omega_t = sqrt(F / (m_t e)) "
+     "the pin's rocking along the wall (F the ideal joint load ahead, m_t the effective mass "
+     "along the wall, e the eccentricity's length); also takes the matched row with the mean-force "
+     "correction in continuous contact and carries the velocities across a step change as "
+     "leapfrog does; 0: off (docs/step-size.md)"},
     {"solver", "stepper", K_STEPPER, OFF(solver.stepper), 0, 0, 0, 0, 0, "-", "world",
      "world or quick", "world: dWorldStep (direct LCP); quick: dWorldQuickStep (SOR)"},
     {"solver", "quick_iterations", K_INT, OFF(solver.quick_iterations), 0, 1, 1e6, 0, 0, "-",

@@ -384,6 +384,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
     json_object_set_new(o2, "penetration_max_rel", num(e->penetration_max_rel));
     json_object_set_new(o2, "persistent_penetration_rel", num(e->persistent_penetration_rel));
     json_object_set_new(o2, "persistent_samples", json_integer((json_int_t)e->persistent_samples));
+    json_object_set_new(o2, "ecc_direction_rms_rad", num(e->ecc_direction_rms));
     json_object_set_new(o2, "impacts", json_integer(e->impacts));
     json_object_set_new(o2, "impacts_reference", json_integer(e->impacts_reference));
     for (int k = 0; k < 8; k++) {

@@ -35,6 +35,9 @@ typedef struct {
   double step_hw;       /* largest h omega of this step's rows (all rows together) [-] */
   double phase;         /* contact phase so far, sum of step_hw over the contact [rad] */
   double persistence;   /* matched-static: weight of the static row this step (contact.h) */
+  double f_mean;        /* [solver] rocking_h_omega: the contact's mean force (contact.h,
+                           fb_contact_mean_force_step) [N]; 0 out of contact */
+  double omega_c;       /* the last row's contact frequency sqrt(k_t / m_eff) [rad/s] */
 } clearance;
 
 /* records one contact row of a clearance joint */
@@ -87,6 +90,10 @@ struct fb_scene {
     int pen_joint_end;    /* its joint */
     double drift_end;     /* hinge drift at the last ODE step's end [m] */
     fb_load_scale load;   /* the clearance joints' ideal load time scale (load_scale.h) */
+    int rocking;          /* 1: [solver] rocking_h_omega > 0 (step_control.h) */
+    double h_last;        /* the last ODE step [s]; 0 before the first */
+    double v_start[3][3]; /* each body's linear velocity at the last ODE step's start [m/s] */
+    double w_start[3][3]; /* and its angular velocity [rad/s] */
   } ad;
 };
 
@@ -321,6 +328,7 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *dia
     s->ad.m_max = (int)floor(def->solver.h_max / def->solver.h * (1.0 + 1e-9));
     if (s->ad.m_max < 1) s->ad.m_max = 1;
     s->ad.m_prev = 1;
+    s->ad.rocking = def->solver.rocking_h_omega > 0.0 && def->clearance_mask != 0;
     /* persistent contact steps on the ideal load's schedule (step_control.h) */
     fb_status lst = fb_load_scale_build(&s->ad.load, &def->lengths, def->branch, def->link,
                                         def->gravity, def->omega2, def->clearance_mask,
@@ -580,7 +588,12 @@ static void clearance_contact(fb_scene *s, int j) {
   if (!fb_ode_soft_contact(&ct, &law, d->mapping, s->h_now, m_eff, 1, delta, ddot, c->ep.v0,
                            onset, c->persistence, d->friction, &used))
     return;
-  if (d->mapping == FB_MAPPING_MATCHED_STATIC && used.erp > 0.0) {
+  c->omega_c = sqrt(used.kp / m_eff);
+  if (s->ad.rocking) {
+    /* the matched row throughout, its static depth the law's (contact.h) */
+    fb_contact_row_mean_force(&used, s->h_now, c->f_mean);
+    ct.geom.depth = used.depth;
+  } else if (d->mapping == FB_MAPPING_MATCHED_STATIC && used.erp > 0.0) {
     /* the row's lambda = a d_n + b u: handing it d_n + drift / ERP makes its
      * b act on the penetration's true rate u + drift / h (contact.h) */
     used.depth += step_drift(c, n, ev, ecc, s->h_now) / used.erp;
@@ -614,7 +627,7 @@ static fb_status world_step(fb_scene *s, double h, fb_diag *diag) {
     if (!(s->def.clearance_mask & (1 << j))) continue;
     clearance *c = &s->cl[j];
     c->step_wdh = c->step_hw = 0.0;
-    c->persistence = s->def.mapping == FB_MAPPING_MATCHED_STATIC
+    c->persistence = s->def.mapping == FB_MAPPING_MATCHED_STATIC && !s->ad.rocking
                          ? fb_contact_persistence(c->phase)
                          : 0.0;
     clearance_contact(s, j);
@@ -679,6 +692,9 @@ static fb_status world_step(fb_scene *s, double h, fb_diag *diag) {
       /* an onset row's impulse also covers the contact before the step (contact.h) */
       const double share = c->cj ? c->step_share : 0.0;
       c->force = share * hypot(c->fb.f1[0], c->fb.f1[1]);
+      c->f_mean = c->cj && s->ad.rocking
+                      ? fb_contact_mean_force_step(c->f_mean, c->force, h, c->omega_c)
+                      : 0.0;
       c->force_pin[0] = share * c->fb.f1[0]; /* body 1 is the pin */
       c->force_pin[1] = share * c->fb.f1[1];
     }
@@ -743,12 +759,46 @@ static int adapt_multiple(fb_scene *s) {
       sj.persistence = fb_contact_persistence(c->phase);
       if (sj.persistence < 1.0) impulsive = 1;
     }
+    if (s->ad.rocking) {
+      /* the rocking along the wall: the effective mass along the tangent */
+      const double t[2] = {-n[1], n[0]};
+      sj.rocking_h_omega = d->solver.rocking_h_omega;
+      sj.m_t = step_effective_mass(s, j, t);
+      sj.ecc = ecc;
+    }
     const fb_contact_law law = step_law(&d->law[j], sj.m_eff);
     h = fmin(h, fb_step_adaptive(&law, &sj, d->solver.accuracy, hg, d->solver.h_max));
   }
   int want = (int)floor(h / hg * (1.0 + 1e-9));
   want = fb_step_hold_in_impact(want < 1 ? 1 : want, s->ad.m_prev, impulsive);
   return fb_step_ramp(want, s->ad.m_prev, s->ad.m_max);
+}
+
+/* ODE's step moves positions as leapfrog does, its velocities acting as
+ * the half-step ones: v_{n+1} = v_n + h_n a_n. When the step changes from
+ * h_{n-1} to h_n, leapfrog's half-step velocity takes (h_{n-1} + h_n) / 2 of
+ * the acceleration, ODE's h_n: a first-order error at every change, which
+ * on the paper case spoiled the rocking's phase wherever the step follows
+ * the load (docs/step-size.md). Before a step of h that follows one of
+ * h_last, the moving links' velocities get (h_last - h) / 2 times the last
+ * step's acceleration, (v now - v at its start) / h_last; the driven crank
+ * keeps its speed. */
+static void carry_velocities(fb_scene *s, double h) {
+  const double hl = s->ad.h_last;
+  if (hl > 0.0 && fabs(h - hl) > 1e-9 * hl) {
+    const double g = 0.5 * (hl - h) / hl;
+    for (int i = FB_COUPLER; i <= FB_FOLLOWER; i++) {
+      const dReal *v = dBodyGetLinearVel(s->body[i]), *w = dBodyGetAngularVel(s->body[i]);
+      dBodySetLinearVel(s->body[i], v[0] + g * (v[0] - s->ad.v_start[i][0]),
+                        v[1] + g * (v[1] - s->ad.v_start[i][1]), v[2]);
+      dBodySetAngularVel(s->body[i], w[0], w[1], w[2] + g * (w[2] - s->ad.w_start[i][2]));
+    }
+  }
+  for (int i = 0; i < 3; i++) {
+    const dReal *v = dBodyGetLinearVel(s->body[i]), *w = dBodyGetAngularVel(s->body[i]);
+    for (int q = 0; q < 3; q++) s->ad.v_start[i][q] = v[q], s->ad.w_start[i][q] = w[q];
+  }
+  s->ad.h_last = h;
 }
 
 fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
@@ -763,6 +813,7 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
     return FB_OK;
   }
   const int m = adapt_multiple(s);
+  if (s->ad.rocking) carry_velocities(s, m * s->def.solver.h);
   for (int i = 0; i < 3; i++) s->ad.ang0[i] = s->angle[i], s->ad.w0[i] = s->omega_prev[i];
   adapt_geometry(s, s->ad.pen0, s->ad.ex0, s->ad.ey0);
   const double h = m * s->def.solver.h;

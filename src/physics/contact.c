@@ -271,6 +271,18 @@ double fb_contact_persistence(double phase) {
   return z * z * (3.0 - 2.0 * z);
 }
 
+void fb_contact_row_mean_force(fb_contact_row *row, double h, double f_mean) {
+  if (!(row->kp > 0.0) || !(row->erp > 0.0) || !(row->cfm > 0.0) || !(h > 0.0)) return;
+  const double a = row->erp / (h * row->cfm);
+  row->depth -= (1.0 / row->kp - 1.0 / a) * f_mean;
+}
+
+double fb_contact_mean_force_step(double f_mean, double force, double h, double omega_c) {
+  if (!(omega_c > 0.0) || !(h > 0.0)) return 0.0;
+  const double tau = FB_MEAN_FORCE_PERIODS * 2.0 * M_PI / omega_c;
+  return f_mean + h / (tau + h) * (force - f_mean);
+}
+
 void fb_contact_row_static(fb_contact_row *row, double h, double m, double w) {
   if (!(w > 0.0)) return;
   if (w > 1.0) w = 1.0;

@@ -38,6 +38,9 @@ double fb_step_adaptive(const fb_contact_law *law, const fb_step_joint *j, doubl
     if (j->delta > d) d = j->delta;
     h = accuracy / sqrt(tangent(law, d) / m);
   }
+  if (j->rocking_h_omega > 0.0 && j->delta > 0.0 && j->load_force > 0.0 && j->m_t > 0.0 &&
+      j->ecc > 0.0)
+    h = fmin(h, j->rocking_h_omega / sqrt(j->load_force / (j->m_t * j->ecc)));
   if (!(h > h_min)) h = h_min; /* NaN included */
   return fmin(h, h_max);
 }

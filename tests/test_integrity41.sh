@@ -153,6 +153,8 @@ for sig in KILL TERM; do
   wait_for '! alive'
   "$exe" run --set run.revolutions=2 --set run.models=analytic --no-figures --out "$tmp/k$sig" >/dev/null 2>"$tmp/err"
   rc2=$?
+  # what the two checks below read, for a failure's diagnosis
+  echo "$sig: workers [$workers], alive $(alive && echo yes || echo no), rc $rc, rc2 $rc2; next run: $(head -c 300 "$tmp/err")"
   if [ $sig = KILL ]; then
     ok '[ -n "$workers" ] && ! alive && [ $rc2 -eq 0 ]' "4: kill -9 of run --jobs 2: its workers die with it and the next run into the folder is not refused (was: workers computing, the lock held, the next run refused naming the dead parent)"
   else

@@ -35,28 +35,35 @@ static void resolution_note(const fb_scene_model *sm, fb_diag *diag) {
   }
 }
 
+/* the case with the one model exported (its law and start resolved) into
+ * *sm, its scene definition in *def (the caller frees it, also on error) */
+static fb_status one_model(fb_scene_model *sm, fb_scene_def **def, const fb_case *c,
+                           const char *name, int mujoco_tendon, fb_diag *diag) {
+  fb_case *k = malloc(sizeof *k);
+  *def = malloc(sizeof **def);
+  if (!k || !*def) {
+    free(k);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the export");
+  }
+  *k = *c;
+  k->model_count = 1;
+  snprintf(k->models[0], sizeof k->models[0], "%s", name);
+  if (mujoco_tendon) k->mujoco.native_bore = FB_MUJOCO_BORE_TENDON;
+  fb_status st = fb_scene_def_from_case(*def, k, diag);
+  if (st == FB_OK) st = fb_scene_def_select(sm, *def, fb_model_find(name), diag);
+  free(k);
+  return st;
+}
+
 fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
 #if FB_HAVE_MUJOCO
   const char *name = ideal || !c->clearance.mask ? "mujoco-ideal-nominal"
                                                  : "mujoco-clearance-native";
-  fb_case *k = malloc(sizeof *k);
-  fb_scene_def *def = malloc(sizeof *def);
-  if (!k || !def) {
-    free(k);
-    free(def);
-    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the export");
-  }
-  /* the case with the one model exported (its law and start resolved) */
-  *k = *c;
-  k->model_count = 1;
-  snprintf(k->models[0], sizeof k->models[0], "%s", name);
-  k->mujoco.native_bore = FB_MUJOCO_BORE_TENDON;
-  fb_status st = fb_scene_def_from_case(def, k, diag);
+  fb_scene_def *def = NULL;
   fb_scene_model sm;
-  if (st == FB_OK) st = fb_scene_def_select(&sm, def, fb_model_find(name), diag);
+  fb_status st = one_model(&sm, &def, c, name, 1, diag);
   if (st == FB_OK) st = fb_mujoco_export(buf, size, &sm, diag);
   if (st == FB_OK) resolution_note(&sm, diag);
-  free(k);
   free(def);
   return st;
 #else
@@ -68,23 +75,11 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
 
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
   const char *name = ideal || !c->clearance.mask ? "ode-ideal-nominal" : "ode-clearance-restitution";
-  fb_case *k = malloc(sizeof *k);
-  fb_scene_def *def = malloc(sizeof *def);
-  if (!k || !def) {
-    free(k);
-    free(def);
-    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the export");
-  }
-  /* the case with the one model exported (its law and start resolved) */
-  *k = *c;
-  k->model_count = 1;
-  snprintf(k->models[0], sizeof k->models[0], "%s", name);
-  fb_status st = fb_scene_def_from_case(def, k, diag);
+  fb_scene_def *def = NULL;
   fb_scene_model sm;
-  if (st == FB_OK) st = fb_scene_def_select(&sm, def, fb_model_find(name), diag);
+  fb_status st = one_model(&sm, &def, c, name, 0, diag);
   if (st == FB_OK) st = fb_export_sdf_model(buf, size, &sm, diag);
   if (st == FB_OK) resolution_note(&sm, diag);
-  free(k);
   free(def);
   return st;
 }

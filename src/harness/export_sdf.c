@@ -8,31 +8,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "textbuf.h"
 #include "contact_params.h"
 #include "engine_params.h"
 #include "export.h"
 #include "model_table.h"
 #include "scene_def.h"
 
-typedef struct {
-  char *buf;
-  size_t size, len;
-  int overflow;
-} text;
-
-static void put(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void put(text *t, const char *fmt, ...) {
-  if (t->overflow) return;
-  va_list ap;
-  va_start(ap, fmt);
-  const int n = vsnprintf(t->buf + t->len, t->size - t->len, fmt, ap);
-  va_end(ap);
-  if (n < 0 || (size_t)n >= t->size - t->len) {
-    t->overflow = 1;
-    return;
-  }
-  t->len += (size_t)n;
-}
+typedef fb_text text; /* textbuf.h */
 
 /* radial thickness of the hole's ring of boxes (as ODE's faceted collider) */
 #define RING_THICKNESS_M 2e-3
@@ -52,25 +35,25 @@ static void put(text *t, const char *fmt, ...) {
 static void put_link_open(text *t, const char *name, double x, double y, double yaw,
                           const fb_link_mass *lm, double len) {
   const double it = fmax(lm->inertia_transverse, lm->inertia - lm->inertia_long);
-  put(t, "      <link name=\"%s\">\n", name);
-  put(t, "        <pose>%.17g %.17g 0 0 0 %.17g</pose>\n", x, y, yaw);
-  put(t, "        <inertial>\n          <pose>%.17g 0 0 0 0 0</pose>\n", lm->com_fraction * len);
-  put(t, "          <mass>%.17g</mass>\n", lm->mass);
-  put(t, "          <inertia><ixx>%.17g</ixx><iyy>%.17g</iyy><izz>%.17g</izz>"
+  fb_text_put(t, "      <link name=\"%s\">\n", name);
+  fb_text_put(t, "        <pose>%.17g %.17g 0 0 0 %.17g</pose>\n", x, y, yaw);
+  fb_text_put(t, "        <inertial>\n          <pose>%.17g 0 0 0 0 0</pose>\n", lm->com_fraction * len);
+  fb_text_put(t, "          <mass>%.17g</mass>\n", lm->mass);
+  fb_text_put(t, "          <inertia><ixx>%.17g</ixx><iyy>%.17g</iyy><izz>%.17g</izz>"
          "<ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia>\n        </inertial>\n",
       lm->inertia_long, it, lm->inertia);
 }
 
 /* the surface of one side of a clearance contact */
 static void put_surface(text *t, double kp, double kd, double max_vel, double mu) {
-  put(t, "          <surface>\n");
-  put(t, "            <contact><ode><kp>%.17g</kp><kd>%.17g</kd><max_vel>%.17g</max_vel>"
+  fb_text_put(t, "          <surface>\n");
+  fb_text_put(t, "            <contact><ode><kp>%.17g</kp><kd>%.17g</kd><max_vel>%.17g</max_vel>"
          "<min_depth>0</min_depth></ode></contact>\n",
       kp, kd, max_vel);
-  put(t, "            <friction><ode><mu>%.17g</mu><mu2>%.17g</mu2></ode></friction>\n", mu, mu);
-  put(t, "            <bounce><restitution_coefficient>0</restitution_coefficient>"
+  fb_text_put(t, "            <friction><ode><mu>%.17g</mu><mu2>%.17g</mu2></ode></friction>\n", mu, mu);
+  fb_text_put(t, "            <bounce><restitution_coefficient>0</restitution_coefficient>"
          "<threshold>1e16</threshold></bounce>\n");
-  put(t, "          </surface>\n");
+  fb_text_put(t, "          </surface>\n");
 }
 
 /* the parameters of one clearance joint's contact */
@@ -84,18 +67,18 @@ typedef struct {
 /* joint j's pin: a cylinder on its pin body at (x, y) in that body's frame */
 static void put_pin(text *t, const fb_scene_model *sm, int j, double x, double y,
                     const sdf_contact *ct) {
-  put(t, "        <!-- %s: restitution law k = %.6g N/m, c = %.6g N s/m on its design mass "
+  fb_text_put(t, "        <!-- %s: restitution law k = %.6g N/m, c = %.6g N s/m on its design mass "
          "%.4g kg; h omega_c = %.3g there (a run holds <= 0.5; fourbar contact-params --case "
          "verifies it over the joint's mass range) -->\n",
       fb_joint_name(j), ct->k, ct->c, ct->m, ct->h_omega_c);
-  put(t, "        <collision name=\"%s_pin\">\n", fb_joint_name(j));
-  put(t, "          <pose>%.17g %.17g 0 0 0 0</pose>\n", x, y);
-  put(t, "          <max_contacts>1</max_contacts>\n");
-  put(t, "          <geometry><cylinder><radius>%.17g</radius><length>%.17g</length></cylinder>"
+  fb_text_put(t, "        <collision name=\"%s_pin\">\n", fb_joint_name(j));
+  fb_text_put(t, "          <pose>%.17g %.17g 0 0 0 0</pose>\n", x, y);
+  fb_text_put(t, "          <max_contacts>1</max_contacts>\n");
+  fb_text_put(t, "          <geometry><cylinder><radius>%.17g</radius><length>%.17g</length></cylinder>"
          "</geometry>\n",
       sm->pin_radius, sm->def->pin_length);
   put_surface(t, ct->sd.kp, ct->sd.kd, ct->max_vel, sm->friction);
-  put(t, "        </collision>\n");
+  fb_text_put(t, "        </collision>\n");
 }
 
 /* joint j's hole: a ring of boxes on its hole body around (x, y) */
@@ -106,30 +89,30 @@ static void put_hole(text *t, const fb_scene_model *sm, int j, double x, double 
   const double len = 2.0 * (r_in + w) * tan(M_PI / n) * 1.001; /* closes the ring */
   for (int k = 0; k < n; k++) {
     const double phi = 2.0 * M_PI * k / n;
-    put(t, "        <collision name=\"%s_hole_%d\">\n", fb_joint_name(j), k);
-    put(t, "          <pose>%.17g %.17g 0 0 0 %.17g</pose>\n", x + (r_in + 0.5 * w) * cos(phi),
+    fb_text_put(t, "        <collision name=\"%s_hole_%d\">\n", fb_joint_name(j), k);
+    fb_text_put(t, "          <pose>%.17g %.17g 0 0 0 %.17g</pose>\n", x + (r_in + 0.5 * w) * cos(phi),
         y + (r_in + 0.5 * w) * sin(phi), phi);
-    put(t, "          <geometry><box><size>%.17g %.17g %.17g</size></box></geometry>\n", w, len,
+    fb_text_put(t, "          <geometry><box><size>%.17g %.17g %.17g</size></box></geometry>\n", w, len,
         sm->def->pin_length);
     put_surface(t, RING_KP_FACTOR * ct->sd.kp, 0.0, ct->max_vel, sm->friction);
-    put(t, "        </collision>\n");
+    fb_text_put(t, "        </collision>\n");
   }
 }
 
 /* sites: a frame <joint>_pin or <joint>_hole at (x, y) of link */
 static void put_frame(text *t, int j, int pin, const char *link, double x, double y) {
-  put(t, "      <frame name=\"%s_%s\" attached_to=\"%s\">\n", fb_joint_name(j), pin ? "pin" : "hole",
+  fb_text_put(t, "      <frame name=\"%s_%s\" attached_to=\"%s\">\n", fb_joint_name(j), pin ? "pin" : "hole",
       link);
-  put(t, "        <pose relative_to=\"%s\">%.17g %.17g 0 0 0 0</pose>\n      </frame>\n", link, x, y);
+  fb_text_put(t, "        <pose relative_to=\"%s\">%.17g %.17g 0 0 0 0</pose>\n      </frame>\n", link, x, y);
 }
 
 static void put_revolute(text *t, int j, const char *parent, const char *child, double x) {
-  put(t, "      <joint name=\"%s\" type=\"revolute\">\n", fb_joint_name(j));
-  put(t, "        <parent>%s</parent>\n        <child>%s</child>\n", parent, child);
-  put(t, "        <pose>%.17g 0 0 0 0 0</pose>\n", x);
-  put(t, "        <axis><xyz>0 0 1</xyz><limit><lower>-1e16</lower><upper>1e16</upper></limit>"
+  fb_text_put(t, "      <joint name=\"%s\" type=\"revolute\">\n", fb_joint_name(j));
+  fb_text_put(t, "        <parent>%s</parent>\n        <child>%s</child>\n", parent, child);
+  fb_text_put(t, "        <pose>%.17g 0 0 0 0 0</pose>\n", x);
+  fb_text_put(t, "        <axis><xyz>0 0 1</xyz><limit><lower>-1e16</lower><upper>1e16</upper></limit>"
          "<dynamics><damping>0</damping><friction>0</friction></dynamics></axis>\n");
-  put(t, "      </joint>\n");
+  fb_text_put(t, "      </joint>\n");
 }
 
 static fb_status write_sdf(text *t, const fb_scene_model *sm, const fb_start_state *st,
@@ -143,8 +126,8 @@ static fb_status write_sdf(text *t, const fb_scene_model *sm, const fb_start_sta
   double max_vel = 0.0;
   for (int j = 0; j < 4; j++)
     if (mask & (1 << j)) max_vel = fmax(max_vel, ct[j].max_vel);
-  put(t, "<?xml version=\"1.0\"?>\n<sdf version=\"1.9\">\n  <world name=\"fourbar\">\n");
-  put(t, "    <!-- fourbar export of case '%s' (%s): SI units; the mechanism plane is x-y,\n"
+  fb_text_put(t, "<?xml version=\"1.0\"?>\n<sdf version=\"1.9\">\n  <world name=\"fourbar\">\n");
+  fb_text_put(t, "    <!-- fourbar export of case '%s' (%s): SI units; the mechanism plane is x-y,\n"
          "         gravity along -y. Each clearance joint is a pin (collision <joint>_pin)\n"
          "         in a ring of boxes (<joint>_hole_<k>), the contact the project verified at\n"
          "         this world's step: kp, kd, max_vel, min_depth under surface/contact/ode\n"
@@ -152,44 +135,44 @@ static fb_status write_sdf(text *t, const fb_scene_model *sm, const fb_start_sta
          "         below (Gazebo Sim); Gazebo Classic has none in SDFormat, set the joint's\n"
          "         velocity every step from a model plugin (Joint::SetVelocity). -->\n",
       sm->def->source.name, sm->model->name);
-  put(t, "    <gravity>0 %.17g 0</gravity>\n", -sm->gravity);
-  put(t, "    <physics name=\"case_step\" type=\"ode\" default=\"true\">\n");
-  put(t, "      <max_step_size>%.17g</max_step_size>\n", h);
-  put(t, "      <ode>\n        <solver><type>world</type></solver>\n");
-  put(t, "        <constraints><cfm>%.17g</cfm><erp>%.17g</erp>", sm->solver.world_cfm,
+  fb_text_put(t, "    <gravity>0 %.17g 0</gravity>\n", -sm->gravity);
+  fb_text_put(t, "    <physics name=\"case_step\" type=\"ode\" default=\"true\">\n");
+  fb_text_put(t, "      <max_step_size>%.17g</max_step_size>\n", h);
+  fb_text_put(t, "      <ode>\n        <solver><type>world</type></solver>\n");
+  fb_text_put(t, "        <constraints><cfm>%.17g</cfm><erp>%.17g</erp>", sm->solver.world_cfm,
       sm->solver.world_erp);
   if (mask)
-    put(t, "<contact_max_correcting_vel>%.17g</contact_max_correcting_vel>", max_vel);
-  put(t, "<contact_surface_layer>0</contact_surface_layer></constraints>\n      </ode>\n");
-  put(t, "    </physics>\n");
-  put(t, "    <model name=\"fourbar\">\n");
-  if (mask) put(t, "      <self_collide>true</self_collide>\n");
+    fb_text_put(t, "<contact_max_correcting_vel>%.17g</contact_max_correcting_vel>", max_vel);
+  fb_text_put(t, "<contact_surface_layer>0</contact_surface_layer></constraints>\n      </ode>\n");
+  fb_text_put(t, "    </physics>\n");
+  fb_text_put(t, "    <model name=\"fourbar\">\n");
+  if (mask) fb_text_put(t, "      <self_collide>true</self_collide>\n");
   /* ground, welded to the world; its holes when A or D has clearance */
-  put(t, "      <link name=\"ground\">\n        <pose>0 0 0 0 0 0</pose>\n");
-  put(t, "        <inertial><mass>%g</mass><inertia><ixx>%g</ixx><iyy>%g</iyy><izz>%g</izz>"
+  fb_text_put(t, "      <link name=\"ground\">\n        <pose>0 0 0 0 0 0</pose>\n");
+  fb_text_put(t, "        <inertial><mass>%g</mass><inertia><ixx>%g</ixx><iyy>%g</iyy><izz>%g</izz>"
          "<ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>\n",
       GROUND_MASS_KG, GROUND_INERTIA_KG_M2, GROUND_INERTIA_KG_M2, GROUND_INERTIA_KG_M2);
   if (mask & (1 << FB_JOINT_A)) put_hole(t, sm, FB_JOINT_A, ha[0], ha[1], &ct[FB_JOINT_A]);
   if (mask & (1 << FB_JOINT_D)) put_hole(t, sm, FB_JOINT_D, hd[0], hd[1], &ct[FB_JOINT_D]);
-  put(t, "      </link>\n");
+  fb_text_put(t, "      </link>\n");
   /* crank: at A's pin, x along A->B */
   put_link_open(t, "crank", pa[0], pa[1], st->crank_angle, &sm->link[FB_CRANK], a);
   if (mask & (1 << FB_JOINT_A)) put_pin(t, sm, FB_JOINT_A, 0.0, 0.0, &ct[FB_JOINT_A]);
   if (mask & (1 << FB_JOINT_B)) put_pin(t, sm, FB_JOINT_B, a, 0.0, &ct[FB_JOINT_B]);
-  put(t, "      </link>\n");
+  fb_text_put(t, "      </link>\n");
   /* coupler: at B's hole, x along B->C */
   put_link_open(t, "coupler", hb[0], hb[1], st->coupler_angle, &sm->link[FB_COUPLER], b);
   if (mask & (1 << FB_JOINT_B)) put_hole(t, sm, FB_JOINT_B, 0.0, 0.0, &ct[FB_JOINT_B]);
   if (mask & (1 << FB_JOINT_C)) put_pin(t, sm, FB_JOINT_C, b, 0.0, &ct[FB_JOINT_C]);
-  put(t, "      </link>\n");
+  fb_text_put(t, "      </link>\n");
   /* follower: at D's pin, x along D->C */
   put_link_open(t, "follower", pd[0], pd[1], st->follower_angle, &sm->link[FB_FOLLOWER], c);
   if (mask & (1 << FB_JOINT_D)) put_pin(t, sm, FB_JOINT_D, 0.0, 0.0, &ct[FB_JOINT_D]);
   if (mask & (1 << FB_JOINT_C)) put_hole(t, sm, FB_JOINT_C, c, 0.0, &ct[FB_JOINT_C]);
-  put(t, "      </link>\n");
+  fb_text_put(t, "      </link>\n");
   /* joints: the weld, and a revolute for every ideal joint (SDFormat
    * allows the loop; the joint's pose is in its child's frame) */
-  put(t, "      <joint name=\"ground_weld\" type=\"fixed\">\n        <parent>world</parent>\n"
+  fb_text_put(t, "      <joint name=\"ground_weld\" type=\"fixed\">\n        <parent>world</parent>\n"
          "        <child>ground</child>\n      </joint>\n");
   if (!(mask & (1 << FB_JOINT_A))) put_revolute(t, FB_JOINT_A, "ground", "crank", 0.0);
   if (!(mask & (1 << FB_JOINT_B))) put_revolute(t, FB_JOINT_B, "crank", "coupler", 0.0);
@@ -206,12 +189,12 @@ static fb_status write_sdf(text *t, const fb_scene_model *sm, const fb_start_sta
   put_frame(t, FB_JOINT_D, 0, "ground", hd[0], hd[1]);
   /* the drive (Gazebo Sim's JointController in velocity mode) */
   if (!(mask & (1 << FB_JOINT_A))) {
-    put(t, "      <plugin filename=\"gz-sim-joint-controller-system\" "
+    fb_text_put(t, "      <plugin filename=\"gz-sim-joint-controller-system\" "
            "name=\"gz::sim::systems::JointController\">\n");
-    put(t, "        <joint_name>%s</joint_name>\n", fb_joint_name(FB_JOINT_A));
-    put(t, "        <initial_velocity>%.17g</initial_velocity>\n      </plugin>\n", st->crank_omega);
+    fb_text_put(t, "        <joint_name>%s</joint_name>\n", fb_joint_name(FB_JOINT_A));
+    fb_text_put(t, "        <initial_velocity>%.17g</initial_velocity>\n      </plugin>\n", st->crank_omega);
   }
-  put(t, "    </model>\n  </world>\n</sdf>\n");
+  fb_text_put(t, "    </model>\n  </world>\n</sdf>\n");
   if (t->overflow)
     return fb_diag_set(diag, FB_ERR_RANGE, "SDF text longer than its %zu-byte buffer", t->size);
   return FB_OK;

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "textbuf.h"
 #include "episode.h"
 #include "mujoco_load.h"
 
@@ -129,25 +130,7 @@ const char *fb_mujoco_version(void) { return mj_versionString(); }
 
 /* ---- MJCF text ------------------------------------------------------------ */
 
-typedef struct {
-  char *buf;
-  size_t size, len;
-  int overflow;
-} text;
-
-static void put(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void put(text *t, const char *fmt, ...) {
-  if (t->overflow) return;
-  va_list ap;
-  va_start(ap, fmt);
-  int n = vsnprintf(t->buf + t->len, t->size - t->len, fmt, ap);
-  va_end(ap);
-  if (n < 0 || (size_t)n >= t->size - t->len) {
-    t->overflow = 1;
-    return;
-  }
-  t->len += (size_t)n;
-}
+typedef fb_text text; /* textbuf.h */
 
 /* the site at joint j's pin (pin = 1) or hole centre: "A_pin" in the
  * scene's own model, "crank-coupler_pin" in an exported one */
@@ -165,14 +148,14 @@ static const char *site_name(const mj_def *def, int j, int pin) {
  * armature */
 static void put_joint(text *t, const char *name, int clearance, double armature) {
   if (clearance) {
-    put(t, "      <joint name=\"%s_x\" type=\"slide\" axis=\"1 0 0\"/>\n", name);
-    put(t, "      <joint name=\"%s_y\" type=\"slide\" axis=\"0 1 0\"/>\n", name);
+    fb_text_put(t, "      <joint name=\"%s_x\" type=\"slide\" axis=\"1 0 0\"/>\n", name);
+    fb_text_put(t, "      <joint name=\"%s_y\" type=\"slide\" axis=\"0 1 0\"/>\n", name);
   }
   if (armature > 0.0)
-    put(t, "      <joint name=\"%s\" type=\"hinge\" axis=\"0 0 1\" armature=\"%.17g\"/>\n", name,
+    fb_text_put(t, "      <joint name=\"%s\" type=\"hinge\" axis=\"0 0 1\" armature=\"%.17g\"/>\n", name,
         armature);
   else
-    put(t, "      <joint name=\"%s\" type=\"hinge\" axis=\"0 0 1\"/>\n", name);
+    fb_text_put(t, "      <joint name=\"%s\" type=\"hinge\" axis=\"0 0 1\"/>\n", name);
 }
 
 /* inertial of a link of length len along its body x axis; the moments about
@@ -181,7 +164,7 @@ static void put_joint(text *t, const char *name, int clearance, double armature)
  * holds */
 static void put_inertial(text *t, const fb_link_mass *lm, double len) {
   const double it = fmax(lm->inertia_transverse, lm->inertia - lm->inertia_long);
-  put(t, "      <inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n",
+  fb_text_put(t, "      <inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n",
       lm->com_fraction * len, lm->mass, lm->inertia_long, it, lm->inertia);
 }
 
@@ -214,7 +197,7 @@ static void put_native(text *t, const mj_def *def, int j, int pin, double x, dou
            "\"",
            -k, -b, def->opts.loop_impedance, def->opts.loop_impedance);
   if (pin) {
-    put(t, "%s<geom name=\"%c_pin_geom\" type=\"sphere\" size=\"%.17g\" pos=\"%.17g %.17g 0\" "
+    fb_text_put(t, "%s<geom name=\"%c_pin_geom\" type=\"sphere\" size=\"%.17g\" pos=\"%.17g %.17g 0\" "
            "contype=\"1\" conaffinity=\"0\" %s/>\n",
         ind, jn, def->pin_radius, x, y, contact);
     return;
@@ -224,7 +207,7 @@ static void put_native(text *t, const mj_def *def, int j, int pin, double x, dou
   const double half_w = (r_in + th) * tan(M_PI / def->ring_n) * 1.001; /* closes the ring */
   for (int q = 0; q < def->ring_n; q++) {
     const double phi = 2.0 * M_PI * q / def->ring_n;
-    put(t, "%s<geom type=\"box\" size=\"%.17g %.17g %.17g\" pos=\"%.17g %.17g 0\" "
+    fb_text_put(t, "%s<geom type=\"box\" size=\"%.17g %.17g %.17g\" pos=\"%.17g %.17g 0\" "
            "euler=\"0 0 %.17g\" contype=\"0\" conaffinity=\"1\" %s/>\n",
         ind, 0.5 * th, half_w, 0.5 * def->pin_length, x + (r_in + 0.5 * th) * cos(phi),
         y + (r_in + 0.5 * th) * sin(phi), phi, contact);
@@ -258,7 +241,7 @@ static void put_native(text *t, const mj_def *def, int j, int pin, double x, dou
  * the first step. */
 static void put_bore_tendons(text *t, const mj_def *def) {
   if (!def->native || def->facets || !def->clearance_mask) return;
-  put(t, "  <tendon>\n");
+  fb_text_put(t, "  <tendon>\n");
   for (int j = 0; j < 4; j++) {
     if (!(def->clearance_mask & (1 << j))) continue;
     const char jn = (char)('A' + j);
@@ -272,18 +255,18 @@ static void put_bore_tendons(text *t, const mj_def *def) {
       sr[1] = def->bore_solref[j][1];
     }
     if (def->exported)
-      put(t, "    <spatial name=\"%s_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
+      fb_text_put(t, "    <spatial name=\"%s_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
              "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
           fb_joint_name(j), def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
     else
-      put(t, "    <spatial name=\"%c_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
+      fb_text_put(t, "    <spatial name=\"%c_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
              "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
           jn, def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
-    put(t, "      <site site=\"%s\"/>\n      <site site=\"%s\"/>\n", site_name(def, j, 0),
+    fb_text_put(t, "      <site site=\"%s\"/>\n      <site site=\"%s\"/>\n", site_name(def, j, 0),
         site_name(def, j, 1));
-    put(t, "    </spatial>\n");
+    fb_text_put(t, "    </spatial>\n");
   }
-  put(t, "  </tendon>\n");
+  fb_text_put(t, "  </tendon>\n");
 }
 
 /* exported: the drive, a velocity actuator on the crank's hinge at the
@@ -296,7 +279,7 @@ static void put_bore_tendons(text *t, const mj_def *def) {
 static void put_drive(text *t, const mj_def *def) {
   const fb_start_state st = def->start;
   const double kv = def->opts.drive_armature / (EXPORT_DRIVE_STEPS * def->h);
-  put(t, "  <actuator>\n    <velocity name=\"drive\" joint=\"%s\" kv=\"%.17g\"/>\n  </actuator>\n",
+  fb_text_put(t, "  <actuator>\n    <velocity name=\"drive\" joint=\"%s\" kv=\"%.17g\"/>\n  </actuator>\n",
       fb_joint_name(FB_JOINT_A), kv);
   /* qvel in the tree's order: each body's slides (clearance) then its hinge */
   const int mask = def->clearance_mask;
@@ -316,9 +299,9 @@ static void put_drive(text *t, const mj_def *def) {
   qvel[n++] = st.coupler_omega - st.crank_omega;
   if (mask & (1 << FB_JOINT_D)) qvel[n++] = 0.0, qvel[n++] = 0.0;
   qvel[n++] = st.follower_omega;
-  put(t, "  <keyframe>\n    <key name=\"start\" qvel=\"");
-  for (int i = 0; i < n; i++) put(t, "%s%.17g", i ? " " : "", qvel[i]);
-  put(t, "\" ctrl=\"%.17g\"/>\n  </keyframe>\n", st.crank_omega);
+  fb_text_put(t, "  <keyframe>\n    <key name=\"start\" qvel=\"");
+  for (int i = 0; i < n; i++) fb_text_put(t, "%s%.17g", i ? " " : "", qvel[i]);
+  fb_text_put(t, "\" ctrl=\"%.17g\"/>\n  </keyframe>\n", st.crank_omega);
 }
 
 static fb_status write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *diag) {
@@ -336,13 +319,13 @@ static fb_status write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   const double k = opts->loop_stiffness > 0.0 ? opts->loop_stiffness : 1.0 / (hl * hl);
   const double damp = opts->loop_damping > 0.0 ? opts->loop_damping : 1.0 / hl;
   text t = {buf, size, 0, 0};
-  put(&t, "<mujoco model=\"fourbar\">\n");
-  put(&t, "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n");
+  fb_text_put(&t, "<mujoco model=\"fourbar\">\n");
+  fb_text_put(&t, "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n");
   /* native contacts: a pin and its hole are on parent and child bodies,
    * which MuJoCo keeps from colliding unless filterparent is off */
-  put(&t, "  <option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\">%s</option>\n", h,
+  fb_text_put(&t, "  <option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\">%s</option>\n", h,
       -def->gravity, intname[integ], def->facets ? "<flag filterparent=\"disable\"/>" : "");
-  put(&t, "  <worldbody>\n");
+  fb_text_put(&t, "  <worldbody>\n");
   /* the joint points of the start (start.h): holes of A and D on the ground,
    * the crank's frame at A's pin, the coupler's at B's hole, the follower's at
    * D's pin; the other points follow from the link lengths */
@@ -350,52 +333,52 @@ static fb_status write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   const double *pa = st.pin[FB_JOINT_A], *pd = st.pin[FB_JOINT_D];
   const double bx = st.hole[FB_JOINT_B][0] - pa[0], by = st.hole[FB_JOINT_B][1] - pa[1];
   const double c2 = cos(st.crank_angle), s2 = sin(st.crank_angle);
-  put(&t, "    <site name=\"%s\" pos=\"%.17g %.17g 0\"/>\n", site_name(def, FB_JOINT_A, 0), ha[0], ha[1]);
-  put(&t, "    <site name=\"%s\" pos=\"%.17g %.17g 0\"/>\n", site_name(def, FB_JOINT_D, 0), hd[0], hd[1]);
+  fb_text_put(&t, "    <site name=\"%s\" pos=\"%.17g %.17g 0\"/>\n", site_name(def, FB_JOINT_A, 0), ha[0], ha[1]);
+  fb_text_put(&t, "    <site name=\"%s\" pos=\"%.17g %.17g 0\"/>\n", site_name(def, FB_JOINT_D, 0), hd[0], hd[1]);
   put_native(&t, def, FB_JOINT_A, 0, ha[0], ha[1], "    ");
   put_native(&t, def, FB_JOINT_D, 0, hd[0], hd[1], "    ");
   /* crank: at A's pin, x along A->B */
-  put(&t, "    <body name=\"crank\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pa[0], pa[1],
+  fb_text_put(&t, "    <body name=\"crank\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pa[0], pa[1],
       st.crank_angle);
   put_inertial(&t, &def->link[FB_CRANK], a);
   put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_A) : "A", mask & (1 << FB_JOINT_A), opts->drive_armature);
-  put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_A, 1));
-  put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_B, 1), a);
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_A, 1));
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_B, 1), a);
   put_native(&t, def, FB_JOINT_A, 1, 0.0, 0.0, "      ");
   put_native(&t, def, FB_JOINT_B, 1, a, 0.0, "      ");
   /* coupler: at B's hole (in the crank's frame), x along B->C */
-  put(&t, "      <body name=\"coupler\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n",
+  fb_text_put(&t, "      <body name=\"coupler\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n",
       c2 * bx + s2 * by, -s2 * bx + c2 * by, st.coupler_angle - st.crank_angle);
   put_inertial(&t, &def->link[FB_COUPLER], b);
   put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_B) : "B", mask & (1 << FB_JOINT_B), 0.0);
-  put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_B, 0));
-  put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 1), b);
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_B, 0));
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 1), b);
   put_native(&t, def, FB_JOINT_B, 0, 0.0, 0.0, "      ");
   put_native(&t, def, FB_JOINT_C, 1, b, 0.0, "      ");
-  put(&t, "      </body>\n");
-  put(&t, "    </body>\n");
+  fb_text_put(&t, "      </body>\n");
+  fb_text_put(&t, "    </body>\n");
   /* follower: at D's pin, x along D->C */
-  put(&t, "    <body name=\"follower\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pd[0],
+  fb_text_put(&t, "    <body name=\"follower\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pd[0],
       pd[1], st.follower_angle);
   put_inertial(&t, &def->link[FB_FOLLOWER], c);
   put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_D) : "D", mask & (1 << FB_JOINT_D), 0.0);
-  put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_D, 1));
-  put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 0), c);
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_D, 1));
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 0), c);
   put_native(&t, def, FB_JOINT_D, 1, 0.0, 0.0, "      ");
   put_native(&t, def, FB_JOINT_C, 0, c, 0.0, "      ");
-  put(&t, "    </body>\n");
-  put(&t, "  </worldbody>\n");
+  fb_text_put(&t, "    </body>\n");
+  fb_text_put(&t, "  </worldbody>\n");
   put_bore_tendons(&t, def);
   if (!(mask & (1 << FB_JOINT_C))) {
-    put(&t, "  <equality>\n");
-    put(&t,
+    fb_text_put(&t, "  <equality>\n");
+    fb_text_put(&t,
         "    <connect name=\"loop\" body1=\"coupler\" body2=\"follower\" anchor=\"%.17g 0 0\" "
         "solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\"/>\n",
         b, -k, -damp, opts->loop_impedance, opts->loop_impedance);
-    put(&t, "  </equality>\n");
+    fb_text_put(&t, "  </equality>\n");
   }
   if (def->exported) put_drive(&t, def);
-  put(&t, "</mujoco>\n");
+  fb_text_put(&t, "</mujoco>\n");
   if (t.overflow)
     return fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than its %zu-byte buffer", size);
   return FB_OK;

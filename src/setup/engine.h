@@ -19,9 +19,9 @@
  *
  * Engines today: analytic and reference (engines.c, the exact kinematics and
  * the GSL reference behind the same interface, which compute their series
- * in create and replay it), ODE (src/ode/engine_ode.c), MuJoCo
- * (src/mujoco/engine_mujoco.c), Bullet (src/bullet/engine_bullet.c, C++
- * behind C linkage; docs/engines.md) and Simbody (src/simbody/engine_simbody.c,
+ * in create and replay it), ODE (src/engines/ode/engine_ode.c), MuJoCo
+ * (src/engines/mujoco/engine_mujoco.c), Bullet (src/engines/bullet/engine_bullet.c, C++
+ * behind C linkage; docs/engines.md) and Simbody (src/engines/simbody/engine_simbody.c,
  * likewise). A new engine fills
  * one fb_engine and is returned by fb_engine_get for its fb_engine_id. */
 #ifndef FB_ENGINE_H

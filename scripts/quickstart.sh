@@ -19,7 +19,7 @@ esac
 
 # every compiler and library the build enables (meson.build; tests/test_quickstart.py
 # fails when meson.build needs a package this list lacks): C, and C++ for the Bullet and
-# Simbody engines (src/bullet, src/simbody); SDFormat 12 for the test that loads
+# Simbody engines (src/engines/bullet, src/engines/simbody); SDFormat 12 for the test that loads
 # fourbar export --format sdf (tests/test_export_sdf.cpp)
 packages=(gcc g++ libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel

@@ -15,7 +15,7 @@
 //
 // Usage: test_export_sdf FOURBAR_BINARY CASE_FILE (tests/meson.build).
 // C++ only because libsdformat is C++; the export itself is C
-// (src/harness/export_sdf.c).
+// (src/report/export_sdf.c).
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>

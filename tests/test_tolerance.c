@@ -5,6 +5,7 @@
 
 #include "casefile.h"
 #include "fb_test.h"
+#include "linkage.h"
 #include "tolerance.h"
 
 /* central difference of a Brent-refined peak with step 1e-6 m: the peak's

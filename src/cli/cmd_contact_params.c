@@ -1,4 +1,4 @@
-/* fourbar contact-params: flags in, fb_cp_run (src/harness/contact_params.h),
+/* fourbar contact-params: flags in, fb_cp_run (src/studies/contact_params.h),
  * the result printed as text or JSON. No physics here. */
 #include <getopt.h>
 #include <jansson.h>

@@ -1,4 +1,4 @@
-/* fourbar export: flags in, the case's model text (src/harness/export.h)
+/* fourbar export: flags in, the case's model text (src/report/export.h)
  * out to standard output or --out FILE (written whole, then renamed). */
 #include <getopt.h>
 #include <stdio.h>

@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "textsafe.h"
 #include "clock.h"
+#include "linkage.h"
 #include "tolerance.h"
 
 /* a Monte Carlo estimated longer than this is announced on stderr [s] */

@@ -24,6 +24,7 @@
 #define FB_EFFECTIVE_MASS_H
 
 #include "case.h"
+#include "linkage.h"
 
 /* The mechanism's configuration and inertia for the effective mass. */
 typedef struct {

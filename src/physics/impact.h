@@ -75,7 +75,7 @@ fb_status fb_impact_reference(fb_impact_result *out, const fb_impact_def *d, fb_
  * the contact after 100 estimated contact durations. */
 fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag);
 
-/* Bullet (src/bullet/impact_bullet.cpp; only in builds with Bullet,
+/* Bullet (src/engines/bullet/impact_bullet.cpp; only in builds with Bullet,
  * FB_HAVE_BULLET): one free body of mass d->mass
  * meets the ground through the same soft row as the clearance joints
  * (one row per step in contact, ERP/CFM of fb_contact_row_step with
@@ -92,7 +92,7 @@ fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def *d,
                            const fb_bullet_opts *bt, fb_diag *diag);
 
 /* The same impact through Bullet's own contact (builds with Bullet,
- * FB_HAVE_BULLET; src/bullet/impact_bullet.cpp): a sphere of mass [kg] meets
+ * FB_HAVE_BULLET; src/engines/bullet/impact_bullet.cpp): a sphere of mass [kg] meets
  * a static plane at speed [m/s] (no gravity, frictionless, restitution 0),
  * the sphere's btCollisionObject::setContactStiffnessAndDamping(stiffness
  * [N/m], damping [N s/m]) and the plane's (BT_LARGE_FLOAT, 0), split impulse
@@ -138,7 +138,7 @@ fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, do
                             double cfm, double max_vel, double t_max, double onset_phase,
                             fb_diag *diag);
 
-/* The same impact in MuJoCo (builds with it; src/mujoco/impact_mujoco.c):
+/* The same impact in MuJoCo (builds with it; src/engines/mujoco/impact_mujoco.c):
  * a sphere of mass [kg] on a vertical slide joint meets a plane, both geoms
  * with the given solref and solimp (condim 1: frictionless), Euler
  * integrator, step h [s], no gravity.

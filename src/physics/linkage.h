@@ -25,24 +25,11 @@
 
 #include <stddef.h>
 
+#include "links.h"
 #include "status.h"
-
-/* Index of each link in length arrays. */
-typedef enum {
-  FB_CRANK = 0,
-  FB_COUPLER = 1,
-  FB_FOLLOWER = 2,
-  FB_GROUND = 3,
-  FB_LINK_COUNT = 4
-} fb_link;
 
 /* Lower-case name of a link ("crank", "coupler", "follower", "ground"). */
 const char *fb_link_name(fb_link link);
-
-typedef enum {
-  FB_BRANCH_OPEN = 0,   /* C left of B->D: uncrossed quadrilateral */
-  FB_BRANCH_CROSSED = 1 /* C right of B->D: coupler and follower cross */
-} fb_branch;
 
 /* Grashof class (Norton, Design of Machinery, sec. 2.12). s, l, p, q are the
  * shortest, longest and the two other link lengths. */
@@ -63,11 +50,6 @@ typedef enum {
 /* Name of a Grashof class ("crank-rocker", "double-crank", "double-rocker",
  * "rocker-crank", "change-point", "non-Grashof"). */
 const char *fb_grashof_name(fb_grashof g);
-
-/* Link lengths of one linkage. */
-typedef struct {
-  double length[FB_LINK_COUNT]; /* crank, coupler, follower, ground [m] (4) */
-} fb_linkage;
 
 /* Full kinematic state at one crank angle. */
 typedef struct {

@@ -9,7 +9,7 @@
 
 #include "clock.h"
 #include "linkage.h"
-#include "outcome_text.h"
+#include "stop_text.h"
 #include "start.h"
 
 typedef struct {

@@ -1,7 +1,7 @@
 /* What every bare peer program shares (tests/peers/peer_*.c, .cpp): reading
  * its settings, the samples it keeps, its clock and its one line of JSON.
  * Engine-free and harness-free: a peer uses its engine's API and this
- * header only. `fourbar bench --grid peers` (src/harness/peers.c) starts a
+ * header only. `fourbar bench --grid peers` (src/studies/peers.c) starts a
  * peer with the ideal four-bar of the case and the settings the harness's
  * model runs with, and compares its cost with the harness's.
  *

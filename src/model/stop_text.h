@@ -1,8 +1,8 @@
-/* The writers' text for stop reasons and warnings (outcome.h): the words of
- * summary.json's "status" and "warnings", the printed table and report.md.
- * Nothing outside the writers turns an outcome into text or parses one. */
-#ifndef FB_OUTCOME_TEXT_H
-#define FB_OUTCOME_TEXT_H
+/* The words of a stop reason (outcome.h): summary.json's "status", the
+ * printed table, report.md and error messages. Defined in stop_text.c;
+ * outcome_text.h (the writers' words) includes this header. */
+#ifndef FB_STOP_TEXT_H
+#define FB_STOP_TEXT_H
 
 #include <stddef.h>
 
@@ -23,10 +23,5 @@ const char *fb_stop_kind_name(fb_stop_kind k);
 /* The kind named by word (fb_stop_kind_name; "nan" is non-finite), or
  * FB_STOP_COUNT when unknown. */
 fb_stop_kind fb_stop_kind_parse(const char *word);
-
-/* The warning as a sentence, e.g. "outside the penalty model's validity:
- * penetration ... um is ... times the radial clearance ... um (above 2
- * times)". Writes into buf and returns it. */
-const char *fb_warning_text(char *buf, size_t size, const fb_warning *w);
 
 #endif

@@ -1,6 +1,6 @@
 /* Loading an MJCF text from memory (MuJoCo's virtual file system), with
  * fourbar's MuJoCo error and warning handlers installed. For files inside
- * src/mujoco only: it includes MuJoCo's header. */
+ * src/engines/mujoco only: it includes MuJoCo's header. */
 #ifndef FB_MUJOCO_LOAD_H
 #define FB_MUJOCO_LOAD_H
 

@@ -1,4 +1,4 @@
-/* C++, private to src/bullet: the constraint rows the Bullet scene and the
+/* C++, private to src/engines/bullet: the constraint rows the Bullet scene and the
  * single impact hand to Bullet, and the two solvers that treat a soft row's
  * CFM as Bullet treats its own contacts' CFM. Included only by the .cpp
  * files of this folder. */

@@ -84,20 +84,6 @@ typedef struct fb_mujoco_scene fb_mujoco_scene;
  * small. */
 fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
 
-/* The MJCF a user loads (fourbar export, docs/commands.md): model sm's
- * mechanism with bodies crank, coupler, follower (ground the world), hinges
- * named after their joints (ground-crank, crank-coupler, follower-ground),
- * sites <joint>_pin and <joint>_hole at each joint's pin and hole centre
- * (crank-coupler_pin), the loop closed by an equality connect, each
- * clearance joint as mujoco-clearance-native's bore tendon (limited to the
- * radial clearance, solreflimit in the force form with MuJoCo's own
- * tendon_invweight0 and the damper of the law's restitution on its design
- * mass), the crank's flywheel armature and a velocity actuator "drive" at
- * the case's speed, and a keyframe "start" (qvel, ctrl). Errors: those of
- * fb_scene_def_check; FB_ERR_ARG for a clearance model other than
- * mujoco-clearance-native or a text MuJoCo rejects; FB_ERR_RANGE when buf
- * is too small. */
-fb_status fb_mujoco_export(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
 
 /* Checks the definition (fb_scene_def_check), compiles the model
  * (mj_loadXML from a VFS holding the MJCF text) and sets the state at t = 0

@@ -7,7 +7,8 @@
 
 #include <stddef.h>
 
-#include "linkage.h"
+#include "links.h"
+#include "status.h"
 
 #define FB_NAME_SIZE 64
 #define FB_MAX_MODELS 16

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "linkage.h"
 #include "model_table.h"
 
 const char *fb_joint_name(int j) {

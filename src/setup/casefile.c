@@ -17,6 +17,7 @@
 #include "contact.h"
 #include "iso2768.h"
 #include "iso286.h"
+#include "linkage.h"
 #include "model_table.h"
 #include "suggest.h"
 #include "textsafe.h"

@@ -5,13 +5,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "engine.h"
 #include "fb_config.h"
 #include "resolution.h"
 #include "model_table.h"
 #include "scene_def.h"
-#if FB_HAVE_MUJOCO
-#include "mujoco_scene.h"
-#endif
 
 /* after a successful export: diag->msg empty, or the note that a clearance
  * contact of sm is beyond the run's resolution rule at the exported step

@@ -20,10 +20,10 @@
 typedef enum {
   FB_ENGINE_ANALYTIC = 0,  /* exact kinematics (analytic.h) sampled on the grid */
   FB_ENGINE_REFERENCE = 1, /* minimal-coordinate dynamics, GSL rk8pd (reference.h) */
-  FB_ENGINE_ODE = 2,       /* Open Dynamics Engine (src/ode) */
-  FB_ENGINE_MUJOCO = 3,    /* MuJoCo (src/mujoco), when built */
-  FB_ENGINE_BULLET = 4,    /* Bullet Physics, double precision (src/bullet), when built */
-  FB_ENGINE_SIMBODY = 5,   /* Simbody (src/simbody), when built */
+  FB_ENGINE_ODE = 2,       /* Open Dynamics Engine (src/engines/ode) */
+  FB_ENGINE_MUJOCO = 3,    /* MuJoCo (src/engines/mujoco), when built */
+  FB_ENGINE_BULLET = 4,    /* Bullet Physics, double precision (src/engines/bullet), when built */
+  FB_ENGINE_SIMBODY = 5,   /* Simbody (src/engines/simbody), when built */
   FB_ENGINE_COUNT
 } fb_engine_id;
 

@@ -19,9 +19,9 @@
  *
  * Engines today: analytic and reference (engines.c, the exact kinematics and
  * the GSL reference behind the same interface, which compute their series
- * in create and replay it), ODE (src/ode/engine_ode.c), MuJoCo
- * (src/mujoco/engine_mujoco.c), Bullet (src/bullet/engine_bullet.c, C++
- * behind C linkage; docs/engines.md) and Simbody (src/simbody/engine_simbody.c,
+ * in create and replay it), ODE (src/engines/ode/engine_ode.c), MuJoCo
+ * (src/engines/mujoco/engine_mujoco.c), Bullet (src/engines/bullet/engine_bullet.c, C++
+ * behind C linkage; docs/engines.md) and Simbody (src/engines/simbody/engine_simbody.c,
  * likewise). A new engine fills
  * one fb_engine and is returned by fb_engine_get for its fb_engine_id. */
 #ifndef FB_ENGINE_H
@@ -111,5 +111,24 @@ extern const fb_engine fb_engine_ode;
 extern const fb_engine fb_engine_mujoco; /* only in builds with MuJoCo (FB_HAVE_MUJOCO) */
 extern const fb_engine fb_engine_bullet; /* only in builds with Bullet (FB_HAVE_BULLET) */
 extern const fb_engine fb_engine_simbody; /* only in builds with Simbody (FB_HAVE_SIMBODY) */
+
+/* An engine's own entry point reached from above the engines floor (the
+ * export, report/export.c): declared here, defined in its engine folder,
+ * only in builds with MuJoCo (FB_HAVE_MUJOCO). Issue 42 turns it into an op
+ * of the engine table. */
+/* The MJCF a user loads (fourbar export, docs/commands.md): model sm's
+ * mechanism with bodies crank, coupler, follower (ground the world), hinges
+ * named after their joints (ground-crank, crank-coupler, follower-ground),
+ * sites <joint>_pin and <joint>_hole at each joint's pin and hole centre
+ * (crank-coupler_pin), the loop closed by an equality connect, each
+ * clearance joint as mujoco-clearance-native's bore tendon (limited to the
+ * radial clearance, solreflimit in the force form with MuJoCo's own
+ * tendon_invweight0 and the damper of the law's restitution on its design
+ * mass), the crank's flywheel armature and a velocity actuator "drive" at
+ * the case's speed, and a keyframe "start" (qvel, ctrl). Errors: those of
+ * fb_scene_def_check; FB_ERR_ARG for a clearance model other than
+ * mujoco-clearance-native or a text MuJoCo rejects; FB_ERR_RANGE when buf
+ * is too small. */
+fb_status fb_mujoco_export(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
 
 #endif

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "joint_law.h"
+#include "linkage.h"
 #include "tolerance.h"
 
 /* A contact that begins with a penetration rate below 1 mm/s is the pin

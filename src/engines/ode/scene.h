@@ -2,7 +2,7 @@
  * four ideal hinges (axis +z), gravity along -y in the mechanism plane, the
  * crank driven at constant speed by a hinge velocity motor. It owns the
  * world and its joints; engine_ode.c puts it behind the engine interface
- * (engine.h), and nothing outside src/ode includes this header.
+ * (engine.h), and nothing outside src/engines/ode includes this header.
  *
  * Crank drive: the ground hinge's motor (dParamVel = omega2, dParamFMax =
  * drive_torque_max) is a velocity constraint row solved with the others each

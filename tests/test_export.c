@@ -158,14 +158,24 @@ static void test_clearance_export_force_matches_reference(void **state) {
 }
 
 /* an export at a step beyond the run's resolution rule is written, and
- * says so (the note the command prints as a warning); at the case's own
- * step (h omega_c 0.43 at the law's design mass) it says nothing */
+ * says so (the note the command prints as a warning); so is one within it
+ * whose contact fails contact-params' verification (the paper case at its
+ * own step: h omega_c 0.43 at the law's design mass, its largest faithful
+ * step 1.02e-6 s); at a step below that one it says nothing */
 static void test_export_notes_an_unresolved_contact(void **state) {
   (void)state;
   static fb_case c;
   static char text[1 << 20];
   fb_diag d;
   fb_test_paper_case(&c, NULL, 0);
+  assert_int_equal(fb_export_sdf(text, sizeof text, &c, 0, &d), FB_OK);
+  assert_non_null(strstr(d.msg, "crank-coupler: at h = 3.317e-06 s this contact fails "
+                                "contact-params' verification"));
+  assert_non_null(strstr(d.msg, "its largest faithful step: 1.02e-06 s"));
+  assert_int_equal(fb_export_mjcf(text, sizeof text, &c, 0, &d), FB_OK);
+  assert_non_null(strstr(d.msg, "fails contact-params' verification"));
+  const char *fine[] = {"solver.h_s=1e-6"};
+  fb_test_paper_case(&c, fine, 1);
   assert_int_equal(fb_export_sdf(text, sizeof text, &c, 0, &d), FB_OK);
   assert_string_equal(d.msg, "");
   assert_int_equal(fb_export_mjcf(text, sizeof text, &c, 0, &d), FB_OK);

@@ -537,20 +537,8 @@ int fb_cmd_contact_params(int argc, char **argv) {
         return fb_cli_fail(P, 2, "--case %s has %d clearance joints: name one with --joint",
                            case_path, n);
     }
-    fb_case_contact cc;
-    if (fb_case_contact_of(&cc, &cs, joint, &cd) != FB_OK)
+    if (fb_cp_request_from_case(&q, &cs, joint, &cd) != FB_OK)
       return fb_cli_fail(P, 2, "--case %s: %s", case_path, cd.msg);
-    if (q.law == FB_LAW_HERTZ) {
-      q.stiffness = cc.impact.stiffness;
-      q.exponent = cc.impact.exponent;
-      q.load = cc.est.force_expected; /* the operating point: the joint's expected force */
-    } else {
-      q.stiffness = cc.restitution.stiffness;
-      q.restitution = cc.restitution.restitution;
-    }
-    q.mass_min = cc.est.m_eff_min;
-    q.mass_max = cc.est.m_eff_max;
-    if (isnan(q.h)) q.h = cc.h;
   }
   /* no step given: also the answers at MuJoCo's and Gazebo's default steps */
   q.engine_steps = !h_given;

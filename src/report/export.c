@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "contact_params.h"
 #include "engine.h"
 #include "fb_config.h"
 #include "resolution.h"
@@ -12,24 +13,48 @@
 #include "scene_def.h"
 
 /* after a successful export: diag->msg empty, or the note that a clearance
- * contact of sm is beyond the run's resolution rule at the exported step
- * (h sqrt(k / m) > FB_H_OMEGA_C_BOUND with the law's spring k and design
- * mass m): the file is then not the verified contact, and says so nowhere
- * else a user looks first */
-static void resolution_note(const fb_scene_model *sm, fb_diag *diag) {
+ * contact of sm is not faithful at the exported step: beyond the run's
+ * resolution rule (h sqrt(k / m) > FB_H_OMEGA_C_BOUND with the law's spring
+ * k and design mass m), or, within it, failing contact-params' own
+ * verification of the restitution law's single impact over the joint's
+ * effective-mass range and every onset phase (fb_cp_run, the same answer
+ * as fourbar contact-params --case). The file is then not the verified
+ * contact, and says so nowhere else a user looks first. */
+static void resolution_note(const fb_case *c, const fb_scene_model *sm, fb_diag *diag) {
   if (!diag) return;
   diag->msg[0] = '\0';
+  static const char more[] = "fourbar contact-params --case gives the largest faithful step and "
+                             "the stiffest faithful contact at yours";
   for (int j = 0; j < 4; j++) {
     if (!(sm->clearance_mask & (1 << j))) continue;
     const double w = sm->solver.h * sqrt(sm->law[j].stiffness / sm->law[j].mass);
     if (w > FB_H_OMEGA_C_BOUND) {
       snprintf(diag->msg, sizeof diag->msg,
                "%s: h omega_c = %.3g at h = %.4g s passes %g, the bound a run holds its contacts "
-               "to: this contact is not faithful at this step (fourbar contact-params --case "
-               "gives the largest faithful step and the stiffest faithful contact at yours)",
-               fb_joint_name(j), w, sm->solver.h, FB_H_OMEGA_C_BOUND);
+               "to: this contact is not faithful at this step (%s)",
+               fb_joint_name(j), w, sm->solver.h, FB_H_OMEGA_C_BOUND, more);
       return;
     }
+    fb_cp_request q;
+    fb_cp_request_default(&q);
+    q.h = sm->solver.h;
+    q.engine_steps = 0;
+    fb_cp_result *o = malloc(sizeof *o);
+    fb_diag dg;
+    if (!o) return;
+    if (fb_cp_request_from_case(&q, c, j, &dg) == FB_OK && fb_cp_run(o, &q, &dg) == FB_OK &&
+        !o->given.recommended) {
+      char largest[48] = "none found";
+      if (isfinite(o->largest_step)) snprintf(largest, sizeof largest, "%.3g s", o->largest_step);
+      snprintf(diag->msg, sizeof diag->msg,
+               "%s: at h = %.4g s this contact fails contact-params' verification (restitution "
+               "within 1 %%, penetration within 2 %%, over the joint's effective masses and every "
+               "onset phase); its largest faithful step: %s (%s)", fb_joint_name(j), sm->solver.h,
+               largest, more);
+      free(o);
+      return;
+    }
+    free(o);
   }
 }
 
@@ -61,7 +86,7 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
   fb_scene_model sm;
   fb_status st = one_model(&sm, &def, c, name, 1, diag);
   if (st == FB_OK) st = fb_mujoco_export(buf, size, &sm, diag);
-  if (st == FB_OK) resolution_note(&sm, diag);
+  if (st == FB_OK) resolution_note(c, &sm, diag);
   free(def);
   return st;
 #else
@@ -77,7 +102,7 @@ fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_
   fb_scene_model sm;
   fb_status st = one_model(&sm, &def, c, name, 0, diag);
   if (st == FB_OK) st = fb_export_sdf_model(buf, size, &sm, diag);
-  if (st == FB_OK) resolution_note(&sm, diag);
+  if (st == FB_OK) resolution_note(c, &sm, diag);
   free(def);
   return st;
 }

@@ -494,6 +494,24 @@ static fb_status at_step(fb_cp_step *out, double *k, double *c, const fb_cp_resu
   return FB_OK;
 }
 
+fb_status fb_cp_request_from_case(fb_cp_request *q, const fb_case *c, int j, fb_diag *diag) {
+  fb_case_contact cc;
+  fb_status st = fb_case_contact_of(&cc, c, j, diag);
+  if (st != FB_OK) return st;
+  if (q->law == FB_LAW_HERTZ) {
+    q->stiffness = cc.impact.stiffness;
+    q->exponent = cc.impact.exponent;
+    q->load = cc.est.force_expected; /* the operating point: the joint's expected force */
+  } else {
+    q->stiffness = cc.restitution.stiffness;
+    q->restitution = cc.restitution.restitution;
+  }
+  q->mass_min = cc.est.m_eff_min;
+  q->mass_max = cc.est.m_eff_max;
+  if (isnan(q->h)) q->h = cc.h;
+  return FB_OK;
+}
+
 fb_status fb_cp_run(fb_cp_result *o, const fb_cp_request *q, fb_diag *diag) {
   memset(o, 0, sizeof *o);
   fb_status st = fb_cp_request_check(q, diag);

@@ -41,6 +41,7 @@
 #ifndef FB_CONTACT_PARAMS_H
 #define FB_CONTACT_PARAMS_H
 
+#include "case.h"
 #include "contact.h"
 #include "engine_params.h"
 #include "impact.h"
@@ -214,6 +215,16 @@ typedef struct {
   fb_cp_per_step per_step;
   int failed;               /* a recommended row failed its verification (or could not run) */
 } fb_cp_result;
+
+/* The contact of clearance joint j (FB_JOINT_*) of case c into q, as
+ * `fourbar contact-params --case` reads it: with q->law FB_LAW_RESTITUTION
+ * the law of the case's clearance-restitution models (k, cr), with
+ * FB_LAW_HERTZ that of its clearance-impact models (K, n, linearised at the
+ * joint's expected force); the joint's effective-mass range over a
+ * revolution and every direction (resolution.h, fb_case_contact_of); the
+ * case's step when q->h is NAN. The other fields of q stay as given.
+ * Errors: those of fb_case_contact_of. */
+fb_status fb_cp_request_from_case(fb_cp_request *q, const fb_case *c, int j, fb_diag *diag);
 
 /* Runs q (checked with fb_cp_request_check first): translation, rows, and
  * with q->verify the largest faithful step, at_step and every row's

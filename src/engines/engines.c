@@ -16,22 +16,23 @@
 #include "fb_config.h"
 #include "reference.h"
 
+/* the table of engine ID when this build has it (FB_HAVE_ID 1), else NULL */
+#define FB_ENGINE_IF_1(name) &fb_engine_##name
+#define FB_ENGINE_IF_0(name) NULL
+#define FB_ENGINE_IF_(have, name) FB_ENGINE_IF_##have(name)
+#define FB_ENGINE_IF(have, name) FB_ENGINE_IF_(have, name)
+
+/* the registry: the one list of engine tables, by fb_engine_id */
+static const fb_engine *const registry[FB_ENGINE_COUNT] = {
+    [FB_ENGINE_ANALYTIC] = &fb_engine_analytic,
+    [FB_ENGINE_REFERENCE] = &fb_engine_reference,
+#define X(ID, name) [FB_ENGINE_##ID] = FB_ENGINE_IF(FB_HAVE_##ID, name),
+    FB_ENGINE_LIST
+#undef X
+};
+
 const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
-  switch (id) {
-    case FB_ENGINE_ANALYTIC: return &fb_engine_analytic;
-    case FB_ENGINE_REFERENCE: return &fb_engine_reference;
-    case FB_ENGINE_ODE: return &fb_engine_ode;
-#if FB_HAVE_MUJOCO
-    case FB_ENGINE_MUJOCO: return &fb_engine_mujoco;
-#endif
-#if FB_HAVE_BULLET
-    case FB_ENGINE_BULLET: return &fb_engine_bullet;
-#endif
-#if FB_HAVE_SIMBODY
-    case FB_ENGINE_SIMBODY: return &fb_engine_simbody;
-#endif
-    default: break;
-  }
+  if (id >= 0 && id < FB_ENGINE_COUNT && registry[id]) return registry[id];
   fb_diag_set(diag, FB_ERR_ARG, "engine '%s' is not part of this build%s%s", fb_engine_name(id),
               fb_engine_howto(id)[0] ? ": " : "", fb_engine_howto(id));
   return NULL;

@@ -104,13 +104,16 @@ const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag);
  * reaches t - h/2 [s]. Errors: those of e->step. */
 fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, fb_diag *diag);
 
-/* The engines (defined next to their code). */
+/* The engines (defined next to their code): the analytic and reference
+ * engines (engines.c) ... */
 extern const fb_engine fb_engine_analytic;
 extern const fb_engine fb_engine_reference;
-extern const fb_engine fb_engine_ode;
-extern const fb_engine fb_engine_mujoco; /* only in builds with MuJoCo (FB_HAVE_MUJOCO) */
-extern const fb_engine fb_engine_bullet; /* only in builds with Bullet (FB_HAVE_BULLET) */
-extern const fb_engine fb_engine_simbody; /* only in builds with Simbody (FB_HAVE_SIMBODY) */
+/* fb_engine_<name> of every engine of FB_ENGINE_LIST (fb_config.h), each
+ * defined in its folder src/engines/<name>/ and linked only in builds with it
+ * (FB_HAVE_<ID>). */
+#define X(ID, name) extern const fb_engine fb_engine_##name;
+FB_ENGINE_LIST
+#undef X
 
 /* An engine's own entry point reached from above the engines floor (the
  * export, report/export.c): declared here, defined in its engine folder,

@@ -6,24 +6,33 @@
 #include "fb_config.h"
 
 const char *fb_engine_name(fb_engine_id e) {
-  static const char *const names[FB_ENGINE_COUNT] = {"analytic", "reference", "ode", "mujoco",
-                                                             "bullet",
-                                                             "simbody"};
+  static const char *const names[FB_ENGINE_COUNT] = {
+      "analytic", "reference",
+#define X(ID, name) #name,
+      FB_ENGINE_LIST
+#undef X
+  };
   return (e >= 0 && e < FB_ENGINE_COUNT) ? names[e] : "?";
 }
 
 int fb_engine_available(fb_engine_id e) {
-  if (e == FB_ENGINE_MUJOCO) return FB_HAVE_MUJOCO;
-  if (e == FB_ENGINE_BULLET) return FB_HAVE_BULLET;
-  if (e == FB_ENGINE_SIMBODY) return FB_HAVE_SIMBODY;
-  return e >= 0 && e < FB_ENGINE_COUNT;
+  switch (e) {
+#define X(ID, name) \
+  case FB_ENGINE_##ID: return FB_HAVE_##ID;
+    FB_ENGINE_LIST
+#undef X
+    default: return e >= 0 && e < FB_ENGINE_COUNT;
+  }
 }
 
 const char *fb_engine_howto(fb_engine_id e) {
-  if (e == FB_ENGINE_MUJOCO) return FB_MUJOCO_HOWTO;
-  if (e == FB_ENGINE_BULLET) return FB_BULLET_HOWTO;
-  if (e == FB_ENGINE_SIMBODY) return FB_SIMBODY_HOWTO;
-  return "";
+  switch (e) {
+#define X(ID, name) \
+  case FB_ENGINE_##ID: return FB_##ID##_HOWTO;
+    FB_ENGINE_LIST
+#undef X
+    default: return "";
+  }
 }
 
 const char *fb_collider_name(fb_collider c) {
@@ -32,8 +41,7 @@ const char *fb_collider_name(fb_collider c) {
 }
 
 int fb_engine_steps_world(fb_engine_id e) {
-  return e == FB_ENGINE_ODE || e == FB_ENGINE_MUJOCO || e == FB_ENGINE_BULLET ||
-         e == FB_ENGINE_SIMBODY;
+  return e > FB_ENGINE_REFERENCE && e < FB_ENGINE_COUNT;
 }
 
 /* short names for the rows */

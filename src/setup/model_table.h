@@ -14,48 +14,38 @@
 #ifndef FB_MODEL_TABLE_H
 #define FB_MODEL_TABLE_H
 
+#include "fb_config.h"
 #include "status.h"
 
-/* Engines a model can run on (engine.h has their interface). */
+/* Engines a model can run on (engine.h has their interface): the analytic
+ * and reference engines, then the engines that step a world in the order of
+ * meson.build's engine_names (FB_ENGINE_LIST, fb_config.h):
+ * FB_ENGINE_ODE = 2 (src/engines/ode), FB_ENGINE_MUJOCO = 3, FB_ENGINE_BULLET
+ * = 4 (double precision), FB_ENGINE_SIMBODY = 5, each in src/engines/<name>
+ * and, but for ODE, only in builds with it (FB_HAVE_<ID>). */
 typedef enum {
   FB_ENGINE_ANALYTIC = 0,  /* exact kinematics (analytic.h) sampled on the grid */
   FB_ENGINE_REFERENCE = 1, /* minimal-coordinate dynamics, GSL rk8pd (reference.h) */
-  FB_ENGINE_ODE = 2,       /* Open Dynamics Engine (src/engines/ode) */
-  FB_ENGINE_MUJOCO = 3,    /* MuJoCo (src/engines/mujoco), when built */
-  FB_ENGINE_BULLET = 4,    /* Bullet Physics, double precision (src/engines/bullet), when built */
-  FB_ENGINE_SIMBODY = 5,   /* Simbody (src/engines/simbody), when built */
+#define X(ID, name) FB_ENGINE_##ID,
+  FB_ENGINE_LIST
+#undef X
   FB_ENGINE_COUNT
 } fb_engine_id;
 
-/* "analytic", "reference", "ode", "mujoco", "bullet", "simbody": the "kind" written in summary.json. */
+/* "analytic", "reference", then each engine's folder name ("ode", "mujoco",
+ * "bullet", "simbody"): the "kind" written in summary.json. */
 const char *fb_engine_name(fb_engine_id e);
 
 /* 1 when this build has engine e (MuJoCo only when built with it). */
 int fb_engine_available(fb_engine_id e);
 
-/* How to get the MuJoCo engine into a build that lacks it. */
-#define FB_MUJOCO_HOWTO                                                                  \
-  "the mujoco-* models need MuJoCo 2.2.2: install it (apt-get install libmujoco-dev, or " \
-  "bash scripts/quickstart.sh build, which installs it) and rebuild with meson setup "   \
-  "--reconfigure build -Dmujoco=enabled"
-
-/* How to get the Bullet engine into a build that lacks it. */
-#define FB_BULLET_HOWTO                                                                     \
-  "the bullet-* models need Bullet 3.24 in double precision: install it (apt-get install "  \
-  "libbullet-dev, or bash scripts/quickstart.sh build, which installs it) and rebuild with " \
-  "meson setup --reconfigure build -Dbullet=enabled"
-
 /* The how-to for engine e when this build lacks it ("" for engines every
- * build has). */
+ * build has): FB_<ID>_HOWTO of fb_config.h, written in the engine folder's
+ * meson.build. */
 const char *fb_engine_howto(fb_engine_id e);
-/* How to get the Simbody engine into a build that lacks it. */
-#define FB_SIMBODY_HOWTO                                                                   \
-  "the simbody-* models need Simbody 3.7: install it (apt-get install libsimbody-dev, or " \
-  "bash scripts/quickstart.sh build, which installs it) and rebuild with meson setup "     \
-  "--reconfigure build -Dsimbody=enabled"
 
-/* 1 for engines that step a world of bodies and joints (ODE, MuJoCo): they
- * have a loop-closure drift and a stability guard. */
+/* 1 for engines that step a world of bodies and joints (every engine of
+ * FB_ENGINE_LIST): they have a loop-closure drift and a stability guard. */
 int fb_engine_steps_world(fb_engine_id e);
 
 /* Which link lengths a model uses. */

@@ -92,13 +92,13 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
       const double d = fabs(s->crank_angle[i] - (c->crank_angle0 + omega2 * s->t[i]));
       if (d > lag) lag = d, t_lag = s->t[i];
     }
-    if (lag > FB_DRIVE_LAG_WARN_RAD) {
-      /* ODE's drive is a capped velocity motor, MuJoCo's a flywheel */
+    const fb_engine *e = fb_engine_get(m->run.model->engine, NULL);
+    if (lag > FB_DRIVE_LAG_WARN_RAD && e && e->drive_key) {
+      /* the key of the engine's drive (ODE's is a capped velocity motor,
+       * MuJoCo's a flywheel) */
       fb_warning w = {.kind = FB_WARN_DRIVE_SATURATED, .value = lag, .limit = FB_DRIVE_LAG_WARN_RAD,
                       .t = t_lag};
-      snprintf(w.what, sizeof w.what, "%s",
-               m->run.model->engine == FB_ENGINE_MUJOCO ? "[mujoco] drive_armature_kg_m2"
-                                                        : "[solver] drive_torque_max_n_m");
+      snprintf(w.what, sizeof w.what, "%s", e->drive_key);
       warn(m, &w);
     }
   }
@@ -180,50 +180,11 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   return FB_OK;
 }
 
-/* one model's wall time per sample on an idle machine [s], from the
- * options that set its cost (run.h, FB_COST_*); 0 for an unknown name */
+/* one model's wall time per sample on an idle machine [s]: its engine's
+ * (fb_engine.cost_per_sample) */
 static double model_cost(const fb_model *m, const fb_case *c) {
-  const int clearance = m->joints == FB_JOINTS_CLEARANCE;
-  switch (m->engine) {
-    case FB_ENGINE_ANALYTIC: return FB_COST_ANALYTIC_S;
-    case FB_ENGINE_REFERENCE:
-      /* with its check integration at a tighter tolerance (not in a member) */
-      return FB_COST_REFERENCE_S * (c->member ? 1.0 : 1.0 + FB_COST_REFERENCE_CHECK);
-    case FB_ENGINE_ODE: {
-      double s = c->solver.stepper == FB_STEPPER_QUICK
-                     ? FB_COST_ODE_QUICK_S + FB_COST_ODE_QUICK_ITERATION_S * c->solver.quick_iterations
-                     : FB_COST_ODE_S;
-      const int collider = m->collider != FB_COLLIDER_EXACT ? (int)m->collider
-                           : c->clearance.collider == FB_CASE_COLLIDER_FACETED ? FB_COLLIDER_FACETED
-                           : c->clearance.collider == FB_CASE_COLLIDER_CCD ? FB_COLLIDER_CCD
-                                                                           : FB_COLLIDER_EXACT;
-      if (clearance && collider == FB_COLLIDER_FACETED)
-        s += FB_COST_ODE_BOX_S *
-             (c->clearance.segments_given ? c->clearance.segments : c->clearance.faceted_n);
-      if (clearance && collider == FB_COLLIDER_CCD)
-        s += FB_COST_ODE_CCD_S + FB_COST_ODE_CCD_SEGMENT_S * c->clearance.segments;
-      return s;
-    }
-    case FB_ENGINE_MUJOCO:
-      return !clearance ? FB_COST_MUJOCO_S
-             : m->collider == FB_COLLIDER_NATIVE ? FB_COST_MUJOCO_NATIVE_S
-                                                 : FB_COST_MUJOCO_CLEARANCE_S;
-    case FB_ENGINE_BULLET:
-      return c->bullet.solver == FB_BULLET_SEQUENTIAL_IMPULSE
-                 ? FB_COST_BULLET_SI_S + FB_COST_BULLET_ITERATION_S * c->bullet.iterations
-                 : FB_COST_BULLET_S;
-    case FB_ENGINE_SIMBODY: {
-      /* sampling, plus the integrator's own steps, which grow as the
-       * accuracy tightens (measured: x2.2 to x3.6 per factor 100) */
-      const double steps_rev = (clearance ? FB_COST_SIMBODY_STEPS_REV_CLEARANCE
-                                          : FB_COST_SIMBODY_STEPS_REV_IDEAL) *
-                               pow(FB_SIMBODY_ACCURACY_DEFAULT / c->simbody.accuracy,
-                                   FB_COST_SIMBODY_ACCURACY_POWER);
-      const double samples = fb_case_duration(c) / c->solver.h + 1.0;
-      return FB_COST_SIMBODY_SAMPLE_S + FB_COST_SIMBODY_STEP_S * steps_rev * c->revolutions / samples;
-    }
-    default: return FB_COST_ODE_S;
-  }
+  const fb_engine *e = fb_engine_get(m->engine, NULL);
+  return e && e->cost_per_sample ? e->cost_per_sample(m, c) : FB_COST_DEFAULT_S;
 }
 
 void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {

@@ -153,40 +153,12 @@ typedef struct fb_run_s {
  * model's cost per sample, FB_COST_LOAD_FACTOR times over for a loaded
  * machine; an ensemble's members (ensemble.h) add its clearance models and
  * references once per member, in rounds of --jobs workers. Sums over the
- * case's models. The costs per sample [s] were measured on the paper's case
- * (2 revolutions, timing.json's time_per_step_us, an idle 2-core machine):
- * analytic 2.5 us; reference 11 us, its check integration at a 100 times
- * tighter tolerance about twice that; ODE dWorldStep 3 to 4.3 us,
- * dWorldQuickStep 0.57 to 0.63 us per iteration (22 us at 20, 1257 us at
- * 2000), the faceted collider 0.66 us per box (43 us at 64, 2716 us at
- * 4096), the libccd collider 15 us + 0.0033 us per segment (221 us at
- * 65536); MuJoCo 3.5 to 4.2 us ideal, 15.5 to 17.5 us clearance, 23 us
- * native; Bullet's MLCP 12 to 17.6 us whatever its iterations, sequential
- * impulse 0.38 us per iteration (41 us at 100, 388 us at 1000); Simbody
- * 165 us per sample plus 157 us per integrator step, 3,752 to 90,797
- * steps in 2 revolutions of the clearance model at accuracy 1e-4 to 1e-10
- * (as accuracy^-0.3), 40 to 1,047 of the ideal one. Each is rounded up. */
+ * case's models. The cost per sample of a model is its engine's
+ * (fb_engine.cost_per_sample, engine.h: measured on the paper's case, 2
+ * revolutions, timing.json's time_per_step_us, an idle 2-core machine, and
+ * rounded up), FB_COST_DEFAULT_S for an engine that gives none. */
 #define FB_COST_LOAD_FACTOR 3.0
-#define FB_COST_ANALYTIC_S 3e-6
-#define FB_COST_REFERENCE_S 12e-6
-#define FB_COST_REFERENCE_CHECK 2.0 /* the check integration, in reference runs [-] */
-#define FB_COST_ODE_S 5e-6
-#define FB_COST_ODE_QUICK_S 2e-6
-#define FB_COST_ODE_QUICK_ITERATION_S 0.65e-6
-#define FB_COST_ODE_BOX_S 0.7e-6
-#define FB_COST_ODE_CCD_S 15e-6
-#define FB_COST_ODE_CCD_SEGMENT_S 3.5e-9
-#define FB_COST_MUJOCO_S 5e-6
-#define FB_COST_MUJOCO_CLEARANCE_S 18e-6
-#define FB_COST_MUJOCO_NATIVE_S 25e-6
-#define FB_COST_BULLET_S 18e-6
-#define FB_COST_BULLET_SI_S 4e-6
-#define FB_COST_BULLET_ITERATION_S 0.4e-6
-#define FB_COST_SIMBODY_SAMPLE_S 170e-6
-#define FB_COST_SIMBODY_STEP_S 160e-6
-#define FB_COST_SIMBODY_STEPS_REV_CLEARANCE 4200.0 /* at the default accuracy [1/rev] */
-#define FB_COST_SIMBODY_STEPS_REV_IDEAL 60.0
-#define FB_COST_SIMBODY_ACCURACY_POWER 0.3
+#define FB_COST_DEFAULT_S 5e-6
 /* at most this fraction of the machine's physical memory may be reserved */
 #define FB_COST_MEMORY_FRACTION 0.5
 void fb_run_estimate(const fb_case *c, double *bytes, double *seconds);

@@ -225,27 +225,16 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
     /* h_s = adaptive follows the project's contact law through the exact
      * collider (ODE, MuJoCo): refused here, before anything runs, for a
      * model that would otherwise run at a fixed step or stop */
-    if (c->solver.h_mode == FB_STEP_ADAPTIVE) {
-      const int ode_other = m->engine == FB_ENGINE_ODE && fb_model_has_clearance(m) &&
-                            (m->collider != FB_COLLIDER_EXACT ||
-                             c->clearance.collider != FB_CASE_COLLIDER_EXACT);
-      const int native = m->engine == FB_ENGINE_MUJOCO && m->collider == FB_COLLIDER_NATIVE;
-      if (m->engine == FB_ENGINE_BULLET || ode_other || native)
-        return fb_diag_set(diag, FB_ERR_ARG,
-                           "[solver] h_s = adaptive with [run] models %s: the adaptive step "
-                           "follows the project's contact law through the exact collider in ODE "
-                           "and MuJoCo only; %s: give h_s = auto or a step in s for this model "
-                           "(or run it in a [variant.NAME] with its own h_s)",
-                           c->models[i],
-                           m->engine == FB_ENGINE_BULLET
-                               ? "Bullet steps at a fixed h (it would run at h_min_s, silently)"
-                           : native ? "MuJoCo's native contacts are its own"
-                                    : "the faceted and libccd colliders are not followed");
-    }
+    const char *why = fb_model_adaptive_refusal(m, fb_case_collider_of(c));
+    if (c->solver.h_mode == FB_STEP_ADAPTIVE && why)
+      return fb_diag_set(diag, FB_ERR_ARG,
+                         "[solver] h_s = adaptive with [run] models %s: the adaptive step "
+                         "follows the project's contact law through the exact collider in ODE "
+                         "and MuJoCo only; %s: give h_s = auto or a step in s for this model "
+                         "(or run it in a [variant.NAME] with its own h_s)",
+                         c->models[i], why);
     if (fb_model_has_clearance(m) &&
-        (m->collider == FB_COLLIDER_CCD ||
-         (m->engine == FB_ENGINE_ODE && m->collider == FB_COLLIDER_EXACT &&
-          c->clearance.collider == FB_CASE_COLLIDER_CCD)))
+        fb_model_collider(m, fb_case_collider_of(c)) == FB_COLLIDER_CCD)
       uses_ccd = 1;
   }
   if (c->clearance.bore == FB_CASE_BORE_ELLIPSE && !uses_ccd)

@@ -320,6 +320,32 @@ fb_status fb_model_lookup(const fb_model **out, const char *name, fb_diag *diag)
 
 int fb_model_has_clearance(const fb_model *m) { return m->joints == FB_JOINTS_CLEARANCE; }
 
+fb_collider fb_case_collider_of(const fb_case *c) {
+  switch (c->clearance.collider) {
+    case FB_CASE_COLLIDER_FACETED: return FB_COLLIDER_FACETED;
+    case FB_CASE_COLLIDER_CCD: return FB_COLLIDER_CCD;
+    default: return FB_COLLIDER_EXACT;
+  }
+}
+
+fb_collider fb_model_collider(const fb_model *m, fb_collider case_collider) {
+  if (m->engine == FB_ENGINE_ODE && m->collider == FB_COLLIDER_EXACT &&
+      case_collider != FB_COLLIDER_NONE)
+    return case_collider;
+  return m->collider;
+}
+
+const char *fb_model_adaptive_refusal(const fb_model *m, fb_collider case_collider) {
+  if (m->engine == FB_ENGINE_BULLET)
+    return "Bullet steps at a fixed h (it would run at h_min_s, silently)";
+  if (m->engine == FB_ENGINE_MUJOCO && m->collider == FB_COLLIDER_NATIVE)
+    return "MuJoCo's native contacts are its own";
+  if (m->engine == FB_ENGINE_ODE && fb_model_has_clearance(m) &&
+      fb_model_collider(m, case_collider) != FB_COLLIDER_EXACT)
+    return "the faceted and libccd colliders are not followed";
+  return NULL;
+}
+
 const fb_model *fb_model_match(fb_engine_id engine, fb_lengths_kind lengths, fb_joint_set joints,
                                fb_model_law law, fb_collider collider) {
   for (int i = 0; i < fb_model_count; i++) {

@@ -14,6 +14,7 @@
 #ifndef FB_MODEL_TABLE_H
 #define FB_MODEL_TABLE_H
 
+#include "case.h"
 #include "fb_config.h"
 #include "status.h"
 
@@ -122,6 +123,20 @@ const char *fb_model_list(char *buf, size_t size);
 
 /* 1 when the model has clearance joints (and so contact columns and spikes). */
 int fb_model_has_clearance(const fb_model *m);
+
+/* The model table's collider for [clearance] collider of case c. */
+fb_collider fb_case_collider_of(const fb_case *c);
+
+/* The collider model m uses when the case asks for case_collider: the
+ * row's, except that an ODE row naming the exact collider takes the case's
+ * (so one case runs ode-clearance-impact and -restitution with each). */
+fb_collider fb_model_collider(const fb_model *m, fb_collider case_collider);
+
+/* Why model m cannot follow [solver] h_s = adaptive (the step that follows
+ * the project's contact law through the exact collider, in ODE and MuJoCo)
+ * with the case's collider case_collider, in words for the refusal; NULL
+ * when it can (or steps on its own error control: Simbody, the reference). */
+const char *fb_model_adaptive_refusal(const fb_model *m, fb_collider case_collider);
 
 /* The first row with these properties, or NULL: how code picks a model
  * ("the ideal stack-up model of engine e") without naming it. */

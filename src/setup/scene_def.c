@@ -324,17 +324,3 @@ fb_status fb_scene_model_start(fb_start_state *out, const fb_scene_model *sm, fb
   return FB_OK;
 }
 
-fb_collider fb_case_collider_of(const fb_case *c) {
-  switch (c->clearance.collider) {
-    case FB_CASE_COLLIDER_FACETED: return FB_COLLIDER_FACETED;
-    case FB_CASE_COLLIDER_CCD: return FB_COLLIDER_CCD;
-    default: return FB_COLLIDER_EXACT;
-  }
-}
-
-fb_collider fb_model_collider(const fb_model *m, fb_collider case_collider) {
-  if (m->engine == FB_ENGINE_ODE && m->collider == FB_COLLIDER_EXACT &&
-      case_collider != FB_COLLIDER_NONE)
-    return case_collider;
-  return m->collider;
-}

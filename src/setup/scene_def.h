@@ -133,13 +133,7 @@ fb_status fb_scene_def_set_start(fb_scene_def *def, double theta0, double omega2
  * naming the field, its value and the rule. */
 fb_status fb_scene_def_check(const fb_scene_def *def, fb_diag *diag);
 
-/* The model table's collider for [clearance] collider of case c. */
-fb_collider fb_case_collider_of(const fb_case *c);
 
-/* The collider model m uses when the case asks for case_collider: the
- * row's, except that an ODE row naming the exact collider takes the case's
- * (so one case runs ode-clearance-impact and -restitution with each). */
-fb_collider fb_model_collider(const fb_model *m, fb_collider case_collider);
 
 /* The view of model m on def: lengths, start, clearance joints and laws.
  * Errors: FB_ERR_ARG when m needs a law def did not resolve or clearance

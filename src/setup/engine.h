@@ -28,6 +28,7 @@
 #define FB_ENGINE_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "model_table.h"
 #include "outcome.h"
@@ -62,6 +63,16 @@ typedef struct {
   size_t n_h_min;  /* steps of the shortest size [-] */
   size_t n_h_max;  /* steps of the longest size [-] */
 } fb_step_stats;
+
+/* One key=value argument of a peer program (peer_args below). */
+typedef void (*fb_engine_put_arg)(void *a, const char *key, const char *value);
+
+/* put(a, key, v) with v as "%.17g" text (a peer reads it back exactly). */
+static inline void fb_engine_put_number(fb_engine_put_arg put, void *a, const char *key, double v) {
+  char text[40];
+  snprintf(text, sizeof text, "%.17g", v);
+  put(a, key, text);
+}
 
 typedef struct fb_engine {
   const char *name;                 /* fb_engine_name of its id */
@@ -102,6 +113,12 @@ typedef struct fb_engine {
   const char *drive_key;            /* the case key that sizes the crank's drive, named by the
                                        drive-saturation warning when the crank lags its
                                        prescribed angle (NULL: no such warning) */
+  void (*peer_args)(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a);
+                                    /* optional: the engine's own settings of model view sm at
+                                       step h [s] for its bare peer program
+                                       tests/peers/peer_<name> (fourbar bench --grid peers,
+                                       peers.h), each as put(a, key, value text); NULL: the
+                                       engine has no peer */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:

@@ -53,6 +53,8 @@ static void arg_s(arglist *a, const char *key, const char *v) {
   if (a->n < PEER_ARGS_MAX) snprintf(a->text[a->n++], sizeof a->text[0], "%s=%s", key, v);
 }
 
+static void put_arg(void *a, const char *key, const char *value) { arg_s(a, key, value); }
+
 /* the four-bar of model view sm and the engine's settings, as peer.h reads them */
 static fb_status peer_args(arglist *a, const fb_scene_model *sm, double window, fb_diag *diag) {
   fb_start_state st;
@@ -87,35 +89,8 @@ static fb_status peer_args(arglist *a, const fb_scene_model *sm, double window, 
   arg(a, "th4", st.follower_angle);
   arg(a, "w3", st.coupler_omega);
   arg(a, "w4", st.follower_omega);
-  switch (sm->model->engine) {
-    case FB_ENGINE_ODE:
-      arg(a, "erp", sm->solver.world_erp);
-      arg(a, "cfm", sm->solver.world_cfm);
-      arg(a, "fmax", sm->solver.drive_torque_max);
-      arg_s(a, "stepper", sm->solver.stepper == FB_STEPPER_QUICK ? "quick" : "world");
-      arg(a, "iterations", sm->solver.quick_iterations);
-      break;
-    case FB_ENGINE_MUJOCO: {
-      const fb_mujoco_opts *o = &sm->mujoco;
-      arg_s(a, "integrator", fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(o, 0)));
-      arg(a, "loop_k", o->loop_stiffness > 0.0 ? o->loop_stiffness : 1.0 / (h * h));
-      arg(a, "loop_b", o->loop_damping > 0.0 ? o->loop_damping : 1.0 / h);
-      arg(a, "loop_imp", o->loop_impedance);
-      arg(a, "armature", o->drive_armature);
-      break;
-    }
-    case FB_ENGINE_BULLET:
-      arg_s(a, "solver", sm->bullet.solver == FB_BULLET_MLCP_DANTZIG ? "mlcp" : "si");
-      arg(a, "iterations", sm->bullet.iterations);
-      arg(a, "erp", sm->solver.world_erp);
-      arg(a, "fmax", sm->solver.drive_torque_max);
-      break;
-    case FB_ENGINE_SIMBODY:
-      arg_s(a, "integrator", fb_simbody_integrator_name(sm->simbody.integrator));
-      arg(a, "accuracy", sm->simbody.accuracy);
-      break;
-    default: break;
-  }
+  const fb_engine *e = fb_engine_get(sm->model->engine, NULL);
+  if (e && e->peer_args) e->peer_args(sm, h, put_arg, a);
   return FB_OK;
 }
 
@@ -194,8 +169,11 @@ static int read_peer(const char *out, double *loop_s, long *samples, long *steps
   return 0;
 }
 
-static const fb_engine_id peer_engines[4] = {FB_ENGINE_ODE, FB_ENGINE_MUJOCO, FB_ENGINE_BULLET,
-                                             FB_ENGINE_SIMBODY};
+/* the engines with a peer program in this build (fb_engine.peer_args) */
+static int has_peer(fb_engine_id id) {
+  const fb_engine *e = fb_engine_available(id) ? fb_engine_get(id, NULL) : NULL;
+  return e && e->peer_args;
+}
 
 fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *dir,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag) {
@@ -203,15 +181,15 @@ fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *
   if (!dir) dir = getenv(FB_PEERS_ENV);
   if (!dir || !*dir) dir = FB_PEERS_DIR;
   int total = 0;
-  for (int e = 0; e < 4; e++) total += fb_engine_available(peer_engines[e]);
+  for (int e = 0; e < FB_ENGINE_COUNT; e++) total += has_peer((fb_engine_id)e);
   int done = 0;
   static char out[PEER_OUTPUT_MAX];
-  for (int e = 0; e < 4; e++) {
-    if (!fb_engine_available(peer_engines[e])) continue;
+  for (int e = 0; e < FB_ENGINE_COUNT; e++) {
+    if (!has_peer((fb_engine_id)e)) continue;
     fb_peer_row *p = &rows[(*n)++];
     memset(p, 0, sizeof *p);
-    snprintf(p->engine, sizeof p->engine, "%s", fb_engine_name(peer_engines[e]));
-    p->model = fb_model_match(peer_engines[e], FB_LENGTHS_NOMINAL, FB_JOINTS_IDEAL,
+    snprintf(p->engine, sizeof p->engine, "%s", fb_engine_name((fb_engine_id)e));
+    p->model = fb_model_match((fb_engine_id)e, FB_LENGTHS_NOMINAL, FB_JOINTS_IDEAL,
                               FB_MODEL_LAW_NONE, FB_COLLIDER_NONE);
     snprintf(p->peer, sizeof p->peer, "peer_%s", p->engine);
     p->harness_over_bare = p->harness_per_rev = p->bare_per_rev = p->peak_rel = NAN;

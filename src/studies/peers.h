@@ -43,7 +43,10 @@ typedef struct {
                                follower omega peaks over the peak window [-] */
 } fb_peer_row;
 
-/* Runs the peers of the engines this build has (at most 4 rows) on case c
+/* The most rows fb_peers_run gives: one per engine. */
+#define FB_PEERS_MAX FB_ENGINE_COUNT
+
+/* Runs the peers of the engines this build has (at most FB_PEERS_MAX rows) on case c
  * (2 revolutions, the case's step; the case's engine settings). dir: the
  * folder of the peer programs (NULL: $FOURBAR_PEERS_DIR, else
  * FB_PEERS_DIR). progress (may be NULL) gets the fraction done. A peer that

@@ -50,6 +50,15 @@ static double bullet_cost_per_sample(const fb_model *m, const fb_case *c) {
              : BULLET_COST_S;
 }
 
+/* Bullet's settings for its peer (tests/peers/peer_bullet.cpp) */
+static void bullet_peer_args(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a) {
+  (void)h;
+  put(a, "solver", sm->bullet.solver == FB_BULLET_MLCP_DANTZIG ? "mlcp" : "si");
+  fb_engine_put_number(put, a, "iterations", sm->bullet.iterations);
+  fb_engine_put_number(put, a, "erp", sm->solver.world_erp);
+  fb_engine_put_number(put, a, "fmax", sm->solver.drive_torque_max);
+}
+
 const fb_engine fb_engine_bullet = {
     .name = "bullet",
     .guarded = 1,
@@ -67,4 +76,5 @@ const fb_engine fb_engine_bullet = {
     .destroy = bullet_destroy,
     .cost_per_sample = bullet_cost_per_sample,
     .drive_key = "[solver] drive_torque_max_n_m",
+    .peer_args = bullet_peer_args,
 };

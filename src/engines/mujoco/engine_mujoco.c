@@ -51,6 +51,16 @@ static double mujoco_cost_per_sample(const fb_model *m, const fb_case *c) {
                                              : MUJOCO_COST_CLEARANCE_S;
 }
 
+/* MuJoCo's settings for its peer (tests/peers/peer_mujoco.c) */
+static void mujoco_peer_args(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a) {
+  const fb_mujoco_opts *o = &sm->mujoco;
+  put(a, "integrator", fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(o, 0)));
+  fb_engine_put_number(put, a, "loop_k", o->loop_stiffness > 0.0 ? o->loop_stiffness : 1.0 / (h * h));
+  fb_engine_put_number(put, a, "loop_b", o->loop_damping > 0.0 ? o->loop_damping : 1.0 / h);
+  fb_engine_put_number(put, a, "loop_imp", o->loop_impedance);
+  fb_engine_put_number(put, a, "armature", o->drive_armature);
+}
+
 const fb_engine fb_engine_mujoco = {
     .name = "mujoco",
     .guarded = 1,
@@ -66,4 +76,5 @@ const fb_engine fb_engine_mujoco = {
     .step_stats = mujoco_step_stats,
     .cost_per_sample = mujoco_cost_per_sample,
     .drive_key = "[mujoco] drive_armature_kg_m2",
+    .peer_args = mujoco_peer_args,
 };

@@ -67,6 +67,16 @@ static double ode_cost_per_sample(const fb_model *m, const fb_case *c) {
   return s;
 }
 
+/* ODE's settings for its peer (tests/peers/peer_ode.c) */
+static void ode_peer_args(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a) {
+  (void)h;
+  fb_engine_put_number(put, a, "erp", sm->solver.world_erp);
+  fb_engine_put_number(put, a, "cfm", sm->solver.world_cfm);
+  fb_engine_put_number(put, a, "fmax", sm->solver.drive_torque_max);
+  put(a, "stepper", sm->solver.stepper == FB_STEPPER_QUICK ? "quick" : "world");
+  fb_engine_put_number(put, a, "iterations", sm->solver.quick_iterations);
+}
+
 const fb_engine fb_engine_ode = {
     .name = "ode",
     .guarded = 1,
@@ -85,4 +95,5 @@ const fb_engine fb_engine_ode = {
     .step_stats = ode_step_stats,
     .cost_per_sample = ode_cost_per_sample,
     .drive_key = "[solver] drive_torque_max_n_m",
+    .peer_args = ode_peer_args,
 };

@@ -65,6 +65,13 @@ static double simbody_cost_per_sample(const fb_model *m, const fb_case *c) {
   return SIMBODY_COST_SAMPLE_S + SIMBODY_COST_STEP_S * steps_rev * c->revolutions / samples;
 }
 
+/* Simbody's settings for its peer (tests/peers/peer_simbody.cpp) */
+static void simbody_peer_args(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a) {
+  (void)h;
+  put(a, "integrator", fb_simbody_integrator_name(sm->simbody.integrator));
+  fb_engine_put_number(put, a, "accuracy", sm->simbody.accuracy);
+}
+
 const fb_engine fb_engine_simbody = {
     .name = "simbody",
     .guarded = 1,
@@ -83,4 +90,5 @@ const fb_engine fb_engine_simbody = {
     .stepping_s = simbody_stepping_s,
     .cost_per_sample = simbody_cost_per_sample,
     .drive_key = "[solver] drive_torque_max_n_m",
+    .peer_args = simbody_peer_args,
 };

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "contact_params.h"
 #include "engine.h"
@@ -78,22 +79,31 @@ static fb_status one_model(fb_scene_model *sm, fb_scene_def **def, const fb_case
   return st;
 }
 
+/* the engine of this build that reads model files of format (its table's
+ * model_format), or NULL */
+static const fb_engine *engine_reading(const char *format) {
+  for (int id = 0; id < FB_ENGINE_COUNT; id++) {
+    const fb_engine *e = fb_engine_available((fb_engine_id)id) ? fb_engine_get((fb_engine_id)id, NULL)
+                                                               : NULL;
+    if (e && e->model_format && e->export_model && strcmp(e->model_format, format) == 0) return e;
+  }
+  return NULL;
+}
+
 fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
-#if FB_HAVE_MUJOCO
+  const fb_engine *e = engine_reading("mjcf");
+  if (!e)
+    return fb_diag_set(diag, FB_ERR_ARG, "the MJCF export needs MuJoCo in the build: "
+                       "install libmujoco-dev and rebuild (bash scripts/quickstart.sh build)");
   const char *name = ideal || !c->clearance.mask ? "mujoco-ideal-nominal"
                                                  : "mujoco-clearance-native";
   fb_scene_def *def = NULL;
   fb_scene_model sm;
   fb_status st = one_model(&sm, &def, c, name, 1, diag);
-  if (st == FB_OK) st = fb_mujoco_export(buf, size, &sm, diag);
+  if (st == FB_OK) st = e->export_model(buf, size, &sm, diag);
   if (st == FB_OK) resolution_note(c, &sm, diag);
   free(def);
   return st;
-#else
-  (void)buf, (void)size, (void)c, (void)ideal;
-  return fb_diag_set(diag, FB_ERR_ARG, "the MJCF export needs MuJoCo in the build: "
-                     "install libmujoco-dev and rebuild (bash scripts/quickstart.sh build)");
-#endif
 }
 
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {

@@ -119,6 +119,13 @@ typedef struct fb_engine {
                                        tests/peers/peer_<name> (fourbar bench --grid peers,
                                        peers.h), each as put(a, key, value text); NULL: the
                                        engine has no peer */
+  const char *model_format;         /* optional: the model file format the engine reads and
+                                       export_model writes ("mjcf": MuJoCo), or NULL */
+  fb_status (*export_model)(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
+                                    /* optional: model view sm as a model file of model_format
+                                       that a user loads into the engine (fourbar export,
+                                       docs/commands.md), into buf; errors: the engine's, and
+                                       FB_ERR_RANGE when buf is too small */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:
@@ -140,23 +147,5 @@ extern const fb_engine fb_engine_reference;
 FB_ENGINE_LIST
 #undef X
 
-/* An engine's own entry point reached from above the engines floor (the
- * export, report/export.c): declared here, defined in its engine folder,
- * only in builds with MuJoCo (FB_HAVE_MUJOCO). Issue 42 turns it into an op
- * of the engine table. */
-/* The MJCF a user loads (fourbar export, docs/commands.md): model sm's
- * mechanism with bodies crank, coupler, follower (ground the world), hinges
- * named after their joints (ground-crank, crank-coupler, follower-ground),
- * sites <joint>_pin and <joint>_hole at each joint's pin and hole centre
- * (crank-coupler_pin), the loop closed by an equality connect, each
- * clearance joint as mujoco-clearance-native's bore tendon (limited to the
- * radial clearance, solreflimit in the force form with MuJoCo's own
- * tendon_invweight0 and the damper of the law's restitution on its design
- * mass), the crank's flywheel armature and a velocity actuator "drive" at
- * the case's speed, and a keyframe "start" (qvel, ctrl). Errors: those of
- * fb_scene_def_check; FB_ERR_ARG for a clearance model other than
- * mujoco-clearance-native or a text MuJoCo rejects; FB_ERR_RANGE when buf
- * is too small. */
-fb_status fb_mujoco_export(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
 
 #endif

@@ -77,4 +77,6 @@ const fb_engine fb_engine_mujoco = {
     .cost_per_sample = mujoco_cost_per_sample,
     .drive_key = "[mujoco] drive_armature_kg_m2",
     .peer_args = mujoco_peer_args,
+    .model_format = "mjcf",
+    .export_model = fb_mujoco_export,
 };

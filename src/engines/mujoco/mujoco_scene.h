@@ -140,6 +140,22 @@ size_t fb_mujoco_scene_steps(const fb_mujoco_scene *s);
  * shortest and longest size and how many of each; else every step h. */
 void fb_mujoco_scene_step_stats(const fb_mujoco_scene *s, fb_step_stats *out);
 
+/* The MJCF a user loads (fourbar export, docs/commands.md; the engine
+ * table's export_model): model sm's
+ * mechanism with bodies crank, coupler, follower (ground the world), hinges
+ * named after their joints (ground-crank, crank-coupler, follower-ground),
+ * sites <joint>_pin and <joint>_hole at each joint's pin and hole centre
+ * (crank-coupler_pin), the loop closed by an equality connect, each
+ * clearance joint as mujoco-clearance-native's bore tendon (limited to the
+ * radial clearance, solreflimit in the force form with MuJoCo's own
+ * tendon_invweight0 and the damper of the law's restitution on its design
+ * mass), the crank's flywheel armature and a velocity actuator "drive" at
+ * the case's speed, and a keyframe "start" (qvel, ctrl). Errors: those of
+ * fb_scene_def_check; FB_ERR_ARG for a clearance model other than
+ * mujoco-clearance-native or a text MuJoCo rejects; FB_ERR_RANGE when buf
+ * is too small. */
+fb_status fb_mujoco_export(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
+
 /* MuJoCo's library version string ("2.2.2"). */
 const char *fb_mujoco_version(void);
 

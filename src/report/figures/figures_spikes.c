@@ -76,11 +76,11 @@ static int run_index(const fb_run *r, const fb_model *want) {
   return -1;
 }
 
-/* spikes.<ext>: for each clearance model (the ODE and MuJoCo ones, else the
- * reference), its largest coupler and follower alpha spike over the peak
- * window on a microsecond axis around the spike, the reference of its law
- * and its ideal model overlaid at the same instants, the contact force
- * below. Nothing is drawn (and *drawn = 0) for a run without clearance
+/* spikes.<ext>: for each clearance model (the simulated ones, which step a
+ * world, else the reference: a clearance model is one or the other), its
+ * largest coupler and follower alpha spike over the peak window on a
+ * microsecond axis around the spike, the reference of its law and its ideal
+ * model overlaid at the same instants, the contact force below. Nothing is drawn (and *drawn = 0) for a run without clearance
  * model. */
 fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, json_t *figs,
                      int *drawn, fb_diag *diag) {
@@ -88,7 +88,7 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
   for (int pass = 0; pass < 2 && nc == 0; pass++)
     for (int i = 0; i < r->n; i++)
       if (r->model[i].has_spikes && r->model[i].run.series.n > 0 &&
-          (r->model[i].run.model->engine == FB_ENGINE_REFERENCE) == (pass == 1))
+          !fb_engine_steps_world(r->model[i].run.model->engine) == (pass == 1))
         list[nc++] = i;
   *drawn = 0;
   if (nc == 0) return FB_OK;

@@ -7,45 +7,37 @@
 
 #include <jansson.h>
 #include <stdio.h>
-#include <string.h>
 
 /* models without a style in the table: a colour from this list chosen by a hash of the
  * name, so it is the same in every figure of every run */
 static const char *const fallback_colors[] = {"#17becf", "#e377c2", "#8c564b", "#bcbd22",
                                               "#393b79", "#637939", "#843c39", "#7b4173"};
 
-/* Colour families: every model of one simulation engine is drawn in shades
- * of that engine's hue (ODE blues, MuJoCo oranges; greens and purples kept
- * for Simbody and Bullet), so that two engines are told apart at a glance
- * in every figure; the yardsticks (analytic, reference) keep the model
- * table's black and grey. The shade is the row's rank among the rows of
- * its engine in the model table, the dash and width the table's. */
-typedef struct {
-  const char *engine;       /* fb_engine_name of the engine */
-  const char *shade[8];     /* dark to light, in an order that keeps neighbours apart */
-} color_family;
-
-static const color_family families[] = {
-    {"ode", {"#08519c", "#3182bd", "#6baed6", "#2171b5", "#4292c6", "#9ecae1", "#084594", "#5a8fc4"}},
-    {"mujoco", {"#a63603", "#e6550d", "#fd8d3c", "#d94801", "#f16913", "#fdae6b", "#7f2704", "#c8640a"}},
-    {"simbody", {"#006d2c", "#31a354", "#74c476", "#238b45", "#41ab5d", "#a1d99b", "#00441b", "#4f9a5f"}},
-    {"bullet", {"#54278f", "#756bb1", "#9e9ac8", "#6a51a3", "#807dba", "#bcbddc", "#3f007d", "#8a6fb3"}},
+/* The shades of each colour family (the model table's hue: every model of
+ * one simulation engine is drawn in shades of that engine's hue, ODE blues,
+ * MuJoCo oranges, Simbody greens, Bullet purples), so that two engines are
+ * told apart at a glance in every figure; the yardsticks (analytic,
+ * reference, hue FB_HUE_NONE) keep the model table's black and grey. The
+ * shade is the row's rank among the rows of its hue in the model table, the
+ * dash and width the table's. Dark to light, in an order that keeps
+ * neighbours apart. */
+static const char *const shades[FB_HUE_COUNT][8] = {
+    [FB_HUE_BLUES] = {"#08519c", "#3182bd", "#6baed6", "#2171b5", "#4292c6", "#9ecae1", "#084594", "#5a8fc4"},
+    [FB_HUE_ORANGES] = {"#a63603", "#e6550d", "#fd8d3c", "#d94801", "#f16913", "#fdae6b", "#7f2704", "#c8640a"},
+    [FB_HUE_GREENS] = {"#006d2c", "#31a354", "#74c476", "#238b45", "#41ab5d", "#a1d99b", "#00441b", "#4f9a5f"},
+    [FB_HUE_PURPLES] = {"#54278f", "#756bb1", "#9e9ac8", "#6a51a3", "#807dba", "#bcbddc", "#3f007d", "#8a6fb3"},
 };
 
-/* the colour of row m from its engine's family, or NULL (a yardstick or an
- * engine without a family) */
+/* the colour of row m from its hue's shades, or NULL (a yardstick: no hue) */
 static const char *family_color(const fb_model *m) {
-  const char *engine = fb_engine_name(m->engine);
-  for (size_t f = 0; f < sizeof families / sizeof families[0]; f++) {
-    if (strcmp(families[f].engine, engine) != 0) continue;
-    int rank = 0;
-    for (int k = 0; k < fb_model_count && &fb_models[k] != m; k++) rank += fb_models[k].engine == m->engine;
-    return families[f].shade[rank % 8];
-  }
-  return NULL;
+  const fb_hue hue = m->style.hue;
+  if (hue <= FB_HUE_NONE || hue >= FB_HUE_COUNT) return NULL;
+  int rank = 0;
+  for (int k = 0; k < fb_model_count && &fb_models[k] != m; k++) rank += fb_models[k].style.hue == hue;
+  return shades[hue][rank % 8];
 }
 
-/* the model's style: its engine's colour family (or the model table's
+/* the model's style: its hue's colour family (or the model table's
  * colour for a yardstick) with the table's dash and width (model_table.c;
  * docs/figures.md), else one derived from the name */
 model_style fig_style_of(const char *name) {

@@ -64,8 +64,8 @@ TEST_TOOLS = [
     (r"/usr/bin/chromium", "chromium"),
     (r"playwright-core|\bnpm ci\b", "npm"),
 ]
-# what a run itself starts: figures are drawn by gnuplot (src/report/figures/figures.c)
-RUN_TOOLS = [(r'posix_spawnp\([^;]*"gnuplot"', "gnuplot-nox", "src/report/figures/figures.c")]
+# what a run itself starts: figures are drawn by gnuplot (src/report/figures/figures_gnuplot.c)
+RUN_TOOLS = [(r'posix_spawnp\([^;]*"gnuplot"', "gnuplot-nox", "src/report/figures/figures_gnuplot.c")]
 
 
 def meson_files():

@@ -79,11 +79,25 @@ typedef enum {
   FB_COLLIDER_COUNT
 } fb_collider;
 
+/* Colour families of the figures: every model of one simulation engine is
+ * drawn in shades of its engine's hue, so that two engines are told apart at
+ * a glance (the shades are the figures', src/report/figures/figures_style.c). */
+typedef enum {
+  FB_HUE_NONE = 0, /* the row's own color (the yardsticks: analytic, reference) */
+  FB_HUE_BLUES,    /* ODE */
+  FB_HUE_ORANGES,  /* MuJoCo */
+  FB_HUE_GREENS,   /* Simbody */
+  FB_HUE_PURPLES,  /* Bullet */
+  FB_HUE_COUNT
+} fb_hue;
+
 /* How a model is drawn in every figure. */
 typedef struct {
   const char *color; /* '#rrggbb' */
   int dash;          /* gnuplot dash type: 1 solid, 2 dashed, 3 dotted, 4 dash-dot, 5 */
   double width;      /* line width */
+  fb_hue hue;        /* the figures' colour family: a shade of it by the row's rank among the
+                        rows of that hue replaces color; FB_HUE_NONE: color */
 } fb_model_style;
 
 /* "none", "exact", "faceted", "ccd", "native". */
@@ -103,7 +117,8 @@ typedef struct fb_model {
                               that model ran in the same case (else the analytic peaks of the
                               same lengths), or NULL for models without clearance */
   const char *summary;     /* one line for help texts */
-  fb_model_style style;    /* its line in every figure; color NULL: figures.c picks one */
+  fb_model_style style;    /* its line in every figure; color NULL and hue FB_HUE_NONE: the
+                              figures pick one */
 } fb_model;
 
 /* The rows, in the order help texts list them. */

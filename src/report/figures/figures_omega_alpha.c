@@ -1,0 +1,291 @@
+/* omega.<ext> and alpha.<ext>: coupler and follower angular velocity and
+ * acceleration against crank angle over the peak window, every model
+ * overlaid; omega's rows below: each stepping model's residual against the
+ * analytic solution of its own lengths, and the engine differences (another
+ * engine's model minus the ODE model of the same kind). */
+#include "figures_internal.h"
+
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "linkage.h"
+
+/* residual of model i against the analytic solution of its own lengths at
+ * the same instants: resid[k] = y[k] - exact(t[k]) (body 0 coupler, 1
+ * follower) for the samples in [t0, t1], the figure's window (NaN outside
+ * it, and where the linkage cannot be solved) */
+static void residual(const fb_run *r, int i, int body, double t0, double t1, double *resid) {
+  const fb_series *s = &r->model[i].run.series;
+  const double w = r->c.direction * r->c.crank_speed;
+  for (size_t k = 0; k < s->n; k++) {
+    fb_linkage_state x;
+    if (s->t[k] < t0 || s->t[k] > t1) {
+      resid[k] = NAN;
+      continue;
+    }
+    const double y = body ? s->follower_omega[k] : s->coupler_omega[k];
+    if (fb_linkage_solve(&x, &r->model[i].run.lengths, r->c.branch, r->c.crank_angle0 + w * s->t[k], w,
+                         0.0, NULL) != FB_OK)
+      resid[k] = NAN;
+    else
+      resid[k] = y - (body ? x.follower_omega : x.coupler_omega);
+  }
+}
+
+/* the ODE model of the run that model i is compared with: the same
+ * lengths, joints and law run by ODE, when model i is another simulation
+ * engine's; -1 when there is none */
+static int engine_partner(const fb_run *r, int i) {
+  const fb_model *m = r->model[i].run.model;
+  if (m->engine == FB_ENGINE_ODE || !fb_engine_steps_world(m->engine)) return -1;
+  for (int j = 0; j < r->n; j++) {
+    const fb_model *o = r->model[j].run.model;
+    if (o->engine == FB_ENGINE_ODE && o->lengths == m->lengths && o->joints == m->joints &&
+        o->law == m->law && r->model[j].run.series.n > 1)
+      return j;
+  }
+  return -1;
+}
+
+/* diff[k] = omega of model i at its sample k minus model j's at the same
+ * instant (linear interpolation between j's samples; NaN outside them) */
+static void engine_difference(const fb_run *r, int i, int j, int body, double *diff) {
+  const fb_series *a = &r->model[i].run.series, *b = &r->model[j].run.series;
+  const double *ya = body ? a->follower_omega : a->coupler_omega;
+  const double *yb = body ? b->follower_omega : b->coupler_omega;
+  size_t q = 0;
+  for (size_t k = 0; k < a->n; k++) {
+    const double t = a->t[k];
+    while (q + 2 < b->n && b->t[q + 1] < t) q++;
+    if (b->n < 2 || t < b->t[0] || t > b->t[b->n - 1]) {
+      diff[k] = NAN;
+      continue;
+    }
+    const double dt = b->t[q + 1] - b->t[q];
+    const double w = dt > 0.0 ? (t - b->t[q]) / dt : 0.0;
+    diff[k] = ya[k] - (yb[q] + w * (yb[q + 1] - yb[q]));
+  }
+}
+
+/* omega.svg: coupler and follower omega (top) and each ODE model's residual
+ * against the analytic solution of its lengths (bottom); alpha.svg: coupler
+ * and follower alpha on a symlog axis */
+fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt, int alpha,
+                          json_t *figs, fb_diag *diag) {
+  const char *name = alpha ? "alpha" : "omega";
+  plot pl;
+  /* omega.svg's rows: values, residuals, engine differences (450 px each) */
+  int nrows = 1;
+  if (!alpha) {
+    int res = 0, dif = 0;
+    for (int i = 0; i < r->n; i++) {
+      res |= fb_engine_steps_world(r->model[i].run.model->engine) && r->model[i].run.series.n > 0;
+      dif |= engine_partner(r, i) >= 0;
+    }
+    nrows += res + dif;
+  }
+  fb_status st = fig_plot_open(&pl, dir, name, fmt, alpha ? 1100 : 1400, alpha ? 850 : 450 * nrows, diag);
+  if (st != FB_OK) return st;
+  if (!alpha) pl.columns /= 2; /* omega.svg: coupler and follower side by side */
+  const double period = 2.0 * M_PI / r->c.crank_speed;
+  const double t0 = r->t_window, t1 = r->t_window + period;
+  json_t *curves = json_array();
+  int order[FB_MAX_MODELS];
+  const int nm = fig_draw_order(r, order);
+  double amax = 0.0, amin = 0.0;
+  int has_resid[FB_MAX_MODELS] = {0};
+  for (int q = 0; q < nm; q++) {
+    const int i = order[q];
+    const fb_series *s = &r->model[i].run.series;
+    for (int b = 0; b < 2; b++) {
+      char dname[32];
+      snprintf(dname, sizeof dname, "m%d_%d", i, b);
+      const double *y = alpha ? (b ? s->follower_alpha : s->coupler_alpha)
+                              : (b ? s->follower_omega : s->coupler_omega);
+      double lo = NAN, hi = NAN;
+      /* a stepping engine's acceleration at t = 0 is its first step's start
+       * artefact (ODE: the velocity-level step has no drift to correct yet
+       * and applies almost none), not the mechanism's: drawn from the first
+       * step on */
+      const double ta = alpha && fb_engine_steps_world(r->model[i].run.model->engine)
+                            ? fmax(t0, 0.5 * r->model[i].run.h)
+                            : t0;
+      const int pts = fig_datablock(&pl, dname, s, y, ta, t1, &lo, &hi);
+      if (pts > 0) {
+        amax = fmax(amax, hi);
+        amin = fmin(amin, lo);
+      }
+      char csv[96], col[48];
+      snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
+      snprintf(col, sizeof col, "%s_%s", b ? "follower" : "coupler", alpha ? "alpha_rad_s2" : "omega_rad_s");
+      json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
+      json_object_set_new(c, "panel", json_string(b ? "follower" : "coupler"));
+      fig_curve_style(c, r->model[i].run.name);
+      json_array_append_new(curves, c);
+    }
+  }
+  /* residual panels: ODE models only (the analytic ones are the yardstick) */
+  if (!alpha)
+    for (int q = 0; q < nm; q++) {
+      const int i = order[q];
+      const fb_series *s = &r->model[i].run.series;
+      if (!fb_engine_steps_world(r->model[i].run.model->engine) || s->n == 0) continue;
+      double *res = malloc(s->n * sizeof *res);
+      if (!res) continue;
+      has_resid[i] = 1;
+      for (int b = 0; b < 2; b++) {
+        residual(r, i, b, t0, t1, res);
+        char dname[32], col[64], csv[96];
+        snprintf(dname, sizeof dname, "r%d_%d", i, b);
+        double lo = NAN, hi = NAN;
+        const int pts = fig_datablock(&pl, dname, s, res, t0, t1, &lo, &hi);
+        snprintf(col, sizeof col, "%s_omega_residual_rad_s", b ? "follower" : "coupler");
+        snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
+        json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
+        json_object_set_new(c, "panel", json_string(b ? "follower residual" : "coupler residual"));
+        json_object_set_new(c, "derived", json_string("model minus the analytic solution of its own "
+                                                      "lengths at the same instants"));
+        fig_curve_style(c, r->model[i].run.name);
+        json_array_append_new(curves, c);
+      }
+      free(res);
+    }
+  /* engine difference panels: another engine's model minus ODE's of the
+   * same kind, at the same instants */
+  int partner[FB_MAX_MODELS];
+  int any_resid = 0, any_diff = 0;
+  for (int i = 0; i < r->n; i++) {
+    any_resid |= has_resid[i];
+    partner[i] = alpha ? -1 : engine_partner(r, i);
+    if (partner[i] < 0) continue;
+    const fb_series *s = &r->model[i].run.series;
+    double *d = malloc((s->n ? s->n : 1) * sizeof *d);
+    if (!d) {
+      partner[i] = -1;
+      continue;
+    }
+    any_diff = 1;
+    for (int b = 0; b < 2; b++) {
+      engine_difference(r, i, partner[i], b, d);
+      char dname[32], col[64], csv[96];
+      snprintf(dname, sizeof dname, "d%d_%d", i, b);
+      double lo = NAN, hi = NAN;
+      const int pts = fig_datablock(&pl, dname, s, d, t0, t1, &lo, &hi);
+      snprintf(col, sizeof col, "%s_omega_engine_difference_rad_s", b ? "follower" : "coupler");
+      snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
+      json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
+      json_object_set_new(c, "panel", json_string(b ? "follower engine difference" : "coupler engine difference"));
+      char what[256];
+      snprintf(what, sizeof what, "%s minus %s at the same instants", r->model[i].run.name,
+               r->model[partner[i]].run.name);
+      json_object_set_new(c, "derived", json_string(what));
+      fig_curve_style(c, r->model[i].run.name);
+      json_array_append_new(curves, c);
+    }
+    free(d);
+  }
+  const int rows = 1 + any_resid + any_diff;
+  char en[160];
+  const double rpm = r->c.crank_speed * 60.0 / (2.0 * M_PI);
+  /* a clockwise drive decreases the crank angle: its motion runs right to left */
+  const char *dirnote = r->c.direction > 0 ? "ccw drive: motion runs left to right"
+                                           : "cw drive: crank angle decreases, motion runs right to left";
+  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against crank angle (revolution %d, %.0f rpm; %s)'\n",
+          alpha ? 2 : rows, alpha ? 1 : 2, fig_esc(r->c.name, en, sizeof en),
+          alpha ? "angular acceleration" : "angular velocity", r->c.peaks == FB_PEAKS_ALL ? 1 : 2,
+          rpm, dirnote);
+  fprintf(pl.p, "set xrange [0:360]\nset xtics 30\nset xlabel 'crank angle [deg] (counter-clockwise from +x)'\n");
+  json_t *axis = json_object();
+  if (alpha) {
+    /* symlog: linear within +-C, logarithmic beyond; every decade that holds
+     * data labelled; 15 % headroom beyond the largest spike */
+    const double top = fig_decade_above(amax, 1.15), bottom = -fig_decade_above(amin, 1.15);
+    fprintf(pl.p, "C = %.1f\nset nonlinear y via sgn(y)*log10(1+abs(y)/C) inverse "
+                  "sgn(y)*C*(10**abs(y)-1)\nset yrange [%.6g:%.6g]\nset ytics (",
+            SYMLOG_C, bottom, top);
+    json_t *tics = json_array();
+    int first = 1;
+    for (double d = -bottom; d >= SYMLOG_C * 0.999; d /= 10.0) {
+      fprintf(pl.p, "%s'-1e%d' %.6g", first ? "" : ", ", (int)lround(log10(d)), -d);
+      json_array_append_new(tics, json_real(-d));
+      first = 0;
+    }
+    fprintf(pl.p, ", '0' 0");
+    json_array_append_new(tics, json_real(0.0));
+    for (double d = SYMLOG_C; d <= top * 1.001; d *= 10.0) {
+      fprintf(pl.p, ", '1e%d' %.6g", (int)lround(log10(d)), d);
+      json_array_append_new(tics, json_real(d));
+    }
+    fprintf(pl.p, ")\n");
+    json_object_set_new(axis, "y_min", json_real(bottom));
+    json_object_set_new(axis, "y_max", json_real(top));
+    json_object_set_new(axis, "y_tics", tics);
+    json_object_set_new(axis, "scale", json_string("symlog, linear within +-1000 rad/s^2"));
+  }
+  json_object_set_new(axis, "direction", json_string(r->c.direction > 0 ? "ccw" : "cw"));
+  json_object_set_new(axis, "note", json_string(dirnote));
+  for (int b = 0; b < (alpha ? 2 : 2 * rows); b++) {
+    const int body = b % 2;
+    /* rows: values, then residuals (when an ODE-like model ran), then the
+     * engine differences (when two engines ran the same kind of model) */
+    const int row = b / 2;
+    const int resid = row == 1 && any_resid;
+    const int diffrow = row >= 1 && !resid;
+    if (diffrow) {
+      /* the legend inside the panel: its long entries would squeeze the plot beside it */
+      fprintf(pl.p, "set title '%s: engine difference (minus the ODE model of the same kind, same instants)'\n"
+                    "set ylabel '%s omega difference [rad/s]'\nset autoscale y\n"
+                    "set key inside bottom left opaque box font ',8'\n",
+              body ? "follower" : "coupler", body ? "follower" : "coupler");
+      fprintf(pl.p, "plot ");
+      int anyd = 0;
+      for (int q = 0; q < nm; q++) {
+        const int i = order[q];
+        if (partner[i] < 0) continue;
+        char mn[160], pn[160], sp[96];
+        fprintf(pl.p, "%s$d%d_%d using 1:2 with lines %s title '%s - %s'", anyd ? ", " : "", i, body,
+                fig_style_spec(r->model[i].run.name, sp, sizeof sp), fig_esc(r->model[i].run.name, mn, sizeof mn),
+                fig_esc(r->model[partner[i]].run.name, pn, sizeof pn));
+        anyd = 1;
+      }
+      fprintf(pl.p, "\n");
+      continue;
+    }
+    if (resid) {
+      fprintf(pl.p, "set title '%s: model minus analytic (same link lengths, same instants)'\n"
+                    "set ylabel '%s omega residual [rad/s]'\nset autoscale y\n",
+              body ? "follower" : "coupler", body ? "follower" : "coupler");
+    } else {
+      fprintf(pl.p, "set title '%s'\nset ylabel '%s %s [%s]'\n", body ? "follower" : "coupler",
+              body ? "follower" : "coupler", alpha ? "alpha" : "omega",
+              alpha ? "rad/s^2 (symlog)" : "rad/s");
+    }
+    fprintf(pl.p, "plot ");
+    int any = 0;
+    for (int q = 0; q < nm; q++) {
+      const int i = order[q];
+      if (resid && !has_resid[i]) continue;
+      char mn[160], sp[96];
+      fprintf(pl.p, "%s$%c%d_%d using 1:2 with lines %s title '%s'", any ? ", " : "", resid ? 'r' : 'm', i,
+              body, fig_style_spec(r->model[i].run.name, sp, sizeof sp), fig_esc(r->model[i].run.name, mn, sizeof mn));
+      any = 1;
+    }
+    if (!any) fprintf(pl.p, "0 with lines lc rgb '#888888' title 'no ODE model in this run'");
+    fprintf(pl.p, "\n");
+  }
+  fprintf(pl.p, "unset multiplot\n");
+  st = fig_plot_close(&pl, diag);
+  char file[128];
+  snprintf(file, sizeof file, "%s.%s", name, fig_ext(fmt));
+  if (st == FB_OK) {
+    fig_manifest_add(figs, file, alpha ? "angular acceleration against crank angle"
+                                   : "angular velocity against crank angle, and residuals", curves);
+    json_object_set_new(json_array_get(figs, json_array_size(figs) - 1), "axis", axis);
+  } else {
+    json_decref(curves);
+    json_decref(axis);
+  }
+  return st;
+}

@@ -1,7 +1,8 @@
 /* Case files: INI (parsed by inih) with the unit in every key name. This is
  * the one place where non-SI units (mm, rpm, deg, GPa, kg mm^2) are converted
- * to SI. Every key, its unit, default and rule is in the table of casefile.c
- * and documented in docs/keys.md, generated from fourbar keys (a test keeps the two in step). */
+ * to SI (casefile_values.c). Every key, its unit, default and rule is in the
+ * table of casefile_keys.c and documented in docs/keys.md, generated from
+ * fourbar keys (a test keeps the two in step); casefile.c reads the files. */
 #ifndef FB_CASEFILE_H
 #define FB_CASEFILE_H
 

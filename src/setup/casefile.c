@@ -4,9 +4,9 @@
  * raw entries with where each was given; then applies the key table's
  * defaults and every entry through casefile_values.c, resolves the standards
  * (ISO 2768-1 tolerances, an ISO 286 fit) and the masses the case does not
- * give, and checks the case as a whole. Also the defaults (fb_case_default:
- * the key table's rows read by the same parser) and the plausibility notes
- * of a loaded case. */
+ * give, and checks the case as a whole. Also the defaults: fb_case_default
+ * and each engine's options, read from the key table's rows (the one place
+ * a default is written), and the plausibility notes of a loaded case. */
 #include "casefile.h"
 #include "casefile_internal.h"
 #include "fileio.h"
@@ -162,13 +162,7 @@ void fb_case_default(fb_case *c) {
   }
   /* every other default is the key table's, read by the same parser as a
    * file (a test checks that each one applies) */
-  for (int i = 0; i < fb_casefile_key_count(); i++) {
-    if (!fb_casefile_spec_has_default(fb_casefile_spec(i))) continue;
-    entry e;
-    default_entry(&e, i);
-    fb_diag d;
-    (void)fb_casefile_apply(c, &e, &d);
-  }
+  fb_casefile_section_defaults(c, NULL);
   /* nothing given: every mass and inertia from the default bar (the key
    * table's defaults make a valid bar, test_casefile checks it) */
   fb_diag d;
@@ -189,6 +183,43 @@ int fb_casefile_defaults_check(fb_diag *diag) {
                          k->section, k->key, k->def, inner.msg);
   }
   return FB_OK;
+}
+
+void fb_casefile_section_defaults(fb_case *c, const char *section) {
+  for (int i = 0; i < fb_casefile_key_count(); i++) {
+    const key_spec *k = fb_casefile_spec(i);
+    if (!fb_casefile_spec_has_default(k) || (section && strcmp(k->section, section) != 0))
+      continue;
+    entry e;
+    default_entry(&e, i);
+    fb_diag d;
+    (void)fb_casefile_apply(c, &e, &d);
+  }
+}
+
+/* Each engine's options are its section's key rows, defaults included: the
+ * defaults below are those rows' default values read by the parser, written
+ * nowhere else (test_casefile checks each field against its row). */
+
+fb_mujoco_opts fb_mujoco_opts_default(void) {
+  fb_case c;
+  memset(&c, 0, sizeof c);
+  fb_casefile_section_defaults(&c, "mujoco");
+  return c.mujoco;
+}
+
+fb_bullet_opts fb_bullet_opts_default(void) {
+  fb_case c;
+  memset(&c, 0, sizeof c);
+  fb_casefile_section_defaults(&c, "bullet");
+  return c.bullet;
+}
+
+fb_simbody_opts fb_simbody_opts_default(void) {
+  fb_case c;
+  memset(&c, 0, sizeof c);
+  fb_casefile_section_defaults(&c, "simbody");
+  return c.simbody;
 }
 
 /* origin of an entry ("file:line" or "--set ..."), or NULL if absent */

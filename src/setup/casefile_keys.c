@@ -3,8 +3,8 @@
  * unit to SI, its range, unit, default (as a file would write it), rule and
  * meaning. Every other part of the reader works from these rows: the parser
  * (casefile.c), the values (casefile_values.c), the defaults (fb_case_default
- * reads the rows' defaults) and docs/keys.md (fourbar keys writes the rows;
- * scripts/keys_doc.sh). */
+ * and each engine's options default read the rows' defaults) and
+ * docs/keys.md (fourbar keys writes the rows; scripts/keys_doc.sh). */
 #include "casefile.h"
 #include "casefile_internal.h"
 

@@ -284,6 +284,93 @@ static void test_defaults_come_from_the_key_table(void **state) {
   assert_true(k.link[FB_COUPLER].inertia_transverse == c.link[FB_COUPLER].inertia_transverse);
 }
 
+/* engine options are written once, in the key rows: each engine's options
+ * default (fb_mujoco_opts_default, fb_bullet_opts_default,
+ * fb_simbody_opts_default) is its section's rows' documented defaults. Three
+ * checks per field: a row sets it (the rows' defaults applied over two
+ * different fills of the case leave no trace of either fill), it equals the
+ * default a case without the key gets, and it equals the value the row's
+ * default text (as fourbar keys prints it for docs/keys.md) gives through
+ * --set. Every comparison is exact: the same text read by the same parser. */
+#define ENGINE_SECTIONS 3
+static const char *const engine_sections[ENGINE_SECTIONS] = {"mujoco", "bullet", "simbody"};
+
+/* "section.key=default" for every key row of the engines' sections, from
+ * the key table as fourbar keys writes it: "| [section] key | unit |
+ * default | rule | meaning |"; returns how many */
+static int engine_default_sets(char sets[][160], const char **ptr, int max) {
+  char *text = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&text, &len);
+  assert_non_null(f);
+  fb_casefile_write_keys(f);
+  fclose(f);
+  int n = 0;
+  char *save = NULL;
+  for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+    for (int s = 0; s < ENGINE_SECTIONS; s++) {
+      char head[64];
+      snprintf(head, sizeof head, "| [%s] ", engine_sections[s]);
+      if (strncmp(line, head, strlen(head)) != 0) continue;
+      const char *key = line + strlen(head);
+      const char *unit = strstr(key, " | ");
+      assert_non_null(unit);
+      const char *def = strstr(unit + 3, " | ");
+      assert_non_null(def);
+      const char *def_end = strstr(def + 3, " | ");
+      assert_non_null(def_end);
+      assert_true(n < max);
+      snprintf(sets[n], 160, "%s.%.*s=%.*s", engine_sections[s], (int)(unit - key), key,
+               (int)(def_end - def - 3), def + 3);
+      ptr[n] = sets[n];
+      n++;
+    }
+  }
+  free(text);
+  return n;
+}
+
+static void test_engine_option_defaults_are_the_key_rows(void **state) {
+  (void)state;
+  static fb_case zero, fill, dflt, given;
+  memset(&zero, 0x00, sizeof zero);
+  memset(&fill, 0xA5, sizeof fill);
+  for (int s = 0; s < ENGINE_SECTIONS; s++) {
+    fb_casefile_section_defaults(&zero, engine_sections[s]);
+    fb_casefile_section_defaults(&fill, engine_sections[s]);
+  }
+  fb_case_default(&dflt);
+  char sets[32][160];
+  const char *ptr[32];
+  const int n = engine_default_sets(sets, ptr, 32);
+  assert_int_equal(n, 10); /* 6 mujoco, 2 bullet, 2 simbody rows */
+  fb_diag d;
+  if (fb_casefile_load(&given, NULL, ptr, n, &d) != FB_OK) fail_msg("%s", d.msg);
+  const fb_mujoco_opts mj = fb_mujoco_opts_default();
+  const fb_bullet_opts bt = fb_bullet_opts_default();
+  const fb_simbody_opts sb = fb_simbody_opts_default();
+#define ROW_DEFAULT(opts, engine, field)                  \
+  do {                                                    \
+    assert_true(zero.engine.field == fill.engine.field);  \
+    assert_true(opts.field == zero.engine.field);         \
+    assert_true(opts.field == dflt.engine.field);         \
+    assert_true(opts.field == given.engine.field);        \
+  } while (0)
+  ROW_DEFAULT(mj, mujoco, integrator);
+  ROW_DEFAULT(mj, mujoco, loop_stiffness);
+  ROW_DEFAULT(mj, mujoco, loop_damping);
+  ROW_DEFAULT(mj, mujoco, loop_impedance);
+  ROW_DEFAULT(mj, mujoco, drive_armature);
+  ROW_DEFAULT(mj, mujoco, native_bore);
+  ROW_DEFAULT(bt, bullet, solver);
+  ROW_DEFAULT(bt, bullet, iterations);
+  ROW_DEFAULT(sb, simbody, integrator);
+  ROW_DEFAULT(sb, simbody, accuracy);
+#undef ROW_DEFAULT
+  /* the wall-time estimate scales from this number (run.c): the row's own */
+  assert_true(sb.accuracy == FB_SIMBODY_ACCURACY_DEFAULT);
+}
+
 /* a product of decimal constants and a sum of squares, against the same
  * arithmetic done by hand to all digits: a few roundings, each 1.1e-16 */
 #define BAR_REL_TOL 1e-14
@@ -549,6 +636,7 @@ int main(void) {
       cmocka_unit_test(test_start_peaks_and_limit_keys),
       cmocka_unit_test(test_every_key_documented),
       cmocka_unit_test(test_defaults_come_from_the_key_table),
+      cmocka_unit_test(test_engine_option_defaults_are_the_key_rows),
       cmocka_unit_test(test_masses_derived_from_bars),
       cmocka_unit_test(test_paper_masses_are_the_case),
       cmocka_unit_test(test_default_models_follow_the_joints),

@@ -193,7 +193,9 @@ typedef struct {
                      (and the fallback's when the MLCP fails) [-] in [1, 100000] */
 } fb_bullet_opts;
 
-/* Defaults: mlcp-dantzig, 100 iterations (docs/engines.md, "Bullet"). */
+/* Defaults: the [bullet] key rows' defaults (docs/keys.md; docs/engines.md,
+ * "Bullet"), read from the case-file key table, where alone they are written
+ * (defined in setup/casefile.c). */
 fb_bullet_opts fb_bullet_opts_default(void);
 
 /* Initial state of the moving bodies ([run] start; physics/start.h resolves it). */
@@ -255,7 +257,11 @@ const char *fb_simbody_integrator_name(int k);
  * reference (measured: docs/engines.md, "Simbody"). Simbody's own default
  * is 1e-3. */
 #define FB_SIMBODY_ACCURACY_DEFAULT 1e-6
-#define FB_SIMBODY_ACCURACY_DEFAULT_TEXT "1e-6"
+/* The same number as the [simbody] accuracy key row writes its default
+ * ("1e-6"): the row, and so fb_simbody_opts_default, take it from here. */
+#define FB_SIMBODY_ACCURACY_DEFAULT_TEXT FB_SIMBODY_TEXT_(FB_SIMBODY_ACCURACY_DEFAULT)
+#define FB_SIMBODY_TEXT_(x) FB_SIMBODY_TEXT2_(x)
+#define FB_SIMBODY_TEXT2_(x) #x
 
 /* Simbody's own choices for the simbody-* models; engine-free. */
 typedef struct {
@@ -263,11 +269,14 @@ typedef struct {
   double accuracy; /* Integrator::setAccuracy [-] in [FB_SIMBODY_ACCURACY_MIN, _MAX] */
 } fb_simbody_opts;
 
-/* Defaults: rkmerson, accuracy FB_SIMBODY_ACCURACY_DEFAULT (docs/engines.md). */
+/* Defaults: the [simbody] key rows' defaults (docs/keys.md; accuracy
+ * FB_SIMBODY_ACCURACY_DEFAULT; docs/engines.md), read from the case-file key
+ * table, where alone they are written (defined in setup/casefile.c). */
 fb_simbody_opts fb_simbody_opts_default(void);
 
-/* Defaults: auto, loop stiffness 0 (1/h^2), damping 0 (1/h), impedance
- * 0.9999, armature 1e6 kg m^2 (docs/engines.md, "MuJoCo"). */
+/* Defaults: the [mujoco] key rows' defaults (docs/keys.md; docs/engines.md,
+ * "MuJoCo"), read from the case-file key table, where alone they are written
+ * (defined in setup/casefile.c). */
 fb_mujoco_opts fb_mujoco_opts_default(void);
 
 /* The integrator a MuJoCo model with these options runs: o->integrator, with

@@ -18,34 +18,9 @@ const char *fb_value_source_name(int s) {
   return (s >= 0 && s < 3) ? names[s] : "?";
 }
 
-fb_mujoco_opts fb_mujoco_opts_default(void) {
-  fb_mujoco_opts o;
-  o.integrator = FB_MUJOCO_AUTO;
-  o.loop_stiffness = 0.0; /* 1/h^2 */
-  o.loop_damping = 0.0;   /* 1/h */
-  o.loop_impedance = 0.9999;
-  o.drive_armature = 1e6;
-  o.native_bore = FB_MUJOCO_BORE_TENDON;
-  return o;
-}
-
-fb_bullet_opts fb_bullet_opts_default(void) {
-  fb_bullet_opts o;
-  o.solver = FB_BULLET_MLCP_DANTZIG;
-  o.iterations = 100;
-  return o;
-}
-
 const char *fb_bullet_solver_name(int k) {
   static const char *const names[] = {"sequential-impulse", "mlcp-dantzig"};
   return k >= 0 && k <= FB_BULLET_MLCP_DANTZIG ? names[k] : "?";
-}
-
-fb_simbody_opts fb_simbody_opts_default(void) {
-  fb_simbody_opts o;
-  o.integrator = FB_SIMBODY_RKMERSON;
-  o.accuracy = FB_SIMBODY_ACCURACY_DEFAULT;
-  return o;
 }
 
 const char *fb_simbody_integrator_name(int k) {

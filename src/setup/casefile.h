@@ -1,7 +1,8 @@
 /* Case files: INI (parsed by inih) with the unit in every key name. This is
  * the one place where non-SI units (mm, rpm, deg, GPa, kg mm^2) are converted
- * to SI. Every key, its unit, default and rule is in the table of casefile.c
- * and documented in docs/keys.md, generated from fourbar keys (a test keeps the two in step). */
+ * to SI (casefile_values.c). Every key, its unit, default and rule is in the
+ * table of casefile_keys.c and documented in docs/keys.md, generated from
+ * fourbar keys (a test keeps the two in step); casefile.c reads the files. */
 #ifndef FB_CASEFILE_H
 #define FB_CASEFILE_H
 
@@ -80,6 +81,14 @@ const char *fb_casefile_key_name(int i, char *buf, size_t size);
 /* Checks that every key's default in the key table applies through the
  * parser (fb_case_default relies on it). Errors: FB_ERR_PARSE naming the key. */
 int fb_casefile_defaults_check(fb_diag *diag);
+
+/* Applies the key table's default of every key of [section] (NULL: of every
+ * section) that has one to c, in table order, through the parser as a file
+ * would give it; fields no such key sets keep their value. The one source of
+ * defaults: fb_case_default and each engine's options default
+ * (fb_mujoco_opts_default, fb_bullet_opts_default, fb_simbody_opts_default:
+ * case.h) read them here. */
+void fb_casefile_section_defaults(fb_case *c, const char *section);
 
 /* Lengths a case may give but hardly means: below FB_PLAUSIBLE_LENGTH_MIN_M
  * a link, pin or bar dimension is a watch part, above

@@ -1,0 +1,123 @@
+/* Internal to the case-file reader, shared by its three files and by no
+ * other: casefile_keys.c (the key table), casefile_values.c (one key's value
+ * into fb_case, with its unit converted to SI) and casefile.c (the parser and
+ * loader: inih, base files, --set, variants, defaults). Holds the key row's
+ * type, a raw entry of a file or --set, and the helpers the three share.
+ * Not a public header: the reader's interface is casefile.h. */
+#ifndef FB_CASEFILE_INTERNAL_H
+#define FB_CASEFILE_INTERNAL_H
+
+#include <stddef.h>
+#include <string.h>
+
+#include "case.h"
+
+/* ---- the key table's rows (casefile_keys.c) ------------------------------ */
+
+typedef enum {
+  K_DOUBLE,    /* number, multiplied by scale to SI */
+  K_INT,       /* integer */
+  K_ULONG,     /* unsigned integer */
+  K_NAME,      /* identifier-like string */
+  K_TEXT,      /* free text, kept for the reader only */
+  K_STRING,    /* free text the writers print (fb_case.published_source) */
+  K_BRANCH,    /* open | crossed */
+  K_DIRECTION, /* cw | ccw */
+  K_STEPPER,   /* world | quick */
+  K_STEP,      /* a step size in seconds, or auto */
+  K_STACKUP,   /* nominal | max | min | four corner characters from + - 0 */
+  K_MODELS,    /* comma-separated model names */
+  K_CLASS,     /* ISO 2768-1 class letter f m c v */
+  K_DIST,      /* normal | uniform */
+  K_OUTPUT,    /* a stack-up output name */
+  K_FIT,       /* an ISO 286 fit string, checked after reading */
+  K_JOINTS,    /* comma-separated joint names (bit mask) */
+  K_PENALTY,   /* physical | paper | explicit */
+  K_MAPPING,   /* secant | tangent | matched */
+  K_MJINT,     /* euler | implicit | rk4 | auto */
+  K_MJBORE,    /* tendon | facets */
+  K_START,     /* steady | rest */
+  K_PINSTART,  /* centred | resting | an eccentricity angle in degrees */
+  K_PEAKS,     /* steady | all */
+  K_SERIES,    /* csv | hdf5 | none */
+  K_LIMIT,     /* a number (scaled like K_DOUBLE) | none | clearance */
+  K_UNUSED,    /* a number checked against its range and not stored (no model uses it) */
+  K_COLLIDER,  /* exact | faceted | ccd */
+  K_BORE,      /* circle | ellipse */
+  K_BTSOLVER   /* sequential-impulse | mlcp-dantzig */,
+  K_SBINT      /* rkmerson | rkfeldberg | rk3 | cpodes | verlet */
+} key_kind;
+
+typedef struct {
+  const char *section;
+  const char *key;
+  key_kind kind;
+  size_t offset; /* into fb_case */
+  double scale;  /* file unit -> SI (K_DOUBLE) */
+  double lo, hi; /* allowed range in file units */
+  int lo_open;   /* 1: lo excluded */
+  int hi_open;   /* 1: hi excluded */
+  const char *unit;
+  const char *def; /* default as written in a file */
+  const char *rule;
+  const char *doc;
+} key_spec;
+
+#define OFF(field) offsetof(fb_case, field)
+#define MASS_RULE "a mass must be positive, from 1e-6 kg to 1e4 kg (1 mg to 10 t)"
+
+/* run by default, after the key's default list, when a case has clearance
+ * joints and does not give [run] models: each clearance model with its
+ * reference (issue 25: the step was shrunk for a contact no model ran); the
+ * [run] models row documents this list, casefile.c runs it */
+#define FB_CLEARANCE_DEFAULT_MODELS \
+  "ode-clearance-impact, ode-clearance-restitution, reference, reference-restitution"
+
+/* Row i of the key table (0 .. fb_casefile_key_count() - 1), NULL outside. */
+const key_spec *fb_casefile_spec(int i);
+
+/* The row of key [section] key, or NULL when the table has none. */
+const key_spec *fb_casefile_spec_find(const char *section, const char *key);
+
+/* The index of key [section] key in the table (its slot in fb_case.given),
+ * or -1 when the table has none. */
+int fb_casefile_spec_index(const char *section, const char *key);
+
+/* 1 when some key of the table is in [section], else 0. */
+int fb_casefile_section_known(const char *section);
+
+/* 1 when row k's default is a value to apply ("(none)", "(derived)", "-"
+ * and "" are not, nor the default of a K_TEXT or K_UNUSED key), else 0. */
+int fb_casefile_spec_has_default(const key_spec *k);
+
+/* ---- a raw entry: what the file and --set said, with where ---------------- */
+
+typedef struct {
+  char section[64];
+  char key[64];
+  char value[256];
+  char origin[512]; /* "file:line" or "--set" */
+  int line;         /* 0 for --set */
+} entry;
+
+/* ---- values (casefile_values.c) ------------------------------------------ */
+
+/* Applies entry e to c: finds its row, reads e->value by the row's kind,
+ * checks it against the row's rule and range, converts it from the row's
+ * file unit to SI and stores it in the row's field of c. Errors (diag names
+ * e->origin, section, key, value and the rule): FB_ERR_PARSE for an unknown
+ * section or key (the nearest key suggested) or a value of the wrong form,
+ * FB_ERR_RANGE for a value outside the row's range, FB_ERR_ARG for a model
+ * or a series format this build lacks. */
+fb_status fb_casefile_apply(fb_case *c, const entry *e, fb_diag *diag);
+
+/* s without the blanks (spaces, tabs) around it: s is cut at its end, the
+ * result points into it. */
+static inline char *trim(char *s) {
+  while (*s == ' ' || *s == '\t') s++;
+  size_t n = strlen(s);
+  while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t')) s[--n] = '\0';
+  return s;
+}
+
+#endif

@@ -9,6 +9,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -111,13 +112,30 @@ static fb_status gnuplot_start(const plot *pl, int n, pid_t *pid, fb_diag *diag)
     argv[k + 1] = (char *)(slash ? slash + 1 : pl[k].script);
   }
   argv[n + 1] = NULL;
-  int rc = posix_spawnp(pid, "gnuplot", &fa, NULL, argv, environ);
+  /* SIGINT, SIGTERM and SIGHUP wait until the child is registered for the
+   * clean-up (outdir.h), which kills it before the folder is removed: one
+   * arriving between the spawn and the registration would otherwise leave
+   * a gnuplot writing into a removed folder; the child starts with the
+   * caller's own mask */
+  sigset_t block, old_mask;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
+  sigaddset(&block, SIGHUP);
+  sigprocmask(SIG_BLOCK, &block, &old_mask);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setsigmask(&attr, &old_mask);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
+  int rc = posix_spawnp(pid, "gnuplot", &fa, &attr, argv, environ);
+  posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&fa);
+  if (rc == 0) fb_cleanup_child_add(*pid); /* at most FB_CLEANUP_CHILDREN run at once */
+  sigprocmask(SIG_SETMASK, &old_mask, NULL);
   close(logfd);
   if (rc != 0)
     return fb_diag_set(diag, FB_ERR_IO, "%s: cannot start gnuplot: %s (apt-get install "
                        "gnuplot-nox, or pass --no-figures)", pl[0].path, strerror(rc));
-  fb_cleanup_child_add(*pid); /* at most FB_CLEANUP_CHILDREN run at once */
   return FB_OK;
 }
 

@@ -11,10 +11,9 @@
 #include "textsafe.h"
 #include "figures.h"
 #include "fileio.h"
-#include "outdir.h"
 #include "report.h"
 #include "report_html.h"
-#include "run.h"
+#include "run_folder.h"
 
 #define MAX_SETS 256
 
@@ -75,6 +74,122 @@ static void progress(const char *model, double fraction, void *user) {
   fflush(stderr);
 }
 
+/* the case's variants ([variant.NAME]) loaded now, so a bad one fails before
+ * any simulation; then what fb_run_case refuses before its first model (the
+ * step resolved, the cost against memory and [run] max_wall_s), found now
+ * for the case and every variant: none waits for the models before it.
+ * Returns the exit status. */
+static int load_variants(fb_case *c, fb_case *variants, const char *case_path,
+                         const char *const *sets, int nsets, int jobs) {
+  for (int v = 0; v < c->variant_count; v++) {
+    fb_diag vd;
+    if (fb_casefile_load_variant(&variants[v], case_path, sets, nsets, &c->variant[v], &vd) != FB_OK)
+      return fb_cli_fail("run", 2, "%s", vd.msg);
+    variants[v].jobs = jobs;
+  }
+  /* (a case that cannot fit the machine or max_wall_s: exit 1, as a run
+   * refused by its estimate always was; a scene the keys cannot make: 2) */
+  fb_diag pre;
+  int over_cost;
+  if (fb_run_preflight(c, &over_cost, &pre) != FB_OK)
+    return fb_cli_fail("run", over_cost ? 1 : 2, "%s: %s", case_path, pre.msg);
+  for (int v = 0; v < c->variant_count; v++)
+    if (fb_run_preflight(&variants[v], &over_cost, &pre) != FB_OK)
+      return fb_cli_fail("run", over_cost ? 1 : 2, "%s: variant %s (%s): %s", case_path,
+                         c->variant[v].name, c->variant[v].origin, pre.msg);
+  return 0;
+}
+
+/* what the set holds besides the run's own files, and how it went */
+typedef struct {
+  const char *dir;       /* the output folder, as named in messages */
+  const char *case_path;
+  const char *command;   /* the command line, for report.md */
+  int figures, html;     /* --no-figures, --no-report */
+  fb_figure_format fmt;
+  int nfig, charts;      /* figures drawn; 1 when report.html has its charts */
+} run_set;
+
+/* The result set into the staging folder (fb_run_set_writer): summary.json,
+ * timing.json and the series, then figures, report.html and report.md,
+ * which belong to the set: a set with a figure or the report missing or
+ * damaged (a full disk) is not committed, and the folder keeps the set it
+ * had. Returns the exit status. */
+static int write_set(const char *stage, const fb_run *r, void *user) {
+  run_set *w = user;
+  fb_diag diag;
+  if (fb_report_write_run(stage, r, w->case_path, &diag) != FB_OK)
+    return fb_cli_fail("run", 1, "%s", diag.msg);
+  char names[64][128];
+  char note[1200] = "Figures were not requested (--no-figures).";
+  if (w->figures && fb_figures_run(r, stage, w->fmt, names, 64, &w->nfig, &diag) != FB_OK)
+    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
+                       w->dir);
+  /* report.html belongs to the set too (report_html.h) */
+  if (w->html) {
+    json_t *sj = fb_report_summary_json(r, w->case_path);
+    fb_status st = fb_report_html_write(stage, r, sj, &w->charts, &diag);
+    json_decref(sj);
+    if (st != FB_OK)
+      return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
+                         w->dir);
+  }
+  if (fb_report_write_markdown(stage, r, w->case_path, w->command, names, w->nfig, note, &diag) != FB_OK)
+    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
+                       w->dir);
+  return 0;
+}
+
+/* what the run wrote, on stdout: summary.json (with each model's wall time
+ * from timing.json) with --json, else the table and the files */
+static void print_run(const fb_run *r, const run_set *w, int json) {
+  if (json) {
+    json_t *j = fb_report_summary_json(r, w->case_path), *t = fb_report_timing_json(r);
+    for (int i = 0; i < r->n; i++) {
+      json_t *m = json_array_get(json_object_get(j, "models"), (size_t)i);
+      json_t *tm = json_array_get(json_object_get(t, "models"), (size_t)i);
+      json_object_set(m, "wall_s", json_object_get(tm, "wall_s"));
+      json_object_set(m, "time_per_step_us", json_object_get(tm, "time_per_step_us"));
+    }
+    json_dumpf(j, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
+    fputc('\n', stdout);
+    json_decref(j);
+    json_decref(t);
+  } else {
+    fb_report_print_table(stdout, r);
+    char series[64];
+    if (r->c.series == FB_SERIES_CSV) snprintf(series, sizeof series, "%d CSV files", r->n);
+    else if (r->c.series == FB_SERIES_HDF5) snprintf(series, sizeof series, "series.h5 (%d models)", r->n);
+    else snprintf(series, sizeof series, "no time series");
+    printf("wrote %s/summary.json, timing.json, %s, %d figures, report.md%s\n", w->dir, series,
+           w->nfig, w->html ? " and report.html" : "");
+  }
+}
+
+/* the command line for report.md: argv[0] is "fourbar run" (main.c); the
+ * rest quoted for a POSIX shell, cut with " ..." */
+static void command_text(char *command, size_t size, int argc, char **argv) {
+  snprintf(command, size, "%s", argv[0]);
+  for (int i = 1; i < argc; i++) {
+    strncat(command, " ", size - strlen(command) - 1);
+    if (!fb_cli_shell_word(command, size, argv[i])) {
+      strncat(command, " ...", size - strlen(command) - 1);
+      break;
+    }
+  }
+}
+
+/* --set without --out writes the variant into the case's own folder: said
+ * on stderr (docs/commands.md, "run"), with whether it replaced an earlier run */
+static void note_variant(const char *dir, const char *name, const char *const *sets, int nsets,
+                         int replaces) {
+  fprintf(stderr, "fourbar run: note: --set without --out: %s/ now holds this variant of case %s (",
+          dir, name);
+  for (int i = 0; i < nsets; i++) fprintf(stderr, "%s%s", i ? ", " : "", sets[i]);
+  fprintf(stderr, ")%s; give --out DIR to keep runs apart\n",
+          replaces ? ", replacing the run that was there" : "");
+}
+
 int fb_cmd_run(int argc, char **argv) {
   static const struct option opts[] = {{"out", required_argument, 0, 'o'},
                                        {"set", required_argument, 0, 's'},
@@ -91,7 +206,7 @@ int fb_cmd_run(int argc, char **argv) {
   const char *sets[MAX_SETS + 1];
   char series_set[64];
   int series_at = -1; /* the slot of --series in sets */
-  int nsets = 0, json = 0, figures = 1, html = 1, charts = 0, ch;
+  int nsets = 0, json = 0, figures = 1, html = 1, ch;
   fb_figure_format fmt = FB_FIGURE_SVG;
   optind = 1;
   while ((ch = getopt_long(argc, argv, "o:s:jh", opts, NULL)) != -1) {
@@ -137,28 +252,8 @@ int fb_cmd_run(int argc, char **argv) {
   /* a case that leaves [run] ensemble unset lets the run add one where a
    * verdict is unsettled (run.h, FB_ENSEMBLE_AUTO_MEMBERS; docs/chaos.md) */
   if (!fb_casefile_given(&c, "run", "ensemble")) c.ensemble_auto = FB_ENSEMBLE_AUTO_MEMBERS;
-  /* the case's variants ([variant.NAME]) load now, so a bad one fails before
-   * any simulation */
   static fb_case variants[FB_MAX_VARIANTS];
-  for (int v = 0; v < c.variant_count; v++) {
-    fb_diag vd;
-    if (fb_casefile_load_variant(&variants[v], case_path, sets, nsets, &c.variant[v], &vd) != FB_OK)
-      return fb_cli_fail("run", 2, "%s", vd.msg);
-    variants[v].jobs = jobs;
-  }
-  /* what fb_run_case refuses before its first model (the step resolved, the
-   * cost against memory and [run] max_wall_s) is found now, for the case
-   * and every variant: none waits for the models before it */
-  /* (a case that cannot fit the machine or max_wall_s: exit 1, as a run
-   * refused by its estimate always was; a scene the keys cannot make: 2) */
-  fb_diag pre;
-  int over_cost;
-  if (fb_run_preflight(&c, &over_cost, &pre) != FB_OK)
-    return fb_cli_fail("run", over_cost ? 1 : 2, "%s: %s", case_path, pre.msg);
-  for (int v = 0; v < c.variant_count; v++)
-    if (fb_run_preflight(&variants[v], &over_cost, &pre) != FB_OK)
-      return fb_cli_fail("run", over_cost ? 1 : 2, "%s: variant %s (%s): %s", case_path,
-                         c.variant[v].name, c.variant[v].origin, pre.msg);
+  if ((rc = load_variants(&c, variants, case_path, sets, nsets, jobs)) != 0) return rc;
 
   char dir[4096];
   if (out_dir)
@@ -173,121 +268,26 @@ int fb_cmd_run(int argc, char **argv) {
   const int replaces = stat(prev_summary, &prev) == 0;
   /* figures need gnuplot: found out before the simulation, not after it */
   if (figures && fb_figures_check_gnuplot(&diag) != FB_OK) return fb_cli_fail("run", 1, "%s", diag.msg);
-  /* one writer per folder; the whole set goes to a staging folder beside it,
-   * swapped in at the end (outdir.h): both checked before any simulation */
-  static fb_outdir od;
-  fb_status st = fb_outdir_lock(&od, dir, 1, NULL, &diag);
-  if (st == FB_OK) st = fb_outdir_stage(&od, &diag);
-  if (st != FB_OK) {
-    fb_outdir_release(&od);
-    return fb_cli_fail("run", 1, "%s", diag.msg);
-  }
-  /* stopped by a signal: what the folder keeps and the command that runs it again */
-  static char note_text[4 * 4096 + 64], note_tail[8192 + 64], esc_dir[4 * 4096];
-  static char again[8192];
+  static char again[8192], command[8192];
   fb_cli_command_line(again, sizeof again, argc, argv, NULL);
-  snprintf(note_text, sizeof note_text, "%s keeps the results it held (nothing of this run "
-           "was written)", fb_text_escape(esc_dir, sizeof esc_dir, dir));
-  snprintf(note_tail, sizeof note_tail, "; to run it again: %s", again);
-  fb_cleanup_note("fourbar run: stopped", note_text, NULL, note_tail);
-
-  static fb_run r;
+  command_text(command, sizeof command, argc, argv);
+  run_set w = {.dir = dir, .case_path = case_path, .command = command, .figures = figures,
+               .html = html, .fmt = fmt};
   progress_state ps = {isatty(2) && !json};
-  st = fb_run_case(&r, &c, progress, &ps, &diag);
-  if (st == FB_OK) {
-    st = fb_run_variants(&r, variants, c.variant_count, progress, &ps, &diag);
-    if (st != FB_OK) fb_run_free(&r);
+  const fb_run_folder_job job = {.dir = dir, .c = &c, .variants = variants,
+                                 .nvariants = c.variant_count, .progress = progress,
+                                 .progress_user = &ps, .again = again, .write = write_set,
+                                 .write_user = &w};
+  static fb_run r;
+  switch (fb_run_into_folder(&r, &job, &rc, &diag)) {
+    case FB_RUN_FOLDER_OK: break;
+    case FB_RUN_FOLDER_DIR: return fb_cli_fail("run", 1, "%s", diag.msg);
+    case FB_RUN_FOLDER_RUN: return fb_cli_fail("run", 1, "%s: %s", case_path, diag.msg); /* the file whose keys to fix */
+    case FB_RUN_FOLDER_WRITE: return rc;
   }
-  if (st != FB_OK) {
-    fb_outdir_release(&od);
-    return fb_cli_fail("run", 1, "%s: %s", case_path, diag.msg); /* the file whose keys to fix */
-  }
-  st = fb_report_write_run(od.stage, &r, case_path, &diag);
-  if (st != FB_OK) {
-    fb_run_free(&r);
-    fb_outdir_release(&od);
-    return fb_cli_fail("run", 1, "%s", diag.msg);
-  }
-  /* figures and report.md belong to the set: a set with a figure or the
-   * report missing or damaged (a full disk) is not committed, and the
-   * folder keeps the set it had */
-  char names[64][128];
-  int nfig = 0;
-  char note[1200] = "Figures were not requested (--no-figures).";
-  if (figures && fb_figures_run(&r, od.stage, fmt, names, 64, &nfig, &diag) != FB_OK) {
-    fb_run_free(&r);
-    fb_outdir_release(&od);
-    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
-                       dir);
-  }
-  /* report.html belongs to the set too (report_html.h) */
-  if (html) {
-    json_t *sj = fb_report_summary_json(&r, case_path);
-    st = fb_report_html_write(od.stage, &r, sj, &charts, &diag);
-    json_decref(sj);
-    if (st != FB_OK) {
-      fb_run_free(&r);
-      fb_outdir_release(&od);
-      return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
-                         dir);
-    }
-  }
-  /* argv[0] is "fourbar run" (main.c); the rest quoted for a POSIX shell */
-  char command[8192];
-  snprintf(command, sizeof command, "%s", argv[0]);
-  for (int i = 1; i < argc; i++) {
-    strncat(command, " ", sizeof command - strlen(command) - 1);
-    if (!fb_cli_shell_word(command, sizeof command, argv[i])) {
-      strncat(command, " ...", sizeof command - strlen(command) - 1);
-      break;
-    }
-  }
-  if (fb_report_write_markdown(od.stage, &r, case_path, command, names, nfig, note, &diag) != FB_OK) {
-    fb_run_free(&r);
-    fb_outdir_release(&od);
-    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
-                       dir);
-  }
-  st = fb_outdir_commit(&od, &diag);
-  if (st == FB_OK) { /* a signal from here on finds this run's set in place */
-    snprintf(note_text, sizeof note_text, "%s holds this run's results, whole", esc_dir);
-    fb_cleanup_note("fourbar run: stopped", note_text, NULL, NULL);
-  }
-  fb_outdir_release(&od);
-  if (st != FB_OK) {
-    fb_run_free(&r);
-    return fb_cli_fail("run", 1, "%s", diag.msg);
-  }
-  if (nsets > 0 && !out_dir) {
-    fprintf(stderr, "fourbar run: note: --set without --out: %s/ now holds this variant of case %s (",
-            dir, c.name);
-    for (int i = 0; i < nsets; i++) fprintf(stderr, "%s%s", i ? ", " : "", sets[i]);
-    fprintf(stderr, ")%s; give --out DIR to keep runs apart\n",
-            replaces ? ", replacing the run that was there" : "");
-  }
-  if (json) {
-    /* summary.json with each model's wall time from timing.json */
-    json_t *j = fb_report_summary_json(&r, case_path), *t = fb_report_timing_json(&r);
-    for (int i = 0; i < r.n; i++) {
-      json_t *m = json_array_get(json_object_get(j, "models"), (size_t)i);
-      json_t *tm = json_array_get(json_object_get(t, "models"), (size_t)i);
-      json_object_set(m, "wall_s", json_object_get(tm, "wall_s"));
-      json_object_set(m, "time_per_step_us", json_object_get(tm, "time_per_step_us"));
-    }
-    json_dumpf(j, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
-    fputc('\n', stdout);
-    json_decref(j);
-    json_decref(t);
-  } else {
-    fb_report_print_table(stdout, &r);
-    char series[64];
-    if (r.c.series == FB_SERIES_CSV) snprintf(series, sizeof series, "%d CSV files", r.n);
-    else if (r.c.series == FB_SERIES_HDF5) snprintf(series, sizeof series, "series.h5 (%d models)", r.n);
-    else snprintf(series, sizeof series, "no time series");
-    printf("wrote %s/summary.json, timing.json, %s, %d figures, report.md%s\n", dir, series, nfig,
-           html ? " and report.html" : "");
-  }
-  if (html && !charts)
+  if (nsets > 0 && !out_dir) note_variant(dir, c.name, sets, nsets, replaces);
+  print_run(&r, &w, json);
+  if (html && !w.charts)
     fprintf(stderr, "fourbar run: note: %s/report.html has no charts: the charting library uPlot "
             "was not found (run npm ci in the fourbar source folder, or bash scripts/quickstart.sh "
             "build, then run again; or set FOURBAR_UPLOT_DIR)\n", dir);

@@ -6,6 +6,7 @@
 #include <ini.h>
 #include <jansson.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -803,4 +804,14 @@ fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *d
   json_decref(seen);
   free(v);
   return st;
+}
+
+int fb_study_fail(const char *cmd, int status, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  fprintf(stderr, "fourbar %s: ", cmd);
+  vfprintf(stderr, fmt, ap);
+  fputc('\n', stderr);
+  va_end(ap);
+  return status;
 }

@@ -109,6 +109,21 @@ long fb_study_row_index(const char *line, size_t *of);
  * Errors: FB_ERR_IO. */
 fb_status fb_study_write_csv(const char *path, char **rows, size_t n, fb_diag *diag);
 
+/* The error line of a study command (sweep, merge, check), as the command
+ * line prints its own: "fourbar <cmd>: <message>" on standard error.
+ * Returns status (2 bad input, 1 failed) for `return fb_study_fail(...)`. */
+int fb_study_fail(const char *cmd, int status, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* Writes j to the file at path, whole or not at all (report.h's
+ * fb_report_write_json, a floor above, given by the command line).
+ * Errors: FB_ERR_IO. */
+typedef fb_status (*fb_study_json_writer)(const char *path, const json_t *j, fb_diag *diag);
+
+/* Draws DIR/study.svg from DIR/points.csv (figures.h's fb_figures_study, a
+ * floor above, given by the command line). Errors: those of gnuplot. */
+typedef fb_status (*fb_study_drawer)(const fb_study *s, const char *dir, fb_diag *diag);
+
 /* Counts the rows (JSON lines as fb_study_point writes them) whose status is
  * not "ok" (*stopped) and those with at least one warning (*warned); a row
  * that does not parse counts as neither. */

@@ -1,0 +1,54 @@
+/* A case run into its output folder (run_folder.h). */
+#include "run_folder.h"
+
+#include <stdio.h>
+
+#include "outdir.h"
+#include "textsafe.h"
+
+fb_run_folder_result fb_run_into_folder(fb_run *r, const fb_run_folder_job *j, int *write_rc,
+                                        fb_diag *diag) {
+  *write_rc = 0;
+  /* one writer per folder; the whole set goes to a staging folder beside it,
+   * swapped in at the end (outdir.h): both checked before any simulation */
+  static fb_outdir od;
+  fb_status st = fb_outdir_lock(&od, j->dir, 1, NULL, diag);
+  if (st == FB_OK) st = fb_outdir_stage(&od, diag);
+  if (st != FB_OK) {
+    fb_outdir_release(&od);
+    return FB_RUN_FOLDER_DIR;
+  }
+  /* stopped by a signal: what the folder keeps and the command that runs it again */
+  static char note_text[4 * 4096 + 64], note_tail[8192 + 64], esc_dir[4 * 4096];
+  snprintf(note_text, sizeof note_text, "%s keeps the results it held (nothing of this run "
+           "was written)", fb_text_escape(esc_dir, sizeof esc_dir, j->dir));
+  snprintf(note_tail, sizeof note_tail, "; to run it again: %s", j->again);
+  fb_cleanup_note("fourbar run: stopped", note_text, NULL, note_tail);
+
+  st = fb_run_case(r, j->c, j->progress, j->progress_user, diag);
+  if (st == FB_OK) {
+    st = fb_run_variants(r, j->variants, j->nvariants, j->progress, j->progress_user, diag);
+    if (st != FB_OK) fb_run_free(r);
+  }
+  if (st != FB_OK) {
+    fb_outdir_release(&od);
+    return FB_RUN_FOLDER_RUN;
+  }
+  *write_rc = j->write(od.stage, r, j->write_user);
+  if (*write_rc) {
+    fb_run_free(r);
+    fb_outdir_release(&od);
+    return FB_RUN_FOLDER_WRITE;
+  }
+  st = fb_outdir_commit(&od, diag);
+  if (st == FB_OK) { /* a signal from here on finds this run's set in place */
+    snprintf(note_text, sizeof note_text, "%s holds this run's results, whole", esc_dir);
+    fb_cleanup_note("fourbar run: stopped", note_text, NULL, NULL);
+  }
+  fb_outdir_release(&od);
+  if (st != FB_OK) {
+    fb_run_free(r);
+    return FB_RUN_FOLDER_DIR;
+  }
+  return FB_RUN_FOLDER_OK;
+}

@@ -1,0 +1,36 @@
+/* fourbar bench as a whole (bench.h holds the grid): the grids and the
+ * peers (peers.h) run on one case, then DIR/bench.csv (one line per row),
+ * DIR/bench.json (the rows, the cheapest configuration per engine and
+ * across engines for error targets 1e-2, 1e-3 and 1e-4, the peers) and
+ * DIR/bench.svg written, and the tables printed. The command line
+ * (cmd_bench.c) parses the flags and calls fb_bench_study. */
+#ifndef FB_BENCH_STUDY_H
+#define FB_BENCH_STUDY_H
+
+#include "bench.h"
+#include "peers.h"
+#include "study.h"
+
+/* Draws bench.svg at path from rows[0..n) of case case_name (figures.h's
+ * fb_figures_bench, a floor above, given by the command line). */
+typedef fb_status (*fb_bench_drawer)(const char *path, const char *case_name,
+                                     const fb_bench_row *rows, int n, fb_diag *diag);
+
+/* What to bench (the flags of fourbar bench). */
+typedef struct {
+  const fb_case *c;       /* the case */
+  const char *dir;        /* output folder (created) */
+  int grids;              /* FB_BENCH_* bits (FB_BENCH_PEERS: the peers too) */
+  const char *grid_name;  /* --grid as given, recorded in bench.json */
+  int json;               /* 1: print bench.json instead of the tables */
+  fb_study_json_writer write_json; /* writes bench.json */
+  fb_bench_drawer draw;   /* draws bench.svg (a failure is a warning) */
+} fb_bench_opts;
+
+/* Runs the bench o asks for (on a terminal with a progress bar and the
+ * time left on stderr), writes its files and prints its tables (or, with
+ * o->json, bench.json) on stdout. Returns the exit status: 0 ok, 1
+ * failed, having said why on stderr ("fourbar bench: ..."). */
+int fb_bench_study(const fb_bench_opts *o);
+
+#endif

@@ -372,7 +372,7 @@ int fb_bench_study(const fb_bench_opts *o) {
   if (fb_bench_run(rows, &n, o->c, o->grids & ~FB_BENCH_PEERS, progress, &bp, &d) != FB_OK)
     return fb_study_fail("bench", 1, "%s", d.msg);
   /* the peers: each engine's bare program beside the harness (peers.h) */
-  fb_peer_row peers[4];
+  fb_peer_row peers[FB_PEERS_MAX];
   int npeers = 0;
   if ((o->grids & FB_BENCH_PEERS) && fb_peers_run(peers, &npeers, o->c, NULL, NULL, NULL, &d) != FB_OK)
     return fb_study_fail("bench", 1, "%s", d.msg);

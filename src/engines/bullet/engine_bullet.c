@@ -2,6 +2,7 @@
  * over the Bullet scene (bullet_scene.h, C++ behind C linkage). */
 #include "bullet_scene.h"
 #include "engine.h"
+#include "impact_bullet.h"
 
 static fb_status bullet_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
   fb_bullet_scene *s = NULL;
@@ -35,6 +36,21 @@ static size_t bullet_steps(const void *self) { return fb_bullet_scene_steps(self
 
 static void bullet_destroy(void *self) { fb_bullet_scene_destroy(self); }
 
+/* the single impact (impact_bullet.h) */
+static fb_status bullet_impact_law(fb_impact_result *out, const fb_impact_def *d,
+                                   const fb_impact_opts *o, fb_diag *diag) {
+  return fb_impact_bullet(out, d, &o->bullet, diag);
+}
+
+static fb_status bullet_impact_row(fb_impact_result *out, const fb_impact_row *r,
+                                   fb_diag *diag) {
+  return fb_impact_bullet_contact(out, r->mass, r->speed, r->h, r->bullet.kp, r->bullet.kd,
+                                  r->t_max, r->onset_phase, diag);
+}
+
+static const fb_engine_impact bullet_impact = {.law = bullet_impact_law,
+                                               .row = bullet_impact_row};
+
 const fb_engine fb_engine_bullet = {
     .name = "bullet",
     .guarded = 1,
@@ -50,4 +66,5 @@ const fb_engine fb_engine_bullet = {
     .drift = bullet_drift,
     .steps = bullet_steps,
     .destroy = bullet_destroy,
+    .impact = &bullet_impact,
 };

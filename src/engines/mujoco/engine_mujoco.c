@@ -1,6 +1,7 @@
 /* The MuJoCo engine behind the engine interface (engine.h): thin wrappers
  * over the MuJoCo scene (mujoco_scene.h). */
 #include "engine.h"
+#include "impact_mujoco.h"
 #include "mujoco_scene.h"
 
 static fb_status mujoco_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
@@ -37,6 +38,15 @@ static void mujoco_step_stats(const void *self, fb_step_stats *out) {
   fb_mujoco_scene_step_stats(self, out);
 }
 
+/* the single impact (impact_mujoco.h): a fixed row only */
+static fb_status mujoco_impact_row(fb_impact_result *out, const fb_impact_row *r,
+                                   fb_diag *diag) {
+  return fb_impact_mujoco(out, r->mass, r->speed, r->h, r->mujoco.solref, r->mujoco.solimp,
+                          r->t_max, r->onset_phase, diag);
+}
+
+static const fb_engine_impact mujoco_impact = {.law = NULL, .row = mujoco_impact_row};
+
 const fb_engine fb_engine_mujoco = {
     .name = "mujoco",
     .guarded = 1,
@@ -50,4 +60,5 @@ const fb_engine fb_engine_mujoco = {
     .steps = mujoco_steps,
     .destroy = mujoco_destroy,
     .step_stats = mujoco_step_stats,
+    .impact = &mujoco_impact,
 };

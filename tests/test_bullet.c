@@ -20,6 +20,8 @@
 #include "fb_config.h"
 #include "fb_test.h"
 #include "impact.h"
+#include "impact_bullet.h"
+#include "impact_ode.h"
 #include "outcome_text.h"
 #include "report.h"
 #include "run.h"

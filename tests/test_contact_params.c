@@ -15,6 +15,9 @@
 #include "fb_config.h"
 #include "fb_test.h"
 #include "impact.h"
+#include "impact_bullet.h"
+#include "impact_mujoco.h"
+#include "impact_ode.h"
 #include "resolution.h"
 
 /* the issue's acceptance bounds: restitution within 1 %, peak penetration

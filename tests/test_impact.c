@@ -10,6 +10,7 @@
 
 #include "fb_test.h"
 #include "impact.h"
+#include "impact_ode.h"
 
 /* rk8pd at relative tolerance 1e-12, peaks by parabola through samples at
  * T/4000: interpolation error (T/4000)^3-ish, far below 1e-7 */

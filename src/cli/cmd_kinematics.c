@@ -1,13 +1,13 @@
-/* fourbar kinematics: argument parsing and dispatch only. */
+/* fourbar kinematics: argument parsing and dispatch only: fb_kinematics_run
+ * (src/studies/kinematics.h), the result printed by tables_kinematics.h. */
 #include <getopt.h>
-#include <jansson.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "analytic.h"
 #include "casefile.h"
 #include "cli.h"
-#include "report.h"
+#include "kinematics.h"
+#include "tables_kinematics.h"
 #include "units.h"
 
 static const char kin_help[] =
@@ -87,7 +87,7 @@ int fb_cmd_kinematics(int argc, char **argv) {
     if (!branch_given) branch = c.branch;
   }
   if (dir == 0) dir = -1; /* cw, the [drive] direction default */
-  fb_linkage lk;
+  static fb_kinematics k;
   for (int i = 0; i < FB_LINK_COUNT; i++) {
     if (mm[i] == -1) return fb_cli_fail("kinematics", 2, "%s is required; see --help", flag_of[i]);
     char key[32];
@@ -95,8 +95,9 @@ int fb_cmd_kinematics(int argc, char **argv) {
     fb_diag rd; /* the ranges of fourbar run's case keys */
     if (fb_casefile_check_range("linkage", key, mm[i], flag_of[i], &rd) != FB_OK)
       return fb_cli_fail("kinematics", 2, "%s", rd.msg);
-    lk.length[i] = mm[i] * FB_M_PER_MM;
-    const char *why = fb_casefile_length_implausible(lk.length[i]);
+    k.lk.length[i] = mm[i] * FB_M_PER_MM;
+    k.mm[i] = mm[i];
+    const char *why = fb_casefile_length_implausible(k.lk.length[i]);
     if (why && !case_path[0]) /* (a case's lengths: said by fb_cli_load_case) */
       fprintf(stderr, "fourbar kinematics: warning: %s %g: a link length %s; the flag is in "
               "millimetres\n", flag_of[i], mm[i], why);
@@ -105,60 +106,13 @@ int fb_cmd_kinematics(int argc, char **argv) {
   fb_diag rd;
   if (fb_casefile_check_range("drive", "speed_rpm", rpm, "--speed-rpm", &rd) != FB_OK)
     return fb_cli_fail("kinematics", 2, "%s", rd.msg);
-  const double omega2 = dir * rpm * FB_RAD_S_PER_RPM;
-
+  k.rpm = rpm;
+  k.dir = dir;
+  k.branch = branch;
+  k.case_path = case_path;
   fb_diag diag;
-  fb_peaks p;
-  double mu_min, mu_max;
-  fb_grashof g = fb_linkage_grashof(&lk);
-  char grashof[512];
-  fb_linkage_grashof_text(grashof, sizeof grashof, &lk);
-  /* a change-point linkage folds flat on its way round: no peaks to give */
-  if (g == FB_GRASHOF_CHANGE_POINT)
-    return fb_cli_fail("kinematics", 1,
-                       "crank %g, coupler %g, follower %g, ground %g mm: %s; a crank driven "
-                       "through a fold has no exact peaks: make s + l differ from p + q (s + l < "
-                       "p + q for a crank-rocker)",
-                       mm[0], mm[1], mm[2], mm[3], grashof);
-  fb_status st = fb_linkage_transmission_range(&lk, &mu_min, &mu_max, &diag);
-  if (st == FB_OK) st = fb_analytic_peaks(&p, &lk, branch, omega2, &diag);
-  if (st != FB_OK) return fb_cli_fail("kinematics", 1, "%s; %s", grashof, diag.msg);
-  const double deg = 1.0 / FB_RAD_PER_DEG;
-  if (json) {
-    json_t *o = json_object();
-    json_t *l = json_object();
-    for (int i = 0; i < FB_LINK_COUNT; i++) json_object_set_new(l, fb_link_name(i), json_real(lk.length[i]));
-    json_object_set_new(o, "lengths_m", l);
-    json_object_set_new(o, "case_file", case_path[0] ? json_string(case_path) : json_null());
-    json_object_set_new(o, "speed_rpm", json_real(rpm));
-    json_object_set_new(o, "crank_omega_rad_s", json_real(omega2));
-    json_object_set_new(o, "direction", json_string(dir > 0 ? "ccw" : "cw"));
-    json_object_set_new(o, "branch", json_string(branch == FB_BRANCH_OPEN ? "open" : "crossed"));
-    json_object_set_new(o, "grashof", json_string(fb_grashof_name(g)));
-    double sl, pq;
-    fb_linkage_grashof_sums(&lk, &sl, &pq, NULL, NULL);
-    json_object_set_new(o, "grashof_s_plus_l_m", json_real(sl));
-    json_object_set_new(o, "grashof_p_plus_q_m", json_real(pq));
-    json_object_set_new(o, "coupler", fb_report_body_peaks_json(&p.coupler));
-    json_object_set_new(o, "follower", fb_report_body_peaks_json(&p.follower));
-    json_object_set_new(o, "transmission_angle_min_deg", json_real(mu_min * deg));
-    json_object_set_new(o, "transmission_angle_max_deg", json_real(mu_max * deg));
-    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
-    fputc('\n', stdout);
-    json_decref(o);
-    return 0;
-  }
-  if (case_path[0]) printf("case: %s\n", case_path);
-  printf("linkage: crank %g, coupler %g, follower %g, ground %g mm (%s), %g rpm %s, %s branch\n",
-         mm[0], mm[1], mm[2], mm[3], fb_grashof_name(g), rpm, dir > 0 ? "ccw" : "cw",
-         branch == FB_BRANCH_OPEN ? "open" : "crossed");
-  printf("%s\n", grashof);
-  printf("%-9s %12s %12s %14s %14s\n", "body", "omega_max", "omega_min", "alpha_max", "alpha_min");
-  printf("%-9s %12s %12s %14s %14s\n", "", "rad/s", "rad/s", "rad/s^2", "rad/s^2");
-  printf("%-9s %12.6f %12.6f %14.4f %14.4f\n", "coupler", p.coupler.omega_max, p.coupler.omega_min,
-         p.coupler.alpha_max, p.coupler.alpha_min);
-  printf("%-9s %12.6f %12.6f %14.4f %14.4f\n", "follower", p.follower.omega_max,
-         p.follower.omega_min, p.follower.alpha_max, p.follower.alpha_min);
-  printf("transmission angle: %.4f to %.4f deg\n", mu_min * deg, mu_max * deg);
+  if (fb_kinematics_run(&k, &diag) != FB_OK) return fb_cli_fail("kinematics", 1, "%s", diag.msg);
+  if (json) fb_report_kinematics_json(stdout, &k);
+  else fb_report_kinematics_text(stdout, &k);
   return 0;
 }

@@ -1,19 +1,17 @@
 /* fourbar mapping: ERP and CFM against contact stiffness and step size.
- * Argument parsing, the grid and printing; the mapping is contact.c's. */
+ * Argument parsing and dispatch only: the grid is fb_mapping_grid_make's
+ * (src/studies/mapping_grid.h), the output tables_mapping.h's. */
 #include <getopt.h>
-#include <jansson.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "casefile.h"
 #include "cli.h"
 #include "contact.h"
 #include "figures.h"
-#include "fileio.h"
-
-#define MAX_GRID 64
+#include "mapping_grid.h"
+#include "tables_mapping.h"
 
 static const char mapping_help[] =
     "usage: fourbar mapping [--mass-kg m] [--restitution cr]\n"
@@ -116,73 +114,18 @@ int fb_cmd_mapping(int argc, char **argv) {
                        cr, FB_RESTITUTION_MIN);
   if (!(per >= 1 && per <= 10 && per == floor(per)))
     return fb_cli_fail("mapping", 2, "--per-decade %g: an integer from 1 to 10", per);
-  const int nk = (int)floor(log10(k1 / k0) * per + 1e-9) + 1, nh = (int)floor(log10(h1 / h0) * per + 1e-9) + 1;
-  if (nk > MAX_GRID || nh > MAX_GRID) return fb_cli_fail("mapping", 2, "grid larger than %d x %d", MAX_GRID, MAX_GRID);
-  double k[MAX_GRID], h[MAX_GRID];
-  static double erp[MAX_GRID * MAX_GRID], cfm[MAX_GRID * MAX_GRID], hw[MAX_GRID * MAX_GRID];
-  for (int i = 0; i < nk; i++) k[i] = k0 * pow(10.0, i / per);
-  for (int j = 0; j < nh; j++) h[j] = h0 * pow(10.0, j / per);
-  const double zeta = fb_contact_restitution_zeta(cr);
-  for (int i = 0; i < nk; i++)
-    for (int j = 0; j < nh; j++) {
-      const double c = 2.0 * zeta * sqrt(k[i] * m);
-      if (fb_mapping_is_matched(mapping)) /* a map of the impulsive row */
-        fb_contact_matched(h[j], k[i], c, m, &erp[i * nh + j], &cfm[i * nh + j], NULL);
-      else
-        fb_contact_erp_cfm(h[j], k[i], c, &erp[i * nh + j], &cfm[i * nh + j], NULL);
-      hw[i * nh + j] = fb_contact_h_omega(h[j], k[i], m);
-    }
-  if (json) {
-    json_t *o = json_object(), *rows = json_array();
-    json_object_set_new(o, "mass_kg", json_real(m));
-    json_object_set_new(o, "restitution", json_real(cr));
-    json_object_set_new(o, "zeta", json_real(zeta));
-    json_object_set_new(o, "mapping", json_string(fb_mapping_name(mapping)));
-    for (int i = 0; i < nk; i++)
-      for (int j = 0; j < nh; j++)
-        json_array_append_new(rows, json_pack("{s:f,s:f,s:f,s:f,s:f,s:b,s:b}", "stiffness_n_m", k[i],
-                                              "h_s", h[j], "erp", erp[i * nh + j], "cfm_m_n_s",
-                                              cfm[i * nh + j], "h_omega", hw[i * nh + j],
-                                              "erp_in_range", erp[i * nh + j] >= 0.1 && erp[i * nh + j] <= 0.99,
-                                              "resolved", hw[i * nh + j] <= 1.0));
-    json_object_set_new(o, "rows", rows);
-    json_dumpf(o, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(17));
-    fputc('\n', stdout);
-    json_decref(o);
-  } else {
-    printf("ERP (and h omega) of the restitution law, %s mapping, cr = %g (zeta = %.4f), m = %g kg\n"
-           "'<' ERP < 0.1, '>' ERP > 0.99, '*' h omega > 1 (contact under-resolved)\n\n%12s",
-           fb_mapping_name(mapping), cr, zeta, m, "k [N/m] \\ h");
-    for (int j = 0; j < nh; j++) printf(" %10.0e", h[j]);
-    printf("\n");
-    for (int i = 0; i < nk; i++) {
-      printf("%12.1e", k[i]);
-      for (int j = 0; j < nh; j++) {
-        const double e = erp[i * nh + j];
-        printf(" %8.4f%c%c", e, e < 0.1 ? '<' : (e > 0.99 ? '>' : ' '), hw[i * nh + j] > 1.0 ? '*' : ' ');
-      }
-      printf("\n");
-    }
-  }
+  static fb_mapping_grid g;
+  if (fb_mapping_grid_make(&g, m, cr, k0, k1, h0, h1, per, mapping, &rd) != FB_OK)
+    return fb_cli_fail("mapping", 2, "%s", rd.msg);
+  if (json) fb_report_mapping_json(stdout, &g);
+  else fb_report_mapping_text(stdout, &g);
   if (out) {
-    fb_diag d;
-    if (fb_outdir_prepare(out, &d) != FB_OK) return fb_cli_fail("mapping", 1, "%s", d.msg);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/mapping.csv", out);
-    fb_outfile f;
-    if (fb_outfile_open(&f, path, &d) != FB_OK) return fb_cli_fail("mapping", 1, "%s", d.msg);
-    fprintf(f.f, "stiffness_n_m,h_s,erp,cfm_m_n_s,h_omega\n");
-    for (int i = 0; i < nk; i++)
-      for (int j = 0; j < nh; j++)
-        fprintf(f.f, "%.10g,%.10g,%.12g,%.12g,%.12g\n", k[i], h[j], erp[i * nh + j], cfm[i * nh + j], hw[i * nh + j]);
-    if (fb_outfile_commit(&f, &d) != FB_OK) return fb_cli_fail("mapping", 1, "%s", d.msg);
-    snprintf(path, sizeof path, "%s/mapping.%s", out, fmt == FB_FIGURE_PNG ? "png" : "svg");
-    char title[160];
-    snprintf(title, sizeof title, "ERP of the restitution law (cr = %g, m = %g kg)", cr, m);
-    if (fb_figures_mapping(path, fmt, title, nk, k, nh, h, erp, hw, &d) != FB_OK)
-      fprintf(stderr, "fourbar mapping: warning: %s\n", d.msg);
-    else if (!json)
-      printf("\nwrote %s/mapping.csv and %s\n", out, path);
+    char figure[4096];
+    fb_diag d, fd;
+    if (fb_report_mapping_files(out, fmt, &g, figure, sizeof figure, &fd, &d) != FB_OK)
+      return fb_cli_fail("mapping", 1, "%s", d.msg);
+    if (!figure[0]) fprintf(stderr, "fourbar mapping: warning: %s\n", fd.msg);
+    else if (!json) printf("\nwrote %s/mapping.csv and %s\n", out, figure);
   }
   return 0;
 }

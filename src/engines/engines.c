@@ -11,7 +11,6 @@
 #include <string.h>
 
 #include "analytic.h"
-#include "impact.h"
 #include "invdyn.h"
 #include "fb_config.h"
 #include "reference.h"
@@ -37,18 +36,6 @@ const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
               fb_engine_howto(id)[0] ? ": " : "", fb_engine_howto(id));
   return NULL;
 }
-
-#if !FB_HAVE_MUJOCO
-/* the single-impact verification of a build without MuJoCo (impact.h) */
-fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, double h,
-                           const double solref[2], const double solimp[5], double t_max,
-                           double onset_phase, fb_diag *diag) {
-  (void)mass, (void)speed, (void)h, (void)solref, (void)solimp, (void)t_max, (void)onset_phase;
-  memset(out, 0, sizeof *out);
-  return fb_diag_set(diag, FB_ERR_ARG, "engine 'mujoco' is not part of this build: "
-                     FB_MUJOCO_HOWTO);
-}
-#endif
 
 fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, fb_diag *diag) {
   fb_sample x;

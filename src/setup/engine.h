@@ -16,6 +16,8 @@
  *   drift    loop-closure drift of the ideal joints now [m]
  *   steps    steps taken (for the reference: the integrator's accepted steps)
  *   destroy  frees the instance (NULL is ignored)
+ *   impact   optional: one body's single impact in the engine, for fourbar
+ *            impact and contact-params (fb_engine_impact below)
  *
  * Engines today: analytic and reference (engines.c, the exact kinematics and
  * the GSL reference behind the same interface, which compute their series
@@ -30,6 +32,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "engine_params.h"
+#include "impact.h"
 #include "model_table.h"
 #include "outcome.h"
 #include "scene_def.h"
@@ -73,6 +77,49 @@ static inline void fb_engine_put_number(fb_engine_put_arg put, void *a, const ch
   snprintf(text, sizeof text, "%.17g", v);
   put(a, key, text);
 }
+/* ---- the single-impact verification (fourbar impact, contact-params) ----
+ * One body meets one contact in the engine itself, no gravity: how
+ * fourbar impact and contact-params check an engine's contact against the
+ * engine-free reference and closed forms (impact.h). An engine offers it as
+ * its table's optional impact op (NULL: none); each op inside is optional
+ * too. Callers reach it through fb_engine_get, never an engine's own
+ * function. */
+
+/* The engines' own settings of a single impact (each engine reads its own). */
+typedef struct {
+  fb_bullet_opts bullet; /* Bullet: solver and iterations (fb_bullet_opts_default) */
+} fb_impact_opts;
+
+/* One FIXED contact as a user pastes it into an engine, and the impact it
+ * meets: each engine reads the common fields and its own parameters. */
+typedef struct {
+  double mass;             /* body mass [kg] */
+  double speed;            /* impact speed [m/s] */
+  double h;                /* step [s] */
+  double t_max;            /* the body still in contact at t_max [s] fails the impact */
+  double onset_phase;      /* in [0, 1): where inside a step the contact begins; 0: the
+                              body touches at t = 0; p > 0: (1 - p) h of free flight short
+                              of the crossing (times and depths from the crossing) */
+  fb_ode_row ode;          /* ODE: soft ERP [-], CFM [m/(N s)] */
+  double max_vel;          /* ODE: contact_max_correcting_vel [m/s] (INFINITY: ODE's) */
+  fb_mujoco_params mujoco; /* MuJoCo: solref, solimp */
+  fb_spring_damper bullet; /* Bullet: contact stiffness kp [N/m] and damping kd [N s/m] */
+} fb_impact_row;
+
+typedef struct {
+  /* the law of d mapped every step into the engine's contact row, as its
+   * clearance joints map it (d->mapping; ODE also d->stepper); o: the
+   * engine's own settings. Errors: those of fb_impact_check, FB_ERR_NUMERIC
+   * on a non-finite state or a body still in contact after 100 estimated
+   * contact durations (ODE: impact_ode.h; Bullet: impact_bullet.h). */
+  fb_status (*law)(fb_impact_result *out, const fb_impact_def *d, const fb_impact_opts *o,
+                   fb_diag *diag);
+  /* one fixed row r (ODE: impact_ode.h, fb_impact_ode_row; MuJoCo:
+   * impact_mujoco.h; Bullet: impact_bullet.h, fb_impact_bullet_contact).
+   * Errors: FB_ERR_RANGE (bad parameter or onset phase), FB_ERR_NUMERIC (a
+   * non-finite state, still in contact at t_max), FB_ERR_NOMEM. */
+  fb_status (*row)(fb_impact_result *out, const fb_impact_row *r, fb_diag *diag);
+} fb_engine_impact;
 
 typedef struct fb_engine {
   const char *name;                 /* fb_engine_name of its id */
@@ -126,6 +173,7 @@ typedef struct fb_engine {
                                        that a user loads into the engine (fourbar export,
                                        docs/commands.md), into buf; errors: the engine's, and
                                        FB_ERR_RANGE when buf is too small */
+  const fb_engine_impact *impact;   /* optional: the engine's single impact (NULL: none) */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "fb_config.h"
+#include "engine.h"
 #include "resolution.h"
 #include "units.h"
 
@@ -266,6 +266,7 @@ fb_status fb_cp_rows_make(fb_cp_rows *rows, double k, double c, double m_min, do
 
 /* ---- verification -------------------------------------------------------- */
 
+/* whose single impact verifies a row: ODE (also Gazebo's rows), MuJoCo, Bullet */
 typedef enum { KIND_ODE, KIND_MUJOCO, KIND_BULLET } row_kind;
 
 typedef struct {
@@ -278,6 +279,39 @@ typedef struct {
   const fb_mujoco_params *mj;   /* KIND_MUJOCO */
   const fb_spring_damper *sd;   /* KIND_BULLET */
 } row_spec;
+
+/* the engine that verifies rows of kind k by single impacts (its impact
+ * op's row), or NULL when this build has none (why in diag) */
+static const fb_engine_impact *row_engine(row_kind k, fb_diag *diag) {
+  static const fb_engine_id id[3] = {FB_ENGINE_ODE, FB_ENGINE_MUJOCO, FB_ENGINE_BULLET};
+  const fb_engine *e = fb_engine_get(id[k], diag);
+  if (!e) return NULL;
+  if (!e->impact || !e->impact->row) {
+    fb_diag_set(diag, FB_ERR_ARG, "engine '%s' has no single impact", e->name);
+    return NULL;
+  }
+  return e->impact;
+}
+
+/* 1 when this build verifies rows of kind k */
+static int row_kind_built(row_kind k) {
+  fb_diag dg;
+  return row_engine(k, &dg) != NULL;
+}
+
+/* the engines whose rows this build cannot verify, with how to get them */
+static void unverified(fb_cp_result *o) {
+  static const struct {
+    row_kind kind;
+    fb_engine_id id;
+  } optional[2] = {{KIND_MUJOCO, FB_ENGINE_MUJOCO}, {KIND_BULLET, FB_ENGINE_BULLET}};
+  o->n_unverified = 0;
+  for (int i = 0; i < 2; i++)
+    if (!row_kind_built(optional[i].kind)) {
+      o->unverified[o->n_unverified].engine = fb_engine_name(optional[i].id);
+      o->unverified[o->n_unverified++].howto = fb_engine_howto(optional[i].id);
+    }
+}
 
 /* one row at one mass over the onset phases into x; returns x->faithful */
 static int check_row(fb_cp_check *x, const fb_cp_rows *rows, const row_spec *r, int im, double v) {
@@ -304,19 +338,23 @@ static int check_row(fb_cp_check *x, const fb_cp_rows *rows, const row_spec *r, 
     const double phase = fb_cp_onset_phases[p];
     fb_impact_result o;
     fb_diag dg;
-    fb_status st;
+    fb_impact_row row;
+    memset(&row, 0, sizeof row);
+    row.mass = m;
+    row.speed = v;
+    row.h = h;
+    row.t_max = t_max;
+    row.onset_phase = phase;
     if (r->kind == KIND_ODE) {
-      st = fb_impact_ode_row(&o, m, v, h, r->row->erp, r->row->cfm, r->max_vel, t_max, phase, &dg);
+      row.ode = *r->row;
+      row.max_vel = r->max_vel;
     } else if (r->kind == KIND_MUJOCO) {
-      const fb_mujoco_params *mj = r->mass_index < 0 && r->mj == NULL ? &rows->mj_at[im] : r->mj;
-      st = fb_impact_mujoco(&o, m, v, h, mj->solref, mj->solimp, t_max, phase, &dg);
+      row.mujoco = r->mass_index < 0 && r->mj == NULL ? rows->mj_at[im] : *r->mj;
     } else {
-#if FB_HAVE_BULLET
-      st = fb_impact_bullet_contact(&o, m, v, h, r->sd->kp, r->sd->kd, t_max, phase, &dg);
-#else
-      st = fb_diag_set(&dg, FB_ERR_ARG, "Bullet is not part of this build");
-#endif
+      row.bullet = *r->sd;
     }
+    const fb_engine_impact *e = row_engine(r->kind, &dg);
+    const fb_status st = e ? e->row(&o, &row, &dg) : FB_ERR_ARG;
     if (st != FB_OK) {
       x->ran = 0;
       x->faithful = 0;
@@ -350,7 +388,7 @@ static int row_specs(row_spec *s, const fb_cp_rows *rows, int recommended, int c
   s[n++] = (row_spec){"ode", "matched", KIND_ODE, recommended, -1, &rows->ode, INFINITY, 0, 0};
   s[n++] = (row_spec){"gazebo", "matched", KIND_ODE, recommended, -1, &rows->gazebo_row,
                       rows->max_vel, 0, 0};
-  if (FB_HAVE_MUJOCO) {
+  if (row_kind_built(KIND_MUJOCO)) {
     if (range) {
       s[n++] = (row_spec){"mujoco", "direct-at-mass", KIND_MUJOCO, recommended, -1, 0, 0, NULL, 0};
     } else {
@@ -361,20 +399,20 @@ static int row_specs(row_spec *s, const fb_cp_rows *rows, int recommended, int c
                             &rows->mj_standard, 0};
     }
   }
-  if (FB_HAVE_BULLET)
+  if (row_kind_built(KIND_BULLET))
     s[n++] = (row_spec){"bullet", "matched", KIND_BULLET, recommended, -1, 0, 0, 0, &rows->gazebo};
   if (!comparisons) return n;
   s[n++] = (row_spec){"ode", "standard", KIND_ODE, 0, -1, &rows->ode_standard, INFINITY, 0, 0};
   s[n++] = (row_spec){"gazebo", "naive", KIND_ODE, 0, -1, &rows->gazebo_naive_row, rows->max_vel,
                       0, 0};
-  if (FB_HAVE_MUJOCO) {
+  if (row_kind_built(KIND_MUJOCO)) {
     if (range)
       s[n++] = (row_spec){"mujoco", "direct", KIND_MUJOCO, 0, -1, 0, 0, &rows->mj_direct, 0};
     s[n++] = (row_spec){"mujoco", "direct-continuous", KIND_MUJOCO, 0, -1, 0, 0,
                         &rows->mj_continuous, 0};
     s[n++] = (row_spec){"mujoco", "naive", KIND_MUJOCO, 0, -1, 0, 0, &rows->mj_naive, 0};
   }
-  if (FB_HAVE_BULLET)
+  if (row_kind_built(KIND_BULLET))
     s[n++] = (row_spec){"bullet", "naive", KIND_BULLET, 0, -1, 0, 0, 0, &rows->gazebo_naive};
   return n;
 }
@@ -463,7 +501,9 @@ static void per_step(fb_cp_result *o, const fb_cp_request *r) {
                                r->speed, r->h);
   fb_impact_result res;
   fb_diag dg;
-  x->ran = fb_impact_ode(&res, &d, &dg) == FB_OK;
+  const fb_impact_opts io = {fb_bullet_opts_default()};
+  const fb_engine *ode = fb_engine_get(FB_ENGINE_ODE, &dg);
+  x->ran = ode->impact->law(&res, &d, &io, &dg) == FB_OK;
   if (!x->ran) {
     snprintf(x->why, sizeof x->why, "%s", dg.msg);
     return;
@@ -609,6 +649,7 @@ fb_status fb_cp_run(fb_cp_result *o, const fb_cp_request *q, fb_diag *diag) {
     }
   }
   per_step(o, &r);
+  unverified(o);
   if (o->per_step.recommended && r.verify && !o->per_step.check.faithful) o->failed++;
   return FB_OK;
 }

@@ -53,7 +53,7 @@
 #define FB_CP_PENETRATION_TOL 0.02
 
 /* Onset phases verified: the fraction of a step by which the contact began
- * before the first step that sees it (impact.h, fb_impact_ode_row). The
+ * before the first step that sees it (engine.h, fb_impact_row). The
  * restitution error is linear in the phase (measured: -zeta h omega at 0,
  * +zeta h omega just short of 1), so both ends are in the set. */
 #define FB_CP_ONSET_PHASES 5
@@ -214,6 +214,11 @@ typedef struct {
   } engine_step[FB_CP_ENGINE_STEPS];
   fb_cp_per_step per_step;
   int failed;               /* a recommended row failed its verification (or could not run) */
+  int n_unverified;         /* engines whose rows this build cannot verify */
+  struct {
+    const char *engine;     /* "mujoco", "bullet" */
+    const char *howto;      /* how to get it into a build (fb_engine_howto) */
+  } unverified[2];
 } fb_cp_result;
 
 /* The contact of clearance joint j (FB_JOINT_*) of case c into q, as

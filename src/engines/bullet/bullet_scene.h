@@ -111,7 +111,7 @@ void fb_bullet_scene_destroy(fb_bullet_scene *s);
 /* Bullet's version number (btGetVersion(): 324 for 3.24). */
 int fb_bullet_version(void);
 
-/* fb_impact_bullet, the single impact in Bullet, is declared in impact.h. */
+/* fb_impact_bullet, the single impact in Bullet, is declared in impact_bullet.h. */
 
 #ifdef __cplusplus
 }

@@ -2,6 +2,7 @@
  * over the Bullet scene (bullet_scene.h, C++ behind C linkage). */
 #include "bullet_scene.h"
 #include "engine.h"
+#include "impact_bullet.h"
 
 static fb_status bullet_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
   fb_bullet_scene *s = NULL;
@@ -59,6 +60,21 @@ static void bullet_peer_args(const fb_scene_model *sm, double h, fb_engine_put_a
   fb_engine_put_number(put, a, "fmax", sm->solver.drive_torque_max);
 }
 
+/* the single impact (impact_bullet.h) */
+static fb_status bullet_impact_law(fb_impact_result *out, const fb_impact_def *d,
+                                   const fb_impact_opts *o, fb_diag *diag) {
+  return fb_impact_bullet(out, d, &o->bullet, diag);
+}
+
+static fb_status bullet_impact_row(fb_impact_result *out, const fb_impact_row *r,
+                                   fb_diag *diag) {
+  return fb_impact_bullet_contact(out, r->mass, r->speed, r->h, r->bullet.kp, r->bullet.kd,
+                                  r->t_max, r->onset_phase, diag);
+}
+
+static const fb_engine_impact bullet_impact = {.law = bullet_impact_law,
+                                               .row = bullet_impact_row};
+
 const fb_engine fb_engine_bullet = {
     .name = "bullet",
     .guarded = 1,
@@ -77,4 +93,5 @@ const fb_engine fb_engine_bullet = {
     .cost_per_sample = bullet_cost_per_sample,
     .drive_key = "[solver] drive_torque_max_n_m",
     .peer_args = bullet_peer_args,
+    .impact = &bullet_impact,
 };

@@ -1,4 +1,4 @@
-/* The single impact in Bullet (bullet_scene.h, fb_impact_bullet): the
+/* The single impact in Bullet (impact_bullet.h, fb_impact_bullet): the
  * counterpart of impact_ode.c with the same soft row as the clearance
  * joints. */
 #include <math.h>
@@ -8,6 +8,7 @@
 
 #include "bt_rows.h"
 #include "bullet_scene.h"
+#include "impact_bullet.h"
 extern "C" {
 #include "clock.h"
 }

@@ -1,6 +1,7 @@
 /* The MuJoCo engine behind the engine interface (engine.h): thin wrappers
  * over the MuJoCo scene (mujoco_scene.h). */
 #include "engine.h"
+#include "impact_mujoco.h"
 #include "mujoco_scene.h"
 
 static fb_status mujoco_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
@@ -60,6 +61,14 @@ static void mujoco_peer_args(const fb_scene_model *sm, double h, fb_engine_put_a
   fb_engine_put_number(put, a, "loop_imp", o->loop_impedance);
   fb_engine_put_number(put, a, "armature", o->drive_armature);
 }
+/* the single impact (impact_mujoco.h): a fixed row only */
+static fb_status mujoco_impact_row(fb_impact_result *out, const fb_impact_row *r,
+                                   fb_diag *diag) {
+  return fb_impact_mujoco(out, r->mass, r->speed, r->h, r->mujoco.solref, r->mujoco.solimp,
+                          r->t_max, r->onset_phase, diag);
+}
+
+static const fb_engine_impact mujoco_impact = {.law = NULL, .row = mujoco_impact_row};
 
 const fb_engine fb_engine_mujoco = {
     .name = "mujoco",
@@ -79,4 +88,5 @@ const fb_engine fb_engine_mujoco = {
     .peer_args = mujoco_peer_args,
     .model_format = "mjcf",
     .export_model = fb_mujoco_export,
+    .impact = &mujoco_impact,
 };

@@ -1,10 +1,10 @@
-/* The single impact in MuJoCo with pasted solref/solimp (see impact.h). */
+/* The single impact in MuJoCo with pasted solref/solimp (see impact_mujoco.h). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "clock.h"
-#include "impact.h"
+#include "impact_mujoco.h"
 #include "mujoco_load.h"
 
 /* radius of the sphere [m]: any; the contact is at its lowest point */

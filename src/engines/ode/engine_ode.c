@@ -1,6 +1,7 @@
 /* The ODE engine behind the engine interface (engine.h): thin wrappers over
  * the scene (scene.h). */
 #include "engine.h"
+#include "impact_ode.h"
 #include "scene.h"
 
 static fb_status ode_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
@@ -77,6 +78,20 @@ static void ode_peer_args(const fb_scene_model *sm, double h, fb_engine_put_arg 
   fb_engine_put_number(put, a, "iterations", sm->solver.quick_iterations);
 }
 
+/* the single impact (impact_ode.h) */
+static fb_status ode_impact_law(fb_impact_result *out, const fb_impact_def *d,
+                                const fb_impact_opts *o, fb_diag *diag) {
+  (void)o;
+  return fb_impact_ode(out, d, diag);
+}
+
+static fb_status ode_impact_row(fb_impact_result *out, const fb_impact_row *r, fb_diag *diag) {
+  return fb_impact_ode_row(out, r->mass, r->speed, r->h, r->ode.erp, r->ode.cfm, r->max_vel,
+                           r->t_max, r->onset_phase, diag);
+}
+
+static const fb_engine_impact ode_impact = {.law = ode_impact_law, .row = ode_impact_row};
+
 const fb_engine fb_engine_ode = {
     .name = "ode",
     .guarded = 1,
@@ -96,4 +111,5 @@ const fb_engine fb_engine_ode = {
     .cost_per_sample = ode_cost_per_sample,
     .drive_key = "[solver] drive_torque_max_n_m",
     .peer_args = ode_peer_args,
+    .impact = &ode_impact,
 };

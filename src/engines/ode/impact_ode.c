@@ -1,10 +1,10 @@
-/* The single impact in ODE (see impact.h); it owns its own world. */
+/* The single impact in ODE (see impact_ode.h); it owns its own world. */
 #include <math.h>
 #include <ode/ode.h>
 #include <string.h>
 
 #include "clock.h"
-#include "impact.h"
+#include "impact_ode.h"
 #include "ode_contact.h"
 #include "ode_env.h"
 

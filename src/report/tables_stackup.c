@@ -1,0 +1,131 @@
+/* fourbar stackup's output (tables_stackup.h): the stack-up as one JSON
+ * object or as text tables. */
+#include "tables_stackup.h"
+
+#include <jansson.h>
+#include <math.h>
+#include <string.h>
+
+#include "linkage.h"
+
+/* a quantile bound for JSON: null when the sample cannot bound that side */
+static json_t *bound_json(double x) { return isfinite(x) ? json_real(x) : json_null(); }
+
+void fb_report_stackup_json(FILE *f, const fb_stackup_result *r, const fb_case *c, int mask,
+                            unsigned long seed, int jobs) {
+  json_t *o = json_object(), *outs = json_array();
+  json_object_set_new(o, "case", json_string(c->name));
+  json_object_set_new(o, "distribution", json_string(c->distribution ? "uniform" : "normal"));
+  json_object_set_new(o, "samples", json_integer((json_int_t)r->samples));
+  json_object_set_new(o, "seed", json_integer((json_int_t)seed));
+  json_object_set_new(o, "jobs", json_integer((json_int_t)jobs));
+  json_object_set_new(o, "montecarlo_wall_s", json_real(r->mc_wall_s));
+  json_t *tol = json_object();
+  for (int k = 0; k < FB_LINK_COUNT; k++) {
+    json_t *l = json_object();
+    json_object_set_new(l, "nominal_m", json_real(c->nominal.length[k]));
+    json_object_set_new(l, "plus_minus_m", json_real(c->plus_minus[k]));
+    json_object_set_new(l, "source", json_string(c->tolerance_source[k]));
+    json_object_set_new(tol, fb_link_name(k), l);
+  }
+  json_object_set_new(o, "links", tol);
+  if (mask & FB_TOL_MONTECARLO) {
+    /* which order statistics bound each quantile (null: none at this level) */
+    json_t *ci = json_object(), *ranks = json_object();
+    static const char *const qn[3] = {"q00135", "q50", "q99865"};
+    json_object_set_new(ci, "level", json_real(r->ci_level));
+    json_object_set_new(ci, "method", json_string("distribution-free, order statistics (binomial)"));
+    for (int j = 0; j < 3; j++)
+      json_object_set_new(ranks, qn[j],
+                          json_pack("[o,o]", r->q_rank[j][0] ? json_integer((json_int_t)r->q_rank[j][0]) : json_null(),
+                                    r->q_rank[j][1] ? json_integer((json_int_t)r->q_rank[j][1]) : json_null()));
+    json_object_set_new(ci, "ranks", ranks);
+    json_object_set_new(o, "quantile_ci", ci);
+  }
+  for (int i = 0; i < FB_TOL_NOUT; i++) {
+    json_t *x = json_object(), *s = json_object();
+    json_object_set_new(x, "name", json_string(fb_tol_output_name(i)));
+    json_object_set_new(x, "nominal", json_real(r->nominal[i]));
+    for (int k = 0; k < FB_LINK_COUNT; k++) json_object_set_new(s, fb_link_name(k), json_real(r->sens[i][k]));
+    json_object_set_new(x, "sensitivity_per_m", s);
+    if (mask & FB_TOL_CORNERS)
+      json_object_set_new(x, "corners", json_pack("{s:f,s:f}", "min", r->corner_min[i], "max", r->corner_max[i]));
+    if (mask & FB_TOL_RSS)
+      json_object_set_new(x, "rss", json_pack("{s:f,s:f}", "min", r->nominal[i] - r->rss_half[i], "max",
+                                              r->nominal[i] + r->rss_half[i]));
+    if (mask & FB_TOL_MONTECARLO) {
+      json_t *m = json_pack("{s:f,s:f,s:f,s:f,s:f}", "q00135", r->q[i][0], "q50", r->q[i][1],
+                            "q99865", r->q[i][2], "mean", r->mc_mean[i], "std", r->mc_std[i]);
+      static const char *const lo[3] = {"q00135_ci_lo", "q50_ci_lo", "q99865_ci_lo"};
+      static const char *const hi[3] = {"q00135_ci_hi", "q50_ci_hi", "q99865_ci_hi"};
+      for (int j = 0; j < 3; j++) {
+        json_object_set_new(m, lo[j], bound_json(r->q_ci[i][j][0]));
+        json_object_set_new(m, hi[j], bound_json(r->q_ci[i][j][1]));
+      }
+      json_object_set_new(x, "montecarlo", m);
+    }
+    json_array_append_new(outs, x);
+  }
+  json_object_set_new(o, "outputs", outs);
+  json_dumpf(o, f, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
+  fputc('\n', f);
+  json_decref(o);
+}
+
+void fb_report_stackup_text(FILE *f, const fb_stackup_result *r, const fb_case *c, int mask) {
+  fprintf(f, "stack-up of case %s at %.6g rpm:", c->name, c->crank_speed * 60 / (2 * M_PI));
+  for (int k = 0; k < FB_LINK_COUNT; k++)
+    fprintf(f, "%s %s %.4g +- %.3g mm", k ? "," : "", fb_link_name(k), c->nominal.length[k] * 1e3,
+              c->plus_minus[k] * 1e3);
+  fprintf(f, "\n\n%-28s %12s %12s %12s %12s %12s %12s %12s %12s\n", "output", "nominal",
+            "corner min", "corner max", "rss min", "rss max", "mc 0.135%", "mc 50%", "mc 99.865%");
+  for (int i = 0; i < FB_TOL_NOUT; i++) {
+    fprintf(f, "%-28s %12.6g", fb_tol_output_name(i), r->nominal[i]);
+    if (mask & FB_TOL_CORNERS) fprintf(f, " %12.6g %12.6g", r->corner_min[i], r->corner_max[i]);
+    else fprintf(f, " %12s %12s", "-", "-");
+    if (mask & FB_TOL_RSS) fprintf(f, " %12.6g %12.6g", r->nominal[i] - r->rss_half[i], r->nominal[i] + r->rss_half[i]);
+    else fprintf(f, " %12s %12s", "-", "-");
+    if (mask & FB_TOL_MONTECARLO) fprintf(f, " %12.6g %12.6g %12.6g", r->q[i][0], r->q[i][1], r->q[i][2]);
+    else fprintf(f, " %12s %12s %12s", "-", "-", "-");
+    fputc('\n', f);
+  }
+  /* the exact sensitivities of every output to every link length, each with
+   * its unit (the output's unit per metre of length) */
+  fprintf(f, "\nsensitivities d(output)/d(link length), exact derivatives (per metre of length):\n");
+  fprintf(f, "%-28s %12s %12s %12s %12s  %s\n", "output", "crank", "coupler", "follower", "ground",
+            "unit");
+  for (int i = 0; i < FB_TOL_NOUT; i++) {
+    const char *name = fb_tol_output_name(i);
+    const char *unit = strstr(name, "_rad_s2") ? "rad/s^2 per m"
+                       : strstr(name, "_rad_s") ? "rad/s per m"
+                       : strstr(name, "_rad") ? "rad per m"
+                                              : "per m";
+    fprintf(f, "%-28s", name);
+    for (int k = 0; k < FB_LINK_COUNT; k++) fprintf(f, " %12.5g", r->sens[i][k]);
+    fprintf(f, "  %s\n", unit);
+  }
+  if (mask & FB_TOL_MONTECARLO) {
+    fprintf(f, "\nMonte Carlo quantiles with %.0f %% confidence intervals (order statistics X_(l) .. X_(u)):\n",
+              100.0 * r->ci_level);
+    fprintf(f, "%-28s %27s %27s %27s\n", "output", "0.135%", "50%", "99.865%");
+    int open_side = 0;
+    for (int i = 0; i < FB_TOL_NOUT; i++) {
+      fprintf(f, "%-28s", fb_tol_output_name(i));
+      for (int j = 0; j < 3; j++) {
+        char a[32] = "-", b[32] = "-";
+        if (isfinite(r->q_ci[i][j][0])) snprintf(a, sizeof a, "%.6g", r->q_ci[i][j][0]);
+        else open_side = 1;
+        if (isfinite(r->q_ci[i][j][1])) snprintf(b, sizeof b, "%.6g", r->q_ci[i][j][1]);
+        else open_side = 1;
+        fprintf(f, "   [%11s, %11s]", a, b);
+      }
+      fputc('\n', f);
+    }
+    if (open_side)
+      fprintf(f, "('-': %zu samples cannot bound that side of a tail quantile at this level; "
+                "use more samples)\n", r->samples);
+    fprintf(f, "\nMonte Carlo: %zu samples (%s), %d job%s, %.3f s (%.2f us per sample)\n", r->samples,
+              c->distribution ? "uniform" : "normal, 3 sigma at the limit", r->jobs, r->jobs == 1 ? "" : "s",
+              r->mc_wall_s, 1e6 * r->mc_wall_s / (double)r->samples);
+  }
+}

@@ -1,0 +1,53 @@
+/* fourbar penalty below the command: contact stiffness Kc (paper Eq. 7),
+ * penalty parameter P and mutual approach of the crank-coupler and
+ * coupler-follower joints per crank speed (penalty.h), and the contact a
+ * fourbar run of the case uses, through the run's own scene stage (its
+ * laws per joint, effective-mass range, expected impact force, contact
+ * frequency and the automatic step; scene_def.h, resolution.h). */
+#ifndef FB_PENALTY_STUDY_H
+#define FB_PENALTY_STUDY_H
+
+#include "case.h"
+#include "contact.h"
+#include "linkage.h"
+#include "penalty.h"
+#include "resolution.h"
+#include "status.h"
+
+/* Most crank speeds of one table. */
+#define FB_PENALTY_SPEEDS_MAX 1000
+
+typedef struct {
+  fb_penalty_mode mode;
+  int n;                                   /* speeds asked */
+  double rpm[FB_PENALTY_SPEEDS_MAX];       /* crank speeds [rpm] */
+  fb_penalty_row rows[FB_PENALTY_SPEEDS_MAX][2]; /* per speed: both pin joints */
+  int n_ok;                                /* speeds whose rows were computed: [0, n_ok) */
+  fb_status rows_status;                   /* FB_OK, or why speed n_ok failed (rows_msg) */
+  char rows_msg[FB_DIAG_SIZE];
+  /* the contact a run of the case uses (only for a case with clearance joints) */
+  int has_contact;                         /* the case has clearance joints */
+  fb_status contact_status;                /* FB_OK, or why it could not be found (contact_msg) */
+  char contact_msg[FB_DIAG_SIZE];
+  fb_case run_case;                        /* the case as the run's scene stage resolved it */
+  fb_contact_law laws[2][4];               /* [0] clearance-impact, [1] clearance-restitution,
+                                              per joint */
+  fb_contact_estimate est[2][4];           /* their estimates per joint */
+  double h_auto;                           /* [solver] h_s = auto's step [s] */
+  double omega_c;                          /* its contact frequency [rad/s] */
+  fb_linkage stackup;                      /* the stack-up corner's lengths [m] */
+  char corner[FB_LINK_COUNT + 1];          /* the corner as '-', '0', '+' per link */
+  fb_mapping mapping;                      /* the case's [clearance] mapping */
+} fb_penalty_study;
+
+/* The two models whose laws the contact block shows. */
+extern const char *const fb_penalty_contact_models[2];
+
+/* Fills s for case c in mode at the n speeds rpm [rpm]. Never fails as a
+ * whole: the rows stop at the first speed fb_penalty_rows refuses
+ * (rows_status), and the contact records its own error (contact_status),
+ * so the command reports each where its output reaches it. */
+void fb_penalty_study_run(fb_penalty_study *s, const fb_case *c, fb_penalty_mode mode,
+                          const double *rpm, int n);
+
+#endif

@@ -63,7 +63,6 @@ MAX_LINES = 1000
 KNOWN_LARGE = {
     "src/report/figures/figures.c": 1890,
     "src/setup/casefile.c": 1646,
-    "src/report/report.c": 1298,
     "src/engines/simbody/simbody_scene.cpp": 1204,
     "src/engines/ode/scene.c": 1088,
     "src/engines/mujoco/mujoco_scene.c": 1046,

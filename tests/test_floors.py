@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The floors of src/ (docs/architecture.md, issue 42), read from the sources.
 
-Usage: test_floors.py SOURCE_ROOT
+Usage: test_floors.py SOURCE_ROOT [BUILD_DIR]
 
 Fails (exit 1, one line per finding) when:
   - a file under src/ lies outside the floor folders below (a new folder
@@ -20,6 +20,16 @@ Fails (exit 1, one line per finding) when:
   - a function in src/cli/ (the command line: flags and dispatch only) is
     over MAX_CLI_FUNCTION_LINES lines, except the functions in KNOWN_LONG,
     each held to the length it had when the list was made.
+With a build directory (tests/meson.build gives it; without one, SOURCE_ROOT/build
+when it holds a build), it also reads the call graph between the files
+of src/ from their built objects (`nm`: the symbols each object defines
+and the ones it leaves undefined; the objects are the ones
+compile_commands.json names) and fails when:
+  - files call each other: a circle of calls between two or more files
+    (A uses a symbol defined in B and B one defined in A, or a longer
+    ring), except the circles in KNOWN_CYCLES;
+  - a file calls a function (or uses data) defined in a floor above its
+    own, except the pairs in KNOWN_UP_CALLS.
 meson.build enforces the same floors at compile time (one library per
 floor, each with the include path of its own folder and the floors
 below); this test also sees headers no compiled file of their floor
@@ -64,7 +74,6 @@ MAX_LINES = 1000
 # its contacts); this list may only shrink: a file that drops to MAX_LINES
 # or below must leave it.
 KNOWN_LARGE = {
-    "src/report/report.c": 1298,
     "src/engines/simbody/simbody_scene.cpp": 1204,
     "src/engines/ode/scene.c": 1088,
     "src/engines/mujoco/mujoco_scene.c": 1046,
@@ -330,6 +339,250 @@ def self_check():
            ["self-check: the checker flagged an allowed include at %s" % w for w in wrong]
 
 
+# ---- the call graph between files, read from the built objects -----------
+
+# Circles of calls between files that were there when this rule came in and
+# are not yet undone, each as the set of its files; this list may only
+# shrink (a circle that is gone, or that changed its files, must leave it).
+# Empty: issue 42 undid both circles it found (report.c, report_chaos.c and
+# report_variants.c; run.c and ensemble.c).
+KNOWN_CYCLES = set()
+# Calls up a floor that were there when this rule came in, as (caller,
+# callee) file pairs; this list may only shrink. Each is a function
+# declared in a lower floor's header but defined a floor above: model/case.h
+# declares the case's names and derived values (fb_joint_name,
+# fb_case_omega2, fb_case_stackup_lengths, fb_case_duration,
+# fb_case_penetration_limit), which setup/case.c defines beside the case
+# checks; model/ and physics/ call them up a floor until their definitions
+# move down beside their declarations.
+KNOWN_UP_CALLS = {
+    ("src/model/series.c", "src/setup/case.c"),
+    ("src/model/stop_text.c", "src/setup/case.c"),
+    ("src/physics/joint_law.c", "src/setup/case.c"),
+    ("src/physics/reference.c", "src/setup/case.c"),
+    ("src/physics/resolution.c", "src/setup/case.c"),
+    ("src/physics/start.c", "src/setup/case.c"),
+    ("src/physics/tolerance.c", "src/setup/case.c"),
+}
+# nm's symbol types of a definition another object can link to (text,
+# data, bss, read-only, small data); weak ones (W, V: C++ inline functions
+# and templates, defined in every object that uses them) name no one file
+NM_DEFINED = set("TDBRGS")
+
+
+def calls_from_nm(text, source_of):
+    """text: `nm -A -g` over the objects; source_of: object path -> source
+    path. Returns caller -> {callee: set(symbols)}: file A calls file B
+    when A leaves a symbol undefined that B defines (A != B)."""
+    defined, used = {}, {}
+    for line in text.splitlines():
+        obj, _, rest = line.partition(":")
+        src = source_of.get(obj)
+        parts = rest.split()
+        if src is None or not parts:
+            continue
+        if len(parts) == 2 and parts[0] == "U":
+            used.setdefault(src, set()).add(parts[1])
+        elif len(parts) == 3 and parts[1] in NM_DEFINED:
+            defined.setdefault(parts[2], set()).add(src)
+    calls = {}
+    for src, symbols in used.items():
+        for sym in symbols:
+            for callee in defined.get(sym, ()):
+                if callee != src:
+                    calls.setdefault(src, {}).setdefault(callee, set()).add(sym)
+    return calls
+
+
+def read_calls(root, build):
+    """The call graph of src/ from the objects of the build directory (the
+    ones its compile_commands.json names). Returns (calls, findings)."""
+    import json
+    import subprocess
+    db = os.path.join(build, "compile_commands.json")
+    try:
+        entries = json.load(open(db, encoding="utf-8"))
+    except (OSError, ValueError) as e:
+        return {}, ["call graph: cannot read %s (%s): configure the build first" % (db, e)]
+    root_abs = os.path.realpath(root)
+    source_of, missing = {}, []
+    for e in entries:
+        src = os.path.realpath(os.path.join(e["directory"], e["file"]))
+        rel = os.path.relpath(src, root_abs).replace(os.sep, "/")
+        if not rel.startswith("src/"):
+            continue
+        obj = os.path.join(e["directory"], e["output"])
+        if os.path.exists(obj):
+            source_of[obj] = rel
+        else:
+            missing.append(rel)
+    if missing:
+        return {}, ["call graph: %d object(s) of src/ not built in %s (%s): build first"
+                    % (len(missing), build, ", ".join(sorted(set(missing))[:5]))]
+    if not source_of:
+        return {}, ["call graph: %s names no object of src/" % db]
+    try:
+        run = subprocess.run(["nm", "-A", "-g"] + sorted(source_of), capture_output=True,
+                             text=True)
+    except OSError as e:
+        return {}, ["call graph: cannot run nm (%s): install binutils" % e]
+    if run.returncode != 0:
+        return {}, ["call graph: nm failed: %s" % run.stderr.strip()[:300]]
+    return calls_from_nm(run.stdout, source_of), []
+
+
+def circles(calls):
+    """The strongly connected components of more than one file (Tarjan),
+    each as a sorted list."""
+    index, low, stack, on, found = {}, {}, [], set(), []
+    counter = [0]
+
+    def visit(v):
+        # iterative, so a long chain does not reach Python's recursion limit
+        work = [(v, iter(sorted(calls.get(v, {}))))]
+        index[v] = low[v] = counter[0]
+        counter[0] += 1
+        stack.append(v)
+        on.add(v)
+        while work:
+            node, it = work[-1]
+            w = next(it, None)
+            if w is not None:
+                if w not in index:
+                    index[w] = low[w] = counter[0]
+                    counter[0] += 1
+                    stack.append(w)
+                    on.add(w)
+                    work.append((w, iter(sorted(calls.get(w, {})))))
+                elif w in on:
+                    low[node] = min(low[node], index[w])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[node])
+            if low[node] == index[node]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on.discard(w)
+                    comp.append(w)
+                    if w == node:
+                        break
+                if len(comp) > 1:
+                    found.append(sorted(comp))
+
+    nodes = set(calls) | {b for a in calls for b in calls[a]}
+    for v in sorted(nodes):
+        if v not in index:
+            visit(v)
+    return sorted(found)
+
+
+def ring(calls, comp):
+    """A shortest ring of calls through the first file of a circle."""
+    start, inside = comp[0], set(comp)
+    prev, queue = {start: None}, [start]
+    while queue:
+        a = queue.pop(0)
+        for b in sorted(calls.get(a, {})):
+            if b not in inside:
+                continue
+            if b == start:
+                path = [a]
+                while prev[path[-1]] is not None:
+                    path.append(prev[path[-1]])
+                return list(reversed(path)) + [start]
+            if b not in prev:
+                prev[b] = a
+                queue.append(b)
+    return comp + [start]
+
+
+def check_calls(calls, known_cycles, known_up):
+    """calls: caller -> {callee: symbols}. Returns the findings."""
+    bad = []
+
+    def syms(a, b):
+        s = sorted(calls[a][b])
+        return ", ".join(s[:4]) + (", ..." if len(s) > 4 else "")
+
+    found = circles(calls)
+    for comp in found:
+        if frozenset(comp) in known_cycles:
+            continue
+        path = ring(calls, comp)
+        steps = " -> ".join("%s (%s)" % (b, syms(a, b)) for a, b in zip(path, path[1:]))
+        if len(comp) == 2:
+            bad.append("%s and %s call each other: %s -> %s" % (comp[0], comp[1], path[0], steps))
+        else:
+            bad.append("%d files call each other in a circle (%s), for one: %s -> %s"
+                       % (len(comp), ", ".join(comp), path[0], steps))
+    for k in sorted(known_cycles - {frozenset(c) for c in found}, key=sorted):
+        bad.append("%s: in KNOWN_CYCLES but no longer a circle of calls: take it out of the list"
+                   % ", ".join(sorted(k)))
+    up = set()
+    for a in sorted(calls):
+        fa = floor_of(a)
+        for b in sorted(calls[a]):
+            fb = floor_of(b)
+            if fa is None or fb is None or RANK[fb] <= RANK[fa]:
+                continue
+            up.add((a, b))
+            if (a, b) not in known_up:
+                bad.append("%s calls up a floor: %s (%s) from %s (%s)"
+                           % (a, syms(a, b), b, a, fa))
+    for a, b in sorted(known_up - up):
+        bad.append("%s -> %s: in KNOWN_UP_CALLS but no longer a call up a floor: take it out "
+                   "of the list" % (a, b))
+    return bad
+
+
+def self_check_calls():
+    """One fault of each kind in made-up nm output: each must be found."""
+    nm = "\n".join([
+        "o/a.o:0000000000000000 T fb_a",
+        "o/a.o:                 U fb_b",          # a <-> b: a pair
+        "o/b.o:0000000000000010 T fb_b",
+        "o/b.o:                 U fb_a",
+        "o/x.o:0000000000000000 T fb_x",
+        "o/x.o:                 U fb_y",          # x -> y -> z -> x: a ring of three
+        "o/y.o:0000000000000000 T fb_y",
+        "o/y.o:                 U fb_z",
+        "o/z.o:0000000000000000 D fb_z",
+        "o/z.o:                 U fb_x",
+        "o/p.o:0000000000000000 T fb_p",
+        "o/p.o:                 U fb_report",     # physics -> report: up a floor
+        "o/p.o:                 U fb_base",       # physics -> base: down, allowed
+        "o/p.o:                 U fb_inline",     # weak: names no file
+        "o/p.o:                 U fb_known",      # a known call up, allowed
+        "o/r.o:0000000000000000 T fb_report",
+        "o/r.o:0000000000000000 W fb_inline",
+        "o/r.o:                 U fb_base",       # report -> base, allowed
+        "o/q.o:0000000000000000 T fb_base",
+        "o/k.o:0000000000000000 T fb_known",
+        "o/stray.o:0000000000000000 T fb_stray",   # not a source of src/: ignored
+    ])
+    source_of = {"o/a.o": "src/run/a.c", "o/b.o": "src/run/b.c", "o/x.o": "src/report/x.c",
+                 "o/y.o": "src/report/y.c", "o/z.o": "src/report/z.c",
+                 "o/p.o": "src/physics/p.c", "o/r.o": "src/report/r.c", "o/q.o": "src/base/q.c",
+                 "o/k.o": "src/setup/k.c"}
+    calls = calls_from_nm(nm, source_of)
+    known_cycles = {frozenset(["src/cli/gone.c", "src/cli/also_gone.c"])}
+    known_up = {("src/physics/p.c", "src/setup/k.c"), ("src/model/old.c", "src/setup/k.c")}
+    found = check_calls(calls, known_cycles, known_up)
+    want = ["src/run/a.c and src/run/b.c call each other",
+            "3 files call each other in a circle (src/report/x.c, src/report/y.c, src/report/z.c), "
+            "for one: src/report/x.c -> src/report/y.c (fb_y) -> src/report/z.c (fb_z) -> "
+            "src/report/x.c (fb_x)",
+            "src/physics/p.c calls up a floor: fb_report (src/report/r.c)",
+            "in KNOWN_CYCLES but no longer a circle",
+            "src/model/old.c -> src/setup/k.c: in KNOWN_UP_CALLS but no longer"]
+    missed = [w for w in want if not any(w in f for f in found)]
+    extra = [f for f in found if not any(w in f for w in want)]
+    return ["self-check: the call-graph checker missed '%s'" % m for m in missed] + \
+           ["self-check: the call-graph checker flagged what is allowed: %s" % e for e in extra]
+
+
 def main():
     root = sys.argv[1]
     files, includes, lines = [], {}, {}
@@ -353,12 +606,21 @@ def main():
     set_engine_dirs(sorted("src/engines/" + n for n in os.listdir(engines)
                            if os.path.isdir(os.path.join(engines, n))))
     bad += check_graph(sorted(files), includes, lines) + check_functions(functions)
+    build = sys.argv[2] if len(sys.argv) > 2 else os.path.join(root, "build")
+    calls, note = {}, ""
+    if len(sys.argv) > 2 or os.path.exists(os.path.join(build, "compile_commands.json")):
+        calls, unread = read_calls(root, build)
+        bad += self_check_calls() + (unread or check_calls(calls, KNOWN_CYCLES, KNOWN_UP_CALLS))
+        note = ", calls between %d files read from %s" % (
+            len(set(calls) | {b for a in calls for b in calls[a]}), build)
+    else:
+        note = ", call graph not read (no build directory given, none at %s)" % build
     for b in bad:
         print(b)
     edges = sum(len(v) for v in includes.values())
     print("floors: %d files, %d #include lines read, %d source files sized, %d command-line "
-          "functions measured; %d finding(s)"
-          % (len(files), edges, len(lines), sum(len(v) for v in functions.values()), len(bad)))
+          "functions measured%s; %d finding(s)"
+          % (len(files), edges, len(lines), sum(len(v) for v in functions.values()), note, len(bad)))
     return 1 if bad else 0
 
 

@@ -9,32 +9,6 @@
 
 static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 
-const char *fb_report_model_status(char *buf, size_t size, const fb_model_result *m) {
-  if (m->run.stop.kind != FB_STOP_NONE || !m->matched_error) return fb_stop_text(buf, size, &m->run.stop);
-  const fb_divergence *d = &m->divergence;
-  if (m->matched_error == FB_MATCHED_ERROR_THEN_DIVERGENT) {
-    snprintf(buf, size,
-             "divergent: matched-impact peak error %.3g beyond the bound %g against %s before "
-             "its trajectory leaves %s's at t = %.6g s (%d impacts matched); compare the impact "
-             "statistics, not peaks",
-             fmax(d->force_rel_max, d->penetration_rel_max), FB_MATCHED_IMPACT_ERROR_BOUND,
-             m->ref_name, m->ref_name, d->t, d->matched);
-    return buf;
-  }
-  snprintf(buf, size,
-           "error: matched-impact peak error %.3g beyond the bound %g against %s, whose "
-           "trajectory it keeps (%d impacts matched)",
-           fmax(d->force_rel_max, d->penetration_rel_max), FB_MATCHED_IMPACT_ERROR_BOUND,
-           m->ref_name, d->matched);
-  return buf;
-}
-
-const char *fb_report_figure(char *buf, size_t size, const char *fmt, double x, int unconverged) {
-  if (unconverged) snprintf(buf, size, "~%.3g", x);
-  else snprintf(buf, size, fmt, x);
-  return buf;
-}
-
 static json_t *dist_json(const fb_dist *d, int with_n) {
   json_t *o = json_object();
   if (with_n) json_object_set_new(o, "impacts", json_integer(d->n));
@@ -457,6 +431,12 @@ const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result 
       snprintf(buf + n, size - n, "; %d other warning%s (below)", open, open > 1 ? "s" : "");
   }
   return buf;
+}
+
+const char *fb_report_verdict(char *why, size_t why_size, const fb_model_result *m,
+                              const fb_run *r) {
+  fb_report_verdict_why(why, why_size, m, r);
+  return fb_verdict_name(m->verdict);
 }
 
 void fb_report_print_ensemble_auto(FILE *f, const fb_run *r) {

@@ -1,31 +1,20 @@
 /* The writers of what tells a chaotic impact sequence from a wrong model:
- * each model's status word (an error when its matched impacts miss the
- * bound while it stays with its reference), the impact statistics of
- * `[run] ensemble` (ensemble.h) and their comparison with the reference,
- * the step h_s = auto ran at and its h omega_c, and the marks on figures
- * that are not converged numbers. summary.json, the printed table and
- * report.md take them from here (report.c). */
+ * the impact statistics of `[run] ensemble` (ensemble.h) and their
+ * comparison with the reference, the step h_s = auto ran at and its
+ * h omega_c, and what each verdict rests on. Each model's status word (an
+ * error when its matched impacts miss the bound while it stays with its
+ * reference) and the mark on figures that are not converged numbers are
+ * report_common.h's, included here. summary.json, the printed table and
+ * report.md take them from here (report_summary.c, report_table.c,
+ * report_markdown.c). */
 #ifndef FB_REPORT_CHAOS_H
 #define FB_REPORT_CHAOS_H
 
 #include <jansson.h>
 #include <stdio.h>
 
+#include "report_common.h"
 #include "run.h"
-
-/* The model's status: "ok"; the stop reason (outcome_text.h, fb_stop_text);
- * "error: ..." when its matched-impact peaks miss
- * FB_MATCHED_IMPACT_ERROR_BOUND while its trajectory stays with the
- * reference's; or "divergent: ..." when they miss it before the trajectory
- * leaves the reference's (fb_model_result.matched_error). A model that
- * leaves its reference with its matched impacts within the bound stays
- * "ok" with the warning divergent. Returns buf. */
-const char *fb_report_model_status(char *buf, size_t size, const fb_model_result *m);
-
-/* A figure cell: x printed with fmt when the quantity is converged, else
- * "~" and 3 significant figures (the mark of a divergent or unconverged
- * quantity, docs/chaos.md). Returns buf. */
-const char *fb_report_figure(char *buf, size_t size, const char *fmt, double x, int unconverged);
 
 /* summary.json: the model's "impact_statistics" (null without), its
  * "peaks_converged" reason, and the run's "step" object. */
@@ -42,6 +31,12 @@ void fb_report_print_chaos(FILE *f, const fb_run *r);
  * verdict_reason. Returns buf ("" when there is nothing to add). */
 const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result *m,
                                   const fb_run *r);
+
+/* The model's verdict word (verdict.h, fb_verdict_name), its reason in why
+ * (fb_report_verdict_why): the printed table and summary.json's
+ * "verdict" and "verdict_reason". */
+const char *fb_report_verdict(char *why, size_t why_size, const fb_model_result *m,
+                              const fb_run *r);
 
 /* The verdict table's error cell and what it is against, for a clearance
  * model or a reference: on statistics, the largest |relative difference|
@@ -65,10 +60,6 @@ void fb_report_print_ensemble_auto(FILE *f, const fb_run *r);
 /* summary.json's "ensemble": {"members", "source": "case"|"run"|"none",
  * "reason"} (docs/outputs.md). */
 json_t *fb_report_ensemble_run_json(const fb_run *r);
-
-/* Prose for the printed table: printf-formatted text wrapped at spaces to
- * 120 columns, continuation lines indented by two (report.c). */
-void fb_report_say(FILE *f, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* report.md's section of the same. */
 void fb_report_markdown_chaos(FILE *f, const fb_run *r);

@@ -4,8 +4,7 @@
 #include <string.h>
 
 #include "outcome_text.h"
-#include "report.h"
-#include "report_chaos.h"
+#include "report_common.h"
 
 #define say fb_report_say
 

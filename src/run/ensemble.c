@@ -58,7 +58,7 @@ static fb_status run_member(member_values *mv, const fb_run *r, int k, int n, fb
   if (c.model_count == 0) return FB_OK;
   fb_run *m = malloc(sizeof *m);
   if (!m) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for an ensemble member");
-  fb_status st = fb_run_case(m, &c, NULL, NULL, diag);
+  fb_status st = fb_run_models(m, &c, NULL, NULL, diag);
   /* a member cut short by the run's wall-time limit would pool fewer
    * impacts than it has: the ensemble fails, saying so */
   for (int q = 0; st == FB_OK && q < m->n; q++)

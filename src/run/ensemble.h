@@ -87,8 +87,8 @@ void fb_ensemble_compare_one(fb_stats_compare *out, const fb_impact_stats *one,
  * reference with it, and each reference's check integration with the
  * reference's ensemble (run.h, check_compare). progress (may be NULL) is
  * called as "ensemble" with the fraction of members done. Errors:
- * FB_ERR_NOMEM; those of fb_run_case for a member; FB_ERR_IO when a worker
- * fails. */
+ * FB_ERR_NOMEM; those of fb_run_models (run.h) for a member; FB_ERR_IO
+ * when a worker fails. */
 fb_status fb_ensemble_measure(struct fb_run_s *r, fb_progress_fn progress, void *user,
                               fb_diag *diag);
 

@@ -377,33 +377,6 @@ static double h_omega_c_max(const fb_run *r) {
   return w;
 }
 
-/* the verdicts; and, where one is unsettled and the case leaves [run]
- * ensemble to the run (c.ensemble_auto), an ensemble of that many members
- * when its estimate (the ensemble's models once, times the members beyond
- * the first, over the worker processes) fits [run] max_wall_s */
-static fb_status settle(fb_run *r, double t_start, fb_progress_fn progress, void *user,
-                        fb_diag *diag) {
-  const double t0 = fb_clock_s();
-  int unsettled = fb_verdict_assess(r);
-  const int members = r->c.ensemble_auto;
-  for (int i = 0; i < r->n; i++)
-    if (r->model[i].has_ensemble) r->models_wall_s += r->model[i].run.wall_s;
-  if (!unsettled || r->c.ensemble > 1 || members <= 1) return FB_OK;
-  const int jobs = r->c.jobs > 1 ? (r->c.jobs < members - 1 ? r->c.jobs : members - 1) : 1;
-  r->ensemble_estimate_s = r->models_wall_s * (double)(members - 1) / (double)jobs;
-  if (t0 - t_start + r->ensemble_estimate_s > r->c.max_wall_s) {
-    r->ensemble_auto_skipped = 1;
-    return FB_OK;
-  }
-  r->c.ensemble = members;
-  r->ensemble_auto = members;
-  fb_status st = fb_ensemble_measure(r, progress, user, diag);
-  if (st != FB_OK) return st;
-  r->ensemble_wall_s = fb_clock_s() - t0;
-  fb_verdict_assess(r);
-  return FB_OK;
-}
-
 fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag) {
   *over_cost = 0;
   fb_scene_def *def = malloc(sizeof *def);
@@ -414,12 +387,12 @@ fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag) {
   return st;
 }
 
-static fb_status run_case_timed(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
-                                fb_diag *diag);
+static fb_status run_models_timed(fb_run *r, const fb_case *c, fb_progress_fn progress,
+                                  void *user, fb_diag *diag);
 
-fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
-                      fb_diag *diag) {
-  if (c->member && c->wall_deadline > 0.0) return run_case_timed(r, c, progress, user, diag);
+fb_status fb_run_models(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
+                        fb_diag *diag) {
+  if (c->member && c->wall_deadline > 0.0) return run_models_timed(r, c, progress, user, diag);
   /* [run] max_wall_s holds while the models run, not only in the estimate:
    * a model still running at the deadline stops there (FB_STOP_WALL_TIME);
    * an ensemble's members keep the deadline of the run they belong to */
@@ -427,14 +400,13 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
   if (!timed) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   *timed = *c;
   timed->wall_deadline = fb_clock_s() + c->max_wall_s;
-  fb_status st = run_case_timed(r, timed, progress, user, diag);
+  fb_status st = run_models_timed(r, timed, progress, user, diag);
   free(timed);
   return st;
 }
 
-static fb_status run_case_timed(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
-                                fb_diag *diag) {
-  const double t_start = fb_clock_s();
+static fb_status run_models_timed(fb_run *r, const fb_case *c, fb_progress_fn progress,
+                                  void *user, fb_diag *diag) {
   fb_status st = run_once(r, c, progress, user, diag);
   if (st != FB_OK) return st;
   const int auto_step = c->solver.h_mode == FB_STEP_AUTO ||
@@ -459,16 +431,6 @@ static fb_status run_case_timed(fb_run *r, const fb_case *c, fb_progress_fn prog
     r->h_rechosen = tries;
     r->h_omega_c_max = h_omega_c_max(r);
     r->c.solver.h_mode = c->solver.h_mode; /* the case asked for auto */
-  }
-  if (!c->member) {
-    const double t0 = fb_clock_s();
-    st = fb_ensemble_measure(r, progress, user, diag);
-    if (r->c.ensemble > 1) r->ensemble_wall_s = fb_clock_s() - t0;
-    if (st == FB_OK) st = settle(r, t_start, progress, user, diag);
-    if (st != FB_OK) {
-      fb_run_free(r);
-      return st;
-    }
   }
   return FB_OK;
 }

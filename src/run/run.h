@@ -1,7 +1,9 @@
 /* The run pipeline: case -> models -> metrics. Runs every model a case asks
  * for, then measures each: peaks over the revolutions after the first, and,
  * for ODE models, the error against the analytic solution of the same link
- * lengths. Writers (report.h) take the result from here. */
+ * lengths. Writers (report.h) take the result from here. The ensemble
+ * (ensemble.h) sits above this file and fb_run_case (run_case.h) above
+ * both: nothing here calls the ensemble. */
 #ifndef FB_RUN_H
 #define FB_RUN_H
 
@@ -171,18 +173,25 @@ void fb_run_estimate(const fb_case *c, double *bytes, double *seconds);
  * fb_scene_def_from_case; FB_ERR_RANGE with the estimate. */
 fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag);
 
-/* Runs case c. A model that stops on numerical trouble keeps its status and
- * the others still run. Refused before any model runs (FB_ERR_RANGE, with
- * the estimate) when the estimated memory exceeds FB_COST_MEMORY_FRACTION
- * of physical memory or the estimated wall time exceeds [run] max_wall_s;
- * a model still running [run] max_wall_s after the start (an estimate is
- * only an estimate) stops there with FB_STOP_WALL_TIME, and an ensemble
- * whose member stopped so is an error (FB_ERR_RANGE).
- * Errors: FB_ERR_ASSEMBLY, FB_ERR_NOMEM, FB_ERR_ARG, FB_ERR_RANGE;
- * on error *r holds nothing that needs freeing. */
-fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
-                      fb_diag *diag);
+/* Runs case c's models and measures each, without the ensemble: what
+ * fb_run_case (run_case.h) runs first, and all it runs for an ensemble's
+ * member (c->member). A model that stops on numerical trouble keeps its
+ * status and the others still run; with h_s = auto a run whose contact
+ * passed FB_H_OMEGA_C_BOUND is redone at a smaller step (at most
+ * FB_H_AUTO_RETRIES times). Refused before any model runs (FB_ERR_RANGE,
+ * with the estimate) when the estimated memory exceeds
+ * FB_COST_MEMORY_FRACTION of physical memory or the estimated wall time
+ * exceeds [run] max_wall_s; a model still running [run] max_wall_s after
+ * the start (a member: after its run's start, c->wall_deadline) stops
+ * there with FB_STOP_WALL_TIME. Errors: FB_ERR_ASSEMBLY, FB_ERR_NOMEM,
+ * FB_ERR_ARG, FB_ERR_RANGE; on error *r holds nothing that needs freeing. */
+fb_status fb_run_models(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
+                        fb_diag *diag);
 
 void fb_run_free(fb_run *r);
+
+/* fb_run_case, the pipeline's entry (the models, then the ensemble above
+ * them), for the callers that include this header */
+#include "run_case.h"
 
 #endif

@@ -1,0 +1,131 @@
+/* The report floor's shared cells (report_common.h) and helpers
+ * (report_internal.h). */
+#include "report_common.h"
+
+#include <jansson.h>
+#include <math.h>
+#include <stdarg.h>
+#include <string.h>
+
+#include "fileio.h"
+#include "outcome_text.h"
+#include "report_internal.h"
+
+/* finite number or null */
+static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
+
+json_t *fb_report_body_peaks_json(const fb_body_peaks *p) {
+  json_t *o = json_object();
+#define FB_JSON_PEAK(field, key) json_object_set_new(o, key, num(p->field));
+  FB_BODY_PEAK_KEYS(FB_JSON_PEAK)
+#undef FB_JSON_PEAK
+  return o;
+}
+
+/* prose: printf-formatted text wrapped at spaces to FB_TABLE_COLUMNS,
+ * continuation lines indented by two spaces */
+void fb_report_say(FILE *f, const char *fmt, ...) {
+  char text[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(text, sizeof text, fmt, ap);
+  va_end(ap);
+  for (char *line = text; line;) {
+    char *nl = strchr(line, '\n');
+    if (nl) *nl = '\0';
+    const char *p = line;
+    int indent = 0;
+    while (strlen(p) + (size_t)indent > FB_TABLE_COLUMNS) {
+      const int room = FB_TABLE_COLUMNS - indent;
+      int cut = room;
+      while (cut > 0 && p[cut] != ' ') cut--;
+      if (cut == 0) break; /* one word longer than a line: printed whole */
+      fprintf(f, "%*s%.*s\n", indent, "", cut, p);
+      p += cut + 1;
+      indent = 2;
+    }
+    fprintf(f, "%*s%s\n", indent, "", p);
+    line = nl ? nl + 1 : NULL;
+  }
+}
+
+const char *fb_report_model_status(char *buf, size_t size, const fb_model_result *m) {
+  if (m->run.stop.kind != FB_STOP_NONE || !m->matched_error) return fb_stop_text(buf, size, &m->run.stop);
+  const fb_divergence *d = &m->divergence;
+  if (m->matched_error == FB_MATCHED_ERROR_THEN_DIVERGENT) {
+    snprintf(buf, size,
+             "divergent: matched-impact peak error %.3g beyond the bound %g against %s before "
+             "its trajectory leaves %s's at t = %.6g s (%d impacts matched); compare the impact "
+             "statistics, not peaks",
+             fmax(d->force_rel_max, d->penetration_rel_max), FB_MATCHED_IMPACT_ERROR_BOUND,
+             m->ref_name, m->ref_name, d->t, d->matched);
+    return buf;
+  }
+  snprintf(buf, size,
+           "error: matched-impact peak error %.3g beyond the bound %g against %s, whose "
+           "trajectory it keeps (%d impacts matched)",
+           fmax(d->force_rel_max, d->penetration_rel_max), FB_MATCHED_IMPACT_ERROR_BOUND,
+           m->ref_name, d->matched);
+  return buf;
+}
+
+const char *fb_report_figure(char *buf, size_t size, const char *fmt, double x, int unconverged) {
+  if (unconverged) snprintf(buf, size, "~%.3g", x);
+  else snprintf(buf, size, fmt, x);
+  return buf;
+}
+
+fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag) {
+  fb_outfile out;
+  fb_status st = fb_outfile_open(&out, path, diag);
+  if (st != FB_OK) return st;
+  if (json_dumpf(j, out.f, JSON_INDENT(2) | JSON_REAL_PRECISION(12)) != 0) {
+    fb_outfile_abort(&out);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: JSON write failed", path);
+  }
+  fputc('\n', out.f);
+  return fb_outfile_commit(&out, diag);
+}
+
+json_t *fb_report_loads_json(const fb_series *s, double t_from) {
+  if (!s->has_loads) return json_null();
+  double tmax = -INFINITY, tmin = INFINITY, rmax[4] = {0, 0, 0, 0};
+  size_t n = 0;
+  for (size_t i = 0; i < s->n; i++) {
+    if (s->t[i] < t_from) continue;
+    tmax = fmax(tmax, s->drive_torque[i]);
+    tmin = fmin(tmin, s->drive_torque[i]);
+    for (int j = 0; j < 4; j++) rmax[j] = fmax(rmax[j], hypot(s->reaction[j][0][i], s->reaction[j][1][i]));
+    n++;
+  }
+  if (n == 0) return json_null();
+  json_t *o = json_object(), *r = json_object();
+  json_object_set_new(o, "drive_torque_max_n_m", num(tmax));
+  json_object_set_new(o, "drive_torque_min_n_m", num(tmin));
+  json_object_set_new(o, "drive_torque_abs_max_n_m", num(fmax(fabs(tmax), fabs(tmin))));
+  for (int j = 0; j < 4; j++) {
+    char key[32];
+    snprintf(key, sizeof key, "%s", fb_joint_name(j));
+    for (char *p = key; *p; p++)
+      if (*p == '-') *p = '_';
+    json_object_set_new(r, key, num(rmax[j]));
+  }
+  json_object_set_new(o, "reaction_max_n", r);
+  return o;
+}
+
+const fb_contact_law *fb_report_model_law(const fb_run *r, const fb_model_result *m, int j) {
+  const fb_model *row = m->run.model;
+  if (!row || row->law == FB_MODEL_LAW_NONE || !(m->run.clearance_mask & (1 << j)) ||
+      !r->scene.has_law[row->law])
+    return NULL;
+  return &r->scene.law[row->law][j];
+}
+
+const char *fb_report_model_mapping(const fb_run *r, const fb_model_result *m) {
+  if (!m->run.has_provenance) return NULL;
+  if (m->run.model->engine == FB_ENGINE_MUJOCO)
+    return m->run.collider == FB_COLLIDER_NATIVE ? "none (MuJoCo contact)" : "none (applied force)";
+  if (m->run.model->engine == FB_ENGINE_SIMBODY) return "none (applied force)";
+  return fb_mapping_name(r->scene.mapping);
+}

@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <string.h>
 
+#include "engine.h"
 #include "fileio.h"
 #include "outcome_text.h"
 #include "report_internal.h"
@@ -124,8 +125,7 @@ const fb_contact_law *fb_report_model_law(const fb_run *r, const fb_model_result
 
 const char *fb_report_model_mapping(const fb_run *r, const fb_model_result *m) {
   if (!m->run.has_provenance) return NULL;
-  if (m->run.model->engine == FB_ENGINE_MUJOCO)
-    return m->run.collider == FB_COLLIDER_NATIVE ? "none (MuJoCo contact)" : "none (applied force)";
-  if (m->run.model->engine == FB_ENGINE_SIMBODY) return "none (applied force)";
-  return fb_mapping_name(r->scene.mapping);
+  const fb_engine *e = fb_engine_get(m->run.model->engine, NULL);
+  const char *own = e && e->mapping_text ? e->mapping_text(m->run.collider) : NULL;
+  return own ? own : fb_mapping_name(r->scene.mapping);
 }

@@ -8,6 +8,7 @@
 #include <jansson.h>
 #include <math.h>
 
+#include "engine.h"
 #include "casefile.h"
 #include "outcome_text.h"
 #include "report_chaos.h"
@@ -222,37 +223,21 @@ static json_t *delta_json(const fb_model_result *m) {
   return d;
 }
 
-/* "mujoco", "bullet" or "simbody": the engine's own choices as the model
- * used them (nothing for the other engines) */
+/* "<engine name>": the engine's own choices as the model used them (its
+ * table's settings; nothing for an engine without) */
 static void engine_settings_json(json_t *o, const fb_model_run *run, const fb_run *r) {
-  if (run->model->engine == FB_ENGINE_MUJOCO) {
-    /* MuJoCo's own choices as the model used them (0 in the case: 1/h^2, 1/h) */
-    const fb_mujoco_opts *mj = &r->c.mujoco;
-    const int integ = fb_mujoco_integrator_resolve(mj, run->clearance_mask);
-    json_object_set_new(
-        o, "mujoco",
-        json_pack("{s:s,s:o,s:o,s:o,s:o}", "integrator", fb_mujoco_integrator_name(integ),
-                  "loop_stiffness_1_s2",
-                  num(mj->loop_stiffness > 0.0 ? mj->loop_stiffness : 1.0 / (run->h * run->h)),
-                  "loop_damping_1_s", num(mj->loop_damping > 0.0 ? mj->loop_damping : 1.0 / run->h),
-                  "loop_impedance", num(mj->loop_impedance), "drive_armature_kg_m2",
-                  num(mj->drive_armature)));
-    if (run->collider == FB_COLLIDER_NATIVE)
-      json_object_set_new(json_object_get(o, "mujoco"), "native_bore",
-                          json_string(fb_mujoco_bore_name(mj->native_bore)));
-  }
-  if (run->model->engine == FB_ENGINE_BULLET) {
-    /* Bullet's own choices as the model used them */
-    const fb_bullet_opts *bt = &r->c.bullet;
-    json_object_set_new(o, "bullet",
-                        json_pack("{s:s,s:i,s:s}", "solver", fb_bullet_solver_name(bt->solver),
-                                  "iterations", bt->iterations, "world", "btDiscreteDynamicsWorld"));
-  }
-  if (run->model->engine == FB_ENGINE_SIMBODY)
-    json_object_set_new(o, "simbody",
-                        json_pack("{s:s,s:o}", "integrator",
-                                  fb_simbody_integrator_name(r->c.simbody.integrator), "accuracy",
-                                  num(r->c.simbody.accuracy)));
+  const fb_engine *e = fb_engine_get(run->model->engine, NULL);
+  fb_engine_setting set[FB_ENGINE_SETTINGS_MAX];
+  const int n = e && e->settings ? e->settings(set, &r->c, run->clearance_mask, run->collider, run->h)
+                                 : 0;
+  if (n <= 0) return;
+  json_t *s = json_object();
+  for (int k = 0; k < n && k < FB_ENGINE_SETTINGS_MAX; k++)
+    json_object_set_new(s, set[k].key,
+                        set[k].kind == FB_SETTING_TEXT      ? json_string(set[k].text)
+                        : set[k].kind == FB_SETTING_INTEGER ? json_integer(set[k].integer)
+                                                            : num(set[k].number));
+  json_object_set_new(o, e->name, s);
 }
 
 /* "error_vs_reference": a clearance model against the reference of its law */

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "engine.h"
 #include "outcome_text.h"
 #include "report_chaos.h"
 #include "report_internal.h"
@@ -317,47 +318,24 @@ static void print_masses(FILE *f, const fb_case *c) {
         c->density);
 }
 
-/* the engines' own settings as the models used them: MuJoCo's integrator
- * and loop closure, its native bore, Bullet's solver, Simbody's integrator
- * (a line per engine the run has) */
+static void put_line(void *f, const char *line) { say(f, "%s", line); }
+
+/* the engines' own settings as the models used them (each engine's
+ * settings_lines, in engine order, for the engines the run has) */
 static void print_engines(FILE *f, const fb_run *r) {
-  const fb_case *c = &r->c;
-  int mj_ideal = 0, mj_clear = 0, mj_native = 0;
-  for (int i = 0; i < r->n; i++)
-    if (r->model[i].run.model->engine == FB_ENGINE_MUJOCO) {
-      if (r->model[i].run.clearance_mask) mj_clear = 1;
-      else mj_ideal = 1;
-      if (r->model[i].run.collider == FB_COLLIDER_NATIVE) mj_native = 1;
+  for (int id = 0; id < FB_ENGINE_COUNT; id++) {
+    fb_engine_models_used used = {0, 0, 0};
+    for (int i = 0; i < r->n; i++) {
+      const fb_model_run *run = &r->model[i].run;
+      if ((int)run->model->engine != id) continue;
+      if (run->clearance_mask) used.clearance = 1;
+      else used.ideal = 1;
+      if (run->collider == FB_COLLIDER_NATIVE) used.native = 1;
     }
-  if (mj_ideal || mj_clear)
-    say(f, "MuJoCo models: integrator %s%s%s%s%s; loop closure solref (-k, -b) with k = %g "
-           "1/s^2, b = %g 1/s, solimp %g",
-        mj_ideal ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 0)) : "",
-        mj_ideal ? " (ideal models)" : "", mj_ideal && mj_clear ? ", " : "",
-        mj_clear ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 1)) : "",
-        mj_clear ? " (clearance models)" : "",
-        c->mujoco.loop_stiffness > 0 ? c->mujoco.loop_stiffness : 1.0 / (c->solver.h * c->solver.h),
-        c->mujoco.loop_damping > 0 ? c->mujoco.loop_damping : 1.0 / c->solver.h,
-        c->mujoco.loop_impedance);
-  if (mj_native)
-    say(f, "mujoco-clearance-native: bore %s ([mujoco] native_bore; %s)",
-        fb_mujoco_bore_name(c->mujoco.native_bore),
-        c->mujoco.native_bore == FB_MUJOCO_BORE_FACETS
-            ? "a sphere pin in a ring of boxes, MuJoCo's contacts"
-            : "a tendon limited to the radial clearance, MuJoCo's limit row along the "
-              "eccentricity");
-  int bt_models = 0;
-  for (int i = 0; i < r->n; i++) bt_models |= r->model[i].run.model->engine == FB_ENGINE_BULLET;
-  if (bt_models)
-    say(f, "Bullet models: %s, %d iterations (sequential impulse; the MLCP's fallback)",
-        fb_bullet_solver_name(c->bullet.solver), c->bullet.iterations);
-  for (int i = 0; i < r->n; i++)
-    if (r->model[i].run.model->engine == FB_ENGINE_SIMBODY) {
-      say(f, "Simbody models: integrator %s, accuracy %g (error-controlled internal steps, "
-             "sampled every h)",
-          fb_simbody_integrator_name(c->simbody.integrator), c->simbody.accuracy);
-      break;
-    }
+    if (!used.ideal && !used.clearance) continue;
+    const fb_engine *e = fb_engine_get((fb_engine_id)id, NULL);
+    if (e && e->settings_lines) e->settings_lines(&r->c, &used, put_line, f);
+  }
 }
 
 /* the stack-up corner the run took and each link's length at it, and the

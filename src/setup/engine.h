@@ -121,6 +121,28 @@ typedef struct {
   fb_status (*row)(fb_impact_result *out, const fb_impact_row *r, fb_diag *diag);
 } fb_engine_impact;
 
+/* One of an engine's own settings as a model used it (summary.json's
+ * "<engine name>" object, in the order given; the writers format it). */
+typedef enum { FB_SETTING_TEXT, FB_SETTING_NUMBER, FB_SETTING_INTEGER } fb_setting_kind;
+typedef struct {
+  const char *key;       /* its JSON key, with its unit ("loop_damping_1_s") */
+  fb_setting_kind kind;
+  const char *text;      /* FB_SETTING_TEXT */
+  double number;         /* FB_SETTING_NUMBER (not finite: null) */
+  long integer;          /* FB_SETTING_INTEGER */
+} fb_engine_setting;
+#define FB_ENGINE_SETTINGS_MAX 16
+
+/* Which of an engine's models a run has (for its settings lines). */
+typedef struct {
+  int ideal;     /* a model without clearance joints */
+  int clearance; /* a model with clearance joints */
+  int native;    /* a model whose clearance contact is the engine's own (FB_COLLIDER_NATIVE) */
+} fb_engine_models_used;
+
+/* One line of text of an engine's settings (settings_lines below). */
+typedef void (*fb_engine_put_line)(void *a, const char *line);
+
 typedef struct fb_engine {
   const char *name;                 /* fb_engine_name of its id */
   int guarded;                      /* 1: the harness stops a run whose penetration exceeds
@@ -174,6 +196,21 @@ typedef struct fb_engine {
                                        docs/commands.md), into buf; errors: the engine's, and
                                        FB_ERR_RANGE when buf is too small */
   const fb_engine_impact *impact;   /* optional: the engine's single impact (NULL: none) */
+  int (*settings)(fb_engine_setting *out, const fb_case *c, int clearance_mask,
+                  fb_collider collider, double h);
+                                    /* optional: the engine's own choices as a model with
+                                       clearance joints clearance_mask and collider collider
+                                       used them in case c at step h [s], into out (at most
+                                       FB_ENGINE_SETTINGS_MAX); returns their count (0: none) */
+  void (*settings_lines)(const fb_case *c, const fb_engine_models_used *used,
+                         fb_engine_put_line put, void *a);
+                                    /* optional: the lines the run's table prints for the
+                                       engine's models (used: which kinds ran) */
+  const char *(*mapping_text)(fb_collider collider);
+                                    /* optional: how the clearance contact of a model with
+                                       collider reaches the engine when it is not the case's
+                                       ERP/CFM mapping ("none (applied force)"); NULL, or a
+                                       NULL result: the mapping's name */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:

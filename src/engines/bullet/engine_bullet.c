@@ -75,6 +75,30 @@ static fb_status bullet_impact_row(fb_impact_result *out, const fb_impact_row *r
 static const fb_engine_impact bullet_impact = {.law = bullet_impact_law,
                                                .row = bullet_impact_row};
 
+/* Bullet's own choices as a model used them */
+static int bullet_settings(fb_engine_setting *out, const fb_case *c, int clearance_mask,
+                           fb_collider collider, double h) {
+  (void)clearance_mask, (void)collider, (void)h;
+  out[0] = (fb_engine_setting){.key = "solver", .kind = FB_SETTING_TEXT,
+                               .text = fb_bullet_solver_name(c->bullet.solver)};
+  out[1] = (fb_engine_setting){.key = "iterations", .kind = FB_SETTING_INTEGER,
+                               .integer = c->bullet.iterations};
+  out[2] = (fb_engine_setting){.key = "world", .kind = FB_SETTING_TEXT,
+                               .text = "btDiscreteDynamicsWorld"};
+  return 3;
+}
+
+/* the run's table: Bullet's solver */
+static void bullet_settings_lines(const fb_case *c, const fb_engine_models_used *u,
+                                  fb_engine_put_line put, void *a) {
+  (void)u;
+  char line[256];
+  snprintf(line, sizeof line,
+           "Bullet models: %s, %d iterations (sequential impulse; the MLCP's fallback)",
+           fb_bullet_solver_name(c->bullet.solver), c->bullet.iterations);
+  put(a, line);
+}
+
 const fb_engine fb_engine_bullet = {
     .name = "bullet",
     .guarded = 1,
@@ -94,4 +118,6 @@ const fb_engine fb_engine_bullet = {
     .drive_key = "[solver] drive_torque_max_n_m",
     .peer_args = bullet_peer_args,
     .impact = &bullet_impact,
+    .settings = bullet_settings,
+    .settings_lines = bullet_settings_lines,
 };

@@ -70,6 +70,62 @@ static fb_status mujoco_impact_row(fb_impact_result *out, const fb_impact_row *r
 
 static const fb_engine_impact mujoco_impact = {.law = NULL, .row = mujoco_impact_row};
 
+/* MuJoCo's own choices as a model used them (0 in the case: 1/h^2, 1/h) */
+static int mujoco_settings(fb_engine_setting *out, const fb_case *c, int clearance_mask,
+                           fb_collider collider, double h) {
+  const fb_mujoco_opts *mj = &c->mujoco;
+  int n = 0;
+  out[n++] = (fb_engine_setting){.key = "integrator", .kind = FB_SETTING_TEXT,
+                                 .text = fb_mujoco_integrator_name(
+                                     fb_mujoco_integrator_resolve(mj, clearance_mask))};
+  out[n++] = (fb_engine_setting){.key = "loop_stiffness_1_s2", .kind = FB_SETTING_NUMBER,
+                                 .number = mj->loop_stiffness > 0.0 ? mj->loop_stiffness
+                                                                    : 1.0 / (h * h)};
+  out[n++] = (fb_engine_setting){.key = "loop_damping_1_s", .kind = FB_SETTING_NUMBER,
+                                 .number = mj->loop_damping > 0.0 ? mj->loop_damping : 1.0 / h};
+  out[n++] = (fb_engine_setting){.key = "loop_impedance", .kind = FB_SETTING_NUMBER,
+                                 .number = mj->loop_impedance};
+  out[n++] = (fb_engine_setting){.key = "drive_armature_kg_m2", .kind = FB_SETTING_NUMBER,
+                                 .number = mj->drive_armature};
+  if (collider == FB_COLLIDER_NATIVE)
+    out[n++] = (fb_engine_setting){.key = "native_bore", .kind = FB_SETTING_TEXT,
+                                   .text = fb_mujoco_bore_name(mj->native_bore)};
+  return n;
+}
+
+/* the run's table: MuJoCo's integrator(s) and loop closure, its native bore */
+static void mujoco_settings_lines(const fb_case *c, const fb_engine_models_used *u,
+                                  fb_engine_put_line put, void *a) {
+  char line[512];
+  snprintf(line, sizeof line,
+           "MuJoCo models: integrator %s%s%s%s%s; loop closure solref (-k, -b) with k = %g "
+           "1/s^2, b = %g 1/s, solimp %g",
+           u->ideal ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 0)) : "",
+           u->ideal ? " (ideal models)" : "", u->ideal && u->clearance ? ", " : "",
+           u->clearance ? fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(&c->mujoco, 1))
+                        : "",
+           u->clearance ? " (clearance models)" : "",
+           c->mujoco.loop_stiffness > 0 ? c->mujoco.loop_stiffness
+                                        : 1.0 / (c->solver.h * c->solver.h),
+           c->mujoco.loop_damping > 0 ? c->mujoco.loop_damping : 1.0 / c->solver.h,
+           c->mujoco.loop_impedance);
+  put(a, line);
+  if (u->native) {
+    snprintf(line, sizeof line, "mujoco-clearance-native: bore %s ([mujoco] native_bore; %s)",
+             fb_mujoco_bore_name(c->mujoco.native_bore),
+             c->mujoco.native_bore == FB_MUJOCO_BORE_FACETS
+                 ? "a sphere pin in a ring of boxes, MuJoCo's contacts"
+                 : "a tendon limited to the radial clearance, MuJoCo's limit row along the "
+                   "eccentricity");
+    put(a, line);
+  }
+}
+
+/* the clearance contact: MuJoCo's own, or the project's law as an applied force */
+static const char *mujoco_mapping_text(fb_collider collider) {
+  return collider == FB_COLLIDER_NATIVE ? "none (MuJoCo contact)" : "none (applied force)";
+}
+
 const fb_engine fb_engine_mujoco = {
     .name = "mujoco",
     .guarded = 1,
@@ -89,4 +145,7 @@ const fb_engine fb_engine_mujoco = {
     .model_format = "mjcf",
     .export_model = fb_mujoco_export,
     .impact = &mujoco_impact,
+    .settings = mujoco_settings,
+    .settings_lines = mujoco_settings_lines,
+    .mapping_text = mujoco_mapping_text,
 };

@@ -72,6 +72,35 @@ static void simbody_peer_args(const fb_scene_model *sm, double h, fb_engine_put_
   fb_engine_put_number(put, a, "accuracy", sm->simbody.accuracy);
 }
 
+/* Simbody's own choices as a model used them */
+static int simbody_settings(fb_engine_setting *out, const fb_case *c, int clearance_mask,
+                            fb_collider collider, double h) {
+  (void)clearance_mask, (void)collider, (void)h;
+  out[0] = (fb_engine_setting){.key = "integrator", .kind = FB_SETTING_TEXT,
+                               .text = fb_simbody_integrator_name(c->simbody.integrator)};
+  out[1] = (fb_engine_setting){.key = "accuracy", .kind = FB_SETTING_NUMBER,
+                               .number = c->simbody.accuracy};
+  return 2;
+}
+
+/* the run's table: Simbody's integrator */
+static void simbody_settings_lines(const fb_case *c, const fb_engine_models_used *u,
+                                   fb_engine_put_line put, void *a) {
+  (void)u;
+  char line[256];
+  snprintf(line, sizeof line,
+           "Simbody models: integrator %s, accuracy %g (error-controlled internal steps, "
+           "sampled every h)",
+           fb_simbody_integrator_name(c->simbody.integrator), c->simbody.accuracy);
+  put(a, line);
+}
+
+/* the clearance contact: the project's law as an applied force */
+static const char *simbody_mapping_text(fb_collider collider) {
+  (void)collider;
+  return "none (applied force)";
+}
+
 const fb_engine fb_engine_simbody = {
     .name = "simbody",
     .guarded = 1,
@@ -91,4 +120,7 @@ const fb_engine fb_engine_simbody = {
     .cost_per_sample = simbody_cost_per_sample,
     .drive_key = "[solver] drive_torque_max_n_m",
     .peer_args = simbody_peer_args,
+    .settings = simbody_settings,
+    .settings_lines = simbody_settings_lines,
+    .mapping_text = simbody_mapping_text,
 };

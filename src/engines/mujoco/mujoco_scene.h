@@ -1,5 +1,5 @@
-/* The four-bar in MuJoCo 2.2.2: the same scene definition as the ODE scene
- * (scene.h: lengths, masses, inertias, gravity, drive, initial state from the
+/* The four-bar in MuJoCo 2.2.2: the same scene definition as the ODE world
+ * (ode_world.h: lengths, masses, inertias, gravity, drive, initial state from the
  * analytic solver, clearance joints and their contact laws), generated as
  * MJCF text and loaded from memory through MuJoCo's virtual file system. The
  * only folder that includes MuJoCo headers; this header includes none, so a

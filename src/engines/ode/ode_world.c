@@ -1,4 +1,4 @@
-#include "scene.h"
+#include "ode_world.h"
 #include "step_control.h"
 
 #include <math.h>
@@ -55,7 +55,7 @@ static void note_row(clearance *c, const fb_contact_row *u, double share, double
   if (wdh > c->step_wdh) c->step_wdh = wdh;
 }
 
-struct fb_scene {
+struct fb_ode_world {
   fb_scene_model def;
   int broken;        /* 1 after an ODE fatal error left its world mid-step: never touched again */
   fb_stop stop;      /* why the last step failed (FB_STOP_NONE while none did) */
@@ -100,10 +100,10 @@ struct fb_scene {
 /* the effective mass of clearance joint j along unit n (pin minus hole
  * direction) [kg], from this step's inverse-mass tensor (effective_mass.h),
  * computed at the step's first call; the law's mass if that fails */
-static double step_effective_mass(fb_scene *s, int j, const double n[2]) {
+static double step_effective_mass(fb_ode_world *s, int j, const double n[2]) {
   if (!s->w_valid) {
     fb_mechanism m;
-    fb_scene_mechanism(s, &m);
+    fb_ode_world_mechanism(s, &m);
     if (fb_effective_mass_tensor(s->w_inv, &m, NULL) != FB_OK) return s->def.law[j].mass;
     s->w_valid = 1;
   }
@@ -148,7 +148,7 @@ static double body_angle(dBodyID b) {
 #define FACET_MAX_CONTACTS 64   /* contacts kept per joint and step */
 
 /* builds the faceted hole and pin of clearance joint j */
-static void facet_create(fb_scene *s, int j) {
+static void facet_create(fb_ode_world *s, int j) {
   clearance *c = &s->cl[j];
   const fb_scene_model *d = &s->def;
   const int n = d->faceted_n;
@@ -190,7 +190,7 @@ static void facet_destroy(clearance *c, int n) {
 }
 
 /* builds the libccd ring of clearance joint j */
-static fb_status ccd_create(fb_scene *s, int j, fb_diag *diag) {
+static fb_status ccd_create(fb_ode_world *s, int j, fb_diag *diag) {
   const fb_scene_model *d = &s->def;
   fb_ccd_bore_def bd = fb_ccd_bore_default();
   bd.pin_radius = d->pin_radius;
@@ -207,7 +207,7 @@ static fb_status ccd_create(fb_scene *s, int j, fb_diag *diag) {
   return FB_OK;
 }
 
-fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *diag) {
+fb_status fb_ode_world_create(fb_ode_world **out, const fb_scene_model *sm, fb_diag *diag) {
   fb_status rc0 = fb_scene_def_check(sm->def, diag);
   if (rc0 != FB_OK) return rc0;
   if (sm->clearance_mask && sm->collider != FB_COLLIDER_EXACT &&
@@ -224,7 +224,7 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *dia
   fb_start_state st;
   fb_status rc = fb_scene_model_start(&st, def, diag);
   if (rc != FB_OK) return rc;
-  fb_scene *s = calloc(1, sizeof *s);
+  fb_ode_world *s = calloc(1, sizeof *s);
   if (!s) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the scene");
   fb_ode_acquire();
   s->def = *sm;
@@ -291,7 +291,7 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *dia
       if (!(def->clearance_mask & (1 << j))) continue;
       fb_status bst = ccd_create(s, j, diag);
       if (bst != FB_OK) {
-        fb_scene_destroy(s);
+        fb_ode_world_destroy(s);
         return bst;
       }
     }
@@ -334,7 +334,7 @@ fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *dia
                                         def->gravity, def->omega2, def->clearance_mask,
                                         FB_STEP_LOAD_LOOKAHEAD * def->solver.h_max, diag);
     if (lst != FB_OK) {
-      fb_scene_destroy(s);
+      fb_ode_world_destroy(s);
       return lst;
     }
   }
@@ -412,7 +412,7 @@ static void facet_near(void *data, dGeomID o1, dGeomID o2) {
 }
 
 /* faceted: contact joints from ODE's collider for clearance joint j */
-static void facet_contacts(fb_scene *s, int j) {
+static void facet_contacts(fb_ode_world *s, int j) {
   clearance *c = &s->cl[j];
   const fb_scene_model *d = &s->def;
   dContactGeom g[FACET_MAX_CONTACTS];
@@ -467,7 +467,7 @@ static void pin_in_hole_frame(const clearance *c, double p[2]) {
 }
 
 /* libccd: contact joints from the generic collider for clearance joint j */
-static void ccd_contacts(fb_scene *s, int j) {
+static void ccd_contacts(fb_ode_world *s, int j) {
   clearance *c = &s->cl[j];
   const fb_scene_model *d = &s->def;
   double p[2];
@@ -543,7 +543,7 @@ static void ccd_contacts(fb_scene *s, int j) {
 
 /* penetration of clearance joint c now [m]: into the faceted bore for the
  * libccd collider, |e| - c otherwise; 0 when free */
-static double clearance_penetration(const fb_scene *s, const clearance *c) {
+static double clearance_penetration(const fb_ode_world *s, const clearance *c) {
   if (c->bore) {
     double p[2];
     pin_in_hole_frame(c, p);
@@ -556,7 +556,7 @@ static double clearance_penetration(const fb_scene *s, const clearance *c) {
 }
 
 /* creates the contact joint of clearance joint j for this step, if in contact */
-static void clearance_contact(fb_scene *s, int j) {
+static void clearance_contact(fb_ode_world *s, int j) {
   clearance *c = &s->cl[j];
   const fb_scene_model *d = &s->def;
   if (c->bore) {
@@ -621,7 +621,7 @@ static void clearance_contact(fb_scene *s, int j) {
 
 /* one ODE step of size h from the state now (the step's contact rows,
  * dWorldStep or dWorldQuickStep, the forces and accelerations it left) */
-static fb_status world_step(fb_scene *s, double h, fb_diag *diag) {
+static fb_status world_step(fb_ode_world *s, double h, fb_diag *diag) {
   s->h_now = h;
   for (int j = 0; j < 4; j++) {
     if (!(s->def.clearance_mask & (1 << j))) continue;
@@ -656,9 +656,9 @@ static fb_status world_step(fb_scene *s, double h, fb_diag *diag) {
   const dReal *g1 = dBodyGetPosition(s->body[FB_CRANK]);
   s->crank_com_before[0] = g1[0];
   s->crank_com_before[1] = g1[1];
-  /* an ODE fatal error (a failed internal check) stops this scene with its
+  /* an ODE fatal error (a failed internal check) stops this world with its
    * message instead of aborting the process (ode_env.h); the caller then
-   * only destroys the scene */
+   * only destroys the world */
   jmp_buf escape;
   if (setjmp(escape) != 0) {
     s->broken = 1;
@@ -721,7 +721,7 @@ static fb_status world_step(fb_scene *s, double h, fb_diag *diag) {
 }
 
 /* penetration (0 when free) and eccentricity of every clearance joint now */
-static void adapt_geometry(const fb_scene *s, double pen[4], double ex[4], double ey[4]) {
+static void adapt_geometry(const fb_ode_world *s, double pen[4], double ex[4], double ey[4]) {
   for (int j = 0; j < 4; j++) {
     pen[j] = ex[j] = ey[j] = 0.0;
     if (!(s->def.clearance_mask & (1 << j))) continue;
@@ -733,12 +733,12 @@ static void adapt_geometry(const fb_scene *s, double pen[4], double ex[4], doubl
   }
 }
 
-static double penetration_now(const fb_scene *s, int *joint);
-static double joint_drift_now(const fb_scene *s);
+static double penetration_now(const fb_ode_world *s, int *joint);
+static double joint_drift_now(const fb_ode_world *s);
 
 /* the next adaptive step as grid steps: the shortest any clearance joint's
  * contact asks for (step_control.h), ramped */
-static int adapt_multiple(fb_scene *s) {
+static int adapt_multiple(fb_ode_world *s) {
   const fb_scene_model *d = &s->def;
   const double hg = d->solver.h;
   double h = d->solver.h_max;
@@ -783,7 +783,7 @@ static int adapt_multiple(fb_scene *s) {
  * h_last, the moving links' velocities get (h_last - h) / 2 times the last
  * step's acceleration, (v now - v at its start) / h_last; the driven crank
  * keeps its speed. */
-static void carry_velocities(fb_scene *s, double h) {
+static void carry_velocities(fb_ode_world *s, double h) {
   const double hl = s->ad.h_last;
   if (hl > 0.0 && fabs(h - hl) > 1e-9 * hl) {
     const double g = 0.5 * (hl - h) / hl;
@@ -801,7 +801,7 @@ static void carry_velocities(fb_scene *s, double h) {
   s->ad.h_last = h;
 }
 
-fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
+fb_status fb_ode_world_step(fb_ode_world *s, fb_diag *diag) {
   if (!s->ad.on) {
     fb_status st = world_step(s, s->def.solver.h, diag);
     if (st == FB_OK) s->steps++;
@@ -836,7 +836,7 @@ fb_status fb_scene_step(fb_scene *s, fb_diag *diag) {
   return FB_OK;
 }
 
-void fb_scene_step_stats(const fb_scene *s, fb_step_stats *out) {
+void fb_ode_world_step_stats(const fb_ode_world *s, fb_step_stats *out) {
   if (s->ad.on) {
     *out = s->ad.stats;
     return;
@@ -846,7 +846,7 @@ void fb_scene_step_stats(const fb_scene *s, fb_step_stats *out) {
   out->n_h_min = out->n_h_max = s->steps;
 }
 
-void fb_scene_sample(const fb_scene *s, fb_sample *x) {
+void fb_ode_world_sample(const fb_ode_world *s, fb_sample *x) {
   x->t = (double)s->steps * s->def.solver.h;
   x->crank_angle = s->angle[FB_CRANK];
   x->coupler_angle = s->angle[FB_COUPLER];
@@ -887,7 +887,7 @@ void fb_scene_sample(const fb_scene *s, fb_sample *x) {
   }
 }
 
-static double penetration_now(const fb_scene *s, int *joint) {
+static double penetration_now(const fb_ode_world *s, int *joint) {
   double worst = 0.0;
   *joint = -1;
   for (int j = 0; j < 4; j++) {
@@ -901,7 +901,7 @@ static double penetration_now(const fb_scene *s, int *joint) {
   return worst;
 }
 
-void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *contacts) {
+void fb_ode_world_ccd_calls(const fb_ode_world *s, unsigned long *calls, unsigned long *contacts) {
   *calls = *contacts = 0;
   for (int j = 0; j < 4; j++) {
     if (!s->cl[j].bore) continue;
@@ -910,21 +910,21 @@ void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *
   }
 }
 
-int fb_scene_impacts(const fb_scene *s, int j) { return s->cl[j].ep.impacts; }
+int fb_ode_world_impacts(const fb_ode_world *s, int j) { return s->cl[j].ep.impacts; }
 
-void fb_scene_stopped(const fb_scene *s, fb_stop *out) {
+void fb_ode_world_stopped(const fb_ode_world *s, fb_stop *out) {
   *out = s->stop;
   out->engine = "ode";
   if (out->kind != FB_STOP_ALIASED) out->joint = -1;
 }
 
-void fb_scene_provenance(const fb_scene *s, int j, fb_contact_provenance *out) {
+void fb_ode_world_provenance(const fb_ode_world *s, int j, fb_contact_provenance *out) {
   *out = s->cl[j].prov;
   if (out->contact_steps == 0)
     out->mass_eff_min = out->mass_eff_max = out->erp_max = out->cfm_min = out->h_omega_max = NAN;
 }
 
-static double joint_drift_now(const fb_scene *s) {
+static double joint_drift_now(const fb_ode_world *s) {
   double worst = 0.0;
   for (int j = 0; j < 4; j++) {
     if (!s->hinge[j]) continue;
@@ -940,17 +940,17 @@ static double joint_drift_now(const fb_scene *s) {
 
 /* inside an adaptive ODE step the bodies rest at its end: the values of
  * its end, kept when it was taken */
-double fb_scene_joint_drift(const fb_scene *s) {
+double fb_ode_world_joint_drift(const fb_ode_world *s) {
   return s->ad.on ? s->ad.drift_end : joint_drift_now(s);
 }
 
-double fb_scene_penetration(const fb_scene *s, int *joint) {
+double fb_ode_world_penetration(const fb_ode_world *s, int *joint) {
   if (!s->ad.on) return penetration_now(s, joint);
   *joint = s->ad.pen_joint_end;
   return s->ad.pen_end;
 }
 
-void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_torque) {
+void fb_ode_world_reactions(const fb_ode_world *s, double force[4][2], double *drive_torque) {
   if (s->steps == 0) {
     for (int j = 0; j < 4; j++) force[j][0] = force[j][1] = 0.0;
     *drive_torque = 0.0;
@@ -978,9 +978,9 @@ void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_tor
                               : 0.0;
 }
 
-size_t fb_scene_steps(const fb_scene *s) { return s->steps; }
+size_t fb_ode_world_steps(const fb_ode_world *s) { return s->steps; }
 
-void fb_scene_mechanism(const fb_scene *s, fb_mechanism *out) {
+void fb_ode_world_mechanism(const fb_ode_world *s, fb_mechanism *out) {
   memset(out, 0, sizeof *out);
   for (int i = 0; i < 3; i++) {
     const dReal *p = dBodyGetPosition(s->body[i]);
@@ -1013,7 +1013,7 @@ static double probe_rate(const clearance *c, const double n[2]) {
   return n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]);
 }
 
-fb_status fb_scene_probe_inverse_mass(fb_scene *s, int j, const double n[2], double force,
+fb_status fb_ode_world_probe_inverse_mass(fb_ode_world *s, int j, const double n[2], double force,
                                       double *inv_mass, fb_diag *diag) {
   if (j < 0 || j > 3 || !(s->def.clearance_mask & (1 << j)) || !(force > 0.0))
     return fb_diag_set(diag, FB_ERR_ARG,
@@ -1056,7 +1056,7 @@ fb_status fb_scene_probe_inverse_mass(fb_scene *s, int j, const double n[2], dou
   return FB_OK;
 }
 
-void fb_scene_destroy(fb_scene *s) {
+void fb_ode_world_destroy(fb_ode_world *s) {
   if (!s) return;
   if (s->broken) {
     /* ODE's world was left mid-step (its job list still holds the step):

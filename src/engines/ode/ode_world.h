@@ -3,6 +3,8 @@
  * crank driven at constant speed by a hinge velocity motor. It owns the
  * world and its joints; engine_ode.c puts it behind the engine interface
  * (engine.h), and nothing outside src/engines/ode includes this header.
+ * ode_world_internal.h lists the files the world is made of (building,
+ * the exact contact, the generic colliders, the step, the outputs).
  *
  * Crank drive: the ground hinge's motor (dParamVel = omega2, dParamFMax =
  * drive_torque_max) is a velocity constraint row solved with the others each

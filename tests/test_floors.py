@@ -65,7 +65,6 @@ KNOWN_LARGE = {
     "src/setup/casefile.c": 1646,
     "src/report/report.c": 1298,
     "src/engines/simbody/simbody_scene.cpp": 1204,
-    "src/engines/mujoco/mujoco_scene.c": 1046,
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)

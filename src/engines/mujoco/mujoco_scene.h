@@ -4,7 +4,9 @@
  * MJCF text and loaded from memory through MuJoCo's virtual file system. The
  * only folder that includes MuJoCo headers; this header includes none, so a
  * build without MuJoCo compiles every caller (FB_HAVE_MUJOCO in fb_config.h
- * says whether these functions exist).
+ * says whether these functions exist). mujoco_scene_internal.h lists the
+ * files the scene is made of (building, the MJCF text, loading, the
+ * contact, the step, the outputs).
  *
  * Model (generalised coordinates, a kinematic tree):
  *   world -> crank (hinge A at the origin) -> coupler (hinge B at the crank
@@ -46,7 +48,7 @@
  *     (length |e|) limited to [0, c]; MuJoCo adds one limit row along e when
  *     |e| > c. Its solref is the law's spring and damper in the force form,
  *     per unit of MuJoCo's diagonal approximation of the row's inverse mass
- *     at impedance 1e-4 (mujoco_scene.c, native_solref_update), so the row's
+ *     at impedance 1e-4 (mujoco_contact.c, mujoco_native_solref_update), so the row's
  *     force is k delta + c ddot whatever else acts along e;
  *   - facets: the pin a sphere and the hole a ring of faceted_n boxes,
  *     collided by MuJoCo (filterparent disabled), with the direct form per

@@ -64,7 +64,6 @@ KNOWN_LARGE = {
     "src/report/figures/figures.c": 1890,
     "src/setup/casefile.c": 1646,
     "src/report/report.c": 1298,
-    "src/engines/simbody/simbody_scene.cpp": 1204,
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)

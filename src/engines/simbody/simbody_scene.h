@@ -1,7 +1,8 @@
 /* The Simbody scene: one simbody-* model as a Simbody MultibodySystem,
  * integrated by one of Simbody's error-controlled integrators. The only
- * header of the Simbody engine the C side sees; the implementation
- * (simbody_scene.cpp) is the only translation unit that includes Simbody.
+ * header of the Simbody engine the C side sees; the implementation (the
+ * C++ files simbody_internal.h lists) is the only code that includes
+ * Simbody.
  *
  * The mechanism (SI, planar in x-y, every mobilizer a Pin about +z):
  *

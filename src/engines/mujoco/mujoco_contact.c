@@ -48,7 +48,7 @@ static void clearance_force(fb_mujoco_scene *s, const mjModel *m, mjData *d, int
   const double v0 = c->ep.in_contact ? c->ep.v0 : fmax(ddot, s->def.impact_velocity_min);
   fb_contact_law law = s->def.law[j];
   if (law.kind == FB_LAW_RESTITUTION) {
-    /* the damper on the mechanism's effective mass along n (as ODE's scene
+    /* the damper on the mechanism's effective mass along n (as ODE's world
      * and the reference do), so the achieved restitution is the one asked */
     const double me = mujoco_joint_effective_mass(s, m, d, j);
     if (me > 0.0) law.mass = me;
@@ -176,7 +176,7 @@ void mujoco_note_contact(fb_mujoco_scene *s, int j, double mass) {
  * 2.2.2), so solref = (-k (1 - d) A, -c (1 - d) A) gives
  * f = k delta + c ddot + d/((1 - d) A) d2delta/dt2: the law's spring and
  * damper whatever else pushes along e, plus a negligible inerter
- * (BORE_IMPEDANCE). c = 2 zeta sqrt(k m_eff), the damper ODE's scene and the
+ * (BORE_IMPEDANCE). c = 2 zeta sqrt(k m_eff), the damper ODE's world and the
  * reference put on the same mass. The form contact-params prints
  * (docs/contact-params.md: d -> 1, per unit of m_eff) gives the row the
  * acceleration aref whatever else pushes, so a steadily loaded contact

@@ -33,9 +33,9 @@
  *   planar freedom instead (slide x, slide y, hinge z; the crank's drive
  *   armature sits on its hinge z). A site marks the pin centre on the pin
  *   body and one the hole centre on the hole body (ground: the world), as in
- *   the ODE scene (pin on the joint's first body). MuJoCo's contact solver is
+ *   the ODE world (pin on the joint's first body). MuJoCo's contact solver is
  *   not involved: the project's law (contact.h, fb_contact_force with the
- *   joint's fb_contact_law, exactly as the ODE scene and the reference
+ *   joint's fb_contact_law, exactly as the ODE world and the reference
  *   evaluate it) gives the normal force F(delta, ddot) from the site
  *   positions and velocities, and MuJoCo's passive-force hook (mjcb_passive)
  *   adds it as generalised forces -F J^T n, J = J_pin - J_hole from

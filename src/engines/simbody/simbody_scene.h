@@ -23,7 +23,7 @@
  * the project's contact law (contact.h, fb_contact_force) as a
  * Force::Custom at the exact pin-in-hole eccentricity, with the restitution
  * law's damper on the mechanism's effective mass along the normal
- * (effective_mass.h), as ODE's scene, MuJoCo's and the reference do.
+ * (effective_mass.h), as ODE's world, MuJoCo's and the reference do.
  *
  * Sampling (simbody_scene.cpp says how): the integrator runs on its own
  * error-controlled steps to the run's end, returning after each; the output

@@ -19,7 +19,7 @@
 #include "engine.h"
 #include "fb_test.h"
 #include "run.h"
-#include "scene.h" /* fb_scene_ccd_calls */
+#include "ode_world.h" /* fb_ode_world_ccd_calls */
 
 /* libccd's depth against the closed-form face depth: MPR stops when a
  * refinement gains less than the 1e-13 m tolerance; measured residual
@@ -219,13 +219,13 @@ static fb_sample settle(const fb_case *c, int segments, int split, int steps, un
   fb_scene_model sm;
   const fb_engine *e;
   int ring[2] = {segments, split};
-  fb_scene *s = fb_test_engine_row(&e, &sm, &def, c,
+  fb_ode_world *s = fb_test_engine_row(&e, &sm, &def, c,
                                    fb_model_find(segments ? "ode-clearance-ccd" : "ode-clearance-impact"),
                                    hold, ring);
   for (int k = 0; k < steps; k++) assert_int_equal(e->step(s, NULL), FB_OK);
   fb_sample x;
   e->sample(s, &x);
-  fb_scene_ccd_calls(s, calls, contacts);
+  fb_ode_world_ccd_calls(s, calls, contacts);
   e->destroy(s);
   return x;
 }

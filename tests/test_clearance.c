@@ -17,7 +17,7 @@
 #include "invdyn.h"
 #include "outcome_text.h"
 #include "run.h"
-#include "scene.h" /* the ODE probe of the effective mass */
+#include "ode_world.h" /* the ODE probe of the effective mass */
 
 /* statics: the issue allows 2 %; after 1 s of settling with velocity damping
  * the residual is 4e-5 (the 14.5 um clearance shifts the geometry, and so
@@ -329,10 +329,10 @@ static void test_effective_mass_matches_ode_probe(void **state) {
       fb_scene_model sm;
       const fb_engine *e;
       const double start[2] = {theta, 1e-6};
-      fb_scene *s = fb_test_engine(&e, &sm, &def, &k, "ode-clearance-impact", probe_start,
+      fb_ode_world *s = fb_test_engine(&e, &sm, &def, &k, "ode-clearance-impact", probe_start,
                                    (void *)start);
       fb_mechanism m;
-      fb_scene_mechanism(s, &m);
+      fb_ode_world_mechanism(s, &m);
       double w[4][2][2];
       assert_int_equal(fb_effective_mass_tensor(w, &m, NULL), FB_OK);
       for (int j = 0; j < 4; j++) {
@@ -342,7 +342,7 @@ static void test_effective_mass_matches_ode_probe(void **state) {
           const double me = fb_effective_mass_along(w[j], n);
           double inv;
           /* a force giving a velocity change of ~1e-3 m/s */
-          assert_int_equal(fb_scene_probe_inverse_mass(s, j, n, 1e-3 * me / def.solver.h, &inv, NULL),
+          assert_int_equal(fb_ode_world_probe_inverse_mass(s, j, n, 1e-3 * me / def.solver.h, &inv, NULL),
                            FB_OK);
           worst = fmax(worst, fabs(1.0 / inv / me - 1.0));
           assert_rel(1.0 / inv, me, PROBE_REL_TOL);

@@ -74,9 +74,6 @@ MAX_LINES = 1000
 # its contacts); this list may only shrink: a file that drops to MAX_LINES
 # or below must leave it.
 KNOWN_LARGE = {
-    "src/engines/simbody/simbody_scene.cpp": 1204,
-    "src/engines/ode/scene.c": 1088,
-    "src/engines/mujoco/mujoco_scene.c": 1046,
 }
 
 # A command function parses its flags and calls one function below the

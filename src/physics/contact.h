@@ -385,7 +385,7 @@ fb_status fb_contact_row_step(fb_contact_row *row, const fb_contact_law *law, fb
  * exponential map), and by the curvature of the circle |e| = const under
  * the tangential part of the eccentricity rate ev [m/s]:
  * n . (dp - dq) + h^2 |ev_t|^2 / (2 |e|), ecc = |e| > 0 [m], h [s]. The
- * matched-static row hands depth + drift / ERP to its row (scene.h). */
+ * matched-static row hands depth + drift / ERP to its row (ode_world.h). */
 double fb_contact_step_drift(const double n[2], const double dp[2], const double dq[2],
                              const double ev[2], double ecc, double h);
 

@@ -258,7 +258,7 @@ static void geometry(const Clearance *c, btVector3 *p, btVector3 *q, btVector3 *
  * beyond the linear h (v + w x r) a row sees: Bullet turns the body by
  * exactly h w (btTransformUtil::integrateTransform, exponential map), so the
  * point at r moves (cos(h w) - 1) r + (sin(h w) - h w) z x r more [m] (the
- * Bullet counterpart of scene.c's point_drift) */
+ * Bullet counterpart of ode_clearance.c's point_drift) */
 static btVector3 point_drift(const btRigidBody *b, const btVector3 &p, double h) {
   if (!b) return btVector3(0, 0, 0);
   const btVector3 r = p - b->getCenterOfMassPosition();

@@ -1,5 +1,5 @@
 /* The four-bar in Bullet 3.24 (double precision, bullet-float64): the same
- * scene definition as the ODE scene (scene.h: lengths, masses, inertias,
+ * scene definition as the ODE world (ode_world.h: lengths, masses, inertias,
  * gravity, drive, start state, clearance joints and their contact laws),
  * built as three btRigidBody links in a btDiscreteDynamicsWorld. The only
  * folder that includes Bullet headers, and the only C++ in the project:
@@ -95,8 +95,8 @@ double fb_bullet_scene_penetration(const fb_bullet_scene *s, int *joint);
 /* What the contact rows of clearance joint j received so far (engine.h). */
 void fb_bullet_scene_provenance(const fb_bullet_scene *s, int j, fb_contact_provenance *out);
 
-/* Joint reactions of the last step with fb_scene_reactions' convention
- * (scene.h) [N], and the drive row's torque on the crank about +z [N m]. */
+/* Joint reactions of the last step with fb_ode_world_reactions' convention
+ * (ode_world.h) [N], and the drive row's torque on the crank about +z [N m]. */
 void fb_bullet_scene_reactions(const fb_bullet_scene *s, double force[4][2], double *drive_torque);
 
 /* Impact episodes counted so far at joint j. */

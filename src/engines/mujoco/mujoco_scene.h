@@ -1,10 +1,12 @@
-/* The four-bar in MuJoCo 2.2.2: the same scene definition as the ODE scene
- * (scene.h: lengths, masses, inertias, gravity, drive, initial state from the
+/* The four-bar in MuJoCo 2.2.2: the same scene definition as the ODE world
+ * (ode_world.h: lengths, masses, inertias, gravity, drive, initial state from the
  * analytic solver, clearance joints and their contact laws), generated as
  * MJCF text and loaded from memory through MuJoCo's virtual file system. The
  * only folder that includes MuJoCo headers; this header includes none, so a
  * build without MuJoCo compiles every caller (FB_HAVE_MUJOCO in fb_config.h
- * says whether these functions exist).
+ * says whether these functions exist). mujoco_scene_internal.h lists the
+ * files the scene is made of (building, the MJCF text, loading, the
+ * contact, the step, the outputs).
  *
  * Model (generalised coordinates, a kinematic tree):
  *   world -> crank (hinge A at the origin) -> coupler (hinge B at the crank
@@ -31,9 +33,9 @@
  *   planar freedom instead (slide x, slide y, hinge z; the crank's drive
  *   armature sits on its hinge z). A site marks the pin centre on the pin
  *   body and one the hole centre on the hole body (ground: the world), as in
- *   the ODE scene (pin on the joint's first body). MuJoCo's contact solver is
+ *   the ODE world (pin on the joint's first body). MuJoCo's contact solver is
  *   not involved: the project's law (contact.h, fb_contact_force with the
- *   joint's fb_contact_law, exactly as the ODE scene and the reference
+ *   joint's fb_contact_law, exactly as the ODE world and the reference
  *   evaluate it) gives the normal force F(delta, ddot) from the site
  *   positions and velocities, and MuJoCo's passive-force hook (mjcb_passive)
  *   adds it as generalised forces -F J^T n, J = J_pin - J_hole from
@@ -46,7 +48,7 @@
  *     (length |e|) limited to [0, c]; MuJoCo adds one limit row along e when
  *     |e| > c. Its solref is the law's spring and damper in the force form,
  *     per unit of MuJoCo's diagonal approximation of the row's inverse mass
- *     at impedance 1e-4 (mujoco_scene.c, native_solref_update), so the row's
+ *     at impedance 1e-4 (mujoco_contact.c, mujoco_native_solref_update), so the row's
  *     force is k delta + c ddot whatever else acts along e;
  *   - facets: the pin a sphere and the hole a ring of faceted_n boxes,
  *     collided by MuJoCo (filterparent disabled), with the direct form per

@@ -1,7 +1,7 @@
 /* The generic pin-in-bore collider: libccd's Minkowski Portal Refinement
  * (ccdMPRPenetration) on support functions written here, in the hole's own
- * frame. Engine-free (plain doubles); scene.c turns its contacts into ODE
- * contact joints.
+ * frame. Engine-free (plain doubles); ode_colliders.c turns its contacts into
+ * ODE contact joints.
  *
  *               V_k+1   outer points (V * (1 + wall / |V|))
  *        .------o------.

@@ -1,43 +1,43 @@
 /* The ODE engine behind the engine interface (engine.h): thin wrappers over
- * the scene (scene.h). */
+ * the ODE world (ode_world.h). */
 #include "engine.h"
 #include "impact_ode.h"
-#include "scene.h"
+#include "ode_world.h"
 
 static fb_status ode_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
-  fb_scene *s = NULL;
-  fb_status st = fb_scene_create(&s, sm, diag);
+  fb_ode_world *s = NULL;
+  fb_status st = fb_ode_world_create(&s, sm, diag);
   if (st == FB_OK) *self = s;
   return st;
 }
 
-static fb_status ode_step(void *self, fb_diag *diag) { return fb_scene_step(self, diag); }
+static fb_status ode_step(void *self, fb_diag *diag) { return fb_ode_world_step(self, diag); }
 
-static void ode_stopped(const void *self, fb_stop *out) { fb_scene_stopped(self, out); }
+static void ode_stopped(const void *self, fb_stop *out) { fb_ode_world_stopped(self, out); }
 
-static void ode_sample(const void *self, fb_sample *x) { fb_scene_sample(self, x); }
+static void ode_sample(const void *self, fb_sample *x) { fb_ode_world_sample(self, x); }
 
 static void ode_contact(const void *self, fb_engine_contact *out) {
-  out->penetration = fb_scene_penetration(self, &out->joint);
-  for (int j = 0; j < 4; j++) out->impacts[j] = fb_scene_impacts(self, j);
+  out->penetration = fb_ode_world_penetration(self, &out->joint);
+  for (int j = 0; j < 4; j++) out->impacts[j] = fb_ode_world_impacts(self, j);
 }
 
 static void ode_provenance(const void *self, int joint, fb_contact_provenance *out) {
-  fb_scene_provenance(self, joint, out);
+  fb_ode_world_provenance(self, joint, out);
 }
 
 static void ode_reactions(const void *self, double force[4][2], double *drive_torque) {
-  fb_scene_reactions(self, force, drive_torque);
+  fb_ode_world_reactions(self, force, drive_torque);
 }
 
-static double ode_drift(const void *self) { return fb_scene_joint_drift(self); }
+static double ode_drift(const void *self) { return fb_ode_world_joint_drift(self); }
 
-static size_t ode_steps(const void *self) { return fb_scene_steps(self); }
+static size_t ode_steps(const void *self) { return fb_ode_world_steps(self); }
 
-static void ode_destroy(void *self) { fb_scene_destroy(self); }
+static void ode_destroy(void *self) { fb_ode_world_destroy(self); }
 
 static void ode_step_stats(const void *self, fb_step_stats *out) {
-  fb_scene_step_stats(self, out);
+  fb_ode_world_step_stats(self, out);
 }
 
 /* Wall time per sample on an idle 2-core machine [s] (engine.h): measured on

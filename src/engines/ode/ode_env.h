@@ -1,7 +1,8 @@
-/* Process-wide ODE set-up shared by the ODE scenes: dInitODE2 on first use,
+/* Process-wide ODE set-up shared by the ODE worlds: dInitODE2 on first use,
  * dCloseODE on last release, and ODE's error, debug and message handlers
  * routed to the project's stderr reporting with a "fourbar: ODE" prefix.
- * Only files that build ODE worlds (scene.c, impact_ode.c) use it. */
+ * Only files that build or step ODE worlds (ode_world.c, ode_step.c,
+ * impact_ode.c) use it. */
 #ifndef FB_ODE_ENV_H
 #define FB_ODE_ENV_H
 

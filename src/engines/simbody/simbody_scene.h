@@ -1,7 +1,8 @@
 /* The Simbody scene: one simbody-* model as a Simbody MultibodySystem,
  * integrated by one of Simbody's error-controlled integrators. The only
- * header of the Simbody engine the C side sees; the implementation
- * (simbody_scene.cpp) is the only translation unit that includes Simbody.
+ * header of the Simbody engine the C side sees; the implementation (the
+ * C++ files simbody_internal.h lists) is the only code that includes
+ * Simbody.
  *
  * The mechanism (SI, planar in x-y, every mobilizer a Pin about +z):
  *
@@ -22,7 +23,7 @@
  * the project's contact law (contact.h, fb_contact_force) as a
  * Force::Custom at the exact pin-in-hole eccentricity, with the restitution
  * law's damper on the mechanism's effective mass along the normal
- * (effective_mass.h), as ODE's scene, MuJoCo's and the reference do.
+ * (effective_mass.h), as ODE's world, MuJoCo's and the reference do.
  *
  * Sampling (simbody_scene.cpp says how): the integrator runs on its own
  * error-controlled steps to the run's end, returning after each; the output

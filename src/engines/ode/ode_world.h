@@ -3,6 +3,8 @@
  * crank driven at constant speed by a hinge velocity motor. It owns the
  * world and its joints; engine_ode.c puts it behind the engine interface
  * (engine.h), and nothing outside src/engines/ode includes this header.
+ * ode_world_internal.h lists the files the world is made of (building,
+ * the exact contact, the generic colliders, the step, the outputs).
  *
  * Crank drive: the ground hinge's motor (dParamVel = omega2, dParamFMax =
  * drive_torque_max) is a velocity constraint row solved with the others each
@@ -53,10 +55,10 @@
  * law's force along the depth-weighted normal, so the split cannot change the
  * force when a shallow contact appears or goes. ccd_split = 1 selects the
  * faceted model's rule instead (each contact at its own depth, divided by
- * their number), kept to measure the difference. The penetration the scene
+ * their number), kept to measure the difference. The penetration the world
  * reports is the pin's depth into the faceted bore (fb_ccd_bore_depth). */
-#ifndef FB_SCENE_H
-#define FB_SCENE_H
+#ifndef FB_ODE_WORLD_H
+#define FB_ODE_WORLD_H
 
 #include "effective_mass.h"
 #include "engine.h"
@@ -64,7 +66,7 @@
 #include "series.h"
 #include "start.h"
 
-typedef struct fb_scene fb_scene;
+typedef struct fb_ode_world fb_ode_world;
 
 /* Builds the world of model sm->model at t = 0 from sm->start (start.h:
  * pins and holes placed, the case's start velocities) or, when the start was
@@ -74,22 +76,22 @@ typedef struct fb_scene fb_scene;
  * clearance contact: FB_COLLIDER_EXACT (eccentricity), FB_COLLIDER_FACETED
  * (ring of faceted_n boxes) or FB_COLLIDER_CCD (libccd ring of ccd_segments). Errors: those of fb_scene_def_check;
  * FB_ERR_ARG for a collider this engine lacks; FB_ERR_NOMEM. */
-fb_status fb_scene_create(fb_scene **out, const fb_scene_model *sm, fb_diag *diag);
+fb_status fb_ode_world_create(fb_ode_world **out, const fb_scene_model *sm, fb_diag *diag);
 
 /* Advances one step h with the configured stepper. Errors: FB_ERR_NOMEM if
  * ODE could not allocate its step memory. */
-fb_status fb_scene_step(fb_scene *s, fb_diag *diag);
+fb_status fb_ode_world_step(fb_ode_world *s, fb_diag *diag);
 
 /* Current state as a sample at time t = steps * h (contact columns of the
  * clearance joints included): unwrapped angles, angular
  * velocities, and angular accelerations as (omega_now - omega_before) / h,
  * the acceleration the last step applied. Before the first step the
  * accelerations are 0. */
-void fb_scene_sample(const fb_scene *s, fb_sample *x);
+void fb_ode_world_sample(const fb_ode_world *s, fb_sample *x);
 
 /* Largest distance between the two bodies' anchor points over the four hinges
  * now [m]: the loop-closure drift of the constrained system. */
-double fb_scene_joint_drift(const fb_scene *s);
+double fb_ode_world_joint_drift(const fb_ode_world *s);
 
 /* Joint reactions applied during the last step, from dJointGetFeedback, with
  * fb_reactions' sign convention (invdyn.h): force[j] on the second-named body
@@ -98,43 +100,43 @@ double fb_scene_joint_drift(const fb_scene *s);
  * before the first step. At a clearance joint the force is the contact force
  * of the last step (zero in free flight); the drive torque is reported only
  * when the ground-crank joint is a hinge (0 otherwise). */
-void fb_scene_reactions(const fb_scene *s, double force[4][2], double *drive_torque);
+void fb_ode_world_reactions(const fb_ode_world *s, double force[4][2], double *drive_torque);
 
 /* Largest penetration over the clearance joints now [m] and the joint it is
  * at (-1 when there is no clearance joint). */
-double fb_scene_penetration(const fb_scene *s, int *joint);
+double fb_ode_world_penetration(const fb_ode_world *s, int *joint);
 
 /* Impact episodes counted so far at joint j (contact onsets whose penetration
  * rate was at least impact_velocity_min). */
-int fb_scene_impacts(const fb_scene *s, int j);
+int fb_ode_world_impacts(const fb_ode_world *s, int j);
 
 /* Calls of ccdMPRPenetration made by the libccd collider of every clearance
  * joint so far, and the contacts they returned (both 0 on the other paths). */
-void fb_scene_ccd_calls(const fb_scene *s, unsigned long *calls, unsigned long *contacts);
+void fb_ode_world_ccd_calls(const fb_ode_world *s, unsigned long *calls, unsigned long *contacts);
 
 /* Most contacts the libccd collider hands to ODE per joint and step. */
 #define FB_CCD_CONTACTS 2
 
 /* Why the last step failed: FB_STOP_SOLVER (ODE's internal check, its
  * message as detail) or FB_STOP_ALLOCATION; FB_STOP_NONE while none did. */
-void fb_scene_stopped(const fb_scene *s, fb_stop *out);
+void fb_ode_world_stopped(const fb_ode_world *s, fb_stop *out);
 
 /* What the contact rows of clearance joint j received so far (engine.h). */
-void fb_scene_provenance(const fb_scene *s, int j, fb_contact_provenance *out);
+void fb_ode_world_provenance(const fb_ode_world *s, int j, fb_contact_provenance *out);
 
 /* Steps taken. */
-size_t fb_scene_steps(const fb_scene *s);
+size_t fb_ode_world_steps(const fb_ode_world *s);
 
 /* The ODE steps taken: with [solver] h_s = adaptive their count, shortest
  * and longest size and how many of each (a grid sample inside a step is not
  * a step); else every step h. */
-void fb_scene_step_stats(const fb_scene *s, fb_step_stats *out);
+void fb_ode_world_step_stats(const fb_ode_world *s, fb_step_stats *out);
 
 /* The mechanism's configuration now, for fb_effective_mass_tensor: body
  * masses and inertias from the definition, centres of mass from ODE, joint
  * centres from the hinge anchors and, for clearance joints, the pin centre;
  * the crank counts as driven (its motor is a velocity constraint). */
-void fb_scene_mechanism(const fb_scene *s, fb_mechanism *out);
+void fb_ode_world_mechanism(const fb_ode_world *s, fb_mechanism *out);
 
 /* ODE test-force probe of the inverse effective mass [1/kg] of clearance
  * joint j along unit normal n (pin centre minus hole centre direction): from
@@ -144,10 +146,10 @@ void fb_scene_mechanism(const fb_scene *s, fb_mechanism *out);
  * -h force / m_eff. The state is restored afterwards and no step is counted.
  * Errors: FB_ERR_ARG when j is not a clearance joint or force is not
  * positive; FB_ERR_NOMEM when ODE cannot step. */
-fb_status fb_scene_probe_inverse_mass(fb_scene *s, int j, const double n[2], double force,
+fb_status fb_ode_world_probe_inverse_mass(fb_ode_world *s, int j, const double n[2], double force,
                                       double *inv_mass, fb_diag *diag);
 
 /* Frees the world and everything in it (NULL is ignored). */
-void fb_scene_destroy(fb_scene *s);
+void fb_ode_world_destroy(fb_ode_world *s);
 
 #endif

@@ -1,0 +1,344 @@
+/* The MJCF text of the MuJoCo scene (mujoco_scene.h): the model the scene
+ * compiles (fb_mujoco_mjcf) and the one fourbar export writes for users
+ * (fb_mujoco_export: joint-named sites, a velocity actuator, a keyframe, the
+ * bore's solref for the compiled model); numbers with 17 significant digits.
+ * Also the scene's definition read from a model (mujoco_def_from_model). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "mujoco_load.h"
+#include "mujoco_scene_internal.h"
+#include "textbuf.h"
+
+/* solimp width, midpoint and power of the loop closure: with dmin = dmax
+ * they have no effect (MuJoCo's defaults) */
+#define LOOP_SOLIMP_TAIL "0.001 0.5 2"
+
+fb_status mujoco_def_from_model(mj_def *d, const fb_scene_model *sm, fb_diag *diag) {
+  memset(d, 0, sizeof *d);
+  fb_status st = fb_scene_model_start(&d->start, sm, diag);
+  if (st != FB_OK) return st;
+  if (sm->solver.h_mode == FB_STEP_ADAPTIVE && sm->collider == FB_COLLIDER_NATIVE)
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "model '%s': [solver] h_s = adaptive follows the project's contact law "
+                       "only; run MuJoCo's native contacts at a fixed or auto step",
+                       sm->model->name);
+  d->lengths = sm->lengths;
+  d->omega2 = sm->omega2;
+  d->gravity = sm->gravity;
+  for (int i = 0; i < 3; i++) d->link[i] = sm->link[i];
+  d->h = sm->solver.h;
+  d->adaptive = sm->solver.h_mode == FB_STEP_ADAPTIVE;
+  d->h_max = sm->solver.h_max;
+  d->accuracy = sm->solver.accuracy;
+  d->clearance_mask = sm->clearance_mask;
+  d->radial_clearance = sm->radial_clearance;
+  for (int j = 0; j < 4; j++) d->law[j] = sm->law[j];
+  d->impact_velocity_min = sm->impact_velocity_min;
+  d->opts = sm->mujoco;
+  d->native = sm->model->collider == FB_COLLIDER_NATIVE;
+  d->facets = d->native && sm->mujoco.native_bore == FB_MUJOCO_BORE_FACETS;
+  d->ring_n = sm->def->faceted_n;
+  d->pin_radius = sm->pin_radius;
+  d->pin_length = sm->pin_length;
+  return FB_OK;
+}
+
+typedef fb_text text; /* textbuf.h */
+
+/* the site at joint j's pin (pin = 1) or hole centre: "A_pin" in the
+ * scene's own model, "crank-coupler_pin" in an exported one */
+static const char *site_name(const mj_def *def, int j, int pin) {
+  static const char *const own[2][4] = {{"A_hole", "B_hole", "C_hole", "D_hole"},
+                                        {"A_pin", "B_pin", "C_pin", "D_pin"}};
+  static const char *const named[2][4] = {
+      {"ground-crank_hole", "crank-coupler_hole", "coupler-follower_hole", "follower-ground_hole"},
+      {"ground-crank_pin", "crank-coupler_pin", "coupler-follower_pin", "follower-ground_pin"}};
+  return def->exported ? named[pin][j] : own[pin][j];
+}
+
+/* the body's own joint: a hinge about z, or planar freedom (slide x, slide y,
+ * hinge z) when the joint has clearance; the crank's hinge carries the drive
+ * armature */
+static void put_joint(text *t, const char *name, int clearance, double armature) {
+  if (clearance) {
+    fb_text_put(t, "      <joint name=\"%s_x\" type=\"slide\" axis=\"1 0 0\"/>\n", name);
+    fb_text_put(t, "      <joint name=\"%s_y\" type=\"slide\" axis=\"0 1 0\"/>\n", name);
+  }
+  if (armature > 0.0)
+    fb_text_put(t, "      <joint name=\"%s\" type=\"hinge\" axis=\"0 0 1\" armature=\"%.17g\"/>\n", name,
+        armature);
+  else
+    fb_text_put(t, "      <joint name=\"%s\" type=\"hinge\" axis=\"0 0 1\"/>\n", name);
+}
+
+/* inertial of a link of length len along its body x axis; the moments about
+ * x and y do not enter planar motion, and the transverse one is raised if
+ * needed so that MuJoCo's triangle inequality (long + transverse >= hinge)
+ * holds */
+static void put_inertial(text *t, const fb_link_mass *lm, double len) {
+  const double it = fmax(lm->inertia_transverse, lm->inertia - lm->inertia_long);
+  fb_text_put(t, "      <inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n",
+      lm->com_fraction * len, lm->mass, lm->inertia_long, it, lm->inertia);
+}
+
+/* radial thickness of a ring's boxes (as the ODE faceted collider) */
+#define RING_THICKNESS_M 2e-3
+
+/* native contact: the direct-form solref of the restitution law's spring
+ * p [N/m] and damper c [N s/m] on its effective mass m: MuJoCo's direct
+ * stiffness and damping are per unit mass (k = p/m [1/s^2], b = c/m [1/s]) */
+static void native_solref(const fb_contact_law *law, double *k, double *b) {
+  const double zeta = fb_contact_restitution_zeta(law->restitution);
+  const double c = 2.0 * zeta * sqrt(law->stiffness * law->mass);
+  *k = law->stiffness / law->mass;
+  *b = c / law->mass;
+}
+
+/* native contact geoms (bore = facets) of the joints whose pin (pin = 1) or hole (pin = 0)
+ * lies on this body, at the given body-frame points: a sphere of the pin's
+ * radius, or a ring of ring_n boxes whose inner faces are tangent to the
+ * hole's circle. Pins collide with rings only (contype 1, conaffinity 2). */
+static void put_native(text *t, const mj_def *def, int j, int pin, double x, double y,
+                       const char *ind) {
+  if (!def->facets || !(def->clearance_mask & (1 << j))) return;
+  const char jn = (char)('A' + j);
+  double k, b;
+  native_solref(&def->law[j], &k, &b);
+  char contact[256];
+  snprintf(contact, sizeof contact,
+           "condim=\"1\" margin=\"0\" solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " LOOP_SOLIMP_TAIL
+           "\"",
+           -k, -b, def->opts.loop_impedance, def->opts.loop_impedance);
+  if (pin) {
+    fb_text_put(t, "%s<geom name=\"%c_pin_geom\" type=\"sphere\" size=\"%.17g\" pos=\"%.17g %.17g 0\" "
+           "contype=\"1\" conaffinity=\"0\" %s/>\n",
+        ind, jn, def->pin_radius, x, y, contact);
+    return;
+  }
+  const double r_in = def->pin_radius + def->radial_clearance;
+  const double th = RING_THICKNESS_M;
+  const double half_w = (r_in + th) * tan(M_PI / def->ring_n) * 1.001; /* closes the ring */
+  for (int q = 0; q < def->ring_n; q++) {
+    const double phi = 2.0 * M_PI * q / def->ring_n;
+    fb_text_put(t, "%s<geom type=\"box\" size=\"%.17g %.17g %.17g\" pos=\"%.17g %.17g 0\" "
+           "euler=\"0 0 %.17g\" contype=\"0\" conaffinity=\"1\" %s/>\n",
+        ind, 0.5 * th, half_w, 0.5 * def->pin_length, x + (r_in + 0.5 * th) * cos(phi),
+        y + (r_in + 0.5 * th) * sin(phi), phi, contact);
+  }
+}
+
+/* native bore = tendon: the limit row's impedance, dmin = dmax = d. With
+ * the solref of the force form (mujoco_native_solref_update) the row's force is
+ * the law's k delta + c ddot plus an inerter d / ((1 - d) A) times the
+ * penetration's acceleration, A MuJoCo's diagonal approximation of the
+ * row's inverse mass: MuJoCo's smallest impedance (mjMINIMP, 1e-4) makes
+ * the inerter 8e-6 kg here, 1e-4 of the smallest effective mass 0.09 kg.
+ * Measured at the automatic step on cases/engines_restitution.ini, peak
+ * force against the reference: +3.0 % at 1e-4, -1.6 % at 1e-3, -0.3 % at
+ * 1e-2, +0.9 % at 0.1 (the sequence after revolution 1 is chaotic; the
+ * first three impacts are within 0.5 % at each) */
+#define BORE_IMPEDANCE mjMINIMP
+
+/* native bore = tendon: each clearance joint's hole as MuJoCo's own
+ * unilateral constraint with the law's geometry, a spatial tendon from the
+ * hole's centre site to the pin's, whose length is the eccentricity |e|,
+ * limited to [0, c] (c the radial clearance). MuJoCo adds a limit row when
+ * |e| > c (mj_instantiateLimit, engine_core_constraint.c of 2.2.2: distance
+ * c - |e|, Jacobian -d|e|/dq, force >= 0): the pin-in-hole contact along e
+ * with depth |e| - c, solved with the loop closure by MuJoCo's constraint
+ * solver. The lower limit 0 never acts (|e| >= 0, margin 0); at |e| = 0 the
+ * tendon's direction is MuJoCo's (1, 0, 0) (mju_normalize3) and there is no
+ * row. The solref written here is the force form (mujoco_native_solref_update) with
+ * the law's reduced mass in place of MuJoCo's diagonal approximation,
+ * which exists only once the model is compiled; the scene replaces it before
+ * the first step. */
+static void put_bore_tendons(text *t, const mj_def *def) {
+  if (!def->native || def->facets || !def->clearance_mask) return;
+  fb_text_put(t, "  <tendon>\n");
+  for (int j = 0; j < 4; j++) {
+    if (!(def->clearance_mask & (1 << j))) continue;
+    const char jn = (char)('A' + j);
+    const fb_contact_law *law = &def->law[j];
+    const double zeta = fb_contact_restitution_zeta(law->restitution);
+    const double c = 2.0 * zeta * sqrt(law->stiffness * law->mass);
+    const double keep = (1.0 - BORE_IMPEDANCE) / law->mass;
+    double sr[2] = {-law->stiffness * keep, -c * keep};
+    if (def->exported && !isnan(def->bore_solref[j][0])) {
+      sr[0] = def->bore_solref[j][0];
+      sr[1] = def->bore_solref[j][1];
+    }
+    if (def->exported)
+      fb_text_put(t, "    <spatial name=\"%s_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
+             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
+          fb_joint_name(j), def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
+    else
+      fb_text_put(t, "    <spatial name=\"%c_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
+             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
+          jn, def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
+    fb_text_put(t, "      <site site=\"%s\"/>\n      <site site=\"%s\"/>\n", site_name(def, j, 0),
+        site_name(def, j, 1));
+    fb_text_put(t, "    </spatial>\n");
+  }
+  fb_text_put(t, "  </tendon>\n");
+}
+
+/* exported: the drive, a velocity actuator on the crank's hinge at the
+ * case's speed (its gain kv = armature / (EXPORT_DRIVE_STEPS h): a speed
+ * error decays over about that many steps, well inside explicit Euler's
+ * stability kv h / I < 2), beside the flywheel armature the scene's own
+ * models use; and a keyframe "start" with the start's velocities and the
+ * actuator's control (mj_resetDataKeyframe(m, d, 0)) */
+#define EXPORT_DRIVE_STEPS 10.0
+static void put_drive(text *t, const mj_def *def) {
+  const fb_start_state st = def->start;
+  const double kv = def->opts.drive_armature / (EXPORT_DRIVE_STEPS * def->h);
+  fb_text_put(t, "  <actuator>\n    <velocity name=\"drive\" joint=\"%s\" kv=\"%.17g\"/>\n  </actuator>\n",
+      fb_joint_name(FB_JOINT_A), kv);
+  /* qvel in the tree's order: each body's slides (clearance) then its hinge */
+  const int mask = def->clearance_mask;
+  double qvel[9];
+  int n = 0;
+  if (mask & (1 << FB_JOINT_A)) qvel[n++] = 0.0, qvel[n++] = 0.0;
+  qvel[n++] = st.crank_omega;
+  if (mask & (1 << FB_JOINT_B)) {
+    const double rx = st.hole[FB_JOINT_B][0] - st.pin[FB_JOINT_A][0];
+    const double ry = st.hole[FB_JOINT_B][1] - st.pin[FB_JOINT_A][1];
+    const double vx = st.coupler_b_vel[0] + st.crank_omega * ry;
+    const double vy = st.coupler_b_vel[1] - st.crank_omega * rx;
+    const double c3 = cos(st.coupler_angle), s3 = sin(st.coupler_angle);
+    qvel[n++] = c3 * vx + s3 * vy;
+    qvel[n++] = -s3 * vx + c3 * vy;
+  }
+  qvel[n++] = st.coupler_omega - st.crank_omega;
+  if (mask & (1 << FB_JOINT_D)) qvel[n++] = 0.0, qvel[n++] = 0.0;
+  qvel[n++] = st.follower_omega;
+  fb_text_put(t, "  <keyframe>\n    <key name=\"start\" qvel=\"");
+  for (int i = 0; i < n; i++) fb_text_put(t, "%s%.17g", i ? " " : "", qvel[i]);
+  fb_text_put(t, "\" ctrl=\"%.17g\"/>\n  </keyframe>\n", st.crank_omega);
+}
+
+fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *diag) {
+  const fb_start_state st = def->start;
+  const fb_mujoco_opts *opts = &def->opts;
+  const double a = def->lengths.length[FB_CRANK], b = def->lengths.length[FB_COUPLER];
+  const double c = def->lengths.length[FB_FOLLOWER];
+  const double h = def->h;
+  const int mask = def->clearance_mask;
+  static const char *const intname[3] = {"Euler", "implicit", "RK4"};
+  const int integ = fb_mujoco_integrator_resolve(opts, mask);
+  /* the loop's default softness follows the step; an adaptive run's
+   * steps reach h_max, so its loop is set for that one */
+  const double hl = def->adaptive ? def->h_max : h;
+  const double k = opts->loop_stiffness > 0.0 ? opts->loop_stiffness : 1.0 / (hl * hl);
+  const double damp = opts->loop_damping > 0.0 ? opts->loop_damping : 1.0 / hl;
+  text t = {buf, size, 0, 0};
+  fb_text_put(&t, "<mujoco model=\"fourbar\">\n");
+  fb_text_put(&t, "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n");
+  /* native contacts: a pin and its hole are on parent and child bodies,
+   * which MuJoCo keeps from colliding unless filterparent is off */
+  fb_text_put(&t, "  <option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\">%s</option>\n", h,
+      -def->gravity, intname[integ], def->facets ? "<flag filterparent=\"disable\"/>" : "");
+  fb_text_put(&t, "  <worldbody>\n");
+  /* the joint points of the start (start.h): holes of A and D on the ground,
+   * the crank's frame at A's pin, the coupler's at B's hole, the follower's at
+   * D's pin; the other points follow from the link lengths */
+  const double *ha = st.hole[FB_JOINT_A], *hd = st.hole[FB_JOINT_D];
+  const double *pa = st.pin[FB_JOINT_A], *pd = st.pin[FB_JOINT_D];
+  const double bx = st.hole[FB_JOINT_B][0] - pa[0], by = st.hole[FB_JOINT_B][1] - pa[1];
+  const double c2 = cos(st.crank_angle), s2 = sin(st.crank_angle);
+  fb_text_put(&t, "    <site name=\"%s\" pos=\"%.17g %.17g 0\"/>\n", site_name(def, FB_JOINT_A, 0), ha[0], ha[1]);
+  fb_text_put(&t, "    <site name=\"%s\" pos=\"%.17g %.17g 0\"/>\n", site_name(def, FB_JOINT_D, 0), hd[0], hd[1]);
+  put_native(&t, def, FB_JOINT_A, 0, ha[0], ha[1], "    ");
+  put_native(&t, def, FB_JOINT_D, 0, hd[0], hd[1], "    ");
+  /* crank: at A's pin, x along A->B */
+  fb_text_put(&t, "    <body name=\"crank\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pa[0], pa[1],
+      st.crank_angle);
+  put_inertial(&t, &def->link[FB_CRANK], a);
+  put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_A) : "A", mask & (1 << FB_JOINT_A), opts->drive_armature);
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_A, 1));
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_B, 1), a);
+  put_native(&t, def, FB_JOINT_A, 1, 0.0, 0.0, "      ");
+  put_native(&t, def, FB_JOINT_B, 1, a, 0.0, "      ");
+  /* coupler: at B's hole (in the crank's frame), x along B->C */
+  fb_text_put(&t, "      <body name=\"coupler\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n",
+      c2 * bx + s2 * by, -s2 * bx + c2 * by, st.coupler_angle - st.crank_angle);
+  put_inertial(&t, &def->link[FB_COUPLER], b);
+  put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_B) : "B", mask & (1 << FB_JOINT_B), 0.0);
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_B, 0));
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 1), b);
+  put_native(&t, def, FB_JOINT_B, 0, 0.0, 0.0, "      ");
+  put_native(&t, def, FB_JOINT_C, 1, b, 0.0, "      ");
+  fb_text_put(&t, "      </body>\n");
+  fb_text_put(&t, "    </body>\n");
+  /* follower: at D's pin, x along D->C */
+  fb_text_put(&t, "    <body name=\"follower\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pd[0],
+      pd[1], st.follower_angle);
+  put_inertial(&t, &def->link[FB_FOLLOWER], c);
+  put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_D) : "D", mask & (1 << FB_JOINT_D), 0.0);
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_D, 1));
+  fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 0), c);
+  put_native(&t, def, FB_JOINT_D, 1, 0.0, 0.0, "      ");
+  put_native(&t, def, FB_JOINT_C, 0, c, 0.0, "      ");
+  fb_text_put(&t, "    </body>\n");
+  fb_text_put(&t, "  </worldbody>\n");
+  put_bore_tendons(&t, def);
+  if (!(mask & (1 << FB_JOINT_C))) {
+    fb_text_put(&t, "  <equality>\n");
+    fb_text_put(&t,
+        "    <connect name=\"loop\" body1=\"coupler\" body2=\"follower\" anchor=\"%.17g 0 0\" "
+        "solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\"/>\n",
+        b, -k, -damp, opts->loop_impedance, opts->loop_impedance);
+    fb_text_put(&t, "  </equality>\n");
+  }
+  if (def->exported) put_drive(&t, def);
+  fb_text_put(&t, "</mujoco>\n");
+  if (t.overflow)
+    return fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than its %zu-byte buffer", size);
+  return FB_OK;
+}
+
+fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag) {
+  fb_status st = fb_scene_def_check(sm->def, diag);
+  if (st != FB_OK) return st;
+  mj_def d;
+  st = mujoco_def_from_model(&d, sm, diag);
+  if (st != FB_OK) return st;
+  return mujoco_write_mjcf(buf, size, &d, diag);
+}
+
+fb_status fb_mujoco_export(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag) {
+  fb_status st = fb_scene_def_check(sm->def, diag);
+  if (st != FB_OK) return st;
+  if (sm->clearance_mask && sm->model->collider != FB_COLLIDER_NATIVE)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s': an exported MJCF carries clearance joints "
+                       "as MuJoCo's own constraints (mujoco-clearance-native) only",
+                       sm->model->name);
+  mj_def d;
+  if ((st = mujoco_def_from_model(&d, sm, diag)) != FB_OK) return st;
+  d.exported = 1;
+  d.facets = 0; /* the bore as a limited tendon: no hook needed to hold its load */
+  for (int j = 0; j < 4; j++) d.bore_solref[j][0] = d.bore_solref[j][1] = NAN;
+  if ((st = mujoco_write_mjcf(buf, size, &d, diag)) != FB_OK || !d.clearance_mask) return st;
+  /* the bore's force form needs MuJoCo's diagonal approximation of the row's
+   * inverse mass (tendon_invweight0), which exists once the model compiles:
+   * compile, read it, write again (the damper on the law's design mass;
+   * the scene's own model recomputes it from the effective mass every step) */
+  mjModel *m = fb_mujoco_load_mjcf(buf, diag);
+  if (!m) return FB_ERR_ARG;
+  for (int j = 0; j < 4; j++) {
+    if (!(d.clearance_mask & (1 << j))) continue;
+    char name[64];
+    snprintf(name, sizeof name, "%s_bore", fb_joint_name(j));
+    const int t = mj_name2id(m, mjOBJ_TENDON, name);
+    if (t < 0) continue;
+    const fb_contact_law *law = &d.law[j];
+    const double zeta = fb_contact_restitution_zeta(law->restitution);
+    const double keep = (1.0 - BORE_IMPEDANCE) * m->tendon_invweight0[t];
+    d.bore_solref[j][0] = -law->stiffness * keep;
+    d.bore_solref[j][1] = -2.0 * zeta * sqrt(law->stiffness * law->mass) * keep;
+  }
+  mj_deleteModel(m);
+  return mujoco_write_mjcf(buf, size, &d, diag);
+}

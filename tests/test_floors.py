@@ -110,9 +110,11 @@ def engine_of(path):
     return d if d in ENGINE_DIRS else None
 
 
-def check_graph(files, includes, lines):
+def check_graph(files, includes, lines, known_large=None):
     """files: paths 'src/...'; includes: path -> [(line number, name)];
     lines: path -> line count. Returns the findings as sentences."""
+    if known_large is None:
+        known_large = KNOWN_LARGE
     bad = []
     by_base = {}
     for f in files:
@@ -161,7 +163,7 @@ def check_graph(files, includes, lines):
                            "engine sees its own folder and the floors below the engines"
                            % (where, src_engine, os.path.dirname(target)))
     for f in sorted(lines):
-        n, ceiling = lines[f], KNOWN_LARGE.get(f)
+        n, ceiling = lines[f], known_large.get(f)
         if ceiling is None and n > MAX_LINES:
             bad.append("%s: %d lines, over %d: split it by concern" % (f, n, MAX_LINES))
         elif ceiling is not None and n > ceiling:
@@ -170,7 +172,7 @@ def check_graph(files, includes, lines):
         elif ceiling is not None and n <= MAX_LINES:
             bad.append("%s: %d lines, no longer over %d: take it out of KNOWN_LARGE"
                        % (f, n, MAX_LINES))
-    for f in sorted(set(KNOWN_LARGE) - set(lines)):
+    for f in sorted(set(known_large) - set(lines)):
         bad.append("%s: in KNOWN_LARGE but not in src/: take it out of the list" % f)
     return bad
 
@@ -322,7 +324,7 @@ def self_check():
     }
     lines = {"src/physics/p.c": MAX_LINES + 1, "src/base/a.h": 10}
     set_engine_dirs(["src/engines/ode", "src/engines/mujoco"])
-    found = check_graph(files, inc, lines)
+    found = check_graph(files, inc, lines, {"src/gone/big.c": MAX_LINES + 500})
     want = ["src/misc/x.c: outside", "a.h: one basename", "p.c:2: #include \"r.h\" runs up",
             "o.c:2: #include \"m.h\" reaches into", "c.c:1: #include \"o.h\" reaches into",
             "c.c:2: #include \"src/run/r.h\" names a path",

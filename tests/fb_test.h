@@ -83,25 +83,25 @@ static inline int fb_test_each_hard_case(void (*fn)(const char *path, const char
   return n;
 }
 
-/* Builds the scene of case c through the scene stage (fb_scene_def_from_case,
+/* Builds the scene of case c through the scene stage (fb_scene_from_case,
  * with every clearance model of the table listed so that both laws are
  * resolved), applies edit(def, user) if edit is not NULL, selects model row m
  * (a table row or a test's own) and creates its engine instance. Fails the
  * test on any error. Returns the instance; *e and *sm receive the engine and
  * the model's view (sm points into def, which must outlive the instance). */
 #ifdef FB_ENGINE_H
-static inline void *fb_test_engine_row(const fb_engine **e, fb_scene_model *sm, fb_scene_def *def,
+static inline void *fb_test_engine_row(const fb_engine **e, fb_model_scene *sm, fb_scene *def,
                                        const fb_case *c, const fb_model *m,
-                                       void (*edit)(fb_scene_def *def, void *user), void *user) {
+                                       void (*edit)(fb_scene *def, void *user), void *user) {
   fb_case k = *c;
   k.model_count = 2;
   snprintf(k.models[0], sizeof k.models[0], "%s", "ode-clearance-impact");
   snprintf(k.models[1], sizeof k.models[1], "%s", "ode-clearance-restitution");
   if (!k.clearance.mask) k.model_count = 0;
   fb_diag diag;
-  if (fb_scene_def_from_case(def, &k, &diag) != FB_OK) fail_msg("scene: %s", diag.msg);
+  if (fb_scene_from_case(def, &k, &diag) != FB_OK) fail_msg("scene: %s", diag.msg);
   if (edit) edit(def, user);
-  if (fb_scene_def_select(sm, def, m, &diag) != FB_OK) fail_msg("select: %s", diag.msg);
+  if (fb_scene_select(sm, def, m, &diag) != FB_OK) fail_msg("select: %s", diag.msg);
   *e = fb_engine_get(m->engine, &diag);
   if (!*e) fail_msg("%s", diag.msg);
   void *self = NULL;
@@ -110,9 +110,9 @@ static inline void *fb_test_engine_row(const fb_engine **e, fb_scene_model *sm, 
 }
 
 /* fb_test_engine_row for the model table's row named model */
-static inline void *fb_test_engine(const fb_engine **e, fb_scene_model *sm, fb_scene_def *def,
+static inline void *fb_test_engine(const fb_engine **e, fb_model_scene *sm, fb_scene *def,
                                    const fb_case *c, const char *model,
-                                   void (*edit)(fb_scene_def *def, void *user), void *user) {
+                                   void (*edit)(fb_scene *def, void *user), void *user) {
   const fb_model *m = fb_model_find(model);
   if (!m) fail_msg("unknown model %s", model);
   return fb_test_engine_row(e, sm, def, c, m, edit, user);

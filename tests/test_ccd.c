@@ -201,13 +201,13 @@ static void test_bad_definitions_are_refused(void **state) {
 
 /* crank held at 60 deg, step 1e-5 s, velocity damping (frictionless: without
  * it the pin slides along the wall), ring[0] segments split by ring[1] */
-static void hold(fb_scene_def *def, void *user) {
+static void hold(fb_scene *def, void *user) {
   const int *ring = user;
   def->solver.h = 1e-5;
   def->settle_damping = 3e-3;
   def->ccd_segments = ring[0];
   def->ccd_split = ring[1];
-  assert_int_equal(fb_scene_def_set_start(def, 60.0 * M_PI / 180.0, 0.0, NULL), FB_OK);
+  assert_int_equal(fb_scene_set_start(def, 60.0 * M_PI / 180.0, 0.0, NULL), FB_OK);
 }
 
 /* settles the crank-coupler pin under gravity (crank held at 60 deg, impact
@@ -215,8 +215,8 @@ static void hold(fb_scene_def *def, void *user) {
  * by depth; 1: by count, the faceted model's rule) */
 static fb_sample settle(const fb_case *c, int segments, int split, int steps, unsigned long *calls,
                         unsigned long *contacts) {
-  fb_scene_def def;
-  fb_scene_model sm;
+  fb_scene def;
+  fb_model_scene sm;
   const fb_engine *e;
   int ring[2] = {segments, split};
   fb_ode_world *s = fb_test_engine_row(&e, &sm, &def, c,

@@ -47,11 +47,11 @@ struct hold {
   double theta, damping;
 };
 
-static void hold_crank(fb_scene_def *def, void *user) {
+static void hold_crank(fb_scene *def, void *user) {
   const struct hold *h = user;
   def->solver.h = 1e-5;
   def->settle_damping = h->damping;
-  assert_int_equal(fb_scene_def_set_start(def, h->theta, 0.0, NULL), FB_OK);
+  assert_int_equal(fb_scene_set_start(def, h->theta, 0.0, NULL), FB_OK);
 }
 
 static void test_static_penetration_matches_law(void **state) {
@@ -72,8 +72,8 @@ static void test_static_penetration_matches_law(void **state) {
   for (int model = 0; model < 2; model++) {
     /* the crank held at theta by the drive; frictionless: without velocity
      * damping the pin slides along the wall */
-    fb_scene_def def;
-    fb_scene_model sm;
+    fb_scene def;
+    fb_model_scene sm;
     const fb_engine *e;
     const struct hold hold = {theta, 1e-3};
     void *s = fb_test_engine(&e, &sm, &def, &c, models[model], hold_crank, (void *)&hold);
@@ -101,8 +101,8 @@ static void test_static_penetration_matches_law(void **state) {
 static fb_sample settle(const fb_case *c, int facets, int steps, double damping) {
   fb_case k = *c;
   if (facets) k.clearance.faceted_n = facets;
-  fb_scene_def def;
-  fb_scene_model sm;
+  fb_scene def;
+  fb_model_scene sm;
   const fb_engine *e;
   const struct hold hold = {60.0 * M_PI / 180.0, damping};
   void *s = fb_test_engine(&e, &sm, &def, &k, facets ? "ode-clearance-faceted" : "ode-clearance-impact",
@@ -307,10 +307,10 @@ static void test_aliased_step_is_refused(void **state) {
 #define PROBE_REL_TOL 1e-3
 
 /* the crank at start[0] turning at the case's speed, step start[1] */
-static void probe_start(fb_scene_def *def, void *user) {
+static void probe_start(fb_scene *def, void *user) {
   const double *start = user;
   def->solver.h = start[1];
-  assert_int_equal(fb_scene_def_set_start(def, start[0], def->omega2, NULL), FB_OK);
+  assert_int_equal(fb_scene_set_start(def, start[0], def->omega2, NULL), FB_OK);
 }
 
 static void test_effective_mass_matches_ode_probe(void **state) {
@@ -325,8 +325,8 @@ static void test_effective_mass_matches_ode_probe(void **state) {
     for (double theta = 0.3; theta < 6.3; theta += 1.5) {
       fb_case k = c;
       k.clearance.mask = masks[mi];
-      fb_scene_def def;
-      fb_scene_model sm;
+      fb_scene def;
+      fb_model_scene sm;
       const fb_engine *e;
       const double start[2] = {theta, 1e-6};
       fb_ode_world *s = fb_test_engine(&e, &sm, &def, &k, "ode-clearance-impact", probe_start,

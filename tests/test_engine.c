@@ -5,8 +5,8 @@
  * step, the scene check names a broken field, and stop reasons render to
  * the texts summary.json has always carried.
  *
- *   case --fb_scene_def_from_case--> scene definition (once per run)
- *        --fb_scene_def_select(row)--> what one model sees
+ *   case --fb_scene_from_case--> scene definition (once per run)
+ *        --fb_scene_select(row)--> what one model sees
  *        --engine->create / step / sample--> samples */
 #include <string.h>
 
@@ -64,8 +64,8 @@ static void test_analytic_engine_is_the_closed_form(void **state) {
   fb_case c;
   const char *sets[] = {"run.revolutions=2", "solver.h_s=1e-4"};
   fb_test_paper_case(&c, sets, 2);
-  fb_scene_def def;
-  fb_scene_model sm;
+  fb_scene def;
+  fb_model_scene sm;
   const fb_engine *e;
   void *self = fb_test_engine(&e, &sm, &def, &c, "analytic-stackup", NULL, NULL);
   assert_string_equal(e->name, "analytic");
@@ -91,17 +91,17 @@ static void test_scene_check_names_the_field(void **state) {
   fb_case c;
   const char *sets[] = {"run.models=analytic,ode-ideal-stackup"};
   fb_test_paper_case(&c, sets, 1);
-  fb_scene_def def;
+  fb_scene def;
   fb_diag d;
-  assert_int_equal(fb_scene_def_from_case(&def, &c, &d), FB_OK);
-  assert_int_equal(fb_scene_def_check(&def, &d), FB_OK);
+  assert_int_equal(fb_scene_from_case(&def, &c, &d), FB_OK);
+  assert_int_equal(fb_scene_check(&def, &d), FB_OK);
   def.solver.world_erp = 1.5;
-  assert_int_equal(fb_scene_def_check(&def, &d), FB_ERR_RANGE);
+  assert_int_equal(fb_scene_check(&def, &d), FB_ERR_RANGE);
   assert_non_null(strstr(d.msg, "world_erp"));
   /* a model the scene resolved no law for (none of the case's models uses
    * it) is refused, not run with zeros */
-  fb_scene_model sm;
-  assert_int_equal(fb_scene_def_select(&sm, &def, fb_model_find("ode-clearance-impact"), &d),
+  fb_model_scene sm;
+  assert_int_equal(fb_scene_select(&sm, &def, fb_model_find("ode-clearance-impact"), &d),
                    FB_ERR_ARG);
 }
 

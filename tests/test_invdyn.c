@@ -52,17 +52,17 @@ static void test_statics_balance_gravity(void **state) {
 }
 
 /* crank angle 0 at t = 0, speed w, step h */
-static void set_start(fb_scene_def *def, void *user) {
+static void set_start(fb_scene *def, void *user) {
   const double *hw = user;
   def->solver.h = hw[0];
-  assert_int_equal(fb_scene_def_set_start(def, 0.0, hw[1], NULL), FB_OK);
+  assert_int_equal(fb_scene_set_start(def, 0.0, hw[1], NULL), FB_OK);
 }
 
 static void test_reactions_match_ode_feedback(void **state) {
   (void)state;
   const double h = 1e-5, w = fb_case_omega2(&paper);
-  fb_scene_def def;
-  fb_scene_model sm;
+  fb_scene def;
+  fb_model_scene sm;
   const fb_engine *e;
   double start[2] = {h, w};
   void *s = fb_test_engine(&e, &sm, &def, &paper, "ode-ideal-nominal", set_start, start);

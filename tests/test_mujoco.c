@@ -272,8 +272,8 @@ static void test_adaptive_refuses_native(void **state) {
   /* the scene of a case with the same law, and the native model run in it */
   sets[0] = "run.models=mujoco-clearance-restitution";
   fb_test_paper_case(&c, sets, 3);
-  fb_scene_def *def = malloc(sizeof *def);
-  assert_int_equal(fb_scene_def_from_case(def, &c, &d), FB_OK);
+  fb_scene *def = malloc(sizeof *def);
+  assert_int_equal(fb_scene_from_case(def, &c, &d), FB_OK);
   fb_model_run mr;
   assert_int_not_equal(fb_model_run_one(&mr, def, fb_model_find("mujoco-clearance-native"), NULL,
                                         NULL, &d), FB_OK);
@@ -437,7 +437,7 @@ static void test_reactions_match_inverse_dynamics(void **state) {
 }
 
 /* the scene stage's view of the paper case for one model */
-static void view(fb_scene_def *def, fb_scene_model *sm, const char *model, const char **sets,
+static void view(fb_scene *def, fb_model_scene *sm, const char *model, const char **sets,
                  int n) {
   fb_case c;
   /* the step the MJCF figures were written for (the paper case's default is
@@ -448,14 +448,14 @@ static void view(fb_scene_def *def, fb_scene_model *sm, const char *model, const
   c.model_count = 1;
   snprintf(c.models[0], sizeof c.models[0], "%s", model);
   fb_diag d;
-  if (fb_scene_def_from_case(def, &c, &d) != FB_OK) fail_msg("%s", d.msg);
-  if (fb_scene_def_select(sm, def, fb_model_find(model), &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_scene_from_case(def, &c, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_scene_select(sm, def, fb_model_find(model), &d) != FB_OK) fail_msg("%s", d.msg);
 }
 
 static void test_mjcf_from_the_definition(void **state) {
   (void)state;
-  static fb_scene_def def;
-  fb_scene_model sm;
+  static fb_scene def;
+  fb_model_scene sm;
   view(&def, &sm, "mujoco-ideal-nominal", NULL, 0);
   static char buf[16384];
   fb_diag d;

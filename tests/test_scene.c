@@ -189,8 +189,8 @@ static void test_adaptive_refuses_other_colliders(void **state) {
   /* the scene of a case with the same law, and the faceted model run in it */
   sets[1] = "run.models=ode-clearance-impact";
   assert_int_equal(fb_casefile_load(&c, paper_path, sets, 3, &d), FB_OK);
-  fb_scene_def *def = malloc(sizeof *def);
-  assert_int_equal(fb_scene_def_from_case(def, &c, &d), FB_OK);
+  fb_scene *def = malloc(sizeof *def);
+  assert_int_equal(fb_scene_from_case(def, &c, &d), FB_OK);
   fb_model_run mr;
   assert_int_not_equal(fb_model_run_one(&mr, def, fb_model_find("ode-clearance-faceted"), NULL, NULL, &d),
                        FB_OK);

@@ -207,11 +207,11 @@ static void test_grid_interpolated_peaks_exact(void **state) {
   static fb_case c;
   const char *one[] = {"run.revolutions=2", "run.models=simbody-ideal-nominal"};
   fb_test_paper_case(&c, one, 2);
-  static fb_scene_def def;
-  fb_scene_model sm;
+  static fb_scene def;
+  fb_model_scene sm;
   fb_diag d;
-  if (fb_scene_def_from_case(&def, &c, &d) != FB_OK) fail_msg("scene: %s", d.msg);
-  if (fb_scene_def_select(&sm, &def, fb_model_find("simbody-ideal-nominal"), &d) != FB_OK)
+  if (fb_scene_from_case(&def, &c, &d) != FB_OK) fail_msg("scene: %s", d.msg);
+  if (fb_scene_select(&sm, &def, fb_model_find("simbody-ideal-nominal"), &d) != FB_OK)
     fail_msg("select: %s", d.msg);
   const fb_engine *e = fb_engine_get(FB_ENGINE_SIMBODY, &d);
   void *self = NULL;

@@ -52,7 +52,7 @@ fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, 
 
 typedef struct {
   fb_series s;
-  const fb_scene_model *sm; /* analytic: the model, for its inverse dynamics */
+  const fb_model_scene *sm; /* analytic: the model, for its inverse dynamics */
   size_t steps;      /* samples computed (analytic), accepted integrator steps (reference) */
   size_t i;          /* sample replayed now */
   int failed;        /* the computation stopped early */
@@ -98,9 +98,9 @@ static double no_drift(const void *self) {
 
 /* ---- analytic ------------------------------------------------------------ */
 
-static fb_status analytic_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
-  const fb_scene_def *d = sm->def;
-  fb_status st = fb_scene_def_check(d, diag);
+static fb_status analytic_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
+  const fb_scene *d = sm->def;
+  fb_status st = fb_scene_check(d, diag);
   if (st != FB_OK) return st;
   replay *r = calloc(1, sizeof *r);
   if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the analytic engine");
@@ -120,7 +120,7 @@ static fb_status analytic_create(void **self, const fb_scene_model *sm, fb_diag 
  * sample's crank angle: inverse dynamics (invdyn.h), gravity included */
 static void analytic_reactions(const void *self, double force[4][2], double *drive_torque) {
   const replay *r = self;
-  const fb_scene_model *sm = r->sm;
+  const fb_model_scene *sm = r->sm;
   fb_reactions q;
   if (fb_invdyn_solve(&q, &sm->lengths, sm->branch, sm->link, sm->gravity, r->s.crank_angle[r->i],
                       sm->omega2, NULL) != FB_OK) {
@@ -159,8 +159,8 @@ const fb_engine fb_engine_analytic = {
 
 /* ---- reference ----------------------------------------------------------- */
 
-static fb_status reference_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
-  fb_status st = fb_scene_def_check(sm->def, diag);
+static fb_status reference_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
+  fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
   if (sm->model->law == FB_MODEL_LAW_NONE || !(sm->clearance_mask & (1 << FB_JOINT_B)))
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the reference engine needs a contact law "

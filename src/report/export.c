@@ -11,7 +11,7 @@
 #include "fb_config.h"
 #include "resolution.h"
 #include "model_table.h"
-#include "scene_def.h"
+#include "scene.h"
 
 /* after a successful export: diag->msg empty, or the note that a clearance
  * contact of sm is not faithful at the exported step: beyond the run's
@@ -21,7 +21,7 @@
  * effective-mass range and every onset phase (fb_cp_run, the same answer
  * as fourbar contact-params --case). The file is then not the verified
  * contact, and says so nowhere else a user looks first. */
-static void resolution_note(const fb_case *c, const fb_scene_model *sm, fb_diag *diag) {
+static void resolution_note(const fb_case *c, const fb_model_scene *sm, fb_diag *diag) {
   if (!diag) return;
   diag->msg[0] = '\0';
   static const char more[] = "fourbar contact-params --case gives the largest faithful step and "
@@ -61,7 +61,7 @@ static void resolution_note(const fb_case *c, const fb_scene_model *sm, fb_diag 
 
 /* the case with the one model exported (its law and start resolved) into
  * *sm, its scene definition in *def (the caller frees it, also on error) */
-static fb_status one_model(fb_scene_model *sm, fb_scene_def **def, const fb_case *c,
+static fb_status one_model(fb_model_scene *sm, fb_scene **def, const fb_case *c,
                            const char *name, int mujoco_tendon, fb_diag *diag) {
   fb_case *k = malloc(sizeof *k);
   *def = malloc(sizeof **def);
@@ -73,8 +73,8 @@ static fb_status one_model(fb_scene_model *sm, fb_scene_def **def, const fb_case
   k->model_count = 1;
   snprintf(k->models[0], sizeof k->models[0], "%s", name);
   if (mujoco_tendon) k->mujoco.native_bore = FB_MUJOCO_BORE_TENDON;
-  fb_status st = fb_scene_def_from_case(*def, k, diag);
-  if (st == FB_OK) st = fb_scene_def_select(sm, *def, fb_model_find(name), diag);
+  fb_status st = fb_scene_from_case(*def, k, diag);
+  if (st == FB_OK) st = fb_scene_select(sm, *def, fb_model_find(name), diag);
   free(k);
   return st;
 }
@@ -97,8 +97,8 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
                        "install libmujoco-dev and rebuild (bash scripts/quickstart.sh build)");
   const char *name = ideal || !c->clearance.mask ? "mujoco-ideal-nominal"
                                                  : "mujoco-clearance-native";
-  fb_scene_def *def = NULL;
-  fb_scene_model sm;
+  fb_scene *def = NULL;
+  fb_model_scene sm;
   fb_status st = one_model(&sm, &def, c, name, 1, diag);
   if (st == FB_OK) st = e->export_model(buf, size, &sm, diag);
   if (st == FB_OK) resolution_note(c, &sm, diag);
@@ -108,8 +108,8 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
 
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
   const char *name = ideal || !c->clearance.mask ? "ode-ideal-nominal" : "ode-clearance-restitution";
-  fb_scene_def *def = NULL;
-  fb_scene_model sm;
+  fb_scene *def = NULL;
+  fb_model_scene sm;
   fb_status st = one_model(&sm, &def, c, name, 0, diag);
   if (st == FB_OK) st = fb_export_sdf_model(buf, size, &sm, diag);
   if (st == FB_OK) resolution_note(c, &sm, diag);

@@ -7,14 +7,14 @@
 #include <stddef.h>
 
 #include "case.h"
-#include "scene_def.h"
+#include "scene.h"
 #include "status.h"
 
 /* Writes case c's mechanism as MJCF into buf (size bytes, NUL terminated):
  * with ideal = 1, or when c has no clearance joint, model
  * mujoco-ideal-nominal; else mujoco-clearance-native with its bore as a
  * limited tendon (fb_mujoco_export). Errors: those of
- * fb_scene_def_from_case and fb_mujoco_export; FB_ERR_ARG in a build
+ * fb_scene_from_case and fb_mujoco_export; FB_ERR_ARG in a build
  * without MuJoCo (the MJCF is checked by compiling it). On FB_OK,
  * diag->msg is empty, or a note that a clearance contact is beyond the
  * run's resolution rule at the case's step (h omega_c > 0.5): the file is
@@ -25,7 +25,7 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
  * physics into buf (size bytes, NUL terminated): with ideal = 1, or when c
  * has no clearance joint, model ode-ideal-nominal's mechanism, else
  * ode-clearance-restitution's (fb_export_sdf_model). Errors: those of
- * fb_scene_def_from_case and fb_export_sdf_model. On FB_OK, diag->msg as
+ * fb_scene_from_case and fb_export_sdf_model. On FB_OK, diag->msg as
  * fb_export_mjcf's. */
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag);
 
@@ -42,9 +42,9 @@ fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_
  * whose surface/contact/ode carries the restitution law's spring and damper
  * as the project's matched row at h in Gazebo's kp, kd (fb_cp_rows_make),
  * max_vel, min_depth 0; the crank driven by Gazebo Sim's JointController at
- * the case's speed. Errors: those of fb_scene_def_check and
+ * the case's speed. Errors: those of fb_scene_check and
  * fb_cp_rows_make; FB_ERR_ARG for a clearance ground-crank joint (the drive
  * needs its revolute); FB_ERR_RANGE when buf is too small. */
-fb_status fb_export_sdf_model(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
+fb_status fb_export_sdf_model(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag);
 
 #endif

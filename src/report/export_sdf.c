@@ -13,7 +13,7 @@
 #include "engine_params.h"
 #include "export.h"
 #include "model_table.h"
-#include "scene_def.h"
+#include "scene.h"
 
 typedef fb_text text; /* textbuf.h */
 
@@ -65,7 +65,7 @@ typedef struct {
 } sdf_contact;
 
 /* joint j's pin: a cylinder on its pin body at (x, y) in that body's frame */
-static void put_pin(text *t, const fb_scene_model *sm, int j, double x, double y,
+static void put_pin(text *t, const fb_model_scene *sm, int j, double x, double y,
                     const sdf_contact *ct) {
   fb_text_put(t, "        <!-- %s: restitution law k = %.6g N/m, c = %.6g N s/m on its design mass "
          "%.4g kg; h omega_c = %.3g there (a run holds <= 0.5; fourbar contact-params --case "
@@ -82,7 +82,7 @@ static void put_pin(text *t, const fb_scene_model *sm, int j, double x, double y
 }
 
 /* joint j's hole: a ring of boxes on its hole body around (x, y) */
-static void put_hole(text *t, const fb_scene_model *sm, int j, double x, double y,
+static void put_hole(text *t, const fb_model_scene *sm, int j, double x, double y,
                      const sdf_contact *ct) {
   const int n = sm->def->faceted_n > 2 ? sm->def->faceted_n : 64;
   const double r_in = sm->pin_radius + sm->radial_clearance, w = RING_THICKNESS_M;
@@ -115,7 +115,7 @@ static void put_revolute(text *t, int j, const char *parent, const char *child, 
   fb_text_put(t, "      </joint>\n");
 }
 
-static fb_status write_sdf(text *t, const fb_scene_model *sm, const fb_start_state *st,
+static fb_status write_sdf(text *t, const fb_model_scene *sm, const fb_start_state *st,
                            const sdf_contact ct[4], fb_diag *diag) {
   const int mask = sm->clearance_mask;
   const double a = sm->lengths.length[FB_CRANK], b = sm->lengths.length[FB_COUPLER];
@@ -200,14 +200,14 @@ static fb_status write_sdf(text *t, const fb_scene_model *sm, const fb_start_sta
   return FB_OK;
 }
 
-fb_status fb_export_sdf_model(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag) {
-  fb_status st = fb_scene_def_check(sm->def, diag);
+fb_status fb_export_sdf_model(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag) {
+  fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
   if (sm->clearance_mask & (1 << FB_JOINT_A))
     return fb_diag_set(diag, FB_ERR_ARG, "ground-crank as a clearance joint: the SDF export "
                        "drives the crank through its revolute joint, which that case lacks");
   fb_start_state s0;
-  if ((st = fb_scene_model_start(&s0, sm, diag)) != FB_OK) return st;
+  if ((st = fb_model_scene_start(&s0, sm, diag)) != FB_OK) return st;
   sdf_contact ct[4];
   memset(ct, 0, sizeof ct);
   for (int j = 0; j < 4; j++) {

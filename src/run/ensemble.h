@@ -15,7 +15,7 @@
 
 #include "impact_stats.h"
 #include "metrics.h"
-#include "models.h"
+#include "model_run.h"
 
 struct fb_run_s;
 

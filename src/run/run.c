@@ -244,7 +244,7 @@ static fb_status check_cost(const fb_case *c, fb_diag *diag) {
 }
 
 /* check_cost at the step the models will take (the corner and h_s = auto
- * or adaptive resolved, as fb_scene_def_from_case does: an adaptive run
+ * or adaptive resolved, as fb_scene_from_case does: an adaptive run
  * samples every h_min_s), before anything else checks or reserves */
 static fb_status check_cost_resolved(const fb_case *c, int *over_cost, fb_diag *diag) {
   *over_cost = 0;
@@ -261,10 +261,10 @@ static fb_status check_cost_resolved(const fb_case *c, int *over_cost, fb_diag *
 /* the reference's own error estimate: the same integration at a tighter
  * tolerance, compared with it like a model with its reference (reference.h) */
 static void reference_estimate(fb_model_result *m, const fb_run *r) {
-  fb_scene_model sm;
+  fb_model_scene sm;
   fb_diag inner;
   double tol;
-  if (fb_scene_def_select(&sm, &r->scene, m->run.model, &inner) != FB_OK ||
+  if (fb_scene_select(&sm, &r->scene, m->run.model, &inner) != FB_OK ||
       fb_reference_tolerance(&tol, &inner) != FB_OK)
     return;
   const double check = fmax(tol / FB_REFERENCE_CHECK_FACTOR, FB_REFERENCE_TOL_MIN);
@@ -310,7 +310,7 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
   fb_status cost = check_cost_resolved(c, &over_cost, diag);
   if (cost != FB_OK) return cost;
   /* the scene stage: the case resolved once for every model */
-  fb_status rc = fb_scene_def_from_case(&r->scene, c, diag);
+  fb_status rc = fb_scene_from_case(&r->scene, c, diag);
   if (rc != FB_OK) return rc;
   r->c = r->scene.source;
   c = &r->c;
@@ -379,10 +379,10 @@ static double h_omega_c_max(const fb_run *r) {
 
 fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag) {
   *over_cost = 0;
-  fb_scene_def *def = malloc(sizeof *def);
+  fb_scene *def = malloc(sizeof *def);
   if (!def) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   fb_status st = check_cost_resolved(c, over_cost, diag);
-  if (st == FB_OK) st = fb_scene_def_from_case(def, c, diag);
+  if (st == FB_OK) st = fb_scene_from_case(def, c, diag);
   free(def);
   return st;
 }

@@ -9,8 +9,8 @@
 
 #include "ensemble.h"
 #include "metrics.h"
-#include "models.h"
-#include "scene_def.h"
+#include "model_run.h"
+#include "scene.h"
 #include "variants.h"
 #include "verdict.h"
 
@@ -125,7 +125,7 @@ typedef struct {
 
 typedef struct fb_run_s {
   fb_case c;                              /* the case as run (worst corner resolved) */
-  fb_scene_def scene;                     /* the case resolved once; every model's scene */
+  fb_scene scene;                     /* the case resolved once; every model's scene */
   double t_window;                        /* peaks and errors use t >= t_window [s] */
   double t_startup_end;                   /* revolution 1 is t < t_startup_end [s] */
   int n;                                  /* models run */
@@ -149,7 +149,7 @@ typedef struct fb_run_s {
 } fb_run;
 
 /* Up-front cost of running case c, its step resolved (auto and adaptive:
- * fb_scene_def_from_case; an adaptive run samples every h_min_s): per
+ * fb_scene_from_case; an adaptive run samples every h_min_s): per
  * model, the samples its series holds (duration / h + 1) times the bytes of
  * one sample of every column (sizeof(fb_sample)), and the samples times the
  * model's cost per sample, FB_COST_LOAD_FACTOR times over for a loaded
@@ -170,7 +170,7 @@ void fb_run_estimate(const fb_case *c, double *bytes, double *seconds);
  * and the estimated cost fits (fb_run_estimate against memory and [run]
  * max_wall_s; *over_cost = 1 when that refused it). For the CLI, which
  * checks a case and every variant before any simulation. Errors: those of
- * fb_scene_def_from_case; FB_ERR_RANGE with the estimate. */
+ * fb_scene_from_case; FB_ERR_RANGE with the estimate. */
 fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag);
 
 /* Runs case c's models and measures each, without the ensemble: what

@@ -8,7 +8,7 @@
 
 #include "analytic.h"
 #include "case.h"
-#include "models.h"
+#include "model_run.h"
 #include "outcome.h"
 
 /* One model of a variant's run. */

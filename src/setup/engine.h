@@ -1,10 +1,10 @@
-/* The engine interface: what the harness (models.c, and through it run,
+/* The engine interface: what the harness (model_run.c, and through it run,
  * bench, check and sweep) knows of an engine. An engine is a table of
  * function pointers; an instance is an opaque pointer the engine owns.
  *
- *   create   builds the world of one model (fb_scene_model: the scene
+ *   create   builds the world of one model (fb_model_scene: the scene
  *            definition with the model's row applied) at t = 0; it calls
- *            fb_scene_def_check first
+ *            fb_scene_check first
  *   step     advances one step of def->solver.h; FB_ERR_NUMERIC (or
  *            FB_ERR_NOMEM) ends this model's run, and stopped() says why
  *   sample   the state now as an fb_sample (contact columns of the model's
@@ -36,7 +36,7 @@
 #include "impact.h"
 #include "model_table.h"
 #include "outcome.h"
-#include "scene_def.h"
+#include "scene.h"
 #include "series.h"
 
 /* Contact data of an instance now. */
@@ -155,7 +155,7 @@ typedef struct fb_engine {
   int refine_peaks;                 /* 1: the samples lie on a discrete motion whose spikes the
                                        harness refines by parabola (fb_series_refine_peaks); 0:
                                        exact (analytic) or refined by the engine (reference) */
-  fb_status (*create)(void **self, const fb_scene_model *sm, fb_diag *diag);
+  fb_status (*create)(void **self, const fb_model_scene *sm, fb_diag *diag);
   fb_status (*step)(void *self, fb_diag *diag);
   void (*stopped)(const void *self, fb_stop *out); /* optional: why step returned
                                        FB_ERR_NUMERIC or FB_ERR_NOMEM (NULL: a solver stop with
@@ -182,7 +182,7 @@ typedef struct fb_engine {
   const char *drive_key;            /* the case key that sizes the crank's drive, named by the
                                        drive-saturation warning when the crank lags its
                                        prescribed angle (NULL: no such warning) */
-  void (*peer_args)(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a);
+  void (*peer_args)(const fb_model_scene *sm, double h, fb_engine_put_arg put, void *a);
                                     /* optional: the engine's own settings of model view sm at
                                        step h [s] for its bare peer program
                                        tests/peers/peer_<name> (fourbar bench --grid peers,
@@ -190,7 +190,7 @@ typedef struct fb_engine {
                                        engine has no peer */
   const char *model_format;         /* optional: the model file format the engine reads and
                                        export_model writes ("mjcf": MuJoCo), or NULL */
-  fb_status (*export_model)(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
+  fb_status (*export_model)(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag);
                                     /* optional: model view sm as a model file of model_format
                                        that a user loads into the engine (fourbar export,
                                        docs/commands.md), into buf; errors: the engine's, and

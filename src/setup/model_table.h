@@ -61,7 +61,7 @@ typedef enum {
   FB_JOINTS_CLEARANCE = 1 /* the case's [clearance] joints are pin-in-hole contacts */
 } fb_joint_set;
 
-/* Contact law of the clearance joints (scene_def.h holds the resolved laws). */
+/* Contact law of the clearance joints (scene.h holds the resolved laws). */
 typedef enum {
   FB_MODEL_LAW_NONE = 0,        /* no clearance joint */
   FB_MODEL_LAW_IMPACT = 1,      /* Adams-style IMPACT, K delta^n + STEP(...) ddot */

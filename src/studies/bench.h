@@ -57,7 +57,7 @@ typedef struct fb_bench_row_s {
                               excluded [s] */
   double setup_s;          /* median wall time of the set-up (the engine's create, the
                               series' storage mapped) [s] */
-  double stepping_per_rev; /* of wall_per_rev, the engine's stepping (models.h stepping_s;
+  double stepping_per_rev; /* of wall_per_rev, the engine's stepping (model_run.h stepping_s;
                               Simbody: its integrator's steps) [s]; the median of the rounds */
   double sampling_per_rev; /* the rest: the harness's sampling of the output grid (reading,
                               checking and storing each sample; Simbody: also its

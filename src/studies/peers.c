@@ -15,7 +15,7 @@
 
 #include "engine.h"
 #include "run.h"
-#include "scene_def.h"
+#include "scene.h"
 #include "start.h"
 
 extern char **environ;
@@ -56,9 +56,9 @@ static void arg_s(arglist *a, const char *key, const char *v) {
 static void put_arg(void *a, const char *key, const char *value) { arg_s(a, key, value); }
 
 /* the four-bar of model view sm and the engine's settings, as peer.h reads them */
-static fb_status peer_args(arglist *a, const fb_scene_model *sm, double window, fb_diag *diag) {
+static fb_status peer_args(arglist *a, const fb_model_scene *sm, double window, fb_diag *diag) {
   fb_start_state st;
-  fb_status rc = fb_scene_model_start(&st, sm, diag);
+  fb_status rc = fb_model_scene_start(&st, sm, diag);
   if (rc != FB_OK) return rc;
   a->n = 0;
   const double h = sm->solver.h;
@@ -233,8 +233,8 @@ fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *
         p->h = m->run.h;
         const fb_series *s = &m->run.series;
         revs = s->n > 1 ? s->t[s->n - 1] * k.crank_speed / (2.0 * M_PI) : 0.0;
-        fb_scene_model sm;
-        st = fb_scene_def_select(&sm, &r.scene, p->model, diag);
+        fb_model_scene sm;
+        st = fb_scene_select(&sm, &r.scene, p->model, diag);
         if (st == FB_OK) st = peer_args(&args, &sm, r.t_window, diag);
         if (st != FB_OK) {
           fb_run_free(&r);

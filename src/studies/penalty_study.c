@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "scene_def.h"
+#include "scene.h"
 #include "units.h"
 
 const char *const fb_penalty_contact_models[2] = {"ode-clearance-impact",
@@ -14,11 +14,11 @@ const char *const fb_penalty_contact_models[2] = {"ode-clearance-impact",
 static fb_status contact_used(fb_penalty_study *s, const fb_case *in, fb_diag *d) {
   /* the scene stage a run goes through, with both clearance laws asked for */
   static fb_case c;
-  static fb_scene_def def;
+  static fb_scene def;
   c = *in;
   c.model_count = 2;
   for (int m = 0; m < 2; m++) snprintf(c.models[m], FB_NAME_SIZE, "%s", fb_penalty_contact_models[m]);
-  fb_status st = fb_scene_def_from_case(&def, &c, d);
+  fb_status st = fb_scene_from_case(&def, &c, d);
   if (st != FB_OK) return st;
   s->run_case = def.source;
   memcpy(s->laws[0], def.law[FB_MODEL_LAW_IMPACT], sizeof s->laws[0]);

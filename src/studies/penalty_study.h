@@ -3,7 +3,7 @@
  * coupler-follower joints per crank speed (penalty.h), and the contact a
  * fourbar run of the case uses, through the run's own scene stage (its
  * laws per joint, effective-mass range, expected impact force, contact
- * frequency and the automatic step; scene_def.h, resolution.h). */
+ * frequency and the automatic step; scene.h, resolution.h). */
 #ifndef FB_PENALTY_STUDY_H
 #define FB_PENALTY_STUDY_H
 

@@ -78,7 +78,7 @@ struct World {
 }  // namespace
 
 struct fb_bullet_scene {
-  fb_scene_model def;
+  fb_model_scene def;
   World *w = nullptr;
   btRigidBody *body[3] = {nullptr, nullptr, nullptr};
   FbRows *pin[4] = {nullptr, nullptr, nullptr, nullptr};  /* ideal joints: 2 rows */
@@ -147,15 +147,15 @@ static void scene_free(fb_bullet_scene *s) {
   delete s;
 }
 
-extern "C" fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_scene_model *sm,
+extern "C" fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_model_scene *sm,
                                             fb_diag *diag) {
-  fb_status rc = fb_scene_def_check(sm->def, diag);
+  fb_status rc = fb_scene_check(sm->def, diag);
   if (rc != FB_OK) return rc;
   if (sm->clearance_mask && sm->collider != FB_COLLIDER_EXACT)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the Bullet engine has no such collider",
                        sm->model->name);
   fb_start_state st;
-  rc = fb_scene_model_start(&st, sm, diag);
+  rc = fb_model_scene_start(&st, sm, diag);
   if (rc != FB_OK) return rc;
   fb_bullet_scene *s = new (std::nothrow) fb_bullet_scene();
   if (!s) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Bullet scene");
@@ -284,7 +284,7 @@ static void note_row(Clearance *c, const fb_contact_row *u, double mass, double 
 /* the soft row of clearance joint j for this step, or none when free */
 static void clearance_row(fb_bullet_scene *s, int j) {
   Clearance *c = &s->cl[j];
-  const fb_scene_model *d = &s->def;
+  const fb_model_scene *d = &s->def;
   const double h = d->solver.h;
   c->row->nrows = 0;
   c->share = 1.0;

@@ -58,19 +58,19 @@ extern "C" {
 
 #include "engine.h"
 #include "impact.h"
-#include "scene_def.h"
+#include "scene.h"
 #include "series.h"
 
 typedef struct fb_bullet_scene fb_bullet_scene;
 
-/* Builds the world of model sm at t = 0 from its start (fb_scene_model_start).
+/* Builds the world of model sm at t = 0 from its start (fb_model_scene_start).
  * Uses the model's lengths, start, clearance joints and laws, the mapping,
  * solver.h, world_erp, drive_torque_max, radial clearance,
  * impact_velocity_min and the bullet options; ignores ODE's stepper and
  * world_cfm, friction and the MuJoCo options. Errors: those of
- * fb_scene_def_check; FB_ERR_ARG for a collider other than the exact one;
+ * fb_scene_check; FB_ERR_ARG for a collider other than the exact one;
  * FB_ERR_NOMEM. */
-fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_scene_model *sm, fb_diag *diag);
+fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_model_scene *sm, fb_diag *diag);
 
 /* Advances one step h. Errors: FB_ERR_NUMERIC when a matched row passes the
  * aliasing bound (stopped() says FB_STOP_ALIASED, as ODE's scene), and when

@@ -4,7 +4,7 @@
 #include "engine.h"
 #include "impact_bullet.h"
 
-static fb_status bullet_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+static fb_status bullet_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
   fb_bullet_scene *s = NULL;
   fb_status st = fb_bullet_scene_create(&s, sm, diag);
   if (st == FB_OK) *self = s;
@@ -52,7 +52,7 @@ static double bullet_cost_per_sample(const fb_model *m, const fb_case *c) {
 }
 
 /* Bullet's settings for its peer (tests/peers/peer_bullet.cpp) */
-static void bullet_peer_args(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a) {
+static void bullet_peer_args(const fb_model_scene *sm, double h, fb_engine_put_arg put, void *a) {
   (void)h;
   put(a, "solver", sm->bullet.solver == FB_BULLET_MLCP_DANTZIG ? "mlcp" : "si");
   fb_engine_put_number(put, a, "iterations", sm->bullet.iterations);

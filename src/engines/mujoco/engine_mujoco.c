@@ -4,7 +4,7 @@
 #include "impact_mujoco.h"
 #include "mujoco_scene.h"
 
-static fb_status mujoco_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+static fb_status mujoco_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
   fb_mujoco_scene *s = NULL;
   fb_status st = fb_mujoco_scene_create(&s, sm, diag);
   if (st == FB_OK) *self = s;
@@ -53,7 +53,7 @@ static double mujoco_cost_per_sample(const fb_model *m, const fb_case *c) {
 }
 
 /* MuJoCo's settings for its peer (tests/peers/peer_mujoco.c) */
-static void mujoco_peer_args(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a) {
+static void mujoco_peer_args(const fb_model_scene *sm, double h, fb_engine_put_arg put, void *a) {
   const fb_mujoco_opts *o = &sm->mujoco;
   put(a, "integrator", fb_mujoco_integrator_name(fb_mujoco_integrator_resolve(o, 0)));
   fb_engine_put_number(put, a, "loop_k", o->loop_stiffness > 0.0 ? o->loop_stiffness : 1.0 / (h * h));

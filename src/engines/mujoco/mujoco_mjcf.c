@@ -15,9 +15,9 @@
  * they have no effect (MuJoCo's defaults) */
 #define LOOP_SOLIMP_TAIL "0.001 0.5 2"
 
-fb_status mujoco_def_from_model(mj_def *d, const fb_scene_model *sm, fb_diag *diag) {
+fb_status mujoco_def_from_model(mj_def *d, const fb_model_scene *sm, fb_diag *diag) {
   memset(d, 0, sizeof *d);
-  fb_status st = fb_scene_model_start(&d->start, sm, diag);
+  fb_status st = fb_model_scene_start(&d->start, sm, diag);
   if (st != FB_OK) return st;
   if (sm->solver.h_mode == FB_STEP_ADAPTIVE && sm->collider == FB_COLLIDER_NATIVE)
     return fb_diag_set(diag, FB_ERR_ARG,
@@ -299,8 +299,8 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   return FB_OK;
 }
 
-fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag) {
-  fb_status st = fb_scene_def_check(sm->def, diag);
+fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag) {
+  fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
   mj_def d;
   st = mujoco_def_from_model(&d, sm, diag);
@@ -308,8 +308,8 @@ fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_di
   return mujoco_write_mjcf(buf, size, &d, diag);
 }
 
-fb_status fb_mujoco_export(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag) {
-  fb_status st = fb_scene_def_check(sm->def, diag);
+fb_status fb_mujoco_export(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag) {
+  fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
   if (sm->clearance_mask && sm->model->collider != FB_COLLIDER_NATIVE)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s': an exported MJCF carries clearance joints "

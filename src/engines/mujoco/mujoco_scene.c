@@ -15,9 +15,9 @@
 
 const char *fb_mujoco_version(void) { return mj_versionString(); }
 
-fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm,
+fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_model_scene *sm,
                                  fb_diag *diag) {
-  fb_status rc = fb_scene_def_check(sm->def, diag);
+  fb_status rc = fb_scene_check(sm->def, diag);
   if (rc != FB_OK) return rc;
   if (sm->clearance_mask && sm->model->collider != FB_COLLIDER_EXACT &&
       sm->model->collider != FB_COLLIDER_NATIVE)

@@ -74,7 +74,7 @@
 
 #include "case.h"
 #include "engine.h"
-#include "scene_def.h"
+#include "scene.h"
 #include "series.h"
 
 typedef struct fb_mujoco_scene fb_mujoco_scene;
@@ -82,12 +82,12 @@ typedef struct fb_mujoco_scene fb_mujoco_scene;
 /* Writes the MJCF text of model sm (the scene definition with the model's
  * row applied) into buf (size bytes, NUL terminated): numbers printed with
  * 17 significant digits, so the compiled model holds the definition's
- * doubles. Errors: those of fb_scene_def_check; FB_ERR_RANGE when buf is too
+ * doubles. Errors: those of fb_scene_check; FB_ERR_RANGE when buf is too
  * small. */
-fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
+fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag);
 
 
-/* Checks the definition (fb_scene_def_check), compiles the model
+/* Checks the definition (fb_scene_check), compiles the model
  * (mj_loadXML from a VFS holding the MJCF text) and sets the state at t = 0
  * from the definition's assembled start (loop closed, velocities compatible,
  * pins centred in their holes). Uses the model's lengths, start and
@@ -95,9 +95,9 @@ fb_status fb_mujoco_mjcf(char *buf, size_t size, const fb_scene_model *sm, fb_di
  * masses, solver.h, radial clearance, impact_velocity_min and mujoco
  * options; ignores ODE's stepper, ERP/CFM, mapping and friction, and
  * faceted_n except for mujoco-clearance-native with native_bore = facets.
- * Errors: those of fb_scene_def_check; FB_ERR_ARG when MuJoCo rejects the
+ * Errors: those of fb_scene_check; FB_ERR_ARG when MuJoCo rejects the
  * model (its message quoted); FB_ERR_NOMEM. */
-fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_scene_model *sm,
+fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_model_scene *sm,
                                  fb_diag *diag);
 
 /* Advances one step h. Errors: none today (FB_OK); NaN is reported through
@@ -153,10 +153,10 @@ void fb_mujoco_scene_step_stats(const fb_mujoco_scene *s, fb_step_stats *out);
  * tendon_invweight0 and the damper of the law's restitution on its design
  * mass), the crank's flywheel armature and a velocity actuator "drive" at
  * the case's speed, and a keyframe "start" (qvel, ctrl). Errors: those of
- * fb_scene_def_check; FB_ERR_ARG for a clearance model other than
+ * fb_scene_check; FB_ERR_ARG for a clearance model other than
  * mujoco-clearance-native or a text MuJoCo rejects; FB_ERR_RANGE when buf
  * is too small. */
-fb_status fb_mujoco_export(char *buf, size_t size, const fb_scene_model *sm, fb_diag *diag);
+fb_status fb_mujoco_export(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag);
 
 /* MuJoCo's library version string ("2.2.2"). */
 const char *fb_mujoco_version(void);

@@ -98,9 +98,9 @@ struct fb_mujoco_scene {
 /* ---- mujoco_mjcf.c ---- */
 
 /* d from model sm: the scene definition with the model's row applied, and
- * the start (fb_scene_model_start). Errors: those of fb_scene_model_start;
+ * the start (fb_model_scene_start). Errors: those of fb_model_scene_start;
  * FB_ERR_ARG for an adaptive step with MuJoCo's native contacts */
-fb_status mujoco_def_from_model(mj_def *d, const fb_scene_model *sm, fb_diag *diag);
+fb_status mujoco_def_from_model(mj_def *d, const fb_model_scene *sm, fb_diag *diag);
 
 /* the MJCF text of def into buf (size bytes). Errors: FB_ERR_RANGE when buf
  * is too small */

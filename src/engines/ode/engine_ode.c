@@ -4,7 +4,7 @@
 #include "impact_ode.h"
 #include "ode_world.h"
 
-static fb_status ode_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+static fb_status ode_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
   fb_ode_world *s = NULL;
   fb_status st = fb_ode_world_create(&s, sm, diag);
   if (st == FB_OK) *self = s;
@@ -69,7 +69,7 @@ static double ode_cost_per_sample(const fb_model *m, const fb_case *c) {
 }
 
 /* ODE's settings for its peer (tests/peers/peer_ode.c) */
-static void ode_peer_args(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a) {
+static void ode_peer_args(const fb_model_scene *sm, double h, fb_engine_put_arg put, void *a) {
   (void)h;
   fb_engine_put_number(put, a, "erp", sm->solver.world_erp);
   fb_engine_put_number(put, a, "cfm", sm->solver.world_cfm);

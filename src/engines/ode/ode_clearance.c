@@ -140,7 +140,7 @@ double ode_clearance_penetration(const fb_ode_world *s, const ode_clearance *c) 
  * step, if in contact */
 void ode_exact_contact(fb_ode_world *s, int j) {
   ode_clearance *c = &s->cl[j];
-  const fb_scene_model *d = &s->def;
+  const fb_model_scene *d = &s->def;
   double e[2], ev[2], num;
   ode_clearance_geometry(c, e, &num, ev);
   const double ecc = hypot(e[0], e[1]);

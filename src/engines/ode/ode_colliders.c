@@ -16,7 +16,7 @@
 /* builds the faceted hole and pin of clearance joint j */
 void ode_facet_create(fb_ode_world *s, int j) {
   ode_clearance *c = &s->cl[j];
-  const fb_scene_model *d = &s->def;
+  const fb_model_scene *d = &s->def;
   const int n = d->faceted_n;
   const double r_in = d->pin_radius + d->radial_clearance;
   const double t = FACET_THICKNESS_M;
@@ -57,7 +57,7 @@ void ode_facet_destroy(ode_clearance *c, int n) {
 
 /* builds the libccd ring of clearance joint j */
 fb_status ode_ccd_create(fb_ode_world *s, int j, fb_diag *diag) {
-  const fb_scene_model *d = &s->def;
+  const fb_model_scene *d = &s->def;
   fb_ccd_bore_def bd = fb_ccd_bore_default();
   bd.pin_radius = d->pin_radius;
   bd.pin_length = d->pin_length;
@@ -88,7 +88,7 @@ static void facet_near(void *data, dGeomID o1, dGeomID o2) {
 /* faceted: contact joints from ODE's collider for clearance joint j */
 void ode_facet_contacts(fb_ode_world *s, int j) {
   ode_clearance *c = &s->cl[j];
-  const fb_scene_model *d = &s->def;
+  const fb_model_scene *d = &s->def;
   dContactGeom g[FACET_MAX_CONTACTS];
   facet_hits hits = {g, 0};
   dSpaceCollide2(c->cyl, (dGeomID)c->ring, &hits, facet_near);
@@ -128,7 +128,7 @@ void ode_facet_contacts(fb_ode_world *s, int j) {
 /* libccd: contact joints from the generic collider for clearance joint j */
 void ode_ccd_contacts(fb_ode_world *s, int j) {
   ode_clearance *c = &s->cl[j];
-  const fb_scene_model *d = &s->def;
+  const fb_model_scene *d = &s->def;
   double p[2];
   ode_pin_in_hole_frame(c, p);
   fb_ccd_contact hit[FB_CCD_CONTACTS];

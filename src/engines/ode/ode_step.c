@@ -134,7 +134,7 @@ static void adapt_geometry(const fb_ode_world *s, double pen[4], double ex[4], d
 /* the next adaptive step as grid steps: the shortest any clearance joint's
  * contact asks for (step_control.h), ramped */
 static int adapt_multiple(fb_ode_world *s) {
-  const fb_scene_model *d = &s->def;
+  const fb_model_scene *d = &s->def;
   const double hg = d->solver.h;
   double h = d->solver.h_max;
   int impulsive = 0; /* a joint penetrating with the matched row (step_control.h) */

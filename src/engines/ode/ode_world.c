@@ -36,8 +36,8 @@ double ode_body_angle(dBodyID b) {
   return atan2(R[4], R[0]);
 }
 
-fb_status fb_ode_world_create(fb_ode_world **out, const fb_scene_model *sm, fb_diag *diag) {
-  fb_status rc0 = fb_scene_def_check(sm->def, diag);
+fb_status fb_ode_world_create(fb_ode_world **out, const fb_model_scene *sm, fb_diag *diag) {
+  fb_status rc0 = fb_scene_check(sm->def, diag);
   if (rc0 != FB_OK) return rc0;
   if (sm->clearance_mask && sm->collider != FB_COLLIDER_EXACT &&
       sm->collider != FB_COLLIDER_FACETED && sm->collider != FB_COLLIDER_CCD)
@@ -49,9 +49,9 @@ fb_status fb_ode_world_create(fb_ode_world **out, const fb_scene_model *sm, fb_d
                        "model '%s': [solver] h_s = adaptive follows the exact collider's contact "
                        "only; run the %s collider at a fixed or auto step",
                        sm->model->name, fb_collider_name(sm->collider));
-  const fb_scene_model *def = sm;
+  const fb_model_scene *def = sm;
   fb_start_state st;
-  fb_status rc = fb_scene_model_start(&st, def, diag);
+  fb_status rc = fb_model_scene_start(&st, def, diag);
   if (rc != FB_OK) return rc;
   fb_ode_world *s = calloc(1, sizeof *s);
   if (!s) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the scene");

@@ -62,7 +62,7 @@
 
 #include "effective_mass.h"
 #include "engine.h"
-#include "scene_def.h"
+#include "scene.h"
 #include "series.h"
 #include "start.h"
 
@@ -72,11 +72,11 @@ typedef struct fb_ode_world fb_ode_world;
  * pins and holes placed, the case's start velocities) or, when the start was
  * moved (start_given 0), with positions and velocities from the analytic
  * solver (loop closed, velocities compatible, pins centred). Checks
- * the definition first (fb_scene_def_check). The model's collider picks the
+ * the definition first (fb_scene_check). The model's collider picks the
  * clearance contact: FB_COLLIDER_EXACT (eccentricity), FB_COLLIDER_FACETED
- * (ring of faceted_n boxes) or FB_COLLIDER_CCD (libccd ring of ccd_segments). Errors: those of fb_scene_def_check;
+ * (ring of faceted_n boxes) or FB_COLLIDER_CCD (libccd ring of ccd_segments). Errors: those of fb_scene_check;
  * FB_ERR_ARG for a collider this engine lacks; FB_ERR_NOMEM. */
-fb_status fb_ode_world_create(fb_ode_world **out, const fb_scene_model *sm, fb_diag *diag);
+fb_status fb_ode_world_create(fb_ode_world **out, const fb_model_scene *sm, fb_diag *diag);
 
 /* Advances one step h with the configured stepper. Errors: FB_ERR_NOMEM if
  * ODE could not allocate its step memory. */

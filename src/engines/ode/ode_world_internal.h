@@ -51,7 +51,7 @@ typedef struct {
 } ode_clearance;
 
 struct fb_ode_world {
-  fb_scene_model def;
+  fb_model_scene def;
   int broken;        /* 1 after an ODE fatal error left its world mid-step: never touched again */
   fb_stop stop;      /* why the last step failed (FB_STOP_NONE while none did) */
   dWorldID world;

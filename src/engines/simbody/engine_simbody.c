@@ -5,7 +5,7 @@
 #include "engine.h"
 #include "simbody_scene.h"
 
-static fb_status simbody_create(void **self, const fb_scene_model *sm, fb_diag *diag) {
+static fb_status simbody_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
   fb_simbody_scene *s = NULL;
   fb_status st = fb_simbody_scene_create(&s, sm, diag);
   if (st == FB_OK) *self = s;
@@ -66,7 +66,7 @@ static double simbody_cost_per_sample(const fb_model *m, const fb_case *c) {
 }
 
 /* Simbody's settings for its peer (tests/peers/peer_simbody.cpp) */
-static void simbody_peer_args(const fb_scene_model *sm, double h, fb_engine_put_arg put, void *a) {
+static void simbody_peer_args(const fb_model_scene *sm, double h, fb_engine_put_arg put, void *a) {
   (void)h;
   put(a, "integrator", fb_simbody_integrator_name(sm->simbody.integrator));
   fb_engine_put_number(put, a, "accuracy", sm->simbody.accuracy);

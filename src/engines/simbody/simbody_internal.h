@@ -174,7 +174,7 @@ class ClearanceForce : public Force::Custom::Implementation {
 };
 
 struct Scene {
-  fb_scene_model sm;
+  fb_model_scene sm;
   int clearance;          // 1: the crank-coupler joint is a pin in a hole
   double a, b, c, g;      // crank, coupler, follower, ground lengths [m]
   double theta0, omega2;  // the prescribed crank angle theta0 + omega2 t

@@ -162,10 +162,10 @@ struct fb_simbody_scene {
   Scene *s;
 };
 
-extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_scene_model *sm,
+extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_model_scene *sm,
                                              fb_diag *diag) {
   *out = NULL;
-  fb_status st = fb_scene_def_check(sm->def, diag);
+  fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
   if (sm->clearance_mask & ~(1 << FB_JOINT_B))
     return fb_diag_set(diag, FB_ERR_ARG,
@@ -173,7 +173,7 @@ extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_sc
                        "[clearance] joints names others: set joints = crank-coupler or drop the "
                        "simbody-clearance-* models", sm->model->name);
   fb_start_state start;
-  st = fb_scene_model_start(&start, sm, diag);
+  st = fb_model_scene_start(&start, sm, diag);
   if (st != FB_OK) return st;
   fb_simbody_scene *h = new (std::nothrow) fb_simbody_scene;
   if (!h) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Simbody scene");

@@ -50,11 +50,11 @@ typedef struct fb_simbody_scene fb_simbody_scene;
 
 /* Builds model sm's system at t = 0 and initialises the integrator
  * (sm->simbody: integrator and accuracy). Errors: those of
- * fb_scene_def_check and fb_scene_model_start; FB_ERR_ARG for clearance at
+ * fb_scene_check and fb_model_scene_start; FB_ERR_ARG for clearance at
  * a joint other than crank-coupler (the tree is cut there only);
  * FB_ERR_NUMERIC when Simbody refuses the multibody system, with its message;
  * FB_ERR_NOMEM. */
-fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_scene_model *sm,
+fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_model_scene *sm,
                                   fb_diag *diag);
 
 /* Advances to the next sample time (the integrator runs ahead of it by a

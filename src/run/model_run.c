@@ -1,4 +1,4 @@
-#include "models.h"
+#include "model_run.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -34,9 +34,9 @@ static void engine_stop(fb_stop *out, const fb_engine *e, const void *self, fb_s
 
 /* create and the series storage (timed together as setup_s), then
  * def->steps steps, each sampled and checked */
-static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_model *sm,
+static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_scene *sm,
                             fb_progress_fn progress, void *user, fb_diag *diag) {
-  const fb_scene_def *def = sm->def;
+  const fb_scene *def = sm->def;
   void *self = NULL;
   const double t0 = fb_clock_s();
   fb_status st = e->create(&self, sm, diag);
@@ -131,7 +131,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_scene_
   return st;
 }
 
-fb_status fb_model_run_one(fb_model_run *out, const fb_scene_def *def, const fb_model *m,
+fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_model *m,
                            fb_progress_fn progress, void *user, fb_diag *diag) {
   memset(out, 0, sizeof *out);
   snprintf(out->name, sizeof out->name, "%s", m->name);
@@ -142,8 +142,8 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene_def *def, const fb_
   out->h = def->solver.h;
   out->lengths = def->lengths[m->lengths];
   double t0 = fb_clock_s();
-  fb_scene_model sm;
-  fb_status st = fb_scene_def_select(&sm, def, m, diag);
+  fb_model_scene sm;
+  fb_status st = fb_scene_select(&sm, def, m, diag);
   const fb_engine *e = st == FB_OK ? fb_engine_get(m->engine, diag) : NULL;
   if (st == FB_OK && !e) st = FB_ERR_ARG;
   if (st == FB_OK) {

@@ -1,20 +1,20 @@
 /* The scene stage: a case resolved once per run into the engine-free
  * definition every engine builds its world from.
  *
- * fb_scene_def_from_case settles everything a case leaves open, in one place:
+ * fb_scene_from_case settles everything a case leaves open, in one place:
  * the worst stack-up corner (tolerance.h), the nominal and stack-up lengths,
  * the contact law of every clearance joint for each law a listed model uses,
  * with the penalty stiffness the run really uses (joint_law.h: inverse-
  * dynamics reactions solved once, stiffness_scale applied), the penetration
  * limit of the stability guard, and the initial state ([run] start and
- * pin_start, start.h) of both linkages, ideal and with clearance. fb_scene_def_check validates the result field by field (Box2D's
+ * pin_start, start.h) of both linkages, ideal and with clearance. fb_scene_check validates the result field by field (Box2D's
  * b2CreateBody pattern); every engine calls it first.
  *
  * A model (model_table.h) then selects from the definition: its lengths, its
- * clearance joints and its law (fb_scene_def_select). No engine header is
+ * clearance joints and its law (fb_scene_select). No engine header is
  * included here. */
-#ifndef FB_SCENE_DEF_H
-#define FB_SCENE_DEF_H
+#ifndef FB_SCENE_H
+#define FB_SCENE_H
 
 #include "case.h"
 #include "contact.h"
@@ -27,7 +27,7 @@ typedef struct {
   fb_start_state start[2][2];     /* state at t = 0 ([run] start, pin_start; start.h) per
                                      lengths (FB_LENGTHS_*) and joint set (FB_JOINTS_*) */
   int start_given;                /* 1: start[][] holds the case's start; 0: the start was moved
-                                     (fb_scene_def_set_start): engines start steady from the
+                                     (fb_scene_set_start): engines start steady from the
                                      analytic solver at crank_angle0, omega2, pins centred */
   fb_stackup stackup;             /* stack-up corner as resolved (worst flag cleared) */
   fb_branch branch;               /* assembly branch of the initial configuration */
@@ -61,13 +61,13 @@ typedef struct {
   fb_simbody_opts simbody;        /* Simbody's own choices (integrator, accuracy) */
   fb_case source;                 /* the case as resolved (worst corner set), for engines
                                      that take a case (reference.h) */
-} fb_scene_def;
+} fb_scene;
 
 /* What one model sees of a scene definition: the fields an engine builds
  * its world from, with the model's row applied (its lengths and start, its
  * clearance joints and their law, its collider's parameters). */
 typedef struct {
-  const fb_scene_def *def;        /* the definition it was selected from (not owned) */
+  const fb_scene *def;        /* the definition it was selected from (not owned) */
   const fb_model *model;          /* the model's row */
   fb_linkage lengths;             /* the model's link lengths [m] */
   fb_start_state start;           /* its state at t = 0 when start_given */
@@ -99,28 +99,28 @@ typedef struct {
   fb_mujoco_opts mujoco;          /* MuJoCo's own choices (mujoco-* models) */
   fb_bullet_opts bullet;          /* Bullet's own choices (bullet-* models) */
   fb_simbody_opts simbody;        /* Simbody's own choices (simbody-* models) */
-} fb_scene_model;
+} fb_model_scene;
 
 /* The state at t = 0 of model sm: sm->start when the case's start holds
  * (start_given), else the steady start from the analytic solver at
  * crank_angle0 and omega2 with every pin centred in its hole.
  * Errors: FB_ERR_ASSEMBLY when that start does not exist. */
-fb_status fb_scene_model_start(fb_start_state *out, const fb_scene_model *sm, fb_diag *diag);
+fb_status fb_model_scene_start(fb_start_state *out, const fb_model_scene *sm, fb_diag *diag);
 
 /* Zeroes *def and sets the fields no case carries: impact_velocity_min. */
-void fb_scene_def_default(fb_scene_def *def);
+void fb_scene_default(fb_scene *def);
 
 /* Resolves case c once (see above) into *def. Laws are resolved only for
  * the laws the case's models use (a case of ideal models solves no inverse
  * dynamics). Errors: those of fb_case_check, fb_tol_resolve_worst and
  * fb_joint_laws (FB_ERR_RANGE, FB_ERR_ASSEMBLY, FB_ERR_ARG). */
-fb_status fb_scene_def_from_case(fb_scene_def *def, const fb_case *c, fb_diag *diag);
+fb_status fb_scene_from_case(fb_scene *def, const fb_case *c, fb_diag *diag);
 
 /* Moves the initial state to crank angle theta0 [rad] and crank speed
  * omega2 [rad/s] (tests that hold the crank still): the steady start with
  * every pin centred (start_given = 0), checked to assemble for both
  * linkages. Errors: FB_ERR_ASSEMBLY. */
-fb_status fb_scene_def_set_start(fb_scene_def *def, double theta0, double omega2, fb_diag *diag);
+fb_status fb_scene_set_start(fb_scene *def, double theta0, double omega2, fb_diag *diag);
 
 /* Checks every field: lengths valid (and assembled at crank_angle0 when the
  * start was moved), masses
@@ -131,14 +131,14 @@ fb_status fb_scene_def_set_start(fb_scene_def *def, double theta0, double omega2
  * resolved law valid (contact.h), penetration limit positive, faceted_n >= 3
  * when the faceted collider is used. Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY
  * naming the field, its value and the rule. */
-fb_status fb_scene_def_check(const fb_scene_def *def, fb_diag *diag);
+fb_status fb_scene_check(const fb_scene *def, fb_diag *diag);
 
 
 
 /* The view of model m on def: lengths, start, clearance joints and laws.
  * Errors: FB_ERR_ARG when m needs a law def did not resolve or clearance
  * joints the case does not have. */
-fb_status fb_scene_def_select(fb_scene_model *out, const fb_scene_def *def, const fb_model *m,
+fb_status fb_scene_select(fb_model_scene *out, const fb_scene *def, const fb_model *m,
                               fb_diag *diag);
 
 #endif

@@ -1,4 +1,4 @@
-#include "scene_def.h"
+#include "scene.h"
 
 #include "resolution.h"
 
@@ -16,7 +16,7 @@
  * divides by it, unbounded). Pin speeds in the paper's case are ~10 m/s. */
 #define IMPACT_VELOCITY_MIN_M_S 1e-3
 
-void fb_scene_def_default(fb_scene_def *def) {
+void fb_scene_default(fb_scene *def) {
   memset(def, 0, sizeof *def);
   def->case_collider = FB_COLLIDER_EXACT;
   def->impact_velocity_min = IMPACT_VELOCITY_MIN_M_S;
@@ -26,7 +26,7 @@ void fb_scene_def_default(fb_scene_def *def) {
 }
 
 /* assembles both linkages at crank_angle0, omega2 (a moved start) */
-static fb_status check_assembly(const fb_scene_def *def, fb_diag *diag) {
+static fb_status check_assembly(const fb_scene *def, fb_diag *diag) {
   for (int k = 0; k < 2; k++) {
     fb_linkage_state ls;
     fb_status st = fb_linkage_solve(&ls, &def->lengths[k], def->branch, def->crank_angle0,
@@ -36,7 +36,7 @@ static fb_status check_assembly(const fb_scene_def *def, fb_diag *diag) {
   return FB_OK;
 }
 
-fb_status fb_scene_def_set_start(fb_scene_def *def, double theta0, double omega2,
+fb_status fb_scene_set_start(fb_scene *def, double theta0, double omega2,
                                  fb_diag *diag) {
   def->crank_angle0 = theta0;
   def->omega2 = omega2;
@@ -44,8 +44,8 @@ fb_status fb_scene_def_set_start(fb_scene_def *def, double theta0, double omega2
   return check_assembly(def, diag);
 }
 
-fb_status fb_scene_def_from_case(fb_scene_def *def, const fb_case *c, fb_diag *diag) {
-  fb_scene_def_default(def);
+fb_status fb_scene_from_case(fb_scene *def, const fb_case *c, fb_diag *diag) {
+  fb_scene_default(def);
   /* standards are applied by the case file; a "worst" stack-up becomes a
    * concrete corner here, before anything uses the stack-up lengths */
   def->source = *c;
@@ -132,7 +132,7 @@ static fb_status check_mass(const fb_link_mass *m, int i, fb_diag *diag) {
   return FB_OK;
 }
 
-fb_status fb_scene_def_check(const fb_scene_def *def, fb_diag *diag) {
+fb_status fb_scene_check(const fb_scene *def, fb_diag *diag) {
   for (int k = 0; k < 2; k++) {
     fb_status st = fb_linkage_check(&def->lengths[k], diag);
     if (st != FB_OK) return st;
@@ -242,7 +242,7 @@ fb_status fb_scene_def_check(const fb_scene_def *def, fb_diag *diag) {
   return FB_OK;
 }
 
-fb_status fb_scene_def_select(fb_scene_model *out, const fb_scene_def *def, const fb_model *m,
+fb_status fb_scene_select(fb_model_scene *out, const fb_scene *def, const fb_model *m,
                               fb_diag *diag) {
   memset(out, 0, sizeof *out);
   out->def = def;
@@ -297,7 +297,7 @@ fb_status fb_scene_def_select(fb_scene_model *out, const fb_scene_def *def, cons
   return FB_OK;
 }
 
-fb_status fb_scene_model_start(fb_start_state *out, const fb_scene_model *sm, fb_diag *diag) {
+fb_status fb_model_scene_start(fb_start_state *out, const fb_model_scene *sm, fb_diag *diag) {
   if (sm->start_given) {
     *out = sm->start;
     return FB_OK;

@@ -1,16 +1,16 @@
 /* Running one model of a case on its engine (engine.h), on the case's time
  * grid, with its cost (steps, wall time) and a typed stop reason (outcome.h) for a run
  * stopped early. The model is a row of the model table (model_table.h); the
- * scene is the case resolved once (scene_def.h). */
-#ifndef FB_MODELS_H
-#define FB_MODELS_H
+ * scene is the case resolved once (scene.h). */
+#ifndef FB_MODEL_RUN_H
+#define FB_MODEL_RUN_H
 
 #include <stddef.h>
 
 #include "engine.h"
 #include "model_table.h"
 #include "outcome.h"
-#include "scene_def.h"
+#include "scene.h"
 #include "series.h"
 
 /* Steps between two readings of the clock against the run's wall-time
@@ -60,7 +60,7 @@ typedef void (*fb_progress_fn)(const char *model, double fraction, void *user);
  * so far are kept (all finite).
  * Errors: FB_ERR_ARG (engine not built, model needs what the scene lacks);
  * FB_ERR_ASSEMBLY, FB_ERR_RANGE (scene check), FB_ERR_NOMEM. */
-fb_status fb_model_run_one(fb_model_run *out, const fb_scene_def *def, const fb_model *m,
+fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_model *m,
                            fb_progress_fn progress, void *user, fb_diag *diag);
 
 void fb_model_run_free(fb_model_run *r);

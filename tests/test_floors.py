@@ -347,22 +347,11 @@ def self_check():
 # report_variants.c; run.c and ensemble.c).
 KNOWN_CYCLES = set()
 # Calls up a floor that were there when this rule came in, as (caller,
-# callee) file pairs; this list may only shrink. Each is a function
-# declared in a lower floor's header but defined a floor above: model/case.h
-# declares the case's names and derived values (fb_joint_name,
-# fb_case_omega2, fb_case_stackup_lengths, fb_case_duration,
-# fb_case_penetration_limit), which setup/case.c defines beside the case
-# checks; model/ and physics/ call them up a floor until their definitions
-# move down beside their declarations.
-KNOWN_UP_CALLS = {
-    ("src/model/series.c", "src/setup/case.c"),
-    ("src/model/stop_text.c", "src/setup/case.c"),
-    ("src/physics/joint_law.c", "src/setup/case.c"),
-    ("src/physics/reference.c", "src/setup/case.c"),
-    ("src/physics/resolution.c", "src/setup/case.c"),
-    ("src/physics/start.c", "src/setup/case.c"),
-    ("src/physics/tolerance.c", "src/setup/case.c"),
-}
+# callee) file pairs; this list may only shrink. Empty since the case's
+# names and derived values (fb_joint_name, fb_case_omega2, ...) moved from
+# setup/case.c to model/case_derived.c, beside their declarations in
+# model/case.h.
+KNOWN_UP_CALLS = set()
 # nm's symbol types of a definition another object can link to (text,
 # data, bss, read-only, small data); weak ones (W, V: C++ inline functions
 # and templates, defined in every object that uses them) name no one file

@@ -218,6 +218,15 @@ function flatten(v, p, outList) {
     check(narrow.length === 0, 'impact list at ' + FB_NARROW_VIEW_W + ' px: ' + narrow.join('; '));
     await narrowPage.close();
 
+    /* the headline table leads with each model's verdict and what it rests on */
+    const headCells = await page.$$eval('#summary_head td[data-key]', (tds) =>
+      tds.map((td) => [td.dataset.model, td.dataset.key, td.textContent]));
+    for (const key of ['verdict', 'verdict_basis']) {
+      const shown = summary.models.filter((m) => headCells.some((c) => c[0] === m.name && c[1] === key &&
+        c[2] === String(m[key])));
+      check(shown.length === summary.models.length && summary.models.every((m) => typeof m[key] === 'string'),
+        'the headline table shows every model\'s ' + key + ' (' + shown.length + ' of ' + summary.models.length + ')');
+    }
     /* 4. the page's numbers equal summary.json's */
     const cells = await page.$$eval('#summary_models td[data-key]', (tds) =>
       tds.map((td) => [td.dataset.model, td.dataset.key, td.textContent]));

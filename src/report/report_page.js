@@ -362,7 +362,7 @@
     var keys = [];
     flat.forEach(function (f) { f.forEach(function (kv) { if (keys.indexOf(kv[0]) < 0) keys.push(kv[0]); }); });
     /* the headline numbers, engines side by side */
-    var head = [['status', 'status'], ['steps', 'steps'], ['coupler.omega_max_rad_s', 'coupler omega max [rad/s]'],
+    var head = [['status', 'status'], ['verdict', 'verdict'], ['verdict_basis', 'verdict basis'], ['steps', 'steps'], ['coupler.omega_max_rad_s', 'coupler omega max [rad/s]'],
       ['coupler.omega_min_rad_s', 'coupler omega min [rad/s]'], ['coupler.alpha_max_rad_s2', 'coupler alpha max [rad/s^2]'],
       ['coupler.alpha_min_rad_s2', 'coupler alpha min [rad/s^2]'], ['follower.omega_max_rad_s', 'follower omega max [rad/s]'],
       ['follower.omega_min_rad_s', 'follower omega min [rad/s]'], ['follower.alpha_max_rad_s2', 'follower alpha max [rad/s^2]'],

@@ -869,7 +869,7 @@ static void test_help_answers(void **state) {
   /* every command answers --help with its usage and its exit status */
   static const char *const cmds[] = {"run", "kinematics", "stackup", "fit", "tolerance", "penalty",
                                      "impact", "check", "sweep", "merge", "mapping", "bench",
-                                     "contact-params", "export", NULL};
+                                     "contact-params", "export", "models", NULL};
   for (int i = 0; cmds[i]; i++) {
     char args[64], usage[64];
     snprintf(args, sizeof args, "%s --help", cmds[i]);
@@ -882,6 +882,62 @@ static void test_help_answers(void **state) {
   }
   assert_int_equal(run("--help", out, sizeof out, NULL, 0), 0);
   expect_width("fourbar", out);
+}
+
+/* fourbar models lists the model table: the same names, in the same order,
+ * as the list `run` gives for an unknown model (fb_model_list, another path
+ * through the table); one Markdown row per model; an engine the build lacks
+ * has its models marked unavailable and its how-to; a stray argument is bad
+ * input */
+static void test_models_lists_the_table(void **state) {
+  (void)state;
+  static char out[65536], err[8192];
+  assert_int_equal(run("run --set run.models=no-such-model", NULL, 0, err, sizeof err), 2);
+  const char *known = strstr(err, "known: ");
+  assert_non_null(known);
+  known += strlen("known: ");
+  assert_int_equal(run("models --json", out, sizeof out, NULL, 0), 0);
+  json_error_t jerr;
+  json_t *j = json_loads(out, 0, &jerr);
+  if (!j) fail_msg("models --json is not JSON: %s", jerr.text);
+  json_t *models = json_object_get(j, "models"), *engines = json_object_get(j, "engines");
+  assert_true(json_array_size(models) > 0);
+  size_t i;
+  json_t *m;
+  const char *at = known;
+  json_array_foreach(models, i, m) {
+    const char *name = json_string_value(json_object_get(m, "name"));
+    const size_t n = strlen(name);
+    if (strncmp(at, name, n) != 0 || (at[n] != ',' && at[n] != ')'))
+      fail_msg("models row %zu '%s' is not next in run's list '%s'", i, name, known);
+    at += n + (at[n] == ',' ? 2 : 0);
+    const char *engine = json_string_value(json_object_get(m, "engine"));
+    json_t *e;
+    size_t k;
+    int found = 0;
+    json_array_foreach(engines, k, e) {
+      if (strcmp(json_string_value(json_object_get(e, "name")), engine) != 0) continue;
+      found = 1;
+      assert_int_equal(json_is_true(json_object_get(m, "available")),
+                       json_is_true(json_object_get(e, "available")));
+      assert_int_equal(json_is_null(json_object_get(e, "howto")),
+                       json_is_true(json_object_get(e, "available")));
+    }
+    if (!found) fail_msg("model '%s' names engine '%s', which engines lacks", name, engine);
+    const int clear = strcmp(json_string_value(json_object_get(m, "joints")), "clearance") == 0;
+    if (clear == (strcmp(json_string_value(json_object_get(m, "law")), "none") == 0))
+      fail_msg("model '%s': clearance joints and a contact law go together", name);
+  }
+  assert_int_equal(*at, ')');
+  const size_t count = json_array_size(models);
+  json_decref(j);
+  assert_int_equal(run("models", out, sizeof out, NULL, 0), 0);
+  size_t rows = 0;
+  for (const char *line = out; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL)
+    rows += strncmp(line, "| ", 2) == 0;
+  assert_int_equal(rows, count + 1); /* the header and one row per model */
+  assert_int_equal(run("models --bogus", NULL, 0, err, sizeof err), 2);
+  assert_non_null(strstr(err, "--bogus"));
 }
 
 /* --set without --out writes into results/<case>/ and says so, the second
@@ -1128,6 +1184,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_engines_case),
       cmocka_unit_test(test_paper_adams_rows_and_variants),
       cmocka_unit_test(test_help_answers),
+      cmocka_unit_test(test_models_lists_the_table),
       cmocka_unit_test(test_set_without_out_says_so),
       cmocka_unit_test(test_loads_table_names_its_window),
       cmocka_unit_test(test_mapping_help_default_mass),

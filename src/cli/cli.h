@@ -62,6 +62,7 @@ const char *fb_cli_baselines_dir(void);
 int fb_cmd_run(int argc, char **argv);
 int fb_cmd_kinematics(int argc, char **argv);
 int fb_cmd_keys(int argc, char **argv);
+int fb_cmd_models(int argc, char **argv);
 int fb_cmd_impact(int argc, char **argv);
 int fb_cmd_contact_params(int argc, char **argv);
 int fb_cmd_export(int argc, char **argv);

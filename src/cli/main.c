@@ -8,6 +8,7 @@
 #include "casefile.h"
 #include "cli.h"
 #include "suggest.h"
+#include "tables_models.h"
 #include "textsafe.h"
 
 #ifndef FB_VERSION
@@ -38,6 +39,7 @@ static const char main_help[] =
     "  export       a case's mechanism as MuJoCo MJCF or SDFormat for Gazebo\n"
     "  bench        every engine's configurations on one error-against-cost chart\n"
     "  keys         list every case-file key with unit, default and rule\n"
+    "  models       list every model: engine, lengths, joints, law, collider\n"
     "\n"
     "All outputs are SI; names carry the unit (omega_max_rad_s, h_s).\n"
     "Documentation: README.md and docs/ in the source tree.\n";
@@ -49,6 +51,37 @@ int fb_cmd_keys(int argc, char **argv) {
   }
   if (argc > 1) return fb_cli_fail("keys", 2, "unexpected argument '%s'", argv[1]);
   fb_casefile_write_keys(stdout);
+  return 0;
+}
+
+static const char models_help[] =
+    "usage: fourbar models [--json]\n"
+    "\n"
+    "Prints every model a case file's [run] models may name, as a Markdown table:\n"
+    "its engine, whether this build has that engine, its link lengths (nominal or\n"
+    "the stack-up corner), its joints (ideal or the case's clearance joints), the\n"
+    "contact law and collider of its clearance joints, and the reference model it\n"
+    "is compared with; then how to get each engine this build lacks.\n"
+    "\n"
+    "  --json      the same as one JSON object (\"models\", \"engines\")\n"
+    "  -h, --help  this text\n"
+    "\n"
+    "An ODE row whose collider is exact takes the case's [clearance] collider.\n"
+    "Exit status: 0 ok, 2 bad input.\n"
+    "Documentation: docs/commands.md; how each model works: docs/models.md.\n";
+
+int fb_cmd_models(int argc, char **argv) {
+  int json = 0;
+  for (int i = 1; i < argc; i++) {
+    if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+      fputs(models_help, stdout);
+      return 0;
+    }
+    if (strcmp(argv[i], "--json") == 0) json = 1;
+    else return fb_cli_fail("models", 2, "unexpected argument '%s' (fourbar models --help)", argv[i]);
+  }
+  if (json) fb_report_models_json(stdout);
+  else fb_report_models_text(stdout);
   return 0;
 }
 
@@ -115,10 +148,11 @@ static int dispatch(int argc, char **argv) {
   if (strcmp(cmd, "export") == 0) return fb_cmd_export(argc - 1, argv + 1);
   if (strcmp(cmd, "bench") == 0) return fb_cmd_bench(argc - 1, argv + 1);
   if (strcmp(cmd, "keys") == 0) return fb_cmd_keys(argc - 1, argv + 1);
+  if (strcmp(cmd, "models") == 0) return fb_cmd_models(argc - 1, argv + 1);
   /* a misspelt command: the nearest by edit distance, then the list */
   static const char *const commands[] = {"run", "kinematics", "stackup", "fit", "tolerance",
                                          "penalty", "impact", "check", "sweep", "merge",
-                                         "mapping", "contact-params", "export", "bench", "keys", "version", "help"};
+                                         "mapping", "contact-params", "export", "bench", "keys", "models", "version", "help"};
   const char *near = fb_suggest(cmd, commands, (int)(sizeof commands / sizeof commands[0]));
   if (near)
     fprintf(stderr, "fourbar: unknown command '%s'; did you mean 'fourbar %s'?\n\n%s", cmd, near,

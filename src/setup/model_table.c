@@ -40,6 +40,19 @@ const char *fb_collider_name(fb_collider c) {
   return (c >= 0 && c < FB_COLLIDER_COUNT) ? names[c] : "?";
 }
 
+const char *fb_lengths_name(fb_lengths_kind k) {
+  return k == FB_LENGTHS_NOMINAL ? "nominal" : k == FB_LENGTHS_STACKUP ? "stackup" : "?";
+}
+
+const char *fb_joint_set_name(fb_joint_set j) {
+  return j == FB_JOINTS_IDEAL ? "ideal" : j == FB_JOINTS_CLEARANCE ? "clearance" : "?";
+}
+
+const char *fb_model_law_name(fb_model_law l) {
+  static const char *const names[FB_MODEL_LAW_COUNT] = {"none", "impact", "restitution"};
+  return (l >= 0 && l < FB_MODEL_LAW_COUNT) ? names[l] : "?";
+}
+
 int fb_engine_steps_world(fb_engine_id e) {
   return e > FB_ENGINE_REFERENCE && e < FB_ENGINE_COUNT;
 }

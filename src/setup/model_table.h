@@ -103,6 +103,16 @@ typedef struct {
 /* "none", "exact", "faceted", "ccd", "native". */
 const char *fb_collider_name(fb_collider c);
 
+/* "nominal", "stackup": the names fourbar models prints for fb_lengths_kind. */
+const char *fb_lengths_name(fb_lengths_kind k);
+
+/* "ideal", "clearance": the names fourbar models prints for fb_joint_set. */
+const char *fb_joint_set_name(fb_joint_set j);
+
+/* "none", "impact", "restitution": the names fourbar models prints for
+ * fb_model_law (the [clearance] law values of the same laws). */
+const char *fb_model_law_name(fb_model_law l);
+
 /* One model. */
 typedef struct fb_model {
   const char *name;        /* name in case files and outputs */

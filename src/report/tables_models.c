@@ -1,0 +1,57 @@
+/* fourbar models' output as Markdown or JSON (tables_models.h). */
+#include "tables_models.h"
+
+#include <jansson.h>
+
+#include "model_table.h"
+
+void fb_report_models_text(FILE *f) {
+  fputs("| model | engine | in this build | lengths | joints | law | collider | reference | "
+        "what it is |\n|---|---|---|---|---|---|---|---|---|\n", f);
+  for (int k = 0; k < fb_model_count; k++) {
+    const fb_model *m = &fb_models[k];
+    fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", m->name,
+            fb_engine_name(m->engine), fb_engine_available(m->engine) ? "yes" : "no",
+            fb_lengths_name(m->lengths), fb_joint_set_name(m->joints), fb_model_law_name(m->law),
+            fb_collider_name(m->collider), m->reference ? m->reference : "-", m->summary);
+  }
+  int missing = 0;
+  for (int e = 0; e < FB_ENGINE_COUNT; e++) {
+    if (fb_engine_available(e)) continue;
+    if (!missing++) fputs("\nEngines this build lacks:\n", f);
+    fprintf(f, "- %s: %s\n", fb_engine_name(e), fb_engine_howto(e));
+  }
+}
+
+static json_t *text_or_null(const char *s) { return s ? json_string(s) : json_null(); }
+
+void fb_report_models_json(FILE *f) {
+  json_t *models = json_array();
+  for (int k = 0; k < fb_model_count; k++) {
+    const fb_model *m = &fb_models[k];
+    json_t *o = json_object();
+    json_object_set_new(o, "name", json_string(m->name));
+    json_object_set_new(o, "engine", json_string(fb_engine_name(m->engine)));
+    json_object_set_new(o, "available", json_boolean(fb_engine_available(m->engine)));
+    json_object_set_new(o, "lengths", json_string(fb_lengths_name(m->lengths)));
+    json_object_set_new(o, "joints", json_string(fb_joint_set_name(m->joints)));
+    json_object_set_new(o, "law", json_string(fb_model_law_name(m->law)));
+    json_object_set_new(o, "collider", json_string(fb_collider_name(m->collider)));
+    json_object_set_new(o, "reference", text_or_null(m->reference));
+    json_object_set_new(o, "spikes_vs", text_or_null(m->spikes_vs));
+    json_object_set_new(o, "summary", json_string(m->summary));
+    json_array_append_new(models, o);
+  }
+  json_t *engines = json_array();
+  for (int e = 0; e < FB_ENGINE_COUNT; e++) {
+    const int have = fb_engine_available(e);
+    json_array_append_new(engines,
+                          json_pack("{s:s,s:b,s:b,s:o}", "name", fb_engine_name(e), "available",
+                                    have, "steps_world", fb_engine_steps_world(e), "howto",
+                                    have ? json_null() : json_string(fb_engine_howto(e))));
+  }
+  json_t *o = json_pack("{s:o,s:o}", "models", models, "engines", engines);
+  json_dumpf(o, f, JSON_INDENT(2));
+  fputc('\n', f);
+  json_decref(o);
+}

@@ -62,7 +62,7 @@ FLOORS = [
 ENGINE_DIRS = []
 # headers the build generates (build root, on every floor's path), with the
 # lowest floor that may include each
-GENERATED = {"fb_config.h": "base", "report_page.h": "report"}
+GENERATED = {"fb_config.h": "base", "fb_engine_opts.h": "model", "report_page.h": "report"}
 SOURCE_EXT = (".c", ".h", ".cpp")
 
 # A source file holds one concern; over this many lines it holds several.

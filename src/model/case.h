@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 
+#include "fb_engine_opts.h"
 #include "links.h"
 #include "status.h"
 
@@ -141,63 +142,6 @@ typedef struct {
   unsigned long seed;      /* dRandSetSeed value (QuickStep row order) */
 } fb_solver;
 
-/* Integrator of the mujoco-* models (MuJoCo's mjtIntegrator). */
-typedef enum {
-  FB_MUJOCO_EULER = 0,    /* semi-implicit Euler (mjINT_EULER) */
-  FB_MUJOCO_IMPLICIT = 1, /* implicit in velocity (mjINT_IMPLICIT) */
-  FB_MUJOCO_RK4 = 2,      /* 4th-order Runge-Kutta (mjINT_RK4) */
-  FB_MUJOCO_AUTO = 3      /* euler for ideal models, rk4 for clearance models (measured) */
-} fb_mujoco_integrator;
-
-/* "euler", "implicit", "rk4", "auto". */
-const char *fb_mujoco_integrator_name(int k);
-
-/* The hole of mujoco-clearance-native (MuJoCo's own constraint solver on the
- * clearance; docs/engines.md, "MuJoCo"). */
-typedef enum {
-  FB_MUJOCO_BORE_TENDON = 0, /* a spatial tendon from the hole's centre to the pin's, length
-                              * |e|, limited to [0, c]: one limit row along e, no facets */
-  FB_MUJOCO_BORE_FACETS = 1  /* the pin a sphere, the hole a ring of [clearance] faceted_n
-                              * boxes, collided by MuJoCo (one contact per touching box) */
-} fb_mujoco_bore;
-
-/* "tendon", "facets". */
-const char *fb_mujoco_bore_name(int k);
-
-/* MuJoCo's own choices for the mujoco-* models; engine-free (no MuJoCo header
- * needed to hold or check them). The loop closure is MuJoCo's soft equality
- * constraint in its direct form: solref = (-stiffness, -damping), solimp =
- * (impedance, impedance, 0.001, 0.5, 2). */
-typedef struct {
-  int integrator;        /* fb_mujoco_integrator */
-  double loop_stiffness; /* direct-form solref stiffness of the loop closure [1/s^2]; 0: 1/h^2 */
-  double loop_damping;   /* direct-form solref damping of the loop closure [1/s]; 0: 1/h */
-  double loop_impedance; /* solimp dmin = dmax of the loop closure [-] in (0, 1) */
-  double drive_armature; /* armature of the crank hinge (flywheel drive) [kg m^2] */
-  int native_bore;       /* fb_mujoco_bore of mujoco-clearance-native */
-} fb_mujoco_opts;
-/* Constraint solver of the bullet-* models. */
-typedef enum {
-  FB_BULLET_SEQUENTIAL_IMPULSE = 0, /* btSequentialImpulseConstraintSolver (projected Gauss-Seidel) */
-  FB_BULLET_MLCP_DANTZIG = 1        /* btMLCPSolver with btDantzigSolver (direct, pivoting) */
-} fb_bullet_solver;
-
-/* "sequential-impulse", "mlcp-dantzig". */
-const char *fb_bullet_solver_name(int k);
-
-/* Bullet's own choices for the bullet-* models; engine-free (no Bullet
- * header needed to hold or check them). */
-typedef struct {
-  int solver;     /* fb_bullet_solver */
-  int iterations; /* btContactSolverInfo::m_numIterations: sequential-impulse sweeps per step
-                     (and the fallback's when the MLCP fails) [-] in [1, 100000] */
-} fb_bullet_opts;
-
-/* Defaults: the [bullet] key rows' defaults (docs/keys.md; docs/engines.md,
- * "Bullet"), read from the case-file key table, where alone they are written
- * (defined in setup/casefile.c). */
-fb_bullet_opts fb_bullet_opts_default(void);
-
 /* Initial state of the moving bodies ([run] start; physics/start.h resolves it). */
 typedef enum {
   FB_START_STEADY = 0, /* every body on the ideal mechanism's motion at t = 0 */
@@ -231,58 +175,13 @@ typedef enum {
  * more than the whole gap, which no penalty law describes. */
 #define FB_PENALTY_VALIDITY_FACTOR 2.0
 
-/* Integrator of the simbody-* models (Simbody's error-controlled
- * integrators, simmath's Integrator classes). */
-typedef enum {
-  FB_SIMBODY_RKMERSON = 0,   /* RungeKuttaMersonIntegrator (4th order, 5 stages) */
-  FB_SIMBODY_RKFELDBERG = 1, /* RungeKuttaFeldbergIntegrator (4th/5th order, 6 stages) */
-  FB_SIMBODY_RK3 = 2,        /* RungeKutta3Integrator (3rd order) */
-  FB_SIMBODY_CPODES = 3,     /* CPodesIntegrator (BDF, Newton iteration: stiff problems) */
-  FB_SIMBODY_VERLET = 4,     /* VerletIntegrator (2nd order, error-controlled) */
-  FB_SIMBODY_INTEGRATOR_COUNT
-} fb_simbody_integrator;
-
-/* "rkmerson", "rkfeldberg", "rk3", "cpodes", "verlet" ("?" outside). */
-const char *fb_simbody_integrator_name(int k);
-
-/* Accuracy range of [simbody] accuracy (Integrator::setAccuracy): above
- * 1e-1 the error control controls nothing; below 1e-12 the error estimate
- * of the double-precision integrators is lost in round-off (the reference's
- * own floor is 1e-13 for rk8pd, an 8th-order method). */
-#define FB_SIMBODY_ACCURACY_MIN 1e-12
-#define FB_SIMBODY_ACCURACY_MAX 1e-1
-/* Default accuracy of the simbody-* models: the loosest of 1e-3 .. 1e-8 at
- * which the paper case's ideal peaks are within 1e-4 of the analytic ones
- * and the impact model's peak force and penetration within 1 % of the
- * reference (measured: docs/engines.md, "Simbody"). Simbody's own default
- * is 1e-3. */
-#define FB_SIMBODY_ACCURACY_DEFAULT 1e-6
-/* The same number as the [simbody] accuracy key row writes its default
- * ("1e-6"): the row, and so fb_simbody_opts_default, take it from here. */
-#define FB_SIMBODY_ACCURACY_DEFAULT_TEXT FB_SIMBODY_TEXT_(FB_SIMBODY_ACCURACY_DEFAULT)
-#define FB_SIMBODY_TEXT_(x) FB_SIMBODY_TEXT2_(x)
-#define FB_SIMBODY_TEXT2_(x) #x
-
-/* Simbody's own choices for the simbody-* models; engine-free. */
-typedef struct {
-  int integrator;  /* fb_simbody_integrator */
-  double accuracy; /* Integrator::setAccuracy [-] in [FB_SIMBODY_ACCURACY_MIN, _MAX] */
-} fb_simbody_opts;
-
-/* Defaults: the [simbody] key rows' defaults (docs/keys.md; accuracy
- * FB_SIMBODY_ACCURACY_DEFAULT; docs/engines.md), read from the case-file key
- * table, where alone they are written (defined in setup/casefile.c). */
-fb_simbody_opts fb_simbody_opts_default(void);
-
-/* Defaults: the [mujoco] key rows' defaults (docs/keys.md; docs/engines.md,
- * "MuJoCo"), read from the case-file key table, where alone they are written
- * (defined in setup/casefile.c). */
-fb_mujoco_opts fb_mujoco_opts_default(void);
-
-/* The integrator a MuJoCo model with these options runs: o->integrator, with
- * auto resolved to euler for an ideal mechanism (clearance_mask 0) and rk4
- * with clearance joints (measured: docs/engines.md, "MuJoCo"). */
-int fb_mujoco_integrator_resolve(const fb_mujoco_opts *o, int clearance_mask);
+/* Each engine's options default: its section's key rows' defaults
+ * (docs/keys.md; docs/engines.md), read from the case-file key table, where
+ * alone they are written (the rows: model/opts_<name>.h; defined in
+ * setup/casefile.c): fb_mujoco_opts fb_mujoco_opts_default(void), ... */
+#define X(name) fb_##name##_opts fb_##name##_opts_default(void);
+FB_ENGINE_OPTS_LIST
+#undef X
 
 /* Most variants a case may define ([variant.NAME] sections). */
 #define FB_MAX_VARIANTS 8
@@ -344,9 +243,9 @@ typedef struct fb_case_s {
   double radial_clearance;            /* radial clearance c = R_hole - R_pin [m] */
   fb_solver solver;                   /* ODE settings */
   fb_clearance clearance;             /* clearance joints and contact parameters */
-  fb_mujoco_opts mujoco;              /* MuJoCo settings of the mujoco-* models */
-  fb_bullet_opts bullet;              /* Bullet settings of the bullet-* models */
-  fb_simbody_opts simbody;            /* Simbody settings of the simbody-* models */
+#define X(name) fb_##name##_opts name; /* [name] keys: the name-* models' own settings */
+  FB_ENGINE_OPTS_LIST                 /* each engine's options (fb_engine_opts.h): mujoco, ... */
+#undef X
   struct {
     char outcome[FB_NAME_SIZE];       /* "stable", "unstable" or "" (no expectation) */
     char model[FB_NAME_SIZE];         /* model the expectation is about */

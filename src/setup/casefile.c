@@ -201,26 +201,15 @@ void fb_casefile_section_defaults(fb_case *c, const char *section) {
  * defaults below are those rows' default values read by the parser, written
  * nowhere else (test_casefile checks each field against its row). */
 
-fb_mujoco_opts fb_mujoco_opts_default(void) {
-  fb_case c;
-  memset(&c, 0, sizeof c);
-  fb_casefile_section_defaults(&c, "mujoco");
-  return c.mujoco;
-}
-
-fb_bullet_opts fb_bullet_opts_default(void) {
-  fb_case c;
-  memset(&c, 0, sizeof c);
-  fb_casefile_section_defaults(&c, "bullet");
-  return c.bullet;
-}
-
-fb_simbody_opts fb_simbody_opts_default(void) {
-  fb_case c;
-  memset(&c, 0, sizeof c);
-  fb_casefile_section_defaults(&c, "simbody");
-  return c.simbody;
-}
+#define X(name)                                    \
+  fb_##name##_opts fb_##name##_opts_default(void) { \
+    fb_case c;                                       \
+    memset(&c, 0, sizeof c);                         \
+    fb_casefile_section_defaults(&c, #name);         \
+    return c.name;                                   \
+  }
+FB_ENGINE_OPTS_LIST
+#undef X
 
 /* origin of an entry ("file:line" or "--set ..."), or NULL if absent */
 static const char *entry_origin(const load_ctx *c, const char *section, const char *key) {

@@ -34,8 +34,6 @@ typedef enum {
   K_JOINTS,    /* comma-separated joint names (bit mask) */
   K_PENALTY,   /* physical | paper | explicit */
   K_MAPPING,   /* secant | tangent | matched */
-  K_MJINT,     /* euler | implicit | rk4 | auto */
-  K_MJBORE,    /* tendon | facets */
   K_START,     /* steady | rest */
   K_PINSTART,  /* centred | resting | an eccentricity angle in degrees */
   K_PEAKS,     /* steady | all */
@@ -44,8 +42,8 @@ typedef enum {
   K_UNUSED,    /* a number checked against its range and not stored (no model uses it) */
   K_COLLIDER,  /* exact | faceted | ccd */
   K_BORE,      /* circle | ellipse */
-  K_BTSOLVER   /* sequential-impulse | mlcp-dantzig */,
-  K_SBINT      /* rkmerson | rkfeldberg | rk3 | cpodes | verlet */
+  K_WORDS      /* one of the row's words (an engine's option: fb_casefile_spec_words),
+                  stored as its index in an int */
 } key_kind;
 
 typedef struct {
@@ -82,6 +80,10 @@ const key_spec *fb_casefile_spec_find(const char *section, const char *key);
 /* The index of key [section] key in the table (its slot in fb_case.given),
  * or -1 when the table has none. */
 int fb_casefile_spec_index(const char *section, const char *key);
+
+/* The words of K_WORDS row k (NULL-terminated, the i-th stored as i: an
+ * engine's option, model/opts_<name>.h), or NULL for any other row. */
+const char *const *fb_casefile_spec_words(const key_spec *k);
 
 /* 1 when some key of the table is in [section], else 0. */
 int fb_casefile_section_known(const char *section);

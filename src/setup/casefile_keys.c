@@ -71,6 +71,13 @@
   PUBLISHED_KEY(sec, law, nm, follower, alpha_max, "rad_s2", "rad/s^2"),                    \
   PUBLISHED_KEY(sec, law, nm, follower, alpha_min, "rad_s2", "rad/s^2")
 
+/* one row of an engine's own section (model/opts_<name>.h: ROW(section,
+ * kind, key, field, words, scale, lo, hi, lo_open, hi_open, unit, default,
+ * rule, meaning)); its words, if any, go to engine_words below */
+#define ENGINE_ROW(sec, kind, key, field, words, scale, lo, hi, lo_open, hi_open, unit, def,  \
+                   rule, doc)                                                                  \
+  {#sec, key, K_##kind, OFF(sec.field), scale, lo, hi, lo_open, hi_open, unit, def, rule, doc},
+
 static const key_spec keys[] = {
     {"case", "name", K_NAME, OFF(name), 0, 0, 0, 0, 0, "-", "case", "letters, digits, - _ .",
      "case name; run output goes to results/<name>/"},
@@ -268,53 +275,10 @@ static const key_spec keys[] = {
     {"solver", "seed", K_ULONG, OFF(solver.seed), 0, 0, 0, 0, 0, "-", "1",
      "a non-negative integer", "seed of ODE's random generator (dRandSetSeed)"},
 
-    {"mujoco", "integrator", K_MJINT, OFF(mujoco.integrator), 0, 0, 0, 0, 0, "-", "auto",
-     "euler, implicit, rk4 or auto",
-     "integrator of the mujoco-* models (MuJoCo's option integrator); auto: euler for the "
-     "ideal models, rk4 for the clearance models (the most accurate of the three for each, "
-     "measured at h = 1e-5 s; see docs/engines.md)"},
-    {"mujoco", "loop_stiffness_1_s2", K_DOUBLE, OFF(mujoco.loop_stiffness), 1.0, 0, INF, 0, 1,
-     "1/s^2", "0", "the stiffness must be >= 0",
-     "loop closure (the connect equality at the coupler-follower joint): MuJoCo's direct-form "
-     "solref stiffness (mass-normalised); 0: 1/h^2, which with euler removes a violation in "
-     "one step"},
-    {"mujoco", "loop_damping_1_s", K_DOUBLE, OFF(mujoco.loop_damping), 1.0, 0, INF, 0, 1, "1/s",
-     "0", "the damping must be >= 0",
-     "loop closure: MuJoCo's direct-form solref damping; 0: 1/h"},
-    {"mujoco", "loop_impedance", K_DOUBLE, OFF(mujoco.loop_impedance), 1.0, 0, 1, 1, 1, "-",
-     "0.9999", "the impedance must lie in (0, 1)",
-     "loop closure: MuJoCo's solimp dmin = dmax (how much of the reference acceleration the "
-     "constraint enforces; 1 would be rigid)"},
-    {"mujoco", "drive_armature_kg_m2", K_DOUBLE, OFF(mujoco.drive_armature), 1.0, 0, INF, 1, 1,
-     "kg m^2", "1e6", "the armature must be positive",
-     "armature of the crank hinge: the crank is a flywheel set to the crank speed at t = 0, "
-     "so the reaction torques barely change its speed (the crank-angle error is reported)"},
-    {"mujoco", "native_bore", K_MJBORE, OFF(mujoco.native_bore), 0, 0, 0, 0, 0, "-", "tendon",
-     "tendon or facets",
-     "the hole of mujoco-clearance-native, solved by MuJoCo's constraint solver: tendon, a "
-     "spatial tendon from the hole's centre to the pin's limited to the radial clearance (one "
-     "limit row along the eccentricity); facets, a sphere pin in a ring of [clearance] "
-     "faceted_n boxes (one contact per touching box; see docs/engines.md)"},
-
-    {"bullet", "solver", K_BTSOLVER, OFF(bullet.solver), 0, 0, 0, 0, 0, "-", "mlcp-dantzig",
-     "sequential-impulse or mlcp-dantzig",
-     "constraint solver of the bullet-* models: btSequentialImpulseConstraintSolver "
-     "(iterative) or btMLCPSolver with btDantzigSolver (direct; the default, which reaches the "
-     "analytic solution to 1e-4: docs/engines.md)"},
-    {"bullet", "iterations", K_INT, OFF(bullet.iterations), 0, 1, 100000, 0, 0, "-", "100",
-     "iterations must be 1 to 100000",
-     "sequential-impulse sweeps per step of the bullet-* models (btContactSolverInfo "
-     "m_numIterations; also the MLCP's fallback)"},
-    {"simbody", "integrator", K_SBINT, OFF(simbody.integrator), 0, 0, 0, 0, 0, "-", "rkmerson",
-     "rkmerson, rkfeldberg, rk3, cpodes or verlet",
-     "integrator of the simbody-* models: Simbody's RungeKuttaMerson, RungeKuttaFeldberg, "
-     "RungeKutta3, CPodes (BDF, for stiff problems) or Verlet integrator, each with its own "
-     "error control (docs/engines.md)"},
-    {"simbody", "accuracy", K_DOUBLE, OFF(simbody.accuracy), 1.0, FB_SIMBODY_ACCURACY_MIN,
-     FB_SIMBODY_ACCURACY_MAX, 0, 0, "-", FB_SIMBODY_ACCURACY_DEFAULT_TEXT,
-     "the accuracy must lie in [1e-12, 0.1]",
-     "the simbody-* models' integrator accuracy (Integrator::setAccuracy, a relative error "
-     "per step); the output is sampled every h whatever the internal steps are"},
+    /* each engine's own section, in engine order (model/opts_<name>.h) */
+#define X(name) FB_OPTS_KEYS_##name(ENGINE_ROW)
+    FB_ENGINE_OPTS_LIST
+#undef X
 
     {"published", "source", K_STRING, OFF(published_source), 0, 0, 0, 0, 0, "-", "(none)",
      "free text, at most 159 characters",
@@ -393,6 +357,25 @@ const key_spec *fb_casefile_spec(int i) { return i >= 0 && i < NKEYS ? &keys[i] 
 
 const key_spec *fb_casefile_spec_find(const char *section, const char *key) {
   return fb_casefile_spec(fb_casefile_spec_index(section, key));
+}
+
+/* the words of every K_WORDS row of the engines' sections, by section and key */
+typedef struct {
+  const char *section, *key;
+  const char *const *words;
+} engine_words_row;
+#define ENGINE_WORDS(sec, kind, key, field, words, ...) {#sec, key, words},
+static const engine_words_row engine_words[] = {
+#define X(name) FB_OPTS_KEYS_##name(ENGINE_WORDS)
+    FB_ENGINE_OPTS_LIST
+#undef X
+    {NULL, NULL, NULL}};
+
+const char *const *fb_casefile_spec_words(const key_spec *k) {
+  if (k->kind != K_WORDS) return NULL;
+  for (const engine_words_row *w = engine_words; w->section; w++)
+    if (strcmp(w->section, k->section) == 0 && strcmp(w->key, k->key) == 0) return w->words;
+  return NULL;
 }
 
 int fb_casefile_section_known(const char *section) {

@@ -295,30 +295,14 @@ static fb_status apply_word(const entry *e, const key_spec *k, void *field, fb_d
       else if (strcmp(e->value, "goldsmith") == 0) *(fb_penalty_source *)field = FB_PENALTY_SOURCE_GOLDSMITH;
       else return bad_word(e, k, diag);
       return FB_OK;
-    case K_MJINT:
-      if (strcmp(e->value, "euler") == 0) *(int *)field = FB_MUJOCO_EULER;
-      else if (strcmp(e->value, "implicit") == 0) *(int *)field = FB_MUJOCO_IMPLICIT;
-      else if (strcmp(e->value, "rk4") == 0) *(int *)field = FB_MUJOCO_RK4;
-      else if (strcmp(e->value, "auto") == 0) *(int *)field = FB_MUJOCO_AUTO;
-      else return bad_word(e, k, diag);
-      return FB_OK;
-    case K_MJBORE:
-      if (strcmp(e->value, "tendon") == 0) *(int *)field = FB_MUJOCO_BORE_TENDON;
-      else if (strcmp(e->value, "facets") == 0) *(int *)field = FB_MUJOCO_BORE_FACETS;
-      else return bad_word(e, k, diag);
-      return FB_OK;
-    case K_BTSOLVER:
-      if (strcmp(e->value, "sequential-impulse") == 0) *(int *)field = FB_BULLET_SEQUENTIAL_IMPULSE;
-      else if (strcmp(e->value, "mlcp-dantzig") == 0) *(int *)field = FB_BULLET_MLCP_DANTZIG;
-      else return bad_word(e, k, diag);
-      return FB_OK;
-    case K_SBINT: {
-      int found = -1;
-      for (int i = 0; i < FB_SIMBODY_INTEGRATOR_COUNT; i++)
-        if (strcmp(e->value, fb_simbody_integrator_name(i)) == 0) found = i;
-      if (found < 0) return bad_word(e, k, diag);
-      *(int *)field = found;
-      return FB_OK;
+    case K_WORDS: {
+      const char *const *words = fb_casefile_spec_words(k);
+      for (int i = 0; words && words[i]; i++)
+        if (strcmp(e->value, words[i]) == 0) {
+          *(int *)field = i;
+          return FB_OK;
+        }
+      return bad_word(e, k, diag);
     }
     case K_COLLIDER:
       if (strcmp(e->value, "exact") == 0) *(fb_case_collider *)field = FB_CASE_COLLIDER_EXACT;

@@ -20,9 +20,9 @@ void fb_scene_default(fb_scene *def) {
   memset(def, 0, sizeof *def);
   def->case_collider = FB_COLLIDER_EXACT;
   def->impact_velocity_min = IMPACT_VELOCITY_MIN_M_S;
-  def->mujoco = fb_mujoco_opts_default();
-  def->bullet = fb_bullet_opts_default();
-  def->simbody = fb_simbody_opts_default();
+#define X(name) def->name = fb_##name##_opts_default();
+  FB_ENGINE_OPTS_LIST
+#undef X
 }
 
 /* assembles both linkages at crank_angle0, omega2 (a moved start) */
@@ -87,9 +87,9 @@ fb_status fb_scene_from_case(fb_scene *def, const fb_case *c, fb_diag *diag) {
   def->case_collider = fb_case_collider_of(r);
   def->crank_angle0 = r->crank_angle0;
   def->omega2 = fb_case_omega2(r);
-  def->mujoco = r->mujoco;
-  def->bullet = r->bullet;
-  def->simbody = r->simbody;
+#define X(name) def->name = r->name;
+  FB_ENGINE_OPTS_LIST
+#undef X
   /* the laws the listed models use, with the penalty the run uses: the
    * inverse-dynamics reactions are solved once for all of them; the start
    * of every lengths and joint set a listed model uses */
@@ -207,38 +207,13 @@ fb_status fb_scene_check(const fb_scene *def, fb_diag *diag) {
   if (!(def->settle_damping >= 0.0 && def->settle_damping < 1.0))
     return fb_diag_set(diag, FB_ERR_RANGE, "scene: settle_damping = %g: must be in [0, 1)",
                        def->settle_damping);
-  const fb_mujoco_opts *mj = &def->mujoco;
-  if (mj->integrator < FB_MUJOCO_EULER || mj->integrator > FB_MUJOCO_AUTO)
-    return fb_diag_set(diag, FB_ERR_RANGE, "scene: mujoco.integrator = %d: not a known integrator",
-                       mj->integrator);
-  if (!(mj->loop_stiffness >= 0.0 && isfinite(mj->loop_stiffness)) ||
-      !(mj->loop_damping >= 0.0 && isfinite(mj->loop_damping)))
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "scene: mujoco loop stiffness %g 1/s^2, damping %g 1/s: must be finite "
-                       "and >= 0 (0: 1/h^2 and 1/h)",
-                       mj->loop_stiffness, mj->loop_damping);
-  if (!(mj->loop_impedance > 0.0 && mj->loop_impedance < 1.0))
-    return fb_diag_set(diag, FB_ERR_RANGE, "scene: mujoco.loop_impedance = %g: must lie in (0, 1)",
-                       mj->loop_impedance);
-  if (!(mj->drive_armature > 0.0 && isfinite(mj->drive_armature)))
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "scene: mujoco.drive_armature = %g kg m^2: must be positive and finite",
-                       mj->drive_armature);
-  const fb_bullet_opts *bt = &def->bullet;
-  if (bt->solver < FB_BULLET_SEQUENTIAL_IMPULSE || bt->solver > FB_BULLET_MLCP_DANTZIG)
-    return fb_diag_set(diag, FB_ERR_RANGE, "scene: bullet.solver = %d: not a known solver",
-                       bt->solver);
-  if (bt->iterations < 1 || bt->iterations > 100000)
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "scene: bullet.iterations = %d: iterations must be 1 to 100000",
-                       bt->iterations);
-  const fb_simbody_opts *sb = &def->simbody;
-  if (sb->integrator < 0 || sb->integrator >= FB_SIMBODY_INTEGRATOR_COUNT)
-    return fb_diag_set(diag, FB_ERR_RANGE, "scene: simbody.integrator = %d: not a known integrator",
-                       sb->integrator);
-  if (!(sb->accuracy >= FB_SIMBODY_ACCURACY_MIN && sb->accuracy <= FB_SIMBODY_ACCURACY_MAX))
-    return fb_diag_set(diag, FB_ERR_RANGE, "scene: simbody.accuracy = %g: must lie in [%g, %g]",
-                       sb->accuracy, FB_SIMBODY_ACCURACY_MIN, FB_SIMBODY_ACCURACY_MAX);
+#define X(name)                                                \
+  {                                                            \
+    const fb_status opts_st = fb_##name##_opts_check(&def->name, diag); \
+    if (opts_st != FB_OK) return opts_st;                      \
+  }
+  FB_ENGINE_OPTS_LIST
+#undef X
   return FB_OK;
 }
 
@@ -250,9 +225,10 @@ fb_status fb_scene_select(fb_model_scene *out, const fb_scene *def, const fb_mod
   out->lengths = def->lengths[m->lengths];
   out->start = def->start[m->lengths][m->joints];
   out->start_given = def->start_given;
-  out->mujoco = def->mujoco;
-  out->bullet = def->bullet;
-  out->simbody = def->simbody;
+#define X(name) out->name = def->name;
+  FB_ENGINE_OPTS_LIST
+#undef X
+  out->clearance = &def->source.clearance;
   out->branch = def->branch;
   out->crank_angle0 = def->crank_angle0;
   out->omega2 = def->omega2;

@@ -56,9 +56,9 @@ typedef struct {
   int ccd_split;                  /* libccd: 0 depth-weighted split of the law, 1 by contact count */
   double settle_damping;          /* body velocity damping per step [-] for static settling
                                      tests; 0 in every model */
-  fb_mujoco_opts mujoco;          /* MuJoCo's own choices (integrator, loop closure, drive) */
-  fb_bullet_opts bullet;          /* Bullet's own choices (solver, iterations) */
-  fb_simbody_opts simbody;        /* Simbody's own choices (integrator, accuracy) */
+#define X(name) fb_##name##_opts name; /* the case's [name] options (model/opts_name.h) */
+  FB_ENGINE_OPTS_LIST             /* each engine's own choices: mujoco, bullet, simbody, ... */
+#undef X
   fb_case source;                 /* the case as resolved (worst corner set), for engines
                                      that take a case (reference.h) */
 } fb_scene;
@@ -96,9 +96,12 @@ typedef struct {
   int ccd_split;                  /* libccd only: 0 depth-weighted split of the law (default),
                                      1 the faceted model's split by contact count */
   double settle_damping;          /* body velocity damping per step [-]; 0 in every model */
-  fb_mujoco_opts mujoco;          /* MuJoCo's own choices (mujoco-* models) */
-  fb_bullet_opts bullet;          /* Bullet's own choices (bullet-* models) */
-  fb_simbody_opts simbody;        /* Simbody's own choices (simbody-* models) */
+#define X(name) fb_##name##_opts name; /* def's [name] options (name-* models) */
+  FB_ENGINE_OPTS_LIST             /* each engine's own choices: mujoco, bullet, simbody, ... */
+#undef X
+  const fb_clearance *clearance;  /* the case's [clearance] section as resolved
+                                     (&def->source.clearance): a new [clearance] key is read
+                                     here, not copied; any other section is def->source's */
 } fb_model_scene;
 
 /* The state at t = 0 of model sm: sm->start when the case's start holds
@@ -125,11 +128,12 @@ fb_status fb_scene_set_start(fb_scene *def, double theta0, double omega2, fb_dia
 /* Checks every field: lengths valid (and assembled at crank_angle0 when the
  * start was moved), masses
  * and inertias positive, step size positive and below the duration, solver
- * ERP in [0, 1], CFM >= 0, MuJoCo's integrator known, loop stiffness and
- * damping >= 0, loop impedance in (0, 1), drive armature > 0, clearance
- * smaller than the pin radius, each
+ * ERP in [0, 1], CFM >= 0, clearance smaller than the pin radius, each
  * resolved law valid (contact.h), penetration limit positive, faceted_n >= 3
- * when the faceted collider is used. Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY
+ * when the faceted collider is used, each engine's options
+ * (fb_<name>_opts_check: MuJoCo's integrator known, loop stiffness and
+ * damping >= 0, loop impedance in (0, 1), drive armature > 0; Bullet's and
+ * Simbody's likewise). Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY
  * naming the field, its value and the rule. */
 fb_status fb_scene_check(const fb_scene *def, fb_diag *diag);
 

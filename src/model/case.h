@@ -67,7 +67,8 @@ typedef enum {
                           landing on the output grid of step h = h_min (ode/adaptive.h) */
 } fb_step_mode;
 
-/* The four revolute joints, in loop order. */
+/* The four revolute joints, in loop order: indices into the four-bar's
+ * joint list (mechanism.h fb_mech_fourbar). */
 typedef enum {
   FB_JOINT_A = 0, /* ground-crank (driven) */
   FB_JOINT_B = 1, /* crank-coupler */
@@ -75,7 +76,9 @@ typedef enum {
   FB_JOINT_D = 3  /* follower-ground */
 } fb_joint;
 
-/* "ground-crank", "crank-coupler", "coupler-follower", "follower-ground". */
+/* Name of the four-bar's joint j, from its description (mechanism.h):
+ * "ground-crank", "crank-coupler", "coupler-follower", "follower-ground";
+ * "?" for any other j. */
 const char *fb_joint_name(int j);
 
 /* Where the penalty stiffness of the clearance models comes from. */

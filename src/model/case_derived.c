@@ -8,11 +8,9 @@
 
 #include <math.h>
 
-const char *fb_joint_name(int j) {
-  static const char *const names[4] = {"ground-crank", "crank-coupler", "coupler-follower",
-                                       "follower-ground"};
-  return (j >= 0 && j < 4) ? names[j] : "?";
-}
+#include "mechanism.h"
+
+const char *fb_joint_name(int j) { return fb_mech_joint_name(&fb_mech_fourbar, j); }
 
 const char *fb_value_source_name(int s) {
   static const char *const names[3] = {"case", "derived", "default"};

@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "links.h"
+#include "mechanism.h"
 #include "status.h"
 
 #define FB_NAME_SIZE 64
@@ -400,6 +401,10 @@ void fb_case_default(fb_case *c);
  * model table (model_table.h) and has the clearance joints it needs.
  * Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY, FB_ERR_ARG with the rule in diag. */
 fb_status fb_case_check(const fb_case *c, fb_diag *diag);
+
+/* The mechanism the case describes (mechanism.h): the four-bar, the only
+ * one today; the place a case's [linkage] type will choose another. */
+const fb_mech_desc *fb_case_mech(const fb_case *c);
 
 /* Signed crank speed omega2 [rad/s]: negative for a clockwise crank. */
 double fb_case_omega2(const fb_case *c);

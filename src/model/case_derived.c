@@ -8,9 +8,12 @@
 
 #include <math.h>
 
-#include "mechanism.h"
-
 const char *fb_joint_name(int j) { return fb_mech_joint_name(&fb_mech_fourbar, j); }
+
+const fb_mech_desc *fb_case_mech(const fb_case *c) {
+  (void)c;
+  return &fb_mech_fourbar;
+}
 
 const char *fb_value_source_name(int s) {
   static const char *const names[3] = {"case", "derived", "default"};

@@ -71,6 +71,19 @@ typedef struct {
  * FB_JOINT_A.. FB_JOINT_D. */
 extern const fb_mech_desc fb_mech_fourbar;
 
+/* Members of type T per output body, as an array body[output] in the
+ * description's output order and, over the same storage, the four-bar's
+ * names for them (coupler, follower). Code that serves any mechanism reads
+ * the array; the names are the four-bar's alone. */
+#define FB_MECH_OUTPUT_MEMBERS(T)        \
+  union {                                \
+    T body[FB_MECH_MAX_OUTPUTS];         \
+    __extension__ struct {               \
+      T coupler;                         \
+      T follower;                        \
+    };                                   \
+  }
+
 /* The output bodies' indices in body order into out (FB_MECH_MAX_OUTPUTS);
  * returns their number. */
 int fb_mech_outputs(const fb_mech_desc *m, int out[FB_MECH_MAX_OUTPUTS]);

@@ -30,6 +30,8 @@ static size_t output_count(const fb_series *s) {
   return (size_t)fb_mech_outputs(mech_of(s), out);
 }
 
+int fb_series_output_count(const fb_series *s) { return (int)output_count(s); }
+
 static size_t kinematic_count(const fb_series *s) { return 2 + 3 * output_count(s); }
 
 /* the array of kinematic column k (< kinematic_count) */

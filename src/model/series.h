@@ -98,6 +98,9 @@ fb_status fb_series_init(fb_series *s, size_t cap);
  * Samples held are not changed. */
 void fb_series_touch(fb_series *s);
 
+/* Number of output bodies of the series' mechanism (the body[] rows held). */
+int fb_series_output_count(const fb_series *s);
+
 /* Appends one sample, growing the arrays when full. Errors: FB_ERR_NOMEM. */
 fb_status fb_series_push(fb_series *s, const fb_sample *x);
 

@@ -9,6 +9,7 @@
 
 #include "fb_engine_opts.h"
 #include "links.h"
+#include "mechanism.h"
 #include "status.h"
 
 #define FB_NAME_SIZE 64
@@ -68,7 +69,8 @@ typedef enum {
                           landing on the output grid of step h = h_min (ode/adaptive.h) */
 } fb_step_mode;
 
-/* The four revolute joints, in loop order. */
+/* The four revolute joints, in loop order: indices into the four-bar's
+ * joint list (mechanism.h fb_mech_fourbar). */
 typedef enum {
   FB_JOINT_A = 0, /* ground-crank (driven) */
   FB_JOINT_B = 1, /* crank-coupler */
@@ -76,7 +78,9 @@ typedef enum {
   FB_JOINT_D = 3  /* follower-ground */
 } fb_joint;
 
-/* "ground-crank", "crank-coupler", "coupler-follower", "follower-ground". */
+/* Name of the four-bar's joint j, from its description (mechanism.h):
+ * "ground-crank", "crank-coupler", "coupler-follower", "follower-ground";
+ * "?" for any other j. */
 const char *fb_joint_name(int j);
 
 /* Where the penalty stiffness of the clearance models comes from. */
@@ -296,6 +300,10 @@ void fb_case_default(fb_case *c);
  * model table (model_table.h) and has the clearance joints it needs.
  * Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY, FB_ERR_ARG with the rule in diag. */
 fb_status fb_case_check(const fb_case *c, fb_diag *diag);
+
+/* The mechanism the case describes (mechanism.h): the four-bar, the only
+ * one today; the place a case's [linkage] type will choose another. */
+const fb_mech_desc *fb_case_mech(const fb_case *c);
 
 /* Signed crank speed omega2 [rad/s]: negative for a clockwise crank. */
 double fb_case_omega2(const fb_case *c);

@@ -9,10 +9,11 @@
 
 #include <math.h>
 
-const char *fb_joint_name(int j) {
-  static const char *const names[4] = {"ground-crank", "crank-coupler", "coupler-follower",
-                                       "follower-ground"};
-  return (j >= 0 && j < 4) ? names[j] : "?";
+const char *fb_joint_name(int j) { return fb_mech_joint_name(&fb_mech_fourbar, j); }
+
+const fb_mech_desc *fb_case_mech(const fb_case *c) {
+  (void)c;
+  return &fb_mech_fourbar;
 }
 
 const char *fb_value_source_name(int s) {

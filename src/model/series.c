@@ -1,27 +1,44 @@
+/* The series' storage and columns (series.h): one arena of column arrays,
+ * the column list and names generated from the series' mechanism
+ * description, and the in-place passes over the columns (peak refinement,
+ * attribution to the step start). */
 #include "series.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
 
-#include "case.h"
+/* the output bodies' values: the array and the four-bar's names share storage */
+_Static_assert(offsetof(fb_sample, follower_alpha) ==
+                   offsetof(fb_sample, body) + (3 * FB_MECH_MAX_OUTPUTS - 1) * sizeof(double),
+               "fb_sample: the four-bar's names alias body[][]");
+_Static_assert(offsetof(fb_series, follower_alpha) ==
+                   offsetof(fb_series, body) + (3 * FB_MECH_MAX_OUTPUTS - 1) * sizeof(double *),
+               "fb_series: the four-bar's names alias body[][]");
 
-static const char *const column_names[] = {
-#define FB_SERIES_NAME(name, col) col,
-    FB_SERIES_COLUMNS(FB_SERIES_NAME)
-#undef FB_SERIES_NAME
-};
+/* kinematic columns: time, the input body's angle, 3 per output body */
+#define FB_KINEMATIC_SLOTS (2 + 3 * FB_MECH_MAX_OUTPUTS)
 
-#define FB_NCOLUMNS (sizeof column_names / sizeof column_names[0])
+/* the series' mechanism; a series never initialised holds the four-bar's */
+static const fb_mech_desc *mech_of(const fb_series *s) { return s->mech ? s->mech : &fb_mech_fourbar; }
 
-static double **columns(fb_series *s, double **cols) {
-  size_t k = 0;
-#define FB_SERIES_PTR(name, col) cols[k++] = s->name;
-  FB_SERIES_COLUMNS(FB_SERIES_PTR)
-#undef FB_SERIES_PTR
-  return cols;
+static size_t output_count(const fb_series *s) {
+  int out[FB_MECH_MAX_OUTPUTS];
+  return (size_t)fb_mech_outputs(mech_of(s), out);
+}
+
+int fb_series_output_count(const fb_series *s) { return (int)output_count(s); }
+
+static size_t kinematic_count(const fb_series *s) { return 2 + 3 * output_count(s); }
+
+/* the array of kinematic column k (< kinematic_count) */
+static double *kinematic(const fb_series *s, size_t k) {
+  if (k == 0) return s->t;
+  if (k == 1) return s->crank_angle;
+  return s->body[(k - 2) / 3][(k - 2) % 3];
 }
 
 /* Column storage: every column a series can hold (the kinematic ones, 4 x
@@ -37,8 +54,8 @@ static double **columns(fb_series *s, double **cols) {
  * columns' pages before its first step (fb_series_touch): the first write to
  * a page costs what the machine makes it cost (series.h). */
 /* the load arrays: drive torque, then x and y of each joint's reaction */
-#define FB_LOAD_ARRAYS (1 + 4 * 2)
-#define FB_SERIES_SLOTS (FB_NCOLUMNS + 4 * FB_CONTACT_COLS + FB_LOAD_ARRAYS)
+#define FB_LOAD_ARRAYS (1 + FB_MECH_MAX_JOINTS * 2)
+#define FB_SERIES_SLOTS (FB_KINEMATIC_SLOTS + FB_MECH_MAX_JOINTS * FB_CONTACT_COLS + FB_LOAD_ARRAYS)
 #define FB_SERIES_HUGE_PAGE ((size_t)2 << 20)
 
 static double *arena_map(size_t cap, size_t *bytes) {
@@ -56,13 +73,14 @@ static double *arena_map(size_t cap, size_t *bytes) {
 /* the column pointers of every slot, in arena order */
 static int slots(fb_series *s, double ***out) {
   int k = 0;
-#define FB_SERIES_SLOT(name, col) out[k++] = &s->name;
-  FB_SERIES_COLUMNS(FB_SERIES_SLOT)
-#undef FB_SERIES_SLOT
-  for (int j = 0; j < 4; j++)
+  out[k++] = &s->t;
+  out[k++] = &s->crank_angle;
+  for (int b = 0; b < FB_MECH_MAX_OUTPUTS; b++)
+    for (int q = 0; q < 3; q++) out[k++] = &s->body[b][q];
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
     for (int q = 0; q < FB_CONTACT_COLS; q++) out[k++] = &s->contact[j][q];
   out[k++] = &s->drive_torque;
-  for (int j = 0; j < 4; j++)
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
     for (int c = 0; c < 2; c++) out[k++] = &s->reaction[j][c];
   return k;
 }
@@ -102,9 +120,11 @@ fb_status fb_series_init(fb_series *s, size_t cap) {
   s->arena = arena_map(cap, &s->arena_bytes);
   if (!s->arena) return FB_ERR_NOMEM;
   s->cap = cap;
-#define FB_SERIES_ALLOC(name, col) s->name = slot(s, &s->name);
-  FB_SERIES_COLUMNS(FB_SERIES_ALLOC)
-#undef FB_SERIES_ALLOC
+  s->mech = &fb_mech_fourbar;
+  s->t = slot(s, &s->t);
+  s->crank_angle = slot(s, &s->crank_angle);
+  for (size_t b = 0; b < output_count(s); b++)
+    for (int q = 0; q < 3; q++) s->body[b][q] = slot(s, &s->body[b][q]);
   return FB_OK;
 }
 
@@ -112,7 +132,7 @@ static const char *const contact_suffix[FB_CONTACT_COLS] = {"force_n", "penetrat
                                                             "ecc_x_m", "ecc_y_m", "state"};
 
 fb_status fb_series_enable_contact(fb_series *s, int mask) {
-  for (int j = 0; j < 4; j++) {
+  for (int j = 0; j < mech_of(s)->njoints; j++) {
     if (!(mask & (1 << j))) continue;
     for (int q = 0; q < FB_CONTACT_COLS; q++) {
       s->contact[j][q] = slot(s, &s->contact[j][q]); /* zero: a fresh mapping */
@@ -123,12 +143,12 @@ fb_status fb_series_enable_contact(fb_series *s, int mask) {
   return FB_OK;
 }
 
-/* the load arrays, drive torque first (1 + 4 x 2) */
+/* the load arrays, drive torque first (1 + njoints x 2) */
 static int load_arrays(fb_series *s, double ***out) {
   out[0] = &s->drive_torque;
-  for (int j = 0; j < 4; j++)
+  for (int j = 0; j < mech_of(s)->njoints; j++)
     for (int c = 0; c < 2; c++) out[1 + 2 * j + c] = &s->reaction[j][c];
-  return FB_LOAD_ARRAYS;
+  return 1 + 2 * mech_of(s)->njoints;
 }
 
 fb_status fb_series_enable_loads(fb_series *s) {
@@ -147,15 +167,17 @@ fb_status fb_series_push(fb_series *s, const fb_sample *x) {
     fb_status st = arena_grow(s, s->cap ? 2 * s->cap : 16);
     if (st != FB_OK) return st;
   }
-#define FB_SERIES_SET(name, col) s->name[s->n] = x->name;
-  FB_SERIES_COLUMNS(FB_SERIES_SET)
-#undef FB_SERIES_SET
-  for (int j = 0; j < 4; j++)
+  const int nj = mech_of(s)->njoints;
+  s->t[s->n] = x->t;
+  s->crank_angle[s->n] = x->crank_angle;
+  for (size_t b = 0; b < output_count(s); b++)
+    for (int q = 0; q < 3; q++) s->body[b][q][s->n] = x->body[b][q];
+  for (int j = 0; j < nj; j++)
     if (s->contact_mask & (1 << j))
       for (int q = 0; q < FB_CONTACT_COLS; q++) s->contact[j][q][s->n] = x->contact[j][q];
   if (s->has_loads) {
     s->drive_torque[s->n] = x->drive_torque;
-    for (int j = 0; j < 4; j++)
+    for (int j = 0; j < nj; j++)
       for (int c = 0; c < 2; c++) s->reaction[j][c][s->n] = x->reaction[j][c];
   }
   s->n++;
@@ -163,14 +185,15 @@ fb_status fb_series_push(fb_series *s, const fb_sample *x) {
 }
 
 void fb_series_get(const fb_series *s, size_t i, fb_sample *x) {
-#define FB_SERIES_GET(name, col) x->name = s->name[i];
-  FB_SERIES_COLUMNS(FB_SERIES_GET)
-#undef FB_SERIES_GET
-  for (int j = 0; j < 4; j++)
+  x->t = s->t[i];
+  x->crank_angle = s->crank_angle[i];
+  for (int b = 0; b < FB_MECH_MAX_OUTPUTS; b++)
+    for (int q = 0; q < 3; q++) x->body[b][q] = s->body[b][q] ? s->body[b][q][i] : 0.0;
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
     for (int q = 0; q < FB_CONTACT_COLS; q++)
       x->contact[j][q] = (s->contact_mask & (1 << j)) ? s->contact[j][q][i] : 0.0;
   x->drive_torque = s->has_loads ? s->drive_torque[i] : 0.0;
-  for (int j = 0; j < 4; j++)
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
     for (int c = 0; c < 2; c++) x->reaction[j][c] = s->has_loads ? s->reaction[j][c][i] : 0.0;
 }
 
@@ -192,14 +215,14 @@ void fb_series_free(fb_series *s) {
 
 static int enabled_count(const fb_series *s) {
   int n = 0;
-  for (int j = 0; j < 4; j++) n += (s->contact_mask >> j) & 1;
+  for (int j = 0; j < mech_of(s)->njoints; j++) n += (s->contact_mask >> j) & 1;
   return n;
 }
 
 /* joint and contact column of extra column x (0-based after the kinematic ones) */
 static void contact_column(const fb_series *s, size_t x, int *joint, int *col) {
   int seen = 0;
-  for (int j = 0; j < 4; j++) {
+  for (int j = 0; j < mech_of(s)->njoints; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
     if (x < (size_t)(seen + 1) * FB_CONTACT_COLS) {
       *joint = j;
@@ -216,71 +239,75 @@ static void contact_column(const fb_series *s, size_t x, int *joint, int *col) {
  * the load columns when held */
 static size_t contact_columns(const fb_series *s) { return (size_t)enabled_count(s) * FB_CONTACT_COLS; }
 
+/* the load columns: drive torque, then x, y and magnitude per joint */
+static size_t load_columns(const fb_series *s) { return 1 + 3 * (size_t)mech_of(s)->njoints; }
+
 size_t fb_series_column_count(const fb_series *s) {
-  return FB_NCOLUMNS + contact_columns(s) + (s->has_loads ? FB_LOAD_COLS : 0);
+  return kinematic_count(s) + contact_columns(s) + (s->has_loads ? load_columns(s) : 0);
 }
 
-static const char *joint_word(int j, char *buf, size_t size) {
-  snprintf(buf, size, "%s", fb_joint_name(j));
+static const char *joint_word(const fb_series *s, int j, char *buf, size_t size) {
+  snprintf(buf, size, "%s", fb_mech_joint_name(mech_of(s), j));
   for (char *p = buf; *p; p++)
     if (*p == '-') *p = '_';
   return buf;
 }
 
 const char *fb_series_column_name(const fb_series *s, size_t k, char *buf, size_t size) {
-  if (k < FB_NCOLUMNS) {
-    snprintf(buf, size, "%s", column_names[k]);
+  const size_t nk = kinematic_count(s);
+  if (k == 0) {
+    snprintf(buf, size, "time_s");
     return buf;
   }
+  if (k == 1) return fb_mech_body_column(mech_of(s), mech_of(s)->input, FB_Q_POS, buf, size);
+  if (k < nk) {
+    int out[FB_MECH_MAX_OUTPUTS];
+    fb_mech_outputs(mech_of(s), out);
+    return fb_mech_body_column(mech_of(s), out[(k - 2) / 3], (int)(k - 2) % 3, buf, size);
+  }
   char joint[32];
-  if (k >= FB_NCOLUMNS + contact_columns(s)) {
-    const size_t q = k - FB_NCOLUMNS - contact_columns(s);
-    if (!s->has_loads || q >= FB_LOAD_COLS) return NULL;
+  if (k >= nk + contact_columns(s)) {
+    const size_t q = k - nk - contact_columns(s);
+    if (!s->has_loads || q >= load_columns(s)) return NULL;
     static const char *const part[3] = {"reaction_x_n", "reaction_y_n", "reaction_n"};
     if (q == 0) snprintf(buf, size, "drive_torque_n_m");
-    else snprintf(buf, size, "%s_%s", joint_word((int)(q - 1) / 3, joint, sizeof joint), part[(q - 1) % 3]);
+    else snprintf(buf, size, "%s_%s", joint_word(s, (int)(q - 1) / 3, joint, sizeof joint), part[(q - 1) % 3]);
     return buf;
   }
   int j, q;
-  contact_column(s, k - FB_NCOLUMNS, &j, &q);
+  contact_column(s, k - nk, &j, &q);
   if (j < 0) return NULL;
-  snprintf(buf, size, "%s_%s", joint_word(j, joint, sizeof joint), contact_suffix[q]);
+  snprintf(buf, size, "%s_%s", joint_word(s, j, joint, sizeof joint), contact_suffix[q]);
   return buf;
 }
 
 double fb_series_value(const fb_series *s, size_t k, size_t i) {
-  if (k < FB_NCOLUMNS) {
-    double *cols[FB_NCOLUMNS];
-    columns((fb_series *)s, cols);
-    return cols[k][i];
-  }
-  if (k >= FB_NCOLUMNS + contact_columns(s)) {
-    const size_t q = k - FB_NCOLUMNS - contact_columns(s);
-    if (!s->has_loads || q >= FB_LOAD_COLS) return 0.0;
+  const size_t nk = kinematic_count(s);
+  if (k < nk) return kinematic(s, k)[i];
+  if (k >= nk + contact_columns(s)) {
+    const size_t q = k - nk - contact_columns(s);
+    if (!s->has_loads || q >= load_columns(s)) return 0.0;
     if (q == 0) return s->drive_torque[i];
     const int j = (int)(q - 1) / 3, c = (int)(q - 1) % 3;
     return c < 2 ? s->reaction[j][c][i] : hypot(s->reaction[j][0][i], s->reaction[j][1][i]);
   }
   int j, q;
-  contact_column(s, k - FB_NCOLUMNS, &j, &q);
+  contact_column(s, k - nk, &j, &q);
   return j < 0 ? 0.0 : s->contact[j][q][i];
 }
 
 const double *fb_series_column(const fb_series *s, size_t k) {
-  if (k < FB_NCOLUMNS) {
-    double *cols[FB_NCOLUMNS];
-    columns((fb_series *)s, cols);
-    return cols[k];
-  }
-  if (k >= FB_NCOLUMNS + contact_columns(s)) {
-    const size_t q = k - FB_NCOLUMNS - contact_columns(s);
-    if (!s->has_loads || q >= FB_LOAD_COLS) return NULL;
+  const size_t nk = kinematic_count(s);
+  if (k < nk) return kinematic(s, k);
+  if (k >= nk + contact_columns(s)) {
+    const size_t q = k - nk - contact_columns(s);
+    if (!s->has_loads || q >= load_columns(s)) return NULL;
     if (q == 0) return s->drive_torque;
     const int j = (int)(q - 1) / 3, c = (int)(q - 1) % 3;
     return c < 2 ? s->reaction[j][c] : NULL;
   }
   int j, q;
-  contact_column(s, k - FB_NCOLUMNS, &j, &q);
+  contact_column(s, k - nk, &j, &q);
   return j < 0 ? NULL : s->contact[j][q];
 }
 
@@ -320,9 +347,8 @@ static void refine_column(double *v, size_t n, double fraction) {
 }
 
 void fb_series_refine_peaks(fb_series *s, double fraction) {
-  refine_column(s->coupler_alpha, s->n, fraction);
-  refine_column(s->follower_alpha, s->n, fraction);
-  for (int j = 0; j < 4; j++) {
+  for (size_t b = 0; b < output_count(s); b++) refine_column(s->body[b][FB_Q_ACC], s->n, fraction);
+  for (int j = 0; j < mech_of(s)->njoints; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
     refine_column(s->contact[j][FB_C_FORCE], s->n, fraction);
     refine_column(s->contact[j][FB_C_PEN], s->n, fraction);
@@ -331,11 +357,10 @@ void fb_series_refine_peaks(fb_series *s, double fraction) {
 
 void fb_series_attribute_to_step_start(fb_series *s) {
   if (s->n < 2) return;
-  double *cols[2 + 2 * 4];
+  double *cols[FB_MECH_MAX_OUTPUTS + 2 * FB_MECH_MAX_JOINTS];
   int nc = 0;
-  cols[nc++] = s->coupler_alpha;
-  cols[nc++] = s->follower_alpha;
-  for (int j = 0; j < 4; j++)
+  for (size_t b = 0; b < output_count(s); b++) cols[nc++] = s->body[b][FB_Q_ACC];
+  for (int j = 0; j < mech_of(s)->njoints; j++)
     if (s->contact_mask & (1 << j)) {
       cols[nc++] = s->contact[j][FB_C_FORCE];
       cols[nc++] = s->contact[j][FB_C_STATE];

@@ -5,18 +5,17 @@
 
 #include <stddef.h>
 
+#include "mechanism.h"
 #include "status.h"
 
-/* Columns of a series, in CSV order; names carry their SI unit. */
-#define FB_SERIES_COLUMNS(X)             \
-  X(t, "time_s")                         \
-  X(crank_angle, "crank_angle_rad")      \
-  X(coupler_angle, "coupler_angle_rad")  \
-  X(coupler_omega, "coupler_omega_rad_s") \
-  X(coupler_alpha, "coupler_alpha_rad_s2") \
-  X(follower_angle, "follower_angle_rad") \
-  X(follower_omega, "follower_omega_rad_s") \
-  X(follower_alpha, "follower_alpha_rad_s2")
+/* Columns of a series, in CSV order (names carry their SI unit), generated
+ * from the series' mechanism description (mechanism.h): time_s, the input
+ * body's <input>_angle_rad (crank_angle_rad), then per output body in body
+ * order its position, velocity and acceleration (fb_mech_body_column: the
+ * four-bar's coupler_angle_rad, coupler_omega_rad_s, coupler_alpha_rad_s2,
+ * follower_angle_rad, follower_omega_rad_s, follower_alpha_rad_s2), then the
+ * contact columns of each enabled clearance joint and the load columns. */
+enum { FB_Q_POS = 0, FB_Q_VEL = 1, FB_Q_ACC = 2 }; /* second index of body[][] */
 
 /* Contact columns of each clearance joint, after the joint's name:
  * <joint>_force_n (contact force magnitude on the pin during the last step),
@@ -28,36 +27,54 @@ enum { FB_C_FORCE = 0, FB_C_PEN = 1, FB_C_EX = 2, FB_C_EY = 3, FB_C_STATE = 4 };
 enum { FB_STATE_FREE = 0, FB_STATE_IMPACT = 1, FB_STATE_CONTINUOUS = 2 };
 
 /* Load columns (models whose engine reports joint reactions): the drive
- * torque on the crank about +z, drive_torque_n_m, then per joint (ground-crank,
- * crank-coupler, coupler-follower, follower-ground) the force on the
- * second-named body from the first, <joint>_reaction_x_n, <joint>_reaction_y_n
- * and its magnitude <joint>_reaction_n (invdyn.h's convention). At a
+ * torque on the crank about +z, drive_torque_n_m, then per joint of the
+ * description (the four-bar's ground-crank, crank-coupler, coupler-follower,
+ * follower-ground) the force on the second-named body from the first,
+ * <joint>_reaction_x_n, <joint>_reaction_y_n and its magnitude
+ * <joint>_reaction_n (invdyn.h's convention): 1 + 3 x njoints columns. At a
  * clearance joint the reaction is the contact force. */
-#define FB_LOAD_COLS 13
+
+/* The per-output-body values as an array indexed [output][FB_Q_*] and,
+ * over the same storage, the four-bar's names for them (coupler, follower:
+ * fb_mech_fourbar's output bodies in order). The names are the four-bar's
+ * alone: code that serves any mechanism indexes the array. */
+#define FB_SERIES_BODY_UNION(T)                                                        \
+  union {                                                                              \
+    T body[FB_MECH_MAX_OUTPUTS][3]; /* per output body: position, velocity, acceleration */ \
+    __extension__ struct {                                                             \
+      T coupler_angle;                                                                 \
+      T coupler_omega;                                                                 \
+      T coupler_alpha;                                                                 \
+      T follower_angle;                                                                \
+      T follower_omega;                                                                \
+      T follower_alpha;                                                                \
+    };                                                                                 \
+  }
 
 typedef struct {
-  size_t n;   /* samples held */
-  size_t cap; /* samples allocated */
-#define FB_SERIES_FIELD(name, col) double *name; /* (n) */
-  FB_SERIES_COLUMNS(FB_SERIES_FIELD)
-#undef FB_SERIES_FIELD
+  size_t n;                  /* samples held */
+  size_t cap;                /* samples allocated */
+  const fb_mech_desc *mech;  /* the mechanism whose columns these are (fb_series_init: the four-bar) */
+  double *t;                 /* time [s] (n) */
+  double *crank_angle;       /* the input body's angle [rad] (n) */
+  FB_SERIES_BODY_UNION(double *); /* (n) each, NULL for a body the mechanism lacks */
   int contact_mask;                        /* bit j: joint j's contact columns are held */
-  double *contact[4][FB_CONTACT_COLS];     /* (n) each, NULL unless enabled */
+  double *contact[FB_MECH_MAX_JOINTS][FB_CONTACT_COLS]; /* (n) each, NULL unless enabled */
   int has_loads;                           /* 1: the load columns are held */
   double *drive_torque;                    /* drive torque on the crank [N m] (n), NULL unless has_loads */
-  double *reaction[4][2];                  /* joint force x, y [N] (4 x 2 x n), NULL unless has_loads */
+  double *reaction[FB_MECH_MAX_JOINTS][2]; /* joint force x, y [N] (njoints x 2 x n), NULL unless has_loads */
   double *arena;                           /* the columns' storage (series.c), cap per column */
   size_t arena_bytes;                      /* its size [bytes] */
 } fb_series;
 
 /* One sample: the values of every column at one instant (SI units). */
 typedef struct {
-#define FB_SAMPLE_FIELD(name, col) double name;
-  FB_SERIES_COLUMNS(FB_SAMPLE_FIELD)
-#undef FB_SAMPLE_FIELD
-  double contact[4][FB_CONTACT_COLS]; /* per joint; read only where enabled */
+  double t;                      /* [s] */
+  double crank_angle;            /* the input body's angle [rad] */
+  FB_SERIES_BODY_UNION(double);  /* per output body, SI */
+  double contact[FB_MECH_MAX_JOINTS][FB_CONTACT_COLS]; /* per joint; read only where enabled */
   double drive_torque;                /* [N m]; read only when loads are enabled */
-  double reaction[4][2];              /* joint force x, y [N]; read only when loads are enabled */
+  double reaction[FB_MECH_MAX_JOINTS][2]; /* joint force x, y [N]; read only when loads are enabled */
 } fb_sample;
 
 /* Adds contact columns for the joints in mask (call right after init).
@@ -68,7 +85,8 @@ fb_status fb_series_enable_contact(fb_series *s, int mask);
  * init). Errors: FB_ERR_NOMEM. */
 fb_status fb_series_enable_loads(fb_series *s);
 
-/* Allocates room for cap samples. Errors: FB_ERR_NOMEM. */
+/* Allocates room for cap samples of the four-bar's columns (fb_mech_fourbar).
+ * Errors: FB_ERR_NOMEM. */
 fb_status fb_series_init(fb_series *s, size_t cap);
 
 /* Maps the storage of every enabled column from sample n to cap now (one
@@ -79,6 +97,9 @@ fb_status fb_series_init(fb_series *s, size_t cap);
  * with huge pages the first time the host backs them, 8 to 12 GB/s after).
  * Samples held are not changed. */
 void fb_series_touch(fb_series *s);
+
+/* Number of output bodies of the series' mechanism (the body[] rows held). */
+int fb_series_output_count(const fb_series *s);
 
 /* Appends one sample, growing the arrays when full. Errors: FB_ERR_NOMEM. */
 fb_status fb_series_push(fb_series *s, const fb_sample *x);
@@ -96,7 +117,7 @@ double fb_series_largest_abs(const double *v, size_t n);
 
 /* Peak refinement of a series whose samples lie on a smooth motion (an
  * engine's steps): every spike (fb_series_is_spike with fraction) of the
- * angular accelerations and of the contact force and penetration is
+ * output bodies' accelerations and of the contact force and penetration is
  * replaced by the vertex of the parabola through it and its two
  * neighbours, when both neighbours have its sign (a one-sample pulse is
  * left alone). The vertex of a peak sampled at h is exact to O(h^4) where
@@ -106,7 +127,7 @@ void fb_series_refine_peaks(fb_series *s, double fraction);
 /* For an engine that reports at t_{n+1} what its step from t_n applied
  * (ODE: the angular acceleration (omega_{n+1} - omega_n) / h, which is the
  * solver's forces at the configuration of t_n, and the contact force and
- * state of that step): moves the angular accelerations and every contact
+ * state of that step): moves the output bodies' accelerations and every contact
  * force and state column one sample earlier, so each sample holds the
  * acceleration and force at its own configuration, as the reference's
  * instantaneous values do. The last sample keeps the value before it. */

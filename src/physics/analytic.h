@@ -16,10 +16,10 @@ typedef struct {
   double alpha_min; /* [rad/s^2] */
 } fb_body_peaks;
 
-/* Extremes of coupler and follower. */
+/* Extremes of each output body (mechanism.h; the four-bar's coupler and
+ * follower). */
 typedef struct {
-  fb_body_peaks coupler;
-  fb_body_peaks follower;
+  FB_MECH_OUTPUT_MEMBERS(fb_body_peaks);
 } fb_peaks;
 
 /* Crank angles per revolution of the dense-grid search fb_analytic_peaks_grid

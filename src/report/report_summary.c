@@ -66,17 +66,27 @@ static json_t *body_at_json(const fb_body_peak_at *a) {
   return o;
 }
 
-/* {"from_s", "to_s", "coupler": PEAKS, "follower": PEAKS, "at": {"coupler": {"omega_max":
- * {"time_s", "crank_angle_rad"}, ...}, "follower": ...}} */
-static json_t *window_json(const fb_peaks *p, const fb_peaks_at *at, double from, double to) {
+/* the names of the case's output bodies (mechanism.h) into name; their number */
+static int output_names(const fb_run *r, const char *name[FB_MECH_MAX_OUTPUTS]) {
+  const fb_mech_desc *mech = fb_case_mech(&r->c);
+  int out[FB_MECH_MAX_OUTPUTS];
+  const int n = fb_mech_outputs(mech, out);
+  for (int b = 0; b < n; b++) name[b] = mech->body[out[b]].name;
+  return n;
+}
+
+/* {"from_s", "to_s", "<body>": PEAKS per output body, "at": {"<body>": {"omega_max":
+ * {"time_s", "crank_angle_rad"}, ...}, ...}} (the four-bar: coupler, then follower) */
+static json_t *window_json(const fb_run *r, const fb_peaks *p, const fb_peaks_at *at, double from,
+                           double to) {
+  const char *name[FB_MECH_MAX_OUTPUTS];
+  const int nb = output_names(r, name);
   json_t *o = json_object();
   json_object_set_new(o, "from_s", num(from));
   json_object_set_new(o, "to_s", num(to));
-  json_object_set_new(o, "coupler", fb_report_body_peaks_json(&p->coupler));
-  json_object_set_new(o, "follower", fb_report_body_peaks_json(&p->follower));
+  for (int b = 0; b < nb; b++) json_object_set_new(o, name[b], fb_report_body_peaks_json(&p->body[b]));
   json_t *a = json_object();
-  json_object_set_new(a, "coupler", body_at_json(&at->coupler));
-  json_object_set_new(a, "follower", body_at_json(&at->follower));
+  for (int b = 0; b < nb; b++) json_object_set_new(a, name[b], body_at_json(&at->body[b]));
   json_object_set_new(o, "at", a);
   return o;
 }
@@ -158,7 +168,7 @@ static json_t *adaptive_steps_json(const fb_model_run *run) {
 /* "peaks": the window's peaks and when they happened (null before the window) */
 static json_t *peaks_window_json(const fb_model_result *m, const fb_run *r, double t_end) {
   if (!m->has_peaks) return json_null();
-  json_t *w = window_json(&m->peaks, &m->peaks_at, r->t_window, t_end);
+  json_t *w = window_json(r, &m->peaks, &m->peaks_at, r->t_window, t_end);
   json_object_set_new(w, "window", json_string(r->c.peaks == FB_PEAKS_ALL ? "all" : "steady"));
   return w;
 }
@@ -168,7 +178,7 @@ static json_t *peaks_window_json(const fb_model_result *m, const fb_run *r, doub
 static json_t *startup_window_json(const fb_model_result *m, const fb_run *r, double t_end) {
   if (!m->has_startup) return json_null();
   const fb_model_run *run = &m->run;
-  json_t *w = window_json(&m->startup, &m->startup_at, 0.0, fmin(t_end, r->t_startup_end));
+  json_t *w = window_json(r, &m->startup, &m->startup_at, 0.0, fmin(t_end, r->t_startup_end));
   if (run->clearance_mask) {
     json_object_set_new(w, "force_max_n", num(m->startup_force_max));
     json_object_set_new(w, "penetration_max_m", num(m->startup_penetration_max));
@@ -198,8 +208,10 @@ static json_t *warnings_json(const fb_model_result *m) {
 
 /* "error_vs_analytic": against the analytic solution of the same link
  * lengths (null when not measured) */
-static json_t *error_vs_analytic_json(const fb_model_result *m) {
+static json_t *error_vs_analytic_json(const fb_model_result *m, const fb_run *r) {
   if (!m->has_error) return json_null();
+  const char *name[FB_MECH_MAX_OUTPUTS];
+  const int nb = output_names(r, name);
   const fb_model_run *run = &m->run;
   json_t *e = json_object();
   json_object_set_new(e, "reference",
@@ -207,19 +219,20 @@ static json_t *error_vs_analytic_json(const fb_model_result *m) {
                                       ? "analytic solution of the same link lengths"
                                       : "exact (refined) peaks of the same solution: the "
                                         "sampling floor of the time grid"));
-  json_object_set_new(e, "coupler", body_error_json(&m->error.coupler));
-  json_object_set_new(e, "follower", body_error_json(&m->error.follower));
+  for (int b = 0; b < nb; b++) json_object_set_new(e, name[b], body_error_json(&m->error.body[b]));
   json_object_set_new(e, "crank_angle_err_max_rad", num(m->error.crank_angle_err_max));
   return e;
 }
 
 /* "delta_vs_analytic_nominal": the peaks against the nominal linkage's exact
  * peaks (null before the window) */
-static json_t *delta_json(const fb_model_result *m) {
+static json_t *delta_json(const fb_model_result *m, const fb_run *r) {
   if (!m->has_peaks) return json_null();
+  const char *name[FB_MECH_MAX_OUTPUTS];
+  const int nb = output_names(r, name);
   json_t *d = json_object();
-  json_object_set_new(d, "coupler", rel_peaks_json(&m->delta_vs_nominal.coupler));
-  json_object_set_new(d, "follower", rel_peaks_json(&m->delta_vs_nominal.follower));
+  for (int b = 0; b < nb; b++)
+    json_object_set_new(d, name[b], rel_peaks_json(&m->delta_vs_nominal.body[b]));
   return d;
 }
 
@@ -241,12 +254,13 @@ static void engine_settings_json(json_t *o, const fb_model_run *run, const fb_ru
 }
 
 /* "error_vs_reference": a clearance model against the reference of its law */
-static json_t *error_vs_reference_json(const fb_model_result *m) {
+static json_t *error_vs_reference_json(const fb_model_result *m, const fb_run *r) {
   const fb_reference_error *e = &m->ref_error;
+  const char *name[FB_MECH_MAX_OUTPUTS];
+  const int nb = output_names(r, name);
   json_t *o2 = json_object(), *a = json_array(), *b = json_array();
   json_object_set_new(o2, "reference", json_string(m->ref_name));
-  json_object_set_new(o2, "coupler", body_error_json(&e->coupler));
-  json_object_set_new(o2, "follower", body_error_json(&e->follower));
+  for (int k = 0; k < nb; k++) json_object_set_new(o2, name[k], body_error_json(&e->body[k]));
   json_object_set_new(o2, "force_max_rel", num(e->force_max_rel));
   json_object_set_new(o2, "force_err_rms_n", num(e->force_err_rms));
   json_object_set_new(o2, "penetration_max_rel", num(e->penetration_max_rel));
@@ -305,14 +319,15 @@ static json_t *divergence_json(const fb_model_result *m) {
 
 /* "error_estimate": the reference against its own integration at a
  * tighter tolerance, and what else that check measured (report_chaos.h) */
-static json_t *error_estimate_json(const fb_model_result *m) {
+static json_t *error_estimate_json(const fb_model_result *m, const fb_run *r) {
   const fb_reference_error *e = &m->ref_estimate;
+  const char *name[FB_MECH_MAX_OUTPUTS];
+  const int nb = output_names(r, name);
   json_t *o3 = json_object();
   json_object_set_new(o3, "tolerance", num(m->ref_tol));
   json_object_set_new(o3, "check_tolerance", num(m->ref_check_tol));
   json_object_set_new(o3, "check_steps", json_integer((json_int_t)m->ref_check_steps));
-  json_object_set_new(o3, "coupler", body_error_json(&e->coupler));
-  json_object_set_new(o3, "follower", body_error_json(&e->follower));
+  for (int b = 0; b < nb; b++) json_object_set_new(o3, name[b], body_error_json(&e->body[b]));
   json_object_set_new(o3, "force_max_rel", num(e->force_max_rel));
   json_object_set_new(o3, "force_err_rms_n", num(e->force_err_rms));
   json_object_set_new(o3, "penetration_max_rel", num(e->penetration_max_rel));
@@ -360,10 +375,11 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
   json_object_set_new(o, "adaptive_steps", adaptive_steps_json(run));
   json_object_set_new(o, "lengths_m", lengths_json(&run->lengths));
-  json_object_set_new(o, "coupler",
-                      m->has_peaks ? fb_report_body_peaks_json(&m->peaks.coupler) : json_null());
-  json_object_set_new(o, "follower",
-                      m->has_peaks ? fb_report_body_peaks_json(&m->peaks.follower) : json_null());
+  const char *name[FB_MECH_MAX_OUTPUTS];
+  const int nb = output_names(r, name);
+  for (int b = 0; b < nb; b++)
+    json_object_set_new(o, name[b],
+                        m->has_peaks ? fb_report_body_peaks_json(&m->peaks.body[b]) : json_null());
   const fb_series *ser = &run->series;
   const double t_end = ser->n ? ser->t[ser->n - 1] : 0.0;
   json_object_set_new(o, "peaks", peaks_window_json(m, r, t_end));
@@ -371,14 +387,14 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "penetration_max_m", run->clearance_mask ? num(m->penetration_max_run)
                                                                   : json_null());
   json_object_set_new(o, "warnings", warnings_json(m));
-  json_object_set_new(o, "error_vs_analytic", error_vs_analytic_json(m));
-  json_object_set_new(o, "delta_vs_analytic_nominal", delta_json(m));
+  json_object_set_new(o, "error_vs_analytic", error_vs_analytic_json(m, r));
+  json_object_set_new(o, "delta_vs_analytic_nominal", delta_json(m, r));
   if (fb_engine_steps_world(run->model->engine)) json_object_set_new(o, "joint_drift_max_m", num(run->joint_drift_max));
   json_object_set_new(o, "loads", fb_report_loads_json(&run->series, r->t_window));
   engine_settings_json(o, run, r);
-  if (m->has_ref_error) json_object_set_new(o, "error_vs_reference", error_vs_reference_json(m));
+  if (m->has_ref_error) json_object_set_new(o, "error_vs_reference", error_vs_reference_json(m, r));
   if (m->has_divergence) json_object_set_new(o, "divergence", divergence_json(m));
-  if (m->has_ref_estimate) json_object_set_new(o, "error_estimate", error_estimate_json(m));
+  if (m->has_ref_estimate) json_object_set_new(o, "error_estimate", error_estimate_json(m, r));
   spikes_json(o, m);
   /* what the contact rows received, also for a run that stopped early */
   if (run->clearance_mask) json_object_set_new(o, "contact", contact_json(r, m));
@@ -491,8 +507,10 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_object_set_new(o, "step", fb_report_step_json(r));
   json_object_set_new(o, "ensemble", fb_report_ensemble_run_json(r));
   json_t *an = json_object();
-  json_object_set_new(an, "coupler", fb_report_body_peaks_json(&r->analytic_nominal.coupler));
-  json_object_set_new(an, "follower", fb_report_body_peaks_json(&r->analytic_nominal.follower));
+  const char *name[FB_MECH_MAX_OUTPUTS];
+  const int nb = output_names(r, name);
+  for (int b = 0; b < nb; b++)
+    json_object_set_new(an, name[b], fb_report_body_peaks_json(&r->analytic_nominal.body[b]));
   json_object_set_new(o, "analytic_nominal", an);
   json_t *models = json_array();
   for (int i = 0; i < r->n; i++) json_array_append_new(models, model_json(&r->model[i], r));

@@ -57,13 +57,13 @@ fb_status fb_metrics_peaks_between(fb_peaks *out, fb_peaks_at *at, const fb_seri
                                    double t_from, double t_to, fb_diag *diag) {
   fb_peaks_at scratch;
   if (!at) at = &scratch;
+  const int nb = fb_series_output_count(s);
   size_t used = 0;
   for (size_t i = 0; i < s->n; i++) {
     if (s->t[i] < t_from || !(s->t[i] < t_to)) continue;
-    peak_update_at(&out->coupler, &at->coupler, s, i, s->coupler_omega[i], s->coupler_alpha[i],
-                   used == 0);
-    peak_update_at(&out->follower, &at->follower, s, i, s->follower_omega[i],
-                   s->follower_alpha[i], used == 0);
+    for (int b = 0; b < nb; b++)
+      peak_update_at(&out->body[b], &at->body[b], s, i, s->body[b][FB_Q_VEL][i],
+                     s->body[b][FB_Q_ACC][i], used == 0);
     used++;
   }
   if (used == 0)
@@ -110,11 +110,12 @@ double fb_metrics_penetration_max(const fb_series *s) {
 }
 
 fb_status fb_metrics_peaks(fb_peaks *out, const fb_series *s, double t_from, fb_diag *diag) {
+  const int nb = fb_series_output_count(s);
   size_t used = 0;
   for (size_t i = 0; i < s->n; i++) {
     if (s->t[i] < t_from) continue;
-    peak_update(&out->coupler, s->coupler_omega[i], s->coupler_alpha[i], used == 0);
-    peak_update(&out->follower, s->follower_omega[i], s->follower_alpha[i], used == 0);
+    for (int b = 0; b < nb; b++)
+      peak_update(&out->body[b], s->body[b][FB_Q_VEL][i], s->body[b][FB_Q_ACC][i], used == 0);
     used++;
   }
   if (used == 0)

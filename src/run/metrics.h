@@ -19,8 +19,7 @@ typedef struct {
 } fb_body_error;
 
 typedef struct {
-  fb_body_error coupler;
-  fb_body_error follower;
+  FB_MECH_OUTPUT_MEMBERS(fb_body_error); /* per output body (mechanism.h) */
   double crank_angle_err_max; /* max |theta2 - (theta0 + omega2 t)| [rad] */
 } fb_error;
 
@@ -79,8 +78,7 @@ fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
 /* Error of a clearance model's series against the reference series of the
  * same law, at equal instants (both sampled at t = k h). */
 typedef struct {
-  fb_body_error coupler;        /* peaks: relative to the reference's peaks */
-  fb_body_error follower;
+  FB_MECH_OUTPUT_MEMBERS(fb_body_error); /* per output body; peaks: relative to the reference's peaks */
   double force_max_rel;         /* (peak force - reference's) / reference's [-] */
   double force_err_rms;         /* RMS of the force difference [N] */
   double penetration_max_rel;   /* (max penetration - reference's) / reference's [-] */
@@ -195,8 +193,7 @@ typedef struct {
 } fb_body_peak_at;
 
 typedef struct {
-  fb_body_peak_at coupler;
-  fb_body_peak_at follower;
+  FB_MECH_OUTPUT_MEMBERS(fb_body_peak_at); /* per output body (mechanism.h) */
 } fb_peaks_at;
 
 /* Peaks of coupler and follower over the samples with t_from <= t < t_to

@@ -50,9 +50,10 @@ void fb_mujoco_scene_sample(const fb_mujoco_scene *s, fb_sample *x) {
      * are those of each end's state), the contact state the end's */
     const double f = (double)s->ad.k / (double)s->ad.mc;
     const fb_sample *a = &s->ad.x0, *b = &s->ad.x1;
-#define FB_LERP(name, col) x->name = a->name + f * (b->name - a->name);
-    FB_SERIES_COLUMNS(FB_LERP)
-#undef FB_LERP
+    x->t = a->t + f * (b->t - a->t);
+    x->crank_angle = a->crank_angle + f * (b->crank_angle - a->crank_angle);
+    for (int o = 0; o < FB_MECH_MAX_OUTPUTS; o++)
+      for (int q = 0; q < 3; q++) x->body[o][q] = a->body[o][q] + f * (b->body[o][q] - a->body[o][q]);
     for (int j = 0; j < 4; j++) {
       for (int q = 0; q < FB_CONTACT_COLS; q++)
         x->contact[j][q] = a->contact[j][q] + f * (b->contact[j][q] - a->contact[j][q]);

@@ -1,0 +1,100 @@
+/* A mechanism's topology as data (model floor): its type name, its bodies as
+ * a list (name, how each moves, which the outputs report), its joints as a
+ * list (name, kind, the two bodies, whether it may carry clearance) and its
+ * link-length parameters by name. Every list the harness writes per body or
+ * per joint (series columns, joint names, joint masks) is read from here, so
+ * a second member of the four-bar family adds a description, not branches.
+ * The closed-form kinematics stay in physics/ (linkage.h for the four-bar).
+ * One description today: fb_mech_fourbar. A slider-crank is expressible
+ * (bodies crank, coupler, slider translating along a guide, ground; joints
+ * ground-crank, crank-coupler, coupler-slider and the prismatic
+ * slider-ground; lengths crank, coupler, offset) but is not added here. */
+#ifndef FB_MECHANISM_H
+#define FB_MECHANISM_H
+
+#include <stddef.h>
+
+/* Room for the largest description (the four-bar's 4 bodies with the
+ * ground, 4 joints, 4 lengths, 2 output bodies). */
+#define FB_MECH_MAX_BODIES 4
+#define FB_MECH_MAX_JOINTS 4
+#define FB_MECH_MAX_LENGTHS 4
+#define FB_MECH_MAX_OUTPUTS 2
+
+/* How a body moves. */
+typedef enum {
+  FB_MOTION_FIXED = 0,      /* the ground (frame) */
+  FB_MOTION_ROTATING = 1,   /* about a ground pivot: one angle */
+  FB_MOTION_PLANAR = 2,     /* general planar motion: x, y and an angle */
+  FB_MOTION_TRANSLATING = 3 /* along a straight guide fixed to the ground: one position */
+} fb_body_motion;
+
+/* How a joint connects its two bodies. */
+typedef enum {
+  FB_KIND_REVOLUTE = 0, /* a pin: relative rotation about +z */
+  FB_KIND_PRISMATIC = 1 /* a slide along the guide: relative translation */
+} fb_joint_kind;
+
+/* One body. Its index in the list is its index in the case's per-link
+ * arrays (links.h fb_link: mass properties, lengths where it has one). */
+typedef struct {
+  const char *name;      /* "coupler": column and JSON key prefix */
+  fb_body_motion motion; /* how it moves */
+  int output;            /* 1: the series and summary report its motion (q, q', q'') */
+} fb_mech_body;
+
+/* One joint, in loop order. */
+typedef struct {
+  const char *name;  /* "crank-coupler": body[0]'s name, '-', body[1]'s name */
+  fb_joint_kind kind;
+  int body[2];       /* indices into the bodies; a load column is the force on body[1] from body[0] */
+  int clearance_ok;  /* 1: may be a clearance joint (pin in hole); a prismatic joint stays ideal */
+} fb_mech_joint;
+
+/* A mechanism description. */
+typedef struct {
+  const char *type;                        /* "four-bar": the case's [linkage] type */
+  int nbodies;                             /* bodies held, the ground included */
+  fb_mech_body body[FB_MECH_MAX_BODIES];   /* (nbodies) */
+  int input;                               /* the driven body (the crank): time_s, <input>_angle_rad */
+  int njoints;                             /* joints held */
+  fb_mech_joint joint[FB_MECH_MAX_JOINTS]; /* (njoints), loop order; joint masks are over these */
+  int nlengths;                            /* link-length parameters held */
+  const char *length[FB_MECH_MAX_LENGTHS]; /* their names, in the order of fb_linkage.length [m] */
+} fb_mech_desc;
+
+/* The planar four-bar (RRRR): bodies crank (rotating, driven), coupler
+ * (planar, output), follower (rotating, output), ground; revolute joints
+ * ground-crank, crank-coupler, coupler-follower, follower-ground (all may
+ * carry clearance); lengths crank, coupler, follower, ground. Body and
+ * length indices are links.h's FB_CRANK.. FB_GROUND, joint indices case.h's
+ * FB_JOINT_A.. FB_JOINT_D. */
+extern const fb_mech_desc fb_mech_fourbar;
+
+/* Members of type T per output body, as an array body[output] in the
+ * description's output order and, over the same storage, the four-bar's
+ * names for them (coupler, follower). Code that serves any mechanism reads
+ * the array; the names are the four-bar's alone. */
+#define FB_MECH_OUTPUT_MEMBERS(T)        \
+  union {                                \
+    T body[FB_MECH_MAX_OUTPUTS];         \
+    __extension__ struct {               \
+      T coupler;                         \
+      T follower;                        \
+    };                                   \
+  }
+
+/* The output bodies' indices in body order into out (FB_MECH_MAX_OUTPUTS);
+ * returns their number. */
+int fb_mech_outputs(const fb_mech_desc *m, int out[FB_MECH_MAX_OUTPUTS]);
+
+/* Name of joint j ("crank-coupler"), "?" when j is not one of m's joints. */
+const char *fb_mech_joint_name(const fb_mech_desc *m, int j);
+
+/* The series column name of quantity q (0 position, 1 velocity,
+ * 2 acceleration) of body b into buf (returned): a rotating or planar body
+ * <body>_angle_rad, <body>_omega_rad_s, <body>_alpha_rad_s2; a translating
+ * body <body>_x_m, <body>_v_m_s, <body>_a_m_s2. */
+const char *fb_mech_body_column(const fb_mech_desc *m, int b, int q, char *buf, size_t size);
+
+#endif

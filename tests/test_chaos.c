@@ -225,6 +225,26 @@ static void test_chaotic_rattling_pin(void **state) {
   assert_int_equal(ref_stats, 1);
   if (ref->peaks_unconverged) assert_int_equal(ref_peaks, 0);
   else assert_true(ref_peaks > 0);
+  /* a study's row: check's metrics, in the same order, then nothing but
+   * each clearance model's first impact (check's baselines hold none) */
+  static fb_metric study[FB_CHECK_MAX_METRICS];
+  const int ns = fb_study_metrics(&r, study, FB_CHECK_MAX_METRICS);
+  int first = 0, same = 0;
+  for (int i = 0, k = 0; i < ns; i++) {
+    if (strstr(study[i].name, ".first_impact.")) {
+      first++;
+      continue;
+    }
+    same += k < n && strcmp(study[i].name, met[k].name) == 0 && study[i].value == met[k].value;
+    k++;
+  }
+  for (int i = 0; i < n; i++) assert_null(strstr(met[i].name, ".first_impact."));
+  assert_int_equal(same, n);
+  assert_int_equal(ns, n + first);
+  int touched = 0; /* clearance models whose pin touched the wall, each with time and speed */
+  for (int i = 0; i < r.n; i++) touched += r.model[i].first_impact_joint >= 0 && r.model[i].first_impact.found;
+  assert_true(touched >= 2);
+  assert_true(first >= 2 * touched);
   fb_run_free(&r);
 }
 

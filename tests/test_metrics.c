@@ -7,10 +7,18 @@
  *                   t = 0    1 ms                3 ms        5 ms
  *
  * the model's pin follows the reference's until it drifts linearly from
- * t = 4 ms, crossing the tolerance at a sample computed by hand. */
+ * t = 4 ms, crossing the tolerance at a sample computed by hand.
+ *
+ * The first impact's rebound (fb_metrics_first_impact) on a bounce made of
+ * two quadratics in |e|: approach at v_in crossing c at t_in, separation at
+ * v_out crossing c at t_out, each between samples, with a penalty contact
+ * (|e| > c inside) and a rigid one (|e| = c, a force, one sample): the
+ * quadratic through three free samples is exact, so the ratio is v_out /
+ * v_in and the duration t_out - t_in to round-off. */
 #include <math.h>
 #include <string.h>
 
+#include "check.h"
 #include "metrics.h"
 #include "fb_test.h"
 
@@ -152,11 +160,94 @@ static void test_ecc_direction_rms(void **state) {
   fb_series_free(&r);
 }
 
+/* the bounce: approach speed, rebound, curvature of |e| in free flight
+ * (the crank's centripetal pull: d^2|e|/dt^2 ~ 7e3 m/s^2), crossings */
+#define BOUNCE_V_IN 0.15
+#define BOUNCE_E 0.8
+#define BOUNCE_CURV 7e3
+#define BOUNCE_T_IN (10.3 * H_S)
+/* a quadratic through three samples reproduces a quadratic: the ratio and
+ * duration to the round-off of |e| ~ 1e-5 m over differences ~1e-7 m (a
+ * few 1e-10 relative) */
+#define BOUNCE_REL_TOL 1e-8
+
+/* |e| of the bounce at t; contact inside (t_in, t_out) at depth pen */
+static double bounce_ecc(double t, double t_out, double pen) {
+  if (t <= BOUNCE_T_IN) {
+    const double x = t - BOUNCE_T_IN;
+    return C_M + BOUNCE_V_IN * x + 0.5 * BOUNCE_CURV * x * x;
+  }
+  if (t >= t_out) {
+    const double x = t - t_out;
+    return C_M - BOUNCE_E * BOUNCE_V_IN * x + 0.5 * BOUNCE_CURV * x * x;
+  }
+  return C_M + pen;
+}
+
+static void make_bounce(fb_series *s, double t_out, double pen, size_t n) {
+  assert_int_equal(fb_series_init(s, n), FB_OK);
+  assert_int_equal(fb_series_enable_contact(s, 1 << 1), FB_OK);
+  for (size_t i = 0; i < n; i++) {
+    fb_sample x;
+    memset(&x, 0, sizeof x);
+    x.t = (double)i * H_S;
+    x.crank_angle = 2.0 * M_PI * x.t / PERIOD_S;
+    const int in = x.t > BOUNCE_T_IN && x.t < t_out;
+    x.contact[1][FB_C_STATE] = in ? FB_STATE_IMPACT : FB_STATE_FREE;
+    x.contact[1][FB_C_FORCE] = in ? 100.0 : 0.0;
+    x.contact[1][FB_C_PEN] = in ? pen : 0.0;
+    x.contact[1][FB_C_EX] = bounce_ecc(x.t, t_out, pen);
+    assert_int_equal(fb_series_push(s, &x), FB_OK);
+  }
+}
+
+static void test_first_impact_rebound(void **state) {
+  (void)state;
+  /* penalty: 5 samples inside; rigid: the wall itself, one sample with a
+   * force, found by its force (|e| never passes c) */
+  const double t_outs[2] = {15.6 * H_S, 11.6 * H_S}, pens[2] = {1e-8, 0.0};
+  for (int k = 0; k < 2; k++) {
+    fb_series s;
+    make_bounce(&s, t_outs[k], pens[k], 40);
+    fb_first_impact fi;
+    fb_metrics_first_impact(&fi, &s, 1, C_M);
+    assert_true(fi.found);
+    report_residual("rebound - e", fi.rebound - BOUNCE_E, BOUNCE_REL_TOL);
+    assert_true(fabs(fi.rebound / BOUNCE_E - 1.0) < BOUNCE_REL_TOL);
+    const double dur = t_outs[k] - BOUNCE_T_IN;
+    assert_true(fabs(fi.duration / dur - 1.0) < BOUNCE_REL_TOL);
+    /* the time from the straight line through the last two free samples:
+     * within the step, before the contact sample */
+    assert_true(fi.t >= 10.0 * H_S && fi.t <= 11.0 * H_S);
+    assert_true(fabs(fi.speed / BOUNCE_V_IN - 1.0) < 0.1);
+    fb_series_free(&s);
+    /* the series ends inside the contact: no rebound */
+    make_bounce(&s, t_outs[k], pens[k], (size_t)(t_outs[k] / H_S) + 2);
+    fb_metrics_first_impact(&fi, &s, 1, C_M);
+    assert_true(fi.found && isnan(fi.rebound) && isnan(fi.duration));
+    fb_series_free(&s);
+  }
+}
+
+/* the first impact's metric names are known to a study's metric list */
+static void test_first_impact_metric_names(void **state) {
+  (void)state;
+  assert_true(fb_check_metric_name_ok("reference-restitution.first_impact.rebound_ratio", NULL, 0));
+  assert_true(fb_check_metric_name_ok("reference-restitution.first_impact.*", NULL, 0));
+  assert_true(fb_check_metric_name_ok("reference.first_impact.contact_duration_s", NULL, 0));
+  char known[4096];
+  assert_false(fb_check_metric_name_ok("reference.first_impact.rebound", known, sizeof known));
+  assert_non_null(strstr(known, "group first_impact with key time_s, speed_m_s, rebound_ratio, "
+                                "contact_duration_s"));
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_stays_with_the_reference),
       cmocka_unit_test(test_parts_from_the_reference),
       cmocka_unit_test(test_ecc_direction_rms),
+      cmocka_unit_test(test_first_impact_rebound),
+      cmocka_unit_test(test_first_impact_metric_names),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -189,6 +189,8 @@ static json_t *startup_window_json(const fb_model_result *m, const fb_run *r, do
       json_object_set_new(f, "time_s", num(fi->t));
       json_object_set_new(f, "speed_m_s", num(fi->speed));
       json_object_set_new(f, "crank_angle_rad", num(fi->crank_angle));
+      json_object_set_new(f, "rebound_ratio", num(fi->rebound));
+      json_object_set_new(f, "contact_duration_s", num(fi->duration));
       json_object_set_new(w, "first_impact", f);
     } else {
       json_object_set_new(w, "first_impact", json_null());

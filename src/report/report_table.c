@@ -129,9 +129,9 @@ static void print_divergence(FILE *f, const fb_run *r, int W) {
          "bound %g)", FB_MATCHED_IMPACT_ERROR_BOUND);
 }
 
-/* the start-up of the clearance models (first impact's time, speed and
- * crank angle; revolution 1's largest coupler |alpha|, when, peak force and
- * penetration) */
+/* the start-up of the clearance models (first impact's time, speed, crank
+ * angle and rebound; revolution 1's largest coupler |alpha|, when, peak force
+ * and penetration) */
 static void print_startup(FILE *f, const fb_run *r, int W) {
   int any = 0;
   for (int i = 0; i < r->n; i++) any |= r->model[i].has_startup && r->model[i].run.clearance_mask;
@@ -139,10 +139,10 @@ static void print_startup(FILE *f, const fb_run *r, int W) {
   fputc('\n', f);
   say(f, "start-up (revolution 1, t < %.6g s; start = %s, pin %s):", r->t_startup_end,
       fb_start_name(r->c.start), fb_pin_start_name(r->c.pin_start));
-  fprintf(f, "%-*s %12s %10s %10s %14s %10s %12s %10s\n", W, "model", "1st impact", "speed",
-          "crank", "cpl alpha pk", "at t", "force max", "penetr.");
-  fprintf(f, "%-*s %12s %10s %10s %14s %10s %12s %10s\n", W, "", "us", "m/s", "deg", "rad/s^2",
-          "ms", "N", "um");
+  fprintf(f, "%-*s %12s %10s %10s %8s %12s %10s %12s %10s\n", W, "model", "1st impact", "speed",
+          "crank", "rebound", "cpl alpha pk", "at t", "force max", "penetr.");
+  fprintf(f, "%-*s %12s %10s %10s %8s %12s %10s %12s %10s\n", W, "", "us", "m/s", "deg", "-",
+          "rad/s^2", "ms", "N", "um");
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     if (!m->has_startup || !m->run.clearance_mask) continue;
@@ -150,12 +150,14 @@ static void print_startup(FILE *f, const fb_run *r, int W) {
     const fb_body_peak_at *a = &m->startup_at.coupler;
     const int hi = fabs(c->alpha_max) >= fabs(c->alpha_min);
     fprintf(f, "%-*s ", W, m->run.name);
+    char rb[24];
     if (m->first_impact.found)
-      fprintf(f, "%12.4f %10.4f %10.3f ", m->first_impact.t * 1e6, m->first_impact.speed,
-              m->first_impact.crank_angle * 180.0 / M_PI);
+      fprintf(f, "%12.4f %10.4f %10.3f %8s ", m->first_impact.t * 1e6, m->first_impact.speed,
+              m->first_impact.crank_angle * 180.0 / M_PI,
+              figure_text(rb, sizeof rb, "%.4f", m->first_impact.rebound));
     else
-      fprintf(f, "%12s %10s %10s ", "none", "-", "-");
-    fprintf(f, "%14.4g %10.4f %12.4g %10.4g\n", hi ? c->alpha_max : c->alpha_min,
+      fprintf(f, "%12s %10s %10s %8s ", "none", "-", "-", "-");
+    fprintf(f, "%12.4g %10.4f %12.4g %10.4g\n", hi ? c->alpha_max : c->alpha_min,
             (hi ? a->alpha_max.t : a->alpha_min.t) * 1e3, m->startup_force_max,
             m->startup_penetration_max * 1e6);
   }

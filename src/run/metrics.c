@@ -76,12 +76,73 @@ static double ecc_norm(const fb_series *s, int j, size_t i) {
   return hypot(s->contact[j][FB_C_EX][i], s->contact[j][FB_C_EY][i]);
 }
 
+/* a sample of joint j in free flight: no contact force, |e| <= c */
+static int free_sample(const fb_series *s, int j, size_t i, double clearance) {
+  return !(s->contact[j][FB_C_FORCE][i] > 0.0) && !(ecc_norm(s, j, i) > clearance);
+}
+
+/* The quadratic through |e| at samples k, k + 1, k + 2: where in [ta, tb] it
+ * crosses level (entering: rising, the first such time; else falling, the
+ * last), and its slope there. No crossing: the slope at fallback. */
+static double quad_crossing_slope(const fb_series *s, int j, size_t k, double level, double ta,
+                                  double tb, int entering, double fallback, double *t_cross) {
+  const double t0 = s->t[k], t1 = s->t[k + 1], t2 = s->t[k + 2];
+  const double y0 = ecc_norm(s, j, k), y1 = ecc_norm(s, j, k + 1), y2 = ecc_norm(s, j, k + 2);
+  /* Newton form about t1: y = y1 + b (t - t1) + a (t - t1)^2 */
+  const double d01 = (y1 - y0) / (t1 - t0), d12 = (y2 - y1) / (t2 - t1);
+  const double a = (d12 - d01) / (t2 - t0), b = d01 + a * (t1 - t0);
+  double roots[2];
+  int nr = 0;
+  const double cc = y1 - level;
+  if (fabs(a) < 1e-300) {
+    if (b != 0.0) roots[nr++] = t1 - cc / b;
+  } else {
+    const double disc = b * b - 4.0 * a * cc;
+    if (disc >= 0.0) {
+      /* the stable pair of roots of a x^2 + b x + cc = 0 */
+      const double qq = -0.5 * (b + copysign(sqrt(disc), b));
+      if (qq != 0.0) roots[nr++] = t1 + qq / a, roots[nr++] = t1 + cc / qq;
+      else roots[nr++] = t1;
+    }
+  }
+  double best = NAN;
+  for (int r = 0; r < nr; r++) {
+    const double t = roots[r], slope = b + 2.0 * a * (t - t1);
+    if (!(t >= ta && t <= tb) || (entering ? !(slope > 0.0) : !(slope < 0.0))) continue;
+    if (isnan(best) || (entering ? t < best : t > best)) best = t;
+  }
+  *t_cross = isnan(best) ? fallback : best;
+  return b + 2.0 * a * (*t_cross - t1);
+}
+
+/* rebound and duration of the episode that begins at sample i (see metrics.h) */
+static void first_rebound(fb_first_impact *out, const fb_series *s, int j, size_t i,
+                          double clearance) {
+  out->rebound = out->duration = NAN;
+  if (i < 3) return;
+  for (size_t k = i - 3; k < i; k++)
+    if (!free_sample(s, j, k, clearance)) return;
+  size_t o = i + 1;
+  while (o < s->n && !free_sample(s, j, o, clearance)) o++;
+  if (o + 2 >= s->n || !free_sample(s, j, o + 1, clearance) || !free_sample(s, j, o + 2, clearance))
+    return;
+  double t_in, t_out;
+  const double u_in = quad_crossing_slope(s, j, i - 3, clearance, s->t[i - 1], s->t[i], 1,
+                                          s->t[i], &t_in);
+  const double u_out = quad_crossing_slope(s, j, o, clearance, s->t[o - 1], s->t[o], 0, s->t[o],
+                                           &t_out);
+  if (!(u_in > 0.0)) return;
+  out->rebound = -u_out / u_in;
+  out->duration = t_out - t_in;
+}
+
 void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, double clearance) {
   memset(out, 0, sizeof *out);
+  out->rebound = out->duration = NAN;
   if (j < 0 || j > 3 || !(s->contact_mask & (1 << j))) return;
   for (size_t i = 1; i < s->n; i++) {
     const double e1 = ecc_norm(s, j, i);
-    if (!(e1 > clearance)) continue;
+    if (!(e1 > clearance) && !(s->contact[j][FB_C_FORCE][i] > 0.0)) continue;
     const double e0 = ecc_norm(s, j, i - 1);
     const double h = s->t[i] - s->t[i - 1];
     double rate = (e1 - e0) / h, t = s->t[i - 1];
@@ -96,6 +157,7 @@ void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, do
     /* the crank turns uniformly between samples */
     const double w = (s->crank_angle[i] - s->crank_angle[i - 1]) / h;
     out->crank_angle = wrap_angle(s->crank_angle[i - 1] + w * (t - s->t[i - 1]));
+    first_rebound(out, s, j, i, clearance);
     return;
   }
 }

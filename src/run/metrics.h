@@ -204,22 +204,52 @@ fb_status fb_metrics_peaks_between(fb_peaks *out, fb_peaks_at *at, const fb_seri
                                    double t_from, double t_to, fb_diag *diag);
 
 /* The first impact at clearance joint j of a series with contact columns:
- * the first sample whose eccentricity |e| exceeds the radial clearance c,
- * with the crossing time interpolated linearly in the free flight before it
- * and the approach speed d|e|/dt over the last free-flight interval (the
- * two samples before the crossing; exact for a free flight at constant
- * relative velocity, which gravity and the crank's centripetal acceleration
- * bend by ~1e-4 relative over a microsecond step in the paper's case). A pin
- * that starts on the wall and enters at once (crossing at the first step)
- * has its speed from that first step, contact force included: an estimate. */
+ * the first sample whose eccentricity |e| exceeds the radial clearance c, or
+ * that carries a contact force (a rigid contact's impulse, which may stop
+ * the pin before any sample passes c), with the crossing time interpolated
+ * linearly in the free flight before it (at most that sample's time) and
+ * the approach speed d|e|/dt over the last free-flight interval (the two
+ * samples before the crossing; exact for a free flight at constant relative
+ * velocity, which gravity and the crank's centripetal acceleration bend by
+ * ~1e-4 relative over a microsecond step in the paper's case). A pin that
+ * starts on the wall and enters at once (crossing at the first step) has its
+ * speed from that first step, contact force included: an estimate.
+ *
+ * The rebound of that first contact episode (the samples from the first
+ * one on, until the pin is free again: no force, |e| <= c): its separation
+ * speed over its approach speed, each the slope of d|e|/dt of a quadratic
+ * through the three free-flight samples on its side, taken where that
+ * quadratic crosses c next to the episode (the approach at the entry
+ * crossing, at most the first contact sample's time; the separation at the
+ * exit crossing, at most the first free sample's time). For a penalty
+ * contact this is the coefficient of restitution the mechanism shows, the
+ * law's cr bent by every other force over the contact's duration; for a
+ * rigid contact (an impulse within one step) it is Newton's e_N up to the
+ * free flight's curvature between the two speeds, taken up to two steps
+ * apart: d^2|e|/dt^2 holds the pin's sliding speed squared over |e| ~ c,
+ * ~7e3 m/s^2 after the paper case's first impact, so at h = 3.3e-6 s the
+ * ratio can be off by 5 % either way, and 0.1 % at h = 2e-7 s. NAN (and
+ * duration NAN) when the episode has fewer than three free samples on a
+ * side or never ends in the series. */
 typedef struct {
   int found;          /* 0: the pin never touched the wall */
   double t;           /* crossing time [s] */
   double speed;       /* approach speed along the normal [m/s] */
   double crank_angle; /* crank angle at the crossing [rad] in [0, 2 pi) */
+  double rebound;     /* separation speed / approach speed of the first episode [-], or NAN */
+  double duration;    /* exit crossing minus entry crossing of that episode [s], or NAN */
 } fb_first_impact;
 
 void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, double clearance);
+
+/* The output keys of the first impact (fb_first_impact) as study metrics
+ * (check.c: <model>.first_impact.<key>), X(field, key); summary.json
+ * spells the same names (report_summary.c). */
+#define FB_FIRST_IMPACT_KEYS(X)      \
+  X(t, "time_s")                     \
+  X(speed, "speed_m_s")              \
+  X(rebound, "rebound_ratio")        \
+  X(duration, "contact_duration_s")
 
 /* Largest penetration over every clearance joint and sample [m] (0 without
  * contact columns). */

@@ -48,7 +48,8 @@ static int add_stats(fb_metric *out, int n, int max, const fb_model_result *m) {
   return k;
 }
 
-int fb_check_metrics(const fb_run *r, fb_metric *out, int max) {
+/* the metrics of run r; with first, each clearance model's first impact too */
+static int collect(const fb_run *r, fb_metric *out, int max, int first) {
   int n = 0;
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
@@ -71,15 +72,25 @@ int fb_check_metrics(const fb_run *r, fb_metric *out, int max) {
       FB_SPIKE_KEYS(FB_CHECK_SPIKE)
 #undef FB_CHECK_SPIKE
     }
+    if (first && m->first_impact_joint >= 0 && m->first_impact.found) {
+      const fb_first_impact *f = &m->first_impact;
+#define FB_CHECK_FIRST(field, key) n = add(out, n, max, name, "first_impact", key, f->field);
+      FB_FIRST_IMPACT_KEYS(FB_CHECK_FIRST)
+#undef FB_CHECK_FIRST
+    }
   }
   return n;
 }
+
+int fb_check_metrics(const fb_run *r, fb_metric *out, int max) { return collect(r, out, max, 0); }
+
+int fb_study_metrics(const fb_run *r, fb_metric *out, int max) { return collect(r, out, max, 1); }
 
 int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
   const size_t l = strlen(name);
   const int prefix = l && name[l - 1] == '*';
   const size_t cmp = prefix ? l - 1 : l;
-  static const char *groups[3] = {"coupler", "follower", "spikes"};
+  static const char *groups[4] = {"coupler", "follower", "spikes", "first_impact"};
   /* <model>.stats.<key>: the statistics metrics (add_stats) */
   if (strstr(name, ".stats.") || (prefix && strstr(name, ".stats"))) {
     for (int m = 0; m < fb_model_count; m++) {
@@ -100,14 +111,20 @@ int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
       FB_SPIKE_KEYS(FB_NAME_SPIKE)
 #undef FB_NAME_SPIKE
   };
+  static const char *first_keys[] = {
+#define FB_NAME_FIRST(field, key) key,
+      FB_FIRST_IMPACT_KEYS(FB_NAME_FIRST)
+#undef FB_NAME_FIRST
+  };
   const int np = (int)(sizeof peak_keys / sizeof peak_keys[0]);
   const int ns = (int)(sizeof spike_keys / sizeof spike_keys[0]);
+  const int nf = (int)(sizeof first_keys / sizeof first_keys[0]);
   for (int m = 0; m < fb_model_count; m++)
-    for (int g = 0; g < 3; g++)
-      for (int k = 0; k < (g < 2 ? np : ns); k++) {
+    for (int g = 0; g < 4; g++)
+      for (int k = 0; k < (g < 2 ? np : g == 2 ? ns : nf); k++) {
         char full[160];
         snprintf(full, sizeof full, "%s.%s.%s", fb_models[m].name, groups[g],
-                 g < 2 ? peak_keys[k] : spike_keys[k]);
+                 g < 2 ? peak_keys[k] : g == 2 ? spike_keys[k] : first_keys[k]);
         if (prefix ? strncmp(full, name, cmp) == 0 : strcmp(full, name) == 0) return 1;
       }
   if (known) {
@@ -118,6 +135,9 @@ int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
     if (w < size) w += (size_t)snprintf(known + w, size - w, ", or group spikes with key");
     for (int k = 0; k < ns && w < size; k++)
       w += (size_t)snprintf(known + w, size - w, "%s %s", k ? "," : "", spike_keys[k]);
+    if (w < size) w += (size_t)snprintf(known + w, size - w, ", or group first_impact with key");
+    for (int k = 0; k < nf && w < size; k++)
+      w += (size_t)snprintf(known + w, size - w, "%s %s", k ? "," : "", first_keys[k]);
     if (w < size) snprintf(known + w, size - w, "; models as in fourbar run --help");
   }
   return 0;

@@ -54,11 +54,20 @@ typedef struct {
                          (FB_CHECK_ENSEMBLE_SIGMAS); else 0 */
 } fb_metric;
 
-/* Collects the metrics of run r into out (at most max); returns the count. */
+/* Collects the metrics of run r into out (at most max); returns the count:
+ * each model's peaks, a clearance model's spikes, an ensemble's statistics
+ * (the metrics the baselines of results/baselines hold). */
 int fb_check_metrics(const fb_run *r, fb_metric *out, int max);
 
+/* fb_check_metrics and, for each clearance model whose pin touched the
+ * wall, its first impact (<model>.first_impact.<key>, FB_FIRST_IMPACT_KEYS):
+ * the metrics a study's row holds (study.c). The baselines were calibrated
+ * before the first impact's metrics existed, so fourbar check leaves them
+ * out rather than find them missing from every baseline. */
+int fb_study_metrics(const fb_run *r, fb_metric *out, int max);
+
 /* 1 when name is a metric some run can give (<model>.<group>.<key>, the
- * names fb_check_metrics writes for every model of the table), or, ending in
+ * names fb_study_metrics writes for every model of the table), or, ending in
  * '*', a prefix of one; else 0 with the groups and keys listed in known
  * (size bytes; may be NULL). */
 int fb_check_metric_name_ok(const char *name, char *known, size_t size);

@@ -602,7 +602,7 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
       snprintf(status, sizeof status, "run: %s", inner.msg);
     } else {
       static fb_metric m[FB_CHECK_MAX_METRICS];
-      int nm = fb_check_metrics(&r, m, FB_CHECK_MAX_METRICS);
+      int nm = fb_study_metrics(&r, m, FB_CHECK_MAX_METRICS);
       for (int k = 0; k < nm; k++)
         if (wanted(s, m[k].name)) json_object_set_new(metrics, m[k].name, json_real(m[k].value));
       /* every model that stopped, each with its reason */

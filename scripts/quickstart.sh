@@ -18,13 +18,13 @@ case "$what" in
 esac
 
 # every compiler and library the build enables (meson.build; tests/test_quickstart.py
-# fails when meson.build needs a package this list lacks): C, and C++ for the Bullet and
-# Simbody engines (src/engines/bullet, src/engines/simbody); SDFormat 12 for the test that loads
-# fourbar export --format sdf (tests/test_export_sdf.cpp)
+# fails when meson.build needs a package this list lacks): C, and C++ for the Bullet,
+# Simbody and Siconos engines (src/engines/bullet, src/engines/simbody, src/engines/siconos);
+# SDFormat 12 for the test that loads fourbar export --format sdf (tests/test_export_sdf.cpp)
 packages=(gcc g++ libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel
-          libmujoco-dev libbullet-dev libsimbody-dev libhdf5-dev python3-h5py
-          libsdformat-dev)
+          libmujoco-dev libbullet-dev libsimbody-dev libsiconos-kernel-dev libsiconos-numerics-dev
+          libhdf5-dev python3-h5py libsdformat-dev)
 # node and npm for report.html's library (and its browser test): Debian's nodejs and npm
 # unless a node with its own npm is there already (NodeSource's nodejs conflicts with them)
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
@@ -137,9 +137,10 @@ case "$what" in
     echo "== libFuzzer, ${secs} s per harness"
     if [ ! -f build-fuzz/build.ninja ]; then
       # the harnesses read case files and fit strings: the C++ engines (Simbody,
-      # Bullet) stay out, so the link is clang's, which has -fsanitize=fuzzer
+      # Bullet, Siconos) stay out, so the link is clang's, which has -fsanitize=fuzzer
       quiet build/build-fuzz-setup.txt env CC=clang CXX=clang++ meson setup build-fuzz -Dfuzz=true \
-        -Dtests=false -Dsimbody=disabled -Dbullet=disabled -Db_sanitize=address,undefined \
+        -Dtests=false -Dsimbody=disabled -Dbullet=disabled -Dsiconos=disabled \
+        -Db_sanitize=address,undefined \
         -Db_lundef=false
     fi
     quiet build-fuzz/build.txt ninja -C build-fuzz

@@ -46,6 +46,8 @@ MESON_PACKAGES = {
     "dependency:threads": ["libc6-dev"],
     "library:m": ["libc6-dev"],
     "library:mujoco": ["libmujoco-dev"],
+    "library:siconos_kernel": ["libsiconos-kernel-dev"],
+    "library:siconos_numerics": ["libsiconos-numerics-dev"],
     "program:python3": ["python3"],
     "program:/usr/bin/python3": ["python3"],
     "program:node": ["nodejs"],

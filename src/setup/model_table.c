@@ -68,7 +68,8 @@ int fb_engine_steps_world(fb_engine_id e) {
  * the colour of their ODE counterpart, dotted; the Simbody rows dash-dot (ideal
  * stack-up dash type 5), thin. The figures draw every row of one engine in
  * shades of that engine's hue (ODE blues, MuJoCo oranges, Simbody greens,
- * Bullet purples); the yardsticks keep their colour. */
+ * Bullet purples); the yardsticks keep their colour, and so do the Siconos
+ * rows (reds). */
 const fb_model fb_models[] = {
     {.name = "analytic",
      .engine = FB_ENGINE_ANALYTIC,
@@ -282,6 +283,45 @@ const fb_model fb_models[] = {
      .spikes_vs = "bullet-ideal-stackup",
      .summary = "Bullet, clearance joints, impact law as a soft constraint row (ODE's mapping)",
      .style = {"#d62728", 5, 1.6, FB_HUE_PURPLES}},
+    /* Siconos: the rigid limit. Reds, each row's own (hue FB_HUE_NONE: no
+     * shading family of its own), so that they stand apart from every
+     * penalty engine's family; solid ideal, dashed clearance */
+    {.name = "siconos-ideal-nominal",
+     .engine = FB_ENGINE_SICONOS,
+     .lengths = NOM,
+     .joints = IDEAL,
+     .law = FB_MODEL_LAW_NONE,
+     .collider = FB_COLLIDER_NONE,
+     .reference = NULL,
+     .spikes_vs = NULL,
+     .summary = "Siconos, coupler and follower closed on the driven crank by a bilateral "
+                "constraint (Moreau-Jean), nominal lengths",
+     .style = {"#99000d", 1, 1.4, FB_HUE_NONE}},
+    {.name = "siconos-ideal-stackup",
+     .engine = FB_ENGINE_SICONOS,
+     .lengths = STK,
+     .joints = IDEAL,
+     .law = FB_MODEL_LAW_NONE,
+     .collider = FB_COLLIDER_NONE,
+     .reference = NULL,
+     .spikes_vs = NULL,
+     .summary = "Siconos, coupler and follower closed on the driven crank by a bilateral "
+                "constraint (Moreau-Jean), stack-up lengths",
+     .style = {"#ef3b2c", 1, 1.4, FB_HUE_NONE}},
+    /* the rigid limit of the restitution law: no penalty, the case's
+     * restitution as Newton's coefficient (law RESTITUTION for its cr and its
+     * reference; collider NATIVE: Siconos's own unilateral constraint) */
+    {.name = "siconos-clearance-newton",
+     .engine = FB_ENGINE_SICONOS,
+     .lengths = STK,
+     .joints = CLEAR,
+     .law = FB_MODEL_LAW_RESTITUTION,
+     .collider = FB_COLLIDER_NATIVE,
+     .reference = "reference-restitution",
+     .spikes_vs = "siconos-ideal-stackup",
+     .summary = "Siconos, clearance joint as a unilateral constraint g = c - |e| >= 0 with "
+                "Newton's impact law (e_N = [clearance] restitution), Moreau-Jean time stepping",
+     .style = {"#cb181d", 2, 1.4, FB_HUE_NONE}},
     {.name = "reference",
      .engine = FB_ENGINE_REFERENCE,
      .lengths = STK,
@@ -353,6 +393,9 @@ fb_collider fb_model_collider(const fb_model *m, fb_collider case_collider) {
 const char *fb_model_adaptive_refusal(const fb_model *m, fb_collider case_collider) {
   if (m->engine == FB_ENGINE_BULLET)
     return "Bullet steps at a fixed h (it would run at h_min_s, silently)";
+  if (m->engine == FB_ENGINE_SICONOS)
+    return "Siconos's Moreau-Jean time stepping steps at a fixed h (it would run at h_min_s, "
+           "silently)";
   if (m->engine == FB_ENGINE_MUJOCO && m->collider == FB_COLLIDER_NATIVE)
     return "MuJoCo's native contacts are its own";
   if (m->engine == FB_ENGINE_ODE && fb_model_has_clearance(m) &&

@@ -1,0 +1,94 @@
+/* The Siconos engine behind the engine interface (engine.h): thin wrappers
+ * over the Siconos scene (siconos_scene.h, the folder's one C++ file). */
+#include <stdio.h>
+
+#include "engine.h"
+#include "siconos_scene.h"
+
+static fb_status siconos_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
+  fb_siconos_scene *s = NULL;
+  fb_status st = fb_siconos_scene_create(&s, sm, diag);
+  if (st == FB_OK) *self = s;
+  return st;
+}
+
+static fb_status siconos_step(void *self, fb_diag *diag) { return fb_siconos_scene_step(self, diag); }
+
+static void siconos_stopped(const void *self, fb_stop *out) { fb_siconos_scene_stopped(self, out); }
+
+static void siconos_sample(const void *self, fb_sample *x) { fb_siconos_scene_sample(self, x); }
+
+static void siconos_contact(const void *self, fb_engine_contact *out) {
+  fb_siconos_scene_contact(self, out);
+}
+
+static void siconos_provenance(const void *self, int joint, fb_contact_provenance *out) {
+  fb_siconos_scene_provenance(self, joint, out);
+}
+
+static double siconos_drift(const void *self) { return fb_siconos_scene_drift(self); }
+
+static size_t siconos_steps(const void *self) { return fb_siconos_scene_steps(self); }
+
+static void siconos_destroy(void *self) { fb_siconos_scene_destroy(self); }
+
+/* Siconos's own choices as a model used them (summary.json "siconos") */
+static int siconos_settings(fb_engine_setting *out, const fb_case *c, int clearance_mask,
+                            fb_collider collider, double h) {
+  (void)collider, (void)h;
+  out[0] = (fb_engine_setting){.key = "integrator", .kind = FB_SETTING_TEXT,
+                               .text = "MoreauJeanOSI"};
+  out[1] = (fb_engine_setting){.key = "theta", .kind = FB_SETTING_NUMBER,
+                               .number = fb_siconos_theta(c)};
+  out[2] = (fb_engine_setting){.key = "contact", .kind = FB_SETTING_TEXT,
+                               .text = !clearance_mask ? "EqualityConditionNSL (loop closure)"
+                                       : c->clearance.friction > 0.0 ? "NewtonImpactFrictionNSL"
+                                                                     : "NewtonImpactNSL"};
+  return 3;
+}
+
+/* the run's table: Moreau-Jean's theta and the rigid contact's law */
+static void siconos_settings_lines(const fb_case *c, const fb_engine_models_used *u,
+                                   fb_engine_put_line put, void *a) {
+  (void)u;
+  char line[256];
+  snprintf(line, sizeof line,
+           "Siconos models: Moreau-Jean theta %g, fixed step h; clearance: g = c - |e| >= 0 "
+           "with Newton's impact law, e_N = %g%s (rigid: no penalty)",
+           fb_siconos_theta(c), c->clearance.restitution,
+           c->clearance.friction > 0.0 ? " and Coulomb friction" : "");
+  put(a, line);
+}
+
+/* the clearance contact: no penalty, no ERP/CFM mapping; of the restitution
+ * law only its coefficient reaches Newton's law */
+static const char *siconos_mapping_text(fb_collider collider) {
+  (void)collider;
+  return "none (rigid: Newton's law, cr only)";
+}
+
+/* guarded: the penetration limit applies as to every clearance model (a
+ * rigid contact stays far inside it unless the solver fails); a step reports
+ * its (omega_{k+1} - omega_k) / h and its impulse / h at t_{k+1}, as ODE does,
+ * and its spikes lie on a discrete motion (refined by the harness). No
+ * drive_key: the crank is prescribed exactly (it is no coordinate), so it
+ * never lags; no cost_per_sample yet (FB_COST_DEFAULT_S) */
+const fb_engine fb_engine_siconos = {
+    .name = "siconos",
+    .guarded = 1,
+    .step_values_lag = 1,
+    .refine_peaks = 1,
+    .create = siconos_create,
+    .step = siconos_step,
+    .stopped = siconos_stopped,
+    .sample = siconos_sample,
+    .contact = siconos_contact,
+    .provenance = siconos_provenance,
+    .reactions = NULL,
+    .drift = siconos_drift,
+    .steps = siconos_steps,
+    .destroy = siconos_destroy,
+    .settings = siconos_settings,
+    .settings_lines = siconos_settings_lines,
+    .mapping_text = siconos_mapping_text,
+};

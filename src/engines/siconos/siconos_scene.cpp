@@ -1,0 +1,593 @@
+// The Siconos scene (siconos_scene.h): the only translation unit of the
+// project that includes Siconos. C++ stays inside this file; the C side sees
+// the extern "C" functions of siconos_scene.h only.
+//
+// Built as the Siconos examples of mechanisms build theirs (the slider-crank
+// and four-bar clearance examples of siconos-tutorials): a LagrangianDS whose
+// mass matrix and forces the user supplies with their Jacobians, Lagrangian
+// relations for the joints, a nonsmooth law per relation, MoreauJeanOSI and
+// TimeStepping with its Newton loop. The user's functions are supplied here
+// by derived classes (as BouncingBall's BallR does for a relation) instead of
+// plugins loaded from a shared library by name.
+#include "SiconosKernel.hpp"
+#include "SolverOptions.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <memory>
+#include <new>
+#include <string>
+
+extern "C" {
+#include "episode.h"
+#include "siconos_scene.h"
+}
+
+namespace {
+
+// Newton loop of TimeStepping: the residual of M(q)(v - v_k) - h F_theta - p
+// [kg m^2/s] below which a step has converged, and the iterations allowed.
+// The loop's test sees the dynamics' residual only, not the relation's: the
+// contact normal of a pin in a 14.5 um clearance turns by a few percent over
+// one step's sliding, so an iterate whose Jacobian is one Newton update old
+// leaves Newton's law g'(k+1) = -e_N g'(k) off by up to 2.8e-3 at the
+// experts' 1e-10 (their slider-crank's setting, with 200 iterations). At
+// 1e-12 (a relative 2e-12 of the links' momenta, ~0.5 kg m^2/s) the
+// worst impact of the paper case's first revolution is off by 2.6e-5 at no
+// measurable cost (2 or 3 iterations a step; 1e-14: 5.3e-6).
+const double kNewtonTolerance = 1e-12;
+const unsigned kNewtonMaxIterations = 200;
+// Tolerance and iteration cap of the friction problem's solver (the
+// slider-crank example's settings). The solver is SICONOS_FRICTION_2D_LEMKE,
+// a direct pivoting method (the 2-D friction problem as an LCP): the
+// example's enumerative SICONOS_FRICTION_2D_ENUM returned info 1 at the
+// paper case's first contact with friction 0.2.
+const double kFrictionSolverTolerance = 1e-12;
+const int kFrictionSolverMaxIterations = 100;
+// Below this eccentricity [m] the normal e/|e| is undefined; the pin is then
+// a whole clearance away from the wall, where only the sign of the gap
+// matters, and the normal is taken along +x.
+const double kEccentricityMin = 1e-15;
+
+// The mechanism in the coordinates q = (theta3, theta4) (siconos_scene.h).
+struct Mech {
+  double a, b, cl, g;       // crank, coupler, follower, ground lengths [m]
+  double m3, m4, i3, i4;    // coupler and follower masses [kg], central inertias [kg m^2]
+  double f3, f4;            // centre-of-mass fractions (coupler from B, follower from D)
+  double grav;              // along -y [m/s^2]
+  double theta0, omega2;    // crank angle at t = 0 [rad], signed speed [rad/s]
+  double c;                 // radial clearance [m]
+  double r_pin, r_hole;     // pin and hole radii [m]
+
+  double crank_angle(double t) const { return theta0 + omega2 * t; }
+  // pin centre B_pin(t) and its velocity
+  void pin(double t, double p[2], double v[2]) const {
+    const double th = crank_angle(t);
+    p[0] = a * std::cos(th);
+    p[1] = a * std::sin(th);
+    v[0] = -a * omega2 * std::sin(th);
+    v[1] = a * omega2 * std::cos(th);
+  }
+  // hole centre B_hole(q) and its Jacobian JB (row-major 2 x 2: d B / d (theta3, theta4))
+  void hole(double th3, double th4, double p[2], double J[2][2]) const {
+    const double s3 = std::sin(th3), c3 = std::cos(th3), s4 = std::sin(th4), c4 = std::cos(th4);
+    p[0] = g + cl * c4 - b * c3;
+    p[1] = cl * s4 - b * s3;
+    J[0][0] = b * s3;
+    J[0][1] = -cl * s4;
+    J[1][0] = -b * c3;
+    J[1][1] = cl * c4;
+  }
+  // M(q), the reference's mass matrix (reference.c)
+  void mass(double th3, double th4, double M[2][2]) const {
+    const double s = (1.0 - f3) * b;
+    M[0][0] = m3 * s * s + i3;
+    M[0][1] = M[1][0] = -m3 * cl * s * std::cos(th4 - th3);
+    M[1][1] = m3 * cl * cl + m4 * f4 * f4 * cl * cl + i4;
+  }
+  // F(q, v) of M q'' + F = p: the coupler's quadratic velocity terms and
+  // gravity, and its Jacobians dF/dq, dF/dv (row-major)
+  void forces(const double q[2], const double v[2], double F[2], double Fq[2][2],
+              double Fv[2][2]) const {
+    const double s = (1.0 - f3) * b, K = m3 * s * cl;
+    const double S = std::sin(q[1] - q[0]), C = std::cos(q[1] - q[0]);
+    const double w3 = v[0], w4 = v[1], gm = (m3 + m4 * f4) * grav * cl;
+    F[0] = K * S * w4 * w4 - m3 * grav * s * std::cos(q[0]);
+    F[1] = -K * S * w3 * w3 + gm * std::cos(q[1]);
+    Fq[0][0] = -K * C * w4 * w4 + m3 * grav * s * std::sin(q[0]);
+    Fq[0][1] = K * C * w4 * w4;
+    Fq[1][0] = K * C * w3 * w3;
+    Fq[1][1] = -K * C * w3 * w3 - gm * std::sin(q[1]);
+    Fv[0][0] = 0.0;
+    Fv[0][1] = 2.0 * K * S * w4;
+    Fv[1][0] = -2.0 * K * S * w3;
+    Fv[1][1] = 0.0;
+  }
+  // eccentricity e = B_pin - B_hole, |e|, unit normal n (pin - hole), and the
+  // rows of the contact's velocity map: g' = wn . q' + wn_t, u_T = wt . q' + wt_t
+  struct Contact {
+    double e[2], ecc, n[2], wn[2], wn_t, wt[2], wt_t;
+  };
+  Contact contact(double t, double th3, double th4) const {
+    Contact k;
+    double bp[2], vp[2], bh[2], J[2][2];
+    pin(t, bp, vp);
+    hole(th3, th4, bh, J);
+    k.e[0] = bp[0] - bh[0];
+    k.e[1] = bp[1] - bh[1];
+    k.ecc = std::hypot(k.e[0], k.e[1]);
+    if (k.ecc > kEccentricityMin) {
+      k.n[0] = k.e[0] / k.ecc;
+      k.n[1] = k.e[1] / k.ecc;
+    } else {
+      k.n[0] = 1.0;
+      k.n[1] = 0.0;
+    }
+    // g = c - |e|: dg/dq = n^T JB, dg/dt = -n . v_pin
+    k.wn[0] = k.n[0] * J[0][0] + k.n[1] * J[1][0];
+    k.wn[1] = k.n[0] * J[0][1] + k.n[1] * J[1][1];
+    k.wn_t = -(k.n[0] * vp[0] + k.n[1] * vp[1]);
+    // sliding velocity of the hole's surface on the pin's at the contact
+    // point, along t = z x n: t . (JB q' - v_pin) + r_hole w3 - r_pin omega2
+    const double tn[2] = {-k.n[1], k.n[0]};
+    k.wt[0] = tn[0] * J[0][0] + tn[1] * J[1][0] + r_hole;
+    k.wt[1] = tn[0] * J[0][1] + tn[1] * J[1][1];
+    k.wt_t = -(tn[0] * vp[0] + tn[1] * vp[1]) - r_pin * omega2;
+    return k;
+  }
+};
+
+// The coupler and the follower as one LagrangianDS, M(q) q'' + F(q, q') = p,
+// with the Jacobians of F that MoreauJeanOSI's iteration matrix
+// W = M - h theta dF/dv - h^2 theta^2 dF/dq needs (all of F is carried as
+// LagrangianDS's fInt: Siconos subtracts fInt from the forces).
+class FourbarDS : public LagrangianDS {
+ public:
+  FourbarDS(SP::SiconosVector q0, SP::SiconosVector v0, const Mech &m)
+      : LagrangianDS(q0, v0), m_(m) {
+    _hasConstantMass = false;
+    allocateMass();
+    allocateFInt();
+    allocateJacobianFIntq();
+    allocateJacobianFIntqDot();
+    init_forces();
+    computeMass();
+  }
+  void computeMass() override { computeMass(_q[0]); }
+  void computeMass(SP::SiconosVector q) override {
+    double M[2][2];
+    m_.mass(q->getValue(0), q->getValue(1), M);
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) _mass->setValue(i, j, M[i][j]);
+    _mass->resetFactorizationFlags();
+  }
+  void computeFInt(double time) override { computeFInt(time, _q[0], _q[1]); }
+  void computeFInt(double, SP::SiconosVector q, SP::SiconosVector v) override {
+    double F[2], Fq[2][2], Fv[2][2];
+    eval(*q, *v, F, Fq, Fv);
+    _fInt->setValue(0, F[0]);
+    _fInt->setValue(1, F[1]);
+  }
+  void computeJacobianFIntq(double time) override { computeJacobianFIntq(time, _q[0], _q[1]); }
+  void computeJacobianFIntq(double, SP::SiconosVector q, SP::SiconosVector v) override {
+    double F[2], Fq[2][2], Fv[2][2];
+    eval(*q, *v, F, Fq, Fv);
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) _jacobianFIntq->setValue(i, j, Fq[i][j]);
+  }
+  void computeJacobianFIntqDot(double time) override {
+    computeJacobianFIntqDot(time, _q[0], _q[1]);
+  }
+  void computeJacobianFIntqDot(double, SP::SiconosVector q, SP::SiconosVector v) override {
+    double F[2], Fq[2][2], Fv[2][2];
+    eval(*q, *v, F, Fq, Fv);
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) _jacobianFIntqDot->setValue(i, j, Fv[i][j]);
+  }
+
+ private:
+  void eval(const SiconosVector &q, const SiconosVector &v, double F[2], double Fq[2][2],
+            double Fv[2][2]) const {
+    const double qq[2] = {q.getValue(0), q.getValue(1)}, vv[2] = {v.getValue(0), v.getValue(1)};
+    m_.forces(qq, vv, F, Fq, Fv);
+  }
+  Mech m_;
+};
+
+// The loop closed at B (ideal models): h(q, t) = B_hole(q) - B_pin(t) = 0.
+class ClosureR : public LagrangianRheonomousR {
+ public:
+  explicit ClosureR(const Mech &m) : m_(m) { _hDot.reset(new SiconosVector(2)); }
+  void computeh(double time, const BlockVector &q, BlockVector &, SiconosVector &y) override {
+    double bp[2], vp[2], bh[2], J[2][2];
+    m_.pin(time, bp, vp);
+    m_.hole(q.getValue(0), q.getValue(1), bh, J);
+    y.setValue(0, bh[0] - bp[0]);
+    y.setValue(1, bh[1] - bp[1]);
+  }
+  void computeJachq(double, const BlockVector &q, BlockVector &) override {
+    double bh[2], J[2][2];
+    m_.hole(q.getValue(0), q.getValue(1), bh, J);
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) _jachq->setValue(i, j, J[i][j]);
+  }
+  void computehDot(double time, const BlockVector &, BlockVector &) override {
+    double bp[2], vp[2];
+    m_.pin(time, bp, vp);
+    _hDot->setValue(0, -vp[0]);
+    _hDot->setValue(1, -vp[1]);
+  }
+
+ private:
+  Mech m_;
+};
+
+// The clearance at B: g(q, t) = c - |e| >= 0, and with friction a second
+// row, the sliding velocity at the contact point (its position row is 0:
+// only its velocity enters Moreau-Jean's velocity-level problem).
+class ClearanceR : public LagrangianRheonomousR {
+ public:
+  ClearanceR(const Mech &m, int rows) : m_(m), rows_(rows) {
+    _hDot.reset(new SiconosVector(rows));
+  }
+  void computeh(double time, const BlockVector &q, BlockVector &, SiconosVector &y) override {
+    const Mech::Contact k = m_.contact(time, q.getValue(0), q.getValue(1));
+    y.setValue(0, m_.c - k.ecc);
+    if (rows_ > 1) y.setValue(1, 0.0);
+  }
+  void computeJachq(double time, const BlockVector &q, BlockVector &) override {
+    const Mech::Contact k = m_.contact(time, q.getValue(0), q.getValue(1));
+    _jachq->setValue(0, 0, k.wn[0]);
+    _jachq->setValue(0, 1, k.wn[1]);
+    if (rows_ > 1) {
+      _jachq->setValue(1, 0, k.wt[0]);
+      _jachq->setValue(1, 1, k.wt[1]);
+    }
+  }
+  void computehDot(double time, const BlockVector &q, BlockVector &) override {
+    const Mech::Contact k = m_.contact(time, q.getValue(0), q.getValue(1));
+    _hDot->setValue(0, k.wn_t);
+    if (rows_ > 1) _hDot->setValue(1, k.wt_t);
+  }
+
+ private:
+  Mech m_;
+  int rows_;
+};
+
+struct Scene {
+  fb_model_scene sm;
+  Mech m;
+  int clearance;   // 1: the crank-coupler joint is a pin in a hole
+  int friction;    // 1: Coulomb friction at it (a second relation row)
+  double h;        // step [s]
+  size_t k;        // steps taken (time k h)
+  std::shared_ptr<FourbarDS> ds;
+  SP::Interaction inter;
+  SP::NonSmoothDynamicalSystem nsds;
+  SP::MoreauJeanOSI osi;
+  SP::OneStepNSProblem osnspb;
+  SP::TimeStepping sim;
+  int solver_info; // the last one-step problem's status (0: solved)
+  fb_episode ep;
+  double gdot;     // g' at the last step's end [m/s] (clearance)
+  fb_sample x;
+  double pen_now, drift;
+  double me_min, me_max;
+  size_t contact_steps;
+  fb_stop stop;
+};
+
+// the scene whose step runs now, for the solver-status hook below (one step
+// at a time per thread)
+thread_local Scene *tl_stepping = nullptr;
+
+// TimeStepping's solver-status hook: keeps the status for the step to act on
+// instead of Siconos's default, which prints a warning to standard output
+void keep_solver_status(int info, Simulation *) {
+  if (tl_stepping && info != 0) tl_stepping->solver_info = info;
+}
+
+// A numerics solver's options, owned by the one-step problem. Built here,
+// not by the problem's solver-id constructor: that one frees them with
+// solver_options_delete, which in Siconos 4.4 frees what the struct holds
+// but not the struct itself (its free is commented out), so each problem
+// left 120 bytes behind (LeakSanitizer, tests/test_siconos.c)
+SP::SolverOptions solver_options(int solver_id) {
+  SolverOptions *o = solver_options_create(solver_id);
+  if (!o) throw std::bad_alloc();
+  return SP::SolverOptions(o, [](SolverOptions *p) {
+    solver_options_delete(p);
+    std::free(p);
+  });
+}
+
+// the message of a Siconos exception (its THROW_EXCEPTION text), else what()
+std::string siconos_message(const std::exception &ex) {
+  if (const boost::exception *be = dynamic_cast<const boost::exception *>(&ex))
+    if (const std::string *msg = boost::get_error_info<Siconos::exception::extra_message>(*be))
+      return *msg;
+  return ex.what();
+}
+
+fb_status set_stop(Scene *s, fb_stop_kind kind, const char *detail, fb_diag *diag) {
+  std::memset(&s->stop, 0, sizeof s->stop);
+  s->stop.kind = kind;
+  s->stop.engine = "siconos";
+  s->stop.joint = -1;
+  s->stop.t = (double)s->k * s->h;
+  s->stop.step = s->k;
+  std::snprintf(s->stop.detail, sizeof s->stop.detail, "%.150s", detail ? detail : "");
+  return fb_diag_set(diag, FB_ERR_NUMERIC, "siconos: %s at t = %g s",
+                     detail && *detail ? detail : "step failed", s->stop.t);
+}
+
+// 1 / (w^T M^-1 w), w = J_hole^T n: the mechanism's effective mass along n [kg]
+double effective_mass(const Mech &m, double th3, double th4, const double w[2]) {
+  double M[2][2];
+  m.mass(th3, th4, M);
+  const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+  const double wmw = (w[0] * (M[1][1] * w[0] - M[0][1] * w[1]) +
+                      w[1] * (M[0][0] * w[1] - M[1][0] * w[0])) / det;
+  return 1.0 / wmw;
+}
+
+// the sample at the state now; impulse the step's normal impulse [N s]
+void read_sample(Scene *s, double impulse, const double v_old[2]) {
+  fb_sample &x = s->x;
+  std::memset(&x, 0, sizeof x);
+  const double t = (double)s->k * s->h;
+  const SiconosVector &q = *s->ds->q(), &v = *s->ds->velocity();
+  x.t = t;
+  x.crank_angle = s->m.crank_angle(t);
+  x.coupler_angle = q.getValue(0);
+  x.coupler_omega = v.getValue(0);
+  x.follower_angle = q.getValue(1);
+  x.follower_omega = v.getValue(1);
+  if (v_old) {
+    x.coupler_alpha = (v.getValue(0) - v_old[0]) / s->h;
+    x.follower_alpha = (v.getValue(1) - v_old[1]) / s->h;
+  }
+  s->pen_now = 0.0;
+  s->drift = 0.0;
+  const Mech::Contact k = s->m.contact(t, q.getValue(0), q.getValue(1));
+  if (s->clearance) {
+    s->pen_now = k.ecc > s->m.c ? k.ecc - s->m.c : 0.0;
+    s->gdot = k.wn[0] * v.getValue(0) + k.wn[1] * v.getValue(1) + k.wn_t;
+    double *col = x.contact[FB_JOINT_B];
+    col[FB_C_FORCE] = impulse / s->h;
+    col[FB_C_PEN] = s->pen_now;
+    col[FB_C_EX] = k.e[0];
+    col[FB_C_EY] = k.e[1];
+    col[FB_C_STATE] = s->ep.state;
+  } else {
+    s->drift = k.ecc;
+  }
+}
+
+} // namespace
+
+struct fb_siconos_scene {
+  Scene *s;
+};
+
+extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_model_scene *sm,
+                                             fb_diag *diag) {
+  *out = NULL;
+  fb_status st = fb_scene_check(sm->def, diag);
+  if (st != FB_OK) return st;
+  if (sm->clearance_mask & ~(1 << FB_JOINT_B))
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "model '%s': the Siconos model has clearance at the crank-coupler joint "
+                       "only; [clearance] joints names others: set joints = crank-coupler or drop "
+                       "the siconos-clearance-* models", sm->model->name);
+  fb_start_state start;
+  st = fb_model_scene_start(&start, sm, diag);
+  if (st != FB_OK) return st;
+  fb_siconos_scene *hd = new (std::nothrow) fb_siconos_scene;
+  if (!hd) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Siconos scene");
+  hd->s = NULL;
+  try {
+    Scene *s = new Scene;
+    hd->s = s;
+    s->sm = *sm;
+    s->clearance = (sm->clearance_mask & (1 << FB_JOINT_B)) != 0;
+    s->friction = s->clearance && sm->friction > 0.0;
+    s->h = sm->solver.h;
+    s->k = 0;
+    s->solver_info = 0;
+    std::memset(&s->ep, 0, sizeof s->ep);
+    s->gdot = 0.0;
+    s->me_min = s->me_max = NAN;
+    s->contact_steps = 0;
+    std::memset(&s->stop, 0, sizeof s->stop);
+    s->stop.engine = "siconos";
+    s->stop.joint = -1;
+    Mech &m = s->m;
+    m.a = sm->lengths.length[FB_CRANK];
+    m.b = sm->lengths.length[FB_COUPLER];
+    m.cl = sm->lengths.length[FB_FOLLOWER];
+    m.g = sm->lengths.length[FB_GROUND];
+    m.m3 = sm->link[1].mass;
+    m.m4 = sm->link[2].mass;
+    m.i3 = sm->link[1].inertia;
+    m.i4 = sm->link[2].inertia;
+    m.f3 = sm->link[1].com_fraction;
+    m.f4 = sm->link[2].com_fraction;
+    m.grav = sm->gravity;
+    m.theta0 = start.crank_angle;
+    m.omega2 = sm->omega2;
+    m.c = sm->radial_clearance;
+    m.r_pin = sm->pin_radius;
+    m.r_hole = sm->pin_radius + sm->radial_clearance;
+
+    SP::SiconosVector q0(new SiconosVector(2)), v0(new SiconosVector(2));
+    q0->setValue(0, start.coupler_angle);
+    q0->setValue(1, start.follower_angle);
+    v0->setValue(0, start.coupler_omega);
+    v0->setValue(1, start.follower_omega);
+    s->ds.reset(new FourbarDS(q0, v0, m));
+    SP::NonSmoothLaw nsl;
+    SP::Relation rel;
+    if (!s->clearance) {
+      nsl.reset(new EqualityConditionNSL(2));
+      rel.reset(new ClosureR(m));
+    } else {
+      const double e_n = sm->law[FB_JOINT_B].restitution;
+      if (s->friction)
+        nsl.reset(new NewtonImpactFrictionNSL(e_n, 0.0, sm->friction, 2));
+      else
+        nsl.reset(new NewtonImpactNSL(e_n));
+      rel.reset(new ClearanceR(m, s->friction ? 2 : 1));
+    }
+    s->inter.reset(new Interaction(nsl, rel));
+    // the run's end lies past the harness's last step: it decides when to stop
+    const double t_end = sm->def->duration + 16.0 * s->h;
+    s->nsds.reset(new NonSmoothDynamicalSystem(0.0, t_end));
+    s->nsds->insertDynamicalSystem(s->ds);
+    s->nsds->link(s->inter, s->ds);
+    s->osi.reset(new MoreauJeanOSI(fb_siconos_theta(&sm->def->source)));
+    if (!s->clearance) {
+      s->osnspb.reset(new Equality());
+    } else if (s->friction) {
+      SP::SolverOptions opts = solver_options(SICONOS_FRICTION_2D_LEMKE);
+      opts->dparam[SICONOS_DPARAM_TOL] = kFrictionSolverTolerance;
+      opts->iparam[SICONOS_IPARAM_MAX_ITER] = kFrictionSolverMaxIterations;
+      s->osnspb.reset(new FrictionContact(2, opts));
+    } else {
+      s->osnspb.reset(new LCP(solver_options(SICONOS_LCP_LEMKE)));
+    }
+    SP::TimeDiscretisation td(new TimeDiscretisation(0.0, s->h));
+    s->sim.reset(new TimeStepping(s->nsds, td, s->osi, s->osnspb));
+    s->sim->setNewtonTolerance(kNewtonTolerance);
+    s->sim->setNewtonMaxIteration(kNewtonMaxIterations);
+    s->sim->setWarnOnNonConvergence(false);
+    s->sim->setCheckSolverFunction(keep_solver_status);
+    s->sim->initialize();
+    read_sample(s, 0.0, NULL);
+  } catch (const std::bad_alloc &) {
+    fb_siconos_scene_destroy(hd);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Siconos scene");
+  } catch (const std::exception &ex) {
+    const std::string msg = siconos_message(ex);
+    fb_siconos_scene_destroy(hd);
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "model '%s': Siconos refused the system: %.600s",
+                       sm->model->name, msg.c_str());
+  }
+  *out = hd;
+  return FB_OK;
+}
+
+extern "C" fb_status fb_siconos_scene_step(fb_siconos_scene *hd, fb_diag *diag) {
+  Scene *s = hd->s;
+  const SiconosVector &v = *s->ds->velocity();
+  const double v_old[2] = {v.getValue(0), v.getValue(1)};
+  const double gdot_old = s->gdot;
+  double impulse = 0.0;
+  s->solver_info = 0;
+  tl_stepping = s;
+  try {
+    s->sim->computeOneStep();
+    tl_stepping = nullptr;
+    if (!s->sim->isNewtonConverge()) {
+      char why[96];
+      std::snprintf(why, sizeof why, "Newton loop not converged in %u iterations",
+                    kNewtonMaxIterations);
+      s->k++;
+      return set_stop(s, FB_STOP_SOLVER, why, diag);
+    }
+    if (s->solver_info != 0) {
+      char why[96];
+      std::snprintf(why, sizeof why, "one-step nonsmooth problem not solved (numerics info %d)",
+                    s->solver_info);
+      s->k++;
+      return set_stop(s, FB_STOP_SOLVER, why, diag);
+    }
+    if (s->clearance) impulse = s->inter->lambda(1)->getValue(0);
+    s->sim->nextStep();
+  } catch (const std::exception &ex) {
+    tl_stepping = nullptr;
+    const std::string msg = siconos_message(ex);
+    s->k++;
+    return set_stop(s, FB_STOP_SOLVER, msg.c_str(), diag);
+  }
+  s->k++;
+  if (s->clearance) {
+    // an episode is a run of steps with a contact impulse; it begins as an
+    // impact when the pin approached the wall at >= the impact speed
+    // (g' < 0 before the step)
+    const int in_contact = impulse > 0.0;
+    fb_episode_update(&s->ep, in_contact, s->ep.in_contact ? -s->gdot : -gdot_old,
+                      s->sm.impact_velocity_min);
+    if (in_contact) {
+      const SiconosVector &q = *s->ds->q();
+      const double t = (double)s->k * s->h;
+      const Mech::Contact k = s->m.contact(t, q.getValue(0), q.getValue(1));
+      const double me = effective_mass(s->m, q.getValue(0), q.getValue(1), k.wn);
+      if (s->contact_steps == 0 || me < s->me_min) s->me_min = me;
+      if (s->contact_steps == 0 || me > s->me_max) s->me_max = me;
+      s->contact_steps++;
+    }
+  }
+  read_sample(s, impulse, v_old);
+  if (!std::isfinite(s->x.coupler_angle) || !std::isfinite(s->x.coupler_alpha) ||
+      !std::isfinite(s->x.follower_alpha)) {
+    std::memset(&s->stop, 0, sizeof s->stop);
+    s->stop.kind = FB_STOP_NONFINITE;
+    s->stop.engine = "siconos";
+    s->stop.joint = -1;
+    s->stop.t = s->x.t;
+    s->stop.step = s->k;
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "siconos: non-finite state at t = %g s", s->x.t);
+  }
+  return FB_OK;
+}
+
+extern "C" void fb_siconos_scene_stopped(const fb_siconos_scene *hd, fb_stop *out) {
+  *out = hd->s->stop;
+}
+
+extern "C" void fb_siconos_scene_sample(const fb_siconos_scene *hd, fb_sample *x) {
+  *x = hd->s->x;
+}
+
+extern "C" void fb_siconos_scene_contact(const fb_siconos_scene *hd, fb_engine_contact *out) {
+  std::memset(out, 0, sizeof *out);
+  out->joint = hd->s->clearance ? FB_JOINT_B : -1;
+  out->penetration = hd->s->pen_now;
+  out->impacts[FB_JOINT_B] = hd->s->ep.impacts;
+}
+
+extern "C" void fb_siconos_scene_provenance(const fb_siconos_scene *hd, int joint,
+                                            fb_contact_provenance *out) {
+  const Scene *s = hd->s;
+  out->mass_eff_min = joint == FB_JOINT_B ? s->me_min : NAN;
+  out->mass_eff_max = joint == FB_JOINT_B ? s->me_max : NAN;
+  out->erp_max = NAN;
+  out->cfm_min = NAN;
+  out->h_omega_max = NAN;
+  out->contact_steps = joint == FB_JOINT_B ? s->contact_steps : 0;
+}
+
+extern "C" double fb_siconos_scene_drift(const fb_siconos_scene *hd) { return hd->s->drift; }
+
+extern "C" size_t fb_siconos_scene_steps(const fb_siconos_scene *hd) { return hd->s->k; }
+
+extern "C" void fb_siconos_scene_destroy(fb_siconos_scene *hd) {
+  if (!hd) return;
+  // the simulation and its integrator and one-step problem hold each other
+  // by shared pointers: Simulation::clear breaks that cycle (Siconos's own
+  // teardown), else the whole system outlives the scene
+  if (hd->s && hd->s->sim) {
+    hd->s->sim->clear();
+    hd->s->osi->setSimulationPtr(SP::Simulation());
+    hd->s->osnspb->setSimulationPtr(SP::Simulation());
+    hd->s->osi->setDynamicalSystemsGraph(SP::DynamicalSystemsGraph());
+    hd->s->nsds->clear();
+  }
+  delete hd->s;
+  delete hd;
+}

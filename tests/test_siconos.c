@@ -45,6 +45,9 @@
  * drift from B_pin: measured 3.3e-9 m over two revolutions at 3.3e-6 s (ODE
  * 3.5e-8, Simbody 1.7e-7). Bound: a hundredth of a micrometre */
 #define DRIFT_TOL_M 1e-8
+/* theta = 1 (backward Euler) is first order and damps: the ideal peaks'
+ * error must be at least this many times theta = 0.5's (measured 5.1e3) */
+#define THETA_ERROR_RATIO_MIN 100.0
 /* the issue's bound on the rebound ratio against e_N; Newton's law as the
  * scheme imposes it across an impact step is exact up to the Newton loop's
  * last Jacobian update (siconos_scene.cpp, kNewtonTolerance): measured
@@ -175,6 +178,25 @@ static void test_ideal_models_match_analytic(void **state) {
   fb_run_free(&r);
 }
 
+/* [siconos] theta reaches Moreau-Jean: backward Euler (theta = 1) damps the
+ * ideal loop's motion, the trapezoidal rule (0.5) does not */
+static void test_theta_moves_the_scheme(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SICONOS();
+  static fb_run half, one;
+  fb_case c;
+  const char *s_half[] = {"run.revolutions=2", "solver.h_s=1e-5"};
+  const char *s_one[] = {"run.revolutions=2", "solver.h_s=1e-5", "siconos.theta=1"};
+  run(&half, &c, "siconos-ideal-nominal", s_half, 2);
+  run(&one, &c, "siconos-ideal-nominal", s_one, 3);
+  const double e_half = alpha_peak_rel(&half.model[0].error);
+  const double e_one = alpha_peak_rel(&one.model[0].error);
+  report_residual("theta 1 / theta 0.5 alpha peak error", e_one / e_half, THETA_ERROR_RATIO_MIN);
+  assert_true(e_one > THETA_ERROR_RATIO_MIN * e_half);
+  fb_run_free(&half);
+  fb_run_free(&one);
+}
+
 /* the rigid clearance joint on the paper case: its first impact where the
  * reference's is (the same free flight), Newton's law at every impact, and a
  * penetration of the order of one step's travel */
@@ -299,14 +321,25 @@ static void test_restitution_rebound_approaches_newton(void **state) {
   }
 }
 
-/* clearance away from the crank-coupler joint is refused; without Siconos
- * the models are refused with how to enable them */
-static void test_refusal(void **state) {
+/* [siconos] theta: bad values are refused naming the key; clearance away
+ * from the crank-coupler joint is refused; without Siconos the models are
+ * refused with how to enable them */
+static void test_keys_and_refusal(void **state) {
   (void)state;
   static fb_case c;
   fb_diag d;
-  const char *text = "[run]\nmodels = siconos-clearance-newton\n";
-  const fb_status st = fb_casefile_load_text(&c, "t.ini", text, strlen(text), &d);
+#define LOAD(text) fb_casefile_load_text(&c, "t.ini", text, strlen(text), &d)
+  assert_int_not_equal(LOAD("[siconos]\ntheta = 0.4\n"), FB_OK);
+  assert_non_null(strstr(d.msg, "theta"));
+  assert_non_null(strstr(d.msg, "0.5"));
+  assert_int_not_equal(LOAD("[siconos]\ntheta = 1.5\n"), FB_OK);
+  assert_non_null(strstr(d.msg, "theta"));
+  assert_int_equal(LOAD("[siconos]\ntheta = 0.75\n"), FB_OK);
+  assert_true(c.siconos.theta == 0.75);
+  assert_int_equal(LOAD("[case]\nname = x\n"), FB_OK);
+  assert_true(c.siconos.theta == 0.5);
+  const fb_status st = LOAD("[run]\nmodels = siconos-clearance-newton\n");
+#undef LOAD
   if (FB_HAVE_SICONOS) {
     assert_int_equal(st, FB_OK);
     assert_true(fb_engine_available(FB_ENGINE_SICONOS));
@@ -331,8 +364,9 @@ static void test_refusal(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_refusal),
+      cmocka_unit_test(test_keys_and_refusal),
       cmocka_unit_test(test_ideal_models_match_analytic),
+      cmocka_unit_test(test_theta_moves_the_scheme),
       cmocka_unit_test(test_clearance_newton_law_and_first_impact),
       cmocka_unit_test(test_friction_keeps_newtons_normal_law),
       cmocka_unit_test(test_restitution_rebound_approaches_newton),

@@ -86,9 +86,11 @@ static fb_status unknown_key(const entry *e, fb_diag *diag) {
     }
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: unknown section [%s]%s%s%s (sections: case, linkage, tolerance, "
-                       "drive, environment, mass, material, pin, clearance, expect, solver, mujoco, bullet, "
-                       "simbody, run, published, published.impact, published.restitution, "
-                       "variant.<name>)",
+                       "drive, environment, mass, material, pin, clearance, expect, solver, "
+#define X(name) #name ", "
+                       FB_ENGINE_OPTS_LIST
+#undef X
+                       "run, published, published.impact, published.restitution, variant.<name>)",
                        e->origin, e->section, bs && sd <= 3 ? "; did you mean [" : "",
                        bs && sd <= 3 ? bs : "", bs && sd <= 3 ? "]?" : "");
   }

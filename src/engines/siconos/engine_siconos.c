@@ -39,7 +39,7 @@ static int siconos_settings(fb_engine_setting *out, const fb_case *c, int cleara
   out[0] = (fb_engine_setting){.key = "integrator", .kind = FB_SETTING_TEXT,
                                .text = "MoreauJeanOSI"};
   out[1] = (fb_engine_setting){.key = "theta", .kind = FB_SETTING_NUMBER,
-                               .number = fb_siconos_theta(c)};
+                               .number = c->siconos.theta};
   out[2] = (fb_engine_setting){.key = "contact", .kind = FB_SETTING_TEXT,
                                .text = !clearance_mask ? "EqualityConditionNSL (loop closure)"
                                        : c->clearance.friction > 0.0 ? "NewtonImpactFrictionNSL"
@@ -55,7 +55,7 @@ static void siconos_settings_lines(const fb_case *c, const fb_engine_models_used
   snprintf(line, sizeof line,
            "Siconos models: Moreau-Jean theta %g, fixed step h; clearance: g = c - |e| >= 0 "
            "with Newton's impact law, e_N = %g%s (rigid: no penalty)",
-           fb_siconos_theta(c), c->clearance.restitution,
+           c->siconos.theta, c->clearance.restitution,
            c->clearance.friction > 0.0 ? " and Coulomb friction" : "");
   put(a, line);
 }

@@ -449,7 +449,7 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
     s->nsds.reset(new NonSmoothDynamicalSystem(0.0, t_end));
     s->nsds->insertDynamicalSystem(s->ds);
     s->nsds->link(s->inter, s->ds);
-    s->osi.reset(new MoreauJeanOSI(fb_siconos_theta(&sm->def->source)));
+    s->osi.reset(new MoreauJeanOSI(sm->siconos.theta));
     if (!s->clearance) {
       s->osnspb.reset(new Equality());
     } else if (s->friction) {

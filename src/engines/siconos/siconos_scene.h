@@ -29,7 +29,7 @@
  * The Lagrangian dynamics M(q) q'' + F(q, q') = p (the reference's
  * mass matrix, quadratic velocity terms and gravity, with their Jacobians for
  * Moreau-Jean's Newton iteration) are integrated by MoreauJeanOSI(theta),
- * theta = fb_siconos_theta, at the fixed step h = [solver] h_s, by
+ * theta = [siconos] theta, at the fixed step h = [solver] h_s, by
  * TimeStepping with its Newton loop. The impulse lambda of a step is a
  * percussion: the contact force reported is lambda / h (the step's mean
  * force), and an impact is one step whose velocity jump obeys Newton's law
@@ -52,19 +52,8 @@ extern "C" {
 
 typedef struct fb_siconos_scene fb_siconos_scene;
 
-/* Moreau-Jean's theta of the siconos-* models in case c (MoreauJeanOSI(theta):
- * the smooth forces are taken at (1 - theta) of the step's start and theta of
- * its end, positions advanced with the velocities weighted alike): 0.5, the
- * trapezoidal rule, Siconos's own choice for mechanisms (its slider-crank and
- * four-bar examples), which conserves energy in free flight. */
-#define FB_SICONOS_THETA_DEFAULT 0.5
-static inline double fb_siconos_theta(const fb_case *c) {
-  (void)c;
-  return FB_SICONOS_THETA_DEFAULT;
-}
-
-/* Builds model sm's nonsmooth dynamical system at t = 0 (theta:
- * fb_siconos_theta of sm->def->source). Errors: those of fb_scene_check and fb_model_scene_start;
+/* Builds model sm's nonsmooth dynamical system at t = 0 (sm->siconos:
+ * theta). Errors: those of fb_scene_check and fb_model_scene_start;
  * FB_ERR_ARG for clearance at a joint other than crank-coupler;
  * FB_ERR_NUMERIC when Siconos refuses the system, with its message;
  * FB_ERR_NOMEM. */

@@ -934,7 +934,13 @@ static void test_models_lists_the_table(void **state) {
   assert_int_equal(run("models", out, sizeof out, NULL, 0), 0);
   size_t rows = 0;
   for (const char *line = out; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL)
-    rows += strncmp(line, "| ", 2) == 0;
+    if (strncmp(line, "| ", 2) == 0) {
+      rows++;
+      int bars = 0; /* a row's cell borders: a '|' inside a cell is escaped '\|' */
+      for (const char *c = line; *c && *c != '\n'; c++) bars += *c == '|' && (c == line || c[-1] != '\\');
+      if (bars != 10) fail_msg("models: a row of %d cell borders, not 10: %.*s", bars,
+                               (int)strcspn(line, "\n"), line);
+    }
   assert_int_equal(rows, count + 1); /* the header and one row per model */
   assert_int_equal(run("models --bogus", NULL, 0, err, sizeof err), 2);
   assert_non_null(strstr(err, "--bogus"));

@@ -5,15 +5,27 @@
 
 #include "model_table.h"
 
+/* s as a Markdown table cell: a '|' inside it is written '\|' */
+static void cell(FILE *f, const char *s) {
+  fputs(" ", f);
+  for (; *s; s++) {
+    if (*s == '|') fputc('\\', f);
+    fputc(*s, f);
+  }
+  fputs(" |", f);
+}
+
 void fb_report_models_text(FILE *f) {
   fputs("| model | engine | in this build | lengths | joints | law | collider | reference | "
         "what it is |\n|---|---|---|---|---|---|---|---|---|\n", f);
   for (int k = 0; k < fb_model_count; k++) {
     const fb_model *m = &fb_models[k];
-    fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", m->name,
-            fb_engine_name(m->engine), fb_engine_available(m->engine) ? "yes" : "no",
-            fb_lengths_name(m->lengths), fb_joint_set_name(m->joints), fb_model_law_name(m->law),
-            fb_collider_name(m->collider), m->reference ? m->reference : "-", m->summary);
+    fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s |", m->name, fb_engine_name(m->engine),
+            fb_engine_available(m->engine) ? "yes" : "no", fb_lengths_name(m->lengths),
+            fb_joint_set_name(m->joints), fb_model_law_name(m->law), fb_collider_name(m->collider),
+            m->reference ? m->reference : "-");
+    cell(f, m->summary);
+    fputc('\n', f);
   }
   int missing = 0;
   for (int e = 0; e < FB_ENGINE_COUNT; e++) {

@@ -277,6 +277,21 @@ with tempfile.TemporaryDirectory() as tmp:
     check(rc.returncode == 0 and not [f for f in os.listdir(out2) if f.endswith(".svg")],
           "--no-figures draws nothing")
     check(os.path.exists(os.path.join(out2, "report.md")), "--no-figures still writes report.md")
+    # report.html draws every model in the colour and dash its figures use
+    data_js = open(os.path.join(out, "report-data.js")).read()
+    data = json.JSONDecoder().raw_decode(data_js, data_js.index("{"))[0]
+    drawn = {}
+    for fig in manifest:
+        for c in fig.get("curves", []):
+            if "color" in c:
+                drawn.setdefault(c["model"], set()).add((c["color"].lower(), c["dash"]))
+    for m in data["models"]:
+        if m["name"] in drawn:
+            check(drawn[m["name"]] == {(m["color"].lower(), m["dash"])},
+                  "report.html draws %s in %s dash %s, the figures in %s" % (m["name"], m["color"], m["dash"],
+                                                                            sorted(drawn[m["name"]])))
+    check(any(m["name"] in drawn for m in data["models"]), "report.html and the figures share models")
+
     # no charting library (npm not run): the run succeeds, writes the page
     # without charts and says how to get them
     out4 = os.path.join(tmp, "nolib")

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "figures.h"
 #include "fileio.h"
 #include "metrics.h"
 #include "report.h"
@@ -95,7 +96,8 @@ static fb_status model_json(json_t **out, const fb_run *r, int mi) {
   json_t *o = json_pack("{s:s,s:s,s:b,s:s?,s:s?,s:s?,s:i}", "name", m->run.name, "engine",
                         fb_engine_name(row->engine), "clearance", m->run.clearance_mask != 0,
                         "reference", ref ? ref->name : NULL, "ideal", ideal ? ideal->name : NULL,
-                        "color", row->style.color, "dash", row->style.dash);
+                        "color", fb_figure_model_color(row->name), "dash",
+                        fb_figure_model_dash(row->name));
   unsigned char *keep = calloc(s->n ? s->n : 1, 1);
   size_t *idx = malloc((s->n ? s->n : 1) * sizeof *idx);
   episode *ep = malloc(FB_REPORT_MAX_IMPACTS * sizeof *ep);

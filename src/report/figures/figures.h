@@ -16,6 +16,12 @@
 
 typedef enum { FB_FIGURE_SVG = 0, FB_FIGURE_PNG = 1 } fb_figure_format;
 
+/* The colour ('#rrggbb') and gnuplot dash type model name is drawn with in
+ * every figure (its hue's shade, or the model table's colour for a
+ * yardstick; docs/figures.md), so that report.html draws it alike. */
+const char *fb_figure_model_color(const char *name);
+int fb_figure_model_dash(const char *name);
+
 /* Draws the run's figures into dir: omega.<ext> (coupler and follower
  * angular velocity against crank angle over the revolution after the first,
  * every model overlaid on the analytic curve), alpha.<ext> (the same for

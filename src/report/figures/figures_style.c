@@ -68,3 +68,7 @@ void fig_curve_style(json_t *c, const char *model) {
   json_object_set_new(c, "color", json_string(st.color));
   json_object_set_new(c, "dash", json_integer(st.dash));
 }
+
+const char *fb_figure_model_color(const char *name) { return fig_style_of(name).color; }
+
+int fb_figure_model_dash(const char *name) { return fig_style_of(name).dash; }

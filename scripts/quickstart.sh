@@ -18,13 +18,17 @@ case "$what" in
 esac
 
 # every compiler and library the build enables (meson.build; tests/test_quickstart.py
-# fails when meson.build needs a package this list lacks): C, and C++ for the Bullet,
-# Simbody and Siconos engines (src/engines/bullet, src/engines/simbody, src/engines/siconos);
-# SDFormat 12 for the test that loads fourbar export --format sdf (tests/test_export_sdf.cpp)
+# fails when meson.build needs a package this list lacks): C, and C++ for the engines
+# written in C++ (Bullet, Simbody, Siconos); SDFormat 12 for the test that loads
+# fourbar export --format sdf (tests/test_export_sdf.cpp)
 packages=(gcc g++ libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel
-          libmujoco-dev libbullet-dev libsimbody-dev libsiconos-kernel-dev libsiconos-numerics-dev
           libhdf5-dev python3-h5py libsdformat-dev)
+# each engine's own packages: the this_packages line of src/engines/<name>/meson.build
+# (a list of quoted package names; read as text, never run)
+engine_packages=$(sed -n "s/^this_packages = \[\(.*\)\]\$/\1/p" src/engines/*/meson.build | tr -d "',")
+# shellcheck disable=SC2206
+packages+=($engine_packages)
 # node and npm for report.html's library (and its browser test): Debian's nodejs and npm
 # unless a node with its own npm is there already (NodeSource's nodejs conflicts with them)
 command -v node >/dev/null 2>&1 || packages+=(nodejs)

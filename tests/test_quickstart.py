@@ -39,15 +39,10 @@ MESON_PACKAGES = {
     "dependency:jansson": ["libjansson-dev"],
     "dependency:gsl": ["libgsl-dev"],
     "dependency:cmocka": ["libcmocka-dev"],
-    "dependency:bullet-float64": ["libbullet-dev"],
     "dependency:hdf5": ["libhdf5-dev"],
-    "dependency:simbody": ["libsimbody-dev"],
     "dependency:sdformat12": ["libsdformat-dev"],
     "dependency:threads": ["libc6-dev"],
     "library:m": ["libc6-dev"],
-    "library:mujoco": ["libmujoco-dev"],
-    "library:siconos_kernel": ["libsiconos-kernel-dev"],
-    "library:siconos_numerics": ["libsiconos-numerics-dev"],
     "program:python3": ["python3"],
     "program:/usr/bin/python3": ["python3"],
     "program:node": ["nodejs"],
@@ -105,8 +100,40 @@ for path in meson_files():
 check(len(needs) >= 10, "meson.build files read (%d needs found)" % len(needs))
 check("language:cpp" in needs, "the C++ engines' add_languages('cpp') is seen")
 
+# ---- each engine's own packages: the this_packages line of its folder ------------
+# src/engines/<name>/meson.build says which Debian packages the quick start
+# installs for that engine; a dependency found in that folder and not in
+# MESON_PACKAGES is served by them (a new engine touches neither this file
+# nor quickstart.sh's list)
+engines_dir = os.path.join(src, "src", "engines")
+engine_packages = {}  # folder (relative to src) -> [package]
+for name in sorted(os.listdir(engines_dir)):
+    path = os.path.join(engines_dir, name, "meson.build")
+    if not os.path.isfile(path):
+        continue
+    m = re.search(r"^this_packages = \[([^\]\n]*)\]$", open(path).read(), re.M)
+    check(m is not None, "src/engines/%s/meson.build has a this_packages = [...] line on one line" % name)
+    if m:
+        pk = re.findall(r"'([^']+)'", m.group(1))
+        check(all(re.fullmatch(r"[a-z0-9][a-z0-9+.-]+", p) for p in pk),
+              "src/engines/%s/meson.build: this_packages holds Debian package names: %s" % (name, pk))
+        engine_packages[os.path.join("src", "engines", name)] = pk
+check(len(engine_packages) >= 4, "engine folders read (%d)" % len(engine_packages))
+
+
+def packages_of(need, where):
+    """The Debian packages that serve a meson need found at where ("file: call"):
+    MESON_PACKAGES's, else those of the engine folder it was found in."""
+    if need in MESON_PACKAGES:
+        return MESON_PACKAGES[need]
+    folder = os.path.dirname(where.split(":")[0])
+    return engine_packages.get(folder) or None
+
+
 # ---- scripts/quickstart.sh's package lists --------------------------------------
 qs = open(os.path.join(src, "scripts", "quickstart.sh")).read()
+reads_engines = re.search(r'sed -n "s/\^this_packages = .*src/engines/\*/meson\.build', qs) is not None
+check(reads_engines, "quickstart.sh reads each engine's this_packages")
 
 
 def installed_for(mode):
@@ -120,6 +147,9 @@ def installed_for(mode):
         if modes and mode not in modes:
             continue
         out |= set(m.group(2).split())
+    if reads_engines:
+        for pk in engine_packages.values():
+            out |= set(pk)
     return out
 
 
@@ -127,10 +157,11 @@ for mode in ("run", "test"):
     have = installed_for(mode)
     check("gcc" in have and len(have) >= 15, "quickstart.sh %s: package list read (%d)" % (mode, len(have)))
     for need, where in sorted(needs.items()):
-        pkgs = MESON_PACKAGES.get(need)
+        pkgs = packages_of(need, where)
         if pkgs is None:
             check(False, "%s (%s): no Debian package known for it; add it to MESON_PACKAGES in "
-                  "tests/test_quickstart.py and to scripts/quickstart.sh" % (need, where))
+                  "tests/test_quickstart.py and to scripts/quickstart.sh (an engine: to its "
+                  "folder's this_packages)" % (need, where))
             continue
         for p in pkgs:
             check(p in have, "%s needs %s (%s), which quickstart.sh %s does not install"
@@ -172,9 +203,25 @@ if shutil.which("pkg-config") and shutil.which("dpkg"):
         if own.returncode != 0:
             continue  # not from a Debian package (a local build): nothing to compare
         owners = {o.split(":")[0].strip() for o in own.stdout.split(": ")[0].split(",")}
-        check(set(MESON_PACKAGES.get(need, [])) & owners,
+        pkgs = packages_of(need, needs[need]) or []
+        check(set(pkgs) & owners,
               "%s: this machine's %s belongs to %s, the map says %s" % (need, pc, ", ".join(sorted(owners)),
-                                                                   MESON_PACKAGES.get(need)))
+                                                                   pkgs))
+
+# ---- the same for the libraries found by name: the package owning lib<name>.so ------
+if shutil.which("dpkg"):
+    for need in sorted(needs):
+        kind, name = need.split(":", 1)
+        if kind != "library" or name == "m":
+            continue
+        own = subprocess.run(["dpkg", "-S", "/usr/lib/*/lib%s.so" % name], capture_output=True, text=True)
+        if own.returncode != 0:
+            continue  # not installed here from a Debian package: the map alone speaks
+        owners = {o.split(":")[0].strip() for line in own.stdout.splitlines()
+                  for o in line.split(": ")[0].split(",")}
+        pkgs = packages_of(need, needs[need]) or []
+        check(set(pkgs) & owners, "%s: this machine's lib%s.so belongs to %s, the map says %s"
+              % (need, name, ", ".join(sorted(owners)), pkgs))
 
 # ---- the set-up's failures are shown, not swallowed --------------------------------
 # (a command's continuation lines joined: the redirection may sit on the last)

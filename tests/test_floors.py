@@ -19,7 +19,13 @@ Fails (exit 1, one line per finding) when:
     KNOWN_LARGE, each held to the length it had when the list was made;
   - a function in src/cli/ (the command line: flags and dispatch only) is
     over MAX_CLI_FUNCTION_LINES lines, except the functions in KNOWN_LONG,
-    each held to the length it had when the list was made.
+    each held to the length it had when the list was made;
+  - code outside the engines' floor (src/engines/) and the model table
+    (src/setup/model_table.c, .h) names the id of an engine of
+    src/engines/<name>/ (FB_ENGINE_<NAME>): what the harness does per
+    engine is the engine table's (engine.h) or the model table's rows, so
+    that a new engine needs no line above the engines; except the files in
+    KNOWN_ENGINE_IDS, each with its reason.
 With a build directory (tests/meson.build gives it; without one, SOURCE_ROOT/build
 when it holds a build), it also reads the call graph between the files
 of src/ from their built objects (`nm`: the symbols each object defines
@@ -85,6 +91,19 @@ MAX_CLI_FUNCTION_LINES = 120
 # function that drops to the limit or below must leave the list.
 KNOWN_LONG = {
 }
+
+# Files outside src/engines/ and the model table that name an engine's id
+# (FB_ENGINE_<NAME>), each with why. Shrink-only: a file that no longer
+# names one must leave the list.
+KNOWN_ENGINE_IDS = {
+    # contact-params turns one contact into the parameters a user pastes into
+    # each named engine (ODE's ERP/CFM, MuJoCo's solref/solimp, Bullet's
+    # spring-damper): its tables and verification are per engine by design
+    "src/studies/contact_params.c":
+        "contact-params translates a contact into named engines' parameters",
+}
+# The files that may compare engine ids: the engines' floor and the model table.
+ENGINE_ID_HOMES = ("src/engines/", "src/setup/model_table.c", "src/setup/model_table.h")
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 RANK = {name: i for i, (name, _) in enumerate(FLOORS)}
@@ -268,6 +287,68 @@ def check_functions(functions):
                            % (where, n, MAX_CLI_FUNCTION_LINES))
     for name in sorted(set(KNOWN_LONG) - seen):
         bad.append("%s: in KNOWN_LONG but not in src/cli/: take it out of the list" % name)
+    return bad
+
+
+def engine_ids():
+    """The ids of the engines of ENGINE_DIRS as C names: FB_ENGINE_<NAME>."""
+    return {"FB_ENGINE_" + os.path.basename(d).upper() for d in ENGINE_DIRS}
+
+
+def check_engine_ids(texts):
+    """texts: path -> source text of src/'s files. Returns the findings: an
+    engine's id named in the code (comments and strings aside) of a file
+    outside ENGINE_ID_HOMES and KNOWN_ENGINE_IDS, and a known file that no
+    longer names one."""
+    ids = engine_ids()
+    word = re.compile(r"\bFB_ENGINE_[A-Z0-9_]+\b")
+    bad, naming = [], set()
+    for f in sorted(texts):
+        if f.startswith(ENGINE_ID_HOMES):
+            continue
+        code = blank_code(texts[f])
+        for m in word.finditer(code):
+            if m.group(0) not in ids:
+                continue
+            naming.add(f)
+            if f not in KNOWN_ENGINE_IDS:
+                bad.append("%s:%d: names the engine id %s: outside src/engines/ and the model "
+                           "table, reach an engine through its table (engine.h) or a model "
+                           "row (model_table.h), not its id"
+                           % (f, code.count("\n", 0, m.start()) + 1, m.group(0)))
+    for f in sorted(set(KNOWN_ENGINE_IDS) - naming):
+        bad.append("%s: in KNOWN_ENGINE_IDS but names no engine id: take it out of the list" % f)
+    return bad
+
+
+def self_check_engine_ids():
+    """Made-up files: an id in code outside the homes must be found, with its
+    line; ids in comments and strings, in the homes and in a known file must
+    not; a known file without one must be named."""
+    saved_dirs, saved_known = list(ENGINE_DIRS), dict(KNOWN_ENGINE_IDS)
+    set_engine_dirs(["src/engines/ode", "src/engines/mujoco"])
+    KNOWN_ENGINE_IDS.clear()
+    KNOWN_ENGINE_IDS.update({"src/studies/known.c": "x", "src/studies/gone.c": "x"})
+    texts = {
+        "src/studies/b.c": "/* FB_ENGINE_ODE */\nint a = 1;\nif (e == FB_ENGINE_MUJOCO) f();\n",
+        "src/report/s.c": "const char *t = \"FB_ENGINE_ODE\"; int n = FB_ENGINE_COUNT;\n",
+        "src/engines/ode/o.c": "int x = FB_ENGINE_ODE;\n",
+        "src/setup/model_table.c": "int y = FB_ENGINE_MUJOCO;\n",
+        "src/studies/known.c": "int z = FB_ENGINE_ODE;\n",
+        "src/studies/gone.c": "int w = 0;\n",
+    }
+    try:
+        found = check_engine_ids(texts)
+    finally:
+        set_engine_dirs(saved_dirs)
+        KNOWN_ENGINE_IDS.clear()
+        KNOWN_ENGINE_IDS.update(saved_known)
+    want = ["src/studies/b.c:3: names the engine id FB_ENGINE_MUJOCO",
+            "src/studies/gone.c: in KNOWN_ENGINE_IDS but names no engine id"]
+    bad = ["self-check: the engine-id checker missed '%s'" % w
+           for w in want if not any(w in f for f in found)]
+    if len(found) != len(want):
+        bad.append("self-check: the engine-id checker found %s, expected only %s" % (found, want))
     return bad
 
 
@@ -594,6 +675,9 @@ def main():
     set_engine_dirs(sorted("src/engines/" + n for n in os.listdir(engines)
                            if os.path.isdir(os.path.join(engines, n))))
     bad += check_graph(sorted(files), includes, lines) + check_functions(functions)
+    bad += self_check_engine_ids() + check_engine_ids(
+        {f: open(os.path.join(root, f), encoding="utf-8", errors="replace").read()
+         for f in files if f.endswith(SOURCE_EXT)})
     build = sys.argv[2] if len(sys.argv) > 2 else os.path.join(root, "build")
     calls, note = {}, ""
     if len(sys.argv) > 2 or os.path.exists(os.path.join(build, "compile_commands.json")):

@@ -18,6 +18,8 @@
  *   destroy  frees the instance (NULL is ignored)
  *   impact   optional: one body's single impact in the engine, for fourbar
  *            impact and contact-params (fb_engine_impact below)
+ *   bench    optional: its configurations in fourbar bench's grids
+ *            (engine_bench.h)
  *
  * Engines today: analytic and reference (engines.c, the exact kinematics and
  * the GSL reference behind the same interface, which compute their series
@@ -32,6 +34,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "engine_bench.h"
 #include "engine_params.h"
 #include "impact.h"
 #include "model_table.h"
@@ -211,6 +214,8 @@ typedef struct fb_engine {
                                        collider reaches the engine when it is not the case's
                                        ERP/CFM mapping ("none (applied force)"); NULL, or a
                                        NULL result: the mapping's name */
+  const fb_engine_bench *bench;     /* optional: the engine's rows of fourbar bench's grids
+                                       (engine_bench.h; NULL: none) */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:

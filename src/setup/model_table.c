@@ -69,7 +69,8 @@ int fb_engine_steps_world(fb_engine_id e) {
  * stack-up dash type 5), thin. The figures draw every row of one engine in
  * shades of that engine's hue (ODE blues, MuJoCo oranges, Simbody greens,
  * Bullet purples); the yardsticks keep their colour, and so do the Siconos
- * rows (reds). */
+ * rows (reds). Every other engine's row names its ODE row of the same
+ * lengths, joints and law as its partner (omega.svg's engine differences). */
 const fb_model fb_models[] = {
     {.name = "analytic",
      .engine = FB_ENGINE_ANALYTIC,
@@ -160,6 +161,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NONE,
      .reference = NULL,
      .spikes_vs = NULL,
+     .partner = "ode-ideal-nominal",
      .summary = "MuJoCo, hinge tree closed by a connect equality, nominal lengths",
      .style = {"#1f77b4", 3, 1.8, FB_HUE_ORANGES}},
     {.name = "mujoco-ideal-stackup",
@@ -170,6 +172,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NONE,
      .reference = NULL,
      .spikes_vs = NULL,
+     .partner = "ode-ideal-stackup",
      .summary = "MuJoCo, hinge tree closed by a connect equality, stack-up lengths",
      .style = {"#6baed6", 3, 1.8, FB_HUE_ORANGES}},
     {.name = "mujoco-clearance-restitution",
@@ -180,6 +183,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_EXACT,
      .reference = "reference-restitution",
      .spikes_vs = "mujoco-ideal-stackup",
+     .partner = "ode-clearance-restitution",
      .summary = "MuJoCo, clearance joints, restitution law applied through mjcb_passive",
      .style = {"#2ca02c", 3, 1.8, FB_HUE_ORANGES}},
     {.name = "mujoco-clearance-impact",
@@ -190,6 +194,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_EXACT,
      .reference = "reference",
      .spikes_vs = "mujoco-ideal-stackup",
+     .partner = "ode-clearance-impact",
      .summary = "MuJoCo, clearance joints, impact law applied through mjcb_passive",
      .style = {"#d62728", 3, 1.8, FB_HUE_ORANGES}},
     {.name = "mujoco-clearance-native",
@@ -200,6 +205,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NATIVE,
      .reference = "reference-restitution",
      .spikes_vs = "mujoco-ideal-stackup",
+     .partner = "ode-clearance-restitution",
      .summary = "MuJoCo's own constraint solver on the clearance (a tendon limited to it, or a ring "
                 "of boxes: [mujoco] native_bore), restitution law as solref",
      .style = {"#ff7f0e", 5, 1.8, FB_HUE_ORANGES}},
@@ -211,6 +217,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NONE,
      .reference = NULL,
      .spikes_vs = NULL,
+     .partner = "ode-ideal-nominal",
      .summary = "Simbody, pin tree closed by a ball constraint, nominal lengths",
      .style = {"#1f77b4", 4, 1.0, FB_HUE_GREENS}},
     {.name = "simbody-ideal-stackup",
@@ -221,6 +228,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NONE,
      .reference = NULL,
      .spikes_vs = NULL,
+     .partner = "ode-ideal-stackup",
      .summary = "Simbody, pin tree closed by a ball constraint, stack-up lengths",
      .style = {"#6baed6", 5, 1.0, FB_HUE_GREENS}},
     {.name = "simbody-clearance-restitution",
@@ -231,6 +239,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_EXACT,
      .reference = "reference-restitution",
      .spikes_vs = "simbody-ideal-stackup",
+     .partner = "ode-clearance-restitution",
      .summary = "Simbody, tree cut at the clearance joint, restitution law as Force::Custom",
      .style = {"#2ca02c", 4, 1.0, FB_HUE_GREENS}},
     {.name = "simbody-clearance-impact",
@@ -241,6 +250,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_EXACT,
      .reference = "reference",
      .spikes_vs = "simbody-ideal-stackup",
+     .partner = "ode-clearance-impact",
      .summary = "Simbody, tree cut at the clearance joint, impact law as Force::Custom",
      .style = {"#d62728", 4, 1.0, FB_HUE_GREENS}},
     {.name = "bullet-ideal-nominal",
@@ -251,6 +261,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NONE,
      .reference = NULL,
      .spikes_vs = NULL,
+     .partner = "ode-ideal-nominal",
      .summary = "Bullet, planar pin constraint rows in btDiscreteDynamicsWorld, nominal lengths",
      .style = {"#1f77b4", 5, 1.6, FB_HUE_PURPLES}},
     {.name = "bullet-ideal-stackup",
@@ -261,6 +272,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NONE,
      .reference = NULL,
      .spikes_vs = NULL,
+     .partner = "ode-ideal-stackup",
      .summary = "Bullet, planar pin constraint rows in btDiscreteDynamicsWorld, stack-up lengths",
      .style = {"#6baed6", 5, 1.6, FB_HUE_PURPLES}},
     {.name = "bullet-clearance-restitution",
@@ -271,6 +283,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_EXACT,
      .reference = "reference-restitution",
      .spikes_vs = "bullet-ideal-stackup",
+     .partner = "ode-clearance-restitution",
      .summary = "Bullet, clearance joints, restitution law as a soft constraint row (ODE's mapping)",
      .style = {"#2ca02c", 5, 1.6, FB_HUE_PURPLES}},
     {.name = "bullet-clearance-impact",
@@ -281,6 +294,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_EXACT,
      .reference = "reference",
      .spikes_vs = "bullet-ideal-stackup",
+     .partner = "ode-clearance-impact",
      .summary = "Bullet, clearance joints, impact law as a soft constraint row (ODE's mapping)",
      .style = {"#d62728", 5, 1.6, FB_HUE_PURPLES}},
     /* Siconos: the rigid limit. Reds, each row's own (hue FB_HUE_NONE: no
@@ -294,6 +308,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NONE,
      .reference = NULL,
      .spikes_vs = NULL,
+     .partner = "ode-ideal-nominal",
      .summary = "Siconos, coupler and follower closed on the driven crank by a bilateral "
                 "constraint (Moreau-Jean), nominal lengths",
      .style = {"#99000d", 1, 1.4, FB_HUE_NONE}},
@@ -305,6 +320,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NONE,
      .reference = NULL,
      .spikes_vs = NULL,
+     .partner = "ode-ideal-stackup",
      .summary = "Siconos, coupler and follower closed on the driven crank by a bilateral "
                 "constraint (Moreau-Jean), stack-up lengths",
      .style = {"#ef3b2c", 1, 1.4, FB_HUE_NONE}},
@@ -319,6 +335,7 @@ const fb_model fb_models[] = {
      .collider = FB_COLLIDER_NATIVE,
      .reference = "reference-restitution",
      .spikes_vs = "siconos-ideal-stackup",
+     .partner = "ode-clearance-restitution",
      .summary = "Siconos, clearance joint as a unilateral constraint g = c - |e| >= 0 with "
                 "Newton's impact law (e_N = [clearance] restitution), Moreau-Jean time stepping",
      .style = {"#cb181d", 2, 1.4, FB_HUE_NONE}},
@@ -418,3 +435,5 @@ const fb_model *fb_model_match(fb_engine_id engine, fb_lengths_kind lengths, fb_
 const fb_model *fb_model_reference_of(const fb_model *m) { return fb_model_find(m->reference); }
 
 const fb_model *fb_model_ideal_of(const fb_model *m) { return fb_model_find(m->spikes_vs); }
+
+const fb_model *fb_model_partner_of(const fb_model *m) { return fb_model_find(m->partner); }

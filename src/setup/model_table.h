@@ -126,6 +126,13 @@ typedef struct fb_model {
   const char *spikes_vs;   /* ideal model whose peak |alpha| its spike ratios divide by when
                               that model ran in the same case (else the analytic peaks of the
                               same lengths), or NULL for models without clearance */
+  const char *partner;     /* the model its engine difference is taken against (omega.svg:
+                              this model's omega minus the partner's): a model of another
+                              engine with the same lengths, joints and law; in a run, the
+                              first model of the partner's engine, lengths, joints and law
+                              stands for it (e.g. ode-clearance-ccd for ode-clearance-impact).
+                              NULL: no difference row (the yardsticks, and the models the
+                              others are compared with) */
   const char *summary;     /* one line for help texts */
   fb_model_style style;    /* its line in every figure; color NULL and hue FB_HUE_NONE: the
                               figures pick one */
@@ -173,5 +180,8 @@ const fb_model *fb_model_reference_of(const fb_model *m);
 
 /* The row of the ideal model m's spike ratios divide by, or NULL (m->spikes_vs). */
 const fb_model *fb_model_ideal_of(const fb_model *m);
+
+/* The row of m's partner, or NULL (m->partner). */
+const fb_model *fb_model_partner_of(const fb_model *m);
 
 #endif

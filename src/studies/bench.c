@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "engine.h"
 #include "model_table.h"
 #include "run.h"
 
@@ -280,32 +281,37 @@ static void bench_case(fb_case *k, const fb_case *c, double h, fb_engine_id engi
  * model with the case's ring */
 static const int collider_rings[] = {16, 64, 256, 1024, 0};
 #define COLLIDER_RINGS ((int)(sizeof collider_rings / sizeof collider_rings[0]))
-static const double collider_hs[2] = {1e-5, 1e-6};
 
 static double rel(double a, double b) { return b != 0.0 ? (a - b) / fabs(b) : NAN; }
 
-/* one run of the collider axis: ODE's exact collider, the model of ring
- * ring, the reference; rows for the model (and, with the first ring, the
- * exact collider) */
-static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, double h, int ring,
+/* the collider axis' models of engine e: its clearance impact model with
+ * the exact collider (*exact) and with the ccd collider (ring > 0) or the
+ * faceted one (ring 0) (*model); 0 when the engine lacks one */
+static int collider_models(fb_engine_id e, int ring, const fb_model **exact,
+                           const fb_model **model) {
+  *exact = fb_model_match(e, FB_LENGTHS_STACKUP, FB_JOINTS_CLEARANCE, FB_MODEL_LAW_IMPACT,
+                          FB_COLLIDER_EXACT);
+  *model = fb_model_match(e, FB_LENGTHS_STACKUP, FB_JOINTS_CLEARANCE, FB_MODEL_LAW_IMPACT,
+                          ring > 0 ? FB_COLLIDER_CCD : FB_COLLIDER_FACETED);
+  return *exact && *model && fb_model_reference_of(*exact);
+}
+
+/* one run of the collider axis at the configuration kp of engine eng (id
+ * e; its point pt of FB_BENCH_SET_COLLIDERS): its exact collider, the model
+ * of ring ring, the reference; rows for the model (and, with the first
+ * ring, the exact collider) */
+static fb_status collider_run(fb_bench_row *rows, int *n, fb_engine_id e, const fb_engine *eng,
+                              const fb_case *kp, const fb_bench_point *pt, int ring,
                               fb_diag *diag) {
-  fb_case k = *c;
-  k.revolutions = 2;
-  k.solver.h = h;
-  k.solver.h_mode = FB_STEP_FIXED;
-  k.solver.stepper = FB_STEPPER_WORLD;
-  k.solver.world_erp = 0.2;
-  k.solver.world_cfm = 1e-10;
+  fb_case k = *kp;
+  const double h = k.solver.h;
   k.clearance.collider = FB_CASE_COLLIDER_EXACT;
   if (ring > 0) {
     k.clearance.segments = ring;
     k.clearance.segments_given = 0; /* the faceted ring stays the case's */
   }
-  const fb_model *exact = fb_model_match(FB_ENGINE_ODE, FB_LENGTHS_STACKUP, FB_JOINTS_CLEARANCE,
-                                         FB_MODEL_LAW_IMPACT, FB_COLLIDER_EXACT);
-  const fb_model *model = fb_model_match(FB_ENGINE_ODE, FB_LENGTHS_STACKUP, FB_JOINTS_CLEARANCE,
-                                         FB_MODEL_LAW_IMPACT,
-                                         ring > 0 ? FB_COLLIDER_CCD : FB_COLLIDER_FACETED);
+  const fb_model *exact, *model;
+  if (!collider_models(e, ring, &exact, &model)) return FB_OK;
   const fb_model *models[3] = {exact, model, fb_model_reference_of(exact)};
   k.model_count = 3;
   for (int q = 0; q < 3; q++) snprintf(k.models[q], FB_NAME_SIZE, "%s", models[q]->name);
@@ -329,8 +335,8 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
     memset(b, 0, sizeof *b);
     b->row = m->run.model;
     snprintf(b->model, sizeof b->model, "%s", m->run.name);
-    snprintf(b->engine, sizeof b->engine, "ode");
-    snprintf(b->stepper, sizeof b->stepper, "world");
+    snprintf(b->engine, sizeof b->engine, "%s", eng->name);
+    snprintf(b->stepper, sizeof b->stepper, "%s", pt->stepper);
     b->h = h;
     b->mapping = k.clearance.mapping;
     b->world_erp = k.solver.world_erp;
@@ -378,148 +384,109 @@ static fb_status collider_run(fb_bench_row *rows, int *n, const fb_case *c, doub
   return FB_OK;
 }
 
-/* Bullet's own knobs: solver (and its iterations) x h, with the case's
- * mapping; *done counts the points for progress over total */
-static fb_status bullet_grid(fb_bench_row *rows, int *n, const fb_case *c,
-                             void (*progress)(double fraction, void *user), void *user, int *done,
-                             int total, fb_diag *diag) {
-  const double bh[FB_BENCH_BULLET_STEPS] = {1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
-  const int iters[FB_BENCH_BULLET_SOLVERS] = {10, 50, 100, 0};   /* 0: mlcp-dantzig */
-  for (int si = 0; si < FB_BENCH_BULLET_SOLVERS; si++)
-    for (int hi = 0; hi < FB_BENCH_BULLET_STEPS; hi++) {
-      fb_case k;
-      bench_case(&k, c, bh[hi], FB_ENGINE_BULLET);
-      k.bullet.solver = iters[si] ? FB_BULLET_SEQUENTIAL_IMPULSE : FB_BULLET_MLCP_DANTZIG;
-      k.bullet.iterations = iters[si] ? iters[si] : c->bullet.iterations;
-      char stepper[32];
-      if (iters[si]) snprintf(stepper, sizeof stepper, "si-%d", iters[si]);
-      else snprintf(stepper, sizeof stepper, "mlcp");
-      const int first = *n;
-      fb_status st = bench_point(rows, n, &k, "bullet", stepper, k.clearance.mapping, 1, diag);
-      if (st != FB_OK) return st;
-      for (int i = first; i < *n; i++) rows[i].world_cfm = 0.0; /* Bullet's pin rows are hard */
-      if (progress) progress((double)++*done / total, user);
-    }
-  return FB_OK;
+/* the bench's copy of case c for engine e (bench_case, at the case's auto
+ * step) set to point i of the engine's rows of set s (fb_engine_bench.point);
+ * 0 when the set has no point i */
+static int engine_point(const fb_engine *eng, fb_engine_id e, fb_bench_set s, int i,
+                        const fb_case *c, fb_case *k, fb_bench_point *p) {
+  bench_case(k, c, 0.0, e);
+  memset(p, 0, sizeof *p);
+  p->mapping = -1;
+  return eng->bench->point(s, i, c, k, p);
 }
 
-/* Simbody's grid (docs/engines.md): integrator x accuracy at the case's
- * output step, models simbody-ideal-stackup and simbody-clearance-impact
- * beside the reference; with ODE's dWorldStep rows (matched mapping, world
- * ERP/CFM 0.2, 1e-10, h 1e-4, 1e-5, 1e-6 s and auto) when ode_rows, so that
- * one run compares the two engines' costs. */
-static fb_status simbody_grid(fb_bench_row *rows, int *n, const fb_case *c, int ode_rows,
-                              void (*progress)(double fraction, void *user), void *user,
-                              fb_diag *diag) {
-  const double acc[6] = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
-  const double oh[4] = {1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
-  const int total = FB_SIMBODY_INTEGRATOR_COUNT * 6 + (ode_rows ? 4 : 0);
-  int done = 0;
-  for (int ii = 0; ii < FB_SIMBODY_INTEGRATOR_COUNT; ii++)
-    for (int ai = 0; ai < 6; ai++) {
-      fb_case k;
-      bench_case(&k, c, 0.0, FB_ENGINE_SIMBODY);
-      k.solver.h = c->solver.h; /* the case's output step, as run */
-      k.solver.h_mode = c->solver.h_mode;
-      k.simbody.integrator = ii;
-      k.simbody.accuracy = acc[ai];
-      char stepper[32];
-      snprintf(stepper, sizeof stepper, "%s %.0e", fb_simbody_integrator_name(ii), acc[ai]);
-      fb_status st = bench_point(rows, n, &k, "simbody", stepper, -1, 1, diag);
-      if (st != FB_OK) return st;
-      if (progress) progress((double)++done / total, user);
-    }
-  for (int hi = 0; hi < (ode_rows ? 4 : 0); hi++) {
+/* the engine of id e when this build has it and it gives bench rows, else NULL */
+static const fb_engine *bench_engine(fb_engine_id e) {
+  const fb_engine *eng = fb_engine_available(e) ? fb_engine_get(e, NULL) : NULL;
+  return eng && eng->bench ? eng : NULL;
+}
+
+/* the points of engine e's rows of set s on case c (0: none, or no such engine) */
+static int set_points(fb_engine_id e, fb_bench_set s, const fb_case *c) {
+  const fb_engine *eng = bench_engine(e);
+  if (!eng || s == FB_BENCH_SET_NONE) return 0;
+  static fb_case k;
+  fb_bench_point p;
+  int count = 0;
+  while (engine_point(eng, e, s, count, c, &k, &p)) count++;
+  return count;
+}
+
+/* the points of set s of every engine */
+static int all_points(fb_bench_set s, const fb_case *c) {
+  int count = 0;
+  for (int e = 0; e < FB_ENGINE_COUNT; e++) count += set_points((fb_engine_id)e, s, c);
+  return count;
+}
+
+/* a grid's pass: rows, case, progress over the configurations of the pass */
+typedef struct {
+  fb_bench_row *rows;
+  int *n;
+  const fb_case *c;
+  void (*progress)(double fraction, void *user);
+  void *user;
+  int done, total;
+} bench_pass;
+
+static void pass_step(bench_pass *x) {
+  if (x->progress && x->total > 0) x->progress((double)++x->done / x->total, x->user);
+}
+
+/* engine e's rows of set s: one bench_point per point */
+static fb_status run_set(bench_pass *x, fb_engine_id e, fb_bench_set s, fb_diag *diag) {
+  const fb_engine *eng = bench_engine(e);
+  if (!eng || s == FB_BENCH_SET_NONE) return FB_OK;
+  for (int i = 0;; i++) {
     fb_case k;
-    bench_case(&k, c, oh[hi], FB_ENGINE_ODE);
-    k.solver.stepper = FB_STEPPER_WORLD;
-    k.solver.world_erp = 0.2;
-    k.solver.world_cfm = 1e-10;
-    k.clearance.mapping = FB_MAPPING_MATCHED;
-    fb_status st = bench_point(rows, n, &k, "ode", "world", FB_MAPPING_MATCHED, 1, diag);
+    fb_bench_point p;
+    if (!engine_point(eng, e, s, i, x->c, &k, &p)) return FB_OK;
+    const int first = *x->n;
+    fb_status st = bench_point(x->rows, x->n, &k, eng->name, p.stepper, p.mapping,
+                               !p.no_ideal_row, diag);
     if (st != FB_OK) return st;
-    if (progress) progress((double)++done / total, user);
+    if (p.hard_pins)
+      for (int j = first; j < *x->n; j++) x->rows[j].world_cfm = 0.0;
+    pass_step(x);
+  }
+}
+
+/* the rows of set s of every engine, in the order of their ids */
+static fb_status run_all(bench_pass *x, fb_bench_set s, fb_diag *diag) {
+  for (int e = 0; e < FB_ENGINE_COUNT; e++) {
+    fb_status st = run_set(x, (fb_engine_id)e, s, diag);
+    if (st != FB_OK) return st;
   }
   return FB_OK;
 }
 
-/* The default grid (FB_BENCH_DEFAULT): each engine at the settings its
- * section of docs/engines.md recommends for this stiff closed loop, every
- * model on the case's output grid unless the row is a fixed step of its
- * own (the cost split into stepping and sampling says what the grid costs):
- * ODE dWorldStep at h = 1e-5 s, auto and adaptive (accuracy 0.3); MuJoCo
- * with the case's integrators at h = 1e-5 s, 3e-6 s and adaptive (0.3);
- * Bullet's MLCP at h = 1e-5 s and auto; Simbody rkmerson at accuracy 1e-4
- * and 1e-6 and cpodes at 1e-6 on the case's grid. *done counts the points
- * for progress over total. */
-#define DEFAULT_POINTS 13
-static fb_status default_grid(fb_bench_row *rows, int *n, const fb_case *c,
-                              void (*progress)(double fraction, void *user), void *user,
-                              int *done, int total, fb_diag *diag) {
-  const int mujoco = fb_engine_available(FB_ENGINE_MUJOCO);
-  const int bullet = fb_engine_available(FB_ENGINE_BULLET);
-  const int simbody = fb_engine_available(FB_ENGINE_SIMBODY);
-  for (int p = 0; p < DEFAULT_POINTS; p++) {
-    fb_case k;
-    char stepper[32];
-    const char *engine = "ode";
-    int mapping = -1;
-    if (p < 3) { /* ODE: 1e-5 s, auto, adaptive */
-      bench_case(&k, c, p == 0 ? 1e-5 : 0.0, FB_ENGINE_ODE);
-      if (p == 2) {
-        k.solver.h_mode = FB_STEP_ADAPTIVE;
-        k.solver.h = k.solver.h_min;
-        k.solver.accuracy = 0.3;
+/* 1 when grids run engine e's own grid: its bit is in grids, and not with
+ * the solver grids when its solver rows stand for it; *alone: without the
+ * solver grids (then with the rows it wants beside it) */
+static int runs_own(fb_engine_id e, int grids, const fb_case *c, int *alone) {
+  const fb_engine *eng = bench_engine(e);
+  if (!eng || !eng->bench->own_grid || !(grids & eng->bench->own_grid)) return 0;
+  const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
+  *alone = !solvers;
+  return !solvers || set_points(e, FB_BENCH_SET_SOLVERS, c) == 0;
+}
+
+/* the collider axis of every engine with rows of FB_BENCH_SET_COLLIDERS:
+ * each of its points with each ring */
+static fb_status run_colliders(bench_pass *x, fb_diag *diag) {
+  for (int e = 0; e < FB_ENGINE_COUNT; e++) {
+    const fb_engine *eng = bench_engine((fb_engine_id)e);
+    for (int i = 0; eng; i++) {
+      fb_case k;
+      fb_bench_point p;
+      if (!engine_point(eng, (fb_engine_id)e, FB_BENCH_SET_COLLIDERS, i, x->c, &k, &p)) break;
+      for (int ri = 0; ri < COLLIDER_RINGS; ri++) {
+        fb_status st = collider_run(x->rows, x->n, (fb_engine_id)e, eng, &k, &p, collider_rings[ri],
+                                    diag);
+        if (st != FB_OK) return st;
+        pass_step(x);
       }
-      if (k.solver.stepper == FB_STEPPER_QUICK)
-        snprintf(stepper, sizeof stepper, "quick-%d%s", k.solver.quick_iterations, p == 2 ? "-a0.3" : "");
-      else
-        snprintf(stepper, sizeof stepper, "world%s", p == 2 ? "-a0.3" : "");
-      mapping = p == 2 && k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
-                                                                     : (int)k.clearance.mapping;
-    } else if (p < 6) { /* MuJoCo: 1e-5 s, 3e-6 s, adaptive */
-      if (!mujoco) continue;
-      engine = "mujoco";
-      bench_case(&k, c, p == 3 ? 1e-5 : p == 4 ? 3e-6 : 0.0, FB_ENGINE_MUJOCO);
-      if (p == 5) {
-        k.solver.h_mode = FB_STEP_ADAPTIVE;
-        k.solver.h = k.solver.h_min;
-        k.solver.accuracy = 0.3;
-      }
-      snprintf(stepper, sizeof stepper, "%s%s", fb_mujoco_integrator_name(k.mujoco.integrator),
-               p == 5 ? "-a0.3" : "");
-    } else if (p < 8) { /* Bullet: MLCP at 1e-5 s and auto */
-      if (!bullet) continue;
-      engine = "bullet";
-      bench_case(&k, c, p == 6 ? 1e-5 : 0.0, FB_ENGINE_BULLET);
-      k.bullet.solver = FB_BULLET_MLCP_DANTZIG;
-      snprintf(stepper, sizeof stepper, "mlcp");
-      mapping = (int)k.clearance.mapping;
-    } else if (p < 11) { /* Simbody on the case's grid */
-      if (!simbody) continue;
-      engine = "simbody";
-      bench_case(&k, c, 0.0, FB_ENGINE_SIMBODY);
-      k.solver.h = c->solver.h;
-      k.solver.h_mode = c->solver.h_mode;
-      k.simbody.integrator = p == 10 ? FB_SIMBODY_CPODES : FB_SIMBODY_RKMERSON;
-      k.simbody.accuracy = p == 8 ? 1e-4 : 1e-6;
-      snprintf(stepper, sizeof stepper, "%s %.0e", fb_simbody_integrator_name(k.simbody.integrator),
-               k.simbody.accuracy);
-    } else { /* ODE's tuned ideal rows: world ERP 1 at 1.5e-5 and 2e-5 s */
-      bench_case(&k, c, p == 11 ? 1.5e-5 : 2e-5, FB_ENGINE_ODE);
-      k.model_count = 1;
-      k.solver.stepper = FB_STEPPER_WORLD;
-      k.solver.world_erp = 1.0;
-      k.solver.world_cfm = 1e-10;
-      snprintf(stepper, sizeof stepper, "world");
-      mapping = 0;
     }
-    const int first = *n;
-    fb_status st = bench_point(rows, n, &k, engine, stepper, mapping, 1, diag);
-    if (st != FB_OK) return st;
-    if (strcmp(engine, "bullet") == 0)
-      for (int i = first; i < *n; i++) rows[i].world_cfm = 0.0; /* Bullet's pin rows are hard */
-    if (progress) progress((double)++*done / total, user);
   }
   return FB_OK;
 }
@@ -596,193 +563,49 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
                              void (*progress_all)(double fraction, void *user), void *user_all,
                              fb_diag *diag) {
   first_pass fp = {progress_all, user_all};
-  void (*progress)(double fraction, void *user) = progress_all ? first_pass_progress : NULL;
-  void *user = &fp;
-  const double hs[FB_BENCH_STEPS] = {1e-3, 1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
-  const int iters[4] = {0, 10, 20, 50}; /* 0: dWorldStep */
-  const double erp[2] = {0.2, 0.8}, cfm[2] = {1e-10, 1e-8};
+  bench_pass x = {rows, n, c, progress_all ? first_pass_progress : NULL, &fp, 0, 0};
   const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
   const int frontier = !solvers && (grids & FB_BENCH_FRONTIER) != 0; /* solvers holds it */
-  const int mujoco = solvers && fb_engine_available(FB_ENGINE_MUJOCO);
-  const int bullet_only = grids == FB_BENCH_BULLET;
-  const int bullet = (solvers || bullet_only) && fb_engine_available(FB_ENGINE_BULLET);
-  const int mj_frontier = frontier && fb_engine_available(FB_ENGINE_MUJOCO);
-  const int extra = solvers || frontier; /* the tuned ideal and adaptive rows */
   const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
   const int dflt = (grids & FB_BENCH_DEFAULT) != 0;
-  const int total = (dflt ? DEFAULT_POINTS : 0) + (solvers ? 4 * FB_BENCH_STEPS * FB_MAPPING_COUNT * 2 : 0) +
-                    (extra ? FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE + FB_BENCH_ADAPTIVE_ROCKING : 0) +
-                    (frontier ? FB_BENCH_FRONTIER_STEPS + 1 : 0) +
-                    (mj_frontier ? FB_BENCH_FRONTIER_STEPS + FB_BENCH_ADAPTIVE : 0) +
-                    (mujoco ? 3 * FB_BENCH_MUJOCO_STEPS + FB_BENCH_ADAPTIVE : 0) +
-                    (bullet ? FB_BENCH_BULLET_SOLVERS * FB_BENCH_BULLET_STEPS : 0) + bullet_only +
-                    (colliders ? 2 * COLLIDER_RINGS : 0);
-  int done = 0;
+  /* the configurations of the first pass, for its progress */
+  if (dflt) x.total += all_points(FB_BENCH_SET_DEFAULT, c) + all_points(FB_BENCH_SET_DEFAULT_LAST, c);
+  for (int e = 0; e < FB_ENGINE_COUNT; e++) {
+    int alone;
+    if (!runs_own((fb_engine_id)e, grids, c, &alone)) continue;
+    const fb_engine_bench *b = bench_engine((fb_engine_id)e)->bench;
+    x.total += set_points((fb_engine_id)e, FB_BENCH_SET_OWN, c);
+    if (alone) x.total += all_points(b->alone_before, c) + all_points(b->alone_after, c);
+  }
+  if (solvers) x.total += all_points(FB_BENCH_SET_SOLVERS, c);
+  if (frontier)
+    x.total += all_points(FB_BENCH_SET_FRONTIER, c) + all_points(FB_BENCH_SET_FRONTIER_LAST, c);
+  if (colliders) x.total += all_points(FB_BENCH_SET_COLLIDERS, c) * COLLIDER_RINGS;
   *n = 0;
-  if (dflt) {
-    fb_status st = default_grid(rows, n, c, progress, user, &done, total, diag);
-    if (st != FB_OK) return st;
+  fb_status st = FB_OK;
+  /* the default grid: every engine at its recommended settings, then the rows
+   * that come last (ODE's tuned ideal rows) */
+  if (dflt && (st = run_all(&x, FB_BENCH_SET_DEFAULT, diag)) == FB_OK)
+    st = run_all(&x, FB_BENCH_SET_DEFAULT_LAST, diag);
+  /* the engines' own grids (--grid simbody, bullet; Simbody's with solvers
+   * and all), alone with the rows they want beside them */
+  for (int e = 0; e < FB_ENGINE_COUNT && st == FB_OK; e++) {
+    int alone;
+    if (!runs_own((fb_engine_id)e, grids, c, &alone)) continue;
+    const fb_engine_bench *b = bench_engine((fb_engine_id)e)->bench;
+    if (alone) st = run_all(&x, b->alone_before, diag);
+    if (st == FB_OK) st = run_set(&x, (fb_engine_id)e, FB_BENCH_SET_OWN, diag);
+    if (st == FB_OK && alone) st = run_all(&x, b->alone_after, diag);
   }
-  if (grids & FB_BENCH_SIMBODY) {
-    /* alone (--grid simbody): with ODE's dWorldStep rows for the comparison */
-    fb_status st = fb_engine_available(FB_ENGINE_SIMBODY)
-                       ? simbody_grid(rows, n, c, !solvers, progress, user, diag)
-                       : FB_OK;
-    if (st != FB_OK) return st;
-  }
-  for (int si = 0; si < (solvers ? 4 : 0); si++)
-    for (int hi = 0; hi < FB_BENCH_STEPS; hi++)
-      for (int mi = 0; mi < FB_MAPPING_COUNT; mi++)
-        for (int ei = 0; ei < 2; ei++) {
-          fb_case k;
-          bench_case(&k, c, hs[hi], FB_ENGINE_ODE);
-          k.solver.stepper = iters[si] ? FB_STEPPER_QUICK : FB_STEPPER_WORLD;
-          k.solver.quick_iterations = iters[si] ? iters[si] : 20;
-          k.solver.world_erp = erp[ei];
-          k.solver.world_cfm = cfm[ei];
-          k.clearance.mapping = mi;
-          char stepper[32];
-          if (iters[si]) snprintf(stepper, sizeof stepper, "quick-%d", iters[si]);
-          else snprintf(stepper, sizeof stepper, "world");
-          /* the mapping does not touch the ideal model: one row for it */
-          fb_status st = bench_point(rows, n, &k, "ode", stepper, mi, mi == 0, diag);
-          if (st != FB_OK) return st;
-          if (progress) progress((double)++done / total, user);
-        }
-  /* the ideal model at its cheapest setting for 1e-5 (issue 29): world
-   * ERP 1 (the whole joint error corrected each step) lets the step double */
-  /* the frontier (--grid frontier): the case's stepper, world ERP/CFM and
-   * mapping at the fixed steps of FB_BENCH_FRONTIER_STEPS and auto, the
-   * ideal model at ERP 0.8, CFM 1e-8, h = 1e-5 s; MuJoCo with the case's
-   * integrators at the fixed steps */
-  const double fh[FB_BENCH_FRONTIER_STEPS] = {1e-5, 3e-6, 1e-6, 0.0}; /* 0: auto */
-  for (int hi = 0; hi < (frontier ? FB_BENCH_FRONTIER_STEPS : 0); hi++) {
-    fb_case k;
-    bench_case(&k, c, fh[hi], FB_ENGINE_ODE);
-    fb_status st = bench_point(rows, n, &k, "ode", k.solver.stepper == FB_STEPPER_WORLD ? "world" : "quick",
-                               k.clearance.mapping, 1, diag);
-    if (st != FB_OK) return st;
-    if (progress) progress((double)++done / total, user);
-  }
-  if (frontier) {
-    fb_case k;
-    bench_case(&k, c, 1e-5, FB_ENGINE_ODE);
-    k.model_count = 1;
-    k.solver.stepper = FB_STEPPER_WORLD;
-    k.solver.world_erp = 0.8;
-    k.solver.world_cfm = 1e-8;
-    fb_status st = bench_point(rows, n, &k, "ode", "world", 0, 1, diag);
-    if (st != FB_OK) return st;
-    if (progress) progress((double)++done / total, user);
-  }
-  for (int hi = 0; hi < (mj_frontier ? FB_BENCH_FRONTIER_STEPS - 1 : 0); hi++) {
-    fb_case k;
-    bench_case(&k, c, fh[hi], FB_ENGINE_MUJOCO);
-    fb_status st = bench_point(rows, n, &k, "mujoco", fb_mujoco_integrator_name(k.mujoco.integrator),
-                               -1, 1, diag);
-    if (st != FB_OK) return st;
-    if (progress) progress((double)++done / total, user);
-  }
-  for (int ti = 0; ti < (extra ? FB_BENCH_IDEAL_TUNED : 0); ti++) {
-    const double tuned[FB_BENCH_IDEAL_TUNED][3] = {{1.5e-5, 1.0, 1e-10}, {2e-5, 1.0, 1e-10}};
-    fb_case k;
-    bench_case(&k, c, tuned[ti][0], FB_ENGINE_ODE);
-    k.model_count = 1;
-    k.solver.stepper = FB_STEPPER_WORLD;
-    k.solver.world_erp = tuned[ti][1];
-    k.solver.world_cfm = tuned[ti][2];
-    fb_status st = bench_point(rows, n, &k, "ode", "world", 0, 1, diag);
-    if (st != FB_OK) return st;
-    if (progress) progress((double)++done / total, user);
-  }
-  /* ODE with [solver] h_s = adaptive (step_control.h) at two accuracies */
-  for (int ai = 0; ai < (extra ? FB_BENCH_ADAPTIVE : 0); ai++) {
-    const double accuracy[FB_BENCH_ADAPTIVE] = {0.3, 0.1};
-    fb_case k;
-    bench_case(&k, c, 0.0, FB_ENGINE_ODE);
-    k.solver.h_mode = FB_STEP_ADAPTIVE;
-    k.solver.h = k.solver.h_min;
-    k.solver.accuracy = accuracy[ai];
-    k.solver.stepper = FB_STEPPER_WORLD;
-    char stepper[32];
-    snprintf(stepper, sizeof stepper, "world-a%g", accuracy[ai]);
-    const int mapping = k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
-                                                                  : k.clearance.mapping;
-    fb_status st = bench_point(rows, n, &k, "ode", stepper, mapping, 1, diag);
-    if (st != FB_OK) return st;
-    if (progress) progress((double)++done / total, user);
-  }
-  /* ODE's adaptive row with the rocking bound (bench.h) */
-  for (int ri = 0; ri < (extra ? FB_BENCH_ADAPTIVE_ROCKING : 0); ri++) {
-    fb_case k;
-    bench_case(&k, c, 0.0, FB_ENGINE_ODE);
-    k.solver.h_mode = FB_STEP_ADAPTIVE;
-    k.solver.h = k.solver.h_min;
-    k.solver.accuracy = 0.3;
-    k.solver.rocking_h_omega = FB_BENCH_ROCKING_H_OMEGA;
-    k.solver.stepper = FB_STEPPER_WORLD;
-    char stepper[32];
-    snprintf(stepper, sizeof stepper, "world-a0.3-r%g", FB_BENCH_ROCKING_H_OMEGA);
-    const int mapping = k.clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
-                                                                  : k.clearance.mapping;
-    fb_status st = bench_point(rows, n, &k, "ode", stepper, mapping, 1, diag);
-    if (st != FB_OK) return st;
-    if (progress) progress((double)++done / total, user);
-  }
-  /* MuJoCo with [solver] h_s = adaptive, the case's integrators */
-  for (int ai = 0; ai < (mujoco || mj_frontier ? FB_BENCH_ADAPTIVE : 0); ai++) {
-    const double accuracy[FB_BENCH_ADAPTIVE] = {0.3, 0.1};
-    fb_case k;
-    bench_case(&k, c, 0.0, FB_ENGINE_MUJOCO);
-    k.solver.h_mode = FB_STEP_ADAPTIVE;
-    k.solver.h = k.solver.h_min;
-    k.solver.accuracy = accuracy[ai];
-    char stepper[32];
-    snprintf(stepper, sizeof stepper, "%s-a%g", fb_mujoco_integrator_name(k.mujoco.integrator),
-             accuracy[ai]);
-    fb_status st = bench_point(rows, n, &k, "mujoco", stepper, -1, 1, diag);
-    if (st != FB_OK) return st;
-    if (progress) progress((double)++done / total, user);
-  }
-  /* MuJoCo: integrator x step, with the case's loop closure and drive */
-  if (mujoco) {
-    const double mh[FB_BENCH_MUJOCO_STEPS] = {1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6};
-    const int integ[3] = {FB_MUJOCO_EULER, FB_MUJOCO_IMPLICIT, FB_MUJOCO_RK4};
-    for (int ii = 0; ii < 3; ii++)
-      for (int hi = 0; hi < FB_BENCH_MUJOCO_STEPS; hi++) {
-        fb_case k;
-        bench_case(&k, c, mh[hi], FB_ENGINE_MUJOCO);
-        k.mujoco.integrator = integ[ii];
-        fb_status st = bench_point(rows, n, &k, "mujoco", fb_mujoco_integrator_name(integ[ii]),
-                                   -1, 1, diag);
-        if (st != FB_OK) return st;
-        if (progress) progress((double)++done / total, user);
-      }
-  }
-  if (bullet_only) {
-    /* ODE at the case's own settings, measured in the same run */
-    fb_case k;
-    bench_case(&k, c, c->solver.h_mode == FB_STEP_FIXED ? c->solver.h : 0.0, FB_ENGINE_ODE);
-    char stepper[32];
-    if (c->solver.stepper == FB_STEPPER_QUICK)
-      snprintf(stepper, sizeof stepper, "quick-%d", c->solver.quick_iterations);
-    else
-      snprintf(stepper, sizeof stepper, "world");
-    fb_status st = bench_point(rows, n, &k, "ode", stepper, k.clearance.mapping, 1, diag);
-    if (st != FB_OK) return st;
-    if (progress) progress((double)++done / total, user);
-  }
-  if (bullet) {
-    fb_status st = bullet_grid(rows, n, c, progress, user, &done, total, diag);
-    if (st != FB_OK) return st;
-  }
-  for (int hi = 0; hi < (colliders ? 2 : 0); hi++)
-    for (int ri = 0; ri < COLLIDER_RINGS; ri++) {
-      fb_status st = collider_run(rows, n, c, collider_hs[hi], collider_rings[ri], diag);
-      if (st != FB_OK) return st;
-      if (progress) progress((double)++done / total, user);
-    }
-  return FB_OK;
+  /* the solver grids: every engine's settings x steps (with ODE's tuned and
+   * adaptive rows, MuJoCo's adaptive rows) */
+  if (st == FB_OK && solvers) st = run_all(&x, FB_BENCH_SET_SOLVERS, diag);
+  /* the frontier (--grid frontier): every engine's frontier, then its tuned
+   * and adaptive rows (docs/step-size.md) */
+  if (st == FB_OK && frontier && (st = run_all(&x, FB_BENCH_SET_FRONTIER, diag)) == FB_OK)
+    st = run_all(&x, FB_BENCH_SET_FRONTIER_LAST, diag);
+  if (st == FB_OK && colliders) st = run_colliders(&x, diag);
+  return st;
 }
 
 void fb_bench_mark_pareto(fb_bench_row *rows, int n) {

@@ -1,7 +1,13 @@
-/* Speed against error: a grid of ODE and MuJoCo configurations on one case, each
- * measured against the exact yardstick (the analytic solution for the ideal
- * stack-up model, the reference dynamics for the clearance impact model),
- * with its cost as wall time per simulated revolution (median of repeats).
+/* Speed against error: a grid of every engine's configurations on one case,
+ * each measured against the exact yardstick (the analytic solution for the
+ * ideal stack-up model, the reference dynamics for the clearance impact
+ * model), with its cost as wall time per simulated revolution (median of
+ * repeats).
+ *
+ * The configurations are the engines' own (engine_bench.h: each engine's
+ * table gives its rows of each row set); a grid runs its sets over every
+ * engine of the build in the order of their ids (fb_bench_run), so a new
+ * engine joins every grid it gives rows for. Today's rows:
  *
  * Grid: stepper (dWorldStep; dWorldQuickStep at 10, 20, 50 iterations) x
  * step size h (1e-3, 1e-4, 1e-5, 1e-6 s and auto: resolution.h) x mapping
@@ -37,6 +43,7 @@
 
 #include "analytic.h"
 #include "case.h"
+#include "engine_bench.h"
 #include "model_table.h"
 #include "outcome.h"
 
@@ -110,53 +117,10 @@ double fb_bench_alpha_spike(const fb_body_peaks *p);
  * figure the same with a = peaks at h, b = peaks at h/2. */
 double fb_bench_rel_parts(double *rel, const double *a, const double *b, int n);
 
-/* Which grids fb_bench_run runs. */
-enum {
-  FB_BENCH_SOLVERS = 1,  /* ODE stepper x h x mapping x world ERP/CFM, and MuJoCo's grid */
-  FB_BENCH_COLLIDERS = 2, /* the collider axis */
-  FB_BENCH_BULLET = 4,    /* Bullet's grid alone (part of FB_BENCH_SOLVERS), beside ODE at the
-                             case's own settings (one configuration, the same run's yardstick) */
-  FB_BENCH_SIMBODY = 8,   /* Simbody's integrator x accuracy (bench.c, simbody_grid); alone,
-                             with ODE's dWorldStep rows at the matched mapping */
-  FB_BENCH_FRONTIER = 16, /* the step-size frontier alone (a subset of FB_BENCH_SOLVERS'
-                             rows): fixed h = 1e-5, 3e-6, 1e-6 s and auto with the case's
-                             settings, the tuned ideal rows and the adaptive rows */
-  FB_BENCH_PEERS = 32,    /* each engine's bare program beside the harness's model
-                             (peers.h; run by the CLI, not by fb_bench_run) */
-  FB_BENCH_DEFAULT = 64   /* the default grid: each engine at its recommended settings
-                             (bench.c, default_grid), a few minutes on 2 cores */
-};
-
 /* Rows one bench run may hold: every engine's grid (ODE 320 rows, MuJoCo,
  * Bullet, Simbody, the adaptive and tuned rows and the collider axis come to
  * about 500); a run that would pass it stops with an error, never a silent cut. */
 #define FB_BENCH_MAX_ROWS 1024
-
-/* ODE step sizes of the grid: 1e-3, 1e-4, 1e-5, 1e-6 s and auto. */
-#define FB_BENCH_STEPS 5
-/* ODE ideal rows beyond the grid: dWorldStep, world ERP 1, CFM 1e-10 at
- * h = 1.5e-5 and 2e-5 s (the 1e-5 error target at half the 1e-5 s cost). */
-#define FB_BENCH_IDEAL_TUNED 2
-/* Rows with [solver] h_s = adaptive: accuracy 0.3 and 0.1; ODE with
- * dWorldStep, the case's world ERP/CFM and mapping (stepper
- * "world-a<accuracy>"), MuJoCo with the case's integrator
- * ("<integrator>-a<accuracy>"). */
-#define FB_BENCH_ADAPTIVE 2
-/* ODE's adaptive row with the rocking bound (step_control.h, [solver]
- * rocking_h_omega): accuracy 0.3, rocking_h_omega FB_BENCH_ROCKING_H_OMEGA
- * (stepper "world-a0.3-r<bound>"); one row, beside the ODE rows above. */
-#define FB_BENCH_ADAPTIVE_ROCKING 1
-/* The bound of that row [-]: on the paper case 0.08, 0.1 and 0.12 put the
- * peak force 1.2e-3, 1.6e-3 and 2.0e-3 off at 30,674, 23,869 and 20,431
- * steps over 2 revolutions (docs/step-size.md); 0.1 is the loosest within
- * 2e-3 with a margin. */
-#define FB_BENCH_ROCKING_H_OMEGA 0.1
-/* Steps of the frontier grid: 1e-5, 3e-6, 1e-6 s and auto (ODE; MuJoCo the
- * three fixed ones). */
-#define FB_BENCH_FRONTIER_STEPS 4
-#define FB_BENCH_MUJOCO_STEPS 7 /* step sizes of the MuJoCo grid */
-#define FB_BENCH_BULLET_STEPS 4 /* step sizes of the Bullet grid: 1e-4, 1e-5, 1e-6 s and auto */
-#define FB_BENCH_BULLET_SOLVERS 4 /* sequential impulse at 10, 50, 100 iterations; mlcp-dantzig */
 
 /* Timing: a configuration is run once for its errors, then again, its timed
  * models only, in FB_BENCH_ROUNDS - 1 further rounds over the whole grid
@@ -173,8 +137,16 @@ enum {
  * runs). */
 #define FB_BENCH_FIRST_PASS_SHARE 0.6
 
-/* Runs the grids named in grids (FB_BENCH_* bits) on case c (2 revolutions
- * per run; timing above). rows gets *n rows.
+/* Runs the grids named in grids (FB_BENCH_* bits, engine_bench.h) on case c
+ * (2 revolutions per run; timing above), each a sequence of row sets run
+ * over every engine of the build with rows in the set, in the order of
+ * their ids: the default grid FB_BENCH_SET_DEFAULT then
+ * FB_BENCH_SET_DEFAULT_LAST; the engines' own grids (FB_BENCH_SET_OWN of an
+ * engine whose fb_engine_bench.own_grid bit is in grids; without
+ * FB_BENCH_SOLVERS with the sets it asks beside it); FB_BENCH_SOLVERS:
+ * FB_BENCH_SET_SOLVERS; FB_BENCH_FRONTIER (not with FB_BENCH_SOLVERS):
+ * FB_BENCH_SET_FRONTIER then FB_BENCH_SET_FRONTIER_LAST; FB_BENCH_COLLIDERS:
+ * each point of FB_BENCH_SET_COLLIDERS with each ring. rows gets *n rows.
  * progress (may be NULL) gets the fraction done. The collider axis needs a
  * case whose only clearance joint is the crank-coupler one (else it adds no
  * row). Errors: those of fb_run_case. */

@@ -10,12 +10,14 @@
 
 #include "clock.h"
 #include "contact.h"
+#include "engine.h"
 #include "fileio.h"
 #include "outcome_text.h"
 #include "textsafe.h"
 
-/* models by kind (ideal, clearance impact) and engine (ode, mujoco, bullet, simbody) */
-enum { NE = 4 };
+/* models by kind (ideal, clearance impact) and engine (each engine that steps
+ * a world, in the order of their ids: ode, mujoco, bullet, simbody) */
+enum { NE = FB_ENGINE_COUNT };
 
 /* a bench's results */
 typedef struct {
@@ -26,6 +28,7 @@ typedef struct {
   int npeers;
   double wall;                /* [s] */
   const fb_model *models[2][NE];
+  int ne;                     /* engines in models */
 } bench_result;
 
 static const char *kinds[2] = {"ideal", "clearance-impact"};
@@ -42,11 +45,20 @@ static int has_model(const fb_bench_row *rows, int n, const fb_model *model) {
   return 0;
 }
 
+/* 1 when the cheapest lines list model kind q of engine e: the first
+ * engine (ODE, which every build has) always, another when a row of its
+ * model ran (not every build or grid has it) */
+static int listed(const bench_result *br, int q, int e) {
+  const fb_model *m = br->models[q][e];
+  return m && (e == 0 || has_model(br->rows, br->n, m));
+}
+
 static void print_config(const char *model, double target, const fb_bench_row *b) {
   /* the mapping is a contact setting: an ideal model has none */
   char mapping[32] = "";
   if (b->mapping >= 0) snprintf(mapping, sizeof mapping, "%s, ", mapping_name(b->mapping));
-  if (b->row && b->row->engine == FB_ENGINE_ODE)
+  const fb_engine *e = b->row ? fb_engine_get(b->row->engine, NULL) : NULL;
+  if (e && e->bench && e->bench->names_world_erp)
     printf("  %-24s error <= %.0e: %s, h = %g s%s, %sERP %g, CFM %g: %.3e at %.3e s/rev\n", model,
            target, b->stepper, b->h, b->h_auto ? " (auto)" : "", mapping, b->world_erp,
            b->world_cfm, b->error, b->wall_per_rev);
@@ -178,9 +190,9 @@ static void cheapest_json(const bench_result *br, json_t *cheap, json_t *across)
   for (int q = 0; q < 2; q++)
     for (int t = 0; t < 3; t++) {
       int best = -1;
-      for (int e = 0; e < NE; e++) {
+      for (int e = 0; e < br->ne; e++) {
+        if (!listed(br, q, e)) continue; /* not in this build or grid */
         int i = fb_bench_cheapest(rows, n, br->models[q][e], targets[t]);
-        if (e >= 1 && !has_model(rows, n, br->models[q][e])) continue; /* not in this build or grid */
         json_array_append_new(cheap, json_pack("{s:s,s:f,s:o}", "model", br->models[q][e]->name, "target",
                                                targets[t], "row", i >= 0 ? json_integer(i) : json_null()));
         if (i >= 0 && (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev)) best = i;
@@ -320,8 +332,8 @@ static void print_cheapest(const bench_result *br) {
   for (int q = 0; q < 2; q++)
     for (int t = 0; t < 3; t++) {
       int best = -1;
-      for (int e = 0; e < NE; e++) {
-        if (e >= 1 && !has_model(rows, n, br->models[q][e])) continue;
+      for (int e = 0; e < br->ne; e++) {
+        if (!listed(br, q, e)) continue;
         int i = fb_bench_cheapest(rows, n, br->models[q][e], targets[t]);
         if (i < 0) {
           printf("  %-24s error <= %.0e: none in the grid\n", br->models[q][e]->name, targets[t]);
@@ -378,10 +390,11 @@ int fb_bench_study(const fb_bench_opts *o) {
     return fb_study_fail("bench", 1, "%s", d.msg);
   bench_result br = {.o = o, .rows = rows, .n = n, .peers = peers, .npeers = npeers,
                      .wall = fb_clock_s() - t0};
-  fb_bench_models(FB_ENGINE_ODE, &br.models[0][0], &br.models[1][0]);
-  fb_bench_models(FB_ENGINE_MUJOCO, &br.models[0][1], &br.models[1][1]);
-  fb_bench_models(FB_ENGINE_BULLET, &br.models[0][2], &br.models[1][2]);
-  fb_bench_models(FB_ENGINE_SIMBODY, &br.models[0][3], &br.models[1][3]);
+  for (int e = 0; e < FB_ENGINE_COUNT; e++)
+    if (fb_engine_steps_world((fb_engine_id)e)) {
+      fb_bench_models((fb_engine_id)e, &br.models[0][br.ne], &br.models[1][br.ne]);
+      br.ne++;
+    }
   json_t *j;
   int rc = write_files(&br, &j);
   if (rc) return rc;

@@ -1,5 +1,7 @@
 /* The Bullet engine behind the engine interface (engine.h): thin wrappers
  * over the Bullet scene (bullet_scene.h, C++ behind C linkage). */
+#include <stdio.h>
+
 #include "bullet_scene.h"
 #include "engine.h"
 #include "impact_bullet.h"
@@ -99,6 +101,39 @@ static void bullet_settings_lines(const fb_case *c, const fb_engine_models_used 
   put(a, line);
 }
 
+/* ---- Bullet's rows of fourbar bench (engine_bench.h): the case's mapping;
+ * its pin rows are hard, whatever the case's world CFM ---- */
+static int bullet_bench_point(fb_bench_set s, int i, const fb_case *c, fb_case *k,
+                              fb_bench_point *p) {
+  p->mapping = (int)k->clearance.mapping;
+  p->hard_pins = 1;
+  if (s == FB_BENCH_SET_DEFAULT) { /* MLCP at 1e-5 s and auto */
+    if (i >= 2) return 0;
+    fb_bench_fixed_step(k, i == 0 ? 1e-5 : 0.0);
+    k->bullet.solver = FB_BULLET_MLCP_DANTZIG;
+    snprintf(p->stepper, sizeof p->stepper, "mlcp");
+    return 1;
+  }
+  if (s != FB_BENCH_SET_SOLVERS && s != FB_BENCH_SET_OWN) return 0;
+  /* its own knobs: solver (and its iterations) x h */
+  if (i >= FB_BENCH_BULLET_SOLVERS * FB_BENCH_BULLET_STEPS) return 0;
+  const double bh[FB_BENCH_BULLET_STEPS] = {1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
+  const int iters[FB_BENCH_BULLET_SOLVERS] = {10, 50, 100, 0};   /* 0: mlcp-dantzig */
+  const int si = i / FB_BENCH_BULLET_STEPS;
+  fb_bench_fixed_step(k, bh[i % FB_BENCH_BULLET_STEPS]);
+  k->bullet.solver = iters[si] ? FB_BULLET_SEQUENTIAL_IMPULSE : FB_BULLET_MLCP_DANTZIG;
+  k->bullet.iterations = iters[si] ? iters[si] : c->bullet.iterations;
+  if (iters[si]) snprintf(p->stepper, sizeof p->stepper, "si-%d", iters[si]);
+  else snprintf(p->stepper, sizeof p->stepper, "mlcp");
+  return 1;
+}
+
+/* --grid bullet: its grid alone, after ODE (or any engine) at the case's
+ * own settings */
+static const fb_engine_bench bullet_bench = {.point = bullet_bench_point,
+                                             .own_grid = FB_BENCH_BULLET,
+                                             .alone_before = FB_BENCH_SET_CASE_ROW};
+
 const fb_engine fb_engine_bullet = {
     .name = "bullet",
     .guarded = 1,
@@ -120,4 +155,5 @@ const fb_engine fb_engine_bullet = {
     .impact = &bullet_impact,
     .settings = bullet_settings,
     .settings_lines = bullet_settings_lines,
+    .bench = &bullet_bench,
 };

@@ -1,5 +1,7 @@
 /* The MuJoCo engine behind the engine interface (engine.h): thin wrappers
  * over the MuJoCo scene (mujoco_scene.h). */
+#include <stdio.h>
+
 #include "engine.h"
 #include "impact_mujoco.h"
 #include "mujoco_scene.h"
@@ -126,6 +128,57 @@ static const char *mujoco_mapping_text(fb_collider collider) {
   return collider == FB_COLLIDER_NATIVE ? "none (MuJoCo contact)" : "none (applied force)";
 }
 
+/* ---- MuJoCo's rows of fourbar bench (engine_bench.h): the case's loop
+ * closure and drive throughout ---- */
+
+/* [solver] h_s = adaptive at FB_BENCH_ADAPTIVE_ACCURACY(i) with the case's
+ * integrator */
+static void mujoco_adaptive(int i, fb_case *k, fb_bench_point *p) {
+  fb_bench_adaptive_step(k, FB_BENCH_ADAPTIVE_ACCURACY(i));
+  snprintf(p->stepper, sizeof p->stepper, "%s-a%g", fb_mujoco_integrator_name(k->mujoco.integrator),
+           FB_BENCH_ADAPTIVE_ACCURACY(i));
+}
+
+static int mujoco_bench_point(fb_bench_set s, int i, const fb_case *c, fb_case *k,
+                              fb_bench_point *p) {
+  (void)c;
+  switch (s) {
+    case FB_BENCH_SET_DEFAULT: /* the case's integrator at 1e-5 s, 3e-6 s and adaptive 0.3 */
+      if (i >= 3) return 0;
+      fb_bench_fixed_step(k, i == 0 ? 1e-5 : i == 1 ? 3e-6 : 0.0);
+      if (i == 2) fb_bench_adaptive_step(k, 0.3);
+      snprintf(p->stepper, sizeof p->stepper, "%s%s",
+               fb_mujoco_integrator_name(k->mujoco.integrator), i == 2 ? "-a0.3" : "");
+      return 1;
+    case FB_BENCH_SET_SOLVERS: { /* the adaptive rows, then integrator x step */
+      if (i < FB_BENCH_ADAPTIVE) {
+        mujoco_adaptive(i, k, p);
+        return 1;
+      }
+      i -= FB_BENCH_ADAPTIVE;
+      if (i >= 3 * FB_BENCH_MUJOCO_STEPS) return 0;
+      const double mh[FB_BENCH_MUJOCO_STEPS] = {1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6};
+      const int integ[3] = {FB_MUJOCO_EULER, FB_MUJOCO_IMPLICIT, FB_MUJOCO_RK4};
+      fb_bench_fixed_step(k, mh[i % FB_BENCH_MUJOCO_STEPS]);
+      k->mujoco.integrator = integ[i / FB_BENCH_MUJOCO_STEPS];
+      snprintf(p->stepper, sizeof p->stepper, "%s", fb_mujoco_integrator_name(k->mujoco.integrator));
+      return 1;
+    }
+    case FB_BENCH_SET_FRONTIER: /* the case's integrator at the frontier's fixed steps */
+      if (i >= FB_BENCH_FRONTIER_STEPS - 1) return 0;
+      fb_bench_fixed_step(k, FB_BENCH_FRONTIER_H(i));
+      snprintf(p->stepper, sizeof p->stepper, "%s", fb_mujoco_integrator_name(k->mujoco.integrator));
+      return 1;
+    case FB_BENCH_SET_FRONTIER_LAST:
+      if (i >= FB_BENCH_ADAPTIVE) return 0;
+      mujoco_adaptive(i, k, p);
+      return 1;
+    default: return 0;
+  }
+}
+
+static const fb_engine_bench mujoco_bench = {.point = mujoco_bench_point};
+
 const fb_engine fb_engine_mujoco = {
     .name = "mujoco",
     .guarded = 1,
@@ -148,4 +201,5 @@ const fb_engine fb_engine_mujoco = {
     .settings = mujoco_settings,
     .settings_lines = mujoco_settings_lines,
     .mapping_text = mujoco_mapping_text,
+    .bench = &mujoco_bench,
 };

@@ -1,5 +1,7 @@
 /* The ODE engine behind the engine interface (engine.h): thin wrappers over
  * the ODE world (ode_world.h). */
+#include <stdio.h>
+
 #include "engine.h"
 #include "impact_ode.h"
 #include "ode_world.h"
@@ -90,6 +92,147 @@ static fb_status ode_impact_row(fb_impact_result *out, const fb_impact_row *r, f
                            r->t_max, r->onset_phase, diag);
 }
 
+/* ---- ODE's rows of fourbar bench (engine_bench.h) ---- */
+
+/* the stepper column of the case's own stepper, with suffix */
+static void ode_stepper_name(char *out, size_t size, const fb_case *k, const char *suffix) {
+  if (k->solver.stepper == FB_STEPPER_QUICK)
+    snprintf(out, size, "quick-%d%s", k->solver.quick_iterations, suffix);
+  else
+    snprintf(out, size, "world%s", suffix);
+}
+
+/* dWorldStep with world ERP erp and CFM cfm */
+static void ode_world(fb_case *k, double erp, double cfm) {
+  k->solver.stepper = FB_STEPPER_WORLD;
+  k->solver.world_erp = erp;
+  k->solver.world_cfm = cfm;
+}
+
+/* the adaptive step keeps the matched mapping's static form */
+static int ode_adaptive_mapping(const fb_case *k) {
+  return k->clearance.mapping == FB_MAPPING_MATCHED ? FB_MAPPING_MATCHED_STATIC
+                                                    : (int)k->clearance.mapping;
+}
+
+/* the ideal model alone at its cheapest setting for 1e-5 (issue 29): world
+ * ERP 1 (the whole joint error corrected each step) lets the step double,
+ * h = 1.5e-5 and 2e-5 s (i < FB_BENCH_IDEAL_TUNED) */
+static void ode_tuned(int i, fb_case *k, fb_bench_point *p) {
+  fb_bench_fixed_step(k, i == 0 ? 1.5e-5 : 2e-5);
+  k->model_count = 1;
+  ode_world(k, 1.0, 1e-10);
+  snprintf(p->stepper, sizeof p->stepper, "world");
+  p->mapping = 0;
+}
+
+/* the tuned ideal rows, dWorldStep with [solver] h_s = adaptive at accuracy
+ * 0.3 and 0.1, and the adaptive row with the rocking bound (engine_bench.h)
+ * (i < FB_BENCH_IDEAL_TUNED + FB_BENCH_ADAPTIVE + FB_BENCH_ADAPTIVE_ROCKING) */
+static int ode_extra(int i, fb_case *k, fb_bench_point *p) {
+  if (i < FB_BENCH_IDEAL_TUNED) {
+    ode_tuned(i, k, p);
+    return 1;
+  }
+  i -= FB_BENCH_IDEAL_TUNED;
+  if (i >= FB_BENCH_ADAPTIVE + FB_BENCH_ADAPTIVE_ROCKING) return 0;
+  const double accuracy = i < FB_BENCH_ADAPTIVE ? FB_BENCH_ADAPTIVE_ACCURACY(i) : 0.3;
+  fb_bench_adaptive_step(k, accuracy);
+  k->solver.stepper = FB_STEPPER_WORLD;
+  if (i < FB_BENCH_ADAPTIVE) {
+    snprintf(p->stepper, sizeof p->stepper, "world-a%g", accuracy);
+  } else {
+    k->solver.rocking_h_omega = FB_BENCH_ROCKING_H_OMEGA;
+    snprintf(p->stepper, sizeof p->stepper, "world-a0.3-r%g", FB_BENCH_ROCKING_H_OMEGA);
+  }
+  p->mapping = ode_adaptive_mapping(k);
+  return 1;
+}
+
+/* the solver grid: stepper (dWorldStep; dWorldQuickStep at 10, 20, 50
+ * iterations) x h (1e-3 to 1e-6 s and auto) x mapping x world ERP/CFM
+ * ((0.2, 1e-10), (0.8, 1e-8)); the mapping does not touch the ideal model:
+ * one row for it; then the extra rows */
+static int ode_solvers(int i, fb_case *k, fb_bench_point *p) {
+  enum { ERPS = 2, PER_STEPPER = FB_BENCH_STEPS * FB_MAPPING_COUNT * ERPS };
+  if (i >= 4 * PER_STEPPER) return ode_extra(i - 4 * PER_STEPPER, k, p);
+  const double hs[FB_BENCH_STEPS] = {1e-3, 1e-4, 1e-5, 1e-6, 0.0}; /* 0: auto */
+  const int iters[4] = {0, 10, 20, 50};                              /* 0: dWorldStep */
+  const double erp[ERPS] = {0.2, 0.8}, cfm[ERPS] = {1e-10, 1e-8};
+  const int si = i / PER_STEPPER, hi = i / (FB_MAPPING_COUNT * ERPS) % FB_BENCH_STEPS;
+  const int mi = i / ERPS % FB_MAPPING_COUNT, ei = i % ERPS;
+  fb_bench_fixed_step(k, hs[hi]);
+  k->solver.stepper = iters[si] ? FB_STEPPER_QUICK : FB_STEPPER_WORLD;
+  k->solver.quick_iterations = iters[si] ? iters[si] : 20;
+  k->solver.world_erp = erp[ei];
+  k->solver.world_cfm = cfm[ei];
+  k->clearance.mapping = mi;
+  if (iters[si]) snprintf(p->stepper, sizeof p->stepper, "quick-%d", iters[si]);
+  else snprintf(p->stepper, sizeof p->stepper, "world");
+  p->mapping = mi;
+  p->no_ideal_row = mi != 0;
+  return 1;
+}
+
+static int ode_bench_point(fb_bench_set s, int i, const fb_case *c, fb_case *k,
+                           fb_bench_point *p) {
+  switch (s) {
+    case FB_BENCH_SET_DEFAULT: /* 1e-5 s, auto, adaptive 0.3 at the case's stepper */
+      if (i >= 3) return 0;
+      fb_bench_fixed_step(k, i == 0 ? 1e-5 : 0.0);
+      if (i == 2) fb_bench_adaptive_step(k, 0.3);
+      ode_stepper_name(p->stepper, sizeof p->stepper, k, i == 2 ? "-a0.3" : "");
+      p->mapping = i == 2 ? ode_adaptive_mapping(k) : (int)k->clearance.mapping;
+      return 1;
+    case FB_BENCH_SET_DEFAULT_LAST:
+      if (i >= FB_BENCH_IDEAL_TUNED) return 0;
+      ode_tuned(i, k, p);
+      return 1;
+    case FB_BENCH_SET_SOLVERS: return ode_solvers(i, k, p);
+    case FB_BENCH_SET_FRONTIER: /* the case's settings at the frontier's steps; the ideal
+                                   model at ERP 0.8, CFM 1e-8, h = 1e-5 s */
+      if (i < FB_BENCH_FRONTIER_STEPS) {
+        fb_bench_fixed_step(k, FB_BENCH_FRONTIER_H(i));
+        snprintf(p->stepper, sizeof p->stepper, "%s",
+                 k->solver.stepper == FB_STEPPER_WORLD ? "world" : "quick");
+        p->mapping = (int)k->clearance.mapping;
+        return 1;
+      }
+      if (i > FB_BENCH_FRONTIER_STEPS) return 0;
+      fb_bench_fixed_step(k, 1e-5);
+      k->model_count = 1;
+      ode_world(k, 0.8, 1e-8);
+      snprintf(p->stepper, sizeof p->stepper, "world");
+      p->mapping = 0;
+      return 1;
+    case FB_BENCH_SET_FRONTIER_LAST: return ode_extra(i, k, p);
+    case FB_BENCH_SET_CASE_ROW: /* the case's own settings (a fixed step, else auto) */
+      if (i >= 1) return 0;
+      fb_bench_fixed_step(k, c->solver.h_mode == FB_STEP_FIXED ? c->solver.h : 0.0);
+      ode_stepper_name(p->stepper, sizeof p->stepper, c, "");
+      p->mapping = (int)k->clearance.mapping;
+      return 1;
+    case FB_BENCH_SET_STEP_ROWS: /* dWorldStep, matched, h 1e-4, 1e-5, 1e-6 s and auto */
+      if (i >= 4) return 0;
+      fb_bench_fixed_step(k, i == 0 ? 1e-4 : i == 1 ? 1e-5 : i == 2 ? 1e-6 : 0.0);
+      ode_world(k, 0.2, 1e-10);
+      k->clearance.mapping = FB_MAPPING_MATCHED;
+      snprintf(p->stepper, sizeof p->stepper, "world");
+      p->mapping = FB_MAPPING_MATCHED;
+      return 1;
+    case FB_BENCH_SET_COLLIDERS: /* dWorldStep, world ERP/CFM (0.2, 1e-10), h 1e-5, 1e-6 s */
+      if (i >= 2) return 0;
+      fb_bench_fixed_step(k, i == 0 ? 1e-5 : 1e-6);
+      ode_world(k, 0.2, 1e-10);
+      snprintf(p->stepper, sizeof p->stepper, "world");
+      p->mapping = (int)k->clearance.mapping;
+      return 1;
+    default: return 0;
+  }
+}
+
+static const fb_engine_bench ode_bench = {.point = ode_bench_point, .names_world_erp = 1};
+
 static const fb_engine_impact ode_impact = {.law = ode_impact_law, .row = ode_impact_row};
 
 const fb_engine fb_engine_ode = {
@@ -112,4 +255,5 @@ const fb_engine fb_engine_ode = {
     .drive_key = "[solver] drive_torque_max_n_m",
     .peer_args = ode_peer_args,
     .impact = &ode_impact,
+    .bench = &ode_bench,
 };

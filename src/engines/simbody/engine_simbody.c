@@ -1,6 +1,7 @@
 /* The Simbody engine behind the engine interface (engine.h): thin wrappers
  * over the Simbody scene (simbody_scene.h, the folder's one C++ file). */
 #include <math.h>
+#include <stdio.h>
 
 #include "engine.h"
 #include "simbody_scene.h"
@@ -101,6 +102,36 @@ static const char *simbody_mapping_text(fb_collider collider) {
   return "none (applied force)";
 }
 
+/* ---- Simbody's rows of fourbar bench (engine_bench.h): its integrator and
+ * accuracy on the case's own output grid (its steps are its integrator's) ---- */
+static int simbody_bench_point(fb_bench_set s, int i, const fb_case *c, fb_case *k,
+                               fb_bench_point *p) {
+  enum { ACCURACIES = 6 };
+  if (s == FB_BENCH_SET_DEFAULT) { /* rkmerson at 1e-4 and 1e-6, cpodes at 1e-6 */
+    if (i >= 3) return 0;
+    k->simbody.integrator = i == 2 ? FB_SIMBODY_CPODES : FB_SIMBODY_RKMERSON;
+    k->simbody.accuracy = i == 0 ? 1e-4 : 1e-6;
+  } else if (s == FB_BENCH_SET_OWN) { /* integrator x accuracy 1e-3 to 1e-8 */
+    if (i >= FB_SIMBODY_INTEGRATOR_COUNT * ACCURACIES) return 0;
+    const double acc[ACCURACIES] = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
+    k->simbody.integrator = i / ACCURACIES;
+    k->simbody.accuracy = acc[i % ACCURACIES];
+  } else {
+    return 0;
+  }
+  k->solver.h = c->solver.h; /* the case's output step, as run */
+  k->solver.h_mode = c->solver.h_mode;
+  snprintf(p->stepper, sizeof p->stepper, "%s %.0e",
+           fb_simbody_integrator_name(k->simbody.integrator), k->simbody.accuracy);
+  return 1;
+}
+
+/* --grid simbody (and solvers, all): its own grid, then alone ODE's (or any
+ * engine's) rows at fixed steps for the comparison */
+static const fb_engine_bench simbody_bench = {.point = simbody_bench_point,
+                                              .own_grid = FB_BENCH_SIMBODY,
+                                              .alone_after = FB_BENCH_SET_STEP_ROWS};
+
 const fb_engine fb_engine_simbody = {
     .name = "simbody",
     .guarded = 1,
@@ -123,4 +154,5 @@ const fb_engine fb_engine_simbody = {
     .settings = simbody_settings,
     .settings_lines = simbody_settings_lines,
     .mapping_text = simbody_mapping_text,
+    .bench = &simbody_bench,
 };

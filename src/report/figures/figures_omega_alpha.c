@@ -34,16 +34,16 @@ static void residual(const fb_run *r, int i, int body, double t0, double t1, dou
   }
 }
 
-/* the ODE model of the run that model i is compared with: the same
- * lengths, joints and law run by ODE, when model i is another simulation
- * engine's; -1 when there is none */
+/* the model of the run that model i is compared with: the first with the
+ * engine, lengths, joints and law of the row's partner (model_table.h; ODE's
+ * model of the same kind), when model i has one; -1 when there is none */
 static int engine_partner(const fb_run *r, int i) {
-  const fb_model *m = r->model[i].run.model;
-  if (m->engine == FB_ENGINE_ODE || !fb_engine_steps_world(m->engine)) return -1;
+  const fb_model *p = fb_model_partner_of(r->model[i].run.model);
+  if (!p) return -1;
   for (int j = 0; j < r->n; j++) {
     const fb_model *o = r->model[j].run.model;
-    if (o->engine == FB_ENGINE_ODE && o->lengths == m->lengths && o->joints == m->joints &&
-        o->law == m->law && r->model[j].run.series.n > 1)
+    if (o->engine == p->engine && o->lengths == p->lengths && o->joints == p->joints &&
+        o->law == p->law && r->model[j].run.series.n > 1)
       return j;
   }
   return -1;

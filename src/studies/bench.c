@@ -261,6 +261,12 @@ void fb_bench_models(fb_engine_id e, const fb_model **ideal, const fb_model **cl
                           FB_COLLIDER_NONE);
   *clearance = fb_model_match(e, FB_LENGTHS_STACKUP, FB_JOINTS_CLEARANCE, FB_MODEL_LAW_IMPACT,
                               FB_COLLIDER_EXACT);
+  /* an engine without the impact law (Siconos: rigid, Newton's law) is
+   * benched with its first stack-up clearance model, against its reference */
+  for (int q = 0; !*clearance && q < fb_model_count; q++)
+    if (fb_models[q].engine == e && fb_models[q].lengths == FB_LENGTHS_STACKUP &&
+        fb_models[q].joints == FB_JOINTS_CLEARANCE && fb_models[q].reference)
+      *clearance = &fb_models[q];
 }
 
 static void bench_case(fb_case *k, const fb_case *c, double h, fb_engine_id engine) {

@@ -163,7 +163,9 @@ int fb_bench_cheapest(const fb_bench_row *rows, int n, const fb_model *model, do
 
 /* The models a bench of engine e measures: its ideal stack-up model
  * (*ideal) and its clearance impact model with the exact collider
- * (*clearance); NULL where the table has none. */
+ * (*clearance; for an engine without one, its first stack-up clearance
+ * model with a reference: siconos-clearance-newton); NULL where the table
+ * has none. */
 void fb_bench_models(fb_engine_id e, const fb_model **ideal, const fb_model **clearance);
 
 #endif

@@ -3,6 +3,7 @@
 #include <stdio.h>
 
 #include "engine.h"
+#include "engine_bench.h"
 #include "siconos_scene.h"
 
 static fb_status siconos_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
@@ -73,6 +74,27 @@ static const char *siconos_mapping_text(fb_collider collider) {
  * and its spikes lie on a discrete motion (refined by the harness). No
  * drive_key: the crank is prescribed exactly (it is no coordinate), so it
  * never lags; no cost_per_sample yet (FB_COST_DEFAULT_S) */
+/* ---- Siconos's rows of fourbar bench (engine_bench.h): Moreau-Jean at the
+ * case's theta, at the case's automatic step (the default grid) and at
+ * fixed steps (the solver grids); its clearance rows are the rigid model
+ * against the restitution reference (fb_bench_models) ---- */
+static int siconos_bench_point(fb_bench_set s, int i, const fb_case *c, fb_case *k,
+                               fb_bench_point *p) {
+  (void)c;
+  if (s == FB_BENCH_SET_DEFAULT) {
+    if (i >= 1) return 0; /* the case's automatic step */
+  } else if (s == FB_BENCH_SET_SOLVERS) {
+    if (i >= FB_BENCH_FRONTIER_STEPS) return 0; /* 1e-5, 3e-6, 1e-6 s and auto */
+    fb_bench_fixed_step(k, FB_BENCH_FRONTIER_H(i));
+  } else {
+    return 0;
+  }
+  snprintf(p->stepper, sizeof p->stepper, "moreau-jean %g", k->siconos.theta);
+  return 1;
+}
+
+static const fb_engine_bench siconos_bench = {.point = siconos_bench_point};
+
 const fb_engine fb_engine_siconos = {
     .name = "siconos",
     .guarded = 1,
@@ -91,4 +113,5 @@ const fb_engine fb_engine_siconos = {
     .settings = siconos_settings,
     .settings_lines = siconos_settings_lines,
     .mapping_text = siconos_mapping_text,
+    .bench = &siconos_bench,
 };

@@ -45,7 +45,14 @@ static int compare(const fb_linkage *lk, fb_branch branch, double omega2, const 
   fb_diag d;
   if (fb_analytic_peaks_grid(&q, wq, lk, branch, omega2, DENSE_GRID, &d) != FB_OK)
     fail_msg("%s: the grid search fails where the series search does not: %s", what, d.msg);
-  const double *a = &p.coupler.omega_max, *b = &q.coupler.omega_max;
+  /* the eight extremes in where's order: coupler omega max, min, alpha max,
+   * min, then the follower's */
+  const double a[8] = {p.coupler.omega_max, p.coupler.omega_min, p.coupler.alpha_max,
+                       p.coupler.alpha_min, p.follower.omega_max, p.follower.omega_min,
+                       p.follower.alpha_max, p.follower.alpha_min};
+  const double b[8] = {q.coupler.omega_max, q.coupler.omega_min, q.coupler.alpha_max,
+                       q.coupler.alpha_min, q.follower.omega_max, q.follower.omega_min,
+                       q.follower.alpha_max, q.follower.alpha_min};
   for (int i = 0; i < 8; i++) {
     /* scale: the larger magnitude of the same quantity's max and min */
     const int j = i - i % 2;

@@ -11,6 +11,8 @@
 #include <string.h>
 
 #include "analytic.h"
+#include "mech_kinematics.h"
+#include "slider_crank_invdyn.h"
 #include "invdyn.h"
 #include "fb_config.h"
 #include "reference.h"
@@ -105,8 +107,8 @@ static fb_status analytic_create(void **self, const fb_model_scene *sm, fb_diag 
   replay *r = calloc(1, sizeof *r);
   if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the analytic engine");
   r->steps = d->steps + 1;
-  st = fb_analytic_sample(&r->s, &sm->lengths, sm->branch, sm->crank_angle0, sm->omega2,
-                          sm->solver.h, r->steps, diag);
+  st = fb_mech_sample(&r->s, d->source.mechanism, &sm->lengths, sm->branch, sm->crank_angle0,
+                      sm->omega2, sm->solver.h, r->steps, diag);
   if (st != FB_OK) {
     free(r);
     return st;
@@ -118,9 +120,38 @@ static fb_status analytic_create(void **self, const fb_model_scene *sm, fb_diag 
 
 /* joint reactions and drive torque of the ideal mechanism at the replayed
  * sample's crank angle: inverse dynamics (invdyn.h), gravity included */
+/* the slider-crank's (slider_crank_invdyn.h): the pins' forces, and at the
+ * slider-ground joint the force on the ground from the slider, -N along y */
+static void slider_crank_reactions(const replay *r, double force[4][2], double *drive_torque) {
+  const fb_model_scene *sm = r->sm;
+  const fb_slider_crank sc = {sm->lengths.length[FB_CRANK], sm->lengths.length[FB_COUPLER],
+                              sm->lengths.length[FB_LENGTH_OFFSET]};
+  const fb_link_mass *l = sm->link;
+  const fb_slider_crank_mass mass = {l[0].mass, l[0].inertia, l[0].com_fraction,
+                                     l[1].mass, l[1].inertia, l[1].com_fraction, l[2].mass};
+  fb_slider_crank_reactions q;
+  if (fb_slider_crank_invdyn(&q, &sc, &mass, sm->gravity, r->s.crank_angle[r->i], sm->omega2, 0.0,
+                             NULL) != FB_OK) {
+    for (int j = 0; j < 4; j++) force[j][0] = force[j][1] = NAN;
+    *drive_torque = NAN;
+    return;
+  }
+  for (int j = 0; j < FB_SC_PIN_COUNT; j++) {
+    force[j][0] = q.force[j][0];
+    force[j][1] = q.force[j][1];
+  }
+  force[FB_SC_JOINT_SLIDER_GROUND][0] = 0.0;
+  force[FB_SC_JOINT_SLIDER_GROUND][1] = -q.guide_force;
+  *drive_torque = q.drive_torque;
+}
+
 static void analytic_reactions(const void *self, double force[4][2], double *drive_torque) {
   const replay *r = self;
   const fb_model_scene *sm = r->sm;
+  if (sm->def->source.mechanism == FB_MECH_SLIDER_CRANK) {
+    slider_crank_reactions(r, force, drive_torque);
+    return;
+  }
   fb_reactions q;
   if (fb_invdyn_solve(&q, &sm->lengths, sm->branch, sm->link, sm->gravity, r->s.crank_angle[r->i],
                       sm->omega2, NULL) != FB_OK) {

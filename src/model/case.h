@@ -220,7 +220,9 @@ enum { FB_PUBLISHED_IMPACT = 0, FB_PUBLISHED_RESTITUTION = 1, FB_PUBLISHED_LAWS 
 
 typedef struct fb_case_s {
   char name[FB_NAME_SIZE];            /* case name, used for the output folder */
-  fb_linkage nominal;                 /* basic link lengths [m] */
+  fb_mech_type mechanism;             /* [linkage] type: the four-bar or the slider-crank */
+  fb_linkage nominal;                 /* basic link lengths [m]; a slider-crank's crank, coupler
+                                         and guide offset (mechanism.h FB_LENGTH_OFFSET), ground 0 */
   double plus_minus[FB_LINK_COUNT];   /* symmetric length tolerance per link [m] (4) */
   fb_stackup stackup;                 /* corner used by the *-stackup models */
   char tolerance_source[FB_LINK_COUNT][96]; /* where each tolerance came from */
@@ -301,8 +303,8 @@ void fb_case_default(fb_case *c);
  * Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY, FB_ERR_ARG with the rule in diag. */
 fb_status fb_case_check(const fb_case *c, fb_diag *diag);
 
-/* The mechanism the case describes (mechanism.h): the four-bar, the only
- * one today; the place a case's [linkage] type will choose another. */
+/* The mechanism the case describes (mechanism.h), chosen by its [linkage]
+ * type: fb_mech_fourbar or fb_mech_slider_crank. */
 const fb_mech_desc *fb_case_mech(const fb_case *c);
 
 /* Signed crank speed omega2 [rad/s]: negative for a clockwise crank. */

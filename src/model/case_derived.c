@@ -11,10 +11,7 @@
 
 const char *fb_joint_name(int j) { return fb_mech_joint_name(&fb_mech_fourbar, j); }
 
-const fb_mech_desc *fb_case_mech(const fb_case *c) {
-  (void)c;
-  return &fb_mech_fourbar;
-}
+const fb_mech_desc *fb_case_mech(const fb_case *c) { return fb_mech_of(c->mechanism); }
 
 const char *fb_value_source_name(int s) {
   static const char *const names[3] = {"case", "derived", "default"};

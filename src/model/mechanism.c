@@ -3,6 +3,7 @@
 #include "mechanism.h"
 
 #include <stdio.h>
+#include <string.h>
 
 const fb_mech_desc fb_mech_fourbar = {
     .type = "four-bar",
@@ -20,6 +21,35 @@ const fb_mech_desc fb_mech_fourbar = {
     .nlengths = 4,
     .length = {"crank", "coupler", "follower", "ground"},
 };
+
+const fb_mech_desc fb_mech_slider_crank = {
+    .type = "slider-crank",
+    .nbodies = 4,
+    .body = {{"crank", FB_MOTION_ROTATING, 0},
+             {"coupler", FB_MOTION_PLANAR, 1},
+             {"slider", FB_MOTION_TRANSLATING, 1},
+             {"ground", FB_MOTION_FIXED, 0}},
+    .input = 0,
+    .njoints = 4,
+    .joint = {{"ground-crank", FB_KIND_REVOLUTE, {3, 0}, 0},
+              {"crank-coupler", FB_KIND_REVOLUTE, {0, 1}, 0},
+              {"coupler-slider", FB_KIND_REVOLUTE, {1, 2}, 1},
+              {"slider-ground", FB_KIND_PRISMATIC, {2, 3}, 0}},
+    .nlengths = 3,
+    .length = {"crank", "coupler", "offset"},
+};
+
+static const fb_mech_desc *const all[FB_MECH_COUNT] = {&fb_mech_fourbar, &fb_mech_slider_crank};
+
+const fb_mech_desc *fb_mech_of(fb_mech_type t) {
+  return (t >= 0 && t < FB_MECH_COUNT) ? all[t] : &fb_mech_fourbar;
+}
+
+int fb_mech_find(const char *type) {
+  for (int t = 0; t < FB_MECH_COUNT; t++)
+    if (strcmp(all[t]->type, type) == 0) return t;
+  return -1;
+}
 
 int fb_mech_outputs(const fb_mech_desc *m, int out[FB_MECH_MAX_OUTPUTS]) {
   int n = 0;

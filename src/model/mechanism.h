@@ -5,10 +5,8 @@
  * per joint (series columns, joint names, joint masks) is read from here, so
  * a second member of the four-bar family adds a description, not branches.
  * The closed-form kinematics stay in physics/ (linkage.h for the four-bar).
- * One description today: fb_mech_fourbar. A slider-crank is expressible
- * (bodies crank, coupler, slider translating along a guide, ground; joints
- * ground-crank, crank-coupler, coupler-slider and the prismatic
- * slider-ground; lengths crank, coupler, offset) but is not added here. */
+ * Two descriptions: fb_mech_fourbar and fb_mech_slider_crank, chosen by a
+ * case's [linkage] type (fb_mech_type, fb_mech_find). */
 #ifndef FB_MECHANISM_H
 #define FB_MECHANISM_H
 
@@ -70,6 +68,33 @@ typedef struct {
  * length indices are links.h's FB_CRANK.. FB_GROUND, joint indices case.h's
  * FB_JOINT_A.. FB_JOINT_D. */
 extern const fb_mech_desc fb_mech_fourbar;
+
+/* The offset slider-crank (RRRP): bodies crank (rotating, driven), coupler
+ * (the connecting rod: planar, output), slider (translating along the guide
+ * y = offset, output), ground; joints ground-crank, crank-coupler,
+ * coupler-slider (the piston pin, the one that may carry clearance) and the
+ * prismatic slider-ground (ideal); lengths crank, coupler, offset (the
+ * guide line's distance from the crank pivot along +y, any sign; index
+ * FB_LENGTH_OFFSET). Body indices are those of the case's per-link arrays:
+ * the slider's mass is link 2's. Kinematics: physics/slider_crank.h. */
+extern const fb_mech_desc fb_mech_slider_crank;
+
+/* Index of the slider-crank's guide offset in fb_linkage.length [m]. */
+#define FB_LENGTH_OFFSET 2
+
+/* The mechanisms a case may name ([linkage] type), in the order of this
+ * enum. */
+typedef enum {
+  FB_MECH_FOURBAR = 0,      /* "four-bar" (the default) */
+  FB_MECH_SLIDER_CRANK = 1, /* "slider-crank" */
+  FB_MECH_COUNT = 2
+} fb_mech_type;
+
+/* The description of type t (the four-bar's for a value out of range). */
+const fb_mech_desc *fb_mech_of(fb_mech_type t);
+
+/* The type whose description's name is `type` ("slider-crank"), or -1. */
+int fb_mech_find(const char *type);
 
 /* Members of type T per output body, as an array body[output] in the
  * description's output order and, over the same storage, the four-bar's

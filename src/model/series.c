@@ -115,12 +115,16 @@ static double *slot(fb_series *s, double **c) {
 }
 
 fb_status fb_series_init(fb_series *s, size_t cap) {
+  return fb_series_init_mech(s, cap, &fb_mech_fourbar);
+}
+
+fb_status fb_series_init_mech(fb_series *s, size_t cap, const fb_mech_desc *mech) {
   memset(s, 0, sizeof *s);
   if (cap == 0) cap = 16;
   s->arena = arena_map(cap, &s->arena_bytes);
   if (!s->arena) return FB_ERR_NOMEM;
   s->cap = cap;
-  s->mech = &fb_mech_fourbar;
+  s->mech = mech;
   s->t = slot(s, &s->t);
   s->crank_angle = slot(s, &s->crank_angle);
   for (size_t b = 0; b < output_count(s); b++)

@@ -89,6 +89,10 @@ fb_status fb_series_enable_loads(fb_series *s);
  * Errors: FB_ERR_NOMEM. */
 fb_status fb_series_init(fb_series *s, size_t cap);
 
+/* As fb_series_init, for the columns of mechanism mech (its output bodies).
+ * Errors: FB_ERR_NOMEM. */
+fb_status fb_series_init_mech(fb_series *s, size_t cap, const fb_mech_desc *mech);
+
 /* Maps the storage of every enabled column from sample n to cap now (one
  * write of zero per page), so that filling it takes no page faults: a run
  * calls it before its timed steps. The first write to a fresh page costs a

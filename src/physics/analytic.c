@@ -106,8 +106,8 @@ fb_status fb_analytic_peaks_grid(fb_peaks *out, double where[8], const fb_linkag
     }
   }
   gsl_set_error_handler(old);
-  out->coupler = (fb_body_peaks){res[0][0], res[0][1], res[1][0], res[1][1]};
-  out->follower = (fb_body_peaks){res[2][0], res[2][1], res[3][0], res[3][1]};
+  out->coupler = (fb_body_peaks){res[0][0], res[0][1], res[1][0], res[1][1], NAN, NAN};
+  out->follower = (fb_body_peaks){res[2][0], res[2][1], res[3][0], res[3][1], NAN, NAN};
   return FB_OK;
 }
 
@@ -499,8 +499,8 @@ fb_status fb_analytic_peaks_where(fb_peaks *out, double where[8], const fb_linka
       if (where) where[(w / 2) * 4 + (w % 2) * 2 + m] = ps.where[w][src];
     }
   }
-  out->coupler = (fb_body_peaks){res[0][0], res[0][1], res[1][0], res[1][1]};
-  out->follower = (fb_body_peaks){res[2][0], res[2][1], res[3][0], res[3][1]};
+  out->coupler = (fb_body_peaks){res[0][0], res[0][1], res[1][0], res[1][1], NAN, NAN};
+  out->follower = (fb_body_peaks){res[2][0], res[2][1], res[3][0], res[3][1], NAN, NAN};
   return FB_OK;
 }
 

@@ -8,12 +8,17 @@
 #include "linkage.h"
 #include "series.h"
 
-/* Extremes of one body's angular velocity and acceleration. */
+/* Extremes of one body's velocity and acceleration (angular for a rotating
+ * or planar body [rad/s, rad/s^2], linear for a translating one, such as a
+ * slider [m/s, m/s^2]) and of its position. */
 typedef struct {
   double omega_max; /* [rad/s] */
   double omega_min; /* [rad/s] */
   double alpha_max; /* [rad/s^2] */
   double alpha_min; /* [rad/s^2] */
+  double pos_max;   /* largest position: a slider's x [m], a rod's angle [rad]; NAN where
+                       not taken (the four-bar's analytic peaks) */
+  double pos_min;   /* smallest position [m] or [rad] */
 } fb_body_peaks;
 
 /* Extremes of each output body (mechanism.h; the four-bar's coupler and

@@ -106,7 +106,8 @@ json_t *fb_report_loads_json(const fb_series *s, double t_from) {
   json_object_set_new(o, "drive_torque_abs_max_n_m", num(fmax(fabs(tmax), fabs(tmin))));
   for (int j = 0; j < 4; j++) {
     char key[32];
-    snprintf(key, sizeof key, "%s", fb_joint_name(j));
+    snprintf(key, sizeof key, "%s",
+             fb_mech_joint_name(s->mech ? s->mech : &fb_mech_fourbar, j));
     for (char *p = key; *p; p++)
       if (*p == '-') *p = '_';
     json_object_set_new(r, key, num(rmax[j]));

@@ -75,6 +75,52 @@ static int output_names(const fb_run *r, const char *name[FB_MECH_MAX_OUTPUTS]) 
   return n;
 }
 
+/* 1 when output body b of the case's mechanism translates (a slider): its
+ * keys are position_*_m, velocity_*_m_s, acceleration_*_m_s2 */
+static int translating(const fb_run *r, int b) {
+  const fb_mech_desc *mech = fb_case_mech(&r->c);
+  int out[FB_MECH_MAX_OUTPUTS];
+  const int n = fb_mech_outputs(mech, out);
+  return b < n && mech->body[out[b]].motion == FB_MOTION_TRANSLATING;
+}
+
+/* a translating body's peaks (docs/outputs.md: models[].slider) */
+static json_t *slider_peaks_json(const fb_body_peaks *p) {
+  json_t *o = json_object();
+  json_object_set_new(o, "position_max_m", num(p->pos_max));
+  json_object_set_new(o, "position_min_m", num(p->pos_min));
+  json_object_set_new(o, "velocity_max_m_s", num(p->omega_max));
+  json_object_set_new(o, "velocity_min_m_s", num(p->omega_min));
+  json_object_set_new(o, "acceleration_max_m_s2", num(p->alpha_max));
+  json_object_set_new(o, "acceleration_min_m_s2", num(p->alpha_min));
+  return o;
+}
+
+static json_t *body_peaks_json(const fb_run *r, int b, const fb_body_peaks *p) {
+  return translating(r, b) ? slider_peaks_json(p) : fb_report_body_peaks_json(p);
+}
+
+/* a translating body's error against the analytic solution (the peaks' keys
+ * with _rel, and the per-sample errors) */
+static json_t *slider_error_json(const fb_body_error *e) {
+  json_t *o = json_object();
+  json_object_set_new(o, "position_max_m_rel", num(e->pos_max_rel));
+  json_object_set_new(o, "position_min_m_rel", num(e->pos_min_rel));
+  json_object_set_new(o, "velocity_max_m_s_rel", num(e->omega_max_rel));
+  json_object_set_new(o, "velocity_min_m_s_rel", num(e->omega_min_rel));
+  json_object_set_new(o, "acceleration_max_m_s2_rel", num(e->alpha_max_rel));
+  json_object_set_new(o, "acceleration_min_m_s2_rel", num(e->alpha_min_rel));
+  json_object_set_new(o, "velocity_err_max_m_s", num(e->omega_err_max));
+  json_object_set_new(o, "velocity_err_rms_m_s", num(e->omega_err_rms));
+  json_object_set_new(o, "acceleration_err_max_m_s2", num(e->alpha_err_max));
+  json_object_set_new(o, "acceleration_err_rms_m_s2", num(e->alpha_err_rms));
+  return o;
+}
+
+static json_t *body_error_of(const fb_run *r, int b, const fb_body_error *e) {
+  return translating(r, b) ? slider_error_json(e) : body_error_json(e);
+}
+
 /* {"from_s", "to_s", "<body>": PEAKS per output body, "at": {"<body>": {"omega_max":
  * {"time_s", "crank_angle_rad"}, ...}, ...}} (the four-bar: coupler, then follower) */
 static json_t *window_json(const fb_run *r, const fb_peaks *p, const fb_peaks_at *at, double from,
@@ -84,7 +130,7 @@ static json_t *window_json(const fb_run *r, const fb_peaks *p, const fb_peaks_at
   json_t *o = json_object();
   json_object_set_new(o, "from_s", num(from));
   json_object_set_new(o, "to_s", num(to));
-  for (int b = 0; b < nb; b++) json_object_set_new(o, name[b], fb_report_body_peaks_json(&p->body[b]));
+  for (int b = 0; b < nb; b++) json_object_set_new(o, name[b], body_peaks_json(r, b, &p->body[b]));
   json_t *a = json_object();
   for (int b = 0; b < nb; b++) json_object_set_new(a, name[b], body_at_json(&at->body[b]));
   json_object_set_new(o, "at", a);
@@ -221,7 +267,7 @@ static json_t *error_vs_analytic_json(const fb_model_result *m, const fb_run *r)
                                       ? "analytic solution of the same link lengths"
                                       : "exact (refined) peaks of the same solution: the "
                                         "sampling floor of the time grid"));
-  for (int b = 0; b < nb; b++) json_object_set_new(e, name[b], body_error_json(&m->error.body[b]));
+  for (int b = 0; b < nb; b++) json_object_set_new(e, name[b], body_error_of(r, b, &m->error.body[b]));
   json_object_set_new(e, "crank_angle_err_max_rad", num(m->error.crank_angle_err_max));
   return e;
 }
@@ -381,7 +427,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   const int nb = output_names(r, name);
   for (int b = 0; b < nb; b++)
     json_object_set_new(o, name[b],
-                        m->has_peaks ? fb_report_body_peaks_json(&m->peaks.body[b]) : json_null());
+                        m->has_peaks ? body_peaks_json(r, b, &m->peaks.body[b]) : json_null());
   const fb_series *ser = &run->series;
   const double t_end = ser->n ? ser->t[ser->n - 1] : 0.0;
   json_object_set_new(o, "peaks", peaks_window_json(m, r, t_end));
@@ -512,7 +558,7 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   const char *name[FB_MECH_MAX_OUTPUTS];
   const int nb = output_names(r, name);
   for (int b = 0; b < nb; b++)
-    json_object_set_new(an, name[b], fb_report_body_peaks_json(&r->analytic_nominal.body[b]));
+    json_object_set_new(an, name[b], body_peaks_json(r, b, &r->analytic_nominal.body[b]));
   json_object_set_new(o, "analytic_nominal", an);
   json_t *models = json_array();
   for (int i = 0; i < r->n; i++) json_array_append_new(models, model_json(&r->model[i], r));

@@ -235,11 +235,24 @@ static void print_peaks(FILE *f, const fb_run *r, int W) {
   say(f, "peaks (the paper's table) over %s:",
       all ? "the whole run from t = 0 (start-up included; [run] peaks = all)"
           : "the revolutions after the first ([run] peaks = steady)");
-  fprintf(f, "%-*s %-40s %s\n", W, "", "coupler omega / alpha", "follower omega / alpha");
+  /* the output bodies' names and units from the mechanism (a slider's v and a) */
+  const fb_mech_desc *mech = fb_case_mech(&r->c);
+  int out[FB_MECH_MAX_OUTPUTS];
+  fb_mech_outputs(mech, out);
+  char head[2][48];
+  const char *uv[2], *ua[2];
+  for (int b = 0; b < 2; b++) {
+    const int slide = mech->body[out[b]].motion == FB_MOTION_TRANSLATING;
+    snprintf(head[b], sizeof head[b], "%s %s", mech->body[out[b]].name,
+             slide ? "v / a" : "omega / alpha");
+    uv[b] = slide ? "m/s" : "rad/s";
+    ua[b] = slide ? "m/s^2" : "rad/s^2";
+  }
+  fprintf(f, "%-*s %-40s %s\n", W, "", head[0], head[1]);
   fprintf(f, "%-*s %9s %9s %10s %10s %9s %9s %10s %10s\n", W, "model", "max", "min", "max", "min",
           "max", "min", "max", "min");
-  fprintf(f, "%-*s %9s %9s %10s %10s %9s %9s %10s %10s\n", W, "", "rad/s", "rad/s", "rad/s^2",
-          "rad/s^2", "rad/s", "rad/s", "rad/s^2", "rad/s^2");
+  fprintf(f, "%-*s %9s %9s %10s %10s %9s %9s %10s %10s\n", W, "", uv[0], uv[0], ua[0], ua[0],
+          uv[1], uv[1], ua[1], ua[1]);
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     char stop[256];
@@ -308,16 +321,17 @@ static void print_masses(FILE *f, const fb_case *c) {
     derived |= s->mass == FB_SOURCE_DERIVED || s->inertia == FB_SOURCE_DERIVED ||
                s->inertia_long == FB_SOURCE_DERIVED || s->inertia_transverse == FB_SOURCE_DERIVED;
     say(f, "%s%s %.5g kg, I %.5g kg mm^2, centre of mass at %.3g (%s%s)",
-        i ? "             " : "link masses: ", fb_link_name(i), m->mass, m->inertia * 1e6,
+        i ? "             " : "link masses: ", fb_case_mech(c)->body[i].name, m->mass,
+        m->inertia * 1e6,
         m->com_fraction, mass_sources(src, sizeof src, s),
         s->com_fraction == FB_SOURCE_CASE ? "" : ", centre default");
   }
   if (derived)
     say(f, "derived from bars (width x thickness, mm) crank %.4g x %.4g, coupler %.4g x "
-           "%.4g, follower %.4g x %.4g, density %.6g kg/m^3 (docs/keys.md)",
+           "%.4g, %s %.4g x %.4g, density %.6g kg/m^3 (docs/keys.md)",
         c->link_width[0] * 1e3, c->link_thickness[0] * 1e3, c->link_width[1] * 1e3,
-        c->link_thickness[1] * 1e3, c->link_width[2] * 1e3, c->link_thickness[2] * 1e3,
-        c->density);
+        c->link_thickness[1] * 1e3, fb_case_mech(c)->body[2].name, c->link_width[2] * 1e3,
+        c->link_thickness[2] * 1e3, c->density);
 }
 
 static void put_line(void *f, const char *line) { say(f, "%s", line); }
@@ -345,12 +359,15 @@ static void print_engines(FILE *f, const fb_run *r) {
 static void print_stackup(FILE *f, const fb_case *c) {
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);
-  char corner[24];
-  snprintf(corner, sizeof corner, "stack-up corner %c%c%c%c:", "-0+"[c->stackup.corner[0] + 1],
-           "-0+"[c->stackup.corner[1] + 1], "-0+"[c->stackup.corner[2] + 1],
-           "-0+"[c->stackup.corner[3] + 1]);
-  for (int k = 0; k < FB_LINK_COUNT; k++)
-    say(f, "%-20s %s %.4g +- %.3g -> %.4g mm (%s)", k ? "" : corner, fb_link_name(k),
+  /* one character and one line per length of the mechanism (a slider-crank:
+   * crank, coupler, offset) */
+  const fb_mech_desc *mech = fb_case_mech(c);
+  char corner[32];
+  int n = snprintf(corner, sizeof corner, "stack-up corner ");
+  for (int k = 0; k < mech->nlengths; k++) corner[n++] = "-0+"[c->stackup.corner[k] + 1];
+  snprintf(corner + n, sizeof corner - (size_t)n, ":");
+  for (int k = 0; k < mech->nlengths; k++)
+    say(f, "%-20s %s %.4g +- %.3g -> %.4g mm (%s)", k ? "" : corner, mech->length[k],
         c->nominal.length[k] * 1e3, c->plus_minus[k] * 1e3, su.length[k] * 1e3,
         c->tolerance_source[k]);
   say(f, "clearance joints: pin %.4g mm, radial clearance %.4g um (%s)", c->pin_diameter * 1e3,
@@ -396,9 +413,21 @@ static void print_loads(FILE *f, const fb_run *r, int W) {
     fputc('\n', f);
     say(f, "loads (peaks over %s; reaction: force on the second-named body):",
         c->peaks == FB_PEAKS_ALL ? "the whole run" : "the revolutions after the first");
+    /* each joint's name split at its '-' over the two header lines */
+    const fb_mech_desc *mech = fb_case_mech(c);
+    char top[4][32], bottom[4][32], key[4][32];
+    for (int j = 0; j < 4; j++) {
+      const char *nm = fb_mech_joint_name(mech, j), *dash = strchr(nm, '-');
+      const int n1 = dash ? (int)(dash - nm) : (int)strlen(nm);
+      snprintf(top[j], sizeof top[j], "|R| %.*s-", n1, nm);
+      snprintf(bottom[j], sizeof bottom[j], "%s N", dash ? dash + 1 : "");
+      snprintf(key[j], sizeof key[j], "%s", nm);
+      for (char *p = key[j]; *p; p++)
+        if (*p == '-') *p = '_';
+    }
     fprintf(f, "%-*s %10s %10s %12s %12s %12s %12s\n%-*s %10s %10s %12s %12s %12s %12s\n", W,
-            "model", "torque max", "torque min", "|R| ground-", "|R| crank-", "|R| coupler-",
-            "|R| follower-", W, "", "N m", "N m", "crank N", "coupler N", "follower N", "ground N");
+            "model", "torque max", "torque min", top[0], top[1], top[2], top[3], W, "", "N m",
+            "N m", bottom[0], bottom[1], bottom[2], bottom[3]);
     for (int i = 0; i < r->n; i++) {
       const fb_model_result *m = &r->model[i];
       json_t *l = fb_report_loads_json(&m->run.series, r->t_window);
@@ -407,10 +436,10 @@ static void print_loads(FILE *f, const fb_run *r, int W) {
         fprintf(f, "%-*s %10.3f %10.3f %12.2f %12.2f %12.2f %12.2f\n", W, m->run.name,
                 json_real_value(json_object_get(l, "drive_torque_max_n_m")),
                 json_real_value(json_object_get(l, "drive_torque_min_n_m")),
-                json_real_value(json_object_get(rm, "ground_crank")),
-                json_real_value(json_object_get(rm, "crank_coupler")),
-                json_real_value(json_object_get(rm, "coupler_follower")),
-                json_real_value(json_object_get(rm, "follower_ground")));
+                json_real_value(json_object_get(rm, key[0])),
+                json_real_value(json_object_get(rm, key[1])),
+                json_real_value(json_object_get(rm, key[2])),
+                json_real_value(json_object_get(rm, key[3])));
       }
       json_decref(l);
     }

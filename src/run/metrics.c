@@ -1,5 +1,7 @@
 #include "metrics.h"
 
+#include "mech_kinematics.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,12 +24,15 @@ double fb_metrics_rel(double x, double ref) {
   return (x - ref) / fabs(ref);
 }
 
-static void peak_update(fb_body_peaks *p, double w, double a, int first) {
+static void peak_update(fb_body_peaks *p, double q, double w, double a, int first) {
   if (first) {
+    p->pos_max = p->pos_min = q;
     p->omega_max = p->omega_min = w;
     p->alpha_max = p->alpha_min = a;
     return;
   }
+  if (q > p->pos_max) p->pos_max = q;
+  if (q < p->pos_min) p->pos_min = q;
   if (w > p->omega_max) p->omega_max = w;
   if (w < p->omega_min) p->omega_min = w;
   if (a > p->alpha_max) p->alpha_max = a;
@@ -46,7 +51,9 @@ static void at_set(fb_peak_at *a, const fb_series *s, size_t i) {
 
 /* peak_update with the sample index of every new extreme recorded */
 static void peak_update_at(fb_body_peaks *p, fb_body_peak_at *a, const fb_series *s, size_t i,
-                           double w, double al, int first) {
+                           double q, double w, double al, int first) {
+  if (first || q > p->pos_max) p->pos_max = q;
+  if (first || q < p->pos_min) p->pos_min = q;
   if (first || w > p->omega_max) p->omega_max = w, at_set(&a->omega_max, s, i);
   if (first || w < p->omega_min) p->omega_min = w, at_set(&a->omega_min, s, i);
   if (first || al > p->alpha_max) p->alpha_max = al, at_set(&a->alpha_max, s, i);
@@ -62,7 +69,8 @@ fb_status fb_metrics_peaks_between(fb_peaks *out, fb_peaks_at *at, const fb_seri
   for (size_t i = 0; i < s->n; i++) {
     if (s->t[i] < t_from || !(s->t[i] < t_to)) continue;
     for (int b = 0; b < nb; b++)
-      peak_update_at(&out->body[b], &at->body[b], s, i, s->body[b][FB_Q_VEL][i],
+      peak_update_at(&out->body[b], &at->body[b], s, i, s->body[b][FB_Q_POS][i],
+                     s->body[b][FB_Q_VEL][i],
                      s->body[b][FB_Q_ACC][i], used == 0);
     used++;
   }
@@ -177,7 +185,8 @@ fb_status fb_metrics_peaks(fb_peaks *out, const fb_series *s, double t_from, fb_
   for (size_t i = 0; i < s->n; i++) {
     if (s->t[i] < t_from) continue;
     for (int b = 0; b < nb; b++)
-      peak_update(&out->body[b], s->body[b][FB_Q_VEL][i], s->body[b][FB_Q_ACC][i], used == 0);
+      peak_update(&out->body[b], s->body[b][FB_Q_POS][i], s->body[b][FB_Q_VEL][i],
+                  s->body[b][FB_Q_ACC][i], used == 0);
     used++;
   }
   if (used == 0)
@@ -199,6 +208,8 @@ static void acc_add(err_acc *e, double dw, double da) {
 
 static void body_error(fb_body_error *out, const err_acc *e, size_t n, const fb_body_peaks *p,
                        const fb_body_peaks *x) {
+  out->pos_max_rel = fb_metrics_rel(p->pos_max, x->pos_max);
+  out->pos_min_rel = fb_metrics_rel(p->pos_min, x->pos_min);
   out->omega_max_rel = fb_metrics_rel(p->omega_max, x->omega_max);
   out->omega_min_rel = fb_metrics_rel(p->omega_min, x->omega_min);
   out->alpha_max_rel = fb_metrics_rel(p->alpha_max, x->alpha_max);
@@ -212,18 +223,21 @@ static void body_error(fb_body_error *out, const err_acc *e, size_t n, const fb_
 fb_status fb_metrics_error(fb_error *out, const fb_series *s, double t_from,
                            const fb_linkage *lk, fb_branch branch, double theta0, double omega2,
                            const fb_peaks *exact, fb_diag *diag) {
-  err_acc ec = {0, 0, 0, 0}, ef = {0, 0, 0, 0};
+  err_acc e[FB_MECH_MAX_OUTPUTS];
+  memset(e, 0, sizeof e);
+  const int nb = fb_series_output_count(s);
+  const int type = s->mech ? fb_mech_find(s->mech->type) : FB_MECH_FOURBAR;
   double crank_err = 0.0;
   size_t n = 0;
   for (size_t i = 0; i < s->n; i++) {
     if (s->t[i] < t_from) continue;
     double th = theta0 + omega2 * s->t[i];
-    fb_linkage_state x;
-    fb_status st = fb_linkage_solve(&x, lk, branch, th, omega2, 0.0, diag);
+    double x[FB_MECH_MAX_OUTPUTS][3];
+    fb_status st = fb_mech_solve(x, (fb_mech_type)type, lk, branch, th, omega2, 0.0, diag);
     if (st != FB_OK) return st;
-    acc_add(&ec, s->coupler_omega[i] - x.coupler_omega, s->coupler_alpha[i] - x.coupler_alpha);
-    acc_add(&ef, s->follower_omega[i] - x.follower_omega,
-            s->follower_alpha[i] - x.follower_alpha);
+    for (int b = 0; b < nb; b++)
+      acc_add(&e[b], s->body[b][FB_Q_VEL][i] - x[b][FB_Q_VEL],
+              s->body[b][FB_Q_ACC][i] - x[b][FB_Q_ACC]);
     double dc = fabs(s->crank_angle[i] - th);
     if (dc > crank_err) crank_err = dc;
     n++;
@@ -233,8 +247,7 @@ fb_status fb_metrics_error(fb_error *out, const fb_series *s, double t_from,
   fb_peaks p;
   fb_status st = fb_metrics_peaks(&p, s, t_from, diag);
   if (st != FB_OK) return st;
-  body_error(&out->coupler, &ec, n, &p.coupler, &exact->coupler);
-  body_error(&out->follower, &ef, n, &p.follower, &exact->follower);
+  for (int b = 0; b < nb; b++) body_error(&out->body[b], &e[b], n, &p.body[b], &exact->body[b]);
   out->crank_angle_err_max = crank_err;
   return FB_OK;
 }

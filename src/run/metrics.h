@@ -16,6 +16,8 @@ typedef struct {
   double omega_err_rms;      /* RMS of omega - omega_exact(t) [rad/s] */
   double alpha_err_max;      /* max |alpha - alpha_exact(t)| [rad/s^2] */
   double alpha_err_rms;      /* RMS of alpha - alpha_exact(t) [rad/s^2] */
+  double pos_max_rel;        /* same for the largest position (a slider's x) [-] */
+  double pos_min_rel;        /* same for the smallest position [-] */
 } fb_body_error;
 
 typedef struct {

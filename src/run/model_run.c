@@ -47,7 +47,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
   }
   if (st != FB_OK) return st;
   const size_t n = def->steps;
-  if (fb_series_init(&r->series, n + 1) != FB_OK ||
+  if (fb_series_init_mech(&r->series, n + 1, fb_case_mech(&def->source)) != FB_OK ||
       fb_series_enable_contact(&r->series, sm->clearance_mask) != FB_OK ||
       (e->reactions && fb_series_enable_loads(&r->series) != FB_OK)) {
     e->destroy(self);

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "clock.h"
+#include "mech_kinematics.h"
 #include "model_table.h"
 #include "reference.h"
 #include "resolution.h"
@@ -130,7 +131,7 @@ static void divergence_warnings(fb_model_result *m, const char *ref) {
 static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   const fb_case *c = &r->c;
   const double omega2 = fb_case_omega2(c);
-  fb_status st = fb_analytic_peaks(&m->exact, &m->run.lengths, c->branch, omega2, diag);
+  fb_status st = fb_mech_peaks(&m->exact, c->mechanism, &m->run.lengths, c->branch, omega2, diag);
   if (st != FB_OK) return st;
   const fb_series *s = &m->run.series;
   startup_and_warnings(m, r);
@@ -318,8 +319,8 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
    * revolution so the sample at exactly one period counts) */
   r->t_window = fb_case_peak_window_from(c);
   r->t_startup_end = 2.0 * M_PI / c->crank_speed - 0.5 * c->solver.h;
-  fb_status st = fb_analytic_peaks(&r->analytic_nominal, &c->nominal, c->branch,
-                                   fb_case_omega2(c), diag);
+  fb_status st = fb_mech_peaks(&r->analytic_nominal, c->mechanism, &c->nominal, c->branch,
+                               fb_case_omega2(c), diag);
   if (st != FB_OK) return st;
   for (int i = 0; i < c->model_count; i++) {
     fb_model_result *m = &r->model[i];

@@ -5,6 +5,8 @@
 #include <string.h>
 
 #include "linkage.h"
+#include "mech_kinematics.h"
+#include "slider_crank_invdyn.h"
 #include "model_table.h"
 
 static fb_status check_drivable(const fb_linkage *lk, const char *which, fb_diag *diag) {
@@ -36,7 +38,29 @@ static fb_status check_drivable(const fb_linkage *lk, const char *which, fb_diag
   return FB_OK;
 }
 
+/* the slider-crank's counterpart of the Grashof line: its class by
+ * coupler against crank + |offset|, the stroke and the dead centres, the
+ * smallest transmission angle */
+static void slider_crank_text(const fb_case *c, char *out, size_t size) {
+  const fb_slider_crank sc = {c->nominal.length[FB_CRANK], c->nominal.length[FB_COUPLER],
+                              c->nominal.length[FB_LENGTH_OFFSET]};
+  const double sum = sc.crank + fabs(sc.offset);
+  const size_t n = (size_t)snprintf(
+      out, size, "slider-crank, %s: coupler %.6g mm against crank + |offset| = %.6g mm (margin %.4g mm)",
+      fb_sc_class_name(fb_slider_crank_class(&sc)), sc.coupler * 1e3, sum * 1e3,
+      (sc.coupler - sum) * 1e3);
+  fb_slider_crank_limits lim;
+  if (n < size && fb_slider_crank_limit_positions(&lim, &sc, NULL) == FB_OK)
+    snprintf(out + n, size - n, "; stroke %.6g mm between the dead centres x = %.6g and %.6g mm; "
+             "smallest transmission angle %.4g deg", lim.stroke * 1e3, lim.x_min * 1e3,
+             lim.x_max * 1e3, lim.transmission_min * 180.0 / M_PI);
+}
+
 void fb_case_grashof_text(const fb_case *c, char *out, size_t size) {
+  if (c->mechanism == FB_MECH_SLIDER_CRANK) {
+    slider_crank_text(c, out, size);
+    return;
+  }
   fb_linkage_grashof_text(out, size, &c->nominal);
   size_t n = strlen(out);
   fb_linkage su;
@@ -52,10 +76,67 @@ void fb_case_grashof_text(const fb_case *c, char *out, size_t size) {
              "can reach the change point, %.4g mm away", tol * 1e3, fabs(pq - sl) * 1e3);
 }
 
+/* a slider-crank's lengths (nominal and at the stack-up corner), its one
+ * clearance joint (the piston pin) and the models that build it */
+static fb_status check_slider_crank(const fb_case *c, fb_diag *diag) {
+  fb_linkage su;
+  fb_case_stackup_lengths(c, &su);
+  const fb_linkage *lk[2] = {&c->nominal, &su};
+  static const char *const which[2] = {"nominal", "stack-up"};
+  for (int k = 0; k < 2; k++) {
+    fb_diag inner;
+    if (fb_mech_check_lengths(FB_MECH_SLIDER_CRANK, lk[k], &inner) != FB_OK)
+      return fb_diag_set(diag, FB_ERR_ASSEMBLY,
+                         "%s slider-crank ([linkage] crank_mm = %g, coupler_mm = %g, offset_mm = "
+                         "%g): %s; a crank driven at constant speed needs coupler > crank + "
+                         "|offset|",
+                         which[k], lk[k]->length[FB_CRANK] * 1e3, lk[k]->length[FB_COUPLER] * 1e3,
+                         lk[k]->length[FB_LENGTH_OFFSET] * 1e3, inner.msg);
+  }
+  for (int i = 0; i < 2; i++)
+    if (!(c->plus_minus[i] >= 0.0) || c->plus_minus[i] >= c->nominal.length[i])
+      return fb_diag_set(diag, FB_ERR_RANGE,
+                         "[tolerance] %s_plus_minus_mm = %g: a tolerance must be >= 0 and smaller "
+                         "than the length [linkage] %s_mm = %g",
+                         fb_link_name(i), c->plus_minus[i] * 1e3, fb_link_name(i),
+                         c->nominal.length[i] * 1e3);
+  /* the piston pin's dynamics with clearance are physics today
+   * (slider_crank_dynamics.h), not yet a model of the run */
+  if (c->clearance.mask)
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "[clearance] joints: no model runs a slider-crank's clearance joint yet "
+                       "(its piston pin, coupler-slider, is the one it will take; ground-crank, "
+                       "crank-coupler and the prismatic slider-ground stay ideal): remove the "
+                       "key or set it to none");
+  if (c->stackup.worst)
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "[tolerance] stackup = worst: the worst corner is searched for the "
+                       "four-bar only; give a slider-crank's corner as max, min, nominal or "
+                       "its characters (crank, coupler, offset, then any)");
+  for (int i = 0; i < c->model_count; i++) {
+    const fb_model *m;
+    fb_status st = fb_model_lookup(&m, c->models[i], diag);
+    if (st != FB_OK) return st;
+    if (!(m->mechanisms & (1u << FB_MECH_SLIDER_CRANK)))
+      return fb_diag_set(diag, FB_ERR_ARG,
+                         "[run] models: model '%s' does not build a slider-crank yet ([linkage] "
+                         "type = slider-crank); fourbar models lists each model's mechanisms "
+                         "(analytic and the reference-* models do)",
+                         c->models[i]);
+  }
+  return FB_OK;
+}
+
 fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
-  fb_status st = fb_linkage_check(&c->nominal, diag);
+  if (c->mechanism == FB_MECH_SLIDER_CRANK) {
+    fb_status st = check_slider_crank(c, diag);
+    if (st != FB_OK) return st;
+  }
+  fb_status st = c->mechanism == FB_MECH_SLIDER_CRANK
+                     ? FB_OK
+                     : fb_linkage_check(&c->nominal, diag);
   if (st != FB_OK) return st;
-  for (int i = 0; i < FB_LINK_COUNT; i++)
+  for (int i = 0; i < FB_LINK_COUNT && c->mechanism == FB_MECH_FOURBAR; i++)
     if (!(c->plus_minus[i] >= 0.0) || c->plus_minus[i] >= c->nominal.length[i])
       return fb_diag_set(diag, FB_ERR_RANGE,
                          "[tolerance] %s_plus_minus_mm = %g: a tolerance must be >= 0 and smaller "
@@ -87,12 +168,14 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
                        "[pin] radial_clearance_um = %g (or the clearance of [pin] fit): must be "
                        "smaller than the pin radius, [pin] diameter_mm / 2 = %g mm",
                        c->radial_clearance * 1e6, 0.5 * c->pin_diameter * 1e3);
-  st = check_drivable(&c->nominal, "nominal", diag);
-  if (st != FB_OK) return st;
-  fb_linkage su;
-  fb_case_stackup_lengths(c, &su);
-  st = check_drivable(&su, "stack-up", diag);
-  if (st != FB_OK) return st;
+  if (c->mechanism == FB_MECH_FOURBAR) {
+    st = check_drivable(&c->nominal, "nominal", diag);
+    if (st != FB_OK) return st;
+    fb_linkage su;
+    fb_case_stackup_lengths(c, &su);
+    st = check_drivable(&su, "stack-up", diag);
+    if (st != FB_OK) return st;
+  }
   if (c->solver.h_mode == FB_STEP_ADAPTIVE && !(c->solver.h_max >= c->solver.h_min))
     return fb_diag_set(diag, FB_ERR_RANGE,
                        "[solver] h_max_s = %g: the longest adaptive step must not be below "

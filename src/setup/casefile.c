@@ -25,6 +25,7 @@
 #include "iso2768.h"
 #include "iso286.h"
 #include "linkage.h"
+#include "model_table.h"
 #include "textsafe.h"
 #include "units.h"
 
@@ -104,6 +105,18 @@ static void default_entry(entry *e, int i) {
  * field recorded for the writers */
 static fb_status resolve_masses(fb_case *c, fb_diag *diag) {
   for (int i = 0; i < 3; i++) {
+    if (i == 2 && c->mechanism == FB_MECH_SLIDER_CRANK) { /* the slider (slider_crank_keys) */
+      fb_link_mass *m = &c->link[i];
+      const double w = c->link_width[i], t = c->link_thickness[i];
+      m->inertia = m->inertia_long = m->inertia_transverse = m->mass * (w * w + t * t) / 12.0;
+      m->com_fraction = 0.0; /* at the piston pin */
+      c->link_source[i] = (fb_link_mass_source){.mass = FB_SOURCE_CASE,
+                                                .inertia = FB_SOURCE_DERIVED,
+                                                .inertia_long = FB_SOURCE_DERIVED,
+                                                .inertia_transverse = FB_SOURCE_DERIVED,
+                                                .com_fraction = FB_SOURCE_DEFAULT};
+      continue;
+    }
     const char *nm = fb_link_name(i);
     char k_m[64], k_i[64], k_l[64], k_t[64], k_f[64];
     snprintf(k_m, sizeof k_m, "%s_kg", nm);
@@ -212,28 +225,95 @@ FB_ENGINE_OPTS_LIST
 #undef X
 
 /* origin of an entry ("file:line" or "--set ..."), or NULL if absent */
+/* ISO 2768-1's smallest linear size [m]: an offset below it has no class tolerance */
+#define SC_OFFSET_ISO_MIN_M 0.5e-3
+
 static const char *entry_origin(const load_ctx *c, const char *section, const char *key) {
   int i = find_entry(c, section, key);
   return i >= 0 ? c->e[i].origin : NULL;
 }
 
+/* keys of one mechanism given in a case of another: "[linkage] follower_mm
+ * (a four-bar key) with [linkage] type = slider-crank" */
+static fb_status foreign_keys(const fb_case *out, const load_ctx *c, fb_diag *diag) {
+  static const char *const fourbar_only[][2] = {
+      {"linkage", "follower_mm"}, {"linkage", "ground_mm"}, {"linkage", "branch"},
+      {"tolerance", "follower_plus_minus_mm"}, {"tolerance", "ground_plus_minus_mm"},
+      {"mass", "follower_kg"}, {"mass", "follower_inertia_kg_mm2"},
+      {"mass", "follower_inertia_long_kg_mm2"}, {"mass", "follower_inertia_transverse_kg_mm2"},
+      {"mass", "follower_com_fraction"}, {"mass", "follower_width_mm"},
+      {"mass", "follower_thickness_mm"}};
+  static const char *const slider_only[][2] = {
+      {"linkage", "offset_mm"}, {"tolerance", "offset_plus_minus_mm"}, {"mass", "slider_kg"}};
+  const int sc = out->mechanism == FB_MECH_SLIDER_CRANK;
+  const char *const(*list)[2] = sc ? fourbar_only : slider_only;
+  const size_t n = sc ? sizeof fourbar_only / sizeof fourbar_only[0]
+                      : sizeof slider_only / sizeof slider_only[0];
+  for (size_t i = 0; i < n; i++) {
+    const char *at = entry_origin(c, list[i][0], list[i][1]);
+    if (at)
+      return fb_diag_set(diag, FB_ERR_PARSE,
+                         "%s: [%s] %s is a %s key, but the case is a %s ([linkage] type = %s): "
+                         "remove it%s",
+                         at, list[i][0], list[i][1], sc ? "four-bar" : "slider-crank",
+                         fb_case_mech(out)->type, fb_case_mech(out)->type,
+                         sc ? " (a slider-crank has crank_mm, coupler_mm, offset_mm and [mass] "
+                              "slider_kg)"
+                            : " or set [linkage] type = slider-crank");
+  }
+  return FB_OK;
+}
+
+/* a slider-crank's lengths and slider: the offset (default 0) in the
+ * follower's slot of the length arrays (FB_LENGTH_OFFSET), no ground length,
+ * the slider's mass required and its inertias those of a block of the
+ * slider's bar section (they do not enter the planar motion; the engines'
+ * bodies need some) */
+static fb_status slider_crank_keys(fb_case *out, const load_ctx *c, fb_diag *diag) {
+  fb_status st = foreign_keys(out, c, diag);
+  if (st != FB_OK || out->mechanism != FB_MECH_SLIDER_CRANK) return st;
+  if (!entry_origin(c, "linkage", "offset_mm")) out->nominal.length[FB_LENGTH_OFFSET] = 0.0;
+  if (!entry_origin(c, "tolerance", "offset_plus_minus_mm"))
+    out->plus_minus[FB_LENGTH_OFFSET] = 0.0;
+  out->nominal.length[FB_GROUND] = 0.0;
+  out->plus_minus[FB_GROUND] = 0.0;
+  snprintf(out->tolerance_source[FB_GROUND], sizeof out->tolerance_source[FB_GROUND], "-");
+  out->stackup.corner[FB_GROUND] = 0;
+  if (!entry_origin(c, "clearance", "joints"))
+    out->clearance.mask = 0; /* no model runs the piston pin's clearance yet (case.c) */
+  if (!entry_origin(c, "mass", "slider_kg"))
+    return fb_diag_set(diag, FB_ERR_PARSE,
+                       "%s: [mass] slider_kg is required with [linkage] type = slider-crank: the "
+                       "slider has no bar to derive its mass from (%s)",
+                       c->path ? c->path : "case", MASS_RULE);
+  return FB_OK;
+}
+
 /* tolerances from ISO 2768-1 and the clearance from an ISO 286 fit, with
  * the source of each recorded for the report */
 static fb_status resolve_standards(fb_case *out, const load_ctx *c, fb_diag *diag) {
-  for (int k = 0; k < FB_LINK_COUNT; k++) {
+  const fb_mech_desc *mech = fb_case_mech(out);
+  for (int k = 0; k < mech->nlengths; k++) {
     char key[64];
-    snprintf(key, sizeof key, "%s_plus_minus_mm", fb_link_name(k));
+    snprintf(key, sizeof key, "%s_plus_minus_mm", mech->length[k]);
     if (entry_origin(c, "tolerance", key)) {
       snprintf(out->tolerance_source[k], sizeof out->tolerance_source[k], "explicit");
+    } else if (out->tolerance_class && k == FB_LENGTH_OFFSET &&
+               out->mechanism == FB_MECH_SLIDER_CRANK &&
+               !(fabs(out->nominal.length[k]) >= SC_OFFSET_ISO_MIN_M)) {
+      /* a guide through the crank pivot has no linear size to tolerance */
+      out->plus_minus[k] = 0.0;
+      snprintf(out->tolerance_source[k], sizeof out->tolerance_source[k],
+               "none (0: ISO 2768-1 starts at 0.5 mm)");
     } else if (out->tolerance_class) {
       fb_diag inner;
       fb_status st = fb_iso2768_linear(&out->plus_minus[k], out->tolerance_class,
-                                       out->nominal.length[k], out->tolerance_source[k],
+                                       fabs(out->nominal.length[k]), out->tolerance_source[k],
                                        sizeof out->tolerance_source[k], &inner);
       if (st != FB_OK)
       {
         char lkey[64];
-        snprintf(lkey, sizeof lkey, "%s_mm", fb_link_name(k));
+        snprintf(lkey, sizeof lkey, "%s_mm", mech->length[k]);
         const char *len_at = entry_origin(c, "linkage", lkey);
         /* a length in the wrong unit shows here first: say so */
         const char *why = fb_casefile_length_implausible(out->nominal.length[k]);
@@ -602,6 +682,11 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   }
 
   fb_case_default(out);
+  { /* the mechanism first: the joint names of the other keys are its own */
+    const int t = find_entry(c, "linkage", "type");
+    if (t >= 0) st = fb_casefile_apply(out, &c->e[t], diag);
+    if (st != FB_OK) goto done;
+  }
   for (int i = 0; i < c->n; i++) {
     const entry *e = &c->e[i];
     st = strncmp(e->section, VARIANT_PREFIX, strlen(VARIANT_PREFIX)) == 0
@@ -611,6 +696,8 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   }
   st = check_variants(out, diag);
   if (st != FB_OK) goto done;
+  st = slider_crank_keys(out, c, diag);
+  if (st != FB_OK) goto done;
   st = resolve_standards(out, c, diag);
   if (st != FB_OK) goto done;
   for (int i = 0; i < fb_casefile_key_count(); i++)
@@ -619,6 +706,16 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
     for (size_t i = 0; i < sizeof clearance_default_models / sizeof clearance_default_models[0] &&
                        out->model_count < FB_MAX_MODELS; i++)
       snprintf(out->models[out->model_count++], FB_NAME_SIZE, "%s", clearance_default_models[i]);
+  if (!fb_casefile_given(out, "run", "models") && out->mechanism != FB_MECH_FOURBAR) {
+    /* the default list's models that build the case's mechanism */
+    int n = 0;
+    for (int i = 0; i < out->model_count; i++) {
+      const fb_model *m = fb_model_find(out->models[i]);
+      if (m && (m->mechanisms & (1u << out->mechanism)))
+        memmove(out->models[n++], out->models[i], FB_NAME_SIZE);
+    }
+    out->model_count = n;
+  }
   st = resolve_masses(out, diag);
   if (st != FB_OK) {
     char msg[FB_DIAG_SIZE];
@@ -673,6 +770,7 @@ int fb_casefile_plausibility(const fb_case *c, char notes[][FB_DIAG_SIZE], int m
     const key_spec *k = fb_casefile_spec(i);
     if (k->kind != K_DOUBLE || strcmp(k->unit, "mm") != 0 || !c->given[i]) continue;
     if (strcmp(k->section, "tolerance") == 0) continue; /* a tolerance is small by nature */
+    if (strcmp(k->key, "offset_mm") == 0) continue; /* a guide offset may be 0 or small */
     double v;
     memcpy(&v, (const char *)c + k->offset, sizeof v);
     const char *why = fb_casefile_length_implausible(v);

@@ -42,6 +42,7 @@ typedef enum {
   K_UNUSED,    /* a number checked against its range and not stored (no model uses it) */
   K_COLLIDER,  /* exact | faceted | ccd */
   K_BORE,      /* circle | ellipse */
+  K_MECH,      /* a mechanism's type name (mechanism.h): four-bar | slider-crank */
   K_WORDS      /* one of the row's words (an engine's option: fb_casefile_spec_words),
                   stored as its index in an int */
 } key_kind;

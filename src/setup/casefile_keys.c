@@ -86,6 +86,11 @@ static const key_spec keys[] = {
     {"case", "description", K_TEXT, 0, 0, 0, 0, 0, 0, "-", "", "free text",
      "one line describing the case (not used by the solver)"},
 
+    {"linkage", "type", K_MECH, OFF(mechanism), 0, 0, 0, 0, 0, "-", "four-bar",
+     "four-bar or slider-crank",
+     "the mechanism: the four-bar (crank, coupler, follower, ground) or the offset slider-crank "
+     "(crank, coupler as the connecting rod, a slider on a guide along +x; keys crank_mm, "
+     "coupler_mm, offset_mm and [mass] slider_kg)"},
     {"linkage", "crank_mm", K_DOUBLE, OFF(nominal.length[FB_CRANK]), FB_M_PER_MM, 1e-3, 1e5, 0, 0, "mm",
      "108", LEN_RULE, "basic crank length, A to B"},
     {"linkage", "coupler_mm", K_DOUBLE, OFF(nominal.length[FB_COUPLER]), FB_M_PER_MM, 1e-3, 1e5, 0, 0,
@@ -94,6 +99,10 @@ static const key_spec keys[] = {
      "mm", "270.5", LEN_RULE, "basic follower (rocker) length, D to C"},
     {"linkage", "ground_mm", K_DOUBLE, OFF(nominal.length[FB_GROUND]), FB_M_PER_MM, 1e-3, 1e5, 0, 0,
      "mm", "254", LEN_RULE, "basic ground length, A to D along +x"},
+    {"linkage", "offset_mm", K_DOUBLE, OFF(nominal.length[FB_LENGTH_OFFSET]), FB_M_PER_MM, -1e5,
+     1e5, 0, 0, "mm", "(none)", "an offset from -1e5 mm to 1e5 mm",
+     "slider-crank: the guide line's distance from the crank pivot A along +y (either sign; "
+     "default 0); the guide runs along +x and the slider sits at +x of A"},
     {"linkage", "branch", K_BRANCH, OFF(branch), 0, 0, 0, 0, 0, "-", "open", "open or crossed",
      "assembly branch: open (C left of B->D) or crossed"},
     {"linkage", "crank_angle0_deg", K_DOUBLE, OFF(crank_angle0), FB_RAD_PER_DEG, -360, 360, 0, 0,
@@ -107,6 +116,10 @@ static const key_spec keys[] = {
      INF, 0, 1, "mm", "0", TOL_RULE, "symmetric tolerance of the follower length"},
     {"tolerance", "ground_plus_minus_mm", K_DOUBLE, OFF(plus_minus[FB_GROUND]), FB_M_PER_MM, 0, INF, 0,
      1, "mm", "0", TOL_RULE, "symmetric tolerance of the ground length"},
+    {"tolerance", "offset_plus_minus_mm", K_DOUBLE, OFF(plus_minus[FB_LENGTH_OFFSET]), FB_M_PER_MM,
+     0, INF, 0, 1, "mm", "(none)", TOL_RULE,
+     "slider-crank: symmetric tolerance of the guide offset (default 0, or the class's for an "
+     "offset of 0.5 mm or more)"},
     {"tolerance", "class", K_CLASS, OFF(tolerance_class), 0, 0, 0, 0, 0, "-", "(none)",
      "f, m, c or v",
      "ISO 2768-1 general tolerance class for every link without an explicit "
@@ -137,6 +150,10 @@ static const key_spec keys[] = {
     LINK_MASS_KEYS(0, "crank", "20", "6.5"),
     LINK_MASS_KEYS(1, "coupler", "20", "6.5"),
     LINK_MASS_KEYS(2, "follower", "20", "6.5"),
+    {"mass", "slider_kg", K_DOUBLE, OFF(link[2].mass), 1.0, FB_MASS_MIN_KG, FB_MASS_MAX_KG, 0, 0,
+     "kg", "(none)", MASS_RULE,
+     "slider-crank: mass of the slider (with its piston pin), required: it has no bar to derive "
+     "it from; its inertia does not enter the planar motion"},
 
     {"material", "density_kg_m3", K_DOUBLE, OFF(density), 1.0, 1, 1e5, 0, 0, "kg/m^3", "7800",
      "a density must lie in [1, 1e5] kg/m^3 (foam to beyond osmium)",

@@ -350,6 +350,12 @@ static fb_status apply_word(const entry *e, const key_spec *k, void *field, fb_d
       if (strlen(e->value) != 1 || !strchr("fmcv", e->value[0])) return bad_word(e, k, diag);
       *(char *)field = e->value[0];
       return FB_OK;
+    case K_MECH: {
+      const int t = fb_mech_find(e->value);
+      if (t < 0) return bad_word(e, k, diag);
+      *(fb_mech_type *)field = (fb_mech_type)t;
+      return FB_OK;
+    }
     case K_DIST:
       if (strcmp(e->value, "normal") == 0) *(int *)field = 0;
       else if (strcmp(e->value, "uniform") == 0) *(int *)field = 1;
@@ -449,8 +455,9 @@ static fb_status apply_list(fb_case *c, const entry *e, const key_spec *k, void 
         for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
           tok = trim(tok);
           int j = -1;
-          for (int q = 0; q < 4; q++)
-            if (strcmp(tok, fb_joint_name(q)) == 0) j = q;
+          const fb_mech_desc *mech = fb_case_mech(c);
+          for (int q = 0; q < mech->njoints; q++)
+            if (strcmp(tok, mech->joint[q].name) == 0) j = q;
           if (j < 0)
             return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: unknown joint '%s' (%s)",
                                e->origin, e->section, e->key, tok, k->rule);

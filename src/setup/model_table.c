@@ -62,6 +62,7 @@ int fb_engine_steps_world(fb_engine_id e) {
 #define STK FB_LENGTHS_STACKUP
 #define IDEAL FB_JOINTS_IDEAL
 #define CLEAR FB_JOINTS_CLEARANCE
+#define SC (1u << FB_MECH_SLIDER_CRANK) /* builds the slider-crank too */
 
 /* One row per model. The style (colour, gnuplot dash type, line width, hue)
  * is the same in every figure (docs/figures.md lists it); the MuJoCo rows take
@@ -74,6 +75,7 @@ int fb_engine_steps_world(fb_engine_id e) {
 const fb_model fb_models[] = {
     {.name = "analytic",
      .engine = FB_ENGINE_ANALYTIC,
+     .mechanisms = SC,
      .lengths = NOM,
      .joints = IDEAL,
      .law = FB_MODEL_LAW_NONE,
@@ -84,6 +86,7 @@ const fb_model fb_models[] = {
      .style = {"#000000", 1, 2.6, FB_HUE_NONE}},
     {.name = "analytic-stackup",
      .engine = FB_ENGINE_ANALYTIC,
+     .mechanisms = SC,
      .lengths = STK,
      .joints = IDEAL,
      .law = FB_MODEL_LAW_NONE,

@@ -133,6 +133,8 @@ typedef struct fb_model {
                               stands for it (e.g. ode-clearance-ccd for ode-clearance-impact).
                               NULL: no difference row (the yardsticks, and the models the
                               others are compared with) */
+  unsigned mechanisms;     /* bit t set: also builds mechanism type t (mechanism.h
+                              fb_mech_type); 0: the four-bar alone */
   const char *summary;     /* one line for help texts */
   fb_model_style style;    /* its line in every figure; color NULL and hue FB_HUE_NONE: the
                               figures pick one */

@@ -1,5 +1,7 @@
 #include "scene.h"
 
+#include "mech_kinematics.h"
+
 #include "resolution.h"
 
 #include <math.h>
@@ -28,9 +30,9 @@ void fb_scene_default(fb_scene *def) {
 /* assembles both linkages at crank_angle0, omega2 (a moved start) */
 static fb_status check_assembly(const fb_scene *def, fb_diag *diag) {
   for (int k = 0; k < 2; k++) {
-    fb_linkage_state ls;
-    fb_status st = fb_linkage_solve(&ls, &def->lengths[k], def->branch, def->crank_angle0,
-                                    def->omega2, 0.0, diag);
+    double x[FB_MECH_MAX_OUTPUTS][3];
+    fb_status st = fb_mech_solve(x, def->source.mechanism, &def->lengths[k], def->branch,
+                                 def->crank_angle0, def->omega2, 0.0, diag);
     if (st != FB_OK) return st;
   }
   return FB_OK;
@@ -101,14 +103,15 @@ fb_status fb_scene_from_case(fb_scene *def, const fb_case *c, fb_diag *diag) {
     if (m->law != FB_MODEL_LAW_NONE && r->clearance.mask) def->has_law[m->law] = 1;
     want_start[m->lengths][m->joints] = 1;
   }
-  for (int k = 0; k < 2; k++)
+  /* (a slider-crank's models start on its exact kinematics: fb_mech_solve) */
+  for (int k = 0; k < 2 && r->mechanism == FB_MECH_FOURBAR; k++)
     for (int js = 0; js < 2; js++) {
       if (!want_start[k][js]) continue;
       st = fb_start_resolve(&def->start[k][js], r, &def->lengths[k],
                             js == FB_JOINTS_CLEARANCE ? r->clearance.mask : 0, diag);
       if (st != FB_OK) return st;
     }
-  def->start_given = 1;
+  def->start_given = r->mechanism == FB_MECH_FOURBAR;
   if (def->has_law[FB_MODEL_LAW_IMPACT] || def->has_law[FB_MODEL_LAW_RESTITUTION])
     st = fb_joint_laws(def->has_law[FB_MODEL_LAW_IMPACT] ? def->law[FB_MODEL_LAW_IMPACT] : NULL,
                        def->has_law[FB_MODEL_LAW_RESTITUTION] ? def->law[FB_MODEL_LAW_RESTITUTION]
@@ -134,7 +137,7 @@ static fb_status check_mass(const fb_link_mass *m, int i, fb_diag *diag) {
 
 fb_status fb_scene_check(const fb_scene *def, fb_diag *diag) {
   for (int k = 0; k < 2; k++) {
-    fb_status st = fb_linkage_check(&def->lengths[k], diag);
+    fb_status st = fb_mech_check_lengths(def->source.mechanism, &def->lengths[k], diag);
     if (st != FB_OK) return st;
   }
   if (!def->start_given) {

@@ -1,0 +1,52 @@
+/* The closed-form kinematics of a case's mechanism, chosen by its type
+ * (mechanism.h fb_mech_type): what the analytic model, the peaks and the
+ * errors against the analytic solution call, so that they serve the
+ * four-bar (linkage.h, analytic.h) and the slider-crank (slider_crank.h)
+ * alike. Lengths are fb_linkage's in the description's order (a
+ * slider-crank's crank, coupler and guide offset at FB_LENGTH_OFFSET);
+ * SI units throughout. */
+#ifndef FB_MECH_KINEMATICS_H
+#define FB_MECH_KINEMATICS_H
+
+#include <stddef.h>
+
+#include "analytic.h"
+#include "mechanism.h"
+
+/* The output bodies' positions, velocities and accelerations at one crank
+ * angle: out[b][FB_Q_*], b in the description's output order (the
+ * four-bar's coupler and follower angles [rad], [rad/s], [rad/s^2]; the
+ * slider-crank's coupler the same and the slider's x [m], v [m/s],
+ * a [m/s^2]).
+ * Errors: those of fb_linkage_solve or fb_slider_crank_solve (the loop does
+ * not close; invalid lengths). */
+fb_status fb_mech_solve(double out[FB_MECH_MAX_OUTPUTS][3], fb_mech_type t, const fb_linkage *lk,
+                        fb_branch branch, double theta2, double omega2, double alpha2,
+                        fb_diag *diag);
+
+/* FB_OK when the lengths make a mechanism of type t whose crank turns
+ * fully: the four-bar's fb_linkage_check (its drivability is the case's
+ * check, case.c); the slider-crank's fb_slider_crank_require_full_turn.
+ * Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY naming the rule. */
+fb_status fb_mech_check_lengths(fb_mech_type t, const fb_linkage *lk, fb_diag *diag);
+
+/* Peaks over one crank revolution at constant crank speed omega2 [rad/s]:
+ * the four-bar's fb_analytic_peaks; the slider-crank's coupler angular
+ * velocity and acceleration and slider velocity and acceleration extremes
+ * bracketed on FB_ANALYTIC_PEAK_SAMPLES crank angles and refined with GSL's
+ * Brent minimiser to 1e-12 rad in crank angle, and the slider's position
+ * extremes, the dead centres in closed form (fb_slider_crank_limit_positions).
+ * pos_max/pos_min are filled for the slider-crank's bodies only (the
+ * four-bar's are NAN).
+ * Errors: those of fb_analytic_peaks or fb_slider_crank_require_full_turn. */
+fb_status fb_mech_peaks(fb_peaks *out, fb_mech_type t, const fb_linkage *lk, fb_branch branch,
+                        double omega2, fb_diag *diag);
+
+/* Samples the exact solution at t = k h, k = 0 .. n - 1, crank angle
+ * theta0 + omega2 t, into a fresh series *out of the mechanism's columns
+ * (free with fb_series_free): fb_analytic_sample for the four-bar.
+ * Errors: those of fb_mech_solve; FB_ERR_NOMEM. */
+fb_status fb_mech_sample(fb_series *out, fb_mech_type t, const fb_linkage *lk, fb_branch branch,
+                         double theta0, double omega2, double h, size_t n, fb_diag *diag);
+
+#endif

@@ -54,7 +54,7 @@ fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, 
 
 typedef struct {
   fb_series s;
-  const fb_model_scene *sm; /* analytic: the model, for its inverse dynamics */
+  const fb_model_scene *sm; /* the model (the analytic its inverse dynamics, the reference its joint) */
   size_t steps;      /* samples computed (analytic), accepted integrator steps (reference) */
   size_t i;          /* sample replayed now */
   int failed;        /* the computation stopped early */
@@ -193,13 +193,15 @@ const fb_engine fb_engine_analytic = {
 static fb_status reference_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
   fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
-  if (sm->model->law == FB_MODEL_LAW_NONE || !(sm->clearance_mask & (1 << FB_JOINT_B)))
+  const int cj = fb_case_mech(&sm->def->source)->reference_joint;
+  if (sm->model->law == FB_MODEL_LAW_NONE || !(sm->clearance_mask & (1 << cj)))
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s': the reference engine needs a contact law "
-                       "at the crank-coupler joint", sm->model->name);
+                       "at the %s joint", sm->model->name,
+                       fb_case_joint_name(&sm->def->source, cj));
   replay *r = calloc(1, sizeof *r);
   if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the reference engine");
-  st = fb_reference_run(&r->s, &r->steps, &sm->def->source, &sm->law[FB_JOINT_B], 0, &r->stop,
-                        diag);
+  r->sm = sm;
+  st = fb_reference_run(&r->s, &r->steps, &sm->def->source, &sm->law[cj], 0, &r->stop, diag);
   if (st == FB_ERR_NUMERIC) { /* the reference failing is a result, not an error */
     r->failed = 1;
     snprintf(r->why, sizeof r->why, "%.200s", diag ? diag->msg : "reference integration failed");
@@ -216,9 +218,10 @@ static fb_status reference_create(void **self, const fb_model_scene *sm, fb_diag
 
 static void reference_contact(const void *self, fb_engine_contact *out) {
   const replay *r = self;
+  const int cj = fb_case_mech(&r->sm->def->source)->reference_joint;
   memset(out, 0, sizeof *out);
-  out->joint = FB_JOINT_B;
-  out->penetration = r->s.contact[FB_JOINT_B][FB_C_PEN] ? r->s.contact[FB_JOINT_B][FB_C_PEN][r->i] : 0.0;
+  out->joint = cj;
+  out->penetration = r->s.contact[cj][FB_C_PEN] ? r->s.contact[cj][FB_C_PEN][r->i] : 0.0;
 }
 
 /* Wall time per sample on an idle 2-core machine [s] (engine.h): measured on

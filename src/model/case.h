@@ -307,6 +307,10 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag);
  * type: fb_mech_fourbar or fb_mech_slider_crank. */
 const fb_mech_desc *fb_case_mech(const fb_case *c);
 
+/* Name of joint j of the case's mechanism ("crank-coupler",
+ * "coupler-slider"), "?" for any other j. */
+const char *fb_case_joint_name(const fb_case *c, int j);
+
 /* Signed crank speed omega2 [rad/s]: negative for a clockwise crank. */
 double fb_case_omega2(const fb_case *c);
 

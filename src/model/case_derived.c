@@ -13,6 +13,10 @@ const char *fb_joint_name(int j) { return fb_mech_joint_name(&fb_mech_fourbar, j
 
 const fb_mech_desc *fb_case_mech(const fb_case *c) { return fb_mech_of(c->mechanism); }
 
+const char *fb_case_joint_name(const fb_case *c, int j) {
+  return fb_mech_joint_name(fb_case_mech(c), j);
+}
+
 const char *fb_value_source_name(int s) {
   static const char *const names[3] = {"case", "derived", "default"};
   return (s >= 0 && s < 3) ? names[s] : "?";

@@ -18,6 +18,7 @@ const fb_mech_desc fb_mech_fourbar = {
               {"crank-coupler", FB_KIND_REVOLUTE, {0, 1}, 1},
               {"coupler-follower", FB_KIND_REVOLUTE, {1, 2}, 1},
               {"follower-ground", FB_KIND_REVOLUTE, {2, 3}, 1}},
+    .reference_joint = 1,
     .nlengths = 4,
     .length = {"crank", "coupler", "follower", "ground"},
 };
@@ -35,6 +36,7 @@ const fb_mech_desc fb_mech_slider_crank = {
               {"crank-coupler", FB_KIND_REVOLUTE, {0, 1}, 0},
               {"coupler-slider", FB_KIND_REVOLUTE, {1, 2}, 1},
               {"slider-ground", FB_KIND_PRISMATIC, {2, 3}, 0}},
+    .reference_joint = 2,
     .nlengths = 3,
     .length = {"crank", "coupler", "offset"},
 };

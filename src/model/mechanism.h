@@ -57,6 +57,9 @@ typedef struct {
   int input;                               /* the driven body (the crank): time_s, <input>_angle_rad */
   int njoints;                             /* joints held */
   fb_mech_joint joint[FB_MECH_MAX_JOINTS]; /* (njoints), loop order; joint masks are over these */
+  int reference_joint;                     /* the clearance joint the engine-free reference
+                                              integrates (its minimal-coordinate dynamics) and
+                                              every clearance model is compared at */
   int nlengths;                            /* link-length parameters held */
   const char *length[FB_MECH_MAX_LENGTHS]; /* their names, in the order of fb_linkage.length [m] */
 } fb_mech_desc;

@@ -33,6 +33,28 @@ void fb_mechanism_from_state(fb_mechanism *out, const fb_linkage *lengths,
   out->crank_driven = 1;
 }
 
+void fb_mechanism_from_slider_crank(fb_mechanism *out, const fb_slider_crank_state *st,
+                                    const fb_link_mass link[3], int clearance_mask) {
+  memset(out, 0, sizeof *out);
+  const double a[2] = {0.0, 0.0};
+  const double *from[3] = {a, st->b, st->c}, *to[3] = {st->b, st->c, st->c};
+  for (int i = 0; i < 3; i++) {
+    out->mass[i] = link[i].mass;
+    out->inertia[i] = link[i].inertia;
+    const double f = i == 2 ? 0.0 : link[i].com_fraction; /* the slider's centre: the pin */
+    for (int q = 0; q < 2; q++) out->com[i][q] = from[i][q] + f * (to[i][q] - from[i][q]);
+  }
+  for (int q = 0; q < 2; q++) {
+    out->joint[0][q] = a[q];
+    out->joint[1][q] = st->b[q];
+    out->joint[2][q] = st->c[q];
+    out->joint[3][q] = st->c[q];
+  }
+  out->clearance_mask = clearance_mask;
+  out->prismatic_mask = 1 << FB_JOINT_D;
+  out->crank_driven = 1;
+}
+
 /* adds the velocity rows of point p on body i (sign s) to rows r, r + 1 */
 static void point_rows(double rows[][NQ], int r, const fb_mechanism *m, int i, const double p[2],
                        double s) {
@@ -75,6 +97,24 @@ static void tensor_crank_pin(double w[2][2], const fb_mechanism *m) {
   w[0][1] = w[1][0] = off;
 }
 
+/* the slider-crank's piston pin C with the crank driven (A and B held):
+ * the rod turns about B and the slider slides along x, two coordinates
+ * (omega_rod, v_slider) with no inertial coupling, generalised masses
+ * I_B = I3 + m3 |G3 - B|^2 and m_slider; the pin point on the rod moves at
+ * omega_rod perp(C - B), the hole on the slider at (v_slider, 0), so
+ * W = p p^T / I_B + x x^T / m_slider with p = perp(C - B), x = (1, 0):
+ * the mass matrix of slider_crank_dynamics.h's minimal coordinates, and the
+ * general KKT form's (test_effective_mass cross-checks them) */
+static void tensor_piston_pin(double w[2][2], const fb_mechanism *m) {
+  const double *b = m->joint[FB_JOINT_B], *c = m->joint[FB_JOINT_C];
+  const double g[2] = {m->com[FB_COUPLER][0] - b[0], m->com[FB_COUPLER][1] - b[1]};
+  const double i_b = m->inertia[FB_COUPLER] + m->mass[FB_COUPLER] * (g[0] * g[0] + g[1] * g[1]);
+  const double p[2] = {-(c[1] - b[1]), c[0] - b[0]};
+  w[0][0] = p[0] * p[0] / i_b + 1.0 / m->mass[2];
+  w[0][1] = w[1][0] = p[0] * p[1] / i_b;
+  w[1][1] = p[1] * p[1] / i_b;
+}
+
 static fb_status check_inertia(const fb_mechanism *m, fb_diag *diag) {
   for (int i = 0; i < 3; i++)
     if (!(m->mass[i] > 0.0) || !(m->inertia[i] > 0.0) || !isfinite(m->mass[i]) ||
@@ -87,7 +127,15 @@ static fb_status check_inertia(const fb_mechanism *m, fb_diag *diag) {
 }
 
 fb_status fb_effective_mass_tensor(double w[4][2][2], const fb_mechanism *m, fb_diag *diag) {
-  if (m->crank_driven && m->clearance_mask == (1 << FB_JOINT_B)) {
+  if (m->crank_driven && m->prismatic_mask == (1 << FB_JOINT_D) &&
+      m->clearance_mask == (1 << FB_JOINT_C)) {
+    fb_status st = check_inertia(m, diag);
+    if (st != FB_OK) return st;
+    memset(w, 0, 4 * sizeof w[0]);
+    tensor_piston_pin(w[FB_JOINT_C], m);
+    return FB_OK;
+  }
+  if (m->crank_driven && !m->prismatic_mask && m->clearance_mask == (1 << FB_JOINT_B)) {
     fb_status st = check_inertia(m, diag);
     if (st != FB_OK) return st;
     memset(w, 0, 4 * sizeof w[0]);
@@ -113,8 +161,13 @@ fb_status fb_effective_mass_tensor_kkt(double w[4][2][2], const fb_mechanism *m,
   int ng = 0;
   for (int j = 0; j < 4; j++) {
     if (m->clearance_mask & (1 << j)) continue;
-    point_rows(g, ng, m, joint_body[j][0], m->joint[j], 1.0);
-    point_rows(g, ng, m, joint_body[j][1], m->joint[j], -1.0);
+    if (m->prismatic_mask & (1 << j)) { /* a guide along the ground's x: v_y = 0, omega = 0 */
+      g[ng][3 * joint_body[j][0] + 1] = 1.0;
+      g[ng + 1][3 * joint_body[j][0] + 2] = 1.0;
+    } else {
+      point_rows(g, ng, m, joint_body[j][0], m->joint[j], 1.0);
+      point_rows(g, ng, m, joint_body[j][1], m->joint[j], -1.0);
+    }
     ng += 2;
   }
   if (m->crank_driven) g[ng++][2] = 1.0;

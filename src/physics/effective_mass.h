@@ -25,6 +25,7 @@
 
 #include "case.h"
 #include "linkage.h"
+#include "slider_crank.h"
 
 /* The mechanism's configuration and inertia for the effective mass. */
 typedef struct {
@@ -35,6 +36,9 @@ typedef struct {
                              point on the contact normal's line (pin centre, hole centre or
                              contact point: they lie on one line along n) */
   int clearance_mask;     /* bit j: joint j is a clearance joint (no hinge rows) */
+  int prismatic_mask;     /* bit j: joint j is not a hinge but a prismatic guide along the
+                             ground's x axis (its first body, the slider, keeps its y and its
+                             angle: two rows, v_y = 0 and omega = 0); 0 for a four-bar */
   int crank_driven;       /* 1: the crank's rotation is prescribed by the drive motor */
 } fb_mechanism;
 
@@ -45,6 +49,16 @@ typedef struct {
 void fb_mechanism_from_state(fb_mechanism *out, const fb_linkage *lengths,
                              const fb_linkage_state *st, const fb_link_mass link[3],
                              int clearance_mask);
+
+/* The slider-crank at a configuration of its exact solution st
+ * (slider_crank.h), mass properties link[3] (crank, coupler, slider), the
+ * crank driven: joint centres A = 0, B = st.b, C = st.c (the piston pin)
+ * and the guide joint D at C; the crank's and rod's centres of mass at
+ * com_fraction along A->B and B->C, the slider's at C; prismatic_mask the
+ * guide (bit 3). The bodies of each joint are the four-bar's by index
+ * (A crank/ground, B crank/coupler, C coupler/slider, D slider/ground). */
+void fb_mechanism_from_slider_crank(fb_mechanism *out, const fb_slider_crank_state *st,
+                                    const fb_link_mass link[3], int clearance_mask);
 
 /* Inverse-mass tensor W_j (2 x 2, [1/kg]) of the relative motion at each
  * clearance joint j: v_rel' = W_j f for a force pair f on the pin (-f on the
@@ -59,10 +73,14 @@ fb_status fb_effective_mass_tensor(double w[4][2][2], const fb_mechanism *m, fb_
 /* The same tensor, always by the general form above (G M^-1 G^T factorised
  * by GSL's Cholesky, gsl_linalg_cholesky_decomp1). fb_effective_mass_tensor
  * uses a closed form instead when the crank is driven and B is the only
- * clearance joint (the paper's case, about a quarter of a clearance step's
- * time with the factorisation): M^-1 of the coupler-follower chain's 2 x 2
- * generalised mass, effective_mass.c gives the derivation. For tests and
- * other masks. Errors: as fb_effective_mass_tensor. */
+ * clearance joint of a four-bar (the paper's case, about a quarter of a
+ * clearance step's time with the factorisation): M^-1 of the
+ * coupler-follower chain's 2 x 2 generalised mass; and when C is the only
+ * clearance joint of a slider-crank (the piston pin): the rod turning about
+ * the held B and the slider along x, W = p p^T / I_B + x x^T / m_slider,
+ * p = perp(C - B), I_B the rod's inertia about B. effective_mass.c gives
+ * the derivations. For tests and other masks. Errors: as
+ * fb_effective_mass_tensor. */
 fb_status fb_effective_mass_tensor_kkt(double w[4][2][2], const fb_mechanism *m, fb_diag *diag);
 
 /* m_eff = 1 / (n^T W n) [kg] along unit normal n of a tensor (not modified) from

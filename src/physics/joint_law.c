@@ -3,7 +3,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "invdyn.h"
+#include "mech_kinematics.h"
 #include "penalty.h"
 
 typedef enum { FB_CLEARANCE_RESTITUTION = 0, FB_CLEARANCE_IMPACT = 1 } fb_clearance_model;
@@ -58,7 +58,7 @@ static fb_status laws_of(fb_contact_law law[4], const fb_case *c, fb_clearance_m
                            "[clearance] penalty = goldsmith: no stiffness for the %s joint "
                            "(K = %g N/m^1.5 from [pin] diameter_mm = %g and radial clearance "
                            "%g um, peak reaction %g N): both must be positive",
-                           fb_joint_name(j), k, c->pin_diameter * 1e3, c->radial_clearance * 1e6,
+                           fb_case_joint_name(c, j), k, c->pin_diameter * 1e3, c->radial_clearance * 1e6,
                            fmax[j]);
       if (model == FB_CLEARANCE_IMPACT) {
         l.stiffness = k;
@@ -78,7 +78,7 @@ static fb_status laws_of(fb_contact_law law[4], const fb_case *c, fb_clearance_m
                            "outside Johnson's pin-in-hole relation for [pin] length_mm = %g and "
                            "radial_clearance_um = %g (or [pin] fit): use penalty = paper or "
                            "explicit, a longer pin or a smaller clearance",
-                           fb_joint_name(j), fmax[j], c->crank_speed * 60.0 / (2.0 * M_PI),
+                           fb_case_joint_name(c, j), fmax[j], c->crank_speed * 60.0 / (2.0 * M_PI),
                            c->pin_length * 1e3, c->radial_clearance * 1e6);
       l.stiffness = model == FB_CLEARANCE_IMPACT ? fmax[j] / pow(d, l.exponent) : kt;
     }
@@ -100,8 +100,8 @@ fb_status fb_joint_laws(fb_contact_law impact[4], fb_contact_law restitution[4],
   if (cl->penalty == FB_PENALTY_SOURCE_PHYSICAL || cl->penalty == FB_PENALTY_SOURCE_GOLDSMITH) {
     fb_linkage su;
     fb_case_stackup_lengths(c, &su);
-    st = fb_invdyn_peaks(fmax, NULL, &su, c->branch, c->link, c->gravity, fb_case_omega2(c),
-                         REACTION_SAMPLES, diag);
+    st = fb_mech_reaction_peaks(fmax, c->mechanism, &su, c->branch, c->link, c->gravity,
+                                fb_case_omega2(c), REACTION_SAMPLES, diag);
   } else if (cl->penalty == FB_PENALTY_SOURCE_PAPER) {
     st = fb_penalty_rows(paper, c, FB_PENALTY_PAPER, c->crank_speed, diag);
   }

@@ -7,7 +7,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "invdyn.h"
 #include "slider_crank.h"
+#include "slider_crank_invdyn.h"
 
 static fb_slider_crank sc_of(const fb_linkage *lk) {
   return (fb_slider_crank){lk->length[FB_CRANK], lk->length[FB_COUPLER],
@@ -157,5 +159,40 @@ fb_status fb_mech_sample(fb_series *out, fb_mech_type t, const fb_linkage *lk, f
     x.crank_angle = th; /* unwrapped, as the engines' series */
     fb_series_push(out, &x);
   }
+  return FB_OK;
+}
+
+fb_status fb_mech_reaction_peaks(double force_max[4], fb_mech_type t, const fb_linkage *lk,
+                                 fb_branch branch, const fb_link_mass link[3], double gravity,
+                                 double omega2, int n, fb_diag *diag) {
+  if (t != FB_MECH_SLIDER_CRANK)
+    return fb_invdyn_peaks(force_max, NULL, lk, branch, link, gravity, omega2, n, diag);
+  const fb_slider_crank sc = sc_of(lk);
+  const fb_slider_crank_mass m = {link[0].mass, link[0].inertia, link[0].com_fraction,
+                                  link[1].mass, link[1].inertia, link[1].com_fraction,
+                                  link[2].mass};
+  double pins[FB_SC_PIN_COUNT], guide;
+  fb_status st = fb_slider_crank_invdyn_peaks(pins, &guide, NULL, &sc, &m, gravity, omega2, n, diag);
+  if (st != FB_OK) return st;
+  for (int j = 0; j < FB_SC_PIN_COUNT; j++) force_max[j] = pins[j];
+  force_max[FB_SC_JOINT_SLIDER_GROUND] = guide;
+  return FB_OK;
+}
+
+fb_status fb_mech_mechanism_at(fb_mechanism *out, fb_mech_type t, const fb_linkage *lk,
+                               fb_branch branch, const fb_link_mass link[3], double theta2,
+                               int clearance_mask, fb_diag *diag) {
+  if (t == FB_MECH_SLIDER_CRANK) {
+    const fb_slider_crank sc = sc_of(lk);
+    fb_slider_crank_state s;
+    fb_status st = fb_slider_crank_solve(&s, &sc, theta2, 0.0, 0.0, diag);
+    if (st != FB_OK) return st;
+    fb_mechanism_from_slider_crank(out, &s, link, clearance_mask);
+    return FB_OK;
+  }
+  fb_linkage_state ls;
+  fb_status st = fb_linkage_solve(&ls, lk, branch, theta2, 0.0, 0.0, diag);
+  if (st != FB_OK) return st;
+  fb_mechanism_from_state(out, lk, &ls, link, clearance_mask);
   return FB_OK;
 }

@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "analytic.h"
+#include "effective_mass.h"
 #include "mechanism.h"
 
 /* The output bodies' positions, velocities and accelerations at one crank
@@ -48,5 +49,25 @@ fb_status fb_mech_peaks(fb_peaks *out, fb_mech_type t, const fb_linkage *lk, fb_
  * Errors: those of fb_mech_solve; FB_ERR_NOMEM. */
 fb_status fb_mech_sample(fb_series *out, fb_mech_type t, const fb_linkage *lk, fb_branch branch,
                          double theta0, double omega2, double h, size_t n, fb_diag *diag);
+
+/* Largest joint reaction magnitude over one revolution at constant crank
+ * speed omega2 [rad/s], gravity [m/s^2] along -y, n >= 1 crank angles
+ * 2 pi k / n, per joint of the description into force_max[j] [N]: the
+ * four-bar's fb_invdyn_peaks (lengths lk, branch, link[3]); the
+ * slider-crank's pin forces (fb_slider_crank_invdyn_peaks) and at the
+ * guide, slider-ground, the largest |N|.
+ * Errors: those of fb_invdyn_peaks or fb_slider_crank_invdyn_peaks. */
+fb_status fb_mech_reaction_peaks(double force_max[4], fb_mech_type t, const fb_linkage *lk,
+                                 fb_branch branch, const fb_link_mass link[3], double gravity,
+                                 double omega2, int n, fb_diag *diag);
+
+/* The mechanism of type t at crank angle theta2 [rad] (its exact solution),
+ * as effective_mass.h takes it: fb_mechanism_from_state for the four-bar,
+ * fb_mechanism_from_slider_crank for the slider-crank; the crank driven,
+ * clearance_mask the clearance joints.
+ * Errors: those of fb_linkage_solve or fb_slider_crank_solve. */
+fb_status fb_mech_mechanism_at(fb_mechanism *out, fb_mech_type t, const fb_linkage *lk,
+                               fb_branch branch, const fb_link_mass link[3], double theta2,
+                               int clearance_mask, fb_diag *diag);
 
 #endif

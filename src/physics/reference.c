@@ -9,6 +9,7 @@
 
 #include "clock.h"
 #include "linkage.h"
+#include "slider_crank_dynamics.h"
 #include "stop_text.h"
 #include "start.h"
 
@@ -20,13 +21,34 @@ typedef struct {
   double m3, m4, i3, i4, f3, f4;
   double theta0, omega2, grav, clear;
   double v0;                  /* hysteresis laws' impact velocity (unused by the models) */
+  int sc;                     /* 1: the slider-crank (slider_crank_dynamics.h), q = (theta3, x) */
+  fb_sc_dyn_model scm;        /* its model */
+  int cj;                     /* the clearance joint (the description's reference_joint) */
   /* last evaluation, for sampling */
   double force, pen, ex, ey, acc[2];
 } ref_ctx;
 
-/* contact geometry and generalised forces at (t, q, q'); fills acc[] */
+/* the slider-crank's equations of motion (fb_sc_dyn_eval_at), with the
+ * contact of the evaluation kept for sampling */
+static int eom_sc(double t, const double y[], double dydt[], ref_ctx *r) {
+  fb_sc_dyn_eval ev;
+  fb_sc_dyn_eval_at(&ev, &r->scm, t, y);
+  for (int i = 0; i < FB_SC_DYN_DIM; i++) dydt[i] = ev.dydt[i];
+  r->force = ev.force;
+  r->pen = ev.penetration;
+  r->ex = ev.ecc[0];
+  r->ey = ev.ecc[1];
+  r->acc[0] = ev.dydt[2];
+  r->acc[1] = ev.dydt[3];
+  return GSL_SUCCESS;
+}
+
+/* contact geometry and generalised forces at (t, q, q'); fills acc[].
+ * The state is q = (output body 0's, output body 1's position) and q' (the
+ * four-bar's theta3, theta4; the slider-crank's theta3, x) */
 static int eom(double t, const double y[], double dydt[], void *p) {
   ref_ctx *r = p;
+  if (r->sc) return eom_sc(t, y, dydt, r);
   const double th2 = r->theta0 + r->omega2 * t;
   const double th3 = y[0], th4 = y[1], w3 = y[2], w4 = y[3];
   const double s2 = sin(th2), c2 = cos(th2), s3 = sin(th3), c3 = cos(th3);
@@ -110,8 +132,8 @@ typedef struct {
 
 static int refine_interval(extremes *x, ref_ctx *r, const fb_series *s, size_t k, double h,
                            double tol) {
-  double y[4] = {s->coupler_angle[k - 1], s->follower_angle[k - 1], s->coupler_omega[k - 1],
-                 s->follower_omega[k - 1]};
+  double y[4] = {s->body[0][FB_Q_POS][k - 1], s->body[1][FB_Q_POS][k - 1],
+                 s->body[0][FB_Q_VEL][k - 1], s->body[1][FB_Q_VEL][k - 1]};
   double t = s->t[k - 1];
   gsl_odeiv2_system sys = {eom, NULL, 4, r};
   gsl_odeiv2_driver *drv =
@@ -143,8 +165,8 @@ static int refine_interval(extremes *x, ref_ctx *r, const fb_series *s, size_t k
 static void refine_peaks(fb_series *out, ref_ctx *r, double h, double tol) {
   const size_t n = out->n;
   if (n < 3) return;
-  double *f = out->contact[FB_JOINT_B][FB_C_FORCE], *p = out->contact[FB_JOINT_B][FB_C_PEN];
-  double *a3 = out->coupler_alpha, *a4 = out->follower_alpha;
+  double *f = out->contact[r->cj][FB_C_FORCE], *p = out->contact[r->cj][FB_C_PEN];
+  double *a3 = out->body[0][FB_Q_ACC], *a4 = out->body[1][FB_Q_ACC];
   const double fbig = fb_series_largest_abs(f, n), pbig = fb_series_largest_abs(p, n);
   const double a3big = fb_series_largest_abs(a3, n), a4big = fb_series_largest_abs(a4, n);
   for (size_t k = 1; k + 1 < n; k++) {
@@ -201,18 +223,22 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   why.joint = -1;
   if (!stop) stop = &why;
   *stop = why;
-  if (!ideal && c->clearance.mask != (1 << FB_JOINT_B))
+  const int cj = fb_case_mech(c)->reference_joint;
+  const char *cjn = fb_case_joint_name(c, cj);
+  if (!ideal && c->clearance.mask != (1 << cj))
     return fb_diag_set(diag, FB_ERR_ARG,
                        "[run] models names a reference model, whose dynamics cover clearance "
-                       "at the crank-coupler joint alone; [clearance] joints gives others: set "
-                       "joints = crank-coupler or drop reference and reference-restitution from "
-                       "models");
+                       "at the %s joint alone; [clearance] joints gives others: set "
+                       "joints = %s or drop reference and reference-restitution from models",
+                       cjn, cjn);
+  if (ideal && c->mechanism != FB_MECH_FOURBAR)
+    return fb_diag_set(diag, FB_ERR_ARG, "the ideal reference integrates the four-bar only");
   fb_linkage lk;
   fb_case_stackup_lengths(c, &lk);
   const double omega2 = fb_case_omega2(c);
   /* the case's start ([run] start, pin_start), the same state ODE starts from */
   fb_start_state st;
-  fb_status rc = fb_start_resolve(&st, c, &lk, ideal ? 0 : 1 << FB_JOINT_B, diag);
+  fb_status rc = fb_start_resolve(&st, c, &lk, ideal ? 0 : 1 << cj, diag);
   if (rc != FB_OK) return rc;
   const double pen_limit = fb_case_penetration_limit(c);
   ref_ctx r;
@@ -235,7 +261,25 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   r.grav = c->gravity;
   r.clear = c->radial_clearance;
   r.v0 = 1e-3;
-  double y[4] = {st.coupler_angle, st.follower_angle, st.coupler_omega, st.follower_omega};
+  r.cj = cj;
+  if (c->mechanism == FB_MECH_SLIDER_CRANK) {
+    const fb_link_mass *l = c->link;
+    r.sc = 1;
+    r.scm.geometry = (fb_slider_crank){lk.length[FB_CRANK], lk.length[FB_COUPLER],
+                                       lk.length[FB_LENGTH_OFFSET]};
+    r.scm.mass = (fb_slider_crank_mass){l[0].mass, l[0].inertia, l[0].com_fraction,
+                                        l[1].mass, l[1].inertia, l[1].com_fraction, l[2].mass};
+    r.scm.gravity = c->gravity;
+    r.scm.clearance = c->radial_clearance;
+    r.scm.law = *law;
+    r.scm.impact_velocity = r.v0;
+    r.scm.theta0 = c->crank_angle0;
+    r.scm.omega2 = omega2;
+    rc = fb_sc_dyn_check(&r.scm, diag);
+    if (rc != FB_OK) return rc;
+  }
+  double y[4] = {st.body[0][FB_Q_POS], st.body[1][FB_Q_POS], st.body[0][FB_Q_VEL],
+                 st.body[1][FB_Q_VEL]};
   gsl_odeiv2_system sys = {eom, NULL, 4, &r};
   gsl_error_handler_t *old = gsl_set_error_handler_off();
   gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, c->solver.h * 1e-3,
@@ -247,7 +291,8 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   gsl_odeiv2_driver_set_nmax(drv, 0);
   const size_t n = (size_t)llround(fb_case_duration(c) / c->solver.h);
   fb_status status = FB_OK;
-  if (fb_series_init(out, n + 1) != FB_OK || (!ideal && fb_series_enable_contact(out, 1 << FB_JOINT_B) != FB_OK)) {
+  if (fb_series_init_mech(out, n + 1, fb_case_mech(c)) != FB_OK ||
+      (!ideal && fb_series_enable_contact(out, 1 << cj) != FB_OK)) {
     gsl_odeiv2_driver_free(drv);
     gsl_set_error_handler(old);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n + 1);
@@ -306,12 +351,12 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
     memset(&x, 0, sizeof x);
     x.t = tk;
     x.crank_angle = r.theta0 + omega2 * tk;
-    x.coupler_angle = y[0];
-    x.follower_angle = y[1];
-    x.coupler_omega = ideal ? dy[0] : y[2];
-    x.follower_omega = ideal ? dy[1] : y[3];
-    x.coupler_alpha = a3;
-    x.follower_alpha = a4;
+    x.body[0][FB_Q_POS] = y[0];
+    x.body[1][FB_Q_POS] = y[1];
+    x.body[0][FB_Q_VEL] = ideal ? dy[0] : y[2];
+    x.body[1][FB_Q_VEL] = ideal ? dy[1] : y[3];
+    x.body[0][FB_Q_ACC] = a3;
+    x.body[1][FB_Q_ACC] = a4;
     if (!ideal) {
       /* contact state as the ODE scene classifies it, from the sampled rate */
       /* the impact's phase from the force trend between samples (rising:
@@ -323,19 +368,19 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
           restituting = 0;
         } else {
           state = prev_state;
-          const double trend = r.force - out->contact[FB_JOINT_B][FB_C_FORCE][out->n - 1];
+          const double trend = r.force - out->contact[cj][FB_C_FORCE][out->n - 1];
           if (trend < 0.0) restituting = 1;
           else if (restituting && state == FB_STATE_IMPACT) state = FB_STATE_CONTINUOUS;
         }
       }
       prev_state = state;
-      x.contact[FB_JOINT_B][FB_C_FORCE] = r.force;
-      x.contact[FB_JOINT_B][FB_C_PEN] = r.pen;
-      x.contact[FB_JOINT_B][FB_C_EX] = r.ex;
-      x.contact[FB_JOINT_B][FB_C_EY] = r.ey;
-      x.contact[FB_JOINT_B][FB_C_STATE] = state;
+      x.contact[cj][FB_C_FORCE] = r.force;
+      x.contact[cj][FB_C_PEN] = r.pen;
+      x.contact[cj][FB_C_EX] = r.ex;
+      x.contact[cj][FB_C_EY] = r.ey;
+      x.contact[cj][FB_C_STATE] = state;
     }
-    if (!(isfinite(y[0]) && isfinite(y[1]) && isfinite(x.coupler_omega) && isfinite(a3))) {
+    if (!(isfinite(y[0]) && isfinite(y[1]) && isfinite(x.body[0][FB_Q_VEL]) && isfinite(a3))) {
       stop->kind = FB_STOP_NONFINITE;
       stop->t = tk;
       break;
@@ -343,7 +388,7 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
     if (!ideal && r.pen > pen_limit) {
       stop->kind = FB_STOP_PENETRATION;
       stop->t = tk;
-      stop->joint = FB_JOINT_B;
+      stop->joint = cj;
       stop->value = r.pen;
       stop->limit = pen_limit;
       break;

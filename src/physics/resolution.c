@@ -3,9 +3,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "effective_mass.h"
-#include "invdyn.h"
 #include "joint_law.h"
+#include "mech_kinematics.h"
 
 /* crank angles per revolution for the largest joint reaction (joint_law.c's) */
 #define REACTION_SAMPLES 3600
@@ -25,20 +24,18 @@ fb_status fb_contact_estimates(fb_contact_estimate est[4], const fb_case *c,
   fb_case_stackup_lengths(c, &su);
   const double omega2 = fb_case_omega2(c);
   double reaction[4];
-  fb_status st = fb_invdyn_peaks(reaction, NULL, &su, c->branch, c->link, c->gravity, omega2,
-                                 REACTION_SAMPLES, diag);
+  fb_status st = fb_mech_reaction_peaks(reaction, c->mechanism, &su, c->branch, c->link,
+                                        c->gravity, omega2, REACTION_SAMPLES, diag);
   if (st != FB_OK) return st;
   for (int j = 0; j < 4; j++) {
     est[j].m_eff_min = INFINITY;
     est[j].m_eff_max = 0.0;
   }
   for (int k = 0; k < FB_RESOLUTION_SAMPLES; k++) {
-    fb_linkage_state ls;
     const double th = c->crank_angle0 + 2.0 * M_PI * k / FB_RESOLUTION_SAMPLES;
-    st = fb_linkage_solve(&ls, &su, c->branch, th, omega2, 0.0, diag);
-    if (st != FB_OK) return st;
     fb_mechanism m;
-    fb_mechanism_from_state(&m, &su, &ls, c->link, mask);
+    st = fb_mech_mechanism_at(&m, c->mechanism, &su, c->branch, c->link, th, mask, diag);
+    if (st != FB_OK) return st;
     double w[4][2][2];
     st = fb_effective_mass_tensor(w, &m, diag);
     if (st != FB_OK) return st;
@@ -106,11 +103,11 @@ fb_status fb_case_contact_of(fb_case_contact *out, const fb_case *c, int j, fb_d
     for (int i = 0; i < 4; i++)
       if (c->clearance.mask & (1 << i)) {
         if (names[0]) strcat(names, ", ");
-        strcat(names, fb_joint_name(i));
+        strcat(names, fb_case_joint_name(c, i));
       }
     return fb_diag_set(diag, FB_ERR_ARG,
                        "joint '%s' is not a clearance joint of this case (its [clearance] joints: "
-                       "%s)", j >= 0 && j <= 3 ? fb_joint_name(j) : "?",
+                       "%s)", j >= 0 && j <= 3 ? fb_case_joint_name(c, j) : "?",
                        names[0] ? names : "none");
   }
   fb_contact_law imp[4], res[4];

@@ -4,11 +4,43 @@
 #include <string.h>
 
 #include "invdyn.h"
+#include "series.h"
+#include "slider_crank_invdyn.h"
 
 const char *fb_start_name(fb_start s) { return s == FB_START_REST ? "rest" : "steady"; }
 
 const char *fb_pin_start_name(fb_pin_start p) {
   return p == FB_PIN_RESTING ? "resting" : (p == FB_PIN_ANGLE ? "angle" : "centred");
+}
+
+static fb_slider_crank sc_of(const fb_linkage *lk) {
+  return (fb_slider_crank){lk->length[FB_CRANK], lk->length[FB_COUPLER],
+                           lk->length[FB_LENGTH_OFFSET]};
+}
+
+/* each joint's force on its second body with the crank held at theta0 under
+ * gravity alone (inverse dynamics at zero speed); a slider-crank's guide
+ * (slider-ground) carries none that a pin could lean on */
+static fb_status static_load(double force[4][2], const fb_case *c, const fb_linkage *lk,
+                             fb_diag *diag) {
+  memset(force, 0, 4 * sizeof force[0]);
+  if (c->mechanism == FB_MECH_SLIDER_CRANK) {
+    const fb_slider_crank sc = sc_of(lk);
+    const fb_link_mass *l = c->link;
+    const fb_slider_crank_mass m = {l[0].mass, l[0].inertia, l[0].com_fraction,
+                                    l[1].mass, l[1].inertia, l[1].com_fraction, l[2].mass};
+    fb_slider_crank_reactions r;
+    fb_status st = fb_slider_crank_invdyn(&r, &sc, &m, c->gravity, c->crank_angle0, 0.0, 0.0, diag);
+    if (st != FB_OK) return st;
+    memcpy(force, r.force, sizeof r.force);
+    return FB_OK;
+  }
+  fb_reactions r;
+  fb_status st = fb_invdyn_solve(&r, lk, c->branch, c->link, c->gravity, c->crank_angle0, 0.0,
+                                 diag);
+  if (st != FB_OK) return st;
+  memcpy(force, r.force, 4 * sizeof force[0]);
+  return FB_OK;
 }
 
 /* eccentricity of every clearance joint from the case's pin_start */
@@ -27,16 +59,15 @@ static fb_status eccentricities(double ecc[4][2], const fb_case *c, const fb_lin
      * joint's second body. The contact pushes the hole body along +e and
      * the pin body along -e: at B and C the second body holds the hole
      * (e along the force), at A and D it holds the pin (e against it). */
-    fb_reactions r;
-    fb_status st = fb_invdyn_solve(&r, lk, c->branch, c->link, c->gravity, c->crank_angle0, 0.0,
-                                   diag);
+    double force[4][2];
+    fb_status st = static_load(force, c, lk, diag);
     if (st != FB_OK) return st;
     const double sign[4] = {-1.0, 1.0, 1.0, -1.0};
     for (int j = 0; j < 4; j++) {
-      const double f = hypot(r.force[j][0], r.force[j][1]);
+      const double f = hypot(force[j][0], force[j][1]);
       /* no load (zero gravity): the wall below the hole, an arbitrary choice */
-      dir[j][0] = f > 0.0 ? sign[j] * r.force[j][0] / f : 0.0;
-      dir[j][1] = f > 0.0 ? sign[j] * r.force[j][1] / f : -1.0;
+      dir[j][0] = f > 0.0 ? sign[j] * force[j][0] / f : 0.0;
+      dir[j][1] = f > 0.0 ? sign[j] * force[j][1] / f : -1.0;
     }
   }
   for (int j = 0; j < 4; j++)
@@ -47,8 +78,84 @@ static fb_status eccentricities(double ecc[4][2], const fb_case *c, const fb_lin
   return FB_OK;
 }
 
+/* the slider-crank's joint points from its exact solution s (with the
+ * piston pin's eccentricity e: P = s.c, H = P - e) and its velocities */
+static void sc_fill(fb_start_state *out, const fb_slider_crank_state *s, const double e[2],
+                    double omega2, int slider_at_rest) {
+  memset(out, 0, sizeof *out);
+  out->crank_angle = s->crank_angle;
+  out->crank_omega = omega2;
+  out->coupler_angle = s->coupler_angle;
+  out->coupler_omega = s->coupler_omega;
+  for (int k = 0; k < 2; k++) {
+    out->pin[FB_SC_JOINT_CRANK_COUPLER][k] = out->hole[FB_SC_JOINT_CRANK_COUPLER][k] = s->b[k];
+    out->pin[FB_SC_JOINT_COUPLER_SLIDER][k] = s->c[k];
+    out->hole[FB_SC_JOINT_COUPLER_SLIDER][k] = s->c[k] - e[k];
+    out->ecc[FB_SC_JOINT_COUPLER_SLIDER][k] = e[k];
+    out->pin[FB_SC_JOINT_SLIDER_GROUND][k] = out->hole[FB_SC_JOINT_SLIDER_GROUND][k] =
+        out->hole[FB_SC_JOINT_COUPLER_SLIDER][k];
+  }
+  out->body[1][FB_Q_POS] = out->hole[FB_SC_JOINT_COUPLER_SLIDER][0];
+  out->body[1][FB_Q_VEL] = slider_at_rest ? 0.0 : s->slider_v;
+  out->coupler_b_vel[0] = -omega2 * s->b[1];
+  out->coupler_b_vel[1] = omega2 * s->b[0];
+}
+
+/* fb_start_resolve for the slider-crank: the rod and slider of the ideal
+ * slider-crank whose guide is moved by the piston pin's e_y */
+static fb_status sc_resolve(fb_start_state *out, const fb_case *c, const fb_linkage *lk,
+                            int clearance_mask, fb_diag *diag) {
+  double ecc[4][2];
+  fb_status st = eccentricities(ecc, c, lk, clearance_mask, diag);
+  if (st != FB_OK) return st;
+  const double *e = ecc[FB_SC_JOINT_COUPLER_SLIDER];
+  fb_slider_crank shifted = sc_of(lk);
+  shifted.offset += e[1];
+  fb_slider_crank_state s;
+  fb_diag inner;
+  st = fb_slider_crank_solve(&s, &shifted, c->crank_angle0, fb_case_omega2(c), 0.0, &inner);
+  if (st != FB_OK)
+    return fb_diag_set(diag, FB_ERR_ASSEMBLY,
+                       "start: with the piston pin at its start position the slider-crank does "
+                       "not assemble at crank angle %.6g deg: %s",
+                       c->crank_angle0 * 180.0 / M_PI, inner.msg);
+  sc_fill(out, &s, e, fb_case_omega2(c), c->start == FB_START_REST && clearance_mask != 0);
+  return FB_OK;
+}
+
+fb_status fb_start_steady(fb_start_state *out, fb_mech_type t, const fb_linkage *lk,
+                          fb_branch branch, double theta0, double omega2, fb_diag *diag) {
+  if (t == FB_MECH_SLIDER_CRANK) {
+    const fb_slider_crank sc = sc_of(lk);
+    fb_slider_crank_state s;
+    fb_status st = fb_slider_crank_solve(&s, &sc, theta0, omega2, 0.0, diag);
+    if (st != FB_OK) return st;
+    sc_fill(out, &s, (const double[2]){0.0, 0.0}, omega2, 0);
+    return FB_OK;
+  }
+  fb_linkage_state ls;
+  fb_status rc = fb_linkage_solve(&ls, lk, branch, theta0, omega2, 0.0, diag);
+  if (rc != FB_OK) return rc;
+  memset(out, 0, sizeof *out);
+  out->crank_angle = ls.crank_angle;
+  out->crank_omega = omega2;
+  out->coupler_angle = ls.coupler_angle;
+  out->coupler_omega = ls.coupler_omega;
+  out->follower_angle = ls.follower_angle;
+  out->follower_omega = ls.follower_omega;
+  for (int k = 0; k < 2; k++) {
+    out->pin[FB_JOINT_B][k] = out->hole[FB_JOINT_B][k] = ls.b[k];
+    out->pin[FB_JOINT_C][k] = out->hole[FB_JOINT_C][k] = ls.c[k];
+  }
+  out->pin[FB_JOINT_D][0] = out->hole[FB_JOINT_D][0] = lk->length[FB_GROUND];
+  out->coupler_b_vel[0] = -omega2 * ls.b[1];
+  out->coupler_b_vel[1] = omega2 * ls.b[0];
+  return FB_OK;
+}
+
 fb_status fb_start_resolve(fb_start_state *out, const fb_case *c, const fb_linkage *lk,
                            int clearance_mask, fb_diag *diag) {
+  if (c->mechanism == FB_MECH_SLIDER_CRANK) return sc_resolve(out, c, lk, clearance_mask, diag);
   const double omega2 = fb_case_omega2(c), theta2 = c->crank_angle0;
   double ecc[4][2];
   fb_status st = eccentricities(ecc, c, lk, clearance_mask, diag);

@@ -21,9 +21,12 @@ static double *stat_at(fb_impact_stats *s, int q) {
   return f[q % 4];
 }
 
+/* the joint whose impacts are counted: the one the reference integrates */
+static int counted_joint(const fb_run *r) { return fb_case_mech(&r->c)->reference_joint; }
+
 /* models whose impacts are counted: clearance models that reached their window */
-static int counted(const fb_model_result *m) {
-  return m->has_spikes && (m->run.clearance_mask & m->run.series.contact_mask & (1 << FB_JOINT_B));
+static int counted(const fb_model_result *m, int joint) {
+  return m->has_spikes && (m->run.clearance_mask & m->run.series.contact_mask & (1 << joint));
 }
 
 /* one member's values of every counted model, in the order of r's models */
@@ -51,7 +54,7 @@ static fb_status run_member(member_values *mv, const fb_run *r, int k, int n, fb
   int map[FB_MAX_MODELS];
   c.model_count = 0;
   for (int i = 0; i < r->n; i++)
-    if (counted(&r->model[i])) {
+    if (counted(&r->model[i], counted_joint(r))) {
       map[c.model_count] = i;
       snprintf(c.models[c.model_count++], FB_NAME_SIZE, "%s", r->c.models[i]);
     }
@@ -71,9 +74,9 @@ static fb_status run_member(member_values *mv, const fb_run *r, int k, int n, fb
     }
   if (st == FB_OK) {
     for (int q = 0; q < m->n && st == FB_OK; q++) {
-      if (!counted(&m->model[q])) continue;
+      if (!counted(&m->model[q], counted_joint(m))) continue;
       mv->ran[map[q]] = 1;
-      st = fb_impact_values_add(&mv->v[map[q]], &m->model[q].run.series, FB_JOINT_B, m->t_window,
+      st = fb_impact_values_add(&mv->v[map[q]], &m->model[q].run.series, counted_joint(m), m->t_window,
                                 diag);
     }
     fb_run_free(m);
@@ -335,9 +338,9 @@ fb_status fb_ensemble_measure(fb_run *r, fb_progress_fn progress, void *user, fb
   if (!mv) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the ensemble");
   fb_status st = FB_OK;
   for (int i = 0; i < r->n && st == FB_OK; i++)
-    if (counted(&r->model[i])) {
+    if (counted(&r->model[i], counted_joint(r))) {
       mv[0].ran[i] = 1;
-      st = fb_impact_values_add(&mv[0].v[i], &r->model[i].run.series, FB_JOINT_B, r->t_window,
+      st = fb_impact_values_add(&mv[0].v[i], &r->model[i].run.series, counted_joint(r), r->t_window,
                                 diag);
     }
   if (st == FB_OK && n > 1) st = run_members(mv, r, n, r->c.jobs, progress, user, diag);

@@ -83,7 +83,7 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
                     .t = NAN,
                     .h = sv->h,
                     .h_auto = how};
-    snprintf(w.what, sizeof w.what, "%s", fb_joint_name(j));
+    snprintf(w.what, sizeof w.what, "%s", fb_case_joint_name(c, j));
     warn(m, &w);
   }
   if (fb_engine_steps_world(m->run.model->engine)) {
@@ -275,10 +275,11 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
   size_t steps = 0;
   fb_stop stop;
   memset(&stop, 0, sizeof stop);
-  if (fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[FB_JOINT_B], 0, check, &stop,
+  const int cj = fb_case_mech(&r->c)->reference_joint;
+  if (fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[cj], 0, check, &stop,
                            &inner) == FB_OK &&
       stop.kind == FB_STOP_NONE &&
-      fb_metrics_vs_reference(&m->ref_estimate, &m->run.series, &s, r->t_window, FB_JOINT_B,
+      fb_metrics_vs_reference(&m->ref_estimate, &m->run.series, &s, r->t_window, cj,
                               &inner) == FB_OK) {
     m->has_ref_estimate = 1;
     const fb_reference_error *e = &m->ref_estimate;
@@ -293,11 +294,11 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
      * check's impact statistics (compared with an ensemble, ensemble.c) */
     const fb_case *c = &r->c;
     m->has_check_divergence =
-        fb_metrics_divergence(&m->check_divergence, &m->run.series, &s, FB_JOINT_B,
+        fb_metrics_divergence(&m->check_divergence, &m->run.series, &s, cj,
                               c->radial_clearance, m->run.lengths.length[FB_COUPLER],
                               2.0 * M_PI / c->crank_speed, &inner) == FB_OK;
     fb_impact_values v = {0};
-    m->has_check_stats = fb_impact_values_add(&v, &s, FB_JOINT_B, r->t_window, &inner) == FB_OK &&
+    m->has_check_stats = fb_impact_values_add(&v, &s, cj, r->t_window, &inner) == FB_OK &&
                          v.n > 0 && fb_impact_stats_of(&m->check_stats, &v, &inner) == FB_OK;
     fb_impact_values_free(&v);
   }
@@ -334,7 +335,9 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
       return st;
     }
   }
-  /* each exact-collider clearance model against the reference of its law */
+  /* each exact-collider clearance model against the reference of its law,
+   * at the joint the reference integrates */
+  const int cj = fb_case_mech(c)->reference_joint;
   for (int i = 0; i < r->n; i++) {
     fb_model_result *m = &r->model[i];
     const fb_model *want = fb_model_reference_of(m->run.model);
@@ -344,11 +347,11 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
       if (ref->run.model != want || !ref->has_peaks) continue;
       fb_diag inner;
       if (fb_metrics_vs_reference(&m->ref_error, &m->run.series, &ref->run.series, r->t_window,
-                                  FB_JOINT_B, &inner) == FB_OK) {
+                                  cj, &inner) == FB_OK) {
         m->has_ref_error = 1;
         snprintf(m->ref_name, sizeof m->ref_name, "%s", want->name);
       }
-      if (fb_metrics_divergence(&m->divergence, &m->run.series, &ref->run.series, FB_JOINT_B,
+      if (fb_metrics_divergence(&m->divergence, &m->run.series, &ref->run.series, cj,
                                 c->radial_clearance, m->run.lengths.length[FB_COUPLER],
                                 2.0 * M_PI / c->crank_speed, &inner) == FB_OK) {
         m->has_divergence = 1;

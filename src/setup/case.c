@@ -100,14 +100,22 @@ static fb_status check_slider_crank(const fb_case *c, fb_diag *diag) {
                          "than the length [linkage] %s_mm = %g",
                          fb_link_name(i), c->plus_minus[i] * 1e3, fb_link_name(i),
                          c->nominal.length[i] * 1e3);
-  /* the piston pin's dynamics with clearance are physics today
-   * (slider_crank_dynamics.h), not yet a model of the run */
-  if (c->clearance.mask)
+  /* the joints the description lets carry clearance: the piston pin */
+  const fb_mech_desc *mech = fb_case_mech(c);
+  for (int j = 0; j < mech->njoints; j++)
+    if ((c->clearance.mask & (1 << j)) && !mech->joint[j].clearance_ok)
+      return fb_diag_set(diag, FB_ERR_ARG,
+                         "[clearance] joints names %s: a slider-crank's clearance joint is its "
+                         "piston pin, %s (the models and the reference take it there; "
+                         "ground-crank and crank-coupler are ideal, and the prismatic "
+                         "slider-ground is a guide, not a pin): set joints = %s or none",
+                         mech->joint[j].name, mech->joint[mech->reference_joint].name,
+                         mech->joint[mech->reference_joint].name);
+  if (c->clearance.mask && c->clearance.penalty == FB_PENALTY_SOURCE_PAPER)
     return fb_diag_set(diag, FB_ERR_ARG,
-                       "[clearance] joints: no model runs a slider-crank's clearance joint yet "
-                       "(its piston pin, coupler-slider, is the one it will take; ground-crank, "
-                       "crank-coupler and the prismatic slider-ground stay ideal): remove the "
-                       "key or set it to none");
+                       "[clearance] penalty = paper: the paper's stiffness recipe (its Tables II "
+                       "and III) is the four-bar's, from its coupler and follower accelerations; "
+                       "for a slider-crank use penalty = physical, goldsmith or explicit");
   if (c->stackup.worst)
     return fb_diag_set(diag, FB_ERR_ARG,
                        "[tolerance] stackup = worst: the worst corner is searched for the "
@@ -120,8 +128,7 @@ static fb_status check_slider_crank(const fb_case *c, fb_diag *diag) {
     if (!(m->mechanisms & (1u << FB_MECH_SLIDER_CRANK)))
       return fb_diag_set(diag, FB_ERR_ARG,
                          "[run] models: model '%s' does not build a slider-crank yet ([linkage] "
-                         "type = slider-crank); fourbar models lists each model's mechanisms "
-                         "(analytic and the reference-* models do)",
+                         "type = slider-crank); fourbar models lists each model's mechanisms",
                          c->models[i]);
   }
   return FB_OK;

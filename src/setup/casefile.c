@@ -279,8 +279,8 @@ static fb_status slider_crank_keys(fb_case *out, const load_ctx *c, fb_diag *dia
   out->plus_minus[FB_GROUND] = 0.0;
   snprintf(out->tolerance_source[FB_GROUND], sizeof out->tolerance_source[FB_GROUND], "-");
   out->stackup.corner[FB_GROUND] = 0;
-  if (!entry_origin(c, "clearance", "joints"))
-    out->clearance.mask = 0; /* no model runs the piston pin's clearance yet (case.c) */
+  if (!entry_origin(c, "clearance", "joints")) /* the piston pin, as the four-bar's default */
+    out->clearance.mask = 1 << fb_case_mech(out)->reference_joint;
   if (!entry_origin(c, "mass", "slider_kg"))
     return fb_diag_set(diag, FB_ERR_PARSE,
                        "%s: [mass] slider_kg is required with [linkage] type = slider-crank: the "

@@ -103,15 +103,14 @@ fb_status fb_scene_from_case(fb_scene *def, const fb_case *c, fb_diag *diag) {
     if (m->law != FB_MODEL_LAW_NONE && r->clearance.mask) def->has_law[m->law] = 1;
     want_start[m->lengths][m->joints] = 1;
   }
-  /* (a slider-crank's models start on its exact kinematics: fb_mech_solve) */
-  for (int k = 0; k < 2 && r->mechanism == FB_MECH_FOURBAR; k++)
+  for (int k = 0; k < 2; k++)
     for (int js = 0; js < 2; js++) {
       if (!want_start[k][js]) continue;
       st = fb_start_resolve(&def->start[k][js], r, &def->lengths[k],
                             js == FB_JOINTS_CLEARANCE ? r->clearance.mask : 0, diag);
       if (st != FB_OK) return st;
     }
-  def->start_given = r->mechanism == FB_MECH_FOURBAR;
+  def->start_given = 1;
   if (def->has_law[FB_MODEL_LAW_IMPACT] || def->has_law[FB_MODEL_LAW_RESTITUTION])
     st = fb_joint_laws(def->has_law[FB_MODEL_LAW_IMPACT] ? def->law[FB_MODEL_LAW_IMPACT] : NULL,
                        def->has_law[FB_MODEL_LAW_RESTITUTION] ? def->law[FB_MODEL_LAW_RESTITUTION]
@@ -200,7 +199,7 @@ fb_status fb_scene_check(const fb_scene *def, fb_diag *diag) {
         fb_diag inner;
         if (fb_contact_law_check(&def->law[k][j], &inner) != FB_OK)
           return fb_diag_set(diag, FB_ERR_RANGE, "scene: law of the %s joint: %s",
-                             fb_joint_name(j), inner.msg);
+                             fb_case_joint_name(&def->source, j), inner.msg);
       }
     }
   }
@@ -281,25 +280,7 @@ fb_status fb_model_scene_start(fb_start_state *out, const fb_model_scene *sm, fb
     *out = sm->start;
     return FB_OK;
   }
-  /* the steady start with every pin centred, from the analytic solver */
-  fb_linkage_state ls;
-  fb_status rc = fb_linkage_solve(&ls, &sm->lengths, sm->branch, sm->crank_angle0, sm->omega2,
-                                  0.0, diag);
-  if (rc != FB_OK) return rc;
-  memset(out, 0, sizeof *out);
-  out->crank_angle = ls.crank_angle;
-  out->crank_omega = sm->omega2;
-  out->coupler_angle = ls.coupler_angle;
-  out->coupler_omega = ls.coupler_omega;
-  out->follower_angle = ls.follower_angle;
-  out->follower_omega = ls.follower_omega;
-  for (int k = 0; k < 2; k++) {
-    out->pin[FB_JOINT_B][k] = out->hole[FB_JOINT_B][k] = ls.b[k];
-    out->pin[FB_JOINT_C][k] = out->hole[FB_JOINT_C][k] = ls.c[k];
-  }
-  out->pin[FB_JOINT_D][0] = out->hole[FB_JOINT_D][0] = sm->lengths.length[FB_GROUND];
-  out->coupler_b_vel[0] = -sm->omega2 * ls.b[1];
-  out->coupler_b_vel[1] = sm->omega2 * ls.b[0];
-  return FB_OK;
+  /* the steady start with every pin centred, from the exact solver */
+  return fb_start_steady(out, sm->def->source.mechanism, &sm->lengths, sm->branch,
+                         sm->crank_angle0, sm->omega2, diag);
 }
-

@@ -278,7 +278,7 @@ static void bench_case(fb_case *k, const fb_case *c, double h, fb_engine_id engi
   const fb_model *models[3];
   fb_bench_models(engine, &models[0], &models[1]);
   models[2] = fb_model_reference_of(models[1]);
-  k->model_count = k->clearance.mask == (1 << FB_JOINT_B) ? 3 : 1;
+  k->model_count = k->clearance.mask == (1 << fb_case_mech(k)->reference_joint) ? 3 : 1;
   for (int q = 0; q < k->model_count; q++)
     snprintf(k->models[q], FB_NAME_SIZE, "%s", models[q]->name);
 }
@@ -373,7 +373,7 @@ static fb_status collider_run(fb_bench_row *rows, int *n, fb_engine_id e, const 
     fb_reference_error re;
     fb_diag inner;
     if (ref->has_peaks && fb_metrics_vs_reference(&re, &m->run.series, &ref->run.series,
-                                                  r.t_window, FB_JOINT_B, &inner) == FB_OK &&
+                                                  r.t_window, fb_case_mech(&r.c)->reference_joint, &inner) == FB_OK &&
         row_peaks(mine, m, 1) && row_peaks(theirs, ref, 1))
       b->error = fb_bench_rel_parts(b->part, mine, theirs, FB_BENCH_PARTS);
     b->has_vs_exact = 1;
@@ -572,7 +572,7 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
   bench_pass x = {rows, n, c, progress_all ? first_pass_progress : NULL, &fp, 0, 0};
   const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
   const int frontier = !solvers && (grids & FB_BENCH_FRONTIER) != 0; /* solvers holds it */
-  const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << FB_JOINT_B);
+  const int colliders = (grids & FB_BENCH_COLLIDERS) && c->clearance.mask == (1 << fb_case_mech(c)->reference_joint);
   const int dflt = (grids & FB_BENCH_DEFAULT) != 0;
   /* the configurations of the first pass, for its progress */
   if (dflt) x.total += all_points(FB_BENCH_SET_DEFAULT, c) + all_points(FB_BENCH_SET_DEFAULT_LAST, c);

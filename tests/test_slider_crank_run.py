@@ -158,6 +158,44 @@ for pct in (-20, -10, 0, 10, 20):
           % (pct, worst))
     check("slider v / a" in so and "m/s^2" in so, "offset %+d %%: the table names the slider" % pct)
 
+# the piston pin with clearance: the reference models run it, and nothing a
+# slider-crank run writes names the four-bar's follower or its joints
+CLEAR = CASE.format(offset=6).replace("models = analytic", "models = analytic, reference, "
+                                      "reference-restitution") + """[clearance]
+joints = coupler-slider
+[pin]
+radial_clearance_um = 100
+"""
+out = os.path.join(tmp, "clear")
+rc, so, se = run("run", write_case("clear.ini", CLEAR), "--out", out)
+check(rc == 0, "clearance at the piston pin runs the reference models (%s)" % se.strip()[-300:])
+if rc == 0:
+    text = open(os.path.join(out, "summary.json")).read()
+    summary = json.loads(text)
+    for word in ("follower", "crank-coupler\"", "coupler-follower", "ground_m"):
+        check(word not in text, "summary.json of a slider-crank has no %r" % word)
+    check("follower" not in so and "coupler-follower" not in so,
+          "the printed tables of a slider-crank name no follower")
+    ref = [m for m in summary["models"] if m["name"] == "reference"]
+    check(len(ref) == 1 and ref[0]["clearance_joints"] == ["coupler-slider"],
+          "reference's clearance_joints is [coupler-slider]")
+    if ref:
+        r0 = ref[0]
+        check(set(r0["lengths_m"]) == {"crank", "coupler", "offset"},
+              "lengths_m names crank, coupler, offset: %s" % sorted(r0["lengths_m"]))
+        check(abs(r0["lengths_m"]["offset"] - 0.006) < 1e-15, "lengths_m.offset is 6 mm")
+        check("acceleration_peak_ratio_slider" in (r0.get("spikes") or {}),
+              "spikes.acceleration_peak_ratio_slider")
+        check(set(r0["peaks"]["at"]["slider"]) ==
+              {"velocity_max", "velocity_min", "acceleration_max", "acceleration_min"},
+              "peaks.at.slider names velocity and acceleration")
+        check("velocity_max_m_s_rel" in r0["delta_vs_analytic_nominal"]["slider"],
+              "delta_vs_analytic_nominal.slider.velocity_max_m_s_rel")
+        pooled = (r0.get("impact_statistics") or {}).get("pooled") or {}
+        check("impact_acceleration_slider_m_s2" in pooled,
+              "impact_statistics.pooled.impact_acceleration_slider_m_s2: %s" % sorted(pooled))
+        check(r0["contact"][0]["joint"] == "coupler-slider", "contact[0].joint is coupler-slider")
+
 # refusals: each names the key and exits non-zero, no signal
 base = CASE.format(offset=0)
 bad = [

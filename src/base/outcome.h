@@ -28,6 +28,9 @@ typedef struct {
   size_t step;        /* step at which it stopped; 0 for adaptive integrators */
   int joint;          /* clearance joint (fb_joint) for FB_STOP_PENETRATION and
                          FB_STOP_ALIASED, else -1 */
+  const char *joint_name; /* that joint's name in the case's mechanism (set where the run
+                         knows the mechanism: model_run.c, reference.c); NULL: the
+                         four-bar's name of joint */
   double value;       /* penetration [m] (PENETRATION); steps spent (STEP_BUDGET);
                          omega_d h [-] (ALIASED) */
   double limit;       /* penetration limit [m] (PENETRATION); steps per sample (STEP_BUDGET);

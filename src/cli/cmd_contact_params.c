@@ -134,6 +134,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
   if (optind < argc) return fb_cli_fail(P, 2, "unexpected argument '%s'", argv[optind]);
   char case_path[4096] = "";
   int joint = -1;
+  const char *jname = NULL; /* the joint's name in the case's mechanism */
   if (joint_arg && !case_arg)
     return fb_cli_fail(P, 2, "--joint %s: names a joint of a case; give --case too", joint_arg);
   if (case_arg) {
@@ -154,11 +155,17 @@ int fb_cmd_contact_params(int argc, char **argv) {
     if (fb_casefile_load(&cs, case_path, NULL, 0, &cd) != FB_OK)
       return fb_cli_fail(P, 2, "%s", cd.msg);
     if (joint_arg) {
-      for (int j = 0; j < 4; j++)
-        if (strcmp(joint_arg, fb_joint_name(j)) == 0) joint = j;
+      const fb_mech_desc *mech = fb_case_mech(&cs);
+      char names[160] = "";
+      for (int j = 0; j < mech->njoints; j++) {
+        if (strcmp(joint_arg, mech->joint[j].name) == 0) joint = j;
+        if (!mech->joint[j].clearance_ok) continue;
+        if (names[0]) strncat(names, ", ", sizeof names - strlen(names) - 1);
+        strncat(names, mech->joint[j].name, sizeof names - strlen(names) - 1);
+      }
       if (joint < 0)
-        return fb_cli_fail(P, 2, "--joint '%s': must be ground-crank, crank-coupler, "
-                           "coupler-follower or follower-ground", joint_arg);
+        return fb_cli_fail(P, 2, "--joint '%s': must be a joint of the case's %s: %s", joint_arg,
+                           mech->type, names);
     } else {
       int n = 0;
       for (int j = 0; j < 4; j++)
@@ -167,6 +174,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
         return fb_cli_fail(P, 2, "--case %s has %d clearance joints: name one with --joint",
                            case_path, n);
     }
+    if (joint >= 0) jname = fb_case_joint_name(&cs, joint);
     if (fb_cp_request_from_case(&q, &cs, joint, &cd) != FB_OK)
       return fb_cli_fail(P, 2, "--case %s: %s", case_path, cd.msg);
   }
@@ -176,7 +184,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
   fb_diag diag;
   fb_status st = fb_cp_run(&o, &q, &diag);
   if (st != FB_OK) return fb_cli_fail(P, st == FB_ERR_NUMERIC ? 1 : 2, "%s", diag.msg);
-  if (json) fb_report_cp_json(stdout, &o, case_path, joint);
-  else fb_report_cp_text(stdout, &o, case_path, joint);
+  if (json) fb_report_cp_json(stdout, &o, case_path, jname);
+  else fb_report_cp_text(stdout, &o, case_path, jname);
   return o.failed ? 1 : 0;
 }

@@ -71,3 +71,64 @@ const char *fb_mech_body_column(const fb_mech_desc *m, int b, int q, char *buf, 
   snprintf(buf, size, "%s_%s", m->body[b].name, part[q]);
   return buf;
 }
+
+static int output_body(const fb_mech_desc *m, int k) {
+  int out[FB_MECH_MAX_OUTPUTS];
+  const int n = fb_mech_outputs(m, out);
+  return k >= 0 && k < n ? out[k] : -1;
+}
+
+int fb_mech_output_translates(const fb_mech_desc *m, int k) {
+  const int b = output_body(m, k);
+  return b >= 0 && m->body[b].motion == FB_MOTION_TRANSLATING;
+}
+
+const char *fb_mech_output_name(const fb_mech_desc *m, int k) {
+  const int b = output_body(m, k);
+  return b >= 0 ? m->body[b].name : "?";
+}
+
+const char *fb_mech_output_symbol(const fb_mech_desc *m, int k, int q) {
+  static const char *const turn[3] = {"angle", "omega", "alpha"}, *const slide[3] = {"x", "v", "a"};
+  return q < 0 || q > 2 ? "?" : fb_mech_output_translates(m, k) ? slide[q] : turn[q];
+}
+
+const char *fb_mech_output_unit(const fb_mech_desc *m, int k, int q) {
+  static const char *const turn[3] = {"rad", "rad/s", "rad/s^2"}, *const slide[3] = {"m", "m/s", "m/s^2"};
+  return q < 0 || q > 2 ? "?" : fb_mech_output_translates(m, k) ? slide[q] : turn[q];
+}
+
+/* replaces every `from` in buf (holding at most size bytes) by `to` */
+static void replace_all(char *buf, size_t size, const char *from, const char *to) {
+  char out[256];
+  size_t n = 0;
+  const size_t lf = strlen(from), lt = strlen(to);
+  for (const char *p = buf; *p && n + 1 < sizeof out;) {
+    if (strncmp(p, from, lf) == 0 && n + lt < sizeof out) {
+      memcpy(out + n, to, lt);
+      n += lt;
+      p += lf;
+    } else {
+      out[n++] = *p++;
+    }
+  }
+  out[n] = '\0';
+  snprintf(buf, size, "%s", out);
+}
+
+const char *fb_mech_output_key(char *buf, size_t size, const fb_mech_desc *m, const char *key) {
+  snprintf(buf, size, "%s", key);
+  if (m == &fb_mech_fourbar) return buf;
+  static const char *const fourbar_name[2] = {"coupler", "follower"};
+  for (int k = 0; k < 2; k++) {
+    if (!strstr(buf, fourbar_name[k])) continue;
+    if (fb_mech_output_translates(m, k)) {
+      replace_all(buf, size, "omega", "velocity");
+      replace_all(buf, size, "alpha", "acceleration");
+      replace_all(buf, size, "rad_s2", "m_s2");
+      replace_all(buf, size, "rad_s", "m_s");
+    }
+    replace_all(buf, size, fourbar_name[k], fb_mech_output_name(m, k));
+  }
+  return buf;
+}

@@ -125,4 +125,25 @@ const char *fb_mech_joint_name(const fb_mech_desc *m, int j);
  * body <body>_x_m, <body>_v_m_s, <body>_a_m_s2. */
 const char *fb_mech_body_column(const fb_mech_desc *m, int b, int q, char *buf, size_t size);
 
+/* The k-th output body (k < the outputs' count, fb_mech_outputs): 1 when
+ * it translates (a slider), its name, and the symbol and unit of its
+ * quantity q (0 position, 1 velocity, 2 acceleration) for labels and
+ * tables: a rotating or planar body "angle", "omega", "alpha" in "rad",
+ * "rad/s", "rad/s^2"; a translating body "x", "v", "a" in "m", "m/s",
+ * "m/s^2". */
+int fb_mech_output_translates(const fb_mech_desc *m, int k);
+const char *fb_mech_output_name(const fb_mech_desc *m, int k);
+const char *fb_mech_output_symbol(const fb_mech_desc *m, int k, int q);
+const char *fb_mech_output_unit(const fb_mech_desc *m, int k, int q);
+
+/* The output key of mechanism m for the four-bar's per-body output key
+ * `key` (summary.json's, the checked metrics'), into buf (returned): the
+ * four-bar's key itself for the four-bar; else "coupler" and "follower" in
+ * key become the names of m's first and second output bodies, and for a
+ * translating body "omega" -> "velocity", "alpha" -> "acceleration",
+ * "rad_s2" -> "m_s2", "rad_s" -> "m_s" (the slider-crank's
+ * "alpha_peak_ratio_follower" is "acceleration_peak_ratio_slider",
+ * "impact_alpha_follower_rad_s2" is "impact_acceleration_slider_m_s2"). */
+const char *fb_mech_output_key(char *buf, size_t size, const fb_mech_desc *m, const char *key);
+
 #endif

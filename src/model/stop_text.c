@@ -11,6 +11,7 @@
 
 const char *fb_stop_text(char *buf, size_t size, const fb_stop *s) {
   const char *engine = s->engine ? s->engine : "engine";
+  const char *joint = s->joint_name ? s->joint_name : fb_joint_name(s->joint);
   char at[48] = "";
   if (s->step > 0) snprintf(at, sizeof at, " (step %zu)", s->step);
   switch (s->kind) {
@@ -19,7 +20,7 @@ const char *fb_stop_text(char *buf, size_t size, const fb_stop *s) {
       snprintf(buf, size,
                "unstable: penetration %.4g um at the %s joint exceeds the limit %.4g um at "
                "t = %.6g s%s",
-               s->value * 1e6, fb_joint_name(s->joint), s->limit * 1e6, s->t, at);
+               s->value * 1e6, joint, s->limit * 1e6, s->t, at);
       break;
     case FB_STOP_NONFINITE:
       if (s->step > 0) snprintf(buf, size, "nan at t = %.6g s%s", s->t, at);
@@ -43,7 +44,7 @@ const char *fb_stop_text(char *buf, size_t size, const fb_stop *s) {
                "aliased: the matched contact row at the %s joint met omega_d h = %.3g at "
                "t = %.6g s%s, past %.3g (pi would lose the row's spring); the largest usable "
                "step is %.3g s (or h_s = auto)",
-               fb_joint_name(s->joint), s->value, s->t, at, s->limit, s->h_max);
+               joint, s->value, s->t, at, s->limit, s->h_max);
       break;
     case FB_STOP_WALL_TIME:
       snprintf(buf, size,

@@ -389,6 +389,7 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
       stop->kind = FB_STOP_PENETRATION;
       stop->t = tk;
       stop->joint = cj;
+      stop->joint_name = cjn;
       stop->value = r.pen;
       stop->limit = pen_limit;
       break;

@@ -18,12 +18,15 @@ static json_t *dist_json(const fb_dist *d, int with_n) {
   return o;
 }
 
-static json_t *stats_json(const fb_impact_stats *s, int with_n) {
+/* the distributions by their keys, per output body in the names of the
+ * case's mechanism (fb_mech_output_key: the slider's acceleration) */
+static json_t *stats_json(const fb_impact_stats *s, int with_n, const fb_case *c) {
   json_t *o = json_object();
-  char key[64];
-#define FB_STATS_JSON(field, prefix, unit)              \
-  snprintf(key, sizeof key, "%s_%s", prefix, unit);     \
-  json_object_set_new(o, key, dist_json(&s->field, with_n));
+  char key[64], kb[96];
+#define FB_STATS_JSON(field, prefix, unit)                                        \
+  snprintf(key, sizeof key, "%s_%s", prefix, unit);                               \
+  json_object_set_new(o, fb_mech_output_key(kb, sizeof kb, fb_case_mech(c), key), \
+                      dist_json(&s->field, with_n));
   FB_IMPACT_STATS_KEYS(FB_STATS_JSON)
 #undef FB_STATS_JSON
   return o;
@@ -42,14 +45,14 @@ json_t *fb_report_ensemble_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "window_from_s", num(r->t_window));
   json_object_set_new(o, "impacts_min", json_integer(e->impacts_min));
   json_object_set_new(o, "impacts_max", json_integer(e->impacts_max));
-  json_object_set_new(o, "pooled", stats_json(&e->pooled, 1));
-  json_object_set_new(o, "spread", e->members > 1 ? stats_json(&e->spread, 1) : json_null());
+  json_object_set_new(o, "pooled", stats_json(&e->pooled, 1, &r->c));
+  json_object_set_new(o, "spread", e->members > 1 ? stats_json(&e->spread, 1, &r->c) : json_null());
   if (m->has_stats_compare) {
     const fb_stats_compare *c = &m->stats_compare;
     json_t *v = json_object();
     json_object_set_new(v, "reference", json_string(m->ref_name));
-    json_object_set_new(v, "rel", stats_json(&c->rel, 0));
-    json_object_set_new(v, "sigmas", c->agree >= 0 ? stats_json(&c->sigmas, 0) : json_null());
+    json_object_set_new(v, "rel", stats_json(&c->rel, 0, &r->c));
+    json_object_set_new(v, "sigmas", c->agree >= 0 ? stats_json(&c->sigmas, 0, &r->c) : json_null());
     json_object_set_new(v, "agree_sigmas", json_real(FB_ENSEMBLE_AGREE_SIGMAS));
     json_object_set_new(v, "agree", c->agree >= 0 ? json_boolean(c->agree) : json_null());
     json_object_set_new(o, "vs_reference", v);
@@ -105,13 +108,21 @@ static void step_line(FILE *f, const fb_run *r, const char *pre) {
 }
 
 /* one row: model, quantity, pooled mean / p50 / p90 / max (spread), vs ref */
-static void stats_rows(FILE *f, const fb_model_result *m, const char *bar) {
+static void stats_rows(FILE *f, const fb_model_result *m, const char *bar, const fb_case *c) {
   const fb_ensemble *e = &m->ensemble;
   const fb_dist *d[3] = {&e->pooled.force, &e->pooled.alpha_coupler, &e->pooled.alpha_follower};
   const fb_dist *s[3] = {&e->spread.force, &e->spread.alpha_coupler, &e->spread.alpha_follower};
   const fb_dist *rel[3] = {&m->stats_compare.rel.force, &m->stats_compare.rel.alpha_coupler,
                            &m->stats_compare.rel.alpha_follower};
-  const char *what[3] = {"force N", "cpl alpha rad/s^2", "fol alpha rad/s^2"};
+  /* per output body: "cpl alpha rad/s^2", a slider's "sld a m/s^2" */
+  const fb_mech_desc *mech = fb_case_mech(c);
+  char body[2][32];
+  for (int b = 0; b < 2; b++)
+    snprintf(body[b], sizeof body[b], "%s %s %s", fb_report_body_abbrev(fb_mech_output_name(mech, b)),
+             fb_mech_output_symbol(mech, b, FB_Q_ACC), fb_mech_output_unit(mech, b, FB_Q_ACC));
+  const int four = mech == &fb_mech_fourbar; /* its words as they always were */
+  const char *what[3] = {"force N", four ? "cpl alpha rad/s^2" : body[0],
+                         four ? "fol alpha rad/s^2" : body[1]};
   for (int q = 0; q < 3; q++) {
     char agree[48] = "-";
     if (m->has_stats_compare)
@@ -146,7 +157,7 @@ void fb_report_print_chaos(FILE *f, const fb_run *r) {
   fprintf(f, "model\n  %-18s %6s %10s %10s %10s %10s %9s %9s %13s\n", "per impact", "count",
           "mean", "p50", "p90", "max", "sd mean", "sd p90", "rel mean/p90");
   for (int i = 0; i < r->n; i++)
-    if (r->model[i].has_ensemble) stats_rows(f, &r->model[i], NULL);
+    if (r->model[i].has_ensemble) stats_rows(f, &r->model[i], NULL, &r->c);
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     if (!m->has_stats_compare) continue;
@@ -193,7 +204,7 @@ void fb_report_markdown_chaos(FILE *f, const fb_run *r) {
   fprintf(f, "| model | per impact | count | mean | p50 | p90 | max | sd mean / p90 | rel mean/p90 |\n");
   fprintf(f, "|---|---|---|---|---|---|---|---|---|\n");
   for (int i = 0; i < r->n; i++)
-    if (r->model[i].has_ensemble) stats_rows(f, &r->model[i], "|");
+    if (r->model[i].has_ensemble) stats_rows(f, &r->model[i], "|", &r->c);
   fputc('\n', f);
   for (int i = 0; i < r->n; i++)
     if (r->model[i].has_stats_compare)
@@ -218,11 +229,15 @@ static double stat_q(const fb_impact_stats *s, int q) {
   return v[q % 4];
 }
 
-static const char *stat_label(int q) {
-  static const char *const what[3] = {"force", "coupler alpha", "follower alpha"};
+/* "force mean", "coupler alpha p90", a slider's "slider a max" */
+static const char *stat_label(int q, const fb_case *c) {
   static const char *const which[4] = {"mean", "p50", "p90", "max"};
-  static char buf[12][32];
-  snprintf(buf[q], sizeof buf[q], "%s %s", what[q / 4], which[q % 4]);
+  static _Thread_local char buf[12][48];
+  const fb_mech_desc *mech = fb_case_mech(c);
+  if (q < 4) snprintf(buf[q], sizeof buf[q], "force %s", which[q % 4]);
+  else
+    snprintf(buf[q], sizeof buf[q], "%s %s %s", fb_mech_output_name(mech, q / 4 - 1),
+             fb_mech_output_symbol(mech, q / 4 - 1, FB_Q_ACC), which[q % 4]);
   return buf[q];
 }
 
@@ -334,7 +349,7 @@ static const char *reference_why(char *buf, size_t size, const fb_model_result *
     else
       snprintf(buf + n, size - n, "; its impact statistics did not converge either (the check's "
                "%s %+.0f %%, %.2g sd from its %d runs' mean, bound %.2g)",
-               q >= 0 ? stat_label(q) : "-",
+               q >= 0 ? stat_label(q, &r->c) : "-",
                q >= 0 ? 100.0 * stat_q(&m->check_compare.rel, q) : NAN, w, m->ensemble.members,
                m->check_compare.agree_sigmas);
   } else {
@@ -404,7 +419,7 @@ const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result 
   if (m->stats_compare.agree != 1)
     n += (size_t)snprintf(buf + n, size - n, "; its impact statistics over %d runs disagree with "
                           "%s's (%s %+.0f %%, %.2g sd apart)", m->ensemble.members, m->ref_name,
-                          q >= 0 ? stat_label(q) : "-",
+                          q >= 0 ? stat_label(q, &r->c) : "-",
                           q >= 0 ? 100.0 * stat_q(&m->stats_compare.rel, q) : NAN, w);
   else
     n += (size_t)snprintf(buf + n, size - n, "; its impact statistics over %d runs agree with "
@@ -415,7 +430,7 @@ const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result 
   const int qr = worst_stat(&m->stats_compare, 0, &rel);
   if (n < size && m->stats_compare.agree == 1 && qr >= 0 && rel > FB_STATS_WIDE_REL)
     n += (size_t)snprintf(buf + n, size - n, ", but only inside a wide spread (%s %+.0f %%): "
-                          "more runs ([run] ensemble) sharpen it", stat_label(qr),
+                          "more runs ([run] ensemble) sharpen it", stat_label(qr, &r->c),
                           100.0 * stat_q(&m->stats_compare.rel, qr));
   if (n >= size) return buf;
   if (ref && ref->basis != FB_BASIS_POINTWISE && !(ref->has_check_compare &&
@@ -472,7 +487,7 @@ json_t *fb_report_ensemble_run_json(const fb_run *r) {
   return o;
 }
 
-void fb_report_check_json(json_t *o, const fb_model_result *m) {
+void fb_report_check_json(json_t *o, const fb_model_result *m, const fb_run *r) {
   if (m->has_check_divergence) {
     const fb_divergence *d = &m->check_divergence;
     json_t *dv = json_object();
@@ -489,13 +504,13 @@ void fb_report_check_json(json_t *o, const fb_model_result *m) {
     json_object_set_new(o, "divergence", json_null());
   }
   json_object_set_new(o, "impact_statistics",
-                      m->has_check_stats ? stats_json(&m->check_stats, 1) : json_null());
+                      m->has_check_stats ? stats_json(&m->check_stats, 1, &r->c) : json_null());
   if (m->has_check_compare) {
     const fb_stats_compare *c = &m->check_compare;
     json_t *v = json_object();
     json_object_set_new(v, "members", json_integer(m->ensemble.members));
-    json_object_set_new(v, "rel", stats_json(&c->rel, 0));
-    json_object_set_new(v, "sigmas", c->agree >= 0 ? stats_json(&c->sigmas, 0) : json_null());
+    json_object_set_new(v, "rel", stats_json(&c->rel, 0, &r->c));
+    json_object_set_new(v, "sigmas", c->agree >= 0 ? stats_json(&c->sigmas, 0, &r->c) : json_null());
     json_object_set_new(v, "agree_sigmas", num(c->agree_sigmas));
     json_object_set_new(v, "agree", c->agree >= 0 ? json_boolean(c->agree) : json_null());
     json_object_set_new(o, "vs_ensemble", v);

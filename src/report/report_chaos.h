@@ -51,7 +51,7 @@ int fb_report_verdict_error(char *err, size_t err_size, char *against, size_t ag
  * impacts matched before; null: not measured), "impact_statistics" (the
  * check's, over the window; null without impacts) and "vs_ensemble" (those
  * against the reference's ensemble members; null without an ensemble). */
-void fb_report_check_json(json_t *estimate, const fb_model_result *m);
+void fb_report_check_json(json_t *estimate, const fb_model_result *m, const fb_run *r);
 
 /* The printed line on an ensemble the run added by itself, or would have
  * (nothing when it neither did nor would). */

@@ -130,3 +130,12 @@ const char *fb_report_model_mapping(const fb_run *r, const fb_model_result *m) {
   const char *own = e && e->mapping_text ? e->mapping_text(m->run.collider) : NULL;
   return own ? own : fb_mapping_name(r->scene.mapping);
 }
+
+const char *fb_report_body_abbrev(const char *body) {
+  static const char *const names[][2] = {{"coupler", "cpl"}, {"follower", "flw"}, {"slider", "sld"}};
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+    if (strcmp(body, names[i][0]) == 0) return names[i][1];
+  static _Thread_local char three[4];
+  snprintf(three, sizeof three, "%s", body);
+  return three;
+}

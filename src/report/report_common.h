@@ -33,6 +33,11 @@ const char *fb_report_figure(char *buf, size_t size, const char *fmt, double x, 
  * "ok" with the warning divergent. Returns buf. */
 const char *fb_report_model_status(char *buf, size_t size, const fb_model_result *m);
 
+/* A body's name in three letters for narrow table columns: "cpl" (coupler),
+ * "flw" (follower), "sld" (slider); the name's first three letters
+ * otherwise. */
+const char *fb_report_body_abbrev(const char *body);
+
 /* JSON object {"omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2",
  * "alpha_min_rad_s2"} of one body's peaks (new reference). */
 json_t *fb_report_body_peaks_json(const fb_body_peaks *p);

@@ -62,9 +62,11 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
   fprintf(f, "## Parameters\n\n| quantity | value | source |\n|---|---|---|\n");
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);
-  for (int k = 0; k < FB_LINK_COUNT; k++)
+  /* the lengths and bodies by the names of the case's description */
+  const fb_mech_desc *mech = fb_case_mech(c);
+  for (int k = 0; k < mech->nlengths; k++)
     fprintf(f, "| %s length | %.4f mm nominal, +- %.3f mm, stack-up %.4f mm | %s |\n",
-            fb_link_name(k), c->nominal.length[k] * 1e3, c->plus_minus[k] * 1e3,
+            mech->length[k], c->nominal.length[k] * 1e3, c->plus_minus[k] * 1e3,
             su.length[k] * 1e3, c->tolerance_source[k]);
   fprintf(f, "| pin | diameter %.4g mm, length %.4g mm | %s |\n", c->pin_diameter * 1e3,
           c->pin_length * 1e3,
@@ -73,20 +75,21 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
   for (int i = 0; i < 3; i++) {
     const fb_link_mass *m = &c->link[i];
     const fb_link_mass_source *s = &c->link_source[i];
-    fprintf(f, "| %s mass | %.6g kg | %s |\n", fb_link_name(i), m->mass,
+    fprintf(f, "| %s mass | %.6g kg | %s |\n", mech->body[i].name, m->mass,
             fb_value_source_name(s->mass));
     fprintf(f, "| %s inertia (hinge axis, long axis, across) | %.6g, %.6g, %.6g kg mm^2 | %s, "
                "%s, %s |\n",
-            fb_link_name(i), m->inertia * 1e6, m->inertia_long * 1e6, m->inertia_transverse * 1e6,
+            mech->body[i].name, m->inertia * 1e6, m->inertia_long * 1e6, m->inertia_transverse * 1e6,
             fb_value_source_name(s->inertia), fb_value_source_name(s->inertia_long),
             fb_value_source_name(s->inertia_transverse));
     fprintf(f, "| %s centre of mass | %.4g of the length from its first joint | %s |\n",
-            fb_link_name(i), m->com_fraction, fb_value_source_name(s->com_fraction));
+            mech->body[i].name, m->com_fraction, fb_value_source_name(s->com_fraction));
   }
   fprintf(f, "| link bars (width x thickness) | crank %.4g x %.4g mm, coupler %.4g x %.4g mm, "
-             "follower %.4g x %.4g mm | %s |\n",
+             "%s %.4g x %.4g mm | %s |\n",
           c->link_width[0] * 1e3, c->link_thickness[0] * 1e3, c->link_width[1] * 1e3,
-          c->link_thickness[1] * 1e3, c->link_width[2] * 1e3, c->link_thickness[2] * 1e3,
+          c->link_thickness[1] * 1e3, mech->body[2].name, c->link_width[2] * 1e3,
+          c->link_thickness[2] * 1e3,
           any_derived(c) ? given_src(c, "mass", "crank_width_mm", "crank_thickness_mm",
                                      "coupler_width_mm", "coupler_thickness_mm",
                                      "follower_width_mm", "follower_thickness_mm", NULL)
@@ -104,7 +107,7 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
   if (c->clearance.mask) {
     fprintf(f, "| clearance joints |");
     for (int j = 0; j < 4; j++)
-      if (c->clearance.mask & (1 << j)) fprintf(f, " %s", fb_joint_name(j));
+      if (c->clearance.mask & (1 << j)) fprintf(f, " %s", fb_case_joint_name(c, j));
     const char *src[4] = {"physical (Johnson line contact at the inverse-dynamics reaction)",
                           "paper (Kc and P read in N-mm units)", "explicit",
                           "goldsmith (paper Eq. 3-5, internal contact of pin and hole)"};

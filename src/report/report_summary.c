@@ -21,12 +21,16 @@
 /* finite number or null */
 static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 
-static json_t *rel_peaks_json(const fb_body_peaks *p) {
+/* relative peaks of a rotating body ("omega_max_rel", ...) or a translating
+ * one ("velocity_max_m_s_rel", ...) */
+static json_t *rel_peaks_json(const fb_body_peaks *p, int translates) {
   json_t *o = json_object();
-  json_object_set_new(o, "omega_max_rel", num(p->omega_max));
-  json_object_set_new(o, "omega_min_rel", num(p->omega_min));
-  json_object_set_new(o, "alpha_max_rel", num(p->alpha_max));
-  json_object_set_new(o, "alpha_min_rel", num(p->alpha_min));
+  json_object_set_new(o, translates ? "velocity_max_m_s_rel" : "omega_max_rel", num(p->omega_max));
+  json_object_set_new(o, translates ? "velocity_min_m_s_rel" : "omega_min_rel", num(p->omega_min));
+  json_object_set_new(o, translates ? "acceleration_max_m_s2_rel" : "alpha_max_rel",
+                      num(p->alpha_max));
+  json_object_set_new(o, translates ? "acceleration_min_m_s2_rel" : "alpha_min_rel",
+                      num(p->alpha_min));
   return o;
 }
 
@@ -43,10 +47,13 @@ static json_t *body_error_json(const fb_body_error *e) {
   return o;
 }
 
-static json_t *lengths_json(const fb_linkage *lk) {
+/* the link lengths by the names of the case's description (the four-bar's
+ * crank, coupler, follower, ground; the slider-crank's crank, coupler,
+ * offset) [m] */
+static json_t *lengths_json(const fb_run *r, const fb_linkage *lk) {
+  const fb_mech_desc *mech = fb_case_mech(&r->c);
   json_t *o = json_object();
-  for (int i = 0; i < FB_LINK_COUNT; i++)
-    json_object_set_new(o, fb_link_name(i), num(lk->length[i]));
+  for (int i = 0; i < mech->nlengths; i++) json_object_set_new(o, mech->length[i], num(lk->length[i]));
   return o;
 }
 
@@ -57,12 +64,15 @@ static json_t *peak_at_json(const fb_peak_at *a) {
   return o;
 }
 
-static json_t *body_at_json(const fb_body_peak_at *a) {
+/* where each peak of output body b was: "omega_max", ... ("velocity_max",
+ * ... for a translating body) */
+static json_t *body_at_json(const fb_run *r, int b, const fb_body_peak_at *a) {
+  const int tr = fb_mech_output_translates(fb_case_mech(&r->c), b);
   json_t *o = json_object();
-  json_object_set_new(o, "omega_max", peak_at_json(&a->omega_max));
-  json_object_set_new(o, "omega_min", peak_at_json(&a->omega_min));
-  json_object_set_new(o, "alpha_max", peak_at_json(&a->alpha_max));
-  json_object_set_new(o, "alpha_min", peak_at_json(&a->alpha_min));
+  json_object_set_new(o, tr ? "velocity_max" : "omega_max", peak_at_json(&a->omega_max));
+  json_object_set_new(o, tr ? "velocity_min" : "omega_min", peak_at_json(&a->omega_min));
+  json_object_set_new(o, tr ? "acceleration_max" : "alpha_max", peak_at_json(&a->alpha_max));
+  json_object_set_new(o, tr ? "acceleration_min" : "alpha_min", peak_at_json(&a->alpha_min));
   return o;
 }
 
@@ -102,10 +112,12 @@ static json_t *body_peaks_json(const fb_run *r, int b, const fb_body_peaks *p) {
 
 /* a translating body's error against the analytic solution (the peaks' keys
  * with _rel, and the per-sample errors) */
-static json_t *slider_error_json(const fb_body_error *e) {
+static json_t *slider_error_json(const fb_body_error *e, int with_position) {
   json_t *o = json_object();
-  json_object_set_new(o, "position_max_m_rel", num(e->pos_max_rel));
-  json_object_set_new(o, "position_min_m_rel", num(e->pos_min_rel));
+  if (with_position) {
+    json_object_set_new(o, "position_max_m_rel", num(e->pos_max_rel));
+    json_object_set_new(o, "position_min_m_rel", num(e->pos_min_rel));
+  }
   json_object_set_new(o, "velocity_max_m_s_rel", num(e->omega_max_rel));
   json_object_set_new(o, "velocity_min_m_s_rel", num(e->omega_min_rel));
   json_object_set_new(o, "acceleration_max_m_s2_rel", num(e->alpha_max_rel));
@@ -118,7 +130,13 @@ static json_t *slider_error_json(const fb_body_error *e) {
 }
 
 static json_t *body_error_of(const fb_run *r, int b, const fb_body_error *e) {
-  return translating(r, b) ? slider_error_json(e) : body_error_json(e);
+  return translating(r, b) ? slider_error_json(e, 1) : body_error_json(e);
+}
+
+/* the same against the reference or the check integration, which compare
+ * velocity and acceleration peaks alone */
+static json_t *body_rate_error_of(const fb_run *r, int b, const fb_body_error *e) {
+  return translating(r, b) ? slider_error_json(e, 0) : body_error_json(e);
 }
 
 /* {"from_s", "to_s", "<body>": PEAKS per output body, "at": {"<body>": {"omega_max":
@@ -132,7 +150,7 @@ static json_t *window_json(const fb_run *r, const fb_peaks *p, const fb_peaks_at
   json_object_set_new(o, "to_s", num(to));
   for (int b = 0; b < nb; b++) json_object_set_new(o, name[b], body_peaks_json(r, b, &p->body[b]));
   json_t *a = json_object();
-  for (int b = 0; b < nb; b++) json_object_set_new(a, name[b], body_at_json(&at->body[b]));
+  for (int b = 0; b < nb; b++) json_object_set_new(a, name[b], body_at_json(r, b, &at->body[b]));
   json_object_set_new(o, "at", a);
   return o;
 }
@@ -143,7 +161,7 @@ static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
   for (int j = 0; j < 4; j++) {
     const fb_contact_law *law = fb_report_model_law(r, m, j);
     if (!law) continue;
-    json_t *o = fb_report_contact_law_json(j, law, r->scene.mapping);
+    json_t *o = fb_report_contact_law_json(fb_case_joint_name(&r->c, j), law, r->scene.mapping);
     const fb_contact_provenance *p = &m->run.provenance[j];
     const int have = m->run.has_provenance && p->contact_steps > 0;
     const char *mapping = fb_report_model_mapping(r, m);
@@ -231,7 +249,7 @@ static json_t *startup_window_json(const fb_model_result *m, const fb_run *r, do
     const fb_first_impact *fi = &m->first_impact;
     if (m->first_impact_joint >= 0 && fi->found) {
       json_t *f = json_object();
-      json_object_set_new(f, "joint", json_string(fb_joint_name(m->first_impact_joint)));
+      json_object_set_new(f, "joint", json_string(fb_case_joint_name(&r->c, m->first_impact_joint)));
       json_object_set_new(f, "time_s", num(fi->t));
       json_object_set_new(f, "speed_m_s", num(fi->speed));
       json_object_set_new(f, "crank_angle_rad", num(fi->crank_angle));
@@ -280,7 +298,7 @@ static json_t *delta_json(const fb_model_result *m, const fb_run *r) {
   const int nb = output_names(r, name);
   json_t *d = json_object();
   for (int b = 0; b < nb; b++)
-    json_object_set_new(d, name[b], rel_peaks_json(&m->delta_vs_nominal.body[b]));
+    json_object_set_new(d, name[b], rel_peaks_json(&m->delta_vs_nominal.body[b], translating(r, b)));
   return d;
 }
 
@@ -308,7 +326,7 @@ static json_t *error_vs_reference_json(const fb_model_result *m, const fb_run *r
   const int nb = output_names(r, name);
   json_t *o2 = json_object(), *a = json_array(), *b = json_array();
   json_object_set_new(o2, "reference", json_string(m->ref_name));
-  for (int k = 0; k < nb; k++) json_object_set_new(o2, name[k], body_error_json(&e->body[k]));
+  for (int k = 0; k < nb; k++) json_object_set_new(o2, name[k], body_rate_error_of(r, k, &e->body[k]));
   json_object_set_new(o2, "force_max_rel", num(e->force_max_rel));
   json_object_set_new(o2, "force_err_rms_n", num(e->force_err_rms));
   json_object_set_new(o2, "penetration_max_rel", num(e->penetration_max_rel));
@@ -375,18 +393,18 @@ static json_t *error_estimate_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o3, "tolerance", num(m->ref_tol));
   json_object_set_new(o3, "check_tolerance", num(m->ref_check_tol));
   json_object_set_new(o3, "check_steps", json_integer((json_int_t)m->ref_check_steps));
-  for (int b = 0; b < nb; b++) json_object_set_new(o3, name[b], body_error_json(&e->body[b]));
+  for (int b = 0; b < nb; b++) json_object_set_new(o3, name[b], body_rate_error_of(r, b, &e->body[b]));
   json_object_set_new(o3, "force_max_rel", num(e->force_max_rel));
   json_object_set_new(o3, "force_err_rms_n", num(e->force_err_rms));
   json_object_set_new(o3, "penetration_max_rel", num(e->penetration_max_rel));
   json_object_set_new(o3, "impacts", json_integer(e->impacts));
   json_object_set_new(o3, "impacts_check", json_integer(e->impacts_reference));
-  fb_report_check_json(o3, m);
+  fb_report_check_json(o3, m, r);
   return o3;
 }
 
 /* "spikes" (null before the window) and, with them, "clearance_joints" */
-static void spikes_json(json_t *o, const fb_model_result *m) {
+static void spikes_json(json_t *o, const fb_model_result *m, const fb_run *r) {
   if (!m->has_spikes) {
     json_object_set_new(o, "spikes", json_null());
     return;
@@ -394,16 +412,20 @@ static void spikes_json(json_t *o, const fb_model_result *m) {
   const fb_spikes *k = &m->spikes;
   json_t *sp = json_object();
   /* counts as JSON integers, the rest as numbers (null when not finite) */
+  const fb_mech_desc *mech = fb_case_mech(&r->c);
+  char kb[96];
 #define FB_JSON_SPIKE(field, key)                                                         \
-  json_object_set_new(sp, key, _Generic((k->field), int: json_integer((json_int_t)(k->field)), \
-                                        default: num((double)(k->field))));
+  json_object_set_new(sp, fb_mech_output_key(kb, sizeof kb, mech, key),                   \
+                      _Generic((k->field), int: json_integer((json_int_t)(k->field)),     \
+                               default: num((double)(k->field))));
   FB_SPIKE_KEYS(FB_JSON_SPIKE)
 #undef FB_JSON_SPIKE
   json_object_set_new(sp, "alpha_reference", json_string(m->spikes_reference));
   json_object_set_new(o, "spikes", sp);
   json_t *joints = json_array();
   for (int j = 0; j < 4; j++)
-    if (m->run.clearance_mask & (1 << j)) json_array_append_new(joints, json_string(fb_joint_name(j)));
+    if (m->run.clearance_mask & (1 << j))
+      json_array_append_new(joints, json_string(fb_case_joint_name(&r->c, j)));
   json_object_set_new(o, "clearance_joints", joints);
 }
 
@@ -422,7 +444,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
   json_object_set_new(o, "adaptive_steps", adaptive_steps_json(run));
-  json_object_set_new(o, "lengths_m", lengths_json(&run->lengths));
+  json_object_set_new(o, "lengths_m", lengths_json(r, &run->lengths));
   const char *name[FB_MECH_MAX_OUTPUTS];
   const int nb = output_names(r, name);
   for (int b = 0; b < nb; b++)
@@ -443,7 +465,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   if (m->has_ref_error) json_object_set_new(o, "error_vs_reference", error_vs_reference_json(m, r));
   if (m->has_divergence) json_object_set_new(o, "divergence", divergence_json(m));
   if (m->has_ref_estimate) json_object_set_new(o, "error_estimate", error_estimate_json(m, r));
-  spikes_json(o, m);
+  spikes_json(o, m, r);
   /* what the contact rows received, also for a run that stopped early */
   if (run->clearance_mask) json_object_set_new(o, "contact", contact_json(r, m));
   return o;
@@ -451,16 +473,17 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
 
 static json_t *stackup_json(const fb_case *c) {
   json_t *o = json_object();
+  const fb_mech_desc *mech = fb_case_mech(c); /* its lengths by their names */
   char corner[FB_LINK_COUNT + 1];
-  for (int k = 0; k < FB_LINK_COUNT; k++) corner[k] = "-0+"[c->stackup.corner[k] + 1];
-  corner[FB_LINK_COUNT] = '\0';
+  for (int k = 0; k < mech->nlengths; k++) corner[k] = "-0+"[c->stackup.corner[k] + 1];
+  corner[mech->nlengths] = '\0';
   json_object_set_new(o, "corner", json_string(corner));
   json_t *links = json_array();
   fb_linkage su;
   fb_case_stackup_lengths(c, &su);
-  for (int k = 0; k < FB_LINK_COUNT; k++) {
+  for (int k = 0; k < mech->nlengths; k++) {
     json_t *l = json_object();
-    json_object_set_new(l, "link", json_string(fb_link_name(k)));
+    json_object_set_new(l, "link", json_string(mech->length[k]));
     json_object_set_new(l, "nominal_m", num(c->nominal.length[k]));
     json_object_set_new(l, "plus_minus_m", num(c->plus_minus[k]));
     json_object_set_new(l, "stackup_m", num(su.length[k]));
@@ -488,10 +511,11 @@ static json_t *masses_json(const fb_case *c) {
     const fb_link_mass *m = &c->link[i];
     const fb_link_mass_source *s = &c->link_source[i];
     char kw[64], kt[64];
-    snprintf(kw, sizeof kw, "%s_width_mm", fb_link_name(i));
-    snprintf(kt, sizeof kt, "%s_thickness_mm", fb_link_name(i));
+    const char *body = fb_case_mech(c)->body[i].name;
+    snprintf(kw, sizeof kw, "%s_width_mm", body);
+    snprintf(kt, sizeof kt, "%s_thickness_mm", body);
     json_t *l = json_object();
-    json_object_set_new(l, "link", json_string(fb_link_name(i)));
+    json_object_set_new(l, "link", json_string(body));
     json_object_set_new(l, "mass_kg", num(m->mass));
     json_object_set_new(l, "mass_source", json_string(fb_value_source_name(s->mass)));
     json_object_set_new(l, "inertia_kg_m2", num(m->inertia));
@@ -589,9 +613,10 @@ json_t *fb_report_timing_json(const fb_run *r) {
   return json_pack("{s:s,s:o,s:o}", "case", r->c.name, "models", models, "ensemble", ens);
 }
 
-json_t *fb_report_contact_law_json(int joint, const fb_contact_law *law, fb_mapping mapping) {
+json_t *fb_report_contact_law_json(const char *joint, const fb_contact_law *law,
+                                   fb_mapping mapping) {
   json_t *o = json_object();
-  json_object_set_new(o, "joint", json_string(fb_joint_name(joint)));
+  json_object_set_new(o, "joint", json_string(joint));
   json_object_set_new(o, "law", json_string(fb_law_name(law->kind)));
   json_object_set_new(o, "mapping", json_string(fb_mapping_name(mapping)));
   json_object_set_new(o, "stiffness", json_real(law->stiffness));

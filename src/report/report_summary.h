@@ -21,11 +21,12 @@ json_t *fb_report_timing_json(const fb_run *r);
 
 /* The law-and-mapping part of one clearance joint's `contact` object (the
  * keys fourbar run's summary.json and fourbar penalty --json share):
- * {"joint", "law", "mapping", "stiffness" (N/m^n), "exponent", then for the
+ * {"joint" (the joint's name, joint), "law", "mapping", "stiffness" (N/m^n), "exponent", then for the
  * impact law "damping_n_s_m" (c_max) and "damping_depth_m" (d_max), for the
  * restitution law "restitution" and "damping_ratio" (zeta: the damper is
  * 2 zeta sqrt(p m_eff) at each step's effective mass), for other laws
  * "damping_n_s_m" (linear) or "restitution"}. */
-json_t *fb_report_contact_law_json(int joint, const fb_contact_law *law, fb_mapping mapping);
+json_t *fb_report_contact_law_json(const char *joint, const fb_contact_law *law,
+                                   fb_mapping mapping);
 
 #endif

@@ -62,10 +62,11 @@ static void print_contact(FILE *f, const fb_run *r, int W) {
       }
       const char *mapping = fb_report_model_mapping(r, m);
       if (part == 0)
-        fprintf(f, "%-*s %-16s %-11s %-20s %11.5g %4.3g\n", W, m->run.name, fb_joint_name(j),
-                fb_law_name(law->kind), mapping ? mapping : "-", law->stiffness, law->exponent);
+        fprintf(f, "%-*s %-16s %-11s %-20s %11.5g %4.3g\n", W, m->run.name,
+                fb_case_joint_name(&r->c, j), fb_law_name(law->kind), mapping ? mapping : "-", law->stiffness, law->exponent);
       else
-        fprintf(f, "%-*s %-16s %17s %9s %9s %9s %s\n", W, m->run.name, fb_joint_name(j), mass, erp,
+        fprintf(f, "%-*s %-16s %17s %9s %9s %9s %s\n", W, m->run.name,
+                fb_case_joint_name(&r->c, j), mass, erp,
                 cfm, hw, !have || !isfinite(p->h_omega_max) ? "-" : (p->h_omega_max <= FB_H_OMEGA_C_BOUND ? "yes" : "no: under-resolved"));
     }
   }
@@ -382,10 +383,17 @@ static void print_spikes(FILE *f, const fb_run *r, int W) {
   if (any) {
     fputc('\n', f);
     say(f, "spikes (clearance models; ratios of peak |alpha| to the ideal stack-up model):");
-    fprintf(f, "%-*s %9s %9s %10s %9s %9s %7s %8s %9s %9s\n", W, "model", "alpha/id", "alpha/id",
+    /* the output bodies' symbols and names (a slider's a/id, "sld deg") */
+    const fb_mech_desc *mech = fb_case_mech(&r->c);
+    char id[2][16], deg[2][16];
+    for (int b = 0; b < 2; b++) {
+      snprintf(id[b], sizeof id[b], "%s/id", fb_mech_output_symbol(mech, b, FB_Q_ACC));
+      snprintf(deg[b], sizeof deg[b], "%s deg", fb_report_body_abbrev(fb_mech_output_name(mech, b)));
+    }
+    fprintf(f, "%-*s %9s %9s %10s %9s %9s %7s %8s %9s %9s\n", W, "model", id[0], id[1],
             "omega dev", "force", "penetr.", "impacts", "free", "spike at", "spike at");
-    fprintf(f, "%-*s %9s %9s %10s %9s %9s %7s %8s %9s %9s\n", W, "", "coupler", "follower",
-            "rad/s", "N", "um", "", "fraction", "cpl deg", "flw deg");
+    fprintf(f, "%-*s %9s %9s %10s %9s %9s %7s %8s %9s %9s\n", W, "", fb_mech_output_name(mech, 0),
+            fb_mech_output_name(mech, 1), "rad/s", "N", "um", "", "fraction", deg[0], deg[1]);
     for (int i = 0; i < r->n; i++) {
       const fb_model_result *m = &r->model[i];
       if (!m->has_spikes) continue;
@@ -481,10 +489,13 @@ static void print_vs_reference(FILE *f, const fb_run *r, int W) {
 void fb_report_print_table(FILE *f, const fb_run *r) {
   const fb_case *c = &r->c;
   const int W = model_width(r);
-  say(f, "case %s: %.6g rpm %s, %s branch, %g revolution%s, h = %g s (%s); "
+  say(f, "case %s: %.6g rpm %s, %s, %g revolution%s, h = %g s (%s); "
          "peaks over t >= %.6g s (%s); start %s, pin %s",
       c->name, c->crank_speed * 60.0 / (2.0 * M_PI), c->direction > 0 ? "ccw" : "cw",
-      c->branch == FB_BRANCH_OPEN ? "open" : "crossed", c->revolutions,
+      c->mechanism == FB_MECH_SLIDER_CRANK ? "the slider at +x of the crank pivot"
+      : c->branch == FB_BRANCH_OPEN        ? "open branch"
+                                           : "crossed branch",
+      c->revolutions,
       c->revolutions == 1 ? "" : "s", c->solver.h,
       c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep", r->t_window,
       c->peaks == FB_PEAKS_ALL ? "the whole run" : "after the first revolution",
@@ -512,9 +523,9 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   print_warnings(f, r);
 }
 
-void fb_report_print_contact_law(FILE *f, int joint, const fb_contact_law *law,
+void fb_report_print_contact_law(FILE *f, const char *joint, const fb_contact_law *law,
                                  fb_mapping mapping) {
-  fprintf(f, "  %-17s %-12s %-8s stiffness %.6g N/m^%.6g", fb_joint_name(joint),
+  fprintf(f, "  %-17s %-12s %-8s stiffness %.6g N/m^%.6g", joint,
           fb_law_name(law->kind), fb_mapping_name(mapping), law->stiffness, law->exponent);
   switch (law->kind) {
     case FB_LAW_IMPACT:

@@ -15,8 +15,8 @@ void fb_report_print_table(FILE *f, const fb_run *r);
 
 /* Prints one clearance joint's contact law (the keys of
  * fb_report_contact_law_json, report_summary.h) as text, one line per joint
- * and law, with %.6g digits. */
-void fb_report_print_contact_law(FILE *f, int joint, const fb_contact_law *law,
+ * and law (joint: the joint's name), with %.6g digits. */
+void fb_report_print_contact_law(FILE *f, const char *joint, const fb_contact_law *law,
                                  fb_mapping mapping);
 
 #endif

@@ -115,7 +115,7 @@ static json_t *at_step_json(const fb_cp_step *st, double k, double c) {
   return a;
 }
 
-void fb_report_cp_json(FILE *f, const fb_cp_result *o, const char *case_path, int joint) {
+void fb_report_cp_json(FILE *f, const fb_cp_result *o, const char *case_path, const char *joint) {
   const fb_cp_request *q = &o->q;
   json_t *j = json_object();
   json_t *c = json_object();
@@ -142,9 +142,9 @@ void fb_report_cp_json(FILE *f, const fb_cp_result *o, const char *case_path, in
                                   num(o->law_force), "mass_kg", o->m0, "linear_force_max_n",
                                   num(o->lin_force)));
   json_object_set_new(j, "contact", c);
-  json_object_set_new(j, "case", joint < 0 ? json_null()
+  json_object_set_new(j, "case", !joint ? json_null()
                                  : json_pack("{s:s,s:s,s:s}", "file", case_path, "joint",
-                                             fb_joint_name(joint), "model",
+                                             joint, "model",
                                              q->law == FB_LAW_HERTZ ? "clearance-impact"
                                                                     : "clearance-restitution"));
   json_object_set_new(j, "mass_kg", json_pack("{s:f,s:f,s:f}", "min", q->mass_min, "max",
@@ -271,12 +271,12 @@ static void print_at_step(FILE *f, const char *which, const fb_cp_step *st, doub
             rw->penetration[d], rw->duration[d]);
 }
 
-void fb_report_cp_text(FILE *f, const fb_cp_result *o, const char *case_path, int joint) {
+void fb_report_cp_text(FILE *f, const fb_cp_result *o, const char *case_path, const char *joint) {
   const fb_cp_request *q = &o->q;
-  if (joint >= 0)
+  if (joint)
     fprintf(f, "case %s, joint %s: the law of its clearance-%s models%s; effective mass over a "
               "revolution and every direction\n",
-              case_path, fb_joint_name(joint), q->law == FB_LAW_HERTZ ? "impact" : "restitution",
+              case_path, joint, q->law == FB_LAW_HERTZ ? "impact" : "restitution",
               q->law == FB_LAW_HERTZ ? " (its damper not carried), linearised at the joint's "
                                        "expected force" : "");
   fprintf(f, "contact: %s law, ", fb_law_name(q->law));

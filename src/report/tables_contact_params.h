@@ -10,10 +10,11 @@
 #include "contact_params.h"
 
 /* The JSON object of fourbar contact-params --json on f. case_path and
- * joint (fb_joint, -1: none) name the case the contact came from. */
-void fb_report_cp_json(FILE *f, const fb_cp_result *o, const char *case_path, int joint);
+ * joint (the joint's name in the case's mechanism; NULL: no case) name the
+ * case the contact came from. */
+void fb_report_cp_json(FILE *f, const fb_cp_result *o, const char *case_path, const char *joint);
 
 /* The text of fourbar contact-params on f (case_path, joint as above). */
-void fb_report_cp_text(FILE *f, const fb_cp_result *o, const char *case_path, int joint);
+void fb_report_cp_text(FILE *f, const fb_cp_result *o, const char *case_path, const char *joint);
 
 #endif

@@ -116,7 +116,7 @@ void fb_report_penalty_contact_text(FILE *f, const fb_penalty_study *s) {
     for (int m = 0; m < 2; m++) {
       if (!(c->clearance.mask & (1 << j))) continue;
       const fb_contact_estimate *e = &s->est[m][j];
-      fb_report_print_contact_law(f, j, &s->laws[m][j], s->mapping);
+      fb_report_print_contact_law(f, fb_case_joint_name(c, j), &s->laws[m][j], s->mapping);
       fprintf(f, "  %-17s %-12s effective mass %.4g .. %.4g kg over a revolution, expected "
               "impact force %.6g N (%g x the ideal reaction %.6g N), omega_c %.4g rad/s\n",
               "", "", e->m_eff_min, e->m_eff_max, e->force_expected, FB_IMPACT_LOAD_FACTOR,
@@ -139,7 +139,7 @@ static void contact_json(json_t *out, const fb_penalty_study *s) {
     for (int m = 0; m < 2; m++) {
       if (!(c->clearance.mask & (1 << j))) continue;
       const fb_contact_estimate *e = &s->est[m][j];
-      json_t *o = fb_report_contact_law_json(j, &s->laws[m][j], s->mapping);
+      json_t *o = fb_report_contact_law_json(fb_case_joint_name(c, j), &s->laws[m][j], s->mapping);
       json_object_set_new(o, "model", json_string(fb_penalty_contact_models[m]));
       json_object_set_new(o, "effective_mass_estimate_kg",
                           json_pack("{s:f,s:f}", "min", e->m_eff_min, "max", e->m_eff_max));

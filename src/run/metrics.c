@@ -280,7 +280,10 @@ fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
   const double two_pi = 2.0 * M_PI;
   out->alpha_peak_ratio_coupler = ac / alpha_ref_coupler;
   out->alpha_peak_ratio_follower = af / alpha_ref_follower;
-  out->omega_dev_max = fmax_d(err->coupler.omega_err_max, err->follower.omega_err_max);
+  /* the rotating output bodies' (a slider's is a speed, in other units) */
+  out->omega_dev_max = s->mech && fb_mech_output_translates(s->mech, 1)
+                           ? err->coupler.omega_err_max
+                           : fmax_d(err->coupler.omega_err_max, err->follower.omega_err_max);
   out->force_max = fmax;
   out->penetration_max = pmax;
   out->impacts = impacts;

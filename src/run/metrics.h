@@ -28,8 +28,9 @@ typedef struct {
 /* Spike metrics of a clearance model over the samples with t >= t_from. */
 typedef struct {
   double alpha_peak_ratio_coupler;  /* peak |alpha| / the reference's peak |alpha| [-] */
-  double alpha_peak_ratio_follower; /* [-] */
-  double omega_dev_max;             /* largest |omega - omega_exact(t)| of coupler and follower [rad/s] */
+  double alpha_peak_ratio_follower; /* [-] (the second output body's: a slider's |a|) */
+  double omega_dev_max;             /* largest |omega - omega_exact(t)| of the rotating output bodies
+                                       (the four-bar's coupler and follower, a slider-crank's rod) [rad/s] */
   double force_max;                 /* largest contact force over the clearance joints [N] */
   double penetration_max;           /* largest penetration [m] */
   int impacts;                      /* impact episodes begun in the window, all joints */

@@ -17,13 +17,14 @@ static int sample_finite(const fb_sample *x) {
 
 /* the engine's reason for a failed step (or create, self NULL) */
 static void engine_stop(fb_stop *out, const fb_engine *e, const void *self, fb_status st,
-                        double t, size_t k, const fb_diag *diag) {
+                        double t, size_t k, const fb_model_scene *sm, const fb_diag *diag) {
   memset(out, 0, sizeof *out);
   out->engine = e->name;
   out->joint = -1;
   if (self && e->stopped) {
     e->stopped(self, out);
     if (!out->engine) out->engine = e->name;
+    if (out->joint >= 0) out->joint_name = fb_case_joint_name(&sm->def->source, out->joint);
     if (out->kind != FB_STOP_NONE) return;
   }
   out->kind = st == FB_ERR_NOMEM ? FB_STOP_ALLOCATION : FB_STOP_SOLVER;
@@ -42,7 +43,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
   fb_status st = e->create(&self, sm, diag);
   r->setup_s = fb_clock_s() - t0;
   if (st == FB_ERR_NUMERIC) { /* nothing to sample: a result, not an error */
-    engine_stop(&r->stop, e, NULL, st, 0.0, 0, diag);
+    engine_stop(&r->stop, e, NULL, st, 0.0, 0, sm, diag);
     return FB_OK;
   }
   if (st != FB_OK) return st;
@@ -80,7 +81,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
     if (st == FB_ERR_NUMERIC || st == FB_ERR_NOMEM) { /* the engine gave up (ODE's own fatal
                                    check or its step memory, the reference's integrator): this
                                    model stops with its reason, the others run */
-      engine_stop(&r->stop, e, self, st, x.t, k, diag);
+      engine_stop(&r->stop, e, self, st, x.t, k, sm, diag);
       st = FB_OK;
       break;
     }
@@ -101,6 +102,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
         r->stop.t = x.t;
         r->stop.step = k;
         r->stop.joint = ct.joint;
+        r->stop.joint_name = fb_case_joint_name(&def->source, ct.joint);
         r->stop.value = ct.penetration;
         r->stop.limit = def->penetration_limit;
         break;

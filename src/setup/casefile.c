@@ -792,7 +792,7 @@ int fb_casefile_plausibility(const fb_case *c, char notes[][FB_DIAG_SIZE], int m
       const int l = link_at[j][s];
       if (l < 0 || warned[l]) continue;
       char wkey[64];
-      snprintf(wkey, sizeof wkey, "%s_width_mm", fb_link_name(l));
+      snprintf(wkey, sizeof wkey, "%s_width_mm", fb_case_mech(c)->body[l].name);
       const int width_counts = fb_casefile_given(c, "mass", wkey) ||
                                c->link_source[l].mass == FB_SOURCE_DERIVED;
       if (!width_counts || c->pin_diameter < c->link_width[l]) continue;
@@ -801,7 +801,7 @@ int fb_casefile_plausibility(const fb_case *c, char notes[][FB_DIAG_SIZE], int m
                "[pin] diameter_mm = %g is not smaller than [mass] %s = %g: the pin of the %s "
                "joint is as wide as the %s's bar it passes through, or wider",
                c->pin_diameter / FB_M_PER_MM, wkey, c->link_width[l] / FB_M_PER_MM,
-               fb_joint_name(j), fb_link_name(l));
+               fb_case_joint_name(c, j), fb_case_mech(c)->body[l].name);
     }
   }
   /* (a radial clearance as large as the pin's radius is an error: fb_case_check) */

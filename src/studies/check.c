@@ -18,10 +18,11 @@ static int add(fb_metric *out, int n, int max, const char *model, const char *gr
 }
 
 /* the pooled impact statistics of a model with an ensemble of several runs */
-static int add_stats(fb_metric *out, int n, int max, const fb_model_result *m) {
+static int add_stats(fb_metric *out, int n, int max, const fb_model_result *m,
+                     const fb_mech_desc *mech) {
   const fb_ensemble *e = &m->ensemble;
   const fb_impact_stats *p = &e->pooled, *sd = &e->spread;
-  char key[96];
+  char key[96], kb[96];
   int k = n;
   /* two ensembles of N members differing in roundoff alone: a pooled
    * statistic's difference has sd_member sqrt(2 / N); the pooled impact
@@ -33,7 +34,8 @@ static int add_stats(fb_metric *out, int n, int max, const fb_model_result *m) {
   snprintf(key, sizeof key, "%s_%s_%s", prefix, dkey, unit);                \
   {                                                                         \
     const int before = k;                                                   \
-    k = add(out, k, max, m->run.name, "stats", key, d->field);              \
+    k = add(out, k, max, m->run.name, "stats",                              \
+            fb_mech_output_key(kb, sizeof kb, mech, key), d->field);        \
     if (k > before) out[k - 1].ensemble_sd = s->field * two_over_n;                      \
   }
 #define FB_CHECK_STATS(sfield, sprefix, sunit)                              \
@@ -55,20 +57,30 @@ static int collect(const fb_run *r, fb_metric *out, int max, int first) {
     const fb_model_result *m = &r->model[i];
     const char *name = m->run.name;
     const int stats = m->has_ensemble && m->ensemble.members > 1;
-    if (stats) n = add_stats(out, n, max, m);
+    if (stats) n = add_stats(out, n, max, m, fb_case_mech(&r->c));
     if (stats && m->peaks_unconverged) continue; /* chaotic: its statistics, not its peaks */
+    /* each output body's group and keys in the names of the case's
+     * mechanism (fb_mech_output_key: the slider-crank's slider.velocity_max_m_s) */
+    const fb_mech_desc *mech = fb_case_mech(&r->c);
+    char kb[96];
     if (m->has_peaks) {
       const fb_body_peaks *b[2] = {&m->peaks.coupler, &m->peaks.follower};
       const char *bn[2] = {"coupler", "follower"};
       for (int k = 0; k < 2; k++) {
-#define FB_CHECK_PEAK(field, key) n = add(out, n, max, name, bn[k], key, b[k]->field);
+        char grp[96], gk[96];
+#define FB_CHECK_PEAK(field, key)                                               \
+  snprintf(gk, sizeof gk, "%s.%s", bn[k], key);                                 \
+  fb_mech_output_key(kb, sizeof kb, mech, gk);                                  \
+  snprintf(grp, sizeof grp, "%.*s", (int)(strchr(kb, '.') - kb), kb);           \
+  n = add(out, n, max, name, grp, strchr(kb, '.') + 1, b[k]->field);
         FB_BODY_PEAK_KEYS(FB_CHECK_PEAK)
 #undef FB_CHECK_PEAK
       }
     }
     if (m->has_spikes) {
       const fb_spikes *s = &m->spikes;
-#define FB_CHECK_SPIKE(field, key) n = add(out, n, max, name, "spikes", key, (double)s->field);
+#define FB_CHECK_SPIKE(field, key) \
+  n = add(out, n, max, name, "spikes", fb_mech_output_key(kb, sizeof kb, mech, key), (double)s->field);
       FB_SPIKE_KEYS(FB_CHECK_SPIKE)
 #undef FB_CHECK_SPIKE
     }
@@ -119,14 +131,19 @@ int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
   const int np = (int)(sizeof peak_keys / sizeof peak_keys[0]);
   const int ns = (int)(sizeof spike_keys / sizeof spike_keys[0]);
   const int nf = (int)(sizeof first_keys / sizeof first_keys[0]);
-  for (int m = 0; m < fb_model_count; m++)
-    for (int g = 0; g < 4; g++)
-      for (int k = 0; k < (g < 2 ? np : g == 2 ? ns : nf); k++) {
-        char full[160];
-        snprintf(full, sizeof full, "%s.%s.%s", fb_models[m].name, groups[g],
-                 g < 2 ? peak_keys[k] : g == 2 ? spike_keys[k] : first_keys[k]);
-        if (prefix ? strncmp(full, name, cmp) == 0 : strcmp(full, name) == 0) return 1;
-      }
+  /* every mechanism's names of the per-body groups and keys (a slider-crank's
+   * slider.velocity_max_m_s, spikes.acceleration_peak_ratio_slider) */
+  for (int t = 0; t < FB_MECH_COUNT; t++)
+    for (int m = 0; m < fb_model_count; m++)
+      for (int g = 0; g < 4; g++)
+        for (int k = 0; k < (g < 2 ? np : g == 2 ? ns : nf); k++) {
+          char full[160], key[160], named[160];
+          snprintf(key, sizeof key, "%s.%s", groups[g],
+                   g < 2 ? peak_keys[k] : g == 2 ? spike_keys[k] : first_keys[k]);
+          snprintf(full, sizeof full, "%s.%s", fb_models[m].name,
+                   fb_mech_output_key(named, sizeof named, fb_mech_of((fb_mech_type)t), key));
+          if (prefix ? strncmp(full, name, cmp) == 0 : strcmp(full, name) == 0) return 1;
+        }
   if (known) {
     /* the groups and keys, for the message */
     size_t w = (size_t)snprintf(known, size, "group coupler or follower with key");

@@ -1,4 +1,4 @@
-/* The four-bar in Bullet (bullet_scene.h). */
+/* The four-bar and the slider-crank in Bullet (bullet_scene.h). */
 #include "bullet_scene.h"
 
 #include <math.h>
@@ -59,12 +59,15 @@ struct World {
     info.m_minimumSolverBatchSize = 1; /* one island, one solve */
     info.m_leastSquaresResidualThreshold = 0.0;
   }
-  /* a planar body of mass m and principal moments (long, transverse, hinge) */
-  btRigidBody *body(double m, const btVector3 &inertia) {
+  /* a planar body of mass m and principal moments (long, transverse, hinge);
+   * planar 0: a body free in 3-D (the slider, which its guide holds) */
+  btRigidBody *body(double m, const btVector3 &inertia, bool planar = true) {
     btRigidBody::btRigidBodyConstructionInfo ci(m, nullptr, &shape, inertia);
     btRigidBody *b = new btRigidBody(ci);
-    b->setLinearFactor(btVector3(1, 1, 0));
-    b->setAngularFactor(btVector3(0, 0, 1));
+    if (planar) {
+      b->setLinearFactor(btVector3(1, 1, 0));
+      b->setAngularFactor(btVector3(0, 0, 1));
+    }
     b->setFlags(0); /* no gyroscopic term: planar rotation about a principal axis */
     b->setDamping(0, 0);
     b->setSleepingThresholds(0, 0);
@@ -86,6 +89,8 @@ struct fb_bullet_scene {
   btRigidBody *b1[4] = {nullptr, nullptr, nullptr, nullptr}, *b2[4] = {nullptr, nullptr, nullptr,
                                                                         nullptr};
   btJointFeedback feedback[4];
+  btSliderConstraint *guide = nullptr; /* the slider-crank's slider-ground joint */
+  double guide_y = 0.0, guide_z = 0.0; /* its line: y = offset, z = 0 [m] */
   FbRows *drive = nullptr;
   Clearance cl[4];
   size_t steps = 0;
@@ -96,6 +101,7 @@ struct fb_bullet_scene {
   double w_inv[4][2][2];
   int w_valid = 0;
   fb_stop stop;
+  int slider_crank = 0; /* 1: body 2 is the slider, joint 3 the guide */
 };
 
 static btVector3 world_point(const btRigidBody *b, const btVector3 &local) {
@@ -130,6 +136,21 @@ static btRigidBody *make_link(World *w, const fb_link_mass *lm, const double p[2
   return b;
 }
 
+/* the slider-crank's slider: a body free in 3-D whose centre of mass is its
+ * hole centre h, moving at v along +x, its principal moments on its (x, y,
+ * z); the guide (btSliderConstraint) holds all of it but x */
+static btRigidBody *make_slider(World *w, const fb_link_mass *lm, const double h[2], double v) {
+  btRigidBody *b =
+      w->body(lm->mass, btVector3(lm->inertia_long, lm->inertia_transverse, lm->inertia), false);
+  btTransform t;
+  t.setIdentity();
+  t.setOrigin(btVector3(h[0], h[1], 0));
+  b->setCenterOfMassTransform(t);
+  b->setLinearVelocity(btVector3(v, 0, 0));
+  b->setAngularVelocity(btVector3(0, 0, 0));
+  return b;
+}
+
 extern "C" int fb_bullet_version(void) { return btGetVersion(); }
 
 static void scene_free(fb_bullet_scene *s) {
@@ -140,6 +161,7 @@ static void scene_free(fb_bullet_scene *s) {
       if (s->cl[j].row) s->w->world.removeConstraint(s->cl[j].row), delete s->cl[j].row;
     }
     if (s->drive) s->w->world.removeConstraint(s->drive), delete s->drive;
+    if (s->guide) s->w->world.removeConstraint(s->guide), delete s->guide;
     for (int i = 0; i < 3; i++)
       if (s->body[i]) s->w->world.removeRigidBody(s->body[i]), delete s->body[i];
     delete s->w;
@@ -170,12 +192,32 @@ extern "C" fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_mode
                                   st.pin[FB_JOINT_B], st.crank_omega, zero);
     s->body[FB_COUPLER] = make_link(s->w, &sm->link[FB_COUPLER], st.hole[FB_JOINT_B],
                                     st.pin[FB_JOINT_C], st.coupler_omega, st.coupler_b_vel);
-    s->body[FB_FOLLOWER] = make_link(s->w, &sm->link[FB_FOLLOWER], st.pin[FB_JOINT_D],
-                                     st.hole[FB_JOINT_C], st.follower_omega, zero);
+    s->slider_crank = sm->def->source.mechanism == FB_MECH_SLIDER_CRANK;
+    s->body[2] = s->slider_crank
+                     ? make_slider(s->w, &sm->link[2], st.hole[FB_JOINT_C], st.body[1][FB_Q_VEL])
+                     : make_link(s->w, &sm->link[FB_FOLLOWER], st.pin[FB_JOINT_D],
+                                 st.hole[FB_JOINT_C], st.follower_omega, zero);
     btRigidBody *const first[4] = {s->body[FB_CRANK], s->body[FB_CRANK], s->body[FB_COUPLER],
-                                   s->body[FB_FOLLOWER]};
-    btRigidBody *const second[4] = {nullptr, s->body[FB_COUPLER], s->body[FB_FOLLOWER], nullptr};
+                                   s->body[2]};
+    btRigidBody *const second[4] = {nullptr, s->body[FB_COUPLER], s->body[2], nullptr};
     for (int j = 0; j < 4; j++) {
+      if (s->slider_crank && j == FB_JOINT_D) {
+        /* the guide: btSliderConstraint to the world along +x through the
+         * slider's centre (y = offset, z = 0); its rows hold y, z and the
+         * rotations about y and z (and about x once it turns), hard (CFM
+         * 0) with the pins' ERP [solver] world_erp */
+        s->b1[j] = s->body[2];
+        btTransform frame;
+        frame.setIdentity();
+        s->guide = new btSliderConstraint(*s->body[2], frame, true);
+        for (int axis = 0; axis < 6; axis++)
+          s->guide->setParam(BT_CONSTRAINT_STOP_ERP, sm->solver.world_erp, axis);
+        s->guide->setJointFeedback(&s->feedback[j]);
+        s->guide->enableFeedback(true);
+        s->guide_y = st.hole[FB_JOINT_C][1];
+        s->w->add(s->guide);
+        continue;
+      }
       s->b1[j] = first[j];
       s->b2[j] = second[j];
       const btVector3 pw(st.pin[j][0], st.pin[j][1], 0), hw(st.hole[j][0], st.hole[j][1], 0);
@@ -211,6 +253,10 @@ extern "C" fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_mode
     s->angle[i] = body_angle(s->body[i]);
     s->omega_prev[i] = s->body[i]->getAngularVelocity()[2];
   }
+  if (s->slider_crank) { /* the slider's x and v along the guide */
+    s->angle[2] = s->body[2]->getCenterOfMassPosition()[0];
+    s->omega_prev[2] = s->body[2]->getLinearVelocity()[0];
+  }
   *out = s;
   return FB_OK;
 }
@@ -231,6 +277,11 @@ static void mechanism(const fb_bullet_scene *s, fb_mechanism *m) {
                             : world_point(s->b1[j], s->pin_local[j][0]);
     m->joint[j][0] = q[0];
     m->joint[j][1] = q[1];
+  }
+  if (s->slider_crank) { /* the guide at the slider's point (its centre, the hole's) */
+    m->joint[FB_JOINT_D][0] = m->com[2][0];
+    m->joint[FB_JOINT_D][1] = m->com[2][1];
+    m->prismatic_mask = 1 << FB_JOINT_D;
   }
   m->clearance_mask = s->def.clearance_mask;
   m->crank_driven = 1;
@@ -413,6 +464,13 @@ extern "C" fb_status fb_bullet_scene_step(fb_bullet_scene *s, fb_diag *diag) {
     c->force_pin[1] = c->row->nrows ? c->force * r.n[1] : 0.0;
   }
   for (int i = 0; i < 3; i++) {
+    if (s->slider_crank && i == 2) { /* the slider: x, v, a along the guide */
+      const double v = s->body[i]->getLinearVelocity()[0];
+      s->alpha[i] = (v - s->omega_prev[i]) / h;
+      s->omega_prev[i] = v;
+      s->angle[i] = s->body[i]->getCenterOfMassPosition()[0];
+      continue;
+    }
     const double w = s->body[i]->getAngularVelocity()[2];
     s->alpha[i] = (w - s->omega_prev[i]) / h;
     s->omega_prev[i] = w;
@@ -466,6 +524,11 @@ extern "C" double fb_bullet_scene_joint_drift(const fb_bullet_scene *s) {
         world_point(s->b1[j], s->pin_local[j][0]) - world_point(s->b2[j], s->pin_local[j][1]);
     if (d.length() > worst) worst = d.length();
   }
+  if (s->guide) { /* the slider's centre off its guide line */
+    const btVector3 p = s->body[2]->getCenterOfMassPosition();
+    const double d = hypot(p[1] - s->guide_y, p[2] - s->guide_z);
+    if (d > worst) worst = d;
+  }
   return worst;
 }
 
@@ -491,6 +554,14 @@ extern "C" void fb_bullet_scene_reactions(const fb_bullet_scene *s, double force
                                           double *drive_torque) {
   const int on_body2[4] = {0, 1, 1, 0};
   for (int j = 0; j < 4; j++) {
+    if (j == FB_JOINT_D && s->guide) {
+      /* the force on the ground from the slider: minus the guide's on the
+       * slider (its body B) */
+      const btVector3 &f = s->feedback[j].m_appliedForceBodyB;
+      force[j][0] = s->steps ? -f[0] : 0.0;
+      force[j][1] = s->steps ? -f[1] : 0.0;
+      continue;
+    }
     if (!s->pin[j]) {
       const double sign = on_body2[j] ? -1.0 : 1.0;
       force[j][0] = sign * s->cl[j].force_pin[0];

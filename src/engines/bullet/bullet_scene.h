@@ -1,4 +1,4 @@
-/* The four-bar in Bullet 3.24 (double precision, bullet-float64): the same
+/* The four-bar and the slider-crank in Bullet 3.24 (double precision, bullet-float64): the same
  * scene definition as the ODE world (ode_world.h: lengths, masses, inertias,
  * gravity, drive, start state, clearance joints and their contact laws),
  * built as three btRigidBody links in a btDiscreteDynamicsWorld. The only
@@ -41,6 +41,25 @@
  *   J v_{n+1} = ERP depth / h - CFM lambda, ODE's contact row, with lambda
  *   the row's force.
  *
+ * The slider-crank (the case's [linkage] type = slider-crank,
+ *   fb_mech_slider_crank): crank and connecting rod as the four-bar's crank
+ *   and coupler (planar bodies, pin rows at A and B, the same drive row);
+ *   the slider a btRigidBody free in 3-D (linear and angular factors 1)
+ *   with its centre of mass at its hole centre H = (x, offset), held on its
+ *   guide by a btSliderConstraint to the world along +x (Bullet's prismatic
+ *   joint: rows y, z and the rotations about y and z; about x only once it
+ *   turns, which nothing in the plane makes it do), its ERP set to
+ *   [solver] world_erp (setParam BT_CONSTRAINT_STOP_ERP), CFM 0. A
+ *   btSliderConstraint on a planar-factored body would leave rows on zeroed
+ *   freedoms (a zero diagonal in the MLCP); the 3-D slider has none. The
+ *   piston pin (joint C) is a pin row pair, or the clearance contact with
+ *   the pin on the rod and the hole on the slider, as any clearance joint.
+ *   Samples: the slider's x, v and a = (v_{n+1} - v_n) / h in the second
+ *   output body's slots; its effective mass (matched mapping, restitution
+ *   damper) with the guide as effective_mass.h's prismatic joint D at the
+ *   slider's centre; its reaction at slider-ground is the force on the
+ *   ground, minus the guide's on the slider (btJointFeedback).
+ *
  * Stepping and sampling: stepSimulation(h, 0) (one step of exactly h;
  *   semi-implicit Euler, rotations by the exponential map), then samples as
  *   ODE's: angles and angular velocities at t = steps h, angular
@@ -82,10 +101,12 @@ fb_status fb_bullet_scene_step(fb_bullet_scene *s, fb_diag *diag);
 /* Why the last step failed (FB_STOP_NONE while none did). */
 void fb_bullet_scene_stopped(const fb_bullet_scene *s, fb_stop *out);
 
-/* Current state as a sample at t = steps h (see the header comment). */
+/* Current state as a sample at t = steps h (see the header comment; a
+ * slider-crank's body[1] holds the slider's x [m], v [m/s], a [m/s^2]). */
 void fb_bullet_scene_sample(const fb_bullet_scene *s, fb_sample *x);
 
-/* Largest distance between the two bodies' points of an ideal joint [m]. */
+/* Largest distance between the two bodies' points of an ideal joint, or of
+ * the slider's centre from its guide line [m]. */
 double fb_bullet_scene_joint_drift(const fb_bullet_scene *s);
 
 /* Largest penetration over the clearance joints now [m] and its joint (-1
@@ -96,7 +117,10 @@ double fb_bullet_scene_penetration(const fb_bullet_scene *s, int *joint);
 void fb_bullet_scene_provenance(const fb_bullet_scene *s, int j, fb_contact_provenance *out);
 
 /* Joint reactions of the last step with fb_ode_world_reactions' convention
- * (ode_world.h) [N], and the drive row's torque on the crank about +z [N m]. */
+ * (ode_world.h) [N] (a slider-crank's slider-ground: the force on the ground
+ * from the slider, (0, -N) with N the guide's normal force on the slider
+ * along +y, as the analytic engine's), and the drive row's torque on the
+ * crank about +z [N m]. */
 void fb_bullet_scene_reactions(const fb_bullet_scene *s, double force[4][2], double *drive_torque);
 
 /* Impact episodes counted so far at joint j. */

@@ -18,13 +18,6 @@
 fb_status mujoco_def_from_model(mj_def *d, const fb_model_scene *sm, fb_diag *diag) {
   memset(d, 0, sizeof *d);
   d->mech = sm->def->source.mechanism;
-  fb_status st = fb_model_scene_start(&d->start, sm, diag);
-  if (st != FB_OK) return st;
-  if (sm->solver.h_mode == FB_STEP_ADAPTIVE && sm->collider == FB_COLLIDER_NATIVE)
-    return fb_diag_set(diag, FB_ERR_ARG,
-                       "model '%s': [solver] h_s = adaptive follows the project's contact law "
-                       "only; run MuJoCo's native contacts at a fixed or auto step",
-                       sm->model->name);
   /* a slider-crank's only pin that may carry clearance is its piston pin
    * (the case check refuses the others; a scene built in code could not) */
   if (d->mech == FB_MECH_SLIDER_CRANK && (sm->clearance_mask & ~(1 << FB_JOINT_C)))
@@ -32,6 +25,13 @@ fb_status mujoco_def_from_model(mj_def *d, const fb_model_scene *sm, fb_diag *di
                        "model '%s': the MuJoCo slider-crank takes clearance at its piston pin "
                        "(coupler-slider) only; clearance mask 0x%x names another joint",
                        sm->model->name, (unsigned)sm->clearance_mask);
+  fb_status st = fb_model_scene_start(&d->start, sm, diag);
+  if (st != FB_OK) return st;
+  if (sm->solver.h_mode == FB_STEP_ADAPTIVE && sm->collider == FB_COLLIDER_NATIVE)
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "model '%s': [solver] h_s = adaptive follows the project's contact law "
+                       "only; run MuJoCo's native contacts at a fixed or auto step",
+                       sm->model->name);
   d->lengths = sm->lengths;
   d->omega2 = sm->omega2;
   d->gravity = sm->gravity;

@@ -1,5 +1,6 @@
 /* The four-bar in MuJoCo against the exact analytic solution (ideal loop)
- * and the reference dynamics (crank-coupler clearance joint).
+ * and the reference dynamics (crank-coupler clearance joint); the
+ * slider-crank's tests follow the four-bar's (their own sketch there).
  *
  *            C  connect equality (loop closure, direct solref k = 1/h^2, b = 1/h)
  *           / \
@@ -15,6 +16,7 @@
  * project's contact law acts through mjcb_passive; RK4 then integrates the
  * same equations as the reference (minimal coordinates, rk8pd at 1e-10). */
 #include <string.h>
+#include <unistd.h>
 
 #include <jansson.h>
 
@@ -27,6 +29,7 @@
 #include "outcome_text.h"
 #include "report.h"
 #include "run.h"
+#include "slider_crank_invdyn.h"
 
 /* the issue's acceptance bound on peak angular velocity at the default step
  * (measured: 1.9e-6) */
@@ -500,6 +503,381 @@ static void test_mjcf_from_the_definition(void **state) {
   assert_null(s);
 }
 
+/* ---- the slider-crank (issue 45) ----
+ *
+ *                  B
+ *                 / \            world -> crank (hinge A, the flywheel)
+ *          crank /   \ coupler            -> coupler, the rod (hinge B);
+ *               /     \          world -> slider (slide along +x at
+ *              A       [ C ]              y = offset); the piston pin C
+ *                 - - - - - - -> x  closed by the connect equality (ideal)
+ *                                   or by the law through mjcb_passive
+ *
+ * Two cases: the shipped cases/slider_crank_flores.ini (crank 50 mm, rod
+ * 120 mm, no offset, 5000 rpm, radial clearance 500 um, h_s = auto = 2e-6 s)
+ * and this milder one of the test's own (offset 6 mm, stack-up tolerances,
+ * 2000 rpm, 100 um, the crank started at 20 deg; h_s = auto = 2.82e-6 s). */
+static const char *const SC_CASE_TEXT =
+    "[case]\n"
+    "name = sc_mujoco\n"
+    "[linkage]\n"
+    "type = slider-crank\n"
+    "crank_mm = 50\n"
+    "coupler_mm = 120\n"
+    "offset_mm = 6\n"
+    "crank_angle0_deg = 20\n"
+    "[tolerance]\n"
+    "crank_plus_minus_mm = 0.1\n"
+    "coupler_plus_minus_mm = 0.1\n"
+    "[mass]\n"
+    "slider_kg = 0.14\n"
+    "[drive]\n"
+    "speed_rpm = 2000\n"
+    "[pin]\n"
+    "radial_clearance_um = 100\n"
+    "[clearance]\n"
+    "joints = coupler-slider\n"
+    "[run]\n"
+    "models = analytic\n"
+    "revolutions = 2\n"
+    "ensemble = 1\n";
+
+/* the acceptance bound of issue 45 on the ideal models' peaks (rod omega and
+ * alpha, slider v and a) at the automatic step; measured 7.9e-7 on the
+ * shipped case, 2.4e-7 on the test's own */
+#define SC_IDEAL_PEAK_REL_TOL 1e-4
+/* the issue's bound on peak force and penetration against the reference
+ * (matched impacts) at a step that resolves the impact law's damper (below) */
+#define SC_CLEARANCE_PEAK_REL_TOL 0.01
+/* ... and at the automatic step: the impact law's damper reaches its full
+ * c_max = 1e4 N s/m within d_max = 1 um of penetration, 0.23 us at the
+ * 4.3 m/s start-up impact of the shipped case, a ninth of its 2e-6 s step;
+ * an explicit fixed step meets that onset at an arbitrary phase of a step
+ * (RK4: the force enters at its last stage), which leaves the first
+ * sample's impulse first-order wrong. Measured: peak force -3.2 %,
+ * penetration -0.05 %, matched impacts' largest error 3.2 % (force) and
+ * 1.5 % (penetration) at 2e-6 s; 4.1 % / 1.4 % at 1e-6 s; 0.69 % / 0.11 % at
+ * 5e-7 s; 0.88 % / 0.02 % at 2.5e-7 s (the error follows the onset's phase
+ * in the step, so it does not fall monotonically). The project's bound on
+ * matched impacts (FB_MATCHED_IMPACT_ERROR_BOUND, 5 %) */
+#define SC_AUTO_IMPACT_REL_TOL FB_MATCHED_IMPACT_ERROR_BOUND
+/* the step at which the impact law's onset is resolved to the issue's 1 %:
+ * an eighth of the shipped case's automatic step [s] (measured above) */
+#define SC_FINE_H_S "2.5e-7"
+/* the restitution law's first impacts one by one (before the rattling's
+ * chaos parts the sequences; the shipped case leaves its reference at
+ * 11.8 ms after 18 matched impacts): measured within 0.24 % */
+#define SC_FIRST_IMPACT_REL_TOL 0.01
+/* MuJoCo's effective mass along the normal (its mass matrix with the slide
+ * and the flywheel's finite armature) against the closed form's range over a
+ * revolution (effective_mass.h, the rod about the held B and the slider
+ * along x): the pin's 500 um of play moves the configuration; 1 %, as the
+ * four-bar's EFFECTIVE_MASS_REL_TOL */
+#define SC_EFFECTIVE_MASS_REL_TOL 0.01
+/* reactions against the slider-crank's inverse dynamics at the sample's
+ * crank angle, as a share of the largest: first order in h like the
+ * four-bar's (REACTION_REL_TOL, 1.6e-4 at 1e-5 s); measured 2.1e-5 /
+ * 4.5e-5 (reactions / drive torque) at the test case's 2.82e-6 s */
+#define SC_REACTION_REL_TOL 2e-4
+/* the loop closure's drift and the flywheel's crank-angle error: the
+ * four-bar's bounds (DRIFT_TOL_M, CRANK_ANGLE_TOL_RAD) */
+
+/* loads the test's own case (file = NULL) or a shipped one with overrides */
+static void sc_load(fb_case *c, const char *file, const char **sets, int n) {
+  char path[4096];
+  int tmp = 0;
+  if (file) {
+    const char *dir = getenv("FOURBAR_CASES_DIR");
+    snprintf(path, sizeof path, "%s/%s", dir ? dir : "cases", file);
+  } else {
+    snprintf(path, sizeof path, "/tmp/fourbar-mujoco-sc-XXXXXX");
+    const int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    const size_t len = strlen(SC_CASE_TEXT);
+    assert_int_equal(write(fd, SC_CASE_TEXT, len), (ssize_t)len);
+    close(fd);
+    tmp = 1;
+  }
+  fb_diag d;
+  const fb_status st = fb_casefile_load(c, path, sets, n, &d);
+  if (tmp) unlink(path);
+  if (st != FB_OK) fail_msg("%s: %s", file ? file : "the test's case", d.msg);
+}
+
+/* runs a slider-crank case with the given models and overrides (no added
+ * ensemble: the verdicts are not what is tested) */
+static void sc_run(fb_run *r, const char *file, const char *models, const char **sets, int n) {
+  const char *all[8];
+  char ms[256];
+  snprintf(ms, sizeof ms, "run.models=%s", models);
+  all[0] = ms;
+  all[1] = "run.ensemble=1";
+  for (int i = 0; i < n && i < 6; i++) all[i + 2] = sets[i];
+  static fb_case c;
+  sc_load(&c, file, all, n + 2);
+  fb_diag d;
+  if (fb_run_case(r, &c, NULL, NULL, &d) != FB_OK) fail_msg("run failed: %s", d.msg);
+  for (int i = 0; i < r->n; i++)
+    if (r->model[i].run.stop.kind != FB_STOP_NONE)
+      fail_msg("%s: stopped (%s)", r->model[i].run.name, fb_stop_kind_name(r->model[i].run.stop.kind));
+}
+
+static void test_sc_mjcf(void **state) {
+  (void)state;
+  static fb_scene def;
+  fb_model_scene sm;
+  fb_case c;
+  const char *sets[] = {"run.models=mujoco-ideal-nominal"};
+  sc_load(&c, NULL, sets, 1);
+  fb_diag d;
+  assert_int_equal(fb_scene_from_case(&def, &c, &d), FB_OK);
+  assert_int_equal(fb_scene_select(&sm, &def, fb_model_find("mujoco-ideal-nominal"), &d), FB_OK);
+  static char buf[16384];
+  assert_int_equal(fb_mujoco_mjcf(buf, sizeof buf, &sm, &d), FB_OK);
+  /* the slider on its guide y = offset, no follower, the loop closed at the
+   * piston pin on the slider */
+  assert_non_null(strstr(buf, "<body name=\"slider\" pos=\""));
+  assert_non_null(strstr(buf, " 0.0060000000000000001 0\">"));
+  assert_non_null(strstr(buf, "<joint name=\"D\" type=\"slide\" axis=\"1 0 0\"/>"));
+  assert_null(strstr(buf, "follower"));
+  assert_non_null(strstr(buf, "body1=\"coupler\" body2=\"slider\""));
+  /* the export: the slider-crank's names, and the keyframe's three speeds */
+  assert_int_equal(fb_mujoco_export(buf, sizeof buf, &sm, &d), FB_OK);
+  assert_non_null(strstr(buf, "<joint name=\"slider-ground\" type=\"slide\""));
+  assert_non_null(strstr(buf, "<site name=\"coupler-slider_pin\""));
+  assert_non_null(strstr(buf, "<site name=\"coupler-slider_hole\""));
+  const char *key = strstr(buf, "qvel=\"");
+  assert_non_null(key);
+  int spaces = 0;
+  for (const char *q = key + 6; *q && *q != '"'; q++) spaces += *q == ' ';
+  assert_int_equal(spaces, 2);
+  /* clearance at the piston pin: no equality; the native bore between the
+   * rod's pin and the slider's hole */
+  const char *cl[] = {"run.models=mujoco-clearance-impact,mujoco-clearance-native"};
+  sc_load(&c, NULL, cl, 1);
+  assert_int_equal(fb_scene_from_case(&def, &c, &d), FB_OK);
+  assert_int_equal(fb_scene_select(&sm, &def, fb_model_find("mujoco-clearance-impact"), &d), FB_OK);
+  assert_int_equal(fb_mujoco_mjcf(buf, sizeof buf, &sm, &d), FB_OK);
+  assert_null(strstr(buf, "<connect"));
+  assert_non_null(strstr(buf, "<site name=\"C_hole\" pos=\"0 0 0\"/>"));
+  assert_non_null(strstr(buf, "integrator=\"RK4\""));
+  assert_int_equal(fb_scene_select(&sm, &def, fb_model_find("mujoco-clearance-native"), &d), FB_OK);
+  assert_int_equal(fb_mujoco_export(buf, sizeof buf, &sm, &d), FB_OK);
+  assert_non_null(strstr(buf, "<spatial name=\"coupler-slider_bore\""));
+  /* clearance anywhere else is refused by name (the case check refuses it
+   * first; a scene edited in code reaches the engine) */
+  assert_int_equal(fb_scene_select(&sm, &def, fb_model_find("mujoco-clearance-impact"), &d), FB_OK);
+  sm.clearance_mask |= 1 << FB_JOINT_B;
+  assert_int_equal(fb_mujoco_mjcf(buf, sizeof buf, &sm, &d), FB_ERR_ARG);
+  assert_non_null(strstr(d.msg, "piston pin"));
+}
+
+/* the ideal models at the automatic step on both cases */
+static void test_sc_ideal_models_match_analytic(void **state) {
+  (void)state;
+  static const char *const files[2] = {"slider_crank_flores.ini", NULL};
+  for (int f = 0; f < 2; f++) {
+    static fb_run r;
+    sc_run(&r, files[f], "mujoco-ideal-nominal, mujoco-ideal-stackup", NULL, 0);
+    assert_true(r.h_auto);
+    for (int i = 0; i < 2; i++) {
+      const fb_model_result *m = &r.model[i];
+      assert_true(m->has_error);
+      const fb_body_error *rod = &m->error.body[0], *sl = &m->error.body[1];
+      const double rod_w = worst(rod->omega_max_rel, rod->omega_min_rel, 0, 0);
+      const double rod_a = worst(rod->alpha_max_rel, rod->alpha_min_rel, 0, 0);
+      const double sl_v = worst(sl->omega_max_rel, sl->omega_min_rel, 0, 0);
+      const double sl_a = worst(sl->alpha_max_rel, sl->alpha_min_rel, 0, 0);
+      const double sl_x = worst(sl->pos_max_rel, sl->pos_min_rel, 0, 0);
+      report_residual(m->run.name, 0, 0);
+      report_residual(files[f] ? "  (shipped case)" : "  (test case)", r.c.solver.h, 0);
+      report_residual("  rod omega peak rel", rod_w, SC_IDEAL_PEAK_REL_TOL);
+      report_residual("  rod alpha peak rel", rod_a, SC_IDEAL_PEAK_REL_TOL);
+      report_residual("  slider v peak rel", sl_v, SC_IDEAL_PEAK_REL_TOL);
+      report_residual("  slider a peak rel", sl_a, SC_IDEAL_PEAK_REL_TOL);
+      report_residual("  slider x peak rel", sl_x, SC_IDEAL_PEAK_REL_TOL);
+      report_residual("  crank angle err [rad]", m->error.crank_angle_err_max, CRANK_ANGLE_TOL_RAD);
+      report_residual("  loop drift [m]", m->run.joint_drift_max, DRIFT_TOL_M);
+      assert_true(rod_w < SC_IDEAL_PEAK_REL_TOL && rod_a < SC_IDEAL_PEAK_REL_TOL);
+      assert_true(sl_v < SC_IDEAL_PEAK_REL_TOL && sl_a < SC_IDEAL_PEAK_REL_TOL);
+      assert_true(sl_x < SC_IDEAL_PEAK_REL_TOL);
+      assert_true(m->error.crank_angle_err_max < CRANK_ANGLE_TOL_RAD);
+      assert_true(m->run.joint_drift_max < DRIFT_TOL_M);
+    }
+    fb_run_free(&r);
+  }
+}
+
+/* the reactions of the ideal slider-crank against its inverse dynamics
+ * (slider_crank_invdyn.h) at the sample's crank angle; the guide's as the
+ * force on the ground from the slider, (0, -N) */
+static void test_sc_reactions_match_inverse_dynamics(void **state) {
+  (void)state;
+  static fb_run r;
+  sc_run(&r, NULL, "mujoco-ideal-nominal", NULL, 0);
+  const fb_series *s = &r.model[0].run.series;
+  assert_true(s->has_loads);
+  const fb_linkage *lk = &r.c.nominal;
+  const fb_slider_crank sc = {lk->length[FB_CRANK], lk->length[FB_COUPLER],
+                              lk->length[FB_LENGTH_OFFSET]};
+  const fb_link_mass *l = r.c.link;
+  const fb_slider_crank_mass mass = {l[0].mass, l[0].inertia, l[0].com_fraction,
+                                     l[1].mass, l[1].inertia, l[1].com_fraction, l[2].mass};
+  const double w = fb_case_omega2(&r.c);
+  double err = 0, fbig = 0, terr = 0, tmax = 0;
+  for (size_t i = 0; i < s->n; i++) {
+    if (s->t[i] < r.t_window) continue;
+    fb_slider_crank_reactions q;
+    fb_diag d;
+    assert_int_equal(fb_slider_crank_invdyn(&q, &sc, &mass, r.c.gravity, s->crank_angle[i], w, 0.0, &d),
+                     FB_OK);
+    double f[4][2];
+    for (int j = 0; j < FB_SC_PIN_COUNT; j++) f[j][0] = q.force[j][0], f[j][1] = q.force[j][1];
+    f[FB_SC_JOINT_SLIDER_GROUND][0] = 0.0;
+    f[FB_SC_JOINT_SLIDER_GROUND][1] = -q.guide_force;
+    for (int j = 0; j < 4; j++) {
+      err = fmax(err, hypot(s->reaction[j][0][i] - f[j][0], s->reaction[j][1][i] - f[j][1]));
+      fbig = fmax(fbig, hypot(f[j][0], f[j][1]));
+    }
+    terr = fmax(terr, fabs(s->drive_torque[i] - q.drive_torque));
+    tmax = fmax(tmax, fabs(q.drive_torque));
+  }
+  report_residual("slider-crank reactions vs inverse dynamics", err / fbig, SC_REACTION_REL_TOL);
+  report_residual("slider-crank drive torque vs inverse dynamics", terr / tmax, SC_REACTION_REL_TOL);
+  assert_true(err / fbig < SC_REACTION_REL_TOL);
+  assert_true(terr / tmax < SC_REACTION_REL_TOL);
+  fb_run_free(&r);
+}
+
+/* matched impacts whose peak force is below this share of the largest
+ * matched peak are grazing touches, left out of the one-by-one errors: the
+ * test case at 2.5e-7 s has three, of 0.2 N / 7 nm (twice) and 26.5 N /
+ * 0.64 um (the largest is 1e4 N / 5.1 um), whose relative errors (force
+ * -33 % and +9 %, penetration -58 % and -2.6 %) are those of a few samples
+ * at the law's foot, where rounding and the onset's phase in the step move
+ * a peak of nanometres; the other 12 matched impacts, 712 N and up, are
+ * within 0.69 % (force) and 0.46 % (penetration) there */
+#define SC_GRAZING_SHARE 0.01
+
+/* the largest |relative error| of force and penetration over the matched
+ * impacts that are not grazing touches (SC_GRAZING_SHARE) */
+static void sc_matched_errors(const fb_divergence *dv, double *ef, double *ep) {
+  const int n = dv->matched < FB_DIVERGE_MAX_IMPACTS ? dv->matched : FB_DIVERGE_MAX_IMPACTS;
+  double fmax_n = 0.0;
+  for (int k = 0; k < n; k++) fmax_n = fmax(fmax_n, dv->impact[k].force);
+  *ef = *ep = 0.0;
+  for (int k = 0; k < n; k++) {
+    if (dv->impact[k].force < SC_GRAZING_SHARE * fmax_n) continue;
+    *ef = fmax(*ef, fabs(dv->impact[k].force_rel));
+    *ep = fmax(*ep, fabs(dv->impact[k].penetration_rel));
+  }
+}
+
+/* peak force and penetration of the clearance-impact model against the
+ * reference, and its matched impacts' largest errors */
+static void sc_report_impact(const char *what, const fb_model_result *m, double tol) {
+  const fb_reference_error *re = &m->ref_error;
+  const fb_divergence *dv = &m->divergence;
+  double ef, ep;
+  sc_matched_errors(dv, &ef, &ep);
+  char name[160];
+  snprintf(name, sizeof name, "%s force peak rel", what);
+  report_residual(name, re->force_max_rel, tol);
+  snprintf(name, sizeof name, "%s penetration peak rel", what);
+  report_residual(name, re->penetration_max_rel, tol);
+  snprintf(name, sizeof name, "%s matched impacts force err max", what);
+  report_residual(name, ef, tol);
+  snprintf(name, sizeof name, "%s matched impacts penetration err max", what);
+  report_residual(name, ep, tol);
+  assert_true(m->has_ref_error && m->has_divergence);
+  assert_false(dv->diverged);
+  assert_int_equal(re->impacts, re->impacts_reference);
+  assert_true(dv->matched > 0);
+  assert_true(fabs(re->force_max_rel) < tol);
+  assert_true(fabs(re->penetration_max_rel) < tol);
+  assert_true(ef < tol && ep < tol);
+}
+
+static void test_sc_clearance_impact_matches_reference(void **state) {
+  (void)state;
+  static fb_run r;
+  /* the shipped case at its automatic step: it stays with the reference,
+   * within the matched impacts' bound (see SC_AUTO_IMPACT_REL_TOL) */
+  sc_run(&r, "slider_crank_flores.ini", "mujoco-clearance-impact, reference", NULL, 0);
+  assert_true(r.h_auto);
+  const fb_model_result *m = &r.model[0];
+  sc_report_impact("sc impact, auto", m, SC_AUTO_IMPACT_REL_TOL);
+  /* the effective mass along the normal, from MuJoCo's mass matrix, within
+   * the closed form's range over a revolution */
+  assert_true(m->run.has_provenance);
+  const fb_contact_provenance *p = &m->run.provenance[FB_JOINT_C];
+  const fb_linkage *lk = &m->run.lengths;
+  const fb_slider_crank sc = {lk->length[FB_CRANK], lk->length[FB_COUPLER],
+                              lk->length[FB_LENGTH_OFFSET]};
+  double lo = INFINITY, hi = 0.0;
+  for (int k = 0; k < 720; k++) {
+    fb_slider_crank_state st;
+    fb_diag d;
+    assert_int_equal(fb_slider_crank_solve(&st, &sc, k * M_PI / 360.0, 1.0, 0.0, &d), FB_OK);
+    fb_mechanism mech;
+    fb_mechanism_from_slider_crank(&mech, &st, r.c.link, 1 << FB_JOINT_C);
+    double w[4][2][2], a, b;
+    assert_int_equal(fb_effective_mass_tensor(w, &mech, &d), FB_OK);
+    fb_effective_mass_range(w[FB_JOINT_C], &a, &b);
+    lo = fmin(lo, a);
+    hi = fmax(hi, b);
+  }
+  report_residual("sc effective mass min [kg]", p->mass_eff_min, lo);
+  report_residual("sc effective mass max [kg]", p->mass_eff_max, hi);
+  assert_true(p->contact_steps > 0);
+  assert_true(p->mass_eff_min >= lo * (1.0 - SC_EFFECTIVE_MASS_REL_TOL));
+  assert_true(p->mass_eff_max <= hi * (1.0 + SC_EFFECTIVE_MASS_REL_TOL));
+  fb_run_free(&r);
+  /* a step that resolves the damper's onset: within the issue's 1 % */
+  const char *fine[] = {"solver.h_s=" SC_FINE_H_S};
+  sc_run(&r, "slider_crank_flores.ini", "mujoco-clearance-impact, reference", fine, 1);
+  sc_report_impact("sc impact, h = " SC_FINE_H_S, &r.model[0], SC_CLEARANCE_PEAK_REL_TOL);
+  fb_run_free(&r);
+  /* the test's own case at the same step: within 1 % (measured -0.02 %,
+   * -0.01 %; at its automatic step 2.82e-6 s it leaves the reference in
+   * revolution 2 after 4 matched impacts, the first within 2.3 %) */
+  sc_run(&r, NULL, "mujoco-clearance-impact, reference", fine, 1);
+  sc_report_impact("sc impact (test case), h = " SC_FINE_H_S, &r.model[0], SC_CLEARANCE_PEAK_REL_TOL);
+  fb_run_free(&r);
+}
+
+/* the restitution law on the shipped case at its automatic step: the first
+ * impacts one by one; the rattling that follows (45 impacts in two
+ * revolutions) is chaotic, its peaks compared by the run's statistics */
+static void test_sc_clearance_restitution_first_impacts(void **state) {
+  (void)state;
+  static fb_run r;
+  sc_run(&r, "slider_crank_flores.ini", "mujoco-clearance-restitution, reference-restitution", NULL, 0);
+  const fb_model_result *m = &r.model[0];
+  assert_true(m->has_ref_error);
+  const fb_reference_error *re = &m->ref_error;
+  assert_int_equal(re->first_impacts, FB_FIRST_IMPACTS);
+  for (int k = 0; k < re->first_impacts; k++) {
+    report_residual("sc restitution impact k force rel", re->first_impact_force_rel[k],
+                    SC_FIRST_IMPACT_REL_TOL);
+    report_residual("sc restitution impact k penetration rel", re->first_impact_penetration_rel[k],
+                    SC_FIRST_IMPACT_REL_TOL);
+    assert_true(fabs(re->first_impact_force_rel[k]) < SC_FIRST_IMPACT_REL_TOL);
+    assert_true(fabs(re->first_impact_penetration_rel[k]) < SC_FIRST_IMPACT_REL_TOL);
+  }
+  /* the count over the window, as the four-bar's (RESTITUTION_IMPACTS_REL_TOL
+   * with the reference's own spread): measured 43 against 45 */
+  const fb_model_result *ref = &r.model[1];
+  assert_true(ref->has_ref_estimate);
+  const double ref_spread =
+      fabs((double)(ref->ref_estimate.impacts - ref->ref_estimate.impacts_reference));
+  const double impacts_off = fabs((double)(re->impacts - re->impacts_reference));
+  const double impacts_bound = RESTITUTION_IMPACTS_REL_TOL * re->impacts_reference + ref_spread;
+  report_residual("sc restitution impacts off (count)", impacts_off, impacts_bound);
+  assert_true(re->impacts_reference > 0 && impacts_off <= impacts_bound);
+  fb_run_free(&r);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_mjcf_from_the_definition),
@@ -512,6 +890,11 @@ int main(void) {
       cmocka_unit_test(test_clearance_native_tendon_matches_reference),
       cmocka_unit_test(test_clearance_native_facets_characterised),
       cmocka_unit_test(test_reactions_match_inverse_dynamics),
+      cmocka_unit_test(test_sc_mjcf),
+      cmocka_unit_test(test_sc_ideal_models_match_analytic),
+      cmocka_unit_test(test_sc_reactions_match_inverse_dynamics),
+      cmocka_unit_test(test_sc_clearance_impact_matches_reference),
+      cmocka_unit_test(test_sc_clearance_restitution_first_impacts),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -17,6 +17,14 @@
 
 fb_status mujoco_def_from_model(mj_def *d, const fb_model_scene *sm, fb_diag *diag) {
   memset(d, 0, sizeof *d);
+  d->mech = sm->def->source.mechanism;
+  /* a slider-crank's only pin that may carry clearance is its piston pin
+   * (the case check refuses the others; a scene built in code could not) */
+  if (d->mech == FB_MECH_SLIDER_CRANK && (sm->clearance_mask & ~(1 << FB_JOINT_C)))
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "model '%s': the MuJoCo slider-crank takes clearance at its piston pin "
+                       "(coupler-slider) only; clearance mask 0x%x names another joint",
+                       sm->model->name, (unsigned)sm->clearance_mask);
   fb_status st = fb_model_scene_start(&d->start, sm, diag);
   if (st != FB_OK) return st;
   if (sm->solver.h_mode == FB_STEP_ADAPTIVE && sm->collider == FB_COLLIDER_NATIVE)
@@ -55,7 +63,16 @@ static const char *site_name(const mj_def *def, int j, int pin) {
   static const char *const named[2][4] = {
       {"ground-crank_hole", "crank-coupler_hole", "coupler-follower_hole", "follower-ground_hole"},
       {"ground-crank_pin", "crank-coupler_pin", "coupler-follower_pin", "follower-ground_pin"}};
-  return def->exported ? named[pin][j] : own[pin][j];
+  static const char *const named_sc[2][4] = {
+      {"ground-crank_hole", "crank-coupler_hole", "coupler-slider_hole", "slider-ground_hole"},
+      {"ground-crank_pin", "crank-coupler_pin", "coupler-slider_pin", "slider-ground_pin"}};
+  if (!def->exported) return own[pin][j];
+  return def->mech == FB_MECH_SLIDER_CRANK ? named_sc[pin][j] : named[pin][j];
+}
+
+/* joint j's name in an exported model: the mechanism's ("coupler-slider") */
+static const char *joint_name(const mj_def *def, int j) {
+  return fb_mech_joint_name(fb_mech_of(def->mech), j);
 }
 
 /* the body's own joint: a hinge about z, or planar freedom (slide x, slide y,
@@ -172,7 +189,7 @@ static void put_bore_tendons(text *t, const mj_def *def) {
     if (def->exported)
       fb_text_put(t, "    <spatial name=\"%s_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
              "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
-          fb_joint_name(j), def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
+          joint_name(def, j), def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
     else
       fb_text_put(t, "    <spatial name=\"%c_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
              "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
@@ -182,6 +199,25 @@ static void put_bore_tendons(text *t, const mj_def *def) {
     fb_text_put(t, "    </spatial>\n");
   }
   fb_text_put(t, "  </tendon>\n");
+}
+
+/* the slider-crank's slider (mechanism.h fb_mech_slider_crank): a body at
+ * the piston pin's hole centre H = (x0, offset) of the start, on a slide
+ * joint along +x (the guide y = offset: the tree holds its y and its angle
+ * exactly, as the prismatic slider-ground joint does), its centre of mass at
+ * H (its moments do not enter: it cannot turn); the hole's site (C) and the
+ * slider's point on the guide (D's pin) at H, the guide's (D's hole) on the
+ * world at the same point. The slide's qpos is the slider's travel from x0 */
+static void put_slider(text *t, const mj_def *def) {
+  const double *h = def->start.hole[FB_JOINT_C];
+  fb_text_put(t, "    <body name=\"slider\" pos=\"%.17g %.17g 0\">\n", h[0], h[1]);
+  put_inertial(t, &def->link[2], 0.0);
+  fb_text_put(t, "      <joint name=\"%s\" type=\"slide\" axis=\"1 0 0\"/>\n",
+      def->exported ? joint_name(def, FB_JOINT_D) : "D");
+  fb_text_put(t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_D, 1));
+  fb_text_put(t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_C, 0));
+  put_native(t, def, FB_JOINT_C, 0, 0.0, 0.0, "      ");
+  fb_text_put(t, "    </body>\n");
 }
 
 /* exported: the drive, a velocity actuator on the crank's hinge at the
@@ -195,7 +231,7 @@ static void put_drive(text *t, const mj_def *def) {
   const fb_start_state st = def->start;
   const double kv = def->opts.drive_armature / (EXPORT_DRIVE_STEPS * def->h);
   fb_text_put(t, "  <actuator>\n    <velocity name=\"drive\" joint=\"%s\" kv=\"%.17g\"/>\n  </actuator>\n",
-      fb_joint_name(FB_JOINT_A), kv);
+      joint_name(def, FB_JOINT_A), kv);
   /* qvel in the tree's order: each body's slides (clearance) then its hinge */
   const int mask = def->clearance_mask;
   double qvel[9];
@@ -213,7 +249,7 @@ static void put_drive(text *t, const mj_def *def) {
   }
   qvel[n++] = st.coupler_omega - st.crank_omega;
   if (mask & (1 << FB_JOINT_D)) qvel[n++] = 0.0, qvel[n++] = 0.0;
-  qvel[n++] = st.follower_omega;
+  qvel[n++] = st.follower_omega; /* a slider-crank's: the slider's speed along +x (start.h) */
   fb_text_put(t, "  <keyframe>\n    <key name=\"start\" qvel=\"");
   for (int i = 0; i < n; i++) fb_text_put(t, "%s%.17g", i ? " " : "", qvel[i]);
   fb_text_put(t, "\" ctrl=\"%.17g\"/>\n  </keyframe>\n", st.crank_omega);
@@ -256,7 +292,7 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   fb_text_put(&t, "    <body name=\"crank\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pa[0], pa[1],
       st.crank_angle);
   put_inertial(&t, &def->link[FB_CRANK], a);
-  put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_A) : "A", mask & (1 << FB_JOINT_A), opts->drive_armature);
+  put_joint(&t, def->exported ? joint_name(def, FB_JOINT_A) : "A", mask & (1 << FB_JOINT_A), opts->drive_armature);
   fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_A, 1));
   fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_B, 1), a);
   put_native(&t, def, FB_JOINT_A, 1, 0.0, 0.0, "      ");
@@ -265,31 +301,36 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   fb_text_put(&t, "      <body name=\"coupler\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n",
       c2 * bx + s2 * by, -s2 * bx + c2 * by, st.coupler_angle - st.crank_angle);
   put_inertial(&t, &def->link[FB_COUPLER], b);
-  put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_B) : "B", mask & (1 << FB_JOINT_B), 0.0);
+  put_joint(&t, def->exported ? joint_name(def, FB_JOINT_B) : "B", mask & (1 << FB_JOINT_B), 0.0);
   fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_B, 0));
   fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 1), b);
   put_native(&t, def, FB_JOINT_B, 0, 0.0, 0.0, "      ");
   put_native(&t, def, FB_JOINT_C, 1, b, 0.0, "      ");
   fb_text_put(&t, "      </body>\n");
   fb_text_put(&t, "    </body>\n");
-  /* follower: at D's pin, x along D->C */
-  fb_text_put(&t, "    <body name=\"follower\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pd[0],
-      pd[1], st.follower_angle);
-  put_inertial(&t, &def->link[FB_FOLLOWER], c);
-  put_joint(&t, def->exported ? fb_joint_name(FB_JOINT_D) : "D", mask & (1 << FB_JOINT_D), 0.0);
-  fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_D, 1));
-  fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 0), c);
-  put_native(&t, def, FB_JOINT_D, 1, 0.0, 0.0, "      ");
-  put_native(&t, def, FB_JOINT_C, 0, c, 0.0, "      ");
-  fb_text_put(&t, "    </body>\n");
+  if (def->mech == FB_MECH_SLIDER_CRANK) {
+    put_slider(&t, def);
+  } else {
+    /* follower: at D's pin, x along D->C */
+    fb_text_put(&t, "    <body name=\"follower\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n", pd[0],
+        pd[1], st.follower_angle);
+    put_inertial(&t, &def->link[FB_FOLLOWER], c);
+    put_joint(&t, def->exported ? joint_name(def, FB_JOINT_D) : "D", mask & (1 << FB_JOINT_D), 0.0);
+    fb_text_put(&t, "      <site name=\"%s\" pos=\"0 0 0\"/>\n", site_name(def, FB_JOINT_D, 1));
+    fb_text_put(&t, "      <site name=\"%s\" pos=\"%.17g 0 0\"/>\n", site_name(def, FB_JOINT_C, 0), c);
+    put_native(&t, def, FB_JOINT_D, 1, 0.0, 0.0, "      ");
+    put_native(&t, def, FB_JOINT_C, 0, c, 0.0, "      ");
+    fb_text_put(&t, "    </body>\n");
+  }
   fb_text_put(&t, "  </worldbody>\n");
   put_bore_tendons(&t, def);
   if (!(mask & (1 << FB_JOINT_C))) {
     fb_text_put(&t, "  <equality>\n");
     fb_text_put(&t,
-        "    <connect name=\"loop\" body1=\"coupler\" body2=\"follower\" anchor=\"%.17g 0 0\" "
+        "    <connect name=\"loop\" body1=\"coupler\" body2=\"%s\" anchor=\"%.17g 0 0\" "
         "solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\"/>\n",
-        b, -k, -damp, opts->loop_impedance, opts->loop_impedance);
+        def->mech == FB_MECH_SLIDER_CRANK ? "slider" : "follower", b, -k, -damp,
+        opts->loop_impedance, opts->loop_impedance);
     fb_text_put(&t, "  </equality>\n");
   }
   if (def->exported) put_drive(&t, def);
@@ -330,7 +371,7 @@ fb_status fb_mujoco_export(char *buf, size_t size, const fb_model_scene *sm, fb_
   for (int j = 0; j < 4; j++) {
     if (!(d.clearance_mask & (1 << j))) continue;
     char name[64];
-    snprintf(name, sizeof name, "%s_bore", fb_joint_name(j));
+    snprintf(name, sizeof name, "%s_bore", joint_name(&d, j));
     const int t = mj_name2id(m, mjOBJ_TENDON, name);
     if (t < 0) continue;
     const fb_contact_law *law = &d.law[j];

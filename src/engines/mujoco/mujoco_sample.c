@@ -20,11 +20,14 @@ void mujoco_reactions_now(fb_mujoco_scene *s) {
   mj_rnePostConstraint(m, d);
   const double *fa = d->cfrc_int + 6 * s->body[FB_CRANK] + 3;    /* on the crank from ground */
   const double *fb = d->cfrc_int + 6 * s->body[FB_COUPLER] + 3;  /* on the coupler from the crank */
-  const double *fd = d->cfrc_int + 6 * s->body[FB_FOLLOWER] + 3; /* on the follower from ground */
+  const double *fd = d->cfrc_int + 6 * s->body[FB_FOLLOWER] + 3; /* on the follower (slider) from ground */
+  /* a slider-crank's guide: the force on the ground from the slider (its
+   * analytic engine's convention, (0, -N)), the slide's own reaction negated */
+  const double sd = s->def.mech == FB_MECH_SLIDER_CRANK ? -1.0 : 1.0;
   for (int k = 0; k < 2; k++) {
     s->reaction[FB_JOINT_A][k] = fa[k];
     s->reaction[FB_JOINT_B][k] = fb[k];
-    s->reaction[FB_JOINT_D][k] = fd[k];
+    s->reaction[FB_JOINT_D][k] = sd * fd[k];
     s->reaction[FB_JOINT_C][k] = 0.0;
   }
   if (s->def.clearance_mask & (1 << FB_JOINT_C)) {
@@ -79,6 +82,8 @@ void mujoco_sample_now(const fb_mujoco_scene *s, fb_sample *x) {
   x->coupler_angle = s->angle0[FB_COUPLER] + q[0] + q[1];
   x->coupler_omega = d->qvel[dof[0]] + d->qvel[dof[1]];
   x->coupler_alpha = d->qacc[dof[0]] + d->qacc[dof[1]];
+  /* the follower's angle, or a slider-crank's slider x, v, a from its
+   * slide (body[1], the same storage) */
   x->follower_angle = s->angle0[FB_FOLLOWER] + q[2];
   x->follower_omega = d->qvel[dof[2]];
   x->follower_alpha = d->qacc[dof[2]];

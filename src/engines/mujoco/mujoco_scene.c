@@ -84,12 +84,15 @@ fb_status fb_mujoco_scene_create(fb_mujoco_scene **out, const fb_model_scene *sm
   }
   static const char *const bodies[3] = {"crank", "coupler", "follower"};
   for (int i = 0; i < 3; i++) s->body[i] = mj_name2id(m, mjOBJ_BODY, bodies[i]);
+  if (def->mech == FB_MECH_SLIDER_CRANK) s->body[2] = mj_name2id(m, mjOBJ_BODY, "slider");
   static const char *const hinges[3] = {"A", "B", "D"};
   for (int i = 0; i < 3; i++) {
     const int jid = mj_name2id(m, mjOBJ_JOINT, hinges[i]);
     s->hinge_dof[i] = m->jnt_dofadr[jid];
     s->hinge_qpos[i] = m->jnt_qposadr[jid];
   }
+  /* a slider-crank's slider: its x at qpos0 and its speed along +x
+   * (start.h's body[1], which the follower's names alias) */
   s->angle0[FB_CRANK] = st.crank_angle;
   s->angle0[FB_COUPLER] = st.coupler_angle;
   s->angle0[FB_FOLLOWER] = st.follower_angle;

@@ -1,4 +1,4 @@
-/* The four-bar in MuJoCo 2.2.2: the same scene definition as the ODE world
+/* The four-bar and the slider-crank in MuJoCo 2.2.2: the same scene definition as the ODE world
  * (ode_world.h: lengths, masses, inertias, gravity, drive, initial state from the
  * analytic solver, clearance joints and their contact laws), generated as
  * MJCF text and loaded from memory through MuJoCo's virtual file system. The
@@ -18,6 +18,23 @@
  *   Gravity along -y. Body frames: x along the link (crank A->B, coupler
  *   B->C, follower D->C), the centre of mass at com_fraction along x, the
  *   principal moments (long, transverse, hinge) on (x, y, z).
+ *
+ * The slider-crank (the case's [linkage] type = slider-crank; mechanism.h
+ *   fb_mech_slider_crank): world -> crank (hinge A) -> coupler, the
+ *   connecting rod (hinge B), as above; world -> slider, a body at the
+ *   piston pin's hole centre H = (x0, offset) on a slide joint along +x (the
+ *   guide: the tree holds the slider's y and angle exactly), its centre of
+ *   mass at H. Ideal: the loop closed at the piston pin C by the same
+ *   `connect` equality (rod to slider). Clearance at the piston pin (the only
+ *   joint a slider-crank lets carry it): no equality, the project's law
+ *   between the rod's pin site and the slider's hole site through
+ *   mjcb_passive, or mujoco-clearance-native's bore tendon, as at any
+ *   four-bar joint. The effective mass along the normal is 1 / (w^T M^-1 w)
+ *   from the sites' Jacobians, the slide in M (no loop rows: the clearance
+ *   opens the only loop). Samples: the slider's x, v, a from the slide's
+ *   qpos (+ x0), qvel and qacc into body[1] (the follower's names alias
+ *   them); reactions: at the guide the force on the ground from the slider,
+ *   (0, -N) as the analytic engine writes it.
  *
  * Drive (exact to the flywheel's inertia): the crank hinge has an armature of
  *   fb_mujoco_opts.drive_armature (1e6 kg m^2 by default) and starts at the
@@ -144,7 +161,8 @@ void fb_mujoco_scene_step_stats(const fb_mujoco_scene *s, fb_step_stats *out);
 
 /* The MJCF a user loads (fourbar export, docs/commands.md; the engine
  * table's export_model): model sm's
- * mechanism with bodies crank, coupler, follower (ground the world), hinges
+ * mechanism with bodies crank, coupler, follower (a slider-crank's: slider,
+ * on a slide joint slider-ground along +x) (ground the world), joints
  * named after their joints (ground-crank, crank-coupler, follower-ground),
  * sites <joint>_pin and <joint>_hole at each joint's pin and hole centre
  * (crank-coupler_pin), the loop closed by an equality connect, each

@@ -34,6 +34,8 @@ typedef struct {
 /* what this scene was built from: the scene definition with the model's row
  * applied */
 typedef struct {
+  fb_mech_type mech;    /* the case's mechanism: the four-bar, or the slider-crank (its body 2
+                           the slider, on a slide joint along x at y = offset) */
   fb_linkage lengths;
   fb_start_state start;
   double omega2;
@@ -66,7 +68,8 @@ struct fb_mujoco_scene {
   mjData *d;
   double *jac;        /* 2 x (3 x nv): pin and hole site Jacobians */
   double *w;          /* 4 x nv: J^T n of each joint at its last evaluation, then 1 x nv scratch */
-  int hinge_dof[3];   /* dof of each body's own hinge z (crank A, coupler B, follower D) */
+  int hinge_dof[3];   /* dof of each body's own joint: the hinges z of crank A, coupler B and
+                         follower D; a slider-crank's third is the slider's slide x (D) */
   int hinge_qpos[3];  /* its qpos address */
   int site_pin[4];    /* site of each joint's pin centre */
   int site_hole[4];   /* site of each joint's hole centre */
@@ -74,9 +77,9 @@ struct fb_mujoco_scene {
   int hole_body[4];   /* native: the body carrying the hole's ring (0: world) */
   int ring_first[4];  /* native: the first of the hole's ring_n box geoms (consecutive), or -1 */
   int bore_tendon[4]; /* native: the tendon hole centre -> pin centre limited to [0, c], or -1 */
-  double angle0[3];   /* body angles at qpos0 [rad] */
+  double angle0[3];   /* body angles at qpos0 [rad]; a slider-crank's third: the slider's x [m] */
   mj_clearance cl[4];
-  int body[3];        /* body id of crank, coupler, follower */
+  int body[3];        /* body id of crank, coupler, follower (a slider-crank's slider) */
   double reaction[4][2]; /* joint forces now, invdyn.h's convention [N] */
   double drive_torque;   /* on the crank from the flywheel about +z [N m] */
   size_t steps;

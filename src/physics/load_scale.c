@@ -5,15 +5,48 @@
 #include <string.h>
 
 #include "invdyn.h"
+#include "slider_crank_invdyn.h"
 
 void fb_load_scale_free(fb_load_scale *ls) {
   for (int j = 0; j < 4; j++) free(ls->ahead[j]), free(ls->force[j]);
   memset(ls, 0, sizeof *ls);
 }
 
+/* the joints' reactions of mechanism t at crank angle theta2 into f [N] */
+static fb_status reactions_at(double f[4][2], fb_mech_type t, const fb_linkage *lk,
+                              fb_branch branch, const fb_link_mass link[3], double gravity,
+                              double theta2, double omega2, fb_diag *diag) {
+  if (t == FB_MECH_SLIDER_CRANK) {
+    const fb_slider_crank sc = {lk->length[FB_CRANK], lk->length[FB_COUPLER],
+                                lk->length[FB_LENGTH_OFFSET]};
+    const fb_slider_crank_mass m = {link[0].mass, link[0].inertia, link[0].com_fraction,
+                                    link[1].mass, link[1].inertia, link[1].com_fraction,
+                                    link[2].mass};
+    fb_slider_crank_reactions r;
+    fb_status st = fb_slider_crank_invdyn(&r, &sc, &m, gravity, theta2, omega2, 0.0, diag);
+    if (st != FB_OK) return st;
+    memcpy(f, r.force, sizeof r.force);
+    f[FB_SC_JOINT_SLIDER_GROUND][0] = 0.0;
+    f[FB_SC_JOINT_SLIDER_GROUND][1] = -r.guide_force;
+    return FB_OK;
+  }
+  fb_reactions r;
+  fb_status st = fb_invdyn_solve(&r, lk, branch, link, gravity, theta2, omega2, diag);
+  if (st == FB_OK) memcpy(f, r.force, sizeof r.force);
+  return st;
+}
+
 fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branch branch,
                               const fb_link_mass link[3], double gravity, double omega2,
                               int joint_mask, double lookahead_s, fb_diag *diag) {
+  return fb_load_scale_build_mech(out, FB_MECH_FOURBAR, lk, branch, link, gravity, omega2,
+                                  joint_mask, lookahead_s, diag);
+}
+
+fb_status fb_load_scale_build_mech(fb_load_scale *out, fb_mech_type t, const fb_linkage *lk,
+                                   fb_branch branch, const fb_link_mass link[3], double gravity,
+                                   double omega2, int joint_mask, double lookahead_s,
+                                   fb_diag *diag) {
   memset(out, 0, sizeof *out);
   if (!(joint_mask & 15)) return FB_OK; /* no joint asked: no table */
   const int n = FB_LOAD_SCALE_SAMPLES;
@@ -26,11 +59,8 @@ fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branc
     return fb_diag_set(diag, FB_ERR_NOMEM, "load time-scale table: %d crank angles", n);
   }
   fb_status st = FB_OK;
-  for (int k = 0; k < n && st == FB_OK; k++) {
-    fb_reactions r;
-    st = fb_invdyn_solve(&r, lk, branch, link, gravity, 2.0 * M_PI * k / n, omega2, diag);
-    if (st == FB_OK) memcpy(f[k], r.force, sizeof r.force);
-  }
+  for (int k = 0; k < n && st == FB_OK; k++)
+    st = reactions_at(f[k], t, lk, branch, link, gravity, 2.0 * M_PI * k / n, omega2, diag);
   out->n = n;
   /* crank angles swept in the lookahead, as table steps, and the direction */
   const int w = (int)ceil(fabs(omega2) * lookahead_s / (2.0 * M_PI / n));

@@ -44,10 +44,23 @@ typedef struct {
  * crank speed omega2 [rad/s], each entry the smallest tau over the next
  * lookahead_s >= 0 seconds. A crank at rest (omega2 = 0) or a load that does
  * not change gives tau = INFINITY. Errors: those of fb_invdyn_solve;
- * FB_ERR_NOMEM. On error *out is left empty (fb_load_scale_free is safe). */
+ * FB_ERR_NOMEM. On error *out is left empty (fb_load_scale_free is safe).
+ * The four-bar's: fb_load_scale_build_mech with FB_MECH_FOURBAR. */
 fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branch branch,
                               const fb_link_mass link[3], double gravity, double omega2,
                               int joint_mask, double lookahead_s, fb_diag *diag);
+
+/* The same for a mechanism of type t (mechanism.h), joints in its
+ * description's order: the four-bar's reactions from fb_invdyn_solve; the
+ * slider-crank's (lk's crank, coupler and offset at FB_LENGTH_OFFSET, link
+ * crank, coupler, slider; branch unused) from fb_slider_crank_invdyn, the
+ * pins' forces at joints 0..2 and the guide's (0, -N) at slider-ground, as
+ * the analytic model reports them. Errors: those of fb_invdyn_solve or
+ * fb_slider_crank_invdyn; FB_ERR_NOMEM. */
+fb_status fb_load_scale_build_mech(fb_load_scale *out, fb_mech_type t, const fb_linkage *lk,
+                                   fb_branch branch, const fb_link_mass link[3], double gravity,
+                                   double omega2, int joint_mask, double lookahead_s,
+                                   fb_diag *diag);
 
 /* The table's tau ahead [s] and largest load ahead [N] of joint j at crank
  * angle theta [rad] (any value; taken modulo 2 pi); INFINITY and 0 for a

@@ -206,6 +206,12 @@ void fb_ode_world_mechanism(const fb_ode_world *s, fb_mechanism *out) {
     dVector3 q;
     if (s->hinge[j]) {
       dJointGetHingeAnchor(s->hinge[j], q);
+    } else if (j == s->slider_joint) {
+      /* the guide: the slider's point on it, its centre of mass (the hole centre) */
+      const dReal *p = dBodyGetPosition(s->body[FB_FOLLOWER]);
+      q[0] = p[0];
+      q[1] = p[1];
+      out->prismatic_mask |= 1 << j;
     } else {
       const ode_clearance *c = &s->cl[j];
       dBodyGetRelPointPos(c->pin, c->pin_local[0], c->pin_local[1], c->pin_local[2], q);

@@ -96,6 +96,12 @@ double ode_joint_drift_now(const fb_ode_world *s) {
                     (p1[2] - p2[2]) * (p1[2] - p2[2]));
     if (d > worst) worst = d;
   }
+  if (s->slider) {
+    /* the guide: the slider's distance from the line it started on */
+    const dReal *p = dBodyGetPosition(s->body[FB_FOLLOWER]);
+    const double d = hypot(p[1] - s->guide_y, p[2]);
+    if (d > worst) worst = d;
+  }
   return worst;
 }
 
@@ -121,6 +127,14 @@ void fb_ode_world_reactions(const fb_ode_world *s, double force[4][2], double *d
    * (body 2); D: on the follower (body 1) */
   const int on_body2[4] = {0, 1, 1, 0};
   for (int j = 0; j < 4; j++) {
+    if (j == s->slider_joint) {
+      /* the guide (slider_crank_invdyn.h): the force on the ground from the
+       * slider, minus the slider joint's force on the slider (body 1),
+       * (0, -N) with N the guide's normal force along +y */
+      force[j][0] = -s->feedback[j].f1[0];
+      force[j][1] = -s->feedback[j].f1[1];
+      continue;
+    }
     if (!s->hinge[j]) {
       /* a clearance joint: the contact force; its pin is on body 1 (the
        * crank at A and B, the coupler at C, the follower at D) */

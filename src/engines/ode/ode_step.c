@@ -107,10 +107,14 @@ static fb_status world_step(fb_ode_world *s, double h, fb_diag *diag) {
                        s->steps + 1);
   }
   for (int i = 0; i < 3; i++) {
-    double w = dBodyGetAngularVel(s->body[i])[2];
+    double w = ode_body_rate(s, i);
     s->alpha[i] = (w - s->omega_prev[i]) / h;
     s->omega_prev[i] = w;
-    double a = ode_body_angle(s->body[i]);
+    double a = ode_body_coord(s, i);
+    if (i == s->translating) { /* the slider's x: nothing to unwrap */
+      s->angle[i] = a;
+      continue;
+    }
     double prev = s->angle[i];
     double d = remainder(a - prev, 2.0 * M_PI);
     s->angle[i] = prev + d;

@@ -1,10 +1,12 @@
 /* The ODE world (ode_world.h), built and freed: the world with its gravity,
- * ERP, CFM and damping; crank, coupler and follower placed at the start;
- * a hinge at every joint without clearance, the pin and hole points of
- * every clearance joint (and its faceted or libccd collider); the crank's
- * drive; planar joints for bodies left without a hinge; the adaptive step's
- * set-up. Stepping is in ode_step.c, the contact in ode_clearance.c and
- * ode_colliders.c, the outputs in ode_sample.c. */
+ * ERP, CFM and damping; the case's mechanism (mechanism.h) from its
+ * description: crank, coupler and follower (or slider) placed at the start;
+ * per joint a hinge (revolute without clearance), the pin and hole points
+ * (revolute with clearance, and its faceted or libccd collider) or a slider
+ * joint (prismatic); the crank's drive; planar joints for bodies left
+ * without a hinge or slider joint; the adaptive step's set-up. Stepping is
+ * in ode_step.c, the contact in ode_clearance.c and ode_colliders.c, the
+ * outputs in ode_sample.c. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -31,9 +33,34 @@ static void place_body(dBodyID b, const fb_link_mass *lm, const double p[2], con
   dBodySetAngularVel(b, 0, 0, omega);
 }
 
+/* sets the slider at its hole centre h [m] (its centre of mass, slider_crank_invdyn.h),
+ * unrotated, moving at v [m/s] along +x; its inertias are the link's (the
+ * slider joint holds its rotation, so they do not enter) */
+static void place_slider(dBodyID b, const fb_link_mass *lm, const double h[2], double v) {
+  dMass m;
+  dMassSetParameters(&m, lm->mass, 0, 0, 0, lm->inertia_long, lm->inertia_transverse,
+                     lm->inertia, 0, 0, 0);
+  dBodySetMass(b, &m);
+  dBodySetPosition(b, h[0], h[1], 0.0);
+  dMatrix3 R;
+  dRSetIdentity(R);
+  dBodySetRotation(b, R);
+  dBodySetLinearVel(b, v, 0.0, 0.0);
+  dBodySetAngularVel(b, 0, 0, 0);
+}
+
 double ode_body_angle(dBodyID b) {
   const dReal *R = dBodyGetRotation(b);
   return atan2(R[4], R[0]);
+}
+
+double ode_body_coord(const fb_ode_world *s, int i) {
+  return i == s->translating ? dBodyGetPosition(s->body[i])[0] : ode_body_angle(s->body[i]);
+}
+
+double ode_body_rate(const fb_ode_world *s, int i) {
+  return i == s->translating ? dBodyGetLinearVel(s->body[i])[0]
+                             : dBodyGetAngularVel(s->body[i])[2];
 }
 
 fb_status fb_ode_world_create(fb_ode_world **out, const fb_model_scene *sm, fb_diag *diag) {
@@ -71,23 +98,55 @@ fb_status fb_ode_world_create(fb_ode_world **out, const fb_model_scene *sm, fb_d
     dWorldSetAngularDampingThreshold(s->world, 0.0);
   }
 
+  /* the description's bodies (mechanism.h): the moving ones are this
+   * world's body[] by index, the ground ODE's static environment (0); the
+   * translating one (a slider-crank's slider) reports x, v, a */
+  const fb_mech_desc *mech = fb_case_mech(&def->def->source);
+  s->translating = -1;
+  s->slider_joint = -1;
+  for (int i = 0; i < 3 && i < mech->nbodies; i++)
+    if (mech->body[i].motion == FB_MOTION_TRANSLATING) s->translating = i;
+
   /* each body between its joints' pin or hole centres (start.h): crank A_pin
-   * to B_pin, coupler B_hole to C_pin, follower D_pin to C_hole */
+   * to B_pin, coupler B_hole to C_pin, follower D_pin to C_hole; a slider at
+   * its hole centre C_hole on the guide */
   const double zero[2] = {0, 0};
   for (int i = 0; i < 3; i++) s->body[i] = dBodyCreate(s->world);
   place_body(s->body[FB_CRANK], &def->link[FB_CRANK], st.pin[FB_JOINT_A], st.pin[FB_JOINT_B],
              st.crank_omega, zero);
   place_body(s->body[FB_COUPLER], &def->link[FB_COUPLER], st.hole[FB_JOINT_B], st.pin[FB_JOINT_C],
              st.coupler_omega, st.coupler_b_vel);
-  place_body(s->body[FB_FOLLOWER], &def->link[FB_FOLLOWER], st.pin[FB_JOINT_D],
-             st.hole[FB_JOINT_C], st.follower_omega, zero);
+  if (s->translating == FB_FOLLOWER)
+    place_slider(s->body[FB_FOLLOWER], &def->link[FB_FOLLOWER], st.hole[FB_JOINT_C],
+                 st.body[1][FB_Q_VEL]);
+  else
+    place_body(s->body[FB_FOLLOWER], &def->link[FB_FOLLOWER], st.pin[FB_JOINT_D],
+               st.hole[FB_JOINT_C], st.follower_omega, zero);
+  s->guide_y = st.hole[FB_JOINT_C][1];
 
-  const dBodyID b1[4] = {s->body[FB_CRANK], s->body[FB_CRANK], s->body[FB_COUPLER],
-                         s->body[FB_FOLLOWER]};
-  const dBodyID b2[4] = {0, s->body[FB_COUPLER], s->body[FB_FOLLOWER], 0};
+  /* each joint of the description, in its order: the pin on b1 (its moving
+   * first body; the crank at ground-crank), the hole on b2 (0: the ground) */
+  dBodyID b1[4] = {0}, b2[4] = {0};
+  for (int j = 0; j < 4 && j < mech->njoints; j++) {
+    const int *jb = mech->joint[j].body;
+    const int ground_first = mech->body[jb[0]].motion == FB_MOTION_FIXED;
+    const int first = ground_first ? jb[1] : jb[0], second = ground_first ? jb[0] : jb[1];
+    b1[j] = s->body[first];
+    b2[j] = mech->body[second].motion == FB_MOTION_FIXED ? 0 : s->body[second];
+  }
   const double *anchor[4] = {st.pin[0], st.pin[1], st.pin[2], st.pin[3]};
   s->contacts = dJointGroupCreate(0);
-  for (int j = 0; j < 4; j++) {
+  for (int j = 0; j < 4 && j < mech->njoints; j++) {
+    if (mech->joint[j].kind == FB_KIND_PRISMATIC) {
+      /* the guide: ODE's slider joint along +x holds the slider's y (the
+       * guide line through its start) and its rotation (5 rows) */
+      s->slider = dJointCreateSlider(s->world, 0);
+      dJointAttach(s->slider, b1[j], b2[j]);
+      dJointSetSliderAxis(s->slider, 1, 0, 0);
+      dJointSetFeedback(s->slider, &s->feedback[j]);
+      s->slider_joint = j;
+      continue;
+    }
     if (def->clearance_mask & (1 << j)) {
       /* pin and hole centres at t = 0 (the start's eccentricity) */
       ode_clearance *c = &s->cl[j];
@@ -137,18 +196,22 @@ fb_status fb_ode_world_create(fb_ode_world **out, const fb_model_scene *sm, fb_d
     dJointSetAMotorParam(s->amotor, dParamVel, def->omega2);
     dJointSetAMotorParam(s->amotor, dParamFMax, def->solver.drive_torque_max);
   }
-  /* a body with no hinge left is held in the plane */
-  const int joints_of[3][2] = {{FB_JOINT_A, FB_JOINT_B}, {FB_JOINT_B, FB_JOINT_C},
-                               {FB_JOINT_C, FB_JOINT_D}};
+  /* a body with no hinge or slider joint left is held in the plane (the
+   * four-bar's crank: A, B; coupler: B, C; follower: C, D) */
   for (int i = 0; i < 3; i++) {
-    if (s->hinge[joints_of[i][0]] || s->hinge[joints_of[i][1]]) continue;
+    int held = 0;
+    for (int j = 0; j < 4 && j < mech->njoints; j++)
+      if ((mech->joint[j].body[0] == i || mech->joint[j].body[1] == i) &&
+          (s->hinge[j] || j == s->slider_joint))
+        held = 1;
+    if (held) continue;
     dJointID p2 = dJointCreatePlane2D(s->world, 0);
     dJointAttach(p2, s->body[i], 0);
   }
 
   for (int i = 0; i < 3; i++) {
-    s->angle[i] = ode_body_angle(s->body[i]);
-    s->omega_prev[i] = dBodyGetAngularVel(s->body[i])[2];
+    s->angle[i] = ode_body_coord(s, i);
+    s->omega_prev[i] = ode_body_rate(s, i);
     s->alpha[i] = 0.0;
   }
   s->h_now = def->solver.h;
@@ -159,9 +222,10 @@ fb_status fb_ode_world_create(fb_ode_world **out, const fb_model_scene *sm, fb_d
     s->ad.m_prev = 1;
     s->ad.rocking = def->solver.rocking_h_omega > 0.0 && def->clearance_mask != 0;
     /* persistent contact steps on the ideal load's schedule (step_control.h) */
-    fb_status lst = fb_load_scale_build(&s->ad.load, &def->lengths, def->branch, def->link,
-                                        def->gravity, def->omega2, def->clearance_mask,
-                                        FB_STEP_LOAD_LOOKAHEAD * def->solver.h_max, diag);
+    fb_status lst = fb_load_scale_build_mech(
+        &s->ad.load, def->def->source.mechanism, &def->lengths, def->branch, def->link,
+        def->gravity, def->omega2, def->clearance_mask,
+        FB_STEP_LOAD_LOOKAHEAD * def->solver.h_max, diag);
     if (lst != FB_OK) {
       fb_ode_world_destroy(s);
       return lst;

@@ -6,6 +6,25 @@
  * ode_world_internal.h lists the files the world is made of (building,
  * the exact contact, the generic colliders, the step, the outputs).
  *
+ * The world is built from the case's mechanism description (mechanism.h),
+ * joint by joint in its order: a revolute joint is a hinge, or with
+ * clearance the pin-in-hole contact below; a prismatic joint is ODE's slider
+ * joint (dJointCreateSlider, axis +x, to the ground). The slider-crank:
+ *
+ *                  B            crank A-B hinged to the ground at A (driven),
+ *                 / \           the connecting rod (the coupler body) hinged
+ *          crank /   \ rod      to the crank at B, the slider a body at the
+ *               /     \         piston pin's hole centre H = (x, offset)
+ *              A      [H]--->x  held by the slider joint (its y and its
+ *                               rotation: 5 rows), and at the piston pin C
+ *   a hinge (ideal models) or the clearance contact (pin on the rod, hole on
+ *   the slider; body 2 plays the follower's part). The slider's centre of
+ *   mass is at H; its inertias are the case's but do not enter (the slider
+ *   joint holds its rotation). Its samples are x, v and a along +x
+ *   (fb_sample body[1]), its acceleration (v_now - v_before) / h like the
+ *   angular ones. Loop: 3 hinges and the slider joint give 20 rows for 18
+ *   freedoms + 1 mobility, the same 3 redundant rows as the four-bar's.
+ *
  * Crank drive: the ground hinge's motor (dParamVel = omega2, dParamFMax =
  * drive_torque_max) is a velocity constraint row solved with the others each
  * step, so the crank speed is exact to the solver's tolerance and its angle
@@ -85,12 +104,14 @@ fb_status fb_ode_world_step(fb_ode_world *s, fb_diag *diag);
 /* Current state as a sample at time t = steps * h (contact columns of the
  * clearance joints included): unwrapped angles, angular
  * velocities, and angular accelerations as (omega_now - omega_before) / h,
- * the acceleration the last step applied. Before the first step the
- * accelerations are 0. */
+ * the acceleration the last step applied (a slider-crank's slider: x [m],
+ * v [m/s] and (v_now - v_before) / h [m/s^2] in body[1]). Before the first
+ * step the accelerations are 0. */
 void fb_ode_world_sample(const fb_ode_world *s, fb_sample *x);
 
-/* Largest distance between the two bodies' anchor points over the four hinges
- * now [m]: the loop-closure drift of the constrained system. */
+/* Largest distance between the two bodies' anchor points over the hinges
+ * now [m], and the slider's distance from the guide line it started on: the
+ * loop-closure drift of the constrained system. */
 double fb_ode_world_joint_drift(const fb_ode_world *s);
 
 /* Joint reactions applied during the last step, from dJointGetFeedback, with
@@ -99,7 +120,10 @@ double fb_ode_world_joint_drift(const fb_ode_world *s);
  * [N m]. They belong to the configuration at the start of that step. Zero
  * before the first step. At a clearance joint the force is the contact force
  * of the last step (zero in free flight); the drive torque is reported only
- * when the ground-crank joint is a hinge (0 otherwise). */
+ * when the ground-crank joint is a hinge (0 otherwise). A slider-crank's
+ * slider-ground joint reports the force on the ground from the slider, minus
+ * the slider joint's force on the slider: (0, -N), N the guide's normal
+ * force along +y, as slider_crank_invdyn.h and the analytic model. */
 void fb_ode_world_reactions(const fb_ode_world *s, double force[4][2], double *drive_torque);
 
 /* Largest penetration over the clearance joints now [m] and the joint it is
@@ -135,7 +159,9 @@ void fb_ode_world_step_stats(const fb_ode_world *s, fb_step_stats *out);
 /* The mechanism's configuration now, for fb_effective_mass_tensor: body
  * masses and inertias from the definition, centres of mass from ODE, joint
  * centres from the hinge anchors and, for clearance joints, the pin centre;
- * the crank counts as driven (its motor is a velocity constraint). */
+ * a slider-crank's guide (slider-ground) is prismatic (prismatic_mask bit
+ * 3) at the slider's position, its centre of mass and hole centre; the
+ * crank counts as driven (its motor is a velocity constraint). */
 void fb_ode_world_mechanism(const fb_ode_world *s, fb_mechanism *out);
 
 /* ODE test-force probe of the inverse effective mass [1/kg] of clearance

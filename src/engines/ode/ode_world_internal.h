@@ -55,17 +55,25 @@ struct fb_ode_world {
   int broken;        /* 1 after an ODE fatal error left its world mid-step: never touched again */
   fb_stop stop;      /* why the last step failed (FB_STOP_NONE while none did) */
   dWorldID world;
-  dBodyID body[3];   /* crank, coupler, follower */
-  dJointID hinge[4]; /* A (ground-crank, driven), B, C, D; 0 for clearance joints */
+  dBodyID body[3];   /* crank, coupler, follower (a slider-crank's slider) */
+  dJointID hinge[4]; /* A (ground-crank, driven), B, C, D; 0 for clearance and prismatic joints */
+  dJointID slider;   /* a slider-crank's guide (its prismatic joint, slider_joint): ODE's slider
+                        joint along +x from the slider to the ground; 0 for the four-bar */
+  int slider_joint;  /* the description's prismatic joint (slider-ground), or -1 */
+  int translating;   /* the body that slides along the guide (a slider-crank's slider, 2), or
+                        -1: its angle[], omega_prev[] and alpha[] are its x [m], v [m/s] and
+                        a [m/s^2] along +x */
+  double guide_y;    /* the guide line's y at the start [m] (the slider's drift is measured
+                        from it) */
   dJointID amotor;   /* the drive when A is a clearance joint */
   dJointGroupID contacts;
   ode_clearance cl[4];
   dJointFeedback feedback[4];
   double crank_com_before[2]; /* crank centre of mass at the start of the last step */
   size_t steps;
-  double angle[3];     /* unwrapped angles [rad] */
-  double omega_prev[3];
-  double alpha[3];
+  double angle[3];     /* unwrapped angles [rad]; the translating body's x [m] */
+  double omega_prev[3]; /* [rad/s]; the translating body's v [m/s] */
+  double alpha[3];      /* [rad/s^2]; the translating body's a [m/s^2] */
   double w_inv[4][2][2]; /* inverse-mass tensors of the clearance joints this step [1/kg] */
   int w_valid;           /* w_inv holds the configuration now (the next step's start); reset
                             when a step moves the bodies, so the adaptive step and the contact
@@ -96,6 +104,12 @@ struct fb_ode_world {
 
 /* the body's angle about +z from its rotation matrix [rad], in (-pi, pi] */
 double ode_body_angle(dBodyID b);
+
+/* body i's coordinate now: its angle about +z [rad] in (-pi, pi] (to be
+ * unwrapped), or for the translating body its x [m]; and its rate [rad/s or
+ * m/s] */
+double ode_body_coord(const fb_ode_world *s, int i);
+double ode_body_rate(const fb_ode_world *s, int i);
 
 /* ---- ode_clearance.c: the exact contact and what every collider shares ---- */
 

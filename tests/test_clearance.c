@@ -871,22 +871,22 @@ static void test_sc_load_schedule_is_its_own(void **state) {
  *   -0.02 % (the first impact, the run's peak) and +0.08 % / -0.07 %. The
  *   first impact's force converges as h^2: +3.6 %, +0.98 %, +0.62 % at
  *   5e-7, 2.5e-7, 2e-7 s (the reason below).
- * - Flores's case at its automatic step (2e-6 s): it keeps the reference's
- *   trajectory to the run's end; the first impact (4.3 m/s, 41 kN) is
- *   -4.8 % in force and -2.7 % in penetration, the later ones within 1 %
- *   (measured -0.11 % / -0.79 % and +0.82 % / -0.22 %). Why the first is
- *   not within 1 %: the impact law's damper, STEP(delta, 0, 0, d_max,
- *   c_max), reaches c_max = 1e4 N s/m at d_max = 1 um of penetration,
- *   crossed in 0.23 us at 4.3 m/s, a ninth of the step; its force c_max v
- *   peaks there and decays with m_eff / c_max = 6 to 19 us, so the force
- *   peak is the onset's kink inside one step (fb_contact_row_onset corrects
- *   an onset for the linear and restitution laws only). Smaller steps bring
- *   it down (-1.6 %, -2.1 %, -1.0 % at 1e-6, 5e-7, 2.5e-7 s, the onset's
- *   phase in the step deciding); the test's case at 0.74 m/s, where d_max
- *   takes 1.3 us, is within 0.05 % from 1e-6 s on and -20 % at its
- *   automatic 5e-6 s. Bound: the measured 4.8 % with margin. */
+ * - Flores's case as shipped (its impact damper 480 N s/m, the case's
+ *   restitution 0.9) at its automatic step (2e-6 s): the pin rattles and the
+ *   model leaves the reference's trajectory after about 25 impacts (8.6 ms,
+ *   chaos: its verdict is then statistical, docs/chaos.md); the first
+ *   FB_FIRST_IMPACTS impacts, before it leaves, within 1 %: measured -0.15 %
+ *   / +0.03 %, -0.25 % / -0.02 %, -0.25 % / -0.06 % (force / penetration).
+ * - With the four-bar's damper, c_max = 1e4 N s/m (the test's case), the
+ *   first impact is the damper's onset: STEP(delta, 0, 0, d_max, c_max)
+ *   reaches c_max at d_max = 1 um of penetration, crossed within one step
+ *   at the automatic step, and its force c_max v peaks there and decays
+ *   with m_eff / c_max = 6 to 19 us, so the force peak is the onset's kink
+ *   inside one step (fb_contact_row_onset corrects an onset for the linear
+ *   and restitution laws only): Flores so was -4.8 % / -2.7 % at 2e-6 s;
+ *   the test's case at 0.74 m/s, where d_max takes 1.3 us, is within 0.05 %
+ *   from 1e-6 s on and -20 % at its automatic 5e-6 s. */
 #define SC_MATCHED_REL_TOL 0.01
-#define SC_FLORES_ONSET_REL_TOL 0.06
 
 static void test_sc_impact_against_reference(void **state) {
   (void)state;
@@ -902,10 +902,13 @@ static void test_sc_impact_against_reference(void **state) {
     assert_int_equal(m->run.stop.kind, FB_STOP_NONE);
     assert_true(m->has_divergence && m->has_ref_error);
     const fb_divergence *v = &m->divergence;
-    assert_false(v->diverged);
+    if (sc) assert_false(v->diverged);
     assert_true(v->matched >= 2);
-    for (int i = 0; i < v->matched && i < FB_DIVERGE_MAX_IMPACTS; i++) {
-      const double tol = !sc && i == 0 ? SC_FLORES_ONSET_REL_TOL : SC_MATCHED_REL_TOL;
+    /* Flores: its first impacts, before its rattling leaves the reference */
+    const int n = sc ? v->matched : FB_FIRST_IMPACTS;
+    assert_true(v->matched >= n);
+    for (int i = 0; i < n && i < FB_DIVERGE_MAX_IMPACTS; i++) {
+      const double tol = SC_MATCHED_REL_TOL;
       char name[96];
       snprintf(name, sizeof name, "%s impact %d force", SC_CASE_NAME[sc], i + 1);
       report_residual(name, v->impact[i].force_rel, tol);
@@ -958,18 +961,26 @@ static void test_sc_restitution_first_impacts(void **state) {
 }
 
 /* The generic colliders at the piston pin: the libccd bore (256 segments)
- * and the ring of 64 ODE boxes hold the same first impact as the exact
- * contact, Flores's case at its automatic step: force peak within 1 %
- * (measured ccd -0.06 %, faceted -0.41 %: the same law at the same step,
- * the polygon's sagitta 0.8 um against 41 um of penetration), ccd's
- * penetration within 1 % (measured -0.06 %; the faceted ring reports the
- * pin's eccentricity beyond the circle, which its facets let grow by 14 %). */
+ * holds the same first impact as the exact contact, Flores's case at its
+ * automatic step: force and penetration peaks within 1 % (measured +0.014 %,
+ * +0.011 %: the same law at the same step, the polygon's sagitta 0.8 um
+ * against 76 um of penetration); the ring of 256 ODE boxes within its own
+ * accuracy (SC_FACETED_REL_TOL; its penetration is the pin's eccentricity
+ * beyond the circle, which its facets let grow, not compared). */
 #define SC_COLLIDER_REL_TOL 0.01
+/* The ring of boxes is the approximate collider it is on the four-bar:
+ * docs/colliders.md measures its peak force -15 % to -25 % off the exact
+ * collider's (its split of the law by contact count, its facets' depth);
+ * here, with Flores's damper set for its restitution so that the spring
+ * carries the force, measured -12 % (256 boxes; -21 % with 64). */
+#define SC_FACETED_REL_TOL 0.25
 
-/* largest force and penetration of joint j over t < t1 */
-static void first_episode(const fb_series *s, int j, double t1, double *force, double *pen) {
+/* largest force and penetration of joint j's first impact episode */
+static void first_episode(const fb_series *s, int j, double *force, double *pen) {
   *force = *pen = 0.0;
-  for (size_t k = 0; k < s->n && s->t[k] < t1; k++) {
+  size_t first, last;
+  if (fb_metrics_impact_episodes(s, j, INFINITY, &first, &last, 1) < 1) return;
+  for (size_t k = first; k <= last; k++) {
     *force = fmax(*force, s->contact[j][FB_C_FORCE][k]);
     *pen = fmax(*pen, s->contact[j][FB_C_PEN][k]);
   }
@@ -978,25 +989,27 @@ static void first_episode(const fb_series *s, int j, double t1, double *force, d
 static void test_sc_colliders(void **state) {
   (void)state;
   const char *sets[] = {"run.models=ode-clearance-impact,ode-clearance-faceted,ode-clearance-ccd",
-                        "run.ensemble=1", "run.revolutions=1", "run.peaks=all"};
+                        "run.ensemble=1", "run.revolutions=1", "run.peaks=all",
+                        "clearance.segments=256"};
   fb_case c;
-  load_sc(&c, 0, sets, 4);
+  load_sc(&c, 0, sets, 5);
   static fb_run r;
   fb_diag d;
   if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
   double f0, p0;
-  first_episode(&sc_result(&r, "ode-clearance-impact")->run.series, FB_JOINT_C, 3e-4, &f0, &p0);
+  first_episode(&sc_result(&r, "ode-clearance-impact")->run.series, FB_JOINT_C, &f0, &p0);
   assert_true(f0 > 0.0 && p0 > 0.0);
   const char *others[2] = {"ode-clearance-ccd", "ode-clearance-faceted"};
   for (int i = 0; i < 2; i++) {
     const fb_model_result *m = sc_result(&r, others[i]);
     assert_int_equal(m->run.stop.kind, FB_STOP_NONE);
     double f, p;
-    first_episode(&m->run.series, FB_JOINT_C, 3e-4, &f, &p);
+    first_episode(&m->run.series, FB_JOINT_C, &f, &p);
     char name[96];
     snprintf(name, sizeof name, "%s first impact force vs exact", others[i]);
-    report_residual(name, f / f0 - 1.0, SC_COLLIDER_REL_TOL);
-    assert_rel(f, f0, SC_COLLIDER_REL_TOL);
+    const double tol = i == 0 ? SC_COLLIDER_REL_TOL : SC_FACETED_REL_TOL;
+    report_residual(name, f / f0 - 1.0, tol);
+    assert_rel(f, f0, tol);
     if (i == 0) {
       report_residual("ccd first impact penetration vs exact", p / p0 - 1.0, SC_COLLIDER_REL_TOL);
       assert_rel(p, p0, SC_COLLIDER_REL_TOL);

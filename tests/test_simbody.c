@@ -375,33 +375,40 @@ static void test_keys_and_refusal(void **state) {
 
 /* the issue's acceptance bound on the ideal models' peaks against the
  * analytic ones at the automatic step: the rod's omega and alpha, the
- * slider's x, v and a (measured at the default accuracy 1e-6: flores
- * 2.8e-7 / 1.3e-6 and the slider's v / a 1.2e-7 / 4.9e-7; the mild case
- * 1.4e-7 / 1.3e-6 and 4.7e-8 / 3.6e-7) */
+ * slider's x, v and a (measured at the default accuracy 1e-6, the worst of
+ * nominal and stack-up: flores rod omega / alpha 5.7e-8 / 1.3e-6, slider
+ * v / a 2.8e-7 / 2.1e-7; the mild case 4.4e-8 / 1.3e-6 and 1.4e-7 /
+ * 3.1e-7, its slider x 1.7e-6) */
 #define SC_PEAK_REL_TOL 1e-4
 /* the Ball at the piston pin, projected every step to the accuracy: the
- * four-bar's bound (DRIFT_TOL_M) on a mechanism of the same size (crank 50,
- * rod 120 mm; measured 5e-8 m) */
+ * four-bar's bound (DRIFT_TOL_M) on a smaller mechanism (crank 50, rod
+ * 120 mm; measured 1.7e-7 m on both cases) */
 #define SC_DRIFT_TOL_M DRIFT_TOL_M
 /* the drive torque and the four joints' reaction peaks (the guide's normal
  * force among them) against the slider-crank's inverse dynamics: the ideal
- * motion's bound, as the four-bar's LOADS_REL_TOL (measured at most 6e-8) */
+ * motion's bound, as the four-bar's LOADS_REL_TOL (measured at most 1.2e-6,
+ * the guide's on the mild case; the pins' 1e-13 to 2e-8) */
 #define SC_LOADS_REL_TOL 1e-4
 /* the clearance models' peak force and penetration against the reference:
  * the issue's 1 % (measured on flores at the default accuracy: impact
  * -0.38 % / -2.4e-6, restitution +0.15 % / +0.13 %) */
 #define SC_CONTACT_PEAK_REL_TOL 0.01
 /* The mild case's impact model at accuracy 1e-8. At the default 1e-6 it
- * leaves the reference at 45.2 ms (197 deg into revolution 2), after 10 of
- * its 11 impacts matched (force within 5.8 %), and the verdict is
- * statistical; at 1e-8 it stays with it over the run (11 of 11 matched),
- * peak force +0.14 %, penetration +0.11 % */
+ * leaves the reference at 45.2 ms (197 deg into revolution 2), 10 of 11
+ * impacts matched before, and its verdict is statistical; at 1e-8 it stays
+ * with it over the run, 11 of 11 matched, peak force +0.14 %, penetration
+ * +0.11 %. Its matched impacts agree within 0.7 % but for two grazes (24
+ * and 14 N, 0.46 and 0.31 um, at the tail of an impact whose force the
+ * impact law clips at zero while the pin withdraws): force within 1.9 %,
+ * penetration up to 67 %, which fails the verdict's matched-impact bound
+ * (0.05) though not the peaks; so the peaks and the matching are held
+ * here, not the verdict */
 #define SC_MILD_IMPACT_ACCURACY "simbody.accuracy=1e-8"
 /* The mild case's restitution model rattles (110 impacts in 2
  * revolutions) and leaves the reference however tight the accuracy: at
  * 10.3 ms at 1e-6, 16.1 ms at 1e-8, 29.4 ms at 1e-9 (its peaks then compare
  * two histories: -8 %, +0.6 %, -31 %), so the start-up's first impacts, before
- * it leaves, are held to the 1 % (measured within 2e-4) */
+ * it leaves, are held to the 1 % (measured within 3.1e-3) */
 #define SC_FIRST_IMPACT_REL_TOL 0.01
 /* the restitution model's impact count on flores against the reference's
  * (44 of 45 at 1e-6): the same 15 % as the four-bar's

@@ -17,9 +17,14 @@
  * (minimal coordinates, rk8pd at 1e-12), so they must agree with it as
  * closely as the accuracy allows.
  *
+ * The slider-crank (issue 45; the tests after "the slider-crank" below) on
+ * the same engine: the Pin tree ground -> crank -> rod and a Slider mobilizer
+ * ground -> slider along the guide, the loop cut at the piston pin.
+ *
  * In a build without Simbody every test is skipped, except the one that
  * checks the refusal and its message. */
 #include <string.h>
+#include <unistd.h>
 
 #include "casefile.h"
 #include "engine.h"
@@ -349,6 +354,298 @@ static void test_keys_and_refusal(void **state) {
   }
 }
 
+/* ---- the slider-crank -----------------------------------------------------
+ *
+ *                  B  Pin (rod on crank)
+ *                 / \
+ *          crank /   \ rod           Pin mobilizers about +z: ground -> crank
+ *               /     \              (A, angle prescribed), crank -> rod (B);
+ *              A       [P H]  - - -> a Slider mobilizer ground -> slider
+ *                 guide y = offset   along +x at y = offset (its frame at the
+ *                                    hole centre H); the piston pin P on the
+ *                                    rod, a Constraint::Ball to H (ideal) or
+ *                                    the contact law as a Force::Custom
+ *                                    (clearance, pin P in the hole H)
+ *
+ * Ideal models against the exact slider-crank (slider_crank.h, the analytic
+ * model of the same lengths) and its inverse dynamics
+ * (slider_crank_invdyn.h); clearance models against the reference
+ * (slider_crank_dynamics.h integrated by rk8pd), on a milder case of this
+ * file and on the shipped cases/slider_crank_flores.ini. */
+
+/* the issue's acceptance bound on the ideal models' peaks against the
+ * analytic ones at the automatic step: the rod's omega and alpha, the
+ * slider's x, v and a (measured at the default accuracy 1e-6, the worst of
+ * nominal and stack-up: flores rod omega / alpha 5.7e-8 / 1.3e-6, slider
+ * v / a 2.8e-7 / 2.1e-7; the mild case 4.4e-8 / 1.3e-6 and 1.4e-7 /
+ * 3.1e-7, its slider x 1.7e-6) */
+#define SC_PEAK_REL_TOL 1e-4
+/* the Ball at the piston pin, projected every step to the accuracy: the
+ * four-bar's bound (DRIFT_TOL_M) on a smaller mechanism (crank 50, rod
+ * 120 mm; measured 1.7e-7 m on both cases) */
+#define SC_DRIFT_TOL_M DRIFT_TOL_M
+/* the drive torque and the four joints' reaction peaks (the guide's normal
+ * force among them) against the slider-crank's inverse dynamics: the ideal
+ * motion's bound, as the four-bar's LOADS_REL_TOL (measured at most 1.2e-6,
+ * the guide's on the mild case; the pins' 1e-13 to 2e-8) */
+#define SC_LOADS_REL_TOL 1e-4
+/* the clearance models' peak force and penetration against the reference:
+ * the issue's 1 % (measured on flores at the default accuracy: impact
+ * -0.38 % / -2.4e-6, restitution +0.15 % / +0.13 %) */
+#define SC_CONTACT_PEAK_REL_TOL 0.01
+/* The mild case's impact model at accuracy 1e-8. At the default 1e-6 it
+ * leaves the reference at 45.2 ms (197 deg into revolution 2), 10 of 11
+ * impacts matched before, and its verdict is statistical; at 1e-8 it stays
+ * with it over the run, 11 of 11 matched, peak force +0.14 %, penetration
+ * +0.11 %. Its matched impacts agree within 0.7 % but for two grazes (24
+ * and 14 N, 0.46 and 0.31 um, at the tail of an impact whose force the
+ * impact law clips at zero while the pin withdraws): force within 1.9 %,
+ * penetration up to 67 %, which fails the verdict's matched-impact bound
+ * (0.05) though not the peaks; so the peaks and the matching are held
+ * here, not the verdict */
+#define SC_MILD_IMPACT_ACCURACY "simbody.accuracy=1e-8"
+/* The mild case's restitution model rattles (110 impacts in 2
+ * revolutions) and leaves the reference however tight the accuracy: at
+ * 10.3 ms at 1e-6, 16.1 ms at 1e-8, 29.4 ms at 1e-9 (its peaks then compare
+ * two histories: -8 %, +0.6 %, -31 %), so the start-up's first impacts, before
+ * it leaves, are held to the 1 % (measured within 3.1e-3) */
+#define SC_FIRST_IMPACT_REL_TOL 0.01
+/* the restitution model's impact count on flores against the reference's
+ * (44 of 45 at 1e-6): the same 15 % as the four-bar's
+ * RESTITUTION_IMPACTS_REL_TOL, for the same reason (a graze more or less
+ * in a rattle) */
+#define SC_RESTITUTION_IMPACTS_REL_TOL 0.15
+
+/* a milder slider-crank than flores: 2000 rpm, radial clearance 100 um, an
+ * offset guide, a crank started at 20 deg, and tolerances so that the
+ * stack-up lengths differ from the nominal ones */
+static const char *const SC_MILD_CASE =
+    "[case]\n"
+    "name = simbody_sc_mild\n"
+    "[linkage]\n"
+    "type = slider-crank\n"
+    "crank_mm = 50\n"
+    "coupler_mm = 120\n"
+    "offset_mm = 6\n"
+    "crank_angle0_deg = 20\n"
+    "[tolerance]\n"
+    "crank_plus_minus_mm = 0.05\n"
+    "coupler_plus_minus_mm = 0.05\n"
+    "offset_plus_minus_mm = 0.05\n"
+    "stackup = max\n"
+    "[mass]\n"
+    "slider_kg = 0.14\n"
+    "[drive]\n"
+    "speed_rpm = 2000\n"
+    "[pin]\n"
+    "radial_clearance_um = 100\n"
+    "[clearance]\n"
+    "joints = coupler-slider\n"
+    "[run]\n"
+    "revolutions = 2\n";
+
+enum { SC_MILD = 0, SC_FLORES = 1 };
+/* the slider-crank's coupler-slider joint, the piston pin (mechanism.h's
+ * fb_mech_slider_crank: its reference_joint) */
+#define FB_SC_PISTON_PIN 2
+static const char *const sc_case_name[2] = {"mild", "flores"};
+
+/* loads slider-crank case `which` with overrides into *c */
+static void sc_load(fb_case *c, int which, const char **sets, int n) {
+  fb_diag d;
+  fb_status st;
+  if (which == SC_FLORES) {
+    const char *dir = getenv("FOURBAR_CASES_DIR");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/slider_crank_flores.ini", dir ? dir : "cases");
+    st = fb_casefile_load(c, path, sets, n, &d);
+  } else {
+    char path[] = "/tmp/fourbar-simbody-sc-XXXXXX";
+    const int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    const size_t len = strlen(SC_MILD_CASE);
+    assert_int_equal(write(fd, SC_MILD_CASE, len), (ssize_t)len);
+    close(fd);
+    st = fb_casefile_load(c, path, sets, n, &d);
+    unlink(path);
+  }
+  if (st != FB_OK) fail_msg("slider-crank case %s: %s", sc_case_name[which], d.msg);
+}
+
+/* runs slider-crank case `which` with the given models and overrides */
+static void sc_run(fb_run *r, int which, const char *models, const char **sets, int n) {
+  const char *all[8];
+  char ms[256];
+  snprintf(ms, sizeof ms, "run.models=%s", models);
+  all[0] = ms;
+  for (int i = 0; i < n; i++) all[i + 1] = sets[i];
+  static fb_case c;
+  sc_load(&c, which, all, n + 1);
+  assert_int_equal(c.mechanism, FB_MECH_SLIDER_CRANK);
+  fb_diag d;
+  if (fb_run_case(r, &c, NULL, NULL, &d) != FB_OK) fail_msg("run failed: %s", d.msg);
+  for (int i = 0; i < r->n; i++)
+    if (r->model[i].run.stop.kind != FB_STOP_NONE)
+      fail_msg("%s: stopped (%s)", r->model[i].run.name,
+               fb_stop_kind_name(r->model[i].run.stop.kind));
+}
+
+/* the largest |relative peak error| of output body b: velocity and
+ * acceleration max and min, and for the slider its position's */
+static double sc_peak_rel(const fb_body_error *e, int with_position) {
+  double w = worst(e->omega_max_rel, e->omega_min_rel, e->alpha_max_rel, e->alpha_min_rel);
+  if (with_position) w = fmax(w, fmax(fabs(e->pos_max_rel), fabs(e->pos_min_rel)));
+  return w;
+}
+
+static double series_peak(const double *v, size_t n) { return fb_series_largest_abs(v, n); }
+
+static void test_slider_crank_ideal_matches_analytic(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SIMBODY();
+  for (int which = 0; which < 2; which++) {
+    static fb_run r;
+    sc_run(&r, which, "analytic, analytic-stackup, simbody-ideal-nominal, simbody-ideal-stackup",
+           NULL, 0);
+    for (int i = 2; i < 4; i++) {
+      const fb_model_result *m = &r.model[i];
+      const fb_model_result *a = &r.model[i - 2]; /* analytic of the same lengths */
+      assert_string_equal(fb_engine_name(m->run.model->engine), "simbody");
+      assert_true(m->has_error);
+      const double rod = sc_peak_rel(&m->error.body[0], 0);
+      const double slider = sc_peak_rel(&m->error.body[1], 1);
+      char name[128];
+      snprintf(name, sizeof name, "slider-crank %s: %s", sc_case_name[which], m->run.name);
+      report_residual(name, 0, 0);
+      report_residual("  rod omega/alpha peak rel", rod, SC_PEAK_REL_TOL);
+      report_residual("    rod omega peak rel",
+                      fmax(fabs(m->error.body[0].omega_max_rel), fabs(m->error.body[0].omega_min_rel)),
+                      SC_PEAK_REL_TOL);
+      report_residual("  slider x/v/a peak rel", slider, SC_PEAK_REL_TOL);
+      report_residual("    slider v peak rel",
+                      fmax(fabs(m->error.body[1].omega_max_rel), fabs(m->error.body[1].omega_min_rel)),
+                      SC_PEAK_REL_TOL);
+      report_residual("    slider a peak rel",
+                      fmax(fabs(m->error.body[1].alpha_max_rel), fabs(m->error.body[1].alpha_min_rel)),
+                      SC_PEAK_REL_TOL);
+      report_residual("  crank angle err [rad]", m->error.crank_angle_err_max, CRANK_ANGLE_TOL_RAD);
+      report_residual("  loop drift at the piston pin [m]", m->run.joint_drift_max, SC_DRIFT_TOL_M);
+      assert_true(rod < SC_PEAK_REL_TOL);
+      assert_true(slider < SC_PEAK_REL_TOL);
+      assert_true(m->error.crank_angle_err_max < CRANK_ANGLE_TOL_RAD);
+      assert_true(m->run.joint_drift_max < SC_DRIFT_TOL_M);
+      /* the drive torque and each joint's reaction (ground-crank,
+       * crank-coupler, coupler-slider, the guide's slider-ground) against
+       * the analytic model's inverse dynamics */
+      const fb_series *s = &m->run.series, *t = &a->run.series;
+      assert_true(s->has_loads && t->has_loads);
+      assert_int_equal(s->n, t->n);
+      const double tq = series_peak(s->drive_torque, s->n) / series_peak(t->drive_torque, t->n) - 1.0;
+      report_residual("  drive torque peak rel", tq, SC_LOADS_REL_TOL);
+      assert_true(fabs(tq) < SC_LOADS_REL_TOL);
+      for (int j = 0; j < 4; j++) {
+        double rx = 0.0, rx_ref = 0.0;
+        for (size_t k = 0; k < s->n; k++) {
+          rx = fmax(rx, hypot(s->reaction[j][0][k], s->reaction[j][1][k]));
+          rx_ref = fmax(rx_ref, hypot(t->reaction[j][0][k], t->reaction[j][1][k]));
+        }
+        snprintf(name, sizeof name, "  %s reaction peak rel", fb_mech_joint_name(s->mech, j));
+        report_residual(name, rx / rx_ref - 1.0, SC_LOADS_REL_TOL);
+        assert_true(rx_ref > 0.0);
+        assert_true(fabs(rx / rx_ref - 1.0) < SC_LOADS_REL_TOL);
+      }
+      /* the guide's reaction is normal to it: no force along the guide */
+      double gx = 0.0;
+      for (size_t k = 0; k < s->n; k++) gx = fmax(gx, fabs(s->reaction[3][0][k]));
+      assert_true(gx == 0.0);
+    }
+    fb_run_free(&r);
+  }
+}
+
+/* one clearance model against its reference: peak force and penetration */
+static void sc_check_peaks(const fb_model_result *m, const char *ref, const char *what) {
+  assert_true(m->has_ref_error);
+  assert_string_equal(m->ref_name, ref);
+  const fb_reference_error *re = &m->ref_error;
+  char name[160];
+  snprintf(name, sizeof name, "%s force peak rel", what);
+  report_residual(name, re->force_max_rel, SC_CONTACT_PEAK_REL_TOL);
+  snprintf(name, sizeof name, "%s penetration peak rel", what);
+  report_residual(name, re->penetration_max_rel, SC_CONTACT_PEAK_REL_TOL);
+  snprintf(name, sizeof name, "%s impacts (reference's as tol)", what);
+  report_residual(name, re->impacts, re->impacts_reference);
+  assert_true(fabs(re->force_max_rel) < SC_CONTACT_PEAK_REL_TOL);
+  assert_true(fabs(re->penetration_max_rel) < SC_CONTACT_PEAK_REL_TOL);
+  /* the contact was evaluated at the piston pin, and nowhere else */
+  assert_true(m->run.provenance[FB_SC_PISTON_PIN].contact_steps > 0);
+  assert_int_equal(m->run.provenance[FB_JOINT_B].contact_steps, 0);
+}
+
+static void test_slider_crank_clearance_impact_matches_reference(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SIMBODY();
+  /* flores at the default accuracy */
+  static fb_run r;
+  sc_run(&r, SC_FLORES, "simbody-clearance-impact, reference", NULL, 0);
+  const fb_model_result *m = &r.model[0];
+  sc_check_peaks(m, "reference", "slider-crank flores: impact");
+  assert_true(m->ref_error.impacts > 0);
+  assert_int_equal(m->ref_error.impacts, m->ref_error.impacts_reference);
+  assert_true(m->has_divergence && !m->divergence.diverged);
+  fb_run_free(&r);
+  /* the mild case, at the accuracy that keeps it with the reference */
+  const char *sets[] = {SC_MILD_IMPACT_ACCURACY};
+  sc_run(&r, SC_MILD, "simbody-clearance-impact, reference", sets, 1);
+  m = &r.model[0];
+  sc_check_peaks(m, "reference", "slider-crank mild: impact");
+  report_residual("slider-crank mild: impact, impacts matched", m->divergence.matched,
+                  m->divergence.impacts_reference);
+  assert_true(m->has_divergence && !m->divergence.diverged);
+  assert_true(m->divergence.matched > 0);
+  assert_int_equal(m->divergence.matched, m->divergence.impacts_reference);
+  fb_run_free(&r);
+}
+
+static void test_slider_crank_clearance_restitution_matches_reference(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SIMBODY();
+  /* flores at the default accuracy: the peaks, the count, the damper's mass */
+  static fb_run r;
+  sc_run(&r, SC_FLORES, "simbody-clearance-restitution, reference-restitution", NULL, 0);
+  const fb_model_result *m = &r.model[0];
+  sc_check_peaks(m, "reference-restitution", "slider-crank flores: restitution");
+  const fb_reference_error *re = &m->ref_error;
+  const double off = fabs((double)(re->impacts - re->impacts_reference));
+  report_residual("slider-crank flores: restitution impacts off (count)", off,
+                  SC_RESTITUTION_IMPACTS_REL_TOL * re->impacts_reference);
+  assert_true(re->impacts_reference > 0);
+  assert_true(off <= SC_RESTITUTION_IMPACTS_REL_TOL * re->impacts_reference);
+  const fb_contact_provenance *p = &m->run.provenance[FB_SC_PISTON_PIN];
+  report_residual("slider-crank flores: m_eff min [kg]", p->mass_eff_min, 0);
+  report_residual("slider-crank flores: m_eff max [kg]", p->mass_eff_max, 0);
+  assert_true(p->mass_eff_min > 0.0 && p->mass_eff_max >= p->mass_eff_min);
+  /* the damper's mass cannot exceed the slider's and the rod's together */
+  assert_true(p->mass_eff_max <= r.scene.source.link[1].mass + r.scene.source.link[2].mass);
+  fb_run_free(&r);
+  /* the mild case rattles: its first impacts, before it leaves the reference */
+  sc_run(&r, SC_MILD, "simbody-clearance-restitution, reference-restitution", NULL, 0);
+  m = &r.model[0];
+  assert_true(m->has_ref_error);
+  re = &m->ref_error;
+  assert_true(re->first_impacts > 0);
+  for (int k = 0; k < re->first_impacts; k++) {
+    report_residual("slider-crank mild: restitution, first impacts' force rel",
+                    re->first_impact_force_rel[k], SC_FIRST_IMPACT_REL_TOL);
+    report_residual("slider-crank mild: restitution, first impacts' penetration rel",
+                    re->first_impact_penetration_rel[k], SC_FIRST_IMPACT_REL_TOL);
+    assert_true(fabs(re->first_impact_force_rel[k]) < SC_FIRST_IMPACT_REL_TOL);
+    assert_true(fabs(re->first_impact_penetration_rel[k]) < SC_FIRST_IMPACT_REL_TOL);
+  }
+  report_residual("slider-crank mild: restitution leaves the reference at [s]", m->divergence.t, 0);
+  fb_run_free(&r);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_keys_and_refusal),
@@ -357,6 +654,9 @@ int main(void) {
       cmocka_unit_test(test_clearance_impact_matches_reference),
       cmocka_unit_test(test_clearance_restitution_matches_reference),
       cmocka_unit_test(test_integrators_and_accuracy),
+      cmocka_unit_test(test_slider_crank_ideal_matches_analytic),
+      cmocka_unit_test(test_slider_crank_clearance_impact_matches_reference),
+      cmocka_unit_test(test_slider_crank_clearance_restitution_matches_reference),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,7 +1,8 @@
 // The Simbody scene's clearance contact (simbody_scene.h): the project's law
-// (contact.h) at the exact pin-in-hole eccentricity of the crank-coupler
-// joint, with the restitution law's damper on the mechanism's effective mass
-// along the normal (effective_mass.h), and the custom force that applies it.
+// (contact.h) at the exact pin-in-hole eccentricity of the clearance joint
+// (the four-bar's crank-coupler, the slider-crank's piston pin), with the
+// restitution law's damper on the mechanism's effective mass along the
+// normal (effective_mass.h), and the custom force that applies it.
 #include <cmath>
 #include <cstring>
 
@@ -15,11 +16,53 @@ namespace fb_simbody {
 
 namespace {
 
-// the inverse effective-mass tensor at B in state (effective_mass.h), for
-// the restitution law's damper; 0 when it cannot be formed
+// the slider-crank in state (effective_mass.h, as fb_mechanism_from_slider_crank
+// from the bodies): crank, rod and slider; joint centres A = 0, B, the rod's
+// pin centre P and the slider's point on the guide, its hole centre H (the
+// slider's centre of mass); the guide prismatic, the piston pin the clearance
+void slider_crank_mechanism(const Scene *s, const State &state, fb_mechanism *m) {
+  const MobilizedBody *body[2] = {&s->crank, &s->coupler};
+  const double len[2] = {s->a, s->b};
+  for (int i = 0; i < 3; i++) {
+    m->mass[i] = s->sm.link[i].mass;
+    m->inertia[i] = s->sm.link[i].inertia;
+  }
+  for (int i = 0; i < 2; i++) {
+    const Vec3 com =
+        body[i]->findStationLocationInGround(state, Vec3(s->sm.link[i].com_fraction * len[i], 0, 0));
+    m->com[i][0] = com[0];
+    m->com[i][1] = com[1];
+  }
+  const Vec3 b = s->crank.findStationLocationInGround(state, Vec3(s->a, 0, 0));
+  const Vec3 pin = s->pin_body->findStationLocationInGround(state, s->pin_at);
+  const Vec3 hole = s->hole_body->findStationLocationInGround(state, s->hole_at);
+  m->com[2][0] = hole[0];
+  m->com[2][1] = hole[1];
+  m->joint[0][0] = m->joint[0][1] = 0.0;
+  m->joint[1][0] = b[0];
+  m->joint[1][1] = b[1];
+  m->joint[2][0] = pin[0];
+  m->joint[2][1] = pin[1];
+  m->joint[3][0] = hole[0];
+  m->joint[3][1] = hole[1];
+  m->clearance_mask = 1 << s->cj;
+  m->prismatic_mask = 1 << 3;
+  m->crank_driven = 1;
+}
+
+// the inverse effective-mass tensor at the clearance joint in state
+// (effective_mass.h), for the restitution law's damper; 0 when it cannot be
+// formed
 int mass_tensor(const Scene *s, const State &state, double w_out[2][2]) {
   fb_mechanism m;
   std::memset(&m, 0, sizeof m);
+  if (s->sc) {
+    slider_crank_mechanism(s, state, &m);
+    double w[4][2][2];
+    if (fb_effective_mass_tensor(w, &m, NULL) != FB_OK) return 0;
+    std::memcpy(w_out, w[s->cj], sizeof w[s->cj]);
+    return 1;
+  }
   const MobilizedBody *body[3] = {&s->crank, &s->coupler, &s->follower};
   const double len[3] = {s->a, s->b, s->c};
   for (int i = 0; i < 3; i++) {
@@ -67,7 +110,7 @@ ContactEval contact_law(const Scene *s, const double e[2], const double edot[2],
   ce.n[0] = e[0] / ecc;
   ce.n[1] = e[1] / ecc;
   ce.ddot = ce.n[0] * edot[0] + ce.n[1] * edot[1];
-  fb_contact_law law = s->sm.law[FB_JOINT_B];
+  fb_contact_law law = s->sm.law[s->cj];
   if (law.kind == FB_LAW_RESTITUTION && w) {
     // the damper on the mechanism's effective mass along n (effective_mass.h)
     double wm[2][2] = {{w[0][0], w[0][1]}, {w[1][0], w[1][1]}};
@@ -82,16 +125,16 @@ ContactEval contact_law(const Scene *s, const double e[2], const double edot[2],
 // the contact in a realized state, with the scene's episodes; *w_ok and w
 // (when given) the inverse effective-mass tensor used
 ContactEval contact_at(const Scene *s, const State &state, double (*w)[2], int *w_ok) {
-  const Vec3 pin = s->crank.findStationLocationInGround(state, Vec3(s->a, 0, 0));
-  const Vec3 hole = s->coupler.findStationLocationInGround(state, Vec3(0));
-  const Vec3 vp = s->crank.findStationVelocityInGround(state, Vec3(s->a, 0, 0));
-  const Vec3 vh = s->coupler.findStationVelocityInGround(state, Vec3(0));
+  const Vec3 pin = s->pin_body->findStationLocationInGround(state, s->pin_at);
+  const Vec3 hole = s->hole_body->findStationLocationInGround(state, s->hole_at);
+  const Vec3 vp = s->pin_body->findStationVelocityInGround(state, s->pin_at);
+  const Vec3 vh = s->hole_body->findStationVelocityInGround(state, s->hole_at);
   const double e[2] = {pin[0] - hole[0], pin[1] - hole[1]};
   const double edot[2] = {vp[0] - vh[0], vp[1] - vh[1]};
   double wl[2][2];
   double (*wp)[2] = w ? w : wl;
   // the tensor where the law needs it (in contact); everywhere when asked for
-  const int ok = s->sm.law[FB_JOINT_B].kind == FB_LAW_RESTITUTION &&
+  const int ok = s->sm.law[s->cj].kind == FB_LAW_RESTITUTION &&
                  (w || std::hypot(e[0], e[1]) > s->sm.radial_clearance) && mass_tensor(s, state, wp);
   if (w_ok) *w_ok = ok;
   return contact_law(s, e, edot, ok ? wp : NULL, s->ep);
@@ -102,8 +145,8 @@ void ClearanceForce::calcForce(const State &state, Vector_<SpatialVec> &bodyForc
   const ContactEval ce = contact_at(s_, state);
   if (ce.force == 0.0) return;
   const Vec3 f(ce.force * ce.n[0], ce.force * ce.n[1], 0);
-  s_->coupler.applyForceToBodyPoint(state, Vec3(0), f, bodyForces);
-  s_->crank.applyForceToBodyPoint(state, Vec3(s_->a, 0, 0), -f, bodyForces);
+  s_->hole_body->applyForceToBodyPoint(state, s_->hole_at, f, bodyForces);
+  s_->pin_body->applyForceToBodyPoint(state, s_->pin_at, -f, bodyForces);
 }
 
 } // namespace fb_simbody

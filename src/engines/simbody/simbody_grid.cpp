@@ -55,7 +55,7 @@ void record_between(const Scene *s, Record *r, double t, const Knot *before, con
   q[kCrank] = s->theta0 + s->omega2 * t; // prescribed (the Motion), as Simbody prescribes it
   u[kCrank] = s->omega2;
   udot[kCrank] = 0.0;
-  const double alpha[2] = {udot[kFollower] + udot[kCoupler], udot[kFollower]};
+  const double alpha[2] = {udot[s->parent] + udot[kCoupler], udot[kFollower]};
   double load[kLoads];
   for (int m = 0; m < kLoads; m++)
     hermite(sp, dt, k0.load[m], load_rate(before, k0, &k1, m), k1.load[m],
@@ -72,10 +72,10 @@ void record_between(const Scene *s, Record *r, double t, const Knot *before, con
         w[i][j] = w0 + sp * (w1 - w0);
       }
     ce = contact_law(s, e, edot, w_ok ? w : NULL, k0.ep);
-    load[1 + 2 * FB_JOINT_B] = ce.force * ce.n[0];
-    load[2 + 2 * FB_JOINT_B] = ce.force * ce.n[1];
+    load[1 + 2 * s->cj] = ce.force * ce.n[0];
+    load[2 + 2 * s->cj] = ce.force * ce.n[1];
   }
-  fill_sample(r, t, q, u, alpha, load, s->clearance ? &ce : NULL, keep_track);
+  fill_sample(s, r, t, q, u, alpha, load, s->clearance ? &ce : NULL, keep_track);
   r->drift = std::fmax(k0.drift, k1.drift);
 }
 
@@ -95,30 +95,33 @@ void ring_reserve(Scene *s, size_t k) {
 // the value of tracked column m in a sample
 double sample_value(const fb_sample &x, int m) {
   switch (m) {
-    case 0: return x.coupler_alpha;
-    case 1: return x.follower_alpha;
+    case 0: return x.body[0][FB_Q_ACC];
+    case 1: return x.body[1][FB_Q_ACC];
     case 2: return x.drive_torque;
-    case 7: return x.coupler_omega;
-    case 8: return x.follower_omega;
+    case 7: return x.body[0][FB_Q_VEL];
+    case 8: return x.body[1][FB_Q_VEL];
     default: return std::hypot(x.reaction[m - 3][0], x.reaction[m - 3][1]);
   }
 }
 
-// the sample's columns from mobilities q, u, the angular accelerations
-// (coupler, follower), loads and the contact; track from them unless keep
-void fill_sample(Record *r, double t, const double q[3], const double u[3],
+// the sample's columns from mobilities q, u, the output bodies'
+// accelerations (coupler, follower or slider), loads and the contact; track
+// from them unless keep. Output body 0 is the coupler (its angle the sum of
+// its parent's and its own mobility), body 1 the follower's angle or the
+// slider's x, its mobility (series.h: body[output][FB_Q_*])
+void fill_sample(const Scene *s, Record *r, double t, const double q[3], const double u[3],
                  const double alpha[2], const double load[kLoads], const ContactEval *ce,
                  int keep_track) {
   fb_sample &x = r->x;
   std::memset(&x, 0, sizeof x);
   x.t = t;
   x.crank_angle = q[kCrank];
-  x.follower_angle = q[kFollower];
-  x.follower_omega = u[kFollower];
-  x.follower_alpha = alpha[1];
-  x.coupler_angle = q[kFollower] + q[kCoupler];
-  x.coupler_omega = u[kFollower] + u[kCoupler];
-  x.coupler_alpha = alpha[0];
+  x.body[1][FB_Q_POS] = q[kFollower];
+  x.body[1][FB_Q_VEL] = u[kFollower];
+  x.body[1][FB_Q_ACC] = alpha[1];
+  x.body[0][FB_Q_POS] = q[s->parent] + q[kCoupler];
+  x.body[0][FB_Q_VEL] = u[s->parent] + u[kCoupler];
+  x.body[0][FB_Q_ACC] = alpha[0];
   x.drive_torque = load[0];
   for (int j = 0; j < 4; j++) {
     x.reaction[j][0] = load[1 + 2 * j];
@@ -127,7 +130,7 @@ void fill_sample(Record *r, double t, const double q[3], const double u[3],
   r->pen = 0.0;
   if (ce) {
     r->pen = ce->pen;
-    double *col = x.contact[FB_JOINT_B];
+    double *col = x.contact[s->cj];
     col[FB_C_FORCE] = ce->force;
     col[FB_C_PEN] = ce->pen;
     col[FB_C_EX] = ce->e[0];
@@ -155,7 +158,7 @@ void record_from_knot(const Scene *s, Record *r, const Knot &kn, int keep_track)
     ce.force = kn.force;
     ce.pen = kn.pen;
   }
-  fill_sample(r, kn.t, kn.q, kn.u, kn.alpha, kn.load, s->clearance ? &ce : NULL, keep_track);
+  fill_sample(s, r, kn.t, kn.q, kn.u, kn.alpha, kn.load, s->clearance ? &ce : NULL, keep_track);
   r->drift = kn.drift;
 }
 

@@ -41,18 +41,25 @@ using namespace SimTK;
 // within one sample interval instead of running on without end.
 const long kStepsPerSampleMax = 200000;
 
-// Mobilities, in the knots' arrays: the crank (angle prescribed), the
-// follower (about D), the coupler (about C, relative to the follower).
+// Mobilities, in the knots' arrays: the crank (angle prescribed), the second
+// output body (the four-bar's follower about D; the slider-crank's slider
+// along the guide), the coupler (relative to its parent mobility,
+// Scene::parent: the four-bar's about C on the follower, the slider-crank's
+// connecting rod about B on the crank).
 enum { kCrank = 0, kFollower = 1, kCoupler = 2, kMobilities = 3 };
 
 // Load components, in the knots' and samples' order: the drive torque, then
-// the reaction at A, B, C, D (x, y; invdyn.h's convention).
+// the reaction at the description's joints 0..3 (x, y; the four-bar's A, B,
+// C, D in invdyn.h's convention; the slider-crank's ground-crank,
+// crank-coupler, coupler-slider and slider-ground in slider_crank_invdyn.h's,
+// the last the force on the ground from the slider).
 const int kLoads = 9;
 
-// Columns whose local extremes call for an exact realization: the coupler's
-// and follower's angular accelerations, the drive torque, the four reaction
-// magnitudes and the two angular velocities (the peaks summary.json, check
-// and the tests take).
+// Columns whose local extremes call for an exact realization: the two output
+// bodies' accelerations (the coupler's angular one; the follower's angular
+// one or the slider's), the drive torque, the four reaction magnitudes and
+// the two output velocities (the peaks summary.json, check and the tests
+// take).
 const int kTracked = 9;
 // the columns whose minimum no metric takes: the reaction magnitudes
 const int kMaxOnly[kTracked] = {0, 0, 0, 1, 1, 1, 1, 0, 0};
@@ -98,8 +105,8 @@ const double kPeakClearance = 2.5e-2;
 const double kLookaheadIntervals = 3.0;
 const size_t kLookaheadMax = 100000;
 
-// The contact at the crank-coupler joint in one state: the law's force at
-// the exact pin-in-hole eccentricity.
+// The contact at the clearance joint (Scene::cj) in one state: the law's
+// force at the exact pin-in-hole eccentricity.
 struct ContactEval {
   double e[2];     // eccentricity pin - hole [m]
   double edot[2];  // its rate [m/s]
@@ -110,8 +117,8 @@ struct ContactEval {
   double mass_eff; // effective mass along n [kg] (restitution law), else NAN
 };
 
-// Values a sample is filled from: mobilities q (3) and u (3), the coupler's
-// and follower's angular accelerations (2), the loads (kLoads).
+// Values a sample is filled from: mobilities q (3) and u (3), the two output
+// bodies' accelerations (2), the loads (kLoads).
 const int kVals = 2 * 3 + 2 + 9;
 
 // One integrator step's end: the state the integrator advanced to,
@@ -125,7 +132,8 @@ struct Knot {
   double w[2][2];       // inverse effective-mass tensor at B (restitution law) [1/kg]
   int w_ok;             // 1: w holds the tensor
   double force, pen;    // the law's force [N] and the penetration [m] here
-  double alpha[2];      // coupler and follower angular accelerations [rad/s^2]
+  double alpha[2];      // the output bodies' accelerations: the coupler's angular
+                        // [rad/s^2], the follower's angular [rad/s^2] or the slider's [m/s^2]
   fb_episode ep;        // the contact episodes after this knot's update
   long id;              // serial number (-1: an exact state inside an interval)
   int refined;          // 1: the interval from this knot on was refined (kRefine)
@@ -161,7 +169,8 @@ struct Peak {
 struct Scene;
 
 // The project's contact law (contact.h) as a Simbody custom force: +F n on
-// the coupler's hole centre, -F n on the crank's pin centre.
+// the hole centre, -F n on the pin centre (the four-bar's crank pin in the
+// coupler's hole at B; the slider-crank's rod pin in the slider's hole).
 class ClearanceForce : public Force::Custom::Implementation {
  public:
   explicit ClearanceForce(const Scene *s) : s_(s) {}
@@ -175,14 +184,24 @@ class ClearanceForce : public Force::Custom::Implementation {
 
 struct Scene {
   fb_model_scene sm;
-  int clearance;          // 1: the crank-coupler joint is a pin in a hole
-  double a, b, c, g;      // crank, coupler, follower, ground lengths [m]
+  int sc;                 // 1: the slider-crank (fb_mech_slider_crank); 0: the four-bar
+  int cj;                 // the joint the tree is cut at, the one that may be a pin in a
+                          // hole: FB_JOINT_B (crank-coupler), or the slider-crank's
+                          // coupler-slider (FB_JOINT_C, index 2)
+  int clearance;          // 1: joint cj is a pin in a hole
+  int parent;             // the coupler's parent mobility: kFollower (four-bar), kCrank
+  double a, b, c, g;      // crank, coupler, follower, ground lengths [m] (slider-crank: c, g 0)
+  double offset;          // the slider-crank's guide line y = offset [m] (four-bar 0)
   double theta0, omega2;  // the prescribed crank angle theta0 + omega2 t
   MultibodySystem system;
   SimbodyMatterSubsystem matter;
   GeneralForceSubsystem forces;
   MobilizedBody::Pin crank, follower, coupler;
-  Constraint::Ball ball;  // ideal models only
+  MobilizedBody::Slider slider; // the slider-crank's slider (the four-bar's follower unused)
+  const MobilizedBody *mob[kMobilities]; // crank, follower or slider, coupler
+  MobilizedBody *pin_body, *hole_body; // the bodies of joint cj's pin and hole
+  Vec3 pin_at, hole_at;   // the pin and hole centres on them (body frames) [m]
+  Constraint::Ball ball;  // ideal models only: pin_body's pin_at on hole_body's hole_at
   std::unique_ptr<Integrator> integ;
   State scratch;          // the one State exact samples are realized in
   double h;               // output step [s]
@@ -260,7 +279,7 @@ inline Record *rec(Scene *s, size_t k) { return &s->recs[k & (s->recs.size() - 1
 double sample_value(const fb_sample &x, int m);
 
 // the sample's columns and values from q, u, alpha, loads and the contact
-void fill_sample(Record *r, double t, const double q[3], const double u[3],
+void fill_sample(const Scene *s, Record *r, double t, const double q[3], const double u[3],
                  const double alpha[2], const double load[kLoads], const ContactEval *ce,
                  int keep_track);
 

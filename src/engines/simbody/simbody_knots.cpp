@@ -1,7 +1,7 @@
 // The integrator's steps of the Simbody scene and their end states, the
 // knots (simbody_scene.cpp says how they are used): each step's end realized
 // through accelerations with its loads (the mobilizer reactions, the drive's
-// motion force, the Ball's or the contact's force at B), the contact
+// motion force, the Ball's or the contact's force at the cut joint), the contact
 // episodes updated at every step end, a failure kept for the sample it
 // stops, and a state realized exactly as Simbody realizes an interpolated
 // report.
@@ -21,32 +21,46 @@ namespace fb_simbody {
 namespace {
 
 // loads in a state realized through accelerations: drive torque, then the
-// reactions at A, B, C, D (x, y); the reaction at B is the Ball's (ideal)
-// or the contact force ce (clearance); *drift the Ball's violation
+// reactions at joints 0..3 (x, y). The four-bar: A, D and C the mobilizers'
+// (C on the follower from the coupler), B the cut. The slider-crank: the
+// ground-crank and crank-coupler mobilizers' (on the crank from the ground,
+// on the rod from the crank), the guide's the slider mobilizer's negated (on
+// the ground from the slider, slider_crank_invdyn.h's -N along y), the
+// piston pin the cut. At the cut joint cj: the Ball's reaction on the hole's
+// body (ideal) or the contact force ce (clearance); *drift the Ball's
+// violation
 void loads_at(Scene *s, const State &state, const ContactEval *ce, double load[kLoads],
               double *drift) {
   s->matter.calcMobilizerReactionForces(state, s->mob_reactions);
   const Vec3 fa = s->mob_reactions[s->crank.getMobilizedBodyIndex()][1];
-  const Vec3 fd = s->mob_reactions[s->follower.getMobilizedBodyIndex()][1];
   const Vec3 fc = s->mob_reactions[s->coupler.getMobilizedBodyIndex()][1];
   s->matter.findMotionForces(state, s->motion_forces);
   load[0] = -s->motion_forces[s->crank.getFirstUIndex(state)];
   load[1 + 2 * FB_JOINT_A] = fa[0];
   load[2 + 2 * FB_JOINT_A] = fa[1];
-  load[1 + 2 * FB_JOINT_D] = fd[0];
-  load[2 + 2 * FB_JOINT_D] = fd[1];
-  load[1 + 2 * FB_JOINT_C] = -fc[0]; // on the follower from the coupler
-  load[2 + 2 * FB_JOINT_C] = -fc[1];
+  if (s->sc) {
+    const Vec3 fs = s->mob_reactions[s->slider.getMobilizedBodyIndex()][1];
+    load[1 + 2 * FB_JOINT_B] = fc[0]; // on the rod from the crank
+    load[2 + 2 * FB_JOINT_B] = fc[1];
+    load[1 + 2 * FB_JOINT_D] = -fs[0]; // on the ground from the slider
+    load[2 + 2 * FB_JOINT_D] = -fs[1];
+  } else {
+    const Vec3 fd = s->mob_reactions[s->follower.getMobilizedBodyIndex()][1];
+    load[1 + 2 * FB_JOINT_D] = fd[0];
+    load[2 + 2 * FB_JOINT_D] = fd[1];
+    load[1 + 2 * FB_JOINT_C] = -fc[0]; // on the follower from the coupler
+    load[2 + 2 * FB_JOINT_C] = -fc[1];
+  }
   *drift = 0.0;
   if (ce) {
-    load[1 + 2 * FB_JOINT_B] = ce->force * ce->n[0];
-    load[2 + 2 * FB_JOINT_B] = ce->force * ce->n[1];
+    load[1 + 2 * s->cj] = ce->force * ce->n[0];
+    load[2 + 2 * s->cj] = ce->force * ce->n[1];
   } else {
-    const Vec3 fb = s->coupler.getBodyRotation(state) * s->ball.getBallReactionForceOnBody2(state);
-    load[1 + 2 * FB_JOINT_B] = fb[0];
-    load[2 + 2 * FB_JOINT_B] = fb[1];
-    const Vec3 pin = s->crank.findStationLocationInGround(state, Vec3(s->a, 0, 0));
-    const Vec3 hole = s->coupler.findStationLocationInGround(state, Vec3(0));
+    const Vec3 fb = s->hole_body->getBodyRotation(state) * s->ball.getBallReactionForceOnBody2(state);
+    load[1 + 2 * s->cj] = fb[0];
+    load[2 + 2 * s->cj] = fb[1];
+    const Vec3 pin = s->pin_body->findStationLocationInGround(state, s->pin_at);
+    const Vec3 hole = s->hole_body->findStationLocationInGround(state, s->hole_at);
     *drift = (pin - hole).norm();
   }
 }
@@ -60,13 +74,12 @@ Knot knot_of(Scene *s, const State &state) {
   Knot kn;
   std::memset(&kn, 0, sizeof kn);
   kn.t = state.getTime();
-  const MobilizedBody *mb[kMobilities] = {&s->crank, &s->follower, &s->coupler};
   for (int i = 0; i < kMobilities; i++) {
-    kn.q[i] = mb[i]->getOneQ(state, 0);
-    kn.u[i] = mb[i]->getOneU(state, 0);
-    kn.udot[i] = mb[i]->getOneUDot(state, 0);
+    kn.q[i] = s->mob[i]->getOneQ(state, 0);
+    kn.u[i] = s->mob[i]->getOneU(state, 0);
+    kn.udot[i] = s->mob[i]->getOneUDot(state, 0);
   }
-  kn.alpha[0] = kn.udot[kFollower] + kn.udot[kCoupler];
+  kn.alpha[0] = kn.udot[s->parent] + kn.udot[kCoupler];
   kn.alpha[1] = kn.udot[kFollower];
   ContactEval ce;
   if (s->clearance) {
@@ -159,7 +172,7 @@ int advance(Scene *s, double target, size_t k) {
 // the state at time t with mobilities q, u realized exactly, as Simbody
 // realizes an interpolated report (createInterpolatedState): q and u set
 // into the scratch State, the crank prescribed, projected onto the
-// constraint manifold (the Ball at B: for the one-degree-of-freedom loop
+// constraint manifold (the Ball at the cut: for the one-degree-of-freedom loop
 // this sets the velocities the interpolation has only to O(dt^4), and it
 // moves an integrator step's end by the constraint tolerance) and realized
 // through accelerations, with the episodes ep (the law's v0 as the
@@ -168,10 +181,9 @@ Knot realize_state(Scene *s, double t, const double q[3], const double u[3],
                    const fb_episode &ep) {
   State &st = s->scratch;
   st.setTime(t);
-  const MobilizedBody *mb[kMobilities] = {&s->crank, &s->follower, &s->coupler};
   for (int i = 0; i < kMobilities; i++) {
-    mb[i]->setOneQ(st, 0, q[i]);
-    mb[i]->setOneU(st, 0, u[i]);
+    s->mob[i]->setOneQ(st, 0, q[i]);
+    s->mob[i]->setOneU(st, 0, u[i]);
   }
   const fb_episode keep = s->ep;
   s->ep = ep;

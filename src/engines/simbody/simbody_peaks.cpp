@@ -78,7 +78,7 @@ void refine_interval(Scene *s, size_t i) {
     }
     double v[kVals];
     std::memcpy(v, r->v, sizeof v);
-    fill_sample(r, r->t, v, v + 3, v + 6, v + 8, s->clearance ? &r->ce : NULL, 1);
+    fill_sample(s, r, r->t, v, v + 3, v + 6, v + 8, s->clearance ? &r->ce : NULL, 1);
     r->refined = 1;
   }
 }

@@ -34,6 +34,10 @@
 
 #include "simbody_internal.h"
 
+extern "C" {
+#include "slider_crank_invdyn.h"
+}
+
 namespace fb_simbody {
 
 namespace {
@@ -68,6 +72,13 @@ Body::Rigid link_body(const fb_link_mass &m, double length) {
   const Vec3 com(m.com_fraction * length, 0, 0);
   const Inertia central(m.inertia, m.inertia, m.inertia);
   return Body::Rigid(MassProperties(m.mass, com, central.shiftFromMassCenter(com, m.mass)));
+}
+
+// the slider-crank's slider: its mass at its frame's origin, the hole
+// centre on the guide (mechanism.h); its inertia, positive, does not enter
+// the motion (the Slider mobilizer holds its rotation)
+Body::Rigid slider_body(const fb_link_mass &m) {
+  return Body::Rigid(MassProperties(m.mass, Vec3(0), Inertia(m.inertia, m.inertia, m.inertia)));
 }
 
 Integrator *make_integrator(const System &sys, int kind) {
@@ -138,13 +149,14 @@ fb_status emit(Scene *s, size_t k, fb_diag *diag) {
   s->pen_now = r->pen;
   s->impacts_now = r->ep.impacts;
   if (s->clearance) {
-    double *col = s->x.contact[FB_JOINT_B];
+    double *col = s->x.contact[s->cj];
     // peaks between samples: the extremes at the knots of ((k-1) h, k h]
     if (r->knot_contact || col[FB_C_PEN] > 0.0) {
       col[FB_C_FORCE] = std::fmax(col[FB_C_FORCE], r->kmax_force);
       col[FB_C_PEN] = std::fmax(col[FB_C_PEN], r->kmax_pen);
-      if (std::fabs(r->ka3) > std::fabs(s->x.coupler_alpha)) s->x.coupler_alpha = r->ka3;
-      if (std::fabs(r->ka4) > std::fabs(s->x.follower_alpha)) s->x.follower_alpha = r->ka4;
+      double *acc[2] = {&s->x.body[0][FB_Q_ACC], &s->x.body[1][FB_Q_ACC]};
+      if (std::fabs(r->ka3) > std::fabs(*acc[0])) *acc[0] = r->ka3;
+      if (std::fabs(r->ka4) > std::fabs(*acc[1])) *acc[1] = r->ka4;
     }
     // an impact that began inside the interval is marked at this sample
     col[FB_C_STATE] = r->new_impact ? FB_STATE_IMPACT : r->ep.state;
@@ -167,11 +179,20 @@ extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_mo
   *out = NULL;
   fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
-  if (sm->clearance_mask & ~(1 << FB_JOINT_B))
+  const int sc = sm->def->source.mechanism == FB_MECH_SLIDER_CRANK;
+  if (sm->def->source.mechanism != FB_MECH_FOURBAR && !sc)
     return fb_diag_set(diag, FB_ERR_ARG,
-                       "model '%s': the Simbody tree is cut at the crank-coupler joint only; "
-                       "[clearance] joints names others: set joints = crank-coupler or drop the "
-                       "simbody-clearance-* models", sm->model->name);
+                       "model '%s': the Simbody scene builds the four-bar and the slider-crank only",
+                       sm->model->name);
+  // the joint the tree is cut at: the four-bar's crank-coupler, the
+  // slider-crank's piston pin (the case refuses clearance elsewhere for it)
+  const int cj = sc ? (int)FB_SC_JOINT_COUPLER_SLIDER : (int)FB_JOINT_B;
+  const char *cut = sc ? "coupler-slider" : "crank-coupler";
+  if (sm->clearance_mask & ~(1 << cj))
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "model '%s': the Simbody tree is cut at the %s joint only; "
+                       "[clearance] joints names others: set joints = %s or drop the "
+                       "simbody-clearance-* models", sm->model->name, cut, cut);
   fb_start_state start;
   st = fb_model_scene_start(&start, sm, diag);
   if (st != FB_OK) return st;
@@ -182,11 +203,15 @@ extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_mo
     Scene *s = new Scene;
     h->s = s;
     s->sm = *sm;
-    s->clearance = (sm->clearance_mask & (1 << FB_JOINT_B)) != 0;
+    s->sc = sc;
+    s->cj = cj;
+    s->clearance = (sm->clearance_mask & (1 << cj)) != 0;
+    s->parent = sc ? kCrank : kFollower;
     s->a = sm->lengths.length[FB_CRANK];
     s->b = sm->lengths.length[FB_COUPLER];
-    s->c = sm->lengths.length[FB_FOLLOWER];
-    s->g = sm->lengths.length[FB_GROUND];
+    s->c = sc ? 0.0 : sm->lengths.length[FB_FOLLOWER];
+    s->g = sc ? 0.0 : sm->lengths.length[FB_GROUND];
+    s->offset = sc ? sm->lengths.length[FB_LENGTH_OFFSET] : 0.0;
     s->theta0 = start.crank_angle;
     s->omega2 = sm->omega2;
     s->h = sm->solver.h;
@@ -211,26 +236,57 @@ extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_mo
     s->stop.engine = "simbody";
     s->stop.joint = -1;
     Force::UniformGravity(s->forces, s->matter, Vec3(0, -sm->gravity, 0));
-    // the tree: ground -> crank (A), ground -> follower (D), follower -> coupler (C);
-    // each body's frame at its first joint, x along the link
+    // the tree; each link's frame at its first joint, x along the link
     s->crank = MobilizedBody::Pin(s->matter.Ground(), Transform(), link_body(sm->link[0], s->a),
                                   Transform());
-    s->follower = MobilizedBody::Pin(s->matter.Ground(), Transform(Vec3(s->g, 0, 0)),
-                                     link_body(sm->link[2], s->c), Transform());
-    s->coupler = MobilizedBody::Pin(s->follower, Transform(Vec3(s->c, 0, 0)),
-                                    link_body(sm->link[1], s->b), Transform(Vec3(s->b, 0, 0)));
+    if (sc) {
+      // ground -> crank (A), crank -> rod (B), ground -> slider (Slider along
+      // x on the guide line y = offset, its frame at its hole centre H, its
+      // centre of mass there); the loop cut at the piston pin
+      s->coupler = MobilizedBody::Pin(s->crank, Transform(Vec3(s->a, 0, 0)),
+                                      link_body(sm->link[1], s->b), Transform());
+      s->slider = MobilizedBody::Slider(s->matter.Ground(), Transform(Vec3(0, s->offset, 0)),
+                                        slider_body(sm->link[2]), Transform());
+      s->mob[kFollower] = &s->slider;
+      s->pin_body = &s->coupler;
+      s->pin_at = Vec3(s->b, 0, 0);
+      s->hole_body = &s->slider;
+      s->hole_at = Vec3(0);
+    } else {
+      // ground -> crank (A), ground -> follower (D), follower -> coupler (C);
+      // the loop cut at B
+      s->follower = MobilizedBody::Pin(s->matter.Ground(), Transform(Vec3(s->g, 0, 0)),
+                                       link_body(sm->link[2], s->c), Transform());
+      s->coupler = MobilizedBody::Pin(s->follower, Transform(Vec3(s->c, 0, 0)),
+                                      link_body(sm->link[1], s->b), Transform(Vec3(s->b, 0, 0)));
+      s->mob[kFollower] = &s->follower;
+      s->pin_body = &s->crank;
+      s->pin_at = Vec3(s->a, 0, 0);
+      s->hole_body = &s->coupler;
+      s->hole_at = Vec3(0);
+    }
+    s->mob[kCrank] = &s->crank;
+    s->mob[kCoupler] = &s->coupler;
     Motion::Custom(s->crank, new SteadyAngle(start.crank_angle, sm->omega2));
     if (s->clearance)
       Force::Custom(s->forces, new ClearanceForce(s));
     else
-      s->ball = Constraint::Ball(s->crank, Vec3(s->a, 0, 0), s->coupler, Vec3(0));
+      s->ball = Constraint::Ball(*s->pin_body, s->pin_at, *s->hole_body, s->hole_at);
     State state = s->system.realizeTopology();
     s->crank.setOneQ(state, 0, start.crank_angle);
-    s->follower.setOneQ(state, 0, start.follower_angle);
-    s->coupler.setOneQ(state, 0, start.coupler_angle - start.follower_angle);
     s->crank.setOneU(state, 0, sm->omega2);
-    s->follower.setOneU(state, 0, start.follower_omega);
-    s->coupler.setOneU(state, 0, start.coupler_omega - start.follower_omega);
+    if (sc) {
+      // the rod relative to the crank; the slider's hole centre x along the guide
+      s->coupler.setOneQ(state, 0, start.coupler_angle - start.crank_angle);
+      s->coupler.setOneU(state, 0, start.coupler_omega - sm->omega2);
+      s->slider.setOneQ(state, 0, start.body[1][FB_Q_POS]);
+      s->slider.setOneU(state, 0, start.body[1][FB_Q_VEL]);
+    } else {
+      s->follower.setOneQ(state, 0, start.follower_angle);
+      s->coupler.setOneQ(state, 0, start.coupler_angle - start.follower_angle);
+      s->follower.setOneU(state, 0, start.follower_omega);
+      s->coupler.setOneU(state, 0, start.coupler_omega - start.follower_omega);
+    }
     state.setTime(0.0);
     s->integ.reset(make_integrator(s->system, sm->simbody.integrator));
     s->integ->setAccuracy(sm->simbody.accuracy);
@@ -263,7 +319,7 @@ extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_mo
   s->drift = r0.drift;
   s->pen_now = r0.pen;
   s->impacts_now = s->ep.impacts;
-  if (s->clearance) s->x.contact[FB_JOINT_B][FB_C_STATE] = s->ep.state;
+  if (s->clearance) s->x.contact[s->cj][FB_C_STATE] = s->ep.state;
   *out = h;
   return FB_OK;
 }
@@ -310,20 +366,20 @@ extern "C" void fb_simbody_scene_sample(const fb_simbody_scene *h, fb_sample *x)
 
 extern "C" void fb_simbody_scene_contact(const fb_simbody_scene *h, fb_engine_contact *out) {
   std::memset(out, 0, sizeof *out);
-  out->joint = h->s->clearance ? FB_JOINT_B : -1;
+  out->joint = h->s->clearance ? h->s->cj : -1;
   out->penetration = h->s->pen_now;
-  out->impacts[FB_JOINT_B] = h->s->impacts_now;
+  out->impacts[h->s->cj] = h->s->impacts_now;
 }
 
 extern "C" void fb_simbody_scene_provenance(const fb_simbody_scene *h, int joint,
                                             fb_contact_provenance *out) {
   const Scene *s = h->s;
-  out->mass_eff_min = joint == FB_JOINT_B ? s->me_min : NAN;
-  out->mass_eff_max = joint == FB_JOINT_B ? s->me_max : NAN;
+  out->mass_eff_min = joint == s->cj ? s->me_min : NAN;
+  out->mass_eff_max = joint == s->cj ? s->me_max : NAN;
   out->erp_max = NAN;
   out->cfm_min = NAN;
   out->h_omega_max = NAN;
-  out->contact_steps = joint == FB_JOINT_B ? s->contact_steps : 0;
+  out->contact_steps = joint == s->cj ? s->contact_steps : 0;
 }
 
 extern "C" void fb_simbody_scene_reactions(const fb_simbody_scene *h, double force[4][2],

@@ -25,6 +25,38 @@
  * law's damper on the mechanism's effective mass along the normal
  * (effective_mass.h), as ODE's world, MuJoCo's and the reference do.
  *
+ * The slider-crank (fb_mech_slider_crank, a case's [linkage] type =
+ * slider-crank):
+ *
+ *                  B  Pin (rod on crank)
+ *                 / \
+ *          crank /   \ rod (coupler)
+ *     Pin +     /     \
+ *     Motion   A       P o H [slider]  Slider mobilizer along +x
+ *                 - - - - - - - - - -  guide y = offset
+ *
+ * ground -> crank (Pin at A, the same Motion), crank -> rod (Pin at B),
+ * ground -> slider (a Slider mobilizer along +x on the guide line y =
+ * offset, the slider's frame and centre of mass at its hole centre H). A
+ * loop needs one joint as a constraint whatever the tree; it is cut at the
+ * piston pin, the one joint that may carry clearance, as the four-bar is
+ * cut at B: the guide stays a mobilizer (exact: the slider never leaves its
+ * line or turns, and its x, v, a are the Slider's own q, u, udot), the
+ * ideal models close the loop with a Constraint::Ball between the rod's pin
+ * centre P and H, and the clearance models drop it for the contact law
+ * between the pin P (on the rod) and the hole H (on the slider), the rod
+ * and the slider then free (the reference's theta3 and x). The effective
+ * mass is the piston pin's (fb_effective_mass_tensor with the guide
+ * prismatic, prismatic_mask = 1 << 3). The other cut, a Pin tree through
+ * the piston pin (ground -> crank -> rod -> slider) with the guide as a
+ * Constraint::PointInPlane (and a ConstantAngle for the slider's turn), is
+ * as accurate (measured on cases/slider_crank_flores.ini, reports at every
+ * 2 us, rkmerson 1e-6: both within 1.3e-6 of the analytic peaks of the
+ * rod's omega and alpha and the slider's v and a; the slider off its line
+ * by 1.4e-7 m there, the pin open by 1.7e-7 m here) but cannot carry the
+ * piston pin's clearance, and its slider x is no mobility the grid's
+ * Hermite interpolant could take.
+ *
  * Sampling (simbody_scene.cpp says how): the integrator runs on its own
  * error-controlled steps to the run's end, returning after each; the output
  * grid k h is filled between its steps by Simbody's cubic Hermite
@@ -48,10 +80,12 @@ extern "C" {
 
 typedef struct fb_simbody_scene fb_simbody_scene;
 
-/* Builds model sm's system at t = 0 and initialises the integrator
- * (sm->simbody: integrator and accuracy). Errors: those of
- * fb_scene_check and fb_model_scene_start; FB_ERR_ARG for clearance at
- * a joint other than crank-coupler (the tree is cut there only);
+/* Builds model sm's system at t = 0 (the four-bar or the slider-crank, by
+ * the case's mechanism) and initialises the integrator (sm->simbody:
+ * integrator and accuracy). Errors: those of fb_scene_check and
+ * fb_model_scene_start; FB_ERR_ARG for clearance at a joint other than the
+ * four-bar's crank-coupler or the slider-crank's coupler-slider (the tree is
+ * cut there only);
  * FB_ERR_NUMERIC when Simbody refuses the multibody system, with its message;
  * FB_ERR_NOMEM. */
 fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_model_scene *sm,
@@ -69,20 +103,24 @@ void fb_simbody_scene_stopped(const fb_simbody_scene *s, fb_stop *out);
 /* The state at the last sample time (see the header comment for peaks). */
 void fb_simbody_scene_sample(const fb_simbody_scene *s, fb_sample *x);
 
-/* Penetration at the crank-coupler joint now [m] and impacts so far. */
+/* Penetration at the clearance joint now [m] (the four-bar's crank-coupler,
+ * the slider-crank's coupler-slider) and impacts so far. */
 void fb_simbody_scene_contact(const fb_simbody_scene *s, fb_engine_contact *out);
 
 /* Effective mass range over the contact evaluations so far (NAN for the
  * mapping figures Simbody has none of: ERP, CFM, h omega). */
 void fb_simbody_scene_provenance(const fb_simbody_scene *s, int joint, fb_contact_provenance *out);
 
-/* Joint reactions (invdyn.h's convention: on the second-named body) and the
- * drive torque on the crank about +z [N m], at the last sample. */
+/* Joint reactions (invdyn.h's convention: on the second-named body; the
+ * slider-crank's slider_crank_invdyn.h, its guide's the force on the ground
+ * from the slider, (0, -N)) and the drive torque on the crank about +z
+ * [N m], at the last sample. */
 void fb_simbody_scene_reactions(const fb_simbody_scene *s, double force[4][2],
                                 double *drive_torque);
 
-/* Distance between the crank's and the coupler's B points [m] for the ideal
- * models (the Ball constraint's violation); 0 for the clearance models. */
+/* Distance between the cut joint's two points [m] for the ideal models (the
+ * Ball constraint's violation: the four-bar's crank and coupler B points,
+ * the slider-crank's rod pin and slider hole); 0 for the clearance models. */
 double fb_simbody_scene_drift(const fb_simbody_scene *s);
 
 /* The integrator's accepted steps so far. */

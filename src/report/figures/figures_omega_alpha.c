@@ -13,10 +13,10 @@
 #include "mech_kinematics.h"
 
 /* residual of model i against the analytic solution of its own lengths at
- * the same instants: resid[k] = y[k] - exact(t[k]) (body 0 coupler, 1
- * follower or a slider-crank's slider) for the samples in [t0, t1], the
- * figure's window (NaN outside it, and where the mechanism cannot be
- * solved); the case's mechanism's exact solution (mech_kinematics.h) */
+ * the same instants: resid[k] = y[k] - exact(t[k]) (the velocity of output
+ * body 0, the coupler, or 1, the follower or a slider-crank's slider; the
+ * case's mechanism, mech_kinematics.h) for the samples in [t0, t1], the
+ * figure's window (NaN outside it, and where the linkage cannot be solved) */
 static void residual(const fb_run *r, int i, int body, double t0, double t1, double *resid) {
   const fb_series *s = &r->model[i].run.series;
   const double w = r->c.direction * r->c.crank_speed;
@@ -26,7 +26,7 @@ static void residual(const fb_run *r, int i, int body, double t0, double t1, dou
       resid[k] = NAN;
       continue;
     }
-    const double y = body ? s->follower_omega[k] : s->coupler_omega[k];
+    const double y = s->body[body][FB_Q_VEL][k];
     if (fb_mech_solve(x, r->c.mechanism, &r->model[i].run.lengths, r->c.branch,
                       r->c.crank_angle0 + w * s->t[k], w, 0.0, NULL) != FB_OK)
       resid[k] = NAN;

@@ -8,6 +8,7 @@
 #include <jansson.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 /* spikes.svg: the window around one spike is the impact episode it lies in
  * (or the FB_SPIKE_MIN_SAMPLES samples around it), widened by one episode
@@ -71,6 +72,13 @@ static int spike_block(FILE *p, const char *name, const fb_series *s, const doub
   return pts;
 }
 
+/* the model of the run named name, or -1 */
+static int run_named(const fb_run *r, const char *name) {
+  for (int k = 0; k < r->n; k++)
+    if (strcmp(r->model[k].run.name, name) == 0) return k;
+  return -1;
+}
+
 /* the model of the run that is row want, or -1 */
 static int run_index(const fb_run *r, const fb_model *want) {
   for (int k = 0; want && k < r->n; k++)
@@ -108,7 +116,11 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
     const fb_model_result *m = &r->model[mi];
     const fb_series *s = &m->run.series;
     const int ri = run_index(r, fb_model_reference_of(m->run.model));
-    const int ii = run_index(r, fb_model_ideal_of(m->run.model));
+    /* the ideal model its spike ratios divide by (summary.json's
+     * spikes.alpha_reference: the row's ideal model when it ran, else
+     * analytic-stackup, drawn when it ran: a slider-crank's reference,
+     * whose row names an ODE model that does not build one) */
+    const int ii = run_named(r, m->spikes_reference);
     int others[3] = {mi, ri >= 0 && r->model[ri].run.series.n == s->n ? ri : -1,
                      ii >= 0 && r->model[ii].run.series.n == s->n ? ii : -1};
     const char *role[3] = {"model", "reference", "ideal"};

@@ -4,6 +4,12 @@
 SVG point count per curve == manifest count (+2 for the legend sample), and the
 manifest's plotted extremes == the CSV's extremes over the same window (the
 decimation keeps each bucket's minimum and maximum, so they must be equal).
+The same checks run on a four-bar (the paper case) and on a slider-crank
+(cases/slider_crank_flores.ini with the models that build one: analytic,
+analytic-stackup, reference, reference-restitution), whose figures,
+figures.json and report-data.js must name its own bodies (coupler, slider:
+v in m/s, a in m/s^2), its CSV columns and its joint coupler-slider, and no
+follower anywhere.
 Usage: test_figures.py PATH_TO_FOURBAR. Exit 0 on success; prints a
 "N passed, N failed" line."""
 import csv, json, math, os, re, subprocess, sys, tempfile
@@ -83,21 +89,60 @@ def svg_text(root):
     return " ".join(t for t in root.itertext())
 
 
-with tempfile.TemporaryDirectory() as tmp:
-    out = os.path.join(tmp, "run")
-    rc = subprocess.run([exe, "run", "--out", out, "--set", "run.revolutions=2"],
-                        capture_output=True, text=True)
-    check(rc.returncode == 0, "fourbar run exits 0: " + rc.stderr)
+# symbols and units of a rotating (False) and a translating (True) output
+# body: position, velocity, acceleration (mechanism.h)
+SYMBOL = {False: ("angle", "omega", "alpha"), True: ("x", "v", "a")}
+UNIT = {False: ("rad", "rad/s", "rad/s^2"), True: ("m", "m/s", "m/s^2")}
+COLUMN_UNIT = {False: ("rad", "rad_s", "rad_s2"), True: ("m", "m_s", "m_s2")}
+
+
+def flat(text):
+    """text without blanks and '^', to compare a label with an SVG's text:
+    gnuplot's enhanced text draws s^2 as s and a raised 2 (another text
+    element: "rad/s 2" in the text joined by svg_text)"""
+    return re.sub(r"\s+", "", text).replace("^", "")
+
+
+def translates(body, bodies):
+    return dict(bodies)[body]
+
+
+def column(body, q, bodies):
+    """the CSV column of body's quantity q (series.h)"""
+    slides = translates(body, bodies)
+    return "%s_%s_%s" % (body, SYMBOL[slides][q], COLUMN_UNIT[slides][q])
+
+
+def key(body, fourbar_key, bodies):
+    """summary.json's per-body key for the four-bar's one (fb_mech_output_key)"""
+    if not translates(body, bodies):
+        return fourbar_key
+    for a, b in (("omega", "velocity"), ("alpha", "acceleration"), ("rad_s2", "m_s2"), ("rad_s", "m_s")):
+        fourbar_key = fourbar_key.replace(a, b)
+    return fourbar_key
+
+
+def check_run(tag, out, rc, bodies, joints, expect):
+    """every figure of the run in out, figures.json and report-data.js
+    against its CSVs and summary.json. bodies: the output bodies as (name,
+    translates); joints: the mechanism's joint names; expect: figures that
+    must be listed. Returns the manifest, summary.json, the figure names and
+    report.md's text."""
     manifest = json.load(open(os.path.join(out, "figures.json")))["figures"]
     summary = json.load(open(os.path.join(out, "summary.json")))
     model = {m["name"]: m for m in summary["models"]}
     kind = {m["name"]: m["kind"] for m in summary["models"]}
     colors = {}
     names = [f["file"] for f in manifest]
-    check(set(names) >= {"omega.svg", "alpha.svg",
-                         "contact_ode-clearance-impact_crank_coupler.svg",
-                         "contact_ode-clearance-restitution_crank_coupler.svg"},
-          "expected figures listed: %s" % names)
+    check(set(names) >= set(expect), "%s: expected figures listed: %s" % (tag, names))
+    b0, b1 = bodies[0][0], bodies[1][0]
+    csv_head = {}
+
+    def columns(name):
+        """the header of a CSV of the run"""
+        if name not in csv_head:
+            csv_head[name] = next(csv.reader(open(os.path.join(out, name))))
+        return csv_head[name]
     for fig in manifest:
         path = os.path.join(out, fig["file"])
         check(os.path.getsize(path) > 1000, fig["file"] + " is non-empty")
@@ -105,8 +150,8 @@ with tempfile.TemporaryDirectory() as tmp:
         check(root.tag == SVG + "svg", fig["file"] + " is an SVG document")
         if fig["file"] in ("omega.svg", "alpha.svg"):
             # plot groups: gnuplot_plot_<k><panel>, k counting the curves of one panel
-            letters = {"coupler": "a", "follower": "b", "coupler residual": "c", "follower residual": "d",
-                       "coupler engine difference": "e", "follower engine difference": "f"}
+            letters = {b0: "a", b1: "b", b0 + " residual": "c", b1 + " residual": "d",
+                       b0 + " engine difference": "e", b1 + " engine difference": "f"}
             seen = {}
             for c in fig["curves"]:
                 panel = letters[c["panel"]]
@@ -120,11 +165,24 @@ with tempfile.TemporaryDirectory() as tmp:
                       "%s %s: drawn in %s, manifest %s" % (fig["file"], gid, svg_stroke(root, gid), c["color"]))
             check(seen.get("a", 0) >= 2, fig["file"] + " overlays several models")
             # yardsticks (analytic, reference) first, so no ODE curve is hidden under them
-            kinds = [kind[c["model"]] for c in fig["curves"] if c["panel"] == "coupler"]
+            kinds = [kind[c["model"]] for c in fig["curves"] if c["panel"] == b0]
             check(kinds == sorted(kinds, key=lambda k: k == "ode"),
                   fig["file"] + " draws the yardsticks first: %s" % kinds)
-            # a clockwise drive runs right to left, and the figure says so
-            check("right to left" in svg_text(root), fig["file"] + " notes that a cw drive runs right to left")
+            # a clockwise drive runs right to left, a ccw one left to right, and the figure says so
+            way = "right to left" if summary["direction"] == "cw" else "left to right"
+            check(way in svg_text(root), "%s notes that a %s drive runs %s" % (fig["file"], summary["direction"], way))
+            # the panels' axis labels name the mechanism's bodies, symbols
+            # and units (mechanism.h), and the columns are the CSV's
+            text = svg_text(root)
+            q = 2 if fig["file"] == "alpha.svg" else 1
+            for name, slides in bodies:
+                label = "%s %s [%s" % (name, SYMBOL[slides][q], UNIT[slides][q])
+                check(flat(label) in flat(text), "%s labels the %s panel '%s'" % (fig["file"], name, label))
+            for c in fig["curves"]:
+                if "derived" not in c:
+                    check(c["column"] == column(c["panel"], q, bodies) and c["column"] in columns(c["csv"]),
+                          "%s %s: column %s is %s's body column in %s" % (fig["file"], c["model"], c["column"],
+                                                                         c["panel"], c["csv"]))
         if fig["file"] == "omega.svg":
             # residual panels: model minus analytic of its own lengths, the same
             # numbers as summary.json's omega_err_max_rad_s
@@ -133,23 +191,50 @@ with tempfile.TemporaryDirectory() as tmp:
                   "omega.svg has a residual curve per ODE model and body (%d)" % len(res))
             for c in res:
                 body = c["panel"].split()[0]
-                err = model[c["model"]]["error_vs_analytic"][body]["omega_err_max_rad_s"]
+                err = model[c["model"]]["error_vs_analytic"][body][key(body, "omega_err_max_rad_s", bodies)]
                 got = max(abs(c["y_min"]), abs(c["y_max"]))
                 check(abs(got - err) <= RESIDUAL_REL_TOL * err,
                       "%s %s residual extreme %g vs summary omega_err_max_rad_s %g" % (c["model"], body, got, err))
         if fig["file"] == "alpha.svg":
+            # one symlog axis when the bodies share a unit, else one per panel
             ax = fig["axis"]
-            hi = max(c["y_max"] for c in fig["curves"])
-            lo = min(c["y_min"] for c in fig["curves"])
-            check(ax["y_max"] >= HEADROOM * hi and ax["y_min"] <= HEADROOM * lo,
-                  "alpha.svg leaves headroom: range %g..%g, data %g..%g" % (ax["y_min"], ax["y_max"], lo, hi))
-            decades = [t for t in ax["y_tics"] if t > 0]
-            check(max(decades) >= hi and min(t for t in ax["y_tics"]) <= lo,
-                  "alpha.svg labels the decades beyond the data: %s" % ax["y_tics"])
+            same_unit = bodies[0][1] == bodies[1][1]
+            check(("panels" in ax) != same_unit, "alpha.svg: %s" % ("one axis" if same_unit else "an axis per panel"))
+            axes = [(a, [c for c in fig["curves"] if c["panel"] == a["panel"]]) for a in ax.get("panels", [])] \
+                or [(ax, fig["curves"])]
             text = svg_text(root)
-            check(all(("1e%d" % round(math.log10(t))) in text for t in decades),
-                  "alpha.svg prints every decade label")
-        if fig["file"].startswith("contact_"):
+            for a, cs in axes:
+                hi = max(c["y_max"] for c in cs)
+                lo = min(c["y_min"] for c in cs)
+                check(a["y_max"] >= HEADROOM * hi and a["y_min"] <= HEADROOM * lo,
+                      "alpha.svg leaves headroom: range %g..%g, data %g..%g" % (a["y_min"], a["y_max"], lo, hi))
+                decades = [t for t in a["y_tics"] if t > 0]
+                check(max(decades) >= hi and min(t for t in a["y_tics"]) <= lo,
+                      "alpha.svg labels the decades beyond the data: %s" % a["y_tics"])
+                check(all(("1e%d" % round(math.log10(t))) in text for t in decades),
+                      "alpha.svg prints every decade label")
+        if fig["file"].startswith(("contact_", "startup_contact_")):
+            # the file, the title and the columns name a joint of the case
+            joint = fig["curves"][0]["column"].split(",")[0][:-len("_ecc_x_m")]
+            check(joint.replace("_", "-") in joints and fig["file"].endswith("_%s.svg" % joint)
+                  and joint.replace("_", "-") + " joint" in svg_text(root)
+                  and all(x in columns(c["csv"]) for c in fig["curves"] for x in c["column"].split(",")),
+                  "%s names the joint %s of the case (%s) and its CSV columns" % (fig["file"], joint, joints))
+        if fig["file"] == "startup.svg":
+            text = svg_text(root)
+            for c in fig["curves"]:
+                body, sym = c["panel"].split()
+                q = SYMBOL[translates(body, bodies)].index(sym)
+                check(c["column"] == column(body, q, bodies) and c["column"] in columns(c["csv"]),
+                      "startup.svg %s: column %s is the CSV's" % (c["panel"], c["column"]))
+            for name, slides in bodies:
+                for q in (1, 2):
+                    label = "%s [%s" % (SYMBOL[slides][q], UNIT[slides][q])
+                    check(flat(label) in flat(text), "startup.svg labels %s's panel '%s'" % (name, label))
+        csv_ok = all(x in columns(c["csv"]) for c in fig["curves"] for x in c["column"].split(",")
+                     if "derived" not in c)
+        check(csv_ok, "%s: every curve's column is in its CSV" % fig["file"])
+        if fig["file"].startswith("contact_") and csv_ok:
             orbit, force = fig["curves"][0], fig["curves"][1]
             rows = list(csv.DictReader(open(os.path.join(out, orbit["csv"]))))
             joint = orbit["column"].split(",")[0][:-len("_ecc_x_m")]
@@ -189,7 +274,7 @@ with tempfile.TemporaryDirectory() as tmp:
             if "color" in c:
                 colors.setdefault(c["model"], set()).add((c["color"], c["dash"]))
         for c in fig["curves"]:
-            if "y_min" not in c or "derived" in c:
+            if "y_min" not in c or "derived" in c or not csv_ok:
                 continue
             rows = list(csv.DictReader(open(os.path.join(out, c["csv"]))))
             ys = [float(r[c["column"]]) for r in rows
@@ -202,10 +287,23 @@ with tempfile.TemporaryDirectory() as tmp:
     # ---- spikes.svg: each clearance model's largest alpha spikes -------------
     spikes = [f for f in manifest if f["file"] == "spikes.svg"]
     check(len(spikes) == 1, "spikes.svg listed")
-    clear = [m for m in summary["models"] if m["kind"] == "ode" and m.get("spikes")]
+    # the clearance models that step a world, else the reference ones (figures_spikes.c)
+    clear = [m for m in summary["models"] if m["kind"] not in ("analytic", "reference") and m.get("spikes")] \
+        or [m for m in summary["models"] if m["kind"] == "reference" and m.get("spikes")]
+    check(bool(clear), "%s: spikes.svg has a clearance model" % tag)
     for fig in spikes:
+        text = svg_text(ET.parse(os.path.join(out, fig["file"])).getroot())
+        for c in fig["curves"]:
+            force = c["panel"].endswith(" force")
+            jn = c["column"][:-len("_force_n")].replace("_", "-") if force else None
+            check((jn in joints) if force else c["column"] == column(c["panel"].split()[1], 2, bodies),
+                  "spikes.svg %s: column %s of the case's body or joint" % (c["panel"], c["column"]))
+            check(c["column"] in columns(c["csv"]), "spikes.svg %s: column %s in %s" % (c["panel"], c["column"], c["csv"]))
+        for name, slides in bodies:
+            label = "%s %s [%s]" % (name, SYMBOL[slides][2], UNIT[slides][2])
+            check(flat(label) in flat(text), "spikes.svg labels '%s'" % label)
         for m in clear:
-            for body in ("coupler", "follower"):
+            for body in (b0, b1):
                 panel = "%s %s spike" % (m["name"], body)
                 cs = {c["role"]: c for c in fig["curves"] if c["panel"] == panel}
                 fs = {c["role"]: c for c in fig["curves"] if c["panel"] == panel + " force"}
@@ -214,7 +312,8 @@ with tempfile.TemporaryDirectory() as tmp:
                 if c is None:
                     continue
                 # the plotted spike is the model's peak |alpha| of summary.json (same window)
-                want = max(abs(m[body]["alpha_max_rad_s2"]), abs(m[body]["alpha_min_rad_s2"]))
+                want = max(abs(m[body][key(body, "alpha_max_rad_s2", bodies)]),
+                           abs(m[body][key(body, "alpha_min_rad_s2", bodies)]))
                 got = max(abs(c["y_min"]), abs(c["y_max"]))
                 check(abs(got - want) <= REL_TOL * want,
                       "%s: plotted spike %g vs summary.json peak |alpha| %g" % (panel, got, want))
@@ -253,17 +352,73 @@ with tempfile.TemporaryDirectory() as tmp:
             n = sum(1 for im in m["impacts"] if im["t_s"] >= summary["peak_window_from_s"])
             check(n == sm["spikes"]["impacts"], "%s: %d impacts listed in the peak window, summary %d"
                   % (m["name"], n, sm["spikes"]["impacts"]))
-            # the decimation keeps each column's extremes: the window's peak |alpha|
-            a = [abs(y) for t, y in zip(m["t"], m["coupler_alpha"]) if t >= summary["peak_window_from_s"]]
-            want = max(abs(sm["coupler"]["alpha_max_rad_s2"]), abs(sm["coupler"]["alpha_min_rad_s2"]))
-            check(abs(max(a) - want) <= PAGE_REL_TOL * want, "%s: the page's data keep the coupler spike %g (%g)"
-                  % (m["name"], want, max(a)))
+            # the decimation keeps each column's extremes: the window's peak
+            # |alpha| (a slider's |a|) of each body, under <body>_<symbol>
+            for name, slides in bodies:
+                a = [abs(y) for t, y in zip(m["t"], m["%s_%s" % (name, SYMBOL[slides][2])])
+                     if t >= summary["peak_window_from_s"]]
+                want = max(abs(sm[name][key(name, "alpha_max_rad_s2", bodies)]),
+                           abs(sm[name][key(name, "alpha_min_rad_s2", bodies)]))
+                check(abs(max(a) - want) <= PAGE_REL_TOL * want, "%s: the page's data keep the %s spike %g (%g)"
+                      % (m["name"], name, want, max(a)))
+        # each impact names a joint of the case and each body's acceleration
+        # under its CSV column's name
+        accel = [column(n, 2, bodies) for n, _ in bodies]
+        check(all(im["joint"] in joints and all(k in im for k in accel) for im in m["impacts"])
+              and all(j["joint"] in joints for j in m["joints"]),
+              "%s: impacts and joints name %s and carry %s" % (m["name"], joints, accel))
 
     for m, styles in sorted(colors.items()):
         check(len(styles) == 1, "%s has one colour and dash in every figure: %s" % (m, styles))
     report = open(os.path.join(out, "report.md")).read()
     for n in names:
         check("](%s)" % n in report, "report.md embeds " + n)
+    return manifest, summary, names, report
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    out = os.path.join(tmp, "run")
+    rc = subprocess.run([exe, "run", "--out", out, "--set", "run.revolutions=2"],
+                        capture_output=True, text=True)
+    check(rc.returncode == 0, "fourbar run exits 0: " + rc.stderr)
+    manifest, summary, names, report = check_run(
+        "four-bar", out, rc, [("coupler", False), ("follower", False)],
+        ["ground-crank", "crank-coupler", "coupler-follower", "follower-ground"],
+        ["omega.svg", "alpha.svg", "contact_ode-clearance-impact_crank_coupler.svg",
+         "contact_ode-clearance-restitution_crank_coupler.svg"])
+
+    # ---- a slider-crank: its own bodies, units, columns and joint ----------
+    # the models that build one today (analytic-stackup: the reference
+    # models' ideal counterpart, which spikes.svg overlays)
+    sc_out = os.path.join(tmp, "slider_crank")
+    src = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    rc = subprocess.run([exe, "run", os.path.join(src, "cases", "slider_crank_flores.ini"), "--out", sc_out,
+                         "--set", "run.series=csv", "--set", "run.revolutions=2",
+                         "--set", "run.models=analytic,analytic-stackup,reference,reference-restitution"],
+                        capture_output=True, text=True)
+    check(rc.returncode == 0, "slider-crank run exits 0: " + rc.stderr[-300:])
+    sc_joints = ["ground-crank", "crank-coupler", "coupler-slider", "slider-ground"]
+    check_run("slider-crank", sc_out, rc, [("coupler", False), ("slider", True)], sc_joints,
+              ["omega.svg", "alpha.svg", "spikes.svg", "startup.svg",
+               "contact_reference_coupler_slider.svg", "contact_reference-restitution_coupler_slider.svg",
+               "startup_contact_reference_coupler_slider.svg"])
+    # no word of the four-bar's in any figure, the manifest or the page's data
+    for f in sorted(os.listdir(sc_out)):
+        if f.endswith((".svg", ".json", ".js", ".md")) and not f.startswith("uPlot"):
+            text = open(os.path.join(sc_out, f)).read()
+            check("follower" not in text.lower(), "slider-crank: %s names no follower" % f)
+    data_js = open(os.path.join(sc_out, "report-data.js")).read()
+    data = json.JSONDecoder().raw_decode(data_js, data_js.index("{"))[0]
+    outs = data.get("outputs", [])
+    check([o["name"] for o in outs] == ["coupler", "slider"] and outs[1]["translates"]
+          and outs[1]["column"] == ["slider_x_m", "slider_v_m_s", "slider_a_m_s2"]
+          and outs[1]["series"] == [None, "slider_v", "slider_a"]
+          and outs[1]["summary"][0] == "slider.velocity_max_m_s"
+          and outs[1]["summary"][4] == "spikes.acceleration_peak_ratio_slider",
+          "slider-crank: report-data.js names its outputs: %s" % outs)
+    check(all(c in columns for o in outs for c in o["column"]
+              for columns in [next(csv.reader(open(os.path.join(sc_out, "analytic.csv"))))]),
+          "slider-crank: report-data.js's output columns are the CSV's")
     check("fourbar run --out" in report, "report.md gives the command line")
     # the parameters table names the mapping the ODE clearance models used
     used = {c["mapping"] for m in summary["models"] if m["kind"] == "ode"

@@ -21,6 +21,13 @@
  *      model and time in view while the rest scrolls sideways (also at
  *      1000 px, where it must scroll); its steady-state impacts (the peaks'
  *      window) come first and the start-up's after, in either order;
+ * a slider-crank run (cases/slider_crank_flores.ini, models analytic,
+ * reference and reference-restitution: the models that build it today)
+ * names its own bodies and joint: panels coupler and slider (slider v in
+ * m/s, slider a in m/s^2), the coupler-slider joint's force, penetration,
+ * orbit and impacts, the impact list's slider a column equal to the
+ * data's, the headline table's slider rows equal to summary.json's, and
+ * no "follower" anywhere on the page or in its data;
  * and a run without the charting library ($FOURBAR_UPLOT_DIR pointing at
  * nothing) loads with no error, says how to get the charts, lists the
  * impacts and the numbers.
@@ -272,6 +279,73 @@ function flatten(v, p, outList) {
     const crank = await page.evaluate(() => window.fourbarReport.panels());
     check(crank.length === panels.length && crank.every((p) => p.points > 0), 'crank-angle axis, linear alpha: every panel has data');
     check(errors.length === 0, 'no console error after clicks and axis changes: ' + errors.join('; '));
+
+    /* a slider-crank: its own bodies, units and joint on the page */
+    const sc = path.join(work, 'slider_crank');
+    execFileSync(fourbar, ['run', path.join(root, 'cases', 'slider_crank_flores.ini'), '--out', sc, '--no-figures',
+      '--set', 'run.revolutions=2', '--set', 'run.models=analytic,reference,reference-restitution'],
+    { stdio: ['ignore', 'ignore', 'inherit'] });
+    const scSummary = JSON.parse(fs.readFileSync(path.join(sc, 'summary.json'), 'utf8'));
+    const scData = fs.readFileSync(path.join(sc, 'report-data.js'), 'utf8');
+    check(!/follower/i.test(scData), 'slider-crank: report-data.js names no follower');
+    const page3 = await browser.newPage({ viewport: { width: FB_VIEW_W, height: FB_VIEW_H } });
+    const errors3 = [];
+    page3.on('console', (m) => { if (m.type() === 'error') errors3.push('console: ' + m.text()); });
+    page3.on('pageerror', (e) => errors3.push('page error: ' + e.message));
+    page3.on('requestfailed', (r) => errors3.push('request failed: ' + r.url()));
+    await page3.goto('file://' + path.join(sc, 'report.html'));
+    await page3.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
+    await page3.waitForTimeout(300);
+    check(errors3.length === 0, 'slider-crank: no console error on load: ' + errors3.join('; '));
+    const scPanels = await page3.evaluate(() => window.fourbarReport.panels());
+    const scIds = scPanels.map((p) => p.id);
+    check(['coupler_alpha', 'slider_a', 'force_coupler-slider', 'penetration_coupler-slider', 'coupler_omega', 'slider_v']
+      .join() === scIds.join(), 'slider-crank: panels coupler and slider, joint coupler-slider: ' + scIds.join(', '));
+    for (const p of scPanels)
+      check(p.points > 0 && p.models.length === (p.id.startsWith('force') || p.id.startsWith('penetration') ? 2 : 3),
+        'slider-crank: panel ' + p.id + ' has data for every model with the column: ' + p.models.join(', '));
+    const titles = await page3.$$eval('.ptitle', (ts) => ts.map((t) => t.textContent));
+    for (const want of ['slider velocity [m/s]', 'slider acceleration [m/s^2] (symlog)', 'coupler angular velocity [rad/s]',
+      'coupler angular acceleration [rad/s^2] (symlog)', 'coupler-slider contact force on the pin [N]'])
+      check(titles.includes(want), 'slider-crank: a panel titled "' + want + '": ' + titles.join('; '));
+    const slider = scPanels.find((p) => p.id === 'slider_a');
+    check(slider && slider.symlog && slider.y_labels && slider.y_labels.some((v) => v < 0) && slider.y_labels.some((v) => v > 0),
+      'slider-crank: the slider a panel is symlog with labels both sides of zero: ' + JSON.stringify(slider && slider.y_labels));
+    const bodyText = await page3.evaluate(() => document.body.innerText);
+    check(!/follower/i.test(bodyText), 'slider-crank: the page names no follower');
+    check((await page3.textContent('#ymodename')) === 'acceleration axis' &&
+      (await page3.textContent('#ysymlog')).includes('rad/s\u00b2 and m/s\u00b2'),
+    'slider-crank: the axis control names the acceleration in both units: ' + (await page3.textContent('#ymode')));
+    const heads = await page3.$$eval('#impacts thead th', (ths) => ths.map((t) => t.textContent));
+    check(heads.slice(-2).join('|') === 'coupler alpha [rad/s\u00b2]|slider a [m/s\u00b2]',
+      'slider-crank: the impact list ends with coupler alpha and slider a: ' + heads.join('|'));
+    const scImpacts = await page3.evaluate(() => window.fourbarReport.impacts);
+    check(scImpacts.length > 0 && scImpacts.every((x) => x.joint === 'coupler-slider' && Number.isFinite(x.slider_a_m_s2) &&
+      Number.isFinite(x.coupler_alpha_rad_s2)), 'slider-crank: every impact at coupler-slider with its slider_a_m_s2 and coupler_alpha_rad_s2');
+    const firstRow = await page3.$$eval('#impacts tbody tr[data-index]', (trs) => trs.length ?
+      [Number(trs[0].dataset.index), trs[0].cells[trs[0].cells.length - 1].textContent] : null);
+    check(firstRow !== null && firstRow[1] === scImpacts[firstRow[0]].slider_a_m_s2.toFixed(0),
+      'slider-crank: the impact row shows its slider a: ' + JSON.stringify(firstRow));
+    const orbit3 = await page3.textContent('#orbittitle');
+    check(orbit3.includes('coupler-slider') && await page3.evaluate(() => window.fourbarReport.orbitPoints()) > 0,
+      'slider-crank: the orbit draws the coupler-slider joint: ' + orbit3);
+    const scHead = await page3.$$eval('#summary_head tr', (trs) => trs.map((tr) => Array.from(tr.cells).map((c) =>
+      [c.textContent, c.dataset.key, c.dataset.model])));
+    const scRows = new Map(scHead.map((r) => [r[0][0], r.slice(1)]));
+    const peakRows = [['slider v max [m/s]', 'slider.velocity_max_m_s', (m) => m.slider.velocity_max_m_s],
+      ['slider a min [m/s^2]', 'slider.acceleration_min_m_s2', (m) => m.slider.acceleration_min_m_s2],
+      ['coupler omega max [rad/s]', 'coupler.omega_max_rad_s', (m) => m.coupler.omega_max_rad_s],
+      ['slider peak |a| / ideal', 'spikes.acceleration_peak_ratio_slider', (m) => m.spikes && m.spikes.acceleration_peak_ratio_slider]];
+    for (const [label, key, get] of peakRows) {
+      const row = scRows.get(label) || [];
+      const shown = scSummary.models.filter((m, i) => typeof get(m) === 'number' && row[i] && row[i][1] === key &&
+        Number(row[i][0]) === get(m));
+      const have = scSummary.models.filter((m) => typeof get(m) === 'number').length;
+      check(have > 0 && shown.length === have, 'slider-crank: headline row "' + label + '" shows summary.json\'s ' + key +
+        ' (' + shown.length + ' of ' + have + ')');
+    }
+    check(errors3.length === 0, 'slider-crank: no console error after the checks: ' + errors3.join('; '));
+    await page3.close();
 
     /* without the charting library: the page loads with no error, says how
      * to get the charts, and still lists the impacts and the numbers */

@@ -87,7 +87,29 @@ static double largest(const double *y, size_t i0, size_t i1) {
   return v;
 }
 
-/* one model's data: decimated series, contact columns, impacts */
+/* output body k's series key in report-data.js for quantity q,
+ * <body>_<symbol> (the four-bar's coupler_omega, follower_alpha; the
+ * slider-crank's slider_v, slider_a), into buf (returned) */
+static const char *series_key(const fb_mech_desc *mech, int k, int q, char *buf, size_t size) {
+  snprintf(buf, size, "%s_%s", fb_mech_output_name(mech, k), fb_mech_output_symbol(mech, k, q));
+  return buf;
+}
+
+/* output body k's CSV column of quantity q (coupler_alpha_rad_s2,
+ * slider_a_m_s2) into buf (returned) */
+static const char *body_column(const fb_mech_desc *mech, int k, int q, char *buf, size_t size) {
+  int body[FB_MECH_MAX_OUTPUTS];
+  const int n = fb_mech_outputs(mech, body);
+  if (k < 0 || k >= n) {
+    snprintf(buf, size, "?");
+    return buf;
+  }
+  return fb_mech_body_column(mech, body[k], q, buf, size);
+}
+
+/* one model's data: decimated series, contact columns, impacts; bodies,
+ * columns and joints named by the case's mechanism (the four-bar's
+ * coupler_omega ... follower_alpha, crank-coupler) */
 static fb_status model_json(json_t **out, const fb_run *r, int mi) {
   const fb_model_result *m = &r->model[mi];
   const fb_series *s = &m->run.series;
@@ -106,9 +128,14 @@ static fb_status model_json(json_t **out, const fb_run *r, int mi) {
     return FB_ERR_NOMEM;
   }
   const size_t per = s->n > 2 * FB_REPORT_BUCKETS ? (s->n + FB_REPORT_BUCKETS - 1) / FB_REPORT_BUCKETS : 1;
-  const double *cols[4] = {s->coupler_omega, s->coupler_alpha, s->follower_omega, s->follower_alpha};
+  const fb_mech_desc *mech = fb_case_mech(&r->c);
+  int body[FB_MECH_MAX_OUTPUTS];
+  const int nb = fb_mech_outputs(mech, body);
   if (s->n) {
-    for (int c = 0; c < 4; c++) mark_extremes(keep, cols[c], s->n, per);
+    for (int k = 0; k < nb; k++) {
+      mark_extremes(keep, s->body[k][FB_Q_VEL], s->n, per);
+      mark_extremes(keep, s->body[k][FB_Q_ACC], s->n, per);
+    }
     keep[0] = keep[s->n - 1] = 1;
   }
   json_t *impacts = json_array(), *joints = json_array();
@@ -130,18 +157,22 @@ static fb_status model_json(json_t **out, const fb_run *r, int mi) {
         fmax_n = fmax(fmax_n, s->contact[j][FB_C_FORCE][i]);
         pmax = fmax(pmax, s->contact[j][FB_C_PEN][i]);
       }
-      /* alpha over the episode and the free flight it ends in (the rebound
-       * spike follows the force peak by a step or two) */
+      /* each output body's acceleration over the episode and the free
+       * flight it ends in (the rebound spike follows the force peak by a
+       * step or two), under its CSV column's name */
       const size_t a2 = ep[k].i1 + 3 < s->n ? ep[k].i1 + 3 : s->n - 1;
-      json_t *im = json_pack("{s:s,s:s,s:f,s:f,s:f,s:f,s:f,s:f,s:f}", "model", m->run.name,
-                             "joint", fb_joint_name(j), "t_s", s->t[ep[k].i0], "t_end_s",
+      json_t *im = json_pack("{s:s,s:s,s:f,s:f,s:f,s:f,s:f}", "model", m->run.name,
+                             "joint", fb_case_joint_name(&r->c, j), "t_s", s->t[ep[k].i0], "t_end_s",
                              s->t[ep[k].i1], "crank_angle_deg", deg360(s->crank_angle[ep[k].i0]),
-                             "force_n", fmax_n, "penetration_m", pmax, "coupler_alpha_rad_s2",
-                             largest(s->coupler_alpha, ep[k].i0, a2), "follower_alpha_rad_s2",
-                             largest(s->follower_alpha, ep[k].i0, a2));
+                             "force_n", fmax_n, "penetration_m", pmax);
+      for (int ob = 0; ob < nb; ob++) {
+        char col[64];
+        json_object_set_new(im, body_column(mech, ob, FB_Q_ACC, col, sizeof col),
+                            json_real(largest(s->body[ob][FB_Q_ACC], ep[k].i0, a2)));
+      }
       json_array_append_new(impacts, im);
     }
-    json_t *jo = json_pack("{s:s,s:i,s:i}", "joint", fb_joint_name(j), "impacts", (int)ne,
+    json_t *jo = json_pack("{s:s,s:i,s:i}", "joint", fb_case_joint_name(&r->c, j), "impacts", (int)ne,
                            "listed", (int)listed);
     json_array_append_new(joints, jo);
   }
@@ -151,10 +182,11 @@ static fb_status model_json(json_t **out, const fb_run *r, int mi) {
   json_object_set_new(o, "samples", json_integer((json_int_t)s->n));
   json_object_set_new(o, "kept", json_integer((json_int_t)nk));
   json_object_set_new(o, "t", column(s->t, idx, nk, 1.0));
-  json_object_set_new(o, "coupler_omega", column(s->coupler_omega, idx, nk, 1.0));
-  json_object_set_new(o, "coupler_alpha", column(s->coupler_alpha, idx, nk, 1.0));
-  json_object_set_new(o, "follower_omega", column(s->follower_omega, idx, nk, 1.0));
-  json_object_set_new(o, "follower_alpha", column(s->follower_alpha, idx, nk, 1.0));
+  for (int b = 0; b < nb; b++)
+    for (int q = FB_Q_VEL; q <= FB_Q_ACC; q++) {
+      char key[64];
+      json_object_set_new(o, series_key(mech, b, q, key, sizeof key), column(s->body[b][q], idx, nk, 1.0));
+    }
   size_t q = 0;
   for (int j = 0; j < 4; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
@@ -201,6 +233,38 @@ static fb_status copy_file(const char *lib, const char *name, const char *dir, f
   return fb_outfile_commit(&out, diag);
 }
 
+/* the output bodies of mechanism mech for the page (docs/report.md): per
+ * body its name, whether it translates, its symbols, units, CSV columns,
+ * series keys (<body>_<symbol>) and the summary.json keys of its headline
+ * peaks (fb_mech_output_key) */
+static json_t *outputs_json(const fb_mech_desc *mech) {
+  static const char *const peak[5] = {"%s.omega_max_rad_s", "%s.omega_min_rad_s", "%s.alpha_max_rad_s2",
+                                      "%s.alpha_min_rad_s2", "spikes.alpha_peak_ratio_%s"};
+  static const char *const fourbar_name[FB_MECH_MAX_OUTPUTS] = {"coupler", "follower"};
+  int body[FB_MECH_MAX_OUTPUTS];
+  const int nb = fb_mech_outputs(mech, body);
+  json_t *a = json_array();
+  for (int k = 0; k < nb; k++) {
+    json_t *sym = json_array(), *unit = json_array(), *col = json_array(), *key = json_array(),
+           *sum = json_array();
+    char buf[96], tmpl[96];
+    for (int q = 0; q < 3; q++) {
+      json_array_append_new(sym, json_string(fb_mech_output_symbol(mech, k, q)));
+      json_array_append_new(unit, json_string(fb_mech_output_unit(mech, k, q)));
+      json_array_append_new(col, json_string(body_column(mech, k, q, buf, sizeof buf)));
+      json_array_append_new(key, q == FB_Q_POS ? json_null() : json_string(series_key(mech, k, q, buf, sizeof buf)));
+    }
+    for (int p = 0; p < 5; p++) {
+      snprintf(tmpl, sizeof tmpl, peak[p], fourbar_name[k]);
+      json_array_append_new(sum, json_string(fb_mech_output_key(buf, sizeof buf, mech, tmpl)));
+    }
+    json_array_append_new(a, json_pack("{s:s,s:b,s:o,s:o,s:o,s:o,s:o}", "name", fb_mech_output_name(mech, k),
+                                       "translates", fb_mech_output_translates(mech, k), "symbol", sym, "unit",
+                                       unit, "column", col, "series", key, "summary", sum));
+  }
+  return a;
+}
+
 /* writes report-data.js: the run's data, then summary.json's value */
 static fb_status write_data(const char *dir, const fb_run *r, const json_t *summary, int charts,
                             fb_diag *diag) {
@@ -215,6 +279,10 @@ static fb_status write_data(const char *dir, const fb_run *r, const json_t *summ
   json_object_set_new(d, "t_window_s", json_real(r->t_window));
   json_object_set_new(d, "h_s", json_real(c->solver.h));
   json_object_set_new(d, "charts", json_boolean(charts));
+  /* the page's own outputs are the four-bar's (coupler, follower: omega,
+   * alpha); any other mechanism's are written here, so that the four-bar's
+   * data stay as they were */
+  if (fb_case_mech(c) != &fb_mech_fourbar) json_object_set_new(d, "outputs", outputs_json(fb_case_mech(c)));
   for (int i = 0; i < r->n; i++) {
     json_t *m = NULL;
     if (model_json(&m, r, i) != FB_OK) {

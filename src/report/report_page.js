@@ -39,16 +39,39 @@
     return (a < 0 ? a + 360 : a).toFixed(0);
   }
 
+  /* ---- the output bodies --------------------------------------------------- */
+  /* the mechanism's output bodies: report-data.js's "outputs" (a
+   * slider-crank's coupler and slider), else the four-bar's coupler and
+   * follower, whose data carry no "outputs" (docs/report.md). Per body: its
+   * name, whether it translates, symbol, unit and CSV column of position,
+   * velocity and acceleration, its series keys in the data, and the
+   * summary.json keys of its omega/velocity max and min, alpha/acceleration
+   * max and min and spike ratio. */
+  function fourbarOutput(name) {
+    return { name: name, translates: false, symbol: ['angle', 'omega', 'alpha'], unit: ['rad', 'rad/s', 'rad/s^2'],
+      column: [name + '_angle_rad', name + '_omega_rad_s', name + '_alpha_rad_s2'],
+      series: [null, name + '_omega', name + '_alpha'],
+      summary: [name + '.omega_max_rad_s', name + '.omega_min_rad_s', name + '.alpha_max_rad_s2',
+        name + '.alpha_min_rad_s2', 'spikes.alpha_peak_ratio_' + name] };
+  }
+  var OUT = D.outputs || [fourbarOutput('coupler'), fourbarOutput('follower')];
+  function quantity(o, q) { return (o.translates ? '' : 'angular ') + (q === 1 ? 'velocity' : 'acceleration'); }
+  function pretty(unit) { return unit.replace('^2', '\u00b2'); }
+  /* the acceleration's shared symbol ('alpha'), else the word */
+  var accSymbol = OUT.every(function (o) { return o.symbol[2] === OUT[0].symbol[2]; }) ? OUT[0].symbol[2] : 'acceleration';
+  var accUnits = [];
+  OUT.forEach(function (o) { if (accUnits.indexOf(o.unit[2]) < 0) accUnits.push(o.unit[2]); });
+  $('ymodename').textContent = accSymbol + ' axis';
+  $('ysymlog').textContent = 'symlog (linear within \u00b11000 ' + accUnits.map(pretty).join(' and ') + ')';
+
   /* ---- panels ------------------------------------------------------------ */
-  /* the spikes first: alpha, then the contact columns, then omega */
-  var defs = [
-    { id: 'coupler_alpha', title: 'coupler angular acceleration', unit: 'rad/s^2', alpha: true, get: function (m) { return m.coupler_alpha; } },
-    { id: 'follower_alpha', title: 'follower angular acceleration', unit: 'rad/s^2', alpha: true, get: function (m) { return m.follower_alpha; } }
-  ];
-  var omegaDefs = [
-    { id: 'coupler_omega', title: 'coupler angular velocity', unit: 'rad/s', get: function (m) { return m.coupler_omega; } },
-    { id: 'follower_omega', title: 'follower angular velocity', unit: 'rad/s', get: function (m) { return m.follower_omega; } }
-  ];
+  /* the spikes first: the accelerations, then the contact columns, then the velocities */
+  function bodyDef(o, q) {
+    var key = o.series[q];
+    return { id: key, title: o.name + ' ' + quantity(o, q), unit: o.unit[q], acc: q === 2, get: function (m) { return m[key]; } };
+  }
+  var defs = OUT.map(function (o) { return bodyDef(o, 2); });
+  var omegaDefs = OUT.map(function (o) { return bodyDef(o, 1); });
   var jointNames = [];
   D.models.forEach(function (m) { m.joints.forEach(function (j) { if (jointNames.indexOf(j.joint) < 0) jointNames.push(j.joint); }); });
   function jointOf(m, name) { for (var k = 0; k < m.joints.length; k++) if (m.joints[k].joint === name) return m.joints[k]; return null; }
@@ -121,7 +144,7 @@
       if (!ms.length) return;
       var div = el('div', null, 'panel');
       div.id = 'panel_' + def.id;
-      div.appendChild(el('div', def.title + ' [' + def.unit + ']' + (def.alpha && state.ymode === 'symlog' ? ' (symlog)' : ''), 'ptitle'));
+      div.appendChild(el('div', def.title + ' [' + def.unit + ']' + (def.acc && state.ymode === 'symlog' ? ' (symlog)' : ''), 'ptitle'));
       box.appendChild(div);
       var p = { def: def, models: ms, div: div, width: width - 80 };
       var series = [{ label: state.xmode === 'time' ? 'time [ms]' : 'crank angle [deg]',
@@ -130,7 +153,7 @@
         series.push({ label: m.name, stroke: m.colorUsed, dash: m.dashUsed || undefined, width: yard(m) ? 1.4 : 2.6, spanGaps: true,
           points: { show: false }, value: function (u, v) { return v === null || v === undefined ? '-' : Number(v).toPrecision(6); } });
       });
-      var symlog = def.alpha && state.ymode === 'symlog';
+      var symlog = def.acc && state.ymode === 'symlog';
       /* symlog: 15 % headroom beyond the data, a tick at 0 and at each decade from 1e3 */
       var yscale = symlog ? { distr: 4, asinh: 1000, range: function (u, lo, hi) {
         return [Math.min(lo * 1.15, -1000), Math.max(hi * 1.15, 1000)]; } } : {};
@@ -159,7 +182,7 @@
         return keep;
       };
       var opts = {
-        width: width, height: def.alpha ? 260 : 200,
+        width: width, height: def.acc ? 260 : 200,
         cursor: { sync: { key: 'fourbar', setSeries: false }, drag: { x: true, y: false }, bind: { dblclick: function () { return null; } } },
         scales: { x: { time: false }, y: yscale },
         axes: [
@@ -222,6 +245,9 @@
   impacts.forEach(function (im, k) { im.index = k; });
   var modelByName = {};
   D.models.forEach(function (m) { modelByName[m.name] = m; });
+  /* the impact list's last columns: each output body's acceleration */
+  var ihead = $('impacts').tHead.rows[0];
+  OUT.forEach(function (o) { ihead.appendChild(el('th', o.name + ' ' + o.symbol[2] + ' [' + pretty(o.unit[2]) + ']')); });
   var imodel = $('imodel');
   imodel.appendChild(el('option', 'all'));
   imodel.options[0].value = '';
@@ -246,7 +272,7 @@
       hr.className = 'group';
       hr.dataset.group = g.name;
       var th = el('th');
-      th.colSpan = 8;
+      th.colSpan = 6 + OUT.length;
       th.appendChild(el('span', g.title + ': ' + g.rows.length + ' impact' + (g.rows.length === 1 ? '' : 's')));
       hr.appendChild(th);
       tb.appendChild(hr);
@@ -256,7 +282,7 @@
         tr.dataset.group = g.name;
         if (im.index === state.sel) tr.className = 'sel';
         [[im.model, 'name pin1'], [fmt(1e3 * im.t_s, 4), 'pin2'], [im.joint, 'name'], [fmt(im.crank_angle_deg, 2)], [fmt(im.force_n, 1)],
-          [fmt(1e6 * im.penetration_m, 4)], [fmt(im.coupler_alpha_rad_s2, 0)], [fmt(im.follower_alpha_rad_s2, 0)]].forEach(function (c) {
+          [fmt(1e6 * im.penetration_m, 4)]].concat(OUT.map(function (o) { return [fmt(im[o.column[2]], 0)]; })).forEach(function (c) {
           tr.appendChild(el('td', c[0], c[1]));
         });
         tr.addEventListener('click', function () { zoomImpact(im.index); });
@@ -362,13 +388,15 @@
     var keys = [];
     flat.forEach(function (f) { f.forEach(function (kv) { if (keys.indexOf(kv[0]) < 0) keys.push(kv[0]); }); });
     /* the headline numbers, engines side by side */
-    var head = [['status', 'status'], ['verdict', 'verdict'], ['verdict_basis', 'verdict basis'], ['steps', 'steps'], ['coupler.omega_max_rad_s', 'coupler omega max [rad/s]'],
-      ['coupler.omega_min_rad_s', 'coupler omega min [rad/s]'], ['coupler.alpha_max_rad_s2', 'coupler alpha max [rad/s^2]'],
-      ['coupler.alpha_min_rad_s2', 'coupler alpha min [rad/s^2]'], ['follower.omega_max_rad_s', 'follower omega max [rad/s]'],
-      ['follower.omega_min_rad_s', 'follower omega min [rad/s]'], ['follower.alpha_max_rad_s2', 'follower alpha max [rad/s^2]'],
-      ['follower.alpha_min_rad_s2', 'follower alpha min [rad/s^2]'], ['spikes.force_max_n', 'contact force max [N]'],
-      ['spikes.penetration_max_m', 'penetration max [m]'], ['spikes.impacts', 'impacts (peak window)'],
-      ['spikes.alpha_peak_ratio_coupler', 'coupler peak |alpha| / ideal'], ['spikes.alpha_peak_ratio_follower', 'follower peak |alpha| / ideal']];
+    var head = [['status', 'status'], ['verdict', 'verdict'], ['verdict_basis', 'verdict basis'], ['steps', 'steps']];
+    OUT.forEach(function (o) {
+      [[1, 'max'], [1, 'min'], [2, 'max'], [2, 'min']].forEach(function (x, k) {
+        head.push([o.summary[k], o.name + ' ' + o.symbol[x[0]] + ' ' + x[1] + ' [' + o.unit[x[0]] + ']']);
+      });
+    });
+    head.push(['spikes.force_max_n', 'contact force max [N]'], ['spikes.penetration_max_m', 'penetration max [m]'],
+      ['spikes.impacts', 'impacts (peak window)']);
+    OUT.forEach(function (o) { head.push([o.summary[4], o.name + ' peak |' + o.symbol[2] + '| / ideal']); });
     var th0 = el('table'); th0.id = 'summary_head';
     var hr0 = el('tr'); hr0.appendChild(el('th', 'summary.json', 'name'));
     models.forEach(function (m) { hr0.appendChild(el('th', m.name)); });
@@ -427,7 +455,7 @@
       return panels.map(function (p) {
         return { id: p.def.id, models: p.models.map(function (m) { return m.name; }), points: p.points,
           shown: p.u.series.slice(1).map(function (s) { return s.show; }),
-          symlog: !!(p.def.alpha && state.ymode === 'symlog'), y_labels: p.yLabels || null,
+          symlog: !!(p.def.acc && state.ymode === 'symlog'), y_labels: p.yLabels || null,
           /* the y tick labels uPlot drew (its axis state: the filtered values' text) */
           y_tick_text: (p.u.axes[1]._values || []).filter(function (v) { return v !== null && v !== ''; }),
           y_min: p.u.scales.y.min, y_max: p.u.scales.y.max,

@@ -22,14 +22,17 @@ typedef enum { FB_FIGURE_SVG = 0, FB_FIGURE_PNG = 1 } fb_figure_format;
 const char *fb_figure_model_color(const char *name);
 int fb_figure_model_dash(const char *name);
 
-/* Draws the run's figures into dir: omega.<ext> (coupler and follower
- * angular velocity against crank angle over the revolution after the first,
- * every model overlaid on the analytic curve), alpha.<ext> (the same for
- * angular acceleration, symlog axis with a linear band of +-1000 rad/s^2),
- * and for each clearance model and joint contact_<model>_<joint>.<ext> (pin
- * centre orbit inside the clearance circle coloured by contact state, and the
- * contact force against crank angle), plus figures.json. names receives the
- * file names written (up to max), *n their count.
+/* Draws the run's figures into dir: omega.<ext> (the output bodies'
+ * velocity against crank angle over the revolution after the first, every
+ * model overlaid on the analytic curve: the four-bar's coupler and follower
+ * omega, the slider-crank's coupler omega and slider v), alpha.<ext> (the
+ * same for the acceleration, symlog axis with a linear band of +-1000 in
+ * each body's unit), spikes.<ext>, startup.<ext>, and for each clearance
+ * model and joint contact_<model>_<joint>.<ext> (pin centre orbit inside the
+ * clearance circle coloured by contact state, and the contact force against
+ * crank angle), plus figures.json. Body names, symbols, units, CSV columns
+ * and joint names are the case's mechanism's (docs/figures.md). names
+ * receives the file names written (up to max), *n their count.
  * Errors: FB_ERR_IO when gnuplot cannot be started or fails (its messages are
  * in dir/.gnuplot.log), naming the figure. */
 fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt, char names[][128],

@@ -23,9 +23,7 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
   const fb_model_result *m = &r->model[mi];
   const fb_series *s = &m->run.series;
   char joint[32], name[100];
-  snprintf(joint, sizeof joint, "%s", fb_joint_name(j));
-  for (char *p = joint; *p; p++)
-    if (*p == '-') *p = '_';
+  fig_joint_column(r, j, joint, sizeof joint); /* the case's joint: coupler_slider in a slider-crank */
   snprintf(name, sizeof name, "%scontact_%s_%s", startup ? "startup_" : "", m->run.name, joint);
   plot pl;
   fb_status st = fig_plot_open(&pl, dir, name, fmt, 1300, 600, diag);
@@ -105,7 +103,7 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
                           r->model[ri].run.series.contact[j][FB_C_FORCE], tf0, t1, startup, &rlo, &rhi);
   char mn[160], rn[160], sp[96];
   fprintf(pl.p, "set multiplot layout 1,2 title '%s, %s joint: pin in hole (revolution %d%s)'\n",
-          fig_esc(m->run.name, mn, sizeof mn), fb_joint_name(j), rev,
+          fig_esc(m->run.name, mn, sizeof mn), fig_joint(r, j), rev,
           startup ? ", the start-up" : ""); /* joint names have no underscore */
   fprintf(pl.p, "set size ratio -1\nset title 'pin centre relative to hole centre (path)'\n"
                 "set xlabel 'eccentricity x [um]'\nset ylabel 'eccentricity y [um]'\n"

@@ -79,6 +79,12 @@ int fig_draw_order(const fb_run *r, int order[]);
 /* the decade at or above |y| * headroom, at least SYMLOG_C */
 double fig_decade_above(double y, double headroom);
 
+/* Writes the symlog y axis of a panel whose data span [lo, hi] (lo <= 0 <=
+ * hi) to the figure's script: linear within +-SYMLOG_C, logarithmic beyond,
+ * the range to the decade above the data with 15 % headroom, every decade
+ * labelled. With axis not NULL, records y_min, y_max and y_tics in it. */
+void fig_symlog_axis(const plot *pl, double lo, double hi, json_t *axis);
+
 /* appends {file, title, curves} to the manifest's figures (takes curves) */
 void fig_manifest_add(json_t *figs, const char *file, const char *title, json_t *curves);
 
@@ -86,6 +92,53 @@ void fig_manifest_add(json_t *figs, const char *file, const char *title, json_t 
  * extremes and time window [s] */
 json_t *fig_curve(const char *model, const char *column, const char *csv, int points,
                   double ymin, double ymax, double t0, double t1);
+
+/* ---- the run's bodies and joints (figures_series.c) ------------------------ */
+
+/* Every body name, symbol, unit, column and joint name a figure writes is
+ * read from the case's mechanism description (mechanism.h), so that a
+ * slider-crank's figures name its slider and its coupler-slider joint. The
+ * four-bar's words are those its figures always wrote: coupler and follower,
+ * omega and alpha in rad/s and rad/s^2. q is FB_Q_POS, FB_Q_VEL or FB_Q_ACC;
+ * k an output body (0 .. fig_outputs - 1, the series' body[k]). */
+
+/* the number of output bodies of the run's mechanism */
+int fig_outputs(const fb_run *r);
+
+/* output body k's name ("coupler", "follower", "slider") */
+const char *fig_body(const fb_run *r, int k);
+
+/* its symbol and unit of quantity q ("omega", "rad/s"; the slider's "v", "m/s") */
+const char *fig_symbol(const fb_run *r, int k, int q);
+const char *fig_unit(const fb_run *r, int k, int q);
+
+/* its quantity q in words: "angular velocity", "angular acceleration" for a
+ * rotating or planar body; "velocity", "acceleration" for a translating one */
+const char *fig_quantity(const fb_run *r, int k, int q);
+
+/* the quantity q of every output body in words into out (returned): the
+ * shared words when every body has the same ("angular velocity"), else each
+ * body's ("coupler angular velocity and slider velocity") */
+const char *fig_quantity_all(const fb_run *r, int q, char *out, size_t size);
+
+/* the symbol of quantity q shared by every output body ("alpha"), else the
+ * quantity's plain word ("velocity", "acceleration") */
+const char *fig_symbol_all(const fb_run *r, int q);
+
+/* 1 when every output body has the unit of quantity q that body 0 has */
+int fig_same_unit(const fb_run *r, int q);
+
+/* output body k's CSV column of quantity q (fb_mech_body_column:
+ * "coupler_omega_rad_s", "slider_v_m_s") into out (returned); with word
+ * not NULL, "_<word>" after the symbol ("coupler_omega_residual_rad_s") */
+const char *fig_column(const fb_run *r, int k, int q, const char *word, char *out, size_t size);
+
+/* joint j's name in the run's mechanism ("crank-coupler", "coupler-slider") */
+const char *fig_joint(const fb_run *r, int j);
+
+/* joint j's name as a CSV column prefix, '-' as '_' ("coupler_slider"),
+ * into out (returned) */
+const char *fig_joint_column(const fb_run *r, int j, char *out, size_t size);
 
 /* ---- one style per model (figures_style.c) --------------------------------- */
 

@@ -1,8 +1,11 @@
-/* omega.<ext> and alpha.<ext>: coupler and follower angular velocity and
- * acceleration against crank angle over the peak window, every model
- * overlaid; omega's rows below: each stepping model's residual against the
- * analytic solution of its own lengths, and the engine differences (another
- * engine's model minus the ODE model of the same kind). */
+/* omega.<ext> and alpha.<ext>: the output bodies' velocity and acceleration
+ * (the four-bar's coupler and follower angular velocity and acceleration,
+ * the slider-crank's coupler's and its slider's v and a) against crank
+ * angle over the peak window, every model overlaid; omega's rows below:
+ * each stepping model's residual against the analytic solution of its own
+ * lengths, and the engine differences (another engine's model minus the
+ * ODE model of the same kind). Body names, symbols, units and columns come
+ * from the case's mechanism description (fig_body, fig_column). */
 #include "figures_internal.h"
 
 #include <jansson.h>
@@ -12,11 +15,11 @@
 
 #include "mech_kinematics.h"
 
-/* residual of model i against the analytic solution of its own lengths at
- * the same instants: resid[k] = y[k] - exact(t[k]) (the velocity of output
- * body 0, the coupler, or 1, the follower or a slider-crank's slider; the
- * case's mechanism, mech_kinematics.h) for the samples in [t0, t1], the
- * figure's window (NaN outside it, and where the linkage cannot be solved) */
+/* residual of model i's velocity against the analytic solution of its own
+ * lengths at the same instants: resid[k] = y[k] - exact(t[k]) (output body
+ * `body`: the four-bar's 0 coupler, 1 follower) for the samples in [t0, t1],
+ * the figure's window (NaN outside it, and where the mechanism cannot be
+ * solved) */
 static void residual(const fb_run *r, int i, int body, double t0, double t1, double *resid) {
   const fb_series *s = &r->model[i].run.series;
   const double w = r->c.direction * r->c.crank_speed;
@@ -50,12 +53,13 @@ static int engine_partner(const fb_run *r, int i) {
   return -1;
 }
 
-/* diff[k] = omega of model i at its sample k minus model j's at the same
- * instant (linear interpolation between j's samples; NaN outside them) */
+/* diff[k] = the velocity of output body `body` of model i at its sample k
+ * minus model j's at the same instant (linear interpolation between j's
+ * samples; NaN outside them) */
 static void engine_difference(const fb_run *r, int i, int j, int body, double *diff) {
   const fb_series *a = &r->model[i].run.series, *b = &r->model[j].run.series;
-  const double *ya = body ? a->follower_omega : a->coupler_omega;
-  const double *yb = body ? b->follower_omega : b->coupler_omega;
+  const double *ya = a->body[body][FB_Q_VEL];
+  const double *yb = b->body[body][FB_Q_VEL];
   size_t q = 0;
   for (size_t k = 0; k < a->n; k++) {
     const double t = a->t[k];
@@ -70,9 +74,10 @@ static void engine_difference(const fb_run *r, int i, int j, int body, double *d
   }
 }
 
-/* omega.svg: coupler and follower omega (top) and each ODE model's residual
- * against the analytic solution of its lengths (bottom); alpha.svg: coupler
- * and follower alpha on a symlog axis */
+/* omega.svg: the output bodies' velocity (top: the four-bar's coupler and
+ * follower omega) and each ODE model's residual against the analytic
+ * solution of its lengths (bottom); alpha.svg: their acceleration on a
+ * symlog axis */
 fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt, int alpha,
                           json_t *figs, fb_diag *diag) {
   const char *name = alpha ? "alpha" : "omega";
@@ -89,13 +94,13 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
   }
   fb_status st = fig_plot_open(&pl, dir, name, fmt, alpha ? 1100 : 1400, alpha ? 850 : 450 * nrows, diag);
   if (st != FB_OK) return st;
-  if (!alpha) pl.columns /= 2; /* omega.svg: coupler and follower side by side */
+  if (!alpha) pl.columns /= 2; /* omega.svg: the two output bodies side by side */
   const double period = 2.0 * M_PI / r->c.crank_speed;
   const double t0 = r->t_window, t1 = r->t_window + period;
   json_t *curves = json_array();
   int order[FB_MAX_MODELS];
   const int nm = fig_draw_order(r, order);
-  double amax = 0.0, amin = 0.0;
+  double amax[2] = {0.0, 0.0}, amin[2] = {0.0, 0.0}; /* each body's plotted extremes */
   int has_resid[FB_MAX_MODELS] = {0};
   for (int q = 0; q < nm; q++) {
     const int i = order[q];
@@ -103,8 +108,7 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
     for (int b = 0; b < 2; b++) {
       char dname[32];
       snprintf(dname, sizeof dname, "m%d_%d", i, b);
-      const double *y = alpha ? (b ? s->follower_alpha : s->coupler_alpha)
-                              : (b ? s->follower_omega : s->coupler_omega);
+      const double *y = s->body[b][alpha ? FB_Q_ACC : FB_Q_VEL];
       double lo = NAN, hi = NAN;
       /* a stepping engine's acceleration at t = 0 is its first step's start
        * artefact (ODE: the velocity-level step has no drift to correct yet
@@ -115,14 +119,14 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
                             : t0;
       const int pts = fig_datablock(&pl, dname, s, y, ta, t1, &lo, &hi);
       if (pts > 0) {
-        amax = fmax(amax, hi);
-        amin = fmin(amin, lo);
+        amax[b] = fmax(amax[b], hi);
+        amin[b] = fmin(amin[b], lo);
       }
-      char csv[96], col[48];
+      char csv[96], col[64];
       snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
-      snprintf(col, sizeof col, "%s_%s", b ? "follower" : "coupler", alpha ? "alpha_rad_s2" : "omega_rad_s");
+      fig_column(r, b, alpha ? FB_Q_ACC : FB_Q_VEL, NULL, col, sizeof col);
       json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
-      json_object_set_new(c, "panel", json_string(b ? "follower" : "coupler"));
+      json_object_set_new(c, "panel", json_string(fig_body(r, b)));
       fig_curve_style(c, r->model[i].run.name);
       json_array_append_new(curves, c);
     }
@@ -138,14 +142,15 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
       has_resid[i] = 1;
       for (int b = 0; b < 2; b++) {
         residual(r, i, b, t0, t1, res);
-        char dname[32], col[64], csv[96];
+        char dname[32], col[64], csv[96], panel[64];
         snprintf(dname, sizeof dname, "r%d_%d", i, b);
         double lo = NAN, hi = NAN;
         const int pts = fig_datablock(&pl, dname, s, res, t0, t1, &lo, &hi);
-        snprintf(col, sizeof col, "%s_omega_residual_rad_s", b ? "follower" : "coupler");
+        fig_column(r, b, FB_Q_VEL, "residual", col, sizeof col);
         snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
         json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
-        json_object_set_new(c, "panel", json_string(b ? "follower residual" : "coupler residual"));
+        snprintf(panel, sizeof panel, "%s residual", fig_body(r, b));
+        json_object_set_new(c, "panel", json_string(panel));
         json_object_set_new(c, "derived", json_string("model minus the analytic solution of its own "
                                                       "lengths at the same instants"));
         fig_curve_style(c, r->model[i].run.name);
@@ -170,14 +175,15 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
     any_diff = 1;
     for (int b = 0; b < 2; b++) {
       engine_difference(r, i, partner[i], b, d);
-      char dname[32], col[64], csv[96];
+      char dname[32], col[64], csv[96], panel[64];
       snprintf(dname, sizeof dname, "d%d_%d", i, b);
       double lo = NAN, hi = NAN;
       const int pts = fig_datablock(&pl, dname, s, d, t0, t1, &lo, &hi);
-      snprintf(col, sizeof col, "%s_omega_engine_difference_rad_s", b ? "follower" : "coupler");
+      fig_column(r, b, FB_Q_VEL, "engine_difference", col, sizeof col);
       snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
       json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
-      json_object_set_new(c, "panel", json_string(b ? "follower engine difference" : "coupler engine difference"));
+      snprintf(panel, sizeof panel, "%s engine difference", fig_body(r, b));
+      json_object_set_new(c, "panel", json_string(panel));
       char what[256];
       snprintf(what, sizeof what, "%s minus %s at the same instants", r->model[i].run.name,
                r->model[partner[i]].run.name);
@@ -188,42 +194,36 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
     free(d);
   }
   const int rows = 1 + any_resid + any_diff;
-  char en[160];
+  char en[160], what[160];
   const double rpm = r->c.crank_speed * 60.0 / (2.0 * M_PI);
   /* a clockwise drive decreases the crank angle: its motion runs right to left */
   const char *dirnote = r->c.direction > 0 ? "ccw drive: motion runs left to right"
                                            : "cw drive: crank angle decreases, motion runs right to left";
   fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against crank angle (revolution %d, %.0f rpm; %s)'\n",
           alpha ? 2 : rows, alpha ? 1 : 2, fig_esc(r->c.name, en, sizeof en),
-          alpha ? "angular acceleration" : "angular velocity", r->c.peaks == FB_PEAKS_ALL ? 1 : 2,
+          fig_quantity_all(r, alpha ? FB_Q_ACC : FB_Q_VEL, what, sizeof what), r->c.peaks == FB_PEAKS_ALL ? 1 : 2,
           rpm, dirnote);
   fprintf(pl.p, "set xrange [0:360]\nset xtics 30\nset xlabel 'crank angle [deg] (counter-clockwise from +x)'\n");
   json_t *axis = json_object();
+  /* alpha.svg's symlog axis: one for both panels when the bodies share a
+   * unit (the four-bar's rad/s^2), else one per panel (the slider-crank's
+   * rad/s^2 and m/s^2: no range is shared across units), in "panels" */
+  const int one_axis = fig_same_unit(r, FB_Q_ACC);
+  json_t *panel_axes = NULL;
   if (alpha) {
-    /* symlog: linear within +-C, logarithmic beyond; every decade that holds
-     * data labelled; 15 % headroom beyond the largest spike */
-    const double top = fig_decade_above(amax, 1.15), bottom = -fig_decade_above(amin, 1.15);
-    fprintf(pl.p, "C = %.1f\nset nonlinear y via sgn(y)*log10(1+abs(y)/C) inverse "
-                  "sgn(y)*C*(10**abs(y)-1)\nset yrange [%.6g:%.6g]\nset ytics (",
-            SYMLOG_C, bottom, top);
-    json_t *tics = json_array();
-    int first = 1;
-    for (double d = -bottom; d >= SYMLOG_C * 0.999; d /= 10.0) {
-      fprintf(pl.p, "%s'-1e%d' %.6g", first ? "" : ", ", (int)lround(log10(d)), -d);
-      json_array_append_new(tics, json_real(-d));
-      first = 0;
-    }
-    fprintf(pl.p, ", '0' 0");
-    json_array_append_new(tics, json_real(0.0));
-    for (double d = SYMLOG_C; d <= top * 1.001; d *= 10.0) {
-      fprintf(pl.p, ", '1e%d' %.6g", (int)lround(log10(d)), d);
-      json_array_append_new(tics, json_real(d));
-    }
-    fprintf(pl.p, ")\n");
-    json_object_set_new(axis, "y_min", json_real(bottom));
-    json_object_set_new(axis, "y_max", json_real(top));
-    json_object_set_new(axis, "y_tics", tics);
-    json_object_set_new(axis, "scale", json_string("symlog, linear within +-1000 rad/s^2"));
+    if (one_axis)
+      fig_symlog_axis(&pl, fmin(amin[0], amin[1]), fmax(amax[0], amax[1]), axis);
+    else
+      panel_axes = json_array();
+    /* the linear band in each body's unit (the four-bar's: rad/s^2 alone) */
+    char scale[160];
+    if (fig_same_unit(r, FB_Q_ACC))
+      snprintf(scale, sizeof scale, "symlog, linear within +-1000 %s", fig_unit(r, 0, FB_Q_ACC));
+    else
+      snprintf(scale, sizeof scale, "symlog, linear within +-1000 in each body's unit (%s %s, %s %s)",
+               fig_body(r, 0), fig_unit(r, 0, FB_Q_ACC), fig_body(r, 1), fig_unit(r, 1, FB_Q_ACC));
+    json_object_set_new(axis, "scale", json_string(scale));
+    if (panel_axes) json_object_set_new(axis, "panels", panel_axes);
   }
   json_object_set_new(axis, "direction", json_string(r->c.direction > 0 ? "ccw" : "cw"));
   json_object_set_new(axis, "note", json_string(dirnote));
@@ -237,9 +237,9 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
     if (diffrow) {
       /* the legend inside the panel: its long entries would squeeze the plot beside it */
       fprintf(pl.p, "set title '%s: engine difference (minus the ODE model of the same kind, same instants)'\n"
-                    "set ylabel '%s omega difference [rad/s]'\nset autoscale y\n"
+                    "set ylabel '%s %s difference [%s]'\nset autoscale y\n"
                     "set key inside bottom left opaque box font ',8'\n",
-              body ? "follower" : "coupler", body ? "follower" : "coupler");
+              fig_body(r, body), fig_body(r, body), fig_symbol(r, body, FB_Q_VEL), fig_unit(r, body, FB_Q_VEL));
       fprintf(pl.p, "plot ");
       int anyd = 0;
       for (int q = 0; q < nm; q++) {
@@ -256,12 +256,17 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
     }
     if (resid) {
       fprintf(pl.p, "set title '%s: model minus analytic (same link lengths, same instants)'\n"
-                    "set ylabel '%s omega residual [rad/s]'\nset autoscale y\n",
-              body ? "follower" : "coupler", body ? "follower" : "coupler");
+                    "set ylabel '%s %s residual [%s]'\nset autoscale y\n",
+              fig_body(r, body), fig_body(r, body), fig_symbol(r, body, FB_Q_VEL), fig_unit(r, body, FB_Q_VEL));
     } else {
-      fprintf(pl.p, "set title '%s'\nset ylabel '%s %s [%s]'\n", body ? "follower" : "coupler",
-              body ? "follower" : "coupler", alpha ? "alpha" : "omega",
-              alpha ? "rad/s^2 (symlog)" : "rad/s");
+      const int q = alpha ? FB_Q_ACC : FB_Q_VEL;
+      if (alpha && !one_axis) {
+        json_t *pa = json_pack("{s:s}", "panel", fig_body(r, body));
+        fig_symlog_axis(&pl, amin[body], amax[body], pa);
+        json_array_append_new(panel_axes, pa);
+      }
+      fprintf(pl.p, "set title '%s'\nset ylabel '%s %s [%s%s]'\n", fig_body(r, body), fig_body(r, body),
+              fig_symbol(r, body, q), fig_unit(r, body, q), alpha ? " (symlog)" : "");
     }
     fprintf(pl.p, "plot ");
     int any = 0;
@@ -281,8 +286,10 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
   char file[128];
   snprintf(file, sizeof file, "%s.%s", name, fig_ext(fmt));
   if (st == FB_OK) {
-    fig_manifest_add(figs, file, alpha ? "angular acceleration against crank angle"
-                                   : "angular velocity against crank angle, and residuals", curves);
+    char title[240];
+    snprintf(title, sizeof title, "%s against crank angle%s",
+             fig_quantity_all(r, alpha ? FB_Q_ACC : FB_Q_VEL, what, sizeof what), alpha ? "" : ", and residuals");
+    fig_manifest_add(figs, file, title, curves);
     json_object_set_new(json_array_get(figs, json_array_size(figs) - 1), "axis", axis);
   } else {
     json_decref(curves);

@@ -1,13 +1,15 @@
 /* A run's series into a figure: the crank angle in degrees, a series as a
  * gnuplot datablock decimated to the figure's pixel columns (decimate.h),
- * the order models are drawn in, the range of the symlog axis, and the
- * manifest's (figures.json) entries for a figure and its curves. */
+ * the order models are drawn in, the range of the symlog axis, the
+ * manifest's (figures.json) entries for a figure and its curves, and the
+ * names of the run's bodies and joints (its case's mechanism description). */
 #include "figures_internal.h"
 
 #include <jansson.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "decimate.h"
 
@@ -70,6 +72,36 @@ int fig_datablock_x(const plot *pl, const char *name, const fb_series *s, const 
   return pts;
 }
 
+void fig_symlog_axis(const plot *pl, double lo, double hi, json_t *axis) {
+  /* symlog: linear within +-C, logarithmic beyond; every decade that holds
+   * data labelled; 15 % headroom beyond the largest spike */
+  const double top = fig_decade_above(hi, 1.15), bottom = -fig_decade_above(lo, 1.15);
+  fprintf(pl->p, "C = %.1f\nset nonlinear y via sgn(y)*log10(1+abs(y)/C) inverse "
+                 "sgn(y)*C*(10**abs(y)-1)\nset yrange [%.6g:%.6g]\nset ytics (",
+          SYMLOG_C, bottom, top);
+  json_t *tics = json_array();
+  int first = 1;
+  for (double d = -bottom; d >= SYMLOG_C * 0.999; d /= 10.0) {
+    fprintf(pl->p, "%s'-1e%d' %.6g", first ? "" : ", ", (int)lround(log10(d)), -d);
+    json_array_append_new(tics, json_real(-d));
+    first = 0;
+  }
+  fprintf(pl->p, ", '0' 0");
+  json_array_append_new(tics, json_real(0.0));
+  for (double d = SYMLOG_C; d <= top * 1.001; d *= 10.0) {
+    fprintf(pl->p, ", '1e%d' %.6g", (int)lround(log10(d)), d);
+    json_array_append_new(tics, json_real(d));
+  }
+  fprintf(pl->p, ")\n");
+  if (axis) {
+    json_object_set_new(axis, "y_min", json_real(bottom));
+    json_object_set_new(axis, "y_max", json_real(top));
+    json_object_set_new(axis, "y_tics", tics);
+  } else {
+    json_decref(tics);
+  }
+}
+
 void fig_manifest_add(json_t *figs, const char *file, const char *title, json_t *curves) {
   json_t *o = json_object();
   json_object_set_new(o, "file", json_string(file));
@@ -104,4 +136,92 @@ int fig_draw_order(const fb_run *r, int order[]) {
 double fig_decade_above(double y, double headroom) {
   const double a = fabs(y) * headroom;
   return a <= SYMLOG_C ? SYMLOG_C : pow(10.0, ceil(log10(a) - 1e-12));
+}
+
+/* ---- the run's bodies and joints ------------------------------------------ */
+
+int fig_outputs(const fb_run *r) {
+  int out[FB_MECH_MAX_OUTPUTS];
+  return fb_mech_outputs(fb_case_mech(&r->c), out);
+}
+
+const char *fig_body(const fb_run *r, int k) { return fb_mech_output_name(fb_case_mech(&r->c), k); }
+
+const char *fig_symbol(const fb_run *r, int k, int q) {
+  return fb_mech_output_symbol(fb_case_mech(&r->c), k, q);
+}
+
+const char *fig_unit(const fb_run *r, int k, int q) {
+  return fb_mech_output_unit(fb_case_mech(&r->c), k, q);
+}
+
+const char *fig_quantity(const fb_run *r, int k, int q) {
+  static const char *const turn[3] = {"angle", "angular velocity", "angular acceleration"};
+  static const char *const slide[3] = {"position", "velocity", "acceleration"};
+  if (q < 0 || q > 2) return "?";
+  return fb_mech_output_translates(fb_case_mech(&r->c), k) ? slide[q] : turn[q];
+}
+
+const char *fig_quantity_all(const fb_run *r, int q, char *out, size_t size) {
+  const int n = fig_outputs(r);
+  int same = 1;
+  for (int k = 1; k < n; k++) same &= strcmp(fig_quantity(r, k, q), fig_quantity(r, 0, q)) == 0;
+  if (same) {
+    snprintf(out, size, "%s", fig_quantity(r, 0, q));
+    return out;
+  }
+  size_t used = 0;
+  out[0] = '\0';
+  for (int k = 0; k < n && used < size; k++) {
+    const int w = snprintf(out + used, size - used, "%s%s %s", k == 0 ? "" : k + 1 < n ? ", " : " and ",
+                           fig_body(r, k), fig_quantity(r, k, q));
+    if (w < 0) break;
+    used += (size_t)w;
+  }
+  return out;
+}
+
+const char *fig_symbol_all(const fb_run *r, int q) {
+  static const char *const word[3] = {"position", "velocity", "acceleration"};
+  const int n = fig_outputs(r);
+  for (int k = 1; k < n; k++)
+    if (strcmp(fig_symbol(r, k, q), fig_symbol(r, 0, q)) != 0) return q >= 0 && q < 3 ? word[q] : "?";
+  return fig_symbol(r, 0, q);
+}
+
+int fig_same_unit(const fb_run *r, int q) {
+  const int n = fig_outputs(r);
+  for (int k = 1; k < n; k++)
+    if (strcmp(fig_unit(r, k, q), fig_unit(r, 0, q)) != 0) return 0;
+  return 1;
+}
+
+const char *fig_column(const fb_run *r, int k, int q, const char *word, char *out, size_t size) {
+  const fb_mech_desc *m = fb_case_mech(&r->c);
+  int body[FB_MECH_MAX_OUTPUTS];
+  const int n = fb_mech_outputs(m, body);
+  if (k < 0 || k >= n) {
+    snprintf(out, size, "?");
+    return out;
+  }
+  char full[96];
+  fb_mech_body_column(m, body[k], q, full, sizeof full);
+  if (!word) {
+    snprintf(out, size, "%s", full);
+    return out;
+  }
+  /* <body>_<symbol>_<unit>: the word goes between symbol and unit */
+  const char *sym = fb_mech_output_symbol(m, k, q);
+  const size_t head = strlen(m->body[body[k]].name) + 1 + strlen(sym);
+  snprintf(out, size, "%.*s_%s%s", (int)head, full, word, strlen(full) > head ? full + head : "");
+  return out;
+}
+
+const char *fig_joint(const fb_run *r, int j) { return fb_case_joint_name(&r->c, j); }
+
+const char *fig_joint_column(const fb_run *r, int j, char *out, size_t size) {
+  snprintf(out, size, "%s", fig_joint(r, j));
+  for (char *p = out; *p; p++)
+    if (*p == '-') *p = '_';
+  return out;
 }

@@ -1,11 +1,14 @@
-/* spikes.<ext>: the largest alpha spike of each clearance model on a
- * microsecond axis, its reference and ideal model at the same instants,
- * the contact force below. */
+/* spikes.<ext>: the largest acceleration spike of each output body of each
+ * clearance model (the four-bar's coupler and follower alpha, the
+ * slider-crank's coupler alpha and slider a) on a microsecond axis, its
+ * reference and ideal model at the same instants, the contact force below.
+ * Names, units, columns and joints from the case's mechanism description. */
 #include "figures_internal.h"
 
 #include <jansson.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 /* spikes.svg: the window around one spike is the impact episode it lies in
  * (or the FB_SPIKE_MIN_SAMPLES samples around it), widened by one episode
@@ -69,6 +72,13 @@ static int spike_block(FILE *p, const char *name, const fb_series *s, const doub
   return pts;
 }
 
+/* the model of the run named name, or -1 */
+static int run_named(const fb_run *r, const char *name) {
+  for (int k = 0; k < r->n; k++)
+    if (strcmp(r->model[k].run.name, name) == 0) return k;
+  return -1;
+}
+
 /* the model of the run that is row want, or -1 */
 static int run_index(const fb_run *r, const fb_model *want) {
   for (int k = 0; want && k < r->n; k++)
@@ -77,8 +87,8 @@ static int run_index(const fb_run *r, const fb_model *want) {
 }
 
 /* spikes.<ext>: for each clearance model (the simulated ones, which step a
- * world, else the reference: a clearance model is one or the other), its
- * largest coupler and follower alpha spike over the peak window on a
+ * world, else the reference: a clearance model is one or the other), the
+ * largest acceleration spike of each output body over the peak window on a
  * microsecond axis around the spike, the reference of its law and its ideal
  * model overlaid at the same instants, the contact force below. Nothing is drawn (and *drawn = 0) for a run without clearance
  * model. */
@@ -97,16 +107,20 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
   if (st != FB_OK) return st;
   json_t *curves = json_array();
   char en[160];
-  fprintf(pl.p, "set multiplot layout %d,2 title '%s: the largest alpha spike of each clearance model "
+  fprintf(pl.p, "set multiplot layout %d,2 title '%s: the largest %s spike of each clearance model "
                 "(peak window), reference and ideal model at the same instants'\n",
-          2 * nc, fig_esc(r->c.name, en, sizeof en));
+          2 * nc, fig_esc(r->c.name, en, sizeof en), fig_symbol_all(r, FB_Q_ACC));
   fprintf(pl.p, "set key outside right top box font ',8'\nset xlabel 'time from the spike [us]'\n");
   for (int q = 0; q < nc; q++) {
     const int mi = list[q];
     const fb_model_result *m = &r->model[mi];
     const fb_series *s = &m->run.series;
     const int ri = run_index(r, fb_model_reference_of(m->run.model));
-    const int ii = run_index(r, fb_model_ideal_of(m->run.model));
+    /* the ideal model its spike ratios divide by (summary.json's
+     * spikes.alpha_reference: the row's ideal model when it ran, else
+     * analytic-stackup, drawn when it ran: a slider-crank's reference,
+     * whose row names an ODE model that does not build one) */
+    const int ii = run_named(r, m->spikes_reference);
     int others[3] = {mi, ri >= 0 && r->model[ri].run.series.n == s->n ? ri : -1,
                      ii >= 0 && r->model[ii].run.series.n == s->n ? ii : -1};
     const char *role[3] = {"model", "reference", "ideal"};
@@ -114,22 +128,21 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
     int joint[2];
     double ts[2];
     for (int b = 0; b < 2; b++) {
-      const double *y = b ? s->follower_alpha : s->coupler_alpha;
+      const double *y = s->body[b][FB_Q_ACC];
       const size_t k = spike_index(s, y, r->t_window);
       joint[b] = spike_window(s, m->run.clearance_mask, k, &w0[b], &w1[b]);
       ts[b] = s->t[k];
       for (int o = 0; o < 3; o++) {
         if (others[o] < 0) continue;
         const fb_series *so = &r->model[others[o]].run.series;
-        char dname[32], csv[96], col[48], panel[160];
+        char dname[32], csv[96], col[64], panel[160];
         snprintf(dname, sizeof dname, "a%d_%d_%d", q, b, o);
         double lo = NAN, hi = NAN;
-        const int pts = spike_block(pl.p, dname, so, b ? so->follower_alpha : so->coupler_alpha, w0[b],
-                                    w1[b], ts[b], &lo, &hi);
+        const int pts = spike_block(pl.p, dname, so, so->body[b][FB_Q_ACC], w0[b], w1[b], ts[b], &lo, &hi);
         snprintf(csv, sizeof csv, "%s.csv", r->model[others[o]].run.name);
-        snprintf(col, sizeof col, "%s_alpha_rad_s2", b ? "follower" : "coupler");
+        fig_column(r, b, FB_Q_ACC, NULL, col, sizeof col);
         json_t *c = fig_curve(r->model[others[o]].run.name, col, csv, pts, lo, hi, s->t[w0[b]], s->t[w1[b]]);
-        snprintf(panel, sizeof panel, "%s %s spike", m->run.name, b ? "follower" : "coupler");
+        snprintf(panel, sizeof panel, "%s %s spike", m->run.name, fig_body(r, b));
         json_object_set_new(c, "panel", json_string(panel));
         json_object_set_new(c, "role", json_string(role[o]));
         json_object_set_new(c, "spike_time_s", json_real(ts[b]));
@@ -143,12 +156,9 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
         const int fp = spike_block(pl.p, dname, so, so->contact[fj][FB_C_FORCE], w0[b], w1[b], ts[b],
                                    &lo, &hi);
         char jn[32];
-        snprintf(jn, sizeof jn, "%s", fb_joint_name(fj));
-        for (char *x = jn; *x; x++)
-          if (*x == '-') *x = '_';
-        snprintf(col, sizeof col, "%s_force_n", jn);
+        snprintf(col, sizeof col, "%s_force_n", fig_joint_column(r, fj, jn, sizeof jn));
         c = fig_curve(r->model[others[o]].run.name, col, csv, fp, lo, hi, s->t[w0[b]], s->t[w1[b]]);
-        snprintf(panel, sizeof panel, "%s %s spike force", m->run.name, b ? "follower" : "coupler");
+        snprintf(panel, sizeof panel, "%s %s spike force", m->run.name, fig_body(r, b));
         json_object_set_new(c, "panel", json_string(panel));
         json_object_set_new(c, "role", json_string(role[o]));
         json_object_set_new(c, "spike_time_s", json_real(ts[b]));
@@ -156,19 +166,19 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
         json_array_append_new(curves, c);
       }
     }
-    /* row 1: alpha of coupler and follower; row 2: the force below each */
+    /* row 1: the acceleration of each output body; row 2: the force below each */
     for (int row = 0; row < 2; row++)
       for (int b = 0; b < 2; b++) {
         char mn[160];
         const double deg = fig_crank_deg(s->crank_angle[0] + (ts[b] - s->t[0]) * r->c.direction * r->c.crank_speed);
         if (row == 0)
-          fprintf(pl.p, "set title '%s: %s alpha spike at t = %.6f ms (crank %.1f deg)'\n"
-                        "set ylabel '%s alpha [rad/s^2]'\nplot ",
-                  fig_esc(m->run.name, mn, sizeof mn), b ? "follower" : "coupler", ts[b] * 1e3, deg,
-                  b ? "follower" : "coupler");
+          fprintf(pl.p, "set title '%s: %s %s spike at t = %.6f ms (crank %.1f deg)'\n"
+                        "set ylabel '%s %s [%s]'\nplot ",
+                  fig_esc(m->run.name, mn, sizeof mn), fig_body(r, b), fig_symbol(r, b, FB_Q_ACC), ts[b] * 1e3,
+                  deg, fig_body(r, b), fig_symbol(r, b, FB_Q_ACC), fig_unit(r, b, FB_Q_ACC));
         else
           fprintf(pl.p, "set title '%s: contact force at the %s joint'\nset ylabel 'force [N]'\nplot ",
-                  fig_esc(m->run.name, mn, sizeof mn), joint[b] >= 0 ? fb_joint_name(joint[b]) : "(no impact)");
+                  fig_esc(m->run.name, mn, sizeof mn), joint[b] >= 0 ? fig_joint(r, joint[b]) : "(no impact)");
         int any = 0;
         for (int o = 2; o >= 0; o--) { /* yardsticks under the model */
           if (others[o] < 0 || (row == 1 && (o == 2 || joint[b] < 0 ||
@@ -191,8 +201,10 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
   char file[128];
   snprintf(file, sizeof file, "spikes.%s", fig_ext(fmt));
   if (st == FB_OK) {
-    fig_manifest_add(figs, file, "largest alpha spikes on a microsecond axis, reference and ideal overlaid, "
-                             "contact force below", curves);
+    char title[200];
+    snprintf(title, sizeof title, "largest %s spikes on a microsecond axis, reference and ideal overlaid, "
+             "contact force below", fig_symbol_all(r, FB_Q_ACC));
+    fig_manifest_add(figs, file, title, curves);
     *drawn = 1;
   } else {
     json_decref(curves);

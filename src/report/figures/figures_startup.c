@@ -7,7 +7,9 @@
 
 #include "start.h"
 
-/* startup.<ext>: omega and alpha of coupler and follower against time over
+/* startup.<ext>: the output bodies' velocity and acceleration (the
+ * four-bar's coupler and follower omega and alpha, the slider-crank's
+ * coupler's and its slider's v and a) against time over
  * revolution 1 on a logarithmic time axis (from the first step), every model
  * in its own style: the first impacts of a rest start sit in the first
  * microseconds, the run-in's decay over the milliseconds after */
@@ -21,27 +23,23 @@ fb_status fig_startup(const fb_run *r, const char *dir, fb_figure_format fmt,
   json_t *curves = json_array();
   int order[FB_MAX_MODELS];
   const int nm = fig_draw_order(r, order);
-  double amax = 0.0, amin = 0.0;
-  for (int p = 0; p < 4; p++) { /* coupler omega, follower omega, coupler alpha, follower alpha */
-    const int b = p & 1, alpha = p >> 1;
+  double amax[2] = {0.0, 0.0}, amin[2] = {0.0, 0.0}; /* each body's acceleration extremes */
+  for (int p = 0; p < 4; p++) { /* body 0 and 1 velocity, then body 0 and 1 acceleration */
+    const int b = p & 1, alpha = p >> 1, qty = alpha ? FB_Q_ACC : FB_Q_VEL;
     for (int q = 0; q < nm; q++) {
       const int i = order[q];
       const fb_series *s = &r->model[i].run.series;
-      const double *y = alpha ? (b ? s->follower_alpha : s->coupler_alpha)
-                              : (b ? s->follower_omega : s->coupler_omega);
-      char dname[32], csv[96], col[48];
+      const double *y = s->body[b][qty];
+      char dname[32], csv[96], col[64], panel[64];
       snprintf(dname, sizeof dname, "s%d_%d", p, i);
       double lo = NAN, hi = NAN;
       const int pts = fig_datablock_x(&pl, dname, s, y, t0, t1, 1, &lo, &hi);
-      if (alpha && pts) amax = fmax(amax, hi), amin = fmin(amin, lo);
+      if (alpha && pts) amax[b] = fmax(amax[b], hi), amin[b] = fmin(amin[b], lo);
       snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
-      snprintf(col, sizeof col, "%s_%s", b ? "follower" : "coupler",
-               alpha ? "alpha_rad_s2" : "omega_rad_s");
+      fig_column(r, b, qty, NULL, col, sizeof col);
       json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
-      json_object_set_new(c, "panel", json_string(p == 0   ? "coupler omega"
-                                                  : p == 1 ? "follower omega"
-                                                  : p == 2 ? "coupler alpha"
-                                                           : "follower alpha"));
+      snprintf(panel, sizeof panel, "%s %s", fig_body(r, b), fig_symbol(r, b, qty));
+      json_object_set_new(c, "panel", json_string(panel));
       fig_curve_style(c, r->model[i].run.name);
       json_array_append_new(curves, c);
     }
@@ -56,25 +54,18 @@ fb_status fig_startup(const fb_run *r, const char *dir, fb_figure_format fmt,
                 "set xrange [%.9g:%.9g]\nset key inside top left box opaque font ',8'\n",
           t0 * 1e3, t1 * 1e3);
   for (int p = 0; p < 4; p++) {
-    const int b = p & 1, alpha = p >> 1;
+    const int b = p & 1, alpha = p >> 1, qty = alpha ? FB_Q_ACC : FB_Q_VEL;
     if (p == 1) fprintf(pl.p, "unset key\n"); /* one legend, in the first panel */
-    if (p == 2) {
-      /* symlog as alpha.svg, the range to the decade above the spikes */
-      const double top = fig_decade_above(amax, 1.15), bottom = -fig_decade_above(amin, 1.15);
-      fprintf(pl.p, "C = %.1f\nset nonlinear y via sgn(y)*log10(1+abs(y)/C) inverse "
-                    "sgn(y)*C*(10**abs(y)-1)\nset yrange [%.6g:%.6g]\nset ytics (",
-              SYMLOG_C, bottom, top);
-      int first = 1;
-      for (double d = -bottom; d >= SYMLOG_C * 0.999; d /= 10.0, first = 0)
-        fprintf(pl.p, "%s'-1e%d' %.6g", first ? "" : ", ", (int)lround(log10(d)), -d);
-      fprintf(pl.p, ", '0' 0");
-      for (double d = SYMLOG_C; d <= top * 1.001; d *= 10.0)
-        fprintf(pl.p, ", '1e%d' %.6g", (int)lround(log10(d)), d);
-      fprintf(pl.p, ")\n");
-    }
-    fprintf(pl.p, "set title '%s %s'\nset ylabel '%s [%s]'\nplot ", b ? "follower" : "coupler",
-            alpha ? "angular acceleration" : "angular velocity", alpha ? "alpha" : "omega",
-            alpha ? "rad/s^2 (symlog)" : "rad/s");
+    /* symlog as alpha.svg, the range to the decade above the spikes: one
+     * range for both panels when the bodies share a unit (the four-bar's
+     * rad/s^2), else each panel its own (the slider-crank's m/s^2) */
+    const int one_axis = fig_same_unit(r, FB_Q_ACC);
+    if (p == 2 && one_axis)
+      fig_symlog_axis(&pl, fmin(amin[0], amin[1]), fmax(amax[0], amax[1]), NULL);
+    else if (alpha && !one_axis)
+      fig_symlog_axis(&pl, amin[b], amax[b], NULL);
+    fprintf(pl.p, "set title '%s %s'\nset ylabel '%s [%s%s]'\nplot ", fig_body(r, b), fig_quantity(r, b, qty),
+            fig_symbol(r, b, qty), fig_unit(r, b, qty), alpha ? " (symlog)" : "");
     for (int q = 0; q < nm; q++) {
       const int i = order[q];
       char mn[160], sp[96];
@@ -88,9 +79,15 @@ fb_status fig_startup(const fb_run *r, const char *dir, fb_figure_format fmt,
   st = fig_plot_close(&pl, diag);
   char file[128];
   snprintf(file, sizeof file, "startup.%s", fig_ext(fmt));
-  if (st == FB_OK)
-    fig_manifest_add(figs, file, "start-up: angular velocity and acceleration against log time", curves);
-  else
+  if (st == FB_OK) {
+    /* the four-bar's bodies all turn: "angular velocity and acceleration" */
+    int turn = 1;
+    for (int k = 0; k < fig_outputs(r); k++) turn &= !fb_mech_output_translates(fb_case_mech(&r->c), k);
+    char title[160];
+    snprintf(title, sizeof title, "start-up: %svelocity and acceleration against log time", turn ? "angular " : "");
+    fig_manifest_add(figs, file, title, curves);
+  } else {
     json_decref(curves);
+  }
   return st;
 }

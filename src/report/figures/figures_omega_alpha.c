@@ -102,6 +102,10 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
   const int nm = fig_draw_order(r, order);
   double amax[2] = {0.0, 0.0}, amin[2] = {0.0, 0.0}; /* each body's plotted extremes */
   int has_resid[FB_MAX_MODELS] = {0};
+  /* samples each model's value ([0]) and residual ([1]) curve of each body
+   * holds in the window: a panel whose curves hold none (every model there
+   * stopped before the window) draws a note instead, which gnuplot needs */
+  int npts[2][FB_MAX_MODELS][2] = {{{0}}};
   for (int q = 0; q < nm; q++) {
     const int i = order[q];
     const fb_series *s = &r->model[i].run.series;
@@ -118,6 +122,7 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
                             ? fmax(t0, 0.5 * r->model[i].run.h)
                             : t0;
       const int pts = fig_datablock(&pl, dname, s, y, ta, t1, &lo, &hi);
+      npts[0][i][b] = pts;
       if (pts > 0) {
         amax[b] = fmax(amax[b], hi);
         amin[b] = fmin(amin[b], lo);
@@ -146,6 +151,7 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
         snprintf(dname, sizeof dname, "r%d_%d", i, b);
         double lo = NAN, hi = NAN;
         const int pts = fig_datablock(&pl, dname, s, res, t0, t1, &lo, &hi);
+        npts[1][i][b] = pts;
         fig_column(r, b, FB_Q_VEL, "residual", col, sizeof col);
         snprintf(csv, sizeof csv, "%s.csv", r->model[i].run.name);
         json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
@@ -269,8 +275,12 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
               fig_symbol(r, body, q), fig_unit(r, body, q), alpha ? " (symlog)" : "");
     }
     fprintf(pl.p, "plot ");
-    int any = 0;
+    int any = 0, held = 0;
     for (int q = 0; q < nm; q++) {
+      const int i = order[q];
+      if (!(resid && !has_resid[i])) held += npts[resid][i][body];
+    }
+    for (int q = 0; q < nm && held > 0; q++) {
       const int i = order[q];
       if (resid && !has_resid[i]) continue;
       char mn[160], sp[96];
@@ -278,7 +288,10 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
               body, fig_style_spec(r->model[i].run.name, sp, sizeof sp), fig_esc(r->model[i].run.name, mn, sizeof mn));
       any = 1;
     }
-    if (!any) fprintf(pl.p, "0 with lines lc rgb '#888888' title 'no ODE model in this run'");
+    if (!any && held == 0 && nm > 0 && (!resid || any_resid))
+      fprintf(pl.p, "0 with lines lc rgb '#888888' title 'no sample in the window: every model "
+                    "here stopped before it'");
+    else if (!any) fprintf(pl.p, "0 with lines lc rgb '#888888' title 'no ODE model in this run'");
     fprintf(pl.p, "\n");
   }
   fprintf(pl.p, "unset multiplot\n");

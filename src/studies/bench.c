@@ -401,15 +401,25 @@ static int engine_point(const fb_engine *eng, fb_engine_id e, fb_bench_set s, in
   return eng->bench->point(s, i, c, k, p);
 }
 
-/* the engine of id e when this build has it and it gives bench rows, else NULL */
-static const fb_engine *bench_engine(fb_engine_id e) {
+int fb_bench_builds(fb_engine_id e, const fb_case *c) {
+  if (c->mechanism == FB_MECH_FOURBAR) return 1;
+  const fb_model *m[2];
+  fb_bench_models(e, &m[0], &m[1]);
+  for (int k = 0; k < 2; k++)
+    if (m[k] && !(m[k]->mechanisms & (1u << c->mechanism))) return 0;
+  return 1;
+}
+
+/* the engine of id e when this build has it, it gives bench rows and its
+ * bench models build the case's mechanism, else NULL */
+static const fb_engine *bench_engine(fb_engine_id e, const fb_case *c) {
   const fb_engine *eng = fb_engine_available(e) ? fb_engine_get(e, NULL) : NULL;
-  return eng && eng->bench ? eng : NULL;
+  return eng && eng->bench && fb_bench_builds(e, c) ? eng : NULL;
 }
 
 /* the points of engine e's rows of set s on case c (0: none, or no such engine) */
 static int set_points(fb_engine_id e, fb_bench_set s, const fb_case *c) {
-  const fb_engine *eng = bench_engine(e);
+  const fb_engine *eng = bench_engine(e, c);
   if (!eng || s == FB_BENCH_SET_NONE) return 0;
   static fb_case k;
   fb_bench_point p;
@@ -441,7 +451,7 @@ static void pass_step(bench_pass *x) {
 
 /* engine e's rows of set s: one bench_point per point */
 static fb_status run_set(bench_pass *x, fb_engine_id e, fb_bench_set s, fb_diag *diag) {
-  const fb_engine *eng = bench_engine(e);
+  const fb_engine *eng = bench_engine(e, x->c);
   if (!eng || s == FB_BENCH_SET_NONE) return FB_OK;
   for (int i = 0;; i++) {
     fb_case k;
@@ -470,7 +480,7 @@ static fb_status run_all(bench_pass *x, fb_bench_set s, fb_diag *diag) {
  * the solver grids when its solver rows stand for it; *alone: without the
  * solver grids (then with the rows it wants beside it) */
 static int runs_own(fb_engine_id e, int grids, const fb_case *c, int *alone) {
-  const fb_engine *eng = bench_engine(e);
+  const fb_engine *eng = bench_engine(e, c);
   if (!eng || !eng->bench->own_grid || !(grids & eng->bench->own_grid)) return 0;
   const int solvers = (grids & FB_BENCH_SOLVERS) != 0;
   *alone = !solvers;
@@ -481,7 +491,7 @@ static int runs_own(fb_engine_id e, int grids, const fb_case *c, int *alone) {
  * each of its points with each ring */
 static fb_status run_colliders(bench_pass *x, fb_diag *diag) {
   for (int e = 0; e < FB_ENGINE_COUNT; e++) {
-    const fb_engine *eng = bench_engine((fb_engine_id)e);
+    const fb_engine *eng = bench_engine((fb_engine_id)e, x->c);
     for (int i = 0; eng; i++) {
       fb_case k;
       fb_bench_point p;
@@ -579,7 +589,7 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
   for (int e = 0; e < FB_ENGINE_COUNT; e++) {
     int alone;
     if (!runs_own((fb_engine_id)e, grids, c, &alone)) continue;
-    const fb_engine_bench *b = bench_engine((fb_engine_id)e)->bench;
+    const fb_engine_bench *b = bench_engine((fb_engine_id)e, c)->bench;
     x.total += set_points((fb_engine_id)e, FB_BENCH_SET_OWN, c);
     if (alone) x.total += all_points(b->alone_before, c) + all_points(b->alone_after, c);
   }
@@ -598,7 +608,7 @@ static fb_status bench_grids(fb_bench_row *rows, int *n, const fb_case *c, int g
   for (int e = 0; e < FB_ENGINE_COUNT && st == FB_OK; e++) {
     int alone;
     if (!runs_own((fb_engine_id)e, grids, c, &alone)) continue;
-    const fb_engine_bench *b = bench_engine((fb_engine_id)e)->bench;
+    const fb_engine_bench *b = bench_engine((fb_engine_id)e, c)->bench;
     if (alone) st = run_all(&x, b->alone_before, diag);
     if (st == FB_OK) st = run_set(&x, (fb_engine_id)e, FB_BENCH_SET_OWN, diag);
     if (st == FB_OK && alone) st = run_all(&x, b->alone_after, diag);

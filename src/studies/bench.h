@@ -168,4 +168,9 @@ int fb_bench_cheapest(const fb_bench_row *rows, int n, const fb_model *model, do
  * has none. */
 void fb_bench_models(fb_engine_id e, const fb_model **ideal, const fb_model **clearance);
 
+/* 1 when engine e's bench models (fb_bench_models) build case c's
+ * mechanism (model_table.h mechanisms); the grids leave out an engine's
+ * rows when they do not (fourbar bench names it). */
+int fb_bench_builds(fb_engine_id e, const fb_case *c);
+
 #endif

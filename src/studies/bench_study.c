@@ -29,6 +29,8 @@ typedef struct {
   double wall;                /* [s] */
   const fb_model *models[2][NE];
   int ne;                     /* engines in models */
+  char left_out[160];         /* the engines whose models build no case's mechanism, comma-separated
+                                 ("" : none; fb_bench_builds) */
 } bench_result;
 
 static const char *kinds[2] = {"ideal", "clearance-impact"};
@@ -361,6 +363,15 @@ static int write_files(const bench_result *br, json_t **j) {
   *j = json_pack("{s:s,s:s,s:f,s:o,s:o,s:o,s:o}", "case", o->c->name, "grid", o->grid_name,
                  "wall_s", br->wall, "rows", arr, "cheapest", cheap,
                  "cheapest_across_engines", across, "peers", pj);
+  /* a case of another mechanism than the four-bar: the engines left out */
+  if (o->c->mechanism != FB_MECH_FOURBAR) {
+    json_t *lo = json_array();
+    char names[sizeof br->left_out];
+    snprintf(names, sizeof names, "%s", br->left_out);
+    for (char *save = NULL, *t = strtok_r(names, ", ", &save); t; t = strtok_r(NULL, ", ", &save))
+      json_array_append_new(lo, json_string(t));
+    json_object_set_new(*j, "engines_left_out", lo);
+  }
   char path[4200];
   fb_diag d;
   snprintf(path, sizeof path, "%s/bench.json", o->dir);
@@ -392,6 +403,12 @@ int fb_bench_study(const fb_bench_opts *o) {
                      .wall = fb_clock_s() - t0};
   for (int e = 0; e < FB_ENGINE_COUNT; e++)
     if (fb_engine_steps_world((fb_engine_id)e)) {
+      if (!fb_bench_builds((fb_engine_id)e, o->c)) { /* its rows are left out */
+        const size_t l = strlen(br.left_out);
+        snprintf(br.left_out + l, sizeof br.left_out - l, "%s%s", l ? ", " : "",
+                 fb_engine_name((fb_engine_id)e));
+        continue;
+      }
       fb_bench_models((fb_engine_id)e, &br.models[0][br.ne], &br.models[1][br.ne]);
       br.ne++;
     }
@@ -405,6 +422,9 @@ int fb_bench_study(const fb_bench_opts *o) {
     return 0;
   }
   json_decref(j);
+  if (br.left_out[0])
+    printf("left out: %s (their models build no %s; fourbar models lists what each builds)\n",
+           br.left_out, fb_case_mech(o->c)->type);
   print_rows(&br);
   print_colliders(rows, n);
   print_peers(peers, npeers);

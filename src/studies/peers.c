@@ -197,6 +197,12 @@ fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *
       snprintf(p->status, sizeof p->status, "no ideal nominal model for %s", p->engine);
       continue;
     }
+    /* the bare programs (tests/peers) build the four-bar alone */
+    if (c->mechanism != FB_MECH_FOURBAR) {
+      snprintf(p->status, sizeof p->status, "not run: %s builds the four-bar only, not a %s",
+               p->peer, fb_case_mech(c)->type);
+      continue;
+    }
     char path[4400];
     snprintf(path, sizeof path, "%s/%s", dir, p->peer);
     if (access(path, X_OK) != 0) {

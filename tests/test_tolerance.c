@@ -1,6 +1,7 @@
 /* Tolerance stack-up: exact sensitivities against finite differences of the
  * analytic peaks, RSS inside the worst-case corners, Monte Carlo converging to
- * the linearised distribution, and reproducibility by seed. */
+ * the linearised distribution, and reproducibility by seed; the
+ * slider-crank's sensitivities, names and 8 corners. */
 #include <string.h>
 
 #include "casefile.h"
@@ -249,6 +250,116 @@ static void test_worst_corner(void **state) {
   assert_int_equal(fb_tol_output_parse("nope"), -1);
 }
 
+/* a slider-crank (crank 50, coupler 120, offset 8 mm, 3000 rpm ccw) with
+ * tolerances on its three lengths, from the paper case's other fields */
+static fb_case slider_crank_case(double offset_m) {
+  fb_case c = paper;
+  c.mechanism = FB_MECH_SLIDER_CRANK;
+  const double len[FB_LINK_COUNT] = {0.050, 0.120, offset_m, 0.0};
+  const double tol[FB_LINK_COUNT] = {0.1e-3, 0.2e-3, 0.15e-3, 0.0};
+  for (int k = 0; k < FB_LINK_COUNT; k++) c.nominal.length[k] = len[k], c.plus_minus[k] = tol[k];
+  c.crank_speed = 3000 * 2 * M_PI / 60;
+  c.direction = +1;
+  return c;
+}
+
+/* the slider-crank's sensitivities against central differences of its
+ * outputs, relative to the row's largest (some entries are near zero);
+ * the same step and bound as the four-bar's */
+static void test_slider_crank_sensitivities(void **state) {
+  (void)state;
+  const fb_case c = slider_crank_case(0.008);
+  const double w = fb_case_omega2(&c);
+  double s[FB_TOL_NOUT][FB_LINK_COUNT], fd[FB_TOL_NOUT][3];
+  assert_int_equal(fb_tol_sensitivities_of(s, c.mechanism, &c.nominal, c.branch, w, NULL), FB_OK);
+  for (int k = 0; k < 3; k++) {
+    fb_linkage p = c.nominal, m = c.nominal;
+    p.length[k] += SENS_FD_STEP_M;
+    m.length[k] -= SENS_FD_STEP_M;
+    double op[FB_TOL_NOUT], om[FB_TOL_NOUT];
+    assert_int_equal(fb_tol_outputs_of(op, c.mechanism, &p, c.branch, w, NULL), FB_OK);
+    assert_int_equal(fb_tol_outputs_of(om, c.mechanism, &m, c.branch, w, NULL), FB_OK);
+    for (int i = 0; i < FB_TOL_NOUT; i++) fd[i][k] = (op[i] - om[i]) / (2 * SENS_FD_STEP_M);
+  }
+  double worst = 0.0;
+  for (int i = 0; i < FB_TOL_NOUT; i++) {
+    const double scale = fmax(fabs(fd[i][0]), fmax(fabs(fd[i][1]), fabs(fd[i][2])));
+    assert_true(s[i][FB_GROUND] == 0.0);
+    for (int k = 0; k < 3; k++) {
+      const double e = fabs(s[i][k] - fd[i][k]) / scale;
+      worst = fmax(worst, e);
+      if (e > SENS_REL_TOL)
+        fail_msg("%s / d %s: exact %.10g, finite difference %.10g",
+                 fb_tol_output_name_of(c.mechanism, i), fb_mech_slider_crank.length[k], s[i][k],
+                 fd[i][k]);
+    }
+  }
+  report_residual("slider-crank sensitivity vs finite difference (rel to row)", worst,
+                  SENS_REL_TOL);
+  /* at offset 0 the smallest transmission angle acos((crank + |offset|) /
+   * coupler) has a corner: its offset entry is the +offset side's
+   * derivative, -1 / (coupler sin mu_min), a one-sided difference's */
+  const fb_case z = slider_crank_case(0.0);
+  assert_int_equal(fb_tol_sensitivities_of(s, z.mechanism, &z.nominal, z.branch, w, NULL), FB_OK);
+  const double mu = acos(0.050 / 0.120);
+  assert_near(s[8][FB_LENGTH_OFFSET], -1.0 / (0.120 * sin(mu)), 1e-12 / (0.120 * sin(mu)));
+  assert_near(s[9][FB_LENGTH_OFFSET], 0.0, 0.0); /* the stroke is even in the offset */
+}
+
+/* names: the four-bar's per-body names mapped by the description
+ * (fb_mech_output_key, summary.json's), then the transmission angle and the
+ * stroke; units from the names */
+static void test_slider_crank_names(void **state) {
+  (void)state;
+  for (int i = 0; i < 8; i++) {
+    char key[64];
+    fb_mech_output_key(key, sizeof key, &fb_mech_slider_crank, fb_tol_output_name(i));
+    assert_string_equal(fb_tol_output_name_of(FB_MECH_SLIDER_CRANK, i), key);
+    assert_string_equal(fb_tol_output_name_of(FB_MECH_FOURBAR, i), fb_tol_output_name(i));
+  }
+  assert_string_equal(fb_tol_output_name_of(FB_MECH_SLIDER_CRANK, 8), "transmission_angle_min_rad");
+  assert_string_equal(fb_tol_output_name_of(FB_MECH_SLIDER_CRANK, 9), "stroke_m");
+  assert_string_equal(fb_tol_output_name_of(FB_MECH_SLIDER_CRANK, 10), "?");
+  static const char *const unit[FB_TOL_NOUT] = {"rad/s", "rad/s", "rad/s^2", "rad/s^2", "m/s",
+                                                "m/s", "m/s^2", "m/s^2", "rad", "m"};
+  for (int i = 0; i < FB_TOL_NOUT; i++)
+    assert_string_equal(fb_tol_output_unit_of(FB_MECH_SLIDER_CRANK, i), unit[i]);
+}
+
+/* corners: the 8 over crank, coupler and offset, each evaluated here, give
+ * the analysis's range and the corner of the largest magnitude (its fourth
+ * slot 0); RSS inside them at this size of tolerance */
+static void test_slider_crank_corners(void **state) {
+  (void)state;
+  const fb_case c = slider_crank_case(-0.006);
+  static fb_stackup_result r;
+  assert_int_equal(fb_tol_analyse(&r, &c, FB_TOL_CORNERS | FB_TOL_RSS, 0, 1, FB_DIST_NORMAL, NULL,
+                                  NULL, NULL), FB_OK);
+  double lo[FB_TOL_NOUT], hi[FB_TOL_NOUT], best[FB_TOL_NOUT];
+  int arg[FB_TOL_NOUT] = {0};
+  for (int m = 0; m < 8; m++) {
+    fb_linkage lk = c.nominal;
+    for (int k = 0; k < 3; k++) lk.length[k] += ((m >> k) & 1 ? 1 : -1) * c.plus_minus[k];
+    double v[FB_TOL_NOUT];
+    assert_int_equal(fb_tol_outputs_of(v, c.mechanism, &lk, c.branch, fb_case_omega2(&c), NULL),
+                     FB_OK);
+    for (int i = 0; i < FB_TOL_NOUT; i++) {
+      if (m == 0 || v[i] < lo[i]) lo[i] = v[i];
+      if (m == 0 || v[i] > hi[i]) hi[i] = v[i];
+      if (m == 0 || fabs(v[i]) > best[i]) best[i] = fabs(v[i]), arg[i] = m;
+    }
+  }
+  for (int i = 0; i < FB_TOL_NOUT; i++) {
+    assert_near(r.corner_min[i], lo[i], 0.0);
+    assert_near(r.corner_max[i], hi[i], 0.0);
+    for (int k = 0; k < 3; k++)
+      assert_int_equal(r.corner_of_max[i][k], (arg[i] >> k) & 1 ? 1 : -1);
+    assert_int_equal(r.corner_of_max[i][FB_GROUND], 0);
+    assert_true(r.nominal[i] - r.rss_half[i] >= lo[i] - 1e-12 * fabs(lo[i]));
+    assert_true(r.nominal[i] + r.rss_half[i] <= hi[i] + 1e-12 * fabs(hi[i]));
+  }
+}
+
 int main(void) {
   fb_test_paper_case(&paper, NULL, 0);
   const struct CMUnitTest tests[] = {
@@ -259,6 +370,9 @@ int main(void) {
       cmocka_unit_test(test_jobs_same_numbers),
       cmocka_unit_test(test_quantile_confidence_ranks),
       cmocka_unit_test(test_worst_corner),
+      cmocka_unit_test(test_slider_crank_sensitivities),
+      cmocka_unit_test(test_slider_crank_names),
+      cmocka_unit_test(test_slider_crank_corners),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -32,6 +32,9 @@ static const char export_help[] =
     "  --format   mjcf or sdf\n"
     "  --ideal    the ideal mechanism (no clearance), whatever the case has\n"
     "  --out      write FILE (whole, or not at all) instead of standard output\n"
+    "A slider-crank case ([linkage] type = slider-crank) is refused (exit 2): the\n"
+    "SDF world written is the four-bar's, and the MJCF's MuJoCo models do not\n"
+    "build a slider-crank yet.\n"
     "Exit status: 0 ok, 2 bad input.\n";
 
 /* generated text of the paper case: MJCF ~4 kB, SDF ~40 kB (a ring of 64

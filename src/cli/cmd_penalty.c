@@ -25,7 +25,9 @@ static const char penalty_help[] =
     "\n"
     "Contact stiffness Kc (paper Eq. 7), penalty parameter P = Kc C^1.5 (Eq. 9)\n"
     "and mutual approach at the case's crank speed (or per speed of a list), for\n"
-    "the crank-coupler and coupler-follower joints.\n"
+    "the crank-coupler and coupler-follower joints (a slider-crank's crank-coupler\n"
+    "and coupler-slider, physical mode only: the paper's recipe is its four-bar's,\n"
+    "and paper mode prints one line saying so instead of the table).\n"
     "\n"
     "  --mode physical  inverse-dynamics joint reaction, the case's radial\n"
     "                   clearance and pin length, Johnson's line contact\n"
@@ -152,7 +154,10 @@ int fb_cmd_penalty(int argc, char **argv) {
   fb_penalty_study_run(&ps, &c, mode, rpm, n);
   if (!json) fb_report_penalty_table(stdout, &ps, &c);
   if (ps.rows_status != FB_OK) return fb_cli_fail("penalty", 1, "%s", ps.rows_msg);
-  if (out_dir) {
+  if (out_dir && ps.rows_skipped) {
+    fprintf(stderr, "fourbar penalty: warning: --out %s: no table to write (%s mode, a %s)\n",
+            out_dir, mode == FB_PENALTY_PAPER ? "paper" : "physical", fb_case_mech(&c)->type);
+  } else if (out_dir) {
     int figure_ok;
     fb_diag fd;
     if (fb_report_penalty_files(out_dir, &ps, &figure_ok, &fd, &diag) != FB_OK)

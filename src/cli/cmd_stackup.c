@@ -31,7 +31,11 @@ static const char stackup_help[] =
     "corners, RSS 3-sigma band, Monte Carlo quantiles at 0.135 %, 50 %, 99.865 %\n"
     "(GSL mt19937; [tolerance] distribution = normal or uniform), each with a\n"
     "95 % distribution-free confidence interval from order statistics: a bound\n"
-    "shown as '-' needs more samples.\n"
+    "shown as '-' needs more samples.\n"    "A slider-crank case ([linkage] type = slider-crank): over its crank, coupler\n"
+    "and guide offset (8 corners), the outputs are the rod's (coupler_*) omega and\n"
+    "alpha peaks, the slider's velocity [m/s] and acceleration [m/s^2] peaks\n"
+    "(slider_velocity_max_m_s, ...), the smallest transmission angle [rad] and the\n"
+    "stroke [m] (stroke_m).\n"
     "\n"
     "  --method    run one method (repeatable); default all three\n"
     "  --samples   Monte Carlo samples (default 10000)\n"
@@ -128,10 +132,10 @@ int fb_cmd_stackup(int argc, char **argv) {
   if (rc) return rc;
   /* a long Monte Carlo says what it will cost before it starts */
   if (mask & FB_TOL_MONTECARLO) {
-    if (fb_tol_check_cost((size_t)samples, (int)jobs, &d) != FB_OK)
+    if (fb_tol_check_cost(c.mechanism, (size_t)samples, (int)jobs, &d) != FB_OK)
       return fb_cli_fail("stackup", 2, "%s", d.msg);
     double bytes, seconds;
-    fb_tol_estimate((size_t)samples, (int)jobs, &bytes, &seconds);
+    fb_tol_estimate(c.mechanism, (size_t)samples, (int)jobs, &bytes, &seconds);
     if (seconds > STACKUP_NOTE_S)
       fprintf(stderr, "fourbar stackup: %.0f Monte Carlo samples: an estimated %.3g s and %.3g GB "
               "with %d job%s (--jobs J divides the time)\n", samples, seconds, bytes / 1e9,

@@ -68,19 +68,15 @@ static double sc_objective(double theta2, void *params) {
   return isfinite(v) ? p->sign * v : GSL_POSINF;
 }
 
-/* the minimum of sign * value over one revolution: the smallest grid value,
- * refined by Brent's method inside its two neighbours (returned as value) */
-static double sc_extreme(sc_peak *p) {
+/* the minimum of sign * value over one revolution, refined by Brent's
+ * method inside the two neighbours of the grid's smallest value fbest at
+ * index best (returned as value, its crank angle [rad] in *at) */
+static double sc_refine(sc_peak *p, int best, double fbest, double *at) {
   const int n = FB_ANALYTIC_PEAK_SAMPLES;
   const double step = 2.0 * M_PI / n;
-  int best = 0;
-  double fbest = GSL_POSINF;
-  for (int k = 0; k < n; k++) {
-    const double f = sc_objective(k * step, p);
-    if (f < fbest) fbest = f, best = k;
-  }
   const double lo = (best - 1) * step, mid = best * step, hi = (best + 1) * step;
-  double at = mid, fmin = fbest;
+  double fmin = fbest;
+  *at = mid;
   gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
   gsl_function F = {sc_objective, p};
   const double flo = sc_objective(lo, p), fhi = sc_objective(hi, p);
@@ -92,49 +88,90 @@ static double sc_extreme(sc_peak *p) {
       if (gsl_min_test_interval(a, b, 1e-12, 0.0) == GSL_SUCCESS) break;
     }
     if (gsl_min_fminimizer_f_minimum(m) < fmin) {
-      at = gsl_min_fminimizer_x_minimum(m);
+      *at = gsl_min_fminimizer_x_minimum(m);
       fmin = gsl_min_fminimizer_f_minimum(m);
     }
   }
   if (m) gsl_min_fminimizer_free(m);
-  (void)at;
   return p->sign * fmin;
 }
 
-static fb_status sc_peaks(fb_peaks *out, const fb_linkage *lk, double omega2, fb_diag *diag) {
+/* the extremes the slider-crank's peaks take, in the order of `where`
+ * (fb_mech_peaks_where): per output body omega (v) max, min, alpha (a) max,
+ * min; then the rod's angle max and min */
+enum { SC_NEXT = 10 };
+static const struct {
+  int body, q;
+  double sign; /* -1 a maximum, +1 a minimum */
+} sc_ext[SC_NEXT] = {{0, FB_Q_VEL, -1.0}, {0, FB_Q_VEL, +1.0}, {0, FB_Q_ACC, -1.0},
+                     {0, FB_Q_ACC, +1.0}, {1, FB_Q_VEL, -1.0}, {1, FB_Q_VEL, +1.0},
+                     {1, FB_Q_ACC, -1.0}, {1, FB_Q_ACC, +1.0}, {0, FB_Q_POS, -1.0},
+                     {0, FB_Q_POS, +1.0}};
+
+/* every extreme of sc_ext: one pass over the grid of FB_ANALYTIC_PEAK_SAMPLES
+ * crank angles finds each one's smallest grid value (the first on a tie),
+ * then Brent refines each; value[i] and its crank angle at[i] [rad] */
+static void sc_extremes(double value[SC_NEXT], double at[SC_NEXT], const fb_slider_crank *sc,
+                        double omega2) {
+  const int n = FB_ANALYTIC_PEAK_SAMPLES;
+  const double step = 2.0 * M_PI / n;
+  int best[SC_NEXT] = {0};
+  double fbest[SC_NEXT];
+  for (int i = 0; i < SC_NEXT; i++) fbest[i] = GSL_POSINF;
+  const fb_linkage lk = {{sc->crank, sc->coupler, sc->offset, 0.0}};
+  for (int k = 0; k < n; k++) {
+    double v[FB_MECH_MAX_OUTPUTS][3];
+    const int ok = fb_mech_solve(v, FB_MECH_SLIDER_CRANK, &lk, FB_BRANCH_OPEN, k * step, omega2,
+                                 0.0, NULL) == FB_OK;
+    for (int i = 0; i < SC_NEXT; i++) {
+      const double x = ok ? v[sc_ext[i].body][sc_ext[i].q] : NAN;
+      const double f = isfinite(x) ? sc_ext[i].sign * x : GSL_POSINF;
+      if (f < fbest[i]) fbest[i] = f, best[i] = k;
+    }
+  }
+  for (int i = 0; i < SC_NEXT; i++) {
+    sc_peak p = {*sc, omega2, sc_ext[i].body, sc_ext[i].q, sc_ext[i].sign};
+    value[i] = sc_refine(&p, best[i], fbest[i], &at[i]);
+  }
+}
+
+static fb_status sc_peaks(fb_peaks *out, double where[8], const fb_linkage *lk, double omega2,
+                          fb_diag *diag) {
   const fb_slider_crank sc = sc_of(lk);
   fb_slider_crank_limits lim;
   fb_status st = fb_slider_crank_limit_positions(&lim, &sc, diag);
   if (st != FB_OK) return st;
+  double v[SC_NEXT], at[SC_NEXT];
   gsl_error_handler_t *old = gsl_set_error_handler_off();
-  for (int b = 0; b < 2; b++) {
-    sc_peak p = {sc, omega2, b, FB_Q_VEL, -1.0};
-    fb_body_peaks *o = &out->body[b];
-    o->omega_max = sc_extreme(&p);
-    p.sign = +1.0;
-    o->omega_min = sc_extreme(&p);
-    p.q = FB_Q_ACC;
-    o->alpha_min = sc_extreme(&p);
-    p.sign = -1.0;
-    o->alpha_max = sc_extreme(&p);
-  }
+  sc_extremes(v, at, &sc, omega2);
   gsl_set_error_handler(old);
+  for (int b = 0; b < 2; b++) {
+    fb_body_peaks *o = &out->body[b];
+    o->omega_max = v[4 * b], o->omega_min = v[4 * b + 1];
+    o->alpha_max = v[4 * b + 2], o->alpha_min = v[4 * b + 3];
+  }
+  if (where) memcpy(where, at, 8 * sizeof *where);
   /* the rod's angle swings through +-asin((crank + |offset|) / coupler)
    * about the guide: its extremes from the same search */
-  {
-    sc_peak p = {sc, omega2, 0, FB_Q_POS, -1.0};
-    out->body[0].pos_max = sc_extreme(&p);
-    p.sign = +1.0;
-    out->body[0].pos_min = sc_extreme(&p);
-  }
+  out->body[0].pos_max = v[8];
+  out->body[0].pos_min = v[9];
   out->body[1].pos_max = lim.x_max;
   out->body[1].pos_min = lim.x_min;
   return FB_OK;
 }
 
+fb_status fb_mech_peaks_where(fb_peaks *out, double where[8], fb_mech_type t,
+                              const fb_linkage *lk, fb_branch branch, double omega2,
+                              fb_diag *diag) {
+  if (t == FB_MECH_SLIDER_CRANK) return sc_peaks(out, where, lk, omega2, diag);
+  fb_status st = fb_analytic_peaks_where(out, where, lk, branch, omega2, diag);
+  for (int b = 0; b < FB_MECH_MAX_OUTPUTS; b++) out->body[b].pos_max = out->body[b].pos_min = NAN;
+  return st;
+}
+
 fb_status fb_mech_peaks(fb_peaks *out, fb_mech_type t, const fb_linkage *lk, fb_branch branch,
                         double omega2, fb_diag *diag) {
-  if (t == FB_MECH_SLIDER_CRANK) return sc_peaks(out, lk, omega2, diag);
+  if (t == FB_MECH_SLIDER_CRANK) return sc_peaks(out, NULL, lk, omega2, diag);
   fb_status st = fb_analytic_peaks(out, lk, branch, omega2, diag);
   for (int b = 0; b < FB_MECH_MAX_OUTPUTS; b++) out->body[b].pos_max = out->body[b].pos_min = NAN;
   return st;

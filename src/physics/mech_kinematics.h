@@ -43,6 +43,18 @@ fb_status fb_mech_check_lengths(fb_mech_type t, const fb_linkage *lk, fb_diag *d
 fb_status fb_mech_peaks(fb_peaks *out, fb_mech_type t, const fb_linkage *lk, fb_branch branch,
                         double omega2, fb_diag *diag);
 
+/* As fb_mech_peaks, and also the crank angle [rad] of each extreme in
+ * `where` (may be NULL), as fb_analytic_peaks_where: the first output
+ * body's omega max, min, alpha max, min, then the same for the second (the
+ * slider-crank's slider: v max, min, a max, min). The tolerance stack-up's
+ * sensitivities of a peak are taken there (the envelope theorem).
+ * The slider-crank's search is one pass over FB_ANALYTIC_PEAK_SAMPLES crank
+ * angles for every extreme, then Brent for each.
+ * Errors: those of fb_mech_peaks. */
+fb_status fb_mech_peaks_where(fb_peaks *out, double where[8], fb_mech_type t,
+                              const fb_linkage *lk, fb_branch branch, double omega2,
+                              fb_diag *diag);
+
 /* Samples the exact solution at t = k h, k = 0 .. n - 1, crank angle
  * theta0 + omega2 t, into a fresh series *out of the mechanism's columns
  * (free with fb_series_free): fb_analytic_sample for the four-bar.

@@ -22,11 +22,17 @@
 
 typedef enum { FB_PENALTY_PAPER = 0, FB_PENALTY_PHYSICAL = 1 } fb_penalty_mode;
 
-/* The two clearance joints the paper tabulates. */
+/* The two clearance joints the paper tabulates: the mechanism's joints 1
+ * and 2 (mechanism.h; the slider-crank's crank-coupler and coupler-slider,
+ * fb_case_joint_name(c, 1 + j)). */
 typedef enum { FB_JOINT_CRANK_COUPLER = 0, FB_JOINT_COUPLER_FOLLOWER = 1 } fb_pin_joint;
 
-/* "crank-coupler" or "coupler-follower". */
+/* The four-bar's names: "crank-coupler" or "coupler-follower". */
 const char *fb_pin_joint_name(fb_pin_joint j);
+
+/* NULL when paper mode applies to case c (a four-bar), else why it does not
+ * (the slider-crank: the paper's recipe is its four-bar's), one sentence. */
+const char *fb_penalty_paper_refusal(const fb_case *c);
 
 /* One row: one speed, one joint. */
 typedef struct {
@@ -38,10 +44,13 @@ typedef struct {
   double approach;  /* mutual approach delta [m] */
 } fb_penalty_row;
 
-/* Rows for both joints at crank speed omega [rad/s] > 0 for case c.
- * Errors: those of fb_analytic_peaks / fb_invdyn_peaks; FB_ERR_RANGE when
- * Johnson's relation is outside its valid range (force too large for the
- * clearance). */
+/* Rows for both joints at crank speed omega [rad/s] > 0 for case c: the
+ * four-bar's in either mode, a slider-crank's (its crank-coupler and
+ * coupler-slider joints, reactions from fb_mech_reaction_peaks) in physical
+ * mode. Errors: those of fb_analytic_peaks / fb_invdyn_peaks /
+ * fb_mech_reaction_peaks; FB_ERR_RANGE when Johnson's relation is outside
+ * its valid range (force too large for the clearance); FB_ERR_ARG for paper
+ * mode on a slider-crank (fb_penalty_paper_refusal). */
 fb_status fb_penalty_rows(fb_penalty_row out[2], const fb_case *c, fb_penalty_mode mode,
                           double omega, fb_diag *diag);
 

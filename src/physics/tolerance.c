@@ -17,6 +17,8 @@
 #include <time.h>
 
 #include "analytic.h"
+#include "mech_kinematics.h"
+#include "slider_crank.h"
 
 static const char *const out_names[FB_TOL_NOUT] = {
     "coupler_omega_max_rad_s",   "coupler_omega_min_rad_s",    "coupler_alpha_max_rad_s2",
@@ -24,7 +26,34 @@ static const char *const out_names[FB_TOL_NOUT] = {
     "follower_alpha_max_rad_s2", "follower_alpha_min_rad_s2",  "transmission_angle_min_rad",
     "transmission_angle_max_rad"};
 
+/* the slider-crank's, in the same slots: the second output body's peaks are
+ * the slider's (fb_mech_output_key's names, as summary.json's
+ * models[].slider), slot 9 its stroke */
+static const char *const sc_out_names[FB_TOL_NOUT] = {
+    "coupler_omega_max_rad_s",      "coupler_omega_min_rad_s",      "coupler_alpha_max_rad_s2",
+    "coupler_alpha_min_rad_s2",     "slider_velocity_max_m_s",      "slider_velocity_min_m_s",
+    "slider_acceleration_max_m_s2", "slider_acceleration_min_m_s2", "transmission_angle_min_rad",
+    "stroke_m"};
+
 const char *fb_tol_output_name(int i) { return (i >= 0 && i < FB_TOL_NOUT) ? out_names[i] : "?"; }
+
+const char *fb_tol_output_name_of(fb_mech_type t, int i) {
+  if (t != FB_MECH_SLIDER_CRANK) return fb_tol_output_name(i);
+  return (i >= 0 && i < FB_TOL_NOUT) ? sc_out_names[i] : "?";
+}
+
+const char *fb_tol_output_unit_of(fb_mech_type t, int i) {
+  static const char *const unit[][2] = {{"_rad_s2", "rad/s^2"}, {"_rad_s", "rad/s"},
+                                        {"_rad", "rad"},        {"_m_s2", "m/s^2"},
+                                        {"_m_s", "m/s"},        {"_m", "m"}};
+  const char *name = fb_tol_output_name_of(t, i);
+  const size_t n = strlen(name);
+  for (size_t k = 0; k < sizeof unit / sizeof unit[0]; k++) {
+    const size_t m = strlen(unit[k][0]);
+    if (n > m && strcmp(name + n - m, unit[k][0]) == 0) return unit[k][1];
+  }
+  return "";
+}
 
 int fb_tol_output_parse(const char *name) {
   size_t n = strlen(name);
@@ -87,6 +116,82 @@ fb_status fb_tol_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_
   return FB_OK;
 }
 
+
+/* ---- the slider-crank ----------------------------------------------------- */
+
+static fb_slider_crank sc_of(const fb_linkage *lk) {
+  return (fb_slider_crank){lk->length[FB_CRANK], lk->length[FB_COUPLER],
+                           lk->length[FB_LENGTH_OFFSET]};
+}
+
+static fb_status sc_outputs(double out[FB_TOL_NOUT], double where[8], const fb_linkage *lk,
+                            double omega2, fb_diag *diag) {
+  const fb_slider_crank sc = sc_of(lk);
+  fb_slider_crank_limits lim;
+  fb_status st = fb_slider_crank_limit_positions(&lim, &sc, diag);
+  fb_peaks p;
+  if (st == FB_OK)
+    st = fb_mech_peaks_where(&p, where, FB_MECH_SLIDER_CRANK, lk, FB_BRANCH_OPEN, omega2, diag);
+  if (st != FB_OK) return st;
+  peaks_to_outputs(&p, out);
+  out[8] = lim.transmission_min;
+  out[9] = lim.stroke;
+  return FB_OK;
+}
+
+/* d(output)/d(crank, coupler, offset) into columns FB_CRANK, FB_COUPLER,
+ * FB_LENGTH_OFFSET (the fourth column 0): the peaks' from the exact
+ * sensitivities at each peak's crank angle (envelope theorem); the smallest
+ * transmission angle acos(u), u = (crank + |offset|) / coupler, and the
+ * stroke sqrt((coupler + crank)^2 - offset^2) - sqrt((coupler - crank)^2 -
+ * offset^2) differentiated in closed form. At offset 0 the transmission
+ * angle has a corner (|offset|): its offset column is then the one-sided
+ * derivative toward +offset (fb_tol_sensitivities_of). */
+static fb_status sc_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_linkage *lk,
+                                  double omega2, fb_diag *diag) {
+  const fb_slider_crank sc = sc_of(lk);
+  double o[FB_TOL_NOUT], where[8];
+  fb_status st = sc_outputs(o, where, lk, omega2, diag);
+  if (st != FB_OK) return st;
+  memset(out, 0, FB_TOL_NOUT * sizeof out[0]);
+  static const int col[FB_SC_PARAM_COUNT] = {FB_CRANK, FB_COUPLER, FB_LENGTH_OFFSET};
+  /* output i: body i / 4 (rod, slider), quantity (i % 4) / 2 (velocity, acceleration) */
+  static const int row[8] = {FB_SC_SENS_OMEGA3, FB_SC_SENS_OMEGA3, FB_SC_SENS_ALPHA3,
+                             FB_SC_SENS_ALPHA3, FB_SC_SENS_V,      FB_SC_SENS_V,
+                             FB_SC_SENS_A,      FB_SC_SENS_A};
+  for (int i = 0; i < 8; i++) {
+    double s[FB_SC_SENS_COUNT][FB_SC_PARAM_COUNT];
+    st = fb_slider_crank_sensitivity(s, &sc, where[i], omega2, 0.0, diag);
+    if (st != FB_OK) return st;
+    for (int k = 0; k < FB_SC_PARAM_COUNT; k++) out[i][col[k]] = s[row[i]][k];
+  }
+  const double a = sc.crank, b = sc.coupler, e = sc.offset;
+  const double sgn = e < 0.0 ? -1.0 : 1.0; /* d|e|/de, +1 at e = 0 (one-sided) */
+  const double u = (a + fabs(e)) / b;
+  const double k = -1.0 / sqrt(1.0 - u * u); /* d acos(u) / du */
+  out[8][FB_CRANK] = k / b;
+  out[8][FB_COUPLER] = -k * u / b;
+  out[8][FB_LENGTH_OFFSET] = k * sgn / b;
+  const double p = sqrt((b + a) * (b + a) - e * e), m = sqrt((b - a) * (b - a) - e * e);
+  out[9][FB_CRANK] = (b + a) / p + (b - a) / m;
+  out[9][FB_COUPLER] = (b + a) / p - (b - a) / m;
+  out[9][FB_LENGTH_OFFSET] = -e / p + e / m;
+  return FB_OK;
+}
+
+fb_status fb_tol_outputs_of(double out[FB_TOL_NOUT], fb_mech_type t, const fb_linkage *lk,
+                            fb_branch branch, double omega2, fb_diag *diag) {
+  if (t == FB_MECH_SLIDER_CRANK) return sc_outputs(out, NULL, lk, omega2, diag);
+  return fb_tol_outputs(out, lk, branch, omega2, diag);
+}
+
+fb_status fb_tol_sensitivities_of(double out[FB_TOL_NOUT][FB_LINK_COUNT], fb_mech_type t,
+                                  const fb_linkage *lk, fb_branch branch, double omega2,
+                                  fb_diag *diag) {
+  if (t == FB_MECH_SLIDER_CRANK) return sc_sensitivities(out, lk, omega2, diag);
+  return fb_tol_sensitivities(out, lk, branch, omega2, diag);
+}
+
 /* ---- Monte Carlo -------------------------------------------------------
  * The samples are drawn in order from one mt19937 stream (the sequence does
  * not depend on the number of jobs), then evaluated by `jobs` threads taking
@@ -126,7 +231,7 @@ static void *mc_worker(void *arg) {
       memcpy(lk.length, w->len + 4 * n, sizeof lk.length);
       double o[FB_TOL_NOUT];
       fb_diag inner;
-      fb_status st = fb_tol_outputs(o, &lk, w->c->branch, w->omega2, &inner);
+      fb_status st = fb_tol_outputs_of(o, w->c->mechanism, &lk, w->c->branch, w->omega2, &inner);
       if (st != FB_OK) {
         pthread_mutex_lock(&w->lock);
         if (n < w->err_at) {
@@ -178,6 +283,16 @@ void fb_tol_quantile_ranks(size_t n, double p, double level, size_t *lo, size_t 
   }
 }
 
+/* "crank 0.1, coupler 0.28, follower 0.27, ground 0.25": the case's lengths
+ * named by its mechanism's description, values len[] [m] */
+static void lengths_text(char *buf, size_t size, const fb_case *c, const double *len) {
+  const fb_mech_desc *mech = fb_case_mech(c);
+  size_t n = 0;
+  buf[0] = '\0';
+  for (int k = 0; k < mech->nlengths && n < size; k++)
+    n += (size_t)snprintf(buf + n, size - n, "%s%s %g", k ? ", " : "", mech->length[k], len[k]);
+}
+
 static fb_status monte_carlo(fb_stackup_result *out, const fb_case *c, size_t samples,
                              unsigned long seed, fb_distribution dist, int jobs,
                              void (*progress)(double fraction, void *user), void *user,
@@ -192,10 +307,17 @@ static fb_status monte_carlo(fb_stackup_result *out, const fb_case *c, size_t sa
     if (rng) gsl_rng_free(rng);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", samples);
   }
-  /* draw in order: the sequence of today's single-process loop */
+  /* draw in order: the sequence of today's single-process loop; the
+   * mechanism's lengths only (the four-bar's 4, the slider-crank's crank,
+   * coupler and offset), a slot it has not at its nominal 0 */
+  const int nl = fb_case_mech(c)->nlengths;
   gsl_rng_set(rng, seed);
   for (size_t n = 0; n < samples; n++)
     for (int k = 0; k < FB_LINK_COUNT; k++) {
+      if (k >= nl) {
+        len[4 * n + k] = c->nominal.length[k];
+        continue;
+      }
       const double x = dist == FB_DIST_UNIFORM ? gsl_ran_flat(rng, -1.0, 1.0)
                                                : gsl_ran_gaussian(rng, 1.0 / 3.0);
       len[4 * n + k] = c->nominal.length[k] + x * c->plus_minus[k];
@@ -230,10 +352,10 @@ static fb_status monte_carlo(fb_stackup_result *out, const fb_case *c, size_t sa
   pthread_mutex_destroy(&w.lock);
   fb_status st = FB_OK;
   if (w.err_st != FB_OK) {
-    const double *l = len + 4 * w.err_at;
-    st = fb_diag_set(diag, w.err_st,
-                     "Monte Carlo sample %zu (crank %g, coupler %g, follower %g, ground %g m): %s",
-                     w.err_at, l[0], l[1], l[2], l[3], w.err_msg);
+    char lengths[160];
+    lengths_text(lengths, sizeof lengths, c, len + 4 * w.err_at);
+    st = fb_diag_set(diag, w.err_st, "Monte Carlo sample %zu (%s m): %s", w.err_at, lengths,
+                     w.err_msg);
   } else {
     static const double qp[3] = {0.00135, 0.5, 0.99865};
     out->ci_level = FB_TOL_CI_LEVEL;
@@ -260,19 +382,33 @@ static fb_status monte_carlo(fb_stackup_result *out, const fb_case *c, size_t sa
   return st;
 }
 
+/* the corner m of 2^n over the mechanism's n lengths: length k at its
+ * maximum where bit k of m is set, else at its minimum; 0 (nominal) for a
+ * slot the mechanism has not */
+static void corner_of(int corner[FB_LINK_COUNT], int m, int n) {
+  for (int k = 0; k < FB_LINK_COUNT; k++) corner[k] = k >= n ? 0 : (m >> k) & 1 ? +1 : -1;
+}
+
 static fb_status corner_outputs(double out[FB_TOL_NOUT], const fb_case *c, const int corner[4],
                                 fb_diag *diag) {
   fb_linkage lk;
   for (int k = 0; k < FB_LINK_COUNT; k++)
     lk.length[k] = c->nominal.length[k] + corner[k] * c->plus_minus[k];
   fb_diag inner;
-  fb_status st = fb_tol_outputs(out, &lk, c->branch, fb_case_omega2(c), &inner);
-  if (st != FB_OK)
+  fb_status st = fb_tol_outputs_of(out, c->mechanism, &lk, c->branch, fb_case_omega2(c), &inner);
+  if (st == FB_OK) return FB_OK;
+  if (c->mechanism == FB_MECH_FOURBAR)
     return fb_diag_set(diag, st, "corner %c%c%c%c (crank %g, coupler %g, follower %g, ground %g m): %s",
                        "-0+"[corner[0] + 1], "-0+"[corner[1] + 1], "-0+"[corner[2] + 1],
                        "-0+"[corner[3] + 1], lk.length[0], lk.length[1], lk.length[2],
                        lk.length[3], inner.msg);
-  return FB_OK;
+  const int n = fb_case_mech(c)->nlengths;
+  char mark[FB_LINK_COUNT + 1] = "";
+  for (int k = 0; k < n; k++) mark[k] = "-0+"[corner[k] + 1];
+  mark[n] = '\0';
+  char lengths[160];
+  lengths_text(lengths, sizeof lengths, c, lk.length);
+  return fb_diag_set(diag, st, "corner %s (%s m): %s", mark, lengths, inner.msg);
 }
 
 fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, size_t samples,
@@ -290,14 +426,16 @@ fb_status fb_tol_analyse_jobs(fb_stackup_result *out, const fb_case *c, int mask
     return fb_diag_set(diag, FB_ERR_ARG, "jobs = %d: must be from 1 to %d", jobs, FB_TOL_MAX_JOBS);
   memset(out, 0, sizeof *out);
   const double omega2 = fb_case_omega2(c);
-  fb_status st = fb_tol_outputs(out->nominal, &c->nominal, c->branch, omega2, diag);
-  if (st == FB_OK) st = fb_tol_sensitivities(out->sens, &c->nominal, c->branch, omega2, diag);
+  fb_status st = fb_tol_outputs_of(out->nominal, c->mechanism, &c->nominal, c->branch, omega2, diag);
+  if (st == FB_OK)
+    st = fb_tol_sensitivities_of(out->sens, c->mechanism, &c->nominal, c->branch, omega2, diag);
   if (st != FB_OK) return st;
   if (mask & FB_TOL_CORNERS) {
     double best_abs[FB_TOL_NOUT];
-    for (int m = 0; m < 16; m++) {
+    const int nl = fb_case_mech(c)->nlengths;
+    for (int m = 0; m < 1 << nl; m++) {
       int corner[4];
-      for (int k = 0; k < 4; k++) corner[k] = (m >> k) & 1 ? +1 : -1;
+      corner_of(corner, m, nl);
       double v[FB_TOL_NOUT];
       st = corner_outputs(v, c, corner, diag);
       if (st != FB_OK) return st;
@@ -315,7 +453,7 @@ fb_status fb_tol_analyse_jobs(fb_stackup_result *out, const fb_case *c, int mask
     for (int i = 0; i < FB_TOL_NOUT; i++) {
       double s2 = 0.0;
       for (int k = 0; k < FB_LINK_COUNT; k++) {
-        double d = out->sens[i][k] * c->plus_minus[k];
+        double d = out->sens[i][k] * c->plus_minus[k]; /* a slot the mechanism has not: 0 */
         s2 += d * d;
       }
       out->rss_half[i] = sqrt(s2);
@@ -328,10 +466,11 @@ fb_status fb_tol_analyse_jobs(fb_stackup_result *out, const fb_case *c, int mask
 fb_status fb_tol_resolve_worst(fb_case *c, fb_diag *diag) {
   if (!c->stackup.worst) return FB_OK;
   const int i = c->stackup.worst_output;
+  const int nl = fb_case_mech(c)->nlengths;
   double best = -1.0;
-  for (int m = 0; m < 16; m++) {
+  for (int m = 0; m < 1 << nl; m++) {
     int corner[4];
-    for (int k = 0; k < 4; k++) corner[k] = (m >> k) & 1 ? +1 : -1;
+    corner_of(corner, m, nl);
     double v[FB_TOL_NOUT];
     fb_status st = corner_outputs(v, c, corner, diag);
     if (st != FB_OK) return st;
@@ -344,14 +483,16 @@ fb_status fb_tol_resolve_worst(fb_case *c, fb_diag *diag) {
   return FB_OK;
 }
 
-void fb_tol_estimate(size_t samples, int jobs, double *bytes, double *seconds) {
+void fb_tol_estimate(fb_mech_type t, size_t samples, int jobs, double *bytes, double *seconds) {
+  const double per = t == FB_MECH_SLIDER_CRANK ? FB_TOL_S_PER_SAMPLE_SLIDER_CRANK
+                                               : FB_TOL_S_PER_SAMPLE;
   *bytes = (double)samples * (double)(FB_TOL_NOUT + FB_LINK_COUNT) * (double)sizeof(double);
-  *seconds = (double)samples * FB_TOL_S_PER_SAMPLE / (double)(jobs > 0 ? jobs : 1);
+  *seconds = (double)samples * per / (double)(jobs > 0 ? jobs : 1);
 }
 
-fb_status fb_tol_check_cost(size_t samples, int jobs, fb_diag *diag) {
+fb_status fb_tol_check_cost(fb_mech_type t, size_t samples, int jobs, fb_diag *diag) {
   double bytes, seconds;
-  fb_tol_estimate(samples, jobs, &bytes, &seconds);
+  fb_tol_estimate(t, samples, jobs, &bytes, &seconds);
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
   const double memory = pages > 0 && page > 0 ? (double)pages * (double)page : 0.0;
   if (memory > 0.0 && bytes > FB_TOL_MEMORY_FRACTION * memory)

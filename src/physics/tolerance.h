@@ -1,14 +1,24 @@
-/* Tolerance stack-up of the four-bar's outputs: worst case over the 2^4
- * corners of the link-length tolerances, RSS from exact sensitivities, and
- * Monte Carlo with GSL's Mersenne Twister (gsl_rng_mt19937).
+/* Tolerance stack-up of a mechanism's outputs: worst case over the 2^n
+ * corners of its n length tolerances (the four-bar's 4 links, 16 corners;
+ * the slider-crank's crank, coupler and guide offset, 8 corners), RSS from
+ * exact sensitivities, and Monte Carlo with GSL's Mersenne Twister
+ * (gsl_rng_mt19937). The case's [linkage] type chooses (fb_case.mechanism).
  *
- * Outputs (FB_TOL_NOUT): the eight peaks of coupler and follower angular
- * velocity [rad/s] and acceleration [rad/s^2] over a revolution, and the
- * transmission angle's minimum and maximum [rad].
+ * Outputs (FB_TOL_NOUT, both mechanisms): the four-bar's eight peaks of
+ * coupler and follower angular velocity [rad/s] and acceleration [rad/s^2]
+ * over a revolution, and the transmission angle's minimum and maximum
+ * [rad]; the slider-crank's four peaks of the rod (coupler) as the
+ * four-bar's, the slider's velocity [m/s] and acceleration [m/s^2] peaks in
+ * the follower's slots, the smallest transmission angle [rad] and the
+ * stroke [m] (fb_tol_output_name_of).
  * Sensitivities dOutput/dLength are exact: for a peak, the envelope theorem
  * gives the partial derivative at the crank angle of the peak
- * (fb_linkage_sensitivity); for the transmission angle, the derivative of
- * mu = acos((b^2 + c^2 - f^2) / (2 b c)) with f = g -+ a at theta2 = 0, pi.
+ * (fb_linkage_sensitivity, fb_slider_crank_sensitivity); for the four-bar's
+ * transmission angle, the derivative of mu = acos((b^2 + c^2 - f^2) /
+ * (2 b c)) with f = g -+ a at theta2 = 0, pi; for the slider-crank's, of
+ * acos((crank + |offset|) / coupler), and its stroke's, of
+ * sqrt((coupler + crank)^2 - offset^2) - sqrt((coupler - crank)^2 -
+ * offset^2) (slider_crank.h fb_slider_crank_limits).
  * RSS: nominal +- sqrt(sum_k (S_k t_k)^2), each tolerance t_k taken as 3
  * sigma, so the band is the 3-sigma band of the linearised output.
  * Monte Carlo: each length nominal + t_k x, x ~ N(0, 1/3) ("normal": 3 sigma
@@ -34,13 +44,52 @@ const char *fb_tol_output_name(int i);
 /* Index of an output name (with or without its unit suffix), -1 if none. */
 int fb_tol_output_parse(const char *name);
 
-/* Evaluates the outputs for lengths lk. Errors: those of fb_analytic_peaks. */
+/* The output names of mechanism t: the four-bar's fb_tol_output_name; the
+ * slider-crank's "coupler_omega_max_rad_s" .. "coupler_alpha_min_rad_s2",
+ * "slider_velocity_max_m_s", "slider_velocity_min_m_s",
+ * "slider_acceleration_max_m_s2", "slider_acceleration_min_m_s2" (as
+ * summary.json's models[].slider, fb_mech_output_key),
+ * "transmission_angle_min_rad", "stroke_m"; "?" out of range. */
+const char *fb_tol_output_name_of(fb_mech_type t, int i);
+
+/* The unit of output i of mechanism t, from its name's suffix: "rad/s^2",
+ * "rad/s", "rad", "m/s^2", "m/s", "m". */
+const char *fb_tol_output_unit_of(fb_mech_type t, int i);
+
+/* Evaluates the four-bar's outputs for lengths lk. Errors: those of
+ * fb_analytic_peaks. */
 fb_status fb_tol_outputs(double out[FB_TOL_NOUT], const fb_linkage *lk, fb_branch branch,
                          double omega2, fb_diag *diag);
 
-/* Exact sensitivities [output unit per m] (FB_TOL_NOUT x 4). */
+/* The four-bar's exact sensitivities [output unit per m] (FB_TOL_NOUT x 4). */
 fb_status fb_tol_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_linkage *lk,
                                fb_branch branch, double omega2, fb_diag *diag);
+
+/* The outputs of mechanism t for lengths lk (a slider-crank's crank,
+ * coupler and offset, mechanism.h FB_LENGTH_OFFSET; branch is the
+ * four-bar's alone). Errors: those of fb_tol_outputs, or for the
+ * slider-crank of fb_slider_crank_limit_positions (the crank cannot turn
+ * fully) and fb_mech_peaks. */
+fb_status fb_tol_outputs_of(double out[FB_TOL_NOUT], fb_mech_type t, const fb_linkage *lk,
+                            fb_branch branch, double omega2, fb_diag *diag);
+
+/* The exact sensitivities of mechanism t [output unit per m], per length
+ * slot of lk (FB_TOL_NOUT x 4): the slider-crank's columns crank, coupler,
+ * offset, and 0 in the fourth. At offset 0 the slider-crank's smallest
+ * transmission angle has a corner (it depends on |offset|, and either sign
+ * lowers it): its offset entry is then the one-sided derivative toward
+ * +offset, -1 / (coupler sin mu_min), so that the RSS band is as wide as
+ * the offset makes it (on the low side; the corners and Monte Carlo show
+ * the one-sidedness). A peak that two crank angles tie for has a corner
+ * too (the zero-offset slider-crank's slider acceleration maximum when
+ * crank / coupler > 1/4: two maxima mirrored about the inner dead centre;
+ * measured: d/d offset = +98560 and -98560 (m/s^2)/m on either side for
+ * cases/slider_crank_flores.ini): its sensitivity is the derivative at the
+ * first of them on the search's grid, one side's. Errors: those of
+ * fb_tol_outputs_of and fb_slider_crank_sensitivity. */
+fb_status fb_tol_sensitivities_of(double out[FB_TOL_NOUT][FB_LINK_COUNT], fb_mech_type t,
+                                  const fb_linkage *lk, fb_branch branch, double omega2,
+                                  fb_diag *diag);
 
 typedef enum { FB_DIST_NORMAL = 0, FB_DIST_UNIFORM = 1 } fb_distribution;
 
@@ -49,7 +98,8 @@ typedef struct {
   double nominal[FB_TOL_NOUT];
   double sens[FB_TOL_NOUT][FB_LINK_COUNT];
   double corner_min[FB_TOL_NOUT], corner_max[FB_TOL_NOUT];
-  int corner_of_max[FB_TOL_NOUT][FB_LINK_COUNT]; /* corner giving the largest |output| */
+  int corner_of_max[FB_TOL_NOUT][FB_LINK_COUNT]; /* corner giving the largest |output|
+                                                    (0 in a slot the mechanism has not) */
   double rss_half[FB_TOL_NOUT];                  /* half-width of the RSS band */
   double q[FB_TOL_NOUT][3];                      /* Monte Carlo 0.135 %, 50 %, 99.865 % */
   double mc_mean[FB_TOL_NOUT], mc_std[FB_TOL_NOUT];
@@ -83,7 +133,9 @@ void fb_tol_quantile_ranks(size_t n, double p, double level, size_t *lo, size_t 
 #define FB_TOL_RSS 2
 #define FB_TOL_MONTECARLO 4
 
-/* Runs the methods in mask for the case's nominal lengths and tolerances.
+/* Runs the methods in mask for the case's nominal lengths and tolerances,
+ * for the case's mechanism (corners over its lengths; the Monte Carlo draws
+ * its lengths only, in their order, per sample).
  * progress (may be NULL) gets the Monte Carlo fraction done.
  * Errors: FB_ERR_ASSEMBLY when a corner or sample cannot turn its crank
  * fully (message names the lengths); FB_ERR_NOMEM. */
@@ -100,18 +152,24 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
  * measured (fourbar stackup --method montecarlo --samples 200000, paper
  * case, 1 job, 2-core machine under load), rounded up. */
 #define FB_TOL_S_PER_SAMPLE 30e-6
+/* The slider-crank's: 526 us measured (fourbar stackup --method montecarlo
+ * --samples 10000, cases/slider_crank_flores.ini with offset 5 mm and
+ * tolerances, 1 job, 2-core machine under load; 240 us of it CPU): its
+ * peaks are a grid of FB_ANALYTIC_PEAK_SAMPLES crank angles and Brent
+ * (mech_kinematics.h), rounded up. */
+#define FB_TOL_S_PER_SAMPLE_SLIDER_CRANK 600e-6
 /* Share of the machine's memory a Monte Carlo run may reserve. */
 #define FB_TOL_MEMORY_FRACTION 0.5
 
 /* Estimated memory [bytes] and wall time [s] of a Monte Carlo analysis of
- * samples samples on jobs threads (the samples and their outputs are kept
- * for the quantiles). */
-void fb_tol_estimate(size_t samples, int jobs, double *bytes, double *seconds);
+ * samples samples of mechanism t on jobs threads (the samples and their
+ * outputs are kept for the quantiles). */
+void fb_tol_estimate(fb_mech_type t, size_t samples, int jobs, double *bytes, double *seconds);
 
 /* Refuses, before anything is reserved, a Monte Carlo analysis whose memory
  * estimate passes FB_TOL_MEMORY_FRACTION of this machine's memory.
  * Errors: FB_ERR_RANGE naming the samples, the estimate and what to lower. */
-fb_status fb_tol_check_cost(size_t samples, int jobs, fb_diag *diag);
+fb_status fb_tol_check_cost(fb_mech_type t, size_t samples, int jobs, fb_diag *diag);
 
 fb_status fb_tol_analyse_jobs(fb_stackup_result *out, const fb_case *c, int mask, size_t samples,
                               unsigned long seed, fb_distribution dist, int jobs,

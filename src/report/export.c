@@ -90,6 +90,17 @@ static const fb_engine *engine_reading(const char *format) {
   return NULL;
 }
 
+/* FB_OK when model `name` builds case c's mechanism, else FB_ERR_ARG naming
+ * both (the case check would refuse the model as if the case listed it) */
+static fb_status builds(const fb_case *c, const char *name, const char *format, fb_diag *diag) {
+  const fb_model *m = fb_model_find(name);
+  if (c->mechanism == FB_MECH_FOURBAR || (m && (m->mechanisms & (1u << c->mechanism))))
+    return FB_OK; /* every row builds the four-bar */
+  return fb_diag_set(diag, FB_ERR_ARG, "the %s export writes model %s, which does not build a %s "
+                     "yet ([linkage] type = %s; fourbar models lists each model's mechanisms)",
+                     format, name, fb_case_mech(c)->type, fb_case_mech(c)->type);
+}
+
 fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
   const fb_engine *e = engine_reading("mjcf");
   if (!e)
@@ -97,6 +108,7 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
                        "install libmujoco-dev and rebuild (bash scripts/quickstart.sh build)");
   const char *name = ideal || !c->clearance.mask ? "mujoco-ideal-nominal"
                                                  : "mujoco-clearance-native";
+  if (builds(c, name, "MJCF", diag) != FB_OK) return FB_ERR_ARG;
   fb_scene *def = NULL;
   fb_model_scene sm;
   fb_status st = one_model(&sm, &def, c, name, 1, diag);
@@ -108,6 +120,7 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
 
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
   const char *name = ideal || !c->clearance.mask ? "ode-ideal-nominal" : "ode-clearance-restitution";
+  if (c->mechanism != FB_MECH_FOURBAR) return fb_export_sdf_refusal(c->mechanism, diag);
   fb_scene *def = NULL;
   fb_model_scene sm;
   fb_status st = one_model(&sm, &def, c, name, 0, diag);

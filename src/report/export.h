@@ -15,7 +15,9 @@
  * mujoco-ideal-nominal; else mujoco-clearance-native with its bore as a
  * limited tendon (fb_mujoco_export). Errors: those of
  * fb_scene_from_case and fb_mujoco_export; FB_ERR_ARG in a build
- * without MuJoCo (the MJCF is checked by compiling it). On FB_OK,
+ * without MuJoCo (the MJCF is checked by compiling it), or when the model
+ * does not build the case's mechanism (fb_model.mechanisms: the
+ * slider-crank today). On FB_OK,
  * diag->msg is empty, or a note that a clearance contact is beyond the
  * run's resolution rule at the case's step (h omega_c > 0.5): the file is
  * written, the command prints the note as a warning. */
@@ -25,7 +27,8 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
  * physics into buf (size bytes, NUL terminated): with ideal = 1, or when c
  * has no clearance joint, model ode-ideal-nominal's mechanism, else
  * ode-clearance-restitution's (fb_export_sdf_model). Errors: those of
- * fb_scene_from_case and fb_export_sdf_model. On FB_OK, diag->msg as
+ * fb_scene_from_case and fb_export_sdf_model; FB_ERR_ARG for a mechanism
+ * other than the four-bar (fb_export_sdf_refusal). On FB_OK, diag->msg as
  * fb_export_mjcf's. */
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag);
 
@@ -44,7 +47,14 @@ fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_
  * max_vel, min_depth 0; the crank driven by Gazebo Sim's JointController at
  * the case's speed. Errors: those of fb_scene_check and
  * fb_cp_rows_make; FB_ERR_ARG for a clearance ground-crank joint (the drive
- * needs its revolute); FB_ERR_RANGE when buf is too small. */
+ * needs its revolute); FB_ERR_RANGE when buf is too small; FB_ERR_ARG
+ * (fb_export_sdf_refusal) for a scene of another mechanism than the
+ * four-bar: the world written is the four-bar's. */
 fb_status fb_export_sdf_model(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag);
+
+/* Refuses the SDF export of a mechanism of type t (not the four-bar):
+ * FB_ERR_ARG saying the SDF world written is the four-bar's and a t's
+ * (a slider on a prismatic joint) is not written. */
+fb_status fb_export_sdf_refusal(fb_mech_type t, fb_diag *diag);
 
 #endif

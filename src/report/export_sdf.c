@@ -200,7 +200,17 @@ static fb_status write_sdf(text *t, const fb_model_scene *sm, const fb_start_sta
   return FB_OK;
 }
 
+fb_status fb_export_sdf_refusal(fb_mech_type t, fb_diag *diag) {
+  return fb_diag_set(diag, FB_ERR_ARG,
+                     "--format sdf: the SDF export writes the four-bar's world (links crank, "
+                     "coupler, follower and four revolute joints); a %s's (its slider on a "
+                     "prismatic joint along the guide) is not written yet: no SDF for this case",
+                     fb_mech_of(t)->type);
+}
+
 fb_status fb_export_sdf_model(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag) {
+  if (sm->def->source.mechanism != FB_MECH_FOURBAR)
+    return fb_export_sdf_refusal(sm->def->source.mechanism, diag);
   fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
   if (sm->def->source.mechanism != FB_MECH_FOURBAR)

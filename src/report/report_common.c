@@ -23,6 +23,17 @@ json_t *fb_report_body_peaks_json(const fb_body_peaks *p) {
   return o;
 }
 
+json_t *fb_report_slider_peaks_json(const fb_body_peaks *p) {
+  json_t *o = json_object();
+  json_object_set_new(o, "position_max_m", num(p->pos_max));
+  json_object_set_new(o, "position_min_m", num(p->pos_min));
+  json_object_set_new(o, "velocity_max_m_s", num(p->omega_max));
+  json_object_set_new(o, "velocity_min_m_s", num(p->omega_min));
+  json_object_set_new(o, "acceleration_max_m_s2", num(p->alpha_max));
+  json_object_set_new(o, "acceleration_min_m_s2", num(p->alpha_min));
+  return o;
+}
+
 /* prose: printf-formatted text wrapped at spaces to FB_TABLE_COLUMNS,
  * continuation lines indented by two spaces */
 void fb_report_say(FILE *f, const char *fmt, ...) {

@@ -42,6 +42,13 @@ const char *fb_report_body_abbrev(const char *body);
  * "alpha_min_rad_s2"} of one body's peaks (new reference). */
 json_t *fb_report_body_peaks_json(const fb_body_peaks *p);
 
+/* JSON object {"position_max_m", "position_min_m", "velocity_max_m_s",
+ * "velocity_min_m_s", "acceleration_max_m_s2", "acceleration_min_m_s2"} of a
+ * translating body's peaks (a slider: docs/outputs.md, models[].slider;
+ * fb_body_peaks' omega/alpha fields hold its v/a), non-finite values as null
+ * (new reference). */
+json_t *fb_report_slider_peaks_json(const fb_body_peaks *p);
+
 /* Writes a JSON value to path atomically (indented, keys in insertion order).
  * Errors: FB_ERR_IO naming the file. */
 fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag);

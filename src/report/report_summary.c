@@ -94,20 +94,9 @@ static int translating(const fb_run *r, int b) {
   return b < n && mech->body[out[b]].motion == FB_MOTION_TRANSLATING;
 }
 
-/* a translating body's peaks (docs/outputs.md: models[].slider) */
-static json_t *slider_peaks_json(const fb_body_peaks *p) {
-  json_t *o = json_object();
-  json_object_set_new(o, "position_max_m", num(p->pos_max));
-  json_object_set_new(o, "position_min_m", num(p->pos_min));
-  json_object_set_new(o, "velocity_max_m_s", num(p->omega_max));
-  json_object_set_new(o, "velocity_min_m_s", num(p->omega_min));
-  json_object_set_new(o, "acceleration_max_m_s2", num(p->alpha_max));
-  json_object_set_new(o, "acceleration_min_m_s2", num(p->alpha_min));
-  return o;
-}
-
+/* a body's peaks: a translating body's as docs/outputs.md's models[].slider */
 static json_t *body_peaks_json(const fb_run *r, int b, const fb_body_peaks *p) {
-  return translating(r, b) ? slider_peaks_json(p) : fb_report_body_peaks_json(p);
+  return translating(r, b) ? fb_report_slider_peaks_json(p) : fb_report_body_peaks_json(p);
 }
 
 /* a translating body's error against the analytic solution (the peaks' keys

@@ -19,6 +19,11 @@ static void penalty_units(const fb_penalty_row *r, fb_penalty_mode m, double *p_
   *p_m = m == FB_PENALTY_PAPER ? r->penalty * sqrt(FB_M_PER_MM) : r->penalty;
 }
 
+/* the name of the study's pin joint j (its mechanism's joint 1 + j) */
+static const char *joint_name(const fb_penalty_study *s, fb_pin_joint j) {
+  return fb_mech_joint_name(fb_mech_of(s->mech), 1 + (int)j);
+}
+
 /* which force the table's is (the contact block's expected impact force is another) */
 static const char *force_is(fb_penalty_mode m) {
   return m == FB_PENALTY_PAPER
@@ -30,6 +35,10 @@ static const char *force_is(fb_penalty_mode m) {
 
 void fb_report_penalty_table(FILE *f, const fb_penalty_study *s, const fb_case *c) {
   const fb_penalty_mode mode = s->mode;
+  if (s->rows_skipped) {
+    fprintf(f, "%s mode, case %s: no table: %s\n", mode_name(mode), c->name, s->rows_skipped);
+    return;
+  }
   fprintf(f, "%s mode, case %s\n%8s  %-17s %12s %16s %14s %14s %12s\n"
           "%8s  %-17s %12s %16s %14s %14s %12s\n",
           mode_name(mode), c->name, "speed", "joint",
@@ -41,7 +50,7 @@ void fb_report_penalty_table(FILE *f, const fb_penalty_study *s, const fb_case *
       double p_mm, p_m;
       penalty_units(r, mode, &p_mm, &p_m);
       fprintf(f, "%8g  %-17s %12.6g %16.6e %14.6g %14.6g %12.6g\n", s->rpm[i],
-              fb_pin_joint_name(r->joint), r->force, r->stiffness, p_mm, p_m,
+              joint_name(s, r->joint), r->force, r->stiffness, p_mm, p_m,
               r->approach / FB_M_PER_UM);
     }
   if (s->rows_status != FB_OK) return;
@@ -75,13 +84,15 @@ fb_status fb_report_penalty_files(const char *out, const fb_penalty_study *s, in
   for (int i = 0; i < n; i++)
     for (int j = 0; j < 2; j++)
       fprintf(of.f, "%.10g,%s,%.12g,%.12g,%.12g,%.12g,%.12g\n", s->rpm[i],
-              fb_pin_joint_name((fb_pin_joint)j), col_f[j][i], col_k[j][i],
+              joint_name(s, (fb_pin_joint)j), col_f[j][i], col_k[j][i],
               col_pm[j][i] / sqrt(FB_M_PER_MM), col_pm[j][i], col_d[j][i]);
   if ((st = fb_outfile_commit(&of, diag)) != FB_OK) return st;
   snprintf(path, sizeof path, "%s/penalty_%s.svg", out, mname);
   const double *f2[2] = {col_f[0], col_f[1]}, *k2[2] = {col_k[0], col_k[1]};
   const double *p2[2] = {col_p[0], col_p[1]}, *d2[2] = {col_d[0], col_d[1]};
-  *figure_ok = fb_figures_penalty(path, FB_FIGURE_SVG, mname, n, s->rpm, f2, k2, p2, d2,
+  const char *names[2] = {joint_name(s, FB_JOINT_CRANK_COUPLER),
+                          joint_name(s, FB_JOINT_COUPLER_FOLLOWER)};
+  *figure_ok = fb_figures_penalty(path, FB_FIGURE_SVG, mname, n, s->rpm, f2, k2, p2, d2, names,
                                   fig_diag) == FB_OK;
   return FB_OK;
 }
@@ -108,10 +119,15 @@ void fb_report_penalty_contact_text(FILE *f, const fb_penalty_study *s) {
   if (!s->has_contact) return;
   const fb_case *c = &s->run_case;
   const fb_linkage *su = &s->stackup;
-  fprintf(f, "\ncontact a fourbar run of %s uses (stack-up lengths, corner %s: crank %.6g, "
-          "coupler %.6g, follower %.6g, ground %.6g mm; %s):\n",
-          c->name, s->corner, su->length[0] * 1e3, su->length[1] * 1e3, su->length[2] * 1e3,
-          su->length[3] * 1e3, stiffness_rule(c));
+  const fb_mech_desc *mech = fb_case_mech(c);
+  char lengths[256];
+  size_t n = 0;
+  lengths[0] = '\0';
+  for (int k = 0; k < mech->nlengths && n < sizeof lengths; k++)
+    n += (size_t)snprintf(lengths + n, sizeof lengths - n, "%s%s %.6g", k ? ", " : "",
+                          mech->length[k], su->length[k] * 1e3);
+  fprintf(f, "\ncontact a fourbar run of %s uses (stack-up lengths, corner %s: %s mm; %s):\n",
+          c->name, s->corner, lengths, stiffness_rule(c));
   for (int j = 0; j < 4; j++)
     for (int m = 0; m < 2; m++) {
       if (!(c->clearance.mask & (1 << j))) continue;
@@ -140,7 +156,7 @@ static void contact_json(json_t *out, const fb_penalty_study *s) {
       if (!(c->clearance.mask & (1 << j))) continue;
       const fb_contact_estimate *e = &s->est[m][j];
       json_t *o = fb_report_contact_law_json(fb_case_joint_name(c, j), &s->laws[m][j], s->mapping);
-      json_object_set_new(o, "model", json_string(fb_penalty_contact_models[m]));
+      json_object_set_new(o, "model", json_string(s->contact_models[m]));
       json_object_set_new(o, "effective_mass_estimate_kg",
                           json_pack("{s:f,s:f}", "min", e->m_eff_min, "max", e->m_eff_max));
       json_object_set_new(o, "force_expected_n", json_real(e->force_expected));
@@ -170,7 +186,7 @@ void fb_report_penalty_json(FILE *f, const fb_penalty_study *s, const fb_case *c
       penalty_units(r, s->mode, &p_mm, &p_m);
       json_t *o = json_object();
       json_object_set_new(o, "speed_rpm", json_real(s->rpm[i]));
-      json_object_set_new(o, "joint", json_string(fb_pin_joint_name(r->joint)));
+      json_object_set_new(o, "joint", json_string(joint_name(s, r->joint)));
       json_object_set_new(o, "force_n", json_real(r->force));
       json_object_set_new(o, "stiffness_n_m", json_real(r->stiffness));
       json_object_set_new(o, "penalty", json_real(r->penalty)); /* unit: penalty_units */
@@ -186,6 +202,7 @@ void fb_report_penalty_json(FILE *f, const fb_penalty_study *s, const fb_case *c
                                                           ? "N mm^0.5 (paper)" : "N m^0.5"));
   json_object_set_new(o, "force_n_is", json_string(force_is(s->mode)));
   json_object_set_new(o, "rows", rows);
+  if (s->rows_skipped) json_object_set_new(o, "rows_skipped", json_string(s->rows_skipped));
   if (s->has_contact) contact_json(o, s);
   json_dumpf(o, f, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
   fputc('\n', f);

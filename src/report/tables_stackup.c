@@ -20,13 +20,15 @@ void fb_report_stackup_json(FILE *f, const fb_stackup_result *r, const fb_case *
   json_object_set_new(o, "seed", json_integer((json_int_t)seed));
   json_object_set_new(o, "jobs", json_integer((json_int_t)jobs));
   json_object_set_new(o, "montecarlo_wall_s", json_real(r->mc_wall_s));
+  const fb_mech_desc *mech = fb_case_mech(c);
+  const int nl = mech->nlengths;
   json_t *tol = json_object();
-  for (int k = 0; k < FB_LINK_COUNT; k++) {
+  for (int k = 0; k < nl; k++) {
     json_t *l = json_object();
     json_object_set_new(l, "nominal_m", json_real(c->nominal.length[k]));
     json_object_set_new(l, "plus_minus_m", json_real(c->plus_minus[k]));
     json_object_set_new(l, "source", json_string(c->tolerance_source[k]));
-    json_object_set_new(tol, fb_link_name(k), l);
+    json_object_set_new(tol, mech->length[k], l);
   }
   json_object_set_new(o, "links", tol);
   if (mask & FB_TOL_MONTECARLO) {
@@ -44,9 +46,9 @@ void fb_report_stackup_json(FILE *f, const fb_stackup_result *r, const fb_case *
   }
   for (int i = 0; i < FB_TOL_NOUT; i++) {
     json_t *x = json_object(), *s = json_object();
-    json_object_set_new(x, "name", json_string(fb_tol_output_name(i)));
+    json_object_set_new(x, "name", json_string(fb_tol_output_name_of(c->mechanism, i)));
     json_object_set_new(x, "nominal", json_real(r->nominal[i]));
-    for (int k = 0; k < FB_LINK_COUNT; k++) json_object_set_new(s, fb_link_name(k), json_real(r->sens[i][k]));
+    for (int k = 0; k < nl; k++) json_object_set_new(s, mech->length[k], json_real(r->sens[i][k]));
     json_object_set_new(x, "sensitivity_per_m", s);
     if (mask & FB_TOL_CORNERS)
       json_object_set_new(x, "corners", json_pack("{s:f,s:f}", "min", r->corner_min[i], "max", r->corner_max[i]));
@@ -73,14 +75,18 @@ void fb_report_stackup_json(FILE *f, const fb_stackup_result *r, const fb_case *
 }
 
 void fb_report_stackup_text(FILE *f, const fb_stackup_result *r, const fb_case *c, int mask) {
+  const fb_mech_desc *mech = fb_case_mech(c);
+  const int nl = mech->nlengths;
+  const fb_mech_type t = c->mechanism;
   fprintf(f, "stack-up of case %s at %.6g rpm:", c->name, c->crank_speed * 60 / (2 * M_PI));
-  for (int k = 0; k < FB_LINK_COUNT; k++)
-    fprintf(f, "%s %s %.4g +- %.3g mm", k ? "," : "", fb_link_name(k), c->nominal.length[k] * 1e3,
+  if (t != FB_MECH_FOURBAR) fprintf(f, " %s,", mech->type);
+  for (int k = 0; k < nl; k++)
+    fprintf(f, "%s %s %.4g +- %.3g mm", k ? "," : "", mech->length[k], c->nominal.length[k] * 1e3,
               c->plus_minus[k] * 1e3);
   fprintf(f, "\n\n%-28s %12s %12s %12s %12s %12s %12s %12s %12s\n", "output", "nominal",
             "corner min", "corner max", "rss min", "rss max", "mc 0.135%", "mc 50%", "mc 99.865%");
   for (int i = 0; i < FB_TOL_NOUT; i++) {
-    fprintf(f, "%-28s %12.6g", fb_tol_output_name(i), r->nominal[i]);
+    fprintf(f, "%-28s %12.6g", fb_tol_output_name_of(t, i), r->nominal[i]);
     if (mask & FB_TOL_CORNERS) fprintf(f, " %12.6g %12.6g", r->corner_min[i], r->corner_max[i]);
     else fprintf(f, " %12s %12s", "-", "-");
     if (mask & FB_TOL_RSS) fprintf(f, " %12.6g %12.6g", r->nominal[i] - r->rss_half[i], r->nominal[i] + r->rss_half[i]);
@@ -92,25 +98,28 @@ void fb_report_stackup_text(FILE *f, const fb_stackup_result *r, const fb_case *
   /* the exact sensitivities of every output to every link length, each with
    * its unit (the output's unit per metre of length) */
   fprintf(f, "\nsensitivities d(output)/d(link length), exact derivatives (per metre of length):\n");
-  fprintf(f, "%-28s %12s %12s %12s %12s  %s\n", "output", "crank", "coupler", "follower", "ground",
-            "unit");
+  fprintf(f, "%-28s", "output");
+  for (int k = 0; k < nl; k++) fprintf(f, " %12s", mech->length[k]);
+  fprintf(f, "  %s\n", "unit");
   for (int i = 0; i < FB_TOL_NOUT; i++) {
-    const char *name = fb_tol_output_name(i);
-    const char *unit = strstr(name, "_rad_s2") ? "rad/s^2 per m"
-                       : strstr(name, "_rad_s") ? "rad/s per m"
-                       : strstr(name, "_rad") ? "rad per m"
-                                              : "per m";
-    fprintf(f, "%-28s", name);
-    for (int k = 0; k < FB_LINK_COUNT; k++) fprintf(f, " %12.5g", r->sens[i][k]);
-    fprintf(f, "  %s\n", unit);
+    fprintf(f, "%-28s", fb_tol_output_name_of(t, i));
+    for (int k = 0; k < nl; k++) fprintf(f, " %12.5g", r->sens[i][k]);
+    const char *unit = fb_tol_output_unit_of(t, i);
+    fprintf(f, "  %s%sper m\n", unit, unit[0] ? " " : "");
   }
+  if (t == FB_MECH_SLIDER_CRANK && c->nominal.length[FB_LENGTH_OFFSET] == 0.0)
+    fprintf(f, "(at offset 0 the slider-crank is symmetric about its guide: the smallest "
+               "transmission angle, and a peak two mirrored crank angles tie for (the slider's "
+               "acceleration maximum when crank / coupler > 1/4), have a corner in the offset, "
+               "which moves them the same way for either sign; their offset column is one side's "
+               "derivative, the corners and Monte Carlo give the range)\n");
   if (mask & FB_TOL_MONTECARLO) {
     fprintf(f, "\nMonte Carlo quantiles with %.0f %% confidence intervals (order statistics X_(l) .. X_(u)):\n",
               100.0 * r->ci_level);
     fprintf(f, "%-28s %27s %27s %27s\n", "output", "0.135%", "50%", "99.865%");
     int open_side = 0;
     for (int i = 0; i < FB_TOL_NOUT; i++) {
-      fprintf(f, "%-28s", fb_tol_output_name(i));
+      fprintf(f, "%-28s", fb_tol_output_name_of(t, i));
       for (int j = 0; j < 3; j++) {
         char a[32] = "-", b[32] = "-";
         if (isfinite(r->q_ci[i][j][0])) snprintf(a, sizeof a, "%.6g", r->q_ci[i][j][0]);

@@ -10,6 +10,13 @@
 const char *const fb_penalty_contact_models[2] = {"ode-clearance-impact",
                                                   "ode-clearance-restitution"};
 
+/* the slider-crank's: the models that build it with each law */
+static const char *const sc_contact_models[2] = {"reference", "reference-restitution"};
+
+const char *const *fb_penalty_contact_models_of(fb_mech_type t) {
+  return t == FB_MECH_SLIDER_CRANK ? sc_contact_models : fb_penalty_contact_models;
+}
+
 /* the contact a run of case in uses, through the run's own law resolution */
 static fb_status contact_used(fb_penalty_study *s, const fb_case *in, fb_diag *d) {
   /* the scene stage a run goes through, with both clearance laws asked for */
@@ -17,7 +24,7 @@ static fb_status contact_used(fb_penalty_study *s, const fb_case *in, fb_diag *d
   static fb_scene def;
   c = *in;
   c.model_count = 2;
-  for (int m = 0; m < 2; m++) snprintf(c.models[m], FB_NAME_SIZE, "%s", fb_penalty_contact_models[m]);
+  for (int m = 0; m < 2; m++) snprintf(c.models[m], FB_NAME_SIZE, "%s", s->contact_models[m]);
   fb_status st = fb_scene_from_case(&def, &c, d);
   if (st != FB_OK) return st;
   s->run_case = def.source;
@@ -27,19 +34,24 @@ static fb_status contact_used(fb_penalty_study *s, const fb_case *in, fb_diag *d
     if ((st = fb_contact_estimates(s->est[m], &s->run_case, s->laws[m], d)) != FB_OK) return st;
   if ((st = fb_step_auto(&s->h_auto, &s->omega_c, &s->run_case, d)) != FB_OK) return st;
   s->stackup = def.lengths[FB_LENGTHS_STACKUP];
-  for (int k = 0; k < FB_LINK_COUNT; k++) s->corner[k] = "-0+"[s->run_case.stackup.corner[k] + 1];
-  s->corner[FB_LINK_COUNT] = '\0';
+  const int nl = fb_case_mech(&s->run_case)->nlengths;
+  for (int k = 0; k < nl; k++) s->corner[k] = "-0+"[s->run_case.stackup.corner[k] + 1];
+  s->corner[nl] = '\0';
   s->mapping = (fb_mapping)s->run_case.clearance.mapping;
   return FB_OK;
 }
 
 void fb_penalty_study_run(fb_penalty_study *s, const fb_case *c, fb_penalty_mode mode,
                           const double *rpm, int n) {
+  s->mech = c->mechanism;
+  s->contact_models[0] = fb_penalty_contact_models_of(c->mechanism)[0];
+  s->contact_models[1] = fb_penalty_contact_models_of(c->mechanism)[1];
   s->mode = mode;
   s->n = n;
   s->n_ok = 0;
   s->rows_status = FB_OK;
-  for (int i = 0; i < n; i++) {
+  s->rows_skipped = mode == FB_PENALTY_PAPER ? fb_penalty_paper_refusal(c) : NULL;
+  for (int i = 0; i < n && !s->rows_skipped; i++) {
     s->rpm[i] = rpm[i];
     fb_diag d;
     s->rows_status = fb_penalty_rows(s->rows[i], c, mode, rpm[i] * FB_RAD_S_PER_RPM, &d);

@@ -1,6 +1,7 @@
 /* fourbar penalty below the command: contact stiffness Kc (paper Eq. 7),
  * penalty parameter P and mutual approach of the crank-coupler and
- * coupler-follower joints per crank speed (penalty.h), and the contact a
+ * coupler-follower joints per crank speed (penalty.h; a slider-crank's
+ * crank-coupler and coupler-slider, physical mode only), and the contact a
  * fourbar run of the case uses, through the run's own scene stage (its
  * laws per joint, effective-mass range, expected impact force, contact
  * frequency and the automatic step; scene.h, resolution.h). */
@@ -18,6 +19,9 @@
 #define FB_PENALTY_SPEEDS_MAX 1000
 
 typedef struct {
+  fb_mech_type mech;                       /* the case's mechanism (joint names: its joints 1, 2) */
+  const char *rows_skipped;                /* NULL, or why the table does not apply (paper mode on
+                                              a slider-crank: fb_penalty_paper_refusal) */
   fb_penalty_mode mode;
   int n;                                   /* speeds asked */
   double rpm[FB_PENALTY_SPEEDS_MAX];       /* crank speeds [rpm] */
@@ -36,17 +40,27 @@ typedef struct {
   double h_auto;                           /* [solver] h_s = auto's step [s] */
   double omega_c;                          /* its contact frequency [rad/s] */
   fb_linkage stackup;                      /* the stack-up corner's lengths [m] */
-  char corner[FB_LINK_COUNT + 1];          /* the corner as '-', '0', '+' per link */
+  char corner[FB_LINK_COUNT + 1];          /* the corner as '-', '0', '+' per length of the
+                                              mechanism's description */
+  const char *contact_models[2];           /* the models whose laws the contact block shows
+                                              (fb_penalty_contact_models_of) */
   fb_mapping mapping;                      /* the case's [clearance] mapping */
 } fb_penalty_study;
 
-/* The two models whose laws the contact block shows. */
+/* The two models whose laws the contact block shows: the four-bar's. */
 extern const char *const fb_penalty_contact_models[2];
+
+/* The two models whose laws the contact block shows for mechanism t (the
+ * impact and the restitution law, clearance models that build t): the
+ * four-bar's ODE rows, the slider-crank's reference rows. */
+const char *const *fb_penalty_contact_models_of(fb_mech_type t);
 
 /* Fills s for case c in mode at the n speeds rpm [rpm]. Never fails as a
  * whole: the rows stop at the first speed fb_penalty_rows refuses
- * (rows_status), and the contact records its own error (contact_status),
- * so the command reports each where its output reaches it. */
+ * (rows_status), or are skipped whole where the mode does not apply to the
+ * mechanism (rows_skipped, rows_status FB_OK, n_ok 0), and the contact
+ * records its own error (contact_status), so the command reports each
+ * where its output reaches it. */
 void fb_penalty_study_run(fb_penalty_study *s, const fb_case *c, fb_penalty_mode mode,
                           const double *rpm, int n);
 

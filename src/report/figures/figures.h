@@ -46,11 +46,12 @@ fb_status fb_figures_check_gnuplot(fb_diag *diag);
 /* Draws penalty.<ext>: force, contact stiffness, penalty and approach against
  * crank speed for both joints (the paper's Figures 2 to 4), from columns of
  * equal length n: speed [rpm], then per joint (2) force [N], stiffness [N/m],
- * penalty, approach [um]. Errors as fb_figures_run. */
+ * penalty, approach [um]; joint: their names ("crank-coupler",
+ * "coupler-follower"). Errors as fb_figures_run. */
 fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char *mode, int n,
                              const double *rpm, const double *force[2], const double *stiffness[2],
                              const double *penalty[2], const double *approach_um[2],
-                             fb_diag *diag);
+                             const char *const joint[2], fb_diag *diag);
 
 /* Draws the ERP map over log10 stiffness x log10 step (heat map) with the
  * h omega = 1 contour and the ERP = 0.1 and 0.99 contours, to path. erp and

@@ -1,5 +1,6 @@
 /* penalty_<mode>.<ext> (fourbar penalty --out): force, contact stiffness,
- * penalty and approach against crank speed for both joints. */
+ * penalty and approach against crank speed for both joints (named by the
+ * caller: the mechanism's). */
 #include "figures_internal.h"
 
 #include <stdio.h>
@@ -8,7 +9,7 @@
 fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char *mode, int n,
                              const double *rpm, const double *force[2], const double *stiffness[2],
                              const double *penalty[2], const double *approach_um[2],
-                             fb_diag *diag) {
+                             const char *const joint[2], fb_diag *diag) {
   char dir[4096], name[256];
   fig_split_path(path, dir, sizeof dir, name, sizeof name);
   plot pl;
@@ -31,11 +32,13 @@ fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char 
   /* inside the panel, where the rising curves leave room (outside, the
    * legends of the right column sat on the left column's plots) */
   fprintf(pl.p, "set xlabel 'crank speed [rpm]'\nset key inside top left box opaque\n");
+  char j0[160], j1[160];
+  fig_esc(joint[0], j0, sizeof j0);
+  fig_esc(joint[1], j1, sizeof j1);
   for (int q = 0; q < 4; q++)
     fprintf(pl.p, "set title '%s'\nset ylabel '%s'\nplot $d%d_0 using 1:2 with linespoints pt 7 "
-                  "title 'crank-coupler', $d%d_1 using 1:2 with linespoints pt 5 title "
-                  "'coupler-follower'\n",
-            labels[q], labels[q], q, q);
+                  "title '%s', $d%d_1 using 1:2 with linespoints pt 5 title '%s'\n",
+            labels[q], labels[q], q, j0, q, j1);
   fprintf(pl.p, "unset multiplot\n");
   return fig_plot_close(&pl, diag);
 }

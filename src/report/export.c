@@ -33,7 +33,7 @@ static void resolution_note(const fb_case *c, const fb_model_scene *sm, fb_diag 
       snprintf(diag->msg, sizeof diag->msg,
                "%s: h omega_c = %.3g at h = %.4g s passes %g, the bound a run holds its contacts "
                "to: this contact is not faithful at this step (%s)",
-               fb_joint_name(j), w, sm->solver.h, FB_H_OMEGA_C_BOUND, more);
+               fb_case_joint_name(c, j), w, sm->solver.h, FB_H_OMEGA_C_BOUND, more);
       return;
     }
     fb_cp_request q;
@@ -50,7 +50,7 @@ static void resolution_note(const fb_case *c, const fb_model_scene *sm, fb_diag 
       snprintf(diag->msg, sizeof diag->msg,
                "%s: at h = %.4g s this contact fails contact-params' verification (restitution "
                "within 1 %%, penetration within 2 %%, over the joint's effective masses and every "
-               "onset phase); its largest faithful step: %s (%s)", fb_joint_name(j), sm->solver.h,
+               "onset phase); its largest faithful step: %s (%s)", fb_case_joint_name(c, j), sm->solver.h,
                largest, more);
       free(o);
       return;

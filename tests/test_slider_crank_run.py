@@ -196,6 +196,16 @@ if rc == 0:
               "impact_statistics.pooled.impact_acceleration_slider_m_s2: %s" % sorted(pooled))
         check(r0["contact"][0]["joint"] == "coupler-slider", "contact[0].joint is coupler-slider")
 
+# a pattern in [run] models selects the models that build the case's
+# mechanism (siconos-ideal-stackup matches *-ideal-stackup but builds no
+# slider-crank: left out, not refused)
+rc, so, se = run("run", write_case("pattern.ini", CASE.format(offset=0).replace(
+    "models = analytic", "models = analytic, *-ideal-stackup")), "--out",
+    os.path.join(tmp, "pattern"))
+check(rc == 0 and "siconos" not in so and "ode-ideal-stackup" in so,
+      "models = *-ideal-stackup on a slider-crank runs the rows that build it (%s)"
+      % se.strip()[-300:])
+
 # a model that stops before the peak window (MuJoCo's native contact at the
 # case's h = 2e-5 s passes the penetration limit at 3 ms) still gets its
 # figures: the panels whose every model stopped say so

@@ -94,7 +94,7 @@ static const fb_engine *engine_reading(const char *format) {
  * both (the case check would refuse the model as if the case listed it) */
 static fb_status builds(const fb_case *c, const char *name, const char *format, fb_diag *diag) {
   const fb_model *m = fb_model_find(name);
-  if (c->mechanism == FB_MECH_FOURBAR || (m && (m->mechanisms & (1u << c->mechanism))))
+  if (m && fb_model_builds(m, c->mechanism))
     return FB_OK; /* every row builds the four-bar */
   return fb_diag_set(diag, FB_ERR_ARG, "the %s export writes model %s, which does not build a %s "
                      "yet ([linkage] type = %s; fourbar models lists each model's mechanisms)",

@@ -125,7 +125,7 @@ static fb_status check_slider_crank(const fb_case *c, fb_diag *diag) {
     const fb_model *m;
     fb_status st = fb_model_lookup(&m, c->models[i], diag);
     if (st != FB_OK) return st;
-    if (!(m->mechanisms & (1u << FB_MECH_SLIDER_CRANK)))
+    if (!fb_model_builds(m, FB_MECH_SLIDER_CRANK))
       return fb_diag_set(diag, FB_ERR_ARG,
                          "[run] models: model '%s' does not build a slider-crank yet ([linkage] "
                          "type = slider-crank); fourbar models lists each model's mechanisms",

@@ -711,7 +711,7 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
     int n = 0;
     for (int i = 0; i < out->model_count; i++) {
       const fb_model *m = fb_model_find(out->models[i]);
-      if (m && (m->mechanisms & (1u << out->mechanism)))
+      if (m && fb_model_builds(m, out->mechanism))
         memmove(out->models[n++], out->models[i], FB_NAME_SIZE);
     }
     out->model_count = n;

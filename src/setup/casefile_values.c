@@ -483,7 +483,10 @@ static fb_status apply_list(fb_case *c, const entry *e, const key_spec *k, void 
           const int before = c->model_count;
           for (int q = 0; q < fb_model_count; q++) {
             const fb_model *m = &fb_models[q];
-            if (fnmatch(tok, m->name, 0) != 0 || !fb_engine_available(m->engine)) continue;
+            /* (and that builds the case's mechanism: its [linkage] type is read first) */
+            if (fnmatch(tok, m->name, 0) != 0 || !fb_engine_available(m->engine) ||
+                !fb_model_builds(m, c->mechanism))
+              continue;
             int dup = 0;
             for (int i = 0; i < c->model_count; i++) dup |= strcmp(c->models[i], m->name) == 0;
             if (dup) continue;

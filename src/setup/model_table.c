@@ -387,6 +387,10 @@ const fb_model fb_models[] = {
 
 const int fb_model_count = (int)(sizeof fb_models / sizeof fb_models[0]);
 
+int fb_model_builds(const fb_model *m, fb_mech_type t) {
+  return t == FB_MECH_FOURBAR || (m->mechanisms & (1u << t)) != 0;
+}
+
 const fb_model *fb_model_find(const char *name) {
   if (!name) return NULL;
   for (int i = 0; i < fb_model_count; i++)

@@ -145,6 +145,10 @@ extern const fb_model fb_models[];
 /* Number of rows. */
 extern const int fb_model_count;
 
+/* 1 when model m builds mechanism t (every model builds the four-bar; a
+ * row's mechanisms bits the others). */
+int fb_model_builds(const fb_model *m, fb_mech_type t);
+
 /* The row named name, or NULL. */
 const fb_model *fb_model_find(const char *name);
 

@@ -406,7 +406,7 @@ int fb_bench_builds(fb_engine_id e, const fb_case *c) {
   const fb_model *m[2];
   fb_bench_models(e, &m[0], &m[1]);
   for (int k = 0; k < 2; k++)
-    if (m[k] && !(m[k]->mechanisms & (1u << c->mechanism))) return 0;
+    if (m[k] && !fb_model_builds(m[k], c->mechanism)) return 0;
   return 1;
 }
 

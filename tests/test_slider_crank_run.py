@@ -176,6 +176,7 @@ if rc == 0:
         check(word not in text, "summary.json of a slider-crank has no %r" % word)
     check("follower" not in so and "coupler-follower" not in so,
           "the printed tables of a slider-crank name no follower")
+    check(summary.get("mechanism") == "slider-crank", "summary.json mechanism is slider-crank")
     ref = [m for m in summary["models"] if m["name"] == "reference"]
     check(len(ref) == 1 and ref[0]["clearance_joints"] == ["coupler-slider"],
           "reference's clearance_joints is [coupler-slider]")

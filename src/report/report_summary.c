@@ -543,6 +543,8 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_t *o = json_object();
   json_object_set_new(o, "case", json_string(c->name));
   json_object_set_new(o, "case_file", case_path ? json_string(case_path) : json_null());
+  /* the case's [linkage] type: "four-bar" or "slider-crank" */
+  json_object_set_new(o, "mechanism", json_string(fb_case_mech(c)->type));
   json_object_set_new(o, "speed_rpm", num(c->crank_speed * 60.0 / (2.0 * M_PI)));
   json_object_set_new(o, "crank_omega_rad_s", num(fb_case_omega2(c)));
   json_object_set_new(o, "direction", json_string(c->direction > 0 ? "ccw" : "cw"));

@@ -2,10 +2,26 @@
 #include "tables_models.h"
 
 #include <jansson.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "model_table.h"
 
 /* s as a Markdown table cell: a '|' inside it is written '\|' */
+static void cell(FILE *f, const char *s);
+
+/* the mechanisms model m builds, in the order of fb_mech_type, into buf
+ * ("four-bar, slider-crank"); returned */
+static const char *mechanisms(char *buf, size_t size, const fb_model *m) {
+  buf[0] = '\0';
+  for (int t = 0; t < FB_MECH_COUNT; t++) {
+    if (!fb_model_builds(m, (fb_mech_type)t)) continue;
+    const size_t n = strlen(buf);
+    snprintf(buf + n, size - n, "%s%s", n ? ", " : "", fb_mech_of((fb_mech_type)t)->type);
+  }
+  return buf;
+}
+
 static void cell(FILE *f, const char *s) {
   fputs(" ", f);
   for (; *s; s++) {
@@ -17,13 +33,15 @@ static void cell(FILE *f, const char *s) {
 
 void fb_report_models_text(FILE *f) {
   fputs("| model | engine | in this build | lengths | joints | law | collider | reference | "
-        "what it is |\n|---|---|---|---|---|---|---|---|---|\n", f);
+        "mechanisms | what it is |\n|---|---|---|---|---|---|---|---|---|---|\n", f);
   for (int k = 0; k < fb_model_count; k++) {
     const fb_model *m = &fb_models[k];
-    fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s |", m->name, fb_engine_name(m->engine),
-            fb_engine_available(m->engine) ? "yes" : "no", fb_lengths_name(m->lengths),
-            fb_joint_set_name(m->joints), fb_model_law_name(m->law), fb_collider_name(m->collider),
-            m->reference ? m->reference : "-");
+    char mech[64];
+    fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |", m->name,
+            fb_engine_name(m->engine), fb_engine_available(m->engine) ? "yes" : "no",
+            fb_lengths_name(m->lengths), fb_joint_set_name(m->joints), fb_model_law_name(m->law),
+            fb_collider_name(m->collider), m->reference ? m->reference : "-",
+            mechanisms(mech, sizeof mech, m));
     cell(f, m->summary);
     fputc('\n', f);
   }
@@ -51,6 +69,11 @@ void fb_report_models_json(FILE *f) {
     json_object_set_new(o, "collider", json_string(fb_collider_name(m->collider)));
     json_object_set_new(o, "reference", text_or_null(m->reference));
     json_object_set_new(o, "spikes_vs", text_or_null(m->spikes_vs));
+    json_t *mech = json_array(); /* the mechanisms it builds ([linkage] type) */
+    for (int t = 0; t < FB_MECH_COUNT; t++)
+      if (fb_model_builds(m, (fb_mech_type)t))
+        json_array_append_new(mech, json_string(fb_mech_of((fb_mech_type)t)->type));
+    json_object_set_new(o, "mechanisms", mech);
     json_object_set_new(o, "summary", json_string(m->summary));
     json_array_append_new(models, o);
   }

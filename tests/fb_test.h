@@ -12,6 +12,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <cmocka.h>
 
 static inline int fb_test_verbose(void) {
@@ -52,6 +53,34 @@ static inline void fb_test_paper_case(fb_case *c, const char **sets, int n) {
     fprintf(stderr, "cannot load %s: %s\n", path, diag.msg);
     exit(1);
   }
+}
+
+/* Loads a case from its text (written to a temporary file, removed after)
+ * with overrides into *c: fb_casefile_load's status, its message in diag.
+ * A test's own case, stated beside the assertions it serves. */
+#include <unistd.h>
+static inline fb_status fb_test_case_text(fb_case *c, const char *text, const char **sets, int n,
+                                          fb_diag *diag) {
+  char path[] = "/tmp/fourbar-test-case-XXXXXX";
+  const int fd = mkstemp(path);
+  if (fd < 0) return fb_diag_set(diag, FB_ERR_IO, "no temporary case file");
+  const size_t len = strlen(text);
+  const int whole = write(fd, text, len) == (ssize_t)len;
+  close(fd);
+  const fb_status st = whole ? fb_casefile_load(c, path, sets, n, diag)
+                             : fb_diag_set(diag, FB_ERR_IO, "the temporary case file is short");
+  unlink(path);
+  return st;
+}
+
+/* Loads the shipped case cases/<file> (FOURBAR_CASES_DIR or ./cases) with
+ * overrides into *c: fb_casefile_load's status, its message in diag. */
+static inline fb_status fb_test_shipped_case(fb_case *c, const char *file, const char **sets,
+                                             int n, fb_diag *diag) {
+  const char *d = getenv("FOURBAR_CASES_DIR");
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", d ? d : "cases", file);
+  return fb_casefile_load(c, path, sets, n, diag);
 }
 #endif
 

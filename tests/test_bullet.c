@@ -160,21 +160,8 @@ static void sc_load(fb_case *c, int own, const char **sets, int n) {
   const char *all[8] = {"run.ensemble=1"};
   for (int i = 0; i < n; i++) all[i + 1] = sets[i];
   fb_diag d;
-  fb_status st;
-  if (own) {
-    char path[] = "/tmp/fourbar-sc-bullet-XXXXXX";
-    const int fd = mkstemp(path);
-    assert_true(fd >= 0);
-    assert_int_equal(write(fd, SC_CASE_TEXT, strlen(SC_CASE_TEXT)), (ssize_t)strlen(SC_CASE_TEXT));
-    close(fd);
-    st = fb_casefile_load(c, path, all, n + 1, &d);
-    unlink(path);
-  } else {
-    const char *dir = getenv("FOURBAR_CASES_DIR");
-    char path[4096];
-    snprintf(path, sizeof path, "%s/slider_crank_flores.ini", dir ? dir : "cases");
-    st = fb_casefile_load(c, path, all, n + 1, &d);
-  }
+  const fb_status st = own ? fb_test_case_text(c, SC_CASE_TEXT, all, n + 1, &d)
+                           : fb_test_shipped_case(c, "slider_crank_flores.ini", all, n + 1, &d);
   if (st != FB_OK) fail_msg("case: %s", d.msg);
   assert_int_equal(c->mechanism, FB_MECH_SLIDER_CRANK);
 }

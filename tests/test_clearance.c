@@ -677,20 +677,8 @@ static const char *const SC_CASE_TEXT =
  * with overrides */
 static void load_sc(fb_case *c, int sc, const char **sets, int n) {
   fb_diag diag;
-  if (!sc) {
-    const char *d = getenv("FOURBAR_CASES_DIR");
-    char path[4096];
-    snprintf(path, sizeof path, "%s/slider_crank_flores.ini", d ? d : "cases");
-    if (fb_casefile_load(c, path, sets, n, &diag) != FB_OK) fail_msg("%s: %s", path, diag.msg);
-    return;
-  }
-  char path[] = "/tmp/fourbar-ode-sc-XXXXXX";
-  const int fd = mkstemp(path);
-  assert_true(fd >= 0);
-  assert_int_equal(write(fd, SC_CASE_TEXT, strlen(SC_CASE_TEXT)), (ssize_t)strlen(SC_CASE_TEXT));
-  close(fd);
-  const fb_status st = fb_casefile_load(c, path, sets, n, &diag);
-  unlink(path);
+  const fb_status st = sc ? fb_test_case_text(c, SC_CASE_TEXT, sets, n, &diag)
+                          : fb_test_shipped_case(c, "slider_crank_flores.ini", sets, n, &diag);
   if (st != FB_OK) fail_msg("case: %s", diag.msg);
 }
 

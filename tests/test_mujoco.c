@@ -582,23 +582,9 @@ static const char *const SC_CASE_TEXT =
 
 /* loads the test's own case (file = NULL) or a shipped one with overrides */
 static void sc_load(fb_case *c, const char *file, const char **sets, int n) {
-  char path[4096];
-  int tmp = 0;
-  if (file) {
-    const char *dir = getenv("FOURBAR_CASES_DIR");
-    snprintf(path, sizeof path, "%s/%s", dir ? dir : "cases", file);
-  } else {
-    snprintf(path, sizeof path, "/tmp/fourbar-mujoco-sc-XXXXXX");
-    const int fd = mkstemp(path);
-    assert_true(fd >= 0);
-    const size_t len = strlen(SC_CASE_TEXT);
-    assert_int_equal(write(fd, SC_CASE_TEXT, len), (ssize_t)len);
-    close(fd);
-    tmp = 1;
-  }
   fb_diag d;
-  const fb_status st = fb_casefile_load(c, path, sets, n, &d);
-  if (tmp) unlink(path);
+  const fb_status st = file ? fb_test_shipped_case(c, file, sets, n, &d)
+                            : fb_test_case_text(c, SC_CASE_TEXT, sets, n, &d);
   if (st != FB_OK) fail_msg("%s: %s", file ? file : "the test's case", d.msg);
 }
 

@@ -453,22 +453,9 @@ static const char *const sc_case_name[2] = {"mild", "flores"};
 /* loads slider-crank case `which` with overrides into *c */
 static void sc_load(fb_case *c, int which, const char **sets, int n) {
   fb_diag d;
-  fb_status st;
-  if (which == SC_FLORES) {
-    const char *dir = getenv("FOURBAR_CASES_DIR");
-    char path[4096];
-    snprintf(path, sizeof path, "%s/slider_crank_flores.ini", dir ? dir : "cases");
-    st = fb_casefile_load(c, path, sets, n, &d);
-  } else {
-    char path[] = "/tmp/fourbar-simbody-sc-XXXXXX";
-    const int fd = mkstemp(path);
-    assert_true(fd >= 0);
-    const size_t len = strlen(SC_MILD_CASE);
-    assert_int_equal(write(fd, SC_MILD_CASE, len), (ssize_t)len);
-    close(fd);
-    st = fb_casefile_load(c, path, sets, n, &d);
-    unlink(path);
-  }
+  const fb_status st = which == SC_FLORES
+                           ? fb_test_shipped_case(c, "slider_crank_flores.ini", sets, n, &d)
+                           : fb_test_case_text(c, SC_MILD_CASE, sets, n, &d);
   if (st != FB_OK) fail_msg("slider-crank case %s: %s", sc_case_name[which], d.msg);
 }
 

@@ -78,15 +78,8 @@ static const char *const CASE_TEXT =
     "revolutions = 2\n";
 
 static void load(fb_case *c, const char **sets, int n) {
-  char path[] = "/tmp/fourbar-sc-clearance-XXXXXX";
-  const int fd = mkstemp(path);
-  assert_true(fd >= 0);
-  assert_int_equal(write(fd, CASE_TEXT, strlen(CASE_TEXT)), (ssize_t)strlen(CASE_TEXT));
-  close(fd);
   fb_diag diag;
-  const fb_status st = fb_casefile_load(c, path, sets, n, &diag);
-  unlink(path);
-  if (st != FB_OK) fail_msg("case: %s", diag.msg);
+  if (fb_test_case_text(c, CASE_TEXT, sets, n, &diag) != FB_OK) fail_msg("case: %s", diag.msg);
 }
 
 static double dist(const double p[2], const double q[2]) { return hypot(p[0] - q[0], p[1] - q[1]); }
@@ -277,20 +270,14 @@ static void test_laws_and_automatic_step(void **state) {
  * and so is clearance at a joint that is not the piston pin */
 static void test_refusals(void **state) {
   (void)state;
-  char path[] = "/tmp/fourbar-sc-clearance-XXXXXX";
-  const int fd = mkstemp(path);
-  assert_true(fd >= 0);
-  assert_int_equal(write(fd, CASE_TEXT, strlen(CASE_TEXT)), (ssize_t)strlen(CASE_TEXT));
-  close(fd);
   fb_case c;
   fb_diag diag;
   const char *paper[] = {"clearance.penalty=paper"};
-  assert_int_equal(fb_casefile_load(&c, path, paper, 1, &diag), FB_ERR_ARG);
+  assert_int_equal(fb_test_case_text(&c, CASE_TEXT, paper, 1, &diag), FB_ERR_ARG);
   assert_non_null(strstr(diag.msg, "penalty = paper"));
   const char *crank[] = {"clearance.joints=crank-coupler"};
-  assert_int_equal(fb_casefile_load(&c, path, crank, 1, &diag), FB_ERR_ARG);
+  assert_int_equal(fb_test_case_text(&c, CASE_TEXT, crank, 1, &diag), FB_ERR_ARG);
   assert_non_null(strstr(diag.msg, "coupler-slider"));
-  unlink(path);
 }
 
 /* ---- the reference -------------------------------------------------------- */

@@ -124,11 +124,8 @@ static fb_status analytic_create(void **self, const fb_model_scene *sm, fb_diag 
  * slider-ground joint the force on the ground from the slider, -N along y */
 static void slider_crank_reactions(const replay *r, double force[4][2], double *drive_torque) {
   const fb_model_scene *sm = r->sm;
-  const fb_slider_crank sc = {sm->lengths.length[FB_CRANK], sm->lengths.length[FB_COUPLER],
-                              sm->lengths.length[FB_LENGTH_OFFSET]};
-  const fb_link_mass *l = sm->link;
-  const fb_slider_crank_mass mass = {l[0].mass, l[0].inertia, l[0].com_fraction,
-                                     l[1].mass, l[1].inertia, l[1].com_fraction, l[2].mass};
+  const fb_slider_crank sc = fb_slider_crank_of(&sm->lengths);
+  const fb_slider_crank_mass mass = fb_slider_crank_mass_of(sm->link);
   fb_slider_crank_reactions q;
   if (fb_slider_crank_invdyn(&q, &sc, &mass, sm->gravity, r->s.crank_angle[r->i], sm->omega2, 0.0,
                              NULL) != FB_OK) {

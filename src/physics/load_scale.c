@@ -17,11 +17,8 @@ static fb_status reactions_at(double f[4][2], fb_mech_type t, const fb_linkage *
                               fb_branch branch, const fb_link_mass link[3], double gravity,
                               double theta2, double omega2, fb_diag *diag) {
   if (t == FB_MECH_SLIDER_CRANK) {
-    const fb_slider_crank sc = {lk->length[FB_CRANK], lk->length[FB_COUPLER],
-                                lk->length[FB_LENGTH_OFFSET]};
-    const fb_slider_crank_mass m = {link[0].mass, link[0].inertia, link[0].com_fraction,
-                                    link[1].mass, link[1].inertia, link[1].com_fraction,
-                                    link[2].mass};
+    const fb_slider_crank sc = fb_slider_crank_of(lk);
+    const fb_slider_crank_mass m = fb_slider_crank_mass_of(link);
     fb_slider_crank_reactions r;
     fb_status st = fb_slider_crank_invdyn(&r, &sc, &m, gravity, theta2, omega2, 0.0, diag);
     if (st != FB_OK) return st;

@@ -11,16 +11,11 @@
 #include "slider_crank.h"
 #include "slider_crank_invdyn.h"
 
-static fb_slider_crank sc_of(const fb_linkage *lk) {
-  return (fb_slider_crank){lk->length[FB_CRANK], lk->length[FB_COUPLER],
-                           lk->length[FB_LENGTH_OFFSET]};
-}
-
 fb_status fb_mech_solve(double out[FB_MECH_MAX_OUTPUTS][3], fb_mech_type t, const fb_linkage *lk,
                         fb_branch branch, double theta2, double omega2, double alpha2,
                         fb_diag *diag) {
   if (t == FB_MECH_SLIDER_CRANK) {
-    const fb_slider_crank sc = sc_of(lk);
+    const fb_slider_crank sc = fb_slider_crank_of(lk);
     fb_slider_crank_state s;
     fb_status st = fb_slider_crank_solve(&s, &sc, theta2, omega2, alpha2, diag);
     if (st != FB_OK) return st;
@@ -40,7 +35,7 @@ fb_status fb_mech_solve(double out[FB_MECH_MAX_OUTPUTS][3], fb_mech_type t, cons
 
 fb_status fb_mech_check_lengths(fb_mech_type t, const fb_linkage *lk, fb_diag *diag) {
   if (t != FB_MECH_SLIDER_CRANK) return fb_linkage_check(lk, diag);
-  const fb_slider_crank sc = sc_of(lk);
+  const fb_slider_crank sc = fb_slider_crank_of(lk);
   return fb_slider_crank_require_full_turn(&sc, diag);
 }
 
@@ -137,7 +132,7 @@ static void sc_extremes(double value[SC_NEXT], double at[SC_NEXT], const fb_slid
 
 static fb_status sc_peaks(fb_peaks *out, double where[8], const fb_linkage *lk, double omega2,
                           fb_diag *diag) {
-  const fb_slider_crank sc = sc_of(lk);
+  const fb_slider_crank sc = fb_slider_crank_of(lk);
   fb_slider_crank_limits lim;
   fb_status st = fb_slider_crank_limit_positions(&lim, &sc, diag);
   if (st != FB_OK) return st;
@@ -204,10 +199,8 @@ fb_status fb_mech_reaction_peaks(double force_max[4], fb_mech_type t, const fb_l
                                  double omega2, int n, fb_diag *diag) {
   if (t != FB_MECH_SLIDER_CRANK)
     return fb_invdyn_peaks(force_max, NULL, lk, branch, link, gravity, omega2, n, diag);
-  const fb_slider_crank sc = sc_of(lk);
-  const fb_slider_crank_mass m = {link[0].mass, link[0].inertia, link[0].com_fraction,
-                                  link[1].mass, link[1].inertia, link[1].com_fraction,
-                                  link[2].mass};
+  const fb_slider_crank sc = fb_slider_crank_of(lk);
+  const fb_slider_crank_mass m = fb_slider_crank_mass_of(link);
   double pins[FB_SC_PIN_COUNT], guide;
   fb_status st = fb_slider_crank_invdyn_peaks(pins, &guide, NULL, &sc, &m, gravity, omega2, n, diag);
   if (st != FB_OK) return st;
@@ -220,7 +213,7 @@ fb_status fb_mech_mechanism_at(fb_mechanism *out, fb_mech_type t, const fb_linka
                                fb_branch branch, const fb_link_mass link[3], double theta2,
                                int clearance_mask, fb_diag *diag) {
   if (t == FB_MECH_SLIDER_CRANK) {
-    const fb_slider_crank sc = sc_of(lk);
+    const fb_slider_crank sc = fb_slider_crank_of(lk);
     fb_slider_crank_state s;
     fb_status st = fb_slider_crank_solve(&s, &sc, theta2, 0.0, 0.0, diag);
     if (st != FB_OK) return st;

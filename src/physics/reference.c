@@ -263,12 +263,9 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   r.v0 = 1e-3;
   r.cj = cj;
   if (c->mechanism == FB_MECH_SLIDER_CRANK) {
-    const fb_link_mass *l = c->link;
     r.sc = 1;
-    r.scm.geometry = (fb_slider_crank){lk.length[FB_CRANK], lk.length[FB_COUPLER],
-                                       lk.length[FB_LENGTH_OFFSET]};
-    r.scm.mass = (fb_slider_crank_mass){l[0].mass, l[0].inertia, l[0].com_fraction,
-                                        l[1].mass, l[1].inertia, l[1].com_fraction, l[2].mass};
+    r.scm.geometry = fb_slider_crank_of(&lk);
+    r.scm.mass = fb_slider_crank_mass_of(c->link);
     r.scm.gravity = c->gravity;
     r.scm.clearance = c->radial_clearance;
     r.scm.law = *law;

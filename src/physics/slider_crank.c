@@ -161,3 +161,8 @@ fb_status fb_slider_crank_sensitivity(double out[FB_SC_SENS_COUNT][FB_SC_PARAM_C
   }
   return FB_OK;
 }
+
+fb_slider_crank fb_slider_crank_of(const fb_linkage *lk) {
+  return (fb_slider_crank){lk->length[FB_CRANK], lk->length[FB_COUPLER],
+                           lk->length[FB_LENGTH_OFFSET]};
+}

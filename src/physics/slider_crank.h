@@ -44,6 +44,8 @@
 #ifndef FB_SLIDER_CRANK_H
 #define FB_SLIDER_CRANK_H
 
+#include "links.h"
+#include "mechanism.h"
 #include "status.h"
 
 /* Geometry of one slider-crank. */
@@ -87,6 +89,10 @@ typedef enum {
  * perpendicular (dead) position: omega3 divides by coupler cos theta3, and
  * within 1e-12 of zero the velocity's relative rounding error exceeds 1e-4. */
 #define FB_SC_PERPENDICULAR_TOL 1e-12
+
+/* The slider-crank of link lengths lk (fb_linkage, links.h: crank, coupler
+ * and, at FB_LENGTH_OFFSET (mechanism.h), the guide's offset) [m]. */
+fb_slider_crank fb_slider_crank_of(const fb_linkage *lk);
 
 /* "full-turn", "change-point" or "rocker". */
 const char *fb_sc_class_name(fb_sc_class k);

@@ -113,3 +113,9 @@ fb_status fb_slider_crank_invdyn_peaks(double force_max[FB_SC_PIN_COUNT], double
   if (torque_max) *torque_max = tm;
   return FB_OK;
 }
+
+fb_slider_crank_mass fb_slider_crank_mass_of(const fb_link_mass link[3]) {
+  return (fb_slider_crank_mass){link[0].mass, link[0].inertia, link[0].com_fraction,
+                                link[1].mass, link[1].inertia, link[1].com_fraction,
+                                link[2].mass};
+}

@@ -30,6 +30,7 @@
 #ifndef FB_SLIDER_CRANK_INVDYN_H
 #define FB_SLIDER_CRANK_INVDYN_H
 
+#include "case.h"
 #include "slider_crank.h"
 
 /* Mass properties of the slider-crank's moving bodies. Each link's centre of
@@ -45,6 +46,11 @@ typedef struct {
   double coupler_com_fraction;  /* f3 along B->C [-] in [0, 1] */
   double slider_mass;           /* m4 [kg] */
 } fb_slider_crank_mass;
+
+/* The mass properties of a case's links (case.h fb_link_mass: crank,
+ * coupler, slider, each centre of mass at com_fraction along its link; the
+ * slider's inertia and centre do not enter: it is at the piston pin). */
+fb_slider_crank_mass fb_slider_crank_mass_of(const fb_link_mass link[3]);
 
 /* Joints of the slider-crank, in the order of the reactions' arrays; the
  * prismatic slider-ground joint comes last (its reaction is the scalar N). */

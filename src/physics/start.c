@@ -13,11 +13,6 @@ const char *fb_pin_start_name(fb_pin_start p) {
   return p == FB_PIN_RESTING ? "resting" : (p == FB_PIN_ANGLE ? "angle" : "centred");
 }
 
-static fb_slider_crank sc_of(const fb_linkage *lk) {
-  return (fb_slider_crank){lk->length[FB_CRANK], lk->length[FB_COUPLER],
-                           lk->length[FB_LENGTH_OFFSET]};
-}
-
 /* each joint's force on its second body with the crank held at theta0 under
  * gravity alone (inverse dynamics at zero speed); a slider-crank's guide
  * (slider-ground) carries none that a pin could lean on */
@@ -25,10 +20,8 @@ static fb_status static_load(double force[4][2], const fb_case *c, const fb_link
                              fb_diag *diag) {
   memset(force, 0, 4 * sizeof force[0]);
   if (c->mechanism == FB_MECH_SLIDER_CRANK) {
-    const fb_slider_crank sc = sc_of(lk);
-    const fb_link_mass *l = c->link;
-    const fb_slider_crank_mass m = {l[0].mass, l[0].inertia, l[0].com_fraction,
-                                    l[1].mass, l[1].inertia, l[1].com_fraction, l[2].mass};
+    const fb_slider_crank sc = fb_slider_crank_of(lk);
+    const fb_slider_crank_mass m = fb_slider_crank_mass_of(c->link);
     fb_slider_crank_reactions r;
     fb_status st = fb_slider_crank_invdyn(&r, &sc, &m, c->gravity, c->crank_angle0, 0.0, 0.0, diag);
     if (st != FB_OK) return st;
@@ -109,7 +102,7 @@ static fb_status sc_resolve(fb_start_state *out, const fb_case *c, const fb_link
   fb_status st = eccentricities(ecc, c, lk, clearance_mask, diag);
   if (st != FB_OK) return st;
   const double *e = ecc[FB_SC_JOINT_COUPLER_SLIDER];
-  fb_slider_crank shifted = sc_of(lk);
+  fb_slider_crank shifted = fb_slider_crank_of(lk);
   shifted.offset += e[1];
   fb_slider_crank_state s;
   fb_diag inner;
@@ -126,7 +119,7 @@ static fb_status sc_resolve(fb_start_state *out, const fb_case *c, const fb_link
 fb_status fb_start_steady(fb_start_state *out, fb_mech_type t, const fb_linkage *lk,
                           fb_branch branch, double theta0, double omega2, fb_diag *diag) {
   if (t == FB_MECH_SLIDER_CRANK) {
-    const fb_slider_crank sc = sc_of(lk);
+    const fb_slider_crank sc = fb_slider_crank_of(lk);
     fb_slider_crank_state s;
     fb_status st = fb_slider_crank_solve(&s, &sc, theta0, omega2, 0.0, diag);
     if (st != FB_OK) return st;

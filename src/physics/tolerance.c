@@ -119,14 +119,9 @@ fb_status fb_tol_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_
 
 /* ---- the slider-crank ----------------------------------------------------- */
 
-static fb_slider_crank sc_of(const fb_linkage *lk) {
-  return (fb_slider_crank){lk->length[FB_CRANK], lk->length[FB_COUPLER],
-                           lk->length[FB_LENGTH_OFFSET]};
-}
-
 static fb_status sc_outputs(double out[FB_TOL_NOUT], double where[8], const fb_linkage *lk,
                             double omega2, fb_diag *diag) {
-  const fb_slider_crank sc = sc_of(lk);
+  const fb_slider_crank sc = fb_slider_crank_of(lk);
   fb_slider_crank_limits lim;
   fb_status st = fb_slider_crank_limit_positions(&lim, &sc, diag);
   fb_peaks p;
@@ -149,7 +144,7 @@ static fb_status sc_outputs(double out[FB_TOL_NOUT], double where[8], const fb_l
  * derivative toward +offset (fb_tol_sensitivities_of). */
 static fb_status sc_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_linkage *lk,
                                   double omega2, fb_diag *diag) {
-  const fb_slider_crank sc = sc_of(lk);
+  const fb_slider_crank sc = fb_slider_crank_of(lk);
   double o[FB_TOL_NOUT], where[8];
   fb_status st = sc_outputs(o, where, lk, omega2, diag);
   if (st != FB_OK) return st;

@@ -42,8 +42,7 @@ static fb_status check_drivable(const fb_linkage *lk, const char *which, fb_diag
  * coupler against crank + |offset|, the stroke and the dead centres, the
  * smallest transmission angle */
 static void slider_crank_text(const fb_case *c, char *out, size_t size) {
-  const fb_slider_crank sc = {c->nominal.length[FB_CRANK], c->nominal.length[FB_COUPLER],
-                              c->nominal.length[FB_LENGTH_OFFSET]};
+  const fb_slider_crank sc = fb_slider_crank_of(&c->nominal);
   const double sum = sc.crank + fabs(sc.offset);
   const size_t n = (size_t)snprintf(
       out, size, "slider-crank, %s: coupler %.6g mm against crank + |offset| = %.6g mm (margin %.4g mm)",

@@ -9,8 +9,7 @@
 
 /* the slider-crank: class, dead centres, stroke, quick return, peaks */
 static fb_status slider_crank_run(fb_kinematics *k, fb_diag *diag) {
-  const fb_slider_crank sc = {k->lk.length[FB_CRANK], k->lk.length[FB_COUPLER],
-                              k->lk.length[FB_LENGTH_OFFSET]};
+  const fb_slider_crank sc = fb_slider_crank_of(&k->lk);
   const double sum = sc.crank + fabs(sc.offset);
   k->sc_class = fb_slider_crank_class(&sc);
   k->sc_margin = sc.coupler - sum;

@@ -334,28 +334,45 @@ static double vertex(double ym, double y0, double yp, int sign) {
   return y0 - 0.125 * (yp - ym) * (yp - ym) / den;
 }
 
-static void refine_column(double *v, size_t n, double fraction) {
+void fb_series_largest_abs_split(double big[2], size_t *split, const fb_series *s,
+                                 const double *v, double t_split) {
+  size_t k = 0;
+  if (t_split > 0.0)
+    while (k < s->n && s->t[k] < t_split) k++;
+  *split = k;
+  if (t_split <= 0.0 || k == 0 || k == s->n) {
+    big[0] = big[1] = fb_series_largest_abs(v, s->n);
+    return;
+  }
+  big[0] = fb_series_largest_abs(v, k);
+  big[1] = fb_series_largest_abs(v + k, s->n - k);
+}
+
+static void refine_column(const fb_series *s, double *v, double fraction, double t_split) {
+  const size_t n = s->n;
   if (!v || n < 3) return;
-  const double big = fb_series_largest_abs(v, n);
-  if (!(big > 0.0)) return;
+  double big[2];
+  size_t split;
+  fb_series_largest_abs_split(big, &split, s, v, t_split);
   /* vertices from the original samples: a refined value must not feed its
    * neighbour's parabola */
   double prev = v[0];
   for (size_t k = 1; k + 1 < n; k++) {
-    const double here = v[k];
+    const double here = v[k], b = big[k >= split];
     const double vk[3] = {prev, here, v[k + 1]};
-    for (int sign = -1; sign <= 1; sign += 2)
-      if (fb_series_is_spike(vk, 1, sign, fraction, big)) v[k] = vertex(prev, here, v[k + 1], sign);
+    for (int sign = -1; sign <= 1 && b > 0.0; sign += 2)
+      if (fb_series_is_spike(vk, 1, sign, fraction, b)) v[k] = vertex(prev, here, v[k + 1], sign);
     prev = here;
   }
 }
 
-void fb_series_refine_peaks(fb_series *s, double fraction) {
-  for (size_t b = 0; b < output_count(s); b++) refine_column(s->body[b][FB_Q_ACC], s->n, fraction);
+void fb_series_refine_peaks(fb_series *s, double fraction, double t_split) {
+  for (size_t b = 0; b < output_count(s); b++)
+    refine_column(s, s->body[b][FB_Q_ACC], fraction, t_split);
   for (int j = 0; j < mech_of(s)->njoints; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
-    refine_column(s->contact[j][FB_C_FORCE], s->n, fraction);
-    refine_column(s->contact[j][FB_C_PEN], s->n, fraction);
+    refine_column(s, s->contact[j][FB_C_FORCE], fraction, t_split);
+    refine_column(s, s->contact[j][FB_C_PEN], fraction, t_split);
   }
 }
 

@@ -119,14 +119,25 @@ int fb_series_is_spike(const double *v, size_t k, int sign, double fraction, dou
 /* Largest |v[i]| over n values. */
 double fb_series_largest_abs(const double *v, size_t n);
 
+/* The scale a sample's spike is measured against (fb_series_is_spike's
+ * big) in two parts of a run split at t_split [s]: big[0] the largest |v|
+ * over the samples before it, big[1] from it on (the peak window: its
+ * spikes are refined even where the start-up's are larger); t_split <= 0:
+ * both the whole run's. *split receives the first sample index at or after
+ * t_split (n: none). */
+void fb_series_largest_abs_split(double big[2], size_t *split, const fb_series *s,
+                                 const double *v, double t_split);
+
 /* Peak refinement of a series whose samples lie on a smooth motion (an
  * engine's steps): every spike (fb_series_is_spike with fraction) of the
  * output bodies' accelerations and of the contact force and penetration is
  * replaced by the vertex of the parabola through it and its two
  * neighbours, when both neighbours have its sign (a one-sample pulse is
  * left alone). The vertex of a peak sampled at h is exact to O(h^4) where
- * the sample alone misses up to |y''| h^2 / 8. */
-void fb_series_refine_peaks(fb_series *s, double fraction);
+ * the sample alone misses up to |y''| h^2 / 8. A spike is one against the
+ * largest of its own part of the run, before or from t_split [s] (the peak
+ * window's start; fb_series_largest_abs_split). */
+void fb_series_refine_peaks(fb_series *s, double fraction, double t_split);
 
 /* For an engine that reports at t_{n+1} what its step from t_n applied
  * (ODE: the angular acceleration (omega_{n+1} - omega_n) / h, which is the

@@ -162,15 +162,22 @@ static int refine_interval(extremes *x, ref_ctx *r, const fb_series *s, size_t k
 }
 
 /* replaces the samples at the spikes of out with their refined extremes */
-static void refine_peaks(fb_series *out, ref_ctx *r, double h, double tol) {
+static void refine_peaks(fb_series *out, ref_ctx *r, double h, double tol, double t_split) {
   const size_t n = out->n;
   if (n < 3) return;
   double *f = out->contact[r->cj][FB_C_FORCE], *p = out->contact[r->cj][FB_C_PEN];
   double *a3 = out->body[0][FB_Q_ACC], *a4 = out->body[1][FB_Q_ACC];
-  const double fbig = fb_series_largest_abs(f, n), pbig = fb_series_largest_abs(p, n);
-  const double a3big = fb_series_largest_abs(a3, n), a4big = fb_series_largest_abs(a4, n);
+  /* each spike against the largest of its own part of the run, the
+   * start-up or the peak window (series.h fb_series_largest_abs_split) */
+  double fbig[2], pbig[2], a3big[2], a4big[2];
+  size_t split;
+  fb_series_largest_abs_split(fbig, &split, out, f, t_split);
+  fb_series_largest_abs_split(pbig, &split, out, p, t_split);
+  fb_series_largest_abs_split(a3big, &split, out, a3, t_split);
+  fb_series_largest_abs_split(a4big, &split, out, a4, t_split);
   for (size_t k = 1; k + 1 < n; k++) {
-#define SPIKE(v, sign, big) fb_series_is_spike(v, k, sign, FB_REFERENCE_REFINE_FRACTION, big)
+    const int w = k >= split;
+#define SPIKE(v, sign, big) fb_series_is_spike(v, k, sign, FB_REFERENCE_REFINE_FRACTION, big[w])
     const int sf = SPIKE(f, 1, fbig), sp = SPIKE(p, 1, pbig);
     const int s3x = SPIKE(a3, 1, a3big), s3n = SPIKE(a3, -1, a3big);
     const int s4x = SPIKE(a4, 1, a4big), s4n = SPIKE(a4, -1, a4big);
@@ -393,7 +400,7 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
     }
     fb_series_push(out, &x);
   }
-  if (!ideal && status == FB_OK) refine_peaks(out, &r, c->solver.h, tol);
+  if (!ideal && status == FB_OK) refine_peaks(out, &r, c->solver.h, tol, fb_case_peak_window_from(c));
   *steps = taken;
   gsl_odeiv2_driver_free(drv);
   gsl_set_error_handler(old);

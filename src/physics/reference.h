@@ -65,9 +65,11 @@
 /* Peak refinement. Sampled at t = k h, a spike lasting a few samples is
  * missed by up to ~20 % (the coupler's acceleration spike at h = 1e-5 s:
  * 17.5 %). Every sample that is a local extreme of the contact force, the
- * penetration or either angular acceleration, and at least
- * FB_REFERENCE_REFINE_FRACTION of that quantity's largest magnitude in the
- * run, is re-integrated from the sample before it over two sample
+ * penetration or either output body's acceleration, and at least
+ * FB_REFERENCE_REFINE_FRACTION of that quantity's largest magnitude in its
+ * part of the run (the start-up revolution, or the peak window from
+ * fb_case_peak_window_from: a window's spike is refined even where the
+ * start-up's first impact is five times harder), is re-integrated from the sample before it over two sample
  * intervals at FB_REFERENCE_REFINE evaluations per interval, and holds the
  * extreme found there instead of its instantaneous value: peak metrics then
  * see the true spike. The extreme of a smooth pulse of duration T sampled at

@@ -19,6 +19,13 @@
  * motion); and the convergence of the restitution law's rebound to e_N as
  * its penalty stiffness grows (the rigid limit the Siconos model is).
  *
+ * The slider-crank (the tests after "the slider-crank" below): the same
+ * models on q = (theta3, x), the rod's angle about the driven crank pin and
+ * the slider's x along the guide, the relation at the piston pin; the ideal
+ * models against the exact slider-crank, the rigid piston pin against
+ * Newton's law and the reference's first impact, on a milder case of this
+ * file and on the shipped cases/slider_crank_flores.ini.
+ *
  * In a build without Siconos every test is skipped, except the one that
  * checks the refusal and its message and the reference's own limit. */
 #include <string.h>
@@ -362,6 +369,257 @@ static void test_keys_and_refusal(void **state) {
   }
 }
 
+/* ---- the slider-crank -----------------------------------------------------
+ *
+ *                  B  crank pin, prescribed: B(t) = a u(theta0 + omega2 t)
+ *                 / \
+ *          crank /   \ rod           q = (theta3, x): the rod's angle about
+ *               /     \              B and the slider's hole centre's x on
+ *              A      (P)H  - - ->   the guide y = offset; the piston pin:
+ *                 guide y = offset   ideal, P(q, t) - H(q) = 0 (a bilateral
+ *                                    constraint); clearance, g = c - |P - H|
+ *                                    >= 0 with e_N = [clearance] restitution
+ *
+ * Oracles as the four-bar's: the exact slider-crank (slider_crank.h, the
+ * analytic model of the same lengths) for the ideal models; Newton's law at
+ * every impact step, with the normal velocity computed here from each
+ * sample's rod angle and rate, slider velocity and eccentricity by the
+ * closed-form kinematics; and the reference's first impact (the same free
+ * flight before it), reference-restitution's, the law whose rigid limit the
+ * model is. */
+
+/* the issue's acceptance bound on the ideal models' peaks against the
+ * analytic ones at the automatic step: the rod's omega and alpha, the
+ * slider's x, v and a (measured, the worst of nominal and stack-up: flores
+ * rod omega / alpha 1.3e-16 / 2.7e-8, slider x / v / a 1.3e-7 / 1.2e-7 /
+ * 3.2e-8; the mild case rod 2.6e-8 / 1.1e-8, slider 6.0e-8 / 3.0e-8 /
+ * 9.9e-9) */
+#define SC_PEAK_REL_TOL 1e-4
+/* the piston pin's closure imposed on velocities, as the four-bar's loop
+ * at B: measured 9.2e-9 m on flores (2 revolutions at 2e-6 s), 3.0e-9 m on
+ * the mild case. Bound: ten times the four-bar's DRIFT_TOL_M, for a pin
+ * that moves with the slider at up to 28 m/s on flores (the trapezoidal
+ * update's drift grows with the velocity the constraint carries); a factor
+ * 11 above the measured */
+#define SC_DRIFT_TOL_M 1e-7
+/* a rigid contact enters the wall only by what Moreau-Jean's velocity-level
+ * problem lets the pin travel within one step: h times its largest approach
+ * speed (flores: 3.6 um against 2e-6 s x 4.34 m/s = 8.7 um) */
+#define SC_PEN_STEPS 1.0
+
+/* a milder slider-crank than flores: 2000 rpm, radial clearance 100 um, an
+ * offset guide, a crank started at 20 deg, and tolerances so that the
+ * stack-up lengths differ from the nominal ones */
+static const char *const SC_MILD_CASE =
+    "[case]\n"
+    "name = siconos_sc_mild\n"
+    "[linkage]\n"
+    "type = slider-crank\n"
+    "crank_mm = 50\n"
+    "coupler_mm = 120\n"
+    "offset_mm = 6\n"
+    "crank_angle0_deg = 20\n"
+    "[tolerance]\n"
+    "crank_plus_minus_mm = 0.05\n"
+    "coupler_plus_minus_mm = 0.05\n"
+    "offset_plus_minus_mm = 0.05\n"
+    "stackup = max\n"
+    "[mass]\n"
+    "slider_kg = 0.14\n"
+    "[drive]\n"
+    "speed_rpm = 2000\n"
+    "[pin]\n"
+    "radial_clearance_um = 100\n"
+    "[clearance]\n"
+    "joints = coupler-slider\n"
+    "[run]\n"
+    "revolutions = 2\n";
+
+enum { SC_MILD = 0, SC_FLORES = 1 };
+/* the slider-crank's coupler-slider joint, the piston pin (mechanism.h's
+ * fb_mech_slider_crank: its reference_joint) */
+#define FB_SC_PISTON_PIN 2
+static const char *const sc_case_name[2] = {"mild", "flores"};
+
+/* runs slider-crank case `which` with the given models and overrides; the
+ * case into *c */
+static void sc_run(fb_run *r, fb_case *c, int which, const char *models, const char **sets,
+                   int n) {
+  const char *all[8];
+  char ms[256];
+  snprintf(ms, sizeof ms, "run.models=%s", models);
+  all[0] = ms;
+  for (int i = 0; i < n; i++) all[i + 1] = sets[i];
+  fb_diag d;
+  const fb_status st = which == SC_FLORES
+                           ? fb_test_shipped_case(c, "slider_crank_flores.ini", all, n + 1, &d)
+                           : fb_test_case_text(c, SC_MILD_CASE, all, n + 1, &d);
+  if (st != FB_OK) fail_msg("slider-crank case %s: %s", sc_case_name[which], d.msg);
+  assert_int_equal(c->mechanism, FB_MECH_SLIDER_CRANK);
+  if (fb_run_case(r, c, NULL, NULL, &d) != FB_OK) fail_msg("run failed: %s", d.msg);
+  for (int i = 0; i < r->n; i++)
+    if (r->model[i].run.stop.kind != FB_STOP_NONE)
+      fail_msg("%s: stopped (%s: %s)", r->model[i].run.name,
+               fb_stop_kind_name(r->model[i].run.stop.kind), r->model[i].run.stop.detail);
+}
+
+/* the largest |relative peak error| of output body b: velocity and
+ * acceleration max and min, and for the slider its position's */
+static double sc_peak_rel(const fb_body_error *e, int with_position) {
+  double w = worst(e->omega_max_rel, e->omega_min_rel, e->alpha_max_rel, e->alpha_min_rel);
+  if (with_position) w = fmax(w, fmax(fabs(e->pos_max_rel), fabs(e->pos_min_rel)));
+  return w;
+}
+
+static void test_slider_crank_ideal_matches_analytic(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SICONOS();
+  for (int which = 0; which < 2; which++) {
+    static fb_run r;
+    fb_case c;
+    sc_run(&r, &c, which, "siconos-ideal-nominal, siconos-ideal-stackup", NULL, 0);
+    for (int i = 0; i < 2; i++) {
+      const fb_model_result *m = &r.model[i];
+      assert_string_equal(fb_engine_name(m->run.model->engine), "siconos");
+      assert_true(m->has_error);
+      const double rod = sc_peak_rel(&m->error.body[0], 0);
+      const double slider = sc_peak_rel(&m->error.body[1], 1);
+      char name[128];
+      snprintf(name, sizeof name, "slider-crank %s: %s", sc_case_name[which], m->run.name);
+      report_residual(name, 0, 0);
+      report_residual("  rod omega/alpha peak rel", rod, SC_PEAK_REL_TOL);
+      report_residual("  slider x/v/a peak rel", slider, SC_PEAK_REL_TOL);
+      report_residual("  crank angle err [rad]", m->error.crank_angle_err_max, CRANK_ANGLE_TOL_RAD);
+      report_residual("  drift at the piston pin [m]", m->run.joint_drift_max, SC_DRIFT_TOL_M);
+      assert_true(rod < SC_PEAK_REL_TOL);
+      assert_true(slider < SC_PEAK_REL_TOL);
+      assert_true(m->error.crank_angle_err_max < CRANK_ANGLE_TOL_RAD);
+      assert_true(m->run.joint_drift_max < SC_DRIFT_TOL_M);
+      assert_true(m->run.steps == m->run.series.n - 1);
+    }
+    /* the stack-up lengths of the mild case differ from the nominal ones,
+     * and the model ran on them */
+    if (which == SC_MILD)
+      assert_true(r.model[1].run.lengths.length[FB_CRANK] !=
+                  r.model[0].run.lengths.length[FB_CRANK]);
+    fb_run_free(&r);
+  }
+}
+
+/* d|e|/dt at sample k of the piston pin (> 0: the pin approaches the wall),
+ * from the sample's rod angle and rate, slider velocity and eccentricity by
+ * the closed-form kinematics: e = P - H, P = a u(theta2) + b u(theta3),
+ * H = (x, offset), so e' = a omega2 u'(theta2) + b omega3 u'(theta3) - (v, 0) */
+static double sc_normal_rate(const fb_series *s, size_t k, const fb_linkage *lk, double omega2) {
+  const double a = lk->length[FB_CRANK], b = lk->length[FB_COUPLER];
+  const double th2 = s->crank_angle[k], th3 = s->body[0][FB_Q_POS][k];
+  const double w3 = s->body[0][FB_Q_VEL][k], v = s->body[1][FB_Q_VEL][k];
+  const double ex = s->contact[FB_SC_PISTON_PIN][FB_C_EX][k];
+  const double ey = s->contact[FB_SC_PISTON_PIN][FB_C_EY][k];
+  const double de[2] = {-a * omega2 * sin(th2) - b * w3 * sin(th3) - v,
+                        a * omega2 * cos(th2) + b * w3 * cos(th3)};
+  return (ex * de[0] + ey * de[1]) / hypot(ex, ey);
+}
+
+/* Newton's law at every impact of the series (see newton_law_worst); the
+ * largest approach speed checked in *v_max [m/s] */
+static double sc_newton_law_worst(const fb_series *s, const fb_linkage *lk, double omega2,
+                                  double e_n, int *n, double *v_max) {
+  double w = 0.0;
+  *n = 0;
+  *v_max = 0.0;
+  for (size_t k = 0; k + 1 < s->n; k++) {
+    if (s->contact[FB_SC_PISTON_PIN][FB_C_STATE][k] != FB_STATE_IMPACT) continue;
+    const double before = sc_normal_rate(s, k, lk, omega2);
+    const double after = sc_normal_rate(s, k + 1, lk, omega2);
+    if (!(before >= NEWTON_LAW_SPEED_MIN)) continue;
+    w = fmax(w, fabs(-after / before - e_n));
+    *v_max = fmax(*v_max, before);
+    (*n)++;
+  }
+  return w;
+}
+
+/* the rigid piston pin on both cases over the first revolution: its first
+ * impact where reference-restitution's is (the same free flight), Newton's
+ * law at every impact, a penetration of at most one step's travel */
+static void test_slider_crank_clearance_newton(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SICONOS();
+  for (int which = 0; which < 2; which++) {
+    static fb_run r;
+    fb_case c;
+    const char *sets[] = {"run.revolutions=1", "run.peaks=all", "run.ensemble=1"};
+    sc_run(&r, &c, which, "siconos-clearance-newton, reference-restitution", sets, 3);
+    const fb_model_result *m = result(&r, "siconos-clearance-newton");
+    const fb_model_result *ref = result(&r, "reference-restitution");
+    const double h = m->run.h, e_n = c.clearance.restitution;
+    char name[160];
+    snprintf(name, sizeof name, "slider-crank %s: siconos-clearance-newton", sc_case_name[which]);
+    report_residual(name, 0, 0);
+    assert_true(m->first_impact.found && ref->first_impact.found);
+    const double dt = m->first_impact.t - ref->first_impact.t;
+    report_residual("  first impact time - reference's [steps]", dt / h, FIRST_IMPACT_STEPS);
+    assert_true(fabs(dt) <= FIRST_IMPACT_STEPS * h);
+    const fb_series *s = &m->run.series;
+    assert_true(s->contact_mask == 1 << FB_SC_PISTON_PIN);
+    size_t k0 = 0;
+    while (k0 < s->n && !(s->contact[FB_SC_PISTON_PIN][FB_C_FORCE][k0] > 0.0)) k0++;
+    assert_true(k0 < s->n);
+    report_residual("  first impulse step start - reference's crossing [steps]",
+                    (s->t[k0] - ref->first_impact.t) / h, FIRST_IMPACT_STEPS);
+    assert_true(fabs(s->t[k0] - ref->first_impact.t) <= FIRST_IMPACT_STEPS * h);
+    assert_int_equal(s->contact[FB_SC_PISTON_PIN][FB_C_STATE][k0], FB_STATE_IMPACT);
+    int n;
+    double v_max;
+    const double w = sc_newton_law_worst(s, &m->run.lengths, fb_case_omega2(&c), e_n, &n, &v_max);
+    report_residual("  Newton's law, worst |rebound - e_N| over the impacts", w, NEWTON_LAW_TOL);
+    if (fb_test_verbose())
+      fprintf(stderr, "  (%d impacts checked in revolution 1, approach up to %.3g m/s; "
+              "first impact's crossing-based rebound %.4f)\n", n, v_max, m->first_impact.rebound);
+    assert_true(n > 0);
+    assert_true(w < NEWTON_LAW_TOL);
+    report_residual("  penetration max [m]", m->spikes.penetration_max, SC_PEN_STEPS * h * v_max);
+    assert_true(m->spikes.penetration_max < SC_PEN_STEPS * h * v_max);
+    const fb_contact_provenance *p = &m->run.provenance[FB_SC_PISTON_PIN];
+    assert_true(p->contact_steps > 0);
+    assert_true(p->mass_eff_min > 0.0 && p->mass_eff_max >= p->mass_eff_min);
+    assert_true(isnan(p->erp_max) && isnan(p->h_omega_max));
+    fb_run_free(&r);
+  }
+}
+
+/* With Coulomb friction at the piston pin: Newton's normal law still holds,
+ * and friction changes the motion */
+static void test_slider_crank_friction_keeps_newtons_normal_law(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SICONOS();
+  static fb_run r, r0;
+  fb_case c;
+  const char *sets[] = {"run.revolutions=1", "run.peaks=all", "run.ensemble=1",
+                        "clearance.friction=0.2"};
+  sc_run(&r, &c, SC_MILD, "siconos-clearance-newton", sets, 4);
+  int n;
+  double v_max;
+  const fb_series *a = &r.model[0].run.series;
+  const double w = sc_newton_law_worst(a, &r.model[0].run.lengths, fb_case_omega2(&c),
+                                       c.clearance.restitution, &n, &v_max);
+  report_residual("slider-crank mild, friction 0.2: Newton's law, worst |rebound - e_N|", w,
+                  NEWTON_LAW_TOL);
+  assert_true(n > 0);
+  assert_true(w < NEWTON_LAW_TOL);
+  sc_run(&r0, &c, SC_MILD, "siconos-clearance-newton", sets, 3);
+  const fb_series *b = &r0.model[0].run.series;
+  assert_int_equal(a->n, b->n);
+  double dw = 0.0;
+  for (size_t k = 0; k < a->n; k++)
+    dw = fmax(dw, fabs(a->body[0][FB_Q_VEL][k] - b->body[0][FB_Q_VEL][k]));
+  report_residual("slider-crank mild, friction 0.2 against 0: rod omega difference [rad/s]", dw, 0);
+  assert_true(dw > 0.0);
+  fb_run_free(&r);
+  fb_run_free(&r0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_keys_and_refusal),
@@ -370,6 +628,9 @@ int main(void) {
       cmocka_unit_test(test_clearance_newton_law_and_first_impact),
       cmocka_unit_test(test_friction_keeps_newtons_normal_law),
       cmocka_unit_test(test_restitution_rebound_approaches_newton),
+      cmocka_unit_test(test_slider_crank_ideal_matches_analytic),
+      cmocka_unit_test(test_slider_crank_clearance_newton),
+      cmocka_unit_test(test_slider_crank_friction_keeps_newtons_normal_law),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -324,6 +324,7 @@ const fb_model fb_models[] = {
      * penalty engine's family; solid ideal, dashed clearance */
     {.name = "siconos-ideal-nominal",
      .engine = FB_ENGINE_SICONOS,
+     .mechanisms = SC,
      .lengths = NOM,
      .joints = IDEAL,
      .law = FB_MODEL_LAW_NONE,
@@ -336,6 +337,7 @@ const fb_model fb_models[] = {
      .style = {"#99000d", 1, 1.4, FB_HUE_NONE}},
     {.name = "siconos-ideal-stackup",
      .engine = FB_ENGINE_SICONOS,
+     .mechanisms = SC,
      .lengths = STK,
      .joints = IDEAL,
      .law = FB_MODEL_LAW_NONE,
@@ -351,6 +353,7 @@ const fb_model fb_models[] = {
      * reference; collider NATIVE: Siconos's own unilateral constraint) */
     {.name = "siconos-clearance-newton",
      .engine = FB_ENGINE_SICONOS,
+     .mechanisms = SC,
      .lengths = STK,
      .joints = CLEAR,
      .law = FB_MODEL_LAW_RESTITUTION,

@@ -8,7 +8,10 @@
 // relations for the joints, a nonsmooth law per relation, MoreauJeanOSI and
 // TimeStepping with its Newton loop. The user's functions are supplied here
 // by derived classes (as BouncingBall's BallR does for a relation) instead of
-// plugins loaded from a shared library by name.
+// plugins loaded from a shared library by name. The four-bar and the
+// slider-crank each have their own dynamical system and relations
+// (FourbarDS with ClosureR or ClearanceR; SliderCrankDS with PinClosureR or
+// PinClearanceR), on the reference's coordinates of each.
 #include "SiconosKernel.hpp"
 #include "SolverOptions.h"
 
@@ -24,6 +27,7 @@
 extern "C" {
 #include "episode.h"
 #include "siconos_scene.h"
+#include "slider_crank_invdyn.h"
 }
 
 namespace {
@@ -37,7 +41,10 @@ namespace {
 // experts' 1e-10 (their slider-crank's setting, with 200 iterations). At
 // 1e-12 (a relative 2e-12 of the links' momenta, ~0.5 kg m^2/s) the
 // worst impact of the paper case's first revolution is off by 2.6e-5 at no
-// measurable cost (2 or 3 iterations a step; 1e-14: 5.3e-6).
+// measurable cost (2 or 3 iterations a step; 1e-14: 5.3e-6). The
+// slider-crank's clearance model has the relation's residual checked too
+// (LawCheckedMoreauJeanOSI), to the same 1e-12, in m/s there: Newton's law
+// holds to 2e-11 at its impacts.
 const double kNewtonTolerance = 1e-12;
 const unsigned kNewtonMaxIterations = 200;
 // Tolerance and iteration cap of the friction problem's solver (the
@@ -258,14 +265,254 @@ class ClearanceR : public LagrangianRheonomousR {
   int rows_;
 };
 
+// ---- the slider-crank ------------------------------------------------------
+//
+// The slider-crank in the coordinates q = (theta3, x): the rod's angle
+// (direction B -> P) and the slider's hole centre's x along the guide, the
+// reference's minimal coordinates (slider_crank_dynamics.h). The crank is
+// prescribed, B(t) = a u(theta2(t)); the rod turns about the moving B, the
+// slider's hole centre is H = (x, offset): the guide is in the coordinates,
+// as the Siconos slider-crank example keeps its ideal joints in its
+// coordinates and writes a relation only where its clearance is. The loop's
+// one joint that is no hinge of those coordinates is the piston pin, the
+// rod's pin P = B(t) + b u(theta3) in the slider's hole H: one rheonomous
+// relation closes it (ideal) or carries the clearance.
+struct ScMech {
+  double a, b, off;         // crank, rod [m], the guide's offset along +y [m]
+  double m3, i3, f3;        // rod mass [kg], central inertia [kg m^2], com fraction from B
+  double m4;                // slider mass [kg]
+  double grav;              // along -y [m/s^2]
+  double theta0, omega2;    // crank angle at t = 0 [rad], signed speed [rad/s]
+  double c;                 // radial clearance [m]
+  double r_pin;             // pin radius [m]
+
+  double crank_angle(double t) const { return theta0 + omega2 * t; }
+  // crank pin B(t) and its velocity
+  void crank_pin(double t, double p[2], double v[2]) const {
+    const double th = crank_angle(t);
+    p[0] = a * std::cos(th);
+    p[1] = a * std::sin(th);
+    v[0] = -a * omega2 * std::sin(th);
+    v[1] = a * omega2 * std::cos(th);
+  }
+  // eccentricity e = P - H (rod's pin minus slider's hole) and its Jacobian
+  // J = de/dq (row-major 2 x 2: d e / d (theta3, x)); B'(t) in bv
+  void ecc(double t, double th3, double x, double e[2], double J[2][2], double bv[2]) const {
+    double bp[2];
+    crank_pin(t, bp, bv);
+    const double s3 = std::sin(th3), c3 = std::cos(th3);
+    e[0] = bp[0] + b * c3 - x;
+    e[1] = bp[1] + b * s3 - off;
+    J[0][0] = -b * s3;
+    J[0][1] = -1.0;
+    J[1][0] = b * c3;
+    J[1][1] = 0.0;
+  }
+  // M(q) = diag(m3 (f3 b)^2 + I3, m4): the rod about the moving B, the slider
+  void mass(double M[2][2]) const {
+    M[0][0] = m3 * f3 * b * f3 * b + i3;
+    M[0][1] = M[1][0] = 0.0;
+    M[1][1] = m4;
+  }
+  // F(t, q) of M q'' + F = p: the crank pin's acceleration and gravity on
+  // the rod, m3 f3 b u'(theta3).(B''(t) + g y) (the slider's weight is the
+  // guide's), and dF/dq (dF/dq' = 0)
+  void forces(double t, const double q[2], double F[2], double Fq[2][2]) const {
+    const double d = crank_angle(t) - q[0], K = m3 * f3 * b;
+    const double w2 = omega2 * omega2;
+    F[0] = K * (-a * w2 * std::sin(d) + grav * std::cos(q[0]));
+    F[1] = 0.0;
+    Fq[0][0] = K * (a * w2 * std::cos(d) - grav * std::sin(q[0]));
+    Fq[0][1] = Fq[1][0] = Fq[1][1] = 0.0;
+  }
+  // the contact at the piston pin: e, |e|, n = e / |e| (hole -> pin) and the
+  // rows of its velocity map, g' = wn . q' + wn_t (g = c - |e|) and the
+  // sliding velocity of the hole's surface on the pin's at the contact
+  // point, u_T = wt . q' + wt_t (the slider does not turn; the pin turns
+  // with the rod: t . (H' - P') - r_pin theta3', t = z x n)
+  Mech::Contact contact(double t, double th3, double x) const {
+    Mech::Contact k;
+    double J[2][2], bv[2];
+    ecc(t, th3, x, k.e, J, bv);
+    k.ecc = std::hypot(k.e[0], k.e[1]);
+    if (k.ecc > kEccentricityMin) {
+      k.n[0] = k.e[0] / k.ecc;
+      k.n[1] = k.e[1] / k.ecc;
+    } else {
+      k.n[0] = 1.0;
+      k.n[1] = 0.0;
+    }
+    // g = c - |e|: dg/dq = -n^T J, dg/dt = -n . B'
+    k.wn[0] = -(k.n[0] * J[0][0] + k.n[1] * J[1][0]);
+    k.wn[1] = -(k.n[0] * J[0][1] + k.n[1] * J[1][1]);
+    k.wn_t = -(k.n[0] * bv[0] + k.n[1] * bv[1]);
+    const double tn[2] = {-k.n[1], k.n[0]};
+    k.wt[0] = -(tn[0] * J[0][0] + tn[1] * J[1][0]) - r_pin;
+    k.wt[1] = -(tn[0] * J[0][1] + tn[1] * J[1][1]);
+    k.wt_t = -(tn[0] * bv[0] + tn[1] * bv[1]);
+    return k;
+  }
+};
+
+// The rod and the slider as one LagrangianDS, M q'' + F(t, q) = p (the
+// reference's equations; F carried as fInt, with its Jacobians for
+// MoreauJeanOSI's iteration matrix, as FourbarDS)
+class SliderCrankDS : public LagrangianDS {
+ public:
+  SliderCrankDS(SP::SiconosVector q0, SP::SiconosVector v0, const ScMech &m)
+      : LagrangianDS(q0, v0), m_(m) {
+    _hasConstantMass = false;
+    allocateMass();
+    allocateFInt();
+    allocateJacobianFIntq();
+    allocateJacobianFIntqDot();
+    init_forces();
+    computeMass();
+  }
+  void computeMass() override { computeMass(_q[0]); }
+  void computeMass(SP::SiconosVector) override {
+    double M[2][2];
+    m_.mass(M);
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) _mass->setValue(i, j, M[i][j]);
+    _mass->resetFactorizationFlags();
+  }
+  void computeFInt(double time) override { computeFInt(time, _q[0], _q[1]); }
+  void computeFInt(double time, SP::SiconosVector q, SP::SiconosVector) override {
+    double F[2], Fq[2][2];
+    eval(time, *q, F, Fq);
+    _fInt->setValue(0, F[0]);
+    _fInt->setValue(1, F[1]);
+  }
+  void computeJacobianFIntq(double time) override { computeJacobianFIntq(time, _q[0], _q[1]); }
+  void computeJacobianFIntq(double time, SP::SiconosVector q, SP::SiconosVector) override {
+    double F[2], Fq[2][2];
+    eval(time, *q, F, Fq);
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) _jacobianFIntq->setValue(i, j, Fq[i][j]);
+  }
+  void computeJacobianFIntqDot(double time) override {
+    computeJacobianFIntqDot(time, _q[0], _q[1]);
+  }
+  void computeJacobianFIntqDot(double, SP::SiconosVector, SP::SiconosVector) override {
+    _jacobianFIntqDot->zero();
+  }
+
+ private:
+  void eval(double time, const SiconosVector &q, double F[2], double Fq[2][2]) const {
+    const double qq[2] = {q.getValue(0), q.getValue(1)};
+    m_.forces(time, qq, F, Fq);
+  }
+  ScMech m_;
+};
+
+// The piston pin closed (ideal models): h(q, t) = P(q, t) - H(q) = 0
+class PinClosureR : public LagrangianRheonomousR {
+ public:
+  explicit PinClosureR(const ScMech &m) : m_(m) { _hDot.reset(new SiconosVector(2)); }
+  void computeh(double time, const BlockVector &q, BlockVector &, SiconosVector &y) override {
+    double e[2], J[2][2], bv[2];
+    m_.ecc(time, q.getValue(0), q.getValue(1), e, J, bv);
+    y.setValue(0, e[0]);
+    y.setValue(1, e[1]);
+  }
+  void computeJachq(double time, const BlockVector &q, BlockVector &) override {
+    double e[2], J[2][2], bv[2];
+    m_.ecc(time, q.getValue(0), q.getValue(1), e, J, bv);
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) _jachq->setValue(i, j, J[i][j]);
+  }
+  void computehDot(double time, const BlockVector &q, BlockVector &) override {
+    double e[2], J[2][2], bv[2];
+    m_.ecc(time, q.getValue(0), q.getValue(1), e, J, bv);
+    _hDot->setValue(0, bv[0]);
+    _hDot->setValue(1, bv[1]);
+  }
+
+ private:
+  ScMech m_;
+};
+
+// The clearance at the piston pin: g(q, t) = c - |e| >= 0, and with friction
+// the sliding velocity at the contact point as a second row (ClearanceR's
+// rows on the slider-crank's coordinates)
+class PinClearanceR : public LagrangianRheonomousR {
+ public:
+  PinClearanceR(const ScMech &m, int rows) : m_(m), rows_(rows) {
+    _hDot.reset(new SiconosVector(rows));
+  }
+  void computeh(double time, const BlockVector &q, BlockVector &, SiconosVector &y) override {
+    const Mech::Contact k = m_.contact(time, q.getValue(0), q.getValue(1));
+    y.setValue(0, m_.c - k.ecc);
+    if (rows_ > 1) y.setValue(1, 0.0);
+  }
+  void computeJachq(double time, const BlockVector &q, BlockVector &) override {
+    const Mech::Contact k = m_.contact(time, q.getValue(0), q.getValue(1));
+    _jachq->setValue(0, 0, k.wn[0]);
+    _jachq->setValue(0, 1, k.wn[1]);
+    if (rows_ > 1) {
+      _jachq->setValue(1, 0, k.wt[0]);
+      _jachq->setValue(1, 1, k.wt[1]);
+    }
+  }
+  void computehDot(double time, const BlockVector &q, BlockVector &) override {
+    const Mech::Contact k = m_.contact(time, q.getValue(0), q.getValue(1));
+    _hDot->setValue(0, k.wn_t);
+    if (rows_ > 1) _hDot->setValue(1, k.wt_t);
+  }
+
+ private:
+  ScMech m_;
+  int rows_;
+};
+
+// MoreauJeanOSI with the relation's residual that Siconos 4.4 leaves to
+// the integrator (OneStepIntegrator::computeResiduOutput, which
+// TimeStepping's Newton loop checks with setComputeResiduY(true), as
+// EulerMoreauOSI implements it): Newton's law at the step's end,
+// g'(k+1) + e_N g'(k) = 0 while the impulse is positive (>= 0 without one),
+// g'(k+1) from the output the loop has just updated at the last iterate's
+// positions. The slider-crank's clearance model needs it: its mass matrix is
+// constant and its forces nearly linear over a step, so the dynamics'
+// residual reaches round-off after one iteration, with the contact's
+// Jacobian still at the positions the iteration started from (the normal of
+// a pin sliding in a 100 um clearance turns by a few percent over a step:
+// Newton's law was off by up to 1.3e-2 on tests/test_siconos.c's mild case).
+// The four-bar's mass matrix moves with q, and its loop iterates on.
+class LawCheckedMoreauJeanOSI : public MoreauJeanOSI {
+ public:
+  LawCheckedMoreauJeanOSI(double theta, double e_n) : MoreauJeanOSI(theta), e_n_(e_n) {}
+  // the interaction whose normal row is checked, and the system whose
+  // active set (index set 1) says whether it entered the step's problem
+  void watch(Interaction *inter, NonSmoothDynamicalSystem *nsds) {
+    inter_ = inter;
+    nsds_ = nsds;
+  }
+  double computeResiduOutput(double, SP::InteractionsGraph) override {
+    if (!inter_ || !nsds_) return 0.0;
+    SP::InteractionsGraph active = nsds_->topology()->indexSet(1);
+    if (!active || !active->is_vertex(inter_->shared_from_this())) return 0.0;
+    const double w = inter_->y(1)->getValue(0) + e_n_ * inter_->y_k(1)->getValue(0);
+    return inter_->lambda(1)->getValue(0) > 0.0 ? std::fabs(w) : std::max(0.0, -w);
+  }
+
+ private:
+  double e_n_;
+  Interaction *inter_ = nullptr;
+  NonSmoothDynamicalSystem *nsds_ = nullptr;
+};
+
 struct Scene {
   fb_model_scene sm;
+  int sc;          // 1: the slider-crank (ScMech msc), 0: the four-bar (Mech m)
+  int cj;          // the joint the relation is written at: crank-coupler, or the piston pin
   Mech m;
-  int clearance;   // 1: the crank-coupler joint is a pin in a hole
+  ScMech msc;
+  int clearance;   // 1: joint cj is a pin in a hole
   int friction;    // 1: Coulomb friction at it (a second relation row)
   double h;        // step [s]
   size_t k;        // steps taken (time k h)
-  std::shared_ptr<FourbarDS> ds;
+  SP::LagrangianDS ds;
   SP::Interaction inter;
   SP::NonSmoothDynamicalSystem nsds;
   SP::MoreauJeanOSI osi;
@@ -335,6 +582,43 @@ double effective_mass(const Mech &m, double th3, double th4, const double w[2]) 
   return 1.0 / wmw;
 }
 
+// the slider-crank's sample at the state now (read_sample): the rod's
+// angle, omega and alpha in body[0], the slider's x, v and a in body[1], the
+// contact columns at the piston pin
+void read_sample_sc(Scene *s, double impulse, const double v_old[2]) {
+  fb_sample &x = s->x;
+  const double t = x.t;
+  const SiconosVector &q = *s->ds->q(), &v = *s->ds->velocity();
+  x.crank_angle = s->msc.crank_angle(t);
+  for (int b = 0; b < 2; b++) {
+    x.body[b][FB_Q_POS] = q.getValue(b);
+    x.body[b][FB_Q_VEL] = v.getValue(b);
+    if (v_old) x.body[b][FB_Q_ACC] = (v.getValue(b) - v_old[b]) / s->h;
+  }
+  s->pen_now = 0.0;
+  s->drift = 0.0;
+  const Mech::Contact k = s->msc.contact(t, q.getValue(0), q.getValue(1));
+  if (s->clearance) {
+    s->pen_now = k.ecc > s->msc.c ? k.ecc - s->msc.c : 0.0;
+    s->gdot = k.wn[0] * v.getValue(0) + k.wn[1] * v.getValue(1) + k.wn_t;
+    double *col = x.contact[s->cj];
+    col[FB_C_FORCE] = impulse / s->h;
+    col[FB_C_PEN] = s->pen_now;
+    col[FB_C_EX] = k.e[0];
+    col[FB_C_EY] = k.e[1];
+    col[FB_C_STATE] = s->ep.state;
+  } else {
+    s->drift = k.ecc;
+  }
+}
+
+// the slider-crank's 1 / (w^T M^-1 w), M diagonal (ScMech::mass) [kg]
+double effective_mass_sc(const ScMech &m, const double w[2]) {
+  double M[2][2];
+  m.mass(M);
+  return 1.0 / (w[0] * w[0] / M[0][0] + w[1] * w[1] / M[1][1]);
+}
+
 // the sample at the state now; impulse the step's normal impulse [N s]
 void read_sample(Scene *s, double impulse, const double v_old[2]) {
   fb_sample &x = s->x;
@@ -342,6 +626,10 @@ void read_sample(Scene *s, double impulse, const double v_old[2]) {
   const double t = (double)s->k * s->h;
   const SiconosVector &q = *s->ds->q(), &v = *s->ds->velocity();
   x.t = t;
+  if (s->sc) {
+    read_sample_sc(s, impulse, v_old);
+    return;
+  }
   x.crank_angle = s->m.crank_angle(t);
   x.coupler_angle = q.getValue(0);
   x.coupler_omega = v.getValue(0);
@@ -379,11 +667,22 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
   *out = NULL;
   fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
-  if (sm->clearance_mask & ~(1 << FB_JOINT_B))
+  const int sc = sm->def->source.mechanism == FB_MECH_SLIDER_CRANK;
+  if (!sc && sm->def->source.mechanism != FB_MECH_FOURBAR)
     return fb_diag_set(diag, FB_ERR_ARG,
-                       "model '%s': the Siconos model has clearance at the crank-coupler joint "
-                       "only; [clearance] joints names others: set joints = crank-coupler or drop "
-                       "the siconos-clearance-* models", sm->model->name);
+                       "model '%s': the Siconos scene builds the four-bar and the slider-crank "
+                       "only", sm->model->name);
+  // the joint the relation is written at (the case refuses a slider-crank's
+  // clearance anywhere but at its piston pin)
+  const int cj = sc ? (int)FB_SC_JOINT_COUPLER_SLIDER : (int)FB_JOINT_B;
+  if (sm->clearance_mask & ~(1 << cj)) {
+    const char *joint = sc ? "coupler-slider" : "crank-coupler";
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "model '%s': the Siconos model has clearance at the %s joint only; "
+                       "[clearance] joints names others: set joints = %s or drop the "
+                       "siconos-clearance-* models",
+                       sm->model->name, joint, joint);
+  }
   fb_start_state start;
   st = fb_model_scene_start(&start, sm, diag);
   if (st != FB_OK) return st;
@@ -394,7 +693,9 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
     Scene *s = new Scene;
     hd->s = s;
     s->sm = *sm;
-    s->clearance = (sm->clearance_mask & (1 << FB_JOINT_B)) != 0;
+    s->sc = sc;
+    s->cj = cj;
+    s->clearance = (sm->clearance_mask & (1 << cj)) != 0;
     s->friction = s->clearance && sm->friction > 0.0;
     s->h = sm->solver.h;
     s->k = 0;
@@ -423,25 +724,55 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
     m.c = sm->radial_clearance;
     m.r_pin = sm->pin_radius;
     m.r_hole = sm->pin_radius + sm->radial_clearance;
+    if (sc) {
+      // the slider-crank: lengths and masses as the reference's
+      // (fb_slider_crank_of, fb_slider_crank_mass_of)
+      const fb_slider_crank g = fb_slider_crank_of(&sm->lengths);
+      const fb_slider_crank_mass ms = fb_slider_crank_mass_of(sm->link);
+      ScMech &n = s->msc;
+      n.a = g.crank;
+      n.b = g.coupler;
+      n.off = g.offset;
+      n.m3 = ms.coupler_mass;
+      n.i3 = ms.coupler_inertia;
+      n.f3 = ms.coupler_com_fraction;
+      n.m4 = ms.slider_mass;
+      n.grav = sm->gravity;
+      n.theta0 = start.crank_angle;
+      n.omega2 = sm->omega2;
+      n.c = sm->radial_clearance;
+      n.r_pin = sm->pin_radius;
+    }
 
+    // q = (theta3, theta4) for the four-bar, (theta3, x) for the slider-crank:
+    // the start's output bodies, body[output][position / velocity]
     SP::SiconosVector q0(new SiconosVector(2)), v0(new SiconosVector(2));
-    q0->setValue(0, start.coupler_angle);
-    q0->setValue(1, start.follower_angle);
-    v0->setValue(0, start.coupler_omega);
-    v0->setValue(1, start.follower_omega);
-    s->ds.reset(new FourbarDS(q0, v0, m));
+    q0->setValue(0, start.body[0][0]);
+    q0->setValue(1, start.body[1][0]);
+    v0->setValue(0, start.body[0][1]);
+    v0->setValue(1, start.body[1][1]);
+    if (sc)
+      s->ds.reset(new SliderCrankDS(q0, v0, s->msc));
+    else
+      s->ds.reset(new FourbarDS(q0, v0, m));
     SP::NonSmoothLaw nsl;
     SP::Relation rel;
     if (!s->clearance) {
       nsl.reset(new EqualityConditionNSL(2));
-      rel.reset(new ClosureR(m));
+      if (sc)
+        rel.reset(new PinClosureR(s->msc));
+      else
+        rel.reset(new ClosureR(m));
     } else {
-      const double e_n = sm->law[FB_JOINT_B].restitution;
+      const double e_n = sm->law[cj].restitution;
       if (s->friction)
         nsl.reset(new NewtonImpactFrictionNSL(e_n, 0.0, sm->friction, 2));
       else
         nsl.reset(new NewtonImpactNSL(e_n));
-      rel.reset(new ClearanceR(m, s->friction ? 2 : 1));
+      if (sc)
+        rel.reset(new PinClearanceR(s->msc, s->friction ? 2 : 1));
+      else
+        rel.reset(new ClearanceR(m, s->friction ? 2 : 1));
     }
     s->inter.reset(new Interaction(nsl, rel));
     // the run's end lies past the harness's last step: it decides when to stop
@@ -449,7 +780,14 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
     s->nsds.reset(new NonSmoothDynamicalSystem(0.0, t_end));
     s->nsds->insertDynamicalSystem(s->ds);
     s->nsds->link(s->inter, s->ds);
-    s->osi.reset(new MoreauJeanOSI(sm->siconos.theta));
+    if (sc && s->clearance) {
+      auto osi = std::make_shared<LawCheckedMoreauJeanOSI>(sm->siconos.theta,
+                                                           sm->law[cj].restitution);
+      osi->watch(s->inter.get(), s->nsds.get());
+      s->osi = osi;
+    } else {
+      s->osi.reset(new MoreauJeanOSI(sm->siconos.theta));
+    }
     if (!s->clearance) {
       s->osnspb.reset(new Equality());
     } else if (s->friction) {
@@ -463,6 +801,7 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
     SP::TimeDiscretisation td(new TimeDiscretisation(0.0, s->h));
     s->sim.reset(new TimeStepping(s->nsds, td, s->osi, s->osnspb));
     s->sim->setNewtonTolerance(kNewtonTolerance);
+    if (sc && s->clearance) s->sim->setComputeResiduY(true);
     s->sim->setNewtonMaxIteration(kNewtonMaxIterations);
     s->sim->setWarnOnNonConvergence(false);
     s->sim->setCheckSolverFunction(keep_solver_status);
@@ -525,8 +864,14 @@ extern "C" fb_status fb_siconos_scene_step(fb_siconos_scene *hd, fb_diag *diag) 
     if (in_contact) {
       const SiconosVector &q = *s->ds->q();
       const double t = (double)s->k * s->h;
-      const Mech::Contact k = s->m.contact(t, q.getValue(0), q.getValue(1));
-      const double me = effective_mass(s->m, q.getValue(0), q.getValue(1), k.wn);
+      double me;
+      if (s->sc) {
+        const Mech::Contact k = s->msc.contact(t, q.getValue(0), q.getValue(1));
+        me = effective_mass_sc(s->msc, k.wn);
+      } else {
+        const Mech::Contact k = s->m.contact(t, q.getValue(0), q.getValue(1));
+        me = effective_mass(s->m, q.getValue(0), q.getValue(1), k.wn);
+      }
       if (s->contact_steps == 0 || me < s->me_min) s->me_min = me;
       if (s->contact_steps == 0 || me > s->me_max) s->me_max = me;
       s->contact_steps++;
@@ -556,20 +901,20 @@ extern "C" void fb_siconos_scene_sample(const fb_siconos_scene *hd, fb_sample *x
 
 extern "C" void fb_siconos_scene_contact(const fb_siconos_scene *hd, fb_engine_contact *out) {
   std::memset(out, 0, sizeof *out);
-  out->joint = hd->s->clearance ? FB_JOINT_B : -1;
+  out->joint = hd->s->clearance ? hd->s->cj : -1;
   out->penetration = hd->s->pen_now;
-  out->impacts[FB_JOINT_B] = hd->s->ep.impacts;
+  out->impacts[hd->s->cj] = hd->s->ep.impacts;
 }
 
 extern "C" void fb_siconos_scene_provenance(const fb_siconos_scene *hd, int joint,
                                             fb_contact_provenance *out) {
   const Scene *s = hd->s;
-  out->mass_eff_min = joint == FB_JOINT_B ? s->me_min : NAN;
-  out->mass_eff_max = joint == FB_JOINT_B ? s->me_max : NAN;
+  out->mass_eff_min = joint == s->cj ? s->me_min : NAN;
+  out->mass_eff_max = joint == s->cj ? s->me_max : NAN;
   out->erp_max = NAN;
   out->cfm_min = NAN;
   out->h_omega_max = NAN;
-  out->contact_steps = joint == FB_JOINT_B ? s->contact_steps : 0;
+  out->contact_steps = joint == s->cj ? s->contact_steps : 0;
 }
 
 extern "C" double fb_siconos_scene_drift(const fb_siconos_scene *hd) { return hd->s->drift; }

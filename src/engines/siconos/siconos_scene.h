@@ -38,7 +38,29 @@
  * Sampling: one sample per step. The angular accelerations are
  * (omega_{k+1} - omega_k) / h and the contact force and state those of the
  * step from t_k: the engine reports them one step late (step_values_lag), as
- * ODE. Clearance at a joint other than crank-coupler is refused. */
+ * ODE. Clearance at a joint other than crank-coupler is refused.
+ *
+ * The slider-crank (a case with [linkage] type = slider-crank) is built the
+ * same way on the reference's coordinates q = (theta3, x)
+ * (slider_crank_dynamics.h): the rod's angle about the driven crank pin
+ * B(t) = a u(theta2(t)) and the slider's hole centre's x along the guide,
+ * H = (x, offset) (the guide is in the coordinates: the slider neither
+ * leaves it nor turns), M = diag(m3 (f3 b)^2 + I3, m4), and the crank pin's
+ * acceleration and gravity on the rod as F(t, q). The relation is written
+ * at the piston pin, the rod's pin P = B(t) + b u(theta3) in the slider's
+ * hole H:
+ *
+ *   ideal models:    h(q, t) = P(q, t) - H(q) = 0   (2 rows, EqualityConditionNSL)
+ *   clearance model: g(q, t) = c - |e|, e = P - H, g >= 0 (NewtonImpactNSL,
+ *                    e_N = [clearance] restitution; with friction a second
+ *                    row, NewtonImpactFrictionNSL, as above)
+ *
+ * and its Newton loop also checks Newton's law at the step's end (the
+ * relation's residual, siconos_scene.cpp LawCheckedMoreauJeanOSI). Samples:
+ * the rod's angle, omega and alpha in body[0], the slider's x, v and a in
+ * body[1] (accelerations as above), the contact columns at the piston pin
+ * (joint 2, coupler-slider). Clearance at another joint is refused (the
+ * case refuses it first). */
 #ifndef FB_SICONOS_SCENE_H
 #define FB_SICONOS_SCENE_H
 
@@ -53,8 +75,10 @@ extern "C" {
 typedef struct fb_siconos_scene fb_siconos_scene;
 
 /* Builds model sm's nonsmooth dynamical system at t = 0 (sm->siconos:
- * theta). Errors: those of fb_scene_check and fb_model_scene_start;
- * FB_ERR_ARG for clearance at a joint other than crank-coupler;
+ * theta), the four-bar's or the slider-crank's (the case's mechanism).
+ * Errors: those of fb_scene_check and fb_model_scene_start; FB_ERR_ARG for
+ * clearance at a joint other than crank-coupler (four-bar) or
+ * coupler-slider (slider-crank), or another mechanism;
  * FB_ERR_NUMERIC when Siconos refuses the system, with its message;
  * FB_ERR_NOMEM. */
 fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_model_scene *sm, fb_diag *diag);
@@ -71,8 +95,8 @@ void fb_siconos_scene_stopped(const fb_siconos_scene *s, fb_stop *out);
  * that belong to the step). */
 void fb_siconos_scene_sample(const fb_siconos_scene *s, fb_sample *x);
 
-/* Penetration at the crank-coupler joint now, max(0, |e| - c) [m], and
- * impacts so far. */
+/* Penetration at the clearance joint now (crank-coupler, or the
+ * slider-crank's coupler-slider), max(0, |e| - c) [m], and impacts so far. */
 void fb_siconos_scene_contact(const fb_siconos_scene *s, fb_engine_contact *out);
 
 /* The effective mass along the normal, 1 / (w^T M^-1 w) with w = J_hole^T n,
@@ -81,7 +105,8 @@ void fb_siconos_scene_contact(const fb_siconos_scene *s, fb_engine_contact *out)
 void fb_siconos_scene_provenance(const fb_siconos_scene *s, int joint, fb_contact_provenance *out);
 
 /* Distance between the crank's and the coupler's B points [m] for the ideal
- * models (the bilateral constraint's violation); 0 for the clearance model. */
+ * models (the bilateral constraint's violation; the slider-crank's: between
+ * the rod's pin and the slider's hole); 0 for the clearance model. */
 double fb_siconos_scene_drift(const fb_siconos_scene *s);
 
 /* Steps taken. */

@@ -332,7 +332,7 @@ const fb_model fb_models[] = {
      .reference = NULL,
      .spikes_vs = NULL,
      .partner = "ode-ideal-nominal",
-     .summary = "Siconos, coupler and follower closed on the driven crank by a bilateral "
+     .summary = "Siconos, the loop closed on the driven crank by a bilateral "
                 "constraint (Moreau-Jean), nominal lengths",
      .style = {"#99000d", 1, 1.4, FB_HUE_NONE}},
     {.name = "siconos-ideal-stackup",
@@ -345,7 +345,7 @@ const fb_model fb_models[] = {
      .reference = NULL,
      .spikes_vs = NULL,
      .partner = "ode-ideal-stackup",
-     .summary = "Siconos, coupler and follower closed on the driven crank by a bilateral "
+     .summary = "Siconos, the loop closed on the driven crank by a bilateral "
                 "constraint (Moreau-Jean), stack-up lengths",
      .style = {"#ef3b2c", 1, 1.4, FB_HUE_NONE}},
     /* the rigid limit of the restitution law: no penalty, the case's

@@ -232,12 +232,16 @@ class ClosureR : public LagrangianRheonomousR {
   Mech m_;
 };
 
-// The clearance at B: g(q, t) = c - |e| >= 0, and with friction a second
+// The clearance at a pin: g(q, t) = c - |e| >= 0, and with friction a second
 // row, the sliding velocity at the contact point (its position row is 0:
-// only its velocity enters Moreau-Jean's velocity-level problem).
-class ClearanceR : public LagrangianRheonomousR {
+// only its velocity enters Moreau-Jean's velocity-level problem). M is the
+// mechanism's coordinates: Mech (the four-bar's clearance at B) or ScMech
+// (the slider-crank's at the piston pin), each with contact(t, q0, q1) and
+// the radial clearance c.
+template <class M>
+class ClearanceRT : public LagrangianRheonomousR {
  public:
-  ClearanceR(const Mech &m, int rows) : m_(m), rows_(rows) {
+  ClearanceRT(const M &m, int rows) : m_(m), rows_(rows) {
     _hDot.reset(new SiconosVector(rows));
   }
   void computeh(double time, const BlockVector &q, BlockVector &, SiconosVector &y) override {
@@ -261,9 +265,10 @@ class ClearanceR : public LagrangianRheonomousR {
   }
 
  private:
-  Mech m_;
+  M m_;
   int rows_;
 };
+using ClearanceR = ClearanceRT<Mech>;
 
 // ---- the slider-crank ------------------------------------------------------
 //
@@ -433,38 +438,9 @@ class PinClosureR : public LagrangianRheonomousR {
   ScMech m_;
 };
 
-// The clearance at the piston pin: g(q, t) = c - |e| >= 0, and with friction
-// the sliding velocity at the contact point as a second row (ClearanceR's
-// rows on the slider-crank's coordinates)
-class PinClearanceR : public LagrangianRheonomousR {
- public:
-  PinClearanceR(const ScMech &m, int rows) : m_(m), rows_(rows) {
-    _hDot.reset(new SiconosVector(rows));
-  }
-  void computeh(double time, const BlockVector &q, BlockVector &, SiconosVector &y) override {
-    const Mech::Contact k = m_.contact(time, q.getValue(0), q.getValue(1));
-    y.setValue(0, m_.c - k.ecc);
-    if (rows_ > 1) y.setValue(1, 0.0);
-  }
-  void computeJachq(double time, const BlockVector &q, BlockVector &) override {
-    const Mech::Contact k = m_.contact(time, q.getValue(0), q.getValue(1));
-    _jachq->setValue(0, 0, k.wn[0]);
-    _jachq->setValue(0, 1, k.wn[1]);
-    if (rows_ > 1) {
-      _jachq->setValue(1, 0, k.wt[0]);
-      _jachq->setValue(1, 1, k.wt[1]);
-    }
-  }
-  void computehDot(double time, const BlockVector &q, BlockVector &) override {
-    const Mech::Contact k = m_.contact(time, q.getValue(0), q.getValue(1));
-    _hDot->setValue(0, k.wn_t);
-    if (rows_ > 1) _hDot->setValue(1, k.wt_t);
-  }
-
- private:
-  ScMech m_;
-  int rows_;
-};
+// The clearance at the piston pin (ClearanceR's rows on the slider-crank's
+// coordinates)
+using PinClearanceR = ClearanceRT<ScMech>;
 
 // MoreauJeanOSI with the relation's residual that Siconos 4.4 leaves to
 // the integrator (OneStepIntegrator::computeResiduOutput, which

@@ -474,10 +474,12 @@ fb_status fb_metrics_divergence(fb_divergence *out, const fb_series *s, const fb
   }
   const double t_cut = out->diverged ? out->t : INFINITY;
   enum { CAP = 4096 }; /* impacts listed per series; more are counted, not matched */
-  double *buf = malloc(8 * CAP * sizeof *buf);
+  double *buf = malloc(11 * CAP * sizeof *buf);
   if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the impact lists");
   double *ta = buf, *fa = buf + CAP, *pa = buf + 2 * CAP, *tb = buf + 3 * CAP;
   double *fb = buf + 4 * CAP, *pb = buf + 5 * CAP, *ea = buf + 6 * CAP, *eb = buf + 7 * CAP;
+  /* each matched pair's reference force and relative errors, judged below */
+  double *mf = buf + 8 * CAP, *mfrel = buf + 9 * CAP, *mprel = buf + 10 * CAP;
   out->impacts_model = impact_list(s, j, t_cut, ta, ea, fa, pa, CAP);
   out->impacts_reference = impact_list(r, j, t_cut, tb, eb, fb, pb, CAP);
   const int na = out->impacts_model < CAP ? out->impacts_model : CAP;
@@ -509,11 +511,19 @@ fb_status fb_metrics_divergence(fb_divergence *out, const fb_series *s, const fb
     span_peaks(s, j, fmin(ta[a], tb[b]), fmax(ea[a], eb[b]), &sf, &sp);
     span_peaks(r, j, fmin(ta[a], tb[b]), fmax(ea[a], eb[b]), &rf, &rp);
     const double frel = fb_metrics_rel(sf, rf), prel = fb_metrics_rel(sp, rp);
-    out->force_rel_max = fmax_d(out->force_rel_max, fabs(frel));
-    out->penetration_rel_max = fmax_d(out->penetration_rel_max, fabs(prel));
+    if (k < CAP) mf[k] = rf, mfrel[k] = frel, mprel[k] = prel;
     if (k < FB_DIVERGE_MAX_IMPACTS)
       out->impact[k] = (fb_matched_impact){ta[a], ta[a] - tb[b], sf, frel, sp, prel};
     k++, a++, b++;
+  }
+  /* the bound holds the matched impacts that are not grazing touches */
+  const int nm = k < CAP ? k : CAP;
+  double fbig = 0.0;
+  for (int q = 0; q < nm; q++) fbig = fmax_d(fbig, mf[q]);
+  for (int q = 0; q < nm; q++) {
+    if (mf[q] < FB_MATCHED_GRAZING_SHARE * fbig) continue;
+    out->force_rel_max = fmax_d(out->force_rel_max, fabs(mfrel[q]));
+    out->penetration_rel_max = fmax_d(out->penetration_rel_max, fabs(mprel[q]));
   }
   free(buf);
   out->matched = k;

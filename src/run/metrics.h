@@ -137,6 +137,14 @@ fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, c
  * bound"), the bound of the ideal models (run.h, FB_IDEAL_PEAK_ERROR_BOUND):
  * the paper case's matched impacts agree to ~1e-3 [-]. */
 #define FB_MATCHED_IMPACT_ERROR_BOUND 0.05
+/* A matched impact whose reference peak force is below this share of the
+ * largest matched one is a grazing touch: its peak (newtons, nanometres of
+ * penetration) moves by tens of percent with its onset's phase inside a
+ * step while the trajectory and every real impact agree (measured: MuJoCo
+ * on a slider-crank, a 4.2 N touch among impacts of 2.6 to 13 kN at
+ * -13.6 %, every other within 0.6 %, its window peaks within 3e-6 of the
+ * reference's). It is listed and counted, not held to the bound [-]. */
+#define FB_MATCHED_GRAZING_SHARE 0.01
 /* matched impacts listed per model (the rest counted) */
 #define FB_DIVERGE_MAX_IMPACTS 64
 
@@ -162,8 +170,9 @@ typedef struct {
   int impacts_reference;     /* impacts of the reference beginning before t */
   int matched;               /* impacts paired by time (one to one, in order) before t */
   int one_to_one;            /* 1: every impact before t matched (matched = both counts) */
-  double force_rel_max;      /* largest |force_rel| of the matched impacts [-] (0: none) */
-  double penetration_rel_max; /* largest |penetration_rel| [-] */
+  double force_rel_max;      /* largest |force_rel| of the matched impacts that are not
+                                grazing touches (FB_MATCHED_GRAZING_SHARE) [-] (0: none) */
+  double penetration_rel_max; /* largest |penetration_rel| of the same [-] */
   fb_matched_impact impact[FB_DIVERGE_MAX_IMPACTS]; /* the first matched (matched, at most the cap) */
 } fb_divergence;
 

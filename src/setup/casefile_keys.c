@@ -179,9 +179,11 @@ static const key_spec keys[] = {
      "maximum, 29 um diametral)"},
 
     {"clearance", "joints", K_JOINTS, OFF(clearance.mask), 0, 0, 0, 0, 0, "-", "crank-coupler",
-     "joint names: ground-crank, crank-coupler, coupler-follower, follower-ground, or none",
-     "joints modelled as a pin in a hole (ode-clearance-* models); the others stay ideal "
-     "hinges and get no contact geometry"},
+     "joint names: ground-crank, crank-coupler, coupler-follower, follower-ground, or none "
+     "(a slider-crank: coupler-slider or none)",
+     "joints modelled as a pin in a hole (the *-clearance-* models); the others stay ideal "
+     "hinges and get no contact geometry; a slider-crank's default is its piston pin, "
+     "coupler-slider"},
     {"clearance", "penalty", K_PENALTY, OFF(clearance.penalty), 0, 0, 0, 0, 0, "-", "physical",
      "physical, paper, explicit or goldsmith",
      "stiffness source: physical (Johnson line contact at the inverse-dynamics reaction), "

@@ -95,6 +95,12 @@ struct Mech {
     M[0][1] = M[1][0] = -m3 * cl * s * std::cos(th4 - th3);
     M[1][1] = m3 * cl * cl + m4 * f4 * f4 * cl * cl + i4;
   }
+  // PlanarDS's interface: M(q), and F with its Jacobians (time-free here)
+  void dsMass(const double q[2], double M[2][2]) const { mass(q[0], q[1], M); }
+  void dsForces(double, const double q[2], const double v[2], double F[2], double Fq[2][2],
+                double Fv[2][2]) const {
+    forces(q, v, F, Fq, Fv);
+  }
   // F(q, v) of M q'' + F = p: the coupler's quadratic velocity terms and
   // gravity, and its Jacobians dF/dq, dF/dv (row-major)
   void forces(const double q[2], const double v[2], double F[2], double Fq[2][2],
@@ -151,9 +157,13 @@ struct Mech {
 // with the Jacobians of F that MoreauJeanOSI's iteration matrix
 // W = M - h theta dF/dv - h^2 theta^2 dF/dq needs (all of F is carried as
 // LagrangianDS's fInt: Siconos subtracts fInt from the forces).
-class FourbarDS : public LagrangianDS {
+// M gives the mass matrix and the forces with their Jacobians at (t, q,
+// q'): dsMass, dsForces (Mech: the coupler and follower's; ScMech: the rod
+// and slider's).
+template <class M>
+class PlanarDS : public LagrangianDS {
  public:
-  FourbarDS(SP::SiconosVector q0, SP::SiconosVector v0, const Mech &m)
+  PlanarDS(SP::SiconosVector q0, SP::SiconosVector v0, const M &m)
       : LagrangianDS(q0, v0), m_(m) {
     _hasConstantMass = false;
     allocateMass();
@@ -165,44 +175,46 @@ class FourbarDS : public LagrangianDS {
   }
   void computeMass() override { computeMass(_q[0]); }
   void computeMass(SP::SiconosVector q) override {
-    double M[2][2];
-    m_.mass(q->getValue(0), q->getValue(1), M);
+    double Mq[2][2];
+    const double qq[2] = {q->getValue(0), q->getValue(1)};
+    m_.dsMass(qq, Mq);
     for (int i = 0; i < 2; i++)
-      for (int j = 0; j < 2; j++) _mass->setValue(i, j, M[i][j]);
+      for (int j = 0; j < 2; j++) _mass->setValue(i, j, Mq[i][j]);
     _mass->resetFactorizationFlags();
   }
   void computeFInt(double time) override { computeFInt(time, _q[0], _q[1]); }
-  void computeFInt(double, SP::SiconosVector q, SP::SiconosVector v) override {
+  void computeFInt(double time, SP::SiconosVector q, SP::SiconosVector v) override {
     double F[2], Fq[2][2], Fv[2][2];
-    eval(*q, *v, F, Fq, Fv);
+    eval(time, *q, *v, F, Fq, Fv);
     _fInt->setValue(0, F[0]);
     _fInt->setValue(1, F[1]);
   }
   void computeJacobianFIntq(double time) override { computeJacobianFIntq(time, _q[0], _q[1]); }
-  void computeJacobianFIntq(double, SP::SiconosVector q, SP::SiconosVector v) override {
+  void computeJacobianFIntq(double time, SP::SiconosVector q, SP::SiconosVector v) override {
     double F[2], Fq[2][2], Fv[2][2];
-    eval(*q, *v, F, Fq, Fv);
+    eval(time, *q, *v, F, Fq, Fv);
     for (int i = 0; i < 2; i++)
       for (int j = 0; j < 2; j++) _jacobianFIntq->setValue(i, j, Fq[i][j]);
   }
   void computeJacobianFIntqDot(double time) override {
     computeJacobianFIntqDot(time, _q[0], _q[1]);
   }
-  void computeJacobianFIntqDot(double, SP::SiconosVector q, SP::SiconosVector v) override {
+  void computeJacobianFIntqDot(double time, SP::SiconosVector q, SP::SiconosVector v) override {
     double F[2], Fq[2][2], Fv[2][2];
-    eval(*q, *v, F, Fq, Fv);
+    eval(time, *q, *v, F, Fq, Fv);
     for (int i = 0; i < 2; i++)
       for (int j = 0; j < 2; j++) _jacobianFIntqDot->setValue(i, j, Fv[i][j]);
   }
 
  private:
-  void eval(const SiconosVector &q, const SiconosVector &v, double F[2], double Fq[2][2],
-            double Fv[2][2]) const {
+  void eval(double time, const SiconosVector &q, const SiconosVector &v, double F[2],
+            double Fq[2][2], double Fv[2][2]) const {
     const double qq[2] = {q.getValue(0), q.getValue(1)}, vv[2] = {v.getValue(0), v.getValue(1)};
-    m_.forces(qq, vv, F, Fq, Fv);
+    m_.dsForces(time, qq, vv, F, Fq, Fv);
   }
-  Mech m_;
+  M m_;
 };
+using FourbarDS = PlanarDS<Mech>;
 
 // The loop closed at B (ideal models): h(q, t) = B_hole(q) - B_pin(t) = 0.
 class ClosureR : public LagrangianRheonomousR {
@@ -319,6 +331,13 @@ struct ScMech {
     M[0][1] = M[1][0] = 0.0;
     M[1][1] = m4;
   }
+  // PlanarDS's interface: the constant M, and F with dF/dq (dF/dq' = 0)
+  void dsMass(const double[2], double M[2][2]) const { mass(M); }
+  void dsForces(double t, const double q[2], const double[2], double F[2], double Fq[2][2],
+                double Fv[2][2]) const {
+    forces(t, q, F, Fq);
+    Fv[0][0] = Fv[0][1] = Fv[1][0] = Fv[1][1] = 0.0;
+  }
   // F(t, q) of M q'' + F = p: the crank pin's acceleration and gravity on
   // the rod, m3 f3 b u'(theta3).(B''(t) + g y) (the slider's weight is the
   // guide's), and dF/dq (dF/dq' = 0)
@@ -361,55 +380,8 @@ struct ScMech {
 
 // The rod and the slider as one LagrangianDS, M q'' + F(t, q) = p (the
 // reference's equations; F carried as fInt, with its Jacobians for
-// MoreauJeanOSI's iteration matrix, as FourbarDS)
-class SliderCrankDS : public LagrangianDS {
- public:
-  SliderCrankDS(SP::SiconosVector q0, SP::SiconosVector v0, const ScMech &m)
-      : LagrangianDS(q0, v0), m_(m) {
-    _hasConstantMass = false;
-    allocateMass();
-    allocateFInt();
-    allocateJacobianFIntq();
-    allocateJacobianFIntqDot();
-    init_forces();
-    computeMass();
-  }
-  void computeMass() override { computeMass(_q[0]); }
-  void computeMass(SP::SiconosVector) override {
-    double M[2][2];
-    m_.mass(M);
-    for (int i = 0; i < 2; i++)
-      for (int j = 0; j < 2; j++) _mass->setValue(i, j, M[i][j]);
-    _mass->resetFactorizationFlags();
-  }
-  void computeFInt(double time) override { computeFInt(time, _q[0], _q[1]); }
-  void computeFInt(double time, SP::SiconosVector q, SP::SiconosVector) override {
-    double F[2], Fq[2][2];
-    eval(time, *q, F, Fq);
-    _fInt->setValue(0, F[0]);
-    _fInt->setValue(1, F[1]);
-  }
-  void computeJacobianFIntq(double time) override { computeJacobianFIntq(time, _q[0], _q[1]); }
-  void computeJacobianFIntq(double time, SP::SiconosVector q, SP::SiconosVector) override {
-    double F[2], Fq[2][2];
-    eval(time, *q, F, Fq);
-    for (int i = 0; i < 2; i++)
-      for (int j = 0; j < 2; j++) _jacobianFIntq->setValue(i, j, Fq[i][j]);
-  }
-  void computeJacobianFIntqDot(double time) override {
-    computeJacobianFIntqDot(time, _q[0], _q[1]);
-  }
-  void computeJacobianFIntqDot(double, SP::SiconosVector, SP::SiconosVector) override {
-    _jacobianFIntqDot->zero();
-  }
-
- private:
-  void eval(double time, const SiconosVector &q, double F[2], double Fq[2][2]) const {
-    const double qq[2] = {q.getValue(0), q.getValue(1)};
-    m_.forces(time, qq, F, Fq);
-  }
-  ScMech m_;
-};
+// MoreauJeanOSI's iteration matrix): PlanarDS on ScMech
+using SliderCrankDS = PlanarDS<ScMech>;
 
 // The piston pin closed (ideal models): h(q, t) = P(q, t) - H(q) = 0
 class PinClosureR : public LagrangianRheonomousR {

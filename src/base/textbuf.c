@@ -3,6 +3,8 @@
 #include <stdarg.h>
 #include <stdio.h>
 
+#include "xmltext.h"
+
 void fb_text_put(fb_text *t, const char *fmt, ...) {
   if (t->overflow) return;
   va_list ap;
@@ -15,4 +17,13 @@ void fb_text_put(fb_text *t, const char *fmt, ...) {
     return;
   }
   t->len += (size_t)n;
+}
+
+void fb_text_comment(fb_text *t, const char *fmt, ...) {
+  char raw[4096], safe[2 * 4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(raw, sizeof raw, fmt, ap);
+  va_end(ap);
+  fb_text_put(t, "<!-- %s -->", fb_xml_comment_text(safe, sizeof safe, raw));
 }

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "textbuf.h"
+#include "xmltext.h"
 #include "contact_params.h"
 #include "engine_params.h"
 #include "export.h"
@@ -67,11 +68,13 @@ typedef struct {
 /* joint j's pin: a cylinder on its pin body at (x, y) in that body's frame */
 static void put_pin(text *t, const fb_model_scene *sm, int j, double x, double y,
                     const sdf_contact *ct) {
-  fb_text_put(t, "        <!-- %s: restitution law k = %.6g N/m, c = %.6g N s/m on its design mass "
-         "%.4g kg; h omega_c = %.3g there (a run holds <= 0.5; fourbar contact-params --case "
-         "verifies it over the joint's mass range) -->\n",
-      fb_joint_name(j), ct->k, ct->c, ct->m, ct->h_omega_c);
-  fb_text_put(t, "        <collision name=\"%s_pin\">\n", fb_joint_name(j));
+  fb_text_put(t, "        ");
+  fb_text_comment(t, "%s: restitution law k = %.6g N/m, c = %.6g N s/m on its design mass %.4g "
+                  "kg; h omega_c = %.3g there (a run holds <= 0.5; fourbar contact-params, given "
+                  "this case, verifies it over the joint's mass range)",
+                  fb_joint_name(j), ct->k, ct->c, ct->m, ct->h_omega_c);
+  fb_text_put(t, "\n");
+  fb_text_put(t, "        <collision name=\"%s_pin\">\n", FB_XML_ATTR(fb_joint_name(j)));
   fb_text_put(t, "          <pose>%.17g %.17g 0 0 0 0</pose>\n", x, y);
   fb_text_put(t, "          <max_contacts>1</max_contacts>\n");
   fb_text_put(t, "          <geometry><cylinder><radius>%.17g</radius><length>%.17g</length></cylinder>"
@@ -89,7 +92,7 @@ static void put_hole(text *t, const fb_model_scene *sm, int j, double x, double 
   const double len = 2.0 * (r_in + w) * tan(M_PI / n) * 1.001; /* closes the ring */
   for (int k = 0; k < n; k++) {
     const double phi = 2.0 * M_PI * k / n;
-    fb_text_put(t, "        <collision name=\"%s_hole_%d\">\n", fb_joint_name(j), k);
+    fb_text_put(t, "        <collision name=\"%s_hole_%d\">\n", FB_XML_ATTR(fb_joint_name(j)), k);
     fb_text_put(t, "          <pose>%.17g %.17g 0 0 0 %.17g</pose>\n", x + (r_in + 0.5 * w) * cos(phi),
         y + (r_in + 0.5 * w) * sin(phi), phi);
     fb_text_put(t, "          <geometry><box><size>%.17g %.17g %.17g</size></box></geometry>\n", w, len,
@@ -101,13 +104,13 @@ static void put_hole(text *t, const fb_model_scene *sm, int j, double x, double 
 
 /* sites: a frame <joint>_pin or <joint>_hole at (x, y) of link */
 static void put_frame(text *t, int j, int pin, const char *link, double x, double y) {
-  fb_text_put(t, "      <frame name=\"%s_%s\" attached_to=\"%s\">\n", fb_joint_name(j), pin ? "pin" : "hole",
-      link);
+  fb_text_put(t, "      <frame name=\"%s_%s\" attached_to=\"%s\">\n", FB_XML_ATTR(fb_joint_name(j)),
+              pin ? "pin" : "hole", link);
   fb_text_put(t, "        <pose relative_to=\"%s\">%.17g %.17g 0 0 0 0</pose>\n      </frame>\n", link, x, y);
 }
 
 static void put_revolute(text *t, int j, const char *parent, const char *child, double x) {
-  fb_text_put(t, "      <joint name=\"%s\" type=\"revolute\">\n", fb_joint_name(j));
+  fb_text_put(t, "      <joint name=\"%s\" type=\"revolute\">\n", FB_XML_ATTR(fb_joint_name(j)));
   fb_text_put(t, "        <parent>%s</parent>\n        <child>%s</child>\n", parent, child);
   fb_text_put(t, "        <pose>%.17g 0 0 0 0 0</pose>\n", x);
   fb_text_put(t, "        <axis><xyz>0 0 1</xyz><limit><lower>-1e16</lower><upper>1e16</upper></limit>"
@@ -127,14 +130,16 @@ static fb_status write_sdf(text *t, const fb_model_scene *sm, const fb_start_sta
   for (int j = 0; j < 4; j++)
     if (mask & (1 << j)) max_vel = fmax(max_vel, ct[j].max_vel);
   fb_text_put(t, "<?xml version=\"1.0\"?>\n<sdf version=\"1.9\">\n  <world name=\"fourbar\">\n");
-  fb_text_put(t, "    <!-- fourbar export of case '%s' (%s): SI units; the mechanism plane is x-y,\n"
+  fb_text_put(t, "    ");
+  fb_text_comment(t, "fourbar export of case '%s' (%s): SI units; the mechanism plane is x-y,\n"
          "         gravity along -y. Each clearance joint is a pin (collision <joint>_pin)\n"
          "         in a ring of boxes (<joint>_hole_<k>), the contact the project verified at\n"
          "         this world's step: kp, kd, max_vel, min_depth under surface/contact/ode\n"
          "         (docs/contact-params.md). The crank's drive: the JointController system\n"
          "         below (Gazebo Sim); Gazebo Classic has none in SDFormat, set the joint's\n"
-         "         velocity every step from a model plugin (Joint::SetVelocity). -->\n",
+         "         velocity every step from a model plugin (Joint::SetVelocity).",
       sm->def->source.name, sm->model->name);
+  fb_text_put(t, "\n");
   fb_text_put(t, "    <gravity>0 %.17g 0</gravity>\n", -sm->gravity);
   fb_text_put(t, "    <physics name=\"case_step\" type=\"ode\" default=\"true\">\n");
   fb_text_put(t, "      <max_step_size>%.17g</max_step_size>\n", h);
@@ -191,7 +196,7 @@ static fb_status write_sdf(text *t, const fb_model_scene *sm, const fb_start_sta
   if (!(mask & (1 << FB_JOINT_A))) {
     fb_text_put(t, "      <plugin filename=\"gz-sim-joint-controller-system\" "
            "name=\"gz::sim::systems::JointController\">\n");
-    fb_text_put(t, "        <joint_name>%s</joint_name>\n", fb_joint_name(FB_JOINT_A));
+    fb_text_put(t, "        <joint_name>%s</joint_name>\n", FB_XML_ATTR(fb_joint_name(FB_JOINT_A)));
     fb_text_put(t, "        <initial_velocity>%.17g</initial_velocity>\n      </plugin>\n", st->crank_omega);
   }
   fb_text_put(t, "    </model>\n  </world>\n</sdf>\n");

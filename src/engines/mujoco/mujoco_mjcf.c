@@ -10,6 +10,7 @@
 #include "mujoco_load.h"
 #include "mujoco_scene_internal.h"
 #include "textbuf.h"
+#include "xmltext.h"
 
 /* solimp width, midpoint and power of the loop closure: with dmin = dmax
  * they have no effect (MuJoCo's defaults) */
@@ -70,10 +71,9 @@ static const char *site_name(const mj_def *def, int j, int pin) {
   return def->mech == FB_MECH_SLIDER_CRANK ? named_sc[pin][j] : named[pin][j];
 }
 
-/* joint j's name in an exported model: the mechanism's ("coupler-slider") */
-static const char *joint_name(const mj_def *def, int j) {
-  return fb_mech_joint_name(fb_mech_of(def->mech), j);
-}
+/* joint j's name in an exported model: the mechanism's ("coupler-slider"),
+ * escaped for an XML attribute (xmltext.h), in a buffer of the caller's block */
+#define joint_name(def, j) FB_XML_ATTR(fb_mech_joint_name(fb_mech_of((def)->mech), (j)))
 
 /* the body's own joint: a hinge about z, or planar freedom (slide x, slide y,
  * hinge z) when the joint has clearance; the crank's hinge carries the drive

@@ -127,3 +127,9 @@ size_t fb_numfmt_g12(char *buf, double x) {
   *p = '\0';
   return (size_t)(p - buf);
 }
+
+const char *fb_num_text(char *buf, size_t size, const char *fmt, double x, const char *none) {
+  if (isfinite(x)) snprintf(buf, size, fmt, x);
+  else snprintf(buf, size, "%s", none);
+  return buf;
+}

@@ -19,4 +19,18 @@
  * the work, so every output equals printf's. */
 size_t fb_numfmt_g12(char *buf, double x);
 
+/* The one rule for a number that could not be measured (NaN or an
+ * infinity) in a text output (docs/outputs.md, "Values that could not be
+ * measured"): x printed with fmt (one double conversion) when finite, else
+ * none: FB_NUM_NONE_TABLE in printed tables and report.md,
+ * FB_NUM_NONE_CSV in a CSV (JSON writes null). Returns buf. */
+const char *fb_num_text(char *buf, size_t size, const char *fmt, double x, const char *none);
+
+#define FB_NUM_NONE_TABLE "-"
+#define FB_NUM_NONE_CSV ""
+
+/* fb_num_text in a buffer of its own (32 bytes) for a printf argument; the
+ * buffer lives until the end of the enclosing block (C11 6.5.2.5). */
+#define FB_NUM_CELL(fmt, x, none) fb_num_text((char[32]){0}, 32, (fmt), (x), (none))
+
 #endif

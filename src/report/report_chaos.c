@@ -1,5 +1,7 @@
 #include "report_chaos.h"
 
+#include "numfmt.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -126,16 +128,22 @@ static void stats_rows(FILE *f, const fb_model_result *m, const char *bar, const
   for (int q = 0; q < 3; q++) {
     char agree[48] = "-";
     if (m->has_stats_compare)
-      snprintf(agree, sizeof agree, "%+.2f/%+.2f", rel[q]->mean, rel[q]->p90);
+      snprintf(agree, sizeof agree, "%s/%s", FB_NUM_CELL("%+.2f", rel[q]->mean, FB_NUM_NONE_TABLE),
+               FB_NUM_CELL("%+.2f", rel[q]->p90, FB_NUM_NONE_TABLE));
+    /* no impact in the window: no figure, "-" (numfmt.h), never nan */
+#define CELL(fmt, x) FB_NUM_CELL(fmt, x, FB_NUM_NONE_TABLE)
     if (bar)
-      fprintf(f, "| %s | %s | %d | %.4g | %.4g | %.4g | %.4g | %.3g / %.3g | %s |\n",
-              q ? "" : m->run.name, what[q], d[q]->n, d[q]->mean, d[q]->p50, d[q]->p90,
-              d[q]->max, s[q]->mean, s[q]->p90, agree);
+      fprintf(f, "| %s | %s | %d | %s | %s | %s | %s | %s / %s | %s |\n",
+              q ? "" : m->run.name, what[q], d[q]->n, CELL("%.4g", d[q]->mean),
+              CELL("%.4g", d[q]->p50), CELL("%.4g", d[q]->p90), CELL("%.4g", d[q]->max),
+              CELL("%.3g", s[q]->mean), CELL("%.3g", s[q]->p90), agree);
     else {
       if (q == 0) fprintf(f, "%s\n", m->run.name); /* the model on a line of its own: <= 120 */
-      fprintf(f, "  %-18s %6d %10.4g %10.4g %10.4g %10.4g %9.3g %9.3g %13s\n", what[q], d[q]->n,
-              d[q]->mean, d[q]->p50, d[q]->p90, d[q]->max, s[q]->mean, s[q]->p90, agree);
+      fprintf(f, "  %-18s %6d %10s %10s %10s %10s %9s %9s %13s\n", what[q], d[q]->n,
+              CELL("%.4g", d[q]->mean), CELL("%.4g", d[q]->p50), CELL("%.4g", d[q]->p90),
+              CELL("%.4g", d[q]->max), CELL("%.3g", s[q]->mean), CELL("%.3g", s[q]->p90), agree);
     }
+#undef CELL
   }
 }
 

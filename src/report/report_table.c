@@ -12,6 +12,7 @@
 
 #include "engine.h"
 #include "outcome_text.h"
+#include "numfmt.h"
 #include "report_chaos.h"
 #include "report_internal.h"
 #include "report_variants.h"
@@ -21,11 +22,9 @@
 /* prose (report_common.h) */
 #define say fb_report_say
 
-/* a figure of the printed tables: "-" where the engine has none (NaN) */
+/* a figure of the printed tables: "-" where the engine has none (NaN; numfmt.h) */
 static const char *figure_text(char *buf, size_t size, const char *fmt, double x) {
-  if (isfinite(x)) snprintf(buf, size, fmt, x);
-  else snprintf(buf, size, "-");
-  return buf;
+  return fb_num_text(buf, size, fmt, x, FB_NUM_NONE_TABLE);
 }
 
 /* the printed contact table: what each clearance model's rows received */

@@ -2,6 +2,8 @@
  * bench.csv, bench.json and bench.svg written and the tables printed. */
 #include "bench_study.h"
 
+#include "numfmt.h"
+
 #include <jansson.h>
 #include <math.h>
 #include <stdio.h>
@@ -111,17 +113,21 @@ static int write_csv(const char *dir, const fb_bench_row *rows, int n) {
     char erp[32] = "", cfm[32] = "";
     if (isfinite(b->world_erp)) snprintf(erp, sizeof erp, "%g", b->world_erp);
     if (isfinite(b->world_cfm)) snprintf(cfm, sizeof cfm, "%g", b->world_cfm);
-    fprintf(f.f, "%s,%s,%s,%g,%d,%s,%s,%s,\"%s\",%.6g,%.6g,%d,%d,%.6g,%s,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g",
-            b->model, b->engine, b->stepper, b->h, b->h_auto, mapping_name(b->mapping), erp, cfm,
-            fb_stop_text(stop, sizeof stop, &b->stop),
-            b->error, b->wall_per_rev, b->repeats, b->pareto, b->setup_s, b->collider,
-            b->segments, b->us_per_step, b->force_vs_exact, b->pen_vs_exact, b->alpha_vs_exact,
-            b->impacts, b->impacts_exact, b->cost_vs_exact);
-    for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->part[p]);
-    fprintf(f.f, ",%.6g", b->halving);
-    for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%.6g", b->halving_part[p]);
-    fprintf(f.f, ",%d,%.0f,%.6g,%.6g,%.6g,%.6g\n", b->h_adaptive, b->steps_taken,
-            b->stepping_per_rev, b->sampling_per_rev, b->samples_per_rev, b->ecc_direction_rms);
+    /* a value a row could not measure: an empty field (numfmt.h), never nan */
+#define CSV(x) FB_NUM_CELL("%.6g", (x), FB_NUM_NONE_CSV)
+    fprintf(f.f, "%s,%s,%s,%s,%d,%s,%s,%s,\"%s\",%s,%s,%d,%d,%s,%s,%d,%s,%s,%s,%s,%d,%d,%s",
+            b->model, b->engine, b->stepper, FB_NUM_CELL("%g", b->h, FB_NUM_NONE_CSV), b->h_auto,
+            mapping_name(b->mapping), erp, cfm, fb_stop_text(stop, sizeof stop, &b->stop),
+            CSV(b->error), CSV(b->wall_per_rev), b->repeats, b->pareto, CSV(b->setup_s), b->collider,
+            b->segments, CSV(b->us_per_step), CSV(b->force_vs_exact), CSV(b->pen_vs_exact),
+            CSV(b->alpha_vs_exact), b->impacts, b->impacts_exact, CSV(b->cost_vs_exact));
+    for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%s", CSV(b->part[p]));
+    fprintf(f.f, ",%s", CSV(b->halving));
+    for (int p = 0; p < FB_BENCH_PARTS; p++) fprintf(f.f, ",%s", CSV(b->halving_part[p]));
+    fprintf(f.f, ",%d,%s,%s,%s,%s,%s\n", b->h_adaptive, FB_NUM_CELL("%.0f", b->steps_taken, FB_NUM_NONE_CSV),
+            CSV(b->stepping_per_rev), CSV(b->sampling_per_rev), CSV(b->samples_per_rev),
+            CSV(b->ecc_direction_rms));
+#undef CSV
   }
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_study_fail("bench", 1, "%s", d.msg);
   return 0;

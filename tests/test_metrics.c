@@ -270,18 +270,41 @@ static void test_first_impact_rebound(void **state) {
 /* the first impact's metric names are known to a study's metric list */
 static void test_first_impact_metric_names(void **state) {
   (void)state;
-  assert_true(fb_check_metric_name_ok("reference-restitution.first_impact.rebound_ratio", NULL, 0));
-  assert_true(fb_check_metric_name_ok("reference-restitution.first_impact.*", NULL, 0));
-  assert_true(fb_check_metric_name_ok("reference.first_impact.contact_duration_s", NULL, 0));
+  const fb_mech_desc *fb = &fb_mech_fourbar;
+  assert_true(fb_check_metric_name_ok("reference-restitution.first_impact.rebound_ratio", fb, NULL, 0));
+  assert_true(fb_check_metric_name_ok("reference-restitution.first_impact.*", fb, NULL, 0));
+  assert_true(fb_check_metric_name_ok("reference.first_impact.contact_duration_s", fb, NULL, 0));
   char known[4096];
-  assert_false(fb_check_metric_name_ok("reference.first_impact.rebound", known, sizeof known));
+  assert_false(fb_check_metric_name_ok("reference.first_impact.rebound", fb, known, sizeof known));
   assert_non_null(strstr(known, "group first_impact with key time_s, speed_m_s, rebound_ratio, "
                                 "contact_duration_s"));
+}
+
+/* a metric name is checked against the case's mechanism (issue 56): a
+ * slider-crank has slider.*, never follower.*, and the other way round; a
+ * misspelt name gets the nearest of the mechanism's own */
+static void test_metric_names_of_the_mechanism(void **state) {
+  (void)state;
+  const fb_mech_desc *fb = &fb_mech_fourbar, *sc = &fb_mech_slider_crank;
+  char known[4096];
+  assert_true(fb_check_metric_name_ok("analytic.slider.velocity_max_m_s", sc, NULL, 0));
+  assert_true(fb_check_metric_name_ok("analytic.slider.*", sc, NULL, 0));
+  assert_true(fb_check_metric_name_ok("analytic.follower.*", fb, NULL, 0));
+  assert_false(fb_check_metric_name_ok("analytic.follower.*", sc, known, sizeof known));
+  assert_non_null(strstr(known, "group slider with key velocity_max_m_s"));
+  assert_null(strstr(known, "follower"));
+  assert_false(fb_check_metric_name_ok("analytic.slider.*", fb, known, sizeof known));
+  assert_null(strstr(known, "slider"));
+  assert_false(fb_check_metric_name_ok("analytic.slider.velocty_max_m_s", sc, known, sizeof known));
+  assert_non_null(strstr(known, "did you mean analytic.slider.velocity_max_m_s?"));
+  assert_false(fb_check_metric_name_ok("analytic.spikes.alpha_peak_ratio_follower", sc, NULL, 0));
+  assert_true(fb_check_metric_name_ok("analytic.spikes.acceleration_peak_ratio_slider", sc, NULL, 0));
 }
 
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_stays_with_the_reference),
+      cmocka_unit_test(test_metric_names_of_the_mechanism),
       cmocka_unit_test(test_grazing_touch_listed_not_judged),
       cmocka_unit_test(test_parts_from_the_reference),
       cmocka_unit_test(test_ecc_direction_rms),

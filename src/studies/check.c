@@ -1,6 +1,7 @@
 #include "check.h"
 
 #include "model_table.h"
+#include "suggest.h"
 #include "resolution.h"
 #include "tolerance.h"
 
@@ -98,21 +99,13 @@ int fb_check_metrics(const fb_run *r, fb_metric *out, int max) { return collect(
 
 int fb_study_metrics(const fb_run *r, fb_metric *out, int max) { return collect(r, out, max, 1); }
 
-int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
-  const size_t l = strlen(name);
-  const int prefix = l && name[l - 1] == '*';
-  const size_t cmp = prefix ? l - 1 : l;
+/* room for every model's metric names (about 80 models x 25 names) */
+#define METRIC_NAMES_MAX 4096
+
+/* every metric name a run of mechanism mech can give for model m (the
+ * statistics' aside), into names[0 ..) (at most max); returns how many */
+static int metric_names(char names[][128], int max, const fb_mech_desc *mech, const char *model) {
   static const char *groups[4] = {"coupler", "follower", "spikes", "first_impact"};
-  /* <model>.stats.<key>: the statistics metrics (add_stats) */
-  if (strstr(name, ".stats.") || (prefix && strstr(name, ".stats"))) {
-    for (int m = 0; m < fb_model_count; m++) {
-      char head[160];
-      snprintf(head, sizeof head, "%s.stats.", fb_models[m].name);
-      const size_t hl = strlen(head);
-      if (prefix ? strncmp(head, name, cmp < hl ? cmp : hl) == 0 : strncmp(head, name, hl) == 0)
-        return 1;
-    }
-  }
   static const char *peak_keys[] = {
 #define FB_NAME_PEAK(field, key) key,
       FB_BODY_PEAK_KEYS(FB_NAME_PEAK)
@@ -128,34 +121,70 @@ int fb_check_metric_name_ok(const char *name, char *known, size_t size) {
       FB_FIRST_IMPACT_KEYS(FB_NAME_FIRST)
 #undef FB_NAME_FIRST
   };
-  const int np = (int)(sizeof peak_keys / sizeof peak_keys[0]);
-  const int ns = (int)(sizeof spike_keys / sizeof spike_keys[0]);
-  const int nf = (int)(sizeof first_keys / sizeof first_keys[0]);
-  /* every mechanism's names of the per-body groups and keys (a slider-crank's
-   * slider.velocity_max_m_s, spikes.acceleration_peak_ratio_slider) */
-  for (int t = 0; t < FB_MECH_COUNT; t++)
-    for (int m = 0; m < fb_model_count; m++)
-      for (int g = 0; g < 4; g++)
-        for (int k = 0; k < (g < 2 ? np : g == 2 ? ns : nf); k++) {
-          char full[160], key[160], named[160];
-          snprintf(key, sizeof key, "%s.%s", groups[g],
-                   g < 2 ? peak_keys[k] : g == 2 ? spike_keys[k] : first_keys[k]);
-          snprintf(full, sizeof full, "%s.%s", fb_models[m].name,
-                   fb_mech_output_key(named, sizeof named, fb_mech_of((fb_mech_type)t), key));
-          if (prefix ? strncmp(full, name, cmp) == 0 : strcmp(full, name) == 0) return 1;
-        }
+  const int count[4] = {(int)(sizeof peak_keys / sizeof peak_keys[0]),
+                        (int)(sizeof peak_keys / sizeof peak_keys[0]),
+                        (int)(sizeof spike_keys / sizeof spike_keys[0]),
+                        (int)(sizeof first_keys / sizeof first_keys[0])};
+  const char *const *keys[4] = {peak_keys, peak_keys, spike_keys, first_keys};
+  int n = 0;
+  for (int g = 0; g < 4; g++)
+    for (int k = 0; k < count[g] && n < max; k++) {
+      char key[128], named[128];
+      snprintf(key, sizeof key, "%s.%s", groups[g], keys[g][k]);
+      /* the mechanism's names (a slider-crank's slider.velocity_max_m_s) */
+      snprintf(names[n++], 128, "%s.%s", model, fb_mech_output_key(named, sizeof named, mech, key));
+    }
+  return n;
+}
+
+int fb_check_metric_name_ok(const char *name, const fb_mech_desc *mech, char *known, size_t size) {
+  const size_t l = strlen(name);
+  const int prefix = l && name[l - 1] == '*';
+  const size_t cmp = prefix ? l - 1 : l;
+  /* <model>.stats.<key>: the statistics metrics (add_stats) */
+  if (strstr(name, ".stats.") || (prefix && strstr(name, ".stats"))) {
+    for (int m = 0; m < fb_model_count; m++) {
+      char head[160];
+      snprintf(head, sizeof head, "%s.stats.", fb_models[m].name);
+      const size_t hl = strlen(head);
+      if (prefix ? strncmp(head, name, cmp < hl ? cmp : hl) == 0 : strncmp(head, name, hl) == 0)
+        return 1;
+    }
+  }
+  /* the per-body groups and keys of the case's mechanism, for the models
+   * that build it */
+  static char names[METRIC_NAMES_MAX][128];
+  const fb_mech_type type = (fb_mech_type)fb_mech_find(mech->type);
+  int n = 0;
+  for (int m = 0; m < fb_model_count; m++)
+    if (fb_model_builds(&fb_models[m], type))
+      n += metric_names(names + n, (int)(sizeof names / sizeof names[0]) - n, mech,
+                        fb_models[m].name);
+  for (int k = 0; k < n; k++)
+    if (prefix ? strncmp(names[k], name, cmp) == 0 : strcmp(names[k], name) == 0) return 1;
   if (known) {
-    /* the groups and keys, for the message */
-    size_t w = (size_t)snprintf(known, size, "group coupler or follower with key");
-    for (int k = 0; k < np && w < size; k++)
-      w += (size_t)snprintf(known + w, size - w, "%s %s", k ? "," : "", peak_keys[k]);
-    if (w < size) w += (size_t)snprintf(known + w, size - w, ", or group spikes with key");
-    for (int k = 0; k < ns && w < size; k++)
-      w += (size_t)snprintf(known + w, size - w, "%s %s", k ? "," : "", spike_keys[k]);
-    if (w < size) w += (size_t)snprintf(known + w, size - w, ", or group first_impact with key");
-    for (int k = 0; k < nf && w < size; k++)
-      w += (size_t)snprintf(known + w, size - w, "%s %s", k ? "," : "", first_keys[k]);
-    if (w < size) snprintf(known + w, size - w, "; models as in fourbar run --help");
+    /* the nearest name, then the groups and keys in the mechanism's names */
+    static const char *list[METRIC_NAMES_MAX];
+    for (int k = 0; k < n; k++) list[k] = names[k];
+    const char *near = prefix ? NULL : fb_suggest(name, list, n);
+    size_t w = 0;
+    if (near) w = (size_t)snprintf(known, size, "did you mean %s? ", near);
+    char own[32][128];
+    const int no = metric_names(own, 32, mech, "M");
+    const char *group = "";
+    for (int k = 0; k < no && w < size; k++) {
+      const char *g = own[k] + 2, *dot = strchr(g, '.');
+      const int new_group = strncmp(group, g, (size_t)(dot - g)) != 0 || group[dot - g] != '.';
+      if (new_group)
+        w += (size_t)snprintf(known + w, size - w, "%sgroup %.*s with key %s", k ? "; " : "a "
+                              "metric is <model>.<group>.<key>: ", (int)(dot - g), g, dot + 1);
+      else
+        w += (size_t)snprintf(known + w, size - w, ", %s", dot + 1);
+      group = g;
+    }
+    if (w < size)
+      snprintf(known + w, size - w, "; <model> one that builds a %s (fourbar models lists them)",
+               mech->type);
   }
   return 0;
 }

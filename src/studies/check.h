@@ -66,11 +66,13 @@ int fb_check_metrics(const fb_run *r, fb_metric *out, int max);
  * out rather than find them missing from every baseline. */
 int fb_study_metrics(const fb_run *r, fb_metric *out, int max);
 
-/* 1 when name is a metric some run can give (<model>.<group>.<key>, the
- * names fb_study_metrics writes for every model of the table), or, ending in
- * '*', a prefix of one; else 0 with the groups and keys listed in known
- * (size bytes; may be NULL). */
-int fb_check_metric_name_ok(const char *name, char *known, size_t size);
+/* 1 when name is a metric a run of mechanism mech can give (<model>.<group>.
+ * <key>, the names fb_study_metrics writes, in mech's names: a
+ * slider-crank's slider.velocity_max_m_s, never follower.*, for a model
+ * that builds mech; or <model>.stats.<key>), or, ending in '*', a prefix of
+ * one; else 0 with, in known (size bytes; may be NULL), the nearest such
+ * name ("did you mean ...? ") and mech's groups and keys. */
+int fb_check_metric_name_ok(const char *name, const fb_mech_desc *mech, char *known, size_t size);
 
 /* One baseline metric. */
 typedef struct {

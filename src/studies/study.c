@@ -224,9 +224,15 @@ static int handler(void *user, const char *section, const char *key, const char 
   return 1;
 }
 
+/* one length a Monte Carlo point drew: its case key and value in mm */
+typedef struct {
+  char key[64]; /* "linkage.offset_mm" */
+  char mm[32];  /* "" when not drawn */
+} sampled_length;
+
 /* overrides of point i: fixed sets, then one per axis */
 static fb_status point_overrides(const fb_study *s, size_t i, char sets[][256], int *n,
-                                 char axis_text[][64], char sampled_mm[FB_LINK_COUNT][32],
+                                 char axis_text[][64], sampled_length sampled[FB_LINK_COUNT],
                                  fb_diag *diag) {
   *n = 0;
   for (int k = 0; k < s->nsets; k++) snprintf(sets[(*n)++], 256, "%s", s->sets[k]);
@@ -258,11 +264,18 @@ static fb_status point_overrides(const fb_study *s, size_t i, char sets[][256], 
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
     if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
     gsl_rng_set(r, ax->seed * 1000003ul + (unsigned long)j);
-    for (int k = 0; k < FB_LINK_COUNT; k++) {
+    /* the case's own length parameters, by the description's names
+     * (a four-bar's crank, coupler, follower, ground; a slider-crank's
+     * crank, coupler, offset), each from its nominal and tolerance */
+    const fb_mech_desc *mech = fb_case_mech(&base);
+    for (int k = 0; k < mech->nlengths && k < FB_LINK_COUNT; k++) {
       double x = base.distribution ? gsl_ran_flat(r, -1.0, 1.0) : gsl_ran_gaussian(r, 1.0 / 3.0);
       const double mm = (base.nominal.length[k] + x * base.plus_minus[k]) / FB_M_PER_MM;
-      snprintf(sets[(*n)++], 256, "linkage.%s_mm=%.17g", fb_link_name(k), mm);
-      if (sampled_mm) snprintf(sampled_mm[k], 32, "%.10g", mm);
+      snprintf(sets[(*n)++], 256, "linkage.%s_mm=%.17g", mech->length[k], mm);
+      if (sampled) {
+        snprintf(sampled[k].key, sizeof sampled[k].key, "linkage.%s_mm", mech->length[k]);
+        snprintf(sampled[k].mm, sizeof sampled[k].mm, "%.10g", mm);
+      }
     }
     gsl_rng_free(r);
     snprintf(sets[(*n)++], 256, "tolerance.stackup=nominal");
@@ -384,19 +397,11 @@ fb_status fb_study_load_with_cases(fb_study *s, const char *path, const char *ca
                            s->axis[a].name);
     }
   }
-  /* metric names and patterns: each must name a metric a run can give */
-  for (int k = 0; k < s->nmetrics + s->nplot; k++) {
-    const char *m = k < s->nmetrics ? s->metrics[k] : s->plot[k - s->nmetrics];
-    char known[512];
-    if (!fb_check_metric_name_ok(m, known, sizeof known))
-      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] %s: '%s' names no metric; a metric is "
-                         "<model>.<group>.<key>, %s (a trailing * matches a prefix)", path,
-                         k < s->nmetrics ? "metrics" : "plot", m, known);
-  }
   if (s->heatmap && s->naxes < 2)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] heatmap = yes needs two axes", path);
   /* the corners of the grid must load: catches a wrong key before any run */
   size_t probe[2] = {0, s->points - 1};
+  const fb_mech_desc *mech = NULL;
   for (int k = 0; k < 2; k++) {
     char sets[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8][256], axt[FB_STUDY_MAX_AXES][64];
     int n;
@@ -409,6 +414,17 @@ fb_status fb_study_load_with_cases(fb_study *s, const char *path, const char *ca
     st = fb_casefile_load(&cs, s->case_path, ov, n, &inner);
     if (st != FB_OK)
       return fb_diag_set(diag, st, "%s: point %zu of the grid does not load: %s", path, probe[k], inner.msg);
+    if (!mech) mech = fb_case_mech(&cs);
+  }
+  /* metric names and patterns: each must name a metric a run of the case's
+   * mechanism can give (a slider-crank's slider.*, never follower.*) */
+  for (int k = 0; k < s->nmetrics + s->nplot; k++) {
+    const char *m = k < s->nmetrics ? s->metrics[k] : s->plot[k - s->nmetrics];
+    char known[FB_DIAG_SIZE];
+    if (!fb_check_metric_name_ok(m, mech, known, sizeof known))
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] %s: '%s' names no metric of a %s ([linkage] "
+                         "type = %s); %s (a trailing * matches a prefix)", path,
+                         k < s->nmetrics ? "metrics" : "plot", m, mech->type, mech->type, known);
   }
   return FB_OK;
 }
@@ -577,18 +593,15 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
   json_object_set_new(row, "of", json_integer((json_int_t)s->points));
   char status[1200] = "ok";
   fb_diag inner;
-  char sampled[FB_LINK_COUNT][32] = {{0}};
+  sampled_length sampled[FB_LINK_COUNT];
+  memset(sampled, 0, sizeof sampled);
   fb_status st = point_overrides(s, i, sets, &n, axt, sampled, &inner);
   for (int a = 0; a < s->naxes; a++)
     json_object_set_new(axes, s->axis[a].key, json_string(st == FB_OK ? axt[a] : "?"));
   /* a Monte Carlo point also records the lengths it drew (the nominal lengths
    * of its run, mm as in the case keys), so spikes can be set against them */
   for (int k = 0; k < FB_LINK_COUNT; k++)
-    if (sampled[k][0]) {
-      char key[64];
-      snprintf(key, sizeof key, "linkage.%s_mm", fb_link_name(k));
-      json_object_set_new(axes, key, json_string(sampled[k]));
-    }
+    if (sampled[k].mm[0]) json_object_set_new(axes, sampled[k].key, json_string(sampled[k].mm));
   if (st != FB_OK) {
     snprintf(status, sizeof status, "case: %s", inner.msg);
   } else {
@@ -604,7 +617,9 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
       static fb_metric m[FB_CHECK_MAX_METRICS];
       int nm = fb_study_metrics(&r, m, FB_CHECK_MAX_METRICS);
       for (int k = 0; k < nm; k++)
-        if (wanted(s, m[k].name)) json_object_set_new(metrics, m[k].name, json_real(m[k].value));
+        if (wanted(s, m[k].name)) /* not measured: null (docs/outputs.md), never a lost key */
+          json_object_set_new(metrics, m[k].name,
+                              isfinite(m[k].value) ? json_real(m[k].value) : json_null());
       /* every model that stopped, each with its reason */
       size_t l = 0;
       for (int k = 0; k < r.n; k++)

@@ -686,7 +686,7 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   expect_fail("penalty --mode guess", (const char *[]){"paper or physical", NULL});
   expect_fail("run --jobs 0 --out /tmp/x", (const char *[]){"--jobs 0", "from 1 to 64", NULL});
   expect_fail("check --jobs two", (const char *[]){"--jobs two", "from 1 to 64", NULL});
-  expect_fail("impact --restitution 1.5", (const char *[]){"restitution = 1.5", "(0, 1]", NULL});
+  expect_fail("impact --restitution 1.5", (const char *[]){"--restitution 1.5", "(0, 1]", NULL});
   expect_fail("impact --law restitution --restitution 0.1", (const char *[]){"critical damping", NULL});
   expect_fail("impact --law bouncy", (const char *[]){"--law 'bouncy'", NULL});
   expect_fail("contact-params --stiffness -5", (const char *[]){"--stiffness -5", "positive", NULL});

@@ -158,7 +158,7 @@ for sig in KILL TERM; do
   if [ $sig = KILL ]; then
     ok '[ -n "$workers" ] && ! alive && [ $rc2 -eq 0 ]' "4: kill -9 of run --jobs 2: its workers die with it and the next run into the folder is not refused (was: workers computing, the lock held, the next run refused naming the dead parent)"
   else
-    ok '[ -n "$workers" ] && ! alive && [ $rc -eq 143 ] && [ $rc2 -eq 0 ] && grep -q "stopped by SIGTERM: .*keeps the results it held.*to run it again: fourbar run" "$tmp/err_$sig"' "4: SIGTERM of run --jobs 2: exit 143, workers gone, what the folder keeps and the command that runs it again"
+    ok '[ -n "$workers" ] && ! alive && [ $rc -eq 143 ] && [ $rc2 -eq 0 ] && grep -q "stopped by SIGTERM: .*was not created (nothing of this run was written).*to run it again: fourbar run" "$tmp/err_$sig"' "4: SIGTERM of run --jobs 2: exit 143, workers gone, what the folder keeps (none was there: not created, issue 56) and the command that runs it again"
   fi
 done
 # SIGINT of a sweep: what was kept and the command that resumes (27 points of
@@ -182,7 +182,7 @@ ok 'grep -q "$kept already done" "$tmp/err2" && [ "$(wc -l < "$tmp/sw4/points.js
 # ---- 5. unclear messages -------------------------------------------------------------
 ok 'refuses "restitution 1.0000001: cr must lie" "$exe" contact-params --restitution 1.0000001' "5: --restitution 1.0000001 is echoed as given, not rounded into (0.135, 1] (was: '1')"
 ok 'refuses "1.0000000000000002" "$exe" contact-params --restitution 1.0000000000000002' "5: a value one ulp past the range is echoed exactly"
-ok 'refuses "give h >=" "$exe" contact-params --h-s 1e-300 && ! grep -qi nan "$tmp/err"' "5: contact-params --h-s 1e-300 names the smallest step (was: kp = -nan)"
+ok 'refuses "give --h-s >=" "$exe" contact-params --h-s 1e-300 && ! grep -qi nan "$tmp/err"' "5: contact-params --h-s 1e-300 names the smallest step (was: kp = -nan)"
 ok 'refuses "smallest normal double" "$exe" impact --stiffness 1e-320 && ! grep -q "inf s" "$tmp/err"' "5: impact --stiffness 1e-320 is refused without 'inf s'"
 ok 'refuses "1000000.0000001" "$exe" kinematics --crank-mm 108 --coupler-mm 279.4 --follower-mm 270.5 --ground-mm 254 --speed-rpm 1000000.0000001' "5: a flag checked against a case key's range is echoed exactly"
 # (verification, the default since issue 44, refuses this step as above: the

@@ -1,6 +1,8 @@
 /* _GNU_SOURCE (meson.build): renameat2, syscall */
 #include "outdir.h"
 
+#include "manifest.h"
+
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -191,7 +193,8 @@ static fb_status mkdir_p(const char *dir, fb_diag *diag) {
 static fb_status resolve(const char *dir, char *abs, char *parent, char *base, fb_diag *diag) {
   char buf[FB_OUTDIR_PATH];
   if (!dir[0] || snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf)
-    return fb_diag_set(diag, FB_ERR_IO, "'%s': not a usable output folder name", dir);
+    return fb_diag_set(diag, FB_ERR_ARG, "--out '%s': not a usable output folder name (empty, or "
+                       "too long): give a folder's path", dir);
   size_t l = strlen(buf);
   while (l > 1 && buf[l - 1] == '/') buf[--l] = '\0';
   char rp[PATH_MAX];
@@ -201,7 +204,8 @@ static fb_status resolve(const char *dir, char *abs, char *parent, char *base, f
     char *slash = strrchr(buf, '/');
     const char *name = slash ? slash + 1 : buf;
     if (strcmp(name, ".") == 0 || strcmp(name, "..") == 0)
-      return fb_diag_set(diag, FB_ERR_IO, "%s: not a usable output folder name", dir);
+      return fb_diag_set(diag, FB_ERR_ARG, "--out %s: not a usable output folder name ('.' or "
+                         "'..' of a folder that is not there): give a folder's path", dir);
     char par[FB_OUTDIR_PATH];
     if (slash == buf) snprintf(par, sizeof par, "/");
     else if (slash) snprintf(par, sizeof par, "%.*s", (int)(slash - buf), buf);
@@ -214,21 +218,22 @@ static fb_status resolve(const char *dir, char *abs, char *parent, char *base, f
       return fb_diag_set(diag, FB_ERR_IO, "%s: path too long", dir);
   }
   char *slash = strrchr(abs, '/');
-  if (!slash || !slash[1]) return fb_diag_set(diag, FB_ERR_IO, "%s: the root folder cannot be an output folder", dir);
+  if (!slash || !slash[1])
+    return fb_diag_set(diag, FB_ERR_ARG, "--out %s: the root folder cannot be an output folder", dir);
   snprintf(parent, FB_OUTDIR_PATH, "%.*s", slash == abs ? 1 : (int)(slash - abs), abs);
   snprintf(base, NAME_MAX + 1, "%s", slash + 1);
   return FB_OK;
 }
 
-/* files a fourbar run writes; anything else in the folder is not ours. A
- * dot-file is ours only by its exact name: .env, .git or .bashrc in a folder
- * make it a user's folder, never a result folder. */
-static int ours(const char *name) {
-  if (name[0] == '.') return strcmp(name, ".gnuplot.log") == 0;
+/* the extensions of the files fourbar writes: only to recognise a
+ * temporary file of this program by its name (fb_outdir_temp_pid), never to
+ * decide that a file is a run's (the folder's manifest does, manifest.h) */
+static int result_like(const char *name) {
+  if (strcmp(name, FB_MANIFEST_NAME) == 0) return 1;
+  if (name[0] == '.') return 0;
   const char *dot = strrchr(name, '.');
   const char *known[] = {".csv", ".h5", ".json", ".jsonl", ".svg", ".png", ".md", ".log",
-                         ".html", ".js", ".css", /* report.html, its data and library */
-                         NULL};
+                         ".html", ".js", ".css", NULL};
   for (int k = 0; dot && known[k]; k++)
     if (strcmp(dot, known[k]) == 0) return 1;
   return 0;
@@ -274,7 +279,7 @@ long fb_outdir_temp_pid(const char *name) {
   if (b < 5 || strncmp(name + b - 5, ".tmp.", 5) != 0) return 0;
   char result[NAME_MAX + 1];
   snprintf(result, sizeof result, "%.*s", (int)(b - 5), name);
-  if (!result[0] || result[0] == '.' || !ours(result)) return 0;
+  if (!result[0] || !result_like(result)) return 0;
   return pid_in(name + b, e - b);
 }
 
@@ -298,30 +303,52 @@ static fb_status clean_and_check(const fb_outdir *o, const char *parent, const c
                                  int replace, fb_diag *diag) {
   DIR *d = opendir(o->target);
   if (!d && errno != ENOENT)
-    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot use as an output folder: %s", o->target,
+    return fb_diag_set(diag, errno == ENOTDIR ? FB_ERR_ARG : FB_ERR_IO,
+                       "--out %s: cannot use as an output folder: %s", o->target,
                        errno == ENOTDIR ? "not a folder" : strerror(errno));
   if (d) {
-    int visible = 0, summary = 0, foreign = 0;
-    char foreign_name[NAME_MAX + 1] = "";
+    /* a result folder has a manifest (manifest.h), or summary.json when an
+     * older fourbar wrote it; a run keeps every file of it that no run
+     * wrote (fb_outdir_commit), and it can keep regular files only */
+    char mpath[FB_OUTDIR_PATH + NAME_MAX + 2];
+    snprintf(mpath, sizeof mpath, "%s/%s", o->target, FB_MANIFEST_NAME);
+    struct stat mb;
+    const int manifest = lstat(mpath, &mb) == 0 && S_ISREG(mb.st_mode);
+    int summary = 0, other = 0;
+    char other_name[NAME_MAX + 1] = "", odd_name[NAME_MAX + 1] = "";
+    const char *odd = NULL;
     struct dirent *e;
     while ((e = readdir(d))) {
       if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
       if (fb_outdir_temp_pid(e->d_name)) continue; /* ours, removed below if its writer is gone */
+      if (strcmp(e->d_name, FB_MANIFEST_NAME) == 0) continue;
       char path[FB_OUTDIR_PATH + NAME_MAX + 2];
       snprintf(path, sizeof path, "%s/%s", o->target, e->d_name);
       struct stat sb;
-      if (e->d_name[0] != '.') visible++;
       if (strcmp(e->d_name, "summary.json") == 0) summary = 1;
-      if (lstat(path, &sb) != 0 || !S_ISREG(sb.st_mode) || !ours(e->d_name)) {
-        if (!foreign++) snprintf(foreign_name, sizeof foreign_name, "%s", e->d_name);
+      if (lstat(path, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        if (!odd) {
+          odd = lstat(path, &sb) != 0 ? "gone while read"
+                : S_ISDIR(sb.st_mode) ? "a folder" : S_ISLNK(sb.st_mode) ? "a symbolic link"
+                                                                           : "not a regular file";
+          snprintf(odd_name, sizeof odd_name, "%s", e->d_name);
+        }
+      } else if (strcmp(e->d_name, ".gnuplot.log") != 0 && !other++) {
+        snprintf(other_name, sizeof other_name, "%s", e->d_name);
       }
     }
-    if (replace && (foreign || (visible && !summary))) {
+    if (replace && odd) {
       closedir(d);
-      return fb_diag_set(diag, FB_ERR_IO, "%s: holds '%s'%s: not a fourbar run's result folder, "
-                         "so it will not be replaced; choose another --out", o->target,
-                         foreign ? foreign_name : "files",
-                         foreign ? ", which a fourbar run does not write" : " but no summary.json");
+      return fb_diag_set(diag, FB_ERR_ARG, "--out %s: holds '%s', %s: a run keeps every file of its "
+                         "folder that no run wrote, and can keep regular files only, so it will "
+                         "not be replaced; move it, or choose another --out", o->target, odd_name,
+                         odd);
+    }
+    if (replace && other && !manifest && !summary) {
+      closedir(d);
+      return fb_diag_set(diag, FB_ERR_ARG, "--out %s: holds '%s' but neither %s nor summary.json: not a "
+                         "fourbar run's result folder, so it will not be replaced; choose another "
+                         "--out", o->target, other_name, FB_MANIFEST_NAME);
     }
     rewinddir(d);
     while ((e = readdir(d))) {
@@ -365,22 +392,30 @@ static fb_status check_target(const char *dir, const char *target, const char *p
     char to[PATH_MAX];
     const ssize_t n = readlink(given, to, sizeof to - 1);
     to[n > 0 ? n : 0] = '\0';
-    return fb_diag_set(diag, FB_ERR_IO, "%s: a symbolic link to '%s', which does not exist; "
+    return fb_diag_set(diag, FB_ERR_ARG, "--out %s: a symbolic link to '%s', which does not exist; "
                        "create that folder or choose another --out", dir, to);
   }
   if (stat(target, &sb) != 0) return FB_OK;
-  if (!S_ISDIR(sb.st_mode))
-    return fb_diag_set(diag, FB_ERR_IO, "%s: not a folder; choose another --out", dir);
+  if (!S_ISDIR(sb.st_mode)) {
+    struct stat lb;
+    const int link = lstat(given, &lb) == 0 && S_ISLNK(lb.st_mode);
+    return fb_diag_set(diag, FB_ERR_ARG, "--out %s: %s, not a folder: --out names the folder the "
+                       "results go to, and fourbar never replaces a file, a link, a FIFO or a "
+                       "device with a folder: choose another --out", dir,
+                       link ? "a symbolic link to a file" : S_ISREG(sb.st_mode) ? "a file"
+                       : S_ISFIFO(sb.st_mode) ? "a FIFO" : S_ISCHR(sb.st_mode) || S_ISBLK(sb.st_mode)
+                       ? "a device" : "not a regular file");
+  }
   if (!replace) return FB_OK;
   if (stat(parent, &pb) == 0 && pb.st_dev != sb.st_dev)
-    return fb_diag_set(diag, FB_ERR_IO, "%s: a mount point; a run replaces its output folder whole, "
+    return fb_diag_set(diag, FB_ERR_ARG, "--out %s: a mount point; a run replaces its output folder whole, "
                        "which cannot be done to a mount point: give a folder inside it, e.g. "
                        "--out %s/run", dir, dir);
   char cwd[PATH_MAX];
   if (getcwd(cwd, sizeof cwd)) {
     const size_t t = strlen(target);
     if (strncmp(cwd, target, t) == 0 && (cwd[t] == '\0' || cwd[t] == '/'))
-      return fb_diag_set(diag, FB_ERR_IO, "%s: the current folder%s; a run replaces its output "
+      return fb_diag_set(diag, FB_ERR_ARG, "--out %s: the current folder%s; a run replaces its output "
                          "folder whole, which would leave this shell in a removed folder: give a "
                          "new folder, e.g. --out %s/run", dir, cwd[t] ? " is inside it" : "",
                          strcmp(dir, ".") == 0 ? "." : dir);
@@ -406,10 +441,20 @@ fb_status fb_lock_take(const char *lock_path, const char *name, const char *what
 /* take_lock for a lock guarding what (of dir), fix said after "wait for it to finish" */
 static fb_status take_lock_of(const char *path, const char *dir, const char *what,
                               const char *fix, int exclusive, int *out_fd, fb_diag *diag) {
-  int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  /* the lock file is truncated to hold this PID: never through a link, never
+   * a FIFO or a device */
+  int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+  struct stat sb;
+  if (fd >= 0 && (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode))) {
+    close(fd);
+    fd = -1;
+    errno = EINVAL;
+  }
   if (fd < 0)
     return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create the lock %s: %s", dir, path,
-                       strerror(errno));
+                       errno == ELOOP || errno == EINVAL ? "not a regular file (a link, a FIFO "
+                       "or a device): fourbar writes its lock only into a file of its own"
+                                                         : strerror(errno));
   if (flock(fd, (exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0) {
     const int e = errno;
     char pid[32] = "";
@@ -481,8 +526,95 @@ fb_status fb_outdir_stage(fb_outdir *o, fb_diag *diag) {
   return FB_OK;
 }
 
+/* 1 when dir holds an entry called name */
+static int holds(const char *dir, const char *name) {
+  char path[FB_OUTDIR_PATH + NAME_MAX + 2];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  struct stat sb;
+  return lstat(path, &sb) == 0;
+}
+
+/* adds name to o's note of kept files */
+static void note_kept(fb_outdir *o, const char *name) {
+  const size_t l = strlen(o->kept);
+  if (o->kept_n++ < 8)
+    snprintf(o->kept + l, sizeof o->kept - l, "%s%s", l ? ", " : "", name);
+  else if (o->kept_n == 9)
+    snprintf(o->kept + l, sizeof o->kept - l, ", ...");
+}
+
+/* The staging folder's files are this run's: the new manifest lists them as
+ * the run's. Every regular file of the old folder that its manifest does not
+ * list as a run's is kept: hard-linked into the staging folder (the same
+ * file, not a copy), with its manifest line when another command wrote it.
+ * A folder without a manifest (an older fourbar's) proves nothing: its files
+ * are kept too, but one that this run writes again by name (summary.json,
+ * a model's CSV) is taken for the older run's and replaced. A file no run
+ * wrote that this run would write by the same name stops the commit: the
+ * folder is left as it was. With no old folder, only the manifest is
+ * written. */
+static fb_status carry_over(fb_outdir *o, fb_diag *diag) {
+  fb_manifest old, now;
+  memset(&now, 0, sizeof now);
+  if (fb_manifest_read(&old, o->target) != 0)
+    return fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory for its manifest", o->target);
+  o->legacy = !old.present && holds(o->target, "summary.json");
+  fb_status st = FB_OK;
+  DIR *d = opendir(o->stage);
+  struct dirent *e;
+  while (d && st == FB_OK && (e = readdir(d)))
+    if (e->d_name[0] != '.' || strcmp(e->d_name, ".gnuplot.log") == 0)
+      if (!fb_outdir_temp_pid(e->d_name) && fb_manifest_set(&now, "run", e->d_name) != 0)
+        st = fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory for its manifest", o->target);
+  if (d) closedir(d);
+  d = opendir(o->target);
+  while (d && st == FB_OK && (e = readdir(d))) {
+    const char *name = e->d_name;
+    if (strcmp(name, ".") == 0 || strcmp(name, "..") == 0 || strcmp(name, FB_MANIFEST_NAME) == 0 ||
+        fb_outdir_temp_pid(name))
+      continue;
+    const char *owner = fb_manifest_owner(&old, name);
+    if (owner && strcmp(owner, "run") == 0) continue; /* an earlier run's: replaced */
+    char from[FB_OUTDIR_PATH + NAME_MAX + 2], to[FB_OUTDIR_PATH + NAME_MAX + 2];
+    snprintf(from, sizeof from, "%s/%s", o->target, name);
+    snprintf(to, sizeof to, "%s/%s", o->stage, name);
+    struct stat sb;
+    if (lstat(from, &sb) != 0) continue;
+    if (holds(o->stage, name)) {
+      if (o->legacy && !owner && S_ISREG(sb.st_mode)) continue; /* the older run's, by its name */
+      if (owner && strcmp(name, ".gnuplot.log") == 0) continue; /* one log, any figure's */
+      st = fb_diag_set(diag, FB_ERR_IO, "%s: holds '%s', which %s, and this run writes a file of "
+                       "that name: nothing of the folder replaced; move '%s' and run again, or "
+                       "choose another --out", o->target, name,
+                       owner ? "another fourbar command wrote" : "no fourbar run wrote", name);
+    } else if (!S_ISREG(sb.st_mode)) {
+      st = fb_diag_set(diag, FB_ERR_IO, "%s: '%s' appeared while the run ran and is not a regular "
+                       "file: nothing of the folder replaced", o->target, name);
+    } else if (link(from, to) != 0) {
+      st = fb_diag_set(diag, FB_ERR_IO, "%s: cannot keep '%s' (which no run wrote) beside the new "
+                       "results: %s; nothing of the folder replaced", o->target, name,
+                       strerror(errno));
+    } else if (owner) {
+      if (fb_manifest_set(&now, owner, name) != 0)
+        st = fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory for its manifest", o->target);
+    } else if (strcmp(name, ".gnuplot.log") != 0) {
+      note_kept(o, name);
+    }
+  }
+  if (d) closedir(d);
+  if (st == FB_OK) st = fb_manifest_write(&now, o->stage, diag);
+  fb_manifest_free(&old);
+  fb_manifest_free(&now);
+  return st;
+}
+
 fb_status fb_outdir_commit(fb_outdir *o, fb_diag *diag) {
   struct stat sb;
+  o->kept[0] = '\0';
+  o->kept_n = 0;
+  o->legacy = 0;
+  const fb_status cst = carry_over(o, diag); /* also into a folder that is not there yet */
+  if (cst != FB_OK) return cst;
   if (stat(o->target, &sb) != 0) {
     if (rename(o->stage, o->target) != 0)
       return fb_diag_set(diag, FB_ERR_IO, "%s: cannot move the results into place: %s", o->target,

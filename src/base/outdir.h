@@ -15,10 +15,17 @@
  * A run then writes its whole result set into a staging folder beside the
  * target and swaps it in at the end (renameat2 RENAME_EXCHANGE, then the old
  * set is removed): until the swap the old set stays whole, after it only the
- * new set is there. A folder that is not a fourbar result folder (it holds
- * a subfolder, a dot-file other than .gnuplot.log, a file of another kind,
- * or files but no summary.json) is never replaced; neither is a mount point
- * or the current folder, and a symbolic link to nothing is refused.
+ * new set is there. What is a run's is recorded, never guessed: the staging
+ * folder gets the folder's manifest (manifest.h), listing this run's files;
+ * the old folder's files that its manifest does not list as a run's (a
+ * user's measured.csv, a sweep's points.jsonl, a bench.json) are kept,
+ * hard-linked into the new set. A folder an older fourbar wrote (summary.json
+ * but no manifest) has its files kept likewise, but for those this run
+ * writes again by name. A folder that is not a fourbar result folder (files
+ * but neither a manifest nor summary.json), or that holds a subfolder, a
+ * link or another node a run cannot keep, is never replaced; neither is a
+ * mount point or the current folder, and a symbolic link to nothing is
+ * refused.
  *
  * On SIGINT, SIGTERM and SIGHUP the staging folder and registered temporary
  * files of this process are removed (async-signal-safe code only), a note
@@ -40,6 +47,10 @@ typedef struct {
   char lock[FB_OUTDIR_PATH];   /* lock file beside it */
   int lock_fd;                 /* open lock file .<name>.lock, -1 when not held */
   int tag_fd;                  /* open lock file .<name>.<tag>.lock of a part, -1 for none */
+  char kept[1024];             /* after fb_outdir_commit: the kept files no fourbar command
+                                  wrote, ", "-separated (the first 8, then "...") */
+  int kept_n;                  /* how many */
+  int legacy;                  /* 1: the old folder had no manifest (an older fourbar's) */
 } fb_outdir;
 
 /* Creates the parent folders of dir, takes the lock and cleans a killed
@@ -48,8 +59,12 @@ typedef struct {
  * creates dir. tag (NULL for the whole folder) names a part of the folder
  * that writers of other parts may write at the same time (a sweep shard's
  * files): the lock file is then .<name>.<tag>.lock.
- * Errors: FB_ERR_IO naming the folder (and the holder's PID when another
- * process holds the lock). */
+ * Errors: FB_ERR_ARG for a path the user cannot mean as an output folder
+ * (empty, a file, a link to nothing, a FIFO or device, a mount point or
+ * the current folder for a replacing writer, a folder that is not a result
+ * folder or holds what a run cannot keep: bad input, exit status 2), each
+ * naming --out, the path and the rule; FB_ERR_IO naming the folder for the
+ * rest (the holder's PID when another process holds the lock). */
 fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char *tag,
                          fb_diag *diag);
 
@@ -71,8 +86,11 @@ long fb_outdir_temp_pid(const char *name);
  * signal. Errors: FB_ERR_IO naming it. */
 fb_status fb_outdir_stage(fb_outdir *o, fb_diag *diag);
 
-/* Swaps the staging folder in as the target and removes the old set.
- * Errors: FB_ERR_IO (the old set is then untouched). */
+/* Writes the folder's manifest into the staging folder (its files as the
+ * run's), keeps the old folder's files that no run wrote (o->kept names
+ * those no fourbar command wrote), swaps the staging folder in as the
+ * target and removes the old set. Errors: FB_ERR_IO (the old set is then
+ * untouched), among them a file no run wrote whose name this run writes. */
 fb_status fb_outdir_commit(fb_outdir *o, fb_diag *diag);
 
 /* Removes the staging folder if still there and releases the lock. */

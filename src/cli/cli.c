@@ -180,6 +180,11 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
   } else {
     snprintf(path, path_size, "%s/paper_crank_rocker.ini", fb_cli_cases_dir());
   }
+  return fb_cli_case_file(cmd, path, sets, nsets, c);
+}
+
+int fb_cli_case_file(const char *cmd, const char *path, const char *const *sets, int nsets,
+                     struct fb_case_s *c) {
   fb_diag d;
   if (fb_casefile_load(c, path, sets, nsets, &d) != FB_OK) return fb_cli_fail(cmd, 2, "%s", d.msg);
   /* values within the rules yet unlikely to be meant: said, and run as given */
@@ -187,6 +192,27 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
   const int n = fb_casefile_plausibility(c, notes, 8);
   for (int i = 0; i < n; i++) fprintf(stderr, "fourbar %s: warning: %s: %s\n", cmd, path, notes[i]);
   return 0;
+}
+
+int fb_cli_getopt(int argc, char **argv, const char *shortopts, const struct option *opts) {
+  int which = -1;
+  const int ch = getopt_long(argc, argv, shortopts, opts, &which);
+  if (ch == -1 || ch == '?' || which < 0) return ch;
+  /* the word given: "--name" or "--name=value", at optind - 1, or at
+   * optind - 2 when its value was the next word */
+  int at = optind - 1;
+  if (optarg && at > 0 && optarg == argv[at]) at--;
+  const char *word = argv[at];
+  if (strncmp(word, "--", 2) == 0) {
+    const size_t n = strcspn(word + 2, "=");
+    if (strlen(opts[which].name) != n || strncmp(opts[which].name, word + 2, n) != 0) {
+      /* a prefix of a longer option's name: refused, never taken for it */
+      optind = at + 1; /* fb_cli_bad_option reads the word at optind - 1 */
+      optopt = 0;
+      return '?';
+    }
+  }
+  return ch;
 }
 
 int fb_cli_bad_option(char **argv, const char *shortopts) {

@@ -9,6 +9,16 @@
 int fb_cli_fail(const char *cmd, int status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+struct option;
+
+/* getopt_long for every command, with one difference: a long option is
+ * taken only by its whole name. getopt_long accepts any unambiguous prefix
+ * (--no-figure for --no-figures), so that a misspelt or a future option
+ * would silently become another; here a prefix returns '?' with optopt 0,
+ * optind just past the word (fb_cli_bad_option then names it as an unknown
+ * option). Returns what getopt_long returns. */
+int fb_cli_getopt(int argc, char **argv, const char *shortopts, const struct option *opts);
+
 /* After getopt_long returned '?' (opterr is 0, main.c): prints one line,
  * "fourbar <cmd>: unknown option '--x' (fourbar <cmd> --help lists the
  * options)" or "...: option '--out' needs a value (...)", naming the option
@@ -36,6 +46,14 @@ const char *fb_cli_case_path(char *out, size_t size, const char *arg);
  * when more than one positional argument is given. */
 int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const char *const *sets,
                      int nsets, struct fb_case_s *c, char *path, size_t path_size);
+
+/* Loads the case file path with the --set overrides into c, the one way
+ * every command loads a case: on error prints "fourbar <cmd>: <diagnostic>"
+ * and returns exit status 2; else prints each plausibility warning
+ * (fb_casefile_plausibility: "fourbar <cmd>: warning: <path>: ...") and
+ * returns 0. */
+int fb_cli_case_file(const char *cmd, const char *path, const char *const *sets, int nsets,
+                     struct fb_case_s *c);
 
 /* Appends text to out (size bytes, NUL-terminated) as one word for a POSIX
  * shell: as is when it holds only letters, digits and _./=,:+@%-, else in

@@ -6,13 +6,16 @@
 
 #include "bench_study.h"
 #include "cli.h"
+#include "fileio.h"
 #include "figures.h"
+#include "peers.h"
 #include "report.h"
 
 #define MAX_SETS 256
 
 static const char bench_help[] =
-    "usage: fourbar bench [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
+    "usage: fourbar bench [CASE] [--out DIR [--overwrite]] [--json]\n"
+    "                     [--set section.key=value]...\n"
     "                     [--grid default|peers|all|solvers|colliders|bullet|\n"
     "                             simbody|frontier]\n"
     "\n"
@@ -61,7 +64,9 @@ static const char bench_help[] =
     "h = 1e-5, 3e-6, 1e-6 s and auto, the ideal rows at ERP 0.8 and 1, and the\n"
     "adaptive rows; docs/step-size.md). Writes DIR/bench.csv, bench.json and\n"
     "bench.svg (default DIR results/<case>-bench/, beside the run folder\n"
-    "results/<case>/, so that a run can still replace its own folder).\n"
+    "results/<case>/; a run into the same folder keeps them); an existing file of\n"
+    "those names that no fourbar bench wrote there is replaced only with --overwrite\n"
+    "(docs/outputs.md, What fourbar replaces).\n"
     "On a terminal a progress bar with the time left is drawn on stderr.\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
@@ -76,13 +81,14 @@ int fb_cmd_bench(int argc, char **argv) {
                                        {"set", required_argument, 0, 's'},
                                        {"json", no_argument, 0, 'j'},
                                        {"grid", required_argument, 0, 'g'},
+                                       {"overwrite", no_argument, 0, 'w'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out = NULL, *sets[MAX_SETS];
-  int nsets = 0, json = 0, ch, grids = FB_BENCH_DEFAULT | FB_BENCH_PEERS;
+  int nsets = 0, json = 0, overwrite = 0, ch, grids = FB_BENCH_DEFAULT | FB_BENCH_PEERS;
   const char *grid_name = "default";
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'o': out = optarg; break;
       case 's':
@@ -90,6 +96,7 @@ int fb_cmd_bench(int argc, char **argv) {
         sets[nsets++] = optarg;
         break;
       case 'j': json = 1; break;
+      case 'w': overwrite = 1; break;
       case 'g':
         grid_name = optarg;
         if (strcmp(optarg, "default") == 0) grids = FB_BENCH_DEFAULT | FB_BENCH_PEERS;
@@ -115,10 +122,25 @@ int fb_cmd_bench(int argc, char **argv) {
   char case_path[4096];
   int rc = fb_cli_load_case("bench", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
+  /* a grid that would measure nothing is refused, never run empty */
+  if (grids == FB_BENCH_PEERS && !fb_peers_build(c.mechanism))
+    return fb_cli_fail("bench", 2, "--grid peers: the bare programs it runs (tests/peers) build the "
+                       "four-bar only, and %s is a %s ([linkage] type = %s): nothing to measure; "
+                       "--grid default measures every engine's %s models", case_path,
+                       fb_case_mech(&c)->type, fb_case_mech(&c)->type, fb_case_mech(&c)->type);
   char dir[4096];
   if (out) snprintf(dir, sizeof dir, "%s", out);
   else snprintf(dir, sizeof dir, "results/%s-bench", c.name); /* beside, not inside, results/<case>/ */
+  /* its files: checked and the folder locked before any work (fileio.h) */
+  static const char *const names[] = {"bench.csv", "bench.json", "bench.svg", "bench.figure.json"};
+  const fb_outpath_rule rule = {.flag = "--out", .overwrite = overwrite, .input = case_path};
+  static fb_outfiles files;
+  fb_diag d;
+  fb_status st = fb_outfiles_begin(&files, dir, "bench", names, 4, &rule, &d);
+  if (st != FB_OK) return fb_cli_fail("bench", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
   const fb_bench_opts o = {.c = &c, .dir = dir, .grids = grids, .grid_name = grid_name,
                            .json = json, .write_json = fb_report_write_json, .draw = draw};
-  return fb_bench_study(&o);
+  rc = fb_bench_study(&o);
+  if (fb_outfiles_end(&files, &d) != FB_OK && !rc) rc = fb_cli_fail("bench", 1, "%s", d.msg);
+  return rc;
 }

@@ -49,7 +49,7 @@ int fb_cmd_check(int argc, char **argv) {
   const char *sets[MAX_SETS];
   int nsets = 0, update = 0, cal = 0, json = 0, jobs = 1, ch;
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'c': cases = optarg; break;
       case 's':

@@ -43,8 +43,14 @@ static const char params_help[] =
     "  --stiffness    k [N/m] (Hertz laws: K [N/m^n]); default 1e7\n"
     "  --exponent     n of the Hertz laws (default 1.5)\n"
     "  --restitution  cr: restitution law (0.135, 1], default 0.9; damped Hertz\n"
-    "                 laws (0, 1], default 0.9; hertz: optional\n"
-    "  --damping-n-s-m  c of the linear law [N s/m] (default 0)\n"
+    "                 laws (0, 1], default 0.9, where the law's own impact must\n"
+    "                 leave faster than e^-2 (flores: cr > 0.178, gonthier: cr >\n"
+    "                 0.133 at n = 1.5); lankarani-nikravesh and hunt-crossley\n"
+    "                 never leave slower than 0.66 and 0.49 (n = 1.5), whatever cr\n"
+    "                 (said when the law misses cr by more than 10 %); hertz:\n"
+    "                 optional\n"
+    "  --damping-n-s-m  c of the linear law [N s/m] (default 0), at most 500\n"
+    "                 times critical (c <= 1000 sqrt(k m))\n"
     "  --mass-kg      effective mass along the contact normal [kg], or a range A:B\n"
     "                 (rows designed at the geometric mean, verified at A, it, B);\n"
     "                 default 0.1\n"
@@ -99,7 +105,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
   const char *case_arg = NULL, *joint_arg = NULL;
   const char *P = "contact-params";
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'L':
         q.law = fb_law_parse(optarg);
@@ -152,8 +158,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
     fb_cli_case_path(case_path, sizeof case_path, case_arg);
     fb_case cs;
     fb_diag cd;
-    if (fb_casefile_load(&cs, case_path, NULL, 0, &cd) != FB_OK)
-      return fb_cli_fail(P, 2, "%s", cd.msg);
+    if (fb_cli_case_file(P, case_path, NULL, 0, &cs) != 0) return 2;
     if (joint_arg) {
       const fb_mech_desc *mech = fb_case_mech(&cs);
       char names[160] = "";
@@ -175,6 +180,7 @@ int fb_cmd_contact_params(int argc, char **argv) {
                            case_path, n);
     }
     if (joint >= 0) jname = fb_case_joint_name(&cs, joint);
+    q.case_path = case_path; /* messages name the case's keys, not flags never given */
     if (fb_cp_request_from_case(&q, &cs, joint, &cd) != FB_OK)
       return fb_cli_fail(P, 2, "--case %s: %s", case_path, cd.msg);
   }

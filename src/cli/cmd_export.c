@@ -11,7 +11,8 @@
 #include "fileio.h"
 
 static const char export_help[] =
-    "usage: fourbar export CASE --format mjcf|sdf [--ideal] [--out FILE]\n"
+    "usage: fourbar export CASE --format mjcf|sdf [--ideal]\n"
+    "                      [--out FILE [--overwrite]]\n"
     "\n"
     "The case's mechanism in a user's own model format, with its masses and\n"
     "inertias, the start, and each clearance joint as the contact the project\n"
@@ -31,11 +32,15 @@ static const char export_help[] =
     "  CASE       a case file, or a shipped case's name (paper_crank_rocker)\n"
     "  --format   mjcf or sdf\n"
     "  --ideal    the ideal mechanism (no clearance), whatever the case has\n"
-    "  --out      write FILE (whole, or not at all) instead of standard output\n"
-    "A slider-crank case ([linkage] type = slider-crank) is refused (exit 2): the\n"
-    "SDF world written is the four-bar's, and the MJCF's MuJoCo models do not\n"
-    "build a slider-crank yet.\n"
-    "Exit status: 0 ok, 2 bad input.\n";
+    "  --out      write FILE (whole, or not at all) instead of standard output;\n"
+    "             never a folder, a link, a FIFO, a device or the case file itself\n"
+    "  --overwrite  replace FILE when it exists (without it an existing FILE is\n"
+    "             refused, exit 2)\n"
+    "A slider-crank case ([linkage] type = slider-crank): mjcf writes its MuJoCo\n"
+    "model (bodies crank, coupler, slider; the slide slider-ground along +x; the\n"
+    "piston pin coupler-slider, as a tendon limit when it carries clearance); sdf\n"
+    "is refused (exit 2): the SDF world written is the four-bar's.\n"
+    "Exit status: 0 ok, 1 the file could not be written, 2 bad input.\n";
 
 /* generated text of the paper case: MJCF ~4 kB, SDF ~40 kB (a ring of 64
  * boxes per clearance joint) */
@@ -45,16 +50,18 @@ int fb_cmd_export(int argc, char **argv) {
   static const struct option opts[] = {{"format", required_argument, 0, 'f'},
                                        {"out", required_argument, 0, 'o'},
                                        {"ideal", no_argument, 0, 'i'},
+                                       {"overwrite", no_argument, 0, 'w'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *P = "export", *format = NULL, *out = NULL;
-  int ch, ideal = 0;
+  int ch, ideal = 0, overwrite = 0;
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'f': format = optarg; break;
       case 'o': out = optarg; break;
       case 'i': ideal = 1; break;
+      case 'w': overwrite = 1; break;
       case 'h': fputs(export_help, stdout); return 0;
       default: return fb_cli_fail(P, 2, "unknown option '%s'; see fourbar export --help",
                                   argv[optind - 1]);
@@ -66,11 +73,15 @@ int fb_cmd_export(int argc, char **argv) {
   const int sdf = strcmp(format, "sdf") == 0;
   if (!sdf && strcmp(format, "mjcf") != 0)
     return fb_cli_fail(P, 2, "--format '%s': must be mjcf or sdf", format);
+  if (overwrite && !out) return fb_cli_fail(P, 2, "--overwrite without --out: it replaces the file --out names");
   char path[4096];
   fb_cli_case_path(path, sizeof path, argv[optind]);
-  static fb_case cs;
+  /* the output path first: refused before any work (fileio.h) */
+  const fb_outpath_rule rule = {.flag = "--out", .overwrite = overwrite, .input = path};
   fb_diag d;
-  if (fb_casefile_load(&cs, path, NULL, 0, &d) != FB_OK) return fb_cli_fail(P, 2, "%s", d.msg);
+  if (out && fb_outpath_check(out, &rule, NULL, &d) != FB_OK) return fb_cli_fail(P, 2, "%s", d.msg);
+  static fb_case cs;
+  if (fb_cli_case_file(P, path, NULL, 0, &cs) != 0) return 2;
   char *text = malloc(EXPORT_SIZE);
   if (!text) return fb_cli_fail(P, 1, "out of memory");
   fb_status st = sdf ? fb_export_sdf(text, EXPORT_SIZE, &cs, ideal, &d)
@@ -86,7 +97,7 @@ int fb_cmd_export(int argc, char **argv) {
     return 0;
   }
   fb_outfile o;
-  if (fb_outfile_open(&o, out, &d) != FB_OK) {
+  if (fb_outfile_open_checked(&o, out, &rule, &d) != FB_OK) {
     free(text);
     return fb_cli_fail(P, 2, "%s", d.msg);
   }

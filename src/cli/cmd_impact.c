@@ -27,9 +27,11 @@ static const char impact_help[] =
     "  --stiffness    K [N/m^n] (k or penalty p [N/m] for linear, restitution);\n"
     "                 default 1e10\n"
     "  --exponent     n (default 1.5; 1 for linear and restitution)\n"
-    "  --restitution  target cr (default 0.9)\n"
-    "  --damping-n-s-m   c of the linear law, c_max of the impact law (default 0)\n"
-    "  --damping-depth-m d_max of the impact law (default 1e-5)\n"
+    "  --restitution  target cr (default 0.9); flores and gonthier: cr >= 0.001\n"
+    "                 (their damping factor grows as 1/cr)\n"
+    "  --damping-n-s-m   c of the linear law, c_max of the impact law (default 0;\n"
+    "                 at most 500 times critical damping; other laws: refused)\n"
+    "  --damping-depth-m d_max of the impact law (default 1e-5; other laws: refused)\n"
     "  --mass-kg      default 1;  --speed-m-s  impact speed, default 1\n"
     "  --h-s          ODE step; default: estimated contact duration / 200\n"
     "  --mapping      matched (default, as fourbar run: [clearance] mapping): ERP/CFM\n"
@@ -69,11 +71,12 @@ int fb_cmd_impact(int argc, char **argv) {
   d.stepper = FB_STEPPER_WORLD;
   d.quick_iterations = 20;
   d.mapping = FB_MAPPING_MATCHED; /* the case key's default: one default with fourbar run */
+  d.names = &fb_impact_flag_names; /* messages name the flags (impact.h) */
   double h = 0.0, q = 20, bt_iter = 100;
   fb_bullet_opts bt = fb_bullet_opts_default();
-  int json = 0, ch, exponent_given = 0;
+  int json = 0, ch, exponent_given = 0, damping_given = 0, depth_given = 0;
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'L':
         d.law.kind = fb_law_parse(optarg);
@@ -83,8 +86,8 @@ int fb_cmd_impact(int argc, char **argv) {
       case 'k': if (!fb_cli_double("impact", "--stiffness", optarg, &d.law.stiffness)) return 2; break;
       case 'n': if (!fb_cli_double("impact", "--exponent", optarg, &d.law.exponent)) return 2; exponent_given = 1; break;
       case 'e': if (!fb_cli_double("impact", "--restitution", optarg, &d.law.restitution)) return 2; break;
-      case 'c': if (!fb_cli_double("impact", "--damping-n-s-m", optarg, &d.law.damping)) return 2; break;
-      case 'd': if (!fb_cli_double("impact", "--damping-depth-m", optarg, &d.law.damping_depth)) return 2; break;
+      case 'c': if (!fb_cli_double("impact", "--damping-n-s-m", optarg, &d.law.damping)) return 2; damping_given = 1; break;
+      case 'd': if (!fb_cli_double("impact", "--damping-depth-m", optarg, &d.law.damping_depth)) return 2; depth_given = 1; break;
       case 'm': if (!fb_cli_double("impact", "--mass-kg", optarg, &d.mass)) return 2; break;
       case 'v': if (!fb_cli_double("impact", "--speed-m-s", optarg, &d.speed)) return 2; break;
       case 'H': if (!fb_cli_double("impact", "--h-s", optarg, &h)) return 2; break;
@@ -119,6 +122,15 @@ int fb_cmd_impact(int argc, char **argv) {
     }
   }
   if (optind < argc) return fb_cli_fail("impact", 2, "unexpected argument '%s'", argv[optind]);
+  /* a flag the law does not use is refused, never ignored */
+  if (damping_given && d.law.kind != FB_LAW_LINEAR && d.law.kind != FB_LAW_IMPACT)
+    return fb_cli_fail("impact", 2, "--damping-n-s-m with --law %s: only the linear law (its "
+                       "damper c) and the impact law (its c_max) take a damper; the %s law's "
+                       "damping follows from --restitution", fb_law_name(d.law.kind),
+                       fb_law_name(d.law.kind));
+  if (depth_given && d.law.kind != FB_LAW_IMPACT)
+    return fb_cli_fail("impact", 2, "--damping-depth-m with --law %s: only the impact law (its "
+                       "d_max) takes a damping depth", fb_law_name(d.law.kind));
   if (d.law.kind == FB_LAW_LINEAR || d.law.kind == FB_LAW_RESTITUTION) {
     if (exponent_given && d.law.exponent != 1.0)
       return fb_cli_fail("impact", 2, "--exponent %g: the %s law is linear (n = 1)",

@@ -127,7 +127,7 @@ int fb_cmd_kinematics(int argc, char **argv) {
   kin_flags fl = {-1, -1, 0};
   fb_branch branch = FB_BRANCH_OPEN;
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'a': if (!fb_cli_double("kinematics", "--crank-mm", optarg, &mm[FB_CRANK])) return 2; break;
       case 'b': if (!fb_cli_double("kinematics", "--coupler-mm", optarg, &mm[FB_COUPLER])) return 2; break;

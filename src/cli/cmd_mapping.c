@@ -8,6 +8,7 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "fileio.h"
 #include "contact.h"
 #include "figures.h"
 #include "mapping_grid.h"
@@ -17,7 +18,8 @@ static const char mapping_help[] =
     "usage: fourbar mapping [--mass-kg m] [--restitution cr]\n"
     "                       [--stiffness-n-m FROM:TO] [--h-s FROM:TO]\n"
     "                       [--per-decade N] [--mapping secant|matched]\n"
-    "                       [--out DIR] [--figure-format svg|png] [--json]\n"
+    "                       [--out DIR [--overwrite]] [--figure-format svg|png]\n"
+    "                       [--json]\n"
     "\n"
     "ERP and CFM (secant: ERP = h k / (h k + c), CFM = 1 / (h k + c)) of a contact\n"
     "spring k [N/m] with the restitution law's damper c = 2 zeta sqrt(k m) (zeta\n"
@@ -44,11 +46,33 @@ static const char mapping_help[] =
     "  --figure-format  svg (default) or png\n"
     "  --out DIR        also write DIR/mapping.csv and DIR/mapping.svg (ERP map with\n"
     "                   the h omega = 1 and ERP = 0.1, 0.99 contours)\n"
+    "  --overwrite      replace those files when no fourbar mapping wrote them\n"
+    "                   (without it such a file is refused, exit 2)\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static int parse_range(const char *t, double *a, double *b) {
   char tail;
   return sscanf(t, "%lf:%lf%c", a, b, &tail) == 2 && *a > 0 && *b > *a && isfinite(*b);
+}
+
+/* the grid, its table and files; returns the exit status */
+static int mapping_out(double m, double cr, double k0, double k1, double h0, double h1, double per,
+                       fb_mapping mapping, int json, const char *out, fb_figure_format fmt) {
+  fb_diag rd;
+  static fb_mapping_grid g;
+  if (fb_mapping_grid_make(&g, m, cr, k0, k1, h0, h1, per, mapping, &rd) != FB_OK)
+    return fb_cli_fail("mapping", 2, "%s", rd.msg);
+  if (json) fb_report_mapping_json(stdout, &g);
+  else fb_report_mapping_text(stdout, &g);
+  if (out) {
+    char figure[4096];
+    fb_diag d, fd;
+    if (fb_report_mapping_files(out, fmt, &g, figure, sizeof figure, &fd, &d) != FB_OK)
+      return fb_cli_fail("mapping", 1, "%s", d.msg);
+    if (!figure[0]) fprintf(stderr, "fourbar mapping: warning: %s\n", fd.msg);
+    else if (!json) printf("\nwrote %s/mapping.csv and %s\n", out, figure);
+  }
+  return 0;
 }
 
 int fb_cmd_mapping(int argc, char **argv) {
@@ -58,6 +82,7 @@ int fb_cmd_mapping(int argc, char **argv) {
                                        {"h-s", required_argument, 0, 't'},
                                        {"per-decade", required_argument, 0, 'p'},
                                        {"out", required_argument, 0, 'o'},
+                                       {"overwrite", no_argument, 0, 'w'},
                                        {"json", no_argument, 0, 'j'},
                                        {"figure-format", required_argument, 0, 'f'},
                                        {"mapping", required_argument, 0, 'M'},
@@ -66,10 +91,10 @@ int fb_cmd_mapping(int argc, char **argv) {
   fb_figure_format fmt = FB_FIGURE_SVG;
   double m = 0.12 * 0.29 / (0.12 + 0.29), cr = 0.9, k0 = 1e5, k1 = 1e12, h0 = 1e-7, h1 = 1e-3, per = 1;
   const char *out = NULL;
-  int json = 0, ch;
+  int json = 0, ch, overwrite = 0;
   fb_mapping mapping = FB_MAPPING_MATCHED; /* the case key's default, as runs */
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'm': if (!fb_cli_double("mapping", "--mass-kg", optarg, &m)) return 2; break;
       case 'e': if (!fb_cli_double("mapping", "--restitution", optarg, &cr)) return 2; break;
@@ -83,6 +108,7 @@ int fb_cmd_mapping(int argc, char **argv) {
         break;
       case 'p': if (!fb_cli_double("mapping", "--per-decade", optarg, &per)) return 2; break;
       case 'o': out = optarg; break;
+      case 'w': overwrite = 1; break;
       case 'j': json = 1; break;
       case 'f':
         if (strcmp(optarg, "svg") == 0) fmt = FB_FIGURE_SVG;
@@ -114,18 +140,16 @@ int fb_cmd_mapping(int argc, char **argv) {
                        cr, FB_RESTITUTION_MIN);
   if (!(per >= 1 && per <= 10 && per == floor(per)))
     return fb_cli_fail("mapping", 2, "--per-decade %g: an integer from 1 to 10", per);
-  static fb_mapping_grid g;
-  if (fb_mapping_grid_make(&g, m, cr, k0, k1, h0, h1, per, mapping, &rd) != FB_OK)
-    return fb_cli_fail("mapping", 2, "%s", rd.msg);
-  if (json) fb_report_mapping_json(stdout, &g);
-  else fb_report_mapping_text(stdout, &g);
+  /* its files: checked and the folder locked before any work (fileio.h) */
+  const char *const names[2] = {"mapping.csv", fmt == FB_FIGURE_PNG ? "mapping.png" : "mapping.svg"};
+  const fb_outpath_rule rule = {.flag = "--out", .overwrite = overwrite};
+  static fb_outfiles files;
   if (out) {
-    char figure[4096];
-    fb_diag d, fd;
-    if (fb_report_mapping_files(out, fmt, &g, figure, sizeof figure, &fd, &d) != FB_OK)
-      return fb_cli_fail("mapping", 1, "%s", d.msg);
-    if (!figure[0]) fprintf(stderr, "fourbar mapping: warning: %s\n", fd.msg);
-    else if (!json) printf("\nwrote %s/mapping.csv and %s\n", out, figure);
+    const fb_status ost = fb_outfiles_begin(&files, out, "mapping", names, 2, &rule, &rd);
+    if (ost != FB_OK) return fb_cli_fail("mapping", ost == FB_ERR_ARG ? 2 : 1, "%s", rd.msg);
   }
-  return 0;
+  const int rc = mapping_out(m, cr, k0, k1, h0, h1, per, mapping, json, out, fmt);
+  if (out && fb_outfiles_end(&files, &rd) != FB_OK && !rc)
+    return fb_cli_fail("mapping", 1, "%s", rd.msg);
+  return rc;
 }

@@ -21,7 +21,8 @@
 static const char penalty_help[] =
     "usage: fourbar penalty [CASE] [--mode paper|physical]\n"
     "                       [--speeds-rpm LIST | --table]\n"
-    "                       [--set section.key=value]... [--json] [--out DIR]\n"
+    "                       [--set section.key=value]... [--json]\n"
+    "                       [--out DIR [--overwrite]]\n"
     "\n"
     "Contact stiffness Kc (paper Eq. 7), penalty parameter P = Kc C^1.5 (Eq. 9)\n"
     "and mutual approach at the case's crank speed (or per speed of a list), for\n"
@@ -41,6 +42,8 @@ static const char penalty_help[] =
     "  --out DIR        also write DIR/penalty_<mode>.csv and the figure\n"
     "                   DIR/penalty_<mode>.svg (force, stiffness, penalty, approach\n"
     "                   against speed: the paper's Figures 2 to 4)\n"
+    "  --overwrite      replace those files when no fourbar penalty wrote them\n"
+    "                   (without it such a file is refused, exit 2)\n"
     "  CASE             default: the paper's case\n"
     "P is printed in both units, N mm^0.5 (the paper's Table II) and N m^0.5\n"
     "(SI): columns penalty_n_mm0_5 and penalty_n_m0_5 in every mode.\n"
@@ -78,6 +81,32 @@ static int parse_speeds(const char *text, double *out, int *n) {
   return *n > 0;
 }
 
+/* the study, its table, files and contact block; returns the exit status */
+static int penalty_out(const fb_case *c, fb_penalty_mode mode, const double *rpm, int n, int json,
+                       const char *out_dir) {
+  fb_diag diag;
+  static fb_penalty_study ps;
+  fb_penalty_study_run(&ps, c, mode, rpm, n);
+  if (!json) fb_report_penalty_table(stdout, &ps, c);
+  if (ps.rows_status != FB_OK) return fb_cli_fail("penalty", 1, "%s", ps.rows_msg);
+  if (out_dir && ps.rows_skipped) {
+    fprintf(stderr, "fourbar penalty: warning: --out %s: no table to write (%s mode, a %s)\n",
+            out_dir, mode == FB_PENALTY_PAPER ? "paper" : "physical", fb_case_mech(c)->type);
+  } else if (out_dir) {
+    int figure_ok;
+    fb_diag fd;
+    if (fb_report_penalty_files(out_dir, &ps, &figure_ok, &fd, &diag) != FB_OK)
+      return fb_cli_fail("penalty", 1, "%s", diag.msg);
+    const char *mname = mode == FB_PENALTY_PAPER ? "paper" : "physical";
+    if (!figure_ok) fprintf(stderr, "fourbar penalty: warning: %s\n", fd.msg);
+    else if (!json) printf("wrote %s/penalty_%s.csv and penalty_%s.svg\n", out_dir, mname, mname);
+  }
+  if (ps.contact_status != FB_OK) return fb_cli_fail("penalty", 1, "%s", ps.contact_msg);
+  if (json) fb_report_penalty_json(stdout, &ps, c);
+  else fb_report_penalty_contact_text(stdout, &ps);
+  return 0;
+}
+
 int fb_cmd_penalty(int argc, char **argv) {
   static const struct option opts[] = {{"mode", required_argument, 0, 'm'},
                                        {"speeds-rpm", required_argument, 0, 's'},
@@ -85,16 +114,17 @@ int fb_cmd_penalty(int argc, char **argv) {
                                        {"set", required_argument, 0, 'S'},
                                        {"json", no_argument, 0, 'j'},
                                        {"out", required_argument, 0, 'o'},
+                                       {"overwrite", no_argument, 0, 'w'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   int mode_given = 0;
   fb_penalty_mode mode = FB_PENALTY_PHYSICAL;
   static double rpm[MAX_SPEEDS];
-  int n = 0, json = 0, nsets = 0, ch, speeds_given = 0;
+  int n = 0, json = 0, nsets = 0, ch, speeds_given = 0, overwrite = 0;
   const char *out_dir = NULL;
   const char *sets[MAX_SETS];
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'm':
         if (strcmp(optarg, "paper") == 0) mode = FB_PENALTY_PAPER;
@@ -129,6 +159,7 @@ int fb_cmd_penalty(int argc, char **argv) {
         break;
       case 'j': json = 1; break;
       case 'o': out_dir = optarg; break;
+      case 'w': overwrite = 1; break;
       case 'h': fputs(penalty_help, stdout); return 0;
       default: return fb_cli_bad_option(argv, "h");
     }
@@ -148,26 +179,19 @@ int fb_cmd_penalty(int argc, char **argv) {
     n = 1;
   }
 
-  if (out_dir && fb_outdir_prepare(out_dir, &diag) != FB_OK)
-    return fb_cli_fail("penalty", 1, "%s", diag.msg);
-  static fb_penalty_study ps;
-  fb_penalty_study_run(&ps, &c, mode, rpm, n);
-  if (!json) fb_report_penalty_table(stdout, &ps, &c);
-  if (ps.rows_status != FB_OK) return fb_cli_fail("penalty", 1, "%s", ps.rows_msg);
-  if (out_dir && ps.rows_skipped) {
-    fprintf(stderr, "fourbar penalty: warning: --out %s: no table to write (%s mode, a %s)\n",
-            out_dir, mode == FB_PENALTY_PAPER ? "paper" : "physical", fb_case_mech(&c)->type);
-  } else if (out_dir) {
-    int figure_ok;
-    fb_diag fd;
-    if (fb_report_penalty_files(out_dir, &ps, &figure_ok, &fd, &diag) != FB_OK)
-      return fb_cli_fail("penalty", 1, "%s", diag.msg);
-    const char *mname = mode == FB_PENALTY_PAPER ? "paper" : "physical";
-    if (!figure_ok) fprintf(stderr, "fourbar penalty: warning: %s\n", fd.msg);
-    else if (!json) printf("wrote %s/penalty_%s.csv and penalty_%s.svg\n", out_dir, mname, mname);
+  /* its files: checked and the folder locked before any work (fileio.h) */
+  char csv[32], svg[32];
+  snprintf(csv, sizeof csv, "penalty_%s.csv", mode == FB_PENALTY_PAPER ? "paper" : "physical");
+  snprintf(svg, sizeof svg, "penalty_%s.svg", mode == FB_PENALTY_PAPER ? "paper" : "physical");
+  const char *const names[2] = {csv, svg};
+  const fb_outpath_rule rule = {.flag = "--out", .overwrite = overwrite, .input = case_path};
+  static fb_outfiles files;
+  if (out_dir) {
+    fb_status ost = fb_outfiles_begin(&files, out_dir, "penalty", names, 2, &rule, &diag);
+    if (ost != FB_OK) return fb_cli_fail("penalty", ost == FB_ERR_ARG ? 2 : 1, "%s", diag.msg);
   }
-  if (ps.contact_status != FB_OK) return fb_cli_fail("penalty", 1, "%s", ps.contact_msg);
-  if (json) fb_report_penalty_json(stdout, &ps, &c);
-  else fb_report_penalty_contact_text(stdout, &ps);
-  return 0;
+  rc = penalty_out(&c, mode, rpm, n, json, out_dir);
+  if (out_dir && fb_outfiles_end(&files, &diag) != FB_OK && !rc)
+    return fb_cli_fail("penalty", 1, "%s", diag.msg);
+  return rc;
 }

@@ -209,7 +209,7 @@ int fb_cmd_run(int argc, char **argv) {
   int nsets = 0, json = 0, figures = 1, html = 1, ch;
   fb_figure_format fmt = FB_FIGURE_SVG;
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "o:s:jh", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "o:s:jh", opts)) != -1) {
     switch (ch) {
       case 'o': out_dir = optarg; break;
       case 's':
@@ -282,6 +282,7 @@ int fb_cmd_run(int argc, char **argv) {
   switch (fb_run_into_folder(&r, &job, &rc, &diag)) {
     case FB_RUN_FOLDER_OK: break;
     case FB_RUN_FOLDER_DIR: return fb_cli_fail("run", 1, "%s", diag.msg);
+    case FB_RUN_FOLDER_BAD: return fb_cli_fail("run", 2, "%s", diag.msg);
     case FB_RUN_FOLDER_RUN: return fb_cli_fail("run", 1, "%s: %s", case_path, diag.msg); /* the file whose keys to fix */
     case FB_RUN_FOLDER_WRITE: return rc;
   }

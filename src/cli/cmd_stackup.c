@@ -91,7 +91,7 @@ int fb_cmd_stackup(int argc, char **argv) {
   double samples = 10000, seed = 1, jobs = 1;
   const char *sets[MAX_SETS];
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'm':
         if (strcmp(optarg, "corners") == 0) mask |= FB_TOL_CORNERS;

@@ -42,7 +42,7 @@ int fb_cmd_fit(int argc, char **argv) {
       {"json", no_argument, 0, 'j'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
   int json = 0, ch;
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     if (ch == 'j') json = 1;
     else if (ch == 'h') { fputs(fit_help, stdout); return 0; }
     else { return fb_cli_bad_option(argv, "h"); }
@@ -96,7 +96,7 @@ int fb_cmd_tolerance(int argc, char **argv) {
   int json = 0, ch;
   const char *cls = NULL;
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     if (ch == 'c') cls = optarg;
     else if (ch == 'j') json = 1;
     else if (ch == 'h') { fputs(tol_help, stdout); return 0; }

@@ -21,7 +21,7 @@
 #include "sweep_run.h"
 
 static const char sweep_help[] =
-    "usage: fourbar sweep STUDY [--jobs J] [--shard I/N] [--out DIR]\n"
+    "usage: fourbar sweep STUDY [--jobs J] [--shard I/N] [--out DIR] [--overwrite]\n"
     "       fourbar sweep STUDY --list N [--out DIR]\n"
     "\n"
     "Runs every point of a study's grid (cases/studies/*.ini): one row per point in\n"
@@ -38,18 +38,22 @@ static const char sweep_help[] =
     "               (--shard $SLURM_ARRAY_TASK_ID/N) or GNU parallel\n"
     "  --list N     print the N shard commands, one per line, for GNU parallel\n"
     "  --restart    discard the rows already in DIR (of this shard) and start fresh\n"
-    "  --out DIR    default results/studies/<study name>\n"
+    "  --out DIR    default results/studies/<study name>; a run into DIR keeps the\n"
+    "               sweep's files (docs/outputs.md, What fourbar replaces)\n"
+    "  --overwrite  replace files of those names that no fourbar sweep wrote in DIR\n"
+    "               (without it such a file is refused, exit 2)\n"
     "Then: fourbar merge DIR... joins shard outputs, checking no point is missing\n"
     "or duplicated.\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static const char merge_help[] =
-    "usage: fourbar merge DIR... [--out DIR] [--study STUDY]\n"
+    "usage: fourbar merge DIR... [--out DIR] [--study STUDY] [--overwrite]\n"
     "\n"
     "Joins the points*.jsonl files of the given folders into OUT/points.jsonl and\n"
     "OUT/points.csv (default OUT: the first DIR), after checking that they belong to\n"
     "one study and that every point 0..N-1 is present exactly once. With --study\n"
-    "it also draws OUT/study.svg.\n"
+    "it also draws OUT/study.svg. Files of those names that no fourbar sweep or\n"
+    "merge wrote in OUT are replaced only with --overwrite.\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 /* --list N: the N shard commands, one per line, for GNU parallel */
@@ -82,14 +86,15 @@ int fb_cmd_sweep(int argc, char **argv) {
                                        {"out", required_argument, 0, 'o'},
                                        {"list", required_argument, 0, 'l'},
                                        {"restart", no_argument, 0, 'r'},
+                                       {"overwrite", no_argument, 0, 'w'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   long jobs = 1, shard_i = 0, shard_n = 1, list = 0;
-  int restart = 0;
+  int restart = 0, overwrite = 0;
   const char *out = NULL;
   int ch;
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     char *end;
     switch (ch) {
       case 'j':
@@ -108,6 +113,7 @@ int fb_cmd_sweep(int argc, char **argv) {
         break;
       case 'o': out = optarg; break;
       case 'r': restart = 1; break;
+      case 'w': overwrite = 1; break;
       case 'l':
         list = strtol(optarg, &end, 10);
         if (*end || list < 1 || list > 100000) return fb_cli_fail("sweep", 2, "--list '%s': 1 to 100000", optarg);
@@ -130,7 +136,7 @@ int fb_cmd_sweep(int argc, char **argv) {
   static char again[8192]; /* the command that resumes */
   fb_cli_command_line(again, sizeof again, argc, argv, "--restart");
   const fb_sweep_opts o = {.dir = dir, .jobs = jobs, .shard_i = shard_i, .shard_n = shard_n,
-                           .restart = restart, .again = again, .version = FB_VERSION,
+                           .restart = restart, .overwrite = overwrite, .again = again, .version = FB_VERSION,
                            .write_json = fb_report_write_json, .draw = fb_figures_study};
   return fb_sweep_run(&s, &o);
 }
@@ -138,13 +144,15 @@ int fb_cmd_sweep(int argc, char **argv) {
 int fb_cmd_merge(int argc, char **argv) {
   static const struct option opts[] = {{"out", required_argument, 0, 'o'},
                                        {"study", required_argument, 0, 's'},
+                                       {"overwrite", no_argument, 0, 'w'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out = NULL, *study_path = NULL;
-  int ch;
+  int ch, overwrite = 0;
   optind = 1;
-  while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+  while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     if (ch == 'o') out = optarg;
+    else if (ch == 'w') overwrite = 1;
     else if (ch == 's') study_path = optarg;
     else if (ch == 'h') { fputs(merge_help, stdout); return 0; }
     else { return fb_cli_bad_option(argv, "h"); }
@@ -154,6 +162,6 @@ int fb_cmd_merge(int argc, char **argv) {
   const fb_merge_opts o = {.dirs = argv + optind, .ndirs = argc - optind, .out = out,
                            .study_path = study_path, .cases_dir = fb_cli_cases_dir(),
                            .version = FB_VERSION, .write_json = fb_report_write_json,
-                           .draw = fb_figures_study};
+                           .draw = fb_figures_study, .overwrite = overwrite};
   return fb_sweep_merge(&o);
 }

@@ -10,40 +10,92 @@
 
 static int is_linear(fb_law_kind k) { return k == FB_LAW_LINEAR || k == FB_LAW_RESTITUTION; }
 
+const fb_impact_names fb_impact_flag_names = {"--stiffness", "--restitution", "--damping-n-s-m",
+                                               "--mass-kg", "--speed-m-s", "--h-s"};
+
+/* the word naming input w (a flag, a key) or the plain word */
+#define NAME(w, plain) (d->names && d->names->w ? d->names->w : (plain))
+
+/* the law's own rules, each naming its input */
+static fb_status law_check(const fb_impact_def *d, fb_diag *diag) {
+  const fb_contact_law *l = &d->law;
+  if (!(l->stiffness > 0.0) || !isfinite(l->stiffness))
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g: the stiffness must be positive and finite",
+                       NAME(stiffness, "stiffness ="), l->stiffness);
+  if (!(l->restitution > 0.0 && l->restitution <= 1.0))
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g: a coefficient of restitution lies in (0, 1]",
+                       NAME(restitution, "restitution ="), l->restitution);
+  if ((l->kind == FB_LAW_FLORES || l->kind == FB_LAW_GONTHIER) &&
+      l->restitution < FB_IMPACT_CR_MIN_DIVERGENT)
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g with the %s law: its damping factor (%s) grows "
+                       "as 1 / cr, and below cr = %g the impact no longer ends within the 100 "
+                       "contact durations it is followed for: give %s >= %g", NAME(restitution,
+                       "restitution ="), l->restitution, fb_law_name(l->kind),
+                       l->kind == FB_LAW_FLORES ? "8 (1 - cr) / (5 cr)" : "(1 - cr^2) / cr",
+                       FB_IMPACT_CR_MIN_DIVERGENT, NAME(restitution, "cr"),
+                       FB_IMPACT_CR_MIN_DIVERGENT);
+  if (!(l->damping >= 0.0) || !isfinite(l->damping))
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g: the damping must be >= 0 and finite (N s/m)",
+                       NAME(damping, "damping ="), l->damping);
+  if ((l->kind == FB_LAW_LINEAR || l->kind == FB_LAW_IMPACT) && l->damping > 0.0) {
+    /* the damper against the spring it acts with: the linear law's k, the
+     * IMPACT law's tangent stiffness n K d^(n-1) at d_max, where c_max acts */
+    const double k = l->kind == FB_LAW_LINEAR
+                         ? l->stiffness
+                         : l->exponent * l->stiffness * pow(l->damping_depth, l->exponent - 1.0);
+    const double c_max = FB_IMPACT_DAMPING_RATIO_MAX * 2.0 * sqrt(k * d->mass);
+    if (l->damping > c_max)
+      return fb_diag_set(diag, FB_ERR_RANGE, "%s %g: the damping ratio c / (2 sqrt(k m)) = %.3g "
+                         "(k = %.4g N/m, m = %g kg) passes %g: the damper would stop the body "
+                         "within m / c = %.3g s, under a thousandth of the spring's 1 / omega_c, "
+                         "where no step follows the contact: give %s <= %.4g N s/m",
+                         NAME(damping, "damping ="), l->damping,
+                         l->damping / (2.0 * sqrt(k * d->mass)), k, d->mass,
+                         FB_IMPACT_DAMPING_RATIO_MAX, d->mass / l->damping, NAME(damping, "c"),
+                         c_max);
+  }
+  return FB_OK;
+}
+
 fb_status fb_impact_check(const fb_impact_def *d, fb_diag *diag) {
-  fb_status st = fb_contact_law_check(&d->law, diag);
-  if (st != FB_OK) return st;
   if (!(d->mass >= FB_MASS_MIN_KG && d->mass <= FB_MASS_MAX_KG))
-    return fb_diag_set(diag, FB_ERR_RANGE, "mass = %g kg: must be positive, from %g kg to %g kg",
-                       d->mass, FB_MASS_MIN_KG, FB_MASS_MAX_KG);
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g: the mass must be positive, from %g kg to %g kg",
+                       NAME(mass, "mass ="), d->mass, FB_MASS_MIN_KG, FB_MASS_MAX_KG);
+  fb_status st = law_check(d, diag);
+  if (st == FB_OK) st = fb_contact_law_check(&d->law, diag); /* the rest, unnamed */
+  if (st != FB_OK) return st;
   if (!(d->speed > 0.0) || !isfinite(d->speed))
-    return fb_diag_set(diag, FB_ERR_RANGE, "speed = %g m/s: the impact speed must be positive",
-                       d->speed);
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g: the impact speed must be positive (m/s)",
+                       NAME(speed, "speed ="), d->speed);
   if (!(d->speed <= FB_IMPACT_SPEED_MAX_M_S))
-    return fb_diag_set(diag, FB_ERR_RANGE, "speed = %g m/s: the impact speed must be at most %g m/s "
-                       "(an elastic contact law does not hold beyond)", d->speed,
-                       FB_IMPACT_SPEED_MAX_M_S);
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g: the impact speed must be at most %g m/s "
+                       "(an elastic contact law does not hold beyond)", NAME(speed, "speed ="),
+                       d->speed, FB_IMPACT_SPEED_MAX_M_S);
   if (!(d->h > 0.0) || !isfinite(d->h))
-    return fb_diag_set(diag, FB_ERR_RANGE, "h = %g s: the step size must be positive", d->h);
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g: the step size must be positive (s)",
+                       NAME(h, "h ="), d->h);
   /* the contact the inputs make must be one a double can follow: a duration
    * and penetration that are finite and not vanishingly small */
   const double T = fb_impact_duration_estimate(d);
   if (!(T >= FB_IMPACT_DURATION_MIN_S && T <= FB_IMPACT_DURATION_MAX_S))
-    return fb_diag_set(diag, FB_ERR_RANGE, "stiffness = %g, mass = %g kg, speed = %g m/s give a "
-                       "contact lasting %g s, outside %g s to %g s: the contact law cannot be "
-                       "integrated there; bring stiffness, mass or speed nearer to a mechanism's",
-                       d->law.stiffness, d->mass, d->speed, T, FB_IMPACT_DURATION_MIN_S,
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g, %s %g kg, %s %g m/s give a contact lasting %g "
+                       "s, outside %g s to %g s: the contact law cannot be integrated there; bring "
+                       "stiffness, mass or speed nearer to a mechanism's",
+                       NAME(stiffness, "stiffness ="), d->law.stiffness, NAME(mass, "mass ="),
+                       d->mass, NAME(speed, "speed ="), d->speed, T, FB_IMPACT_DURATION_MIN_S,
                        FB_IMPACT_DURATION_MAX_S);
   /* the ODE impact runs for up to about the contact duration in steps of h */
   if (T / d->h > FB_IMPACT_MAX_STEPS)
-    return fb_diag_set(diag, FB_ERR_RANGE, "h = %g s: the contact lasts about %.3g s, so the impact "
-                       "would take about %.3g steps, more than %.0e: give h >= %.2g s", d->h, T,
-                       T / d->h, FB_IMPACT_MAX_STEPS, T / FB_IMPACT_MAX_STEPS);
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %g: the contact lasts about %.3g s, so the impact "
+                       "would take about %.3g steps of h, more than %.0e: give %s >= %.2g s",
+                       NAME(h, "h ="), d->h, T, T / d->h, FB_IMPACT_MAX_STEPS, NAME(h, "h"),
+                       T / FB_IMPACT_MAX_STEPS);
   if (d->quick_iterations < 1)
     return fb_diag_set(diag, FB_ERR_RANGE, "quick iterations = %d: must be >= 1",
                        d->quick_iterations);
   return FB_OK;
 }
+#undef NAME
 
 /* undamped power law: delta_max and duration */
 static void power_law_undamped(double k, double n, double m, double v0, double *dmax,

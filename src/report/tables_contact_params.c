@@ -137,10 +137,10 @@ void fb_report_cp_json(FILE *f, const fb_cp_result *o, const char *case_path, co
                                   "penetration_m", num(o->op_penetration)));
   json_object_set_new(c, "law_impact",
                       isnan(o->law_penetration) ? json_null()
-                      : json_pack("{s:o,s:o,s:o,s:f,s:o}", "restitution", num(o->law_restitution),
+                      : json_pack("{s:o,s:o,s:o,s:f,s:o,s:o}", "restitution", num(o->law_restitution),
                                   "penetration_max_m", num(o->law_penetration), "force_max_n",
                                   num(o->law_force), "mass_kg", o->m0, "linear_force_max_n",
-                                  num(o->lin_force)));
+                                  num(o->lin_force), "restitution_floor", num(o->law_floor)));
   json_object_set_new(j, "contact", c);
   json_object_set_new(j, "case", !joint ? json_null()
                                  : json_pack("{s:s,s:s,s:s}", "file", case_path, "joint",
@@ -299,6 +299,18 @@ void fb_report_cp_text(FILE *f, const fb_cp_result *o, const char *case_path, co
               q->stiffness, q->exponent, q->restitution, o->m0, q->speed, o->law_restitution,
               o->law_penetration, o->law_force, o->k, o->c, o->lin_force,
               100.0 * rel(o->lin_force, o->law_force));
+  if (q->law != FB_LAW_HERTZ && isfinite(o->law_penetration) &&
+      fabs(o->law_restitution - q->restitution) > FB_CP_LAW_NOTE_REL * q->restitution) {
+    /* the law's own restitution, not cr, is what the rows reproduce: said */
+    fprintf(f, "  (the %s law does not leave at the cr asked, %g, but at %.4g: its damper sets "
+              "the restitution only approximately, and the rows below reproduce %.4g",
+              fb_law_name(q->law), q->restitution, o->law_restitution, o->law_restitution);
+    if (isfinite(o->law_floor))
+      fprintf(f, "; its damping factor stays finite as cr -> 0, so no cr takes its restitution "
+                "below %.4g at exponent %g: for less, --law flores or gonthier", o->law_floor,
+                q->exponent);
+    fprintf(f, ")\n");
+  }
   if (o->damper_floored)
     fprintf(f, "  (undamped: an ODE row needs a finite CFM, so every row carries the damper of "
               "restitution %g, c = %.4g N s/m)\n", FB_CP_RESTITUTION_MAX, o->c);

@@ -32,6 +32,8 @@ typedef struct {
 typedef enum {
   FB_RUN_FOLDER_OK = 0, /* the set is in place; r holds the run (fb_run_free) */
   FB_RUN_FOLDER_DIR,    /* the folder could not be locked, staged or swapped in: diag says why */
+  FB_RUN_FOLDER_BAD,    /* the output path is one no run may write (outdir.h FB_ERR_ARG): bad
+                           input, diag says why */
   FB_RUN_FOLDER_RUN,    /* the case or a variant did not run: diag says why */
   FB_RUN_FOLDER_WRITE   /* the writer failed and said why (the exit status is its own) */
 } fb_run_folder_result;
@@ -40,10 +42,12 @@ typedef enum {
  * names on SIGINT, SIGTERM and SIGHUP what the folder keeps and the command
  * that runs it again (fb_cleanup_note: "fourbar run: stopped by SIG...:
  * <dir> keeps the results it held (nothing of this run was written); to run
- * it again: ..."; once swapped in, "<dir> holds this run's results, whole"),
+ * it again: ...", or "<dir> was not created" when there was none; once
+ * swapped in, "<dir> holds this run's results, whole"),
  * runs the case and its variants (fb_run_case, fb_run_variants), has
- * j->write write the set into the staging folder, swaps it in, and releases
- * the folder on every path. On FB_RUN_FOLDER_OK r holds the run; on any
+ * j->write write the set into the staging folder, swaps it in keeping the
+ * old folder's files no run wrote (said on stderr), and releases the folder
+ * on every path. On FB_RUN_FOLDER_OK r holds the run; on any
  * other result r is freed (and *write_rc, for FB_RUN_FOLDER_WRITE, is the
  * writer's exit status). */
 fb_run_folder_result fb_run_into_folder(fb_run *r, const fb_run_folder_job *j, int *write_rc,

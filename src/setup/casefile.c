@@ -770,10 +770,12 @@ int fb_casefile_plausibility(const fb_case *c, char notes[][FB_DIAG_SIZE], int m
     const key_spec *k = fb_casefile_spec(i);
     if (k->kind != K_DOUBLE || strcmp(k->unit, "mm") != 0 || !c->given[i]) continue;
     if (strcmp(k->section, "tolerance") == 0) continue; /* a tolerance is small by nature */
-    if (strcmp(k->key, "offset_mm") == 0) continue; /* a guide offset may be 0 or small */
     double v;
     memcpy(&v, (const char *)c + k->offset, sizeof v);
-    const char *why = fb_casefile_length_implausible(v);
+    /* a guide offset may be 0, small or negative: only its size above 10 m */
+    const int offset = strcmp(k->key, "offset_mm") == 0;
+    const char *why = fb_casefile_length_implausible(offset ? fabs(v) : v);
+    if (offset && fabs(v) < FB_PLAUSIBLE_LENGTH_MIN_M) why = NULL;
     const double mm = v / FB_M_PER_MM;
     if (why)
       snprintf(notes[n++], FB_DIAG_SIZE,

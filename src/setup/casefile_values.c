@@ -144,10 +144,18 @@ static fb_status parse_double(const entry *e, const key_spec *k, double *out, fb
   if (!isfinite(v))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': must be a finite number",
                        e->origin, e->section, e->key, e->value);
-  if (fb_casefile_underflows(e->value))
-    return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = '%s': below the smallest normal "
-                       "double (2.2e-308), so it would read as %g: give 0 or a larger number (%s)",
-                       e->origin, e->section, e->key, e->value, v, k->unit);
+  if (fb_casefile_underflows(e->value)) {
+    /* what to give instead is the key's own rule: 0 only where 0 is allowed */
+    const int zero_ok = (k->lo_open ? 0.0 > k->lo : 0.0 >= k->lo) &&
+                        (k->hi_open ? 0.0 < k->hi : 0.0 <= k->hi);
+    if (zero_ok)
+      return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = '%s': below the smallest normal "
+                         "double (2.2e-308), so it would read as %g: give 0 or a number of at "
+                         "least 2.2e-308 (%s)", e->origin, e->section, e->key, e->value, v, k->unit);
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = '%s': below the smallest normal double "
+                       "(2.2e-308), so it would read as %g, and %s", e->origin, e->section, e->key,
+                       e->value, v, k->rule);
+  }
   if (!fb_casefile_decimal(e->value, &v))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': numbers are decimal (digits, "
                        "sign, point, exponent), not hexadecimal (%s)", e->origin, e->section,
@@ -458,9 +466,23 @@ static fb_status apply_list(fb_case *c, const entry *e, const key_spec *k, void 
           const fb_mech_desc *mech = fb_case_mech(c);
           for (int q = 0; q < mech->njoints; q++)
             if (strcmp(tok, mech->joint[q].name) == 0) j = q;
-          if (j < 0)
-            return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: unknown joint '%s' (%s)",
-                               e->origin, e->section, e->key, tok, k->rule);
+          if (j < 0) { /* the case's own mechanism's joints, never another's */
+            char names[256] = "", pins[256] = "";
+            for (int q = 0; q < mech->njoints; q++) {
+              snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", q ? ", " : "",
+                       mech->joint[q].name);
+              if (mech->joint[q].clearance_ok)
+                snprintf(pins + strlen(pins), sizeof pins - strlen(pins), "%s%s",
+                         pins[0] ? ", " : "", mech->joint[q].name);
+            }
+            return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: '%s' is not a joint of a %s "
+                               "([linkage] type = %s), whose joints are %s; a clearance joint is "
+                               "one of %s (a comma list), or none", e->origin, e->section, e->key,
+                               tok, mech->type, mech->type, names, pins);
+          }
+          if (mask & (1 << j))
+            return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': names %s twice; give each "
+                               "joint once", e->origin, e->section, e->key, e->value, tok);
           mask |= 1 << j;
         }
       }

@@ -104,26 +104,80 @@ static void linear_contact(const fb_cp_request *r, double m0, double *k, double 
   }
 }
 
+/* cr standing for 0 in a law's impact as cr -> 0 (Lankarani-Nikravesh,
+ * Hunt-Crossley: their damping factors are finite there) */
+#define LAW_CR_ZERO 1e-9
+/* Flores and Gonthier at cr >= 0.5 leave at >= 0.47 (measured), far above
+ * e^-2: their smallest cr is searched only below */
+#define LAW_CR_CHECKED 0.5
+
+/* the restitution of the law's own impact at cr (scale-free: it depends on
+ * cr and the exponent n alone, so K, m and v are 1) */
+static double law_restitution_at(fb_law_kind law, double n, double cr) {
+  fb_impact_def d = impact_def(law, 1.0, n, 0.0, cr, 1.0, 1.0, 1.0);
+  fb_impact_result r;
+  fb_diag dg;
+  return fb_impact_reference(&r, &d, &dg) == FB_OK ? r.restitution : NAN;
+}
+
+/* Flores, Gonthier: the cr at which the law's own impact leaves at e^-2
+ * (FB_RESTITUTION_MIN), by bisection on [FB_IMPACT_CR_MIN_DIVERGENT,
+ * LAW_CR_CHECKED] to 1e-4 (the restitution rises with cr) */
+static double law_cr_min(fb_law_kind law, double n) {
+  double lo = FB_IMPACT_CR_MIN_DIVERGENT, hi = LAW_CR_CHECKED;
+  if (law_restitution_at(law, n, lo) > FB_RESTITUTION_MIN) return lo;
+  while (hi - lo > 1e-4) {
+    const double mid = 0.5 * (lo + hi);
+    if (law_restitution_at(law, n, mid) > FB_RESTITUTION_MIN) hi = mid;
+    else lo = mid;
+  }
+  return hi;
+}
+
+/* what names each input of q in a message: the flags, or the case's keys
+ * for a contact taken from a case (never a flag the user did not give) */
+static const fb_impact_names *request_names(const fb_cp_request *q) {
+  static const fb_impact_names from_case = {
+      "the case's contact stiffness ([clearance] keys)", "[clearance] restitution",
+      "--damping-n-s-m", "the joint's effective mass (from the case's [mass] keys and lengths)",
+      "--speed-m-s", "[solver] h_s"};
+  static fb_impact_names flags_h_case;
+  if (!q->case_path) return &fb_impact_flag_names;
+  if (q->h_from_case) return &from_case;
+  flags_h_case = from_case;
+  flags_h_case.h = "--h-s";
+  return &flags_h_case;
+}
+
 fb_status fb_cp_request_check(const fb_cp_request *q, fb_diag *diag) {
   const fb_law_kind law = q->law;
   if (!(law == FB_LAW_RESTITUTION || law == FB_LAW_LINEAR || is_hertz_family(law)))
     return fb_diag_set(diag, FB_ERR_ARG, "--law %s: must be restitution, linear, hertz, "
                        "lankarani-nikravesh, hunt-crossley, flores or gonthier", fb_law_name(law));
+  const fb_impact_names *names = request_names(q);
   if (!(q->stiffness > 0.0) || !isfinite(q->stiffness) || q->stiffness > 1e20)
-    return fb_diag_set(diag, FB_ERR_RANGE, "--stiffness %s: must be positive, at most 1e20 (N/m, "
-                       "or N/m^n for the Hertz laws)", FB_NUM(q->stiffness));
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %s: must be positive, at most 1e20 (N/m, "
+                       "or N/m^n for the Hertz laws)", names->stiffness, FB_NUM(q->stiffness));
   if (!(q->mass_min >= FB_MASS_MIN_KG) || !(q->mass_max >= q->mass_min) ||
       !isfinite(q->mass_max) || q->mass_max > FB_CP_MASS_RATIO_MAX * q->mass_min ||
-      q->mass_max > FB_MASS_MAX_KG)
+      q->mass_max > FB_MASS_MAX_KG) {
+    if (q->case_path) /* no flag of the user's: the case's masses and lengths */
+      return fb_diag_set(diag, FB_ERR_RANGE, "--case %s: the joint's effective mass over a "
+                         "revolution, %.6g to %.6g kg (from the case's [mass] keys and link "
+                         "lengths), lies outside what a single impact is verified for: %g kg to "
+                         "%g kg, the largest at most %g times the smallest; check the case's "
+                         "masses (kg) and lengths (mm)", q->case_path, q->mass_min, q->mass_max,
+                         FB_MASS_MIN_KG, FB_MASS_MAX_KG, FB_CP_MASS_RATIO_MAX);
     return fb_diag_set(diag, FB_ERR_RANGE, "--mass-kg %s:%s: need %g kg <= A <= B <= %g kg and "
                        "B/A <= %g", FB_NUM(q->mass_min), FB_NUM(q->mass_max), FB_MASS_MIN_KG, FB_MASS_MAX_KG,
                        FB_CP_MASS_RATIO_MAX);
+  }
   if (!(q->speed > 0.0) || q->speed > FB_IMPACT_SPEED_MAX_M_S)
     return fb_diag_set(diag, FB_ERR_RANGE, "--speed-m-s %s: must lie in (0, %g] m/s", FB_NUM(q->speed),
                        FB_IMPACT_SPEED_MAX_M_S);
   if (!isnan(q->h) && (!(q->h > 0.0) || !isfinite(q->h)))
-    return fb_diag_set(diag, FB_ERR_RANGE, "--h-s %s: the step size must be positive and finite",
-                       FB_NUM(q->h));
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s %s: the step size must be positive and finite",
+                       names->h, FB_NUM(q->h));
   if (is_hertz_family(law)) {
     if (!isnan(q->exponent) && !(q->exponent >= 1.0 && q->exponent <= 3.0))
       return fb_diag_set(diag, FB_ERR_RANGE, "--exponent %s: must lie in [1, 3]", FB_NUM(q->exponent));
@@ -159,6 +213,22 @@ fb_status fb_cp_request_check(const fb_cp_request *q, fb_diag *diag) {
       !(q->restitution > 0.0 && q->restitution <= 1.0))
     return fb_diag_set(diag, FB_ERR_RANGE, "--restitution %s: a coefficient of restitution lies "
                        "in (0, 1]", FB_NUM(q->restitution));
+  /* Flores and Gonthier reach any restitution, but the rows translate the
+   * law into a linear spring-damper, which leaves no slower than at e^-2:
+   * a cr whose law leaves slower is refused before any row */
+  if ((law == FB_LAW_FLORES || law == FB_LAW_GONTHIER) && !isnan(q->restitution) &&
+      q->restitution < LAW_CR_CHECKED) {
+    const fb_cp_request r = resolved(q);
+    const double cr_min = law_cr_min(law, r.exponent);
+    if (q->restitution <= cr_min)
+      return fb_diag_set(diag, FB_ERR_RANGE, "%s %s with --law %s: the law's impact would leave "
+                         "at a restitution below e^-2 = %.4f (the least a linear spring-damper, "
+                         "which every engine row is, reaches: at critical damping), which it "
+                         "does for cr <= %.3g at exponent %g: give %s > %.3g",
+                         request_names(q)->restitution, FB_NUM(q->restitution), fb_law_name(law),
+                         FB_RESTITUTION_MIN, cr_min, r.exponent, request_names(q)->restitution,
+                         cr_min);
+  }
   /* the impacts the inputs describe, at both ends of the mass range: the
    * law's own and the linear contact the engines get, each a contact a
    * double can follow in at most FB_IMPACT_MAX_STEPS steps of h (impact.h);
@@ -175,6 +245,7 @@ fb_status fb_cp_request_check(const fb_cp_request *q, fb_diag *diag) {
                       law == FB_LAW_LINEAR ? r.damping : 0.0, r.restitution, m, r.speed, h_probe);
     d[1] = linear_def(k, c, m, r.speed, h_probe);
     for (int i = 0; i < 2; i++) {
+      d[i].names = names;
       fb_status st = fb_impact_check(&d[i], diag);
       if (st != FB_OK) {
         char msg[FB_DIAG_SIZE];
@@ -186,9 +257,9 @@ fb_status fb_cp_request_check(const fb_cp_request *q, fb_diag *diag) {
       const double T = fb_impact_closed_form(&cf, &d[i]) ? cf.contact_duration
                                                          : fb_impact_duration_estimate(&d[i]);
       if (!isnan(r.h) && r.verify && FB_CP_VERIFY_DURATIONS * T / r.h + 10.0 > FB_IMPACT_MAX_STEPS)
-        return fb_diag_set(diag, FB_ERR_RANGE, "--h-s %g with verification: each row runs for "
+        return fb_diag_set(diag, FB_ERR_RANGE, "%s %g with verification: each row runs for "
                            "up to %g contact durations (%.3g s at %g kg), %.3g steps, more than "
-                           "%.0e: give h >= %.2g s (or --no-verify)", r.h, FB_CP_VERIFY_DURATIONS,
+                           "%.0e: give h >= %.2g s (or --no-verify)", names->h, r.h, FB_CP_VERIFY_DURATIONS,
                            T, m, FB_CP_VERIFY_DURATIONS * T / r.h, FB_IMPACT_MAX_STEPS,
                            FB_CP_VERIFY_DURATIONS * T / FB_IMPACT_MAX_STEPS);
     }
@@ -548,7 +619,9 @@ fb_status fb_cp_request_from_case(fb_cp_request *q, const fb_case *c, int j, fb_
   }
   q->mass_min = cc.est.m_eff_min;
   q->mass_max = cc.est.m_eff_max;
+  q->h_from_case = isnan(q->h);
   if (isnan(q->h)) q->h = cc.h;
+  if (!q->case_path) q->case_path = "(the case)"; /* the caller names the file */
   return FB_OK;
 }
 
@@ -561,7 +634,7 @@ fb_status fb_cp_run(fb_cp_result *o, const fb_cp_request *q, fb_diag *diag) {
   const double v = r.speed;
   linear_contact(&r, o->m0, &o->k, &o->c, &o->op_penetration);
   /* the law's own impact at the design mass */
-  o->law_restitution = o->law_penetration = o->law_force = NAN;
+  o->law_restitution = o->law_penetration = o->law_force = o->law_floor = NAN;
   if (is_damped_hertz(r.law)) {
     fb_impact_def d = impact_def(r.law, r.stiffness, r.exponent, 0.0, r.restitution, o->m0, v, 1.0);
     fb_impact_result res;
@@ -569,6 +642,14 @@ fb_status fb_cp_run(fb_cp_result *o, const fb_cp_request *q, fb_diag *diag) {
     o->law_restitution = res.restitution;
     o->law_penetration = res.penetration_max;
     o->law_force = res.force_max;
+    if ((r.law == FB_LAW_LANKARANI_NIKRAVESH || r.law == FB_LAW_HUNT_CROSSLEY) &&
+        fabs(res.restitution - r.restitution) > FB_CP_LAW_NOTE_REL * r.restitution) {
+      /* the least restitution the law reaches: its impact as cr -> 0 */
+      fb_impact_def d0 = impact_def(r.law, r.stiffness, r.exponent, 0.0, LAW_CR_ZERO, o->m0, v, 1.0);
+      fb_impact_result r0;
+      fb_diag dg;
+      if (fb_impact_reference(&r0, &d0, &dg) == FB_OK) o->law_floor = r0.restitution;
+    }
     if (!(res.restitution > FB_RESTITUTION_MIN))
       return fb_diag_set(diag, FB_ERR_RANGE, "--law %s with --restitution %g leaves with %.4g, "
                          "which no linear spring-damper reaches (at most critical damping, "

@@ -82,6 +82,12 @@ extern const double fb_cp_onset_phases[FB_CP_ONSET_PHASES];
 /* Largest ratio of a mass range's ends: beyond it no single row can be
  * faithful, and a user has mistyped a unit. */
 #define FB_CP_MASS_RATIO_MAX 1e4
+/* A damped Hertz law whose own restitution misses the cr asked by more than
+ * this (relative) gets a line saying so: the rows reproduce the law's
+ * restitution, and beyond 10 % that reads as another contact than asked
+ * (Hunt-Crossley at cr = 0.3 leaves at 0.58; its damping factor
+ * 3 (1 - cr) / 2 never passes 1.5, so no cr takes it below 0.49 at n = 1.5). */
+#define FB_CP_LAW_NOTE_REL 0.1
 
 /* The default steps of the engines users most often ask about: MuJoCo's
  * opt.timestep (2 ms) and Gazebo's physics max_step_size (1 ms). With
@@ -108,6 +114,9 @@ typedef struct {
   int engine_steps;   /* 1 (with verify): also the at_step contact at MuJoCo's and Gazebo's
                          default steps (FB_CP_MUJOCO_DEFAULT_H, FB_CP_GAZEBO_DEFAULT_H);
                          the CLI sets it when no --h-s is given */
+  const char *case_path; /* the case the contact was taken from (fb_cp_request_from_case),
+                            NULL: from the flags; messages then name the case's keys */
+  int h_from_case;    /* 1: h is the case's [solver] h_s (no --h-s) */
 } fb_cp_request;
 
 /* Defaults: restitution law, k = 1e7 N/m, cr 0.9, 0.1 kg, automatic step,
@@ -115,7 +124,9 @@ typedef struct {
 void fb_cp_request_default(fb_cp_request *q);
 
 /* Checks q (each parameter with its range, unit and the flag that sets it:
- * --stiffness, --restitution, ...). Errors: FB_ERR_RANGE, FB_ERR_ARG. */
+ * --stiffness, --restitution, ...; for a contact taken from a case, the
+ * case's keys and effective masses instead of flags the user never gave).
+ * Errors: FB_ERR_RANGE, FB_ERR_ARG. */
 fb_status fb_cp_request_check(const fb_cp_request *q, fb_diag *diag);
 
 /* One engine's row verified at one mass: the worst of its impacts over the
@@ -194,6 +205,9 @@ typedef struct {
   double op_penetration;    /* hertz: the operating point's penetration [m]; else NAN */
   int damper_floored;       /* the undamped contact got FB_CP_RESTITUTION_MAX */
   double law_restitution;   /* the law's own impact at m0 and v: restitution [-] */
+  double law_floor;         /* Lankarani-Nikravesh, Hunt-Crossley whose restitution misses cr
+                               by more than FB_CP_LAW_NOTE_REL: the least restitution the law
+                               reaches (its impact as cr -> 0) [-]; else NAN */
   double law_penetration;   /* peak penetration [m] */
   double law_force;         /* peak force [N] */
   double lin_force;         /* the linear contact's peak force at m0 [N] */

@@ -175,6 +175,8 @@ static int has_peer(fb_engine_id id) {
   return e && e->peer_args;
 }
 
+int fb_peers_build(fb_mech_type t) { return t == FB_MECH_FOURBAR; }
+
 fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *dir,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag) {
   *n = 0;
@@ -198,7 +200,7 @@ fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *
       continue;
     }
     /* the bare programs (tests/peers) build the four-bar alone */
-    if (c->mechanism != FB_MECH_FOURBAR) {
+    if (!fb_peers_build(c->mechanism)) {
       snprintf(p->status, sizeof p->status, "not run: %s builds the four-bar only, not a %s",
                p->peer, fb_case_mech(c)->type);
       continue;

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "fileio.h"
+#include "manifest.h"
 #include "outdir.h"
 #include "sweep_rows.h"
 
@@ -158,7 +159,8 @@ int fb_sweep_merge(const fb_merge_opts *o) {
    * writing it; compared by its real path, not its spelling (D and D/) */
   static fb_outdir od;
   fb_diag d;
-  if (fb_outdir_lock(&od, o->out, 0, NULL, &d) != FB_OK) return fb_study_fail("merge", 1, "%s", d.msg);
+  const fb_status lst = fb_outdir_lock(&od, o->out, 0, NULL, &d);
+  if (lst != FB_OK) return fb_study_fail("merge", lst == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
   char out_real[PATH_MAX];
   if (!realpath(o->out, out_real)) snprintf(out_real, sizeof out_real, "%s", od.target);
   /* a study given to draw with must be the shards' study: loaded first */
@@ -181,6 +183,14 @@ int fb_sweep_merge(const fb_merge_opts *o) {
   if (!rc && study_prov && fb_study_provenance_differs(m.prov, study_prov, what, sizeof what))
     rc = fb_study_fail("merge", 2, "--study %s is not the study of these shards (%s): give the "
                        "study file they were computed from", o->study_path, what);
+  /* its files: replaced only when a sweep wrote them, or asked (fileio.h) */
+  static const char *const names[4] = {"points.jsonl", "points.provenance.json", "points.csv",
+                                       "study.svg"};
+  const fb_outpath_rule rule = {.flag = "--out", .overwrite = o->overwrite};
+  if (!rc && fb_outfiles_check(o->out, "sweep", names, 4, &rule, &d) != FB_OK)
+    rc = fb_study_fail("merge", 2, "%s", d.msg);
+  if (!rc && fb_manifest_record(od.target, "sweep", names, 4, &d) != FB_OK)
+    rc = fb_study_fail("merge", 1, "%s", d.msg);
   if (!rc) rc = write_merged(o, &m, o->study_path ? &st : NULL);
   json_decref(m.prov);
   json_decref(study_prov);

@@ -17,6 +17,7 @@ typedef struct {
   const char *version;    /* fourbar's version, as a sweep records it in the provenance */
   fb_study_json_writer write_json; /* writes OUT/points.provenance.json */
   fb_study_drawer draw;   /* draws OUT/study.svg (with --study) */
+  int overwrite;          /* --overwrite: replace its files that no fourbar sweep wrote there */
 } fb_merge_opts;
 
 /* Locks o->out (outdir.h) before reading anything (no shard may be writing

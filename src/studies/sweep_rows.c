@@ -31,10 +31,13 @@ void fb_sweep_rows_free(fb_sweep_rowset *r) {
 
 int fb_sweep_rows_read(const char *path, fb_sweep_rowset *r, int repair, char *err,
                        size_t err_size) {
-  FILE *f = fopen(path, "r");
+  int not_regular;
+  FILE *f = fb_fopen_regular(path, &not_regular); /* a FIFO never blocks (fileio.h) */
   if (!f) {
-    snprintf(err, err_size, "%s: cannot read: %s", path, strerror(errno));
-    return errno == ENOENT ? 0 : -1;
+    const int e = errno;
+    snprintf(err, err_size, "%s: cannot read: %s", path,
+             not_regular ? "not a regular file" : strerror(e));
+    return !not_regular && e == ENOENT ? 0 : -1;
   }
   char *line = NULL;
   size_t cap = 0;

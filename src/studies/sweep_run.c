@@ -10,11 +10,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "casefile.h"
 #include "clock.h"
+#include "fileio.h"
+#include "manifest.h"
 #include "outdir.h"
 #include "sweep_rows.h"
 #include "textsafe.h"
@@ -301,8 +304,8 @@ int fb_sweep_run(const fb_study *s, const fb_sweep_opts *o) {
   fb_diag d;
   char tag[64];
   snprintf(tag, sizeof tag, "shard-%ld-of-%ld", o->shard_i, o->shard_n);
-  if (fb_outdir_lock(&od, o->dir, 0, o->shard_n > 1 ? tag : NULL, &d) != FB_OK)
-    return fb_study_fail("sweep", 1, "%s", d.msg);
+  const fb_status lst = fb_outdir_lock(&od, o->dir, 0, o->shard_n > 1 ? tag : NULL, &d);
+  if (lst != FB_OK) return fb_study_fail("sweep", lst == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
   static sweep_state st;
   st = (sweep_state){.s = s, .o = o, .fd = -1};
   if (o->shard_n > 1)
@@ -310,12 +313,36 @@ int fb_sweep_run(const fb_study *s, const fb_sweep_opts *o) {
              o->shard_i, o->shard_n);
   else
     snprintf(st.rows_path, sizeof st.rows_path, "%s/points.jsonl", o->dir);
+  /* its files: replaced only when a sweep wrote them (the folder's
+   * manifest), or asked (--overwrite, --restart); recorded before any is
+   * written, so that a killed sweep's rows are its own when it resumes */
+  char base[4300], names[5][4400];
+  snprintf(base, sizeof base, "%s", strrchr(st.rows_path, '/') + 1);
+  snprintf(names[0], sizeof names[0], "%s", base);
+  fb_sweep_rows_beside(names[1], sizeof names[1], base, ".provenance.json");
+  fb_sweep_rows_beside(names[2], sizeof names[2], base, ".csv");
+  snprintf(names[3], sizeof names[3], "study.svg");
+  snprintf(names[4], sizeof names[4], "study.figure.json");
+  const char *const name_list[5] = {names[0], names[1], names[2], names[3], names[4]};
+  const int nnames = o->shard_n > 1 ? 3 : 5;
+  const fb_outpath_rule rule = {.flag = "--out", .overwrite = o->overwrite || o->restart};
+  if (fb_outfiles_check(o->dir, "sweep", name_list, nnames, &rule, &d) != FB_OK)
+    return fb_study_fail("sweep", 2, "%s", d.msg);
+  if (fb_manifest_record(od.target, "sweep", name_list, nnames, &d) != FB_OK)
+    return fb_study_fail("sweep", 1, "%s", d.msg);
   int rc = resume(&st);
   if (rc) return rc;
   fprintf(stderr, "study %s: %zu points, %zu in this %s, %zu already done, computing %zu with %ld job%s\n",
           s->name, s->points, st.mine, o->shard_n > 1 ? "shard" : "run", st.mine - st.ntodo,
           st.ntodo, o->jobs, o->jobs > 1 ? "s" : "");
-  st.fd = open(st.rows_path, O_WRONLY | O_CREAT | O_APPEND, 0644);
+  /* never through a link, never blocking on a FIFO (checked above; again here) */
+  st.fd = open(st.rows_path, O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+  struct stat sb;
+  if (st.fd >= 0 && (fstat(st.fd, &sb) != 0 || !S_ISREG(sb.st_mode))) {
+    close(st.fd);
+    st.fd = -1;
+    errno = EINVAL;
+  }
   if (st.fd < 0) {
     free(st.todo);
     return fb_study_fail("sweep", 1, "%s: %s", st.rows_path, strerror(errno));

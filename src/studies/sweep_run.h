@@ -20,6 +20,7 @@ typedef struct {
   long jobs;                /* worker processes (1: this process computes) [1, 256] */
   long shard_i, shard_n;    /* only points with index % shard_n == shard_i (0/1: all) */
   int restart;              /* discard this shard's rows, CSV and provenance first */
+  int overwrite;            /* --overwrite: replace its files that no fourbar sweep wrote there */
   const char *again;        /* the command that resumes, quoted for a shell: said when a
                                signal stops the sweep (copied) */
   const char *version;      /* fourbar's version, recorded in the provenance */

@@ -96,9 +96,17 @@ fb_status fig_plot_open(plot *pl, const char *dir, const char *name, fb_figure_f
  * its standard input /dev/null, its output and errors appended to
  * dir/.gnuplot.log; *pid receives it. */
 static fb_status gnuplot_start(const plot *pl, int n, pid_t *pid, fb_diag *diag) {
-  int logfd = open(pl[0].log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  /* the log is appended to: never through a link, never a FIFO's reader wait */
+  int logfd = open(pl[0].log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+  struct stat lb;
+  if (logfd >= 0 && (fstat(logfd, &lb) != 0 || !S_ISREG(lb.st_mode))) {
+    close(logfd);
+    logfd = -1;
+    errno = EINVAL;
+  }
   if (logfd < 0)
-    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot start gnuplot: %s", pl[0].path, strerror(errno));
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot start gnuplot: %s: %s", pl[0].path, pl[0].log,
+                       errno == ELOOP || errno == EINVAL ? "not a regular file" : strerror(errno));
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);

@@ -82,6 +82,15 @@ static inline fb_status fb_test_shipped_case(fb_case *c, const char *file, const
   snprintf(path, sizeof path, "%s/%s", d ? d : "cases", file);
   return fb_casefile_load(c, path, sets, n, diag);
 }
+
+/* Loads the shipped planar case cases/<file> ([linkage] type = planar)
+ * with fb_casefile_load_planar into *c. */
+static inline fb_status fb_test_shipped_case_planar(fb_case *c, const char *file, fb_diag *diag) {
+  const char *d = getenv("FOURBAR_CASES_DIR");
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", d ? d : "cases", file);
+  return fb_casefile_load_planar(c, path, NULL, 0, diag);
+}
 #endif
 
 /* Calls fn(path, file name, user) for every .ini file in the shipped

@@ -120,8 +120,13 @@ static void singular_motion(char *text, size_t size, const fb_planar *m, const d
   double *s = a + nq * nq, *v = s + nq;
   scaled_jacobian(a, m, q, m->njoints, 1);
   if (svd(s, v, a, nq, nq)) {
-    const int b1 = moving_most(m, v, -1), b2 = moving_most(m, v, b1);
+    int b1 = moving_most(m, v, -1), b2 = moving_most(m, v, b1);
     const int j = b2 > 0 ? joint_between(m, b1, b2) : -1;
+    if (b2 > 0 && b2 < b1) { /* named in the description's order */
+      const int t = b1;
+      b1 = b2;
+      b2 = t;
+    }
     if (b1 > 0) where->body = b1;
     if (j >= 0) where->joint = j;
     if (b1 > 0 && b2 > 0)

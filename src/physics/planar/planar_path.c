@@ -73,7 +73,8 @@ fb_status fb_planar_follow(fb_planar_kin *k, double *q, double from, double to, 
                           "configuration (det of the Jacobian changes sign: a change point, where "
                           "the mechanism may switch branch)"
                         : "the mechanism locks at %.4f deg of drive angle from the assembly "
-                          "configuration (no position beyond it: a toggle or dead position)",
+                          "configuration (no position found beyond it on its branch: a toggle, "
+                          "a dead position or a change point)",
                      angle * 180.0 / M_PI);
   }
   if (rc == FB_OK)

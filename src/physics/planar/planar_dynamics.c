@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact_mass.h"
+#include "effective_mass.h"
 #include "planar_kinematics.h"
 
 struct fb_planar_dyn {
@@ -94,14 +96,12 @@ static void contact_at(fb_planar_dyn *d, int j, const double *q, const double *q
     const double n[2] = {e[0] / ecc, e[1] / ecc};
     c.rate = n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]);
     if (delta > 0.0) {
-      fb_contact_law law = d->model.law;
-      if (law.kind == FB_LAW_RESTITUTION) {
+      if (fb_contact_law_wants_mass(&d->model.law)) {
         double w[2][2];
         fb_planar_cmass_tensor(d->cmass, w, j, q);
-        const double inv = n[0] * (w[0][0] * n[0] + w[0][1] * n[1]) +
-                           n[1] * (w[1][0] * n[0] + w[1][1] * n[1]);
-        law.mass = c.effective_mass = 1.0 / inv;
+        c.effective_mass = fb_effective_mass_along(w, n);
       }
+      const fb_contact_law law = fb_contact_law_on_mass(&d->model.law, c.effective_mass);
       c.force = fb_contact_force(&law, delta, c.rate, d->model.impact_velocity);
       /* the pin pushes the hole along +n */
       const double fh[2] = {c.force * n[0], c.force * n[1]}, fp[2] = {-fh[0], -fh[1]};

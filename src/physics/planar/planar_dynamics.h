@@ -12,7 +12,8 @@
  *             e = p_pin - p_hole, delta = |e| - c, n = e / |e|,
  *             delta' = n . (v_pin - v_hole), F = law(delta, delta', v0) >= 0
  *             (the restitution law's damper on the effective mass along n,
- *             planar_mass.h); +F n on the hole's body, -F n on the pin's,
+ *             planar_mass.h, by contact_mass.h's rule); +F n on the hole's
+ *             body, -F n on the pin's,
  *             as generalised forces (f, (p - r) x f) of each body;
  *   motion    the index-1 DAE M q'' + G^T lambda = Q, G q'' = gamma (G the
  *             joints left and the drive at phi(t) = omega t), solved by the
@@ -45,7 +46,8 @@ typedef struct {
   double penetration;    /* max(|e| - c, 0) [m] */
   double rate;           /* delta' [m/s] (0 at e = 0) */
   double force;          /* F >= 0 [N] */
-  double effective_mass; /* 1 / (n^T W n) along n [kg]; 0 out of contact */
+  double effective_mass; /* 1 / (n^T W n) along n [kg] where the law's damper needs it
+                            (contact_mass.h: the restitution law in contact); else 0 */
 } fb_planar_contact;
 
 /* The right-hand side's workspace. */

@@ -45,21 +45,33 @@ static void row(const char *what, double closed, double core, const char *unit, 
 
 static volatile double sink; /* keeps the optimiser from dropping a result */
 
-static void kinematics(const fb_case *c) {
-  fb_planar *m;
+/* the closed forms of one crank angle, as the core's rival */
+typedef struct {
+  const fb_case *c;
+  fb_slider_crank sc; /* the slider-crank's, when slider */
+  int slider;
+} closed_form;
+
+static double closed_solve(const closed_form *f, double theta, double w) {
+  if (f->slider) {
+    fb_slider_crank_state st;
+    fb_slider_crank_solve(&st, &f->sc, theta, w, 0.0, NULL);
+    return st.slider_a;
+  }
+  fb_linkage_state st;
+  fb_linkage_solve(&st, &f->c->nominal, f->c->branch, theta, w, 0.0, NULL);
+  return st.coupler_alpha;
+}
+
+/* position, velocity and acceleration at ANGLES crank angles: the closed
+ * form against the core on m (Newton from the previous angle, one LU) */
+static void kinematics_row(const char *what, const closed_form *f, const fb_planar *m, double w) {
   fb_planar_kin *k;
-  if (fb_planar_fourbar(&m, &c->nominal, c->branch, c->link, 0.0, NULL) != FB_OK ||
-      fb_planar_kin_new(&k, m, NULL) != FB_OK)
-    exit(1);
-  const double w = fb_case_omega2(c);
+  if (fb_planar_kin_new(&k, m, NULL) != FB_OK) exit(1);
   double closed = 1e30, core = 1e30;
   for (int r = 0; r < BEST_OF; r++) {
     double t0 = cpu_s();
-    for (int i = 0; i < ANGLES; i++) {
-      fb_linkage_state st;
-      fb_linkage_solve(&st, &c->nominal, c->branch, 2.0 * M_PI * i / ANGLES, w, 0.0, NULL);
-      sink = st.coupler_alpha;
-    }
+    for (int i = 0; i < ANGLES; i++) sink = closed_solve(f, 2.0 * M_PI * i / ANGLES, w);
     closed = fmin(closed, cpu_s() - t0);
     double q[9], qd[9], qdd[9];
     fb_planar_assembly(m, q);
@@ -72,43 +84,23 @@ static void kinematics(const fb_case *c) {
     }
     core = fmin(core, cpu_s() - t0);
   }
-  row("four-bar: position, velocity, acceleration", closed, core, "us", ANGLES * 1e-6);
+  row(what, closed, core, "us", ANGLES * 1e-6);
   fb_planar_kin_free(k);
-  fb_planar_free(m);
 }
 
-static void slider_kinematics(const fb_case *c) {
+static void kinematics(const fb_case *c) {
+  fb_planar *m;
+  if (fb_planar_fourbar(&m, &c->nominal, c->branch, c->link, 0.0, NULL) != FB_OK) exit(1);
+  const closed_form f = {c, {0, 0, 0}, 0};
+  kinematics_row("four-bar: position, velocity, acceleration", &f, m, fb_case_omega2(c));
+  fb_planar_free(m);
   const fb_linkage lk = {{0.05, 0.2, 0.01, 0}};
   fb_link_mass link[3];
   memcpy(link, c->link, sizeof link);
   link[2] = (fb_link_mass){0.5, 1e-4, 0, 0, 0};
-  fb_planar *m;
-  fb_planar_kin *k;
-  if (fb_planar_slider_crank(&m, &lk, link, 0.0, NULL) != FB_OK || fb_planar_kin_new(&k, m, NULL) != FB_OK)
-    exit(1);
-  const fb_slider_crank sc = fb_slider_crank_of(&lk);
-  double closed = 1e30, core = 1e30;
-  for (int r = 0; r < BEST_OF; r++) {
-    double t0 = cpu_s();
-    for (int i = 0; i < ANGLES; i++) {
-      fb_slider_crank_state st;
-      fb_slider_crank_solve(&st, &sc, 2.0 * M_PI * i / ANGLES, 100.0, 0.0, NULL);
-      sink = st.slider_a;
-    }
-    closed = fmin(closed, cpu_s() - t0);
-    double q[9], qd[9], qdd[9];
-    fb_planar_assembly(m, q);
-    t0 = cpu_s();
-    for (int i = 0; i < ANGLES; i++) {
-      const fb_planar_drive d = {2.0 * M_PI * i / ANGLES, 100.0, 0.0};
-      fb_planar_position(k, q, d.angle, NULL, NULL);
-      fb_planar_motion(k, qd, qdd, q, &d, NULL, NULL);
-      sink = qdd[6];
-    }
-    core = fmin(core, cpu_s() - t0);
-  }
-  row("slider-crank: position, velocity, accel.", closed, core, "us", ANGLES * 1e-6);
-  fb_planar_kin_free(k);
+  if (fb_planar_slider_crank(&m, &lk, link, 0.0, NULL) != FB_OK) exit(1);
+  const closed_form g = {c, fb_slider_crank_of(&lk), 1};
+  kinematics_row("slider-crank: position, velocity, accel.", &g, m, 100.0);
   fb_planar_free(m);
 }
 
@@ -240,7 +232,6 @@ int main(void) {
   }
   printf("CPU time per call, best of %d (closed form, planar core, ratio)\n", BEST_OF);
   kinematics(&c);
-  slider_kinematics(&c);
   peaks(&c);
   rhs();
   reference(&c);

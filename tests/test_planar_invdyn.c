@@ -15,6 +15,7 @@
 
 #include "casefile.h"
 #include "fb_test.h"
+#include "fb_test_planar.h"
 #include "invdyn.h"
 #include "planar_case.h"
 #include "planar_invdyn.h"
@@ -31,13 +32,6 @@
  * kinematics; relative to the largest |T omega2|: rounding only. */
 #define POWER_REL_TOL 1e-10
 
-static fb_case paper(void) {
-  static fb_case c;
-  static int loaded = 0;
-  if (!loaded) fb_test_paper_case(&c, NULL, 0), loaded = 1;
-  return c;
-}
-
 /* the core's motion of m at drive angle phi (q in: a guess) */
 static void motion(double *q, double *qd, double *qdd, fb_planar_kin *k, double phi, double w) {
   fb_diag d;
@@ -48,18 +42,16 @@ static void motion(double *q, double *qd, double *qdd, fb_planar_kin *k, double 
 
 static void test_fourbar(void **state) {
   (void)state;
-  const fb_case c = paper();
-  fb_planar *m;
+  const fb_case c = fb_test_paper_once();
+  fb_test_planar t = fb_test_planar_paper(&c, &c.nominal);
+  fb_planar *m = t.m;
   fb_diag d;
-  assert_int_equal(fb_planar_fourbar(&m, &c.nominal, c.branch, c.link, c.crank_angle0, &d), FB_OK);
-  fb_planar_kin *k;
-  assert_int_equal(fb_planar_kin_new(&k, m, &d), FB_OK);
   const double w = fb_case_omega2(&c);
   double q[9], qd[9], qdd[9], worst = 0.0, big = 0.0;
   fb_planar_assembly(m, q);
   for (int i = 0; i < 36; i++) {
     const double phi = i * 10.0 * M_PI / 180.0;
-    motion(q, qd, qdd, k, phi, w);
+    motion(q, qd, qdd, t.k, phi, w);
     fb_planar_reaction r[4];
     double torque;
     assert_int_equal(fb_planar_invdyn(r, &torque, m, q, qd, qdd, c.gravity, &d), FB_OK);
@@ -79,20 +71,16 @@ static void test_fourbar(void **state) {
   }
   report_residual("four-bar reactions, core vs invdyn.h (rel)", worst / big, REACTION_REL_TOL);
   assert_true(worst / big <= REACTION_REL_TOL);
-  fb_planar_kin_free(k);
-  fb_planar_free(m);
+  fb_test_planar_free(&t);
 }
 
 static void test_slider_crank(void **state) {
   (void)state;
-  fb_case c = paper();
+  fb_case c = fb_test_paper_once();
   const fb_linkage lk = {{0.06, 0.21, 0.015, 0.0}};
-  c.link[2] = (fb_link_mass){0.5, 2e-4, 0, 0, 0};
-  fb_planar *m;
+  fb_test_planar t = fb_test_planar_slider(&c, &lk, 0.5, 2e-4, 0.2);
+  fb_planar *m = t.m;
   fb_diag d;
-  assert_int_equal(fb_planar_slider_crank(&m, &lk, c.link, 0.2, &d), FB_OK);
-  fb_planar_kin *k;
-  assert_int_equal(fb_planar_kin_new(&k, m, &d), FB_OK);
   const fb_slider_crank sc = fb_slider_crank_of(&lk);
   const fb_slider_crank_mass sm = fb_slider_crank_mass_of(c.link);
   const double w = -120.0;
@@ -100,7 +88,7 @@ static void test_slider_crank(void **state) {
   fb_planar_assembly(m, q);
   for (int i = 0; i < 36; i++) {
     const double phi = i * 10.0 * M_PI / 180.0;
-    motion(q, qd, qdd, k, phi, w);
+    motion(q, qd, qdd, t.k, phi, w);
     fb_planar_reaction r[4];
     double torque;
     assert_int_equal(fb_planar_invdyn(r, &torque, m, q, qd, qdd, c.gravity, &d), FB_OK);
@@ -120,8 +108,7 @@ static void test_slider_crank(void **state) {
   assert_true(worst / big <= REACTION_REL_TOL);
   /* every force on the slider passes through the pin: the guide's couple is zero */
   assert_true(moment <= REACTION_REL_TOL * big * 0.1);
-  fb_planar_kin_free(k);
-  fb_planar_free(m);
+  fb_test_planar_free(&t);
 }
 
 /* the six-bar: the drive's power against the energy's rate */
@@ -129,11 +116,8 @@ static void test_sixbar_power(void **state) {
   (void)state;
   fb_case c;
   fb_diag d;
-  if (fb_test_shipped_case_planar(&c, "watt_sixbar.ini", &d) != FB_OK) fail_msg("%s", d.msg);
-  fb_planar *m;
-  assert_int_equal(fb_planar_of_case(&m, &c, &c.nominal, &d), FB_OK);
-  fb_planar_kin *k;
-  assert_int_equal(fb_planar_kin_new(&k, m, &d), FB_OK);
+  fb_test_planar t = fb_test_planar_sixbar(&c);
+  const fb_planar *m = t.m;
   const int n = fb_planar_nq(m);
   double q[15], qd[15], qdd[15], worst = 0.0, big = 0.0;
   assert_int_equal(n, 15);
@@ -141,7 +125,7 @@ static void test_sixbar_power(void **state) {
   const double w = fb_case_omega2(&c);
   for (int i = 0; i < 36; i++) {
     const double phi = i * 10.0 * M_PI / 180.0;
-    motion(q, qd, qdd, k, phi, w);
+    motion(q, qd, qdd, t.k, phi, w);
     fb_planar_reaction r[7];
     double torque;
     assert_int_equal(fb_planar_invdyn(r, &torque, m, q, qd, qdd, c.gravity, &d), FB_OK);
@@ -156,8 +140,7 @@ static void test_sixbar_power(void **state) {
   }
   report_residual("six-bar power balance (rel)", worst / big, POWER_REL_TOL);
   assert_true(big > 0.0 && worst / big <= POWER_REL_TOL);
-  fb_planar_kin_free(k);
-  fb_planar_free(m);
+  fb_test_planar_free(&t);
 }
 
 int main(void) {

@@ -42,13 +42,6 @@
 
 static double wrap(double a) { return remainder(a, 2.0 * M_PI); }
 
-static fb_case paper(void) {
-  static fb_case c;
-  static int loaded = 0;
-  if (!loaded) fb_test_paper_case(&c, NULL, 0), loaded = 1;
-  return c;
-}
-
 /* the four-bar of c (nominal lengths, lk overrides when not NULL) at every
  * 5 degrees of crank angle from theta0, drive rate omega and acceleration
  * alpha, against fb_linkage_solve */
@@ -107,21 +100,21 @@ static void fourbar_sweep(const fb_case *c, const fb_linkage *lk, fb_branch bran
 /* the paper's crank-rocker, its crank at 1000 rpm clockwise */
 static void test_fourbar_paper(void **state) {
   (void)state;
-  const fb_case c = paper();
+  const fb_case c = fb_test_paper_once();
   fourbar_sweep(&c, &c.nominal, c.branch, c.crank_angle0, fb_case_omega2(&c), 0.0);
 }
 
 /* the crossed branch, a start away from 0 and a crank accelerating */
 static void test_fourbar_crossed_accelerating(void **state) {
   (void)state;
-  const fb_case c = paper();
+  const fb_case c = fb_test_paper_once();
   fourbar_sweep(&c, &c.nominal, FB_BRANCH_CROSSED, 1.0, 30.0, -250.0);
 }
 
 /* a double-crank (the ground the shortest link): every body turns fully */
 static void test_fourbar_double_crank(void **state) {
   (void)state;
-  const fb_case c = paper();
+  const fb_case c = fb_test_paper_once();
   const fb_linkage lk = {{0.12, 0.14, 0.13, 0.05}};
   fourbar_sweep(&c, &lk, FB_BRANCH_OPEN, 0.3, -20.0, 0.0);
 }
@@ -129,7 +122,7 @@ static void test_fourbar_double_crank(void **state) {
 /* the slider-crank with an offset guide, against fb_slider_crank_solve */
 static void test_slider_crank(void **state) {
   (void)state;
-  fb_case c = paper();
+  fb_case c = fb_test_paper_once();
   const fb_linkage lk = {{0.05, 0.18, -0.02, 0.0}};
   c.link[2].mass = 0.4;
   c.link[2].inertia = 1e-4;
@@ -174,7 +167,7 @@ static void test_slider_crank(void **state) {
  * says it did not */
 static void test_newton_steps(void **state) {
   (void)state;
-  const fb_case c = paper();
+  const fb_case c = fb_test_paper_once();
   fb_planar *m;
   fb_diag d;
   assert_int_equal(fb_planar_fourbar(&m, &c.nominal, c.branch, c.link, 0.0, &d), FB_OK);

@@ -15,6 +15,7 @@
 #include "casefile.h"
 #include "effective_mass.h"
 #include "fb_test.h"
+#include "fb_test_planar.h"
 #include "planar_case.h"
 #include "planar_kinematics.h"
 #include "planar_mass.h"
@@ -29,41 +30,22 @@
  * perturbation (1e-8, 1e-16): the rows' rounding of a 0.3 m mechanism. */
 #define PROJECT_TOL_M 1e-15
 
-static fb_case paper(void) {
-  static fb_case c;
-  static int loaded = 0;
-  if (!loaded) fb_test_paper_case(&c, NULL, 0), loaded = 1;
-  return c;
-}
-
-static double tensor_diff(double a[2][2], double b[2][2]) {
-  double d = 0.0, s = 0.0;
-  for (int r = 0; r < 2; r++)
-    for (int q = 0; q < 2; q++) {
-      d = fmax(d, fabs(a[r][q] - b[r][q]));
-      s = fmax(s, fabs(b[r][q]));
-    }
-  return d / s;
-}
-
 /* every clearance mask of one or two four-bar joints, at 12 crank angles */
 static void test_fourbar_against_effective_mass(void **state) {
   (void)state;
-  const fb_case c = paper();
+  const fb_case c = fb_test_paper_once();
   fb_linkage su;
   fb_case_stackup_lengths(&c, &su);
-  fb_planar *m;
+  fb_test_planar t = fb_test_planar_paper(&c, &su);
+  fb_planar *m = t.m;
   fb_diag d;
-  assert_int_equal(fb_planar_fourbar(&m, &su, c.branch, c.link, 0.0, &d), FB_OK);
-  fb_planar_kin *k;
-  assert_int_equal(fb_planar_kin_new(&k, m, &d), FB_OK);
   double q[9], worst = 0.0;
   fb_planar_assembly(m, q);
   const int masks[] = {1 << FB_JOINT_B, 1 << FB_JOINT_A, 1 << FB_JOINT_C, 1 << FB_JOINT_D,
                        (1 << FB_JOINT_B) | (1 << FB_JOINT_C), (1 << FB_JOINT_A) | (1 << FB_JOINT_D)};
   for (int i = 0; i < 12; i++) {
     const double phi = i * 30.0 * M_PI / 180.0;
-    assert_int_equal(fb_planar_position(k, q, phi, NULL, &d), FB_OK);
+    assert_int_equal(fb_planar_position(t.k, q, phi, NULL, &d), FB_OK);
     fb_linkage_state st;
     assert_int_equal(fb_linkage_solve(&st, &su, c.branch, phi, 0, 0, &d), FB_OK);
     for (size_t x = 0; x < sizeof masks / sizeof masks[0]; x++) {
@@ -77,7 +59,7 @@ static void test_fourbar_against_effective_mass(void **state) {
         if (!off[j]) continue;
         double w[2][2];
         assert_int_equal(fb_planar_effective_mass_tensor(w, m, q, off, j, &d), FB_OK);
-        worst = fmax(worst, tensor_diff(w, want[j]));
+        worst = fmax(worst, fb_test_tensor_rel_diff(w, want[j]));
       }
     }
   }
@@ -87,28 +69,24 @@ static void test_fourbar_against_effective_mass(void **state) {
   unsigned char off[4] = {0, 1, 0, 0};
   double w[2][2];
   assert_int_equal(fb_planar_effective_mass_tensor(w, m, q, off, 2, &d), FB_ERR_ARG);
-  fb_planar_kin_free(k);
-  fb_planar_free(m);
+  fb_test_planar_free(&t);
 }
 
 /* the slider-crank's piston pin: the core against the closed form
  * (fb_effective_mass_tensor's W = p p^T / I_B + x x^T / m_slider) */
 static void test_piston_pin(void **state) {
   (void)state;
-  fb_case c = paper();
+  fb_case c = fb_test_paper_once();
   const fb_linkage lk = {{0.05, 0.2, 0.01, 0}};
-  c.link[2] = (fb_link_mass){0.6, 1e-4, 0, 0, 0};
-  fb_planar *m;
+  fb_test_planar t = fb_test_planar_slider(&c, &lk, 0.6, 1e-4, 0.0);
+  fb_planar *m = t.m;
   fb_diag d;
-  assert_int_equal(fb_planar_slider_crank(&m, &lk, c.link, 0.0, &d), FB_OK);
-  fb_planar_kin *k;
-  assert_int_equal(fb_planar_kin_new(&k, m, &d), FB_OK);
   const fb_slider_crank sc = fb_slider_crank_of(&lk);
   double q[9], worst = 0.0;
   fb_planar_assembly(m, q);
   for (int i = 0; i < 12; i++) {
     const double phi = i * 30.0 * M_PI / 180.0;
-    assert_int_equal(fb_planar_position(k, q, phi, NULL, &d), FB_OK);
+    assert_int_equal(fb_planar_position(t.k, q, phi, NULL, &d), FB_OK);
     fb_slider_crank_state st;
     assert_int_equal(fb_slider_crank_solve(&st, &sc, phi, 0, 0, &d), FB_OK);
     fb_mechanism fm;
@@ -117,12 +95,11 @@ static void test_piston_pin(void **state) {
     assert_int_equal(fb_effective_mass_tensor(want, &fm, &d), FB_OK);
     const unsigned char off[4] = {0, 0, 1, 0};
     assert_int_equal(fb_planar_effective_mass_tensor(w, m, q, off, 2, &d), FB_OK);
-    worst = fmax(worst, tensor_diff(w, want[FB_JOINT_C]));
+    worst = fmax(worst, fb_test_tensor_rel_diff(w, want[FB_JOINT_C]));
   }
   report_residual("piston pin W, core vs closed form (rel)", worst, TENSOR_REL_TOL);
   assert_true(worst <= TENSOR_REL_TOL);
-  fb_planar_kin_free(k);
-  fb_planar_free(m);
+  fb_test_planar_free(&t);
 }
 
 /* a crank alone, driven: every force leaves it unmoved but for the drive's
@@ -158,7 +135,7 @@ static void test_accel_free_body(void **state) {
 /* a perturbed four-bar state comes back onto its constraints */
 static void test_projection(void **state) {
   (void)state;
-  const fb_case c = paper();
+  const fb_case c = fb_test_paper_once();
   fb_planar *m;
   fb_diag d;
   assert_int_equal(fb_planar_fourbar(&m, &c.nominal, c.branch, c.link, 0.3, &d), FB_OK);

@@ -18,6 +18,7 @@
 #include "analytic.h"
 #include "casefile.h"
 #include "fb_test.h"
+#include "fb_test_planar.h"
 #include "planar_case.h"
 #include "planar_path.h"
 
@@ -40,28 +41,18 @@
  * curvature's scale); 1e-5 rad holds it with a margin. */
 #define WHERE_TOL_RAD 1e-5
 
-static fb_case paper(void) {
-  static fb_case c;
-  static int loaded = 0;
-  if (!loaded) fb_test_paper_case(&c, NULL, 0), loaded = 1;
-  return c;
-}
-
 static double rel(double a, double b) { return fabs(a - b) / fmax(fabs(b), 1e-300); }
 
 /* the paper's four-bar (nominal lengths, its branch, its drive) through the
  * core against fb_analytic_peaks_where */
 static void test_fourbar_peaks(void **state) {
   (void)state;
-  const fb_case c = paper();
-  fb_planar *m;
+  const fb_case c = fb_test_paper_once();
+  fb_test_planar t = fb_test_planar_paper(&c, &c.nominal);
   fb_diag d;
-  assert_int_equal(fb_planar_fourbar(&m, &c.nominal, c.branch, c.link, c.crank_angle0, &d), FB_OK);
-  fb_planar_kin *k;
-  assert_int_equal(fb_planar_kin_new(&k, m, &d), FB_OK);
   fb_planar_peaks p[4];
   const double omega = fb_case_omega2(&c);
-  if (fb_planar_peaks_of(p, k, omega, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_planar_peaks_of(p, t.k, omega, &d) != FB_OK) fail_msg("%s", d.msg);
   fb_peaks a;
   double where[8];
   assert_int_equal(fb_analytic_peaks_where(&a, where, &c.nominal, c.branch, omega, &d), FB_OK);
@@ -85,8 +76,7 @@ static void test_fourbar_peaks(void **state) {
   assert_near(p[1].omega_max, omega, 1e-12 * fabs(omega));
   assert_near(p[1].omega_min, omega, 1e-12 * fabs(omega));
   assert_near(p[1].alpha_max, 0.0, 1e-9 * omega * omega);
-  fb_planar_kin_free(k);
-  fb_planar_free(m);
+  fb_test_planar_free(&t);
 }
 
 /* ---- the six-bar's dyads ------------------------------------------------ */
@@ -207,15 +197,12 @@ static void test_sixbar_against_dyads(void **state) {
   (void)state;
   fb_case c;
   fb_diag d;
-  if (fb_test_shipped_case_planar(&c, "watt_sixbar.ini", &d) != FB_OK) fail_msg("%s", d.msg);
-  fb_planar *m;
-  assert_int_equal(fb_planar_of_case(&m, &c, &c.nominal, &d), FB_OK);
+  fb_test_planar t = fb_test_planar_sixbar(&c);
+  const fb_planar *m = t.m;
   assert_int_equal(m->nbodies, 6);
-  fb_planar_kin *k;
-  assert_int_equal(fb_planar_kin_new(&k, m, &d), FB_OK);
   const double w = fb_case_omega2(&c);
   fb_planar_peaks p[6];
-  if (fb_planar_peaks_of(p, k, w, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_planar_peaks_of(p, t.k, w, &d) != FB_OK) fail_msg("%s", d.msg);
   sixbar s;
   sixbar_of(&s, &c);
   /* the dyads' extremes: a pass over N drive angles, each extreme then
@@ -251,14 +238,13 @@ static void test_sixbar_against_dyads(void **state) {
   }
   report_residual("six-bar omega peaks, core vs dyads (rel)", worst, SIXBAR_OMEGA_REL);
   assert_true(worst <= SIXBAR_OMEGA_REL);
-  fb_planar_kin_free(k);
-  fb_planar_free(m);
+  fb_test_planar_free(&t);
 }
 
 /* a loop that opens within the revolution stops the path with the angle */
 static void test_follow_locks(void **state) {
   (void)state;
-  fb_case c = paper();
+  fb_case c = fb_test_paper_once();
   /* a crank longer than the rest allows: non-Grashof, it rocks */
   const fb_linkage lk = {{0.2, 0.15, 0.12, 0.25}};
   fb_planar *m;

@@ -47,24 +47,25 @@ static int name_ok(const char *name, const char *what, int taken, fb_diag *diag)
   return 1;
 }
 
+/* -1, for a refusal whose message fb_diag_set has written */
+static int refused(fb_status st) {
+  (void)st;
+  return -1;
+}
+
 int fb_planar_add_body(fb_planar *m, const char *name, double mass, double inertia,
                        const double centre[2], double angle0, int derived, fb_diag *diag) {
   if (!name_ok(name, "body", name && fb_planar_find_body(m, name) >= 0, diag)) return -1;
-  if (m->nbodies == m->cap_bodies) {
-    fb_diag_set(diag, FB_ERR_ARG, "body '%s': the description holds %d moving bodies", name,
-                m->cap_bodies - 1);
-    return -1;
-  }
-  if (!(mass > 0.0 && isfinite(mass)) || !(inertia > 0.0 && isfinite(inertia))) {
-    fb_diag_set(diag, FB_ERR_RANGE,
-                "body '%s': mass %g kg, moment of inertia %g kg m^2: both must be positive "
-                "and finite", name, mass, inertia);
-    return -1;
-  }
-  if (!isfinite(centre[0]) || !isfinite(centre[1]) || !isfinite(angle0)) {
-    fb_diag_set(diag, FB_ERR_RANGE, "body '%s': its centre and angle must be finite", name);
-    return -1;
-  }
+  if (m->nbodies == m->cap_bodies)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "body '%s': the description holds %d moving "
+                               "bodies", name, m->cap_bodies - 1));
+  if (!(mass > 0.0 && isfinite(mass)) || !(inertia > 0.0 && isfinite(inertia)))
+    return refused(fb_diag_set(diag, FB_ERR_RANGE, "body '%s': mass %g kg, moment of inertia "
+                               "%g kg m^2: both must be positive and finite", name, mass,
+                               inertia));
+  if (!isfinite(centre[0]) || !isfinite(centre[1]) || !isfinite(angle0))
+    return refused(fb_diag_set(diag, FB_ERR_RANGE, "body '%s': its centre and angle must be "
+                               "finite", name));
   fb_planar_body *b = &m->body[m->nbodies];
   memset(b, 0, sizeof *b);
   snprintf(b->name, sizeof b->name, "%s", name);
@@ -91,21 +92,16 @@ static void to_body(double out[2], const fb_planar *m, int b, const double v[2],
 int fb_planar_add_joint(fb_planar *m, const char *name, fb_joint_kind kind, int b0, int b1,
                         const double at[2], double axis_angle, fb_diag *diag) {
   if (!name_ok(name, "joint", name && fb_planar_find_joint(m, name) >= 0, diag)) return -1;
-  if (m->njoints == m->cap_joints) {
-    fb_diag_set(diag, FB_ERR_ARG, "joint '%s': the description holds %d joints", name,
-                m->cap_joints);
-    return -1;
-  }
-  if (b0 < 0 || b0 >= m->nbodies || b1 < 0 || b1 >= m->nbodies || b0 == b1) {
-    fb_diag_set(diag, FB_ERR_ARG, "joint '%s': bodies %d and %d: a joint connects two different "
-                "bodies of the description (0 .. %d)", name, b0, b1, m->nbodies - 1);
-    return -1;
-  }
-  if (!isfinite(at[0]) || !isfinite(at[1]) ||
-      (kind == FB_KIND_PRISMATIC && !isfinite(axis_angle))) {
-    fb_diag_set(diag, FB_ERR_RANGE, "joint '%s': its position and axis must be finite", name);
-    return -1;
-  }
+  if (m->njoints == m->cap_joints)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "joint '%s': the description holds %d joints",
+                               name, m->cap_joints));
+  if (b0 < 0 || b0 >= m->nbodies || b1 < 0 || b1 >= m->nbodies || b0 == b1)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "joint '%s': bodies %d and %d: a joint "
+                               "connects two different bodies of the description (0 .. %d)",
+                               name, b0, b1, m->nbodies - 1));
+  if (!isfinite(at[0]) || !isfinite(at[1]) || (kind == FB_KIND_PRISMATIC && !isfinite(axis_angle)))
+    return refused(fb_diag_set(diag, FB_ERR_RANGE, "joint '%s': its position and axis must be "
+                               "finite", name));
   fb_planar_joint *j = &m->joint[m->njoints];
   memset(j, 0, sizeof *j);
   snprintf(j->name, sizeof j->name, "%s", name);

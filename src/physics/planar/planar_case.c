@@ -36,25 +36,23 @@ static fb_status add_joints(fb_planar *p, const fb_mech_desc *d, const double at
   return fb_planar_set_drive(p, 0, diag);
 }
 
-fb_status fb_planar_fourbar(fb_planar **out, const fb_linkage *lk, fb_branch branch,
-                            const fb_link_mass link[3], double theta0, fb_diag *diag) {
-  *out = NULL;
-  fb_linkage_state st;
-  fb_status rc = fb_linkage_solve(&st, lk, branch, theta0, 0.0, 0.0, diag);
-  if (rc != FB_OK) return rc;
+/* one moving link of an instance: its centre at fraction f from `from` to
+ * `to`, its frame at angle [rad] */
+typedef struct {
+  const double *from, *to;
+  double f, angle;
+} link_at;
+
+/* the instance of fb_mech_desc d: its three moving links and its joints
+ * at positions at[j], driven at ground-crank */
+static fb_status instance(fb_planar **out, const fb_mech_desc *d, const fb_link_mass link[3],
+                          const link_at la[3], const double at[][2], fb_diag *diag) {
   fb_planar *p = fb_planar_new(3, 4);
   if (!p) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a description");
-  const fb_mech_desc *d = &fb_mech_fourbar;
-  const double a[2] = {0.0, 0.0}, dd[2] = {lk->length[FB_GROUND], 0.0};
-  const double at[4][2] = {{a[0], a[1]}, {st.b[0], st.b[1]}, {st.c[0], st.c[1]},
-                           {dd[0], dd[1]}};
-  if (add_link(p, d, FB_CRANK, &link[FB_CRANK], a, st.b, link[FB_CRANK].com_fraction,
-               st.crank_angle, diag) < 0 ||
-      add_link(p, d, FB_COUPLER, &link[FB_COUPLER], st.b, st.c, link[FB_COUPLER].com_fraction,
-               st.coupler_angle, diag) < 0 ||
-      add_link(p, d, FB_FOLLOWER, &link[FB_FOLLOWER], dd, st.c,
-               link[FB_FOLLOWER].com_fraction, st.follower_angle, diag) < 0)
-    rc = FB_ERR_RANGE;
+  fb_status rc = FB_OK;
+  for (int i = 0; i < 3 && rc == FB_OK; i++)
+    if (add_link(p, d, i, &link[i], la[i].from, la[i].to, la[i].f, la[i].angle, diag) < 0)
+      rc = FB_ERR_RANGE;
   if (rc == FB_OK) rc = add_joints(p, d, at, diag);
   if (rc != FB_OK) {
     fb_planar_free(p);
@@ -64,6 +62,22 @@ fb_status fb_planar_fourbar(fb_planar **out, const fb_linkage *lk, fb_branch bra
   return FB_OK;
 }
 
+fb_status fb_planar_fourbar(fb_planar **out, const fb_linkage *lk, fb_branch branch,
+                            const fb_link_mass link[3], double theta0, fb_diag *diag) {
+  *out = NULL;
+  fb_linkage_state st;
+  fb_status rc = fb_linkage_solve(&st, lk, branch, theta0, 0.0, 0.0, diag);
+  if (rc != FB_OK) return rc;
+  const double a[2] = {0.0, 0.0}, dd[2] = {lk->length[FB_GROUND], 0.0};
+  const double at[4][2] = {{a[0], a[1]}, {st.b[0], st.b[1]}, {st.c[0], st.c[1]},
+                           {dd[0], dd[1]}};
+  /* crank A -> B, coupler B -> C, follower D -> C */
+  const link_at la[3] = {{a, st.b, link[FB_CRANK].com_fraction, st.crank_angle},
+                         {st.b, st.c, link[FB_COUPLER].com_fraction, st.coupler_angle},
+                         {dd, st.c, link[FB_FOLLOWER].com_fraction, st.follower_angle}};
+  return instance(out, &fb_mech_fourbar, link, la, at, diag);
+}
+
 fb_status fb_planar_slider_crank(fb_planar **out, const fb_linkage *lk,
                                  const fb_link_mass link[3], double theta0, fb_diag *diag) {
   *out = NULL;
@@ -71,23 +85,14 @@ fb_status fb_planar_slider_crank(fb_planar **out, const fb_linkage *lk,
   fb_slider_crank_state st;
   fb_status rc = fb_slider_crank_solve(&st, &sc, theta0, 0.0, 0.0, diag);
   if (rc != FB_OK) return rc;
-  fb_planar *p = fb_planar_new(3, 4);
-  if (!p) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a description");
-  const fb_mech_desc *d = &fb_mech_slider_crank;
   const double a[2] = {0.0, 0.0};
   const double at[4][2] = {{0.0, 0.0}, {st.b[0], st.b[1]}, {st.c[0], st.c[1]},
                            {st.c[0], st.c[1]}};
-  if (add_link(p, d, 0, &link[0], a, st.b, link[0].com_fraction, st.crank_angle, diag) < 0 ||
-      add_link(p, d, 1, &link[1], st.b, st.c, link[1].com_fraction, st.coupler_angle, diag) < 0 ||
-      add_link(p, d, 2, &link[2], st.c, st.c, 0.0, 0.0, diag) < 0) /* the slider at the pin */
-    rc = FB_ERR_RANGE;
-  if (rc == FB_OK) rc = add_joints(p, d, at, diag);
-  if (rc != FB_OK) {
-    fb_planar_free(p);
-    return rc;
-  }
-  *out = p;
-  return FB_OK;
+  /* crank A -> B, rod B -> C, the slider at the pin C, unturned */
+  const link_at la[3] = {{a, st.b, link[0].com_fraction, st.crank_angle},
+                         {st.b, st.c, link[1].com_fraction, st.coupler_angle},
+                         {st.c, st.c, 0.0, 0.0}};
+  return instance(out, &fb_mech_slider_crank, link, la, at, diag);
 }
 
 /* ---- a planar case's spec ---------------------------------------------- */

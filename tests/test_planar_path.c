@@ -19,11 +19,13 @@
 #include "casefile.h"
 #include "fb_test.h"
 #include "fb_test_planar.h"
+#include "mech_kinematics.h"
 #include "planar_case.h"
 #include "planar_path.h"
 
 /* The issue's bound for the four-bar written as a planar description
- * against the built-in four-bar's analytic peaks, relative to each peak:
+ * against the built-in four-bar's analytic peaks (and here for the
+ * slider-crank's rod against mech_kinematics.h's), relative to each peak:
  * both are refined to 1e-9 rad (Brent) or 1e-12 rad (the series) in crank
  * angle at an extreme, where the value's error is quadratic in that
  * (below 1e-16), and both evaluate the motion at machine precision
@@ -76,6 +78,32 @@ static void test_fourbar_peaks(void **state) {
   assert_near(p[1].omega_max, omega, 1e-12 * fabs(omega));
   assert_near(p[1].omega_min, omega, 1e-12 * fabs(omega));
   assert_near(p[1].alpha_max, 0.0, 1e-9 * omega * omega);
+  fb_test_planar_free(&t);
+}
+
+/* the slider-crank's rod through the core against mech_kinematics.h's
+ * peaks (the closed form, bracketed and refined by Brent to 1e-12 rad) */
+static void test_slider_crank_peaks(void **state) {
+  (void)state;
+  fb_case c = fb_test_paper_once();
+  const fb_linkage lk = {{0.05, 0.18, 0.012, 0}};
+  fb_test_planar t = fb_test_planar_slider(&c, &lk, 0.4, 1e-4, 0.0);
+  fb_diag d;
+  const double omega = -150.0;
+  fb_planar_peaks p[4];
+  if (fb_planar_peaks_of(p, t.k, omega, &d) != FB_OK) fail_msg("%s", d.msg);
+  fb_peaks a;
+  assert_int_equal(fb_mech_peaks(&a, FB_MECH_SLIDER_CRANK, &lk, FB_BRANCH_OPEN, omega, &d), FB_OK);
+  const double got[4] = {p[2].omega_max, p[2].omega_min, p[2].alpha_max, p[2].alpha_min};
+  const double want[4] = {a.body[0].omega_max, a.body[0].omega_min, a.body[0].alpha_max,
+                          a.body[0].alpha_min};
+  double worst = 0.0;
+  for (int x = 0; x < 4; x++) worst = fmax(worst, rel(got[x], want[x]));
+  report_residual("slider-crank rod peaks, core vs mech_kinematics (rel)", worst, FOURBAR_PEAK_REL);
+  assert_true(worst <= FOURBAR_PEAK_REL);
+  /* the slider never turns */
+  assert_near(p[3].omega_max, 0.0, 1e-12);
+  assert_near(p[3].omega_min, 0.0, 1e-12);
   fb_test_planar_free(&t);
 }
 
@@ -271,6 +299,7 @@ static void test_follow_locks(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_fourbar_peaks),
+      cmocka_unit_test(test_slider_crank_peaks),
       cmocka_unit_test(test_sixbar_against_dyads),
       cmocka_unit_test(test_follow_locks),
   };

@@ -27,9 +27,11 @@
 
 /* Smallest singular value of the scaled Phi_q, relative to its largest,
  * that counts as full rank: 1e-8. At a toggle the value falls to the
- * rounding level (~1e-16); a mechanism 0.1 degree of drive angle from one
- * keeps ~1e-3 (the value falls linearly with the angle to it near a
- * simple toggle), so the threshold sits far from both. */
+ * rounding level (~1e-16); near one it falls as the square root of the
+ * drive angle still to go (a fold: the positions move as that root), so a
+ * mechanism 0.1 degree from a toggle keeps ~1e-2 (measured 3e-5 to 7e-5
+ * at 1e-7 rad from one, tests/test_planar_check.c): the threshold sits
+ * far from both. */
 #define FB_PLANAR_RANK_TOL 1e-8
 
 /* After one revolution every body's position is its start's to this,

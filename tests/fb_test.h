@@ -32,6 +32,17 @@ static inline int fb_test_verbose(void) {
 /* |a - b| <= rel * |b| */
 #define assert_rel(a, b, rel) assert_near((a), (b), (rel) * fabs(b))
 
+/* max |a - b| over max |b| of two 2 x 2 tensors */
+static inline double fb_test_tensor_rel_diff(double a[2][2], double b[2][2]) {
+  double d = 0.0, s = 0.0;
+  for (int r = 0; r < 2; r++)
+    for (int q = 0; q < 2; q++) {
+      d = fmax(d, fabs(a[r][q] - b[r][q]));
+      s = fmax(s, fabs(b[r][q]));
+    }
+  return d / s;
+}
+
 /* prints a measured residual when FB_TEST_VERBOSE is set */
 #define report_residual(name, value, tol)                                      \
   do {                                                                         \
@@ -81,6 +92,24 @@ static inline fb_status fb_test_shipped_case(fb_case *c, const char *file, const
   char path[4096];
   snprintf(path, sizeof path, "%s/%s", d ? d : "cases", file);
   return fb_casefile_load(c, path, sets, n, diag);
+}
+
+/* The shipped paper case as fb_test_paper_case loads it with no overrides,
+ * read once per test program (a copy: the caller may change it). */
+static inline fb_case fb_test_paper_once(void) {
+  static fb_case paper;
+  static int loaded = 0;
+  if (!loaded) fb_test_paper_case(&paper, NULL, 0), loaded = 1;
+  return paper;
+}
+
+/* Loads the shipped planar case cases/<file> ([linkage] type = planar)
+ * with fb_casefile_load_planar into *c. */
+static inline fb_status fb_test_shipped_case_planar(fb_case *c, const char *file, fb_diag *diag) {
+  const char *d = getenv("FOURBAR_CASES_DIR");
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", d ? d : "cases", file);
+  return fb_casefile_load_planar(c, path, NULL, 0, diag);
 }
 #endif
 

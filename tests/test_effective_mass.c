@@ -22,23 +22,9 @@
 #define TENSOR_REL_TOL 1e-9
 
 static void paper_state(fb_case *c, fb_linkage *su, fb_linkage_state *st, double crank) {
-  /* the case file is read once */
-  static fb_case paper;
-  static int loaded = 0;
-  if (!loaded) fb_test_paper_case(&paper, NULL, 0), loaded = 1;
-  *c = paper;
+  *c = fb_test_paper_once(); /* the case file is read once */
   fb_case_stackup_lengths(c, su);
   assert_int_equal(fb_linkage_solve(st, su, c->branch, crank, fb_case_omega2(c), 0.0, NULL), FB_OK);
-}
-
-static double tensor_diff(double a[2][2], double b[2][2]) {
-  double d = 0.0, s = 0.0;
-  for (int r = 0; r < 2; r++)
-    for (int q = 0; q < 2; q++) {
-      d = fmax(d, fabs(a[r][q] - b[r][q]));
-      s = fmax(s, fabs(b[r][q]));
-    }
-  return d / s;
 }
 
 /* r-perp r-perp^T / I + I2 / m */
@@ -72,10 +58,10 @@ static void test_free_coupler_closed_form(void **state) {
     const double p[2] = {-rd[1], rd[0]};
     for (int a = 0; a < 2; a++)
       for (int b = 0; b < 2; b++) wc[a][b] += p[a] * p[b] / i_d;
-    report_residual("free coupler at B", tensor_diff(w[1], wb), TENSOR_REL_TOL);
-    report_residual("coupler + pivoted follower at C", tensor_diff(w[2], wc), TENSOR_REL_TOL);
-    assert_true(tensor_diff(w[1], wb) < TENSOR_REL_TOL);
-    assert_true(tensor_diff(w[2], wc) < TENSOR_REL_TOL);
+    report_residual("free coupler at B", fb_test_tensor_rel_diff(w[1], wb), TENSOR_REL_TOL);
+    report_residual("coupler + pivoted follower at C", fb_test_tensor_rel_diff(w[2], wc), TENSOR_REL_TOL);
+    assert_true(fb_test_tensor_rel_diff(w[1], wb) < TENSOR_REL_TOL);
+    assert_true(fb_test_tensor_rel_diff(w[2], wc) < TENSOR_REL_TOL);
     /* ideal joints carry no tensor */
     assert_true(w[0][0][0] == 0.0 && w[3][1][1] == 0.0);
   }
@@ -121,8 +107,8 @@ static void test_matches_minimal_coordinates(void **state) {
     assert_int_equal(fb_effective_mass_tensor(w, &m, NULL), FB_OK);
     assert_int_equal(fb_effective_mass_tensor_kkt(wk, &m, NULL), FB_OK);
     minimal_tensor(wm, &c, &su, &st);
-    worst = fmax(worst, tensor_diff(wk[1], wm));
-    worst_closed = fmax(worst_closed, fmax(tensor_diff(w[1], wm), tensor_diff(w[1], wk[1])));
+    worst = fmax(worst, fb_test_tensor_rel_diff(wk[1], wm));
+    worst_closed = fmax(worst_closed, fmax(fb_test_tensor_rel_diff(w[1], wm), fb_test_tensor_rel_diff(w[1], wk[1])));
     for (int j = 0; j < 4; j++) /* the other joints' tensors are zero in both */
       if (j != 1)
         for (int r = 0; r < 4; r++) assert_true(w[j][r / 2][r % 2] == 0.0 && wk[j][r / 2][r % 2] == 0.0);

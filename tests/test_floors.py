@@ -54,8 +54,8 @@ import sys
 # of ENGINE_DIRS.
 FLOORS = [
     ("base", ["src/base"]),
-    ("model", ["src/model"]),
-    ("physics", ["src/physics"]),
+    ("model", ["src/model", "src/model/mech"]),
+    ("physics", ["src/physics", "src/physics/planar"]),
     ("setup", ["src/setup"]),
     ("engines", ["src/engines"]),  # and each engine's folder (set_engine_dirs)
     ("run", ["src/run"]),

@@ -10,6 +10,7 @@
 #include "fb_engine_opts.h"
 #include "links.h"
 #include "mechanism.h"
+#include "planar_spec.h"
 #include "status.h"
 
 #define FB_NAME_SIZE 64
@@ -221,6 +222,10 @@ enum { FB_PUBLISHED_IMPACT = 0, FB_PUBLISHED_RESTITUTION = 1, FB_PUBLISHED_LAWS 
 typedef struct fb_case_s {
   char name[FB_NAME_SIZE];            /* case name, used for the output folder */
   fb_mech_type mechanism;             /* [linkage] type: the four-bar or the slider-crank */
+  fb_planar_spec planar;              /* [linkage] type = planar: its [joint.NAME], [body.NAME]
+                                         sections and [drive] joint (planar.on = 1); the
+                                         description is built from it (physics/planar/
+                                         planar_case.h); no command runs one yet */
   fb_linkage nominal;                 /* basic link lengths [m]; a slider-crank's crank, coupler
                                          and guide offset (mechanism.h FB_LENGTH_OFFSET), ground 0 */
   double plus_minus[FB_LINK_COUNT];   /* symmetric length tolerance per link [m] (4) */

@@ -9,6 +9,7 @@
  * a default is written), and the plausibility notes of a loaded case. */
 #include "casefile.h"
 #include "casefile_internal.h"
+#include "casefile_planar.h"
 #include "fileio.h"
 #include "ini_lines.h"
 
@@ -645,11 +646,16 @@ fb_status fb_casefile_load_variant(fb_case *out, const char *path, const char *c
 }
 
 static fb_status load(fb_case *out, const char *path, const char *text, size_t text_size,
-                      const char *const *overrides, int n_overrides, fb_diag *diag);
+                      const char *const *overrides, int n_overrides, int planar, fb_diag *diag);
 
 fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *overrides,
                            int n_overrides, fb_diag *diag) {
-  return load(out, path, NULL, 0, overrides, n_overrides, diag);
+  return load(out, path, NULL, 0, overrides, n_overrides, 0, diag);
+}
+
+fb_status fb_casefile_load_planar(fb_case *out, const char *path, const char *const *overrides,
+                                  int n_overrides, fb_diag *diag) {
+  return load(out, path, NULL, 0, overrides, n_overrides, 1, diag);
 }
 
 fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text, size_t size,
@@ -659,11 +665,11 @@ fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text
     text = empty;
     size = 1;
   }
-  return load(out, name, text, size, NULL, 0, diag);
+  return load(out, name, text, size, NULL, 0, 0, diag);
 }
 
 static fb_status load(fb_case *out, const char *path, const char *text, size_t text_size,
-                      const char *const *overrides, int n_overrides, fb_diag *diag) {
+                      const char *const *overrides, int n_overrides, int planar, fb_diag *diag) {
   fb_diag_clear(diag);
   load_ctx *c = calloc(1, sizeof *c);
   if (!c) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -684,14 +690,16 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   fb_case_default(out);
   { /* the mechanism first: the joint names of the other keys are its own */
     const int t = find_entry(c, "linkage", "type");
-    if (t >= 0) st = fb_casefile_apply(out, &c->e[t], diag);
+    if (t >= 0 && fb_casefile_planar_type(&c->e[t])) out->planar.on = 1; /* casefile_planar.c */
+    else if (t >= 0) st = fb_casefile_apply(out, &c->e[t], diag);
     if (st != FB_OK) goto done;
   }
   for (int i = 0; i < c->n; i++) {
     const entry *e = &c->e[i];
     st = strncmp(e->section, VARIANT_PREFIX, strlen(VARIANT_PREFIX)) == 0
              ? take_variant(out, e, diag)
-             : fb_casefile_apply(out, e, diag);
+         : fb_casefile_planar_claims(out, e) ? fb_casefile_planar_take(out, e, diag)
+                                             : fb_casefile_apply(out, e, diag);
     if (st != FB_OK) goto done;
   }
   st = check_variants(out, diag);
@@ -702,6 +710,10 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   if (st != FB_OK) goto done;
   for (int i = 0; i < fb_casefile_key_count(); i++)
     out->given[i] = entry_origin(c, fb_casefile_spec(i)->section, fb_casefile_spec(i)->key) != NULL;
+  if (out->planar.on) { /* its sections, masses and checks are casefile_planar.c's */
+    st = fb_casefile_planar_finish(out, c->e, c->n, path, planar, diag);
+    goto done;
+  }
   if (!fb_casefile_given(out, "run", "models") && out->clearance.mask)
     for (size_t i = 0; i < sizeof clearance_default_models / sizeof clearance_default_models[0] &&
                        out->model_count < FB_MAX_MODELS; i++)

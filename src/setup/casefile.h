@@ -24,6 +24,14 @@
 fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *overrides,
                            int n_overrides, fb_diag *diag);
 
+/* As fb_casefile_load, for a caller that computes on a planar case
+ * ([linkage] type = planar, docs/planar.md: its description is in
+ * out->planar, built by physics/planar/planar_case.h's fb_planar_of_case).
+ * fb_casefile_load reads and checks a planar case the same way, then
+ * refuses it (FB_ERR_ARG): no command runs one yet. */
+fb_status fb_casefile_load_planar(fb_case *out, const char *path, const char *const *overrides,
+                                  int n_overrides, fb_diag *diag);
+
 /* Most --set overrides fb_casefile_load_variant passes on, and most items
  * in one variant's set. */
 #define FB_CASEFILE_MAX_SETS 256

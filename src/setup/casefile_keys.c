@@ -87,10 +87,12 @@ static const key_spec keys[] = {
      "one line describing the case (not used by the solver)"},
 
     {"linkage", "type", K_MECH, OFF(mechanism), 0, 0, 0, 0, 0, "-", "four-bar",
-     "four-bar or slider-crank",
+     "four-bar, slider-crank or planar",
      "the mechanism: the four-bar (crank, coupler, follower, ground) or the offset slider-crank "
      "(crank, coupler as the connecting rod, a slider on a guide along +x; keys crank_mm, "
-     "coupler_mm, offset_mm and [mass] slider_kg)"},
+     "coupler_mm, offset_mm and [mass] slider_kg), or planar: any planar mechanism of one "
+     "degree of freedom given by [joint.NAME] and [body.NAME] sections and [drive] joint "
+     "(docs/planar.md; checked, not yet run)"},
     {"linkage", "crank_mm", K_DOUBLE, OFF(nominal.length[FB_CRANK]), FB_M_PER_MM, 1e-3, 1e5, 0, 0, "mm",
      "108", LEN_RULE, "basic crank length, A to B"},
     {"linkage", "coupler_mm", K_DOUBLE, OFF(nominal.length[FB_COUPLER]), FB_M_PER_MM, 1e-3, 1e5, 0, 0,

@@ -1,0 +1,173 @@
+/* The planar description (planar.h): building it, finding by name, the
+ * Gruebler-Kutzbach count and the assembly configuration. */
+#include "planar.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+fb_planar *fb_planar_new(int max_bodies, int max_joints) {
+  if (max_bodies < 1 || max_joints < 1) return NULL;
+  fb_planar *m = calloc(1, sizeof *m);
+  if (!m) return NULL;
+  m->body = calloc((size_t)max_bodies + 1, sizeof *m->body);
+  m->joint = calloc((size_t)max_joints, sizeof *m->joint);
+  if (!m->body || !m->joint) {
+    fb_planar_free(m);
+    return NULL;
+  }
+  m->cap_bodies = max_bodies + 1;
+  m->cap_joints = max_joints;
+  m->nbodies = 1;
+  snprintf(m->body[FB_PLANAR_GROUND].name, FB_PLANAR_NAME_SIZE, "ground");
+  m->drive = -1;
+  return m;
+}
+
+void fb_planar_free(fb_planar *m) {
+  if (!m) return;
+  free(m->body);
+  free(m->joint);
+  free(m);
+}
+
+/* a name that is new, not empty and fits */
+static int name_ok(const char *name, const char *what, int taken, fb_diag *diag) {
+  if (!name || !*name || strlen(name) >= FB_PLANAR_NAME_SIZE) {
+    fb_diag_set(diag, FB_ERR_ARG, "a %s name is 1 to %d characters", what,
+                FB_PLANAR_NAME_SIZE - 1);
+    return 0;
+  }
+  if (taken) {
+    fb_diag_set(diag, FB_ERR_ARG, "%s '%s' is named twice: give each %s a name of its own",
+                what, name, what);
+    return 0;
+  }
+  return 1;
+}
+
+/* -1, for a refusal whose message fb_diag_set has written */
+static int refused(fb_status st) {
+  (void)st;
+  return -1;
+}
+
+int fb_planar_add_body(fb_planar *m, const char *name, double mass, double inertia,
+                       const double centre[2], double angle0, int derived, fb_diag *diag) {
+  if (!name_ok(name, "body", name && fb_planar_find_body(m, name) >= 0, diag)) return -1;
+  if (m->nbodies == m->cap_bodies)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "body '%s': the description holds %d moving "
+                               "bodies", name, m->cap_bodies - 1));
+  if (!(mass > 0.0 && isfinite(mass)) || !(inertia > 0.0 && isfinite(inertia)))
+    return refused(fb_diag_set(diag, FB_ERR_RANGE, "body '%s': mass %g kg, moment of inertia "
+                               "%g kg m^2: both must be positive and finite", name, mass,
+                               inertia));
+  if (!isfinite(centre[0]) || !isfinite(centre[1]) || !isfinite(angle0))
+    return refused(fb_diag_set(diag, FB_ERR_RANGE, "body '%s': its centre and angle must be "
+                               "finite", name));
+  fb_planar_body *b = &m->body[m->nbodies];
+  memset(b, 0, sizeof *b);
+  snprintf(b->name, sizeof b->name, "%s", name);
+  b->mass = mass;
+  b->inertia = inertia;
+  b->centre[0] = centre[0];
+  b->centre[1] = centre[1];
+  b->angle0 = angle0;
+  b->derived = derived;
+  return m->nbodies++;
+}
+
+/* v in the frame of body b in the assembly configuration (the ground's
+ * frame is the world's) */
+static void to_body(double out[2], const fb_planar *m, int b, const double v[2], int is_point) {
+  const fb_planar_body *bb = &m->body[b];
+  const double d[2] = {v[0] - (is_point ? bb->centre[0] : 0.0),
+                       v[1] - (is_point ? bb->centre[1] : 0.0)};
+  const double c = cos(bb->angle0), s = sin(bb->angle0);
+  out[0] = c * d[0] + s * d[1];
+  out[1] = -s * d[0] + c * d[1];
+}
+
+int fb_planar_add_joint(fb_planar *m, const char *name, fb_joint_kind kind, int b0, int b1,
+                        const double at[2], double axis_angle, fb_diag *diag) {
+  if (!name_ok(name, "joint", name && fb_planar_find_joint(m, name) >= 0, diag)) return -1;
+  if (m->njoints == m->cap_joints)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "joint '%s': the description holds %d joints",
+                               name, m->cap_joints));
+  if (b0 < 0 || b0 >= m->nbodies || b1 < 0 || b1 >= m->nbodies || b0 == b1)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "joint '%s': bodies %d and %d: a joint "
+                               "connects two different bodies of the description (0 .. %d)",
+                               name, b0, b1, m->nbodies - 1));
+  if (!isfinite(at[0]) || !isfinite(at[1]) || (kind == FB_KIND_PRISMATIC && !isfinite(axis_angle)))
+    return refused(fb_diag_set(diag, FB_ERR_RANGE, "joint '%s': its position and axis must be "
+                               "finite", name));
+  fb_planar_joint *j = &m->joint[m->njoints];
+  memset(j, 0, sizeof *j);
+  snprintf(j->name, sizeof j->name, "%s", name);
+  j->kind = kind;
+  j->body[0] = b0;
+  j->body[1] = b1;
+  j->at[0] = at[0];
+  j->at[1] = at[1];
+  to_body(j->point[0], m, b0, at, 1);
+  to_body(j->point[1], m, b1, at, 1);
+  const double dir[2] = {cos(axis_angle), sin(axis_angle)};
+  if (kind == FB_KIND_PRISMATIC) to_body(j->axis, m, b0, dir, 0);
+  else j->axis[0] = 1.0;
+  j->clearance_ok = kind == FB_KIND_REVOLUTE;
+  return m->njoints++;
+}
+
+fb_status fb_planar_set_drive(fb_planar *m, int j, fb_diag *diag) {
+  if (j < 0 || j >= m->njoints)
+    return fb_diag_set(diag, FB_ERR_ARG, "drive: joint %d is not one of the %d joints", j,
+                       m->njoints);
+  if (m->joint[j].kind != FB_KIND_REVOLUTE)
+    return fb_diag_set(diag, FB_ERR_ARG, "drive: joint '%s' is prismatic; the drive turns a "
+                       "revolute joint at speed_rpm", m->joint[j].name);
+  m->drive = j;
+  return FB_OK;
+}
+
+void fb_planar_drive_bodies(const fb_planar *m, int *from, int *to) {
+  const fb_planar_joint *j = &m->joint[m->drive];
+  const int swap = j->body[1] == FB_PLANAR_GROUND;
+  *from = j->body[swap ? 1 : 0];
+  *to = j->body[swap ? 0 : 1];
+}
+
+int fb_planar_find_body(const fb_planar *m, const char *name) {
+  for (int b = 0; b < m->nbodies; b++)
+    if (strcmp(m->body[b].name, name) == 0) return b;
+  return -1;
+}
+
+int fb_planar_find_joint(const fb_planar *m, const char *name) {
+  for (int j = 0; j < m->njoints; j++)
+    if (strcmp(m->joint[j].name, name) == 0) return j;
+  return -1;
+}
+
+int fb_planar_nq(const fb_planar *m) { return 3 * (m->nbodies - 1); }
+
+int fb_planar_gruebler(const fb_planar *m) { return 3 * (m->nbodies - 1) - 2 * m->njoints; }
+
+void fb_planar_assembly(const fb_planar *m, double *q) {
+  for (int b = 1; b < m->nbodies; b++) {
+    q[3 * (b - 1)] = m->body[b].centre[0];
+    q[3 * (b - 1) + 1] = m->body[b].centre[1];
+    q[3 * (b - 1) + 2] = m->body[b].angle0;
+  }
+}
+
+double fb_planar_size(const fb_planar *m) {
+  double c[2] = {0.0, 0.0}, size = 1e-3;
+  for (int j = 0; j < m->njoints; j++) {
+    c[0] += m->joint[j].at[0] / m->njoints;
+    c[1] += m->joint[j].at[1] / m->njoints;
+  }
+  for (int j = 0; j < m->njoints; j++)
+    size = fmax(size, hypot(m->joint[j].at[0] - c[0], m->joint[j].at[1] - c[1]));
+  return size;
+}

@@ -1,0 +1,145 @@
+/* A planar mechanism as data (model floor): its bodies and joints as lists
+ * sized when the description is built, not by the mechanism's type. The
+ * four-bar, the slider-crank and a case's own [joint.NAME] sections all
+ * become one of these (physics/planar/planar_case.h builds them); the
+ * planar core (physics/planar/) computes on it and never asks which
+ * mechanism it holds.
+ *
+ *   body 0           the ground (fixed; its frame is the world frame)
+ *   body 1 .. n-1    the moving bodies; body b's frame has its origin at
+ *                    the body's centre of mass and its x axis at angle0
+ *                    (counter-clockwise from the world's +x) in the
+ *                    assembly configuration
+ *   joint j          two bodies, a kind (revolute: a pin; prismatic: a
+ *                    slide along an axis), its point on each body in that
+ *                    body's frame, its position in the assembly
+ *                    configuration
+ *   drive            one revolute joint turned at the case's speed
+ *
+ * Coordinates of the core: q = (x, y, theta) per moving body, the frame's
+ * origin and angle in the world, 3 (n - 1) of them; body b's are
+ * q[3 (b - 1)] .. q[3 (b - 1) + 2]. In the assembly configuration
+ * q = (centre, angle0) of every body and every joint's two points
+ * coincide. Lengths in metres, angles in radians, SI throughout.
+ * Built by fb_planar_new, fb_planar_add_body, fb_planar_add_joint and
+ * fb_planar_set_drive; freed by fb_planar_free. */
+#ifndef FB_PLANAR_H
+#define FB_PLANAR_H
+
+#include "mechanism.h"
+#include "status.h"
+
+/* Longest body or joint name plus its NUL: a [joint.NAME] section's name
+ * fits inih's 49 characters (setup/ini_lines.h) with "joint." before it. */
+#define FB_PLANAR_NAME_SIZE 44
+
+/* Index of the ground in fb_planar.body. */
+#define FB_PLANAR_GROUND 0
+
+/* How a body's mass properties came about (fb_planar_body.derived bits). */
+enum {
+  FB_PLANAR_DERIVED_MASS = 1,    /* mass from its bars and the density */
+  FB_PLANAR_DERIVED_INERTIA = 2, /* moment of inertia from its bars */
+  FB_PLANAR_DERIVED_CENTRE = 4   /* centre of mass from its bars (or its joint point) */
+};
+
+/* One body. */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE]; /* "coupler"; the ground's is "ground" */
+  double mass;                    /* [kg] > 0 (0 for the ground) */
+  double inertia;                 /* about +z through the centre of mass [kg m^2] > 0 */
+  double centre[2];               /* centre of mass in the assembly configuration [m] (2) */
+  double angle0;                  /* the body frame's x axis in the assembly configuration,
+                                     counter-clockwise from +x [rad] */
+  int derived;                    /* FB_PLANAR_DERIVED_* bits: what was derived, not given */
+} fb_planar_body;
+
+/* One joint. */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE]; /* "crank-coupler" */
+  fb_joint_kind kind;             /* revolute or prismatic (mechanism.h) */
+  int body[2];                    /* its bodies (indices into fb_planar.body); a reaction is
+                                     the force on body[1] from body[0]; a clearance joint's
+                                     pin is on body[0], its hole on body[1] */
+  double at[2];                   /* position in the assembly configuration [m] (2) */
+  double point[2][2];             /* the joint's point in body[k]'s frame [m] (2 x 2) */
+  double axis[2];                 /* prismatic: the slide's unit direction in body[0]'s
+                                     frame [-] (2); revolute: (1, 0), unused */
+  int clearance_ok;               /* 1: may be a clearance joint (a revolute joint) */
+} fb_planar_joint;
+
+/* A planar mechanism. */
+typedef struct {
+  int nbodies;            /* bodies held, the ground (index 0) included */
+  int njoints;            /* joints held */
+  int cap_bodies;         /* room in body */
+  int cap_joints;         /* room in joint */
+  fb_planar_body *body;   /* (nbodies) */
+  fb_planar_joint *joint; /* (njoints) */
+  int drive;              /* the driven joint (revolute), -1 before fb_planar_set_drive */
+} fb_planar;
+
+/* A description with the ground alone (named "ground"), room for
+ * max_bodies moving bodies and max_joints joints; NULL when out of memory
+ * or a size is not positive. Free with fb_planar_free. */
+fb_planar *fb_planar_new(int max_bodies, int max_joints);
+
+/* Frees m (NULL is fine). */
+void fb_planar_free(fb_planar *m);
+
+/* Adds a moving body named name with mass [kg], inertia about its centre
+ * [kg m^2], centre of mass centre (2) [m] and frame angle angle0 [rad],
+ * all in the assembly configuration; derived: FB_PLANAR_DERIVED_* bits.
+ * Returns its index (1, 2, ...), or -1 with diag filled: FB_ERR_ARG when
+ * the name is empty, too long, "ground" or taken, or the description is
+ * full; FB_ERR_RANGE when mass or inertia is not positive and finite. */
+int fb_planar_add_body(fb_planar *m, const char *name, double mass, double inertia,
+                       const double centre[2], double angle0, int derived, fb_diag *diag);
+
+/* Adds a joint named name of kind between bodies b0 and b1 at position at
+ * (2) [m] in the assembly configuration; for a prismatic joint, the slide's
+ * direction axis_angle [rad] counter-clockwise from +x in that
+ * configuration (ignored for a revolute joint). Its points in each body's
+ * frame are computed from the bodies' centres and angles, which must be
+ * added first. A revolute joint may carry clearance, a prismatic one not.
+ * Returns its index, or -1 with diag filled: FB_ERR_ARG when the name is
+ * empty, too long or taken, a body index is out of range, b0 == b1 or the
+ * description is full; FB_ERR_RANGE when at or the axis is not finite. */
+int fb_planar_add_joint(fb_planar *m, const char *name, fb_joint_kind kind, int b0, int b1,
+                        const double at[2], double axis_angle, fb_diag *diag);
+
+/* Makes joint j the driven joint. Errors: FB_ERR_ARG when j is out of range
+ * or not revolute. */
+fb_status fb_planar_set_drive(fb_planar *m, int j, fb_diag *diag);
+
+/* The bodies the drive turns: *from (the ground when the driven joint
+ * touches it) and *to, the body whose angle relative to *from the drive
+ * prescribes (the joint's other body; the joint's body[1] when neither is
+ * the ground). Positive drive angles turn *to counter-clockwise relative
+ * to *from. Requires a drive. */
+void fb_planar_drive_bodies(const fb_planar *m, int *from, int *to);
+
+/* Index of the body or joint named name, or -1. */
+int fb_planar_find_body(const fb_planar *m, const char *name);
+int fb_planar_find_joint(const fb_planar *m, const char *name);
+
+/* Number of coordinates, 3 (nbodies - 1). */
+int fb_planar_nq(const fb_planar *m);
+
+/* Degrees of freedom by the Gruebler-Kutzbach count for planar
+ * mechanisms, 3 (n - 1) - 2 j, n bodies with the ground, j joints
+ * (revolute and prismatic joints each remove two); the drive removes one
+ * more. (Norton, Design of Machinery, sec. 2.7; Uicker, Pennock and
+ * Shigley, Theory of Machines and Mechanisms, sec. 1.9.) */
+int fb_planar_gruebler(const fb_planar *m);
+
+/* The description's size [m]: the largest distance of a joint's assembly
+ * position from the mean of them all, at least 1 mm (the scale of the
+ * core's length tolerances). */
+double fb_planar_size(const fb_planar *m);
+
+/* The coordinates of the assembly configuration into q (fb_planar_nq):
+ * every moving body at (centre, angle0). */
+void fb_planar_assembly(const fb_planar *m, double *q);
+
+#endif

@@ -1,0 +1,68 @@
+/* What a planar case file says ([linkage] type = planar): its [joint.NAME]
+ * and [body.NAME] sections and [drive] joint, as read, in SI, before any
+ * derivation (model floor: plain data held by the case, copied with it).
+ * The description the core computes on (planar.h) is built from it at run
+ * time, sized by its content (physics/planar/planar_case.h,
+ * fb_planar_of_case): the spec is the input, the description the compiled
+ * model (MuJoCo's mjSpec and mjModel, in miniature). Filled by
+ * setup/casefile_planar.c, which says what each key means (docs/planar.md).
+ *
+ * Sizes: a case file holds at most 512 keys (casefile.c); 31 joints (a
+ * [clearance] joints bit mask is an int) and as many moving bodies are
+ * more than any planar mechanism with one drive a case describes by hand
+ * (a Watt or Stephenson six-bar has 7 joints, an eight-bar 10). */
+#ifndef FB_PLANAR_SPEC_H
+#define FB_PLANAR_SPEC_H
+
+#include "planar.h"
+
+#define FB_PLANAR_SPEC_MAX_JOINTS 31
+#define FB_PLANAR_SPEC_MAX_BODIES 31
+
+/* Which keys of a [joint.NAME] or [body.NAME] section were given (bits). */
+enum {
+  FB_SPEC_JOINT_BODIES = 1, /* bodies = A, B */
+  FB_SPEC_JOINT_AT = 2,     /* at_mm = x, y */
+  FB_SPEC_JOINT_KIND = 4,   /* kind = revolute | prismatic */
+  FB_SPEC_JOINT_AXIS = 8,   /* axis_deg */
+  FB_SPEC_BODY_SECTION = 1, /* a [body.NAME] section exists */
+  FB_SPEC_BODY_MASS = 2,    /* mass_kg */
+  FB_SPEC_BODY_INERTIA = 4, /* inertia_kg_mm2 */
+  FB_SPEC_BODY_CENTRE = 8,  /* centre_mm = x, y */
+  FB_SPEC_BODY_WIDTH = 16,  /* width_mm */
+  FB_SPEC_BODY_THICK = 32   /* thickness_mm */
+};
+
+/* One [joint.NAME] section. */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE]; /* NAME */
+  int body[2];                    /* indices into fb_planar_spec.body (0: the ground) */
+  double at[2];                   /* assembly position [m] (2) */
+  int kind;                       /* fb_joint_kind (mechanism.h); revolute by default */
+  double axis;                    /* prismatic: slide direction, ccw from +x [rad] */
+  int given;                      /* FB_SPEC_JOINT_* bits */
+} fb_planar_spec_joint;
+
+/* One body: named by a joint's bodies key or a [body.NAME] section. */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE]; /* NAME; body 0 is "ground" */
+  double mass;                    /* [kg] when given */
+  double inertia;                 /* about +z through the centre of mass [kg m^2] when given */
+  double centre[2];               /* centre of mass in the assembly configuration [m] when given */
+  double width;                   /* bar width for derived masses [m] when given */
+  double thickness;               /* bar thickness for derived masses [m] when given */
+  int given;                      /* FB_SPEC_BODY_* bits */
+} fb_planar_spec_body;
+
+/* A planar case's mechanism as its file gives it. */
+typedef struct {
+  int on;                      /* 1: [linkage] type = planar */
+  int njoints;                 /* joints held, in file order */
+  fb_planar_spec_joint joint[FB_PLANAR_SPEC_MAX_JOINTS];
+  int nbodies;                 /* bodies held, the ground (index 0) included, in order of
+                                  first mention */
+  fb_planar_spec_body body[FB_PLANAR_SPEC_MAX_BODIES + 1];
+  int drive;                   /* [drive] joint: index into joint, -1 when not given */
+} fb_planar_spec;
+
+#endif

@@ -1,0 +1,248 @@
+/* The description of a case's mechanism (planar_case.h): the four-bar and
+ * the slider-crank as instances, a planar case's spec compiled with its
+ * masses derived as bars. */
+#include "planar_case.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "bar_mass.h"
+#include "linkage.h"
+#include "slider_crank.h"
+#include "units.h"
+
+/* a moving body of fb_mech_desc d (index i) at centre c and angle a */
+static int add_link(fb_planar *p, const fb_mech_desc *d, int i, const fb_link_mass *lm,
+                    const double from[2], const double to[2], double f, double a,
+                    fb_diag *diag) {
+  const double c[2] = {from[0] + f * (to[0] - from[0]), from[1] + f * (to[1] - from[1])};
+  return fb_planar_add_body(p, d->body[i].name, lm->mass, lm->inertia, c, a, 0, diag);
+}
+
+/* the joints of fb_mech_desc d at positions at[j], its body indices moved
+ * to the description's (the ground first), driven at its input's joint 0 */
+static fb_status add_joints(fb_planar *p, const fb_mech_desc *d, const double at[][2],
+                            fb_diag *diag) {
+  const int ground = d->nbodies - 1; /* fb_mech_desc lists the ground last */
+  for (int j = 0; j < d->njoints; j++) {
+    int b[2];
+    for (int k = 0; k < 2; k++)
+      b[k] = d->joint[j].body[k] == ground ? FB_PLANAR_GROUND : d->joint[j].body[k] + 1;
+    if (fb_planar_add_joint(p, d->joint[j].name, d->joint[j].kind, b[0], b[1], at[j], 0.0,
+                            diag) < 0)
+      return FB_ERR_ARG;
+  }
+  return fb_planar_set_drive(p, 0, diag);
+}
+
+/* one moving link of an instance: its centre at fraction f from `from` to
+ * `to`, its frame at angle [rad] */
+typedef struct {
+  const double *from, *to;
+  double f, angle;
+} link_at;
+
+/* the instance of fb_mech_desc d: its three moving links and its joints
+ * at positions at[j], driven at ground-crank */
+static fb_status instance(fb_planar **out, const fb_mech_desc *d, const fb_link_mass link[3],
+                          const link_at la[3], const double at[][2], fb_diag *diag) {
+  fb_planar *p = fb_planar_new(3, 4);
+  if (!p) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a description");
+  fb_status rc = FB_OK;
+  for (int i = 0; i < 3 && rc == FB_OK; i++)
+    if (add_link(p, d, i, &link[i], la[i].from, la[i].to, la[i].f, la[i].angle, diag) < 0)
+      rc = FB_ERR_RANGE;
+  if (rc == FB_OK) rc = add_joints(p, d, at, diag);
+  if (rc != FB_OK) {
+    fb_planar_free(p);
+    return rc;
+  }
+  *out = p;
+  return FB_OK;
+}
+
+fb_status fb_planar_fourbar(fb_planar **out, const fb_linkage *lk, fb_branch branch,
+                            const fb_link_mass link[3], double theta0, fb_diag *diag) {
+  *out = NULL;
+  fb_linkage_state st;
+  fb_status rc = fb_linkage_solve(&st, lk, branch, theta0, 0.0, 0.0, diag);
+  if (rc != FB_OK) return rc;
+  const double a[2] = {0.0, 0.0}, dd[2] = {lk->length[FB_GROUND], 0.0};
+  const double at[4][2] = {{a[0], a[1]}, {st.b[0], st.b[1]}, {st.c[0], st.c[1]},
+                           {dd[0], dd[1]}};
+  /* crank A -> B, coupler B -> C, follower D -> C */
+  const link_at la[3] = {{a, st.b, link[FB_CRANK].com_fraction, st.crank_angle},
+                         {st.b, st.c, link[FB_COUPLER].com_fraction, st.coupler_angle},
+                         {dd, st.c, link[FB_FOLLOWER].com_fraction, st.follower_angle}};
+  return instance(out, &fb_mech_fourbar, link, la, at, diag);
+}
+
+fb_status fb_planar_slider_crank(fb_planar **out, const fb_linkage *lk,
+                                 const fb_link_mass link[3], double theta0, fb_diag *diag) {
+  *out = NULL;
+  const fb_slider_crank sc = fb_slider_crank_of(lk);
+  fb_slider_crank_state st;
+  fb_status rc = fb_slider_crank_solve(&st, &sc, theta0, 0.0, 0.0, diag);
+  if (rc != FB_OK) return rc;
+  const double a[2] = {0.0, 0.0};
+  const double at[4][2] = {{0.0, 0.0}, {st.b[0], st.b[1]}, {st.c[0], st.c[1]},
+                           {st.c[0], st.c[1]}};
+  /* crank A -> B, rod B -> C, the slider at the pin C, unturned */
+  const link_at la[3] = {{a, st.b, link[0].com_fraction, st.crank_angle},
+                         {st.b, st.c, link[1].com_fraction, st.coupler_angle},
+                         {st.c, st.c, 0.0, 0.0}};
+  return instance(out, &fb_mech_slider_crank, link, la, at, diag);
+}
+
+/* ---- a planar case's spec ---------------------------------------------- */
+
+/* Joint points of one body closer than this are one point [m]: a joint
+ * position is typed to microns at best, and a bar shorter than 1 nm is no
+ * bar. */
+#define SAME_POINT_M 1e-9
+
+/* body b's distinct joint points in order (its joints with the ground
+ * first, then the file's); returns how many */
+static int body_points(double pts[][2], int max, const fb_planar_spec *s, int b) {
+  int n = 0;
+  for (int pass = 0; pass < 2; pass++)
+    for (int j = 0; j < s->njoints; j++) {
+      const fb_planar_spec_joint *jt = &s->joint[j];
+      const int touches = jt->body[0] == b || jt->body[1] == b;
+      const int grounded = jt->body[0] == FB_PLANAR_GROUND || jt->body[1] == FB_PLANAR_GROUND;
+      if (!touches || grounded != (pass == 0)) continue;
+      int seen = 0;
+      for (int i = 0; i < n; i++)
+        seen |= hypot(pts[i][0] - jt->at[0], pts[i][1] - jt->at[1]) < SAME_POINT_M;
+      if (!seen && n < max) {
+        pts[n][0] = jt->at[0];
+        pts[n][1] = jt->at[1];
+        n++;
+      }
+    }
+  return n;
+}
+
+/* mass properties of the bars between every pair of the points */
+typedef struct {
+  double mass, centre[2], inertia; /* [kg], [m], about centre [kg m^2] */
+} bars_t;
+
+static bars_t bars_of(double pts[][2], int n, double w, double t, double rho) {
+  bars_t r = {0.0, {0.0, 0.0}, 0.0};
+  for (int i = 0; i < n; i++)
+    for (int k = i + 1; k < n; k++) {
+      const double l = hypot(pts[k][0] - pts[i][0], pts[k][1] - pts[i][1]);
+      const double m = rho * w * t * l;
+      r.mass += m;
+      r.centre[0] += m * 0.5 * (pts[i][0] + pts[k][0]);
+      r.centre[1] += m * 0.5 * (pts[i][1] + pts[k][1]);
+    }
+  if (!(r.mass > 0.0)) return r;
+  r.centre[0] /= r.mass;
+  r.centre[1] /= r.mass;
+  for (int i = 0; i < n; i++)
+    for (int k = i + 1; k < n; k++) {
+      const double l = hypot(pts[k][0] - pts[i][0], pts[k][1] - pts[i][1]);
+      const double m = rho * w * t * l;
+      const double dx = 0.5 * (pts[i][0] + pts[k][0]) - r.centre[0];
+      const double dy = 0.5 * (pts[i][1] + pts[k][1]) - r.centre[1];
+      r.inertia += m * (l * l + w * w) / 12.0 + m * (dx * dx + dy * dy);
+    }
+  return r;
+}
+
+/* body b of spec s into p: its mass properties given or derived */
+static int compile_body(fb_planar *p, const fb_planar_spec *s, int b, double density,
+                        fb_diag *diag) {
+  const fb_planar_spec_body *sb = &s->body[b];
+  double pts[FB_PLANAR_SPEC_MAX_JOINTS][2];
+  const int n = body_points(pts, FB_PLANAR_SPEC_MAX_JOINTS, s, b);
+  const fb_bar def = fb_bar_default();
+  const double w = sb->given & FB_SPEC_BODY_WIDTH ? sb->width : def.width;
+  const double t = sb->given & FB_SPEC_BODY_THICK ? sb->thickness : def.thickness;
+  const bars_t bars = bars_of(pts, n, w, t, density);
+  const int has_bar = n >= 2;
+  const int given_m = sb->given & FB_SPEC_BODY_MASS, given_i = sb->given & FB_SPEC_BODY_INERTIA;
+  const int given_c = sb->given & FB_SPEC_BODY_CENTRE;
+  if (!has_bar && (!given_m || !given_i)) {
+    fb_diag_set(diag, FB_ERR_ARG,
+                "body '%s' has %s, so no bar to derive its %s from: give [body.%s] %s%s%s",
+                sb->name, n ? "one joint point (its joints coincide)" : "no joint",
+                given_m ? "moment of inertia" : "mass", sb->name, given_m ? "" : "mass_kg",
+                !given_m && !given_i ? " and " : "", given_i ? "" : "inertia_kg_mm2");
+    return -1;
+  }
+  const double mass = given_m ? sb->mass : bars.mass;
+  if (!given_m && !(mass >= FB_MASS_MIN_KG && mass <= FB_MASS_MAX_KG)) {
+    fb_diag_set(diag, FB_ERR_RANGE,
+                "body '%s': its bars weigh %g kg (density %g kg/m^3, %g x %g mm section, %g mm "
+                "of bars): a mass must lie in [%g, %g] kg; give [body.%s] mass_kg or change the "
+                "section", sb->name, mass, density, w * 1e3, t * 1e3, bars.mass / (density * w * t) * 1e3,
+                FB_MASS_MIN_KG, FB_MASS_MAX_KG, sb->name);
+    return -1;
+  }
+  double c[2] = {bars.centre[0], bars.centre[1]};
+  if (given_c) {
+    c[0] = sb->centre[0];
+    c[1] = sb->centre[1];
+  } else if (!has_bar) {
+    c[0] = pts[0][0];
+    c[1] = pts[0][1];
+  }
+  double inertia = sb->inertia;
+  if (!given_i) {
+    const double dx = c[0] - bars.centre[0], dy = c[1] - bars.centre[1];
+    inertia = bars.inertia * (mass / bars.mass) + mass * (dx * dx + dy * dy);
+  }
+  const double angle0 = has_bar ? atan2(pts[1][1] - pts[0][1], pts[1][0] - pts[0][0]) : 0.0;
+  const int derived = (given_m ? 0 : FB_PLANAR_DERIVED_MASS) |
+                      (given_i ? 0 : FB_PLANAR_DERIVED_INERTIA) |
+                      (given_c ? 0 : FB_PLANAR_DERIVED_CENTRE);
+  return fb_planar_add_body(p, sb->name, mass, inertia, c, angle0, derived, diag);
+}
+
+fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double density,
+                            fb_planar_where *where, fb_diag *diag) {
+  *out = NULL;
+  fb_planar_where none = {-1, -1};
+  if (!where) where = &none;
+  *where = none;
+  if (s->njoints < 1 || s->nbodies < 2)
+    return fb_diag_set(diag, FB_ERR_ARG, "a planar mechanism needs joints: give one "
+                       "[joint.NAME] section per joint");
+  fb_planar *p = fb_planar_new(s->nbodies - 1, s->njoints);
+  if (!p) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a description");
+  fb_status rc = FB_OK;
+  for (int b = 1; b < s->nbodies && rc == FB_OK; b++)
+    if (compile_body(p, s, b, density, diag) < 0) {
+      where->body = b;
+      rc = FB_ERR_ARG;
+    }
+  for (int j = 0; j < s->njoints && rc == FB_OK; j++) {
+    const fb_planar_spec_joint *sj = &s->joint[j];
+    if (fb_planar_add_joint(p, sj->name, (fb_joint_kind)sj->kind, sj->body[0], sj->body[1],
+                            sj->at, sj->axis, diag) < 0) {
+      where->joint = j;
+      rc = FB_ERR_ARG;
+    }
+  }
+  if (rc == FB_OK && s->drive < 0) rc = fb_diag_set(diag, FB_ERR_ARG, "no drive: name the "
+                                                    "driven joint in [drive] joint");
+  if (rc == FB_OK && (rc = fb_planar_set_drive(p, s->drive, diag)) != FB_OK) where->joint = s->drive;
+  if (rc != FB_OK) {
+    fb_planar_free(p);
+    return rc;
+  }
+  *out = p;
+  return FB_OK;
+}
+
+fb_status fb_planar_of_case(fb_planar **out, const fb_case *c, const fb_linkage *lengths,
+                            fb_diag *diag) {
+  if (c->planar.on) return fb_planar_compile(out, &c->planar, c->density, NULL, diag);
+  if (c->mechanism == FB_MECH_SLIDER_CRANK)
+    return fb_planar_slider_crank(out, lengths, c->link, c->crank_angle0, diag);
+  return fb_planar_fourbar(out, lengths, c->branch, c->link, c->crank_angle0, diag);
+}

@@ -1,0 +1,92 @@
+/* The reference's right-hand side for a planar description with revolute
+ * clearance joints: any of its revolute joints (clearance[j] = 1) is taken
+ * out of the constraint set and becomes a pin in a hole, whose contact law
+ * (contact.h) acts along the eccentricity; the other joints and the drive
+ * hold. The engine-free yardstick of a clearance model for any mechanism,
+ * as reference.h is for the four-bar's crank-coupler joint and
+ * slider_crank_dynamics.h for the slider-crank's piston pin.
+ *
+ * State y = (q, q') in absolute coordinates (2 nq). At each evaluation:
+ *   contact   at each clearance joint j (pin on body[0], hole on body[1],
+ *             Flores and Ambrosio's geometry, docs/contact.md):
+ *             e = p_pin - p_hole, delta = |e| - c, n = e / |e|,
+ *             delta' = n . (v_pin - v_hole), F = law(delta, delta', v0) >= 0
+ *             (the restitution law's damper on the effective mass along n,
+ *             planar_mass.h, by contact_mass.h's rule); +F n on the hole's
+ *             body, -F n on the pin's,
+ *             as generalised forces (f, (p - r) x f) of each body;
+ *   motion    the index-1 DAE M q'' + G^T lambda = Q, G q'' = gamma (G the
+ *             joints left and the drive at phi(t) = omega t), solved by the
+ *             Schur complement of planar_mass.h.
+ * The constraints hold at the acceleration level only, so positions and
+ * velocities drift from them at the integrator's error; the reference
+ * integration (planar_reference.h) projects them back at every output
+ * sample. */
+#ifndef FB_PLANAR_DYNAMICS_H
+#define FB_PLANAR_DYNAMICS_H
+
+#include "contact.h"
+#include "planar_mass.h"
+
+/* The model. */
+typedef struct {
+  const fb_planar *mech;           /* the description (outlives the model) */
+  const unsigned char *clearance;  /* (njoints) 1: a revolute clearance joint */
+  fb_contact_law law;              /* normal-force law at every clearance joint (prepared:
+                                      fb_contact_law_prepare) */
+  double radial_clearance;         /* c = R_hole - R_pin [m] >= 0 */
+  double impact_velocity;          /* v0 of the hysteresis laws [m/s] > 0 (fixed, as reference.c) */
+  double gravity;                  /* along -y [m/s^2] */
+  double omega;                    /* the drive's constant speed, signed [rad/s]: phi(t) = omega t */
+} fb_planar_dyn_model;
+
+/* One clearance joint's contact at an evaluation. */
+typedef struct {
+  double ecc[2];         /* e = p_pin - p_hole [m] (x, y) */
+  double penetration;    /* max(|e| - c, 0) [m] */
+  double rate;           /* delta' [m/s] (0 at e = 0) */
+  double force;          /* F >= 0 [N] */
+  double effective_mass; /* 1 / (n^T W n) along n [kg] where the law's damper needs it
+                            (contact_mass.h: the restitution law in contact); else 0 */
+} fb_planar_contact;
+
+/* The right-hand side's workspace. */
+typedef struct fb_planar_dyn fb_planar_dyn;
+
+/* A workspace for model (copied; its mech and clearance must outlive it).
+ * Errors: FB_ERR_ARG when a clearance joint is prismatic or the
+ * description has no drive; FB_ERR_RANGE for a negative clearance or
+ * gravity, a non-positive v0; those of fb_contact_law_check; FB_ERR_NOMEM. */
+fb_status fb_planar_dyn_new(fb_planar_dyn **out, const fb_planar_dyn_model *model,
+                            fb_diag *diag);
+
+void fb_planar_dyn_free(fb_planar_dyn *d);
+
+/* Coordinates (nq); the state has 2 nq. */
+int fb_planar_dyn_nq(const fb_planar_dyn *d);
+
+/* The model held. */
+const fb_planar_dyn_model *fb_planar_dyn_model_of(const fb_planar_dyn *d);
+
+/* The constraint set's workspace (the joints left and the drive), for the
+ * projection of a state (fb_planar_cmass_project). */
+fb_planar_cmass *fb_planar_dyn_cmass(fb_planar_dyn *d);
+
+/* dydt (2 nq) = (q', q'') at time t [s] and state y (2 nq); contact[j]
+ * (njoints; may be NULL) receives each clearance joint's contact, other
+ * entries untouched. Errors: FB_ERR_NUMERIC when the constraint set is
+ * singular at q. */
+fb_status fb_planar_dyn_eval(fb_planar_dyn *d, double t, const double *y, double *dydt,
+                             fb_planar_contact *contact);
+
+/* fb_planar_dyn_eval in the form of GSL's gsl_odeiv2_system function
+ * (params: an fb_planar_dyn *): GSL_SUCCESS, or GSL_EBADFUNC when the set
+ * is singular. */
+int fb_planar_dyn_rhs(double t, const double y[], double dydt[], void *params);
+
+/* The steady start: every joint (the clearance joints too, pins centred)
+ * and the drive on the ideal motion at t = 0, the assembly configuration,
+ * into y0 (2 nq). Errors: those of planar_kinematics.h. */
+fb_status fb_planar_dyn_steady(double *y0, const fb_planar_dyn *d, fb_diag *diag);
+
+#endif

@@ -1,0 +1,83 @@
+/* Joint reactions and drive torque from the Lagrange multipliers
+ * (planar_invdyn.h). */
+#include "planar_invdyn.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* the force and moment about its centre that rows r, r + 1 with
+ * multipliers lam put on body b: -(Phi_q rows, b's columns)^T lambda */
+static void on_body(double f[3], const double *jac, int nq, int r, int b, const double *lam) {
+  f[0] = f[1] = f[2] = 0.0;
+  if (!b) return;
+  for (int k = 0; k < 3; k++)
+    for (int i = 0; i < 2; i++) f[k] -= jac[(r + i) * nq + 3 * (b - 1) + k] * lam[r + i];
+}
+
+fb_status fb_planar_invdyn(fb_planar_reaction *out, double *drive_torque, const fb_planar *m,
+                           const double *q, const double *qd, const double *qdd, double gravity,
+                           fb_diag *diag) {
+  (void)qd; /* the velocities enter through q'' alone */
+  if (m->drive < 0 || fb_planar_gruebler(m) != 1)
+    return fb_diag_set(diag, FB_ERR_ARG, "inverse dynamics needs a driven mechanism of one "
+                       "degree of freedom");
+  const int n = fb_planar_nq(m);
+  double *jac = calloc((size_t)n * (size_t)n + 2 * (size_t)n, sizeof *jac);
+  gsl_matrix *jt = gsl_matrix_alloc((size_t)n, (size_t)n);
+  gsl_permutation *p = gsl_permutation_alloc((size_t)n);
+  if (!jac || !jt || !p) {
+    free(jac);
+    if (jt) gsl_matrix_free(jt);
+    if (p) gsl_permutation_free(p);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  }
+  double *rhs = jac + n * n, *lam = rhs + n;
+  const fb_planar_drive d = {0.0, 0.0, 0.0};
+  fb_planar_constraints(NULL, jac, NULL, m, NULL, &d, q, NULL);
+  for (int r = 0; r < n; r++)
+    for (int c = 0; c < n; c++) gsl_matrix_set(jt, (size_t)c, (size_t)r, jac[r * n + c]);
+  /* Q - M q'' */
+  for (int b = 1; b < m->nbodies; b++) {
+    const fb_planar_body *bb = &m->body[b];
+    const int c = 3 * (b - 1);
+    rhs[c] = -bb->mass * qdd[c];
+    rhs[c + 1] = -bb->mass * gravity - bb->mass * qdd[c + 1];
+    rhs[c + 2] = -bb->inertia * qdd[c + 2];
+  }
+  int s;
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  gsl_linalg_LU_decomp(jt, p, &s);
+  gsl_vector_view bv = gsl_vector_view_array(rhs, (size_t)n), xv = gsl_vector_view_array(lam, (size_t)n);
+  const int rc = gsl_linalg_LU_solve(jt, p, &bv.vector, &xv.vector);
+  gsl_set_error_handler(old);
+  fb_status st = FB_OK;
+  for (int i = 0; i < n && rc == GSL_SUCCESS; i++)
+    if (!isfinite(lam[i])) st = FB_ERR_ASSEMBLY;
+  if (rc != GSL_SUCCESS || st != FB_OK)
+    st = fb_diag_set(diag, FB_ERR_ASSEMBLY, "inverse dynamics: the Jacobian is singular (a "
+                     "locked position): the reactions are not determined there");
+  for (int j = 0; j < m->njoints && st == FB_OK; j++) {
+    const fb_planar_joint *jt_ = &m->joint[j];
+    /* on body[1]; when that is the ground, minus what body[0] gets */
+    const int on_second = jt_->body[1] != FB_PLANAR_GROUND;
+    const int b = jt_->body[on_second ? 1 : 0];
+    const double sign = on_second ? 1.0 : -1.0;
+    double f[3];
+    on_body(f, jac, n, 2 * j, b, lam);
+    double pt[2];
+    fb_planar_point(pt, m, q, b, jt_->point[on_second ? 1 : 0]);
+    const double arm[2] = {pt[0] - q[3 * (b - 1)], pt[1] - q[3 * (b - 1) + 1]};
+    out[j].force[0] = sign * f[0];
+    out[j].force[1] = sign * f[1];
+    out[j].moment = sign * (f[2] - (arm[0] * f[1] - arm[1] * f[0]));
+  }
+  /* the drive's row has +1 in the driven body's angle */
+  if (st == FB_OK && drive_torque) *drive_torque = -lam[n - 1];
+  free(jac);
+  gsl_matrix_free(jt);
+  gsl_permutation_free(p);
+  return st;
+}

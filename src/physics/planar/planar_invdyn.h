@@ -1,0 +1,38 @@
+/* Inverse dynamics of a planar description: the joint reactions and the
+ * drive torque that make its rigid bodies follow a motion (q, q', q''),
+ * gravity included, from the Lagrange multipliers of its constraints.
+ *
+ * With the drive's row the Jacobian Phi_q is square, so the equations of
+ * motion M q'' + Phi_q^T lambda = Q (Q: gravity, (0, -m g, 0) per body)
+ * give the multipliers alone: Phi_q^T lambda = Q - M q'', solved by GSL's
+ * LU of Phi_q^T. A joint's rows' -Phi_q^T lambda in one body's columns are
+ * the force and moment (about its centre) the joint puts on that body
+ * (Haug 1989, sec. 6.6: reaction forces from Lagrange multipliers;
+ * Nikravesh 1988, sec. 6.4). Same conventions as invdyn.h: the force on a
+ * joint's body[1] from its body[0]; the drive torque on the driven body
+ * from the drive, about +z. tests/test_planar_invdyn.c checks the
+ * four-bar's against invdyn.h and the slider-crank's against
+ * slider_crank_invdyn.h. */
+#ifndef FB_PLANAR_INVDYN_H
+#define FB_PLANAR_INVDYN_H
+
+#include "planar_kinematics.h"
+
+/* One joint's reaction. */
+typedef struct {
+  double force[2]; /* on body[1] from body[0] (x, y) [N]: a prismatic joint's is normal to its
+                      slide */
+  double moment;   /* about +z at the joint's point, on body[1] from body[0] [N m]: zero for a
+                      revolute joint (a pin carries no moment); a prismatic joint's couple */
+} fb_planar_reaction;
+
+/* Reactions of every joint (out, njoints) and the drive torque [N m] for
+ * the motion q, qd, qdd (fb_planar_nq each) of m under gravity [m/s^2]
+ * along -y. Errors: FB_ERR_ASSEMBLY when Phi_q is singular at q (a locked
+ * position: the reactions are not determined); FB_ERR_ARG when m has no
+ * drive or is not of one degree of freedom; FB_ERR_NOMEM. */
+fb_status fb_planar_invdyn(fb_planar_reaction *out, double *drive_torque, const fb_planar *m,
+                           const double *q, const double *qd, const double *qdd, double gravity,
+                           fb_diag *diag);
+
+#endif

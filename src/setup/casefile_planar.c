@@ -1,0 +1,397 @@
+/* A planar case's sections in the case-file reader (casefile_planar.h):
+ * [joint.NAME], [body.NAME], [drive] joint and [clearance] joints read
+ * into fb_case.planar (model/mech/planar_spec.h), units converted to SI
+ * here, then checked as a whole, compiled and checked by the planar core. */
+#include "casefile_planar.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "casefile.h"
+#include "planar_case.h"
+#include "planar_check.h"
+#include "units.h"
+
+#define JOINT_PREFIX "joint."
+#define BODY_PREFIX "body."
+#define COORD_MAX_MM 1e5 /* a position's coordinates, as a link length's range: 100 m */
+#define COORD_RULE "a coordinate in mm from -1e5 to 1e5 (100 m)"
+
+static int prefixed(const char *s, const char *prefix) {
+  return strncmp(s, prefix, strlen(prefix)) == 0;
+}
+
+int fb_casefile_planar_type(const entry *e) {
+  return strcmp(e->section, "linkage") == 0 && strcmp(e->key, "type") == 0 &&
+         strcmp(e->value, "planar") == 0;
+}
+
+/* a four-bar key a planar case does not take */
+static int fourbar_key(const entry *e) {
+  if (strcmp(e->section, "linkage") == 0) return strcmp(e->key, "type") != 0;
+  if (strcmp(e->section, "mass") == 0) return 1;
+  const size_t n = strlen(e->key), s = strlen("_plus_minus_mm");
+  return strcmp(e->section, "tolerance") == 0 && n > s &&
+         strcmp(e->key + n - s, "_plus_minus_mm") == 0;
+}
+
+int fb_casefile_planar_claims(const fb_case *c, const entry *e) {
+  if (prefixed(e->section, JOINT_PREFIX) || prefixed(e->section, BODY_PREFIX)) return 1;
+  if (strcmp(e->section, "drive") == 0 && strcmp(e->key, "joint") == 0) return 1;
+  if (!c->planar.on) return 0;
+  if (strcmp(e->section, "clearance") == 0 && strcmp(e->key, "joints") == 0) return 1;
+  return fb_casefile_planar_type(e) || fourbar_key(e);
+}
+
+/* ---- values -------------------------------------------------------------- */
+
+/* a name of a joint or body: the case-name characters, 1 to 43 of them */
+static fb_status name_of(const entry *e, const char *name, const char *what, fb_diag *diag) {
+  if (!fb_casefile_name_ok(name) || strlen(name) >= FB_PLANAR_NAME_SIZE)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: '%s': a %s name is 1 to %d characters "
+                       "from letters, digits, '-', '_' and '.', not starting with '.'",
+                       e->origin, e->section, name, what, FB_PLANAR_NAME_SIZE - 1);
+  return FB_OK;
+}
+
+/* one number of key e in [lo, hi] (file units) times scale into *out */
+static fb_status number(const entry *e, const char *text, double lo, double hi, double scale,
+                        const char *rule, double *out, fb_diag *diag) {
+  double v;
+  if (!fb_casefile_decimal(text, &v))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': not a decimal number (%s)",
+                       e->origin, e->section, e->key, e->value, rule);
+  if (!(v >= lo && v <= hi))
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = %s: %s", e->origin, e->section,
+                       e->key, e->value, rule);
+  *out = v * scale;
+  return FB_OK;
+}
+
+/* "x, y" in mm into out [m] */
+static fb_status point_mm(const entry *e, double out[2], fb_diag *diag) {
+  char buf[sizeof e->value];
+  snprintf(buf, sizeof buf, "%s", e->value);
+  char *comma = strchr(buf, ',');
+  if (!comma || strchr(comma + 1, ','))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': expected two numbers x, y in "
+                       "mm (for example 120, -35.5)", e->origin, e->section, e->key, e->value);
+  *comma = '\0';
+  fb_status st = number(e, trim(buf), -COORD_MAX_MM, COORD_MAX_MM, FB_M_PER_MM, COORD_RULE,
+                        &out[0], diag);
+  if (st == FB_OK)
+    st = number(e, trim(comma + 1), -COORD_MAX_MM, COORD_MAX_MM, FB_M_PER_MM, COORD_RULE,
+                &out[1], diag);
+  return st;
+}
+
+/* the body named name in s (created at its first mention), or -1 when full */
+static int body_index(fb_planar_spec *s, const char *name) {
+  if (s->nbodies == 0) { /* the ground first */
+    memset(&s->body[0], 0, sizeof s->body[0]);
+    snprintf(s->body[0].name, sizeof s->body[0].name, "ground");
+    s->nbodies = 1;
+  }
+  for (int b = 0; b < s->nbodies; b++)
+    if (strcmp(s->body[b].name, name) == 0) return b;
+  if (s->nbodies == FB_PLANAR_SPEC_MAX_BODIES + 1) return -1;
+  fb_planar_spec_body *b = &s->body[s->nbodies];
+  memset(b, 0, sizeof *b);
+  snprintf(b->name, sizeof b->name, "%s", name);
+  return s->nbodies++;
+}
+
+/* the joint named name in s (created at its first mention), or -1 when full */
+static int joint_index(fb_planar_spec *s, const char *name) {
+  for (int j = 0; j < s->njoints; j++)
+    if (strcmp(s->joint[j].name, name) == 0) return j;
+  if (s->njoints == FB_PLANAR_SPEC_MAX_JOINTS) return -1;
+  fb_planar_spec_joint *j = &s->joint[s->njoints];
+  memset(j, 0, sizeof *j);
+  snprintf(j->name, sizeof j->name, "%s", name);
+  j->kind = FB_KIND_REVOLUTE;
+  return s->njoints++;
+}
+
+/* bodies = A, B */
+static fb_status joint_bodies(fb_planar_spec *s, fb_planar_spec_joint *j, const entry *e,
+                              fb_diag *diag) {
+  char buf[sizeof e->value];
+  snprintf(buf, sizeof buf, "%s", e->value);
+  char *comma = strchr(buf, ',');
+  if (!comma || strchr(comma + 1, ','))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies = '%s': expected two body names "
+                       "A, B (ground: the fixed body)", e->origin, e->section, e->value);
+  *comma = '\0';
+  const char *name[2] = {trim(buf), trim(comma + 1)};
+  for (int k = 0; k < 2; k++) {
+    fb_status st = name_of(e, name[k], "body", diag);
+    if (st != FB_OK) return st;
+  }
+  if (strcmp(name[0], name[1]) == 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies = '%s': a joint connects two "
+                       "different bodies", e->origin, e->section, e->value);
+  for (int k = 0; k < 2; k++)
+    if ((j->body[k] = body_index(s, name[k])) < 0)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies: more than %d moving bodies",
+                         e->origin, e->section, FB_PLANAR_SPEC_MAX_BODIES);
+  j->given |= FB_SPEC_JOINT_BODIES;
+  return FB_OK;
+}
+
+static fb_status joint_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
+  const char *name = e->section + strlen(JOINT_PREFIX);
+  fb_status st = name_of(e, name, "joint", diag);
+  if (st != FB_OK) return st;
+  const int ji = joint_index(s, name);
+  if (ji < 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: more than %d joints", e->origin,
+                       e->section, FB_PLANAR_SPEC_MAX_JOINTS);
+  fb_planar_spec_joint *j = &s->joint[ji];
+  if (strcmp(e->key, "bodies") == 0) return joint_bodies(s, j, e, diag);
+  if (strcmp(e->key, "at_mm") == 0) {
+    j->given |= FB_SPEC_JOINT_AT;
+    return point_mm(e, j->at, diag);
+  }
+  if (strcmp(e->key, "kind") == 0) {
+    j->given |= FB_SPEC_JOINT_KIND;
+    if (strcmp(e->value, "revolute") == 0) j->kind = FB_KIND_REVOLUTE;
+    else if (strcmp(e->value, "prismatic") == 0) j->kind = FB_KIND_PRISMATIC;
+    else
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] kind = '%s': revolute or prismatic",
+                         e->origin, e->section, e->value);
+    return FB_OK;
+  }
+  if (strcmp(e->key, "axis_deg") == 0) {
+    j->given |= FB_SPEC_JOINT_AXIS;
+    return number(e, e->value, -360.0, 360.0, FB_RAD_PER_DEG,
+                  "an angle from -360 to 360 deg, counter-clockwise from +x", &j->axis, diag);
+  }
+  return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a joint has bodies, "
+                     "at_mm, kind and axis_deg)", e->origin, e->key, e->section);
+}
+
+static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
+  const char *name = e->section + strlen(BODY_PREFIX);
+  fb_status st = name_of(e, name, "body", diag);
+  if (st != FB_OK) return st;
+  if (strcmp(name, "ground") == 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: the ground is fixed and has no mass "
+                       "properties; name a moving body", e->origin, e->section);
+  const int bi = body_index(s, name);
+  if (bi < 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: more than %d moving bodies", e->origin,
+                       e->section, FB_PLANAR_SPEC_MAX_BODIES);
+  fb_planar_spec_body *b = &s->body[bi];
+  b->given |= FB_SPEC_BODY_SECTION;
+  if (strcmp(e->key, "centre_mm") == 0) {
+    b->given |= FB_SPEC_BODY_CENTRE;
+    return point_mm(e, b->centre, diag);
+  }
+  static const struct {
+    const char *key;
+    int bit;
+    size_t offset;
+    double lo, hi, scale;
+    const char *rule;
+  } keys[] = {
+      {"mass_kg", FB_SPEC_BODY_MASS, offsetof(fb_planar_spec_body, mass), FB_MASS_MIN_KG,
+       FB_MASS_MAX_KG, 1.0, MASS_RULE},
+      {"inertia_kg_mm2", FB_SPEC_BODY_INERTIA, offsetof(fb_planar_spec_body, inertia), 1e-6,
+       1e12, FB_KG_M2_PER_KG_MM2,
+       "a moment of inertia must be positive, from 1e-6 to 1e12 kg mm^2"},
+      {"width_mm", FB_SPEC_BODY_WIDTH, offsetof(fb_planar_spec_body, width), 1e-3, 1e5,
+       FB_M_PER_MM, "a bar width must be positive, from 0.001 mm to 1e5 mm"},
+      {"thickness_mm", FB_SPEC_BODY_THICK, offsetof(fb_planar_spec_body, thickness), 1e-3, 1e5,
+       FB_M_PER_MM, "a bar thickness must be positive, from 0.001 mm to 1e5 mm"}};
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+    if (strcmp(e->key, keys[i].key) == 0) {
+      b->given |= keys[i].bit;
+      return number(e, e->value, keys[i].lo, keys[i].hi, keys[i].scale, keys[i].rule,
+                    (double *)((char *)b + keys[i].offset), diag);
+    }
+  return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a body has mass_kg, "
+                     "inertia_kg_mm2, centre_mm, width_mm and thickness_mm)", e->origin, e->key,
+                     e->section);
+}
+
+fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
+  const int planar_section = prefixed(e->section, JOINT_PREFIX) ||
+                             prefixed(e->section, BODY_PREFIX) ||
+                             strcmp(e->section, "drive") == 0;
+  if (!c->planar.on && planar_section)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s describes a planar mechanism, but the "
+                       "case is a %s: set [linkage] type = planar (docs/planar.md)", e->origin,
+                       e->section, e->key, fb_case_mech(c)->type);
+  if (prefixed(e->section, JOINT_PREFIX)) return joint_key(&c->planar, e, diag);
+  if (prefixed(e->section, BODY_PREFIX)) return body_key(&c->planar, e, diag);
+  if (fourbar_key(e))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s is a four-bar or slider-crank key; a "
+                       "planar case gives its geometry by [joint.NAME] at_mm and its masses by "
+                       "[body.NAME] (docs/planar.md): remove it", e->origin, e->section, e->key);
+  return FB_OK; /* [linkage] type, [drive] joint, [clearance] joints: read when finishing */
+}
+
+/* ---- the sections as a whole -------------------------------------------- */
+
+/* the first entry of section sec, or NULL */
+static const entry *first_of(const entry *e, int n, const char *prefix, const char *name) {
+  char sec[sizeof e->section];
+  snprintf(sec, sizeof sec, "%s%s", prefix, name);
+  for (int i = 0; i < n; i++)
+    if (strcmp(e[i].section, sec) == 0) return &e[i];
+  return NULL;
+}
+
+/* the entry of [section] key, or NULL */
+static const entry *entry_of(const entry *e, int n, const char *section, const char *key) {
+  for (int i = 0; i < n; i++)
+    if (strcmp(e[i].section, section) == 0 && strcmp(e[i].key, key) == 0) return &e[i];
+  return NULL;
+}
+
+/* where body b is described: its [body.NAME] section, else the first joint
+ * naming it */
+static const entry *body_origin(const fb_planar_spec *s, int b, const entry *e, int n) {
+  const entry *at = first_of(e, n, BODY_PREFIX, s->body[b].name);
+  for (int j = 0; j < s->njoints && !at; j++)
+    if (s->joint[j].body[0] == b || s->joint[j].body[1] == b)
+      at = first_of(e, n, JOINT_PREFIX, s->joint[j].name);
+  return at;
+}
+
+/* "file:line: [section]" of a joint or body (where), else the file */
+static const char *origin_of(char *buf, size_t size, const fb_planar_spec *s,
+                             const fb_planar_where *w, const entry *e, int n, const char *path) {
+  const entry *at = NULL;
+  if (w->joint >= 0 && w->joint < s->njoints) at = first_of(e, n, JOINT_PREFIX, s->joint[w->joint].name);
+  else if (w->body > 0 && w->body < s->nbodies) at = body_origin(s, w->body, e, n);
+  if (at) snprintf(buf, size, "%s: [%s]", at->origin, at->section);
+  else snprintf(buf, size, "%s", path ? path : "case");
+  return buf;
+}
+
+/* every joint has its bodies and position, a prismatic joint its axis, a
+ * revolute joint none; every [body.NAME] names a body some joint joins */
+static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, const char *path,
+                                fb_diag *diag) {
+  if (s->njoints == 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [linkage] type = planar needs its joints: one "
+                       "[joint.NAME] section per joint with bodies and at_mm (docs/planar.md)",
+                       path ? path : "case");
+  for (int j = 0; j < s->njoints; j++) {
+    const fb_planar_spec_joint *sj = &s->joint[j];
+    const entry *at = first_of(e, n, JOINT_PREFIX, sj->name);
+    const char *miss = !(sj->given & FB_SPEC_JOINT_BODIES) ? "bodies = A, B"
+                       : !(sj->given & FB_SPEC_JOINT_AT)   ? "at_mm = x, y"
+                       : sj->kind == FB_KIND_PRISMATIC && !(sj->given & FB_SPEC_JOINT_AXIS)
+                           ? "axis_deg (a prismatic joint's slide direction)"
+                           : NULL;
+    if (miss)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] has no %s", at->origin, at->section, miss);
+    if (sj->kind == FB_KIND_REVOLUTE && (sj->given & FB_SPEC_JOINT_AXIS))
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] axis_deg: a revolute joint has no axis "
+                         "in the plane (axis_deg is a prismatic joint's slide direction)",
+                         at->origin, at->section);
+  }
+  for (int b = 1; b < s->nbodies; b++) {
+    int joined = 0;
+    for (int j = 0; j < s->njoints; j++) joined |= s->joint[j].body[0] == b || s->joint[j].body[1] == b;
+    if (!joined) {
+      const entry *at = first_of(e, n, BODY_PREFIX, s->body[b].name);
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: no joint names body '%s' in its bodies "
+                         "key", at ? at->origin : "case", at ? at->section : "body",
+                         s->body[b].name);
+    }
+  }
+  return FB_OK;
+}
+
+/* the joints named in list ("none" or NAME, NAME, ...) as a mask, each
+ * checked by rule (1: revolute) */
+static fb_status joint_names(int *mask, const fb_planar_spec *s, const entry *e, int single,
+                             fb_diag *diag) {
+  char buf[sizeof e->value], known[1024] = "";
+  for (int j = 0; j < s->njoints; j++)
+    snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", j ? ", " : "",
+             s->joint[j].name);
+  *mask = 0;
+  snprintf(buf, sizeof buf, "%s", e->value);
+  if (!single && strcmp(trim(buf), "none") == 0) return FB_OK;
+  int count = 0;
+  char *save = NULL;
+  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save), count++) {
+    const char *name = trim(tok);
+    int found = -1;
+    for (int j = 0; j < s->njoints; j++)
+      if (strcmp(s->joint[j].name, name) == 0) found = j;
+    if (found < 0)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: '%s' is not a joint of the case "
+                         "(joints: %s)", e->origin, e->section, e->key, name, known);
+    if (s->joint[found].kind != FB_KIND_REVOLUTE)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: joint '%s' is prismatic; %s",
+                         e->origin, e->section, e->key, name,
+                         single ? "the drive turns a revolute joint at speed_rpm"
+                                : "only a revolute joint can be a pin in a hole");
+    *mask |= 1 << found;
+  }
+  if (single && count != 1)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': name one joint (joints: %s)",
+                       e->origin, e->section, e->key, e->value, known);
+  return FB_OK;
+}
+
+/* the drive and the clearance joints, by name */
+static fb_status drive_and_clearance(fb_case *c, const entry *e, int n, const char *path,
+                                     fb_diag *diag) {
+  fb_planar_spec *s = &c->planar;
+  const entry *dr = entry_of(e, n, "drive", "joint");
+  if (!dr)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [linkage] type = planar needs [drive] joint = "
+                       "NAME, the revolute joint the drive turns", path ? path : "case");
+  int mask;
+  fb_status st = joint_names(&mask, s, dr, 1, diag);
+  if (st != FB_OK) return st;
+  for (s->drive = 0; !(mask & (1 << s->drive)); s->drive++) continue;
+  const entry *cl = entry_of(e, n, "clearance", "joints");
+  c->clearance.mask = 0; /* a planar case's default: no clearance joint */
+  return cl ? joint_names(&c->clearance.mask, s, cl, 0, diag) : FB_OK;
+}
+
+/* one line on a checked description, for the refusal */
+static void summary(char *buf, size_t size, const fb_planar *m) {
+  char derived[256] = "";
+  for (int b = 1; b < m->nbodies; b++)
+    if (m->body[b].derived & FB_PLANAR_DERIVED_MASS)
+      snprintf(derived + strlen(derived), sizeof derived - strlen(derived), "%s%s",
+               derived[0] ? ", " : "", m->body[b].name);
+  snprintf(buf, size, "%d moving bodies, %d joints, one degree of freedom driven at '%s', a full "
+           "turn%s%s%s", m->nbodies - 1, m->njoints, m->joint[m->drive].name,
+           derived[0] ? "; masses derived as bars: " : "", derived, derived[0] ? "" : "");
+}
+
+fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const char *path, int run,
+                                    fb_diag *diag) {
+  fb_status st = sections_whole(&c->planar, e, n, path, diag);
+  if (st == FB_OK) st = drive_and_clearance(c, e, n, path, diag);
+  if (st != FB_OK) return st;
+  fb_planar *m;
+  fb_planar_where w;
+  fb_diag inner;
+  char where[FB_DIAG_SIZE];
+  st = fb_planar_compile(&m, &c->planar, c->density, &w, &inner);
+  if (st == FB_OK && (st = fb_planar_check(m, &w, &inner)) != FB_OK) fb_planar_free(m);
+  if (st != FB_OK)
+    return fb_diag_set(diag, st, "%s: %s",
+                       origin_of(where, sizeof where, &c->planar, &w, e, n, path), inner.msg);
+  char line[512];
+  summary(line, sizeof line, m);
+  fb_planar_free(m);
+  if (run) return FB_OK;
+  return fb_diag_set(diag, FB_ERR_ARG,
+                     "%s: [linkage] type = planar: the description checks (%s), but no command "
+                     "runs a planar case yet: the planar core computes its motion, inverse "
+                     "dynamics and clearance dynamics (docs/planar.md), and fourbar run, "
+                     "kinematics, stackup and penalty on it come next", path ? path : "case", line);
+}

@@ -8,7 +8,7 @@
  *      /         \   follower
  * crank           \
  *    /             \
- *  A o==== ground ==o D      velocity actuator "drive" on ground-crank */
+ *  A o==== ground ==o D      actuator "drive" on ground-crank */
 #include <math.h>
 #include <mujoco/mujoco.h>
 #include <stdio.h>
@@ -125,6 +125,18 @@ static void peaks_within(const double pk[4], const fb_case *c, double tol, doubl
   }
 }
 
+/* the paper case's export (ideal, or with its clearance joint) into
+ * text[size], loaded with its <option timestep> edited to h [s] as a user
+ * does (h = 0: as written) */
+static mjModel *paper_export(fb_case *c, char *text, size_t size, int ideal, double h) {
+  static char edited[65536];
+  fb_diag d;
+  fb_test_paper_case(c, NULL, 0);
+  assert_int_equal(fb_export_mjcf(text, size, c, ideal, &d), FB_OK);
+  if (h > 0.0) with_timestep(edited, sizeof edited, text, h);
+  return load(h > 0.0 ? edited : text);
+}
+
 /* the ideal export of the paper case as written (its step, 3.3e-6 s) and
  * with its timestep edited as a user does, from keyframe "start": two
  * revolutions without a warning, omega peaks within PEAK_OMEGA_REL_TOL up
@@ -133,17 +145,13 @@ static void peaks_within(const double pk[4], const fb_case *c, double tol, doubl
 static void test_ideal_export_matches_analytic(void **state) {
   (void)state;
   static fb_case c;
-  fb_test_paper_case(&c, NULL, 0);
-  static char text[65536], edited[65536];
-  fb_diag d;
-  assert_int_equal(fb_export_mjcf(text, sizeof text, &c, 1, &d), FB_OK);
-  /* the start and drive are documented at the top of the file */
-  assert_true(strncmp(text, "<!-- fourbar export", 19) == 0);
-  assert_non_null(strstr(text, "mj_resetDataKeyframe(m, d, 0)"));
+  static char text[65536];
   for (int s = -1; s < (int)(sizeof user_steps / sizeof *user_steps); s++) {
-    if (s >= 0) with_timestep(edited, sizeof edited, text, user_steps[s]);
-    mjModel *m = load(s < 0 ? text : edited);
+    mjModel *m = paper_export(&c, text, sizeof text, 1, s < 0 ? 0.0 : user_steps[s]);
     mjData *x = mj_makeData(m);
+    /* the start and drive are documented at the top of the file */
+    assert_true(strncmp(text, "<!-- fourbar export", 19) == 0);
+    assert_non_null(strstr(text, "mj_resetDataKeyframe(m, d, 0)"));
     /* the names the issue gives */
     const char *bodies[] = {"crank", "coupler", "follower"};
     for (int i = 0; i < 3; i++) assert_true(mj_name2id(m, mjOBJ_BODY, bodies[i]) >= 0);
@@ -171,12 +179,8 @@ static void test_ideal_export_matches_analytic(void **state) {
 static void test_plain_load_moves(void **state) {
   (void)state;
   static fb_case c;
-  fb_test_paper_case(&c, NULL, 0);
-  static char text[65536], edited[65536];
-  fb_diag d;
-  assert_int_equal(fb_export_mjcf(text, sizeof text, &c, 1, &d), FB_OK);
-  with_timestep(edited, sizeof edited, text, 1e-3);
-  mjModel *m = load(edited);
+  static char text[65536];
+  mjModel *m = paper_export(&c, text, sizeof text, 1, 1e-3);
   mjData *x = mj_makeData(m);
   mj_resetData(m, x);
   mj_forward(m, x);
@@ -270,13 +274,9 @@ static void test_clearance_export_force_matches_reference(void **state) {
 static void test_clearance_export_edited_step_holds(void **state) {
   (void)state;
   static fb_case c;
-  fb_test_paper_case(&c, NULL, 0);
-  static char text[65536], edited[65536];
-  fb_diag d;
-  assert_int_equal(fb_export_mjcf(text, sizeof text, &c, 0, &d), FB_OK);
+  static char text[65536];
+  mjModel *m = paper_export(&c, text, sizeof text, 0, 1e-5);
   assert_non_null(strstr(text, "it does not follow timestep"));
-  with_timestep(edited, sizeof edited, text, 1e-5);
-  mjModel *m = load(edited);
   mjData *x = mj_makeData(m);
   mj_resetDataKeyframe(m, x, 0);
   double pk[4];

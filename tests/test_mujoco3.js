@@ -245,6 +245,22 @@ function exportAll() {
   return files;
 }
 
+/* the file `text` from its keyframe "start", two revolutions: the run
+ * (run()), its step and its label; fails on a non-finite state or a MuJoCo
+ * warning */
+function fromKeyframe(text, ex, what, withForce) {
+  const m = load(text);
+  const d = new mj.MjData(m);
+  mj.mj_resetDataKeyframe(m, d, 0);
+  const r = run(m, d, ex.omega, 0, 2, withForce);
+  const step = m.opt.timestep;
+  d.delete(); m.delete();
+  const tag = what + ' at ' + step.toPrecision(4) + ' s' + (r.cut ? ' (first ' + r.steps + ' steps)' : '');
+  ok(r.bad < 0 && r.warnings.length === 0, tag + ': two revolutions without diverging (non-finite at step ' +
+     r.bad + ', warnings ' + r.warnings.join(', ') + ')');
+  return { r, step, tag };
+}
+
 /* a file's label: the paper case where it is one of the cases that give
  * it, else the first, and how many more give the same file */
 function labelOf(cases) {
@@ -256,20 +272,13 @@ function checkIdeal(text, cases) {
   const name = cases[0], label = labelOf(cases);
   const ex = exact(path.join(root, 'cases', name));
   for (const h of [null, FINE_STEP_S, 1e-3, 2e-3]) {
-    const m = load(h === null ? text : withTimestep(text, h));
-    const d = new mj.MjData(m);
-    mj.mj_resetDataKeyframe(m, d, 0);
-    const r = run(m, d, ex.omega, 0, 2, false);
-    const step = m.opt.timestep;
-    const tag = label + ' ideal at ' + step.toPrecision(4) + ' s' + (r.cut ? ' (first ' + r.steps + ' steps)' : '');
-    ok(r.bad < 0 && r.warnings.length === 0, tag + ': two revolutions without diverging (non-finite at step ' + r.bad + ', warnings ' + r.warnings.join(', ') + ')');
+    const { r, step, tag } = fromKeyframe(h === null ? text : withTimestep(text, h), ex, label + ' ideal', false);
     ok(Math.abs(r.crank - ex.omega) <= CRANK_SPEED_REL_TOL * Math.abs(ex.omega), tag + ': crank at ' + r.crank + ' rad/s, the case\'s ' + ex.omega);
     const w = worstRel(r.pk, ex.pk);
     const bound = step <= FINE_STEP_S * (1 + 1e-12) ? PEAK_REL_TOL
       : ex.fastest * step <= RESOLVED_RAD_PER_STEP ? USER_STEP_PEAK_REL_TOL : null;
     console.log('  ' + tag + ': worst velocity peak ' + pct(w) + (bound === null ? ' (not resolved: ' + (ex.fastest * step).toFixed(2) + ' rad a step; not bounded)' : ''));
     if (bound !== null && !r.cut) ok(Math.abs(w) <= bound, tag + ': worst velocity peak ' + pct(w) + ' beyond ' + pct(bound));
-    d.delete(); m.delete();
   }
   plainLoad(text, label, ex);
 }
@@ -320,13 +329,7 @@ function referenceForce(name, h, joints) {
 function checkClearance(text, cases) {
   const name = cases[0], label = labelOf(cases);
   const ex = exact(path.join(root, 'cases', name));
-  const m = load(text);
-  const d = new mj.MjData(m);
-  mj.mj_resetDataKeyframe(m, d, 0);
-  const r = run(m, d, ex.omega, 0, 2, true);
-  const h = m.opt.timestep;
-  const tag = label + ' clearance at ' + h.toPrecision(4) + ' s' + (r.cut ? ' (first ' + r.steps + ' steps)' : '');
-  ok(r.bad < 0 && r.warnings.length === 0, tag + ': without diverging (non-finite at step ' + r.bad + ', warnings ' + r.warnings.join(', ') + ')');
+  const { r, step: h, tag } = fromKeyframe(text, ex, label + ' clearance', true);
   const joints = (text.match(/_bore"/g) || []).length;
   const ref = r.cut ? { why: 'cut short' } : referenceForce(name, h, joints);
   if (ref.force === undefined) {
@@ -337,7 +340,6 @@ function checkClearance(text, cases) {
     console.log('  ' + tag + ': peak bore force ' + r.force.toPrecision(6) + ' N, reference ' + ref.force.toPrecision(6) + ' N: ' + pct(rel) + ' (bound ' + pct(bound) + ')');
     ok(Math.abs(rel) <= bound, tag + ': peak bore force ' + pct(rel) + ' of the reference\'s, beyond ' + pct(bound));
   }
-  d.delete(); m.delete();
 }
 
 /* ---- 2. contact-params' MuJoCo rows ---- */

@@ -10,8 +10,6 @@
 /* radius of the sphere [m]: any; the contact is at its lowest point */
 #define SPHERE_R 0.01
 
-const char *fb_impact_mujoco_version(void) { return mj_versionString(); }
-
 fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, double h,
                            const double solref[2], const double solimp[5], double t_max,
                            double onset_phase, fb_diag *diag) {

@@ -17,8 +17,4 @@ fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, dou
                            const double solref[2], const double solimp[5], double t_max,
                            double onset_phase, fb_diag *diag);
 
-/* The version of the MuJoCo library this build runs ("2.2.2", its
- * mj_versionString at run time). */
-const char *fb_impact_mujoco_version(void);
-
 #endif

@@ -1,6 +1,6 @@
 /* The MJCF text of the MuJoCo scene (mujoco_scene.h): the model the scene
  * compiles (fb_mujoco_mjcf) and the one fourbar export writes for users
- * (fb_mujoco_export: joint-named sites, a velocity actuator, a keyframe, the
+ * (fb_mujoco_export: joint-named sites, a velocity servo, a keyframe, the
  * bore's solref for the compiled model); numbers with 17 significant digits.
  * Also the scene's definition read from a model (mujoco_def_from_model). */
 #include <math.h>

@@ -125,6 +125,17 @@ static void peaks_within(const double pk[4], const fb_case *c, double tol, doubl
   }
 }
 
+/* the file's leading comment holds no "--" before its end (XML 1.0,
+ * section 2.5; MuJoCo's own parser lets it pass, Python's ElementTree does
+ * not) */
+static void comment_is_xml(const char *text) {
+  const char *end = strstr(text, "-->");
+  assert_non_null(end);
+  for (const char *p = text + 4; p < end; p++)
+    if (p[0] == '-' && p[1] == '-')
+      fail_msg("a \"--\" inside the comment, %ld characters in", (long)(p - text));
+}
+
 /* the paper case's export (ideal, or with its clearance joint) into
  * text[size], loaded with its <option timestep> edited to h [s] as a user
  * does (h = 0: as written) */
@@ -149,9 +160,11 @@ static void test_ideal_export_matches_analytic(void **state) {
   for (int s = -1; s < (int)(sizeof user_steps / sizeof *user_steps); s++) {
     mjModel *m = paper_export(&c, text, sizeof text, 1, s < 0 ? 0.0 : user_steps[s]);
     mjData *x = mj_makeData(m);
-    /* the start and drive are documented at the top of the file */
+    /* the start and drive are documented at the top of the file, in a
+     * comment a strict XML parser takes (no "--" inside) */
     assert_true(strncmp(text, "<!-- fourbar export", 19) == 0);
     assert_non_null(strstr(text, "mj_resetDataKeyframe(m, d, 0)"));
+    comment_is_xml(text);
     /* the names the issue gives */
     const char *bodies[] = {"crank", "coupler", "follower"};
     for (int i = 0; i < 3; i++) assert_true(mj_name2id(m, mjOBJ_BODY, bodies[i]) >= 0);
@@ -277,6 +290,7 @@ static void test_clearance_export_edited_step_holds(void **state) {
   static char text[65536];
   mjModel *m = paper_export(&c, text, sizeof text, 0, 1e-5);
   assert_non_null(strstr(text, "it does not follow timestep"));
+  comment_is_xml(text);
   mjData *x = mj_makeData(m);
   mj_resetDataKeyframe(m, x, 0);
   double pk[4];

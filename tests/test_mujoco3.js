@@ -238,6 +238,10 @@ function exportAll() {
         continue;
       const text = fs.readFileSync(outFile, 'utf8');
       const kind = text.includes('<tendon>') ? 'clearance' : 'ideal';
+      /* its comments are XML's: no "--" inside one (XML 1.0, section 2.5) */
+      const inside = [...text.matchAll(/<!--([\s\S]*?)-->/g)].map((c) => c[1]);
+      ok(inside.length > 0 && inside.every((c) => !c.includes('--')),
+         name + ': the export\'s comment holds no "--" (a strict XML parser refuses it)');
       if (!files.has(text)) files.set(text, { kind, cases: [] });
       if (!files.get(text).cases.includes(name)) files.get(text).cases.push(name);
     }

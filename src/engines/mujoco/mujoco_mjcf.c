@@ -267,7 +267,8 @@ static void export_loop_solref(int integ, double hl, double sr[2]) {
 }
 
 /* exported: the header comment, at the top of the file: what the file is,
- * its start, its drive, the steps it holds */
+ * its start, its drive, the steps it holds. Its text holds no "--" (XML
+ * 1.0, section 2.5: a strict parser refuses a comment that does) */
 static void put_header(text *t, const mj_def *def, int integ, double hl) {
   const fb_mech_desc *md = fb_mech_of(def->mech);
   const fb_start_state *st = &def->start;
@@ -308,8 +309,8 @@ static void put_header(text *t, const mj_def *def, int integ, double hl) {
         "  k = %.4g N/m, cr %.3g, sized for the written step (h omega_c = %.3g at\n"
         "  the law's design mass %.3g kg); it does not follow timestep, and a step\n"
         "  above about %.2g s (h omega_c 2.8 there, RK4's limit) diverges: for a\n"
-        "  coarser step, fourbar contact-params --case gives the stiffest faithful\n"
-        "  contact.\n",
+        "  coarser step, fourbar contact-params, given this case, gives the\n"
+        "  stiffest faithful contact.\n",
         joint_name(def, j), joint_name(def, j), law->stiffness, law->restitution, hl * wc,
         law->mass, 2.8 / wc);
   }

@@ -34,8 +34,9 @@ packages+=($engine_packages)
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
 command -v npm >/dev/null 2>&1 || packages+=(npm)
 # report.html's browser test drives Debian's chromium headless (tests/test_report_html.js);
-# the integrity test finds a run's workers and gnuplot with pgrep (procps)
-[ "$what" = test ] && packages+=(chromium procps)
+# the integrity test finds a run's workers and gnuplot with pgrep (procps); the Slurm
+# test starts a single-node Slurm and its munge in a temporary folder (tests/test_slurm.sh)
+[ "$what" = test ] && packages+=(chromium procps slurm-wlm munge)
 [ "$what" = robust ] && packages+=(clang libclang-rt-14-dev valgrind)
 missing=()
 for p in "${packages[@]}"; do
@@ -50,16 +51,17 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 # npm packages into ./node_modules (package-lock.json): uplot, copied into each run's
-# report.html folder, and playwright-core for the browser test; without them a run
-# still works and its report.html says how to get the charts (docs/report.md)
+# report.html folder, playwright-core for the browser test, and mujoco-js (MuJoCo 3.3.8
+# as WebAssembly) for the MuJoCo 3 test; without them a run still works and its
+# report.html says how to get the charts (docs/report.md)
 if [ ! -f node_modules/.package-lock.json ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
-  echo "== npm ci (uplot, playwright-core into ./node_modules)"
+  echo "== npm ci (uplot, playwright-core, mujoco-js into ./node_modules)"
   mkdir -p build
   if ! npm ci --no-audit --no-fund --loglevel=error >build/npm-ci.txt 2>&1; then
     tail -n 20 build/npm-ci.txt
     # the test suite needs them (report.html's browser test); a run does not
     if [ "$what" = test ]; then
-      echo "npm ci failed (build/npm-ci.txt): the browser test of report.html needs uplot and playwright-core" >&2
+      echo "npm ci failed (build/npm-ci.txt): the browser test of report.html needs uplot and playwright-core, the MuJoCo 3 test mujoco-js" >&2
       exit 1
     fi
     echo "npm ci failed (build/npm-ci.txt): report.html will have no charts"

@@ -59,7 +59,9 @@ TEST_TOOLS = [
     (r"\bpgrep\b|\bpkill\b|\bps -", "procps"),
     (r"^\s*parallel\b|\|\s*parallel\b|\bparallel --", "parallel"),
     (r"/usr/bin/chromium", "chromium"),
-    (r"playwright-core|\bnpm ci\b", "npm"),
+    (r"playwright-core|mujoco-js|\bnpm ci\b", "npm"),
+    (r"\bsbatch\b|\bslurmctld\b|\bslurmd\b", "slurm-wlm"),
+    (r"\bmunged\b", "munge"),
 ]
 # what a run itself starts: figures are drawn by gnuplot (src/report/figures/figures_gnuplot.c)
 RUN_TOOLS = [(r'posix_spawnp\([^;]*"gnuplot"', "gnuplot-nox", "src/report/figures/figures_gnuplot.c")]

@@ -64,6 +64,8 @@ static json_t *params_json(const fb_cp_rows *rw) {
 static json_t *check_json(const fb_cp_check *x) {
   json_t *e = json_object();
   json_object_set_new(e, "engine", json_string(x->engine));
+  json_object_set_new(e, "engine_version",
+                      x->engine_version ? json_string(x->engine_version) : json_null());
   json_object_set_new(e, "form", json_string(x->form));
   json_object_set_new(e, "mass_kg", json_real(x->mass));
   json_object_set_new(e, "recommended", json_boolean(x->recommended));
@@ -213,7 +215,7 @@ static void print_rows(FILE *f, const fb_cp_rows *rw) {
   if (rw->gazebo.kd < 0.0)
     fprintf(f, "    kd < 0: the matched row's ERP exceeds 1 (it takes back the damper h kp that\n"
               "    Gazebo's kp/kd -> ERP/CFM formula adds); Gazebo uses it as given\n");
-  fprintf(f, "  MuJoCo 2.2 (<option timestep=\"%.6g\" integrator=\"Euler\"/>):\n", h);
+  fprintf(f, "  MuJoCo 2.2 and 3.x (<option timestep=\"%.6g\" integrator=\"Euler\"/>):\n", h);
   if (rw->n_masses == 1) {
     fprintf(f, "    <geom ... condim=\"1\" solref=\"%.10g %.10g\" solimp=\"%g %g %g %g %g\"/>   (direct)\n",
               rw->mj_direct.solref[0], rw->mj_direct.solref[1], rw->mj_direct.solimp[0],
@@ -257,6 +259,22 @@ static void print_checks(FILE *f, const fb_cp_step *st) {
             "mass_kg", "recom", "ok", "restitution", "rel", "phase", "penetration_m", "rel", "phase",
             "force_max_n");
   for (int i = 0; i < st->n_checks; i++) print_check(f, &st->checks[i]);
+}
+
+/* the versions of the libraries that verified the rows, where an engine
+ * reports one (MuJoCo: the users' 3.x may differ from this build's;
+ * docs/contact-params.md gives both) */
+static void print_versions(FILE *f, const fb_cp_result *o) {
+  const fb_cp_step *steps[2] = {&o->given, &o->at_step};
+  for (int s = 0; s < 2; s++)
+    for (int i = 0; i < steps[s]->n_checks; i++) {
+      const fb_cp_check *x = &steps[s]->checks[i];
+      if (x->engine_version && strcmp(x->engine, "mujoco") == 0) {
+        fprintf(f, "MuJoCo's rows are verified in MuJoCo %s, this build's (MuJoCo 3.x: "
+                  "docs/contact-params.md)\n", x->engine_version);
+        return;
+      }
+    }
 }
 
 /* an at_step contact's heading: its step, k [N/m], c [N s/m], and what it
@@ -367,6 +385,7 @@ void fb_report_cp_text(FILE *f, const fb_cp_result *o, const char *case_path, co
     fprintf(f, "%s%g", i ? ", " : "", fb_cp_onset_phases[i]);
   fprintf(f, " of a step); the worst against the continuous contact (rel = engine / contact - 1); "
             "ok: within %g %% and %g %%\n", 100 * FB_CP_RESTITUTION_TOL, 100 * FB_CP_PENETRATION_TOL);
+  print_versions(f, o);
   if (o->given.n_checks) {
     fprintf(f, "\nyour contact at h = %.4g s:\n", q->h);
     print_checks(f, &o->given);

@@ -122,6 +122,10 @@ typedef struct {
    * Errors: FB_ERR_RANGE (bad parameter or onset phase), FB_ERR_NUMERIC (a
    * non-finite state, still in contact at t_max), FB_ERR_NOMEM. */
   fb_status (*row)(fb_impact_result *out, const fb_impact_row *r, fb_diag *diag);
+  /* the engine library's version as it reports it at run time ("2.2.2":
+   * MuJoCo's mj_versionString), which contact-params names beside the
+   * rows it verified; NULL: none reported */
+  const char *(*version)(void);
 } fb_engine_impact;
 
 /* One of an engine's own settings as a model used it (summary.json's

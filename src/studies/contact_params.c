@@ -425,6 +425,7 @@ static int check_row(fb_cp_check *x, const fb_cp_rows *rows, const row_spec *r, 
       row.bullet = *r->sd;
     }
     const fb_engine_impact *e = row_engine(r->kind, &dg);
+    if (e && e->version) x->engine_version = e->version();
     const fb_status st = e ? e->row(&o, &row, &dg) : FB_ERR_ARG;
     if (st != FB_OK) {
       x->ran = 0;

@@ -133,6 +133,8 @@ fb_status fb_cp_request_check(const fb_cp_request *q, fb_diag *diag);
  * onset phases. */
 typedef struct {
   const char *engine;       /* "ode", "gazebo", "mujoco", "bullet" */
+  const char *engine_version; /* the verifying library's version at run time ("2.2.2" for
+                                 MuJoCo), NULL when its engine reports none (engine.h) */
   const char *form;         /* "matched", "direct", ... */
   double mass;              /* [kg] */
   int recommended;          /* 1: a row printed as the recommendation */

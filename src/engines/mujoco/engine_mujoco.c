@@ -70,7 +70,8 @@ static fb_status mujoco_impact_row(fb_impact_result *out, const fb_impact_row *r
                           r->t_max, r->onset_phase, diag);
 }
 
-static const fb_engine_impact mujoco_impact = {.law = NULL, .row = mujoco_impact_row};
+static const fb_engine_impact mujoco_impact = {
+    .law = NULL, .row = mujoco_impact_row, .version = fb_mujoco_version};
 
 /* MuJoCo's own choices as a model used them (0 in the case: 1/h^2, 1/h) */
 static int mujoco_settings(fb_engine_setting *out, const fb_case *c, int clearance_mask,

@@ -1,6 +1,6 @@
 /* The MJCF text of the MuJoCo scene (mujoco_scene.h): the model the scene
  * compiles (fb_mujoco_mjcf) and the one fourbar export writes for users
- * (fb_mujoco_export: joint-named sites, a velocity actuator, a keyframe, the
+ * (fb_mujoco_export: joint-named sites, a velocity servo, a keyframe, the
  * bore's solref for the compiled model); numbers with 17 significant digits.
  * Also the scene's definition read from a model (mujoco_def_from_model). */
 #include <math.h>
@@ -220,18 +220,116 @@ static void put_slider(text *t, const mj_def *def) {
   fb_text_put(t, "    </body>\n");
 }
 
-/* exported: the drive, a velocity actuator on the crank's hinge at the
- * case's speed (its gain kv = armature / (EXPORT_DRIVE_STEPS h): a speed
- * error decays over about that many steps, well inside explicit Euler's
- * stability kv h / I < 2), beside the flywheel armature the scene's own
- * models use; and a keyframe "start" with the start's velocities and the
- * actuator's control (mj_resetDataKeyframe(m, d, 0)) */
-#define EXPORT_DRIVE_STEPS 10.0
+/* ---- exported only: what a user may change --------------------------------
+ * A user's first edit of the file is its <option timestep>: the drive and
+ * the loop are written so that any step from the exported one to
+ * EXPORT_H_USER_MAX_S holds (measured: docs/contact-params.md, "A MuJoCo
+ * user at 2 ms"). */
+
+/* the largest step [s] the export is written for (MuJoCo's default step) */
+#define EXPORT_H_USER_MAX_S 2e-3
+
+/* the drive's time constant [s]: armature / kv. A speed error decays as
+ * exp(-t / tau) at any step; h / tau = 0.2 at EXPORT_H_USER_MAX_S, inside
+ * explicit Euler's and RK4's stability (2 and 2.78). A plain load starts
+ * at rest and the drive spins the crank up to the case's speed within 1 %
+ * in 4.6 tau */
+#define EXPORT_DRIVE_TAU_S 1e-2
+
+/* the loop's damping ratio in MuJoCo's time-constant form (solref = (tc,
+ * dampratio)): MuJoCo raises tc to 2 h at a step h above tc / 2 (refsafe,
+ * on by default in 2.2 and 3.x), which makes the loop's stiffness and
+ * damping per step B h = 1, K h^2 = 1 / (4 dampratio^2) at any step.
+ * Semi-implicit Euler (and implicit, the same for constraints): 0.5,
+ * K h^2 = 1, its deadbeat update (the scene's own direct form (-1/h^2, -1/h));
+ * RK4: 0.2, K h^2 = 6.25, the ratio at which RK4's update of the loop error
+ * decays fastest (amplification 0.345 per step; unstable below 0.17). The
+ * stiffer loop leaves 6.25 times less of the drift MuJoCo 2.2 to 3.6 leave
+ * from the J-dot-v term their reference acceleration lacks (measured, paper
+ * case at 2 ms: Euler 0.5 +9.1 %, RK4 0.2 +0.7 % on the follower's omega
+ * peak) */
+#define EXPORT_LOOP_DAMPRATIO_EULER 0.5
+#define EXPORT_LOOP_DAMPRATIO_RK4 0.2
+
+/* the export's integrator: the case's [mujoco] integrator, auto resolved to
+ * RK4 (its loop holds a 2 ms step within 1 %, measured above) */
+static int export_integrator(const fb_mujoco_opts *o) {
+  return o->integrator == FB_MUJOCO_AUTO ? FB_MUJOCO_RK4 : o->integrator;
+}
+
+/* the loop's solref in the time-constant form (exported, no [mujoco]
+ * loop_stiffness_1_s2 or loop_damping_1_s in the case): tc = 2 hl, the
+ * export's step (an adaptive run's longest), which MuJoCo raises to 2 h at
+ * a user's longer step h */
+static void export_loop_solref(int integ, double hl, double sr[2]) {
+  sr[0] = 2.0 * hl;
+  sr[1] = integ == FB_MUJOCO_RK4 ? EXPORT_LOOP_DAMPRATIO_RK4 : EXPORT_LOOP_DAMPRATIO_EULER;
+}
+
+/* exported: the header comment, at the top of the file: what the file is,
+ * its start, its drive, the steps it holds. Its text holds no "--" (XML
+ * 1.0, section 2.5: a strict parser refuses a comment that does) */
+static void put_header(text *t, const mj_def *def, int integ, double hl) {
+  const fb_mech_desc *md = fb_mech_of(def->mech);
+  const fb_start_state *st = &def->start;
+  static const char *const intname[3] = {"Euler", "implicit", "RK4"};
+  fb_text_put(t, "<!-- fourbar export: a %s, %s, for MuJoCo 2.2 and 3.x.\n", md->type,
+      def->clearance_mask ? "with its clearance joints" : "ideal joints");
+  fb_text_put(t, "  Start: the bodies sit at the start (crank angle %.9g rad), so\n"
+      "  qpos0 (every joint at 0) is the start configuration.\n"
+      "  mj_resetDataKeyframe(m, d, 0) (key \"start\") starts there at the case's\n"
+      "  speed with every joint's start velocity. A plain load (mj_resetData)\n"
+      "  starts there at rest, and the drive spins the crank up to the case's\n"
+      "  speed (within 1 %% after %.3g s).\n",
+      st->crank_angle, 4.6 * EXPORT_DRIVE_TAU_S);
+  fb_text_put(t, "  Drive: actuator \"drive\" on joint %s, torque\n"
+      "  kv (omega + ctrl - qvel), omega = %.9g rad/s the case's crank speed,\n"
+      "  kv = armature / %.3g s: ctrl = 0 holds the case's speed, ctrl adds to it\n"
+      "  [rad/s]. The crank's armature (%.3g kg m^2, a flywheel) keeps the speed\n"
+      "  against the linkage's torques.\n",
+      joint_name(def, FB_JOINT_A), st->crank_omega, EXPORT_DRIVE_TAU_S, def->opts.drive_armature);
+  if (def->clearance_mask & (1 << FB_JOINT_C))
+    fb_text_put(t, "  Step: written at %.6g s, integrator %s. The drive holds any timestep\n"
+        "  from that to %.3g s (the loop is closed by the clearance joint below).\n",
+        hl, intname[integ], EXPORT_H_USER_MAX_S);
+  else
+    fb_text_put(t, "  Step: written at %.6g s, integrator %s. Any timestep from that to\n"
+        "  %.3g s holds: the loop's solref is in the time-constant form, whose time\n"
+        "  constant MuJoCo raises to 2 x timestep (refsafe), damping ratio %.2g for\n"
+        "  %s (%.2g for Euler or implicit). Omega peaks against the exact solution\n"
+        "  at each step: fourbar's docs/contact-params.md.\n",
+        hl, intname[integ], EXPORT_H_USER_MAX_S,
+        integ == FB_MUJOCO_RK4 ? EXPORT_LOOP_DAMPRATIO_RK4 : EXPORT_LOOP_DAMPRATIO_EULER,
+        intname[integ], EXPORT_LOOP_DAMPRATIO_EULER);
+  for (int j = 0; j < 4; j++) {
+    if (!(def->clearance_mask & (1 << j))) continue;
+    const fb_contact_law *law = &def->law[j];
+    const double wc = sqrt(law->stiffness / law->mass);
+    fb_text_put(t, "  Clearance at %s (tendon %s_bore): the contact\n"
+        "  k = %.4g N/m, cr %.3g, sized for the written step (h omega_c = %.3g at\n"
+        "  the law's design mass %.3g kg); it does not follow timestep, and a step\n"
+        "  above about %.2g s (h omega_c 2.8 there, RK4's limit) diverges: for a\n"
+        "  coarser step, fourbar contact-params, given this case, gives the\n"
+        "  stiffest faithful contact.\n",
+        joint_name(def, j), joint_name(def, j), law->stiffness, law->restitution, hl * wc,
+        law->mass, 2.8 / wc);
+  }
+  fb_text_put(t, "-->\n");
+}
+
+/* exported: the drive, a velocity servo on the crank's hinge at the case's
+ * speed: MuJoCo's general actuator with an affine bias, torque
+ * kv (omega + ctrl - qvel), so that ctrl = 0, a plain load's, holds the
+ * case's speed omega (a velocity actuator would hold ctrl); its gain
+ * kv = armature / EXPORT_DRIVE_TAU_S, beside the flywheel armature the
+ * scene's own models use; and a keyframe "start" with the start's
+ * velocities (mj_resetDataKeyframe(m, d, 0)) */
 static void put_drive(text *t, const mj_def *def) {
   const fb_start_state st = def->start;
-  const double kv = def->opts.drive_armature / (EXPORT_DRIVE_STEPS * def->h);
-  fb_text_put(t, "  <actuator>\n    <velocity name=\"drive\" joint=\"%s\" kv=\"%.17g\"/>\n  </actuator>\n",
-      joint_name(def, FB_JOINT_A), kv);
+  const double kv = def->opts.drive_armature / EXPORT_DRIVE_TAU_S;
+  fb_text_put(t, "  <actuator>\n    <general name=\"drive\" joint=\"%s\" gainprm=\"%.17g\" "
+      "biastype=\"affine\" biasprm=\"%.17g 0 %.17g\"/>\n  </actuator>\n",
+      joint_name(def, FB_JOINT_A), kv, kv * st.crank_omega, -kv);
   /* qvel in the tree's order: each body's slides (clearance) then its hinge */
   const int mask = def->clearance_mask;
   double qvel[9];
@@ -252,7 +350,7 @@ static void put_drive(text *t, const mj_def *def) {
   qvel[n++] = st.follower_omega; /* a slider-crank's: the slider's speed along +x (start.h) */
   fb_text_put(t, "  <keyframe>\n    <key name=\"start\" qvel=\"");
   for (int i = 0; i < n; i++) fb_text_put(t, "%s%.17g", i ? " " : "", qvel[i]);
-  fb_text_put(t, "\" ctrl=\"%.17g\"/>\n  </keyframe>\n", st.crank_omega);
+  fb_text_put(t, "\"/>\n  </keyframe>\n");
 }
 
 fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *diag) {
@@ -263,13 +361,19 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   const double h = def->h;
   const int mask = def->clearance_mask;
   static const char *const intname[3] = {"Euler", "implicit", "RK4"};
-  const int integ = fb_mujoco_integrator_resolve(opts, mask);
+  const int integ =
+      def->exported ? export_integrator(opts) : fb_mujoco_integrator_resolve(opts, mask);
   /* the loop's default softness follows the step; an adaptive run's
-   * steps reach h_max, so its loop is set for that one */
+   * steps reach h_max, so its loop is set for that one: the direct form
+   * (-k, -damp); an export without the case's own loop keys, the
+   * time-constant form that follows a user's step (export_loop_solref) */
   const double hl = def->adaptive ? def->h_max : h;
-  const double k = opts->loop_stiffness > 0.0 ? opts->loop_stiffness : 1.0 / (hl * hl);
-  const double damp = opts->loop_damping > 0.0 ? opts->loop_damping : 1.0 / hl;
+  double loop_sr[2] = {-(opts->loop_stiffness > 0.0 ? opts->loop_stiffness : 1.0 / (hl * hl)),
+                       -(opts->loop_damping > 0.0 ? opts->loop_damping : 1.0 / hl)};
+  if (def->exported && !(opts->loop_stiffness > 0.0) && !(opts->loop_damping > 0.0))
+    export_loop_solref(integ, hl, loop_sr);
   text t = {buf, size, 0, 0};
+  if (def->exported) put_header(&t, def, integ, hl);
   fb_text_put(&t, "<mujoco model=\"fourbar\">\n");
   fb_text_put(&t, "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n");
   /* native contacts: a pin and its hole are on parent and child bodies,
@@ -329,7 +433,7 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
     fb_text_put(&t,
         "    <connect name=\"loop\" body1=\"coupler\" body2=\"%s\" anchor=\"%.17g 0 0\" "
         "solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\"/>\n",
-        def->mech == FB_MECH_SLIDER_CRANK ? "slider" : "follower", b, -k, -damp,
+        def->mech == FB_MECH_SLIDER_CRANK ? "slider" : "follower", b, loop_sr[0], loop_sr[1],
         opts->loop_impedance, opts->loop_impedance);
     fb_text_put(&t, "  </equality>\n");
   }

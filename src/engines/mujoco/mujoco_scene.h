@@ -169,8 +169,11 @@ void fb_mujoco_scene_step_stats(const fb_mujoco_scene *s, fb_step_stats *out);
  * clearance joint as mujoco-clearance-native's bore tendon (limited to the
  * radial clearance, solreflimit in the force form with MuJoCo's own
  * tendon_invweight0 and the damper of the law's restitution on its design
- * mass), the crank's flywheel armature and a velocity actuator "drive" at
- * the case's speed, and a keyframe "start" (qvel, ctrl). Errors: those of
+ * mass), the crank's flywheel armature and a velocity servo "drive" that
+ * holds the case's speed at ctrl 0, a keyframe "start" (qvel), and a
+ * comment at the top giving the start and the steps the file holds (the
+ * loop's solref in the time-constant form that follows a user's timestep
+ * up to 2 ms; mujoco_mjcf.c). Errors: those of
  * fb_scene_check; FB_ERR_ARG for a clearance model other than
  * mujoco-clearance-native or a text MuJoCo rejects; FB_ERR_RANGE when buf
  * is too small. */

@@ -56,7 +56,7 @@ typedef struct {
   double pin_radius;    /* R_pin [m] (native) */
   double pin_length;    /* [m] (native: the ring's height) */
   int exported;         /* 1: a user's file (fb_mujoco_export): sites named after the joints
-                           (crank-coupler_pin), a velocity actuator on the crank, a keyframe
+                           (crank-coupler_pin), a velocity servo on the crank, a keyframe
                            with the start, the bore's solref fixed (bore_solref) */
   double bore_solref[4][2]; /* exported: each bore tendon's solreflimit; NAN: the scene's */
 } mj_def;

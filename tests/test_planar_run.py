@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""A planar case through `fourbar run` (issue 57, part 2): the analytic
-model on the planar core, summary.json's models[].bodies.<NAME>, the series
-columns by body name, the same bodies object in a four-bar's and a
-slider-crank's summary, and the refusals of what a planar case does not
-run yet.
+"""A planar case through `fourbar run`, `kinematics`, `stackup` and
+`penalty` (issue 57, part 2): the analytic model on the planar core,
+summary.json's models[].bodies.<NAME>, the series columns by body name, the
+same bodies object in a four-bar's and a slider-crank's summary, the tools
+by body and joint name against the built-in four-bar's, and the refusals of
+what a planar case does not run yet.
 
 Oracle for the Watt II six-bar (cases/watt_sixbar.ini), written here and
 not through the planar core: each loop's dyad solved by the intersection of
@@ -221,6 +222,80 @@ check(rc == 2 and "ode-ideal-nominal" in se and "issue 58" in se,
 check(not os.path.exists(os.path.join(tmp, "x")), "and nothing is written")
 rc, _, se = run("run", six, "--series", "hdf5", "--out", os.path.join(tmp, "y"))
 check(rc == 2 and "hdf5" in se, "series = hdf5 on a planar case is refused (%d, %s)" % (rc, se.strip()))
+
+# 5. fourbar kinematics on a planar case: the six-bar against the dyads,
+# the planar four-bar against the built-in four-bar's closed form
+rc, so, se = run("kinematics", six, "--json")
+check(rc == 0, "fourbar kinematics watt_sixbar exits 0 (%s)" % se.strip()[-300:])
+if rc == 0:
+    kb = json.loads(so)["bodies"]
+    for n in ("coupler", "ternary", "rod", "output"):
+        for key, sign in (("omega_max_rad_s", +1), ("omega_min_rad_s", -1)):
+            want = extreme(lambda t: sixbar(t)[n], sign)
+            check(rel(kb[n][key], want) <= SIXBAR_OMEGA_REL, "kinematics: six-bar %s %s = %.15g, "
+                  "dyads %.15g" % (n, key, kb[n][key], want))
+rc1, so1, _ = run("kinematics", os.path.join(cases, "templates", "planar_fourbar.ini"), "--json")
+rc2, so2, _ = run("kinematics", os.path.join(cases, "paper_crank_rocker.ini"), "--json")
+check(rc1 == 0 and rc2 == 0, "kinematics of the planar four-bar and the paper case exit 0")
+if rc1 == 0 and rc2 == 0:
+    a, b = json.loads(so1)["bodies"], json.loads(so2)
+    for n in ("coupler", "follower"):
+        for k in PEAK_KEYS:
+            check(rel(a[n][k], b[n][k]) <= FOURBAR_PEAK_REL, "kinematics: planar four-bar %s %s = "
+                  "%.15g, closed form %.15g" % (n, k, a[n][k], b[n][k]))
+rc, _, se = run("kinematics", six, "--crank-mm", "50")
+check(rc == 2 and "planar" in se, "kinematics refuses a length flag on a planar case (%s)" % se.strip())
+
+# 6. fourbar stackup: the planar four-bar's corners and sensitivities (central
+# differences of the core) against the built-in four-bar's (the closed form's
+# exact derivatives), the paper's tolerances being ISO 2768 class m's
+# Sensitivities: central differences at 1 um; truncation (1e-5 of a link
+# length squared, 1e-10) and the peaks' rounding over the step (1e-15 / 1e-6
+# m, 1e-9 of the output) leave 1e-6 of the largest one a safe bound.
+SENS_REL = 1e-6
+rc1, so1, se1 = run("stackup", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
+                    "tolerance.class=m", "--json")
+rc2, so2, se2 = run("stackup", os.path.join(cases, "paper_crank_rocker.ini"), "--method", "corners",
+                    "--json")
+check(rc1 == 0 and rc2 == 0, "stackup of the planar four-bar and the paper case (%s %s)"
+      % (se1.strip()[-300:], se2.strip()[-300:]))
+if rc1 == 0 and rc2 == 0:
+    pl, fb = json.loads(so1), json.loads(so2)
+    check(pl["corners"] == 16, "the planar four-bar's 16 corners are run")
+    # the planar lengths in order: ground (A-D), crank, coupler, follower
+    order = ["ground", "crank", "coupler", "follower"]
+    check([x["body"] for x in pl["lengths"]] == order, "lengths by body: %s" % [x["body"] for x in pl["lengths"]])
+    want = {o["name"]: o for o in fb["outputs"]}
+    for o in pl["outputs"]:
+        if o["name"] not in want:
+            continue
+        w = want[o["name"]]
+        for k in ("min", "max"):
+            check(rel(o["corners"][k], w["corners"][k]) <= FOURBAR_PEAK_REL, "stackup %s corners %s "
+                  "= %.15g, built-in %.15g" % (o["name"], k, o["corners"][k], w["corners"][k]))
+        big = max(abs(v) for v in w["sensitivity_per_m"].values())
+        for i, link in enumerate(order):
+            got, ref = o["sensitivity_per_m"][i], w["sensitivity_per_m"][link]
+            check(abs(got - ref) <= SENS_REL * big, "stackup %s d/d%s = %.10g, exact %.10g"
+                  % (o["name"], link, got, ref))
+rc, _, se = run("stackup", six)
+check(rc == 2 and "[tolerance] class" in se, "a planar stack-up without a class is refused (%s)" % se.strip())
+
+# 7. fourbar penalty: the planar four-bar's reactions are the built-in's
+# inverse dynamics' (its crank-coupler and coupler-follower rows)
+rc1, so1, _ = run("penalty", os.path.join(cases, "templates", "planar_fourbar.ini"), "--json")
+rc2, so2, _ = run("penalty", os.path.join(cases, "paper_crank_rocker.ini"), "--mode", "physical", "--json")
+check(rc1 == 0 and rc2 == 0, "penalty of the planar four-bar and the paper case exit 0")
+if rc1 == 0 and rc2 == 0:
+    a = {r["joint"]: r for r in json.loads(so1)["rows"]}
+    for r in json.loads(so2)["rows"]:
+        check(rel(a[r["joint"]]["force_n"], r["force_n"]) <= FOURBAR_PEAK_REL and
+              rel(a[r["joint"]]["penalty_n_m0_5"], r["penalty_n_m0_5"]) <= FOURBAR_PEAK_REL,
+              "penalty %s: %.15g N, built-in %.15g N" % (r["joint"], a[r["joint"]]["force_n"], r["force_n"]))
+rc, so, se = run("penalty", six)
+check(rc == 0 and "| rod-output |" in so, "penalty on the six-bar has a row per revolute joint (%s)" % se.strip())
+rc, _, se = run("penalty", six, "--mode", "paper")
+check(rc == 2 and "physical" in se, "paper mode on a planar case is refused (%s)" % se.strip())
 
 print("%d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)

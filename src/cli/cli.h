@@ -85,6 +85,13 @@ int fb_cmd_run(int argc, char **argv);
 int fb_cmd_run_planar(const struct fb_case_s *c, const char *case_path, const char *dir, int json,
                       const char *command);
 int fb_cmd_kinematics(int argc, char **argv);
+/* kinematics, stackup and penalty's parts for a planar case c (its speed and
+ * direction as the command resolved them; cmd_planar_tools.c): output on
+ * stdout, JSON with json. penalty: physical mode at the nspeeds speeds rpm.
+ * Return the exit status. */
+int fb_cmd_kinematics_planar(const struct fb_case_s *c, int json);
+int fb_cmd_stackup_planar(const struct fb_case_s *c, int json);
+int fb_cmd_penalty_planar(const struct fb_case_s *c, const double *rpm, int nspeeds, int json);
 int fb_cmd_keys(int argc, char **argv);
 int fb_cmd_models(int argc, char **argv);
 int fb_cmd_impact(int argc, char **argv);

@@ -297,5 +297,45 @@ check(rc == 0 and "| rod-output |" in so, "penalty on the six-bar has a row per 
 rc, _, se = run("penalty", six, "--mode", "paper")
 check(rc == 2 and "physical" in se, "paper mode on a planar case is refused (%s)" % se.strip())
 
+# 8. the six-bar's clearance joint against its reference: the restitution
+# law at rod-output through the planar core's clearance dynamics, its window
+# peaks and its check integration's verdict. At the reference's default
+# tolerance (1e-12) the six-bar's light rattling pin costs minutes of CPU;
+# the test runs it at REF_TOL (its check at REF_TOL / 100) on a 0.1 ms grid
+# over two revolutions, which keeps it to seconds.
+REF_TOL = "1e-9"
+env = dict(os.environ, FOURBAR_REFERENCE_TOL=REF_TOL)
+out = os.path.join(tmp, "sixref")
+r = subprocess.run([exe, "run", six, "--set", "run.models=reference-restitution", "--set",
+                    "run.revolutions=2", "--set", "solver.h_s=1e-4", "--out", out],
+                   capture_output=True, text=True, cwd=tmp, timeout=600, env=env)
+check(r.returncode == 0, "the six-bar's reference runs (%s)" % r.stderr.strip()[-300:])
+if r.returncode == 0:
+    m = summary_of(out)["models"][0]
+    check(m["kind"] == "reference" and m["clearance_joints"] == ["rod-output"],
+          "the reference's clearance joint is rod-output")
+    check(m["verdict"] in ("ok", "unconverged") and m["verdict_reason"],
+          "the reference has a verdict with its reason: %s (%s)" % (m["verdict"], m["verdict_reason"]))
+    est = m["error_estimate"]
+    check(abs(est["tolerance"] - float(REF_TOL)) < 1e-20 and
+          abs(est["check_tolerance"] - float(REF_TOL) / 100) < 1e-22,
+          "its check integration runs 100 times tighter")
+    check(m["law"]["kind"] == "restitution" and m["law"]["working_force_n"] > 0,
+          "the restitution law at the joint's working force")
+    with open(os.path.join(out, "reference-restitution.csv")) as f:
+        rows = list(csv.DictReader(f))
+    win = [row for row in rows if float(row["time_s"]) >= m["window_from_s"]]
+    fmax = max(float(row["rod-output_force_n"]) for row in win)
+    check(rel(fmax, m["force_max_n"]) <= SAMPLE_REL, "force_max_n is the CSV window's largest "
+          "rod-output_force_n (%.12g, %.12g)" % (fmax, m["force_max_n"]))
+    omax = max(float(row["output_omega_rad_s"]) for row in win)
+    check(rel(omax, m["bodies"]["output"]["omega_max_rad_s"]) <= SAMPLE_REL,
+          "bodies.output.omega_max_rad_s is the CSV window's largest")
+    if os.environ.get("FB_TEST_VERBOSE"):
+        print("six-bar reference: %s (%s)" % (m["verdict"], m["verdict_reason"]))
+rc, _, se = run("run", six, "--set", "run.models=reference", "--set", "clearance.penalty=paper",
+                "--out", os.path.join(tmp, "z"))
+check(rc != 0 and "paper" in se, "a planar reference refuses penalty = paper (%s)" % se.strip())
+
 print("%d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)

@@ -8,6 +8,7 @@
 
 #include "fileio.h"
 #include "numfmt.h"
+#include "run.h"
 #include "series.h"
 
 /* finite number or null */
@@ -41,6 +42,42 @@ static json_t *description_json(const fb_planar *m) {
   return d;
 }
 
+/* a reference's verdict (planar_run.h): ok, unconverged, or failed */
+static const char *verdict_of(const fb_planar_model *p, char *why, size_t size) {
+  const fb_planar_ref_result *q = &p->ref;
+  if (q->failed) {
+    snprintf(why, size, "the integration stopped: %s", q->stop);
+    return "failed";
+  }
+  snprintf(why, size, "its window peaks move by %.2g (largest, relative) in its check integration "
+           "at tolerance %.2g; the bound is %.2g", q->check_rel, q->check_tol, FB_UNCONVERGED_REL);
+  return q->converged ? "ok" : "unconverged";
+}
+
+/* a reference's own keys: its clearance joint, law, window, contact peaks,
+ * check integration and verdict */
+static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
+  const fb_planar_ref_result *q = &p->ref;
+  char why[FB_DIAG_SIZE + 256];
+  json_object_set_new(e, "verdict", json_string(verdict_of(p, why, sizeof why)));
+  json_object_set_new(e, "verdict_reason", json_string(why));
+  json_object_set_new(e, "clearance_joints", json_pack("[s]", r->m->joint[q->joint].name));
+  json_object_set_new(e, "law", json_pack("{s:s,s:o,s:o,s:o,s:o}", "kind",
+                                          q->law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
+                                          "stiffness", num(q->law.stiffness), "exponent",
+                                          num(q->law.exponent), "restitution",
+                                          num(q->law.restitution), "working_force_n",
+                                          num(q->force_work)));
+  json_object_set_new(e, "window_from_s", num(r->t_window));
+  json_object_set_new(e, "force_max_n", q->failed ? json_null() : num(q->force_max));
+  json_object_set_new(e, "penetration_max_m", q->failed ? json_null() : num(q->penetration_max));
+  json_object_set_new(e, "error_estimate",
+                      json_pack("{s:o,s:o,s:I,s:I,s:o}", "tolerance", num(q->tol),
+                                "check_tolerance", num(q->check_tol), "steps",
+                                (json_int_t)q->steps, "check_steps", (json_int_t)q->check_steps,
+                                "peaks_change_max_rel", q->failed ? json_null() : num(q->check_rel)));
+}
+
 json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_path) {
   const fb_planar *m = r->m;
   json_t *o = json_object(), *models = json_array();
@@ -54,9 +91,12 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
   for (int b = 1; b < m->nbodies; b++) name[b - 1] = m->body[b].name;
   for (int i = 0; i < r->n; i++) {
     const fb_planar_model *p = &r->model[i];
-    json_t *e = json_pack("{s:s,s:s,s:s,s:o,s:I}", "name", p->name, "kind", "analytic", "status",
-                          "ok", "h_s", num(p->h), "steps", (json_int_t)p->n);
+    json_t *e = json_pack("{s:s,s:s,s:s,s:o,s:I}", "name", p->name, "kind",
+                          p->reference ? "reference" : "analytic", "status",
+                          p->ref.failed ? "failed" : "ok", "h_s", num(p->h), "steps",
+                          (json_int_t)p->n);
     json_object_set_new(e, "bodies", fb_report_bodies_json(name, p->peaks + 1, m->nbodies - 1));
+    if (p->reference) reference_json(e, r, p);
     json_array_append_new(models, e);
   }
   json_object_set_new(o, "models", models);
@@ -96,6 +136,9 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
   fputs("time_s,drive_angle_rad", out.f);
   for (int b = 1; b < m->nbodies; b++)
     for (int k = 0; k < 3; k++) fprintf(out.f, ",%s_%s", m->body[b].name, suffix[k]);
+  if (p->reference)
+    fprintf(out.f, ",%s_force_n,%s_penetration_m", m->joint[p->ref.joint].name,
+            m->joint[p->ref.joint].name);
   fputc('\n', out.f);
   const size_t every = r->c.series_every > 0 ? (size_t)r->c.series_every : 1;
   for (size_t i = 0; i < p->n; i += every) {
@@ -103,6 +146,10 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
     cell(out.f, p->drive[i], 0);
     for (int b = 1; b < m->nbodies; b++)
       for (int k = 0; k < 3; k++) cell(out.f, fb_planar_model_value(r, p, b, k, i), 0);
+    if (p->reference) {
+      cell(out.f, p->force[i], 0);
+      cell(out.f, p->pen[i], 0);
+    }
     fputc('\n', out.f);
   }
   if (ferror(out.f)) {
@@ -119,6 +166,15 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
   for (int i = 0; i < r->n; i++) {
     const fb_planar_model *p = &r->model[i];
     fprintf(f, "\nmodel %s (%zu samples every %.3g s)\n", p->name, p->n, p->h);
+    if (p->reference) {
+      char why[FB_DIAG_SIZE + 256];
+      const char *v = verdict_of(p, why, sizeof why);
+      fprintf(f, "clearance at '%s' (%s law, working force %.4g N): peaks over t >= %.4g s; "
+              "contact force max %s N, penetration max %s um\nverdict: %s (%s)\n",
+              r->m->joint[p->ref.joint].name, p->ref.law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
+              p->ref.force_work, r->t_window, FB_NUM_CELL("%.6g", p->ref.failed ? NAN : p->ref.force_max, FB_NUM_NONE_TABLE),
+              FB_NUM_CELL("%.4g", p->ref.failed ? NAN : p->ref.penetration_max * 1e6, FB_NUM_NONE_TABLE), v, why);
+    }
     fprintf(f, "| body | omega max [rad/s] | omega min [rad/s] | alpha max [rad/s^2] | "
                "alpha min [rad/s^2] |\n|---|---:|---:|---:|---:|\n");
     for (int b = 1; b < m->nbodies; b++) {

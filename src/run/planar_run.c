@@ -12,7 +12,10 @@
 #include "planar_path.h"
 #include "series.h"
 
-int fb_planar_run_takes(const char *name) { return strcmp(name, "analytic") == 0; }
+int fb_planar_run_takes(const char *name) {
+  return strcmp(name, "analytic") == 0 || strcmp(name, "reference") == 0 ||
+         strcmp(name, "reference-restitution") == 0;
+}
 
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < c->model_count; i++) {
@@ -22,11 +25,11 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
     if (m && m->engine != FB_ENGINE_ANALYTIC && m->engine != FB_ENGINE_REFERENCE)
       return fb_diag_set(diag, FB_ERR_ARG,
                          "[run] models: '%s' is the %s engine's, and no engine builds a planar case "
-                         "yet (%s); a planar case runs: analytic (set run.models = analytic)",
+                         "yet (%s); a planar case runs: analytic, reference, reference-restitution",
                          name, fb_engine_name(m->engine), FB_PLANAR_ENGINE_FOLLOWUP);
     return fb_diag_set(diag, FB_ERR_ARG,
                        "[run] models: '%s' does not run on a planar case yet; a planar case "
-                       "runs: analytic (set run.models = analytic)", name);
+                       "runs: analytic, reference, reference-restitution", name);
   }
   return FB_OK;
 }
@@ -76,25 +79,30 @@ static fb_status sample(fb_planar_model *p, fb_planar_kin *k, const fb_planar_ru
   return st;
 }
 
-/* the analytic model: its peaks over a revolution and its samples */
-static fb_status analytic(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
-  const fb_planar *m = r->m;
-  const double t0 = fb_clock_s();
+/* a model's columns: n samples every h over the run */
+static fb_status model_alloc(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
   const double h = grid_step(&r->c);
   const double steps = floor(r->duration / h + 1e-9);
   if (!(steps + 1.0 <= FB_PLANAR_RUN_MAX_SAMPLES))
     return fb_diag_set(diag, FB_ERR_RANGE,
-                       "the analytic model would hold %.3g samples (%.6g s every %.3g s), more "
-                       "than %d: raise [solver] h_s or lower [run] revolutions",
-                       steps + 1.0, r->duration, h, FB_PLANAR_RUN_MAX_SAMPLES);
+                       "model '%s' would hold %.3g samples (%.6g s every %.3g s), more than %d: "
+                       "raise [solver] h_s or lower [run] revolutions",
+                       p->name, steps + 1.0, r->duration, h, FB_PLANAR_RUN_MAX_SAMPLES);
   p->h = h;
   p->n = (size_t)steps + 1;
-  const size_t nb = (size_t)m->nbodies;
+  const size_t nb = (size_t)r->m->nbodies;
   p->peaks = calloc(nb, sizeof *p->peaks);
   p->t = malloc((2 + 3 * (nb - 1)) * p->n * sizeof *p->t);
   if (!p->peaks || !p->t) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", p->n);
   p->drive = p->t + p->n;
   p->q = p->drive + p->n;
+  return FB_OK;
+}
+
+/* the analytic model: its peaks over a revolution and its samples */
+static fb_status analytic(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
+  const fb_planar *m = r->m;
+  const size_t nb = (size_t)m->nbodies;
   fb_planar_kin *k;
   fb_status st = fb_planar_kin_new(&k, m, diag);
   if (st != FB_OK) return st;
@@ -109,13 +117,13 @@ static fb_status analytic(fb_planar_model *p, const fb_planar_run *r, fb_diag *d
   free(pk);
   if (st == FB_OK) st = sample(p, k, r, diag);
   fb_planar_kin_free(k);
-  p->wall_s = fb_clock_s() - t0;
   return st;
 }
 
 static void model_free(fb_planar_model *p) {
   free(p->peaks);
   free(p->t);
+  free(p->force);
   memset(p, 0, sizeof *p);
 }
 
@@ -127,10 +135,17 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
   if ((st = fb_planar_of_case(&r->m, c, NULL, diag)) != FB_OK) return st;
   r->omega = fb_case_omega2(c);
   r->duration = fb_case_duration(c);
+  r->t_window = c->peaks == FB_PEAKS_ALL ? 0.0 : 2.0 * M_PI / c->crank_speed;
   for (int i = 0; i < c->model_count && st == FB_OK; i++) {
     fb_planar_model *p = &r->model[r->n++];
     snprintf(p->name, sizeof p->name, "%s", c->models[i]);
-    st = analytic(p, r, diag);
+    const double t0 = fb_clock_s();
+    st = model_alloc(p, r, diag);
+    if (st == FB_OK)
+      st = strcmp(p->name, "analytic") == 0
+               ? analytic(p, r, diag)
+               : fb_planar_run_reference(p, r, strcmp(p->name, "reference") == 0, diag);
+    p->wall_s = fb_clock_s() - t0;
   }
   if (st != FB_OK) fb_planar_run_free(r);
   return st;

@@ -43,38 +43,6 @@ fb_status fb_planar_tool_peaks(fb_planar_peaks **out, fb_planar **m, const fb_ca
 
 /* ---- penalty ------------------------------------------------------------- */
 
-/* every joint's largest reaction magnitude over a revolution at signed drive
- * speed omega into most (njoints) */
-static fb_status reaction_max(double *most, const fb_planar *m, double omega, double gravity,
-                              fb_diag *diag) {
-  const int nq = fb_planar_nq(m), nj = m->njoints;
-  double *q = malloc((3 * (size_t)nq) * sizeof *q);
-  fb_planar_reaction *r = malloc((size_t)nj * sizeof *r);
-  fb_planar_kin *k = NULL;
-  fb_status st = q && r ? fb_planar_kin_new(&k, m, diag)
-                        : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  double *qd = q + nq, *qdd = qd + nq;
-  if (st == FB_OK) {
-    fb_planar_assembly(m, q);
-    st = fb_planar_position(k, q, 0.0, NULL, diag);
-  }
-  for (int j = 0; j < nj; j++) most[j] = 0.0;
-  const double da = 2.0 * M_PI / FB_PLANAR_LOAD_SAMPLES;
-  for (int i = 0; i < FB_PLANAR_LOAD_SAMPLES && st == FB_OK; i++) {
-    fb_path_end end;
-    if (i > 0) st = fb_planar_follow(k, q, (i - 1) * da, i * da, NULL, &end, diag);
-    const fb_planar_drive d = {i * da, omega, 0.0};
-    if (st == FB_OK) st = fb_planar_motion(k, qd, qdd, q, &d, NULL, diag);
-    if (st == FB_OK) st = fb_planar_invdyn(r, NULL, m, q, qd, qdd, gravity, diag);
-    for (int j = 0; j < nj && st == FB_OK; j++)
-      most[j] = fmax(most[j], hypot(r[j].force[0], r[j].force[1]));
-  }
-  fb_planar_kin_free(k);
-  free(q);
-  free(r);
-  return st;
-}
-
 fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_case *c,
                                  const fb_planar *m, double omega, fb_diag *diag) {
   *n = 0;
@@ -82,7 +50,7 @@ fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_ca
     return fb_diag_set(diag, FB_ERR_RANGE, "drive speed %g rad/s: must be positive", omega);
   double *fmax = malloc((size_t)m->njoints * sizeof *fmax);
   if (!fmax) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  fb_status st = reaction_max(fmax, m, c->direction * omega, c->gravity, diag);
+  fb_status st = fb_planar_reaction_max(fmax, m, c->direction * omega, c->gravity, diag);
   const double e_star = fb_contact_modulus(c->youngs_modulus, c->poisson_ratio,
                                            c->youngs_modulus, c->poisson_ratio);
   for (int j = 0; j < m->njoints && st == FB_OK; j++) {

@@ -5,8 +5,8 @@
  * Kinematics: every moving body's omega and alpha extremes over a
  * revolution of the drive at the case's speed (planar_path.h).
  * Penalty (physical mode): at each revolute joint its largest ideal
- * reaction over a revolution (planar_invdyn.h, gravity included, at
- * FB_PLANAR_LOAD_SAMPLES drive angles), then Johnson's pin-in-hole
+ * reaction over a revolution (planar_invdyn.h's fb_planar_reaction_max,
+ * gravity included), then Johnson's pin-in-hole
  * stiffness Kc, the penalty P = Kc c^1.5 and the approach at that force
  * (contact.h), as fourbar penalty's physical rows.
  * Stack-up: the lengths are the distances between the distinct joint
@@ -27,10 +27,6 @@
 #include "case.h"
 #include "planar.h"
 #include "planar_path.h"
-
-/* Drive angles per revolution at which the reactions are evaluated: 0.1
- * degree, as the peaks' grid (planar_path.h). */
-#define FB_PLANAR_LOAD_SAMPLES 3600
 
 /* Central-difference step of a sensitivity [m]: 1 um. The truncation
  * error is O(step^2) of the output's curvature in the length (1e-12 of it

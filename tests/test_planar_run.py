@@ -17,11 +17,15 @@ drive angle and refined by golden-section search to 1e-12 rad.
 
 Usage: test_planar_run.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
-import csv, json, math, os, subprocess, sys, tempfile
+import csv, json, math, os, sys, tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
 
 exe = os.path.abspath(sys.argv[1])
 cases = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cases")
-passed = failed = 0
+tally = fb_script.Tally()
+check = tally.check
 tmp = tempfile.mkdtemp(prefix="fourbar-planar-run-")
 
 # The issue's bound on the six-bar's omega peaks against an independent
@@ -41,18 +45,8 @@ FOURBAR_PEAK_REL = 1e-9
 SAMPLE_REL = 1e-10
 
 
-def check(ok, what):
-    global passed, failed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAIL:", what)
-
-
 def run(*args):
-    r = subprocess.run([exe] + list(args), capture_output=True, text=True, cwd=tmp, timeout=600)
-    return r.returncode, r.stdout, r.stderr
+    return fb_script.run(exe, tmp, *args)
 
 
 def rel(p, q):
@@ -116,20 +110,7 @@ def sixbar(th):
             "rod": omega_of(e, ve, g, vg), "output": omega_of(F, (0, 0), g, vg)}
 
 
-def extreme(f, sign):
-    """max of sign * f over one revolution: grid, then golden section"""
-    n = 3600
-    step = 2 * math.pi / n
-    k = max(range(n), key=lambda i: sign * f(i * step))
-    lo, hi = (k - 1) * step, (k + 1) * step
-    g = (math.sqrt(5) - 1) / 2
-    while hi - lo > 1e-12:
-        m1, m2 = hi - g * (hi - lo), lo + g * (hi - lo)
-        if sign * f(m1) > sign * f(m2):
-            hi = m2
-        else:
-            lo = m1
-    return f(0.5 * (lo + hi))
+extreme = fb_script.extreme
 
 
 def summary_of(out):
@@ -306,11 +287,10 @@ check(rc == 2 and "physical" in se, "paper mode on a planar case is refused (%s)
 REF_TOL = "1e-9"
 env = dict(os.environ, FOURBAR_REFERENCE_TOL=REF_TOL)
 out = os.path.join(tmp, "sixref")
-r = subprocess.run([exe, "run", six, "--set", "run.models=reference-restitution", "--set",
-                    "run.revolutions=2", "--set", "solver.h_s=1e-4", "--out", out],
-                   capture_output=True, text=True, cwd=tmp, timeout=600, env=env)
-check(r.returncode == 0, "the six-bar's reference runs (%s)" % r.stderr.strip()[-300:])
-if r.returncode == 0:
+rc, _, se = fb_script.run(exe, tmp, "run", six, "--set", "run.models=reference-restitution", "--set",
+                          "run.revolutions=2", "--set", "solver.h_s=1e-4", "--out", out, env=env)
+check(rc == 0, "the six-bar's reference runs (%s)" % se.strip()[-300:])
+if rc == 0:
     m = summary_of(out)["models"][0]
     check(m["kind"] == "reference" and m["clearance_joints"] == ["rod-output"],
           "the reference's clearance joint is rod-output")
@@ -337,5 +317,4 @@ rc, _, se = run("run", six, "--set", "run.models=reference", "--set", "clearance
                 "--out", os.path.join(tmp, "z"))
 check(rc != 0 and "paper" in se, "a planar reference refuses penalty = paper (%s)" % se.strip())
 
-print("%d passed, %d failed" % (passed, failed))
-sys.exit(1 if failed else 0)
+sys.exit(tally.done())

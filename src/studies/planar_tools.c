@@ -11,6 +11,10 @@
 #include "planar_case.h"
 #include "planar_invdyn.h"
 
+/* joint points of one body the stack-up keeps: three vary by their
+ * distances, a fourth is only counted (to refuse the body) */
+#define BODY_POINTS 4
+
 /* points closer than this are one joint point [m]: 1 nm, far below any
  * length a case gives (0.001 mm is the finest digit of at_mm worth giving) */
 #define SAME_POINT_M 1e-9
@@ -73,19 +77,19 @@ fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_ca
 
 /* ---- stack-up ------------------------------------------------------------ */
 
-/* the distinct joint points of body b in its frame (at most 4 kept; *n
- * may exceed it), with one joint at each */
-static int body_points(double p[4][2], int joint[4], const fb_planar *m, int b) {
+/* the distinct joint points of body b in its frame (at most BODY_POINTS
+ * kept; the count returned may exceed it), with one joint at each */
+static int body_points(double p[BODY_POINTS][2], int joint[BODY_POINTS], const fb_planar *m, int b) {
   int n = 0;
   for (int j = 0; j < m->njoints; j++)
     for (int s = 0; s < 2; s++) {
       if (m->joint[j].body[s] != b) continue;
       const double *x = m->joint[j].point[s];
       int seen = 0;
-      for (int i = 0; i < n && i < 4; i++)
+      for (int i = 0; i < n && i < BODY_POINTS; i++)
         seen |= hypot(x[0] - p[i][0], x[1] - p[i][1]) < SAME_POINT_M;
       if (seen) continue;
-      if (n < 4) {
+      if (n < BODY_POINTS) {
         p[n][0] = x[0];
         p[n][1] = x[1];
         joint[n] = j;
@@ -103,8 +107,8 @@ static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_pla
                        "(f, m, c or v: ISO 2768-1 on each joint-to-joint distance)");
   s->nlengths = 0;
   for (int b = 0; b < m->nbodies; b++) {
-    double p[4][2];
-    int joint[4];
+    double p[BODY_POINTS][2];
+    int joint[BODY_POINTS];
     const int n = body_points(p, joint, m, b);
     if (n > 3)
       return fb_diag_set(diag, FB_ERR_ARG, "body '%s' has %d distinct joint points: its "
@@ -133,7 +137,7 @@ static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_pla
 /* body b's points rebuilt from its lengths len (in lengths_of's order from
  * index at): the first stays, the second along the nominal direction, the
  * third on the nominal side of the first two */
-static void rebuild(double q[3][2], double p[4][2], int n, const double *len) {
+static void rebuild(double q[3][2], double p[BODY_POINTS][2], int n, const double *len) {
   memcpy(q, p, (size_t)n * sizeof q[0]);
   if (n < 2) return;
   const double d01 = hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
@@ -161,8 +165,8 @@ static fb_planar *with_lengths(const fb_planar *m, const double *len) {
   x->njoints = m->njoints;
   x->drive = m->drive;
   for (int b = 0, at = 0; b < m->nbodies; b++) {
-    double p[4][2], q[3][2];
-    int joint[4];
+    double p[BODY_POINTS][2], q[3][2];
+    int joint[BODY_POINTS];
     const int n = body_points(p, joint, m, b);
     rebuild(q, p, n, len + at);
     at += n * (n - 1) / 2;
@@ -275,7 +279,7 @@ void fb_planar_stackup_free(fb_planar_stackup *s) {
 }
 
 const char *fb_planar_output_name(char *buf, size_t size, const fb_planar *m, int k) {
-  static const char *const what[4] = {"omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2",
+  static const char *const what[] = {"omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2",
                                       "alpha_min_rad_s2"};
   snprintf(buf, size, "%s_%s", m->body[1 + k / 4].name, what[k % 4]);
   return buf;

@@ -97,7 +97,7 @@ fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb
                                 fb_diag *diag);
 void fb_planar_stackup_free(fb_planar_stackup *s);
 
-/* The name of stack-up output k ("coupler_omega_max_rad_s") into buf. */
+/* The name of stack-up output k ("<body>_omega_max_rad_s") into buf. */
 const char *fb_planar_output_name(char *buf, size_t size, const fb_planar *m, int k);
 
 #endif

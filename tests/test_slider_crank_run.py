@@ -18,6 +18,9 @@ Usage: test_slider_crank_run.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
 import csv, json, math, os, re, subprocess, sys, tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
+
 exe = os.path.abspath(sys.argv[1])
 passed = failed = 0
 tmp = tempfile.mkdtemp(prefix="fourbar-slider-crank-")
@@ -58,19 +61,8 @@ def x_derivs(a, b, e, th):
 
 
 def extreme(f, sign):
-    """max of sign * f over one revolution: grid, then golden section"""
-    n = 3600
-    step = 2 * math.pi / n
-    k = max(range(n), key=lambda i: sign * f(i * step))
-    lo, hi = (k - 1) * step, (k + 1) * step
-    g = (math.sqrt(5) - 1) / 2
-    while hi - lo > 1e-13:
-        m1, m2 = hi - g * (hi - lo), lo + g * (hi - lo)
-        if sign * f(m1) > sign * f(m2):
-            hi = m2
-        else:
-            lo = m1
-    return f(0.5 * (lo + hi))
+    """max of sign * f over one revolution: grid, then golden section to 1e-13 rad"""
+    return fb_script.extreme(f, sign, 1e-13)
 
 
 def re_word(name):

@@ -28,6 +28,9 @@ Usage: test_slider_crank_tools.py PATH_TO_FOURBAR. Prints "N passed, N
 failed"; exit 1 on any failure."""
 import json, math, os, re, subprocess, sys, tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
+
 exe = os.path.abspath(sys.argv[1])
 passed = failed = 0
 tmp = tempfile.mkdtemp(prefix="fourbar-slider-crank-tools-")
@@ -94,14 +97,7 @@ def state(a, b, e, th):
 
 
 def golden(f, sign, lo, hi):
-    g = (math.sqrt(5) - 1) / 2
-    while hi - lo > 1e-13:
-        m1, m2 = hi - g * (hi - lo), lo + g * (hi - lo)
-        if sign * f(m1) > sign * f(m2):
-            hi = m2
-        else:
-            lo = m1
-    return f(0.5 * (lo + hi))
+    return fb_script.golden(f, sign, lo, hi, 1e-13)
 
 
 def peaks(a, b, e, om):

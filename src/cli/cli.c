@@ -183,10 +183,22 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
   return fb_cli_case_file(cmd, path, sets, nsets, c);
 }
 
+/* the commands that run a planar case ([linkage] type = planar,
+ * docs/planar.md); the others refuse one after checking it */
+static const char *const planar_commands[] = {"run", "kinematics", "stackup", "penalty"};
+
+static int runs_planar(const char *cmd) {
+  for (size_t i = 0; i < sizeof planar_commands / sizeof planar_commands[0]; i++)
+    if (strcmp(cmd, planar_commands[i]) == 0) return 1;
+  return 0;
+}
+
 int fb_cli_case_file(const char *cmd, const char *path, const char *const *sets, int nsets,
                      struct fb_case_s *c) {
   fb_diag d;
-  if (fb_casefile_load(c, path, sets, nsets, &d) != FB_OK) return fb_cli_fail(cmd, 2, "%s", d.msg);
+  if ((runs_planar(cmd) ? fb_casefile_load_planar : fb_casefile_load)(c, path, sets, nsets, &d) !=
+      FB_OK)
+    return fb_cli_fail(cmd, 2, "%s", d.msg);
   /* values within the rules yet unlikely to be meant: said, and run as given */
   char notes[8][FB_DIAG_SIZE];
   const int n = fb_casefile_plausibility(c, notes, 8);

@@ -49,7 +49,8 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
 
 /* Loads the case file path with the --set overrides into c, the one way
  * every command loads a case: on error prints "fourbar <cmd>: <diagnostic>"
- * and returns exit status 2; else prints each plausibility warning
+ * and returns exit status 2 (a planar case too, unless cmd runs one:
+ * cli.c's list, docs/planar.md); else prints each plausibility warning
  * (fb_casefile_plausibility: "fourbar <cmd>: warning: <path>: ...") and
  * returns 0. */
 int fb_cli_case_file(const char *cmd, const char *path, const char *const *sets, int nsets,
@@ -78,7 +79,19 @@ const char *fb_cli_cases_dir(void);
 const char *fb_cli_baselines_dir(void);
 
 int fb_cmd_run(int argc, char **argv);
+/* fourbar run's part for a planar case c loaded from case_path (cmd_run_planar.c):
+ * its models into folder dir, summary.json printed with json, command for
+ * report.md. Returns the exit status. */
+int fb_cmd_run_planar(const struct fb_case_s *c, const char *case_path, const char *dir, int json,
+                      const char *command);
 int fb_cmd_kinematics(int argc, char **argv);
+/* kinematics, stackup and penalty's parts for a planar case c (its speed and
+ * direction as the command resolved them; cmd_planar_tools.c): output on
+ * stdout, JSON with json. penalty: physical mode at the nspeeds speeds rpm.
+ * Return the exit status. */
+int fb_cmd_kinematics_planar(const struct fb_case_s *c, int json);
+int fb_cmd_stackup_planar(const struct fb_case_s *c, int json);
+int fb_cmd_penalty_planar(const struct fb_case_s *c, const double *rpm, int nspeeds, int json);
 int fb_cmd_keys(int argc, char **argv);
 int fb_cmd_models(int argc, char **argv);
 int fb_cmd_impact(int argc, char **argv);

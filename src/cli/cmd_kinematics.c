@@ -27,6 +27,9 @@ static const char kin_help[] =
     "stroke's time over the faster's) with each stroke's crank angle and time, the\n"
     "transmission angle range, and the exact peaks of the rod's omega [rad/s] and\n"
     "alpha [rad/s^2] and the slider's velocity [m/s] and acceleration [m/s^2].\n"
+    "A planar case ([linkage] type = planar, docs/planar.md): every moving body's\n"
+    "omega and alpha extremes by name and the drive angle of each (the planar\n"
+    "core; --speed-rpm and --direction apply, the length flags do not).\n"
     "\n"
     "CASE: a case file (or the name of a shipped case, e.g. paper_crank_rocker);\n"
     "its nominal lengths, speed, direction and branch, each replaced by a flag\n"
@@ -171,6 +174,23 @@ int fb_cmd_kinematics(int argc, char **argv) {
                          sizeof case_path) != 0)
       return 2;
     case_mech = (int)c.mechanism;
+  }
+  if (case_mech >= 0 && c.planar.on) { /* its geometry is its joints' (docs/planar.md) */
+    static const char *const flag[FB_LINK_COUNT] = {"--crank-mm", "--coupler-mm", "--follower-mm",
+                                                    "--ground-mm"};
+    for (int i = 0; i < FB_LINK_COUNT; i++)
+      if (mm[i] != -1)
+        return fb_cli_fail("kinematics", 2, "%s: the case is a planar one, whose lengths are its "
+                           "joints' positions ([joint.NAME] at_mm)", flag[i]);
+    if (branch_given || fl.type >= 0 || fl.offset_given)
+      return fb_cli_fail("kinematics", 2, "--branch, --type and --offset-mm do not apply to a "
+                         "planar case (its joints' positions give its branch and shape)");
+    fb_diag rd;
+    if (rpm != -1 && fb_casefile_check_range("drive", "speed_rpm", rpm, "--speed-rpm", &rd) != FB_OK)
+      return fb_cli_fail("kinematics", 2, "%s", rd.msg);
+    if (rpm != -1) c.crank_speed = rpm * FB_RAD_S_PER_RPM;
+    if (dir != 0) c.direction = dir;
+    return fb_cmd_kinematics_planar(&c, json);
   }
   static fb_kinematics k;
   k.case_path = case_path;

@@ -28,7 +28,8 @@ static const char penalty_help[] =
     "and mutual approach at the case's crank speed (or per speed of a list), for\n"
     "the crank-coupler and coupler-follower joints (a slider-crank's crank-coupler\n"
     "and coupler-slider, physical mode only: the paper's recipe is its four-bar's,\n"
-    "and paper mode prints one line saying so instead of the table).\n"
+    "and paper mode prints one line saying so instead of the table). A planar case\n"
+    "([linkage] type = planar): physical mode at every revolute joint, by name.\n"
     "\n"
     "  --mode physical  inverse-dynamics joint reaction, the case's radial\n"
     "                   clearance and pin length, Johnson's line contact\n"
@@ -179,6 +180,15 @@ int fb_cmd_penalty(int argc, char **argv) {
     n = 1;
   }
 
+  if (c.planar.on) { /* physical mode at every revolute joint (planar_tools.h) */
+    if (mode == FB_PENALTY_PAPER)
+      return fb_cli_fail("penalty", 2, "--mode paper: the paper's recipe is its four-bar's; a "
+                         "planar case runs physical mode");
+    if (out_dir)
+      return fb_cli_fail("penalty", 2, "--out: a planar case's penalty is printed (text or "
+                         "--json), not written yet");
+    return fb_cmd_penalty_planar(&c, rpm, n, json);
+  }
   /* its files: checked and the folder locked before any work (fileio.h) */
   char csv[32], svg[32];
   snprintf(csv, sizeof csv, "penalty_%s.csv", mode == FB_PENALTY_PAPER ? "paper" : "physical");

@@ -252,14 +252,17 @@ int fb_cmd_run(int argc, char **argv) {
   /* a case that leaves [run] ensemble unset lets the run add one where a
    * verdict is unsettled (run.h, FB_ENSEMBLE_AUTO_MEMBERS; docs/chaos.md) */
   if (!fb_casefile_given(&c, "run", "ensemble")) c.ensemble_auto = FB_ENSEMBLE_AUTO_MEMBERS;
-  static fb_case variants[FB_MAX_VARIANTS];
-  if ((rc = load_variants(&c, variants, case_path, sets, nsets, jobs)) != 0) return rc;
-
   char dir[4096];
   if (out_dir)
     snprintf(dir, sizeof dir, "%s", out_dir);
   else
     snprintf(dir, sizeof dir, "results/%s", c.name);
+  static char again[8192], command[8192];
+  command_text(command, sizeof command, argc, argv);
+  if (c.planar.on) return fb_cmd_run_planar(&c, case_path, dir, json, command);
+  static fb_case variants[FB_MAX_VARIANTS];
+  if ((rc = load_variants(&c, variants, case_path, sets, nsets, jobs)) != 0) return rc;
+
   /* --set without --out writes the variant into the case's own folder: said
    * on stderr (docs/commands.md, "run"), with whether it replaced an earlier run */
   struct stat prev;
@@ -268,9 +271,7 @@ int fb_cmd_run(int argc, char **argv) {
   const int replaces = stat(prev_summary, &prev) == 0;
   /* figures need gnuplot: found out before the simulation, not after it */
   if (figures && fb_figures_check_gnuplot(&diag) != FB_OK) return fb_cli_fail("run", 1, "%s", diag.msg);
-  static char again[8192], command[8192];
   fb_cli_command_line(again, sizeof again, argc, argv, NULL);
-  command_text(command, sizeof command, argc, argv);
   run_set w = {.dir = dir, .case_path = case_path, .command = command, .figures = figures,
                .html = html, .fmt = fmt};
   progress_state ps = {isatty(2) && !json};

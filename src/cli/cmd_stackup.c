@@ -31,7 +31,11 @@ static const char stackup_help[] =
     "corners, RSS 3-sigma band, Monte Carlo quantiles at 0.135 %, 50 %, 99.865 %\n"
     "(GSL mt19937; [tolerance] distribution = normal or uniform), each with a\n"
     "95 % distribution-free confidence interval from order statistics: a bound\n"
-    "shown as '-' needs more samples.\n"    "A slider-crank case ([linkage] type = slider-crank): over its crank, coupler\n"
+    "shown as '-' needs more samples.\n"    "A planar case ([linkage] type = planar, docs/planar.md): ISO 2768-1 ([tolerance]\n"
+    "class) on each body's joint-to-joint distances; every moving body's omega and\n"
+    "alpha extremes: sensitivities by central differences, the RSS band, the worst\n"
+    "case over the corners up to 8 lengths (no Monte Carlo).\n"
+    "A slider-crank case ([linkage] type = slider-crank): over its crank, coupler\n"
     "and guide offset (8 corners), the outputs are the rod's (coupler_*) omega and\n"
     "alpha peaks, the slider's velocity [m/s] and acceleration [m/s^2] peaks\n"
     "(slider_velocity_max_m_s, ...), the smallest transmission angle [rad] and the\n"
@@ -124,12 +128,19 @@ int fb_cmd_stackup(int argc, char **argv) {
       default: return fb_cli_bad_option(argv, "h");
     }
   }
+  const int mask_given = mask != 0;
   if (mask == 0) mask = FB_TOL_CORNERS | FB_TOL_RSS | FB_TOL_MONTECARLO;
   fb_case c;
   fb_diag d;
   char case_path[4096];
   int rc = fb_cli_load_case("stackup", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
+  if (c.planar.on) { /* corners and RSS over its bodies' lengths (planar_tools.h) */
+    if (mask_given && (mask & FB_TOL_MONTECARLO))
+      return fb_cli_fail("stackup", 2, "--method montecarlo: a planar case's stack-up runs "
+                         "corners and rss");
+    return fb_cmd_stackup_planar(&c, json);
+  }
   /* a long Monte Carlo says what it will cost before it starts */
   if (mask & FB_TOL_MONTECARLO) {
     if (fb_tol_check_cost(c.mechanism, (size_t)samples, (int)jobs, &d) != FB_OK)

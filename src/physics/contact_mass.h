@@ -4,9 +4,9 @@
  * degree of freedom of mass m, so in a mechanism m is the effective mass
  * 1 / (n^T W n) of the joint's relative motion along the normal n (the
  * drive held; effective_mass.h, physics/planar/planar_mass.h). Every other
- * law ignores the mass. Written once here for the planar core; the
- * engines, reference.c and slider_crank_dynamics.c still write it inline
- * (7 files, issue 57's second part moves them here). */
+ * law ignores the mass. Written once here: the planar core, reference.c,
+ * slider_crank_dynamics.c and the engines (ODE, MuJoCo, Bullet, Simbody)
+ * all put the damper on the mass through it. */
 #ifndef FB_CONTACT_MASS_H
 #define FB_CONTACT_MASS_H
 

@@ -41,4 +41,14 @@
 fb_status fb_joint_laws(fb_contact_law impact[4], fb_contact_law restitution[4],
                         const fb_case *c, fb_diag *diag);
 
+/* The law of one clearance joint of any mechanism (a planar case's): the
+ * impact law (impact = 1) or the restitution law of the case's [clearance]
+ * keys at working force fmax [N] (the joint's largest ideal reaction:
+ * physical, goldsmith), the joint named name in messages, the law's
+ * starting mass [kg] > 0 (its damper is put on the effective mass at each
+ * step, contact_mass.h). Errors: as fb_joint_laws; FB_ERR_ARG for
+ * [clearance] penalty = paper, whose recipe is the four-bar's. */
+fb_status fb_joint_law_at(fb_contact_law *out, const fb_case *c, int impact, double fmax,
+                          const char *name, double mass, fb_diag *diag);
+
 #endif

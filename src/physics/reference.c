@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "clock.h"
+#include "contact_mass.h"
 #include "linkage.h"
 #include "slider_crank_dynamics.h"
 #include "stop_text.h"
@@ -96,12 +97,13 @@ static int eom(double t, const double y[], double dydt[], void *p) {
     const double vh[2] = {JB[0][0] * w3 + JB[0][1] * w4, JB[1][0] * w3 + JB[1][1] * w4};
     const double ddot = n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]);
     fb_contact_law l = *r->law;
-    if (l.kind == FB_LAW_RESTITUTION) {
+    if (fb_contact_law_wants_mass(&l)) {
       /* the damper's mass: the mechanism's effective mass along n,
        * 1 / (w^T M^-1 w), w = J_hole^T n (the pin's crank is driven) */
       const double w[2] = {JB[0][0] * n[0] + JB[1][0] * n[1], JB[0][1] * n[0] + JB[1][1] * n[1]};
       const double dm = M11 * M22 - M12 * M12;
-      l.mass = dm / (w[0] * (M22 * w[0] - M12 * w[1]) + w[1] * (M11 * w[1] - M12 * w[0]));
+      l = fb_contact_law_on_mass(
+          &l, dm / (w[0] * (M22 * w[0] - M12 * w[1]) + w[1] * (M11 * w[1] - M12 * w[0])));
     }
     fn = fb_contact_force(&l, delta, ddot, r->v0);
     /* the pin pushes the hole (coupler) along +n */

@@ -5,6 +5,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "contact_mass.h"
+
 /* tolerance bounds: the four-bar reference's (reference.h), for the same
  * reasons (rk8pd's error estimate is lost in round-off below 1e-13) */
 #define SC_DYN_TOL_MIN 1e-13
@@ -76,8 +78,7 @@ void fb_sc_dyn_eval_at(fb_sc_dyn_eval *out, const fb_sc_dyn_model *m, double t, 
   }
   const double delta = ecc - m->clearance;
   if (delta > 0.0) {
-    fb_contact_law l = m->law;
-    if (l.kind == FB_LAW_RESTITUTION) l.mass = meff;
+    const fb_contact_law l = fb_contact_law_on_mass(&m->law, meff); /* contact_mass.h */
     F = fb_contact_force(&l, delta, rate, m->impact_velocity);
     Fel = fb_contact_force(&l, delta, 0.0, m->impact_velocity);
   }

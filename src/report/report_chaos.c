@@ -2,6 +2,7 @@
 
 #include "numfmt.h"
 
+#include <jansson.h>
 #include <math.h>
 #include <string.h>
 

@@ -23,6 +23,12 @@ json_t *fb_report_body_peaks_json(const fb_body_peaks *p) {
   return o;
 }
 
+json_t *fb_report_bodies_json(const char *const *name, const fb_body_peaks *p, int n) {
+  json_t *o = json_object();
+  for (int b = 0; b < n; b++) json_object_set_new(o, name[b], fb_report_body_peaks_json(&p[b]));
+  return o;
+}
+
 json_t *fb_report_slider_peaks_json(const fb_body_peaks *p) {
   json_t *o = json_object();
   json_object_set_new(o, "position_max_m", num(p->pos_max));

@@ -42,6 +42,10 @@ const char *fb_report_body_abbrev(const char *body);
  * "alpha_min_rad_s2"} of one body's peaks (new reference). */
 json_t *fb_report_body_peaks_json(const fb_body_peaks *p);
 
+/* summary.json's models[].bodies: {"<name[b]>": fb_report_body_peaks_json
+ * of p[b]} for the n moving bodies of any mechanism, by their names. */
+json_t *fb_report_bodies_json(const char *const *name, const fb_body_peaks *p, int n);
+
 /* JSON object {"position_max_m", "position_min_m", "velocity_max_m_s",
  * "velocity_min_m_s", "acceleration_max_m_s2", "acceleration_min_m_s2"} of a
  * translating body's peaks (a slider: docs/outputs.md, models[].slider;

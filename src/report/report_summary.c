@@ -7,6 +7,7 @@
 
 #include <jansson.h>
 #include <math.h>
+#include <string.h>
 
 #include "engine.h"
 #include "casefile.h"
@@ -418,6 +419,28 @@ static void spikes_json(json_t *o, const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "clearance_joints", joints);
 }
 
+/* "bodies": every moving body's omega and alpha extremes by its name
+ * (docs/outputs.md): an output body's window peaks, the driven body's
+ * prescribed speed (alpha 0), a translating body's zeros (it does not
+ * turn); null before the window */
+static json_t *bodies_json(const fb_model_result *m, const fb_run *r) {
+  if (!m->has_peaks) return json_null();
+  const fb_mech_desc *mech = fb_case_mech(&r->c);
+  const char *name[FB_MECH_MAX_BODIES];
+  fb_body_peaks p[FB_MECH_MAX_BODIES];
+  int n = 0, k = 0;
+  for (int b = 0; b < mech->nbodies; b++) {
+    const fb_mech_body *body = &mech->body[b];
+    if (body->motion == FB_MOTION_FIXED) continue;
+    memset(&p[n], 0, sizeof p[n]);
+    if (b == mech->input) p[n].omega_max = p[n].omega_min = fb_case_omega2(&r->c);
+    else if (body->output && body->motion != FB_MOTION_TRANSLATING) p[n] = m->peaks.body[k];
+    k += body->output;
+    name[n++] = body->name;
+  }
+  return fb_report_bodies_json(name, p, n);
+}
+
 /* one model's object of summary.json's "models" (docs/outputs.md) */
 static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_t *o = json_object();
@@ -439,6 +462,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   for (int b = 0; b < nb; b++)
     json_object_set_new(o, name[b],
                         m->has_peaks ? body_peaks_json(r, b, &m->peaks.body[b]) : json_null());
+  json_object_set_new(o, "bodies", bodies_json(m, r));
   const fb_series *ser = &run->series;
   const double t_end = ser->n ? ser->t[ser->n - 1] : 0.0;
   json_object_set_new(o, "peaks", peaks_window_json(m, r, t_end));

@@ -1,5 +1,6 @@
 #include "report_variants.h"
 
+#include <jansson.h>
 #include <math.h>
 #include <string.h>
 

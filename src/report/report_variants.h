@@ -7,7 +7,9 @@
 #ifndef FB_REPORT_VARIANTS_H
 #define FB_REPORT_VARIANTS_H
 
-#include <jansson.h>
+/* jansson's object type, declared here so that includers do not get jansson
+ * (C11 allows the same typedef again where <jansson.h> is included too) */
+typedef struct json_t json_t;
 #include <stdio.h>
 
 #include "run.h"

@@ -28,7 +28,8 @@ fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *ov
  * ([linkage] type = planar, docs/planar.md: its description is in
  * out->planar, built by physics/planar/planar_case.h's fb_planar_of_case).
  * fb_casefile_load reads and checks a planar case the same way, then
- * refuses it (FB_ERR_ARG): no command runs one yet. */
+ * refuses it (FB_ERR_ARG): the commands that load with it do not run one
+ * yet. */
 fb_status fb_casefile_load_planar(fb_case *out, const char *path, const char *const *overrides,
                                   int n_overrides, fb_diag *diag);
 

@@ -388,10 +388,14 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
   char line[512];
   summary(line, sizeof line, m);
   fb_planar_free(m);
+  if (!fb_casefile_given(c, "run", "models")) { /* the models that run a planar case */
+    c->model_count = 1;
+    snprintf(c->models[0], sizeof c->models[0], "analytic");
+  }
   if (run) return FB_OK;
   return fb_diag_set(diag, FB_ERR_ARG,
-                     "%s: [linkage] type = planar: the description checks (%s), but no command "
-                     "runs a planar case yet: the planar core computes its motion, inverse "
-                     "dynamics and clearance dynamics (docs/planar.md), and fourbar run, "
-                     "kinematics, stackup and penalty on it come next", path ? path : "case", line);
+                     "%s: [linkage] type = planar: the description checks (%s), but this command "
+                     "does not run a planar case yet: fourbar run, kinematics, stackup and penalty "
+                     "do (docs/planar.md)",
+                     path ? path : "case", line);
 }

@@ -43,9 +43,10 @@ fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag);
  * position (a prismatic joint its axis), each [body.NAME] a joint, the
  * drive and the clearance joints name joints; then the description is
  * compiled (masses derived as bars) and checked by the planar core.
+ * A case without [run] models runs analytic (run/planar_run.h).
  * run: 1 for a caller that computes on a planar case
- * (fb_casefile_load_planar), 0 for every command, which then refuses it
- * (none runs a planar case yet) after the checks pass.
+ * (fb_casefile_load_planar: fourbar run), 0 for the commands that do not
+ * run one yet, which then refuse it after the checks pass.
  * Errors: FB_ERR_PARSE, FB_ERR_ARG, FB_ERR_ASSEMBLY, FB_ERR_RANGE with the
  * file and line of the section concerned; FB_ERR_NOMEM. */
 fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const char *path, int run,

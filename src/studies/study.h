@@ -69,7 +69,9 @@ fb_status fb_study_load(fb_study *s, const char *path, fb_diag *diag);
 fb_status fb_study_load_with_cases(fb_study *s, const char *path, const char *cases_dir,
                                    fb_diag *diag);
 
-#include <jansson.h>
+/* jansson's object type, declared here so that includers do not get jansson
+ * (C11 allows the same typedef again where <jansson.h> is included too) */
+typedef struct json_t json_t;
 
 /* What a study's rows are computed from (issue 13): {"study_file",
  * "study_file_fnv1a64" (its bytes), "resolved_study_fnv1a64" (name, case

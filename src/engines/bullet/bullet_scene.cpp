@@ -9,6 +9,7 @@
 
 #include "bt_rows.h"
 extern "C" {
+#include "contact_mass.h"
 #include "effective_mass.h"
 #include "episode.h"
 }
@@ -353,8 +354,7 @@ static void clearance_row(fb_bullet_scene *s, int j) {
   const int onset = !c->ep.in_contact;
   fb_episode_update(&c->ep, 1, ddot, d->impact_velocity_min);
   const double m_eff = step_effective_mass(s, j, n);
-  fb_contact_law law = d->law[j];
-  if (law.kind == FB_LAW_RESTITUTION) law.mass = m_eff; /* damper on the effective mass */
+  const fb_contact_law law = fb_contact_law_on_mass(&d->law[j], m_eff); /* contact_mass.h */
   const double persistence =
       d->mapping == FB_MAPPING_MATCHED_STATIC ? fb_contact_persistence(c->phase) : 0.0;
   fb_contact_row u;

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "contact_mass.h"
 #include "mujoco_scene_internal.h"
 
 /* the scene whose model is being stepped: mjcb_passive is one global hook */
@@ -47,11 +48,11 @@ static void clearance_force(fb_mujoco_scene *s, const mjModel *m, mjData *d, int
    * bookkeeping will record it) */
   const double v0 = c->ep.in_contact ? c->ep.v0 : fmax(ddot, s->def.impact_velocity_min);
   fb_contact_law law = s->def.law[j];
-  if (law.kind == FB_LAW_RESTITUTION) {
-    /* the damper on the mechanism's effective mass along n (as ODE's world
-     * and the reference do), so the achieved restitution is the one asked */
+  if (fb_contact_law_wants_mass(&law)) {
+    /* the damper on the mechanism's effective mass along n (contact_mass.h),
+     * so the achieved restitution is the one asked */
     const double me = mujoco_joint_effective_mass(s, m, d, j);
-    if (me > 0.0) law.mass = me;
+    if (me > 0.0) law = fb_contact_law_on_mass(&law, me);
   }
   c->force = fb_contact_force(&law, c->delta, ddot, v0);
   for (int k = 0; k < nv; k++) d->qfrc_passive[k] -= c->force * w[k];

@@ -5,6 +5,7 @@
  * the samples inside a step. */
 #include <math.h>
 
+#include "contact_mass.h"
 #include "mujoco_scene_internal.h"
 #include "step_control.h"
 
@@ -59,8 +60,7 @@ static int adapt_multiple(fb_mujoco_scene *s) {
     sj.dddot = s->ad.stats.steps > 0 ? (c->ddot - s->ad.ddot_prev[j]) / s->ad.h_prev : 0.0;
     s->ad.ddot_prev[j] = c->ddot;
     sj.persistence = c->delta > 0.0 ? fb_contact_persistence(s->ad.phase[j]) : 0.0;
-    fb_contact_law law = s->def.law[j];
-    if (law.kind == FB_LAW_RESTITUTION) law.mass = sj.m_eff;
+    const fb_contact_law law = fb_contact_law_on_mass(&s->def.law[j], sj.m_eff);
     h = fmin(h, fb_step_adaptive(&law, &sj, s->def.accuracy, hg, s->def.h_max));
   }
   const int want = (int)floor(h / hg * (1.0 + 1e-9));

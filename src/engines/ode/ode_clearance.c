@@ -9,6 +9,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "contact_mass.h"
 #include "ode_contact.h"
 #include "ode_world_internal.h"
 
@@ -45,9 +46,7 @@ double ode_step_effective_mass(fb_ode_world *s, int j, const double n[2]) {
  * effective mass along the normal (c = 2 zeta sqrt(p m_eff)), so the
  * achieved restitution is the one asked */
 fb_contact_law ode_step_law(const fb_contact_law *law, double m_eff) {
-  fb_contact_law l = *law;
-  if (l.kind == FB_LAW_RESTITUTION) l.mass = m_eff;
-  return l;
+  return fb_contact_law_on_mass(law, m_eff); /* contact_mass.h's rule */
 }
 
 /* eccentricity, penetration rate and hole-wall point of clearance joint c */

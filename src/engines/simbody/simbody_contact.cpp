@@ -9,6 +9,7 @@
 #include "simbody_internal.h"
 
 extern "C" {
+#include "contact_mass.h"
 #include "effective_mass.h"
 }
 
@@ -111,11 +112,11 @@ ContactEval contact_law(const Scene *s, const double e[2], const double edot[2],
   ce.n[1] = e[1] / ecc;
   ce.ddot = ce.n[0] * edot[0] + ce.n[1] * edot[1];
   fb_contact_law law = s->sm.law[s->cj];
-  if (law.kind == FB_LAW_RESTITUTION && w) {
+  if (fb_contact_law_wants_mass(&law) && w) {
     // the damper on the mechanism's effective mass along n (effective_mass.h)
     double wm[2][2] = {{w[0][0], w[0][1]}, {w[1][0], w[1][1]}};
     const double me = fb_effective_mass_along(wm, ce.n);
-    if (me > 0.0 && std::isfinite(me)) law.mass = ce.mass_eff = me;
+    if (me > 0.0 && std::isfinite(me)) law = fb_contact_law_on_mass(&law, ce.mass_eff = me);
   }
   const double v0 = ep.in_contact ? ep.v0 : std::fmax(ce.ddot, s->sm.impact_velocity_min);
   ce.force = fb_contact_force(&law, delta, ce.ddot, v0);
@@ -134,7 +135,7 @@ ContactEval contact_at(const Scene *s, const State &state, double (*w)[2], int *
   double wl[2][2];
   double (*wp)[2] = w ? w : wl;
   // the tensor where the law needs it (in contact); everywhere when asked for
-  const int ok = s->sm.law[s->cj].kind == FB_LAW_RESTITUTION &&
+  const int ok = fb_contact_law_wants_mass(&s->sm.law[s->cj]) &&
                  (w || std::hypot(e[0], e[1]) > s->sm.radial_clearance) && mass_tensor(s, state, wp);
   if (w_ok) *w_ok = ok;
   return contact_law(s, e, edot, ok ? wp : NULL, s->ep);

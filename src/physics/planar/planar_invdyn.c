@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "planar_path.h"
+
 /* the force and moment about its centre that rows r, r + 1 with
  * multipliers lam put on body b: -(Phi_q rows, b's columns)^T lambda */
 static void on_body(double f[3], const double *jac, int nq, int r, int b, const double *lam) {
@@ -79,5 +81,35 @@ fb_status fb_planar_invdyn(fb_planar_reaction *out, double *drive_torque, const 
   free(jac);
   gsl_matrix_free(jt);
   gsl_permutation_free(p);
+  return st;
+}
+
+fb_status fb_planar_reaction_max(double *most, const fb_planar *m, double omega, double gravity,
+                                 fb_diag *diag) {
+  const int nq = fb_planar_nq(m), nj = m->njoints;
+  double *q = malloc((3 * (size_t)nq) * sizeof *q);
+  fb_planar_reaction *r = malloc((size_t)nj * sizeof *r);
+  fb_planar_kin *k = NULL;
+  fb_status st = q && r ? fb_planar_kin_new(&k, m, diag)
+                        : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  double *qd = q + nq, *qdd = qd + nq;
+  if (st == FB_OK) {
+    fb_planar_assembly(m, q);
+    st = fb_planar_position(k, q, 0.0, NULL, diag);
+  }
+  for (int j = 0; j < nj; j++) most[j] = 0.0;
+  const double da = 2.0 * M_PI / FB_PLANAR_PEAK_SAMPLES;
+  for (int i = 0; i < FB_PLANAR_PEAK_SAMPLES && st == FB_OK; i++) {
+    fb_path_end end;
+    if (i > 0) st = fb_planar_follow(k, q, (i - 1) * da, i * da, NULL, &end, diag);
+    const fb_planar_drive d = {i * da, omega, 0.0};
+    if (st == FB_OK) st = fb_planar_motion(k, qd, qdd, q, &d, NULL, diag);
+    if (st == FB_OK) st = fb_planar_invdyn(r, NULL, m, q, qd, qdd, gravity, diag);
+    for (int j = 0; j < nj && st == FB_OK; j++)
+      most[j] = fmax(most[j], hypot(r[j].force[0], r[j].force[1]));
+  }
+  fb_planar_kin_free(k);
+  free(q);
+  free(r);
   return st;
 }

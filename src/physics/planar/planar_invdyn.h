@@ -35,4 +35,13 @@ fb_status fb_planar_invdyn(fb_planar_reaction *out, double *drive_torque, const 
                            const double *q, const double *qd, const double *qdd, double gravity,
                            fb_diag *diag);
 
+/* Every joint's largest reaction magnitude |force| over a revolution of
+ * the drive at constant signed speed omega [rad/s] from the assembly
+ * configuration (FB_PLANAR_PEAK_SAMPLES drive angles followed by
+ * planar_path.h, gravity [m/s^2] along -y) into most (njoints) [N]: the
+ * working force of a joint's contact law (joint_law.h) and of fourbar
+ * penalty. Errors: those of planar_path.h and fb_planar_invdyn. */
+fb_status fb_planar_reaction_max(double *most, const fb_planar *m, double omega, double gravity,
+                                 fb_diag *diag);
+
 #endif

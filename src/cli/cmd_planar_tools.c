@@ -1,0 +1,53 @@
+/* fourbar kinematics, stackup and penalty on a planar case: the planar
+ * core's tools (planar_tools.h) and their tables (tables_planar.h). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "cli.h"
+#include "units.h"
+#include "planar_case.h"
+#include "tables_planar.h"
+
+int fb_cmd_kinematics_planar(const fb_case *c, int json) {
+  fb_planar *m;
+  fb_planar_peaks *p;
+  fb_diag d;
+  if (fb_planar_tool_peaks(&p, &m, c, &d) != FB_OK) return fb_cli_fail("kinematics", 1, "%s", d.msg);
+  fb_report_planar_kinematics(stdout, c, m, p, json);
+  free(p);
+  fb_planar_free(m);
+  return 0;
+}
+
+int fb_cmd_stackup_planar(const fb_case *c, int json) {
+  fb_planar *m;
+  fb_diag d;
+  if (fb_planar_of_case(&m, c, NULL, &d) != FB_OK) return fb_cli_fail("stackup", 1, "%s", d.msg);
+  static fb_planar_stackup s;
+  const fb_status st = fb_planar_stackup_run(&s, c, m, &d);
+  if (st != FB_OK) {
+    fb_planar_free(m);
+    return fb_cli_fail("stackup", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
+  }
+  fb_report_planar_stackup(stdout, c, m, &s, json);
+  fb_planar_stackup_free(&s);
+  fb_planar_free(m);
+  return 0;
+}
+
+int fb_cmd_penalty_planar(const fb_case *c, const double *rpm, int nspeeds, int json) {
+  fb_planar *m;
+  fb_diag d;
+  if (fb_planar_of_case(&m, c, NULL, &d) != FB_OK) return fb_cli_fail("penalty", 1, "%s", d.msg);
+  fb_planar_penalty_row *rows = malloc((size_t)nspeeds * (size_t)m->njoints * sizeof *rows);
+  int *n = calloc((size_t)nspeeds, sizeof *n);
+  fb_status st = rows && n ? FB_OK : fb_diag_set(&d, FB_ERR_NOMEM, "out of memory");
+  for (int s = 0; s < nspeeds && st == FB_OK; s++)
+    st = fb_planar_penalty_rows(rows + (size_t)s * (size_t)m->njoints, &n[s], c, m,
+                                rpm[s] * FB_RAD_S_PER_RPM, &d);
+  if (st == FB_OK) fb_report_planar_penalty(stdout, c, m, rows, n, rpm, nspeeds, json);
+  free(rows);
+  free(n);
+  fb_planar_free(m);
+  return st == FB_OK ? 0 : fb_cli_fail("penalty", 1, "%s", d.msg);
+}

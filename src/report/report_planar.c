@@ -1,0 +1,230 @@
+/* The writers of a planar case's run, by body name (report_planar.h). */
+#include "report_planar.h"
+
+#include <jansson.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fileio.h"
+#include "numfmt.h"
+#include "run.h"
+#include "series.h"
+
+/* finite number or null */
+static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
+
+static json_t *pair(const double v[2]) { return json_pack("[o,o]", num(v[0]), num(v[1])); }
+
+/* the description as compiled: bodies (what was derived), joints, drive */
+static json_t *description_json(const fb_planar *m) {
+  json_t *d = json_object(), *bodies = json_array(), *joints = json_array();
+  static const char *const what[] = {"mass", "inertia", "centre"};
+  for (int b = 1; b < m->nbodies; b++) {
+    const fb_planar_body *p = &m->body[b];
+    json_t *derived = json_array();
+    for (int k = 0; k < 3; k++)
+      if (p->derived & (1 << k)) json_array_append_new(derived, json_string(what[k]));
+    json_array_append_new(bodies, json_pack("{s:s,s:o,s:o,s:o,s:o}", "name", p->name, "mass_kg",
+                                            num(p->mass), "inertia_kg_m2", num(p->inertia),
+                                            "centre_m", pair(p->centre), "derived", derived));
+  }
+  for (int j = 0; j < m->njoints; j++) {
+    const fb_planar_joint *q = &m->joint[j];
+    json_array_append_new(
+        joints, json_pack("{s:s,s:s,s:[s,s],s:o}", "name", q->name, "kind",
+                          q->kind == FB_KIND_PRISMATIC ? "prismatic" : "revolute", "bodies",
+                          m->body[q->body[0]].name, m->body[q->body[1]].name, "at_m", pair(q->at)));
+  }
+  json_object_set_new(d, "bodies", bodies);
+  json_object_set_new(d, "joints", joints);
+  json_object_set_new(d, "drive", json_string(m->joint[m->drive].name));
+  return d;
+}
+
+/* a reference's verdict (planar_run.h): ok, unconverged, or failed */
+static const char *verdict_of(const fb_planar_model *p, char *why, size_t size) {
+  const fb_planar_ref_result *q = &p->ref;
+  if (q->failed) {
+    snprintf(why, size, "the integration stopped: %s", q->stop);
+    return "failed";
+  }
+  snprintf(why, size, "its window peaks move by %.2g (largest, relative) in its check integration "
+           "at tolerance %.2g; the bound is %.2g", q->check_rel, q->check_tol, FB_UNCONVERGED_REL);
+  return q->converged ? "ok" : "unconverged";
+}
+
+/* a reference's own keys: its clearance joint, law, window, contact peaks,
+ * check integration and verdict */
+static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
+  const fb_planar_ref_result *q = &p->ref;
+  char why[FB_DIAG_SIZE + 256];
+  json_object_set_new(e, "verdict", json_string(verdict_of(p, why, sizeof why)));
+  json_object_set_new(e, "verdict_reason", json_string(why));
+  json_object_set_new(e, "clearance_joints", json_pack("[s]", r->m->joint[q->joint].name));
+  json_object_set_new(e, "law", json_pack("{s:s,s:o,s:o,s:o,s:o}", "kind",
+                                          q->law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
+                                          "stiffness", num(q->law.stiffness), "exponent",
+                                          num(q->law.exponent), "restitution",
+                                          num(q->law.restitution), "working_force_n",
+                                          num(q->force_work)));
+  json_object_set_new(e, "window_from_s", num(r->t_window));
+  json_object_set_new(e, "force_max_n", q->failed ? json_null() : num(q->force_max));
+  json_object_set_new(e, "penetration_max_m", q->failed ? json_null() : num(q->penetration_max));
+  json_object_set_new(e, "error_estimate",
+                      json_pack("{s:o,s:o,s:I,s:I,s:o}", "tolerance", num(q->tol),
+                                "check_tolerance", num(q->check_tol), "steps",
+                                (json_int_t)q->steps, "check_steps", (json_int_t)q->check_steps,
+                                "peaks_change_max_rel", q->failed ? json_null() : num(q->check_rel)));
+}
+
+json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_path) {
+  const fb_planar *m = r->m;
+  json_t *o = json_object(), *models = json_array();
+  json_object_set_new(o, "case", json_string(r->c.name));
+  json_object_set_new(o, "case_file", json_string(case_path));
+  json_object_set_new(o, "mechanism", json_string("planar"));
+  json_object_set_new(o, "description", description_json(m));
+  json_object_set_new(o, "drive_omega_rad_s", num(r->omega));
+  json_object_set_new(o, "revolutions", num(r->c.revolutions));
+  const char *name[FB_PLANAR_SPEC_MAX_BODIES];
+  for (int b = 1; b < m->nbodies; b++) name[b - 1] = m->body[b].name;
+  for (int i = 0; i < r->n; i++) {
+    const fb_planar_model *p = &r->model[i];
+    json_t *e = json_pack("{s:s,s:s,s:s,s:o,s:I}", "name", p->name, "kind",
+                          p->reference ? "reference" : "analytic", "status",
+                          p->ref.failed ? "failed" : "ok", "h_s", num(p->h), "steps",
+                          (json_int_t)p->n);
+    json_object_set_new(e, "bodies", fb_report_bodies_json(name, p->peaks + 1, m->nbodies - 1));
+    if (p->reference) reference_json(e, r, p);
+    json_array_append_new(models, e);
+  }
+  json_object_set_new(o, "models", models);
+  return o;
+}
+
+static json_t *timing_json(const fb_planar_run *r) {
+  json_t *o = json_object(), *models = json_array();
+  json_object_set_new(o, "case", json_string(r->c.name));
+  for (int i = 0; i < r->n; i++) {
+    const fb_planar_model *p = &r->model[i];
+    json_array_append_new(models, json_pack("{s:s,s:I,s:o,s:o}", "name", p->name, "steps",
+                                            (json_int_t)p->n, "wall_s", num(p->wall_s),
+                                            "time_per_step_us",
+                                            num(p->n ? 1e6 * p->wall_s / (double)p->n : NAN)));
+  }
+  json_object_set_new(o, "models", models);
+  return o;
+}
+
+/* one CSV cell: %.12g (numfmt.h), empty when not finite */
+static void cell(FILE *f, double x, int first) {
+  char buf[FB_NUMFMT_G12_SIZE];
+  if (!first) fputc(',', f);
+  if (isfinite(x)) fwrite(buf, 1, fb_numfmt_g12(buf, x), f);
+}
+
+static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_planar_model *p,
+                           fb_diag *diag) {
+  static const char *const suffix[3] = {"angle_rad", "omega_rad_s", "alpha_rad_s2"};
+  char path[4200];
+  snprintf(path, sizeof path, "%s/%s.csv", dir, p->name);
+  fb_outfile out;
+  fb_status st = fb_outfile_open(&out, path, diag);
+  if (st != FB_OK) return st;
+  const fb_planar *m = r->m;
+  fputs("time_s,drive_angle_rad", out.f);
+  for (int b = 1; b < m->nbodies; b++)
+    for (int k = 0; k < 3; k++) fprintf(out.f, ",%s_%s", m->body[b].name, suffix[k]);
+  if (p->reference)
+    fprintf(out.f, ",%s_force_n,%s_penetration_m", m->joint[p->ref.joint].name,
+            m->joint[p->ref.joint].name);
+  fputc('\n', out.f);
+  const size_t every = r->c.series_every > 0 ? (size_t)r->c.series_every : 1;
+  for (size_t i = 0; i < p->n; i += every) {
+    cell(out.f, p->t[i], 1);
+    cell(out.f, p->drive[i], 0);
+    for (int b = 1; b < m->nbodies; b++)
+      for (int k = 0; k < 3; k++) cell(out.f, fb_planar_model_value(r, p, b, k, i), 0);
+    if (p->reference) {
+      cell(out.f, p->force[i], 0);
+      cell(out.f, p->pen[i], 0);
+    }
+    fputc('\n', out.f);
+  }
+  if (ferror(out.f)) {
+    fb_outfile_abort(&out);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: write failed", path);
+  }
+  return fb_outfile_commit(&out, diag);
+}
+
+void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
+  const fb_planar *m = r->m;
+  fprintf(f, "case %s: planar, %d moving bodies, %d joints, drive '%s' at %.6g rad/s\n", r->c.name,
+          m->nbodies - 1, m->njoints, m->joint[m->drive].name, r->omega);
+  for (int i = 0; i < r->n; i++) {
+    const fb_planar_model *p = &r->model[i];
+    fprintf(f, "\nmodel %s (%zu samples every %.3g s)\n", p->name, p->n, p->h);
+    if (p->reference) {
+      char why[FB_DIAG_SIZE + 256];
+      const char *v = verdict_of(p, why, sizeof why);
+      fprintf(f, "clearance at '%s' (%s law, working force %.4g N): peaks over t >= %.4g s; "
+              "contact force max %s N, penetration max %s um\nverdict: %s (%s)\n",
+              r->m->joint[p->ref.joint].name, p->ref.law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
+              p->ref.force_work, r->t_window, FB_NUM_CELL("%.6g", p->ref.failed ? NAN : p->ref.force_max, FB_NUM_NONE_TABLE),
+              FB_NUM_CELL("%.4g", p->ref.failed ? NAN : p->ref.penetration_max * 1e6, FB_NUM_NONE_TABLE), v, why);
+    }
+    fprintf(f, "| body | omega max [rad/s] | omega min [rad/s] | alpha max [rad/s^2] | "
+               "alpha min [rad/s^2] |\n|---|---:|---:|---:|---:|\n");
+    for (int b = 1; b < m->nbodies; b++) {
+      const fb_body_peaks *k = &p->peaks[b];
+      fprintf(f, "| %s | %s | %s | %s | %s |\n", m->body[b].name,
+              FB_NUM_CELL("%.6g", k->omega_max, FB_NUM_NONE_TABLE),
+              FB_NUM_CELL("%.6g", k->omega_min, FB_NUM_NONE_TABLE),
+              FB_NUM_CELL("%.6g", k->alpha_max, FB_NUM_NONE_TABLE),
+              FB_NUM_CELL("%.6g", k->alpha_min, FB_NUM_NONE_TABLE));
+    }
+  }
+}
+
+static fb_status write_markdown(const char *dir, const fb_planar_run *r, const char *case_path,
+                                const char *command, fb_diag *diag) {
+  char path[4200];
+  snprintf(path, sizeof path, "%s/report.md", dir);
+  fb_outfile out;
+  fb_status st = fb_outfile_open(&out, path, diag);
+  if (st != FB_OK) return st;
+  fprintf(out.f, "# %s\n\nCase file `%s`, run by `%s`. A planar case (docs/planar.md): its "
+                 "models run on the planar core; the engines build it with %s.\n\n",
+          r->c.name, case_path, command, FB_PLANAR_ENGINE_FOLLOWUP);
+  fb_report_planar_table(out.f, r);
+  if (ferror(out.f)) {
+    fb_outfile_abort(&out);
+    return fb_diag_set(diag, FB_ERR_IO, "%s: write failed", path);
+  }
+  return fb_outfile_commit(&out, diag);
+}
+
+fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const char *case_path,
+                                 const char *command, fb_diag *diag) {
+  if (r->c.series == FB_SERIES_HDF5)
+    return fb_diag_set(diag, FB_ERR_ARG, "[run] series = hdf5: a planar case's run writes csv "
+                       "or none yet");
+  char path[4200];
+  fb_status st = FB_OK;
+  for (int i = 0; i < r->n && st == FB_OK && r->c.series == FB_SERIES_CSV; i++)
+    st = write_csv(dir, r, &r->model[i], diag);
+  if (st != FB_OK) return st;
+  snprintf(path, sizeof path, "%s/summary.json", dir);
+  json_t *j = fb_report_planar_summary_json(r, case_path);
+  st = fb_report_write_json(path, j, diag);
+  json_decref(j);
+  if (st != FB_OK) return st;
+  snprintf(path, sizeof path, "%s/timing.json", dir);
+  j = timing_json(r);
+  st = fb_report_write_json(path, j, diag);
+  json_decref(j);
+  if (st != FB_OK) return st;
+  return write_markdown(dir, r, case_path, command, diag);
+}

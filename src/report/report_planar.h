@@ -1,0 +1,36 @@
+/* The writers of a planar case's run (run/planar_run.h), by body name:
+ * summary.json, timing.json, one CSV per model, report.md and the printed
+ * table (docs/planar.md, docs/outputs.md). */
+#ifndef FB_REPORT_PLANAR_H
+#define FB_REPORT_PLANAR_H
+
+#include <stdio.h>
+
+#include "planar_run.h"
+#include "report_common.h"
+
+/* summary.json of a planar run: {"case", "case_file", "mechanism":
+ * "planar", "description": {"bodies": [{"name", "mass_kg",
+ * "inertia_kg_m2", "centre_m", "derived": [...]}], "joints": [{"name",
+ * "kind", "bodies", "at_m"}], "drive"}, "drive_omega_rad_s",
+ * "revolutions", "models": [{"name", "kind", "status", "h_s", "steps",
+ * "bodies": {"<body>": {"omega_max_rad_s", "omega_min_rad_s",
+ * "alpha_max_rad_s2", "alpha_min_rad_s2"}}}]} (every moving body, in the
+ * description's order). No wall time: two runs give the same bytes. */
+json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_path);
+
+/* Writes DIR/summary.json, DIR/timing.json ({"case", "models": [{"name",
+ * "steps", "wall_s", "time_per_step_us"}]}), DIR/<model>.csv (time_s,
+ * drive_angle_rad, then per moving body <body>_angle_rad,
+ * <body>_omega_rad_s, <body>_alpha_rad_s2; every [run] series_every-th
+ * sample; none with [run] series = none) and DIR/report.md (the table
+ * below and the command). Errors: FB_ERR_IO naming the file; FB_ERR_ARG
+ * for [run] series = hdf5, which a planar run does not write yet. */
+fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const char *case_path,
+                                 const char *command, fb_diag *diag);
+
+/* The printed table: per model, one row per moving body with its omega
+ * and alpha extremes [rad/s, rad/s^2]. */
+void fb_report_planar_table(FILE *f, const fb_planar_run *r);
+
+#endif

@@ -1,0 +1,146 @@
+/* The tables of kinematics, penalty and stackup on a planar case
+ * (tables_planar.h). */
+#include "tables_planar.h"
+
+#include <jansson.h>
+#include <math.h>
+
+#include "numfmt.h"
+
+/* finite number or null */
+static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
+
+static void dump(FILE *f, json_t *o) {
+  json_dumpf(o, f, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
+  fputc('\n', f);
+  json_decref(o);
+}
+
+#define CELL(x) FB_NUM_CELL("%.6g", (x), FB_NUM_NONE_TABLE)
+
+void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
+                                 const fb_planar_peaks *p, int json) {
+  if (json) {
+    json_t *o = json_object(), *bodies = json_object();
+    json_object_set_new(o, "case", json_string(c->name));
+    json_object_set_new(o, "mechanism", json_string("planar"));
+    json_object_set_new(o, "drive", json_string(m->joint[m->drive].name));
+    json_object_set_new(o, "speed_rpm", num(c->crank_speed * 60.0 / (2.0 * M_PI)));
+    for (int b = 1; b < m->nbodies; b++) {
+      const fb_planar_peaks *k = &p[b];
+      json_t *e = json_pack("{s:o,s:o,s:o,s:o}", "omega_max_rad_s", num(k->omega_max),
+                            "omega_min_rad_s", num(k->omega_min), "alpha_max_rad_s2",
+                            num(k->alpha_max), "alpha_min_rad_s2", num(k->alpha_min));
+      json_object_set_new(e, "at_drive_angle_rad",
+                          json_pack("{s:o,s:o,s:o,s:o}", "omega_max", num(k->where[0]),
+                                    "omega_min", num(k->where[1]), "alpha_max", num(k->where[2]),
+                                    "alpha_min", num(k->where[3])));
+      json_object_set_new(bodies, m->body[b].name, e);
+    }
+    json_object_set_new(o, "bodies", bodies);
+    dump(f, o);
+    return;
+  }
+  fprintf(f, "%s: planar, drive '%s' at %.6g rpm; peaks over a revolution (drive angle from the "
+          "assembly configuration)\n", c->name, m->joint[m->drive].name,
+          c->crank_speed * 60.0 / (2.0 * M_PI));
+  fprintf(f, "| body | omega max [rad/s] | at [deg] | omega min [rad/s] | at [deg] | "
+          "alpha max [rad/s^2] | at [deg] | alpha min [rad/s^2] | at [deg] |\n"
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (int b = 1; b < m->nbodies; b++) {
+    const fb_planar_peaks *k = &p[b];
+    const double deg = 180.0 / M_PI;
+    fprintf(f, "| %s | %s | %.2f | %s | %.2f | %s | %.2f | %s | %.2f |\n", m->body[b].name,
+            CELL(k->omega_max), k->where[0] * deg, CELL(k->omega_min), k->where[1] * deg,
+            CELL(k->alpha_max), k->where[2] * deg, CELL(k->alpha_min), k->where[3] * deg);
+  }
+}
+
+void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
+                              const fb_planar_penalty_row *rows, const int *n, const double *rpm,
+                              int nspeeds, int json) {
+  json_t *arr = json ? json_array() : NULL;
+  if (!json)
+    fprintf(f, "%s: physical mode (largest ideal reaction over a revolution, Johnson's "
+            "pin-in-hole contact, c = %.6g um, L = %.6g mm)\n| speed [rpm] | joint | force [N] | "
+            "Kc [N/m] | P [N m^0.5] | P [N mm^0.5] | approach [um] |\n"
+            "|---:|---|---:|---:|---:|---:|---:|\n", c->name, c->radial_clearance * 1e6,
+            c->pin_length * 1e3);
+  for (int s = 0; s < nspeeds; s++)
+    for (int i = 0; i < n[s]; i++) {
+      const fb_planar_penalty_row *r = &rows[s * m->njoints + i];
+      const double p_mm = r->penalty / sqrt(1e-3); /* 1 N mm^0.5 = sqrt(1e-3) N m^0.5 */
+      if (json)
+        json_array_append_new(
+            arr, json_pack("{s:o,s:s,s:o,s:o,s:o,s:o,s:o}", "speed_rpm", num(rpm[s]), "joint",
+                           m->joint[r->joint].name, "force_n", num(r->force), "stiffness_n_m",
+                           num(r->stiffness), "penalty_n_m0_5", num(r->penalty),
+                           "penalty_n_mm0_5", num(p_mm), "approach_m", num(r->approach)));
+      else
+        fprintf(f, "| %.6g | %s | %s | %s | %s | %s | %s |\n", rpm[s], m->joint[r->joint].name,
+                CELL(r->force), CELL(r->stiffness), CELL(r->penalty), CELL(p_mm),
+                CELL(r->approach * 1e6));
+    }
+  if (json)
+    dump(f, json_pack("{s:s,s:s,s:s,s:o}", "case", c->name, "mechanism", "planar", "mode",
+                      "physical", "rows", arr));
+}
+
+void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
+                              const fb_planar_stackup *s, int json) {
+  char name[128];
+  if (json) {
+    json_t *o = json_object(), *lengths = json_array(), *outs = json_array();
+    json_object_set_new(o, "case", json_string(c->name));
+    json_object_set_new(o, "mechanism", json_string("planar"));
+    for (int k = 0; k < s->nlengths; k++) {
+      const fb_planar_length *L = &s->length[k];
+      json_array_append_new(lengths, json_pack("{s:s,s:s,s:s,s:o,s:o,s:s}", "body",
+                                               m->body[L->body].name, "from",
+                                               m->joint[L->joint[0]].name, "to",
+                                               m->joint[L->joint[1]].name, "nominal_m",
+                                               num(L->nominal), "plus_minus_m",
+                                               num(L->plus_minus), "source", L->source));
+    }
+    for (int i = 0; i < s->nout; i++) {
+      json_t *sens = json_array();
+      for (int k = 0; k < s->nlengths; k++)
+        json_array_append_new(sens, num(s->sens[i * s->nlengths + k]));
+      json_array_append_new(
+          outs, json_pack("{s:s,s:o,s:o,s:{s:o,s:o},s:o}", "name",
+                          fb_planar_output_name(name, sizeof name, m, i), "nominal",
+                          num(s->nominal[i]), "sensitivity_per_m", sens, "rss", "low",
+                          num(s->nominal[i] - s->rss_half[i]), "high",
+                          num(s->nominal[i] + s->rss_half[i]), "corners",
+                          s->corners ? json_pack("{s:o,s:o}", "min", num(s->lo[i]), "max",
+                                                 num(s->hi[i]))
+                                     : json_null()));
+    }
+    json_object_set_new(o, "lengths", lengths);
+    json_object_set_new(o, "corners", json_integer(s->corners));
+    json_object_set_new(o, "outputs", outs);
+    dump(f, o);
+    return;
+  }
+  fprintf(f, "%s: planar, %d lengths (each body's joint-to-joint distances)\n| body | from | to | "
+          "nominal [mm] | +- [mm] | source |\n|---|---|---|---:|---:|---|\n", c->name,
+          s->nlengths);
+  for (int k = 0; k < s->nlengths; k++) {
+    const fb_planar_length *L = &s->length[k];
+    fprintf(f, "| %s | %s | %s | %.6g | %.4g | %s |\n", m->body[L->body].name,
+            m->joint[L->joint[0]].name, m->joint[L->joint[1]].name, L->nominal * 1e3,
+            L->plus_minus * 1e3, L->source);
+  }
+  if (s->corners)
+    fprintf(f, "\nworst case over %d corners; RSS band 3 sigma\n", s->corners);
+  else
+    fprintf(f, "\nworst case not run: %d lengths make %.0f corners (at most %d lengths); RSS "
+            "band 3 sigma\n", s->nlengths, pow(2.0, s->nlengths), FB_PLANAR_CORNER_LENGTHS);
+  fprintf(f, "| output | nominal | RSS low | RSS high | corners min | corners max |\n"
+          "|---|---:|---:|---:|---:|---:|\n");
+  for (int i = 0; i < s->nout; i++)
+    fprintf(f, "| %s | %s | %s | %s | %s | %s |\n", fb_planar_output_name(name, sizeof name, m, i),
+            CELL(s->nominal[i]), CELL(s->nominal[i] - s->rss_half[i]),
+            CELL(s->nominal[i] + s->rss_half[i]), CELL(s->corners ? s->lo[i] : NAN),
+            CELL(s->corners ? s->hi[i] : NAN));
+}

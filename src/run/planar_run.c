@@ -1,0 +1,165 @@
+/* A planar case's models on the planar core (planar_run.h). */
+#include "planar_run.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "clock.h"
+#include "model_table.h"
+#include "planar_case.h"
+#include "planar_path.h"
+#include "series.h"
+
+int fb_planar_run_takes(const char *name) {
+  return strcmp(name, "analytic") == 0 || strcmp(name, "reference") == 0 ||
+         strcmp(name, "reference-restitution") == 0;
+}
+
+fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
+  for (int i = 0; i < c->model_count; i++) {
+    const char *name = c->models[i];
+    if (fb_planar_run_takes(name)) continue;
+    const fb_model *m = fb_model_find(name);
+    if (m && m->engine != FB_ENGINE_ANALYTIC && m->engine != FB_ENGINE_REFERENCE)
+      return fb_diag_set(diag, FB_ERR_ARG,
+                         "[run] models: '%s' is the %s engine's, and no engine builds a planar case "
+                         "yet (%s); a planar case runs: analytic, reference, reference-restitution",
+                         name, fb_engine_name(m->engine), FB_PLANAR_ENGINE_FOLLOWUP);
+    return fb_diag_set(diag, FB_ERR_ARG,
+                       "[run] models: '%s' does not run on a planar case yet; a planar case "
+                       "runs: analytic, reference, reference-restitution", name);
+  }
+  return FB_OK;
+}
+
+/* the output grid's step [s]: [solver] h_s as given (1e-5 s by default),
+ * an adaptive run's h_min_s; auto (which chooses from a contact, and an
+ * analytic model has none): one revolution / 6000, auto's longest */
+static double grid_step(const fb_case *c) {
+  if (c->solver.h_mode == FB_STEP_ADAPTIVE) return c->solver.h_min;
+  if (c->solver.h_mode == FB_STEP_AUTO || !(c->solver.h > 0.0))
+    return 2.0 * M_PI / c->crank_speed / 6000.0;
+  return c->solver.h;
+}
+
+/* every moving body's angle, omega and alpha at position q */
+static void store(fb_planar_model *p, const fb_planar *m, size_t i, const double *q,
+                  const double *qd, const double *qdd) {
+  for (int b = 1; b < m->nbodies; b++) {
+    const int a = 3 * (b - 1) + 2; /* the body's angle among q */
+    const double v[3] = {q[a], qd[a], qdd[a]};
+    for (int k = 0; k < 3; k++) p->q[((size_t)(b - 1) * 3 + (size_t)k) * p->n + i] = v[k];
+  }
+}
+
+/* the analytic model's samples: the drive at constant speed from the
+ * assembly configuration, followed from one sample to the next */
+static fb_status sample(fb_planar_model *p, fb_planar_kin *k, const fb_planar_run *r,
+                        fb_diag *diag) {
+  const fb_planar *m = r->m;
+  const int nq = fb_planar_nq(m);
+  double *q = malloc(3 * (size_t)nq * sizeof *q);
+  if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  double *qd = q + nq, *qdd = qd + nq;
+  fb_planar_assembly(m, q);
+  fb_status st = fb_planar_position(k, q, 0.0, NULL, diag);
+  for (size_t i = 0; i < p->n && st == FB_OK; i++) {
+    const double t = (double)i * p->h, angle = r->omega * t;
+    fb_path_end end;
+    if (i > 0) st = fb_planar_follow(k, q, p->drive[i - 1], angle, NULL, &end, diag);
+    const fb_planar_drive d = {angle, r->omega, 0.0};
+    if (st == FB_OK) st = fb_planar_motion(k, qd, qdd, q, &d, NULL, diag);
+    p->t[i] = t;
+    p->drive[i] = angle;
+    if (st == FB_OK) store(p, m, i, q, qd, qdd);
+  }
+  free(q);
+  return st;
+}
+
+/* a model's columns: n samples every h over the run */
+static fb_status model_alloc(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
+  const double h = grid_step(&r->c);
+  const double steps = floor(r->duration / h + 1e-9);
+  if (!(steps + 1.0 <= FB_PLANAR_RUN_MAX_SAMPLES))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "model '%s' would hold %.3g samples (%.6g s every %.3g s), more than %d: "
+                       "raise [solver] h_s or lower [run] revolutions",
+                       p->name, steps + 1.0, r->duration, h, FB_PLANAR_RUN_MAX_SAMPLES);
+  p->h = h;
+  p->n = (size_t)steps + 1;
+  const size_t nb = (size_t)r->m->nbodies;
+  p->peaks = calloc(nb, sizeof *p->peaks);
+  p->t = malloc((2 + 3 * (nb - 1)) * p->n * sizeof *p->t);
+  if (!p->peaks || !p->t) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", p->n);
+  p->drive = p->t + p->n;
+  p->q = p->drive + p->n;
+  return FB_OK;
+}
+
+/* the analytic model: its peaks over a revolution and its samples */
+static fb_status analytic(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
+  const fb_planar *m = r->m;
+  const size_t nb = (size_t)m->nbodies;
+  fb_planar_kin *k;
+  fb_status st = fb_planar_kin_new(&k, m, diag);
+  if (st != FB_OK) return st;
+  fb_planar_peaks *pk = calloc(nb, sizeof *pk);
+  st = pk ? fb_planar_peaks_of(pk, k, r->omega, diag) : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (size_t b = 0; pk && b < nb; b++) {
+    p->peaks[b].omega_max = pk[b].omega_max;
+    p->peaks[b].omega_min = pk[b].omega_min;
+    p->peaks[b].alpha_max = pk[b].alpha_max;
+    p->peaks[b].alpha_min = pk[b].alpha_min;
+  }
+  free(pk);
+  if (st == FB_OK) st = sample(p, k, r, diag);
+  fb_planar_kin_free(k);
+  return st;
+}
+
+static void model_free(fb_planar_model *p) {
+  free(p->peaks);
+  free(p->t);
+  free(p->force);
+  memset(p, 0, sizeof *p);
+}
+
+fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
+  memset(r, 0, sizeof *r);
+  fb_status st = fb_planar_run_check(c, diag);
+  if (st != FB_OK) return st;
+  r->c = *c;
+  if ((st = fb_planar_of_case(&r->m, c, NULL, diag)) != FB_OK) return st;
+  r->omega = fb_case_omega2(c);
+  r->duration = fb_case_duration(c);
+  r->t_window = c->peaks == FB_PEAKS_ALL ? 0.0 : 2.0 * M_PI / c->crank_speed;
+  for (int i = 0; i < c->model_count && st == FB_OK; i++) {
+    fb_planar_model *p = &r->model[r->n++];
+    snprintf(p->name, sizeof p->name, "%s", c->models[i]);
+    const double t0 = fb_clock_s();
+    st = model_alloc(p, r, diag);
+    if (st == FB_OK)
+      st = strcmp(p->name, "analytic") == 0
+               ? analytic(p, r, diag)
+               : fb_planar_run_reference(p, r, strcmp(p->name, "reference") == 0, diag);
+    p->wall_s = fb_clock_s() - t0;
+  }
+  if (st != FB_OK) fb_planar_run_free(r);
+  return st;
+}
+
+void fb_planar_run_free(fb_planar_run *r) {
+  for (int i = 0; i < r->n; i++) model_free(&r->model[i]);
+  fb_planar_free(r->m);
+  r->m = NULL;
+  r->n = 0;
+}
+
+double fb_planar_model_value(const fb_planar_run *r, const fb_planar_model *p, int b, int k,
+                             size_t i) {
+  (void)r;
+  return p->q[((size_t)(b - 1) * 3 + (size_t)k) * p->n + i];
+}

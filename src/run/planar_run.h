@@ -1,0 +1,122 @@
+/* A planar case ([linkage] type = planar, docs/planar.md) through
+ * `fourbar run`: its description compiled (physics/planar/planar_case.h)
+ * and its models run on the planar core, outputs by body name.
+ *
+ * The models a planar case runs today:
+ *   analytic   the core's position, velocity and acceleration analysis
+ *              (planar_kinematics.h: Newton on the loop equations,
+ *              converged to the rounding level) sampled every h over the
+ *              run, and every moving body's omega and alpha extremes over
+ *              a revolution (planar_path.h: 3600 drive angles, then
+ *              Brent), the drive at constant speed from the assembly
+ *              configuration.
+  *   reference, reference-restitution
+ *              the clearance joint's dynamics (planar_dynamics.h: the
+ *              case's one [clearance] joint a pin in a hole, the impact or
+ *              the restitution law of the case's [clearance] keys at the
+ *              joint's largest ideal reaction, joint_law.h) integrated by
+ *              rk8pd at FB_REFERENCE_TOL (planar_reference.h) from the
+ *              steady start, sampled every h; its window peaks (t after
+ *              the first revolution, or all with [run] peaks = all) and,
+ *              as the reference's own error estimate, the same run at
+ *              tol / FB_REFERENCE_CHECK_FACTOR (down to FB_REFERENCE_TOL_MIN):
+ *              verdict "ok" when every window peak (omega, alpha of every
+ *              body, the contact force) moves by at most FB_UNCONVERGED_REL,
+ *              else "unconverged" (run.h's rule for a reference).
+ * Every other model (an engine's, a stack-up's, a clearance model's) is
+ * refused by name: the engines build a planar case with the engine kit
+ * (issue 58). A planar case that lists no [run] models runs analytic. */
+#ifndef FB_PLANAR_RUN_H
+#define FB_PLANAR_RUN_H
+
+#include <stddef.h>
+
+#include "case.h"
+#include "contact.h"
+#include "metrics.h"
+#include "planar.h"
+
+/* The one follow-up that brings the engines to a planar case, named in
+ * every refusal of an engine's model. */
+#define FB_PLANAR_ENGINE_FOLLOWUP "issue 58, the engine kit"
+
+/* What a reference measured beyond its samples. */
+typedef struct {
+  int joint;               /* the clearance joint (index in the description) */
+  fb_contact_law law;      /* its law as used */
+  double force_work;       /* the working force the law was taken at [N] */
+  double tol, check_tol;   /* rk8pd tolerances of the run and its check [-] */
+  size_t steps, check_steps; /* accepted steps of each */
+  double force_max;        /* largest contact force in the window [N] */
+  double penetration_max;  /* largest penetration in the window [m] */
+  double check_rel;        /* largest |relative change| of a window peak in the check [-] */
+  int converged;           /* check_rel <= FB_UNCONVERGED_REL */
+  int failed;              /* the integration stopped early (why: stop) */
+  char stop[FB_DIAG_SIZE];
+} fb_planar_ref_result;
+
+/* One planar model's result. */
+typedef struct {
+  char name[FB_NAME_SIZE]; /* "analytic", "reference", "reference-restitution" */
+  int reference;           /* 1: a reference (ref holds its results; force, pen its columns) */
+  fb_planar_ref_result ref;
+  double *force, *pen;     /* a reference's contact force [N] and penetration [m] (n) */
+  fb_body_peaks *peaks;    /* per body of the description (nbodies; the ground's zero): omega
+                              and alpha extremes over a revolution (analytic) or over the
+                              window's samples (a reference) [rad/s, rad/s^2] */
+  size_t n;                /* samples held */
+  double h;                /* sample spacing [s] */
+  double *t;               /* time [s] (n) */
+  double *drive;           /* the drive's angle from the assembly configuration [rad] (n) */
+  double *q;               /* body b (1 .. nbodies-1), quantity k (FB_Q_POS, _VEL, _ACC):
+                              q[((b - 1) * 3 + k) * n + i]: angle [rad], omega [rad/s],
+                              alpha [rad/s^2] (3 (nbodies - 1) n) */
+  double wall_s;           /* wall time of the model [s] */
+} fb_planar_model;
+
+/* A planar case run. */
+typedef struct {
+  fb_case c;               /* the case as run */
+  fb_planar *m;            /* its description (owned) */
+  double omega;            /* the drive's signed speed [rad/s] */
+  double duration;         /* simulated time [s] */
+  double t_window;         /* a reference's peaks are over t >= t_window [s] */
+  int n;                   /* models run */
+  fb_planar_model model[FB_MAX_MODELS];
+} fb_planar_run;
+
+/* 1 when model name runs on a planar case (above). */
+int fb_planar_run_takes(const char *name);
+
+/* The models of planar case c checked against what a planar case runs:
+ * FB_ERR_ARG naming the first model it cannot run and why (an engine's:
+ * FB_PLANAR_ENGINE_FOLLOWUP). */
+fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag);
+
+/* Runs planar case c (c->planar.on) into *r (fb_planar_run_free).
+ * Errors: those of fb_planar_run_check, fb_planar_of_case (the
+ * description), fb_planar_kin_new, fb_planar_peaks_of and
+ * fb_planar_follow (the drive cannot turn); FB_ERR_RANGE when the run
+ * would hold more than FB_PLANAR_RUN_MAX_SAMPLES samples; FB_ERR_NOMEM.
+ * On error *r holds nothing that needs freeing. */
+fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag);
+
+/* Most samples a planar model holds: 2e7 (at 5 moving bodies, 15 columns
+ * of 8 bytes, 2.4 GB): beyond it a run is refused with the figure. */
+#define FB_PLANAR_RUN_MAX_SAMPLES 20000000
+
+void fb_planar_run_free(fb_planar_run *r);
+
+/* The reference model p (its samples allocated, p->name set) of run r:
+ * the impact law (impact = 1, "reference") or the restitution law
+ * (planar_ref_model.c). Errors: FB_ERR_ARG without exactly one clearance
+ * joint; those of joint_law.h, planar_invdyn.h and planar_dynamics.h. An
+ * integration that fails is a result (p->ref.failed), not an error. */
+fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, int impact,
+                                  fb_diag *diag);
+
+/* The analytic model's sample i of body b's quantity k (FB_Q_*). */
+double fb_planar_model_value(const fb_planar_run *r, const fb_planar_model *p, int b, int k,
+                             size_t i);
+
+#endif

@@ -1,0 +1,286 @@
+/* kinematics, penalty and stack-up of a planar case (planar_tools.h). */
+#include "planar_tools.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contact.h"
+#include "iso2768.h"
+#include "planar_case.h"
+#include "planar_invdyn.h"
+
+/* joint points of one body the stack-up keeps: three vary by their
+ * distances, a fourth is only counted (to refuse the body) */
+#define BODY_POINTS 4
+
+/* points closer than this are one joint point [m]: 1 nm, far below any
+ * length a case gives (0.001 mm is the finest digit of at_mm worth giving) */
+#define SAME_POINT_M 1e-9
+
+static fb_status peaks_of(fb_planar_peaks *out, const fb_planar *m, double omega, fb_diag *diag) {
+  fb_planar_kin *k;
+  fb_status st = fb_planar_kin_new(&k, m, diag);
+  if (st != FB_OK) return st;
+  st = fb_planar_peaks_of(out, k, omega, diag);
+  fb_planar_kin_free(k);
+  return st;
+}
+
+fb_status fb_planar_tool_peaks(fb_planar_peaks **out, fb_planar **m, const fb_case *c,
+                               fb_diag *diag) {
+  *out = NULL;
+  fb_status st = fb_planar_of_case(m, c, NULL, diag);
+  if (st != FB_OK) return st;
+  *out = calloc((size_t)(*m)->nbodies, sizeof **out);
+  st = *out ? peaks_of(*out, *m, fb_case_omega2(c), diag)
+            : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  if (st != FB_OK) {
+    free(*out);
+    *out = NULL;
+    fb_planar_free(*m);
+    *m = NULL;
+  }
+  return st;
+}
+
+/* ---- penalty ------------------------------------------------------------- */
+
+fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_case *c,
+                                 const fb_planar *m, double omega, fb_diag *diag) {
+  *n = 0;
+  if (!(omega > 0.0) || !isfinite(omega))
+    return fb_diag_set(diag, FB_ERR_RANGE, "drive speed %g rad/s: must be positive", omega);
+  double *fmax = malloc((size_t)m->njoints * sizeof *fmax);
+  if (!fmax) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_status st = fb_planar_reaction_max(fmax, m, c->direction * omega, c->gravity, diag);
+  const double e_star = fb_contact_modulus(c->youngs_modulus, c->poisson_ratio,
+                                           c->youngs_modulus, c->poisson_ratio);
+  for (int j = 0; j < m->njoints && st == FB_OK; j++) {
+    if (m->joint[j].kind != FB_KIND_REVOLUTE) continue;
+    const double f = fmax[j];
+    const double kc = fb_contact_johnson_stiffness(f, c->pin_length, e_star, c->radial_clearance);
+    const double d = fb_contact_johnson_approach(f, c->pin_length, e_star, c->radial_clearance);
+    if (!isfinite(kc) || !isfinite(d))
+      st = fb_diag_set(diag, FB_ERR_RANGE,
+                       "joint '%s' at %g rpm: force %g N is beyond Johnson's pin-in-hole "
+                       "relation for L = %g m, c = %g m (needs F < 4 pi L E* c / e^2)",
+                       m->joint[j].name, omega * 60 / (2 * M_PI), f, c->pin_length,
+                       c->radial_clearance);
+    else
+      out[(*n)++] = (fb_planar_penalty_row){j, f, kc, kc * pow(c->radial_clearance, 1.5), d};
+  }
+  free(fmax);
+  return st;
+}
+
+/* ---- stack-up ------------------------------------------------------------ */
+
+/* the distinct joint points of body b in its frame (at most BODY_POINTS
+ * kept; the count returned may exceed it), with one joint at each */
+static int body_points(double p[BODY_POINTS][2], int joint[BODY_POINTS], const fb_planar *m, int b) {
+  int n = 0;
+  for (int j = 0; j < m->njoints; j++)
+    for (int s = 0; s < 2; s++) {
+      if (m->joint[j].body[s] != b) continue;
+      const double *x = m->joint[j].point[s];
+      int seen = 0;
+      for (int i = 0; i < n && i < BODY_POINTS; i++)
+        seen |= hypot(x[0] - p[i][0], x[1] - p[i][1]) < SAME_POINT_M;
+      if (seen) continue;
+      if (n < BODY_POINTS) {
+        p[n][0] = x[0];
+        p[n][1] = x[1];
+        joint[n] = j;
+      }
+      n++;
+    }
+  return n;
+}
+
+/* the lengths of every body, toleranced by the case's class */
+static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
+                            fb_diag *diag) {
+  if (!c->tolerance_class)
+    return fb_diag_set(diag, FB_ERR_ARG, "a planar case's stack-up needs [tolerance] class "
+                       "(f, m, c or v: ISO 2768-1 on each joint-to-joint distance)");
+  s->nlengths = 0;
+  for (int b = 0; b < m->nbodies; b++) {
+    double p[BODY_POINTS][2];
+    int joint[BODY_POINTS];
+    const int n = body_points(p, joint, m, b);
+    if (n > 3)
+      return fb_diag_set(diag, FB_ERR_ARG, "body '%s' has %d distinct joint points: its "
+                         "distances over-determine it, and the stack-up varies bodies of 2 or "
+                         "3 points", m->body[b].name, n);
+    for (int i = 0; i < n; i++)
+      for (int k = i + 1; k < n; k++) {
+        if (s->nlengths >= FB_PLANAR_MAX_LENGTHS)
+          return fb_diag_set(diag, FB_ERR_ARG, "more than %d lengths", FB_PLANAR_MAX_LENGTHS);
+        fb_planar_length *L = &s->length[s->nlengths++];
+        L->body = b;
+        L->joint[0] = joint[i];
+        L->joint[1] = joint[k];
+        L->nominal = hypot(p[k][0] - p[i][0], p[k][1] - p[i][1]);
+        fb_diag inner;
+        if (fb_iso2768_linear(&L->plus_minus, c->tolerance_class, L->nominal, L->source,
+                              sizeof L->source, &inner) != FB_OK)
+          return fb_diag_set(diag, FB_ERR_RANGE, "body '%s', '%s' to '%s' (%.6g mm): %s",
+                             m->body[b].name, m->joint[joint[i]].name, m->joint[joint[k]].name,
+                             L->nominal * 1e3, inner.msg);
+      }
+  }
+  return FB_OK;
+}
+
+/* body b's points rebuilt from its lengths len (in lengths_of's order from
+ * index at): the first stays, the second along the nominal direction, the
+ * third on the nominal side of the first two */
+static void rebuild(double q[3][2], double p[BODY_POINTS][2], int n, const double *len) {
+  memcpy(q, p, (size_t)n * sizeof q[0]);
+  if (n < 2) return;
+  const double d01 = hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
+  const double u[2] = {(p[1][0] - p[0][0]) / d01, (p[1][1] - p[0][1]) / d01};
+  q[1][0] = p[0][0] + len[0] * u[0];
+  q[1][1] = p[0][1] + len[0] * u[1];
+  if (n < 3) return;
+  const double l02 = len[1], l12 = len[2], d = len[0];
+  const double a = (l02 * l02 - l12 * l12 + d * d) / (2.0 * d);
+  const double h = sqrt(fmax(l02 * l02 - a * a, 0.0));
+  const double side = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) -
+                      (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+  const double sg = side >= 0.0 ? 1.0 : -1.0;
+  q[2][0] = q[0][0] + a * u[0] - sg * h * u[1];
+  q[2][1] = q[0][1] + a * u[1] + sg * h * u[0];
+}
+
+/* a copy of m with the lengths len (s->nlengths) */
+static fb_planar *with_lengths(const fb_planar *m, const double *len) {
+  fb_planar *x = fb_planar_new(m->nbodies - 1, m->njoints);
+  if (!x) return NULL;
+  memcpy(x->body, m->body, (size_t)m->nbodies * sizeof *m->body);
+  memcpy(x->joint, m->joint, (size_t)m->njoints * sizeof *m->joint);
+  x->nbodies = m->nbodies;
+  x->njoints = m->njoints;
+  x->drive = m->drive;
+  for (int b = 0, at = 0; b < m->nbodies; b++) {
+    double p[BODY_POINTS][2], q[3][2];
+    int joint[BODY_POINTS];
+    const int n = body_points(p, joint, m, b);
+    rebuild(q, p, n, len + at);
+    at += n * (n - 1) / 2;
+    for (int j = 0; j < m->njoints; j++)
+      for (int side = 0; side < 2; side++) {
+        if (m->joint[j].body[side] != b) continue;
+        const double *o = m->joint[j].point[side];
+        for (int i = 0; i < n; i++)
+          if (hypot(o[0] - p[i][0], o[1] - p[i][1]) < SAME_POINT_M) {
+            x->joint[j].point[side][0] = q[i][0];
+            x->joint[j].point[side][1] = q[i][1];
+          }
+      }
+  }
+  return x;
+}
+
+/* the outputs (4 per moving body) of m with lengths len into y */
+static fb_status outputs_at(double *y, const fb_planar *m, const double *len, double omega,
+                            fb_diag *diag) {
+  fb_planar *x = with_lengths(m, len);
+  fb_planar_peaks *pk = calloc((size_t)m->nbodies, sizeof *pk);
+  fb_status st = x && pk ? peaks_of(pk, x, omega, diag)
+                         : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int b = 1; b < m->nbodies && st == FB_OK; b++) {
+    y[4 * (b - 1) + 0] = pk[b].omega_max;
+    y[4 * (b - 1) + 1] = pk[b].omega_min;
+    y[4 * (b - 1) + 2] = pk[b].alpha_max;
+    y[4 * (b - 1) + 3] = pk[b].alpha_min;
+  }
+  free(pk);
+  fb_planar_free(x);
+  return st;
+}
+
+static fb_status sensitivities(fb_planar_stackup *s, const fb_planar *m, double *len, double *y,
+                               double omega, fb_diag *diag) {
+  const int no = s->nout, nl = s->nlengths;
+  fb_status st = FB_OK;
+  for (int k = 0; k < nl && st == FB_OK; k++) {
+    const double l0 = len[k];
+    len[k] = l0 + FB_PLANAR_SENS_STEP;
+    st = outputs_at(y, m, len, omega, diag);
+    for (int o = 0; o < no && st == FB_OK; o++) s->sens[o * nl + k] = y[o];
+    len[k] = l0 - FB_PLANAR_SENS_STEP;
+    if (st == FB_OK) st = outputs_at(y, m, len, omega, diag);
+    for (int o = 0; o < no && st == FB_OK; o++)
+      s->sens[o * nl + k] = (s->sens[o * nl + k] - y[o]) / (2.0 * FB_PLANAR_SENS_STEP);
+    len[k] = l0;
+  }
+  for (int o = 0; o < no && st == FB_OK; o++) {
+    double sum = 0.0;
+    for (int k = 0; k < nl; k++) sum += pow(s->sens[o * nl + k] * s->length[k].plus_minus, 2);
+    s->rss_half[o] = sqrt(sum);
+  }
+  return st;
+}
+
+static fb_status corners(fb_planar_stackup *s, const fb_planar *m, double *len, double *y,
+                         double omega, fb_diag *diag) {
+  const int nl = s->nlengths;
+  if (nl > FB_PLANAR_CORNER_LENGTHS) return FB_OK;
+  fb_status st = FB_OK;
+  for (int o = 0; o < s->nout; o++) s->lo[o] = s->hi[o] = s->nominal[o];
+  for (unsigned long mask = 0; mask < (1ul << nl) && st == FB_OK; mask++) {
+    for (int k = 0; k < nl; k++)
+      len[k] = s->length[k].nominal + ((mask >> k) & 1 ? 1.0 : -1.0) * s->length[k].plus_minus;
+    st = outputs_at(y, m, len, omega, diag);
+    for (int o = 0; o < s->nout && st == FB_OK; o++) {
+      s->lo[o] = fmin(s->lo[o], y[o]);
+      s->hi[o] = fmax(s->hi[o], y[o]);
+    }
+    s->corners += st == FB_OK;
+  }
+  return st;
+}
+
+fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
+                                fb_diag *diag) {
+  memset(s, 0, sizeof *s);
+  fb_status st = lengths_of(s, c, m, diag);
+  if (st != FB_OK) return st;
+  const int no = 4 * (m->nbodies - 1), nl = s->nlengths;
+  s->nout = no;
+  s->nominal = calloc((size_t)no * (4 + (size_t)nl), sizeof *s->nominal);
+  double *len = malloc(((size_t)nl + (size_t)no) * sizeof *len);
+  if (!s->nominal || !len) {
+    free(len);
+    fb_planar_stackup_free(s);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  }
+  s->rss_half = s->nominal + no;
+  s->lo = s->rss_half + no;
+  s->hi = s->lo + no;
+  s->sens = s->hi + no;
+  double *y = len + nl;
+  for (int k = 0; k < nl; k++) len[k] = s->length[k].nominal;
+  const double omega = fb_case_omega2(c);
+  st = outputs_at(s->nominal, m, len, omega, diag);
+  if (st == FB_OK) st = sensitivities(s, m, len, y, omega, diag);
+  if (st == FB_OK) st = corners(s, m, len, y, omega, diag);
+  free(len);
+  if (st != FB_OK) fb_planar_stackup_free(s);
+  return st;
+}
+
+void fb_planar_stackup_free(fb_planar_stackup *s) {
+  free(s->nominal);
+  memset(s, 0, sizeof *s);
+}
+
+const char *fb_planar_output_name(char *buf, size_t size, const fb_planar *m, int k) {
+  static const char *const what[] = {"omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2",
+                                      "alpha_min_rad_s2"};
+  snprintf(buf, size, "%s_%s", m->body[1 + k / 4].name, what[k % 4]);
+  return buf;
+}

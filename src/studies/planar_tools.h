@@ -1,0 +1,103 @@
+/* fourbar kinematics, stackup and penalty on a planar case ([linkage]
+ * type = planar, docs/planar.md), by body and by joint name, on the planar
+ * core (physics/planar/).
+ *
+ * Kinematics: every moving body's omega and alpha extremes over a
+ * revolution of the drive at the case's speed (planar_path.h).
+ * Penalty (physical mode): at each revolute joint its largest ideal
+ * reaction over a revolution (planar_invdyn.h's fb_planar_reaction_max,
+ * gravity included), then Johnson's pin-in-hole
+ * stiffness Kc, the penalty P = Kc c^1.5 and the approach at that force
+ * (contact.h), as fourbar penalty's physical rows.
+ * Stack-up: the lengths are the distances between the distinct joint
+ * points of each body (the ground's included): one for a binary link,
+ * three for a ternary one; each toleranced by ISO 2768-1 ([tolerance]
+ * class). A length changed moves its body's points: the body's first
+ * point stays, its second moves along the nominal direction, a third is
+ * the intersection of two circles on the nominal side; the mechanism then
+ * closes by Newton at the assembly (planar_kinematics.h). Outputs: every
+ * moving body's omega and alpha extremes. Sensitivities by central
+ * differences (step FB_PLANAR_SENS_STEP), the RSS band nominal +-
+ * sqrt(sum (S_k t_k)^2) (each t_k taken as 3 sigma, as tolerance.h),
+ * the worst case over every corner when there are at most
+ * FB_PLANAR_CORNER_LENGTHS lengths. */
+#ifndef FB_PLANAR_TOOLS_H
+#define FB_PLANAR_TOOLS_H
+
+#include "case.h"
+#include "planar.h"
+#include "planar_path.h"
+
+/* Central-difference step of a sensitivity [m]: 1 um. The truncation
+ * error is O(step^2) of the output's curvature in the length (1e-12 of it
+ * relative), the rounding error the peaks' ~1e-15 over the step, 1e-9 of
+ * the output per metre: both below the printed digits. */
+#define FB_PLANAR_SENS_STEP 1e-6
+
+/* Most lengths whose 2^n corners the worst case runs through (256
+ * corners, each a revolution's peaks: about 5 s on the six-bar's size);
+ * beyond it the worst case is not computed and the output says so. */
+#define FB_PLANAR_CORNER_LENGTHS 8
+
+/* Most lengths a description has for the stack-up. */
+#define FB_PLANAR_MAX_LENGTHS 64
+
+/* Every moving body's peaks of planar case c (its description *m, which
+ * the caller frees with fb_planar_free) at the case's signed speed:
+ * out[b] for b < (*m)->nbodies (fb_planar_peaks_of).
+ * Errors: those of fb_planar_of_case, fb_planar_kin_new, fb_planar_peaks_of. */
+fb_status fb_planar_tool_peaks(fb_planar_peaks **out, fb_planar **m, const fb_case *c,
+                               fb_diag *diag);
+
+/* One joint's penalty row. */
+typedef struct {
+  int joint;        /* index in the description */
+  double force;     /* largest ideal reaction over a revolution [N] */
+  double stiffness; /* Johnson's Kc at that force [N/m] */
+  double penalty;   /* P = Kc c^1.5 [N m^0.5] */
+  double approach;  /* delta at that force [m] */
+} fb_planar_penalty_row;
+
+/* The rows of every revolute joint of m (out: m->njoints; *n receives
+ * their number) for case c at drive speed omega [rad/s] > 0 (the case's
+ * direction applied). Errors: FB_ERR_RANGE (a force beyond Johnson's
+ * relation, naming the joint); those of the kinematics and inverse
+ * dynamics. */
+fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_case *c,
+                                 const fb_planar *m, double omega, fb_diag *diag);
+
+/* One toleranced length. */
+typedef struct {
+  int body;                /* its body */
+  int joint[2];            /* the joints at its two ends */
+  double nominal;          /* [m] */
+  double plus_minus;       /* ISO 2768-1 deviation [m] */
+  char source[64];         /* "ISO 2768-1 class m, over 30 up to 120 mm" */
+} fb_planar_length;
+
+/* A stack-up of a planar case. */
+typedef struct {
+  int nlengths;
+  fb_planar_length length[FB_PLANAR_MAX_LENGTHS];
+  int nout;                /* 4 per moving body: omega max, min, alpha max, min */
+  double *nominal;         /* (nout) */
+  double *sens;            /* (nout x nlengths) [unit/m] */
+  double *rss_half;        /* (nout) */
+  int corners;             /* corners evaluated (0: more than FB_PLANAR_CORNER_LENGTHS lengths) */
+  double *lo, *hi;         /* (nout) over the corners */
+} fb_planar_stackup;
+
+/* The stack-up of planar case c with description m (above).
+ * Errors: FB_ERR_ARG when the case gives no [tolerance] class, or a body
+ * has more than three distinct joint points (its distances over-determine
+ * it), naming it; those of iso2768 (a length below 0.5 mm) and of the
+ * kinematics (a corner that does not close or turn, naming it);
+ * FB_ERR_NOMEM. Free with fb_planar_stackup_free. */
+fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
+                                fb_diag *diag);
+void fb_planar_stackup_free(fb_planar_stackup *s);
+
+/* The name of stack-up output k ("<body>_omega_max_rad_s") into buf. */
+const char *fb_planar_output_name(char *buf, size_t size, const fb_planar *m, int k);
+
+#endif

@@ -1,0 +1,52 @@
+"""What the script tests share (one copy for the new ones; the older scripts
+keep their own): a tally of checks that prints "N passed, N failed", the
+program run with its output captured, and the extreme of a function over a
+revolution."""
+import math, subprocess
+
+
+class Tally:
+    """check(ok, what) counts a check and prints what failed; done() prints
+    the tally and returns the exit status."""
+
+    def __init__(self):
+        self.passed = self.failed = 0
+
+    def check(self, ok, what):
+        if ok:
+            self.passed += 1
+        else:
+            self.failed += 1
+            print("FAIL:", what)
+
+    def done(self):
+        print("%d passed, %d failed" % (self.passed, self.failed))
+        return 1 if self.failed else 0
+
+
+def run(exe, cwd, *args, env=None):
+    """the program's exit status, standard output and standard error"""
+    r = subprocess.run([exe] + list(args), capture_output=True, text=True, cwd=cwd, timeout=600,
+                       env=env)
+    return r.returncode, r.stdout, r.stderr
+
+
+def golden(f, sign, lo, hi, tol):
+    """max of sign * f on [lo, hi] by golden-section search to tol"""
+    g = (math.sqrt(5) - 1) / 2
+    while hi - lo > tol:
+        m1, m2 = hi - g * (hi - lo), lo + g * (hi - lo)
+        if sign * f(m1) > sign * f(m2):
+            hi = m2
+        else:
+            lo = m1
+    return f(0.5 * (lo + hi))
+
+
+def extreme(f, sign, tol=1e-12):
+    """max of sign * f over one revolution: a 3600-point grid, then
+    golden-section search to tol in the angle"""
+    n = 3600
+    step = 2 * math.pi / n
+    k = max(range(n), key=lambda i: sign * f(i * step))
+    return golden(f, sign, (k - 1) * step, (k + 1) * step, tol)

@@ -173,6 +173,7 @@ static double analytic_cost_per_sample(const fb_model *m, const fb_case *c) {
 const fb_engine fb_engine_analytic = {
     .name = "analytic",
     .guarded = 0,
+    .computes_in_create = 1,
     .create = analytic_create,
     .step = replay_step,
     .sample = replay_sample,
@@ -236,6 +237,7 @@ static double reference_cost_per_sample(const fb_model *m, const fb_case *c) {
 const fb_engine fb_engine_reference = {
     .name = "reference",
     .guarded = 0,
+    .computes_in_create = 1,
     .create = reference_create,
     .step = replay_step,
     .stopped = replay_stopped,

@@ -307,6 +307,7 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
 
 static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                          fb_diag *diag) {
+  const double t0 = fb_clock_s();
   memset(r, 0, sizeof *r);
   int over_cost;
   fb_status cost = check_cost_resolved(c, &over_cost, diag);
@@ -323,13 +324,16 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
   fb_status st = fb_mech_peaks(&r->analytic_nominal, c->mechanism, &c->nominal, c->branch,
                                fb_case_omega2(c), diag);
   if (st != FB_OK) return st;
+  r->scene_s = fb_clock_s() - t0;
   for (int i = 0; i < c->model_count; i++) {
     fb_model_result *m = &r->model[i];
     const fb_model *row;
     st = fb_model_lookup(&row, c->models[i], diag);
     if (st == FB_OK) st = fb_model_run_one(&m->run, &r->scene, row, progress, user, diag);
     r->n = i + 1;
+    const double tm = fb_clock_s();
     if (st == FB_OK) st = measure(m, r, diag);
+    r->metrics_s += fb_clock_s() - tm;
     if (st != FB_OK) {
       fb_run_free(r);
       return st;
@@ -337,6 +341,7 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
   }
   /* each exact-collider clearance model against the reference of its law,
    * at the joint the reference integrates */
+  const double tc = fb_clock_s();
   const int cj = fb_case_mech(c)->reference_joint;
   for (int i = 0; i < r->n; i++) {
     fb_model_result *m = &r->model[i];
@@ -359,11 +364,15 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
       }
     }
   }
+  r->metrics_s += fb_clock_s() - tc;
   for (int i = 0; i < r->n && !c->member; i++) {
     fb_model_result *m = &r->model[i];
     if (m->run.model->engine == FB_ENGINE_REFERENCE && m->has_peaks &&
-        m->run.stop.kind == FB_STOP_NONE)
+        m->run.stop.kind == FB_STOP_NONE) {
+      const double te = fb_clock_s();
       reference_estimate(m, r);
+      m->check_s = fb_clock_s() - te;
+    }
   }
   return FB_OK;
 }
@@ -411,6 +420,7 @@ fb_status fb_run_models(fb_run *r, const fb_case *c, fb_progress_fn progress, vo
 
 static fb_status run_models_timed(fb_run *r, const fb_case *c, fb_progress_fn progress,
                                   void *user, fb_diag *diag) {
+  double t_try = fb_clock_s(), redo = 0.0;
   fb_status st = run_once(r, c, progress, user, diag);
   if (st != FB_OK) return st;
   const int auto_step = c->solver.h_mode == FB_STEP_AUTO ||
@@ -427,6 +437,8 @@ static fb_status run_models_timed(fb_run *r, const fb_case *c, fb_progress_fn pr
     again.solver.h_mode = FB_STEP_FIXED;
     const double estimate = r->h_auto_estimate;
     fb_run_free(r);
+    redo += fb_clock_s() - t_try; /* the run this one replaces */
+    t_try = fb_clock_s();
     st = run_once(r, &again, progress, user, diag);
     if (st != FB_OK) return st;
     tries++;
@@ -436,6 +448,7 @@ static fb_status run_models_timed(fb_run *r, const fb_case *c, fb_progress_fn pr
     r->h_omega_c_max = h_omega_c_max(r);
     r->c.solver.h_mode = c->solver.h_mode; /* the case asked for auto */
   }
+  r->redo_s = redo;
   return FB_OK;
 }
 

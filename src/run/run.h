@@ -99,6 +99,8 @@ typedef struct {
   double ref_tol;          /* the reference's tolerance [-] */
   double ref_check_tol;    /* the check integration's tolerance [-] */
   size_t ref_check_steps;  /* the check integration's accepted steps [-] */
+  double check_s;          /* wall time of the check integration and its comparison [s]
+                              (0: none; timing.json's <model>.check) */
   int has_ensemble;        /* 1 for a clearance model that reached its window (ensemble.h) */
   fb_ensemble ensemble;    /* its impact statistics, pooled over [run] ensemble members */
   int has_stats_compare;   /* 1 when its reference has an ensemble too */
@@ -144,6 +146,15 @@ typedef struct fb_run_s {
   double ensemble_estimate_s;             /* its estimated wall time [s] (auto or skipped) */
   double ensemble_wall_s;                 /* wall time of the members beyond the first [s] */
   double models_wall_s;                   /* wall time of the ensemble's models' first run [s] */
+  /* where the run's wall time went, beside each model's own (timing.json's parts) */
+  double t_run_start;                     /* fb_clock_s() when fb_run_case began [s] */
+  double scene_s;                         /* the up-front cost check, the scene stage and
+                                             the nominal peaks [s] */
+  double metrics_s;                       /* measuring the models: peaks, errors, spikes,
+                                             comparisons with the references [s] */
+  double redo_s;                          /* the runs h_s = auto redid at a smaller step
+                                             (FB_H_AUTO_RETRIES), all but the last [s] */
+  double variants_s;                      /* the case's variants (fb_run_variants) [s] */
   int variant_count;                      /* variants run (fb_run_variants; 0: none) */
   fb_variant_result variant[FB_MAX_VARIANTS]; /* their models' peaks, in c.variant order */
 } fb_run;

@@ -40,6 +40,7 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
   const double t_start = fb_clock_s();
   fb_status st = fb_run_models(r, c, progress, user, diag);
   if (st != FB_OK || c->member) return st;
+  r->t_run_start = t_start;
   const double t0 = fb_clock_s();
   st = fb_ensemble_measure(r, progress, user, diag);
   if (r->c.ensemble > 1) r->ensemble_wall_s = fb_clock_s() - t0;

@@ -158,6 +158,9 @@ typedef struct fb_engine {
   int refine_peaks;                 /* 1: the samples lie on a discrete motion whose spikes the
                                        harness refines by parabola (fb_series_refine_peaks); 0:
                                        exact (analytic) or refined by the engine (reference) */
+  int computes_in_create;           /* 1: create computes the whole series (the analytic
+                                       solution, the reference's integration) and step replays
+                                       it: the run books create as the engine's stepping */
   fb_status (*create)(void **self, const fb_model_scene *sm, fb_diag *diag);
   fb_status (*step)(void *self, fb_diag *diag);
   void (*stopped)(const void *self, fb_stop *out); /* optional: why step returned

@@ -247,8 +247,28 @@ typedef struct {
   double force, pen, a3max, a3min, a4max, a4min;
 } extremes;
 
+/* the six quantities refine_interval ranks, each as a maximum: force,
+ * penetration, theta'' max and -min of both output bodies */
+#define REFINE_QUANTITIES 6
+
+/* evaluates the state y at the local time tl: the six quantities into q */
+static void refine_eval(double q[REFINE_QUANTITIES], ref_ctx *r, double tl, const double y[4],
+                        double dy[4]) {
+  eom(tl, y, dy, r);
+  const double v[REFINE_QUANTITIES] = {r->force, r->pen, dy[2], -dy[2], dy[3], -dy[3]};
+  memcpy(q, v, sizeof v);
+}
+
+/* Every FB_REFERENCE_REFINE_STRIDE-th evaluation point is a stop of the
+ * integration and exact; the points between are ranked on the cubic Hermite
+ * interpolant of the stops' states and rates, and each quantity's best of
+ * them, where it beats the stops, is then integrated to and evaluated
+ * exactly: the extremes are those of the exact evaluation at every point
+ * (the points' spacing, not the interpolant, bounds their error), for
+ * 2 n / stride + 6 integrator stops instead of 2 n. */
 static int refine_interval(extremes *x, ref_ctx *r, const fb_series *s, size_t k, double h,
                            double tol) {
+  enum { N = 2 * FB_REFERENCE_REFINE, STRIDE = FB_REFERENCE_REFINE_STRIDE, STOPS = N / STRIDE };
   double y[4] = {s->body[0][FB_Q_POS][k - 1], s->body[1][FB_Q_POS][k - 1],
                  s->body[0][FB_Q_VEL][k - 1], s->body[1][FB_Q_VEL][k - 1]};
   clock_start(r, s->t[k - 1]); /* local time 0 at sample k - 1 */
@@ -259,24 +279,57 @@ static int refine_interval(extremes *x, ref_ctx *r, const fb_series *s, size_t k
       gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, h * 1e-3, tol, tol);
   if (!drv) return 0;
   gsl_odeiv2_driver_set_nmax(drv, 0);
-  x->force = x->pen = 0.0;
-  x->a3max = x->a4max = -INFINITY;
-  x->a3min = x->a4min = INFINITY;
-  const int n = 2 * FB_REFERENCE_REFINE;
+  double stop_y[STOPS + 1][4], stop_f[STOPS + 1][4], q[REFINE_QUANTITIES];
+  double at_stops[REFINE_QUANTITIES], between[REFINE_QUANTITIES];
+  int best_at[REFINE_QUANTITIES];
+  for (int m = 0; m < REFINE_QUANTITIES; m++) at_stops[m] = between[m] = -INFINITY, best_at[m] = -1;
+  memcpy(stop_y[0], y, sizeof y);
+  eom(0.0, y, stop_f[0], r);
   int ok = 1;
-  for (int i = 1; i <= n && ok; i++) {
-    const double ti = 2.0 * h * i / n;
-    ok = gsl_odeiv2_driver_apply(drv, &t, ti, y) == GSL_SUCCESS;
+  for (int j = 1; j <= STOPS && ok; j++) {
+    const double ta = t, tb = 2.0 * h * (j * STRIDE) / N, hh = tb - ta;
+    ok = gsl_odeiv2_driver_apply(drv, &t, tb, y) == GSL_SUCCESS;
+    memcpy(stop_y[j], y, sizeof y);
+    refine_eval(q, r, tb, y, stop_f[j]);
+    for (int m = 0; m < REFINE_QUANTITIES; m++) at_stops[m] = fmax(at_stops[m], q[m]);
+    for (int i = 1; i < STRIDE; i++) {
+      const double u = (double)i / STRIDE;
+      const double h00 = (1 + 2 * u) * (1 - u) * (1 - u), h10 = u * (1 - u) * (1 - u);
+      const double h01 = u * u * (3 - 2 * u), h11 = u * u * (u - 1);
+      double yi[4], di[4];
+      for (int c = 0; c < 4; c++)
+        yi[c] = h00 * stop_y[j - 1][c] + h10 * hh * stop_f[j - 1][c] + h01 * y[c] +
+                h11 * hh * stop_f[j][c];
+      refine_eval(q, r, ta + u * hh, yi, di);
+      for (int m = 0; m < REFINE_QUANTITIES; m++)
+        if (q[m] > between[m]) between[m] = q[m], best_at[m] = (j - 1) * STRIDE + i;
+    }
+  }
+  /* each quantity's best point between the stops, exactly */
+  double best[REFINE_QUANTITIES];
+  memcpy(best, at_stops, sizeof best);
+  for (int m = 0; m < REFINE_QUANTITIES && ok; m++) {
+    if (!(between[m] > at_stops[m])) continue;
+    const int i = best_at[m], j = i / STRIDE;
+    memcpy(y, stop_y[j], sizeof y);
+    t = 2.0 * h * (j * STRIDE) / N;
+    gsl_odeiv2_driver_reset(drv);
     double dy[4];
-    eom(ti, y, dy, r);
-    x->force = fmax(x->force, r->force);
-    x->pen = fmax(x->pen, r->pen);
-    x->a3max = fmax(x->a3max, dy[2]);
-    x->a3min = fmin(x->a3min, dy[2]);
-    x->a4max = fmax(x->a4max, dy[3]);
-    x->a4min = fmin(x->a4min, dy[3]);
+    ok = gsl_odeiv2_driver_apply(drv, &t, 2.0 * h * i / N, y) == GSL_SUCCESS;
+    refine_eval(q, r, t, y, dy);
+    for (int p = m; p < REFINE_QUANTITIES; p++) /* the others found here too, once */
+      if (best_at[p] == i && between[p] > at_stops[p]) {
+        best[p] = fmax(best[p], q[p]);
+        between[p] = -INFINITY;
+      }
   }
   gsl_odeiv2_driver_free(drv);
+  x->force = fmax(0.0, best[0]);
+  x->pen = fmax(0.0, best[1]);
+  x->a3max = best[2];
+  x->a3min = -best[3];
+  x->a4max = best[4];
+  x->a4min = -best[5];
   return ok;
 }
 

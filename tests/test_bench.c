@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "bench_study.h"
 #include "casefile.h"
 #include "fb_test.h"
 #include "figures.h"
@@ -77,7 +78,7 @@ static void test_bench_figure_extremes(void **state) {
   snprintf(path, sizeof path, "%s/bench.svg", dir);
   snprintf(mpath, sizeof mpath, "%s/bench.figure.json", dir);
   fb_diag d;
-  if (fb_figures_bench(path, FB_FIGURE_SVG, "synthetic", rows, 6, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_figures_bench(path, FB_FIGURE_SVG, "synthetic", rows, 6, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
   json_error_t je;
   json_t *m = json_load_file(mpath, 0, &je);
   assert_non_null(m);
@@ -106,6 +107,66 @@ static void test_bench_figure_extremes(void **state) {
   fclose(f);
   assert_null(strstr(svg, "1e9"));
   assert_null(strstr(svg, "1e+09"));
+  unlink(path);
+  unlink(mpath);
+  char log[256];
+  snprintf(log, sizeof log, "%s/.gnuplot.log", dir);
+  unlink(log);
+  rmdir(dir);
+}
+
+/* bench.svg of a grid of five engines (ten models, more than the eight the
+ * chart once had room for: Siconos's rows went undrawn): every model drawn,
+ * the title naming every engine, each error target's cheapest row ringed
+ * (one ring per row, however many targets it meets) and the peers'
+ * ratios written (issue 54) */
+static void test_bench_figure_every_engine(void **state) {
+  (void)state;
+  static const char *names[10] = {
+      "ode-ideal-stackup",     "ode-clearance-impact",    "mujoco-ideal-stackup",
+      "mujoco-clearance-impact", "bullet-ideal-stackup",  "bullet-clearance-impact",
+      "simbody-ideal-stackup", "simbody-clearance-impact", "siconos-ideal-stackup",
+      "siconos-clearance-newton"};
+  fb_bench_row rows[10];
+  for (int i = 0; i < 10; i++) {
+    rows[i] = row(names[i], i % 2 ? 1e-2 * (1 + i) : 1e-6 * (1 + i), 0.01 * (1 + i));
+    snprintf(rows[i].engine, sizeof rows[i].engine, "%s", fb_engine_name(rows[i].row->engine));
+  }
+  fb_bench_mark_pareto(rows, 10);
+  fb_peer_row peers[2];
+  memset(peers, 0, sizeof peers);
+  snprintf(peers[0].engine, sizeof peers[0].engine, "ode");
+  peers[0].ran = 1;
+  peers[0].harness_over_bare = 1.05;
+  snprintf(peers[1].engine, sizeof peers[1].engine, "simbody");
+  fb_bench_marks marks = {.target = {1e-2, 1e-3, 1e-4}, .peers = peers, .npeers = 2};
+  /* the ideal rows meet every target at row 0; the clearance rows none but 1e-2 at row 1 */
+  for (int t = 0; t < FB_BENCH_TARGETS; t++) marks.cheapest[0][t] = 0, marks.cheapest[1][t] = -1;
+  marks.cheapest[1][0] = 1;
+  char dir[] = "/tmp/fb_bench_fig5_XXXXXX";
+  assert_non_null(mkdtemp(dir));
+  char path[256], mpath[256];
+  snprintf(path, sizeof path, "%s/bench.svg", dir);
+  snprintf(mpath, sizeof mpath, "%s/bench.figure.json", dir);
+  fb_diag d;
+  if (fb_figures_bench(path, FB_FIGURE_SVG, "five", rows, 10, &marks, &d) != FB_OK) fail_msg("%s", d.msg);
+  json_t *m = json_load_file(mpath, 0, NULL);
+  assert_non_null(m);
+  json_t *fig = json_array_get(json_object_get(m, "figures"), 0);
+  assert_int_equal(json_array_size(json_object_get(fig, "curves")), 10);
+  assert_string_equal(json_string_value(json_object_get(fig, "engines")),
+                      "ode, mujoco, bullet, simbody and siconos");
+  assert_int_equal(json_integer_value(json_object_get(fig, "cheapest_marked")), 2);
+  json_decref(m);
+  FILE *f = fopen(path, "r");
+  assert_non_null(f);
+  static char svg[1 << 20];
+  svg[fread(svg, 1, sizeof svg - 1, f)] = '\0';
+  fclose(f);
+  const char *want[] = {"5 engines", "siconos-clearance-newton", "ode 1.05", "simbody not run",
+                        "target 1e-3", "ideal &lt;= 1e-2, 1e-3, 1e-4", "clearance &lt;= 1e-2", NULL};
+  for (int k = 0; want[k]; k++)
+    if (!strstr(svg, want[k])) fail_msg("bench.svg lacks '%s'", want[k]);
   unlink(path);
   unlink(mpath);
   char log[256];
@@ -263,6 +324,7 @@ static void test_peers_beside_harness(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_pareto_and_cheapest),
                                      cmocka_unit_test(test_bench_figure_extremes),
+                                     cmocka_unit_test(test_bench_figure_every_engine),
                                      cmocka_unit_test(test_clearance_error_by_hand),
                                      cmocka_unit_test(test_rounds_time_every_row),
                                      cmocka_unit_test(test_default_grid),

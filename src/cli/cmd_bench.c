@@ -67,8 +67,8 @@ static const char bench_help[] =
 
 /* bench.svg (fb_bench_drawer) */
 static fb_status draw(const char *path, const char *case_name, const fb_bench_row *rows, int n,
-                      fb_diag *diag) {
-  return fb_figures_bench(path, FB_FIGURE_SVG, case_name, rows, n, diag);
+                      const fb_bench_marks *marks, fb_diag *diag) {
+  return fb_figures_bench(path, FB_FIGURE_SVG, case_name, rows, n, marks, diag);
 }
 
 int fb_cmd_bench(int argc, char **argv) {

@@ -34,7 +34,7 @@ typedef struct {
 } bench_result;
 
 static const char *kinds[2] = {"ideal", "clearance-impact"};
-static const double targets[3] = {1e-2, 1e-3, 1e-4};
+static const double targets[FB_BENCH_TARGETS] = {1e-2, 1e-3, 1e-4};
 
 static json_t *finite_or_null(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 
@@ -185,20 +185,29 @@ static json_t *row_json(const fb_bench_row *b) {
   return o;
 }
 
+/* the row of the cheapest configuration of kind q meeting target t across
+ * the listed engines (-1: none) */
+static int cheapest_across(const bench_result *br, int q, int t) {
+  int best = -1;
+  for (int e = 0; e < br->ne; e++) {
+    if (!listed(br, q, e)) continue; /* not in this build or grid */
+    const int i = fb_bench_cheapest(br->rows, br->n, br->models[q][e], targets[t]);
+    if (i >= 0 && (best < 0 || br->rows[i].wall_per_rev < br->rows[best].wall_per_rev)) best = i;
+  }
+  return best;
+}
+
 /* bench.json's "cheapest" (per engine) and "cheapest_across_engines" */
 static void cheapest_json(const bench_result *br, json_t *cheap, json_t *across) {
-  const fb_bench_row *rows = br->rows;
-  const int n = br->n;
   for (int q = 0; q < 2; q++)
-    for (int t = 0; t < 3; t++) {
-      int best = -1;
+    for (int t = 0; t < FB_BENCH_TARGETS; t++) {
       for (int e = 0; e < br->ne; e++) {
         if (!listed(br, q, e)) continue; /* not in this build or grid */
-        int i = fb_bench_cheapest(rows, n, br->models[q][e], targets[t]);
+        int i = fb_bench_cheapest(br->rows, br->n, br->models[q][e], targets[t]);
         json_array_append_new(cheap, json_pack("{s:s,s:f,s:o}", "model", br->models[q][e]->name, "target",
                                                targets[t], "row", i >= 0 ? json_integer(i) : json_null()));
-        if (i >= 0 && (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev)) best = i;
       }
+      const int best = cheapest_across(br, q, t);
       json_array_append_new(across, json_pack("{s:s,s:f,s:o}", "kind", kinds[q], "target", targets[t],
                                               "row", best >= 0 ? json_integer(best) : json_null()));
     }
@@ -332,8 +341,7 @@ static void print_cheapest(const bench_result *br) {
   const int n = br->n;
   printf("\ncheapest configuration meeting each error target (per engine, then across engines):\n");
   for (int q = 0; q < 2; q++)
-    for (int t = 0; t < 3; t++) {
-      int best = -1;
+    for (int t = 0; t < FB_BENCH_TARGETS; t++) {
       for (int e = 0; e < br->ne; e++) {
         if (!listed(br, q, e)) continue;
         int i = fb_bench_cheapest(rows, n, br->models[q][e], targets[t]);
@@ -342,8 +350,8 @@ static void print_cheapest(const bench_result *br) {
           continue;
         }
         print_config(br->models[q][e]->name, targets[t], &rows[i]);
-        if (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev) best = i;
       }
+      const int best = cheapest_across(br, q, t);
       if (best >= 0) printf("  -> %s error <= %.0e: cheapest on %s\n", kinds[q], targets[t],
                             rows[best].engine);
     }
@@ -380,7 +388,12 @@ static int write_files(const bench_result *br, json_t **j) {
     return fb_study_fail("bench", 1, "%s", d.msg);
   }
   snprintf(path, sizeof path, "%s/bench.svg", o->dir);
-  if (br->n > 0 && o->draw(path, o->c->name, br->rows, br->n, &d) != FB_OK)
+  fb_bench_marks marks = {.peers = br->peers, .npeers = br->npeers};
+  for (int t = 0; t < FB_BENCH_TARGETS; t++) {
+    marks.target[t] = targets[t];
+    for (int q = 0; q < 2; q++) marks.cheapest[q][t] = cheapest_across(br, q, t);
+  }
+  if (br->n > 0 && o->draw(path, o->c->name, br->rows, br->n, &marks, &d) != FB_OK)
     fprintf(stderr, "fourbar bench: warning: %s\n", d.msg);
   return 0;
 }

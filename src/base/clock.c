@@ -2,6 +2,7 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -33,6 +34,15 @@ static double proc_age_s(void) {
     return -1.0;
   const double age = (double)now.tv_sec + 1e-9 * (double)now.tv_nsec - (double)start / (double)tick;
   return age >= 0.0 ? age : -1.0;
+}
+
+double fb_clock_cpu_s(void) {
+  struct rusage self, children;
+  if (getrusage(RUSAGE_SELF, &self) != 0 || getrusage(RUSAGE_CHILDREN, &children) != 0) return 0.0;
+  const struct timeval tv[4] = {self.ru_utime, self.ru_stime, children.ru_utime, children.ru_stime};
+  double s = 0.0;
+  for (int i = 0; i < 4; i++) s += (double)tv[i].tv_sec + 1e-6 * (double)tv[i].tv_usec;
+  return s;
 }
 
 double fb_clock_process_start_s(void) {

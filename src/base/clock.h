@@ -12,4 +12,9 @@ double fb_clock_s(void);
  * the time of the first call (main calls it first). Cached. */
 double fb_clock_process_start_s(void);
 
+/* CPU time of this process and of its children it has waited for (an
+ * ensemble's worker processes) [s]: differences measure work without the
+ * waits of a machine others load. */
+double fb_clock_cpu_s(void);
+
 #endif

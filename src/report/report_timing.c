@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "clock.h"
 
@@ -47,15 +48,18 @@ int fb_report_time_parts(fb_time_part *out, int max, const fb_run *r, const fb_w
 }
 
 json_t *fb_report_timing_json(const fb_run *r, const fb_write_costs *w, double run_wall_s) {
-  json_t *models = json_array();
+  json_t *models_json = json_array();
   for (int i = 0; i < r->n; i++) {
     const fb_model_run *run = &r->model[i].run;
-    json_array_append_new(models, json_pack("{s:s,s:I,s:o,s:o,s:o,s:o}", "name", run->name, "steps",
-                                            (json_int_t)run->steps, "wall_s", num(run->wall_s),
-                                            "setup_s", num(run->setup_s), "time_per_step_us",
-                                            run->steps ? num(1e6 * run->wall_s / (double)run->steps)
-                                                       : json_null(),
-                                            "stepping_s", num(run->stepping_s)));
+    json_t *m = json_pack("{s:s,s:I,s:o,s:o,s:o,s:o}", "name", run->name, "steps",
+                          (json_int_t)run->steps, "wall_s", num(run->wall_s), "setup_s",
+                          num(run->setup_s), "time_per_step_us",
+                          run->steps ? num(1e6 * run->wall_s / (double)run->steps) : json_null(),
+                          "stepping_s", num(run->stepping_s));
+    json_object_set_new(m, "samples", json_integer((json_int_t)run->series.n));
+    json_object_set_new(m, "cpu_s", num(run->cpu_s));
+    json_object_set_new(m, "check_cpu_s", num(r->model[i].check_cpu_s));
+    json_array_append_new(models_json, m);
   }
   /* the ensemble's members beyond the first (docs/chaos.md): its cost */
   json_t *ens = json_pack("{s:i,s:s,s:o,s:o,s:o}", "members", r->c.ensemble > 1 ? r->c.ensemble : 1,
@@ -68,8 +72,25 @@ json_t *fb_report_timing_json(const fb_run *r, const fb_write_costs *w, double r
   const int np = fb_report_time_parts(p, FB_TIME_PARTS_MAX, r, w, run_wall_s);
   json_t *parts = json_object();
   for (int k = 0; k < np; k++) json_object_set_new(parts, p[k].name, num(p[k].s));
-  json_t *o = json_pack("{s:s,s:o,s:o,s:o,s:o}", "case", r->c.name, "run_wall_s", num(run_wall_s),
-                        "parts", parts, "models", models, "ensemble", ens);
+  /* the up-front estimate (run.h fb_run_estimate) beside what it stands for:
+   * the models, their check integrations and the case's ensemble members;
+   * an ensemble the run adds by itself has its own estimate (above), a run
+   * h_s = auto redid at a smaller step is another run (h_auto_redo) */
+  const int own = r->ensemble_auto <= 1;
+  double wall = own ? r->ensemble_wall_s : 0.0;
+  double cpu = own ? r->ensemble_cpu_s : 0.0;
+  for (int i = 0; i < r->n; i++) {
+    wall += r->model[i].run.wall_s + r->model[i].check_s;
+    cpu += r->model[i].run.cpu_s + r->model[i].check_cpu_s;
+  }
+  struct rusage ru;
+  const double rss = getrusage(RUSAGE_SELF, &ru) == 0 ? 1024.0 * (double)ru.ru_maxrss : NAN;
+  json_t *est = json_pack("{s:o,s:o,s:o,s:o,s:o}", "wall_s", num(r->estimate_s), "models_wall_s",
+                          num(wall), "models_cpu_s", num(cpu), "bytes", num(r->estimate_bytes),
+                          "max_rss_bytes", num(rss));
+  json_t *o = json_pack("{s:s,s:o,s:o,s:o,s:o,s:o}", "case", r->c.name, "run_wall_s",
+                        num(run_wall_s), "parts", parts, "models", models_json, "ensemble", ens,
+                        "estimate", est);
   const fb_write_costs none = {0};
   if (!w) w = &none;
   json_object_set_new(o, "series_write_s", num(w->series_s));

@@ -153,7 +153,7 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_mode
   out->model = m;
   out->h = def->solver.h;
   out->lengths = def->lengths[m->lengths];
-  double t0 = fb_clock_s();
+  double t0 = fb_clock_s(), c0 = fb_clock_cpu_s();
   fb_model_scene sm;
   fb_status st = fb_scene_select(&sm, def, m, diag);
   const fb_engine *e = st == FB_OK ? fb_engine_get(m->engine, diag) : NULL;
@@ -166,6 +166,7 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_mode
     st = run_engine(out, e, &sm, progress, user, diag);
   }
   out->wall_s = fb_clock_s() - t0;
+  out->cpu_s = fb_clock_cpu_s() - c0;
   if (progress) progress(out->name, 1.0, user);
   return st;
 }

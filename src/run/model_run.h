@@ -30,6 +30,7 @@ typedef struct {
   size_t steps;            /* steps taken (ode), samples computed (analytic), accepted
                               integrator steps (reference) */
   double wall_s;           /* wall-clock time of the run [s] */
+  double cpu_s;            /* its CPU time (fb_clock_cpu_s) [s] */
   double setup_s;          /* of which set-up [s]: the engine's create (MuJoCo: the MJCF
                               compile) and mapping the series' storage (fb_series_touch);
                               an engine that computes its series in create

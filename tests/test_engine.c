@@ -187,12 +187,17 @@ static void test_wall_time_limit_holds(void **state) {
  * ensemble members (timing.json estimate.models_cpu_s; a quiet moment of
  * the shared 2-core machine, issue 54): the paper case 0.85 s,
  * hard/slider_crank_rattling.ini (2 revolutions, an ensemble of 5) 0.42 s.
- * The estimate is to be conservative but within 2x. Issue 56's example:
- * that slider-crank, estimated at 7.38 s before, was refused at
- * [run] max_wall_s = 2; it runs now. */
+ * The estimate is to be conservative but within 2x. The example of issue
+ * 54's brief: that slider-crank, estimated at 7.38 s before (fourbar run
+ * cases/hard/slider_crank_rattling.ini --set run.max_wall_s=2 on main), was
+ * refused at [run] max_wall_s = 2; it runs now. */
 #define PAPER_MODELS_CPU_S 0.85
 #define RATTLING_SC_MODELS_CPU_S 0.42
 #define ESTIMATE_OVER_MEASURED_MAX 2.0
+/* the same run measured here, in CPU time (never wall time: the machine is
+ * shared): the estimate within 2x either way (the issue's bound; the
+ * recorded figures above hold the conservative side) */
+#define ESTIMATE_OVER_CPU_MIN 0.5
 
 static double resolved_estimate(const fb_case *c) {
   static fb_case k;
@@ -222,6 +227,17 @@ static void test_estimate_within_twice_measured(void **state) {
     int over_cost = 0;
     if (fb_run_preflight(&c, &over_cost, &d) != FB_OK)
       fail_msg("%s refused at max_wall_s = 2: %s", cases[i], d.msg);
+    static fb_run r;
+    if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s: %s", cases[i], d.msg);
+    double wall, cpu;
+    fb_run_estimated_work(&r, &wall, &cpu);
+    if (fb_test_verbose())
+      fprintf(stderr, "  %s run here: estimated %.3f s, %.3f s of CPU (%.3f s wall)\n", cases[i],
+              r.estimate_s, cpu, wall);
+    if (!(r.estimate_s >= ESTIMATE_OVER_CPU_MIN * cpu &&
+          r.estimate_s <= ESTIMATE_OVER_MEASURED_MAX * cpu))
+      fail_msg("%s: estimated %.3g s against %.3g s of CPU measured", cases[i], r.estimate_s, cpu);
+    fb_run_free(&r);
   }
 }
 

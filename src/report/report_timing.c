@@ -72,17 +72,9 @@ json_t *fb_report_timing_json(const fb_run *r, const fb_write_costs *w, double r
   const int np = fb_report_time_parts(p, FB_TIME_PARTS_MAX, r, w, run_wall_s);
   json_t *parts = json_object();
   for (int k = 0; k < np; k++) json_object_set_new(parts, p[k].name, num(p[k].s));
-  /* the up-front estimate (run.h fb_run_estimate) beside what it stands for:
-   * the models, their check integrations and the case's ensemble members;
-   * an ensemble the run adds by itself has its own estimate (above), a run
-   * h_s = auto redid at a smaller step is another run (h_auto_redo) */
-  const int own = r->ensemble_auto <= 1;
-  double wall = own ? r->ensemble_wall_s : 0.0;
-  double cpu = own ? r->ensemble_cpu_s : 0.0;
-  for (int i = 0; i < r->n; i++) {
-    wall += r->model[i].run.wall_s + r->model[i].check_s;
-    cpu += r->model[i].run.cpu_s + r->model[i].check_cpu_s;
-  }
+  /* the up-front estimate (run.h fb_run_estimate) beside what it stands for */
+  double wall, cpu;
+  fb_run_estimated_work(r, &wall, &cpu);
   struct rusage ru;
   const double rss = getrusage(RUSAGE_SELF, &ru) == 0 ? 1024.0 * (double)ru.ru_maxrss : NAN;
   json_t *est = json_pack("{s:o,s:o,s:o,s:o,s:o}", "wall_s", num(r->estimate_s), "models_wall_s",

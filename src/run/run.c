@@ -501,3 +501,15 @@ void fb_run_free(fb_run *r) {
   for (int i = 0; i < r->n; i++) fb_model_run_free(&r->model[i].run);
   r->n = 0;
 }
+
+void fb_run_estimated_work(const fb_run *r, double *wall_s, double *cpu_s) {
+  /* an ensemble the run adds by itself has its own estimate (ensemble.h),
+   * a run h_s = auto redid at a smaller step is another run (h_auto_redo) */
+  const int own = r->ensemble_auto <= 1;
+  *wall_s = own ? r->ensemble_wall_s : 0.0;
+  *cpu_s = own ? r->ensemble_cpu_s : 0.0;
+  for (int i = 0; i < r->n; i++) {
+    *wall_s += r->model[i].run.wall_s + r->model[i].check_s;
+    *cpu_s += r->model[i].run.cpu_s + r->model[i].check_cpu_s;
+  }
+}

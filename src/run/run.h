@@ -189,6 +189,11 @@ typedef struct fb_run_s {
 /* at most this fraction of the machine's physical memory may be reserved */
 #define FB_COST_MEMORY_FRACTION 0.5
 void fb_run_estimate(const fb_case *c, double *bytes, double *seconds);
+/* What fb_run_estimate's seconds stand for, measured on run r: the wall
+ * and CPU time [s] of its models, their check integrations and the case's
+ * own ensemble members (their worker processes' CPU included; not an
+ * ensemble the run added by itself, not the runs h_s = auto redid). */
+void fb_run_estimated_work(const fb_run *r, double *wall_s, double *cpu_s);
 
 /* Checks case c as fb_run_case would before its first model runs: the scene
  * resolves (the step chosen, the corner found; its errors are the case's)

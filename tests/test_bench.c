@@ -60,6 +60,35 @@ static void test_pareto_and_cheapest(void **state) {
   assert_int_equal(fb_bench_cheapest(rows, 7, &fb_models[1], 1e-2), -1);
 }
 
+/* draws rows (marks may be NULL) as bench.svg in a fresh folder, named
+ * name in its title; returns its manifest (bench.figure.json) and the
+ * drawing's text in svg (static, up to 1 MiB), the folder removed */
+static json_t *draw_bench(const char *name, fb_bench_row *rows, int n, const fb_bench_marks *marks,
+                          const char **svg_text) {
+  char dir[] = "/tmp/fb_bench_fig_XXXXXX";
+  assert_non_null(mkdtemp(dir));
+  char path[256], mpath[256], log[256];
+  snprintf(path, sizeof path, "%s/bench.svg", dir);
+  snprintf(mpath, sizeof mpath, "%s/bench.figure.json", dir);
+  snprintf(log, sizeof log, "%s/.gnuplot.log", dir);
+  fb_diag d;
+  if (fb_figures_bench(path, FB_FIGURE_SVG, name, rows, n, marks, &d) != FB_OK) fail_msg("%s", d.msg);
+  json_error_t je;
+  json_t *m = json_load_file(mpath, 0, &je);
+  assert_non_null(m);
+  FILE *f = fopen(path, "r");
+  assert_non_null(f);
+  static char svg[1 << 20];
+  svg[fread(svg, 1, sizeof svg - 1, f)] = '\0';
+  fclose(f);
+  *svg_text = svg;
+  unlink(path);
+  unlink(mpath);
+  unlink(log);
+  rmdir(dir);
+  return m;
+}
+
 /* bench.svg draws the measured rows only: no placeholder point, so the
  * plotted extremes lie within the data's (a stopped row, NaN error, and a
  * row with no cost per revolution are left out), one manifest curve per model */
@@ -72,16 +101,8 @@ static void test_bench_figure_extremes(void **state) {
       row("ode-clearance-impact", 1e-2, NAN), /* stopped within its first step: no cost */
   };
   fb_bench_mark_pareto(rows, 6);
-  char dir[] = "/tmp/fb_bench_fig_XXXXXX";
-  assert_non_null(mkdtemp(dir));
-  char path[256], mpath[256];
-  snprintf(path, sizeof path, "%s/bench.svg", dir);
-  snprintf(mpath, sizeof mpath, "%s/bench.figure.json", dir);
-  fb_diag d;
-  if (fb_figures_bench(path, FB_FIGURE_SVG, "synthetic", rows, 6, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
-  json_error_t je;
-  json_t *m = json_load_file(mpath, 0, &je);
-  assert_non_null(m);
+  const char *svg;
+  json_t *m = draw_bench("synthetic", rows, 6, NULL, &svg);
   json_t *curves = json_object_get(json_array_get(json_object_get(m, "figures"), 0), "curves");
   assert_int_equal(json_array_size(curves), 2);
   /* data extremes per model, from the rows with a finite error and cost */
@@ -100,19 +121,8 @@ static void test_bench_figure_extremes(void **state) {
   assert_string_equal(json_string_value(json_object_get(json_array_get(curves, 1), "color")), "#2171b5");
   json_decref(m);
   /* no 1e9 anywhere in the drawing */
-  FILE *f = fopen(path, "r");
-  assert_non_null(f);
-  static char svg[1 << 20];
-  svg[fread(svg, 1, sizeof svg - 1, f)] = '\0';
-  fclose(f);
   assert_null(strstr(svg, "1e9"));
   assert_null(strstr(svg, "1e+09"));
-  unlink(path);
-  unlink(mpath);
-  char log[256];
-  snprintf(log, sizeof log, "%s/.gnuplot.log", dir);
-  unlink(log);
-  rmdir(dir);
 }
 
 /* bench.svg of a grid of five engines (ten models, more than the eight the
@@ -143,36 +153,18 @@ static void test_bench_figure_every_engine(void **state) {
   /* the ideal rows meet every target at row 0; the clearance rows none but 1e-2 at row 1 */
   for (int t = 0; t < FB_BENCH_TARGETS; t++) marks.cheapest[0][t] = 0, marks.cheapest[1][t] = -1;
   marks.cheapest[1][0] = 1;
-  char dir[] = "/tmp/fb_bench_fig5_XXXXXX";
-  assert_non_null(mkdtemp(dir));
-  char path[256], mpath[256];
-  snprintf(path, sizeof path, "%s/bench.svg", dir);
-  snprintf(mpath, sizeof mpath, "%s/bench.figure.json", dir);
-  fb_diag d;
-  if (fb_figures_bench(path, FB_FIGURE_SVG, "five", rows, 10, &marks, &d) != FB_OK) fail_msg("%s", d.msg);
-  json_t *m = json_load_file(mpath, 0, NULL);
-  assert_non_null(m);
+  const char *svg;
+  json_t *m = draw_bench("five", rows, 10, &marks, &svg);
   json_t *fig = json_array_get(json_object_get(m, "figures"), 0);
   assert_int_equal(json_array_size(json_object_get(fig, "curves")), 10);
   assert_string_equal(json_string_value(json_object_get(fig, "engines")),
                       "ode, mujoco, bullet, simbody and siconos");
   assert_int_equal(json_integer_value(json_object_get(fig, "cheapest_marked")), 2);
   json_decref(m);
-  FILE *f = fopen(path, "r");
-  assert_non_null(f);
-  static char svg[1 << 20];
-  svg[fread(svg, 1, sizeof svg - 1, f)] = '\0';
-  fclose(f);
   const char *want[] = {"5 engines", "siconos-clearance-newton", "ode 1.05", "simbody not run",
                         "target 1e-3", "ideal &lt;= 1e-2, 1e-3, 1e-4", "clearance &lt;= 1e-2", NULL};
   for (int k = 0; want[k]; k++)
     if (!strstr(svg, want[k])) fail_msg("bench.svg lacks '%s'", want[k]);
-  unlink(path);
-  unlink(mpath);
-  char log[256];
-  snprintf(log, sizeof log, "%s/.gnuplot.log", dir);
-  unlink(log);
-  rmdir(dir);
 }
 
 /* the clearance error and its parts, by hand: peaks of a model and of its

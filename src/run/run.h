@@ -178,7 +178,7 @@ typedef struct fb_run_s {
  * FB_COST_DEFAULT_S for an engine that gives none. What it stands for is
  * timing.json's estimate.models_wall_s (the models, their check
  * integrations, the ensemble's members): measured on the 22 shipped cases
- * whose models run to their end, the estimate is 1.3 to 1.9 times their CPU
+ * whose models run to their end, the estimate is 1.20 to 1.90 times their CPU
  * time (docs/performance.md), FB_COST_LOAD_FACTOR being the margin for a
  * machine others share. */
 #define FB_COST_LOAD_FACTOR 1.25

@@ -115,6 +115,46 @@ static void test_refined_spike_independent_of_output_step(void **state) {
   fb_series_free(&s[1]);
 }
 
+/* The reference's cost is linear in simulated time (issue 54): its accepted
+ * steps per revolution at 8 revolutions within 10 % of those at 2 (the
+ * issue's bound), at its own tolerance and at its check's (1e-13). Step
+ * counts, not time. Before the crank's clock restarted each sample and the
+ * eccentricity was formed from deviations (main before issue 54, this
+ * test's settings: fourbar run --set run.models=reference --set
+ * solver.h_s=5e-6 --set run.revolutions=2 and 8), the growth was 51 % for
+ * the reference and 96 % for its check (18.5k to 27.8k, 106k to 209k steps
+ * per revolution); now 1.2 % and 1.8 %. */
+#define STEPS_PER_REV_GROWTH_MAX 0.10
+
+static void test_steps_per_revolution_constant(void **state) {
+  (void)state;
+  const char *tols[2] = {NULL, "1e-13"};
+  for (int k = 0; k < 2; k++) {
+    double per_rev[2];
+    const char *revs[2] = {"run.revolutions=2", "run.revolutions=8"};
+    const double n_rev[2] = {2.0, 8.0};
+    for (int r = 0; r < 2; r++) {
+      fb_case c;
+      const char *sets[] = {revs[r], "solver.h_s=5e-6"};
+      fb_test_paper_case(&c, sets, 2);
+      fb_contact_law law[4];
+      assert_int_equal(fb_joint_laws(law, NULL, &c, NULL), FB_OK);
+      if (tols[k]) setenv("FOURBAR_REFERENCE_TOL", tols[k], 1);
+      fb_series s;
+      size_t steps;
+      const fb_status st = fb_reference_run(&s, &steps, &c, &law[FB_JOINT_B], 0, NULL, NULL);
+      unsetenv("FOURBAR_REFERENCE_TOL");
+      assert_int_equal(st, FB_OK);
+      fb_series_free(&s);
+      per_rev[r] = (double)steps / n_rev[r];
+    }
+    report_residual(k ? "check (1e-13): steps per revolution, 8 against 2 revolutions"
+                      : "reference: steps per revolution, 8 against 2 revolutions",
+                    fabs(per_rev[1] / per_rev[0] - 1.0), STEPS_PER_REV_GROWTH_MAX);
+    assert_true(fabs(per_rev[1] / per_rev[0] - 1.0) <= STEPS_PER_REV_GROWTH_MAX);
+  }
+}
+
 static void test_ode_converges_to_reference(void **state) {
   (void)state;
   /* ODE's impact model against the reference of the same law: the peak
@@ -216,6 +256,7 @@ int main(void) {
       cmocka_unit_test(test_ideal_limit_matches_analytic),
       cmocka_unit_test(test_reference_converged_in_tolerance),
       cmocka_unit_test(test_refined_spike_independent_of_output_step),
+      cmocka_unit_test(test_steps_per_revolution_constant),
       cmocka_unit_test(test_ode_converges_to_reference),
       cmocka_unit_test(test_step_budget_stops_a_lost_integration),
       cmocka_unit_test(test_revolution_2_impacts_converged),

@@ -12,6 +12,8 @@
 #include "fb_test.h"
 #include "figures.h"
 #include "peers.h"
+#include "scaling.h"
+#include "tolerance.h"
 
 /* a row's stepping and sampling come from the same round as its cost: they
  * sum to it, to rounding */
@@ -313,6 +315,52 @@ static void test_peers_beside_harness(void **state) {
   }
 }
 
+/* --grid scaling on a small plan (scaling.h): a row per value, in the
+ * plan's order; the reference's steps per revolution, its own and its
+ * check's, the same at 2 and 4 revolutions (linear cost: issue 54's bound
+ * of 10 %; measured 1.8 % for both at h = 1e-5 s); the
+ * ensemble row without a reference has no steps; the Monte Carlo row
+ * carries stackup's estimate; a plan beyond FB_SCALING_MAX_ROWS is
+ * refused. Times are recorded, never asserted beyond being measured. */
+#define SCALING_STEPS_GROWTH_MAX 0.10
+
+static void test_scaling_plan(void **state) {
+  (void)state;
+  static fb_case c;
+  const char *sets[] = {"run.models=ode-clearance-impact", "solver.h_s=1e-5"};
+  fb_test_paper_case(&c, sets, 2);
+  const double revs[] = {2, 4}, samples[] = {1000};
+  const int members[] = {2}, jobs[] = {1};
+  const fb_scaling_plan plan = {.revolutions = revs, .nrevolutions = 2, .members = members,
+                                .jobs = jobs, .nensemble = 1, .samples = samples, .nsamples = 1};
+  static fb_scaling_row rows[FB_SCALING_MAX_ROWS];
+  int n = 0;
+  fb_diag d;
+  if (fb_scaling_run(rows, &n, &c, &plan, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(n, 4);
+  const char *vary[4] = {"revolutions", "revolutions", "ensemble", "montecarlo_samples"};
+  for (int i = 0; i < n; i++) {
+    if (!rows[i].ran) fail_msg("row %d: %s", i, rows[i].status);
+    assert_string_equal(rows[i].vary, vary[i]);
+    assert_true(rows[i].cpu_s > 0.0 && rows[i].wall_s > 0.0 && rows[i].estimate_s > 0.0);
+  }
+  for (int k = 0; k < 2; k++) {
+    const double a = k ? rows[0].check_steps_per_rev : rows[0].reference_steps_per_rev;
+    const double b = k ? rows[1].check_steps_per_rev : rows[1].reference_steps_per_rev;
+    report_residual(k ? "check steps per revolution, 4 against 2"
+                      : "reference steps per revolution, 4 against 2",
+                    fabs(b / a - 1.0), SCALING_STEPS_GROWTH_MAX);
+    assert_true(fabs(b / a - 1.0) <= SCALING_STEPS_GROWTH_MAX);
+  }
+  assert_true(isnan(rows[2].reference_steps_per_rev) && rows[2].jobs == 1);
+  double bytes, est;
+  fb_tol_estimate(c.mechanism, 1000, 1, &bytes, &est);
+  assert_true(rows[3].estimate_s == est);
+  fb_scaling_plan big = plan;
+  big.nsamples = FB_SCALING_MAX_ROWS;
+  assert_int_equal(fb_scaling_run(rows, &n, &c, &big, &d), FB_ERR_ARG);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_pareto_and_cheapest),
                                      cmocka_unit_test(test_bench_figure_extremes),
@@ -320,6 +368,7 @@ int main(void) {
                                      cmocka_unit_test(test_clearance_error_by_hand),
                                      cmocka_unit_test(test_rounds_time_every_row),
                                      cmocka_unit_test(test_default_grid),
-                                     cmocka_unit_test(test_peers_beside_harness)};
+                                     cmocka_unit_test(test_peers_beside_harness),
+                                     cmocka_unit_test(test_scaling_plan)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

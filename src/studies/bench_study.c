@@ -13,6 +13,7 @@
 #include "engine.h"
 #include "fileio.h"
 #include "outcome_text.h"
+#include "scaling.h"
 #include "textsafe.h"
 
 /* models by kind (ideal, clearance impact) and engine (each engine that steps
@@ -26,6 +27,8 @@ typedef struct {
   int n;
   const fb_peer_row *peers;
   int npeers;
+  const fb_scaling_row *scaling; /* --grid scaling's rows (scaling.h) */
+  int nscaling;
   double wall;                /* [s] */
   const fb_model *models[2][NE];
   int ne;                     /* engines in models */
@@ -313,6 +316,45 @@ static void print_colliders(const fb_bench_row *rows, int n) {
   }
 }
 
+/* bench.json's "scaling" */
+static json_t *scaling_json(const fb_scaling_row *rows, int n) {
+  json_t *a = json_array();
+  for (int i = 0; i < n; i++) {
+    const fb_scaling_row *r = &rows[i];
+    json_t *o = json_object();
+    json_object_set_new(o, "vary", json_string(r->vary));
+    json_object_set_new(o, "value", json_real(r->value));
+    json_object_set_new(o, "jobs", json_integer(r->jobs));
+    json_object_set_new(o, "ran", json_boolean(r->ran));
+    json_object_set_new(o, "status", json_string(r->status));
+    json_object_set_new(o, "cpu_s", finite_or_null(r->cpu_s));
+    json_object_set_new(o, "wall_s", finite_or_null(r->wall_s));
+    json_object_set_new(o, "estimate_s", finite_or_null(r->estimate_s));
+    json_object_set_new(o, "reference_steps_per_rev", finite_or_null(r->reference_steps_per_rev));
+    json_object_set_new(o, "check_steps_per_rev", finite_or_null(r->check_steps_per_rev));
+    json_array_append_new(a, o);
+  }
+  return a;
+}
+
+/* --grid scaling's rows on stdout */
+static void print_scaling(const fb_scaling_row *rows, int n) {
+  if (!n) return;
+  printf("\nscaling: the case at each value of one setting (revolutions: the reference alone; "
+         "CPU time the measure, wall time grows with the machine's load; estimate: the up-front "
+         "one)\n%-20s %10s %4s %9s %9s %11s %13s %15s  %s\n",
+         "vary", "value", "jobs", "CPU s", "wall s", "estimate s", "ref steps/rev",
+         "check steps/rev", "status");
+  for (int i = 0; i < n; i++) {
+    const fb_scaling_row *r = &rows[i];
+    char steps[2][24]; /* "-": none */
+    const double v[2] = {r->reference_steps_per_rev, r->check_steps_per_rev};
+    for (int k = 0; k < 2; k++) snprintf(steps[k], sizeof steps[k], isfinite(v[k]) ? "%.0f" : "-", v[k]);
+    printf("%-20s %10g %4d %9.3f %9.3f %11.3g %13s %15s  %.200s\n", r->vary, r->value, r->jobs,
+           r->cpu_s, r->wall_s, r->estimate_s, steps[0], steps[1], r->status);
+  }
+}
+
 /* the peers on stdout */
 static void print_peers(const fb_peer_row *peers, int npeers) {
   if (npeers) {
@@ -368,9 +410,10 @@ static int write_files(const bench_result *br, json_t **j) {
   json_t *cheap = json_array(), *across = json_array();
   cheapest_json(br, cheap, across);
   json_t *pj = peers_json(br->peers, br->npeers);
-  *j = json_pack("{s:s,s:s,s:f,s:o,s:o,s:o,s:o}", "case", o->c->name, "grid", o->grid_name,
+  *j = json_pack("{s:s,s:s,s:f,s:o,s:o,s:o,s:o,s:o}", "case", o->c->name, "grid", o->grid_name,
                  "wall_s", br->wall, "rows", arr, "cheapest", cheap,
-                 "cheapest_across_engines", across, "peers", pj);
+                 "cheapest_across_engines", across, "peers", pj, "scaling",
+                 scaling_json(br->scaling, br->nscaling));
   /* a case of another mechanism than the four-bar: the engines left out */
   if (o->c->mechanism != FB_MECH_FOURBAR) {
     json_t *lo = json_array();
@@ -405,15 +448,22 @@ int fb_bench_study(const fb_bench_opts *o) {
   int n;
   const double t0 = fb_clock_s();
   bench_progress bp = {isatty(2) && !o->json, t0};
-  if (fb_bench_run(rows, &n, o->c, o->grids & ~FB_BENCH_PEERS, progress, &bp, &d) != FB_OK)
+  if (fb_bench_run(rows, &n, o->c, o->grids & ~(FB_BENCH_PEERS | FB_BENCH_SCALING), progress, &bp,
+                   &d) != FB_OK)
     return fb_study_fail("bench", 1, "%s", d.msg);
   /* the peers: each engine's bare program beside the harness (peers.h) */
   fb_peer_row peers[FB_PEERS_MAX];
   int npeers = 0;
   if ((o->grids & FB_BENCH_PEERS) && fb_peers_run(peers, &npeers, o->c, NULL, NULL, NULL, &d) != FB_OK)
     return fb_study_fail("bench", 1, "%s", d.msg);
+  /* how the cost grows (scaling.h) */
+  static fb_scaling_row scaling[FB_SCALING_MAX_ROWS];
+  int nscaling = 0;
+  if ((o->grids & FB_BENCH_SCALING) &&
+      fb_scaling_run(scaling, &nscaling, o->c, &fb_scaling_default, &d) != FB_OK)
+    return fb_study_fail("bench", 1, "%s", d.msg);
   bench_result br = {.o = o, .rows = rows, .n = n, .peers = peers, .npeers = npeers,
-                     .wall = fb_clock_s() - t0};
+                     .scaling = scaling, .nscaling = nscaling, .wall = fb_clock_s() - t0};
   for (int e = 0; e < FB_ENGINE_COUNT; e++)
     if (fb_engine_steps_world((fb_engine_id)e)) {
       if (!fb_bench_builds((fb_engine_id)e, o->c)) { /* its rows are left out */
@@ -441,6 +491,7 @@ int fb_bench_study(const fb_bench_opts *o) {
   print_rows(&br);
   print_colliders(rows, n);
   print_peers(peers, npeers);
+  print_scaling(scaling, nscaling);
   if (n == 0) {
     printf("\nwrote %s/bench.csv and bench.json\n", o->dir);
     return 0;

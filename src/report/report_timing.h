@@ -44,8 +44,12 @@ int fb_report_time_parts(fb_time_part *out, int max, const fb_run *r, const fb_w
 
 /* timing.json (new reference): {"case", "run_wall_s", "parts": {name: s,
  * ...} (fb_report_time_parts), "models": [{"name", "steps", "wall_s",
- * "setup_s", "time_per_step_us", "stepping_s"}], "ensemble": {...},
- * "series_write_s", "series_write_cpu_s", "series_bytes"}. */
+ * "setup_s", "time_per_step_us", "stepping_s", "samples", "cpu_s",
+ * "check_cpu_s"}], "ensemble": {...}, "estimate": {"wall_s",
+ * "models_wall_s", "models_cpu_s", "bytes", "max_rss_bytes"} (run.h
+ * fb_run_estimate against fb_run_estimated_work and the peak resident
+ * memory), "series_write_s", "series_write_cpu_s", "series_bytes"}
+ * (docs/outputs.md). */
 json_t *fb_report_timing_json(const fb_run *r, const fb_write_costs *w, double run_wall_s);
 
 /* The line fourbar run ends with: the run's wall time and its largest

@@ -7,10 +7,13 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "bench_study.h"
 #include "casefile.h"
 #include "fb_test.h"
 #include "figures.h"
 #include "peers.h"
+#include "scaling.h"
+#include "tolerance.h"
 
 /* a row's stepping and sampling come from the same round as its cost: they
  * sum to it, to rounding */
@@ -59,6 +62,35 @@ static void test_pareto_and_cheapest(void **state) {
   assert_int_equal(fb_bench_cheapest(rows, 7, &fb_models[1], 1e-2), -1);
 }
 
+/* draws rows (marks may be NULL) as bench.svg in a fresh folder, named
+ * name in its title; returns its manifest (bench.figure.json) and the
+ * drawing's text in svg (static, up to 1 MiB), the folder removed */
+static json_t *draw_bench(const char *name, fb_bench_row *rows, int n, const fb_bench_marks *marks,
+                          const char **svg_text) {
+  char dir[] = "/tmp/fb_bench_fig_XXXXXX";
+  assert_non_null(mkdtemp(dir));
+  char path[256], mpath[256], log[256];
+  snprintf(path, sizeof path, "%s/bench.svg", dir);
+  snprintf(mpath, sizeof mpath, "%s/bench.figure.json", dir);
+  snprintf(log, sizeof log, "%s/.gnuplot.log", dir);
+  fb_diag d;
+  if (fb_figures_bench(path, FB_FIGURE_SVG, name, rows, n, marks, &d) != FB_OK) fail_msg("%s", d.msg);
+  json_error_t je;
+  json_t *m = json_load_file(mpath, 0, &je);
+  assert_non_null(m);
+  FILE *f = fopen(path, "r");
+  assert_non_null(f);
+  static char svg[1 << 20];
+  svg[fread(svg, 1, sizeof svg - 1, f)] = '\0';
+  fclose(f);
+  *svg_text = svg;
+  unlink(path);
+  unlink(mpath);
+  unlink(log);
+  rmdir(dir);
+  return m;
+}
+
 /* bench.svg draws the measured rows only: no placeholder point, so the
  * plotted extremes lie within the data's (a stopped row, NaN error, and a
  * row with no cost per revolution are left out), one manifest curve per model */
@@ -71,16 +103,8 @@ static void test_bench_figure_extremes(void **state) {
       row("ode-clearance-impact", 1e-2, NAN), /* stopped within its first step: no cost */
   };
   fb_bench_mark_pareto(rows, 6);
-  char dir[] = "/tmp/fb_bench_fig_XXXXXX";
-  assert_non_null(mkdtemp(dir));
-  char path[256], mpath[256];
-  snprintf(path, sizeof path, "%s/bench.svg", dir);
-  snprintf(mpath, sizeof mpath, "%s/bench.figure.json", dir);
-  fb_diag d;
-  if (fb_figures_bench(path, FB_FIGURE_SVG, "synthetic", rows, 6, &d) != FB_OK) fail_msg("%s", d.msg);
-  json_error_t je;
-  json_t *m = json_load_file(mpath, 0, &je);
-  assert_non_null(m);
+  const char *svg;
+  json_t *m = draw_bench("synthetic", rows, 6, NULL, &svg);
   json_t *curves = json_object_get(json_array_get(json_object_get(m, "figures"), 0), "curves");
   assert_int_equal(json_array_size(curves), 2);
   /* data extremes per model, from the rows with a finite error and cost */
@@ -99,19 +123,50 @@ static void test_bench_figure_extremes(void **state) {
   assert_string_equal(json_string_value(json_object_get(json_array_get(curves, 1), "color")), "#2171b5");
   json_decref(m);
   /* no 1e9 anywhere in the drawing */
-  FILE *f = fopen(path, "r");
-  assert_non_null(f);
-  static char svg[1 << 20];
-  svg[fread(svg, 1, sizeof svg - 1, f)] = '\0';
-  fclose(f);
   assert_null(strstr(svg, "1e9"));
   assert_null(strstr(svg, "1e+09"));
-  unlink(path);
-  unlink(mpath);
-  char log[256];
-  snprintf(log, sizeof log, "%s/.gnuplot.log", dir);
-  unlink(log);
-  rmdir(dir);
+}
+
+/* bench.svg of a grid of five engines (ten models, more than the eight the
+ * chart once had room for: Siconos's rows went undrawn): every model drawn,
+ * the title naming every engine, each error target's cheapest row ringed
+ * (one ring per row, however many targets it meets) and the peers'
+ * ratios written (issue 54) */
+static void test_bench_figure_every_engine(void **state) {
+  (void)state;
+  static const char *names[10] = {
+      "ode-ideal-stackup",     "ode-clearance-impact",    "mujoco-ideal-stackup",
+      "mujoco-clearance-impact", "bullet-ideal-stackup",  "bullet-clearance-impact",
+      "simbody-ideal-stackup", "simbody-clearance-impact", "siconos-ideal-stackup",
+      "siconos-clearance-newton"};
+  fb_bench_row rows[10];
+  for (int i = 0; i < 10; i++) {
+    rows[i] = row(names[i], i % 2 ? 1e-2 * (1 + i) : 1e-6 * (1 + i), 0.01 * (1 + i));
+    snprintf(rows[i].engine, sizeof rows[i].engine, "%s", fb_engine_name(rows[i].row->engine));
+  }
+  fb_bench_mark_pareto(rows, 10);
+  fb_peer_row peers[2];
+  memset(peers, 0, sizeof peers);
+  snprintf(peers[0].engine, sizeof peers[0].engine, "ode");
+  peers[0].ran = 1;
+  peers[0].harness_over_bare = 1.05;
+  snprintf(peers[1].engine, sizeof peers[1].engine, "simbody");
+  fb_bench_marks marks = {.target = {1e-2, 1e-3, 1e-4}, .peers = peers, .npeers = 2};
+  /* the ideal rows meet every target at row 0; the clearance rows none but 1e-2 at row 1 */
+  for (int t = 0; t < FB_BENCH_TARGETS; t++) marks.cheapest[0][t] = 0, marks.cheapest[1][t] = -1;
+  marks.cheapest[1][0] = 1;
+  const char *svg;
+  json_t *m = draw_bench("five", rows, 10, &marks, &svg);
+  json_t *fig = json_array_get(json_object_get(m, "figures"), 0);
+  assert_int_equal(json_array_size(json_object_get(fig, "curves")), 10);
+  assert_string_equal(json_string_value(json_object_get(fig, "engines")),
+                      "ode, mujoco, bullet, simbody and siconos");
+  assert_int_equal(json_integer_value(json_object_get(fig, "cheapest_marked")), 2);
+  json_decref(m);
+  const char *want[] = {"5 engines", "siconos-clearance-newton", "ode 1.05", "simbody not run",
+                        "target 1e-3", "ideal &lt;= 1e-2, 1e-3, 1e-4", "clearance &lt;= 1e-2", NULL};
+  for (int k = 0; want[k]; k++)
+    if (!strstr(svg, want[k])) fail_msg("bench.svg lacks '%s'", want[k]);
 }
 
 /* the clearance error and its parts, by hand: peaks of a model and of its
@@ -260,12 +315,60 @@ static void test_peers_beside_harness(void **state) {
   }
 }
 
+/* --grid scaling on a small plan (scaling.h): a row per value, in the
+ * plan's order; the reference's steps per revolution, its own and its
+ * check's, the same at 2 and 4 revolutions (linear cost: issue 54's bound
+ * of 10 %; measured 1.8 % for both at h = 1e-5 s); the
+ * ensemble row without a reference has no steps; the Monte Carlo row
+ * carries stackup's estimate; a plan beyond FB_SCALING_MAX_ROWS is
+ * refused. Times are recorded, never asserted beyond being measured. */
+#define SCALING_STEPS_GROWTH_MAX 0.10
+
+static void test_scaling_plan(void **state) {
+  (void)state;
+  static fb_case c;
+  const char *sets[] = {"run.models=ode-clearance-impact", "solver.h_s=1e-5"};
+  fb_test_paper_case(&c, sets, 2);
+  const double revs[] = {2, 4}, samples[] = {1000};
+  const int members[] = {2}, jobs[] = {1};
+  const fb_scaling_plan plan = {.revolutions = revs, .nrevolutions = 2, .members = members,
+                                .jobs = jobs, .nensemble = 1, .samples = samples, .nsamples = 1};
+  static fb_scaling_row rows[FB_SCALING_MAX_ROWS];
+  int n = 0;
+  fb_diag d;
+  if (fb_scaling_run(rows, &n, &c, &plan, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(n, 4);
+  const char *vary[4] = {"revolutions", "revolutions", "ensemble", "montecarlo_samples"};
+  for (int i = 0; i < n; i++) {
+    if (!rows[i].ran) fail_msg("row %d: %s", i, rows[i].status);
+    assert_string_equal(rows[i].vary, vary[i]);
+    assert_true(rows[i].cpu_s > 0.0 && rows[i].wall_s > 0.0 && rows[i].estimate_s > 0.0);
+  }
+  for (int k = 0; k < 2; k++) {
+    const double a = k ? rows[0].check_steps_per_rev : rows[0].reference_steps_per_rev;
+    const double b = k ? rows[1].check_steps_per_rev : rows[1].reference_steps_per_rev;
+    report_residual(k ? "check steps per revolution, 4 against 2"
+                      : "reference steps per revolution, 4 against 2",
+                    fabs(b / a - 1.0), SCALING_STEPS_GROWTH_MAX);
+    assert_true(fabs(b / a - 1.0) <= SCALING_STEPS_GROWTH_MAX);
+  }
+  assert_true(isnan(rows[2].reference_steps_per_rev) && rows[2].jobs == 1);
+  double bytes, est;
+  fb_tol_estimate(c.mechanism, 1000, 1, &bytes, &est);
+  assert_true(rows[3].estimate_s == est);
+  fb_scaling_plan big = plan;
+  big.nsamples = FB_SCALING_MAX_ROWS;
+  assert_int_equal(fb_scaling_run(rows, &n, &c, &big, &d), FB_ERR_ARG);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_pareto_and_cheapest),
                                      cmocka_unit_test(test_bench_figure_extremes),
+                                     cmocka_unit_test(test_bench_figure_every_engine),
                                      cmocka_unit_test(test_clearance_error_by_hand),
                                      cmocka_unit_test(test_rounds_time_every_row),
                                      cmocka_unit_test(test_default_grid),
-                                     cmocka_unit_test(test_peers_beside_harness)};
+                                     cmocka_unit_test(test_peers_beside_harness),
+                                     cmocka_unit_test(test_scaling_plan)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

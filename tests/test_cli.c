@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "fb_config.h"
@@ -34,6 +35,81 @@ static int run(const char *args, char *out, size_t out_size, char *err, size_t e
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* timing.json's parts (issue 54) sum to its run_wall_s, which ends where
+ * timing.json is written: only the folder's swap into place, the printed
+ * table and the exit follow, so it holds all but a sliver of the process's
+ * wall time (measured on the paper case: 6.426 of 6.43 s, 9.826 of
+ * 9.85 s with an ensemble; the issue asks 5 %). The shell system() starts
+ * and a loaded machine's scheduling come on top of that sliver: 5 % plus
+ * TIMING_SLACK_S. */
+#define TIMING_SHARE_MIN 0.95
+#define TIMING_SLACK_S 0.25
+/* the parts are summed in double: equal to run_wall_s to rounding */
+#define TIMING_SUM_REL 1e-9
+
+/* the parts of DIR/timing.json against its run_wall_s and the process's
+ * wall time measured outside it (wall_s); every model of summary.json has
+ * its setup, stepping and check part; the printed last line (last_line, or
+ * NULL) names the run's time */
+static void check_timing(const char *dir, double wall_s, const char *last_line) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s/timing.json", tmpdir, dir);
+  json_error_t je;
+  json_t *t = json_load_file(path, 0, &je);
+  if (!t) fail_msg("%s: %s", path, je.text);
+  const double run_wall = json_real_value(json_object_get(t, "run_wall_s"));
+  json_t *parts = json_object_get(t, "parts");
+  assert_true(json_is_object(parts));
+  double sum = 0.0;
+  const char *name;
+  json_t *v;
+  json_object_foreach(parts, name, v) {
+    if (!json_is_number(v)) fail_msg("part %s is not a number", name);
+    /* a part measured twice would show as a negative remainder */
+    if (json_real_value(v) < -TIMING_SUM_REL * run_wall) fail_msg("part %s = %g s", name, json_real_value(v));
+    sum += json_real_value(v);
+  }
+  if (!(fabs(sum - run_wall) <= TIMING_SUM_REL * run_wall))
+    fail_msg("parts sum to %.9f s, run_wall_s %.9f s", sum, run_wall);
+  const char *named[] = {"start", "ensemble", "series", "figures", "report", "other", NULL};
+  for (int k = 0; named[k]; k++)
+    if (!json_is_number(json_object_get(parts, named[k]))) fail_msg("no part %s", named[k]);
+  size_t i;
+  json_t *m;
+  json_array_foreach(json_object_get(t, "models"), i, m) {
+    const char *suffix[3] = {"setup", "stepping", "check"};
+    for (int k = 0; k < 3; k++) {
+      char key[160];
+      snprintf(key, sizeof key, "%s.%s", json_string_value(json_object_get(m, "name")), suffix[k]);
+      if (!json_is_number(json_object_get(parts, key))) fail_msg("no part %s", key);
+    }
+  }
+  if (fb_test_verbose())
+    fprintf(stderr, "  %s: run_wall_s %.3f s of the process's %.3f s\n", dir, run_wall, wall_s);
+  if (!(run_wall <= wall_s + 0.02 && run_wall >= TIMING_SHARE_MIN * wall_s - TIMING_SLACK_S))
+    fail_msg("run_wall_s %.3f s against the process's %.3f s", run_wall, wall_s);
+  if (last_line) {
+    char want[64];
+    snprintf(want, sizeof want, "time %.2f s:", run_wall);
+    if (strncmp(last_line, want, strlen(want)) != 0) fail_msg("last line '%s', not '%s ...'", last_line, want);
+  }
+  json_decref(t);
+}
+
+/* the last line of text */
+static const char *last_line_of(char *text) {
+  size_t n = strlen(text);
+  while (n > 0 && text[n - 1] == '\n') text[--n] = '\0';
+  const char *nl = strrchr(text, '\n');
+  return nl ? nl + 1 : text;
+}
+
 static const char *write_file(const char *name, const char *text) {
   static char path[256];
   snprintf(path, sizeof path, "%s/%s", tmpdir, name);
@@ -58,8 +134,11 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   static char out[1 << 16], err[1 << 16];
   char args[512];
   snprintf(args, sizeof args, "run --out %s/paper", tmpdir);
+  const double t0 = now_s();
   assert_int_equal(run(args, out, sizeof out, err, sizeof err), 0);
+  const double wall = now_s() - t0;
   assert_non_null(strstr(out, "ode-ideal-nominal"));
+  check_timing("paper", wall, last_line_of(out));
   char path[256];
   /* gnuplot's log stays only when gnuplot said something: no empty hidden file */
   snprintf(path, sizeof path, "%s/paper/.gnuplot.log", tmpdir);
@@ -1073,6 +1152,29 @@ static void test_own_fourbar_derived_masses(void **state) {
  * printed once, the clearance effect not called an error; the terminal is
  * the oracle's width */
 #define TABLE_COLUMNS 120
+/* with an ensemble in worker processes, timing.json counts its members too */
+static void test_timing_counts_an_ensemble(void **state) {
+  (void)state;
+  static char out[1 << 16], err[1 << 14];
+  char args[512];
+  snprintf(args, sizeof args, "run --out %s/ens --set run.revolutions=2 --set run.ensemble=3 "
+           "--set run.models=ode-clearance-impact,reference --jobs 2 --no-figures --no-report "
+           "--series none", tmpdir);
+  const double t0 = now_s();
+  if (run(args, out, sizeof out, err, sizeof err) != 0) fail_msg("%s", err);
+  check_timing("ens", now_s() - t0, last_line_of(out));
+  char path[256];
+  snprintf(path, sizeof path, "%s/ens/timing.json", tmpdir);
+  json_t *t = json_load_file(path, 0, NULL);
+  assert_non_null(t);
+  json_t *parts = json_object_get(t, "parts");
+  /* the members ran, and the reference's check integration (not theirs) */
+  assert_true(json_real_value(json_object_get(parts, "ensemble")) > 0.0);
+  assert_true(json_real_value(json_object_get(parts, "reference.check")) > 0.0);
+  assert_true(json_real_value(json_object_get(parts, "ode-clearance-impact.check")) == 0.0);
+  json_decref(t);
+}
+
 static void test_run_table_fits_and_says_it_once(void **state) {
   (void)state;
   static char out[1 << 16], err[1 << 14];
@@ -1196,6 +1298,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(test_mapping_help_default_mass),
       cmocka_unit_test(test_own_fourbar_derived_masses),
       cmocka_unit_test(test_run_table_fits_and_says_it_once),
+      cmocka_unit_test(test_timing_counts_an_ensemble),
       cmocka_unit_test(test_unknown_option_is_one_line),
       cmocka_unit_test(test_stackup_prints_every_sensitivity),
       cmocka_unit_test(test_bench_peers_json),

@@ -15,7 +15,9 @@
 #include "engine.h"
 #include "fb_test.h"
 #include "outcome_text.h"
+#include "resolution.h"
 #include "run.h"
+#include "tolerance.h"
 
 /* both sides evaluate the same closed form at the same time value: equal to
  * the last bit, a bound of 1e-15 rad/s only allows for nothing */
@@ -180,6 +182,73 @@ static void test_wall_time_limit_holds(void **state) {
   assert_true(sq / s1 > 100.0);
 }
 
+/* The up-front estimate (fb_run_estimate) against what it stands for,
+ * measured: the models' CPU time, their check integrations and the case's
+ * ensemble members (timing.json estimate.models_cpu_s; a quiet moment of
+ * the shared 2-core machine, issue 54): the paper case 0.85 s,
+ * hard/slider_crank_rattling.ini (2 revolutions, an ensemble of 5) 0.42 s.
+ * The estimate is to be conservative but within 2x. The example of issue
+ * 54's brief: that slider-crank, estimated at 7.38 s before (fourbar run
+ * cases/hard/slider_crank_rattling.ini --set run.max_wall_s=2 on main), was
+ * refused at [run] max_wall_s = 2; it runs now. */
+#define PAPER_MODELS_CPU_S 0.85
+#define RATTLING_SC_MODELS_CPU_S 0.42
+#define ESTIMATE_OVER_MEASURED_MAX 2.0
+/* the same run measured here, in CPU time (never wall time: the machine is
+ * shared): the estimate within 2x either way (the issue's bound; the
+ * recorded figures above hold the conservative side) */
+#define ESTIMATE_OVER_CPU_MIN 0.5
+#define DEFAULT_MAX_WALL_S 86400.0 /* [run] max_wall_s's default (docs/keys.md) */
+
+static double resolved_estimate(const fb_case *c) {
+  static fb_case k;
+  k = *c;
+  fb_diag d;
+  if (fb_tol_resolve_worst(&k, &d) != FB_OK || fb_case_resolve_step(&k, &d) != FB_OK)
+    fail_msg("%s", d.msg);
+  double bytes, seconds;
+  fb_run_estimate(&k, &bytes, &seconds);
+  return seconds;
+}
+
+static void test_estimate_within_twice_measured(void **state) {
+  (void)state;
+  static fb_case c;
+  fb_diag d;
+  const char *cases[2] = {"paper_crank_rocker.ini", "hard/slider_crank_rattling.ini"};
+  const double measured[2] = {PAPER_MODELS_CPU_S, RATTLING_SC_MODELS_CPU_S};
+  for (int i = 0; i < 2; i++) {
+    const char *sets[] = {"run.max_wall_s=2"};
+    if (fb_test_shipped_case(&c, cases[i], sets, 1, &d) != FB_OK) fail_msg("%s", d.msg);
+    const double est = resolved_estimate(&c);
+    if (fb_test_verbose())
+      fprintf(stderr, "  %s: estimated %.3f s, measured %.3f s\n", cases[i], est, measured[i]);
+    if (!(est >= measured[i] && est <= ESTIMATE_OVER_MEASURED_MAX * measured[i]))
+      fail_msg("%s: estimated %.3g s against %.3g s measured", cases[i], est, measured[i]);
+    int over_cost = 0;
+    if (fb_run_preflight(&c, &over_cost, &d) != FB_OK)
+      fail_msg("%s refused at max_wall_s = 2: %s", cases[i], d.msg);
+    /* run to the end: under a loaded machine's wall time the limit of 2 s
+     * would stop the models (status wall-time) and the CPU time measured
+     * would be a part of the run's */
+    c.max_wall_s = DEFAULT_MAX_WALL_S;
+    static fb_run r;
+    if (fb_run_case(&r, &c, NULL, NULL, &d) != FB_OK) fail_msg("%s: %s", cases[i], d.msg);
+    for (int q = 0; q < r.n; q++)
+      if (r.model[q].run.stop.kind != FB_STOP_NONE)
+        fail_msg("%s: %s stopped early", cases[i], r.model[q].run.name);
+    double wall, cpu;
+    fb_run_estimated_work(&r, &wall, &cpu);
+    if (fb_test_verbose())
+      fprintf(stderr, "  %s run here: estimated %.3f s, %.3f s of CPU (%.3f s wall)\n", cases[i],
+              r.estimate_s, cpu, wall);
+    if (!(r.estimate_s >= ESTIMATE_OVER_CPU_MIN * cpu &&
+          r.estimate_s <= ESTIMATE_OVER_MEASURED_MAX * cpu))
+      fail_msg("%s: estimated %.3g s against %.3g s of CPU measured", cases[i], r.estimate_s, cpu);
+    fb_run_free(&r);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_table_is_consistent),
@@ -188,6 +257,7 @@ int main(void) {
       cmocka_unit_test(test_scene_check_names_the_field),
       cmocka_unit_test(test_stop_texts),
       cmocka_unit_test(test_wall_time_limit_holds),
+      cmocka_unit_test(test_estimate_within_twice_measured),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -45,12 +45,20 @@
  * against the KKT form's 7 x 7 Cholesky solve with its 1e-15 regularisation
  * (test_effective_mass.c measured 2e-12 on the four-bar) */
 #define TENSOR_REL_TOL 1e-9
-/* the reference and this test integrate the same right-hand side with the
- * same rk8pd driver settings, tolerance and output grid from the same state:
- * equal but for the order of a few floating-point operations; 1e-9 of the
- * quantity's scale leaves room for the growth of a difference of a few ulp
- * through the impacts of two revolutions */
-#define SAME_DYNAMICS_REL_TOL 1e-9
+/* the reference (positions as deviations from the ideal motion, the crank
+ * on a clock restarted each sample: fb_sc_dyn_eval_dev) and this test (the
+ * absolute form, fb_sc_dyn_rhs) integrate two forms of the same equations
+ * with the same rk8pd driver settings, tolerance (1e-12) and output grid
+ * from the same state: they differ by the two integrations' own errors,
+ * measured with the impact law over two revolutions at 1.7e-10 of the
+ * states' scales, 1.4e-9 of the clearance on the eccentricity and 1.2e-9
+ * of the largest force on a force sample (issue 54); 1e-8 leaves 6x */
+#define SAME_DYNAMICS_REL_TOL 1e-8
+/* The restitution law's damper jumps at contact onset (c delta'), which no
+ * tolerance resolves to round-off; each onset multiplies a difference about
+ * tenfold (measured: 4e-13 after 2 impacts, 4e-11 after 5, 2e-7 after 12,
+ * 3.5e-2 by the end). Its forms are compared over its first impacts alone. */
+#define RESTITUTION_IMPACTS_COMPARED 5
 
 /* ---- fixtures ------------------------------------------------------------- */
 
@@ -346,17 +354,19 @@ static void test_reference_is_the_slider_crank_dynamics(void **state) {
     size_t impacts = 0;
     for (size_t k = 0; k < ref.n; k++) fbig = fmax(fbig, own[k].force);
     for (size_t k = 0; k < ref.n; k++) {
+      impacts += ref.contact[FB_JOINT_C][FB_C_STATE][k] == FB_STATE_IMPACT &&
+                 (k == 0 || ref.contact[FB_JOINT_C][FB_C_STATE][k - 1] == FB_STATE_FREE);
+      if (law == 1 && impacts > RESTITUTION_IMPACTS_COMPARED) break;
       const double d[4] = {(ref.body[0][FB_Q_POS][k] - own[k].coupler_angle) / M_PI,
                            (ref.body[1][FB_Q_POS][k] - own[k].slider_x) / lk.length[FB_COUPLER],
                            (ref.body[0][FB_Q_VEL][k] - own[k].coupler_omega) / fabs(dm.omega2),
                            (ref.body[1][FB_Q_VEL][k] - own[k].slider_v) /
                                (fabs(dm.omega2) * lk.length[FB_CRANK])};
       for (int q = 0; q < 4; q++) worst = fmax(worst, fabs(d[q]));
-      assert_near(ref.contact[FB_JOINT_C][FB_C_EX][k], own[k].ecc[0], SAME_DYNAMICS_REL_TOL * 1e-4);
+      assert_near(ref.contact[FB_JOINT_C][FB_C_EX][k], own[k].ecc[0],
+                  SAME_DYNAMICS_REL_TOL * c.radial_clearance);
       /* refinement moves a spike's sample to its extreme: only up */
       assert_true(ref.contact[FB_JOINT_C][FB_C_FORCE][k] >= own[k].force - SAME_DYNAMICS_REL_TOL * fbig);
-      impacts += ref.contact[FB_JOINT_C][FB_C_STATE][k] == FB_STATE_IMPACT &&
-                 (k == 0 || ref.contact[FB_JOINT_C][FB_C_STATE][k - 1] == FB_STATE_FREE);
     }
     report_residual(law ? "reference vs sc dynamics (restitution)" : "reference vs sc dynamics (impact)",
                     worst, SAME_DYNAMICS_REL_TOL);

@@ -360,10 +360,35 @@ static void test_slider_crank_corners(void **state) {
   }
 }
 
+/* The Monte Carlo's up-front estimate against a measurement (issue 54:
+ * `fourbar stackup --samples 1e6` on the paper case took 11.4 s and 141 MiB
+ * at its peak, and was estimated at 30 s and 0.112 GB; measured again with
+ * `/usr/bin/time fourbar stackup --method montecarlo --samples 1000000`:
+ * 11.8 s of CPU time, 143,880 kB peak resident): conservative, and within
+ * 2x of both. The time is CPU time: the wall time of a machine others
+ * load is no measure. */
+#define MC_1E6_MEASURED_S 11.8
+#define MC_1E6_MEASURED_BYTES (143880.0 * 1024.0)
+#define MC_ESTIMATE_OVER_MEASURED_MAX 2.0
+
+static void test_monte_carlo_estimate_within_twice_measured(void **state) {
+  (void)state;
+  double bytes, seconds;
+  fb_tol_estimate(FB_MECH_FOURBAR, 1000000, 1, &bytes, &seconds);
+  if (fb_test_verbose())
+    fprintf(stderr, "  estimated %.3g s, %.3g MiB; measured %.3g s, %.3g MiB\n", seconds,
+            bytes / 1048576.0, MC_1E6_MEASURED_S, MC_1E6_MEASURED_BYTES / 1048576.0);
+  assert_true(seconds >= MC_1E6_MEASURED_S &&
+              seconds <= MC_ESTIMATE_OVER_MEASURED_MAX * MC_1E6_MEASURED_S);
+  assert_true(bytes >= MC_1E6_MEASURED_BYTES &&
+              bytes <= MC_ESTIMATE_OVER_MEASURED_MAX * MC_1E6_MEASURED_BYTES);
+}
+
 int main(void) {
   fb_test_paper_case(&paper, NULL, 0);
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_sensitivities_vs_finite_differences),
+      cmocka_unit_test(test_monte_carlo_estimate_within_twice_measured),
       cmocka_unit_test(test_rss_inside_corners_and_mc_converges),
       cmocka_unit_test(test_same_seed_same_numbers),
       cmocka_unit_test(test_quantiles_equal_recorded),

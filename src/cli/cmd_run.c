@@ -8,6 +8,7 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "clock.h"
 #include "textsafe.h"
 #include "figures.h"
 #include "fileio.h"
@@ -23,8 +24,9 @@ static const char run_help[] =
     "                   [--series csv|hdf5|none] [--jobs J] [--no-report]\n"
     "\n"
     "Runs the models a case file asks for ([run] models), measures each against the\n"
-    "exact analytic solution and writes DIR/summary.json, DIR/timing.json (wall\n"
-    "times), DIR/<model>.csv, figures (gnuplot), DIR/report.md and DIR/report.html\n"
+    "exact analytic solution and writes DIR/summary.json, DIR/timing.json (where\n"
+    "the wall time went, by part; the last line printed names the largest),\n"
+    "DIR/<model>.csv, figures (gnuplot), DIR/report.md and DIR/report.html\n"
     "(interactive, opens with no server: docs/report.md). The set is\n"
     "written beside DIR and swapped in whole at the end; a second writer to DIR\n"
     "fails at once. Each CSV holds the kinematics, the contact columns of the\n"
@@ -108,23 +110,28 @@ typedef struct {
   int figures, html;     /* --no-figures, --no-report */
   fb_figure_format fmt;
   int nfig, charts;      /* figures drawn; 1 when report.html has its charts */
+  fb_write_costs costs;  /* what writing the set cost (timing.json) */
+  double run_wall_s;     /* the run's wall time when timing.json was written [s] */
 } run_set;
 
-/* The result set into the staging folder (fb_run_set_writer): summary.json,
- * timing.json and the series, then figures, report.html and report.md,
- * which belong to the set: a set with a figure or the report missing or
- * damaged (a full disk) is not committed, and the folder keeps the set it
- * had. Returns the exit status. */
+/* The result set into the staging folder (fb_run_set_writer): summary.json
+ * and the series, then figures, report.html and report.md, which belong to
+ * the set: a set with a figure or the report missing or damaged (a full
+ * disk) is not committed, and the folder keeps the set it had; timing.json
+ * last, counting the others. Returns the exit status. */
 static int write_set(const char *stage, const fb_run *r, void *user) {
   run_set *w = user;
   fb_diag diag;
-  if (fb_report_write_run(stage, r, w->case_path, &diag) != FB_OK)
+  if (fb_report_write_run(stage, r, w->case_path, &w->costs, &diag) != FB_OK)
     return fb_cli_fail("run", 1, "%s", diag.msg);
   char names[64][128];
   char note[1200] = "Figures were not requested (--no-figures).";
+  const double tf = fb_clock_s();
   if (w->figures && fb_figures_run(r, stage, w->fmt, names, 64, &w->nfig, &diag) != FB_OK)
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        w->dir);
+  const double tr = fb_clock_s();
+  w->costs.figures_s = tr - tf;
   /* report.html belongs to the set too (report_html.h) */
   if (w->html) {
     json_t *sj = fb_report_summary_json(r, w->case_path);
@@ -137,14 +144,19 @@ static int write_set(const char *stage, const fb_run *r, void *user) {
   if (fb_report_write_markdown(stage, r, w->case_path, w->command, names, w->nfig, note, &diag) != FB_OK)
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        w->dir);
+  w->costs.report_s = fb_clock_s() - tr;
+  if (fb_report_write_timing(stage, r, &w->costs, &w->run_wall_s, &diag) != FB_OK)
+    return fb_cli_fail("run", 1, "%s", diag.msg);
   return 0;
 }
 
 /* what the run wrote, on stdout: summary.json (with each model's wall time
- * from timing.json) with --json, else the table and the files */
+ * from timing.json) with --json, else the table, the files and, last, where
+ * the time went (timing.json's largest parts) */
 static void print_run(const fb_run *r, const run_set *w, int json) {
   if (json) {
-    json_t *j = fb_report_summary_json(r, w->case_path), *t = fb_report_timing_json(r);
+    json_t *j = fb_report_summary_json(r, w->case_path);
+    json_t *t = fb_report_timing_json(r, &w->costs, w->run_wall_s);
     for (int i = 0; i < r->n; i++) {
       json_t *m = json_array_get(json_object_get(j, "models"), (size_t)i);
       json_t *tm = json_array_get(json_object_get(t, "models"), (size_t)i);
@@ -163,6 +175,9 @@ static void print_run(const fb_run *r, const run_set *w, int json) {
     else snprintf(series, sizeof series, "no time series");
     printf("wrote %s/summary.json, timing.json, %s, %d figures, report.md%s\n", w->dir, series,
            w->nfig, w->html ? " and report.html" : "");
+    char line[1024];
+    fb_report_timing_line(line, sizeof line, r, &w->costs, w->run_wall_s);
+    printf("%s\n", line);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "casefile.h"
+#include "clock.h"
 #include "cli.h"
 #include "suggest.h"
 #include "tables_models.h"
@@ -102,6 +103,7 @@ static int stdout_written(const char *cmd, int rc) {
 }
 
 int main(int argc, char **argv) {
+  fb_clock_process_start_s(); /* the run's clock starts with the process (timing.json) */
   /* no control character of data (a case file's text, a flag, a path) reaches
    * the terminal raw: stdout and stderr escape them (textsafe.h); with both on
    * one file or pipe (2>&1) stdout goes out a line at a time, so a message on

@@ -10,6 +10,7 @@
 #include "clock.h"
 #include "contact_mass.h"
 #include "linkage.h"
+#include "planar_turn.h"
 #include "slider_crank_dynamics.h"
 #include "stop_text.h"
 #include "start.h"
@@ -21,19 +22,121 @@ typedef struct {
   double a, b, cf, g;         /* crank, coupler, follower, ground lengths [m] */
   double m3, m4, i3, i4, f3, f4;
   double theta0, omega2, grav, clear;
+  double open;                /* the assembly branch: +1 open, -1 crossed */
+  double bb_cc, inv_2b, inv_cf; /* b^2 - c^2 [m^2], 1 / (2 b), 1 / c [1/m]: fourbar_origin_at */
   double v0;                  /* hysteresis laws' impact velocity (unused by the models) */
   int sc;                     /* 1: the slider-crank (slider_crank_dynamics.h), q = (theta3, x) */
   fb_sc_dyn_model scm;        /* its model */
   int cj;                     /* the clearance joint (the description's reference_joint) */
+  /* the crank's clock: the right-hand side's time is local, counted from
+   * t_base (a sample's time), where the crank's direction is (c_base, s_base) */
+  double t_base, c_base, s_base;
   /* last evaluation, for sampling */
   double force, pen, ex, ey, acc[2];
 } ref_ctx;
 
-/* the slider-crank's equations of motion (fb_sc_dyn_eval_at), with the
- * contact of the evaluation kept for sampling */
-static int eom_sc(double t, const double y[], double dydt[], ref_ctx *r) {
+/* Starts the local clock at the absolute time t [s]. The crank's angle
+ * theta0 + omega2 t is formed once here; inside a sample interval the
+ * right-hand side turns the crank from there by omega2 tl, tl <= a few
+ * output steps, so its direction carries the rounding of a small angle
+ * rather than of omega2 t (which grows with the run: 1.4e-14 rad at 16
+ * revolutions of the paper's case, enough for the stiff contact law to
+ * drive the step controller down as t grows). */
+static void clock_start(ref_ctx *r, double t) {
+  const double th2 = r->theta0 + r->omega2 * t;
+  r->t_base = t;
+  r->c_base = cos(th2);
+  r->s_base = sin(th2);
+}
+
+/* the crank's direction (cos theta2, sin theta2) at the local time tl [s] */
+static void crank_dir(const ref_ctx *r, double tl, double *c2, double *s2) {
+  const double d = r->omega2 * tl, cd = cos(d), sd = sin(d);
+  *c2 = r->c_base * cd - r->s_base * sd;
+  *s2 = r->s_base * cd + r->c_base * sd;
+}
+
+/* The ideal four-bar (no clearance) at the crank direction (c2, s2): the
+ * coupler's and follower's directions and angular velocities, the origin of
+ * the deviation state. fb_linkage_solve's position and velocity
+ * (linkage.h), formed from directions: C on circle(B, b) and circle(D, c),
+ * theta3 = angle(B->D) +- phi (open: +), cos phi = (b^2 + f^2 - c^2) /
+ * (2 b f), f = |BD|. */
+typedef struct {
+  double u3[2], u4[2]; /* (cos, sin) of theta3, theta4 [-] */
+  double w3, w4;       /* [rad/s] */
+} fourbar_origin;
+
+static void fourbar_origin_at(fourbar_origin *o, const ref_ctx *r, double c2, double s2) {
+  const double b = r->b, cl = r->cf;
+  const double bx = r->a * c2, by = r->a * s2;
+  const double dx = r->g - bx, dy = -by; /* B->D */
+  const double f2 = dx * dx + dy * dy, inv_f = 1.0 / sqrt(f2);
+  const double cphi = (r->bb_cc + f2) * inv_f * r->inv_2b;
+  const double sphi = r->open * sqrt(fmax(0.0, (1.0 - cphi) * (1.0 + cphi)));
+  const double ux = dx * inv_f, uy = dy * inv_f;
+  o->u3[0] = ux * cphi - uy * sphi;
+  o->u3[1] = ux * sphi + uy * cphi;
+  o->u4[0] = (bx + b * o->u3[0] - r->g) * r->inv_cf;
+  o->u4[1] = (by + b * o->u3[1]) * r->inv_cf;
+  /* -b s3 w3 + c s4 w4 = a s2 w2,  b c3 w3 - c c4 w4 = -a c2 w2 */
+  const double c3 = o->u3[0], s3 = o->u3[1], c4 = o->u4[0], s4 = o->u4[1];
+  const double inv_det = 1.0 / (b * cl * (s3 * c4 - c3 * s4));
+  const double r1 = r->a * s2 * r->omega2, r2 = -r->a * c2 * r->omega2;
+  o->w3 = (r1 * (-cl * c4) - cl * s4 * r2) * inv_det;
+  o->w4 = ((-b * s3) * r2 - b * c3 * r1) * inv_det;
+}
+
+/* the ideal motion's positions at the local time tl: both angles (four-bar),
+ * the rod's angle and the slider's x (slider-crank) */
+static void origin_positions(const ref_ctx *r, double tl, double q[2]) {
+  double c2, s2;
+  crank_dir(r, tl, &c2, &s2);
+  if (r->sc) {
+    fb_sc_dyn_origin o;
+    fb_sc_dyn_origin_at(&o, &r->scm, c2, s2);
+    q[0] = atan2(o.u3[1], o.u3[0]);
+    q[1] = o.x;
+    return;
+  }
+  fourbar_origin o;
+  fourbar_origin_at(&o, r, c2, s2);
+  q[0] = atan2(o.u3[1], o.u3[0]);
+  q[1] = atan2(o.u4[1], o.u4[0]);
+}
+
+/* Absolute positions to deviations (y[0..1] in place) at the local time tl,
+ * angles reduced to (-pi, pi]; the ideal reference (ideal = 1) integrates
+ * absolute positions. */
+static void to_deviation(const ref_ctx *r, double tl, double y[4]) {
+  if (r->ideal) return;
+  double q[2];
+  origin_positions(r, tl, q);
+  y[0] = remainder(y[0] - q[0], 2.0 * M_PI);
+  y[1] = r->sc ? y[1] - q[1] : remainder(y[1] - q[1], 2.0 * M_PI);
+}
+
+/* Deviations back to absolute positions at the local time tl; an angle is
+ * continued from the previous sample's (prev, same units) so that it does not
+ * jump by 2 pi where the ideal angle wraps. */
+static void to_absolute(const ref_ctx *r, double tl, const double y[4], const double prev[2],
+                        double q[2]) {
+  if (r->ideal) {
+    q[0] = y[0], q[1] = y[1];
+    return;
+  }
+  origin_positions(r, tl, q);
+  q[0] = prev[0] + remainder(q[0] + y[0] - prev[0], 2.0 * M_PI);
+  q[1] = r->sc ? q[1] + y[1] : prev[1] + remainder(q[1] + y[1] - prev[1], 2.0 * M_PI);
+}
+
+/* the slider-crank's equations of motion in deviation form
+ * (fb_sc_dyn_eval_dev), with the contact of the evaluation kept for sampling */
+static int eom_sc(double tl, const double y[], double dydt[], ref_ctx *r) {
+  double c2, s2;
+  crank_dir(r, tl, &c2, &s2);
   fb_sc_dyn_eval ev;
-  fb_sc_dyn_eval_at(&ev, &r->scm, t, y);
+  fb_sc_dyn_eval_dev(&ev, &r->scm, c2, s2, y);
   for (int i = 0; i < FB_SC_DYN_DIM; i++) dydt[i] = ev.dydt[i];
   r->force = ev.force;
   r->pen = ev.penetration;
@@ -44,39 +147,53 @@ static int eom_sc(double t, const double y[], double dydt[], ref_ctx *r) {
   return GSL_SUCCESS;
 }
 
-/* contact geometry and generalised forces at (t, q, q'); fills acc[].
- * The state is q = (output body 0's, output body 1's position) and q' (the
- * four-bar's theta3, theta4; the slider-crank's theta3, x) */
-static int eom(double t, const double y[], double dydt[], void *p) {
+/* the ideal limit (ideal = 1): the closed loop's velocity constraint on the
+ * absolute angles (fb_linkage_solve's 2x2 system):
+ *  -b s3 w3 + c s4 w4 = a s2 w2,  b c3 w3 - c c4 w4 = -a c2 w2 */
+static int eom_ideal(double tl, const double y[], double dydt[], const ref_ctx *r) {
+  double c2, s2;
+  crank_dir(r, tl, &c2, &s2);
+  const double s3 = sin(y[0]), c3 = cos(y[0]), s4 = sin(y[1]), c4 = cos(y[1]);
+  const double det = r->b * r->cf * sin(y[0] - y[1]);
+  const double r1 = r->a * s2 * r->omega2, r2 = -r->a * c2 * r->omega2;
+  dydt[0] = (r1 * (-r->cf * c4) - r->cf * s4 * r2) / det;
+  dydt[1] = ((-r->b * s3) * r2 - r->b * c3 * r1) / det;
+  dydt[2] = dydt[3] = 0.0;
+  return GSL_SUCCESS;
+}
+
+/* The four-bar's equations of motion at the local time tl (contact geometry
+ * and generalised forces; fills acc[]). The state is y = (theta3 - theta3i,
+ * theta4 - theta4i, theta3', theta4'): the angles as deviations from the
+ * ideal four-bar's (fourbar_origin_at), so that the eccentricity
+ *   e = B_pin - B_hole = b (u(theta3) - u(theta3i)) - c (u(theta4) - u(theta4i))
+ * (the ideal loop closes: B_pin = D + c u(theta4i) - b u(theta3i)) is formed
+ * from small terms (planar_turn.h) and carries no rounding of the links'
+ * lengths. The slider-crank's likewise (eom_sc). */
+static int eom(double tl, const double y[], double dydt[], void *p) {
   ref_ctx *r = p;
-  if (r->sc) return eom_sc(t, y, dydt, r);
-  const double th2 = r->theta0 + r->omega2 * t;
-  const double th3 = y[0], th4 = y[1], w3 = y[2], w4 = y[3];
-  const double s2 = sin(th2), c2 = cos(th2), s3 = sin(th3), c3 = cos(th3);
-  const double s4 = sin(th4), c4 = cos(th4);
-  if (r->ideal) {
-    /* velocity constraint of the closed loop (fb_linkage_solve's 2x2 system):
-     *  -b s3 w3 + c s4 w4 = a s2 w2,  b c3 w3 - c c4 w4 = -a c2 w2 */
-    const double det = r->b * r->cf * sin(th3 - th4);
-    const double r1 = r->a * s2 * r->omega2, r2 = -r->a * c2 * r->omega2;
-    dydt[0] = (r1 * (-r->cf * c4) - r->cf * s4 * r2) / det;
-    dydt[1] = ((-r->b * s3) * r2 - r->b * c3 * r1) / det;
-    dydt[2] = dydt[3] = 0.0;
-    return GSL_SUCCESS;
-  }
+  if (r->sc) return eom_sc(tl, y, dydt, r);
+  if (r->ideal) return eom_ideal(tl, y, dydt, r);
+  double c2, s2;
+  crank_dir(r, tl, &c2, &s2);
+  fourbar_origin o;
+  fourbar_origin_at(&o, r, c2, s2);
+  double t3[2], t4[2];
+  fb_turn_change(t3, o.u3, y[0]);
+  fb_turn_change(t4, o.u4, y[1]);
+  const double w3 = y[2], w4 = y[3];
+  const double c3 = o.u3[0] + t3[0], s3 = o.u3[1] + t3[1];
+  const double c4 = o.u4[0] + t4[0], s4 = o.u4[1] + t4[1];
   const double b = r->b, cl = r->cf, f3 = r->f3, f4 = r->f4;
   /* e3p = d e3 / d theta3 = (-s3, c3), likewise e4p */
   const double e3[2] = {c3, s3}, e3p[2] = {-s3, c3}, e4[2] = {c4, s4}, e4p[2] = {-s4, c4};
-  const double C[2] = {r->g + cl * c4, cl * s4};
-  const double Bh[2] = {C[0] - b * c3, C[1] - b * s3};
-  const double Bp[2] = {r->a * c2, r->a * s2};
   /* Jacobian columns (theta3, theta4) of the coupler COM G3, follower COM G4, hole B */
   const double JG3[2][2] = {{-(1 - f3) * b * e3p[0], cl * e4p[0]}, {-(1 - f3) * b * e3p[1], cl * e4p[1]}};
   const double JG4_4[2] = {f4 * cl * e4p[0], f4 * cl * e4p[1]};
   const double JB[2][2] = {{-b * e3p[0], cl * e4p[0]}, {-b * e3p[1], cl * e4p[1]}};
-  /* mass matrix */
+  /* mass matrix; cos(theta4 - theta3) = c4 c3 + s4 s3 */
   const double M11 = r->m3 * (1 - f3) * (1 - f3) * b * b + r->i3;
-  const double M12 = -r->m3 * cl * (1 - f3) * b * cos(th4 - th3);
+  const double M12 = -r->m3 * cl * (1 - f3) * b * (c4 * c3 + s4 * s3);
   const double M22 = r->m3 * cl * cl + r->m4 * f4 * f4 * cl * cl + r->i4;
   /* quadratic velocity terms of G3: -c w4^2 e4 + (1 - f3) b w3^2 e3 */
   const double gam[2] = {-cl * w4 * w4 * e4[0] + (1 - f3) * b * w3 * w3 * e3[0],
@@ -87,8 +204,8 @@ static int eom(double t, const double y[], double dydt[], void *p) {
            + r->m3 * (-r->grav) * JG3[1][k];                     /* gravity on the coupler */
   Q[1] += r->m4 * (-r->grav) * JG4_4[1];
   /* contact */
-  const double e[2] = {Bp[0] - Bh[0], Bp[1] - Bh[1]};
-  const double ecc = hypot(e[0], e[1]);
+  const double e[2] = {b * t3[0] - cl * t4[0], b * t3[1] - cl * t4[1]};
+  const double ecc = sqrt(e[0] * e[0] + e[1] * e[1]); /* |e| ~ the clearance: no overflow */
   const double delta = ecc - r->clear;
   double fn = 0.0;
   if (delta > 0.0 && ecc > 0.0) {
@@ -112,8 +229,8 @@ static int eom(double t, const double y[], double dydt[], void *p) {
   const double det = M11 * M22 - M12 * M12;
   const double a3 = (Q[0] * M22 - M12 * Q[1]) / det;
   const double a4 = (M11 * Q[1] - M12 * Q[0]) / det;
-  dydt[0] = w3;
-  dydt[1] = w4;
+  dydt[0] = w3 - o.w3; /* the deviations' rates */
+  dydt[1] = w4 - o.w4;
   dydt[2] = a3;
   dydt[3] = a4;
   r->force = fn;
@@ -132,34 +249,89 @@ typedef struct {
   double force, pen, a3max, a3min, a4max, a4min;
 } extremes;
 
+/* the six quantities refine_interval ranks, each as a maximum: force,
+ * penetration, theta'' max and -min of both output bodies */
+#define REFINE_QUANTITIES 6
+
+/* evaluates the state y at the local time tl: the six quantities into q */
+static void refine_eval(double q[REFINE_QUANTITIES], ref_ctx *r, double tl, const double y[4],
+                        double dy[4]) {
+  eom(tl, y, dy, r);
+  const double v[REFINE_QUANTITIES] = {r->force, r->pen, dy[2], -dy[2], dy[3], -dy[3]};
+  memcpy(q, v, sizeof v);
+}
+
+/* Every FB_REFERENCE_REFINE_STRIDE-th evaluation point is a stop of the
+ * integration and exact; the points between are ranked on the cubic Hermite
+ * interpolant of the stops' states and rates, and each quantity's best of
+ * them, where it beats the stops, is then integrated to and evaluated
+ * exactly: the extremes are those of the exact evaluation at every point
+ * (the points' spacing, not the interpolant, bounds their error), for
+ * 2 n / stride + 6 integrator stops instead of 2 n. */
 static int refine_interval(extremes *x, ref_ctx *r, const fb_series *s, size_t k, double h,
                            double tol) {
+  enum { N = 2 * FB_REFERENCE_REFINE, STRIDE = FB_REFERENCE_REFINE_STRIDE, STOPS = N / STRIDE };
   double y[4] = {s->body[0][FB_Q_POS][k - 1], s->body[1][FB_Q_POS][k - 1],
                  s->body[0][FB_Q_VEL][k - 1], s->body[1][FB_Q_VEL][k - 1]};
-  double t = s->t[k - 1];
+  clock_start(r, s->t[k - 1]); /* local time 0 at sample k - 1 */
+  to_deviation(r, 0.0, y);
+  double t = 0.0;
   gsl_odeiv2_system sys = {eom, NULL, 4, r};
   gsl_odeiv2_driver *drv =
       gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, h * 1e-3, tol, tol);
   if (!drv) return 0;
   gsl_odeiv2_driver_set_nmax(drv, 0);
-  x->force = x->pen = 0.0;
-  x->a3max = x->a4max = -INFINITY;
-  x->a3min = x->a4min = INFINITY;
-  const int n = 2 * FB_REFERENCE_REFINE;
+  double stop_y[STOPS + 1][4], stop_f[STOPS + 1][4], q[REFINE_QUANTITIES];
+  double at_stops[REFINE_QUANTITIES], between[REFINE_QUANTITIES];
+  int best_at[REFINE_QUANTITIES];
+  for (int m = 0; m < REFINE_QUANTITIES; m++) at_stops[m] = between[m] = -INFINITY, best_at[m] = -1;
+  memcpy(stop_y[0], y, sizeof y);
+  eom(0.0, y, stop_f[0], r);
   int ok = 1;
-  for (int i = 1; i <= n && ok; i++) {
-    const double ti = s->t[k - 1] + 2.0 * h * i / n;
-    ok = gsl_odeiv2_driver_apply(drv, &t, ti, y) == GSL_SUCCESS;
+  for (int j = 1; j <= STOPS && ok; j++) {
+    const double ta = t, tb = 2.0 * h * (j * STRIDE) / N, hh = tb - ta;
+    ok = gsl_odeiv2_driver_apply(drv, &t, tb, y) == GSL_SUCCESS;
+    memcpy(stop_y[j], y, sizeof y);
+    refine_eval(q, r, tb, y, stop_f[j]);
+    for (int m = 0; m < REFINE_QUANTITIES; m++) at_stops[m] = fmax(at_stops[m], q[m]);
+    for (int i = 1; i < STRIDE; i++) {
+      const double u = (double)i / STRIDE;
+      const double h00 = (1 + 2 * u) * (1 - u) * (1 - u), h10 = u * (1 - u) * (1 - u);
+      const double h01 = u * u * (3 - 2 * u), h11 = u * u * (u - 1);
+      double yi[4], di[4];
+      for (int c = 0; c < 4; c++)
+        yi[c] = h00 * stop_y[j - 1][c] + h10 * hh * stop_f[j - 1][c] + h01 * y[c] +
+                h11 * hh * stop_f[j][c];
+      refine_eval(q, r, ta + u * hh, yi, di);
+      for (int m = 0; m < REFINE_QUANTITIES; m++)
+        if (q[m] > between[m]) between[m] = q[m], best_at[m] = (j - 1) * STRIDE + i;
+    }
+  }
+  /* each quantity's best point between the stops, exactly */
+  double best[REFINE_QUANTITIES];
+  memcpy(best, at_stops, sizeof best);
+  for (int m = 0; m < REFINE_QUANTITIES && ok; m++) {
+    if (!(between[m] > at_stops[m])) continue;
+    const int i = best_at[m], j = i / STRIDE;
+    memcpy(y, stop_y[j], sizeof y);
+    t = 2.0 * h * (j * STRIDE) / N;
+    gsl_odeiv2_driver_reset(drv);
     double dy[4];
-    eom(ti, y, dy, r);
-    x->force = fmax(x->force, r->force);
-    x->pen = fmax(x->pen, r->pen);
-    x->a3max = fmax(x->a3max, dy[2]);
-    x->a3min = fmin(x->a3min, dy[2]);
-    x->a4max = fmax(x->a4max, dy[3]);
-    x->a4min = fmin(x->a4min, dy[3]);
+    ok = gsl_odeiv2_driver_apply(drv, &t, 2.0 * h * i / N, y) == GSL_SUCCESS;
+    refine_eval(q, r, t, y, dy);
+    for (int p = m; p < REFINE_QUANTITIES; p++) /* the others found here too, once */
+      if (best_at[p] == i && between[p] > at_stops[p]) {
+        best[p] = fmax(best[p], q[p]);
+        between[p] = -INFINITY;
+      }
   }
   gsl_odeiv2_driver_free(drv);
+  x->force = fmax(0.0, best[0]);
+  x->pen = fmax(0.0, best[1]);
+  x->a3max = best[2];
+  x->a3min = -best[3];
+  x->a4max = best[4];
+  x->a4min = -best[5];
   return ok;
 }
 
@@ -271,6 +443,11 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   r.clear = c->radial_clearance;
   r.v0 = 1e-3;
   r.cj = cj;
+  r.open = c->branch == FB_BRANCH_CROSSED ? -1.0 : 1.0;
+  r.bb_cc = r.b * r.b - r.cf * r.cf;
+  r.inv_2b = 0.5 / r.b;
+  r.inv_cf = 1.0 / r.cf;
+  clock_start(&r, 0.0);
   if (c->mechanism == FB_MECH_SLIDER_CRANK) {
     r.sc = 1;
     r.scm.geometry = fb_slider_crank_of(&lk);
@@ -286,6 +463,8 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   }
   double y[4] = {st.body[0][FB_Q_POS], st.body[1][FB_Q_POS], st.body[0][FB_Q_VEL],
                  st.body[1][FB_Q_VEL]};
+  double q[2] = {y[0], y[1]}; /* the absolute positions at the last sample */
+  to_deviation(&r, 0.0, y);
   gsl_odeiv2_system sys = {eom, NULL, 4, &r};
   gsl_error_handler_t *old = gsl_set_error_handler_off();
   gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, c->solver.h * 1e-3,
@@ -303,7 +482,7 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
     gsl_set_error_handler(old);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n + 1);
   }
-  double t = 0.0;
+  double t = 0.0; /* local time since the clock's start, the previous sample (clock_start) */
   size_t taken = 0;
   const size_t budget = (n + 1) * FB_REFERENCE_STEPS_PER_SAMPLE;
   int prev_state = FB_STATE_FREE;
@@ -313,18 +492,20 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
     /* the run's wall-time deadline ([run] max_wall_s, case.h) holds here too */
     if (k > 0 && c->wall_deadline > 0.0 && k % 16 == 0 && fb_clock_s() > c->wall_deadline) {
       stop->kind = FB_STOP_WALL_TIME;
-      stop->t = t;
+      stop->t = r.t_base + t;
       stop->limit = c->max_wall_s;
       stop->t_end = fb_case_duration(c);
       break;
     }
     if (k > 0) {
       gsl_odeiv2_driver_set_nmax(drv, budget - taken); /* the rest of the budget */
-      int g = gsl_odeiv2_driver_apply(drv, &t, tk, y);
+      clock_start(&r, (double)(k - 1) * c->solver.h);
+      t = 0.0;
+      int g = gsl_odeiv2_driver_apply(drv, &t, c->solver.h, y);
       taken += (size_t)drv->n; /* the driver counts per call */
       if (g == GSL_EMAXITER || (g == GSL_SUCCESS && taken >= budget && k < n)) {
         stop->kind = FB_STOP_STEP_BUDGET;
-        stop->t = t;
+        stop->t = r.t_base + t;
         stop->value = (double)budget;
         stop->limit = FB_REFERENCE_STEPS_PER_SAMPLE;
         stop->t_end = fb_case_duration(c);
@@ -332,19 +513,21 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
       }
       if (g != GSL_SUCCESS) {
         stop->kind = FB_STOP_SOLVER;
-        stop->t = t;
+        stop->t = r.t_base + t;
         snprintf(stop->detail, sizeof stop->detail, "%s", gsl_strerror(g));
         break;
       }
     }
     double dy[4];
-    eom(tk, y, dy, &r); /* accelerations and contact at the sample */
+    eom(t, y, dy, &r); /* accelerations and contact at the sample */
+    to_absolute(&r, t, y, q, q);
     double a3 = dy[2], a4 = dy[3];
     if (ideal) {
       /* accelerations: the second time derivative of the loop constraint along
        * the integrated state (the same 2x2 matrix with the state's angles) */
-      const double th2 = r.theta0 + omega2 * tk;
-      const double s2_ = sin(th2), c2_ = cos(th2), s3 = sin(y[0]), c3 = cos(y[0]);
+      double c2_, s2_;
+      crank_dir(&r, t, &c2_, &s2_);
+      const double s3 = sin(y[0]), c3 = cos(y[0]);
       const double s4 = sin(y[1]), c4 = cos(y[1]);
       const double w3 = dy[0], w4 = dy[1];
       const double q1 = r.a * c2_ * omega2 * omega2 + r.b * c3 * w3 * w3 - r.cf * c4 * w4 * w4;
@@ -357,8 +540,8 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
     memset(&x, 0, sizeof x);
     x.t = tk;
     x.crank_angle = r.theta0 + omega2 * tk;
-    x.body[0][FB_Q_POS] = y[0];
-    x.body[1][FB_Q_POS] = y[1];
+    x.body[0][FB_Q_POS] = q[0];
+    x.body[1][FB_Q_POS] = q[1];
     x.body[0][FB_Q_VEL] = ideal ? dy[0] : y[2];
     x.body[1][FB_Q_VEL] = ideal ? dy[1] : y[3];
     x.body[0][FB_Q_ACC] = a3;
@@ -386,7 +569,7 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
       x.contact[cj][FB_C_EY] = r.ey;
       x.contact[cj][FB_C_STATE] = state;
     }
-    if (!(isfinite(y[0]) && isfinite(y[1]) && isfinite(x.body[0][FB_Q_VEL]) && isfinite(a3))) {
+    if (!(isfinite(q[0]) && isfinite(q[1]) && isfinite(x.body[0][FB_Q_VEL]) && isfinite(a3))) {
       stop->kind = FB_STOP_NONFINITE;
       stop->t = tk;
       break;

@@ -14,6 +14,21 @@
  * with f the centre-of-mass fractions. Integrated with GSL's rk8pd, relative
  * and absolute tolerances FB_REFERENCE_TOL, sampled on the case's time grid;
  * accelerations come from the equations of motion, not from differences.
+ *
+ * Kept at full precision over long runs (issue 54). The integrated state
+ * holds the angles as deviations from the ideal four-bar's at the same
+ * crank angle (theta3 - theta3i(t), theta4 - theta4i(t); the velocities
+ * absolute), and the eccentricity is formed from those small deviations
+ * (planar_turn.h) rather than as the difference of two coordinates of the
+ * mechanism's size; the crank turns on a clock restarted at each sample,
+ * so that its angle carries the rounding of one sample interval's turn,
+ * not of omega2 t. In the absolute form the ~1e-17 m rounding of e and the
+ * growing rounding of omega2 t, through the contact's stiffness, reached
+ * the tolerance: the step controller shrank the step on noise, the more
+ * the longer the run (paper case, steps per revolution 22.7k at 1
+ * revolution, 47.9k at 16; the check integration's 101k and 372k). Now:
+ * 18.2k to 18.5k for both, at 1 to 16 revolutions (docs/performance.md).
+ * The slider-crank's state likewise (fb_sc_dyn_eval_dev).
  * Contact onset is not located as an event: the impact law's force is
  * continuous in the penetration and the adaptive step shrinks to resolve the
  * restitution law's jump of c delta' at contact onset (error control, not
@@ -39,27 +54,33 @@
 /* rk8pd error control, relative and absolute. 1e-12 is where revolution 2
  * of the paper's restitution case converges: its impact count (run.revolutions
  * = 2, models reference-restitution, output step 1e-5, 5e-6, 2e-6, 1e-6 s)
- * is 15, 12, 14, 14 at 1e-10; 12, 14, 13, 14 at 1e-11; 14 at every step at
+ * is 16, 13, 13, 14 at 1e-10; 12, 14, 14, 14 at 1e-11; 14 at every step at
  * 1e-12 and 1e-13 (FOURBAR_REFERENCE_TOL=T fourbar run --set solver.h_s=H
- * --set run.revolutions=2 --set run.models=reference-restitution). Cost on
- * the paper case at the automatic step (3 revolutions): accepted steps
- * 54596 -> 74950 (impact law), 55793 -> 93961 (restitution) against 1e-10.
- * Revolution 3 converges at no tolerance (near-grazing separations grow a
- * difference 300-fold per rattling phase): its impact counts are noise, as
- * summary.json's error_estimate shows. */
+ * --set run.revolutions=2 --set run.models=reference-restitution; before
+ * issue 54's full-precision state: 15, 12, 14, 14 and 12, 14, 13, 14).
+ * Cost of that run at h = 1e-5 s: accepted steps 13428 (1e-10), 18154
+ * (1e-12), 24021 (1e-13); at the paper case's automatic step (3.3e-6 s)
+ * nearly one step per output sample at any of them. Revolution 3 converges
+ * at no tolerance (near-grazing separations grow a difference 300-fold per
+ * rattling phase): its impact counts are noise, as summary.json's
+ * error_estimate shows. */
 #define FB_REFERENCE_TOL 1e-12
 
 /* FOURBAR_REFERENCE_TOL (convergence studies) may move the tolerance within
- * [MIN, MAX]: below 1e-13 rk8pd's error estimate is lost in round-off and the
- * step shrinks without end; above 1e-3 the reference is no yardstick */
+ * [MIN, MAX]: above 1e-3 the reference is no yardstick. MIN is where the
+ * absolute form's error estimate was lost in round-off (the step shrank
+ * without end below it); the full-precision state moved that floor to
+ * about 1e-15 (paper case, 2 revolutions: 18.5k steps per revolution at
+ * 1e-13 and 1e-14, 19.4k at 1e-15, 35.8k at 1e-16), which a lower MIN
+ * could use (the check integration would then run at tol / 100) */
 #define FB_REFERENCE_TOL_MIN 1e-13
 #define FB_REFERENCE_TOL_MAX 1e-3
 
 /* Step budget: at most this many accepted steps per output sample, on
- * average over the run. The paper's case needed 1.07 per sample at 1e-10
- * and 17 at 1e-13; a run that needs more has lost the
- * solution (a step collapsing at a singular position) and stops with the
- * named reason "step budget" instead of running on without end. */
+ * average over the run. The paper's case needs 1.01 per sample at 1e-12
+ * and 1e-13 (17 at 1e-13 in the absolute form); a run that needs more has
+ * lost the solution (a step collapsing at a singular position) and stops
+ * with the named reason "step budget" instead of running on without end. */
 #define FB_REFERENCE_STEPS_PER_SAMPLE 200
 
 /* Peak refinement. Sampled at t = k h, a spike lasting a few samples is
@@ -77,6 +98,17 @@
  * truth: 3e-5 for the shortest contacts (T ~ 5 h) at N = 64. */
 #define FB_REFERENCE_REFINE 64
 #define FB_REFERENCE_REFINE_FRACTION 0.2
+/* Of those evaluation points, every FB_REFERENCE_REFINE_STRIDE-th is a stop
+ * of the integration; the others are ranked on an interpolant and the best
+ * of them evaluated exactly (reference.c, refine_interval): the same
+ * extremes as a stop at every point (paper case: identical summary.json;
+ * rattling_pin, slider_crank_flores, speed_3000rpm, restitution_0_3,
+ * engines_restitution: within 3e-10, the integrator's own spread between
+ * two step sequences), for 2 x 64 / 8 + at most 6 stops instead of 128.
+ * Refinement was 65 % of a reference run's time on the paper case; the
+ * reference with its check now runs in half the time (8 revolutions:
+ * 0.79 s CPU against 1.55 s). */
+#define FB_REFERENCE_REFINE_STRIDE 8
 
 /* Integrates the case's stack-up linkage with law at the crank-coupler joint
  * (or ideal) and samples it at t = k h over the case's duration into *out
@@ -109,7 +141,9 @@ fb_status fb_reference_tolerance(double *tol, fb_diag *diag);
  * tol / FB_REFERENCE_CHECK_FACTOR (at most down to FB_REFERENCE_TOL_MIN)
  * compared with the first like a model with its reference
  * (fb_metrics_vs_reference): summary.json's error_estimate. At the
- * default 1e-12 the check runs at 1e-13 (the floor), a tenth. */
+ * default 1e-12 the check runs at 1e-13 (the floor), a tenth, and costs
+ * what the reference does (paper case: 18.3k against 18.2k steps per
+ * revolution; docs/performance.md has the accuracy argument). */
 #define FB_REFERENCE_CHECK_FACTOR 100.0
 
 #endif

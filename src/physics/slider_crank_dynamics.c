@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "contact_mass.h"
+#include "planar_turn.h"
 
 /* tolerance bounds: the four-bar reference's (reference.h), for the same
  * reasons (rk8pd's error estimate is lost in round-off below 1e-13) */
@@ -49,20 +50,19 @@ static double elastic_exponent(const fb_contact_law *l) {
   return (l->kind == FB_LAW_LINEAR || l->kind == FB_LAW_RESTITUTION) ? 1.0 : l->exponent;
 }
 
-void fb_sc_dyn_eval_at(fb_sc_dyn_eval *out, const fb_sc_dyn_model *m, double t, const double y[]) {
-  const double a = m->geometry.crank, b = m->geometry.coupler, off = m->geometry.offset;
-  const double w2 = m->omega2, th2 = m->theta0 + w2 * t;
+/* the equations of motion from the crank's direction (c2, s2), the rod's
+ * (c3, s3), the eccentricity e = P - H and the speeds w3 = theta3', v = x' */
+static void eval_core(fb_sc_dyn_eval *out, const fb_sc_dyn_model *m, double c2, double s2,
+                      double c3, double s3, const double e[2], double w3, double v) {
+  const double a = m->geometry.crank, b = m->geometry.coupler;
+  const double w2 = m->omega2;
   const double m3 = m->mass.coupler_mass, m4 = m->mass.slider_mass, g = m->gravity;
   const double f3 = m->mass.coupler_com_fraction;
-  const double th3 = y[0], x = y[1], w3 = y[2], v = y[3];
-  const double c2 = cos(th2), s2 = sin(th2), c3 = cos(th3), s3 = sin(th3);
   /* the crank pin B and its motion (prescribed) */
   const double B[2] = {a * c2, a * s2};
   const double dB[2] = {-a * w2 * s2, a * w2 * c2};
   const double ddB[2] = {-w2 * w2 * B[0], -w2 * w2 * B[1]};
   const double up[2] = {-s3, c3}; /* d u / d theta3 */
-  /* eccentricity: rod pin P minus slider hole H */
-  const double e[2] = {B[0] + b * c3 - x, B[1] + b * s3 - off};
   const double de[2] = {dB[0] + b * w3 * up[0] - v, dB[1] + b * w3 * up[1]};
   const double ecc = hypot(e[0], e[1]);
   const double M11 = m3 * f3 * b * f3 * b + m->mass.coupler_inertia, M22 = m4;
@@ -111,6 +111,42 @@ void fb_sc_dyn_eval_at(fb_sc_dyn_eval *out, const fb_sc_dyn_model *m, double t, 
                       m->mass.crank_mass * g * m->mass.crank_com_fraction * B[0];
   out->power_in = FB[0] * dB[0] + FB[1] * dB[1];
   out->power_damping = (F - Fel) * rate;
+}
+
+void fb_sc_dyn_eval_at(fb_sc_dyn_eval *out, const fb_sc_dyn_model *m, double t, const double y[]) {
+  const double a = m->geometry.crank, b = m->geometry.coupler, off = m->geometry.offset;
+  const double th2 = m->theta0 + m->omega2 * t;
+  const double c2 = cos(th2), s2 = sin(th2), c3 = cos(y[0]), s3 = sin(y[0]);
+  /* eccentricity: rod pin P minus slider hole H */
+  const double e[2] = {a * c2 + b * c3 - y[1], a * s2 + b * s3 - off};
+  eval_core(out, m, c2, s2, c3, s3, e, y[2], y[3]);
+}
+
+void fb_sc_dyn_origin_at(fb_sc_dyn_origin *o, const fb_sc_dyn_model *m, double c2, double s2) {
+  const double a = m->geometry.crank, b = m->geometry.coupler, w2 = m->omega2;
+  /* fb_slider_crank_solve's position and velocity (slider_crank.h), from
+   * the crank's direction: u = b sin theta3, w = b cos theta3 > 0 */
+  const double u = m->geometry.offset - a * s2, w = sqrt((b - u) * (b + u));
+  o->u3[0] = w / b;
+  o->u3[1] = u / b;
+  o->x = a * c2 + w;
+  o->w3 = -a * c2 * w2 / w;
+  o->v = -a * s2 * w2 - u * o->w3;
+}
+
+void fb_sc_dyn_eval_dev(fb_sc_dyn_eval *out, const fb_sc_dyn_model *m, double c2, double s2,
+                        const double yd[]) {
+  fb_sc_dyn_origin o;
+  fb_sc_dyn_origin_at(&o, m, c2, s2);
+  const double b = m->geometry.coupler;
+  /* P - H = b (u(theta3) - u(theta3 ideal)) - (x - x ideal, 0): the ideal
+   * loop closes, B + b u(theta3 ideal) = H ideal, so only small terms remain */
+  double turn[2];
+  fb_turn_change(turn, o.u3, yd[0]);
+  const double e[2] = {b * turn[0] - yd[1], b * turn[1]};
+  eval_core(out, m, c2, s2, o.u3[0] + turn[0], o.u3[1] + turn[1], e, yd[2], yd[3]);
+  out->dydt[0] = yd[2] - o.w3;
+  out->dydt[1] = yd[3] - o.v;
 }
 
 int fb_sc_dyn_rhs(double t, const double y[], double dydt[], void *params) {

@@ -99,6 +99,33 @@ typedef struct {
  * so that the restitution law's damping ratio is not solved at every call. */
 void fb_sc_dyn_eval_at(fb_sc_dyn_eval *out, const fb_sc_dyn_model *m, double t, const double y[]);
 
+/* The ideal slider-crank (no clearance) at the crank direction
+ * (cos theta2, sin theta2): the origin of the deviation state below. */
+typedef struct {
+  double u3[2]; /* the rod's direction (cos theta3, sin theta3) [-] (2) */
+  double x;     /* the slider's position [m] */
+  double w3;    /* the rod's angular velocity [rad/s] */
+  double v;     /* the slider's velocity [m/s] */
+} fb_sc_dyn_origin;
+
+/* fb_slider_crank_solve's position and velocity (slider_crank.h) from the
+ * crank's direction instead of its angle; m must have passed fb_sc_dyn_check. */
+void fb_sc_dyn_origin_at(fb_sc_dyn_origin *o, const fb_sc_dyn_model *m, double c2, double s2);
+
+/* fb_sc_dyn_eval_at in deviation form, for long integrations at tolerances
+ * near round-off (reference.c): the crank given by its direction (c2, s2)
+ * = (cos theta2, sin theta2) and the state yd = (theta3 - theta3i, x - xi,
+ * theta3', x'), the positions as deviations from the ideal motion's
+ * (fb_sc_dyn_origin_at) and the speeds absolute. The eccentricity is then
+ * b (u(theta3) - u(theta3i)) - (x - xi, 0) (planar_turn.h), free of the
+ * cancellation of P - H between coordinates of the mechanism's size, which
+ * in the absolute form leaves ~1e-17 m of rounding noise that the contact's
+ * stiffness turns into noise in the accelerations. out->dydt[0..1] are the
+ * deviations' rates (theta3' - theta3i', x' - xi'); the rest as
+ * fb_sc_dyn_eval_at's at the same instant. */
+void fb_sc_dyn_eval_dev(fb_sc_dyn_eval *out, const fb_sc_dyn_model *m, double c2, double s2,
+                        const double yd[]);
+
 /* The right-hand side in the form of GSL's gsl_odeiv2_system function
  * (params: a const fb_sc_dyn_model *); returns 0 (GSL_SUCCESS). */
 int fb_sc_dyn_rhs(double t, const double y[], double dydt[], void *params);

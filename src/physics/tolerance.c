@@ -481,7 +481,8 @@ fb_status fb_tol_resolve_worst(fb_case *c, fb_diag *diag) {
 void fb_tol_estimate(fb_mech_type t, size_t samples, int jobs, double *bytes, double *seconds) {
   const double per = t == FB_MECH_SLIDER_CRANK ? FB_TOL_S_PER_SAMPLE_SLIDER_CRANK
                                                : FB_TOL_S_PER_SAMPLE;
-  *bytes = (double)samples * (double)(FB_TOL_NOUT + FB_LINK_COUNT) * (double)sizeof(double);
+  *bytes = FB_TOL_PROGRAM_BYTES +
+           (double)samples * (double)(FB_TOL_NOUT + FB_LINK_COUNT) * (double)sizeof(double);
   *seconds = (double)samples * per / (double)(jobs > 0 ? jobs : 1);
 }
 

@@ -148,22 +148,27 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
  * threads (1 .. FB_TOL_MAX_JOBS): the same numbers for every jobs. progress
  * is called from the calling thread. Errors: those of fb_tol_analyse (the
  * lowest failing sample is the one named); FB_ERR_ARG for jobs out of range. */
-/* Monte Carlo cost per sample and job [s], for the up-front estimate: 26 us
- * measured (fourbar stackup --method montecarlo --samples 200000, paper
- * case, 1 job, 2-core machine under load), rounded up. */
-#define FB_TOL_S_PER_SAMPLE 30e-6
-/* The slider-crank's: 526 us measured (fourbar stackup --method montecarlo
- * --samples 10000, cases/slider_crank_flores.ini with offset 5 mm and
- * tolerances, 1 job, 2-core machine under load; 240 us of it CPU): its
- * peaks are a grid of FB_ANALYTIC_PEAK_SAMPLES crank angles and Brent
- * (mech_kinematics.h), rounded up. */
-#define FB_TOL_S_PER_SAMPLE_SLIDER_CRANK 600e-6
+/* Monte Carlo cost per sample and job [s], for the up-front estimate: 11.8
+ * us of CPU time measured (fourbar stackup --method montecarlo --samples
+ * 200000, paper case, 1 job: 2.37 s; issue 54 found 30 us estimated against
+ * 11.4 us measured at 1e6 samples), rounded up. */
+#define FB_TOL_S_PER_SAMPLE 15e-6
+/* The slider-crank's: 280 us of CPU time measured (fourbar stackup
+ * --method montecarlo --samples 2000, cases/slider_crank_flores.ini with
+ * offset 5 mm, 1 job: 0.58 s): its peaks are a grid of
+ * FB_ANALYTIC_PEAK_SAMPLES crank angles and Brent (mech_kinematics.h),
+ * rounded up. */
+#define FB_TOL_S_PER_SAMPLE_SLIDER_CRANK 350e-6
+/* The program's own resident memory before any sample: measured 29.2 MB
+ * (fourbar stackup --method montecarlo --samples 100), and 6 MB beyond the
+ * samples' own at 1e6 (147.3 MB peak: 29.2 + 112 + 6); rounded up. */
+#define FB_TOL_PROGRAM_BYTES 40e6
 /* Share of the machine's memory a Monte Carlo run may reserve. */
 #define FB_TOL_MEMORY_FRACTION 0.5
 
 /* Estimated memory [bytes] and wall time [s] of a Monte Carlo analysis of
  * samples samples of mechanism t on jobs threads (the samples and their
- * outputs are kept for the quantiles). */
+ * outputs are kept for the quantiles, over the program's own memory). */
 void fb_tol_estimate(fb_mech_type t, size_t samples, int jobs, double *bytes, double *seconds);
 
 /* Refuses, before anything is reserved, a Monte Carlo analysis whose memory

@@ -1,6 +1,6 @@
 /* A run's output folder (report.h): the series in the case's format
- * (series_write.h, CSV or HDF5), summary.json and timing.json
- * (report_summary.h), each written atomically. */
+ * (series_write.h, CSV or HDF5), summary.json (report_summary.h) and
+ * timing.json (report_timing.h), each written atomically. */
 #include "report.h"
 
 #include <jansson.h>
@@ -69,22 +69,27 @@ static fb_status write_series(const char *dir, const fb_run *r, const char *case
 }
 
 fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
-                              fb_diag *diag) {
+                              fb_write_costs *w, fb_diag *diag) {
   char path[4096];
-  double write_s, write_cpu_s, bytes;
-  fb_status st = write_series(dir, r, case_path, &write_s, &write_cpu_s, &bytes, diag);
+  fb_status st = write_series(dir, r, case_path, &w->series_s, &w->series_cpu_s,
+                              &w->series_bytes, diag);
   if (st != FB_OK) return st;
+  const double t0 = fb_clock_s();
   snprintf(path, sizeof path, "%s/summary.json", dir);
   json_t *j = fb_report_summary_json(r, case_path);
   st = fb_report_write_json(path, j, diag);
   json_decref(j);
-  if (st != FB_OK) return st;
+  w->summary_s = fb_clock_s() - t0;
+  return st;
+}
+
+fb_status fb_report_write_timing(const char *dir, const fb_run *r, const fb_write_costs *w,
+                                 double *run_wall_s, fb_diag *diag) {
+  char path[4096];
   snprintf(path, sizeof path, "%s/timing.json", dir);
-  j = fb_report_timing_json(r);
-  json_object_set_new(j, "series_write_s", json_real(write_s));
-  json_object_set_new(j, "series_write_cpu_s", json_real(write_cpu_s));
-  json_object_set_new(j, "series_bytes", json_integer((json_int_t)bytes));
-  st = fb_report_write_json(path, j, diag);
+  *run_wall_s = fb_clock_s() - fb_clock_process_start_s();
+  json_t *j = fb_report_timing_json(r, w, *run_wall_s);
+  fb_status st = fb_report_write_json(path, j, diag);
   json_decref(j);
   return st;
 }

@@ -11,12 +11,20 @@
 #include "report_markdown.h"
 #include "report_summary.h"
 #include "report_table.h"
+#include "report_timing.h"
 #include "run.h"
 
 /* Writes DIR/<model>.csv for every model (or DIR/series.h5, or no series,
- * as the case's [run] series says), DIR/summary.json and DIR/timing.json,
- * each atomically. Errors: FB_ERR_IO naming the file. */
+ * as the case's [run] series says) and DIR/summary.json, each atomically,
+ * and what they cost into w's series and summary fields.
+ * Errors: FB_ERR_IO naming the file. */
 fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
-                              fb_diag *diag);
+                              fb_write_costs *w, fb_diag *diag);
+
+/* Writes DIR/timing.json (report_timing.h) with the run's wall time up to
+ * now, which *run_wall_s receives [s]: the last file of a set, so that it
+ * counts the others (w: what writing them cost). Errors: FB_ERR_IO. */
+fb_status fb_report_write_timing(const char *dir, const fb_run *r, const fb_write_costs *w,
+                                 double *run_wall_s, fb_diag *diag);
 
 #endif

@@ -607,27 +607,6 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   return o;
 }
 
-json_t *fb_report_timing_json(const fb_run *r) {
-  json_t *models = json_array();
-  for (int i = 0; i < r->n; i++) {
-    const fb_model_run *run = &r->model[i].run;
-    json_array_append_new(models, json_pack("{s:s,s:I,s:o,s:o,s:o,s:o}", "name", run->name, "steps",
-                                            (json_int_t)run->steps, "wall_s", num(run->wall_s),
-                                            "setup_s", num(run->setup_s), "time_per_step_us",
-                                            run->steps ? num(1e6 * run->wall_s / (double)run->steps)
-                                                       : json_null(),
-                                            "stepping_s", num(run->stepping_s)));
-  }
-  /* the ensemble's members beyond the first (docs/chaos.md): its cost */
-  json_t *ens = json_pack("{s:i,s:s,s:o,s:o,s:o}", "members", r->c.ensemble > 1 ? r->c.ensemble : 1,
-                          "source", r->ensemble_auto > 1 ? "run" : r->c.ensemble > 1 ? "case" : "none",
-                          "wall_s", num(r->ensemble_wall_s), "models_wall_s", num(r->models_wall_s),
-                          "estimate_s", r->ensemble_auto > 1 || r->ensemble_auto_skipped
-                                            ? num(r->ensemble_estimate_s)
-                                            : json_null());
-  return json_pack("{s:s,s:o,s:o}", "case", r->c.name, "models", models, "ensemble", ens);
-}
-
 json_t *fb_report_contact_law_json(const char *joint, const fb_contact_law *law,
                                    fb_mapping mapping) {
   json_t *o = json_object();

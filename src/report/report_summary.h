@@ -1,5 +1,5 @@
-/* summary.json and timing.json: a run's every number, and its wall times,
- * as JSON (jansson). Keys carry their SI unit; NaN and infinity are never
+/* summary.json: a run's every number as JSON (jansson; its wall times:
+ * report_timing.h). Keys carry their SI unit; NaN and infinity are never
  * written (JSON null stands for "not measured"). docs/outputs.md gives the
  * keys. */
 #ifndef FB_REPORT_SUMMARY_H
@@ -14,10 +14,6 @@
  *  "coupler", "follower", "error_vs_analytic", ...}], ...}. It holds no
  * wall time, so two runs of the same case give byte-identical summaries. */
 json_t *fb_report_summary_json(const fb_run *r, const char *case_path);
-
-/* The wall times of a run (new reference): {"case", "models": [{"name",
- * "steps", "wall_s", "time_per_step_us"}]}, in the order of the summary. */
-json_t *fb_report_timing_json(const fb_run *r);
 
 /* The law-and-mapping part of one clearance joint's `contact` object (the
  * keys fourbar run's summary.json and fourbar penalty --json share):

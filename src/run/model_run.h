@@ -30,8 +30,12 @@ typedef struct {
   size_t steps;            /* steps taken (ode), samples computed (analytic), accepted
                               integrator steps (reference) */
   double wall_s;           /* wall-clock time of the run [s] */
+  double cpu_s;            /* its CPU time (fb_clock_cpu_s) [s] */
   double setup_s;          /* of which set-up [s]: the engine's create (MuJoCo: the MJCF
-                              compile) and mapping the series' storage (fb_series_touch) */
+                              compile) and mapping the series' storage (fb_series_touch);
+                              an engine that computes its series in create
+                              (computes_in_create: analytic, reference) books create as
+                              stepping_s instead */
   double stepping_s;       /* of which the engine's stepping [s]: its step() calls (or the
                               share of them its stepping_s op names); the rest of wall_s -
                               setup_s is the harness's sampling (sample, reactions, checks,

@@ -188,6 +188,22 @@ static double model_cost(const fb_model *m, const fb_case *c) {
   return e && e->cost_per_sample ? e->cost_per_sample(m, c) : FB_COST_DEFAULT_S;
 }
 
+/* the bytes one sample of model m keeps in its series (series.h): time,
+ * crank angle and 3 per output body, FB_CONTACT_COLS per clearance joint,
+ * the load columns (drive torque, x and y per joint) where its engine
+ * reports reactions */
+static double sample_bytes(const fb_model *m, const fb_case *c) {
+  const fb_mech_desc *mech = fb_case_mech(c);
+  int outputs = 0, joints = 0;
+  for (int b = 0; b < mech->nbodies; b++) outputs += mech->body[b].output;
+  for (int j = 0; j < mech->njoints; j++) joints += (c->clearance.mask >> j) & 1;
+  const fb_engine *e = fb_engine_get(m->engine, NULL);
+  double cols = 2.0 + 3.0 * outputs;
+  if (m->joints == FB_JOINTS_CLEARANCE) cols += (double)(FB_CONTACT_COLS * joints);
+  if (e && e->reactions) cols += 1.0 + 2.0 * mech->njoints;
+  return cols * (double)sizeof(double);
+}
+
 void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {
   const double steps = fb_case_duration(c) / c->solver.h + 1.0;
   /* an ensemble's members (ensemble.h) run its clearance models and
@@ -195,24 +211,45 @@ void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {
   const int n = c->member ? 1 : c->ensemble > 1 ? c->ensemble : 1;
   const int jobs = c->jobs > 1 ? (c->jobs < n - 1 ? c->jobs : n - 1) : 1;
   const double rounds = n > 1 ? ceil((double)(n - 1) / (double)jobs) : 0.0;
-  *bytes = 0.0;
+  /* an ensemble the run may add by itself (ensemble_auto, run_case.c):
+   * not in the time, which it estimates and weighs when it needs one, but
+   * in the memory, its members' series beside the run's */
+  const int n_auto = !c->member && n <= 1 && c->ensemble_auto > 1 ? c->ensemble_auto : n;
+  const int jobs_mem = c->jobs > 1 ? (c->jobs < n_auto - 1 ? c->jobs : n_auto - 1) : 1;
+  *bytes = FB_COST_PROGRAM_BYTES;
   *seconds = 0.0;
+  /* a member costs what the model costs in a member (a reference: no check
+   * integration, reference.h) */
+  fb_case *as_member = rounds > 0.0 ? malloc(sizeof *as_member) : NULL;
+  if (as_member) {
+    *as_member = *c;
+    as_member->member = 1;
+  }
   for (int i = 0; i < c->model_count; i++) {
     const fb_model *m = fb_model_find(c->models[i]);
     if (!m) continue;
     const int member = m->joints == FB_JOINTS_CLEARANCE || m->engine == FB_ENGINE_REFERENCE;
+    const fb_engine *e = fb_engine_get(m->engine, NULL);
     /* an HDF5 series is built in memory before it is written (series_hdf5.c):
-     * at most the samples' own size again */
-    const double copies = 1.0 + (c->series == FB_SERIES_HDF5) + (member && n > 1 ? jobs : 0);
-    *bytes += steps * (double)sizeof(fb_sample) * copies;
-    *seconds += steps * FB_COST_LOAD_FACTOR * model_cost(m, c) * (1.0 + (member ? rounds : 0.0));
+     * at most the samples' own size again; an engine that computes its
+     * series in create (engine.h) holds its own beside the run's, and a
+     * reference's check integration (run.c) one more */
+    const double copies = 1.0 + (c->series == FB_SERIES_HDF5) + (member && n_auto > 1 ? jobs_mem : 0) +
+                          (e && e->computes_in_create) +
+                          (m->engine == FB_ENGINE_REFERENCE && !c->member);
+    *bytes += steps * sample_bytes(m, c) * copies;
+    const double per_member = member && rounds > 0.0 ? model_cost(m, as_member ? as_member : c) : 0.0;
+    *seconds += steps * FB_COST_LOAD_FACTOR * (model_cost(m, c) + rounds * per_member);
   }
+  free(as_member);
 }
 
-/* refuses what cannot fit, before anything is reserved (c: the step resolved) */
-static fb_status check_cost(const fb_case *c, fb_diag *diag) {
+/* refuses what cannot fit, before anything is reserved (c: the step
+ * resolved); est (may be NULL) receives the estimate: seconds, bytes */
+static fb_status check_cost(const fb_case *c, double est[2], fb_diag *diag) {
   double bytes, seconds;
   fb_run_estimate(c, &bytes, &seconds);
+  if (est) est[0] = seconds, est[1] = bytes;
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
   const double memory = pages > 0 && page > 0 ? (double)pages * (double)page : 0.0;
   const double steps = fb_case_duration(c) / c->solver.h + 1.0;
@@ -247,14 +284,15 @@ static fb_status check_cost(const fb_case *c, fb_diag *diag) {
 /* check_cost at the step the models will take (the corner and h_s = auto
  * or adaptive resolved, as fb_scene_from_case does: an adaptive run
  * samples every h_min_s), before anything else checks or reserves */
-static fb_status check_cost_resolved(const fb_case *c, int *over_cost, fb_diag *diag) {
+static fb_status check_cost_resolved(const fb_case *c, int *over_cost, double est[2],
+                                     fb_diag *diag) {
   *over_cost = 0;
   fb_case *k = malloc(sizeof *k);
   if (!k) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   *k = *c;
   fb_status st = fb_tol_resolve_worst(k, diag);
   if (st == FB_OK) st = fb_case_resolve_step(k, diag);
-  if (st == FB_OK) *over_cost = (st = check_cost(k, diag)) != FB_OK;
+  if (st == FB_OK) *over_cost = (st = check_cost(k, est, diag)) != FB_OK;
   free(k);
   return st;
 }
@@ -307,15 +345,19 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
 
 static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, void *user,
                          fb_diag *diag) {
+  const double t0 = fb_clock_s();
   memset(r, 0, sizeof *r);
   int over_cost;
-  fb_status cost = check_cost_resolved(c, &over_cost, diag);
+  double est[2] = {0.0, 0.0};
+  fb_status cost = check_cost_resolved(c, &over_cost, est, diag);
   if (cost != FB_OK) return cost;
   /* the scene stage: the case resolved once for every model */
   fb_status rc = fb_scene_from_case(&r->scene, c, diag);
   if (rc != FB_OK) return rc;
   r->c = r->scene.source;
   c = &r->c;
+  r->estimate_s = est[0];
+  r->estimate_bytes = est[1];
   /* [run] peaks: from t = 0, or after the first revolution (a hair below one
    * revolution so the sample at exactly one period counts) */
   r->t_window = fb_case_peak_window_from(c);
@@ -323,13 +365,16 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
   fb_status st = fb_mech_peaks(&r->analytic_nominal, c->mechanism, &c->nominal, c->branch,
                                fb_case_omega2(c), diag);
   if (st != FB_OK) return st;
+  r->scene_s = fb_clock_s() - t0;
   for (int i = 0; i < c->model_count; i++) {
     fb_model_result *m = &r->model[i];
     const fb_model *row;
     st = fb_model_lookup(&row, c->models[i], diag);
     if (st == FB_OK) st = fb_model_run_one(&m->run, &r->scene, row, progress, user, diag);
     r->n = i + 1;
+    const double tm = fb_clock_s();
     if (st == FB_OK) st = measure(m, r, diag);
+    r->metrics_s += fb_clock_s() - tm;
     if (st != FB_OK) {
       fb_run_free(r);
       return st;
@@ -337,6 +382,7 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
   }
   /* each exact-collider clearance model against the reference of its law,
    * at the joint the reference integrates */
+  const double tc = fb_clock_s();
   const int cj = fb_case_mech(c)->reference_joint;
   for (int i = 0; i < r->n; i++) {
     fb_model_result *m = &r->model[i];
@@ -359,11 +405,16 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
       }
     }
   }
+  r->metrics_s += fb_clock_s() - tc;
   for (int i = 0; i < r->n && !c->member; i++) {
     fb_model_result *m = &r->model[i];
     if (m->run.model->engine == FB_ENGINE_REFERENCE && m->has_peaks &&
-        m->run.stop.kind == FB_STOP_NONE)
+        m->run.stop.kind == FB_STOP_NONE) {
+      const double te = fb_clock_s(), ce = fb_clock_cpu_s();
       reference_estimate(m, r);
+      m->check_s = fb_clock_s() - te;
+      m->check_cpu_s = fb_clock_cpu_s() - ce;
+    }
   }
   return FB_OK;
 }
@@ -385,7 +436,7 @@ fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag) {
   *over_cost = 0;
   fb_scene *def = malloc(sizeof *def);
   if (!def) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  fb_status st = check_cost_resolved(c, over_cost, diag);
+  fb_status st = check_cost_resolved(c, over_cost, NULL, diag);
   if (st == FB_OK) st = fb_scene_from_case(def, c, diag);
   free(def);
   return st;
@@ -411,8 +462,10 @@ fb_status fb_run_models(fb_run *r, const fb_case *c, fb_progress_fn progress, vo
 
 static fb_status run_models_timed(fb_run *r, const fb_case *c, fb_progress_fn progress,
                                   void *user, fb_diag *diag) {
+  double t_try = fb_clock_s(), redo = 0.0;
   fb_status st = run_once(r, c, progress, user, diag);
   if (st != FB_OK) return st;
+  const double upfront[2] = {r->estimate_s, r->estimate_bytes}; /* the first estimate */
   const int auto_step = c->solver.h_mode == FB_STEP_AUTO ||
                         (c->solver.h_mode == FB_STEP_DEFAULT && c->clearance.mask);
   r->h_auto = auto_step && !c->member;
@@ -427,6 +480,8 @@ static fb_status run_models_timed(fb_run *r, const fb_case *c, fb_progress_fn pr
     again.solver.h_mode = FB_STEP_FIXED;
     const double estimate = r->h_auto_estimate;
     fb_run_free(r);
+    redo += fb_clock_s() - t_try; /* the run this one replaces */
+    t_try = fb_clock_s();
     st = run_once(r, &again, progress, user, diag);
     if (st != FB_OK) return st;
     tries++;
@@ -436,10 +491,25 @@ static fb_status run_models_timed(fb_run *r, const fb_case *c, fb_progress_fn pr
     r->h_omega_c_max = h_omega_c_max(r);
     r->c.solver.h_mode = c->solver.h_mode; /* the case asked for auto */
   }
+  r->redo_s = redo;
+  r->estimate_s = upfront[0];
+  r->estimate_bytes = upfront[1];
   return FB_OK;
 }
 
 void fb_run_free(fb_run *r) {
   for (int i = 0; i < r->n; i++) fb_model_run_free(&r->model[i].run);
   r->n = 0;
+}
+
+void fb_run_estimated_work(const fb_run *r, double *wall_s, double *cpu_s) {
+  /* an ensemble the run adds by itself has its own estimate (ensemble.h),
+   * a run h_s = auto redid at a smaller step is another run (h_auto_redo) */
+  const int own = r->ensemble_auto <= 1;
+  *wall_s = own ? r->ensemble_wall_s : 0.0;
+  *cpu_s = own ? r->ensemble_cpu_s : 0.0;
+  for (int i = 0; i < r->n; i++) {
+    *wall_s += r->model[i].run.wall_s + r->model[i].check_s;
+    *cpu_s += r->model[i].run.cpu_s + r->model[i].check_cpu_s;
+  }
 }

@@ -99,6 +99,9 @@ typedef struct {
   double ref_tol;          /* the reference's tolerance [-] */
   double ref_check_tol;    /* the check integration's tolerance [-] */
   size_t ref_check_steps;  /* the check integration's accepted steps [-] */
+  double check_s;          /* wall time of the check integration and its comparison [s]
+                              (0: none; timing.json's <model>.check) */
+  double check_cpu_s;      /* its CPU time [s] */
   int has_ensemble;        /* 1 for a clearance model that reached its window (ensemble.h) */
   fb_ensemble ensemble;    /* its impact statistics, pooled over [run] ensemble members */
   int has_stats_compare;   /* 1 when its reference has an ensemble too */
@@ -144,26 +147,53 @@ typedef struct fb_run_s {
   double ensemble_estimate_s;             /* its estimated wall time [s] (auto or skipped) */
   double ensemble_wall_s;                 /* wall time of the members beyond the first [s] */
   double models_wall_s;                   /* wall time of the ensemble's models' first run [s] */
+  /* where the run's wall time went, beside each model's own (timing.json's parts) */
+  double t_run_start;                     /* fb_clock_s() when fb_run_case began [s] */
+  double scene_s;                         /* the up-front cost check, the scene stage and
+                                             the nominal peaks [s] */
+  double metrics_s;                       /* measuring the models: peaks, errors, spikes,
+                                             comparisons with the references [s] */
+  double redo_s;                          /* the runs h_s = auto redid at a smaller step
+                                             (FB_H_AUTO_RETRIES), all but the last [s] */
+  double variants_s;                      /* the case's variants (fb_run_variants) [s] */
+  double ensemble_cpu_s;                  /* CPU time of the members beyond the first, their
+                                             worker processes' included [s] */
+  double estimate_s;                      /* the up-front estimate of the models' wall time
+                                             (fb_run_estimate, before any h_s = auto redo) [s] */
+  double estimate_bytes;                  /* and of their samples' memory [bytes] */
   int variant_count;                      /* variants run (fb_run_variants; 0: none) */
   fb_variant_result variant[FB_MAX_VARIANTS]; /* their models' peaks, in c.variant order */
 } fb_run;
 
-/* Up-front cost of running case c, its step resolved (auto and adaptive:
- * fb_scene_from_case; an adaptive run samples every h_min_s): per
+/* Up-front cost of running case c's models, its step resolved (auto and
+ * adaptive: fb_scene_from_case; an adaptive run samples every h_min_s): per
  * model, the samples its series holds (duration / h + 1) times the bytes of
- * one sample of every column (sizeof(fb_sample)), and the samples times the
- * model's cost per sample, FB_COST_LOAD_FACTOR times over for a loaded
- * machine; an ensemble's members (ensemble.h) add its clearance models and
- * references once per member, in rounds of --jobs workers. Sums over the
- * case's models. The cost per sample of a model is its engine's
- * (fb_engine.cost_per_sample, engine.h: measured on the paper's case, 2
- * revolutions, timing.json's time_per_step_us, an idle 2-core machine, and
- * rounded up), FB_COST_DEFAULT_S for an engine that gives none. */
-#define FB_COST_LOAD_FACTOR 3.0
+ * one sample of the columns it keeps (and the copies beside it: run.c),
+ * over the program's own FB_COST_PROGRAM_BYTES; and the samples times the
+ * model's cost per sample, FB_COST_LOAD_FACTOR times over; an ensemble's
+ * members (ensemble.h) add its clearance models and references once per
+ * member, in rounds of --jobs workers. Sums over the case's models. The
+ * cost per sample of a model is its engine's (fb_engine.cost_per_sample,
+ * engine.h: CPU time measured over the shipped cases and rounded up),
+ * FB_COST_DEFAULT_S for an engine that gives none. What it stands for is
+ * timing.json's estimate.models_wall_s (the models, their check
+ * integrations, the ensemble's members): measured on the 22 shipped cases
+ * whose models run to their end, the estimate is 1.20 to 1.90 times their CPU
+ * time (docs/performance.md), FB_COST_LOAD_FACTOR being the margin for a
+ * machine others share. */
+#define FB_COST_LOAD_FACTOR 1.25
 #define FB_COST_DEFAULT_S 5e-6
+/* the program's own resident memory, libraries loaded, before any series:
+ * measured 31.1 MB (fourbar run, the analytic model alone at h = 1e-3 s) */
+#define FB_COST_PROGRAM_BYTES 32e6
 /* at most this fraction of the machine's physical memory may be reserved */
 #define FB_COST_MEMORY_FRACTION 0.5
 void fb_run_estimate(const fb_case *c, double *bytes, double *seconds);
+/* What fb_run_estimate's seconds stand for, measured on run r: the wall
+ * and CPU time [s] of its models, their check integrations and the case's
+ * own ensemble members (their worker processes' CPU included; not an
+ * ensemble the run added by itself, not the runs h_s = auto redid). */
+void fb_run_estimated_work(const fb_run *r, double *wall_s, double *cpu_s);
 
 /* Checks case c as fb_run_case would before its first model runs: the scene
  * resolves (the step chosen, the corner found; its errors are the case's)

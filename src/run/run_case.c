@@ -14,7 +14,7 @@
  * the first, over the worker processes) fits [run] max_wall_s */
 static fb_status settle(fb_run *r, double t_start, fb_progress_fn progress, void *user,
                         fb_diag *diag) {
-  const double t0 = fb_clock_s();
+  const double t0 = fb_clock_s(), c0 = fb_clock_cpu_s();
   int unsettled = fb_verdict_assess(r);
   const int members = r->c.ensemble_auto;
   for (int i = 0; i < r->n; i++)
@@ -31,6 +31,7 @@ static fb_status settle(fb_run *r, double t_start, fb_progress_fn progress, void
   fb_status st = fb_ensemble_measure(r, progress, user, diag);
   if (st != FB_OK) return st;
   r->ensemble_wall_s = fb_clock_s() - t0;
+  r->ensemble_cpu_s = fb_clock_cpu_s() - c0;
   fb_verdict_assess(r);
   return FB_OK;
 }
@@ -40,9 +41,13 @@ fb_status fb_run_case(fb_run *r, const fb_case *c, fb_progress_fn progress, void
   const double t_start = fb_clock_s();
   fb_status st = fb_run_models(r, c, progress, user, diag);
   if (st != FB_OK || c->member) return st;
-  const double t0 = fb_clock_s();
+  r->t_run_start = t_start;
+  const double t0 = fb_clock_s(), c0 = fb_clock_cpu_s();
   st = fb_ensemble_measure(r, progress, user, diag);
-  if (r->c.ensemble > 1) r->ensemble_wall_s = fb_clock_s() - t0;
+  if (r->c.ensemble > 1) {
+    r->ensemble_wall_s = fb_clock_s() - t0;
+    r->ensemble_cpu_s = fb_clock_cpu_s() - c0;
+  }
   if (st == FB_OK) st = settle(r, t_start, progress, user, diag);
   if (st != FB_OK) {
     fb_run_free(r);

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include "manifest.h"
+#include "clock.h"
 #include "outdir.h"
 #include "textsafe.h"
 
@@ -48,7 +49,9 @@ fb_run_folder_result fb_run_into_folder(fb_run *r, const fb_run_folder_job *j, i
 
   st = fb_run_case(r, j->c, j->progress, j->progress_user, diag);
   if (st == FB_OK) {
+    const double tv = fb_clock_s();
     st = fb_run_variants(r, j->variants, j->nvariants, j->progress, j->progress_user, diag);
+    r->variants_s = fb_clock_s() - tv;
     if (st != FB_OK) fb_run_free(r);
   }
   if (st != FB_OK) {

@@ -162,6 +162,9 @@ typedef struct fb_engine {
   int refine_peaks;                 /* 1: the samples lie on a discrete motion whose spikes the
                                        harness refines by parabola (fb_series_refine_peaks); 0:
                                        exact (analytic) or refined by the engine (reference) */
+  int computes_in_create;           /* 1: create computes the whole series (the analytic
+                                       solution, the reference's integration) and step replays
+                                       it: the run books create as the engine's stepping */
   fb_status (*create)(void **self, const fb_model_scene *sm, fb_diag *diag);
   fb_status (*step)(void *self, fb_diag *diag);
   void (*stopped)(const void *self, fb_stop *out); /* optional: why step returned
@@ -181,11 +184,12 @@ typedef struct fb_engine {
                                        also fills the output grid (Simbody: its integrator's
                                        steps, the interpolation and exact samples being the
                                        sampling); NULL: all of step() is stepping */
-  double (*cost_per_sample)(const fb_model *m, const fb_case *c); /* optional: the wall
-                                       time of one sample of model m in case c on an idle
-                                       2-core machine [s], measured on the paper's case and
-                                       rounded up, for fb_run_estimate (run.h); NULL:
-                                       FB_COST_DEFAULT_S */
+  double (*cost_per_sample)(const fb_model *m, const fb_case *c); /* optional: the time
+                                       of one sample of model m in case c [s]: its CPU time
+                                       (an idle machine's wall time) measured as timing.json's
+                                       models[].cpu_s over its samples on the shipped cases
+                                       and rounded up to their largest, for fb_run_estimate
+                                       (run.h); NULL: FB_COST_DEFAULT_S */
   const char *drive_key;            /* the case key that sizes the crank's drive, named by the
                                        drive-saturation warning when the crank lags its
                                        prescribed angle (NULL: no such warning) */

@@ -26,8 +26,10 @@ enum {
                              settings, the tuned ideal rows and the adaptive rows */
   FB_BENCH_PEERS = 32,    /* each engine's bare program beside the harness's model
                              (peers.h; run by the CLI, not by fb_bench_run) */
-  FB_BENCH_DEFAULT = 64   /* the default grid: each engine at its recommended settings
+  FB_BENCH_DEFAULT = 64,  /* the default grid: each engine at its recommended settings
                              (FB_BENCH_SET_DEFAULT), a few minutes on 2 cores */
+  FB_BENCH_SCALING = 128  /* how a run's cost grows (scaling.h; run by the CLI's study, not
+                             by fb_bench_run) */
 };
 
 /* The row sets an engine gives rows for. A grid runs a set for every engine

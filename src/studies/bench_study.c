@@ -15,6 +15,7 @@
 #include "engine.h"
 #include "fileio.h"
 #include "outcome_text.h"
+#include "scaling.h"
 #include "textsafe.h"
 
 /* models by kind (ideal, clearance impact) and engine (each engine that steps
@@ -28,6 +29,8 @@ typedef struct {
   int n;
   const fb_peer_row *peers;
   int npeers;
+  const fb_scaling_row *scaling; /* --grid scaling's rows (scaling.h) */
+  int nscaling;
   double wall;                /* [s] */
   const fb_model *models[2][NE];
   int ne;                     /* engines in models */
@@ -36,7 +39,7 @@ typedef struct {
 } bench_result;
 
 static const char *kinds[2] = {"ideal", "clearance-impact"};
-static const double targets[3] = {1e-2, 1e-3, 1e-4};
+static const double targets[FB_BENCH_TARGETS] = {1e-2, 1e-3, 1e-4};
 
 static json_t *finite_or_null(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 
@@ -191,20 +194,29 @@ static json_t *row_json(const fb_bench_row *b) {
   return o;
 }
 
+/* the row of the cheapest configuration of kind q meeting target t across
+ * the listed engines (-1: none) */
+static int cheapest_across(const bench_result *br, int q, int t) {
+  int best = -1;
+  for (int e = 0; e < br->ne; e++) {
+    if (!listed(br, q, e)) continue; /* not in this build or grid */
+    const int i = fb_bench_cheapest(br->rows, br->n, br->models[q][e], targets[t]);
+    if (i >= 0 && (best < 0 || br->rows[i].wall_per_rev < br->rows[best].wall_per_rev)) best = i;
+  }
+  return best;
+}
+
 /* bench.json's "cheapest" (per engine) and "cheapest_across_engines" */
 static void cheapest_json(const bench_result *br, json_t *cheap, json_t *across) {
-  const fb_bench_row *rows = br->rows;
-  const int n = br->n;
   for (int q = 0; q < 2; q++)
-    for (int t = 0; t < 3; t++) {
-      int best = -1;
+    for (int t = 0; t < FB_BENCH_TARGETS; t++) {
       for (int e = 0; e < br->ne; e++) {
         if (!listed(br, q, e)) continue; /* not in this build or grid */
-        int i = fb_bench_cheapest(rows, n, br->models[q][e], targets[t]);
+        int i = fb_bench_cheapest(br->rows, br->n, br->models[q][e], targets[t]);
         json_array_append_new(cheap, json_pack("{s:s,s:f,s:o}", "model", br->models[q][e]->name, "target",
                                                targets[t], "row", i >= 0 ? json_integer(i) : json_null()));
-        if (i >= 0 && (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev)) best = i;
       }
+      const int best = cheapest_across(br, q, t);
       json_array_append_new(across, json_pack("{s:s,s:f,s:o}", "kind", kinds[q], "target", targets[t],
                                               "row", best >= 0 ? json_integer(best) : json_null()));
     }
@@ -310,6 +322,45 @@ static void print_colliders(const fb_bench_row *rows, int n) {
   }
 }
 
+/* bench.json's "scaling" */
+static json_t *scaling_json(const fb_scaling_row *rows, int n) {
+  json_t *a = json_array();
+  for (int i = 0; i < n; i++) {
+    const fb_scaling_row *r = &rows[i];
+    json_t *o = json_object();
+    json_object_set_new(o, "vary", json_string(r->vary));
+    json_object_set_new(o, "value", json_real(r->value));
+    json_object_set_new(o, "jobs", json_integer(r->jobs));
+    json_object_set_new(o, "ran", json_boolean(r->ran));
+    json_object_set_new(o, "status", json_string(r->status));
+    json_object_set_new(o, "cpu_s", finite_or_null(r->cpu_s));
+    json_object_set_new(o, "wall_s", finite_or_null(r->wall_s));
+    json_object_set_new(o, "estimate_s", finite_or_null(r->estimate_s));
+    json_object_set_new(o, "reference_steps_per_rev", finite_or_null(r->reference_steps_per_rev));
+    json_object_set_new(o, "check_steps_per_rev", finite_or_null(r->check_steps_per_rev));
+    json_array_append_new(a, o);
+  }
+  return a;
+}
+
+/* --grid scaling's rows on stdout */
+static void print_scaling(const fb_scaling_row *rows, int n) {
+  if (!n) return;
+  printf("\nscaling: the case at each value of one setting (revolutions: the reference alone; "
+         "CPU time the measure, wall time grows with the machine's load; estimate: the up-front "
+         "one)\n%-20s %10s %4s %9s %9s %11s %13s %15s  %s\n",
+         "vary", "value", "jobs", "CPU s", "wall s", "estimate s", "ref steps/rev",
+         "check steps/rev", "status");
+  for (int i = 0; i < n; i++) {
+    const fb_scaling_row *r = &rows[i];
+    char steps[2][24]; /* "-": none */
+    const double v[2] = {r->reference_steps_per_rev, r->check_steps_per_rev};
+    for (int k = 0; k < 2; k++) snprintf(steps[k], sizeof steps[k], isfinite(v[k]) ? "%.0f" : "-", v[k]);
+    printf("%-20s %10g %4d %9.3f %9.3f %11.3g %13s %15s  %.200s\n", r->vary, r->value, r->jobs,
+           r->cpu_s, r->wall_s, r->estimate_s, steps[0], steps[1], r->status);
+  }
+}
+
 /* the peers on stdout */
 static void print_peers(const fb_peer_row *peers, int npeers) {
   if (npeers) {
@@ -338,8 +389,7 @@ static void print_cheapest(const bench_result *br) {
   const int n = br->n;
   printf("\ncheapest configuration meeting each error target (per engine, then across engines):\n");
   for (int q = 0; q < 2; q++)
-    for (int t = 0; t < 3; t++) {
-      int best = -1;
+    for (int t = 0; t < FB_BENCH_TARGETS; t++) {
       for (int e = 0; e < br->ne; e++) {
         if (!listed(br, q, e)) continue;
         int i = fb_bench_cheapest(rows, n, br->models[q][e], targets[t]);
@@ -348,8 +398,8 @@ static void print_cheapest(const bench_result *br) {
           continue;
         }
         print_config(br->models[q][e]->name, targets[t], &rows[i]);
-        if (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev) best = i;
       }
+      const int best = cheapest_across(br, q, t);
       if (best >= 0) printf("  -> %s error <= %.0e: cheapest on %s\n", kinds[q], targets[t],
                             rows[best].engine);
     }
@@ -366,9 +416,10 @@ static int write_files(const bench_result *br, json_t **j) {
   json_t *cheap = json_array(), *across = json_array();
   cheapest_json(br, cheap, across);
   json_t *pj = peers_json(br->peers, br->npeers);
-  *j = json_pack("{s:s,s:s,s:f,s:o,s:o,s:o,s:o}", "case", o->c->name, "grid", o->grid_name,
+  *j = json_pack("{s:s,s:s,s:f,s:o,s:o,s:o,s:o,s:o}", "case", o->c->name, "grid", o->grid_name,
                  "wall_s", br->wall, "rows", arr, "cheapest", cheap,
-                 "cheapest_across_engines", across, "peers", pj);
+                 "cheapest_across_engines", across, "peers", pj, "scaling",
+                 scaling_json(br->scaling, br->nscaling));
   /* a case of another mechanism than the four-bar: the engines left out */
   if (o->c->mechanism != FB_MECH_FOURBAR) {
     json_t *lo = json_array();
@@ -386,7 +437,12 @@ static int write_files(const bench_result *br, json_t **j) {
     return fb_study_fail("bench", 1, "%s", d.msg);
   }
   snprintf(path, sizeof path, "%s/bench.svg", o->dir);
-  if (br->n > 0 && o->draw(path, o->c->name, br->rows, br->n, &d) != FB_OK)
+  fb_bench_marks marks = {.peers = br->peers, .npeers = br->npeers};
+  for (int t = 0; t < FB_BENCH_TARGETS; t++) {
+    marks.target[t] = targets[t];
+    for (int q = 0; q < 2; q++) marks.cheapest[q][t] = cheapest_across(br, q, t);
+  }
+  if (br->n > 0 && o->draw(path, o->c->name, br->rows, br->n, &marks, &d) != FB_OK)
     fprintf(stderr, "fourbar bench: warning: %s\n", d.msg);
   return 0;
 }
@@ -398,15 +454,22 @@ int fb_bench_study(const fb_bench_opts *o) {
   int n;
   const double t0 = fb_clock_s();
   bench_progress bp = {isatty(2) && !o->json, t0};
-  if (fb_bench_run(rows, &n, o->c, o->grids & ~FB_BENCH_PEERS, progress, &bp, &d) != FB_OK)
+  if (fb_bench_run(rows, &n, o->c, o->grids & ~(FB_BENCH_PEERS | FB_BENCH_SCALING), progress, &bp,
+                   &d) != FB_OK)
     return fb_study_fail("bench", 1, "%s", d.msg);
   /* the peers: each engine's bare program beside the harness (peers.h) */
   fb_peer_row peers[FB_PEERS_MAX];
   int npeers = 0;
   if ((o->grids & FB_BENCH_PEERS) && fb_peers_run(peers, &npeers, o->c, NULL, NULL, NULL, &d) != FB_OK)
     return fb_study_fail("bench", 1, "%s", d.msg);
+  /* how the cost grows (scaling.h) */
+  static fb_scaling_row scaling[FB_SCALING_MAX_ROWS];
+  int nscaling = 0;
+  if ((o->grids & FB_BENCH_SCALING) &&
+      fb_scaling_run(scaling, &nscaling, o->c, &fb_scaling_default, &d) != FB_OK)
+    return fb_study_fail("bench", 1, "%s", d.msg);
   bench_result br = {.o = o, .rows = rows, .n = n, .peers = peers, .npeers = npeers,
-                     .wall = fb_clock_s() - t0};
+                     .scaling = scaling, .nscaling = nscaling, .wall = fb_clock_s() - t0};
   for (int e = 0; e < FB_ENGINE_COUNT; e++)
     if (fb_engine_steps_world((fb_engine_id)e)) {
       if (!fb_bench_builds((fb_engine_id)e, o->c)) { /* its rows are left out */
@@ -434,6 +497,7 @@ int fb_bench_study(const fb_bench_opts *o) {
   print_rows(&br);
   print_colliders(rows, n);
   print_peers(peers, npeers);
+  print_scaling(scaling, nscaling);
   if (n == 0) {
     printf("\nwrote %s/bench.csv and bench.json\n", o->dir);
     return 0;

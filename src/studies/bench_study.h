@@ -11,10 +11,24 @@
 #include "peers.h"
 #include "study.h"
 
-/* Draws bench.svg at path from rows[0..n) of case case_name (figures.h's
- * fb_figures_bench, a floor above, given by the command line). */
+/* The error targets the cheapest configurations are named for. */
+#define FB_BENCH_TARGETS 3
+
+/* What bench.svg marks beside the rows: each error target's cheapest
+ * configuration across engines, per kind of model, and the peers. */
+typedef struct fb_bench_marks_s {
+  double target[FB_BENCH_TARGETS];        /* the error targets [-] (1e-2, 1e-3, 1e-4) */
+  int cheapest[2][FB_BENCH_TARGETS];      /* row index per kind (ideal, clearance impact) and
+                                             target, across engines; -1: none meets it */
+  const fb_peer_row *peers;               /* each engine's bare program beside the harness */
+  int npeers;                             /* (0: the grid ran no peers) */
+} fb_bench_marks;
+
+/* Draws bench.svg at path from rows[0..n) of case case_name, with marks
+ * (figures.h's fb_figures_bench, a floor above, given by the command line). */
 typedef fb_status (*fb_bench_drawer)(const char *path, const char *case_name,
-                                     const fb_bench_row *rows, int n, fb_diag *diag);
+                                     const fb_bench_row *rows, int n,
+                                     const fb_bench_marks *marks, fb_diag *diag);
 
 /* What to bench (the flags of fourbar bench). */
 typedef struct {

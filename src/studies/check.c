@@ -59,12 +59,14 @@ static int collect(const fb_run *r, fb_metric *out, int max, int first) {
     const char *name = m->run.name;
     const int stats = m->has_ensemble && m->ensemble.members > 1;
     if (stats) n = add_stats(out, n, max, m, fb_case_mech(&r->c));
-    if (stats && m->peaks_unconverged) continue; /* chaotic: its statistics, not its peaks */
+    /* chaotic: its statistics, not its peaks (its first impact, before the
+     * chaos, still: study rows) */
+    const int peaks = !(stats && m->peaks_unconverged);
     /* each output body's group and keys in the names of the case's
      * mechanism (fb_mech_output_key: the slider-crank's slider.velocity_max_m_s) */
     const fb_mech_desc *mech = fb_case_mech(&r->c);
     char kb[96];
-    if (m->has_peaks) {
+    if (peaks && m->has_peaks) {
       const fb_body_peaks *b[2] = {&m->peaks.coupler, &m->peaks.follower};
       const char *bn[2] = {"coupler", "follower"};
       for (int k = 0; k < 2; k++) {
@@ -78,7 +80,7 @@ static int collect(const fb_run *r, fb_metric *out, int max, int first) {
 #undef FB_CHECK_PEAK
       }
     }
-    if (m->has_spikes) {
+    if (peaks && m->has_spikes) {
       const fb_spikes *s = &m->spikes;
 #define FB_CHECK_SPIKE(field, key) \
   n = add(out, n, max, name, "spikes", fb_mech_output_key(kb, sizeof kb, mech, key), (double)s->field);

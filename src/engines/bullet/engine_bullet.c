@@ -38,13 +38,14 @@ static size_t bullet_steps(const void *self) { return fb_bullet_scene_steps(self
 
 static void bullet_destroy(void *self) { fb_bullet_scene_destroy(self); }
 
-/* Wall time per sample on an idle 2-core machine [s] (engine.h): measured on
- * the paper's case, the MLCP solver 12 to 17.6 us whatever its iterations,
- * sequential impulse 0.38 us per iteration (41 us at 100, 388 us at 1000);
- * each rounded up. */
-#define BULLET_COST_S 18e-6
-#define BULLET_COST_SI_S 4e-6
-#define BULLET_COST_ITERATION_S 0.4e-6
+/* Time per sample [s] (engine.h: CPU time, timing.json models[].cpu_s over
+ * its samples; issue 54): the MLCP solver 3.4 to 4.1 us over the shipped
+ * cases; sequential impulse 1.9 us + 0.107 us per iteration (3.0 us at 10,
+ * 12.6 us at 100, 109 us at 1000; paper case, 2 revolutions); each rounded
+ * up. */
+#define BULLET_COST_S 4.5e-6
+#define BULLET_COST_SI_S 2.4e-6
+#define BULLET_COST_ITERATION_S 0.12e-6
 
 static double bullet_cost_per_sample(const fb_model *m, const fb_case *c) {
   (void)m;

@@ -40,12 +40,13 @@ static void mujoco_step_stats(const void *self, fb_step_stats *out) {
   fb_mujoco_scene_step_stats(self, out);
 }
 
-/* Wall time per sample on an idle 2-core machine [s] (engine.h): measured on
- * the paper's case, 3.5 to 4.2 us ideal, 15.5 to 17.5 us clearance, 23 us
- * native; each rounded up. */
-#define MUJOCO_COST_S 5e-6
-#define MUJOCO_COST_CLEARANCE_S 18e-6
-#define MUJOCO_COST_NATIVE_S 25e-6
+/* Time per sample [s] (engine.h: CPU time, timing.json models[].cpu_s over
+ * its samples; issue 54): 1.8 to 2.3 us ideal, 8.05 us clearance (engines
+ * and engines_restitution), 10.1 us native (paper case, 2 revolutions);
+ * each rounded up. */
+#define MUJOCO_COST_S 2.6e-6
+#define MUJOCO_COST_CLEARANCE_S 9.5e-6
+#define MUJOCO_COST_NATIVE_S 12e-6
 
 static double mujoco_cost_per_sample(const fb_model *m, const fb_case *c) {
   (void)c;

@@ -42,17 +42,20 @@ static void ode_step_stats(const void *self, fb_step_stats *out) {
   fb_ode_world_step_stats(self, out);
 }
 
-/* Wall time per sample on an idle 2-core machine [s] (engine.h): measured on
- * the paper's case, dWorldStep 3 to 4.3 us, dWorldQuickStep 0.57 to 0.63 us
- * per iteration (22 us at 20, 1257 us at 2000), the faceted collider 0.66 us
- * per box (43 us at 64, 2716 us at 4096), the libccd collider 15 us + 0.0033
- * us per segment (221 us at 65536); each rounded up. */
-#define ODE_COST_S 5e-6
-#define ODE_COST_QUICK_S 2e-6
-#define ODE_COST_QUICK_ITERATION_S 0.65e-6
-#define ODE_COST_BOX_S 0.7e-6
-#define ODE_COST_CCD_S 15e-6
-#define ODE_COST_CCD_SEGMENT_S 3.5e-9
+/* Time per sample [s] (engine.h: CPU time, timing.json models[].cpu_s over
+ * its samples; issue 54): dWorldStep 2.3 to 3.4 us over the shipped cases
+ * (two clearance joints the most); dWorldQuickStep 1.75 us + 0.2 us per
+ * iteration (5.75 us at 20, 21.7 us at 100; paper case, 2 revolutions);
+ * the faceted collider 0.24 us per box beyond 4.7 us (22.2 us at 64, 128
+ * us at 512), the libccd collider 2.6 us + 0.0011 us per segment (5.3 us
+ * at 256, 22.8 us at 16384) beyond dWorldStep's; each rounded up. */
+#define ODE_COST_S 3.2e-6
+#define ODE_COST_QUICK_S 2.0e-6
+#define ODE_COST_QUICK_ITERATION_S 0.22e-6
+#define ODE_COST_FACETED_S 5e-6
+#define ODE_COST_BOX_S 0.26e-6
+#define ODE_COST_CCD_S 3e-6
+#define ODE_COST_CCD_SEGMENT_S 1.2e-9
 
 static double ode_cost_per_sample(const fb_model *m, const fb_case *c) {
   const int clearance = m->joints == FB_JOINTS_CLEARANCE;
@@ -64,7 +67,8 @@ static double ode_cost_per_sample(const fb_model *m, const fb_case *c) {
                        : c->clearance.collider == FB_CASE_COLLIDER_CCD ? FB_COLLIDER_CCD
                                                                        : FB_COLLIDER_EXACT;
   if (clearance && collider == FB_COLLIDER_FACETED)
-    s += ODE_COST_BOX_S * (c->clearance.segments_given ? c->clearance.segments : c->clearance.faceted_n);
+    s += ODE_COST_FACETED_S +
+         ODE_COST_BOX_S * (c->clearance.segments_given ? c->clearance.segments : c->clearance.faceted_n);
   if (clearance && collider == FB_COLLIDER_CCD)
     s += ODE_COST_CCD_S + ODE_COST_CCD_SEGMENT_S * c->clearance.segments;
   return s;

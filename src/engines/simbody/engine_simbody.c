@@ -43,13 +43,16 @@ static double simbody_stepping_s(const void *self) { return fb_simbody_scene_ste
  * samples are the integrator's own interpolant on the grid, exact in time,
  * realized exactly at the peaks, and the engine keeps the peaks between
  * samples itself: no lag, no refinement */
-/* Wall time per sample on an idle 2-core machine [s] (engine.h): measured on
- * the paper's case, 165 us per sample plus 157 us per integrator step, 3,752
- * to 90,797 steps in 2 revolutions of the clearance model at accuracy 1e-4
- * to 1e-10 (as accuracy^-0.3), 40 to 1,047 of the ideal one; each rounded
- * up. */
-#define SIMBODY_COST_SAMPLE_S 170e-6
-#define SIMBODY_COST_STEP_S 160e-6
+/* Time per sample [s] (engine.h: CPU time, timing.json models[].cpu_s over
+ * its samples; issue 54): 1.35 us per sample plus 46 to 48 us per
+ * integrator step (the ideal models 1.33 to 1.45 us a sample at 0.003
+ * steps; the clearance impact and restitution models 12.0 and 15.6 us at
+ * 0.23 and 0.30 steps a sample: simbody, engines and engines_restitution);
+ * 3,752 to 90,797 steps in 2 revolutions of the clearance model at
+ * accuracy 1e-4 to 1e-10 (as accuracy^-0.3), 40 to 1,047 of the ideal
+ * one; each rounded up. */
+#define SIMBODY_COST_SAMPLE_S 1.6e-6
+#define SIMBODY_COST_STEP_S 55e-6
 #define SIMBODY_COST_STEPS_REV_CLEARANCE 4200.0 /* at the default accuracy [1/rev] */
 #define SIMBODY_COST_STEPS_REV_IDEAL 60.0
 #define SIMBODY_COST_ACCURACY_POWER 0.3

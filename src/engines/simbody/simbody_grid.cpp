@@ -44,7 +44,7 @@ double load_rate(const Knot *a, const Knot &b, const Knot *c, int m) {
 // with three-point rates; the contact by the law at the cubic Hermite of the
 // eccentricity and its rate (the integration from k0 to k1 saw k0's
 // episodes). before, after: the knots beside the interval, or NULL.
-void record_between(const Scene *s, Record *r, double t, const Knot *before, const Knot &k0,
+void record_between(Scene *s, Record *r, double t, const Knot *before, const Knot &k0,
                     const Knot &k1, const Knot *after, int keep_track) {
   const double dt = k1.t - k0.t, sp = (t - k0.t) / dt;
   double q[kMobilities], u[kMobilities], udot[kMobilities];
@@ -56,10 +56,21 @@ void record_between(const Scene *s, Record *r, double t, const Knot *before, con
   u[kCrank] = s->omega2;
   udot[kCrank] = 0.0;
   const double alpha[2] = {udot[s->parent] + udot[kCoupler], udot[kFollower]};
+  /* the rates at the interval's ends, once per interval (the records of
+   * one interval are generated one after another) */
+  if (s->rate_id != k0.id || k0.id < 0 || s->rate_before != (before != NULL) ||
+      s->rate_after != (after != NULL)) {
+    for (int m = 0; m < kLoads; m++) {
+      s->rate0[m] = load_rate(before, k0, &k1, m);
+      s->rate1[m] = load_rate(&k0, k1, after, m);
+    }
+    s->rate_id = k0.id;
+    s->rate_before = before != NULL;
+    s->rate_after = after != NULL;
+  }
   double load[kLoads];
   for (int m = 0; m < kLoads; m++)
-    hermite(sp, dt, k0.load[m], load_rate(before, k0, &k1, m), k1.load[m],
-            load_rate(&k0, k1, after, m), &load[m], NULL);
+    hermite(sp, dt, k0.load[m], s->rate0[m], k1.load[m], s->rate1[m], &load[m], NULL);
   ContactEval ce;
   if (s->clearance) {
     double e[2], edot[2], w[2][2];
@@ -82,27 +93,25 @@ void record_between(const Scene *s, Record *r, double t, const Knot *before, con
 // room for record k in the ring of records rec_base .. k
 void ring_reserve(Scene *s, size_t k) {
   const size_t need = k - s->rec_base + 1;
-  if (need <= s->recs.size()) return;
-  size_t size = s->recs.size() ? s->recs.size() : 1024;
+  if (need <= s->nrecs) return;
+  size_t size = s->nrecs ? s->nrecs : 1024;
   while (size < need) size *= 2;
-  std::vector<Record> grown(size);
-  for (size_t j = s->rec_base; j < k; j++) grown[j & (size - 1)] = *rec(s, j);
-  s->recs.swap(grown);
+  /* grown in place (realloc), not copied into a fresh zeroed ring: the
+   * ring grew to 8192 records (6 MB) on the paper case, and every doubling
+   * wrote all of it through the caches. A live record j keeps its slot
+   * j mod old or moves up to j mod size, past the old ring (fresh memory,
+   * nothing live there); slots not generated yet are never read (generate
+   * fills a record before anything looks at it) */
+  const size_t old = s->nrecs;
+  Record *grown = static_cast<Record *>(std::realloc(s->recs, size * sizeof(Record)));
+  if (!grown) throw std::bad_alloc();
+  s->recs = grown;
+  s->nrecs = size;
+  for (size_t j = s->rec_base; j < k && old > 0; j++)
+    if ((j & (old - 1)) != (j & (size - 1))) grown[j & (size - 1)] = grown[j & (old - 1)];
 }
 
 } // namespace
-
-// the value of tracked column m in a sample
-double sample_value(const fb_sample &x, int m) {
-  switch (m) {
-    case 0: return x.body[0][FB_Q_ACC];
-    case 1: return x.body[1][FB_Q_ACC];
-    case 2: return x.drive_torque;
-    case 7: return x.body[0][FB_Q_VEL];
-    case 8: return x.body[1][FB_Q_VEL];
-    default: return std::hypot(x.reaction[m - 3][0], x.reaction[m - 3][1]);
-  }
-}
 
 // the sample's columns from mobilities q, u, the output bodies'
 // accelerations (coupler, follower or slider), loads and the contact; track

@@ -20,7 +20,10 @@
 
 #include "Simbody.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <deque>
+#include <new>
 #include <memory>
 #include <vector>
 
@@ -211,8 +214,8 @@ struct Scene {
   long knot_ids;          // knots made so far
   long knot_done;         // id of the newest knot whose bookkeeping a record took
   fb_episode ep_done;     // the episodes after that knot
-  std::vector<Record> recs; // records rec_base .. gen_next - 1, record k at k mod size
-                            // (a power of two, grown when the lookahead needs more)
+  Record *recs;           // records rec_base .. gen_next - 1, record k at k mod nrecs
+  size_t nrecs;           // (a power of two, grown in place when the lookahead needs more)
   size_t rec_base;
   double gap_max;         // the longest knot interval held [s]
   std::deque<Peak> pending; // extremes of the interpolated series not yet made exact
@@ -236,8 +239,19 @@ struct Scene {
   fb_stop stop;
   size_t exact_samples;   // samples realized exactly
   double stepping_s;      // wall time in the integrator's steps (stepTo) [s]
+  // the loads' rates at the ends of the knot interval records were last
+  // interpolated in (simbody_grid.cpp), computed once per interval: the key
+  // is the first knot's id and which neighbours the rates saw
+  long rate_id;           // -1: none held
+  int rate_before, rate_after;
+  double rate0[kLoads], rate1[kLoads];
 
-  Scene() : matter(system), forces(system) {}
+  Scene()
+      : matter(system), forces(system), recs(NULL), nrecs(0), rate_id(-1), rate_before(0),
+        rate_after(0) {}
+  ~Scene() { std::free(recs); }
+  Scene(const Scene &) = delete;
+  Scene &operator=(const Scene &) = delete;
 };
 
 // ---- simbody_contact.cpp ----
@@ -273,10 +287,23 @@ Knot realize_state(Scene *s, double t, const double q[3], const double u[3],
 // ---- simbody_grid.cpp ----
 
 // record k in the ring of records
-inline Record *rec(Scene *s, size_t k) { return &s->recs[k & (s->recs.size() - 1)]; }
+inline Record *rec(Scene *s, size_t k) { return &s->recs[k & (s->nrecs - 1)]; }
 
-// the value of tracked column m in a sample
-double sample_value(const fb_sample &x, int m);
+// the value of tracked column m in a sample (inline: every record takes
+// all kTracked)
+inline double sample_value(const fb_sample &x, int m) {
+  switch (m) {
+    case 0: return x.body[0][FB_Q_ACC];
+    case 1: return x.body[1][FB_Q_ACC];
+    case 2: return x.drive_torque;
+    case 7: return x.body[0][FB_Q_VEL];
+    case 8: return x.body[1][FB_Q_VEL];
+    default: { /* a reaction's magnitude (|F| ~ N: neither overflows) */
+      const double fx = x.reaction[m - 3][0], fy = x.reaction[m - 3][1];
+      return std::sqrt(fx * fx + fy * fy);
+    }
+  }
+}
 
 // the sample's columns and values from q, u, alpha, loads and the contact
 void fill_sample(const Scene *s, Record *r, double t, const double q[3], const double u[3],

@@ -64,16 +64,18 @@ void refine_interval(Scene *s, size_t i) {
     Record *r = rec(s, j);
     if (!r->valid || r->exact || r->at_knot) continue;
     while (n + 2 < nn && nt[n + 1] < r->t) n++;
-    // the four nodes nearest to the piece (n, n + 1), fewer at the ends
+    // the four nodes nearest to the piece (n, n + 1), fewer at the ends;
+    // their Lagrange weights at r->t, the same for every value
     const int a = std::max(0, n - 1), b = std::min(nn - 1, n + 2);
+    double l[4];
+    for (int p = a; p <= b; p++) {
+      l[p - a] = 1.0;
+      for (int q = a; q <= b; q++)
+        if (q != p) l[p - a] *= (r->t - nt[q]) / (nt[p] - nt[q]);
+    }
     for (int m = 0; m < kVals; m++) {
       double c = 0.0;
-      for (int p = a; p <= b; p++) {
-        double l = 1.0;
-        for (int q = a; q <= b; q++)
-          if (q != p) l *= (r->t - nt[q]) / (nt[p] - nt[q]);
-        c += l * nd[p][m];
-      }
+      for (int p = a; p <= b; p++) c += l[p - a] * nd[p][m];
       r->v[m] += c;
     }
     double v[kVals];

@@ -140,8 +140,10 @@ fb_status emit(Scene *s, size_t k, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_NUMERIC, "simbody: %s at t = %g s", s->fail_msg, s->stop.t);
   }
   // the run's last sample (and the one before a failed step): no neighbour
-  // tells a peak there
-  if (!r->exact && !r->at_knot && (k + 1 >= s->gen_next || !rec(s, k + 1)->valid))
+  // tells a peak there. Record k + 1, generated a lookahead ago, is invalid
+  // exactly when generation failed at or before it (generate): asked of the
+  // scene, not of the record, which has long left the cache
+  if (!r->exact && !r->at_knot && (k + 1 >= s->gen_next || (s->failed && k + 1 >= s->fail_k)))
     realize_exact(s, r);
   s->x = r->x;
   s->x.t = t_open; // on the grid exactly

@@ -70,10 +70,15 @@ struct fb_study_s;
 fb_status fb_figures_study(const struct fb_study_s *s, const char *dir, fb_diag *diag);
 
 struct fb_bench_row_s;
+struct fb_bench_marks_s;
 
 /* Draws error against wall time per revolution (log-log), one colour per
- * model, Pareto front joined, to path. rows as from fb_bench_run. */
+ * model, Pareto front joined, to path, titled with the engines the rows
+ * ran on; marks (bench_study.h; may be NULL): each error target's cheapest
+ * configuration across engines ringed and named, the peers' harness/bare
+ * ratios written beside the chart. rows as from fb_bench_run. */
 fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *case_name,
-                           const void *rows, int n, fb_diag *diag);
+                           const void *rows, int n, const struct fb_bench_marks_s *marks,
+                           fb_diag *diag);
 
 #endif

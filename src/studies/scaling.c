@@ -1,0 +1,108 @@
+/* fourbar bench --grid scaling (scaling.h) */
+#include "scaling.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "clock.h"
+#include "run.h"
+#include "tolerance.h"
+
+static const double default_revolutions[] = {1, 2, 4, 8, 16};
+static const double default_stiffness[] = {1, 10, 100};
+static const int default_members[] = {1, 4, 4};
+static const int default_jobs[] = {1, 1, 2};
+static const double default_samples[] = {1e4, 1e5};
+
+const fb_scaling_plan fb_scaling_default = {
+    .revolutions = default_revolutions, .nrevolutions = 5,
+    .stiffness = default_stiffness,     .nstiffness = 3,
+    .members = default_members,         .jobs = default_jobs,
+    .nensemble = 3,
+    .samples = default_samples,         .nsamples = 2,
+};
+
+static fb_scaling_row *new_row(fb_scaling_row *rows, int *n, const char *vary, double value,
+                               int jobs) {
+  fb_scaling_row *row = &rows[(*n)++];
+  memset(row, 0, sizeof *row);
+  snprintf(row->vary, sizeof row->vary, "%s", vary);
+  row->value = value;
+  row->jobs = jobs;
+  row->estimate_s = row->reference_steps_per_rev = row->check_steps_per_rev = NAN;
+  return row;
+}
+
+/* runs case k as fb_run_case does, timed, into row */
+static void run_row(fb_scaling_row *row, const fb_case *k) {
+  static fb_run r;
+  fb_diag d;
+  const double w0 = fb_clock_s(), c0 = fb_clock_cpu_s();
+  const fb_status st = fb_run_case(&r, k, NULL, NULL, &d);
+  row->wall_s = fb_clock_s() - w0;
+  row->cpu_s = fb_clock_cpu_s() - c0;
+  row->ran = st == FB_OK;
+  snprintf(row->status, sizeof row->status, "%.250s", st == FB_OK ? "ok" : d.msg);
+  if (st != FB_OK) return;
+  row->estimate_s = r.estimate_s;
+  for (int i = 0; i < r.n; i++)
+    if (strcmp(r.model[i].run.name, "reference") == 0) {
+      row->reference_steps_per_rev = (double)r.model[i].run.steps / k->revolutions;
+      if (r.model[i].ref_check_steps)
+        row->check_steps_per_rev = (double)r.model[i].ref_check_steps / k->revolutions;
+    }
+  fb_run_free(&r);
+}
+
+static void monte_carlo_row(fb_scaling_row *row, const fb_case *c, size_t samples) {
+  static fb_stackup_result out;
+  fb_diag d;
+  double bytes;
+  fb_tol_estimate(c->mechanism, samples, row->jobs, &bytes, &row->estimate_s);
+  const double w0 = fb_clock_s(), c0 = fb_clock_cpu_s();
+  const fb_status st = fb_tol_analyse_jobs(&out, c, FB_TOL_MONTECARLO, samples, 1,
+                                           c->distribution ? FB_DIST_UNIFORM : FB_DIST_NORMAL,
+                                           row->jobs, NULL, NULL, &d);
+  row->wall_s = fb_clock_s() - w0;
+  row->cpu_s = fb_clock_cpu_s() - c0;
+  row->ran = st == FB_OK;
+  snprintf(row->status, sizeof row->status, "%.250s", st == FB_OK ? "ok" : d.msg);
+}
+
+fb_status fb_scaling_run(fb_scaling_row *rows, int *n, const fb_case *c, const fb_scaling_plan *p,
+                         fb_diag *diag) {
+  *n = 0;
+  if (p->nrevolutions + p->nstiffness + p->nensemble + p->nsamples > FB_SCALING_MAX_ROWS)
+    return fb_diag_set(diag, FB_ERR_ARG, "a scaling plan of more than %d rows",
+                       FB_SCALING_MAX_ROWS);
+  fb_case *k = malloc(sizeof *k);
+  if (!k) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int i = 0; i < p->nrevolutions; i++) {
+    *k = *c;
+    k->revolutions = p->revolutions[i];
+    k->model_count = 1;
+    snprintf(k->models[0], sizeof k->models[0], "reference");
+    k->ensemble = 1;
+    k->peaks = FB_PEAKS_ALL;
+    run_row(new_row(rows, n, "revolutions", p->revolutions[i], 1), k);
+  }
+  for (int i = 0; i < p->nstiffness; i++) {
+    *k = *c;
+    k->clearance.stiffness_scale = c->clearance.stiffness_scale * p->stiffness[i];
+    k->ensemble = 1;
+    run_row(new_row(rows, n, "stiffness_scale", p->stiffness[i], 1), k);
+  }
+  for (int i = 0; i < p->nensemble; i++) {
+    *k = *c;
+    k->ensemble = p->members[i];
+    k->jobs = p->jobs[i];
+    run_row(new_row(rows, n, "ensemble", p->members[i], p->jobs[i]), k);
+  }
+  for (int i = 0; i < p->nsamples; i++)
+    monte_carlo_row(new_row(rows, n, "montecarlo_samples", p->samples[i], 1), c,
+                    (size_t)p->samples[i]);
+  free(k);
+  return FB_OK;
+}

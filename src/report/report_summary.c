@@ -148,7 +148,8 @@ static json_t *window_json(const fb_run *r, const fb_peaks *p, const fb_peaks_at
 static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
   json_t *arr = json_array();
   for (int j = 0; j < 4; j++) {
-    const fb_contact_law *law = fb_report_model_law(r, m, j);
+    fb_contact_law lb;
+      const fb_contact_law *law = fb_report_model_law(&lb, r, m, j);
     if (!law) continue;
     json_t *o = fb_report_contact_law_json(fb_case_joint_name(&r->c, j), law, r->scene.mapping);
     const fb_contact_provenance *p = &m->run.provenance[j];
@@ -562,6 +563,12 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_object_set_new(o, "stepper", json_string(c->solver.stepper == FB_STEPPER_WORLD
                                                     ? "dWorldStep"
                                                     : "dWorldQuickStep"));
+  char injected[1024];
+  json_object_set_new(o, "engine_stiffness_scale", num(c->clearance.engine_stiffness_scale));
+  json_object_set_new(o, "engine_damping_scale", num(c->clearance.engine_damping_scale));
+  json_object_set_new(o, "injected_error", fb_report_injected_text(injected, sizeof injected, r)
+                                               ? json_string(injected)
+                                               : json_null());
   json_object_set_new(o, "stackup", stackup_json(c));
   json_object_set_new(o, "masses", masses_json(c));
   json_object_set_new(o, "series",

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "casefile.h"
 #include "joint_law.h"
 #include "linkage.h"
 #include "tolerance.h"
@@ -260,6 +261,16 @@ fb_status fb_scene_select(fb_model_scene *out, const fb_scene *def, const fb_mod
   out->clearance_mask = def->clearance_mask;
   if (m->law != FB_MODEL_LAW_NONE)
     for (int j = 0; j < 4; j++) out->law[j] = def->law[m->law][j];
+  /* an injected error: every engine model's law, never a reference's; a
+   * rigid model has no stiffness or damper to scale */
+  const fb_clearance *cl = &def->source.clearance;
+  const int damping_given = fb_casefile_given(&def->source, "clearance", "engine_damping_scale");
+  if (fb_engine_steps_world(m->engine) && !m->rigid && m->law != FB_MODEL_LAW_NONE &&
+      (cl->engine_stiffness_scale != 1.0 || cl->engine_damping_scale != 1.0 || damping_given))
+    for (int j = 0; j < 4; j++)
+      if (def->clearance_mask & (1 << j))
+        fb_contact_law_scale(&out->law[j], cl->engine_stiffness_scale, cl->engine_damping_scale,
+                             damping_given);
   out->radial_clearance = def->radial_clearance;
   out->pin_radius = def->pin_radius;
   out->mapping = def->mapping;

@@ -152,6 +152,8 @@ static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
       const fb_contact_law *law = fb_report_model_law(&lb, r, m, j);
     if (!law) continue;
     json_t *o = fb_report_contact_law_json(fb_case_joint_name(&r->c, j), law, r->scene.mapping);
+    /* the force an impact must exceed, the same for every model (episode.h) */
+    json_object_set_new(o, "impact_floor_n", num(r->scene.impact_floor[j]));
     const fb_contact_provenance *p = &m->run.provenance[j];
     const int have = m->run.has_provenance && p->contact_steps > 0;
     const char *mapping = fb_report_model_mapping(r, m);

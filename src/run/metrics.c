@@ -252,6 +252,53 @@ fb_status fb_metrics_error(fb_error *out, const fb_series *s, double t_from,
   return FB_OK;
 }
 
+/* a sample of joint j in contact: the pin beyond the clearance, or a force
+ * above the floor (a rigid contact's impulse, with the pin on the wall) */
+static int contact_sample(const double *f, const double *p, size_t i, double floor) {
+  return p[i] > 0.0 || f[i] > floor;
+}
+
+int fb_metrics_next_impact(const fb_series *s, int j, size_t from, size_t *first, size_t *last) {
+  const double *f = s->contact[j][FB_C_FORCE], *p = s->contact[j][FB_C_PEN];
+  const double floor = s->impact_floor[j] > 0.0 ? s->impact_floor[j] : 0.0;
+  for (size_t i = from; i < s->n;) {
+    if (!contact_sample(f, p, i, floor)) {
+      i++;
+      continue;
+    }
+    size_t e = i;
+    double peak = f[i];
+    while (e + 1 < s->n && contact_sample(f, p, e + 1, floor)) peak = fmax_d(peak, f[++e]);
+    if (peak > floor) {
+      *first = i;
+      *last = e;
+      return 1;
+    }
+    i = e + 1; /* a touch whose force stays below the floor */
+  }
+  return 0;
+}
+
+size_t fb_metrics_impact_episodes(const fb_series *s, int j, double t_end, size_t *first,
+                                  size_t *last, size_t cap) {
+  size_t k = 0, i = 0, a, b;
+  while (fb_metrics_next_impact(s, j, i, &a, &b)) {
+    if (!(s->t[a] < t_end)) break;
+    if (k < cap) first[k] = a, last[k] = b;
+    k++;
+    i = b + 1;
+  }
+  return k;
+}
+
+/* impacts of joint j whose onset lies at t >= t_from */
+static int impacts_from(const fb_series *s, int j, double t_from) {
+  int k = 0;
+  size_t i = 0, a, b;
+  for (; fb_metrics_next_impact(s, j, i, &a, &b); i = b + 1) k += s->t[a] >= t_from;
+  return k;
+}
+
 fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
                             double alpha_ref_coupler, double alpha_ref_follower,
                             const fb_error *err, fb_diag *diag) {
@@ -267,16 +314,16 @@ fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
       if (!(s->contact_mask & (1 << j))) continue;
       const double f = s->contact[j][FB_C_FORCE][i], p = s->contact[j][FB_C_PEN][i];
       const int st = (int)s->contact[j][FB_C_STATE][i];
-      const int prev = i > 0 ? (int)s->contact[j][FB_C_STATE][i - 1] : FB_STATE_FREE;
       if (f > fmax) fmax = f;
       if (p > pmax) pmax = p;
-      if (st == FB_STATE_IMPACT && prev != FB_STATE_IMPACT) impacts++;
       free_count += st == FB_STATE_FREE;
       pairs++;
     }
   }
   if (used == 0)
     return fb_diag_set(diag, FB_ERR_ARG, "no sample at or after t = %g s for spike metrics", t_from);
+  for (int j = 0; j < 4; j++)
+    if (s->contact_mask & (1 << j)) impacts += impacts_from(s, j, t_from);
   const double two_pi = 2.0 * M_PI;
   out->alpha_peak_ratio_coupler = ac / alpha_ref_coupler;
   out->alpha_peak_ratio_follower = af / alpha_ref_follower;
@@ -295,47 +342,13 @@ fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
 
 static void window_impacts(const fb_series *s, double t_from, int j, int *count, double angles[8]) {
   *count = 0;
-  for (size_t i = 1; i < s->n; i++) {
-    if (s->t[i] < t_from) continue;
-    if ((int)s->contact[j][FB_C_STATE][i] == FB_STATE_IMPACT &&
-        (int)s->contact[j][FB_C_STATE][i - 1] != FB_STATE_IMPACT) {
-      if (*count < 8) angles[*count] = fmod(fmod(s->crank_angle[i], 2 * M_PI) + 2 * M_PI, 2 * M_PI);
-      (*count)++;
-    }
+  size_t i = 0, a, b;
+  for (; fb_metrics_next_impact(s, j, i, &a, &b); i = b + 1) {
+    if (s->t[a] < t_from) continue;
+    if (*count < 8) angles[*count] = fmod(fmod(s->crank_angle[a], 2 * M_PI) + 2 * M_PI, 2 * M_PI);
+    (*count)++;
   }
   for (int k = *count; k < 8; k++) angles[k] = -1.0;
-}
-
-/* impacts of series s at joint j starting before t_end: onset time, peak
- * force and penetration; returns the count, at most cap stored. An impact
- * is a contact episode (the samples of one unbroken run of positive force)
- * with at least one sample in the impact state; its peaks are over the
- * whole episode. Not the impact state alone: the state machines split one
- * contact whose force falls and rises again (a double-peaked impact) into
- * an impact and a continuous phase, and whether they do depends on the
- * step, so the reference's first impact at 1500 rpm peaked at 4203 N as
- * "impact" and 10276 N as "continuous" while the model's, one phase, peaked
- * at 10268 N (paired: +144 %). */
-size_t fb_metrics_impact_episodes(const fb_series *s, int j, double t_end, size_t *first,
-                                  size_t *last, size_t cap) {
-  const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
-  size_t k = 0, i = 0;
-  while (i < s->n) {
-    if (!(f[i] > 0.0)) {
-      i++;
-      continue;
-    }
-    size_t e = i;
-    int impact = 0;
-    for (; e < s->n && f[e] > 0.0; e++) impact |= (int)st[e] == FB_STATE_IMPACT;
-    if (impact) {
-      if (!(s->t[i] < t_end)) break;
-      if (k < cap) first[k] = i, last[k] = e - 1;
-      k++;
-    }
-    i = e;
-  }
-  return k;
 }
 
 /* the impacts of joint j beginning before t_end (fb_metrics_impact_episodes):

@@ -58,13 +58,29 @@ typedef struct {
   X(alpha_peak_crank_angle_coupler, "alpha_peak_crank_angle_coupler_rad")  \
   X(alpha_peak_crank_angle_follower, "alpha_peak_crank_angle_follower_rad")
 
-/* Impacts of clearance joint j of series s (with contact columns) that begin
- * before t_end [s] (INFINITY: all): each a contact episode, one unbroken run
- * of samples with positive force holding at least one sample in the impact
- * state (so the force peak of an impact that turns into continuous contact
- * belongs to it). The first and last sample index of the first cap, in time
- * order. Returns the count found, which may exceed cap. The metrics, the
- * divergence pairing and report.html's impact list all count impacts so. */
+/* The next impact of clearance joint j of series s (with contact columns)
+ * at or after sample from, its first and last sample; 0 when none is left.
+ * An impact is a contact, an unbroken run of samples with the pin beyond
+ * the clearance (penetration > 0) or a force above the series' floor
+ * s->impact_floor[j] (a rigid contact's impulse with the pin on the wall),
+ * whose force somewhere exceeds that floor (episode.h,
+ * FB_IMPACT_FLOOR_SHARE; 0: any positive force). One definition for every
+ * model: the reference's and each engine's state columns are not read
+ * (they differed: a positive force after a zero one, against a positive
+ * penetration at a step approaching faster than 1 mm/s). A contact is not
+ * split where its force touches zero while the pin is still in (a damped
+ * law's force clamped to zero before the penetration is, then a little
+ * above zero again: 0.1 to 1.6 N tails counted as impacts before; ODE's
+ * row letting go for a step in a sustained contact), and an impact that
+ * turns into continuous contact is one impact, its peaks over the whole
+ * contact. Every count of impacts (spikes, the tables, the divergence
+ * pairing, impact statistics, report.html's list) walks these. */
+int fb_metrics_next_impact(const fb_series *s, int j, size_t from, size_t *first, size_t *last);
+
+/* Impacts of clearance joint j of series s (fb_metrics_next_impact) that
+ * begin before t_end [s] (INFINITY: all): the first and last sample index
+ * of the first cap, in time order. Returns the count found, which may
+ * exceed cap. */
 size_t fb_metrics_impact_episodes(const fb_series *s, int j, double t_end, size_t *first,
                                   size_t *last, size_t cap);
 /* Most episodes one metric lists per series (more are counted). */

@@ -276,8 +276,10 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
   fb_stop stop;
   memset(&stop, 0, sizeof stop);
   const int cj = fb_case_mech(&r->c)->reference_joint;
-  if (fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[cj], 0, check, &stop,
-                           &inner) == FB_OK &&
+  const fb_status ran = fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[cj], 0, check,
+                                             &stop, &inner);
+  for (int j = 0; j < 4; j++) s.impact_floor[j] = r->scene.impact_floor[j]; /* as its model's */
+  if (ran == FB_OK &&
       stop.kind == FB_STOP_NONE &&
       fb_metrics_vs_reference(&m->ref_estimate, &m->run.series, &s, r->t_window, cj,
                               &inner) == FB_OK) {

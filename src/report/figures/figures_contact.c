@@ -4,6 +4,7 @@
  * continuous contact) and the contact force, over the peak window or over
  * the start-up (against log time), the reference dynamics' force overlaid. */
 #include "figures_internal.h"
+#include "metrics.h"
 
 #include <jansson.h>
 #include <math.h>
@@ -78,10 +79,11 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
   free(oy);
   free(keep);
   fprintf(pl.p, "EOD\n$impacts << EOD\n");
-  /* an impact: the state turns to 1 from anything else (or starts the window at 1) */
-  for (size_t i = i0; i < i1; i++)
-    if ((int)state[i] == FB_STATE_IMPACT && (i == i0 || (int)state[i - 1] != FB_STATE_IMPACT)) {
-      fprintf(pl.p, "%.6f %.6f\n", ex[i] * 1e6, ey[i] * 1e6);
+  /* an impact's onset, as every count defines it (fb_metrics_next_impact) */
+  size_t ia, ib;
+  for (size_t i = 0; fb_metrics_next_impact(s, j, i, &ia, &ib) && ia < i1; i = ib + 1)
+    if (ia >= i0) {
+      fprintf(pl.p, "%.6f %.6f\n", ex[ia] * 1e6, ey[ia] * 1e6);
       impacts++;
     }
   if (!impacts) fprintf(pl.p, "NaN NaN\n");

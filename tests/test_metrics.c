@@ -248,7 +248,7 @@ static void test_first_impact_rebound(void **state) {
     fb_series s;
     make_bounce(&s, t_outs[k], pens[k], 40);
     fb_first_impact fi;
-    fb_metrics_first_impact(&fi, &s, 1, C_M);
+    fb_metrics_first_impact(&fi, &s, 1, C_M, 0);
     assert_true(fi.found);
     report_residual("rebound - e", fi.rebound - BOUNCE_E, BOUNCE_REL_TOL);
     assert_true(fabs(fi.rebound / BOUNCE_E - 1.0) < BOUNCE_REL_TOL);
@@ -261,10 +261,46 @@ static void test_first_impact_rebound(void **state) {
     fb_series_free(&s);
     /* the series ends inside the contact: no rebound */
     make_bounce(&s, t_outs[k], pens[k], (size_t)(t_outs[k] / H_S) + 2);
-    fb_metrics_first_impact(&fi, &s, 1, C_M);
+    fb_metrics_first_impact(&fi, &s, 1, C_M, 0);
     assert_true(fi.found && isnan(fi.rebound) && isnan(fi.duration));
     fb_series_free(&s);
   }
+}
+
+/* A rigid contact (fb_metrics_first_impact with rigid): Moreau-Jean's
+ * trapezoidal flight (theta = 0.5) at a constant acceleration, whose
+ * velocity jumps from v to -e v over the step after the sample that carries
+ * the impulse. Positions q_{k+1} = q_k + h (v_k + v_{k+1}) / 2 are exactly
+ * quadratic on each side, so the slopes at the step's two ends are v and
+ * -e v to round-off, however curved the flight. */
+static void test_rigid_rebound_reads_e(void **state) {
+  (void)state;
+  enum { N = 40, AT = 12 };
+  const double e = 0.9, v0 = 0.15, acc = 7e3; /* |e|'s curvature of the paper case */
+  fb_series s;
+  assert_int_equal(fb_series_init(&s, N), FB_OK);
+  assert_int_equal(fb_series_enable_contact(&s, 1 << 1), FB_OK);
+  /* the approach reaches c between samples AT - 1 and AT */
+  double q = C_M - (AT - 0.5) * H_S * v0, v = v0 - AT * H_S * acc;
+  for (int k = 0; k < N; k++) {
+    fb_sample x;
+    memset(&x, 0, sizeof x);
+    x.t = k * H_S;
+    x.contact[1][FB_C_EX] = q;
+    x.contact[1][FB_C_FORCE] = k == AT ? 1e4 : 0.0;
+    x.contact[1][FB_C_PEN] = q > C_M ? q - C_M : 0.0;
+    assert_int_equal(fb_series_push(&s, &x), FB_OK);
+    const double vn = k == AT ? -e * v : v + H_S * acc;
+    q += 0.5 * H_S * (v + vn);
+    v = vn;
+  }
+  fb_first_impact fi;
+  fb_metrics_first_impact(&fi, &s, 1, C_M, 1);
+  assert_true(fi.found);
+  report_residual("rigid rebound - e", fi.rebound - e, BOUNCE_REL_TOL);
+  assert_true(fabs(fi.rebound / e - 1.0) < BOUNCE_REL_TOL);
+  assert_near(fi.duration, H_S, 1e-20);
+  fb_series_free(&s);
 }
 
 /* the first impact's metric names are known to a study's metric list */
@@ -338,6 +374,7 @@ int main(void) {
       cmocka_unit_test(test_parts_from_the_reference),
       cmocka_unit_test(test_ecc_direction_rms),
       cmocka_unit_test(test_first_impact_rebound),
+      cmocka_unit_test(test_rigid_rebound_reads_e),
       cmocka_unit_test(test_first_impact_metric_names),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

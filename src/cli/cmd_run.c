@@ -250,8 +250,8 @@ int fb_cmd_run(int argc, char **argv) {
   if (rc) return rc;
   c.jobs = jobs;
   /* a case that leaves [run] ensemble unset lets the run add one where a
-   * verdict is unsettled (run.h, FB_ENSEMBLE_AUTO_MEMBERS; docs/chaos.md) */
-  if (!fb_casefile_given(&c, "run", "ensemble")) c.ensemble_auto = FB_ENSEMBLE_AUTO_MEMBERS;
+   * verdict is unsettled (run.h, FB_ENSEMBLE_AUTO; docs/verdicts.md) */
+  if (!fb_casefile_given(&c, "run", "ensemble")) c.ensemble_auto = FB_ENSEMBLE_AUTO;
   static fb_case variants[FB_MAX_VARIANTS];
   if ((rc = load_variants(&c, variants, case_path, sets, nsets, jobs)) != 0) return rc;
 

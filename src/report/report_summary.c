@@ -12,6 +12,7 @@
 #include "casefile.h"
 #include "outcome_text.h"
 #include "report_chaos.h"
+#include "report_verdict.h"
 #include "report_internal.h"
 #include "report_variants.h"
 #include "resolution.h"
@@ -433,6 +434,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "vs_published",
                       fb_report_vs_published_json(&r->c, run->model, &m->peaks, m->has_peaks));
   json_object_set_new(o, "impact_statistics", fb_report_ensemble_json(m, r));
+  json_object_set_new(o, "verdict_test", fb_report_test_json(m));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
   json_object_set_new(o, "adaptive_steps", adaptive_steps_json(run));
@@ -604,7 +606,8 @@ json_t *fb_report_timing_json(const fb_run *r) {
                                             "stepping_s", num(run->stepping_s)));
   }
   /* the ensemble's members beyond the first (docs/chaos.md): its cost */
-  json_t *ens = json_pack("{s:i,s:s,s:o,s:o,s:o}", "members", r->c.ensemble > 1 ? r->c.ensemble : 1,
+  json_t *ens = json_pack("{s:i,s:s,s:o,s:o,s:o}", "members",
+                          r->ensemble_auto > 1 ? r->ensemble_auto : r->c.ensemble > 1 ? r->c.ensemble : 1,
                           "source", r->ensemble_auto > 1 ? "run" : r->c.ensemble > 1 ? "case" : "none",
                           "wall_s", num(r->ensemble_wall_s), "models_wall_s", num(r->models_wall_s),
                           "estimate_s", r->ensemble_auto > 1 || r->ensemble_auto_skipped

@@ -144,7 +144,34 @@ static void first_rebound(fb_first_impact *out, const fb_series *s, int j, size_
   out->duration = t_out - t_in;
 }
 
-void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, double clearance) {
+/* quadratic through |e| at samples k, k + 1, k + 2: its slope at time t */
+static double quad_slope_at(const fb_series *s, int j, size_t k, double t) {
+  const double t0 = s->t[k], t1 = s->t[k + 1], t2 = s->t[k + 2];
+  const double y0 = ecc_norm(s, j, k), y1 = ecc_norm(s, j, k + 1), y2 = ecc_norm(s, j, k + 2);
+  const double d01 = (y1 - y0) / (t1 - t0), d12 = (y2 - y1) / (t2 - t1);
+  const double a = (d12 - d01) / (t2 - t0), b = d01 + a * (t1 - t0);
+  return b + 2.0 * a * (t - t1);
+}
+
+/* a rigid contact's rebound (metrics.h): the impulse acts over the step
+ * after sample i, the first carrying it */
+static void impulse_rebound(fb_first_impact *out, const fb_series *s, int j, size_t i,
+                            double clearance) {
+  out->rebound = out->duration = NAN;
+  if (i < 2 || i + 4 > s->n) return;
+  for (size_t k = i - 2; k < i; k++)
+    if (!free_sample(s, j, k, clearance)) return;
+  for (size_t k = i + 1; k <= i + 3; k++)
+    if (s->contact[j][FB_C_FORCE][k] > 0.0) return; /* held on the wall: no bounce */
+  const double u_in = quad_slope_at(s, j, i - 2, s->t[i]);
+  const double u_out = quad_slope_at(s, j, i + 1, s->t[i + 1]);
+  if (!(u_in > 0.0)) return;
+  out->rebound = -u_out / u_in;
+  out->duration = s->t[i + 1] - s->t[i];
+}
+
+void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, double clearance,
+                             int rigid) {
   memset(out, 0, sizeof *out);
   out->rebound = out->duration = NAN;
   if (j < 0 || j > 3 || !(s->contact_mask & (1 << j))) return;
@@ -165,7 +192,8 @@ void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, do
     /* the crank turns uniformly between samples */
     const double w = (s->crank_angle[i] - s->crank_angle[i - 1]) / h;
     out->crank_angle = wrap_angle(s->crank_angle[i - 1] + w * (t - s->t[i - 1]));
-    first_rebound(out, s, j, i, clearance);
+    if (rigid) impulse_rebound(out, s, j, i, clearance);
+    else first_rebound(out, s, j, i, clearance);
     return;
   }
 }
@@ -371,10 +399,9 @@ static int impact_list(const fb_series *s, int j, double t_end, double *t0, doub
   return (int)n;
 }
 
-/* peak force and penetration of the first FB_FIRST_IMPACTS impacts of the run */
-static int first_impacts(const fb_series *s, int j, double force[FB_FIRST_IMPACTS],
-                         double pen[FB_FIRST_IMPACTS]) {
-  double t0[FB_FIRST_IMPACTS];
+/* onset, peak force and penetration of the first FB_FIRST_IMPACTS impacts of the run */
+static int first_impacts(const fb_series *s, int j, double t0[FB_FIRST_IMPACTS],
+                         double force[FB_FIRST_IMPACTS], double pen[FB_FIRST_IMPACTS]) {
   const int n = impact_list(s, j, INFINITY, t0, NULL, force, pen, FB_FIRST_IMPACTS);
   return n < FB_FIRST_IMPACTS ? n : FB_FIRST_IMPACTS;
 }
@@ -440,11 +467,15 @@ fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, c
   window_impacts(s, t_from, j, &out->impacts, out->impact_angles);
   window_impacts(r, t_from, j, &out->impacts_reference, out->impact_angles_reference);
   double fa[FB_FIRST_IMPACTS], pa[FB_FIRST_IMPACTS], fb[FB_FIRST_IMPACTS], pb[FB_FIRST_IMPACTS];
-  const int na = first_impacts(s, j, fa, pa), nb = first_impacts(r, j, fb, pb);
+  double ta[FB_FIRST_IMPACTS], tb[FB_FIRST_IMPACTS];
+  const int na = first_impacts(s, j, ta, fa, pa), nb = first_impacts(r, j, tb, fb, pb);
   out->first_impacts = na < nb ? na : nb;
   for (int k = 0; k < out->first_impacts; k++) {
     out->first_impact_force_rel[k] = fb_metrics_rel(fa[k], fb[k]);
     out->first_impact_penetration_rel[k] = fb_metrics_rel(pa[k], pb[k]);
+    out->first_impact_t[k] = ta[k];
+    out->first_impact_t_error[k] = ta[k] - tb[k];
+    out->first_impact_force_reference[k] = fb[k];
   }
   return FB_OK;
 }

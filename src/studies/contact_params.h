@@ -48,9 +48,10 @@
 #include "status.h"
 
 /* The issue's acceptance bounds on one impact: restitution within 1 %, peak
- * penetration within 2 % of the continuous contact's. */
-#define FB_CP_RESTITUTION_TOL 0.01
-#define FB_CP_PENETRATION_TOL 0.02
+ * penetration within 2 % of the continuous contact's (impact.h, one rule
+ * for the verification and the verdict's first impact). */
+#define FB_CP_RESTITUTION_TOL FB_FAITHFUL_RESTITUTION_TOL
+#define FB_CP_PENETRATION_TOL FB_FAITHFUL_PENETRATION_TOL
 
 /* Onset phases verified: the fraction of a step by which the contact began
  * before the first step that sees it (engine.h, fb_impact_row). The

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "impact.h"
 #include "outcome_text.h"
 #include "reference.h"
 #include "report_verdict.h"
@@ -84,6 +85,16 @@ json_t *fb_report_step_json(const fb_run *r) {
   json_object_set_new(o, "within_bound", r->h_omega_c_max > 0.0
                                              ? json_boolean(r->h_omega_c_max <= FB_H_OMEGA_C_BOUND)
                                              : json_null());
+  const fb_step_check *k = &r->step_check;
+  json_object_set_new(
+      o, "single_impact",
+      k->checked ? json_pack("{s:s,s:o,s:o,s:f,s:f,s:b,s:o}", "joint",
+                             fb_case_joint_name(&r->c, k->joint), "restitution_rel",
+                             num(k->restitution_rel), "penetration_rel", num(k->penetration_rel),
+                             "restitution_tol", FB_FAITHFUL_RESTITUTION_TOL, "penetration_tol",
+                             FB_FAITHFUL_PENETRATION_TOL, "faithful", k->faithful,
+                             "largest_faithful_step_s", num(k->largest_step))
+                 : json_null());
   return o;
 }
 
@@ -108,6 +119,25 @@ static void step_line(FILE *f, const fb_run *r, const char *pre) {
              r->h_omega_c_max <= FB_H_OMEGA_C_BOUND ? "within" : "beyond");
   fputs(pre, f);
   fb_report_say(f, "%s", line);
+  char faithful[600];
+  if (fb_report_step_check_text(faithful, sizeof faithful, r)) fb_report_say(f, "  %s", faithful);
+}
+
+const char *fb_report_step_check_text(char *buf, size_t size, const fb_run *r) {
+  const fb_step_check *k = &r->step_check;
+  buf[0] = '\0';
+  if (!k->checked) return NULL;
+  char largest[64] = "none found";
+  if (isfinite(k->largest_step)) snprintf(largest, sizeof largest, "h = %.4g s", k->largest_step);
+  snprintf(buf, size, "the restitution law's single impact at this step (fourbar contact-params "
+           "--case: ODE's matched row, every effective mass and onset phase): restitution %+.2g %%, "
+           "penetration %+.2g %% at the %s joint, against %g %% and %g %%: %s (largest faithful "
+           "step %s)", 100.0 * k->restitution_rel, 100.0 * k->penetration_rel,
+           fb_case_joint_name(&r->c, k->joint), 100.0 * FB_FAITHFUL_RESTITUTION_TOL,
+           100.0 * FB_FAITHFUL_PENETRATION_TOL,
+           k->faithful ? "faithful" : "not faithful: this run accepts that rebound error",
+           largest);
+  return buf;
 }
 
 /* one row: model, quantity, pooled mean / p50 / p90 / max (spread), vs ref */

@@ -1,5 +1,7 @@
 #include "report_verdict.h"
 
+#include "impact.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -63,7 +65,7 @@ static json_t *first_json(const fb_model_result *m) {
   json_t *o = json_object();
   json_object_set_new(o, "compared", json_integer(c->compared));
   json_object_set_new(o, "unpaired", c->unpaired ? json_integer(c->unpaired) : json_null());
-  json_object_set_new(o, "worst_rel", num(c->worst));
+  json_object_set_new(o, "worst_of_bound", num(c->worst));
   json_object_set_new(o, "worst_impact", c->worst_k ? json_integer(c->worst_k) : json_null());
   json_object_set_new(o, "what", json_string(m->run.model->rigid
                                                  ? "onsets, and the first impact's rebound ratio"
@@ -149,12 +151,14 @@ static size_t first_reason(char *buf, size_t size, size_t n, const fb_model_resu
                   "reference's: impact %d has no partner within %g of a revolution", m->ref_name,
                   c->unpaired, FB_IMPACT_MATCH_REV_FRACTION);
   if (m->run.model->rigid)
-    return append(buf, size, n, "; its first impact's rebound ratio %+.1f %% against %s's "
-                  "(bound %g)%s", 100.0 * c->worst, m->ref_name, c->bound,
-                  c->ok ? "" : ": wrong whatever its statistics say");
-  return append(buf, size, n, "; its first %d impact%s, before it parts, within %.2g of %s's "
-                "(bound %g)%s", c->compared, c->compared == 1 ? "" : "s", c->worst, m->ref_name,
-                c->bound, c->ok ? "" : ": missed, wrong whatever its statistics say");
+    return append(buf, size, n, "; its first impact's rebound ratio within %.0f %% of its bound "
+                  "%g against %s's%s", 100.0 * c->worst, c->bound, m->ref_name,
+                  c->ok ? "" : ": beyond it, wrong whatever its statistics say");
+  return append(buf, size, n, "; its first %d impact%s, before it parts, against %s's: the worst "
+                "at %.0f %% of its bound (the first's penetration %g, then force and penetration "
+                "%g)%s", c->compared, c->compared == 1 ? "" : "s", m->ref_name, 100.0 * c->worst,
+                FB_FAITHFUL_PENETRATION_TOL, c->bound,
+                c->ok ? "" : ": beyond it, wrong whatever its statistics say");
 }
 
 void fb_report_test_reason(char *buf, size_t size, const fb_model_result *m) {

@@ -20,8 +20,9 @@
 json_t *fb_report_members_json(const fb_ensemble *e);
 
 /* summary.json's model "verdict_test" (null when the model was not tested):
- * {"first_impacts": {"compared", "unpaired", "worst_rel", "worst_impact",
- * "bound", "ok"} or null, "statistics": [{"name", "key", "margin",
+ * {"first_impacts": {"compared", "unpaired", "worst_of_bound" (the largest
+ * error over its bound, verdict_stats.h fb_first_check), "worst_impact",
+ * "what", "bound", "ok"} or null, "statistics": [{"name", "key", "margin",
  * "members", "members_reference", "skipped", "skipped_reference", "mean",
  * "mean_reference", "sd", "sd_reference", "ratio", "interval": [lo, hi],
  * "df", "p_equivalent", "p_different", "decision", "outside"}], "decision":

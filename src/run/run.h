@@ -129,6 +129,22 @@ typedef struct {
   fb_verdict_basis basis;
 } fb_model_result;
 
+/* The step a run took, verified as `fourbar contact-params --case` verifies
+ * a contact (studies/contact_params.h): the restitution law's single impact
+ * in ODE's matched row, at each clearance joint's effective masses and every
+ * onset phase within a step, against the continuous law (impact.h,
+ * FB_FAITHFUL_*). `fourbar run` fills it when a restitution-law model ran;
+ * the step line states the error the run accepts when it is not faithful. */
+typedef struct {
+  int checked;            /* 1: verified */
+  int joint;              /* the clearance joint of the worst figures */
+  int faithful;           /* 1: every joint within both bounds */
+  double restitution_rel; /* worst relative error of the restitution [-] */
+  double penetration_rel; /* worst relative error of the peak penetration [-] */
+  double largest_step;    /* the smallest over the joints of the largest faithful step [s]; NaN:
+                             none found */
+} fb_step_check;
+
 typedef struct fb_run_s {
   fb_case c;                              /* the case as run (worst corner resolved) */
   fb_scene scene;                     /* the case resolved once; every model's scene */
@@ -154,6 +170,8 @@ typedef struct fb_run_s {
   double ensemble_estimate_s;             /* the estimate of the look it did not run [s] */
   double ensemble_wall_s;                 /* wall time of the members beyond the first [s] */
   double models_wall_s;                   /* wall time of the ensemble's models' first run [s] */
+  fb_step_check step_check;               /* the step's single impact, as contact-params
+                                             verifies it (fourbar run only) */
   int variant_count;                      /* variants run (fb_run_variants; 0: none) */
   fb_variant_result variant[FB_MAX_VARIANTS]; /* their models' peaks, in c.variant order */
 } fb_run;

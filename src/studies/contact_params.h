@@ -45,6 +45,7 @@
 #include "contact.h"
 #include "engine_params.h"
 #include "impact.h"
+#include "run.h"
 #include "status.h"
 
 /* The issue's acceptance bounds on one impact: restitution within 1 %, peak
@@ -106,6 +107,8 @@ typedef struct {
   double load;        /* hertz: linearise at the static penetration of this load [N];
                          NAN: at the impact */
   int verify;         /* 1: search the largest step, build at_step, verify every row */
+  int case_step;      /* 1: h is the case's own step, the one fourbar run takes
+                         (fb_cp_request_from_case without a step given) */
   int engine_steps;   /* 1 (with verify): also the at_step contact at MuJoCo's and Gazebo's
                          default steps (FB_CP_MUJOCO_DEFAULT_H, FB_CP_GAZEBO_DEFAULT_H);
                          the CLI sets it when no --h-s is given */
@@ -231,6 +234,14 @@ typedef struct {
  * case's step when q->h is NAN. The other fields of q stay as given.
  * Errors: those of fb_case_contact_of. */
 fb_status fb_cp_request_from_case(fb_cp_request *q, const fb_case *c, int j, fb_diag *diag);
+
+/* The step h of case c as this verification sees it, for `fourbar run`'s
+ * step line (run.h, fb_step_check): for every clearance joint, the
+ * restitution law's contact (fb_cp_request_from_case) verified at h; the
+ * worst relative restitution and penetration of ODE's matched row over the
+ * joint's masses and onset phases, and the smallest largest faithful step.
+ * Errors: those of fb_cp_request_from_case and fb_cp_run. */
+fb_status fb_cp_case_step_check(fb_step_check *out, const fb_case *c, double h, fb_diag *diag);
 
 /* Runs q (checked with fb_cp_request_check first): translation, rows, and
  * with q->verify the largest faithful step, at_step and every row's

@@ -212,10 +212,7 @@ void fb_report_markdown_chaos(FILE *f, const fb_run *r) {
                  "deg, %d impacts matched before it)\n",
               m->run.name, fb_report_model_status(st, sizeof st, m), m->ref_name,
               m->divergence.t, m->divergence.crank_angle * 180.0 / M_PI, m->divergence.matched);
-    else if (m->has_divergence)
-      fprintf(f, "- %s: %s; stays with %s's trajectory to the end (%d impacts matched, %s)\n",
-              m->run.name, fb_report_model_status(st, sizeof st, m), m->ref_name,
-              m->divergence.matched, m->divergence.one_to_one ? "one to one" : "not one to one");
+    /* a model that stays with its reference: its verdict's row says so */
     if (m->peaks_unconverged)
       fprintf(f, "- %s: window peaks not converged (~): force max ~%.3g N, coupler alpha "
                  "~%.3g / ~%.3g rad/s^2\n",

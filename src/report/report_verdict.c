@@ -68,8 +68,9 @@ static json_t *first_json(const fb_model_result *m) {
   json_object_set_new(o, "worst_of_bound", num(c->worst));
   json_object_set_new(o, "worst_impact", c->worst_k ? json_integer(c->worst_k) : json_null());
   json_object_set_new(o, "what", json_string(m->run.model->rigid
-                                                 ? "onsets, and the first impact's rebound ratio"
-                                                 : "onsets, peak force and penetration"));
+                                                 ? "the first impact's onset and rebound ratio"
+                                                 : "the first impact's onset, peak force and "
+                                                   "penetration"));
   json_object_set_new(o, "bound", json_real(c->bound));
   json_object_set_new(o, "ok", json_boolean(c->ok));
   return o;
@@ -145,19 +146,18 @@ static size_t append(char *buf, size_t size, size_t n, const char *fmt, ...) {
 
 static size_t first_reason(char *buf, size_t size, size_t n, const fb_model_result *m) {
   const fb_first_check *c = &m->first_check;
-  if (!m->has_first_check) return n;
+  if (!m->has_first_check || !c->worst_k) return n;
   if (c->unpaired)
-    return append(buf, size, n, "; its first impacts before it parts from %s are not its "
-                  "reference's: impact %d has no partner within %g of a revolution", m->ref_name,
-                  c->unpaired, FB_IMPACT_MATCH_REV_FRACTION);
+    return append(buf, size, n, "; its first impact before it parts from %s has no partner within "
+                  "%g of a revolution: wrong whatever its statistics say", m->ref_name,
+                  FB_IMPACT_MATCH_REV_FRACTION);
   if (m->run.model->rigid)
-    return append(buf, size, n, "; its first impact's rebound ratio within %.0f %% of its bound "
-                  "%g against %s's%s", 100.0 * c->worst, c->bound, m->ref_name,
+    return append(buf, size, n, "; its first impact's rebound ratio at %.0f %% of its bound %g "
+                  "against %s's%s", 100.0 * c->worst, c->bound, m->ref_name,
                   c->ok ? "" : ": beyond it, wrong whatever its statistics say");
-  return append(buf, size, n, "; its first %d impact%s, before it parts, against %s's: the worst "
-                "at %.0f %% of its bound (the first's penetration %g, then force and penetration "
-                "%g)%s", c->compared, c->compared == 1 ? "" : "s", m->ref_name, 100.0 * c->worst,
-                FB_FAITHFUL_PENETRATION_TOL, c->bound,
+  return append(buf, size, n, "; its first impact, before it parts, against %s's: force and "
+                "penetration at %.0f %% of the single impact's bound %g%s", m->ref_name,
+                100.0 * c->worst, c->bound,
                 c->ok ? "" : ": beyond it, wrong whatever its statistics say");
 }
 
@@ -227,4 +227,90 @@ void fb_report_print_tests(FILE *f, const fb_run *r, int markdown) {
                 fb_report_equiv_word(e->decision));
     }
   }
+}
+
+void fb_report_test_title(char *buf, size_t size, const fb_model_result *m) {
+  const fb_stat_test *t = &m->test;
+  size_t n = (size_t)snprintf(buf, size, "%s: %s on statistics, %d members (%s %d), look %d of %d "
+                              "at level %.3g:", m->run.name, fb_verdict_name(m->verdict), t->members,
+                              m->ref_name, t->members_reference, t->look, t->looks, t->alpha);
+  double p = 0.0;
+  for (int q = 0; q < t->n && n < size; q++) {
+    const fb_equiv *e = &t->eq[q];
+    n += (size_t)snprintf(buf + n, size - n, " %s %.3g [%.3g, %.3g] in [%.3g, %.3g]%s",
+                          fb_stat_name(t->kind[q]), e->ratio, e->lo, e->hi, 1.0 / e->margin,
+                          e->margin, q + 1 < t->n ? "," : "");
+    p = fmax(p, e->p_equivalent);
+  }
+  if (n < size)
+    snprintf(buf + n, size - n, "; p (equivalent) %.2g: %s", p, fb_report_equiv_word(t->decision));
+}
+
+static json_t *forces_json(const fb_model_result *m) {
+  json_t *a = json_array();
+  for (int k = 0; k < m->ensemble.members; k++) {
+    json_t *f = json_array();
+    const fb_impact_values *v = &m->member_impacts[k];
+    for (size_t i = 0; i < v->n; i++) json_array_append_new(f, num(v->force[i]));
+    json_array_append_new(a, f);
+  }
+  return a;
+}
+
+static json_t *rates_json(const fb_ensemble *e) {
+  json_t *a = json_array();
+  for (int k = 0; k < e->members; k++) json_array_append_new(a, num(e->member[k].rate));
+  return a;
+}
+
+json_t *fb_report_verdicts_json(const fb_run *r, const char *(*color)(const fb_run *, const char *)) {
+  json_t *list = json_array();
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_result *m = &r->model[i], *ref = NULL;
+    if (m->basis != FB_BASIS_STATISTICS || !m->has_test) continue;
+    for (int k = 0; k < r->n; k++)
+      if (strcmp(r->model[k].run.name, m->ref_name) == 0) ref = &r->model[k];
+    if (!ref || !ref->has_ensemble) continue;
+    char title[1400];
+    fb_report_test_title(title, sizeof title, m);
+    json_t *o = json_object();
+    json_object_set_new(o, "model", json_string(m->run.name));
+    json_object_set_new(o, "reference", json_string(ref->run.name));
+    json_object_set_new(o, "color", json_string(color(r, m->run.name)));
+    json_object_set_new(o, "verdict", json_string(fb_verdict_name(m->verdict)));
+    json_object_set_new(o, "title", json_string(title));
+    json_object_set_new(o, "model_forces", forces_json(m));
+    json_object_set_new(o, "reference_forces", forces_json(ref));
+    json_object_set_new(o, "model_rates", rates_json(&m->ensemble));
+    json_object_set_new(o, "reference_rates", rates_json(&ref->ensemble));
+    for (int q = 0; q < m->test.n; q++) {
+      const fb_equiv *e = &m->test.eq[q];
+      if (m->test.kind[q] != FB_STAT_RATE) continue;
+      json_object_set_new(o, "rate", json_pack("{s:o,s:o,s:o,s:f,s:o,s:o}", "ratio", num(e->ratio),
+                                              "lo", num(e->lo), "hi", num(e->hi), "margin",
+                                              e->margin, "mean", num(e->mean_x), "mean_reference",
+                                              num(e->mean_y)));
+    }
+    const fb_first_check *c = &m->first_check;
+    const int rigid = m->run.model->rigid;
+    json_t *first = json_array(), *bounds = json_array();
+    for (int k = 0; k < c->compared; k++) {
+      json_array_append_new(
+          first, json_pack("{s:o,s:o}", "force_rel",
+                           rigid ? json_null() : num(m->ref_error.first_impact_force_rel[k]),
+                           "penetration_rel",
+                           rigid ? json_null() : num(m->ref_error.first_impact_penetration_rel[k])));
+      json_array_append_new(bounds, k == 0 ? json_real(c->bound) : json_null()); /* not held */
+    }
+    json_object_set_new(o, "first", first);
+    json_object_set_new(o, "first_bounds", bounds);
+    json_object_set_new(o, "rigid", json_boolean(rigid));
+    json_object_set_new(o, "rebound_rel", rigid ? num(m->first_impact.rebound /
+                                                      ref->first_impact.rebound - 1.0)
+                                                : json_null());
+    json_object_set_new(o, "first_ok", json_boolean(c->ok));
+    json_object_set_new(o, "first_worst", num(c->worst));
+    json_array_append_new(list, o);
+  }
+  return list;
 }

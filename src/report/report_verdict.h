@@ -36,6 +36,23 @@ json_t *fb_report_test_json(const fb_model_result *m);
  * Returns buf. */
 const char *fb_report_parting_text(char *buf, size_t size, const fb_ensemble *e, double t_window);
 
+/* report.html's data of the verdicts on statistics (report-data.js
+ * "verdicts", docs/report.md): per model judged on them {model, reference,
+ * color (its colour in the run's figures, given by the caller), verdict,
+ * title (the test's figures in words), model_forces and reference_forces
+ * (each member's impact peak forces [N]), model_rates and reference_rates
+ * (each member's impacts per revolution), rate {ratio, lo, hi, margin,
+ * mean, mean_reference}, first [{force_rel, penetration_rel}] (the first
+ * impacts, before it parts), first_bounds (their bounds, relative), rigid,
+ * first_ok, first_worst (over its bound)}. color(r, name) gives a model's
+ * colour. */
+json_t *fb_report_verdicts_json(const fb_run *r, const char *(*color)(const fb_run *, const char *));
+
+/* The title of a verdict on statistics: the model, its verdict and members,
+ * each statistic's ratio, interval and margin, the worst p-value and the
+ * decision (the verdict figure's and report.html's). */
+void fb_report_test_title(char *buf, size_t size, const fb_model_result *m);
+
 /* "equivalent", "different", "undecided", "undefined" */
 const char *fb_report_equiv_word(fb_equiv_decision d);
 

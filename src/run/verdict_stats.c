@@ -68,47 +68,27 @@ void fb_stat_test_run(fb_stat_test *out, const fb_ensemble *e, const fb_ensemble
 void fb_first_check_of(fb_first_check *out, const fb_reference_error *e, const fb_divergence *d,
                        double period, double rebound, double rebound_reference, int rigid) {
   memset(out, 0, sizeof *out);
-  out->bound = FB_MATCHED_IMPACT_ERROR_BOUND;
+  out->bound = rigid ? FB_MATCHED_IMPACT_ERROR_BOUND : FB_FAITHFUL_PENETRATION_TOL;
   out->ok = 1;
-  const double window = FB_IMPACT_MATCH_REV_FRACTION * period;
-  /* the impacts that begin before the model parts, the largest of them for
-   * the grazing share (metrics.h, FB_MATCHED_GRAZING_SHARE) */
-  double big = 0.0;
+  /* the first impacts that begin before the model parts are listed; the
+   * first alone is held (verdict_stats.h) */
   for (int k = 0; k < e->first_impacts; k++)
-    if (e->first_impact_t[k] < d->t) {
-      out->compared = k + 1;
-      big = fmax(big, e->first_impact_force_reference[k]);
-    }
-  /* impacts either run has before the model parts: each needs a partner */
-  const int before = d->impacts_model > d->impacts_reference ? d->impacts_model
-                                                             : d->impacts_reference;
-  const int want = before < FB_FIRST_IMPACTS ? before : FB_FIRST_IMPACTS;
-  if (out->compared < want) {
-    out->unpaired = out->compared + 1;
-    out->ok = 0;
-    return;
-  }
-  for (int k = 0; k < out->compared; k++) {
-    if (!(fabs(e->first_impact_t_error[k]) <= window)) {
-      out->unpaired = k + 1;
+    if (e->first_impact_t[k] < d->t) out->compared = k + 1;
+  /* either run's first impact before the model parts needs a partner */
+  if (d->impacts_model > 0 || d->impacts_reference > 0) {
+    if (out->compared == 0 ||
+        !(fabs(e->first_impact_t_error[0]) <= FB_IMPACT_MATCH_REV_FRACTION * period)) {
+      out->unpaired = 1;
       out->ok = 0;
       return;
     }
-    if (rigid || e->first_impact_force_reference[k] < FB_MATCHED_GRAZING_SHARE * big) continue;
-    /* the first impact, a single impact of the law before any chaos, to the
-     * faithful-step verification's penetration bound; the next to the
-     * matched impacts' bound (in units of the bound: worst <= 1 passes) */
-    const double pen = fabs(e->first_impact_penetration_rel[k]) /
-                       (k == 0 ? FB_FAITHFUL_PENETRATION_TOL : FB_MATCHED_IMPACT_ERROR_BOUND);
-    const double force = fabs(e->first_impact_force_rel[k]) / FB_MATCHED_IMPACT_ERROR_BOUND;
-    const double w = fmax(pen, force);
-    if (!(w <= out->worst)) out->worst = w, out->worst_k = k + 1;
   }
-  if (rigid && out->compared > 0) {
-    /* the first impact's rebound: Newton's e_N against the penalty law's,
-     * to the matched impacts' bound */
-    out->worst = fabs(rebound / rebound_reference - 1.0) / FB_MATCHED_IMPACT_ERROR_BOUND;
-    out->worst_k = 1;
-  }
+  if (out->compared == 0) return; /* no impact on either side: nothing to hold */
+  out->worst_k = 1;
+  if (rigid) /* Newton's e_N against the penalty law's rebound */
+    out->worst = fabs(rebound / rebound_reference - 1.0) / out->bound;
+  else
+    out->worst = fmax(fabs(e->first_impact_force_rel[0]), fabs(e->first_impact_penetration_rel[0])) /
+                 out->bound;
   out->ok = out->worst <= 1.0; /* NaN (a rebound not measured) is never ok */
 }

@@ -340,11 +340,11 @@ static const key_spec keys[] = {
     {"run", "ensemble", K_INT, OFF(ensemble), 0, 1, 64, 0, 0, "-", "1",
      "an integer from 1 to 64",
      "runs of the clearance models and their references, each with the pins' initial "
-     "eccentricity moved by 1e-6 x the radial clearance in another direction (the first run "
-     "unmoved); the impact statistics (peak force, coupler and follower alpha spikes per "
-     "impact) are pooled over them and their spread reported (docs/chaos.md); not given: "
-     "fourbar run adds 5 by itself when a model's verdict is unsettled (it left its "
-     "reference, or a reference its check integration)"},
+     "eccentricity moved by 1e-2 x the radial clearance in another direction (the first run "
+     "unmoved); each model's members are tested against its reference's once (docs/verdicts.md) "
+     "and their impact statistics pooled and their spread reported (docs/chaos.md); not given: "
+     "fourbar run tests members sequentially by itself, 4 to 32, when a model's verdict is "
+     "unsettled (it left its reference, or a reference its check integration)"},
     {"run", "peaks", K_PEAKS, OFF(peaks), 0, 0, 0, 0, 0, "-", "steady", "steady or all",
      "window of the reported peaks: steady (from the second revolution on) or all (from "
      "t = 0, the start-up included); summary.json reports the first revolution alone too"},

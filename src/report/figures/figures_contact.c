@@ -128,11 +128,11 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
     fprintf(pl.p, "set xrange [0:360]\nset xtics 60\nset xlabel 'crank angle [deg]'\n");
   fprintf(pl.p, "set ylabel 'contact force on the pin [N]'\n"
                 "plot $force using 1:2 with lines %s title '%s'",
-          fig_style_spec(m->run.name, sp, sizeof sp), mn);
+          fig_style_spec(r, m->run.name, sp, sizeof sp), mn);
   if (ri >= 0) {
     char sr[96];
     fprintf(pl.p, ", $rforce using 1:2 with lines %s title '%s: reference dynamics'",
-            fig_style_spec(r->model[ri].run.name, sr, sizeof sr), fig_esc(r->model[ri].run.name, rn, sizeof rn));
+            fig_style_spec(r, r->model[ri].run.name, sr, sizeof sr), fig_esc(r->model[ri].run.name, rn, sizeof rn));
   }
   fprintf(pl.p, "\nunset multiplot\n");
   st = fig_plot_close(&pl, diag);
@@ -150,12 +150,12 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
     json_array_append_new(curves, c);
     snprintf(col, sizeof col, "%s_force_n", joint);
     c = fig_curve(m->run.name, col, csv, force_pts, flo, fhi, tf0, t1);
-    fig_curve_style(c, m->run.name);
+    fig_curve_style(c, r, m->run.name);
     json_array_append_new(curves, c);
     if (ri >= 0) {
       snprintf(csv, sizeof csv, "%s.csv", r->model[ri].run.name);
       c = fig_curve(r->model[ri].run.name, col, csv, ref_pts, rlo, rhi, tf0, t1);
-      fig_curve_style(c, r->model[ri].run.name);
+      fig_curve_style(c, r, r->model[ri].run.name);
       json_array_append_new(curves, c);
     }
     fig_manifest_add(figs, file,

@@ -152,8 +152,9 @@ static size_t first_reason(char *buf, size_t size, size_t n, const fb_model_resu
                   "%g of a revolution: wrong whatever its statistics say", m->ref_name,
                   FB_IMPACT_MATCH_REV_FRACTION);
   if (m->run.model->rigid)
-    return append(buf, size, n, "; its first impact's rebound ratio at %.0f %% of its bound %g "
-                  "against %s's%s", 100.0 * c->worst, c->bound, m->ref_name,
+    return append(buf, size, n, "; its first impact's rebound ratio %.4g against the law's cr "
+                  "(the limit of %s's as its penalty stiffens): at %.0f %% of its bound %g%s",
+                  m->first_impact.rebound, m->ref_name, 100.0 * c->worst, c->bound,
                   c->ok ? "" : ": beyond it, wrong whatever its statistics say");
   return append(buf, size, n, "; its first impact, before it parts, against %s's: force and "
                 "penetration at %.0f %% of the single impact's bound %g%s", m->ref_name,
@@ -306,7 +307,7 @@ json_t *fb_report_verdicts_json(const fb_run *r, const char *(*color)(const fb_r
     json_object_set_new(o, "first_bounds", bounds);
     json_object_set_new(o, "rigid", json_boolean(rigid));
     json_object_set_new(o, "rebound_rel", rigid ? num(m->first_impact.rebound /
-                                                      ref->first_impact.rebound - 1.0)
+                                                      r->c.clearance.restitution - 1.0)
                                                 : json_null());
     json_object_set_new(o, "first_ok", json_boolean(c->ok));
     json_object_set_new(o, "first_worst", num(c->worst));

@@ -10,9 +10,12 @@
  *    force are held to the faithful single impact's penetration bound
  *    (impact.h, FB_FAITHFUL_PENETRATION_TOL: for a Hertz or linear contact
  *    at a given approach both move as the stiffness to the power +-0.4 or
- *    +-0.5); a rigid model (model_table.h, rigid) its first rebound ratio,
- *    which converges as a penalty stiffens where its force peak does not,
- *    to FB_MATCHED_IMPACT_ERROR_BOUND. The next impacts (up to
+ *    +-0.5); a rigid model (model_table.h, rigid) its first onset and its
+ *    first rebound ratio against the law's coefficient of restitution, the
+ *    limit the reference's rebound reaches as its penalty stiffens (its force
+ *    peak does not converge; at the paper case's penalty the reference's own
+ *    first rebound is 0.71 for cr 0.9, tests/test_siconos.c), to
+ *    FB_MATCHED_IMPACT_ERROR_BOUND. The next impacts (up to
  *    FB_FIRST_IMPACTS) are listed, not held: the chaos amplifies the
  *    first's error (measured on cases/hard/rattling_pin.ini: ODE's first
  *    impact +0.1 % in force, its third +7 %). A model that misses its first
@@ -147,9 +150,10 @@ typedef struct {
 
 /* The check of point 1 from what the run measured: e (fb_metrics_vs_reference's
  * first impacts), the divergence d (its time bounds the impacts compared),
- * the crank period [s] (the pairing window), the rebound ratios of the
- * model's and the reference's first impact (fb_first_impact.rebound; used
- * for a rigid model) and whether the model is rigid. */
+ * the crank period [s] (the pairing window), the model's first impact's
+ * rebound ratio (fb_first_impact.rebound) and the one it is held to (a
+ * rigid model's: the law's cr), used for a rigid model, and whether the
+ * model is rigid. */
 void fb_first_check_of(fb_first_check *out, const fb_reference_error *e, const fb_divergence *d,
                        double period, double rebound, double rebound_reference, int rigid);
 

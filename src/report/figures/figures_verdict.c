@@ -73,7 +73,7 @@ static fb_status one_figure(const fb_run *r, const fb_model_result *m, const fb_
             100.0 * e->first_impact_penetration_rel[k]);
   if (fc->compared == 0) fprintf(pl.p, "NaN NaN NaN\n");
   fprintf(pl.p, "EOD\n$rebound << EOD\n1 %.6g\nEOD\n",
-          100.0 * (m->first_impact.rebound / ref->first_impact.rebound - 1.0));
+          100.0 * (m->first_impact.rebound / r->c.clearance.restitution - 1.0));
   const char *derived = "per member: summary.json impact_statistics.per_member and verdict_test";
   const char *who[2] = {m->run.name, ref->run.name};
   const int pts[2] = {pm, pr};

@@ -92,11 +92,14 @@ static fb_status one_figure(const fb_run *r, const fb_model_result *m, const fb_
   char mn[160], rn[160];
   fig_esc(m->run.name, mn, sizeof mn);
   fig_esc(ref->run.name, rn, sizeof rn);
-  /* (a) each member's impact peak forces, the reference's under the model's */
-  fprintf(pl.p, "set title 'impact peak forces of each member (empirical distribution)'\n"
+  const int rigid = m->run.model->rigid;
+  /* (a) each member's impact peak forces, the reference's under the model's
+   * (a rigid model's impulses have no finite peak force to compare) */
+  fprintf(pl.p, "set title 'impact peak forces of each member (empirical distribution)%s'\n"
                 "set logscale x\nset xlabel 'impact peak force [N]'\n"
                 "set ylabel 'share of the member''s impacts at or below'\nset yrange [0:1.02]\n"
-                "set key inside bottom right opaque box font ',9'\n");
+                "set key inside bottom right opaque box font ',9'\n",
+          rigid ? ": shown, not compared" : "");
   if (isfinite(lo) && hi > lo) fprintf(pl.p, "set xrange [%.6g:%.6g]\n", 0.8 * lo, 1.25 * hi);
   fprintf(pl.p, "plot ");
   for (int k = 0; k < ref->ensemble.members; k++) {
@@ -127,17 +130,16 @@ static fb_status one_figure(const fb_run *r, const fb_model_result *m, const fb_
           rn, mn, rate ? rate->ratio : NAN, rate ? rate->lo : NAN, rate ? rate->hi : NAN,
           rate ? 1.0 / rate->margin : NAN, rate ? rate->margin : NAN, ms.color);
   /* (c) the first impacts, one to one, and their bounds */
-  const int rigid = m->run.model->rigid;
   /* the first impact alone is held; the next are listed (verdict_stats.h) */
   fprintf(pl.p, "$bound << EOD\n0.5 %g\n1.5 %g\nEOD\n", 100.0 * fc->bound, 100.0 * fc->bound);
   fprintf(pl.p, "set xrange [0.5:3.5]\nset xtics 1\nset xlabel 'impact of the run, before it parts'\n"
                 "set ylabel '%s against %s [%%]'\nset autoscale y\n"
-                "set title 'first impacts, one to one: the first %s (%.0f %% of its bound); the next "
-                "listed'\n"
+                "set title 'first %s held: %s (%.0f %% of its bound)%s'\n"
                 "set key inside top right opaque box font ',9'\nset style fill solid 0.6\n"
                 "set boxwidth 0.3\nplot ",
-          rigid ? "rebound ratio error" : "relative error", rn,
-          fc->ok ? "within its bound" : "beyond it", 100.0 * fc->worst);
+          rigid ? "rebound ratio error" : "relative error", rigid ? "cr of the law" : rn,
+          rigid ? "rebound" : "impact", fc->ok ? "within its bound" : "beyond it",
+          100.0 * fc->worst, rigid ? "" : "; 2 and 3 listed");
   if (rigid)
     fprintf(pl.p, "$rebound using 1:2 with boxes lc rgb '%s' title 'rebound ratio', ", ms.color);
   else

@@ -25,12 +25,37 @@ static const char *const run_palette[] = {"#0072b2", "#d55e00", "#009e73", "#e69
                                           "#1b7837", "#b8860b"};
 #define RUN_PALETTE (int)(sizeof run_palette / sizeof run_palette[0])
 
-/* the style from the model table alone (a yardstick's, or any model's when
- * no run is given: the bench's figures) or a colour hashed from the name */
+/* Figures that hold no run (bench.svg, the studies') draw each engine's
+ * models in shades of the engine's hue (the model table's: ODE blues,
+ * MuJoCo oranges, Simbody greens, Bullet purples), the shade the row's rank
+ * among the rows of its hue, so two engines and two models of one engine
+ * are told apart there too. Dark to light, in an order that keeps
+ * neighbours apart. */
+static const char *const shades[FB_HUE_COUNT][8] = {
+    [FB_HUE_BLUES] = {"#08519c", "#3182bd", "#6baed6", "#2171b5", "#4292c6", "#9ecae1", "#084594", "#5a8fc4"},
+    [FB_HUE_ORANGES] = {"#a63603", "#e6550d", "#fd8d3c", "#d94801", "#f16913", "#fdae6b", "#7f2704", "#c8640a"},
+    [FB_HUE_GREENS] = {"#006d2c", "#31a354", "#74c476", "#238b45", "#41ab5d", "#a1d99b", "#00441b", "#4f9a5f"},
+    [FB_HUE_PURPLES] = {"#54278f", "#756bb1", "#9e9ac8", "#6a51a3", "#807dba", "#bcbddc", "#3f007d", "#8a6fb3"},
+};
+
+/* the colour of row m from its hue's shades, or NULL (a yardstick: no hue) */
+static const char *family_color(const fb_model *m) {
+  const fb_hue hue = m->style.hue;
+  if (hue <= FB_HUE_NONE || hue >= FB_HUE_COUNT) return NULL;
+  int rank = 0;
+  for (int k = 0; k < fb_model_count && &fb_models[k] != m; k++) rank += fb_models[k].style.hue == hue;
+  return shades[hue][rank % 8];
+}
+
+/* the style without a run: a yardstick's own colour, an engine's model its
+ * hue's shade, with the table's dash and width; else a colour hashed from
+ * the name */
 model_style fig_style_of(const char *name) {
   const fb_model *m = fb_model_find(name);
-  if (m && m->style.color) {
-    const model_style st = {m->name, m->style.color, m->style.dash, m->style.width};
+  if (m && (m->style.color || family_color(m))) {
+    const char *color = family_color(m);
+    const model_style st = {m->name, color ? color : m->style.color, m->style.dash,
+                            m->style.width};
     return st;
   }
   unsigned long h = 2166136261ul; /* FNV-1a */

@@ -625,6 +625,50 @@ static void test_suggest_and_plausibility(void **state) {
   assert_null(fb_casefile_length_implausible(FB_PLAUSIBLE_LENGTH_MAX_M));
 }
 
+/* The shipped cases run the reference of every law their models use (issue
+ * 55): a clearance model whose reference row could measure it (its case's
+ * one clearance joint the one the reference integrates, no friction) never
+ * runs without it, so `fourbar run` leaves it unchecked nowhere; the paper
+ * case runs reference-restitution beside ode-clearance-restitution. Cases
+ * with two clearance joints or friction have no reference by design. */
+static void test_shipped_cases_run_their_references(void **state) {
+  (void)state;
+  const char *dirs[3] = {"", "hard/", "templates/"};
+  int checked = 0, paper = 0;
+  for (int d = 0; d < 3; d++) {
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s/%s", cases_dir(), dirs[d]);
+    DIR *dp = opendir(dir);
+    assert_non_null(dp);
+    struct dirent *de;
+    while ((de = readdir(dp)) != NULL) {
+      const size_t len = strlen(de->d_name);
+      if (len < 5 || strcmp(de->d_name + len - 4, ".ini") != 0) continue;
+      char path[8192];
+      snprintf(path, sizeof path, "%s%s", dir, de->d_name);
+      static fb_case c;
+      fb_diag diag;
+      if (fb_casefile_load(&c, path, NULL, 0, &diag) != FB_OK) continue; /* a refusal's case */
+      const int cj = fb_case_mech(&c)->reference_joint;
+      if (c.clearance.mask != (1 << cj) || c.clearance.friction > 0.0) continue;
+      for (int i = 0; i < c.model_count; i++) {
+        const fb_model *m = fb_model_find(c.models[i]);
+        const fb_model *ref = m ? fb_model_reference_of(m) : NULL;
+        if (!ref) continue;
+        int has = 0;
+        for (int k = 0; k < c.model_count; k++) has |= strcmp(c.models[k], ref->name) == 0;
+        if (!has) fail_msg("%s runs %s without %s", path, m->name, ref->name);
+        checked++;
+        paper += strcmp(de->d_name, "paper_crank_rocker.ini") == 0 &&
+                 strcmp(m->name, "ode-clearance-restitution") == 0;
+      }
+    }
+    closedir(dp);
+  }
+  assert_true(checked > 20);
+  assert_int_equal(paper, 1);
+}
+
 int main(void) {
   snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", cases_dir());
   const struct CMUnitTest tests[] = {
@@ -635,6 +679,7 @@ int main(void) {
       cmocka_unit_test(test_bad_inputs_name_place_value_rule),
       cmocka_unit_test(test_start_peaks_and_limit_keys),
       cmocka_unit_test(test_every_key_documented),
+      cmocka_unit_test(test_shipped_cases_run_their_references),
       cmocka_unit_test(test_defaults_come_from_the_key_table),
       cmocka_unit_test(test_engine_option_defaults_are_the_key_rows),
       cmocka_unit_test(test_masses_derived_from_bars),

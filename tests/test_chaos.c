@@ -132,10 +132,11 @@ static void load(fb_case *c, const char *file, const char **sets, int n) {
 }
 
 /* the paper case's ensemble: a regular sequence moves its statistics by
- * ~1e-8 relative under a 1e-6 x clearance start (measured 1e-8 on the
- * force mean, docs/chaos.md); 1e-4 leaves room and is still 100 times below
- * the chaotic case's spread */
-#define REGULAR_SPREAD_REL 1e-4
+ * ~1e-4 relative under a 1e-2 x clearance start (ensemble.h,
+ * FB_ENSEMBLE_ECC_FRACTION; measured 1.6e-4 on ODE's force mean, 1.7e-5 on
+ * the reference's; ~1e-8 under the 1e-6 start before issue 55); 1e-3
+ * leaves room and is still 10 times below the chaotic case's spread */
+#define REGULAR_SPREAD_REL 1e-3
 /* the rattling pin's ensemble: measured spread of the reference's mean
  * impact force 0.26 of its value over 5 members; 1e-2 is far below that
  * and 100 times above the regular bound */
@@ -166,7 +167,11 @@ static void test_regular_paper_case(void **state) {
     report_residual("paper ensemble force-mean spread", rel, REGULAR_SPREAD_REL);
     if (!(rel <= REGULAR_SPREAD_REL)) fail_msg("regular spread %g", rel);
   }
-  assert_int_equal(m->stats_compare.agree, 1);
+  /* its members' statistics equal the reference's to the spread: the test
+   * shows them equivalent, and no member parts from the run itself */
+  assert_true(m->has_test);
+  assert_int_equal(m->test.decision, FB_EQUIV_EQUIVALENT);
+  for (int k = 1; k < ref->ensemble.members; k++) assert_true(isinf(ref->ensemble.member[k].t_part));
   assert_true(r.h_omega_c_max > 0.0 && r.h_omega_c_max <= FB_H_OMEGA_C_BOUND);
   fb_run_free(&r);
 }

@@ -150,7 +150,9 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   if (!j) fail_msg("summary.json does not parse: %s", je.text);
   assert_string_equal(json_string_value(json_object_get(j, "case")), "paper_crank_rocker");
   json_t *models = json_object_get(j, "models");
-  assert_int_equal(json_array_size(models), 6);
+  /* analytic, two ideal ODE models, the two ODE clearance models and the
+   * reference of each law (issue 55: the case checks what it runs) */
+  assert_int_equal(json_array_size(models), 7);
   /* the paper gives its masses: used as given and listed as the case's */
   json_t *crank = json_array_get(json_object_get(json_object_get(j, "masses"), "links"), 0);
   assert_near(json_real_value(json_object_get(crank, "mass_kg")), 0.12, 0.0);
@@ -158,12 +160,21 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
   assert_string_equal(json_string_value(json_object_get(crank, "inertia_source")), "case");
   /* the paper case's impact model stays with the reference: it does not
    * leave it within the run, and every impact is matched one to one within
-   * the bound (issue 25) */
+   * the bound (issue 25); its restitution model leaves reference-restitution
+   * (at 2.85 ms) and is judged on its members' statistics (docs/verdicts.md);
+   * no model is left unchecked (issue 55) */
   int with_divergence = 0;
   for (size_t q = 0; q < json_array_size(models); q++) {
-    json_t *dv = json_object_get(json_array_get(models, q), "divergence");
+    json_t *mq = json_array_get(models, q);
+    assert_string_not_equal(json_string_value(json_object_get(mq, "verdict")), "unchecked");
+    json_t *dv = json_object_get(mq, "divergence");
     if (!dv) continue;
     with_divergence++;
+    if (strcmp(json_string_value(json_object_get(mq, "name")), "ode-clearance-restitution") == 0) {
+      assert_true(json_is_true(json_object_get(dv, "diverged")));
+      assert_string_equal(json_string_value(json_object_get(mq, "verdict_basis")), "statistics");
+      continue;
+    }
     assert_true(json_is_false(json_object_get(dv, "diverged")));
     assert_true(json_is_null(json_object_get(dv, "time_s")));
     assert_true(json_is_true(json_object_get(dv, "one_to_one")));
@@ -174,7 +185,7 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
     assert_true(json_real_value(json_object_get(dv, "force_rel_max")) <= 0.05);
     assert_int_equal(json_array_size(json_object_get(json_array_get(models, q), "warnings")), 0);
   }
-  assert_int_equal(with_divergence, 1); /* ode-clearance-impact against reference */
+  assert_int_equal(with_divergence, 2); /* each clearance model against its reference */
   /* wall times live in timing.json, so summary.json is the same on every rerun */
   const char *keys[] = {"name", "kind", "status", "h_s", "steps", "coupler",
                         "follower", "error_vs_analytic", NULL};
@@ -193,7 +204,10 @@ static void test_paper_case_runs_and_writes_summary(void **state) {
     const char *kind = json_string_value(json_object_get(m, "kind"));
     assert_true(strcmp(kind, "analytic") == 0 || strcmp(kind, "ode") == 0 ||
                 strcmp(kind, "reference") == 0);
-    assert_string_equal(json_string_value(json_object_get(m, "status")), "ok");
+    /* ok, or (the restitution model, which parts from its reference) why
+     * its peaks are not compared one by one */
+    const char *status = json_string_value(json_object_get(m, "status"));
+    if (strcmp(status, "ok") != 0) assert_int_equal(strncmp(status, "divergent: ", 11), 0);
     /* every model wrote its CSV, with a unit-suffixed header */
     snprintf(path, sizeof path, "%s/paper/%s.csv", tmpdir,
              json_string_value(json_object_get(m, "name")));

@@ -248,7 +248,7 @@ static void test_first_impact_rebound(void **state) {
     fb_series s;
     make_bounce(&s, t_outs[k], pens[k], 40);
     fb_first_impact fi;
-    fb_metrics_first_impact(&fi, &s, 1, C_M);
+    fb_metrics_first_impact(&fi, &s, 1, C_M, 0);
     assert_true(fi.found);
     report_residual("rebound - e", fi.rebound - BOUNCE_E, BOUNCE_REL_TOL);
     assert_true(fabs(fi.rebound / BOUNCE_E - 1.0) < BOUNCE_REL_TOL);
@@ -261,10 +261,46 @@ static void test_first_impact_rebound(void **state) {
     fb_series_free(&s);
     /* the series ends inside the contact: no rebound */
     make_bounce(&s, t_outs[k], pens[k], (size_t)(t_outs[k] / H_S) + 2);
-    fb_metrics_first_impact(&fi, &s, 1, C_M);
+    fb_metrics_first_impact(&fi, &s, 1, C_M, 0);
     assert_true(fi.found && isnan(fi.rebound) && isnan(fi.duration));
     fb_series_free(&s);
   }
+}
+
+/* A rigid contact (fb_metrics_first_impact with rigid): Moreau-Jean's
+ * trapezoidal flight (theta = 0.5) at a constant acceleration, whose
+ * velocity jumps from v to -e v over the step after the sample that carries
+ * the impulse. Positions q_{k+1} = q_k + h (v_k + v_{k+1}) / 2 are exactly
+ * quadratic on each side, so the slopes at the step's two ends are v and
+ * -e v to round-off, however curved the flight. */
+static void test_rigid_rebound_reads_e(void **state) {
+  (void)state;
+  enum { N = 40, AT = 12 };
+  const double e = 0.9, v0 = 0.15, acc = 7e3; /* |e|'s curvature of the paper case */
+  fb_series s;
+  assert_int_equal(fb_series_init(&s, N), FB_OK);
+  assert_int_equal(fb_series_enable_contact(&s, 1 << 1), FB_OK);
+  /* the approach reaches c between samples AT - 1 and AT */
+  double q = C_M - (AT - 0.5) * H_S * v0, v = v0 - AT * H_S * acc;
+  for (int k = 0; k < N; k++) {
+    fb_sample x;
+    memset(&x, 0, sizeof x);
+    x.t = k * H_S;
+    x.contact[1][FB_C_EX] = q;
+    x.contact[1][FB_C_FORCE] = k == AT ? 1e4 : 0.0;
+    x.contact[1][FB_C_PEN] = q > C_M ? q - C_M : 0.0;
+    assert_int_equal(fb_series_push(&s, &x), FB_OK);
+    const double vn = k == AT ? -e * v : v + H_S * acc;
+    q += 0.5 * H_S * (v + vn);
+    v = vn;
+  }
+  fb_first_impact fi;
+  fb_metrics_first_impact(&fi, &s, 1, C_M, 1);
+  assert_true(fi.found);
+  report_residual("rigid rebound - e", fi.rebound - e, BOUNCE_REL_TOL);
+  assert_true(fabs(fi.rebound / e - 1.0) < BOUNCE_REL_TOL);
+  assert_near(fi.duration, H_S, 1e-20);
+  fb_series_free(&s);
 }
 
 /* the first impact's metric names are known to a study's metric list */
@@ -301,14 +337,67 @@ static void test_metric_names_of_the_mechanism(void **state) {
   assert_true(fb_check_metric_name_ok("analytic.spikes.acceleration_peak_ratio_slider", sc, NULL, 0));
 }
 
+/* What counts as an impact (metrics.h, fb_metrics_next_impact), the same
+ * for every model whatever its state column says: a contact (penetration
+ * > 0, or a force above the floor with the pin on the wall) whose force
+ * passes the floor. Hand-made force and penetration, floor 10 N:
+ *
+ *   A: 500 N peak, its force clamped to 0 for 3 samples while the pin is
+ *      still in, then a 1.2 N tail: one impact (the old count, a run of
+ *      positive force with a sample in the impact state, found two);
+ *   B: a 4 N touch: no impact (below the floor);
+ *   C: a rigid impulse, 900 N on one sample at zero penetration: an impact;
+ *   D: 60 N whose state column says continuous: an impact all the same. */
+static void test_one_impact_definition(void **state) {
+  (void)state;
+  enum { N = 400 };
+  fb_series s;
+  assert_int_equal(fb_series_init(&s, N), FB_OK);
+  assert_int_equal(fb_series_enable_contact(&s, 1 << 1), FB_OK);
+  s.impact_floor[1] = 10.0;
+  for (int i = 0; i < N; i++) {
+    fb_sample x;
+    memset(&x, 0, sizeof x);
+    x.t = i * H_S;
+    double f = 0.0, p = 0.0;
+    int st = FB_STATE_FREE;
+    if (i >= 10 && i < 30) f = i < 25 ? 500.0 : 0.0, p = 1e-7, st = FB_STATE_IMPACT;
+    if (i >= 28 && i < 32) f = 1.2, p = 1e-9, st = FB_STATE_IMPACT; /* the tail, still in */
+    if (i >= 100 && i < 105) f = 4.0, p = 1e-9, st = FB_STATE_IMPACT;
+    if (i == 200) f = 900.0, st = FB_STATE_IMPACT;
+    if (i >= 300 && i < 340) f = 60.0, p = 2e-8, st = FB_STATE_CONTINUOUS;
+    x.contact[1][FB_C_FORCE] = f;
+    x.contact[1][FB_C_PEN] = p;
+    x.contact[1][FB_C_STATE] = st;
+    assert_int_equal(fb_series_push(&s, &x), FB_OK);
+  }
+  size_t first[8], last[8];
+  assert_int_equal(fb_metrics_impact_episodes(&s, 1, INFINITY, first, last, 8), 3);
+  assert_int_equal(first[0], 10);
+  assert_int_equal(last[0], 31);
+  assert_int_equal(first[1], 200);
+  assert_int_equal(last[1], 200);
+  assert_int_equal(first[2], 300);
+  assert_int_equal(last[2], 339);
+  fb_spikes sp;
+  fb_error err;
+  memset(&err, 0, sizeof err);
+  fb_diag diag;
+  assert_int_equal(fb_metrics_spikes(&sp, &s, 150 * H_S, 1.0, 1.0, &err, &diag), FB_OK);
+  assert_int_equal(sp.impacts, 2); /* C and D begin in the window */
+  fb_series_free(&s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_stays_with_the_reference),
       cmocka_unit_test(test_metric_names_of_the_mechanism),
+      cmocka_unit_test(test_one_impact_definition),
       cmocka_unit_test(test_grazing_touch_listed_not_judged),
       cmocka_unit_test(test_parts_from_the_reference),
       cmocka_unit_test(test_ecc_direction_rms),
       cmocka_unit_test(test_first_impact_rebound),
+      cmocka_unit_test(test_rigid_rebound_reads_e),
       cmocka_unit_test(test_first_impact_metric_names),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -283,7 +283,7 @@ function flatten(v, p, outList) {
     /* a slider-crank: its own bodies, units and joint on the page */
     const sc = path.join(work, 'slider_crank');
     execFileSync(fourbar, ['run', path.join(root, 'cases', 'slider_crank_flores.ini'), '--out', sc, '--no-figures',
-      '--set', 'run.revolutions=2', '--set', 'run.models=analytic,reference,reference-restitution'],
+      '--set', 'run.revolutions=2', '--set', 'run.models=analytic,reference,reference-restitution,ode-clearance-impact', '--jobs', '2'],
     { stdio: ['ignore', 'ignore', 'inherit'] });
     const scSummary = JSON.parse(fs.readFileSync(path.join(sc, 'summary.json'), 'utf8'));
     const scData = fs.readFileSync(path.join(sc, 'report-data.js'), 'utf8');
@@ -297,12 +297,25 @@ function flatten(v, p, outList) {
     await page3.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
     await page3.waitForTimeout(300);
     check(errors3.length === 0, 'slider-crank: no console error on load: ' + errors3.join('; '));
+    /* ode-clearance-impact parts from its reference: judged on statistics,
+     * its verdict panel draws its members, their rates and its first impacts */
+    const scModel = scSummary.models.filter((m) => m.name === 'ode-clearance-impact')[0];
+    if (scModel.verdict_basis === 'statistics') {
+      const verdicts = await page3.evaluate(() => window.fourbarReport.verdicts());
+      check(verdicts.length === 1 && verdicts[0].model === 'ode-clearance-impact' && verdicts[0].canvases === 3 &&
+            verdicts[0].points > 20, 'slider-crank: the verdict panel draws its members: ' + JSON.stringify(verdicts));
+      const vtext = await page3.evaluate(() => document.getElementById('verdicts').textContent);
+      check(vtext.indexOf(scModel.verdict + ' on statistics') >= 0 && vtext.indexOf('p (equivalent)') >= 0,
+            'slider-crank: the verdict panel says the verdict and its p-value');
+    } else {
+      check(false, 'slider-crank: ode-clearance-impact was judged ' + scModel.verdict_basis + ', not on statistics');
+    }
     const scPanels = await page3.evaluate(() => window.fourbarReport.panels());
     const scIds = scPanels.map((p) => p.id);
     check(['coupler_alpha', 'slider_a', 'force_coupler-slider', 'penetration_coupler-slider', 'coupler_omega', 'slider_v']
       .join() === scIds.join(), 'slider-crank: panels coupler and slider, joint coupler-slider: ' + scIds.join(', '));
     for (const p of scPanels)
-      check(p.points > 0 && p.models.length === (p.id.startsWith('force') || p.id.startsWith('penetration') ? 2 : 3),
+      check(p.points > 0 && p.models.length === (p.id.startsWith('force') || p.id.startsWith('penetration') ? 3 : 4),
         'slider-crank: panel ' + p.id + ' has data for every model with the column: ' + p.models.join(', '));
     const titles = await page3.$$eval('.ptitle', (ts) => ts.map((t) => t.textContent));
     for (const want of ['slider velocity [m/s]', 'slider acceleration [m/s^2] (symlog)', 'coupler angular velocity [rad/s]',

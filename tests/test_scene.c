@@ -200,6 +200,49 @@ static void test_adaptive_refuses_other_colliders(void **state) {
   free(def);
 }
 
+/* [clearance] engine_stiffness_scale and engine_damping_scale (an injected
+ * error, issue 55): every engine model's law is scaled, the references'
+ * is the case's, and a rigid model's is not touched. The restitution law's
+ * damper c = 2 zeta sqrt(p m) follows the scaled p unless the damping scale
+ * is given; given, it is that scale times the damper of the case's p. */
+static void test_engine_scales_leave_references_alone(void **state) {
+  (void)state;
+  /* the ratios are exact products of doubles and one sqrt: a few ulps */
+  const double TOL_REL = 1e-12;
+  fb_case c;
+  fb_diag d;
+  const char *sets[3] = {"run.models=ode-clearance-impact,ode-clearance-restitution,reference,"
+                         "reference-restitution",
+                         "clearance.engine_stiffness_scale=4", "run.ensemble=1"};
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 3, &d), FB_OK);
+  fb_scene *def = malloc(sizeof *def);
+  assert_int_equal(fb_scene_from_case(def, &c, &d), FB_OK);
+  const int j = FB_JOINT_B;
+  fb_model_scene ode, ref, odr, rfr;
+  assert_int_equal(fb_scene_select(&ode, def, fb_model_find("ode-clearance-impact"), &d), FB_OK);
+  assert_int_equal(fb_scene_select(&ref, def, fb_model_find("reference"), &d), FB_OK);
+  assert_int_equal(fb_scene_select(&odr, def, fb_model_find("ode-clearance-restitution"), &d), FB_OK);
+  assert_int_equal(fb_scene_select(&rfr, def, fb_model_find("reference-restitution"), &d), FB_OK);
+  assert_near(ode.law[j].stiffness / ref.law[j].stiffness, 4.0, 4.0 * TOL_REL);
+  assert_near(ode.law[j].damping, ref.law[j].damping, 0.0); /* c_max: damping scale 1 */
+  assert_near(odr.law[j].stiffness / rfr.law[j].stiffness, 4.0, 4.0 * TOL_REL);
+  /* the damper follows p: the same zeta, so twice the damper (sqrt 4) */
+  assert_near(fb_contact_law_zeta(&odr.law[j]), fb_contact_law_zeta(&rfr.law[j]), 1e-15);
+  /* given: the case's damper times the scale, zeta times s_d / sqrt(s_k) */
+  const char *sets2[4] = {sets[0], sets[1], sets[2], "clearance.engine_damping_scale=10"};
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets2, 4, &d), FB_OK);
+  assert_int_equal(fb_scene_from_case(def, &c, &d), FB_OK);
+  assert_int_equal(fb_scene_select(&ode, def, fb_model_find("ode-clearance-impact"), &d), FB_OK);
+  assert_int_equal(fb_scene_select(&odr, def, fb_model_find("ode-clearance-restitution"), &d), FB_OK);
+  assert_int_equal(fb_scene_select(&rfr, def, fb_model_find("reference-restitution"), &d), FB_OK);
+  assert_near(ode.law[j].damping / def->law[FB_MODEL_LAW_IMPACT][j].damping, 10.0, 10.0 * TOL_REL);
+  const double m = 0.3; /* any effective mass: both dampers go as sqrt(m) */
+  const double c_engine = 2.0 * fb_contact_law_zeta(&odr.law[j]) * sqrt(odr.law[j].stiffness * m);
+  const double c_case = 2.0 * fb_contact_law_zeta(&rfr.law[j]) * sqrt(rfr.law[j].stiffness * m);
+  assert_near(c_engine / c_case, 10.0, 10.0 * TOL_REL);
+  free(def);
+}
+
 int main(void) {
   const char *d = getenv("FOURBAR_CASES_DIR");
   snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", d ? d : "cases");
@@ -211,6 +254,7 @@ int main(void) {
       cmocka_unit_test(test_ode_fatal_error_is_a_status_not_an_abort),
       cmocka_unit_test(test_adaptive_ideal_lands_on_the_grid),
       cmocka_unit_test(test_adaptive_refuses_other_colliders),
+      cmocka_unit_test(test_engine_scales_leave_references_alone),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -8,7 +8,7 @@
 
 #include "casefile.h"
 #include "cli.h"
-#include "clock.h"
+#include "contact_params.h"
 #include "textsafe.h"
 #include "figures.h"
 #include "fileio.h"
@@ -150,6 +150,22 @@ static int write_set(const char *stage, const fb_run *r, void *user) {
   return 0;
 }
 
+/* the step the run took, verified as fourbar contact-params --case verifies
+ * its contact, when a restitution-law model ran (run.h, fb_step_check) */
+static void step_check(fb_run *r, void *user) {
+  (void)user;
+  int restitution = 0;
+  for (int i = 0; i < r->n; i++)
+    restitution |= r->model[i].run.model->law == FB_MODEL_LAW_RESTITUTION &&
+                   !r->model[i].run.model->rigid && fb_engine_steps_world(r->model[i].run.model->engine);
+  fb_diag diag;
+  if (restitution && fb_cp_case_step_check(&r->step_check, &r->c, r->c.solver.h, &diag) != FB_OK) {
+    r->step_check.checked = 0;
+    fprintf(stderr, "fourbar run: note: the step's single-impact verification did not run: %s\n",
+            diag.msg);
+  }
+}
+
 /* what the run wrote, on stdout: summary.json (with each model's wall time
  * from timing.json) with --json, else the table, the files and, last, where
  * the time went (timing.json's largest parts) */
@@ -265,8 +281,8 @@ int fb_cmd_run(int argc, char **argv) {
   if (rc) return rc;
   c.jobs = jobs;
   /* a case that leaves [run] ensemble unset lets the run add one where a
-   * verdict is unsettled (run.h, FB_ENSEMBLE_AUTO_MEMBERS; docs/chaos.md) */
-  if (!fb_casefile_given(&c, "run", "ensemble")) c.ensemble_auto = FB_ENSEMBLE_AUTO_MEMBERS;
+   * verdict is unsettled (run.h, FB_ENSEMBLE_AUTO; docs/verdicts.md) */
+  if (!fb_casefile_given(&c, "run", "ensemble")) c.ensemble_auto = FB_ENSEMBLE_AUTO;
   char dir[4096];
   if (out_dir)
     snprintf(dir, sizeof dir, "%s", out_dir);
@@ -293,7 +309,7 @@ int fb_cmd_run(int argc, char **argv) {
   const fb_run_folder_job job = {.dir = dir, .c = &c, .variants = variants,
                                  .nvariants = c.variant_count, .progress = progress,
                                  .progress_user = &ps, .again = again, .write = write_set,
-                                 .write_user = &w};
+                                 .write_user = &w, .after_run = step_check};
   static fb_run r;
   switch (fb_run_into_folder(&r, &job, &rc, &diag)) {
     case FB_RUN_FOLDER_OK: break;

@@ -128,6 +128,12 @@ typedef struct {
   fb_case_bore bore;         /* bore shape of the libccd collider */
   double ovality;            /* ellipse bore: major minus minor diameter [m] >= 0 */
   double stiffness_scale;    /* multiplies the stiffness from any source [-] (studies, checks) */
+  double engine_stiffness_scale; /* multiplies, after stiffness_scale, the stiffness of every
+                                    engine model's law, not the references' [-] (an injected
+                                    error: would the verdict notice?) */
+  double engine_damping_scale;   /* multiplies every engine model's damper (the impact law's
+                                    c_max; the restitution law's 2 zeta sqrt(p m_eff), then
+                                    taken from the case's p, not the scaled one) [-] */
 } fb_clearance;
 
 /* Solver parameters of the ODE models. */

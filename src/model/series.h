@@ -59,6 +59,10 @@ typedef struct {
   double *crank_angle;       /* the input body's angle [rad] (n) */
   FB_SERIES_BODY_UNION(double *); /* (n) each, NULL for a body the mechanism lacks */
   int contact_mask;                        /* bit j: joint j's contact columns are held */
+  double impact_floor[FB_MECH_MAX_JOINTS]; /* contact force a sample must exceed to belong to an
+                                              impact at joint j [N] (the scene's, episode.h
+                                              FB_IMPACT_FLOOR_SHARE); 0 (fb_series_init): any
+                                              positive force */
   double *contact[FB_MECH_MAX_JOINTS][FB_CONTACT_COLS]; /* (n) each, NULL unless enabled */
   int has_loads;                           /* 1: the load columns are held */
   double *drive_torque;                    /* drive torque on the crank [N m] (n), NULL unless has_loads */

@@ -174,6 +174,15 @@ double fb_contact_law_zeta(const fb_contact_law *l) {
                                                            : fb_contact_restitution_zeta(l->restitution);
 }
 
+void fb_contact_law_scale(fb_contact_law *l, double stiffness_scale, double damping_scale,
+                          int damping_given) {
+  l->stiffness *= stiffness_scale;
+  if (l->kind == FB_LAW_IMPACT || l->kind == FB_LAW_LINEAR) l->damping *= damping_scale;
+  if (l->kind != FB_LAW_RESTITUTION || !damping_given) return;
+  l->zeta = fb_contact_law_zeta(l) * damping_scale / sqrt(stiffness_scale);
+  l->zeta_cr = l->restitution;
+}
+
 static double step3(double x, double x0, double h0, double x1, double h1) {
   double z = (x - x0) / (x1 - x0);
   z = z < 0.0 ? 0.0 : (z > 1.0 ? 1.0 : z);

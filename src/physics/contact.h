@@ -104,6 +104,20 @@ fb_status fb_contact_law_prepare(fb_contact_law *law, fb_diag *diag);
  * fb_contact_restitution_zeta(law->restitution) for an unprepared law. */
 double fb_contact_law_zeta(const fb_contact_law *law);
 
+/* An injected error ([clearance] engine_stiffness_scale and
+ * engine_damping_scale, scene.h): multiplies law's stiffness by
+ * stiffness_scale (> 0) and its damper by damping_scale (> 0). The impact
+ * law's c_max and the linear law's c are multiplied as given. The
+ * restitution law's damper c = 2 zeta sqrt(p m_eff) follows its stiffness:
+ * without damping_given it is re-derived from the scaled p (zeta kept, so
+ * the law still rebounds at cr); with it, it is damping_scale times the
+ * damper of the unscaled p, c' = s_d 2 zeta sqrt(p m), i.e. the prepared
+ * zeta times s_d / sqrt(s_k) (fb_contact_law_prepare first; a law whose
+ * restitution is changed afterwards loses the scale with the preparation).
+ * The other laws' hysteresis dampers derive from K and are not scaled. */
+void fb_contact_law_scale(fb_contact_law *law, double stiffness_scale, double damping_scale,
+                          int damping_given);
+
 /* Damping ratio zeta [-] of the restitution law: the linear spring-dashpot
  * that separates when its force reaches zero (no adhesion) leaves with
  * exactly cr times its impact speed. Solved with GSL's Brent root finder on

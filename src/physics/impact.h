@@ -19,6 +19,15 @@
  * far beyond, the elastic laws here stop describing the contact (plastic
  * flow), and the duration estimate leaves double range sooner. */
 #define FB_IMPACT_SPEED_MAX_M_S 100.0
+
+/* A faithful single impact of an engine's contact (issue 39's acceptance,
+ * docs/contact-params.md): its restitution within 1 % and its peak
+ * penetration within 2 % of the continuous law's. `fourbar contact-params`
+ * verifies a step with them (FB_CP_*), and a verdict holds a model's first
+ * impact in a run, a single impact of the same law before any chaos, to the
+ * penetration's (verdict_stats.h) [-]. */
+#define FB_FAITHFUL_RESTITUTION_TOL 0.01
+#define FB_FAITHFUL_PENETRATION_TOL 0.02
 /* Range of the estimated contact duration [s] an impact may have: below 1e-12
  * s the penetration is a few ulps of the position; above 1e3 s the "impact"
  * is a quasi-static load, not an impact. */

@@ -6,8 +6,10 @@
 #include <math.h>
 #include <string.h>
 
+#include "impact.h"
 #include "outcome_text.h"
 #include "reference.h"
+#include "report_verdict.h"
 #include "resolution.h"
 
 static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
@@ -42,12 +44,14 @@ json_t *fb_report_ensemble_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "members", json_integer(e->members));
   json_object_set_new(o, "perturbation",
                       json_string("pin eccentricity at t = 0 moved by ecc_fraction x radial "
-                                  "clearance, member k >= 1 along 2 pi (k - 1) / (members - 1)"));
+                                  "clearance, member k >= 1 along k golden angles (2.39996 rad) "
+                                  "from +x"));
   json_object_set_new(o, "ecc_fraction", json_real(FB_ENSEMBLE_ECC_FRACTION));
   json_object_set_new(o, "perturbation_m", num(FB_ENSEMBLE_ECC_FRACTION * r->c.radial_clearance));
   json_object_set_new(o, "window_from_s", num(r->t_window));
   json_object_set_new(o, "impacts_min", json_integer(e->impacts_min));
   json_object_set_new(o, "impacts_max", json_integer(e->impacts_max));
+  json_object_set_new(o, "per_member", fb_report_members_json(e));
   json_object_set_new(o, "pooled", stats_json(&e->pooled, 1, &r->c));
   json_object_set_new(o, "spread", e->members > 1 ? stats_json(&e->spread, 1, &r->c) : json_null());
   if (m->has_stats_compare) {
@@ -84,6 +88,16 @@ json_t *fb_report_step_json(const fb_run *r) {
   json_object_set_new(o, "within_bound", r->h_omega_c_max > 0.0
                                              ? json_boolean(r->h_omega_c_max <= FB_H_OMEGA_C_BOUND)
                                              : json_null());
+  const fb_step_check *k = &r->step_check;
+  json_object_set_new(
+      o, "single_impact",
+      k->checked ? json_pack("{s:s,s:o,s:o,s:f,s:f,s:b,s:o}", "joint",
+                             fb_case_joint_name(&r->c, k->joint), "restitution_rel",
+                             num(k->restitution_rel), "penetration_rel", num(k->penetration_rel),
+                             "restitution_tol", FB_FAITHFUL_RESTITUTION_TOL, "penetration_tol",
+                             FB_FAITHFUL_PENETRATION_TOL, "faithful", k->faithful,
+                             "largest_faithful_step_s", num(k->largest_step))
+                 : json_null());
   return o;
 }
 
@@ -108,6 +122,25 @@ static void step_line(FILE *f, const fb_run *r, const char *pre) {
              r->h_omega_c_max <= FB_H_OMEGA_C_BOUND ? "within" : "beyond");
   fputs(pre, f);
   fb_report_say(f, "%s", line);
+  char faithful[600];
+  if (fb_report_step_check_text(faithful, sizeof faithful, r)) fb_report_say(f, "  %s", faithful);
+}
+
+const char *fb_report_step_check_text(char *buf, size_t size, const fb_run *r) {
+  const fb_step_check *k = &r->step_check;
+  buf[0] = '\0';
+  if (!k->checked) return NULL;
+  char largest[64] = "none found";
+  if (isfinite(k->largest_step)) snprintf(largest, sizeof largest, "h = %.4g s", k->largest_step);
+  snprintf(buf, size, "the restitution law's single impact at this step (fourbar contact-params "
+           "--case: ODE's matched row, every effective mass and onset phase): restitution %+.2g %%, "
+           "penetration %+.2g %% at the %s joint, against %g %% and %g %%: %s (largest faithful "
+           "step %s)", 100.0 * k->restitution_rel, 100.0 * k->penetration_rel,
+           fb_case_joint_name(&r->c, k->joint), 100.0 * FB_FAITHFUL_RESTITUTION_TOL,
+           100.0 * FB_FAITHFUL_PENETRATION_TOL,
+           k->faithful ? "faithful" : "not faithful: this run accepts that rebound error",
+           largest);
+  return buf;
 }
 
 /* one row: model, quantity, pooled mean / p50 / p90 / max (spread), vs ref */
@@ -148,33 +181,26 @@ static void stats_rows(FILE *f, const fb_model_result *m, const char *bar, const
   }
 }
 
-static const char *agree_word(const fb_model_result *m) {
-  if (!m->has_stats_compare) return "-";
-  return m->stats_compare.agree < 0 ? "not measured (ensemble = 1)"
-                                    : (m->stats_compare.agree ? "yes" : "no");
-}
-
 void fb_report_print_chaos(FILE *f, const fb_run *r) {
   step_line(f, r, "\n");
   if (!any_ensemble(r)) return;
-  const int members = r->c.ensemble > 1 ? r->c.ensemble : 1;
   fputc('\n', f);
-  fb_report_say(f, "impact statistics over the window t >= %.6g s, pooled over %d run%s (the pins' "
-                   "start moved by %g x clearance per member), spread: standard deviation over the "
-                   "members:",
-                r->t_window, members, members > 1 ? "s" : "", FB_ENSEMBLE_ECC_FRACTION);
+  fb_report_say(f, "impact statistics over the window t >= %.6g s, pooled over each model's members "
+                   "(the pins' start moved by %g x clearance per member), spread: standard deviation "
+                   "over the members; rel: against the reference's pooled value:",
+                r->t_window, FB_ENSEMBLE_ECC_FRACTION);
   fprintf(f, "model\n  %-18s %6s %10s %10s %10s %10s %9s %9s %13s\n", "per impact", "count",
           "mean", "p50", "p90", "max", "sd mean", "sd p90", "rel mean/p90");
   for (int i = 0; i < r->n; i++)
     if (r->model[i].has_ensemble) stats_rows(f, &r->model[i], NULL, &r->c);
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
-    if (!m->has_stats_compare) continue;
-    fb_report_say(f, "%s against %s's distribution (within %g sd): %s%s", m->run.name, m->ref_name,
-            FB_ENSEMBLE_AGREE_SIGMAS, agree_word(m),
-            m->has_divergence && m->divergence.diverged ? " (divergent: compare these, not peaks)"
-                                                        : "");
+    char parts[256];
+    if (m->has_ensemble && m->ensemble.members > 1)
+      fb_report_say(f, "%s: %s", m->run.name,
+                    fb_report_parting_text(parts, sizeof parts, &m->ensemble, r->t_window));
   }
+  fb_report_print_tests(f, r, 0);
   int marked = 0;
   for (int i = 0; i < r->n; i++) marked |= r->model[i].peaks_unconverged;
   if (marked)
@@ -195,10 +221,7 @@ void fb_report_markdown_chaos(FILE *f, const fb_run *r) {
                  "deg, %d impacts matched before it)\n",
               m->run.name, fb_report_model_status(st, sizeof st, m), m->ref_name,
               m->divergence.t, m->divergence.crank_angle * 180.0 / M_PI, m->divergence.matched);
-    else if (m->has_divergence)
-      fprintf(f, "- %s: %s; stays with %s's trajectory to the end (%d impacts matched, %s)\n",
-              m->run.name, fb_report_model_status(st, sizeof st, m), m->ref_name,
-              m->divergence.matched, m->divergence.one_to_one ? "one to one" : "not one to one");
+    /* a model that stays with its reference: its verdict's row says so */
     if (m->peaks_unconverged)
       fprintf(f, "- %s: window peaks not converged (~): force max ~%.3g N, coupler alpha "
                  "~%.3g / ~%.3g rad/s^2\n",
@@ -206,61 +229,25 @@ void fb_report_markdown_chaos(FILE *f, const fb_run *r) {
               m->peaks.coupler.alpha_min);
   }
   if (!any_ensemble(r)) return;
-  fprintf(f, "\nPer-impact statistics over t >= %.6g s, pooled over %d run(s), the pins' start "
-             "moved by %g x the radial clearance per member; sd: standard deviation over the "
-             "members; rel: against the reference's pooled value.\n\n",
-          r->t_window, r->c.ensemble > 1 ? r->c.ensemble : 1, FB_ENSEMBLE_ECC_FRACTION);
+  fprintf(f, "\nPer-impact statistics over t >= %.6g s, pooled over each model's members, the "
+             "pins' start moved by %g x the radial clearance per member; sd: standard deviation "
+             "over the members; rel: against the reference's pooled value.\n\n",
+          r->t_window, FB_ENSEMBLE_ECC_FRACTION);
   fprintf(f, "| model | per impact | count | mean | p50 | p90 | max | sd mean / p90 | rel mean/p90 |\n");
   fprintf(f, "|---|---|---|---|---|---|---|---|---|\n");
   for (int i = 0; i < r->n; i++)
     if (r->model[i].has_ensemble) stats_rows(f, &r->model[i], "|", &r->c);
   fputc('\n', f);
-  for (int i = 0; i < r->n; i++)
-    if (r->model[i].has_stats_compare)
-      fprintf(f, "- %s against %s's distribution (within %g sd): %s\n", r->model[i].run.name,
-              r->model[i].ref_name, FB_ENSEMBLE_AGREE_SIGMAS, agree_word(&r->model[i]));
+  for (int i = 0; i < r->n; i++) {
+    char parts[256];
+    if (r->model[i].has_ensemble && r->model[i].ensemble.members > 1)
+      fprintf(f, "- %s: %s\n", r->model[i].run.name,
+              fb_report_parting_text(parts, sizeof parts, &r->model[i].ensemble, r->t_window));
+  }
+  fb_report_print_tests(f, r, 1);
 }
 
 /* ---- verdicts: what each rests on (verdict.h) ------------------------------ */
-
-/* A model whose statistics agree with the reference's while one of them is
- * this far off relative (half again, or half below) agrees only because its
- * members spread widely: the ensemble could not tell the two apart, which
- * is weaker than showing them alike (measured: Simbody on a 60 / 200 mm
- * crank-rocker, force max +154 % within 2.3 sd of its spread, docs/chaos.md);
- * the reason says so [-]. */
-#define FB_STATS_WIDE_REL 0.5
-
-/* the 12 statistics of fb_impact_stats in the order of ensemble.c */
-static double stat_q(const fb_impact_stats *s, int q) {
-  const fb_dist *d[3] = {&s->force, &s->alpha_coupler, &s->alpha_follower};
-  const double v[4] = {d[q / 4]->mean, d[q / 4]->p50, d[q / 4]->p90, d[q / 4]->max};
-  return v[q % 4];
-}
-
-/* "force mean", "coupler alpha p90", a slider's "slider a max" */
-static const char *stat_label(int q, const fb_case *c) {
-  static const char *const which[4] = {"mean", "p50", "p90", "max"};
-  static _Thread_local char buf[12][48];
-  const fb_mech_desc *mech = fb_case_mech(c);
-  if (q < 4) snprintf(buf[q], sizeof buf[q], "force %s", which[q % 4]);
-  else
-    snprintf(buf[q], sizeof buf[q], "%s %s %s", fb_mech_output_name(mech, q / 4 - 1),
-             fb_mech_output_symbol(mech, q / 4 - 1, FB_Q_ACC), which[q % 4]);
-  return buf[q];
-}
-
-/* the statistic farthest from its yardstick: in standard deviations when
- * measured, else relative; returns its index (-1: none finite) */
-static int worst_stat(const fb_stats_compare *c, int sigmas, double *value) {
-  int at = -1;
-  *value = 0.0;
-  for (int q = 0; q < 12; q++) {
-    const double v = fabs(stat_q(sigmas ? &c->sigmas : &c->rel, q));
-    if (isfinite(v) && (at < 0 || v > *value)) at = q, *value = v;
-  }
-  return at;
-}
 
 static double peak_alpha_rel(const fb_reference_error *e) {
   const double v[4] = {e->coupler.alpha_max_rel, e->coupler.alpha_min_rel,
@@ -280,7 +267,11 @@ int fb_report_verdict_error(char *err, size_t err_size, char *against, size_t ag
                             const fb_model_result *m) {
   if (m->run.clearance_mask && m->has_ref_error && m->run.model->engine != FB_ENGINE_REFERENCE) {
     double w;
-    if (m->basis == FB_BASIS_STATISTICS && worst_stat(&m->stats_compare, 0, &w) >= 0) {
+    if (m->basis == FB_BASIS_STATISTICS && m->has_test) {
+      /* the tested statistic farthest from its reference's: |ratio - 1| */
+      w = 0.0;
+      for (int q = 0; q < m->test.n; q++)
+        if (isfinite(m->test.eq[q].ratio)) w = fmax(w, fabs(m->test.eq[q].ratio - 1.0));
       snprintf(err, err_size, "%.2e", w);
       snprintf(against, against_size, "%s", m->ref_name);
     } else {
@@ -303,12 +294,13 @@ static size_t settle_hint(char *buf, size_t size, const fb_run *r, const char *w
     return (size_t)snprintf(buf, size, "; its %d-run ensemble has no impact statistics to %s "
                             "(no impacts in the window)", r->c.ensemble, what);
   if (r->ensemble_auto_skipped)
-    return (size_t)snprintf(buf, size, "; no ensemble ran (%d runs estimated at %.3g s, beyond "
-                            "[run] max_wall_s = %g s): set [run] ensemble = %d to %s",
-                            FB_ENSEMBLE_AUTO_MEMBERS, r->ensemble_estimate_s, r->c.max_wall_s,
-                            FB_ENSEMBLE_AUTO_MEMBERS, what);
-  return (size_t)snprintf(buf, size, "; no ensemble ran: set [run] ensemble = %d to %s",
-                          FB_ENSEMBLE_AUTO_MEMBERS, what);
+    return (size_t)snprintf(buf, size, "; no members ran (the first look of %d, estimated at "
+                            "%.3g s, passes [run] max_wall_s = %g s): raise max_wall_s, or set "
+                            "[run] ensemble, to %s", FB_SEQ_FIRST, r->ensemble_estimate_s,
+                            r->c.max_wall_s, what);
+  return (size_t)snprintf(buf, size, "; no ensemble ran: leave [run] ensemble unset (fourbar run "
+                          "tests its members, %d to %d) or set it to %s", FB_SEQ_FIRST, FB_SEQ_CAP,
+                          what);
 }
 
 static const char *reference_why(char *buf, size_t size, const fb_model_result *m,
@@ -350,16 +342,14 @@ static const char *reference_why(char *buf, size_t size, const fb_model_result *
   }
   if (n >= size) return buf;
   if (m->basis == FB_BASIS_STATISTICS) {
-    double w;
-    const int q = worst_stat(&m->check_compare, 1, &w);
     if (m->check_compare.agree == 1)
-      snprintf(buf + n, size - n, "; converged: its impact statistics (the check within %.2g sd "
-               "of its %d runs' mean)", m->check_compare.agree_sigmas, m->ensemble.members);
+      snprintf(buf + n, size - n, "; its check integration's impact rate and forces lie within its "
+               "%d members' prediction interval (%.2g sd)", m->ensemble.members,
+               m->check_compare.agree_sigmas);
     else
-      snprintf(buf + n, size - n, "; its impact statistics did not converge either (the check's "
-               "%s %+.0f %%, %.2g sd from its %d runs' mean, bound %.2g)",
-               q >= 0 ? stat_label(q, &r->c) : "-",
-               q >= 0 ? 100.0 * stat_q(&m->check_compare.rel, q) : NAN, w, m->ensemble.members,
+      snprintf(buf + n, size - n, "; its check integration's impact rate or forces lie outside its "
+               "%d members' prediction interval (%.2g sd): one run against a heavy-tailed spread, "
+               "shown, not judged (docs/verdicts.md)", m->ensemble.members,
                m->check_compare.agree_sigmas);
   } else {
     settle_hint(buf + n, size - n, r, "test its impact statistics");
@@ -373,7 +363,9 @@ const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result 
   if (m->run.model->engine == FB_ENGINE_REFERENCE) return reference_why(buf, size, m, r);
   const int stopped = m->run.stop.kind != FB_STOP_NONE;
   char stop[256];
-  if (m->verdict == FB_VERDICT_ERROR) return fb_report_model_status(buf, size, m);
+  const int first_missed = m->has_first_check && !m->first_check.ok;
+  if (m->verdict == FB_VERDICT_ERROR && !first_missed && m->basis != FB_BASIS_STATISTICS)
+    return fb_report_model_status(buf, size, m);
   if (m->run.clearance_mask && m->basis == FB_BASIS_NONE && !stopped) {
     const fb_model *want = fb_model_reference_of(m->run.model);
     const int cj = fb_case_mech(&r->c)->reference_joint;
@@ -392,6 +384,11 @@ const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result 
     if (m->warning_count && strlen(buf) < size)
       snprintf(buf + strlen(buf), size - strlen(buf), "; %d warning%s (below)", m->warning_count,
                m->warning_count > 1 ? "s" : "");
+    return buf;
+  }
+  if (first_missed) {
+    snprintf(buf, size, "leaves %s at %.4g ms", m->ref_name, m->divergence.t * 1e3);
+    fb_report_test_reason(buf, size, m);
     return buf;
   }
   if (!m->run.clearance_mask || m->basis == FB_BASIS_NONE || m->basis == FB_BASIS_POINTWISE) {
@@ -420,32 +417,9 @@ const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result 
     settle_hint(buf + n, size - n, r, "compare its impact statistics");
     return buf;
   }
-  const fb_model_result *ref = NULL;
-  for (int k = 0; k < r->n; k++)
-    if (strcmp(r->model[k].run.name, m->ref_name) == 0) ref = &r->model[k];
-  double w;
-  const int q = worst_stat(&m->stats_compare, 1, &w);
-  if (m->stats_compare.agree != 1)
-    n += (size_t)snprintf(buf + n, size - n, "; its impact statistics over %d runs disagree with "
-                          "%s's (%s %+.0f %%, %.2g sd apart)", m->ensemble.members, m->ref_name,
-                          q >= 0 ? stat_label(q, &r->c) : "-",
-                          q >= 0 ? 100.0 * stat_q(&m->stats_compare.rel, q) : NAN, w);
-  else
-    n += (size_t)snprintf(buf + n, size - n, "; its impact statistics over %d runs agree with "
-                          "%s's (within %g sd)", m->ensemble.members, m->ref_name,
-                          FB_ENSEMBLE_AGREE_SIGMAS);
-  /* agreement inside a wide spread: said, so that ok is not read as alike */
-  double rel;
-  const int qr = worst_stat(&m->stats_compare, 0, &rel);
-  if (n < size && m->stats_compare.agree == 1 && qr >= 0 && rel > FB_STATS_WIDE_REL)
-    n += (size_t)snprintf(buf + n, size - n, ", but only inside a wide spread (%s %+.0f %%): "
-                          "more runs ([run] ensemble) sharpen it", stat_label(qr, &r->c),
-                          100.0 * stat_q(&m->stats_compare.rel, qr));
+  fb_report_test_reason(buf, size, m);
+  n = strlen(buf);
   if (n >= size) return buf;
-  if (ref && ref->basis != FB_BASIS_POINTWISE && !(ref->has_check_compare &&
-                                                   ref->check_compare.agree == 1))
-    n += (size_t)snprintf(buf + n, size - n, ", but %s's own statistics are not shown converged "
-                          "(its row)", m->ref_name);
   if (n < size && stopped)
     snprintf(buf + n, size - n, "; %.150s", fb_stop_text(stop, sizeof stop, &m->run.stop));
   else if (n < size) {
@@ -466,31 +440,38 @@ const char *fb_report_verdict(char *why, size_t why_size, const fb_model_result 
 
 void fb_report_print_ensemble_auto(FILE *f, const fb_run *r) {
   if (r->ensemble_auto > 1)
-    fb_report_say(f, "ensemble: a model's verdict was unsettled, so the run added %d runs by "
+    fb_report_say(f, "ensemble: a model's verdict was unsettled, so the run tested members by "
                      "itself (the case leaves [run] ensemble unset; set it to choose, 1: none): "
-                     "%.3g s of wall time for the %d runs beyond the first, against %.3g s for "
-                     "those models once",
-                  r->ensemble_auto, r->ensemble_wall_s, r->ensemble_auto - 1, r->models_wall_s);
+                     "%d look%s, %d members at most (cap %d)%s: %.3g s of wall time for the members "
+                     "beyond the first, against %.3g s for those models once",
+                  r->seq_looks, r->seq_looks == 1 ? "" : "s", r->ensemble_auto, FB_SEQ_CAP,
+                  r->seq_wall_cut ? ", stopped before a look whose estimate passed [run] max_wall_s"
+                                  : "",
+                  r->ensemble_wall_s, r->models_wall_s);
   else if (r->ensemble_auto_skipped)
-    fb_report_say(f, "ensemble: a model's verdict is unsettled, but %d runs, estimated at %.3g s, "
-                     "would pass [run] max_wall_s = %g s: none ran",
-                  FB_ENSEMBLE_AUTO_MEMBERS, r->ensemble_estimate_s, r->c.max_wall_s);
+    fb_report_say(f, "ensemble: a model's verdict is unsettled, but the first look of %d members, "
+                     "estimated at %.3g s, would pass [run] max_wall_s = %g s: none ran",
+                  FB_SEQ_FIRST, r->ensemble_estimate_s, r->c.max_wall_s);
 }
 
 json_t *fb_report_ensemble_run_json(const fb_run *r) {
-  const int members = r->c.ensemble > 1 ? r->c.ensemble : 1;
+  const int members = r->ensemble_auto > 1 ? r->ensemble_auto : r->c.ensemble > 1 ? r->c.ensemble : 1;
   const char *source = r->ensemble_auto > 1 ? "run" : members > 1 ? "case" : "none";
   json_t *o = json_object();
   json_object_set_new(o, "members", json_integer(members));
   json_object_set_new(o, "source", json_string(source));
+  json_object_set_new(o, "looks", json_integer(r->ensemble_auto > 1 ? r->seq_looks : 1));
+  json_object_set_new(o, "cap", r->ensemble_auto > 1 ? json_integer(FB_SEQ_CAP) : json_null());
+  json_object_set_new(o, "wall_cut", json_boolean(r->seq_wall_cut));
   json_object_set_new(
       o, "reason",
       r->ensemble_auto > 1
           ? json_string("a model's verdict was unsettled (it left its reference, or a reference "
                         "parted from its check integration) and the case leaves [run] ensemble "
-                        "unset")
+                        "unset: the run's sequential test added members until each model was "
+                        "decided, or the cap")
       : r->ensemble_auto_skipped
-          ? json_string("a model's verdict is unsettled, but the ensemble's estimated wall time "
+          ? json_string("a model's verdict is unsettled, but the first look's estimated wall time "
                         "passes [run] max_wall_s: none ran")
           : json_null());
   return o;

@@ -24,6 +24,12 @@ json_t *fb_report_ensemble_json(const fb_model_result *m, const fb_run *r);
 json_t *fb_report_converged_json(const fb_model_result *m);
 json_t *fb_report_step_json(const fb_run *r);
 
+/* The step's single-impact verification (run.h, fb_step_check) in words:
+ * the restitution law's worst restitution and penetration error in ODE's
+ * matched row at the run's step against the faithful bounds, and that the
+ * run accepts it when it is not faithful. NULL (buf "") when not checked. */
+const char *fb_report_step_check_text(char *buf, size_t size, const fb_run *r);
+
 /* The printed lines: the step and its h omega_c, then the impact
  * statistics table (nothing without clearance models). */
 void fb_report_print_chaos(FILE *f, const fb_run *r);

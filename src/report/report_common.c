@@ -2,6 +2,8 @@
  * (report_internal.h). */
 #include "report_common.h"
 
+#include "casefile.h"
+
 #include <jansson.h>
 #include <math.h>
 #include <stdarg.h>
@@ -133,12 +135,18 @@ json_t *fb_report_loads_json(const fb_series *s, double t_from) {
   return o;
 }
 
-const fb_contact_law *fb_report_model_law(const fb_run *r, const fb_model_result *m, int j) {
+const fb_contact_law *fb_report_model_law(fb_contact_law *buf, const fb_run *r,
+                                          const fb_model_result *m, int j) {
   const fb_model *row = m->run.model;
   if (!row || row->law == FB_MODEL_LAW_NONE || !(m->run.clearance_mask & (1 << j)) ||
       !r->scene.has_law[row->law])
     return NULL;
-  return &r->scene.law[row->law][j];
+  /* the model's own view: an engine model's law carries the injected error */
+  fb_model_scene sm;
+  fb_diag inner;
+  *buf = fb_scene_select(&sm, &r->scene, row, &inner) == FB_OK ? sm.law[j]
+                                                               : r->scene.law[row->law][j];
+  return buf;
 }
 
 const char *fb_report_model_mapping(const fb_run *r, const fb_model_result *m) {
@@ -155,4 +163,22 @@ const char *fb_report_body_abbrev(const char *body) {
   static _Thread_local char three[4];
   snprintf(three, sizeof three, "%s", body);
   return three;
+}
+
+const char *fb_report_injected_text(char *buf, size_t size, const fb_run *r) {
+  const fb_clearance *cl = &r->c.clearance;
+  const int given = fb_casefile_given(&r->c, "clearance", "engine_damping_scale");
+  buf[0] = '\0';
+  if (cl->engine_stiffness_scale == 1.0 && cl->engine_damping_scale == 1.0 && !given) return NULL;
+  size_t n = (size_t)snprintf(
+      buf, size, "injected error: [clearance] engine_stiffness_scale = %g, engine_damping_scale = "
+      "%g%s multiply the contact law of every engine model (the references keep the case's law)",
+      cl->engine_stiffness_scale, cl->engine_damping_scale,
+      given ? " (given: the restitution law's damper is that of the case's stiffness, scaled)"
+            : " (the restitution law's damper follows the scaled stiffness)");
+  for (int i = 0; i < r->n && n < size; i++)
+    if (r->model[i].run.model->rigid)
+      n += (size_t)snprintf(buf + n, size - n, "; %s is rigid: no stiffness or damper to scale",
+                            r->model[i].run.name);
+  return buf;
 }

@@ -33,6 +33,14 @@ const char *fb_report_figure(char *buf, size_t size, const char *fmt, double x, 
  * "ok" with the warning divergent. Returns buf. */
 const char *fb_report_model_status(char *buf, size_t size, const fb_model_result *m);
 
+/* The injected error of the run ([clearance] engine_stiffness_scale and
+ * engine_damping_scale, scene.h), in words for the run's header: which
+ * factor multiplies every engine model's contact law, that the references
+ * keep the case's, and which models of the run are rigid and have nothing
+ * to scale. Returns NULL (buf "") when both are 1 and the damping scale was
+ * not given. */
+const char *fb_report_injected_text(char *buf, size_t size, const fb_run *r);
+
 /* A body's name in three letters for narrow table columns: "cpl" (coupler),
  * "flw" (follower), "sld" (slider); the name's first three letters
  * otherwise. */

@@ -1,5 +1,7 @@
 #include "report_html.h"
 
+#include "report_verdict.h"
+
 #include <errno.h>
 #include <jansson.h>
 #include <math.h>
@@ -118,8 +120,8 @@ static fb_status model_json(json_t **out, const fb_run *r, int mi) {
   json_t *o = json_pack("{s:s,s:s,s:b,s:s?,s:s?,s:s?,s:i}", "name", m->run.name, "engine",
                         fb_engine_name(row->engine), "clearance", m->run.clearance_mask != 0,
                         "reference", ref ? ref->name : NULL, "ideal", ideal ? ideal->name : NULL,
-                        "color", fb_figure_model_color(row->name), "dash",
-                        fb_figure_model_dash(row->name));
+                        "color", fb_figure_model_color(r, row->name), "dash",
+                        fb_figure_model_dash(r, row->name));
   unsigned char *keep = calloc(s->n ? s->n : 1, 1);
   size_t *idx = malloc((s->n ? s->n : 1) * sizeof *idx);
   episode *ep = malloc(FB_REPORT_MAX_IMPACTS * sizeof *ep);
@@ -292,6 +294,8 @@ static fb_status write_data(const char *dir, const fb_run *r, const json_t *summ
     json_array_append_new(models, m);
   }
   json_object_set_new(d, "models", models);
+  /* what each verdict on statistics rests on, for its panel */
+  json_object_set_new(d, "verdicts", fb_report_verdicts_json(r, fb_figure_model_color));
   char path[4400];
   snprintf(path, sizeof path, "%s/report-data.js", dir);
   fb_outfile out;

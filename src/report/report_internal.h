@@ -12,8 +12,12 @@
  * size their model column to the longest model name of the run. */
 #define FB_TABLE_COLUMNS 120
 
-/* The law of a clearance model's joint j as its run used it, NULL if none. */
-const fb_contact_law *fb_report_model_law(const fb_run *r, const fb_model_result *m, int j);
+/* The law of a clearance model's joint j as its run used it (its own view of
+ * the scene, fb_scene_select: an engine model's law with the injected error
+ * of [clearance] engine_stiffness_scale and engine_damping_scale), copied
+ * into buf; NULL if none. */
+const fb_contact_law *fb_report_model_law(fb_contact_law *buf, const fb_run *r,
+                                          const fb_model_result *m, int j);
 
 /* How model m's contact reaches its engine: ODE's mapping of the law into
  * ERP/CFM (fb_mapping_name); MuJoCo's law is a generalised force through

@@ -122,6 +122,10 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
             given_src(c, "clearance", "exponent", "damping_n_s_m", "damping_depth_um", NULL));
     fprintf(f, "| mapping | %s | %s |\n", fb_mapping_name((fb_mapping)c->clearance.mapping),
             given_src(c, "clearance", "mapping", NULL));
+    char injected[1024];
+    if (fb_report_injected_text(injected, sizeof injected, r))
+      fprintf(f, "| injected error | %s | %s |\n", injected,
+              given_src(c, "clearance", "engine_stiffness_scale", "engine_damping_scale", NULL));
   }
   fb_report_markdown_chaos(f, r);
   fprintf(f, "\n## Figures\n\n");

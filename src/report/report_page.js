@@ -363,6 +363,105 @@
     }
   }
 
+  /* ---- verdicts on statistics ------------------------------------------------ */
+  /* one row per model judged on statistics (report-data.js "verdicts"): the
+   * members' empirical distributions of impact peak force (log axis), their
+   * impact rates, the first impacts' errors against their bounds; drawn on
+   * canvases, so the panel needs no charting library */
+  function axes(g, w, h, pad, xlab, ylab) {
+    g.strokeStyle = '#444'; g.lineWidth = 1; g.strokeRect(pad.l, pad.t, w - pad.l - pad.r, h - pad.t - pad.b);
+    g.fillStyle = '#333'; g.font = '11px sans-serif';
+    g.fillText(xlab, pad.l, h - 4);
+    g.save(); g.translate(11, pad.t + 4); g.rotate(Math.PI / 2); g.fillText(ylab, 0, 0); g.restore();
+  }
+  function drawVerdict(v, row) {
+    var drawn = 0;
+    /* (a) empirical distributions of each member's impact peak forces */
+    var ca = el('canvas'); ca.width = 420; ca.height = 260; row.appendChild(ca);
+    var g = ca.getContext('2d'), pad = { l: 30, r: 10, t: 10, b: 30 };
+    var all = [].concat.apply([], v.model_forces.concat(v.reference_forces)).filter(function (x) { return x > 0; });
+    var lo = Math.log10(Math.min.apply(null, all.length ? all : [1])), hi = Math.log10(Math.max.apply(null, all.length ? all : [10]));
+    if (!(hi > lo)) hi = lo + 1;
+    var X = function (f) { return pad.l + (ca.width - pad.l - pad.r) * (Math.log10(f) - lo) / (hi - lo); };
+    var Y = function (p) { return ca.height - pad.b - (ca.height - pad.t - pad.b) * p; };
+    axes(g, ca.width, ca.height, pad, 'impact peak force [N], log, ' + Math.pow(10, lo).toPrecision(2) + ' .. ' + Math.pow(10, hi).toPrecision(2), 'share of its impacts at or below, 0 .. 1');
+    [[v.reference_forces, '#9a9a9a'], [v.model_forces, v.color]].forEach(function (side) {
+      g.strokeStyle = side[1]; g.lineWidth = 1;
+      side[0].forEach(function (f) {
+        var x = f.filter(function (y) { return y > 0; }).sort(function (a, b) { return a - b; });
+        if (!x.length) return;
+        g.beginPath(); g.moveTo(X(x[0]), Y(0));
+        x.forEach(function (y, i) { g.lineTo(X(y), Y(i / x.length)); g.lineTo(X(y), Y((i + 1) / x.length)); drawn++; });
+        g.stroke();
+      });
+    });
+    /* (b) each member's impacts per revolution */
+    var cb = el('canvas'); cb.width = 260; cb.height = 260; row.appendChild(cb);
+    g = cb.getContext('2d');
+    var rates = v.model_rates.concat(v.reference_rates).filter(function (x) { return x !== null; });
+    var top = Math.max.apply(null, rates.length ? rates : [1]) * 1.1 || 1;
+    var Yr = function (q) { return cb.height - pad.b - (cb.height - pad.t - pad.b) * q / top; };
+    axes(g, cb.width, cb.height, pad, 'reference | model', 'impacts per revolution, 0 .. ' + top.toPrecision(3));
+    [[v.reference_rates, '#9a9a9a', 0.3], [v.model_rates, v.color, 0.7]].forEach(function (side) {
+      g.fillStyle = side[1];
+      side[0].forEach(function (q, k) {
+        if (q === null) return;
+        var x = pad.l + (cb.width - pad.l - pad.r) * (side[2] + 0.2 * (k / Math.max(1, side[0].length - 1) - 0.5));
+        g.beginPath(); g.arc(x, Yr(q), 3, 0, 2 * Math.PI); g.fill(); drawn++;
+      });
+    });
+    if (v.rate) {
+      g.strokeStyle = '#000'; g.lineWidth = 3;
+      [[v.rate.mean_reference, 0.3], [v.rate.mean, 0.7]].forEach(function (mm) {
+        var x = pad.l + (cb.width - pad.l - pad.r) * mm[1];
+        g.beginPath(); g.moveTo(x - 30, Yr(mm[0])); g.lineTo(x + 30, Yr(mm[0])); g.stroke();
+      });
+    }
+    /* (c) the first impacts' errors and their bounds [%] */
+    var cc = el('canvas'); cc.width = 300; cc.height = 260; row.appendChild(cc);
+    g = cc.getContext('2d');
+    var big = 0;
+    v.first.forEach(function (f, k) { big = Math.max(big, Math.abs(f.force_rel || 0), Math.abs(f.penetration_rel || 0), v.first_bounds[k] || 0); });
+    if (v.rigid && v.rebound_rel !== null) big = Math.max(big, Math.abs(v.rebound_rel), 0.05);
+    big = 1.2 * (big || 0.05);
+    var Yc = function (e) { return pad.t + (cc.height - pad.t - pad.b) * (0.5 - 0.5 * e / big); };
+    var n = Math.max(1, v.first.length), wk = (cc.width - pad.l - pad.r) / n;
+    axes(g, cc.width, cc.height, pad, 'first impacts, one to one', 'error [%], +-' + (100 * big).toPrecision(2));
+    v.first.forEach(function (f, k) {
+      var x0 = pad.l + wk * k;
+      g.strokeStyle = '#000'; g.setLineDash([4, 3]); g.lineWidth = 1;
+      if (v.first_bounds[k] !== null)
+        [1, -1].forEach(function (sg) { g.beginPath(); g.moveTo(x0, Yc(sg * v.first_bounds[k])); g.lineTo(x0 + wk, Yc(sg * v.first_bounds[k])); g.stroke(); });
+      g.setLineDash([]);
+      var bars = v.rigid ? [[k === 0 ? v.rebound_rel : null, v.color]] : [[f.force_rel, v.color], [f.penetration_rel, '#555']];
+      bars.forEach(function (b, q) {
+        if (b[0] === null || b[0] === undefined) return;
+        g.fillStyle = b[1];
+        var y0 = Yc(0), y1 = Yc(b[0]);
+        g.fillRect(x0 + wk * (0.25 + 0.25 * q), Math.min(y0, y1), wk * 0.2, Math.max(1, Math.abs(y1 - y0)));
+        drawn++;
+      });
+    });
+    row.dataset.points = String(drawn);
+  }
+  function drawVerdicts() {
+    var list = D.verdicts || [];
+    $('verdictbox').style.display = list.length ? 'block' : 'none';
+    var box = $('verdicts');
+    box.textContent = '';
+    list.forEach(function (v) {
+      var head = el('p', v.title, 'verdicttitle');
+      head.style.borderLeft = '6px solid ' + v.color; head.style.paddingLeft = '6px';
+      box.appendChild(head);
+      var row = el('div', null, 'verdictrow'); row.dataset.model = v.model;
+      box.appendChild(row);
+      drawVerdict(v, row);
+      box.appendChild(el('p', 'grey: ' + v.reference + '\'s members; colour: ' + v.model + '\'s; black: the means; dashed: the bounds (' +
+        (v.first_ok ? 'within them' : 'beyond one') + ')', 'note'));
+    });
+  }
+  drawVerdicts();
+
   /* ---- summary tables ------------------------------------------------------ */
   function flatten(v, path, out) {
     if (v !== null && typeof v === 'object') {
@@ -462,6 +561,11 @@
           x_min_s: tOf(p.u.scales.x.min), x_max_s: tOf(p.u.scales.x.max) };
       });
     },
-    orbitPoints: function () { return Number($('orbit').dataset.points); }
+    orbitPoints: function () { return Number($('orbit').dataset.points); },
+    verdicts: function () {
+      return Array.prototype.map.call(document.querySelectorAll('.verdictrow'), function (row) {
+        return { model: row.dataset.model, points: Number(row.dataset.points), canvases: row.querySelectorAll('canvas').length };
+      });
+    }
   };
 })();

@@ -13,6 +13,7 @@
 #include "casefile.h"
 #include "outcome_text.h"
 #include "report_chaos.h"
+#include "report_verdict.h"
 #include "report_internal.h"
 #include "report_variants.h"
 #include "resolution.h"
@@ -149,9 +150,12 @@ static json_t *window_json(const fb_run *r, const fb_peaks *p, const fb_peaks_at
 static json_t *contact_json(const fb_run *r, const fb_model_result *m) {
   json_t *arr = json_array();
   for (int j = 0; j < 4; j++) {
-    const fb_contact_law *law = fb_report_model_law(r, m, j);
+    fb_contact_law lb;
+      const fb_contact_law *law = fb_report_model_law(&lb, r, m, j);
     if (!law) continue;
     json_t *o = fb_report_contact_law_json(fb_case_joint_name(&r->c, j), law, r->scene.mapping);
+    /* the force an impact must exceed, the same for every model (episode.h) */
+    json_object_set_new(o, "impact_floor_n", num(r->scene.impact_floor[j]));
     const fb_contact_provenance *p = &m->run.provenance[j];
     const int have = m->run.has_provenance && p->contact_steps > 0;
     const char *mapping = fb_report_model_mapping(r, m);
@@ -453,6 +457,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "vs_published",
                       fb_report_vs_published_json(&r->c, run->model, &m->peaks, m->has_peaks));
   json_object_set_new(o, "impact_statistics", fb_report_ensemble_json(m, r));
+  json_object_set_new(o, "verdict_test", fb_report_test_json(m));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
   json_object_set_new(o, "adaptive_steps", adaptive_steps_json(run));
@@ -586,6 +591,12 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_object_set_new(o, "stepper", json_string(c->solver.stepper == FB_STEPPER_WORLD
                                                     ? "dWorldStep"
                                                     : "dWorldQuickStep"));
+  char injected[1024];
+  json_object_set_new(o, "engine_stiffness_scale", num(c->clearance.engine_stiffness_scale));
+  json_object_set_new(o, "engine_damping_scale", num(c->clearance.engine_damping_scale));
+  json_object_set_new(o, "injected_error", fb_report_injected_text(injected, sizeof injected, r)
+                                               ? json_string(injected)
+                                               : json_null());
   json_object_set_new(o, "stackup", stackup_json(c));
   json_object_set_new(o, "masses", masses_json(c));
   json_object_set_new(o, "series",

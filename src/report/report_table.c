@@ -30,8 +30,9 @@ static const char *figure_text(char *buf, size_t size, const char *fmt, double x
 /* the printed contact table: what each clearance model's rows received */
 static void print_contact(FILE *f, const fb_run *r, int W) {
   int any = 0;
+  fb_contact_law lb;
   for (int i = 0; i < r->n; i++)
-    for (int j = 0; j < 4; j++) any |= fb_report_model_law(r, &r->model[i], j) != NULL;
+    for (int j = 0; j < 4; j++) any |= fb_report_model_law(&lb, r, &r->model[i], j) != NULL;
   if (!any) return;
   fputc('\n', f);
   say(f, "contact (per clearance joint; stiffness in N/m^n; m_eff, ERP, CFM and h omega_c = "
@@ -47,7 +48,7 @@ static void print_contact(FILE *f, const fb_run *r, int W) {
   for (int i = 0; i < r->n; i++) {
     const fb_model_result *m = &r->model[i];
     for (int j = 0; j < 4; j++) {
-      const fb_contact_law *law = fb_report_model_law(r, m, j);
+      const fb_contact_law *law = fb_report_model_law(&lb, r, m, j);
       if (!law) continue;
       const fb_contact_provenance *p = &m->run.provenance[j];
       const int have = m->run.has_provenance && p->contact_steps > 0;
@@ -502,6 +503,7 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   char grashof[1024];
   fb_case_grashof_text(c, grashof, sizeof grashof);
   say(f, "linkage: %s", grashof);
+  if (fb_report_injected_text(grashof, sizeof grashof, r)) say(f, "%s", grashof);
   fputc('\n', f);
   /* one screen first: the verdict per model */
   print_verdict(f, r, W);

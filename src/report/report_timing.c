@@ -62,7 +62,8 @@ json_t *fb_report_timing_json(const fb_run *r, const fb_write_costs *w, double r
     json_array_append_new(models_json, m);
   }
   /* the ensemble's members beyond the first (docs/chaos.md): its cost */
-  json_t *ens = json_pack("{s:i,s:s,s:o,s:o,s:o}", "members", r->c.ensemble > 1 ? r->c.ensemble : 1,
+  json_t *ens = json_pack("{s:i,s:s,s:o,s:o,s:o}", "members",
+                          r->ensemble_auto > 1 ? r->ensemble_auto : r->c.ensemble > 1 ? r->c.ensemble : 1,
                           "source", r->ensemble_auto > 1 ? "run" : r->c.ensemble > 1 ? "case" : "none",
                           "wall_s", num(r->ensemble_wall_s), "models_wall_s", num(r->models_wall_s),
                           "estimate_s", r->ensemble_auto > 1 || r->ensemble_auto_skipped

@@ -356,6 +356,20 @@ void fb_report_cp_text(FILE *f, const fb_cp_result *o, const char *case_path, co
   } else {
     fprintf(f, "== your contact at h = %.4g s: not recommended: %s\n", q->h, o->given.why_not);
   }
+  if (q->h_from_case && !o->given.recommended && o->given.n_checks) {
+    /* the run's step: what its step line says it accepts (report_chaos.h) */
+    double er = 0.0, ep = 0.0;
+    for (int k = 0; k < o->given.n_checks; k++) {
+      const fb_cp_check *x = &o->given.checks[k];
+      if (strcmp(x->engine, "ode") != 0 || strcmp(x->form, "matched") != 0 || !x->ran) continue;
+      if (fabs(x->restitution_rel) > fabs(er)) er = x->restitution_rel;
+      if (fabs(x->penetration_rel) > fabs(ep)) ep = x->penetration_rel;
+    }
+    fprintf(f, "   (the case's own step, which fourbar run takes: within its accuracy bound h omega_c "
+               "<= %g, and its step line says it accepts this single impact's error, ODE's matched "
+               "row: restitution %+.2g %%, penetration %+.2g %%; set [solver] h_s to the largest "
+               "faithful step for a faithful run)\n", FB_H_OMEGA_C_BOUND, 100.0 * er, 100.0 * ep);
+  }
   if (o->has_at_step) {
     print_at_step(f, "", &o->at_step, o->at_k, o->at_c, q->speed);
     if (o->at_k > o->k)

@@ -1,5 +1,7 @@
 #include "impact_stats.h"
 
+#include "metrics.h"
+
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_statistics_double.h>
 #include <math.h>
@@ -26,33 +28,22 @@ fb_status fb_impact_values_add(fb_impact_values *v, const fb_series *s, int j, d
                                fb_diag *diag) {
   if (j < 0 || j > 3 || !(s->contact_mask & (1 << j)))
     return fb_diag_set(diag, FB_ERR_ARG, "no contact columns at joint %d for impact statistics", j);
-  const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
-  size_t i = 0;
-  while (i < s->n) {
-    if (!(f[i] > 0.0)) {
-      i++;
-      continue;
-    }
-    size_t e = i;
-    int impact = 0;
+  const double *f = s->contact[j][FB_C_FORCE];
+  size_t i = 0, a, e;
+  for (; fb_metrics_next_impact(s, j, i, &a, &e); i = e + 1) {
+    if (s->t[a] < t_from) continue;
     double fm = 0.0, ac = 0.0, af = 0.0;
-    for (; e < s->n && f[e] > 0.0; e++) {
-      impact |= (int)st[e] == FB_STATE_IMPACT;
-      fm = fmax(fm, f[e]);
-    }
+    for (size_t q = a; q <= e; q++) fm = fmax(fm, f[q]);
     /* the episode's samples and the one after it */
-    for (size_t q = i; q <= e && q < s->n; q++) {
+    for (size_t q = a; q <= e + 1 && q < s->n; q++) {
       ac = fmax(ac, fabs(s->coupler_alpha[q]));
       af = fmax(af, fabs(s->follower_alpha[q]));
     }
-    if (impact && s->t[i] >= t_from) {
-      if (!grow(v)) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for impact statistics");
-      v->force[v->n] = fm;
-      v->alpha_coupler[v->n] = ac;
-      v->alpha_follower[v->n] = af;
-      v->n++;
-    }
-    i = e;
+    if (!grow(v)) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for impact statistics");
+    v->force[v->n] = fm;
+    v->alpha_coupler[v->n] = ac;
+    v->alpha_follower[v->n] = af;
+    v->n++;
   }
   return FB_OK;
 }

@@ -33,13 +33,12 @@ typedef struct {
 } fb_impact_values;
 
 /* Appends the impacts of series s at clearance joint j whose onset lies at
- * t >= t_from [s] to v: an impact is a contact episode (one unbroken run of
- * samples with positive force) with at least one sample in FB_STATE_IMPACT
- * (the episodes of metrics.c, fb_metrics_divergence); its force is the
- * largest over the episode and its alpha spikes the largest |alpha| over
- * it and the sample after (the acceleration a contact force raises shows
- * at the step that applies it). Errors: FB_ERR_ARG without contact columns
- * at j; FB_ERR_NOMEM. */
+ * t >= t_from [s] to v: an impact as every count defines it (metrics.h,
+ * fb_metrics_next_impact: an unbroken run of samples whose force exceeds
+ * the series' impact floor); its force is the largest over the episode and
+ * its alpha spikes the largest |alpha| over it and the sample after (the
+ * acceleration a contact force raises shows at the step that applies it).
+ * Errors: FB_ERR_ARG without contact columns at j; FB_ERR_NOMEM. */
 fb_status fb_impact_values_add(fb_impact_values *v, const fb_series *s, int j, double t_from,
                                fb_diag *diag);
 

@@ -144,7 +144,34 @@ static void first_rebound(fb_first_impact *out, const fb_series *s, int j, size_
   out->duration = t_out - t_in;
 }
 
-void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, double clearance) {
+/* quadratic through |e| at samples k, k + 1, k + 2: its slope at time t */
+static double quad_slope_at(const fb_series *s, int j, size_t k, double t) {
+  const double t0 = s->t[k], t1 = s->t[k + 1], t2 = s->t[k + 2];
+  const double y0 = ecc_norm(s, j, k), y1 = ecc_norm(s, j, k + 1), y2 = ecc_norm(s, j, k + 2);
+  const double d01 = (y1 - y0) / (t1 - t0), d12 = (y2 - y1) / (t2 - t1);
+  const double a = (d12 - d01) / (t2 - t0), b = d01 + a * (t1 - t0);
+  return b + 2.0 * a * (t - t1);
+}
+
+/* a rigid contact's rebound (metrics.h): the impulse acts over the step
+ * after sample i, the first carrying it */
+static void impulse_rebound(fb_first_impact *out, const fb_series *s, int j, size_t i,
+                            double clearance) {
+  out->rebound = out->duration = NAN;
+  if (i < 2 || i + 4 > s->n) return;
+  for (size_t k = i - 2; k < i; k++)
+    if (!free_sample(s, j, k, clearance)) return;
+  for (size_t k = i + 1; k <= i + 3; k++)
+    if (s->contact[j][FB_C_FORCE][k] > 0.0) return; /* held on the wall: no bounce */
+  const double u_in = quad_slope_at(s, j, i - 2, s->t[i]);
+  const double u_out = quad_slope_at(s, j, i + 1, s->t[i + 1]);
+  if (!(u_in > 0.0)) return;
+  out->rebound = -u_out / u_in;
+  out->duration = s->t[i + 1] - s->t[i];
+}
+
+void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, double clearance,
+                             int rigid) {
   memset(out, 0, sizeof *out);
   out->rebound = out->duration = NAN;
   if (j < 0 || j > 3 || !(s->contact_mask & (1 << j))) return;
@@ -165,7 +192,8 @@ void fb_metrics_first_impact(fb_first_impact *out, const fb_series *s, int j, do
     /* the crank turns uniformly between samples */
     const double w = (s->crank_angle[i] - s->crank_angle[i - 1]) / h;
     out->crank_angle = wrap_angle(s->crank_angle[i - 1] + w * (t - s->t[i - 1]));
-    first_rebound(out, s, j, i, clearance);
+    if (rigid) impulse_rebound(out, s, j, i, clearance);
+    else first_rebound(out, s, j, i, clearance);
     return;
   }
 }
@@ -252,6 +280,53 @@ fb_status fb_metrics_error(fb_error *out, const fb_series *s, double t_from,
   return FB_OK;
 }
 
+/* a sample of joint j in contact: the pin beyond the clearance, or a force
+ * above the floor (a rigid contact's impulse, with the pin on the wall) */
+static int contact_sample(const double *f, const double *p, size_t i, double floor) {
+  return p[i] > 0.0 || f[i] > floor;
+}
+
+int fb_metrics_next_impact(const fb_series *s, int j, size_t from, size_t *first, size_t *last) {
+  const double *f = s->contact[j][FB_C_FORCE], *p = s->contact[j][FB_C_PEN];
+  const double floor = s->impact_floor[j] > 0.0 ? s->impact_floor[j] : 0.0;
+  for (size_t i = from; i < s->n;) {
+    if (!contact_sample(f, p, i, floor)) {
+      i++;
+      continue;
+    }
+    size_t e = i;
+    double peak = f[i];
+    while (e + 1 < s->n && contact_sample(f, p, e + 1, floor)) peak = fmax_d(peak, f[++e]);
+    if (peak > floor) {
+      *first = i;
+      *last = e;
+      return 1;
+    }
+    i = e + 1; /* a touch whose force stays below the floor */
+  }
+  return 0;
+}
+
+size_t fb_metrics_impact_episodes(const fb_series *s, int j, double t_end, size_t *first,
+                                  size_t *last, size_t cap) {
+  size_t k = 0, i = 0, a, b;
+  while (fb_metrics_next_impact(s, j, i, &a, &b)) {
+    if (!(s->t[a] < t_end)) break;
+    if (k < cap) first[k] = a, last[k] = b;
+    k++;
+    i = b + 1;
+  }
+  return k;
+}
+
+/* impacts of joint j whose onset lies at t >= t_from */
+static int impacts_from(const fb_series *s, int j, double t_from) {
+  int k = 0;
+  size_t i = 0, a, b;
+  for (; fb_metrics_next_impact(s, j, i, &a, &b); i = b + 1) k += s->t[a] >= t_from;
+  return k;
+}
+
 fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
                             double alpha_ref_coupler, double alpha_ref_follower,
                             const fb_error *err, fb_diag *diag) {
@@ -267,16 +342,16 @@ fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
       if (!(s->contact_mask & (1 << j))) continue;
       const double f = s->contact[j][FB_C_FORCE][i], p = s->contact[j][FB_C_PEN][i];
       const int st = (int)s->contact[j][FB_C_STATE][i];
-      const int prev = i > 0 ? (int)s->contact[j][FB_C_STATE][i - 1] : FB_STATE_FREE;
       if (f > fmax) fmax = f;
       if (p > pmax) pmax = p;
-      if (st == FB_STATE_IMPACT && prev != FB_STATE_IMPACT) impacts++;
       free_count += st == FB_STATE_FREE;
       pairs++;
     }
   }
   if (used == 0)
     return fb_diag_set(diag, FB_ERR_ARG, "no sample at or after t = %g s for spike metrics", t_from);
+  for (int j = 0; j < 4; j++)
+    if (s->contact_mask & (1 << j)) impacts += impacts_from(s, j, t_from);
   const double two_pi = 2.0 * M_PI;
   out->alpha_peak_ratio_coupler = ac / alpha_ref_coupler;
   out->alpha_peak_ratio_follower = af / alpha_ref_follower;
@@ -295,47 +370,13 @@ fb_status fb_metrics_spikes(fb_spikes *out, const fb_series *s, double t_from,
 
 static void window_impacts(const fb_series *s, double t_from, int j, int *count, double angles[8]) {
   *count = 0;
-  for (size_t i = 1; i < s->n; i++) {
-    if (s->t[i] < t_from) continue;
-    if ((int)s->contact[j][FB_C_STATE][i] == FB_STATE_IMPACT &&
-        (int)s->contact[j][FB_C_STATE][i - 1] != FB_STATE_IMPACT) {
-      if (*count < 8) angles[*count] = fmod(fmod(s->crank_angle[i], 2 * M_PI) + 2 * M_PI, 2 * M_PI);
-      (*count)++;
-    }
+  size_t i = 0, a, b;
+  for (; fb_metrics_next_impact(s, j, i, &a, &b); i = b + 1) {
+    if (s->t[a] < t_from) continue;
+    if (*count < 8) angles[*count] = fmod(fmod(s->crank_angle[a], 2 * M_PI) + 2 * M_PI, 2 * M_PI);
+    (*count)++;
   }
   for (int k = *count; k < 8; k++) angles[k] = -1.0;
-}
-
-/* impacts of series s at joint j starting before t_end: onset time, peak
- * force and penetration; returns the count, at most cap stored. An impact
- * is a contact episode (the samples of one unbroken run of positive force)
- * with at least one sample in the impact state; its peaks are over the
- * whole episode. Not the impact state alone: the state machines split one
- * contact whose force falls and rises again (a double-peaked impact) into
- * an impact and a continuous phase, and whether they do depends on the
- * step, so the reference's first impact at 1500 rpm peaked at 4203 N as
- * "impact" and 10276 N as "continuous" while the model's, one phase, peaked
- * at 10268 N (paired: +144 %). */
-size_t fb_metrics_impact_episodes(const fb_series *s, int j, double t_end, size_t *first,
-                                  size_t *last, size_t cap) {
-  const double *st = s->contact[j][FB_C_STATE], *f = s->contact[j][FB_C_FORCE];
-  size_t k = 0, i = 0;
-  while (i < s->n) {
-    if (!(f[i] > 0.0)) {
-      i++;
-      continue;
-    }
-    size_t e = i;
-    int impact = 0;
-    for (; e < s->n && f[e] > 0.0; e++) impact |= (int)st[e] == FB_STATE_IMPACT;
-    if (impact) {
-      if (!(s->t[i] < t_end)) break;
-      if (k < cap) first[k] = i, last[k] = e - 1;
-      k++;
-    }
-    i = e;
-  }
-  return k;
 }
 
 /* the impacts of joint j beginning before t_end (fb_metrics_impact_episodes):
@@ -358,10 +399,9 @@ static int impact_list(const fb_series *s, int j, double t_end, double *t0, doub
   return (int)n;
 }
 
-/* peak force and penetration of the first FB_FIRST_IMPACTS impacts of the run */
-static int first_impacts(const fb_series *s, int j, double force[FB_FIRST_IMPACTS],
-                         double pen[FB_FIRST_IMPACTS]) {
-  double t0[FB_FIRST_IMPACTS];
+/* onset, peak force and penetration of the first FB_FIRST_IMPACTS impacts of the run */
+static int first_impacts(const fb_series *s, int j, double t0[FB_FIRST_IMPACTS],
+                         double force[FB_FIRST_IMPACTS], double pen[FB_FIRST_IMPACTS]) {
   const int n = impact_list(s, j, INFINITY, t0, NULL, force, pen, FB_FIRST_IMPACTS);
   return n < FB_FIRST_IMPACTS ? n : FB_FIRST_IMPACTS;
 }
@@ -427,11 +467,15 @@ fb_status fb_metrics_vs_reference(fb_reference_error *out, const fb_series *s, c
   window_impacts(s, t_from, j, &out->impacts, out->impact_angles);
   window_impacts(r, t_from, j, &out->impacts_reference, out->impact_angles_reference);
   double fa[FB_FIRST_IMPACTS], pa[FB_FIRST_IMPACTS], fb[FB_FIRST_IMPACTS], pb[FB_FIRST_IMPACTS];
-  const int na = first_impacts(s, j, fa, pa), nb = first_impacts(r, j, fb, pb);
+  double ta[FB_FIRST_IMPACTS], tb[FB_FIRST_IMPACTS];
+  const int na = first_impacts(s, j, ta, fa, pa), nb = first_impacts(r, j, tb, fb, pb);
   out->first_impacts = na < nb ? na : nb;
   for (int k = 0; k < out->first_impacts; k++) {
     out->first_impact_force_rel[k] = fb_metrics_rel(fa[k], fb[k]);
     out->first_impact_penetration_rel[k] = fb_metrics_rel(pa[k], pb[k]);
+    out->first_impact_t[k] = ta[k];
+    out->first_impact_t_error[k] = ta[k] - tb[k];
+    out->first_impact_force_reference[k] = fb[k];
   }
   return FB_OK;
 }

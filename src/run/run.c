@@ -46,7 +46,8 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
   for (int j = 0; j < 4 && m->first_impact_joint < 0; j++)
     if (m->run.clearance_mask & s->contact_mask & (1 << j)) m->first_impact_joint = j;
   if (m->first_impact_joint >= 0)
-    fb_metrics_first_impact(&m->first_impact, s, m->first_impact_joint, c->radial_clearance);
+    fb_metrics_first_impact(&m->first_impact, s, m->first_impact_joint, c->radial_clearance,
+                            m->run.model->rigid);
   for (int j = 0; j < 4; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
     for (size_t i = 0; i < s->n && s->t[i] < r->t_startup_end; i++) {
@@ -314,8 +315,10 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
   fb_stop stop;
   memset(&stop, 0, sizeof stop);
   const int cj = fb_case_mech(&r->c)->reference_joint;
-  if (fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[cj], 0, check, &stop,
-                           &inner) == FB_OK &&
+  const fb_status ran = fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[cj], 0, check,
+                                             &stop, &inner);
+  for (int j = 0; j < 4; j++) s.impact_floor[j] = r->scene.impact_floor[j]; /* as its model's */
+  if (ran == FB_OK &&
       stop.kind == FB_STOP_NONE &&
       fb_metrics_vs_reference(&m->ref_estimate, &m->run.series, &s, r->t_window, cj,
                               &inner) == FB_OK) {
@@ -498,7 +501,10 @@ static fb_status run_models_timed(fb_run *r, const fb_case *c, fb_progress_fn pr
 }
 
 void fb_run_free(fb_run *r) {
-  for (int i = 0; i < r->n; i++) fb_model_run_free(&r->model[i].run);
+  for (int i = 0; i < r->n; i++) {
+    fb_model_run_free(&r->model[i].run);
+    for (int k = 0; k < FB_ENSEMBLE_MAX; k++) fb_impact_values_free(&r->model[i].member_impacts[k]);
+  }
   r->n = 0;
 }
 

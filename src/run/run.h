@@ -13,18 +13,18 @@
 #include "scene.h"
 #include "variants.h"
 #include "verdict.h"
+#include "verdict_stats.h"
 
 /* Warnings a model run can carry. */
 #define FB_RUN_WARNINGS 6
 
-/* Members `fourbar run` runs by itself when the case does not set [run]
- * ensemble and a model is unsettled (verdict.h: a clearance model left its
- * reference, or a reference parted from its check integration): the
- * rattling pin's ensemble size (docs/chaos.md), the fewest that gives each
- * statistic a standard deviation on four degrees of freedom; on the
- * untuned crank-rocker it costs about four times the clearance models'
- * and references' first run (docs/chaos.md measures it) [-]. */
-#define FB_ENSEMBLE_AUTO_MEMBERS 5
+/* `fourbar run` runs the sequential test by itself (ensemble.h,
+ * fb_ensemble_sequential; verdict_stats.h: FB_SEQ_FIRST up to FB_SEQ_CAP
+ * members) when the case does not set [run] ensemble and a model is
+ * unsettled (verdict.h: a clearance model left its reference, or a
+ * reference parted from its check integration); case ensemble_auto holds
+ * this flag [-]. */
+#define FB_ENSEMBLE_AUTO 1
 
 /* A crank that lags its prescribed angle by more than this has had its drive
  * saturate (ODE: [solver] drive_torque_max_n_m; MuJoCo: the flywheel's
@@ -105,7 +105,13 @@ typedef struct {
   int has_ensemble;        /* 1 for a clearance model that reached its window (ensemble.h) */
   fb_ensemble ensemble;    /* its impact statistics, pooled over [run] ensemble members */
   int has_stats_compare;   /* 1 when its reference has an ensemble too */
-  fb_stats_compare stats_compare; /* those statistics against the reference's */
+  fb_stats_compare stats_compare; /* its pooled statistics against the reference's (printed) */
+  fb_impact_values member_impacts[FB_ENSEMBLE_MAX]; /* each member's impacts (ensemble.members of
+                                                       them; owned, freed by fb_run_free) */
+  int has_test;            /* 1: a clearance model tested against its reference's members */
+  fb_stat_test test;       /* that test (verdict_stats.h): what a verdict on statistics rests on */
+  int has_first_check;     /* 1: a clearance model whose first impacts were compared */
+  fb_first_check first_check; /* its first impacts against its reference's, one to one */
   int matched_error;       /* matched-impact peak errors beyond FB_MATCHED_IMPACT_ERROR_BOUND:
                               0 none; FB_MATCHED_ERROR_KEPT while the trajectory stays with the
                               reference (status "error"); FB_MATCHED_ERROR_THEN_DIVERGENT
@@ -126,6 +132,22 @@ typedef struct {
   fb_verdict_basis basis;
 } fb_model_result;
 
+/* The step a run took, verified as `fourbar contact-params --case` verifies
+ * a contact (studies/contact_params.h): the restitution law's single impact
+ * in ODE's matched row, at each clearance joint's effective masses and every
+ * onset phase within a step, against the continuous law (impact.h,
+ * FB_FAITHFUL_*). `fourbar run` fills it when a restitution-law model ran;
+ * the step line states the error the run accepts when it is not faithful. */
+typedef struct {
+  int checked;            /* 1: verified */
+  int joint;              /* the clearance joint of the worst figures */
+  int faithful;           /* 1: every joint within both bounds */
+  double restitution_rel; /* worst relative error of the restitution [-] */
+  double penetration_rel; /* worst relative error of the peak penetration [-] */
+  double largest_step;    /* the smallest over the joints of the largest faithful step [s]; NaN:
+                             none found */
+} fb_step_check;
+
 typedef struct fb_run_s {
   fb_case c;                              /* the case as run (worst corner resolved) */
   fb_scene scene;                     /* the case resolved once; every model's scene */
@@ -140,11 +162,15 @@ typedef struct fb_run_s {
                                              a contact passed FB_H_OMEGA_C_BOUND [-] */
   double h_omega_c_max;                   /* largest h omega_c over the clearance models'
                                              contact steps (0: none measured) [-] */
-  int ensemble_auto;                      /* members the run added by itself because a model
-                                             was unsettled (case ensemble_auto; 0: none) */
-  int ensemble_auto_skipped;              /* 1: it would have, but the estimate passed
+  int ensemble_auto;                      /* members the run's own sequential test reached
+                                             because a model was unsettled (case ensemble_auto;
+                                             0: none ran) */
+  int seq_looks;                          /* looks it took (verdict_stats.h) [-] */
+  int seq_wall_cut;                       /* 1: it stopped before a look whose estimate passed
                                              [run] max_wall_s */
-  double ensemble_estimate_s;             /* its estimated wall time [s] (auto or skipped) */
+  int ensemble_auto_skipped;              /* 1: it would have run, but its first look's estimate
+                                             passed [run] max_wall_s */
+  double ensemble_estimate_s;             /* the estimate of the look it did not run [s] */
   double ensemble_wall_s;                 /* wall time of the members beyond the first [s] */
   double models_wall_s;                   /* wall time of the ensemble's models' first run [s] */
   /* where the run's wall time went, beside each model's own (timing.json's parts) */
@@ -161,6 +187,8 @@ typedef struct fb_run_s {
   double estimate_s;                      /* the up-front estimate of the models' wall time
                                              (fb_run_estimate, before any h_s = auto redo) [s] */
   double estimate_bytes;                  /* and of their samples' memory [bytes] */
+  fb_step_check step_check;               /* the step's single impact, as contact-params
+                                             verifies it (fourbar run only) */
   int variant_count;                      /* variants run (fb_run_variants; 0: none) */
   fb_variant_result variant[FB_MAX_VARIANTS]; /* their models' peaks, in c.variant order */
 } fb_run;

@@ -9,29 +9,21 @@
 #include "verdict.h"
 
 /* the verdicts; and, where one is unsettled and the case leaves [run]
- * ensemble to the run (c.ensemble_auto), an ensemble of that many members
- * when its estimate (the ensemble's models once, times the members beyond
- * the first, over the worker processes) fits [run] max_wall_s */
+ * ensemble to the run (c.ensemble_auto), the sequential test
+ * (fb_ensemble_sequential), which stops before a look whose estimate would
+ * pass [run] max_wall_s */
 static fb_status settle(fb_run *r, double t_start, fb_progress_fn progress, void *user,
                         fb_diag *diag) {
   const double t0 = fb_clock_s(), c0 = fb_clock_cpu_s();
   int unsettled = fb_verdict_assess(r);
-  const int members = r->c.ensemble_auto;
   for (int i = 0; i < r->n; i++)
     if (r->model[i].has_ensemble) r->models_wall_s += r->model[i].run.wall_s;
-  if (!unsettled || r->c.ensemble > 1 || members <= 1) return FB_OK;
-  const int jobs = r->c.jobs > 1 ? (r->c.jobs < members - 1 ? r->c.jobs : members - 1) : 1;
-  r->ensemble_estimate_s = r->models_wall_s * (double)(members - 1) / (double)jobs;
-  if (t0 - t_start + r->ensemble_estimate_s > r->c.max_wall_s) {
-    r->ensemble_auto_skipped = 1;
-    return FB_OK;
-  }
-  r->c.ensemble = members;
-  r->ensemble_auto = members;
-  fb_status st = fb_ensemble_measure(r, progress, user, diag);
+  if (!unsettled || r->c.ensemble > 1 || !r->c.ensemble_auto) return FB_OK;
+  fb_status st = fb_ensemble_sequential(r, t_start, progress, user, diag);
   if (st != FB_OK) return st;
   r->ensemble_wall_s = fb_clock_s() - t0;
   r->ensemble_cpu_s = fb_clock_cpu_s() - c0;
+  r->ensemble_auto_skipped = r->seq_looks == 0 && r->seq_wall_cut;
   fb_verdict_assess(r);
   return FB_OK;
 }

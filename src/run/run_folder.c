@@ -58,6 +58,7 @@ fb_run_folder_result fb_run_into_folder(fb_run *r, const fb_run_folder_job *j, i
     fb_outdir_release(&od);
     return FB_RUN_FOLDER_RUN;
   }
+  if (j->after_run) j->after_run(r, j->write_user);
   *write_rc = j->write(od.stage, r, j->write_user);
   if (*write_rc) {
     fb_run_free(r);

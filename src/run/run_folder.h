@@ -26,6 +26,10 @@ typedef struct {
                                signal stops the run (copied) */
   fb_run_set_writer write;  /* writes the set into the staging folder */
   void *write_user;
+  void (*after_run)(fb_run *r, void *user); /* may be NULL: what the command adds to the run
+                                               before it is written (cmd_run: the step's
+                                               single-impact verification, run.h
+                                               step_check), with write_user */
 } fb_run_folder_job;
 
 /* What fb_run_into_folder did. */

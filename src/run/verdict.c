@@ -1,5 +1,6 @@
 #include "verdict.h"
 
+#include <math.h>
 #include <stddef.h>
 
 #include "model_table.h"
@@ -44,12 +45,6 @@ static int ref_pointwise(const fb_model_result *ref) {
   return ref->has_ref_estimate && !ref->peaks_unconverged;
 }
 
-/* ... or at least its impact statistics did (its check integration within
- * its ensemble's spread) */
-static int ref_statistics(const fb_model_result *ref) {
-  return ref_pointwise(ref) || (ref->has_check_compare && ref->check_compare.agree == 1);
-}
-
 static void assess_reference(fb_model_result *m) {
   if (!m->has_ref_estimate) { /* stopped, or no tighter tolerance to check with */
     m->basis = FB_BASIS_NONE;
@@ -75,6 +70,21 @@ static const fb_model_result *reference_of(const fb_run *r, const fb_model_resul
   return NULL;
 }
 
+/* 1: the reference's own members (ensemble.h, started FB_ENSEMBLE_ECC_FRACTION
+ * of the clearance apart) never part from its run: a regular sequence;
+ * 0: one does, a chaotic one; -1: fewer than two members */
+static int reference_regular(const fb_model_result *ref) {
+  if (!ref->has_ensemble || ref->ensemble.members < 2) return -1;
+  for (int k = 1; k < ref->ensemble.members; k++)
+    if (isfinite(ref->ensemble.member[k].t_part)) return 0;
+  return 1;
+}
+
+/* the run's own sequential test may still run members (run_case.c) */
+static int members_may_come(const fb_run *r) {
+  return r->c.ensemble_auto && r->c.ensemble <= 1 && r->seq_looks == 0 && !r->seq_wall_cut;
+}
+
 static void assess_clearance(fb_model_result *m, const fb_run *r) {
   const fb_model_result *ref = reference_of(r, m);
   const int stopped = m->run.stop.kind != FB_STOP_NONE;
@@ -83,26 +93,52 @@ static void assess_clearance(fb_model_result *m, const fb_run *r) {
     m->verdict = stopped || m->warning_count ? FB_VERDICT_WARN : FB_VERDICT_UNCHECKED;
     return;
   }
-  if (m->matched_error == FB_MATCHED_ERROR_KEPT) { /* the same history, wrong impacts */
-    m->basis = FB_BASIS_POINTWISE;
-    m->verdict = FB_VERDICT_ERROR;
+  /* the same history, wrong impacts: wrong, when the reference's sequence
+   * is regular; when its own members part (a chaotic sequence whose later
+   * impacts no run reproduces), its first impacts and statistics decide */
+  const int regular = m->matched_error == FB_MATCHED_ERROR_KEPT ? reference_regular(ref) : 1;
+  if (m->matched_error == FB_MATCHED_ERROR_KEPT && regular != 0) {
+    const int wait = regular < 0 && members_may_come(r);
+    m->basis = wait ? FB_BASIS_UNSETTLED : FB_BASIS_POINTWISE;
+    m->verdict = wait ? FB_VERDICT_WARN : FB_VERDICT_ERROR;
     return;
   }
-  if (!m->divergence.diverged && ref_pointwise(ref)) {
+  if (regular && !m->divergence.diverged && ref_pointwise(ref)) {
     m->basis = FB_BASIS_POINTWISE;
     m->verdict = stopped || m->warning_count ? FB_VERDICT_WARN : FB_VERDICT_OK;
     return;
   }
-  if (!(m->has_stats_compare && m->stats_compare.agree >= 0)) {
+  /* pointwise first: the impacts before it parts, one to one */
+  m->has_first_check = m->has_ref_error;
+  if (m->has_first_check)
+    fb_first_check_of(&m->first_check, &m->ref_error, &m->divergence,
+                      2.0 * M_PI / r->c.crank_speed, m->first_impact.rebound,
+                      /* a rigid model's rebound: against the law's cr, the limit the
+                       * reference's approaches as its penalty stiffens (verdict_stats.h) */
+                      m->run.model->rigid ? r->c.clearance.restitution : ref->first_impact.rebound,
+                      m->run.model->rigid);
+  if (m->has_first_check && !m->first_check.ok) {
+    m->basis = FB_BASIS_POINTWISE;
+    m->verdict = FB_VERDICT_ERROR;
+    return;
+  }
+  if (!m->has_test) {
     m->basis = FB_BASIS_UNSETTLED;
     m->verdict = FB_VERDICT_WARN;
     return;
   }
+  /* then its members' statistics against the reference's members
+   * (verdict_stats.h): the yardstick is the reference's distribution, which
+   * its members sample; its check integration, one more run, is printed
+   * beside it but cannot show that distribution unconverged at these sizes
+   * (docs/verdicts.md, "The reference's own check") */
   m->basis = FB_BASIS_STATISTICS;
-  m->verdict = m->stats_compare.agree == 1 && ref_statistics(ref) && !stopped &&
-                       !open_warnings(m, 1)
-                   ? FB_VERDICT_OK
-                   : FB_VERDICT_WARN;
+  if (m->test.decision == FB_EQUIV_EQUIVALENT && !stopped && !open_warnings(m, 1))
+    m->verdict = FB_VERDICT_OK;
+  else if (m->test.decision == FB_EQUIV_DIFFERENT)
+    m->verdict = FB_VERDICT_ERROR;
+  else
+    m->verdict = FB_VERDICT_WARN;
 }
 
 int fb_verdict_assess(fb_run *r) {

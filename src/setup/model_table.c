@@ -353,6 +353,7 @@ const fb_model fb_models[] = {
      * reference; collider NATIVE: Siconos's own unilateral constraint) */
     {.name = "siconos-clearance-newton",
      .engine = FB_ENGINE_SICONOS,
+     .rigid = 1,
      .mechanisms = SC,
      .lengths = STK,
      .joints = CLEAR,

@@ -133,6 +133,11 @@ typedef struct fb_model {
                               stands for it (e.g. ode-clearance-ccd for ode-clearance-impact).
                               NULL: no difference row (the yardsticks, and the models the
                               others are compared with) */
+  int rigid;               /* 1: its contact is rigid (an impulse within a step, Newton's
+                              restitution): it has no stiffness, its force and alpha peaks
+                              do not converge to a penalty reference's (they grow as the
+                              penalty stiffens), and it is judged on what does converge
+                              (verdict.h) */
   unsigned mechanisms;     /* bit t set: also builds mechanism type t (mechanism.h
                               fb_mech_type); 0: the four-bar alone */
   const char *summary;     /* one line for help texts */

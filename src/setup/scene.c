@@ -7,6 +7,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "casefile.h"
+#include "episode.h"
 #include "joint_law.h"
 #include "linkage.h"
 #include "tolerance.h"
@@ -17,6 +19,9 @@
  * (a smaller one would make the damping term of the LN-type laws, which
  * divides by it, unbounded). Pin speeds in the paper's case are ~10 m/s. */
 #define IMPACT_VELOCITY_MIN_M_S 1e-3
+/* crank angles per revolution for the joints' largest ideal reaction, whose
+ * share is the impact floor: 0.1 deg (joint_law.c's) */
+#define IMPACT_FLOOR_SAMPLES 3600
 
 void fb_scene_default(fb_scene *def) {
   memset(def, 0, sizeof *def);
@@ -111,6 +116,16 @@ fb_status fb_scene_from_case(fb_scene *def, const fb_case *c, fb_diag *diag) {
       if (st != FB_OK) return st;
     }
   def->start_given = 1;
+  if (r->clearance.mask) {
+    /* the force that counts as an impact: a share of the joint's largest
+     * ideal reaction (episode.h) */
+    double reaction[4] = {0, 0, 0, 0};
+    st = fb_mech_reaction_peaks(reaction, r->mechanism, &def->lengths[FB_LENGTHS_STACKUP],
+                                r->branch, r->link, r->gravity, fb_case_omega2(r),
+                                IMPACT_FLOOR_SAMPLES, diag);
+    if (st != FB_OK) return st;
+    for (int j = 0; j < 4; j++) def->impact_floor[j] = FB_IMPACT_FLOOR_SHARE * reaction[j];
+  }
   if (def->has_law[FB_MODEL_LAW_IMPACT] || def->has_law[FB_MODEL_LAW_RESTITUTION])
     st = fb_joint_laws(def->has_law[FB_MODEL_LAW_IMPACT] ? def->law[FB_MODEL_LAW_IMPACT] : NULL,
                        def->has_law[FB_MODEL_LAW_RESTITUTION] ? def->law[FB_MODEL_LAW_RESTITUTION]
@@ -260,6 +275,16 @@ fb_status fb_scene_select(fb_model_scene *out, const fb_scene *def, const fb_mod
   out->clearance_mask = def->clearance_mask;
   if (m->law != FB_MODEL_LAW_NONE)
     for (int j = 0; j < 4; j++) out->law[j] = def->law[m->law][j];
+  /* an injected error: every engine model's law, never a reference's; a
+   * rigid model has no stiffness or damper to scale */
+  const fb_clearance *cl = &def->source.clearance;
+  const int damping_given = fb_casefile_given(&def->source, "clearance", "engine_damping_scale");
+  if (fb_engine_steps_world(m->engine) && !m->rigid && m->law != FB_MODEL_LAW_NONE &&
+      (cl->engine_stiffness_scale != 1.0 || cl->engine_damping_scale != 1.0 || damping_given))
+    for (int j = 0; j < 4; j++)
+      if (def->clearance_mask & (1 << j))
+        fb_contact_law_scale(&out->law[j], cl->engine_stiffness_scale, cl->engine_damping_scale,
+                             damping_given);
   out->radial_clearance = def->radial_clearance;
   out->pin_radius = def->pin_radius;
   out->mapping = def->mapping;

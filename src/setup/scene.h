@@ -48,6 +48,10 @@ typedef struct {
   double friction;                /* Coulomb coefficient [-]; 0 for frictionless */
   double impact_velocity_min;     /* onset rates below this count as continuous contact [m/s] */
   double penetration_limit;       /* a model stops beyond this penetration [m] (> 0) */
+  double impact_floor[4];         /* contact force above which a sample belongs to an impact, per
+                                     clearance joint: FB_IMPACT_FLOOR_SHARE x the joint's largest
+                                     ideal reaction over a revolution (stack-up lengths) [N]
+                                     (episode.h); every model's series counts with it */
   int faceted_n;                  /* boxes in the ring of the faceted collider [-] */
   fb_collider case_collider;      /* [clearance] collider: replaces FB_COLLIDER_EXACT in ODE rows */
   int ccd_segments;               /* convex segments of the libccd bore ring [-] (collide_ccd.h) */

@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "engine.h"
@@ -734,4 +735,42 @@ fb_status fb_cp_run(fb_cp_result *o, const fb_cp_request *q, fb_diag *diag) {
   unverified(o);
   if (o->per_step.recommended && r.verify && !o->per_step.check.faithful) o->failed++;
   return FB_OK;
+}
+
+fb_status fb_cp_case_step_check(fb_step_check *out, const fb_case *c, double h, fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  out->largest_step = INFINITY;
+  out->faithful = 1;
+  int none = 0;
+  fb_cp_result *o = malloc(sizeof *o);
+  if (!o) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the step's verification");
+  fb_status st = FB_OK;
+  for (int j = 0; j < 4 && st == FB_OK; j++) {
+    if (!(c->clearance.mask & (1 << j))) continue;
+    fb_cp_request q;
+    fb_cp_request_default(&q);
+    q.h = h;
+    q.engine_steps = 0;
+    st = fb_cp_request_from_case(&q, c, j, diag);
+    if (st == FB_OK) st = fb_cp_run(o, &q, diag);
+    if (st != FB_OK) break;
+    out->checked = 1;
+    none |= !isfinite(o->largest_step);
+    if (isfinite(o->largest_step)) out->largest_step = fmin(out->largest_step, o->largest_step);
+    for (int k = 0; k < o->given.n_checks; k++) {
+      const fb_cp_check *x = &o->given.checks[k];
+      if (strcmp(x->engine, "ode") != 0 || strcmp(x->form, "matched") != 0 || !x->ran) continue;
+      if (fabs(x->restitution_rel) > fabs(out->restitution_rel) ||
+          fabs(x->penetration_rel) > fabs(out->penetration_rel))
+        out->joint = j;
+      if (fabs(x->restitution_rel) > fabs(out->restitution_rel)) out->restitution_rel = x->restitution_rel;
+      if (fabs(x->penetration_rel) > fabs(out->penetration_rel)) out->penetration_rel = x->penetration_rel;
+      out->faithful &= x->faithful;
+    }
+    /* beyond the run's bound the rows are not verified (fb_cp_run): not faithful */
+    if (o->given.n_checks == 0) out->faithful = 0;
+  }
+  if (none || !isfinite(out->largest_step)) out->largest_step = NAN;
+  free(o);
+  return st;
 }

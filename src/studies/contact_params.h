@@ -45,12 +45,14 @@
 #include "contact.h"
 #include "engine_params.h"
 #include "impact.h"
+#include "run.h"
 #include "status.h"
 
 /* The issue's acceptance bounds on one impact: restitution within 1 %, peak
- * penetration within 2 % of the continuous contact's. */
-#define FB_CP_RESTITUTION_TOL 0.01
-#define FB_CP_PENETRATION_TOL 0.02
+ * penetration within 2 % of the continuous contact's (impact.h, one rule
+ * for the verification and the verdict's first impact). */
+#define FB_CP_RESTITUTION_TOL FB_FAITHFUL_RESTITUTION_TOL
+#define FB_CP_PENETRATION_TOL FB_FAITHFUL_PENETRATION_TOL
 
 /* Onset phases verified: the fraction of a step by which the contact began
  * before the first step that sees it (engine.h, fb_impact_row). The
@@ -116,7 +118,8 @@ typedef struct {
                          the CLI sets it when no --h-s is given */
   const char *case_path; /* the case the contact was taken from (fb_cp_request_from_case),
                             NULL: from the flags; messages then name the case's keys */
-  int h_from_case;    /* 1: h is the case's [solver] h_s (no --h-s) */
+  int h_from_case;    /* 1: h is the case's [solver] h_s (no --h-s), the step fourbar run
+                         takes */
 } fb_cp_request;
 
 /* Defaults: restitution law, k = 1e7 N/m, cr 0.9, 0.1 kg, automatic step,
@@ -246,6 +249,14 @@ typedef struct {
  * case's step when q->h is NAN. The other fields of q stay as given.
  * Errors: those of fb_case_contact_of. */
 fb_status fb_cp_request_from_case(fb_cp_request *q, const fb_case *c, int j, fb_diag *diag);
+
+/* The step h of case c as this verification sees it, for `fourbar run`'s
+ * step line (run.h, fb_step_check): for every clearance joint, the
+ * restitution law's contact (fb_cp_request_from_case) verified at h; the
+ * worst relative restitution and penetration of ODE's matched row over the
+ * joint's masses and onset phases, and the smallest largest faithful step.
+ * Errors: those of fb_cp_request_from_case and fb_cp_run. */
+fb_status fb_cp_case_step_check(fb_step_check *out, const fb_case *c, double h, fb_diag *diag);
 
 /* Runs q (checked with fb_cp_request_check first): translation, rows, and
  * with q->verify the largest faithful step, at_step and every row's

@@ -193,7 +193,7 @@ void mujoco_native_solref_update(fb_mujoco_scene *s, int j) {
   const double me = mujoco_joint_effective_mass(s, s->m, s->d, j);
   if (!(me > 0.0) || !isfinite(me)) return;
   const fb_contact_law *law = &s->def.law[j];
-  const double zeta = fb_contact_restitution_zeta(law->restitution);
+  const double zeta = fb_contact_law_zeta(law);
   mjModel *m = s->m;
   if (s->bore_tendon[j] >= 0) {
     const int t = s->bore_tendon[j];

@@ -107,7 +107,7 @@ static void put_inertial(text *t, const fb_link_mass *lm, double len) {
  * p [N/m] and damper c [N s/m] on its effective mass m: MuJoCo's direct
  * stiffness and damping are per unit mass (k = p/m [1/s^2], b = c/m [1/s]) */
 static void native_solref(const fb_contact_law *law, double *k, double *b) {
-  const double zeta = fb_contact_restitution_zeta(law->restitution);
+  const double zeta = fb_contact_law_zeta(law);
   const double c = 2.0 * zeta * sqrt(law->stiffness * law->mass);
   *k = law->stiffness / law->mass;
   *b = c / law->mass;
@@ -178,7 +178,7 @@ static void put_bore_tendons(text *t, const mj_def *def) {
     if (!(def->clearance_mask & (1 << j))) continue;
     const char jn = (char)('A' + j);
     const fb_contact_law *law = &def->law[j];
-    const double zeta = fb_contact_restitution_zeta(law->restitution);
+    const double zeta = fb_contact_law_zeta(law);
     const double c = 2.0 * zeta * sqrt(law->stiffness * law->mass);
     const double keep = (1.0 - BORE_IMPEDANCE) / law->mass;
     double sr[2] = {-law->stiffness * keep, -c * keep};
@@ -479,7 +479,7 @@ fb_status fb_mujoco_export(char *buf, size_t size, const fb_model_scene *sm, fb_
     const int t = mj_name2id(m, mjOBJ_TENDON, name);
     if (t < 0) continue;
     const fb_contact_law *law = &d.law[j];
-    const double zeta = fb_contact_restitution_zeta(law->restitution);
+    const double zeta = fb_contact_law_zeta(law);
     const double keep = (1.0 - BORE_IMPEDANCE) * m->tendon_invweight0[t];
     d.bore_solref[j][0] = -law->stiffness * keep;
     d.bore_solref[j][1] = -2.0 * zeta * sqrt(law->stiffness * law->mass) * keep;

@@ -2,7 +2,7 @@
  * batch (fig_batch_begin .. fig_batch_end, side by side) with figures.json
  * beside them, and the check that gnuplot is there. One file per figure
  * family draws them (figures_omega_alpha.c, figures_contact.c,
- * figures_spikes.c, figures_startup.c; figures_penalty.c, figures_mapping.c,
+ * figures_spikes.c, figures_startup.c, figures_verdict.c; figures_penalty.c, figures_mapping.c,
  * figures_bench.c, figures_study.c for the other commands' figures) over one
  * gnuplot module (figures_gnuplot.c). */
 #include "figures_internal.h"
@@ -52,6 +52,8 @@ fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt,
     if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "startup.%s", fig_ext(fmt));
   }
   if (st == FB_OK) st = fig_contact_figures(r, dir, fmt, 1, figs, names, max, n, diag);
+  /* each verdict on statistics: what it rests on */
+  if (st == FB_OK) st = fig_verdicts(r, dir, fmt, figs, names, max, n, diag);
   fb_diag drawn;
   const fb_status sb = fig_batch_end(&drawn); /* every figure started is waited for */
   if (st == FB_OK && sb != FB_OK) {

@@ -17,10 +17,11 @@
 typedef enum { FB_FIGURE_SVG = 0, FB_FIGURE_PNG = 1 } fb_figure_format;
 
 /* The colour ('#rrggbb') and gnuplot dash type model name is drawn with in
- * every figure (its hue's shade, or the model table's colour for a
- * yardstick; docs/figures.md), so that report.html draws it alike. */
-const char *fb_figure_model_color(const char *name);
-int fb_figure_model_dash(const char *name);
+ * every figure of run r (the run's palette by its rank among the run's
+ * simulated models, or the model table's colour for a yardstick;
+ * docs/figures.md), so that report.html draws it alike. */
+const char *fb_figure_model_color(const fb_run *r, const char *name);
+int fb_figure_model_dash(const fb_run *r, const char *name);
 
 /* Draws the run's figures into dir: omega.<ext> (the output bodies'
  * velocity against crank angle over the revolution after the first, every

@@ -154,7 +154,7 @@ fb_status fb_figures_bench(const char *path, fb_figure_format fmt, const char *c
       json_object_set_new(c, "y_min", json_real(y0));
       json_object_set_new(c, "y_max", json_real(y1));
     }
-    fig_curve_style(c, models[q]);
+    fig_curve_style(c, NULL, models[q]);
     json_array_append_new(curves, c);
   }
   const int ncheap = write_cheapest(pl.p, rows, marks);

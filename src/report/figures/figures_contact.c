@@ -4,6 +4,7 @@
  * continuous contact) and the contact force, over the peak window or over
  * the start-up (against log time), the reference dynamics' force overlaid. */
 #include "figures_internal.h"
+#include "metrics.h"
 
 #include <jansson.h>
 #include <math.h>
@@ -78,10 +79,11 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
   free(oy);
   free(keep);
   fprintf(pl.p, "EOD\n$impacts << EOD\n");
-  /* an impact: the state turns to 1 from anything else (or starts the window at 1) */
-  for (size_t i = i0; i < i1; i++)
-    if ((int)state[i] == FB_STATE_IMPACT && (i == i0 || (int)state[i - 1] != FB_STATE_IMPACT)) {
-      fprintf(pl.p, "%.6f %.6f\n", ex[i] * 1e6, ey[i] * 1e6);
+  /* an impact's onset, as every count defines it (fb_metrics_next_impact) */
+  size_t ia, ib;
+  for (size_t i = 0; fb_metrics_next_impact(s, j, i, &ia, &ib) && ia < i1; i = ib + 1)
+    if (ia >= i0) {
+      fprintf(pl.p, "%.6f %.6f\n", ex[ia] * 1e6, ey[ia] * 1e6);
       impacts++;
     }
   if (!impacts) fprintf(pl.p, "NaN NaN\n");
@@ -126,11 +128,11 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
     fprintf(pl.p, "set xrange [0:360]\nset xtics 60\nset xlabel 'crank angle [deg]'\n");
   fprintf(pl.p, "set ylabel 'contact force on the pin [N]'\n"
                 "plot $force using 1:2 with lines %s title '%s'",
-          fig_style_spec(m->run.name, sp, sizeof sp), mn);
+          fig_style_spec(r, m->run.name, sp, sizeof sp), mn);
   if (ri >= 0) {
     char sr[96];
     fprintf(pl.p, ", $rforce using 1:2 with lines %s title '%s: reference dynamics'",
-            fig_style_spec(r->model[ri].run.name, sr, sizeof sr), fig_esc(r->model[ri].run.name, rn, sizeof rn));
+            fig_style_spec(r, r->model[ri].run.name, sr, sizeof sr), fig_esc(r->model[ri].run.name, rn, sizeof rn));
   }
   fprintf(pl.p, "\nunset multiplot\n");
   st = fig_plot_close(&pl, diag);
@@ -148,12 +150,12 @@ static fb_status contact_figure(const fb_run *r, int mi, int j, const char *dir,
     json_array_append_new(curves, c);
     snprintf(col, sizeof col, "%s_force_n", joint);
     c = fig_curve(m->run.name, col, csv, force_pts, flo, fhi, tf0, t1);
-    fig_curve_style(c, m->run.name);
+    fig_curve_style(c, r, m->run.name);
     json_array_append_new(curves, c);
     if (ri >= 0) {
       snprintf(csv, sizeof csv, "%s.csv", r->model[ri].run.name);
       c = fig_curve(r->model[ri].run.name, col, csv, ref_pts, rlo, rhi, tf0, t1);
-      fig_curve_style(c, r->model[ri].run.name);
+      fig_curve_style(c, r, r->model[ri].run.name);
       json_array_append_new(curves, c);
     }
     fig_manifest_add(figs, file,

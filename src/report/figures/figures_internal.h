@@ -149,14 +149,20 @@ typedef struct {
   double width;      /* line width */
 } model_style;
 
-/* the style of the model named name, the same in every figure */
+/* the style of the model named name from the model table alone (the
+ * bench's figures, which hold no run) */
 model_style fig_style_of(const char *name);
 
-/* "lc rgb '#rrggbb' dt N lw W" of a model, into out (returned) */
-const char *fig_style_spec(const char *model, char *out, size_t size);
+/* its style in run r (NULL: fig_style_of): a simulated model's colour from
+ * the run's palette by its rank among the run's simulated models, so that
+ * a run's models differ in hue; the same in every figure of the run */
+model_style fig_style_in(const fb_run *r, const char *name);
 
-/* records a curve's style (color, dash) in the manifest */
-void fig_curve_style(json_t *c, const char *model);
+/* "lc rgb '#rrggbb' dt N lw W" of a model in run r, into out (returned) */
+const char *fig_style_spec(const fb_run *r, const char *model, char *out, size_t size);
+
+/* records a curve's style (color, dash) in run r in the manifest */
+void fig_curve_style(json_t *c, const fb_run *r, const char *model);
 
 /* ---- the figure families of a run (fb_figures_run) ------------------------- */
 
@@ -175,6 +181,14 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
                      int *drawn, fb_diag *diag);
 
 /* startup.<ext>, figures_startup.c */
+/* verdict_<model>.<ext> for each model judged on statistics (verdict.h):
+ * its members' impact peak forces against the reference's (empirical
+ * distributions), their impact rates per revolution, its first impacts'
+ * errors against their bounds, and the test's figures in its title; the
+ * files' names appended to names (at most max, *n counting) */
+fb_status fig_verdicts(const fb_run *r, const char *dir, fb_figure_format fmt, json_t *figs,
+                       char names[][128], int max, int *n, fb_diag *diag);
+
 fb_status fig_startup(const fb_run *r, const char *dir, fb_figure_format fmt, json_t *figs,
                       fb_diag *diag);
 

@@ -20,6 +20,14 @@
  * `body`: the four-bar's 0 coupler, 1 follower) for the samples in [t0, t1],
  * the figure's window (NaN outside it, and where the mechanism cannot be
  * solved) */
+/* omega.svg's and alpha.svg's one legend under the title: the title's
+ * height, one row of legend entries, a panel's own title below it [px], and
+ * the most entries in a row [-] */
+#define TITLE_PX 30.0
+#define KEY_ROW_PX 20.0
+#define PANEL_TITLE_PX 34.0
+#define KEY_COLUMNS 4
+
 static void residual(const fb_run *r, int i, int body, double t0, double t1, double *resid) {
   const fb_series *s = &r->model[i].run.series;
   const double w = r->c.direction * r->c.crank_speed;
@@ -132,7 +140,7 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
       fig_column(r, b, alpha ? FB_Q_ACC : FB_Q_VEL, NULL, col, sizeof col);
       json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
       json_object_set_new(c, "panel", json_string(fig_body(r, b)));
-      fig_curve_style(c, r->model[i].run.name);
+      fig_curve_style(c, r, r->model[i].run.name);
       json_array_append_new(curves, c);
     }
   }
@@ -159,7 +167,7 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
         json_object_set_new(c, "panel", json_string(panel));
         json_object_set_new(c, "derived", json_string("model minus the analytic solution of its own "
                                                       "lengths at the same instants"));
-        fig_curve_style(c, r->model[i].run.name);
+        fig_curve_style(c, r, r->model[i].run.name);
         json_array_append_new(curves, c);
       }
       free(res);
@@ -194,7 +202,7 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
       snprintf(what, sizeof what, "%s minus %s at the same instants", r->model[i].run.name,
                r->model[partner[i]].run.name);
       json_object_set_new(c, "derived", json_string(what));
-      fig_curve_style(c, r->model[i].run.name);
+      fig_curve_style(c, r, r->model[i].run.name);
       json_array_append_new(curves, c);
     }
     free(d);
@@ -205,10 +213,17 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
   /* a clockwise drive decreases the crank angle: its motion runs right to left */
   const char *dirnote = r->c.direction > 0 ? "ccw drive: motion runs left to right"
                                            : "cw drive: crank angle decreases, motion runs right to left";
-  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against crank angle (revolution %d, %.0f rpm; %s)'\n",
+  /* one legend for the figure, in rows across its top under the title
+   * (KEY_PX pixels): the models are the same in every panel, and a legend
+   * beside each panel took half the figure's width */
+  const double height = alpha ? 850.0 : 450.0 * rows;
+  const int key_rows = (nm + KEY_COLUMNS - 1) / KEY_COLUMNS;
+  const double top = 1.0 - (TITLE_PX + KEY_ROW_PX * (key_rows + 0.5) + PANEL_TITLE_PX) / height;
+  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against crank angle (revolution %d, %.0f rpm; %s)' "
+                "margins 0.06,0.98,%.4f,%.4f spacing 0.07,%.4f\n",
           alpha ? 2 : rows, alpha ? 1 : 2, fig_esc(r->c.name, en, sizeof en),
           fig_quantity_all(r, alpha ? FB_Q_ACC : FB_Q_VEL, what, sizeof what), r->c.peaks == FB_PEAKS_ALL ? 1 : 2,
-          rpm, dirnote);
+          rpm, dirnote, 60.0 / height, top, 110.0 / height);
   fprintf(pl.p, "set xrange [0:360]\nset xtics 30\nset xlabel 'crank angle [deg] (counter-clockwise from +x)'\n");
   json_t *axis = json_object();
   /* alpha.svg's symlog axis: one for both panels when the bodies share a
@@ -253,13 +268,14 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
         if (partner[i] < 0) continue;
         char mn[160], pn[160], sp[96];
         fprintf(pl.p, "%s$d%d_%d using 1:2 with lines %s title '%s - %s'", anyd ? ", " : "", i, body,
-                fig_style_spec(r->model[i].run.name, sp, sizeof sp), fig_esc(r->model[i].run.name, mn, sizeof mn),
+                fig_style_spec(r, r->model[i].run.name, sp, sizeof sp), fig_esc(r->model[i].run.name, mn, sizeof mn),
                 fig_esc(r->model[partner[i]].run.name, pn, sizeof pn));
         anyd = 1;
       }
       fprintf(pl.p, "\n");
       continue;
     }
+    fprintf(pl.p, "unset key\n"); /* the figure's one legend comes last (below) */
     if (resid) {
       fprintf(pl.p, "set title '%s: model minus analytic (same link lengths, same instants)'\n"
                     "set ylabel '%s %s residual [%s]'\nset autoscale y\n",
@@ -285,7 +301,7 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
       if (resid && !has_resid[i]) continue;
       char mn[160], sp[96];
       fprintf(pl.p, "%s$%c%d_%d using 1:2 with lines %s title '%s'", any ? ", " : "", resid ? 'r' : 'm', i,
-              body, fig_style_spec(r->model[i].run.name, sp, sizeof sp), fig_esc(r->model[i].run.name, mn, sizeof mn));
+              body, fig_style_spec(r, r->model[i].run.name, sp, sizeof sp), fig_esc(r->model[i].run.name, mn, sizeof mn));
       any = 1;
     }
     if (!any && held == 0 && nm > 0 && (!resid || any_resid))
@@ -294,6 +310,22 @@ fb_status fig_omega_alpha(const fb_run *r, const char *dir, fb_figure_format fmt
     else if (!any) fprintf(pl.p, "0 with lines lc rgb '#888888' title 'no ODE model in this run'");
     fprintf(pl.p, "\n");
   }
+  /* the figure's one legend, across its top under the title: a plot of
+   * nothing over the whole page whose key names every model in its style
+   * (the panels hold the same models, and a legend beside each took half
+   * the figure's width) */
+  fprintf(pl.p, "set origin 0,0\nset size 1,1\nunset border\nunset tics\nunset xlabel\n"
+                "unset ylabel\nunset title\nunset grid\nset xrange [0:1]\nset yrange [0:1]\n"
+                "set key at screen 0.5, screen %.4f center top horizontal maxrows %d box opaque "
+                "samplen 3 font ',10'\nplot ", 1.0 - TITLE_PX / height, key_rows);
+  for (int q = 0; q < nm; q++) {
+    const int i = order[q];
+    char mn[160], sp[96];
+    fprintf(pl.p, "%sNaN with lines %s title '%s'", q ? ", " : "",
+            fig_style_spec(r, r->model[i].run.name, sp, sizeof sp),
+            fig_esc(r->model[i].run.name, mn, sizeof mn));
+  }
+  fprintf(pl.p, "%s\n", nm ? "" : "NaN notitle");
   fprintf(pl.p, "unset multiplot\n");
   st = fig_plot_close(&pl, diag);
   char file[128];

@@ -110,7 +110,7 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
   fprintf(pl.p, "set multiplot layout %d,2 title '%s: the largest %s spike of each clearance model "
                 "(peak window), reference and ideal model at the same instants'\n",
           2 * nc, fig_esc(r->c.name, en, sizeof en), fig_symbol_all(r, FB_Q_ACC));
-  fprintf(pl.p, "set key outside right top box font ',8'\nset xlabel 'time from the spike [us]'\n");
+  fprintf(pl.p, "set xlabel 'time from the spike [us]'\n");
   for (int q = 0; q < nc; q++) {
     const int mi = list[q];
     const fb_model_result *m = &r->model[mi];
@@ -146,7 +146,7 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
         json_object_set_new(c, "panel", json_string(panel));
         json_object_set_new(c, "role", json_string(role[o]));
         json_object_set_new(c, "spike_time_s", json_real(ts[b]));
-        fig_curve_style(c, r->model[others[o]].run.name);
+        fig_curve_style(c, r, r->model[others[o]].run.name);
         json_array_append_new(curves, c);
         /* the contact force of the spike's joint, model and reference */
         const int fj = joint[b] >= 0 ? joint[b] : -1;
@@ -162,7 +162,7 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
         json_object_set_new(c, "panel", json_string(panel));
         json_object_set_new(c, "role", json_string(role[o]));
         json_object_set_new(c, "spike_time_s", json_real(ts[b]));
-        fig_curve_style(c, r->model[others[o]].run.name);
+        fig_curve_style(c, r, r->model[others[o]].run.name);
         json_array_append_new(curves, c);
       }
     }
@@ -171,6 +171,12 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
       for (int b = 0; b < 2; b++) {
         char mn[160];
         const double deg = fig_crank_deg(s->crank_angle[0] + (ts[b] - s->t[0]) * r->c.direction * r->c.crank_speed);
+        /* the legend inside, where the spike leaves the panel empty (a
+         * negative spike's is at the top: the key at the bottom), so the
+         * panel keeps the figure's width */
+        const int down = row == 0 && s->body[b][FB_Q_ACC][spike_index(s, s->body[b][FB_Q_ACC],
+                                                                      r->t_window)] < 0.0;
+        fprintf(pl.p, "set key inside %s right opaque box font ',8'\n", down ? "bottom" : "top");
         if (row == 0)
           fprintf(pl.p, "set title '%s: %s %s spike at t = %.6f ms (crank %.1f deg)'\n"
                         "set ylabel '%s %s [%s]'\nplot ",
@@ -180,14 +186,20 @@ fb_status fig_spikes(const fb_run *r, const char *dir, fb_figure_format fmt, jso
           fprintf(pl.p, "set title '%s: contact force at the %s joint'\nset ylabel 'force [N]'\nplot ",
                   fig_esc(m->run.name, mn, sizeof mn), joint[b] >= 0 ? fig_joint(r, joint[b]) : "(no impact)");
         int any = 0;
-        for (int o = 2; o >= 0; o--) { /* yardsticks under the model */
+        /* the model first, the ideal model, then the reference on top of the
+         * model it checks: a line with open circles, so that where the two
+         * agree both still show */
+        static const int draw[3] = {0, 2, 1};
+        for (int d = 0; d < 3; d++) {
+          const int o = draw[d];
           if (others[o] < 0 || (row == 1 && (o == 2 || joint[b] < 0 ||
                                              !(r->model[others[o]].run.series.contact_mask & (1 << joint[b])))))
             continue;
           char on[160], sp[96];
-          fprintf(pl.p, "%s$%c%d_%d_%d using 1:2 with linespoints pt 7 ps 0.35 %s title '%s%s'",
+          fprintf(pl.p, "%s$%c%d_%d_%d using 1:2 with linespoints %s %s title '%s%s'",
                   any ? ", " : "", row ? 'f' : 'a', q, b, o,
-                  fig_style_spec(r->model[others[o]].run.name, sp, sizeof sp),
+                  o == 1 ? "pt 6 ps 0.7" : "pt 7 ps 0.35",
+                  fig_style_spec(r, r->model[others[o]].run.name, sp, sizeof sp),
                   fig_esc(r->model[others[o]].run.name, on, sizeof on),
                   o == 1 ? " (reference)" : o == 2 ? " (ideal)" : "");
           any = 1;

@@ -40,7 +40,7 @@ fb_status fig_startup(const fb_run *r, const char *dir, fb_figure_format fmt,
       json_t *c = fig_curve(r->model[i].run.name, col, csv, pts, lo, hi, t0, t1);
       snprintf(panel, sizeof panel, "%s %s", fig_body(r, b), fig_symbol(r, b, qty));
       json_object_set_new(c, "panel", json_string(panel));
-      fig_curve_style(c, r->model[i].run.name);
+      fig_curve_style(c, r, r->model[i].run.name);
       json_array_append_new(curves, c);
     }
   }
@@ -70,7 +70,7 @@ fb_status fig_startup(const fb_run *r, const char *dir, fb_figure_format fmt,
       const int i = order[q];
       char mn[160], sp[96];
       fprintf(pl.p, "%s$s%d_%d using 1:2 with lines %s title '%s'", q ? ", " : "", p, i,
-              fig_style_spec(r->model[i].run.name, sp, sizeof sp),
+              fig_style_spec(r, r->model[i].run.name, sp, sizeof sp),
               fig_esc(r->model[i].run.name, mn, sizeof mn));
     }
     fprintf(pl.p, "\n");

@@ -467,6 +467,31 @@ class LawChecked : public Osi {
   NonSmoothDynamicalSystem *nsds_ = nullptr;
 };
 
+// The combined projection's position problem (MLCPProjectOnConstraints, the
+// enumerative MLCP solver) without Siconos 4.4's growth per solve: MLCP::solve
+// calls mlcp_driver_init before every solve, which callocs the solver's
+// iWork and dWork again over the last ones (numerics/src/MLCP/mlcp_driver.c),
+// and mlcp_driver_reset frees only the last. Freeing them before each solve
+// changes nothing the solver sees (it gets freshly zeroed arrays either way).
+// mlcp_enum's own EnumerationStruct, allocated each solve and never freed
+// (mlcp_enum.c), is out of reach here (tests/lsan.supp). Built from
+// solver_options(SICONOS_MLCP_ENUM), as the solver-id constructor would,
+// without its leaked struct (solver_options, below).
+class ProjectOnConstraints : public MLCPProjectOnConstraints {
+ public:
+  using MLCPProjectOnConstraints::MLCPProjectOnConstraints;
+  int compute(double time) override {
+    SolverOptions &o = *numericsSolverOptions();
+    std::free(o.iWork);
+    std::free(o.dWork);
+    o.iWork = nullptr;
+    o.dWork = nullptr;
+    o.iWorkSize = 0;
+    o.dWorkSize = 0;
+    return MLCPProjectOnConstraints::compute(time);
+  }
+};
+
 // The scheme's integrator at theta: MoreauJeanOSI, or for the combined
 // projection MoreauJeanCombinedProjectionOSI; law-checked (LawChecked) on
 // interaction `checked` with restitution e_n when it is given
@@ -782,7 +807,7 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
     }
     SP::TimeDiscretisation td(new TimeDiscretisation(0.0, s->h));
     if (projected) {
-      s->position.reset(new MLCPProjectOnConstraints());
+      s->position.reset(new ProjectOnConstraints(solver_options(SICONOS_MLCP_ENUM)));
       s->proj.reset(new TimeSteppingCombinedProjection(s->nsds, td, s->osi, s->osnspb,
                                                        s->position, kProjectionIndexSet));
       s->proj->setProjectionMaxIteration(kProjectionMaxIterations);

@@ -357,6 +357,12 @@ static void test_keys_and_refusal(void **state) {
   assert_true(c.siconos.theta == 0.75);
   assert_int_equal(LOAD("[case]\nname = x\n"), FB_OK);
   assert_true(c.siconos.theta == 0.5);
+  assert_int_equal(c.siconos.scheme, FB_SICONOS_MOREAU_JEAN);
+  assert_int_equal(LOAD("[siconos]\nscheme = combined-projection\n"), FB_OK);
+  assert_int_equal(c.siconos.scheme, FB_SICONOS_COMBINED_PROJECTION);
+  assert_int_not_equal(LOAD("[siconos]\nscheme = projected\n"), FB_OK);
+  assert_non_null(strstr(d.msg, "scheme"));
+  assert_non_null(strstr(d.msg, "combined-projection"));
   const fb_status st = LOAD("[run]\nmodels = siconos-clearance-newton\n");
 #undef LOAD
   if (FB_HAVE_SICONOS) {
@@ -632,6 +638,167 @@ static void test_slider_crank_friction_keeps_newtons_normal_law(void **state) {
   fb_run_free(&r0);
 }
 
+/* ---- [siconos] scheme = combined-projection ------------------------------
+ *
+ * MoreauJeanCombinedProjectionOSI with TimeSteppingCombinedProjection (Acary,
+ * CMAME 256, 2013; Siconos's slider-crank example's scheme): a step that ends
+ * with a contact closed is redone with the contact in its velocity problem,
+ * then the positions are projected onto the constraints the step closed.
+ * Oracles: no penetration beyond the projection's tolerance at any sample
+ * (the scheme's defining property, which plain Moreau-Jean lacks: it lets
+ * the pin travel into the wall for up to one step); Newton's law at every
+ * impact; the first impact within one step of reference-restitution's and
+ * of plain Moreau-Jean's (the free flight before it is the same motion; the
+ * schemes differ in the closing step only); the ideal loop's closure held at
+ * the projection's tolerance. */
+
+/* siconos_scene.cpp's kProjectionTolerance: each closed contact's |g| after
+ * the projection [m], which is the sample's penetration max(0, |e| - c) */
+#define CP_PEN_TOL_M 1e-10
+/* the series' penetration column as the harness keeps it: its peaks refined
+ * by the parabola through three samples (series.c, fb_series_refine_peaks),
+ * whose vertex lies above the middle sample y0 by (a - b)^2 / (8 (a + b)),
+ * a = y0 - y-, b = y0 - y+; with all three in [0, y0] that is at most
+ * y0 / 8 (measured 1.114e-10 m on flores) */
+#define CP_PEN_SERIES_TOL_M (1.125 * CP_PEN_TOL_M)
+/* the same tolerance on each of the closure's two rows (x and y of B_hole -
+ * B_pin): their distance within sqrt(2) of it (measured 1.39e-10 m on the
+ * paper case's two revolutions) */
+#define CP_DRIFT_TOL_M (1.415 * CP_PEN_TOL_M)
+/* Newton's law across an impact step, from the samples: the scheme imposes
+ * it at the step's end positions before the projection (siconos_scene.cpp's
+ * LawChecked holds it there to 1e-12), then projects every contact the step
+ * closed onto g = 0 as an equality (Siconos's default), also one that
+ * separated: the positions move by up to one step's travel (h g', about
+ * 2 um in the mild case's 100 um clearance), the normal turns by that over
+ * the clearance, and g'(k+1) taken along the turned normal picks up that
+ * fraction of the pin's sliding speed. Measured worst over revolution 1:
+ * mild 1.4e-2 (friction 0.2: 5.7e-3), flores 9.3e-3; with the
+ * projection off (its tolerance 1e-3 m) the same impacts hold 2e-12. Bound:
+ * 5e-2, below e_N's own scale (0.9 +- 0.05 still tells a restitution
+ * from a plastic or an elastic impact) */
+#define CP_NEWTON_LAW_TOL 5e-2
+/* plain Moreau-Jean's penetration on the same cases must be at least this
+ * many times the projection's tolerance, or the option did not reach the
+ * scheme (measured: flores 3.6 um, mild 1.1 um, 1e4 times and more) */
+#define CP_MJ_PEN_RATIO_MIN 100.0
+
+/* the largest sampled penetration of contact column j [m] */
+static double sampled_penetration(const fb_series *s, int j) {
+  double p = 0.0;
+  for (size_t k = 0; k < s->n; k++) p = fmax(p, s->contact[j][FB_C_PEN][k]);
+  return p;
+}
+
+/* the slider-crank's piston pin under the combined projection, both cases,
+ * first revolution: against reference-restitution and against plain
+ * Moreau-Jean (a run of its own: the scheme is case-wide) */
+static void test_combined_projection_piston_pin(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SICONOS();
+  for (int which = 0; which < 2; which++) {
+    static fb_run r, r0;
+    fb_case c, c0;
+    const char *sets[] = {"run.revolutions=1", "run.peaks=all", "run.ensemble=1",
+                          "siconos.scheme=combined-projection"};
+    sc_run(&r, &c, which, "siconos-clearance-newton, reference-restitution", sets, 4);
+    sc_run(&r0, &c0, which, "siconos-clearance-newton", sets, 3);
+    const fb_model_result *m = result(&r, "siconos-clearance-newton");
+    const fb_model_result *ref = result(&r, "reference-restitution");
+    const fb_model_result *mj = &r0.model[0];
+    assert_int_equal(c.siconos.scheme, FB_SICONOS_COMBINED_PROJECTION);
+    const double h = m->run.h;
+    char name[160];
+    snprintf(name, sizeof name, "slider-crank %s: combined projection", sc_case_name[which]);
+    report_residual(name, 0, 0);
+    assert_true(m->first_impact.found && ref->first_impact.found && mj->first_impact.found);
+    const double dt = m->first_impact.t - ref->first_impact.t;
+    const double dt0 = m->first_impact.t - mj->first_impact.t;
+    report_residual("  first impact time - reference's [steps]", dt / h, FIRST_IMPACT_STEPS);
+    report_residual("  first impact time - Moreau-Jean's [steps]", dt0 / h, FIRST_IMPACT_STEPS);
+    assert_true(fabs(dt) <= FIRST_IMPACT_STEPS * h);
+    assert_true(fabs(dt0) <= FIRST_IMPACT_STEPS * h);
+    /* sharper: the step that holds the first impulse (its impulse reported
+     * at the step's start, step_values_lag) is the step the reference
+     * crosses the clearance in: the scheme redoes the step that ends closed
+     * with the impact in it. (metrics.c's first impact of this model is that
+     * step's start, hence the negative fractions above) */
+    const fb_series *s = &m->run.series;
+    size_t k0 = 0;
+    while (k0 < s->n && !(s->contact[FB_SC_PISTON_PIN][FB_C_FORCE][k0] > 0.0)) k0++;
+    assert_true(k0 + 1 < s->n);
+    report_residual("  reference's crossing within the impulse's step [fraction]",
+                    (ref->first_impact.t - s->t[k0]) / h, 1.0);
+    assert_true(s->t[k0] <= ref->first_impact.t && ref->first_impact.t <= s->t[k0 + 1]);
+    const double pen = sampled_penetration(&m->run.series, FB_SC_PISTON_PIN);
+    const double pen0 = sampled_penetration(&mj->run.series, FB_SC_PISTON_PIN);
+    report_residual("  sampled penetration max [m]", pen, CP_PEN_SERIES_TOL_M);
+    report_residual("  Moreau-Jean's / the projection's tolerance", pen0 / CP_PEN_TOL_M,
+                    CP_MJ_PEN_RATIO_MIN);
+    assert_true(pen <= CP_PEN_SERIES_TOL_M);
+    assert_true(pen0 > CP_MJ_PEN_RATIO_MIN * CP_PEN_TOL_M);
+    int n;
+    double v_max;
+    const double w = sc_newton_law_worst(&m->run.series, &m->run.lengths, fb_case_omega2(&c),
+                                         c.clearance.restitution, &n, &v_max);
+    report_residual("  Newton's law, worst |rebound - e_N| over the impacts", w, CP_NEWTON_LAW_TOL);
+    if (fb_test_verbose())
+      fprintf(stderr, "  (%d impacts checked, Moreau-Jean's run %d impacts)\n", n,
+              mj->spikes.impacts);
+    assert_true(n > 0);
+    assert_true(w < CP_NEWTON_LAW_TOL);
+    fb_run_free(&r);
+    fb_run_free(&r0);
+  }
+}
+
+/* with Coulomb friction at the piston pin (a 2-D friction problem for the
+ * impacts, as Siconos's slider-crank example): the projection still holds
+ * the pin at the wall and Newton's normal law holds */
+static void test_combined_projection_with_friction(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SICONOS();
+  static fb_run r;
+  fb_case c;
+  const char *sets[] = {"run.revolutions=1", "run.peaks=all", "run.ensemble=1",
+                        "clearance.friction=0.2", "siconos.scheme=combined-projection"};
+  sc_run(&r, &c, SC_MILD, "siconos-clearance-newton", sets, 5);
+  const fb_model_result *m = &r.model[0];
+  const double pen = sampled_penetration(&m->run.series, FB_SC_PISTON_PIN);
+  int n;
+  double v_max;
+  const double w = sc_newton_law_worst(&m->run.series, &m->run.lengths, fb_case_omega2(&c),
+                                       c.clearance.restitution, &n, &v_max);
+  report_residual("slider-crank mild, friction 0.2, combined projection: penetration [m]", pen,
+                  CP_PEN_SERIES_TOL_M);
+  report_residual("  Newton's law, worst |rebound - e_N|", w, CP_NEWTON_LAW_TOL);
+  assert_true(pen <= CP_PEN_SERIES_TOL_M);
+  assert_true(n > 0);
+  assert_true(w < CP_NEWTON_LAW_TOL);
+  fb_run_free(&r);
+}
+
+/* the ideal four-bar under the combined projection: the loop's closure at B
+ * projected each step (plain Moreau-Jean: 3.2e-9 m), the peaks still the
+ * analytic ones */
+static void test_combined_projection_closes_the_loop(void **state) {
+  (void)state;
+  SKIP_WITHOUT_SICONOS();
+  static fb_run r;
+  fb_case c;
+  const char *sets[] = {"run.revolutions=2", "siconos.scheme=combined-projection"};
+  run(&r, &c, "siconos-ideal-nominal", sets, 2);
+  const fb_model_result *m = &r.model[0];
+  report_residual("four-bar ideal, combined projection: loop drift [m]", m->run.joint_drift_max,
+                  CP_DRIFT_TOL_M);
+  report_residual("  peak omega rel", omega_peak_rel(&m->error), PEAK_OMEGA_REL_TOL);
+  report_residual("  peak alpha rel", alpha_peak_rel(&m->error), PEAK_ALPHA_REL_TOL);
+  assert_true(m->run.joint_drift_max <= CP_DRIFT_TOL_M);
+  assert_true(omega_peak_rel(&m->error) < PEAK_OMEGA_REL_TOL);
+  assert_true(alpha_peak_rel(&m->error) < PEAK_ALPHA_REL_TOL);
+  fb_run_free(&r);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_keys_and_refusal),
@@ -643,6 +810,9 @@ int main(void) {
       cmocka_unit_test(test_slider_crank_ideal_matches_analytic),
       cmocka_unit_test(test_slider_crank_clearance_newton),
       cmocka_unit_test(test_slider_crank_friction_keeps_newtons_normal_law),
+      cmocka_unit_test(test_combined_projection_piston_pin),
+      cmocka_unit_test(test_combined_projection_with_friction),
+      cmocka_unit_test(test_combined_projection_closes_the_loop),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

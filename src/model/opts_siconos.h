@@ -1,6 +1,6 @@
 /* Siconos's own options: the [siconos] section of a case file. The options
- * struct (fb_case.siconos), the range of Moreau-Jean's theta and its key
- * row, the one place the default is written. Engine-free. Listed by the
+ * struct (fb_case.siconos), the range of Moreau-Jean's theta, the schemes'
+ * names and the key rows, the one place the defaults are written. Engine-free. Listed by the
  * generated fb_engine_opts.h (meson.build, engine_names); the row format is
  * opts_mujoco.h's. */
 #ifndef FB_OPTS_SICONOS_H
@@ -17,9 +17,28 @@
 #define FB_SICONOS_THETA_MIN 0.5
 #define FB_SICONOS_THETA_MAX 1.0
 
+/* The time-stepping scheme of the siconos-* models. */
+typedef enum {
+  FB_SICONOS_MOREAU_JEAN = 0,        /* MoreauJeanOSI with TimeStepping: impacts at the
+                                        velocity level; a contact's positions may enter the
+                                        wall by one step's travel */
+  FB_SICONOS_COMBINED_PROJECTION = 1 /* MoreauJeanCombinedProjectionOSI with
+                                        TimeSteppingCombinedProjection (Acary, CMAME 256,
+                                        2013): the same velocity step, the step redone with a
+                                        contact found closed at its end, then the positions
+                                        projected onto the constraints (MLCPProjectOnConstraints) */
+} fb_siconos_scheme;
+
+/* "moreau-jean", "combined-projection" (NULL-terminated; index = fb_siconos_scheme). */
+extern const char *const fb_siconos_scheme_words[];
+
+/* "moreau-jean", "combined-projection" ("?" outside). */
+const char *fb_siconos_scheme_name(int k);
+
 /* Siconos's own choices for the siconos-* models. */
 typedef struct {
   double theta; /* Moreau-Jean's theta [-] in [FB_SICONOS_THETA_MIN, _MAX] */
+  int scheme;   /* fb_siconos_scheme */
 } fb_siconos_opts;
 
 /* The [siconos] key row (docs/keys.md; docs/engines.md, "Siconos"). */
@@ -28,10 +47,18 @@ typedef struct {
       0, 0, "-", "0.5",                                                                        \
       "theta must lie in [0.5, 1] (below 0.5 Moreau-Jean's scheme is unstable)",              \
       "Moreau-Jean's theta of the siconos-* models (MoreauJeanOSI): 0.5 the trapezoidal rule " \
-      "between impacts, 1 backward Euler; the step is [solver] h_s (docs/engines.md)")
+      "between impacts, 1 backward Euler; the step is [solver] h_s (docs/engines.md)")       \
+  ROW(siconos, WORDS, "scheme", scheme, fb_siconos_scheme_words, 0, 0, 0, 0, 0, "-",          \
+      "moreau-jean", "moreau-jean or combined-projection",                                     \
+      "time stepping of the siconos-* models: moreau-jean (MoreauJeanOSI, TimeStepping: a "    \
+      "contact closes at the velocity level, its positions may enter the wall by one step's "  \
+      "travel) or combined-projection (MoreauJeanCombinedProjectionOSI, "                      \
+      "TimeSteppingCombinedProjection: the step redone with a contact found closed at its "    \
+      "end, then the positions projected onto the constraints; Siconos's slider-crank "        \
+      "example's scheme, docs/engines.md)")
 
-/* Checks o: theta in [FB_SICONOS_THETA_MIN, _MAX]. Errors: FB_ERR_RANGE
- * naming the field (prefix "scene: siconos"). */
+/* Checks o: theta in [FB_SICONOS_THETA_MIN, _MAX], scheme known. Errors:
+ * FB_ERR_RANGE naming the field (prefix "scene: siconos"). */
 fb_status fb_siconos_opts_check(const fb_siconos_opts *o, fb_diag *diag);
 
 #endif

@@ -37,15 +37,19 @@ static void siconos_destroy(void *self) { fb_siconos_scene_destroy(self); }
 static int siconos_settings(fb_engine_setting *out, const fb_case *c, int clearance_mask,
                             fb_collider collider, double h) {
   (void)collider, (void)h;
+  const int projected = c->siconos.scheme == FB_SICONOS_COMBINED_PROJECTION;
   out[0] = (fb_engine_setting){.key = "integrator", .kind = FB_SETTING_TEXT,
-                               .text = "MoreauJeanOSI"};
+                               .text = projected ? "MoreauJeanCombinedProjectionOSI"
+                                                 : "MoreauJeanOSI"};
   out[1] = (fb_engine_setting){.key = "theta", .kind = FB_SETTING_NUMBER,
                                .number = c->siconos.theta};
   out[2] = (fb_engine_setting){.key = "contact", .kind = FB_SETTING_TEXT,
                                .text = !clearance_mask ? "EqualityConditionNSL (loop closure)"
                                        : c->clearance.friction > 0.0 ? "NewtonImpactFrictionNSL"
                                                                      : "NewtonImpactNSL"};
-  return 3;
+  out[3] = (fb_engine_setting){.key = "scheme", .kind = FB_SETTING_TEXT,
+                               .text = fb_siconos_scheme_name(c->siconos.scheme)};
+  return 4;
 }
 
 /* the run's table: Moreau-Jean's theta and the rigid contact's law */
@@ -54,10 +58,13 @@ static void siconos_settings_lines(const fb_case *c, const fb_engine_models_used
   (void)u;
   char line[256];
   snprintf(line, sizeof line,
-           "Siconos models: Moreau-Jean theta %g, fixed step h; clearance: g = c - |e| >= 0 "
+           "Siconos models: Moreau-Jean theta %g%s, fixed step h; clearance: g = c - |e| >= 0 "
            "with Newton's impact law, e_N = %g%s (rigid: no penalty)",
-           c->siconos.theta, c->clearance.restitution,
-           c->clearance.friction > 0.0 ? " and Coulomb friction" : "");
+           c->siconos.theta,
+           c->siconos.scheme == FB_SICONOS_COMBINED_PROJECTION
+               ? " with the positions projected (combined projection)"
+               : "",
+           c->clearance.restitution, c->clearance.friction > 0.0 ? " and Coulomb friction" : "");
   put(a, line);
 }
 
@@ -103,7 +110,8 @@ static int siconos_bench_point(fb_bench_set s, int i, const fb_case *c, fb_case 
   } else {
     return 0;
   }
-  snprintf(p->stepper, sizeof p->stepper, "moreau-jean %g", k->siconos.theta);
+  snprintf(p->stepper, sizeof p->stepper, "%s %g", fb_siconos_scheme_name(k->siconos.scheme),
+           k->siconos.theta);
   return 1;
 }
 

@@ -54,6 +54,20 @@ const unsigned kNewtonMaxIterations = 200;
 // paper case's first contact with friction 0.2.
 const double kFrictionSolverTolerance = 1e-12;
 const int kFrictionSolverMaxIterations = 100;
+// [siconos] scheme = combined-projection (TimeSteppingCombinedProjection):
+// the index set whose interactions the positions' problem projects (the
+// only level Siconos 4.4 implements: its constructor throws on another),
+// the projection's iteration cap and its tolerance on each constraint's
+// violation, |g| for a contact the step closed (projected as an equality,
+// Siconos's default) and |h| for a loop closure [m]. Cap and tolerance are
+// Siconos's slider-crank example's (a 1 mm clearance there); 1e-10 m is
+// 7e-6 of the paper case's 14.5 um radial clearance. Each iteration is a
+// Newton step on the linearised constraints: the tests' cases need 1 or 2
+// (tests/test_siconos.c). At the cap Siconos 4.4 prints the violations on
+// standard output and the step is refused here (the model stops).
+const unsigned kProjectionIndexSet = 2;
+const unsigned kProjectionMaxIterations = 500;
+const double kProjectionTolerance = 1e-10;
 // Below this eccentricity [m] the normal e/|e| is undefined; the pin is then
 // a whole clearance away from the wall, where only the sign of the gap
 // matters, and the normal is taken along +x.
@@ -414,22 +428,25 @@ class PinClosureR : public LagrangianRheonomousR {
 // coordinates)
 using PinClearanceR = ClearanceRT<ScMech>;
 
-// MoreauJeanOSI with the relation's residual that Siconos 4.4 leaves to
-// the integrator (OneStepIntegrator::computeResiduOutput, which
-// TimeStepping's Newton loop checks with setComputeResiduY(true), as
-// EulerMoreauOSI implements it): Newton's law at the step's end,
-// g'(k+1) + e_N g'(k) = 0 while the impulse is positive (>= 0 without one),
-// g'(k+1) from the output the loop has just updated at the last iterate's
-// positions. The slider-crank's clearance model needs it: its mass matrix is
-// constant and its forces nearly linear over a step, so the dynamics'
-// residual reaches round-off after one iteration, with the contact's
-// Jacobian still at the positions the iteration started from (the normal of
-// a pin sliding in a 100 um clearance turns by a few percent over a step:
-// Newton's law was off by up to 1.3e-2 on tests/test_siconos.c's mild case).
-// The four-bar's mass matrix moves with q, and its loop iterates on.
-class LawCheckedMoreauJeanOSI : public MoreauJeanOSI {
+// A Moreau-Jean integrator (MoreauJeanOSI, or MoreauJeanCombinedProjectionOSI
+// for [siconos] scheme = combined-projection) with the relation's residual
+// that Siconos 4.4 leaves to the integrator
+// (OneStepIntegrator::computeResiduOutput, which TimeStepping's Newton loop
+// checks with setComputeResiduY(true), as EulerMoreauOSI implements it):
+// Newton's law at the step's end, g'(k+1) + e_N g'(k) = 0 while the impulse
+// is positive (>= 0 without one), g'(k+1) from the output the loop has just
+// updated at the last iterate's positions. The slider-crank's clearance
+// model needs it: its mass matrix is constant and its forces nearly linear
+// over a step, so the dynamics' residual reaches round-off after one
+// iteration, with the contact's Jacobian still at the positions the
+// iteration started from (the normal of a pin sliding in a 100 um clearance
+// turns by a few percent over a step: Newton's law was off by up to 1.3e-2
+// on tests/test_siconos.c's mild case). The four-bar's mass matrix moves
+// with q, and its loop iterates on.
+template <class Osi>
+class LawChecked : public Osi {
  public:
-  LawCheckedMoreauJeanOSI(double theta, double e_n) : MoreauJeanOSI(theta), e_n_(e_n) {}
+  LawChecked(double theta, double e_n) : Osi(theta), e_n_(e_n) {}
   // the interaction whose normal row is checked, and the system whose
   // active set (index set 1) says whether it entered the step's problem
   void watch(Interaction *inter, NonSmoothDynamicalSystem *nsds) {
@@ -450,6 +467,50 @@ class LawCheckedMoreauJeanOSI : public MoreauJeanOSI {
   NonSmoothDynamicalSystem *nsds_ = nullptr;
 };
 
+// The combined projection's position problem (MLCPProjectOnConstraints, the
+// enumerative MLCP solver) without Siconos 4.4's growth per solve: MLCP::solve
+// calls mlcp_driver_init before every solve, which callocs the solver's
+// iWork and dWork again over the last ones (numerics/src/MLCP/mlcp_driver.c),
+// and mlcp_driver_reset frees only the last. Freeing them before each solve
+// changes nothing the solver sees (it gets freshly zeroed arrays either way).
+// mlcp_enum's own EnumerationStruct, allocated each solve and never freed
+// (mlcp_enum.c), is out of reach here (tests/lsan.supp). Built from
+// solver_options(SICONOS_MLCP_ENUM), as the solver-id constructor would,
+// without its leaked struct (solver_options, below).
+class ProjectOnConstraints : public MLCPProjectOnConstraints {
+ public:
+  using MLCPProjectOnConstraints::MLCPProjectOnConstraints;
+  int compute(double time) override {
+    SolverOptions &o = *numericsSolverOptions();
+    std::free(o.iWork);
+    std::free(o.dWork);
+    o.iWork = nullptr;
+    o.dWork = nullptr;
+    o.iWorkSize = 0;
+    o.dWorkSize = 0;
+    return MLCPProjectOnConstraints::compute(time);
+  }
+};
+
+// The scheme's integrator at theta: MoreauJeanOSI, or for the combined
+// projection MoreauJeanCombinedProjectionOSI; law-checked (LawChecked) on
+// interaction `checked` with restitution e_n when it is given
+SP::MoreauJeanOSI make_osi(double theta, int projected, Interaction *checked,
+                           NonSmoothDynamicalSystem *nsds, double e_n) {
+  if (checked && projected) {
+    auto osi = std::make_shared<LawChecked<MoreauJeanCombinedProjectionOSI>>(theta, e_n);
+    osi->watch(checked, nsds);
+    return osi;
+  }
+  if (checked) {
+    auto osi = std::make_shared<LawChecked<MoreauJeanOSI>>(theta, e_n);
+    osi->watch(checked, nsds);
+    return osi;
+  }
+  if (projected) return std::make_shared<MoreauJeanCombinedProjectionOSI>(theta);
+  return std::make_shared<MoreauJeanOSI>(theta);
+}
+
 struct Scene {
   fb_model_scene sm;
   int sc;          // 1: the slider-crank (ScMech msc), 0: the four-bar (Mech m)
@@ -465,6 +526,8 @@ struct Scene {
   SP::NonSmoothDynamicalSystem nsds;
   SP::MoreauJeanOSI osi;
   SP::OneStepNSProblem osnspb;
+  SP::OneStepNSProblem position;             // combined projection: the positions' problem
+  SP::TimeSteppingCombinedProjection proj;   // combined projection: sim as itself (else null)
   SP::TimeStepping sim;
   int solver_info; // the last one-step problem's status (0: solved)
   fb_episode ep;
@@ -728,14 +791,10 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
     s->nsds.reset(new NonSmoothDynamicalSystem(0.0, t_end));
     s->nsds->insertDynamicalSystem(s->ds);
     s->nsds->link(s->inter, s->ds);
-    if (sc && s->clearance) {
-      auto osi = std::make_shared<LawCheckedMoreauJeanOSI>(sm->siconos.theta,
-                                                           sm->law[cj].restitution);
-      osi->watch(s->inter.get(), s->nsds.get());
-      s->osi = osi;
-    } else {
-      s->osi.reset(new MoreauJeanOSI(sm->siconos.theta));
-    }
+    const int projected = sm->siconos.scheme == FB_SICONOS_COMBINED_PROJECTION;
+    s->osi = make_osi(sm->siconos.theta, projected,
+                      sc && s->clearance ? s->inter.get() : nullptr, s->nsds.get(),
+                      sm->law[cj].restitution);
     if (!s->clearance) {
       s->osnspb.reset(new Equality());
     } else if (s->friction) {
@@ -747,7 +806,17 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
       s->osnspb.reset(new LCP(solver_options(SICONOS_LCP_LEMKE)));
     }
     SP::TimeDiscretisation td(new TimeDiscretisation(0.0, s->h));
-    s->sim.reset(new TimeStepping(s->nsds, td, s->osi, s->osnspb));
+    if (projected) {
+      s->position.reset(new ProjectOnConstraints(solver_options(SICONOS_MLCP_ENUM)));
+      s->proj.reset(new TimeSteppingCombinedProjection(s->nsds, td, s->osi, s->osnspb,
+                                                       s->position, kProjectionIndexSet));
+      s->proj->setProjectionMaxIteration(kProjectionMaxIterations);
+      s->proj->setConstraintTol(kProjectionTolerance);
+      s->proj->setConstraintTolUnilateral(kProjectionTolerance);
+      s->sim = s->proj;
+    } else {
+      s->sim.reset(new TimeStepping(s->nsds, td, s->osi, s->osnspb));
+    }
     s->sim->setNewtonTolerance(kNewtonTolerance);
     if (sc && s->clearance) s->sim->setComputeResiduY(true);
     s->sim->setNewtonMaxIteration(kNewtonMaxIterations);
@@ -783,6 +852,15 @@ extern "C" fb_status fb_siconos_scene_step(fb_siconos_scene *hd, fb_diag *diag) 
       char why[96];
       std::snprintf(why, sizeof why, "Newton loop not converged in %u iterations",
                     kNewtonMaxIterations);
+      s->k++;
+      return set_stop(s, FB_STOP_SOLVER, why, diag);
+    }
+    if (s->proj && s->proj->nbProjectionIteration() >= kProjectionMaxIterations) {
+      char why[128];
+      std::snprintf(why, sizeof why,
+                    "position projection not converged in %u iterations (violation %g m)",
+                    kProjectionMaxIterations,
+                    std::max(s->proj->maxViolationUnilateral(), s->proj->maxViolationEquality()));
       s->k++;
       return set_stop(s, FB_STOP_SOLVER, why, diag);
     }
@@ -878,6 +956,7 @@ extern "C" void fb_siconos_scene_destroy(fb_siconos_scene *hd) {
     hd->s->sim->clear();
     hd->s->osi->setSimulationPtr(SP::Simulation());
     hd->s->osnspb->setSimulationPtr(SP::Simulation());
+    if (hd->s->position) hd->s->position->setSimulationPtr(SP::Simulation());
     hd->s->osi->setDynamicalSystemsGraph(SP::DynamicalSystemsGraph());
     hd->s->nsds->clear();
   }

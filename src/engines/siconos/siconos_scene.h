@@ -35,6 +35,16 @@
  * force), and an impact is one step whose velocity jump obeys Newton's law
  * g'(t+) = -e_N g'(t-).
  *
+ * With [siconos] scheme = combined-projection the integrator is
+ * MoreauJeanCombinedProjectionOSI(theta) and the simulation
+ * TimeSteppingCombinedProjection (Acary, CMAME 256, 2013; Siconos's
+ * slider-crank example's scheme): a step that ends with a relation closed
+ * (g <= 0) is redone with it in the velocity problem, then the positions of
+ * every relation the step closed (and the ideal models' loop closure) are
+ * projected onto the constraints by MLCPProjectOnConstraints, to 1e-10 m;
+ * the friction problem, when there is one, is the same 2-D FrictionContact.
+ * A projection that does not converge stops the model (FB_STOP_SOLVER).
+ *
  * Sampling: one sample per step. The angular accelerations are
  * (omega_{k+1} - omega_k) / h and the contact force and state those of the
  * step from t_k: the engine reports them one step late (step_values_lag), as

@@ -8,6 +8,7 @@
 
 #include "casefile.h"
 #include "cli.h"
+#include "clock.h"
 #include "contact_params.h"
 #include "textsafe.h"
 #include "figures.h"

@@ -7,13 +7,13 @@
 # reproduction, and its difference from the .ref (whose own values are not
 # drawn: they stay out of the repository).
 #   bash scripts/siconos_slider_guide.sh [OUT_DIR]   (default results/siconos_slider_guide)
-# The reference output is read from ../shared/siconos_slider_crank beside the
+# The reference output is read from external/siconos_slider_crank in the
 # clone, or $FOURBAR_SICONOS_REF_DIR (docs/models.md says where to fetch it).
 # Costs under a second.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/siconos_slider_guide}
-refdir=${FOURBAR_SICONOS_REF_DIR:-../shared/siconos_slider_crank}
+refdir=${FOURBAR_SICONOS_REF_DIR:-external/siconos_slider_crank}
 ref=$refdir/SliderCrankMoreauJeanCombinedProjectionOSI.ref
 exe=${FOURBAR_SLIDER_GUIDE:-./build/tests/test_siconos_slider_guide}
 mkdir -p "$out"

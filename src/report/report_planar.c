@@ -10,6 +10,7 @@
 #include "numfmt.h"
 #include "run.h"
 #include "series.h"
+#include "units.h"
 
 /* finite number or null */
 static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
@@ -173,7 +174,7 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
               "contact force max %s N, penetration max %s um\nverdict: %s (%s)\n",
               r->m->joint[p->ref.joint].name, p->ref.law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
               p->ref.force_work, r->t_window, FB_NUM_CELL("%.6g", p->ref.failed ? NAN : p->ref.force_max, FB_NUM_NONE_TABLE),
-              FB_NUM_CELL("%.4g", p->ref.failed ? NAN : p->ref.penetration_max * 1e6, FB_NUM_NONE_TABLE), v, why);
+              FB_NUM_CELL("%.4g", p->ref.failed ? NAN : p->ref.penetration_max / FB_M_PER_UM, FB_NUM_NONE_TABLE), v, why);
     }
     fprintf(f, "| body | omega max [rad/s] | omega min [rad/s] | alpha max [rad/s^2] | "
                "alpha min [rad/s^2] |\n|---|---:|---:|---:|---:|\n");

@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "numfmt.h"
+#include "units.h"
 
 /* finite number or null */
 static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
@@ -25,7 +26,7 @@ void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
     json_object_set_new(o, "case", json_string(c->name));
     json_object_set_new(o, "mechanism", json_string("planar"));
     json_object_set_new(o, "drive", json_string(m->joint[m->drive].name));
-    json_object_set_new(o, "speed_rpm", num(c->crank_speed * 60.0 / (2.0 * M_PI)));
+    json_object_set_new(o, "speed_rpm", num(c->crank_speed / FB_RAD_S_PER_RPM));
     for (int b = 1; b < m->nbodies; b++) {
       const fb_planar_peaks *k = &p[b];
       json_t *e = json_pack("{s:o,s:o,s:o,s:o}", "omega_max_rad_s", num(k->omega_max),
@@ -43,13 +44,13 @@ void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
   }
   fprintf(f, "%s: planar, drive '%s' at %.6g rpm; peaks over a revolution (drive angle from the "
           "assembly configuration)\n", c->name, m->joint[m->drive].name,
-          c->crank_speed * 60.0 / (2.0 * M_PI));
+          c->crank_speed / FB_RAD_S_PER_RPM);
   fprintf(f, "| body | omega max [rad/s] | at [deg] | omega min [rad/s] | at [deg] | "
           "alpha max [rad/s^2] | at [deg] | alpha min [rad/s^2] | at [deg] |\n"
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int b = 1; b < m->nbodies; b++) {
     const fb_planar_peaks *k = &p[b];
-    const double deg = 180.0 / M_PI;
+    const double deg = 1.0 / FB_RAD_PER_DEG;
     fprintf(f, "| %s | %s | %.2f | %s | %.2f | %s | %.2f | %s | %.2f |\n", m->body[b].name,
             CELL(k->omega_max), k->where[0] * deg, CELL(k->omega_min), k->where[1] * deg,
             CELL(k->alpha_max), k->where[2] * deg, CELL(k->alpha_min), k->where[3] * deg);
@@ -64,12 +65,12 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
     fprintf(f, "%s: physical mode (largest ideal reaction over a revolution, Johnson's "
             "pin-in-hole contact, c = %.6g um, L = %.6g mm)\n| speed [rpm] | joint | force [N] | "
             "Kc [N/m] | P [N m^0.5] | P [N mm^0.5] | approach [um] |\n"
-            "|---:|---|---:|---:|---:|---:|---:|\n", c->name, c->radial_clearance * 1e6,
-            c->pin_length * 1e3);
+            "|---:|---|---:|---:|---:|---:|---:|\n", c->name, c->radial_clearance / FB_M_PER_UM,
+            c->pin_length / FB_M_PER_MM);
   for (int s = 0; s < nspeeds; s++)
     for (int i = 0; i < n[s]; i++) {
       const fb_planar_penalty_row *r = &rows[s * m->njoints + i];
-      const double p_mm = r->penalty / sqrt(1e-3); /* 1 N mm^0.5 = sqrt(1e-3) N m^0.5 */
+      const double p_mm = r->penalty / sqrt(FB_M_PER_MM); /* 1 N mm^0.5 = sqrt(1e-3) N m^0.5 */
       if (json)
         json_array_append_new(
             arr, json_pack("{s:o,s:s,s:o,s:o,s:o,s:o,s:o}", "speed_rpm", num(rpm[s]), "joint",
@@ -79,7 +80,7 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
       else
         fprintf(f, "| %.6g | %s | %s | %s | %s | %s | %s |\n", rpm[s], m->joint[r->joint].name,
                 CELL(r->force), CELL(r->stiffness), CELL(r->penalty), CELL(p_mm),
-                CELL(r->approach * 1e6));
+                CELL(r->approach / FB_M_PER_UM));
     }
   if (json)
     dump(f, json_pack("{s:s,s:s,s:s,s:o}", "case", c->name, "mechanism", "planar", "mode",
@@ -128,8 +129,8 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
   for (int k = 0; k < s->nlengths; k++) {
     const fb_planar_length *L = &s->length[k];
     fprintf(f, "| %s | %s | %s | %.6g | %.4g | %s |\n", m->body[L->body].name,
-            m->joint[L->joint[0]].name, m->joint[L->joint[1]].name, L->nominal * 1e3,
-            L->plus_minus * 1e3, L->source);
+            m->joint[L->joint[0]].name, m->joint[L->joint[1]].name, L->nominal / FB_M_PER_MM,
+            L->plus_minus / FB_M_PER_MM, L->source);
   }
   if (s->corners)
     fprintf(f, "\nworst case over %d corners; RSS band 3 sigma\n", s->corners);

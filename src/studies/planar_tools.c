@@ -10,6 +10,7 @@
 #include "iso2768.h"
 #include "planar_case.h"
 #include "planar_invdyn.h"
+#include "units.h"
 
 /* joint points of one body the stack-up keeps: three vary by their
  * distances, a fourth is only counted (to refuse the body) */
@@ -66,7 +67,7 @@ fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_ca
       st = fb_diag_set(diag, FB_ERR_RANGE,
                        "joint '%s' at %g rpm: force %g N is beyond Johnson's pin-in-hole "
                        "relation for L = %g m, c = %g m (needs F < 4 pi L E* c / e^2)",
-                       m->joint[j].name, omega * 60 / (2 * M_PI), f, c->pin_length,
+                       m->joint[j].name, omega / FB_RAD_S_PER_RPM, f, c->pin_length,
                        c->radial_clearance);
     else
       out[(*n)++] = (fb_planar_penalty_row){j, f, kc, kc * pow(c->radial_clearance, 1.5), d};
@@ -128,7 +129,7 @@ static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_pla
                               sizeof L->source, &inner) != FB_OK)
           return fb_diag_set(diag, FB_ERR_RANGE, "body '%s', '%s' to '%s' (%.6g mm): %s",
                              m->body[b].name, m->joint[joint[i]].name, m->joint[joint[k]].name,
-                             L->nominal * 1e3, inner.msg);
+                             L->nominal / FB_M_PER_MM, inner.msg);
       }
   }
   return FB_OK;

@@ -539,7 +539,6 @@ static void unsettled(const fb_run *r, unsigned *models, unsigned *references) {
 
 fb_status fb_ensemble_sequential(fb_run *r, double t_start, fb_progress_fn progress, void *user,
                                  fb_diag *diag) {
-  const double t0 = fb_clock_s();
   unsigned undecided, refs;
   unsettled(r, &undecided, &refs);
   if (!undecided && !refs) return FB_OK;
@@ -587,6 +586,5 @@ fb_status fb_ensemble_sequential(fb_run *r, double t_start, fb_progress_fn progr
       r->model[i].test.at_cap = 1;
       r->model[i].test.wall_cut = r->seq_wall_cut;
     }
-  r->ensemble_wall_s = fb_clock_s() - t0;
   return FB_OK;
 }

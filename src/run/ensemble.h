@@ -125,7 +125,8 @@ fb_status fb_ensemble_measure(struct fb_run_s *r, fb_progress_fn progress, void 
  * when decided. Stops early, leaving the rest undecided, when the next
  * look's estimate (the models' first run, times the members it adds, over
  * the workers) would pass [run] max_wall_s since t_start [s]. r->seq_*
- * record the looks, members and wall time. Errors: as fb_ensemble_measure. */
+ * record the looks and members; the caller (run_case.c) times them into
+ * r->ensemble_wall_s. Errors: as fb_ensemble_measure. */
 fb_status fb_ensemble_sequential(struct fb_run_s *r, double t_start, fb_progress_fn progress,
                                  void *user, fb_diag *diag);
 

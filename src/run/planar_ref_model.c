@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "joint_law.h"
+#include "peak_refine.h"
 #include "planar_invdyn.h"
 #include "planar_reference.h"
 #include "planar_run.h"
@@ -33,8 +34,84 @@ static double joint_mass(const fb_planar *m, int j) {
   return a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b);
 }
 
-/* one integration at tol: the window's peaks into w (4 per moving body, then
- * the force), the samples into p when store */
+/* a reference's columns: time, every moving body's angle, omega, alpha
+ * (fb_planar_model's q layout), the clearance joint's force, penetration */
+typedef struct {
+  double *t, *q, *force, *pen;
+} columns;
+
+/* the refinement's view of one integration (peak_refine.h) */
+typedef struct {
+  fb_planar_dyn *d;
+  fb_planar_contact *ct; /* scratch (njoints) */
+  const double *y;       /* the samples' states (n x 2 nq) */
+  double h;              /* sample spacing [s] */
+  int joint, nq, nb;     /* the clearance joint, coordinates, moving bodies */
+  int driven;            /* the moving body the drive turns from the ground (its alpha is
+                            the drive's, zero: not refined), else -1 */
+} refine_src;
+
+static int refine_rhs(double t, const double y[], double dydt[], void *p) {
+  return fb_planar_dyn_rhs(t, y, dydt, ((const refine_src *)p)->d);
+}
+
+/* peak_refine.h's eval: force, penetration, then alpha and -alpha of each
+ * refined body */
+static void refine_eval(double *quant, double *dydt, double t, const double *y, void *p) {
+  const refine_src *s = p;
+  const int ok = fb_planar_dyn_eval(s->d, t, y, dydt, s->ct) == FB_OK;
+  const fb_planar_contact *c = &s->ct[s->joint];
+  int n = 0;
+  quant[n++] = ok ? c->force : -INFINITY;
+  quant[n++] = ok ? c->penetration : -INFINITY;
+  for (int b = 0; b < s->nb; b++) {
+    if (b == s->driven) continue;
+    const double a = dydt[s->nq + 3 * b + 2];
+    quant[n++] = ok ? a : -INFINITY;
+    quant[n++] = ok ? -a : -INFINITY;
+  }
+}
+
+static double refine_start(double *y, size_t k, void *p) {
+  const refine_src *s = p;
+  memcpy(y, s->y + k * (size_t)(2 * s->nq), (size_t)(2 * s->nq) * sizeof *y);
+  return (double)k * s->h;
+}
+
+/* The samples at spikes of the force, penetration and every moving body's
+ * alpha (but the driven one's) replaced by their extremes between the
+ * neighbouring samples: the closed-form reference's rule (peak_refine.h),
+ * so that both references' peaks are the same quantity. */
+static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *r,
+                   fb_planar_dyn *d, const double *y, double tol) {
+  const fb_planar *m = r->m;
+  const int nb = m->nbodies - 1;
+  int from, to;
+  fb_planar_drive_bodies(m, &from, &to);
+  fb_planar_contact *ct = malloc((size_t)m->njoints * sizeof *ct);
+  fb_peak_refine_column *cc = malloc((size_t)(nb + 2) * sizeof *cc);
+  if (ct && cc) {
+    refine_src src = {d, ct, y, p->h, p->ref.joint, fb_planar_nq(m), nb, from == 0 ? to - 1 : -1};
+    int nc = 0, nquant = 2;
+    cc[nc++] = (fb_peak_refine_column){col->force, 0, -1};
+    cc[nc++] = (fb_peak_refine_column){col->pen, 1, -1};
+    for (int b = 0; b < nb; b++) {
+      if (b == src.driven) continue;
+      cc[nc++] = (fb_peak_refine_column){col->q + ((size_t)b * 3 + FB_Q_ACC) * p->n, nquant,
+                                         nquant + 1};
+      nquant += 2;
+    }
+    const fb_peak_refine_ode ode = {(size_t)(2 * src.nq), nquant, refine_rhs, refine_eval,
+                                    refine_start, &src, p->h, tol};
+    fb_peak_refine(cc, nc, col->t, p->n, fb_case_peak_window_from(&r->c), &ode);
+  }
+  free(ct);
+  free(cc);
+}
+
+/* one integration at tol into the columns col (p's own when store, else
+ * col's), its spikes refined; the window's peaks into w (4 per moving
+ * body, then the force and the penetration) */
 static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r, fb_planar_dyn *d,
                            double tol, size_t *steps, int store, fb_diag *diag) {
   const fb_planar *m = r->m;
@@ -43,43 +120,48 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
   double *y = malloc(n * (size_t)(3 * nq) * sizeof *y);
   fb_planar_contact *ct = malloc(n * (size_t)nj * sizeof *ct);
   double *y0 = malloc(2 * (size_t)nq * sizeof *y0);
-  fb_status st = y && ct && y0 ? fb_planar_dyn_steady(y0, d, diag)
-                               : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n);
+  double *own = store ? NULL : malloc(n * (size_t)(3 + 3 * nb) * sizeof *own);
+  columns col = store ? (columns){p->t, p->q, p->force, p->pen}
+                      : (columns){own, own ? own + n : NULL, own ? own + n * (size_t)(1 + 3 * nb) : NULL,
+                                  own ? own + n * (size_t)(2 + 3 * nb) : NULL};
+  fb_status st = y && ct && y0 && col.t ? fb_planar_dyn_steady(y0, d, diag)
+                                        : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n);
   double *acc = y ? y + n * (size_t)(2 * nq) : NULL;
   fb_planar_ref_stats stats = {0};
   if (st == FB_OK) st = fb_planar_ref_run(y, acc, ct, n, p->h, y0, d, tol, 1, &stats, diag);
   *steps = stats.steps;
-  for (int k = 0; k < 4 * nb; k++) w[k] = k % 2 ? INFINITY : -INFINITY;
-  w[4 * nb] = w[4 * nb + 1] = 0.0; /* force, penetration */
   for (size_t i = 0; i < n && st == FB_OK; i++) {
-    const double t = (double)i * p->h;
     const fb_planar_contact *c = &ct[i * (size_t)nj + (size_t)p->ref.joint];
     for (int b = 0; b < nb; b++) {
       const int a = 3 * b + 2;
       const double v[3] = {y[i * (size_t)(2 * nq) + (size_t)a],
                            y[i * (size_t)(2 * nq) + (size_t)(nq + a)], acc[i * (size_t)nq + (size_t)a]};
-      if (store)
-        for (int k = 0; k < 3; k++) p->q[((size_t)b * 3 + (size_t)k) * n + i] = v[k];
-      if (t < r->t_window) continue;
-      w[4 * b] = fmax(w[4 * b], v[FB_Q_VEL]);
-      w[4 * b + 1] = fmin(w[4 * b + 1], v[FB_Q_VEL]);
-      w[4 * b + 2] = fmax(w[4 * b + 2], v[FB_Q_ACC]);
-      w[4 * b + 3] = fmin(w[4 * b + 3], v[FB_Q_ACC]);
+      for (int k = 0; k < 3; k++) col.q[((size_t)b * 3 + (size_t)k) * n + i] = v[k];
     }
-    if (store) {
-      p->t[i] = t;
-      p->drive[i] = r->omega * t;
-      p->force[i] = c->force;
-      p->pen[i] = c->penetration;
+    col.t[i] = (double)i * p->h;
+    if (store) p->drive[i] = r->omega * col.t[i];
+    col.force[i] = c->force;
+    col.pen[i] = c->penetration;
+  }
+  if (st == FB_OK) refine(&col, p, r, d, y, tol);
+  for (int k = 0; k < 4 * nb; k++) w[k] = k % 2 ? INFINITY : -INFINITY;
+  w[4 * nb] = w[4 * nb + 1] = 0.0; /* force, penetration */
+  for (size_t i = 0; i < n && st == FB_OK; i++) {
+    if (col.t[i] < r->t_window) continue;
+    for (int b = 0; b < nb; b++) {
+      const double *qb = col.q + (size_t)b * 3 * n;
+      w[4 * b] = fmax(w[4 * b], qb[FB_Q_VEL * n + i]);
+      w[4 * b + 1] = fmin(w[4 * b + 1], qb[FB_Q_VEL * n + i]);
+      w[4 * b + 2] = fmax(w[4 * b + 2], qb[FB_Q_ACC * n + i]);
+      w[4 * b + 3] = fmin(w[4 * b + 3], qb[FB_Q_ACC * n + i]);
     }
-    if (t >= r->t_window) {
-      w[4 * nb] = fmax(w[4 * nb], c->force);
-      w[4 * nb + 1] = fmax(w[4 * nb + 1], c->penetration);
-    }
+    w[4 * nb] = fmax(w[4 * nb], col.force[i]);
+    w[4 * nb + 1] = fmax(w[4 * nb + 1], col.pen[i]);
   }
   free(y);
   free(ct);
   free(y0);
+  free(own);
   return st;
 }
 

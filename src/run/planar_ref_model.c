@@ -86,8 +86,8 @@ static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *
                    fb_planar_dyn *d, const double *y, double tol) {
   const fb_planar *m = r->m;
   const int nb = m->nbodies - 1;
-  int from, to;
-  fb_planar_drive_bodies(m, &from, &to);
+  int from = -1, to = 0; /* an undriven description has no driven body */
+  if (m->drive >= 0) fb_planar_drive_bodies(m, &from, &to);
   fb_planar_contact *ct = malloc((size_t)m->njoints * sizeof *ct);
   fb_peak_refine_column *cc = malloc((size_t)(nb + 2) * sizeof *cc);
   if (ct && cc) {

@@ -324,17 +324,20 @@ check(rc != 0 and "paper" in se, "a planar reference refuses penalty = paper (%s
 # neighbours (physics/peak_refine.c, one rule), so their peaks are the same
 # quantity. Without the refinement the planar window force peak was 1.35 %
 # low (4409.81 against 4469.99 N, the same sample, t = 63.23 ms).
-# REF_PEAK_REL: the two references evaluate the same points; they differ by
-# their motions, which part as the impacts amplify their integrators'
-# 1e-12 differences (docs/chaos.md). Measured: the window's force,
-# penetration, coupler and follower alpha min (all at the 63 ms impact,
-# before the motions part by 1e-3 at 64.2 ms) 1.9e-6, 1.8e-6, 5e-8, 2e-6
-# relative; sample by sample over t < REF_SAMPLES_UNTIL_S every force,
-# penetration and alpha sample, the refined spikes among them, within 8.7e-7
-# of its column's largest. 1e-5 leaves a factor 5 over the largest and lies
-# 1000 times below the gap it guards. The alpha maxima (after 63 ms, where
-# the motions have parted) are not compared.
-REF_PEAK_REL = 1e-5
+# REF_PEAK_REL: the two references evaluate the same points; they differ
+# by their integrations, and the closed form's own error estimate (its
+# check integration at 1e-13, summary.json error_estimate) moves its
+# window force, penetration and follower alpha min by 1.7e-5, 1.6e-5 and
+# 1.8e-5 (the coupler's alpha min by 5e-7): agreement cannot be asked
+# below that. Measured (the planar reference integrated about the
+# clearance joint): 1.6e-5, 1.6e-5, 1.8e-5 and 4.6e-7 (the planar values lie
+# on the closed form's check's, 3e-7 from its force peak); sample by
+# sample over t < REF_SAMPLES_UNTIL_S every force, penetration and alpha
+# sample, the refined spikes among them, within 7.7e-6 of its column's
+# largest. 5e-5 is three times the closed form's own estimate and 270
+# times below the gap it guards. The alpha maxima (after 63 ms, where the
+# motions have parted, docs/chaos.md) are not compared.
+REF_PEAK_REL = 5e-5
 REF_SAMPLES_UNTIL_S = 0.05
 REF_SET = ("--set", "run.models=reference-restitution", "--set", "clearance.penalty=explicit",
            "--set", "clearance.penalty_n_m=3e9", "--set", "run.revolutions=2", "--set",

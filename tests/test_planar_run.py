@@ -17,7 +17,7 @@ drive angle and refined by golden-section search to 1e-12 rad.
 
 Usage: test_planar_run.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
-import csv, json, math, os, sys, tempfile
+import csv, json, math, os, re, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
@@ -316,5 +316,103 @@ if rc == 0:
 rc, _, se = run("run", six, "--set", "run.models=reference", "--set", "clearance.penalty=paper",
                 "--out", os.path.join(tmp, "z"))
 check(rc != 0 and "paper" in se, "a planar reference refuses penalty = paper (%s)" % se.strip())
+
+# 9. the planar reference's peaks against the closed-form reference's
+# (src/physics/reference.c) on the paper's four-bar, both written the same
+# way (the restitution law at penalty 3e9 N/m, nominal lengths, h = 1e-5 s,
+# 2 revolutions): both replace each spike sample by the extreme between its
+# neighbours (physics/peak_refine.c, one rule), so their peaks are the same
+# quantity. Without the refinement the planar window force peak was 1.35 %
+# low (4409.81 against 4469.99 N, the same sample, t = 63.23 ms).
+# REF_PEAK_REL: the two references evaluate the same points; they differ
+# by their integrations, and the closed form's own error estimate (its
+# check integration at 1e-13, summary.json error_estimate) moves its
+# window force, penetration and follower alpha min by 1.7e-5, 1.6e-5 and
+# 1.8e-5 (the coupler's alpha min by 5e-7): agreement cannot be asked
+# below that. Measured (the planar reference integrated about the
+# clearance joint): 1.6e-5, 1.6e-5, 1.8e-5 and 4.6e-7 (the planar values lie
+# on the closed form's check's, 3e-7 from its force peak); sample by
+# sample over t < REF_SAMPLES_UNTIL_S every force, penetration and alpha
+# sample, the refined spikes among them, within 7.7e-6 of its column's
+# largest. 5e-5 is three times the closed form's own estimate and 270
+# times below the gap it guards. The alpha maxima (after 63 ms, where the
+# motions have parted, docs/chaos.md) are not compared.
+REF_PEAK_REL = 5e-5
+REF_SAMPLES_UNTIL_S = 0.05
+REF_SET = ("--set", "run.models=reference-restitution", "--set", "clearance.penalty=explicit",
+           "--set", "clearance.penalty_n_m=3e9", "--set", "run.revolutions=2", "--set",
+           "solver.h_s=1e-5", "--set", "tolerance.stackup=nominal", "--no-figures", "--no-report")
+env = {k: v for k, v in os.environ.items() if k != "FOURBAR_REFERENCE_TOL"}
+pl_out, cf_out = os.path.join(tmp, "plref"), os.path.join(tmp, "cfref")
+rc1, _, se1 = fb_script.run(exe, tmp, "run", os.path.join(cases, "templates", "planar_fourbar.ini"),
+                            *REF_SET, "--out", pl_out, env=env)
+rc2, _, se2 = fb_script.run(exe, tmp, "run", os.path.join(cases, "paper_crank_rocker.ini"), *REF_SET,
+                            "--out", cf_out, env=env)
+check(rc1 == 0 and rc2 == 0, "both references run (%s %s)" % (se1.strip()[-200:], se2.strip()[-200:]))
+if rc1 == 0 and rc2 == 0:
+    pm, cm = summary_of(pl_out)["models"][0], summary_of(cf_out)["models"][0]
+    pairs = [("force_max_n", pm["force_max_n"], cm["spikes"]["force_max_n"]),
+             ("penetration_max_m", pm["penetration_max_m"], cm["spikes"]["penetration_max_m"])]
+    pairs += [(n + ".alpha_min_rad_s2", pm["bodies"][n]["alpha_min_rad_s2"],
+               cm["bodies"][n]["alpha_min_rad_s2"]) for n in ("coupler", "follower")]
+    for name, a, b in pairs:
+        check(rel(a, b) <= REF_PEAK_REL, "planar reference's window %s %.9g, closed form's %.9g "
+              "(%.2g, bound %g)" % (name, a, b, rel(a, b), REF_PEAK_REL))
+    with open(os.path.join(pl_out, "reference-restitution.csv")) as f:
+        prow = list(csv.DictReader(f))
+    with open(os.path.join(cf_out, "reference-restitution.csv")) as f:
+        crow = list(csv.DictReader(f))
+    cols = [("crank-coupler_force_n", "crank_coupler_force_n"),
+            ("crank-coupler_penetration_m", "crank_coupler_penetration_m"),
+            ("coupler_alpha_rad_s2", "coupler_alpha_rad_s2"),
+            ("follower_alpha_rad_s2", "follower_alpha_rad_s2")]
+    for pc, cc in cols:
+        early = [(float(a[pc]), float(b[cc])) for a, b in zip(prow, crow)
+                 if float(b["time_s"]) < REF_SAMPLES_UNTIL_S]
+        big = max(abs(b) for _, b in early)
+        worst = max(abs(a - b) for a, b in early) / big
+        check(len(early) > 4000 and worst <= REF_PEAK_REL,
+              "%s sample by sample over t < %g s: %.2g of its largest (bound %g)"
+              % (pc, REF_SAMPLES_UNTIL_S, worst, REF_PEAK_REL))
+
+# 10. the planar reference integrates about its clearance joint (a
+# translation of the description: the same dynamics), so a case moved far
+# from its origin costs what it did and gives the same peaks. The six-bar
+# moved by (1000, 500) mm, FOURBAR_REFERENCE_TOL 1e-9 (check 1e-11), one
+# revolution, h_s = 1e-4, peaks over all of it. Measured: check steps 48248
+# against 48053 (integrated about the case's origin instead, the moved one
+# ran out of its step budget at 400201 steps); every body's peaks within
+# 9.2e-6 and the force peak 1.5e-6 (the assembly's rounding, amplified by
+# the impacts; the check itself moves them 1.2e-6 to 2.8e-6).
+# TRANSLATED_STEPS_RATIO: 1.1 allows the step sequence's own spread
+# (measured 1.004) and fails the 8x of the untranslated integration;
+# TRANSLATED_PEAK_REL: 1e-4, ten times the measured difference.
+TRANSLATED_STEPS_RATIO = 1.1
+TRANSLATED_PEAK_REL = 1e-4
+with open(six) as f:
+    moved = re.sub(r"at_mm = ([-\d.]+), ([-\d.]+)", lambda g: "at_mm = %.12g, %.12g"
+                   % (float(g.group(1)) + 1000, float(g.group(2)) + 500), f.read())
+far = os.path.join(tmp, "watt_far.ini")
+with open(far, "w") as f:
+    f.write(moved)
+env = dict(os.environ, FOURBAR_REFERENCE_TOL="1e-9")
+got = {}
+for name, path in (("near", six), ("far", far)):
+    rc, _, se = fb_script.run(exe, tmp, "run", path, "--set", "run.models=reference-restitution",
+                              "--set", "run.revolutions=1", "--set", "run.peaks=all", "--set",
+                              "solver.h_s=1e-4", "--out", os.path.join(tmp, "tr_" + name), env=env)
+    check(rc == 0, "the six-bar's reference runs %s its origin (%s)" % (name, se.strip()[-200:]))
+    got[name] = summary_of(os.path.join(tmp, "tr_" + name))["models"][0] if rc == 0 else None
+if got["near"] and got["far"]:
+    a, b = got["near"], got["far"]
+    ratio = b["error_estimate"]["check_steps"] / a["error_estimate"]["check_steps"]
+    check(1 / TRANSLATED_STEPS_RATIO <= ratio <= TRANSLATED_STEPS_RATIO,
+          "the moved six-bar's check takes %d steps against %d" % (b["error_estimate"]["check_steps"],
+                                                                   a["error_estimate"]["check_steps"]))
+    worst = max(rel(b["bodies"][n][k], a["bodies"][n][k]) for n in a["bodies"] if n != "crank"
+                for k in PEAK_KEYS)
+    worst = max(worst, rel(b["force_max_n"], a["force_max_n"]))
+    check(worst <= TRANSLATED_PEAK_REL, "the moved six-bar's peaks: %.2g (bound %g)"
+          % (worst, TRANSLATED_PEAK_REL))
 
 sys.exit(tally.done())

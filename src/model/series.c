@@ -334,18 +334,23 @@ static double vertex(double ym, double y0, double yp, int sign) {
   return y0 - 0.125 * (yp - ym) * (yp - ym) / den;
 }
 
-void fb_series_largest_abs_split(double big[2], size_t *split, const fb_series *s,
-                                 const double *v, double t_split) {
+void fb_largest_abs_split(double big[2], size_t *split, const double *t, size_t n,
+                          const double *v, double t_split) {
   size_t k = 0;
   if (t_split > 0.0)
-    while (k < s->n && s->t[k] < t_split) k++;
+    while (k < n && t[k] < t_split) k++;
   *split = k;
-  if (t_split <= 0.0 || k == 0 || k == s->n) {
-    big[0] = big[1] = fb_series_largest_abs(v, s->n);
+  if (t_split <= 0.0 || k == 0 || k == n) {
+    big[0] = big[1] = fb_series_largest_abs(v, n);
     return;
   }
   big[0] = fb_series_largest_abs(v, k);
-  big[1] = fb_series_largest_abs(v + k, s->n - k);
+  big[1] = fb_series_largest_abs(v + k, n - k);
+}
+
+void fb_series_largest_abs_split(double big[2], size_t *split, const fb_series *s,
+                                 const double *v, double t_split) {
+  fb_largest_abs_split(big, split, s->t, s->n, v, t_split);
 }
 
 static void refine_column(const fb_series *s, double *v, double fraction, double t_split) {

@@ -132,6 +132,11 @@ double fb_series_largest_abs(const double *v, size_t n);
 void fb_series_largest_abs_split(double big[2], size_t *split, const fb_series *s,
                                  const double *v, double t_split);
 
+/* fb_series_largest_abs_split over n values v at times t [s] (n), for a
+ * column held outside a series (the planar reference's). */
+void fb_largest_abs_split(double big[2], size_t *split, const double *t, size_t n,
+                          const double *v, double t_split);
+
 /* Peak refinement of a series whose samples lie on a smooth motion (an
  * engine's steps): every spike (fb_series_is_spike with fraction) of the
  * output bodies' accelerations and of the contact force and penetration is

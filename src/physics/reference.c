@@ -242,130 +242,51 @@ static int eom(double tl, const double y[], double dydt[], void *p) {
   return GSL_SUCCESS;
 }
 
-/* extremes of the contact force, penetration and both accelerations over
- * (t_{k-1}, t_{k+1}), from a fresh integration of the samples' state at
- * k - 1 evaluated FB_REFERENCE_REFINE times per sample interval */
-typedef struct {
-  double force, pen, a3max, a3min, a4max, a4min;
-} extremes;
-
-/* the six quantities refine_interval ranks, each as a maximum: force,
- * penetration, theta'' max and -min of both output bodies */
+/* the six quantities the refinement ranks (peak_refine.h), each as a
+ * maximum: force, penetration, theta'' max and -min of both output bodies */
 #define REFINE_QUANTITIES 6
 
-/* evaluates the state y at the local time tl: the six quantities into q */
-static void refine_eval(double q[REFINE_QUANTITIES], ref_ctx *r, double tl, const double y[4],
-                        double dy[4]) {
+/* the series refined (peak_refine.h's start reads it) */
+typedef struct {
+  ref_ctx *r;
+  const fb_series *s;
+} refine_src;
+
+static int refine_rhs(double tl, const double y[], double dydt[], void *p) {
+  return eom(tl, y, dydt, ((refine_src *)p)->r);
+}
+
+/* peak_refine.h's eval: the six quantities and the rates at local time tl */
+static void refine_eval(double *q, double *dy, double tl, const double *y, void *p) {
+  ref_ctx *r = ((refine_src *)p)->r;
   eom(tl, y, dy, r);
   const double v[REFINE_QUANTITIES] = {r->force, r->pen, dy[2], -dy[2], dy[3], -dy[3]};
   memcpy(q, v, sizeof v);
 }
 
-/* Every FB_REFERENCE_REFINE_STRIDE-th evaluation point is a stop of the
- * integration and exact; the points between are ranked on the cubic Hermite
- * interpolant of the stops' states and rates, and each quantity's best of
- * them, where it beats the stops, is then integrated to and evaluated
- * exactly: the extremes are those of the exact evaluation at every point
- * (the points' spacing, not the interpolant, bounds their error), for
- * 2 n / stride + 6 integrator stops instead of 2 n. */
-static int refine_interval(extremes *x, ref_ctx *r, const fb_series *s, size_t k, double h,
-                           double tol) {
-  enum { N = 2 * FB_REFERENCE_REFINE, STRIDE = FB_REFERENCE_REFINE_STRIDE, STOPS = N / STRIDE };
-  double y[4] = {s->body[0][FB_Q_POS][k - 1], s->body[1][FB_Q_POS][k - 1],
-                 s->body[0][FB_Q_VEL][k - 1], s->body[1][FB_Q_VEL][k - 1]};
-  clock_start(r, s->t[k - 1]); /* local time 0 at sample k - 1 */
-  to_deviation(r, 0.0, y);
-  double t = 0.0;
-  gsl_odeiv2_system sys = {eom, NULL, 4, r};
-  gsl_odeiv2_driver *drv =
-      gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, h * 1e-3, tol, tol);
-  if (!drv) return 0;
-  gsl_odeiv2_driver_set_nmax(drv, 0);
-  double stop_y[STOPS + 1][4], stop_f[STOPS + 1][4], q[REFINE_QUANTITIES];
-  double at_stops[REFINE_QUANTITIES], between[REFINE_QUANTITIES];
-  int best_at[REFINE_QUANTITIES];
-  for (int m = 0; m < REFINE_QUANTITIES; m++) at_stops[m] = between[m] = -INFINITY, best_at[m] = -1;
-  memcpy(stop_y[0], y, sizeof y);
-  eom(0.0, y, stop_f[0], r);
-  int ok = 1;
-  for (int j = 1; j <= STOPS && ok; j++) {
-    const double ta = t, tb = 2.0 * h * (j * STRIDE) / N, hh = tb - ta;
-    ok = gsl_odeiv2_driver_apply(drv, &t, tb, y) == GSL_SUCCESS;
-    memcpy(stop_y[j], y, sizeof y);
-    refine_eval(q, r, tb, y, stop_f[j]);
-    for (int m = 0; m < REFINE_QUANTITIES; m++) at_stops[m] = fmax(at_stops[m], q[m]);
-    for (int i = 1; i < STRIDE; i++) {
-      const double u = (double)i / STRIDE;
-      const double h00 = (1 + 2 * u) * (1 - u) * (1 - u), h10 = u * (1 - u) * (1 - u);
-      const double h01 = u * u * (3 - 2 * u), h11 = u * u * (u - 1);
-      double yi[4], di[4];
-      for (int c = 0; c < 4; c++)
-        yi[c] = h00 * stop_y[j - 1][c] + h10 * hh * stop_f[j - 1][c] + h01 * y[c] +
-                h11 * hh * stop_f[j][c];
-      refine_eval(q, r, ta + u * hh, yi, di);
-      for (int m = 0; m < REFINE_QUANTITIES; m++)
-        if (q[m] > between[m]) between[m] = q[m], best_at[m] = (j - 1) * STRIDE + i;
-    }
-  }
-  /* each quantity's best point between the stops, exactly */
-  double best[REFINE_QUANTITIES];
-  memcpy(best, at_stops, sizeof best);
-  for (int m = 0; m < REFINE_QUANTITIES && ok; m++) {
-    if (!(between[m] > at_stops[m])) continue;
-    const int i = best_at[m], j = i / STRIDE;
-    memcpy(y, stop_y[j], sizeof y);
-    t = 2.0 * h * (j * STRIDE) / N;
-    gsl_odeiv2_driver_reset(drv);
-    double dy[4];
-    ok = gsl_odeiv2_driver_apply(drv, &t, 2.0 * h * i / N, y) == GSL_SUCCESS;
-    refine_eval(q, r, t, y, dy);
-    for (int p = m; p < REFINE_QUANTITIES; p++) /* the others found here too, once */
-      if (best_at[p] == i && between[p] > at_stops[p]) {
-        best[p] = fmax(best[p], q[p]);
-        between[p] = -INFINITY;
-      }
-  }
-  gsl_odeiv2_driver_free(drv);
-  x->force = fmax(0.0, best[0]);
-  x->pen = fmax(0.0, best[1]);
-  x->a3max = best[2];
-  x->a3min = -best[3];
-  x->a4max = best[4];
-  x->a4min = -best[5];
-  return ok;
+/* peak_refine.h's start: sample k's state as deviations, local time 0 there */
+static double refine_start(double *y, size_t k, void *p) {
+  const refine_src *src = p;
+  const fb_series *s = src->s;
+  y[0] = s->body[0][FB_Q_POS][k];
+  y[1] = s->body[1][FB_Q_POS][k];
+  y[2] = s->body[0][FB_Q_VEL][k];
+  y[3] = s->body[1][FB_Q_VEL][k];
+  clock_start(src->r, s->t[k]);
+  to_deviation(src->r, 0.0, y);
+  return 0.0;
 }
 
 /* replaces the samples at the spikes of out with their refined extremes */
 static void refine_peaks(fb_series *out, ref_ctx *r, double h, double tol, double t_split) {
-  const size_t n = out->n;
-  if (n < 3) return;
-  double *f = out->contact[r->cj][FB_C_FORCE], *p = out->contact[r->cj][FB_C_PEN];
-  double *a3 = out->body[0][FB_Q_ACC], *a4 = out->body[1][FB_Q_ACC];
-  /* each spike against the largest of its own part of the run, the
-   * start-up or the peak window (series.h fb_series_largest_abs_split) */
-  double fbig[2], pbig[2], a3big[2], a4big[2];
-  size_t split;
-  fb_series_largest_abs_split(fbig, &split, out, f, t_split);
-  fb_series_largest_abs_split(pbig, &split, out, p, t_split);
-  fb_series_largest_abs_split(a3big, &split, out, a3, t_split);
-  fb_series_largest_abs_split(a4big, &split, out, a4, t_split);
-  for (size_t k = 1; k + 1 < n; k++) {
-    const int w = k >= split;
-#define SPIKE(v, sign, big) fb_series_is_spike(v, k, sign, FB_REFERENCE_REFINE_FRACTION, big[w])
-    const int sf = SPIKE(f, 1, fbig), sp = SPIKE(p, 1, pbig);
-    const int s3x = SPIKE(a3, 1, a3big), s3n = SPIKE(a3, -1, a3big);
-    const int s4x = SPIKE(a4, 1, a4big), s4n = SPIKE(a4, -1, a4big);
-#undef SPIKE
-    if (!(sf || sp || s3x || s3n || s4x || s4n)) continue;
-    extremes x;
-    if (!refine_interval(&x, r, out, k, h, tol)) continue;
-    if (sf) f[k] = fmax(f[k], x.force);
-    if (sp) p[k] = fmax(p[k], x.pen);
-    if (s3x) a3[k] = fmax(a3[k], x.a3max);
-    if (s3n) a3[k] = fmin(a3[k], x.a3min);
-    if (s4x) a4[k] = fmax(a4[k], x.a4max);
-    if (s4n) a4[k] = fmin(a4[k], x.a4min);
-  }
+  refine_src src = {r, out};
+  const fb_peak_refine_ode ode = {4, REFINE_QUANTITIES, refine_rhs, refine_eval, refine_start,
+                                  &src, h, tol};
+  fb_peak_refine_column cols[4] = {{out->contact[r->cj][FB_C_FORCE], 0, -1},
+                                   {out->contact[r->cj][FB_C_PEN], 1, -1},
+                                   {out->body[0][FB_Q_ACC], 2, 3},
+                                   {out->body[1][FB_Q_ACC], 4, 5}};
+  fb_peak_refine(cols, 4, out->t, out->n, t_split, &ode);
 }
 
 fb_status fb_reference_tolerance(double *tol, fb_diag *diag) {

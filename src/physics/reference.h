@@ -49,6 +49,7 @@
 #include "case.h"
 #include "contact.h"
 #include "outcome.h"
+#include "peak_refine.h"
 #include "series.h"
 
 /* rk8pd error control, relative and absolute. 1e-12 is where revolution 2
@@ -83,32 +84,8 @@
  * with the named reason "step budget" instead of running on without end. */
 #define FB_REFERENCE_STEPS_PER_SAMPLE 200
 
-/* Peak refinement. Sampled at t = k h, a spike lasting a few samples is
- * missed by up to ~20 % (the coupler's acceleration spike at h = 1e-5 s:
- * 17.5 %). Every sample that is a local extreme of the contact force, the
- * penetration or either output body's acceleration, and at least
- * FB_REFERENCE_REFINE_FRACTION of that quantity's largest magnitude in its
- * part of the run (the start-up revolution, or the peak window from
- * fb_case_peak_window_from: a window's spike is refined even where the
- * start-up's first impact is five times harder), is re-integrated from the sample before it over two sample
- * intervals at FB_REFERENCE_REFINE evaluations per interval, and holds the
- * extreme found there instead of its instantaneous value: peak metrics then
- * see the true spike. The extreme of a smooth pulse of duration T sampled at
- * T / (2 FB_REFERENCE_REFINE x (T / h)) is within (pi h / (T N))^2 / 8 of the
- * truth: 3e-5 for the shortest contacts (T ~ 5 h) at N = 64. */
-#define FB_REFERENCE_REFINE 64
-#define FB_REFERENCE_REFINE_FRACTION 0.2
-/* Of those evaluation points, every FB_REFERENCE_REFINE_STRIDE-th is a stop
- * of the integration; the others are ranked on an interpolant and the best
- * of them evaluated exactly (reference.c, refine_interval): the same
- * extremes as a stop at every point (paper case: identical summary.json;
- * rattling_pin, slider_crank_flores, speed_3000rpm, restitution_0_3,
- * engines_restitution: within 3e-10, the integrator's own spread between
- * two step sequences), for 2 x 64 / 8 + at most 6 stops instead of 128.
- * Refinement was 65 % of a reference run's time on the paper case; the
- * reference with its check now runs in half the time (8 revolutions:
- * 0.79 s CPU against 1.55 s). */
-#define FB_REFERENCE_REFINE_STRIDE 8
+/* Peak refinement: samples at spikes hold the extreme between their
+ * neighbours (peak_refine.h, FB_REFERENCE_REFINE). */
 
 /* Integrates the case's stack-up linkage with law at the crank-coupler joint
  * (or ideal) and samples it at t = k h over the case's duration into *out

@@ -135,7 +135,7 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
   if ((st = fb_planar_of_case(&r->m, c, NULL, diag)) != FB_OK) return st;
   r->omega = fb_case_omega2(c);
   r->duration = fb_case_duration(c);
-  r->t_window = c->peaks == FB_PEAKS_ALL ? 0.0 : 2.0 * M_PI / c->crank_speed;
+  r->t_window = fb_case_peak_window_from(c); /* the four-bar's window (run.c) */
   for (int i = 0; i < c->model_count && st == FB_OK; i++) {
     fb_planar_model *p = &r->model[r->n++];
     snprintf(p->name, sizeof p->name, "%s", c->models[i]);

@@ -16,8 +16,12 @@
  *              the restitution law of the case's [clearance] keys at the
  *              joint's largest ideal reaction, joint_law.h) integrated by
  *              rk8pd at FB_REFERENCE_TOL (planar_reference.h) from the
- *              steady start, sampled every h; its window peaks (t after
- *              the first revolution, or all with [run] peaks = all) and,
+ *              steady start, about the clearance joint (the description
+ *              translated there: planar_ref_model.c, about_joint), sampled
+ *              every h, each spike sample holding the extreme between its
+ *              neighbours (peak_refine.h, the closed-form reference's
+ *              rule); its window peaks (t from fb_case_peak_window_from:
+ *              after the first revolution, or all with [run] peaks = all) and,
  *              as the reference's own error estimate, the same run at
  *              tol / FB_REFERENCE_CHECK_FACTOR (down to FB_REFERENCE_TOL_MIN):
  *              verdict "ok" when every window peak (omega, alpha of every

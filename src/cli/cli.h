@@ -90,7 +90,8 @@ int fb_cmd_kinematics(int argc, char **argv);
  * stdout, JSON with json. penalty: physical mode at the nspeeds speeds rpm.
  * Return the exit status. */
 int fb_cmd_kinematics_planar(const struct fb_case_s *c, int json);
-int fb_cmd_stackup_planar(const struct fb_case_s *c, int json);
+/* stackup: with_corners 1 runs the worst case over every corner */
+int fb_cmd_stackup_planar(const struct fb_case_s *c, int with_corners, int json);
 int fb_cmd_penalty_planar(const struct fb_case_s *c, const double *rpm, int nspeeds, int json);
 int fb_cmd_keys(int argc, char **argv);
 int fb_cmd_models(int argc, char **argv);

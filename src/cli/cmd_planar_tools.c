@@ -19,12 +19,12 @@ int fb_cmd_kinematics_planar(const fb_case *c, int json) {
   return 0;
 }
 
-int fb_cmd_stackup_planar(const fb_case *c, int json) {
+int fb_cmd_stackup_planar(const fb_case *c, int with_corners, int json) {
   fb_planar *m;
   fb_diag d;
   if (fb_planar_of_case(&m, c, NULL, &d) != FB_OK) return fb_cli_fail("stackup", 1, "%s", d.msg);
   static fb_planar_stackup s;
-  const fb_status st = fb_planar_stackup_run(&s, c, m, &d);
+  const fb_status st = fb_planar_stackup_run(&s, c, m, with_corners, &d);
   if (st != FB_OK) {
     fb_planar_free(m);
     return fb_cli_fail("stackup", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);

@@ -41,8 +41,8 @@ static json_t *outputs_json(const fb_planar *m) {
   for (int b = 1; b < m->nbodies; b++) {
     const char *n = m->body[b].name;
     json_array_append_new(
-        a, json_pack("{s:s,s:b,s:[s,s,s],s:[s,s,s],s:[s++,s++,s++],s:[n,s++,s++],"
-                     "s:[s+++,s+++,s+++,s+++,n]}",
+        a, json_pack("{s:s,s:b,s:[s,s,s],s:[s,s,s],s:[s+,s+,s+],s:[n,s+,s+],"
+                     "s:[s++,s++,s++,s++,n]}",
                      "name", n, "translates", 0, "symbol", "angle", "omega", "alpha", "unit", "rad",
                      "rad/s", "rad/s^2", "column", n, "_angle_rad", n, "_omega_rad_s", n,
                      "_alpha_rad_s2", "series", n, "_omega", n, "_alpha", "summary", "bodies.", n,

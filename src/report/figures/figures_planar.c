@@ -85,8 +85,9 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
     }
     if (b == 2) fprintf(pl.p, "unset key\n"); /* one legend, in the first panel */
     if (alpha) fig_symlog_axis(&pl, fmin(lo_all, 0.0), fmax(hi_all, 0.0), NULL);
-    fprintf(pl.p, "set title '%s'\nset ylabel '%s [%s]'\n", fig_esc(m->body[b].name, en, sizeof en),
-            alpha ? "alpha" : "omega", alpha ? "rad/s^2, symlog" : "rad/s");
+    fig_esc(m->body[b].name, en, sizeof en);
+    fprintf(pl.p, "set title '%s'\nset ylabel '%s %s [%s]'\n", en, en, alpha ? "alpha" : "omega",
+            alpha ? "rad/s^2, symlog" : "rad/s");
     if (!any) { /* no model has a sample in the window: a note, which gnuplot needs */
       fprintf(pl.p, "set label 1 'no samples in the window' at graph 0.5,0.5 center\n"
                     "plot NaN notitle\nunset label 1\n");

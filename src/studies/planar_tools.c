@@ -143,6 +143,17 @@ static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_pla
   return FB_OK;
 }
 
+int fb_planar_stackup_lengths(const fb_planar *m) {
+  int count = 0;
+  for (int b = 0; b < m->nbodies; b++) {
+    double p[BODY_POINTS][2];
+    int joint[BODY_POINTS];
+    const int n = body_points(p, joint, m, b);
+    count += n * (n - 1) / 2;
+  }
+  return count;
+}
+
 /* body b's points rebuilt from its lengths len (in lengths_of's order from
  * index at): the first stays, the second along the nominal direction, the
  * third on the nominal side of the first two */

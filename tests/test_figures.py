@@ -174,6 +174,8 @@ def check_planar(out):
                 check(svg_stroke(root, gid) == c["color"].lower(), "planar %s %s: drawn in its colour" % (fig["file"], gid))
                 check(c["column"] == column(c["panel"], q, [(c["panel"], False)]),
                       "planar %s: column %s is %s's" % (fig["file"], c["column"], c["panel"]))
+            way = "right to left" if summary["drive_omega_rad_s"] < 0 else "left to right"
+            check(way in text, "planar %s notes that its drive runs %s" % (fig["file"], way))
             for b in bodies:
                 label = "%s %s [%s" % (b, SYMBOL[False][q], UNIT[False][q])
                 check(flat(label) in flat(text), "planar %s labels the %s panel '%s'" % (fig["file"], b, label))

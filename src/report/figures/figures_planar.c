@@ -63,11 +63,12 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
   window_of(r, &t0, &t1);
   json_t *curves = json_array();
   char en[200], mn[160], sp[96], col[96];
-  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against the drive angle (%s), t = %.4g "
-          "to %.4g s'\nset xrange [0:360]\nset xtics 60\nset xlabel 'drive angle [deg]'\n"
-          "set key inside top right box opaque font ',8'\n", rows, ACROSS,
+  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against the drive angle (%s, %s: runs "
+          "%s), t = %.4g to %.4g s'\nset xrange [0:360]\nset xtics 60\nset xlabel 'drive angle "
+          "[deg]'\nset key inside top right box opaque font ',8'\n", rows, ACROSS,
           fig_esc(r->c.name, en, sizeof en), alpha ? "angular acceleration" : "angular velocity",
-          fig_esc(m->joint[m->drive].name, mn, sizeof mn), t0, t1);
+          fig_esc(m->joint[m->drive].name, mn, sizeof mn), r->c.direction < 0 ? "cw" : "ccw",
+          r->c.direction < 0 ? "right to left" : "left to right", t0, t1);
   for (int b = 1; b <= nb; b++) {
     double lo_all = 0.0, hi_all = 0.0;
     int any = 0;

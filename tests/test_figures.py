@@ -9,7 +9,9 @@ The same checks run on a four-bar (the paper case) and on a slider-crank
 analytic-stackup, reference, reference-restitution), whose figures,
 figures.json and report-data.js must name its own bodies (coupler, slider:
 v in m/s, a in m/s^2), its CSV columns and its joint coupler-slider, and no
-follower anywhere.
+follower anywhere; and on a planar case (the Watt six-bar, analytic and its
+clearance reference): a panel per moving body named by its description, a
+contact figure at its clearance joint rod-output, report-data.js by body.
 Usage: test_figures.py PATH_TO_FOURBAR. Exit 0 on success; prints a
 "N passed, N failed" line."""
 import csv, json, math, os, re, subprocess, sys, tempfile
@@ -29,6 +31,10 @@ HEADROOM = 1.15
 # one length before and two after: 400 steps, 1.3 ms at the paper's step; a
 # window that missed the spike or took the whole revolution (60 ms) fails
 SPIKE_WINDOW_MAX_S = 2e-3
+# a curve whose range is below this share of its size is flat: it lies
+# within one pixel row of a 300-pixel panel (1/300 = 3e-3; 1e-6 keeps far
+# from it and above the rounding noise of a constant, 1e-12)
+FLAT_REL = 1e-6
 # report-data.js writes the series with 10 significant digits (report_html.c)
 PAGE_REL_TOL = 1e-9
 # the contact figures' orbit is decimated to the panel's pixels: a pixel is
@@ -120,6 +126,103 @@ def key(body, fourbar_key, bodies):
     for a, b in (("omega", "velocity"), ("alpha", "acceleration"), ("rad_s2", "m_s2"), ("rad_s", "m_s")):
         fourbar_key = fourbar_key.replace(a, b)
     return fourbar_key
+
+
+def check_planar(out):
+    """a planar run's figures (figures.h fb_figures_planar), figures.json and
+    report-data.js against its CSVs and summary.json: one omega and one alpha
+    panel per moving body named by the description, a contact figure per
+    reference at its clearance joint, every curve's points and extremes the
+    CSV's over the figure's window, report-data.js's outputs the bodies, and
+    no four-bar word anywhere"""
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    bodies = [b["name"] for b in summary["description"]["bodies"]]
+    refs = [m for m in summary["models"] if m["kind"] == "reference"]
+    manifest = json.load(open(os.path.join(out, "figures.json")))["figures"]
+    files = [f["file"] for f in manifest]
+    want = ["omega.svg", "alpha.svg"] + ["contact_%s_%s.svg" % (m["name"], m["clearance_joints"][0].replace("-", "_"))
+                                         for m in refs]
+    check(files == want, "planar: figures %s, expected %s" % (files, want))
+    # every CSV a curve was drawn from, read once
+    tables = {c["csv"]: list(csv.DictReader(open(os.path.join(out, c["csv"]))))
+              for fig in manifest for c in fig["curves"]}
+    for fig in manifest:
+        root, counts = svg_points(os.path.join(out, fig["file"]))
+        check(os.path.getsize(os.path.join(out, fig["file"])) > 1000, "planar: %s is non-empty" % fig["file"])
+        check(root.tag == SVG + "svg", "planar: %s is an SVG document" % fig["file"])
+        text = svg_text(root)
+        if fig["file"] in ("omega.svg", "alpha.svg"):
+            q = 2 if fig["file"] == "alpha.svg" else 1
+            panels = []
+            for c in fig["curves"]:
+                if c["panel"] not in panels:
+                    panels.append(c["panel"])
+            check(panels == bodies, "planar %s: a panel per moving body %s" % (fig["file"], panels))
+            nmod = len(summary["models"])
+            for k, c in enumerate(fig["curves"]):
+                p, i = divmod(k, nmod)
+                gid = "gnuplot_plot_%d%s" % (i + 1, "abcdefghijklmnopqrstuvwxyz"[p])
+                # the first panel holds the figure's one legend: a key sample (+2
+                # points); a flat curve (the crank's, driven at constant speed: its
+                # range below FLAT_REL of its size, within one pixel) gnuplot draws
+                # as one segment
+                flat_curve = c["y_max"] - c["y_min"] <= FLAT_REL * max(1.0, abs(c["y_max"]))
+                check(counts.get(gid) == c["points"] + (2 if p == 0 else 0) or
+                      (flat_curve and counts.get(gid, 0) >= 2),
+                      "planar %s %s %s: %s SVG points vs %d plotted" % (fig["file"], c["model"], c["column"],
+                                                                        counts.get(gid), c["points"]))
+                check(svg_stroke(root, gid) == c["color"].lower(), "planar %s %s: drawn in its colour" % (fig["file"], gid))
+                check(c["column"] == column(c["panel"], q, [(c["panel"], False)]),
+                      "planar %s: column %s is %s's" % (fig["file"], c["column"], c["panel"]))
+            way = "right to left" if summary["drive_omega_rad_s"] < 0 else "left to right"
+            check(way in text, "planar %s notes that its drive runs %s" % (fig["file"], way))
+            for b in bodies:
+                label = "%s %s [%s" % (b, SYMBOL[False][q], UNIT[False][q])
+                check(flat(label) in flat(text), "planar %s labels the %s panel '%s'" % (fig["file"], b, label))
+        else:
+            joint = fig["file"][len("contact_"):-len(".svg")].split("_", 1)[1].replace("_", "-")
+            check(joint in text and [c["column"] for c in fig["curves"]] == [joint + "_force_n", joint + "_penetration_m"],
+                  "planar %s names its joint %s and its columns" % (fig["file"], joint))
+        # the plotted extremes are the CSV's over the window (min/max decimation)
+        for c in fig["curves"]:
+            r = tables[c["csv"]]
+            check(c["column"] in r[0], "planar %s: column %s in %s" % (fig["file"], c["column"], c["csv"]))
+            if c["column"] not in r[0]:
+                continue
+            scale = 1e6 if c["column"].endswith("_penetration_m") else 1.0  # drawn in um
+            ys = [float(x[c["column"]]) * scale for x in r
+                  if c["time_from_s"] <= float(x["time_s"]) <= c["time_to_s"]]
+            check(ys and abs(min(ys) - c["y_min"]) <= REL_TOL * max(1.0, abs(c["y_min"]))
+                  and abs(max(ys) - c["y_max"]) <= REL_TOL * max(1.0, abs(c["y_max"])),
+                  "planar %s %s: extremes %g..%g, CSV %g..%g" % (fig["file"], c["column"], c["y_min"],
+                                                                c["y_max"], min(ys), max(ys)))
+    # report-data.js: the page's outputs are the bodies, its series the CSV's
+    data_js = open(os.path.join(out, "report-data.js")).read()
+    data = json.JSONDecoder().raw_decode(data_js, data_js.index("{"))[0]
+    outs = data.get("outputs", [])
+    check([o["name"] for o in outs] == bodies, "planar: report-data.js's outputs are the bodies: %s" % outs)
+    head = next(csv.reader(open(os.path.join(out, "analytic.csv"))))
+    check(all(c in head for o in outs for c in o["column"]), "planar: report-data.js's columns are the CSV's")
+    for m in data["models"]:
+        ok = all(len(m[o["series"][q]]) == len(m["t"]) for o in outs for q in (1, 2))
+        check(ok, "planar: report-data.js's model %s has every body's omega and alpha" % m["name"])
+        sm = [x for x in summary["models"] if x["name"] == m["name"]][0]
+        for o in outs:
+            for k in range(4):
+                path = o["summary"][k].split(".")
+                v = sm
+                for p in path:
+                    v = v.get(p, {}) if isinstance(v, dict) else {}
+                check(isinstance(v, float), "planar: report-data.js's summary key %s is in summary.json" % o["summary"][k])
+    for m in refs:
+        dm = [x for x in data["models"] if x["name"] == m["name"]][0]
+        check([j["joint"] for j in dm["joints"]] == m["clearance_joints"],
+              "planar: report-data.js's %s has its clearance joint's columns" % m["name"])
+    report = open(os.path.join(out, "report.md")).read()
+    check(all("![%s](%s)" % (f, f) in report for f in files), "planar: report.md shows every figure")
+    for f in sorted(os.listdir(out)):
+        if f.endswith((".svg", ".json", ".js", ".md")) and not f.startswith("uPlot"):
+            check("follower" not in open(os.path.join(out, f)).read().lower(), "planar: %s names no follower" % f)
 
 
 def check_run(tag, out, rc, bodies, joints, expect):
@@ -439,6 +542,18 @@ with tempfile.TemporaryDirectory() as tmp:
     check(all(c in columns for o in outs for c in o["column"]
               for columns in [next(csv.reader(open(os.path.join(sc_out, "analytic.csv"))))]),
           "slider-crank: report-data.js's output columns are the CSV's")
+
+    # ---- a planar case: the Watt six-bar's own bodies and joint -----------
+    # analytic and its clearance reference (REF_TOL: seconds, not minutes,
+    # for its rattling pin; test_planar_run.py), two revolutions
+    six_out = os.path.join(tmp, "sixbar")
+    rc = subprocess.run([exe, "run", os.path.join(src, "cases", "watt_sixbar.ini"), "--out", six_out,
+                         "--set", "run.models=analytic,reference-restitution", "--set", "solver.h_s=1e-4",
+                         "--set", "run.revolutions=2"], capture_output=True, text=True,
+                        env=dict(os.environ, FOURBAR_REFERENCE_TOL="1e-9"))
+    check(rc.returncode == 0, "six-bar run exits 0: " + rc.stderr[-300:])
+    if rc.returncode == 0:
+        check_planar(six_out)
     check("fourbar run --out" in report, "report.md gives the command line")
     # the parameters table names the mapping the ODE clearance models used
     used = {c["mapping"] for m in summary["models"] if m["kind"] == "ode"

@@ -28,6 +28,10 @@
  * orbit and impacts, the impact list's slider a column equal to the
  * data's, the headline table's slider rows equal to summary.json's, and
  * no "follower" anywhere on the page or in its data;
+ * a planar case (cases/watt_sixbar.ini, analytic and reference-restitution)
+ * names its own bodies and clearance joint: a panel per moving body, the
+ * rod-output joint's force and penetration, the headline rows equal to
+ * summary.json's bodies.<NAME> peaks, no "follower";
  * and a run without the charting library ($FOURBAR_UPLOT_DIR pointing at
  * nothing) loads with no error, says how to get the charts, lists the
  * impacts and the numbers.
@@ -359,6 +363,45 @@ function flatten(v, p, outList) {
     }
     check(errors3.length === 0, 'slider-crank: no console error after the checks: ' + errors3.join('; '));
     await page3.close();
+
+    /* a planar case (the Watt six-bar, docs/planar.md): a panel per moving
+     * body named by its description, its clearance joint's force and
+     * penetration, the headline rows from summary.json's bodies.<NAME> */
+    const six = path.join(work, 'sixbar');
+    execFileSync(fourbar, ['run', path.join(root, 'cases', 'watt_sixbar.ini'), '--out', six, '--no-figures',
+      '--set', 'run.revolutions=2', '--set', 'solver.h_s=1e-4', '--set', 'run.models=analytic,reference-restitution'],
+    { stdio: ['ignore', 'ignore', 'inherit'], env: Object.assign({}, process.env, { FOURBAR_REFERENCE_TOL: '1e-9' }) });
+    const sixSummary = JSON.parse(fs.readFileSync(path.join(six, 'summary.json'), 'utf8'));
+    const sixBodies = sixSummary.description.bodies.map((b) => b.name);
+    const page4 = await browser.newPage({ viewport: { width: FB_VIEW_W, height: FB_VIEW_H } });
+    const errors4 = [];
+    page4.on('console', (m) => { if (m.type() === 'error') errors4.push('console: ' + m.text()); });
+    page4.on('pageerror', (e) => errors4.push('page error: ' + e.message));
+    page4.on('requestfailed', (r) => errors4.push('request failed: ' + r.url()));
+    await page4.goto('file://' + path.join(six, 'report.html'));
+    await page4.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
+    await page4.waitForTimeout(300);
+    check(errors4.length === 0, 'six-bar: no console error on load: ' + errors4.join('; '));
+    const sixPanels = await page4.evaluate(() => window.fourbarReport.panels());
+    const wantIds = sixBodies.map((b) => b + '_alpha').concat(['force_rod-output', 'penetration_rod-output'],
+      sixBodies.map((b) => b + '_omega'));
+    check(sixPanels.map((p) => p.id).join() === wantIds.join(), 'six-bar: a panel per body and the rod-output joint: ' +
+      sixPanels.map((p) => p.id).join(', '));
+    for (const p of sixPanels)
+      check(p.points > 0 && p.models.length === (p.id.includes('rod-output') ? 1 : 2),
+        'six-bar: panel ' + p.id + ' has data for every model with the column: ' + p.models.join(', '));
+    const sixHead = await page4.$$eval('#summary_head tr', (trs) => trs.map((tr) => Array.from(tr.cells).map((c) =>
+      [c.textContent, c.dataset.key, c.dataset.model])));
+    const sixRows = new Map(sixHead.map((r) => [r[0][0], r.slice(1)]));
+    for (const b of sixBodies) {
+      const row = sixRows.get(b + ' omega max [rad/s]') || [];
+      const shown = sixSummary.models.filter((m, i) => row[i] && row[i][1] === 'bodies.' + b + '.omega_max_rad_s' &&
+        Number(row[i][0]) === m.bodies[b].omega_max_rad_s);
+      check(shown.length === sixSummary.models.length, 'six-bar: headline row "' + b + ' omega max" shows summary.json\'s ' +
+        'bodies.' + b + '.omega_max_rad_s (' + shown.length + ' of ' + sixSummary.models.length + ')');
+    }
+    check(!/follower/i.test(await page4.evaluate(() => document.body.innerText)), 'six-bar: the page names no follower');
+    await page4.close();
 
     /* without the charting library: the page loads with no error, says how
      * to get the charts, and still lists the impacts and the numbers */

@@ -81,16 +81,18 @@ const char *fb_cli_baselines_dir(void);
 int fb_cmd_run(int argc, char **argv);
 /* fourbar run's part for a planar case c loaded from case_path (cmd_run_planar.c):
  * its models into folder dir, summary.json printed with json, command for
- * report.md. Returns the exit status. */
+ * report.md; the figures unless figures is 0 (png 1: PNG, else SVG),
+ * report.html unless html is 0. Returns the exit status. */
 int fb_cmd_run_planar(const struct fb_case_s *c, const char *case_path, const char *dir, int json,
-                      const char *command);
+                      const char *command, int figures, int png, int html);
 int fb_cmd_kinematics(int argc, char **argv);
 /* kinematics, stackup and penalty's parts for a planar case c (its speed and
  * direction as the command resolved them; cmd_planar_tools.c): output on
  * stdout, JSON with json. penalty: physical mode at the nspeeds speeds rpm.
  * Return the exit status. */
 int fb_cmd_kinematics_planar(const struct fb_case_s *c, int json);
-int fb_cmd_stackup_planar(const struct fb_case_s *c, int json);
+/* stackup: with_corners 1 runs the worst case over every corner */
+int fb_cmd_stackup_planar(const struct fb_case_s *c, int with_corners, int json);
 int fb_cmd_penalty_planar(const struct fb_case_s *c, const double *rpm, int nspeeds, int json);
 int fb_cmd_keys(int argc, char **argv);
 int fb_cmd_models(int argc, char **argv);

@@ -1,6 +1,7 @@
 /* fourbar kinematics, stackup and penalty on a planar case: the planar
  * core's tools (planar_tools.h) and their tables (tables_planar.h). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "cli.h"
@@ -19,12 +20,17 @@ int fb_cmd_kinematics_planar(const fb_case *c, int json) {
   return 0;
 }
 
-int fb_cmd_stackup_planar(const fb_case *c, int json) {
+int fb_cmd_stackup_planar(const fb_case *c, int with_corners, int json) {
   fb_planar *m;
   fb_diag d;
   if (fb_planar_of_case(&m, c, NULL, &d) != FB_OK) return fb_cli_fail("stackup", 1, "%s", d.msg);
+  const int nl = fb_planar_stackup_lengths(m);
+  if (with_corners && nl < 62 && (1ull << nl) > FB_PLANAR_CORNERS_NOTE)
+    fprintf(stderr, "fourbar stackup: %d lengths make %llu corners, each a revolution's peaks: "
+            "about %.0f s of CPU at the six-bar's cost per corner (--method rss skips them)\n", nl,
+            1ull << nl, (double)(1ull << nl) * FB_PLANAR_S_PER_CORNER);
   static fb_planar_stackup s;
-  const fb_status st = fb_planar_stackup_run(&s, c, m, &d);
+  const fb_status st = fb_planar_stackup_run(&s, c, m, with_corners, &d);
   if (st != FB_OK) {
     fb_planar_free(m);
     return fb_cli_fail("stackup", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);

@@ -291,7 +291,8 @@ int fb_cmd_run(int argc, char **argv) {
     snprintf(dir, sizeof dir, "results/%s", c.name);
   static char again[8192], command[8192];
   command_text(command, sizeof command, argc, argv);
-  if (c.planar.on) return fb_cmd_run_planar(&c, case_path, dir, json, command);
+  if (c.planar.on)
+    return fb_cmd_run_planar(&c, case_path, dir, json, command, figures, fmt == FB_FIGURE_PNG, html);
   static fb_case variants[FB_MAX_VARIANTS];
   if ((rc = load_variants(&c, variants, case_path, sets, nsets, jobs)) != 0) return rc;
 

@@ -1,11 +1,14 @@
 /* fourbar run on a planar case ([linkage] type = planar): its models on
  * the planar core (planar_run.h) into the output folder, whole or nothing
- * new (outdir.h), outputs by body name (report_planar.h). */
+ * new (outdir.h), outputs by body name (report_planar.h), figures
+ * (figures.h fb_figures_planar) and report.html (report_html_planar.h). */
 #include <jansson.h>
 #include <stdio.h>
 
 #include "cli.h"
+#include "figures.h"
 #include "outdir.h"
+#include "report_html_planar.h"
 #include "report_planar.h"
 
 /* what fb_cmd_run_planar refuses before any work; 0 or the exit status */
@@ -21,12 +24,36 @@ static int refuse(const fb_case *c, const char *case_path) {
   return 0;
 }
 
+/* the run's set into the staging folder: figures, report.html, then the
+ * series, summary.json, timing.json and report.md (which lists the
+ * figures); *nfig the figures drawn, *charts whether report.html has its
+ * charts */
+static fb_status write_set(const char *stage, const fb_planar_run *r, const char *case_path,
+                           const char *command, int figures, int png, int html, int *nfig,
+                           int *charts, fb_diag *d) {
+  char names[64][128];
+  *nfig = 0;
+  *charts = 0;
+  fb_status st = FB_OK;
+  if (figures)
+    st = fb_figures_planar(r, stage, png ? FB_FIGURE_PNG : FB_FIGURE_SVG, names, 64, nfig, d);
+  if (st == FB_OK && html) {
+    json_t *sj = fb_report_planar_summary_json(r, case_path);
+    st = fb_report_html_write_planar(stage, r, sj, charts, d);
+    json_decref(sj);
+  }
+  if (st == FB_OK) st = fb_report_planar_write(stage, r, case_path, command, names, *nfig, d);
+  return st;
+}
+
 int fb_cmd_run_planar(const fb_case *c, const char *case_path, const char *dir, int json,
-                      const char *command) {
+                      const char *command, int figures, int png, int html) {
   int rc = refuse(c, case_path);
   if (rc) return rc;
-  static fb_outdir od;
   fb_diag d;
+  /* figures need gnuplot: found out before the simulation, not after it */
+  if (figures && fb_figures_check_gnuplot(&d) != FB_OK) return fb_cli_fail("run", 1, "%s", d.msg);
+  static fb_outdir od;
   fb_status st = fb_outdir_lock(&od, dir, 1, NULL, &d);
   if (st == FB_OK) st = fb_outdir_stage(&od, &d);
   if (st != FB_OK) {
@@ -38,7 +65,8 @@ int fb_cmd_run_planar(const fb_case *c, const char *case_path, const char *dir, 
     fb_outdir_release(&od);
     return fb_cli_fail("run", 1, "%s: %s", case_path, d.msg);
   }
-  st = fb_report_planar_write(od.stage, &r, case_path, command, &d);
+  int nfig = 0, charts = 0;
+  st = write_set(od.stage, &r, case_path, command, figures, png, html, &nfig, &charts, &d);
   if (st == FB_OK) st = fb_outdir_commit(&od, &d);
   fb_outdir_release(&od);
   if (st != FB_OK) {
@@ -52,9 +80,14 @@ int fb_cmd_run_planar(const fb_case *c, const char *case_path, const char *dir, 
     json_decref(j);
   } else {
     fb_report_planar_table(stdout, &r);
-    printf("wrote %s/summary.json, timing.json, %s, report.md (a planar case: no figures yet)\n",
-           dir, c->series == FB_SERIES_CSV ? "one CSV per model" : "no time series");
+    printf("wrote %s/summary.json, timing.json, %s, %d figures, report.md%s\n", dir,
+           c->series == FB_SERIES_CSV ? "one CSV per model" : "no time series", nfig,
+           html ? " and report.html" : "");
   }
+  if (html && !charts)
+    fprintf(stderr, "fourbar run: note: %s/report.html has no charts: the charting library uPlot "
+            "was not found (run npm ci in the fourbar source folder, or set FOURBAR_UPLOT_DIR)\n",
+            dir);
   fb_planar_run_free(&r);
   return 0;
 }

@@ -267,6 +267,8 @@ static json_t *outputs_json(const fb_mech_desc *mech) {
   return a;
 }
 
+static fb_status dump_data(const char *dir, json_t *d, const json_t *summary, fb_diag *diag);
+
 /* writes report-data.js: the run's data, then summary.json's value */
 static fb_status write_data(const char *dir, const fb_run *r, const json_t *summary, int charts,
                             fb_diag *diag) {
@@ -296,6 +298,11 @@ static fb_status write_data(const char *dir, const fb_run *r, const json_t *summ
   json_object_set_new(d, "models", models);
   /* what each verdict on statistics rests on, for its panel */
   json_object_set_new(d, "verdicts", fb_report_verdicts_json(r, fb_figure_model_color));
+  return dump_data(dir, d, summary, diag);
+}
+
+/* report-data.js: data d (taken), then summary.json's value */
+static fb_status dump_data(const char *dir, json_t *d, const json_t *summary, fb_diag *diag) {
   char path[4400];
   snprintf(path, sizeof path, "%s/report-data.js", dir);
   fb_outfile out;
@@ -319,6 +326,8 @@ static fb_status write_data(const char *dir, const fb_run *r, const json_t *summ
   return fb_outfile_commit(&out, diag);
 }
 
+static fb_status write_page(const char *dir, int charts, fb_diag *diag);
+
 fb_status fb_report_html_write(const char *dir, const fb_run *r, const json_t *summary, int *charts,
                                fb_diag *diag) {
   char lib[4096];
@@ -327,16 +336,32 @@ fb_status fb_report_html_write(const char *dir, const fb_run *r, const json_t *s
   for (int k = 0; k < 2 && *charts && st == FB_OK; k++) st = copy_file(lib, lib_files[k], dir, diag);
   if (st == FB_OK) st = write_data(dir, r, summary, *charts, diag);
   if (st != FB_OK) return st;
-  /* the page: static markup, then the static script inline */
+  return write_page(dir, *charts, diag);
+}
+
+fb_status fb_report_html_write_data(const char *dir, json_t *data, const json_t *summary,
+                                    int *charts, fb_diag *diag) {
+  char lib[4096];
+  *charts = fb_report_html_library(lib, sizeof lib);
+  fb_status st = FB_OK;
+  for (int k = 0; k < 2 && *charts && st == FB_OK; k++) st = copy_file(lib, lib_files[k], dir, diag);
+  json_object_set_new(data, "charts", json_boolean(*charts));
+  if (st == FB_OK) st = dump_data(dir, data, summary, diag);
+  else json_decref(data);
+  return st == FB_OK ? write_page(dir, *charts, diag) : st;
+}
+
+/* report.html: static markup, then the static script inline */
+static fb_status write_page(const char *dir, int charts, fb_diag *diag) {
   char path[4400];
   snprintf(path, sizeof path, "%s/report.html", dir);
   fb_outfile out;
-  st = fb_outfile_open(&out, path, diag);
+  const fb_status st = fb_outfile_open(&out, path, diag);
   if (st != FB_OK) return st;
   fwrite(fb_report_page_html, 1, sizeof fb_report_page_html, out.f);
   /* the library only when it was copied: a missing file would be a failed
    * request and a console error */
-  if (*charts)
+  if (charts)
     fputs("<link rel=\"stylesheet\" href=\"uPlot.min.css\">\n"
           "<script src=\"uPlot.iife.min.js\"></script>\n", out.f);
   fputs("<script src=\"report-data.js\"></script>\n<script>\n", out.f);

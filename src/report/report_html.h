@@ -49,4 +49,11 @@ int fb_report_html_library(char *out, size_t size);
 fb_status fb_report_html_write(const char *dir, const fb_run *r, const json_t *summary, int *charts,
                                fb_diag *diag);
 
+/* As fb_report_html_write for data built by another writer (a planar
+ * run's, report_html_planar.h): the library copied when found (*charts),
+ * data's "charts" set, report-data.js (data, taken, then summary) and
+ * report.html written. Errors as fb_report_html_write. */
+fb_status fb_report_html_write_data(const char *dir, json_t *data, const json_t *summary,
+                                    int *charts, fb_diag *diag);
+
 #endif

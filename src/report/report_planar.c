@@ -190,7 +190,8 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
 }
 
 static fb_status write_markdown(const char *dir, const fb_planar_run *r, const char *case_path,
-                                const char *command, fb_diag *diag) {
+                                const char *command, char figures[][128], int nfig,
+                                fb_diag *diag) {
   char path[4200];
   snprintf(path, sizeof path, "%s/report.md", dir);
   fb_outfile out;
@@ -200,6 +201,9 @@ static fb_status write_markdown(const char *dir, const fb_planar_run *r, const c
                  "models run on the planar core; the engines build it with %s.\n\n",
           r->c.name, case_path, command, FB_PLANAR_ENGINE_FOLLOWUP);
   fb_report_planar_table(out.f, r);
+  fprintf(out.f, "\n## Figures\n\n");
+  if (nfig == 0) fprintf(out.f, "No figures were drawn.\n");
+  for (int i = 0; i < nfig; i++) fprintf(out.f, "![%s](%s)\n\n", figures[i], figures[i]);
   if (ferror(out.f)) {
     fb_outfile_abort(&out);
     return fb_diag_set(diag, FB_ERR_IO, "%s: write failed", path);
@@ -208,7 +212,8 @@ static fb_status write_markdown(const char *dir, const fb_planar_run *r, const c
 }
 
 fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const char *case_path,
-                                 const char *command, fb_diag *diag) {
+                                 const char *command, char figures[][128], int nfig,
+                                 fb_diag *diag) {
   if (r->c.series == FB_SERIES_HDF5)
     return fb_diag_set(diag, FB_ERR_ARG, "[run] series = hdf5: a planar case's run writes csv "
                        "or none yet");
@@ -227,5 +232,5 @@ fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const 
   st = fb_report_write_json(path, j, diag);
   json_decref(j);
   if (st != FB_OK) return st;
-  return write_markdown(dir, r, case_path, command, diag);
+  return write_markdown(dir, r, case_path, command, figures, nfig, diag);
 }

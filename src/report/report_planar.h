@@ -24,10 +24,12 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
  * drive_angle_rad, then per moving body <body>_angle_rad,
  * <body>_omega_rad_s, <body>_alpha_rad_s2; every [run] series_every-th
  * sample; none with [run] series = none) and DIR/report.md (the table
- * below and the command). Errors: FB_ERR_IO naming the file; FB_ERR_ARG
+ * below, the command, and the nfig figures named in figures, each as an
+ * image; none: "No figures were drawn."). Errors: FB_ERR_IO naming the file; FB_ERR_ARG
  * for [run] series = hdf5, which a planar run does not write yet. */
 fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const char *case_path,
-                                 const char *command, fb_diag *diag);
+                                 const char *command, char figures[][128], int nfig,
+                                 fb_diag *diag);
 
 /* The printed table: per model, one row per moving body with its omega
  * and alpha extremes [rad/s, rad/s^2]. */

@@ -19,6 +19,11 @@ static void dump(FILE *f, json_t *o) {
 
 #define CELL(x) FB_NUM_CELL("%.6g", (x), FB_NUM_NONE_TABLE)
 
+/* output i's corner in corner strings a (planar_tools.h: "" for the nominal) */
+static const char *at(const char *a, const fb_planar_stackup *s, int i) {
+  return a + (size_t)i * ((size_t)s->nlengths + 1);
+}
+
 void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
                                  const fb_planar_peaks *p, int json) {
   if (json) {
@@ -113,8 +118,9 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
                           num(s->nominal[i]), "sensitivity_per_m", sens, "rss", "low",
                           num(s->nominal[i] - s->rss_half[i]), "high",
                           num(s->nominal[i] + s->rss_half[i]), "corners",
-                          s->corners ? json_pack("{s:o,s:o}", "min", num(s->lo[i]), "max",
-                                                 num(s->hi[i]))
+                          s->corners ? json_pack("{s:o,s:o,s:s,s:s}", "min", num(s->lo[i]),
+                                                 "max", num(s->hi[i]), "min_at",
+                                                 at(s->lo_at, s, i), "max_at", at(s->hi_at, s, i))
                                      : json_null()));
     }
     json_object_set_new(o, "lengths", lengths);
@@ -133,15 +139,17 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
             L->plus_minus / FB_M_PER_MM, L->source);
   }
   if (s->corners)
-    fprintf(f, "\nworst case over %d corners; RSS band 3 sigma\n", s->corners);
+    fprintf(f, "\nworst case over all %lld corners (at: one sign per length, in the order above); "
+            "RSS band 3 sigma\n", s->corners);
   else
-    fprintf(f, "\nworst case not run: %d lengths make %.0f corners (at most %d lengths); RSS "
-            "band 3 sigma\n", s->nlengths, pow(2.0, s->nlengths), FB_PLANAR_CORNER_LENGTHS);
-  fprintf(f, "| output | nominal | RSS low | RSS high | corners min | corners max |\n"
-          "|---|---:|---:|---:|---:|---:|\n");
+    fprintf(f, "\nworst case not run (--method corners runs its %.0f corners); RSS band 3 sigma\n",
+            pow(2.0, s->nlengths));
+  fprintf(f, "| output | nominal | RSS low | RSS high | corners min | at | corners max | at |\n"
+          "|---|---:|---:|---:|---:|---|---:|---|\n");
   for (int i = 0; i < s->nout; i++)
-    fprintf(f, "| %s | %s | %s | %s | %s | %s |\n", fb_planar_output_name(name, sizeof name, m, i),
-            CELL(s->nominal[i]), CELL(s->nominal[i] - s->rss_half[i]),
-            CELL(s->nominal[i] + s->rss_half[i]), CELL(s->corners ? s->lo[i] : NAN),
-            CELL(s->corners ? s->hi[i] : NAN));
+    fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s |\n",
+            fb_planar_output_name(name, sizeof name, m, i), CELL(s->nominal[i]),
+            CELL(s->nominal[i] - s->rss_half[i]), CELL(s->nominal[i] + s->rss_half[i]),
+            CELL(s->corners ? s->lo[i] : NAN), at(s->lo_at, s, i),
+            CELL(s->corners ? s->hi[i] : NAN), at(s->hi_at, s, i));
 }

@@ -100,13 +100,14 @@ static int body_points(double p[BODY_POINTS][2], int joint[BODY_POINTS], const f
   return n;
 }
 
-/* the lengths of every body, toleranced by the case's class */
+/* the lengths of every body, toleranced by the case's class: counted
+ * first (each body of n points has n (n - 1) / 2), then filled */
 static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
                             fb_diag *diag) {
   if (!c->tolerance_class)
     return fb_diag_set(diag, FB_ERR_ARG, "a planar case's stack-up needs [tolerance] class "
                        "(f, m, c or v: ISO 2768-1 on each joint-to-joint distance)");
-  s->nlengths = 0;
+  int count = 0;
   for (int b = 0; b < m->nbodies; b++) {
     double p[BODY_POINTS][2];
     int joint[BODY_POINTS];
@@ -115,10 +116,17 @@ static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_pla
       return fb_diag_set(diag, FB_ERR_ARG, "body '%s' has %d distinct joint points: its "
                          "distances over-determine it, and the stack-up varies bodies of 2 or "
                          "3 points", m->body[b].name, n);
+    count += n * (n - 1) / 2;
+  }
+  s->length = calloc(count ? (size_t)count : 1, sizeof *s->length);
+  if (!s->length) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  s->nlengths = 0;
+  for (int b = 0; b < m->nbodies; b++) {
+    double p[BODY_POINTS][2];
+    int joint[BODY_POINTS];
+    const int n = body_points(p, joint, m, b);
     for (int i = 0; i < n; i++)
       for (int k = i + 1; k < n; k++) {
-        if (s->nlengths >= FB_PLANAR_MAX_LENGTHS)
-          return fb_diag_set(diag, FB_ERR_ARG, "more than %d lengths", FB_PLANAR_MAX_LENGTHS);
         fb_planar_length *L = &s->length[s->nlengths++];
         L->body = b;
         L->joint[0] = joint[i];
@@ -133,6 +141,17 @@ static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_pla
       }
   }
   return FB_OK;
+}
+
+int fb_planar_stackup_lengths(const fb_planar *m) {
+  int count = 0;
+  for (int b = 0; b < m->nbodies; b++) {
+    double p[BODY_POINTS][2];
+    int joint[BODY_POINTS];
+    const int n = body_points(p, joint, m, b);
+    count += n * (n - 1) / 2;
+  }
+  return count;
 }
 
 /* body b's points rebuilt from its lengths len (in lengths_of's order from
@@ -226,35 +245,67 @@ static fb_status sensitivities(fb_planar_stackup *s, const fb_planar *m, double 
   return st;
 }
 
+/* the corner `at` ('+' or '-' per length) evaluated: its outputs widen
+ * lo, hi and record it as the corner of each extreme they pass */
+static fb_status corner(fb_planar_stackup *s, const fb_planar *m, const char *at, double *len,
+                        double *y, double omega, fb_diag *diag) {
+  const int nl = s->nlengths;
+  for (int k = 0; k < nl; k++)
+    len[k] = s->length[k].nominal + (at[k] == '+' ? 1.0 : -1.0) * s->length[k].plus_minus;
+  fb_diag inner;
+  const fb_status st = outputs_at(y, m, len, omega, &inner);
+  if (st != FB_OK)
+    return fb_diag_set(diag, st, "corner %s (one sign per length, in the table's "
+                       "order): %s", at, inner.msg);
+  for (int o = 0; o < s->nout; o++) {
+    if (y[o] < s->lo[o]) {
+      s->lo[o] = y[o];
+      memcpy(s->lo_at + (size_t)o * (size_t)(nl + 1), at, (size_t)nl + 1);
+    }
+    if (y[o] > s->hi[o]) {
+      s->hi[o] = y[o];
+      memcpy(s->hi_at + (size_t)o * (size_t)(nl + 1), at, (size_t)nl + 1);
+    }
+  }
+  s->corners++;
+  return FB_OK;
+}
+
+/* the worst case: every one of the 2^n corners, in the order of the binary
+ * count (length k '+' where bit k is set) */
 static fb_status corners(fb_planar_stackup *s, const fb_planar *m, double *len, double *y,
                          double omega, fb_diag *diag) {
-  const int nl = s->nlengths;
-  if (nl > FB_PLANAR_CORNER_LENGTHS) return FB_OK;
+  const int nl = s->nlengths, no = s->nout;
+  if (nl > FB_PLANAR_CORNER_BITS)
+    return fb_diag_set(diag, FB_ERR_RANGE, "%d lengths make 2^%d corners, more than a count "
+                       "of 2^%d holds: run --method rss", nl, nl, FB_PLANAR_CORNER_BITS);
+  char *at = calloc((size_t)nl + 1, 1);
+  if (!at) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int o = 0; o < no; o++) s->lo[o] = s->hi[o] = s->nominal[o];
   fb_status st = FB_OK;
-  for (int o = 0; o < s->nout; o++) s->lo[o] = s->hi[o] = s->nominal[o];
-  for (unsigned long mask = 0; mask < (1ul << nl) && st == FB_OK; mask++) {
-    for (int k = 0; k < nl; k++)
-      len[k] = s->length[k].nominal + ((mask >> k) & 1 ? 1.0 : -1.0) * s->length[k].plus_minus;
-    st = outputs_at(y, m, len, omega, diag);
-    for (int o = 0; o < s->nout && st == FB_OK; o++) {
-      s->lo[o] = fmin(s->lo[o], y[o]);
-      s->hi[o] = fmax(s->hi[o], y[o]);
-    }
-    s->corners += st == FB_OK;
+  const unsigned long long n = 1ull << nl;
+  for (unsigned long long mask = 0; mask < n && st == FB_OK; mask++) {
+    for (int k = 0; k < nl; k++) at[k] = (mask >> k) & 1 ? '+' : '-';
+    st = corner(s, m, at, len, y, omega, diag);
   }
+  free(at);
   return st;
 }
 
 fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
-                                fb_diag *diag) {
+                                int with_corners, fb_diag *diag) {
   memset(s, 0, sizeof *s);
   fb_status st = lengths_of(s, c, m, diag);
-  if (st != FB_OK) return st;
+  if (st != FB_OK) {
+    fb_planar_stackup_free(s);
+    return st;
+  }
   const int no = 4 * (m->nbodies - 1), nl = s->nlengths;
   s->nout = no;
   s->nominal = calloc((size_t)no * (4 + (size_t)nl), sizeof *s->nominal);
+  s->lo_at = calloc(2 * (size_t)no * ((size_t)nl + 1), 1);
   double *len = malloc(((size_t)nl + (size_t)no) * sizeof *len);
-  if (!s->nominal || !len) {
+  if (!s->nominal || !s->lo_at || !len) {
     free(len);
     fb_planar_stackup_free(s);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -263,12 +314,13 @@ fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb
   s->lo = s->rss_half + no;
   s->hi = s->lo + no;
   s->sens = s->hi + no;
+  s->hi_at = s->lo_at + (size_t)no * ((size_t)nl + 1);
   double *y = len + nl;
   for (int k = 0; k < nl; k++) len[k] = s->length[k].nominal;
   const double omega = fb_case_omega2(c);
   st = outputs_at(s->nominal, m, len, omega, diag);
   if (st == FB_OK) st = sensitivities(s, m, len, y, omega, diag);
-  if (st == FB_OK) st = corners(s, m, len, y, omega, diag);
+  if (st == FB_OK && with_corners) st = corners(s, m, len, y, omega, diag);
   free(len);
   if (st != FB_OK) fb_planar_stackup_free(s);
   return st;
@@ -276,6 +328,8 @@ fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb
 
 void fb_planar_stackup_free(fb_planar_stackup *s) {
   free(s->nominal);
+  free(s->length);
+  free(s->lo_at);
   memset(s, 0, sizeof *s);
 }
 

@@ -19,8 +19,15 @@
  * moving body's omega and alpha extremes. Sensitivities by central
  * differences (step FB_PLANAR_SENS_STEP), the RSS band nominal +-
  * sqrt(sum (S_k t_k)^2) (each t_k taken as 3 sigma, as tolerance.h),
- * the worst case over every corner when there are at most
- * FB_PLANAR_CORNER_LENGTHS lengths. */
+ * and the worst case over every one of the 2^n corners (every length at
+ * nominal +- t_k), as many as the description's lengths make: the
+ * six-bar's 10 lengths, 1024 corners, each a revolution's peaks (45 ms
+ * each: about 46 s of CPU). The corners the sensitivities' signs point to
+ * (each output's lengths at its sensitivities' signs and the opposite) are
+ * not a shortcut: on the six-bar their 26 corners give the rod's alpha max
+ * 823.31 rad/s^2 where all 1024 give 882.12, the output's omega max
+ * 31.3043 rad/s where all give 31.4872 (docs/planar.md): the peaks are not
+ * monotone in each length over the tolerances. */
 #ifndef FB_PLANAR_TOOLS_H
 #define FB_PLANAR_TOOLS_H
 
@@ -34,20 +41,17 @@
  * the output per metre: both below the printed digits. */
 #define FB_PLANAR_SENS_STEP 1e-6
 
-/* Most lengths whose 2^n corners the worst case runs through (256
- * corners, each a revolution's peaks: about 5 s on the six-bar's size);
- * beyond it the worst case is not computed and the output says so. */
-#define FB_PLANAR_CORNER_LENGTHS 8
-
-/* Most lengths a description has for the stack-up. */
-#define FB_PLANAR_MAX_LENGTHS 64
-
 /* Every moving body's peaks of planar case c (its description *m, which
  * the caller frees with fb_planar_free) at the case's signed speed:
  * out[b] for b < (*m)->nbodies (fb_planar_peaks_of).
  * Errors: those of fb_planar_of_case, fb_planar_kin_new, fb_planar_peaks_of. */
 fb_status fb_planar_tool_peaks(fb_planar_peaks **out, fb_planar **m, const fb_case *c,
                                fb_diag *diag);
+
+/* Most lengths whose corners the worst case counts (2^62 corners: no
+ * description comes near it; the cost, 2^n revolutions' peaks, is what
+ * limits n, and the command announces it). */
+#define FB_PLANAR_CORNER_BITS 62
 
 /* One joint's penalty row. */
 typedef struct {
@@ -78,24 +82,40 @@ typedef struct {
 /* A stack-up of a planar case. */
 typedef struct {
   int nlengths;
-  fb_planar_length length[FB_PLANAR_MAX_LENGTHS];
+  fb_planar_length *length; /* (nlengths), counted from the description */
   int nout;                /* 4 per moving body: omega max, min, alpha max, min */
   double *nominal;         /* (nout) */
   double *sens;            /* (nout x nlengths) [unit/m] */
   double *rss_half;        /* (nout) */
-  int corners;             /* corners evaluated (0: more than FB_PLANAR_CORNER_LENGTHS lengths) */
+  long long corners;       /* corners evaluated (0: the worst case was not asked for) */
   double *lo, *hi;         /* (nout) over the corners */
+  char *lo_at, *hi_at;     /* (nout x (nlengths + 1)): the corner of each, one '+' or '-'
+                              per length in length[]'s order, NUL-terminated; "" when the
+                              nominal itself is the extreme (no corner passed it) */
 } fb_planar_stackup;
 
-/* The stack-up of planar case c with description m (above).
+/* The stack-up of planar case c with description m (above); the worst
+ * case over the corners when with_corners is 1.
  * Errors: FB_ERR_ARG when the case gives no [tolerance] class, or a body
  * has more than three distinct joint points (its distances over-determine
- * it), naming it; those of iso2768 (a length below 0.5 mm) and of the
+ * it), naming it; FB_ERR_RANGE beyond FB_PLANAR_CORNER_BITS lengths with
+ * with_corners; those of iso2768 (a length below 0.5 mm) and of the
  * kinematics (a corner that does not close or turn, naming it);
  * FB_ERR_NOMEM. Free with fb_planar_stackup_free. */
 fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
-                                fb_diag *diag);
+                                int with_corners, fb_diag *diag);
 void fb_planar_stackup_free(fb_planar_stackup *s);
+
+/* The number of lengths the stack-up of m varies (each body's n distinct
+ * joint points give n (n - 1) / 2; a body of more than three points
+ * counted as its own, which fb_planar_stackup_run refuses). */
+int fb_planar_stackup_lengths(const fb_planar *m);
+
+/* Corners beyond which fourbar stackup says up front what the worst case
+ * costs: 256 corners, about 12 s of CPU at the six-bar's 45 ms a corner
+ * (5 moving bodies; 1024 corners measured 46 s). */
+#define FB_PLANAR_CORNERS_NOTE 256
+#define FB_PLANAR_S_PER_CORNER 0.045
 
 /* The name of stack-up output k ("<body>_omega_max_rad_s") into buf. */
 const char *fb_planar_output_name(char *buf, size_t size, const fb_planar *m, int k);

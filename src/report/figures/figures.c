@@ -54,6 +54,10 @@ fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt,
   if (st == FB_OK) st = fig_contact_figures(r, dir, fmt, 1, figs, names, max, n, diag);
   /* each verdict on statistics: what it rests on */
   if (st == FB_OK) st = fig_verdicts(r, dir, fmt, figs, names, max, n, diag);
+  return fig_batch_finish(st, figs, dir, diag);
+}
+
+fb_status fig_batch_finish(fb_status st, json_t *figs, const char *dir, fb_diag *diag) {
   fb_diag drawn;
   const fb_status sb = fig_batch_end(&drawn); /* every figure started is waited for */
   if (st == FB_OK && sb != FB_OK) {

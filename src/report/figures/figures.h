@@ -12,6 +12,7 @@
 #ifndef FB_FIGURES_H
 #define FB_FIGURES_H
 
+#include "planar_run.h"
 #include "run.h"
 
 typedef enum { FB_FIGURE_SVG = 0, FB_FIGURE_PNG = 1 } fb_figure_format;
@@ -38,6 +39,17 @@ int fb_figure_model_dash(const fb_run *r, const char *name);
  * in dir/.gnuplot.log), naming the figure. */
 fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt, char names[][128],
                          int max, int *n, fb_diag *diag);
+
+/* Draws a planar case's run r (planar_run.h) into dir, by the
+ * description's names: omega.<ext> and alpha.<ext> (every moving body's
+ * angular velocity and acceleration, one panel each, every model overlaid,
+ * against the drive angle over the revolution from the peak window's start,
+ * the run's first when it ends before; alpha on a symlog axis), for each
+ * reference contact_<model>_<joint>.<ext> (its clearance joint's contact
+ * force and penetration; '-' in the joint's name as '_'), and
+ * figures.json. names, max, n and errors as fb_figures_run. */
+fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
+                            char names[][128], int max, int *n, fb_diag *diag);
 
 /* Checks, before any work, that gnuplot can be started (an executable
  * gnuplot on PATH). Errors: FB_ERR_IO saying how to install it or to pass

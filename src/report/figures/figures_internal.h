@@ -52,6 +52,11 @@ fb_status fig_plot_close(plot *pl, fb_diag *diag);
 void fig_batch_begin(void);
 fb_status fig_batch_end(fb_diag *diag);
 
+/* Ends a run's batch (fig_batch_end) and, when it and st are FB_OK, writes
+ * dir/figures.json of figs (taken either way); returns st, else the
+ * batch's or the write's error. */
+fb_status fig_batch_finish(fb_status st, json_t *figs, const char *dir, fb_diag *diag);
+
 /* "dir/name.ext" -> dir, name (no extension); "name.ext" -> ".", name */
 void fig_split_path(const char *path, char *dir, size_t dsize, char *name, size_t nsize);
 

@@ -1,0 +1,187 @@
+/* The figures of a planar case's run (figures.h fb_figures_planar), by
+ * the description's body and joint names: omega.<ext> and alpha.<ext>, one
+ * panel per moving body, every model overlaid against the drive angle over
+ * the peak window; contact_<model>_<joint>.<ext> for each reference's
+ * clearance joint; figures.json. The samples go through the same
+ * datablocks as a four-bar's (fig_datablock on a view of the model's
+ * columns: min/max decimation per pixel column, so spikes survive). */
+#include "figures_internal.h"
+
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "units.h"
+
+/* a panel's height [px] and the panels across */
+#define PANEL_PX 330
+#define ACROSS 2
+
+/* model p's samples as a series view (time and drive angle) for fig_datablock */
+static fb_series view_of(const fb_planar_model *p) {
+  fb_series s;
+  memset(&s, 0, sizeof s);
+  s.n = p->n;
+  s.t = p->t;
+  s.crank_angle = p->drive;
+  return s;
+}
+
+/* the figures' window [t0, t1]: the revolution from the peak window's
+ * start, or the run's first when the run ends before it */
+static void window_of(const fb_planar_run *r, double *t0, double *t1) {
+  const double period = 2.0 * M_PI / r->c.crank_speed;
+  *t0 = r->t_window + period <= r->duration * (1.0 + 1e-9) ? r->t_window : 0.0;
+  *t1 = *t0 + period;
+}
+
+/* one model's curve in the manifest, in its model-table style */
+static json_t *curve(const fb_planar_model *p, const char *column, const char *panel, int pts,
+                     double lo, double hi, double t0, double t1) {
+  char csv[96];
+  snprintf(csv, sizeof csv, "%s.csv", p->name);
+  json_t *c = fig_curve(p->name, column, csv, pts, lo, hi, t0, t1);
+  json_object_set_new(c, "panel", json_string(panel));
+  fig_curve_style(c, NULL, p->name);
+  return c;
+}
+
+/* omega.<ext> (alpha 0) or alpha.<ext> (alpha 1, symlog axis per panel) */
+static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
+                             int alpha, json_t *figs, fb_diag *diag) {
+  const fb_planar *m = r->m;
+  const int nb = m->nbodies - 1, rows = (nb + ACROSS - 1) / ACROSS, k = alpha ? 2 : 1;
+  static const char *const suffix[3] = {"angle_rad", "omega_rad_s", "alpha_rad_s2"};
+  const char *name = alpha ? "alpha" : "omega";
+  plot pl;
+  fb_status st = fig_plot_open(&pl, dir, name, fmt, 1400, 60 + PANEL_PX * rows, diag);
+  if (st != FB_OK) return st;
+  pl.columns /= ACROSS;
+  double t0, t1;
+  window_of(r, &t0, &t1);
+  json_t *curves = json_array();
+  char en[200], mn[160], sp[96], col[96];
+  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against the drive angle (%s, %s: runs "
+          "%s), t = %.4g to %.4g s'\nset xrange [0:360]\nset xtics 60\nset xlabel 'drive angle "
+          "[deg]'\nset key inside top right box opaque font ',8'\n", rows, ACROSS,
+          fig_esc(r->c.name, en, sizeof en), alpha ? "angular acceleration" : "angular velocity",
+          fig_esc(m->joint[m->drive].name, mn, sizeof mn), r->c.direction < 0 ? "cw" : "ccw",
+          r->c.direction < 0 ? "right to left" : "left to right", t0, t1);
+  for (int b = 1; b <= nb; b++) {
+    double lo_all = 0.0, hi_all = 0.0;
+    int any = 0;
+    snprintf(col, sizeof col, "%s_%s", m->body[b].name, suffix[k]);
+    for (int i = 0; i < r->n; i++) {
+      const fb_planar_model *p = &r->model[i];
+      const fb_series v = view_of(p);
+      char dname[32];
+      snprintf(dname, sizeof dname, "m%d_%d", i, b);
+      double lo = NAN, hi = NAN;
+      const int pts = fig_datablock(&pl, dname, &v, p->q + ((size_t)(b - 1) * 3 + (size_t)k) * p->n,
+                                    t0, t1, &lo, &hi);
+      if (pts) lo_all = any ? fmin(lo_all, lo) : lo, hi_all = any ? fmax(hi_all, hi) : hi, any = 1;
+      json_array_append_new(curves, curve(p, col, m->body[b].name, pts, lo, hi, t0, t1));
+    }
+    if (b == 2) fprintf(pl.p, "unset key\n"); /* one legend, in the first panel */
+    if (alpha) fig_symlog_axis(&pl, fmin(lo_all, 0.0), fmax(hi_all, 0.0), NULL);
+    fig_esc(m->body[b].name, en, sizeof en);
+    fprintf(pl.p, "set title '%s'\nset ylabel '%s %s [%s]'\n", en, en, alpha ? "alpha" : "omega",
+            alpha ? "rad/s^2, symlog" : "rad/s");
+    if (!any) { /* no model has a sample in the window: a note, which gnuplot needs */
+      fprintf(pl.p, "set label 1 'no samples in the window' at graph 0.5,0.5 center\n"
+                    "plot NaN notitle\nunset label 1\n");
+      continue;
+    }
+    fprintf(pl.p, "plot ");
+    for (int i = 0; i < r->n; i++)
+      fprintf(pl.p, "%s$m%d_%d using 1:2 with lines %s title '%s'", i ? ", " : "", i, b,
+              fig_style_spec(NULL, r->model[i].name, sp, sizeof sp),
+              fig_esc(r->model[i].name, mn, sizeof mn));
+    fprintf(pl.p, "\n");
+  }
+  fprintf(pl.p, "unset multiplot\n");
+  st = fig_plot_close(&pl, diag);
+  char file[128];
+  snprintf(file, sizeof file, "%s.%s", name, fig_ext(fmt));
+  if (st == FB_OK)
+    fig_manifest_add(figs, file, alpha ? "angular acceleration of every moving body against the "
+                     "drive angle" : "angular velocity of every moving body against the drive "
+                     "angle", curves);
+  else
+    json_decref(curves);
+  return st;
+}
+
+/* contact_<model>_<joint>.<ext>: a reference's contact force and
+ * penetration at its clearance joint against the drive angle */
+static fb_status contact(const fb_planar_run *r, const fb_planar_model *p, const char *dir,
+                         fb_figure_format fmt, json_t *figs, char *file, size_t fsize,
+                         fb_diag *diag) {
+  const char *joint = r->m->joint[p->ref.joint].name;
+  char jcol[64], name[160], en[200], jn[160];
+  snprintf(jcol, sizeof jcol, "%s", joint);
+  for (char *c = jcol; *c; c++)
+    if (*c == '-') *c = '_';
+  snprintf(name, sizeof name, "contact_%s_%s", p->name, jcol);
+  snprintf(file, fsize, "%.118s.%s", name, fig_ext(fmt));
+  plot pl;
+  fb_status st = fig_plot_open(&pl, dir, name, fmt, 1100, 750, diag);
+  if (st != FB_OK) return st;
+  double t0, t1;
+  window_of(r, &t0, &t1);
+  const fb_series v = view_of(p);
+  json_t *curves = json_array();
+  static const char *const what[2] = {"force_n", "penetration_m"};
+  double *um = NULL;
+  for (int k = 0; k < 2; k++) {
+    const double *y = k ? p->pen : p->force;
+    if (k) { /* the penetration drawn in um */
+      um = malloc((p->n ? p->n : 1) * sizeof *um);
+      if (!um) break;
+      for (size_t i = 0; i < p->n; i++) um[i] = p->pen[i] / FB_M_PER_UM;
+      y = um;
+    }
+    char dname[16], col[96];
+    snprintf(dname, sizeof dname, "c%d", k);
+    snprintf(col, sizeof col, "%s_%s", joint, what[k]);
+    double lo = NAN, hi = NAN;
+    const int pts = fig_datablock(&pl, dname, &v, y, t0, t1, &lo, &hi);
+    json_array_append_new(curves, curve(p, col, k ? "penetration" : "force", pts, lo, hi, t0, t1));
+  }
+  free(um);
+  char sp[96];
+  fig_style_spec(NULL, p->name, sp, sizeof sp);
+  fprintf(pl.p, "set multiplot layout 2,1 title '%s: %s, clearance at %s, t = %.4g to %.4g s'\n"
+          "set xrange [0:360]\nset xtics 60\nset xlabel 'drive angle [deg]'\nunset key\n"
+          "set title 'contact force on the pin'\nset ylabel 'force [N]'\nplot $c0 using 1:2 with "
+          "lines %s\nset title 'penetration depth'\nset ylabel 'penetration [um]'\nplot $c1 using "
+          "1:2 with lines %s\nunset multiplot\n", fig_esc(r->c.name, en, sizeof en), p->name,
+          fig_esc(joint, jn, sizeof jn), t0, t1, sp, sp);
+  st = fig_plot_close(&pl, diag);
+  char title[256];
+  snprintf(title, sizeof title, "%s: contact force and penetration at %s", p->name, joint);
+  if (st == FB_OK) fig_manifest_add(figs, file, title, curves);
+  else json_decref(curves);
+  return st;
+}
+
+fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
+                            char names[][128], int max, int *n, fb_diag *diag) {
+  *n = 0;
+  json_t *figs = json_array();
+  fb_status st = FB_OK;
+  fig_batch_begin(); /* the figures drawn side by side */
+  for (int alpha = 0; alpha < 2 && st == FB_OK; alpha++) {
+    st = omega_alpha(r, dir, fmt, alpha, figs, diag);
+    if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s.%s", alpha ? "alpha" : "omega", fig_ext(fmt));
+  }
+  for (int i = 0; i < r->n && st == FB_OK; i++) {
+    if (!r->model[i].reference || !r->model[i].force) continue;
+    char file[128];
+    st = contact(r, &r->model[i], dir, fmt, figs, file, sizeof file, diag);
+    if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s", file);
+  }
+  return fig_batch_finish(st, figs, dir, diag);
+}

@@ -1,0 +1,117 @@
+/* report.html of a planar case's run (report_html_planar.h): the page's
+ * data by the description's body and joint names. */
+#include "report_html_planar.h"
+
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "figures.h"
+#include "report_html.h"
+#include "units.h"
+
+/* sample i of column y: kept when it is a bucket's smallest or largest
+ * (FB_REPORT_BUCKETS over the run, as a four-bar's data) */
+static void keep_extremes(unsigned char *keep, const double *y, size_t n) {
+  const size_t per = n > 2 * FB_REPORT_BUCKETS ? (n + FB_REPORT_BUCKETS - 1) / FB_REPORT_BUCKETS : 1;
+  for (size_t from = 0; from < n; from += per) {
+    size_t small = from, big = from;
+    for (size_t i = from + 1; i < n && i < from + per; i++) {
+      small = y[i] < y[small] ? i : small;
+      big = y[i] > y[big] ? i : big;
+    }
+    keep[small] = 1;
+    keep[big] = 1;
+  }
+}
+
+/* the kept samples of y, times scale, null where not finite */
+static json_t *kept(const double *y, const unsigned char *keep, size_t n, double scale) {
+  json_t *a = json_array();
+  for (size_t i = 0; i < n; i++)
+    if (keep[i]) json_array_append_new(a, isfinite(y[i] * scale) ? json_real(y[i] * scale) : json_null());
+  return a;
+}
+
+/* the page's outputs: every moving body, its columns, series keys and the
+ * summary.json keys of its peaks (models[].bodies.<NAME>) */
+static json_t *outputs_json(const fb_planar *m) {
+  json_t *a = json_array();
+  for (int b = 1; b < m->nbodies; b++) {
+    const char *n = m->body[b].name;
+    json_array_append_new(
+        a, json_pack("{s:s,s:b,s:[s,s,s],s:[s,s,s],s:[s+,s+,s+],s:[n,s+,s+],"
+                     "s:[s++,s++,s++,s++,n]}",
+                     "name", n, "translates", 0, "symbol", "angle", "omega", "alpha", "unit", "rad",
+                     "rad/s", "rad/s^2", "column", n, "_angle_rad", n, "_omega_rad_s", n,
+                     "_alpha_rad_s2", "series", n, "_omega", n, "_alpha", "summary", "bodies.", n,
+                     ".omega_max_rad_s", "bodies.", n, ".omega_min_rad_s", "bodies.", n,
+                     ".alpha_max_rad_s2", "bodies.", n, ".alpha_min_rad_s2"));
+  }
+  return a;
+}
+
+/* one model's data: its kept samples by body, a reference's joint columns */
+static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
+  const fb_planar *m = r->m;
+  const size_t n = p->n;
+  unsigned char *keep = calloc(n ? n : 1, 1);
+  if (!keep) return NULL;
+  for (int b = 1; b < m->nbodies; b++)
+    for (int k = 1; k <= 2; k++) keep_extremes(keep, p->q + ((size_t)(b - 1) * 3 + (size_t)k) * n, n);
+  if (p->reference && p->force) {
+    keep_extremes(keep, p->force, n);
+    keep_extremes(keep, p->pen, n);
+  }
+  if (n) keep[0] = keep[n - 1] = 1;
+  size_t nk = 0;
+  for (size_t i = 0; i < n; i++) nk += keep[i];
+  json_t *o = json_pack("{s:s,s:s,s:b,s:n,s:n,s:s,s:i,s:I,s:I}", "name", p->name, "engine",
+                        p->reference ? "reference" : "analytic", "clearance", p->reference,
+                        "reference", "ideal", "color", fb_figure_model_color(NULL, p->name),
+                        "dash", fb_figure_model_dash(NULL, p->name), "samples", (json_int_t)n,
+                        "kept", (json_int_t)nk);
+  json_object_set_new(o, "t", kept(p->t, keep, n, 1.0));
+  for (int b = 1; b < m->nbodies; b++) {
+    static const char *const key[3] = {NULL, "omega", "alpha"};
+    for (int k = 1; k <= 2; k++) {
+      char name[96];
+      snprintf(name, sizeof name, "%s_%s", m->body[b].name, key[k]);
+      json_object_set_new(o, name, kept(p->q + ((size_t)(b - 1) * 3 + (size_t)k) * n, keep, n, 1.0));
+    }
+  }
+  json_t *joints = json_array();
+  if (p->reference && p->force)
+    json_array_append_new(joints, json_pack("{s:s,s:i,s:i,s:o,s:o}", "joint",
+                                            m->joint[p->ref.joint].name, "impacts", 0, "listed", 0,
+                                            "force_n", kept(p->force, keep, n, 1.0),
+                                            "penetration_um", kept(p->pen, keep, n, 1.0 / FB_M_PER_UM)));
+  json_object_set_new(o, "joints", joints);
+  json_object_set_new(o, "impacts", json_array());
+  free(keep);
+  return o;
+}
+
+fb_status fb_report_html_write_planar(const char *dir, const fb_planar_run *r,
+                                      const json_t *summary, int *charts, fb_diag *diag) {
+  const fb_case *c = &r->c;
+  json_t *d = json_pack("{s:i,s:s,s:f,s:i,s:f,s:f,s:f,s:f}", "format", 1, "case", c->name,
+                        "speed_rpm", c->crank_speed / FB_RAD_S_PER_RPM, "direction", c->direction,
+                        "crank_angle0_deg", 0.0, "radial_clearance_um",
+                        c->radial_clearance / FB_M_PER_UM, "t_window_s", r->t_window, "h_s",
+                        r->n ? r->model[0].h : c->solver.h);
+  json_t *models = json_array();
+  json_object_set_new(d, "outputs", outputs_json(r->m));
+  for (int i = 0; i < r->n; i++) {
+    json_t *m = model_json(r, &r->model[i]);
+    if (!m) {
+      json_decref(d), json_decref(models);
+      return fb_diag_set(diag, FB_ERR_NOMEM, "report.html: out of memory");
+    }
+    json_array_append_new(models, m);
+  }
+  json_object_set_new(d, "models", models);
+  json_object_set_new(d, "verdicts", json_array());
+  return fb_report_html_write_data(dir, d, summary, charts, diag);
+}

@@ -1,0 +1,193 @@
+#!/usr/bin/env python3
+"""`fourbar stackup` on the Watt II six-bar (cases/watt_sixbar.ini, issue 57):
+its 10 joint-to-joint distances, each with its ISO 2768-1 tolerance, and
+the worst case over all 1024 corners (beyond the 8 lengths it stopped at
+before; studies/planar_tools.h), checked against a closed form written
+here.
+
+Oracle, not through the planar core: the six-bar as two four-bar loops in
+series, from the link lengths alone. Positions by the intersection of two
+circles on the assembly's branch (loop 1: C from B and D; the ternary's E
+at the fixed angle its triangle C, D, E makes at D; loop 2: G from E and
+F), angular velocities by the four-bar's closed form (Norton, Design of
+Machinery, eq. 6.18: omega3 = a omega2 sin(theta4 - theta2) / (b
+sin(theta3 - theta4)), omega4 = a omega2 sin(theta2 - theta3) / (c
+sin(theta4 - theta3))), each loop's input the body before it. The omega
+extremes over a revolution: a 3600-point grid of the crank angle refined by
+golden-section search (fb_script.extreme).
+
+Checked: the lengths (bodies, ends, nominal) and each one's tolerance
+against the published ISO 2768-1 table (../shared/iso/iso2768-1.tsv or
+$FOURBAR_ISO_DIR; that part skipped without it); the nominal omega peaks
+and those at each reported worst corner against the oracle at the same
+lengths; that no corner one length away from a reported worst corner
+passes it (the oracle at each neighbour); every one of the 2^10 corners
+run; --method rss runs none.
+
+Usage: test_planar_stackup.py PATH_TO_FOURBAR SOURCE_ROOT. Prints "N
+passed, N failed"; exit 1 on any failure."""
+import cmath, json, math, os, sys, tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
+
+exe = os.path.abspath(sys.argv[1])
+root = os.path.abspath(sys.argv[2])
+six = os.path.join(root, "cases", "watt_sixbar.ini")
+tally = fb_script.Tally()
+check = tally.check
+tmp = tempfile.mkdtemp(prefix="fourbar-planar-stackup-")
+
+# The oracle against the program at the same lengths: the program prints 12
+# significant digits (--json) and converges its peaks to 1e-9 rad of drive
+# angle, where an extreme's value error is second order (1e-13 relative,
+# test_planar_run.py); the oracle's golden section stops at 1e-12 rad.
+# 1e-8 of the value is far above both and far below a tolerance's effect
+# (the smallest nonzero |S t| of an omega output here is 1e-5 of it).
+PEAK_REL = 1e-8
+# A neighbour of a worst corner may tie it (a length whose sensitivity is
+# zero moves nothing) but must not pass it by more than the oracle's own
+# agreement with the program.
+NEIGHBOUR_REL = PEAK_REL
+W = 300 * 2 * math.pi / 60  # the case's drive: 300 rpm ccw [rad/s]
+# the lengths in the program's order (ground, crank, coupler, ternary, rod,
+# output; each body's points in file order) [m]: the case's joints
+P = {"ground-crank": 0j, "crank-coupler": .040 + 0j, "coupler-ternary": .065 + .080j,
+     "ternary-ground": .100 + 0j, "ternary-rod": .190 + 0j, "rod-output": .200 + .060j,
+     "output-ground": .260 + .040j}
+ORDER = [("ground", "ground-crank", "ternary-ground"), ("ground", "ground-crank", "output-ground"),
+         ("ground", "ternary-ground", "output-ground"), ("crank", "ground-crank", "crank-coupler"),
+         ("coupler", "crank-coupler", "coupler-ternary"),
+         ("ternary", "coupler-ternary", "ternary-ground"),
+         ("ternary", "coupler-ternary", "ternary-rod"), ("ternary", "ternary-ground", "ternary-rod"),
+         ("rod", "ternary-rod", "rod-output"), ("output", "rod-output", "output-ground")]
+NOMINAL = [abs(P[b] - P[a]) for _, a, b in ORDER]
+
+
+def meet(p1, l1, p2, l2, sense):
+    """the point at l1 from p1 and l2 from p2, left of p1 -> p2 (sense +1) or right"""
+    d = abs(p2 - p1)
+    a = (l1 * l1 - l2 * l2 + d * d) / (2 * d)
+    return p1 + (a + 1j * sense * math.sqrt(l1 * l1 - a * a)) * (p2 - p1) / d
+
+
+def loop_omegas(a, th2, w2, b, th3, c, th4):
+    """a four-bar loop's coupler and rocker omega (Norton eq. 6.18)"""
+    return (a * w2 * math.sin(th4 - th2) / (b * math.sin(th3 - th4)),
+            a * w2 * math.sin(th2 - th3) / (c * math.sin(th4 - th3)))
+
+
+def sixbar(L):
+    """omega of every moving body at crank angle th, for lengths L (ORDER)"""
+    AD, AF, DF, AB, BC, CD, CE, DE, EG, GF = L
+    A, D = 0j, AD + 0j
+    F = meet(A, AF, D, DF, +1)  # above the line A-D, as the case's F
+    phi = -math.acos((CD * CD + DE * DE - CE * CE) / (2 * CD * DE))  # E clockwise of C about D
+
+    def at(th):
+        B = A + AB * cmath.exp(1j * th)
+        C = meet(B, BC, D, CD, +1)
+        th3, th4 = cmath.phase(C - B), cmath.phase(C - D)
+        w3, w4 = loop_omegas(AB, th, W, BC, th3, CD, th4)
+        E = D + DE * cmath.exp(1j * (th4 + phi))
+        G = meet(E, EG, F, GF, +1)
+        # loop 2 over the ground D-F: input D-E turning at w4 (angles in any common frame)
+        w5, w6 = loop_omegas(DE, th4 + phi, w4, EG, cmath.phase(G - E), GF, cmath.phase(G - F))
+        return {"crank": W, "coupler": w3, "ternary": w4, "rod": w5, "output": w6}
+    return at
+
+
+def peaks(L, cache={}):
+    """{(body, 'omega_max_rad_s' | 'omega_min_rad_s'): value} over a revolution"""
+    key = tuple(L)
+    if key not in cache:
+        f = sixbar(L)
+        cache[key] = {(b, k): fb_script.extreme(lambda th: f(th)[b], s)
+                      for b in ("coupler", "ternary", "rod", "output")
+                      for k, s in (("omega_max_rad_s", 1), ("omega_min_rad_s", -1))}
+    return cache[key]
+
+
+def lengths_at(corner, tol):
+    return [n + (t if c == "+" else -t) for n, t, c in zip(NOMINAL, tol, corner)]
+
+
+def rel(p, q):
+    return abs(p - q) / max(abs(q), 1e-300)
+
+
+def iso_table():
+    """ISO 2768-1's class m rows (over, upto, tolerance) [mm], or None"""
+    folder = os.environ.get("FOURBAR_ISO_DIR") or os.path.join(root, "..", "shared", "iso")
+    path = os.path.join(folder, "iso2768-1.tsv")
+    if not os.path.exists(path):
+        return None
+    rows = []
+    for line in open(path):
+        f = line.rstrip("\n").split("\t")
+        if line.startswith("#") or f[0] != "m" or f[3] == "-":
+            continue
+        rows.append((float(f[1]), float(f[2]), float(f[3])))
+    return rows
+
+
+# 1. the six-bar's stack-up: lengths, tolerances, corners
+rc, so, se = fb_script.run(exe, tmp, "stackup", six, "--set", "tolerance.class=m", "--json")
+check(rc == 0, "stackup of the six-bar exits 0 (%s)" % se.strip()[-300:])
+if rc == 0:
+    s = json.loads(so)
+    got = [(x["body"], x["from"], x["to"]) for x in s["lengths"]]
+    check(got == ORDER, "the six-bar's 10 lengths by body and joints: %s" % got)
+    check(all(abs(x["nominal_m"] - n) <= 1e-12 for x, n in zip(s["lengths"], NOMINAL)),
+          "each length's nominal is its joints' distance")
+    tol = [x["plus_minus_m"] for x in s["lengths"]]
+    table = iso_table()
+    if table is None:
+        print("note: ../shared/iso/iso2768-1.tsv not found: the tolerances are not checked against it")
+    else:
+        for x in s["lengths"]:
+            mm = x["nominal_m"] * 1e3
+            want = [t for lo, hi, t in table if (lo < mm <= hi) or (lo == 0.5 and mm == 0.5)]
+            check(len(want) == 1 and abs(x["plus_minus_m"] - want[0] * 1e-3) <= 1e-15,
+                  "%s %s-%s (%.4f mm): +-%g mm, ISO 2768-1 class m %s" % (
+                      x["body"], x["from"], x["to"], mm, x["plus_minus_m"] * 1e3, want))
+    check(s["corners"] == 2 ** len(ORDER), "the six-bar's worst case runs all 2^10 corners: %s"
+          % s["corners"])
+    outs = {o["name"]: o for o in s["outputs"]}
+    nominal = peaks(NOMINAL)
+    for (b, k), v in sorted(nominal.items()):
+        o = outs["%s_%s" % (b, k)]
+        check(rel(o["nominal"], v) <= PEAK_REL, "nominal %s %s = %.12g, oracle %.12g" % (b, k, o["nominal"], v))
+        for end in ("min", "max"):
+            corner = o["corners"][end + "_at"]
+            if not corner:
+                continue
+            want = peaks(lengths_at(corner, tol))[(b, k)]
+            check(rel(o["corners"][end], want) <= PEAK_REL, "%s %s corners %s = %.12g at %s, oracle %.12g"
+                  % (b, k, end, o["corners"][end], corner, want))
+    # the worst corners of the second loop's omega (the outputs the most
+    # lengths move): no corner one length away passes them
+    for name, end, sign in (("output_omega_max_rad_s", "max", 1), ("rod_omega_min_rad_s", "min", -1)):
+        o = outs[name]
+        corner = o["corners"][end + "_at"]
+        b, k = name.split("_", 1)
+        worst = o["corners"][end]
+        check(len(corner) == len(ORDER), "%s has a worst corner (%r)" % (name, corner))
+        if len(corner) != len(ORDER):
+            continue
+        beyond = []
+        for i in range(len(ORDER)):
+            flip = corner[:i] + ("-" if corner[i] == "+" else "+") + corner[i + 1:]
+            v = peaks(lengths_at(flip, tol))[(b, k)]
+            if sign * (v - worst) > NEIGHBOUR_REL * abs(worst):
+                beyond.append((flip, v))
+        check(not beyond, "%s %s %.12g at %s: no neighbouring corner passes it (%s)"
+              % (name, end, worst, corner, beyond))
+
+# 2. --method rss skips the corners
+rc, so, se = fb_script.run(exe, tmp, "stackup", six, "--set", "tolerance.class=m", "--method", "rss",
+                           "--json")
+check(rc == 0 and json.loads(so)["corners"] == 0 and json.loads(so)["outputs"][4]["corners"] is None,
+      "--method rss runs no corner (%s)" % se.strip()[-300:])
+
+sys.exit(tally.done())

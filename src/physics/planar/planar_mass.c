@@ -15,6 +15,7 @@ struct fb_planar_cmass {
   const fb_planar *m;
   unsigned char *off; /* (njoints) */
   int nq, rows;
+  int drive_row;      /* 1: the description's drive is a row of the set */
   double *minv;       /* (nq) diagonal of M^-1 */
   double *g;          /* rows x nq */
   double *s;          /* rows x rows: S, then its Cholesky factor */
@@ -31,7 +32,8 @@ fb_status fb_planar_cmass_new(fb_planar_cmass **out, const fb_planar *m,
   if (!c) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   c->m = m;
   c->nq = fb_planar_nq(m);
-  c->rows = fb_planar_rows(m, off, 1);
+  c->drive_row = m->drive >= 0; /* an undriven description has no drive row */
+  c->rows = fb_planar_rows(m, off, c->drive_row);
   const size_t nq = (size_t)c->nq, rows = (size_t)c->rows;
   c->off = calloc((size_t)m->njoints, 1);
   c->minv = calloc(nq, sizeof *c->minv);
@@ -74,7 +76,7 @@ int fb_planar_cmass_rows(const fb_planar_cmass *c) { return c->rows; }
 fb_status fb_planar_cmass_factor(fb_planar_cmass *c, const double *q, double reg,
                                  fb_diag *diag) {
   const fb_planar_drive d = {0.0, 0.0, 0.0};
-  fb_planar_constraints(NULL, c->g, NULL, c->m, c->off, &d, q, NULL);
+  fb_planar_constraints(NULL, c->g, NULL, c->m, c->off, c->drive_row ? &d : NULL, q, NULL);
   const int nq = c->nq, rows = c->rows;
   double smax = 0.0;
   for (int a = 0; a < rows; a++)
@@ -126,10 +128,15 @@ void fb_planar_cmass_accel(fb_planar_cmass *c, double *qdd, double *lambda, cons
 
 void fb_planar_cmass_tensor(fb_planar_cmass *c, double w[2][2], int j, const double *q) {
   const fb_planar_joint *jt = &c->m->joint[j];
+  fb_planar_cmass_tensor_points(c, w, jt->body[0], jt->point[0], jt->body[1], jt->point[1], q);
+}
+
+void fb_planar_cmass_tensor_points(fb_planar_cmass *c, double w[2][2], int b0, const double s0[2],
+                                   int b1, const double s1[2], const double *q) {
   const int nq = c->nq, rows = c->rows;
   memset(c->jr, 0, 2 * (size_t)nq * sizeof *c->jr);
-  fb_planar_point_jacobian(c->jr, c->m, q, jt->body[0], jt->point[0], 1.0);
-  fb_planar_point_jacobian(c->jr, c->m, q, jt->body[1], jt->point[1], -1.0);
+  fb_planar_point_jacobian(c->jr, c->m, q, b0, s0, 1.0);
+  fb_planar_point_jacobian(c->jr, c->m, q, b1, s1, -1.0);
   for (int r = 0; r < 2; r++) {
     double *z = c->zt + r * rows;
     for (int a = 0; a < rows; a++) {
@@ -174,7 +181,7 @@ fb_status fb_planar_cmass_project(fb_planar_cmass *c, double *q, double *qd,
   const double size = fb_planar_size(c->m);
   double *dq = c->jr; /* (2 nq of scratch) */
   for (int it = 0; it < 4; it++) {
-    fb_planar_constraints(c->phi, NULL, NULL, c->m, c->off, d, q, NULL);
+    fb_planar_constraints(c->phi, NULL, NULL, c->m, c->off, c->drive_row ? d : NULL, q, NULL);
     if (it == 0 && dq_max) *dq_max = length_rows_max(c, c->phi);
     fb_status rc = fb_planar_cmass_factor(c, q, 0.0, diag);
     if (rc != FB_OK) return rc;
@@ -191,7 +198,7 @@ fb_status fb_planar_cmass_project(fb_planar_cmass *c, double *q, double *qd,
   fb_status rc = fb_planar_cmass_factor(c, q, 0.0, diag);
   if (rc != FB_OK) return rc;
   for (int a = 0; a < rows; a++) {
-    double v = a == rows - 1 ? -d->omega : 0.0;
+    double v = c->drive_row && a == rows - 1 ? -d->omega : 0.0;
     for (int i = 0; i < nq; i++) v += c->g[a * nq + i] * qd[i];
     c->x[a] = v;
   }

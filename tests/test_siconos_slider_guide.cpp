@@ -92,6 +92,8 @@ const double THETA = 0.5, H = 1e-4, T_END = 0.2;
 // the step run: H, or -h STEP's (then the rows are written with -o and not
 // compared: docs/models.md's study of the scheme's step error)
 double g_step = H;
+// the friction coefficient run: MU, or -mu VALUE's (rows written, not compared)
+double g_mu = MU;
 const double FRICTION_TOL = 1e-8;
 const int FRICTION_MAX_ITER = 100;
 const unsigned PROJECTION_MAX_ITER = 500;
@@ -245,7 +247,7 @@ void build(Model &m) {
   m.nsds->insertDynamicalSystem(m.ds);
   const Corner corners[4] = {{-1, 1}, {1, 1}, {-1, -1}, {1, -1}};
   for (int i = 0; i < 4; i++) {
-    SP::NonSmoothLaw law(new NewtonImpactFrictionNSL(E_N, 0.0, MU, 2));
+    SP::NonSmoothLaw law(new NewtonImpactFrictionNSL(E_N, 0.0, g_mu, 2));
     SP::Relation rel(new CornerR(corners[i]));
     m.inter[i].reset(new Interaction(law, rel));
     m.nsds->link(m.inter[i], m.ds);
@@ -365,6 +367,8 @@ int main(int argc, char **argv) {
       out = argv[++i];
     else if (std::strcmp(argv[i], "-h") == 0 && i + 1 < argc)
       g_step = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "-mu") == 0 && i + 1 < argc)
+      g_mu = std::atof(argv[++i]);
     else
       dir = argv[i];
   }
@@ -388,7 +392,7 @@ int main(int argc, char **argv) {
     return 1;
   }
   if (out) write_rows(out, rows);
-  if (ref.empty() || g_step != H) return EXIT_SKIP;
+  if (ref.empty() || g_step != H || g_mu != MU) return EXIT_SKIP;
   int passed = 0, failed = 0;
   if (rows.size() != ref.size()) {
     std::printf("FAIL: %zu rows, the .ref has %zu\n", rows.size(), ref.size());

@@ -4,7 +4,6 @@
 #include <math.h>
 
 #include "contact_mass.h"
-#include "effective_mass.h"
 
 fb_status fb_planar_guide_check(const fb_planar_guide *g, fb_diag *diag) {
   const double v[3] = {g->half_length, g->half_height, g->clearance};
@@ -40,36 +39,63 @@ void fb_planar_guide_contact(double *force, fb_planar_guide_state *out, fb_plana
   const double nk[2] = {-uk[1], uk[0]}, nb[2] = {-jt->axis[1], jt->axis[0]};
   rotate(n, ti, nb);
   fb_planar_point(o, m, q, i, jt->point[0]);
-  fb_planar_guide_state st = {{0}, {0}, {0}, {0}, angle_of(q, k) - ti - (-rel0)};
-  const int wants = fb_contact_law_wants_mass(law);
+  fb_planar_guide_state st = {{0}, {0}, {0}, {0}, angle_of(q, k) - ti + rel0};
+  /* each corner: its point on the slider (s), in the world (p), on the guide (sg) */
+  double s[FB_PLANAR_GUIDE_CORNERS][2], p[FB_PLANAR_GUIDE_CORNERS][2];
+  double sg[FB_PLANAR_GUIDE_CORNERS][2], nn[FB_PLANAR_GUIDE_CORNERS][2];
+  int on[FB_PLANAR_GUIDE_CORNERS];
+  int n_on = 0;
+  const double ri[2] = {i ? q[3 * (i - 1)] : 0.0, i ? q[3 * (i - 1) + 1] : 0.0};
   for (int c = 0; c < FB_PLANAR_GUIDE_CORNERS; c++) {
     const double sigma = c % 2 ? 1.0 : -1.0, tau = c < 2 ? 1.0 : -1.0;
-    const double s[2] = {jt->point[1][0] + sigma * g->half_length * uk[0] + tau * g->half_height * nk[0],
-                         jt->point[1][1] + sigma * g->half_length * uk[1] + tau * g->half_height * nk[1]};
-    double p[2], vp[2], vg[2], sg[2];
-    fb_planar_point(p, m, q, k, s);
-    fb_planar_point_velocity(vp, m, q, qd, k, s);
+    for (int x = 0; x < 2; x++)
+      s[c][x] = jt->point[1][x] + sigma * g->half_length * uk[x] + tau * g->half_height * nk[x];
+    double vp[2], vg[2];
+    fb_planar_point(p[c], m, q, k, s[c]);
+    fb_planar_point_velocity(vp, m, q, qd, k, s[c]);
     /* the guide's material point under the corner, in the guide's frame */
-    const double ri[2] = {i ? q[3 * (i - 1)] : 0.0, i ? q[3 * (i - 1) + 1] : 0.0};
-    const double d[2] = {p[0] - ri[0], p[1] - ri[1]};
-    rotate(sg, -ti, d);
-    fb_planar_point_velocity(vg, m, q, qd, i, sg);
-    const double y = n[0] * (p[0] - o[0]) + n[1] * (p[1] - o[1]);
+    const double d[2] = {p[c][0] - ri[0], p[c][1] - ri[1]};
+    rotate(sg[c], -ti, d);
+    fb_planar_point_velocity(vg, m, q, qd, i, sg[c]);
+    const double y = n[0] * (p[c][0] - o[0]) + n[1] * (p[c][1] - o[1]);
     st.gap[c] = g->half_height + g->clearance - tau * y;
     st.rate[c] = tau * (n[0] * (vp[0] - vg[0]) + n[1] * (vp[1] - vg[1]));
-    if (st.gap[c] >= 0.0) continue;
-    if (wants) {
-      double w[2][2];
-      fb_planar_cmass_tensor_points(cm, w, k, s, i, sg, q);
-      st.mass[c] = fb_effective_mass_along(w, n);
+    nn[n_on][0] = tau * n[0];
+    nn[n_on][1] = tau * n[1];
+    if (st.gap[c] < 0.0) on[n_on++] = c;
+  }
+  if (fb_contact_law_wants_mass(law) && n_on > 0) {
+    /* each corner's damper on its face's share 1 / (D_cc + D_cc'), c' the
+     * other corner of its face (c ^ 1), D the four corners' Delassus
+     * matrix: exact when the face strikes flat (equal forces: the pair
+     * rebounds at cr), continuous in q whatever touches (a mass that jumps
+     * as the other corner comes in stalls rk8pd at tight tolerances) */
+    double dl[FB_PLANAR_GUIDE_CORNERS * FB_PLANAR_GUIDE_CORNERS], na[FB_PLANAR_GUIDE_CORNERS][2];
+    int ba[FB_PLANAR_GUIDE_CORNERS], ga[FB_PLANAR_GUIDE_CORNERS];
+    for (int c = 0; c < FB_PLANAR_GUIDE_CORNERS; c++) {
+      const double tau = c < 2 ? 1.0 : -1.0;
+      na[c][0] = tau * n[0];
+      na[c][1] = tau * n[1];
+      ba[c] = k;
+      ga[c] = i;
     }
-    const fb_contact_law on = fb_contact_law_on_mass(law, st.mass[c]);
-    st.force[c] = fb_contact_force(&on, -st.gap[c], st.rate[c], v0);
-    /* the wall pushes the corner back towards the slide's line */
-    const double fs[2] = {-tau * st.force[c] * n[0], -tau * st.force[c] * n[1]};
+    fb_planar_cmass_delassus(cm, dl, FB_PLANAR_GUIDE_CORNERS, ba, (const double(*)[2])s, ga,
+                             (const double(*)[2])sg, (const double(*)[2])na, q);
+    for (int r = 0; r < n_on; r++) {
+      const int c = on[r], w = FB_PLANAR_GUIDE_CORNERS;
+      const double sum = dl[c * w + c] + dl[c * w + (c ^ 1)];
+      st.mass[c] = 1.0 / (sum > 0.0 ? sum : dl[c * w + c]);
+    }
+  }
+  for (int r = 0; r < n_on; r++) {
+    const int c = on[r];
+    const fb_contact_law lw = fb_contact_law_on_mass(law, st.mass[c]);
+    st.force[c] = fb_contact_force(&lw, -st.gap[c], st.rate[c], v0);
+    /* the wall pushes the corner back towards the slide's line (along -tau n) */
+    const double fs[2] = {-st.force[c] * nn[r][0], -st.force[c] * nn[r][1]};
     const double fg[2] = {-fs[0], -fs[1]};
-    fb_planar_add_force(force, q, k, p, fs);
-    fb_planar_add_force(force, q, i, p, fg);
+    fb_planar_add_force(force, q, k, p[c], fs);
+    fb_planar_add_force(force, q, i, p[c], fg);
   }
   if (out) *out = st;
 }

@@ -23,8 +23,16 @@
  * (p' - v_guide(p)) (the guide's material point under the corner). The
  * contact law (contact.h) gives F = law(delta, delta', v0) >= 0, pushed
  * along -tau n on the slider at the corner and +tau n on the guide there;
- * the restitution law's damper sits on the effective mass of the corner's
- * motion against the guide along n (contact_mass.h, planar_mass.h).
+ * the restitution law's damper sits on the effective mass of the corner
+ * (contact_mass.h) taken as its face's share 1 / (D_cc + D_cc'), c' the
+ * other corner of its face, D the corners' Delassus matrix in the joints'
+ * free coordinates (planar_mass.h): exact when a face strikes flat (equal
+ * forces at its two corners; this case's every strike), and continuous in
+ * q. A lone corner of a tilting slider gets the same mass, above its own
+ * 1 / D_cc, so its damper rebounds it below cr. With each corner's own
+ * 1 / D_cc instead, a flat strike of this slider (whose tilt inertia
+ * makes one corner's mass about a tenth of the face's share) would
+ * rebound far above cr.
  * Frictionless: the harness's laws are normal laws only (the example has
  * Coulomb friction mu = 0.01; docs/models.md says what that moves). */
 #ifndef FB_PLANAR_GUIDE_H
@@ -48,8 +56,9 @@ typedef struct {
   double gap[FB_PLANAR_GUIDE_CORNERS];   /* g = (b + c) - tau y [m] (< 0: penetration) */
   double rate[FB_PLANAR_GUIDE_CORNERS];  /* delta' = -g' [m/s] (> 0 approaching the wall) */
   double force[FB_PLANAR_GUIDE_CORNERS]; /* F >= 0 [N] */
-  double mass[FB_PLANAR_GUIDE_CORNERS];  /* the damper's effective mass [kg] when the law
-                                            wants one and the corner is in contact; else 0 */
+  double mass[FB_PLANAR_GUIDE_CORNERS];  /* the damper's effective mass [kg] (above) when
+                                            the law wants one and the corner is in contact;
+                                            else 0 */
   double tilt;                           /* the slider's angle to the slide [rad] */
 } fb_planar_guide_state;
 

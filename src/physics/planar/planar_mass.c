@@ -23,6 +23,7 @@ struct fb_planar_cmass {
   double *phi;        /* rows */
   double *jr;         /* 2 x nq */
   double *zt;         /* 2 x rows */
+  double *jc;         /* FB_PLANAR_CMASS_MAX_CONTACTS x nq: contact rows */
 };
 
 fb_status fb_planar_cmass_new(fb_planar_cmass **out, const fb_planar *m,
@@ -44,7 +45,8 @@ fb_status fb_planar_cmass_new(fb_planar_cmass **out, const fb_planar *m,
   c->phi = calloc(rows, sizeof *c->phi);
   c->jr = calloc(2 * nq, sizeof *c->jr);
   c->zt = calloc(2 * rows, sizeof *c->zt);
-  if (!c->off || !c->minv || !c->g || !c->s || !c->x || !c->z || !c->phi || !c->jr || !c->zt) {
+  c->jc = calloc(FB_PLANAR_CMASS_MAX_CONTACTS * nq, sizeof *c->jc);
+  if (!c->off || !c->minv || !c->g || !c->s || !c->x || !c->z || !c->phi || !c->jr || !c->zt || !c->jc) {
     fb_planar_cmass_free(c);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu constraint rows", rows);
   }
@@ -68,6 +70,7 @@ void fb_planar_cmass_free(fb_planar_cmass *c) {
   free(c->phi);
   free(c->jr);
   free(c->zt);
+  free(c->jc);
   free(c);
 }
 
@@ -221,4 +224,36 @@ fb_status fb_planar_effective_mass_tensor(double w[2][2], const fb_planar *m, co
   if (rc == FB_OK) fb_planar_cmass_tensor(c, w, j, q);
   fb_planar_cmass_free(c);
   return rc;
+}
+
+void fb_planar_cmass_delassus(fb_planar_cmass *c, double *d, int k, const int *b0,
+                              const double (*s0)[2], const int *b1, const double (*s1)[2],
+                              const double (*n)[2], const double *q) {
+  const int nq = c->nq, rows = c->rows;
+  /* row r: n_r^T (J(b0_r, s0_r) - J(b1_r, s1_r)) */
+  for (int r = 0; r < k; r++) {
+    memset(c->jr, 0, 2 * (size_t)nq * sizeof *c->jr);
+    fb_planar_point_jacobian(c->jr, c->m, q, b0[r], s0[r], 1.0);
+    fb_planar_point_jacobian(c->jr, c->m, q, b1[r], s1[r], -1.0);
+    for (int i = 0; i < nq; i++) c->jc[r * nq + i] = n[r][0] * c->jr[i] + n[r][1] * c->jr[nq + i];
+  }
+  /* D = J M^-1 J^T - (G M^-1 J^T)^T S^-1 (G M^-1 J^T) */
+  for (int r = 0; r < k; r++) {
+    for (int a = 0; a < rows; a++) {
+      double v = 0.0;
+      for (int i = 0; i < nq; i++) v += c->g[a * nq + i] * c->minv[i] * c->jc[r * nq + i];
+      c->x[a] = v;
+    }
+    s_solve(c, c->x);
+    for (int l = 0; l < k; l++) {
+      double v = 0.0;
+      for (int i = 0; i < nq; i++) v += c->jc[r * nq + i] * c->minv[i] * c->jc[l * nq + i];
+      for (int a = 0; a < rows; a++) {
+        double z = 0.0;
+        for (int i = 0; i < nq; i++) z += c->g[a * nq + i] * c->minv[i] * c->jc[l * nq + i];
+        v -= z * c->x[a];
+      }
+      d[r * k + l] = v;
+    }
+  }
 }

@@ -140,7 +140,7 @@ static void fourbar_core_new(fourbar_core *fc, const fb_case *c, const fb_contac
   memset(fc->clear, 0, sizeof fc->clear);
   fc->clear[FB_JOINT_B] = 1;
   const fb_planar_dyn_model model = {fc->m, fc->clear, *law, c->radial_clearance, 1e-3,
-                                     c->gravity, fb_case_omega2(c)};
+                                     c->gravity, fb_case_omega2(c), NULL, NULL};
   if (fb_planar_dyn_new(&fc->dyn, &model, &d) != FB_OK) fail_msg("%s", d.msg);
 }
 
@@ -237,7 +237,7 @@ static void test_slider_crank_rhs(void **state) {
   assert_int_equal(fb_planar_slider_crank(&m, &lk, link, sm.theta0, &d), FB_OK);
   unsigned char clear[4] = {0, 0, 1, 0};
   const fb_planar_dyn_model model = {m, clear, sm.law, sm.clearance, sm.impact_velocity,
-                                     sm.gravity, sm.omega2};
+                                     sm.gravity, sm.omega2, NULL, NULL};
   fb_planar_dyn *dyn;
   assert_int_equal(fb_planar_dyn_new(&dyn, &model, &d), FB_OK);
   const double a = lk.length[0], b = lk.length[1], f3 = link[1].com_fraction;
@@ -344,7 +344,7 @@ static void sixbar_run(double clearance, double *dev, double *pen_max) {
   law.restitution = 0.5;
   assert_int_equal(fb_contact_law_prepare(&law, NULL), FB_OK);
   const double w = fb_case_omega2(&c);
-  const fb_planar_dyn_model model = {m, clear, law, clearance, 1e-3, c.gravity, w};
+  const fb_planar_dyn_model model = {m, clear, law, clearance, 1e-3, c.gravity, w, NULL, NULL};
   fb_planar_dyn *dyn;
   assert_int_equal(fb_planar_dyn_new(&dyn, &model, &d), FB_OK);
   enum { N = 1001 };

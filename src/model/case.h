@@ -131,6 +131,8 @@ typedef struct {
   double engine_stiffness_scale; /* multiplies, after stiffness_scale, the stiffness of every
                                     engine model's law, not the references' [-] (an injected
                                     error: would the verdict notice?) */
+  double guide_clearance;    /* a prismatic clearance joint's gap c on each side of the
+                                centred slider [m] (0: not given) */
   double engine_damping_scale;   /* multiplies every engine model's damper (the impact law's
                                     c_max; the restitution law's 2 zeta sqrt(p m_eff), then
                                     taken from the case's p, not the scaled one) [-] */
@@ -271,6 +273,8 @@ typedef struct fb_case_s {
     char reason[FB_NAME_SIZE];        /* word the unstable status contains */
   } expect;                           /* hard cases' stated outcome (tests check it) */
   double revolutions;                 /* crank revolutions simulated [-]; the first is a run-in */
+  double duration_s;                  /* simulated time when given [s] ([run] duration_s; 0: from
+                                         revolutions at the drive's speed) */
   double max_wall_s;                  /* a run whose estimated wall time exceeds this is refused [s] */
   fb_start start;                     /* initial state of the bodies */
   fb_pin_start pin_start;             /* initial pin position of the clearance joints */
@@ -335,7 +339,8 @@ void fb_case_stackup_lengths(const fb_case *c, fb_linkage *out);
  * of the four tolerances, each of which moves the margin by its own size). */
 void fb_case_grashof_text(const fb_case *c, char *out, size_t size);
 
-/* Simulated duration [s]: revolutions * 2 pi / crank speed. */
+/* Simulated duration [s]: [run] duration_s when given, else revolutions *
+ * 2 pi / crank speed. */
 double fb_case_duration(const fb_case *c);
 
 /* Penetration limit of the clearance models [m]: the explicit limit, the

@@ -41,5 +41,6 @@ void fb_case_stackup_lengths(const fb_case *c, fb_linkage *out) {
 }
 
 double fb_case_duration(const fb_case *c) {
+  if (c->duration_s > 0.0) return c->duration_s;
   return c->revolutions * 2.0 * M_PI / c->crank_speed;
 }

@@ -39,7 +39,8 @@ static json_t *description_json(const fb_planar *m) {
   }
   json_object_set_new(d, "bodies", bodies);
   json_object_set_new(d, "joints", joints);
-  json_object_set_new(d, "drive", json_string(m->joint[m->drive].name));
+  json_object_set_new(d, "drive", m->drive >= 0 ? json_string(m->joint[m->drive].name)
+                                                 : json_null()); /* undriven */
   return d;
 }
 
@@ -162,8 +163,10 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
 
 void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
   const fb_planar *m = r->m;
-  fprintf(f, "case %s: planar, %d moving bodies, %d joints, drive '%s' at %.6g rad/s\n", r->c.name,
-          m->nbodies - 1, m->njoints, m->joint[m->drive].name, r->omega);
+  fprintf(f, "case %s: planar, %d moving bodies, %d joints, ", r->c.name, m->nbodies - 1,
+          m->njoints);
+  if (m->drive < 0) fprintf(f, "undriven (a free start)\n");
+  else fprintf(f, "drive '%s' at %.6g rad/s\n", m->joint[m->drive].name, r->omega);
   for (int i = 0; i < r->n; i++) {
     const fb_planar_model *p = &r->model[i];
     fprintf(f, "\nmodel %s (%zu samples every %.3g s)\n", p->name, p->n, p->h);

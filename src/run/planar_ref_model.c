@@ -8,6 +8,7 @@
 #include "joint_law.h"
 #include "peak_refine.h"
 #include "planar_case.h"
+#include "planar_free.h"
 #include "planar_invdyn.h"
 #include "planar_reference.h"
 #include "planar_run.h"
@@ -24,7 +25,7 @@ static fb_status clearance_joint(int *j, const fb_case *c, const fb_planar *m, c
     if (mask & (1u << k)) *j = k, n++;
   if (n == 1) return FB_OK;
   return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs one clearance joint ([clearance] joints "
-                     "= a revolute joint of the case), and the case names %d", model, n);
+                     "= a joint of the case), and the case names %d", model, n);
 }
 
 /* the mass the law starts from: the two bodies' reduced mass, the moving
@@ -218,31 +219,41 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   p->reference = 1;
   fb_status st = clearance_joint(&q->joint, c, m, p->name, diag);
   if (st != FB_OK) return st;
-  double *fmax_j = malloc((size_t)m->njoints * sizeof *fmax_j);
-  if (!fmax_j) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  st = fb_planar_reaction_max(fmax_j, m, r->omega, c->gravity, diag);
-  q->force_work = fmax_j[q->joint];
+  fb_planar_guide *guide = NULL;
+  double *omega0 = NULL, *fmax_j = malloc((size_t)m->njoints * sizeof *fmax_j);
+  int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
+  st = fmax_j ? fb_planar_free_parts(&guide, &omega0, &free_law, c, m, q->joint, diag)
+              : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  if (st == FB_OK && !free_law) st = fb_planar_reaction_max(fmax_j, m, r->omega, c->gravity, diag);
+  q->force_work = st == FB_OK && !free_law ? fmax_j[q->joint] : 0.0;
   free(fmax_j);
   if (st == FB_OK)
     st = fb_joint_law_at(&q->law, c, impact, q->force_work, m->joint[q->joint].name,
                          joint_mass(m, q->joint), diag);
   if (st == FB_OK) st = fb_reference_tolerance(&q->tol, diag);
-  if (st != FB_OK) return st;
+  if (st != FB_OK) {
+    free(guide);
+    free(omega0);
+    return st;
+  }
   q->check_tol = fmax(q->tol / FB_REFERENCE_CHECK_FACTOR, FB_REFERENCE_TOL_MIN);
   unsigned char *clear = calloc((size_t)m->njoints, 1);
   p->force = malloc(2 * p->n * sizeof *p->force);
   if (!clear || !p->force) {
     free(clear);
+    free(guide);
+    free(omega0);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   }
   p->pen = p->force + p->n;
   clear[q->joint] = 1;
   /* v0 of the hysteresis laws: fixed, as reference.c's */
-  fb_planar *about = NULL; /* the description about the clearance joint, owned */
+  /* the description about a revolute clearance joint, owned (a guide's
+   * corners are placed on m's axes, so a prismatic joint stays put) */
+  fb_planar *about = NULL;
   if (st == FB_OK) st = about_joint(&about, c, m, q->joint, diag);
   const fb_planar_dyn_model model = {about ? about : m, clear, q->law, c->radial_clearance, 1e-3,
-                                     c->gravity,
-                                     r->omega};
+                                     c->gravity, r->omega, guide, omega0};
   fb_planar_dyn *d = NULL;
   st = fb_planar_dyn_new(&d, &model, diag);
   const int nw = 4 * (m->nbodies - 1) + 2;
@@ -273,5 +284,7 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   fb_planar_dyn_free(d);
   fb_planar_free(about);
   free(clear);
+  free(guide);
+  free(omega0);
   return st;
 }

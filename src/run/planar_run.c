@@ -20,6 +20,10 @@ int fb_planar_run_takes(const char *name) {
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < c->model_count; i++) {
     const char *name = c->models[i];
+    if (c->planar.undriven && strcmp(name, "analytic") == 0)
+      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: 'analytic' follows the drive, and the "
+                         "case is undriven ([drive] joint = none); it runs: reference, "
+                         "reference-restitution");
     if (fb_planar_run_takes(name)) continue;
     const fb_model *m = fb_model_find(name);
     if (m && m->engine != FB_ENGINE_ANALYTIC && m->engine != FB_ENGINE_REFERENCE)
@@ -133,9 +137,11 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
   if (st != FB_OK) return st;
   r->c = *c;
   if ((st = fb_planar_of_case(&r->m, c, NULL, diag)) != FB_OK) return st;
-  r->omega = fb_case_omega2(c);
+  const int free = c->planar.undriven; /* no drive: no speed, no run-in revolution */
+  r->omega = free ? 0.0 : fb_case_omega2(c);
   r->duration = fb_case_duration(c);
-  r->t_window = fb_case_peak_window_from(c); /* the four-bar's window (run.c) */
+  /* the four-bar's window (run.c); an undriven case has no revolution */
+  r->t_window = free ? 0.0 : fb_case_peak_window_from(c);
   for (int i = 0; i < c->model_count && st == FB_OK; i++) {
     fb_planar_model *p = &r->model[r->n++];
     snprintf(p->name, sizeof p->name, "%s", c->models[i]);

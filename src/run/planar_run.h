@@ -27,6 +27,9 @@
  *              verdict "ok" when every window peak (omega, alpha of every
  *              body, the contact force) moves by at most FB_UNCONVERGED_REL,
  *              else "unconverged" (run.h's rule for a reference).
+ * An undriven case ([drive] joint = none) runs the references only, from
+ * its bodies' initial angular velocities (planar_free.h), its window the
+ * whole run; a prismatic clearance joint is a slider in its guide.
  * Every other model (an engine's, a stack-up's, a clearance model's) is
  * refused by name: the engines build a planar case with the engine kit
  * (issue 58). A planar case that lists no [run] models runs analytic. */

@@ -195,6 +195,11 @@ static const key_spec keys[] = {
     {"clearance", "restitution", K_DOUBLE, OFF(clearance.restitution), 1.0, FB_RESTITUTION_MIN,
      1, 1, 0, "-", "0.9", "cr must lie in (0.1353, 1] (the restitution law's range)",
      "coefficient of restitution of the restitution model"},
+    {"clearance", "guide_clearance_mm", K_DOUBLE, OFF(clearance.guide_clearance), FB_M_PER_MM, 0,
+     1e5, 1, 0, "mm", "(none)", "a guide clearance must be positive, at most 1e5 mm",
+     "planar case: the gap c on each side between the centred slider's face and its guide's "
+     "wall at a prismatic joint [clearance] joints names (the slider's size: slider_half_length_mm "
+     "and slider_half_height_mm in its [joint.NAME]; docs/planar.md); required there"},
     {"clearance", "stiffness_impact_n_m1_5", K_DOUBLE, OFF(clearance.stiffness_impact), 1.0, 0,
      INF, 1, 1, "N/m^1.5", "1e11", "a stiffness must be positive",
      "impact-model stiffness K when penalty = explicit"},
@@ -323,6 +328,10 @@ static const key_spec keys[] = {
      "at least 2 with peaks = steady (the first revolution is a run-in); at least 1 with "
      "peaks = all",
      "crank revolutions simulated"},
+    {"run", "duration_s", K_DOUBLE, OFF(duration_s), 1.0, 0, 1e6, 1, 0, "s", "(none)",
+     "a duration must be positive, at most 1e6 s",
+     "simulated time, instead of revolutions at the drive's speed; required by an undriven "
+     "planar case ([drive] joint = none, docs/planar.md), which has no revolution"},
     {"run", "max_wall_s", K_DOUBLE, OFF(max_wall_s), 1.0, 0, INF, 1, 1, "s", "86400",
      "the wall-time limit must be positive",
      "before simulating, fourbar estimates each model's memory and wall time from its step "

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "casefile.h"
+#include "casefile_planar_free.h"
 #include "planar_case.h"
 #include "planar_check.h"
 #include "units.h"
@@ -168,8 +169,16 @@ static fb_status joint_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
     return number(e, e->value, -360.0, 360.0, FB_RAD_PER_DEG,
                   "an angle from -360 to 360 deg, counter-clockwise from +x", &j->axis, diag);
   }
+  if (strcmp(e->key, "slider_half_length_mm") == 0 || strcmp(e->key, "slider_half_height_mm") == 0) {
+    const int len = strcmp(e->key, "slider_half_length_mm") == 0;
+    j->given |= len ? FB_SPEC_JOINT_HALF_LENGTH : FB_SPEC_JOINT_HALF_HEIGHT;
+    return number(e, e->value, 1e-3, COORD_MAX_MM, FB_M_PER_MM,
+                  "a slider's half-size must be positive, from 0.001 mm to 1e5 mm",
+                  len ? &j->half_length : &j->half_height, diag);
+  }
   return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a joint has bodies, "
-                     "at_mm, kind and axis_deg)", e->origin, e->key, e->section);
+                     "at_mm, kind, axis_deg, slider_half_length_mm and slider_half_height_mm)",
+                     e->origin, e->key, e->section);
 }
 
 static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
@@ -204,7 +213,9 @@ static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
       {"width_mm", FB_SPEC_BODY_WIDTH, offsetof(fb_planar_spec_body, width), 1e-3, 1e5,
        FB_M_PER_MM, "a bar width must be positive, from 0.001 mm to 1e5 mm"},
       {"thickness_mm", FB_SPEC_BODY_THICK, offsetof(fb_planar_spec_body, thickness), 1e-3, 1e5,
-       FB_M_PER_MM, "a bar thickness must be positive, from 0.001 mm to 1e5 mm"}};
+       FB_M_PER_MM, "a bar thickness must be positive, from 0.001 mm to 1e5 mm"},
+      {"initial_omega_rad_s", FB_SPEC_BODY_OMEGA0, offsetof(fb_planar_spec_body, omega0), -1e6,
+       1e6, 1.0, "an angular velocity from -1e6 to 1e6 rad/s, counter-clockwise positive"}};
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
     if (strcmp(e->key, keys[i].key) == 0) {
       b->given |= keys[i].bit;
@@ -212,8 +223,8 @@ static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
                     (double *)((char *)b + keys[i].offset), diag);
     }
   return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a body has mass_kg, "
-                     "inertia_kg_mm2, centre_mm, width_mm and thickness_mm)", e->origin, e->key,
-                     e->section);
+                     "inertia_kg_mm2, centre_mm, width_mm, thickness_mm and initial_omega_rad_s)",
+                     e->origin, e->key, e->section);
 }
 
 fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
@@ -329,11 +340,10 @@ static fb_status joint_names(int *mask, const fb_planar_spec *s, const entry *e,
     if (found < 0)
       return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: '%s' is not a joint of the case "
                          "(joints: %s)", e->origin, e->section, e->key, name, known);
-    if (s->joint[found].kind != FB_KIND_REVOLUTE)
-      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: joint '%s' is prismatic; %s",
-                         e->origin, e->section, e->key, name,
-                         single ? "the drive turns a revolute joint at speed_rpm"
-                                : "only a revolute joint can be a pin in a hole");
+    if (single && s->joint[found].kind != FB_KIND_REVOLUTE)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: joint '%s' is prismatic; the drive "
+                         "turns a revolute joint at speed_rpm", e->origin, e->section, e->key,
+                         name);
     *mask |= 1 << found;
   }
   if (single && count != 1)
@@ -351,12 +361,19 @@ static fb_status drive_and_clearance(fb_case *c, const entry *e, int n, const ch
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [linkage] type = planar needs [drive] joint = "
                        "NAME, the revolute joint the drive turns", path ? path : "case");
   int mask;
-  fb_status st = joint_names(&mask, s, dr, 1, diag);
+  char word[sizeof dr->value];
+  snprintf(word, sizeof word, "%s", dr->value);
+  s->undriven = strcmp(trim(word), "none") == 0;
+  s->drive = -1;
+  fb_status st = s->undriven ? FB_OK : joint_names(&mask, s, dr, 1, diag);
   if (st != FB_OK) return st;
-  for (s->drive = 0; !(mask & (1 << s->drive)); s->drive++) continue;
+  for (s->drive = 0; !s->undriven && !(mask & (1 << s->drive)); s->drive++) continue;
+  if (s->undriven) s->drive = -1;
   const entry *cl = entry_of(e, n, "clearance", "joints");
   c->clearance.mask = 0; /* a planar case's default: no clearance joint */
-  return cl ? joint_names(&c->clearance.mask, s, cl, 0, diag) : FB_OK;
+  st = cl ? joint_names(&c->clearance.mask, s, cl, 0, diag) : FB_OK;
+  if (st == FB_OK) st = fb_casefile_planar_free(c, e, n, path, diag);
+  return st == FB_OK ? fb_casefile_planar_guides(c, e, n, path, diag) : st;
 }
 
 /* one line on a checked description, for the refusal */
@@ -366,8 +383,9 @@ static void summary(char *buf, size_t size, const fb_planar *m) {
     if (m->body[b].derived & FB_PLANAR_DERIVED_MASS)
       snprintf(derived + strlen(derived), sizeof derived - strlen(derived), "%s%s",
                derived[0] ? ", " : "", m->body[b].name);
-  snprintf(buf, size, "%d moving bodies, %d joints, one degree of freedom driven at '%s', a full "
-           "turn%s%s%s", m->nbodies - 1, m->njoints, m->joint[m->drive].name,
+  snprintf(buf, size, "%d moving bodies, %d joints, one degree of freedom %s%s%s%s%s%s",
+           m->nbodies - 1, m->njoints, m->drive >= 0 ? "driven at '" : "undriven",
+           m->drive >= 0 ? m->joint[m->drive].name : "", m->drive >= 0 ? "', a full turn" : "",
            derived[0] ? "; masses derived as bars: " : "", derived, derived[0] ? "" : "");
 }
 
@@ -389,8 +407,8 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
   summary(line, sizeof line, m);
   fb_planar_free(m);
   if (!fb_casefile_given(c, "run", "models")) { /* the models that run a planar case */
-    c->model_count = 1;
-    snprintf(c->models[0], sizeof c->models[0], "analytic");
+    c->model_count = 1; /* an undriven one has no ideal motion to follow: its reference */
+    snprintf(c->models[0], sizeof c->models[0], "%s", c->planar.undriven ? "reference" : "analytic");
   }
   if (run) return FB_OK;
   return fb_diag_set(diag, FB_ERR_ARG,

@@ -7,11 +7,15 @@
  *                 at_mm = x, y            its position in the assembly configuration
  *                 kind = revolute         or prismatic (default revolute)
  *                 axis_deg = a            prismatic: the slide's direction, ccw from +x
+ *                 slider_half_length_mm,  a prismatic clearance joint's slider
+ *                 slider_half_height_mm   (casefile_planar_free.h)
  *   [body.NAME]   mass_kg, inertia_kg_mm2 (about its centre), centre_mm = x, y,
- *                 width_mm, thickness_mm  (the bar section when masses are derived)
+ *                 width_mm, thickness_mm  (the bar section when masses are derived),
+ *                 initial_omega_rad_s     (an undriven case's start)
  *   [drive]       joint = NAME            the driven (revolute) joint; speed_rpm and
- *                                         direction as for every case
- *   [clearance]   joints = NAME, ...      revolute joints modelled as a pin in a hole
+ *                                         direction as for every case; none: undriven
+ *   [clearance]   joints = NAME, ...      revolute joints modelled as a pin in a hole,
+ *                                         prismatic ones as a slider in its guide
  *
  * Values are checked as they are read (file, line, key, value, rule), the
  * sections as a whole when the file is read (casefile_planar_finish), and

@@ -25,12 +25,15 @@ enum {
   FB_SPEC_JOINT_AT = 2,     /* at_mm = x, y */
   FB_SPEC_JOINT_KIND = 4,   /* kind = revolute | prismatic */
   FB_SPEC_JOINT_AXIS = 8,   /* axis_deg */
+  FB_SPEC_JOINT_HALF_LENGTH = 16, /* slider_half_length_mm */
+  FB_SPEC_JOINT_HALF_HEIGHT = 32, /* slider_half_height_mm */
   FB_SPEC_BODY_SECTION = 1, /* a [body.NAME] section exists */
   FB_SPEC_BODY_MASS = 2,    /* mass_kg */
   FB_SPEC_BODY_INERTIA = 4, /* inertia_kg_mm2 */
   FB_SPEC_BODY_CENTRE = 8,  /* centre_mm = x, y */
   FB_SPEC_BODY_WIDTH = 16,  /* width_mm */
-  FB_SPEC_BODY_THICK = 32   /* thickness_mm */
+  FB_SPEC_BODY_THICK = 32,  /* thickness_mm */
+  FB_SPEC_BODY_OMEGA0 = 64  /* initial_omega_rad_s */
 };
 
 /* One [joint.NAME] section. */
@@ -40,6 +43,9 @@ typedef struct {
   double at[2];                   /* assembly position [m] (2) */
   int kind;                       /* fb_joint_kind (mechanism.h); revolute by default */
   double axis;                    /* prismatic: slide direction, ccw from +x [rad] */
+  double half_length;             /* prismatic with clearance: the slider's half-length a
+                                     along the slide [m] when given */
+  double half_height;             /* and its half-height b across it [m] when given */
   int given;                      /* FB_SPEC_JOINT_* bits */
 } fb_planar_spec_joint;
 
@@ -51,6 +57,8 @@ typedef struct {
   double centre[2];               /* centre of mass in the assembly configuration [m] when given */
   double width;                   /* bar width for derived masses [m] when given */
   double thickness;               /* bar thickness for derived masses [m] when given */
+  double omega0;                  /* initial angular velocity of an undriven case, ccw
+                                     [rad/s] (0 unless given) */
   int given;                      /* FB_SPEC_BODY_* bits */
 } fb_planar_spec_body;
 
@@ -63,6 +71,7 @@ typedef struct {
                                   first mention */
   fb_planar_spec_body body[FB_PLANAR_SPEC_MAX_BODIES + 1];
   int drive;                   /* [drive] joint: index into joint, -1 when not given */
+  int undriven;                /* 1: [drive] joint = none (a free start, drive -1) */
 } fb_planar_spec;
 
 #endif

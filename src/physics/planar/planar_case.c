@@ -228,9 +228,10 @@ fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double den
       rc = FB_ERR_ARG;
     }
   }
-  if (rc == FB_OK && s->drive < 0) rc = fb_diag_set(diag, FB_ERR_ARG, "no drive: name the "
-                                                    "driven joint in [drive] joint");
-  if (rc == FB_OK && (rc = fb_planar_set_drive(p, s->drive, diag)) != FB_OK) where->joint = s->drive;
+  if (rc == FB_OK && s->drive < 0 && !s->undriven)
+    rc = fb_diag_set(diag, FB_ERR_ARG, "no drive: name the driven joint in [drive] joint");
+  if (rc == FB_OK && !s->undriven && (rc = fb_planar_set_drive(p, s->drive, diag)) != FB_OK)
+    where->joint = s->drive;
   if (rc != FB_OK) {
     fb_planar_free(p);
     return rc;

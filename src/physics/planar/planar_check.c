@@ -250,8 +250,6 @@ fb_status fb_planar_check(const fb_planar *m, fb_planar_where *where, fb_diag *d
   fb_planar_where none = {-1, -1};
   if (!where) where = &none;
   *where = none;
-  if (m->drive < 0)
-    return fb_diag_set(diag, FB_ERR_ARG, "no drive: name the driven joint in [drive] joint");
   const int lone = unconnected(m);
   if (lone > 0) {
     where->body = lone;
@@ -276,8 +274,9 @@ fb_status fb_planar_check(const fb_planar *m, fb_planar_where *where, fb_diag *d
   double *q = calloc((size_t)nq, sizeof *q);
   if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   fb_planar_assembly(m, q);
-  fb_status rc = check_rank(m, q, where, diag);
-  if (rc == FB_OK) rc = check_turn(m, q, where, diag);
+  /* an undriven description (a free start): the rank and the turn are the drive's */
+  fb_status rc = m->drive < 0 ? FB_OK : check_rank(m, q, where, diag);
+  if (rc == FB_OK && m->drive >= 0) rc = check_turn(m, q, where, diag);
   free(q);
   return rc;
 }

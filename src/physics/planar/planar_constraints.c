@@ -162,3 +162,12 @@ void fb_planar_constraints(double *phi, double *jac, double *gamma, const fb_pla
   }
   if (gamma) gamma[r] = drive->alpha;
 }
+
+void fb_planar_add_force(double *force, const double *q, int b, const double p[2],
+                         const double f[2]) {
+  if (!b) return;
+  const int c = 3 * (b - 1);
+  force[c] += f[0];
+  force[c + 1] += f[1];
+  force[c + 2] += (p[0] - q[c]) * f[1] - (p[1] - q[c + 1]) * f[0];
+}

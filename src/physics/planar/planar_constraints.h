@@ -66,4 +66,10 @@ void fb_planar_point_velocity(double out[2], const fb_planar *m, const double *q
 void fb_planar_point_jacobian(double *rows, const fb_planar *m, const double *q, int b,
                               const double s[2], double sign);
 
+/* Adds point force f (2) [N] acting at world point p (2) [m] on body b to
+ * the generalised forces force (nq): (f_x, f_y, (p - r_b) x f) in body b's
+ * columns; nothing for the ground. */
+void fb_planar_add_force(double *force, const double *q, int b, const double p[2],
+                         const double f[2]);
+
 #endif

@@ -10,6 +10,7 @@
 #include "contact_mass.h"
 #include "effective_mass.h"
 #include "planar_kinematics.h"
+#include "planar_start.h"
 
 struct fb_planar_dyn {
   fb_planar_dyn_model model;
@@ -22,11 +23,14 @@ fb_status fb_planar_dyn_new(fb_planar_dyn **out, const fb_planar_dyn_model *mode
                             fb_diag *diag) {
   *out = NULL;
   const fb_planar *m = model->mech;
-  if (m->drive < 0) return fb_diag_set(diag, FB_ERR_ARG, "the description has no drive");
-  for (int j = 0; j < m->njoints; j++)
-    if (model->clearance[j] && m->joint[j].kind != FB_KIND_REVOLUTE)
-      return fb_diag_set(diag, FB_ERR_ARG, "joint '%s' is prismatic: only a revolute joint "
-                         "can be a pin in a hole", m->joint[j].name);
+  for (int j = 0; j < m->njoints; j++) {
+    if (!model->clearance[j] || m->joint[j].kind == FB_KIND_REVOLUTE) continue;
+    if (!model->guide)
+      return fb_diag_set(diag, FB_ERR_ARG, "joint '%s' is prismatic: its clearance needs the "
+                         "slider's size in its guide", m->joint[j].name);
+    fb_status rc = fb_planar_guide_check(&model->guide[j], diag);
+    if (rc != FB_OK) return rc;
+  }
   if (!(model->radial_clearance >= 0.0 && isfinite(model->radial_clearance)) ||
       !(model->gravity >= 0.0 && isfinite(model->gravity)) ||
       !(model->impact_velocity > 0.0 && isfinite(model->impact_velocity)) ||
@@ -69,13 +73,24 @@ const fb_planar_dyn_model *fb_planar_dyn_model_of(const fb_planar_dyn *d) { retu
 
 fb_planar_cmass *fb_planar_dyn_cmass(fb_planar_dyn *d) { return d->cmass; }
 
-/* adds force f (2) at world point p to body b's generalised force */
-static void push(double *force, const double *q, int b, const double p[2], const double f[2]) {
-  if (!b) return;
-  const int c = 3 * (b - 1);
-  force[c] += f[0];
-  force[c + 1] += f[1];
-  force[c + 2] += (p[0] - q[c]) * f[1] - (p[1] - q[c + 1]) * f[0];
+/* a slider's corners at prismatic clearance joint j, summed into *out */
+static void guide_at(fb_planar_dyn *d, int j, const double *q, const double *qd,
+                     fb_planar_contact *out) {
+  fb_planar_guide_state g;
+  fb_planar_guide_contact(d->force, &g, d->cmass, d->model.mech, j, &d->model.guide[j],
+                          &d->model.law, d->model.impact_velocity, q, qd);
+  /* the slider's centre across the slide: the mean of its corners' y */
+  fb_planar_contact s = {{0.25 * (g.gap[2] + g.gap[3] - g.gap[0] - g.gap[1]), g.tilt},
+                         0.0, 0.0, 0.0, 0.0};
+  int deep = 0;
+  for (int k = 0; k < FB_PLANAR_GUIDE_CORNERS; k++) {
+    s.force += g.force[k];
+    if (g.gap[k] < g.gap[deep]) deep = k;
+  }
+  s.penetration = g.gap[deep] < 0.0 ? -g.gap[deep] : 0.0;
+  s.rate = g.rate[deep];
+  s.effective_mass = g.mass[deep];
+  if (out) *out = s;
 }
 
 /* the contact at clearance joint j, its forces added to d->force */
@@ -105,8 +120,8 @@ static void contact_at(fb_planar_dyn *d, int j, const double *q, const double *q
       c.force = fb_contact_force(&law, delta, c.rate, d->model.impact_velocity);
       /* the pin pushes the hole along +n */
       const double fh[2] = {c.force * n[0], c.force * n[1]}, fp[2] = {-fh[0], -fh[1]};
-      push(d->force, q, jt->body[1], ph, fh);
-      push(d->force, q, jt->body[0], pp, fp);
+      fb_planar_add_force(d->force, q, jt->body[1], ph, fh);
+      fb_planar_add_force(d->force, q, jt->body[0], pp, fp);
     }
   }
   if (out) *out = c;
@@ -124,9 +139,12 @@ fb_status fb_planar_dyn_eval(fb_planar_dyn *d, double t, const double *y, double
     d->force[3 * (b - 1) + 2] = 0.0;
   }
   for (int j = 0; j < m->njoints; j++)
-    if (d->model.clearance[j]) contact_at(d, j, q, qd, contact ? &contact[j] : NULL);
+    if (d->model.clearance[j])
+      (m->joint[j].kind == FB_KIND_PRISMATIC ? guide_at : contact_at)(
+          d, j, q, qd, contact ? &contact[j] : NULL);
   const fb_planar_drive dr = {d->model.omega * t, d->model.omega, 0.0};
-  fb_planar_constraints(NULL, NULL, d->gamma, m, d->model.clearance, &dr, q, qd);
+  fb_planar_constraints(NULL, NULL, d->gamma, m, d->model.clearance, m->drive >= 0 ? &dr : NULL,
+                        q, qd);
   memcpy(dydt, qd, (size_t)nq * sizeof *dydt);
   fb_planar_cmass_accel(d->cmass, dydt + nq, NULL, d->force, d->gamma);
   return FB_OK;
@@ -136,8 +154,20 @@ int fb_planar_dyn_rhs(double t, const double y[], double dydt[], void *params) {
   return fb_planar_dyn_eval(params, t, y, dydt, NULL) == FB_OK ? GSL_SUCCESS : GSL_EBADFUNC;
 }
 
+/* the undriven description's start from the model's angular rates */
+static fb_status free_start(double *y0, const fb_planar_dyn *d, fb_diag *diag) {
+  const fb_planar *m = d->model.mech;
+  double *w = calloc((size_t)m->nbodies, sizeof *w);
+  if (!w) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int b = 1; b < m->nbodies && d->model.omega0; b++) w[b] = d->model.omega0[b];
+  const fb_status rc = fb_planar_free_start(y0, m, d->model.clearance, w, diag);
+  free(w);
+  return rc;
+}
+
 fb_status fb_planar_dyn_steady(double *y0, const fb_planar_dyn *d, fb_diag *diag) {
   const fb_planar *m = d->model.mech;
+  if (m->drive < 0) return free_start(y0, d, diag);
   fb_planar_kin *k;
   fb_status rc = fb_planar_kin_new(&k, m, diag);
   if (rc != FB_OK) return rc;

@@ -26,6 +26,7 @@
 #define FB_PLANAR_DYNAMICS_H
 
 #include "contact.h"
+#include "planar_guide.h"
 #include "planar_mass.h"
 
 /* The model. */
@@ -38,9 +39,15 @@ typedef struct {
   double impact_velocity;          /* v0 of the hysteresis laws [m/s] > 0 (fixed, as reference.c) */
   double gravity;                  /* along -y [m/s^2] */
   double omega;                    /* the drive's constant speed, signed [rad/s]: phi(t) = omega t */
+  const fb_planar_guide *guide;    /* (njoints) a prismatic clearance joint's slider in its
+                                      guide (planar_guide.h); NULL when none is one */
+  const double *omega0;            /* an undriven description's initial angular velocities
+                                      (nbodies) [rad/s] (planar_start.h); NULL: all 0 */
 } fb_planar_dyn_model;
 
-/* One clearance joint's contact at an evaluation. */
+/* One clearance joint's contact at an evaluation (a slider in its guide:
+ * the deepest corner's, force the corners' sum, ecc the slider's offset
+ * across the slide and its tilt [m, rad]). */
 typedef struct {
   double ecc[2];         /* e = p_pin - p_hole [m] (x, y) */
   double penetration;    /* max(|e| - c, 0) [m] */
@@ -54,8 +61,10 @@ typedef struct {
 typedef struct fb_planar_dyn fb_planar_dyn;
 
 /* A workspace for model (copied; its mech and clearance must outlive it).
- * Errors: FB_ERR_ARG when a clearance joint is prismatic or the
- * description has no drive; FB_ERR_RANGE for a negative clearance or
+ * An undriven description (m->drive < 0) runs free from omega0. A
+ * prismatic clearance joint is a slider in its guide (guide[j]).
+ * Errors: FB_ERR_ARG when a clearance joint is prismatic without its
+ * guide; those of fb_planar_guide_check; FB_ERR_RANGE for a negative clearance or
  * gravity, a non-positive v0; those of fb_contact_law_check; FB_ERR_NOMEM. */
 fb_status fb_planar_dyn_new(fb_planar_dyn **out, const fb_planar_dyn_model *model,
                             fb_diag *diag);
@@ -86,7 +95,9 @@ int fb_planar_dyn_rhs(double t, const double y[], double dydt[], void *params);
 
 /* The steady start: every joint (the clearance joints too, pins centred)
  * and the drive on the ideal motion at t = 0, the assembly configuration,
- * into y0 (2 nq). Errors: those of planar_kinematics.h. */
+ * into y0 (2 nq); an undriven description's free start from omega0
+ * (planar_start.h). Errors: those of planar_kinematics.h and
+ * fb_planar_free_start. */
 fb_status fb_planar_dyn_steady(double *y0, const fb_planar_dyn *d, fb_diag *diag);
 
 #endif

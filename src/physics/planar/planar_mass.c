@@ -15,6 +15,7 @@ struct fb_planar_cmass {
   const fb_planar *m;
   unsigned char *off; /* (njoints) */
   int nq, rows;
+  int drive_row;      /* 1: the description's drive is a row of the set */
   double *minv;       /* (nq) diagonal of M^-1 */
   double *g;          /* rows x nq */
   double *s;          /* rows x rows: S, then its Cholesky factor */
@@ -23,6 +24,7 @@ struct fb_planar_cmass {
   double *jr;         /* 2 x nq */
   double *zt;         /* 2 x rows */
   int *nz, *nnz;      /* rows x nq: each row's nonzero columns of g, first nnz[row] */
+  double *jc;         /* FB_PLANAR_CMASS_MAX_CONTACTS x nq: contact rows */
 };
 
 fb_status fb_planar_cmass_new(fb_planar_cmass **out, const fb_planar *m,
@@ -32,7 +34,8 @@ fb_status fb_planar_cmass_new(fb_planar_cmass **out, const fb_planar *m,
   if (!c) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   c->m = m;
   c->nq = fb_planar_nq(m);
-  c->rows = fb_planar_rows(m, off, 1);
+  c->drive_row = m->drive >= 0; /* an undriven description has no drive row */
+  c->rows = fb_planar_rows(m, off, c->drive_row);
   const size_t nq = (size_t)c->nq, rows = (size_t)c->rows;
   c->off = calloc((size_t)m->njoints, 1);
   c->minv = calloc(nq, sizeof *c->minv);
@@ -45,8 +48,9 @@ fb_status fb_planar_cmass_new(fb_planar_cmass **out, const fb_planar *m,
   c->zt = calloc(2 * rows, sizeof *c->zt);
   c->nz = calloc(rows * nq + rows, sizeof *c->nz);
   c->nnz = c->nz ? c->nz + rows * nq : NULL;
+  c->jc = calloc(FB_PLANAR_CMASS_MAX_CONTACTS * nq, sizeof *c->jc);
   if (!c->off || !c->minv || !c->g || !c->s || !c->x || !c->z || !c->phi || !c->jr || !c->zt ||
-      !c->nz) {
+      !c->nz || !c->jc) {
     fb_planar_cmass_free(c);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu constraint rows", rows);
   }
@@ -71,6 +75,7 @@ void fb_planar_cmass_free(fb_planar_cmass *c) {
   free(c->jr);
   free(c->zt);
   free(c->nz);
+  free(c->jc);
   free(c);
 }
 
@@ -79,7 +84,7 @@ int fb_planar_cmass_rows(const fb_planar_cmass *c) { return c->rows; }
 fb_status fb_planar_cmass_factor(fb_planar_cmass *c, const double *q, double reg,
                                  fb_diag *diag) {
   const fb_planar_drive d = {0.0, 0.0, 0.0};
-  fb_planar_constraints(NULL, c->g, NULL, c->m, c->off, &d, q, NULL);
+  fb_planar_constraints(NULL, c->g, NULL, c->m, c->off, c->drive_row ? &d : NULL, q, NULL);
   const int nq = c->nq, rows = c->rows;
   /* a row touches its joint's two bodies, 6 of the nq columns: S's sums
    * skip the others' exact zero products (the same sums, bit for bit;
@@ -143,10 +148,15 @@ void fb_planar_cmass_accel(fb_planar_cmass *c, double *qdd, double *lambda, cons
 
 void fb_planar_cmass_tensor(fb_planar_cmass *c, double w[2][2], int j, const double *q) {
   const fb_planar_joint *jt = &c->m->joint[j];
+  fb_planar_cmass_tensor_points(c, w, jt->body[0], jt->point[0], jt->body[1], jt->point[1], q);
+}
+
+void fb_planar_cmass_tensor_points(fb_planar_cmass *c, double w[2][2], int b0, const double s0[2],
+                                   int b1, const double s1[2], const double *q) {
   const int nq = c->nq, rows = c->rows;
   memset(c->jr, 0, 2 * (size_t)nq * sizeof *c->jr);
-  fb_planar_point_jacobian(c->jr, c->m, q, jt->body[0], jt->point[0], 1.0);
-  fb_planar_point_jacobian(c->jr, c->m, q, jt->body[1], jt->point[1], -1.0);
+  fb_planar_point_jacobian(c->jr, c->m, q, b0, s0, 1.0);
+  fb_planar_point_jacobian(c->jr, c->m, q, b1, s1, -1.0);
   for (int r = 0; r < 2; r++) {
     double *z = c->zt + r * rows;
     for (int a = 0; a < rows; a++) {
@@ -191,7 +201,7 @@ fb_status fb_planar_cmass_project(fb_planar_cmass *c, double *q, double *qd,
   const double size = fb_planar_size(c->m);
   double *dq = c->jr; /* (2 nq of scratch) */
   for (int it = 0; it < 4; it++) {
-    fb_planar_constraints(c->phi, NULL, NULL, c->m, c->off, d, q, NULL);
+    fb_planar_constraints(c->phi, NULL, NULL, c->m, c->off, c->drive_row ? d : NULL, q, NULL);
     if (it == 0 && dq_max) *dq_max = length_rows_max(c, c->phi);
     fb_status rc = fb_planar_cmass_factor(c, q, 0.0, diag);
     if (rc != FB_OK) return rc;
@@ -208,7 +218,7 @@ fb_status fb_planar_cmass_project(fb_planar_cmass *c, double *q, double *qd,
   fb_status rc = fb_planar_cmass_factor(c, q, 0.0, diag);
   if (rc != FB_OK) return rc;
   for (int a = 0; a < rows; a++) {
-    double v = a == rows - 1 ? -d->omega : 0.0;
+    double v = c->drive_row && a == rows - 1 ? -d->omega : 0.0;
     for (int i = 0; i < nq; i++) v += c->g[a * nq + i] * qd[i];
     c->x[a] = v;
   }
@@ -231,4 +241,36 @@ fb_status fb_planar_effective_mass_tensor(double w[2][2], const fb_planar *m, co
   if (rc == FB_OK) fb_planar_cmass_tensor(c, w, j, q);
   fb_planar_cmass_free(c);
   return rc;
+}
+
+void fb_planar_cmass_delassus(fb_planar_cmass *c, double *d, int k, const int *b0,
+                              const double (*s0)[2], const int *b1, const double (*s1)[2],
+                              const double (*n)[2], const double *q) {
+  const int nq = c->nq, rows = c->rows;
+  /* row r: n_r^T (J(b0_r, s0_r) - J(b1_r, s1_r)) */
+  for (int r = 0; r < k; r++) {
+    memset(c->jr, 0, 2 * (size_t)nq * sizeof *c->jr);
+    fb_planar_point_jacobian(c->jr, c->m, q, b0[r], s0[r], 1.0);
+    fb_planar_point_jacobian(c->jr, c->m, q, b1[r], s1[r], -1.0);
+    for (int i = 0; i < nq; i++) c->jc[r * nq + i] = n[r][0] * c->jr[i] + n[r][1] * c->jr[nq + i];
+  }
+  /* D = J M^-1 J^T - (G M^-1 J^T)^T S^-1 (G M^-1 J^T) */
+  for (int r = 0; r < k; r++) {
+    for (int a = 0; a < rows; a++) {
+      double v = 0.0;
+      for (int i = 0; i < nq; i++) v += c->g[a * nq + i] * c->minv[i] * c->jc[r * nq + i];
+      c->x[a] = v;
+    }
+    s_solve(c, c->x);
+    for (int l = 0; l < k; l++) {
+      double v = 0.0;
+      for (int i = 0; i < nq; i++) v += c->jc[r * nq + i] * c->minv[i] * c->jc[l * nq + i];
+      for (int a = 0; a < rows; a++) {
+        double z = 0.0;
+        for (int i = 0; i < nq; i++) z += c->g[a * nq + i] * c->minv[i] * c->jc[l * nq + i];
+        v -= z * c->x[a];
+      }
+      d[r * k + l] = v;
+    }
+  }
 }

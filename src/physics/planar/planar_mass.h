@@ -32,7 +32,8 @@
 typedef struct fb_planar_cmass fb_planar_cmass;
 
 /* A workspace for m with the joints flagged in off (njoints; NULL: none)
- * left out of the set and the drive's row in it. Every moving body needs a
+ * left out of the set and the drive's row in it (none when m is undriven,
+ * m->drive < 0: then the drive arguments below are ignored). Every moving body needs a
  * positive mass and inertia (fb_planar_add_body checks it).
  * Errors: FB_ERR_NOMEM. */
 fb_status fb_planar_cmass_new(fb_planar_cmass **out, const fb_planar *m,
@@ -62,6 +63,26 @@ void fb_planar_cmass_accel(fb_planar_cmass *c, double *qdd, double *lambda, cons
  * (its point on body[0] minus its point on body[1]) at q, the
  * configuration last factorised. */
 void fb_planar_cmass_tensor(fb_planar_cmass *c, double w[2][2], int j, const double *q);
+
+/* Most contacts fb_planar_cmass_delassus takes. */
+#define FB_PLANAR_CMASS_MAX_CONTACTS 4
+
+/* The Delassus matrix d (k x k, row-major) [1/kg] of k <= 
+ * FB_PLANAR_CMASS_MAX_CONTACTS contacts at q (the configuration last
+ * factorised): contact r's normal velocity n_r . (v(b0_r, s0_r) -
+ * v(b1_r, s1_r)) (points s in their bodies' frames [m], n_r unit (2)),
+ * d = J P J^T with J (k x nq) those rows and P the constrained inverse
+ * mass above (Moreau's and Siconos's W = H^T M^-1 H in the joints' free
+ * coordinates); d[r][r] = 1 / m_eff of contact r alone. */
+void fb_planar_cmass_delassus(fb_planar_cmass *c, double *d, int k, const int *b0,
+                              const double (*s0)[2], const int *b1, const double (*s1)[2],
+                              const double (*n)[2], const double *q);
+
+/* The same for any two points: the relative motion of point s0 (2, body
+ * b0's frame) minus point s1 (2, body b1's frame) [m] (a slider's corner
+ * against its guide, planar_guide.h). */
+void fb_planar_cmass_tensor_points(fb_planar_cmass *c, double w[2][2], int b0, const double s0[2],
+                                   int b1, const double s1[2], const double *q);
 
 /* q (in, out) moved to the closest position of the set (mass-weighted
  * least squares: dq = -M^-1 G^T S^-1 Phi, repeated until the correction is

@@ -1,0 +1,41 @@
+/* An undriven planar case's start and a slider's guide (planar_free.h). */
+#include "planar_free.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* [clearance] penalty's words, by fb_penalty_source */
+static const char *const SOURCE[] = {"physical", "paper", "explicit", "goldsmith"};
+
+fb_status fb_planar_free_parts(fb_planar_guide **guide, double **omega0, int *needs_explicit,
+                               const fb_case *c, const fb_planar *m, int joint, fb_diag *diag) {
+  *guide = NULL;
+  *omega0 = NULL;
+  const int prismatic = m->joint[joint].kind == FB_KIND_PRISMATIC, undriven = m->drive < 0;
+  *needs_explicit = prismatic || undriven;
+  if (*needs_explicit && c->clearance.penalty != FB_PENALTY_SOURCE_EXPLICIT)
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] penalty = %s: %s has no %s to take the "
+                       "stiffness from; give penalty = explicit with stiffness_impact_n_m1_5 "
+                       "(reference) or penalty_n_m (reference-restitution)",
+                       SOURCE[c->clearance.penalty],
+                       prismatic ? "a slider's corner against its guide's flat wall"
+                                 : "an undriven case",
+                       prismatic ? "pin radius" : "revolution of ideal reactions");
+  if (prismatic) {
+    *guide = calloc((size_t)m->njoints, sizeof **guide);
+    if (!*guide) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+    const int s = fb_planar_find_joint(m, m->joint[joint].name); /* the spec's joints are m's */
+    const fb_planar_spec_joint *sj = &c->planar.joint[s];
+    (*guide)[joint] = (fb_planar_guide){sj->half_length, sj->half_height,
+                                        c->clearance.guide_clearance};
+  }
+  if (undriven) {
+    *omega0 = calloc((size_t)m->nbodies, sizeof **omega0);
+    if (!*omega0) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+    for (int b = 1; b < c->planar.nbodies; b++) {
+      const int k = fb_planar_find_body(m, c->planar.body[b].name);
+      if (k > 0) (*omega0)[k] = c->planar.body[b].omega0;
+    }
+  }
+  return FB_OK;
+}

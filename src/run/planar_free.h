@@ -1,0 +1,28 @@
+/* What a planar reference needs beyond a driven pin in a hole (run floor,
+ * planar_ref_model.c calls it): an undriven case's initial angular
+ * velocities and a prismatic clearance joint's slider in its guide, from
+ * the case (docs/planar.md), and the rule on their contact law.
+ *
+ * The rule: the penalty sources physical and goldsmith take a pin's
+ * radius and its largest ideal reaction over a revolution; a slider's
+ * corner against a flat wall has no pin radius, and an undriven case no
+ * revolution to take a reaction over. There the case gives its law's
+ * stiffness ([clearance] penalty = explicit with stiffness_impact_n_m1_5
+ * or penalty_n_m), and the law's working force is reported as 0. */
+#ifndef FB_PLANAR_FREE_H
+#define FB_PLANAR_FREE_H
+
+#include "case.h"
+#include "planar.h"
+#include "planar_guide.h"
+
+/* What run needs for clearance joint `joint` of m, described by case c:
+ * *guide (njoints, the joint's entry filled; NULL unless it is prismatic)
+ * and *omega0 (nbodies [rad/s]; NULL unless m is undriven), owned by the
+ * caller (free()); *needs_explicit 1 when the law must be explicit (above).
+ * Errors: FB_ERR_ARG when the law must be explicit and the case's penalty
+ * is another (the message names the key and the rule); FB_ERR_NOMEM. */
+fb_status fb_planar_free_parts(fb_planar_guide **guide, double **omega0, int *needs_explicit,
+                               const fb_case *c, const fb_planar *m, int joint, fb_diag *diag);
+
+#endif

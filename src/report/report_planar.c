@@ -93,7 +93,7 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
   for (int i = 0; i < r->n; i++) {
     const fb_planar_model *p = &r->model[i];
     json_t *e = json_pack("{s:s,s:s,s:s,s:o,s:I}", "name", p->name, "kind",
-                          p->reference ? "reference" : "analytic", "status",
+                          p->reference ? "reference" : p->engine ? "engine" : "analytic", "status",
                           p->ref.failed ? "failed" : "ok", "h_s", num(p->h), "steps",
                           (json_int_t)p->n);
     json_object_set_new(e, "bodies", fb_report_bodies_json(name, p->peaks + 1, m->nbodies - 1));

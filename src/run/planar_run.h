@@ -23,9 +23,18 @@
  *              verdict "ok" when every window peak (omega, alpha of every
  *              body, the contact force) moves by at most FB_UNCONVERGED_REL,
  *              else "unconverged" (run.h's rule for a reference).
- * Every other model (an engine's, a stack-up's, a clearance model's) is
- * refused by name: the engines build a planar case with the engine kit
- * (issue 58). A planar case that lists no [run] models runs analytic. */
+  *   ode-ideal-nominal (FB_PLANAR_KIT_MODELS: an engine's ideal model
+ *              of the nominal lengths whose engine table has a binding of
+ *              the engine kit, engine.h's kit)
+ *              the description built in the engine through the kit
+ *              (src/engines/kit/kit.h: every body at its assembly pose
+ *              with the drive's velocities there, the engine's own joints,
+ *              loop closure, stepper and [solver] settings), one engine
+ *              step of h per sample; its window peaks as a reference's.
+ * Every other model (another engine's, a stack-up's, a clearance model's)
+ * is refused by name: the engines build the rest of a planar case with the
+ * engine kit (issue 58). A planar case that lists no [run] models runs
+ * analytic. */
 #ifndef FB_PLANAR_RUN_H
 #define FB_PLANAR_RUN_H
 
@@ -39,6 +48,10 @@
 /* The one follow-up that brings the engines to a planar case, named in
  * every refusal of an engine's model. */
 #define FB_PLANAR_ENGINE_FOLLOWUP "issue 58, the engine kit"
+
+/* The engines' models a planar case runs through the engine kit, for the
+ * refusals' list. */
+#define FB_PLANAR_KIT_MODELS "ode-ideal-nominal"
 
 /* What a reference measured beyond its samples. */
 typedef struct {
@@ -59,6 +72,7 @@ typedef struct {
 typedef struct {
   char name[FB_NAME_SIZE]; /* "analytic", "reference", "reference-restitution" */
   int reference;           /* 1: a reference (ref holds its results; force, pen its columns) */
+  int engine;              /* 1: an engine's model, built through the engine kit (kit.h) */
   fb_planar_ref_result ref;
   double *force, *pen;     /* a reference's contact force [N] and penetration [m] (n) */
   fb_body_peaks *peaks;    /* per body of the description (nbodies; the ground's zero): omega

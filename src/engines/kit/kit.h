@@ -1,0 +1,91 @@
+/* The engine kit (issue 58): one walk of a planar description
+ * (model/mech/planar.h) that builds it in any engine through the engine's
+ * binding, a table of builder functions, then steps the engine and samples
+ * every moving body. An engine's folder supplies the binding (C; a C++
+ * engine behind its extern "C" table) and keeps its own choices: its own
+ * joints and loop closure, its own stepper, its own constraint settings.
+ *
+ * The walk (kit.c), in this order:
+ *   world_new     the engine's world: gravity g [m/s^2] along -y, the
+ *                 case's [solver] settings, step h [s]
+ *   add_body      every moving body of the description at its assembly
+ *                 pose (centre of mass, frame angle), mass [kg], moment of
+ *                 inertia about +z through the centre [kg m^2], and the
+ *                 velocity the drive gives it there (the core's velocity
+ *                 analysis, planar_kinematics.h): the start is on the
+ *                 ideal mechanism's path
+ *   add_revolute  every revolute joint (a pin about +z at its assembly
+ *                 position)
+ *   add_prismatic every prismatic joint (a slide along its unit axis in
+ *                 the world at the assembly configuration)
+ *   close_loop    optional: an engine whose joints form a tree closes the
+ *                 loops here (NULL: the engine's joints close them)
+ *   add_drive     the drive: the rate of body b1 relative to body b0 of
+ *                 the driven joint [rad/s], constant
+ *   step, body_state  advance h; read a body's pose and velocity
+ * Bodies are named by the kit's handles: the ground is FB_KIT_GROUND, the
+ * description's body b (1 ..) is handle b - 1, joints are handles in the
+ * description's order. SI throughout. */
+#ifndef FB_KIT_H
+#define FB_KIT_H
+
+#include <stddef.h>
+
+#include "case.h"
+#include "planar.h"
+#include "status.h"
+
+/* The ground's handle. */
+#define FB_KIT_GROUND (-1)
+
+/* What a world is made with. */
+typedef struct {
+  double gravity;            /* along -y [m/s^2] */
+  double h;                  /* step [s] */
+  const fb_solver *solver;    /* the case's [solver] settings (case.h) */
+  int nbodies, njoints;      /* moving bodies and joints the walk will add */
+} fb_kit_world;
+
+/* One moving body at the start. */
+typedef struct {
+  double mass;        /* [kg] */
+  double inertia;     /* about +z through the centre of mass [kg m^2] */
+  double pos[3];      /* centre of mass x, y [m] and frame angle [rad] */
+  double vel[3];      /* centre of mass velocity [m/s] and angular velocity [rad/s] */
+} fb_kit_body;
+
+/* An engine's builder functions. */
+typedef struct fb_kit_binding {
+  const char *engine; /* "ode" */
+  fb_status (*world_new)(void **w, const fb_kit_world *o, fb_diag *diag);
+  fb_status (*add_body)(void *w, const fb_kit_body *b, fb_diag *diag);
+  fb_status (*add_revolute)(void *w, int b0, int b1, const double at[2], fb_diag *diag);
+  fb_status (*add_prismatic)(void *w, int b0, int b1, const double at[2], const double axis[2],
+                             fb_diag *diag);
+  fb_status (*close_loop)(void *w, fb_diag *diag); /* optional (NULL) */
+  fb_status (*add_drive)(void *w, int joint, double rate, fb_diag *diag);
+  fb_status (*step)(void *w, fb_diag *diag);
+  void (*body_state)(const void *w, int b, double pos[3], double vel[3]);
+  void (*world_free)(void *w);
+} fb_kit_binding;
+
+/* Where a kit run writes: n samples every h from t = 0; body handle b's
+ * quantity k (FB_Q_POS, _VEL, _ACC: angle unwrapped [rad], omega [rad/s],
+ * alpha as (omega_now - omega_before) / h [rad/s^2], 0 at t = 0) at
+ * q[(b * 3 + k) * n + i]; t (n) [s]. */
+typedef struct {
+  size_t n;
+  double h;
+  double *t;
+  double *q;
+} fb_kit_series;
+
+/* Builds description m driven at omega [rad/s] in the engine of binding b
+ * (world settings o; o->h the series' h), steps it and fills s.
+ * Errors: FB_ERR_ARG for a clearance joint (the kit's clearance pipeline
+ * comes with the next slice), those of the binding and of the core's
+ * velocity analysis (planar_kinematics.h), FB_ERR_NOMEM. */
+fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
+                     const fb_kit_world *o, fb_kit_series *s, fb_diag *diag);
+
+#endif

@@ -72,12 +72,15 @@ static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int
     double pos[3], vel[3];
     b->body_state(w, k, pos, vel);
     double *q = s->q + (size_t)k * 3 * n;
+    q[2 * n + i] = 0.0;
     if (i == 0) {
       q[i] = pos[2];
-      q[2 * n] = 0.0;
     } else {
       q[i] = q[i - 1] + remainder(pos[2] - q[i - 1], 2.0 * M_PI);
-      q[2 * n + i] = (vel[2] - q[n + i - 1]) / s->h;
+      /* the step from t_{i-1}: its acceleration belongs to that sample's
+       * configuration (the forces the engine solved there) */
+      q[2 * n + i - 1] = (vel[2] - q[n + i - 1]) / s->h;
+      if (i == n - 1) q[2 * n + i] = q[2 * n + i - 1]; /* the last keeps the one before */
     }
     q[n + i] = vel[2];
   }

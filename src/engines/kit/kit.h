@@ -71,8 +71,11 @@ typedef struct fb_kit_binding {
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's
  * quantity k (FB_Q_POS, _VEL, _ACC: angle unwrapped [rad], omega [rad/s],
- * alpha as (omega_now - omega_before) / h [rad/s^2], 0 at t = 0) at
- * q[(b * 3 + k) * n + i]; t (n) [s]. */
+ * alpha [rad/s^2]) at q[(b * 3 + k) * n + i]; t (n) [s]. Sample i's alpha
+ * is the step from t_i, (omega_{i+1} - omega_i) / h, the acceleration the
+ * engine solved at sample i's configuration (series.h's
+ * fb_series_attribute_to_step_start, as the engines' four-bar runs report
+ * it); the last sample keeps the one before. */
 typedef struct {
   size_t n;
   double h;
@@ -80,11 +83,11 @@ typedef struct {
   double *q;
 } fb_kit_series;
 
-/* Builds description m driven at omega [rad/s] in the engine of binding b
- * (world settings o; o->h the series' h), steps it and fills s.
- * Errors: FB_ERR_ARG for a clearance joint (the kit's clearance pipeline
- * comes with the next slice), those of the binding and of the core's
- * velocity analysis (planar_kinematics.h), FB_ERR_NOMEM. */
+/* Builds description m (every joint ideal) driven at omega [rad/s] in the
+ * engine of binding b (world settings o; o->h the series' h), steps it
+ * s->n - 1 times and fills s. Errors: those of the binding and of the
+ * core's velocity analysis (planar_kinematics.h: no drive, not one degree
+ * of freedom, a singular start), FB_ERR_NOMEM. */
 fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
                      const fb_kit_world *o, fb_kit_series *s, fb_diag *diag);
 

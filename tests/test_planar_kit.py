@@ -17,16 +17,13 @@ And what the kit does not build yet is refused naming issue 58.
 
 Usage: test_planar_kit.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
-import json, os, sys, tempfile
+import json, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
 
-exe = os.path.abspath(sys.argv[1])
-cases = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cases")
-tally = fb_script.Tally()
+exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-kit-")
 check = tally.check
-tmp = tempfile.mkdtemp(prefix="fourbar-planar-kit-")
 
 # The issue's bound on an engine's ideal model of the six-bar against the
 # analytic omega peaks. ODE at the six-bar's h = 1e-5 s (300 rpm) measured

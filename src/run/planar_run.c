@@ -7,27 +7,14 @@
 #include <string.h>
 
 #include "clock.h"
-#include "engine.h"
-#include "kit.h"
 #include "model_table.h"
 #include "planar_case.h"
 #include "planar_path.h"
 #include "series.h"
 
-/* the engine kit's binding of model name's engine when the model is an
- * ideal model of the nominal lengths and this build's engine has a binding
- * (engine.h), else NULL */
-static const fb_kit_binding *kit_of(const char *name) {
-  const fb_model *m = fb_model_find(name);
-  if (!m || m->joints != FB_JOINTS_IDEAL || m->lengths != FB_LENGTHS_NOMINAL) return NULL;
-  fb_diag d;
-  const fb_engine *e = fb_engine_get(m->engine, &d);
-  return e ? e->kit : NULL;
-}
-
 int fb_planar_run_takes(const char *name) {
   return strcmp(name, "analytic") == 0 || strcmp(name, "reference") == 0 ||
-         strcmp(name, "reference-restitution") == 0 || kit_of(name) != NULL;
+         strcmp(name, "reference-restitution") == 0 || fb_planar_kit_of(name) != NULL;
 }
 
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
@@ -136,39 +123,6 @@ static fb_status analytic(fb_planar_model *p, const fb_planar_run *r, fb_diag *d
   return st;
 }
 
-/* every moving body's omega and alpha extremes over the samples at
- * t >= r->t_window */
-static void window_peaks(fb_planar_model *p, const fb_planar_run *r) {
-  for (int b = 1; b < r->m->nbodies; b++) {
-    fb_body_peaks k = {.omega_max = -INFINITY, .omega_min = INFINITY, .alpha_max = -INFINITY,
-                       .alpha_min = INFINITY};
-    for (size_t i = 0; i < p->n; i++) {
-      if (p->t[i] < r->t_window) continue;
-      const double w = fb_planar_model_value(r, p, b, FB_Q_VEL, i);
-      const double a = fb_planar_model_value(r, p, b, FB_Q_ACC, i);
-      k.omega_max = fmax(k.omega_max, w);
-      k.omega_min = fmin(k.omega_min, w);
-      k.alpha_max = fmax(k.alpha_max, a);
-      k.alpha_min = fmin(k.alpha_min, a);
-    }
-    p->peaks[b] = k;
-  }
-}
-
-/* an engine's ideal model through the engine kit (kit.h): the case's
- * [solver] settings, one engine step per sample */
-static fb_status kit_model(fb_planar_model *p, const fb_planar_run *r, const fb_kit_binding *b,
-                           fb_diag *diag) {
-  const fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints};
-  fb_kit_series s = {p->n, p->h, p->t, p->q};
-  p->engine = 1;
-  fb_status st = fb_kit_run(b, r->m, r->omega, &o, &s, diag);
-  if (st != FB_OK) return st;
-  for (size_t i = 0; i < p->n; i++) p->drive[i] = r->omega * p->t[i];
-  window_peaks(p, r);
-  return FB_OK;
-}
-
 static void model_free(fb_planar_model *p) {
   free(p->peaks);
   free(p->t);
@@ -190,11 +144,10 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
     snprintf(p->name, sizeof p->name, "%s", c->models[i]);
     const double t0 = fb_clock_s();
     st = model_alloc(p, r, diag);
-    const fb_kit_binding *kit = kit_of(p->name);
     if (st == FB_OK)
       st = strcmp(p->name, "analytic") == 0 ? analytic(p, r, diag)
-           : kit ? kit_model(p, r, kit, diag)
-                 : fb_planar_run_reference(p, r, strcmp(p->name, "reference") == 0, diag);
+           : fb_planar_kit_of(p->name) ? fb_planar_run_kit(p, r, diag)
+                                       : fb_planar_run_reference(p, r, strcmp(p->name, "reference") == 0, diag);
     p->wall_s = fb_clock_s() - t0;
   }
   if (st != FB_OK) fb_planar_run_free(r);

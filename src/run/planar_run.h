@@ -51,7 +51,7 @@
 
 /* The engines' models a planar case runs through the engine kit, for the
  * refusals' list. */
-#define FB_PLANAR_KIT_MODELS "ode-ideal-nominal"
+#define FB_PLANAR_KIT_MODELS "ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution"
 
 /* What a reference measured beyond its samples. */
 typedef struct {
@@ -128,6 +128,23 @@ void fb_planar_run_free(fb_planar_run *r);
  * integration that fails is a result (p->ref.failed), not an error. */
 fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, int impact,
                                   fb_diag *diag);
+
+/* The engine kit's binding (kit.h) that builds model name on a planar
+ * case: an engine's ideal model of the nominal lengths whose engine table
+ * has a binding, or its clearance model with the exact pin in the hole
+ * and a law when the binding takes a contact (add_contact; on the
+ * description's geometry, as the reference); NULL otherwise
+ * (planar_kit_model.c). */
+const struct fb_kit_binding *fb_planar_kit_of(const char *name);
+
+/* Engine model p (its samples allocated, p->name one fb_planar_kit_of
+ * takes) of run r through the engine kit: the description built in the
+ * engine, one engine step of h per sample, the window peaks; a clearance
+ * model's one clearance joint with the reference's law (p->ref.joint,
+ * law, force_max, penetration_max; steps: the steps with a contact row)
+ * and its force and penetration columns. Errors: FB_ERR_ARG without
+ * exactly one clearance joint; those of joint_law.h and of fb_kit_run. */
+fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag);
 
 /* The analytic model's sample i of body b's quantity k (FB_Q_*). */
 double fb_planar_model_value(const fb_planar_run *r, const fb_planar_model *p, int b, int k,

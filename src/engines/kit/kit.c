@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "kit_contact.h"
 #include "planar_kinematics.h"
 #include "series.h"
 
@@ -31,9 +32,25 @@ static fb_status start_velocities(double *qd, const fb_planar *m, double omega, 
 /* the kit's handle of description body b */
 static int handle(int b) { return b == FB_PLANAR_GROUND ? FB_KIT_GROUND : b - 1; }
 
-/* the walk: bodies, joints, loop closure, drive */
+/* bodies that no ideal joint holds are held in the plane, if the engine
+ * needs it */
+static fb_status hold(const fb_kit_binding *b, void *w, const fb_planar *m, unsigned mask,
+                      fb_diag *diag) {
+  fb_status st = FB_OK;
+  for (int i = 1; i < m->nbodies && st == FB_OK && b->hold_in_plane; i++) {
+    int held = 0;
+    for (int j = 0; j < m->njoints; j++)
+      if (!(mask & (1u << j)) && (m->joint[j].body[0] == i || m->joint[j].body[1] == i)) held = 1;
+    if (!held) st = b->hold_in_plane(w, handle(i), diag);
+  }
+  return st;
+}
+
+/* the walk: bodies, joints (but the clearance joints of mask), loop
+ * closure, drive */
 static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, double omega,
-                       const double *qd, fb_diag *diag) {
+                       const double *qd, unsigned mask, fb_diag *diag) {
+  int added = 0, drive = -1; /* the engine's joints so far; the drive's among them */
   fb_status st = FB_OK;
   for (int i = 1; i < m->nbodies && st == FB_OK; i++) {
     const fb_planar_body *pb = &m->body[i];
@@ -45,6 +62,9 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
   for (int j = 0; j < m->njoints && st == FB_OK; j++) {
     const fb_planar_joint *pj = &m->joint[j];
     const int b0 = handle(pj->body[0]), b1 = handle(pj->body[1]);
+    if (mask & (1u << j)) continue; /* a pin in a hole: the contact each step */
+    if (j == m->drive) drive = added;
+    added++;
     if (pj->kind == FB_KIND_PRISMATIC) {
       /* the slide's axis from body[0]'s frame into the world at assembly */
       const double a = m->body[pj->body[0]].angle0, c = cos(a), s = sin(a);
@@ -55,13 +75,17 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
     }
   }
   if (st == FB_OK && b->close_loop) st = b->close_loop(w, diag);
+  if (st == FB_OK) st = hold(b, w, m, mask, diag);
   if (st != FB_OK) return st;
+  if (drive < 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "clearance at the driven joint '%s': the engine kit "
+                       "drives an ideal joint only", m->joint[m->drive].name);
   /* the drive turns 'to' at omega relative to 'from'; the binding takes the
    * rate of the joint's body[1] relative to its body[0] */
   int from, to;
   fb_planar_drive_bodies(m, &from, &to);
   const double rate = m->joint[m->drive].body[1] == to ? omega : -omega;
-  return b->add_drive(w, m->drive, rate, diag);
+  return b->add_drive(w, drive, rate, diag);
 }
 
 /* sample i of every moving body: angle unwrapped from the last one's */
@@ -86,20 +110,43 @@ static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int
   }
 }
 
+/* the stepping: before each step the clearance contacts; after it the
+ * samples, the step's contact force at the sample it started from */
+static fb_status steps(const fb_kit_binding *b, void *w, const fb_planar *m,
+                       fb_kit_clearance *cl, fb_kit_series *s, fb_diag *diag) {
+  fb_kit_pipe p;
+  const fb_kit_clearance none = {0};
+  fb_status st = fb_kit_pipe_new(&p, m, cl ? cl : &none, diag);
+  for (size_t i = 0; i < s->n && st == FB_OK; i++) {
+    if (i > 0) st = b->step(w, diag);
+    if (st != FB_OK) break;
+    sample(b, w, s, m->nbodies - 1, i);
+    if (!cl) continue;
+    if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&p, b, w, cl->joint);
+    cl->pen[i] = fb_kit_pipe_read(&p, b, w, m, cl);
+    if (i + 1 < s->n) st = fb_kit_pipe_contacts(&p, b, w, m, cl, s->h, diag);
+    else cl->force[i] = i > 0 ? cl->force[i - 1] : 0.0; /* the last keeps the one before */
+  }
+  fb_kit_pipe_free(&p);
+  return st;
+}
+
 fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
-                     const fb_kit_world *o, fb_kit_series *s, fb_diag *diag) {
-  const int nb = m->nbodies - 1, nq = fb_planar_nq(m);
+                     const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
+                     fb_diag *diag) {
+  const unsigned mask = cl ? cl->mask : 0u;
+  if (mask && !b->add_contact)
+    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
+                       b->engine);
+  const int nq = fb_planar_nq(m);
   double *qd = malloc((size_t)nq * sizeof *qd);
   if (!qd) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   fb_status st = start_velocities(qd, m, omega, diag);
   void *w = NULL;
   if (st == FB_OK) st = b->world_new(&w, o, diag);
-  if (st == FB_OK) st = build(b, w, m, omega, qd, diag);
+  if (st == FB_OK) st = build(b, w, m, omega, qd, mask, diag);
   free(qd);
-  for (size_t i = 0; i < s->n && st == FB_OK; i++) {
-    if (i > 0) st = b->step(w, diag);
-    if (st == FB_OK) sample(b, w, s, nb, i);
-  }
+  if (st == FB_OK) st = steps(b, w, m, cl, s, diag);
   if (w) b->world_free(w);
   return st;
 }

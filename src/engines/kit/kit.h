@@ -32,6 +32,7 @@
 #include <stddef.h>
 
 #include "case.h"
+#include "contact.h"
 #include "planar.h"
 #include "status.h"
 
@@ -54,6 +55,37 @@ typedef struct {
   double vel[3];      /* centre of mass velocity [m/s] and angular velocity [rad/s] */
 } fb_kit_body;
 
+/* One clearance joint's contact for the coming step, computed by the kit
+ * (kit_contact.c) from the bodies' states: the pin on the joint's body[0],
+ * the hole on its body[1]. */
+typedef struct {
+  int pin, hole;       /* body handles (hole FB_KIT_GROUND for a ground hole) */
+  double point[2];     /* on the hole wall, hole centre + (pin radius + c) n [m] */
+  double normal[2];    /* n: unit, hole centre towards pin centre [-] */
+  double depth;        /* penetration |e| - c > 0 [m] */
+  double rate;         /* penetration rate n . (v_pin - v_hole) [m/s] (> 0 approaching) */
+  double v0;           /* the episode's onset rate (episode.h) [m/s] */
+  int onset;           /* 1 at the first step of a contact episode */
+  double m_eff;        /* effective mass along n, the drive held (planar_mass.h) [kg] */
+  fb_contact_law law;  /* the joint's law with its damper on m_eff (contact_mass.h) */
+  fb_mapping mapping;  /* the case's [clearance] mapping (contact.h) */
+  double h;            /* step [s] */
+} fb_kit_contact;
+
+/* The clearance joints of a kit run (NULL: every joint ideal). */
+typedef struct {
+  unsigned mask;            /* bit j: joint j is a pin in a hole (a revolute joint) */
+  fb_contact_law law;       /* their law (joint_law.h), its damper put on m_eff each step */
+  fb_mapping mapping;       /* [clearance] mapping */
+  double radial_clearance;  /* c [m] */
+  double pin_radius;        /* [m] */
+  double impact_velocity_min; /* an episode faster than this at onset is an impact [m/s] */
+  int joint;                /* the joint whose force and penetration the series holds */
+  double *force, *pen;      /* (n): its contact force [N] and penetration [m] per sample */
+  size_t contact_steps;     /* out: steps with a contact row, all joints */
+  int impacts;              /* out: impact episodes, all joints */
+} fb_kit_clearance;
+
 /* An engine's builder functions. */
 typedef struct fb_kit_binding {
   const char *engine; /* "ode" */
@@ -64,6 +96,15 @@ typedef struct fb_kit_binding {
                              fb_diag *diag);
   fb_status (*close_loop)(void *w, fb_diag *diag); /* optional (NULL) */
   fb_status (*add_drive)(void *w, int joint, double rate, fb_diag *diag);
+  fb_status (*hold_in_plane)(void *w, int b, fb_diag *diag);
+                             /* optional: keep body b in the plane (a body that only a
+                                clearance joint holds); NULL: the engine is planar */
+  fb_status (*add_contact)(void *w, int k, const fb_kit_contact *c, fb_diag *diag);
+                             /* clearance joint k's contact for the coming step (the
+                                engine's native row or its force); NULL: no clearance */
+  double (*contact_force)(const void *w, int k);
+                             /* optional: the normal force clearance joint k's contact
+                                applied in the last step [N]; NULL: the law's */
   fb_status (*step)(void *w, fb_diag *diag);
   void (*body_state)(const void *w, int b, double pos[3], double vel[3]);
   void (*world_free)(void *w);
@@ -83,12 +124,17 @@ typedef struct {
   double *q;
 } fb_kit_series;
 
-/* Builds description m (every joint ideal) driven at omega [rad/s] in the
- * engine of binding b (world settings o; o->h the series' h), steps it
- * s->n - 1 times and fills s. Errors: those of the binding and of the
+/* Builds description m driven at omega [rad/s] in the engine of binding b
+ * (world settings o; o->h the series' h), the joints of cl->mask (cl may
+ * be NULL) as pins in holes, steps it s->n - 1 times and fills s (and
+ * cl's columns and counts). Each step, before the engine's, the kit
+ * computes every clearance joint's contact (fb_kit_contact) and hands it
+ * to the binding's add_contact. Errors: FB_ERR_ARG when the binding has
+ * no add_contact for a clearance joint; those of the binding, of the
  * core's velocity analysis (planar_kinematics.h: no drive, not one degree
- * of freedom, a singular start), FB_ERR_NOMEM. */
+ * of freedom, a singular start) and of its effective mass; FB_ERR_NOMEM. */
 fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
-                     const fb_kit_world *o, fb_kit_series *s, fb_diag *diag);
+                     const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
+                     fb_diag *diag);
 
 #endif

@@ -7,17 +7,24 @@
  * through the joints themselves (3-D hinges over-constrain a planar loop
  * by three rows each; the world CFM absorbs them, as in the four-bar); the
  * drive is the driven hinge's velocity motor (dParamVel, dParamFMax =
- * [solver] drive_torque_max_n_m), or the slider's motor. The world's ERP,
+ * [solver] drive_torque_max_n_m). A clearance joint (kit.h's pipeline
+ * computes its contact) is ODE's soft contact row as the exact collider
+ * makes it (ode_clearance.c): the law mapped at the effective mass to ERP
+ * and CFM (ode_contact.h), on the hole wall, its force read back from the
+ * row's feedback. The world's ERP,
  * CFM, stepper (dWorldStep or dWorldQuickStep with its iterations) and
  * seed are the case's [solver] keys, gravity along -y; each step runs
  * under ODE's fatal-error escape (ode_env.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "kit.h"
+#include "ode_contact.h"
 #include "ode_env.h"
 #include "ode_kit.h"
+#include "planar_spec.h"
 
 typedef struct {
   dWorldID world;
@@ -29,6 +36,14 @@ typedef struct {
   double fmax;     /* drive torque limit [N m] */
   size_t steps;
   int broken;      /* an ODE error left the world mid-step */
+  /* clearance joints by the description's index: this step's contact joint,
+   * its feedback, the share of its impulse that is this step's
+   * (contact.h), the normal force of the last step [N] */
+  dJointGroupID contacts;
+  dJointID cj[FB_PLANAR_SPEC_MAX_JOINTS];
+  dJointFeedback fb[FB_PLANAR_SPEC_MAX_JOINTS];
+  double share[FB_PLANAR_SPEC_MAX_JOINTS];
+  double force[FB_PLANAR_SPEC_MAX_JOINTS];
 } ode_kit;
 
 static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
@@ -42,6 +57,7 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
   }
   fb_ode_acquire();
   k->world = dWorldCreate();
+  k->contacts = dJointGroupCreate(0);
   dWorldSetGravity(k->world, 0, -o->gravity, 0);
   dWorldSetERP(k->world, o->solver->world_erp);
   dWorldSetCFM(k->world, o->solver->world_cfm);
@@ -114,6 +130,48 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
   return FB_OK;
 }
 
+/* a body that only a clearance joint holds stays in the plane */
+static fb_status kit_hold_in_plane(void *w, int b, fb_diag *diag) {
+  (void)diag;
+  ode_kit *k = w;
+  dJointAttach(dJointCreatePlane2D(k->world, 0), k->body[b], 0);
+  return FB_OK;
+}
+
+/* the exact collider's row as ode_clearance.c makes it: the law mapped to
+ * one soft contact row (ode_contact.h) at the effective mass, on the hole
+ * wall, its normal into the pin, no friction */
+static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
+  (void)diag;
+  ode_kit *k = w;
+  dContact ct;
+  memset(&ct, 0, sizeof ct);
+  fb_contact_row used;
+  if (!fb_ode_soft_contact(&ct, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
+                           c->onset, 0.0, 0.0, &used))
+    return FB_OK;
+  ct.geom.pos[0] = c->point[0];
+  ct.geom.pos[1] = c->point[1];
+  ct.geom.normal[0] = -c->normal[0];
+  ct.geom.normal[1] = -c->normal[1];
+  k->cj[j] = dJointCreateContact(k->world, k->contacts, &ct);
+  dJointAttach(k->cj[j], ode_body(k, c->pin), ode_body(k, c->hole));
+  dJointSetFeedback(k->cj[j], &k->fb[j]);
+  k->share[j] = used.step_share;
+  return FB_OK;
+}
+
+static double kit_contact_force(const void *w, int j) { return ((const ode_kit *)w)->force[j]; }
+
+/* the contact forces the step left (on the pin, body 1 of each row) */
+static void contact_forces(ode_kit *k) {
+  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) {
+    k->force[j] = k->cj[j] ? k->share[j] * hypot(k->fb[j].f1[0], k->fb[j].f1[1]) : 0.0;
+    k->cj[j] = 0;
+  }
+  dJointGroupEmpty(k->contacts);
+}
+
 static fb_status kit_step(void *w, fb_diag *diag) {
   ode_kit *k = w;
   jmp_buf escape;
@@ -126,6 +184,7 @@ static fb_status kit_step(void *w, fb_diag *diag) {
   const int ok = k->stepper == FB_STEPPER_WORLD ? dWorldStep(k->world, k->h)
                                                 : dWorldQuickStep(k->world, k->h);
   fb_ode_escape = NULL;
+  contact_forces(k);
   if (!ok)
     return fb_diag_set(diag, FB_ERR_NOMEM, "ODE could not allocate memory for step %zu",
                        k->steps + 1);
@@ -149,7 +208,9 @@ static void kit_world_free(void *w) {
   ode_kit *k = w;
   if (k->broken) {
     fb_ode_quarantine(k->world); /* left mid-step: never touched again (ode_env.h) */
+    fb_ode_quarantine(k->contacts);
   } else {
+    dJointGroupDestroy(k->contacts);
     dWorldDestroy(k->world);
     fb_ode_release();
   }
@@ -165,6 +226,9 @@ const fb_kit_binding fb_ode_kit = {
     .add_revolute = kit_add_revolute,
     .add_prismatic = kit_add_prismatic,
     .add_drive = kit_add_drive,
+    .hold_in_plane = kit_hold_in_plane,
+    .add_contact = kit_add_contact,
+    .contact_force = kit_contact_force,
     .step = kit_step,
     .body_state = kit_body_state,
     .world_free = kit_world_free,

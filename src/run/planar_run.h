@@ -23,13 +23,15 @@
  *              verdict "ok" when every window peak (omega, alpha of every
  *              body, the contact force) moves by at most FB_UNCONVERGED_REL,
  *              else "unconverged" (run.h's rule for a reference).
-  *   ode-ideal-nominal (FB_PLANAR_KIT_MODELS: an engine's ideal model
- *              of the nominal lengths whose engine table has a binding of
- *              the engine kit, engine.h's kit)
+  *   ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution
+ *              (FB_PLANAR_KIT_MODELS; fb_planar_kit_of says which models
+ *              an engine with a binding of the engine kit builds)
  *              the description built in the engine through the kit
  *              (src/engines/kit/kit.h: every body at its assembly pose
  *              with the drive's velocities there, the engine's own joints,
- *              loop closure, stepper and [solver] settings), one engine
+ *              loop closure, stepper and [solver] settings; a clearance
+ *              model's one clearance joint a pin in its hole with the
+ *              reference's law, the kit's contact pipeline), one engine
  *              step of h per sample; its window peaks as a reference's.
  * Every other model (another engine's, a stack-up's, a clearance model's)
  * is refused by name: the engines build the rest of a planar case with the

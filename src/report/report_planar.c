@@ -210,7 +210,8 @@ static fb_status write_markdown(const char *dir, const fb_planar_run *r, const c
   fb_status st = fb_outfile_open(&out, path, diag);
   if (st != FB_OK) return st;
   fprintf(out.f, "# %s\n\nCase file `%s`, run by `%s`. A planar case (docs/planar.md): its "
-                 "models run on the planar core; the engines build it with %s.\n\n",
+                 "models run on the planar core, and the engines' models (" FB_PLANAR_KIT_MODELS
+                 ") through the engine kit; the other engines build it with %s.\n\n",
           r->c.name, case_path, command, FB_PLANAR_ENGINE_FOLLOWUP);
   fb_report_planar_table(out.f, r);
   if (ferror(out.f)) {

@@ -20,12 +20,18 @@
  *                 the world at the assembly configuration)
  *   close_loop    optional: an engine whose joints form a tree closes the
  *                 loops here (NULL: the engine's joints close them)
+ *   hold_in_plane optional: a body that only clearance joints hold
  *   add_drive     the drive: the rate of body b1 relative to body b0 of
  *                 the driven joint [rad/s], constant
+ *   add_contact   before every step, each clearance joint in contact: the
+ *                 contact the kit's pipeline computed (fb_kit_contact)
  *   step, body_state  advance h; read a body's pose and velocity
+ *   contact_force optional: what the contact applied in the step
  * Bodies are named by the kit's handles: the ground is FB_KIT_GROUND, the
- * description's body b (1 ..) is handle b - 1, joints are handles in the
- * description's order. SI throughout. */
+ * description's body b (1 ..) is handle b - 1; add_drive's joint is the
+ * driven joint's place among the joints added (the description's order,
+ * clearance joints left out); add_contact's the description's index of
+ * the clearance joint. SI throughout. */
 #ifndef FB_KIT_H
 #define FB_KIT_H
 

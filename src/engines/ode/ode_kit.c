@@ -20,6 +20,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <ode/ode.h>
+
 #include "kit.h"
 #include "ode_contact.h"
 #include "ode_env.h"

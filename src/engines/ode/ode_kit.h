@@ -3,8 +3,6 @@
 #ifndef FB_ODE_KIT_H
 #define FB_ODE_KIT_H
 
-#include <ode/ode.h>
-
 #include "kit.h"
 
 extern const fb_kit_binding fb_ode_kit;

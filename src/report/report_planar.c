@@ -111,6 +111,7 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
       json_object_set_new(e, "penetration_max_m", num(p->ref.penetration_max));
       json_object_set_new(e, "contact_steps", json_integer((json_int_t)p->ref.steps));
     }
+    if (p->engine && p->ref.failed) json_object_set_new(e, "stop", json_string(p->ref.stop));
     json_array_append_new(models, e);
   }
   json_object_set_new(o, "models", models);

@@ -2,6 +2,7 @@
  * which models an engine builds that way, their clearance joint's law, the
  * run and its window peaks. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -82,6 +83,7 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_model *p, const fb_pl
   p->force = malloc(2 * p->n * sizeof *p->force);
   if (!p->force) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   p->pen = p->force + p->n;
+  for (size_t i = 0; i < 2 * p->n; i++) p->force[i] = NAN;
   cl->force = p->force;
   cl->pen = p->pen;
   p->ref.joint = cl->joint;
@@ -96,11 +98,24 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   fb_kit_series s = {p->n, p->h, p->t, p->q};
   fb_kit_clearance cl = {0};
   p->engine = 1;
+  /* what a stop leaves unreached reads as no value (NaN) */
+  const size_t nq = (size_t)(r->m->nbodies - 1) * 3 * p->n;
+  for (size_t i = 0; i < p->n; i++) p->t[i] = (double)i * p->h;
+  for (size_t i = 0; i < nq; i++) p->q[i] = NAN;
   fb_status st = mt->joints == FB_JOINTS_CLEARANCE ? clearance(&cl, p, r, mt, diag) : FB_OK;
   if (st == FB_OK)
     st = fb_kit_run(b, r->m, r->omega, &o, mt->joints == FB_JOINTS_CLEARANCE ? &cl : NULL, &s, diag);
-  if (st != FB_OK) return st;
   for (size_t i = 0; i < p->n; i++) p->drive[i] = r->omega * p->t[i];
+  if (st == FB_ERR_NUMERIC) { /* a stop (aliased, the engine's error) is a result, not an error */
+    p->ref.failed = 1;
+    snprintf(p->ref.stop, sizeof p->ref.stop, "%.200s", diag->msg);
+    for (int k = 1; k < r->m->nbodies; k++)
+      p->peaks[k] = (fb_body_peaks){.omega_max = NAN, .omega_min = NAN, .alpha_max = NAN,
+                                    .alpha_min = NAN};
+    p->ref.force_max = p->ref.penetration_max = NAN;
+    return FB_OK;
+  }
+  if (st != FB_OK) return st;
   window_peaks(p, r);
   for (size_t i = 0; p->force && i < p->n; i++) {
     if (p->t[i] < r->t_window) continue;

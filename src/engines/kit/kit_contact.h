@@ -33,8 +33,10 @@ double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
 
 /* Every clearance joint's contact at the state last read, handed to b's
  * add_contact for the coming step of h [s]; counts contact steps and
- * impact episodes into cl. Errors: those of add_contact and of the
- * effective mass (planar_mass.h). */
+ * impact episodes into cl. Errors: FB_ERR_NUMERIC when a matched row
+ * would alias (contact.h, FB_MATCHED_ALIAS_BOUND: "aliased: ..." with
+ * the largest usable step, the hand-built ODE world's stop); those of
+ * add_contact and of the effective mass (planar_mass.h). */
 fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
                                const fb_planar *m, fb_kit_clearance *cl, double h,
                                fb_diag *diag);

@@ -50,3 +50,12 @@ def extreme(f, sign, tol=1e-12):
     step = 2 * math.pi / n
     k = max(range(n), key=lambda i: sign * f(i * step))
     return golden(f, sign, (k - 1) * step, (k + 1) * step, tol)
+
+
+def start(argv, prefix):
+    """what a script test over the built program begins with: the program's
+    path (argv[1]), the cases/ folder, a tally and a scratch folder"""
+    import os, tempfile
+    here = os.path.dirname(os.path.abspath(__file__))
+    return (os.path.abspath(argv[1]), os.path.join(here, "..", "cases"), Tally(),
+            tempfile.mkdtemp(prefix=prefix))

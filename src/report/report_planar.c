@@ -58,11 +58,10 @@ static const char *verdict_of(const fb_planar_model *p, char *why, size_t size) 
 
 /* a reference's own keys: its clearance joint, law, window, contact peaks,
  * check integration and verdict */
-static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
+/* a clearance model's joint and law (a reference's, or an engine's
+ * through the engine kit, which takes the reference's law) */
+static void clearance_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
   const fb_planar_ref_result *q = &p->ref;
-  char why[FB_DIAG_SIZE + 256];
-  json_object_set_new(e, "verdict", json_string(verdict_of(p, why, sizeof why)));
-  json_object_set_new(e, "verdict_reason", json_string(why));
   json_object_set_new(e, "clearance_joints", json_pack("[s]", r->m->joint[q->joint].name));
   json_object_set_new(e, "law", json_pack("{s:s,s:o,s:o,s:o,s:o}", "kind",
                                           q->law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
@@ -71,6 +70,14 @@ static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_mo
                                           num(q->law.restitution), "working_force_n",
                                           num(q->force_work)));
   json_object_set_new(e, "window_from_s", num(r->t_window));
+}
+
+static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
+  const fb_planar_ref_result *q = &p->ref;
+  char why[FB_DIAG_SIZE + 256];
+  json_object_set_new(e, "verdict", json_string(verdict_of(p, why, sizeof why)));
+  json_object_set_new(e, "verdict_reason", json_string(why));
+  clearance_json(e, r, p);
   json_object_set_new(e, "force_max_n", q->failed ? json_null() : num(q->force_max));
   json_object_set_new(e, "penetration_max_m", q->failed ? json_null() : num(q->penetration_max));
   json_object_set_new(e, "error_estimate",
@@ -94,11 +101,18 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
   for (int i = 0; i < r->n; i++) {
     const fb_planar_model *p = &r->model[i];
     json_t *e = json_pack("{s:s,s:s,s:s,s:o,s:I}", "name", p->name, "kind",
-                          p->reference ? "reference" : "analytic", "status",
+                          p->reference ? "reference" : p->engine ? "engine" : "analytic", "status",
                           p->ref.failed ? "failed" : "ok", "h_s", num(p->h), "steps",
                           (json_int_t)p->n);
     json_object_set_new(e, "bodies", fb_report_bodies_json(name, p->peaks + 1, m->nbodies - 1));
     if (p->reference) reference_json(e, r, p);
+    if (p->engine && p->force) { /* an engine's clearance model (planar_run.h) */
+      clearance_json(e, r, p);
+      json_object_set_new(e, "force_max_n", num(p->ref.force_max));
+      json_object_set_new(e, "penetration_max_m", num(p->ref.penetration_max));
+      json_object_set_new(e, "contact_steps", json_integer((json_int_t)p->ref.steps));
+    }
+    if (p->engine && p->ref.failed) json_object_set_new(e, "stop", json_string(p->ref.stop));
     json_array_append_new(models, e);
   }
   json_object_set_new(o, "models", models);
@@ -138,7 +152,7 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
   fputs("time_s,drive_angle_rad", out.f);
   for (int b = 1; b < m->nbodies; b++)
     for (int k = 0; k < 3; k++) fprintf(out.f, ",%s_%s", m->body[b].name, suffix[k]);
-  if (p->reference)
+  if (p->force)
     fprintf(out.f, ",%s_force_n,%s_penetration_m", m->joint[p->ref.joint].name,
             m->joint[p->ref.joint].name);
   fputc('\n', out.f);
@@ -148,7 +162,7 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
     cell(out.f, p->drive[i], 0);
     for (int b = 1; b < m->nbodies; b++)
       for (int k = 0; k < 3; k++) cell(out.f, fb_planar_model_value(r, p, b, k, i), 0);
-    if (p->reference) {
+    if (p->force) {
       cell(out.f, p->force[i], 0);
       cell(out.f, p->pen[i], 0);
     }
@@ -201,7 +215,8 @@ static fb_status write_markdown(const char *dir, const fb_planar_run *r, const c
   fb_status st = fb_outfile_open(&out, path, diag);
   if (st != FB_OK) return st;
   fprintf(out.f, "# %s\n\nCase file `%s`, run by `%s`. A planar case (docs/planar.md): its "
-                 "models run on the planar core; the engines build it with %s.\n\n",
+                 "models run on the planar core, and the engines' models (" FB_PLANAR_KIT_MODELS
+                 ") through the engine kit; the other engines build it with %s.\n\n",
           r->c.name, case_path, command, FB_PLANAR_ENGINE_FOLLOWUP);
   fb_report_planar_table(out.f, r);
   fprintf(out.f, "\n## Figures\n\n");

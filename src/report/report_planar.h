@@ -13,7 +13,8 @@
  * "planar", "description": {"bodies": [{"name", "mass_kg",
  * "inertia_kg_m2", "centre_m", "derived": [...]}], "joints": [{"name",
  * "kind", "bodies", "at_m"}], "drive"}, "drive_omega_rad_s",
- * "revolutions", "models": [{"name", "kind", "status", "h_s", "steps",
+ * "revolutions", "models": [{"name", "kind" ("analytic", "reference",
+ * "engine"), "status", "h_s", "steps",
  * "bodies": {"<body>": {"omega_max_rad_s", "omega_min_rad_s",
  * "alpha_max_rad_s2", "alpha_min_rad_s2"}}}]} (every moving body, in the
  * description's order). No wall time: two runs give the same bytes. */

@@ -14,26 +14,29 @@
 
 int fb_planar_run_takes(const char *name) {
   return strcmp(name, "analytic") == 0 || strcmp(name, "reference") == 0 ||
-         strcmp(name, "reference-restitution") == 0;
+         strcmp(name, "reference-restitution") == 0 || fb_planar_kit_of(name) != NULL;
 }
 
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < c->model_count; i++) {
     const char *name = c->models[i];
-    if (c->planar.undriven && strcmp(name, "analytic") == 0)
-      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: 'analytic' follows the drive, and the "
+    if (c->planar.undriven && (strcmp(name, "analytic") == 0 || fb_planar_kit_of(name)))
+      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' follows the drive, and the "
                          "case is undriven ([drive] joint = none); it runs: reference, "
-                         "reference-restitution");
+                         "reference-restitution", name);
     if (fb_planar_run_takes(name)) continue;
     const fb_model *m = fb_model_find(name);
     if (m && m->engine != FB_ENGINE_ANALYTIC && m->engine != FB_ENGINE_REFERENCE)
       return fb_diag_set(diag, FB_ERR_ARG,
-                         "[run] models: '%s' is the %s engine's, and no engine builds a planar case "
-                         "yet (%s); a planar case runs: analytic, reference, reference-restitution",
-                         name, fb_engine_name(m->engine), FB_PLANAR_ENGINE_FOLLOWUP);
+                         "[run] models: '%s' is the %s engine's, and the %s engine does not "
+                         "build this model of a planar case yet (%s); a planar case runs: "
+                         "analytic, reference, reference-restitution, " FB_PLANAR_KIT_MODELS,
+                         name, fb_engine_name(m->engine), fb_engine_name(m->engine),
+                         FB_PLANAR_ENGINE_FOLLOWUP);
     return fb_diag_set(diag, FB_ERR_ARG,
                        "[run] models: '%s' does not run on a planar case yet; a planar case "
-                       "runs: analytic, reference, reference-restitution", name);
+                       "runs: analytic, reference, reference-restitution, " FB_PLANAR_KIT_MODELS,
+                       name);
   }
   return FB_OK;
 }
@@ -148,9 +151,9 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
     const double t0 = fb_clock_s();
     st = model_alloc(p, r, diag);
     if (st == FB_OK)
-      st = strcmp(p->name, "analytic") == 0
-               ? analytic(p, r, diag)
-               : fb_planar_run_reference(p, r, strcmp(p->name, "reference") == 0, diag);
+      st = strcmp(p->name, "analytic") == 0 ? analytic(p, r, diag)
+           : fb_planar_kit_of(p->name) ? fb_planar_run_kit(p, r, diag)
+                                       : fb_planar_run_reference(p, r, strcmp(p->name, "reference") == 0, diag);
     p->wall_s = fb_clock_s() - t0;
   }
   if (st != FB_OK) fb_planar_run_free(r);

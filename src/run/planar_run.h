@@ -27,12 +27,23 @@
  *              verdict "ok" when every window peak (omega, alpha of every
  *              body, the contact force) moves by at most FB_UNCONVERGED_REL,
  *              else "unconverged" (run.h's rule for a reference).
+  *   ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution
+ *              (FB_PLANAR_KIT_MODELS; fb_planar_kit_of says which models
+ *              an engine with a binding of the engine kit builds)
+ *              the description built in the engine through the kit
+ *              (src/engines/kit/kit.h: every body at its assembly pose
+ *              with the drive's velocities there, the engine's own joints,
+ *              loop closure, stepper and [solver] settings; a clearance
+ *              model's one clearance joint a pin in its hole with the
+ *              reference's law, the kit's contact pipeline), one engine
+ *              step of h per sample; its window peaks as a reference's.
  * An undriven case ([drive] joint = none) runs the references only, from
  * its bodies' initial angular velocities (planar_free.h), its window the
  * whole run; a prismatic clearance joint is a slider in its guide.
- * Every other model (an engine's, a stack-up's, a clearance model's) is
- * refused by name: the engines build a planar case with the engine kit
- * (issue 58). A planar case that lists no [run] models runs analytic. */
+ * Every other model (another engine's, a stack-up's, a clearance model's)
+ * is refused by name: the engines build the rest of a planar case with the
+ * engine kit (issue 58). A planar case that lists no [run] models runs
+ * analytic. */
 #ifndef FB_PLANAR_RUN_H
 #define FB_PLANAR_RUN_H
 
@@ -46,6 +57,10 @@
 /* The one follow-up that brings the engines to a planar case, named in
  * every refusal of an engine's model. */
 #define FB_PLANAR_ENGINE_FOLLOWUP "issue 58, the engine kit"
+
+/* The engines' models a planar case runs through the engine kit, for the
+ * refusals' list. */
+#define FB_PLANAR_KIT_MODELS "ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution"
 
 /* What a reference measured beyond its samples. */
 typedef struct {
@@ -66,6 +81,7 @@ typedef struct {
 typedef struct {
   char name[FB_NAME_SIZE]; /* "analytic", "reference", "reference-restitution" */
   int reference;           /* 1: a reference (ref holds its results; force, pen its columns) */
+  int engine;              /* 1: an engine's model, built through the engine kit (kit.h) */
   fb_planar_ref_result ref;
   double *force, *pen;     /* a reference's contact force [N] and penetration [m] (n) */
   fb_body_peaks *peaks;    /* per body of the description (nbodies; the ground's zero): omega
@@ -121,6 +137,23 @@ void fb_planar_run_free(fb_planar_run *r);
  * integration that fails is a result (p->ref.failed), not an error. */
 fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, int impact,
                                   fb_diag *diag);
+
+/* The engine kit's binding (kit.h) that builds model name on a planar
+ * case: an engine's ideal model of the nominal lengths whose engine table
+ * has a binding, or its clearance model with the exact pin in the hole
+ * and a law when the binding takes a contact (add_contact; on the
+ * description's geometry, as the reference); NULL otherwise
+ * (planar_kit_model.c). */
+const struct fb_kit_binding *fb_planar_kit_of(const char *name);
+
+/* Engine model p (its samples allocated, p->name one fb_planar_kit_of
+ * takes) of run r through the engine kit: the description built in the
+ * engine, one engine step of h per sample, the window peaks; a clearance
+ * model's one clearance joint with the reference's law (p->ref.joint,
+ * law, force_max, penetration_max; steps: the steps with a contact row)
+ * and its force and penetration columns. Errors: FB_ERR_ARG without
+ * exactly one clearance joint; those of joint_law.h and of fb_kit_run. */
+fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag);
 
 /* The analytic model's sample i of body b's quantity k (FB_Q_*). */
 double fb_planar_model_value(const fb_planar_run *r, const fb_planar_model *p, int b, int k,

@@ -224,6 +224,9 @@ typedef struct fb_engine {
                                        NULL result: the mapping's name */
   const fb_engine_bench *bench;     /* optional: the engine's rows of fourbar bench's grids
                                        (engine_bench.h; NULL: none) */
+  const struct fb_kit_binding *kit; /* optional: the engine's binding of the engine kit
+                                       (src/engines/kit/kit.h), with which it builds any
+                                       planar case's ideal models; NULL: none */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:

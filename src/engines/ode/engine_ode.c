@@ -4,6 +4,7 @@
 
 #include "engine.h"
 #include "impact_ode.h"
+#include "ode_kit.h"
 #include "ode_world.h"
 
 static fb_status ode_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
@@ -260,4 +261,5 @@ const fb_engine fb_engine_ode = {
     .peer_args = ode_peer_args,
     .impact = &ode_impact,
     .bench = &ode_bench,
+    .kit = &fb_ode_kit,
 };

@@ -1,0 +1,152 @@
+/* The engine kit's walk (kit.h): a planar description built through an
+ * engine's binding, stepped, sampled. */
+#include "kit.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "kit_contact.h"
+#include "planar_kinematics.h"
+#include "series.h"
+
+/* qd: every moving body's velocity at the assembly configuration with the
+ * drive at omega (the core's velocity analysis) */
+static fb_status start_velocities(double *qd, const fb_planar *m, double omega, fb_diag *diag) {
+  fb_planar_kin *k;
+  fb_status st = fb_planar_kin_new(&k, m, diag);
+  if (st != FB_OK) return st;
+  const int nq = fb_planar_nq(m);
+  double *q = malloc((size_t)nq * sizeof *q);
+  if (!q) st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  if (st == FB_OK) {
+    fb_planar_assembly(m, q);
+    st = fb_planar_position(k, q, 0.0, NULL, diag);
+  }
+  const fb_planar_drive d = {0.0, omega, 0.0};
+  if (st == FB_OK) st = fb_planar_motion(k, qd, NULL, q, &d, NULL, diag);
+  free(q);
+  fb_planar_kin_free(k);
+  return st;
+}
+
+/* the kit's handle of description body b */
+static int handle(int b) { return b == FB_PLANAR_GROUND ? FB_KIT_GROUND : b - 1; }
+
+/* bodies that no ideal joint holds are held in the plane, if the engine
+ * needs it */
+static fb_status hold(const fb_kit_binding *b, void *w, const fb_planar *m, unsigned mask,
+                      fb_diag *diag) {
+  fb_status st = FB_OK;
+  for (int i = 1; i < m->nbodies && st == FB_OK && b->hold_in_plane; i++) {
+    int held = 0;
+    for (int j = 0; j < m->njoints; j++)
+      if (!(mask & (1u << j)) && (m->joint[j].body[0] == i || m->joint[j].body[1] == i)) held = 1;
+    if (!held) st = b->hold_in_plane(w, handle(i), diag);
+  }
+  return st;
+}
+
+/* the walk: bodies, joints (but the clearance joints of mask), loop
+ * closure, drive */
+static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, double omega,
+                       const double *qd, unsigned mask, fb_diag *diag) {
+  int added = 0, drive = -1; /* the engine's joints so far; the drive's among them */
+  fb_status st = FB_OK;
+  for (int i = 1; i < m->nbodies && st == FB_OK; i++) {
+    const fb_planar_body *pb = &m->body[i];
+    const double *v = qd + 3 * (i - 1);
+    const fb_kit_body kb = {pb->mass, pb->inertia, {pb->centre[0], pb->centre[1], pb->angle0},
+                            {v[0], v[1], v[2]}};
+    st = b->add_body(w, &kb, diag);
+  }
+  for (int j = 0; j < m->njoints && st == FB_OK; j++) {
+    const fb_planar_joint *pj = &m->joint[j];
+    const int b0 = handle(pj->body[0]), b1 = handle(pj->body[1]);
+    if (mask & (1u << j)) continue; /* a pin in a hole: the contact each step */
+    if (j == m->drive) drive = added;
+    added++;
+    if (pj->kind == FB_KIND_PRISMATIC) {
+      /* the slide's axis from body[0]'s frame into the world at assembly */
+      const double a = m->body[pj->body[0]].angle0, c = cos(a), s = sin(a);
+      const double axis[2] = {c * pj->axis[0] - s * pj->axis[1], s * pj->axis[0] + c * pj->axis[1]};
+      st = b->add_prismatic(w, b0, b1, pj->at, axis, diag);
+    } else {
+      st = b->add_revolute(w, b0, b1, pj->at, diag);
+    }
+  }
+  if (st == FB_OK && b->close_loop) st = b->close_loop(w, diag);
+  if (st == FB_OK) st = hold(b, w, m, mask, diag);
+  if (st != FB_OK) return st;
+  if (drive < 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "clearance at the driven joint '%s': the engine kit "
+                       "drives an ideal joint only", m->joint[m->drive].name);
+  /* the drive turns 'to' at omega relative to 'from'; the binding takes the
+   * rate of the joint's body[1] relative to its body[0] */
+  int from, to;
+  fb_planar_drive_bodies(m, &from, &to);
+  const double rate = m->joint[m->drive].body[1] == to ? omega : -omega;
+  return b->add_drive(w, drive, rate, diag);
+}
+
+/* sample i of every moving body: angle unwrapped from the last one's */
+static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int nb, size_t i) {
+  const size_t n = s->n;
+  s->t[i] = (double)i * s->h;
+  for (int k = 0; k < nb; k++) {
+    double pos[3], vel[3];
+    b->body_state(w, k, pos, vel);
+    double *q = s->q + (size_t)k * 3 * n;
+    q[2 * n + i] = 0.0;
+    if (i == 0) {
+      q[i] = pos[2];
+    } else {
+      q[i] = q[i - 1] + remainder(pos[2] - q[i - 1], 2.0 * M_PI);
+      /* the step from t_{i-1}: its acceleration belongs to that sample's
+       * configuration (the forces the engine solved there) */
+      q[2 * n + i - 1] = (vel[2] - q[n + i - 1]) / s->h;
+      if (i == n - 1) q[2 * n + i] = q[2 * n + i - 1]; /* the last keeps the one before */
+    }
+    q[n + i] = vel[2];
+  }
+}
+
+/* the stepping: before each step the clearance contacts; after it the
+ * samples, the step's contact force at the sample it started from */
+static fb_status steps(const fb_kit_binding *b, void *w, const fb_planar *m,
+                       fb_kit_clearance *cl, fb_kit_series *s, fb_diag *diag) {
+  fb_kit_pipe p;
+  const fb_kit_clearance none = {0};
+  fb_status st = fb_kit_pipe_new(&p, m, cl ? cl : &none, diag);
+  for (size_t i = 0; i < s->n && st == FB_OK; i++) {
+    if (i > 0) st = b->step(w, diag);
+    if (st != FB_OK) break;
+    sample(b, w, s, m->nbodies - 1, i);
+    if (!cl) continue;
+    if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&p, b, w, cl->joint);
+    cl->pen[i] = fb_kit_pipe_read(&p, b, w, m, cl);
+    if (i + 1 < s->n) st = fb_kit_pipe_contacts(&p, b, w, m, cl, s->h, diag);
+    else cl->force[i] = i > 0 ? cl->force[i - 1] : 0.0; /* the last keeps the one before */
+  }
+  fb_kit_pipe_free(&p);
+  return st;
+}
+
+fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
+                     const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
+                     fb_diag *diag) {
+  const unsigned mask = cl ? cl->mask : 0u;
+  if (mask && !b->add_contact)
+    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
+                       b->engine);
+  const int nq = fb_planar_nq(m);
+  double *qd = malloc((size_t)nq * sizeof *qd);
+  if (!qd) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_status st = start_velocities(qd, m, omega, diag);
+  void *w = NULL;
+  if (st == FB_OK) st = b->world_new(&w, o, diag);
+  if (st == FB_OK) st = build(b, w, m, omega, qd, mask, diag);
+  free(qd);
+  if (st == FB_OK) st = steps(b, w, m, cl, s, diag);
+  if (w) b->world_free(w);
+  return st;
+}

@@ -1,0 +1,146 @@
+/* The engine kit (issue 58): one walk of a planar description
+ * (model/mech/planar.h) that builds it in any engine through the engine's
+ * binding, a table of builder functions, then steps the engine and samples
+ * every moving body. An engine's folder supplies the binding (C; a C++
+ * engine behind its extern "C" table) and keeps its own choices: its own
+ * joints and loop closure, its own stepper, its own constraint settings.
+ *
+ * The walk (kit.c), in this order:
+ *   world_new     the engine's world: gravity g [m/s^2] along -y, the
+ *                 case's [solver] settings, step h [s]
+ *   add_body      every moving body of the description at its assembly
+ *                 pose (centre of mass, frame angle), mass [kg], moment of
+ *                 inertia about +z through the centre [kg m^2], and the
+ *                 velocity the drive gives it there (the core's velocity
+ *                 analysis, planar_kinematics.h): the start is on the
+ *                 ideal mechanism's path
+ *   add_revolute  every revolute joint (a pin about +z at its assembly
+ *                 position)
+ *   add_prismatic every prismatic joint (a slide along its unit axis in
+ *                 the world at the assembly configuration)
+ *   close_loop    optional: an engine whose joints form a tree closes the
+ *                 loops here (NULL: the engine's joints close them)
+ *   hold_in_plane optional: a body that only clearance joints hold
+ *   add_drive     the drive: the rate of body b1 relative to body b0 of
+ *                 the driven joint [rad/s], constant
+ *   add_contact   before every step, each clearance joint in contact: the
+ *                 contact the kit's pipeline computed (fb_kit_contact)
+ *   step, body_state  advance h; read a body's pose and velocity
+ *   contact_force optional: what the contact applied in the step
+ * Bodies are named by the kit's handles: the ground is FB_KIT_GROUND, the
+ * description's body b (1 ..) is handle b - 1; add_drive's joint is the
+ * driven joint's place among the joints added (the description's order,
+ * clearance joints left out); add_contact's the description's index of
+ * the clearance joint. SI throughout. */
+#ifndef FB_KIT_H
+#define FB_KIT_H
+
+#include <stddef.h>
+
+#include "case.h"
+#include "contact.h"
+#include "planar.h"
+#include "status.h"
+
+/* The ground's handle. */
+#define FB_KIT_GROUND (-1)
+
+/* What a world is made with. */
+typedef struct {
+  double gravity;            /* along -y [m/s^2] */
+  double h;                  /* step [s] */
+  const fb_solver *solver;    /* the case's [solver] settings (case.h) */
+  int nbodies, njoints;      /* moving bodies and joints the walk will add */
+} fb_kit_world;
+
+/* One moving body at the start. */
+typedef struct {
+  double mass;        /* [kg] */
+  double inertia;     /* about +z through the centre of mass [kg m^2] */
+  double pos[3];      /* centre of mass x, y [m] and frame angle [rad] */
+  double vel[3];      /* centre of mass velocity [m/s] and angular velocity [rad/s] */
+} fb_kit_body;
+
+/* One clearance joint's contact for the coming step, computed by the kit
+ * (kit_contact.c) from the bodies' states: the pin on the joint's body[0],
+ * the hole on its body[1]. */
+typedef struct {
+  int pin, hole;       /* body handles (hole FB_KIT_GROUND for a ground hole) */
+  double point[2];     /* on the hole wall, hole centre + (pin radius + c) n [m] */
+  double normal[2];    /* n: unit, hole centre towards pin centre [-] */
+  double depth;        /* penetration |e| - c > 0 [m] */
+  double rate;         /* penetration rate n . (v_pin - v_hole) [m/s] (> 0 approaching) */
+  double v0;           /* the episode's onset rate (episode.h) [m/s] */
+  int onset;           /* 1 at the first step of a contact episode */
+  double m_eff;        /* effective mass along n, the drive held (planar_mass.h) [kg] */
+  fb_contact_law law;  /* the joint's law with its damper on m_eff (contact_mass.h) */
+  fb_mapping mapping;  /* the case's [clearance] mapping (contact.h) */
+  double h;            /* step [s] */
+} fb_kit_contact;
+
+/* The clearance joints of a kit run (NULL: every joint ideal). */
+typedef struct {
+  unsigned mask;            /* bit j: joint j is a pin in a hole (a revolute joint) */
+  fb_contact_law law;       /* their law (joint_law.h), its damper put on m_eff each step */
+  fb_mapping mapping;       /* [clearance] mapping */
+  double radial_clearance;  /* c [m] */
+  double pin_radius;        /* [m] */
+  double impact_velocity_min; /* an episode faster than this at onset is an impact [m/s] */
+  int joint;                /* the joint whose force and penetration the series holds */
+  double *force, *pen;      /* (n): its contact force [N] and penetration [m] per sample */
+  size_t contact_steps;     /* out: steps with a contact row, all joints */
+  int impacts;              /* out: impact episodes, all joints */
+} fb_kit_clearance;
+
+/* An engine's builder functions. */
+typedef struct fb_kit_binding {
+  const char *engine; /* "ode" */
+  fb_status (*world_new)(void **w, const fb_kit_world *o, fb_diag *diag);
+  fb_status (*add_body)(void *w, const fb_kit_body *b, fb_diag *diag);
+  fb_status (*add_revolute)(void *w, int b0, int b1, const double at[2], fb_diag *diag);
+  fb_status (*add_prismatic)(void *w, int b0, int b1, const double at[2], const double axis[2],
+                             fb_diag *diag);
+  fb_status (*close_loop)(void *w, fb_diag *diag); /* optional (NULL) */
+  fb_status (*add_drive)(void *w, int joint, double rate, fb_diag *diag);
+  fb_status (*hold_in_plane)(void *w, int b, fb_diag *diag);
+                             /* optional: keep body b in the plane (a body that only a
+                                clearance joint holds); NULL: the engine is planar */
+  fb_status (*add_contact)(void *w, int k, const fb_kit_contact *c, fb_diag *diag);
+                             /* clearance joint k's contact for the coming step (the
+                                engine's native row or its force); NULL: no clearance */
+  double (*contact_force)(const void *w, int k);
+                             /* optional: the normal force clearance joint k's contact
+                                applied in the last step [N]; NULL: the law's */
+  fb_status (*step)(void *w, fb_diag *diag);
+  void (*body_state)(const void *w, int b, double pos[3], double vel[3]);
+  void (*world_free)(void *w);
+} fb_kit_binding;
+
+/* Where a kit run writes: n samples every h from t = 0; body handle b's
+ * quantity k (FB_Q_POS, _VEL, _ACC: angle unwrapped [rad], omega [rad/s],
+ * alpha [rad/s^2]) at q[(b * 3 + k) * n + i]; t (n) [s]. Sample i's alpha
+ * is the step from t_i, (omega_{i+1} - omega_i) / h, the acceleration the
+ * engine solved at sample i's configuration (series.h's
+ * fb_series_attribute_to_step_start, as the engines' four-bar runs report
+ * it); the last sample keeps the one before. */
+typedef struct {
+  size_t n;
+  double h;
+  double *t;
+  double *q;
+} fb_kit_series;
+
+/* Builds description m driven at omega [rad/s] in the engine of binding b
+ * (world settings o; o->h the series' h), the joints of cl->mask (cl may
+ * be NULL) as pins in holes, steps it s->n - 1 times and fills s (and
+ * cl's columns and counts). Each step, before the engine's, the kit
+ * computes every clearance joint's contact (fb_kit_contact) and hands it
+ * to the binding's add_contact. Errors: FB_ERR_ARG when the binding has
+ * no add_contact for a clearance joint; those of the binding, of the
+ * core's velocity analysis (planar_kinematics.h: no drive, not one degree
+ * of freedom, a singular start) and of its effective mass; FB_ERR_NOMEM. */
+fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
+                     const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
+                     fb_diag *diag);
+
+#endif

@@ -1,0 +1,129 @@
+/* The kit's clearance pipeline (kit_contact.h). */
+#include "kit_contact.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contact_mass.h"
+#include "effective_mass.h"
+#include "planar_mass.h"
+
+fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl,
+                          fb_diag *diag) {
+  memset(p, 0, sizeof *p);
+  for (int j = 0; j < m->njoints; j++) {
+    if (!(cl->mask & (1u << j))) continue;
+    if (j >= FB_PLANAR_SPEC_MAX_JOINTS || !m->joint[j].clearance_ok)
+      return fb_diag_set(diag, FB_ERR_ARG, "clearance at joint '%s': the engine kit takes a pin "
+                         "in a hole at a revolute joint only", m->joint[j].name);
+    p->off[j] = 1;
+  }
+  const int nq = fb_planar_nq(m);
+  p->q = calloc(2 * (size_t)nq, sizeof *p->q);
+  if (!p->q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  p->qd = p->q + nq;
+  return FB_OK;
+}
+
+void fb_kit_pipe_free(fb_kit_pipe *p) {
+  free(p->q);
+  p->q = p->qd = NULL;
+}
+
+/* body b's point at local (its frame) in the world, and its velocity */
+static void point(const double *q, const double *qd, int b, const double local[2], double x[2],
+                  double v[2]) {
+  if (b == FB_PLANAR_GROUND) {
+    x[0] = local[0], x[1] = local[1], v[0] = v[1] = 0.0;
+    return;
+  }
+  const double *s = q + 3 * (b - 1), *r = qd + 3 * (b - 1);
+  const double c = cos(s[2]), n = sin(s[2]);
+  const double d[2] = {c * local[0] - n * local[1], n * local[0] + c * local[1]};
+  x[0] = s[0] + d[0], x[1] = s[1] + d[1];
+  v[0] = r[0] - r[2] * d[1], v[1] = r[1] + r[2] * d[0];
+}
+
+/* the coordinates now, from the engine */
+static void read_state(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m) {
+  for (int k = 0; k < m->nbodies - 1; k++) b->body_state(w, k, p->q + 3 * k, p->qd + 3 * k);
+}
+
+/* joint j's contact into *c when its pin presses into the hole (returns 1) */
+static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
+                    const fb_kit_clearance *cl, int j) {
+  const fb_planar_joint *pj = &m->joint[j];
+  double xp[2], vp[2], xh[2], vh[2];
+  point(p->q, p->qd, pj->body[0], pj->point[0], xp, vp);
+  point(p->q, p->qd, pj->body[1], pj->point[1], xh, vh);
+  const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
+  const double delta = ecc - cl->radial_clearance;
+  p->pen[j] = delta > 0.0 ? delta : 0.0;
+  if (!(delta > 0.0) || ecc == 0.0) return 0;
+  const double n[2] = {e[0] / ecc, e[1] / ecc}, r = cl->pin_radius + cl->radial_clearance;
+  *c = (fb_kit_contact){.pin = pj->body[0] - 1, .hole = pj->body[1] - 1,
+                        .point = {xh[0] + r * n[0], xh[1] + r * n[1]}, .normal = {n[0], n[1]},
+                        .depth = delta, .rate = n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]),
+                        .mapping = cl->mapping};
+  if (pj->body[1] == FB_PLANAR_GROUND) c->hole = FB_KIT_GROUND;
+  return 1;
+}
+
+double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                        const fb_planar *m, const fb_kit_clearance *cl) {
+  read_state(p, b, w, m);
+  fb_kit_contact c;
+  for (int j = 0; j < m->njoints; j++)
+    if (p->off[j]) geometry(&c, p, m, cl, j);
+  return p->pen[cl->joint];
+}
+
+/* the matched mapping's aliasing stop (contact.h): a row whose damped
+ * frequency passes FB_MATCHED_ALIAS_BOUND per step has lost its spring's
+ * meaning; FB_ERR_NUMERIC naming the largest usable step */
+static fb_status alias_stop(const fb_kit_contact *c, const char *joint, fb_diag *diag) {
+  fb_contact_row row;
+  if (!fb_mapping_is_matched(c->mapping) ||
+      fb_contact_row_step(&row, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
+                          c->onset, 0.0) != FB_OK)
+    return FB_OK;
+  const double wdh = fb_contact_omega_d_h(c->h, row.kp, row.kd, c->m_eff);
+  if (!(wdh > FB_MATCHED_ALIAS_BOUND)) return FB_OK;
+  return fb_diag_set(diag, FB_ERR_NUMERIC, "aliased: omega_d h = %.3g at the %s joint (bound "
+                     "%.3g); largest usable step %.3g s", wdh, joint, FB_MATCHED_ALIAS_BOUND,
+                     c->h * FB_MATCHED_ALIAS_BOUND / wdh);
+}
+
+fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
+                               const fb_planar *m, fb_kit_clearance *cl, double h,
+                               fb_diag *diag) {
+  for (int j = 0; j < m->njoints; j++) {
+    if (!p->off[j]) continue;
+    fb_kit_contact c;
+    p->force[j] = 0.0;
+    const int in = geometry(&c, p, m, cl, j);
+    const int onset = in && !p->ep[j].in_contact, before = p->ep[j].impacts;
+    fb_episode_update(&p->ep[j], in, in ? c.rate : 0.0, cl->impact_velocity_min);
+    cl->impacts += p->ep[j].impacts - before;
+    if (!in) continue;
+    double wi[2][2];
+    fb_status st = fb_planar_effective_mass_tensor(wi, m, p->q, p->off, j, diag);
+    if (st != FB_OK) return st;
+    const double me = fb_effective_mass_along(wi, c.normal);
+    c.m_eff = isfinite(me) && me > 0.0 ? me : cl->law.mass;
+    c.law = fb_contact_law_on_mass(&cl->law, c.m_eff);
+    c.v0 = p->ep[j].v0;
+    c.onset = onset;
+    c.h = h;
+    p->force[j] = fb_contact_force(&c.law, c.depth, c.rate, c.v0);
+    if ((st = alias_stop(&c, m->joint[j].name, diag)) != FB_OK) return st;
+    if ((st = b->add_contact(w, j, &c, diag)) != FB_OK) return st;
+    cl->contact_steps++;
+  }
+  return FB_OK;
+}
+
+double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w, int k) {
+  return b->contact_force ? b->contact_force(w, k) : p->force[k];
+}

@@ -1,0 +1,48 @@
+/* The kit's clearance pipeline (kit.h), private to src/engines/kit: each
+ * clearance joint's contact computed once for every engine (the
+ * eccentricity from the bodies' states, the penetration and its rate, the
+ * episode, the effective mass from the planar core, the law's damper on
+ * it) and handed to the binding. */
+#ifndef FB_KIT_CONTACT_H
+#define FB_KIT_CONTACT_H
+
+#include "episode.h"
+#include "kit.h"
+#include "planar_spec.h"
+
+/* What the pipeline keeps between steps. */
+typedef struct {
+  fb_episode ep[FB_PLANAR_SPEC_MAX_JOINTS];   /* per joint */
+  double force[FB_PLANAR_SPEC_MAX_JOINTS];    /* the law's force handed this step [N] */
+  double pen[FB_PLANAR_SPEC_MAX_JOINTS];      /* penetration at the step's start [m] */
+  unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: a clearance joint (no ideal joint) */
+  double *q, *qd;                             /* the core's coordinates and rates (nq each) */
+} fb_kit_pipe;
+
+/* Sets p up for m's clearance joints cl->mask. Errors: FB_ERR_ARG (a
+ * joint out of range or not revolute, or more joints than the pipeline
+ * holds), FB_ERR_NOMEM. Free with fb_kit_pipe_free. */
+fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl,
+                          fb_diag *diag);
+void fb_kit_pipe_free(fb_kit_pipe *p);
+
+/* Reads the bodies' states from the engine and every clearance joint's
+ * penetration; returns cl->joint's [m]. */
+double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                        const fb_planar *m, const fb_kit_clearance *cl);
+
+/* Every clearance joint's contact at the state last read, handed to b's
+ * add_contact for the coming step of h [s]; counts contact steps and
+ * impact episodes into cl. Errors: FB_ERR_NUMERIC when a matched row
+ * would alias (contact.h, FB_MATCHED_ALIAS_BOUND: "aliased: ..." with
+ * the largest usable step, the hand-built ODE world's stop); those of
+ * add_contact and of the effective mass (planar_mass.h). */
+fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
+                               const fb_planar *m, fb_kit_clearance *cl, double h,
+                               fb_diag *diag);
+
+/* The force of joint k in the step just taken [N]: the engine's
+ * (contact_force) when the binding reports it, else the law's. */
+double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w, int k);
+
+#endif

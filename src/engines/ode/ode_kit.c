@@ -1,0 +1,237 @@
+/* ODE as a binding of the engine kit (kit.h): any planar description in
+ * ODE as the four-bar world (ode_world.c) builds its own. A body is an ODE
+ * rigid body (its moment about +z the description's; about its in-plane
+ * axes half of it each, a thin plate's, which no planar motion excites);
+ * a revolute joint is a hinge about +z (dJointCreateHinge), a prismatic
+ * one a slider joint along its axis (dJointCreateSlider); the loops close
+ * through the joints themselves (3-D hinges over-constrain a planar loop
+ * by three rows each; the world CFM absorbs them, as in the four-bar); the
+ * drive is the driven hinge's velocity motor (dParamVel, dParamFMax =
+ * [solver] drive_torque_max_n_m). A clearance joint (kit.h's pipeline
+ * computes its contact) is ODE's soft contact row as the exact collider
+ * makes it (ode_clearance.c): the law mapped at the effective mass to ERP
+ * and CFM (ode_contact.h), on the hole wall, its force read back from the
+ * row's feedback. The world's ERP,
+ * CFM, stepper (dWorldStep or dWorldQuickStep with its iterations) and
+ * seed are the case's [solver] keys, gravity along -y; each step runs
+ * under ODE's fatal-error escape (ode_env.h). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <ode/ode.h>
+
+#include "kit.h"
+#include "ode_contact.h"
+#include "ode_env.h"
+#include "ode_kit.h"
+#include "planar_spec.h"
+
+typedef struct {
+  dWorldID world;
+  dBodyID *body;   /* (nbodies) */
+  dJointID *joint; /* (njoints) */
+  int nbodies, njoints;
+  double h;
+  fb_stepper stepper;
+  double fmax;     /* drive torque limit [N m] */
+  size_t steps;
+  int broken;      /* an ODE error left the world mid-step */
+  /* clearance joints by the description's index: this step's contact joint,
+   * its feedback, the share of its impulse that is this step's
+   * (contact.h), the normal force of the last step [N] */
+  dJointGroupID contacts;
+  dJointID cj[FB_PLANAR_SPEC_MAX_JOINTS];
+  dJointFeedback fb[FB_PLANAR_SPEC_MAX_JOINTS];
+  double share[FB_PLANAR_SPEC_MAX_JOINTS];
+  double force[FB_PLANAR_SPEC_MAX_JOINTS];
+} ode_kit;
+
+static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
+  ode_kit *k = calloc(1, sizeof *k);
+  if (k) k->body = calloc((size_t)o->nbodies + 1, sizeof *k->body);
+  if (k && k->body) k->joint = calloc((size_t)o->njoints + 1, sizeof *k->joint);
+  if (!k || !k->body || !k->joint) {
+    if (k) free(k->body);
+    free(k);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the ODE world");
+  }
+  fb_ode_acquire();
+  k->world = dWorldCreate();
+  k->contacts = dJointGroupCreate(0);
+  dWorldSetGravity(k->world, 0, -o->gravity, 0);
+  dWorldSetERP(k->world, o->solver->world_erp);
+  dWorldSetCFM(k->world, o->solver->world_cfm);
+  dWorldSetQuickStepNumIterations(k->world, o->solver->quick_iterations);
+  dRandSetSeed(o->solver->seed);
+  k->h = o->h;
+  k->stepper = o->solver->stepper;
+  k->fmax = o->solver->drive_torque_max;
+  *out = k;
+  return FB_OK;
+}
+
+static fb_status kit_add_body(void *w, const fb_kit_body *b, fb_diag *diag) {
+  (void)diag;
+  ode_kit *k = w;
+  dBodyID id = dBodyCreate(k->world);
+  dMass m;
+  dMassSetParameters(&m, b->mass, 0, 0, 0, 0.5 * b->inertia, 0.5 * b->inertia, b->inertia, 0, 0,
+                     0);
+  dBodySetMass(id, &m);
+  dBodySetPosition(id, b->pos[0], b->pos[1], 0.0);
+  dMatrix3 R;
+  dRFromAxisAndAngle(R, 0, 0, 1, b->pos[2]);
+  dBodySetRotation(id, R);
+  dBodySetLinearVel(id, b->vel[0], b->vel[1], 0.0);
+  dBodySetAngularVel(id, 0, 0, b->vel[2]);
+  k->body[k->nbodies++] = id;
+  return FB_OK;
+}
+
+/* ODE's body of a kit handle (0: the static environment) */
+static dBodyID ode_body(const ode_kit *k, int b) { return b == FB_KIT_GROUND ? 0 : k->body[b]; }
+
+/* attaches joint j: ODE wants the moving body first when one is the ground */
+static void attach(ode_kit *k, dJointID j, int b0, int b1) {
+  if (b1 == FB_KIT_GROUND) dJointAttach(j, ode_body(k, b0), 0);
+  else dJointAttach(j, ode_body(k, b1), ode_body(k, b0));
+  k->joint[k->njoints++] = j;
+}
+
+static fb_status kit_add_revolute(void *w, int b0, int b1, const double at[2], fb_diag *diag) {
+  (void)diag;
+  ode_kit *k = w;
+  dJointID j = dJointCreateHinge(k->world, 0);
+  attach(k, j, b0, b1);
+  dJointSetHingeAnchor(j, at[0], at[1], 0.0);
+  dJointSetHingeAxis(j, 0, 0, b1 == FB_KIT_GROUND ? -1 : 1);
+  return FB_OK;
+}
+
+static fb_status kit_add_prismatic(void *w, int b0, int b1, const double at[2],
+                                   const double axis[2], fb_diag *diag) {
+  (void)at;
+  (void)diag;
+  ode_kit *k = w;
+  dJointID j = dJointCreateSlider(k->world, 0);
+  attach(k, j, b0, b1);
+  const double s = b1 == FB_KIT_GROUND ? -1.0 : 1.0;
+  dJointSetSliderAxis(j, s * axis[0], s * axis[1], 0.0);
+  return FB_OK;
+}
+
+static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
+  ode_kit *k = w;
+  dJointID j = k->joint[joint];
+  if (dJointGetType(j) != dJointTypeHinge)
+    return fb_diag_set(diag, FB_ERR_ARG, "the ODE kit drives a revolute joint only");
+  dJointSetHingeParam(j, dParamVel, rate);
+  dJointSetHingeParam(j, dParamFMax, k->fmax);
+  return FB_OK;
+}
+
+/* a body that only a clearance joint holds stays in the plane */
+static fb_status kit_hold_in_plane(void *w, int b, fb_diag *diag) {
+  (void)diag;
+  ode_kit *k = w;
+  dJointAttach(dJointCreatePlane2D(k->world, 0), k->body[b], 0);
+  return FB_OK;
+}
+
+/* the exact collider's row as ode_clearance.c makes it: the law mapped to
+ * one soft contact row (ode_contact.h) at the effective mass, on the hole
+ * wall, its normal into the pin, no friction */
+static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
+  (void)diag;
+  ode_kit *k = w;
+  dContact ct;
+  memset(&ct, 0, sizeof ct);
+  fb_contact_row used;
+  if (!fb_ode_soft_contact(&ct, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
+                           c->onset, 0.0, 0.0, &used))
+    return FB_OK;
+  ct.geom.pos[0] = c->point[0];
+  ct.geom.pos[1] = c->point[1];
+  ct.geom.normal[0] = -c->normal[0];
+  ct.geom.normal[1] = -c->normal[1];
+  k->cj[j] = dJointCreateContact(k->world, k->contacts, &ct);
+  dJointAttach(k->cj[j], ode_body(k, c->pin), ode_body(k, c->hole));
+  dJointSetFeedback(k->cj[j], &k->fb[j]);
+  k->share[j] = used.step_share;
+  return FB_OK;
+}
+
+static double kit_contact_force(const void *w, int j) { return ((const ode_kit *)w)->force[j]; }
+
+/* the contact forces the step left (on the pin, body 1 of each row) */
+static void contact_forces(ode_kit *k) {
+  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) {
+    k->force[j] = k->cj[j] ? k->share[j] * hypot(k->fb[j].f1[0], k->fb[j].f1[1]) : 0.0;
+    k->cj[j] = 0;
+  }
+  dJointGroupEmpty(k->contacts);
+}
+
+static fb_status kit_step(void *w, fb_diag *diag) {
+  ode_kit *k = w;
+  jmp_buf escape;
+  if (setjmp(escape) != 0) {
+    k->broken = 1;
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "ode-error: %s at t = %.6g s (step %zu)",
+                       fb_ode_last_error(), (double)k->steps * k->h, k->steps + 1);
+  }
+  fb_ode_escape = &escape;
+  const int ok = k->stepper == FB_STEPPER_WORLD ? dWorldStep(k->world, k->h)
+                                                : dWorldQuickStep(k->world, k->h);
+  fb_ode_escape = NULL;
+  contact_forces(k);
+  if (!ok)
+    return fb_diag_set(diag, FB_ERR_NOMEM, "ODE could not allocate memory for step %zu",
+                       k->steps + 1);
+  k->steps++;
+  return FB_OK;
+}
+
+static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
+  const ode_kit *k = w;
+  const dReal *p = dBodyGetPosition(k->body[b]), *R = dBodyGetRotation(k->body[b]);
+  const dReal *v = dBodyGetLinearVel(k->body[b]), *om = dBodyGetAngularVel(k->body[b]);
+  pos[0] = p[0];
+  pos[1] = p[1];
+  pos[2] = atan2(R[4], R[0]);
+  vel[0] = v[0];
+  vel[1] = v[1];
+  vel[2] = om[2];
+}
+
+static void kit_world_free(void *w) {
+  ode_kit *k = w;
+  if (k->broken) {
+    fb_ode_quarantine(k->world); /* left mid-step: never touched again (ode_env.h) */
+    fb_ode_quarantine(k->contacts);
+  } else {
+    dJointGroupDestroy(k->contacts);
+    dWorldDestroy(k->world);
+    fb_ode_release();
+  }
+  free(k->body);
+  free(k->joint);
+  free(k);
+}
+
+const fb_kit_binding fb_ode_kit = {
+    .engine = "ode",
+    .world_new = kit_world_new,
+    .add_body = kit_add_body,
+    .add_revolute = kit_add_revolute,
+    .add_prismatic = kit_add_prismatic,
+    .add_drive = kit_add_drive,
+    .hold_in_plane = kit_hold_in_plane,
+    .add_contact = kit_add_contact,
+    .contact_force = kit_contact_force,
+    .step = kit_step,
+    .body_state = kit_body_state,
+    .world_free = kit_world_free,
+};

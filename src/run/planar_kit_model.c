@@ -1,0 +1,132 @@
+/* A planar case's engine models through the engine kit (planar_run.h):
+ * which models an engine builds that way, their clearance joint's law, the
+ * run and its window peaks. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine.h"
+#include "joint_law.h"
+#include "kit.h"
+#include "model_table.h"
+#include "planar_invdyn.h"
+#include "planar_run.h"
+#include "scene.h"
+#include "series.h"
+
+const struct fb_kit_binding *fb_planar_kit_of(const char *name) {
+  const fb_model *m = fb_model_find(name);
+  if (!m) return NULL;
+  fb_diag d;
+  const fb_engine *e = fb_engine_get(m->engine, &d);
+  const fb_kit_binding *b = e ? e->kit : NULL;
+  if (!b || m->joints == FB_JOINTS_IDEAL) return m->lengths == FB_LENGTHS_NOMINAL ? b : NULL;
+  /* a clearance model (its lengths the stack-up corner's on a four-bar;
+   * a planar case's are its joints', the nominal description the
+   * reference runs too): the exact pin in the hole, a law, and a binding
+   * that takes the contact */
+  return m->collider == FB_COLLIDER_EXACT && m->law != FB_MODEL_LAW_NONE && b->add_contact ? b
+                                                                                          : NULL;
+}
+
+/* every moving body's omega and alpha extremes over the samples at
+ * t >= r->t_window */
+static void window_peaks(fb_planar_model *p, const fb_planar_run *r) {
+  for (int b = 1; b < r->m->nbodies; b++) {
+    fb_body_peaks k = {.omega_max = -INFINITY, .omega_min = INFINITY, .alpha_max = -INFINITY,
+                       .alpha_min = INFINITY};
+    for (size_t i = 0; i < p->n; i++) {
+      if (p->t[i] < r->t_window) continue;
+      const double *q = p->q + (size_t)(b - 1) * 3 * p->n; /* planar_run.h's layout */
+      const double w = q[FB_Q_VEL * p->n + i], a = q[FB_Q_ACC * p->n + i];
+      k.omega_max = fmax(k.omega_max, w);
+      k.omega_min = fmin(k.omega_min, w);
+      k.alpha_max = fmax(k.alpha_max, a);
+      k.alpha_min = fmin(k.alpha_min, a);
+    }
+    p->peaks[b] = k;
+  }
+}
+
+/* the clearance of model p: the case's one clearance joint, its law at the
+ * joint's largest ideal reaction (as the reference takes it), the columns */
+static fb_status clearance(fb_kit_clearance *cl, fb_planar_model *p, const fb_planar_run *r,
+                           const fb_model *mt, fb_diag *diag) {
+  const fb_planar *m = r->m;
+  const fb_case *c = &r->c;
+  int n = 0;
+  for (int k = 0; k < m->njoints; k++)
+    if ((unsigned)c->clearance.mask & (1u << k)) cl->joint = k, n++;
+  if (n != 1)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs one clearance joint ([clearance] joints "
+                       "= a revolute joint of the case), and the case names %d", p->name, n);
+  if (m->joint[cl->joint].kind != FB_KIND_REVOLUTE)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s': clearance at prismatic joint '%s' (a slider "
+                       "in its guide) runs in the references only (reference, "
+                       "reference-restitution); the engine kit builds a pin in its hole",
+                       p->name, m->joint[cl->joint].name);
+  double *most = malloc((size_t)m->njoints * sizeof *most);
+  if (!most) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_status st = fb_planar_reaction_max(most, m, r->omega, c->gravity, diag);
+  const fb_planar_joint *j = &m->joint[cl->joint];
+  const double a = m->body[j->body[0]].mass, b = m->body[j->body[1]].mass;
+  const double mass = a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b); /* joint_law.h */
+  p->ref.force_work = most[cl->joint];
+  if (st == FB_OK)
+    st = fb_joint_law_at(&cl->law, c, mt->law == FB_MODEL_LAW_IMPACT, most[cl->joint], j->name,
+                         mass, diag);
+  free(most);
+  if (st != FB_OK) return st;
+  fb_scene sc;
+  fb_scene_default(&sc);
+  cl->mask = (unsigned)c->clearance.mask;
+  cl->mapping = (fb_mapping)c->clearance.mapping;
+  cl->radial_clearance = c->radial_clearance;
+  cl->pin_radius = 0.5 * c->pin_diameter;
+  cl->impact_velocity_min = sc.impact_velocity_min;
+  p->force = malloc(2 * p->n * sizeof *p->force);
+  if (!p->force) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  p->pen = p->force + p->n;
+  for (size_t i = 0; i < 2 * p->n; i++) p->force[i] = NAN;
+  cl->force = p->force;
+  cl->pen = p->pen;
+  p->ref.joint = cl->joint;
+  p->ref.law = cl->law;
+  return FB_OK;
+}
+
+fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
+  const fb_model *mt = fb_model_find(p->name);
+  const fb_kit_binding *b = fb_planar_kit_of(p->name);
+  const fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints};
+  fb_kit_series s = {p->n, p->h, p->t, p->q};
+  fb_kit_clearance cl = {0};
+  p->engine = 1;
+  /* what a stop leaves unreached reads as no value (NaN) */
+  const size_t nq = (size_t)(r->m->nbodies - 1) * 3 * p->n;
+  for (size_t i = 0; i < p->n; i++) p->t[i] = (double)i * p->h;
+  for (size_t i = 0; i < nq; i++) p->q[i] = NAN;
+  fb_status st = mt->joints == FB_JOINTS_CLEARANCE ? clearance(&cl, p, r, mt, diag) : FB_OK;
+  if (st == FB_OK)
+    st = fb_kit_run(b, r->m, r->omega, &o, mt->joints == FB_JOINTS_CLEARANCE ? &cl : NULL, &s, diag);
+  for (size_t i = 0; i < p->n; i++) p->drive[i] = r->omega * p->t[i];
+  if (st == FB_ERR_NUMERIC) { /* a stop (aliased, the engine's error) is a result, not an error */
+    p->ref.failed = 1;
+    snprintf(p->ref.stop, sizeof p->ref.stop, "%.200s", diag->msg);
+    for (int k = 1; k < r->m->nbodies; k++)
+      p->peaks[k] = (fb_body_peaks){.omega_max = NAN, .omega_min = NAN, .alpha_max = NAN,
+                                    .alpha_min = NAN};
+    p->ref.force_max = p->ref.penetration_max = NAN;
+    return FB_OK;
+  }
+  if (st != FB_OK) return st;
+  window_peaks(p, r);
+  for (size_t i = 0; p->force && i < p->n; i++) {
+    if (p->t[i] < r->t_window) continue;
+    p->ref.force_max = fmax(p->ref.force_max, p->force[i]);
+    p->ref.penetration_max = fmax(p->ref.penetration_max, p->pen[i]);
+  }
+  p->ref.steps = cl.contact_steps;
+  return FB_OK;
+}

@@ -12,6 +12,7 @@
 
 #include "figures.h"
 #include "fileio.h"
+#include "json_columns.h"
 #include "metrics.h"
 #include "report.h"
 #include "report_page.h" /* fb_report_page_html[], fb_report_page_js[] (generated, meson.build) */
@@ -72,15 +73,6 @@ static size_t episodes(const fb_series *s, int j, episode *out, size_t cap) {
   return n;
 }
 
-static json_t *column(const double *y, const size_t *idx, size_t m, double scale) {
-  json_t *a = json_array();
-  for (size_t k = 0; k < m; k++) {
-    const double v = y[idx[k]] * scale;
-    json_array_append_new(a, isfinite(v) ? json_real(v) : json_null());
-  }
-  return a;
-}
-
 /* the sample of largest |y| over [i0, i1] */
 static double largest(const double *y, size_t i0, size_t i1) {
   double v = y[i0];
@@ -109,10 +101,18 @@ static const char *body_column(const fb_mech_desc *mech, int k, int q, char *buf
   return fb_mech_body_column(mech, body[k], q, buf, size);
 }
 
+/* one model's kept samples and its small members, written by write_model */
+typedef struct {
+  json_t *head;   /* name ... kept, impacts */
+  json_t *joints; /* per joint in contact: joint, impacts, listed */
+  size_t *idx;    /* the kept samples, ascending */
+  size_t nk;
+} model_data;
+
 /* one model's data: decimated series, contact columns, impacts; bodies,
  * columns and joints named by the case's mechanism (the four-bar's
  * coupler_omega ... follower_alpha, crank-coupler) */
-static fb_status model_json(json_t **out, const fb_run *r, int mi) {
+static fb_status model_json(model_data *out, const fb_run *r, int mi) {
   const fb_model_result *m = &r->model[mi];
   const fb_series *s = &m->run.series;
   const fb_model *row = m->run.model;
@@ -183,27 +183,43 @@ static fb_status model_json(json_t **out, const fb_run *r, int mi) {
     if (keep[i]) idx[nk++] = i;
   json_object_set_new(o, "samples", json_integer((json_int_t)s->n));
   json_object_set_new(o, "kept", json_integer((json_int_t)nk));
-  json_object_set_new(o, "t", column(s->t, idx, nk, 1.0));
+  json_object_set_new(o, "impacts", impacts);
+  free(keep), free(ep);
+  *out = (model_data){o, joints, idx, nk};
+  return FB_OK;
+}
+
+/* model mi's object: its small members, then the kept samples of every
+ * series and contact column (json_columns.h); returns 0 or -1 */
+static int write_model(FILE *f, const fb_run *r, int mi, const model_data *md, size_t flags) {
+  const fb_series *s = &r->model[mi].run.series;
+  const fb_mech_desc *mech = fb_case_mech(&r->c);
+  const int nb = fb_mech_outputs(mech, (int[FB_MECH_MAX_OUTPUTS]){0});
+  const size_t *idx = md->idx, nk = md->nk;
+  int bad = fb_json_open_object(f, md->head, flags);
+  bad |= fb_json_column(f, "t", s->t, idx, nk, 1.0, SERIES_DIGITS);
   for (int b = 0; b < nb; b++)
     for (int q = FB_Q_VEL; q <= FB_Q_ACC; q++) {
       char key[64];
-      json_object_set_new(o, series_key(mech, b, q, key, sizeof key), column(s->body[b][q], idx, nk, 1.0));
+      bad |= fb_json_column(f, series_key(mech, b, q, key, sizeof key), s->body[b][q], idx, nk, 1.0,
+                            SERIES_DIGITS);
     }
+  bad |= fputs(",\"joints\":[", f) < 0;
   size_t q = 0;
   for (int j = 0; j < 4; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
-    json_t *jo = json_array_get(joints, q++);
-    json_object_set_new(jo, "force_n", column(s->contact[j][FB_C_FORCE], idx, nk, 1.0));
-    json_object_set_new(jo, "penetration_um", column(s->contact[j][FB_C_PEN], idx, nk, 1e6));
-    json_object_set_new(jo, "ecc_x_um", column(s->contact[j][FB_C_EX], idx, nk, 1e6));
-    json_object_set_new(jo, "ecc_y_um", column(s->contact[j][FB_C_EY], idx, nk, 1e6));
-    json_object_set_new(jo, "state", column(s->contact[j][FB_C_STATE], idx, nk, 1.0));
+    double *const *col = s->contact[j];
+    if (q) bad |= fputc(',', f) == EOF;
+    bad |= fb_json_open_object(f, json_array_get(md->joints, q++), flags);
+    bad |= fb_json_column(f, "force_n", col[FB_C_FORCE], idx, nk, 1.0, SERIES_DIGITS);
+    bad |= fb_json_column(f, "penetration_um", col[FB_C_PEN], idx, nk, 1e6, SERIES_DIGITS);
+    bad |= fb_json_column(f, "ecc_x_um", col[FB_C_EX], idx, nk, 1e6, SERIES_DIGITS);
+    bad |= fb_json_column(f, "ecc_y_um", col[FB_C_EY], idx, nk, 1e6, SERIES_DIGITS);
+    bad |= fb_json_column(f, "state", col[FB_C_STATE], idx, nk, 1.0, SERIES_DIGITS);
+    bad |= fputc('}', f) == EOF;
   }
-  json_object_set_new(o, "joints", joints);
-  json_object_set_new(o, "impacts", impacts);
-  free(keep), free(idx), free(ep);
-  *out = o;
-  return FB_OK;
+  bad |= fputs("]}", f) < 0;
+  return bad ? -1 : 0;
 }
 
 /* copies the library file name from folder lib into dir, atomically */
@@ -267,10 +283,9 @@ static json_t *outputs_json(const fb_mech_desc *mech) {
   return a;
 }
 
-/* writes report-data.js: the run's data, then summary.json's value */
-static fb_status write_data(const char *dir, const fb_run *r, const json_t *summary, int charts,
-                            fb_diag *diag) {
-  json_t *d = json_object(), *models = json_array();
+/* the run's small members: case, speed, ..., verdicts (everything but models) */
+static json_t *run_json(const fb_run *r, int charts) {
+  json_t *d = json_object();
   const fb_case *c = &r->c;
   json_object_set_new(d, "format", json_integer(1));
   json_object_set_new(d, "case", json_string(c->name));
@@ -285,35 +300,48 @@ static fb_status write_data(const char *dir, const fb_run *r, const json_t *summ
    * alpha); any other mechanism's are written here, so that the four-bar's
    * data stay as they were */
   if (fb_case_mech(c) != &fb_mech_fourbar) json_object_set_new(d, "outputs", outputs_json(fb_case_mech(c)));
-  for (int i = 0; i < r->n; i++) {
-    json_t *m = NULL;
-    if (model_json(&m, r, i) != FB_OK) {
-      json_decref(d), json_decref(models);
-      return fb_diag_set(diag, FB_ERR_NOMEM, "report.html: out of memory");
-    }
-    json_array_append_new(models, m);
-  }
-  json_object_set_new(d, "models", models);
   /* what each verdict on statistics rests on, for its panel */
   json_object_set_new(d, "verdicts", fb_report_verdicts_json(r, fb_figure_model_color));
+  return d;
+}
+
+/* window.FOURBAR_DATA's value: the run's small members, then "models", each
+ * model decimated and written column by column; returns 0, -1 on a failed
+ * write, -2 out of memory */
+static int write_run(FILE *f, const fb_run *r, int charts, size_t flags) {
+  json_t *d = run_json(r, charts);
+  int bad = fb_json_open_object(f, d, flags | JSON_REAL_PRECISION(SERIES_DIGITS));
+  json_decref(d);
+  bad |= fputs(",\"models\":[", f) < 0;
+  for (int i = 0; i < r->n && !bad; i++) {
+    model_data md;
+    if (model_json(&md, r, i) != FB_OK) return -2;
+    if (i) bad |= fputc(',', f) == EOF;
+    bad |= write_model(f, r, i, &md, flags | JSON_REAL_PRECISION(SERIES_DIGITS));
+    json_decref(md.head), json_decref(md.joints), free(md.idx);
+  }
+  bad |= fputs("]}", f) < 0;
+  return bad ? -1 : 0;
+}
+
+/* writes report-data.js: the run's data, then summary.json's value */
+static fb_status write_data(const char *dir, const fb_run *r, const json_t *summary, int charts,
+                            fb_diag *diag) {
   char path[4400];
   snprintf(path, sizeof path, "%s/report-data.js", dir);
   fb_outfile out;
   fb_status st = fb_outfile_open(&out, path, diag);
-  if (st != FB_OK) {
-    json_decref(d);
-    return st;
-  }
+  if (st != FB_OK) return st;
   /* JSON_ENSURE_ASCII | JSON_ESCAPE_SLASH: no "</script>", no U+2028 */
   const size_t flags = JSON_COMPACT | JSON_ENSURE_ASCII | JSON_ESCAPE_SLASH;
   fputs("/* fourbar run data for report.html (docs/report.md) */\nwindow.FOURBAR_DATA = ", out.f);
-  int bad = json_dumpf(d, out.f, flags | JSON_REAL_PRECISION(SERIES_DIGITS)) != 0;
+  const int w = write_run(out.f, r, charts, flags);
   fputs(";\nwindow.FOURBAR_DATA.summary = ", out.f);
-  bad |= json_dumpf(summary, out.f, flags | JSON_REAL_PRECISION(12)) != 0; /* as summary.json */
+  int bad = w != 0 || json_dumpf(summary, out.f, flags | JSON_REAL_PRECISION(12)) != 0; /* as summary.json */
   fputs(";\n", out.f);
-  json_decref(d);
   if (bad) {
     fb_outfile_abort(&out);
+    if (w == -2) return fb_diag_set(diag, FB_ERR_NOMEM, "report.html: out of memory");
     return fb_diag_set(diag, FB_ERR_IO, "%s: JSON write failed", path);
   }
   return fb_outfile_commit(&out, diag);

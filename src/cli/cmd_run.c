@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "clock.h"
 #include "contact_params.h"
+#include "ensemble.h"
 #include "textsafe.h"
 #include "figures.h"
 #include "fileio.h"
@@ -50,7 +51,8 @@ static const char run_help[] =
     "                per model; needs a build with libhdf5); none. [run] series_every\n"
     "                = N keeps every N-th sample and every impact's (docs/series.md)\n"
     "  --jobs J      run the [run] ensemble members in J worker processes\n"
-    "                (default 1); the numbers do not depend on J\n"
+    "                (default: the processors online, at most the members a\n"
+    "                look adds); the numbers do not depend on J\n"
     "                A case without [run] ensemble gets an ensemble of 5 runs of\n"
     "                its clearance models and references when a verdict is\n"
     "                unsettled (a model left its reference, or a reference its\n"
@@ -234,7 +236,7 @@ int fb_cmd_run(int argc, char **argv) {
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out_dir = NULL;
-  int jobs = 1;
+  int jobs = 0; /* not given: fb_ensemble_default_jobs */
   const char *sets[MAX_SETS + 1];
   char series_set[64];
   int series_at = -1; /* the slot of --series in sets */
@@ -275,6 +277,7 @@ int fb_cmd_run(int argc, char **argv) {
       default: return fb_cli_bad_option(argv, "o:s:jh");
     }
   }
+  if (jobs == 0) jobs = fb_ensemble_default_jobs();
   fb_diag diag;
   fb_case c;
   char case_path[4096];

@@ -117,37 +117,59 @@ typedef struct {
   double run_wall_s;     /* the run's wall time when timing.json was written [s] */
 } run_set;
 
-/* The result set into the staging folder (fb_run_set_writer): summary.json
- * and the series, then figures, report.html and report.md, which belong to
- * the set: a set with a figure or the report missing or damaged (a full
- * disk) is not committed, and the folder keeps the set it had; timing.json
- * last, counting the others. Returns the exit status. */
+/* waits for the figures' gnuplots (fb_figures_start), counting the wait in
+ * figures_s; an error message into diag unless one is there (*failed) */
+static fb_status figures_finish(run_set *w, int failed, fb_diag *diag) {
+  if (!w->figures) return FB_OK;
+  const double t0 = fb_clock_s();
+  fb_diag d;
+  const fb_status st = fb_figures_finish(&d);
+  w->costs.figures_s += fb_clock_s() - t0;
+  if (st != FB_OK && !failed) *diag = d;
+  return st;
+}
+
+/* The result set into the staging folder (fb_run_set_writer): the figures'
+ * scripts and their gnuplots started first, which draw while this process
+ * writes summary.json and the series, then report.html; then the figures
+ * waited for, and report.md. The figures and the report belong to the set:
+ * a set with a figure or the report missing or damaged (a full disk) is
+ * not committed, and the folder keeps the set it had; timing.json last,
+ * counting the others. Returns the exit status. */
 static int write_set(const char *stage, const fb_run *r, void *user) {
   run_set *w = user;
   fb_diag diag;
-  if (fb_report_write_run(stage, r, w->case_path, &w->costs, &diag) != FB_OK)
-    return fb_cli_fail("run", 1, "%s", diag.msg);
   char names[64][128];
   char note[1200] = "Figures were not requested (--no-figures).";
   const double tf = fb_clock_s();
-  if (w->figures && fb_figures_run(r, stage, w->fmt, names, 64, &w->nfig, &diag) != FB_OK)
+  fb_status st = FB_OK;
+  if (w->figures) st = fb_figures_start(r, stage, w->fmt, names, 64, &w->nfig, &diag);
+  w->costs.figures_s = fb_clock_s() - tf;
+  if (st != FB_OK) {
+    figures_finish(w, 1, &diag);
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        w->dir);
+  }
+  if (fb_report_write_run(stage, r, w->case_path, &w->costs, &diag) != FB_OK) {
+    figures_finish(w, 1, &diag);
+    return fb_cli_fail("run", 1, "%s", diag.msg);
+  }
   const double tr = fb_clock_s();
-  w->costs.figures_s = tr - tf;
   /* report.html belongs to the set too (report_html.h) */
   if (w->html) {
     json_t *sj = fb_report_summary_json(r, w->case_path);
-    fb_status st = fb_report_html_write(stage, r, sj, &w->charts, &diag);
+    st = fb_report_html_write(stage, r, sj, &w->charts, &diag);
     json_decref(sj);
-    if (st != FB_OK)
-      return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
-                         w->dir);
   }
+  double report_s = fb_clock_s() - tr;
+  if (figures_finish(w, st != FB_OK, &diag) != FB_OK || st != FB_OK)
+    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
+                       w->dir);
+  const double tm = fb_clock_s();
   if (fb_report_write_markdown(stage, r, w->case_path, w->command, names, w->nfig, note, &diag) != FB_OK)
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        w->dir);
-  w->costs.report_s = fb_clock_s() - tr;
+  w->costs.report_s = report_s + fb_clock_s() - tm;
   if (fb_report_write_timing(stage, r, &w->costs, &w->run_wall_s, &diag) != FB_OK)
     return fb_cli_fail("run", 1, "%s", diag.msg);
   return 0;

@@ -57,6 +57,28 @@ static void mark_extremes(unsigned char *keep, const double *y, size_t n, size_t
   }
 }
 
+/* the samples of an impact episode [i0, i1] of joint j, padded to [a, b]:
+ * all of them, or in a long episode (FB_REPORT_CONTACT_BUCKET) all within
+ * FB_REPORT_IMPACT_PAD of either end and inside the extremes of every
+ * plotted column (the nb output bodies' omega and alpha, the joint's force,
+ * penetration and eccentricity) per bucket */
+static void keep_episode(unsigned char *keep, const fb_series *s, int j, int nb, size_t i0, size_t i1,
+                         size_t a, size_t b) {
+  const size_t pad = FB_REPORT_IMPACT_PAD;
+  if (i1 - i0 <= 2 * pad + FB_REPORT_CONTACT_BUCKET) {
+    memset(keep + a, 1, b - a + 1);
+    return;
+  }
+  memset(keep + a, 1, i0 + pad - a + 1);
+  memset(keep + i1 - pad, 1, b - (i1 - pad) + 1);
+  const size_t lo = i0 + pad + 1, len = i1 - pad - lo;
+  for (int k = 0; k < nb; k++)
+    for (int q = FB_Q_VEL; q <= FB_Q_ACC; q++)
+      mark_extremes(keep + lo, s->body[k][q] + lo, len, FB_REPORT_CONTACT_BUCKET);
+  static const int cols[4] = {FB_C_FORCE, FB_C_PEN, FB_C_EX, FB_C_EY};
+  for (int c = 0; c < 4; c++) mark_extremes(keep + lo, s->contact[j][cols[c]] + lo, len, FB_REPORT_CONTACT_BUCKET);
+}
+
 /* one impact episode: the samples [i0, i1] in the impact state with a
  * positive force (metrics.c's definition of an impact) */
 typedef struct {
@@ -153,7 +175,7 @@ static fb_status model_json(model_data *out, const fb_run *r, int mi) {
     for (size_t k = 0; k < listed; k++) {
       const size_t a = ep[k].i0 > FB_REPORT_IMPACT_PAD ? ep[k].i0 - FB_REPORT_IMPACT_PAD : 0;
       const size_t b = ep[k].i1 + FB_REPORT_IMPACT_PAD < s->n ? ep[k].i1 + FB_REPORT_IMPACT_PAD : s->n - 1;
-      memset(keep + a, 1, b - a + 1);
+      keep_episode(keep, s, j, nb, ep[k].i0, ep[k].i1, a, b);
       double fmax_n = 0.0, pmax = 0.0;
       for (size_t i = ep[k].i0; i <= ep[k].i1; i++) {
         fmax_n = fmax(fmax_n, s->contact[j][FB_C_FORCE][i]);

@@ -52,23 +52,25 @@ static void test_edges(void **state) {
   }
 }
 
+/* the next random double of the xorshift state *z: a mantissa in [1, 10)
+ * and an exponent over the range the series use (1e-14 m .. 1e13 rad/s^2),
+ * a quarter of them rounded to `decimals` decimals like a time grid's */
+static double random_value(uint64_t *z, double decimals) {
+  *z ^= *z << 13;
+  *z ^= *z >> 7;
+  *z ^= *z << 17;
+  const double mant = 1.0 + 9.0 * (double)(*z >> 11) / 9007199254740992.0;
+  const int e = (int)((*z >> 3) % 28) - 14;
+  double x = mant * pow(10.0, e);
+  if (*z & 1) x = -x;
+  if ((*z >> 1) % 4 == 0) x = round(x * decimals) / decimals;
+  return x;
+}
+
 static void test_random(void **state) {
   (void)state;
   uint64_t z = 0x9e3779b97f4a7c15ULL;
-  for (long i = 0; i < RANDOM_SAMPLES; i++) {
-    z ^= z << 13;
-    z ^= z >> 7;
-    z ^= z << 17;
-    /* a mantissa in [1, 10) and an exponent over the range the series use
-     * (1e-14 m .. 1e13 rad/s^2), some values rounded to few digits like a
-     * time grid's */
-    const double mant = 1.0 + 9.0 * (double)(z >> 11) / 9007199254740992.0;
-    const int e = (int)((z >> 3) % 28) - 14;
-    double x = mant * pow(10.0, e);
-    if (z & 1) x = -x;
-    if ((z >> 1) % 4 == 0) x = round(x * 1e6) / 1e6;
-    expect_same(x);
-  }
+  for (long i = 0; i < RANDOM_SAMPLES; i++) expect_same(random_value(&z, 1e6));
 }
 
 /* every precision (report-data.js uses 10) on the edges and on random
@@ -85,17 +87,7 @@ static void test_precisions(void **state) {
       expect_same_g(p * (1.0 - 0.5 * pow(10.0, -digits)), digits);
       expect_same_g(p * 9.5, digits);
     }
-    for (long i = 0; i < RANDOM_SAMPLES / 10; i++) {
-      z ^= z << 13;
-      z ^= z >> 7;
-      z ^= z << 17;
-      const double mant = 1.0 + 9.0 * (double)(z >> 11) / 9007199254740992.0;
-      const int e = (int)((z >> 3) % 28) - 14;
-      double x = mant * pow(10.0, e);
-      if (z & 1) x = -x;
-      if ((z >> 1) % 4 == 0) x = round(x * 1e4) / 1e4;
-      expect_same_g(x, digits);
-    }
+    for (long i = 0; i < RANDOM_SAMPLES / 10; i++) expect_same_g(random_value(&z, 1e4), digits);
   }
   expect_same_g(NAN, 10);
   expect_same_g(-0.0, 10);

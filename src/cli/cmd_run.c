@@ -130,9 +130,9 @@ static fb_status figures_finish(run_set *w, int failed, fb_diag *diag) {
 }
 
 /* The result set into the staging folder (fb_run_set_writer): the figures'
- * scripts and their gnuplots started first, which draw while this process
- * writes summary.json and the series, then report.html; then the figures
- * waited for, and report.md. The figures and the report belong to the set:
+ * scripts and their gnuplots started first, and the series' worker
+ * process, which draw and write while this process writes summary.json
+ * and report.html; then both waited for, and report.md. The figures and the report belong to the set:
  * a set with a figure or the report missing or damaged (a full disk) is
  * not committed, and the folder keeps the set it had; timing.json last,
  * counting the others. Returns the exit status. */
@@ -150,18 +150,23 @@ static int write_set(const char *stage, const fb_run *r, void *user) {
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        w->dir);
   }
-  if (fb_report_write_run(stage, r, w->case_path, &w->costs, &diag) != FB_OK) {
-    figures_finish(w, 1, &diag);
-    return fb_cli_fail("run", 1, "%s", diag.msg);
-  }
+  /* the series in a worker process of their own, beside the rest (report.h) */
+  fb_report_series_start(stage, r, w->case_path, &w->costs);
+  st = fb_report_write_summary(stage, r, w->case_path, &w->costs, &diag);
   const double tr = fb_clock_s();
   /* report.html belongs to the set too (report_html.h) */
-  if (w->html) {
+  if (w->html && st == FB_OK) {
     json_t *sj = fb_report_summary_json(r, w->case_path);
     st = fb_report_html_write(stage, r, sj, &w->charts, &diag);
     json_decref(sj);
   }
   double report_s = fb_clock_s() - tr;
+  fb_diag sd;
+  const fb_status ss = fb_report_series_finish(&w->costs, &sd);
+  if (ss != FB_OK && st == FB_OK) {
+    figures_finish(w, 1, &diag);
+    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", sd.msg, w->dir);
+  }
   if (figures_finish(w, st != FB_OK, &diag) != FB_OK || st != FB_OK)
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        w->dir);

@@ -163,7 +163,7 @@ static int write_set(const char *stage, const fb_run *r, void *user) {
   double report_s = fb_clock_s() - tr;
   fb_diag sd;
   const fb_status ss = fb_report_series_finish(&w->costs, &sd);
-  if (ss != FB_OK && st == FB_OK) {
+  if (ss != FB_OK) { /* the series' cause first, as when they were written first */
     figures_finish(w, 1, &diag);
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", sd.msg, w->dir);
   }

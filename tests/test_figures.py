@@ -37,6 +37,10 @@ SPIKE_WINDOW_MAX_S = 2e-3
 FLAT_REL = 1e-6
 # report-data.js writes the series with 10 significant digits (report_html.c)
 PAGE_REL_TOL = 1e-9
+# report-data.js keeps every step within FB_REPORT_IMPACT_PAD (report_html.h)
+# of each impact's onset, also in a long contact phase it decimates inside;
+# a step's time is matched within half a step
+IMPACT_PAD = 200
 # the contact figures' orbit is decimated to the panel's pixels: a pixel is
 # at most 1 % of the radial clearance (measured 0.42 %: 2 x 1.35 c over 650
 # columns)
@@ -469,6 +473,12 @@ def check_run(tag, out, rc, bodies, joints, expect):
     for m in rdata["models"]:
         check(len(m["t"]) == m["kept"] and 0 < m["kept"] <= m["samples"],
               "%s: %d of %d samples kept" % (m["name"], m["kept"], m["samples"]))
+        h, t_last = rdata["h_s"], m["t"][-1] if m["t"] else 0.0
+        full = [im for im in m["impacts"] if im["t_s"] - IMPACT_PAD * h >= 0.0 and im["t_s"] + IMPACT_PAD * h <= t_last]
+        short = [im["t_s"] for im in full
+                 if sum(1 for t in m["t"] if abs(t - im["t_s"]) <= (IMPACT_PAD - 0.5) * h) < 2 * IMPACT_PAD - 1]
+        check(not short, "%s: every step within %d of each impact's onset kept (short at %s)"
+              % (m["name"], IMPACT_PAD, short[:3]))
         sm = model[m["name"]]
         if sm.get("spikes") and len(m["joints"]) == 1:
             # the page's impact list counts the window's impacts as summary.json does

@@ -15,20 +15,27 @@ static const double pow10_range[23] = {1e-10, 1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4
                                        1e-2,  1e-1, 1e0,  1e1,  1e2,  1e3,  1e4,  1e5,
                                        1e6,   1e7,  1e8,  1e9,  1e10, 1e11, 1e12};
 
+/* 10^k as an integer, 0 <= k <= 12 */
+static const uint64_t pow10_int[13] = {1ULL,         10ULL,         100ULL,         1000ULL,
+                                       10000ULL,     100000ULL,     1000000ULL,     10000000ULL,
+                                       100000000ULL, 1000000000ULL, 10000000000ULL, 100000000000ULL,
+                                       1000000000000ULL};
+
 /* the product x 10^k (or quotient) has one rounding error of at most half
  * an ulp: below 2^40 (12 digits) that is 2^-13 < 1.3e-4, so a fractional
  * part farther than this from 1/2 rounds the same way as the exact value */
 #define FB_NUMFMT_TIE_MARGIN 1e-3
 
-static size_t slow(char *buf, double x) {
-  const int n = snprintf(buf, FB_NUMFMT_G12_SIZE, "%.12g", x);
+static size_t slow(char *buf, double x, int digits) {
+  const int n = snprintf(buf, FB_NUMFMT_G12_SIZE, "%.*g", digits, x);
   return n > 0 ? (size_t)n : 0;
 }
 
-/* 12 significant digits of a = |x| as m in [1e11, 1e12) with a ~ m 10^(e-11);
- * 0 when the product is too close to a tie to decide without printf */
-static int scaled(double a, int e, uint64_t *m) {
-  const int k = 11 - e;
+/* `digits` significant digits of a = |x| as m in [10^(digits-1), 10^digits)
+ * with a ~ m 10^(e-digits+1); 0 when the product is too close to a tie to
+ * decide without printf */
+static int scaled(double a, int e, int digits, uint64_t *m) {
+  const int k = digits - 1 - e;
   double y;
   if (k >= 0) {
     if (k > 22) return 0;
@@ -56,7 +63,10 @@ static int decimal_exponent(double a) {
   return e;
 }
 
-size_t fb_numfmt_g12(char *buf, double x) {
+size_t fb_numfmt_g12(char *buf, double x) { return fb_numfmt_g(buf, x, 12); }
+
+size_t fb_numfmt_g(char *buf, double x, int digits) {
+  if (digits < 1 || digits > FB_NUMFMT_DIGITS_MAX) return slow(buf, x, digits < 1 ? 1 : FB_NUMFMT_DIGITS_MAX);
   if (x == 0.0) { /* the free-flight contact columns: many zeros */
     if (signbit(x)) {
       memcpy(buf, "-0", 3);
@@ -66,39 +76,40 @@ size_t fb_numfmt_g12(char *buf, double x) {
     return 1;
   }
   const double a = fabs(x);
-  if (!(a >= 1e-10 && a < 1e12)) return slow(buf, x); /* tiny, huge, inf, nan */
+  if (!(a >= 1e-10 && a < 1e12)) return slow(buf, x, digits); /* tiny, huge, inf, nan */
+  const uint64_t lo = pow10_int[digits - 1], hi = pow10_int[digits];
   int e = decimal_exponent(a);
   uint64_t m;
-  if (!scaled(a, e, &m)) return slow(buf, x);
-  /* log10 can be one off next to a power of ten; rounding can carry to 1e12 */
-  if (m < 100000000000ULL) {
+  if (!scaled(a, e, digits, &m)) return slow(buf, x, digits);
+  /* log10 can be one off next to a power of ten; rounding can carry to 10^digits */
+  if (m < lo) {
     e--;
-    if (!scaled(a, e, &m)) return slow(buf, x);
+    if (!scaled(a, e, digits, &m)) return slow(buf, x, digits);
   }
-  if (m >= 1000000000000ULL) {
-    if (m == 1000000000000ULL) {
-      m = 100000000000ULL;
+  if (m >= hi) {
+    if (m == hi) {
+      m = lo;
       e++;
     } else {
       e++;
-      if (!scaled(a, e, &m)) return slow(buf, x);
-      if (m >= 1000000000000ULL) {
-        m = 100000000000ULL;
+      if (!scaled(a, e, digits, &m)) return slow(buf, x, digits);
+      if (m >= hi) {
+        m = lo;
         e++;
       }
     }
   }
-  if (m < 100000000000ULL || m >= 1000000000000ULL) return slow(buf, x);
-  char d[12];
-  for (int i = 11; i >= 0; i--) {
+  if (m < lo || m >= hi) return slow(buf, x, digits);
+  char d[FB_NUMFMT_DIGITS_MAX];
+  for (int i = digits - 1; i >= 0; i--) {
     d[i] = (char)('0' + m % 10);
     m /= 10;
   }
-  int nd = 12; /* significant digits kept: trailing zeros removed (%g) */
+  int nd = digits; /* significant digits kept: trailing zeros removed (%g) */
   while (nd > 1 && d[nd - 1] == '0') nd--;
   char *p = buf;
   if (x < 0) *p++ = '-';
-  if (e >= -4 && e < 12) {
+  if (e >= -4 && e < digits) {
     if (e >= 0) {
       for (int i = 0; i <= e; i++) *p++ = d[i];
       if (nd > e + 1) {

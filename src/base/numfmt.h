@@ -1,6 +1,7 @@
 /* Fast decimal formatting of doubles for the series writers: the exact
  * bytes of printf's "%.12g" (C11 7.21.6.1, the g conversion with precision
- * 12), without printf's arbitrary-precision path for the common case. */
+ * 12; fb_numfmt_g: any precision up to 12), without printf's
+ * arbitrary-precision path for the common case. */
 #ifndef FB_NUMFMT_H
 #define FB_NUMFMT_H
 
@@ -18,6 +19,16 @@
  * outside [1e-10, 1e12) in magnitude, zero, or not finite, snprintf does
  * the work, so every output equals printf's. */
 size_t fb_numfmt_g12(char *buf, double x);
+
+/* The most significant digits fb_numfmt_g takes: the scaled integer stays
+ * below 2^40, where one rounding is far from a tie (numfmt.c) */
+#define FB_NUMFMT_DIGITS_MAX 12
+
+/* fb_numfmt_g12 for any precision: x into buf (FB_NUMFMT_G12_SIZE bytes)
+ * exactly as snprintf(buf, size, "%.*g", digits, x) does in the C locale,
+ * digits in [1, FB_NUMFMT_DIGITS_MAX] (outside it, clamped to that range);
+ * returns the length. report-data.js's series use 10 digits. */
+size_t fb_numfmt_g(char *buf, double x, int digits);
 
 /* The one rule for a number that could not be measured (NaN or an
  * infinity) in a text output (docs/outputs.md, "Values that could not be

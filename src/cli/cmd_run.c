@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "clock.h"
 #include "contact_params.h"
+#include "ensemble.h"
 #include "textsafe.h"
 #include "figures.h"
 #include "fileio.h"
@@ -50,7 +51,8 @@ static const char run_help[] =
     "                per model; needs a build with libhdf5); none. [run] series_every\n"
     "                = N keeps every N-th sample and every impact's (docs/series.md)\n"
     "  --jobs J      run the [run] ensemble members in J worker processes\n"
-    "                (default 1); the numbers do not depend on J\n"
+    "                (default: the processors online, at most the members a\n"
+    "                look adds); the numbers do not depend on J\n"
     "                A case without [run] ensemble gets an ensemble of 5 runs of\n"
     "                its clearance models and references when a verdict is\n"
     "                unsettled (a model left its reference, or a reference its\n"
@@ -115,37 +117,64 @@ typedef struct {
   double run_wall_s;     /* the run's wall time when timing.json was written [s] */
 } run_set;
 
-/* The result set into the staging folder (fb_run_set_writer): summary.json
- * and the series, then figures, report.html and report.md, which belong to
- * the set: a set with a figure or the report missing or damaged (a full
- * disk) is not committed, and the folder keeps the set it had; timing.json
- * last, counting the others. Returns the exit status. */
+/* waits for the figures' gnuplots (fb_figures_start), counting the wait in
+ * figures_s; an error message into diag unless one is there (*failed) */
+static fb_status figures_finish(run_set *w, int failed, fb_diag *diag) {
+  if (!w->figures) return FB_OK;
+  const double t0 = fb_clock_s();
+  fb_diag d;
+  const fb_status st = fb_figures_finish(&d);
+  w->costs.figures_s += fb_clock_s() - t0;
+  if (st != FB_OK && !failed) *diag = d;
+  return st;
+}
+
+/* The result set into the staging folder (fb_run_set_writer): the figures'
+ * scripts and their gnuplots started first, and the series' worker
+ * process, which draw and write while this process writes summary.json
+ * and report.html; then both waited for, and report.md. The figures and the report belong to the set:
+ * a set with a figure or the report missing or damaged (a full disk) is
+ * not committed, and the folder keeps the set it had; timing.json last,
+ * counting the others. Returns the exit status. */
 static int write_set(const char *stage, const fb_run *r, void *user) {
   run_set *w = user;
   fb_diag diag;
-  if (fb_report_write_run(stage, r, w->case_path, &w->costs, &diag) != FB_OK)
-    return fb_cli_fail("run", 1, "%s", diag.msg);
   char names[64][128];
   char note[1200] = "Figures were not requested (--no-figures).";
   const double tf = fb_clock_s();
-  if (w->figures && fb_figures_run(r, stage, w->fmt, names, 64, &w->nfig, &diag) != FB_OK)
+  fb_status st = FB_OK;
+  if (w->figures) st = fb_figures_start(r, stage, w->fmt, names, 64, &w->nfig, &diag);
+  w->costs.figures_s = fb_clock_s() - tf;
+  if (st != FB_OK) {
+    figures_finish(w, 1, &diag);
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        w->dir);
-  const double tr = fb_clock_s();
-  w->costs.figures_s = tr - tf;
-  /* report.html belongs to the set too (report_html.h) */
-  if (w->html) {
-    json_t *sj = fb_report_summary_json(r, w->case_path);
-    fb_status st = fb_report_html_write(stage, r, sj, &w->charts, &diag);
-    json_decref(sj);
-    if (st != FB_OK)
-      return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
-                         w->dir);
   }
+  /* the series in a worker process of their own, beside the rest (report.h) */
+  fb_report_series_start(stage, r, w->case_path, &w->costs);
+  st = fb_report_write_summary(stage, r, w->case_path, &w->costs, &diag);
+  const double tr = fb_clock_s();
+  /* report.html belongs to the set too (report_html.h) */
+  if (w->html && st == FB_OK) {
+    json_t *sj = fb_report_summary_json(r, w->case_path);
+    st = fb_report_html_write(stage, r, sj, &w->charts, &diag);
+    json_decref(sj);
+  }
+  double report_s = fb_clock_s() - tr;
+  fb_diag sd;
+  const fb_status ss = fb_report_series_finish(&w->costs, &sd);
+  if (ss != FB_OK) { /* the series' cause first, as when they were written first */
+    figures_finish(w, 1, &diag);
+    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", sd.msg, w->dir);
+  }
+  if (figures_finish(w, st != FB_OK, &diag) != FB_OK || st != FB_OK)
+    return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
+                       w->dir);
+  const double tm = fb_clock_s();
   if (fb_report_write_markdown(stage, r, w->case_path, w->command, names, w->nfig, note, &diag) != FB_OK)
     return fb_cli_fail("run", 1, "%s; nothing was written to %s (it keeps what it held)", diag.msg,
                        w->dir);
-  w->costs.report_s = fb_clock_s() - tr;
+  w->costs.report_s = report_s + fb_clock_s() - tm;
   if (fb_report_write_timing(stage, r, &w->costs, &w->run_wall_s, &diag) != FB_OK)
     return fb_cli_fail("run", 1, "%s", diag.msg);
   return 0;
@@ -234,7 +263,7 @@ int fb_cmd_run(int argc, char **argv) {
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *out_dir = NULL;
-  int jobs = 1;
+  int jobs = 0; /* not given: fb_ensemble_default_jobs */
   const char *sets[MAX_SETS + 1];
   char series_set[64];
   int series_at = -1; /* the slot of --series in sets */
@@ -275,6 +304,7 @@ int fb_cmd_run(int argc, char **argv) {
       default: return fb_cli_bad_option(argv, "o:s:jh");
     }
   }
+  if (jobs == 0) jobs = fb_ensemble_default_jobs();
   fb_diag diag;
   fb_case c;
   char case_path[4096];

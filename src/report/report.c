@@ -3,14 +3,20 @@
  * timing.json (report_timing.h), each written atomically. */
 #include "report.h"
 
+#include <errno.h>
 #include <jansson.h>
 #include <stdlib.h>
+#include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "clock.h"
 #include "fileio.h"
+#include "outdir.h"
 #include "series_write.h"
+#include "worker.h"
 
 /* bytes of the file at path (0 when it cannot be read) */
 static double file_bytes(const char *path) {
@@ -68,19 +74,125 @@ static fb_status write_series(const char *dir, const fb_run *r, const char *case
   return st;
 }
 
-fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
-                              fb_write_costs *w, fb_diag *diag) {
+/* what the series' worker process sends back */
+typedef struct {
+  long long status;
+  double write_s, cpu_s, bytes;
+  char msg[FB_DIAG_SIZE];
+} series_reply;
+
+/* the series' worker of fb_report_series_start: pid, its pipe (-1: none),
+ * and the result when the series were written in this process */
+static struct {
+  pid_t pid;
+  int fd;
+  fb_status st;
+  fb_diag diag;
+} series_job = {.pid = -1, .fd = -1};
+
+/* writes all n bytes of p to fd; 1 on success */
+static int write_all_fd(int fd, const void *p, size_t n) {
+  const char *c = p;
+  while (n > 0) {
+    const ssize_t k = write(fd, c, n);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) return 0;
+    c += k, n -= (size_t)k;
+  }
+  return 1;
+}
+
+/* reads all n bytes from fd into p; 1 on success */
+static int read_all_fd(int fd, void *p, size_t n) {
+  char *c = p;
+  while (n > 0) {
+    const ssize_t k = read(fd, c, n);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) return 0;
+    c += k, n -= (size_t)k;
+  }
+  return 1;
+}
+
+void fb_report_series_start(const char *dir, const fb_run *r, const char *case_path, fb_write_costs *w) {
+  const double t0 = fb_clock_s();
+  series_job.pid = -1;
+  series_job.fd = -1;
+  series_job.st = FB_OK;
+  w->series_async = 0;
+  int p[2] = {-1, -1};
+  fflush(NULL);
+  const pid_t parent = getpid();
+  const pid_t pid = r->c.series == FB_SERIES_NONE || pipe(p) != 0 ? -1 : fork();
+  if (pid == 0) {
+    /* dies with its parent, holding none of its locks (worker.h) */
+    if (fb_worker_tie_to_parent(parent, p[1]) != 0) _exit(5);
+    series_reply y;
+    memset(&y, 0, sizeof y);
+    fb_diag d;
+    y.status = write_series(dir, r, case_path, &y.write_s, &y.cpu_s, &y.bytes, &d);
+    if (y.status != FB_OK) memcpy(y.msg, d.msg, sizeof y.msg);
+    _exit(write_all_fd(p[1], &y, sizeof y) ? 0 : 1);
+  }
+  if (pid < 0) { /* no worker: the series here, now */
+    if (p[0] >= 0) close(p[0]), close(p[1]);
+    series_job.st = write_series(dir, r, case_path, &w->series_s, &w->series_cpu_s, &w->series_bytes,
+                                 &series_job.diag);
+    return;
+  }
+  close(p[1]);
+  /* killed and reaped before the staging folder is removed on a signal */
+  fb_cleanup_child_add(pid);
+  series_job.pid = pid;
+  series_job.fd = p[0];
+  w->series_async = 1;
+  w->series_part_s = fb_clock_s() - t0;
+}
+
+fb_status fb_report_series_finish(fb_write_costs *w, fb_diag *diag) {
+  if (series_job.pid < 0) {
+    if (series_job.st != FB_OK) *diag = series_job.diag;
+    return series_job.st;
+  }
+  const double t0 = fb_clock_s();
+  series_reply y;
+  const int got = read_all_fd(series_job.fd, &y, sizeof y);
+  close(series_job.fd);
+  int status = 0;
+  while (waitpid(series_job.pid, &status, 0) < 0 && errno == EINTR) {}
+  fb_cleanup_child_forget(series_job.pid);
+  series_job.pid = -1;
+  w->series_part_s += fb_clock_s() - t0;
+  if (!got || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    return fb_diag_set(diag, FB_ERR_IO, "the series' writer process failed (status %d)", status);
+  w->series_s = y.write_s;
+  w->series_cpu_s = y.cpu_s;
+  w->series_bytes = y.bytes;
+  if (y.status != FB_OK) {
+    y.msg[sizeof y.msg - 1] = '\0';
+    return fb_diag_set(diag, (fb_status)y.status, "%s", y.msg);
+  }
+  return FB_OK;
+}
+
+fb_status fb_report_write_summary(const char *dir, const fb_run *r, const char *case_path,
+                                  fb_write_costs *w, fb_diag *diag) {
   char path[4096];
-  fb_status st = write_series(dir, r, case_path, &w->series_s, &w->series_cpu_s,
-                              &w->series_bytes, diag);
-  if (st != FB_OK) return st;
   const double t0 = fb_clock_s();
   snprintf(path, sizeof path, "%s/summary.json", dir);
   json_t *j = fb_report_summary_json(r, case_path);
-  st = fb_report_write_json(path, j, diag);
+  const fb_status st = fb_report_write_json(path, j, diag);
   json_decref(j);
   w->summary_s = fb_clock_s() - t0;
   return st;
+}
+
+fb_status fb_report_write_run(const char *dir, const fb_run *r, const char *case_path,
+                              fb_write_costs *w, fb_diag *diag) {
+  const fb_status st = write_series(dir, r, case_path, &w->series_s, &w->series_cpu_s,
+                                   &w->series_bytes, diag);
+  if (st != FB_OK) return st;
+  return fb_report_write_summary(dir, r, case_path, w, diag);
 }
 
 fb_status fb_report_write_timing(const char *dir, const fb_run *r, const fb_write_costs *w,

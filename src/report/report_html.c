@@ -12,6 +12,7 @@
 
 #include "figures.h"
 #include "fileio.h"
+#include "json_columns.h"
 #include "metrics.h"
 #include "report.h"
 #include "report_page.h" /* fb_report_page_html[], fb_report_page_js[] (generated, meson.build) */
@@ -56,6 +57,28 @@ static void mark_extremes(unsigned char *keep, const double *y, size_t n, size_t
   }
 }
 
+/* the samples of an impact episode [i0, i1] of joint j, padded to [a, b]:
+ * all of them, or in a long episode (FB_REPORT_CONTACT_BUCKET) all within
+ * FB_REPORT_IMPACT_PAD of either end and inside the extremes of every
+ * plotted column (the nb output bodies' omega and alpha, the joint's force,
+ * penetration and eccentricity) per bucket */
+static void keep_episode(unsigned char *keep, const fb_series *s, int j, int nb, size_t i0, size_t i1,
+                         size_t a, size_t b) {
+  const size_t pad = FB_REPORT_IMPACT_PAD;
+  if (i1 - i0 <= 2 * pad + FB_REPORT_CONTACT_BUCKET) {
+    memset(keep + a, 1, b - a + 1);
+    return;
+  }
+  memset(keep + a, 1, i0 + pad - a + 1);
+  memset(keep + i1 - pad, 1, b - (i1 - pad) + 1);
+  const size_t lo = i0 + pad + 1, len = i1 - pad - lo;
+  for (int k = 0; k < nb; k++)
+    for (int q = FB_Q_VEL; q <= FB_Q_ACC; q++)
+      mark_extremes(keep + lo, s->body[k][q] + lo, len, FB_REPORT_CONTACT_BUCKET);
+  static const int cols[4] = {FB_C_FORCE, FB_C_PEN, FB_C_EX, FB_C_EY};
+  for (int c = 0; c < 4; c++) mark_extremes(keep + lo, s->contact[j][cols[c]] + lo, len, FB_REPORT_CONTACT_BUCKET);
+}
+
 /* one impact episode: the samples [i0, i1] in the impact state with a
  * positive force (metrics.c's definition of an impact) */
 typedef struct {
@@ -70,15 +93,6 @@ static size_t episodes(const fb_series *s, int j, episode *out, size_t cap) {
   const size_t n = fb_metrics_impact_episodes(s, j, INFINITY, first, last, want);
   for (size_t k = 0; k < n && k < want; k++) out[k].i0 = first[k], out[k].i1 = last[k];
   return n;
-}
-
-static json_t *column(const double *y, const size_t *idx, size_t m, double scale) {
-  json_t *a = json_array();
-  for (size_t k = 0; k < m; k++) {
-    const double v = y[idx[k]] * scale;
-    json_array_append_new(a, isfinite(v) ? json_real(v) : json_null());
-  }
-  return a;
 }
 
 /* the sample of largest |y| over [i0, i1] */
@@ -109,10 +123,18 @@ static const char *body_column(const fb_mech_desc *mech, int k, int q, char *buf
   return fb_mech_body_column(mech, body[k], q, buf, size);
 }
 
+/* one model's kept samples and its small members, written by write_model */
+typedef struct {
+  json_t *head;   /* name ... kept, impacts */
+  json_t *joints; /* per joint in contact: joint, impacts, listed */
+  size_t *idx;    /* the kept samples, ascending */
+  size_t nk;
+} model_data;
+
 /* one model's data: decimated series, contact columns, impacts; bodies,
  * columns and joints named by the case's mechanism (the four-bar's
  * coupler_omega ... follower_alpha, crank-coupler) */
-static fb_status model_json(json_t **out, const fb_run *r, int mi) {
+static fb_status model_json(model_data *out, const fb_run *r, int mi) {
   const fb_model_result *m = &r->model[mi];
   const fb_series *s = &m->run.series;
   const fb_model *row = m->run.model;
@@ -153,7 +175,7 @@ static fb_status model_json(json_t **out, const fb_run *r, int mi) {
     for (size_t k = 0; k < listed; k++) {
       const size_t a = ep[k].i0 > FB_REPORT_IMPACT_PAD ? ep[k].i0 - FB_REPORT_IMPACT_PAD : 0;
       const size_t b = ep[k].i1 + FB_REPORT_IMPACT_PAD < s->n ? ep[k].i1 + FB_REPORT_IMPACT_PAD : s->n - 1;
-      memset(keep + a, 1, b - a + 1);
+      keep_episode(keep, s, j, nb, ep[k].i0, ep[k].i1, a, b);
       double fmax_n = 0.0, pmax = 0.0;
       for (size_t i = ep[k].i0; i <= ep[k].i1; i++) {
         fmax_n = fmax(fmax_n, s->contact[j][FB_C_FORCE][i]);
@@ -183,27 +205,43 @@ static fb_status model_json(json_t **out, const fb_run *r, int mi) {
     if (keep[i]) idx[nk++] = i;
   json_object_set_new(o, "samples", json_integer((json_int_t)s->n));
   json_object_set_new(o, "kept", json_integer((json_int_t)nk));
-  json_object_set_new(o, "t", column(s->t, idx, nk, 1.0));
+  json_object_set_new(o, "impacts", impacts);
+  free(keep), free(ep);
+  *out = (model_data){o, joints, idx, nk};
+  return FB_OK;
+}
+
+/* model mi's object: its small members, then the kept samples of every
+ * series and contact column (json_columns.h); returns 0 or -1 */
+static int write_model(FILE *f, const fb_run *r, int mi, const model_data *md, size_t flags) {
+  const fb_series *s = &r->model[mi].run.series;
+  const fb_mech_desc *mech = fb_case_mech(&r->c);
+  const int nb = fb_mech_outputs(mech, (int[FB_MECH_MAX_OUTPUTS]){0});
+  const size_t *idx = md->idx, nk = md->nk;
+  int bad = fb_json_open_object(f, md->head, flags);
+  bad |= fb_json_column(f, "t", s->t, idx, nk, 1.0, SERIES_DIGITS);
   for (int b = 0; b < nb; b++)
     for (int q = FB_Q_VEL; q <= FB_Q_ACC; q++) {
       char key[64];
-      json_object_set_new(o, series_key(mech, b, q, key, sizeof key), column(s->body[b][q], idx, nk, 1.0));
+      bad |= fb_json_column(f, series_key(mech, b, q, key, sizeof key), s->body[b][q], idx, nk, 1.0,
+                            SERIES_DIGITS);
     }
+  bad |= fputs(",\"joints\":[", f) < 0;
   size_t q = 0;
   for (int j = 0; j < 4; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
-    json_t *jo = json_array_get(joints, q++);
-    json_object_set_new(jo, "force_n", column(s->contact[j][FB_C_FORCE], idx, nk, 1.0));
-    json_object_set_new(jo, "penetration_um", column(s->contact[j][FB_C_PEN], idx, nk, 1e6));
-    json_object_set_new(jo, "ecc_x_um", column(s->contact[j][FB_C_EX], idx, nk, 1e6));
-    json_object_set_new(jo, "ecc_y_um", column(s->contact[j][FB_C_EY], idx, nk, 1e6));
-    json_object_set_new(jo, "state", column(s->contact[j][FB_C_STATE], idx, nk, 1.0));
+    double *const *col = s->contact[j];
+    if (q) bad |= fputc(',', f) == EOF;
+    bad |= fb_json_open_object(f, json_array_get(md->joints, q++), flags);
+    bad |= fb_json_column(f, "force_n", col[FB_C_FORCE], idx, nk, 1.0, SERIES_DIGITS);
+    bad |= fb_json_column(f, "penetration_um", col[FB_C_PEN], idx, nk, 1e6, SERIES_DIGITS);
+    bad |= fb_json_column(f, "ecc_x_um", col[FB_C_EX], idx, nk, 1e6, SERIES_DIGITS);
+    bad |= fb_json_column(f, "ecc_y_um", col[FB_C_EY], idx, nk, 1e6, SERIES_DIGITS);
+    bad |= fb_json_column(f, "state", col[FB_C_STATE], idx, nk, 1.0, SERIES_DIGITS);
+    bad |= fputc('}', f) == EOF;
   }
-  json_object_set_new(o, "joints", joints);
-  json_object_set_new(o, "impacts", impacts);
-  free(keep), free(idx), free(ep);
-  *out = o;
-  return FB_OK;
+  bad |= fputs("]}", f) < 0;
+  return bad ? -1 : 0;
 }
 
 /* copies the library file name from folder lib into dir, atomically */
@@ -267,12 +305,9 @@ static json_t *outputs_json(const fb_mech_desc *mech) {
   return a;
 }
 
-static fb_status dump_data(const char *dir, json_t *d, const json_t *summary, fb_diag *diag);
-
-/* writes report-data.js: the run's data, then summary.json's value */
-static fb_status write_data(const char *dir, const fb_run *r, const json_t *summary, int charts,
-                            fb_diag *diag) {
-  json_t *d = json_object(), *models = json_array();
+/* the run's small members: case, speed, ..., verdicts (everything but models) */
+static json_t *run_json(const fb_run *r, int charts) {
+  json_t *d = json_object();
   const fb_case *c = &r->c;
   json_object_set_new(d, "format", json_integer(1));
   json_object_set_new(d, "case", json_string(c->name));
@@ -287,68 +322,77 @@ static fb_status write_data(const char *dir, const fb_run *r, const json_t *summ
    * alpha); any other mechanism's are written here, so that the four-bar's
    * data stay as they were */
   if (fb_case_mech(c) != &fb_mech_fourbar) json_object_set_new(d, "outputs", outputs_json(fb_case_mech(c)));
-  for (int i = 0; i < r->n; i++) {
-    json_t *m = NULL;
-    if (model_json(&m, r, i) != FB_OK) {
-      json_decref(d), json_decref(models);
-      return fb_diag_set(diag, FB_ERR_NOMEM, "report.html: out of memory");
-    }
-    json_array_append_new(models, m);
-  }
-  json_object_set_new(d, "models", models);
   /* what each verdict on statistics rests on, for its panel */
   json_object_set_new(d, "verdicts", fb_report_verdicts_json(r, fb_figure_model_color));
-  return dump_data(dir, d, summary, diag);
+  return d;
 }
 
-/* report-data.js: data d (taken), then summary.json's value */
-static fb_status dump_data(const char *dir, json_t *d, const json_t *summary, fb_diag *diag) {
+/* window.FOURBAR_DATA's value: the run's small members, then "models", each
+ * model decimated and written column by column; returns 0, -1 on a failed
+ * write, -2 out of memory */
+static int write_run(FILE *f, const fb_run *r, int charts, size_t flags) {
+  json_t *d = run_json(r, charts);
+  int bad = fb_json_open_object(f, d, flags | JSON_REAL_PRECISION(SERIES_DIGITS));
+  json_decref(d);
+  bad |= fputs(",\"models\":[", f) < 0;
+  for (int i = 0; i < r->n && !bad; i++) {
+    model_data md;
+    if (model_json(&md, r, i) != FB_OK) return -2;
+    if (i) bad |= fputc(',', f) == EOF;
+    bad |= write_model(f, r, i, &md, flags | JSON_REAL_PRECISION(SERIES_DIGITS));
+    json_decref(md.head), json_decref(md.joints), free(md.idx);
+  }
+  bad |= fputs("]}", f) < 0;
+  return bad ? -1 : 0;
+}
+
+/* the four-bar's window.FOURBAR_DATA value (write_run) for write_data */
+typedef struct {
+  const fb_run *r;
+  int charts;
+} run_value;
+
+static int write_run_value(FILE *f, const void *arg, size_t flags) {
+  const run_value *v = arg;
+  return write_run(f, v->r, v->charts, flags);
+}
+
+/* another writer's data (a json_t) as window.FOURBAR_DATA's value */
+static int write_json_value(FILE *f, const void *arg, size_t flags) {
+  return json_dumpf(arg, f, flags | JSON_REAL_PRECISION(SERIES_DIGITS)) != 0 ? -1 : 0;
+}
+
+/* writes report-data.js: the data value writes (0, -1 on a failed write,
+ * -2 out of memory), then summary.json's value */
+static fb_status write_data(const char *dir, int (*value)(FILE *, const void *, size_t),
+                            const void *arg, const json_t *summary, fb_diag *diag) {
   char path[4400];
   snprintf(path, sizeof path, "%s/report-data.js", dir);
   fb_outfile out;
   fb_status st = fb_outfile_open(&out, path, diag);
-  if (st != FB_OK) {
-    json_decref(d);
-    return st;
-  }
+  if (st != FB_OK) return st;
   /* JSON_ENSURE_ASCII | JSON_ESCAPE_SLASH: no "</script>", no U+2028 */
   const size_t flags = JSON_COMPACT | JSON_ENSURE_ASCII | JSON_ESCAPE_SLASH;
   fputs("/* fourbar run data for report.html (docs/report.md) */\nwindow.FOURBAR_DATA = ", out.f);
-  int bad = json_dumpf(d, out.f, flags | JSON_REAL_PRECISION(SERIES_DIGITS)) != 0;
+  const int w = value(out.f, arg, flags);
   fputs(";\nwindow.FOURBAR_DATA.summary = ", out.f);
-  bad |= json_dumpf(summary, out.f, flags | JSON_REAL_PRECISION(12)) != 0; /* as summary.json */
+  int bad = w != 0 || json_dumpf(summary, out.f, flags | JSON_REAL_PRECISION(12)) != 0; /* as summary.json */
   fputs(";\n", out.f);
-  json_decref(d);
   if (bad) {
     fb_outfile_abort(&out);
+    if (w == -2) return fb_diag_set(diag, FB_ERR_NOMEM, "report.html: out of memory");
     return fb_diag_set(diag, FB_ERR_IO, "%s: JSON write failed", path);
   }
   return fb_outfile_commit(&out, diag);
 }
 
-static fb_status write_page(const char *dir, int charts, fb_diag *diag);
-
-fb_status fb_report_html_write(const char *dir, const fb_run *r, const json_t *summary, int *charts,
-                               fb_diag *diag) {
+/* copies the chart library into dir when it is found (*charts) */
+static fb_status copy_library(const char *dir, int *charts, fb_diag *diag) {
   char lib[4096];
   *charts = fb_report_html_library(lib, sizeof lib);
   fb_status st = FB_OK;
   for (int k = 0; k < 2 && *charts && st == FB_OK; k++) st = copy_file(lib, lib_files[k], dir, diag);
-  if (st == FB_OK) st = write_data(dir, r, summary, *charts, diag);
-  if (st != FB_OK) return st;
-  return write_page(dir, *charts, diag);
-}
-
-fb_status fb_report_html_write_data(const char *dir, json_t *data, const json_t *summary,
-                                    int *charts, fb_diag *diag) {
-  char lib[4096];
-  *charts = fb_report_html_library(lib, sizeof lib);
-  fb_status st = FB_OK;
-  for (int k = 0; k < 2 && *charts && st == FB_OK; k++) st = copy_file(lib, lib_files[k], dir, diag);
-  json_object_set_new(data, "charts", json_boolean(*charts));
-  if (st == FB_OK) st = dump_data(dir, data, summary, diag);
-  else json_decref(data);
-  return st == FB_OK ? write_page(dir, *charts, diag) : st;
+  return st;
 }
 
 /* report.html: static markup, then the static script inline */
@@ -368,4 +412,21 @@ static fb_status write_page(const char *dir, int charts, fb_diag *diag) {
   fwrite(fb_report_page_js, 1, sizeof fb_report_page_js, out.f);
   fputs("</script>\n</body>\n</html>\n", out.f);
   return fb_outfile_commit(&out, diag);
+}
+
+fb_status fb_report_html_write(const char *dir, const fb_run *r, const json_t *summary, int *charts,
+                               fb_diag *diag) {
+  fb_status st = copy_library(dir, charts, diag);
+  const run_value v = {r, *charts};
+  if (st == FB_OK) st = write_data(dir, write_run_value, &v, summary, diag);
+  return st == FB_OK ? write_page(dir, *charts, diag) : st;
+}
+
+fb_status fb_report_html_write_data(const char *dir, json_t *data, const json_t *summary,
+                                    int *charts, fb_diag *diag) {
+  fb_status st = copy_library(dir, charts, diag);
+  json_object_set_new(data, "charts", json_boolean(*charts));
+  if (st == FB_OK) st = write_data(dir, write_json_value, data, summary, diag);
+  json_decref(data);
+  return st == FB_OK ? write_page(dir, *charts, diag) : st;
 }

@@ -12,7 +12,8 @@
  * Data: each model's samples decimated to min/max buckets
  * (FB_REPORT_BUCKETS over the run, the extremes of every plotted column
  * kept), plus every sample of each impact episode and FB_REPORT_IMPACT_PAD
- * samples either side; the page decimates again per zoom level. The summary
+ * samples either side (a long episode: its ends, and min/max buckets of
+ * FB_REPORT_CONTACT_BUCKET inside); the page decimates again per zoom level. The summary
  * is summary.json's value itself (same JSON encoding, same 12 digits). */
 #ifndef FB_REPORT_HTML_H
 #define FB_REPORT_HTML_H
@@ -30,6 +31,16 @@
  * 200 steps of the paper case (0.66 ms) hold the approach and the rebound
  * seen in a click's zoom around the impact [-]. */
 #define FB_REPORT_IMPACT_PAD 200
+
+/* An impact episode longer than 2 FB_REPORT_IMPACT_PAD + this (a phase of
+ * continuous contact: three of about 17 000 steps each a run on the paper
+ * case's clearance models) keeps every sample only FB_REPORT_IMPACT_PAD
+ * steps into it from each end (the impact's onset and spike, the
+ * separation); inside, each plotted column's minimum and maximum every
+ * FB_REPORT_CONTACT_BUCKET samples (32 steps of the paper case: 0.1 ms, a
+ * pixel of a 50 ms window), so no extreme and no change of contact state is
+ * lost [-]. */
+#define FB_REPORT_CONTACT_BUCKET 32
 
 /* Impacts listed per model and joint (the rest are counted) [-]. */
 #define FB_REPORT_MAX_IMPACTS 500

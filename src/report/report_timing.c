@@ -39,7 +39,7 @@ int fb_report_time_parts(fb_time_part *out, int max, const fb_run *r, const fb_w
   n = part(out, n, max, NULL, "h_auto_redo", r->redo_s);
   n = part(out, n, max, NULL, "ensemble", r->ensemble_wall_s);
   n = part(out, n, max, NULL, "variants", r->variants_s);
-  n = part(out, n, max, NULL, "series", w->series_s);
+  n = part(out, n, max, NULL, "series", w->series_async ? w->series_part_s : w->series_s);
   n = part(out, n, max, NULL, "figures", w->figures_s);
   n = part(out, n, max, NULL, "report", w->summary_s + w->report_s);
   double named = 0.0;

@@ -17,6 +17,8 @@ typedef struct {
   double summary_s;    /* summary.json [s] */
   double figures_s;    /* the figures (gnuplot) [s] */
   double report_s;     /* report.html and report.md [s] */
+  int series_async;     /* 1: the series written by a worker process beside the others */
+  double series_part_s; /* then the writer's own time on them: starting it, waiting [s] */
 } fb_write_costs;
 
 /* One part of a run's wall time. */

@@ -588,3 +588,8 @@ fb_status fb_ensemble_sequential(fb_run *r, double t_start, fb_progress_fn progr
     }
   return FB_OK;
 }
+
+int fb_ensemble_default_jobs(void) {
+  const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+  return cpus < 1 ? 1 : cpus > FB_ENSEMBLE_MAX ? FB_ENSEMBLE_MAX : (int)cpus;
+}

@@ -130,4 +130,11 @@ fb_status fb_ensemble_measure(struct fb_run_s *r, fb_progress_fn progress, void 
 fb_status fb_ensemble_sequential(struct fb_run_s *r, double t_start, fb_progress_fn progress,
                                  void *user, fb_diag *diag);
 
+/* The worker processes an ensemble gets when the command names none
+ * (`fourbar run` without --jobs): the processors online
+ * (sysconf(_SC_NPROCESSORS_ONLN)), at least 1, at most FB_ENSEMBLE_MAX;
+ * a look never starts more workers than it adds members. The numbers do
+ * not depend on it (each member's values come back in member order). */
+int fb_ensemble_default_jobs(void);
+
 #endif

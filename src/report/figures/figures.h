@@ -51,6 +51,19 @@ fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt,
 fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
                             char names[][128], int max, int *n, fb_diag *diag);
 
+/* fb_figures_run in two halves, so that the caller writes its other files
+ * while gnuplot draws (one gnuplot per processor, separate processes):
+ * fb_figures_start writes the scripts and starts the gnuplots (names, *n as
+ * above); fb_figures_finish waits for them, puts the figures into place and
+ * writes figures.json. Every fb_figures_start must be followed by one
+ * fb_figures_finish (also after an error, which it returns then: the
+ * gnuplots started are waited for, their files removed). Errors as
+ * fb_figures_run, from fb_figures_finish; fb_figures_start returns the
+ * failure met before the gnuplots started, if any, early. */
+fb_status fb_figures_start(const fb_run *r, const char *dir, fb_figure_format fmt, char names[][128],
+                           int max, int *n, fb_diag *diag);
+fb_status fb_figures_finish(fb_diag *diag);
+
 /* Checks, before any work, that gnuplot can be started (an executable
  * gnuplot on PATH). Errors: FB_ERR_IO saying how to install it or to pass
  * --no-figures. */

@@ -234,6 +234,11 @@ static struct {
   int open;
   int n;
   plot pl[FB_FIGURE_BATCH];
+  int started, groups;                /* fig_batch_start ran; its gnuplots */
+  int first[FB_CLEANUP_CHILDREN + 1]; /* group g draws pl[first[g] .. first[g + 1]) */
+  pid_t pid[FB_CLEANUP_CHILDREN];
+  fb_status st; /* the first failure to start, its message in diag */
+  fb_diag diag;
 } batch;
 
 void fig_batch_begin(void) {
@@ -247,42 +252,49 @@ static long script_size(const plot *pl) {
   return stat(pl->script, &sb) == 0 ? (long)sb.st_size : 0;
 }
 
-fb_status fig_batch_end(fb_diag *diag) {
+void fig_batch_start(void) {
   batch.open = 0;
+  if (batch.started) return;
+  batch.started = 1;
+  batch.st = FB_OK;
   const int n = batch.n;
-  if (n == 0) return FB_OK;
+  if (n == 0) return;
   const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
   int groups = cpus < 1 ? 1 : cpus > FB_CLEANUP_CHILDREN ? FB_CLEANUP_CHILDREN : (int)cpus;
   if (groups > n) groups = n;
   /* contiguous shares of about equal script size, in the figures' order */
   long total = 0;
   for (int k = 0; k < n; k++) total += script_size(&batch.pl[k]);
-  int first[FB_CLEANUP_CHILDREN + 1], g = 0;
+  int *first = batch.first, g = 0;
   long acc = 0;
   first[0] = 0;
   for (int k = 0; k < n && g + 1 < groups; k++) {
     acc += script_size(&batch.pl[k]);
     if (acc * groups >= total * (g + 1) && k + 1 < n) first[++g] = k + 1;
   }
-  groups = g + 1;
+  groups = batch.groups = g + 1;
   first[groups] = n;
-  pid_t pid[FB_CLEANUP_CHILDREN];
-  int rc[FB_CLEANUP_CHILDREN];
-  fb_status st = FB_OK;
   for (g = 0; g < groups; g++) {
-    pid[g] = -1;
-    rc[g] = 127;
+    batch.pid[g] = -1;
     fb_diag d;
-    const fb_status sg = gnuplot_start(&batch.pl[first[g]], first[g + 1] - first[g], &pid[g], &d);
-    if (sg != FB_OK && st == FB_OK) {
-      st = sg;
-      *diag = d;
+    const fb_status sg = gnuplot_start(&batch.pl[first[g]], first[g + 1] - first[g], &batch.pid[g], &d);
+    if (sg != FB_OK && batch.st == FB_OK) {
+      batch.st = sg;
+      batch.diag = d;
     }
   }
-  for (g = 0; g < groups; g++)
-    if (pid[g] > 0) rc[g] = gnuplot_wait(pid[g]);
-  for (g = 0; g < groups; g++)
-    for (int k = first[g]; k < first[g + 1]; k++) {
+}
+
+fb_status fig_batch_end(fb_diag *diag) {
+  fig_batch_start();
+  const int n = batch.n, groups = batch.groups;
+  if (n == 0) return FB_OK;
+  fb_status st = batch.st;
+  if (st != FB_OK) *diag = batch.diag;
+  int rc[FB_CLEANUP_CHILDREN];
+  for (int g = 0; g < groups; g++) rc[g] = batch.pid[g] > 0 ? gnuplot_wait(batch.pid[g]) : 127;
+  for (int g = 0; g < groups; g++)
+    for (int k = batch.first[g]; k < batch.first[g + 1]; k++) {
       fb_diag d;
       const fb_status sf = plot_finish(&batch.pl[k], rc[g], &d);
       if (sf != FB_OK && st == FB_OK) {
@@ -291,6 +303,7 @@ fb_status fig_batch_end(fb_diag *diag) {
       }
     }
   drop_empty_log(batch.pl[0].log);
+  batch.n = 0;
   return st;
 }
 

@@ -45,11 +45,15 @@ fb_status fig_plot_open(plot *pl, const char *dir, const char *name, fb_figure_f
  * Errors: FB_ERR_IO naming the figure (gnuplot's messages in dir/.gnuplot.log). */
 fb_status fig_plot_close(plot *pl, fb_diag *diag);
 
-/* A batch (a run's figures): between these two, fig_plot_close keeps the
- * scripts; fig_batch_end draws them side by side, one gnuplot per
- * processor, and puts every figure into place. Errors as fig_plot_close,
- * the first one. */
+/* A batch (a run's figures): between fig_batch_begin and fig_batch_start,
+ * fig_plot_close keeps the scripts; fig_batch_start starts them side by
+ * side, one gnuplot per processor, and returns while they draw;
+ * fig_batch_end (starting them first if fig_batch_start did not) waits for
+ * every gnuplot started and puts every figure into place. Errors (of
+ * fig_batch_end, the first one, a failure to start included) as
+ * fig_plot_close. */
 void fig_batch_begin(void);
+void fig_batch_start(void);
 fb_status fig_batch_end(fb_diag *diag);
 
 /* Ends a run's batch (fig_batch_end) and, when it and st are FB_OK, writes

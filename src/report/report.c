@@ -90,30 +90,6 @@ static struct {
   fb_diag diag;
 } series_job = {.pid = -1, .fd = -1};
 
-/* writes all n bytes of p to fd; 1 on success */
-static int write_all_fd(int fd, const void *p, size_t n) {
-  const char *c = p;
-  while (n > 0) {
-    const ssize_t k = write(fd, c, n);
-    if (k < 0 && errno == EINTR) continue;
-    if (k <= 0) return 0;
-    c += k, n -= (size_t)k;
-  }
-  return 1;
-}
-
-/* reads all n bytes from fd into p; 1 on success */
-static int read_all_fd(int fd, void *p, size_t n) {
-  char *c = p;
-  while (n > 0) {
-    const ssize_t k = read(fd, c, n);
-    if (k < 0 && errno == EINTR) continue;
-    if (k <= 0) return 0;
-    c += k, n -= (size_t)k;
-  }
-  return 1;
-}
-
 void fb_report_series_start(const char *dir, const fb_run *r, const char *case_path, fb_write_costs *w) {
   const double t0 = fb_clock_s();
   series_job.pid = -1;
@@ -132,7 +108,7 @@ void fb_report_series_start(const char *dir, const fb_run *r, const char *case_p
     fb_diag d;
     y.status = write_series(dir, r, case_path, &y.write_s, &y.cpu_s, &y.bytes, &d);
     if (y.status != FB_OK) memcpy(y.msg, d.msg, sizeof y.msg);
-    _exit(write_all_fd(p[1], &y, sizeof y) ? 0 : 1);
+    _exit(fb_worker_write_all(p[1], &y, sizeof y) ? 0 : 1);
   }
   if (pid < 0) { /* no worker: the series here, now */
     if (p[0] >= 0) close(p[0]), close(p[1]);
@@ -156,7 +132,7 @@ fb_status fb_report_series_finish(fb_write_costs *w, fb_diag *diag) {
   }
   const double t0 = fb_clock_s();
   series_reply y;
-  const int got = read_all_fd(series_job.fd, &y, sizeof y);
+  const int got = fb_worker_read_all(series_job.fd, &y, sizeof y);
   close(series_job.fd);
   int status = 0;
   while (waitpid(series_job.pid, &status, 0) < 0 && errno == EINTR) {}

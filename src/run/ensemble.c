@@ -116,37 +116,16 @@ static fb_status run_member(member_values *mv, const fb_run *r, int k, unsigned 
 }
 
 /* a worker's output: per member, per model: ran, n, then n x 3 doubles */
-static int write_all(int fd, const void *p, size_t n) {
-  const char *c = p;
-  while (n) {
-    ssize_t w = write(fd, c, n);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) return 0;
-    c += w, n -= (size_t)w;
-  }
-  return 1;
-}
-
-static int read_all(int fd, void *p, size_t n) {
-  char *c = p;
-  while (n) {
-    ssize_t w = read(fd, c, n);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) return 0;
-    c += w, n -= (size_t)w;
-  }
-  return 1;
-}
-
 static int send_member(int fd, const member_values *mv) {
   for (int i = 0; i < FB_MAX_MODELS; i++) {
     const fb_impact_values *v = &mv->v[i];
     const long long h[2] = {mv->ran[i], (long long)v->n};
-    if (!write_all(fd, h, sizeof h) || !write_all(fd, mv->scalar[i], sizeof mv->scalar[i]))
+    if (!fb_worker_write_all(fd, h, sizeof h) ||
+        !fb_worker_write_all(fd, mv->scalar[i], sizeof mv->scalar[i]))
       return 0;
-    if (v->n && (!write_all(fd, v->force, v->n * sizeof(double)) ||
-                 !write_all(fd, v->alpha_coupler, v->n * sizeof(double)) ||
-                 !write_all(fd, v->alpha_follower, v->n * sizeof(double))))
+    if (v->n && (!fb_worker_write_all(fd, v->force, v->n * sizeof(double)) ||
+                 !fb_worker_write_all(fd, v->alpha_coupler, v->n * sizeof(double)) ||
+                 !fb_worker_write_all(fd, v->alpha_follower, v->n * sizeof(double))))
       return 0;
   }
   return 1;
@@ -156,8 +135,8 @@ static int recv_member(int fd, member_values *mv) {
   memset(mv, 0, sizeof *mv);
   for (int i = 0; i < FB_MAX_MODELS; i++) {
     long long h[2];
-    if (!read_all(fd, h, sizeof h) || h[1] < 0 || h[1] > (1LL << 32) ||
-        !read_all(fd, mv->scalar[i], sizeof mv->scalar[i]))
+    if (!fb_worker_read_all(fd, h, sizeof h) || h[1] < 0 || h[1] > (1LL << 32) ||
+        !fb_worker_read_all(fd, mv->scalar[i], sizeof mv->scalar[i]))
       return 0;
     mv->ran[i] = (int)h[0];
     fb_impact_values *v = &mv->v[i];
@@ -167,9 +146,9 @@ static int recv_member(int fd, member_values *mv) {
     v->alpha_coupler = malloc(v->n * sizeof(double));
     v->alpha_follower = malloc(v->n * sizeof(double));
     if (!v->force || !v->alpha_coupler || !v->alpha_follower ||
-        !read_all(fd, v->force, v->n * sizeof(double)) ||
-        !read_all(fd, v->alpha_coupler, v->n * sizeof(double)) ||
-        !read_all(fd, v->alpha_follower, v->n * sizeof(double)))
+        !fb_worker_read_all(fd, v->force, v->n * sizeof(double)) ||
+        !fb_worker_read_all(fd, v->alpha_coupler, v->n * sizeof(double)) ||
+        !fb_worker_read_all(fd, v->alpha_follower, v->n * sizeof(double)))
       return 0;
   }
   return 1;
@@ -220,9 +199,9 @@ static fb_status run_members(member_values *mv, const fb_run *r, int k0, int k1,
         /* each member's status first, with its message when it failed, so
          * the parent says why as a run with --jobs 1 would */
         const long long status = run_member(&one, r, k, want, &inner);
-        ok = write_all(p[1], &status, sizeof status) &&
+        ok = fb_worker_write_all(p[1], &status, sizeof status) &&
              (status == FB_OK ? send_member(p[1], &one)
-                              : write_all(p[1], inner.msg, sizeof inner.msg) && 0);
+                              : fb_worker_write_all(p[1], inner.msg, sizeof inner.msg) && 0);
         member_free(&one);
       }
       _exit(ok ? 0 : 1);
@@ -237,8 +216,8 @@ static fb_status run_members(member_values *mv, const fb_run *r, int k0, int k1,
     for (int k = k0 + w; k < k1 && st == FB_OK; k += jobs) {
       long long status = FB_ERR_IO;
       fb_diag inner;
-      if (read_all(fd[w], &status, sizeof status) && status != FB_OK &&
-          read_all(fd[w], inner.msg, sizeof inner.msg)) {
+      if (fb_worker_read_all(fd[w], &status, sizeof status) && status != FB_OK &&
+          fb_worker_read_all(fd[w], inner.msg, sizeof inner.msg)) {
         inner.msg[sizeof inner.msg - 1] = '\0';
         st = fb_diag_set(diag, (fb_status)status, "%s", inner.msg);
       } else if (status != FB_OK || !recv_member(fd[w], &mv[k])) {

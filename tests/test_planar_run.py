@@ -282,11 +282,18 @@ check(rc == 2 and "physical" in se, "paper mode on a planar case is refused (%s)
 
 # 8. the six-bar's clearance joint against its reference: the restitution
 # law at rod-output through the planar core's clearance dynamics, its window
-# peaks and its check integration's verdict. At the reference's default
-# tolerance (1e-12) the six-bar's light rattling pin costs minutes of CPU;
-# the test runs it at REF_TOL (its check at REF_TOL / 100) on a 0.1 ms grid
-# over two revolutions, which keeps it to seconds.
+# peaks and its check integration's verdict, which must be `ok`: at the
+# case's restitution (0.3, a lubricated pin) the pin settles on the wall
+# after each impact and the peaks converge (they moved by 1.9e-6 in the
+# check on this grid; at cr = 0.9 the light pin rattled and they moved by
+# 0.06, `unconverged`). At the reference's default tolerance (1e-12) its
+# check at 1e-13 sits on the planar state's rounding floor and costs
+# minutes of CPU; the test runs it at REF_TOL (its check at REF_TOL / 100)
+# on a 0.1 ms grid over two revolutions, which keeps it to seconds.
 REF_TOL = "1e-9"
+# the verdict's bound (FB_UNCONVERGED_REL): `ok` must mean the error
+# estimate is within it
+VERDICT_REL = 1e-3
 env = dict(os.environ, FOURBAR_REFERENCE_TOL=REF_TOL)
 out = os.path.join(tmp, "sixref")
 rc, _, se = fb_script.run(exe, tmp, "run", six, "--set", "run.models=reference-restitution", "--set",
@@ -296,8 +303,11 @@ if rc == 0:
     m = summary_of(out)["models"][0]
     check(m["kind"] == "reference" and m["clearance_joints"] == ["rod-output"],
           "the reference's clearance joint is rod-output")
-    check(m["verdict"] in ("ok", "unconverged") and m["verdict_reason"],
-          "the reference has a verdict with its reason: %s (%s)" % (m["verdict"], m["verdict_reason"]))
+    check(m["verdict"] == "ok" and m["verdict_reason"],
+          "the reference converges, with its reason: %s (%s)" % (m["verdict"], m["verdict_reason"]))
+    check(m["error_estimate"]["peaks_change_max_rel"] <= VERDICT_REL,
+          "its window peaks move by at most the bound in the check (%.3g)"
+          % m["error_estimate"]["peaks_change_max_rel"])
     est = m["error_estimate"]
     check(abs(est["tolerance"] - float(REF_TOL)) < 1e-20 and
           abs(est["check_tolerance"] - float(REF_TOL) / 100) < 1e-22,

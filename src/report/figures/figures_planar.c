@@ -18,6 +18,12 @@
 /* a panel's height [px] and the panels across */
 #define PANEL_PX 330
 #define ACROSS 2
+/* an omega panel whose samples span at most FLAT_REL of their magnitude
+ * holds a constant (the driven body's speed, an engine's round-off about
+ * it: 6e-12 relative in ODE's kit model of the six-bar) and is drawn over
+ * +-FLAT_SPAN of it [-] */
+#define FLAT_REL 1e-6
+#define FLAT_SPAN 0.05
 
 /* model p's samples as a series view (time and drive angle) for fig_datablock */
 static fb_series view_of(const fb_planar_model *p) {
@@ -85,7 +91,16 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
       json_array_append_new(curves, curve(p, col, m->body[b].name, pts, lo, hi, t0, t1));
     }
     if (b == 2) fprintf(pl.p, "unset key\n"); /* one legend, in the first panel */
-    if (alpha) fig_symlog_axis(&pl, fmin(lo_all, 0.0), fmax(hi_all, 0.0), NULL);
+    if (alpha) {
+      fig_symlog_axis(&pl, fmin(lo_all, 0.0), fmax(hi_all, 0.0), NULL);
+    } else if (any && hi_all - lo_all <= FLAT_REL * fmax(fabs(lo_all), fabs(hi_all))) {
+      /* a constant omega (the driven body's) within round-off: a range of
+       * +-FLAT_SPAN of it, not gnuplot's autoscale of the round-off */
+      const double mid = 0.5 * (lo_all + hi_all), d = fmax(FLAT_SPAN * fabs(mid), 1.0);
+      fprintf(pl.p, "set yrange [%.17g:%.17g]\n", mid - d, mid + d);
+    } else {
+      fprintf(pl.p, "set autoscale y\n");
+    }
     fig_esc(m->body[b].name, en, sizeof en);
     fprintf(pl.p, "set title '%s'\nset ylabel '%s %s [%s]'\n", en, en, alpha ? "alpha" : "omega",
             alpha ? "rad/s^2, symlog" : "rad/s");

@@ -47,7 +47,9 @@ fb_status fb_figures_run(const fb_run *r, const char *dir, fb_figure_format fmt,
  * the run's first when it ends before; alpha on a symlog axis), for each
  * reference contact_<model>_<joint>.<ext> (its clearance joint's contact
  * force and penetration; '-' in the joint's name as '_'), and
- * figures.json. names, max, n and errors as fb_figures_run. */
+ * figures.json. An undriven case (a free start) has no drive angle: no
+ * figure, figures.json's list empty. names, max, n and errors as
+ * fb_figures_run. */
 fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
                             char names[][128], int max, int *n, fb_diag *diag);
 

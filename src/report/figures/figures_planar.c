@@ -188,11 +188,14 @@ fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_f
   json_t *figs = json_array();
   fb_status st = FB_OK;
   fig_batch_begin(); /* the figures drawn side by side */
-  for (int alpha = 0; alpha < 2 && st == FB_OK; alpha++) {
+  /* every figure is against the drive angle: an undriven case (a free
+   * start, r->m->drive < 0) has none to draw against, and lists none */
+  const int driven = r->m->drive >= 0;
+  for (int alpha = 0; alpha < 2 && st == FB_OK && driven; alpha++) {
     st = omega_alpha(r, dir, fmt, alpha, figs, diag);
     if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s.%s", alpha ? "alpha" : "omega", fig_ext(fmt));
   }
-  for (int i = 0; i < r->n && st == FB_OK; i++) {
+  for (int i = 0; i < r->n && st == FB_OK && driven; i++) {
     if (!r->model[i].reference || !r->model[i].force) continue;
     char file[128];
     st = contact(r, &r->model[i], dir, fmt, figs, file, sizeof file, diag);

@@ -121,6 +121,8 @@ check(len(rows) == 2001, "2001 samples every 1e-4 s to 0.2 s, as the .ref: %d" %
 verdict = summary.get("models", [{}])[0].get("verdict") if summary else None
 check(verdict == "ok", "the reference's own check passes: verdict %s" % verdict)
 check("undriven" in so, "the printed header says the case is undriven: %r" % so[:200])
+figs = json.load(open(os.path.join(out, "figures.json")))["figures"] if rc == 0 else None
+check(figs == [], "an undriven run draws no figure (none against a drive angle): %r" % figs)
 
 # the free start: the given rates, the slider still across the guide
 if rows:

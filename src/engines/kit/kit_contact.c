@@ -7,6 +7,7 @@
 
 #include "contact_mass.h"
 #include "effective_mass.h"
+#include "planar_constraints.h"
 #include "planar_mass.h"
 
 fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl,
@@ -31,20 +32,6 @@ void fb_kit_pipe_free(fb_kit_pipe *p) {
   p->q = p->qd = NULL;
 }
 
-/* body b's point at local (its frame) in the world, and its velocity */
-static void point(const double *q, const double *qd, int b, const double local[2], double x[2],
-                  double v[2]) {
-  if (b == FB_PLANAR_GROUND) {
-    x[0] = local[0], x[1] = local[1], v[0] = v[1] = 0.0;
-    return;
-  }
-  const double *s = q + 3 * (b - 1), *r = qd + 3 * (b - 1);
-  const double c = cos(s[2]), n = sin(s[2]);
-  const double d[2] = {c * local[0] - n * local[1], n * local[0] + c * local[1]};
-  x[0] = s[0] + d[0], x[1] = s[1] + d[1];
-  v[0] = r[0] - r[2] * d[1], v[1] = r[1] + r[2] * d[0];
-}
-
 /* the coordinates now, from the engine */
 static void read_state(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m) {
   for (int k = 0; k < m->nbodies - 1; k++) b->body_state(w, k, p->q + 3 * k, p->qd + 3 * k);
@@ -55,8 +42,10 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
                     const fb_kit_clearance *cl, int j) {
   const fb_planar_joint *pj = &m->joint[j];
   double xp[2], vp[2], xh[2], vh[2];
-  point(p->q, p->qd, pj->body[0], pj->point[0], xp, vp);
-  point(p->q, p->qd, pj->body[1], pj->point[1], xh, vh);
+  fb_planar_point(xp, m, p->q, pj->body[0], pj->point[0]);
+  fb_planar_point_velocity(vp, m, p->q, p->qd, pj->body[0], pj->point[0]);
+  fb_planar_point(xh, m, p->q, pj->body[1], pj->point[1]);
+  fb_planar_point_velocity(vh, m, p->q, p->qd, pj->body[1], pj->point[1]);
   const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
   const double delta = ecc - cl->radial_clearance;
   p->pen[j] = delta > 0.0 ? delta : 0.0;

@@ -11,12 +11,11 @@ int fb_planar_rows(const fb_planar *m, const unsigned char *off, int with_drive)
   return rows;
 }
 
-/* body b's angle and its frame's origin at q (the ground: 0, origin) */
-static double angle_of(const double *q, int b) { return b ? q[3 * (b - 1) + 2] : 0.0; }
+double fb_planar_angle(const double *q, int b) { return b ? q[3 * (b - 1) + 2] : 0.0; }
+
 static double rate_of(const double *qd, int b) { return b ? qd[3 * (b - 1) + 2] : 0.0; }
 
-/* A(theta) s */
-static void rotate(double out[2], double theta, const double s[2]) {
+void fb_planar_rotate(double out[2], double theta, const double s[2]) {
   const double c = cos(theta), sn = sin(theta);
   out[0] = c * s[0] - sn * s[1];
   out[1] = sn * s[0] + c * s[1];
@@ -26,7 +25,7 @@ void fb_planar_point(double out[2], const fb_planar *m, const double *q, int b,
                      const double s[2]) {
   (void)m;
   double as[2];
-  rotate(as, angle_of(q, b), s);
+  fb_planar_rotate(as, fb_planar_angle(q, b), s);
   out[0] = as[0] + (b ? q[3 * (b - 1)] : 0.0);
   out[1] = as[1] + (b ? q[3 * (b - 1) + 1] : 0.0);
 }
@@ -37,7 +36,7 @@ void fb_planar_point_velocity(double out[2], const fb_planar *m, const double *q
   out[0] = out[1] = 0.0;
   if (!b) return;
   double as[2];
-  rotate(as, angle_of(q, b), s);
+  fb_planar_rotate(as, fb_planar_angle(q, b), s);
   const double w = qd[3 * (b - 1) + 2];
   out[0] = qd[3 * (b - 1)] - w * as[1];
   out[1] = qd[3 * (b - 1) + 1] + w * as[0];
@@ -48,7 +47,7 @@ void fb_planar_point_jacobian(double *rows, const fb_planar *m, const double *q,
   if (!b) return;
   const int nq = fb_planar_nq(m), c = 3 * (b - 1);
   double as[2];
-  rotate(as, angle_of(q, b), s);
+  fb_planar_rotate(as, fb_planar_angle(q, b), s);
   rows[c] += sign;
   rows[c + 2] += -sign * as[1];
   rows[nq + c + 1] += sign;
@@ -78,8 +77,8 @@ static void revolute(double *phi, double *jac, double *gamma, int r, const fb_pl
   }
   if (gamma) {
     double ai[2], ak[2];
-    rotate(ai, angle_of(q, i), j->point[0]);
-    rotate(ak, angle_of(q, k), j->point[1]);
+    fb_planar_rotate(ai, fb_planar_angle(q, i), j->point[0]);
+    fb_planar_rotate(ak, fb_planar_angle(q, k), j->point[1]);
     const double wi = rate_of(qd, i), wk = rate_of(qd, k);
     gamma[r] = ai[0] * wi * wi - ak[0] * wk * wk;
     gamma[r + 1] = ai[1] * wi * wi - ak[1] * wk * wk;
@@ -91,14 +90,14 @@ static void prismatic(double *phi, double *jac, double *gamma, int r, const fb_p
                       const fb_planar_joint *j, const double *q, const double *qd) {
   const int nq = fb_planar_nq(m);
   const int i = j->body[0], k = j->body[1];
-  const double ti = angle_of(q, i), tk = angle_of(q, k);
+  const double ti = fb_planar_angle(q, i), tk = fb_planar_angle(q, k);
   double pi[2], pk[2], ai[2], ak[2], n[2];
   fb_planar_point(pi, m, q, i, j->point[0]);
   fb_planar_point(pk, m, q, k, j->point[1]);
-  rotate(ai, ti, j->point[0]);
-  rotate(ak, tk, j->point[1]);
+  fb_planar_rotate(ai, ti, j->point[0]);
+  fb_planar_rotate(ak, tk, j->point[1]);
   const double nb[2] = {-j->axis[1], j->axis[0]};
-  rotate(n, ti, nb);
+  fb_planar_rotate(n, ti, nb);
   const double d[2] = {pk[0] - pi[0], pk[1] - pi[1]};
   const double pn[2] = {-n[1], n[0]};
   if (phi) {
@@ -154,7 +153,7 @@ void fb_planar_constraints(double *phi, double *jac, double *gamma, const fb_pla
   int from, to;
   fb_planar_drive_bodies(m, &from, &to);
   if (phi)
-    phi[r] = angle_of(q, to) - angle_of(q, from) - (m->body[to].angle0 - m->body[from].angle0) -
+    phi[r] = fb_planar_angle(q, to) - fb_planar_angle(q, from) - (m->body[to].angle0 - m->body[from].angle0) -
              drive->angle;
   if (jac) {
     add_angle(jac, nq, r, to, 1.0);

@@ -51,6 +51,15 @@ void fb_planar_constraints(double *phi, double *jac, double *gamma, const fb_pla
                            const unsigned char *off, const fb_planar_drive *drive,
                            const double *q, const double *qd);
 
+/* A(theta) s: s (2) rotated by theta [rad] into out (2), A(theta) =
+ * [cos -sin; sin cos] the rotation of a body's frame (the same A as the
+ * constraint equations above). */
+void fb_planar_rotate(double out[2], double theta, const double s[2]);
+
+/* Body b's angle at q [rad] (q: 3 per moving body, x, y, theta); the
+ * ground's (b = 0) is 0. */
+double fb_planar_angle(const double *q, int b);
+
 /* World position of point s (2, in body b's frame) [m] at q into out (2);
  * the ground's frame is the world's. */
 void fb_planar_point(double out[2], const fb_planar *m, const double *q, int b,

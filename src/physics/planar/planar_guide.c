@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "contact_mass.h"
+#include "planar_constraints.h"
 
 fb_status fb_planar_guide_check(const fb_planar_guide *g, fb_diag *diag) {
   const double v[3] = {g->half_length, g->half_height, g->clearance};
@@ -16,14 +17,6 @@ fb_status fb_planar_guide_check(const fb_planar_guide *g, fb_diag *diag) {
   return FB_OK;
 }
 
-/* A(theta) s */
-static void rotate(double out[2], double theta, const double s[2]) {
-  const double c = cos(theta), sn = sin(theta);
-  out[0] = c * s[0] - sn * s[1];
-  out[1] = sn * s[0] + c * s[1];
-}
-
-static double angle_of(const double *q, int b) { return b ? q[3 * (b - 1) + 2] : 0.0; }
 
 void fb_planar_guide_contact(double *force, fb_planar_guide_state *out, fb_planar_cmass *cm,
                              const fb_planar *m, int j, const fb_planar_guide *g,
@@ -31,15 +24,15 @@ void fb_planar_guide_contact(double *force, fb_planar_guide_state *out, fb_plana
                              const double *qd) {
   const fb_planar_joint *jt = &m->joint[j];
   const int i = jt->body[0], k = jt->body[1];
-  const double ti = angle_of(q, i);
+  const double ti = fb_planar_angle(q, i);
   /* the slide's direction and normal in the slider's frame, and in the world */
   const double rel0 = m->body[i].angle0 - m->body[k].angle0;
   double uk[2], n[2], o[2];
-  rotate(uk, rel0, jt->axis);
+  fb_planar_rotate(uk, rel0, jt->axis);
   const double nk[2] = {-uk[1], uk[0]}, nb[2] = {-jt->axis[1], jt->axis[0]};
-  rotate(n, ti, nb);
+  fb_planar_rotate(n, ti, nb);
   fb_planar_point(o, m, q, i, jt->point[0]);
-  fb_planar_guide_state st = {{0}, {0}, {0}, {0}, angle_of(q, k) - ti + rel0};
+  fb_planar_guide_state st = {{0}, {0}, {0}, {0}, fb_planar_angle(q, k) - ti + rel0};
   /* each corner: its point on the slider (s), in the world (p), on the guide (sg) */
   double s[FB_PLANAR_GUIDE_CORNERS][2], p[FB_PLANAR_GUIDE_CORNERS][2];
   double sg[FB_PLANAR_GUIDE_CORNERS][2], nn[FB_PLANAR_GUIDE_CORNERS][2];
@@ -55,7 +48,7 @@ void fb_planar_guide_contact(double *force, fb_planar_guide_state *out, fb_plana
     fb_planar_point_velocity(vp, m, q, qd, k, s[c]);
     /* the guide's material point under the corner, in the guide's frame */
     const double d[2] = {p[c][0] - ri[0], p[c][1] - ri[1]};
-    rotate(sg[c], -ti, d);
+    fb_planar_rotate(sg[c], -ti, d);
     fb_planar_point_velocity(vg, m, q, qd, i, sg[c]);
     const double y = n[0] * (p[c][0] - o[0]) + n[1] * (p[c][1] - o[1]);
     st.gap[c] = g->half_height + g->clearance - tau * y;

@@ -1,5 +1,6 @@
 #include "json_columns.h"
 
+#include <jansson.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

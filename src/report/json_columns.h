@@ -8,7 +8,9 @@
 #ifndef FB_JSON_COLUMNS_H
 #define FB_JSON_COLUMNS_H
 
-#include <jansson.h>
+/* jansson's object type, declared here so that includers do not get jansson
+ * (C11 allows the same typedef again where <jansson.h> is included too) */
+typedef struct json_t json_t;
 #include <stddef.h>
 #include <stdio.h>
 

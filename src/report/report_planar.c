@@ -87,6 +87,30 @@ static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_mo
                                 "peaks_change_max_rel", q->failed ? json_null() : num(q->check_rel)));
 }
 
+/* an engine model's verdict (planar_verdict.h): its word, basis, reason
+ * and, for a clearance model, its impacts against its reference's */
+static void engine_verdict_json(json_t *e, const fb_planar_model *p) {
+  const fb_planar_verdict *v = &p->verdict;
+  if (!v->judged) return;
+  const char *basis = fb_verdict_basis_name(v->basis);
+  json_object_set_new(e, "verdict", json_string(fb_verdict_name(v->word)));
+  json_object_set_new(e, "verdict_basis", basis ? json_string(basis) : json_null());
+  json_object_set_new(e, "verdict_reason", json_string(v->reason));
+  if (!p->force) {
+    json_object_set_new(e, "peak_error_max_rel", num(v->peak_rel_max));
+    return;
+  }
+  json_object_set_new(
+      e, "impacts_vs_reference",
+      json_pack("{s:i,s:i,s:i,s:o,s:o,s:o,s:o,s:o,s:o}", "impacts", v->impacts,
+                "impacts_reference", v->impacts_reference, "matched", v->matched, "parts_s",
+                num(v->parts_s), "first_t_error_s", num(v->first_t_error_s), "first_force_rel",
+                num(v->first_force_rel), "first_penetration_rel", num(v->first_penetration_rel),
+                "matched_force_rel_max", v->matched ? num(v->matched_force_rel_max) : json_null(),
+                "matched_penetration_rel_max",
+                v->matched ? num(v->matched_penetration_rel_max) : json_null()));
+}
+
 json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_path) {
   const fb_planar *m = r->m;
   json_t *o = json_object(), *models = json_array();
@@ -113,6 +137,7 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
       json_object_set_new(e, "contact_steps", json_integer((json_int_t)p->ref.steps));
     }
     if (p->engine && p->ref.failed) json_object_set_new(e, "stop", json_string(p->ref.stop));
+    engine_verdict_json(e, p);
     json_array_append_new(models, e);
   }
   json_object_set_new(o, "models", models);
@@ -192,6 +217,11 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
               r->m->joint[p->ref.joint].name, p->ref.law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
               p->ref.force_work, r->t_window, FB_NUM_CELL("%.6g", p->ref.failed ? NAN : p->ref.force_max, FB_NUM_NONE_TABLE),
               FB_NUM_CELL("%.4g", p->ref.failed ? NAN : p->ref.penetration_max / FB_M_PER_UM, FB_NUM_NONE_TABLE), v, why);
+    }
+    if (p->verdict.judged) {
+      const char *basis = fb_verdict_basis_name(p->verdict.basis);
+      fprintf(f, "verdict: %s%s%s (%s)\n", fb_verdict_name(p->verdict.word), basis ? ", " : "",
+              basis ? basis : "", p->verdict.reason);
     }
     fprintf(f, "| body | omega max [rad/s] | omega min [rad/s] | alpha max [rad/s^2] | "
                "alpha min [rad/s^2] |\n|---|---:|---:|---:|---:|\n");

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "casefile.h"
 #include "engine.h"
 #include "joint_law.h"
 #include "kit.h"
@@ -78,6 +79,12 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_model *p, const fb_pl
                          mass, diag);
   free(most);
   if (st != FB_OK) return st;
+  /* an injected error (scene.c's rule): the engine's law, not the reference's */
+  const fb_clearance *ci = &c->clearance;
+  const int damping_given = fb_casefile_given(c, "clearance", "engine_damping_scale");
+  if (ci->engine_stiffness_scale != 1.0 || ci->engine_damping_scale != 1.0 || damping_given)
+    fb_contact_law_scale(&cl->law, ci->engine_stiffness_scale, ci->engine_damping_scale,
+                         damping_given);
   fb_scene sc;
   fb_scene_default(&sc);
   cl->mask = (unsigned)c->clearance.mask;

@@ -156,7 +156,8 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
                                        : fb_planar_run_reference(p, r, strcmp(p->name, "reference") == 0, diag);
     p->wall_s = fb_clock_s() - t0;
   }
-  if (st != FB_OK) fb_planar_run_free(r);
+  if (st == FB_OK) fb_planar_verdicts(r);
+  else fb_planar_run_free(r);
   return st;
 }
 

@@ -36,7 +36,9 @@
  *              loop closure, stepper and [solver] settings; a clearance
  *              model's one clearance joint a pin in its hole with the
  *              reference's law, the kit's contact pipeline), one engine
- *              step of h per sample; its window peaks as a reference's.
+ *              step of h per sample; its window peaks as a reference's;
+ *              its verdict against the analytic model (ideal) or the
+ *              reference of its law (planar_verdict.h).
  * An undriven case ([drive] joint = none) runs the references only, from
  * its bodies' initial angular velocities (planar_free.h), its window the
  * whole run; a prismatic clearance joint is a slider in its guide.
@@ -53,6 +55,7 @@
 #include "contact.h"
 #include "metrics.h"
 #include "planar.h"
+#include "planar_verdict.h"
 
 /* The one follow-up that brings the engines to a planar case, named in
  * every refusal of an engine's model. */
@@ -95,6 +98,7 @@ typedef struct {
                               q[((b - 1) * 3 + k) * n + i]: angle [rad], omega [rad/s],
                               alpha [rad/s^2] (3 (nbodies - 1) n) */
   double wall_s;           /* wall time of the model [s] */
+  fb_planar_verdict verdict; /* an engine's model's verdict (planar_verdict.h) */
 } fb_planar_model;
 
 /* A planar case run. */
@@ -129,6 +133,11 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag);
 #define FB_PLANAR_RUN_MAX_SAMPLES 20000000
 
 void fb_planar_run_free(fb_planar_run *r);
+
+/* Sets every engine model's verdict of run r (planar_verdict.h) from its
+ * yardstick in the run: the analytic model for an ideal one, the reference
+ * of its law for a clearance one. fb_planar_run_case calls it. */
+void fb_planar_verdicts(fb_planar_run *r);
 
 /* The reference model p (its samples allocated, p->name set) of run r:
  * the impact law (impact = 1, "reference") or the restitution law

@@ -1,0 +1,271 @@
+/* The verdicts of a planar case's engine models (planar_verdict.h). */
+#include "planar_verdict.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "impact.h"
+#include "metrics.h"
+#include "model_table.h"
+#include "planar_run.h"
+#include "run.h"
+
+/* one impact: a contact episode of the clearance joint, samples i0 .. i1 */
+typedef struct {
+  size_t i0, i1;
+  double force; /* peak contact force [N] */
+} episode;
+
+/* the episodes of p (unbroken runs of positive penetration) whose peak force
+ * reaches floor [N]; returns how many (*out malloc'd, NULL when none) or -1
+ * out of memory */
+static int episodes(episode **out, const fb_planar_model *p, double floor) {
+  *out = NULL;
+  int n = 0, cap = 0;
+  for (size_t i = 0; i < p->n; i++) {
+    if (!(p->pen[i] > 0.0)) continue;
+    episode e = {i, i, 0.0};
+    for (; i < p->n && p->pen[i] > 0.0; i++) e.i1 = i, e.force = fmax(e.force, p->force[i]);
+    if (!(e.force >= floor)) continue;
+    if (n == cap) {
+      cap = cap ? 2 * cap : 64;
+      episode *grown = realloc(*out, (size_t)cap * sizeof *grown);
+      if (!grown) {
+        free(*out);
+        *out = NULL;
+        return -1;
+      }
+      *out = grown;
+    }
+    (*out)[n++] = e;
+  }
+  return n;
+}
+
+/* the largest of y over samples i0 .. i1; refine: an engine's samples on a
+ * discrete motion, its peak the vertex of the parabola through the largest
+ * sample and its two neighbours when both are positive (series.h,
+ * fb_series_refine_peaks: the sample alone misses up to |y''| h^2 / 8); a
+ * reference's samples hold their extremes already (peak_refine.h) */
+static double peak(const double *y, size_t n, size_t i0, size_t i1, int refine) {
+  size_t k = i0;
+  for (size_t i = i0; i <= i1; i++)
+    if (y[i] > y[k]) k = i;
+  if (!refine || k == 0 || k + 1 >= n || !(y[k - 1] > 0.0) || !(y[k + 1] > 0.0)) return y[k];
+  const double a = y[k - 1], b = y[k], c = y[k + 1], curv = a - 2.0 * b + c;
+  return curv < 0.0 ? b - 0.125 * (a - c) * (a - c) / curv : b;
+}
+
+static double rel(double x, double ref) { return (x - ref) / ref; }
+
+/* the model's and the reference's peak force and penetration over the span
+ * of a pair of episodes together (a contact one integration splits in two
+ * and the other does not is compared whole, as metrics.h pairs them): the
+ * relative errors fr, pr */
+static void pair_errors(double *fr, double *pr, const fb_planar_model *p,
+                        const fb_planar_model *ref, const episode *a, const episode *b) {
+  const size_t i0 = a->i0 < b->i0 ? a->i0 : b->i0, i1 = a->i1 > b->i1 ? a->i1 : b->i1;
+  *fr = rel(peak(p->force, p->n, i0, i1, 1), peak(ref->force, ref->n, i0, i1, 0));
+  *pr = rel(peak(p->pen, p->n, i0, i1, 1), peak(ref->pen, ref->n, i0, i1, 0));
+}
+
+/* body b's angle at sample i (planar_run.h's layout) [rad] */
+static double angle(const fb_planar_model *p, int b, size_t i) {
+  return p->q[((size_t)(b - 1) * 3 + FB_Q_POS) * p->n + i];
+}
+
+/* where model p's body angles leave the reference's: the first sample
+ * where a body turns from the reference's by more than
+ * FB_DIVERGE_ANGLE_FRACTION x c / its size (the rotation that moves its
+ * farthest joint by that share of the radial clearance c, metrics.h's
+ * coupler rule for every body; size: the largest distance between two of
+ * its joints) [s]; INFINITY when it does not */
+static double parts_at(const fb_planar_run *r, const fb_planar_model *p,
+                       const fb_planar_model *ref) {
+  const fb_planar *m = r->m;
+  double t = INFINITY;
+  for (int b = 1; b < m->nbodies; b++) {
+    double size = 0.0;
+    for (int j = 0; j < m->njoints; j++)
+      for (int k = 0; k < m->njoints; k++) {
+        const fb_planar_joint *x = &m->joint[j], *y = &m->joint[k];
+        if ((x->body[0] == b || x->body[1] == b) && (y->body[0] == b || y->body[1] == b))
+          size = fmax(size, hypot(x->at[0] - y->at[0], x->at[1] - y->at[1]));
+      }
+    if (!(size > 0.0)) continue;
+    const double tol = FB_DIVERGE_ANGLE_FRACTION * r->c.radial_clearance / size;
+    for (size_t i = 0; i < p->n && i < ref->n && p->t[i] < t; i++)
+      if (!(fabs(angle(p, b, i) - angle(ref, b, i)) <= tol)) {
+        t = p->t[i];
+        break;
+      }
+  }
+  return t;
+}
+
+/* pairs a (the model's impacts) with b (the reference's) before the model
+ * parts, in order by onset within tol [s], an onset without a partner
+ * left unpaired (an extra touch of a rattling pin does not shift every
+ * later pair): the matched count and the errors */
+static void pair(fb_planar_verdict *v, const fb_planar_model *p, const fb_planar_model *ref,
+                 const episode *a, int na, const episode *b, int nb, double tol) {
+  int i = 0, j = 0;
+  while (i < na && j < nb && p->t[a[i].i0] < v->parts_s && ref->t[b[j].i0] < v->parts_s) {
+    const double ta = p->t[a[i].i0], tb = ref->t[b[j].i0];
+    if (fabs(ta - tb) > tol) { /* the earlier one has no partner */
+      if (ta < tb) i++;
+      else j++;
+      continue;
+    }
+    double fr, pr;
+    pair_errors(&fr, &pr, p, ref, &a[i], &b[j]);
+    if (i == 0 && j == 0) {
+      v->first_t_error_s = ta - tb;
+      v->first_force_rel = fr;
+      v->first_penetration_rel = pr;
+    }
+    v->matched_force_rel_max = fmax(v->matched_force_rel_max, fabs(fr));
+    v->matched_penetration_rel_max = fmax(v->matched_penetration_rel_max, fabs(pr));
+    v->matched++;
+    i++, j++;
+  }
+}
+
+static void set(fb_planar_verdict *v, fb_verdict_word w, fb_verdict_basis b) {
+  v->word = w;
+  v->basis = b;
+}
+
+/* an ideal model against the analytic's peaks (planar_verdict.h) */
+static void ideal(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_model *p,
+                  const fb_planar_model *a) {
+  const int nb = r->m->nbodies;
+  double largest[2] = {0.0, 0.0}; /* omega, alpha over the bodies */
+  for (int b = 1; b < nb; b++) {
+    const fb_body_peaks *k = &a->peaks[b];
+    largest[0] = fmax(largest[0], fmax(fabs(k->omega_max), fabs(k->omega_min)));
+    largest[1] = fmax(largest[1], fmax(fabs(k->alpha_max), fabs(k->alpha_min)));
+  }
+  double worst = 0.0;
+  int at = 1;
+  for (int b = 1; b < nb; b++) {
+    const fb_body_peaks *k = &a->peaks[b], *x = &p->peaks[b];
+    const double pk[2][2][2] = {{{x->omega_max, k->omega_max}, {x->omega_min, k->omega_min}},
+                                {{x->alpha_max, k->alpha_max}, {x->alpha_min, k->alpha_min}}};
+    for (int q = 0; q < 2; q++) {
+      const double scale = fmax(fabs(pk[q][0][1]), fabs(pk[q][1][1]));
+      if (!(scale >= FB_PLANAR_PEAK_FLOOR_REL * largest[q])) continue;
+      for (int e = 0; e < 2; e++) {
+        const double err = fabs(pk[q][e][0] - pk[q][e][1]) / scale;
+        if (!(err <= worst)) worst = err, at = b; /* NaN counts as the worst */
+      }
+    }
+  }
+  v->peak_rel_max = worst;
+  const int beyond = !(worst <= FB_IDEAL_PEAK_ERROR_BOUND);
+  set(v, beyond ? FB_VERDICT_WARN : FB_VERDICT_OK, FB_BASIS_POINTWISE);
+  snprintf(v->reason, sizeof v->reason, "window peaks against the analytic: largest error %.2g "
+           "of the body's extremes (%s); the bound is %.2g", worst, r->m->body[at].name,
+           FB_IDEAL_PEAK_ERROR_BOUND);
+}
+
+/* a clearance model against its reference (planar_verdict.h) */
+static void clearance(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_model *p,
+                      const fb_planar_model *ref) {
+  if (ref->ref.failed) {
+    set(v, FB_VERDICT_WARN, FB_BASIS_NONE);
+    snprintf(v->reason, sizeof v->reason, "its reference %s stopped", ref->name);
+    return;
+  }
+  episode *a = NULL, *b = NULL;
+  int nb = episodes(&b, ref, 0.0);
+  double floor = 0.0;
+  for (int k = 0; k < nb; k++) floor = fmax(floor, b[k].force);
+  floor *= FB_MATCHED_GRAZING_SHARE;
+  free(b);
+  nb = episodes(&b, ref, floor);
+  const int na = episodes(&a, p, floor);
+  if (na < 0 || nb < 0) {
+    set(v, FB_VERDICT_WARN, FB_BASIS_NONE);
+    snprintf(v->reason, sizeof v->reason, "out of memory comparing its impacts");
+    free(a);
+    free(b);
+    return;
+  }
+  v->impacts = na;
+  v->impacts_reference = nb;
+  v->parts_s = parts_at(r, p, ref);
+  const double period = 2.0 * M_PI / fabs(r->omega);
+  pair(v, p, ref, a, na, b, nb, FB_IMPACT_MATCH_REV_FRACTION * period);
+  free(a);
+  free(b);
+  const int first_bad = (na > 0 || nb > 0) &&
+                        (!isfinite(v->first_t_error_s) || !(fabs(v->first_force_rel) <= FB_FAITHFUL_PENETRATION_TOL) ||
+                         !(fabs(v->first_penetration_rel) <= FB_FAITHFUL_PENETRATION_TOL));
+  if (first_bad) {
+    set(v, FB_VERDICT_ERROR, FB_BASIS_POINTWISE);
+    if (!isfinite(v->first_t_error_s))
+      snprintf(v->reason, sizeof v->reason, "its first impact has no partner in %s's within "
+               "%.2g of a revolution (%d impacts against %d)", ref->name,
+               FB_IMPACT_MATCH_REV_FRACTION, na, nb);
+    else
+      snprintf(v->reason, sizeof v->reason, "its first impact's peak force is %+.2g and peak "
+               "penetration %+.2g off %s's; the bound is %.2g", v->first_force_rel,
+               v->first_penetration_rel, ref->name, FB_FAITHFUL_PENETRATION_TOL);
+    return;
+  }
+  if (!ref->ref.converged || isfinite(v->parts_s)) {
+    set(v, FB_VERDICT_WARN, FB_BASIS_UNSETTLED);
+    if (!ref->ref.converged)
+      snprintf(v->reason, sizeof v->reason, "%s's window peaks did not converge (they move by "
+               "%.2g in its check); a planar run has no ensemble to decide on yet", ref->name,
+               ref->ref.check_rel);
+    else
+      snprintf(v->reason, sizeof v->reason, "it leaves %s at t = %.6g s, %d impacts matched "
+               "before; a planar run has no ensemble to decide on statistics yet", ref->name,
+               v->parts_s, v->matched);
+    return;
+  }
+  const int beyond = !(v->matched_force_rel_max <= FB_MATCHED_IMPACT_ERROR_BOUND) ||
+                     !(v->matched_penetration_rel_max <= FB_MATCHED_IMPACT_ERROR_BOUND);
+  set(v, beyond ? FB_VERDICT_ERROR : FB_VERDICT_OK, FB_BASIS_POINTWISE);
+  snprintf(v->reason, sizeof v->reason, "stays with %s: %d impacts matched (of %d and %d), "
+           "largest error %.2g in peak force, %.2g in peak penetration; the bound is %.2g",
+           ref->name, v->matched, na, nb, v->matched_force_rel_max,
+           v->matched_penetration_rel_max, FB_MATCHED_IMPACT_ERROR_BOUND);
+}
+
+/* the model of run r named name, or NULL */
+static const fb_planar_model *find(const fb_planar_run *r, const char *name) {
+  for (int i = 0; name && i < r->n; i++)
+    if (strcmp(r->model[i].name, name) == 0) return &r->model[i];
+  return NULL;
+}
+
+void fb_planar_verdicts(fb_planar_run *r) {
+  for (int i = 0; i < r->n; i++) {
+    fb_planar_model *p = &r->model[i];
+    fb_planar_verdict *v = &p->verdict;
+    if (!p->engine) continue;
+    *v = (fb_planar_verdict){.judged = 1, .word = FB_VERDICT_UNCHECKED,
+                             .first_t_error_s = NAN, .first_force_rel = NAN,
+                             .first_penetration_rel = NAN, .parts_s = NAN,
+                             .peak_rel_max = NAN};
+    const fb_model *mt = fb_model_find(p->name);
+    const fb_model *want = mt && p->force ? fb_model_reference_of(mt) : NULL;
+    const fb_planar_model *y = p->force ? find(r, want ? want->name : NULL) : find(r, "analytic");
+    if (p->ref.failed) {
+      set(v, FB_VERDICT_WARN, FB_BASIS_NONE);
+      snprintf(v->reason, sizeof v->reason, "it stopped: %.300s", p->ref.stop);
+    } else if (!y) {
+      snprintf(v->reason, sizeof v->reason, "nothing to compare with: the run has no %s",
+               p->force ? (want ? want->name : "reference of its law") : "analytic");
+    } else if (p->force) {
+      clearance(v, r, p, y);
+    } else {
+      ideal(v, r, p, y);
+    }
+  }
+}

@@ -83,6 +83,9 @@ for inj in INJECTED:
     m = run("inj-" + inj.split(".")[1], "--set", "run.models=reference,ode-clearance-impact",
             "--set", "solver.h_s=" + H_RESOLVED, "--set", inj)
     if m:
+        with open(os.path.join(tmp, "inj-" + inj.split(".")[1], "summary.json")) as f:
+            said = json.load(f).get("injected_error") or ""
+        check(inj.split(".")[1].split("=")[0] in said, "summary.json states it: %s" % said)
         o = m["ode-clearance-impact"]
         check(o.get("verdict") == "error" and "first impact" in o.get("verdict_reason", ""),
               "%s: error on its first impact: %s (%s)" % (inj, o.get("verdict"),

@@ -165,17 +165,23 @@ const char *fb_report_body_abbrev(const char *body) {
   return three;
 }
 
-const char *fb_report_injected_text(char *buf, size_t size, const fb_run *r) {
-  const fb_clearance *cl = &r->c.clearance;
-  const int given = fb_casefile_given(&r->c, "clearance", "engine_damping_scale");
+const char *fb_report_injected_case_text(char *buf, size_t size, const fb_case *c) {
+  const fb_clearance *cl = &c->clearance;
+  const int given = fb_casefile_given(c, "clearance", "engine_damping_scale");
   buf[0] = '\0';
   if (cl->engine_stiffness_scale == 1.0 && cl->engine_damping_scale == 1.0 && !given) return NULL;
-  size_t n = (size_t)snprintf(
-      buf, size, "injected error: [clearance] engine_stiffness_scale = %g, engine_damping_scale = "
-      "%g%s multiply the contact law of every engine model (the references keep the case's law)",
-      cl->engine_stiffness_scale, cl->engine_damping_scale,
-      given ? " (given: the restitution law's damper is that of the case's stiffness, scaled)"
-            : " (the restitution law's damper follows the scaled stiffness)");
+  snprintf(buf, size, "injected error: [clearance] engine_stiffness_scale = %g, "
+           "engine_damping_scale = %g%s multiply the contact law of every engine model (the "
+           "references keep the case's law)", cl->engine_stiffness_scale,
+           cl->engine_damping_scale,
+           given ? " (given: the restitution law's damper is that of the case's stiffness, scaled)"
+                 : " (the restitution law's damper follows the scaled stiffness)");
+  return buf;
+}
+
+const char *fb_report_injected_text(char *buf, size_t size, const fb_run *r) {
+  if (!fb_report_injected_case_text(buf, size, &r->c)) return NULL;
+  size_t n = strlen(buf);
   for (int i = 0; i < r->n && n < size; i++)
     if (r->model[i].run.model->rigid)
       n += (size_t)snprintf(buf + n, size - n, "; %s is rigid: no stiffness or damper to scale",

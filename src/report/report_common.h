@@ -40,6 +40,8 @@ const char *fb_report_model_status(char *buf, size_t size, const fb_model_result
  * to scale. Returns NULL (buf "") when both are 1 and the damping scale was
  * not given. */
 const char *fb_report_injected_text(char *buf, size_t size, const fb_run *r);
+/* The same for case c alone (a planar run: no rigid model), or NULL. */
+const char *fb_report_injected_case_text(char *buf, size_t size, const fb_case *c);
 
 /* A body's name in three letters for narrow table columns: "cpl" (coupler),
  * "flw" (follower), "sld" (slider); the name's first three letters

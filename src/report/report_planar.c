@@ -120,6 +120,11 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
   json_object_set_new(o, "description", description_json(m));
   json_object_set_new(o, "drive_omega_rad_s", num(r->omega));
   json_object_set_new(o, "revolutions", num(r->c.revolutions));
+  char injected[1024];
+  json_object_set_new(o, "injected_error",
+                      fb_report_injected_case_text(injected, sizeof injected, &r->c)
+                          ? json_string(injected)
+                          : json_null());
   const char *name[FB_PLANAR_SPEC_MAX_BODIES];
   for (int b = 1; b < m->nbodies; b++) name[b - 1] = m->body[b].name;
   for (int i = 0; i < r->n; i++) {
@@ -206,6 +211,8 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
           m->njoints);
   if (m->drive < 0) fprintf(f, "undriven (a free start)\n");
   else fprintf(f, "drive '%s' at %.6g rad/s\n", m->joint[m->drive].name, r->omega);
+  char injected[1024];
+  if (fb_report_injected_case_text(injected, sizeof injected, &r->c)) fprintf(f, "%s\n", injected);
   for (int i = 0; i < r->n; i++) {
     const fb_planar_model *p = &r->model[i];
     fprintf(f, "\nmodel %s (%zu samples every %.3g s)\n", p->name, p->n, p->h);

@@ -251,10 +251,11 @@ static fb_status write_markdown(const char *dir, const fb_planar_run *r, const c
   fb_outfile out;
   fb_status st = fb_outfile_open(&out, path, diag);
   if (st != FB_OK) return st;
+  char kit[2048];
   fprintf(out.f, "# %s\n\nCase file `%s`, run by `%s`. A planar case (docs/planar.md): its "
-                 "models run on the planar core, and the engines' models (" FB_PLANAR_KIT_MODELS
-                 ") through the engine kit; the other engines build it with %s.\n\n",
-          r->c.name, case_path, command, FB_PLANAR_ENGINE_FOLLOWUP);
+                 "models run on the planar core, and the engines' models (%s) through the "
+                 "engine kit.\n\n",
+          r->c.name, case_path, command, fb_planar_kit_models(kit, sizeof kit));
   fb_report_planar_table(out.f, r);
   fprintf(out.f, "\n## Figures\n\n");
   if (nfig == 0) fprintf(out.f, "No figures were drawn.\n");

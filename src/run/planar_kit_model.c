@@ -31,6 +31,15 @@ const struct fb_kit_binding *fb_planar_kit_of(const char *name) {
                                                                                           : NULL;
 }
 
+const char *fb_planar_kit_models(char *buf, size_t size) {
+  size_t n = 0;
+  buf[0] = '\0';
+  for (int i = 0; i < fb_model_count && n < size; i++)
+    if (fb_planar_kit_of(fb_models[i].name))
+      n += (size_t)snprintf(buf + n, size - n, "%s%s", n ? ", " : "", fb_models[i].name);
+  return buf;
+}
+
 /* every moving body's omega and alpha extremes over the samples at
  * t >= r->t_window */
 static void window_peaks(fb_planar_model *p, const fb_planar_run *r) {

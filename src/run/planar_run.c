@@ -26,17 +26,18 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
                          "reference-restitution", name);
     if (fb_planar_run_takes(name)) continue;
     const fb_model *m = fb_model_find(name);
+    char kit[2048];
+    fb_planar_kit_models(kit, sizeof kit);
     if (m && m->engine != FB_ENGINE_ANALYTIC && m->engine != FB_ENGINE_REFERENCE)
       return fb_diag_set(diag, FB_ERR_ARG,
                          "[run] models: '%s' is the %s engine's, and the %s engine does not "
                          "build this model of a planar case yet (%s); a planar case runs: "
-                         "analytic, reference, reference-restitution, " FB_PLANAR_KIT_MODELS,
+                         "analytic, reference, reference-restitution, %s",
                          name, fb_engine_name(m->engine), fb_engine_name(m->engine),
-                         FB_PLANAR_ENGINE_FOLLOWUP);
+                         FB_PLANAR_ENGINE_FOLLOWUP, kit);
     return fb_diag_set(diag, FB_ERR_ARG,
                        "[run] models: '%s' does not run on a planar case yet; a planar case "
-                       "runs: analytic, reference, reference-restitution, " FB_PLANAR_KIT_MODELS,
-                       name);
+                       "runs: analytic, reference, reference-restitution, %s", name, kit);
   }
   return FB_OK;
 }

@@ -28,7 +28,7 @@
  *              body, the contact force) moves by at most FB_UNCONVERGED_REL,
  *              else "unconverged" (run.h's rule for a reference).
   *   ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution
- *              (FB_PLANAR_KIT_MODELS; fb_planar_kit_of says which models
+ *              (fb_planar_kit_models lists them; fb_planar_kit_of says which models
  *              an engine with a binding of the engine kit builds)
  *              the description built in the engine through the kit
  *              (src/engines/kit/kit.h: every body at its assembly pose
@@ -61,9 +61,11 @@
  * every refusal of an engine's model. */
 #define FB_PLANAR_ENGINE_FOLLOWUP "issue 58, the engine kit"
 
-/* The engines' models a planar case runs through the engine kit, for the
- * refusals' list. */
-#define FB_PLANAR_KIT_MODELS "ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution"
+/* The engines' models a planar case runs through the engine kit
+ * (fb_planar_kit_of over the model table, in its order), comma-separated
+ * into buf (size bytes, truncated to fit), for the refusals and report.md.
+ * Returns buf. */
+const char *fb_planar_kit_models(char *buf, size_t size);
 
 /* What a reference measured beyond its samples. */
 typedef struct {

@@ -24,10 +24,10 @@ failure."""
 import csv, json, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import fb_script  # noqa: E402
+import kit_script  # noqa: E402
+from kit_script import PEAK_KEYS, check_sixbar, rel, write_slider  # noqa: E402
 
-exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-kit-siconos-")
-check = tally.check
+exe, cases, check, tally, tmp, run = kit_script.start(sys.argv, "fourbar-planar-kit-siconos-")
 
 # The issue's bound on an engine's ideal model of the six-bar against the
 # analytic omega peaks. Measured 2.7e-8 (the rod's omega min) at h = 1e-5
@@ -78,20 +78,10 @@ FIRST_IMPACT_STEPS = 1
 # 2e-7 rad/s^2 (measured 2.0e-10).
 SLIDER_OMEGA_ABS = 1e-12
 SLIDER_ALPHA_ABS = 2e-7
-PEAK_KEYS = ("omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2", "alpha_min_rad_s2")
-
-
-def run(*args):
-    return fb_script.run(exe, tmp, *args)
-
-
-def rel(p, q):
-    return abs(p - q) / max(abs(q), 1e-300)
 
 
 def models(out):
-    with open(os.path.join(tmp, out, "summary.json")) as f:
-        return {m["name"]: m for m in json.load(f)["models"]}
+    return kit_script.models(tmp, out)
 
 
 def first_force_time(path):
@@ -113,56 +103,13 @@ if rc == 0 and not any(e["name"] == "siconos" and e["available"] for e in json.l
     sys.exit(77)
 
 # 1. the six-bar: every moving body's omega peaks within the issue's bound
-rc, _, se = run("run", os.path.join(cases, "watt_sixbar.ini"), "--set",
-                "run.models=analytic,siconos-ideal-nominal", "--out", os.path.join(tmp, "six"),
-                "--no-figures", "--no-report")
-check(rc == 0, "watt_sixbar runs siconos-ideal-nominal (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("six")
-    a, o = m["analytic"]["bodies"], m["siconos-ideal-nominal"]["bodies"]
-    check(m["siconos-ideal-nominal"]["kind"] == "engine", "summary.json kind is 'engine'")
-    check(list(o) == ["crank", "coupler", "ternary", "rod", "output"], "every body: %s" % list(o))
-    worst = max(rel(o[b][k], a[b][k]) for b in a for k in PEAK_KEYS[:2])
-    check(worst <= KIT_OMEGA_REL, "six-bar: Siconos's omega peaks within %g of the analytic's, "
-          "worst %.2e" % (KIT_OMEGA_REL, worst))
-    check(worst > 0.0, "and Siconos's peaks are its own (not the analytic's copied): %.2e" % worst)
+check_sixbar(run, check, cases, tmp, "siconos-ideal-nominal", KIT_OMEGA_REL,
+             ("--no-figures", "--no-report"))
 
 # 2. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
 # rod 120 mm, the slider on the x axis
-c = (43.30127018922193, 25.0)
-sx = c[0] + (120.0 ** 2 - 25.0 ** 2) ** 0.5
 slider = os.path.join(tmp, "slider.ini")
-with open(slider, "w") as f:
-    f.write("""[case]
-name = planar_slider
-[linkage]
-type = planar
-[joint.ground-crank]
-bodies = ground, crank
-at_mm = 0, 0
-[joint.crank-rod]
-bodies = crank, rod
-at_mm = %.12f, %.12f
-[joint.rod-slider]
-bodies = rod, slider
-at_mm = %.12f, 0
-[joint.slider-ground]
-bodies = slider, ground
-at_mm = %.12f, 0
-kind = prismatic
-axis_deg = 0
-[body.slider]
-mass_kg = 0.14
-inertia_kg_mm2 = 20
-[drive]
-joint = ground-crank
-speed_rpm = 3000
-[pin]
-fit = 10H7/g6
-length_mm = 13
-[run]
-models = analytic, siconos-ideal-nominal
-""" % (c[0], c[1], sx, sx))
+write_slider(slider, "siconos-ideal-nominal")
 rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"), "--no-figures", "--no-report")
 check(rc == 0, "the planar slider-crank runs siconos-ideal-nominal (%s)" % se.strip()[-300:])
 if rc == 0:

@@ -190,4 +190,13 @@ for setting, words in (("siconos.scheme=combined-projection", "scheme = moreau-j
     check(rc != 0 and words in se and not os.path.exists(out),
           "%s: refused naming '%s', nothing written (%d, %s)" % (setting, words, rc, se.strip()))
 
+# friction is refused at a clearance joint only: an ideal model of a case
+# with friction (and clearance joints listed for its clearance models) runs
+out = os.path.join(tmp, "ideal-friction")
+rc, _, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
+                "run.models=siconos-ideal-nominal", "--set", "clearance.friction=0.2", "--out", out,
+                "--no-figures", "--no-report")
+check(rc == 0, "siconos-ideal-nominal runs on a case with [clearance] friction (%d, %s)"
+      % (rc, se.strip()[-300:]))
+
 sys.exit(tally.done())

@@ -86,6 +86,7 @@ struct Pt {
 // The kit's world
 struct World {
   double h, grav, theta;
+  double friction;          // [clearance] friction [-]: refused at a clearance joint
   std::vector<Body> body;
   std::vector<Joint> joint;
   std::vector<int> ds_of;   // body handle -> index in ds (-1: the prescribed body)
@@ -383,12 +384,7 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
                        "kit steps Moreau-Jean only (scheme = moreau-jean)",
                        fb_siconos_scheme_name(o->source->siconos.scheme));
   }
-  if (o->source && o->source->clearance.friction > 0.0 && o->source->clearance.mask) {
-    delete w;
-    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the Siconos binding of the "
-                       "engine kit builds a frictionless clearance joint (friction = 0)",
-                       o->source->clearance.friction);
-  }
+  w->friction = o->source ? o->source->clearance.friction : 0.0;
   *out = w;
   return FB_OK;
 }
@@ -427,6 +423,10 @@ static fb_status kit_add_prismatic(void *vw, int b0, int b1, const double at[2],
 static fb_status kit_add_clearance(void *vw, int k, const fb_kit_clearance_joint *c,
                                    fb_diag *diag) {
   World *w = static_cast<World *>(vw);
+  if (w->friction > 0.0)
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the Siconos binding of the "
+                       "engine kit builds a frictionless clearance joint (friction = 0)",
+                       w->friction);
   if (k < 0 || k >= FB_PLANAR_SPEC_MAX_JOINTS)
     return fb_diag_set(diag, FB_ERR_ARG, "clearance joint %d out of range", k);
   Joint j = joint_at(w, GAP, c->pin, c->hole, c->at);

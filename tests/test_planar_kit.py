@@ -20,13 +20,13 @@ And what the kit does not build yet is refused naming issue 58.
 
 Usage: test_planar_kit.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
-import json, os, sys
+import os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import fb_script  # noqa: E402
+import kit_script  # noqa: E402
+from kit_script import PEAK_KEYS, check_sixbar, rel, write_slider  # noqa: E402
 
-exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-kit-")
-check = tally.check
+exe, cases, check, tally, tmp, run = kit_script.start(sys.argv, "fourbar-planar-kit-")
 
 # The issue's bound on an engine's ideal model of the six-bar against the
 # analytic omega peaks. ODE at the six-bar's h = 1e-5 s (300 rpm) measured
@@ -57,35 +57,14 @@ KIT_CLEARANCE_FORCE_REL = 0.05
 # its omega peaks, measured 1.3e-4 (the follower's max): the clearance
 # moves them by up to 3e-4 from the ideal's, ODE's error is a part of that
 KIT_CLEARANCE_OMEGA_REL = 1e-3
-PEAK_KEYS = ("omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2", "alpha_min_rad_s2")
-
-
-def run(*args):
-    return fb_script.run(exe, tmp, *args)
-
-
-def rel(p, q):
-    return abs(p - q) / max(abs(q), 1e-300)
 
 
 def models(out):
-    with open(os.path.join(tmp, out, "summary.json")) as f:
-        return {m["name"]: m for m in json.load(f)["models"]}
+    return kit_script.models(tmp, out)
 
 
 # 1. the six-bar: every moving body's omega peaks within the issue's bound
-rc, _, se = run("run", os.path.join(cases, "watt_sixbar.ini"), "--set",
-                "run.models=analytic,ode-ideal-nominal", "--out", os.path.join(tmp, "six"))
-check(rc == 0, "watt_sixbar runs ode-ideal-nominal (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("six")
-    a, o = m["analytic"]["bodies"], m["ode-ideal-nominal"]["bodies"]
-    check(m["ode-ideal-nominal"]["kind"] == "engine", "summary.json kind is 'engine'")
-    check(list(o) == ["crank", "coupler", "ternary", "rod", "output"], "every body: %s" % list(o))
-    worst = max(rel(o[b][k], a[b][k]) for b in a for k in PEAK_KEYS[:2])
-    check(worst <= KIT_OMEGA_REL, "six-bar: ODE's omega peaks within %g of the analytic's, worst %.2e"
-          % (KIT_OMEGA_REL, worst))
-    check(worst > 0.0, "and ODE's peaks are its own (not the analytic's copied): %.2e" % worst)
+check_sixbar(run, check, cases, tmp, "ode-ideal-nominal", KIT_OMEGA_REL)
 
 # 2. the paper's four-bar: planar through the kit against the built-in ODE four-bar
 rc1, _, se1 = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
@@ -107,40 +86,8 @@ if rc1 == 0 and rc2 == 0:
 
 # 3. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
 # rod 120 mm, the slider on the x axis
-c = (43.30127018922193, 25.0)
-sx = c[0] + (120.0 ** 2 - 25.0 ** 2) ** 0.5
 slider = os.path.join(tmp, "slider.ini")
-with open(slider, "w") as f:
-    f.write("""[case]
-name = planar_slider
-[linkage]
-type = planar
-[joint.ground-crank]
-bodies = ground, crank
-at_mm = 0, 0
-[joint.crank-rod]
-bodies = crank, rod
-at_mm = %.12f, %.12f
-[joint.rod-slider]
-bodies = rod, slider
-at_mm = %.12f, 0
-[joint.slider-ground]
-bodies = slider, ground
-at_mm = %.12f, 0
-kind = prismatic
-axis_deg = 0
-[body.slider]
-mass_kg = 0.14
-inertia_kg_mm2 = 20
-[drive]
-joint = ground-crank
-speed_rpm = 3000
-[pin]
-fit = 10H7/g6
-length_mm = 13
-[run]
-models = analytic, ode-ideal-nominal
-""" % (c[0], c[1], sx, sx))
+write_slider(slider, "ode-ideal-nominal")
 rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"))
 check(rc == 0, "the planar slider-crank runs ode-ideal-nominal (%s)" % se.strip()[-300:])
 if rc == 0:

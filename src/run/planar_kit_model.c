@@ -27,8 +27,12 @@ const struct fb_kit_binding *fb_planar_kit_of(const char *name) {
    * a planar case's are its joints', the nominal description the
    * reference runs too): the exact pin in the hole, a law, and a binding
    * that takes the contact */
-  return m->collider == FB_COLLIDER_EXACT && m->law != FB_MODEL_LAW_NONE && b->add_contact ? b
-                                                                                          : NULL;
+  if (m->law == FB_MODEL_LAW_NONE) return NULL;
+  /* or the engine's own clearance relation built from the description's
+   * joint (collider native, a binding with add_clearance: Siconos's
+   * unilateral constraint with Newton's law) */
+  if (m->collider == FB_COLLIDER_NATIVE) return b->add_clearance ? b : NULL;
+  return m->collider == FB_COLLIDER_EXACT && b->add_contact ? b : NULL;
 }
 
 const char *fb_planar_kit_models(char *buf, size_t size) {
@@ -115,7 +119,8 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_model *p, const fb_pl
 fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
   const fb_model *mt = fb_model_find(p->name);
   const fb_kit_binding *b = fb_planar_kit_of(p->name);
-  const fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints};
+  const fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints,
+                          &r->c};
   fb_kit_series s = {p->n, p->h, p->t, p->q};
   fb_kit_clearance cl = {0};
   p->engine = 1;

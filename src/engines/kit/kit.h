@@ -27,6 +27,9 @@
  *                 contact the kit's pipeline computed (fb_kit_contact)
  *   step, body_state  advance h; read a body's pose and velocity
  *   contact_force optional: what the contact applied in the step
+ *   add_clearance optional, in the walk at a clearance joint's place: an
+ *                 engine whose clearance is a relation of its own builds
+ *                 it once (fb_kit_clearance_joint) instead of add_contact
  * Bodies are named by the kit's handles: the ground is FB_KIT_GROUND, the
  * description's body b (1 ..) is handle b - 1; add_drive's joint is the
  * driven joint's place among the joints added (the description's order,
@@ -51,6 +54,8 @@ typedef struct {
   double h;                  /* step [s] */
   const fb_solver *solver;    /* the case's [solver] settings (case.h) */
   int nbodies, njoints;      /* moving bodies and joints the walk will add */
+  const fb_case *source;     /* optional: the case as run, for an engine's own options
+                                ([siconos] theta) and [clearance] keys; NULL: defaults */
 } fb_kit_world;
 
 /* One moving body at the start. */
@@ -92,6 +97,17 @@ typedef struct {
   int impacts;              /* out: impact episodes, all joints */
 } fb_kit_clearance;
 
+/* One clearance joint for an engine that builds it as its own relation
+ * (add_clearance): the pin on body handle pin, the hole on body handle hole,
+ * their centres together at the assembly position. */
+typedef struct {
+  int pin, hole;            /* body handles (FB_KIT_GROUND: the ground) */
+  double at[2];             /* the joint's assembly position [m] */
+  double radial_clearance;  /* c [m] */
+  double pin_radius;        /* [m] */
+  double restitution;       /* the law's coefficient of restitution cr, Newton's e_N [-] */
+} fb_kit_clearance_joint;
+
 /* An engine's builder functions. */
 typedef struct fb_kit_binding {
   const char *engine; /* "ode" */
@@ -114,6 +130,14 @@ typedef struct fb_kit_binding {
   fb_status (*step)(void *w, fb_diag *diag);
   void (*body_state)(const void *w, int b, double pos[3], double vel[3]);
   void (*world_free)(void *w);
+  fb_status (*add_clearance)(void *w, int k, const fb_kit_clearance_joint *c, fb_diag *diag);
+                             /* optional: clearance joint k (the description's index) built
+                                once, in the walk's place of the joint, as the engine's own
+                                rigid relation (Siconos: a unilateral constraint with
+                                Newton's impact law); the kit then hands it no contact
+                                (add_contact unused), counts its episodes from
+                                contact_force (required with it) and reads its penetration
+                                from the bodies; NULL: the kit's contact every step */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

@@ -48,6 +48,7 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
   fb_planar_point_velocity(vh, m, p->q, p->qd, pj->body[1], pj->point[1]);
   const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
   const double delta = ecc - cl->radial_clearance;
+  if (ecc > 0.0) p->rate[j] = (e[0] * (vp[0] - vh[0]) + e[1] * (vp[1] - vh[1])) / ecc;
   p->pen[j] = delta > 0.0 ? delta : 0.0;
   if (!(delta > 0.0) || ecc == 0.0) return 0;
   const double n[2] = {e[0] / ecc, e[1] / ecc}, r = cl->pin_radius + cl->radial_clearance;
@@ -84,11 +85,27 @@ static fb_status alias_stop(const fb_kit_contact *c, const char *joint, fb_diag 
                      c->h * FB_MATCHED_ALIAS_BOUND / wdh);
 }
 
+/* joint j of an engine's own relation (add_clearance): its episode from
+ * the force of the step just taken, at onset the rate before that step */
+static void native_episode(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                           fb_kit_clearance *cl, int j) {
+  const int in = b->contact_force(w, j) > 0.0, before = p->ep[j].impacts;
+  const double rate = in && !p->ep[j].in_contact ? p->rate_before[j] : p->rate[j];
+  fb_episode_update(&p->ep[j], in, rate, cl->impact_velocity_min);
+  cl->impacts += p->ep[j].impacts - before;
+  cl->contact_steps += (size_t)in;
+  p->rate_before[j] = p->rate[j];
+}
+
 fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
                                const fb_planar *m, fb_kit_clearance *cl, double h,
                                fb_diag *diag) {
   for (int j = 0; j < m->njoints; j++) {
     if (!p->off[j]) continue;
+    if (b->add_clearance) {
+      native_episode(p, b, w, cl, j);
+      continue;
+    }
     fb_kit_contact c;
     p->force[j] = 0.0;
     const int in = geometry(&c, p, m, cl, j);

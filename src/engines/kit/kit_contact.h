@@ -17,6 +17,8 @@ typedef struct {
   double pen[FB_PLANAR_SPEC_MAX_JOINTS];      /* penetration at the step's start [m] */
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: a clearance joint (no ideal joint) */
   double *q, *qd;                             /* the core's coordinates and rates (nq each) */
+  double rate[FB_PLANAR_SPEC_MAX_JOINTS];     /* penetration rate at the state last read [m/s] */
+  double rate_before[FB_PLANAR_SPEC_MAX_JOINTS]; /* the one read before it [m/s] */
 } fb_kit_pipe;
 
 /* Sets p up for m's clearance joints cl->mask. Errors: FB_ERR_ARG (a
@@ -33,7 +35,10 @@ double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
 
 /* Every clearance joint's contact at the state last read, handed to b's
  * add_contact for the coming step of h [s]; counts contact steps and
- * impact episodes into cl. Errors: FB_ERR_NUMERIC when a matched row
+ * impact episodes into cl. A binding with its own clearance relation
+ * (add_clearance) gets no contact: a step with a contact force
+ * (contact_force > 0) is a contact step, an episode's onset rate the one
+ * read before that step. Errors: FB_ERR_NUMERIC when a matched row
  * would alias (contact.h, FB_MATCHED_ALIAS_BOUND: "aliased: ..." with
  * the largest usable step, the hand-built ODE world's stop); those of
  * add_contact and of the effective mass (planar_mass.h). */

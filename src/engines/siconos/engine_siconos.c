@@ -4,6 +4,7 @@
 
 #include "engine.h"
 #include "engine_bench.h"
+#include "siconos_kit.h"
 #include "siconos_scene.h"
 
 static fb_status siconos_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
@@ -137,4 +138,5 @@ const fb_engine fb_engine_siconos = {
     .mapping_text = siconos_mapping_text,
     .cost_per_sample = siconos_cost_per_sample,
     .bench = &siconos_bench,
+    .kit = &fb_siconos_kit,
 };

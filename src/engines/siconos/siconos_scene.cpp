@@ -14,6 +14,7 @@
 // PinClearanceR), on the reference's coordinates of each.
 #include "SiconosKernel.hpp"
 #include "SolverOptions.h"
+#include "siconos_common.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -468,29 +469,11 @@ class LawChecked : public Osi {
 };
 
 // The combined projection's position problem (MLCPProjectOnConstraints, the
-// enumerative MLCP solver) without Siconos 4.4's growth per solve: MLCP::solve
-// calls mlcp_driver_init before every solve, which callocs the solver's
-// iWork and dWork again over the last ones (numerics/src/MLCP/mlcp_driver.c),
-// and mlcp_driver_reset frees only the last. Freeing them before each solve
-// changes nothing the solver sees (it gets freshly zeroed arrays either way).
-// mlcp_enum's own EnumerationStruct, allocated each solve and never freed
-// (mlcp_enum.c), is out of reach here (tests/lsan.supp). Built from
-// solver_options(SICONOS_MLCP_ENUM), as the solver-id constructor would,
-// without its leaked struct (solver_options, below).
-class ProjectOnConstraints : public MLCPProjectOnConstraints {
- public:
-  using MLCPProjectOnConstraints::MLCPProjectOnConstraints;
-  int compute(double time) override {
-    SolverOptions &o = *numericsSolverOptions();
-    std::free(o.iWork);
-    std::free(o.dWork);
-    o.iWork = nullptr;
-    o.dWork = nullptr;
-    o.iWorkSize = 0;
-    o.dWorkSize = 0;
-    return MLCPProjectOnConstraints::compute(time);
-  }
-};
+// enumerative MLCP solver) without Siconos 4.4's growth per solve
+// (siconos_common.hpp)
+using ProjectOnConstraints = fb_siconos::FreshWork<MLCPProjectOnConstraints>;
+using fb_siconos::siconos_message;
+using fb_siconos::solver_options;
 
 // The scheme's integrator at theta: MoreauJeanOSI, or for the combined
 // projection MoreauJeanCombinedProjectionOSI; law-checked (LawChecked) on
@@ -547,28 +530,6 @@ thread_local Scene *tl_stepping = nullptr;
 // instead of Siconos's default, which prints a warning to standard output
 void keep_solver_status(int info, Simulation *) {
   if (tl_stepping && info != 0) tl_stepping->solver_info = info;
-}
-
-// A numerics solver's options, owned by the one-step problem. Built here,
-// not by the problem's solver-id constructor: that one frees them with
-// solver_options_delete, which in Siconos 4.4 frees what the struct holds
-// but not the struct itself (its free is commented out), so each problem
-// left 120 bytes behind (LeakSanitizer, tests/test_siconos.c)
-SP::SolverOptions solver_options(int solver_id) {
-  SolverOptions *o = solver_options_create(solver_id);
-  if (!o) throw std::bad_alloc();
-  return SP::SolverOptions(o, [](SolverOptions *p) {
-    solver_options_delete(p);
-    std::free(p);
-  });
-}
-
-// the message of a Siconos exception (its THROW_EXCEPTION text), else what()
-std::string siconos_message(const std::exception &ex) {
-  if (const boost::exception *be = dynamic_cast<const boost::exception *>(&ex))
-    if (const std::string *msg = boost::get_error_info<Siconos::exception::extra_message>(*be))
-      return *msg;
-  return ex.what();
 }
 
 fb_status set_stop(Scene *s, fb_stop_kind kind, const char *detail, fb_diag *diag) {
@@ -949,17 +910,9 @@ extern "C" size_t fb_siconos_scene_steps(const fb_siconos_scene *hd) { return hd
 
 extern "C" void fb_siconos_scene_destroy(fb_siconos_scene *hd) {
   if (!hd) return;
-  // the simulation and its integrator and one-step problem hold each other
-  // by shared pointers: Simulation::clear breaks that cycle (Siconos's own
-  // teardown), else the whole system outlives the scene
-  if (hd->s && hd->s->sim) {
-    hd->s->sim->clear();
-    hd->s->osi->setSimulationPtr(SP::Simulation());
-    hd->s->osnspb->setSimulationPtr(SP::Simulation());
-    if (hd->s->position) hd->s->position->setSimulationPtr(SP::Simulation());
-    hd->s->osi->setDynamicalSystemsGraph(SP::DynamicalSystemsGraph());
-    hd->s->nsds->clear();
-  }
+  // the cycle of shared pointers broken (siconos_common.hpp)
+  if (hd->s && hd->s->sim)
+    fb_siconos::teardown(hd->s->sim, hd->s->osi, hd->s->osnspb, hd->s->position, hd->s->nsds);
   delete hd->s;
   delete hd;
 }

@@ -1,0 +1,525 @@
+// Siconos as a binding of the engine kit (kit.h, siconos_kit.h): any planar
+// description as a Siconos nonsmooth dynamical system, built the way the
+// four-bar's scene (siconos_scene.cpp) and Siconos's mechanism examples
+// build theirs: Lagrangian dynamical systems, one Lagrangian relation per
+// joint with its nonsmooth law, MoreauJeanOSI(theta) and TimeStepping with
+// its Newton loop.
+//
+// Formulation (absolute coordinates, the kit's description as it is):
+//   each moving body a LagrangianLinearTIDS, q = (x, y, theta) of its centre
+//   of mass, M = diag(m, m, I), gravity m g along -y as its constant fExt;
+//   the driven body, when the drive turns it about a ground pivot (the
+//   four-bar's crank), is no coordinate: its motion theta(t) = theta0 +
+//   omega t is prescribed exactly, as the four-bar scene's crank, and the
+//   relations at its other joints are rheonomous (the pin moves with t);
+//   a drive between two moving bodies is a rheonomous row theta1 - theta0 =
+//   const + omega t;
+//   a revolute joint: h = p0(q, t) - p1(q, t) = 0 (2 rows), a prismatic one:
+//   the normal offset n0 . (p1 - p0) = 0 and the relative angle = const (2
+//   rows), each with EqualityConditionNSL: the loops close through these
+//   bilateral relations (no tree, no close_loop);
+//   a clearance joint (add_clearance, the rigid limit the siconos-clearance
+//   models stand for): the unilateral relation g = c - |p_pin - p_hole| >= 0
+//   with Newton's impact law (NewtonImpactNSL, e_N the law's restitution),
+//   the four-bar scene's ClearanceR on any two bodies.
+// Every relation is a LagrangianRheonomousR h(q, t) with its Jacobian dh/dq
+// and dh/dt (0 unless a side is the prescribed body). The one-step problem is
+// an Equality problem for an ideal mechanism, an MLCP (the bilateral rows
+// with the unilateral one, enumerative solver) with a clearance joint. The
+// Newton loop also checks the relations' velocity residual at the last
+// iterate (KitOSI): with constant mass matrices the dynamics' residual alone
+// would stop it after one iteration, the relations' Jacobians one update old.
+#include "SiconosKernel.hpp"
+#include "SolverOptions.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <new>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "siconos_kit.h"
+}
+#include "siconos_common.hpp"
+
+namespace {
+
+// Newton loop: tolerance on the dynamics' residual [kg m/s] and on the
+// relations' velocity residual [m/s, rad/s], and its iteration cap (the
+// four-bar scene's values, siconos_scene.cpp kNewtonTolerance).
+const double kKitNewtonTolerance = 1e-12;
+const unsigned kKitNewtonMaxIterations = 200;
+// Below this eccentricity [m] a clearance joint's normal is taken along +x
+// (the pin is a whole clearance from the wall: only the gap's sign matters).
+const double kKitEccentricityMin = 1e-15;
+
+enum Kind { REVOLUTE, PRISMATIC, DRIVE, GAP };
+
+struct Body {
+  double m, inertia, pos0[3], vel0[3];
+};
+
+// a joint as the walk gave it, its points in each body's frame
+struct Joint {
+  Kind kind;
+  int b[2];            // kit handles (FB_KIT_GROUND: the ground)
+  double r[2][2];      // the joint's point in each body's frame (the ground's: world)
+  double nl[2];        // prismatic: the normal to the axis in body b[0]'s frame
+  double d0;           // prismatic, drive: theta_b1 - theta_b0 at assembly [rad]
+  double rate;         // drive: d(theta_b1 - theta_b0)/dt [rad/s]
+  double c, e_n;       // clearance: radial clearance [m], Newton's e_N [-]
+  int k;               // clearance: the description's joint index
+};
+
+struct World;
+
+// a side of a relation at (q, t): the point's position p, its Jacobian
+// J = dp/dq_side (2 x 3), its time derivative pt, the body's angle th and
+// its time derivative tht
+struct Pt {
+  double p[2], J[2][3], pt[2], th, tht;
+};
+
+// The kit's world
+struct World {
+  double h, grav, theta;
+  double friction;          // [clearance] friction [-]: refused at a clearance joint
+  std::vector<Body> body;
+  std::vector<Joint> joint;
+  std::vector<int> ds_of;   // body handle -> index in ds (-1: the prescribed body)
+  int presc = -1;           // the prescribed body's handle
+  double pivot[2] = {0, 0}, omega = 0.0;
+  std::vector<SP::LagrangianDS> ds;
+  std::vector<SP::Interaction> inter;
+  std::vector<int> inter_joint; // inter[i]'s joint
+  SP::NonSmoothDynamicalSystem nsds;
+  SP::MoreauJeanOSI osi;
+  SP::OneStepNSProblem osnspb;
+  SP::TimeStepping sim;
+  size_t k = 0;
+  int info = 0;
+  double force[FB_PLANAR_SPEC_MAX_JOINTS] = {0};
+  bool built = false;
+
+  // body handle b's point r (its frame) at time t, its coordinates q (DS only)
+  void point(Pt &o, int b, const double r[2], double t, const double *q) const {
+    std::memset(&o, 0, sizeof o);
+    if (b == FB_KIT_GROUND) {
+      o.p[0] = r[0], o.p[1] = r[1];
+      return;
+    }
+    double c[2];
+    if (b == presc) {
+      const Body &B = body[b];
+      o.th = B.pos0[2] + omega * t, o.tht = omega;
+      const double s = std::sin(omega * t), co = std::cos(omega * t);
+      const double d[2] = {B.pos0[0] - pivot[0], B.pos0[1] - pivot[1]};
+      c[0] = pivot[0] + co * d[0] - s * d[1];
+      c[1] = pivot[1] + s * d[0] + co * d[1];
+    } else {
+      c[0] = q[0], c[1] = q[1], o.th = q[2];
+    }
+    const double s = std::sin(o.th), co = std::cos(o.th);
+    const double rr[2] = {co * r[0] - s * r[1], s * r[0] + co * r[1]};
+    o.p[0] = c[0] + rr[0], o.p[1] = c[1] + rr[1];
+    if (b == presc) {
+      o.pt[0] = -omega * (o.p[1] - pivot[1]);
+      o.pt[1] = omega * (o.p[0] - pivot[0]);
+    } else {
+      o.J[0][0] = 1.0, o.J[0][2] = -rr[1];
+      o.J[1][1] = 1.0, o.J[1][2] = rr[0];
+    }
+  }
+};
+
+// One joint as a rheonomous Lagrangian relation on the one or two
+// dynamical systems it links (col[s]: side s's first column in the block q,
+// -1 when side s is the ground or the prescribed body).
+class KitR : public LagrangianRheonomousR {
+ public:
+  KitR(const World *w, int j, const int col[2]) : w_(w), j_(j) {
+    col_[0] = col[0], col_[1] = col[1];
+    _hDot.reset(new SiconosVector(rows()));
+  }
+  int rows() const { return w_->joint[j_].kind == GAP || w_->joint[j_].kind == DRIVE ? 1 : 2; }
+  void computeh(double t, const BlockVector &q, BlockVector &, SiconosVector &y) override {
+    double f[2], J[2][6], ft[2];
+    eval(t, q, f, J, ft);
+    for (int i = 0; i < rows(); i++) y.setValue(i, f[i]);
+  }
+  void computeJachq(double t, const BlockVector &q, BlockVector &) override {
+    double f[2], J[2][6], ft[2];
+    eval(t, q, f, J, ft);
+    const int nc = (col_[0] >= 0) + (col_[1] >= 0);
+    for (int i = 0; i < rows(); i++)
+      for (int c = 0; c < 3 * nc; c++) _jachq->setValue(i, c, J[i][c]);
+  }
+  void computehDot(double t, const BlockVector &q, BlockVector &) override {
+    double f[2], J[2][6], ft[2];
+    eval(t, q, f, J, ft);
+    for (int i = 0; i < rows(); i++) _hDot->setValue(i, ft[i]);
+  }
+
+ private:
+  // f(q, t), J = df/dq over the linked systems' columns, ft = df/dt
+  void eval(double t, const BlockVector &q, double f[2], double J[2][6], double ft[2]) const {
+    const Joint &jt = w_->joint[j_];
+    Pt s[2];
+    for (int k = 0; k < 2; k++) {
+      double qs[3] = {0, 0, 0};
+      for (int i = 0; col_[k] >= 0 && i < 3; i++) qs[i] = q.getValue(col_[k] + i);
+      w_->point(s[k], jt.b[k], jt.r[k], t, qs);
+    }
+    std::memset(J, 0, 2 * 6 * sizeof(double));
+    // add sign * row vector g (over side k's 3 coordinates) into J's row i
+    auto put = [&](int i, int k, double sign, const double g[3]) {
+      if (col_[k] < 0) return;
+      const int off = col_[k] == 0 ? 0 : 3;
+      for (int c = 0; c < 3; c++) J[i][off + c] += sign * g[c];
+    };
+    const double th_q[3] = {0, 0, 1};
+    if (jt.kind == REVOLUTE) {
+      for (int i = 0; i < 2; i++) {
+        f[i] = s[0].p[i] - s[1].p[i];
+        ft[i] = s[0].pt[i] - s[1].pt[i];
+        put(i, 0, 1.0, s[0].J[i]);
+        put(i, 1, -1.0, s[1].J[i]);
+      }
+    } else if (jt.kind == GAP) {
+      const double e[2] = {s[0].p[0] - s[1].p[0], s[0].p[1] - s[1].p[1]}, ecc = std::hypot(e[0], e[1]);
+      const double n[2] = {ecc > kKitEccentricityMin ? e[0] / ecc : 1.0,
+                           ecc > kKitEccentricityMin ? e[1] / ecc : 0.0};
+      f[0] = jt.c - ecc;
+      ft[0] = -(n[0] * (s[0].pt[0] - s[1].pt[0]) + n[1] * (s[0].pt[1] - s[1].pt[1]));
+      for (int k = 0; k < 2; k++) {
+        const double g[3] = {n[0] * s[k].J[0][0] + n[1] * s[k].J[1][0],
+                             n[0] * s[k].J[0][1] + n[1] * s[k].J[1][1],
+                             n[0] * s[k].J[0][2] + n[1] * s[k].J[1][2]};
+        put(0, k, k == 0 ? -1.0 : 1.0, g);
+      }
+    } else {
+      // the relative angle row (a prismatic joint's second, a drive's only)
+      const int i = jt.kind == PRISMATIC ? 1 : 0;
+      const double rate = jt.kind == DRIVE ? jt.rate : 0.0;
+      f[i] = s[1].th - s[0].th - jt.d0 - rate * t;
+      ft[i] = s[1].tht - s[0].tht - rate;
+      put(i, 1, 1.0, th_q);
+      put(i, 0, -1.0, th_q);
+      if (jt.kind == PRISMATIC) {
+        // n0 . (p1 - p0), n0 the axis's normal turning with body b[0]
+        const double sn = std::sin(s[0].th), cs = std::cos(s[0].th);
+        const double n[2] = {cs * jt.nl[0] - sn * jt.nl[1], sn * jt.nl[0] + cs * jt.nl[1]};
+        const double d[2] = {s[1].p[0] - s[0].p[0], s[1].p[1] - s[0].p[1]};
+        const double dn = -n[1] * d[0] + n[0] * d[1]; // dn0/dtheta0 . d
+        f[0] = n[0] * d[0] + n[1] * d[1];
+        ft[0] = dn * s[0].tht + n[0] * (s[1].pt[0] - s[0].pt[0]) + n[1] * (s[1].pt[1] - s[0].pt[1]);
+        for (int k = 0; k < 2; k++) {
+          const double g[3] = {n[0] * s[k].J[0][0] + n[1] * s[k].J[1][0],
+                               n[0] * s[k].J[0][1] + n[1] * s[k].J[1][1],
+                               n[0] * s[k].J[0][2] + n[1] * s[k].J[1][2]};
+          put(0, k, k == 0 ? -1.0 : 1.0, g);
+        }
+        const double gd[3] = {0, 0, dn};
+        put(0, 0, 1.0, gd);
+      }
+    }
+  }
+  const World *w_;
+  int j_, col_[2];
+};
+
+// Moreau-Jean with the relations' residual at the step's end (TimeStepping's
+// Newton loop with setComputeResiduY): a bilateral row's velocity |y'|, and
+// a clearance joint's Newton's law while it is in the step's problem
+// (siconos_scene.cpp's LawChecked, the same test).
+class KitOSI : public MoreauJeanOSI {
+ public:
+  KitOSI(double theta, const World *w) : MoreauJeanOSI(theta), w_(w) {}
+  double computeResiduOutput(double, SP::InteractionsGraph) override {
+    double r = 0.0;
+    SP::InteractionsGraph active = w_->nsds->topology()->indexSet(1);
+    for (size_t i = 0; i < w_->inter.size(); i++) {
+      Interaction &in = *w_->inter[i];
+      const Joint &jt = w_->joint[(size_t)w_->inter_joint[i]];
+      if (jt.kind != GAP) {
+        for (unsigned k = 0; k < in.y(1)->size(); k++) r = std::max(r, std::fabs(in.y(1)->getValue(k)));
+        continue;
+      }
+      if (!active || !active->is_vertex(w_->inter[i])) continue;
+      const double g = in.y(1)->getValue(0) + jt.e_n * in.y_k(1)->getValue(0);
+      r = std::max(r, in.lambda(1)->getValue(0) > 0.0 ? std::fabs(g) : std::max(0.0, -g));
+    }
+    return r;
+  }
+
+ private:
+  const World *w_;
+};
+
+thread_local int *tl_info = nullptr;
+
+// TimeStepping's solver-status hook: the status kept for the step (no print)
+void keep_info(int info, Simulation *) {
+  if (tl_info && info != 0) *tl_info = info;
+}
+
+// the system from what the walk recorded (at add_drive, the walk's last call)
+void build(World *w) {
+  const size_t nb = w->body.size();
+  w->ds_of.assign(nb, -1);
+  w->nsds.reset(new NonSmoothDynamicalSystem(0.0, 1e30));
+  for (size_t b = 0; b < nb; b++) {
+    if ((int)b == w->presc) continue;
+    const Body &B = w->body[b];
+    SP::SiconosVector q0(new SiconosVector(3)), v0(new SiconosVector(3)), f(new SiconosVector(3));
+    SP::SimpleMatrix M(new SimpleMatrix(3, 3));
+    M->zero();
+    M->setValue(0, 0, B.m), M->setValue(1, 1, B.m), M->setValue(2, 2, B.inertia);
+    for (int i = 0; i < 3; i++) q0->setValue(i, B.pos0[i]), v0->setValue(i, B.vel0[i]);
+    f->zero();
+    f->setValue(1, -B.m * w->grav);
+    SP::LagrangianLinearTIDS d(new LagrangianLinearTIDS(q0, v0, M));
+    d->setFExtPtr(f);
+    w->ds_of[b] = (int)w->ds.size();
+    w->ds.push_back(d);
+    w->nsds->insertDynamicalSystem(d);
+  }
+  // the bilateral rows first, then the unilateral ones (the MLCP's order)
+  bool gap = false;
+  for (int pass = 0; pass < 2; pass++)
+    for (size_t j = 0; j < w->joint.size(); j++) {
+      const Joint &jt = w->joint[j];
+      if ((jt.kind == GAP) != (pass == 1)) continue;
+      const bool held = (jt.b[0] == w->presc && jt.b[1] == FB_KIT_GROUND) ||
+                        (jt.b[1] == w->presc && jt.b[0] == FB_KIT_GROUND);
+      if (held && jt.kind == REVOLUTE) continue; // the prescribed body's pivot: exact
+      SP::DynamicalSystem d[2];
+      int col[2] = {-1, -1}, n = 0;
+      for (int k = 0; k < 2; k++)
+        if (jt.b[k] != FB_KIT_GROUND && w->ds_of[(size_t)jt.b[k]] >= 0) {
+          d[n] = w->ds[(size_t)w->ds_of[(size_t)jt.b[k]]];
+          col[k] = 3 * n++;
+        }
+      if (n == 0) continue; // between the ground and the prescribed body: nothing moves
+      std::shared_ptr<KitR> rel(new KitR(w, (int)j, col));
+      SP::NonSmoothLaw nsl;
+      if (jt.kind == GAP) nsl.reset(new NewtonImpactNSL(jt.e_n)), gap = true;
+      else nsl.reset(new EqualityConditionNSL(rel->rows()));
+      SP::Interaction in(new Interaction(nsl, rel));
+      if (n == 2) w->nsds->link(in, d[0], d[1]);
+      else w->nsds->link(in, d[0]);
+      w->inter.push_back(in);
+      w->inter_joint.push_back((int)j);
+    }
+  w->osi.reset(new KitOSI(w->theta, w));
+  if (gap) w->osnspb.reset(new fb_siconos::FreshWork<MLCP>(fb_siconos::solver_options(SICONOS_MLCP_ENUM)));
+  else w->osnspb.reset(new Equality());
+  SP::TimeDiscretisation td(new TimeDiscretisation(0.0, w->h));
+  w->sim.reset(new TimeStepping(w->nsds, td, w->osi, w->osnspb));
+  w->sim->setNewtonTolerance(kKitNewtonTolerance);
+  w->sim->setNewtonMaxIteration(kKitNewtonMaxIterations);
+  w->sim->setComputeResiduY(true);
+  w->sim->setWarnOnNonConvergence(false);
+  w->sim->setCheckSolverFunction(keep_info);
+  w->sim->initialize();
+  w->built = true;
+}
+
+// a point given in the world at assembly, in body b's frame
+void local(const World *w, int b, const double at[2], double r[2]) {
+  if (b == FB_KIT_GROUND) {
+    r[0] = at[0], r[1] = at[1];
+    return;
+  }
+  const Body &B = w->body[(size_t)b];
+  const double s = std::sin(B.pos0[2]), c = std::cos(B.pos0[2]);
+  const double d[2] = {at[0] - B.pos0[0], at[1] - B.pos0[1]};
+  r[0] = c * d[0] + s * d[1];
+  r[1] = -s * d[0] + c * d[1];
+}
+
+// the joint (b0, b1) at `at`, its points in each frame
+Joint joint_at(const World *w, Kind kind, int b0, int b1, const double at[2]) {
+  Joint j;
+  std::memset(&j, 0, sizeof j);
+  j.kind = kind;
+  j.b[0] = b0, j.b[1] = b1;
+  local(w, b0, at, j.r[0]);
+  local(w, b1, at, j.r[1]);
+  return j;
+}
+
+double angle0(const World *w, int b) { return b == FB_KIT_GROUND ? 0.0 : w->body[(size_t)b].pos0[2]; }
+
+// runs f, turning a Siconos exception into an error naming it
+template <class F>
+fb_status guarded(fb_diag *diag, const char *what, F f) {
+  try {
+    f();
+  } catch (const std::bad_alloc &) {
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Siconos system");
+  } catch (const std::exception &ex) {
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "siconos: %s: %.600s", what,
+                       fb_siconos::siconos_message(ex).c_str());
+  }
+  return FB_OK;
+}
+
+} // namespace
+
+extern "C" {
+
+static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
+  World *w = new (std::nothrow) World;
+  if (!w) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Siconos world");
+  w->h = o->h;
+  w->grav = o->gravity;
+  w->theta = o->source ? o->source->siconos.theta : 0.5;
+  if (o->source && o->source->siconos.scheme != FB_SICONOS_MOREAU_JEAN) {
+    delete w;
+    return fb_diag_set(diag, FB_ERR_ARG, "[siconos] scheme = %s: the Siconos binding of the engine "
+                       "kit steps Moreau-Jean only (scheme = moreau-jean)",
+                       fb_siconos_scheme_name(o->source->siconos.scheme));
+  }
+  w->friction = o->source ? o->source->clearance.friction : 0.0;
+  *out = w;
+  return FB_OK;
+}
+
+static fb_status kit_add_body(void *vw, const fb_kit_body *b, fb_diag *diag) {
+  (void)diag;
+  World *w = static_cast<World *>(vw);
+  Body B;
+  B.m = b->mass, B.inertia = b->inertia;
+  for (int i = 0; i < 3; i++) B.pos0[i] = b->pos[i], B.vel0[i] = b->vel[i];
+  w->body.push_back(B);
+  return FB_OK;
+}
+
+static fb_status kit_add_revolute(void *vw, int b0, int b1, const double at[2], fb_diag *diag) {
+  (void)diag;
+  World *w = static_cast<World *>(vw);
+  w->joint.push_back(joint_at(w, REVOLUTE, b0, b1, at));
+  return FB_OK;
+}
+
+static fb_status kit_add_prismatic(void *vw, int b0, int b1, const double at[2],
+                                   const double axis[2], fb_diag *diag) {
+  (void)diag;
+  World *w = static_cast<World *>(vw);
+  Joint j = joint_at(w, PRISMATIC, b0, b1, at);
+  const double a = angle0(w, b0), s = std::sin(a), c = std::cos(a);
+  const double nw[2] = {-axis[1], axis[0]}; // the axis's normal in the world
+  j.nl[0] = c * nw[0] + s * nw[1];
+  j.nl[1] = -s * nw[0] + c * nw[1];
+  j.d0 = angle0(w, b1) - a;
+  w->joint.push_back(j);
+  return FB_OK;
+}
+
+static fb_status kit_add_clearance(void *vw, int k, const fb_kit_clearance_joint *c,
+                                   fb_diag *diag) {
+  World *w = static_cast<World *>(vw);
+  if (w->friction > 0.0)
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the Siconos binding of the "
+                       "engine kit builds a frictionless clearance joint (friction = 0)",
+                       w->friction);
+  if (k < 0 || k >= FB_PLANAR_SPEC_MAX_JOINTS)
+    return fb_diag_set(diag, FB_ERR_ARG, "clearance joint %d out of range", k);
+  Joint j = joint_at(w, GAP, c->pin, c->hole, c->at);
+  j.c = c->radial_clearance;
+  j.e_n = c->restitution;
+  j.k = k;
+  w->joint.push_back(j);
+  return FB_OK;
+}
+
+// the drive: a revolute joint to the ground prescribes its body (the
+// four-bar scene's crank); between two moving bodies, a rheonomous row
+static fb_status kit_add_drive(void *vw, int joint, double rate, fb_diag *diag) {
+  World *w = static_cast<World *>(vw);
+  int n = -1;
+  size_t j = 0;
+  for (; j < w->joint.size(); j++)
+    if (w->joint[j].kind != GAP && ++n == joint) break;
+  if (j == w->joint.size() || w->joint[j].kind != REVOLUTE)
+    return fb_diag_set(diag, FB_ERR_ARG, "the Siconos kit drives a revolute joint only");
+  Joint &jt = w->joint[j];
+  if (jt.b[0] == FB_KIT_GROUND || jt.b[1] == FB_KIT_GROUND) {
+    const int s = jt.b[0] == FB_KIT_GROUND ? 1 : 0;
+    w->presc = jt.b[s];
+    w->omega = s == 1 ? rate : -rate;
+    w->pivot[0] = jt.r[1 - s][0], w->pivot[1] = jt.r[1 - s][1];
+  } else {
+    Joint d = jt;
+    d.kind = DRIVE;
+    d.rate = rate;
+    d.d0 = angle0(w, jt.b[1]) - angle0(w, jt.b[0]);
+    w->joint.push_back(d);
+  }
+  return guarded(diag, "the system was refused", [w] { build(w); });
+}
+
+static fb_status kit_step(void *vw, fb_diag *diag) {
+  World *w = static_cast<World *>(vw);
+  w->info = 0;
+  tl_info = &w->info;
+  const fb_status st = guarded(diag, "step failed", [w] { w->sim->computeOneStep(); });
+  tl_info = nullptr;
+  const double t = (double)(w->k + 1) * w->h;
+  if (st != FB_OK) return st;
+  if (!w->sim->isNewtonConverge())
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "siconos: Newton loop not converged in %u iterations "
+                       "at t = %g s", kKitNewtonMaxIterations, t);
+  if (w->info != 0)
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "siconos: one-step nonsmooth problem not solved "
+                       "(numerics info %d) at t = %g s", w->info, t);
+  for (size_t i = 0; i < w->inter.size(); i++) {
+    const Joint &jt = w->joint[(size_t)w->inter_joint[i]];
+    if (jt.kind == GAP) w->force[jt.k] = w->inter[i]->lambda(1)->getValue(0) / w->h;
+  }
+  const fb_status nx = guarded(diag, "step failed", [w] { w->sim->nextStep(); });
+  w->k++;
+  return nx;
+}
+
+static double kit_contact_force(const void *vw, int k) {
+  return static_cast<const World *>(vw)->force[k];
+}
+
+static void kit_body_state(const void *vw, int b, double pos[3], double vel[3]) {
+  const World *w = static_cast<const World *>(vw);
+  if (b == w->presc) {
+    Pt o;
+    const double zero[2] = {0, 0};
+    const double t = (double)w->k * w->h;
+    w->point(o, b, zero, t, nullptr);
+    pos[0] = o.p[0], pos[1] = o.p[1], pos[2] = o.th;
+    vel[0] = o.pt[0], vel[1] = o.pt[1], vel[2] = o.tht;
+    return;
+  }
+  const LagrangianDS &d = *w->ds[(size_t)w->ds_of[(size_t)b]];
+  for (int i = 0; i < 3; i++) pos[i] = d.q()->getValue(i), vel[i] = d.velocity()->getValue(i);
+}
+
+static void kit_world_free(void *vw) {
+  World *w = static_cast<World *>(vw);
+  if (w->built) fb_siconos::teardown(w->sim, w->osi, w->osnspb, SP::OneStepNSProblem(), w->nsds);
+  delete w;
+}
+
+// the table in fb_kit_binding's order (kit.h; C++17 has no designated
+// initialisers)
+const fb_kit_binding fb_siconos_kit = {
+    "siconos",          kit_world_new,     kit_add_body, kit_add_revolute,
+    kit_add_prismatic,  NULL /* close_loop: the bilateral relations close the loops */,
+    kit_add_drive,      NULL /* hold_in_plane: planar coordinates */,
+    NULL /* add_contact: the clearance is a relation (add_clearance) */,
+    kit_contact_force,  kit_step,          kit_body_state, kit_world_free,
+    kit_add_clearance,
+};
+
+} // extern "C"

@@ -88,9 +88,8 @@ btTransform frame_in(const btRigidBody *b, const double at[2], const double axis
   return b ? b->getCenterOfMassTransform().inverse() * f : f;
 }
 
-}  // namespace
 
-extern "C" fb_status fb_bullet_kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
+fb_status world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
   if (o->nbodies > FB_PLANAR_SPEC_MAX_BODIES || o->njoints > FB_PLANAR_SPEC_MAX_JOINTS)
     return fb_diag_set(diag, FB_ERR_ARG, "the Bullet kit builds at most %d bodies and %d joints",
                        FB_PLANAR_SPEC_MAX_BODIES, FB_PLANAR_SPEC_MAX_JOINTS);
@@ -112,7 +111,7 @@ extern "C" fb_status fb_bullet_kit_world_new(void **out, const fb_kit_world *o, 
   return FB_OK;
 }
 
-extern "C" fb_status fb_bullet_kit_add_body(void *w, const fb_kit_body *b, fb_diag *diag) {
+fb_status add_body(void *w, const fb_kit_body *b, fb_diag *diag) {
   (void)diag;
   Kit *k = static_cast<Kit *>(w);
   btRigidBody *r = k->w->body(b->mass, btVector3(0.5 * b->inertia, 0.5 * b->inertia, b->inertia));
@@ -127,8 +126,7 @@ extern "C" fb_status fb_bullet_kit_add_body(void *w, const fb_kit_body *b, fb_di
   return FB_OK;
 }
 
-extern "C" fb_status fb_bullet_kit_add_revolute(void *w, int b0, int b1, const double at[2],
-                                                fb_diag *diag) {
+fb_status add_revolute(void *w, int b0, int b1, const double at[2], fb_diag *diag) {
   (void)diag;
   Kit *k = static_cast<Kit *>(w);
   Joint &j = k->joint[k->njoints++];
@@ -146,8 +144,8 @@ extern "C" fb_status fb_bullet_kit_add_revolute(void *w, int b0, int b1, const d
   return FB_OK;
 }
 
-extern "C" fb_status fb_bullet_kit_add_prismatic(void *w, int b0, int b1, const double at[2],
-                                                 const double axis[2], fb_diag *diag) {
+fb_status add_prismatic(void *w, int b0, int b1, const double at[2], const double axis[2],
+                        fb_diag *diag) {
   (void)diag;
   Kit *k = static_cast<Kit *>(w);
   Joint &j = k->joint[k->njoints++];
@@ -164,7 +162,7 @@ extern "C" fb_status fb_bullet_kit_add_prismatic(void *w, int b0, int b1, const 
   return FB_OK;
 }
 
-extern "C" fb_status fb_bullet_kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
+fb_status add_drive(void *w, int joint, double rate, fb_diag *diag) {
   Kit *k = static_cast<Kit *>(w);
   const Joint &j = k->joint[joint];
   if (!j.pin) return fb_diag_set(diag, FB_ERR_ARG, "the Bullet kit drives a revolute joint only");
@@ -179,8 +177,7 @@ extern "C" fb_status fb_bullet_kit_add_drive(void *w, int joint, double rate, fb
 /* the four-bar's clearance row (bullet_scene.cpp): the law's row of the
  * step at the effective mass, on the hole wall, along -n into the pin (the
  * hole is A, along +n, when the pin is the ground's) */
-extern "C" fb_status fb_bullet_kit_add_contact(void *w, int j, const fb_kit_contact *c,
-                                               fb_diag *diag) {
+fb_status add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
   (void)diag;
   Kit *k = static_cast<Kit *>(w);
   Contact &ct = k->contact[j];
@@ -201,11 +198,11 @@ extern "C" fb_status fb_bullet_kit_add_contact(void *w, int j, const fb_kit_cont
   return FB_OK;
 }
 
-extern "C" double fb_bullet_kit_contact_force(const void *w, int j) {
+double contact_force(const void *w, int j) {
   return static_cast<const Kit *>(w)->contact[j].force;
 }
 
-extern "C" fb_status fb_bullet_kit_step(void *w, fb_diag *diag) {
+fb_status step(void *w, fb_diag *diag) {
   Kit *k = static_cast<Kit *>(w);
   for (int i = 0; i < k->njoints; i++) {
     const Joint &j = k->joint[i];
@@ -227,7 +224,7 @@ extern "C" fb_status fb_bullet_kit_step(void *w, fb_diag *diag) {
   return FB_OK;
 }
 
-extern "C" void fb_bullet_kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
+void body_state(const void *w, int b, double pos[3], double vel[3]) {
   const btRigidBody *r = static_cast<const Kit *>(w)->body[b];
   const btVector3 &p = r->getCenterOfMassPosition(), &v = r->getLinearVelocity();
   pos[0] = p[0];
@@ -238,7 +235,7 @@ extern "C" void fb_bullet_kit_body_state(const void *w, int b, double pos[3], do
   vel[2] = r->getAngularVelocity()[2];
 }
 
-extern "C" void fb_bullet_kit_world_free(void *w) {
+void world_free(void *w) {
   Kit *k = static_cast<Kit *>(w);
   btDiscreteDynamicsWorld &world = k->w->world;
   btTypedConstraint *c[2 * FB_PLANAR_SPEC_MAX_JOINTS + 1];
@@ -254,3 +251,26 @@ extern "C" void fb_bullet_kit_world_free(void *w) {
   delete k->w;
   delete k;
 }
+
+/* the binding (kit.h): every body planar by Bullet's factors (no
+ * hold_in_plane), the loops closed by the pins' rows (no close_loop); a
+ * member kit.h adds later stays NULL */
+constexpr fb_kit_binding binding() {
+  fb_kit_binding b = {};
+  b.engine = "bullet";
+  b.world_new = world_new;
+  b.add_body = add_body;
+  b.add_revolute = add_revolute;
+  b.add_prismatic = add_prismatic;
+  b.add_drive = add_drive;
+  b.add_contact = add_contact;
+  b.contact_force = contact_force;
+  b.step = step;
+  b.body_state = body_state;
+  b.world_free = world_free;
+  return b;
+}
+
+}  // namespace
+
+extern "C" const fb_kit_binding fb_bullet_kit = binding();

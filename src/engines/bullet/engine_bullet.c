@@ -136,23 +136,6 @@ static const fb_engine_bench bullet_bench = {.point = bullet_bench_point,
                                              .own_grid = FB_BENCH_BULLET,
                                              .alone_before = FB_BENCH_SET_CASE_ROW};
 
-/* Bullet's binding of the engine kit (bullet_kit.cpp): planar cases;
- * every body planar by Bullet's factors (no hold_in_plane), the loops
- * closed by the pins' rows (no close_loop) */
-const fb_kit_binding fb_bullet_kit = {
-    .engine = "bullet",
-    .world_new = fb_bullet_kit_world_new,
-    .add_body = fb_bullet_kit_add_body,
-    .add_revolute = fb_bullet_kit_add_revolute,
-    .add_prismatic = fb_bullet_kit_add_prismatic,
-    .add_drive = fb_bullet_kit_add_drive,
-    .add_contact = fb_bullet_kit_add_contact,
-    .contact_force = fb_bullet_kit_contact_force,
-    .step = fb_bullet_kit_step,
-    .body_state = fb_bullet_kit_body_state,
-    .world_free = fb_bullet_kit_world_free,
-};
-
 const fb_engine fb_engine_bullet = {
     .name = "bullet",
     .guarded = 1,

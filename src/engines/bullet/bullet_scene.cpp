@@ -7,7 +7,7 @@
 
 #include <new>
 
-#include "bt_rows.h"
+#include "bt_world.h"
 extern "C" {
 #include "contact_mass.h"
 #include "effective_mass.h"
@@ -30,60 +30,11 @@ struct Clearance {
   double step_wdh = 0.0, step_hw = 0.0;
 };
 
-/* the solver the options ask for */
-struct Solver {
-  btDantzigSolver dantzig;
-  btConstraintSolver *s = nullptr;
-  explicit Solver(int kind) {
-    if (kind == FB_BULLET_MLCP_DANTZIG)
-      s = new FbMlcp(&dantzig);
-    else
-      s = new FbSequentialImpulse();
-  }
-  ~Solver() { delete s; }
-};
-
-/* a world without collision pairs */
-struct World {
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher{&config};
-  btDbvtBroadphase broadphase;
-  Solver solver;
-  btDiscreteDynamicsWorld world;
-  btEmptyShape shape;
-  World(int kind, int iterations, double g)
-      : solver(kind), world(&dispatcher, &broadphase, solver.s, &config) {
-    world.setGravity(btVector3(0, -g, 0));
-    btContactSolverInfo &info = world.getSolverInfo();
-    info.m_numIterations = iterations;
-    info.m_globalCfm = 0.0;
-    info.m_minimumSolverBatchSize = 1; /* one island, one solve */
-    info.m_leastSquaresResidualThreshold = 0.0;
-  }
-  /* a planar body of mass m and principal moments (long, transverse, hinge);
-   * planar 0: a body free in 3-D (the slider, which its guide holds) */
-  btRigidBody *body(double m, const btVector3 &inertia, bool planar = true) {
-    btRigidBody::btRigidBodyConstructionInfo ci(m, nullptr, &shape, inertia);
-    btRigidBody *b = new btRigidBody(ci);
-    if (planar) {
-      b->setLinearFactor(btVector3(1, 1, 0));
-      b->setAngularFactor(btVector3(0, 0, 1));
-    }
-    b->setFlags(0); /* no gyroscopic term: planar rotation about a principal axis */
-    b->setDamping(0, 0);
-    b->setSleepingThresholds(0, 0);
-    b->setActivationState(DISABLE_DEACTIVATION);
-    world.addRigidBody(b, 0, 0); /* no collision group: never a contact pair */
-    return b;
-  }
-  void add(btTypedConstraint *c) { world.addConstraint(c, true); }
-};
-
 }  // namespace
 
 struct fb_bullet_scene {
   fb_model_scene def;
-  World *w = nullptr;
+  FbBtWorld *w = nullptr;
   btRigidBody *body[3] = {nullptr, nullptr, nullptr};
   FbRows *pin[4] = {nullptr, nullptr, nullptr, nullptr};  /* ideal joints: 2 rows */
   btVector3 pin_local[4][2];                              /* joint point on body 1 and 2 */
@@ -105,22 +56,8 @@ struct fb_bullet_scene {
   int slider_crank = 0; /* 1: body 2 is the slider, joint 3 the guide */
 };
 
-static btVector3 world_point(const btRigidBody *b, const btVector3 &local) {
-  return b ? b->getCenterOfMassTransform() * local : local;
-}
-
-static btVector3 point_velocity(const btRigidBody *b, const btVector3 &p) {
-  if (!b) return btVector3(0, 0, 0);
-  return b->getLinearVelocity() + b->getAngularVelocity().cross(p - b->getCenterOfMassPosition());
-}
-
-static double body_angle(const btRigidBody *b) {
-  const btMatrix3x3 &R = b->getCenterOfMassTransform().getBasis();
-  return atan2(R[1][0], R[0][0]);
-}
-
 /* a link body between joint points p and q, centre of mass at com_fraction */
-static btRigidBody *make_link(World *w, const fb_link_mass *lm, const double p[2],
+static btRigidBody *make_link(FbBtWorld *w, const fb_link_mass *lm, const double p[2],
                               const double q[2], double omega, const double vp[2]) {
   const double dx = q[0] - p[0], dy = q[1] - p[1];
   const double phi = atan2(dy, dx);
@@ -140,7 +77,7 @@ static btRigidBody *make_link(World *w, const fb_link_mass *lm, const double p[2
 /* the slider-crank's slider: a body free in 3-D whose centre of mass is its
  * hole centre h, moving at v along +x, its principal moments on its (x, y,
  * z); the guide (btSliderConstraint) holds all of it but x */
-static btRigidBody *make_slider(World *w, const fb_link_mass *lm, const double h[2], double v) {
+static btRigidBody *make_slider(FbBtWorld *w, const fb_link_mass *lm, const double h[2], double v) {
   btRigidBody *b =
       w->body(lm->mass, btVector3(lm->inertia_long, lm->inertia_transverse, lm->inertia), false);
   btTransform t;
@@ -187,7 +124,7 @@ extern "C" fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_mode
     memset(&s->stop, 0, sizeof s->stop);
     for (int j = 0; j < 4; j++) memset(&s->cl[j].ep, 0, sizeof s->cl[j].ep);
     for (int j = 0; j < 4; j++) memset(&s->cl[j].prov, 0, sizeof s->cl[j].prov);
-    s->w = new World(sm->bullet.solver, sm->bullet.iterations, sm->gravity);
+    s->w = new FbBtWorld(sm->bullet.solver, sm->bullet.iterations, sm->gravity);
     const double zero[2] = {0, 0};
     s->body[FB_CRANK] = make_link(s->w, &sm->link[FB_CRANK], st.pin[FB_JOINT_A],
                                   st.pin[FB_JOINT_B], st.crank_omega, zero);
@@ -210,9 +147,7 @@ extern "C" fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_mode
         s->b1[j] = s->body[2];
         btTransform frame;
         frame.setIdentity();
-        s->guide = new btSliderConstraint(*s->body[2], frame, true);
-        for (int axis = 0; axis < 6; axis++)
-          s->guide->setParam(BT_CONSTRAINT_STOP_ERP, sm->solver.world_erp, axis);
+        s->guide = fb_bt_slider(nullptr, frame, *s->body[2], frame, sm->solver.world_erp);
         s->guide->setJointFeedback(&s->feedback[j]);
         s->guide->enableFeedback(true);
         s->guide_y = st.hole[FB_JOINT_C][1];
@@ -251,7 +186,7 @@ extern "C" fb_status fb_bullet_scene_create(fb_bullet_scene **out, const fb_mode
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Bullet scene");
   }
   for (int i = 0; i < 3; i++) {
-    s->angle[i] = body_angle(s->body[i]);
+    s->angle[i] = fb_bt_body_angle(s->body[i]);
     s->omega_prev[i] = s->body[i]->getAngularVelocity()[2];
   }
   if (s->slider_crank) { /* the slider's x and v along the guide */
@@ -274,8 +209,8 @@ static void mechanism(const fb_bullet_scene *s, fb_mechanism *m) {
   }
   for (int j = 0; j < 4; j++) {
     const btVector3 q = (s->def.clearance_mask & (1 << j))
-                            ? world_point(s->cl[j].pin, s->cl[j].pin_local)
-                            : world_point(s->b1[j], s->pin_local[j][0]);
+                            ? fb_bt_world_point(s->cl[j].pin, s->cl[j].pin_local)
+                            : fb_bt_world_point(s->b1[j], s->pin_local[j][0]);
     m->joint[j][0] = q[0];
     m->joint[j][1] = q[1];
   }
@@ -301,9 +236,9 @@ static double step_effective_mass(fb_bullet_scene *s, int j, const double n[2]) 
 
 /* eccentricity e = pin centre - hole centre [m] and its rate [m/s] */
 static void geometry(const Clearance *c, btVector3 *p, btVector3 *q, btVector3 *ev) {
-  *p = world_point(c->pin, c->pin_local);
-  *q = world_point(c->hole, c->hole_local);
-  *ev = point_velocity(c->pin, *p) - point_velocity(c->hole, *q);
+  *p = fb_bt_world_point(c->pin, c->pin_local);
+  *q = fb_bt_world_point(c->hole, c->hole_local);
+  *ev = fb_bt_point_velocity(c->pin, *p) - fb_bt_point_velocity(c->hole, *q);
 }
 
 /* what the coming step's position update adds to a body point's motion
@@ -373,32 +308,14 @@ static void clearance_row(fb_bullet_scene *s, int j) {
   }
   c->share = u.step_share;
   note_row(c, &u, m_eff, h);
-  FbRow &r = c->row->row[0];
-  r.n = btVector3(-n[0], -n[1], 0);
-  r.p = pt;
-  r.angular = 0;
-  r.rhs = u.erp * u.depth / h;
-  r.cfm_h = u.cfm / h;
-  r.lo = 0.0;
-  r.hi = SIMD_INFINITY;
-  c->row->nrows = 1;
+  fb_bt_contact_row(c->row, btVector3(-n[0], -n[1], 0), pt, u.erp, u.depth, u.cfm, h);
 }
 
 /* the two rows of ideal joint j: the bodies' joint points coincide */
 static void pin_rows(fb_bullet_scene *s, int j) {
   const double h = s->def.solver.h, erp = s->def.solver.world_erp;
-  const btVector3 pa = world_point(s->b1[j], s->pin_local[j][0]);
-  const btVector3 pb = world_point(s->b2[j], s->pin_local[j][1]);
-  for (int k = 0; k < 2; k++) {
-    FbRow &r = s->pin[j]->row[k];
-    r.n = btVector3(k == 0, k == 1, 0);
-    r.p = pa;
-    r.angular = 0;
-    r.rhs = erp * (pb[k] - pa[k]) / h; /* J v = d(pa - pb)/dt: closes the gap at rate erp/h */
-    r.cfm_h = 0.0;
-    r.lo = -SIMD_INFINITY;
-    r.hi = SIMD_INFINITY;
-  }
+  fb_bt_pin_rows(s->pin[j], fb_bt_world_point(s->b1[j], s->pin_local[j][0]),
+                 fb_bt_world_point(s->b2[j], s->pin_local[j][1]), erp, h);
 }
 
 extern "C" fb_status fb_bullet_scene_step(fb_bullet_scene *s, fb_diag *diag) {
@@ -427,19 +344,8 @@ extern "C" fb_status fb_bullet_scene_step(fb_bullet_scene *s, fb_diag *diag) {
                        "step %.3g s",
                        wdh, fb_joint_name(j), FB_MATCHED_ALIAS_BOUND, s->stop.h_max);
   }
-  FbRow &dr = s->drive->row[0];
-  dr.n = btVector3(0, 0, 1);
-  dr.angular = 1;
-  dr.rhs = s->def.omega2;
-  dr.cfm_h = 0.0;
-  dr.lo = -s->def.solver.drive_torque_max * h;
-  dr.hi = s->def.solver.drive_torque_max * h;
-  FbMlcp *mlcp = s->def.bullet.solver == FB_BULLET_MLCP_DANTZIG
-                     ? static_cast<FbMlcp *>(s->w->solver.s)
-                     : nullptr;
-  const int fallbacks = mlcp ? mlcp->getNumFallbacks() : 0;
-  s->w->world.stepSimulation(h, 0, h);
-  if (mlcp && mlcp->getNumFallbacks() > fallbacks) {
+  fb_bt_drive_row(s->drive, s->def.omega2, s->def.solver.drive_torque_max, h);
+  if (s->w->step(h)) {
     /* btMLCPSolver falls back to sequential impulse when the Dantzig solve
      * fails; that step is no longer the direct solver's: stop, say so */
     s->stop.kind = FB_STOP_SOLVER;
@@ -474,7 +380,7 @@ extern "C" fb_status fb_bullet_scene_step(fb_bullet_scene *s, fb_diag *diag) {
     const double w = s->body[i]->getAngularVelocity()[2];
     s->alpha[i] = (w - s->omega_prev[i]) / h;
     s->omega_prev[i] = w;
-    const double a = body_angle(s->body[i]);
+    const double a = fb_bt_body_angle(s->body[i]);
     s->angle[i] += remainder(a - s->angle[i], 2.0 * M_PI);
   }
   return FB_OK;
@@ -521,7 +427,7 @@ extern "C" double fb_bullet_scene_joint_drift(const fb_bullet_scene *s) {
   for (int j = 0; j < 4; j++) {
     if (!s->pin[j]) continue;
     const btVector3 d =
-        world_point(s->b1[j], s->pin_local[j][0]) - world_point(s->b2[j], s->pin_local[j][1]);
+        fb_bt_world_point(s->b1[j], s->pin_local[j][0]) - fb_bt_world_point(s->b2[j], s->pin_local[j][1]);
     if (d.length() > worst) worst = d.length();
   }
   if (s->guide) { /* the slider's centre off its guide line */

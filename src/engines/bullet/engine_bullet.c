@@ -2,6 +2,7 @@
  * over the Bullet scene (bullet_scene.h, C++ behind C linkage). */
 #include <stdio.h>
 
+#include "bullet_kit.h"
 #include "bullet_scene.h"
 #include "engine.h"
 #include "impact_bullet.h"
@@ -157,4 +158,5 @@ const fb_engine fb_engine_bullet = {
     .settings = bullet_settings,
     .settings_lines = bullet_settings_lines,
     .bench = &bullet_bench,
+    .kit = &fb_bullet_kit,
 };

@@ -6,7 +6,7 @@
 
 #include <new>
 
-#include "bt_rows.h"
+#include "bt_world.h"
 #include "bullet_scene.h"
 #include "impact_bullet.h"
 extern "C" {
@@ -70,15 +70,9 @@ extern "C" fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def
                               fb_contact_persistence(phase)) == FB_OK) {
         share = u.step_share;
         phase += fb_contact_h_omega(h, u.kp, d->mass);
-        FbRow &r = row.row[0];
-        r.n = btVector3(0, 0, 1); /* pushes the body out along +z */
-        r.p = body.getCenterOfMassPosition();
-        r.angular = 0;
-        r.rhs = u.erp * u.depth / h;
-        r.cfm_h = u.cfm / h;
-        r.lo = 0.0;
-        r.hi = SIMD_INFINITY;
-        row.nrows = 1;
+        /* pushes the body out along +z */
+        fb_bt_contact_row(&row, btVector3(0, 0, 1), body.getCenterOfMassPosition(), u.erp,
+                          u.depth, u.cfm, h);
       }
     }
     world.stepSimulation(h, 0, h);

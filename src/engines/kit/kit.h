@@ -54,8 +54,8 @@ typedef struct {
   double h;                  /* step [s] */
   const fb_solver *solver;    /* the case's [solver] settings (case.h) */
   int nbodies, njoints;      /* moving bodies and joints the walk will add */
-  const fb_case *source;     /* optional: the case as run, for an engine's own options
-                                ([siconos] theta) and [clearance] keys; NULL: defaults */
+  const fb_case *c;          /* optional: the case, for an engine's own options (its [NAME]
+                                section, c->bullet ...); NULL: their defaults */
 } fb_kit_world;
 
 /* One moving body at the start. */

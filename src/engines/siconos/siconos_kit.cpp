@@ -377,14 +377,14 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
   if (!w) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Siconos world");
   w->h = o->h;
   w->grav = o->gravity;
-  w->theta = o->source ? o->source->siconos.theta : 0.5;
-  if (o->source && o->source->siconos.scheme != FB_SICONOS_MOREAU_JEAN) {
+  w->theta = o->c ? o->c->siconos.theta : 0.5;
+  if (o->c && o->c->siconos.scheme != FB_SICONOS_MOREAU_JEAN) {
     delete w;
     return fb_diag_set(diag, FB_ERR_ARG, "[siconos] scheme = %s: the Siconos binding of the engine "
                        "kit steps Moreau-Jean only (scheme = moreau-jean)",
-                       fb_siconos_scheme_name(o->source->siconos.scheme));
+                       fb_siconos_scheme_name(o->c->siconos.scheme));
   }
-  w->friction = o->source ? o->source->clearance.friction : 0.0;
+  w->friction = o->c ? o->c->clearance.friction : 0.0;
   *out = w;
   return FB_OK;
 }

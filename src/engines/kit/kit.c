@@ -88,6 +88,17 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
   return b->add_drive(w, drive, rate, diag);
 }
 
+/* sample i of one coordinate's column q (position x, rate v): the step
+ * from t_{i-1} gives its acceleration to that sample's configuration (the
+ * forces the engine solved there); the last sample keeps the one before */
+static void put(double *q, size_t n, size_t i, double x, double v, double h) {
+  q[2 * n + i] = 0.0;
+  q[i] = x;
+  if (i > 0) q[2 * n + i - 1] = (v - q[n + i - 1]) / h;
+  if (i > 0 && i == n - 1) q[2 * n + i] = q[2 * n + i - 1];
+  q[n + i] = v;
+}
+
 /* sample i of every moving body: angle unwrapped from the last one's */
 static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int nb, size_t i) {
   const size_t n = s->n;
@@ -96,17 +107,11 @@ static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int
     double pos[3], vel[3];
     b->body_state(w, k, pos, vel);
     double *q = s->q + (size_t)k * 3 * n;
-    q[2 * n + i] = 0.0;
-    if (i == 0) {
-      q[i] = pos[2];
-    } else {
-      q[i] = q[i - 1] + remainder(pos[2] - q[i - 1], 2.0 * M_PI);
-      /* the step from t_{i-1}: its acceleration belongs to that sample's
-       * configuration (the forces the engine solved there) */
-      q[2 * n + i - 1] = (vel[2] - q[n + i - 1]) / s->h;
-      if (i == n - 1) q[2 * n + i] = q[2 * n + i - 1]; /* the last keeps the one before */
-    }
-    q[n + i] = vel[2];
+    put(q, n, i, i == 0 ? pos[2] : q[i - 1] + remainder(pos[2] - q[i - 1], 2.0 * M_PI), vel[2],
+        s->h);
+    if (!s->centre) continue;
+    put(s->centre + (size_t)k * 3 * n, n, i, pos[0], vel[0], s->h);
+    put(s->centre + (size_t)(nb + k) * 3 * n, n, i, pos[1], vel[1], s->h);
   }
 }
 
@@ -123,9 +128,13 @@ static fb_status steps(const fb_kit_binding *b, void *w, const fb_planar *m,
     sample(b, w, s, m->nbodies - 1, i);
     if (!cl) continue;
     if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&p, b, w, cl->joint);
+    if (i > 0 && cl->state) /* the episode of the step from t_{i-1} */
+      cl->state[i - 1] = cl->force[i - 1] > 0.0 ? (double)p.ep[cl->joint].state : FB_STATE_FREE;
     cl->pen[i] = fb_kit_pipe_read(&p, b, w, m, cl);
+    if (cl->ecc) cl->ecc[i] = p.ecc[cl->joint][0], cl->ecc[s->n + i] = p.ecc[cl->joint][1];
     if (i + 1 < s->n) st = fb_kit_pipe_contacts(&p, b, w, m, cl, s->h, diag);
     else cl->force[i] = i > 0 ? cl->force[i - 1] : 0.0; /* the last keeps the one before */
+    if (i + 1 == s->n && cl->state) cl->state[i] = i > 0 ? cl->state[i - 1] : FB_STATE_FREE;
   }
   fb_kit_pipe_free(&p);
   return st;

@@ -90,6 +90,13 @@ typedef struct {
   double *force, *pen;      /* (n): its contact force [N] and penetration [m] per sample */
   size_t contact_steps;     /* out: steps with a contact row, all joints */
   int impacts;              /* out: impact episodes, all joints */
+  double *ecc;              /* optional (2 x n), NULL: not kept: joint's eccentricity, pin
+                               centre - hole centre, x at ecc[i], y at ecc[n + i] [m] */
+  double *state;            /* optional (n), NULL: not kept: joint's contact state in the step
+                               from sample i (series.h FB_STATE_*: free when it applied no
+                               force, else its episode's impact or continuous) [-] */
+  double m_eff_min, m_eff_max; /* out: the effective mass range over the contact steps of
+                               every clearance joint [kg] (valid when contact_steps > 0) */
 } fb_kit_clearance;
 
 /* An engine's builder functions. */
@@ -118,7 +125,8 @@ typedef struct fb_kit_binding {
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's
  * quantity k (FB_Q_POS, _VEL, _ACC: angle unwrapped [rad], omega [rad/s],
- * alpha [rad/s^2]) at q[(b * 3 + k) * n + i]; t (n) [s]. Sample i's alpha
+ * alpha [rad/s^2]) at q[(b * 3 + k) * n + i]; t (n) [s]; optionally the
+ * centres of mass (centre, a translating body's motion) likewise. Sample i's alpha
  * is the step from t_i, (omega_{i+1} - omega_i) / h, the acceleration the
  * engine solved at sample i's configuration (series.h's
  * fb_series_attribute_to_step_start, as the engines' four-bar runs report
@@ -128,6 +136,10 @@ typedef struct {
   double h;
   double *t;
   double *q;
+  double *centre; /* optional ((bodies x 3) x n), NULL: not kept: body handle b's centre of
+                     mass along x at centre[(b * 3 + k) * n + i] (k as q's: x [m], its rate
+                     [m/s], the step's acceleration [m/s^2]) and along y at
+                     centre[(nb * 3 + b * 3 + k) * n + i], nb the moving bodies */
 } fb_kit_series;
 
 /* Builds description m driven at omega [rad/s] in the engine of binding b

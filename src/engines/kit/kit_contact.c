@@ -49,6 +49,8 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
   const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
   const double delta = ecc - cl->radial_clearance;
   p->pen[j] = delta > 0.0 ? delta : 0.0;
+  p->ecc[j][0] = e[0];
+  p->ecc[j][1] = e[1];
   if (!(delta > 0.0) || ecc == 0.0) return 0;
   const double n[2] = {e[0] / ecc, e[1] / ecc}, r = cl->pin_radius + cl->radial_clearance;
   *c = (fb_kit_contact){.pin = pj->body[0] - 1, .hole = pj->body[1] - 1,
@@ -108,6 +110,8 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     p->force[j] = fb_contact_force(&c.law, c.depth, c.rate, c.v0);
     if ((st = alias_stop(&c, m->joint[j].name, diag)) != FB_OK) return st;
     if ((st = b->add_contact(w, j, &c, diag)) != FB_OK) return st;
+    if (cl->contact_steps == 0 || c.m_eff < cl->m_eff_min) cl->m_eff_min = c.m_eff;
+    if (cl->contact_steps == 0 || c.m_eff > cl->m_eff_max) cl->m_eff_max = c.m_eff;
     cl->contact_steps++;
   }
   return FB_OK;

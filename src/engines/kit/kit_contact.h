@@ -17,6 +17,7 @@ typedef struct {
   double pen[FB_PLANAR_SPEC_MAX_JOINTS];      /* penetration at the step's start [m] */
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: a clearance joint (no ideal joint) */
   double *q, *qd;                             /* the core's coordinates and rates (nq each) */
+  double ecc[FB_PLANAR_SPEC_MAX_JOINTS][2];   /* eccentricity pin - hole at the last read [m] */
 } fb_kit_pipe;
 
 /* Sets p up for m's clearance joints cl->mask. Errors: FB_ERR_ARG (a

@@ -15,10 +15,9 @@
  * What the kit builds, and so what this adapter refuses (FB_ERR_ARG, the
  * model, the key and what to change): one clearance joint (a revolute
  * one, not the driven one), the exact collider, no friction, a fixed or
- * automatic step (not [solver] h_s = adaptive), and the steady start with
- * every pin centred ([run] start = steady, pin_start = centred, no
- * ensemble member's moved start): the kit starts every body on the ideal
- * mechanism's motion at the assembly configuration. It keeps no joint
+ * automatic step (not [solver] h_s = adaptive). Its start is the model's
+ * (start.h: [run] start and pin_start, an ensemble member's moved pin),
+ * handed to the kit as the description's coordinates. It keeps no joint
  * reactions (no load columns) and of the contact's provenance the
  * effective mass range and the contact steps (ERP, CFM and h omega_c are
  * the binding's row, which the kit does not see: NaN); its
@@ -75,13 +74,39 @@ static fb_status refuse(const fb_model_scene *sm, int *joint, fb_diag *diag) {
   if (sm->friction != 0.0)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: [clearance] friction "
                        "= %g; the kit's contact is frictionless (give 0)", name, sm->friction);
-  const fb_case *c = &sm->def->source;
-  if (c->start != FB_START_STEADY || sm->start.ecc[*joint][0] != 0.0 ||
-      sm->start.ecc[*joint][1] != 0.0)
-    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: the kit starts every "
-                       "body on the ideal motion with the pin centred ([run] start = steady, "
-                       "pin_start = centred, ensemble = 1)", name);
   return FB_OK;
+}
+
+/* the model's start (start.h) as the description's coordinates q and
+ * rates qd: each body placed by the one of its joint centres whose
+ * velocity the start gives (the crank by the ground-crank pin and the
+ * follower by the follower-ground pin, both fixed; the coupler by the
+ * crank-coupler hole, coupler_b_vel; a slider by the coupler-slider hole,
+ * its velocity along x): centre = W - R(theta) p, its velocity
+ * v_W + omega x (centre - W), p the joint's point in the body's frame */
+static void start_coordinates(double *q, double *qd, const fb_planar *m, const fb_start_state *st,
+                              int slider) {
+  static const int joint_of[2][3] = {{0, 1, 3}, {0, 1, 2}}; /* four-bar, slider-crank */
+  const double angle[3] = {st->crank_angle, st->coupler_angle,
+                           slider ? m->body[3].angle0 : st->follower_angle};
+  const double omega[3] = {st->crank_omega, st->coupler_omega, slider ? 0.0 : st->follower_omega};
+  for (int b = 0; b < 3; b++) {
+    const fb_planar_joint *pj = &m->joint[joint_of[slider][b]];
+    const int side = pj->body[1] == b + 1;
+    /* the start's pin is on the joint's first moving body (start.h) */
+    const int pin = pj->body[0] == FB_PLANAR_GROUND ? side : !side;
+    const double *w = pin ? st->pin[joint_of[slider][b]] : st->hole[joint_of[slider][b]];
+    double v[2] = {0.0, 0.0}, r[2];
+    if (b == 1) v[0] = st->coupler_b_vel[0], v[1] = st->coupler_b_vel[1];
+    if (b == 2 && slider) v[0] = st->body[1][FB_Q_VEL];
+    fb_planar_rotate(r, angle[b], pj->point[side]);
+    q[3 * b] = w[0] - r[0];
+    q[3 * b + 1] = w[1] - r[1];
+    q[3 * b + 2] = angle[b];
+    qd[3 * b] = v[0] + omega[b] * r[1];
+    qd[3 * b + 1] = v[1] - omega[b] * r[0];
+    qd[3 * b + 2] = omega[b];
+  }
 }
 
 static void kit_run_free(kit_run *r) {
@@ -147,9 +172,13 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
                             .force = r->col + FB_C_FORCE * n, .pen = r->col + FB_C_PEN * n,
                             .ecc = r->col + FB_C_EX * n, .state = r->col + FB_C_STATE * n};
   }
+  fb_start_state start;
+  if (st == FB_OK) st = fb_model_scene_start(&start, sm, diag);
   if (st == FB_OK) {
+    double q0[9], qd0[9]; /* three moving bodies */
+    start_coordinates(q0, qd0, r->m, &start, sm->def->source.mechanism == FB_MECH_SLIDER_CRANK);
     const fb_kit_world o = {sm->gravity, sm->solver.h, &sm->solver, r->m->nbodies - 1,
-                            r->m->njoints};
+                            r->m->njoints, q0, qd0};
     r->s.h = sm->solver.h;
     st = fb_kit_run(b, r->m, sm->omega2, &o, r->joint >= 0 ? &cl : NULL, &r->s, diag);
     r->reached = r->s.n;

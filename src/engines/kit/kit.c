@@ -4,8 +4,10 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "kit_contact.h"
+#include "planar_constraints.h"
 #include "planar_kinematics.h"
 #include "series.h"
 
@@ -46,17 +48,18 @@ static fb_status hold(const fb_kit_binding *b, void *w, const fb_planar *m, unsi
   return st;
 }
 
-/* the walk: bodies, joints (but the clearance joints of mask), loop
- * closure, drive */
+/* the walk: bodies at q (the start's coordinates; moved: not the
+ * assembly), joints (but the clearance joints of mask), loop closure,
+ * drive */
 static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, double omega,
-                       const double *qd, unsigned mask, fb_diag *diag) {
+                       const double *q, const double *qd, int moved, unsigned mask,
+                       fb_diag *diag) {
   int added = 0, drive = -1; /* the engine's joints so far; the drive's among them */
   fb_status st = FB_OK;
   for (int i = 1; i < m->nbodies && st == FB_OK; i++) {
     const fb_planar_body *pb = &m->body[i];
-    const double *v = qd + 3 * (i - 1);
-    const fb_kit_body kb = {pb->mass, pb->inertia, {pb->centre[0], pb->centre[1], pb->angle0},
-                            {v[0], v[1], v[2]}};
+    const double *x = q + 3 * (i - 1), *v = qd + 3 * (i - 1);
+    const fb_kit_body kb = {pb->mass, pb->inertia, {x[0], x[1], x[2]}, {v[0], v[1], v[2]}};
     st = b->add_body(w, &kb, diag);
   }
   for (int j = 0; j < m->njoints && st == FB_OK; j++) {
@@ -65,13 +68,16 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
     if (mask & (1u << j)) continue; /* a pin in a hole: the contact each step */
     if (j == m->drive) drive = added;
     added++;
+    double at[2] = {pj->at[0], pj->at[1]}; /* where body[0] puts the joint at the start */
+    if (moved) fb_planar_point(at, m, q, pj->body[0], pj->point[0]);
     if (pj->kind == FB_KIND_PRISMATIC) {
-      /* the slide's axis from body[0]'s frame into the world at assembly */
-      const double a = m->body[pj->body[0]].angle0, c = cos(a), s = sin(a);
-      const double axis[2] = {c * pj->axis[0] - s * pj->axis[1], s * pj->axis[0] + c * pj->axis[1]};
-      st = b->add_prismatic(w, b0, b1, pj->at, axis, diag);
+      /* the slide's axis from body[0]'s frame into the world at the start */
+      double axis[2];
+      fb_planar_rotate(axis, moved ? fb_planar_angle(q, pj->body[0]) : m->body[pj->body[0]].angle0,
+                       pj->axis);
+      st = b->add_prismatic(w, b0, b1, at, axis, diag);
     } else {
-      st = b->add_revolute(w, b0, b1, pj->at, diag);
+      st = b->add_revolute(w, b0, b1, at, diag);
     }
   }
   if (st == FB_OK && b->close_loop) st = b->close_loop(w, diag);
@@ -148,13 +154,18 @@ fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
                        b->engine);
   const int nq = fb_planar_nq(m);
-  double *qd = malloc((size_t)nq * sizeof *qd);
-  if (!qd) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  fb_status st = start_velocities(qd, m, omega, diag);
+  double *q = malloc(2 * (size_t)nq * sizeof *q);
+  if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  double *qd = q + nq;
+  fb_status st = FB_OK;
+  if (o->q0) memcpy(q, o->q0, (size_t)nq * sizeof *q);
+  else fb_planar_assembly(m, q);
+  if (o->qd0) memcpy(qd, o->qd0, (size_t)nq * sizeof *qd);
+  else st = start_velocities(qd, m, omega, diag);
   void *w = NULL;
   if (st == FB_OK) st = b->world_new(&w, o, diag);
-  if (st == FB_OK) st = build(b, w, m, omega, qd, mask, diag);
-  free(qd);
+  if (st == FB_OK) st = build(b, w, m, omega, q, qd, o->q0 != NULL, mask, diag);
+  free(q);
   if (st == FB_OK) st = steps(b, w, m, cl, s, diag);
   if (w) b->world_free(w);
   return st;

@@ -51,6 +51,11 @@ typedef struct {
   double h;                  /* step [s] */
   const fb_solver *solver;    /* the case's [solver] settings (case.h) */
   int nbodies, njoints;      /* moving bodies and joints the walk will add */
+  const double *q0, *qd0;    /* optional (fb_planar_nq each), NULL: the assembly and the
+                                drive's velocities there: the start's coordinates x, y
+                                [m], theta [rad] per moving body and their rates, the
+                                ideal joints placed where their body[0] puts them (a start
+                                with a clearance joint's pin off its hole's centre) */
 } fb_kit_world;
 
 /* One moving body at the start. */

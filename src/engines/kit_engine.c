@@ -117,13 +117,16 @@ static void kit_run_free(kit_run *r) {
   free(r);
 }
 
-/* the kit's stop (FB_ERR_NUMERIC: an engine error or the aliasing stop) at
- * the samples it reached */
-static void kit_stopped_at(kit_run *r, const fb_diag *diag) {
+/* the kit's stop (FB_ERR_NUMERIC: an engine error, or the aliasing stop
+ * at omega_d h = wdh > 0 of the row at h) at the samples it reached */
+static void kit_stopped_at(kit_run *r, double wdh, double h, const fb_diag *diag) {
   while (r->reached < r->s.n && isfinite(r->s.t[r->reached])) r->reached++;
-  r->stop.kind = strncmp(diag->msg, "aliased", 7) == 0 ? FB_STOP_ALIASED : FB_STOP_SOLVER;
+  r->stop.kind = wdh > 0.0 ? FB_STOP_ALIASED : FB_STOP_SOLVER;
   r->stop.engine = r->engine;
-  r->stop.joint = r->stop.kind == FB_STOP_ALIASED ? r->joint : -1;
+  r->stop.joint = wdh > 0.0 ? r->joint : -1;
+  r->stop.value = wdh;
+  r->stop.limit = wdh > 0.0 ? FB_MATCHED_ALIAS_BOUND : 0.0;
+  r->stop.h_max = wdh > 0.0 ? h * FB_MATCHED_ALIAS_BOUND / wdh : 0.0;
   r->stop.t = r->reached ? r->s.t[r->reached - 1] : 0.0;
   r->stop.step = r->reached;
   snprintf(r->stop.detail, sizeof r->stop.detail, "%.150s", diag->msg);
@@ -186,7 +189,7 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
                                       cl.contact_steps};
     if (st == FB_ERR_NUMERIC) { /* a stop is a result: replay what was reached */
       r->reached = 0;
-      kit_stopped_at(r, diag);
+      kit_stopped_at(r, cl.aliased_omega_d_h, sm->solver.h, diag);
       st = r->reached ? FB_OK : FB_ERR_NUMERIC;
     }
   }

@@ -102,6 +102,8 @@ typedef struct {
                                force, else its episode's impact or continuous) [-] */
   double m_eff_min, m_eff_max; /* out: the effective mass range over the contact steps of
                                every clearance joint [kg] (valid when contact_steps > 0) */
+  double aliased_omega_d_h; /* out: omega_d h of the row whose aliasing stopped the run
+                               (FB_ERR_NUMERIC, "aliased"), else 0 [-] */
 } fb_kit_clearance;
 
 /* An engine's builder functions. */

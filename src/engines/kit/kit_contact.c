@@ -73,7 +73,8 @@ double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
 /* the matched mapping's aliasing stop (contact.h): a row whose damped
  * frequency passes FB_MATCHED_ALIAS_BOUND per step has lost its spring's
  * meaning; FB_ERR_NUMERIC naming the largest usable step */
-static fb_status alias_stop(const fb_kit_contact *c, const char *joint, fb_diag *diag) {
+static fb_status alias_stop(const fb_kit_contact *c, const char *joint, double *stopped_at,
+                            fb_diag *diag) {
   fb_contact_row row;
   if (!fb_mapping_is_matched(c->mapping) ||
       fb_contact_row_step(&row, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
@@ -81,6 +82,7 @@ static fb_status alias_stop(const fb_kit_contact *c, const char *joint, fb_diag 
     return FB_OK;
   const double wdh = fb_contact_omega_d_h(c->h, row.kp, row.kd, c->m_eff);
   if (!(wdh > FB_MATCHED_ALIAS_BOUND)) return FB_OK;
+  *stopped_at = wdh;
   return fb_diag_set(diag, FB_ERR_NUMERIC, "aliased: omega_d h = %.3g at the %s joint (bound "
                      "%.3g); largest usable step %.3g s", wdh, joint, FB_MATCHED_ALIAS_BOUND,
                      c->h * FB_MATCHED_ALIAS_BOUND / wdh);
@@ -108,7 +110,7 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     c.onset = onset;
     c.h = h;
     p->force[j] = fb_contact_force(&c.law, c.depth, c.rate, c.v0);
-    if ((st = alias_stop(&c, m->joint[j].name, diag)) != FB_OK) return st;
+    if ((st = alias_stop(&c, m->joint[j].name, &cl->aliased_omega_d_h, diag)) != FB_OK) return st;
     if ((st = b->add_contact(w, j, &c, diag)) != FB_OK) return st;
     if (cl->contact_steps == 0 || c.m_eff < cl->m_eff_min) cl->m_eff_min = c.m_eff;
     if (cl->contact_steps == 0 || c.m_eff > cl->m_eff_max) cl->m_eff_max = c.m_eff;

@@ -19,8 +19,9 @@
  * (start.h: [run] start and pin_start, an ensemble member's moved pin),
  * handed to the kit as the description's coordinates. It keeps no joint
  * reactions (no load columns) and of the contact's provenance the
- * effective mass range and the contact steps (ERP, CFM and h omega_c are
- * the binding's row, which the kit does not see: NaN); its
+ * effective mass range, the largest h omega_c of the law's rows and the
+ * contact steps (ERP and CFM are a binding's, which the kit does not
+ * see: NaN); its
  * drift is the largest separation of an ideal revolute joint's two points
  * over the samples replayed [m]. */
 #include <math.h>
@@ -185,7 +186,7 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
     r->s.h = sm->solver.h;
     st = fb_kit_run(b, r->m, sm->omega2, &o, r->joint >= 0 ? &cl : NULL, &r->s, diag);
     r->reached = r->s.n;
-    r->prov = (fb_contact_provenance){cl.m_eff_min, cl.m_eff_max, NAN, NAN, NAN,
+    r->prov = (fb_contact_provenance){cl.m_eff_min, cl.m_eff_max, NAN, NAN, cl.h_omega_max,
                                       cl.contact_steps};
     if (st == FB_ERR_NUMERIC) { /* a stop is a result: replay what was reached */
       r->reached = 0;
@@ -269,8 +270,8 @@ static double adapter_drift(const void *self) {
   return worst;
 }
 
-/* the kit's figures of the clearance joint over the whole run (ERP, CFM
- * and h omega_c are a binding's row: not kept) */
+/* the kit's figures of the clearance joint over the whole run (ERP and
+ * CFM are a binding's row: not kept) */
 static void adapter_provenance(const void *self, int joint, fb_contact_provenance *out) {
   const kit_run *r = self;
   *out = (fb_contact_provenance){NAN, NAN, NAN, NAN, NAN, 0};

@@ -104,6 +104,8 @@ typedef struct {
                                every clearance joint [kg] (valid when contact_steps > 0) */
   double aliased_omega_d_h; /* out: omega_d h of the row whose aliasing stopped the run
                                (FB_ERR_NUMERIC, "aliased"), else 0 [-] */
+  double h_omega_max;       /* out: the largest h omega_c = h sqrt(kp / m_eff) of the rows the
+                               law and mapping gave (contact.h's row, as ODE's) [-] */
 } fb_kit_clearance;
 
 /* An engine's builder functions. */

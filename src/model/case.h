@@ -153,7 +153,13 @@ typedef struct {
   double world_cfm;        /* CFM of the ideal joints [m/(N s)] >= 0 */
   double drive_torque_max; /* torque limit of the crank drive motor [N m] */
   unsigned long seed;      /* dRandSetSeed value (QuickStep row order) */
+  int builder;             /* fb_builder: who builds an engine's four-bar or slider-crank */
 } fb_solver;
+
+/* Who builds a four-bar or slider-crank model of an engine that has both
+ * ([solver] builder): its own hand-built world, or its engine-kit binding
+ * through the kit adapter (engine.h fb_engine_runner). */
+typedef enum { FB_BUILDER_HAND = 0, FB_BUILDER_KIT = 1 } fb_builder;
 
 /* Initial state of the moving bodies ([run] start; physics/start.h resolves it). */
 typedef enum {

@@ -19,11 +19,11 @@ static int sample_finite(const fb_sample *x) {
 static void engine_stop(fb_stop *out, const fb_engine *e, const void *self, fb_status st,
                         double t, size_t k, const fb_model_scene *sm, const fb_diag *diag) {
   memset(out, 0, sizeof *out);
-  out->engine = e->name;
+  out->engine = fb_engine_name(sm->model->engine); /* e may be the kit adapter */
   out->joint = -1;
   if (self && e->stopped) {
     e->stopped(self, out);
-    if (!out->engine) out->engine = e->name;
+    if (!out->engine) out->engine = fb_engine_name(sm->model->engine);
     if (out->joint >= 0) out->joint_name = fb_case_joint_name(&sm->def->source, out->joint);
     if (out->kind != FB_STOP_NONE) return;
   }
@@ -158,6 +158,7 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_mode
   fb_model_scene sm;
   fb_status st = fb_scene_select(&sm, def, m, diag);
   const fb_engine *e = st == FB_OK ? fb_engine_get(m->engine, diag) : NULL;
+  if (e) e = fb_engine_runner(e, &def->source, diag); /* its own, or its kit binding's */
   if (st == FB_OK && !e) st = FB_ERR_ARG;
   if (st == FB_OK) {
     out->clearance_mask = sm.clearance_mask;

@@ -311,6 +311,11 @@ static const key_spec keys[] = {
      "peak the paper's case needs at 1000 rpm, so the crank speed is held exactly"},
     {"solver", "seed", K_ULONG, OFF(solver.seed), 0, 0, 0, 0, 0, "-", "1",
      "a non-negative integer", "seed of ODE's random generator (dRandSetSeed)"},
+    {"solver", "builder", K_WORDS, OFF(solver.builder), 0, 0, 0, 0, 0, "-", "hand", "hand or kit",
+     "who builds a four-bar or slider-crank model of an engine that has both: hand (the "
+     "engine's own world) or kit (its engine-kit binding, through the kit adapter: one clearance "
+     "joint, exact collider, no friction, fixed or auto step, steady start with centred pins; "
+     "docs/architecture.md); an engine with a binding alone always builds through the kit"},
 
     /* each engine's own section, in engine order (model/opts_<name>.h) */
 #define X(name) FB_OPTS_KEYS_##name(ENGINE_ROW)
@@ -406,10 +411,12 @@ typedef struct {
   const char *const *words;
 } engine_words_row;
 #define ENGINE_WORDS(sec, kind, key, field, words, ...) {#sec, key, words},
+static const char *const builder_words[] = {"hand", "kit", NULL}; /* fb_builder */
 static const engine_words_row engine_words[] = {
 #define X(name) FB_OPTS_KEYS_##name(ENGINE_WORDS)
     FB_ENGINE_OPTS_LIST
 #undef X
+    {"solver", "builder", builder_words},
     {NULL, NULL, NULL}};
 
 const char *const *fb_casefile_spec_words(const key_spec *k) {

@@ -233,6 +233,14 @@ typedef struct fb_engine {
  * FB_ERR_ARG). */
 const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag);
 
+/* The table that runs engine e's models on a four-bar or slider-crank
+ * case c (model_run.c): e itself, or the kit adapter (fb_engine_kit_adapter,
+ * kit_engine.c) over e's engine-kit binding when e has no create of its own
+ * or the case asks [solver] builder = kit and e has a binding (an engine
+ * without one keeps its own). NULL with diag (FB_ERR_ARG) for an engine
+ * with neither. */
+const fb_engine *fb_engine_runner(const fb_engine *e, const fb_case *c, fb_diag *diag);
+
 /* Steps instance self of engine e (step size h [s]) until its sampled time
  * reaches t - h/2 [s]. Errors: those of e->step. */
 fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, fb_diag *diag);
@@ -241,6 +249,9 @@ fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, 
  * engines (engines.c) ... */
 extern const fb_engine fb_engine_analytic;
 extern const fb_engine fb_engine_reference;
+/* ... and the kit adapter (kit_engine.c: any engine's kit binding on the
+ * four-bar and slider-crank run path; fb_engine_runner picks it) */
+extern const fb_engine fb_engine_kit_adapter;
 /* fb_engine_<name> of every engine of FB_ENGINE_LIST (fb_config.h), each
  * defined in its folder src/engines/<name>/ and linked only in builds with it
  * (FB_HAVE_<ID>). */

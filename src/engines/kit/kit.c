@@ -4,8 +4,10 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "kit_contact.h"
+#include "planar_constraints.h"
 #include "planar_kinematics.h"
 #include "series.h"
 
@@ -46,18 +48,19 @@ static fb_status hold(const fb_kit_binding *b, void *w, const fb_planar *m, unsi
   return st;
 }
 
-/* the walk: bodies, joints (but the clearance joints of mask), loop
- * closure, drive */
+/* the walk: bodies at q (the start's coordinates; moved: not the
+ * assembly), joints (but the clearance joints of mask), loop closure,
+ * drive */
 static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, double omega,
-                       const double *qd, const fb_kit_clearance *cl, fb_diag *diag) {
+                       const double *q, const double *qd, int moved,
+                       const fb_kit_clearance *cl, fb_diag *diag) {
   const unsigned mask = cl ? cl->mask : 0u;
   int added = 0, drive = -1; /* the engine's joints so far; the drive's among them */
   fb_status st = FB_OK;
   for (int i = 1; i < m->nbodies && st == FB_OK; i++) {
     const fb_planar_body *pb = &m->body[i];
-    const double *v = qd + 3 * (i - 1);
-    const fb_kit_body kb = {pb->mass, pb->inertia, {pb->centre[0], pb->centre[1], pb->angle0},
-                            {v[0], v[1], v[2]}};
+    const double *x = q + 3 * (i - 1), *v = qd + 3 * (i - 1);
+    const fb_kit_body kb = {pb->mass, pb->inertia, {x[0], x[1], x[2]}, {v[0], v[1], v[2]}};
     st = b->add_body(w, &kb, diag);
   }
   for (int j = 0; j < m->njoints && st == FB_OK; j++) {
@@ -71,13 +74,16 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
     }
     if (j == m->drive) drive = added;
     added++;
+    double at[2] = {pj->at[0], pj->at[1]}; /* where body[0] puts the joint at the start */
+    if (moved) fb_planar_point(at, m, q, pj->body[0], pj->point[0]);
     if (pj->kind == FB_KIND_PRISMATIC) {
-      /* the slide's axis from body[0]'s frame into the world at assembly */
-      const double a = m->body[pj->body[0]].angle0, c = cos(a), s = sin(a);
-      const double axis[2] = {c * pj->axis[0] - s * pj->axis[1], s * pj->axis[0] + c * pj->axis[1]};
-      st = b->add_prismatic(w, b0, b1, pj->at, axis, diag);
+      /* the slide's axis from body[0]'s frame into the world at the start */
+      double axis[2];
+      fb_planar_rotate(axis, moved ? fb_planar_angle(q, pj->body[0]) : m->body[pj->body[0]].angle0,
+                       pj->axis);
+      st = b->add_prismatic(w, b0, b1, at, axis, diag);
     } else {
-      st = b->add_revolute(w, b0, b1, pj->at, diag);
+      st = b->add_revolute(w, b0, b1, at, diag);
     }
   }
   if (st == FB_OK && b->close_loop) st = b->close_loop(w, diag);
@@ -94,6 +100,17 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
   return b->add_drive(w, drive, rate, diag);
 }
 
+/* sample i of one coordinate's column q (position x, rate v): the step
+ * from t_{i-1} gives its acceleration to that sample's configuration (the
+ * forces the engine solved there); the last sample keeps the one before */
+static void put(double *q, size_t n, size_t i, double x, double v, double h) {
+  q[2 * n + i] = 0.0;
+  q[i] = x;
+  if (i > 0) q[2 * n + i - 1] = (v - q[n + i - 1]) / h;
+  if (i > 0 && i == n - 1) q[2 * n + i] = q[2 * n + i - 1];
+  q[n + i] = v;
+}
+
 /* sample i of every moving body: angle unwrapped from the last one's */
 static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int nb, size_t i) {
   const size_t n = s->n;
@@ -102,17 +119,11 @@ static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int
     double pos[3], vel[3];
     b->body_state(w, k, pos, vel);
     double *q = s->q + (size_t)k * 3 * n;
-    q[2 * n + i] = 0.0;
-    if (i == 0) {
-      q[i] = pos[2];
-    } else {
-      q[i] = q[i - 1] + remainder(pos[2] - q[i - 1], 2.0 * M_PI);
-      /* the step from t_{i-1}: its acceleration belongs to that sample's
-       * configuration (the forces the engine solved there) */
-      q[2 * n + i - 1] = (vel[2] - q[n + i - 1]) / s->h;
-      if (i == n - 1) q[2 * n + i] = q[2 * n + i - 1]; /* the last keeps the one before */
-    }
-    q[n + i] = vel[2];
+    put(q, n, i, i == 0 ? pos[2] : q[i - 1] + remainder(pos[2] - q[i - 1], 2.0 * M_PI), vel[2],
+        s->h);
+    if (!s->centre) continue;
+    put(s->centre + (size_t)k * 3 * n, n, i, pos[0], vel[0], s->h);
+    put(s->centre + (size_t)(nb + k) * 3 * n, n, i, pos[1], vel[1], s->h);
   }
 }
 
@@ -129,9 +140,13 @@ static fb_status steps(const fb_kit_binding *b, void *w, const fb_planar *m,
     sample(b, w, s, m->nbodies - 1, i);
     if (!cl) continue;
     if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&p, b, w, cl->joint);
+    if (i > 0 && cl->state) /* the episode of the step from t_{i-1} */
+      cl->state[i - 1] = cl->force[i - 1] > 0.0 ? (double)p.ep[cl->joint].state : FB_STATE_FREE;
     cl->pen[i] = fb_kit_pipe_read(&p, b, w, m, cl);
+    if (cl->ecc) cl->ecc[i] = p.ecc[cl->joint][0], cl->ecc[s->n + i] = p.ecc[cl->joint][1];
     if (i + 1 < s->n) st = fb_kit_pipe_contacts(&p, b, w, m, cl, s->h, diag);
     else cl->force[i] = i > 0 ? cl->force[i - 1] : 0.0; /* the last keeps the one before */
+    if (i + 1 == s->n && cl->state) cl->state[i] = i > 0 ? cl->state[i - 1] : FB_STATE_FREE;
   }
   fb_kit_pipe_free(&p);
   return st;
@@ -145,13 +160,18 @@ fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
                        b->engine);
   const int nq = fb_planar_nq(m);
-  double *qd = malloc((size_t)nq * sizeof *qd);
-  if (!qd) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  fb_status st = start_velocities(qd, m, omega, diag);
+  double *q = malloc(2 * (size_t)nq * sizeof *q);
+  if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  double *qd = q + nq;
+  fb_status st = FB_OK;
+  if (o->q0) memcpy(q, o->q0, (size_t)nq * sizeof *q);
+  else fb_planar_assembly(m, q);
+  if (o->qd0) memcpy(qd, o->qd0, (size_t)nq * sizeof *qd);
+  else st = start_velocities(qd, m, omega, diag);
   void *w = NULL;
   if (st == FB_OK) st = b->world_new(&w, o, diag);
-  if (st == FB_OK) st = build(b, w, m, omega, qd, cl, diag);
-  free(qd);
+  if (st == FB_OK) st = build(b, w, m, omega, q, qd, o->q0 != NULL, cl, diag);
+  free(q);
   if (st == FB_OK) st = steps(b, w, m, cl, s, diag);
   if (w) b->world_free(w);
   return st;

@@ -56,6 +56,11 @@ typedef struct {
   int nbodies, njoints;      /* moving bodies and joints the walk will add */
   const fb_case *c;          /* optional: the case, for an engine's own options (its [NAME]
                                 section, c->bullet ...); NULL: their defaults */
+  const double *q0, *qd0;    /* optional (fb_planar_nq each), NULL: the assembly and the
+                                drive's velocities there: the start's coordinates x, y
+                                [m], theta [rad] per moving body and their rates, the
+                                ideal joints placed where their body[0] puts them (a start
+                                with a clearance joint's pin off its hole's centre) */
 } fb_kit_world;
 
 /* One moving body at the start. */
@@ -95,6 +100,17 @@ typedef struct {
   double *force, *pen;      /* (n): its contact force [N] and penetration [m] per sample */
   size_t contact_steps;     /* out: steps with a contact row, all joints */
   int impacts;              /* out: impact episodes, all joints */
+  double *ecc;              /* optional (2 x n), NULL: not kept: joint's eccentricity, pin
+                               centre - hole centre, x at ecc[i], y at ecc[n + i] [m] */
+  double *state;            /* optional (n), NULL: not kept: joint's contact state in the step
+                               from sample i (series.h FB_STATE_*: free when it applied no
+                               force, else its episode's impact or continuous) [-] */
+  double m_eff_min, m_eff_max; /* out: the effective mass range over the contact steps of
+                               every clearance joint [kg] (valid when contact_steps > 0) */
+  double aliased_omega_d_h; /* out: omega_d h of the row whose aliasing stopped the run
+                               (FB_ERR_NUMERIC, "aliased"), else 0 [-] */
+  double h_omega_max;       /* out: the largest h omega_c = h sqrt(kp / m_eff) of the rows the
+                               law and mapping gave (contact.h's row, as ODE's) [-] */
 } fb_kit_clearance;
 
 /* One clearance joint for an engine that builds it as its own relation
@@ -142,7 +158,8 @@ typedef struct fb_kit_binding {
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's
  * quantity k (FB_Q_POS, _VEL, _ACC: angle unwrapped [rad], omega [rad/s],
- * alpha [rad/s^2]) at q[(b * 3 + k) * n + i]; t (n) [s]. Sample i's alpha
+ * alpha [rad/s^2]) at q[(b * 3 + k) * n + i]; t (n) [s]; optionally the
+ * centres of mass (centre, a translating body's motion) likewise. Sample i's alpha
  * is the step from t_i, (omega_{i+1} - omega_i) / h, the acceleration the
  * engine solved at sample i's configuration (series.h's
  * fb_series_attribute_to_step_start, as the engines' four-bar runs report
@@ -152,6 +169,10 @@ typedef struct {
   double h;
   double *t;
   double *q;
+  double *centre; /* optional ((bodies x 3) x n), NULL: not kept: body handle b's centre of
+                     mass along x at centre[(b * 3 + k) * n + i] (k as q's: x [m], its rate
+                     [m/s], the step's acceleration [m/s^2]) and along y at
+                     centre[(nb * 3 + b * 3 + k) * n + i], nb the moving bodies */
 } fb_kit_series;
 
 /* Builds description m driven at omega [rad/s] in the engine of binding b

@@ -50,6 +50,8 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
   const double delta = ecc - cl->radial_clearance;
   if (ecc > 0.0) p->rate[j] = (e[0] * (vp[0] - vh[0]) + e[1] * (vp[1] - vh[1])) / ecc;
   p->pen[j] = delta > 0.0 ? delta : 0.0;
+  p->ecc[j][0] = e[0];
+  p->ecc[j][1] = e[1];
   if (!(delta > 0.0) || ecc == 0.0) return 0;
   const double n[2] = {e[0] / ecc, e[1] / ecc}, r = cl->pin_radius + cl->radial_clearance;
   *c = (fb_kit_contact){.pin = pj->body[0] - 1, .hole = pj->body[1] - 1,
@@ -69,17 +71,22 @@ double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
   return p->pen[cl->joint];
 }
 
-/* the matched mapping's aliasing stop (contact.h): a row whose damped
- * frequency passes FB_MATCHED_ALIAS_BOUND per step has lost its spring's
- * meaning; FB_ERR_NUMERIC naming the largest usable step */
-static fb_status alias_stop(const fb_kit_contact *c, const char *joint, fb_diag *diag) {
+/* the row the law and mapping hand the engine (contact.h): its h omega_c
+ * noted (cl->h_omega_max); the matched mapping's aliasing stop: a row
+ * whose damped frequency passes FB_MATCHED_ALIAS_BOUND per step has lost
+ * its spring's meaning; FB_ERR_NUMERIC naming the largest usable step,
+ * its omega_d h in cl->aliased_omega_d_h */
+static fb_status note_row(const fb_kit_contact *c, const char *joint, fb_kit_clearance *cl,
+                          fb_diag *diag) {
   fb_contact_row row;
-  if (!fb_mapping_is_matched(c->mapping) ||
-      fb_contact_row_step(&row, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
+  if (fb_contact_row_step(&row, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
                           c->onset, 0.0) != FB_OK)
     return FB_OK;
+  cl->h_omega_max = fmax(cl->h_omega_max, fb_contact_h_omega(c->h, row.kp, c->m_eff));
+  if (!fb_mapping_is_matched(c->mapping)) return FB_OK;
   const double wdh = fb_contact_omega_d_h(c->h, row.kp, row.kd, c->m_eff);
   if (!(wdh > FB_MATCHED_ALIAS_BOUND)) return FB_OK;
+  cl->aliased_omega_d_h = wdh;
   return fb_diag_set(diag, FB_ERR_NUMERIC, "aliased: omega_d h = %.3g at the %s joint (bound "
                      "%.3g); largest usable step %.3g s", wdh, joint, FB_MATCHED_ALIAS_BOUND,
                      c->h * FB_MATCHED_ALIAS_BOUND / wdh);
@@ -123,8 +130,10 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     c.onset = onset;
     c.h = h;
     p->force[j] = fb_contact_force(&c.law, c.depth, c.rate, c.v0);
-    if ((st = alias_stop(&c, m->joint[j].name, diag)) != FB_OK) return st;
+    if ((st = note_row(&c, m->joint[j].name, cl, diag)) != FB_OK) return st;
     if ((st = b->add_contact(w, j, &c, diag)) != FB_OK) return st;
+    if (cl->contact_steps == 0 || c.m_eff < cl->m_eff_min) cl->m_eff_min = c.m_eff;
+    if (cl->contact_steps == 0 || c.m_eff > cl->m_eff_max) cl->m_eff_max = c.m_eff;
     cl->contact_steps++;
   }
   return FB_OK;

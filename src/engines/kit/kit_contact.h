@@ -19,6 +19,7 @@ typedef struct {
   double *q, *qd;                             /* the core's coordinates and rates (nq each) */
   double rate[FB_PLANAR_SPEC_MAX_JOINTS];     /* penetration rate at the state last read [m/s] */
   double rate_before[FB_PLANAR_SPEC_MAX_JOINTS]; /* the one read before it [m/s] */
+  double ecc[FB_PLANAR_SPEC_MAX_JOINTS][2];   /* eccentricity pin - hole at the last read [m] */
 } fb_kit_pipe;
 
 /* Sets p up for m's clearance joints cl->mask. Errors: FB_ERR_ARG (a

@@ -1,0 +1,312 @@
+/* The kit adapter (engine.h, fb_engine_runner): any engine's binding of the
+ * engine kit (src/engines/kit/kit.h) as an engine of the four-bar and
+ * slider-crank run path (model_run.c). create writes the case's mechanism
+ * as a planar description at the model's lengths (fb_planar_of_case:
+ * nominal or the stack-up corner), runs it through the binding
+ * (fb_kit_run: the whole series, as the reference engine computes its
+ * own), and step replays it one sample at a time as fb_samples: the crank
+ * angle, every output body's angle, omega and alpha (a translating body's
+ * centre x, v, a), the clearance joint's force, penetration, eccentricity
+ * and contact state. The kit's series already gives each step's
+ * acceleration and contact force to the sample the step started from
+ * (kit.h), so the table asks no lag correction; its spikes are refined as
+ * the hand-built engines' are.
+ *
+ * What the kit builds, and so what this adapter refuses (FB_ERR_ARG, the
+ * model, the key and what to change): one clearance joint (a revolute
+ * one, not the driven one), the exact collider, no friction, a fixed or
+ * automatic step (not [solver] h_s = adaptive). Its start is the model's
+ * (start.h: [run] start and pin_start, an ensemble member's moved pin),
+ * handed to the kit as the description's coordinates. It keeps no joint
+ * reactions (no load columns) and of the contact's provenance the
+ * effective mass range, the largest h omega_c of the law's rows and the
+ * contact steps (ERP and CFM are a binding's, which the kit does not
+ * see: NaN); its
+ * drift is the largest separation of an ideal revolute joint's two points
+ * over the samples replayed [m]. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine.h"
+#include "kit.h"
+#include "planar_case.h"
+#include "planar_constraints.h"
+
+typedef struct {
+  const fb_model_scene *sm;
+  fb_planar *m;        /* the description the kit ran */
+  fb_kit_series s;     /* t, q, centre (n each) */
+  double *col;         /* the clearance joint's force, penetration, ecc x, ecc y, state (5 x n) */
+  int joint;           /* the clearance joint, -1 without */
+  size_t reached;      /* samples the kit filled */
+  size_t i;            /* the sample replayed now */
+  int impacts;         /* impact episodes up to sample i */
+  fb_stop stop;        /* why the kit stopped early (kind FB_STOP_NONE: it did not) */
+  fb_contact_provenance prov; /* the clearance joint's effective mass and contact steps */
+  const char *engine;  /* the binding's engine */
+} kit_run;
+
+/* the engine of model sm, which the runner picked for its binding */
+static const fb_kit_binding *binding_of(const fb_model_scene *sm) {
+  const fb_engine *e = fb_engine_get(sm->model->engine, NULL);
+  return e ? e->kit : NULL;
+}
+
+/* what the kit cannot build of model sm, as an error naming the key */
+static fb_status refuse(const fb_model_scene *sm, int *joint, fb_diag *diag) {
+  const char *name = sm->model->name;
+  *joint = -1;
+  if (sm->solver.h_mode == FB_STEP_ADAPTIVE)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: [solver] h_s = "
+                       "adaptive is the hand-built ODE world's; give a fixed step or auto, or "
+                       "[solver] builder = hand", name);
+  if (!sm->clearance_mask) return FB_OK;
+  int n = 0;
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
+    if (sm->clearance_mask & (1 << j)) *joint = j, n++;
+  if (n != 1)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: one clearance joint "
+                       "([clearance] joints), and the case names %d", name, n);
+  if (sm->collider != FB_COLLIDER_EXACT)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: the exact collider "
+                       "only ([clearance] collider = exact)", name);
+  if (sm->friction != 0.0)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: [clearance] friction "
+                       "= %g; the kit's contact is frictionless (give 0)", name, sm->friction);
+  return FB_OK;
+}
+
+/* the model's start (start.h) as the description's coordinates q and
+ * rates qd: each body placed by the one of its joint centres whose
+ * velocity the start gives (the crank by the ground-crank pin and the
+ * follower by the follower-ground pin, both fixed; the coupler by the
+ * crank-coupler hole, coupler_b_vel; a slider by the coupler-slider hole,
+ * its velocity along x): centre = W - R(theta) p, its velocity
+ * v_W + omega x (centre - W), p the joint's point in the body's frame */
+static void start_coordinates(double *q, double *qd, const fb_planar *m, const fb_start_state *st,
+                              int slider) {
+  static const int joint_of[2][3] = {{0, 1, 3}, {0, 1, 2}}; /* four-bar, slider-crank */
+  const double angle[3] = {st->crank_angle, st->coupler_angle,
+                           slider ? m->body[3].angle0 : st->follower_angle};
+  const double omega[3] = {st->crank_omega, st->coupler_omega, slider ? 0.0 : st->follower_omega};
+  for (int b = 0; b < 3; b++) {
+    const fb_planar_joint *pj = &m->joint[joint_of[slider][b]];
+    const int side = pj->body[1] == b + 1;
+    /* the start's pin is on the joint's first moving body (start.h) */
+    const int pin = pj->body[0] == FB_PLANAR_GROUND ? side : !side;
+    const double *w = pin ? st->pin[joint_of[slider][b]] : st->hole[joint_of[slider][b]];
+    double v[2] = {0.0, 0.0}, r[2];
+    if (b == 1) v[0] = st->coupler_b_vel[0], v[1] = st->coupler_b_vel[1];
+    if (b == 2 && slider) v[0] = st->body[1][FB_Q_VEL];
+    fb_planar_rotate(r, angle[b], pj->point[side]);
+    q[3 * b] = w[0] - r[0];
+    q[3 * b + 1] = w[1] - r[1];
+    q[3 * b + 2] = angle[b];
+    qd[3 * b] = v[0] + omega[b] * r[1];
+    qd[3 * b + 1] = v[1] - omega[b] * r[0];
+    qd[3 * b + 2] = omega[b];
+  }
+}
+
+static void kit_run_free(kit_run *r) {
+  if (!r) return;
+  fb_planar_free(r->m);
+  free(r->s.t);
+  free(r->col);
+  free(r);
+}
+
+/* the kit's stop (FB_ERR_NUMERIC: an engine error, or the aliasing stop
+ * at omega_d h = wdh > 0 of the row at h) at the samples it reached */
+static void kit_stopped_at(kit_run *r, double wdh, double h, const fb_diag *diag) {
+  while (r->reached < r->s.n && isfinite(r->s.t[r->reached])) r->reached++;
+  r->stop.kind = wdh > 0.0 ? FB_STOP_ALIASED : FB_STOP_SOLVER;
+  r->stop.engine = r->engine;
+  r->stop.joint = wdh > 0.0 ? r->joint : -1;
+  r->stop.value = wdh;
+  r->stop.limit = wdh > 0.0 ? FB_MATCHED_ALIAS_BOUND : 0.0;
+  r->stop.h_max = wdh > 0.0 ? h * FB_MATCHED_ALIAS_BOUND / wdh : 0.0;
+  r->stop.t = r->reached ? r->s.t[r->reached - 1] : 0.0;
+  r->stop.step = r->reached;
+  snprintf(r->stop.detail, sizeof r->stop.detail, "%.150s", diag->msg);
+  if (!r->col || !r->reached) return;
+  /* the last sample's step never came: its force and state the one before */
+  double *f = r->col + (size_t)FB_C_FORCE * r->s.n, *z = r->col + (size_t)FB_C_STATE * r->s.n;
+  const size_t i = r->reached - 1;
+  f[i] = i > 0 ? f[i - 1] : 0.0;
+  z[i] = i > 0 ? z[i - 1] : FB_STATE_FREE;
+}
+
+/* the storage of a run of n samples of nb moving bodies */
+static fb_status alloc_run(kit_run *r, size_t n, int nb, fb_diag *diag) {
+  r->s.n = n;
+  r->s.t = malloc((1 + (size_t)nb * 9) * n * sizeof *r->s.t);
+  if (r->joint >= 0) r->col = calloc((size_t)FB_CONTACT_COLS * n, sizeof *r->col);
+  if (!r->s.t || (r->joint >= 0 && !r->col))
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu kit samples", n);
+  r->s.q = r->s.t + n;
+  r->s.centre = r->s.q + (size_t)nb * 3 * n;
+  for (size_t i = 0; i < n; i++) r->s.t[i] = NAN;
+  return FB_OK;
+}
+
+static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
+  fb_status st = fb_scene_check(sm->def, diag);
+  if (st != FB_OK) return st;
+  const fb_kit_binding *b = binding_of(sm);
+  if (!b)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s': engine '%s' has no engine-kit binding",
+                       sm->model->name, fb_engine_name(sm->model->engine));
+  kit_run *r = calloc(1, sizeof *r);
+  if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the kit adapter");
+  r->sm = sm;
+  r->engine = b->engine;
+  st = refuse(sm, &r->joint, diag);
+  if (st == FB_OK) st = fb_planar_of_case(&r->m, &sm->def->source, &sm->lengths, diag);
+  if (st == FB_OK) st = alloc_run(r, sm->def->steps + 1, r->m->nbodies - 1, diag);
+  fb_kit_clearance cl = {0};
+  if (st == FB_OK && r->joint >= 0) {
+    const size_t n = r->s.n;
+    cl = (fb_kit_clearance){.mask = 1u << r->joint, .law = sm->law[r->joint],
+                            .mapping = sm->mapping, .radial_clearance = sm->radial_clearance,
+                            .pin_radius = sm->pin_radius,
+                            .impact_velocity_min = sm->impact_velocity_min, .joint = r->joint,
+                            .force = r->col + FB_C_FORCE * n, .pen = r->col + FB_C_PEN * n,
+                            .ecc = r->col + FB_C_EX * n, .state = r->col + FB_C_STATE * n};
+  }
+  fb_start_state start;
+  if (st == FB_OK) st = fb_model_scene_start(&start, sm, diag);
+  if (st == FB_OK) {
+    double q0[9], qd0[9]; /* three moving bodies */
+    start_coordinates(q0, qd0, r->m, &start, sm->def->source.mechanism == FB_MECH_SLIDER_CRANK);
+    const fb_kit_world o = {.gravity = sm->gravity, .h = sm->solver.h, .solver = &sm->solver,
+                            .nbodies = r->m->nbodies - 1, .njoints = r->m->njoints,
+                            .c = &sm->def->source, .q0 = q0, .qd0 = qd0};
+    r->s.h = sm->solver.h;
+    st = fb_kit_run(b, r->m, sm->omega2, &o, r->joint >= 0 ? &cl : NULL, &r->s, diag);
+    r->reached = r->s.n;
+    r->prov = (fb_contact_provenance){cl.m_eff_min, cl.m_eff_max, NAN, NAN, cl.h_omega_max,
+                                      cl.contact_steps};
+    if (st == FB_ERR_NUMERIC) { /* a stop is a result: replay what was reached */
+      r->reached = 0;
+      kit_stopped_at(r, cl.aliased_omega_d_h, sm->solver.h, diag);
+      st = r->reached ? FB_OK : FB_ERR_NUMERIC;
+    }
+  }
+  if (st != FB_OK) {
+    kit_run_free(r);
+    return st;
+  }
+  *self = r;
+  return FB_OK;
+}
+
+static fb_status adapter_step(void *self, fb_diag *diag) {
+  kit_run *r = self;
+  if (r->i + 1 >= r->reached)
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "%s", r->stop.kind != FB_STOP_NONE
+                                                       ? r->stop.detail
+                                                       : "no sample beyond the run's duration");
+  r->i++;
+  const double *state = r->col ? r->col + (size_t)FB_C_STATE * r->s.n : NULL;
+  if (state && state[r->i] == FB_STATE_IMPACT && state[r->i - 1] != FB_STATE_IMPACT) r->impacts++;
+  return FB_OK;
+}
+
+static void adapter_stopped(const void *self, fb_stop *out) { *out = ((const kit_run *)self)->stop; }
+
+/* the value of body handle b's quantity k at sample i: its angle's, or its
+ * centre's x for a translating body */
+static double body_value(const kit_run *r, int b, int k, int translates) {
+  const double *q = translates ? r->s.centre : r->s.q;
+  return q[((size_t)b * 3 + (size_t)k) * r->s.n + r->i];
+}
+
+static void adapter_sample(const void *self, fb_sample *x) {
+  const kit_run *r = self;
+  const fb_mech_desc *d = fb_case_mech(&r->sm->def->source);
+  memset(x, 0, sizeof *x);
+  x->t = r->s.t[r->i];
+  x->crank_angle = body_value(r, d->input, FB_Q_POS, 0);
+  int out[FB_MECH_MAX_OUTPUTS];
+  const int no = fb_mech_outputs(d, out);
+  for (int k = 0; k < no; k++)
+    for (int q = 0; q < 3; q++)
+      x->body[k][q] = body_value(r, out[k], q, fb_mech_output_translates(d, k));
+  if (r->joint < 0) return;
+  for (int c = 0; c < FB_CONTACT_COLS; c++)
+    x->contact[r->joint][c] = r->col[(size_t)c * r->s.n + r->i];
+}
+
+static void adapter_contact(const void *self, fb_engine_contact *out) {
+  const kit_run *r = self;
+  memset(out, 0, sizeof *out);
+  out->joint = r->joint;
+  if (r->joint < 0) return;
+  out->penetration = r->col[(size_t)FB_C_PEN * r->s.n + r->i];
+  out->impacts[r->joint] = r->impacts;
+}
+
+/* the largest separation of an ideal revolute joint's two points now [m] */
+static double adapter_drift(const void *self) {
+  const kit_run *r = self;
+  const fb_planar *m = r->m;
+  const int nb = m->nbodies - 1;
+  double q[3 * FB_MECH_MAX_BODIES];
+  for (int b = 0; b < nb && b < FB_MECH_MAX_BODIES; b++) {
+    q[3 * b] = r->s.centre[(size_t)b * 3 * r->s.n + r->i];
+    q[3 * b + 1] = r->s.centre[(size_t)(nb + b) * 3 * r->s.n + r->i];
+    q[3 * b + 2] = r->s.q[(size_t)b * 3 * r->s.n + r->i];
+  }
+  double worst = 0.0;
+  for (int j = 0; j < m->njoints; j++) {
+    if (j == r->joint || m->joint[j].kind != FB_KIND_REVOLUTE) continue;
+    double p0[2], p1[2];
+    fb_planar_point(p0, m, q, m->joint[j].body[0], m->joint[j].point[0]);
+    fb_planar_point(p1, m, q, m->joint[j].body[1], m->joint[j].point[1]);
+    worst = fmax(worst, hypot(p0[0] - p1[0], p0[1] - p1[1]));
+  }
+  return worst;
+}
+
+/* the kit's figures of the clearance joint over the whole run (ERP and
+ * CFM are a binding's row: not kept) */
+static void adapter_provenance(const void *self, int joint, fb_contact_provenance *out) {
+  const kit_run *r = self;
+  *out = (fb_contact_provenance){NAN, NAN, NAN, NAN, NAN, 0};
+  if (joint == r->joint) *out = r->prov;
+}
+
+static size_t adapter_steps(const void *self) {
+  const kit_run *r = self;
+  return r->reached ? r->reached - 1 : 0;
+}
+
+static void adapter_destroy(void *self) { kit_run_free(self); }
+
+const fb_engine fb_engine_kit_adapter = {
+    .name = "kit",
+    .guarded = 1,
+    .step_values_lag = 0,
+    .refine_peaks = 1,
+    .computes_in_create = 1,
+    .create = adapter_create,
+    .step = adapter_step,
+    .stopped = adapter_stopped,
+    .sample = adapter_sample,
+    .contact = adapter_contact,
+    .provenance = adapter_provenance,
+    .drift = adapter_drift,
+    .steps = adapter_steps,
+    .destroy = adapter_destroy,
+};
+
+const fb_engine *fb_engine_runner(const fb_engine *e, const fb_case *c, fb_diag *diag) {
+  if (e->kit && (!e->create || c->solver.builder == FB_BUILDER_KIT)) return &fb_engine_kit_adapter;
+  if (e->create) return e;
+  fb_diag_set(diag, FB_ERR_ARG, "engine '%s' has neither models of its own nor an engine-kit "
+              "binding", e->name);
+  return NULL;
+}

@@ -51,6 +51,8 @@ typedef struct {
   double h;                  /* step [s] */
   const fb_solver *solver;    /* the case's [solver] settings (case.h) */
   int nbodies, njoints;      /* moving bodies and joints the walk will add */
+  const fb_case *c;          /* the case, for an engine's own section ([simbody] integrator
+                                and accuracy ...); NULL: that section's defaults */
 } fb_kit_world;
 
 /* One moving body at the start. */

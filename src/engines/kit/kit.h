@@ -18,6 +18,9 @@
  *                 position)
  *   add_prismatic every prismatic joint (a slide along its unit axis in
  *                 the world at the assembly configuration)
+ *   add_clearance optional: each clearance joint's pin and hole (an engine
+ *                 whose force element evaluates the contact inside its
+ *                 integrator)
  *   close_loop    optional: an engine whose joints form a tree closes the
  *                 loops here (NULL: the engine's joints close them)
  *   hold_in_plane optional: a body that only clearance joints hold
@@ -116,6 +119,16 @@ typedef struct fb_kit_binding {
   fb_status (*step)(void *w, fb_diag *diag);
   void (*body_state)(const void *w, int b, double pos[3], double vel[3]);
   void (*world_free)(void *w);
+  fb_status (*add_clearance)(void *w, int k, int pin, int hole, const double at[2],
+                             const fb_kit_clearance *cl, fb_diag *diag);
+                             /* optional: clearance joint k (the description's index), a
+                                pin on body pin in a hole of body hole, both centred at
+                                at [m] at assembly, with cl's radial clearance, law and
+                                impact velocity: for an engine that evaluates the contact
+                                inside its own integrator (a force element), called by
+                                the walk in the joint's place, before close_loop; each
+                                step's add_contact still hands the law on the effective
+                                mass and the episode. NULL: add_contact only */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

@@ -69,13 +69,15 @@ struct KitJoint {
   int tree;              // 1: a mobilizer of the tree; 0: a loop's cut (a constraint)
 };
 
-// a clearance joint's contact, held over the step (fb_kit_contact)
+// a clearance joint (add_clearance) and its contact, held over the step
+// (add_contact's fb_kit_contact)
 struct Held {
-  int on;                // handed for this step
+  int joint;             // 1: a clearance joint
+  int on, on_last;       // add_contact handed it for this step, for the last
   int pin, hole;         // kit handles
-  Vec3 pin_at, hole_at;  // the contact point in each body's frame at the step's start [m]
-  double n[2];           // unit normal, hole towards pin [-]
-  double depth;          // penetration at the step's start [m]
+  Vec3 pin_at, hole_at;  // the pin's and the hole's centres in their bodies' frames [m]
+  double clearance;      // radial clearance c [m]
+  double v_min;          // an onset slower than this takes it as v0 (episode.h) [m/s]
   double v0;             // the episode's onset rate [m/s]
   fb_contact_law law;    // with its damper on the effective mass
 };
@@ -105,13 +107,13 @@ struct Kit {
   std::vector<int> child;             // by joint: the handle its mobilizer moves (-1: a cut)
   std::vector<int> planar;            // handles on a Planar mobilizer
   Held held[FB_PLANAR_SPEC_MAX_JOINTS];
-  int held_last;                      // 1: a contact was held over the last step
+  int changed;                        // 1: a contact's law, v0 or hand-over changed
   std::unique_ptr<Integrator> integ;
   double h;
   int integrator;
   double accuracy;
   size_t steps;
-  Kit() : matter(system), forces(system), held(), held_last(0), h(0), integrator(0),
+  Kit() : matter(system), forces(system), held(), changed(0), h(0), integrator(0),
           accuracy(FB_SIMBODY_ACCURACY_DEFAULT), steps(0) {}
   MobilizedBody &of(int b) { return b == FB_KIT_GROUND ? matter.Ground() : mob[b]; }
   const MobilizedBody &of(int b) const {
@@ -122,16 +124,20 @@ struct Kit {
 void KitContact::calcForce(const State &state, Vector_<SpatialVec> &bodyForces, Vector_<Vec3> &,
                            Vector &) const {
   for (const Held &c : k_->held) {
-    if (!c.on) continue;
+    if (!c.joint) continue;
     const MobilizedBody &pin = k_->of(c.pin), &hole = k_->of(c.hole);
-    const Vec3 d = pin.findStationLocationInGround(state, c.pin_at) -
+    const Vec3 e = pin.findStationLocationInGround(state, c.pin_at) -
                    hole.findStationLocationInGround(state, c.hole_at);
+    const double ecc = std::hypot(e[0], e[1]), depth = ecc - c.clearance;
+    if (!(depth > 0.0)) continue;
     const Vec3 v = pin.findStationVelocityInGround(state, c.pin_at) -
                    hole.findStationVelocityInGround(state, c.hole_at);
-    const double depth = c.depth + c.n[0] * d[0] + c.n[1] * d[1];
-    const double rate = c.n[0] * v[0] + c.n[1] * v[1];
-    const double f = fb_contact_force(&c.law, depth, rate, c.v0);
-    if (f > 0.0) apply_contact(state, pin, c.pin_at, hole, c.hole_at, f, c.n, bodyForces);
+    const double n[2] = {e[0] / ecc, e[1] / ecc}, rate = n[0] * v[0] + n[1] * v[1];
+    // an episode that begins inside the step: its onset rate here, as the
+    // four-bar's contact_law takes it
+    const double v0 = c.on ? c.v0 : std::fmax(rate, c.v_min);
+    const double f = fb_contact_force(&c.law, depth, rate, v0);
+    if (f > 0.0) apply_contact(state, pin, c.pin_at, hole, c.hole_at, f, n, bodyForces);
   }
 }
 
@@ -326,21 +332,31 @@ fb_status kit_add_drive(void *w, int jn, double rate, fb_diag *diag) {
   return FB_OK;
 }
 
-// the kit's contact for the coming step, held (the header says how)
+// clearance joint jn: the pin and the hole, their centres at at on assembly
+fb_status kit_add_clearance(void *w, int jn, int pin, int hole, const double at[2],
+                            const fb_kit_clearance *cl, fb_diag *diag) {
+  (void)diag;
+  Kit *k = kit(w);
+  Held &hd = k->held[jn];
+  hd.joint = 1;
+  hd.pin = pin;
+  hd.hole = hole;
+  hd.pin_at = local(k, pin, at);
+  hd.hole_at = local(k, hole, at);
+  hd.clearance = cl->radial_clearance;
+  hd.v_min = cl->impact_velocity_min;
+  hd.law = cl->law; // until the pipeline hands it on the effective mass
+  return FB_OK;
+}
+
+// the kit's law and episode for the coming step (the header says how)
 fb_status kit_add_contact(void *w, int jn, const fb_kit_contact *c, fb_diag *diag) {
   (void)diag;
   Kit *k = kit(w);
   Held &hd = k->held[jn];
-  const State &state = k->integ->getState();
-  const Vec3 at(c->point[0], c->point[1], 0);
+  if (!hd.on_last || hd.v0 != c->v0 || std::memcmp(&hd.law, &c->law, sizeof hd.law) != 0)
+    k->changed = 1;
   hd.on = 1;
-  hd.pin = c->pin;
-  hd.hole = c->hole;
-  hd.pin_at = k->of(c->pin).findStationAtGroundPoint(state, at);
-  hd.hole_at = k->of(c->hole).findStationAtGroundPoint(state, at);
-  hd.n[0] = c->normal[0];
-  hd.n[1] = c->normal[1];
-  hd.depth = c->depth;
   hd.v0 = c->v0;
   hd.law = c->law;
   return FB_OK;
@@ -348,12 +364,13 @@ fb_status kit_add_contact(void *w, int jn, const fb_kit_contact *c, fb_diag *dia
 
 fb_status kit_step(void *w, fb_diag *diag) {
   Kit *k = kit(w);
-  int held = 0;
-  for (const Held &c : k->held) held |= c.on;
+  for (const Held &c : k->held) k->changed |= c.on != c.on_last;
   const double t1 = (double)(k->steps + 1) * k->h;
   try {
-    // the force changed at this step's start (a contact now, or one ended)
-    if (held || k->held_last) k->integ->reinitialize(Stage::Dynamics, false);
+    // the force element changed at this step's start: the integrator's
+    // derivative there is evaluated again
+    if (k->changed) k->integ->reinitialize(Stage::Dynamics, false);
+    k->changed = 0;
     for (int tries = 0; k->integ->getTime() < t1 && tries < 3; tries++) {
       const Integrator::SuccessfulStepStatus st = k->integ->stepTo(t1);
       if (st == Integrator::ReachedStepLimit)
@@ -370,8 +387,7 @@ fb_status kit_step(void *w, fb_diag *diag) {
   } catch (const std::exception &ex) {
     return fb_diag_set(diag, FB_ERR_NUMERIC, "simbody: %.300s at t = %g s", ex.what(), t1 - k->h);
   }
-  for (Held &c : k->held) c.on = 0;
-  k->held_last = held;
+  for (Held &c : k->held) c.on_last = c.on, c.on = 0;
   k->steps++;
   return FB_OK;
 }
@@ -413,4 +429,5 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     fb_simbody::kit_step,
     fb_simbody::kit_body_state,
     fb_simbody::kit_world_free,
+    fb_simbody::kit_add_clearance,
 };

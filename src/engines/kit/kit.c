@@ -64,7 +64,7 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
     const fb_planar_joint *pj = &m->joint[j];
     const int b0 = handle(pj->body[0]), b1 = handle(pj->body[1]);
     if (mask & (1u << j)) { /* a pin in a hole: the contact each step */
-      if (b->add_clearance) st = b->add_clearance(w, j, b0, b1, pj->at, cl, diag);
+      if (b->add_clearance) st = b->add_clearance(w, j, m, cl, diag);
       continue;
     }
     if (j == m->drive) drive = added;

@@ -119,16 +119,16 @@ typedef struct fb_kit_binding {
   fb_status (*step)(void *w, fb_diag *diag);
   void (*body_state)(const void *w, int b, double pos[3], double vel[3]);
   void (*world_free)(void *w);
-  fb_status (*add_clearance)(void *w, int k, int pin, int hole, const double at[2],
-                             const fb_kit_clearance *cl, fb_diag *diag);
-                             /* optional: clearance joint k (the description's index), a
-                                pin on body pin in a hole of body hole, both centred at
-                                at [m] at assembly, with cl's radial clearance, law and
-                                impact velocity: for an engine that evaluates the contact
-                                inside its own integrator (a force element), called by
-                                the walk in the joint's place, before close_loop; each
-                                step's add_contact still hands the law on the effective
-                                mass and the episode. NULL: add_contact only */
+  fb_status (*add_clearance)(void *w, int k, const fb_planar *m, const fb_kit_clearance *cl,
+                             fb_diag *diag);
+                             /* optional: clearance joint k of description m (its pin on
+                                body[0], its hole on body[1], both centred at at on
+                                assembly), cl its radial clearance, law, impact velocity
+                                and mask: for an engine that evaluates the contact inside
+                                its own integrator (a force element), called by the walk
+                                in the joint's place, before close_loop; m and cl outlive
+                                the world. Each step's add_contact still hands the law on
+                                the effective mass and the episode. NULL: add_contact only */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

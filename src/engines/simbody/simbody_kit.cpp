@@ -54,6 +54,9 @@
 #include "simbody_internal.h"
 
 extern "C" {
+#include "contact_mass.h"
+#include "effective_mass.h"
+#include "planar_mass.h"
 #include "simbody_kit.h"
 }
 
@@ -79,7 +82,7 @@ struct Held {
   double clearance;      // radial clearance c [m]
   double v_min;          // an onset slower than this takes it as v0 (episode.h) [m/s]
   double v0;             // the episode's onset rate [m/s]
-  fb_contact_law law;    // with its damper on the effective mass
+  fb_contact_law base;   // the joint's law (cl->law)
 };
 
 struct Kit;
@@ -107,19 +110,42 @@ struct Kit {
   std::vector<int> child;             // by joint: the handle its mobilizer moves (-1: a cut)
   std::vector<int> planar;            // handles on a Planar mobilizer
   Held held[FB_PLANAR_SPEC_MAX_JOINTS];
+  const fb_planar *m;                 // the description (add_clearance)
+  unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; // 1: a clearance joint
   int changed;                        // 1: a contact's law, v0 or hand-over changed
   std::unique_ptr<Integrator> integ;
   double h;
   int integrator;
   double accuracy;
   size_t steps;
-  Kit() : matter(system), forces(system), held(), changed(0), h(0), integrator(0),
+  Kit() : matter(system), forces(system), held(), m(NULL), off(), changed(0), h(0), integrator(0),
           accuracy(FB_SIMBODY_ACCURACY_DEFAULT), steps(0) {}
   MobilizedBody &of(int b) { return b == FB_KIT_GROUND ? matter.Ground() : mob[b]; }
   const MobilizedBody &of(int b) const {
     return b == FB_KIT_GROUND ? matter.getGround() : mob[b];
   }
 };
+
+// the law at state: its damper on the effective mass along n there when it
+// wants one (planar_mass.h, as the pipeline and the reference take it), at
+// every evaluation, as the four-bar's contact_at does
+fb_contact_law law_at(const Kit *k, const State &state, const Held &c, const double n[2]) {
+  if (!fb_contact_law_wants_mass(&c.base)) return c.base;
+  std::vector<double> q(3 * k->mob.size());
+  for (size_t b = 0; b < k->mob.size(); b++) {
+    const Vec3 p = k->mob[b].getBodyOriginLocation(state);
+    const Rotation &R = k->mob[b].getBodyRotation(state);
+    q[3 * b] = p[0];
+    q[3 * b + 1] = p[1];
+    q[3 * b + 2] = std::atan2(R[1][0], R[0][0]);
+  }
+  double w[2][2];
+  fb_diag d;
+  const int jn = (int)(&c - k->held);
+  const double me = fb_planar_effective_mass_tensor(w, k->m, q.data(), k->off, jn, &d) == FB_OK
+                        ? fb_effective_mass_along(w, n) : NAN;
+  return fb_contact_law_on_mass(&c.base, std::isfinite(me) && me > 0.0 ? me : c.base.mass);
+}
 
 void KitContact::calcForce(const State &state, Vector_<SpatialVec> &bodyForces, Vector_<Vec3> &,
                            Vector &) const {
@@ -136,7 +162,8 @@ void KitContact::calcForce(const State &state, Vector_<SpatialVec> &bodyForces, 
     // an episode that begins inside the step: its onset rate here, as the
     // four-bar's contact_law takes it
     const double v0 = c.on ? c.v0 : std::fmax(rate, c.v_min);
-    const double f = fb_contact_force(&c.law, depth, rate, v0);
+    const fb_contact_law law = law_at(k_, state, c, n);
+    const double f = fb_contact_force(&law, depth, rate, v0);
     if (f > 0.0) apply_contact(state, pin, c.pin_at, hole, c.hole_at, f, n, bodyForces);
   }
 }
@@ -332,20 +359,25 @@ fb_status kit_add_drive(void *w, int jn, double rate, fb_diag *diag) {
   return FB_OK;
 }
 
-// clearance joint jn: the pin and the hole, their centres at at on assembly
-fb_status kit_add_clearance(void *w, int jn, int pin, int hole, const double at[2],
-                            const fb_kit_clearance *cl, fb_diag *diag) {
+// clearance joint jn of m: the pin and the hole, their centres at the
+// joint on assembly
+fb_status kit_add_clearance(void *w, int jn, const fb_planar *m, const fb_kit_clearance *cl,
+                            fb_diag *diag) {
   (void)diag;
   Kit *k = kit(w);
+  const fb_planar_joint &j = m->joint[jn];
   Held &hd = k->held[jn];
   hd.joint = 1;
-  hd.pin = pin;
-  hd.hole = hole;
-  hd.pin_at = local(k, pin, at);
-  hd.hole_at = local(k, hole, at);
+  hd.pin = j.body[0] - 1; // kit.h's handles
+  hd.hole = j.body[1] == FB_PLANAR_GROUND ? FB_KIT_GROUND : j.body[1] - 1;
+  hd.pin_at = local(k, hd.pin, j.at);
+  hd.hole_at = local(k, hd.hole, j.at);
   hd.clearance = cl->radial_clearance;
   hd.v_min = cl->impact_velocity_min;
-  hd.law = cl->law; // until the pipeline hands it on the effective mass
+  hd.base = cl->law;
+  k->m = m;
+  for (int i = 0; i < m->njoints && i < FB_PLANAR_SPEC_MAX_JOINTS; i++)
+    k->off[i] = (cl->mask >> i) & 1u;
   return FB_OK;
 }
 
@@ -354,11 +386,9 @@ fb_status kit_add_contact(void *w, int jn, const fb_kit_contact *c, fb_diag *dia
   (void)diag;
   Kit *k = kit(w);
   Held &hd = k->held[jn];
-  if (!hd.on_last || hd.v0 != c->v0 || std::memcmp(&hd.law, &c->law, sizeof hd.law) != 0)
-    k->changed = 1;
+  if (!hd.on_last || hd.v0 != c->v0) k->changed = 1;
   hd.on = 1;
   hd.v0 = c->v0;
-  hd.law = c->law;
   return FB_OK;
 }
 

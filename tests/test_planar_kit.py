@@ -23,6 +23,7 @@ exit 1 on any failure."""
 import json, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_kit_test  # noqa: E402
 import fb_script  # noqa: E402
 
 exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-kit-")
@@ -57,20 +58,15 @@ KIT_CLEARANCE_FORCE_REL = 0.05
 # its omega peaks, measured 1.3e-4 (the follower's max): the clearance
 # moves them by up to 3e-4 from the ideal's, ODE's error is a part of that
 KIT_CLEARANCE_OMEGA_REL = 1e-3
-PEAK_KEYS = ("omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2", "alpha_min_rad_s2")
+PEAK_KEYS, rel = fb_kit_test.PEAK_KEYS, fb_kit_test.rel
 
 
 def run(*args):
     return fb_script.run(exe, tmp, *args)
 
 
-def rel(p, q):
-    return abs(p - q) / max(abs(q), 1e-300)
-
-
 def models(out):
-    with open(os.path.join(tmp, out, "summary.json")) as f:
-        return {m["name"]: m for m in json.load(f)["models"]}
+    return fb_kit_test.models(os.path.join(tmp, out))
 
 
 # 1. the six-bar: every moving body's omega peaks within the issue's bound
@@ -107,40 +103,9 @@ if rc1 == 0 and rc2 == 0:
 
 # 3. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
 # rod 120 mm, the slider on the x axis
-c = (43.30127018922193, 25.0)
-sx = c[0] + (120.0 ** 2 - 25.0 ** 2) ** 0.5
 slider = os.path.join(tmp, "slider.ini")
 with open(slider, "w") as f:
-    f.write("""[case]
-name = planar_slider
-[linkage]
-type = planar
-[joint.ground-crank]
-bodies = ground, crank
-at_mm = 0, 0
-[joint.crank-rod]
-bodies = crank, rod
-at_mm = %.12f, %.12f
-[joint.rod-slider]
-bodies = rod, slider
-at_mm = %.12f, 0
-[joint.slider-ground]
-bodies = slider, ground
-at_mm = %.12f, 0
-kind = prismatic
-axis_deg = 0
-[body.slider]
-mass_kg = 0.14
-inertia_kg_mm2 = 20
-[drive]
-joint = ground-crank
-speed_rpm = 3000
-[pin]
-fit = 10H7/g6
-length_mm = 13
-[run]
-models = analytic, ode-ideal-nominal
-""" % (c[0], c[1], sx, sx))
+    f.write(fb_kit_test.slider_text("analytic, ode-ideal-nominal"))
 rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"))
 check(rc == 0, "the planar slider-crank runs ode-ideal-nominal (%s)" % se.strip()[-300:])
 if rc == 0:

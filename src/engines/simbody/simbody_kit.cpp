@@ -27,23 +27,21 @@
 // t + h exactly and the state the kit reads is an integrated one, not an
 // interpolant).
 //
-// A clearance joint: the kit's pipeline hands its contact each step
-// (fb_kit_contact: the law with its damper on the effective mass, the
-// episode's onset rate, the normal and the point on the hole wall). The
-// binding applies it as a force element evaluated inside the integrator,
-// as the four-bar's clearance models do (ClearanceForce): the contact point
-// fixed in the pin's and in the hole's body at the step's start, the
-// penetration at every evaluation the step's plus the two points'
-// separation along the held normal, its rate their relative velocity along
-// it, the law's force (fb_contact_force) applied +F n on the hole, -F n on
-// the pin (apply_contact). Held over the step are the normal, the law (its
-// effective mass) and v0: the normal turns by the relative tangential
-// travel over c in a step, which moves the penetration by c dtheta^2 / 2
-// (2e-12 m at the paper case's 300 rpm, h = 1e-5 s, c = 0.05 mm). A contact
-// that begins inside a step starts at the next (the pipeline's, as ODE's
-// row). The force changes at each step's start, so the integrator is
-// restarted there (Integrator::reinitialize at Stage::Dynamics: its
-// derivative at the step's start is evaluated again with the new force).
+// A clearance joint is a force element evaluated inside the integrator, as
+// the four-bar's clearance models apply theirs (ClearanceForce): the pin's
+// and the hole's centres fixed in their bodies (add_clearance), at every
+// evaluation the exact eccentricity, the penetration |e| - c and its rate,
+// the law's force (fb_contact_force) applied +F n on the hole, -F n on the
+// pin (apply_contact); the restitution law's damper on the effective mass
+// along n at that state (planar_mass.h, as the pipeline and the reference
+// take it: held over h from the step's start it was 3 times off at an
+// onset inside a step, the peaks 7 % low). From the kit's contact
+// (add_contact) it holds over the step the episode's onset rate v0; an
+// episode that begins inside a step takes its rate there (the four-bar's
+// contact_law). The force element changes at a step's start when v0 or the
+// hand-over does, and the integrator is restarted there
+// (Integrator::reinitialize at Stage::Dynamics), so it never steps across
+// the change.
 #include <cmath>
 #include <cstdio>
 #include <cstring>

@@ -31,7 +31,7 @@ const struct fb_kit_binding *fb_planar_kit_of(const char *name) {
   /* or the engine's own clearance relation built from the description's
    * joint (collider native, a binding with add_clearance: Siconos's
    * unilateral constraint with Newton's law) */
-  if (m->collider == FB_COLLIDER_NATIVE) return b->add_clearance ? b : NULL;
+  if (m->collider == FB_COLLIDER_NATIVE) return b->add_clearance && !b->add_contact ? b : NULL;
   return m->collider == FB_COLLIDER_EXACT && b->add_contact ? b : NULL;
 }
 

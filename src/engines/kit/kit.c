@@ -68,7 +68,7 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
     const int b0 = handle(pj->body[0]), b1 = handle(pj->body[1]);
     if (mask & (1u << j)) { /* a pin in a hole: the contact each step, or the engine's relation */
       const fb_kit_clearance_joint cj = {b0, b1, {pj->at[0], pj->at[1]}, cl->radial_clearance,
-                                         cl->pin_radius, cl->law.restitution};
+                                         cl->pin_radius, cl->law.restitution, m, cl};
       if (b->add_clearance) st = b->add_clearance(w, j, &cj, diag);
       continue;
     }

@@ -18,6 +18,10 @@
  *                 position)
  *   add_prismatic every prismatic joint (a slide along its unit axis in
  *                 the world at the assembly configuration)
+ *   add_clearance optional: each clearance joint in its place, once: an
+ *                 engine whose clearance is a relation of its own (no
+ *                 add_contact), or one that evaluates the contact inside
+ *                 its integrator (with add_contact)
  *   close_loop    optional: an engine whose joints form a tree closes the
  *                 loops here (NULL: the engine's joints close them)
  *   hold_in_plane optional: a body that only clearance joints hold
@@ -27,9 +31,6 @@
  *                 contact the kit's pipeline computed (fb_kit_contact)
  *   step, body_state  advance h; read a body's pose and velocity
  *   contact_force optional: what the contact applied in the step
- *   add_clearance optional, in the walk at a clearance joint's place: an
- *                 engine whose clearance is a relation of its own builds
- *                 it once (fb_kit_clearance_joint) instead of add_contact
  * Bodies are named by the kit's handles: the ground is FB_KIT_GROUND, the
  * description's body b (1 ..) is handle b - 1; add_drive's joint is the
  * driven joint's place among the joints added (the description's order,
@@ -122,6 +123,8 @@ typedef struct {
   double radial_clearance;  /* c [m] */
   double pin_radius;        /* [m] */
   double restitution;       /* the law's coefficient of restitution cr, Newton's e_N [-] */
+  const fb_planar *m;       /* the description (the joint is m->joint[k]) */
+  const fb_kit_clearance *cl; /* the run's clearance joints: law, sizes, mask */
 } fb_kit_clearance_joint;
 
 /* An engine's builder functions. */
@@ -147,13 +150,18 @@ typedef struct fb_kit_binding {
   void (*body_state)(const void *w, int b, double pos[3], double vel[3]);
   void (*world_free)(void *w);
   fb_status (*add_clearance)(void *w, int k, const fb_kit_clearance_joint *c, fb_diag *diag);
-                             /* optional: clearance joint k (the description's index) built
-                                once, in the walk's place of the joint, as the engine's own
-                                rigid relation (Siconos: a unilateral constraint with
-                                Newton's impact law); the kit then hands it no contact
-                                (add_contact unused), counts its episodes from
+                             /* optional: clearance joint k (the description's index), called
+                                once by the walk in the joint's place, before close_loop.
+                                With add_contact NULL, the engine's own rigid relation
+                                (Siconos: a unilateral constraint with Newton's impact law):
+                                the kit then hands it no contact, counts its episodes from
                                 contact_force (required with it) and reads its penetration
-                                from the bodies; NULL: the kit's contact every step */
+                                from the bodies. With add_contact, an engine that evaluates
+                                the contact inside its own integrator (Simbody's force
+                                element, MuJoCo's passive hook at every stage): each step's
+                                add_contact still hands the law on the effective mass and
+                                the episode; c->m and c->cl outlive the world. NULL: the
+                                kit's contact every step only */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

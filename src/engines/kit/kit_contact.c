@@ -109,7 +109,7 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
                                fb_diag *diag) {
   for (int j = 0; j < m->njoints; j++) {
     if (!p->off[j]) continue;
-    if (b->add_clearance) {
+    if (b->add_clearance && !b->add_contact) { /* the engine's own relation */
       native_episode(p, b, w, cl, j);
       continue;
     }

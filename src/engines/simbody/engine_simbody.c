@@ -4,6 +4,7 @@
 #include <stdio.h>
 
 #include "engine.h"
+#include "simbody_kit.h"
 #include "simbody_scene.h"
 
 static fb_status simbody_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
@@ -158,4 +159,5 @@ const fb_engine fb_engine_simbody = {
     .settings_lines = simbody_settings_lines,
     .mapping_text = simbody_mapping_text,
     .bench = &simbody_bench,
+    .kit = &fb_simbody_kit,
 };

@@ -145,9 +145,8 @@ void ClearanceForce::calcForce(const State &state, Vector_<SpatialVec> &bodyForc
                                Vector_<Vec3> &, Vector &) const {
   const ContactEval ce = contact_at(s_, state);
   if (ce.force == 0.0) return;
-  const Vec3 f(ce.force * ce.n[0], ce.force * ce.n[1], 0);
-  s_->hole_body->applyForceToBodyPoint(state, s_->hole_at, f, bodyForces);
-  s_->pin_body->applyForceToBodyPoint(state, s_->pin_at, -f, bodyForces);
+  apply_contact(state, *s_->pin_body, s_->pin_at, *s_->hole_body, s_->hole_at, ce.force, ce.n,
+                bodyForces);
 }
 
 } // namespace fb_simbody

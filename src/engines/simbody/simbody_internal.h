@@ -169,6 +169,47 @@ struct Peak {
   int sign;
 };
 
+// The drive (the four-bar's crank, the engine kit's driven joint): the
+// mobility's angle prescribed at position level, q(t) = theta0 + omega t,
+// so the driven body follows the analytic angle exactly (a velocity-level
+// Motion::Steady leaves the angle to the integrator and to the constraint
+// projection, which moved it by 7e-6 rad over 3 revolutions at accuracy
+// 1e-6). The drive torque is the Motion's multiplier
+// (SimbodyMatterSubsystem::findMotionForces).
+class SteadyAngle : public Motion::Custom::Implementation {
+ public:
+  SteadyAngle(double theta0, double omega) : theta0_(theta0), omega_(omega) {}
+  Motion::Level getLevel(const State &) const override { return Motion::Position; }
+  void calcPrescribedPosition(const State &s, int, Real *q) const override {
+    q[0] = theta0_ + omega_ * s.getTime();
+  }
+  void calcPrescribedPositionDot(const State &, int, Real *qdot) const override { qdot[0] = omega_; }
+  void calcPrescribedPositionDotDot(const State &, int, Real *qdotdot) const override {
+    qdotdot[0] = 0.0;
+  }
+  Implementation *clone() const override { return new SteadyAngle(*this); }
+
+ private:
+  double theta0_, omega_;
+};
+
+// A clearance joint's normal force F [N] along unit n (hole towards pin) as
+// a force element applies it: +F n on the hole's body at hole_at, -F n on
+// the pin's body at pin_at (body frames) [m]
+inline void apply_contact(const State &state, const MobilizedBody &pin, const Vec3 &pin_at,
+                          const MobilizedBody &hole, const Vec3 &hole_at, double force,
+                          const double n[2], Vector_<SpatialVec> &bodyForces) {
+  const Vec3 f(force * n[0], force * n[1], 0);
+  hole.applyForceToBodyPoint(state, hole_at, f, bodyForces);
+  pin.applyForceToBodyPoint(state, pin_at, -f, bodyForces);
+}
+
+// ---- simbody_scene.cpp ----
+
+// a new integrator of kind fb_simbody_integrator for sys (the case's
+// [simbody] integrator)
+Integrator *make_integrator(const System &sys, int kind);
+
 struct Scene;
 
 // The project's contact law (contact.h) as a Simbody custom force: +F n on

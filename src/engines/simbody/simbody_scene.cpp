@@ -42,29 +42,6 @@ namespace fb_simbody {
 
 namespace {
 
-// The crank drive: the crank angle prescribed at position level,
-// theta2(t) = theta0 + omega2 t, so the crank follows the analytic angle
-// exactly (a velocity-level Motion::Steady leaves the angle to the
-// integrator and to the constraint projection, which moved it by 7e-6 rad
-// over 3 revolutions at accuracy 1e-6). The drive torque is the Motion's
-// multiplier (SimbodyMatterSubsystem::findMotionForces).
-class SteadyAngle : public Motion::Custom::Implementation {
- public:
-  SteadyAngle(double theta0, double omega) : theta0_(theta0), omega_(omega) {}
-  Motion::Level getLevel(const State &) const override { return Motion::Position; }
-  void calcPrescribedPosition(const State &s, int, Real *q) const override {
-    q[0] = theta0_ + omega_ * s.getTime();
-  }
-  void calcPrescribedPositionDot(const State &, int, Real *qdot) const override { qdot[0] = omega_; }
-  void calcPrescribedPositionDotDot(const State &, int, Real *qdotdot) const override {
-    qdotdot[0] = 0.0;
-  }
-  Implementation *clone() const override { return new SteadyAngle(*this); }
-
- private:
-  double theta0_, omega_;
-};
-
 // inertia of a link about its origin: the link's in-plane inertia about +z
 // through its centre of mass (only Izz acts in the plane; the other two
 // axes are given the same value so that the inertia is physical)
@@ -81,6 +58,9 @@ Body::Rigid slider_body(const fb_link_mass &m) {
   return Body::Rigid(MassProperties(m.mass, Vec3(0), Inertia(m.inertia, m.inertia, m.inertia)));
 }
 
+} // namespace
+
+// the integrator of [simbody] integrator (simbody_internal.h)
 Integrator *make_integrator(const System &sys, int kind) {
   switch (kind) {
     case FB_SIMBODY_RKFELDBERG: return new RungeKuttaFeldbergIntegrator(sys);
@@ -90,6 +70,8 @@ Integrator *make_integrator(const System &sys, int kind) {
     default: return new RungeKuttaMersonIntegrator(sys);
   }
 }
+
+namespace {
 
 // records to generate ahead of the one handed out: kLookaheadIntervals of
 // the longest knot interval held

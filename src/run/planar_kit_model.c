@@ -99,7 +99,8 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_model *p, const fb_pl
 fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
   const fb_model *mt = fb_model_find(p->name);
   const fb_kit_binding *b = fb_planar_kit_of(p->name);
-  const fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints};
+  const fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints,
+                          &r->c};
   fb_kit_series s = {p->n, p->h, p->t, p->q};
   fb_kit_clearance cl = {0};
   p->engine = 1;

@@ -46,10 +46,11 @@ static fb_status hold(const fb_kit_binding *b, void *w, const fb_planar *m, unsi
   return st;
 }
 
-/* the walk: bodies, joints (but the clearance joints of mask), loop
- * closure, drive */
+/* the walk: bodies, joints (the clearance joints of cl's mask to the
+ * binding's add_clearance, if it has one), loop closure, drive */
 static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, double omega,
-                       const double *qd, unsigned mask, fb_diag *diag) {
+                       const double *qd, const fb_kit_clearance *cl, fb_diag *diag) {
+  const unsigned mask = cl ? cl->mask : 0u;
   int added = 0, drive = -1; /* the engine's joints so far; the drive's among them */
   fb_status st = FB_OK;
   for (int i = 1; i < m->nbodies && st == FB_OK; i++) {
@@ -62,7 +63,10 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
   for (int j = 0; j < m->njoints && st == FB_OK; j++) {
     const fb_planar_joint *pj = &m->joint[j];
     const int b0 = handle(pj->body[0]), b1 = handle(pj->body[1]);
-    if (mask & (1u << j)) continue; /* a pin in a hole: the contact each step */
+    if (mask & (1u << j)) { /* a pin in a hole: the contact each step */
+      if (b->add_clearance) st = b->add_clearance(w, j, b0, b1, pj->at, cl, diag);
+      continue;
+    }
     if (j == m->drive) drive = added;
     added++;
     if (pj->kind == FB_KIND_PRISMATIC) {
@@ -144,7 +148,7 @@ fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
   fb_status st = start_velocities(qd, m, omega, diag);
   void *w = NULL;
   if (st == FB_OK) st = b->world_new(&w, o, diag);
-  if (st == FB_OK) st = build(b, w, m, omega, qd, mask, diag);
+  if (st == FB_OK) st = build(b, w, m, omega, qd, cl, diag);
   free(qd);
   if (st == FB_OK) st = steps(b, w, m, cl, s, diag);
   if (w) b->world_free(w);

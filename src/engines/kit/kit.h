@@ -18,6 +18,8 @@
  *                 position)
  *   add_prismatic every prismatic joint (a slide along its unit axis in
  *                 the world at the assembly configuration)
+ *   add_clearance optional: each clearance joint's pin and hole (for an
+ *                 engine that evaluates the contact within a step)
  *   close_loop    optional: an engine whose joints form a tree closes the
  *                 loops here (NULL: the engine's joints close them)
  *   hold_in_plane optional: a body that only clearance joints hold
@@ -51,6 +53,8 @@ typedef struct {
   double h;                  /* step [s] */
   const fb_solver *solver;    /* the case's [solver] settings (case.h) */
   int nbodies, njoints;      /* moving bodies and joints the walk will add */
+  const fb_case *c;          /* the case: an engine's own section ([mujoco], ...); NULL: its
+                                defaults */
 } fb_kit_world;
 
 /* One moving body at the start. */
@@ -114,6 +118,17 @@ typedef struct fb_kit_binding {
   fb_status (*step)(void *w, fb_diag *diag);
   void (*body_state)(const void *w, int b, double pos[3], double vel[3]);
   void (*world_free)(void *w);
+  int applied_force;         /* optional: 1 when add_contact applies the law's force (no engine
+                                row, no [clearance] mapping): the matched row's aliasing stop
+                                is not the engine's, which names its own */
+  fb_status (*add_clearance)(void *w, int k, int pin, int hole, const double at[2],
+                             const fb_kit_clearance *cl, fb_diag *diag);
+                             /* optional: clearance joint k (the description's index), its
+                                pin's centre on body pin and its hole's on body hole, both
+                                at at [m] at assembly, cl its law and sizes: for an engine
+                                that evaluates the contact at its integrator's stages
+                                (add_contact still hands the step's contact); in the walk's
+                                joint order */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

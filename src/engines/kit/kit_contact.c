@@ -106,7 +106,7 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     c.onset = onset;
     c.h = h;
     p->force[j] = fb_contact_force(&c.law, c.depth, c.rate, c.v0);
-    if ((st = alias_stop(&c, m->joint[j].name, diag)) != FB_OK) return st;
+    if (!b->applied_force && (st = alias_stop(&c, m->joint[j].name, diag)) != FB_OK) return st;
     if ((st = b->add_contact(w, j, &c, diag)) != FB_OK) return st;
     cl->contact_steps++;
   }

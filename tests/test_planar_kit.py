@@ -20,10 +20,11 @@ And what the kit does not build yet is refused naming issue 58.
 
 Usage: test_planar_kit.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
-import json, os, sys
+import os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
+import planar_kit_checks  # noqa: E402
 
 exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-kit-")
 check = tally.check
@@ -57,120 +58,28 @@ KIT_CLEARANCE_FORCE_REL = 0.05
 # its omega peaks, measured 1.3e-4 (the follower's max): the clearance
 # moves them by up to 3e-4 from the ideal's, ODE's error is a part of that
 KIT_CLEARANCE_OMEGA_REL = 1e-3
-PEAK_KEYS = ("omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2", "alpha_min_rad_s2")
 
 
 def run(*args):
     return fb_script.run(exe, tmp, *args)
 
 
-def rel(p, q):
-    return abs(p - q) / max(abs(q), 1e-300)
-
-
 def models(out):
-    with open(os.path.join(tmp, out, "summary.json")) as f:
-        return {m["name"]: m for m in json.load(f)["models"]}
+    return fb_script.models(os.path.join(tmp, out))
 
 
+kit = planar_kit_checks.KitChecks(exe, cases, tally, tmp, "ode")
 # 1. the six-bar: every moving body's omega peaks within the issue's bound
-rc, _, se = run("run", os.path.join(cases, "watt_sixbar.ini"), "--set",
-                "run.models=analytic,ode-ideal-nominal", "--out", os.path.join(tmp, "six"))
-check(rc == 0, "watt_sixbar runs ode-ideal-nominal (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("six")
-    a, o = m["analytic"]["bodies"], m["ode-ideal-nominal"]["bodies"]
-    check(m["ode-ideal-nominal"]["kind"] == "engine", "summary.json kind is 'engine'")
-    check(list(o) == ["crank", "coupler", "ternary", "rod", "output"], "every body: %s" % list(o))
-    worst = max(rel(o[b][k], a[b][k]) for b in a for k in PEAK_KEYS[:2])
-    check(worst <= KIT_OMEGA_REL, "six-bar: ODE's omega peaks within %g of the analytic's, worst %.2e"
-          % (KIT_OMEGA_REL, worst))
-    check(worst > 0.0, "and ODE's peaks are its own (not the analytic's copied): %.2e" % worst)
-
+kit.six_bar(KIT_OMEGA_REL)
 # 2. the paper's four-bar: planar through the kit against the built-in ODE four-bar
-rc1, _, se1 = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                  "run.models=ode-ideal-nominal", "--set", "solver.h_s=1e-5", "--out",
-                  os.path.join(tmp, "pf"))
-rc2, _, se2 = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
-                  "run.models=ode-ideal-nominal", "--set", "solver.h_s=1e-5", "--out",
-                  os.path.join(tmp, "paper"), "--no-figures", "--no-report")
-check(rc1 == 0 and rc2 == 0, "the planar four-bar and the paper case run ODE (%s %s)"
-      % (se1.strip()[-300:], se2.strip()[-300:]))
-if rc1 == 0 and rc2 == 0:
-    k = models("pf")["ode-ideal-nominal"]["bodies"]
-    b = models("paper")["ode-ideal-nominal"]["bodies"]
-    for n in ("coupler", "follower"):
-        for key in PEAK_KEYS:
-            bound = KIT_FOURBAR_OMEGA_REL if "omega" in key else KIT_FOURBAR_ALPHA_REL
-            check(rel(k[n][key], b[n][key]) <= bound, "four-bar %s %s: kit %.12g, built-in %.12g "
-                  "(bound %g)" % (n, key, k[n][key], b[n][key], bound))
-
-# 3. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
-# rod 120 mm, the slider on the x axis
-c = (43.30127018922193, 25.0)
-sx = c[0] + (120.0 ** 2 - 25.0 ** 2) ** 0.5
-slider = os.path.join(tmp, "slider.ini")
-with open(slider, "w") as f:
-    f.write("""[case]
-name = planar_slider
-[linkage]
-type = planar
-[joint.ground-crank]
-bodies = ground, crank
-at_mm = 0, 0
-[joint.crank-rod]
-bodies = crank, rod
-at_mm = %.12f, %.12f
-[joint.rod-slider]
-bodies = rod, slider
-at_mm = %.12f, 0
-[joint.slider-ground]
-bodies = slider, ground
-at_mm = %.12f, 0
-kind = prismatic
-axis_deg = 0
-[body.slider]
-mass_kg = 0.14
-inertia_kg_mm2 = 20
-[drive]
-joint = ground-crank
-speed_rpm = 3000
-[pin]
-fit = 10H7/g6
-length_mm = 13
-[run]
-models = analytic, ode-ideal-nominal
-""" % (c[0], c[1], sx, sx))
-rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"))
-check(rc == 0, "the planar slider-crank runs ode-ideal-nominal (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("slider")
-    a, o = m["analytic"]["bodies"]["rod"], m["ode-ideal-nominal"]["bodies"]["rod"]
-    worst = max(rel(o[k], a[k]) for k in PEAK_KEYS[:2])
-    check(worst <= KIT_SLIDER_OMEGA_REL, "slider-crank: the rod's omega peaks within %g, worst %.2e"
-          % (KIT_SLIDER_OMEGA_REL, worst))
-    s = m["ode-ideal-nominal"]["bodies"]["slider"]
-    check(all(abs(s[k]) == 0.0 for k in PEAK_KEYS), "the slider does not turn: %s" % s)
+kit.fourbar(KIT_FOURBAR_OMEGA_REL, KIT_FOURBAR_ALPHA_REL)
+# 3. a prismatic joint: an in-line slider-crank
+slider = kit.slider(KIT_SLIDER_OMEGA_REL)
 
 # 4. a clearance joint: ODE's native soft contact row through the kit's
 # pipeline against the planar reference, both with the reference's law
-rc, _, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                "run.models=ode-clearance-impact,reference", "--set", "run.revolutions=2",
-                "--out", os.path.join(tmp, "clear"))
-check(rc == 0, "the planar four-bar runs ode-clearance-impact (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("clear")
-    o, ref = m["ode-clearance-impact"], m["reference"]
-    check(o.get("law") == ref.get("law") and o.get("clearance_joints") == ["crank-coupler"],
-          "ODE takes the reference's law at crank-coupler: %s" % o.get("law"))
-    for key in ("force_max_n", "penetration_max_m"):
-        check(rel(o[key], ref[key]) <= KIT_CLEARANCE_FORCE_REL, "clearance %s: ODE %.6g, reference "
-              "%.6g (bound %g)" % (key, o[key], ref[key], KIT_CLEARANCE_FORCE_REL))
-    check(o["contact_steps"] > 0, "ODE's contact rows: %d steps" % o["contact_steps"])
-    worst = max(rel(o["bodies"][n][k], ref["bodies"][n][k]) for n in ("coupler", "follower")
-                for k in PEAK_KEYS[:2])
-    check(worst <= KIT_CLEARANCE_OMEGA_REL, "clearance omega peaks within %g of the reference's, "
-          "worst %.2e" % (KIT_CLEARANCE_OMEGA_REL, worst))
+if kit.clearance([("ode-clearance-impact", "reference")], KIT_CLEARANCE_FORCE_REL,
+                 KIT_CLEARANCE_OMEGA_REL):
     with open(os.path.join(tmp, "clear", "ode-clearance-impact.csv")) as f:
         head = f.readline()
     check("crank-coupler_force_n" in head and "crank-coupler_penetration_m" in head,

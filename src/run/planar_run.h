@@ -28,6 +28,7 @@
  *              body, the contact force) moves by at most FB_UNCONVERGED_REL,
  *              else "unconverged" (run.h's rule for a reference).
   *   ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution
+ *   mujoco-ideal-nominal, mujoco-clearance-impact, mujoco-clearance-restitution
  *              (FB_PLANAR_KIT_MODELS; fb_planar_kit_of says which models
  *              an engine with a binding of the engine kit builds)
  *              the description built in the engine through the kit
@@ -60,7 +61,9 @@
 
 /* The engines' models a planar case runs through the engine kit, for the
  * refusals' list. */
-#define FB_PLANAR_KIT_MODELS "ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution"
+#define FB_PLANAR_KIT_MODELS                                                                  \
+  "ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution, mujoco-ideal-nominal, " \
+  "mujoco-clearance-impact, mujoco-clearance-restitution"
 
 /* What a reference measured beyond its samples. */
 typedef struct {

@@ -162,6 +162,9 @@ typedef struct fb_kit_binding {
                                 add_contact still hands the law on the effective mass and
                                 the episode; c->m and c->cl outlive the world. NULL: the
                                 kit's contact every step only */
+  int applied_force;         /* optional: 1 when add_contact applies the law's force (no engine
+                                row, no [clearance] mapping; MuJoCo, Simbody): the matched
+                                row's aliasing stop is not the engine's, which names its own */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

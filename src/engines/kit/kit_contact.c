@@ -130,7 +130,7 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     c.onset = onset;
     c.h = h;
     p->force[j] = fb_contact_force(&c.law, c.depth, c.rate, c.v0);
-    if ((st = note_row(&c, m->joint[j].name, cl, diag)) != FB_OK) return st;
+    if (!b->applied_force && (st = note_row(&c, m->joint[j].name, cl, diag)) != FB_OK) return st;
     if ((st = b->add_contact(w, j, &c, diag)) != FB_OK) return st;
     if (cl->contact_steps == 0 || c.m_eff < cl->m_eff_min) cl->m_eff_min = c.m_eff;
     if (cl->contact_steps == 0 || c.m_eff > cl->m_eff_max) cl->m_eff_max = c.m_eff;

@@ -41,7 +41,8 @@ double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
  * (contact_force > 0) is a contact step, an episode's onset rate the one
  * read before that step. Errors: FB_ERR_NUMERIC when a matched row
  * would alias (contact.h, FB_MATCHED_ALIAS_BOUND: "aliased: ..." with
- * the largest usable step, the hand-built ODE world's stop); those of
+ * the largest usable step, the hand-built ODE world's stop; not for a
+ * binding whose applied_force is 1); those of
  * add_contact and of the effective mass (planar_mass.h). */
 fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
                                const fb_planar *m, fb_kit_clearance *cl, double h,

@@ -4,6 +4,7 @@
 
 #include "engine.h"
 #include "impact_mujoco.h"
+#include "mujoco_kit.h"
 #include "mujoco_scene.h"
 
 static fb_status mujoco_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
@@ -204,4 +205,5 @@ const fb_engine fb_engine_mujoco = {
     .settings_lines = mujoco_settings_lines,
     .mapping_text = mujoco_mapping_text,
     .bench = &mujoco_bench,
+    .kit = &fb_mujoco_kit,
 };

@@ -8,10 +8,8 @@
 #include <stdlib.h>
 
 #include "contact_mass.h"
+#include "mujoco_common.h"
 #include "mujoco_scene_internal.h"
-
-/* the scene whose model is being stepped: mjcb_passive is one global hook */
-static _Thread_local fb_mujoco_scene *stepping;
 
 /* the project's law at clearance joint j in the current state (positions and
  * velocities of this forward pass): fills cl[j] and adds the generalised force
@@ -58,26 +56,23 @@ static void clearance_force(fb_mujoco_scene *s, const mjModel *m, mjData *d, int
   for (int k = 0; k < nv; k++) d->qfrc_passive[k] -= c->force * w[k];
 }
 
-static void passive_hook(const mjModel *m, mjData *d) {
-  fb_mujoco_scene *s = stepping;
-  if (!s || s->m != m) return;
+/* the scene's passive-force hook (mujoco_common.h): the law at each
+ * clearance joint */
+static void passive_hook(void *ctx, const mjModel *m, mjData *d) {
+  fb_mujoco_scene *s = ctx;
   for (int j = 0; j < 4; j++)
     if (s->def.clearance_mask & (1 << j)) clearance_force(s, m, d, j);
 }
 
-void mujoco_hook_on(fb_mujoco_scene *s) {
-  stepping = s;
-  mjcb_passive = passive_hook;
-}
+void mujoco_hook_on(fb_mujoco_scene *s) { fb_mujoco_passive_on(s->m, passive_hook, s); }
 
-void mujoco_hook_off(void) { stepping = NULL; }
+void mujoco_hook_off(void) { fb_mujoco_passive_off(); }
 
 /* forward pass at the current state with this scene's hook */
 void mujoco_forward(fb_mujoco_scene *s) {
-  stepping = s;
-  mjcb_passive = passive_hook;
+  mujoco_hook_on(s);
   mj_forward(s->m, s->d);
-  stepping = NULL;
+  mujoco_hook_off();
 }
 
 /* native contacts: the force on joint j's pin from MuJoCo's constraints of

@@ -7,14 +7,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "mujoco_common.h"
 #include "mujoco_load.h"
 #include "mujoco_scene_internal.h"
 #include "textbuf.h"
 #include "xmltext.h"
-
-/* solimp width, midpoint and power of the loop closure: with dmin = dmax
- * they have no effect (MuJoCo's defaults) */
-#define LOOP_SOLIMP_TAIL "0.001 0.5 2"
 
 fb_status mujoco_def_from_model(mj_def *d, const fb_model_scene *sm, fb_diag *diag) {
   memset(d, 0, sizeof *d);
@@ -125,7 +122,7 @@ static void put_native(text *t, const mj_def *def, int j, int pin, double x, dou
   native_solref(&def->law[j], &k, &b);
   char contact[256];
   snprintf(contact, sizeof contact,
-           "condim=\"1\" margin=\"0\" solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " LOOP_SOLIMP_TAIL
+           "condim=\"1\" margin=\"0\" solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " FB_MUJOCO_SOLIMP_TAIL
            "\"",
            -k, -b, def->opts.loop_impedance, def->opts.loop_impedance);
   if (pin) {
@@ -188,11 +185,11 @@ static void put_bore_tendons(text *t, const mj_def *def) {
     }
     if (def->exported)
       fb_text_put(t, "    <spatial name=\"%s_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
-             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
+             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " FB_MUJOCO_SOLIMP_TAIL "\">\n",
           joint_name(def, j), def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
     else
       fb_text_put(t, "    <spatial name=\"%c_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
-             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\">\n",
+             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " FB_MUJOCO_SOLIMP_TAIL "\">\n",
           jn, def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
     fb_text_put(t, "      <site site=\"%s\"/>\n      <site site=\"%s\"/>\n", site_name(def, j, 0),
         site_name(def, j, 1));
@@ -272,7 +269,6 @@ static void export_loop_solref(int integ, double hl, double sr[2]) {
 static void put_header(text *t, const mj_def *def, int integ, double hl) {
   const fb_mech_desc *md = fb_mech_of(def->mech);
   const fb_start_state *st = &def->start;
-  static const char *const intname[3] = {"Euler", "implicit", "RK4"};
   fb_text_put(t, "<!-- fourbar export: a %s, %s, for MuJoCo 2.2 and 3.x.\n", md->type,
       def->clearance_mask ? "with its clearance joints" : "ideal joints");
   fb_text_put(t, "  Start: the bodies sit at the start (crank angle %.9g rad), so\n"
@@ -291,16 +287,16 @@ static void put_header(text *t, const mj_def *def, int integ, double hl) {
   if (def->clearance_mask & (1 << FB_JOINT_C))
     fb_text_put(t, "  Step: written at %.6g s, integrator %s. The drive holds any timestep\n"
         "  from that to %.3g s (the loop is closed by the clearance joint below).\n",
-        hl, intname[integ], EXPORT_H_USER_MAX_S);
+        hl, fb_mujoco_integrator_xml(integ), EXPORT_H_USER_MAX_S);
   else
     fb_text_put(t, "  Step: written at %.6g s, integrator %s. Any timestep from that to\n"
         "  %.3g s holds: the loop's solref is in the time-constant form, whose time\n"
         "  constant MuJoCo raises to 2 x timestep (refsafe), damping ratio %.2g for\n"
         "  %s (%.2g for Euler or implicit). Omega peaks against the exact solution\n"
         "  at each step: fourbar's docs/contact-params.md.\n",
-        hl, intname[integ], EXPORT_H_USER_MAX_S,
+        hl, fb_mujoco_integrator_xml(integ), EXPORT_H_USER_MAX_S,
         integ == FB_MUJOCO_RK4 ? EXPORT_LOOP_DAMPRATIO_RK4 : EXPORT_LOOP_DAMPRATIO_EULER,
-        intname[integ], EXPORT_LOOP_DAMPRATIO_EULER);
+        fb_mujoco_integrator_xml(integ), EXPORT_LOOP_DAMPRATIO_EULER);
   for (int j = 0; j < 4; j++) {
     if (!(def->clearance_mask & (1 << j))) continue;
     const fb_contact_law *law = &def->law[j];
@@ -360,7 +356,6 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   const double c = def->lengths.length[FB_FOLLOWER];
   const double h = def->h;
   const int mask = def->clearance_mask;
-  static const char *const intname[3] = {"Euler", "implicit", "RK4"};
   const int integ =
       def->exported ? export_integrator(opts) : fb_mujoco_integrator_resolve(opts, mask);
   /* the loop's default softness follows the step; an adaptive run's
@@ -368,8 +363,8 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
    * (-k, -damp); an export without the case's own loop keys, the
    * time-constant form that follows a user's step (export_loop_solref) */
   const double hl = def->adaptive ? def->h_max : h;
-  double loop_sr[2] = {-(opts->loop_stiffness > 0.0 ? opts->loop_stiffness : 1.0 / (hl * hl)),
-                       -(opts->loop_damping > 0.0 ? opts->loop_damping : 1.0 / hl)};
+  double loop_sr[2];
+  fb_mujoco_loop_solref(opts, hl, loop_sr);
   if (def->exported && !(opts->loop_stiffness > 0.0) && !(opts->loop_damping > 0.0))
     export_loop_solref(integ, hl, loop_sr);
   text t = {buf, size, 0, 0};
@@ -379,7 +374,7 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   /* native contacts: a pin and its hole are on parent and child bodies,
    * which MuJoCo keeps from colliding unless filterparent is off */
   fb_text_put(&t, "  <option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\">%s</option>\n", h,
-      -def->gravity, intname[integ], def->facets ? "<flag filterparent=\"disable\"/>" : "");
+      -def->gravity, fb_mujoco_integrator_xml(integ), def->facets ? "<flag filterparent=\"disable\"/>" : "");
   fb_text_put(&t, "  <worldbody>\n");
   /* the joint points of the start (start.h): holes of A and D on the ground,
    * the crank's frame at A's pin, the coupler's at B's hole, the follower's at
@@ -432,7 +427,7 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
     fb_text_put(&t, "  <equality>\n");
     fb_text_put(&t,
         "    <connect name=\"loop\" body1=\"coupler\" body2=\"%s\" anchor=\"%.17g 0 0\" "
-        "solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " LOOP_SOLIMP_TAIL "\"/>\n",
+        "solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " FB_MUJOCO_SOLIMP_TAIL "\"/>\n",
         def->mech == FB_MECH_SLIDER_CRANK ? "slider" : "follower", b, loop_sr[0], loop_sr[1],
         opts->loop_impedance, opts->loop_impedance);
     fb_text_put(&t, "  </equality>\n");

@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "contact_mass.h"
+#include "mujoco_common.h"
 #include "mujoco_scene_internal.h"
 #include "step_control.h"
 
@@ -13,11 +14,7 @@
 static void step_once(fb_mujoco_scene *s) {
   mujoco_hook_on(s);
   /* integrate with the accelerations of the last forward pass (this state) */
-  switch (s->integrator) {
-    case FB_MUJOCO_RK4: mj_RungeKutta(s->m, s->d, 4); break;
-    case FB_MUJOCO_IMPLICIT: mj_step2(s->m, s->d); break; /* redoes the acceleration stage */
-    default: mj_Euler(s->m, s->d); break;
-  }
+  fb_mujoco_integrate(s->m, s->d, s->integrator);
   mj_forward(s->m, s->d);
   mujoco_hook_off();
   for (int j = 0; j < 4; j++) {

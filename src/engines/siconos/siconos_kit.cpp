@@ -519,7 +519,7 @@ const fb_kit_binding fb_siconos_kit = {
     kit_add_drive,      NULL /* hold_in_plane: planar coordinates */,
     NULL /* add_contact: the clearance is a relation (add_clearance) */,
     kit_contact_force,  kit_step,          kit_body_state, kit_world_free,
-    kit_add_clearance,
+    kit_add_clearance,  0 /* applied_force: no penalty row */,
 };
 
 } // extern "C"

@@ -459,4 +459,6 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     fb_simbody::kit_body_state,
     fb_simbody::kit_world_free,
     fb_simbody::kit_add_clearance,
+    1, /* applied_force: a force element under the integrator's error control, no row to
+          alias */
 };

@@ -1,0 +1,477 @@
+/* MuJoCo as a binding of the engine kit (kit.h): any planar description
+ * built as the MuJoCo four-bar (mujoco_scene.h) builds its own.
+ *
+ * Bodies in a kinematic tree, found breadth first from the ground (the
+ * four-bar's tree: the ground's joints first; at each body its prismatic
+ * joints, then its revolute ones): a tree joint is a hinge about +z
+ * at the joint or a slide along its axis in the child body; a body no
+ * ideal joint reaches (only clearance joints hold it) gets planar freedom
+ * from the world (slide x, slide y, hinge z). Every body's frame is at its
+ * centre of mass, turned by its assembly angle, so qpos = 0 is the
+ * assembly. Each joint left out of the tree closes a loop with MuJoCo's
+ * `connect` equality in the direct soft form the four-bar's loop takes
+ * from the case (solref (-k, -b), k = [mujoco] loop_stiffness_1_s2 or
+ * 1/h^2, b = loop_damping_1_s or 1/h; solimp dmin = dmax = loop_impedance;
+ * mujoco_common.h). The drive is the four-bar's flywheel: the driven tree
+ * joint's armature [mujoco] drive_armature_kg_m2, the start at the kit's
+ * velocities (a least-squares fit of qvel to every body's velocity, exact
+ * for the kit's consistent start). The integrator is the case's [mujoco]
+ * integrator (auto: Euler for an ideal model, RK4 with a clearance joint;
+ * fb_mujoco_integrator_resolve), the step h.
+ *
+ * A clearance joint is the law's force as the four-bar's clearance models
+ * apply it (mujoco_contact.c): through MuJoCo's passive-force hook
+ * (mujoco_common.h), evaluated at every forward pass (4 per RK4 step) from
+ * the pin's and the hole's centres (the kit's add_clearance gives them):
+ * e their eccentricity, penetration |e| - c, rate n . (v_pin - v_hole),
+ * -F n on the pin's centre and +F n on the hole's (mj_applyFT),
+ * F = fb_contact_force with the law the kit's add_contact hands for a step
+ * that starts in contact (its damper on the effective mass, the episode's
+ * onset rate); a contact that starts within a step takes the last law and
+ * its own rate, as the four-bar's hook does. The reported force is the
+ * kit's (the law at each sample's state, as the four-bar's samples give
+ * it). MuJoCo's own contact solver is not used.
+ *
+ * Stops (FB_ERR_NUMERIC, a result): a contact whose h omega_c (the law's
+ * tangent stiffness on the effective mass) exceeds the explicit
+ * integrator's stability bound on an undamped spring (RK4 2 sqrt 2, Euler
+ * 2), naming the largest usable step; a state that is not finite. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contact.h"
+#include "kit.h"
+#include "mujoco_common.h"
+#include "mujoco_kit.h"
+#include "mujoco_load.h"
+#include "planar_spec.h"
+#include "textbuf.h"
+
+/* h omega_c bounds of an explicitly integrated undamped spring: RK4's
+ * stability region meets the imaginary axis at 2 sqrt 2; semi-implicit
+ * Euler (and MuJoCo 2.2's implicit, implicit in joint damping only) at 2 */
+#define MK_RK4_H_OMEGA_MAX 2.8284271247461903
+#define MK_EULER_H_OMEGA_MAX 2.0
+
+/* bytes of MJCF text: a body with its joints ~400, an equality ~250 */
+#define MK_MJCF_BASE 2048
+#define MK_MJCF_PER_ITEM 768
+
+typedef struct {
+  int prismatic;       /* 1: a slide along axis; 0: a hinge about +z */
+  int b0, b1;          /* kit handles */
+  double at[2];        /* [m] */
+  double axis[2];      /* unit, world, at assembly */
+} mk_joint;
+
+/* a clearance joint: its pin's and hole's centres, its law */
+typedef struct {
+  int in;              /* 1: a clearance joint */
+  int on;              /* 1: the kit handed its contact for this step (law, v0) */
+  int pin, hole;       /* kit handles, then MuJoCo body ids (hole 0: the world) */
+  double at[2];        /* both centres at assembly [m] */
+  double lp[2], lh[2]; /* the pin's and the hole's centres in their bodies' frames [m] */
+  double c;            /* radial clearance [m] */
+  double v_min;        /* an onset slower than this is taken at it [m/s] (episode.h) */
+  double v0;           /* the step's onset rate [m/s] */
+  fb_contact_law law;  /* the law, its damper on the last effective mass the kit gave (before
+                          the first contact: on the law's own mass) */
+} mk_contact;
+
+typedef struct {
+  double gravity, h;
+  fb_mujoco_opts opts;
+  fb_kit_body *body;   /* (nb) */
+  mk_joint *joint;     /* (nj) the ideal joints, as added */
+  int nb, nj, nj_all;  /* bodies, ideal joints added, the description's joints */
+  int *parent, *edge;  /* per node (0 the ground, b + 1 handle b): parent node, tree joint (-1:
+                          planar freedom from the world) */
+  unsigned char *tree; /* (nj) 1: a tree joint; 0: closes a loop */
+  int drive;           /* the driven joint */
+  int integrator;      /* fb_mujoco_integrator, resolved */
+  mjModel *m;
+  mjData *d;
+  int *bid;            /* (nb) MuJoCo body id of each handle */
+  mk_contact ct[FB_PLANAR_SPEC_MAX_JOINTS];
+  size_t steps;
+} mk_world;
+
+static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
+  mk_world *k = calloc(1, sizeof *k);
+  const size_t nb = (size_t)o->nbodies + 1, nj = (size_t)o->njoints + 1;
+  if (k) {
+    k->body = calloc(nb, sizeof *k->body);
+    k->joint = calloc(nj, sizeof *k->joint);
+    k->parent = calloc(2 * (nb + 1) + nb, sizeof *k->parent);
+    k->tree = calloc(nj, 1);
+  }
+  if (!k || !k->body || !k->joint || !k->parent || !k->tree) {
+    if (k) free(k->body), free(k->joint), free(k->parent), free(k->tree);
+    free(k);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the MuJoCo world");
+  }
+  k->edge = k->parent + nb + 1;
+  k->bid = k->edge + nb + 1;
+  k->gravity = o->gravity;
+  k->h = o->h;
+  k->opts = o->c ? o->c->mujoco : fb_mujoco_opts_default();
+  k->nj_all = o->njoints;
+  k->drive = -1;
+  *out = k;
+  return FB_OK;
+}
+
+static fb_status kit_add_body(void *w, const fb_kit_body *b, fb_diag *diag) {
+  (void)diag;
+  mk_world *k = w;
+  k->body[k->nb++] = *b;
+  return FB_OK;
+}
+
+static fb_status add_joint(mk_world *k, int prismatic, int b0, int b1, const double at[2],
+                           const double axis[2]) {
+  k->joint[k->nj++] = (mk_joint){prismatic, b0, b1, {at[0], at[1]}, {axis[0], axis[1]}};
+  return FB_OK;
+}
+
+static fb_status kit_add_revolute(void *w, int b0, int b1, const double at[2], fb_diag *diag) {
+  (void)diag;
+  const double none[2] = {0.0, 0.0};
+  return add_joint(w, 0, b0, b1, at, none);
+}
+
+static fb_status kit_add_prismatic(void *w, int b0, int b1, const double at[2],
+                                   const double axis[2], fb_diag *diag) {
+  (void)diag;
+  return add_joint(w, 1, b0, b1, at, axis);
+}
+
+/* the tree, breadth first from the ground: at each body its joints to
+ * bodies not yet reached, prismatic ones first (MuJoCo closes a loop at a
+ * revolute joint only); a body no ideal joint reaches hangs from the world
+ * with planar freedom */
+static fb_status kit_close_loop(void *w, fb_diag *diag) {
+  mk_world *k = w;
+  const int nn = k->nb + 1;
+  int *queue = malloc((size_t)nn * sizeof *queue), head = 0, tail = 0;
+  if (!queue) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int v = 0; v < nn; v++) k->parent[v] = -2; /* not reached */
+  k->parent[0] = -1;
+  queue[tail++] = 0;
+  for (;;) {
+    while (head < tail) {
+      const int u = queue[head++];
+      for (int pass = 1; pass >= 0; pass--)
+        for (int j = 0; j < k->nj; j++) {
+          const mk_joint *J = &k->joint[j];
+          const int a = J->b0 + 1, b = J->b1 + 1, v = a == u ? b : a;
+          if (J->prismatic != pass || (a != u && b != u) || k->parent[v] != -2) continue;
+          k->parent[v] = u, k->edge[v] = j, k->tree[j] = 1, queue[tail++] = v;
+        }
+    }
+    int v = 1;
+    while (v < nn && k->parent[v] != -2) v++;
+    if (v == nn) break;
+    k->parent[v] = 0, k->edge[v] = -1, queue[tail++] = v;
+  }
+  free(queue);
+  for (int j = 0; j < k->nj; j++)
+    if (!k->tree[j] && k->joint[j].prismatic)
+      return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit closes a loop at a revolute joint "
+                         "only, and the %d-th joint added (prismatic) closes one", j + 1);
+  return FB_OK;
+}
+
+/* node v's pose: centre of mass x, y [m] and angle [rad] (the ground's 0) */
+static const double *pose(const mk_world *k, int v) {
+  static const double ground[3] = {0.0, 0.0, 0.0};
+  return v == 0 ? ground : k->body[v - 1].pos;
+}
+
+/* world vector (x, y) in the frame turned by angle a */
+static void to_frame(double out[2], double a, double x, double y) {
+  out[0] = cos(a) * x + sin(a) * y;
+  out[1] = -sin(a) * x + cos(a) * y;
+}
+
+/* node v's own joint(s): planar freedom, or its tree joint in its frame */
+static void put_joints(fb_text *t, const mk_world *k, int v) {
+  const double *p = pose(k, v);
+  if (k->edge[v] < 0) {
+    fb_text_put(t, "<joint name=\"b%d_x\" type=\"slide\" axis=\"1 0 0\"/>"
+                "<joint name=\"b%d_y\" type=\"slide\" axis=\"0 1 0\"/>"
+                "<joint name=\"b%d_z\" type=\"hinge\" axis=\"0 0 1\"/>\n", v - 1, v - 1, v - 1);
+    return;
+  }
+  const mk_joint *J = &k->joint[k->edge[v]];
+  double at[2], ax[2];
+  to_frame(at, p[2], J->at[0] - p[0], J->at[1] - p[1]);
+  to_frame(ax, p[2], J->axis[0], J->axis[1]);
+  fb_text_put(t, "<joint name=\"j%d\" type=\"%s\" pos=\"%.17g %.17g 0\" axis=\"%.17g %.17g %d\"",
+              k->edge[v], J->prismatic ? "slide" : "hinge", at[0], at[1],
+              J->prismatic ? ax[0] : 0.0, J->prismatic ? ax[1] : 0.0, !J->prismatic);
+  if (k->edge[v] == k->drive) fb_text_put(t, " armature=\"%.17g\"", k->opts.drive_armature);
+  fb_text_put(t, "/>\n");
+}
+
+/* node v and its subtree, in its parent's frame; its moments about its
+ * in-plane axes half the +z one (a plate's, which no planar motion
+ * excites; MuJoCo's triangle inequality holds with equality) */
+static void put_body(fb_text *t, const mk_world *k, int v) {
+  const double *p = pose(k, v), *q = pose(k, k->parent[v]);
+  const fb_kit_body *b = &k->body[v - 1];
+  double r[2];
+  to_frame(r, q[2], p[0] - q[0], p[1] - q[1]);
+  fb_text_put(t, "<body name=\"b%d\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n"
+              "<inertial pos=\"0 0 0\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n",
+              v - 1, r[0], r[1], p[2] - q[2], b->mass, 0.5 * b->inertia, 0.5 * b->inertia,
+              b->inertia);
+  put_joints(t, k, v);
+  for (int c = 1; c <= k->nb; c++)
+    if (k->parent[c] == v) put_body(t, k, c);
+  fb_text_put(t, "</body>\n");
+}
+
+/* a loop closed at revolute joint J: a connect equality, its anchor in
+ * body1's frame (body1 a moving body) */
+static void put_connect(fb_text *t, const mk_world *k, const mk_joint *J, const double sr[2]) {
+  const int b1 = J->b0 == FB_KIT_GROUND ? J->b1 : J->b0;
+  const int b2 = J->b0 == FB_KIT_GROUND ? FB_KIT_GROUND : J->b1;
+  const double *p = pose(k, b1 + 1);
+  double a[2];
+  to_frame(a, p[2], J->at[0] - p[0], J->at[1] - p[1]);
+  fb_text_put(t, "<connect body1=\"b%d\"", b1);
+  if (b2 != FB_KIT_GROUND) fb_text_put(t, " body2=\"b%d\"", b2);
+  fb_text_put(t, " anchor=\"%.17g %.17g 0\" solref=\"%.17g %.17g\" solimp=\"%.17g %.17g "
+              FB_MUJOCO_SOLIMP_TAIL "\"/>\n", a[0], a[1], sr[0], sr[1], k->opts.loop_impedance,
+              k->opts.loop_impedance);
+}
+
+static void put_mjcf(fb_text *t, const mk_world *k) {
+  fb_text_put(t, "<mujoco model=\"planar\">\n<compiler angle=\"radian\" inertiafromgeom=\"false\"/>"
+              "\n<option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\"/>\n"
+              "<worldbody>\n", k->h, -k->gravity, fb_mujoco_integrator_xml(k->integrator));
+  for (int v = 1; v <= k->nb; v++)
+    if (k->parent[v] == 0) put_body(t, k, v);
+  fb_text_put(t, "</worldbody>\n<equality>\n");
+  double sr[2];
+  fb_mujoco_loop_solref(&k->opts, k->h, sr);
+  for (int j = 0; j < k->nj; j++)
+    if (!k->tree[j]) put_connect(t, k, &k->joint[j], sr);
+  fb_text_put(t, "</equality>\n</mujoco>\n");
+}
+
+/* positions and velocities of every body at the state now */
+static void kinematics(mk_world *k) {
+  mj_kinematics(k->m, k->d);
+  mj_comPos(k->m, k->d);
+  mj_comVel(k->m, k->d);
+}
+
+/* qvel from every body's velocity at the start: J qvel = v (J the bodies'
+ * centre-of-mass Jacobians, rows x, y and rotation z), solved through the
+ * normal equations (J has full column rank in a tree) */
+static fb_status start_velocity(mk_world *k, fb_diag *diag) {
+  const mjModel *m = k->m;
+  const int nv = m->nv;
+  double *jp = malloc((size_t)(6 * nv + nv * nv + nv) * sizeof *jp);
+  if (!jp) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  double *jr = jp + 3 * nv, *a = jr + 3 * nv, *rhs = a + nv * nv;
+  memset(a, 0, (size_t)(nv * nv + nv) * sizeof *a);
+  for (int b = 0; b < k->nb; b++) {
+    mj_jacBodyCom(m, k->d, jp, jr, k->bid[b]);
+    const double *row[3] = {jp, jp + nv, jr + 2 * nv};
+    for (int r = 0; r < 3; r++)
+      for (int i = 0; i < nv; i++) {
+        rhs[i] += row[r][i] * k->body[b].vel[r];
+        for (int q = 0; q < nv; q++) a[i * nv + q] += row[r][i] * row[r][q];
+      }
+  }
+  const int rank = mju_cholFactor(a, nv, 0.0);
+  if (rank == nv) mju_cholSolve(k->d->qvel, a, rhs, nv);
+  free(jp);
+  if (rank != nv)
+    return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit's tree has a joint no body's velocity "
+                       "sets (rank %d of %d)", rank, nv);
+  kinematics(k);
+  return FB_OK;
+}
+
+/* the flywheel on the driven joint, then the model: written, compiled, at
+ * its start */
+static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
+  (void)rate; /* the start carries it (the kit's velocities); the flywheel keeps it */
+  mk_world *k = w;
+  if (joint < 0 || joint >= k->nj || !k->tree[joint])
+    return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit drives a joint of its tree only (the "
+                       "%d-th joint added closes a loop)", joint + 1);
+  k->drive = joint;
+  k->integrator = fb_mujoco_integrator_resolve(&k->opts, k->nj < k->nj_all);
+  const size_t size = MK_MJCF_BASE + (size_t)(k->nb + k->nj) * MK_MJCF_PER_ITEM;
+  char *buf = malloc(size);
+  if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the MJCF text");
+  fb_text t = {buf, size, 0, 0};
+  put_mjcf(&t, k);
+  if (!t.overflow) k->m = fb_mujoco_load_mjcf(buf, diag);
+  free(buf);
+  if (t.overflow) return fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than %zu bytes", size);
+  if (!k->m) return FB_ERR_ARG;
+  if (!(k->d = mj_makeData(k->m)))
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for MuJoCo's data");
+  for (int b = 0; b < k->nb; b++) {
+    char name[16];
+    snprintf(name, sizeof name, "b%d", b);
+    k->bid[b] = mj_name2id(k->m, mjOBJ_BODY, name);
+  }
+  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) {
+    mk_contact *c = &k->ct[j];
+    if (!c->in) continue;
+    const double *p = pose(k, c->pin + 1), *q = pose(k, c->hole + 1);
+    to_frame(c->lp, p[2], c->at[0] - p[0], c->at[1] - p[1]);
+    to_frame(c->lh, q[2], c->at[0] - q[0], c->at[1] - q[1]);
+    c->pin = k->bid[c->pin];
+    c->hole = c->hole == FB_KIT_GROUND ? 0 : k->bid[c->hole];
+  }
+  mj_forward(k->m, k->d);
+  return start_velocity(k, diag);
+}
+
+/* body b's point at local (its frame) in the world, and its velocity */
+static void point_state(const mjModel *m, const mjData *d, int b, const double local[2],
+                        double x[3], double v[3]) {
+  const double *o = d->xpos + 3 * b, *R = d->xmat + 9 * b;
+  double vel[6]; /* rotation, translation at the centre of mass (the frame's origin) */
+  mj_objectVelocity(m, d, mjOBJ_BODY, b, vel, 0);
+  for (int i = 0; i < 3; i++) x[i] = o[i] + R[3 * i] * local[0] + R[3 * i + 1] * local[1];
+  const double r[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
+  v[0] = vel[3] + vel[1] * r[2] - vel[2] * r[1];
+  v[1] = vel[4] + vel[2] * r[0] - vel[0] * r[2];
+  v[2] = vel[5] + vel[0] * r[1] - vel[1] * r[0];
+}
+
+/* the passive-force hook: each clearance joint's law at this stage's
+ * state (mujoco_contact.c's clearance_force on the kit's joints): the
+ * eccentricity e of the centres, penetration |e| - c, rate n . (v_pin -
+ * v_hole), -F n on the pin's centre and +F n on the hole's; the law and
+ * onset rate the kit's for a step that starts in contact, else (an onset
+ * within the step) the last law and this rate, as the four-bar's */
+static void kit_passive(void *ctx, const mjModel *m, mjData *d) {
+  mk_world *k = ctx;
+  const double zero[3] = {0.0, 0.0, 0.0};
+  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) {
+    const mk_contact *c = &k->ct[j];
+    if (!c->in) continue;
+    double xp[3], vp[3], xh[3], vh[3];
+    point_state(m, d, c->pin, c->lp, xp, vp);
+    point_state(m, d, c->hole, c->lh, xh, vh);
+    const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
+    if (!(ecc > c->c)) continue;
+    const double n[2] = {e[0] / ecc, e[1] / ecc};
+    const double rate = n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]);
+    const double v0 = c->on ? c->v0 : fmax(rate, c->v_min);
+    const double f = fb_contact_force(&c->law, ecc - c->c, rate, v0);
+    if (!(f > 0.0)) continue;
+    const double on_pin[3] = {-f * n[0], -f * n[1], 0.0}, on_hole[3] = {f * n[0], f * n[1], 0.0};
+    mj_applyFT(m, d, on_pin, zero, xp, c->pin, d->qfrc_passive);
+    if (c->hole > 0) mj_applyFT(m, d, on_hole, zero, xh, c->hole, d->qfrc_passive);
+  }
+}
+
+/* clearance joint j: its centres (in their frames once the model is built) */
+static fb_status kit_add_clearance(void *w, int j, const fb_kit_clearance_joint *cj,
+                                   fb_diag *diag) {
+  mk_world *k = w;
+  const int pin = cj->pin, hole = cj->hole;
+  const double *at = cj->at;
+  const fb_kit_clearance *cl = cj->cl;
+  if (j < 0 || j >= FB_PLANAR_SPEC_MAX_JOINTS)
+    return fb_diag_set(diag, FB_ERR_ARG, "clearance joint %d out of range", j);
+  k->ct[j] = (mk_contact){.in = 1, .pin = pin, .hole = hole, .at = {at[0], at[1]},
+                          .c = cl->radial_clearance, .v_min = cl->impact_velocity_min,
+                          .law = cl->law};
+  return FB_OK;
+}
+
+/* the step's contact at joint j: its law (the damper on this effective
+ * mass) and onset rate; a stop where the explicit spring is unstable */
+static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
+  mk_world *k = w;
+  if (j < 0 || j >= FB_PLANAR_SPEC_MAX_JOINTS || !k->ct[j].in)
+    return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit has no clearance joint %d", j);
+  /* h omega_c with the law's tangent stiffness at this penetration */
+  double kp, kd, depth;
+  fb_contact_linearize(&c->law, FB_MAPPING_TANGENT, c->depth, c->rate, c->v0, &kp, &kd, &depth);
+  const double hw = fb_contact_h_omega(c->h, kp, c->m_eff);
+  const double bound = k->integrator == FB_MUJOCO_RK4 ? MK_RK4_H_OMEGA_MAX : MK_EULER_H_OMEGA_MAX;
+  if (hw > bound)
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "unstable: h omega_c = %.3g at clearance joint %d "
+                       "(MuJoCo's %s integrates the law's force explicitly, bound %.3g); "
+                       "largest usable step %.3g s", hw, j,
+                       fb_mujoco_integrator_name(k->integrator), bound, c->h * bound / hw);
+  mk_contact *x = &k->ct[j];
+  x->law = c->law;
+  x->v0 = c->v0;
+  x->on = 1;
+  return FB_OK;
+}
+
+/* one step: the forward pass at the state now with the step's contacts,
+ * MuJoCo's integrator, the new state's kinematics */
+static fb_status kit_step(void *w, fb_diag *diag) {
+  mk_world *k = w;
+  fb_mujoco_passive_on(k->m, kit_passive, k);
+  mj_forward(k->m, k->d);
+  fb_mujoco_integrate(k->m, k->d, k->integrator);
+  fb_mujoco_passive_off();
+  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) k->ct[j].on = 0;
+  k->steps++;
+  for (int i = 0; i < k->m->nv; i++)
+    if (!isfinite(k->d->qvel[i]))
+      return fb_diag_set(diag, FB_ERR_NUMERIC, "MuJoCo's state is not finite after step %zu "
+                         "(t = %.6g s)", k->steps, (double)k->steps * k->h);
+  kinematics(k);
+  return FB_OK;
+}
+
+static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
+  const mk_world *k = w;
+  const int id = k->bid[b];
+  const double *x = k->d->xpos + 3 * id, *R = k->d->xmat + 9 * id;
+  double v[6];
+  mj_objectVelocity(k->m, k->d, mjOBJ_BODY, id, v, 0);
+  pos[0] = x[0];
+  pos[1] = x[1];
+  pos[2] = atan2(R[3], R[0]);
+  vel[0] = v[3];
+  vel[1] = v[4];
+  vel[2] = v[2];
+}
+
+static void kit_world_free(void *w) {
+  mk_world *k = w;
+  if (k->d) mj_deleteData(k->d);
+  if (k->m) mj_deleteModel(k->m);
+  free(k->body);
+  free(k->joint);
+  free(k->parent);
+  free(k->tree);
+  free(k);
+}
+
+const fb_kit_binding fb_mujoco_kit = {
+    .engine = "mujoco",
+    .world_new = kit_world_new,
+    .add_body = kit_add_body,
+    .add_revolute = kit_add_revolute,
+    .add_prismatic = kit_add_prismatic,
+    .close_loop = kit_close_loop,
+    .add_drive = kit_add_drive,
+    .add_contact = kit_add_contact,
+    .add_clearance = kit_add_clearance,
+    .step = kit_step,
+    .body_state = kit_body_state,
+    .world_free = kit_world_free,
+    .applied_force = 1,
+};

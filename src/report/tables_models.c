@@ -14,6 +14,7 @@ static void cell(FILE *f, const char *s);
  * ("four-bar, slider-crank"); returned */
 static const char *mechanisms(char *buf, size_t size, const fb_model *m) {
   buf[0] = '\0';
+  if (m->planar_only) snprintf(buf, size, "planar only"); /* [linkage] type = planar */
   for (int t = 0; t < FB_MECH_COUNT; t++) {
     if (!fb_model_builds(m, (fb_mech_type)t)) continue;
     const size_t n = strlen(buf);
@@ -73,6 +74,7 @@ void fb_report_models_json(FILE *f) {
     for (int t = 0; t < FB_MECH_COUNT; t++)
       if (fb_model_builds(m, (fb_mech_type)t))
         json_array_append_new(mech, json_string(fb_mech_of((fb_mech_type)t)->type));
+    if (m->planar_only) json_array_append_new(mech, json_string("planar"));
     json_object_set_new(o, "mechanisms", mech);
     json_object_set_new(o, "summary", json_string(m->summary));
     json_array_append_new(models, o);

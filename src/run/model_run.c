@@ -40,6 +40,10 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
                             fb_progress_fn progress, void *user, fb_diag *diag) {
   const fb_scene *def = sm->def;
   void *self = NULL;
+  if (!e->create) /* an engine of planar cases alone (engine.h's kit, model_table.h) */
+    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine builds planar cases only ([linkage] "
+                       "type = planar, through the engine kit), not a four-bar or a "
+                       "slider-crank yet", e->name);
   const double t0 = fb_clock_s();
   fb_status st = e->create(&self, sm, diag);
   const double create_s = fb_clock_s() - t0;

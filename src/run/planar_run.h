@@ -60,7 +60,8 @@
 
 /* The engines' models a planar case runs through the engine kit, for the
  * refusals' list. */
-#define FB_PLANAR_KIT_MODELS "ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution"
+#define FB_PLANAR_KIT_MODELS "ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution, " \
+  "dart-ideal-nominal, dart-clearance-impact, dart-clearance-restitution"
 
 /* What a reference measured beyond its samples. */
 typedef struct {

@@ -133,7 +133,26 @@ static fb_status check_slider_crank(const fb_case *c, fb_diag *diag) {
   return FB_OK;
 }
 
+/* a four-bar case's models: a planar-only model (model_table.h) builds
+ * planar cases alone */
+static fb_status check_fourbar_models(const fb_case *c, fb_diag *diag) {
+  for (int i = 0; i < c->model_count; i++) {
+    const fb_model *m = fb_model_find(c->models[i]);
+    if (m && !fb_model_builds(m, FB_MECH_FOURBAR))
+      return fb_diag_set(diag, FB_ERR_ARG,
+                         "[run] models: model '%s' builds planar cases only ([linkage] type = "
+                         "planar, through the engine kit), not the four-bar yet; fourbar models "
+                         "lists each model's mechanisms",
+                         c->models[i]);
+  }
+  return FB_OK;
+}
+
 fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
+  if (c->mechanism == FB_MECH_FOURBAR && !c->planar.on) {
+    fb_status st = check_fourbar_models(c, diag);
+    if (st != FB_OK) return st;
+  }
   if (c->mechanism == FB_MECH_SLIDER_CRANK) {
     fb_status st = check_slider_crank(c, diag);
     if (st != FB_OK) return st;

@@ -143,6 +143,9 @@ typedef struct fb_model {
   const char *summary;     /* one line for help texts */
   fb_model_style style;    /* its line in every figure; color NULL and hue FB_HUE_NONE: the
                               figures pick one */
+  int planar_only;         /* 1: builds planar cases alone ([linkage] type = planar, through
+                              the engine kit), neither the four-bar nor the slider-crank:
+                              its engine has no create (engine.h) */
 } fb_model;
 
 /* The rows, in the order help texts list them. */
@@ -150,8 +153,8 @@ extern const fb_model fb_models[];
 /* Number of rows. */
 extern const int fb_model_count;
 
-/* 1 when model m builds mechanism t (every model builds the four-bar; a
- * row's mechanisms bits the others). */
+/* 1 when model m builds mechanism t (every model but a planar_only one
+ * builds the four-bar; a row's mechanisms bits the others). */
 int fb_model_builds(const fb_model *m, fb_mech_type t);
 
 /* The row named name, or NULL. */

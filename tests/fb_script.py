@@ -59,3 +59,43 @@ def start(argv, prefix):
     here = os.path.dirname(os.path.abspath(__file__))
     return (os.path.abspath(argv[1]), os.path.join(here, "..", "cases"), Tally(),
             tempfile.mkdtemp(prefix=prefix))
+
+
+def planar_slider_crank(path, models):
+    """writes to path an in-line slider-crank as a planar case
+    ([linkage] type = planar): crank 50 mm at 30 degrees, rod 120 mm, the
+    slider on the x axis (a prismatic joint along +x), 3000 rpm; [run]
+    models = models (text)"""
+    c = (43.30127018922193, 25.0)
+    sx = c[0] + (120.0 ** 2 - 25.0 ** 2) ** 0.5
+    with open(path, "w") as f:
+        f.write("""[case]
+name = planar_slider
+[linkage]
+type = planar
+[joint.ground-crank]
+bodies = ground, crank
+at_mm = 0, 0
+[joint.crank-rod]
+bodies = crank, rod
+at_mm = %.12f, %.12f
+[joint.rod-slider]
+bodies = rod, slider
+at_mm = %.12f, 0
+[joint.slider-ground]
+bodies = slider, ground
+at_mm = %.12f, 0
+kind = prismatic
+axis_deg = 0
+[body.slider]
+mass_kg = 0.14
+inertia_kg_mm2 = 20
+[drive]
+joint = ground-crank
+speed_rpm = 3000
+[pin]
+fit = 10H7/g6
+length_mm = 13
+[run]
+models = %s
+""" % (c[0], c[1], sx, sx, models))

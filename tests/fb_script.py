@@ -99,3 +99,15 @@ length_mm = 13
 [run]
 models = %s
 """ % (c[0], c[1], sx, sx, models))
+
+
+def rel(p, q):
+    """|p - q| / |q| (q = 0: against 1e-300)"""
+    return abs(p - q) / max(abs(q), 1e-300)
+
+
+def summary_models(folder):
+    """a run folder's summary.json models by name"""
+    import json, os
+    with open(os.path.join(folder, "summary.json")) as f:
+        return {m["name"]: m for m in json.load(f)["models"]}

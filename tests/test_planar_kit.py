@@ -20,7 +20,7 @@ And what the kit does not build yet is refused naming issue 58.
 
 Usage: test_planar_kit.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
-import json, os, sys
+import os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
@@ -64,13 +64,11 @@ def run(*args):
     return fb_script.run(exe, tmp, *args)
 
 
-def rel(p, q):
-    return abs(p - q) / max(abs(q), 1e-300)
+rel = fb_script.rel
 
 
 def models(out):
-    with open(os.path.join(tmp, out, "summary.json")) as f:
-        return {m["name"]: m for m in json.load(f)["models"]}
+    return fb_script.summary_models(os.path.join(tmp, out))
 
 
 # 1. the six-bar: every moving body's omega peaks within the issue's bound

@@ -59,13 +59,11 @@ def run(*args):
     return fb_script.run(exe, tmp, *args)
 
 
-def rel(p, q):
-    return abs(p - q) / max(abs(q), 1e-300)
+rel = fb_script.rel
 
 
 def models(out):
-    with open(os.path.join(tmp, out, "summary.json")) as f:
-        return {m["name"]: m for m in json.load(f)["models"]}
+    return fb_script.summary_models(os.path.join(tmp, out))
 
 
 def impacts(path, joint, n=3):

@@ -110,3 +110,8 @@ length_mm = 13
 [run]
 models = %s
 """ % (c[0], c[1], sx, sx, models))
+
+
+def summary_models(folder):
+    """a run folder's summary.json models by name (models, by another name)"""
+    return models(folder)

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "model_table.h"
+#include "planar_run.h"
 
 /* s as a Markdown table cell: a '|' inside it is written '\|' */
 static void cell(FILE *f, const char *s);
@@ -19,6 +20,9 @@ static const char *mechanisms(char *buf, size_t size, const fb_model *m) {
     const size_t n = strlen(buf);
     snprintf(buf + n, size - n, "%s%s", n ? ", " : "", fb_mech_of((fb_mech_type)t)->type);
   }
+  const size_t n = strlen(buf);
+  if (fb_planar_run_takes(m->name)) /* [linkage] type = planar (planar_run.h) */
+    snprintf(buf + n, size - n, "%splanar", n ? ", " : "");
   return buf;
 }
 
@@ -73,6 +77,7 @@ void fb_report_models_json(FILE *f) {
     for (int t = 0; t < FB_MECH_COUNT; t++)
       if (fb_model_builds(m, (fb_mech_type)t))
         json_array_append_new(mech, json_string(fb_mech_of((fb_mech_type)t)->type));
+    if (fb_planar_run_takes(m->name)) json_array_append_new(mech, json_string("planar"));
     json_object_set_new(o, "mechanisms", mech);
     json_object_set_new(o, "summary", json_string(m->summary));
     json_array_append_new(models, o);

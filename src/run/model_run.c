@@ -40,6 +40,9 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
                             fb_progress_fn progress, void *user, fb_diag *diag) {
   const fb_scene *def = sm->def;
   void *self = NULL;
+  if (!e->create) /* fb_engine_runner hands the kit adapter for an engine without one */
+    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine has no build of a four-bar or a "
+                       "slider-crank (no create, no engine kit binding)", e->name);
   const double t0 = fb_clock_s();
   fb_status st = e->create(&self, sm, diag);
   const double create_s = fb_clock_s() - t0;

@@ -507,7 +507,7 @@ static fb_status apply_list(fb_case *c, const entry *e, const key_spec *k, void 
             const fb_model *m = &fb_models[q];
             /* (and that builds the case's mechanism: its [linkage] type is read first) */
             if (fnmatch(tok, m->name, 0) != 0 || !fb_engine_available(m->engine) ||
-                !fb_model_builds(m, c->mechanism))
+                !fb_model_builds(m, c->mechanism) || m->by_name_only)
               continue;
             int dup = 0;
             for (int i = 0; i < c->model_count; i++) dup |= strcmp(c->models[i], m->name) == 0;

@@ -143,6 +143,9 @@ typedef struct fb_model {
   const char *summary;     /* one line for help texts */
   fb_model_style style;    /* its line in every figure; color NULL and hue FB_HUE_NONE: the
                               figures pick one */
+  int by_name_only;        /* 1: a pattern in [run] models ("*-ideal-nominal") leaves it out,
+                              a case lists it by name (DART's rows: the shipped cases'
+                              patterns and their check baselines predate the engine) */
 } fb_model;
 
 /* The rows, in the order help texts list them. */

@@ -3,7 +3,7 @@ ODE, tests/test_planar_kit_siconos.py for Siconos): a run's models from its
 summary.json, the relative difference, the planar slider-crank they write,
 and the six-bar's check of an engine's ideal model against the analytic
 omega peaks."""
-import json, os
+import os
 
 import fb_script
 
@@ -18,53 +18,19 @@ def start(argv, prefix):
 
 
 def rel(p, q):
-    """|p - q| / |q|"""
-    return abs(p - q) / max(abs(q), 1e-300)
+    """|p - q| / |q| (fb_script.rel)"""
+    return fb_script.rel(p, q)
 
 
 def models(tmp, out):
-    """the models of the run written to tmp/out, by name"""
-    with open(os.path.join(tmp, out, "summary.json")) as f:
-        return {m["name"]: m for m in json.load(f)["models"]}
+    """the models of the run written to tmp/out, by name (fb_script.models)"""
+    return fb_script.models(os.path.join(tmp, out))
 
 
 def write_slider(path, model):
-    """an in-line slider-crank as a planar case at path: crank 50 mm at 30
-    degrees, rod 120 mm, the slider on the x axis (a prismatic joint to the
-    ground), 3000 rpm; [run] models = analytic, model"""
-    c = (43.30127018922193, 25.0)
-    sx = c[0] + (120.0 ** 2 - 25.0 ** 2) ** 0.5
-    with open(path, "w") as f:
-        f.write("""[case]
-name = planar_slider
-[linkage]
-type = planar
-[joint.ground-crank]
-bodies = ground, crank
-at_mm = 0, 0
-[joint.crank-rod]
-bodies = crank, rod
-at_mm = %.12f, %.12f
-[joint.rod-slider]
-bodies = rod, slider
-at_mm = %.12f, 0
-[joint.slider-ground]
-bodies = slider, ground
-at_mm = %.12f, 0
-kind = prismatic
-axis_deg = 0
-[body.slider]
-mass_kg = 0.14
-inertia_kg_mm2 = 20
-[drive]
-joint = ground-crank
-speed_rpm = 3000
-[pin]
-fit = 10H7/g6
-length_mm = 13
-[run]
-models = analytic, %s
-""" % (c[0], c[1], sx, sx, model))
+    """an in-line slider-crank as a planar case at path
+    (fb_script.planar_slider_crank); [run] models = analytic, model"""
+    fb_script.planar_slider_crank(path, "analytic, " + model)
 
 
 def check_sixbar(run, check, cases, tmp, model, bound, extra=()):

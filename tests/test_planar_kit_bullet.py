@@ -139,40 +139,8 @@ if rc1 == 0 and rc2 == 0:
 
 # 3. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
 # rod 120 mm, the slider on the x axis
-c = (43.30127018922193, 25.0)
-sx = c[0] + (120.0 ** 2 - 25.0 ** 2) ** 0.5
 slider = os.path.join(tmp, "slider.ini")
-with open(slider, "w") as f:
-    f.write("""[case]
-name = planar_slider
-[linkage]
-type = planar
-[joint.ground-crank]
-bodies = ground, crank
-at_mm = 0, 0
-[joint.crank-rod]
-bodies = crank, rod
-at_mm = %.12f, %.12f
-[joint.rod-slider]
-bodies = rod, slider
-at_mm = %.12f, 0
-[joint.slider-ground]
-bodies = slider, ground
-at_mm = %.12f, 0
-kind = prismatic
-axis_deg = 0
-[body.slider]
-mass_kg = 0.14
-inertia_kg_mm2 = 20
-[drive]
-joint = ground-crank
-speed_rpm = 3000
-[pin]
-fit = 10H7/g6
-length_mm = 13
-[run]
-models = analytic, bullet-ideal-nominal
-""" % (c[0], c[1], sx, sx))
+fb_script.planar_slider_crank(slider, "analytic, bullet-ideal-nominal")
 rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"), "--no-figures",
                 "--no-report")
 check(rc == 0, "the planar slider-crank runs bullet-ideal-nominal (%s)" % se.strip()[-300:])

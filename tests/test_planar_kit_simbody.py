@@ -116,8 +116,7 @@ if rc1 == 0 and rc2 == 0:
 # 3. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
 # rod 120 mm, the slider on the x axis
 slider = os.path.join(tmp, "slider.ini")
-with open(slider, "w") as f:
-    f.write(fb_kit_test.slider_text("analytic, simbody-ideal-nominal"))
+fb_script.planar_slider_crank(slider, "analytic, simbody-ideal-nominal")
 rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"), "--no-figures",
                 "--no-report")
 check(rc == 0, "the planar slider-crank runs simbody-ideal-nominal (%s)" % se.strip()[-300:])

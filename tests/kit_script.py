@@ -1,5 +1,5 @@
 """What the engine kit's script tests share (tests/test_planar_kit.py for
-ODE, tests/test_planar_kit_siconos.py for Siconos): a run's models from its
+ODE, tests/test_planar_kit_siconos.py and _simbody.py): a run's models from its
 summary.json, the relative difference, the planar slider-crank they write,
 and the six-bar's check of an engine's ideal model against the analytic
 omega peaks."""

@@ -22,7 +22,7 @@ failed"; exit 1 on any failure."""
 import json, os, subprocess, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import fb_kit_test  # noqa: E402
+import kit_script  # noqa: E402
 import fb_script  # noqa: E402
 
 exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-kit-simbody-")
@@ -63,7 +63,7 @@ KIT_CLEARANCE_FORCE_REL = 0.02
 # reference's own check integration moves its window peaks by 3.6e-4 (its
 # verdict's measure): 2e-3 is twice the larger.
 KIT_CLEARANCE_OMEGA_REL = 2e-3
-PEAK_KEYS, rel = fb_kit_test.PEAK_KEYS, fb_kit_test.rel
+PEAK_KEYS, rel = kit_script.PEAK_KEYS, kit_script.rel
 
 
 def run(*args):
@@ -71,7 +71,7 @@ def run(*args):
 
 
 def models(out):
-    return fb_kit_test.models(os.path.join(tmp, out))
+    return kit_script.models(tmp, out)
 
 
 listing = json.loads(subprocess.run([exe, "models", "--json"], capture_output=True,

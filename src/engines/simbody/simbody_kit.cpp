@@ -181,7 +181,11 @@ Vec3 local(const Kit *k, int b, const double x[2]) {
 // angle at assembly
 Transform joint_frame(const Kit *k, int b, const KitJoint &j, double angle) {
   const double a = b == FB_KIT_GROUND ? 0.0 : k->body[b].pos[2];
-  return Transform(Rotation(angle - a, ZAxis), local(k, b, j.at));
+  // the rotation about z written out (the values Rotation(angle, ZAxis) sets):
+  // that constructor, inlined under the sanitizers' -O2, trips GCC 12's
+  // -Warray-bounds inside Simbody's Row.h (a false positive)
+  const double c = std::cos(angle - a), s = std::sin(angle - a);
+  return Transform(Rotation(Mat33(c, -s, 0, s, c, 0, 0, 0, 1), true), local(k, b, j.at));
 }
 
 // the velocity at assembly of body b's point at world x [m/s]

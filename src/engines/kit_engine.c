@@ -8,10 +8,10 @@
  * only for the steps it took) and gives them one at a time as
  * fb_samples: the crank angle, every output body's angle, omega and
  * alpha (a translating body's centre x, v, a), the clearance joint's
- * force, penetration, eccentricity and contact state. The kit's series already gives each step's
- * acceleration and contact force to the sample the step started from
- * (kit.h), so the table asks no lag correction; its spikes are refined as
- * the hand-built engines' are.
+ * force, penetration, eccentricity and contact state. The kit's series
+ * already gives each step's acceleration and contact force to the sample
+ * the step started from (kit.h), so the table asks no lag correction; its
+ * spikes are refined as the hand-built engines' are.
  *
  * What the kit builds, and so what this adapter refuses (FB_ERR_ARG, the
  * model, the key and what to change): one clearance joint (a revolute
@@ -193,11 +193,11 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
   if (st == FB_OK && r->joint >= 0) {
     const size_t n = r->s.n;
     r->cl = (fb_kit_clearance){.mask = 1u << r->joint, .law = sm->law[r->joint],
-                            .mapping = sm->mapping, .radial_clearance = sm->radial_clearance,
-                            .pin_radius = sm->pin_radius,
-                            .impact_velocity_min = sm->impact_velocity_min, .joint = r->joint,
-                            .force = r->col + FB_C_FORCE * n, .pen = r->col + FB_C_PEN * n,
-                            .ecc = r->col + FB_C_EX * n, .state = r->col + FB_C_STATE * n};
+                               .mapping = sm->mapping, .radial_clearance = sm->radial_clearance,
+                               .pin_radius = sm->pin_radius,
+                               .impact_velocity_min = sm->impact_velocity_min, .joint = r->joint,
+                               .force = r->col + FB_C_FORCE * n, .pen = r->col + FB_C_PEN * n,
+                               .ecc = r->col + FB_C_EX * n, .state = r->col + FB_C_STATE * n};
   }
   fb_start_state start;
   if (st == FB_OK) st = fb_model_scene_start(&start, sm, diag);

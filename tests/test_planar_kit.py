@@ -24,9 +24,9 @@ import os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kit_script  # noqa: E402
-from kit_script import PEAK_KEYS, check_sixbar, rel, write_slider  # noqa: E402
 
-exe, cases, check, tally, tmp, run = kit_script.start(sys.argv, "fourbar-planar-kit-")
+kit = kit_script.start(sys.argv, "fourbar-planar-kit-", "ode")
+check, run, tmp, cases = kit.check, kit.cmd, kit.tmp, kit.cases
 
 # The issue's bound on an engine's ideal model of the six-bar against the
 # analytic omega peaks. ODE at the six-bar's h = 1e-5 s (300 rpm) measured
@@ -59,96 +59,30 @@ KIT_CLEARANCE_FORCE_REL = 0.05
 KIT_CLEARANCE_OMEGA_REL = 1e-3
 
 
-def models(out):
-    return kit_script.models(tmp, out)
-
-
 # 1. the six-bar: every moving body's omega peaks within the issue's bound
-check_sixbar(run, check, cases, tmp, "ode-ideal-nominal", KIT_OMEGA_REL)
-
-# 2. the paper's four-bar: planar through the kit against the built-in ODE four-bar
-rc1, _, se1 = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                  "run.models=ode-ideal-nominal", "--set", "solver.h_s=1e-5", "--out",
-                  os.path.join(tmp, "pf"))
-rc2, _, se2 = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
-                  "run.models=ode-ideal-nominal", "--set", "solver.h_s=1e-5", "--out",
-                  os.path.join(tmp, "paper"), "--no-figures", "--no-report")
-check(rc1 == 0 and rc2 == 0, "the planar four-bar and the paper case run ODE (%s %s)"
-      % (se1.strip()[-300:], se2.strip()[-300:]))
-if rc1 == 0 and rc2 == 0:
-    k = models("pf")["ode-ideal-nominal"]["bodies"]
-    b = models("paper")["ode-ideal-nominal"]["bodies"]
-    for n in ("coupler", "follower"):
-        for key in PEAK_KEYS:
-            bound = KIT_FOURBAR_OMEGA_REL if "omega" in key else KIT_FOURBAR_ALPHA_REL
-            check(rel(k[n][key], b[n][key]) <= bound, "four-bar %s %s: kit %.12g, built-in %.12g "
-                  "(bound %g)" % (n, key, k[n][key], b[n][key], bound))
-
+kit.six_bar(KIT_OMEGA_REL)
+# 2. the paper's four-bar: planar through the kit against the hand-built ODE four-bar
+kit.fourbar(KIT_FOURBAR_OMEGA_REL, KIT_FOURBAR_ALPHA_REL)
 # 3. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
 # rod 120 mm, the slider on the x axis
-slider = os.path.join(tmp, "slider.ini")
-write_slider(slider, "ode-ideal-nominal")
-rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"))
-check(rc == 0, "the planar slider-crank runs ode-ideal-nominal (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("slider")
-    a, o = m["analytic"]["bodies"]["rod"], m["ode-ideal-nominal"]["bodies"]["rod"]
-    worst = max(rel(o[k], a[k]) for k in PEAK_KEYS[:2])
-    check(worst <= KIT_SLIDER_OMEGA_REL, "slider-crank: the rod's omega peaks within %g, worst %.2e"
-          % (KIT_SLIDER_OMEGA_REL, worst))
-    s = m["ode-ideal-nominal"]["bodies"]["slider"]
-    check(all(abs(s[k]) == 0.0 for k in PEAK_KEYS), "the slider does not turn: %s" % s)
-
+slider = kit.slider(KIT_SLIDER_OMEGA_REL)
 # 4. a clearance joint: ODE's native soft contact row through the kit's
 # pipeline against the planar reference, both with the reference's law
-rc, _, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                "run.models=ode-clearance-impact,reference", "--set", "run.revolutions=2",
-                "--out", os.path.join(tmp, "clear"))
-check(rc == 0, "the planar four-bar runs ode-clearance-impact (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("clear")
-    o, ref = m["ode-clearance-impact"], m["reference"]
-    check(o.get("law") == ref.get("law") and o.get("clearance_joints") == ["crank-coupler"],
-          "ODE takes the reference's law at crank-coupler: %s" % o.get("law"))
-    for key in ("force_max_n", "penetration_max_m"):
-        check(rel(o[key], ref[key]) <= KIT_CLEARANCE_FORCE_REL, "clearance %s: ODE %.6g, reference "
-              "%.6g (bound %g)" % (key, o[key], ref[key], KIT_CLEARANCE_FORCE_REL))
-    check(o["contact_steps"] > 0, "ODE's contact rows: %d steps" % o["contact_steps"])
-    worst = max(rel(o["bodies"][n][k], ref["bodies"][n][k]) for n in ("coupler", "follower")
-                for k in PEAK_KEYS[:2])
-    check(worst <= KIT_CLEARANCE_OMEGA_REL, "clearance omega peaks within %g of the reference's, "
-          "worst %.2e" % (KIT_CLEARANCE_OMEGA_REL, worst))
-    with open(os.path.join(tmp, "clear", "ode-clearance-impact.csv")) as f:
-        head = f.readline()
-    check("crank-coupler_force_n" in head and "crank-coupler_penetration_m" in head,
-          "the CSV has the joint's force and penetration")
+kit.clearance([("ode-clearance-impact", "reference")], KIT_CLEARANCE_FORCE_REL,
+              KIT_CLEARANCE_OMEGA_REL)
 
 # the six-bar's light rod-output pin under the impact law at h = 1e-5 s:
 # the matched row would alias (omega_d h 4.4 against the bound 0.9 pi,
 # contact.h), and the kit stops the model as the hand-built ODE world
 # does, naming the largest usable step; the run goes on and says so
-rc, _, se = run("run", os.path.join(cases, "watt_sixbar.ini"), "--set",
-                "run.models=ode-clearance-impact,ode-ideal-nominal", "--set", "run.revolutions=1",
-                "--out", os.path.join(tmp, "alias"))
-check(rc == 0, "the six-bar's run goes on past a stopped model (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("alias")
-    o = m["ode-clearance-impact"]
-    check(o["status"] == "failed" and "aliased" in o.get("stop", "") and
-          "largest usable step" in o.get("stop", ""), "the impact model stops aliased: %s"
-          % o.get("stop"))
-    check(o["bodies"]["rod"]["omega_max_rad_s"] is None, "a stopped model has no peaks")
-    check(m["ode-ideal-nominal"]["status"] == "ok", "the ideal model beside it runs")
+m = kit.stops("ode-clearance-impact", "aliased")
+if m:
+    check(m["ode-clearance-impact"]["bodies"]["rod"]["omega_max_rad_s"] is None,
+          "a stopped model has no peaks")
 
 # 5. what the kit does not build yet: refused naming issue 58, nothing written
 for name in ("ode-clearance-faceted", "ode-ideal-stackup"):
-    out = os.path.join(tmp, "no-" + name)
-    rc, _, se = run("run", os.path.join(cases, "watt_sixbar.ini"), "--set", "run.models=" + name,
-                    "--out", out)
-    check(rc == 2 and name in se and "issue 58" in se and "ode-ideal-nominal" in se,
-          "%s on a planar case is refused naming issue 58 and what runs (%d, %s)"
-          % (name, rc, se.strip()))
-    check(not os.path.exists(out), "and nothing is written for %s" % name)
+    kit.refused(name)
 
 # 6. what the kit cannot take from a case: an undriven case (the kit
 # drives its start) and clearance at a prismatic joint (a slider in its
@@ -172,4 +106,4 @@ rc, _, se = run("run", guided, "--out", out)
 check(rc != 0 and "slider-ground" in se and "references only" in se,
       "clearance at a prismatic joint refuses ode-clearance-impact by name (%d, %s)" % (rc, se.strip()))
 
-sys.exit(tally.done())
+kit.done()

@@ -20,13 +20,14 @@ five ways.
 Skips (exit 77) when the build has no Bullet. Usage:
 test_planar_kit_bullet.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
-import json, os, sys
+import os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import fb_script  # noqa: E402
+import kit_script  # noqa: E402
+from kit_script import OMEGA_KEYS, rel  # noqa: E402
 
-exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-kit-bullet-")
-check = tally.check
+kit = kit_script.start(sys.argv, "fourbar-planar-kit-bullet-", "bullet")
+check = kit.check
 
 # The issue's bound on an engine's ideal model of the six-bar against the
 # analytic omega peaks. Bullet (MLCP Dantzig) at the six-bar's h = 1e-5 s
@@ -79,153 +80,48 @@ KIT_RESTITUTION_REL = 0.10
 # error (1.35e-6) if the case's [bullet] settings reach the binding;
 # measured 9.4e-3 (the crank's omega max: the drive row unconverged)
 KIT_SI_MOVES_REL = 1e-5
-PEAK_KEYS = ("omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2", "alpha_min_rad_s2")
 
-
-def run(*args):
-    return fb_script.run(exe, tmp, *args)
-
-
-def rel(p, q):
-    return abs(p - q) / max(abs(q), 1e-300)
-
-
-def models(out):
-    with open(os.path.join(tmp, out, "summary.json")) as f:
-        return {m["name"]: m for m in json.load(f)["models"]}
-
-
-# no Bullet in this build: skip (fourbar models' "in this build" column)
-rc, so, _ = run("models")
-row = [line for line in so.splitlines() if line.startswith("| bullet-ideal-nominal |")]
-if rc != 0 or not row or row[0].split("|")[3].strip() != "yes":
-    print("no Bullet in this build: skipped")
-    sys.exit(77)
+# no Bullet in this build: skip
+kit.skip_unless_built()
 
 # 1. the six-bar: every moving body's omega peaks within the issue's bound
-six = os.path.join(cases, "watt_sixbar.ini")
-rc, _, se = run("run", six, "--set", "run.models=analytic,bullet-ideal-nominal", "--out",
-                os.path.join(tmp, "six"), "--no-figures", "--no-report")
-check(rc == 0, "watt_sixbar runs bullet-ideal-nominal (%s)" % se.strip()[-300:])
-six_peaks = None
-if rc == 0:
-    m = models("six")
-    a, o = m["analytic"]["bodies"], m["bullet-ideal-nominal"]["bodies"]
-    six_peaks = (a, o)
-    check(m["bullet-ideal-nominal"]["kind"] == "engine", "summary.json kind is 'engine'")
-    check(list(o) == ["crank", "coupler", "ternary", "rod", "output"], "every body: %s" % list(o))
-    worst = max(rel(o[b][k], a[b][k]) for b in a for k in PEAK_KEYS[:2])
-    check(worst <= KIT_OMEGA_REL, "six-bar: Bullet's omega peaks within %g of the analytic's, "
-          "worst %.2e" % (KIT_OMEGA_REL, worst))
-    check(worst > 0.0, "and Bullet's peaks are its own (not the analytic's copied): %.2e" % worst)
-
+six = kit.six_bar(KIT_OMEGA_REL)
 # 2. the paper's four-bar: planar through the kit against the hand-built Bullet four-bar
-rc1, _, se1 = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                  "run.models=bullet-ideal-nominal", "--set", "solver.h_s=1e-5", "--out",
-                  os.path.join(tmp, "pf"), "--no-figures", "--no-report")
-rc2, _, se2 = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
-                  "run.models=bullet-ideal-nominal", "--set", "solver.h_s=1e-5", "--out",
-                  os.path.join(tmp, "paper"), "--no-figures", "--no-report")
-check(rc1 == 0 and rc2 == 0, "the planar four-bar and the paper case run Bullet (%s %s)"
-      % (se1.strip()[-300:], se2.strip()[-300:]))
-if rc1 == 0 and rc2 == 0:
-    k = models("pf")["bullet-ideal-nominal"]["bodies"]
-    b = models("paper")["bullet-ideal-nominal"]["bodies"]
-    for n in ("coupler", "follower"):
-        for key in PEAK_KEYS:
-            bound = KIT_FOURBAR_OMEGA_REL if "omega" in key else KIT_FOURBAR_ALPHA_REL
-            check(rel(k[n][key], b[n][key]) <= bound, "four-bar %s %s: kit %.12g, hand-built "
-                  "%.12g (bound %g)" % (n, key, k[n][key], b[n][key], bound))
-
+kit.fourbar(KIT_FOURBAR_OMEGA_REL, KIT_FOURBAR_ALPHA_REL)
 # 3. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
-# rod 120 mm, the slider on the x axis
-slider = os.path.join(tmp, "slider.ini")
-fb_script.planar_slider_crank(slider, "analytic, bullet-ideal-nominal")
-rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"), "--no-figures",
-                "--no-report")
-check(rc == 0, "the planar slider-crank runs bullet-ideal-nominal (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("slider")
-    a, o = m["analytic"]["bodies"]["rod"], m["bullet-ideal-nominal"]["bodies"]["rod"]
-    worst = max(rel(o[k], a[k]) for k in PEAK_KEYS[:2])
-    check(worst <= KIT_SLIDER_OMEGA_REL, "slider-crank: the rod's omega peaks within %g, worst "
-          "%.2e" % (KIT_SLIDER_OMEGA_REL, worst))
-    s = m["bullet-ideal-nominal"]["bodies"]["slider"]
-    check(all(abs(s[k]) <= KIT_SLIDER_SPIN_RAD_S for k in PEAK_KEYS[:2]),
-          "the slider does not turn: %s" % s)
+# rod 120 mm, the slider on the x axis, on a btSliderConstraint guide
+kit.slider(KIT_SLIDER_OMEGA_REL, KIT_SLIDER_SPIN_RAD_S, None)
 
 # 4. a clearance joint: Bullet's soft row through the kit's pipeline against
 # the planar reference and against ODE's row, all with the reference's law
-pf = os.path.join(cases, "templates", "planar_fourbar.ini")
-rc, _, se = run("run", pf, "--set", "run.models=bullet-clearance-impact,ode-clearance-impact,"
-                "reference", "--set", "run.revolutions=2", "--out", os.path.join(tmp, "clear"),
-                "--no-figures", "--no-report")
-check(rc == 0, "the planar four-bar runs bullet-clearance-impact (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("clear")
-    o, ref, ode = m["bullet-clearance-impact"], m["reference"], m["ode-clearance-impact"]
-    check(o.get("law") == ref.get("law") and o.get("clearance_joints") == ["crank-coupler"],
-          "Bullet takes the reference's law at crank-coupler: %s" % o.get("law"))
+m = kit.clearance([("bullet-clearance-impact", "reference")], KIT_CLEARANCE_FORCE_REL,
+                  KIT_CLEARANCE_OMEGA_REL, also=("ode-clearance-impact",))
+if m:
+    o, ode = m["bullet-clearance-impact"], m["ode-clearance-impact"]
     for key in ("force_max_n", "penetration_max_m"):
-        check(rel(o[key], ref[key]) <= KIT_CLEARANCE_FORCE_REL, "clearance %s: Bullet %.6g, "
-              "reference %.6g (bound %g)" % (key, o[key], ref[key], KIT_CLEARANCE_FORCE_REL))
         check(rel(o[key], ode[key]) <= KIT_BULLET_ODE_REL, "clearance %s: Bullet %.6g, ODE %.6g "
               "(bound %g)" % (key, o[key], ode[key], KIT_BULLET_ODE_REL))
-    check(o["contact_steps"] > 0, "Bullet's contact rows: %d steps" % o["contact_steps"])
-    worst = max(rel(o["bodies"][n][k], ref["bodies"][n][k]) for n in ("coupler", "follower")
-                for k in PEAK_KEYS[:2])
-    check(worst <= KIT_CLEARANCE_OMEGA_REL, "clearance omega peaks within %g of the reference's, "
-          "worst %.2e" % (KIT_CLEARANCE_OMEGA_REL, worst))
-    with open(os.path.join(tmp, "clear", "bullet-clearance-impact.csv")) as f:
-        head = f.readline()
-    check("crank-coupler_force_n" in head and "crank-coupler_penetration_m" in head,
-          "the CSV has the joint's force and penetration")
-
-rc, _, se = run("run", pf, "--set", "run.models=bullet-clearance-restitution,"
-                "reference-restitution", "--set", "run.revolutions=2", "--out",
-                os.path.join(tmp, "rest"), "--no-figures", "--no-report")
-check(rc == 0, "the planar four-bar runs bullet-clearance-restitution (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("rest")
-    o, ref = m["bullet-clearance-restitution"], m["reference-restitution"]
-    check(o.get("law") == ref.get("law"), "the restitution law is the reference's")
-    for key in ("force_max_n", "penetration_max_m"):
-        check(rel(o[key], ref[key]) <= KIT_RESTITUTION_REL, "restitution %s: Bullet %.6g, "
-              "reference %.6g (bound %g)" % (key, o[key], ref[key], KIT_RESTITUTION_REL))
+# the restitution law: its force and penetration peaks (KIT_RESTITUTION_REL
+# says why they are held looser); its omega peaks are not held
+kit.clearance([("bullet-clearance-restitution", "reference-restitution")], KIT_RESTITUTION_REL,
+              None, out="rest")
 
 # 5. the case's [bullet] settings reach the binding: sequential impulse at
 # 5 iterations moves the six-bar's peaks off the direct solver's
-rc, _, se = run("run", six, "--set", "run.models=bullet-ideal-nominal", "--set",
-                "bullet.solver=sequential-impulse", "--set", "bullet.iterations=5", "--out",
-                os.path.join(tmp, "si"), "--no-figures", "--no-report")
-check(rc == 0, "the six-bar runs sequential impulse (%s)" % se.strip()[-300:])
-if rc == 0 and six_peaks:
-    o, d = models("si")["bullet-ideal-nominal"]["bodies"], six_peaks[1]
-    moved = max(rel(o[b][k], d[b][k]) for b in d for k in PEAK_KEYS[:2])
+si = kit.run(kit.six, "si", "run.models=" + kit.ideal, "bullet.solver=sequential-impulse",
+             "bullet.iterations=5")
+if si and six:
+    o, d = si[kit.ideal]["bodies"], six[kit.ideal]["bodies"]
+    moved = max(rel(o[b][k], d[b][k]) for b in d for k in OMEGA_KEYS)
     check(moved > KIT_SI_MOVES_REL, "sequential impulse (5 iterations) is not the MLCP: peaks "
           "moved %.2e (> %g)" % (moved, KIT_SI_MOVES_REL))
 
 # the six-bar's light rod-output pin under the impact law at h = 1e-5 s:
 # the matched row would alias, and the kit stops Bullet's model as ODE's,
 # naming the largest usable step; the ideal model beside it runs
-rc, _, se = run("run", six, "--set", "run.models=bullet-clearance-impact,bullet-ideal-nominal",
-                "--set", "run.revolutions=1", "--out", os.path.join(tmp, "alias"),
-                "--no-figures", "--no-report")
-check(rc == 0, "the six-bar's run goes on past a stopped model (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("alias")
-    o = m["bullet-clearance-impact"]
-    check(o["status"] == "failed" and "aliased" in o.get("stop", "") and
-          "largest usable step" in o.get("stop", ""), "the impact model stops aliased: %s"
-          % o.get("stop"))
-    check(m["bullet-ideal-nominal"]["status"] == "ok", "the ideal model beside it runs")
+kit.stops("bullet-clearance-impact", "aliased")
 
 # what the kit does not build: bullet-ideal-stackup refused naming issue 58
-out = os.path.join(tmp, "no-stackup")
-rc, _, se = run("run", six, "--set", "run.models=bullet-ideal-stackup", "--out", out)
-check(rc == 2 and "bullet-ideal-stackup" in se and "issue 58" in se and
-      "bullet-ideal-nominal" in se and not os.path.exists(out),
-      "bullet-ideal-stackup on a planar case is refused naming issue 58 and what runs (%d, %s)"
-      % (rc, se.strip()))
+kit.refused("bullet-ideal-stackup")
 
-sys.exit(tally.done())
+kit.done()

@@ -23,11 +23,9 @@ failed"; exit 1 on any failure."""
 import os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import fb_script  # noqa: E402
-import planar_kit_checks  # noqa: E402
+import kit_script  # noqa: E402
 
-exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-kit-mujoco-")
-check = tally.check
+kit = kit_script.start(sys.argv, "fourbar-planar-kit-mujoco-", "mujoco")
 
 # The issue's bound on an engine's ideal model of the six-bar against the
 # analytic omega peaks. MuJoCo at h = 1e-5 s (300 rpm, Euler, loop solref
@@ -61,7 +59,6 @@ KIT_CLEARANCE_FORCE_REL = 0.05
 # from the ideal's) would hide nothing; 5e-3 bounds both
 KIT_CLEARANCE_OMEGA_REL = 5e-3
 
-kit = planar_kit_checks.KitChecks(exe, cases, tally, tmp, "mujoco")
 # 1. the six-bar: every moving body's omega peaks within the issue's bound
 kit.six_bar(KIT_OMEGA_REL)
 # 2. the paper's four-bar: planar through the kit against the hand-built MuJoCo four-bar
@@ -79,17 +76,6 @@ kit.clearance([("mujoco-clearance-impact", "reference"),
 # (2 sqrt 2; measured 3.29 at the first contact that does; without the
 # stop MuJoCo's state is NaN at step 280); the model stops naming the
 # largest usable step, the run goes on
-rc, _, se = fb_script.run(exe, tmp, "run", os.path.join(cases, "watt_sixbar.ini"), "--set",
-                          "run.models=mujoco-clearance-impact,mujoco-ideal-nominal", "--set",
-                          "run.revolutions=1", "--out", os.path.join(tmp, "unstable"),
-                          "--no-figures", "--no-report")
-check(rc == 0, "the six-bar's run goes on past a stopped model (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = fb_script.models(os.path.join(tmp, "unstable"))
-    o = m["mujoco-clearance-impact"]
-    check(o["status"] == "failed" and "unstable" in o.get("stop", "") and
-          "largest usable step" in o.get("stop", ""), "the impact model stops unstable: %s"
-          % o.get("stop"))
-    check(m["mujoco-ideal-nominal"]["status"] == "ok", "the ideal model beside it runs")
+kit.stops("mujoco-clearance-impact", "unstable")
 
-sys.exit(tally.done())
+kit.done()

@@ -21,13 +21,14 @@ And what the binding does not build is refused by name.
 Usage: test_planar_kit_siconos.py PATH_TO_FOURBAR. Skipped (exit 77) when
 the build has no Siconos. Prints "N passed, N failed"; exit 1 on any
 failure."""
-import csv, json, os, sys
+import csv, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kit_script  # noqa: E402
-from kit_script import PEAK_KEYS, check_sixbar, rel, write_slider  # noqa: E402
+from kit_script import OMEGA_KEYS, rel  # noqa: E402
 
-exe, cases, check, tally, tmp, run = kit_script.start(sys.argv, "fourbar-planar-kit-siconos-")
+kit = kit_script.start(sys.argv, "fourbar-planar-kit-siconos-", "siconos")
+check, run, tmp, cases = kit.check, kit.cmd, kit.tmp, kit.cases
 
 # The issue's bound on an engine's ideal model of the six-bar against the
 # analytic omega peaks. Measured 2.7e-8 (the rod's omega min) at h = 1e-5
@@ -80,10 +81,6 @@ SLIDER_OMEGA_ABS = 1e-12
 SLIDER_ALPHA_ABS = 2e-7
 
 
-def models(out):
-    return kit_script.models(tmp, out)
-
-
 def first_force_time(path):
     """the time of the first sample with a positive contact force [s]"""
     with open(path) as f:
@@ -96,77 +93,38 @@ def first_force_time(path):
 
 
 # a build without Siconos: skipped, never passed
-rc, so, _ = run("models", "--json")
-check(rc == 0, "fourbar models --json runs")
-if rc == 0 and not any(e["name"] == "siconos" and e["available"] for e in json.loads(so)["engines"]):
-    print("skipped: this build has no Siconos")
-    sys.exit(77)
+kit.skip_unless_built()
 
 # 1. the six-bar: every moving body's omega peaks within the issue's bound
-check_sixbar(run, check, cases, tmp, "siconos-ideal-nominal", KIT_OMEGA_REL,
-             ("--no-figures", "--no-report"))
+kit.six_bar(KIT_OMEGA_REL)
 
 # 2. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
 # rod 120 mm, the slider on the x axis
-slider = os.path.join(tmp, "slider.ini")
-write_slider(slider, "siconos-ideal-nominal")
-rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"), "--no-figures", "--no-report")
-check(rc == 0, "the planar slider-crank runs siconos-ideal-nominal (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("slider")
-    a, o = m["analytic"]["bodies"]["rod"], m["siconos-ideal-nominal"]["bodies"]["rod"]
-    worst = max(rel(o[k], a[k]) for k in PEAK_KEYS[:2])
-    check(worst <= KIT_SLIDER_OMEGA_REL, "slider-crank: the rod's omega peaks within %g, worst %.2e"
-          % (KIT_SLIDER_OMEGA_REL, worst))
-    s = m["siconos-ideal-nominal"]["bodies"]["slider"]
-    check(all(abs(s[k]) <= SLIDER_OMEGA_ABS for k in PEAK_KEYS[:2]) and
-          all(abs(s[k]) <= SLIDER_ALPHA_ABS for k in PEAK_KEYS[2:]), "the slider does not turn: %s" % s)
+kit.slider(KIT_SLIDER_OMEGA_REL, SLIDER_OMEGA_ABS, SLIDER_ALPHA_ABS)
 
 # 3. the paper's four-bar: planar through the kit against the hand-built
-# Siconos four-bar, ideal and with the rigid clearance joint
-nominal = ("--set", "tolerance.stackup=nominal")
-for name, extra, bound in (("siconos-ideal-nominal", (), KIT_FOURBAR_OMEGA_REL),
-                           ("siconos-clearance-newton", ("--set", "run.revolutions=2"),
-                            KIT_FOURBAR_CLEARANCE_OMEGA_REL)):
-    pf, hb = "pf-" + name, "hb-" + name
-    rc1, _, se1 = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                      "run.models=" + name, "--set", "solver.h_s=1e-5", *extra, "--out",
-                      os.path.join(tmp, pf), "--no-figures", "--no-report")
-    rc2, _, se2 = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
-                      "run.models=" + name, "--set", "solver.h_s=1e-5", *nominal, *extra,
-                      "--out", os.path.join(tmp, hb), "--no-figures", "--no-report")
-    check(rc1 == 0 and rc2 == 0, "%s: the planar four-bar and the paper case run (%s %s)"
-          % (name, se1.strip()[-300:], se2.strip()[-300:]))
-    if rc1 != 0 or rc2 != 0:
-        continue
-    k, b = models(pf)[name], models(hb)[name]
-    check(k["status"] == "ok", "%s on the planar four-bar: %s" % (name, k["status"]))
-    for n in ("coupler", "follower"):
-        for key in PEAK_KEYS[:2] if "clearance" in name else PEAK_KEYS:
-            lim = bound if "omega" in key else KIT_FOURBAR_ALPHA_REL
-            kv, bv = k["bodies"][n][key], b["bodies"][n][key]
-            check(rel(kv, bv) <= lim, "%s four-bar %s %s: kit %.12g, hand-built %.12g (bound %g)"
-                  % (name, n, key, kv, bv, lim))
-    if "clearance" in name:
-        tk = first_force_time(os.path.join(tmp, pf, name + ".csv"))
-        tb = first_force_time(os.path.join(tmp, hb, name + ".csv"))
-        check(tk is not None and tk == tb, "the first impulse in the same step: kit %s s, "
-              "hand-built %s s" % (tk, tb))
+# Siconos four-bar (nominal lengths), ideal and with the rigid clearance
+# joint (its omega peaks, and its first impulse in the same step)
+kit.fourbar(KIT_FOURBAR_OMEGA_REL, KIT_FOURBAR_ALPHA_REL, built=("tolerance.stackup=nominal",),
+            tag="-ideal")
+name = "siconos-clearance-newton"
+if kit.fourbar(KIT_FOURBAR_CLEARANCE_OMEGA_REL, None, "run.revolutions=2", model=name,
+               built=("tolerance.stackup=nominal",), keys=OMEGA_KEYS, tag="-clearance"):
+    tk = first_force_time(os.path.join(tmp, "pf-clearance", name + ".csv"))
+    tb = first_force_time(os.path.join(tmp, "paper-clearance", name + ".csv"))
+    check(tk is not None and tk == tb, "the first impulse in the same step: kit %s s, "
+          "hand-built %s s" % (tk, tb))
 
 # 4. the rigid clearance joint against the planar reference of the
 # restitution law
-rc, _, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                "run.models=siconos-clearance-newton,reference-restitution", "--set",
-                "run.revolutions=2", "--out", os.path.join(tmp, "clear"), "--no-figures",
-                "--no-report")
-check(rc == 0, "the planar four-bar runs siconos-clearance-newton (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("clear")
+m = kit.run(kit.planar_fourbar, "clear", "run.models=siconos-clearance-newton,"
+            "reference-restitution", "run.revolutions=2")
+if m:
     o, ref = m["siconos-clearance-newton"], m["reference-restitution"]
     check(o["clearance_joints"] == ["crank-coupler"] and o["contact_steps"] > 0,
           "Siconos's relation at crank-coupler acted in %d steps" % o["contact_steps"])
     worst = max(rel(o["bodies"][n][k], ref["bodies"][n][k]) for n in ("coupler", "follower")
-                for k in PEAK_KEYS[:2])
+                for k in OMEGA_KEYS)
     check(worst <= KIT_CLEARANCE_OMEGA_REL, "clearance omega peaks within %g of the reference's, "
           "worst %.2e" % (KIT_CLEARANCE_OMEGA_REL, worst))
     h = o["h_s"]
@@ -192,11 +150,7 @@ for setting, words in (("siconos.scheme=combined-projection", "scheme = moreau-j
 
 # friction is refused at a clearance joint only: an ideal model of a case
 # with friction (and clearance joints listed for its clearance models) runs
-out = os.path.join(tmp, "ideal-friction")
-rc, _, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                "run.models=siconos-ideal-nominal", "--set", "clearance.friction=0.2", "--out", out,
-                "--no-figures", "--no-report")
-check(rc == 0, "siconos-ideal-nominal runs on a case with [clearance] friction (%d, %s)"
-      % (rc, se.strip()[-300:]))
+kit.run(kit.planar_fourbar, "ideal-friction", "run.models=siconos-ideal-nominal",
+        "clearance.friction=0.2")
 
-sys.exit(tally.done())
+kit.done()

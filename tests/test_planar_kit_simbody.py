@@ -19,14 +19,12 @@ Skipped (exit 77) in a build without Simbody.
 
 Usage: test_planar_kit_simbody.py PATH_TO_FOURBAR. Prints "N passed, N
 failed"; exit 1 on any failure."""
-import json, os, subprocess, sys
+import os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import kit_script  # noqa: E402
-import fb_script  # noqa: E402
 
-exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-kit-simbody-")
-check = tally.check
+kit = kit_script.start(sys.argv, "fourbar-planar-kit-simbody-", "simbody")
 
 # The issue's bound on an engine's ideal model of the six-bar against the
 # analytic omega peaks. Simbody at the six-bar's h = 1e-5 s (300 rpm),
@@ -63,94 +61,22 @@ KIT_CLEARANCE_FORCE_REL = 0.02
 # reference's own check integration moves its window peaks by 3.6e-4 (its
 # verdict's measure): 2e-3 is twice the larger.
 KIT_CLEARANCE_OMEGA_REL = 2e-3
-PEAK_KEYS, rel = kit_script.PEAK_KEYS, kit_script.rel
 
-
-def run(*args):
-    return fb_script.run(exe, tmp, *args)
-
-
-def models(out):
-    return kit_script.models(tmp, out)
-
-
-listing = json.loads(subprocess.run([exe, "models", "--json"], capture_output=True,
-                                    text=True).stdout)
-if not any(m["name"] == "simbody-ideal-nominal" and m["available"] for m in listing["models"]):
-    print("skipped: this build has no Simbody")
-    sys.exit(77)
+kit.skip_unless_built()
 
 # 1. the six-bar: every moving body's omega peaks within the issue's bound
-rc, _, se = run("run", os.path.join(cases, "watt_sixbar.ini"), "--set",
-                "run.models=analytic,simbody-ideal-nominal", "--out", os.path.join(tmp, "six"),
-                "--no-figures", "--no-report")
-check(rc == 0, "watt_sixbar runs simbody-ideal-nominal (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("six")
-    a, o = m["analytic"]["bodies"], m["simbody-ideal-nominal"]["bodies"]
-    check(m["simbody-ideal-nominal"]["kind"] == "engine", "summary.json kind is 'engine'")
-    check(list(o) == ["crank", "coupler", "ternary", "rod", "output"], "every body: %s" % list(o))
-    worst = max(rel(o[b][k], a[b][k]) for b in a for k in PEAK_KEYS[:2])
-    check(worst <= KIT_OMEGA_REL, "six-bar: Simbody's omega peaks within %g of the analytic's, "
-          "worst %.2e" % (KIT_OMEGA_REL, worst))
-    check(worst > 0.0, "and Simbody's peaks are its own (not the analytic's copied): %.2e" % worst)
-
-# 2. the paper's four-bar: planar through the kit against the hand-built Simbody four-bar
-common = ("--set", "solver.h_s=1e-5", "--set", "simbody.accuracy=" + KIT_FOURBAR_ACCURACY,
-          "--no-figures", "--no-report")
-rc1, _, se1 = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                  "run.models=simbody-ideal-nominal", "--out", os.path.join(tmp, "pf"), *common)
-rc2, _, se2 = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
-                  "run.models=simbody-ideal-nominal", "--out", os.path.join(tmp, "paper"), *common)
-check(rc1 == 0 and rc2 == 0, "the planar four-bar and the paper case run Simbody (%s %s)"
-      % (se1.strip()[-300:], se2.strip()[-300:]))
-if rc1 == 0 and rc2 == 0:
-    k = models("pf")["simbody-ideal-nominal"]["bodies"]
-    b = models("paper")["simbody-ideal-nominal"]["bodies"]
-    for n in ("coupler", "follower"):
-        for key in PEAK_KEYS:
-            bound = KIT_FOURBAR_OMEGA_REL if "omega" in key else KIT_FOURBAR_ALPHA_REL
-            check(rel(k[n][key], b[n][key]) <= bound, "four-bar %s %s: kit %.12g, hand-built "
-                  "%.12g (bound %g)" % (n, key, k[n][key], b[n][key], bound))
-
+kit.six_bar(KIT_OMEGA_REL)
+# 2. the paper's four-bar: planar through the kit against the hand-built
+# Simbody four-bar, both at the accuracy KIT_FOURBAR_ACCURACY
+kit.fourbar(KIT_FOURBAR_OMEGA_REL, KIT_FOURBAR_ALPHA_REL,
+            "simbody.accuracy=" + KIT_FOURBAR_ACCURACY)
 # 3. a prismatic joint: an in-line slider-crank, crank 50 mm at 30 degrees,
 # rod 120 mm, the slider on the x axis
-slider = os.path.join(tmp, "slider.ini")
-fb_script.planar_slider_crank(slider, "analytic, simbody-ideal-nominal")
-rc, _, se = run("run", slider, "--out", os.path.join(tmp, "slider"), "--no-figures",
-                "--no-report")
-check(rc == 0, "the planar slider-crank runs simbody-ideal-nominal (%s)" % se.strip()[-300:])
-if rc == 0:
-    m = models("slider")
-    a, o = m["analytic"]["bodies"]["rod"], m["simbody-ideal-nominal"]["bodies"]["rod"]
-    worst = max(rel(o[k], a[k]) for k in PEAK_KEYS[:2])
-    check(worst <= KIT_SLIDER_OMEGA_REL, "slider-crank: the rod's omega peaks within %g, "
-          "worst %.2e" % (KIT_SLIDER_OMEGA_REL, worst))
-    s = m["simbody-ideal-nominal"]["bodies"]["slider"]
-    check(all(abs(s[k]) == 0.0 for k in PEAK_KEYS), "the slider does not turn: %s" % s)
-
+kit.slider(KIT_SLIDER_OMEGA_REL)
 # 4. the clearance models: the kit's pipeline and Simbody's force element
 # against the planar reference of the same law
-for law, ref_name in (("impact", "reference"), ("restitution", "reference-restitution")):
-    name, out = "simbody-clearance-" + law, "clear-" + law
-    rc, _, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                    "run.models=%s,%s" % (name, ref_name), "--set", "run.revolutions=2", "--out",
-                    os.path.join(tmp, out), "--no-figures", "--no-report")
-    check(rc == 0, "the planar four-bar runs %s (%s)" % (name, se.strip()[-300:]))
-    if rc != 0:
-        continue
-    m = models(out)
-    o, ref = m[name], m[ref_name]
-    check(o["status"] == "ok" and o.get("law") == ref.get("law") and
-          o.get("clearance_joints") == ["crank-coupler"],
-          "%s takes the reference's law at crank-coupler: %s" % (name, o.get("law")))
-    for key in ("force_max_n", "penetration_max_m"):
-        check(rel(o[key], ref[key]) <= KIT_CLEARANCE_FORCE_REL, "%s %s: Simbody %.6g, %s %.6g "
-              "(bound %g)" % (name, key, o[key], ref_name, ref[key], KIT_CLEARANCE_FORCE_REL))
-    check(o["contact_steps"] > 0, "%s's contact steps: %d" % (name, o["contact_steps"]))
-    worst = max(rel(o["bodies"][n][k], ref["bodies"][n][k]) for n in ("coupler", "follower")
-                for k in PEAK_KEYS[:2])
-    check(worst <= KIT_CLEARANCE_OMEGA_REL, "%s's omega peaks within %g of the reference's, "
-          "worst %.2e" % (name, KIT_CLEARANCE_OMEGA_REL, worst))
+kit.clearance([("simbody-clearance-impact", "reference"),
+               ("simbody-clearance-restitution", "reference-restitution")],
+              KIT_CLEARANCE_FORCE_REL, KIT_CLEARANCE_OMEGA_REL)
 
-sys.exit(tally.done())
+kit.done()

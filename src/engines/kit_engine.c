@@ -2,15 +2,16 @@
  * engine kit (src/engines/kit/kit.h) as an engine of the four-bar and
  * slider-crank run path (model_run.c). create writes the case's mechanism
  * as a planar description at the model's lengths (fb_planar_of_case:
- * nominal or the stack-up corner), runs it through the binding
- * (fb_kit_run: the whole series, as the reference engine computes its
- * own), and step replays it one sample at a time as fb_samples: the crank
- * angle, every output body's angle, omega and alpha (a translating body's
- * centre x, v, a), the clearance joint's force, penetration, eccentricity
- * and contact state. The kit's series already gives each step's
- * acceleration and contact force to the sample the step started from
- * (kit.h), so the table asks no lag correction; its spikes are refined as
- * the hand-built engines' are.
+ * nominal or the stack-up corner) and opens the kit's run of it through
+ * the binding (fb_kit_open); step advances the kit one sample ahead of
+ * the one it gives (fb_kit_advance: a model the harness stops early pays
+ * only for the steps it took) and gives them one at a time as
+ * fb_samples: the crank angle, every output body's angle, omega and
+ * alpha (a translating body's centre x, v, a), the clearance joint's
+ * force, penetration, eccentricity and contact state. The kit's series
+ * already gives each step's acceleration and contact force to the sample
+ * the step started from (kit.h), so the table asks no lag correction; its
+ * spikes are refined as the hand-built engines' are.
  *
  * What the kit builds, and so what this adapter refuses (FB_ERR_ARG, the
  * model, the key and what to change): one clearance joint (a revolute
@@ -44,7 +45,8 @@ typedef struct {
   size_t i;            /* the sample replayed now */
   int impacts;         /* impact episodes up to sample i */
   fb_stop stop;        /* why the kit stopped early (kind FB_STOP_NONE: it did not) */
-  fb_contact_provenance prov; /* the clearance joint's effective mass and contact steps */
+  fb_kit_clearance cl; /* the clearance joint's columns and counts (mask 0: none) */
+  fb_kit_runner *kit;  /* the kit's run while it has samples to fill, else NULL */
   const char *engine;  /* the binding's engine */
 } kit_run;
 
@@ -112,6 +114,7 @@ static void start_coordinates(double *q, double *qd, const fb_planar *m, const f
 
 static void kit_run_free(kit_run *r) {
   if (!r) return;
+  fb_kit_close(r->kit);
   fb_planar_free(r->m);
   free(r->s.t);
   free(r->col);
@@ -152,6 +155,27 @@ static fb_status alloc_run(kit_run *r, size_t n, int nb, fb_diag *diag) {
   return FB_OK;
 }
 
+/* the kit's samples filled through i + 1 (sample i's alpha and contact
+ * force are the step from it: final once sample i + 1 is there), the
+ * kit's run closed at its end; a kit stop (FB_ERR_NUMERIC: an engine
+ * error, or the aliasing stop) is a result: r->stop, the samples reached
+ * replayed; any other error is returned with diag */
+static fb_status reach(kit_run *r, size_t i, fb_diag *diag) {
+  if (!r->kit) return FB_OK;
+  const size_t n = i + 2 < r->s.n ? i + 2 : r->s.n;
+  const fb_status st = fb_kit_advance(r->kit, n, diag);
+  if (st == FB_OK) r->reached = n;
+  if (st == FB_ERR_NUMERIC) { /* replay what was reached */
+    r->reached = 0;
+    kit_stopped_at(r, r->cl.aliased_omega_d_h, r->s.h, diag);
+  }
+  if (st != FB_OK || n == r->s.n) {
+    fb_kit_close(r->kit);
+    r->kit = NULL;
+  }
+  return st;
+}
+
 static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
   fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
@@ -166,15 +190,14 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
   st = refuse(sm, &r->joint, diag);
   if (st == FB_OK) st = fb_planar_of_case(&r->m, &sm->def->source, &sm->lengths, diag);
   if (st == FB_OK) st = alloc_run(r, sm->def->steps + 1, r->m->nbodies - 1, diag);
-  fb_kit_clearance cl = {0};
   if (st == FB_OK && r->joint >= 0) {
     const size_t n = r->s.n;
-    cl = (fb_kit_clearance){.mask = 1u << r->joint, .law = sm->law[r->joint],
-                            .mapping = sm->mapping, .radial_clearance = sm->radial_clearance,
-                            .pin_radius = sm->pin_radius,
-                            .impact_velocity_min = sm->impact_velocity_min, .joint = r->joint,
-                            .force = r->col + FB_C_FORCE * n, .pen = r->col + FB_C_PEN * n,
-                            .ecc = r->col + FB_C_EX * n, .state = r->col + FB_C_STATE * n};
+    r->cl = (fb_kit_clearance){.mask = 1u << r->joint, .law = sm->law[r->joint],
+                               .mapping = sm->mapping, .radial_clearance = sm->radial_clearance,
+                               .pin_radius = sm->pin_radius,
+                               .impact_velocity_min = sm->impact_velocity_min, .joint = r->joint,
+                               .force = r->col + FB_C_FORCE * n, .pen = r->col + FB_C_PEN * n,
+                               .ecc = r->col + FB_C_EX * n, .state = r->col + FB_C_STATE * n};
   }
   fb_start_state start;
   if (st == FB_OK) st = fb_model_scene_start(&start, sm, diag);
@@ -185,15 +208,10 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
                             .nbodies = r->m->nbodies - 1, .njoints = r->m->njoints,
                             .c = &sm->def->source, .q0 = q0, .qd0 = qd0};
     r->s.h = sm->solver.h;
-    st = fb_kit_run(b, r->m, sm->omega2, &o, r->joint >= 0 ? &cl : NULL, &r->s, diag);
-    r->reached = r->s.n;
-    r->prov = (fb_contact_provenance){cl.m_eff_min, cl.m_eff_max, NAN, NAN, cl.h_omega_max,
-                                      cl.contact_steps};
-    if (st == FB_ERR_NUMERIC) { /* a stop is a result: replay what was reached */
-      r->reached = 0;
-      kit_stopped_at(r, cl.aliased_omega_d_h, sm->solver.h, diag);
-      st = r->reached ? FB_OK : FB_ERR_NUMERIC;
-    }
+    st = fb_kit_open(&r->kit, b, r->m, sm->omega2, &o, r->joint >= 0 ? &r->cl : NULL, &r->s,
+                     diag);
+    if (st == FB_OK) st = reach(r, 0, diag);
+    if (st == FB_ERR_NUMERIC) st = r->reached ? FB_OK : FB_ERR_NUMERIC;
   }
   if (st != FB_OK) {
     kit_run_free(r);
@@ -205,6 +223,8 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
 
 static fb_status adapter_step(void *self, fb_diag *diag) {
   kit_run *r = self;
+  fb_status st = reach(r, r->i + 1, diag);
+  if (st != FB_OK && st != FB_ERR_NUMERIC) return st;
   if (r->i + 1 >= r->reached)
     return fb_diag_set(diag, FB_ERR_NUMERIC, "%s", r->stop.kind != FB_STOP_NONE
                                                        ? r->stop.detail
@@ -275,14 +295,15 @@ static double adapter_drift(const void *self) {
  * CFM are a binding's row: not kept) */
 static void adapter_provenance(const void *self, int joint, fb_contact_provenance *out) {
   const kit_run *r = self;
+  const fb_kit_clearance *cl = &r->cl;
   *out = (fb_contact_provenance){NAN, NAN, NAN, NAN, NAN, 0};
-  if (joint == r->joint) *out = r->prov;
+  if (joint == r->joint)
+    *out = (fb_contact_provenance){cl->m_eff_min, cl->m_eff_max, NAN, NAN, cl->h_omega_max,
+                                   cl->contact_steps};
 }
 
-static size_t adapter_steps(const void *self) {
-  const kit_run *r = self;
-  return r->reached ? r->reached - 1 : 0;
-}
+/* the steps replayed (a model the harness stopped: those before its stop) */
+static size_t adapter_steps(const void *self) { return ((const kit_run *)self)->i; }
 
 static void adapter_destroy(void *self) { kit_run_free(self); }
 
@@ -291,7 +312,6 @@ const fb_engine fb_engine_kit_adapter = {
     .guarded = 1,
     .step_values_lag = 0,
     .refine_peaks = 1,
-    .computes_in_create = 1,
     .create = adapter_create,
     .step = adapter_step,
     .stopped = adapter_stopped,

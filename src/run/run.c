@@ -235,10 +235,10 @@ void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {
     if (e) e = fb_engine_runner(e, c, NULL); /* the kit adapter holds its series too */
     /* an HDF5 series is built in memory before it is written (series_hdf5.c):
      * at most the samples' own size again; an engine that computes its
-     * series in create (engine.h) holds its own beside the run's, and a
+     * series in create (engine.h), or the kit adapter, holds its own beside the run's, and a
      * reference's check integration (run.c) one more */
     const double copies = 1.0 + (c->series == FB_SERIES_HDF5) + (member && n_auto > 1 ? jobs_mem : 0) +
-                          (e && e->computes_in_create) +
+                          (e && (e->computes_in_create || e == &fb_engine_kit_adapter)) +
                           (m->engine == FB_ENGINE_REFERENCE && !c->member);
     *bytes += steps * sample_bytes(m, c) * copies;
     const double per_member = member && rounds > 0.0 ? model_cost(m, as_member ? as_member : c) : 0.0;

@@ -12,6 +12,7 @@ extern "C" {
 #include "contact_mass.h"
 #include "effective_mass.h"
 #include "episode.h"
+#include "kit_record.h"
 }
 
 namespace {
@@ -330,19 +331,8 @@ extern "C" fb_status fb_bullet_scene_step(fb_bullet_scene *s, fb_diag *diag) {
     c->phase = c->step_hw > 0.0 ? c->phase + c->step_hw : 0.0;
   }
   for (int j = 0; j < 4; j++) {
-    const double wdh = s->cl[j].step_wdh;
-    if (!fb_mapping_is_matched(s->def.mapping) || !(wdh > FB_MATCHED_ALIAS_BOUND)) continue;
-    s->stop.kind = FB_STOP_ALIASED;
-    s->stop.t = (double)s->steps * h;
-    s->stop.step = s->steps + 1;
-    s->stop.joint = j;
-    s->stop.value = wdh;
-    s->stop.limit = FB_MATCHED_ALIAS_BOUND;
-    s->stop.h_max = h * FB_MATCHED_ALIAS_BOUND / wdh;
-    return fb_diag_set(diag, FB_ERR_NUMERIC,
-                       "aliased: omega_d h = %.3g at the %s joint (bound %.3g); largest usable "
-                       "step %.3g s",
-                       wdh, fb_joint_name(j), FB_MATCHED_ALIAS_BOUND, s->stop.h_max);
+    if (fb_kit_aliased(s->def.mapping, s->cl[j].step_wdh))
+      return fb_kit_alias_stop(&s->stop, j, s->cl[j].step_wdh, h, s->steps, diag);
   }
   fb_bt_drive_row(s->drive, s->def.omega2, s->def.solver.drive_torque_max, h);
   if (s->w->step(h)) {
@@ -400,25 +390,15 @@ static double penetration_of(const fb_bullet_scene *s, const Clearance *c) {
 }
 
 extern "C" void fb_bullet_scene_sample(const fb_bullet_scene *s, fb_sample *x) {
-  x->t = (double)s->steps * s->def.solver.h;
-  x->crank_angle = s->angle[FB_CRANK];
-  x->coupler_angle = s->angle[FB_COUPLER];
-  x->coupler_omega = s->omega_prev[FB_COUPLER];
-  x->coupler_alpha = s->alpha[FB_COUPLER];
-  x->follower_angle = s->angle[FB_FOLLOWER];
-  x->follower_omega = s->omega_prev[FB_FOLLOWER];
-  x->follower_alpha = s->alpha[FB_FOLLOWER];
+  fb_kit_sample_bodies(x, (double)s->steps * s->def.solver.h, s->angle, s->omega_prev, s->alpha);
   for (int j = 0; j < 4; j++) {
     for (int k = 0; k < FB_CONTACT_COLS; k++) x->contact[j][k] = 0.0;
     if (!(s->def.clearance_mask & (1 << j))) continue;
     const Clearance *c = &s->cl[j];
     btVector3 p, q, ev;
     geometry(c, &p, &q, &ev);
-    x->contact[j][FB_C_FORCE] = c->force;
-    x->contact[j][FB_C_PEN] = penetration_of(s, c);
-    x->contact[j][FB_C_EX] = p[0] - q[0];
-    x->contact[j][FB_C_EY] = p[1] - q[1];
-    x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->ep.state : (double)FB_STATE_FREE;
+    fb_kit_sample_contact(x->contact[j], c->force, penetration_of(s, c), p[0] - q[0], p[1] - q[1],
+                          &c->ep);
   }
 }
 

@@ -127,52 +127,103 @@ static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int
   }
 }
 
-/* the stepping: before each step the clearance contacts; after it the
- * samples, the step's contact force at the sample it started from */
-static fb_status steps(const fb_kit_binding *b, void *w, const fb_planar *m,
-                       fb_kit_clearance *cl, fb_kit_series *s, fb_diag *diag) {
-  fb_kit_pipe p;
-  const fb_kit_clearance none = {0};
-  fb_status st = fb_kit_pipe_new(&p, m, cl ? cl : &none, diag);
-  for (size_t i = 0; i < s->n && st == FB_OK; i++) {
-    if (i > 0) st = b->step(w, diag);
-    if (st != FB_OK) break;
-    sample(b, w, s, m->nbodies - 1, i);
-    if (!cl) continue;
-    if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&p, b, w, cl->joint);
-    if (i > 0 && cl->state) /* the episode of the step from t_{i-1} */
-      cl->state[i - 1] = cl->force[i - 1] > 0.0 ? (double)p.ep[cl->joint].state : FB_STATE_FREE;
-    cl->pen[i] = fb_kit_pipe_read(&p, b, w, m, cl);
-    if (cl->ecc) cl->ecc[i] = p.ecc[cl->joint][0], cl->ecc[s->n + i] = p.ecc[cl->joint][1];
-    if (i + 1 < s->n) st = fb_kit_pipe_contacts(&p, b, w, m, cl, s->h, diag);
-    else cl->force[i] = i > 0 ? cl->force[i - 1] : 0.0; /* the last keeps the one before */
-    if (i + 1 == s->n && cl->state) cl->state[i] = i > 0 ? cl->state[i - 1] : FB_STATE_FREE;
-  }
-  fb_kit_pipe_free(&p);
+/* A kit run under way (kit.h, fb_kit_open). */
+struct fb_kit_runner {
+  const fb_kit_binding *b;
+  const fb_planar *m;
+  void *w;               /* the engine's world */
+  fb_kit_clearance *cl;  /* NULL: every joint ideal */
+  fb_kit_series *s;
+  fb_kit_pipe p;         /* the clearance pipeline's state between steps */
+  size_t i;              /* samples filled */
+  fb_status st;          /* FB_OK, or what stopped the run (sticky) */
+};
+
+/* sample i: the step to it (i > 0), its sample; before the next step the
+ * clearance contacts, after it the step's contact force at the sample it
+ * started from */
+static fb_status sample_step(fb_kit_runner *k, size_t i, fb_diag *diag) {
+  const fb_kit_binding *b = k->b;
+  const fb_planar *m = k->m;
+  fb_kit_clearance *cl = k->cl;
+  fb_kit_series *s = k->s;
+  void *w = k->w;
+  fb_status st = FB_OK;
+  if (i > 0) st = b->step(w, diag);
+  if (st != FB_OK) return st;
+  sample(b, w, s, m->nbodies - 1, i);
+  if (!cl) return FB_OK;
+  if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&k->p, b, w, cl->joint);
+  if (i > 0 && cl->state) /* the episode of the step from t_{i-1} */
+    cl->state[i - 1] = cl->force[i - 1] > 0.0 ? (double)k->p.ep[cl->joint].state : FB_STATE_FREE;
+  cl->pen[i] = fb_kit_pipe_read(&k->p, b, w, m, cl);
+  if (cl->ecc) cl->ecc[i] = k->p.ecc[cl->joint][0], cl->ecc[s->n + i] = k->p.ecc[cl->joint][1];
+  if (i + 1 < s->n) st = fb_kit_pipe_contacts(&k->p, b, w, m, cl, s->h, diag);
+  else cl->force[i] = i > 0 ? cl->force[i - 1] : 0.0; /* the last keeps the one before */
+  if (i + 1 == s->n && cl->state) cl->state[i] = i > 0 ? cl->state[i - 1] : FB_STATE_FREE;
   return st;
 }
 
-fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
-                     const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
-                     fb_diag *diag) {
+fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_planar *m,
+                      double omega, const fb_kit_world *o, fb_kit_clearance *cl,
+                      fb_kit_series *s, fb_diag *diag) {
+  *out = NULL;
   const unsigned mask = cl ? cl->mask : 0u;
   if (mask && !b->add_contact && !(b->add_clearance && b->contact_force))
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
                        b->engine);
+  fb_kit_runner *k = calloc(1, sizeof *k);
   const int nq = fb_planar_nq(m);
   double *q = malloc(2 * (size_t)nq * sizeof *q);
-  if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  if (!k || !q) {
+    free(k);
+    free(q);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  }
+  *k = (fb_kit_runner){.b = b, .m = m, .cl = cl, .s = s};
   double *qd = q + nq;
   fb_status st = FB_OK;
   if (o->q0) memcpy(q, o->q0, (size_t)nq * sizeof *q);
   else fb_planar_assembly(m, q);
   if (o->qd0) memcpy(qd, o->qd0, (size_t)nq * sizeof *qd);
   else st = start_velocities(qd, m, omega, diag);
-  void *w = NULL;
-  if (st == FB_OK) st = b->world_new(&w, o, diag);
-  if (st == FB_OK) st = build(b, w, m, omega, q, qd, o->q0 != NULL, cl, diag);
+  if (st == FB_OK) st = b->world_new(&k->w, o, diag);
+  if (st == FB_OK) st = build(b, k->w, m, omega, q, qd, o->q0 != NULL, cl, diag);
   free(q);
-  if (st == FB_OK) st = steps(b, w, m, cl, s, diag);
-  if (w) b->world_free(w);
+  const fb_kit_clearance none = {0};
+  if (st == FB_OK) st = fb_kit_pipe_new(&k->p, m, cl ? cl : &none, diag);
+  if (st != FB_OK) {
+    fb_kit_close(k);
+    return st;
+  }
+  *out = k;
+  return FB_OK;
+}
+
+fb_status fb_kit_advance(fb_kit_runner *k, size_t n, fb_diag *diag) {
+  if (k->st != FB_OK)
+    return fb_diag_set(diag, k->st, "the %s engine's kit run stopped at sample %zu", k->b->engine,
+                       k->i);
+  for (; k->i < n && k->i < k->s->n; k->i++) {
+    fb_status st = sample_step(k, k->i, diag);
+    if (st != FB_OK) return k->st = st;
+  }
+  return FB_OK;
+}
+
+void fb_kit_close(fb_kit_runner *k) {
+  if (!k) return;
+  fb_kit_pipe_free(&k->p);
+  if (k->w) k->b->world_free(k->w);
+  free(k);
+}
+
+fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
+                     const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
+                     fb_diag *diag) {
+  fb_kit_runner *k;
+  fb_status st = fb_kit_open(&k, b, m, omega, o, cl, s, diag);
+  if (st == FB_OK) st = fb_kit_advance(k, s->n, diag);
+  fb_kit_close(k);
   return st;
 }

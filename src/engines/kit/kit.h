@@ -199,4 +199,21 @@ fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
                      const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
                      fb_diag *diag);
 
+/* fb_kit_run a sample at a time, for a caller that may stop early (the
+ * kit adapter, kit_engine.c): fb_kit_open builds the world (fb_kit_run's
+ * arguments, kept by reference until fb_kit_close; its errors but the
+ * steps'), fb_kit_advance fills s's samples up to (not including) n,
+ * taking the steps to them (sample i's alpha and contact force are its
+ * step's, so they are final once sample i + 1 is filled), fb_kit_close
+ * frees the world (NULL is ignored). Opened, advanced to s->n and closed,
+ * it is fb_kit_run, the same numbers. After an error, fb_kit_advance
+ * fills nothing more (FB_ERR_NUMERIC etc. again); the samples reached are
+ * those with a finite s->t when s->t was filled with NaN first. */
+typedef struct fb_kit_runner fb_kit_runner;
+fb_status fb_kit_open(fb_kit_runner **k, const fb_kit_binding *b, const fb_planar *m,
+                      double omega, const fb_kit_world *o, fb_kit_clearance *cl,
+                      fb_kit_series *s, fb_diag *diag);
+fb_status fb_kit_advance(fb_kit_runner *k, size_t n, fb_diag *diag);
+void fb_kit_close(fb_kit_runner *k);
+
 #endif

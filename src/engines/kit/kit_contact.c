@@ -7,6 +7,7 @@
 
 #include "contact_mass.h"
 #include "effective_mass.h"
+#include "kit_record.h"
 #include "planar_constraints.h"
 #include "planar_mass.h"
 
@@ -85,11 +86,9 @@ static fb_status note_row(const fb_kit_contact *c, const char *joint, fb_kit_cle
   cl->h_omega_max = fmax(cl->h_omega_max, fb_contact_h_omega(c->h, row.kp, c->m_eff));
   if (!fb_mapping_is_matched(c->mapping)) return FB_OK;
   const double wdh = fb_contact_omega_d_h(c->h, row.kp, row.kd, c->m_eff);
-  if (!(wdh > FB_MATCHED_ALIAS_BOUND)) return FB_OK;
+  if (!fb_kit_aliased(c->mapping, wdh)) return FB_OK;
   cl->aliased_omega_d_h = wdh;
-  return fb_diag_set(diag, FB_ERR_NUMERIC, "aliased: omega_d h = %.3g at the %s joint (bound "
-                     "%.3g); largest usable step %.3g s", wdh, joint, FB_MATCHED_ALIAS_BOUND,
-                     c->h * FB_MATCHED_ALIAS_BOUND / wdh);
+  return fb_kit_alias_diag(diag, wdh, joint, c->h);
 }
 
 /* joint j of an engine's own relation (add_clearance): its episode from

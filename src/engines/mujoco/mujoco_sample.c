@@ -4,6 +4,7 @@
  * the loop-closure drift, the impact count and the contact provenance. */
 #include <math.h>
 
+#include "kit_record.h"
 #include "mujoco_scene_internal.h"
 
 /* joint reactions at this state (after a forward pass), with invdyn.h's
@@ -91,11 +92,8 @@ void mujoco_sample_now(const fb_mujoco_scene *s, fb_sample *x) {
     for (int k = 0; k < FB_CONTACT_COLS; k++) x->contact[j][k] = 0.0;
     if (!(s->def.clearance_mask & (1 << j))) continue;
     const mj_clearance *c = &s->cl[j];
-    x->contact[j][FB_C_FORCE] = c->force;
-    x->contact[j][FB_C_PEN] = c->delta > 0.0 ? c->delta : 0.0;
-    x->contact[j][FB_C_EX] = c->e[0];
-    x->contact[j][FB_C_EY] = c->e[1];
-    x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->ep.state : (double)FB_STATE_FREE;
+    fb_kit_sample_contact(x->contact[j], c->force, c->delta > 0.0 ? c->delta : 0.0, c->e[0],
+                          c->e[1], &c->ep);
   }
 }
 

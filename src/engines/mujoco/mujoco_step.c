@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "contact_mass.h"
+#include "kit_record.h"
 #include "mujoco_common.h"
 #include "mujoco_scene_internal.h"
 #include "step_control.h"
@@ -95,12 +96,7 @@ fb_status fb_mujoco_scene_step(fb_mujoco_scene *s, fb_diag *diag) {
                          &kd, &depth);
     s->ad.phase[j] += fb_contact_h_omega(h, kp, s->ad.m_eff[j]);
   }
-  fb_step_stats *t = &s->ad.stats;
-  if (t->steps == 0 || h < t->h_min * (1.0 - 1e-9)) t->h_min = h, t->n_h_min = 0;
-  if (t->steps == 0 || h > t->h_max * (1.0 + 1e-9)) t->h_max = h, t->n_h_max = 0;
-  t->n_h_min += fabs(h - t->h_min) <= 1e-9 * h;
-  t->n_h_max += fabs(h - t->h_max) <= 1e-9 * h;
-  t->steps++;
+  fb_kit_stats_add(&s->ad.stats, h);
   s->ad.m_prev = mult;
   s->ad.h_prev = h;
   s->ad.mc = mult;
@@ -114,7 +110,5 @@ void fb_mujoco_scene_step_stats(const fb_mujoco_scene *s, fb_step_stats *out) {
     *out = s->ad.stats;
     return;
   }
-  out->steps = s->steps;
-  out->h_min = out->h_max = s->def.h;
-  out->n_h_min = out->n_h_max = s->steps;
+  fb_kit_stats_fixed(out, s->steps, s->def.h);
 }

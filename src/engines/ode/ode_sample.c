@@ -5,17 +5,11 @@
  * the contact provenance. */
 #include <math.h>
 
+#include "kit_record.h"
 #include "ode_world_internal.h"
 
 void fb_ode_world_sample(const fb_ode_world *s, fb_sample *x) {
-  x->t = (double)s->steps * s->def.solver.h;
-  x->crank_angle = s->angle[FB_CRANK];
-  x->coupler_angle = s->angle[FB_COUPLER];
-  x->coupler_omega = s->omega_prev[FB_COUPLER];
-  x->coupler_alpha = s->alpha[FB_COUPLER];
-  x->follower_angle = s->angle[FB_FOLLOWER];
-  x->follower_omega = s->omega_prev[FB_FOLLOWER];
-  x->follower_alpha = s->alpha[FB_FOLLOWER];
+  fb_kit_sample_bodies(x, (double)s->steps * s->def.solver.h, s->angle, s->omega_prev, s->alpha);
   if (s->ad.on && s->ad.k < s->ad.mc) {
     /* inside an ODE step: angles and omega linear, alpha the step's */
     const double f = (double)s->ad.k / (double)s->ad.mc;
@@ -31,20 +25,16 @@ void fb_ode_world_sample(const fb_ode_world *s, fb_sample *x) {
     const ode_clearance *c = &s->cl[j];
     if (s->ad.on && s->ad.k < s->ad.mc) { /* inside an ODE step: interpolated */
       const double f = (double)s->ad.k / (double)s->ad.mc;
-      x->contact[j][FB_C_FORCE] = c->force;
-      x->contact[j][FB_C_PEN] = s->ad.pen0[j] + f * (s->ad.pen1[j] - s->ad.pen0[j]);
-      x->contact[j][FB_C_EX] = s->ad.ex0[j] + f * (s->ad.ex1[j] - s->ad.ex0[j]);
-      x->contact[j][FB_C_EY] = s->ad.ey0[j] + f * (s->ad.ey1[j] - s->ad.ey0[j]);
-      x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->ep.state : (double)FB_STATE_FREE;
+      fb_kit_sample_contact(x->contact[j], c->force,
+                            s->ad.pen0[j] + f * (s->ad.pen1[j] - s->ad.pen0[j]),
+                            s->ad.ex0[j] + f * (s->ad.ex1[j] - s->ad.ex0[j]),
+                            s->ad.ey0[j] + f * (s->ad.ey1[j] - s->ad.ey0[j]), &c->ep);
       continue;
     }
     double e[2], ev[2], num;
     ode_clearance_geometry(c, e, &num, ev);
-    x->contact[j][FB_C_FORCE] = c->force;
-    x->contact[j][FB_C_PEN] = ode_clearance_penetration(s, c);
-    x->contact[j][FB_C_EX] = e[0];
-    x->contact[j][FB_C_EY] = e[1];
-    x->contact[j][FB_C_STATE] = c->force > 0.0 ? (double)c->ep.state : (double)FB_STATE_FREE;
+    fb_kit_sample_contact(x->contact[j], c->force, ode_clearance_penetration(s, c), e[0], e[1],
+                          &c->ep);
   }
 }
 

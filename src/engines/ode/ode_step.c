@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "kit_record.h"
 #include "ode_env.h"
 #include "ode_world_internal.h"
 #include "step_control.h"
@@ -35,21 +36,10 @@ static fb_status world_step(fb_ode_world *s, double h, fb_diag *diag) {
   /* a matched row past the aliasing bound has lost its spring's meaning:
    * stop, naming the largest usable step (contact.h) */
   for (int j = 0; j < 4; j++) {
-    const double wdh = s->cl[j].step_wdh;
-    if (!fb_mapping_is_matched(s->def.mapping) || !(wdh > FB_MATCHED_ALIAS_BOUND)) continue;
+    if (!fb_kit_aliased(s->def.mapping, s->cl[j].step_wdh)) continue;
     dJointGroupEmpty(s->contacts);
     for (int q = 0; q < 4; q++) s->cl[q].cj = 0, s->cl[q].nfb = 0;
-    s->stop.kind = FB_STOP_ALIASED;
-    s->stop.t = (double)s->steps * h;
-    s->stop.step = s->steps + 1;
-    s->stop.joint = j;
-    s->stop.value = wdh;
-    s->stop.limit = FB_MATCHED_ALIAS_BOUND;
-    s->stop.h_max = h * FB_MATCHED_ALIAS_BOUND / wdh;
-    return fb_diag_set(diag, FB_ERR_NUMERIC,
-                       "aliased: omega_d h = %.3g at the %s joint (bound %.3g); largest usable "
-                       "step %.3g s",
-                       wdh, fb_joint_name(j), FB_MATCHED_ALIAS_BOUND, s->stop.h_max);
+    return fb_kit_alias_stop(&s->stop, j, s->cl[j].step_wdh, h, s->steps, diag);
   }
   const dReal *g1 = dBodyGetPosition(s->body[FB_CRANK]);
   s->crank_com_before[0] = g1[0];
@@ -222,12 +212,7 @@ fb_status fb_ode_world_step(fb_ode_world *s, fb_diag *diag) {
   adapt_geometry(s, s->ad.pen1, s->ad.ex1, s->ad.ey1);
   s->ad.pen_end = ode_penetration_now(s, &s->ad.pen_joint_end);
   s->ad.drift_end = ode_joint_drift_now(s);
-  fb_step_stats *t = &s->ad.stats;
-  if (t->steps == 0 || h < t->h_min * (1.0 - 1e-9)) t->h_min = h, t->n_h_min = 0;
-  if (t->steps == 0 || h > t->h_max * (1.0 + 1e-9)) t->h_max = h, t->n_h_max = 0;
-  t->n_h_min += fabs(h - t->h_min) <= 1e-9 * h;
-  t->n_h_max += fabs(h - t->h_max) <= 1e-9 * h;
-  t->steps++;
+  fb_kit_stats_add(&s->ad.stats, h);
   s->ad.m_prev = m;
   s->ad.mc = m;
   s->ad.k = 1;
@@ -240,7 +225,5 @@ void fb_ode_world_step_stats(const fb_ode_world *s, fb_step_stats *out) {
     *out = s->ad.stats;
     return;
   }
-  out->steps = s->steps;
-  out->h_min = out->h_max = s->def.solver.h;
-  out->n_h_min = out->n_h_max = s->steps;
+  fb_kit_stats_fixed(out, s->steps, s->def.solver.h);
 }

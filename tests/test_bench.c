@@ -22,8 +22,9 @@
  * sample, and the last step's rounding) */
 #define SAMPLES_REL_TOL 1e-3
 /* a peer simulates the harness's four-bar: omega peaks within 1e-5 (measured
- * on the paper case: ODE 2e-13, MuJoCo 0, Bullet 1e-12, Simbody 2.8e-7, the
- * last two exact samples projected from slightly different interpolants) */
+ * on the paper case: ODE 2e-13, MuJoCo 0, Bullet 1e-12, DART 1.6e-16,
+ * Simbody 2.8e-7, the last two exact samples projected from slightly
+ * different interpolants) */
 #define PEER_PEAK_REL_TOL 1e-5
 
 /* a row of the model named model ("a" and "b": two rows of the table) */
@@ -296,7 +297,7 @@ static void test_peers_beside_harness(void **state) {
   (void)state;
   static fb_case c;
   cheap_case(&c);
-  fb_peer_row rows[4];
+  fb_peer_row rows[FB_PEERS_MAX];
   int n = 0;
   fb_diag d;
   if (fb_peers_run(rows, &n, &c, NULL, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);

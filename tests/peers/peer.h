@@ -17,7 +17,8 @@
  *                       follower angular velocities [rad/s]
  *   engine settings     erp cfm fmax (ODE); integrator loop_k loop_b loop_imp armature
  *                       (MuJoCo); solver iterations erp fmax (Bullet); integrator
- *                       accuracy (Simbody)
+ *                       accuracy (Simbody); erp fmax pgs_sweeps pgs_dx pgs_rel_dx
+ *                       (DART)
  *
  * Output, one line: {"engine", "samples", "steps", "setup_s", "loop_s",
  * "peaks": {"coupler_omega_max", "coupler_omega_min", "follower_omega_max",

@@ -111,6 +111,12 @@ static inline void peer_fourbar_read(peer_fourbar *f, const peer_args *a) {
   f->w4 = peer_num(a, "w4");
 }
 
+/* a peer's start: its arguments into a, the four-bar among them into f */
+static inline void peer_start(peer_args *a, peer_fourbar *f, int argc, char **argv) {
+  peer_parse(a, argc, argv);
+  peer_fourbar_read(f, a);
+}
+
 /* the samples a peer keeps, one per output step: what the harness keeps of
  * an ideal model (angles, angular velocities and accelerations, the drive
  * torque and the four joint reactions) */

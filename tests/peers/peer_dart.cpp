@@ -82,9 +82,8 @@ Isometry3d link_frame(const peer_fourbar &f, int k, const double p[2], double th
 
 int main(int argc, char **argv) {
   peer_args a;
-  peer_parse(&a, argc, argv);
   peer_fourbar f;
-  peer_fourbar_read(&f, &a);
+  peer_start(&a, &f, argc, argv);
   const double erp = peer_num(&a, "erp"), fmax = peer_num(&a, "fmax");
   const int sweeps = (int)peer_num(&a, "pgs_sweeps");
   const double dx = peer_num(&a, "pgs_dx"), rel_dx = peer_num(&a, "pgs_rel_dx");

@@ -22,8 +22,9 @@
  * sample, and the last step's rounding) */
 #define SAMPLES_REL_TOL 1e-3
 /* a peer simulates the harness's four-bar: omega peaks within 1e-5 (measured
- * on the paper case: ODE 2e-13, MuJoCo 0, Bullet 1e-12, Simbody 2.8e-7, the
- * last two exact samples projected from slightly different interpolants) */
+ * on the paper case: ODE 2e-13, MuJoCo 0, Bullet 1e-12, DART 1.6e-16,
+ * Simbody 2.8e-7, the last two exact samples projected from slightly
+ * different interpolants) */
 #define PEER_PEAK_REL_TOL 1e-5
 
 /* a row of the model named model ("a" and "b": two rows of the table) */
@@ -264,11 +265,12 @@ static void test_default_grid(void **state) {
   int n = 0;
   fb_diag d;
   if (fb_bench_run(rows, &n, &c, FB_BENCH_DEFAULT, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
-  int per[4] = {0};
-  const char *engines[4] = {"ode", "mujoco", "bullet", "simbody"};
-  const fb_engine_id ids[4] = {FB_ENGINE_ODE, FB_ENGINE_MUJOCO, FB_ENGINE_BULLET, FB_ENGINE_SIMBODY};
+  int per[5] = {0};
+  const char *engines[5] = {"ode", "mujoco", "bullet", "simbody", "dart"};
+  const fb_engine_id ids[5] = {FB_ENGINE_ODE, FB_ENGINE_MUJOCO, FB_ENGINE_BULLET, FB_ENGINE_SIMBODY,
+                               FB_ENGINE_DART};
   for (int i = 0; i < n; i++) {
-    for (int e = 0; e < 4; e++) per[e] += strcmp(rows[i].engine, engines[e]) == 0;
+    for (int e = 0; e < 5; e++) per[e] += strcmp(rows[i].engine, engines[e]) == 0;
     assert_true(isfinite(rows[i].error));
     assert_true(rows[i].stepping_per_rev > 0.0 && rows[i].sampling_per_rev >= 0.0);
   }
@@ -278,9 +280,10 @@ static void test_default_grid(void **state) {
     if (strcmp(rows[i].engine, "ode") == 0 && rows[i].h_auto) h_case = rows[i].h;
   for (int i = 0; i < n; i++)
     if (strcmp(rows[i].engine, "simbody") == 0) assert_true(rows[i].h == h_case);
-  /* ODE: 1e-5 s, auto, adaptive and the two ERP 1 rows; MuJoCo 3; Bullet 2; Simbody 3 */
-  const int want[4] = {5, 3, 2, 3};
-  for (int e = 0; e < 4; e++)
+  /* ODE: 1e-5 s, auto, adaptive and the two ERP 1 rows; MuJoCo 3; Bullet 2; Simbody 3;
+   * DART 2 (1e-5 s and auto) */
+  const int want[5] = {5, 3, 2, 3, 2};
+  for (int e = 0; e < 5; e++)
     if (fb_engine_available(ids[e])) {
       report_residual(engines[e], per[e], want[e]);
       assert_int_equal(per[e], want[e]);
@@ -296,7 +299,7 @@ static void test_peers_beside_harness(void **state) {
   (void)state;
   static fb_case c;
   cheap_case(&c);
-  fb_peer_row rows[4];
+  fb_peer_row rows[FB_PEERS_MAX];
   int n = 0;
   fb_diag d;
   if (fb_peers_run(rows, &n, &c, NULL, NULL, NULL, &d) != FB_OK) fail_msg("%s", d.msg);

@@ -665,7 +665,7 @@ static void test_bench_peers_json(void **state) {
   assert_non_null(j);
   assert_string_equal(json_string_value(json_object_get(j, "grid")), "peers");
   json_t *peers = json_object_get(j, "peers");
-  const size_t want = 1 + FB_HAVE_MUJOCO + FB_HAVE_BULLET + FB_HAVE_SIMBODY;
+  const size_t want = 1 + FB_HAVE_MUJOCO + FB_HAVE_BULLET + FB_HAVE_SIMBODY + FB_HAVE_DART;
   assert_int_equal(json_array_size(peers), want);
   for (size_t i = 0; i < json_array_size(peers); i++) {
     json_t *p = json_array_get(peers, i);

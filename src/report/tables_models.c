@@ -80,6 +80,8 @@ void fb_report_models_json(FILE *f) {
     if (fb_planar_run_takes(m->name)) json_array_append_new(mech, json_string("planar"));
     json_object_set_new(o, "mechanisms", mech);
     json_object_set_new(o, "summary", json_string(m->summary));
+    /* true: a [run] models pattern ("*-ideal-stackup") leaves it out */
+    json_object_set_new(o, "by_name_only", json_boolean(m->by_name_only));
     json_array_append_new(models, o);
   }
   json_t *engines = json_array();

@@ -387,9 +387,8 @@ const fb_model fb_models[] = {
      .spikes_vs = "ode-ideal-stackup",
      .summary = "minimal-coordinate dynamics (GSL rk8pd), restitution law",
      .style = {"#8c8c00", 2, 1.8, FB_HUE_NONE}},
-    /* DART (issue 60): planar cases through the engine kit alone, until the
-     * kit's four-bar and slider-crank path (issue 58); no stack-up row yet
-     * (the kit builds a planar case's nominal description). Browns */
+    /* DART (issue 60): planar cases through the engine kit's walk, the
+     * four-bar and slider-crank through the kit adapter. Browns */
     {.name = "dart-ideal-nominal",
      .engine = FB_ENGINE_DART,
      .mechanisms = SC,
@@ -404,6 +403,22 @@ const fb_model fb_models[] = {
      .summary = "DART, a skeleton tree of revolute and prismatic joints, loops closed by a "
                 "BallJointConstraint, servo drive, nominal lengths",
      .style = {"#8c510a", 4, 1.4, FB_HUE_NONE}},
+    /* the four-bar and slider-crank at their stack-up corner through the kit
+     * adapter (a planar case's description is nominal: no planar row) */
+    {.name = "dart-ideal-stackup",
+     .engine = FB_ENGINE_DART,
+     .mechanisms = SC,
+     .by_name_only = 1,
+     .lengths = STK,
+     .joints = IDEAL,
+     .law = FB_MODEL_LAW_NONE,
+     .collider = FB_COLLIDER_NONE,
+     .reference = NULL,
+     .spikes_vs = NULL,
+     .partner = "ode-ideal-stackup",
+     .summary = "DART, a skeleton tree of revolute and prismatic joints, loops closed by a "
+                "BallJointConstraint, servo drive, stack-up lengths",
+     .style = {"#d8b365", 4, 1.4, FB_HUE_NONE}},
     {.name = "dart-clearance-impact",
      .engine = FB_ENGINE_DART,
      .mechanisms = SC,
@@ -413,7 +428,7 @@ const fb_model fb_models[] = {
      .law = FB_MODEL_LAW_IMPACT,
      .collider = FB_COLLIDER_EXACT,
      .reference = "reference",
-     .spikes_vs = NULL,
+     .spikes_vs = "dart-ideal-stackup",
      .partner = "ode-clearance-impact",
      .summary = "DART, clearance joint as the impact law's force through DART's external force "
                 "(BodyNode::addExtForce)",
@@ -427,7 +442,7 @@ const fb_model fb_models[] = {
      .law = FB_MODEL_LAW_RESTITUTION,
      .collider = FB_COLLIDER_EXACT,
      .reference = "reference-restitution",
-     .spikes_vs = NULL,
+     .spikes_vs = "dart-ideal-stackup",
      .partner = "ode-clearance-restitution",
      .summary = "DART, clearance joint as the restitution law's force through DART's external "
                 "force (BodyNode::addExtForce)",

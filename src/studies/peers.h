@@ -25,7 +25,7 @@
 #define FB_PEERS_ENV "FOURBAR_PEERS_DIR"
 
 typedef struct {
-  char engine[16];          /* fb_engine_name: "ode", "mujoco", "bullet", "simbody" */
+  char engine[16];          /* fb_engine_name: "ode", "mujoco", "bullet", "simbody", "dart" */
   const fb_model *model;    /* the harness's model: the engine's ideal nominal model */
   char peer[64];            /* the bare program's file name (peer_<engine>) */
   int ran;                  /* 1: both ran every round; else why in status */

@@ -17,7 +17,8 @@
  *                       follower angular velocities [rad/s]
  *   engine settings     erp cfm fmax (ODE); integrator loop_k loop_b loop_imp armature
  *                       (MuJoCo); solver iterations erp fmax (Bullet); integrator
- *                       accuracy (Simbody)
+ *                       accuracy (Simbody); erp fmax pgs_sweeps pgs_dx pgs_rel_dx
+ *                       (DART)
  *
  * Output, one line: {"engine", "samples", "steps", "setup_s", "loop_s",
  * "peaks": {"coupler_omega_max", "coupler_omega_min", "follower_omega_max",
@@ -108,6 +109,12 @@ static inline void peer_fourbar_read(peer_fourbar *f, const peer_args *a) {
   f->th4 = peer_num(a, "th4");
   f->w3 = peer_num(a, "w3");
   f->w4 = peer_num(a, "w4");
+}
+
+/* a peer's start: its arguments into a, the four-bar among them into f */
+static inline void peer_start(peer_args *a, peer_fourbar *f, int argc, char **argv) {
+  peer_parse(a, argc, argv);
+  peer_fourbar_read(f, a);
 }
 
 /* the samples a peer keeps, one per output step: what the harness keeps of

@@ -74,9 +74,8 @@ double angle_of(const btRigidBody *b) {
 
 int main(int argc, char **argv) {
   peer_args a;
-  peer_parse(&a, argc, argv);
   peer_fourbar f;
-  peer_fourbar_read(&f, &a);
+  peer_start(&a, &f, argc, argv);
   const bool mlcp = strcmp(peer_str(&a, "solver"), "mlcp") == 0;
   const int iterations = (int)peer_num(&a, "iterations");
   const double erp = peer_num(&a, "erp"), fmax = peer_num(&a, "fmax");

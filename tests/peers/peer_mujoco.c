@@ -16,9 +16,8 @@
 
 int main(int argc, char **argv) {
   peer_args a;
-  peer_parse(&a, argc, argv);
   peer_fourbar f;
-  peer_fourbar_read(&f, &a);
+  peer_start(&a, &f, argc, argv);
   const char *integ = peer_str(&a, "integrator");
   const double k = peer_num(&a, "loop_k"), bdamp = peer_num(&a, "loop_b");
   const double imp = peer_num(&a, "loop_imp"), arm = peer_num(&a, "armature");

@@ -36,9 +36,8 @@ static double angle_of(dBodyID b) {
 
 int main(int argc, char **argv) {
   peer_args a;
-  peer_parse(&a, argc, argv);
   peer_fourbar f;
-  peer_fourbar_read(&f, &a);
+  peer_start(&a, &f, argc, argv);
   const double erp = peer_num(&a, "erp"), cfm = peer_num(&a, "cfm"), fmax = peer_num(&a, "fmax");
   const int quick = strcmp(peer_str(&a, "stepper"), "quick") == 0;
   const int iterations = (int)peer_num(&a, "iterations");

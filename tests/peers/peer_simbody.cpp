@@ -105,9 +105,8 @@ void columns(double t, const double q[3], const double u[3], const double ud[3],
 
 int main(int argc, char **argv) {
   peer_args args;
-  peer_parse(&args, argc, argv);
   peer_fourbar f;
-  peer_fourbar_read(&f, &args);
+  peer_start(&args, &f, argc, argv);
   const char *integ = peer_str(&args, "integrator");
   const double accuracy = peer_num(&args, "accuracy");
   const double t0 = peer_clock();

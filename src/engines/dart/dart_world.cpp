@@ -24,16 +24,6 @@
 
 namespace {
 
-// PGS run to convergence (fb_dart_world_new): at most this many sweeps,
-// stopping when no impulse changes by more than 1e-12 N s or by 1e-10 of
-// itself; measured on the Watt six-bar at h = 1e-5 s, the largest change of
-// any sample's alpha from DART's default (30 sweeps, 1e-6, 1e-3) is 123
-// rad/s^2, and none beyond 200 sweeps, 1e-12 and 1e-10 (1000, 1e-14, 1e-12
-// give the same samples)
-constexpr int FB_DART_PGS_SWEEPS = 200;
-constexpr double FB_DART_PGS_DX = 1e-12;
-constexpr double FB_DART_PGS_REL_DX = 1e-10;
-
 using dart::dynamics::BodyNode;
 using Eigen::Isometry3d;
 using Eigen::Vector3d;

@@ -28,6 +28,17 @@ extern "C" {
 
 typedef struct fb_dart_world fb_dart_world;
 
+/* PGS run to convergence (fb_dart_world_new; the bare peer program
+ * tests/peers/peer_dart.cpp is handed the same): at most this many sweeps,
+ * stopping when no impulse changes by more than 1e-12 N s or by 1e-10 of
+ * itself; measured on the Watt six-bar at h = 1e-5 s, the largest change of
+ * any sample's alpha from DART's default (30 sweeps, 1e-6, 1e-3) is 123
+ * rad/s^2, and none beyond 200 sweeps, 1e-12 and 1e-10 (1000, 1e-14, 1e-12
+ * give the same samples) */
+#define FB_DART_PGS_SWEEPS 200
+#define FB_DART_PGS_DX 1e-12
+#define FB_DART_PGS_REL_DX 1e-10
+
 /* A world with gravity g [m/s^2] along -y, step h [s], the ideal joints'
  * ERP [-] (DART's global DynamicJointConstraint ERP), the drive's torque
  * limit [N m]; its constraint solver PGS run to convergence (Dantzig, DART's

@@ -9,6 +9,7 @@
 #include "fileio.h"
 #include "figures.h"
 #include "peers.h"
+#include "planar_bench.h"
 #include "report.h"
 
 #define MAX_SETS 256
@@ -136,6 +137,11 @@ int fb_cmd_bench(int argc, char **argv) {
   char case_path[4096];
   int rc = fb_cli_load_case("bench", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
+  /* a planar case: its own default grid (planar_bench.h), the other grids the four-bar's */
+  if (c.planar.on && grids != (FB_BENCH_DEFAULT | FB_BENCH_PEERS))
+    return fb_cli_fail("bench", 2, "--grid %s: %s is a planar case ([linkage] type = planar), on "
+                       "which fourbar bench runs its default grid alone (--grid default: every "
+                       "engine's kit-built models; docs/performance.md)", grid_name, case_path);
   /* a grid that would measure nothing is refused, never run empty */
   if (grids == FB_BENCH_PEERS && !fb_peers_build(c.mechanism))
     return fb_cli_fail("bench", 2, "--grid peers: the bare programs it runs (tests/peers) build the "
@@ -154,7 +160,7 @@ int fb_cmd_bench(int argc, char **argv) {
   if (st != FB_OK) return fb_cli_fail("bench", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
   const fb_bench_opts o = {.c = &c, .dir = dir, .grids = grids, .grid_name = grid_name,
                            .json = json, .write_json = fb_report_write_json, .draw = draw};
-  rc = fb_bench_study(&o);
+  rc = c.planar.on ? fb_bench_planar(&o) : fb_bench_study(&o);
   if (fb_outfiles_end(&files, &d) != FB_OK && !rc) rc = fb_cli_fail("bench", 1, "%s", d.msg);
   return rc;
 }

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "kit_contact.h"
 #include "planar_constraints.h"
 #include "planar_kinematics.h"
@@ -159,6 +160,7 @@ fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
   if (mask && !b->add_contact && !(b->add_clearance && b->contact_force))
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
                        b->engine);
+  const double t0 = fb_clock_s();
   const int nq = fb_planar_nq(m);
   double *q = malloc(2 * (size_t)nq * sizeof *q);
   if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -172,6 +174,7 @@ fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
   if (st == FB_OK) st = b->world_new(&w, o, diag);
   if (st == FB_OK) st = build(b, w, m, omega, q, qd, o->q0 != NULL, cl, diag);
   free(q);
+  s->setup_s = fb_clock_s() - t0;
   if (st == FB_OK) st = steps(b, w, m, cl, s, diag);
   if (w) b->world_free(w);
   return st;

@@ -35,6 +35,28 @@ static const char bench_help[] =
     "the full grid below (about 6 minutes on the paper case, 5.5 minutes of CPU\n"
     "measured):\n"
     "\n";
+/* a planar case's grid (planar_bench.h) */
+static const char bench_help_planar[] =
+    "\n"
+    "A planar case ([linkage] type = planar) runs its own default grid (the other\n"
+    "grids are refused; about 20 s of CPU on cases/templates/planar_fourbar.ini,\n"
+    "21 s measured, a minute of wall time on a loaded machine; longer on the\n"
+    "six-bar, whose impact-law reference alone takes a minute): every\n"
+    "engine with a binding of the engine kit, its ideal nominal model against the\n"
+    "analytic model (error: the largest relative error of every moving body's\n"
+    "omega window peaks, each relative to the larger of that body's two analytic\n"
+    "extremes) and its clearance-impact model against the reference of the impact\n"
+    "law (error: the largest of the peak force's, the peak penetration's and every\n"
+    "moving body's alpha spike's relative errors, the four-bar's definition over\n"
+    "every body), each run as fourbar run runs it, 2 revolutions (or the case's\n"
+    "fewer), peaks after the first (or over all with [run] peaks = all), at the\n"
+    "points of the engine's default grid above (an auto point at the case's h,\n"
+    "adaptive ones left out), the first also at h/2, 3 at most: on the planar\n"
+    "four-bar ODE at 1e-5 and 5e-6 s, MuJoCo at 1e-5, 5e-6 and 3e-6 s, Bullet at\n"
+    "1e-5 and 5e-6 s, Simbody rkmerson at accuracy 1e-4 (h and h/2) and 1e-6, the\n"
+    "others at the case's h and h/2.\n"
+    "bench.json has the four-bar's keys where they apply, each row's kind,\n"
+    "yardstick, error_parts and error_by_body; docs/performance.md.\n";
 /* its second part (a string literal stays within C's 4095 characters) */
 static const char bench_help_grids[] =
     "Speed against error on every engine: ODE's stepper (dWorldStep; dWorldQuickStep\n"
@@ -129,6 +151,7 @@ int fb_cmd_bench(int argc, char **argv) {
       case 'h':
         fputs(bench_help, stdout);
         fputs(bench_help_grids, stdout);
+        fputs(bench_help_planar, stdout);
         return 0;
       default: return fb_cli_bad_option(argv, "h");
     }

@@ -15,14 +15,15 @@
  * settings: the points of the four-bar's default grid (engine_bench.h,
  * FB_BENCH_SET_DEFAULT: ODE's dWorldStep at 1e-5 s, MuJoCo at 1e-5 and
  * 3e-6 s, Bullet's MLCP at 1e-5 s, Simbody rkmerson at accuracy 1e-4 and
- * 1e-6 and cpodes at 1e-6, Siconos at the case's step) that step at a
- * fixed h (the auto and adaptive points are the four-bar's contact-based
- * step choices, which the kit does not take: left out; a point that
+ * 1e-6 and cpodes at 1e-6, Siconos at the case's step), each at a fixed h
+ * (an auto point at the case's h, the kit's own step; an adaptive point,
+ * the contact's step that the kit does not take, left out; a point that
  * repeats an earlier one's h and stepper left out), the first also at h/2
  * (the order of the engine's error shows there), FB_PLANAR_BENCH_POINTS
- * at most; an engine without default points at the case's h and h/2. Every run 2 revolutions, the peaks over
- * the window after the first (fb_case_peak_window_from), as the four-bar's
- * bench.
+ * at most; an engine without default points at the case's h and h/2.
+ * Every run 2 revolutions (the case's [run] revolutions when fewer), the
+ * peaks over the window after the first (fb_case_peak_window_from; all of
+ * it with [run] peaks = all), as the four-bar's bench.
  *
  * Error (the four-bar bench's definitions, bench.h, carried to any body):
  *   ideal model: the largest |relative error| of the omega window peaks
@@ -56,7 +57,7 @@
 #define FB_PLANAR_BENCH_MAX_ROWS 160
 
 /* Configurations (steps and settings) per engine at most: its default
- * grid's first fixed-step point at h and h/2 and the next one (MuJoCo's
+ * grid's first point at h and h/2 and the next one (MuJoCo's
  * 3e-6 s, Simbody's accuracy 1e-6), which keeps the grid to about a minute
  * of CPU on the planar four-bar. */
 #define FB_PLANAR_BENCH_POINTS 3

@@ -437,32 +437,24 @@ static int write_files(const planar_bench *pb, json_t **j) {
                  pb->base.revolutions, "rows", arr, "cheapest", cheap, "cheapest_across_engines",
                  across, "peers", json_array(), "scaling", json_array(), "yardsticks",
                  yardsticks_json(pb), "engines_left_out", lo);
-  char path[4200];
-  fb_diag d;
-  snprintf(path, sizeof path, "%s/bench.json", o->dir);
-  if (o->write_json(path, *j, &d) != FB_OK) {
-    json_decref(*j);
-    return fb_study_fail("bench", 1, "%s", d.msg);
-  }
-  snprintf(path, sizeof path, "%s/bench.svg", o->dir);
-  fb_bench_marks marks = {.npeers = 0};
+  fb_bench_marks marks = {.npeers = 0}; /* no peers on a planar case */
   for (int t = 0; t < FB_BENCH_TARGETS; t++) {
     marks.target[t] = targets[t];
     for (int q = 0; q < 2; q++) marks.cheapest[q][t] = cheapest_across(pb, q, t);
   }
-  if (pb->n > 0 && o->draw(path, o->c->name, pb->rows, pb->n, &marks, &d) != FB_OK)
-    fprintf(stderr, "fourbar bench: warning: %s\n", d.msg);
-  return 0;
+  return fb_bench_write_json_svg(o, *j, pb->rows, pb->n, &marks);
 }
 
 /* the table of every row on stdout */
 static void print_rows(const planar_bench *pb) {
-  printf("bench of %s (planar): %d rows in %.1f s, 2 revolutions each, peaks after the first "
+  printf("bench of %s (planar): %d rows in %.1f s, %g revolution%s each, peaks %s "
          "('P': Pareto front of its engine's model; error of an ideal row: omega peaks against "
          "the analytic; of a clearance row: the largest of its force, penetration and alpha "
          "spike errors against the reference of its law, body: the worst part's)\n\n"
          "%-26s %-16s %9s %11s %10s %10s %10s %-10s %11s %10s  %s\n",
-         pb->o->c->name, pb->n, pb->wall, "model", "stepper", "h_s", "error", "force", "pen",
+         pb->o->c->name, pb->n, pb->wall, pb->base.revolutions,
+         pb->base.revolutions == 1.0 ? "" : "s",
+         pb->base.peaks == FB_PEAKS_ALL ? "over all of it" : "after the first", "model", "stepper", "h_s", "error", "force", "pen",
          "alpha", "body", "s/rev", "setup s", "status");
   for (int i = 0; i < pb->n; i++) {
     const fb_bench_row *b = &pb->rows[i];

@@ -9,6 +9,7 @@
 #include "fileio.h"
 #include "figures.h"
 #include "peers.h"
+#include "planar_bench.h"
 #include "report.h"
 
 #define MAX_SETS 256
@@ -35,6 +36,28 @@ static const char bench_help[] =
     "the full grid below (about 6 minutes on the paper case, 5.5 minutes of CPU\n"
     "measured):\n"
     "\n";
+/* a planar case's grid (planar_bench.h) */
+static const char bench_help_planar[] =
+    "\n"
+    "A planar case ([linkage] type = planar) runs its own default grid (the other\n"
+    "grids are refused; about 20 s of CPU on cases/templates/planar_fourbar.ini,\n"
+    "21 s measured, a minute of wall time on a loaded machine; 67 s of CPU on\n"
+    "cases/watt_sixbar.ini, most of it its impact-law reference): every\n"
+    "engine with a binding of the engine kit, its ideal nominal model against the\n"
+    "analytic model (error: the largest relative error of every moving body's\n"
+    "omega window peaks, each relative to the larger of that body's two analytic\n"
+    "extremes) and its clearance-impact model against the reference of the impact\n"
+    "law (error: the largest of the peak force's, the peak penetration's and every\n"
+    "moving body's alpha spike's relative errors, the four-bar's definition over\n"
+    "every body), each run as fourbar run runs it, 2 revolutions (or the case's\n"
+    "fewer), peaks after the first (or over all with [run] peaks = all), at the\n"
+    "points of the engine's default grid above (an auto point at the case's h,\n"
+    "adaptive ones left out), the first also at h/2, 3 at most: on the planar\n"
+    "four-bar ODE at 1e-5 and 5e-6 s, MuJoCo at 1e-5, 5e-6 and 3e-6 s, Bullet at\n"
+    "1e-5 and 5e-6 s, Simbody rkmerson at accuracy 1e-4 (h and h/2) and 1e-6, the\n"
+    "others at the case's h and h/2.\n"
+    "bench.json has the four-bar's keys where they apply, each row's kind,\n"
+    "yardstick, error_parts and error_by_body; docs/performance.md.\n";
 /* its second part (a string literal stays within C's 4095 characters) */
 static const char bench_help_grids[] =
     "Speed against error on every engine: ODE's stepper (dWorldStep; dWorldQuickStep\n"
@@ -131,6 +154,7 @@ int fb_cmd_bench(int argc, char **argv) {
       case 'h':
         fputs(bench_help, stdout);
         fputs(bench_help_grids, stdout);
+        fputs(bench_help_planar, stdout);
         return 0;
       default: return fb_cli_bad_option(argv, "h");
     }
@@ -139,6 +163,11 @@ int fb_cmd_bench(int argc, char **argv) {
   char case_path[4096];
   int rc = fb_cli_load_case("bench", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
+  /* a planar case: its own default grid (planar_bench.h), the other grids the four-bar's */
+  if (c.planar.on && grids != (FB_BENCH_DEFAULT | FB_BENCH_PEERS))
+    return fb_cli_fail("bench", 2, "--grid %s: %s is a planar case ([linkage] type = planar), on "
+                       "which fourbar bench runs its default grid alone (--grid default: every "
+                       "engine's kit-built models; docs/performance.md)", grid_name, case_path);
   /* a grid that would measure nothing is refused, never run empty */
   if (grids == FB_BENCH_PEERS && !fb_peers_build(c.mechanism))
     return fb_cli_fail("bench", 2, "--grid peers: the bare programs it runs (tests/peers) build the "
@@ -157,7 +186,7 @@ int fb_cmd_bench(int argc, char **argv) {
   if (st != FB_OK) return fb_cli_fail("bench", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
   const fb_bench_opts o = {.c = &c, .dir = dir, .grids = grids, .grid_name = grid_name,
                            .json = json, .write_json = fb_report_write_json, .draw = draw};
-  rc = fb_bench_study(&o);
+  rc = c.planar.on ? fb_bench_planar(&o) : fb_bench_study(&o);
   if (fb_outfiles_end(&files, &d) != FB_OK && !rc) rc = fb_cli_fail("bench", 1, "%s", d.msg);
   return rc;
 }

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "casefile.h"
+#include "clock.h"
 #include "engine.h"
 #include "joint_law.h"
 #include "kit.h"
@@ -123,14 +124,17 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
                          &r->c, NULL, NULL}; /* the assembly start */
   fb_kit_series s = {.n = p->n, .h = p->h, .t = p->t, .q = p->q}; /* no centres */
   fb_kit_clearance cl = {0};
+  const double t0 = fb_clock_s();
   p->engine = 1;
   /* what a stop leaves unreached reads as no value (NaN) */
   const size_t nq = (size_t)(r->m->nbodies - 1) * 3 * p->n;
   for (size_t i = 0; i < p->n; i++) p->t[i] = (double)i * p->h;
   for (size_t i = 0; i < nq; i++) p->q[i] = NAN;
   fb_status st = mt->joints == FB_JOINTS_CLEARANCE ? clearance(&cl, p, r, mt, diag) : FB_OK;
+  const double before = fb_clock_s() - t0; /* the law and the columns */
   if (st == FB_OK)
     st = fb_kit_run(b, r->m, r->omega, &o, mt->joints == FB_JOINTS_CLEARANCE ? &cl : NULL, &s, diag);
+  p->setup_s = before + s.setup_s;
   for (size_t i = 0; i < p->n; i++) p->drive[i] = r->omega * p->t[i];
   if (st == FB_ERR_NUMERIC) { /* a stop (aliased, the engine's error) is a result, not an error */
     p->ref.failed = 1;

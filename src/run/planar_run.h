@@ -101,6 +101,9 @@ typedef struct {
                               alpha [rad/s^2] (3 (nbodies - 1) n) */
   double wall_s;           /* wall time of the model [s] */
   fb_planar_verdict verdict; /* an engine's model's verdict (planar_verdict.h) */
+  double setup_s;          /* an engine's model: of wall_s, the set-up before its first step
+                              (its clearance law, the columns, the engine's world built through
+                              the kit: kit.h fb_kit_series.setup_s) [s]; 0 for the others */
 } fb_planar_model;
 
 /* A planar case run. */

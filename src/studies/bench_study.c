@@ -429,20 +429,25 @@ static int write_files(const bench_result *br, json_t **j) {
       json_array_append_new(lo, json_string(t));
     json_object_set_new(*j, "engines_left_out", lo);
   }
-  char path[4200];
-  fb_diag d;
-  snprintf(path, sizeof path, "%s/bench.json", o->dir);
-  if (o->write_json(path, *j, &d) != FB_OK) {
-    json_decref(*j);
-    return fb_study_fail("bench", 1, "%s", d.msg);
-  }
-  snprintf(path, sizeof path, "%s/bench.svg", o->dir);
   fb_bench_marks marks = {.peers = br->peers, .npeers = br->npeers};
   for (int t = 0; t < FB_BENCH_TARGETS; t++) {
     marks.target[t] = targets[t];
     for (int q = 0; q < 2; q++) marks.cheapest[q][t] = cheapest_across(br, q, t);
   }
-  if (br->n > 0 && o->draw(path, o->c->name, br->rows, br->n, &marks, &d) != FB_OK)
+  return fb_bench_write_json_svg(o, *j, br->rows, br->n, &marks);
+}
+
+int fb_bench_write_json_svg(const fb_bench_opts *o, json_t *j, const fb_bench_row *rows, int n,
+                            const fb_bench_marks *marks) {
+  char path[4200];
+  fb_diag d;
+  snprintf(path, sizeof path, "%s/bench.json", o->dir);
+  if (o->write_json(path, j, &d) != FB_OK) {
+    json_decref(j);
+    return fb_study_fail("bench", 1, "%s", d.msg);
+  }
+  snprintf(path, sizeof path, "%s/bench.svg", o->dir);
+  if (n > 0 && o->draw(path, o->c->name, rows, n, marks, &d) != FB_OK)
     fprintf(stderr, "fourbar bench: warning: %s\n", d.msg);
   return 0;
 }

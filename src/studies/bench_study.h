@@ -41,6 +41,13 @@ typedef struct {
   fb_bench_drawer draw;   /* draws bench.svg (a failure is a warning) */
 } fb_bench_opts;
 
+/* Writes bench.json (j, through o->write_json; on failure j is freed)
+ * and bench.svg (o->draw of rows[0..n) with marks; a failure is a
+ * warning on stderr) into o->dir. Returns the exit status: 0 ok, 1
+ * bench.json could not be written (said on stderr). */
+int fb_bench_write_json_svg(const fb_bench_opts *o, json_t *j, const fb_bench_row *rows, int n,
+                            const fb_bench_marks *marks);
+
 /* Runs the bench o asks for (on a terminal with a progress bar and the
  * time left on stderr), writes its files and prints its tables (or, with
  * o->json, bench.json) on stdout. Returns the exit status: 0 ok, 1

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "kit_contact.h"
 #include "planar_constraints.h"
 #include "planar_kinematics.h"
@@ -172,6 +173,7 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   if (mask && !b->add_contact && !(b->add_clearance && b->contact_force))
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
                        b->engine);
+  const double t0 = fb_clock_s();
   fb_kit_runner *k = calloc(1, sizeof *k);
   const int nq = fb_planar_nq(m);
   double *q = malloc(2 * (size_t)nq * sizeof *q);
@@ -196,6 +198,7 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
     fb_kit_close(k);
     return st;
   }
+  s->setup_s = fb_clock_s() - t0;
   *out = k;
   return FB_OK;
 }

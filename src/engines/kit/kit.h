@@ -184,6 +184,9 @@ typedef struct {
                      mass along x at centre[(b * 3 + k) * n + i] (k as q's: x [m], its rate
                      [m/s], the step's acceleration [m/s^2]) and along y at
                      centre[(nb * 3 + b * 3 + k) * n + i], nb the moving bodies */
+  double setup_s; /* set by fb_kit_run: wall time of the set-up (the start's velocities, the
+                     engine's world and the walk that builds it) [s]; the rest of the run is
+                     the stepping and sampling (fourbar bench's cost splits there) */
 } fb_kit_series;
 
 /* Builds description m driven at omega [rad/s] in the engine of binding b

@@ -37,21 +37,25 @@ check = tally.check
 DART_OMEGA_REL = 1e-4
 # The clearance models at h = 2e-6 s against the reference's samples on
 # the same grid: an impact is an episode of penetration > 0 in the CSV.
-# Onset times measured within one sample (2e-6 s); two samples allow the
-# pin's start (the kit centres it) to shift an onset by one more.
+# Onset times measured equal to the reference's (sub-stepped binding);
+# two samples allow the pin's start (the kit centres it) to shift an onset
+# by one more.
 IMPACT_ONSET_S = 4e-6
-# The peak force of each of the first three impacts: the issue's bound of
-# 1 %; restitution law measured +0.06 %, -0.04 %, +0.13 %, impact law
-# +0.29 % and -0.27 % on the first and third.
+# The peak force and peak penetration of each of the first three impacts:
+# the issue's 1 %. Measured with the binding's sub-steps (dart_kit.c):
+# impact law +0.00 %, +0.87 %, -0.15 % in force and -0.29 %, -0.78 %,
+# -0.31 % in penetration; restitution law -0.03 %, -0.12 %, +0.03 % and
+# -0.24 %, -0.61 %, -0.08 %. Unsplit, the explicit force held over each
+# step put the impact law's second impact at +4.4 % (the reason for the
+# sub-steps), which this bound fails.
 IMPACT_FORCE_REL = 0.01
-# The impact law's second impact (a 46 us hit, 23 samples) measured
-# +4.4 % at 2e-6 s (+16 % at 1e-5 s): the law's force is applied as an
-# external force evaluated at the step's start and held over it
-# (semi-implicit Euler has no implicit contact row), an O(h) error that
-# the Adams IMPACT law's damper, steep in the rate, makes largest on a
-# short hit. This bound states today's error; the issue's 1 % is not met
-# for this impact (docs/engines.md, DART).
-IMPACT2_FORCE_REL_IMPACT_LAW = 0.06
+IMPACT_PEN_REL = 0.01
+# The paper case through the kit adapter (h = 3.317e-6 s, auto): the
+# four-bar's verdict machinery matches every impact of dart-clearance-impact
+# to its reference's and bounds the worst peak error at 0.05 (verdicts.md);
+# measured 0.031 over 17 matched impacts with the sub-steps, 0.106
+# ("error") unsplit.
+PAPER_VERDICT = "ok"
 PEAK_KEYS = ("omega_max_rad_s", "omega_min_rad_s")
 RUNS = ("dart-ideal-nominal", "dart-clearance-impact", "dart-clearance-restitution")
 
@@ -68,7 +72,8 @@ def models(out):
 
 
 def impacts(path, joint, n=3):
-    """the first n episodes of penetration > 0 at joint: (onset [s], peak force [N])"""
+    """the first n episodes of penetration > 0 at joint: (onset [s], peak force [N], peak
+    penetration [m])"""
     with open(path) as f:
         rows = list(csv.DictReader(f))
     out, i = [], 0
@@ -82,7 +87,8 @@ def impacts(path, joint, n=3):
             while j < len(rows) and num(rows[j][joint + "_penetration_m"]) > 0.0:
                 j += 1
             out.append((float(rows[i]["time_s"]),
-                        max(num(r[joint + "_force_n"]) for r in rows[i:j])))
+                        max(num(r[joint + "_force_n"]) for r in rows[i:j]),
+                        max(num(r[joint + "_penetration_m"]) for r in rows[i:j])))
             i = j
         else:
             i += 1
@@ -158,15 +164,30 @@ if rc == 0:
         check(len(mine) == 3 and len(theirs) == 3, "%s: three impacts each (%d, %d)"
               % (name, len(mine), len(theirs)))
         for k, (x, y) in enumerate(zip(mine, theirs)):
-            bound = (IMPACT2_FORCE_REL_IMPACT_LAW if name == "dart-clearance-impact" and k == 1
-                     else IMPACT_FORCE_REL)
             check(abs(x[0] - y[0]) <= IMPACT_ONSET_S, "%s impact %d: onset %.6g s, reference "
                   "%.6g s (bound %g s)" % (name, k + 1, x[0], y[0], IMPACT_ONSET_S))
-            check(rel(x[1], y[1]) <= bound, "%s impact %d: peak force %.6g N, reference %.6g N, "
-                  "%+.2f %% (bound %g)" % (name, k + 1, x[1], y[1], 100 * (x[1] / y[1] - 1), bound))
+            check(rel(x[1], y[1]) <= IMPACT_FORCE_REL, "%s impact %d: peak force %.6g N, "
+                  "reference %.6g N, %+.2f %% (bound %g)" % (name, k + 1, x[1], y[1],
+                                                             100 * (x[1] / y[1] - 1),
+                                                             IMPACT_FORCE_REL))
+            check(rel(x[2], y[2]) <= IMPACT_PEN_REL, "%s impact %d: peak penetration %.6g m, "
+                  "reference %.6g m, %+.2f %% (bound %g)" % (name, k + 1, x[2], y[2],
+                                                             100 * (x[2] / y[2] - 1),
+                                                             IMPACT_PEN_REL))
             if os.environ.get("FB_TEST_VERBOSE"):
                 print("%s impact %d: onset %.6g s (ref %.6g), peak %.6g N (ref %.6g), %+.3f %%"
                       % (name, k + 1, x[0], y[0], x[1], y[1], 100 * (x[1] / y[1] - 1)))
+
+# the paper case's impact model through the kit adapter, against its reference
+out = os.path.join(tmp, "paper-impact")
+rc, _, se = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
+                "run.models=reference,dart-clearance-impact", "--set", "run.revolutions=2",
+                "--set", "run.ensemble=1", "--out", out, "--no-figures", "--no-report")
+check(rc == 0, "the paper case runs dart-clearance-impact (%s)" % se.strip()[-300:])
+if rc == 0:
+    m = fb_script.summary_models(out)["dart-clearance-impact"]
+    check(m.get("verdict") == PAPER_VERDICT, "paper case: dart-clearance-impact reads %s against "
+          "its reference (%s: %s)" % (PAPER_VERDICT, m.get("verdict"), m.get("verdict_reason")))
 
 # 3. the four-bar and slider-crank path through the kit adapter: the
 # harness's error against the exact analytic solution of the same lengths

@@ -308,6 +308,8 @@ extern "C" void fb_dart_add_force(fb_dart_world *w, int pin, int hole, const dou
   if (hole >= 0) w->body[(size_t)hole].node->addExtForce(-force, at, false, false);
 }
 
+extern "C" void fb_dart_set_step(fb_dart_world *w, double h) { w->world->setTimeStep(h); }
+
 extern "C" int fb_dart_step(fb_dart_world *w, char *err, size_t size) {
   try {
     // false: keep the servo's command (World::step(true) resets every

@@ -71,6 +71,10 @@ int fb_dart_drive(fb_dart_world *w, int j, double rate, char *err, size_t size);
  * force, BodyNode::addExtForce). */
 void fb_dart_add_force(fb_dart_world *w, int pin, int hole, const double p[2], const double f[2]);
 
+/* Sets the step of the coming World::step calls to h [s] (World::setTimeStep:
+ * the skeleton's and the constraint solver's). */
+void fb_dart_set_step(fb_dart_world *w, double h);
+
 /* One step of h (World::step); the external forces are cleared after it.
  * Errors: DART's exceptions, a non-finite state. */
 int fb_dart_step(fb_dart_world *w, char *err, size_t size);

@@ -166,6 +166,11 @@ const struct fb_kit_binding *fb_planar_kit_of(const char *name);
  * exactly one clearance joint; those of joint_law.h and of fb_kit_run. */
 fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag);
 
+/* The step h [s] of a planar case's samples and engine models: [solver]
+ * h_s, h_min_s for an adaptive step, else (auto) a 6000th of a drive
+ * revolution. */
+double fb_planar_run_step(const fb_case *c);
+
 /* The analytic model's sample i of body b's quantity k (FB_Q_*). */
 double fb_planar_model_value(const fb_planar_run *r, const fb_planar_model *p, int b, int k,
                              size_t i);

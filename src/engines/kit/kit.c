@@ -152,13 +152,11 @@ static fb_status steps(const fb_kit_binding *b, void *w, const fb_planar *m,
   return st;
 }
 
-fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
-                     const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
-                     fb_diag *diag) {
-  const unsigned mask = cl ? cl->mask : 0u;
-  if (mask && !b->add_contact && !(b->add_clearance && b->contact_force))
-    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
-                       b->engine);
+/* the world of binding b built at its start (o's, else the assembly and
+ * the drive's velocities there) into *w (NULL on error) */
+static fb_status built(void **w, const fb_kit_binding *b, const fb_planar *m, double omega,
+                       const fb_kit_world *o, const fb_kit_clearance *cl, fb_diag *diag) {
+  *w = NULL;
   const int nq = fb_planar_nq(m);
   double *q = malloc(2 * (size_t)nq * sizeof *q);
   if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -168,11 +166,35 @@ fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
   else fb_planar_assembly(m, q);
   if (o->qd0) memcpy(qd, o->qd0, (size_t)nq * sizeof *qd);
   else st = start_velocities(qd, m, omega, diag);
-  void *w = NULL;
-  if (st == FB_OK) st = b->world_new(&w, o, diag);
-  if (st == FB_OK) st = build(b, w, m, omega, q, qd, o->q0 != NULL, cl, diag);
+  if (st == FB_OK) st = b->world_new(w, o, diag);
+  if (st == FB_OK) st = build(b, *w, m, omega, q, qd, o->q0 != NULL, cl, diag);
   free(q);
+  if (st != FB_OK && *w) b->world_free(*w), *w = NULL;
+  return st;
+}
+
+fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
+                     const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
+                     fb_diag *diag) {
+  const unsigned mask = cl ? cl->mask : 0u;
+  if (mask && !b->add_contact && !(b->add_clearance && b->contact_force))
+    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
+                       b->engine);
+  void *w;
+  fb_status st = built(&w, b, m, omega, o, cl, diag);
   if (st == FB_OK) st = steps(b, w, m, cl, s, diag);
+  if (w) b->world_free(w);
+  return st;
+}
+
+fb_status fb_kit_model_text(const fb_kit_binding *b, const fb_planar *m, double omega,
+                            const fb_kit_world *o, char *buf, size_t size, fb_diag *diag) {
+  if (!b->model_text)
+    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding writes no model file",
+                       b->engine);
+  void *w;
+  fb_status st = built(&w, b, m, omega, o, NULL, diag);
+  if (st == FB_OK) st = b->model_text(w, buf, size, diag);
   if (w) b->world_free(w);
   return st;
 }

@@ -332,7 +332,7 @@ function plainLoad(text, label, ex) {
  * cvel about z, named in the file's comment "body b<k> is NAME") within
  * PEAK_REL_TOL of fourbar kinematics's, relative to the body's largest
  * |omega| (measured in 2.2.2 within 2.3e-7 on the six-bar at 1e-5 s,
- * tests/test_export_planar.c) */
+ * tests/test_export.c) */
 function checkPlanar(text, cases) {
   const name = cases[0], label = labelOf(cases);
   const k = JSON.parse(execFileSync(fourbar, ['kinematics', path.join(root, 'cases', name), '--json'],

@@ -76,11 +76,19 @@ typedef struct {
   size_t steps, check_steps; /* accepted steps of each */
   double force_max;        /* largest contact force in the window [N] */
   double penetration_max;  /* largest penetration in the window [m] */
-  double check_rel;        /* largest |relative change| of a window peak in the check [-] */
+  double check_rel;        /* largest |relative change| of a window peak in the check, NaN
+                              without one (fb_planar_ref_checked) [-] */
   int converged;           /* check_rel <= FB_UNCONVERGED_REL */
   int failed;              /* the integration stopped early (why: stop) */
   char stop[FB_DIAG_SIZE];
 } fb_planar_ref_result;
+
+/* 1 when reference result q has a check integration: its check tolerance
+ * tighter than its own (a run at FB_REFERENCE_TOL_MIN, the floor, has
+ * none; its verdict is then "unchecked"). */
+static inline int fb_planar_ref_checked(const fb_planar_ref_result *q) {
+  return q->check_tol < q->tol;
+}
 
 /* One planar model's result. */
 typedef struct {

@@ -209,7 +209,7 @@ if rc == 0 and six_peaks:
 # the matched row would alias, and the kit stops Bullet's model as ODE's,
 # naming the largest usable step; the ideal model beside it runs
 rc, _, se = run("run", six, "--set", "run.models=bullet-clearance-impact,bullet-ideal-nominal",
-                "--set", "run.revolutions=1", "--out", os.path.join(tmp, "alias"),
+                "--set", "run.revolutions=1", "--set", "solver.h_s=1e-5", "--out", os.path.join(tmp, "alias"),
                 "--no-figures", "--no-report")
 check(rc == 0, "the six-bar's run goes on past a stopped model (%s)" % se.strip()[-300:])
 if rc == 0:

@@ -159,12 +159,13 @@ class KitChecks:
         return m
 
     def stops(self, model, word):
-        """the six-bar's light rod-output pin at h = 1e-5 s, 1 revolution,
+        """the six-bar's light rod-output pin at h = 1e-5 s (twice the
+        case's own step, where every clearance model runs), 1 revolution,
         model beside the ideal model: model stops ("failed", its stop
         naming word and the largest usable step), the ideal one runs, the
         run goes on; returns the models by name (or False)"""
         m = self.run(self.six, "stop-" + model, "run.models=%s,%s" % (model, self.ideal),
-                     "run.revolutions=1")
+                     "run.revolutions=1", "solver.h_s=1e-5")
         if m:
             o = m[model]
             self.check(o["status"] == "failed" and word in o.get("stop", "") and

@@ -71,8 +71,8 @@ slider = kit.slider(KIT_SLIDER_OMEGA_REL)
 kit.clearance([("ode-clearance-impact", "reference")], KIT_CLEARANCE_FORCE_REL,
               KIT_CLEARANCE_OMEGA_REL)
 
-# the six-bar's light rod-output pin under the impact law at h = 1e-5 s:
-# the matched row would alias (omega_d h 4.4 against the bound 0.9 pi,
+# the six-bar's light rod-output pin under the impact law at h = 1e-5 s (the
+# case's own step is 5e-6 s, where it runs): the matched row would alias (omega_d h 4.4 against the bound 0.9 pi,
 # contact.h), and the kit stops the model as the hand-built ODE world
 # does, naming the largest usable step; the run goes on and says so
 m = kit.stops("ode-clearance-impact", "aliased")

@@ -41,6 +41,10 @@ static const char export_help[] =
     "model (bodies crank, coupler, slider; the slide slider-ground along +x; the\n"
     "piston pin coupler-slider, as a tendon limit when it carries clearance); sdf\n"
     "is refused (exit 2): the SDF world written is the four-bar's.\n"
+    "A planar case ([linkage] type = planar): mjcf --ideal writes the MJCF model\n"
+    "mujoco-ideal-nominal runs (bodies b0, b1, ..., joints j0, j1, ..., named in\n"
+    "the top comment by the case's names; keyframe \"start\"); its clearance joint\n"
+    "is not written (refused without --ideal), nor is sdf (exit 2).\n"
     "Exit status: 0 ok, 1 the file could not be written, 2 bad input.\n";
 
 /* generated text of the paper case: MJCF ~4 kB, SDF ~40 kB (a ring of 64

@@ -102,6 +102,7 @@ static fb_status builds(const fb_case *c, const char *name, const char *format, 
 }
 
 fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
+  if (c->planar.on) return fb_export_planar_mjcf(buf, size, c, ideal, diag);
   const fb_engine *e = engine_reading("mjcf");
   if (!e)
     return fb_diag_set(diag, FB_ERR_ARG, "the MJCF export needs MuJoCo in the build: "
@@ -120,6 +121,10 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
 
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag) {
   const char *name = ideal || !c->clearance.mask ? "ode-ideal-nominal" : "ode-clearance-restitution";
+  if (c->planar.on)
+    return fb_diag_set(diag, FB_ERR_ARG, "--format sdf: the SDF export of a planar case ([linkage] "
+                       "type = planar, case %s) is not built: the SDF world written is the "
+                       "four-bar's; --format mjcf writes a planar case's ideal mechanism", c->name);
   if (c->mechanism != FB_MECH_FOURBAR) return fb_export_sdf_refusal(c->mechanism, diag);
   fb_scene *def = NULL;
   fb_model_scene sm;

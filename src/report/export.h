@@ -23,6 +23,20 @@
  * written, the command prints the note as a warning. */
 fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag);
 
+/* Writes planar case c's ([linkage] type = planar) ideal mechanism as MJCF
+ * into buf (size bytes, NUL terminated): a leading comment naming the
+ * bodies b<k> and joints j<k> by the description's names, then the text
+ * MuJoCo's binding of the engine kit composes and runs as model
+ * mujoco-ideal-nominal (mujoco_kit.c, fb_kit_model_text) at the case's
+ * step (fb_planar_run_step), with keyframe "start" (the assembly and the
+ * drive's velocities there). fb_export_mjcf's route for a planar case.
+ * Errors: FB_ERR_ARG with ideal = 0 on a case with a clearance joint (the
+ * law is MuJoCo's passive-force hook, not MJCF), or in a build without
+ * MuJoCo; those of fb_planar_of_case and fb_kit_model_text. On FB_OK
+ * diag->msg is empty. */
+fb_status fb_export_planar_mjcf(char *buf, size_t size, const fb_case *c, int ideal,
+                                fb_diag *diag);
+
 /* Writes case c's mechanism as an SDFormat 1.9 world for Gazebo's ODE
  * physics into buf (size bytes, NUL terminated): with ideal = 1, or when c
  * has no clearance joint, model ode-ideal-nominal's mechanism, else
@@ -31,6 +45,8 @@ fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb
  * other than the four-bar (fb_export_sdf_refusal). On FB_OK, diag->msg as
  * fb_export_mjcf's. */
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag);
+/* (A planar case: FB_ERR_ARG naming the format and the case type: no SDF
+ * of a planar case is written.) */
 
 /* The SDFormat 1.9 world of model sm (export_sdf.c): world "fourbar" with
  * the case's gravity along -y and a physics "case_step" (ODE, world solver,

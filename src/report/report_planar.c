@@ -44,12 +44,18 @@ static json_t *description_json(const fb_planar *m) {
   return d;
 }
 
-/* a reference's verdict (planar_run.h): ok, unconverged, or failed */
+/* a reference's verdict (planar_run.h): ok, unconverged, unchecked, or
+ * failed */
 static const char *verdict_of(const fb_planar_model *p, char *why, size_t size) {
   const fb_planar_ref_result *q = &p->ref;
   if (q->failed) {
     snprintf(why, size, "the integration stopped: %s", q->stop);
     return "failed";
+  }
+  if (!fb_planar_ref_checked(q)) {
+    snprintf(why, size, "no check integration: its tolerance %.2g is the floor (%.2g), nothing "
+             "tighter to compare with", q->tol, q->check_tol);
+    return "unchecked";
   }
   snprintf(why, size, "its window peaks move by %.2g (largest, relative) in its check integration "
            "at tolerance %.2g; the bound is %.2g", q->check_rel, q->check_tol, FB_UNCONVERGED_REL);

@@ -45,7 +45,7 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
 /* the output grid's step [s]: [solver] h_s as given (1e-5 s by default),
  * an adaptive run's h_min_s; auto (which chooses from a contact, and an
  * analytic model has none): one revolution / 6000, auto's longest */
-static double grid_step(const fb_case *c) {
+double fb_planar_run_step(const fb_case *c) {
   if (c->solver.h_mode == FB_STEP_ADAPTIVE) return c->solver.h_min;
   if (c->solver.h_mode == FB_STEP_AUTO || !(c->solver.h > 0.0))
     return 2.0 * M_PI / c->crank_speed / 6000.0;
@@ -89,7 +89,7 @@ static fb_status sample(fb_planar_model *p, fb_planar_kin *k, const fb_planar_ru
 
 /* a model's columns: n samples every h over the run */
 static fb_status model_alloc(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
-  const double h = grid_step(&r->c);
+  const double h = fb_planar_run_step(&r->c);
   const double steps = floor(r->duration / h + 1e-9);
   if (!(steps + 1.0 <= FB_PLANAR_RUN_MAX_SAMPLES))
     return fb_diag_set(diag, FB_ERR_RANGE,

@@ -76,11 +76,19 @@ typedef struct {
   size_t steps, check_steps; /* accepted steps of each */
   double force_max;        /* largest contact force in the window [N] */
   double penetration_max;  /* largest penetration in the window [m] */
-  double check_rel;        /* largest |relative change| of a window peak in the check [-] */
+  double check_rel;        /* largest |relative change| of a window peak in the check, NaN
+                              without one (fb_planar_ref_checked) [-] */
   int converged;           /* check_rel <= FB_UNCONVERGED_REL */
   int failed;              /* the integration stopped early (why: stop) */
   char stop[FB_DIAG_SIZE];
 } fb_planar_ref_result;
+
+/* 1 when reference result q has a check integration: its check tolerance
+ * tighter than its own (a run at FB_REFERENCE_TOL_MIN, the floor, has
+ * none; its verdict is then "unchecked"). */
+static inline int fb_planar_ref_checked(const fb_planar_ref_result *q) {
+  return q->check_tol < q->tol;
+}
 
 /* One planar model's result. */
 typedef struct {
@@ -168,6 +176,11 @@ const struct fb_kit_binding *fb_planar_kit_of(const char *name);
  * and its force and penetration columns. Errors: FB_ERR_ARG without
  * exactly one clearance joint; those of joint_law.h and of fb_kit_run. */
 fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag);
+
+/* The step h [s] of a planar case's samples and engine models: [solver]
+ * h_s, h_min_s for an adaptive step, else (auto) a 6000th of a drive
+ * revolution. */
+double fb_planar_run_step(const fb_case *c);
 
 /* The analytic model's sample i of body b's quantity k (FB_Q_*). */
 double fb_planar_model_value(const fb_planar_run *r, const fb_planar_model *p, int b, int k,

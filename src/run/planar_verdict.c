@@ -218,7 +218,10 @@ static void clearance(fb_planar_verdict *v, const fb_planar_run *r, const fb_pla
   }
   if (!ref->ref.converged || isfinite(v->parts_s)) {
     set(v, FB_VERDICT_WARN, FB_BASIS_UNSETTLED);
-    if (!ref->ref.converged)
+    if (!fb_planar_ref_checked(&ref->ref))
+      snprintf(v->reason, sizeof v->reason, "%s has no check integration (its tolerance is the "
+               "floor); a planar run has no ensemble to decide on yet", ref->name);
+    else if (!ref->ref.converged)
       snprintf(v->reason, sizeof v->reason, "%s's window peaks did not converge (they move by "
                "%.2g in its check); a planar run has no ensemble to decide on yet", ref->name,
                ref->ref.check_rel);

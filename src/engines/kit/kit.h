@@ -165,6 +165,12 @@ typedef struct fb_kit_binding {
   int applied_force;         /* optional: 1 when add_contact applies the law's force (no engine
                                 row, no [clearance] mapping; MuJoCo, Simbody): the matched
                                 row's aliasing stop is not the engine's, which names its own */
+  fb_status (*model_text)(const void *w, char *buf, size_t size, fb_diag *diag);
+                             /* optional: the built world (after add_drive) as the engine's
+                                own model file, its start in it, into buf (size bytes, NUL
+                                terminated; FB_ERR_RANGE when it does not fit): MuJoCo's
+                                MJCF (fb_kit_model_text); NULL: the engine reads no model
+                                file */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's
@@ -218,5 +224,15 @@ fb_status fb_kit_open(fb_kit_runner **k, const fb_kit_binding *b, const fb_plana
                       fb_kit_series *s, fb_diag *diag);
 fb_status fb_kit_advance(fb_kit_runner *k, size_t n, fb_diag *diag);
 void fb_kit_close(fb_kit_runner *k);
+
+/* Builds description m driven at omega [rad/s] in the engine of binding b
+ * (world settings o), every joint ideal, as fb_kit_run does before its
+ * first step, and writes the built world as the engine's own model file
+ * into buf (size bytes, NUL terminated) through b->model_text: the file
+ * the engine itself runs, so that it and a kit run start alike. Errors:
+ * FB_ERR_ARG when the binding has no model_text; those of the walk (as
+ * fb_kit_run's) and of model_text; FB_ERR_NOMEM. */
+fb_status fb_kit_model_text(const fb_kit_binding *b, const fb_planar *m, double omega,
+                            const fb_kit_world *o, char *buf, size_t size, fb_diag *diag);
 
 #endif

@@ -249,7 +249,9 @@ static void put_connect(fb_text *t, const mk_world *k, const mk_joint *J, const 
               k->opts.loop_impedance);
 }
 
-static void put_mjcf(fb_text *t, const mk_world *k) {
+/* the model's MJCF; with qvel (nv), a keyframe "start" holding it (qpos
+ * its default, 0: the assembly) */
+static void put_mjcf(fb_text *t, const mk_world *k, const double *qvel, int nv) {
   fb_text_put(t, "<mujoco model=\"planar\">\n<compiler angle=\"radian\" inertiafromgeom=\"false\"/>"
               "\n<option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\"/>\n"
               "<worldbody>\n", k->h, -k->gravity, fb_mujoco_integrator_xml(k->integrator));
@@ -260,8 +262,15 @@ static void put_mjcf(fb_text *t, const mk_world *k) {
   fb_mujoco_loop_solref(&k->opts, k->h, sr);
   for (int j = 0; j < k->nj; j++)
     if (!k->tree[j]) put_connect(t, k, &k->joint[j], sr);
-  fb_text_put(t, "</equality>\n</mujoco>\n");
+  fb_text_put(t, "</equality>\n");
+  if (qvel) {
+    fb_text_put(t, "<keyframe>\n<key name=\"start\" time=\"0\" qvel=\"");
+    for (int i = 0; i < nv; i++) fb_text_put(t, "%s%.17g", i ? " " : "", qvel[i]);
+    fb_text_put(t, "\"/>\n</keyframe>\n");
+  }
+  fb_text_put(t, "</mujoco>\n");
 }
+
 
 /* positions and velocities of every body at the state now */
 static void kinematics(mk_world *k) {
@@ -313,7 +322,7 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
   char *buf = malloc(size);
   if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the MJCF text");
   fb_text t = {buf, size, 0, 0};
-  put_mjcf(&t, k);
+  put_mjcf(&t, k, NULL, 0);
   if (!t.overflow) k->m = fb_mujoco_load_mjcf(buf, diag);
   free(buf);
   if (t.overflow) return fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than %zu bytes", size);
@@ -449,6 +458,17 @@ static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
   vel[2] = v[2];
 }
 
+/* the built world's MJCF, the very text the kit compiled, with its start
+ * (the velocities start_velocity fitted) as keyframe "start" */
+static fb_status kit_model_text(const void *w, char *buf, size_t size, fb_diag *diag) {
+  const mk_world *k = w;
+  if (!k->m) return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit's world is not built yet");
+  fb_text t = {buf, size, 0, 0};
+  put_mjcf(&t, k, k->d->qvel, k->m->nv);
+  if (t.overflow) return fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than %zu bytes", size);
+  return FB_OK;
+}
+
 static void kit_world_free(void *w) {
   mk_world *k = w;
   if (k->d) mj_deleteData(k->d);
@@ -474,4 +494,5 @@ const fb_kit_binding fb_mujoco_kit = {
     .body_state = kit_body_state,
     .world_free = kit_world_free,
     .applied_force = 1,
+    .model_text = kit_model_text,
 };

@@ -520,6 +520,7 @@ const fb_kit_binding fb_siconos_kit = {
     NULL /* add_contact: the clearance is a relation (add_clearance) */,
     kit_contact_force,  kit_step,          kit_body_state, kit_world_free,
     kit_add_clearance,  0 /* applied_force: no penalty row */,
+    NULL /* model_text: Siconos reads no model file */,
 };
 
 } // extern "C"

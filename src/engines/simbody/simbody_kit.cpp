@@ -465,4 +465,5 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     fb_simbody::kit_add_clearance,
     1, /* applied_force: a force element under the integrator's error control, no row to
           alias */
+    NULL, /* model_text: no model file */
 };

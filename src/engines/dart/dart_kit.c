@@ -231,10 +231,10 @@ static fb_status onset_within(dk_world *k, int j, fb_diag *diag) {
 }
 
 /* the law's force of every clearance joint handed or predicted for the
- * step at DART's state now, on the pin along -n and on the hole along +n
- * at the wall point; none while the pin is off the wall */
+ * step at the state read_state read last (DART's now), on the pin along
+ * -n and on the hole along +n at the wall point; none while the pin is off
+ * the wall */
 static void apply_contacts(dk_world *k) {
-  read_state(k);
   for (int j = 0; j < k->m->njoints; j++) {
     if (!k->ct[j].on) continue;
     double rate, n[2], at[2];
@@ -260,6 +260,7 @@ static fb_status kit_step(void *w, fb_diag *diag) {
   const int n = k->nsub;
   if (n > 1) fb_dart_set_step(k->dart, k->h / n);
   for (int i = 0; i < n && st == FB_OK; i++) {
+    if (k->m && i > 0) read_state(k); /* the first sub-step's state is read above */
     if (k->m) apply_contacts(k);
     if (fb_dart_step(k->dart, err, sizeof err) != 0)
       st = dart_error(FB_ERR_NUMERIC, "step", err, diag);

@@ -118,6 +118,7 @@ static void kit_run_free(kit_run *r) {
   fb_planar_free(r->m);
   free(r->s.t);
   free(r->col);
+  free(r->cl.force_max);
   free(r);
 }
 
@@ -198,6 +199,10 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
                                .impact_velocity_min = sm->impact_velocity_min, .joint = r->joint,
                                .force = r->col + FB_C_FORCE * n, .pen = r->col + FB_C_PEN * n,
                                .ecc = r->col + FB_C_EX * n, .state = r->col + FB_C_STATE * n};
+    /* a binding that sub-steps keeps its largest force of each step for
+     * the spikes' refinement (adapter_refine) */
+    if (b->contact_force_max && !(r->cl.force_max = calloc(n, sizeof *r->cl.force_max)))
+      st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu kit samples", n);
   }
   fb_start_state start;
   if (st == FB_OK) st = fb_model_scene_start(&start, sm, diag);
@@ -302,6 +307,15 @@ static void adapter_provenance(const void *self, int joint, fb_contact_provenanc
                                    cl->contact_steps};
 }
 
+/* the series' spikes refined as the hand-built engines' are, but the
+ * contact force of a binding that sub-steps from its own largest force
+ * between samples (series.h, fb_series_refine_peaks_max) */
+static void adapter_refine(const void *self, fb_series *s, double fraction, double t_split) {
+  const kit_run *r = self;
+  fb_series_refine_peaks_max(s, fraction, t_split, r->cl.force_max ? r->joint : -1,
+                             r->cl.force_max);
+}
+
 /* the steps replayed (a model the harness stopped: those before its stop) */
 static size_t adapter_steps(const void *self) { return ((const kit_run *)self)->i; }
 
@@ -321,6 +335,7 @@ const fb_engine fb_engine_kit_adapter = {
     .drift = adapter_drift,
     .steps = adapter_steps,
     .destroy = adapter_destroy,
+    .refine = adapter_refine,
 };
 
 const fb_engine *fb_engine_runner(const fb_engine *e, const fb_case *c, fb_diag *diag) {

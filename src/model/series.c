@@ -353,32 +353,41 @@ void fb_series_largest_abs_split(double big[2], size_t *split, const fb_series *
   fb_largest_abs_split(big, split, s->t, s->n, v, t_split);
 }
 
-static void refine_column(const fb_series *s, double *v, double fraction, double t_split) {
-  const size_t n = s->n;
+void fb_refine_column(const double *t, size_t n, double *v, const double *vmax, double fraction,
+                      double t_split) {
   if (!v || n < 3) return;
   double big[2];
   size_t split;
-  fb_series_largest_abs_split(big, &split, s, v, t_split);
+  fb_largest_abs_split(big, &split, t, n, v, t_split);
   /* vertices from the original samples: a refined value must not feed its
    * neighbour's parabola */
   double prev = v[0];
   for (size_t k = 1; k + 1 < n; k++) {
     const double here = v[k], b = big[k >= split];
     const double vk[3] = {prev, here, v[k + 1]};
-    for (int sign = -1; sign <= 1 && b > 0.0; sign += 2)
-      if (fb_series_is_spike(vk, 1, sign, fraction, b)) v[k] = vertex(prev, here, v[k + 1], sign);
+    for (int sign = -1; sign <= 1 && b > 0.0; sign += 2) {
+      if (!fb_series_is_spike(vk, 1, sign, fraction, b)) continue;
+      v[k] = sign > 0 && vmax ? fmax(here, fmax(vmax[k - 1], vmax[k]))
+                              : vertex(prev, here, v[k + 1], sign);
+    }
     prev = here;
   }
 }
 
-void fb_series_refine_peaks(fb_series *s, double fraction, double t_split) {
+void fb_series_refine_peaks_max(fb_series *s, double fraction, double t_split, int joint,
+                                const double *force_max) {
   for (size_t b = 0; b < output_count(s); b++)
-    refine_column(s, s->body[b][FB_Q_ACC], fraction, t_split);
+    fb_refine_column(s->t, s->n, s->body[b][FB_Q_ACC], NULL, fraction, t_split);
   for (int j = 0; j < mech_of(s)->njoints; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
-    refine_column(s, s->contact[j][FB_C_FORCE], fraction, t_split);
-    refine_column(s, s->contact[j][FB_C_PEN], fraction, t_split);
+    fb_refine_column(s->t, s->n, s->contact[j][FB_C_FORCE], j == joint ? force_max : NULL,
+                     fraction, t_split);
+    fb_refine_column(s->t, s->n, s->contact[j][FB_C_PEN], NULL, fraction, t_split);
   }
+}
+
+void fb_series_refine_peaks(fb_series *s, double fraction, double t_split) {
+  fb_series_refine_peaks_max(s, fraction, t_split, -1, NULL);
 }
 
 void fb_series_attribute_to_step_start(fb_series *s) {

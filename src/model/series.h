@@ -148,6 +148,23 @@ void fb_largest_abs_split(double big[2], size_t *split, const double *t, size_t 
  * window's start; fb_series_largest_abs_split). */
 void fb_series_refine_peaks(fb_series *s, double fraction, double t_split);
 
+/* fb_series_refine_peaks, but the contact force of joint `joint` from the
+ * engine's own largest force between samples: force_max (n) [N], the
+ * largest force the engine applied over its sub-steps of the step from
+ * sample i; a maximum spike at sample k takes the largest of the sample,
+ * force_max[k - 1] and force_max[k] (the force's extreme between its
+ * neighbours, as the reference replaces its spikes: peak_refine.h), not
+ * the parabola's vertex, which overshoots a pulse lopsided within the
+ * three samples. joint -1 or force_max NULL: fb_series_refine_peaks. */
+void fb_series_refine_peaks_max(fb_series *s, double fraction, double t_split, int joint,
+                                const double *force_max);
+
+/* The refinement of one column v (n) at times t [s] as
+ * fb_series_refine_peaks_max does it (vmax NULL: the parabola's vertex at
+ * every spike), for a column held outside a series (a planar run's). */
+void fb_refine_column(const double *t, size_t n, double *v, const double *vmax, double fraction,
+                      double t_split);
+
 /* For an engine that reports at t_{n+1} what its step from t_n applied
  * (ODE: the angular acceleration (omega_{n+1} - omega_n) / h, which is the
  * solver's forces at the configuration of t_n, and the contact force and

@@ -125,7 +125,10 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
    * spikes of a discrete motion are refined between its steps (series.h),
    * so every model's accelerations and peaks compare like with like */
   if (e->step_values_lag) fb_series_attribute_to_step_start(&r->series);
-  if (e->refine_peaks)
+  if (e->refine_peaks && e->refine)
+    e->refine(self, &r->series, FB_REFERENCE_REFINE_FRACTION,
+              fb_case_peak_window_from(&def->source));
+  else if (e->refine_peaks)
     fb_series_refine_peaks(&r->series, FB_REFERENCE_REFINE_FRACTION,
                            fb_case_peak_window_from(&def->source));
   r->stepping_s = e->stepping_s ? e->stepping_s(self) : stepping;

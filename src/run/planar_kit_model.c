@@ -131,6 +131,10 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   for (size_t i = 0; i < p->n; i++) p->t[i] = (double)i * p->h;
   for (size_t i = 0; i < nq; i++) p->q[i] = NAN;
   fb_status st = mt->joints == FB_JOINTS_CLEARANCE ? clearance(&cl, p, r, mt, diag) : FB_OK;
+  /* a binding that sub-steps keeps its largest force of each step (the verdict's peaks) */
+  if (st == FB_OK && cl.force && b->contact_force_max &&
+      !(cl.force_max = p->force_max = calloc(p->n, sizeof *p->force_max)))
+    st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   const double before = fb_clock_s() - t0; /* the law and the columns */
   if (st == FB_OK)
     st = fb_kit_run(b, r->m, r->omega, &o, mt->joints == FB_JOINTS_CLEARANCE ? &cl : NULL, &s, diag);

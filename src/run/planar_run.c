@@ -132,6 +132,7 @@ static void model_free(fb_planar_model *p) {
   free(p->peaks);
   free(p->t);
   free(p->force);
+  free(p->force_max);
   memset(p, 0, sizeof *p);
 }
 

@@ -112,6 +112,9 @@ typedef struct {
   double setup_s;          /* an engine's model: of wall_s, the set-up before its first step
                               (its clearance law, the columns, the engine's world built through
                               the kit: kit.h fb_kit_series.setup_s) [s]; 0 for the others */
+  double *force_max;       /* an engine's model whose binding sub-steps: its largest contact
+                              force over the step from sample i [N] (n; kit.h's
+                              fb_kit_clearance.force_max), else NULL */
 } fb_planar_model;
 
 /* A planar case run. */

@@ -227,6 +227,11 @@ typedef struct fb_engine {
   const struct fb_kit_binding *kit; /* optional: the engine's binding of the engine kit
                                        (src/engines/kit/kit.h), with which it builds any
                                        planar case's ideal models; NULL: none */
+  void (*refine)(const void *self, fb_series *s, double fraction, double t_split);
+                                    /* optional, with refine_peaks 1: the run's series refined
+                                       by the engine's own figures between samples
+                                       (fb_series_refine_peaks_max: the kit adapter's
+                                       sub-stepped force maxima); NULL: fb_series_refine_peaks */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:

@@ -155,12 +155,17 @@ static fb_status sample_step(fb_kit_runner *k, size_t i, fb_diag *diag) {
   sample(b, w, s, m->nbodies - 1, i);
   if (!cl) return FB_OK;
   if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&k->p, b, w, cl->joint);
+  if (i > 0 && cl->force_max)
+    cl->force_max[i - 1] = b->contact_force_max ? fmax(b->contact_force_max(w, cl->joint),
+                                                       cl->force[i - 1])
+                                                : cl->force[i - 1];
   if (i > 0 && cl->state) /* the episode of the step from t_{i-1} */
     cl->state[i - 1] = cl->force[i - 1] > 0.0 ? (double)k->p.ep[cl->joint].state : FB_STATE_FREE;
   cl->pen[i] = fb_kit_pipe_read(&k->p, b, w, m, cl);
   if (cl->ecc) cl->ecc[i] = k->p.ecc[cl->joint][0], cl->ecc[s->n + i] = k->p.ecc[cl->joint][1];
   if (i + 1 < s->n) st = fb_kit_pipe_contacts(&k->p, b, w, m, cl, s->h, diag);
   else cl->force[i] = i > 0 ? cl->force[i - 1] : 0.0; /* the last keeps the one before */
+  if (i + 1 == s->n && cl->force_max) cl->force_max[i] = cl->force[i];
   if (i + 1 == s->n && cl->state) cl->state[i] = i > 0 ? cl->state[i - 1] : FB_STATE_FREE;
   return st;
 }

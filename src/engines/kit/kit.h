@@ -112,6 +112,9 @@ typedef struct {
                                (FB_ERR_NUMERIC, "aliased"), else 0 [-] */
   double h_omega_max;       /* out: the largest h omega_c = h sqrt(kp / m_eff) of the rows the
                                law and mapping gave (contact.h's row, as ODE's) [-] */
+  double *force_max;        /* optional (n), NULL: not kept: joint's largest contact force over
+                               the step from sample i, the binding's sub-steps
+                               (contact_force_max) or, without them, force[i] [N] */
 } fb_kit_clearance;
 
 /* One clearance joint for an engine that builds it as its own relation
@@ -171,6 +174,10 @@ typedef struct fb_kit_binding {
                                 terminated; FB_ERR_RANGE when it does not fit): MuJoCo's
                                 MJCF (fb_kit_model_text); NULL: the engine reads no model
                                 file */
+  double (*contact_force_max)(const void *w, int k);
+                             /* optional: the largest normal force clearance joint k's contact
+                                applied over the sub-steps of the last step [N] (DART, which
+                                splits a step in contact); NULL: one force per step */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

@@ -521,6 +521,7 @@ const fb_kit_binding fb_siconos_kit = {
     kit_contact_force,  kit_step,          kit_body_state, kit_world_free,
     kit_add_clearance,  0 /* applied_force: no penalty row */,
     NULL /* model_text: Siconos reads no model file */,
+    NULL /* contact_force_max: an impulse per step, no sub-steps */,
 };
 
 } // extern "C"

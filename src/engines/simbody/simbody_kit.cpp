@@ -466,4 +466,5 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     1, /* applied_force: a force element under the integrator's error control, no row to
           alias */
     NULL, /* model_text: no model file */
+    NULL, /* contact_force_max: one force per step */
 };

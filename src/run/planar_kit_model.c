@@ -81,12 +81,14 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   if (n != 1)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs one clearance joint ([clearance] joints "
                        "= a revolute joint of the case), and the case names %d", p->name, n);
-  if (m->joint[cl->joint].kind == FB_KIND_PRISMATIC && !kb->add_clearance)
+  /* the kit hands no corner contact (add_contact) yet: an engine's own
+   * relation only (Siconos's four unilateral corners) */
+  if (m->joint[cl->joint].kind == FB_KIND_PRISMATIC && (!kb->add_clearance || kb->add_contact))
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s': clearance at prismatic joint '%s' (a slider "
                        "in its guide) runs in the references only (reference, "
                        "reference-restitution) and in a binding that builds its own clearance "
-                       "joint (add_clearance); the %s engine's binding has none, and the engine "
-                       "kit's contact is a pin in its hole", p->name, m->joint[cl->joint].name,
+                       "joint (add_clearance, Siconos's); the %s engine's binding takes the "
+                       "kit's contact, a pin in its hole", p->name, m->joint[cl->joint].name,
                        kb->engine);
   double *omega0 = NULL, *most = malloc((size_t)m->njoints * sizeof *most);
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */

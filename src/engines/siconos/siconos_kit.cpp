@@ -403,10 +403,12 @@ Joint joint_at(const World *w, Kind kind, int b0, int b1, const double at[2]) {
 double angle0(const World *w, int b) { return b == FB_KIT_GROUND ? 0.0 : w->body[(size_t)b].pos0[2]; }
 
 // joint jt's name for a message (the description's, when a clearance joint
-// handed it)
+// handed it; else the case's, whose joints are the description's in order)
 std::string joint_name(const World *w, const Joint &jt) {
   if (w->m && jt.desc >= 0 && jt.desc < w->m->njoints)
     return std::string("'") + w->m->joint[jt.desc].name + "'";
+  if (w->c && jt.desc >= 0 && jt.desc < w->c->planar.njoints)
+    return std::string("'") + w->c->planar.joint[jt.desc].name + "'";
   return "number " + std::to_string(jt.desc + 1) + " of the description";
 }
 

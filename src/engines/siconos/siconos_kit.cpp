@@ -558,8 +558,6 @@ static fb_status kit_add_prismatic(void *vw, int b0, int b1, const double at[2],
 // slide's normal turning with the guide; Newton's law, Coulomb's friction
 // on the tangential coordinate u . (p - o) when mu > 0
 static fb_status add_corners(World *w, int k, const fb_kit_clearance_joint *c, fb_diag *diag) {
-  if (k < 0 || k >= FB_PLANAR_SPEC_MAX_JOINTS)
-    return fb_diag_set(diag, FB_ERR_ARG, "clearance joint %d out of range", k);
   if (w->friction > 0.0 && w->coordinates == FB_SICONOS_ABSOLUTE)
     return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g at prismatic joint '%s': "
                        "Siconos's 2-D friction problem takes no bilateral row, and absolute "
@@ -578,34 +576,36 @@ static fb_status add_corners(World *w, int k, const fb_kit_clearance_joint *c, f
     j.ul[0] = c0 * u[0] + s0 * u[1], j.ul[1] = -s0 * u[0] + c0 * u[1];
     j.tau = tau;
     j.c = g.half_height + g.clearance;
-    j.e_n = c->restitution;
     j.mu = w->friction;
-    j.k = k;
+    j.e_n = c->restitution, j.k = k;
     w->joint.push_back(j);
   }
-  w->m = c->m;
-  w->walked++;
+  return FB_OK;
+}
+
+// a pin in its hole: g = c - |p_pin - p_hole| >= 0, frictionless
+static fb_status add_gap(World *w, int k, const fb_kit_clearance_joint *c, fb_diag *diag) {
+  if (w->friction > 0.0)
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the Siconos binding of the "
+                       "engine kit builds a frictionless clearance joint (friction = 0)",
+                       w->friction);
+  Joint j = joint_at(w, GAP, c->pin, c->hole, c->at);
+  j.c = c->radial_clearance;
+  j.e_n = c->restitution, j.k = k;
+  w->joint.push_back(j);
   return FB_OK;
 }
 
 static fb_status kit_add_clearance(void *vw, int k, const fb_kit_clearance_joint *c,
                                    fb_diag *diag) {
   World *w = static_cast<World *>(vw);
-  if (c->kind == FB_KIND_PRISMATIC) return add_corners(w, k, c, diag);
-  if (w->friction > 0.0)
-    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the Siconos binding of the "
-                       "engine kit builds a frictionless clearance joint (friction = 0)",
-                       w->friction);
   if (k < 0 || k >= FB_PLANAR_SPEC_MAX_JOINTS)
     return fb_diag_set(diag, FB_ERR_ARG, "clearance joint %d out of range", k);
-  Joint j = joint_at(w, GAP, c->pin, c->hole, c->at);
-  j.c = c->radial_clearance;
-  j.e_n = c->restitution;
-  j.k = k;
-  w->joint.push_back(j);
-  w->m = c->m;
+  const fb_status st = c->kind == FB_KIND_PRISMATIC ? add_corners(w, k, c, diag)
+                                                    : add_gap(w, k, c, diag);
+  w->m = c->m; // the description, for the joints' names
   w->walked++;
-  return FB_OK;
+  return st;
 }
 
 // the drive: a revolute joint to the ground prescribes its body (the

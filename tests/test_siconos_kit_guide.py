@@ -128,13 +128,22 @@ if not want_ref:
     # the refusals, naming what to change
     out = os.path.join(tmp, "refused")
     fourbar = os.path.join(cases, "templates", "planar_fourbar.ini")
+    # the four-bar undriven, at rest: a loop of revolute joints, no tree
+    with open(fourbar) as f:
+        text = f.read()
+    loose = os.path.join(tmp, "undriven_fourbar.ini")
+    with open(loose, "w") as f:
+        f.write(text.replace("joint = ground-crank\nspeed_rpm = 1000\ndirection = cw\n",
+                             "joint = none\n") + "\n[run]\nduration_s = 0.001\n")
     for c, model, setting, words, what in (
             (case, "siconos-clearance-newton", ("clearance.friction=0.01",),
              ["'guide'", "coordinates = angles"], "friction in absolute coordinates"),
             (case, "siconos-ideal-nominal", ("siconos.coordinates=angles",),
              ["'guide'", "prismatic"], "angle coordinates with an ideal prismatic joint"),
             (fourbar, "siconos-ideal-nominal", ("siconos.coordinates=angles",),
-             ["undriven", "coordinates = absolute"], "angle coordinates on a driven case")):
+             ["undriven", "coordinates = absolute"], "angle coordinates on a driven case"),
+            (loose, "siconos-ideal-nominal", ("siconos.coordinates=angles",),
+             ["'follower-ground'", "loop"], "angle coordinates on a loop (the undriven four-bar)")):
         argv = ["run", c, "--set", "run.models=" + model, "--out", out]
         for s in setting:
             argv += ["--set", s]

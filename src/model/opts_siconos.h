@@ -35,10 +35,37 @@ extern const char *const fb_siconos_scheme_words[];
 /* "moreau-jean", "combined-projection" ("?" outside). */
 const char *fb_siconos_scheme_name(int k);
 
+/* The coordinates the engine kit's Siconos model of a planar case
+ * integrates (siconos_kit.cpp). The scheme's step error depends on them. */
+typedef enum {
+  FB_SICONOS_ABSOLUTE = 0, /* x, y, theta of every moving body, the joints bilateral relations */
+  FB_SICONOS_ANGLES = 1    /* one absolute angle per moving body, the bodies a tree of
+                              revolute joints from the ground once the clearance joints are
+                              out (Siconos's SliderCrank example's coordinates, built from the
+                              description: siconos_angles.cpp) */
+} fb_siconos_coordinates;
+
+/* "absolute", "angles" (NULL-terminated; index = fb_siconos_coordinates). */
+extern const char *const fb_siconos_coordinates_words[];
+
+/* The Newton loop of the engine kit's Siconos model of a planar case. */
+typedef enum {
+  FB_SICONOS_NEWTON_CONVERGED = 0, /* to 1e-12 on the dynamics' and the relations'
+                                      residuals (siconos_kit.cpp) */
+  FB_SICONOS_NEWTON_EXAMPLE = 1    /* Siconos 4.4's own settings, as its SliderCrank example
+                                      leaves them: the dynamics' residual only, one iteration
+                                      a step between impacts on that example */
+} fb_siconos_newton;
+
+/* "converged", "example" (NULL-terminated; index = fb_siconos_newton). */
+extern const char *const fb_siconos_newton_words[];
+
 /* Siconos's own choices for the siconos-* models. */
 typedef struct {
   double theta; /* Moreau-Jean's theta [-] in [FB_SICONOS_THETA_MIN, _MAX] */
   int scheme;   /* fb_siconos_scheme */
+  int coordinates; /* fb_siconos_coordinates (the engine kit's model of a planar case) */
+  int newton;      /* fb_siconos_newton (the engine kit's model of a planar case) */
 } fb_siconos_opts;
 
 /* The [siconos] key row (docs/keys.md; docs/engines.md, "Siconos"). */
@@ -55,7 +82,19 @@ typedef struct {
       "travel) or combined-projection (MoreauJeanCombinedProjectionOSI, "                      \
       "TimeSteppingCombinedProjection: the step redone with a contact found closed at its "    \
       "end, then the positions projected onto the constraints; Siconos's slider-crank "        \
-      "example's scheme, docs/engines.md)")
+      "example's scheme, docs/engines.md)")                                                  \
+  ROW(siconos, WORDS, "coordinates", coordinates, fb_siconos_coordinates_words, 0, 0, 0, 0, 0, \
+      "-", "absolute", "absolute or angles",                                                   \
+      "coordinates of the siconos-* models of a planar case: absolute (x, y, theta per body, " \
+      "the joints as bilateral relations) or angles (one absolute angle per body, the bodies " \
+      "a tree of revolute joints from the ground once the clearance joints are out: Siconos's " \
+      "slider-crank example's coordinates; an undriven case only, docs/models.md)")            \
+  ROW(siconos, WORDS, "newton", newton, fb_siconos_newton_words, 0, 0, 0, 0, 0, "-",           \
+      "converged", "converged or example",                                                     \
+      "Newton loop of the siconos-* models of a planar case: converged (1e-12 on the "         \
+      "dynamics' and the relations' residuals) or example (Siconos 4.4's own settings, as its " \
+      "slider-crank example leaves them: one iteration a step between its impacts; "           \
+      "docs/models.md)")
 
 /* Checks o: theta in [FB_SICONOS_THETA_MIN, _MAX], scheme known. Errors:
  * FB_ERR_RANGE naming the field (prefix "scene: siconos"). */

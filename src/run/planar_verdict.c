@@ -271,6 +271,9 @@ void fb_planar_verdicts(fb_planar_run *r) {
     } else if (!y) {
       snprintf(v->reason, sizeof v->reason, "nothing to compare with: the run has no %s",
                p->force ? (want ? want->name : "reference of its law") : "analytic");
+    } else if (p->force && r->m->drive < 0) { /* impacts pair within a share of a revolution */
+      snprintf(v->reason, sizeof v->reason, "an undriven case: impacts are paired with %s's "
+               "by the drive's angle, and it has no drive", y->name);
     } else if (p->force) {
       clearance(v, r, p, y);
     } else {

@@ -16,13 +16,14 @@ fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clear
   memset(p, 0, sizeof *p);
   for (int j = 0; j < m->njoints; j++) {
     if (!(cl->mask & (1u << j))) continue;
-    if (j >= FB_PLANAR_SPEC_MAX_JOINTS || !m->joint[j].clearance_ok)
+    const int guided = m->joint[j].kind == FB_KIND_PRISMATIC && cl->guide; /* its corners */
+    if (j >= FB_PLANAR_SPEC_MAX_JOINTS || !(m->joint[j].clearance_ok || guided))
       return fb_diag_set(diag, FB_ERR_ARG, "clearance at joint '%s': the engine kit takes a pin "
                          "in a hole at a revolute joint only", m->joint[j].name);
     p->off[j] = 1;
   }
   const int nq = fb_planar_nq(m);
-  p->q = calloc(2 * (size_t)nq, sizeof *p->q);
+  p->q = calloc(3 * (size_t)nq, sizeof *p->q); /* q, qd, a guide's scratch forces */
   if (!p->q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   p->qd = p->q + nq;
   return FB_OK;
@@ -38,10 +39,28 @@ static void read_state(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, c
   for (int k = 0; k < m->nbodies - 1; k++) b->body_state(w, k, p->q + 3 * k, p->qd + 3 * k);
 }
 
+/* prismatic joint j's slider in its guide (an engine's own relation): the
+ * deepest corner's penetration and its rate (planar_guide.h's corners; no
+ * contact handed: returns 0) */
+static int guide_geometry(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl, int j) {
+  const fb_contact_law none = {.kind = FB_LAW_LINEAR, .exponent = 1.0}; /* no force: geometry */
+  fb_planar_guide_state g;
+  fb_planar_guide_contact(p->qd + fb_planar_nq(m), &g, NULL, m, j, &cl->guide[j], &none, 0.0,
+                          p->q, p->qd);
+  int deep = 0;
+  for (int c = 1; c < FB_PLANAR_GUIDE_CORNERS; c++)
+    if (g.gap[c] < g.gap[deep]) deep = c;
+  p->pen[j] = g.gap[deep] < 0.0 ? -g.gap[deep] : 0.0;
+  p->rate[j] = g.rate[deep];
+  p->ecc[j][0] = p->ecc[j][1] = 0.0;
+  return 0;
+}
+
 /* joint j's contact into *c when its pin presses into the hole (returns 1) */
 static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
                     const fb_kit_clearance *cl, int j) {
   const fb_planar_joint *pj = &m->joint[j];
+  if (pj->kind == FB_KIND_PRISMATIC) return guide_geometry(p, m, cl, j);
   double xp[2], vp[2], xh[2], vh[2];
   fb_planar_point(xp, m, p->q, pj->body[0], pj->point[0]);
   fb_planar_point_velocity(vp, m, p->q, p->qd, pj->body[0], pj->point[0]);

@@ -76,6 +76,43 @@ inline void teardown(const SP::Simulation &sim, const SP::OneStepIntegrator &osi
   nsds->clear();
 }
 
+// [siconos] scheme = combined-projection (TimeSteppingCombinedProjection):
+// the index set whose interactions the positions' problem projects (the
+// only level Siconos 4.4 implements: its constructor throws on another),
+// the projection's iteration cap and its tolerance on each constraint's
+// violation, |g| for a contact the step closed (projected as an equality,
+// Siconos's default) and |h| for a loop closure [m]. Cap and tolerance are
+// Siconos's slider-crank example's (a 1 mm clearance there); 1e-10 m is
+// 7e-6 of the paper case's 14.5 um radial clearance. Each iteration is a
+// Newton step on the linearised constraints: the tests' cases need 1 or 2
+// (tests/test_siconos.c). At the cap Siconos 4.4 prints the violations on
+// standard output and the step is refused (the model stops).
+const unsigned kProjectionIndexSet = 2;
+const unsigned kProjectionMaxIterations = 500;
+const double kProjectionTolerance = 1e-10;
+
+// The combined projection's position problem (MLCPProjectOnConstraints, the
+// enumerative MLCP solver) without Siconos 4.4's growth per solve
+inline SP::OneStepNSProblem projection_problem() {
+  return SP::OneStepNSProblem(
+      new FreshWork<MLCPProjectOnConstraints>(solver_options(SICONOS_MLCP_ENUM)));
+}
+
+// The combined projection's simulation of nsds with integrator osi, the
+// velocity problem impact and the position problem position, its cap and
+// tolerances (above)
+inline SP::TimeSteppingCombinedProjection combined_projection(
+    const SP::NonSmoothDynamicalSystem &nsds, const SP::TimeDiscretisation &td,
+    const SP::OneStepIntegrator &osi, const SP::OneStepNSProblem &impact,
+    const SP::OneStepNSProblem &position) {
+  SP::TimeSteppingCombinedProjection p(
+      new TimeSteppingCombinedProjection(nsds, td, osi, impact, position, kProjectionIndexSet));
+  p->setProjectionMaxIteration(kProjectionMaxIterations);
+  p->setConstraintTol(kProjectionTolerance);
+  p->setConstraintTolUnilateral(kProjectionTolerance);
+  return p;
+}
+
 } // namespace fb_siconos
 
 #endif

@@ -43,6 +43,7 @@
 extern "C" {
 #include "siconos_kit.h"
 }
+#include "siconos_angles.hpp"
 #include "siconos_common.hpp"
 
 namespace {
@@ -56,7 +57,7 @@ const unsigned kKitNewtonMaxIterations = 200;
 // (the pin is a whole clearance from the wall: only the gap's sign matters).
 const double kKitEccentricityMin = 1e-15;
 
-enum Kind { REVOLUTE, PRISMATIC, DRIVE, GAP };
+enum Kind { REVOLUTE, PRISMATIC, DRIVE, GAP, CORNER };
 
 struct Body {
   double m, inertia, pos0[3], vel0[3];
@@ -70,9 +71,16 @@ struct Joint {
   double nl[2];        // prismatic: the normal to the axis in body b[0]'s frame
   double d0;           // prismatic, drive: theta_b1 - theta_b0 at assembly [rad]
   double rate;         // drive: d(theta_b1 - theta_b0)/dt [rad/s]
-  double c, e_n;       // clearance: radial clearance [m], Newton's e_N [-]
+  double c, e_n;       // clearance: radial clearance [m] (corner: b + c [m]), Newton's e_N [-]
   int k;               // clearance: the description's joint index
+  double ul[2];        // corner: the slide's direction in body b[0]'s frame (nl its normal)
+  double tau;          // corner: +1 the wall along +n, -1 the one along -n (planar_guide.h)
+  double mu;           // corner: Coulomb's coefficient (0: frictionless, one row)
+  int desc;            // the description's index of the joint
 };
+
+// a unilateral relation (a pin in its hole, a slider's corner)
+bool unilateral(const Joint &j) { return j.kind == GAP || j.kind == CORNER; }
 
 struct World;
 
@@ -86,7 +94,16 @@ struct Pt {
 // The kit's world
 struct World {
   double h, grav, theta;
-  double friction;          // [clearance] friction [-]: refused at a clearance joint
+  double friction;          // [clearance] friction [-]: refused at a pin in its hole
+  int scheme = FB_SICONOS_MOREAU_JEAN; // [siconos] scheme (opts_siconos.h)
+  int coordinates = FB_SICONOS_ABSOLUTE; // [siconos] coordinates
+  int newton = FB_SICONOS_NEWTON_CONVERGED; // [siconos] newton
+  const fb_case *c = nullptr; // the case, for the joints' names (NULL: numbered)
+  SP::TimeSteppingCombinedProjection proj; // the combined projection's sim (else null)
+  SP::OneStepNSProblem position;           // its position problem (else null)
+  fb_siconos::TreeData tree;               // coordinates = angles: the tree (else null)
+  const fb_planar *m = nullptr;            // the description, from a clearance joint (names)
+  int walked = 0;                          // the description's joints walked so far
   std::vector<Body> body;
   std::vector<Joint> joint;
   std::vector<int> ds_of;   // body handle -> index in ds (-1: the prescribed body)
@@ -144,7 +161,11 @@ class KitR : public LagrangianRheonomousR {
     col_[0] = col[0], col_[1] = col[1];
     _hDot.reset(new SiconosVector(rows()));
   }
-  int rows() const { return w_->joint[j_].kind == GAP || w_->joint[j_].kind == DRIVE ? 1 : 2; }
+  int rows() const {
+    const Joint &jt = w_->joint[j_];
+    if (jt.kind == CORNER) return jt.mu > 0.0 ? 2 : 1; // g, and the tangential coordinate
+    return jt.kind == GAP || jt.kind == DRIVE ? 1 : 2;
+  }
   void computeh(double t, const BlockVector &q, BlockVector &, SiconosVector &y) override {
     double f[2], J[2][6], ft[2];
     eval(t, q, f, J, ft);
@@ -181,7 +202,29 @@ class KitR : public LagrangianRheonomousR {
       for (int c = 0; c < 3; c++) J[i][off + c] += sign * g[c];
     };
     const double th_q[3] = {0, 0, 1};
-    if (jt.kind == REVOLUTE) {
+    // row i = sign dir . (p1 - p0), dir (dl in body b[0]'s frame) turning with it
+    auto along = [&](int i, const double dl[2], double sign) {
+      const double sn = std::sin(s[0].th), cs = std::cos(s[0].th);
+      const double n[2] = {cs * dl[0] - sn * dl[1], sn * dl[0] + cs * dl[1]};
+      const double d[2] = {s[1].p[0] - s[0].p[0], s[1].p[1] - s[0].p[1]};
+      const double dn = -n[1] * d[0] + n[0] * d[1]; // d dir/d theta0 . d
+      f[i] = sign * (n[0] * d[0] + n[1] * d[1]);
+      ft[i] = sign * (dn * s[0].tht + n[0] * (s[1].pt[0] - s[0].pt[0]) +
+                      n[1] * (s[1].pt[1] - s[0].pt[1]));
+      for (int k = 0; k < 2; k++) {
+        const double g[3] = {n[0] * s[k].J[0][0] + n[1] * s[k].J[1][0],
+                             n[0] * s[k].J[0][1] + n[1] * s[k].J[1][1],
+                             n[0] * s[k].J[0][2] + n[1] * s[k].J[1][2]};
+        put(i, k, k == 0 ? -sign : sign, g);
+      }
+      const double gd[3] = {0, 0, sign * dn};
+      put(i, 0, 1.0, gd);
+    };
+    if (jt.kind == CORNER) { // g = (b + c) - tau n . (p - o); the tangential u . (p - o)
+      along(0, jt.nl, -jt.tau);
+      f[0] += jt.c;
+      if (jt.mu > 0.0) along(1, jt.ul, 1.0);
+    } else if (jt.kind == REVOLUTE) {
       for (int i = 0; i < 2; i++) {
         f[i] = s[0].p[i] - s[1].p[i];
         ft[i] = s[0].pt[i] - s[1].pt[i];
@@ -208,23 +251,7 @@ class KitR : public LagrangianRheonomousR {
       ft[i] = s[1].tht - s[0].tht - rate;
       put(i, 1, 1.0, th_q);
       put(i, 0, -1.0, th_q);
-      if (jt.kind == PRISMATIC) {
-        // n0 . (p1 - p0), n0 the axis's normal turning with body b[0]
-        const double sn = std::sin(s[0].th), cs = std::cos(s[0].th);
-        const double n[2] = {cs * jt.nl[0] - sn * jt.nl[1], sn * jt.nl[0] + cs * jt.nl[1]};
-        const double d[2] = {s[1].p[0] - s[0].p[0], s[1].p[1] - s[0].p[1]};
-        const double dn = -n[1] * d[0] + n[0] * d[1]; // dn0/dtheta0 . d
-        f[0] = n[0] * d[0] + n[1] * d[1];
-        ft[0] = dn * s[0].tht + n[0] * (s[1].pt[0] - s[0].pt[0]) + n[1] * (s[1].pt[1] - s[0].pt[1]);
-        for (int k = 0; k < 2; k++) {
-          const double g[3] = {n[0] * s[k].J[0][0] + n[1] * s[k].J[1][0],
-                               n[0] * s[k].J[0][1] + n[1] * s[k].J[1][1],
-                               n[0] * s[k].J[0][2] + n[1] * s[k].J[1][2]};
-          put(0, k, k == 0 ? -1.0 : 1.0, g);
-        }
-        const double gd[3] = {0, 0, dn};
-        put(0, 0, 1.0, gd);
-      }
+      if (jt.kind == PRISMATIC) along(0, jt.nl, 1.0); // n0 . (p1 - p0), n0 turning with b[0]
     }
   }
   const World *w_;
@@ -235,16 +262,17 @@ class KitR : public LagrangianRheonomousR {
 // Newton loop with setComputeResiduY): a bilateral row's velocity |y'|, and
 // a clearance joint's Newton's law while it is in the step's problem
 // (siconos_scene.cpp's LawChecked, the same test).
-class KitOSI : public MoreauJeanOSI {
+template <class Osi>
+class KitOSI : public Osi {
  public:
-  KitOSI(double theta, const World *w) : MoreauJeanOSI(theta), w_(w) {}
+  KitOSI(double theta, const World *w) : Osi(theta), w_(w) {}
   double computeResiduOutput(double, SP::InteractionsGraph) override {
     double r = 0.0;
     SP::InteractionsGraph active = w_->nsds->topology()->indexSet(1);
     for (size_t i = 0; i < w_->inter.size(); i++) {
       Interaction &in = *w_->inter[i];
       const Joint &jt = w_->joint[(size_t)w_->inter_joint[i]];
-      if (jt.kind != GAP) {
+      if (!unilateral(jt)) {
         for (unsigned k = 0; k < in.y(1)->size(); k++) r = std::max(r, std::fabs(in.y(1)->getValue(k)));
         continue;
       }
@@ -265,6 +293,8 @@ thread_local int *tl_info = nullptr;
 void keep_info(int info, Simulation *) {
   if (tl_info && info != 0) *tl_info = info;
 }
+
+void simulation(World *w);
 
 // the system from what the walk recorded (at add_drive, the walk's last call)
 void build(World *w) {
@@ -292,7 +322,7 @@ void build(World *w) {
   for (int pass = 0; pass < 2; pass++)
     for (size_t j = 0; j < w->joint.size(); j++) {
       const Joint &jt = w->joint[j];
-      if ((jt.kind == GAP) != (pass == 1)) continue;
+      if (unilateral(jt) != (pass == 1)) continue;
       const bool held = (jt.b[0] == w->presc && jt.b[1] == FB_KIT_GROUND) ||
                         (jt.b[1] == w->presc && jt.b[0] == FB_KIT_GROUND);
       if (held && jt.kind == REVOLUTE) continue; // the prescribed body's pivot: exact
@@ -306,7 +336,9 @@ void build(World *w) {
       if (n == 0) continue; // between the ground and the prescribed body: nothing moves
       std::shared_ptr<KitR> rel(new KitR(w, (int)j, col));
       SP::NonSmoothLaw nsl;
-      if (jt.kind == GAP) nsl.reset(new NewtonImpactNSL(jt.e_n)), gap = true;
+      if (jt.kind == CORNER && jt.mu > 0.0)
+        nsl.reset(new NewtonImpactFrictionNSL(jt.e_n, 0.0, jt.mu, 2)), gap = true;
+      else if (unilateral(jt)) nsl.reset(new NewtonImpactNSL(jt.e_n)), gap = true;
       else nsl.reset(new EqualityConditionNSL(rel->rows()));
       SP::Interaction in(new Interaction(nsl, rel));
       if (n == 2) w->nsds->link(in, d[0], d[1]);
@@ -314,14 +346,29 @@ void build(World *w) {
       w->inter.push_back(in);
       w->inter_joint.push_back((int)j);
     }
-  w->osi.reset(new KitOSI(w->theta, w));
   if (gap) w->osnspb.reset(new fb_siconos::FreshWork<MLCP>(fb_siconos::solver_options(SICONOS_MLCP_ENUM)));
   else w->osnspb.reset(new Equality());
+  simulation(w);
+}
+
+// the scheme's integrator and simulation on w->nsds and w->osnspb
+void simulation(World *w) {
+  const bool projected = w->scheme == FB_SICONOS_COMBINED_PROJECTION;
+  if (projected) w->osi.reset(new KitOSI<MoreauJeanCombinedProjectionOSI>(w->theta, w));
+  else w->osi.reset(new KitOSI<MoreauJeanOSI>(w->theta, w));
   SP::TimeDiscretisation td(new TimeDiscretisation(0.0, w->h));
-  w->sim.reset(new TimeStepping(w->nsds, td, w->osi, w->osnspb));
-  w->sim->setNewtonTolerance(kKitNewtonTolerance);
-  w->sim->setNewtonMaxIteration(kKitNewtonMaxIterations);
-  w->sim->setComputeResiduY(true);
+  if (projected) {
+    w->position = fb_siconos::projection_problem();
+    w->proj = fb_siconos::combined_projection(w->nsds, td, w->osi, w->osnspb, w->position);
+    w->sim = w->proj;
+  } else {
+    w->sim.reset(new TimeStepping(w->nsds, td, w->osi, w->osnspb));
+  }
+  if (w->newton == FB_SICONOS_NEWTON_CONVERGED) { // else Siconos's own, as the example's
+    w->sim->setNewtonTolerance(kKitNewtonTolerance);
+    w->sim->setNewtonMaxIteration(kKitNewtonMaxIterations);
+    w->sim->setComputeResiduY(true);
+  }
   w->sim->setWarnOnNonConvergence(false);
   w->sim->setCheckSolverFunction(keep_info);
   w->sim->initialize();
@@ -346,6 +393,7 @@ Joint joint_at(const World *w, Kind kind, int b0, int b1, const double at[2]) {
   Joint j;
   std::memset(&j, 0, sizeof j);
   j.kind = kind;
+  j.desc = w->walked; // the walk's joints come in the description's order
   j.b[0] = b0, j.b[1] = b1;
   local(w, b0, at, j.r[0]);
   local(w, b1, at, j.r[1]);
@@ -353,6 +401,90 @@ Joint joint_at(const World *w, Kind kind, int b0, int b1, const double at[2]) {
 }
 
 double angle0(const World *w, int b) { return b == FB_KIT_GROUND ? 0.0 : w->body[(size_t)b].pos0[2]; }
+
+// joint jt's name for a message (the description's, when a clearance joint
+// handed it; else the case's, whose joints are the description's in order)
+std::string joint_name(const World *w, const Joint &jt) {
+  if (w->m && jt.desc >= 0 && jt.desc < w->m->njoints)
+    return std::string("'") + w->m->joint[jt.desc].name + "'";
+  if (w->c && jt.desc >= 0 && jt.desc < w->c->planar.njoints)
+    return std::string("'") + w->c->planar.joint[jt.desc].name + "'";
+  return "number " + std::to_string(jt.desc + 1) + " of the description";
+}
+
+// The 2-D friction problem of the example's scheme: its enumerative solver
+// with its tolerance and iteration cap (tests/test_siconos_slider_guide.cpp
+// sets them as the example does), so that the same equations meet the same
+// solver
+const double kExampleFrictionTolerance = 1e-8;
+const int kExampleFrictionMaxIterations = 100;
+
+// coordinates = angles (siconos_angles.hpp): the tree of the walk's
+// revolute joints, its one Lagrangian system, the corners' relations
+fb_status build_angles(World *w, fb_diag *diag) {
+  std::vector<fb_siconos::AngBody> body;
+  for (const Body &B : w->body)
+    body.push_back({B.m, B.inertia, {B.pos0[0], B.pos0[1], B.pos0[2]}, B.vel0[2]});
+  std::vector<fb_siconos::AngPin> pin;
+  std::vector<const Joint *> pin_joint;
+  bool friction = false;
+  for (const Joint &jt : w->joint) {
+    if (jt.kind == PRISMATIC || jt.kind == GAP)
+      return fb_diag_set(diag, FB_ERR_ARG, "[siconos] coordinates = angles: joint %s is %s; the "
+                         "angle coordinates take a tree of revolute joints from the ground (the "
+                         "clearance joints out) and a slider's guide as its corners; "
+                         "coordinates = absolute takes any joint", joint_name(w, jt).c_str(),
+                         jt.kind == PRISMATIC ? "an ideal prismatic joint"
+                                              : "a pin in its hole with clearance");
+    if (jt.kind == REVOLUTE) {
+      pin.push_back({{jt.b[0], jt.b[1]}, {{jt.r[0][0], jt.r[0][1]}, {jt.r[1][0], jt.r[1][1]}}});
+      pin_joint.push_back(&jt);
+    }
+    friction = friction || (jt.kind == CORNER && jt.mu > 0.0);
+  }
+  const std::string why = fb_siconos::angle_tree(&w->tree, body, pin, w->grav);
+  if (why.rfind("pin ", 0) == 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "[siconos] coordinates = angles: joint %s closes a loop "
+                       "of revolute joints; the angle coordinates take a tree from the ground "
+                       "(coordinates = absolute takes loops)",
+                       joint_name(w, *pin_joint[(size_t)std::stoi(why.substr(4))]).c_str());
+  if (why.rfind("body ", 0) == 0) {
+    const int b = std::stoi(why.substr(5));
+    return fb_diag_set(diag, FB_ERR_ARG, "[siconos] coordinates = angles: body %s is not reached "
+                       "from the ground by revolute joints", w->m ? w->m->body[b + 1].name
+                                                                  : std::to_string(b + 1).c_str());
+  }
+  if (!why.empty()) return fb_diag_set(diag, FB_ERR_RANGE, "[siconos] coordinates = angles: %s",
+                                       why.c_str());
+  w->nsds.reset(new NonSmoothDynamicalSystem(0.0, 1e30));
+  SP::LagrangianDS ds = fb_siconos::angle_ds(w->tree, body);
+  w->ds.push_back(ds);
+  w->nsds->insertDynamicalSystem(ds);
+  for (size_t j = 0; j < w->joint.size(); j++) {
+    const Joint &jt = w->joint[j];
+    if (jt.kind != CORNER) continue;
+    const fb_siconos::AngCorner k = {jt.b[0], jt.b[1], {jt.r[0][0], jt.r[0][1]},
+                                     {jt.r[1][0], jt.r[1][1]}, {jt.nl[0], jt.nl[1]},
+                                     {jt.ul[0], jt.ul[1]}, jt.tau, jt.c, jt.mu > 0.0};
+    SP::NonSmoothLaw nsl;
+    if (k.friction) nsl.reset(new NewtonImpactFrictionNSL(jt.e_n, 0.0, jt.mu, 2));
+    else nsl.reset(new NewtonImpactNSL(jt.e_n));
+    SP::Interaction in(new Interaction(nsl, fb_siconos::angle_corner(w->tree, k)));
+    w->nsds->link(in, ds);
+    w->inter.push_back(in);
+    w->inter_joint.push_back((int)j);
+  }
+  if (friction) {
+    SP::SolverOptions o = fb_siconos::solver_options(SICONOS_FRICTION_2D_ENUM);
+    o->dparam[SICONOS_DPARAM_TOL] = kExampleFrictionTolerance;
+    o->iparam[SICONOS_IPARAM_MAX_ITER] = kExampleFrictionMaxIterations;
+    w->osnspb.reset(new FrictionContact(2, o));
+  } else {
+    w->osnspb.reset(new fb_siconos::FreshWork<MLCP>(fb_siconos::solver_options(SICONOS_MLCP_ENUM)));
+  }
+  simulation(w);
+  return FB_OK;
+}
 
 // runs f, turning a Siconos exception into an error naming it
 template <class F>
@@ -378,12 +510,10 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
   w->h = o->h;
   w->grav = o->gravity;
   w->theta = o->c ? o->c->siconos.theta : 0.5;
-  if (o->c && o->c->siconos.scheme != FB_SICONOS_MOREAU_JEAN) {
-    delete w;
-    return fb_diag_set(diag, FB_ERR_ARG, "[siconos] scheme = %s: the Siconos binding of the engine "
-                       "kit steps Moreau-Jean only (scheme = moreau-jean)",
-                       fb_siconos_scheme_name(o->c->siconos.scheme));
-  }
+  w->scheme = o->c ? o->c->siconos.scheme : FB_SICONOS_MOREAU_JEAN;
+  w->coordinates = o->c ? o->c->siconos.coordinates : FB_SICONOS_ABSOLUTE;
+  w->newton = o->c ? o->c->siconos.newton : FB_SICONOS_NEWTON_CONVERGED;
+  w->c = o->c;
   w->friction = o->c ? o->c->clearance.friction : 0.0;
   *out = w;
   return FB_OK;
@@ -403,6 +533,7 @@ static fb_status kit_add_revolute(void *vw, int b0, int b1, const double at[2], 
   (void)diag;
   World *w = static_cast<World *>(vw);
   w->joint.push_back(joint_at(w, REVOLUTE, b0, b1, at));
+  w->walked++;
   return FB_OK;
 }
 
@@ -417,34 +548,86 @@ static fb_status kit_add_prismatic(void *vw, int b0, int b1, const double at[2],
   j.nl[1] = -s * nw[0] + c * nw[1];
   j.d0 = angle0(w, b1) - a;
   w->joint.push_back(j);
+  w->walked++;
+  return FB_OK;
+}
+
+// a slider in its guide (planar_guide.h): its four corners (sigma, tau) as
+// unilateral relations g = (b + c) - tau n . (p - o) >= 0, o the joint's
+// point on the guide (c->pin), p the corner on the slider (c->hole), n the
+// slide's normal turning with the guide; Newton's law, Coulomb's friction
+// on the tangential coordinate u . (p - o) when mu > 0
+static fb_status add_corners(World *w, int k, const fb_kit_clearance_joint *c, fb_diag *diag) {
+  if (w->friction > 0.0 && w->coordinates == FB_SICONOS_ABSOLUTE)
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g at prismatic joint '%s': "
+                       "Siconos's 2-D friction problem takes no bilateral row, and absolute "
+                       "coordinates hold the joints by bilateral rows; give [siconos] coordinates "
+                       "= angles, or friction = 0", w->friction, c->m->joint[k].name);
+  const fb_planar_guide &g = c->guide;
+  const double *u = c->axis, n[2] = {-c->axis[1], c->axis[0]};
+  const double a0 = angle0(w, c->pin), s0 = std::sin(a0), c0 = std::cos(a0);
+  for (int i = 0; i < FB_PLANAR_GUIDE_CORNERS; i++) {
+    const double sigma = i % 2 ? 1.0 : -1.0, tau = i < 2 ? 1.0 : -1.0; // planar_guide.h's order
+    const double p[2] = {c->at[0] + sigma * g.half_length * u[0] + tau * g.half_height * n[0],
+                         c->at[1] + sigma * g.half_length * u[1] + tau * g.half_height * n[1]};
+    Joint j = joint_at(w, CORNER, c->pin, c->hole, c->at);
+    local(w, c->hole, p, j.r[1]);
+    j.nl[0] = c0 * n[0] + s0 * n[1], j.nl[1] = -s0 * n[0] + c0 * n[1];
+    j.ul[0] = c0 * u[0] + s0 * u[1], j.ul[1] = -s0 * u[0] + c0 * u[1];
+    j.tau = tau;
+    j.c = g.half_height + g.clearance;
+    j.mu = w->friction;
+    j.e_n = c->restitution, j.k = k;
+    w->joint.push_back(j);
+  }
+  return FB_OK;
+}
+
+// a pin in its hole: g = c - |p_pin - p_hole| >= 0, frictionless
+static fb_status add_gap(World *w, int k, const fb_kit_clearance_joint *c, fb_diag *diag) {
+  if (w->friction > 0.0)
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the Siconos binding of the "
+                       "engine kit builds a frictionless clearance joint (friction = 0)",
+                       w->friction);
+  Joint j = joint_at(w, GAP, c->pin, c->hole, c->at);
+  j.c = c->radial_clearance;
+  j.e_n = c->restitution, j.k = k;
+  w->joint.push_back(j);
   return FB_OK;
 }
 
 static fb_status kit_add_clearance(void *vw, int k, const fb_kit_clearance_joint *c,
                                    fb_diag *diag) {
   World *w = static_cast<World *>(vw);
-  if (w->friction > 0.0)
-    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the Siconos binding of the "
-                       "engine kit builds a frictionless clearance joint (friction = 0)",
-                       w->friction);
   if (k < 0 || k >= FB_PLANAR_SPEC_MAX_JOINTS)
     return fb_diag_set(diag, FB_ERR_ARG, "clearance joint %d out of range", k);
-  Joint j = joint_at(w, GAP, c->pin, c->hole, c->at);
-  j.c = c->radial_clearance;
-  j.e_n = c->restitution;
-  j.k = k;
-  w->joint.push_back(j);
-  return FB_OK;
+  const fb_status st = c->kind == FB_KIND_PRISMATIC ? add_corners(w, k, c, diag)
+                                                    : add_gap(w, k, c, diag);
+  w->m = c->m; // the description, for the joints' names
+  w->walked++;
+  return st;
 }
 
 // the drive: a revolute joint to the ground prescribes its body (the
 // four-bar scene's crank); between two moving bodies, a rheonomous row
 static fb_status kit_add_drive(void *vw, int joint, double rate, fb_diag *diag) {
   World *w = static_cast<World *>(vw);
+  const bool angles = w->coordinates == FB_SICONOS_ANGLES;
+  if (joint < 0) { // undriven: the walk's end
+    fb_status st = FB_OK;
+    const fb_status g = guarded(diag, "the system was refused", [&] {
+      if (angles) st = build_angles(w, diag);
+      else build(w);
+    });
+    return g != FB_OK ? g : st;
+  }
+  if (angles)
+    return fb_diag_set(diag, FB_ERR_ARG, "[siconos] coordinates = angles: an undriven "
+                       "description only ([drive] joint = none); coordinates = absolute drives");
   int n = -1;
   size_t j = 0;
   for (; j < w->joint.size(); j++)
-    if (w->joint[j].kind != GAP && ++n == joint) break;
+    if (!unilateral(w->joint[j]) && ++n == joint) break;
   if (j == w->joint.size() || w->joint[j].kind != REVOLUTE)
     return fb_diag_set(diag, FB_ERR_ARG, "the Siconos kit drives a revolute joint only");
   Joint &jt = w->joint[j];
@@ -471,15 +654,22 @@ static fb_status kit_step(void *vw, fb_diag *diag) {
   tl_info = nullptr;
   const double t = (double)(w->k + 1) * w->h;
   if (st != FB_OK) return st;
-  if (!w->sim->isNewtonConverge())
+  if (w->newton == FB_SICONOS_NEWTON_CONVERGED && !w->sim->isNewtonConverge()) // the example goes on
     return fb_diag_set(diag, FB_ERR_NUMERIC, "siconos: Newton loop not converged in %u iterations "
                        "at t = %g s", kKitNewtonMaxIterations, t);
   if (w->info != 0)
     return fb_diag_set(diag, FB_ERR_NUMERIC, "siconos: one-step nonsmooth problem not solved "
                        "(numerics info %d) at t = %g s", w->info, t);
-  for (size_t i = 0; i < w->inter.size(); i++) {
+  if (w->proj && w->proj->nbProjectionIteration() >= fb_siconos::kProjectionMaxIterations)
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "siconos: position projection not converged in %u "
+                       "iterations at t = %g s (violation %g m)",
+                       fb_siconos::kProjectionMaxIterations, t,
+                       std::max(w->proj->maxViolationUnilateral(), w->proj->maxViolationEquality()));
+  for (const Joint &jt : w->joint)
+    if (unilateral(jt)) w->force[jt.k] = 0.0;
+  for (size_t i = 0; i < w->inter.size(); i++) { // a guide's: its corners' sum
     const Joint &jt = w->joint[(size_t)w->inter_joint[i]];
-    if (jt.kind == GAP) w->force[jt.k] = w->inter[i]->lambda(1)->getValue(0) / w->h;
+    if (unilateral(jt)) w->force[jt.k] += w->inter[i]->lambda(1)->getValue(0) / w->h;
   }
   const fb_status nx = guarded(diag, "step failed", [w] { w->sim->nextStep(); });
   w->k++;
@@ -492,6 +682,11 @@ static double kit_contact_force(const void *vw, int k) {
 
 static void kit_body_state(const void *vw, int b, double pos[3], double vel[3]) {
   const World *w = static_cast<const World *>(vw);
+  if (w->tree) { // coordinates = angles: the tree's one system
+    const LagrangianDS &d = *w->ds[0];
+    fb_siconos::angle_state(w->tree, b, &(*d.q())(0), &(*d.velocity())(0), pos, vel);
+    return;
+  }
   if (b == w->presc) {
     Pt o;
     const double zero[2] = {0, 0};
@@ -507,7 +702,7 @@ static void kit_body_state(const void *vw, int b, double pos[3], double vel[3]) 
 
 static void kit_world_free(void *vw) {
   World *w = static_cast<World *>(vw);
-  if (w->built) fb_siconos::teardown(w->sim, w->osi, w->osnspb, SP::OneStepNSProblem(), w->nsds);
+  if (w->built) fb_siconos::teardown(w->sim, w->osi, w->osnspb, w->position, w->nsds);
   delete w;
 }
 

@@ -55,20 +55,9 @@ const unsigned kNewtonMaxIterations = 200;
 // paper case's first contact with friction 0.2.
 const double kFrictionSolverTolerance = 1e-12;
 const int kFrictionSolverMaxIterations = 100;
-// [siconos] scheme = combined-projection (TimeSteppingCombinedProjection):
-// the index set whose interactions the positions' problem projects (the
-// only level Siconos 4.4 implements: its constructor throws on another),
-// the projection's iteration cap and its tolerance on each constraint's
-// violation, |g| for a contact the step closed (projected as an equality,
-// Siconos's default) and |h| for a loop closure [m]. Cap and tolerance are
-// Siconos's slider-crank example's (a 1 mm clearance there); 1e-10 m is
-// 7e-6 of the paper case's 14.5 um radial clearance. Each iteration is a
-// Newton step on the linearised constraints: the tests' cases need 1 or 2
-// (tests/test_siconos.c). At the cap Siconos 4.4 prints the violations on
-// standard output and the step is refused here (the model stops).
-const unsigned kProjectionIndexSet = 2;
-const unsigned kProjectionMaxIterations = 500;
-const double kProjectionTolerance = 1e-10;
+// [siconos] scheme = combined-projection: siconos_common.hpp's
+// combined_projection (its cap and tolerances, shared with the kit)
+using fb_siconos::kProjectionMaxIterations;
 // Below this eccentricity [m] the normal e/|e| is undefined; the pin is then
 // a whole clearance away from the wall, where only the sign of the gap
 // matters, and the normal is taken along +x.
@@ -468,10 +457,6 @@ class LawChecked : public Osi {
   NonSmoothDynamicalSystem *nsds_ = nullptr;
 };
 
-// The combined projection's position problem (MLCPProjectOnConstraints, the
-// enumerative MLCP solver) without Siconos 4.4's growth per solve
-// (siconos_common.hpp)
-using ProjectOnConstraints = fb_siconos::FreshWork<MLCPProjectOnConstraints>;
 using fb_siconos::siconos_message;
 using fb_siconos::solver_options;
 
@@ -768,12 +753,8 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
     }
     SP::TimeDiscretisation td(new TimeDiscretisation(0.0, s->h));
     if (projected) {
-      s->position.reset(new ProjectOnConstraints(solver_options(SICONOS_MLCP_ENUM)));
-      s->proj.reset(new TimeSteppingCombinedProjection(s->nsds, td, s->osi, s->osnspb,
-                                                       s->position, kProjectionIndexSet));
-      s->proj->setProjectionMaxIteration(kProjectionMaxIterations);
-      s->proj->setConstraintTol(kProjectionTolerance);
-      s->proj->setConstraintTolUnilateral(kProjectionTolerance);
+      s->position = fb_siconos::projection_problem();
+      s->proj = fb_siconos::combined_projection(s->nsds, td, s->osi, s->osnspb, s->position);
       s->sim = s->proj;
     } else {
       s->sim.reset(new TimeStepping(s->nsds, td, s->osi, s->osnspb));

@@ -29,13 +29,16 @@ fb_status fb_planar_free_parts(fb_planar_guide **guide, double **omega0, int *ne
     (*guide)[joint] = (fb_planar_guide){sj->half_length, sj->half_height,
                                         c->clearance.guide_clearance};
   }
-  if (undriven) {
-    *omega0 = calloc((size_t)m->nbodies, sizeof **omega0);
-    if (!*omega0) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-    for (int b = 1; b < c->planar.nbodies; b++) {
-      const int k = fb_planar_find_body(m, c->planar.body[b].name);
-      if (k > 0) (*omega0)[k] = c->planar.body[b].omega0;
-    }
+  return undriven ? fb_planar_free_omega0(omega0, c, m, diag) : FB_OK;
+}
+
+fb_status fb_planar_free_omega0(double **omega0, const fb_case *c, const fb_planar *m,
+                                fb_diag *diag) {
+  *omega0 = calloc((size_t)m->nbodies, sizeof **omega0);
+  if (!*omega0) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int b = 1; b < c->planar.nbodies; b++) {
+    const int k = fb_planar_find_body(m, c->planar.body[b].name);
+    if (k > 0) (*omega0)[k] = c->planar.body[b].omega0;
   }
   return FB_OK;
 }

@@ -25,4 +25,11 @@
 fb_status fb_planar_free_parts(fb_planar_guide **guide, double **omega0, int *needs_explicit,
                                const fb_case *c, const fb_planar *m, int joint, fb_diag *diag);
 
+/* *omega0 (nbodies [rad/s], the ground's 0; owned by the caller, free())
+ * = each body's [body.NAME] initial_omega_rad_s of case c, by m's body
+ * names: an undriven case's free start (planar_start.h), whatever its
+ * joints. Errors: FB_ERR_NOMEM. */
+fb_status fb_planar_free_omega0(double **omega0, const fb_case *c, const fb_planar *m,
+                                fb_diag *diag);
+
 #endif

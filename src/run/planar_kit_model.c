@@ -12,8 +12,10 @@
 #include "joint_law.h"
 #include "kit.h"
 #include "model_table.h"
+#include "planar_free.h"
 #include "planar_invdyn.h"
 #include "planar_run.h"
+#include "planar_start.h"
 #include "scene.h"
 #include "series.h"
 
@@ -65,9 +67,12 @@ static void window_peaks(fb_planar_model *p, const fb_planar_run *r) {
 }
 
 /* the clearance of model p: the case's one clearance joint, its law at the
- * joint's largest ideal reaction (as the reference takes it), the columns */
-static fb_status clearance(fb_kit_clearance *cl, fb_planar_model *p, const fb_planar_run *r,
-                           const fb_model *mt, fb_diag *diag) {
+ * joint's largest ideal reaction (as the reference takes it; a slider's
+ * guide or an undriven case: the case's explicit law, planar_free.h), a
+ * prismatic joint's guide (*guide, cl->guide, owned: free()), the columns */
+static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_planar_model *p,
+                           const fb_planar_run *r, const fb_model *mt, const fb_kit_binding *kb,
+                           fb_diag *diag) {
   const fb_planar *m = r->m;
   const fb_case *c = &r->c;
   int n = 0;
@@ -76,20 +81,26 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_model *p, const fb_pl
   if (n != 1)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs one clearance joint ([clearance] joints "
                        "= a revolute joint of the case), and the case names %d", p->name, n);
-  if (m->joint[cl->joint].kind != FB_KIND_REVOLUTE)
+  if (m->joint[cl->joint].kind == FB_KIND_PRISMATIC && !kb->add_clearance)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s': clearance at prismatic joint '%s' (a slider "
                        "in its guide) runs in the references only (reference, "
-                       "reference-restitution); the engine kit builds a pin in its hole",
-                       p->name, m->joint[cl->joint].name);
-  double *most = malloc((size_t)m->njoints * sizeof *most);
-  if (!most) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  fb_status st = fb_planar_reaction_max(most, m, r->omega, c->gravity, diag);
+                       "reference-restitution) and in a binding that builds its own clearance "
+                       "joint (add_clearance); the %s engine's binding has none, and the engine "
+                       "kit's contact is a pin in its hole", p->name, m->joint[cl->joint].name,
+                       kb->engine);
+  double *omega0 = NULL, *most = malloc((size_t)m->njoints * sizeof *most);
+  int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
+  fb_status st = most ? fb_planar_free_parts(guide, &omega0, &free_law, c, m, cl->joint, diag)
+                      : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  free(omega0); /* the start takes its own (fb_planar_run_kit) */
+  cl->guide = *guide;
+  if (st == FB_OK && !free_law) st = fb_planar_reaction_max(most, m, r->omega, c->gravity, diag);
   const fb_planar_joint *j = &m->joint[cl->joint];
   const double a = m->body[j->body[0]].mass, b = m->body[j->body[1]].mass;
   const double mass = a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b); /* joint_law.h */
-  p->ref.force_work = most[cl->joint];
+  p->ref.force_work = st == FB_OK && !free_law ? most[cl->joint] : 0.0;
   if (st == FB_OK)
-    st = fb_joint_law_at(&cl->law, c, mt->law == FB_MODEL_LAW_IMPACT, most[cl->joint], j->name,
+    st = fb_joint_law_at(&cl->law, c, mt->law == FB_MODEL_LAW_IMPACT, p->ref.force_work, j->name,
                          mass, diag);
   free(most);
   if (st != FB_OK) return st;
@@ -106,6 +117,7 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_model *p, const fb_pl
   cl->radial_clearance = c->radial_clearance;
   cl->pin_radius = 0.5 * c->pin_diameter;
   cl->impact_velocity_min = sc.impact_velocity_min;
+  cl->friction = c->clearance.friction;
   p->force = malloc(2 * p->n * sizeof *p->force);
   if (!p->force) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   p->pen = p->force + p->n;
@@ -117,23 +129,49 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_model *p, const fb_pl
   return FB_OK;
 }
 
+/* *y0 (2 nq, owned: free()) = an undriven case's free start (planar_start.h):
+ * the assembly, the case's angular rates, the linear rates from the joints
+ * but cl's clearance joints (cl NULL: every joint ideal) */
+static fb_status free_start(double **y0, const fb_planar_run *r, const fb_kit_clearance *cl,
+                            fb_diag *diag) {
+  const fb_planar *m = r->m;
+  double *omega0 = NULL;
+  unsigned char *off = calloc((size_t)m->njoints, 1);
+  *y0 = malloc(2 * (size_t)fb_planar_nq(m) * sizeof **y0);
+  fb_status st = off && *y0 ? fb_planar_free_omega0(&omega0, &r->c, m, diag)
+                            : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int j = 0; j < m->njoints && off; j++) off[j] = cl && (cl->mask & (1u << j));
+  if (st == FB_OK) st = fb_planar_free_start(*y0, m, off, omega0, diag);
+  free(omega0);
+  free(off);
+  return st;
+}
+
 fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
   const fb_model *mt = fb_model_find(p->name);
   const fb_kit_binding *b = fb_planar_kit_of(p->name);
-  const fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints,
-                         &r->c, NULL, NULL}; /* the assembly start */
+  fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints,
+                    &r->c, NULL, NULL}; /* the assembly start */
   fb_kit_series s = {.n = p->n, .h = p->h, .t = p->t, .q = p->q}; /* no centres */
   fb_kit_clearance cl = {0};
+  double *y0 = NULL; /* an undriven case's free start */
+  fb_planar_guide *guide = NULL; /* a prismatic clearance joint's */
   const double t0 = fb_clock_s();
   p->engine = 1;
   /* what a stop leaves unreached reads as no value (NaN) */
   const size_t nq = (size_t)(r->m->nbodies - 1) * 3 * p->n;
   for (size_t i = 0; i < p->n; i++) p->t[i] = (double)i * p->h;
   for (size_t i = 0; i < nq; i++) p->q[i] = NAN;
-  fb_status st = mt->joints == FB_JOINTS_CLEARANCE ? clearance(&cl, p, r, mt, diag) : FB_OK;
-  const double before = fb_clock_s() - t0; /* the law and the columns */
-  if (st == FB_OK)
-    st = fb_kit_run(b, r->m, r->omega, &o, mt->joints == FB_JOINTS_CLEARANCE ? &cl : NULL, &s, diag);
+  fb_kit_clearance *run_cl = mt->joints == FB_JOINTS_CLEARANCE ? &cl : NULL;
+  fb_status st = run_cl ? clearance(&cl, &guide, p, r, mt, b, diag) : FB_OK;
+  /* undriven: the case's velocities at the assembly, as the reference's
+   * free start takes them (q0 NULL: the assembly itself) */
+  if (st == FB_OK && r->m->drive < 0 && (st = free_start(&y0, r, run_cl, diag)) == FB_OK)
+    o.qd0 = y0 + fb_planar_nq(r->m);
+  const double before = fb_clock_s() - t0; /* the law, the columns, the start */
+  if (st == FB_OK) st = fb_kit_run(b, r->m, r->omega, &o, run_cl, &s, diag);
+  free(y0);
+  free(guide);
   p->setup_s = before + s.setup_s;
   for (size_t i = 0; i < p->n; i++) p->drive[i] = r->omega * p->t[i];
   if (st == FB_ERR_NUMERIC) { /* a stop (aliased, the engine's error) is a result, not an error */

@@ -20,10 +20,10 @@ int fb_planar_run_takes(const char *name) {
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < c->model_count; i++) {
     const char *name = c->models[i];
-    if (c->planar.undriven && (strcmp(name, "analytic") == 0 || fb_planar_kit_of(name)))
+    if (c->planar.undriven && strcmp(name, "analytic") == 0) /* the kit's start is free */
       return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' follows the drive, and the "
                          "case is undriven ([drive] joint = none); it runs: reference, "
-                         "reference-restitution", name);
+                         "reference-restitution and the engines' models", name);
     if (fb_planar_run_takes(name)) continue;
     const fb_model *m = fb_model_find(name);
     char kit[2048];

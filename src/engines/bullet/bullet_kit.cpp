@@ -164,6 +164,7 @@ fb_status add_prismatic(void *w, int b0, int b1, const double at[2], const doubl
 
 fb_status add_drive(void *w, int joint, double rate, fb_diag *diag) {
   Kit *k = static_cast<Kit *>(w);
+  if (joint < 0) return FB_OK; /* undriven (kit.h): nothing to drive */
   const Joint &j = k->joint[joint];
   if (!j.pin) return fb_diag_set(diag, FB_ERR_ARG, "the Bullet kit drives a revolute joint only");
   /* body[1]'s rate relative to body[0]'s; the ground's body[1] is body[0]'s

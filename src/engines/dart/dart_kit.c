@@ -136,6 +136,7 @@ static fb_status kit_close_loop(void *w, fb_diag *diag) {
 
 static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
   char err[FB_DIAG_SIZE];
+  if (joint < 0) return FB_OK; /* undriven (kit.h): nothing to drive */
   if (fb_dart_drive(dart(w), joint, rate, err, sizeof err) != 0)
     return dart_error(FB_ERR_ARG, "drive", err, diag);
   return FB_OK;

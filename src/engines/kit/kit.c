@@ -49,6 +49,14 @@ static fb_status hold(const fb_kit_binding *b, void *w, const fb_planar *m, unsi
   return st;
 }
 
+/* axis: prismatic joint pj's slide direction from its body[0]'s frame into
+ * the world at the start (q; moved: not the assembly) */
+static void slide_axis(double axis[2], const fb_planar *m, const double *q, int moved,
+                       const fb_planar_joint *pj) {
+  fb_planar_rotate(axis, moved ? fb_planar_angle(q, pj->body[0]) : m->body[pj->body[0]].angle0,
+                   pj->axis);
+}
+
 /* the walk: bodies at q (the start's coordinates; moved: not the
  * assembly), joints (but the clearance joints of mask), loop closure,
  * drive */
@@ -67,9 +75,15 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
   for (int j = 0; j < m->njoints && st == FB_OK; j++) {
     const fb_planar_joint *pj = &m->joint[j];
     const int b0 = handle(pj->body[0]), b1 = handle(pj->body[1]);
-    if (mask & (1u << j)) { /* a pin in a hole: the contact each step, or the engine's relation */
-      const fb_kit_clearance_joint cj = {b0, b1, {pj->at[0], pj->at[1]}, cl->radial_clearance,
-                                         cl->pin_radius, cl->law.restitution, m, cl};
+    if (mask & (1u << j)) { /* a pin in a hole or a slider in its guide: the contact each
+                               step, or the engine's relation */
+      fb_kit_clearance_joint cj = {b0, b1, {pj->at[0], pj->at[1]}, cl->radial_clearance,
+                                   cl->pin_radius, cl->law.restitution, m, cl, pj->kind,
+                                   {0.0, 0.0}, {0.0, 0.0, 0.0}, cl->friction};
+      if (pj->kind == FB_KIND_PRISMATIC) {
+        slide_axis(cj.axis, m, q, moved, pj);
+        if (cl->guide) cj.guide = cl->guide[j];
+      }
       if (b->add_clearance) st = b->add_clearance(w, j, &cj, diag);
       continue;
     }
@@ -78,10 +92,8 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
     double at[2] = {pj->at[0], pj->at[1]}; /* where body[0] puts the joint at the start */
     if (moved) fb_planar_point(at, m, q, pj->body[0], pj->point[0]);
     if (pj->kind == FB_KIND_PRISMATIC) {
-      /* the slide's axis from body[0]'s frame into the world at the start */
       double axis[2];
-      fb_planar_rotate(axis, moved ? fb_planar_angle(q, pj->body[0]) : m->body[pj->body[0]].angle0,
-                       pj->axis);
+      slide_axis(axis, m, q, moved, pj);
       st = b->add_prismatic(w, b0, b1, at, axis, diag);
     } else {
       st = b->add_revolute(w, b0, b1, at, diag);
@@ -90,6 +102,7 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
   if (st == FB_OK && b->close_loop) st = b->close_loop(w, diag);
   if (st == FB_OK) st = hold(b, w, m, mask, diag);
   if (st != FB_OK) return st;
+  if (m->drive < 0) return b->add_drive(w, -1, 0.0, diag); /* undriven: the walk's end only */
   if (drive < 0)
     return fb_diag_set(diag, FB_ERR_ARG, "clearance at the driven joint '%s': the engine kit "
                        "drives an ideal joint only", m->joint[m->drive].name);
@@ -189,6 +202,10 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   if (o->q0) memcpy(q, o->q0, (size_t)nq * sizeof *q);
   else fb_planar_assembly(m, q);
   if (o->qd0) memcpy(qd, o->qd0, (size_t)nq * sizeof *qd);
+  else if (m->drive < 0)
+    st = fb_diag_set(diag, FB_ERR_ARG, "the %s engine's kit run of an undriven description "
+                     "([drive] joint = none) needs its start velocities (the case's "
+                     "initial_omega_rad_s, fb_kit_world's qd0)", b->engine);
   else st = start_velocities(qd, m, omega, diag);
   if (st == FB_OK) st = b->world_new(&k->w, o, diag);
   if (st == FB_OK) st = build(b, k->w, m, omega, q, qd, o->q0 != NULL, cl, diag);

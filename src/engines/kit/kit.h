@@ -26,7 +26,11 @@
  *                 loops here (NULL: the engine's joints close them)
  *   hold_in_plane optional: a body that only clearance joints hold
  *   add_drive     the drive: the rate of body b1 relative to body b0 of
- *                 the driven joint [rad/s], constant
+ *                 the driven joint [rad/s], constant; the walk's last
+ *                 call (a binding may build its world there). An undriven
+ *                 description (m->drive < 0, [drive] joint = none: a free
+ *                 start, its velocities fb_kit_world's qd0) gets joint -1
+ *                 and rate 0: no drive, the walk's end all the same
  *   add_contact   before every step, each clearance joint in contact: the
  *                 contact the kit's pipeline computed (fb_kit_contact)
  *   step, body_state  advance h; read a body's pose and velocity
@@ -49,7 +53,6 @@
 #include "contact.h"
 #include "planar.h"
 #include "planar_guide.h"
-#include "planar_spec.h"
 #include "status.h"
 
 /* The ground's handle. */
@@ -136,12 +139,10 @@ typedef struct {
   double h_omega_max;       /* out: the largest h omega_c = h sqrt(kp / m_eff) of the rows the
                                law and mapping gave (contact.h's row, as ODE's) [-] */
   const fb_planar_guide *guide; /* optional (njoints), NULL: no prismatic clearance joint: a
-                               prismatic joint j of mask is a slider in its guide of size
-                               guide[j] (planar_guide.h), four corner contacts (slots
-                               fb_kit_slot(j, 0 .. 3)), its force the corners' sum, its
-                               penetration the deepest corner's (the reference's columns),
-                               its ecc the slider's centre across the slide [m] and its tilt
-                               [rad] */
+                               prismatic clearance joint j's slider in its guide at guide[j]
+                               (planar_guide.h: a, b, c [m]) */
+  double friction;          /* [clearance] friction: Coulomb's coefficient mu at the contact
+                               (0: frictionless) [-] */
 } fb_kit_clearance;
 
 /* One clearance joint for an engine that builds it as its own relation
@@ -155,6 +156,17 @@ typedef struct {
   double restitution;       /* the law's coefficient of restitution cr, Newton's e_N [-] */
   const fb_planar *m;       /* the description (the joint is m->joint[k]) */
   const fb_kit_clearance *cl; /* the run's clearance joints: law, sizes, mask */
+  int kind;                 /* the joint's kind (planar.h FB_KIND_REVOLUTE: a pin in a hole;
+                               FB_KIND_PRISMATIC: a slider in its guide, pin the guide's body
+                               handle, hole the slider's) */
+  double axis[2];           /* prismatic: the slide's unit direction u in the world at the
+                               start (the guide's body at its start angle) [-]; revolute: 0 */
+  fb_planar_guide guide;    /* prismatic: the slider's half-length a, half-height b and the
+                               gap c on each side (planar_guide.h: corner (sigma, tau) at
+                               at + sigma a u + tau b perp(u) at the start, the walls at
+                               +-(b + c) from the slide's line through at) [m]; revolute: 0 */
+  double friction;          /* Coulomb's coefficient mu at the contact ([clearance]
+                               friction; 0: frictionless) [-] */
 } fb_kit_clearance_joint;
 
 /* An engine's builder functions. */
@@ -236,7 +248,9 @@ typedef struct {
  * to the binding's add_contact. Errors: FB_ERR_ARG when the binding has
  * no add_contact for a clearance joint; those of the binding, of the
  * core's velocity analysis (planar_kinematics.h: no drive, not one degree
- * of freedom, a singular start) and of its effective mass; FB_ERR_NOMEM. */
+ * of freedom, a singular start) and of its effective mass; FB_ERR_NOMEM.
+ * An undriven m (m->drive < 0) takes its start velocities from o->qd0
+ * (required: FB_ERR_ARG without) and omega is ignored. */
 fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
                      const fb_kit_world *o, fb_kit_clearance *cl, fb_kit_series *s,
                      fb_diag *diag);

@@ -313,7 +313,7 @@ static fb_status start_velocity(mk_world *k, fb_diag *diag) {
 static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
   (void)rate; /* the start carries it (the kit's velocities); the flywheel keeps it */
   mk_world *k = w;
-  if (joint < 0 || joint >= k->nj || !k->tree[joint])
+  if (joint >= k->nj || (joint >= 0 && !k->tree[joint])) /* -1: undriven (kit.h) */
     return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit drives a joint of its tree only (the "
                        "%d-th joint added closes a loop)", joint + 1);
   k->drive = joint;

@@ -124,6 +124,7 @@ static fb_status kit_add_prismatic(void *w, int b0, int b1, const double at[2],
 
 static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
   ode_kit *k = w;
+  if (joint < 0) return FB_OK; /* undriven (kit.h): nothing to drive */
   dJointID j = k->joint[joint];
   if (dJointGetType(j) != dJointTypeHinge)
     return fb_diag_set(diag, FB_ERR_ARG, "the ODE kit drives a revolute joint only");

@@ -423,6 +423,10 @@ static fb_status kit_add_prismatic(void *vw, int b0, int b1, const double at[2],
 static fb_status kit_add_clearance(void *vw, int k, const fb_kit_clearance_joint *c,
                                    fb_diag *diag) {
   World *w = static_cast<World *>(vw);
+  if (c->kind != FB_KIND_REVOLUTE)
+    return fb_diag_set(diag, FB_ERR_ARG, "clearance at prismatic joint '%s' (a slider in its "
+                       "guide): the Siconos binding of the engine kit builds a pin in its hole "
+                       "only", c->m->joint[k].name);
   if (w->friction > 0.0)
     return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the Siconos binding of the "
                        "engine kit builds a frictionless clearance joint (friction = 0)",
@@ -441,6 +445,7 @@ static fb_status kit_add_clearance(void *vw, int k, const fb_kit_clearance_joint
 // four-bar scene's crank); between two moving bodies, a rheonomous row
 static fb_status kit_add_drive(void *vw, int joint, double rate, fb_diag *diag) {
   World *w = static_cast<World *>(vw);
+  if (joint < 0) return guarded(diag, "the system was refused", [w] { build(w); }); // undriven
   int n = -1;
   size_t j = 0;
   for (; j < w->joint.size(); j++)

@@ -340,13 +340,16 @@ fb_status kit_close_loop(void *w, fb_diag *diag) {
 // system's topology, the start and the integrator
 fb_status kit_add_drive(void *w, int jn, double rate, fb_diag *diag) {
   Kit *k = kit(w);
-  const KitJoint &j = k->joint[(size_t)jn];
-  const int c = k->child[(size_t)jn];
-  if (j.prismatic || c < 0)
+  const bool driven = jn >= 0; /* -1: undriven (kit.h), the walk's end only */
+  const int c = driven ? k->child[(size_t)jn] : -1;
+  const bool prismatic = driven && k->joint[(size_t)jn].prismatic;
+  if (driven && (prismatic || c < 0))
     return fb_diag_set(diag, FB_ERR_ARG, "the Simbody kit drives a revolute joint of its tree; "
-                       "the driven joint is %s", j.prismatic ? "prismatic" : "a loop's cut");
+                       "the driven joint is %s", prismatic ? "prismatic" : "a loop's cut");
   try {
-    Motion::Custom(k->mob[(size_t)c], new SteadyAngle(0.0, c == j.b1 ? rate : -rate));
+    if (driven)
+      Motion::Custom(k->mob[(size_t)c],
+                     new SteadyAngle(0.0, c == k->joint[(size_t)jn].b1 ? rate : -rate));
     State state = k->system.realizeTopology();
     start_state(k, state);
     state.setTime(0.0);

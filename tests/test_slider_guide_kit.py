@@ -24,6 +24,8 @@ cases/slider_guide_flores_leine_glocker.ini as the case gives it
 5. The slider's tilt stays near 0: the pin at the slider's centre and a
    level start make each face strike flat (docs/models.md), in the kit's
    corners as in the reference.
+6. [clearance] friction > 0 is refused by name: the kit's contact is
+   frictionless.
 Engines this build lacks are skipped by name.
 
 Usage: test_slider_guide_kit.py PATH_TO_FOURBAR. Prints "N passed, N
@@ -135,4 +137,13 @@ for name, ref in pairs:
     tilt = max(abs(float(x["slider_angle_rad"])) for x in m)
     check(tilt <= TILT_RAD, "%s's slider stays level (flat strikes): tilt %.3g rad, bound %g"
           % (name, tilt, TILT_RAD))
+# 6. the kit's contact is frictionless: [clearance] friction > 0 is refused
+# by name (it was ignored), nothing written
+out = os.path.join(tmp, "friction")
+rc, _, se = fb_script.run(exe, tmp, "run", case, "--set", "run.models=" + pairs[0][0], "--set",
+                          "clearance.friction=0.01", "--set", "solver.h_s=%g" % H_S, "--set",
+                          "run.duration_s=0.001", "--out", out)
+check(rc != 0 and "friction" in se and not os.path.exists(out),
+      "%s refuses [clearance] friction = 0.01 by name, nothing written (%d, %s)"
+      % (pairs[0][0], rc, se.strip()))
 sys.exit(tally.done())

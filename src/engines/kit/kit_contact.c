@@ -41,6 +41,10 @@ static fb_status guide_ok(const fb_kit_binding *b, const fb_planar *m, const fb_
 fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_planar *m,
                           const fb_kit_clearance *cl, fb_diag *diag) {
   memset(p, 0, sizeof *p);
+  if (cl->mask && cl->friction != 0.0 && b->add_contact)
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the engine kit's contact "
+                       "(the %s binding's add_contact) is a normal law only, frictionless; give "
+                       "friction = 0", cl->friction, b->engine);
   int guides = 0;
   for (int j = 0; j < m->njoints; j++) {
     if (!(cl->mask & (1u << j))) continue;

@@ -28,7 +28,8 @@ typedef struct {
 } fb_kit_pipe;
 
 /* Sets p up for m's clearance joints cl->mask in b's engine. Errors:
- * FB_ERR_ARG (a joint out of range, a revolute joint that may not carry
+ * FB_ERR_ARG (cl->friction not 0 with a binding's add_contact: the
+ * kit's contact is frictionless; a joint out of range, a revolute joint that may not carry
  * clearance, a prismatic one without cl->guide or in a binding that
  * evaluates a pin in its hole inside its own integrator: add_clearance
  * with add_contact), those of fb_planar_guide_check, FB_ERR_NOMEM. Free

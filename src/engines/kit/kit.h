@@ -125,8 +125,9 @@ typedef struct {
   double impact_velocity_min; /* an episode faster than this at onset is an impact [m/s] */
   int joint;                /* the joint whose force and penetration the series holds */
   double *force, *pen;      /* (n): its contact force [N] and penetration [m] per sample */
-  size_t contact_steps;     /* out: steps with a contact row, all joints */
-  int impacts;              /* out: impact episodes, all joints */
+  size_t contact_steps;     /* out: contact rows handed, over the steps and all joints (a
+                               slider's corners one each) */
+  int impacts;              /* out: impact episodes, all joints (a slider's per corner) */
   double *ecc;              /* optional (2 x n), NULL: not kept: joint's eccentricity, pin
                                centre - hole centre, x at ecc[i], y at ecc[n + i] [m] */
   double *state;            /* optional (n), NULL: not kept: joint's contact state in the step

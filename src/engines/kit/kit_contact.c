@@ -23,18 +23,12 @@ static int is_guide(const fb_planar *m, int j) { return m->joint[j].kind == FB_K
 /* the contact slots of clearance joint j */
 static int slots(const fb_planar *m, int j) { return is_guide(m, j) ? FB_PLANAR_GUIDE_CORNERS : 1; }
 
-/* prismatic clearance joint j: its guide's size, and an engine that takes
- * the kit's contact every step */
-static fb_status guide_ok(const fb_kit_binding *b, const fb_planar *m, const fb_kit_clearance *cl,
-                          int j, fb_diag *diag) {
+/* prismatic clearance joint j: its guide's size (a binding that builds
+ * its own clearance, add_clearance, refuses there what it cannot build) */
+static fb_status guide_ok(const fb_planar *m, const fb_kit_clearance *cl, int j, fb_diag *diag) {
   if (!cl->guide)
     return fb_diag_set(diag, FB_ERR_ARG, "clearance at prismatic joint '%s': the engine kit needs "
                        "the slider's size in its guide (fb_kit_clearance.guide)", m->joint[j].name);
-  if (b->add_clearance && b->add_contact)
-    return fb_diag_set(diag, FB_ERR_ARG, "clearance at prismatic joint '%s': the %s binding "
-                       "evaluates a pin in its hole inside its own integrator, and has no "
-                       "slider's corners in its guide; the engines that take the kit's corner "
-                       "contacts each step (ODE, Bullet) run it", m->joint[j].name, b->engine);
   return fb_planar_guide_check(&cl->guide[j], diag);
 }
 
@@ -53,7 +47,7 @@ fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_plan
                          "in a hole at a revolute joint, or a slider in its guide at a prismatic "
                          "one", m->joint[j].name);
     if (is_guide(m, j)) {
-      fb_status st = guide_ok(b, m, cl, j, diag);
+      fb_status st = guide_ok(m, cl, j, diag);
       if (st != FB_OK) return st;
       guides++;
     }

@@ -30,10 +30,9 @@ typedef struct {
 /* Sets p up for m's clearance joints cl->mask in b's engine. Errors:
  * FB_ERR_ARG (cl->friction not 0 with a binding's add_contact: the
  * kit's contact is frictionless; a joint out of range, a revolute joint that may not carry
- * clearance, a prismatic one without cl->guide or in a binding that
- * evaluates a pin in its hole inside its own integrator: add_clearance
- * with add_contact), those of fb_planar_guide_check, FB_ERR_NOMEM. Free
- * with fb_kit_pipe_free. */
+ * clearance, a prismatic one without cl->guide), those of
+ * fb_planar_guide_check, FB_ERR_NOMEM (a binding's add_clearance, called
+ * before, refuses what it cannot build). Free with fb_kit_pipe_free. */
 fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_planar *m,
                           const fb_kit_clearance *cl, fb_diag *diag);
 void fb_kit_pipe_free(fb_kit_pipe *p);

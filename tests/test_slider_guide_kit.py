@@ -37,9 +37,8 @@ import csv, json, os, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
 
-exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-slider-guide-kit-")
-check = tally.check
-case = os.path.join(cases, "slider_guide_flores_leine_glocker.ini")
+exe, tally, check, tmp, case = fb_script.start_case(sys.argv, "fourbar-slider-guide-kit-",
+                                                    "slider_guide_flores_leine_glocker.ini")
 
 # The engines' step: a face's strike lasts about 2e-5 s at the case's
 # penalty (docs/models.md); at the case's own 1e-4 s ODE's and Bullet's

@@ -66,7 +66,8 @@ FIRST_IMPACT_REL = 1e-2
 # alone) is -50 %.
 IMPULSE_REL = 5e-2
 # 5. The slider's tilt over the run [rad]: the reference's stays below
-# 8e-13 rad; measured ODE 3e-17, Bullet 1.7e-7 (its pins' ERP rows).
+# 8e-13 rad; measured ODE 3e-17, Bullet 1.7e-7 (why Bullet's tilts: not
+# traced), MuJoCo 3.6e-13 (impact law) and 9.8e-12 (restitution, 2.5e-7 s).
 TILT_RAD = 1e-6
 
 # (step, engine model, its reference): MuJoCo's restitution law at a

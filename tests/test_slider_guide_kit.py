@@ -26,7 +26,9 @@ restitution law at 2.5e-7 s, below):
 5. The slider's tilt stays near 0: the pin at the slider's centre and a
    level start make each face strike flat (docs/models.md), in the kit's
    corners as in the reference.
-6. [clearance] friction > 0 is refused by name: the kit's contact is
+6. MuJoCo's restitution law at 1e-6 s stops, unstable, naming the largest
+   usable step (its damper on a corner's own mass, the slider's tilt).
+7. [clearance] friction > 0 is refused by name: the kit's contact is
    frictionless.
 Engines this build lacks are skipped by name.
 
@@ -167,7 +169,24 @@ for h, group in RUNS:
 if first is None:
     sys.exit(tally.done())
 
-# 6. the kit's contact is frictionless: [clearance] friction > 0 is refused
+# 6. MuJoCo's restitution law at 1e-6 s: the damper overdamped on a corner's
+# own mass (1.07e-3 kg, the tilt) beyond RK4's real-axis bound stops the
+# model at the first strike, naming the largest usable step (it ran on at
+# +729 % before the stop)
+if "mujoco-clearance-restitution" in built:
+    out = os.path.join(tmp, "mujoco-unstable")
+    rc, _, se = fb_script.run(exe, tmp, "run", case, "--set",
+                              "run.models=mujoco-clearance-restitution", "--set",
+                              "solver.h_s=%g" % H_S, "--set", "run.duration_s=0.004", "--out",
+                              out, "--no-figures", "--no-report")
+    m = fb_script.models(out).get("mujoco-clearance-restitution", {}) if rc == 0 else {}
+    stop = str(m.get("stop", ""))
+    check(rc == 0 and m.get("status") == "failed" and "unstable" in stop and
+          "largest usable step" in stop, "mujoco-clearance-restitution at h = %g s stops "
+          "'unstable' naming the largest usable step (%d, %s, %s)" % (H_S, rc, m.get("status"),
+                                                                    stop))
+
+# 7. the kit's contact is frictionless: [clearance] friction > 0 is refused
 # by name (it was ignored), nothing written
 out = os.path.join(tmp, "friction")
 rc, _, se = fb_script.run(exe, tmp, "run", case, "--set", "run.models=" + first, "--set",

@@ -113,6 +113,9 @@ typedef struct {
   fb_contact_law law;  /* the joint's law with its damper on m_eff (contact_mass.h) */
   fb_mapping mapping;  /* the case's [clearance] mapping (contact.h) */
   double h;            /* step [s] */
+  double m_alone;      /* the contact's own effective mass, 1 / D_cc of the Delassus matrix
+                          (a slider's corner alone, lighter than its face's share m_eff: the
+                          slider's tilt); a pin's: m_eff [kg] */
 } fb_kit_contact;
 
 /* The clearance joints of a kit run (NULL: every joint ideal). */

@@ -169,6 +169,7 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const ch
   cl->impacts += p->ep[k].impacts - before;
   if (!in) return FB_OK;
   c->m_eff = isfinite(me) && me > 0.0 ? me : cl->law.mass;
+  if (!(c->m_alone > 0.0 && c->m_alone < c->m_eff)) c->m_alone = c->m_eff; /* a pin's */
   c->law = fb_contact_law_on_mass(&cl->law, c->m_eff);
   c->v0 = p->ep[k].v0;
   c->onset = onset;
@@ -191,19 +192,19 @@ static fb_status guide_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w
                                 fb_diag *diag) {
   const fb_planar_joint *pj = &m->joint[j];
   fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
-  double mass[FB_PLANAR_GUIDE_CORNERS] = {0.0};
+  double mass[FB_PLANAR_GUIDE_CORNERS] = {0.0}, alone[FB_PLANAR_GUIDE_CORNERS] = {0.0};
   corners(gc, p, m, cl, j);
   if (p->pen[j] > 0.0) {
     fb_status st = fb_planar_cmass_factor(p->cm, p->q, FB_EFFECTIVE_MASS_REG, diag);
     if (st != FB_OK) return st;
-    fb_planar_guide_masses(mass, p->cm, m, j, gc, p->q);
+    fb_planar_guide_masses(mass, alone, p->cm, m, j, gc, p->q);
   }
   for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
     const double d = -gc[r].gap, *n = gc[r].normal;
     fb_kit_contact c = {.pin = pj->body[1] - 1, .hole = pj->body[0] - 1,
                         .point = {gc[r].point[0] - d * n[0], gc[r].point[1] - d * n[1]},
                         .normal = {n[0], n[1]}, .depth = d, .rate = gc[r].rate,
-                        .mapping = cl->mapping};
+                        .mapping = cl->mapping, .m_alone = alone[r]};
     if (pj->body[0] == FB_PLANAR_GROUND) c.hole = FB_KIT_GROUND;
     fb_status st = hand(p, b, w, pj->name, cl, fb_kit_slot(j, r), &c, d > 0.0, mass[r], h, diag);
     if (st != FB_OK) return st;

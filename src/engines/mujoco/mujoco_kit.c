@@ -60,6 +60,11 @@
  * Euler (and MuJoCo 2.2's implicit, implicit in joint damping only) at 2 */
 #define MK_RK4_H_OMEGA_MAX 2.8284271247461903
 #define MK_EULER_H_OMEGA_MAX 2.0
+/* h |lambda| bounds on the negative real axis (an overdamped contact):
+ * RK4's stability polynomial 1 + z + z^2/2 + z^3/6 + z^4/24 has modulus 1
+ * at z = -2.7853; explicit Euler's at -2 */
+#define MK_RK4_H_REAL_MAX 2.785293563405282
+#define MK_EULER_H_REAL_MAX 2.0
 
 /* bytes of MJCF text: a body with its joints ~400, an equality ~250 */
 #define MK_MJCF_BASE 2048
@@ -465,6 +470,19 @@ static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_dia
                        "(MuJoCo's %s integrates the law's force explicitly, bound %.3g); "
                        "largest usable step %.3g s", hw, j,
                        fb_mujoco_integrator_name(k->integrator), bound, c->h * bound / hw);
+  /* a contact lighter alone than the mass its law's damper sits on (a
+   * slider's corner: the slider's tilt, kit.h's m_alone) can be
+   * overdamped on that mass: its fast real eigenvalue -(kd + sqrt(kd^2 -
+   * 4 kp m)) / (2 m) must lie inside the integrator's real-axis bound (the
+   * slider in its guide at h = 1e-6 s: h lambda ~ 3, RK4's bound 2.79) */
+  const double ma = c->m_alone, disc = kd * kd - 4.0 * kp * ma;
+  const double hl = ma < c->m_eff && disc > 0.0 ? c->h * (kd + sqrt(disc)) / (2.0 * ma) : 0.0;
+  const double real = k->integrator == FB_MUJOCO_RK4 ? MK_RK4_H_REAL_MAX : MK_EULER_H_REAL_MAX;
+  if (hl > real)
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "unstable: h lambda = %.3g, the damper on contact "
+                       "%d's own mass %.3g kg (explicit %s, bound %.3g); largest usable step "
+                       "%.3g s", hl, j, ma, fb_mujoco_integrator_name(k->integrator), real,
+                       c->h * real / hl);
   mk_contact *x = &k->ct[j];
   x->law = c->law;
   x->v0 = c->v0;

@@ -53,7 +53,8 @@ void fb_planar_guide_corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], 
   }
 }
 
-void fb_planar_guide_masses(double mass[FB_PLANAR_GUIDE_CORNERS], fb_planar_cmass *cm,
+void fb_planar_guide_masses(double mass[FB_PLANAR_GUIDE_CORNERS],
+                            double alone[FB_PLANAR_GUIDE_CORNERS], fb_planar_cmass *cm,
                             const fb_planar *m, int j,
                             const fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS],
                             const double *q) {
@@ -81,6 +82,7 @@ void fb_planar_guide_masses(double mass[FB_PLANAR_GUIDE_CORNERS], fb_planar_cmas
   for (int r = 0; r < w; r++) {
     const double sum = dl[r * w + r] + dl[r * w + (r ^ 1)];
     mass[r] = c[r].gap < 0.0 ? 1.0 / (sum > 0.0 ? sum : dl[r * w + r]) : 0.0;
+    if (alone) alone[r] = c[r].gap < 0.0 ? 1.0 / dl[r * w + r] : 0.0;
   }
 }
 
@@ -98,7 +100,7 @@ void fb_planar_guide_contact(double *force, fb_planar_guide_state *out, fb_plana
     st.rate[r] = c[r].rate;
     n_on += c[r].gap < 0.0;
   }
-  if (fb_contact_law_wants_mass(law) && n_on > 0) fb_planar_guide_masses(st.mass, cm, m, j, c, q);
+  if (fb_contact_law_wants_mass(law) && n_on > 0) fb_planar_guide_masses(st.mass, NULL, cm, m, j, c, q);
   for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
     if (!(c[r].gap < 0.0)) continue;
     const fb_contact_law lw = fb_contact_law_on_mass(law, st.mass[r]);

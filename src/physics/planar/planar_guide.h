@@ -94,8 +94,11 @@ void fb_planar_guide_corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], 
  * contact (gap < 0) into mass (others 0): its face's share
  * 1 / (D_cc + D_cc') (the sketch's rule above), D the four corners'
  * Delassus matrix (planar_mass.h) at q, the configuration cm last
- * factorised, with prismatic joint j of m out of its set. */
-void fb_planar_guide_masses(double mass[FB_PLANAR_GUIDE_CORNERS], fb_planar_cmass *cm,
+ * factorised, with prismatic joint j of m out of its set; alone (may be
+ * NULL) the same corners' own 1 / D_cc [kg] (the corner alone: lighter,
+ * the slider's tilt). */
+void fb_planar_guide_masses(double mass[FB_PLANAR_GUIDE_CORNERS],
+                            double alone[FB_PLANAR_GUIDE_CORNERS], fb_planar_cmass *cm,
                             const fb_planar *m, int j,
                             const fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS],
                             const double *q);

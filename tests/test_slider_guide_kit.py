@@ -17,8 +17,8 @@ restitution law at 2.5e-7 s, below):
    penetration) the engine's every body angle follows the reference's: the
    same free motion, its error the engine's semi-implicit Euler.
 2. The first contact falls on the reference's sample.
-3. The first impact's peak force and penetration (the verdict's pairing,
-   planar_verdict.c) within a bound of the reference's.
+3. The first impact's peak force and penetration (the samples' largest
+   over the episode) within a bound of the reference's.
 4. The first impact's impulse, the force column summed over the episode
    times h, against the reference's: the column is the four corners' sum,
    as the reference writes it (a face strikes flat, two corners at once:
@@ -57,9 +57,10 @@ REFERENCE_TOL = "1e-10"
 ANGLE_BEFORE_CONTACT_RAD = 1e-6
 # 2. The first contact's sample against the reference's [steps]: measured 0.
 ONSET_STEPS = 1
-# 3. The first impact's peak force and penetration, relative: measured
-# 2.9e-5 / 6.1e-4 (impact law), -1.7e-3 / 1e-5 (restitution); 1 % is the
-# harness's bound on a faithful penetration (metrics.h).
+# 3. The first impact's peak force and penetration, relative, the samples'
+# largest over the episode: measured 2.3e-4 / 6.1e-4 (ODE, impact law),
+# 1.7e-3 / 1.7e-3 (restitution), MuJoCo alike; 1 % is the harness's bound on a faithful
+# penetration (metrics.h).
 FIRST_IMPACT_REL = 1e-2
 # 4. The first impact's impulse, relative: a pulse of about 20 to 40
 # samples summed, the reference's spike samples its refined extremes and
@@ -139,13 +140,15 @@ def judge(h, out, summary, name, ref):
     # 2. the first contact's sample
     check(abs(a0 - b0) <= ONSET_STEPS, "%s's first corner contact at sample %d, %s's at %d"
           % (name, a0, ref, b0))
-    # 3. the first impact's peaks (the verdict's pairing)
-    v = summary[name]["impacts_vs_reference"]
-    for key in ("first_force_rel", "first_penetration_rel"):
-        check(v[key] is not None and abs(v[key]) <= FIRST_IMPACT_REL,
-              "%s's first impact %s = %s, bound %g" % (name, key, v[key], FIRST_IMPACT_REL))
-    # 4. the first impact's impulse: the corners' sum
+    # 3. the first impact's peaks, over both episodes' span (the model's
+    # samples against the reference's, whose spike samples are refined)
     lo, hi = min(a0, b0), max(a1, b1)
+    for col in ("guide_force_n", "guide_penetration_m"):
+        pk = [max(float(r[i][col]) for i in range(lo, hi)) for r in (m, y)]
+        check(fb_script.rel(pk[0], pk[1]) <= FIRST_IMPACT_REL,
+              "%s's first impact peak %s %.6g against %s's %.6g, bound %g"
+              % (name, col, pk[0], ref, pk[1], FIRST_IMPACT_REL))
+    # 4. the first impact's impulse: the corners' sum
     impulse = [sum(float(r[i]["guide_force_n"]) for i in range(lo, hi)) * h for r in (m, y)]
     check(fb_script.rel(impulse[0], impulse[1]) <= IMPULSE_REL,
           "%s's first impact impulse %.6g N s against %s's %.6g N s (the corners' sum), bound %g"

@@ -61,6 +61,14 @@ def start(argv, prefix):
             tempfile.mkdtemp(prefix=prefix))
 
 
+def start_case(argv, prefix, name):
+    """start()'s program, tally and scratch folder, the tally's check and
+    the path of case file name in cases/"""
+    import os
+    exe, cases, tally, tmp = start(argv, prefix)
+    return exe, tally, tally.check, tmp, os.path.join(cases, name)
+
+
 def rel(p, q):
     """|p - q| relative to |q|"""
     return abs(p - q) / max(abs(q), 1e-300)

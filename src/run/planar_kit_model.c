@@ -71,8 +71,7 @@ static void window_peaks(fb_planar_model *p, const fb_planar_run *r) {
  * guide or an undriven case: the case's explicit law, planar_free.h), a
  * prismatic joint's guide (*guide, cl->guide, owned: free()), the columns */
 static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_planar_model *p,
-                           const fb_planar_run *r, const fb_model *mt, const fb_kit_binding *kb,
-                           fb_diag *diag) {
+                           const fb_planar_run *r, const fb_model *mt, fb_diag *diag) {
   const fb_planar *m = r->m;
   const fb_case *c = &r->c;
   int n = 0;
@@ -81,15 +80,8 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   if (n != 1)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs one clearance joint ([clearance] joints "
                        "= a revolute joint of the case), and the case names %d", p->name, n);
-  /* the kit hands no corner contact (add_contact) yet: an engine's own
-   * relation only (Siconos's four unilateral corners) */
-  if (m->joint[cl->joint].kind == FB_KIND_PRISMATIC && (!kb->add_clearance || kb->add_contact))
-    return fb_diag_set(diag, FB_ERR_ARG, "model '%s': clearance at prismatic joint '%s' (a slider "
-                       "in its guide) runs in the references only (reference, "
-                       "reference-restitution) and in a binding that builds its own clearance "
-                       "joint (add_clearance, Siconos's); the %s engine's binding takes the "
-                       "kit's contact, a pin in its hole", p->name, m->joint[cl->joint].name,
-                       kb->engine);
+  /* a prismatic joint (a slider in its guide): the kit's corner contacts,
+   * or refused by the kit naming the binding (kit_contact.h) */
   double *omega0 = NULL, *most = malloc((size_t)m->njoints * sizeof *most);
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
   fb_status st = most ? fb_planar_free_parts(guide, &omega0, &free_law, c, m, cl->joint, diag)
@@ -165,7 +157,7 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   for (size_t i = 0; i < p->n; i++) p->t[i] = (double)i * p->h;
   for (size_t i = 0; i < nq; i++) p->q[i] = NAN;
   fb_kit_clearance *run_cl = mt->joints == FB_JOINTS_CLEARANCE ? &cl : NULL;
-  fb_status st = run_cl ? clearance(&cl, &guide, p, r, mt, b, diag) : FB_OK;
+  fb_status st = run_cl ? clearance(&cl, &guide, p, r, mt, diag) : FB_OK;
   /* a binding that sub-steps keeps its largest force of each step (the verdict's peaks) */
   if (st == FB_OK && cl.force && b->contact_force_max &&
       !(cl.force_max = p->force_max = calloc(p->n, sizeof *p->force_max)))

@@ -82,15 +82,26 @@ static double angle(const fb_planar_model *p, int b, size_t i) {
   return p->q[((size_t)(b - 1) * 3 + FB_Q_POS) * p->n + i];
 }
 
+/* the clearance of the case's clearance joints [m]: a slider's gap c in
+ * its guide when a prismatic joint is one ([clearance] guide_clearance_mm),
+ * else the pins' radial clearance */
+static double clearance_of(const fb_planar_run *r) {
+  for (int j = 0; j < r->m->njoints; j++)
+    if (((unsigned)r->c.clearance.mask & (1u << j)) && r->m->joint[j].kind == FB_KIND_PRISMATIC)
+      return r->c.clearance.guide_clearance;
+  return r->c.radial_clearance;
+}
+
 /* where model p's body angles leave the reference's: the first sample
  * where a body turns from the reference's by more than
  * FB_DIVERGE_ANGLE_FRACTION x c / its size (the rotation that moves its
- * farthest joint by that share of the radial clearance c, metrics.h's
- * coupler rule for every body; size: the largest distance between two of
- * its joints) [s]; INFINITY when it does not */
+ * farthest joint by that share of the clearance c, metrics.h's coupler
+ * rule for every body; size: the largest distance between two of its
+ * joints) [s]; INFINITY when it does not */
 static double parts_at(const fb_planar_run *r, const fb_planar_model *p,
                        const fb_planar_model *ref) {
   const fb_planar *m = r->m;
+  const double c = clearance_of(r);
   double t = INFINITY;
   for (int b = 1; b < m->nbodies; b++) {
     double size = 0.0;
@@ -101,7 +112,7 @@ static double parts_at(const fb_planar_run *r, const fb_planar_model *p,
           size = fmax(size, hypot(x->at[0] - y->at[0], x->at[1] - y->at[1]));
       }
     if (!(size > 0.0)) continue;
-    const double tol = FB_DIVERGE_ANGLE_FRACTION * r->c.radial_clearance / size;
+    const double tol = FB_DIVERGE_ANGLE_FRACTION * c / size;
     for (size_t i = 0; i < p->n && i < ref->n && p->t[i] < t; i++)
       if (!(fabs(angle(p, b, i) - angle(ref, b, i)) <= tol)) {
         t = p->t[i];

@@ -63,7 +63,7 @@ struct Kit {
   Joint joint[FB_PLANAR_SPEC_MAX_JOINTS];
   int njoints = 0;
   FbRows *drive = nullptr;
-  Contact contact[FB_PLANAR_SPEC_MAX_JOINTS];
+  Contact contact[FB_KIT_SLOTS]; /* by the kit's contact slot (a pin's, a slider's corner's) */
   size_t steps = 0;
 };
 
@@ -216,7 +216,7 @@ fb_status step(void *w, fb_diag *diag) {
                        "(step %zu); [bullet] solver = sequential-impulse runs the iterative "
                        "solver on purpose", (double)k->steps * k->h, k->steps + 1);
   k->steps++;
-  for (int i = 0; i < FB_PLANAR_SPEC_MAX_JOINTS; i++) {
+  for (int i = 0; i < FB_KIT_SLOTS; i++) {
     Contact &ct = k->contact[i];
     if (!ct.row) continue;
     ct.force = ct.row->nrows ? ct.share * ct.row->getAppliedImpulse() / k->h : 0.0;
@@ -239,12 +239,12 @@ void body_state(const void *w, int b, double pos[3], double vel[3]) {
 void world_free(void *w) {
   Kit *k = static_cast<Kit *>(w);
   btDiscreteDynamicsWorld &world = k->w->world;
-  btTypedConstraint *c[2 * FB_PLANAR_SPEC_MAX_JOINTS + 1];
+  btTypedConstraint *c[FB_PLANAR_SPEC_MAX_JOINTS + FB_KIT_SLOTS + 1];
   int n = 0;
   for (int i = 0; i < k->njoints; i++)
     c[n++] = k->joint[i].pin ? static_cast<btTypedConstraint *>(k->joint[i].pin)
                              : k->joint[i].guide;
-  for (int i = 0; i < FB_PLANAR_SPEC_MAX_JOINTS; i++)
+  for (int i = 0; i < FB_KIT_SLOTS; i++)
     if (k->contact[i].row) c[n++] = k->contact[i].row;
   if (k->drive) c[n++] = k->drive;
   for (int i = 0; i < n; i++) world.removeConstraint(c[i]), delete c[i];

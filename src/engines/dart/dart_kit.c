@@ -160,6 +160,10 @@ static fb_status kit_add_clearance(void *w, int j, const fb_kit_clearance_joint 
   dk_world *k = w;
   if (j < 0 || j >= FB_PLANAR_SPEC_MAX_JOINTS)
     return fb_diag_set(diag, FB_ERR_ARG, "clearance joint %d out of range", j);
+  if (cj->kind != FB_KIND_REVOLUTE) /* its sub-steps evaluate a pin in its hole */
+    return fb_diag_set(diag, FB_ERR_ARG, "clearance at prismatic joint '%s' (a slider in its "
+                       "guide): the DART binding's sub-steps take a pin in its hole only; ODE, "
+                       "Bullet and MuJoCo build the slider's corners", cj->m->joint[j].name);
   if (!k->q) k->q = calloc(2 * (size_t)fb_planar_nq(cj->m), sizeof *k->q);
   if (!k->q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the DART world");
   k->qd = k->q + fb_planar_nq(cj->m);

@@ -167,13 +167,14 @@ static fb_status sample_step(fb_kit_runner *k, size_t i, fb_diag *diag) {
   if (st != FB_OK) return st;
   sample(b, w, s, m->nbodies - 1, i);
   if (!cl) return FB_OK;
-  if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&k->p, b, w, cl->joint);
+  if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&k->p, b, w, m, cl->joint);
   if (i > 0 && cl->force_max)
     cl->force_max[i - 1] = b->contact_force_max ? fmax(b->contact_force_max(w, cl->joint),
                                                        cl->force[i - 1])
                                                 : cl->force[i - 1];
   if (i > 0 && cl->state) /* the episode of the step from t_{i-1} */
-    cl->state[i - 1] = cl->force[i - 1] > 0.0 ? (double)k->p.ep[cl->joint].state : FB_STATE_FREE;
+    cl->state[i - 1] =
+        cl->force[i - 1] > 0.0 ? (double)fb_kit_pipe_state(&k->p, m, cl->joint) : FB_STATE_FREE;
   cl->pen[i] = fb_kit_pipe_read(&k->p, b, w, m, cl);
   if (cl->ecc) cl->ecc[i] = k->p.ecc[cl->joint][0], cl->ecc[s->n + i] = k->p.ecc[cl->joint][1];
   if (i + 1 < s->n) st = fb_kit_pipe_contacts(&k->p, b, w, m, cl, s->h, diag);
@@ -215,7 +216,7 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   if (st == FB_OK) st = build(b, k->w, m, omega, q, qd, o->q0 != NULL, cl, diag);
   free(q);
   const fb_kit_clearance none = {0};
-  if (st == FB_OK) st = fb_kit_pipe_new(&k->p, m, cl ? cl : &none, diag);
+  if (st == FB_OK) st = fb_kit_pipe_new(&k->p, b, m, cl ? cl : &none, diag);
   if (st != FB_OK) {
     fb_kit_close(k);
     return st;

@@ -38,8 +38,12 @@
  * Bodies are named by the kit's handles: the ground is FB_KIT_GROUND, the
  * description's body b (1 ..) is handle b - 1; add_drive's joint is the
  * driven joint's place among the joints added (the description's order,
- * clearance joints left out); add_contact's the description's index of
- * the clearance joint. SI throughout. */
+ * clearance joints left out); add_contact's and contact_force's k a
+ * contact slot: a revolute clearance joint's slot is its description
+ * index j, a prismatic one's (a slider in its guide, four corners) are
+ * fb_kit_slot(j, 0 .. 3), every slot below FB_KIT_SLOTS, so that a
+ * binding keeps one contact per slot whatever the joint's kind. SI
+ * throughout. */
 #ifndef FB_KIT_H
 #define FB_KIT_H
 
@@ -53,6 +57,17 @@
 
 /* The ground's handle. */
 #define FB_KIT_GROUND (-1)
+
+/* Contact slots of a kit run (add_contact's k): one per revolute
+ * clearance joint, one per corner of a prismatic one. */
+#define FB_KIT_SLOTS (FB_PLANAR_GUIDE_CORNERS * FB_PLANAR_SPEC_MAX_JOINTS)
+
+/* The contact slot of corner `corner` (0 .. FB_PLANAR_GUIDE_CORNERS - 1,
+ * planar_guide.h's order) of clearance joint `joint` (0 ..
+ * FB_PLANAR_SPEC_MAX_JOINTS - 1): the joint's own index for corner 0 (a
+ * revolute joint's one slot), the slots past FB_PLANAR_SPEC_MAX_JOINTS for
+ * the others. */
+int fb_kit_slot(int joint, int corner);
 
 /* What a world is made with. */
 typedef struct {
@@ -79,7 +94,13 @@ typedef struct {
 
 /* One clearance joint's contact for the coming step, computed by the kit
  * (kit_contact.c) from the bodies' states: the pin on the joint's body[0],
- * the hole on its body[1]. */
+ * the hole on its body[1]. A slider's corner in its guide (a prismatic
+ * clearance joint, planar_guide.h) is a contact of its own in the same
+ * terms: the slider (the joint's body[1]) the pin, the guide (its body[0])
+ * the hole, the point on the guide's wall under the corner (the corner
+ * less depth along the normal), the normal from the slide's line towards
+ * that wall (the wall pushes the slider along -normal), depth and rate
+ * the corner's, m_eff the corner's face's share (planar_guide.h). */
 typedef struct {
   int pin, hole;       /* body handles (hole FB_KIT_GROUND for a ground hole) */
   double point[2];     /* on the hole wall, hole centre + (pin radius + c) n [m] */
@@ -92,6 +113,9 @@ typedef struct {
   fb_contact_law law;  /* the joint's law with its damper on m_eff (contact_mass.h) */
   fb_mapping mapping;  /* the case's [clearance] mapping (contact.h) */
   double h;            /* step [s] */
+  double m_alone;      /* the contact's own effective mass, 1 / D_cc of the Delassus matrix
+                          (a slider's corner alone, lighter than its face's share m_eff: the
+                          slider's tilt); a pin's: m_eff [kg] */
 } fb_kit_contact;
 
 /* The clearance joints of a kit run (NULL: every joint ideal). */
@@ -104,8 +128,9 @@ typedef struct {
   double impact_velocity_min; /* an episode faster than this at onset is an impact [m/s] */
   int joint;                /* the joint whose force and penetration the series holds */
   double *force, *pen;      /* (n): its contact force [N] and penetration [m] per sample */
-  size_t contact_steps;     /* out: steps with a contact row, all joints */
-  int impacts;              /* out: impact episodes, all joints */
+  size_t contact_steps;     /* out: contact rows handed, over the steps and all joints (a
+                               slider's corners one each) */
+  int impacts;              /* out: impact episodes, all joints (a slider's per corner) */
   double *ecc;              /* optional (2 x n), NULL: not kept: joint's eccentricity, pin
                                centre - hole centre, x at ecc[i], y at ecc[n + i] [m] */
   double *state;            /* optional (n), NULL: not kept: joint's contact state in the step
@@ -165,11 +190,14 @@ typedef struct fb_kit_binding {
                              /* optional: keep body b in the plane (a body that only a
                                 clearance joint holds); NULL: the engine is planar */
   fb_status (*add_contact)(void *w, int k, const fb_kit_contact *c, fb_diag *diag);
-                             /* clearance joint k's contact for the coming step (the
-                                engine's native row or its force); NULL: no clearance */
+                             /* contact slot k's contact for the coming step (the
+                                engine's native row or its force; k < FB_KIT_SLOTS: a
+                                revolute clearance joint's index, or a slider's corner,
+                                fb_kit_slot); NULL: no clearance */
   double (*contact_force)(const void *w, int k);
-                             /* optional: the normal force clearance joint k's contact
-                                applied in the last step [N]; NULL: the law's */
+                             /* optional: the normal force contact slot k's contact
+                                applied in the last step [N] (0 when none); NULL: the
+                                law's */
   fb_status (*step)(void *w, fb_diag *diag);
   void (*body_state)(const void *w, int b, double pos[3], double vel[3]);
   void (*world_free)(void *w);

@@ -10,28 +10,61 @@
 #include "kit_record.h"
 #include "planar_constraints.h"
 #include "planar_mass.h"
+#include "series.h"
 
-fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl,
-                          fb_diag *diag) {
+int fb_kit_slot(int joint, int corner) {
+  return corner == 0 ? joint : FB_PLANAR_SPEC_MAX_JOINTS + (FB_PLANAR_GUIDE_CORNERS - 1) * joint +
+                                   corner - 1;
+}
+
+/* 1: joint j of m is a slider in its guide (a prismatic clearance joint) */
+static int is_guide(const fb_planar *m, int j) { return m->joint[j].kind == FB_KIND_PRISMATIC; }
+
+/* the contact slots of clearance joint j */
+static int slots(const fb_planar *m, int j) { return is_guide(m, j) ? FB_PLANAR_GUIDE_CORNERS : 1; }
+
+/* prismatic clearance joint j: its guide's size (a binding that builds
+ * its own clearance, add_clearance, refuses there what it cannot build) */
+static fb_status guide_ok(const fb_planar *m, const fb_kit_clearance *cl, int j, fb_diag *diag) {
+  if (!cl->guide)
+    return fb_diag_set(diag, FB_ERR_ARG, "clearance at prismatic joint '%s': the engine kit needs "
+                       "the slider's size in its guide (fb_kit_clearance.guide)", m->joint[j].name);
+  return fb_planar_guide_check(&cl->guide[j], diag);
+}
+
+fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_planar *m,
+                          const fb_kit_clearance *cl, fb_diag *diag) {
   memset(p, 0, sizeof *p);
+  if (cl->mask && cl->friction != 0.0 && b->add_contact)
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the engine kit's contact "
+                       "(the %s binding's add_contact) is a normal law only, frictionless; give "
+                       "friction = 0", cl->friction, b->engine);
+  int guides = 0;
   for (int j = 0; j < m->njoints; j++) {
     if (!(cl->mask & (1u << j))) continue;
-    const int guided = m->joint[j].kind == FB_KIND_PRISMATIC && cl->guide; /* its corners */
-    if (j >= FB_PLANAR_SPEC_MAX_JOINTS || !(m->joint[j].clearance_ok || guided))
+    if (j >= FB_PLANAR_SPEC_MAX_JOINTS || (!m->joint[j].clearance_ok && !is_guide(m, j)))
       return fb_diag_set(diag, FB_ERR_ARG, "clearance at joint '%s': the engine kit takes a pin "
-                         "in a hole at a revolute joint only", m->joint[j].name);
+                         "in a hole at a revolute joint, or a slider in its guide at a prismatic "
+                         "one", m->joint[j].name);
+    if (is_guide(m, j)) {
+      fb_status st = guide_ok(m, cl, j, diag);
+      if (st != FB_OK) return st;
+      guides++;
+    }
     p->off[j] = 1;
   }
   const int nq = fb_planar_nq(m);
-  p->q = calloc(3 * (size_t)nq, sizeof *p->q); /* q, qd, a guide's scratch forces */
+  p->q = calloc(2 * (size_t)nq, sizeof *p->q);
   if (!p->q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   p->qd = p->q + nq;
-  return FB_OK;
+  return guides ? fb_planar_cmass_new(&p->cm, m, p->off, diag) : FB_OK;
 }
 
 void fb_kit_pipe_free(fb_kit_pipe *p) {
   free(p->q);
   p->q = p->qd = NULL;
+  fb_planar_cmass_free(p->cm);
+  p->cm = NULL;
 }
 
 /* the coordinates now, from the engine */
@@ -39,28 +72,10 @@ static void read_state(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, c
   for (int k = 0; k < m->nbodies - 1; k++) b->body_state(w, k, p->q + 3 * k, p->qd + 3 * k);
 }
 
-/* prismatic joint j's slider in its guide (an engine's own relation): the
- * deepest corner's penetration and its rate (planar_guide.h's corners; no
- * contact handed: returns 0) */
-static int guide_geometry(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl, int j) {
-  const fb_contact_law none = {.kind = FB_LAW_LINEAR, .exponent = 1.0}; /* no force: geometry */
-  fb_planar_guide_state g;
-  fb_planar_guide_contact(p->qd + fb_planar_nq(m), &g, NULL, m, j, &cl->guide[j], &none, 0.0,
-                          p->q, p->qd);
-  int deep = 0;
-  for (int c = 1; c < FB_PLANAR_GUIDE_CORNERS; c++)
-    if (g.gap[c] < g.gap[deep]) deep = c;
-  p->pen[j] = g.gap[deep] < 0.0 ? -g.gap[deep] : 0.0;
-  p->rate[j] = g.rate[deep];
-  p->ecc[j][0] = p->ecc[j][1] = 0.0;
-  return 0;
-}
-
 /* joint j's contact into *c when its pin presses into the hole (returns 1) */
 static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
                     const fb_kit_clearance *cl, int j) {
   const fb_planar_joint *pj = &m->joint[j];
-  if (pj->kind == FB_KIND_PRISMATIC) return guide_geometry(p, m, cl, j);
   double xp[2], vp[2], xh[2], vh[2];
   fb_planar_point(xp, m, p->q, pj->body[0], pj->point[0]);
   fb_planar_point_velocity(vp, m, p->q, p->qd, pj->body[0], pj->point[0]);
@@ -82,12 +97,32 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
   return 1;
 }
 
+/* slider joint j's corners at the state read (planar_guide.h); its
+ * penetration the deepest corner's, its rate that corner's, its ecc the
+ * slider's centre across the slide and its tilt (the reference's columns,
+ * planar_dynamics.c) */
+static void corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], fb_kit_pipe *p,
+                    const fb_planar *m, const fb_kit_clearance *cl, int j) {
+  double tilt;
+  fb_planar_guide_corners(c, &tilt, m, j, &cl->guide[j], p->q, p->qd);
+  int deep = 0;
+  for (int r = 1; r < FB_PLANAR_GUIDE_CORNERS; r++)
+    if (c[r].gap < c[deep].gap) deep = r;
+  p->pen[j] = c[deep].gap < 0.0 ? -c[deep].gap : 0.0;
+  p->rate[j] = c[deep].rate;
+  p->ecc[j][0] = 0.25 * (c[2].gap + c[3].gap - c[0].gap - c[1].gap);
+  p->ecc[j][1] = tilt;
+}
+
 double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
                         const fb_planar *m, const fb_kit_clearance *cl) {
   read_state(p, b, w, m);
   fb_kit_contact c;
-  for (int j = 0; j < m->njoints; j++)
-    if (p->off[j]) geometry(&c, p, m, cl, j);
+  fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
+  for (int j = 0; j < m->njoints; j++) {
+    if (p->off[j] && is_guide(m, j)) corners(gc, p, m, cl, j);
+    else if (p->off[j]) geometry(&c, p, m, cl, j);
+  }
   return p->pen[cl->joint];
 }
 
@@ -122,6 +157,61 @@ static void native_episode(fb_kit_pipe *p, const fb_kit_binding *b, const void *
   p->rate_before[j] = p->rate[j];
 }
 
+/* contact slot k's episode (in: it presses), and when in, its contact
+ * *c (its geometry filled; the effective mass me along its normal, else
+ * the law's own mass) with the law on that mass, noted and handed to b */
+static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const char *joint,
+                      fb_kit_clearance *cl, int k, fb_kit_contact *c, int in, double me, double h,
+                      fb_diag *diag) {
+  p->force[k] = 0.0;
+  const int onset = in && !p->ep[k].in_contact, before = p->ep[k].impacts;
+  fb_episode_update(&p->ep[k], in, in ? c->rate : 0.0, cl->impact_velocity_min);
+  cl->impacts += p->ep[k].impacts - before;
+  if (!in) return FB_OK;
+  c->m_eff = isfinite(me) && me > 0.0 ? me : cl->law.mass;
+  if (!(c->m_alone > 0.0 && c->m_alone < c->m_eff)) c->m_alone = c->m_eff; /* a pin's */
+  c->law = fb_contact_law_on_mass(&cl->law, c->m_eff);
+  c->v0 = p->ep[k].v0;
+  c->onset = onset;
+  c->h = h;
+  p->force[k] = fb_contact_force(&c->law, c->depth, c->rate, c->v0);
+  fb_status st = FB_OK;
+  if (!b->applied_force && (st = note_row(c, joint, cl, diag)) != FB_OK) return st;
+  if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
+  if (cl->contact_steps == 0 || c->m_eff < cl->m_eff_min) cl->m_eff_min = c->m_eff;
+  if (cl->contact_steps == 0 || c->m_eff > cl->m_eff_max) cl->m_eff_max = c->m_eff;
+  cl->contact_steps++;
+  return FB_OK;
+}
+
+/* slider joint j's four corners, each a contact of its own slot: the
+ * slider the pin, the guide the hole, the point on the wall under the
+ * corner, the face's share of the effective mass (planar_guide.h) */
+static fb_status guide_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
+                                const fb_planar *m, fb_kit_clearance *cl, int j, double h,
+                                fb_diag *diag) {
+  const fb_planar_joint *pj = &m->joint[j];
+  fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
+  double mass[FB_PLANAR_GUIDE_CORNERS] = {0.0}, alone[FB_PLANAR_GUIDE_CORNERS] = {0.0};
+  corners(gc, p, m, cl, j);
+  if (p->pen[j] > 0.0) {
+    fb_status st = fb_planar_cmass_factor(p->cm, p->q, FB_EFFECTIVE_MASS_REG, diag);
+    if (st != FB_OK) return st;
+    fb_planar_guide_masses(mass, alone, p->cm, m, j, gc, p->q);
+  }
+  for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
+    const double d = -gc[r].gap, *n = gc[r].normal;
+    fb_kit_contact c = {.pin = pj->body[1] - 1, .hole = pj->body[0] - 1,
+                        .point = {gc[r].point[0] - d * n[0], gc[r].point[1] - d * n[1]},
+                        .normal = {n[0], n[1]}, .depth = d, .rate = gc[r].rate,
+                        .mapping = cl->mapping, .m_alone = alone[r]};
+    if (pj->body[0] == FB_PLANAR_GROUND) c.hole = FB_KIT_GROUND;
+    fb_status st = hand(p, b, w, pj->name, cl, fb_kit_slot(j, r), &c, d > 0.0, mass[r], h, diag);
+    if (st != FB_OK) return st;
+  }
+  return FB_OK;
+}
+
 fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
                                const fb_planar *m, fb_kit_clearance *cl, double h,
                                fb_diag *diag) {
@@ -131,32 +221,43 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
       native_episode(p, b, w, cl, j);
       continue;
     }
+    fb_status st = FB_OK;
+    if (is_guide(m, j)) {
+      if ((st = guide_contacts(p, b, w, m, cl, j, h, diag)) != FB_OK) return st;
+      continue;
+    }
     fb_kit_contact c;
-    p->force[j] = 0.0;
     const int in = geometry(&c, p, m, cl, j);
-    const int onset = in && !p->ep[j].in_contact, before = p->ep[j].impacts;
-    fb_episode_update(&p->ep[j], in, in ? c.rate : 0.0, cl->impact_velocity_min);
-    cl->impacts += p->ep[j].impacts - before;
-    if (!in) continue;
-    double wi[2][2];
-    fb_status st = fb_planar_effective_mass_tensor(wi, m, p->q, p->off, j, diag);
-    if (st != FB_OK) return st;
-    const double me = fb_effective_mass_along(wi, c.normal);
-    c.m_eff = isfinite(me) && me > 0.0 ? me : cl->law.mass;
-    c.law = fb_contact_law_on_mass(&cl->law, c.m_eff);
-    c.v0 = p->ep[j].v0;
-    c.onset = onset;
-    c.h = h;
-    p->force[j] = fb_contact_force(&c.law, c.depth, c.rate, c.v0);
-    if (!b->applied_force && (st = note_row(&c, m->joint[j].name, cl, diag)) != FB_OK) return st;
-    if ((st = b->add_contact(w, j, &c, diag)) != FB_OK) return st;
-    if (cl->contact_steps == 0 || c.m_eff < cl->m_eff_min) cl->m_eff_min = c.m_eff;
-    if (cl->contact_steps == 0 || c.m_eff > cl->m_eff_max) cl->m_eff_max = c.m_eff;
-    cl->contact_steps++;
+    double me = 0.0;
+    if (in) {
+      double wi[2][2];
+      if ((st = fb_planar_effective_mass_tensor(wi, m, p->q, p->off, j, diag)) != FB_OK) return st;
+      me = fb_effective_mass_along(wi, c.normal);
+    }
+    if ((st = hand(p, b, w, m->joint[j].name, cl, j, &c, in, me, h, diag)) != FB_OK) return st;
   }
   return FB_OK;
 }
 
-double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w, int k) {
-  return b->contact_force ? b->contact_force(w, k) : p->force[k];
+double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                         const fb_planar *m, int j) {
+  double f = 0.0;
+  /* an engine's own relation (add_clearance, no add_contact) reports its
+   * joint's whole force at the joint's index */
+  const int n = b->add_clearance && !b->add_contact ? 1 : slots(m, j);
+  for (int r = 0; r < n; r++) {
+    const int k = fb_kit_slot(j, r);
+    f += b->contact_force ? b->contact_force(w, k) : p->force[k];
+  }
+  return f;
+}
+
+int fb_kit_pipe_state(const fb_kit_pipe *p, const fb_planar *m, int j) {
+  if (!is_guide(m, j)) return p->ep[j].state;
+  int state = FB_STATE_FREE;
+  for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
+    const fb_episode *e = &p->ep[fb_kit_slot(j, r)];
+    if (e->in_contact && (state == FB_STATE_FREE || e->state == FB_STATE_IMPACT)) state = e->state;
+  }
+  return state;
 }

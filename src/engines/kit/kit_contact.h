@@ -8,25 +8,33 @@
 
 #include "episode.h"
 #include "kit.h"
+#include "planar_mass.h"
 #include "planar_spec.h"
 
 /* What the pipeline keeps between steps. */
 typedef struct {
-  fb_episode ep[FB_PLANAR_SPEC_MAX_JOINTS];   /* per joint */
-  double force[FB_PLANAR_SPEC_MAX_JOINTS];    /* the law's force handed this step [N] */
+  fb_episode ep[FB_KIT_SLOTS];                /* per contact slot (kit.h, fb_kit_slot) */
+  double force[FB_KIT_SLOTS];                 /* the law's force handed this step [N] */
   double pen[FB_PLANAR_SPEC_MAX_JOINTS];      /* penetration at the step's start [m] */
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: a clearance joint (no ideal joint) */
   double *q, *qd;                             /* the core's coordinates and rates (nq each) */
   double rate[FB_PLANAR_SPEC_MAX_JOINTS];     /* penetration rate at the state last read [m/s] */
   double rate_before[FB_PLANAR_SPEC_MAX_JOINTS]; /* the one read before it [m/s] */
-  double ecc[FB_PLANAR_SPEC_MAX_JOINTS][2];   /* eccentricity pin - hole at the last read [m] */
+  double ecc[FB_PLANAR_SPEC_MAX_JOINTS][2];   /* eccentricity pin - hole at the last read [m]
+                                                 (a slider: its centre across the slide [m],
+                                                 its tilt [rad]) */
+  fb_planar_cmass *cm;                        /* a slider's corners' effective masses (NULL:
+                                                 no prismatic clearance joint) */
 } fb_kit_pipe;
 
-/* Sets p up for m's clearance joints cl->mask. Errors: FB_ERR_ARG (a
- * joint out of range or not revolute, or more joints than the pipeline
- * holds), FB_ERR_NOMEM. Free with fb_kit_pipe_free. */
-fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl,
-                          fb_diag *diag);
+/* Sets p up for m's clearance joints cl->mask in b's engine. Errors:
+ * FB_ERR_ARG (cl->friction not 0 with a binding's add_contact: the
+ * kit's contact is frictionless; a joint out of range, a revolute joint that may not carry
+ * clearance, a prismatic one without cl->guide), those of
+ * fb_planar_guide_check, FB_ERR_NOMEM (a binding's add_clearance, called
+ * before, refuses what it cannot build). Free with fb_kit_pipe_free. */
+fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_planar *m,
+                          const fb_kit_clearance *cl, fb_diag *diag);
 void fb_kit_pipe_free(fb_kit_pipe *p);
 
 /* Reads the bodies' states from the engine and every clearance joint's
@@ -48,8 +56,16 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
                                const fb_planar *m, fb_kit_clearance *cl, double h,
                                fb_diag *diag);
 
-/* The force of joint k in the step just taken [N]: the engine's
+/* The force of clearance joint j of m in the step just taken [N], over
+ * its slots (a slider's four corners summed): the engine's
  * (contact_force) when the binding reports it, else the law's. */
-double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w, int k);
+double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                         const fb_planar *m, int j);
+
+/* The contact state (series.h FB_STATE_*) of clearance joint j of m's
+ * episode: a revolute joint's; a slider's impact when a corner in contact
+ * is in an impact episode, else continuous when one is in contact, else
+ * free. */
+int fb_kit_pipe_state(const fb_kit_pipe *p, const fb_planar *m, int j);
 
 #endif

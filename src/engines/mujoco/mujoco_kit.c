@@ -30,7 +30,13 @@
  * onset rate); a contact that starts within a step takes the last law and
  * its own rate, as the four-bar's hook does. The reported force is the
  * kit's (the law at each sample's state, as the four-bar's samples give
- * it). MuJoCo's own contact solver is not used.
+ * it). MuJoCo's own contact solver is not used. A slider in its guide (a
+ * prismatic clearance joint) is four contact slots (kit.h), its corners
+ * from add_clearance (planar_guide.h's geometry at the start): each the
+ * corner on the slider against its wall on the guide, penetration
+ * n . (corner - wall point), rate n . (v_corner - v_guide there), n the
+ * wall's normal towards it, the force -F n on the slider at the corner and
+ * +F n on the guide, in the same hook.
  *
  * Stops (FB_ERR_NUMERIC, a result): a contact whose h omega_c (the law's
  * tangent stiffness on the effective mass) exceeds the explicit
@@ -54,6 +60,11 @@
  * Euler (and MuJoCo 2.2's implicit, implicit in joint damping only) at 2 */
 #define MK_RK4_H_OMEGA_MAX 2.8284271247461903
 #define MK_EULER_H_OMEGA_MAX 2.0
+/* h |lambda| bounds on the negative real axis (an overdamped contact):
+ * RK4's stability polynomial 1 + z + z^2/2 + z^3/6 + z^4/24 has modulus 1
+ * at z = -2.7853; explicit Euler's at -2 */
+#define MK_RK4_H_REAL_MAX 2.785293563405282
+#define MK_EULER_H_REAL_MAX 2.0
 
 /* bytes of MJCF text: a body with its joints ~400, an equality ~250 */
 #define MK_MJCF_BASE 2048
@@ -66,9 +77,11 @@ typedef struct {
   double axis[2];      /* unit, world, at assembly */
 } mk_joint;
 
-/* a clearance joint: its pin's and hole's centres, its law */
+/* a contact slot (kit.h): a pin in its hole (its pin's and hole's
+ * centres), or a slider's corner against its guide's wall (the corner on
+ * the slider, the wall's point and normal on the guide), its law */
 typedef struct {
-  int in;              /* 1: a clearance joint */
+  int in;              /* 1: a clearance joint's slot */
   int on;              /* 1: the kit handed its contact for this step (law, v0) */
   int pin, hole;       /* kit handles, then MuJoCo body ids (hole 0: the world) */
   double at[2];        /* both centres at assembly [m] */
@@ -78,6 +91,10 @@ typedef struct {
   double v0;           /* the step's onset rate [m/s] */
   fb_contact_law law;  /* the law, its damper on the last effective mass the kit gave (before
                           the first contact: on the law's own mass) */
+  int wall;            /* 1: a corner against a flat wall (planar_guide.h), else a pin */
+  double aw[2], nw[2]; /* a wall: its point and its unit normal (towards the wall, the way
+                          the corner penetrates) at assembly [m], [-] */
+  double ln[2];        /* a wall's normal in the hole's (guide's) frame [-]; lh its point */
 } mk_contact;
 
 typedef struct {
@@ -94,7 +111,7 @@ typedef struct {
   mjModel *m;
   mjData *d;
   int *bid;            /* (nb) MuJoCo body id of each handle */
-  mk_contact ct[FB_PLANAR_SPEC_MAX_JOINTS];
+  mk_contact ct[FB_KIT_SLOTS]; /* by the kit's contact slot */
   size_t steps;
 } mk_world;
 
@@ -334,12 +351,14 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
     snprintf(name, sizeof name, "b%d", b);
     k->bid[b] = mj_name2id(k->m, mjOBJ_BODY, name);
   }
-  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) {
+  for (int j = 0; j < FB_KIT_SLOTS; j++) {
     mk_contact *c = &k->ct[j];
     if (!c->in) continue;
     const double *p = pose(k, c->pin + 1), *q = pose(k, c->hole + 1);
+    const double *h = c->wall ? c->aw : c->at; /* the hole's point: a wall's, or the centre */
     to_frame(c->lp, p[2], c->at[0] - p[0], c->at[1] - p[1]);
-    to_frame(c->lh, q[2], c->at[0] - q[0], c->at[1] - q[1]);
+    to_frame(c->lh, q[2], h[0] - q[0], h[1] - q[1]);
+    to_frame(c->ln, q[2], c->nw[0], c->nw[1]);
     c->pin = k->bid[c->pin];
     c->hole = c->hole == FB_KIT_GROUND ? 0 : k->bid[c->hole];
   }
@@ -369,18 +388,31 @@ static void point_state(const mjModel *m, const mjData *d, int b, const double l
 static void kit_passive(void *ctx, const mjModel *m, mjData *d) {
   mk_world *k = ctx;
   const double zero[3] = {0.0, 0.0, 0.0};
-  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) {
+  for (int j = 0; j < FB_KIT_SLOTS; j++) {
     const mk_contact *c = &k->ct[j];
     if (!c->in) continue;
-    double xp[3], vp[3], xh[3], vh[3];
+    double xp[3], vp[3], xh[3], vh[3], n[2], depth;
     point_state(m, d, c->pin, c->lp, xp, vp);
     point_state(m, d, c->hole, c->lh, xh, vh);
-    const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
-    if (!(ecc > c->c)) continue;
-    const double n[2] = {e[0] / ecc, e[1] / ecc};
+    if (c->wall) { /* the wall's normal now; the guide's velocity under the corner */
+      const double *R = d->xmat + 9 * c->hole, *o = d->xpos + 3 * c->hole;
+      n[0] = R[0] * c->ln[0] + R[1] * c->ln[1];
+      n[1] = R[3] * c->ln[0] + R[4] * c->ln[1];
+      double under[2], xu[3];
+      to_frame(under, atan2(R[3], R[0]), xp[0] - o[0], xp[1] - o[1]);
+      point_state(m, d, c->hole, under, xu, vh);
+      depth = n[0] * (xp[0] - xh[0]) + n[1] * (xp[1] - xh[1]);
+      xh[0] = xp[0], xh[1] = xp[1];
+    } else {
+      const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
+      if (!(ecc > c->c)) continue;
+      n[0] = e[0] / ecc, n[1] = e[1] / ecc;
+      depth = ecc - c->c;
+    }
+    if (!(depth > 0.0)) continue;
     const double rate = n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]);
     const double v0 = c->on ? c->v0 : fmax(rate, c->v_min);
-    const double f = fb_contact_force(&c->law, ecc - c->c, rate, v0);
+    const double f = fb_contact_force(&c->law, depth, rate, v0);
     if (!(f > 0.0)) continue;
     const double on_pin[3] = {-f * n[0], -f * n[1], 0.0}, on_hole[3] = {f * n[0], f * n[1], 0.0};
     mj_applyFT(m, d, on_pin, zero, xp, c->pin, d->qfrc_passive);
@@ -397,9 +429,28 @@ static fb_status kit_add_clearance(void *w, int j, const fb_kit_clearance_joint 
   const fb_kit_clearance *cl = cj->cl;
   if (j < 0 || j >= FB_PLANAR_SPEC_MAX_JOINTS)
     return fb_diag_set(diag, FB_ERR_ARG, "clearance joint %d out of range", j);
-  k->ct[j] = (mk_contact){.in = 1, .pin = pin, .hole = hole, .at = {at[0], at[1]},
-                          .c = cl->radial_clearance, .v_min = cl->impact_velocity_min,
-                          .law = cl->law};
+  if (cj->kind != FB_KIND_PRISMATIC) {
+    k->ct[j] = (mk_contact){.in = 1, .pin = pin, .hole = hole, .at = {at[0], at[1]},
+                            .c = cl->radial_clearance, .v_min = cl->impact_velocity_min,
+                            .law = cl->law};
+    return FB_OK;
+  }
+  /* a slider in its guide (kit.h: pin the guide's handle, hole the
+   * slider's): corner r of planar_guide.h (sigma, tau) on the slider at
+   * at + sigma a u + tau b perp(u), against the wall at at + tau (b + c)
+   * perp(u) on the guide, its normal tau perp(u), all at the start */
+  const double *u = cj->axis, pu[2] = {-u[1], u[0]};
+  const fb_planar_guide *g = &cj->guide;
+  for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
+    const double sigma = r % 2 ? 1.0 : -1.0, tau = r < 2 ? 1.0 : -1.0;
+    const double wall = tau * (g->half_height + g->clearance);
+    k->ct[fb_kit_slot(j, r)] = (mk_contact){
+        .in = 1, .pin = hole, .hole = pin, .wall = 1,
+        .at = {at[0] + sigma * g->half_length * u[0] + tau * g->half_height * pu[0],
+               at[1] + sigma * g->half_length * u[1] + tau * g->half_height * pu[1]},
+        .aw = {at[0] + wall * pu[0], at[1] + wall * pu[1]}, .nw = {tau * pu[0], tau * pu[1]},
+        .v_min = cl->impact_velocity_min, .law = cl->law};
+  }
   return FB_OK;
 }
 
@@ -407,8 +458,8 @@ static fb_status kit_add_clearance(void *w, int j, const fb_kit_clearance_joint 
  * mass) and onset rate; a stop where the explicit spring is unstable */
 static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
   mk_world *k = w;
-  if (j < 0 || j >= FB_PLANAR_SPEC_MAX_JOINTS || !k->ct[j].in)
-    return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit has no clearance joint %d", j);
+  if (j < 0 || j >= FB_KIT_SLOTS || !k->ct[j].in)
+    return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit has no contact slot %d", j);
   /* h omega_c with the law's tangent stiffness at this penetration */
   double kp, kd, depth;
   fb_contact_linearize(&c->law, FB_MAPPING_TANGENT, c->depth, c->rate, c->v0, &kp, &kd, &depth);
@@ -419,6 +470,19 @@ static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_dia
                        "(MuJoCo's %s integrates the law's force explicitly, bound %.3g); "
                        "largest usable step %.3g s", hw, j,
                        fb_mujoco_integrator_name(k->integrator), bound, c->h * bound / hw);
+  /* a contact lighter alone than the mass its law's damper sits on (a
+   * slider's corner: the slider's tilt, kit.h's m_alone) can be
+   * overdamped on that mass: its fast real eigenvalue -(kd + sqrt(kd^2 -
+   * 4 kp m)) / (2 m) must lie inside the integrator's real-axis bound (the
+   * slider in its guide at h = 1e-6 s: h lambda ~ 3, RK4's bound 2.79) */
+  const double ma = c->m_alone, disc = kd * kd - 4.0 * kp * ma;
+  const double hl = ma < c->m_eff && disc > 0.0 ? c->h * (kd + sqrt(disc)) / (2.0 * ma) : 0.0;
+  const double real = k->integrator == FB_MUJOCO_RK4 ? MK_RK4_H_REAL_MAX : MK_EULER_H_REAL_MAX;
+  if (hl > real)
+    return fb_diag_set(diag, FB_ERR_NUMERIC, "unstable: h lambda = %.3g, the damper on contact "
+                       "%d's own mass %.3g kg (explicit %s, bound %.3g); largest usable step "
+                       "%.3g s", hl, j, ma, fb_mujoco_integrator_name(k->integrator), real,
+                       c->h * real / hl);
   mk_contact *x = &k->ct[j];
   x->law = c->law;
   x->v0 = c->v0;
@@ -434,7 +498,7 @@ static fb_status kit_step(void *w, fb_diag *diag) {
   mj_forward(k->m, k->d);
   fb_mujoco_integrate(k->m, k->d, k->integrator);
   fb_mujoco_passive_off();
-  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) k->ct[j].on = 0;
+  for (int j = 0; j < FB_KIT_SLOTS; j++) k->ct[j].on = 0;
   k->steps++;
   for (int i = 0; i < k->m->nv; i++)
     if (!isfinite(k->d->qvel[i]))

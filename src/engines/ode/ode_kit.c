@@ -38,14 +38,14 @@ typedef struct {
   double fmax;     /* drive torque limit [N m] */
   size_t steps;
   int broken;      /* an ODE error left the world mid-step */
-  /* clearance joints by the description's index: this step's contact joint,
-   * its feedback, the share of its impulse that is this step's
-   * (contact.h), the normal force of the last step [N] */
+  /* contacts by the kit's slot (kit.h: a pin's, or a slider's corner's):
+   * this step's contact joint, its feedback, the share of its impulse that
+   * is this step's (contact.h), the normal force of the last step [N] */
   dJointGroupID contacts;
-  dJointID cj[FB_PLANAR_SPEC_MAX_JOINTS];
-  dJointFeedback fb[FB_PLANAR_SPEC_MAX_JOINTS];
-  double share[FB_PLANAR_SPEC_MAX_JOINTS];
-  double force[FB_PLANAR_SPEC_MAX_JOINTS];
+  dJointID cj[FB_KIT_SLOTS];
+  dJointFeedback fb[FB_KIT_SLOTS];
+  double share[FB_KIT_SLOTS];
+  double force[FB_KIT_SLOTS];
 } ode_kit;
 
 static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
@@ -168,7 +168,7 @@ static double kit_contact_force(const void *w, int j) { return ((const ode_kit *
 
 /* the contact forces the step left (on the pin, body 1 of each row) */
 static void contact_forces(ode_kit *k) {
-  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) {
+  for (int j = 0; j < FB_KIT_SLOTS; j++) {
     k->force[j] = k->cj[j] ? k->share[j] * hypot(k->fb[j].f1[0], k->fb[j].f1[1]) : 0.0;
     k->cj[j] = 0;
   }

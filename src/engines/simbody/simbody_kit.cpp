@@ -367,7 +367,11 @@ fb_status kit_add_drive(void *w, int jn, double rate, fb_diag *diag) {
 // clearance joint jn of m: the pin and the hole, their centres at the
 // joint on assembly
 fb_status kit_add_clearance(void *w, int jn, const fb_kit_clearance_joint *cj, fb_diag *diag) {
-  (void)diag;
+  if (cj->kind != FB_KIND_REVOLUTE) // its force element is a pin's in a hole
+    return fb_diag_set(diag, FB_ERR_ARG, "clearance at prismatic joint '%s' (a slider in its "
+                       "guide): the Simbody binding's force element takes a pin in its hole "
+                       "only; ODE, Bullet and MuJoCo build the slider's corners",
+                       cj->m->joint[jn].name);
   const fb_planar *m = cj->m;
   const fb_kit_clearance *cl = cj->cl;
   Kit *k = kit(w);

@@ -18,10 +18,9 @@ fb_status fb_planar_guide_check(const fb_planar_guide *g, fb_diag *diag) {
 }
 
 
-void fb_planar_guide_contact(double *force, fb_planar_guide_state *out, fb_planar_cmass *cm,
+void fb_planar_guide_corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], double *tilt,
                              const fb_planar *m, int j, const fb_planar_guide *g,
-                             const fb_contact_law *law, double v0, const double *q,
-                             const double *qd) {
+                             const double *q, const double *qd) {
   const fb_planar_joint *jt = &m->joint[j];
   const int i = jt->body[0], k = jt->body[1];
   const double ti = fb_planar_angle(q, i);
@@ -32,63 +31,85 @@ void fb_planar_guide_contact(double *force, fb_planar_guide_state *out, fb_plana
   const double nk[2] = {-uk[1], uk[0]}, nb[2] = {-jt->axis[1], jt->axis[0]};
   fb_planar_rotate(n, ti, nb);
   fb_planar_point(o, m, q, i, jt->point[0]);
-  fb_planar_guide_state st = {{0}, {0}, {0}, {0}, fb_planar_angle(q, k) - ti + rel0};
-  /* each corner: its point on the slider (s), in the world (p), on the guide (sg) */
-  double s[FB_PLANAR_GUIDE_CORNERS][2], p[FB_PLANAR_GUIDE_CORNERS][2];
-  double sg[FB_PLANAR_GUIDE_CORNERS][2], nn[FB_PLANAR_GUIDE_CORNERS][2];
-  int on[FB_PLANAR_GUIDE_CORNERS];
-  int n_on = 0;
+  if (tilt) *tilt = fb_planar_angle(q, k) - ti + rel0;
   const double ri[2] = {i ? q[3 * (i - 1)] : 0.0, i ? q[3 * (i - 1) + 1] : 0.0};
-  for (int c = 0; c < FB_PLANAR_GUIDE_CORNERS; c++) {
-    const double sigma = c % 2 ? 1.0 : -1.0, tau = c < 2 ? 1.0 : -1.0;
-    for (int x = 0; x < 2; x++)
-      s[c][x] = jt->point[1][x] + sigma * g->half_length * uk[x] + tau * g->half_height * nk[x];
+  for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
+    fb_planar_guide_corner *x = &c[r];
+    const double sigma = r % 2 ? 1.0 : -1.0, tau = r < 2 ? 1.0 : -1.0;
+    for (int a = 0; a < 2; a++)
+      x->slider[a] = jt->point[1][a] + sigma * g->half_length * uk[a] + tau * g->half_height * nk[a];
     double vp[2], vg[2];
-    fb_planar_point(p[c], m, q, k, s[c]);
-    fb_planar_point_velocity(vp, m, q, qd, k, s[c]);
+    fb_planar_point(x->point, m, q, k, x->slider);
+    fb_planar_point_velocity(vp, m, q, qd, k, x->slider);
     /* the guide's material point under the corner, in the guide's frame */
-    const double d[2] = {p[c][0] - ri[0], p[c][1] - ri[1]};
-    fb_planar_rotate(sg[c], -ti, d);
-    fb_planar_point_velocity(vg, m, q, qd, i, sg[c]);
-    const double y = n[0] * (p[c][0] - o[0]) + n[1] * (p[c][1] - o[1]);
-    st.gap[c] = g->half_height + g->clearance - tau * y;
-    st.rate[c] = tau * (n[0] * (vp[0] - vg[0]) + n[1] * (vp[1] - vg[1]));
-    nn[n_on][0] = tau * n[0];
-    nn[n_on][1] = tau * n[1];
-    if (st.gap[c] < 0.0) on[n_on++] = c;
+    const double d[2] = {x->point[0] - ri[0], x->point[1] - ri[1]};
+    fb_planar_rotate(x->guide, -ti, d);
+    fb_planar_point_velocity(vg, m, q, qd, i, x->guide);
+    const double y = n[0] * (x->point[0] - o[0]) + n[1] * (x->point[1] - o[1]);
+    x->gap = g->half_height + g->clearance - tau * y;
+    x->rate = tau * (n[0] * (vp[0] - vg[0]) + n[1] * (vp[1] - vg[1]));
+    x->normal[0] = tau * n[0];
+    x->normal[1] = tau * n[1];
   }
-  if (fb_contact_law_wants_mass(law) && n_on > 0) {
-    /* each corner's damper on its face's share 1 / (D_cc + D_cc'), c' the
-     * other corner of its face (c ^ 1), D the four corners' Delassus
-     * matrix: exact when the face strikes flat (equal forces: the pair
-     * rebounds at cr), continuous in q whatever touches (a mass that jumps
-     * as the other corner comes in stalls rk8pd at tight tolerances) */
-    double dl[FB_PLANAR_GUIDE_CORNERS * FB_PLANAR_GUIDE_CORNERS], na[FB_PLANAR_GUIDE_CORNERS][2];
-    int ba[FB_PLANAR_GUIDE_CORNERS], ga[FB_PLANAR_GUIDE_CORNERS];
-    for (int c = 0; c < FB_PLANAR_GUIDE_CORNERS; c++) {
-      const double tau = c < 2 ? 1.0 : -1.0;
-      na[c][0] = tau * n[0];
-      na[c][1] = tau * n[1];
-      ba[c] = k;
-      ga[c] = i;
+}
+
+void fb_planar_guide_masses(double mass[FB_PLANAR_GUIDE_CORNERS],
+                            double alone[FB_PLANAR_GUIDE_CORNERS], fb_planar_cmass *cm,
+                            const fb_planar *m, int j,
+                            const fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS],
+                            const double *q) {
+  /* each corner's damper on its face's share 1 / (D_cc + D_cc'), c' the
+   * other corner of its face (c ^ 1), D the four corners' Delassus
+   * matrix: exact when the face strikes flat (equal forces: the pair
+   * rebounds at cr), continuous in q whatever touches (a mass that jumps
+   * as the other corner comes in stalls rk8pd at tight tolerances) */
+  const int w = FB_PLANAR_GUIDE_CORNERS;
+  double dl[FB_PLANAR_GUIDE_CORNERS * FB_PLANAR_GUIDE_CORNERS];
+  double s[FB_PLANAR_GUIDE_CORNERS][2], sg[FB_PLANAR_GUIDE_CORNERS][2];
+  double na[FB_PLANAR_GUIDE_CORNERS][2];
+  int ba[FB_PLANAR_GUIDE_CORNERS], ga[FB_PLANAR_GUIDE_CORNERS];
+  for (int r = 0; r < w; r++) {
+    for (int a = 0; a < 2; a++) {
+      s[r][a] = c[r].slider[a];
+      sg[r][a] = c[r].guide[a];
+      na[r][a] = c[r].normal[a];
     }
-    fb_planar_cmass_delassus(cm, dl, FB_PLANAR_GUIDE_CORNERS, ba, (const double(*)[2])s, ga,
-                             (const double(*)[2])sg, (const double(*)[2])na, q);
-    for (int r = 0; r < n_on; r++) {
-      const int c = on[r], w = FB_PLANAR_GUIDE_CORNERS;
-      const double sum = dl[c * w + c] + dl[c * w + (c ^ 1)];
-      st.mass[c] = 1.0 / (sum > 0.0 ? sum : dl[c * w + c]);
-    }
+    ba[r] = m->joint[j].body[1];
+    ga[r] = m->joint[j].body[0];
   }
-  for (int r = 0; r < n_on; r++) {
-    const int c = on[r];
-    const fb_contact_law lw = fb_contact_law_on_mass(law, st.mass[c]);
-    st.force[c] = fb_contact_force(&lw, -st.gap[c], st.rate[c], v0);
+  fb_planar_cmass_delassus(cm, dl, w, ba, (const double(*)[2])s, ga, (const double(*)[2])sg,
+                           (const double(*)[2])na, q);
+  for (int r = 0; r < w; r++) {
+    const double sum = dl[r * w + r] + dl[r * w + (r ^ 1)];
+    mass[r] = c[r].gap < 0.0 ? 1.0 / (sum > 0.0 ? sum : dl[r * w + r]) : 0.0;
+    if (alone) alone[r] = c[r].gap < 0.0 ? 1.0 / dl[r * w + r] : 0.0;
+  }
+}
+
+void fb_planar_guide_contact(double *force, fb_planar_guide_state *out, fb_planar_cmass *cm,
+                             const fb_planar *m, int j, const fb_planar_guide *g,
+                             const fb_contact_law *law, double v0, const double *q,
+                             const double *qd) {
+  const int i = m->joint[j].body[0], k = m->joint[j].body[1];
+  fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS];
+  fb_planar_guide_state st = {{0}, {0}, {0}, {0}, 0.0};
+  fb_planar_guide_corners(c, &st.tilt, m, j, g, q, qd);
+  int n_on = 0;
+  for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
+    st.gap[r] = c[r].gap;
+    st.rate[r] = c[r].rate;
+    n_on += c[r].gap < 0.0;
+  }
+  if (fb_contact_law_wants_mass(law) && n_on > 0) fb_planar_guide_masses(st.mass, NULL, cm, m, j, c, q);
+  for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
+    if (!(c[r].gap < 0.0)) continue;
+    const fb_contact_law lw = fb_contact_law_on_mass(law, st.mass[r]);
+    st.force[r] = fb_contact_force(&lw, -c[r].gap, c[r].rate, v0);
     /* the wall pushes the corner back towards the slide's line (along -tau n) */
-    const double fs[2] = {-st.force[c] * nn[r][0], -st.force[c] * nn[r][1]};
+    const double fs[2] = {-st.force[r] * c[r].normal[0], -st.force[r] * c[r].normal[1]};
     const double fg[2] = {-fs[0], -fs[1]};
-    fb_planar_add_force(force, q, k, p[c], fs);
-    fb_planar_add_force(force, q, i, p[c], fg);
+    fb_planar_add_force(force, q, k, c[r].point, fs);
+    fb_planar_add_force(force, q, i, c[r].point, fg);
   }
   if (out) *out = st;
 }

@@ -62,9 +62,46 @@ typedef struct {
   double tilt;                           /* the slider's angle to the slide [rad] */
 } fb_planar_guide_state;
 
+/* One corner of the slider at a state (fb_planar_guide_corners): where it
+ * is, which way its wall lies, how far, how fast it closes. */
+typedef struct {
+  double slider[2]; /* s: the corner in the slider's frame [m] */
+  double guide[2];  /* sg: the guide's material point under the corner, in the guide's
+                       frame [m] */
+  double point[2];  /* p: the corner in the world [m] */
+  double normal[2]; /* tau n: unit, from the slide's line towards the corner's own wall,
+                       the way the corner penetrates it (the wall pushes the slider along
+                       -normal, the guide along +normal) [-] */
+  double gap;       /* g = (b + c) - tau y [m] (< 0: penetration) */
+  double rate;      /* delta' = tau n . (p' - v_guide(p)) [m/s] (> 0 approaching the wall) */
+} fb_planar_guide_corner;
+
 /* Checks g: a, b, c positive and finite. Errors: FB_ERR_RANGE naming the
  * value and the rule. */
 fb_status fb_planar_guide_check(const fb_planar_guide *g, fb_diag *diag);
+
+/* The four corners of prismatic joint j of m (its body[0] the guide, its
+ * body[1] the slider) with geometry g at state q, qd (nq each) into c
+ * (order 1, 2, 3, 4 as sketched: sigma = -1, +1; tau = +1, +1, -1, -1);
+ * the slider's tilt to the slide into *tilt [rad] (may be NULL). The one
+ * geometry of a corner: the reference (fb_planar_guide_contact) and the
+ * engine kit's corner contacts (kit_contact.c) both take it. */
+void fb_planar_guide_corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], double *tilt,
+                             const fb_planar *m, int j, const fb_planar_guide *g,
+                             const double *q, const double *qd);
+
+/* The restitution damper's effective mass [kg] of every corner of c in
+ * contact (gap < 0) into mass (others 0): its face's share
+ * 1 / (D_cc + D_cc') (the sketch's rule above), D the four corners'
+ * Delassus matrix (planar_mass.h) at q, the configuration cm last
+ * factorised, with prismatic joint j of m out of its set; alone (may be
+ * NULL) the same corners' own 1 / D_cc [kg] (the corner alone: lighter,
+ * the slider's tilt). */
+void fb_planar_guide_masses(double mass[FB_PLANAR_GUIDE_CORNERS],
+                            double alone[FB_PLANAR_GUIDE_CORNERS], fb_planar_cmass *cm,
+                            const fb_planar *m, int j,
+                            const fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS],
+                            const double *q);
 
 /* The corners of prismatic joint j of m with geometry g at state q, qd
  * (nq each) into *out (may be NULL); each corner's force is added to

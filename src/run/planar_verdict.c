@@ -189,6 +189,22 @@ static void ideal(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_
 }
 
 /* a clearance model against its reference (planar_verdict.h) */
+/* the time of a revolution the impacts' pairing window is a share of [s]:
+ * the drive's, 2 pi / |omega|; an undriven case's, that of the fastest
+ * body of reference ref at its mean rate over the run (its angle's change
+ * over the samples held: the Flores-Leine-Glocker crank's 150 rad/s start
+ * gives about 42 ms); INFINITY when no body turns */
+static double revolution(const fb_planar_run *r, const fb_planar_model *ref) {
+  if (r->m->drive >= 0) return 2.0 * M_PI / fabs(r->omega);
+  double rate = 0.0;
+  const size_t last = ref->n - 1;
+  for (int b = 1; ref->n > 1 && b < r->m->nbodies; b++) {
+    const double turn = fabs(angle(ref, b, last) - angle(ref, b, 0));
+    if (isfinite(turn)) rate = fmax(rate, turn / (ref->t[last] - ref->t[0]));
+  }
+  return rate > 0.0 ? 2.0 * M_PI / rate : INFINITY;
+}
+
 static void clearance(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_model *p,
                       const fb_planar_model *ref) {
   if (ref->ref.failed) {
@@ -214,8 +230,7 @@ static void clearance(fb_planar_verdict *v, const fb_planar_run *r, const fb_pla
   v->impacts = na;
   v->impacts_reference = nb;
   v->parts_s = parts_at(r, p, ref);
-  const double period = 2.0 * M_PI / fabs(r->omega);
-  pair(v, p, ref, a, na, b, nb, FB_IMPACT_MATCH_REV_FRACTION * period);
+  pair(v, p, ref, a, na, b, nb, FB_IMPACT_MATCH_REV_FRACTION * revolution(r, ref));
   free(a);
   free(b);
   const int first_bad = (na > 0 || nb > 0) &&
@@ -282,9 +297,9 @@ void fb_planar_verdicts(fb_planar_run *r) {
     } else if (!y) {
       snprintf(v->reason, sizeof v->reason, "nothing to compare with: the run has no %s",
                p->force ? (want ? want->name : "reference of its law") : "analytic");
-    } else if (p->force && r->m->drive < 0) { /* impacts pair within a share of a revolution */
-      snprintf(v->reason, sizeof v->reason, "an undriven case: impacts are paired with %s's "
-               "by the drive's angle, and it has no drive", y->name);
+    } else if (p->force && !(revolution(r, y) < INFINITY)) { /* impacts pair within a share of it */
+      snprintf(v->reason, sizeof v->reason, "an undriven case in which no body of %s turns: "
+               "impacts are paired within a share of a revolution, and it has none", y->name);
     } else if (p->force) {
       clearance(v, r, p, y);
     } else {

@@ -12,10 +12,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/siconos_kit_guide}
-refdir=${FOURBAR_SICONOS_REF_DIR:-external/siconos_slider_crank}
-ref=$refdir/SliderCrankMoreauJeanCombinedProjectionOSI.ref
 exe=${FOURBAR:-./build/fourbar}
-[ -r "$ref" ] || { echo "no $ref: see docs/models.md for where to fetch it" >&2; exit 1; }
+. scripts/siconos_ref.sh
 example="siconos.coordinates=angles siconos.scheme=combined-projection siconos.newton=example \
 clearance.friction=0.01"
 # tag and the one change from the example's settings (none: the example's)

@@ -13,11 +13,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/siconos_slider_guide}
-refdir=${FOURBAR_SICONOS_REF_DIR:-external/siconos_slider_crank}
-ref=$refdir/SliderCrankMoreauJeanCombinedProjectionOSI.ref
 exe=${FOURBAR_SLIDER_GUIDE:-./build/tests/test_siconos_slider_guide}
 mkdir -p "$out"
-[ -r "$ref" ] || { echo "no $ref: see docs/models.md for where to fetch it" >&2; exit 1; }
+. scripts/siconos_ref.sh
 "$exe" "$refdir" -o "$out/ours.dat"
 # one row per time: our 35 columns, then the .ref's 35 (its first line is "rows cols")
 tail -n +2 "$ref" | paste -d' ' "$out/ours.dat" - > "$out/both.dat"

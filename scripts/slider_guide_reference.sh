@@ -13,10 +13,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/slider_guide_reference}
-refdir=${FOURBAR_SICONOS_REF_DIR:-external/siconos_slider_crank}
-ref=$refdir/SliderCrankMoreauJeanCombinedProjectionOSI.ref
 exe=${FOURBAR:-./build/fourbar}
-[ -r "$ref" ] || { echo "no $ref: see docs/models.md for where to fetch it" >&2; exit 1; }
+. scripts/siconos_ref.sh
 FOURBAR_REFERENCE_TOL=1e-10 "$exe" run cases/slider_guide_flores_leine_glocker.ini \
   --out "$out" --no-report --set run.models=reference-restitution > /dev/null
 # one row per sample: time, our crank and slider angles [rad], then the .ref's 35 columns

@@ -71,6 +71,8 @@ IMPULSE_REL = 5e-2
 # 5. The slider's tilt over the run [rad]: the reference's stays below
 # 8e-13 rad; measured ODE 3e-17, Bullet 1.7e-7 (why Bullet's tilts: not
 # traced), MuJoCo 3.6e-13 (impact law) and 9.8e-12 (restitution, 2.5e-7 s).
+# Simbody's corners (its force element, the face's share of the effective
+# mass at every evaluation) are held to the same bounds 1 to 5.
 TILT_RAD = 1e-6
 
 # (step, engine model, its reference): MuJoCo's restitution law at a
@@ -83,7 +85,9 @@ RUNS = ((H_S, (("ode-clearance-impact", "reference"),
                ("ode-clearance-restitution", "reference-restitution"),
                ("bullet-clearance-impact", "reference"),
                ("bullet-clearance-restitution", "reference-restitution"),
-               ("mujoco-clearance-impact", "reference"))),
+               ("mujoco-clearance-impact", "reference"),
+               ("simbody-clearance-impact", "reference"),
+               ("simbody-clearance-restitution", "reference-restitution"))),
         (H_S / 4, (("mujoco-clearance-restitution", "reference-restitution"),)))
 rc, so, _ = fb_script.run(exe, tmp, "models", "--json")
 check(rc == 0, "fourbar models --json runs")

@@ -436,20 +436,13 @@ static fb_status kit_add_clearance(void *w, int j, const fb_kit_clearance_joint 
     return FB_OK;
   }
   /* a slider in its guide (kit.h: pin the guide's handle, hole the
-   * slider's): corner r of planar_guide.h (sigma, tau) on the slider at
-   * at + sigma a u + tau b perp(u), against the wall at at + tau (b + c)
-   * perp(u) on the guide, its normal tau perp(u), all at the start */
-  const double *u = cj->axis, pu[2] = {-u[1], u[0]};
-  const fb_planar_guide *g = &cj->guide;
+   * slider's): corner r on the slider against its wall on the guide, at
+   * the start (planar_guide.h's layout) */
   for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
-    const double sigma = r % 2 ? 1.0 : -1.0, tau = r < 2 ? 1.0 : -1.0;
-    const double wall = tau * (g->half_height + g->clearance);
-    k->ct[fb_kit_slot(j, r)] = (mk_contact){
-        .in = 1, .pin = hole, .hole = pin, .wall = 1,
-        .at = {at[0] + sigma * g->half_length * u[0] + tau * g->half_height * pu[0],
-               at[1] + sigma * g->half_length * u[1] + tau * g->half_height * pu[1]},
-        .aw = {at[0] + wall * pu[0], at[1] + wall * pu[1]}, .nw = {tau * pu[0], tau * pu[1]},
-        .v_min = cl->impact_velocity_min, .law = cl->law};
+    mk_contact *c = &k->ct[fb_kit_slot(j, r)];
+    *c = (mk_contact){.in = 1, .pin = hole, .hole = pin, .wall = 1,
+                      .v_min = cl->impact_velocity_min, .law = cl->law};
+    fb_planar_guide_layout(c->at, c->aw, c->nw, at, cj->axis, &cj->guide, r);
   }
   return FB_OK;
 }

@@ -41,7 +41,13 @@
 // contact_law). The force element changes at a step's start when v0 or the
 // hand-over does, and the integrator is restarted there
 // (Integrator::reinitialize at Stage::Dynamics), so it never steps across
-// the change.
+// the change. A slider in its guide (a prismatic clearance joint) is four
+// contact slots (kit.h) in the same force element: each corner on the
+// slider against its wall on the guide (planar_guide.h's layout at the
+// start), penetration n . (corner - wall point), rate n . (v_corner -
+// v_guide under it), n the wall's normal now, the restitution law's damper
+// on the corner's face's share of the effective mass at every evaluation
+// (fb_planar_guide_masses, as the reference takes it).
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -70,10 +76,11 @@ struct KitJoint {
   int tree;              // 1: a mobilizer of the tree; 0: a loop's cut (a constraint)
 };
 
-// a clearance joint (add_clearance) and its contact, held over the step
+// a contact slot (kit.h: a pin in its hole, or a slider's corner against
+// its guide's wall; add_clearance) and its contact, held over the step
 // (add_contact's fb_kit_contact)
 struct Held {
-  int joint;             // 1: a clearance joint
+  int joint;             // 1: a clearance joint's slot
   int on, on_last;       // add_contact handed it for this step, for the last
   int pin, hole;         // kit handles
   Vec3 pin_at, hole_at;  // the pin's and the hole's centres in their bodies' frames [m]
@@ -81,6 +88,11 @@ struct Held {
   double v_min;          // an onset slower than this takes it as v0 (episode.h) [m/s]
   double v0;             // the episode's onset rate [m/s]
   fb_contact_law base;   // the joint's law (cl->law)
+  int wall;              // 1: a slider's corner (pin_at, on the slider) against its wall
+                         // (hole_at, a point of it, on the guide), else a pin in its hole
+  Vec3 wall_n;           // a wall's unit normal, towards the wall, in the guide's frame [-]
+  int jn, corner;         // a corner's joint (the description's) and its number (0 .. 3)
+  fb_planar_guide guide; // a corner's slider in its guide: a, b, c [m]
 };
 
 struct Kit;
@@ -107,7 +119,8 @@ struct Kit {
   std::vector<MobilizedBody> mob;     // by handle
   std::vector<int> child;             // by joint: the handle its mobilizer moves (-1: a cut)
   std::vector<int> planar;            // handles on a Planar mobilizer
-  Held held[FB_PLANAR_SPEC_MAX_JOINTS];
+  Held held[FB_KIT_SLOTS];            // by the kit's contact slot
+  fb_planar_cmass *cm;                // a slider's corners' effective masses (planar_mass.h)
   const fb_planar *m;                 // the description (add_clearance)
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; // 1: a clearance joint
   int changed;                        // 1: a contact's law, v0 or hand-over changed
@@ -116,8 +129,9 @@ struct Kit {
   int integrator;
   double accuracy;
   size_t steps;
-  Kit() : matter(system), forces(system), held(), m(NULL), off(), changed(0), h(0), integrator(0),
-          accuracy(FB_SIMBODY_ACCURACY_DEFAULT), steps(0) {}
+  Kit() : matter(system), forces(system), held(), cm(NULL), m(NULL), off(), changed(0), h(0),
+          integrator(0), accuracy(FB_SIMBODY_ACCURACY_DEFAULT), steps(0) {}
+  ~Kit() { fb_planar_cmass_free(cm); }
   MobilizedBody &of(int b) { return b == FB_KIT_GROUND ? matter.Ground() : mob[b]; }
   const MobilizedBody &of(int b) const {
     return b == FB_KIT_GROUND ? matter.getGround() : mob[b];
@@ -127,8 +141,8 @@ struct Kit {
 // the law at state: its damper on the effective mass along n there when it
 // wants one (planar_mass.h, as the pipeline and the reference take it), at
 // every evaluation, as the four-bar's contact_at does
-fb_contact_law law_at(const Kit *k, const State &state, const Held &c, const double n[2]) {
-  if (!fb_contact_law_wants_mass(&c.base)) return c.base;
+// the planar core's coordinates (x, y, theta per moving body) at state
+std::vector<double> coordinates(const Kit *k, const State &state) {
   std::vector<double> q(3 * k->mob.size());
   for (size_t b = 0; b < k->mob.size(); b++) {
     const Vec3 p = k->mob[b].getBodyOriginLocation(state);
@@ -137,6 +151,12 @@ fb_contact_law law_at(const Kit *k, const State &state, const Held &c, const dou
     q[3 * b + 1] = p[1];
     q[3 * b + 2] = std::atan2(R[1][0], R[0][0]);
   }
+  return q;
+}
+
+fb_contact_law law_at(const Kit *k, const State &state, const Held &c, const double n[2]) {
+  if (!fb_contact_law_wants_mass(&c.base)) return c.base;
+  const std::vector<double> q = coordinates(k, state);
   double w[2][2];
   fb_diag d;
   const int jn = (int)(&c - k->held);
@@ -145,10 +165,52 @@ fb_contact_law law_at(const Kit *k, const State &state, const Held &c, const dou
   return fb_contact_law_on_mass(&c.base, std::isfinite(me) && me > 0.0 ? me : c.base.mass);
 }
 
+// a corner's law at state: its damper on the corner's face's share of the
+// effective mass there (planar_guide.h, as the reference takes it), at
+// every evaluation, as law_at does a pin's
+fb_contact_law corner_law(const Kit *k, const State &state, const Held &c) {
+  if (!fb_contact_law_wants_mass(&c.base)) return c.base;
+  const std::vector<double> q = coordinates(k, state), qd(q.size(), 0.0);
+  fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
+  fb_planar_guide_corners(gc, NULL, k->m, c.jn, &c.guide, q.data(), qd.data());
+  double mass[FB_PLANAR_GUIDE_CORNERS] = {0.0};
+  fb_diag d;
+  if (fb_planar_cmass_factor(k->cm, q.data(), FB_EFFECTIVE_MASS_REG, &d) == FB_OK)
+    fb_planar_guide_masses(mass, NULL, k->cm, k->m, c.jn, gc, q.data());
+  const double me = mass[c.corner];
+  return fb_contact_law_on_mass(&c.base, std::isfinite(me) && me > 0.0 ? me : c.base.mass);
+}
+
+// a slider's corner against its wall at state: the corner's penetration
+// n . (corner - wall point) and rate n . (v_corner - v_guide under it), n
+// the wall's normal now; its law at state (corner_law)
+void corner_force(const Kit *k, const State &state, const Held &c,
+                  Vector_<SpatialVec> &bodyForces) {
+  const MobilizedBody &slider = k->of(c.pin), &guide = k->of(c.hole);
+  const Vec3 x = slider.findStationLocationInGround(state, c.pin_at);
+  const Vec3 nw = guide.getBodyRotation(state) * c.wall_n;
+  const double n[2] = {nw[0], nw[1]};
+  const Vec3 d = x - guide.findStationLocationInGround(state, c.hole_at);
+  const double depth = n[0] * d[0] + n[1] * d[1];
+  if (!(depth > 0.0)) return;
+  const Vec3 under = guide.findStationAtGroundPoint(state, x);
+  const Vec3 v = slider.findStationVelocityInGround(state, c.pin_at) -
+                 guide.findStationVelocityInGround(state, under);
+  const double rate = n[0] * v[0] + n[1] * v[1];
+  const double v0 = c.on ? c.v0 : std::fmax(rate, c.v_min);
+  const fb_contact_law law = corner_law(k, state, c);
+  const double f = fb_contact_force(&law, depth, rate, v0);
+  if (f > 0.0) apply_contact(state, slider, c.pin_at, guide, under, f, n, bodyForces);
+}
+
 void KitContact::calcForce(const State &state, Vector_<SpatialVec> &bodyForces, Vector_<Vec3> &,
                            Vector &) const {
   for (const Held &c : k_->held) {
     if (!c.joint) continue;
+    if (c.wall) {
+      corner_force(k_, state, c, bodyForces);
+      continue;
+    }
     const MobilizedBody &pin = k_->of(c.pin), &hole = k_->of(c.hole);
     const Vec3 e = pin.findStationLocationInGround(state, c.pin_at) -
                    hole.findStationLocationInGround(state, c.hole_at);
@@ -169,11 +231,12 @@ void KitContact::calcForce(const State &state, Vector_<SpatialVec> &bodyForces, 
 Kit *kit(void *w) { return static_cast<Kit *>(w); }
 const Kit *kit(const void *w) { return static_cast<const Kit *>(w); }
 
-// world point x [m] in the frame of body b at assembly (the ground's: x)
-Vec3 local(const Kit *k, int b, const double x[2]) {
+// world vector x in the frame of body b at assembly (the ground's: x);
+// point 1: a point [m] (from the body's origin), 0: a direction
+Vec3 local(const Kit *k, int b, const double x[2], int point = 1) {
   if (b == FB_KIT_GROUND) return Vec3(x[0], x[1], 0);
   const double *p = k->body[b].pos, c = std::cos(p[2]), s = std::sin(p[2]);
-  const double dx = x[0] - p[0], dy = x[1] - p[1];
+  const double dx = x[0] - point * p[0], dy = x[1] - point * p[1];
   return Vec3(c * dx + s * dy, -s * dx + c * dy, 0);
 }
 
@@ -367,14 +430,35 @@ fb_status kit_add_drive(void *w, int jn, double rate, fb_diag *diag) {
 // clearance joint jn of m: the pin and the hole, their centres at the
 // joint on assembly
 fb_status kit_add_clearance(void *w, int jn, const fb_kit_clearance_joint *cj, fb_diag *diag) {
-  if (cj->kind != FB_KIND_REVOLUTE) // its force element is a pin's in a hole
-    return fb_diag_set(diag, FB_ERR_ARG, "clearance at prismatic joint '%s' (a slider in its "
-                       "guide): the Simbody binding's force element takes a pin in its hole "
-                       "only; ODE, Bullet and MuJoCo build the slider's corners",
-                       cj->m->joint[jn].name);
   const fb_planar *m = cj->m;
   const fb_kit_clearance *cl = cj->cl;
   Kit *k = kit(w);
+  k->m = m;
+  for (int i = 0; i < m->njoints && i < FB_PLANAR_SPEC_MAX_JOINTS; i++)
+    k->off[i] = (cl->mask >> i) & 1u;
+  if (cj->kind == FB_KIND_PRISMATIC) { // a slider in its guide: its four corners
+    if (!k->cm) {
+      const fb_status st = fb_planar_cmass_new(&k->cm, m, k->off, diag);
+      if (st != FB_OK) return st;
+    }
+    for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
+      double corner[2], wall[2], normal[2];
+      fb_planar_guide_layout(corner, wall, normal, cj->at, cj->axis, &cj->guide, r);
+      Held &hc = k->held[fb_kit_slot(jn, r)];
+      hc.joint = hc.wall = 1;
+      hc.pin = cj->hole; // the slider (kit.h: the joint's body[1])
+      hc.hole = cj->pin; // the guide
+      hc.pin_at = local(k, hc.pin, corner);
+      hc.hole_at = local(k, hc.hole, wall);
+      hc.wall_n = local(k, hc.hole, normal, 0);
+      hc.v_min = cl->impact_velocity_min;
+      hc.base = cl->law;
+      hc.jn = jn;
+      hc.corner = r;
+      hc.guide = cj->guide;
+    }
+    return FB_OK;
+  }
   const fb_planar_joint &j = m->joint[jn];
   Held &hd = k->held[jn];
   hd.joint = 1;
@@ -385,9 +469,6 @@ fb_status kit_add_clearance(void *w, int jn, const fb_kit_clearance_joint *cj, f
   hd.clearance = cl->radial_clearance;
   hd.v_min = cl->impact_velocity_min;
   hd.base = cl->law;
-  k->m = m;
-  for (int i = 0; i < m->njoints && i < FB_PLANAR_SPEC_MAX_JOINTS; i++)
-    k->off[i] = (cl->mask >> i) & 1u;
   return FB_OK;
 }
 

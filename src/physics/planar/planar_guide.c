@@ -18,6 +18,23 @@ fb_status fb_planar_guide_check(const fb_planar_guide *g, fb_diag *diag) {
 }
 
 
+/* corner r's signs (the sketch, planar_guide.h): sigma along the slide,
+ * tau across it */
+static double sigma_of(int r) { return r % 2 ? 1.0 : -1.0; }
+static double tau_of(int r) { return r < 2 ? 1.0 : -1.0; }
+
+void fb_planar_guide_layout(double corner[2], double wall[2], double normal[2],
+                            const double at[2], const double u[2], const fb_planar_guide *g,
+                            int r) {
+  const double sigma = sigma_of(r), tau = tau_of(r), n[2] = {-u[1], u[0]};
+  const double across = tau * (g->half_height + g->clearance);
+  for (int a = 0; a < 2; a++) {
+    corner[a] = at[a] + sigma * g->half_length * u[a] + tau * g->half_height * n[a];
+    wall[a] = at[a] + across * n[a];
+    normal[a] = tau * n[a];
+  }
+}
+
 void fb_planar_guide_corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], double *tilt,
                              const fb_planar *m, int j, const fb_planar_guide *g,
                              const double *q, const double *qd) {
@@ -35,7 +52,7 @@ void fb_planar_guide_corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], 
   const double ri[2] = {i ? q[3 * (i - 1)] : 0.0, i ? q[3 * (i - 1) + 1] : 0.0};
   for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
     fb_planar_guide_corner *x = &c[r];
-    const double sigma = r % 2 ? 1.0 : -1.0, tau = r < 2 ? 1.0 : -1.0;
+    const double sigma = sigma_of(r), tau = tau_of(r);
     for (int a = 0; a < 2; a++)
       x->slider[a] = jt->point[1][a] + sigma * g->half_length * uk[a] + tau * g->half_height * nk[a];
     double vp[2], vg[2];

@@ -90,6 +90,17 @@ void fb_planar_guide_corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], 
                              const fb_planar *m, int j, const fb_planar_guide *g,
                              const double *q, const double *qd);
 
+/* Corner r (0 .. 3: the sketch's 1 .. 4) of a centred slider in guide g
+ * whose slide passes through at [m] along the unit axis u [-]: the
+ * corner's point [m], its wall's point on the slide's normal through at
+ * [m] and the wall's unit normal, towards the wall (the way the corner
+ * penetrates it) [-], in the frame at and u are given in. The layout
+ * fb_planar_guide_corners moves with the bodies, for an engine that
+ * evaluates the corners itself (MuJoCo's hook, Simbody's force element). */
+void fb_planar_guide_layout(double corner[2], double wall[2], double normal[2],
+                            const double at[2], const double u[2], const fb_planar_guide *g,
+                            int r);
+
 /* The restitution damper's effective mass [kg] of every corner of c in
  * contact (gap < 0) into mass (others 0): its face's share
  * 1 / (D_cc + D_cc') (the sketch's rule above), D the four corners'

@@ -334,6 +334,11 @@ static double vertex(double ym, double y0, double yp, int sign) {
   return y0 - 0.125 * (yp - ym) * (yp - ym) / den;
 }
 
+double fb_series_refined(const double y[3], const double *ymax, int sign) {
+  if (sign > 0 && ymax) return fmax(y[1], fmax(ymax[0], ymax[1]));
+  return vertex(y[0], y[1], y[2], sign);
+}
+
 void fb_largest_abs_split(double big[2], size_t *split, const double *t, size_t n,
                           const double *v, double t_split) {
   size_t k = 0;
@@ -365,11 +370,9 @@ void fb_refine_column(const double *t, size_t n, double *v, const double *vmax, 
   for (size_t k = 1; k + 1 < n; k++) {
     const double here = v[k], b = big[k >= split];
     const double vk[3] = {prev, here, v[k + 1]};
-    for (int sign = -1; sign <= 1 && b > 0.0; sign += 2) {
-      if (!fb_series_is_spike(vk, 1, sign, fraction, b)) continue;
-      v[k] = sign > 0 && vmax ? fmax(here, fmax(vmax[k - 1], vmax[k]))
-                              : vertex(prev, here, v[k + 1], sign);
-    }
+    for (int sign = -1; sign <= 1 && b > 0.0; sign += 2)
+      if (fb_series_is_spike(vk, 1, sign, fraction, b))
+        v[k] = fb_series_refined(vk, vmax ? vmax + k - 1 : NULL, sign);
     prev = here;
   }
 }

@@ -159,6 +159,16 @@ void fb_series_refine_peaks(fb_series *s, double fraction, double t_split);
 void fb_series_refine_peaks_max(fb_series *s, double fraction, double t_split, int joint,
                                 const double *force_max);
 
+/* The refined value of a spike of sign `sign` (+1 maximum, -1 minimum) at
+ * the middle of three samples y (its neighbours' original values): with
+ * ymax (NULL: none; the engine's largest value over the steps from the
+ * first and from the middle sample, 2) and sign +1, the largest of y[1],
+ * ymax[0] and ymax[1]; else the vertex of the parabola through the three
+ * when both neighbours have its sign and it curves that way, else y[1].
+ * The one rule fb_series_refine_peaks_max and a planar verdict's matched
+ * peaks (planar_verdict.c) refine by; units those of y. */
+double fb_series_refined(const double y[3], const double *ymax, int sign);
+
 /* The refinement of one column v (n) at times t [s] as
  * fb_series_refine_peaks_max does it (vmax NULL: the parabola's vertex at
  * every spike), for a column held outside a series (a planar run's). */

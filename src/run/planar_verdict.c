@@ -45,22 +45,19 @@ static int episodes(episode **out, const fb_planar_model *p, double floor) {
 }
 
 /* the largest of y over samples i0 .. i1; refine: an engine's samples on a
- * discrete motion, its peak the vertex of the parabola through the largest
- * sample and its two neighbours when both are positive (series.h,
- * fb_series_refine_peaks: the sample alone misses up to |y''| h^2 / 8), or
- * with ymax (an engine's largest value over the step from each sample, its
- * sub-steps: NULL without) the largest between those neighbours, as
- * fb_series_refine_peaks_max takes it; a reference's samples hold their
- * extremes already (peak_refine.h) */
+ * discrete motion, its peak refined as the four-bar's series are
+ * (series.h, fb_series_refined: the parabola's vertex through the largest
+ * sample and its neighbours, the sample alone missing up to |y''| h^2 / 8;
+ * with ymax, the engine's largest value over the step from each sample, its
+ * sub-steps' largest between those neighbours); a reference's samples hold
+ * their extremes already (peak_refine.h) */
 static double peak(const double *y, const double *ymax, size_t n, size_t i0, size_t i1,
                    int refine) {
   size_t k = i0;
   for (size_t i = i0; i <= i1; i++)
     if (y[i] > y[k]) k = i;
-  if (!refine || k == 0 || k + 1 >= n || !(y[k - 1] > 0.0) || !(y[k + 1] > 0.0)) return y[k];
-  if (ymax) return fmax(y[k], fmax(ymax[k - 1], ymax[k]));
-  const double a = y[k - 1], b = y[k], c = y[k + 1], curv = a - 2.0 * b + c;
-  return curv < 0.0 ? b - 0.125 * (a - c) * (a - c) / curv : b;
+  if (!refine || k == 0 || k + 1 >= n) return y[k];
+  return fb_series_refined(y + k - 1, ymax ? ymax + k - 1 : NULL, 1);
 }
 
 static double rel(double x, double ref) { return (x - ref) / ref; }

@@ -165,26 +165,36 @@ fb_contact_law law_at(const Kit *k, const State &state, const Held &c, const dou
   return fb_contact_law_on_mass(&c.base, std::isfinite(me) && me > 0.0 ? me : c.base.mass);
 }
 
+// a slider's four corners' effective masses at one evaluation, worked out
+// once for the first of its corners in contact (jn -1: not yet)
+struct CornerMasses {
+  int jn = -1;
+  double mass[FB_PLANAR_GUIDE_CORNERS] = {0.0};
+};
+
 // a corner's law at state: its damper on the corner's face's share of the
 // effective mass there (planar_guide.h, as the reference takes it), at
 // every evaluation, as law_at does a pin's
-fb_contact_law corner_law(const Kit *k, const State &state, const Held &c) {
+fb_contact_law corner_law(const Kit *k, const State &state, const Held &c, CornerMasses &cm) {
   if (!fb_contact_law_wants_mass(&c.base)) return c.base;
-  const std::vector<double> q = coordinates(k, state), qd(q.size(), 0.0);
-  fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
-  fb_planar_guide_corners(gc, NULL, k->m, c.jn, &c.guide, q.data(), qd.data());
-  double mass[FB_PLANAR_GUIDE_CORNERS] = {0.0};
-  fb_diag d;
-  if (fb_planar_cmass_factor(k->cm, q.data(), FB_EFFECTIVE_MASS_REG, &d) == FB_OK)
-    fb_planar_guide_masses(mass, NULL, k->cm, k->m, c.jn, gc, q.data());
-  const double me = mass[c.corner];
+  if (cm.jn != c.jn) {
+    const std::vector<double> q = coordinates(k, state), qd(q.size(), 0.0);
+    fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
+    fb_planar_guide_corners(gc, NULL, k->m, c.jn, &c.guide, q.data(), qd.data());
+    cm = CornerMasses();
+    cm.jn = c.jn;
+    fb_diag d;
+    if (fb_planar_cmass_factor(k->cm, q.data(), FB_EFFECTIVE_MASS_REG, &d) == FB_OK)
+      fb_planar_guide_masses(cm.mass, NULL, k->cm, k->m, c.jn, gc, q.data());
+  }
+  const double me = cm.mass[c.corner];
   return fb_contact_law_on_mass(&c.base, std::isfinite(me) && me > 0.0 ? me : c.base.mass);
 }
 
 // a slider's corner against its wall at state: the corner's penetration
 // n . (corner - wall point) and rate n . (v_corner - v_guide under it), n
 // the wall's normal now; its law at state (corner_law)
-void corner_force(const Kit *k, const State &state, const Held &c,
+void corner_force(const Kit *k, const State &state, const Held &c, CornerMasses &cm,
                   Vector_<SpatialVec> &bodyForces) {
   const MobilizedBody &slider = k->of(c.pin), &guide = k->of(c.hole);
   const Vec3 x = slider.findStationLocationInGround(state, c.pin_at);
@@ -198,17 +208,18 @@ void corner_force(const Kit *k, const State &state, const Held &c,
                  guide.findStationVelocityInGround(state, under);
   const double rate = n[0] * v[0] + n[1] * v[1];
   const double v0 = c.on ? c.v0 : std::fmax(rate, c.v_min);
-  const fb_contact_law law = corner_law(k, state, c);
+  const fb_contact_law law = corner_law(k, state, c, cm);
   const double f = fb_contact_force(&law, depth, rate, v0);
   if (f > 0.0) apply_contact(state, slider, c.pin_at, guide, under, f, n, bodyForces);
 }
 
 void KitContact::calcForce(const State &state, Vector_<SpatialVec> &bodyForces, Vector_<Vec3> &,
                            Vector &) const {
+  CornerMasses cm; // this evaluation's
   for (const Held &c : k_->held) {
     if (!c.joint) continue;
     if (c.wall) {
-      corner_force(k_, state, c, bodyForces);
+      corner_force(k_, state, c, cm, bodyForces);
       continue;
     }
     const MobilizedBody &pin = k_->of(c.pin), &hole = k_->of(c.hole);

@@ -773,6 +773,9 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   expect_fail("run --set drive.speed_rpm=-5 --out /tmp/x",
               (const char *[]){"--set", "speed_rpm = -5", NULL});
   expect_fail("kinematics --crank-mm 108", (const char *[]){"--coupler-mm is required", NULL});
+  /* a length flag's -1 is a value, refused as such (it once meant "not given": the case's) */
+  expect_fail("kinematics paper_crank_rocker --crank-mm -1",
+              (const char *[]){"--crank-mm = -1", "must be positive", NULL});
   expect_fail("kinematics --crank-mm 300 --coupler-mm 100 --follower-mm 250 --ground-mm 350 "
               "--speed-rpm 10", (const char *[]){"double-rocker", "cannot turn fully", NULL});
   expect_fail("penalty --speeds-rpm 0:10:1", (const char *[]){"--speeds-rpm", NULL});

@@ -103,12 +103,6 @@ static void kin_length_flags_of_all(kin_length_flags *lf) {
   }
 }
 
-/* 1 when length flag u gave a value: a link length's -1 is none, an
- * offset's a value */
-static int kin_given(const kin_flags *fl, int u, int offset) {
-  return fl->seen[u] && (offset || fl->mm[u] != -1);
-}
-
 /* 1 when m's description has a length called name */
 static int kin_has_length(const fb_mech_desc *m, const char *name) {
   for (int i = 0; i < m->nlengths; i++)
@@ -197,7 +191,7 @@ static int kin_planar(fb_case *c, const kin_length_flags *lf, const kin_flags *f
   const fb_mech_desc *m = fb_mech_of(kin_defaults()->mechanism);
   for (int i = 0; i < m->nlengths; i++) {
     const int u = kin_length_index(lf, m->length[i]);
-    if (kin_given(fl, u, 0))
+    if (fl->seen[u])
       return fb_cli_fail("kinematics", 2, "%s: the case is a planar one, whose lengths are its "
                          "joints' positions ([joint.NAME] at_mm)", lf->flag[u]);
   }
@@ -290,7 +284,7 @@ static int kin_lengths(fb_kinematics *k, const kin_length_flags *lf, const kin_f
     }
     const int u = kin_length_index(lf, m->length[i]), offset = i == k->kind->offset_length;
     double mm = 0.0; /* an offset not given */
-    if (kin_given(fl, u, offset)) mm = fl->mm[u];
+    if (fl->seen[u]) mm = fl->mm[u];
     else if (c) mm = c->nominal.length[i] / FB_M_PER_MM;
     else if (!offset) return fb_cli_fail("kinematics", 2, "%s is required; see --help", lf->flag[u]);
     char key[48];

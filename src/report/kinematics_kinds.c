@@ -18,7 +18,7 @@ static void fourbar_json(json_t *o, const fb_kinematics *k) {
 
 static void fourbar_text(FILE *f, const fb_kinematics *k) {
   const double deg = 1.0 / FB_RAD_PER_DEG;
-  const fb_peaks *p = &k->p;
+  const fb_mech_desc *m = fb_mech_of(k->mech);
   fprintf(f, "linkage: crank %g, coupler %g, follower %g, ground %g mm (%s), %g rpm %s, %s "
           "branch\n", k->mm[0], k->mm[1], k->mm[2], k->mm[3], fb_grashof_name(k->g), k->rpm,
           k->dir > 0 ? "ccw" : "cw", branch_name(k->branch));
@@ -26,10 +26,13 @@ static void fourbar_text(FILE *f, const fb_kinematics *k) {
   fprintf(f, "%-9s %12s %12s %14s %14s\n", "body", "omega_max", "omega_min", "alpha_max",
           "alpha_min");
   fprintf(f, "%-9s %12s %12s %14s %14s\n", "", "rad/s", "rad/s", "rad/s^2", "rad/s^2");
-  fprintf(f, "%-9s %12.6f %12.6f %14.4f %14.4f\n", "coupler", p->coupler.omega_max,
-          p->coupler.omega_min, p->coupler.alpha_max, p->coupler.alpha_min);
-  fprintf(f, "%-9s %12.6f %12.6f %14.4f %14.4f\n", "follower", p->follower.omega_max,
-          p->follower.omega_min, p->follower.alpha_max, p->follower.alpha_min);
+  int out[FB_MECH_MAX_OUTPUTS];
+  const int n = fb_mech_outputs(m, out);
+  for (int b = 0; b < n; b++) {
+    const fb_body_peaks *p = &k->p.body[b];
+    fprintf(f, "%-9s %12.6f %12.6f %14.4f %14.4f\n", fb_mech_output_name(m, b), p->omega_max,
+            p->omega_min, p->alpha_max, p->alpha_min);
+  }
   fprintf(f, "transmission angle: %.4f to %.4f deg\n", k->mu_min * deg, k->mu_max * deg);
 }
 
@@ -78,7 +81,9 @@ static void slider_crank_text(FILE *f, const fb_kinematics *k) {
           k->quick_return, k->outstroke_angle * deg, k->outstroke_time, k->return_angle * deg,
           k->return_time);
   fprintf(f, "%-9s %-6s %14s %14s  %s\n", "body", "", "max", "min", "unit");
-  for (int b = 0; b < 2; b++)
+  int out[FB_MECH_MAX_OUTPUTS];
+  const int n = fb_mech_outputs(m, out);
+  for (int b = 0; b < n; b++)
     for (int q = 1; q <= 2; q++) {
       const fb_body_peaks *p = &k->p.body[b];
       fprintf(f, "%-9s %-6s %14.6f %14.6f  %s\n", fb_mech_output_name(m, b),

@@ -105,6 +105,12 @@ static void test_every_type_has_a_kind(void **state) {
   }
   assert_ptr_equal(fb_report_kinematics_kind(FB_MECH_COUNT),
                    fb_report_kinematics_kind(fb_mech_find("four-bar")));
+  /* without a kind the run says so, not a crash */
+  static fb_kinematics k;
+  memset(&k, 0, sizeof k);
+  fb_diag d;
+  assert_int_equal(fb_kinematics_run(&k, &d), FB_ERR_ARG);
+  assert_non_null(strstr(d.msg, "no kind"));
 }
 
 static void test_fourbar_through_its_kind(void **state) {

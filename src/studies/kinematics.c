@@ -55,6 +55,9 @@ fb_status fb_kinematics_slider_crank_run(fb_kinematics *k, fb_diag *diag) {
 }
 
 fb_status fb_kinematics_run(fb_kinematics *k, fb_diag *diag) {
+  if (!k->kind || !k->kind->run)
+    return fb_diag_set(diag, FB_ERR_ARG, "kinematics of the %s: no kind given (set k->kind to "
+                       "fb_report_kinematics_kind(mech))", fb_mech_of(k->mech)->type);
   k->omega2 = k->dir * k->rpm * FB_RAD_S_PER_RPM;
   fb_status st = k->kind->run(k, diag);
   if (st != FB_OK) return st;

@@ -69,10 +69,10 @@ struct fb_kinematics {
   double quick_return;    /* the slower stroke's time over the faster's (>= 1; 1 at offset 0) */
 };
 
-/* Fills k's outputs from its inputs (k->kind set): the crank's omega2, the
- * kind's part (k->kind->run), then the peaks (fb_mech_peaks). Errors: the
- * kind's, and those of fb_mech_peaks, the message then opening with the
- * class line. */
+/* Fills k's outputs from its inputs: the crank's omega2, the kind's part
+ * (k->kind->run), then the peaks (fb_mech_peaks). Errors: FB_ERR_ARG
+ * without a kind; the kind's; those of fb_mech_peaks, the message then
+ * opening with the class line. */
 fb_status fb_kinematics_run(fb_kinematics *k, fb_diag *diag);
 
 /* The four-bar kind's run entry: Grashof class, its sums and transmission

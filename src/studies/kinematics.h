@@ -5,7 +5,7 @@
  * class (coupler against crank + |offset|), dead centres, stroke,
  * quick-return ratio and transmission angle range (slider_crank.h). The
  * kinds are one table (fb_kinematics_kind), indexed by the mechanism's type
- * in one place (tables_kinematics.h fb_report_kinematics_kind), where the
+ * in one place (kinematics_kinds.h fb_report_kinematics_kind), where the
  * writers' entries meet the study's. */
 #ifndef FB_KINEMATICS_H
 #define FB_KINEMATICS_H

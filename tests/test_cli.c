@@ -11,6 +11,7 @@
 
 #include "fb_config.h"
 #include "fb_test.h"
+#include "mechanism.h"
 
 static const char *exe;
 static char tmpdir[64];
@@ -773,6 +774,9 @@ static void test_bad_input_exits_nonzero_with_message(void **state) {
   expect_fail("run --set drive.speed_rpm=-5 --out /tmp/x",
               (const char *[]){"--set", "speed_rpm = -5", NULL});
   expect_fail("kinematics --crank-mm 108", (const char *[]){"--coupler-mm is required", NULL});
+  /* a length flag's -1 is a value, refused as such (it once meant "not given": the case's) */
+  expect_fail("kinematics paper_crank_rocker --crank-mm -1",
+              (const char *[]){"--crank-mm = -1", "must be positive", NULL});
   expect_fail("kinematics --crank-mm 300 --coupler-mm 100 --follower-mm 250 --ground-mm 350 "
               "--speed-rpm 10", (const char *[]){"double-rocker", "cannot turn fully", NULL});
   expect_fail("penalty --speeds-rpm 0:10:1", (const char *[]){"--speeds-rpm", NULL});
@@ -957,6 +961,21 @@ static void test_help_answers(void **state) {
   assert_non_null(strstr(out, "--set"));
   assert_int_equal(run("kinematics --help", out, sizeof out, NULL, 0), 0);
   assert_non_null(strstr(out, "--branch"));
+  /* kinematics takes every description's lengths as flags, and its help
+   * names them and every type */
+  for (int t = 0; t < FB_MECH_COUNT; t++) {
+    const fb_mech_desc *m = fb_mech_of((fb_mech_type)t);
+    if (!strstr(out, m->type)) fail_msg("kinematics --help does not name the %s", m->type);
+    for (int i = 0; i < m->nlengths; i++) {
+      char flag[64], args[128];
+      static char err[4096];
+      snprintf(flag, sizeof flag, "--%s-mm", m->length[i]);
+      if (!strstr(out, flag)) fail_msg("kinematics --help lacks %s (the %s's)", flag, m->type);
+      snprintf(args, sizeof args, "kinematics --type %s %s 1", m->type, flag);
+      run(args, NULL, 0, err, sizeof err);
+      if (strstr(err, "unknown option")) fail_msg("'%s': %s", args, err);
+    }
+  }
   assert_int_equal(run("--help", out, sizeof out, NULL, 0), 0);
   assert_non_null(strstr(out, "kinematics"));
   /* every command answers --help with its usage and its exit status */

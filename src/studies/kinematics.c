@@ -1,4 +1,5 @@
-/* fourbar kinematics below the command (kinematics.h). */
+/* fourbar kinematics below the command (kinematics.h): the run common to
+ * every kind and the kinds' run entries. */
 #include "kinematics.h"
 
 #include <math.h>
@@ -7,8 +8,24 @@
 #include "mech_kinematics.h"
 #include "units.h"
 
-/* the slider-crank: class, dead centres, stroke, quick return, peaks */
-static fb_status slider_crank_run(fb_kinematics *k, fb_diag *diag) {
+fb_status fb_kinematics_fourbar_run(fb_kinematics *k, fb_diag *diag) {
+  k->g = fb_linkage_grashof(&k->lk);
+  fb_linkage_grashof_text(k->grashof, sizeof k->grashof, &k->lk);
+  fb_linkage_grashof_sums(&k->lk, &k->sl, &k->pq, NULL, NULL);
+  /* a change-point linkage folds flat on its way round: no peaks to give */
+  if (k->g == FB_GRASHOF_CHANGE_POINT)
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "crank %g, coupler %g, follower %g, ground %g mm: %s; a crank driven "
+                       "through a fold has no exact peaks: make s + l differ from p + q (s + l < "
+                       "p + q for a crank-rocker)",
+                       k->mm[0], k->mm[1], k->mm[2], k->mm[3], k->grashof);
+  fb_diag dg;
+  const fb_status st = fb_linkage_transmission_range(&k->lk, &k->mu_min, &k->mu_max, &dg);
+  if (st != FB_OK) return fb_diag_set(diag, st, "%s; %s", k->grashof, dg.msg);
+  return FB_OK;
+}
+
+fb_status fb_kinematics_slider_crank_run(fb_kinematics *k, fb_diag *diag) {
   const fb_slider_crank sc = fb_slider_crank_of(&k->lk);
   const double sum = sc.crank + fabs(sc.offset);
   k->sc_class = fb_slider_crank_class(&sc);
@@ -18,8 +35,7 @@ static fb_status slider_crank_run(fb_kinematics *k, fb_diag *diag) {
            "mm); the crank turns fully when the coupler is longer",
            fb_sc_class_name(k->sc_class), sc.coupler * 1e3, sum * 1e3, k->sc_margin * 1e3);
   fb_diag dg;
-  fb_status st = fb_slider_crank_limit_positions(&k->lim, &sc, &dg);
-  if (st == FB_OK) st = fb_mech_peaks(&k->p, FB_MECH_SLIDER_CRANK, &k->lk, k->branch, k->omega2, &dg);
+  const fb_status st = fb_slider_crank_limit_positions(&k->lim, &sc, &dg);
   if (st != FB_OK) return fb_diag_set(diag, st, "%s; %s", k->grashof, dg.msg);
   /* mu = pi/2 - |theta3|, sin theta3 = (offset - crank sin theta2) / coupler
    * spans [(offset - crank), (offset + crank)] / coupler: |theta3| is
@@ -39,21 +55,14 @@ static fb_status slider_crank_run(fb_kinematics *k, fb_diag *diag) {
 }
 
 fb_status fb_kinematics_run(fb_kinematics *k, fb_diag *diag) {
+  if (!k->kind || !k->kind->run)
+    return fb_diag_set(diag, FB_ERR_ARG, "kinematics of the %s: no kind given (set k->kind to "
+                       "fb_report_kinematics_kind(mech))", fb_mech_of(k->mech)->type);
   k->omega2 = k->dir * k->rpm * FB_RAD_S_PER_RPM;
-  if (k->mech == FB_MECH_SLIDER_CRANK) return slider_crank_run(k, diag);
-  k->g = fb_linkage_grashof(&k->lk);
-  fb_linkage_grashof_text(k->grashof, sizeof k->grashof, &k->lk);
-  fb_linkage_grashof_sums(&k->lk, &k->sl, &k->pq, NULL, NULL);
-  /* a change-point linkage folds flat on its way round: no peaks to give */
-  if (k->g == FB_GRASHOF_CHANGE_POINT)
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "crank %g, coupler %g, follower %g, ground %g mm: %s; a crank driven "
-                       "through a fold has no exact peaks: make s + l differ from p + q (s + l < "
-                       "p + q for a crank-rocker)",
-                       k->mm[0], k->mm[1], k->mm[2], k->mm[3], k->grashof);
+  fb_status st = k->kind->run(k, diag);
+  if (st != FB_OK) return st;
   fb_diag dg;
-  fb_status st = fb_linkage_transmission_range(&k->lk, &k->mu_min, &k->mu_max, &dg);
-  if (st == FB_OK) st = fb_analytic_peaks(&k->p, &k->lk, k->branch, k->omega2, &dg);
-  if (st != FB_OK) return fb_diag_set(diag, st, "%s; %s", k->grashof, dg.msg);
+  if ((st = fb_mech_peaks(&k->p, k->mech, &k->lk, k->branch, k->omega2, &dg)) != FB_OK)
+    return fb_diag_set(diag, st, "%s; %s", k->grashof, dg.msg);
   return FB_OK;
 }

@@ -22,12 +22,16 @@
 static const char *const shipped[FB_MECH_COUNT] = {"paper_crank_rocker.ini",
                                                    "slider_crank_flores.ini"};
 
-/* the tests' own slider-crank: crank 50 mm, rod 120 mm, 2000 rpm, the piston
- * pin 10 mm with 100 um radial clearance; OFFSET and MASS are the lines the
- * tests vary ("" leaves the key out) */
-static void sc_text(char *buf, size_t size, const char *offset, const char *mass,
-                    const char *tolerance) {
-  snprintf(buf, size,
+static fb_case c; /* large: one, outside the stack */
+
+/* loads the tests' own slider-crank into c: crank 50 mm, rod 120 mm,
+ * 2000 rpm, the piston pin 10 mm with 100 um radial clearance; offset, mass
+ * and tolerance are the [linkage], [mass] and [tolerance] lines the tests
+ * vary ("" leaves the key out); fb_casefile_load's status */
+static fb_status sc_load(const char *offset, const char *mass, const char *tolerance,
+                         fb_diag *diag) {
+  char text[1024];
+  snprintf(text, sizeof text,
            "[case]\nname = sc_desc\n"
            "[linkage]\ntype = slider-crank\ncrank_mm = 50\ncoupler_mm = 120\n%s\n"
            "[tolerance]\n%s\n"
@@ -36,9 +40,8 @@ static void sc_text(char *buf, size_t size, const char *offset, const char *mass
            "[pin]\nradial_clearance_um = 100\n"
            "[run]\nmodels = analytic\nensemble = 1\n",
            offset, tolerance, mass);
+  return fb_test_case_text(&c, text, NULL, 0, diag);
 }
-
-static fb_case c; /* large: one, outside the stack */
 
 /* every row builds a description whose every_model_builds is 1; a
  * description not every model builds is built by the rows that name it, at
@@ -141,12 +144,7 @@ static int prefix_in(const char *key, const char *const *names, int n) {
  * table */
 static void test_owned_keys_are_the_owners(void **state) {
   (void)state;
-  char *table = NULL;
-  size_t size = 0;
-  FILE *f = open_memstream(&table, &size);
-  assert_non_null(f);
-  fb_casefile_write_keys(f);
-  fclose(f);
+  char *table = fb_test_key_table();
   for (int owner = 0; owner < FB_MECH_COUNT; owner++) {
     const fb_mech_desc *d = fb_mech_of((fb_mech_type)owner);
     for (int i = 0; d->keys[i]; i += 2) {
@@ -193,10 +191,8 @@ static void test_foreign_keys_refused(void **state) {
  * joint, and the translating body's mass required */
 static void test_slider_crank_defaults(void **state) {
   (void)state;
-  char text[1024];
   fb_diag diag;
-  sc_text(text, sizeof text, "", "slider_kg = 0.14", "");
-  assert_int_equal(fb_test_case_text(&c, text, NULL, 0, &diag), FB_OK);
+  assert_int_equal(sc_load("", "slider_kg = 0.14", "", &diag), FB_OK);
   assert_int_equal(c.mechanism, FB_MECH_SLIDER_CRANK);
   assert_true(c.nominal.length[FB_LENGTH_OFFSET] == 0.0);
   assert_true(c.plus_minus[FB_LENGTH_OFFSET] == 0.0);
@@ -205,8 +201,7 @@ static void test_slider_crank_defaults(void **state) {
   assert_int_equal(c.clearance.mask, 1 << fb_mech_slider_crank.reference_joint);
   assert_string_equal(fb_case_joint_name(&c, fb_mech_slider_crank.reference_joint),
                       "coupler-slider");
-  sc_text(text, sizeof text, "offset_mm = 6", "", "");
-  assert_int_equal(fb_test_case_text(&c, text, NULL, 0, &diag), FB_ERR_PARSE);
+  assert_int_equal(sc_load("offset_mm = 6", "", "", &diag), FB_ERR_PARSE);
   if (!strstr(diag.msg, "[mass] slider_kg is required with [linkage] type = slider-crank"))
     fail_msg("%s", diag.msg);
 }
@@ -216,14 +211,11 @@ static void test_slider_crank_defaults(void **state) {
  * loader calls for every size), whichever its sign */
 static void test_position_tolerance(void **state) {
   (void)state;
-  char text[1024];
   fb_diag diag;
-  sc_text(text, sizeof text, "offset_mm = 0.3", "slider_kg = 0.14", "class = m");
-  assert_int_equal(fb_test_case_text(&c, text, NULL, 0, &diag), FB_OK);
+  assert_int_equal(sc_load("offset_mm = 0.3", "slider_kg = 0.14", "class = m", &diag), FB_OK);
   assert_true(c.plus_minus[FB_LENGTH_OFFSET] == 0.0);
   assert_non_null(strstr(c.tolerance_source[FB_LENGTH_OFFSET], "ISO 2768-1 starts at 0.5 mm"));
-  sc_text(text, sizeof text, "offset_mm = -5", "slider_kg = 0.14", "class = m");
-  assert_int_equal(fb_test_case_text(&c, text, NULL, 0, &diag), FB_OK);
+  assert_int_equal(sc_load("offset_mm = -5", "slider_kg = 0.14", "class = m", &diag), FB_OK);
   double pm = 0.0;
   char src[96];
   assert_int_equal(fb_iso2768_linear(&pm, c.tolerance_class, 5e-3, src, sizeof src, &diag), FB_OK);

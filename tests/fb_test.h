@@ -84,6 +84,19 @@ static inline fb_status fb_test_case_text(fb_case *c, const char *text, const ch
   return st;
 }
 
+/* The key table as fourbar keys writes it (fb_casefile_write_keys: rows
+ * "| [section] key | unit | default | rule | meaning |"), malloc'd: the
+ * caller frees it. */
+static inline char *fb_test_key_table(void) {
+  char *text = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&text, &len);
+  assert_non_null(f);
+  fb_casefile_write_keys(f);
+  fclose(f);
+  return text;
+}
+
 /* Loads the shipped case cases/<file> (FOURBAR_CASES_DIR or ./cases) with
  * overrides into *c: fb_casefile_load's status, its message in diag. */
 static inline fb_status fb_test_shipped_case(fb_case *c, const char *file, const char **sets,

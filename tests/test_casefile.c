@@ -300,12 +300,7 @@ static const char *const engine_sections[ENGINE_SECTIONS] = {"mujoco", "bullet",
  * the key table as fourbar keys writes it: "| [section] key | unit |
  * default | rule | meaning |"; returns how many */
 static int engine_default_sets(char sets[][160], const char **ptr, int max) {
-  char *text = NULL;
-  size_t len = 0;
-  FILE *f = open_memstream(&text, &len);
-  assert_non_null(f);
-  fb_casefile_write_keys(f);
-  fclose(f);
+  char *text = fb_test_key_table();
   int n = 0;
   char *save = NULL;
   for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {

@@ -208,7 +208,8 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
   if (st == FB_OK) st = fb_model_scene_start(&start, sm, diag);
   if (st == FB_OK) {
     double q0[9], qd0[9]; /* three moving bodies */
-    start_coordinates(q0, qd0, r->m, &start, sm->def->source.mechanism == FB_MECH_SLIDER_CRANK);
+    start_coordinates(q0, qd0, r->m, &start,
+                      fb_case_mech(&sm->def->source)->body[2].motion == FB_MOTION_TRANSLATING);
     const fb_kit_world o = {.gravity = sm->gravity, .h = sm->solver.h, .solver = &sm->solver,
                             .nbodies = r->m->nbodies - 1, .njoints = r->m->njoints,
                             .c = &sm->def->source, .q0 = q0, .qd0 = qd0};

@@ -5,6 +5,17 @@
 #include <stdio.h>
 #include <string.h>
 
+/* the case keys each mechanism alone owns ({section, key} pairs) */
+static const char *const fourbar_keys[] = {
+    "linkage", "follower_mm", "linkage", "ground_mm", "linkage", "branch",
+    "tolerance", "follower_plus_minus_mm", "tolerance", "ground_plus_minus_mm",
+    "mass", "follower_kg", "mass", "follower_inertia_kg_mm2",
+    "mass", "follower_inertia_long_kg_mm2", "mass", "follower_inertia_transverse_kg_mm2",
+    "mass", "follower_com_fraction", "mass", "follower_width_mm",
+    "mass", "follower_thickness_mm", NULL};
+static const char *const slider_crank_keys[] = {
+    "linkage", "offset_mm", "tolerance", "offset_plus_minus_mm", "mass", "slider_kg", NULL};
+
 const fb_mech_desc fb_mech_fourbar = {
     .type = "four-bar",
     .nbodies = 4,
@@ -21,6 +32,16 @@ const fb_mech_desc fb_mech_fourbar = {
     .reference_joint = 1,
     .nlengths = 4,
     .length = {"crank", "coupler", "follower", "ground"},
+    .every_model_builds = 1,
+    .sdf_export = 1,
+    .peers_build = 1,
+    .title_names_type = 0,
+    .assembly_note = NULL,
+    .position_length = NULL,
+    .position_zero_note = NULL,
+    .keys = fourbar_keys,
+    .foreign_key_hint = NULL,
+    .contact_models = {"ode-clearance-impact", "ode-clearance-restitution"},
 };
 
 const fb_mech_desc fb_mech_slider_crank = {
@@ -39,6 +60,22 @@ const fb_mech_desc fb_mech_slider_crank = {
     .reference_joint = 2,
     .nlengths = 3,
     .length = {"crank", "coupler", "offset"},
+    .every_model_builds = 0,
+    .sdf_export = 0,
+    .peers_build = 0,
+    .title_names_type = 1,
+    .assembly_note = "the slider at +x of the crank pivot",
+    .position_length = "offset",
+    .position_zero_note =
+        "(at offset 0 the slider-crank is symmetric about its guide: the smallest "
+        "transmission angle, and a peak two mirrored crank angles tie for (the slider's "
+        "acceleration maximum when crank / coupler > 1/4), have a corner in the offset, "
+        "which moves them the same way for either sign; their offset column is one side's "
+        "derivative, the corners and Monte Carlo give the range)",
+    .keys = slider_crank_keys,
+    .foreign_key_hint = " (a slider-crank has crank_mm, coupler_mm, offset_mm and [mass] slider_kg)",
+    /* the models that build it with each law */
+    .contact_models = {"reference", "reference-restitution"},
 };
 
 static const fb_mech_desc *const all[FB_MECH_COUNT] = {&fb_mech_fourbar, &fb_mech_slider_crank};
@@ -58,6 +95,12 @@ int fb_mech_outputs(const fb_mech_desc *m, int out[FB_MECH_MAX_OUTPUTS]) {
   for (int b = 0; b < m->nbodies && n < FB_MECH_MAX_OUTPUTS; b++)
     if (m->body[b].output) out[n++] = b;
   return n;
+}
+
+int fb_mech_position_length(const fb_mech_desc *m) {
+  for (int k = 0; m->position_length && k < m->nlengths; k++)
+    if (strcmp(m->length[k], m->position_length) == 0) return k;
+  return -1;
 }
 
 const char *fb_mech_joint_name(const fb_mech_desc *m, int j) {

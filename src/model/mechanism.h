@@ -62,6 +62,36 @@ typedef struct {
                                               every clearance model is compared at */
   int nlengths;                            /* link-length parameters held */
   const char *length[FB_MECH_MAX_LENGTHS]; /* their names, in the order of fb_linkage.length [m] */
+  /* what the rest of the harness does with the mechanism, as data (a zero
+   * member is the cautious answer: a new description builds on no model
+   * until a model table row names it, exports no SDF, ...) */
+  int every_model_builds;                  /* 1: every row of the model table builds it (the
+                                              four-bar); 0: the rows naming its type
+                                              (fb_model.mechanisms) build it */
+  int sdf_export;                          /* 1: fourbar export --format sdf writes it (the SDF
+                                              world has links and revolute joints only) */
+  int peers_build;                         /* 1: the bare peer programs (tests/peers) build it */
+  int title_names_type;                    /* 1: a stack-up table's title names the type (the
+                                              four-bar, the default type, goes unnamed) */
+  const char *assembly_note;               /* the run table's case line on its assembly when it
+                                              has no branch key ("the slider at +x of the crank
+                                              pivot"); NULL: the case's branch (open, crossed) */
+  const char *position_length;             /* the length that is a signed position, not a size
+                                              ("offset": the guide line's y [m]): absent from the
+                                              case it is 0 with tolerance 0, below ISO 2768-1's
+                                              smallest size (0.5 mm) it has no class tolerance;
+                                              NULL: every length is a size */
+  const char *position_zero_note;          /* the stack-up's note when that length is 0 (its
+                                              symmetry), NULL: none */
+  const char *const *keys;                 /* the case keys it alone owns, NULL-terminated pairs
+                                              {section, key, ..., NULL}: a case of another type
+                                              that gives one is refused */
+  const char *foreign_key_hint;            /* appended to that refusal in a case of this type
+                                              (the keys it has); NULL: " or set [linkage] type =
+                                              <the owner's type>" */
+  const char *contact_models[2];           /* fourbar penalty's models of its clearance joint,
+                                              impact law then restitution law (model table
+                                              names) */
 } fb_mech_desc;
 
 /* The planar four-bar (RRRR): bodies crank (rotating, driven), coupler
@@ -115,6 +145,10 @@ int fb_mech_find(const char *type);
 /* The output bodies' indices in body order into out (FB_MECH_MAX_OUTPUTS);
  * returns their number. */
 int fb_mech_outputs(const fb_mech_desc *m, int out[FB_MECH_MAX_OUTPUTS]);
+
+/* Index in m's lengths of its signed position (fb_mech_desc.position_length:
+ * the slider-crank's offset, FB_LENGTH_OFFSET), or -1 when it has none. */
+int fb_mech_position_length(const fb_mech_desc *m);
 
 /* Name of joint j ("crank-coupler"), "?" when j is not one of m's joints. */
 const char *fb_mech_joint_name(const fb_mech_desc *m, int j);

@@ -95,7 +95,7 @@ static const fb_engine *engine_reading(const char *format) {
 static fb_status builds(const fb_case *c, const char *name, const char *format, fb_diag *diag) {
   const fb_model *m = fb_model_find(name);
   if (m && fb_model_builds(m, c->mechanism))
-    return FB_OK; /* every row builds the four-bar */
+    return FB_OK;
   return fb_diag_set(diag, FB_ERR_ARG, "the %s export writes model %s, which does not build a %s "
                      "yet ([linkage] type = %s; fourbar models lists each model's mechanisms)",
                      format, name, fb_case_mech(c)->type, fb_case_mech(c)->type);
@@ -125,7 +125,7 @@ fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_
     return fb_diag_set(diag, FB_ERR_ARG, "--format sdf: the SDF export of a planar case ([linkage] "
                        "type = planar, case %s) is not built: the SDF world written is the "
                        "four-bar's; --format mjcf writes a planar case's ideal mechanism", c->name);
-  if (c->mechanism != FB_MECH_FOURBAR) return fb_export_sdf_refusal(c->mechanism, diag);
+  if (!fb_case_mech(c)->sdf_export) return fb_export_sdf_refusal(c->mechanism, diag);
   fb_scene *def = NULL;
   fb_model_scene sm;
   fb_status st = one_model(&sm, &def, c, name, 0, diag);

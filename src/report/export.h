@@ -42,7 +42,8 @@ fb_status fb_export_planar_mjcf(char *buf, size_t size, const fb_case *c, int id
  * has no clearance joint, model ode-ideal-nominal's mechanism, else
  * ode-clearance-restitution's (fb_export_sdf_model). Errors: those of
  * fb_scene_from_case and fb_export_sdf_model; FB_ERR_ARG for a mechanism
- * other than the four-bar (fb_export_sdf_refusal). On FB_OK, diag->msg as
+ * whose description has no SDF export (fb_mech_desc.sdf_export: all but the
+ * four-bar; fb_export_sdf_refusal). On FB_OK, diag->msg as
  * fb_export_mjcf's. */
 fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag);
 /* (A planar case: FB_ERR_ARG naming the format and the case type: no SDF
@@ -64,8 +65,8 @@ fb_status fb_export_sdf(char *buf, size_t size, const fb_case *c, int ideal, fb_
  * the case's speed. Errors: those of fb_scene_check and
  * fb_cp_rows_make; FB_ERR_ARG for a clearance ground-crank joint (the drive
  * needs its revolute); FB_ERR_RANGE when buf is too small; FB_ERR_ARG
- * (fb_export_sdf_refusal) for a scene of another mechanism than the
- * four-bar: the world written is the four-bar's. */
+ * (fb_export_sdf_refusal) for a scene of a mechanism without SDF export
+ * (fb_mech_desc.sdf_export): the world written is the four-bar's. */
 fb_status fb_export_sdf_model(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag);
 
 /* Refuses the SDF export of a mechanism of type t (not the four-bar):

@@ -214,15 +214,10 @@ fb_status fb_export_sdf_refusal(fb_mech_type t, fb_diag *diag) {
 }
 
 fb_status fb_export_sdf_model(char *buf, size_t size, const fb_model_scene *sm, fb_diag *diag) {
-  if (sm->def->source.mechanism != FB_MECH_FOURBAR)
+  if (!fb_case_mech(&sm->def->source)->sdf_export)
     return fb_export_sdf_refusal(sm->def->source.mechanism, diag);
   fb_status st = fb_scene_check(sm->def, diag);
   if (st != FB_OK) return st;
-  if (sm->def->source.mechanism != FB_MECH_FOURBAR)
-    return fb_diag_set(diag, FB_ERR_ARG,
-                       "[linkage] type = %s: the SDF export writes the four-bar's links and "
-                       "hinges only (no slider or prismatic joint yet); export a four-bar case",
-                       fb_case_mech(&sm->def->source)->type);
   if (sm->clearance_mask & (1 << FB_JOINT_A))
     return fb_diag_set(diag, FB_ERR_ARG, "ground-crank as a clearance joint: the SDF export "
                        "drives the crank through its revolute joint, which that case lacks");

@@ -492,9 +492,9 @@ void fb_report_print_table(FILE *f, const fb_run *r) {
   say(f, "case %s: %.6g rpm %s, %s, %g revolution%s, h = %g s (%s); "
          "peaks over t >= %.6g s (%s); start %s, pin %s",
       c->name, c->crank_speed * 60.0 / (2.0 * M_PI), c->direction > 0 ? "ccw" : "cw",
-      c->mechanism == FB_MECH_SLIDER_CRANK ? "the slider at +x of the crank pivot"
-      : c->branch == FB_BRANCH_OPEN        ? "open branch"
-                                           : "crossed branch",
+      fb_case_mech(c)->assembly_note ? fb_case_mech(c)->assembly_note
+      : c->branch == FB_BRANCH_OPEN  ? "open branch"
+                                     : "crossed branch",
       c->revolutions,
       c->revolutions == 1 ? "" : "s", c->solver.h,
       c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep", r->t_window,

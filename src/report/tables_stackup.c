@@ -79,7 +79,7 @@ void fb_report_stackup_text(FILE *f, const fb_stackup_result *r, const fb_case *
   const int nl = mech->nlengths;
   const fb_mech_type t = c->mechanism;
   fprintf(f, "stack-up of case %s at %.6g rpm:", c->name, c->crank_speed * 60 / (2 * M_PI));
-  if (t != FB_MECH_FOURBAR) fprintf(f, " %s,", mech->type);
+  if (mech->title_names_type) fprintf(f, " %s,", mech->type);
   for (int k = 0; k < nl; k++)
     fprintf(f, "%s %s %.4g +- %.3g mm", k ? "," : "", mech->length[k], c->nominal.length[k] * 1e3,
               c->plus_minus[k] * 1e3);
@@ -107,12 +107,9 @@ void fb_report_stackup_text(FILE *f, const fb_stackup_result *r, const fb_case *
     const char *unit = fb_tol_output_unit_of(t, i);
     fprintf(f, "  %s%sper m\n", unit, unit[0] ? " " : "");
   }
-  if (t == FB_MECH_SLIDER_CRANK && c->nominal.length[FB_LENGTH_OFFSET] == 0.0)
-    fprintf(f, "(at offset 0 the slider-crank is symmetric about its guide: the smallest "
-               "transmission angle, and a peak two mirrored crank angles tie for (the slider's "
-               "acceleration maximum when crank / coupler > 1/4), have a corner in the offset, "
-               "which moves them the same way for either sign; their offset column is one side's "
-               "derivative, the corners and Monte Carlo give the range)\n");
+  const int pos = fb_mech_position_length(mech); /* a signed position's note at 0 */
+  if (pos >= 0 && mech->position_zero_note && c->nominal.length[pos] == 0.0)
+    fprintf(f, "%s\n", mech->position_zero_note);
   if (mask & FB_TOL_MONTECARLO) {
     fprintf(f, "\nMonte Carlo quantiles with %.0f %% confidence intervals (order statistics X_(l) .. X_(u)):\n",
               100.0 * r->ci_level);

@@ -106,7 +106,7 @@ static void default_entry(entry *e, int i) {
  * field recorded for the writers */
 static fb_status resolve_masses(fb_case *c, fb_diag *diag) {
   for (int i = 0; i < 3; i++) {
-    if (i == 2 && c->mechanism == FB_MECH_SLIDER_CRANK) { /* the slider (slider_crank_keys) */
+    if (fb_case_mech(c)->body[i].motion == FB_MOTION_TRANSLATING) { /* a slider (mechanism_keys) */
       fb_link_mass *m = &c->link[i];
       const double w = c->link_width[i], t = c->link_thickness[i];
       m->inertia = m->inertia_long = m->inertia_transverse = m->mass * (w * w + t * t) / 12.0;
@@ -225,68 +225,75 @@ void fb_casefile_section_defaults(fb_case *c, const char *section) {
 FB_ENGINE_OPTS_LIST
 #undef X
 
-/* origin of an entry ("file:line" or "--set ..."), or NULL if absent */
-/* ISO 2768-1's smallest linear size [m]: an offset below it has no class tolerance */
-#define SC_OFFSET_ISO_MIN_M 0.5e-3
+/* ISO 2768-1's smallest linear size [m]: a position length (the offset) below it has no
+ * class tolerance */
+#define ISO2768_MIN_SIZE_M 0.5e-3
 
+/* origin of an entry ("file:line" or "--set ..."), or NULL if absent */
 static const char *entry_origin(const load_ctx *c, const char *section, const char *key) {
   int i = find_entry(c, section, key);
   return i >= 0 ? c->e[i].origin : NULL;
 }
 
 /* keys of one mechanism given in a case of another: "[linkage] follower_mm
- * (a four-bar key) with [linkage] type = slider-crank" */
+ * (a four-bar key) with [linkage] type = slider-crank" (fb_mech_desc.keys) */
 static fb_status foreign_keys(const fb_case *out, const load_ctx *c, fb_diag *diag) {
-  static const char *const fourbar_only[][2] = {
-      {"linkage", "follower_mm"}, {"linkage", "ground_mm"}, {"linkage", "branch"},
-      {"tolerance", "follower_plus_minus_mm"}, {"tolerance", "ground_plus_minus_mm"},
-      {"mass", "follower_kg"}, {"mass", "follower_inertia_kg_mm2"},
-      {"mass", "follower_inertia_long_kg_mm2"}, {"mass", "follower_inertia_transverse_kg_mm2"},
-      {"mass", "follower_com_fraction"}, {"mass", "follower_width_mm"},
-      {"mass", "follower_thickness_mm"}};
-  static const char *const slider_only[][2] = {
-      {"linkage", "offset_mm"}, {"tolerance", "offset_plus_minus_mm"}, {"mass", "slider_kg"}};
-  const int sc = out->mechanism == FB_MECH_SLIDER_CRANK;
-  const char *const(*list)[2] = sc ? fourbar_only : slider_only;
-  const size_t n = sc ? sizeof fourbar_only / sizeof fourbar_only[0]
-                      : sizeof slider_only / sizeof slider_only[0];
-  for (size_t i = 0; i < n; i++) {
-    const char *at = entry_origin(c, list[i][0], list[i][1]);
-    if (at)
+  const fb_mech_desc *mech = fb_case_mech(out);
+  for (int t = 0; t < FB_MECH_COUNT; t++) {
+    const fb_mech_desc *owner = fb_mech_of((fb_mech_type)t);
+    for (int i = 0; owner != mech && owner->keys && owner->keys[i]; i += 2) {
+      const char *at = entry_origin(c, owner->keys[i], owner->keys[i + 1]);
+      if (!at) continue;
+      char hint[128];
+      snprintf(hint, sizeof hint, " or set [linkage] type = %s", owner->type);
       return fb_diag_set(diag, FB_ERR_PARSE,
                          "%s: [%s] %s is a %s key, but the case is a %s ([linkage] type = %s): "
                          "remove it%s",
-                         at, list[i][0], list[i][1], sc ? "four-bar" : "slider-crank",
-                         fb_case_mech(out)->type, fb_case_mech(out)->type,
-                         sc ? " (a slider-crank has crank_mm, coupler_mm, offset_mm and [mass] "
-                              "slider_kg)"
-                            : " or set [linkage] type = slider-crank");
+                         at, owner->keys[i], owner->keys[i + 1], owner->type, mech->type,
+                         mech->type, mech->foreign_key_hint ? mech->foreign_key_hint : hint);
+    }
   }
   return FB_OK;
 }
 
-/* a slider-crank's lengths and slider: the offset (default 0) in the
- * follower's slot of the length arrays (FB_LENGTH_OFFSET), no ground length,
- * the slider's mass required and its inertias those of a block of the
- * slider's bar section (they do not enter the planar motion; the engines'
- * bodies need some) */
-static fb_status slider_crank_keys(fb_case *out, const load_ctx *c, fb_diag *diag) {
+/* the keys a mechanism lacks, from its description: a signed position not
+ * given (the slider-crank's offset) is 0 with tolerance 0, the length slots
+ * beyond its lengths (the slider-crank's ground) are 0, the clearance joint
+ * not given is the reference joint (the four-bar's crank-coupler, the key
+ * table's default, the slider-crank's piston pin), and a translating body (a
+ * slider) needs its mass given, its inertias those of a block of its bar
+ * section (they do not enter the planar motion; the engines' bodies need
+ * some) */
+static fb_status mechanism_keys(fb_case *out, const load_ctx *c, fb_diag *diag) {
   fb_status st = foreign_keys(out, c, diag);
-  if (st != FB_OK || out->mechanism != FB_MECH_SLIDER_CRANK) return st;
-  if (!entry_origin(c, "linkage", "offset_mm")) out->nominal.length[FB_LENGTH_OFFSET] = 0.0;
-  if (!entry_origin(c, "tolerance", "offset_plus_minus_mm"))
-    out->plus_minus[FB_LENGTH_OFFSET] = 0.0;
-  out->nominal.length[FB_GROUND] = 0.0;
-  out->plus_minus[FB_GROUND] = 0.0;
-  snprintf(out->tolerance_source[FB_GROUND], sizeof out->tolerance_source[FB_GROUND], "-");
-  out->stackup.corner[FB_GROUND] = 0;
-  if (!entry_origin(c, "clearance", "joints")) /* the piston pin, as the four-bar's default */
-    out->clearance.mask = 1 << fb_case_mech(out)->reference_joint;
-  if (!entry_origin(c, "mass", "slider_kg"))
-    return fb_diag_set(diag, FB_ERR_PARSE,
-                       "%s: [mass] slider_kg is required with [linkage] type = slider-crank: the "
-                       "slider has no bar to derive its mass from (%s)",
-                       c->path ? c->path : "case", MASS_RULE);
+  if (st != FB_OK) return st;
+  const fb_mech_desc *mech = fb_case_mech(out);
+  const int k = fb_mech_position_length(mech);
+  if (k >= 0) {
+    char key[64];
+    snprintf(key, sizeof key, "%s_mm", mech->length[k]);
+    if (!entry_origin(c, "linkage", key)) out->nominal.length[k] = 0.0;
+    snprintf(key, sizeof key, "%s_plus_minus_mm", mech->length[k]);
+    if (!entry_origin(c, "tolerance", key)) out->plus_minus[k] = 0.0;
+  }
+  for (int l = mech->nlengths; l < FB_LINK_COUNT; l++) {
+    out->nominal.length[l] = 0.0;
+    out->plus_minus[l] = 0.0;
+    snprintf(out->tolerance_source[l], sizeof out->tolerance_source[l], "-");
+    out->stackup.corner[l] = 0;
+  }
+  if (!entry_origin(c, "clearance", "joints"))
+    out->clearance.mask = 1 << mech->reference_joint;
+  for (int b = 0; b < mech->nbodies; b++) {
+    char key[64];
+    snprintf(key, sizeof key, "%s_kg", mech->body[b].name);
+    if (mech->body[b].motion == FB_MOTION_TRANSLATING && !entry_origin(c, "mass", key))
+      return fb_diag_set(diag, FB_ERR_PARSE,
+                         "%s: [mass] %s is required with [linkage] type = %s: the %s has no bar "
+                         "to derive its mass from (%s)",
+                         c->path ? c->path : "case", key, mech->type, mech->body[b].name,
+                         MASS_RULE);
+  }
   return FB_OK;
 }
 
@@ -299,9 +306,8 @@ static fb_status resolve_standards(fb_case *out, const load_ctx *c, fb_diag *dia
     snprintf(key, sizeof key, "%s_plus_minus_mm", mech->length[k]);
     if (entry_origin(c, "tolerance", key)) {
       snprintf(out->tolerance_source[k], sizeof out->tolerance_source[k], "explicit");
-    } else if (out->tolerance_class && k == FB_LENGTH_OFFSET &&
-               out->mechanism == FB_MECH_SLIDER_CRANK &&
-               !(fabs(out->nominal.length[k]) >= SC_OFFSET_ISO_MIN_M)) {
+    } else if (out->tolerance_class && k == fb_mech_position_length(mech) &&
+               !(fabs(out->nominal.length[k]) >= ISO2768_MIN_SIZE_M)) {
       /* a guide through the crank pivot has no linear size to tolerance */
       out->plus_minus[k] = 0.0;
       snprintf(out->tolerance_source[k], sizeof out->tolerance_source[k],
@@ -704,7 +710,7 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   }
   st = check_variants(out, diag);
   if (st != FB_OK) goto done;
-  st = slider_crank_keys(out, c, diag);
+  st = mechanism_keys(out, c, diag);
   if (st != FB_OK) goto done;
   st = resolve_standards(out, c, diag);
   if (st != FB_OK) goto done;
@@ -718,8 +724,9 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
     for (size_t i = 0; i < sizeof clearance_default_models / sizeof clearance_default_models[0] &&
                        out->model_count < FB_MAX_MODELS; i++)
       snprintf(out->models[out->model_count++], FB_NAME_SIZE, "%s", clearance_default_models[i]);
-  if (!fb_casefile_given(out, "run", "models") && out->mechanism != FB_MECH_FOURBAR) {
-    /* the default list's models that build the case's mechanism */
+  if (!fb_casefile_given(out, "run", "models")) {
+    /* the default list's models that build the case's mechanism (every one
+       for a mechanism every model builds) */
     int n = 0;
     for (int i = 0; i < out->model_count; i++) {
       const fb_model *m = fb_model_find(out->models[i]);

@@ -62,7 +62,7 @@ int fb_engine_steps_world(fb_engine_id e) {
 #define STK FB_LENGTHS_STACKUP
 #define IDEAL FB_JOINTS_IDEAL
 #define CLEAR FB_JOINTS_CLEARANCE
-#define SC (1u << FB_MECH_SLIDER_CRANK) /* builds the slider-crank too */
+#define SC "slider-crank" /* builds the slider-crank too */
 
 /* One row per model. The style (colour, gnuplot dash type, line width, hue)
  * is the same in every figure (docs/figures.md lists it); the MuJoCo rows take
@@ -451,8 +451,19 @@ const fb_model fb_models[] = {
 
 const int fb_model_count = (int)(sizeof fb_models / sizeof fb_models[0]);
 
+/* 1 when the space-separated list names (NULL: none) holds name */
+static int names_hold(const char *names, const char *name) {
+  const size_t n = strlen(name);
+  for (const char *p = names; p && *p; p += strcspn(p, " ")) {
+    p += strspn(p, " ");
+    if (strncmp(p, name, n) == 0 && (p[n] == ' ' || p[n] == '\0')) return 1;
+  }
+  return 0;
+}
+
 int fb_model_builds(const fb_model *m, fb_mech_type t) {
-  return t == FB_MECH_FOURBAR || (m->mechanisms & (1u << t)) != 0;
+  const fb_mech_desc *d = fb_mech_of(t);
+  return d->every_model_builds || names_hold(m->mechanisms, d->type);
 }
 
 const fb_model *fb_model_find(const char *name) {

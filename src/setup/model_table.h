@@ -138,8 +138,10 @@ typedef struct fb_model {
                               do not converge to a penalty reference's (they grow as the
                               penalty stiffens), and it is judged on what does converge
                               (verdict.h) */
-  unsigned mechanisms;     /* bit t set: also builds mechanism type t (mechanism.h
-                              fb_mech_type); 0: the four-bar alone */
+  const char *mechanisms;  /* the types it builds besides those every model builds
+                              (mechanism.h fb_mech_desc.every_model_builds), by their
+                              [linkage] type names, space-separated ("slider-crank");
+                              NULL: those alone */
   const char *summary;     /* one line for help texts */
   fb_model_style style;    /* its line in every figure; color NULL and hue FB_HUE_NONE: the
                               figures pick one */
@@ -153,8 +155,9 @@ extern const fb_model fb_models[];
 /* Number of rows. */
 extern const int fb_model_count;
 
-/* 1 when model m builds mechanism t (every model builds the four-bar; a
- * row's mechanisms bits the others). */
+/* 1 when model m builds mechanism t: every model builds a description
+ * whose every_model_builds is 1 (the four-bar), a row's mechanisms names
+ * the others. */
 int fb_model_builds(const fb_model *m, fb_mech_type t);
 
 /* The row named name, or NULL. */

@@ -402,8 +402,7 @@ static int engine_point(const fb_engine *eng, fb_engine_id e, fb_bench_set s, in
 }
 
 int fb_bench_builds(fb_engine_id e, const fb_case *c) {
-  if (c->mechanism == FB_MECH_FOURBAR) return 1;
-  const fb_model *m[2];
+  const fb_model *m[2]; /* every model builds some mechanisms (fb_model_builds) */
   fb_bench_models(e, &m[0], &m[1]);
   for (int k = 0; k < 2; k++)
     if (m[k] && !fb_model_builds(m[k], c->mechanism)) return 0;

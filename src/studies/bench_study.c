@@ -420,8 +420,9 @@ static int write_files(const bench_result *br, json_t **j) {
                  "wall_s", br->wall, "rows", arr, "cheapest", cheap,
                  "cheapest_across_engines", across, "peers", pj, "scaling",
                  scaling_json(br->scaling, br->nscaling));
-  /* a case of another mechanism than the four-bar: the engines left out */
-  if (o->c->mechanism != FB_MECH_FOURBAR) {
+  /* a mechanism not every model builds (fb_mech_desc.every_model_builds): the engines
+     left out */
+  if (!fb_case_mech(o->c)->every_model_builds) {
     json_t *lo = json_array();
     char names[sizeof br->left_out];
     snprintf(names, sizeof names, "%s", br->left_out);

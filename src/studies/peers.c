@@ -175,7 +175,7 @@ static int has_peer(fb_engine_id id) {
   return e && e->peer_args;
 }
 
-int fb_peers_build(fb_mech_type t) { return t == FB_MECH_FOURBAR; }
+int fb_peers_build(fb_mech_type t) { return fb_mech_of(t)->peers_build; }
 
 fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *dir,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag) {

@@ -43,8 +43,8 @@ typedef struct {
                                follower omega peaks over the peak window [-] */
 } fb_peer_row;
 
-/* 1 when the bare programs (tests/peers) build mechanism t: the four-bar
- * only. */
+/* 1 when the bare programs (tests/peers) build mechanism t (its
+ * description's peers_build: the four-bar only). */
 int fb_peers_build(fb_mech_type t);
 
 /* The most rows fb_peers_run gives: one per engine. */

@@ -7,14 +7,8 @@
 #include "scene.h"
 #include "units.h"
 
-const char *const fb_penalty_contact_models[2] = {"ode-clearance-impact",
-                                                  "ode-clearance-restitution"};
-
-/* the slider-crank's: the models that build it with each law */
-static const char *const sc_contact_models[2] = {"reference", "reference-restitution"};
-
 const char *const *fb_penalty_contact_models_of(fb_mech_type t) {
-  return t == FB_MECH_SLIDER_CRANK ? sc_contact_models : fb_penalty_contact_models;
+  return fb_mech_of(t)->contact_models;
 }
 
 /* the contact a run of case in uses, through the run's own law resolution */

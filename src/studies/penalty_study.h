@@ -47,12 +47,10 @@ typedef struct {
   fb_mapping mapping;                      /* the case's [clearance] mapping */
 } fb_penalty_study;
 
-/* The two models whose laws the contact block shows: the four-bar's. */
-extern const char *const fb_penalty_contact_models[2];
-
 /* The two models whose laws the contact block shows for mechanism t (the
- * impact and the restitution law, clearance models that build t): the
- * four-bar's ODE rows, the slider-crank's reference rows. */
+ * impact and the restitution law, clearance models that build t): its
+ * description's contact_models (mechanism.h), the four-bar's ODE rows, the
+ * slider-crank's reference rows. */
 const char *const *fb_penalty_contact_models_of(fb_mech_type t);
 
 /* Fills s for case c in mode at the n speeds rpm [rpm]. Never fails as a

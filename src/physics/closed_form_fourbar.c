@@ -195,6 +195,7 @@ static const char *const out_names[FB_TOL_NOUT] = {
     "coupler_alpha_min_rad_s2",  "follower_omega_max_rad_s",   "follower_omega_min_rad_s",
     "follower_alpha_max_rad_s2", "follower_alpha_min_rad_s2",  "transmission_angle_min_rad",
     "transmission_angle_max_rad"};
+
 const char *fb_tol_output_name(int i) { return (i >= 0 && i < FB_TOL_NOUT) ? out_names[i] : "?"; }
 
 int fb_tol_output_parse(const char *name) {

@@ -150,7 +150,6 @@ static fb_status peaks_where(fb_peaks *out, double where[8], const fb_linkage *l
   return FB_OK;
 }
 
-
 static fb_status peaks(fb_peaks *out, const fb_linkage *lk, fb_branch branch, double omega2,
                        fb_diag *diag) {
   return peaks_where(out, NULL, lk, branch, omega2, diag);
@@ -224,7 +223,6 @@ static void sc_fill(fb_start_state *out, const fb_slider_crank_state *s, const d
   out->coupler_b_vel[1] = omega2 * s->b[0];
 }
 
-
 static fb_status start_steady(fb_start_state *out, const fb_linkage *lk, fb_branch branch,
                               double theta0, double omega2, fb_diag *diag) {
   (void)branch;
@@ -266,8 +264,6 @@ static const char *const sc_out_names[FB_TOL_NOUT] = {
     "slider_acceleration_max_m_s2", "slider_acceleration_min_m_s2", "transmission_angle_min_rad",
     "stroke_m"};
 
-
-
 static fb_status sc_outputs(double out[FB_TOL_NOUT], double where[8], const fb_linkage *lk,
                             double omega2, fb_diag *diag) {
   const fb_slider_crank sc = fb_slider_crank_of(lk);
@@ -283,6 +279,13 @@ static fb_status sc_outputs(double out[FB_TOL_NOUT], double where[8], const fb_l
   return FB_OK;
 }
 
+/* the outputs (tolerance.h fb_tol_outputs_of) */
+static fb_status tol_outputs(double out[FB_TOL_NOUT], const fb_linkage *lk, fb_branch branch,
+                             double omega2, fb_diag *diag) {
+  (void)branch;
+  return sc_outputs(out, NULL, lk, omega2, diag);
+}
+
 /* d(output)/d(crank, coupler, offset) into columns FB_CRANK, FB_COUPLER,
  * FB_LENGTH_OFFSET (the fourth column 0): the peaks' from the exact
  * sensitivities at each peak's crank angle (envelope theorem); the smallest
@@ -291,12 +294,6 @@ static fb_status sc_outputs(double out[FB_TOL_NOUT], double where[8], const fb_l
  * offset^2) differentiated in closed form. At offset 0 the transmission
  * angle has a corner (|offset|): its offset column is then the one-sided
  * derivative toward +offset (fb_tol_sensitivities_of). */
-static fb_status tol_outputs(double out[FB_TOL_NOUT], const fb_linkage *lk, fb_branch branch,
-                             double omega2, fb_diag *diag) {
-  (void)branch;
-  return sc_outputs(out, NULL, lk, omega2, diag);
-}
-
 static fb_status sc_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_linkage *lk,
                                   fb_branch branch, double omega2, fb_diag *diag) {
   (void)branch;

@@ -29,10 +29,14 @@
 static const char *const shipped[FB_MECH_COUNT] = {"paper_crank_rocker.ini",
                                                    "slider_crank_flores.ini"};
 
-static void load(fb_case *c, fb_mech_type t) {
+/* the shipped case of type t into *c; its table, and its signed crank
+ * speed [rad/s] into *w */
+static const fb_closed_form *load(fb_case *c, int t, double *w) {
   fb_diag diag;
   if (fb_test_shipped_case(c, shipped[t], NULL, 0, &diag) != FB_OK) fail_msg("%s", diag.msg);
   assert_int_equal(c->mechanism, t);
+  *w = fb_case_omega2(c);
+  return fb_closed_form_of((fb_mech_type)t);
 }
 
 /* every type has its own table, the description finds the same one, and
@@ -86,9 +90,8 @@ static void test_reactions_against_peaks(void **state) {
   (void)state;
   for (int t = 0; t < FB_MECH_COUNT; t++) {
     fb_case c;
-    load(&c, (fb_mech_type)t);
-    const fb_closed_form *cf = fb_closed_form_of((fb_mech_type)t);
-    const double w = fb_case_omega2(&c);
+    double w;
+    const fb_closed_form *cf = load(&c, t, &w);
     double peak[4] = {0}, most[4] = {0};
     assert_int_equal(cf->reaction_peaks(peak, &c.nominal, c.branch, c.link, c.gravity, w,
                                         REACTION_SAMPLES, NULL),
@@ -114,9 +117,8 @@ static void test_start_against_solve(void **state) {
   (void)state;
   for (int t = 0; t < FB_MECH_COUNT; t++) {
     fb_case c;
-    load(&c, (fb_mech_type)t);
-    const fb_closed_form *cf = fb_closed_form_of((fb_mech_type)t);
-    const double w = fb_case_omega2(&c);
+    double w;
+    const fb_closed_form *cf = load(&c, t, &w);
     fb_start_state s;
     double q[FB_MECH_MAX_OUTPUTS][3];
     assert_int_equal(cf->start_steady(&s, &c.nominal, c.branch, c.crank_angle0, w, NULL), FB_OK);
@@ -133,9 +135,8 @@ static void test_tolerance_outputs_against_peaks(void **state) {
   (void)state;
   for (int t = 0; t < FB_MECH_COUNT; t++) {
     fb_case c;
-    load(&c, (fb_mech_type)t);
-    const fb_closed_form *cf = fb_closed_form_of((fb_mech_type)t);
-    const double w = fb_case_omega2(&c);
+    double w;
+    const fb_closed_form *cf = load(&c, t, &w);
     fb_peaks p;
     double o[FB_TOL_NOUT];
     assert_int_equal(cf->peaks(&p, &c.nominal, c.branch, w, NULL), FB_OK);
@@ -159,8 +160,8 @@ static void test_check_lengths(void **state) {
                        FB_OK);
   for (int t = 0; t < FB_MECH_COUNT; t++) {
     fb_case c;
-    load(&c, (fb_mech_type)t);
-    assert_int_equal(fb_closed_form_of((fb_mech_type)t)->check_lengths(&c.nominal, &diag), FB_OK);
+    double w;
+    assert_int_equal(load(&c, t, &w)->check_lengths(&c.nominal, &diag), FB_OK);
   }
 }
 

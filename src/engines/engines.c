@@ -11,9 +11,8 @@
 #include <string.h>
 
 #include "analytic.h"
+#include "closed_form.h"
 #include "mech_kinematics.h"
-#include "slider_crank_invdyn.h"
-#include "invdyn.h"
 #include "fb_config.h"
 #include "reference.h"
 
@@ -122,45 +121,17 @@ static fb_status analytic_create(void **self, const fb_model_scene *sm, fb_diag 
  * sample's crank angle: inverse dynamics (invdyn.h), gravity included */
 /* the slider-crank's (slider_crank_invdyn.h): the pins' forces, and at the
  * slider-ground joint the force on the ground from the slider, -N along y */
-static void slider_crank_reactions(const replay *r, double force[4][2], double *drive_torque) {
-  const fb_model_scene *sm = r->sm;
-  const fb_slider_crank sc = fb_slider_crank_of(&sm->lengths);
-  const fb_slider_crank_mass mass = fb_slider_crank_mass_of(sm->link);
-  fb_slider_crank_reactions q;
-  if (fb_slider_crank_invdyn(&q, &sc, &mass, sm->gravity, r->s.crank_angle[r->i], sm->omega2, 0.0,
-                             NULL) != FB_OK) {
-    for (int j = 0; j < 4; j++) force[j][0] = force[j][1] = NAN;
-    *drive_torque = NAN;
-    return;
-  }
-  for (int j = 0; j < FB_SC_PIN_COUNT; j++) {
-    force[j][0] = q.force[j][0];
-    force[j][1] = q.force[j][1];
-  }
-  force[FB_SC_JOINT_SLIDER_GROUND][0] = 0.0;
-  force[FB_SC_JOINT_SLIDER_GROUND][1] = -q.guide_force;
-  *drive_torque = q.drive_torque;
-}
-
+/* the closed form's inverse dynamics at the replayed sample's crank angle;
+ * NAN when it does not assemble there */
 static void analytic_reactions(const void *self, double force[4][2], double *drive_torque) {
   const replay *r = self;
   const fb_model_scene *sm = r->sm;
-  if (sm->def->source.mechanism == FB_MECH_SLIDER_CRANK) {
-    slider_crank_reactions(r, force, drive_torque);
-    return;
-  }
-  fb_reactions q;
-  if (fb_invdyn_solve(&q, &sm->lengths, sm->branch, sm->link, sm->gravity, r->s.crank_angle[r->i],
-                      sm->omega2, NULL) != FB_OK) {
+  const fb_closed_form *cf = fb_closed_form_of(sm->def->source.mechanism);
+  if (cf->reactions(force, drive_torque, &sm->lengths, sm->branch, sm->link, sm->gravity,
+                    r->s.crank_angle[r->i], sm->omega2, NULL) != FB_OK) {
     for (int j = 0; j < 4; j++) force[j][0] = force[j][1] = NAN;
     *drive_torque = NAN;
-    return;
   }
-  for (int j = 0; j < 4; j++) {
-    force[j][0] = q.force[j][0];
-    force[j][1] = q.force[j][1];
-  }
-  *drive_torque = q.drive_torque;
 }
 
 /* Time per sample [s] (engine.h: CPU time, timing.json models[].cpu_s over

@@ -4,46 +4,36 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "invdyn.h"
-#include "slider_crank_invdyn.h"
+#include "closed_form.h"
+
+static fb_status build(fb_load_scale *out, const fb_closed_form *cf, const fb_linkage *lk,
+                       fb_branch branch, const fb_link_mass link[3], double gravity,
+                       double omega2, int joint_mask, double lookahead_s, fb_diag *diag);
 
 void fb_load_scale_free(fb_load_scale *ls) {
   for (int j = 0; j < 4; j++) free(ls->ahead[j]), free(ls->force[j]);
   memset(ls, 0, sizeof *ls);
 }
 
-/* the joints' reactions of mechanism t at crank angle theta2 into f [N] */
-static fb_status reactions_at(double f[4][2], fb_mech_type t, const fb_linkage *lk,
-                              fb_branch branch, const fb_link_mass link[3], double gravity,
-                              double theta2, double omega2, fb_diag *diag) {
-  if (t == FB_MECH_SLIDER_CRANK) {
-    const fb_slider_crank sc = fb_slider_crank_of(lk);
-    const fb_slider_crank_mass m = fb_slider_crank_mass_of(link);
-    fb_slider_crank_reactions r;
-    fb_status st = fb_slider_crank_invdyn(&r, &sc, &m, gravity, theta2, omega2, 0.0, diag);
-    if (st != FB_OK) return st;
-    memcpy(f, r.force, sizeof r.force);
-    f[FB_SC_JOINT_SLIDER_GROUND][0] = 0.0;
-    f[FB_SC_JOINT_SLIDER_GROUND][1] = -r.guide_force;
-    return FB_OK;
-  }
-  fb_reactions r;
-  fb_status st = fb_invdyn_solve(&r, lk, branch, link, gravity, theta2, omega2, diag);
-  if (st == FB_OK) memcpy(f, r.force, sizeof r.force);
-  return st;
-}
-
 fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branch branch,
                               const fb_link_mass link[3], double gravity, double omega2,
                               int joint_mask, double lookahead_s, fb_diag *diag) {
-  return fb_load_scale_build_mech(out, FB_MECH_FOURBAR, lk, branch, link, gravity, omega2,
-                                  joint_mask, lookahead_s, diag);
+  return build(out, fb_closed_form_of_desc(&fb_mech_fourbar), lk, branch, link, gravity, omega2,
+               joint_mask, lookahead_s, diag);
 }
 
 fb_status fb_load_scale_build_mech(fb_load_scale *out, fb_mech_type t, const fb_linkage *lk,
                                    fb_branch branch, const fb_link_mass link[3], double gravity,
                                    double omega2, int joint_mask, double lookahead_s,
                                    fb_diag *diag) {
+  return build(out, fb_closed_form_of(t), lk, branch, link, gravity, omega2, joint_mask,
+               lookahead_s, diag);
+}
+
+/* the table over the joints' reactions of the closed form cf */
+static fb_status build(fb_load_scale *out, const fb_closed_form *cf, const fb_linkage *lk,
+                       fb_branch branch, const fb_link_mass link[3], double gravity,
+                       double omega2, int joint_mask, double lookahead_s, fb_diag *diag) {
   memset(out, 0, sizeof *out);
   if (!(joint_mask & 15)) return FB_OK; /* no joint asked: no table */
   const int n = FB_LOAD_SCALE_SAMPLES;
@@ -57,7 +47,7 @@ fb_status fb_load_scale_build_mech(fb_load_scale *out, fb_mech_type t, const fb_
   }
   fb_status st = FB_OK;
   for (int k = 0; k < n && st == FB_OK; k++)
-    st = reactions_at(f[k], t, lk, branch, link, gravity, 2.0 * M_PI * k / n, omega2, diag);
+    st = cf->reactions(f[k], NULL, lk, branch, link, gravity, 2.0 * M_PI * k / n, omega2, diag);
   out->n = n;
   /* crank angles swept in the lookahead, as table steps, and the direction */
   const int w = (int)ceil(fabs(omega2) * lookahead_s / (2.0 * M_PI / n));

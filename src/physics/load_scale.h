@@ -45,7 +45,7 @@ typedef struct {
  * lookahead_s >= 0 seconds. A crank at rest (omega2 = 0) or a load that does
  * not change gives tau = INFINITY. Errors: those of fb_invdyn_solve;
  * FB_ERR_NOMEM. On error *out is left empty (fb_load_scale_free is safe).
- * The four-bar's: fb_load_scale_build_mech with FB_MECH_FOURBAR. */
+ * The four-bar's (its closed form's reactions, closed_form.h). */
 fb_status fb_load_scale_build(fb_load_scale *out, const fb_linkage *lk, fb_branch branch,
                               const fb_link_mass link[3], double gravity, double omega2,
                               int joint_mask, double lookahead_s, fb_diag *diag);

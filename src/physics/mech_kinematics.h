@@ -2,7 +2,8 @@
  * (mechanism.h fb_mech_type): what the analytic model, the peaks and the
  * errors against the analytic solution call, so that they serve the
  * four-bar (linkage.h, analytic.h) and the slider-crank (slider_crank.h)
- * alike. Lengths are fb_linkage's in the description's order (a
+ * alike. Each function is its mechanism's table entry (closed_form.h:
+ * closed_form_fourbar.c, closed_form_slider_crank.c). Lengths are fb_linkage's in the description's order (a
  * slider-crank's crank, coupler and guide offset at FB_LENGTH_OFFSET);
  * SI units throughout. */
 #ifndef FB_MECH_KINEMATICS_H

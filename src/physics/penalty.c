@@ -4,7 +4,7 @@
 
 #include "analytic.h"
 #include "contact.h"
-#include "invdyn.h"
+#include "closed_form.h"
 #include "mech_kinematics.h"
 
 /* the recipe's constants (docs/paper.md), in its own units: N, mm */
@@ -21,10 +21,7 @@ const char *fb_pin_joint_name(fb_pin_joint j) {
 }
 
 const char *fb_penalty_paper_refusal(const fb_case *c) {
-  if (c->mechanism == FB_MECH_FOURBAR) return NULL;
-  return "the paper's Tables I to III are its four-bar's recipe (F = k max|alpha| of the "
-         "four-bar's two rocking links, with the paper's constants): they do not apply to a "
-         "slider-crank; --mode physical gives Kc, P and the approach from its joints' reactions";
+  return fb_closed_form_of(c->mechanism)->paper_refusal;
 }
 
 static fb_status paper_rows(fb_penalty_row out[2], const fb_case *c, double omega,
@@ -59,14 +56,9 @@ static fb_status paper_rows(fb_penalty_row out[2], const fb_case *c, double omeg
 static fb_status physical_rows(fb_penalty_row out[2], const fb_case *c, double omega,
                                fb_diag *diag) {
   double fmax_joint[4];
-  /* the four-bar's through its own inverse dynamics, as always; another
-   * mechanism's through its description's (mech_kinematics.h) */
-  fb_status st = c->mechanism == FB_MECH_FOURBAR
-                     ? fb_invdyn_peaks(fmax_joint, NULL, &c->nominal, c->branch, c->link,
-                                       c->gravity, c->direction * omega, PHYSICAL_SAMPLES, diag)
-                     : fb_mech_reaction_peaks(fmax_joint, c->mechanism, &c->nominal, c->branch,
-                                              c->link, c->gravity, c->direction * omega,
-                                              PHYSICAL_SAMPLES, diag);
+  /* the mechanism's inverse dynamics (its closed form, mech_kinematics.h) */
+  fb_status st = fb_mech_reaction_peaks(fmax_joint, c->mechanism, &c->nominal, c->branch, c->link,
+                                        c->gravity, c->direction * omega, PHYSICAL_SAMPLES, diag);
   if (st != FB_OK) return st;
   const double e_star = fb_contact_modulus(c->youngs_modulus, c->poisson_ratio,
                                            c->youngs_modulus, c->poisson_ratio);
@@ -94,7 +86,7 @@ fb_status fb_penalty_rows(fb_penalty_row out[2], const fb_case *c, fb_penalty_mo
                           double omega, fb_diag *diag) {
   if (!(omega > 0.0) || !isfinite(omega))
     return fb_diag_set(diag, FB_ERR_RANGE, "crank speed %g rad/s: must be positive", omega);
-  if (mode == FB_PENALTY_PAPER && c->mechanism != FB_MECH_FOURBAR)
+  if (mode == FB_PENALTY_PAPER && fb_penalty_paper_refusal(c))
     return fb_diag_set(diag, FB_ERR_ARG, "paper mode: %s", fb_penalty_paper_refusal(c));
   return mode == FB_PENALTY_PAPER ? paper_rows(out, c, omega, diag)
                                   : physical_rows(out, c, omega, diag);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "clock.h"
+#include "closed_form.h"
 #include "contact_mass.h"
 #include "linkage.h"
 #include "planar_turn.h"
@@ -25,7 +26,8 @@ typedef struct {
   double open;                /* the assembly branch: +1 open, -1 crossed */
   double bb_cc, inv_2b, inv_cf; /* b^2 - c^2 [m^2], 1 / (2 b), 1 / c [1/m]: fourbar_origin_at */
   double v0;                  /* hysteresis laws' impact velocity (unused by the models) */
-  int sc;                     /* 1: the slider-crank (slider_crank_dynamics.h), q = (theta3, x) */
+  int sc;                     /* 1: the closed form's own model (closed_form.h reference_model:
+                                 the slider-crank's, slider_crank_dynamics.h), q = (theta3, x) */
   fb_sc_dyn_model scm;        /* its model */
   int cj;                     /* the clearance joint (the description's reference_joint) */
   /* the crank's clock: the right-hand side's time is local, counted from
@@ -333,7 +335,8 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
                        "at the %s joint alone; [clearance] joints gives others: set "
                        "joints = %s or drop reference and reference-restitution from models",
                        cjn, cjn);
-  if (ideal && c->mechanism != FB_MECH_FOURBAR)
+  const fb_closed_form *cf = fb_closed_form_of(c->mechanism);
+  if (ideal && !cf->ideal_reference)
     return fb_diag_set(diag, FB_ERR_ARG, "the ideal reference integrates the four-bar only");
   fb_linkage lk;
   fb_case_stackup_lengths(c, &lk);
@@ -369,17 +372,9 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   r.inv_2b = 0.5 / r.b;
   r.inv_cf = 1.0 / r.cf;
   clock_start(&r, 0.0);
-  if (c->mechanism == FB_MECH_SLIDER_CRANK) {
+  if (cf->reference_model) { /* the closed form's own minimal coordinates */
     r.sc = 1;
-    r.scm.geometry = fb_slider_crank_of(&lk);
-    r.scm.mass = fb_slider_crank_mass_of(c->link);
-    r.scm.gravity = c->gravity;
-    r.scm.clearance = c->radial_clearance;
-    r.scm.law = *law;
-    r.scm.impact_velocity = r.v0;
-    r.scm.theta0 = c->crank_angle0;
-    r.scm.omega2 = omega2;
-    rc = fb_sc_dyn_check(&r.scm, diag);
+    rc = cf->reference_model(&r.scm, c, &lk, law, r.v0, diag);
     if (rc != FB_OK) return rc;
   }
   double y[4] = {st.body[0][FB_Q_POS], st.body[1][FB_Q_POS], st.body[0][FB_Q_VEL],

@@ -16,30 +16,10 @@
 #include <string.h>
 #include <time.h>
 
-#include "analytic.h"
-#include "mech_kinematics.h"
-#include "slider_crank.h"
-
-static const char *const out_names[FB_TOL_NOUT] = {
-    "coupler_omega_max_rad_s",   "coupler_omega_min_rad_s",    "coupler_alpha_max_rad_s2",
-    "coupler_alpha_min_rad_s2",  "follower_omega_max_rad_s",   "follower_omega_min_rad_s",
-    "follower_alpha_max_rad_s2", "follower_alpha_min_rad_s2",  "transmission_angle_min_rad",
-    "transmission_angle_max_rad"};
-
-/* the slider-crank's, in the same slots: the second output body's peaks are
- * the slider's (fb_mech_output_key's names, as summary.json's
- * models[].slider), slot 9 its stroke */
-static const char *const sc_out_names[FB_TOL_NOUT] = {
-    "coupler_omega_max_rad_s",      "coupler_omega_min_rad_s",      "coupler_alpha_max_rad_s2",
-    "coupler_alpha_min_rad_s2",     "slider_velocity_max_m_s",      "slider_velocity_min_m_s",
-    "slider_acceleration_max_m_s2", "slider_acceleration_min_m_s2", "transmission_angle_min_rad",
-    "stroke_m"};
-
-const char *fb_tol_output_name(int i) { return (i >= 0 && i < FB_TOL_NOUT) ? out_names[i] : "?"; }
+#include "closed_form.h"
 
 const char *fb_tol_output_name_of(fb_mech_type t, int i) {
-  if (t != FB_MECH_SLIDER_CRANK) return fb_tol_output_name(i);
-  return (i >= 0 && i < FB_TOL_NOUT) ? sc_out_names[i] : "?";
+  return (i >= 0 && i < FB_TOL_NOUT) ? fb_closed_form_of(t)->tol_names[i] : "?";
 }
 
 const char *fb_tol_output_unit_of(fb_mech_type t, int i) {
@@ -55,136 +35,15 @@ const char *fb_tol_output_unit_of(fb_mech_type t, int i) {
   return "";
 }
 
-int fb_tol_output_parse(const char *name) {
-  size_t n = strlen(name);
-  for (int i = 0; i < FB_TOL_NOUT; i++) {
-    if (strcmp(name, out_names[i]) == 0) return i;
-    /* without the unit suffix: the name is a prefix followed by "_rad" */
-    if (strncmp(name, out_names[i], n) == 0 && strncmp(out_names[i] + n, "_rad", 4) == 0) return i;
-  }
-  return -1;
-}
-
-static void peaks_to_outputs(const fb_peaks *p, double out[FB_TOL_NOUT]) {
-  out[0] = p->coupler.omega_max;
-  out[1] = p->coupler.omega_min;
-  out[2] = p->coupler.alpha_max;
-  out[3] = p->coupler.alpha_min;
-  out[4] = p->follower.omega_max;
-  out[5] = p->follower.omega_min;
-  out[6] = p->follower.alpha_max;
-  out[7] = p->follower.alpha_min;
-}
-
-fb_status fb_tol_outputs(double out[FB_TOL_NOUT], const fb_linkage *lk, fb_branch branch,
-                         double omega2, fb_diag *diag) {
-  fb_peaks p;
-  fb_status st = fb_analytic_peaks(&p, lk, branch, omega2, diag);
-  if (st != FB_OK) return st;
-  peaks_to_outputs(&p, out);
-  return fb_linkage_transmission_range(lk, &out[8], &out[9], diag);
-}
-
-fb_status fb_tol_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_linkage *lk,
-                               fb_branch branch, double omega2, fb_diag *diag) {
-  fb_peaks p;
-  double where[8];
-  fb_status st = fb_analytic_peaks_where(&p, where, lk, branch, omega2, diag);
-  if (st != FB_OK) return st;
-  for (int i = 0; i < 8; i++) {
-    double s[4][FB_LINK_COUNT];
-    st = fb_linkage_sensitivity(s, lk, branch, where[i], omega2, diag);
-    if (st != FB_OK) return st;
-    /* output i: body i / 4 (coupler, follower), quantity (i % 4) / 2 (omega, alpha) */
-    const int row = (i % 4 < 2 ? 0 : 2) + (i < 4 ? 0 : 1);
-    for (int k = 0; k < FB_LINK_COUNT; k++) out[i][k] = s[row][k];
-  }
-  /* transmission angle at theta2 = 0 (f = g - a) and pi (f = g + a) */
-  const double a = lk->length[FB_CRANK], b = lk->length[FB_COUPLER];
-  const double c = lk->length[FB_FOLLOWER], g = lk->length[FB_GROUND];
-  for (int e = 0; e < 2; e++) {
-    const double sgn = e == 0 ? -1.0 : 1.0; /* f = g + sgn a */
-    const double f = g + sgn * a;
-    const double u = (b * b + c * c - f * f) / (2.0 * b * c);
-    const double k = -1.0 / sqrt(1.0 - u * u); /* d acos(u) / du */
-    const double du_df = -f / (b * c);
-    out[8 + e][FB_CRANK] = k * du_df * sgn;
-    out[8 + e][FB_GROUND] = k * du_df;
-    out[8 + e][FB_COUPLER] = k * (1.0 / c - u / b);
-    out[8 + e][FB_FOLLOWER] = k * (1.0 / b - u / c);
-  }
-  return FB_OK;
-}
-
-
-/* ---- the slider-crank ----------------------------------------------------- */
-
-static fb_status sc_outputs(double out[FB_TOL_NOUT], double where[8], const fb_linkage *lk,
-                            double omega2, fb_diag *diag) {
-  const fb_slider_crank sc = fb_slider_crank_of(lk);
-  fb_slider_crank_limits lim;
-  fb_status st = fb_slider_crank_limit_positions(&lim, &sc, diag);
-  fb_peaks p;
-  if (st == FB_OK)
-    st = fb_mech_peaks_where(&p, where, FB_MECH_SLIDER_CRANK, lk, FB_BRANCH_OPEN, omega2, diag);
-  if (st != FB_OK) return st;
-  peaks_to_outputs(&p, out);
-  out[8] = lim.transmission_min;
-  out[9] = lim.stroke;
-  return FB_OK;
-}
-
-/* d(output)/d(crank, coupler, offset) into columns FB_CRANK, FB_COUPLER,
- * FB_LENGTH_OFFSET (the fourth column 0): the peaks' from the exact
- * sensitivities at each peak's crank angle (envelope theorem); the smallest
- * transmission angle acos(u), u = (crank + |offset|) / coupler, and the
- * stroke sqrt((coupler + crank)^2 - offset^2) - sqrt((coupler - crank)^2 -
- * offset^2) differentiated in closed form. At offset 0 the transmission
- * angle has a corner (|offset|): its offset column is then the one-sided
- * derivative toward +offset (fb_tol_sensitivities_of). */
-static fb_status sc_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_linkage *lk,
-                                  double omega2, fb_diag *diag) {
-  const fb_slider_crank sc = fb_slider_crank_of(lk);
-  double o[FB_TOL_NOUT], where[8];
-  fb_status st = sc_outputs(o, where, lk, omega2, diag);
-  if (st != FB_OK) return st;
-  memset(out, 0, FB_TOL_NOUT * sizeof out[0]);
-  static const int col[FB_SC_PARAM_COUNT] = {FB_CRANK, FB_COUPLER, FB_LENGTH_OFFSET};
-  /* output i: body i / 4 (rod, slider), quantity (i % 4) / 2 (velocity, acceleration) */
-  static const int row[8] = {FB_SC_SENS_OMEGA3, FB_SC_SENS_OMEGA3, FB_SC_SENS_ALPHA3,
-                             FB_SC_SENS_ALPHA3, FB_SC_SENS_V,      FB_SC_SENS_V,
-                             FB_SC_SENS_A,      FB_SC_SENS_A};
-  for (int i = 0; i < 8; i++) {
-    double s[FB_SC_SENS_COUNT][FB_SC_PARAM_COUNT];
-    st = fb_slider_crank_sensitivity(s, &sc, where[i], omega2, 0.0, diag);
-    if (st != FB_OK) return st;
-    for (int k = 0; k < FB_SC_PARAM_COUNT; k++) out[i][col[k]] = s[row[i]][k];
-  }
-  const double a = sc.crank, b = sc.coupler, e = sc.offset;
-  const double sgn = e < 0.0 ? -1.0 : 1.0; /* d|e|/de, +1 at e = 0 (one-sided) */
-  const double u = (a + fabs(e)) / b;
-  const double k = -1.0 / sqrt(1.0 - u * u); /* d acos(u) / du */
-  out[8][FB_CRANK] = k / b;
-  out[8][FB_COUPLER] = -k * u / b;
-  out[8][FB_LENGTH_OFFSET] = k * sgn / b;
-  const double p = sqrt((b + a) * (b + a) - e * e), m = sqrt((b - a) * (b - a) - e * e);
-  out[9][FB_CRANK] = (b + a) / p + (b - a) / m;
-  out[9][FB_COUPLER] = (b + a) / p - (b - a) / m;
-  out[9][FB_LENGTH_OFFSET] = -e / p + e / m;
-  return FB_OK;
-}
-
 fb_status fb_tol_outputs_of(double out[FB_TOL_NOUT], fb_mech_type t, const fb_linkage *lk,
                             fb_branch branch, double omega2, fb_diag *diag) {
-  if (t == FB_MECH_SLIDER_CRANK) return sc_outputs(out, NULL, lk, omega2, diag);
-  return fb_tol_outputs(out, lk, branch, omega2, diag);
+  return fb_closed_form_of(t)->tol_outputs(out, lk, branch, omega2, diag);
 }
 
 fb_status fb_tol_sensitivities_of(double out[FB_TOL_NOUT][FB_LINK_COUNT], fb_mech_type t,
                                   const fb_linkage *lk, fb_branch branch, double omega2,
                                   fb_diag *diag) {
-  if (t == FB_MECH_SLIDER_CRANK) return sc_sensitivities(out, lk, omega2, diag);
-  return fb_tol_sensitivities(out, lk, branch, omega2, diag);
+  return fb_closed_form_of(t)->tol_sensitivities(out, lk, branch, omega2, diag);
 }
 
 /* ---- Monte Carlo -------------------------------------------------------
@@ -392,11 +251,6 @@ static fb_status corner_outputs(double out[FB_TOL_NOUT], const fb_case *c, const
   fb_diag inner;
   fb_status st = fb_tol_outputs_of(out, c->mechanism, &lk, c->branch, fb_case_omega2(c), &inner);
   if (st == FB_OK) return FB_OK;
-  if (c->mechanism == FB_MECH_FOURBAR)
-    return fb_diag_set(diag, st, "corner %c%c%c%c (crank %g, coupler %g, follower %g, ground %g m): %s",
-                       "-0+"[corner[0] + 1], "-0+"[corner[1] + 1], "-0+"[corner[2] + 1],
-                       "-0+"[corner[3] + 1], lk.length[0], lk.length[1], lk.length[2],
-                       lk.length[3], inner.msg);
   const int n = fb_case_mech(c)->nlengths;
   char mark[FB_LINK_COUNT + 1] = "";
   for (int k = 0; k < n; k++) mark[k] = "-0+"[corner[k] + 1];
@@ -479,8 +333,7 @@ fb_status fb_tol_resolve_worst(fb_case *c, fb_diag *diag) {
 }
 
 void fb_tol_estimate(fb_mech_type t, size_t samples, int jobs, double *bytes, double *seconds) {
-  const double per = t == FB_MECH_SLIDER_CRANK ? FB_TOL_S_PER_SAMPLE_SLIDER_CRANK
-                                               : FB_TOL_S_PER_SAMPLE;
+  const double per = fb_closed_form_of(t)->mc_s_per_sample;
   *bytes = FB_TOL_PROGRAM_BYTES +
            (double)samples * (double)(FB_TOL_NOUT + FB_LINK_COUNT) * (double)sizeof(double);
   *seconds = (double)samples * per / (double)(jobs > 0 ? jobs : 1);

@@ -33,12 +33,17 @@
 
 #include <stddef.h>
 
+#include "analytic.h"
 #include "case.h"
 
 #define FB_TOL_NOUT 10
 
-/* Output names with SI unit suffix, e.g. "coupler_omega_max_rad_s",
- * "transmission_angle_min_rad". */
+/* The four-bar's output names with SI unit suffix, e.g.
+ * "coupler_omega_max_rad_s", "transmission_angle_min_rad". This and the
+ * other four-bar functions below (fb_tol_output_parse, fb_tol_outputs,
+ * fb_tol_outputs_from_peaks, fb_tol_sensitivities) are defined with its
+ * closed forms (closed_form_fourbar.c); the _of functions look the
+ * mechanism's up in its table (closed_form.h). */
 const char *fb_tol_output_name(int i);
 
 /* Index of an output name (with or without its unit suffix), -1 if none. */
@@ -60,6 +65,11 @@ const char *fb_tol_output_unit_of(fb_mech_type t, int i);
  * fb_analytic_peaks. */
 fb_status fb_tol_outputs(double out[FB_TOL_NOUT], const fb_linkage *lk, fb_branch branch,
                          double omega2, fb_diag *diag);
+
+/* Outputs 0..7 from peaks p: per output body (the four-bar's coupler and
+ * follower; another member's in its description's output order) omega max,
+ * min, alpha max, min; slots 8 and 9 untouched. */
+void fb_tol_outputs_from_peaks(double out[FB_TOL_NOUT], const fb_peaks *p);
 
 /* The four-bar's exact sensitivities [output unit per m] (FB_TOL_NOUT x 4). */
 fb_status fb_tol_sensitivities(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_linkage *lk,

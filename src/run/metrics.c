@@ -1,5 +1,6 @@
 #include "metrics.h"
 
+#include "closed_form.h"
 #include "mech_kinematics.h"
 
 #include <math.h>
@@ -254,14 +255,14 @@ fb_status fb_metrics_error(fb_error *out, const fb_series *s, double t_from,
   err_acc e[FB_MECH_MAX_OUTPUTS];
   memset(e, 0, sizeof e);
   const int nb = fb_series_output_count(s);
-  const int type = s->mech ? fb_mech_find(s->mech->type) : FB_MECH_FOURBAR;
+  const fb_closed_form *cf = fb_closed_form_of_desc(s->mech); /* NULL: the four-bar's */
   double crank_err = 0.0;
   size_t n = 0;
   for (size_t i = 0; i < s->n; i++) {
     if (s->t[i] < t_from) continue;
     double th = theta0 + omega2 * s->t[i];
     double x[FB_MECH_MAX_OUTPUTS][3];
-    fb_status st = fb_mech_solve(x, (fb_mech_type)type, lk, branch, th, omega2, 0.0, diag);
+    fb_status st = cf->solve(x, lk, branch, th, omega2, 0.0, diag);
     if (st != FB_OK) return st;
     for (int b = 0; b < nb; b++)
       acc_add(&e[b], s->body[b][FB_Q_VEL][i] - x[b][FB_Q_VEL],

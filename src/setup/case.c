@@ -4,151 +4,36 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "linkage.h"
-#include "mech_kinematics.h"
-#include "slider_crank_invdyn.h"
+#include "closed_form.h"
 #include "model_table.h"
 
-static fb_status check_drivable(const fb_linkage *lk, const char *which, fb_diag *diag) {
-  double lo, hi;
-  int full;
-  fb_diag inner;
-  fb_status st = fb_linkage_crank_range(lk, &lo, &hi, &full, &inner);
-  if (st != FB_OK)
-    return fb_diag_set(diag, st, "%s linkage cannot be assembled: %s", which, inner.msg);
-  /* (by the class's tolerance: the strict test alone can pass on roundoff) */
-  if (fb_linkage_grashof(lk) == FB_GRASHOF_CHANGE_POINT) {
-    char g[512];
-    fb_linkage_grashof_text(g, sizeof g, lk);
-    return fb_diag_set(diag, FB_ERR_ASSEMBLY,
-                       "%s linkage: %s; a crank driven at constant speed cannot pass a fold: "
-                       "make s + l differ from p + q (s + l < p + q for a crank-rocker) with "
-                       "[linkage] crank_mm, coupler_mm, follower_mm, ground_mm",
-                       which, g);
-  }
-  if (!full)
-    return fb_diag_set(diag, FB_ERR_ASSEMBLY,
-                       "%s linkage (%s): the crank cannot turn fully, but it is driven "
-                       "at constant speed: it reaches only crank angles with |theta2| in "
-                       "[%.3f, %.3f] deg; "
-                       "a driven crank needs coupler + follower > crank + ground and "
-                       "|coupler - follower| < |ground - crank|",
-                       which, fb_grashof_name(fb_linkage_grashof(lk)), lo * 180.0 / M_PI,
-                       hi * 180.0 / M_PI);
-  return FB_OK;
-}
-
-/* the slider-crank's counterpart of the Grashof line: its class by
- * coupler against crank + |offset|, the stroke and the dead centres, the
- * smallest transmission angle */
-static void slider_crank_text(const fb_case *c, char *out, size_t size) {
-  const fb_slider_crank sc = fb_slider_crank_of(&c->nominal);
-  const double sum = sc.crank + fabs(sc.offset);
-  const size_t n = (size_t)snprintf(
-      out, size, "slider-crank, %s: coupler %.6g mm against crank + |offset| = %.6g mm (margin %.4g mm)",
-      fb_sc_class_name(fb_slider_crank_class(&sc)), sc.coupler * 1e3, sum * 1e3,
-      (sc.coupler - sum) * 1e3);
-  fb_slider_crank_limits lim;
-  if (n < size && fb_slider_crank_limit_positions(&lim, &sc, NULL) == FB_OK)
-    snprintf(out + n, size - n, "; stroke %.6g mm between the dead centres x = %.6g and %.6g mm; "
-             "smallest transmission angle %.4g deg", lim.stroke * 1e3, lim.x_min * 1e3,
-             lim.x_max * 1e3, lim.transmission_min * 180.0 / M_PI);
-}
-
 void fb_case_grashof_text(const fb_case *c, char *out, size_t size) {
-  if (c->mechanism == FB_MECH_SLIDER_CRANK) {
-    slider_crank_text(c, out, size);
-    return;
-  }
-  fb_linkage_grashof_text(out, size, &c->nominal);
-  size_t n = strlen(out);
-  fb_linkage su;
-  fb_case_stackup_lengths(c, &su);
-  const fb_grashof gn = fb_linkage_grashof(&c->nominal), gs = fb_linkage_grashof(&su);
-  if (gs != gn && n < size)
-    n += (size_t)snprintf(out + n, size - n, "; at the stack-up corner: %s", fb_grashof_name(gs));
-  double sl, pq, tol = 0.0;
-  fb_linkage_grashof_sums(&c->nominal, &sl, &pq, NULL, NULL);
-  for (int i = 0; i < FB_LINK_COUNT; i++) tol += c->plus_minus[i];
-  if (gn != FB_GRASHOF_CHANGE_POINT && tol > 0.0 && fabs(pq - sl) <= tol && n < size)
-    snprintf(out + n, size - n, "; within the length tolerances (+- %.4g mm summed) the linkage "
-             "can reach the change point, %.4g mm away", tol * 1e3, fabs(pq - sl) * 1e3);
-}
-
-/* a slider-crank's lengths (nominal and at the stack-up corner), its one
- * clearance joint (the piston pin) and the models that build it */
-static fb_status check_slider_crank(const fb_case *c, fb_diag *diag) {
-  fb_linkage su;
-  fb_case_stackup_lengths(c, &su);
-  const fb_linkage *lk[2] = {&c->nominal, &su};
-  static const char *const which[2] = {"nominal", "stack-up"};
-  for (int k = 0; k < 2; k++) {
-    fb_diag inner;
-    if (fb_mech_check_lengths(FB_MECH_SLIDER_CRANK, lk[k], &inner) != FB_OK)
-      return fb_diag_set(diag, FB_ERR_ASSEMBLY,
-                         "%s slider-crank ([linkage] crank_mm = %g, coupler_mm = %g, offset_mm = "
-                         "%g): %s; a crank driven at constant speed needs coupler > crank + "
-                         "|offset|",
-                         which[k], lk[k]->length[FB_CRANK] * 1e3, lk[k]->length[FB_COUPLER] * 1e3,
-                         lk[k]->length[FB_LENGTH_OFFSET] * 1e3, inner.msg);
-  }
-  for (int i = 0; i < 2; i++)
-    if (!(c->plus_minus[i] >= 0.0) || c->plus_minus[i] >= c->nominal.length[i])
-      return fb_diag_set(diag, FB_ERR_RANGE,
-                         "[tolerance] %s_plus_minus_mm = %g: a tolerance must be >= 0 and smaller "
-                         "than the length [linkage] %s_mm = %g",
-                         fb_link_name(i), c->plus_minus[i] * 1e3, fb_link_name(i),
-                         c->nominal.length[i] * 1e3);
-  /* the joints the description lets carry clearance: the piston pin */
-  const fb_mech_desc *mech = fb_case_mech(c);
-  for (int j = 0; j < mech->njoints; j++)
-    if ((c->clearance.mask & (1 << j)) && !mech->joint[j].clearance_ok)
-      return fb_diag_set(diag, FB_ERR_ARG,
-                         "[clearance] joints names %s: a slider-crank's clearance joint is its "
-                         "piston pin, %s (the models and the reference take it there; "
-                         "ground-crank and crank-coupler are ideal, and the prismatic "
-                         "slider-ground is a guide, not a pin): set joints = %s or none",
-                         mech->joint[j].name, mech->joint[mech->reference_joint].name,
-                         mech->joint[mech->reference_joint].name);
-  if (c->clearance.mask && c->clearance.penalty == FB_PENALTY_SOURCE_PAPER)
-    return fb_diag_set(diag, FB_ERR_ARG,
-                       "[clearance] penalty = paper: the paper's stiffness recipe (its Tables II "
-                       "and III) is the four-bar's, from its coupler and follower accelerations; "
-                       "for a slider-crank use penalty = physical, goldsmith or explicit");
-  if (c->stackup.worst)
-    return fb_diag_set(diag, FB_ERR_ARG,
-                       "[tolerance] stackup = worst: the worst corner is searched for the "
-                       "four-bar only; give a slider-crank's corner as max, min, nominal or "
-                       "its characters (crank, coupler, offset, then any)");
-  for (int i = 0; i < c->model_count; i++) {
-    const fb_model *m;
-    fb_status st = fb_model_lookup(&m, c->models[i], diag);
-    if (st != FB_OK) return st;
-    if (!fb_model_builds(m, FB_MECH_SLIDER_CRANK))
-      return fb_diag_set(diag, FB_ERR_ARG,
-                         "[run] models: model '%s' does not build a slider-crank yet ([linkage] "
-                         "type = slider-crank); fourbar models lists each model's mechanisms",
-                         c->models[i]);
-  }
-  return FB_OK;
+  fb_closed_form_of(c->mechanism)->class_text(c, out, size);
 }
 
 fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
-  if (c->mechanism == FB_MECH_SLIDER_CRANK) {
-    fb_status st = check_slider_crank(c, diag);
-    if (st != FB_OK) return st;
-  }
-  fb_status st = c->mechanism == FB_MECH_SLIDER_CRANK
-                     ? FB_OK
-                     : fb_linkage_check(&c->nominal, diag);
+  const fb_closed_form *cf = fb_closed_form_of(c->mechanism);
+  fb_status st = cf->check_case(c, diag);
   if (st != FB_OK) return st;
-  for (int i = 0; i < FB_LINK_COUNT && c->mechanism == FB_MECH_FOURBAR; i++)
+  for (int i = 0; i < cf->tolerances_checked; i++)
     if (!(c->plus_minus[i] >= 0.0) || c->plus_minus[i] >= c->nominal.length[i])
       return fb_diag_set(diag, FB_ERR_RANGE,
                          "[tolerance] %s_plus_minus_mm = %g: a tolerance must be >= 0 and smaller "
                          "than the length [linkage] %s_mm = %g",
                          fb_link_name(i), c->plus_minus[i] * 1e3, fb_link_name(i),
                          c->nominal.length[i] * 1e3);
+  if (cf->check_options && (st = cf->check_options(c, diag)) != FB_OK) return st;
+  const fb_mech_desc *mech = fb_case_mech(c);
+  for (int i = 0; i < c->model_count; i++) {
+    const fb_model *m;
+    st = fb_model_lookup(&m, c->models[i], diag);
+    if (st != FB_OK) return st;
+    if (!fb_model_builds(m, c->mechanism))
+      return fb_diag_set(diag, FB_ERR_ARG,
+                         "[run] models: model '%s' does not build a %s yet ([linkage] "
+                         "type = %s); fourbar models lists each model's mechanisms",
+                         c->models[i], mech->type, mech->type);
+  }
   for (int i = 0; i < 3; i++) {
     const fb_link_mass *m = &c->link[i];
     if (!(m->mass > 0.0) || !isfinite(m->mass))
@@ -174,14 +59,7 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
                        "[pin] radial_clearance_um = %g (or the clearance of [pin] fit): must be "
                        "smaller than the pin radius, [pin] diameter_mm / 2 = %g mm",
                        c->radial_clearance * 1e6, 0.5 * c->pin_diameter * 1e3);
-  if (c->mechanism == FB_MECH_FOURBAR) {
-    st = check_drivable(&c->nominal, "nominal", diag);
-    if (st != FB_OK) return st;
-    fb_linkage su;
-    fb_case_stackup_lengths(c, &su);
-    st = check_drivable(&su, "stack-up", diag);
-    if (st != FB_OK) return st;
-  }
+  if (cf->check_drivable && (st = cf->check_drivable(c, diag)) != FB_OK) return st;
   if (c->solver.h_mode == FB_STEP_ADAPTIVE && !(c->solver.h_max >= c->solver.h_min))
     return fb_diag_set(diag, FB_ERR_RANGE,
                        "[solver] h_max_s = %g: the longest adaptive step must not be below "

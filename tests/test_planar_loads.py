@@ -114,6 +114,8 @@ if pf_rows and fb_rows:
         worst = max(abs(float(pf_rows[i][c]) - sign * float(fb_rows[i][c])) for i in range(n)) / scale
         check(worst <= LOAD_REL, "planar four-bar %s against the closed form: worst %.2e of %.6g"
               % (c, worst, scale))
+        if os.environ.get("FB_TEST_VERBOSE"):
+            print("planar four-bar %s: worst %.2e of %.6g" % (c, worst, scale))
     la, lb = pf["models"][0].get("loads") or {}, fb["models"][0].get("loads") or {}
     check(set(la) == set(lb) and list(la.get("reaction_max_n", {})) == list(lb.get("reaction_max_n", {})),
           "summary.json models[].loads has the four-bar's keys: %s" % sorted(la))

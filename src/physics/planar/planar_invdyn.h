@@ -37,6 +37,15 @@ fb_status fb_planar_invdyn(fb_planar_reaction *out, double *drive_torque, const 
                            const double *q, const double *qd, const double *qdd, double gravity,
                            fb_diag *diag);
 
+/* fb_planar_invdyn's reactions and drive torque at the motion q, qdd, with
+ * the LU of Phi_q(q) that the last successful fb_planar_motion(k, ..., q,
+ * ...) left in k (fb_planar_kin_solve_transposed): no factorisation of its
+ * own. The same multipliers to the rounding level (the two solves' roundings
+ * differ). Errors: FB_ERR_ASSEMBLY when a multiplier is not finite;
+ * FB_ERR_NOMEM. */
+fb_status fb_planar_invdyn_kin(fb_planar_reaction *out, double *drive_torque, fb_planar_kin *k,
+                               const double *q, const double *qdd, double gravity, fb_diag *diag);
+
 /* Every joint's largest reaction magnitude |force| over a revolution of
  * the drive at constant signed speed omega [rad/s] from the assembly
  * configuration (FB_PLANAR_PEAK_SAMPLES drive angles followed by

@@ -68,15 +68,21 @@ JOINT_COLUMNS = ("reaction_x_n", "reaction_y_n", "reaction_n")
 
 
 def run_case(path, out, *extra):
-    rc, _, se = fb_script.run(exe, tmp, "run", path, "--set", "run.models=analytic", "--set", GRID,
-                              "--out", out, "--no-figures", "--no-report", *extra)
+    """the run's analytic.csv rows and summary.json; its printed table into
+    printed[path]"""
+    rc, so, se = fb_script.run(exe, tmp, "run", path, "--set", "run.models=analytic", "--set", GRID,
+                               "--out", out, "--no-figures", "--no-report", *extra)
     check(rc == 0, "fourbar run %s exits 0 (%s)" % (os.path.basename(path), se.strip()[-300:]))
     if rc != 0:
         return None, None
+    printed[path] = so
     with open(os.path.join(out, "analytic.csv")) as f:
         rows = list(csv.DictReader(f))
     with open(os.path.join(out, "summary.json")) as f:
         return rows, json.load(f)
+
+
+printed = {}
 
 
 def key(name):
@@ -234,6 +240,11 @@ def balance_case(path, label):
     most = {k: max(float(r[k + "_reaction_n"]) for r in rows) for k in loads.get("reaction_max_n", {})}
     check(all(abs(loads["reaction_max_n"][k] - most[k]) <= PEAK_REL * most[k] for k in most),
           "%s: each loads.reaction_max_n is its column's largest" % label)
+    rows_printed = ["| %s | %.6g |" % (j["name"], loads["reaction_max_n"][key(j["name"])])
+                    for j in desc["joints"] if key(j["name"]) in loads.get("reaction_max_n", {})]
+    check(rows_printed and all(x in printed[path] for x in rows_printed) and
+          "drive torque max %.6g N m" % loads["drive_torque_max_n_m"] in printed[path],
+          "%s: the printed table's loads rows: %s" % (label, rows_printed))
     worst = balances(desc, rows, GRAVITY)
     if os.environ.get("FB_TEST_VERBOSE"):
         print("%s: Newton-Euler force %.2e, moment %.2e, power %.2e" % (label, *worst))

@@ -249,6 +249,27 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
   return fb_outfile_commit(&out, diag);
 }
 
+/* an analytic model's load peaks (loads_json) as the table's lines: the
+ * drive torque's extremes and one row per joint */
+static void loads_table(FILE *f, const fb_planar_run *r, const fb_planar_model *p) {
+  json_t *l = loads_json(r, p);
+  if (json_is_object(l)) {
+    json_t *rm = json_object_get(l, "reaction_max_n");
+    fprintf(f, "loads (peaks over t >= %.4g s; a reaction is the force on the joint's second "
+               "body from its first):\ndrive torque max %.6g N m, min %.6g N m\n"
+               "| joint | reaction max [N] |\n|---|---:|\n", r->t_window,
+            json_real_value(json_object_get(l, "drive_torque_max_n_m")),
+            json_real_value(json_object_get(l, "drive_torque_min_n_m")));
+    for (int j = 0; j < r->m->njoints; j++) {
+      char key[FB_REPORT_JOINT_KEY_SIZE];
+      fb_report_joint_key(key, sizeof key, r->m->joint[j].name);
+      fprintf(f, "| %s | %.6g |\n", r->m->joint[j].name,
+              json_real_value(json_object_get(rm, key)));
+    }
+  }
+  json_decref(l);
+}
+
 void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
   const fb_planar *m = r->m;
   fprintf(f, "case %s: planar, %d moving bodies, %d joints, ", r->c.name, m->nbodies - 1,
@@ -284,6 +305,7 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
               FB_NUM_CELL("%.6g", k->alpha_max, FB_NUM_NONE_TABLE),
               FB_NUM_CELL("%.6g", k->alpha_min, FB_NUM_NONE_TABLE));
     }
+    if (p->torque) loads_table(f, r, p);
   }
 }
 

@@ -49,7 +49,9 @@ fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const 
                                  fb_diag *diag);
 
 /* The printed table: per model, one row per moving body with its omega
- * and alpha extremes [rad/s, rad/s^2]. */
+ * and alpha extremes [rad/s, rad/s^2]; the analytic model's load peaks
+ * (summary.json's loads): the drive torque's extremes [N m] and one row per
+ * joint with its largest reaction [N]. */
 void fb_report_planar_table(FILE *f, const fb_planar_run *r);
 
 #endif

@@ -107,32 +107,51 @@ fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag)
   return fb_outfile_commit(&out, diag);
 }
 
-json_t *fb_report_loads_json(const fb_series *s, double t_from) {
-  if (!s->has_loads) return json_null();
-  double tmax = -INFINITY, tmin = INFINITY, rmax[4] = {0, 0, 0, 0};
-  size_t n = 0;
-  for (size_t i = 0; i < s->n; i++) {
-    if (s->t[i] < t_from) continue;
-    tmax = fmax(tmax, s->drive_torque[i]);
-    tmin = fmin(tmin, s->drive_torque[i]);
-    for (int j = 0; j < 4; j++) rmax[j] = fmax(rmax[j], hypot(s->reaction[j][0][i], s->reaction[j][1][i]));
-    n++;
+json_t *fb_report_loads_of(const double *t, size_t n, double t_from, const double *torque,
+                           int njoints, const char *const joint[], const double *const fx[],
+                           const double *const fy[]) {
+  double tmax = -INFINITY, tmin = INFINITY;
+  size_t held = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (t[i] < t_from) continue;
+    tmax = fmax(tmax, torque[i]);
+    tmin = fmin(tmin, torque[i]);
+    held++;
   }
-  if (n == 0) return json_null();
+  if (held == 0) return json_null();
   json_t *o = json_object(), *r = json_object();
   json_object_set_new(o, "drive_torque_max_n_m", num(tmax));
   json_object_set_new(o, "drive_torque_min_n_m", num(tmin));
   json_object_set_new(o, "drive_torque_abs_max_n_m", num(fmax(fabs(tmax), fabs(tmin))));
-  for (int j = 0; j < 4; j++) {
-    char key[32];
-    snprintf(key, sizeof key, "%s",
-             fb_mech_joint_name(s->mech ? s->mech : &fb_mech_fourbar, j));
-    for (char *p = key; *p; p++)
-      if (*p == '-') *p = '_';
-    json_object_set_new(r, key, num(rmax[j]));
+  for (int j = 0; j < njoints; j++) {
+    double most = 0.0;
+    for (size_t i = 0; i < n; i++)
+      if (t[i] >= t_from) most = fmax(most, hypot(fx[j][i], fy[j][i]));
+    char key[FB_REPORT_JOINT_KEY_SIZE];
+    json_object_set_new(r, fb_report_joint_key(key, sizeof key, joint[j]), num(most));
   }
   json_object_set_new(o, "reaction_max_n", r);
   return o;
+}
+
+const char *fb_report_joint_key(char *buf, size_t size, const char *joint) {
+  snprintf(buf, size, "%s", joint);
+  for (char *p = buf; *p; p++)
+    if (*p == '-') *p = '_';
+  return buf;
+}
+
+json_t *fb_report_loads_json(const fb_series *s, double t_from) {
+  if (!s->has_loads) return json_null();
+  const fb_mech_desc *mech = s->mech ? s->mech : &fb_mech_fourbar;
+  const char *joint[4];
+  const double *fx[4], *fy[4];
+  for (int j = 0; j < 4; j++) {
+    joint[j] = fb_mech_joint_name(mech, j);
+    fx[j] = s->reaction[j][0];
+    fy[j] = s->reaction[j][1];
+  }
+  return fb_report_loads_of(s->t, s->n, t_from, s->drive_torque, 4, joint, fx, fy);
 }
 
 const fb_contact_law *fb_report_model_law(fb_contact_law *buf, const fb_run *r,

@@ -31,4 +31,21 @@ const char *fb_report_model_mapping(const fb_run *r, const fb_model_result *m);
  * reports no loads. */
 json_t *fb_report_loads_json(const fb_series *s, double t_from);
 
+/* The same peaks of any mechanism's loads: n samples at times t [s] of the
+ * drive torque [N m] and, per joint j of njoints (named joint[j]), its
+ * reaction force fx[j], fy[j] [N] (n each); the key of a joint is its name
+ * with '-' as '_' (fb_report_joint_key). null when no sample has
+ * t >= t_from. */
+json_t *fb_report_loads_of(const double *t, size_t n, double t_from, const double *torque,
+                           int njoints, const char *const joint[], const double *const fx[],
+                           const double *const fy[]);
+
+/* Bytes of a joint's key or column stem: a joint name (at most 43
+ * characters, planar_spec.h) and its terminator. */
+#define FB_REPORT_JOINT_KEY_SIZE 64
+
+/* Joint name joint as a key or column stem: '-' as '_' ("ground-crank":
+ * "ground_crank"), into buf (size bytes, truncated to fit). Returns buf. */
+const char *fb_report_joint_key(char *buf, size_t size, const char *joint);
+
 #endif

@@ -8,6 +8,7 @@
 
 #include "fileio.h"
 #include "numfmt.h"
+#include "report_internal.h"
 #include "run.h"
 #include "series.h"
 #include "units.h"
@@ -117,6 +118,20 @@ static void engine_verdict_json(json_t *e, const fb_planar_model *p) {
                 v->matched ? num(v->matched_penetration_rel_max) : json_null()));
 }
 
+/* an analytic model's load peaks over the window, under the four-bar's
+ * keys (report_internal.h) */
+static json_t *loads_json(const fb_planar_run *r, const fb_planar_model *p) {
+  const fb_planar *m = r->m;
+  const char *joint[FB_PLANAR_SPEC_MAX_JOINTS];
+  const double *fx[FB_PLANAR_SPEC_MAX_JOINTS], *fy[FB_PLANAR_SPEC_MAX_JOINTS];
+  for (int j = 0; j < m->njoints; j++) {
+    joint[j] = m->joint[j].name;
+    fx[j] = p->reaction + (size_t)j * 3 * p->n;
+    fy[j] = fx[j] + p->n;
+  }
+  return fb_report_loads_of(p->t, p->n, r->t_window, p->torque, m->njoints, joint, fx, fy);
+}
+
 json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_path) {
   const fb_planar *m = r->m;
   json_t *o = json_object(), *models = json_array();
@@ -148,6 +163,7 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
       json_object_set_new(e, "contact_steps", json_integer((json_int_t)p->ref.steps));
     }
     if (p->engine && p->ref.failed) json_object_set_new(e, "stop", json_string(p->ref.stop));
+    if (p->torque) json_object_set_new(e, "loads", loads_json(r, p));
     engine_verdict_json(e, p);
     json_array_append_new(models, e);
   }
@@ -176,6 +192,26 @@ static void cell(FILE *f, double x, int first) {
   if (isfinite(x)) fwrite(buf, 1, fb_numfmt_g12(buf, x), f);
 }
 
+/* the load columns' names: the four-bar's (series.h), then a prismatic
+ * joint's couple */
+static void loads_header(FILE *f, const fb_planar *m) {
+  fputs(",drive_torque_n_m", f);
+  for (int j = 0; j < m->njoints; j++) {
+    char w[FB_REPORT_JOINT_KEY_SIZE];
+    fb_report_joint_key(w, sizeof w, m->joint[j].name);
+    fprintf(f, ",%s_reaction_x_n,%s_reaction_y_n,%s_reaction_n", w, w, w);
+    if (m->joint[j].kind == FB_KIND_PRISMATIC) fprintf(f, ",%s_reaction_moment_n_m", w);
+  }
+}
+
+/* sample i's load cells, in loads_header's order */
+static void loads_row(FILE *f, const fb_planar *m, const fb_planar_model *p, size_t i) {
+  cell(f, p->torque[i], 0);
+  for (int j = 0; j < m->njoints; j++)
+    for (int k = 0; k < (m->joint[j].kind == FB_KIND_PRISMATIC ? 4 : 3); k++)
+      cell(f, fb_planar_model_reaction(p, j, k, i), 0);
+}
+
 static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_planar_model *p,
                            fb_diag *diag) {
   static const char *const suffix[3] = {"angle_rad", "omega_rad_s", "alpha_rad_s2"};
@@ -191,6 +227,7 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
   if (p->force)
     fprintf(out.f, ",%s_force_n,%s_penetration_m", m->joint[p->ref.joint].name,
             m->joint[p->ref.joint].name);
+  if (p->torque) loads_header(out.f, m);
   fputc('\n', out.f);
   const size_t every = r->c.series_every > 0 ? (size_t)r->c.series_every : 1;
   for (size_t i = 0; i < p->n; i += every) {
@@ -202,6 +239,7 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
       cell(out.f, p->force[i], 0);
       cell(out.f, p->pen[i], 0);
     }
+    if (p->torque) loads_row(out.f, m, p, i);
     fputc('\n', out.f);
   }
   if (ferror(out.f)) {
@@ -209,6 +247,27 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
     return fb_diag_set(diag, FB_ERR_IO, "%s: write failed", path);
   }
   return fb_outfile_commit(&out, diag);
+}
+
+/* an analytic model's load peaks (loads_json) as the table's lines: the
+ * drive torque's extremes and one row per joint */
+static void loads_table(FILE *f, const fb_planar_run *r, const fb_planar_model *p) {
+  json_t *l = loads_json(r, p);
+  if (json_is_object(l)) {
+    json_t *rm = json_object_get(l, "reaction_max_n");
+    fprintf(f, "loads (peaks over t >= %.4g s; a reaction is the force on the joint's second "
+               "body from its first):\ndrive torque max %.6g N m, min %.6g N m\n"
+               "| joint | reaction max [N] |\n|---|---:|\n", r->t_window,
+            json_real_value(json_object_get(l, "drive_torque_max_n_m")),
+            json_real_value(json_object_get(l, "drive_torque_min_n_m")));
+    for (int j = 0; j < r->m->njoints; j++) {
+      char key[FB_REPORT_JOINT_KEY_SIZE];
+      fb_report_joint_key(key, sizeof key, r->m->joint[j].name);
+      fprintf(f, "| %s | %.6g |\n", r->m->joint[j].name,
+              json_real_value(json_object_get(rm, key)));
+    }
+  }
+  json_decref(l);
 }
 
 void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
@@ -246,6 +305,7 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
               FB_NUM_CELL("%.6g", k->alpha_max, FB_NUM_NONE_TABLE),
               FB_NUM_CELL("%.6g", k->alpha_min, FB_NUM_NONE_TABLE));
     }
+    if (p->torque) loads_table(f, r, p);
   }
 }
 

@@ -9,6 +9,7 @@
 #include "clock.h"
 #include "model_table.h"
 #include "planar_case.h"
+#include "planar_invdyn.h"
 #include "planar_path.h"
 #include "series.h"
 
@@ -62,14 +63,38 @@ static void store(fb_planar_model *p, const fb_planar *m, size_t i, const double
   }
 }
 
+/* sample i's drive torque and joint reactions at the motion q, qdd that
+ * fb_planar_motion(k) has just solved (planar_invdyn.h, with its LU), rx a
+ * scratch row of the joints' reactions */
+static fb_status store_loads(fb_planar_model *p, const fb_planar_run *r, fb_planar_kin *k,
+                             size_t i, fb_planar_reaction *rx, const double *q,
+                             const double *qdd, fb_diag *diag) {
+  const fb_planar *m = r->m;
+  fb_status st = fb_planar_invdyn_kin(rx, &p->torque[i], k, q, qdd, r->c.gravity, diag);
+  for (int j = 0; j < m->njoints && st == FB_OK; j++) {
+    const double v[3] = {rx[j].force[0], rx[j].force[1], rx[j].moment};
+    for (int c = 0; c < 3; c++) p->reaction[((size_t)j * 3 + (size_t)c) * p->n + i] = v[c];
+  }
+  return st;
+}
+
 /* the analytic model's samples: the drive at constant speed from the
- * assembly configuration, followed from one sample to the next */
+ * assembly configuration, followed from one sample to the next, with the
+ * loads of each */
 static fb_status sample(fb_planar_model *p, fb_planar_kin *k, const fb_planar_run *r,
                         fb_diag *diag) {
   const fb_planar *m = r->m;
   const int nq = fb_planar_nq(m);
+  const size_t nj = (size_t)m->njoints;
   double *q = malloc(3 * (size_t)nq * sizeof *q);
-  if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_planar_reaction *rx = malloc(nj * sizeof *rx);
+  p->torque = malloc((1 + 3 * nj) * p->n * sizeof *p->torque);
+  if (!q || !rx || !p->torque) {
+    free(q);
+    free(rx);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples' loads", p->n);
+  }
+  p->reaction = p->torque + p->n;
   double *qd = q + nq, *qdd = qd + nq;
   fb_planar_assembly(m, q);
   fb_status st = fb_planar_position(k, q, 0.0, NULL, diag);
@@ -82,8 +107,10 @@ static fb_status sample(fb_planar_model *p, fb_planar_kin *k, const fb_planar_ru
     p->t[i] = t;
     p->drive[i] = angle;
     if (st == FB_OK) store(p, m, i, q, qd, qdd);
+    if (st == FB_OK) st = store_loads(p, r, k, i, rx, q, qdd, diag);
   }
   free(q);
+  free(rx);
   return st;
 }
 
@@ -133,6 +160,7 @@ static void model_free(fb_planar_model *p) {
   free(p->t);
   free(p->force);
   free(p->force_max);
+  free(p->torque);
   memset(p, 0, sizeof *p);
 }
 
@@ -174,4 +202,10 @@ double fb_planar_model_value(const fb_planar_run *r, const fb_planar_model *p, i
                              size_t i) {
   (void)r;
   return p->q[((size_t)(b - 1) * 3 + (size_t)k) * p->n + i];
+}
+
+double fb_planar_model_reaction(const fb_planar_model *p, int j, int k, size_t i) {
+  const double *f = p->reaction + (size_t)j * 3 * p->n;
+  if (k == 2) return hypot(f[i], f[p->n + i]);
+  return f[(size_t)(k == 3 ? 2 : k) * p->n + i];
 }

@@ -9,7 +9,9 @@
  *              run, and every moving body's omega and alpha extremes over
  *              a revolution (planar_path.h: 3600 drive angles, then
  *              Brent), the drive at constant speed from the assembly
- *              configuration.
+ *              configuration; at every sample the drive torque and every
+ *              joint's reaction (planar_invdyn.h: the Lagrange multipliers,
+ *              gravity [environment] gravity_m_s2 along -y).
   *   reference, reference-restitution
  *              the clearance joint's dynamics (planar_dynamics.h: the
  *              case's one [clearance] joint a pin in a hole, the impact or
@@ -115,6 +117,12 @@ typedef struct {
   double *force_max;       /* an engine's model whose binding sub-steps: its largest contact
                               force over the step from sample i [N] (n; kit.h's
                               fb_kit_clearance.force_max), else NULL */
+  double *torque;          /* the analytic model: the drive's torque on the driven body about +z
+                              (planar_invdyn.h) [N m] (n), else NULL */
+  double *reaction;        /* the analytic model: joint j's reaction on its second body from its
+                              first (planar_invdyn.h, the four-bar's convention), force x
+                              (k = 0) and y (k = 1) [N], moment about +z (k = 2) [N m]:
+                              reaction[(3 j + k) n + i] (3 njoints n; alongside torque) */
 } fb_planar_model;
 
 /* A planar case run. */
@@ -184,6 +192,11 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
  * h_s, h_min_s for an adaptive step, else (auto) a 6000th of a drive
  * revolution. */
 double fb_planar_run_step(const fb_case *c);
+
+/* Model p's sample i of joint j's reaction (fb_planar_model.reaction):
+ * force x (k = 0), y (k = 1) [N], its magnitude (k = 2) [N], the moment
+ * about +z (k = 3) [N m]; p->reaction must be held. */
+double fb_planar_model_reaction(const fb_planar_model *p, int j, int k, size_t i);
 
 /* The analytic model's sample i of body b's quantity k (FB_Q_*). */
 double fb_planar_model_value(const fb_planar_run *r, const fb_planar_model *p, int b, int k,

@@ -8,8 +8,9 @@
  * LU of Phi_q^T. A joint's rows' -Phi_q^T lambda in one body's columns are
  * the force and moment (about its centre) the joint puts on that body
  * (Haug 1989, sec. 6.6: reaction forces from Lagrange multipliers;
- * Nikravesh 1988, sec. 6.4). Same conventions as invdyn.h: the force on a
- * joint's body[1] from its body[0]; the drive torque on the driven body
+ * Nikravesh 1988, sec. 6.4). The force on a joint's body[1] from its
+ * body[0], for every joint (invdyn.h's D, follower-ground, is the other way:
+ * on the follower from the ground); the drive torque on the driven body
  * from the drive, about +z. tests/test_planar_invdyn.c checks the
  * four-bar's against invdyn.h and the slider-crank's against
  * slider_crank_invdyn.h. */
@@ -22,8 +23,9 @@
 typedef struct {
   double force[2]; /* on body[1] from body[0] (x, y) [N]: a prismatic joint's is normal to its
                       slide */
-  double moment;   /* about +z at the joint's point, on body[1] from body[0] [N m]: zero for a
-                      revolute joint (a pin carries no moment); a prismatic joint's couple */
+  double moment;   /* about +z at the joint's point on body[1] (on body[0] when body[1] is the
+                      ground), on body[1] from body[0] [N m]: zero for a revolute joint (a
+                      pin carries no moment); a prismatic joint's couple */
 } fb_planar_reaction;
 
 /* Reactions of every joint (out, njoints) and the drive torque [N m] for
@@ -34,6 +36,15 @@ typedef struct {
 fb_status fb_planar_invdyn(fb_planar_reaction *out, double *drive_torque, const fb_planar *m,
                            const double *q, const double *qd, const double *qdd, double gravity,
                            fb_diag *diag);
+
+/* fb_planar_invdyn's reactions and drive torque at the motion q, qdd, with
+ * the LU of Phi_q(q) that the last successful fb_planar_motion(k, ..., q,
+ * ...) left in k (fb_planar_kin_solve_transposed): no factorisation of its
+ * own. The same multipliers to the rounding level (the two solves' roundings
+ * differ). Errors: FB_ERR_ASSEMBLY when a multiplier is not finite;
+ * FB_ERR_NOMEM. */
+fb_status fb_planar_invdyn_kin(fb_planar_reaction *out, double *drive_torque, fb_planar_kin *k,
+                               const double *q, const double *qdd, double gravity, fb_diag *diag);
 
 /* Every joint's largest reaction magnitude |force| over a revolution of
  * the drive at constant signed speed omega [rad/s] from the assembly

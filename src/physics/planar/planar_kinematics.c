@@ -2,8 +2,10 @@
  * (planar_kinematics.h). */
 #include "planar_kinematics.h"
 
+#include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
+#include <gsl/gsl_permute_vector.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -98,6 +100,15 @@ static void solve(fb_planar_kin *k, const double *rhs, double *x) {
   gsl_vector_const_view b = gsl_vector_const_view_array(rhs, (size_t)k->n);
   gsl_vector_view xv = gsl_vector_view_array(x, (size_t)k->n);
   gsl_linalg_LU_solve(&a.matrix, k->perm, &b.vector, &xv.vector);
+}
+
+void fb_planar_kin_solve_transposed(fb_planar_kin *k, const double *rhs, double *x) {
+  gsl_matrix_view a = gsl_matrix_view_array(k->jac, (size_t)k->n, (size_t)k->n);
+  gsl_vector_view xv = gsl_vector_view_array(x, (size_t)k->n);
+  memcpy(x, rhs, (size_t)k->n * sizeof *x);
+  gsl_blas_dtrsv(CblasUpper, CblasTrans, CblasNonUnit, &a.matrix, &xv.vector); /* U^T y = rhs */
+  gsl_blas_dtrsv(CblasLower, CblasTrans, CblasUnit, &a.matrix, &xv.vector);    /* L^T z = y */
+  gsl_permute_vector_inverse(k->perm, &xv.vector);                              /* P x = z */
 }
 
 int fb_planar_worst_joint(fb_planar_kin *k, const double *q, double angle, double *residual) {

@@ -72,6 +72,13 @@ fb_status fb_planar_position(fb_planar_kin *k, double *q, double angle, int *ite
 fb_status fb_planar_motion(fb_planar_kin *k, double *qd, double *qdd, const double *q,
                            const fb_planar_drive *d, int *sign, fb_diag *diag);
 
+/* x = Phi_q^-T rhs (fb_planar_nq each) with the LU of Phi_q(q) that the
+ * last successful fb_planar_motion(k, ..., q, ...) left in k (P Phi_q =
+ * L U, so Phi_q^T = U^T L^T P: two triangular solves and the permutation),
+ * no second factorisation: the Lagrange multipliers of planar_invdyn.h's
+ * fb_planar_invdyn_kin. */
+void fb_planar_kin_solve_transposed(fb_planar_kin *k, const double *rhs, double *x);
+
 /* The joint whose rows hold the largest scaled residual of Phi at q and
  * that residual [m] (lengths) or [rad]; -1 for the drive's row. */
 int fb_planar_worst_joint(fb_planar_kin *k, const double *q, double angle, double *residual);

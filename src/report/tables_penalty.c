@@ -19,9 +19,10 @@ static void penalty_units(const fb_penalty_row *r, fb_penalty_mode m, double *p_
   *p_m = m == FB_PENALTY_PAPER ? r->penalty * sqrt(FB_M_PER_MM) : r->penalty;
 }
 
-/* the name of the study's pin joint j (its mechanism's joint 1 + j) */
+/* the name of the study's pin joint j (penalty.h fb_penalty_joint) */
 static const char *joint_name(const fb_penalty_study *s, fb_pin_joint j) {
-  return fb_mech_joint_name(fb_mech_of(s->mech), 1 + (int)j);
+  const fb_mech_desc *m = fb_mech_of(s->mech);
+  return fb_mech_joint_name(m, fb_penalty_joint(m, j));
 }
 
 /* which force the table's is (the contact block's expected impact force is another) */
@@ -90,8 +91,8 @@ fb_status fb_report_penalty_files(const char *out, const fb_penalty_study *s, in
   snprintf(path, sizeof path, "%s/penalty_%s.svg", out, mname);
   const double *f2[2] = {col_f[0], col_f[1]}, *k2[2] = {col_k[0], col_k[1]};
   const double *p2[2] = {col_p[0], col_p[1]}, *d2[2] = {col_d[0], col_d[1]};
-  const char *names[2] = {joint_name(s, FB_JOINT_CRANK_COUPLER),
-                          joint_name(s, FB_JOINT_COUPLER_FOLLOWER)};
+  const char *names[FB_PENALTY_PIN_JOINTS];
+  for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) names[j] = joint_name(s, j);
   *figure_ok = fb_figures_penalty(path, FB_FIGURE_SVG, mname, n, s->rpm, f2, k2, p2, d2, names,
                                   fig_diag) == FB_OK;
   return FB_OK;

@@ -19,7 +19,8 @@
 #define FB_PENALTY_SPEEDS_MAX 1000
 
 typedef struct {
-  fb_mech_type mech;                       /* the case's mechanism (joint names: its joints 1, 2) */
+  fb_mech_type mech;                       /* the case's mechanism (joint names: its pin joints,
+                                              penalty.h fb_penalty_joint) */
   const char *rows_skipped;                /* NULL, or why the table does not apply (paper mode on
                                               a slider-crank: fb_penalty_paper_refusal) */
   fb_penalty_mode mode;

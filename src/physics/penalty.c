@@ -36,8 +36,8 @@ const char *fb_penalty_paper_refusal(const fb_case *c) {
   return fb_closed_form_of(c->mechanism)->paper_refusal;
 }
 
-static fb_status paper_rows(fb_penalty_row out[2], const fb_case *c, double omega,
-                            fb_diag *diag) {
+static fb_status paper_rows(fb_penalty_row out[FB_PENALTY_PIN_JOINTS], const fb_case *c,
+                            double omega, fb_diag *diag) {
   fb_peaks p;
   fb_status st = fb_analytic_peaks(&p, &c->nominal, c->branch, omega, diag);
   if (st != FB_OK) return st;
@@ -66,8 +66,8 @@ static fb_status paper_rows(fb_penalty_row out[2], const fb_case *c, double omeg
   return FB_OK;
 }
 
-static fb_status physical_rows(fb_penalty_row out[2], const fb_case *c, double omega,
-                               fb_diag *diag) {
+static fb_status physical_rows(fb_penalty_row out[FB_PENALTY_PIN_JOINTS], const fb_case *c,
+                               double omega, fb_diag *diag) {
   double fmax_joint[FB_MECH_MAX_JOINTS];
   /* the mechanism's inverse dynamics (its closed form, mech_kinematics.h) */
   fb_status st = fb_mech_reaction_peaks(fmax_joint, c->mechanism, &c->nominal, c->branch, c->link,
@@ -91,8 +91,8 @@ static fb_status physical_rows(fb_penalty_row out[2], const fb_case *c, double o
       return fb_diag_set(diag, FB_ERR_RANGE,
                          "%s joint at %g rpm: force %g N is beyond Johnson's pin-in-hole "
                          "relation for L = %g m, c = %g m (needs F < 4 pi L E* c / e^2)",
-                         fb_case_joint_name(c, fb_penalty_joint(mech, j)), omega * 60 / (2 * M_PI), f[j],
-                         c->pin_length, c->radial_clearance);
+                         fb_case_joint_name(c, fb_penalty_joint(mech, j)),
+                         omega * 60 / (2 * M_PI), f[j], c->pin_length, c->radial_clearance);
     out[j].speed = omega;
     out[j].joint = (fb_pin_joint)j;
     out[j].force = f[j];
@@ -103,8 +103,8 @@ static fb_status physical_rows(fb_penalty_row out[2], const fb_case *c, double o
   return FB_OK;
 }
 
-fb_status fb_penalty_rows(fb_penalty_row out[2], const fb_case *c, fb_penalty_mode mode,
-                          double omega, fb_diag *diag) {
+fb_status fb_penalty_rows(fb_penalty_row out[FB_PENALTY_PIN_JOINTS], const fb_case *c,
+                          fb_penalty_mode mode, double omega, fb_diag *diag) {
   if (!(omega > 0.0) || !isfinite(omega))
     return fb_diag_set(diag, FB_ERR_RANGE, "crank speed %g rad/s: must be positive", omega);
   if (mode == FB_PENALTY_PAPER && fb_penalty_paper_refusal(c))

@@ -59,7 +59,7 @@ typedef struct {
  * fb_mech_reaction_peaks; FB_ERR_RANGE when Johnson's relation is outside
  * its valid range (force too large for the clearance); FB_ERR_ARG for paper
  * mode on a slider-crank (fb_penalty_paper_refusal). */
-fb_status fb_penalty_rows(fb_penalty_row out[2], const fb_case *c, fb_penalty_mode mode,
-                          double omega, fb_diag *diag);
+fb_status fb_penalty_rows(fb_penalty_row out[FB_PENALTY_PIN_JOINTS], const fb_case *c,
+                          fb_penalty_mode mode, double omega, fb_diag *diag);
 
 #endif

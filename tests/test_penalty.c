@@ -119,6 +119,25 @@ static void test_goldsmith_stiffness_closed_form(void **state) {
   assert_rel(lr->stiffness, p_fd, TANGENT_FD_REL_TOL);
 }
 
+/* issue 57 item 5: the pin joints are read from the description, the
+ * joints that join two moving bodies in its order: the four-bar's B and C
+ * (crank-coupler, coupler-follower), the slider-crank's crank-coupler and
+ * piston pin; a third does not exist in either (the other joints touch
+ * the ground). Names compared exactly: no tolerance. */
+static void test_pin_joints_from_the_description(void **state) {
+  (void)state;
+  static const char *const fourbar[2] = {"crank-coupler", "coupler-follower"};
+  static const char *const slider[2] = {"crank-coupler", "coupler-slider"};
+  for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) {
+    assert_int_equal(fb_penalty_joint(&fb_mech_fourbar, j), 1 + j);
+    assert_string_equal(fb_pin_joint_name(j), fourbar[j]);
+    const int k = fb_penalty_joint(&fb_mech_slider_crank, j);
+    assert_string_equal(fb_mech_joint_name(&fb_mech_slider_crank, k), slider[j]);
+  }
+  assert_int_equal(fb_penalty_joint(&fb_mech_fourbar, FB_PENALTY_PIN_JOINTS), -1);
+  assert_int_equal(fb_penalty_joint(&fb_mech_slider_crank, FB_PENALTY_PIN_JOINTS), -1);
+}
+
 int main(void) {
   fb_test_paper_case(&paper, NULL, 0);
   const struct CMUnitTest tests[] = {
@@ -126,6 +145,7 @@ int main(void) {
       cmocka_unit_test(test_paper_mode_shapes),
       cmocka_unit_test(test_physical_mode_formulas),
       cmocka_unit_test(test_goldsmith_stiffness_closed_form),
+      cmocka_unit_test(test_pin_joints_from_the_description),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

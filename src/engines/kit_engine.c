@@ -80,36 +80,71 @@ static fb_status refuse(const fb_model_scene *sm, int *joint, fb_diag *diag) {
   return FB_OK;
 }
 
-/* the model's start (start.h) as the description's coordinates q and
- * rates qd: each body placed by the one of its joint centres whose
- * velocity the start gives (the crank by the ground-crank pin and the
- * follower by the follower-ground pin, both fixed; the coupler by the
- * crank-coupler hole, coupler_b_vel; a slider by the coupler-slider hole,
- * its velocity along x): centre = W - R(theta) p, its velocity
- * v_W + omega x (centre - W), p the joint's point in the body's frame */
-static void start_coordinates(double *q, double *qd, const fb_planar *m, const fb_start_state *st,
-                              int slider) {
-  static const int joint_of[2][3] = {{0, 1, 3}, {0, 1, 2}}; /* four-bar, slider-crank */
-  const double angle[3] = {st->crank_angle, st->coupler_angle,
-                           slider ? m->body[3].angle0 : st->follower_angle};
-  const double omega[3] = {st->crank_omega, st->coupler_omega, slider ? 0.0 : st->follower_omega};
-  for (int b = 0; b < 3; b++) {
-    const fb_planar_joint *pj = &m->joint[joint_of[slider][b]];
+/* the joint that places moving body p of m: its revolute joint with the
+ * ground (a fixed pivot) when it has one, else its first revolute joint
+ * with a moving body placed before it (a lower index); -1: none */
+static int placing_joint(const fb_planar *m, int p) {
+  int first = -1;
+  for (int j = 0; j < m->njoints; j++) {
+    const fb_planar_joint *pj = &m->joint[j];
+    const int side = pj->body[1] == p, other = pj->body[!side];
+    if (pj->body[side] != p || pj->kind != FB_KIND_REVOLUTE) continue;
+    if (other == FB_PLANAR_GROUND) return j;
+    if (first < 0 && other < p) first = j;
+  }
+  return first;
+}
+
+/* the model's start (start.h) as the coordinates q and rates qd of d's
+ * description m (its moving body p is d's body p - 1): each body placed
+ * by its placing_joint's centre W on the body's side (the start's pin on
+ * the joint's first moving body, else its hole), with the body's angle
+ * and rate from the start (the driven body's the crank's, output body
+ * k's its body[k]; a translating body keeps its frame angle, at rest) and
+ * W's velocity: 0 at a ground pivot; a translating body's along +x
+ * (body[k]); else the start's one moving joint point's, the crank-coupler
+ * hole's. centre = W - R(theta) p, its velocity v_W + omega x (centre -
+ * W), p the joint's point in the body's frame. FB_ERR_ARG: more moving
+ * bodies than q holds (3 (FB_MECH_MAX_BODIES - 1)), a body no joint
+ * places or the start gives no angle (neither driven nor an output) */
+static fb_status start_coordinates(double *q, double *qd, const fb_planar *m,
+                                   const fb_mech_desc *d, const fb_start_state *st, fb_diag *diag) {
+  int outs[FB_MECH_MAX_OUTPUTS];
+  const int nout = fb_mech_outputs(d, outs);
+  if (m->nbodies > FB_MECH_MAX_BODIES)
+    return fb_diag_set(diag, FB_ERR_ARG, "the kit's start: %d moving bodies, room for %d",
+                       m->nbodies - 1, FB_MECH_MAX_BODIES - 1);
+  for (int b = 0; b + 1 < m->nbodies; b++) {
+    const int j = placing_joint(m, b + 1);
+    int k = -1; /* its output index, -1: the driven body */
+    for (int i = 0; i < nout; i++)
+      if (outs[i] == b) k = i;
+    if (j < 0 || (k < 0 && b != d->input))
+      return fb_diag_set(diag, FB_ERR_ARG, "the kit's start: %s body '%s'",
+                         j < 0 ? "no revolute joint places" : "no start angle for",
+                         m->body[b + 1].name);
+    const fb_planar_joint *pj = &m->joint[j];
     const int side = pj->body[1] == b + 1;
     /* the start's pin is on the joint's first moving body (start.h) */
     const int pin = pj->body[0] == FB_PLANAR_GROUND ? side : !side;
-    const double *w = pin ? st->pin[joint_of[slider][b]] : st->hole[joint_of[slider][b]];
-    double v[2] = {0.0, 0.0}, r[2];
-    if (b == 1) v[0] = st->coupler_b_vel[0], v[1] = st->coupler_b_vel[1];
-    if (b == 2 && slider) v[0] = st->body[1][FB_Q_VEL];
-    fb_planar_rotate(r, angle[b], pj->point[side]);
+    const double *w = pin ? st->pin[j] : st->hole[j];
+    const int translates = k >= 0 && d->body[b].motion == FB_MOTION_TRANSLATING;
+    const double angle = k < 0        ? st->crank_angle
+                         : translates ? m->body[b + 1].angle0
+                                      : st->body[k][FB_Q_POS];
+    const double omega = k < 0 ? st->crank_omega : translates ? 0.0 : st->body[k][FB_Q_VEL];
+    double v[2] = {translates ? st->body[k][FB_Q_VEL] : 0.0, 0.0}, r[2];
+    if (pj->body[!side] != FB_PLANAR_GROUND && !translates)
+      v[0] = st->coupler_b_vel[0], v[1] = st->coupler_b_vel[1];
+    fb_planar_rotate(r, angle, pj->point[side]);
     q[3 * b] = w[0] - r[0];
     q[3 * b + 1] = w[1] - r[1];
-    q[3 * b + 2] = angle[b];
-    qd[3 * b] = v[0] + omega[b] * r[1];
-    qd[3 * b + 1] = v[1] - omega[b] * r[0];
-    qd[3 * b + 2] = omega[b];
+    q[3 * b + 2] = angle;
+    qd[3 * b] = v[0] + omega * r[1];
+    qd[3 * b + 1] = v[1] - omega * r[0];
+    qd[3 * b + 2] = omega;
   }
+  return FB_OK;
 }
 
 static void kit_run_free(kit_run *r) {
@@ -206,10 +241,10 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
   }
   fb_start_state start;
   if (st == FB_OK) st = fb_model_scene_start(&start, sm, diag);
+  double q0[3 * (FB_MECH_MAX_BODIES - 1)], qd0[3 * (FB_MECH_MAX_BODIES - 1)]; /* moving bodies */
+  if (st == FB_OK)
+    st = start_coordinates(q0, qd0, r->m, fb_case_mech(&sm->def->source), &start, diag);
   if (st == FB_OK) {
-    double q0[9], qd0[9]; /* three moving bodies */
-    start_coordinates(q0, qd0, r->m, &start,
-                      fb_case_mech(&sm->def->source)->body[2].motion == FB_MOTION_TRANSLATING);
     const fb_kit_world o = {.gravity = sm->gravity, .h = sm->solver.h, .solver = &sm->solver,
                             .nbodies = r->m->nbodies - 1, .njoints = r->m->njoints,
                             .c = &sm->def->source, .q0 = q0, .qd0 = qd0};

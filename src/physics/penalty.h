@@ -22,12 +22,20 @@
 
 typedef enum { FB_PENALTY_PAPER = 0, FB_PENALTY_PHYSICAL = 1 } fb_penalty_mode;
 
-/* The two clearance joints the paper tabulates: the mechanism's joints 1
- * and 2 (mechanism.h; the slider-crank's crank-coupler and coupler-slider,
- * fb_case_joint_name(c, 1 + j)). */
-typedef enum { FB_JOINT_CRANK_COUPLER = 0, FB_JOINT_COUPLER_FOLLOWER = 1 } fb_pin_joint;
+/* The clearance joints the paper tabulates, as pin joint j = 0 ..
+ * FB_PENALTY_PIN_JOINTS - 1: the mechanism's joints between two moving
+ * bodies, in the description's joint order (fb_penalty_joint; the
+ * four-bar's crank-coupler and coupler-follower, the slider-crank's
+ * crank-coupler and coupler-slider). */
+enum { FB_PENALTY_PIN_JOINTS = 2 };
+typedef int fb_pin_joint;
 
-/* The four-bar's names: "crank-coupler" or "coupler-follower". */
+/* The description's index of pin joint j of mechanism m (mechanism.h), -1
+ * when m has no such joint. */
+int fb_penalty_joint(const fb_mech_desc *m, fb_pin_joint j);
+
+/* The four-bar's names of pin joint j: "crank-coupler" or
+ * "coupler-follower" (fb_mech_joint_name of fb_penalty_joint). */
 const char *fb_pin_joint_name(fb_pin_joint j);
 
 /* NULL when paper mode applies to case c (a four-bar), else why it does not
@@ -44,14 +52,14 @@ typedef struct {
   double approach;  /* mutual approach delta [m] */
 } fb_penalty_row;
 
-/* Rows for both joints at crank speed omega [rad/s] > 0 for case c: the
+/* Rows for both pin joints at crank speed omega [rad/s] > 0 for case c: the
  * four-bar's in either mode, a slider-crank's (its crank-coupler and
  * coupler-slider joints, reactions from fb_mech_reaction_peaks) in physical
  * mode. Errors: those of fb_analytic_peaks / fb_invdyn_peaks /
  * fb_mech_reaction_peaks; FB_ERR_RANGE when Johnson's relation is outside
  * its valid range (force too large for the clearance); FB_ERR_ARG for paper
  * mode on a slider-crank (fb_penalty_paper_refusal). */
-fb_status fb_penalty_rows(fb_penalty_row out[2], const fb_case *c, fb_penalty_mode mode,
-                          double omega, fb_diag *diag);
+fb_status fb_penalty_rows(fb_penalty_row out[FB_PENALTY_PIN_JOINTS], const fb_case *c,
+                          fb_penalty_mode mode, double omega, fb_diag *diag);
 
 #endif

@@ -19,9 +19,10 @@ static void penalty_units(const fb_penalty_row *r, fb_penalty_mode m, double *p_
   *p_m = m == FB_PENALTY_PAPER ? r->penalty * sqrt(FB_M_PER_MM) : r->penalty;
 }
 
-/* the name of the study's pin joint j (its mechanism's joint 1 + j) */
+/* the name of the study's pin joint j (penalty.h fb_penalty_joint) */
 static const char *joint_name(const fb_penalty_study *s, fb_pin_joint j) {
-  return fb_mech_joint_name(fb_mech_of(s->mech), 1 + (int)j);
+  const fb_mech_desc *m = fb_mech_of(s->mech);
+  return fb_mech_joint_name(m, fb_penalty_joint(m, j));
 }
 
 /* which force the table's is (the contact block's expected impact force is another) */
@@ -45,7 +46,7 @@ void fb_report_penalty_table(FILE *f, const fb_penalty_study *s, const fb_case *
           mode == FB_PENALTY_PAPER ? "force F" : "reaction", "stiffness Kc", "penalty P",
           "penalty P", "approach", "rpm", "", "N", "N/m", "N mm^0.5", "N m^0.5", "um");
   for (int i = 0; i < s->n_ok; i++)
-    for (int j = 0; j < 2; j++) {
+    for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) {
       const fb_penalty_row *r = &s->rows[i][j];
       double p_mm, p_m;
       penalty_units(r, mode, &p_mm, &p_m);
@@ -60,12 +61,11 @@ void fb_report_penalty_table(FILE *f, const fb_penalty_study *s, const fb_case *
 
 fb_status fb_report_penalty_files(const char *out, const fb_penalty_study *s, int *figure_ok,
                                   fb_diag *fig_diag, fb_diag *diag) {
-  static double col_f[2][FB_PENALTY_SPEEDS_MAX], col_k[2][FB_PENALTY_SPEEDS_MAX],
-      col_p[2][FB_PENALTY_SPEEDS_MAX], col_d[2][FB_PENALTY_SPEEDS_MAX],
-      col_pm[2][FB_PENALTY_SPEEDS_MAX];
+  enum { J = FB_PENALTY_PIN_JOINTS, N = FB_PENALTY_SPEEDS_MAX };
+  static double col_f[J][N], col_k[J][N], col_p[J][N], col_d[J][N], col_pm[J][N];
   const int n = s->n_ok;
   for (int i = 0; i < n; i++)
-    for (int j = 0; j < 2; j++) {
+    for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) {
       const fb_penalty_row *r = &s->rows[i][j];
       double p_mm;
       penalty_units(r, s->mode, &p_mm, &col_pm[j][i]);
@@ -82,7 +82,7 @@ fb_status fb_report_penalty_files(const char *out, const fb_penalty_study *s, in
   if (st != FB_OK) return st;
   fprintf(of.f, "speed_rpm,joint,force_n,stiffness_n_m,penalty_n_mm0_5,penalty_n_m0_5,approach_um\n");
   for (int i = 0; i < n; i++)
-    for (int j = 0; j < 2; j++)
+    for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++)
       fprintf(of.f, "%.10g,%s,%.12g,%.12g,%.12g,%.12g,%.12g\n", s->rpm[i],
               joint_name(s, (fb_pin_joint)j), col_f[j][i], col_k[j][i],
               col_pm[j][i] / sqrt(FB_M_PER_MM), col_pm[j][i], col_d[j][i]);
@@ -90,8 +90,8 @@ fb_status fb_report_penalty_files(const char *out, const fb_penalty_study *s, in
   snprintf(path, sizeof path, "%s/penalty_%s.svg", out, mname);
   const double *f2[2] = {col_f[0], col_f[1]}, *k2[2] = {col_k[0], col_k[1]};
   const double *p2[2] = {col_p[0], col_p[1]}, *d2[2] = {col_d[0], col_d[1]};
-  const char *names[2] = {joint_name(s, FB_JOINT_CRANK_COUPLER),
-                          joint_name(s, FB_JOINT_COUPLER_FOLLOWER)};
+  const char *names[FB_PENALTY_PIN_JOINTS];
+  for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) names[j] = joint_name(s, j);
   *figure_ok = fb_figures_penalty(path, FB_FIGURE_SVG, mname, n, s->rpm, f2, k2, p2, d2, names,
                                   fig_diag) == FB_OK;
   return FB_OK;
@@ -180,7 +180,7 @@ static void contact_json(json_t *out, const fb_penalty_study *s) {
 void fb_report_penalty_json(FILE *f, const fb_penalty_study *s, const fb_case *c) {
   json_t *rows = json_array();
   for (int i = 0; i < s->n_ok; i++)
-    for (int j = 0; j < 2; j++) {
+    for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) {
       const fb_penalty_row *r = &s->rows[i][j];
       double p_mm, p_m;
       penalty_units(r, s->mode, &p_mm, &p_m);

@@ -171,8 +171,10 @@ void fb_case_default(fb_case *c) {
            "default (10 H7/g6 maximum, 29 um diametral / 2)");
   /* no published value until a case gives one */
   for (int l = 0; l < FB_PUBLISHED_LAWS; l++) {
-    fb_case_body_values *b[2] = {&c->published[l].coupler, &c->published[l].follower};
-    for (int q = 0; q < 2; q++) b[q]->omega_max = b[q]->omega_min = b[q]->alpha_max = b[q]->alpha_min = NAN;
+    for (int k = 0; k < FB_MECH_MAX_OUTPUTS; k++) {
+      fb_case_body_values *b = &c->published[l].body[k];
+      b->omega_max = b->omega_min = b->alpha_max = b->alpha_min = NAN;
+    }
   }
   /* every other default is the key table's, read by the same parser as a
    * file (a test checks that each one applies) */
@@ -235,8 +237,8 @@ static const char *entry_origin(const load_ctx *c, const char *section, const ch
   return i >= 0 ? c->e[i].origin : NULL;
 }
 
-/* keys of one mechanism given in a case of another: "[linkage] follower_mm
- * (a four-bar key) with [linkage] type = slider-crank" (fb_mech_desc.keys) */
+/* keys of one mechanism given in a case of another: "[linkage] offset_mm
+ * is a slider-crank key, but the case is a four-bar" (fb_mech_desc.keys) */
 static fb_status foreign_keys(const fb_case *out, const load_ctx *c, fb_diag *diag) {
   const fb_mech_desc *mech = fb_case_mech(out);
   for (int t = 0; t < FB_MECH_COUNT; t++) {
@@ -803,17 +805,17 @@ int fb_casefile_plausibility(const fb_case *c, char notes[][FB_DIAG_SIZE], int m
                v < FB_PLAUSIBLE_LENGTH_MIN_M ? "metres" : "micrometres", k->key,
                v < FB_PLAUSIBLE_LENGTH_MIN_M ? mm * 1e3 : mm * 1e-3);
   }
-  /* the pin against the bars it passes through: links at a clearance joint */
-  static const int link_at[4][2] = {{-1, FB_CRANK}, {FB_CRANK, FB_COUPLER},
-                                    {FB_COUPLER, FB_FOLLOWER}, {FB_FOLLOWER, -1}};
-  int warned[3] = {0, 0, 0};
-  for (int j = 0; j < 4 && n < max; j++) {
+  /* the pin against the bars it passes through: the moving bodies a
+   * clearance joint joins (the description's joints) */
+  const fb_mech_desc *mech = fb_case_mech(c);
+  int warned[FB_MECH_MAX_BODIES] = {0};
+  for (int j = 0; j < mech->njoints && n < max; j++) {
     if (!(c->clearance.mask & (1 << j))) continue;
     for (int s = 0; s < 2 && n < max; s++) {
-      const int l = link_at[j][s];
-      if (l < 0 || warned[l]) continue;
+      const int l = mech->joint[j].body[s];
+      if (mech->body[l].motion == FB_MOTION_FIXED || warned[l]) continue;
       char wkey[64];
-      snprintf(wkey, sizeof wkey, "%s_width_mm", fb_case_mech(c)->body[l].name);
+      snprintf(wkey, sizeof wkey, "%s_width_mm", mech->body[l].name);
       const int width_counts = fb_casefile_given(c, "mass", wkey) ||
                                c->link_source[l].mass == FB_SOURCE_DERIVED;
       if (!width_counts || c->pin_diameter < c->link_width[l]) continue;
@@ -822,7 +824,7 @@ int fb_casefile_plausibility(const fb_case *c, char notes[][FB_DIAG_SIZE], int m
                "[pin] diameter_mm = %g is not smaller than [mass] %s = %g: the pin of the %s "
                "joint is as wide as the %s's bar it passes through, or wider",
                c->pin_diameter / FB_M_PER_MM, wkey, c->link_width[l] / FB_M_PER_MM,
-               fb_case_joint_name(c, j), fb_case_mech(c)->body[l].name);
+               fb_case_joint_name(c, j), mech->body[l].name);
     }
   }
   /* (a radial clearance as large as the pin's radius is an error: fb_case_check) */

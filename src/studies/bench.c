@@ -14,9 +14,13 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-static double omega_peak_error(const fb_error *e) {
-  return fmax(fmax(fabs(e->coupler.omega_max_rel), fabs(e->coupler.omega_min_rel)),
-              fmax(fabs(e->follower.omega_max_rel), fabs(e->follower.omega_min_rel)));
+/* the largest omega peak error of the nout output bodies (fmax from NaN:
+ * a NaN part counts as absent, as fmax has it) */
+static double omega_peak_error(const fb_error *e, int nout) {
+  double worst = NAN;
+  for (int k = 0; k < nout; k++)
+    worst = fmax(worst, fmax(fabs(e->body[k].omega_max_rel), fabs(e->body[k].omega_min_rel)));
+  return worst;
 }
 
 double fb_bench_alpha_spike(const fb_body_peaks *p) {
@@ -32,24 +36,39 @@ double fb_bench_rel_parts(double *rel, const double *a, const double *b, int n) 
   return worst;
 }
 
-/* the peaks a row's error compares: clearance (q = 1) force, penetration and
- * the two alpha spikes; ideal (q = 0) the four omega peaks. 0: the model did
- * not reach its window */
-static int row_peaks(double out[4], const fb_model_result *m, int q) {
+/* the peaks a row's error compares, per output body k in the description's
+ * order (fb_series_output_count of the model's series): clearance (q = 1)
+ * force, penetration and each body's alpha spike (FB_BENCH_PART_ALPHA_COUPLER
+ * + k); ideal (q = 0) each body's omega max and min (2k, 2k + 1). Returns
+ * the parts filled (the rest NaN), 0 when the model did not reach its window */
+static int row_peaks(double out[FB_BENCH_PARTS], const fb_model_result *m, int q) {
   if (m->run.stop.kind != FB_STOP_NONE || !m->has_peaks) return 0;
+  if (q == 1 && !m->has_spikes) return 0;
+  const int nout = fb_series_output_count(&m->run.series);
+  for (int p = 0; p < FB_BENCH_PARTS; p++) out[p] = NAN;
   if (q == 0) {
-    out[0] = m->peaks.coupler.omega_max;
-    out[1] = m->peaks.coupler.omega_min;
-    out[2] = m->peaks.follower.omega_max;
-    out[3] = m->peaks.follower.omega_min;
-    return 1;
+    for (int k = 0; k < nout; k++) {
+      out[2 * k] = m->peaks.body[k].omega_max;
+      out[2 * k + 1] = m->peaks.body[k].omega_min;
+    }
+    return 2 * nout;
   }
-  if (!m->has_spikes) return 0;
   out[FB_BENCH_PART_FORCE] = m->spikes.force_max;
   out[FB_BENCH_PART_PENETRATION] = m->spikes.penetration_max;
-  out[FB_BENCH_PART_ALPHA_COUPLER] = fb_bench_alpha_spike(&m->peaks.coupler);
-  out[FB_BENCH_PART_ALPHA_FOLLOWER] = fb_bench_alpha_spike(&m->peaks.follower);
-  return 1;
+  for (int k = 0; k < nout; k++)
+    out[FB_BENCH_PART_ALPHA_COUPLER + k] = fb_bench_alpha_spike(&m->peaks.body[k]);
+  return FB_BENCH_PART_ALPHA_COUPLER + nout;
+}
+
+/* row m's clearance peaks against those of ref into part (FB_BENCH_PARTS;
+ * left as they are when either did not reach its window, or they differ
+ * in count); returns the largest relative error, NaN then */
+static double clearance_error(double part[FB_BENCH_PARTS], const fb_model_result *m,
+                              const fb_model_result *ref) {
+  double mine[FB_BENCH_PARTS], theirs[FB_BENCH_PARTS];
+  const int np = row_peaks(mine, m, 1);
+  if (!np || row_peaks(theirs, ref, 1) != np) return NAN;
+  return fb_bench_rel_parts(part, mine, theirs, np);
 }
 
 /* the step-halving figure of rows[0..nrows): case k once more at h/2 (its
@@ -66,13 +85,14 @@ static fb_status halving(fb_bench_row *rows, int nrows, const int *idx, const in
   if (st != FB_OK) return st;
   for (int i = 0; i < nrows; i++) {
     fb_bench_row *b = &rows[i];
-    double at_h[4], at_h2[4], rel[4];
-    for (int p = 0; p < 4; p++) at_h[p] = b->halving_part[p];
-    for (int p = 0; p < 4; p++) b->halving_part[p] = NAN;
-    if (!isfinite(at_h[0]) || !row_peaks(at_h2, &r2.model[idx[i]], kind[i])) continue;
-    b->halving = fb_bench_rel_parts(rel, at_h, at_h2, 4);
+    double at_h[FB_BENCH_PARTS], at_h2[FB_BENCH_PARTS], rel[FB_BENCH_PARTS];
+    for (int p = 0; p < FB_BENCH_PARTS; p++) at_h[p] = b->halving_part[p];
+    for (int p = 0; p < FB_BENCH_PARTS; p++) b->halving_part[p] = NAN;
+    const int np = isfinite(at_h[0]) ? row_peaks(at_h2, &r2.model[idx[i]], kind[i]) : 0;
+    if (!np) continue;
+    b->halving = fb_bench_rel_parts(rel, at_h, at_h2, np);
     if (kind[i])
-      for (int p = 0; p < 4; p++) b->halving_part[p] = rel[p];
+      for (int p = 0; p < np; p++) b->halving_part[p] = rel[p];
   }
   fb_run_free(&r2);
   return FB_OK;
@@ -207,22 +227,19 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
     b->stop = m->run.stop;
     b->error = NAN;
     if (m->run.stop.kind == FB_STOP_NONE) {
-      if (q == 0 && m->has_error) b->error = omega_peak_error(&m->error);
+      if (q == 0 && m->has_error)
+        b->error = omega_peak_error(&m->error, fb_series_output_count(&m->run.series));
     }
     for (int p = 0; p < FB_BENCH_PARTS; p++) b->part[p] = b->halving_part[p] = NAN;
     b->halving = NAN;
     b->ecc_direction_rms = m->has_ref_error && m->run.stop.kind == FB_STOP_NONE
                                ? m->ref_error.ecc_direction_rms
                                : NAN;
-    double mine[4];
-    if (q == 1 && m->has_ref_error && row_peaks(mine, m, 1)) {
-      double theirs[4];
-      if (row_peaks(theirs, &r.model[2], 1))
-        b->error = fb_bench_rel_parts(b->part, mine, theirs, FB_BENCH_PARTS);
-    }
+    double mine[FB_BENCH_PARTS];
+    if (q == 1 && m->has_ref_error) b->error = clearance_error(b->part, m, &r.model[2]);
     /* this row's peaks, for the halving run below */
     if (!b->h_auto && row_peaks(mine, m, q))
-      for (int p = 0; p < 4; p++) b->halving_part[p] = mine[p];
+      for (int p = 0; p < FB_BENCH_PARTS; p++) b->halving_part[p] = mine[p];
     snprintf(b->collider, sizeof b->collider, "%s",
              q == 0 ? "-" : fb_collider_name(m->run.collider));
     b->segments = q == 0 ? 0 : m->run.segments;
@@ -365,17 +382,16 @@ static fb_status collider_run(fb_bench_row *rows, int *n, fb_engine_id e, const 
                                ? m->ref_error.ecc_direction_rms
                                : NAN;
     idx[*n - first - 1] = q;
-    double mine[4], theirs[4];
+    double mine[FB_BENCH_PARTS];
     if (row_peaks(mine, m, 1))
-      for (int p = 0; p < 4; p++) b->halving_part[p] = mine[p];
+      for (int p = 0; p < FB_BENCH_PARTS; p++) b->halving_part[p] = mine[p];
     if (m->run.stop.kind != FB_STOP_NONE || !m->has_spikes || !ex->has_spikes) continue;
     /* against the reference (the faceted row names none: compared here) */
     fb_reference_error re;
     fb_diag inner;
     if (ref->has_peaks && fb_metrics_vs_reference(&re, &m->run.series, &ref->run.series,
-                                                  r.t_window, fb_case_mech(&r.c)->reference_joint, &inner) == FB_OK &&
-        row_peaks(mine, m, 1) && row_peaks(theirs, ref, 1))
-      b->error = fb_bench_rel_parts(b->part, mine, theirs, FB_BENCH_PARTS);
+                                                  r.t_window, fb_case_mech(&r.c)->reference_joint, &inner) == FB_OK)
+      b->error = clearance_error(b->part, m, ref);
     b->has_vs_exact = 1;
     b->force_vs_exact = rel(m->spikes.force_max, ex->spikes.force_max);
     b->pen_vs_exact = rel(m->spikes.penetration_max, ex->spikes.penetration_max);

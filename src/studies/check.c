@@ -67,15 +67,18 @@ static int collect(const fb_run *r, fb_metric *out, int max, int first) {
     const fb_mech_desc *mech = fb_case_mech(&r->c);
     char kb[96];
     if (peaks && m->has_peaks) {
-      const fb_body_peaks *b[2] = {&m->peaks.coupler, &m->peaks.follower};
-      const char *bn[2] = {"coupler", "follower"};
-      for (int k = 0; k < 2; k++) {
+      /* output body k's keys are the four-bar's k-th body's, renamed for
+       * the mechanism by fb_mech_output_key */
+      static const char *const bn[FB_MECH_MAX_OUTPUTS] = {"coupler", "follower"};
+      int outs[FB_MECH_MAX_OUTPUTS];
+      const int nout = fb_mech_outputs(mech, outs);
+      for (int k = 0; k < nout; k++) {
         char grp[96], gk[96];
 #define FB_CHECK_PEAK(field, key)                                               \
   snprintf(gk, sizeof gk, "%s.%s", bn[k], key);                                 \
   fb_mech_output_key(kb, sizeof kb, mech, gk);                                  \
   snprintf(grp, sizeof grp, "%.*s", (int)(strchr(kb, '.') - kb), kb);           \
-  n = add(out, n, max, name, grp, strchr(kb, '.') + 1, b[k]->field);
+  n = add(out, n, max, name, grp, strchr(kb, '.') + 1, m->peaks.body[k].field);
         FB_BODY_PEAK_KEYS(FB_CHECK_PEAK)
 #undef FB_CHECK_PEAK
       }

@@ -19,13 +19,14 @@
 #define FB_PENALTY_SPEEDS_MAX 1000
 
 typedef struct {
-  fb_mech_type mech;                       /* the case's mechanism (joint names: its joints 1, 2) */
+  fb_mech_type mech;                       /* the case's mechanism (joint names: its pin joints,
+                                              penalty.h fb_penalty_joint) */
   const char *rows_skipped;                /* NULL, or why the table does not apply (paper mode on
                                               a slider-crank: fb_penalty_paper_refusal) */
   fb_penalty_mode mode;
   int n;                                   /* speeds asked */
   double rpm[FB_PENALTY_SPEEDS_MAX];       /* crank speeds [rpm] */
-  fb_penalty_row rows[FB_PENALTY_SPEEDS_MAX][2]; /* per speed: both pin joints */
+  fb_penalty_row rows[FB_PENALTY_SPEEDS_MAX][FB_PENALTY_PIN_JOINTS]; /* per speed: both pin joints */
   int n_ok;                                /* speeds whose rows were computed: [0, n_ok) */
   fb_status rows_status;                   /* FB_OK, or why speed n_ok failed (rows_msg) */
   char rows_msg[FB_DIAG_SIZE];

@@ -22,7 +22,8 @@ $FOURBAR_ISO_DIR; that part skipped without it); the nominal omega peaks
 and those at each reported worst corner against the oracle at the same
 lengths; that no corner one length away from a reported worst corner
 passes it (the oracle at each neighbour); every one of the 2^10 corners
-run; --method rss runs none.
+run; every Monte Carlo quantile (16 samples, run with the corners) within
+the corners' range; --method rss runs none.
 
 Usage: test_planar_stackup.py PATH_TO_FOURBAR SOURCE_ROOT. Prints "N
 passed, N failed"; exit 1 on any failure."""
@@ -49,6 +50,14 @@ PEAK_REL = 1e-8
 # zero moves nothing) but must not pass it by more than the oracle's own
 # agreement with the program.
 NEIGHBOUR_REL = PEAK_REL
+# Monte Carlo samples run with the corners: few (a revolution each, 45 ms),
+# the quantiles then near the median, far inside the corners' range.
+MC_SAMPLES = 16
+# A quantile may reach the corners' range where an output does not move
+# (the crank's omega, alpha): the same peak from two evaluations, equal to
+# the peaks' convergence (PEAK_REL of the value, and 1e-9 rad/s^2 absolute
+# for a zero alpha: the crank's, exactly constant, rounds to 1e-13).
+RANGE_REL, RANGE_ABS = PEAK_REL, 1e-9
 W = 300 * 2 * math.pi / 60  # the case's drive: 300 rpm ccw [rad/s]
 # the lengths in the program's order (ground, crank, coupler, ternary, rod,
 # output; each body's points in file order) [m]: the case's joints
@@ -132,7 +141,8 @@ def iso_table():
 
 
 # 1. the six-bar's stack-up: lengths, tolerances, corners
-rc, so, se = fb_script.run(exe, tmp, "stackup", six, "--set", "tolerance.class=m", "--json")
+rc, so, se = fb_script.run(exe, tmp, "stackup", six, "--set", "tolerance.class=m", "--samples",
+                           str(MC_SAMPLES), "--json")
 check(rc == 0, "stackup of the six-bar exits 0 (%s)" % se.strip()[-300:])
 if rc == 0:
     s = json.loads(so)
@@ -183,6 +193,15 @@ if rc == 0:
                 beyond.append((flip, v))
         check(not beyond, "%s %s %.12g at %s: no neighbouring corner passes it (%s)"
               % (name, end, worst, corner, beyond))
+
+    # every quantile within the corners' range
+    for o in s["outputs"]:
+        lo, hi, mc = o["corners"]["min"], o["corners"]["max"], o["montecarlo"]
+        slack = RANGE_REL * max(abs(lo), abs(hi)) + RANGE_ABS
+        for k in ("q00135", "q50", "q99865"):
+            check(lo - slack <= mc[k] <= hi + slack, "%s Monte Carlo %s = %.12g within the corners' "
+                  "[%.12g, %.12g]" % (o["name"], k, mc[k], lo, hi))
+    check(s["samples"] == MC_SAMPLES, "the Monte Carlo ran %d samples: %s" % (MC_SAMPLES, s["samples"]))
 
 # 2. --method rss skips the corners
 rc, so, se = fb_script.run(exe, tmp, "stackup", six, "--set", "tolerance.class=m", "--method", "rss",

@@ -91,8 +91,19 @@ int fb_cmd_kinematics(int argc, char **argv);
  * stdout, JSON with json. penalty: physical mode at the nspeeds speeds rpm.
  * Return the exit status. */
 int fb_cmd_kinematics_planar(const struct fb_case_s *c, int json);
-/* stackup: with_corners 1 runs the worst case over every corner */
-int fb_cmd_stackup_planar(const struct fb_case_s *c, int with_corners, int json);
+/* A stack-up's Monte Carlo as fourbar stackup's command line asks it. */
+typedef struct {
+  size_t samples;      /* samples (>= 1) */
+  unsigned long seed;  /* mt19937 seed */
+  int jobs;            /* threads evaluating them */
+  void (*progress)(double fraction, void *user); /* the progress bar (cmd_stackup.c) */
+  void *user;
+  /* the cost note on stderr: samples, an estimated seconds [s] and bytes on jobs threads */
+  void (*note)(size_t samples, double seconds, double bytes, int jobs);
+} fb_cli_mc;
+/* stackup: mask of FB_TOL_CORNERS (the worst case over every corner) and
+ * FB_TOL_MONTECARLO (mc's samples); the RSS band always */
+int fb_cmd_stackup_planar(const struct fb_case_s *c, int mask, const fb_cli_mc *mc, int json);
 int fb_cmd_penalty_planar(const struct fb_case_s *c, const double *rpm, int nspeeds, int json);
 int fb_cmd_keys(int argc, char **argv);
 int fb_cmd_models(int argc, char **argv);

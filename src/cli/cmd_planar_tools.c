@@ -20,18 +20,42 @@ int fb_cmd_kinematics_planar(const fb_case *c, int json) {
   return 0;
 }
 
-int fb_cmd_stackup_planar(const fb_case *c, int with_corners, int json) {
+/* the Monte Carlo's cost said and bounded before anything runs, as the
+ * four-bar's (montecarlo.h): 0, or the exit status */
+static int mc_cost(const fb_planar *m, int nl, const fb_cli_mc *mc) {
+  double bytes, seconds;
+  fb_diag d;
+  fb_mc_estimate(FB_PLANAR_S_PER_SAMPLE, 4 * (m->nbodies - 1), nl, mc->samples, mc->jobs, &bytes,
+                 &seconds);
+  if (fb_mc_check_cost(mc->samples, bytes, seconds, &d) != FB_OK)
+    return fb_cli_fail("stackup", 2, "%s", d.msg);
+  mc->note(mc->samples, seconds, bytes, mc->jobs);
+  return 0;
+}
+
+int fb_cmd_stackup_planar(const fb_case *c, int mask, const fb_cli_mc *mc, int json) {
   fb_planar *m;
   fb_diag d;
   if (fb_planar_of_case(&m, c, NULL, &d) != FB_OK) return fb_cli_fail("stackup", 1, "%s", d.msg);
-  const int nl = fb_planar_stackup_lengths(m);
+  const int nl = fb_planar_stackup_lengths(m), with_corners = (mask & FB_TOL_CORNERS) != 0;
   if (with_corners && nl < 62 && (1ull << nl) > FB_PLANAR_CORNERS_NOTE)
     fprintf(stderr, "fourbar stackup: %d lengths make %llu corners, each a revolution's peaks: "
             "about %.0f s of CPU at the six-bar's cost per corner (--method rss skips them)\n", nl,
             1ull << nl, (double)(1ull << nl) * FB_PLANAR_S_PER_CORNER);
+  /* (without a class the stack-up is refused below, before any cost) */
+  const int rc = (mask & FB_TOL_MONTECARLO) && c->tolerance_class ? mc_cost(m, nl, mc) : 0;
+  if (rc) {
+    fb_planar_free(m);
+    return rc;
+  }
   static fb_planar_stackup s;
-  const fb_status st = fb_planar_stackup_run(&s, c, m, with_corners, &d);
+  fb_status st = fb_planar_stackup_run(&s, c, m, with_corners, &d);
+  if (st == FB_OK && (mask & FB_TOL_MONTECARLO))
+    st = fb_planar_stackup_montecarlo(&s, c, m, mc->samples, mc->seed,
+                                      c->distribution ? FB_DIST_UNIFORM : FB_DIST_NORMAL, mc->jobs,
+                                      mc->progress, mc->user, &d);
   if (st != FB_OK) {
+    fb_planar_stackup_free(&s);
     fb_planar_free(m);
     return fb_cli_fail("stackup", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
   }

@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "numfmt.h"
+#include "tables_stackup.h"
 #include "units.h"
 
 /* finite number or null */
@@ -92,6 +93,43 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
                       "physical", "rows", arr));
 }
 
+/* the stack-up's Monte Carlo keys of o (as fourbar stackup's on a
+ * four-bar: distribution, samples, seed, jobs, montecarlo_wall_s,
+ * quantile_ci when run) */
+static void mc_json(json_t *o, const fb_planar_stackup *s) {
+  json_object_set_new(o, "distribution",
+                      json_string(s->mc_dist == FB_DIST_UNIFORM ? "uniform" : "normal"));
+  json_object_set_new(o, "samples", json_integer((json_int_t)s->mc.samples));
+  json_object_set_new(o, "seed", json_integer((json_int_t)s->mc_seed));
+  json_object_set_new(o, "jobs", json_integer(s->mc.jobs));
+  json_object_set_new(o, "montecarlo_wall_s", json_real(s->mc.wall_s));
+  if (s->mc.samples)
+    json_object_set_new(o, "quantile_ci", fb_report_mc_ci_json(s->mc.q_rank, s->mc.ci_level));
+}
+
+/* the quantiles' intervals, one row per output, and the run's line */
+static void mc_text(FILE *f, const fb_planar *m, const fb_planar_stackup *s) {
+  char name[128];
+  fprintf(f, "\nMonte Carlo quantiles with %.0f %% confidence intervals (order statistics X_(l) .. "
+          "X_(u))\n| output | 0.135%% | 50%% | 99.865%% |\n|---|---|---|---|\n",
+          100.0 * s->mc.ci_level);
+  int open_side = 0;
+  for (int i = 0; i < s->nout; i++) {
+    fprintf(f, "| %s |", fb_planar_output_name(name, sizeof name, m, i));
+    for (int j = 0; j < FB_MC_NQ; j++) {
+      char a[32], b[32];
+      open_side |= fb_report_mc_bound(a, sizeof a, s->mc.out[i].q_ci[j][0]);
+      open_side |= fb_report_mc_bound(b, sizeof b, s->mc.out[i].q_ci[j][1]);
+      fprintf(f, " [%s, %s] |", a, b);
+    }
+    fputc('\n', f);
+  }
+  if (open_side)
+    fprintf(f, "('-': %zu samples cannot bound that side of a tail quantile at this level; use "
+            "more samples)\n", s->mc.samples);
+  fb_report_mc_footer(f, s->mc.samples, s->mc_dist == FB_DIST_UNIFORM, s->mc.jobs, s->mc.wall_s);
+}
+
 void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
                               const fb_planar_stackup *s, int json) {
   char name[128];
@@ -122,7 +160,13 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
                                                  "max", num(s->hi[i]), "min_at",
                                                  at(s->lo_at, s, i), "max_at", at(s->hi_at, s, i))
                                      : json_null()));
+      const fb_mc_output *q = s->mc.out ? &s->mc.out[i] : NULL;
+      json_object_set_new(json_array_get(outs, (size_t)i), "montecarlo",
+                          s->mc.samples ? fb_report_mc_output_json(q->q, (const double(*)[2])q->q_ci,
+                                                                   q->mean, q->std)
+                                        : json_null());
     }
+    mc_json(o, s);
     json_object_set_new(o, "lengths", lengths);
     json_object_set_new(o, "corners", json_integer(s->corners));
     json_object_set_new(o, "outputs", outs);
@@ -144,12 +188,20 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
   else
     fprintf(f, "\nworst case not run (--method corners runs its %.0f corners); RSS band 3 sigma\n",
             pow(2.0, s->nlengths));
-  fprintf(f, "| output | nominal | RSS low | RSS high | corners min | at | corners max | at |\n"
-          "|---|---:|---:|---:|---:|---|---:|---|\n");
-  for (int i = 0; i < s->nout; i++)
-    fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s |\n",
+  const int mc = s->mc.samples > 0;
+  fprintf(f, "| output | nominal | RSS low | RSS high | corners min | at | corners max | at |%s\n"
+          "|---|---:|---:|---:|---:|---|---:|---|%s\n",
+          mc ? " mc 0.135% | mc 50% | mc 99.865% |" : "", mc ? "---:|---:|---:|" : "");
+  for (int i = 0; i < s->nout; i++) {
+    fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s |",
             fb_planar_output_name(name, sizeof name, m, i), CELL(s->nominal[i]),
             CELL(s->nominal[i] - s->rss_half[i]), CELL(s->nominal[i] + s->rss_half[i]),
             CELL(s->corners ? s->lo[i] : NAN), at(s->lo_at, s, i),
             CELL(s->corners ? s->hi[i] : NAN), at(s->hi_at, s, i));
+    if (mc)
+      fprintf(f, " %s | %s | %s |", CELL(s->mc.out[i].q[0]), CELL(s->mc.out[i].q[1]),
+              CELL(s->mc.out[i].q[2]));
+    fputc('\n', f);
+  }
+  if (mc) mc_text(f, m, s);
 }

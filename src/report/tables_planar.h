@@ -28,7 +28,12 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
  * "to", "nominal_m", "plus_minus_m", "source"}], "corners": N (0: not
  * run), "outputs": [{"name", "nominal", "sensitivity_per_m": [one per
  * length, in their order], "rss": {"low", "high"}, "corners": {"min",
- * "max"} or null}]}; text: the lengths, then one row per output. */
+ * "max"} or null, "montecarlo": {"q00135", "q50", "q99865", "mean", "std",
+ * "q00135_ci_lo", ... "q99865_ci_hi"} or null}], "distribution",
+ * "samples" (0: not run), "seed", "jobs", "montecarlo_wall_s",
+ * "quantile_ci" (when run; tables_stackup.h)}; text: the lengths, then one
+ * row per output (with mc 0.135%, mc 50%, mc 99.865% when run), then the
+ * quantiles' intervals. */
 void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
                               const fb_planar_stackup *s, int json);
 

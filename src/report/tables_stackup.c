@@ -11,6 +11,48 @@
 /* a quantile bound for JSON: null when the sample cannot bound that side */
 static json_t *bound_json(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 
+struct json_t *fb_report_mc_ci_json(const size_t q_rank[3][2], double level) {
+  /* which order statistics bound each quantile (null: none at this level) */
+  json_t *ci = json_object(), *ranks = json_object();
+  static const char *const qn[3] = {"q00135", "q50", "q99865"};
+  json_object_set_new(ci, "level", json_real(level));
+  json_object_set_new(ci, "method", json_string("distribution-free, order statistics (binomial)"));
+  for (int j = 0; j < 3; j++)
+    json_object_set_new(ranks, qn[j],
+                        json_pack("[o,o]", q_rank[j][0] ? json_integer((json_int_t)q_rank[j][0]) : json_null(),
+                                  q_rank[j][1] ? json_integer((json_int_t)q_rank[j][1]) : json_null()));
+  json_object_set_new(ci, "ranks", ranks);
+  return ci;
+}
+
+struct json_t *fb_report_mc_output_json(const double q[3], const double q_ci[3][2], double mean,
+                                        double std) {
+  json_t *m = json_pack("{s:f,s:f,s:f,s:f,s:f}", "q00135", q[0], "q50", q[1], "q99865", q[2],
+                        "mean", mean, "std", std);
+  static const char *const lo[3] = {"q00135_ci_lo", "q50_ci_lo", "q99865_ci_lo"};
+  static const char *const hi[3] = {"q00135_ci_hi", "q50_ci_hi", "q99865_ci_hi"};
+  for (int j = 0; j < 3; j++) {
+    json_object_set_new(m, lo[j], bound_json(q_ci[j][0]));
+    json_object_set_new(m, hi[j], bound_json(q_ci[j][1]));
+  }
+  return m;
+}
+
+int fb_report_mc_bound(char *buf, size_t size, double x) {
+  if (!isfinite(x)) {
+    snprintf(buf, size, "-");
+    return 1;
+  }
+  snprintf(buf, size, "%.6g", x);
+  return 0;
+}
+
+void fb_report_mc_footer(FILE *f, size_t samples, int uniform, int jobs, double wall_s) {
+  fprintf(f, "\nMonte Carlo: %zu samples (%s), %d job%s, %.3f s (%.2f us per sample)\n", samples,
+          uniform ? "uniform" : "normal, 3 sigma at the limit", jobs, jobs == 1 ? "" : "s", wall_s,
+          1e6 * wall_s / (double)samples);
+}
+
 void fb_report_stackup_json(FILE *f, const fb_stackup_result *r, const fb_case *c, int mask,
                             unsigned long seed, int jobs) {
   json_t *o = json_object(), *outs = json_array();
@@ -31,19 +73,8 @@ void fb_report_stackup_json(FILE *f, const fb_stackup_result *r, const fb_case *
     json_object_set_new(tol, mech->length[k], l);
   }
   json_object_set_new(o, "links", tol);
-  if (mask & FB_TOL_MONTECARLO) {
-    /* which order statistics bound each quantile (null: none at this level) */
-    json_t *ci = json_object(), *ranks = json_object();
-    static const char *const qn[3] = {"q00135", "q50", "q99865"};
-    json_object_set_new(ci, "level", json_real(r->ci_level));
-    json_object_set_new(ci, "method", json_string("distribution-free, order statistics (binomial)"));
-    for (int j = 0; j < 3; j++)
-      json_object_set_new(ranks, qn[j],
-                          json_pack("[o,o]", r->q_rank[j][0] ? json_integer((json_int_t)r->q_rank[j][0]) : json_null(),
-                                    r->q_rank[j][1] ? json_integer((json_int_t)r->q_rank[j][1]) : json_null()));
-    json_object_set_new(ci, "ranks", ranks);
-    json_object_set_new(o, "quantile_ci", ci);
-  }
+  if (mask & FB_TOL_MONTECARLO)
+    json_object_set_new(o, "quantile_ci", fb_report_mc_ci_json(r->q_rank, r->ci_level));
   for (int i = 0; i < FB_TOL_NOUT; i++) {
     json_t *x = json_object(), *s = json_object();
     json_object_set_new(x, "name", json_string(fb_tol_output_name_of(c->mechanism, i)));
@@ -55,17 +86,9 @@ void fb_report_stackup_json(FILE *f, const fb_stackup_result *r, const fb_case *
     if (mask & FB_TOL_RSS)
       json_object_set_new(x, "rss", json_pack("{s:f,s:f}", "min", r->nominal[i] - r->rss_half[i], "max",
                                               r->nominal[i] + r->rss_half[i]));
-    if (mask & FB_TOL_MONTECARLO) {
-      json_t *m = json_pack("{s:f,s:f,s:f,s:f,s:f}", "q00135", r->q[i][0], "q50", r->q[i][1],
-                            "q99865", r->q[i][2], "mean", r->mc_mean[i], "std", r->mc_std[i]);
-      static const char *const lo[3] = {"q00135_ci_lo", "q50_ci_lo", "q99865_ci_lo"};
-      static const char *const hi[3] = {"q00135_ci_hi", "q50_ci_hi", "q99865_ci_hi"};
-      for (int j = 0; j < 3; j++) {
-        json_object_set_new(m, lo[j], bound_json(r->q_ci[i][j][0]));
-        json_object_set_new(m, hi[j], bound_json(r->q_ci[i][j][1]));
-      }
-      json_object_set_new(x, "montecarlo", m);
-    }
+    if (mask & FB_TOL_MONTECARLO)
+      json_object_set_new(x, "montecarlo", fb_report_mc_output_json(r->q[i], (const double(*)[2])r->q_ci[i],
+                                                                    r->mc_mean[i], r->mc_std[i]));
     json_array_append_new(outs, x);
   }
   json_object_set_new(o, "outputs", outs);
@@ -118,11 +141,9 @@ void fb_report_stackup_text(FILE *f, const fb_stackup_result *r, const fb_case *
     for (int i = 0; i < FB_TOL_NOUT; i++) {
       fprintf(f, "%-28s", fb_tol_output_name_of(t, i));
       for (int j = 0; j < 3; j++) {
-        char a[32] = "-", b[32] = "-";
-        if (isfinite(r->q_ci[i][j][0])) snprintf(a, sizeof a, "%.6g", r->q_ci[i][j][0]);
-        else open_side = 1;
-        if (isfinite(r->q_ci[i][j][1])) snprintf(b, sizeof b, "%.6g", r->q_ci[i][j][1]);
-        else open_side = 1;
+        char a[32], b[32];
+        open_side |= fb_report_mc_bound(a, sizeof a, r->q_ci[i][j][0]);
+        open_side |= fb_report_mc_bound(b, sizeof b, r->q_ci[i][j][1]);
         fprintf(f, "   [%11s, %11s]", a, b);
       }
       fputc('\n', f);
@@ -130,8 +151,6 @@ void fb_report_stackup_text(FILE *f, const fb_stackup_result *r, const fb_case *
     if (open_side)
       fprintf(f, "('-': %zu samples cannot bound that side of a tail quantile at this level; "
                 "use more samples)\n", r->samples);
-    fprintf(f, "\nMonte Carlo: %zu samples (%s), %d job%s, %.3f s (%.2f us per sample)\n", r->samples,
-              c->distribution ? "uniform" : "normal, 3 sigma at the limit", r->jobs, r->jobs == 1 ? "" : "s",
-              r->mc_wall_s, 1e6 * r->mc_wall_s / (double)r->samples);
+    fb_report_mc_footer(f, r->samples, c->distribution != 0, r->jobs, r->mc_wall_s);
   }
 }

@@ -1,6 +1,7 @@
 /* kinematics, penalty and stack-up of a planar case (planar_tools.h). */
 #include "planar_tools.h"
 
+#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -326,7 +327,80 @@ fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb
   return st;
 }
 
+/* ---- Monte Carlo ---------------------------------------------------------- */
+
+/* what one sample needs: the description, the slot in length[] of each
+ * draw, the drive speed */
+typedef struct {
+  const fb_planar *m;
+  const int *slot; /* (nlengths) */
+  int nlengths;
+  double omega;    /* [rad/s] */
+} mc_ctx;
+
+/* fb_mc_eval: the sample's lengths (draw order) put in length[]'s order,
+ * then the outputs as a corner's */
+static fb_status mc_eval(double *out, const double *len, void *ctx, fb_diag *diag) {
+  const mc_ctx *x = ctx;
+  double *at = malloc((size_t)x->nlengths * sizeof *at);
+  if (!at) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int k = 0; k < x->nlengths; k++) at[x->slot[k]] = len[k];
+  const fb_status st = outputs_at(out, x->m, at, x->omega, diag);
+  free(at);
+  return st;
+}
+
+fb_status fb_planar_stackup_montecarlo(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
+                                       size_t samples, unsigned long seed, fb_distribution dist,
+                                       int jobs, void (*progress)(double fraction, void *user),
+                                       void *user, fb_diag *diag) {
+  const int nl = s->nlengths;
+  int *slot = malloc((size_t)nl * sizeof *slot);
+  double *buf = malloc(3 * (size_t)nl * sizeof *buf);
+  s->mc.out = calloc((size_t)s->nout, sizeof *s->mc.out);
+  if (!slot || !buf || !s->mc.out) {
+    free(slot);
+    free(buf);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  }
+  /* the moving bodies' lengths first, then the ground's */
+  int n = 0;
+  for (int ground = 0; ground < 2; ground++)
+    for (int k = 0; k < nl; k++)
+      if ((s->length[k].body == FB_PLANAR_GROUND) == ground) slot[n++] = k;
+  double *nominal = buf, *pm = buf + nl, *failed = buf + 2 * nl;
+  for (int k = 0; k < nl; k++) {
+    nominal[k] = s->length[slot[k]].nominal;
+    pm[k] = s->length[slot[k]].plus_minus;
+  }
+  const mc_ctx x = {m, slot, nl, fb_case_omega2(c)};
+  const fb_mc_problem p = {nl, nominal, pm, s->nout, mc_eval, (void *)&x, 1};
+  s->mc.failed_len = failed;
+  s->mc_dist = dist;
+  s->mc_seed = seed;
+  /* off for the whole run: the planar core switches GSL's one handler off
+   * and back around its solves, and threads doing so at once would put
+   * back one another's */
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  fb_diag inner;
+  fb_status st = fb_mc_run(&s->mc, &p, samples, seed, dist, jobs, progress, user, &inner);
+  gsl_set_error_handler(old);
+  if (st != FB_OK) {
+    char text[512] = "";
+    for (int k = 0, used = 0; k < nl && used < (int)sizeof text; k++)
+      used += snprintf(text + used, sizeof text - (size_t)used, "%s%.9g", k ? ", " : "",
+                       failed[k] / FB_M_PER_MM);
+    st = fb_diag_set(diag, st, "Monte Carlo sample %zu (lengths in draw order, the moving bodies' "
+                     "then the ground's: %s mm): %s", s->mc.failed_at, text, inner.msg);
+  }
+  s->mc.failed_len = NULL;
+  free(slot);
+  free(buf);
+  return st;
+}
+
 void fb_planar_stackup_free(fb_planar_stackup *s) {
+  free(s->mc.out);
   free(s->nominal);
   free(s->length);
   free(s->lo_at);

@@ -104,8 +104,8 @@ static fb_status run_member(member_values *mv, const fb_run *r, int k, unsigned 
       const fb_model_result *own = &r->model[i];
       mv->scalar[i][SC_PART] =
           fb_metrics_divergence(&d, &x->run.series, &own->run.series, cj, r->c.radial_clearance,
-                                x->run.lengths.length[FB_COUPLER], 2.0 * M_PI / r->c.crank_speed,
-                                &inner) == FB_OK
+                                fb_model_run_output_length(&x->run, &r->c),
+                                2.0 * M_PI / r->c.crank_speed, &inner) == FB_OK
               ? d.t
               : NAN;
     }

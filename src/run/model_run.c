@@ -8,11 +8,13 @@
 #include "clock.h"
 #include "reference.h"
 
-static int sample_finite(const fb_sample *x) {
-  return isfinite(x->t) && isfinite(x->crank_angle) && isfinite(x->coupler_angle) &&
-         isfinite(x->coupler_omega) && isfinite(x->coupler_alpha) &&
-         isfinite(x->follower_angle) && isfinite(x->follower_omega) &&
-         isfinite(x->follower_alpha);
+/* 1 when the time, the input angle and the n output bodies' position,
+ * velocity and acceleration of x are all finite */
+static int sample_finite(const fb_sample *x, int n) {
+  int ok = isfinite(x->t) && isfinite(x->crank_angle);
+  for (int k = 0; k < n && ok; k++)
+    for (int q = 0; q < 3; q++) ok = ok && isfinite(x->body[k][q]);
+  return ok;
 }
 
 /* the engine's reason for a failed step (or create, self NULL) */
@@ -69,6 +71,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
   const size_t report_every = n / 100 + 1;
   const double deadline = def->source.wall_deadline;
   double stepping = 0.0;
+  const int outputs = fb_series_output_count(&r->series);
   for (size_t k = 1; k <= n; k++) {
     /* [run] max_wall_s holds for every engine: a model still stepping at
      * the run's deadline stops there, with its reason (the clock is read
@@ -96,7 +99,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
     if (st != FB_OK) break;
     e->sample(self, &x);
     if (e->reactions) e->reactions(self, x.reaction, &x.drive_torque);
-    if (!sample_finite(&x)) {
+    if (!sample_finite(&x, outputs)) {
       r->stop.kind = FB_STOP_NONFINITE;
       r->stop.t = x.t;
       r->stop.step = k;
@@ -180,3 +183,8 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_mode
 }
 
 void fb_model_run_free(fb_model_run *r) { fb_series_free(&r->series); }
+
+double fb_model_run_output_length(const fb_model_run *r, const fb_case *c) {
+  int out[FB_MECH_MAX_OUTPUTS];
+  return fb_mech_outputs(fb_case_mech(c), out) > 0 ? r->lengths.length[out[0]] : NAN;
+}

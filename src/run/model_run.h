@@ -69,4 +69,11 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_mode
 
 void fb_model_run_free(fb_model_run *r);
 
+/* The length [m] among r's lengths of case c's first output body (mechanism.h
+ * fb_mech_outputs; a body's index is its index in the per-link lengths: the
+ * four-bar's and the slider-crank's coupler), the body whose angle
+ * fb_metrics_divergence compares: its angle tolerance is the clearance over
+ * this length. NAN for a mechanism without output bodies. */
+double fb_model_run_output_length(const fb_model_run *r, const fb_case *c);
+
 #endif

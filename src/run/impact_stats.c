@@ -45,7 +45,7 @@ fb_status fb_impact_values_push(fb_impact_values *v, double force,
 
 fb_status fb_impact_values_add(fb_impact_values *v, const fb_series *s, int j, double t_from,
                                fb_diag *diag) {
-  if (j < 0 || j > 3 || !(s->contact_mask & (1 << j)))
+  if (j < 0 || j >= FB_MECH_MAX_JOINTS || !(s->contact_mask & (1 << j)))
     return fb_diag_set(diag, FB_ERR_ARG, "no contact columns at joint %d for impact statistics", j);
   const double *f = s->contact[j][FB_C_FORCE];
   const int outputs = fb_series_output_count(s);

@@ -1,9 +1,9 @@
 /* Statistics of a run's impacts: the distribution of the per-impact peak
  * contact force and of each output body's |alpha| spike (the four-bar's
- * coupler and follower) each impact raises, for comparing two impact sequences that are equally valid but
- * different (a chaotic sequence: the model and its reference part after a
- * few impacts, metrics.h fb_divergence) by their distributions rather than
- * peak by peak. */
+ * coupler and follower) each impact raises, for comparing two impact
+ * sequences that are equally valid but different (a chaotic sequence: the
+ * model and its reference part after a few impacts, metrics.h
+ * fb_divergence) by their distributions rather than peak by peak. */
 #ifndef FB_IMPACT_STATS_H
 #define FB_IMPACT_STATS_H
 

@@ -61,7 +61,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
     e->destroy(self);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n + 1);
   }
-  for (int j = 0; j < 4; j++) r->series.impact_floor[j] = def->impact_floor[j];
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) r->series.impact_floor[j] = def->impact_floor[j];
   fb_series_touch(&r->series); /* its page faults are set-up, not stepping */
   r->setup_s = fb_clock_s() - t0;
   fb_sample x;
@@ -146,7 +146,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
   }
   if (e->provenance && sm->clearance_mask) {
     r->has_provenance = 1;
-    for (int j = 0; j < 4; j++)
+    for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
       if (sm->clearance_mask & (1 << j)) e->provenance(self, j, &r->provenance[j]);
   }
   e->destroy(self);

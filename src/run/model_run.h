@@ -49,7 +49,8 @@ typedef struct {
   int has_step_stats;      /* 1 for a model that followed [solver] h_s = adaptive */
   fb_step_stats step_stats; /* its steps: count, shortest and longest h and their counts */
   int has_provenance;      /* 1 when the engine kept provenance[] */
-  fb_contact_provenance provenance[4]; /* per clearance joint, at the end of the run */
+  fb_contact_provenance provenance[FB_MECH_MAX_JOINTS]; /* per clearance joint, at the end
+                                                           of the run */
 } fb_model_run;
 
 /* Called during long runs with the model name and the fraction done [0, 1]. */

@@ -43,12 +43,12 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
     if (m->run.model->engine == FB_ENGINE_ANALYTIC && s->t[s->n - 1] >= r->t_startup_end - c->solver.h)
       m->startup = m->exact; /* a whole revolution of the periodic motion */
   }
-  for (int j = 0; j < 4 && m->first_impact_joint < 0; j++)
+  for (int j = 0; j < FB_MECH_MAX_JOINTS && m->first_impact_joint < 0; j++)
     if (m->run.clearance_mask & s->contact_mask & (1 << j)) m->first_impact_joint = j;
   if (m->first_impact_joint >= 0)
     fb_metrics_first_impact(&m->first_impact, s, m->first_impact_joint, c->radial_clearance,
                             m->run.model->rigid);
-  for (int j = 0; j < 4; j++) {
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
     for (size_t i = 0; i < s->n && s->t[i] < r->t_startup_end; i++) {
       m->startup_force_max = fmax(m->startup_force_max, s->contact[j][FB_C_FORCE][i]);
@@ -66,7 +66,7 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
     warn(m, &w);
   }
   /* the named warning of a contact the step does not resolve (resolution.h) */
-  for (int j = 0; j < 4 && m->run.has_provenance; j++) {
+  for (int j = 0; j < FB_MECH_MAX_JOINTS && m->run.has_provenance; j++) {
     const fb_contact_provenance *p = &m->run.provenance[j];
     if (!(m->run.clearance_mask & (1 << j)) || p->contact_steps == 0 ||
         !(p->h_omega_max > FB_H_OMEGA_C_BOUND))
@@ -321,7 +321,8 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
   const int cj = fb_case_mech(&r->c)->reference_joint;
   const fb_status ran = fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[cj], 0, check,
                                              &stop, &inner);
-  for (int j = 0; j < 4; j++) s.impact_floor[j] = r->scene.impact_floor[j]; /* as its model's */
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) /* as its model's */
+    s.impact_floor[j] = r->scene.impact_floor[j];
   if (ran == FB_OK &&
       stop.kind == FB_STOP_NONE &&
       fb_metrics_vs_reference(&m->ref_estimate, &m->run.series, &s, r->t_window, cj,

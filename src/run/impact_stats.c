@@ -54,9 +54,10 @@ fb_status fb_impact_values_add(fb_impact_values *v, const fb_series *s, int j, d
     if (s->t[a] < t_from) continue;
     double fm = 0.0, am[FB_MECH_MAX_OUTPUTS] = {0.0};
     for (size_t q = a; q <= e; q++) fm = fmax(fm, f[q]);
-    /* the episode's samples and the one after it */
-    for (size_t q = a; q <= e + 1 && q < s->n; q++)
-      for (int k = 0; k < outputs; k++) am[k] = fmax(am[k], fabs(s->body[k][FB_Q_ACC][q]));
+    /* each output body's largest over the episode's samples and the one after it */
+    for (int k = 0; k < outputs; k++)
+      for (size_t q = a; q <= e + 1 && q < s->n; q++)
+        am[k] = fmax(am[k], fabs(s->body[k][FB_Q_ACC][q]));
     const fb_status st = fb_impact_values_push(v, fm, am, diag);
     if (st != FB_OK) return st;
   }

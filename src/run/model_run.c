@@ -11,10 +11,12 @@
 /* 1 when the time, the input angle and the n output bodies' position,
  * velocity and acceleration of x are all finite */
 static int sample_finite(const fb_sample *x, int n) {
-  int ok = isfinite(x->t) && isfinite(x->crank_angle);
-  for (int k = 0; k < n && ok; k++)
-    for (int q = 0; q < 3; q++) ok = ok && isfinite(x->body[k][q]);
-  return ok;
+  if (!isfinite(x->t) || !isfinite(x->crank_angle)) return 0;
+  for (int k = 0; k < n; k++)
+    if (!isfinite(x->body[k][FB_Q_POS]) || !isfinite(x->body[k][FB_Q_VEL]) ||
+        !isfinite(x->body[k][FB_Q_ACC]))
+      return 0;
+  return 1;
 }
 
 /* the engine's reason for a failed step (or create, self NULL) */

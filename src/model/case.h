@@ -226,8 +226,7 @@ typedef struct {
  * ([published.impact], [published.restitution]): the run prints every
  * model of that law, and every variant's, beside it with the difference. */
 typedef struct {
-  FB_MECH_OUTPUT_MEMBERS(fb_case_body_values); /* per output body (mechanism.h): body[k], or the
-                                                  four-bar's coupler, follower */
+  FB_MECH_OUTPUT_MEMBERS(fb_case_body_values); /* per output body (mechanism.h) */
 } fb_case_published;
 
 /* Index of fb_case.published: the contact law a published row belongs to. */

@@ -116,6 +116,62 @@ static void test_impact_statistics_by_hand(void **state) {
   fb_series_free(&s);
 }
 
+/* the statistics by output body on a mechanism whose second output
+ * translates (the slider-crank: the rod's alpha [rad/s^2], the slider's
+ * acceleration [m/s^2]), at its clearance joint coupler-slider: two impacts
+ * of 5 samples, rod alpha -2000 and 4000 rad/s^2, slider acceleration 300
+ * and 100 m/s^2 (1 elsewhere): each column's largest |value| per impact;
+ * the four-bar's names read the same storage. Then 100 impacts pushed one
+ * by one (past the first allocation of 64): values 1 .. 100, mean 50.5. */
+static void test_impact_statistics_by_output_body(void **state) {
+  (void)state;
+  const int joint = 2, len = 5, n = 40;
+  const int starts[2] = {10, 25};
+  const double rod[2] = {-2000.0, 4000.0}, slider[2] = {300.0, 100.0};
+  fb_series s;
+  assert_int_equal(fb_series_init_mech(&s, (size_t)n, &fb_mech_slider_crank), FB_OK);
+  assert_int_equal(fb_series_enable_contact(&s, 1 << joint), FB_OK);
+  assert_int_equal(fb_series_output_count(&s), 2);
+  for (int i = 0; i < n; i++) {
+    fb_sample x;
+    memset(&x, 0, sizeof x);
+    x.t = i * H_S;
+    x.body[0][FB_Q_ACC] = x.body[1][FB_Q_ACC] = 1.0;
+    for (int k = 0; k < 2; k++)
+      if (i >= starts[k] && i < starts[k] + len) {
+        x.contact[joint][FB_C_STATE] = FB_STATE_IMPACT;
+        x.contact[joint][FB_C_FORCE] = 100.0 * (k + 1);
+        x.body[0][FB_Q_ACC] = rod[k];
+        x.body[1][FB_Q_ACC] = slider[k];
+      }
+    assert_int_equal(fb_series_push(&s, &x), FB_OK);
+  }
+  fb_impact_values v = {0};
+  fb_diag diag;
+  assert_int_equal(fb_impact_values_add(&v, &s, joint, 0.0, &diag), FB_OK);
+  assert_int_equal((int)v.n, 2);
+  fb_impact_stats st;
+  assert_int_equal(fb_impact_stats_of(&st, &v, &diag), FB_OK);
+  assert_rel(st.force.max, 200.0, REL_TOL);
+  assert_rel(st.alpha[0].max, 4000.0, REL_TOL);
+  assert_rel(st.alpha[0].mean, 3000.0, REL_TOL);
+  assert_rel(st.alpha[1].max, 300.0, REL_TOL);
+  assert_rel(st.alpha[1].mean, 200.0, REL_TOL);
+  assert_true(&st.alpha_follower == &st.alpha[1]);
+  fb_impact_values_free(&v);
+  fb_series_free(&s);
+  for (int k = 1; k <= 100; k++) {
+    const double a[FB_MECH_MAX_OUTPUTS] = {k, 2.0 * k};
+    assert_int_equal(fb_impact_values_push(&v, 10.0 * k, a, &diag), FB_OK);
+  }
+  assert_int_equal(fb_impact_stats_of(&st, &v, &diag), FB_OK);
+  assert_int_equal(st.alpha[1].n, 100);
+  assert_rel(st.force.mean, 505.0, REL_TOL);
+  assert_rel(st.alpha[0].mean, 50.5, REL_TOL);
+  assert_rel(st.alpha[1].max, 200.0, REL_TOL);
+  fb_impact_values_free(&v);
+}
+
 static const fb_model_result *find(const fb_run *r, const char *name) {
   for (int i = 0; i < r->n; i++)
     if (strcmp(r->model[i].run.name, name) == 0) return &r->model[i];
@@ -348,6 +404,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_impacts_pair_by_time),
       cmocka_unit_test(test_impact_statistics_by_hand),
+      cmocka_unit_test(test_impact_statistics_by_output_body),
       cmocka_unit_test(test_regular_paper_case),
       cmocka_unit_test(test_chaotic_rattling_pin),
       cmocka_unit_test(test_jobs_do_not_change_the_numbers),

@@ -16,12 +16,22 @@
 #include "verdict_stats.h"
 #include "worker.h"
 
-/* the statistics of fb_impact_stats as a flat list, for loops */
-#define NSTAT 12
+/* the distributions of fb_impact_stats as a flat list, for loops: the force,
+ * then each output body's alpha */
+#define NDIST (1 + FB_MECH_MAX_OUTPUTS)
+static fb_dist *dist_at(fb_impact_stats *s, int d) { return d ? &s->alpha[d - 1] : &s->force; }
+
+/* their statistics as a flat list (4 per distribution) */
+#define NSTAT (4 * NDIST)
 static double *stat_at(fb_impact_stats *s, int q) {
-  fb_dist *d[3] = {&s->force, &s->alpha_coupler, &s->alpha_follower};
-  double *f[4] = {&d[q / 4]->mean, &d[q / 4]->p50, &d[q / 4]->p90, &d[q / 4]->max};
+  fb_dist *d = dist_at(s, q / 4);
+  double *f[4] = {&d->mean, &d->p50, &d->p90, &d->max};
   return f[q % 4];
+}
+
+/* every distribution's count n of s set to n */
+static void set_counts(fb_impact_stats *s, int n) {
+  for (int d = 0; d < NDIST; d++) dist_at(s, d)->n = n;
 }
 
 /* the joint whose impacts are counted: the one the reference integrates */
@@ -104,8 +114,8 @@ static fb_status run_member(member_values *mv, const fb_run *r, int k, unsigned 
       const fb_model_result *own = &r->model[i];
       mv->scalar[i][SC_PART] =
           fb_metrics_divergence(&d, &x->run.series, &own->run.series, cj, r->c.radial_clearance,
-                                x->run.lengths.length[FB_COUPLER], 2.0 * M_PI / r->c.crank_speed,
-                                &inner) == FB_OK
+                                fb_model_run_output_length(&x->run, &r->c),
+                                2.0 * M_PI / r->c.crank_speed, &inner) == FB_OK
               ? d.t
               : NAN;
     }
@@ -115,7 +125,8 @@ static fb_status run_member(member_values *mv, const fb_run *r, int k, unsigned 
   return st;
 }
 
-/* a worker's output: per member, per model: ran, n, then n x 3 doubles */
+/* a worker's output: per member, per model: ran, n, the scalars, then n doubles of the
+ * force and n of each output body's alpha */
 static int send_member(int fd, const member_values *mv) {
   for (int i = 0; i < FB_MAX_MODELS; i++) {
     const fb_impact_values *v = &mv->v[i];
@@ -123,10 +134,9 @@ static int send_member(int fd, const member_values *mv) {
     if (!fb_worker_write_all(fd, h, sizeof h) ||
         !fb_worker_write_all(fd, mv->scalar[i], sizeof mv->scalar[i]))
       return 0;
-    if (v->n && (!fb_worker_write_all(fd, v->force, v->n * sizeof(double)) ||
-                 !fb_worker_write_all(fd, v->alpha_coupler, v->n * sizeof(double)) ||
-                 !fb_worker_write_all(fd, v->alpha_follower, v->n * sizeof(double))))
-      return 0;
+    for (int k = -1; k < FB_MECH_MAX_OUTPUTS && v->n; k++) /* the force, then each alpha */
+      if (!fb_worker_write_all(fd, k < 0 ? v->force : v->alpha[k], v->n * sizeof(double)))
+        return 0;
   }
   return 1;
 }
@@ -142,14 +152,14 @@ static int recv_member(int fd, member_values *mv) {
     fb_impact_values *v = &mv->v[i];
     v->n = v->cap = (size_t)h[1];
     if (!v->n) continue;
-    v->force = malloc(v->n * sizeof(double));
-    v->alpha_coupler = malloc(v->n * sizeof(double));
-    v->alpha_follower = malloc(v->n * sizeof(double));
-    if (!v->force || !v->alpha_coupler || !v->alpha_follower ||
-        !fb_worker_read_all(fd, v->force, v->n * sizeof(double)) ||
-        !fb_worker_read_all(fd, v->alpha_coupler, v->n * sizeof(double)) ||
-        !fb_worker_read_all(fd, v->alpha_follower, v->n * sizeof(double)))
-      return 0;
+    for (int k = -1; k < FB_MECH_MAX_OUTPUTS; k++) { /* the force, then each alpha */
+      double *x = malloc(v->n * sizeof(double));
+      if (k < 0)
+        v->force = x;
+      else
+        v->alpha[k] = x;
+      if (!x || !fb_worker_read_all(fd, x, v->n * sizeof(double))) return 0;
+    }
   }
   return 1;
 }
@@ -238,21 +248,10 @@ static fb_status run_members(member_values *mv, const fb_run *r, int k0, int k1,
 
 static fb_status append(fb_impact_values *to, const fb_impact_values *from, fb_diag *diag) {
   for (size_t i = 0; i < from->n; i++) {
-    if (to->n == to->cap) {
-      const size_t cap = to->cap ? 2 * to->cap : 64;
-      double *a = realloc(to->force, cap * sizeof *a);
-      if (a) to->force = a;
-      double *b = a ? realloc(to->alpha_coupler, cap * sizeof *b) : NULL;
-      if (b) to->alpha_coupler = b;
-      double *c = b ? realloc(to->alpha_follower, cap * sizeof *c) : NULL;
-      if (!c) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory pooling impacts");
-      to->alpha_follower = c;
-      to->cap = cap;
-    }
-    to->force[to->n] = from->force[i];
-    to->alpha_coupler[to->n] = from->alpha_coupler[i];
-    to->alpha_follower[to->n] = from->alpha_follower[i];
-    to->n++;
+    double alpha[FB_MECH_MAX_OUTPUTS];
+    for (int k = 0; k < FB_MECH_MAX_OUTPUTS; k++) alpha[k] = from->alpha[k][i];
+    if (fb_impact_values_push(to, from->force[i], alpha, diag) != FB_OK)
+      return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory pooling impacts");
   }
   return FB_OK;
 }
@@ -316,7 +315,7 @@ static fb_status pool(fb_model_result *m, fb_diag *diag) {
   for (int k = 0; k < n; k++) cs += pow(each[k].force.n - cm, 2);
   /* the spread of the impact count, rounded to a count */
   const int ns = n > 1 ? (int)lround(sqrt(cs / (n - 1))) : 0;
-  e->spread.force.n = e->spread.alpha_coupler.n = e->spread.alpha_follower.n = ns;
+  set_counts(&e->spread, ns);
   return FB_OK;
 }
 
@@ -332,8 +331,8 @@ static void compare(fb_stats_compare *out, const fb_ensemble *m, const fb_ensemb
     const double s = hypot(*stat_at(&sm, q), *stat_at(&sr, q));
     *stat_at(&out->sigmas, q) = m->members > 1 && r->members > 1 && s > 0.0 ? fabs(a - b) / s : NAN;
   }
-  out->rel.force.n = out->rel.alpha_coupler.n = out->rel.alpha_follower.n = 0;
-  out->sigmas.force.n = out->sigmas.alpha_coupler.n = out->sigmas.alpha_follower.n = 0;
+  set_counts(&out->rel, 0);
+  set_counts(&out->sigmas, 0);
 }
 
 void fb_ensemble_compare_one(fb_stats_compare *out, const fb_impact_stats *one,
@@ -355,8 +354,8 @@ void fb_ensemble_compare_one(fb_stats_compare *out, const fb_impact_stats *one,
     *stat_at(&out->rel, q) = fb_metrics_rel(a, b);
     *stat_at(&out->sigmas, q) = n > 1 && sd > 0.0 ? fabs(a - b) / sd : NAN;
   }
-  out->rel.force.n = out->rel.alpha_coupler.n = out->rel.alpha_follower.n = 0;
-  out->sigmas.force.n = out->sigmas.alpha_coupler.n = out->sigmas.alpha_follower.n = 0;
+  set_counts(&out->rel, 0);
+  set_counts(&out->sigmas, 0);
   /* neither has an impact in the window: nothing differs */
   if (n < 2 || (one->force.n == 0 && e->pooled.force.n == 0)) return;
   fb_member check = {0};

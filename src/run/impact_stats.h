@@ -1,9 +1,9 @@
 /* Statistics of a run's impacts: the distribution of the per-impact peak
- * contact force and of the coupler and follower |alpha| spikes each impact
- * raises, for comparing two impact sequences that are equally valid but
- * different (a chaotic sequence: the model and its reference part after a
- * few impacts, metrics.h fb_divergence) by their distributions rather than
- * peak by peak. */
+ * contact force and of each output body's |alpha| spike (the four-bar's
+ * coupler and follower) each impact raises, for comparing two impact
+ * sequences that are equally valid but different (a chaotic sequence: the
+ * model and its reference part after a few impacts, metrics.h
+ * fb_divergence) by their distributions rather than peak by peak. */
 #ifndef FB_IMPACT_STATS_H
 #define FB_IMPACT_STATS_H
 
@@ -21,16 +21,37 @@ typedef struct {
 
 /* The statistics of one run's impacts in its window. */
 typedef struct {
-  fb_dist force;          /* peak contact force of each impact [N] */
-  fb_dist alpha_coupler;  /* largest coupler |alpha| over each impact [rad/s^2] */
-  fb_dist alpha_follower; /* largest follower |alpha| over each impact [rad/s^2] */
+  fb_dist force; /* peak contact force of each impact [N] */
+  union {
+    fb_dist alpha[FB_MECH_MAX_OUTPUTS]; /* per output body (mechanism.h, in the description's
+                                            output order): its largest |alpha| over each impact
+                                            [rad/s^2] (a translating body's |acceleration|
+                                            [m/s^2]) */
+    __extension__ struct {              /* the four-bar's names for them (their output keys,
+                                            FB_IMPACT_STATS_KEYS) */
+      fb_dist alpha_coupler;
+      fb_dist alpha_follower;
+    };
+  };
 } fb_impact_stats;
 
 /* Per-impact values of one run, owned (fb_impact_values_free). */
 typedef struct {
   size_t n, cap;
-  double *force, *alpha_coupler, *alpha_follower; /* n each [N], [rad/s^2], [rad/s^2] */
+  double *force; /* n [N] */
+  union {
+    double *alpha[FB_MECH_MAX_OUTPUTS]; /* n each, per output body as fb_impact_stats.alpha */
+    __extension__ struct {
+      double *alpha_coupler, *alpha_follower; /* the four-bar's names for them */
+    };
+  };
 } fb_impact_values;
+
+/* Appends one impact to v: its peak force [N] and each output body's
+ * largest |alpha| (FB_MECH_MAX_OUTPUTS; units as fb_impact_stats.alpha).
+ * Errors: FB_ERR_NOMEM (v keeps the impacts it held). */
+fb_status fb_impact_values_push(fb_impact_values *v, double force,
+                                const double alpha[FB_MECH_MAX_OUTPUTS], fb_diag *diag);
 
 /* Appends the impacts of series s at clearance joint j whose onset lies at
  * t >= t_from [s] to v: an impact as every count defines it (metrics.h,

@@ -8,11 +8,15 @@
 #include "clock.h"
 #include "reference.h"
 
-static int sample_finite(const fb_sample *x) {
-  return isfinite(x->t) && isfinite(x->crank_angle) && isfinite(x->coupler_angle) &&
-         isfinite(x->coupler_omega) && isfinite(x->coupler_alpha) &&
-         isfinite(x->follower_angle) && isfinite(x->follower_omega) &&
-         isfinite(x->follower_alpha);
+/* 1 when the time, the input angle and the n output bodies' position,
+ * velocity and acceleration of x are all finite */
+static int sample_finite(const fb_sample *x, int n) {
+  if (!isfinite(x->t) || !isfinite(x->crank_angle)) return 0;
+  for (int k = 0; k < n; k++)
+    if (!isfinite(x->body[k][FB_Q_POS]) || !isfinite(x->body[k][FB_Q_VEL]) ||
+        !isfinite(x->body[k][FB_Q_ACC]))
+      return 0;
+  return 1;
 }
 
 /* the engine's reason for a failed step (or create, self NULL) */
@@ -59,7 +63,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
     e->destroy(self);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n + 1);
   }
-  for (int j = 0; j < 4; j++) r->series.impact_floor[j] = def->impact_floor[j];
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) r->series.impact_floor[j] = def->impact_floor[j];
   fb_series_touch(&r->series); /* its page faults are set-up, not stepping */
   r->setup_s = fb_clock_s() - t0;
   fb_sample x;
@@ -69,6 +73,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
   const size_t report_every = n / 100 + 1;
   const double deadline = def->source.wall_deadline;
   double stepping = 0.0;
+  const int outputs = fb_series_output_count(&r->series);
   for (size_t k = 1; k <= n; k++) {
     /* [run] max_wall_s holds for every engine: a model still stepping at
      * the run's deadline stops there, with its reason (the clock is read
@@ -96,7 +101,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
     if (st != FB_OK) break;
     e->sample(self, &x);
     if (e->reactions) e->reactions(self, x.reaction, &x.drive_torque);
-    if (!sample_finite(&x)) {
+    if (!sample_finite(&x, outputs)) {
       r->stop.kind = FB_STOP_NONFINITE;
       r->stop.t = x.t;
       r->stop.step = k;
@@ -143,7 +148,7 @@ static fb_status run_engine(fb_model_run *r, const fb_engine *e, const fb_model_
   }
   if (e->provenance && sm->clearance_mask) {
     r->has_provenance = 1;
-    for (int j = 0; j < 4; j++)
+    for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
       if (sm->clearance_mask & (1 << j)) e->provenance(self, j, &r->provenance[j]);
   }
   e->destroy(self);
@@ -180,3 +185,8 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_mode
 }
 
 void fb_model_run_free(fb_model_run *r) { fb_series_free(&r->series); }
+
+double fb_model_run_output_length(const fb_model_run *r, const fb_case *c) {
+  int out[FB_MECH_MAX_OUTPUTS];
+  return fb_mech_outputs(fb_case_mech(c), out) > 0 ? r->lengths.length[out[0]] : NAN;
+}

@@ -49,7 +49,8 @@ typedef struct {
   int has_step_stats;      /* 1 for a model that followed [solver] h_s = adaptive */
   fb_step_stats step_stats; /* its steps: count, shortest and longest h and their counts */
   int has_provenance;      /* 1 when the engine kept provenance[] */
-  fb_contact_provenance provenance[4]; /* per clearance joint, at the end of the run */
+  fb_contact_provenance provenance[FB_MECH_MAX_JOINTS]; /* per clearance joint, at the end
+                                                           of the run */
 } fb_model_run;
 
 /* Called during long runs with the model name and the fraction done [0, 1]. */
@@ -68,5 +69,12 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_mode
                            fb_progress_fn progress, void *user, fb_diag *diag);
 
 void fb_model_run_free(fb_model_run *r);
+
+/* The length [m] among r's lengths of case c's first output body (mechanism.h
+ * fb_mech_outputs; a body's index is its index in the per-link lengths: the
+ * four-bar's and the slider-crank's coupler), the body whose angle
+ * fb_metrics_divergence compares: its angle tolerance is the clearance over
+ * this length. NAN for a mechanism without output bodies. */
+double fb_model_run_output_length(const fb_model_run *r, const fb_case *c);
 
 #endif

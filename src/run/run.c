@@ -14,15 +14,15 @@
 #include "tolerance.h"
 
 
-static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref) {
-  const fb_body_peaks *in[2] = {&p->coupler, &p->follower};
-  const fb_body_peaks *rf[2] = {&ref->coupler, &ref->follower};
-  fb_body_peaks *o[2] = {&out->coupler, &out->follower};
-  for (int i = 0; i < 2; i++) {
-    o[i]->omega_max = fb_metrics_rel(in[i]->omega_max, rf[i]->omega_max);
-    o[i]->omega_min = fb_metrics_rel(in[i]->omega_min, rf[i]->omega_min);
-    o[i]->alpha_max = fb_metrics_rel(in[i]->alpha_max, rf[i]->alpha_max);
-    o[i]->alpha_min = fb_metrics_rel(in[i]->alpha_min, rf[i]->alpha_min);
+/* the n output bodies' peaks of p relative to ref's (mechanism.h's body[]) */
+static void rel_peaks(fb_peaks *out, const fb_peaks *p, const fb_peaks *ref, int n) {
+  for (int k = 0; k < n; k++) {
+    const fb_body_peaks *in = &p->body[k], *rf = &ref->body[k];
+    fb_body_peaks *o = &out->body[k];
+    o->omega_max = fb_metrics_rel(in->omega_max, rf->omega_max);
+    o->omega_min = fb_metrics_rel(in->omega_min, rf->omega_min);
+    o->alpha_max = fb_metrics_rel(in->alpha_max, rf->alpha_max);
+    o->alpha_min = fb_metrics_rel(in->alpha_min, rf->alpha_min);
   }
 }
 
@@ -43,12 +43,12 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
     if (m->run.model->engine == FB_ENGINE_ANALYTIC && s->t[s->n - 1] >= r->t_startup_end - c->solver.h)
       m->startup = m->exact; /* a whole revolution of the periodic motion */
   }
-  for (int j = 0; j < 4 && m->first_impact_joint < 0; j++)
+  for (int j = 0; j < FB_MECH_MAX_JOINTS && m->first_impact_joint < 0; j++)
     if (m->run.clearance_mask & s->contact_mask & (1 << j)) m->first_impact_joint = j;
   if (m->first_impact_joint >= 0)
     fb_metrics_first_impact(&m->first_impact, s, m->first_impact_joint, c->radial_clearance,
                             m->run.model->rigid);
-  for (int j = 0; j < 4; j++) {
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
     for (size_t i = 0; i < s->n && s->t[i] < r->t_startup_end; i++) {
       m->startup_force_max = fmax(m->startup_force_max, s->contact[j][FB_C_FORCE][i]);
@@ -66,7 +66,7 @@ static void startup_and_warnings(fb_model_result *m, const fb_run *r) {
     warn(m, &w);
   }
   /* the named warning of a contact the step does not resolve (resolution.h) */
-  for (int j = 0; j < 4 && m->run.has_provenance; j++) {
+  for (int j = 0; j < FB_MECH_MAX_JOINTS && m->run.has_provenance; j++) {
     const fb_contact_provenance *p = &m->run.provenance[j];
     if (!(m->run.clearance_mask & (1 << j)) || p->contact_steps == 0 ||
         !(p->h_omega_max > FB_H_OMEGA_C_BOUND))
@@ -135,6 +135,7 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   fb_status st = fb_mech_peaks(&m->exact, c->mechanism, &m->run.lengths, c->branch, omega2, diag);
   if (st != FB_OK) return st;
   const fb_series *s = &m->run.series;
+  const int outputs = fb_series_output_count(s);
   startup_and_warnings(m, r);
   if (s->n == 0 || s->t[s->n - 1] < r->t_window) return FB_OK; /* stopped in the run-in */
   st = fb_metrics_peaks_between(&m->peaks, &m->peaks_at, s, r->t_window, INFINITY, diag);
@@ -147,11 +148,10 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
   if (st != FB_OK) return st;
   m->has_error = 1;
   if (m->run.model->engine != FB_ENGINE_ANALYTIC && m->run.model->joints == FB_JOINTS_IDEAL) {
-    const fb_body_error *b[2] = {&m->error.coupler, &m->error.follower};
     double worst = 0.0;
-    for (int k = 0; k < 2; k++) {
-      const double v[4] = {b[k]->omega_max_rel, b[k]->omega_min_rel, b[k]->alpha_max_rel,
-                           b[k]->alpha_min_rel};
+    for (int k = 0; k < outputs; k++) {
+      const fb_body_error *b = &m->error.body[k];
+      const double v[4] = {b->omega_max_rel, b->omega_min_rel, b->alpha_max_rel, b->alpha_min_rel};
       for (int q = 0; q < 4; q++) worst = isfinite(v[q]) ? fmax(worst, fabs(v[q])) : INFINITY;
     }
     if (worst > FB_IDEAL_PEAK_ERROR_BOUND) {
@@ -161,7 +161,7 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
       warn(m, &w);
     }
   }
-  rel_peaks(&m->delta_vs_nominal, &m->peaks, &r->analytic_nominal);
+  rel_peaks(&m->delta_vs_nominal, &m->peaks, &r->analytic_nominal, outputs);
   if (m->run.clearance_mask) {
     /* ratios against the model's ideal model (model table) if it ran, else
      * the exact analytic peaks of the same (stack-up) lengths */
@@ -173,9 +173,11 @@ static fb_status measure(fb_model_result *m, const fb_run *r, fb_diag *diag) {
         ref = &r->model[i].peaks;
         snprintf(m->spikes_reference, sizeof m->spikes_reference, "%s", ideal->name);
       }
-    const double rc = fmax(fabs(ref->coupler.alpha_max), fabs(ref->coupler.alpha_min));
-    const double rf = fmax(fabs(ref->follower.alpha_max), fabs(ref->follower.alpha_min));
-    st = fb_metrics_spikes(&m->spikes, s, r->t_window, rc, rf, &m->error, diag);
+    /* each output body's largest |alpha| of the ideal motion, its spikes' scale */
+    double ra[FB_MECH_MAX_OUTPUTS] = {0.0};
+    for (int k = 0; k < outputs; k++)
+      ra[k] = fmax(fabs(ref->body[k].alpha_max), fabs(ref->body[k].alpha_min));
+    st = fb_metrics_spikes(&m->spikes, s, r->t_window, ra[0], ra[1], &m->error, diag);
     if (st != FB_OK) return st;
     m->has_spikes = 1;
   }
@@ -319,17 +321,20 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
   const int cj = fb_case_mech(&r->c)->reference_joint;
   const fb_status ran = fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[cj], 0, check,
                                              &stop, &inner);
-  for (int j = 0; j < 4; j++) s.impact_floor[j] = r->scene.impact_floor[j]; /* as its model's */
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) /* as its model's */
+    s.impact_floor[j] = r->scene.impact_floor[j];
   if (ran == FB_OK &&
       stop.kind == FB_STOP_NONE &&
       fb_metrics_vs_reference(&m->ref_estimate, &m->run.series, &s, r->t_window, cj,
                               &inner) == FB_OK) {
     m->has_ref_estimate = 1;
     const fb_reference_error *e = &m->ref_estimate;
-    const double moved[5] = {e->force_max_rel, e->coupler.alpha_max_rel, e->coupler.alpha_min_rel,
-                             e->follower.alpha_max_rel, e->follower.alpha_min_rel};
-    for (int q = 0; q < 5; q++)
-      if (!(fabs(moved[q]) <= FB_UNCONVERGED_REL)) m->peaks_unconverged = 1;
+    /* the force peak and every output body's alpha peaks */
+    int moved = !(fabs(e->force_max_rel) <= FB_UNCONVERGED_REL);
+    for (int k = 0; k < fb_series_output_count(&m->run.series); k++)
+      moved |= !(fabs(e->body[k].alpha_max_rel) <= FB_UNCONVERGED_REL) ||
+               !(fabs(e->body[k].alpha_min_rel) <= FB_UNCONVERGED_REL);
+    if (moved) m->peaks_unconverged = 1;
     m->ref_tol = tol;
     m->ref_check_tol = check;
     m->ref_check_steps = steps;
@@ -338,7 +343,7 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
     const fb_case *c = &r->c;
     m->has_check_divergence =
         fb_metrics_divergence(&m->check_divergence, &m->run.series, &s, cj,
-                              c->radial_clearance, m->run.lengths.length[FB_COUPLER],
+                              c->radial_clearance, fb_model_run_output_length(&m->run, c),
                               2.0 * M_PI / c->crank_speed, &inner) == FB_OK;
     fb_impact_values v = {0};
     m->has_check_stats = fb_impact_values_add(&v, &s, cj, r->t_window, &inner) == FB_OK &&
@@ -403,7 +408,7 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
         snprintf(m->ref_name, sizeof m->ref_name, "%s", want->name);
       }
       if (fb_metrics_divergence(&m->divergence, &m->run.series, &ref->run.series, cj,
-                                c->radial_clearance, m->run.lengths.length[FB_COUPLER],
+                                c->radial_clearance, fb_model_run_output_length(&m->run, c),
                                 2.0 * M_PI / c->crank_speed, &inner) == FB_OK) {
         m->has_divergence = 1;
         divergence_warnings(m, want->name);

@@ -50,10 +50,11 @@ const fb_case_published *fb_variants_published(const fb_case *c, const fb_model 
 
 int fb_variants_published_any(const fb_case_published *p) {
   if (!p) return 0;
-  const fb_case_body_values *b[2] = {&p->coupler, &p->follower};
-  for (int q = 0; q < 2; q++)
-    if (isfinite(b[q]->omega_max) || isfinite(b[q]->omega_min) || isfinite(b[q]->alpha_max) ||
-        isfinite(b[q]->alpha_min))
+  for (int k = 0; k < FB_MECH_MAX_OUTPUTS; k++) {
+    const fb_case_body_values *b = &p->body[k];
+    if (isfinite(b->omega_max) || isfinite(b->omega_min) || isfinite(b->alpha_max) ||
+        isfinite(b->alpha_min))
       return 1;
+  }
   return 0;
 }

@@ -154,8 +154,8 @@ int fb_verdict_assess(fb_run *r) {
     } else if (m->run.clearance_mask) {
       assess_clearance(m, r);
     } else { /* ideal and analytic models: against the analytic solution */
-      const int beyond = m->has_error && fb_metrics_peak_rel_worst(&m->error.coupler,
-                                                                   &m->error.follower) >
+      const int beyond = m->has_error && fb_metrics_peak_rel_worst(&m->error.body[0],
+                                                                   &m->error.body[1]) >
                                              FB_IDEAL_PEAK_ERROR_BOUND;
       m->basis = m->has_error ? FB_BASIS_POINTWISE : FB_BASIS_NONE;
       m->verdict = m->run.stop.kind != FB_STOP_NONE || m->warning_count || beyond

@@ -38,12 +38,9 @@ typedef struct fb_closed_form {
    * (fb_mech_check_lengths) */
   fb_status (*check_lengths)(const fb_linkage *lk, fb_diag *diag);
   /* peaks over one revolution, where (8, may be NULL) their crank angles
-   * (fb_mech_peaks_where) */
+   * (fb_mech_peaks_where; fb_mech_peaks with where NULL) */
   fb_status (*peaks_where)(fb_peaks *out, double where[8], const fb_linkage *lk,
                            fb_branch branch, double omega2, fb_diag *diag);
-  /* the same without the angles (fb_mech_peaks) */
-  fb_status (*peaks)(fb_peaks *out, const fb_linkage *lk, fb_branch branch, double omega2,
-                     fb_diag *diag);
   /* the exact series at t = k h (fb_mech_sample); NULL: the description's
    * columns filled from solve, sample by sample */
   fb_status (*sample)(fb_series *out, const fb_linkage *lk, fb_branch branch, double theta0,

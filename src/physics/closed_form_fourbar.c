@@ -37,12 +37,6 @@ static fb_status peaks_where(fb_peaks *out, double where[8], const fb_linkage *l
   return st;
 }
 
-static fb_status peaks(fb_peaks *out, const fb_linkage *lk, fb_branch branch, double omega2,
-                       fb_diag *diag) {
-  fb_status st = fb_analytic_peaks(out, lk, branch, omega2, diag);
-  no_positions(out);
-  return st;
-}
 
 static fb_status reactions(double force[4][2], double *drive_torque, const fb_linkage *lk,
                            fb_branch branch, const fb_link_mass link[3], double gravity,
@@ -328,7 +322,6 @@ const fb_closed_form fb_closed_form_fourbar = {
     .solve = solve,
     .check_lengths = fb_linkage_check,
     .peaks_where = peaks_where,
-    .peaks = peaks,
     .sample = fb_analytic_sample,
     .reactions = reactions,
     .reaction_peaks = reaction_peaks,

@@ -150,10 +150,6 @@ static fb_status peaks_where(fb_peaks *out, double where[8], const fb_linkage *l
   return FB_OK;
 }
 
-static fb_status peaks(fb_peaks *out, const fb_linkage *lk, fb_branch branch, double omega2,
-                       fb_diag *diag) {
-  return peaks_where(out, NULL, lk, branch, omega2, diag);
-}
 
 static fb_status reactions(double force[4][2], double *drive_torque, const fb_linkage *lk,
                            fb_branch branch, const fb_link_mass link[3], double gravity,
@@ -419,7 +415,6 @@ const fb_closed_form fb_closed_form_slider_crank = {
     .solve = solve,
     .check_lengths = check_lengths,
     .peaks_where = peaks_where,
-    .peaks = peaks,
     .sample = NULL,
     .reactions = reactions,
     .reaction_peaks = reaction_peaks,

@@ -24,7 +24,7 @@ fb_status fb_mech_peaks_where(fb_peaks *out, double where[8], fb_mech_type t,
 
 fb_status fb_mech_peaks(fb_peaks *out, fb_mech_type t, const fb_linkage *lk, fb_branch branch,
                         double omega2, fb_diag *diag) {
-  return fb_closed_form_of(t)->peaks(out, lk, branch, omega2, diag);
+  return fb_closed_form_of(t)->peaks_where(out, NULL, lk, branch, omega2, diag);
 }
 
 fb_status fb_mech_sample(fb_series *out, fb_mech_type t, const fb_linkage *lk, fb_branch branch,

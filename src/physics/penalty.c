@@ -76,26 +76,23 @@ static fb_status physical_rows(fb_penalty_row out[FB_PENALTY_PIN_JOINTS], const 
   const double e_star = fb_contact_modulus(c->youngs_modulus, c->poisson_ratio,
                                            c->youngs_modulus, c->poisson_ratio);
   const fb_mech_desc *mech = fb_case_mech(c);
-  double f[FB_PENALTY_PIN_JOINTS];
   for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) {
     const int ji = fb_penalty_joint(mech, j);
     if (ji < 0)
       return fb_diag_set(diag, FB_ERR_ARG, "the %s has no joint %d between two moving bodies",
                          mech->type, j + 1);
-    f[j] = fmax_joint[ji];
-  }
-  for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) {
-    double kc = fb_contact_johnson_stiffness(f[j], c->pin_length, e_star, c->radial_clearance);
-    double d = fb_contact_johnson_approach(f[j], c->pin_length, e_star, c->radial_clearance);
+    const double f = fmax_joint[ji];
+    double kc = fb_contact_johnson_stiffness(f, c->pin_length, e_star, c->radial_clearance);
+    double d = fb_contact_johnson_approach(f, c->pin_length, e_star, c->radial_clearance);
     if (!isfinite(kc) || !isfinite(d))
       return fb_diag_set(diag, FB_ERR_RANGE,
                          "%s joint at %g rpm: force %g N is beyond Johnson's pin-in-hole "
                          "relation for L = %g m, c = %g m (needs F < 4 pi L E* c / e^2)",
-                         fb_case_joint_name(c, fb_penalty_joint(mech, j)),
-                         omega * 60 / (2 * M_PI), f[j], c->pin_length, c->radial_clearance);
+                         fb_case_joint_name(c, ji),
+                         omega * 60 / (2 * M_PI), f, c->pin_length, c->radial_clearance);
     out[j].speed = omega;
     out[j].joint = (fb_pin_joint)j;
-    out[j].force = f[j];
+    out[j].force = f;
     out[j].stiffness = kc;
     out[j].penalty = kc * pow(c->radial_clearance, 1.5);
     out[j].approach = d;

@@ -7,22 +7,23 @@
  * the one it gives (fb_kit_advance: a model the harness stops early pays
  * only for the steps it took) and gives them one at a time as
  * fb_samples: the crank angle, every output body's angle, omega and
- * alpha (a translating body's centre x, v, a), the clearance joint's
+ * alpha (a translating body's centre x, v, a), each clearance joint's
  * force, penetration, eccentricity and contact state. The kit's series
  * already gives each step's acceleration and contact force to the sample
  * the step started from (kit.h), so the table asks no lag correction; its
  * spikes are refined as the hand-built engines' are.
  *
  * What the kit builds, and so what this adapter refuses (FB_ERR_ARG, the
- * model, the key and what to change): one clearance joint (a revolute
- * one, not the driven one), the exact collider, no friction, a fixed or
- * automatic step (not [solver] h_s = adaptive). Its start is the model's
+ * model, the key and what to change): every clearance joint of the case
+ * (revolute ones, not the driven one), each with its own law, columns and
+ * provenance; the exact collider, no friction, a fixed or automatic step
+ * (not [solver] h_s = adaptive). Its start is the model's
  * (start.h: [run] start and pin_start, an ensemble member's moved pin),
  * handed to the kit as the description's coordinates. It keeps no joint
- * reactions (no load columns) and of the contact's provenance the
- * effective mass range, the largest h omega_c of the law's rows and the
- * contact steps (ERP and CFM are a binding's, which the kit does not
- * see: NaN); its
+ * reactions (no load columns); of each contact's provenance the
+ * effective mass range, the largest h omega_c, ERP and smallest CFM of
+ * the law's rows (ERP and CFM those of a binding that takes rows, else
+ * NaN) and the contact steps; its
  * drift is the largest separation of an ideal revolute joint's two points
  * over the samples replayed [m]. */
 #include <math.h>
@@ -39,13 +40,16 @@ typedef struct {
   const fb_model_scene *sm;
   fb_planar *m;        /* the description the kit ran */
   fb_kit_series s;     /* t, q, centre (n each) */
-  double *col;         /* the clearance joint's force, penetration, ecc x, ecc y, state (5 x n) */
-  int joint;           /* the clearance joint, -1 without */
+  double *col[FB_MECH_MAX_JOINTS]; /* clearance joint j's force, penetration, ecc x, ecc y,
+                          state (FB_CONTACT_COLS x n; series.h FB_C_*), NULL: an ideal joint */
+  double *force_max;   /* (FB_MECH_MAX_JOINTS x n): a sub-stepping binding's largest force of
+                          each step per clearance joint, NULL: none */
+  unsigned mask;       /* the clearance joints (bit j: joint j) */
   size_t reached;      /* samples the kit filled */
   size_t i;            /* the sample replayed now */
-  int impacts;         /* impact episodes up to sample i */
+  int impacts[FB_MECH_MAX_JOINTS]; /* impact episodes up to sample i, per joint */
   fb_stop stop;        /* why the kit stopped early (kind FB_STOP_NONE: it did not) */
-  fb_kit_clearance cl; /* the clearance joint's columns and counts (mask 0: none) */
+  fb_kit_clearance cl; /* the clearance joints' laws, columns and counts (mask 0: none) */
   fb_kit_runner *kit;  /* the kit's run while it has samples to fill, else NULL */
   const char *engine;  /* the binding's engine */
 } kit_run;
@@ -57,20 +61,13 @@ static const fb_kit_binding *binding_of(const fb_model_scene *sm) {
 }
 
 /* what the kit cannot build of model sm, as an error naming the key */
-static fb_status refuse(const fb_model_scene *sm, int *joint, fb_diag *diag) {
+static fb_status refuse(const fb_model_scene *sm, fb_diag *diag) {
   const char *name = sm->model->name;
-  *joint = -1;
   if (sm->solver.h_mode == FB_STEP_ADAPTIVE)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: [solver] h_s = "
                        "adaptive is the hand-built ODE world's; give a fixed step or auto, or "
                        "[solver] builder = hand", name);
   if (!sm->clearance_mask) return FB_OK;
-  int n = 0;
-  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
-    if (sm->clearance_mask & (1 << j)) *joint = j, n++;
-  if (n != 1)
-    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: one clearance joint "
-                       "([clearance] joints), and the case names %d", name, n);
   if (sm->collider != FB_COLLIDER_EXACT)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: the exact collider "
                        "only ([clearance] collider = exact)", name);
@@ -152,10 +149,13 @@ static void kit_run_free(kit_run *r) {
   fb_kit_close(r->kit);
   fb_planar_free(r->m);
   free(r->s.t);
-  free(r->col);
-  free(r->cl.force_max);
+  free(r->col[0]);
+  free(r->force_max);
   free(r);
 }
+
+/* 1: joint j is one of the run's clearance joints */
+static int loose(const kit_run *r, int j) { return (r->mask >> j) & 1u; }
 
 /* the kit's stop (FB_ERR_NUMERIC: an engine error, or the aliasing stop
  * at omega_d h = wdh > 0 of the row at h) at the samples it reached */
@@ -163,32 +163,55 @@ static void kit_stopped_at(kit_run *r, double wdh, double h, const fb_diag *diag
   while (r->reached < r->s.n && isfinite(r->s.t[r->reached])) r->reached++;
   r->stop.kind = wdh > 0.0 ? FB_STOP_ALIASED : FB_STOP_SOLVER;
   r->stop.engine = r->engine;
-  r->stop.joint = wdh > 0.0 ? r->joint : -1;
+  r->stop.joint = wdh > 0.0 ? r->cl.aliased_joint : -1;
   r->stop.value = wdh;
   r->stop.limit = wdh > 0.0 ? FB_MATCHED_ALIAS_BOUND : 0.0;
   r->stop.h_max = wdh > 0.0 ? h * FB_MATCHED_ALIAS_BOUND / wdh : 0.0;
   r->stop.t = r->reached ? r->s.t[r->reached - 1] : 0.0;
   r->stop.step = r->reached;
   snprintf(r->stop.detail, sizeof r->stop.detail, "%.150s", diag->msg);
-  if (!r->col || !r->reached) return;
+  if (!r->reached) return;
   /* the last sample's step never came: its force and state the one before */
-  double *f = r->col + (size_t)FB_C_FORCE * r->s.n, *z = r->col + (size_t)FB_C_STATE * r->s.n;
   const size_t i = r->reached - 1;
-  f[i] = i > 0 ? f[i - 1] : 0.0;
-  z[i] = i > 0 ? z[i - 1] : FB_STATE_FREE;
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) {
+    if (!loose(r, j)) continue;
+    double *f = r->col[j] + (size_t)FB_C_FORCE * r->s.n;
+    double *z = r->col[j] + (size_t)FB_C_STATE * r->s.n;
+    f[i] = i > 0 ? f[i - 1] : 0.0;
+    z[i] = i > 0 ? z[i - 1] : FB_STATE_FREE;
+  }
 }
 
-/* the storage of a run of n samples of nb moving bodies */
-static fb_status alloc_run(kit_run *r, size_t n, int nb, fb_diag *diag) {
+/* the storage of a run of n samples of nb moving bodies: the series, and
+ * each clearance joint's columns (sub_steps: a binding that sub-steps,
+ * with its largest force of each step) */
+static fb_status alloc_run(kit_run *r, size_t n, int nb, int sub_steps, fb_diag *diag) {
+  int nj = 0;
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) nj += loose(r, j);
   r->s.n = n;
   r->s.t = malloc((1 + (size_t)nb * 9) * n * sizeof *r->s.t);
-  if (r->joint >= 0) r->col = calloc((size_t)FB_CONTACT_COLS * n, sizeof *r->col);
-  if (!r->s.t || (r->joint >= 0 && !r->col))
+  double *col = nj ? calloc((size_t)nj * FB_CONTACT_COLS * n, sizeof *col) : NULL;
+  if (nj && sub_steps) r->force_max = calloc((size_t)FB_MECH_MAX_JOINTS * n, sizeof *r->force_max);
+  if (!r->s.t || (nj && !col) || (nj && sub_steps && !r->force_max)) {
+    free(col);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu kit samples", n);
+  }
+  for (int j = 0, k = 0; j < FB_MECH_MAX_JOINTS; j++)
+    if (loose(r, j)) r->col[j] = col + (size_t)(k++) * FB_CONTACT_COLS * n;
   r->s.q = r->s.t + n;
   r->s.centre = r->s.q + (size_t)nb * 3 * n;
   for (size_t i = 0; i < n; i++) r->s.t[i] = NAN;
   return FB_OK;
+}
+
+/* the kit's record of clearance joint j: its law and columns */
+static fb_kit_joint_record joint_record(const kit_run *r, int j) {
+  const size_t n = r->s.n;
+  double *c = r->col[j];
+  return (fb_kit_joint_record){.law = r->sm->law[j], .force = c + FB_C_FORCE * n,
+                               .pen = c + FB_C_PEN * n, .ecc = c + FB_C_EX * n,
+                               .state = c + FB_C_STATE * n,
+                               .force_max = r->force_max ? r->force_max + (size_t)j * n : NULL};
 }
 
 /* the kit's samples filled through i + 1 (sample i's alpha and contact
@@ -223,21 +246,21 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
   if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the kit adapter");
   r->sm = sm;
   r->engine = b->engine;
-  st = refuse(sm, &r->joint, diag);
+  r->mask = (unsigned)sm->clearance_mask & ((1u << FB_MECH_MAX_JOINTS) - 1u);
+  st = refuse(sm, diag);
   if (st == FB_OK) st = fb_planar_of_case(&r->m, &sm->def->source, &sm->lengths, diag);
-  if (st == FB_OK) st = alloc_run(r, sm->def->steps + 1, r->m->nbodies - 1, diag);
-  if (st == FB_OK && r->joint >= 0) {
-    const size_t n = r->s.n;
-    r->cl = (fb_kit_clearance){.mask = 1u << r->joint, .law = sm->law[r->joint],
-                               .mapping = sm->mapping, .radial_clearance = sm->radial_clearance,
+  /* a binding that sub-steps keeps its largest force of each step for
+   * the spikes' refinement (adapter_refine) */
+  if (st == FB_OK)
+    st = alloc_run(r, sm->def->steps + 1, r->m->nbodies - 1, b->contact_force_max != NULL, diag);
+  if (st == FB_OK && r->mask) {
+    r->cl = (fb_kit_clearance){.mask = r->mask, .mapping = sm->mapping,
+                               .radial_clearance = sm->radial_clearance,
                                .pin_radius = sm->pin_radius,
-                               .impact_velocity_min = sm->impact_velocity_min, .joint = r->joint,
-                               .force = r->col + FB_C_FORCE * n, .pen = r->col + FB_C_PEN * n,
-                               .ecc = r->col + FB_C_EX * n, .state = r->col + FB_C_STATE * n};
-    /* a binding that sub-steps keeps its largest force of each step for
-     * the spikes' refinement (adapter_refine) */
-    if (b->contact_force_max && !(r->cl.force_max = calloc(n, sizeof *r->cl.force_max)))
-      st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu kit samples", n);
+                               .impact_velocity_min = sm->impact_velocity_min,
+                               .aliased_joint = -1};
+    for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
+      if (loose(r, j)) r->cl.joint[j] = joint_record(r, j);
   }
   fb_start_state start;
   if (st == FB_OK) st = fb_model_scene_start(&start, sm, diag);
@@ -249,8 +272,7 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
                             .nbodies = r->m->nbodies - 1, .njoints = r->m->njoints,
                             .c = &sm->def->source, .q0 = q0, .qd0 = qd0};
     r->s.h = sm->solver.h;
-    st = fb_kit_open(&r->kit, b, r->m, sm->omega2, &o, r->joint >= 0 ? &r->cl : NULL, &r->s,
-                     diag);
+    st = fb_kit_open(&r->kit, b, r->m, sm->omega2, &o, r->mask ? &r->cl : NULL, &r->s, diag);
     if (st == FB_OK) st = reach(r, 0, diag);
     if (st == FB_ERR_NUMERIC) st = r->reached ? FB_OK : FB_ERR_NUMERIC;
   }
@@ -271,8 +293,11 @@ static fb_status adapter_step(void *self, fb_diag *diag) {
                                                        ? r->stop.detail
                                                        : "no sample beyond the run's duration");
   r->i++;
-  const double *state = r->col ? r->col + (size_t)FB_C_STATE * r->s.n : NULL;
-  if (state && state[r->i] == FB_STATE_IMPACT && state[r->i - 1] != FB_STATE_IMPACT) r->impacts++;
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) {
+    if (!loose(r, j)) continue;
+    const double *state = r->col[j] + (size_t)FB_C_STATE * r->s.n;
+    if (state[r->i] == FB_STATE_IMPACT && state[r->i - 1] != FB_STATE_IMPACT) r->impacts[j]++;
+  }
   return FB_OK;
 }
 
@@ -296,18 +321,23 @@ static void adapter_sample(const void *self, fb_sample *x) {
   for (int k = 0; k < no; k++)
     for (int q = 0; q < 3; q++)
       x->body[k][q] = body_value(r, out[k], q, fb_mech_output_translates(d, k));
-  if (r->joint < 0) return;
-  for (int c = 0; c < FB_CONTACT_COLS; c++)
-    x->contact[r->joint][c] = r->col[(size_t)c * r->s.n + r->i];
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
+    for (int c = 0; loose(r, j) && c < FB_CONTACT_COLS; c++)
+      x->contact[j][c] = r->col[j][(size_t)c * r->s.n + r->i];
 }
 
+/* the deepest clearance joint now (the first of equals) and every joint's
+ * impacts so far */
 static void adapter_contact(const void *self, fb_engine_contact *out) {
   const kit_run *r = self;
   memset(out, 0, sizeof *out);
-  out->joint = r->joint;
-  if (r->joint < 0) return;
-  out->penetration = r->col[(size_t)FB_C_PEN * r->s.n + r->i];
-  out->impacts[r->joint] = r->impacts;
+  out->joint = -1;
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) {
+    if (!loose(r, j)) continue;
+    const double pen = r->col[j][(size_t)FB_C_PEN * r->s.n + r->i];
+    if (out->joint < 0 || pen > out->penetration) out->penetration = pen, out->joint = j;
+    out->impacts[j] = r->impacts[j];
+  }
 }
 
 /* the largest separation of an ideal revolute joint's two points now [m] */
@@ -323,7 +353,7 @@ static double adapter_drift(const void *self) {
   }
   double worst = 0.0;
   for (int j = 0; j < m->njoints; j++) {
-    if (j == r->joint || m->joint[j].kind != FB_KIND_REVOLUTE) continue;
+    if ((j < FB_MECH_MAX_JOINTS && loose(r, j)) || m->joint[j].kind != FB_KIND_REVOLUTE) continue;
     double p0[2], p1[2];
     fb_planar_point(p0, m, q, m->joint[j].body[0], m->joint[j].point[0]);
     fb_planar_point(p1, m, q, m->joint[j].body[1], m->joint[j].point[1]);
@@ -332,15 +362,17 @@ static double adapter_drift(const void *self) {
   return worst;
 }
 
-/* the kit's figures of the clearance joint over the whole run (ERP and
- * CFM are a binding's row: not kept) */
+/* the kit's figures of a clearance joint over the whole run (ERP and
+ * CFM those of the rows a binding that takes rows was handed, kit.h's
+ * contact_rows; none otherwise, or before a contact) */
 static void adapter_provenance(const void *self, int joint, fb_contact_provenance *out) {
   const kit_run *r = self;
-  const fb_kit_clearance *cl = &r->cl;
   *out = (fb_contact_provenance){NAN, NAN, NAN, NAN, NAN, 0};
-  if (joint == r->joint)
-    *out = (fb_contact_provenance){cl->m_eff_min, cl->m_eff_max, NAN, NAN, cl->h_omega_max,
-                                   cl->contact_steps};
+  if (joint < 0 || joint >= FB_MECH_MAX_JOINTS || !loose(r, joint)) return;
+  const fb_kit_joint_record *k = &r->cl.joint[joint];
+  const int rows = k->contact_steps > 0 && binding_of(r->sm)->contact_rows;
+  *out = (fb_contact_provenance){k->m_eff_min, k->m_eff_max, rows ? k->erp_max : NAN,
+                                 rows ? k->cfm_min : NAN, k->h_omega_max, k->contact_steps};
 }
 
 /* the series' spikes refined as the hand-built engines' are, but the
@@ -348,8 +380,7 @@ static void adapter_provenance(const void *self, int joint, fb_contact_provenanc
  * between samples (series.h, fb_series_refine_peaks_max) */
 static void adapter_refine(const void *self, fb_series *s, double fraction, double t_split) {
   const kit_run *r = self;
-  fb_series_refine_peaks_max(s, fraction, t_split, r->cl.force_max ? r->joint : -1,
-                             r->cl.force_max);
+  fb_series_refine_peaks_max(s, fraction, t_split, r->force_max, r->s.n);
 }
 
 /* the steps replayed (a model the harness stopped: those before its stop) */

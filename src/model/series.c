@@ -377,20 +377,20 @@ void fb_refine_column(const double *t, size_t n, double *v, const double *vmax, 
   }
 }
 
-void fb_series_refine_peaks_max(fb_series *s, double fraction, double t_split, int joint,
-                                const double *force_max) {
+void fb_series_refine_peaks_max(fb_series *s, double fraction, double t_split,
+                                const double *force_max, size_t stride) {
   for (size_t b = 0; b < output_count(s); b++)
     fb_refine_column(s->t, s->n, s->body[b][FB_Q_ACC], NULL, fraction, t_split);
   for (int j = 0; j < mech_of(s)->njoints; j++) {
     if (!(s->contact_mask & (1 << j))) continue;
-    fb_refine_column(s->t, s->n, s->contact[j][FB_C_FORCE], j == joint ? force_max : NULL,
-                     fraction, t_split);
+    fb_refine_column(s->t, s->n, s->contact[j][FB_C_FORCE],
+                     force_max ? force_max + (size_t)j * stride : NULL, fraction, t_split);
     fb_refine_column(s->t, s->n, s->contact[j][FB_C_PEN], NULL, fraction, t_split);
   }
 }
 
 void fb_series_refine_peaks(fb_series *s, double fraction, double t_split) {
-  fb_series_refine_peaks_max(s, fraction, t_split, -1, NULL);
+  fb_series_refine_peaks_max(s, fraction, t_split, NULL, 0);
 }
 
 void fb_series_attribute_to_step_start(fb_series *s) {

@@ -148,16 +148,19 @@ void fb_largest_abs_split(double big[2], size_t *split, const double *t, size_t 
  * window's start; fb_series_largest_abs_split). */
 void fb_series_refine_peaks(fb_series *s, double fraction, double t_split);
 
-/* fb_series_refine_peaks, but the contact force of joint `joint` from the
- * engine's own largest force between samples: force_max (n) [N], the
- * largest force the engine applied over its sub-steps of the step from
- * sample i; a maximum spike at sample k takes the largest of the sample,
- * force_max[k - 1] and force_max[k] (the force's extreme between its
- * neighbours, as the reference replaces its spikes: peak_refine.h), not
- * the parabola's vertex, which overshoots a pulse lopsided within the
- * three samples. joint -1 or force_max NULL: fb_series_refine_peaks. */
-void fb_series_refine_peaks_max(fb_series *s, double fraction, double t_split, int joint,
-                                const double *force_max);
+/* fb_series_refine_peaks, but every clearance joint's contact force from
+ * the engine's own largest force between samples: force_max (njoints x
+ * stride, stride >= the samples s->n; joint j's sample i at
+ * force_max[j stride + i]) [N], the largest force the engine
+ * applied at joint j over its sub-steps of the step from sample i; a
+ * maximum spike at sample k takes the largest of the sample,
+ * force_max[j stride + k - 1] and force_max[j stride + k] (the force's extreme
+ * between its neighbours, as the reference replaces its spikes:
+ * peak_refine.h), not the parabola's vertex, which overshoots a pulse
+ * lopsided within the three samples. force_max NULL:
+ * fb_series_refine_peaks. */
+void fb_series_refine_peaks_max(fb_series *s, double fraction, double t_split,
+                                const double *force_max, size_t stride);
 
 /* The refined value of a spike of sign `sign` (+1 maximum, -1 minimum) at
  * the middle of three samples y (its neighbours' original values): with

@@ -74,9 +74,9 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
                            const fb_planar_run *r, const fb_model *mt, fb_diag *diag) {
   const fb_planar *m = r->m;
   const fb_case *c = &r->c;
-  int n = 0;
+  int n = 0, cj = -1;
   for (int k = 0; k < m->njoints; k++)
-    if ((unsigned)c->clearance.mask & (1u << k)) cl->joint = k, n++;
+    if ((unsigned)c->clearance.mask & (1u << k)) cj = k, n++;
   if (n != 1)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs one clearance joint ([clearance] joints "
                        "= a revolute joint of the case), and the case names %d", p->name, n);
@@ -84,17 +84,18 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
    * or refused by the kit naming the binding (kit_contact.h) */
   double *omega0 = NULL, *most = malloc((size_t)m->njoints * sizeof *most);
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
-  fb_status st = most ? fb_planar_free_parts(guide, &omega0, &free_law, c, m, cl->joint, diag)
+  fb_status st = most ? fb_planar_free_parts(guide, &omega0, &free_law, c, m, cj, diag)
                       : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   free(omega0); /* the start takes its own (fb_planar_run_kit) */
   cl->guide = *guide;
   if (st == FB_OK && !free_law) st = fb_planar_reaction_max(most, m, r->omega, c->gravity, diag);
-  const fb_planar_joint *j = &m->joint[cl->joint];
+  const fb_planar_joint *j = &m->joint[cj];
+  fb_kit_joint_record *rec = &cl->joint[cj];
   const double a = m->body[j->body[0]].mass, b = m->body[j->body[1]].mass;
   const double mass = a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b); /* joint_law.h */
-  p->ref.force_work = st == FB_OK && !free_law ? most[cl->joint] : 0.0;
+  p->ref.force_work = st == FB_OK && !free_law ? most[cj] : 0.0;
   if (st == FB_OK)
-    st = fb_joint_law_at(&cl->law, c, mt->law == FB_MODEL_LAW_IMPACT, p->ref.force_work, j->name,
+    st = fb_joint_law_at(&rec->law, c, mt->law == FB_MODEL_LAW_IMPACT, p->ref.force_work, j->name,
                          mass, diag);
   free(most);
   if (st != FB_OK) return st;
@@ -102,7 +103,7 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   const fb_clearance *ci = &c->clearance;
   const int damping_given = fb_casefile_given(c, "clearance", "engine_damping_scale");
   if (ci->engine_stiffness_scale != 1.0 || ci->engine_damping_scale != 1.0 || damping_given)
-    fb_contact_law_scale(&cl->law, ci->engine_stiffness_scale, ci->engine_damping_scale,
+    fb_contact_law_scale(&rec->law, ci->engine_stiffness_scale, ci->engine_damping_scale,
                          damping_given);
   fb_scene sc;
   fb_scene_default(&sc);
@@ -116,10 +117,10 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   if (!p->force) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   p->pen = p->force + p->n;
   for (size_t i = 0; i < 2 * p->n; i++) p->force[i] = NAN;
-  cl->force = p->force;
-  cl->pen = p->pen;
-  p->ref.joint = cl->joint;
-  p->ref.law = cl->law;
+  rec->force = p->force;
+  rec->pen = p->pen;
+  p->ref.joint = cj;
+  p->ref.law = rec->law;
   return FB_OK;
 }
 
@@ -159,8 +160,8 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   fb_kit_clearance *run_cl = mt->joints == FB_JOINTS_CLEARANCE ? &cl : NULL;
   fb_status st = run_cl ? clearance(&cl, &guide, p, r, mt, diag) : FB_OK;
   /* a binding that sub-steps keeps its largest force of each step (the verdict's peaks) */
-  if (st == FB_OK && cl.force && b->contact_force_max &&
-      !(cl.force_max = p->force_max = calloc(p->n, sizeof *p->force_max)))
+  if (st == FB_OK && p->force && b->contact_force_max &&
+      !(cl.joint[p->ref.joint].force_max = p->force_max = calloc(p->n, sizeof *p->force_max)))
     st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   /* undriven: the case's velocities at the assembly, as the reference's
    * free start takes them (q0 NULL: the assembly itself) */

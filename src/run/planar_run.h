@@ -116,7 +116,7 @@ typedef struct {
                               the kit: kit.h fb_kit_series.setup_s) [s]; 0 for the others */
   double *force_max;       /* an engine's model whose binding sub-steps: its largest contact
                               force over the step from sample i [N] (n; kit.h's
-                              fb_kit_clearance.force_max), else NULL */
+                              fb_kit_joint_record.force_max), else NULL */
   double *torque;          /* the analytic model: the drive's torque on the driven body about +z
                               (planar_invdyn.h) [N m] (n), else NULL */
   double *reaction;        /* the analytic model: joint j's reaction on its second body from its

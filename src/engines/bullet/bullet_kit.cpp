@@ -269,6 +269,7 @@ constexpr fb_kit_binding binding() {
   b.step = step;
   b.body_state = body_state;
   b.world_free = world_free;
+  b.contact_rows = 1;
   return b;
 }
 

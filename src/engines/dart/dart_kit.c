@@ -238,8 +238,9 @@ static fb_status onset_within(dk_world *k, int j, fb_diag *diag) {
   fb_status st = fb_planar_effective_mass_tensor(wi, k->m, k->q, k->off, j, diag);
   if (st != FB_OK) return st;
   const double me = fb_effective_mass_along(wi, n);
-  const double m_eff = isfinite(me) && me > 0.0 ? me : k->cl->law.mass;
-  k->ct[j] = (dk_contact){.on = 1, .law = fb_contact_law_on_mass(&k->cl->law, m_eff),
+  const fb_contact_law *law = &k->cl->joint[j].law;
+  const double m_eff = isfinite(me) && me > 0.0 ? me : law->mass;
+  k->ct[j] = (dk_contact){.on = 1, .law = fb_contact_law_on_mass(law, m_eff),
                           .v0 = rate};
   const int ns = substeps(&k->ct[j].law, delta, rate, m_eff, k->h);
   if (ns > k->nsub) k->nsub = ns;

@@ -78,8 +78,9 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
     if (mask & (1u << j)) { /* a pin in a hole or a slider in its guide: the contact each
                                step, or the engine's relation */
       fb_kit_clearance_joint cj = {b0, b1, {pj->at[0], pj->at[1]}, cl->radial_clearance,
-                                   cl->pin_radius, cl->law.restitution, m, cl, pj->kind,
-                                   {0.0, 0.0}, {0.0, 0.0, 0.0}, cl->friction};
+                                   cl->pin_radius, cl->joint[j].law.restitution,
+                                   cl->joint[j].law, m, cl, pj->kind, {0.0, 0.0},
+                                   {0.0, 0.0, 0.0}, cl->friction};
       if (pj->kind == FB_KIND_PRISMATIC) {
         slide_axis(cj.axis, m, q, moved, pj);
         if (cl->guide) cj.guide = cl->guide[j];
@@ -153,6 +154,31 @@ struct fb_kit_runner {
   fb_status st;          /* FB_OK, or what stopped the run (sticky) */
 };
 
+/* clearance joint j's columns at sample i (kit.h, fb_kit_joint_record):
+ * the step just taken gives its force, largest force and contact state to
+ * the sample it started from, i - 1; the state read now its penetration
+ * and eccentricity; the last sample keeps its step's force and state from
+ * the one before */
+static void record(fb_kit_runner *k, int j, size_t i) {
+  const fb_kit_binding *b = k->b;
+  const size_t n = k->s->n;
+  fb_kit_joint_record *r = &k->cl->joint[j];
+  if (i > 0) {
+    const double f = fb_kit_pipe_force(&k->p, b, k->w, k->m, j);
+    if (r->force) r->force[i - 1] = f;
+    if (r->force_max)
+      r->force_max[i - 1] = b->contact_force_max ? fmax(b->contact_force_max(k->w, j), f) : f;
+    if (r->state) /* the episode of the step from t_{i-1} */
+      r->state[i - 1] = f > 0.0 ? (double)fb_kit_pipe_state(&k->p, k->m, j) : FB_STATE_FREE;
+  }
+  if (r->pen) r->pen[i] = k->p.pen[j];
+  if (r->ecc) r->ecc[i] = k->p.ecc[j][0], r->ecc[n + i] = k->p.ecc[j][1];
+  if (i + 1 < n) return;
+  if (r->force) r->force[i] = i > 0 ? r->force[i - 1] : 0.0;
+  if (r->force_max) r->force_max[i] = r->force ? r->force[i] : 0.0;
+  if (r->state) r->state[i] = i > 0 ? r->state[i - 1] : FB_STATE_FREE;
+}
+
 /* sample i: the step to it (i > 0), its sample; before the next step the
  * clearance contacts, after it the step's contact force at the sample it
  * started from */
@@ -167,20 +193,10 @@ static fb_status sample_step(fb_kit_runner *k, size_t i, fb_diag *diag) {
   if (st != FB_OK) return st;
   sample(b, w, s, m->nbodies - 1, i);
   if (!cl) return FB_OK;
-  if (i > 0) cl->force[i - 1] = fb_kit_pipe_force(&k->p, b, w, m, cl->joint);
-  if (i > 0 && cl->force_max)
-    cl->force_max[i - 1] = b->contact_force_max ? fmax(b->contact_force_max(w, cl->joint),
-                                                       cl->force[i - 1])
-                                                : cl->force[i - 1];
-  if (i > 0 && cl->state) /* the episode of the step from t_{i-1} */
-    cl->state[i - 1] =
-        cl->force[i - 1] > 0.0 ? (double)fb_kit_pipe_state(&k->p, m, cl->joint) : FB_STATE_FREE;
-  cl->pen[i] = fb_kit_pipe_read(&k->p, b, w, m, cl);
-  if (cl->ecc) cl->ecc[i] = k->p.ecc[cl->joint][0], cl->ecc[s->n + i] = k->p.ecc[cl->joint][1];
+  fb_kit_pipe_read(&k->p, b, w, m, cl);
+  for (int j = 0; j < m->njoints; j++)
+    if (cl->mask & (1u << j)) record(k, j, i);
   if (i + 1 < s->n) st = fb_kit_pipe_contacts(&k->p, b, w, m, cl, s->h, diag);
-  else cl->force[i] = i > 0 ? cl->force[i - 1] : 0.0; /* the last keeps the one before */
-  if (i + 1 == s->n && cl->force_max) cl->force_max[i] = cl->force[i];
-  if (i + 1 == s->n && cl->state) cl->state[i] = i > 0 ? cl->state[i - 1] : FB_STATE_FREE;
   return st;
 }
 

@@ -116,35 +116,57 @@ typedef struct {
   double m_alone;      /* the contact's own effective mass, 1 / D_cc of the Delassus matrix
                           (a slider's corner alone, lighter than its face's share m_eff: the
                           slider's tilt); a pin's: m_eff [kg] */
+  double friction;     /* Coulomb's coefficient mu at the contact ([clearance] friction; 0:
+                          frictionless) [-] */
 } fb_kit_contact;
+
+/* What a kit run keeps of one clearance joint: its law, and its columns
+ * and figures (out). */
+typedef struct {
+  fb_contact_law law;       /* its law (joint_law.h), its damper put on m_eff each step */
+  double *force;            /* optional (n), NULL: not kept: its contact force over the step
+                               from sample i [N] */
+  double *pen;              /* optional (n), NULL: not kept: its penetration at sample i [m] */
+  double *ecc;              /* optional (2 x n), NULL: not kept: its eccentricity, pin centre -
+                               hole centre, x at ecc[i], y at ecc[n + i] [m] (a slider: its
+                               centre across the slide [m], its tilt [rad]) */
+  double *state;            /* optional (n), NULL: not kept: its contact state in the step from
+                               sample i (series.h FB_STATE_*: free when it applied no force, else
+                               its episode's impact or continuous) [-] */
+  double *force_max;        /* optional (n), NULL: not kept: its largest contact force over the
+                               step from sample i, the binding's sub-steps (contact_force_max)
+                               or, without them, force[i] [N] */
+  size_t contact_steps;     /* out: contact rows handed (a slider's corners one each) */
+  int impacts;              /* out: impact episodes (a slider's per corner) */
+  double m_eff_min, m_eff_max; /* out: its effective mass range over its contact steps [kg]
+                               (valid when contact_steps > 0) */
+  double h_omega_max;       /* out: the largest h omega_c = h sqrt(kp / m_eff) of the rows its
+                               law and the mapping gave (contact.h's row, as ODE's) [-] */
+  double erp_max, cfm_min;  /* out: the largest ERP [-] and smallest CFM [m/(N s)] of those rows
+                               (valid when contact_steps > 0 and the binding takes rows:
+                               contact_rows 1) */
+} fb_kit_joint_record;
 
 /* The clearance joints of a kit run (NULL: every joint ideal). */
 typedef struct {
-  unsigned mask;            /* bit j: joint j is a pin in a hole (a revolute joint) */
-  fb_contact_law law;       /* their law (joint_law.h), its damper put on m_eff each step */
+  unsigned mask;            /* bit j: joint j is a pin in a hole (a revolute joint) or a slider
+                               in its guide (a prismatic one) */
+  fb_kit_joint_record joint[FB_PLANAR_SPEC_MAX_JOINTS]; /* joint j's law and record (bit j of
+                               mask set) */
   fb_mapping mapping;       /* [clearance] mapping */
   double radial_clearance;  /* c [m] */
   double pin_radius;        /* [m] */
   double impact_velocity_min; /* an episode faster than this at onset is an impact [m/s] */
-  int joint;                /* the joint whose force and penetration the series holds */
-  double *force, *pen;      /* (n): its contact force [N] and penetration [m] per sample */
   size_t contact_steps;     /* out: contact rows handed, over the steps and all joints (a
                                slider's corners one each) */
   int impacts;              /* out: impact episodes, all joints (a slider's per corner) */
-  double *ecc;              /* optional (2 x n), NULL: not kept: joint's eccentricity, pin
-                               centre - hole centre, x at ecc[i], y at ecc[n + i] [m] */
-  double *state;            /* optional (n), NULL: not kept: joint's contact state in the step
-                               from sample i (series.h FB_STATE_*: free when it applied no
-                               force, else its episode's impact or continuous) [-] */
   double m_eff_min, m_eff_max; /* out: the effective mass range over the contact steps of
                                every clearance joint [kg] (valid when contact_steps > 0) */
   double aliased_omega_d_h; /* out: omega_d h of the row whose aliasing stopped the run
                                (FB_ERR_NUMERIC, "aliased"), else 0 [-] */
+  int aliased_joint;        /* out: the joint of that row, else -1 */
   double h_omega_max;       /* out: the largest h omega_c = h sqrt(kp / m_eff) of the rows the
-                               law and mapping gave (contact.h's row, as ODE's) [-] */
-  double *force_max;        /* optional (n), NULL: not kept: joint's largest contact force over
-                               the step from sample i, the binding's sub-steps
-                               (contact_force_max) or, without them, force[i] [N] */
+                               laws and mapping gave (contact.h's row, as ODE's) [-] */
   const fb_planar_guide *guide; /* optional (njoints), NULL: no prismatic clearance joint: a
                                prismatic clearance joint j's slider in its guide at guide[j]
                                (planar_guide.h: a, b, c [m]) */
@@ -161,6 +183,7 @@ typedef struct {
   double radial_clearance;  /* c [m] */
   double pin_radius;        /* [m] */
   double restitution;       /* the law's coefficient of restitution cr, Newton's e_N [-] */
+  fb_contact_law law;       /* the joint's law (cl->joint[k].law) */
   const fb_planar *m;       /* the description (the joint is m->joint[k]) */
   const fb_kit_clearance *cl; /* the run's clearance joints: law, sizes, mask */
   int kind;                 /* the joint's kind (planar.h FB_KIND_REVOLUTE: a pin in a hole;
@@ -227,6 +250,9 @@ typedef struct fb_kit_binding {
                              /* optional: the largest normal force clearance joint k's contact
                                 applied over the sub-steps of the last step [N] (DART, which
                                 splits a step in contact); NULL: one force per step */
+  int contact_rows;          /* optional: 1 when add_contact hands the engine the law as a soft
+                                constraint row (ERP and CFM: ODE, Bullet), whose largest ERP
+                                and smallest CFM the kit reports (fb_kit_joint_record) */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

@@ -114,8 +114,8 @@ static void corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], fb_kit_pi
   p->ecc[j][1] = tilt;
 }
 
-double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
-                        const fb_planar *m, const fb_kit_clearance *cl) {
+void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                      const fb_planar *m, const fb_kit_clearance *cl) {
   read_state(p, b, w, m);
   fb_kit_contact c;
   fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
@@ -123,25 +123,30 @@ double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
     if (p->off[j] && is_guide(m, j)) corners(gc, p, m, cl, j);
     else if (p->off[j]) geometry(&c, p, m, cl, j);
   }
-  return p->pen[cl->joint];
 }
 
 /* the row the law and mapping hand the engine (contact.h): its h omega_c
- * noted (cl->h_omega_max); the matched mapping's aliasing stop: a row
- * whose damped frequency passes FB_MATCHED_ALIAS_BOUND per step has lost
- * its spring's meaning; FB_ERR_NUMERIC naming the largest usable step,
- * its omega_d h in cl->aliased_omega_d_h */
+ * noted (joint j's and cl's h_omega_max); the matched mapping's aliasing
+ * stop: a row whose damped frequency passes FB_MATCHED_ALIAS_BOUND per
+ * step has lost its spring's meaning; FB_ERR_NUMERIC naming the largest
+ * usable step, its omega_d h in cl->aliased_omega_d_h */
 static fb_status note_row(const fb_kit_contact *c, const char *joint, fb_kit_clearance *cl,
-                          fb_diag *diag) {
+                          int j, fb_diag *diag) {
   fb_contact_row row;
   if (fb_contact_row_step(&row, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
                           c->onset, 0.0) != FB_OK)
     return FB_OK;
-  cl->h_omega_max = fmax(cl->h_omega_max, fb_contact_h_omega(c->h, row.kp, c->m_eff));
+  const double hw = fb_contact_h_omega(c->h, row.kp, c->m_eff);
+  fb_kit_joint_record *r = &cl->joint[j];
+  cl->h_omega_max = fmax(cl->h_omega_max, hw);
+  r->h_omega_max = fmax(r->h_omega_max, hw);
+  if (r->contact_steps == 0 || row.erp > r->erp_max) r->erp_max = row.erp;
+  if (r->contact_steps == 0 || row.cfm < r->cfm_min) r->cfm_min = row.cfm;
   if (!fb_mapping_is_matched(c->mapping)) return FB_OK;
   const double wdh = fb_contact_omega_d_h(c->h, row.kp, row.kd, c->m_eff);
   if (!fb_kit_aliased(c->mapping, wdh)) return FB_OK;
   cl->aliased_omega_d_h = wdh;
+  cl->aliased_joint = j;
   return fb_kit_alias_diag(diag, wdh, joint, c->h);
 }
 
@@ -153,34 +158,47 @@ static void native_episode(fb_kit_pipe *p, const fb_kit_binding *b, const void *
   const double rate = in && !p->ep[j].in_contact ? p->rate_before[j] : p->rate[j];
   fb_episode_update(&p->ep[j], in, rate, cl->impact_velocity_min);
   cl->impacts += p->ep[j].impacts - before;
+  cl->joint[j].impacts += p->ep[j].impacts - before;
   cl->contact_steps += (size_t)in;
+  cl->joint[j].contact_steps += (size_t)in;
   p->rate_before[j] = p->rate[j];
+}
+
+/* m_eff noted in the range [lo, hi] (count: the contact steps before it) */
+static void note_mass(double *lo, double *hi, size_t count, double m_eff) {
+  if (count == 0 || m_eff < *lo) *lo = m_eff;
+  if (count == 0 || m_eff > *hi) *hi = m_eff;
 }
 
 /* contact slot k's episode (in: it presses), and when in, its contact
  * *c (its geometry filled; the effective mass me along its normal, else
- * the law's own mass) with the law on that mass, noted and handed to b */
-static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const char *joint,
-                      fb_kit_clearance *cl, int k, fb_kit_contact *c, int in, double me, double h,
-                      fb_diag *diag) {
+ * the law's own mass) with clearance joint j's law on that mass, noted
+ * and handed to b */
+static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb_planar *m,
+                      fb_kit_clearance *cl, int j, int k, fb_kit_contact *c, int in, double me,
+                      double h, fb_diag *diag) {
+  fb_kit_joint_record *r = &cl->joint[j];
   p->force[k] = 0.0;
   const int onset = in && !p->ep[k].in_contact, before = p->ep[k].impacts;
   fb_episode_update(&p->ep[k], in, in ? c->rate : 0.0, cl->impact_velocity_min);
   cl->impacts += p->ep[k].impacts - before;
+  r->impacts += p->ep[k].impacts - before;
   if (!in) return FB_OK;
-  c->m_eff = isfinite(me) && me > 0.0 ? me : cl->law.mass;
+  c->m_eff = isfinite(me) && me > 0.0 ? me : r->law.mass;
   if (!(c->m_alone > 0.0 && c->m_alone < c->m_eff)) c->m_alone = c->m_eff; /* a pin's */
-  c->law = fb_contact_law_on_mass(&cl->law, c->m_eff);
+  c->law = fb_contact_law_on_mass(&r->law, c->m_eff);
   c->v0 = p->ep[k].v0;
   c->onset = onset;
   c->h = h;
+  c->friction = cl->friction;
   p->force[k] = fb_contact_force(&c->law, c->depth, c->rate, c->v0);
   fb_status st = FB_OK;
-  if (!b->applied_force && (st = note_row(c, joint, cl, diag)) != FB_OK) return st;
+  if (!b->applied_force && (st = note_row(c, m->joint[j].name, cl, j, diag)) != FB_OK) return st;
   if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
-  if (cl->contact_steps == 0 || c->m_eff < cl->m_eff_min) cl->m_eff_min = c->m_eff;
-  if (cl->contact_steps == 0 || c->m_eff > cl->m_eff_max) cl->m_eff_max = c->m_eff;
+  note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, c->m_eff);
+  note_mass(&r->m_eff_min, &r->m_eff_max, r->contact_steps, c->m_eff);
   cl->contact_steps++;
+  r->contact_steps++;
   return FB_OK;
 }
 
@@ -206,7 +224,7 @@ static fb_status guide_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w
                         .normal = {n[0], n[1]}, .depth = d, .rate = gc[r].rate,
                         .mapping = cl->mapping, .m_alone = alone[r]};
     if (pj->body[0] == FB_PLANAR_GROUND) c.hole = FB_KIT_GROUND;
-    fb_status st = hand(p, b, w, pj->name, cl, fb_kit_slot(j, r), &c, d > 0.0, mass[r], h, diag);
+    fb_status st = hand(p, b, w, m, cl, j, fb_kit_slot(j, r), &c, d > 0.0, mass[r], h, diag);
     if (st != FB_OK) return st;
   }
   return FB_OK;
@@ -234,7 +252,7 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
       if ((st = fb_planar_effective_mass_tensor(wi, m, p->q, p->off, j, diag)) != FB_OK) return st;
       me = fb_effective_mass_along(wi, c.normal);
     }
-    if ((st = hand(p, b, w, m->joint[j].name, cl, j, &c, in, me, h, diag)) != FB_OK) return st;
+    if ((st = hand(p, b, w, m, cl, j, j, &c, in, me, h, diag)) != FB_OK) return st;
   }
   return FB_OK;
 }

@@ -38,8 +38,8 @@ fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_plan
 void fb_kit_pipe_free(fb_kit_pipe *p);
 
 /* Reads the bodies' states from the engine and every clearance joint's
- * penetration; returns cl->joint's [m]. */
-double fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+ * penetration and eccentricity (p->pen, p->ecc). */
+void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
                         const fb_planar *m, const fb_kit_clearance *cl);
 
 /* Every clearance joint's contact at the state last read, handed to b's

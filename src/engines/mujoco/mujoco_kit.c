@@ -432,7 +432,7 @@ static fb_status kit_add_clearance(void *w, int j, const fb_kit_clearance_joint 
   if (cj->kind != FB_KIND_PRISMATIC) {
     k->ct[j] = (mk_contact){.in = 1, .pin = pin, .hole = hole, .at = {at[0], at[1]},
                             .c = cl->radial_clearance, .v_min = cl->impact_velocity_min,
-                            .law = cl->law};
+                            .law = cj->law};
     return FB_OK;
   }
   /* a slider in its guide (kit.h: pin the guide's handle, hole the
@@ -441,7 +441,7 @@ static fb_status kit_add_clearance(void *w, int j, const fb_kit_clearance_joint 
   for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
     mk_contact *c = &k->ct[fb_kit_slot(j, r)];
     *c = (mk_contact){.in = 1, .pin = hole, .hole = pin, .wall = 1,
-                      .v_min = cl->impact_velocity_min, .law = cl->law};
+                      .v_min = cl->impact_velocity_min, .law = cj->law};
     fb_planar_guide_layout(c->at, c->aw, c->nw, at, cj->axis, &cj->guide, r);
   }
   return FB_OK;

@@ -235,4 +235,5 @@ const fb_kit_binding fb_ode_kit = {
     .step = kit_step,
     .body_state = kit_body_state,
     .world_free = kit_world_free,
+    .contact_rows = 1,
 };

@@ -717,6 +717,7 @@ const fb_kit_binding fb_siconos_kit = {
     kit_add_clearance,  0 /* applied_force: no penalty row */,
     NULL /* model_text: Siconos reads no model file */,
     NULL /* contact_force_max: an impulse per step, no sub-steps */,
+    0 /* contact_rows: a unilateral relation, no soft row */,
 };
 
 } // extern "C"

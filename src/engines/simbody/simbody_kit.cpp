@@ -87,7 +87,7 @@ struct Held {
   double clearance;      // radial clearance c [m]
   double v_min;          // an onset slower than this takes it as v0 (episode.h) [m/s]
   double v0;             // the episode's onset rate [m/s]
-  fb_contact_law base;   // the joint's law (cl->law)
+  fb_contact_law base;   // the joint's law (cj->law)
   int wall;              // 1: a slider's corner (pin_at, on the slider) against its wall
                          // (hole_at, a point of it, on the guide), else a pin in its hole
   Vec3 wall_n;           // a wall's unit normal, towards the wall, in the guide's frame [-]
@@ -463,7 +463,7 @@ fb_status kit_add_clearance(void *w, int jn, const fb_kit_clearance_joint *cj, f
       hc.hole_at = local(k, hc.hole, wall);
       hc.wall_n = local(k, hc.hole, normal, 0);
       hc.v_min = cl->impact_velocity_min;
-      hc.base = cl->law;
+      hc.base = cj->law;
       hc.jn = jn;
       hc.corner = r;
       hc.guide = cj->guide;
@@ -479,7 +479,7 @@ fb_status kit_add_clearance(void *w, int jn, const fb_kit_clearance_joint *cj, f
   hd.hole_at = local(k, hd.hole, j.at);
   hd.clearance = cl->radial_clearance;
   hd.v_min = cl->impact_velocity_min;
-  hd.base = cl->law;
+  hd.base = cj->law;
   return FB_OK;
 }
 
@@ -566,4 +566,5 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
           alias */
     NULL, /* model_text: no model file */
     NULL, /* contact_force_max: one force per step */
+    0,    /* contact_rows: no constraint row */
 };

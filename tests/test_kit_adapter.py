@@ -19,7 +19,9 @@ rounding until a chaotic impact sequence amplifies it.
 4. Two clearance joints (cases/two_clearance_joints.ini): ODE's and
    Bullet's clearance-impact models, the first three impacts at each
    joint, and each joint's provenance (effective mass, ERP, CFM).
-5. What the kit does not build is refused naming the key to change; the
+5. Coulomb friction at a pin (ODE) and the matched-static mapping (ODE,
+   Bullet): the first three impacts.
+6. What the kit does not build is refused naming the key to change; the
    default builder is the hand-built world.
 
 Usage: test_kit_adapter.py PATH_TO_FOURBAR. Prints "N passed, N failed";
@@ -252,13 +254,28 @@ if both("two_clearance_joints.ini", TWO_MODELS, "t", "--set", "run.revolutions=2
                 check(a is not None and rel(a, b) <= bound,
                       "%s %s %s: kit %s, hand-built %.9g (bound %g)" % (model, joint, key, a, b, bound))
 
-# 5. refusals name the key; the default is the hand-built world
-for key, word in (("clearance.collider=faceted", "[clearance] collider"),
-                  ("solver.h_s=adaptive", "h_s = adaptive"),
-                  ("clearance.friction=0.1", "[clearance] friction"),
-                  ("solver.builder=bogus", "must be hand or kit")):
+# 5. Coulomb friction (ODE's friction pyramid) and the matched-static row
+# (its persistence and drift correction): the same rows as the hand-built
+# worlds', at a fixed step (h = auto is chosen from the run's own contact
+# states, whose effective masses differ by EFFECTIVE_MASS_REL: another
+# step, another trajectory)
+if both(os.path.join("hard", "friction_0_3.ini"), "ode-clearance-impact", "f", "--set",
+        "solver.h_s=2.5e-6", "--set", "run.revolutions=1", "--set", "run.peaks=all"):
+    compare_impacts("f", "friction 0.3", "crank_coupler", 2.5e-6)
+if both("paper_crank_rocker.ini", "ode-clearance-impact,bullet-clearance-impact", "m", "--set",
+        "clearance.mapping=matched-static", "--set", "run.revolutions=1", "--set", "run.peaks=all"):
+    h = models("mhand")["ode-clearance-impact"]["h_s"]
+    for model in ("ode-clearance-impact", "bullet-clearance-impact"):
+        if model in models("mhand"):
+            compare_impacts("m", "matched-static, " + model, "crank_coupler", h, model)
+
+# 6. refusals name the key; the default is the hand-built world
+for model, key, word in (("ode-clearance-impact", "clearance.collider=faceted", "[clearance] collider"),
+                         ("ode-clearance-impact", "solver.h_s=adaptive", "h_s = adaptive"),
+                         ("bullet-clearance-impact", "clearance.friction=0.1", "[clearance] friction"),
+                         ("ode-clearance-impact", "solver.builder=bogus", "must be hand or kit")):
     rc, _, se = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
-                    "run.models=ode-clearance-impact", "--set", "run.ensemble=1", "--set",
+                    "run.models=" + model, "--set", "run.ensemble=1", "--set",
                     "solver.builder=kit", "--set", key, "--out", os.path.join(tmp, "refused"),
                     "--no-figures", "--no-report", "--series", "none")
     check(rc != 0 and word in se, "builder = kit with %s: refused naming '%s' (%s)"

@@ -80,6 +80,17 @@ if m:
     check(m["ode-clearance-impact"]["bodies"]["rod"]["omega_max_rad_s"] is None,
           "a stopped model has no peaks")
 
+# 4b. Coulomb friction at the pin (ODE's friction pyramid): the model runs,
+# and with a frictionless reference it reads unchecked, saying why
+m = kit.run(kit.planar_fourbar, "friction", "run.models=reference,ode-clearance-impact",
+            "clearance.friction=0.2", "run.revolutions=1", "run.peaks=all")
+if m:
+    v = m["ode-clearance-impact"]
+    check(v["verdict"] == "unchecked" and "frictionless" in (v["verdict_reason"] or ""),
+          "friction 0.2: ode-clearance-impact unchecked against a frictionless reference (%s: %s)"
+          % (v["verdict"], v["verdict_reason"]))
+    check(v["contact_steps"] > 0, "friction 0.2: the pin made contact")
+
 # 5. what the kit does not build yet: refused naming issue 58, nothing written
 for name in ("ode-clearance-faceted", "ode-ideal-stackup"):
     kit.refused(name)

@@ -16,8 +16,8 @@
  * What the kit builds, and so what this adapter refuses (FB_ERR_ARG, the
  * model, the key and what to change): every clearance joint of the case
  * (revolute ones, not the driven one), each with its own law, columns and
- * provenance; the exact collider, no friction, a fixed or automatic step
- * (not [solver] h_s = adaptive). Its start is the model's
+ * provenance, Coulomb friction where the binding applies it (kit.h); the
+ * exact collider, a fixed or automatic step (not [solver] h_s = adaptive). Its start is the model's
  * (start.h: [run] start and pin_start, an ensemble member's moved pin),
  * handed to the kit as the description's coordinates. It keeps no joint
  * reactions (no load columns); of each contact's provenance the
@@ -71,9 +71,6 @@ static fb_status refuse(const fb_model_scene *sm, fb_diag *diag) {
   if (sm->collider != FB_COLLIDER_EXACT)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: the exact collider "
                        "only ([clearance] collider = exact)", name);
-  if (sm->friction != 0.0)
-    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: [clearance] friction "
-                       "= %g; the kit's contact is frictionless (give 0)", name, sm->friction);
   return FB_OK;
 }
 
@@ -258,7 +255,7 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
                                .radial_clearance = sm->radial_clearance,
                                .pin_radius = sm->pin_radius,
                                .impact_velocity_min = sm->impact_velocity_min,
-                               .aliased_joint = -1};
+                               .aliased_joint = -1, .friction = sm->friction};
     for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
       if (loose(r, j)) r->cl.joint[j] = joint_record(r, j);
   }

@@ -294,6 +294,9 @@ void fb_planar_verdicts(fb_planar_run *r) {
     } else if (!y) {
       snprintf(v->reason, sizeof v->reason, "nothing to compare with: the run has no %s",
                p->force ? (want ? want->name : "reference of its law") : "analytic");
+    } else if (p->force && r->c.clearance.friction > 0.0) { /* as the four-bar's (report_chaos.c) */
+      snprintf(v->reason, sizeof v->reason, "no reference: %s is frictionless ([clearance] "
+               "friction = %g)", y->name, r->c.clearance.friction);
     } else if (p->force && !(revolution(r, y) < INFINITY)) { /* impacts pair within a share of it */
       snprintf(v->reason, sizeof v->reason, "an undriven case in which no body of %s turns: "
                "impacts are paired within a share of a revolution, and it has none", y->name);

@@ -78,6 +78,23 @@ FbRows *rows_between(const Kit *k, int b0, int b1) {
   return b ? new FbRows(*a, *b) : new FbRows(*a);
 }
 
+/* what the coming step's position update adds to the motion of the point
+ * at x [m] of body handle b beyond the linear h (v + w x r) a row sees:
+ * Bullet turns the body by exactly h w (btTransformUtil::integrateTransform,
+ * exponential map), so the point at r moves (cos(h w) - 1) r +
+ * (sin(h w) - h w) z x r more [m]; 0 for the ground */
+void point_drift(const Kit *k, int b, const double x[2], double h, double out[2]) {
+  out[0] = out[1] = 0.0;
+  const btRigidBody *body = bt_body(k, b);
+  if (!body) return;
+  const btVector3 o = body->getCenterOfMassPosition();
+  const double r[2] = {x[0] - o[0], x[1] - o[1]};
+  const double th = h * body->getAngularVelocity()[2];
+  const double cm1 = cos(th) - 1.0, sw = sin(th) - th;
+  out[0] = cm1 * r[0] - sw * r[1];
+  out[1] = cm1 * r[1] + sw * r[0];
+}
+
 /* the frame at world point at [m] turned to the axis, seen from body b
  * (the world's for the ground) */
 btTransform frame_in(const btRigidBody *b, const double at[2], const double axis[2]) {
@@ -190,8 +207,18 @@ fb_status add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
   }
   fb_contact_row u;
   if (fb_contact_row_step(&u, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
-                          c->onset, 0.0) != FB_OK)
+                          c->onset, c->persistence) != FB_OK)
     return FB_OK; /* no row at this state (contact.h) */
+  if (c->mapping == FB_MAPPING_MATCHED_STATIC && u.erp > 0.0 && !c->wall) {
+    /* the penetration's drift over the step the row cannot see (rotation of
+     * both points, curvature of the circle; contact.h), as ODE's binding */
+    double dp[2], dq[2];
+    point_drift(k, c->pin, c->centre[0], c->h, dp);
+    point_drift(k, c->hole, c->centre[1], c->h, dq);
+    const double e[2] = {c->centre[0][0] - c->centre[1][0], c->centre[0][1] - c->centre[1][1]};
+    u.depth += fb_contact_step_drift(c->normal, dp, dq, c->ecc_rate, hypot(e[0], e[1]), c->h) /
+               u.erp;
+  }
   const double s = ground_pin ? 1.0 : -1.0;
   ct.share = u.step_share;
   fb_bt_contact_row(ct.row, btVector3(s * c->normal[0], s * c->normal[1], 0),

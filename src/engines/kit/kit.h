@@ -118,6 +118,15 @@ typedef struct {
                           slider's tilt); a pin's: m_eff [kg] */
   double friction;     /* Coulomb's coefficient mu at the contact ([clearance] friction; 0:
                           frictionless) [-] */
+  double persistence;  /* the matched-static mapping's weight of the static row this step
+                          (fb_contact_persistence of the slot's contact phase, the sum of its
+                          rows' h omega_c since its onset; contact.h); 0 for other mappings */
+  int wall;            /* 1: a slider's corner against its guide's flat wall; 0: a pin in its
+                          hole */
+  double centre[2][2]; /* the pin's and the hole's centres [m] (a corner: the corner and the
+                          wall's point under it) */
+  double ecc_rate[2];  /* d(pin centre - hole centre)/dt [m/s] (a corner: its normal part,
+                          rate n) */
 } fb_kit_contact;
 
 /* What a kit run keeps of one clearance joint: its law, and its columns
@@ -253,6 +262,10 @@ typedef struct fb_kit_binding {
   int contact_rows;          /* optional: 1 when add_contact hands the engine the law as a soft
                                 constraint row (ERP and CFM: ODE, Bullet), whose largest ERP
                                 and smallest CFM the kit reports (fb_kit_joint_record) */
+  int friction;              /* optional: 1 when add_contact applies Coulomb friction at the
+                                contact (fb_kit_contact.friction: ODE's friction pyramid);
+                                0: a normal law only, and the kit refuses [clearance]
+                                friction > 0 naming the engine */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

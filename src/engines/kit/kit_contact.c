@@ -35,10 +35,10 @@ static fb_status guide_ok(const fb_planar *m, const fb_kit_clearance *cl, int j,
 fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_planar *m,
                           const fb_kit_clearance *cl, fb_diag *diag) {
   memset(p, 0, sizeof *p);
-  if (cl->mask && cl->friction != 0.0 && b->add_contact)
-    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the engine kit's contact "
-                       "(the %s binding's add_contact) is a normal law only, frictionless; give "
-                       "friction = 0", cl->friction, b->engine);
+  if (cl->mask && cl->friction != 0.0 && b->add_contact && !b->friction)
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the %s engine's clearance "
+                       "contact is a normal law only, frictionless (ODE's applies friction); "
+                       "give friction = 0", cl->friction, b->engine);
   int guides = 0;
   for (int j = 0; j < m->njoints; j++) {
     if (!(cl->mask & (1u << j))) continue;
@@ -92,7 +92,8 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
   *c = (fb_kit_contact){.pin = pj->body[0] - 1, .hole = pj->body[1] - 1,
                         .point = {xh[0] + r * n[0], xh[1] + r * n[1]}, .normal = {n[0], n[1]},
                         .depth = delta, .rate = n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]),
-                        .mapping = cl->mapping};
+                        .mapping = cl->mapping, .centre = {{xp[0], xp[1]}, {xh[0], xh[1]}},
+                        .ecc_rate = {vp[0] - vh[0], vp[1] - vh[1]}};
   if (pj->body[1] == FB_PLANAR_GROUND) c->hole = FB_KIT_GROUND;
   return 1;
 }
@@ -126,17 +127,21 @@ void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
 }
 
 /* the row the law and mapping hand the engine (contact.h): its h omega_c
- * noted (joint j's and cl's h_omega_max); the matched mapping's aliasing
+ * noted (joint j's and cl's h_omega_max) and added to the slot's contact
+ * phase *phase (a step without a row sets it to 0); the matched mapping's aliasing
  * stop: a row whose damped frequency passes FB_MATCHED_ALIAS_BOUND per
  * step has lost its spring's meaning; FB_ERR_NUMERIC naming the largest
  * usable step, its omega_d h in cl->aliased_omega_d_h */
 static fb_status note_row(const fb_kit_contact *c, const char *joint, fb_kit_clearance *cl,
-                          int j, fb_diag *diag) {
+                          int j, double *phase, fb_diag *diag) {
   fb_contact_row row;
   if (fb_contact_row_step(&row, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
-                          c->onset, 0.0) != FB_OK)
+                          c->onset, c->persistence) != FB_OK) {
+    *phase = 0.0; /* a step without a row ends the contact's phase */
     return FB_OK;
+  }
   const double hw = fb_contact_h_omega(c->h, row.kp, c->m_eff);
+  *phase += hw;
   fb_kit_joint_record *r = &cl->joint[j];
   cl->h_omega_max = fmax(cl->h_omega_max, hw);
   r->h_omega_max = fmax(r->h_omega_max, hw);
@@ -183,7 +188,10 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
   fb_episode_update(&p->ep[k], in, in ? c->rate : 0.0, cl->impact_velocity_min);
   cl->impacts += p->ep[k].impacts - before;
   r->impacts += p->ep[k].impacts - before;
-  if (!in) return FB_OK;
+  if (!in) {
+    p->phase[k] = 0.0;
+    return FB_OK;
+  }
   c->m_eff = isfinite(me) && me > 0.0 ? me : r->law.mass;
   if (!(c->m_alone > 0.0 && c->m_alone < c->m_eff)) c->m_alone = c->m_eff; /* a pin's */
   c->law = fb_contact_law_on_mass(&r->law, c->m_eff);
@@ -191,9 +199,12 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
   c->onset = onset;
   c->h = h;
   c->friction = cl->friction;
+  c->persistence =
+      c->mapping == FB_MAPPING_MATCHED_STATIC ? fb_contact_persistence(p->phase[k]) : 0.0;
   p->force[k] = fb_contact_force(&c->law, c->depth, c->rate, c->v0);
   fb_status st = FB_OK;
-  if (!b->applied_force && (st = note_row(c, m->joint[j].name, cl, j, diag)) != FB_OK) return st;
+  if (!b->applied_force && (st = note_row(c, m->joint[j].name, cl, j, &p->phase[k], diag)) != FB_OK)
+    return st;
   if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
   note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, c->m_eff);
   note_mass(&r->m_eff_min, &r->m_eff_max, r->contact_steps, c->m_eff);
@@ -219,10 +230,12 @@ static fb_status guide_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w
   }
   for (int r = 0; r < FB_PLANAR_GUIDE_CORNERS; r++) {
     const double d = -gc[r].gap, *n = gc[r].normal;
+    const double wall[2] = {gc[r].point[0] - d * n[0], gc[r].point[1] - d * n[1]};
     fb_kit_contact c = {.pin = pj->body[1] - 1, .hole = pj->body[0] - 1,
-                        .point = {gc[r].point[0] - d * n[0], gc[r].point[1] - d * n[1]},
-                        .normal = {n[0], n[1]}, .depth = d, .rate = gc[r].rate,
-                        .mapping = cl->mapping, .m_alone = alone[r]};
+                        .point = {wall[0], wall[1]}, .normal = {n[0], n[1]}, .depth = d,
+                        .rate = gc[r].rate, .mapping = cl->mapping, .m_alone = alone[r],
+                        .wall = 1, .centre = {{gc[r].point[0], gc[r].point[1]}, {wall[0], wall[1]}},
+                        .ecc_rate = {gc[r].rate * n[0], gc[r].rate * n[1]}};
     if (pj->body[0] == FB_PLANAR_GROUND) c.hole = FB_KIT_GROUND;
     fb_status st = hand(p, b, w, m, cl, j, fb_kit_slot(j, r), &c, d > 0.0, mass[r], h, diag);
     if (st != FB_OK) return st;

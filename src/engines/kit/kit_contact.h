@@ -15,6 +15,8 @@
 typedef struct {
   fb_episode ep[FB_KIT_SLOTS];                /* per contact slot (kit.h, fb_kit_slot) */
   double force[FB_KIT_SLOTS];                 /* the law's force handed this step [N] */
+  double phase[FB_KIT_SLOTS];                 /* contact phase: the sum of the slot's rows'
+                                                 h omega_c since its onset [rad] (contact.h) */
   double pen[FB_PLANAR_SPEC_MAX_JOINTS];      /* penetration at the step's start [m] */
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: a clearance joint (no ideal joint) */
   double *q, *qd;                             /* the core's coordinates and rates (nq each) */
@@ -28,8 +30,8 @@ typedef struct {
 } fb_kit_pipe;
 
 /* Sets p up for m's clearance joints cl->mask in b's engine. Errors:
- * FB_ERR_ARG (cl->friction not 0 with a binding's add_contact: the
- * kit's contact is frictionless; a joint out of range, a revolute joint that may not carry
+ * FB_ERR_ARG (cl->friction not 0 with a binding whose add_contact applies
+ * no friction, kit.h's friction member; a joint out of range, a revolute joint that may not carry
  * clearance, a prismatic one without cl->guide), those of
  * fb_planar_guide_check, FB_ERR_NOMEM (a binding's add_clearance, called
  * before, refuses what it cannot build). Free with fb_kit_pipe_free. */

@@ -10,8 +10,9 @@
  * [solver] drive_torque_max_n_m). A clearance joint (kit.h's pipeline
  * computes its contact) is ODE's soft contact row as the exact collider
  * makes it (ode_clearance.c): the law mapped at the effective mass to ERP
- * and CFM (ode_contact.h), on the hole wall, its force read back from the
- * row's feedback. The world's ERP,
+ * and CFM (ode_contact.h), the matched-static row's drift correction, on
+ * the hole wall, Coulomb friction at [clearance] friction, its force read
+ * back from the row's feedback. The world's ERP,
  * CFM, stepper (dWorldStep or dWorldQuickStep with its iterations) and
  * seed are the case's [solver] keys, gravity along -y; each step runs
  * under ODE's fatal-error escape (ode_env.h). */
@@ -141,9 +142,30 @@ static fb_status kit_hold_in_plane(void *w, int b, fb_diag *diag) {
   return FB_OK;
 }
 
+/* what ODE's position update adds to the displacement of the point at x
+ * [m] of body handle b over a step of h [s] beyond the linear h (v + w x r)
+ * a contact row sees: ODE turns the body by theta = 2 atan(h w / 2) (its
+ * quaternion update, normalised), so the point at r from the centre of
+ * mass moves by (cos theta - 1) r + (sin theta - h w) z x r more [m]
+ * (w taken at the start of the step); 0 for the ground */
+static void point_drift(const ode_kit *k, int b, const double x[2], double h, double out[2]) {
+  out[0] = out[1] = 0.0;
+  if (b == FB_KIT_GROUND) return;
+  const dReal *o = dBodyGetPosition(k->body[b]);
+  const double r[2] = {x[0] - o[0], x[1] - o[1]};
+  const double w = dBodyGetAngularVel(k->body[b])[2];
+  const double th = 2.0 * atan(0.5 * h * w);
+  const double cm1 = -2.0 * sin(0.5 * th) * sin(0.5 * th), sw = sin(th) - h * w;
+  out[0] = cm1 * r[0] - sw * r[1];
+  out[1] = cm1 * r[1] + sw * r[0];
+}
+
 /* the exact collider's row as ode_clearance.c makes it: the law mapped to
- * one soft contact row (ode_contact.h) at the effective mass, on the hole
- * wall, its normal into the pin, no friction */
+ * one soft contact row (ode_contact.h) at the effective mass (the
+ * matched-static row blended by the contact's persistence, its depth
+ * carrying the step's drift that the row cannot see, contact.h's
+ * fb_contact_step_drift), on the hole wall, its normal into the pin,
+ * Coulomb friction mu with ODE's friction pyramid */
 static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
   (void)diag;
   ode_kit *k = w;
@@ -151,8 +173,19 @@ static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_dia
   memset(&ct, 0, sizeof ct);
   fb_contact_row used;
   if (!fb_ode_soft_contact(&ct, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
-                           c->onset, 0.0, 0.0, &used))
+                           c->onset, c->persistence, c->friction, &used))
     return FB_OK;
+  if (c->mapping == FB_MAPPING_MATCHED_STATIC && used.erp > 0.0 && !c->wall) {
+    /* the row's lambda = a d_n + b u: handing it d_n + drift / ERP makes its
+     * b act on the penetration's true rate u + drift / h (contact.h) */
+    double dp[2], dq[2];
+    point_drift(k, c->pin, c->centre[0], c->h, dp);
+    point_drift(k, c->hole, c->centre[1], c->h, dq);
+    const double e[2] = {c->centre[0][0] - c->centre[1][0], c->centre[0][1] - c->centre[1][1]};
+    ct.geom.depth = used.depth +
+                    fb_contact_step_drift(c->normal, dp, dq, c->ecc_rate, hypot(e[0], e[1]), c->h) /
+                        used.erp;
+  }
   ct.geom.pos[0] = c->point[0];
   ct.geom.pos[1] = c->point[1];
   ct.geom.normal[0] = -c->normal[0];
@@ -236,4 +269,5 @@ const fb_kit_binding fb_ode_kit = {
     .body_state = kit_body_state,
     .world_free = kit_world_free,
     .contact_rows = 1,
+    .friction = 1,
 };

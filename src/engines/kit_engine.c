@@ -19,8 +19,9 @@
  * provenance, Coulomb friction where the binding applies it (kit.h); the
  * exact collider, a fixed or automatic step (not [solver] h_s = adaptive). Its start is the model's
  * (start.h: [run] start and pin_start, an ensemble member's moved pin),
- * handed to the kit as the description's coordinates. It keeps no joint
- * reactions (no load columns); of each contact's provenance the
+ * handed to the kit as the description's coordinates. Its joint reactions
+ * and drive torque are the binding's where it reports them (the load
+ * columns; kit.h's reactions), else none; of each contact's provenance the
  * effective mass range, the largest h omega_c, ERP and smallest CFM of
  * the law's rows (ERP and CFM those of a binding that takes rows, else
  * NaN) and the contact steps; its
@@ -44,6 +45,8 @@ typedef struct {
                           state (FB_CONTACT_COLS x n; series.h FB_C_*), NULL: an ideal joint */
   double *force_max;   /* (FB_MECH_MAX_JOINTS x n): a sub-stepping binding's largest force of
                           each step per clearance joint, NULL: none */
+  double *loads;       /* ((1 + 3 njoints) x n): the drive torque and every joint's reaction
+                          (fb_kit_series' torque and reaction), NULL: the binding reports none */
   unsigned mask;       /* the clearance joints (bit j: joint j) */
   size_t reached;      /* samples the kit filled */
   size_t i;            /* the sample replayed now */
@@ -148,6 +151,7 @@ static void kit_run_free(kit_run *r) {
   free(r->s.t);
   free(r->col[0]);
   free(r->force_max);
+  free(r->loads);
   free(r);
 }
 
@@ -168,8 +172,11 @@ static void kit_stopped_at(kit_run *r, double wdh, double h, const fb_diag *diag
   r->stop.step = r->reached;
   snprintf(r->stop.detail, sizeof r->stop.detail, "%.150s", diag->msg);
   if (!r->reached) return;
-  /* the last sample's step never came: its force and state the one before */
+  /* the last sample's step never came: its force, state and loads the one
+   * before */
   const size_t i = r->reached - 1;
+  for (int c = 0; r->loads && i > 0 && c < 1 + 3 * r->m->njoints; c++)
+    r->loads[(size_t)c * r->s.n + i] = r->loads[(size_t)c * r->s.n + i - 1];
   for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) {
     if (!loose(r, j)) continue;
     double *f = r->col[j] + (size_t)FB_C_FORCE * r->s.n;
@@ -250,6 +257,13 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
    * the spikes' refinement (adapter_refine) */
   if (st == FB_OK)
     st = alloc_run(r, sm->def->steps + 1, r->m->nbodies - 1, b->contact_force_max != NULL, diag);
+  if (st == FB_OK && b->reactions) { /* the load columns (adapter_reactions) */
+    const size_t n = r->s.n;
+    r->loads = calloc((1 + 3 * (size_t)r->m->njoints) * n, sizeof *r->loads);
+    if (!r->loads) st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu kit samples", n);
+    r->s.torque = r->loads;
+    r->s.reaction = r->loads ? r->loads + n : NULL;
+  }
   if (st == FB_OK && r->mask) {
     r->cl = (fb_kit_clearance){.mask = r->mask, .mapping = sm->mapping,
                                .radial_clearance = sm->radial_clearance,
@@ -380,6 +394,23 @@ static void adapter_refine(const void *self, fb_series *s, double fraction, doub
   fb_series_refine_peaks_max(s, fraction, t_split, r->force_max, r->s.n);
 }
 
+/* the joint reactions and drive torque of sample i's step in the
+ * four-bar's or slider-crank's convention: the force on each joint's
+ * second-named body from its first, but where the description says the
+ * other way (fb_mech_joint.load_on_first: invdyn.h's D); the drive's torque
+ * on the crank about +z */
+static void adapter_reactions(const void *self, double force[4][2], double *drive_torque) {
+  const kit_run *r = self;
+  const fb_mech_desc *d = fb_case_mech(&r->sm->def->source);
+  const size_t n = r->s.n;
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
+    for (int k = 0; k < 2; k++)
+      force[j][k] = j < d->njoints ? (d->joint[j].load_on_first ? -1.0 : 1.0) *
+                                         r->s.reaction[(size_t)(3 * j + k) * n + r->i]
+                                   : 0.0;
+  *drive_torque = r->s.torque[r->i];
+}
+
 /* the steps replayed (a model the harness stopped: those before its stop) */
 static size_t adapter_steps(const void *self) { return ((const kit_run *)self)->i; }
 
@@ -402,8 +433,33 @@ const fb_engine fb_engine_kit_adapter = {
     .refine = adapter_refine,
 };
 
+/* the adapter over a binding that reports joint reactions: the same, with
+ * the load columns */
+static const fb_engine kit_adapter_loads = {
+    .name = "kit",
+    .guarded = 1,
+    .step_values_lag = 0,
+    .refine_peaks = 1,
+    .create = adapter_create,
+    .step = adapter_step,
+    .stopped = adapter_stopped,
+    .sample = adapter_sample,
+    .contact = adapter_contact,
+    .provenance = adapter_provenance,
+    .reactions = adapter_reactions,
+    .drift = adapter_drift,
+    .steps = adapter_steps,
+    .destroy = adapter_destroy,
+    .refine = adapter_refine,
+};
+
+int fb_engine_is_kit_adapter(const fb_engine *e) {
+  return e == &fb_engine_kit_adapter || e == &kit_adapter_loads;
+}
+
 const fb_engine *fb_engine_runner(const fb_engine *e, const fb_case *c, fb_diag *diag) {
-  if (e->kit && (!e->create || c->solver.builder == FB_BUILDER_KIT)) return &fb_engine_kit_adapter;
+  if (e->kit && (!e->create || c->solver.builder == FB_BUILDER_KIT))
+    return e->kit->reactions ? &kit_adapter_loads : &fb_engine_kit_adapter;
   if (e->create) return e;
   fb_diag_set(diag, FB_ERR_ARG, "engine '%s' has neither models of its own nor an engine-kit "
               "binding", e->name);

@@ -45,8 +45,11 @@ typedef struct {
 typedef struct {
   const char *name;  /* "crank-coupler": body[0]'s name, '-', body[1]'s name */
   fb_joint_kind kind;
-  int body[2];       /* indices into the bodies; a load column is the force on body[1] from body[0] */
+  int body[2];       /* indices into the bodies; a load column is the force on body[1] from body[0]
+                        (but see load_on_first) */
   int clearance_ok;  /* 1: may be a clearance joint (pin in hole); a prismatic joint stays ideal */
+  int load_on_first; /* 1: its load columns are the force on body[0] from body[1] (the
+                        four-bar's follower-ground, invdyn.h's D: an output contract) */
 } fb_mech_joint;
 
 /* A mechanism description. */

@@ -148,6 +148,12 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints,
                     &r->c, NULL, NULL}; /* the assembly start */
   fb_kit_series s = {.n = p->n, .h = p->h, .t = p->t, .q = p->q}; /* no centres */
+  /* a binding that reports joint reactions gives the analytic model's load
+   * columns (planar_run.h's torque and reaction) */
+  const size_t nl = (1 + 3 * (size_t)r->m->njoints) * p->n;
+  if (b->reactions && !(p->torque = calloc(nl, sizeof *p->torque)))
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples' loads", p->n);
+  if (p->torque) s.torque = p->torque, s.reaction = p->reaction = p->torque + p->n;
   fb_kit_clearance cl = {0};
   double *y0 = NULL; /* an undriven case's free start */
   fb_planar_guide *guide = NULL; /* a prismatic clearance joint's */

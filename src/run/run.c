@@ -240,7 +240,7 @@ void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {
      * series in create (engine.h), or the kit adapter, holds its own beside the run's, and a
      * reference's check integration (run.c) one more */
     const double copies = 1.0 + (c->series == FB_SERIES_HDF5) + (member && n_auto > 1 ? jobs_mem : 0) +
-                          (e && (e->computes_in_create || e == &fb_engine_kit_adapter)) +
+                          (e && (e->computes_in_create || fb_engine_is_kit_adapter(e))) +
                           (m->engine == FB_ENGINE_REFERENCE && !c->member);
     *bytes += steps * sample_bytes(m, c) * copies;
     const double per_member = member && rounds > 0.0 ? model_cost(m, as_member ? as_member : c) : 0.0;

@@ -257,6 +257,9 @@ extern const fb_engine fb_engine_reference;
 /* ... and the kit adapter (kit_engine.c: any engine's kit binding on the
  * four-bar and slider-crank run path; fb_engine_runner picks it) */
 extern const fb_engine fb_engine_kit_adapter;
+/* 1 when e is the kit adapter (with or without the load columns of a
+ * binding that reports joint reactions). */
+int fb_engine_is_kit_adapter(const fb_engine *e);
 /* fb_engine_<name> of every engine of FB_ENGINE_LIST (fb_config.h), each
  * defined in its folder src/engines/<name>/ and linked only in builds with it
  * (FB_HAVE_<ID>). */

@@ -179,6 +179,38 @@ static void record(fb_kit_runner *k, int j, size_t i) {
   if (r->state) r->state[i] = i > 0 ? r->state[i - 1] : FB_STATE_FREE;
 }
 
+/* the joint reactions and the drive torque of the step just taken, at the
+ * sample it started from (i - 1; the last sample keeps them): an ideal
+ * joint's from the binding (reactions, by its place among the joints
+ * added), a clearance joint's from its contact at the state last read, the
+ * step's start (fb_kit_pipe_reaction); the drive's torque on the driven
+ * body, the driven joint's moment (kit.h's fb_kit_series) */
+static void loads(fb_kit_runner *k, size_t i) {
+  const fb_kit_binding *b = k->b;
+  const fb_planar *m = k->m;
+  fb_kit_series *s = k->s;
+  const size_t n = s->n;
+  const unsigned mask = k->cl ? k->cl->mask : 0u;
+  double torque = 0.0;
+  for (int j = 0, added = 0; j < m->njoints; j++) {
+    double r[3] = {0.0, 0.0, 0.0};
+    if (mask & (1u << j)) fb_kit_pipe_reaction(&k->p, b, k->w, m, j, r);
+    else b->reactions(k->w, added++, r);
+    if (j == m->drive) { /* the driven body's side of the joint's couple */
+      int from, to;
+      fb_planar_drive_bodies(m, &from, &to);
+      torque = m->joint[j].body[1] == to ? r[2] : -r[2];
+    }
+    for (int c = 0; c < 3; c++) {
+      double *col = s->reaction + (size_t)(3 * j + c) * n;
+      col[i - 1] = r[c];
+      if (i + 1 == n) col[i] = r[c];
+    }
+  }
+  s->torque[i - 1] = torque;
+  if (i + 1 == n) s->torque[i] = torque;
+}
+
 /* sample i: the step to it (i > 0), its sample; before the next step the
  * clearance contacts, after it the step's contact force at the sample it
  * started from */
@@ -192,6 +224,11 @@ static fb_status sample_step(fb_kit_runner *k, size_t i, fb_diag *diag) {
   if (i > 0) st = b->step(w, diag);
   if (st != FB_OK) return st;
   sample(b, w, s, m->nbodies - 1, i);
+  if (i > 0 && s->torque) loads(k, i); /* at the step's start: before the pipe reads anew */
+  if (i == 0 && s->torque && s->n == 1) { /* no step: no loads */
+    s->torque[0] = 0.0;
+    memset(s->reaction, 0, 3 * (size_t)m->njoints * sizeof *s->reaction);
+  }
   if (!cl) return FB_OK;
   fb_kit_pipe_read(&k->p, b, w, m, cl);
   for (int j = 0; j < m->njoints; j++)
@@ -207,6 +244,9 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   const unsigned mask = cl ? cl->mask : 0u;
   if (mask && !b->add_contact && !(b->add_clearance && b->contact_force))
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
+                       b->engine);
+  if (s->torque && !b->reactions)
+    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding reports no joint reactions",
                        b->engine);
   const double t0 = fb_clock_s();
   fb_kit_runner *k = calloc(1, sizeof *k);

@@ -262,6 +262,18 @@ typedef struct fb_kit_binding {
   int contact_rows;          /* optional: 1 when add_contact hands the engine the law as a soft
                                 constraint row (ERP and CFM: ODE, Bullet), whose largest ERP
                                 and smallest CFM the kit reports (fb_kit_joint_record) */
+  void (*reactions)(const void *w, int k, double out[3]);
+                             /* optional: what ideal joint k (its place among the joints
+                                added) applied over the last step: the force on its body[1]
+                                from its body[0] (x, y) [N] and the moment on body[1] from
+                                body[0] about +z at the joint's point on body[1] (body[0]'s
+                                when body[1] is the ground) [N m] (a revolute joint's: the
+                                drive's torque, or 0); NULL: the engine reports no reactions
+                                (no load columns) */
+  void (*contact_force_vec)(const void *w, int k, double f[2]);
+                             /* optional: the force contact slot k applied on the pin's body
+                                in the last step (x, y) [N], its friction included; NULL: the
+                                normal force (contact_force, else the law's) along -normal */
   int friction;              /* optional: 1 when add_contact applies Coulomb friction at the
                                 contact (fb_kit_contact.friction: ODE's friction pyramid);
                                 0: a normal law only, and the kit refuses [clearance]
@@ -285,6 +297,16 @@ typedef struct {
                      mass along x at centre[(b * 3 + k) * n + i] (k as q's: x [m], its rate
                      [m/s], the step's acceleration [m/s^2]) and along y at
                      centre[(nb * 3 + b * 3 + k) * n + i], nb the moving bodies */
+  double *torque;   /* optional (n), NULL: not kept (the binding must have reactions): the
+                       drive's torque on the driven body about +z over the step from sample i
+                       [N m] (0 for an undriven description) */
+  double *reaction; /* optional (3 njoints x n), with torque: joint j's reaction over the step
+                       from sample i, the force on its body[1] from its body[0] along x (k =
+                       0) and y (k = 1) [N] and the moment about +z at the joint's point on
+                       body[1] (on body[0] when body[1] is the ground) (k = 2) [N m], at
+                       reaction[(3 j + k) n + i] (planar_invdyn.h's convention); a clearance
+                       joint's: its contact's force on the hole's body from the pin's, no
+                       moment */
   double setup_s; /* set by fb_kit_run: wall time of the set-up (the start's velocities, the
                      engine's world and the walk that builds it) [s]; the rest of the run is
                      the stepping and sampling (fourbar bench's cost splits there) */

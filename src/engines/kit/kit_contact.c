@@ -199,6 +199,8 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
   c->onset = onset;
   c->h = h;
   c->friction = cl->friction;
+  p->normal[k][0] = c->normal[0], p->normal[k][1] = c->normal[1];
+  p->point[k][0] = c->point[0], p->point[k][1] = c->point[1];
   c->persistence =
       c->mapping == FB_MAPPING_MATCHED_STATIC ? fb_contact_persistence(p->phase[k]) : 0.0;
   p->force[k] = fb_contact_force(&c->law, c->depth, c->rate, c->v0);
@@ -281,6 +283,34 @@ double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const vo
     f += b->contact_force ? b->contact_force(w, k) : p->force[k];
   }
   return f;
+}
+
+void fb_kit_pipe_reaction(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                          const fb_planar *m, int j, double out[3]) {
+  const fb_planar_joint *pj = &m->joint[j];
+  /* a revolute joint's pin is on body[0], its hole on body[1]: the force on
+   * body[1] is minus the pin's; a guide's corners push the slider, its
+   * body[1], as the pin (kit.h) */
+  const int guide = is_guide(m, j), n = guide ? FB_PLANAR_GUIDE_CORNERS : 1;
+  const double sign = guide ? 1.0 : -1.0;
+  double at[2] = {0.0, 0.0};
+  if (guide) fb_planar_point(at, m, p->q, pj->body[1] == FB_PLANAR_GROUND ? pj->body[0] : pj->body[1],
+                             pj->point[pj->body[1] == FB_PLANAR_GROUND ? 0 : 1]);
+  out[0] = out[1] = out[2] = 0.0;
+  for (int r = 0; r < n; r++) {
+    const int k = fb_kit_slot(j, r);
+    double f[2]; /* on the pin's body */
+    if (b->contact_force_vec) {
+      b->contact_force_vec(w, k, f);
+    } else {
+      const double fn = b->contact_force ? b->contact_force(w, k) : p->force[k];
+      f[0] = -fn * p->normal[k][0], f[1] = -fn * p->normal[k][1];
+    }
+    out[0] += sign * f[0];
+    out[1] += sign * f[1];
+    if (guide) /* at the wall's point under the corner */
+      out[2] += (p->point[k][0] - at[0]) * f[1] - (p->point[k][1] - at[1]) * f[0];
+  }
 }
 
 int fb_kit_pipe_state(const fb_kit_pipe *p, const fb_planar *m, int j) {

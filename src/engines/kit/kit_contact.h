@@ -17,6 +17,9 @@ typedef struct {
   double force[FB_KIT_SLOTS];                 /* the law's force handed this step [N] */
   double phase[FB_KIT_SLOTS];                 /* contact phase: the sum of the slot's rows'
                                                  h omega_c since its onset [rad] (contact.h) */
+  double normal[FB_KIT_SLOTS][2];             /* the normal of the contact handed this step
+                                                 (fb_kit_contact.normal) [-] */
+  double point[FB_KIT_SLOTS][2];              /* its point on the hole's wall [m] */
   double pen[FB_PLANAR_SPEC_MAX_JOINTS];      /* penetration at the step's start [m] */
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: a clearance joint (no ideal joint) */
   double *q, *qd;                             /* the core's coordinates and rates (nq each) */
@@ -63,6 +66,15 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
  * (contact_force) when the binding reports it, else the law's. */
 double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
                          const fb_planar *m, int j);
+
+/* Clearance joint j's reaction over the step just taken, out (3): the
+ * force on the joint's body[1] from its body[0] (x, y) [N] and, for a
+ * slider in its guide, the moment on body[1] about +z at the joint's point
+ * on it [N m] (kit.h's fb_kit_series.reaction), from each slot's force
+ * (the binding's vector, contact_force_vec, else the normal force along
+ * the slot's normal) at the state last read (the step's start). */
+void fb_kit_pipe_reaction(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                          const fb_planar *m, int j, double out[3]);
 
 /* The contact state (series.h FB_STATE_*) of clearance joint j of m's
  * episode: a revolute joint's; a slider's impact when a corner in contact

@@ -29,10 +29,20 @@
 #include "ode_kit.h"
 #include "planar_spec.h"
 
+/* what the binding keeps of an ideal joint for its reactions */
+typedef struct {
+  int b0, b1;            /* the kit's handles */
+  double local[3];       /* the joint's point in the frame of b1 (b0 when b1 is the ground) [m] */
+  double lever[2];       /* G - P at the last step's start: that body's centre of mass less the
+                            joint's point on it [m] */
+  dJointFeedback fb;     /* ODE's feedback of the last step */
+} ode_kit_joint;
+
 typedef struct {
   dWorldID world;
   dBodyID *body;   /* (nbodies) */
   dJointID *joint; /* (njoints) */
+  ode_kit_joint *jk; /* (njoints) */
   int nbodies, njoints;
   double h;
   fb_stepper stepper;
@@ -47,14 +57,19 @@ typedef struct {
   dJointFeedback fb[FB_KIT_SLOTS];
   double share[FB_KIT_SLOTS];
   double force[FB_KIT_SLOTS];
+  double force_pin[FB_KIT_SLOTS][2]; /* the last step's force on the pin's body [N] */
+  unsigned char pin_ground[FB_KIT_SLOTS]; /* 1: the slot's pin is the ground's (ODE reverses
+                                             the joint: its feedback's body 1 is the hole's) */
 } ode_kit;
 
 static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
   ode_kit *k = calloc(1, sizeof *k);
   if (k) k->body = calloc((size_t)o->nbodies + 1, sizeof *k->body);
   if (k && k->body) k->joint = calloc((size_t)o->njoints + 1, sizeof *k->joint);
-  if (!k || !k->body || !k->joint) {
+  if (k && k->joint) k->jk = calloc((size_t)o->njoints + 1, sizeof *k->jk);
+  if (!k || !k->body || !k->joint || !k->jk) {
     if (k) free(k->body);
+    if (k) free(k->joint);
     free(k);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the ODE world");
   }
@@ -94,10 +109,19 @@ static fb_status kit_add_body(void *w, const fb_kit_body *b, fb_diag *diag) {
 /* ODE's body of a kit handle (0: the static environment) */
 static dBodyID ode_body(const ode_kit *k, int b) { return b == FB_KIT_GROUND ? 0 : k->body[b]; }
 
-/* attaches joint j: ODE wants the moving body first when one is the ground */
-static void attach(ode_kit *k, dJointID j, int b0, int b1) {
+/* attaches joint j between handles b0 and b1 at world point at [m]: ODE
+ * wants the moving body first when one is the ground (ODE's body 1 is b1,
+ * or b0 when b1 is the ground); its feedback kept for the reactions */
+static void attach(ode_kit *k, dJointID j, int b0, int b1, const double at[2]) {
   if (b1 == FB_KIT_GROUND) dJointAttach(j, ode_body(k, b0), 0);
   else dJointAttach(j, ode_body(k, b1), ode_body(k, b0));
+  ode_kit_joint *q = &k->jk[k->njoints];
+  q->b0 = b0;
+  q->b1 = b1;
+  dVector3 l;
+  dBodyGetPosRelPoint(ode_body(k, b1 == FB_KIT_GROUND ? b0 : b1), at[0], at[1], 0.0, l);
+  for (int i = 0; i < 3; i++) q->local[i] = l[i];
+  dJointSetFeedback(j, &q->fb);
   k->joint[k->njoints++] = j;
 }
 
@@ -105,7 +129,7 @@ static fb_status kit_add_revolute(void *w, int b0, int b1, const double at[2], f
   (void)diag;
   ode_kit *k = w;
   dJointID j = dJointCreateHinge(k->world, 0);
-  attach(k, j, b0, b1);
+  attach(k, j, b0, b1, at);
   dJointSetHingeAnchor(j, at[0], at[1], 0.0);
   dJointSetHingeAxis(j, 0, 0, b1 == FB_KIT_GROUND ? -1 : 1);
   return FB_OK;
@@ -113,11 +137,10 @@ static fb_status kit_add_revolute(void *w, int b0, int b1, const double at[2], f
 
 static fb_status kit_add_prismatic(void *w, int b0, int b1, const double at[2],
                                    const double axis[2], fb_diag *diag) {
-  (void)at;
   (void)diag;
   ode_kit *k = w;
   dJointID j = dJointCreateSlider(k->world, 0);
-  attach(k, j, b0, b1);
+  attach(k, j, b0, b1, at);
   const double s = b1 == FB_KIT_GROUND ? -1.0 : 1.0;
   dJointSetSliderAxis(j, s * axis[0], s * axis[1], 0.0);
   return FB_OK;
@@ -194,18 +217,59 @@ static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_dia
   dJointAttach(k->cj[j], ode_body(k, c->pin), ode_body(k, c->hole));
   dJointSetFeedback(k->cj[j], &k->fb[j]);
   k->share[j] = used.step_share;
+  k->pin_ground[j] = c->pin == FB_KIT_GROUND;
   return FB_OK;
 }
 
 static double kit_contact_force(const void *w, int j) { return ((const ode_kit *)w)->force[j]; }
 
-/* the contact forces the step left (on the pin, body 1 of each row) */
+static void kit_contact_force_vec(const void *w, int j, double f[2]) {
+  const ode_kit *k = w;
+  f[0] = k->force_pin[j][0];
+  f[1] = k->force_pin[j][1];
+}
+
+/* the contact forces the step left (on the pin: ODE's body 1 of each row,
+ * the hole's when the pin is the ground's) */
 static void contact_forces(ode_kit *k) {
   for (int j = 0; j < FB_KIT_SLOTS; j++) {
-    k->force[j] = k->cj[j] ? k->share[j] * hypot(k->fb[j].f1[0], k->fb[j].f1[1]) : 0.0;
+    const double s = k->cj[j] ? (k->pin_ground[j] ? -k->share[j] : k->share[j]) : 0.0;
+    k->force[j] = fabs(s) * hypot(k->fb[j].f1[0], k->fb[j].f1[1]);
+    k->force_pin[j][0] = s * k->fb[j].f1[0];
+    k->force_pin[j][1] = s * k->fb[j].f1[1];
     k->cj[j] = 0;
   }
   dJointGroupEmpty(k->contacts);
+}
+
+/* the levers G - P of every ideal joint at the coming step's start (the
+ * configuration its feedback belongs to) */
+static void note_levers(ode_kit *k) {
+  for (int j = 0; j < k->njoints; j++) {
+    ode_kit_joint *q = &k->jk[j];
+    const dBodyID b = ode_body(k, q->b1 == FB_KIT_GROUND ? q->b0 : q->b1);
+    dVector3 p;
+    dBodyGetRelPointPos(b, q->local[0], q->local[1], q->local[2], p);
+    const dReal *g = dBodyGetPosition(b);
+    q->lever[0] = g[0] - p[0];
+    q->lever[1] = g[1] - p[1];
+  }
+}
+
+/* ideal joint j's reaction over the last step (kit.h): the force on its
+ * b1 from its b0 and the moment about the joint's point P on b1 (b0 when
+ * b1 is the ground). ODE's body 1 is b1 (b0 when b1 is the ground), its
+ * feedback the force f1 and the torque t1 about that body's centre G at
+ * the step's start: about P, t1 + (G - P) x f1, with the sign of the side
+ * asked */
+static void kit_reactions(const void *w, int j, double out[3]) {
+  const ode_kit *k = w;
+  const ode_kit_joint *q = &k->jk[j];
+  const dReal *f = q->fb.f1, *t = q->fb.t1;
+  const double s = q->b1 == FB_KIT_GROUND ? -1.0 : 1.0;
+  out[0] = s * f[0];
+  out[1] = s * f[1];
+  out[2] = s * (t[2] + q->lever[0] * f[1] - q->lever[1] * f[0]);
 }
 
 static fb_status kit_step(void *w, fb_diag *diag) {
@@ -216,6 +280,7 @@ static fb_status kit_step(void *w, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_NUMERIC, "ode-error: %s at t = %.6g s (step %zu)",
                        fb_ode_last_error(), (double)k->steps * k->h, k->steps + 1);
   }
+  note_levers(k);
   fb_ode_escape = &escape;
   const int ok = k->stepper == FB_STEPPER_WORLD ? dWorldStep(k->world, k->h)
                                                 : dWorldQuickStep(k->world, k->h);
@@ -252,6 +317,7 @@ static void kit_world_free(void *w) {
   }
   free(k->body);
   free(k->joint);
+  free(k->jk);
   free(k);
 }
 
@@ -269,5 +335,7 @@ const fb_kit_binding fb_ode_kit = {
     .body_state = kit_body_state,
     .world_free = kit_world_free,
     .contact_rows = 1,
+    .reactions = kit_reactions,
+    .contact_force_vec = kit_contact_force_vec,
     .friction = 1,
 };

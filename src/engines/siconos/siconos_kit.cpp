@@ -718,6 +718,8 @@ const fb_kit_binding fb_siconos_kit = {
     NULL /* model_text: Siconos reads no model file */,
     NULL /* contact_force_max: an impulse per step, no sub-steps */,
     0 /* contact_rows: a unilateral relation, no soft row */,
+    NULL /* reactions: none reported */,
+    NULL /* contact_force_vec: the normal force along the normal */,
     0 /* friction: add_clearance reads [clearance] friction itself */,
 };
 

@@ -567,5 +567,7 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     NULL, /* model_text: no model file */
     NULL, /* contact_force_max: one force per step */
     0,    /* contact_rows: no constraint row */
+    NULL, /* reactions: none reported */
+    NULL, /* contact_force_vec: the normal force along the normal */
     0,    /* friction: a normal law only */
 };

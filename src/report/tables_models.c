@@ -21,8 +21,9 @@ static const char *mechanisms(char *buf, size_t size, const fb_model *m) {
     snprintf(buf + n, size - n, "%s%s", n ? ", " : "", fb_mech_of((fb_mech_type)t)->type);
   }
   const size_t n = strlen(buf);
-  if (fb_planar_run_takes(m->name)) /* [linkage] type = planar (planar_run.h) */
-    snprintf(buf + n, size - n, "%splanar", n ? ", " : "");
+  const char *why = fb_planar_run_refusal(m->name); /* [linkage] type = planar (planar_run.h) */
+  if (!why) snprintf(buf + n, size - n, "%splanar", n ? ", " : "");
+  else snprintf(buf + n, size - n, "%snot planar: %s", n ? "; " : "", why);
   return buf;
 }
 
@@ -40,7 +41,7 @@ void fb_report_models_text(FILE *f) {
         "mechanisms | what it is |\n|---|---|---|---|---|---|---|---|---|---|\n", f);
   for (int k = 0; k < fb_model_count; k++) {
     const fb_model *m = &fb_models[k];
-    char mech[64];
+    char mech[512];
     fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |", m->name,
             fb_engine_name(m->engine), fb_engine_available(m->engine) ? "yes" : "no",
             fb_lengths_name(m->lengths), fb_joint_set_name(m->joints), fb_model_law_name(m->law),
@@ -77,8 +78,13 @@ void fb_report_models_json(FILE *f) {
     for (int t = 0; t < FB_MECH_COUNT; t++)
       if (fb_model_builds(m, (fb_mech_type)t))
         json_array_append_new(mech, json_string(fb_mech_of((fb_mech_type)t)->type));
-    if (fb_planar_run_takes(m->name)) json_array_append_new(mech, json_string("planar"));
+    const char *why = fb_planar_run_refusal(m->name);
+    if (!why) json_array_append_new(mech, json_string("planar"));
     json_object_set_new(o, "mechanisms", mech);
+    /* the mechanisms it does not build, each with the reason */
+    json_t *refused = json_object();
+    if (why) json_object_set_new(refused, "planar", json_string(why));
+    json_object_set_new(o, "refused", refused);
     json_object_set_new(o, "summary", json_string(m->summary));
     /* true: a [run] models pattern ("*-ideal-stackup") leaves it out */
     json_object_set_new(o, "by_name_only", json_boolean(m->by_name_only));

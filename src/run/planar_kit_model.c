@@ -19,23 +19,53 @@
 #include "scene.h"
 #include "series.h"
 
-const struct fb_kit_binding *fb_planar_kit_of(const char *name) {
+/* the binding that builds model name on a planar case, else NULL with
+ * *why (may be NULL) the reason, in words a refusal can quote */
+static const fb_kit_binding *kit_of(const char *name, const char **why) {
+  const char *unused;
+  if (!why) why = &unused;
+  *why = "it is no model of the table";
   const fb_model *m = fb_model_find(name);
   if (!m) return NULL;
+  *why = "its engine is not in this build";
   fb_diag d;
   const fb_engine *e = fb_engine_get(m->engine, &d);
-  const fb_kit_binding *b = e ? e->kit : NULL;
-  if (!b || m->joints == FB_JOINTS_IDEAL) return m->lengths == FB_LENGTHS_NOMINAL ? b : NULL;
+  if (!e) return NULL;
+  *why = "its engine has no engine-kit binding, the way an engine builds a planar description";
+  const fb_kit_binding *b = e->kit;
+  if (!b) return NULL;
+  if (m->joints == FB_JOINTS_IDEAL) {
+    *why = "its lengths are a tolerance stack-up corner, which a planar case does not resolve "
+           "(fourbar stackup tolerates a planar case's bodies)";
+    return m->lengths == FB_LENGTHS_NOMINAL ? b : NULL;
+  }
   /* a clearance model (its lengths the stack-up corner's on a four-bar;
    * a planar case's are its joints', the nominal description the
    * reference runs too): the exact pin in the hole, a law, and a binding
    * that takes the contact */
+  *why = "it has no contact law";
   if (m->law == FB_MODEL_LAW_NONE) return NULL;
   /* or the engine's own clearance relation built from the description's
    * joint (collider native, a binding with add_clearance: Siconos's
    * unilateral constraint with Newton's law) */
-  if (m->collider == FB_COLLIDER_NATIVE) return b->add_clearance && !b->add_contact ? b : NULL;
+  if (m->collider == FB_COLLIDER_NATIVE) {
+    *why = "its collider is the engine's native contact, which its binding builds for the "
+           "four-bar's and slider-crank's own worlds only";
+    return b->add_clearance && !b->add_contact ? b : NULL;
+  }
+  *why = m->collider == FB_COLLIDER_EXACT
+             ? "its engine's binding takes no clearance contact"
+             : "its collider (a faceted or libccd bore) is built by the four-bar's and "
+               "slider-crank's own ODE world only; a planar case's clearance is the exact pin "
+               "in its hole";
   return m->collider == FB_COLLIDER_EXACT && b->add_contact ? b : NULL;
+}
+
+const struct fb_kit_binding *fb_planar_kit_of(const char *name) { return kit_of(name, NULL); }
+
+const char *fb_planar_kit_refusal(const char *name) {
+  const char *why;
+  return kit_of(name, &why) ? NULL : why;
 }
 
 const char *fb_planar_kit_models(char *buf, size_t size) {

@@ -18,6 +18,15 @@ int fb_planar_run_takes(const char *name) {
          strcmp(name, "reference-restitution") == 0 || fb_planar_kit_of(name) != NULL;
 }
 
+const char *fb_planar_run_refusal(const char *name) {
+  if (fb_planar_run_takes(name)) return NULL;
+  const fb_model *m = fb_model_find(name);
+  if (m && (m->engine == FB_ENGINE_ANALYTIC || m->engine == FB_ENGINE_REFERENCE))
+    return "its lengths are a tolerance stack-up corner, which a planar case does not resolve "
+           "(fourbar stackup tolerates a planar case's bodies)";
+  return fb_planar_kit_refusal(name);
+}
+
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < c->model_count; i++) {
     const char *name = c->models[i];
@@ -25,20 +34,13 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
       return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' follows the drive, and the "
                          "case is undriven ([drive] joint = none); it runs: reference, "
                          "reference-restitution and the engines' models", name);
-    if (fb_planar_run_takes(name)) continue;
-    const fb_model *m = fb_model_find(name);
+    const char *why = fb_planar_run_refusal(name);
+    if (!why) continue;
     char kit[2048];
     fb_planar_kit_models(kit, sizeof kit);
-    if (m && m->engine != FB_ENGINE_ANALYTIC && m->engine != FB_ENGINE_REFERENCE)
-      return fb_diag_set(diag, FB_ERR_ARG,
-                         "[run] models: '%s' is the %s engine's, and the %s engine does not "
-                         "build this model of a planar case yet (%s); a planar case runs: "
-                         "analytic, reference, reference-restitution, %s",
-                         name, fb_engine_name(m->engine), fb_engine_name(m->engine),
-                         FB_PLANAR_ENGINE_FOLLOWUP, kit);
-    return fb_diag_set(diag, FB_ERR_ARG,
-                       "[run] models: '%s' does not run on a planar case yet; a planar case "
-                       "runs: analytic, reference, reference-restitution, %s", name, kit);
+    return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' does not run on a planar case: "
+                       "%s; a planar case runs: analytic, reference, reference-restitution, %s",
+                       name, why, kit);
   }
   return FB_OK;
 }

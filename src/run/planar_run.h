@@ -59,10 +59,6 @@
 #include "planar.h"
 #include "planar_verdict.h"
 
-/* The one follow-up that brings the engines to a planar case, named in
- * every refusal of an engine's model. */
-#define FB_PLANAR_ENGINE_FOLLOWUP "issue 58, the engine kit"
-
 /* The engines' models a planar case runs through the engine kit
  * (fb_planar_kit_of over the model table, in its order), comma-separated
  * into buf (size bytes, truncated to fit), for the refusals and report.md.
@@ -178,6 +174,15 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
  * description's geometry, as the reference); NULL otherwise
  * (planar_kit_model.c). */
 const struct fb_kit_binding *fb_planar_kit_of(const char *name);
+
+/* Why model name does not run on a planar case, in words a refusal can
+ * quote (its lengths a stack-up corner, its collider the four-bar's
+ * world's, ...); NULL when it runs (fb_planar_run_takes). */
+const char *fb_planar_run_refusal(const char *name);
+
+/* fb_planar_run_refusal's part for an engine's model: NULL when
+ * fb_planar_kit_of builds it (planar_kit_model.c). */
+const char *fb_planar_kit_refusal(const char *name);
 
 /* Engine model p (its samples allocated, p->name one fb_planar_kit_of
  * takes) of run r through the engine kit: the description built in the

@@ -48,17 +48,18 @@ ADAPTER_ALPHA_REL = 1e-8
 # sample (measured: the same to the CSV's 10 digits in time, paper case
 # and slider-crank); an onset one step apart would be another trajectory.
 ONSET_STEPS = 0.5
-# their force peaks: the kit's effective mass comes from the planar core,
-# the hand-built world's from the four-bar's closed form (measured 1.2e-7
-# apart, EFFECTIVE_MASS_REL below), which moves the rows a little; measured 1e-9
-# relative on the paper case's first three impacts, 7e-9 on the
-# slider-crank's.
+# their force peaks: both worlds take the effective mass from the
+# four-bar's or slider-crank's closed form (effective_mass.h), the kit on
+# each joint's point on its first moving body, the hand-built world on
+# ODE's hinge anchors, which differ by the loop's drift (EFFECTIVE_MASS_REL
+# below); measured within 2.5e-11 on the paper case's first three impacts,
+# 3.8e-12 on the slider-crank's, 1.2e-9 on two clearance joints (Bullet).
 ADAPTER_FORCE_REL = 1e-6
-# The effective mass at the contact: the planar core's (kit) against the
-# four-bar's closed form (hand-built), two computations of it from the
-# same body states, measured 1.2e-7 apart over the paper case's contact
-# steps (the cause not traced further); the largest h omega_c, through
-# sqrt of it, 1e-8 apart.
+# The effective mass at the contact: the same closed form from the two
+# worlds' joint positions (above), measured over 2 revolutions' contact
+# steps within 6.4e-12 (paper case) and 6.5e-8 (the slider-crank, whose
+# extremes fall where the two runs have parted by then); the largest
+# h omega_c, through sqrt of it, within 6.8e-11.
 EFFECTIVE_MASS_REL = 1e-6
 # A joint's largest ERP and smallest CFM: the largest ERP is an onset
 # row's, whose depth is the first penetration of an episode, a small

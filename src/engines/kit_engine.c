@@ -55,6 +55,8 @@ typedef struct {
   fb_kit_clearance cl; /* the clearance joints' laws, columns and counts (mask 0: none) */
   fb_kit_runner *kit;  /* the kit's run while it has samples to fill, else NULL */
   const char *engine;  /* the binding's engine */
+  int out[FB_MECH_MAX_OUTPUTS], nout; /* the output bodies (fb_mech_outputs), once */
+  int translates[FB_MECH_MAX_OUTPUTS]; /* 1: output k's motion is its centre's x */
 } kit_run;
 
 /* the engine of model sm, which the runner picked for its binding */
@@ -250,6 +252,9 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
   if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the kit adapter");
   r->sm = sm;
   r->engine = b->engine;
+  const fb_mech_desc *desc = fb_case_mech(&sm->def->source);
+  r->nout = fb_mech_outputs(desc, r->out);
+  for (int k = 0; k < r->nout; k++) r->translates[k] = fb_mech_output_translates(desc, k);
   r->mask = (unsigned)sm->clearance_mask & ((1u << FB_MECH_MAX_JOINTS) - 1u);
   st = refuse(sm, diag);
   if (st == FB_OK) st = fb_planar_of_case(&r->m, &sm->def->source, &sm->lengths, diag);
@@ -269,7 +274,8 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
                                .radial_clearance = sm->radial_clearance,
                                .pin_radius = sm->pin_radius,
                                .impact_velocity_min = sm->impact_velocity_min,
-                               .aliased_joint = -1, .friction = sm->friction};
+                               .aliased_joint = -1, .friction = sm->friction,
+                               .mass_tensors = fb_planar_instance_mass};
     for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
       if (loose(r, j)) r->cl.joint[j] = joint_record(r, j);
   }
@@ -327,11 +333,8 @@ static void adapter_sample(const void *self, fb_sample *x) {
   memset(x, 0, sizeof *x);
   x->t = r->s.t[r->i];
   x->crank_angle = body_value(r, d->input, FB_Q_POS, 0);
-  int out[FB_MECH_MAX_OUTPUTS];
-  const int no = fb_mech_outputs(d, out);
-  for (int k = 0; k < no; k++)
-    for (int q = 0; q < 3; q++)
-      x->body[k][q] = body_value(r, out[k], q, fb_mech_output_translates(d, k));
+  for (int k = 0; k < r->nout; k++)
+    for (int q = 0; q < 3; q++) x->body[k][q] = body_value(r, r->out[k], q, r->translates[k]);
   for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
     for (int c = 0; loose(r, j) && c < FB_CONTACT_COLS; c++)
       x->contact[j][c] = r->col[j][(size_t)c * r->s.n + r->i];
@@ -356,19 +359,25 @@ static double adapter_drift(const void *self) {
   const kit_run *r = self;
   const fb_planar *m = r->m;
   const int nb = m->nbodies - 1;
-  double q[3 * FB_MECH_MAX_BODIES];
-  for (int b = 0; b < nb && b < FB_MECH_MAX_BODIES; b++) {
-    q[3 * b] = r->s.centre[(size_t)b * 3 * r->s.n + r->i];
-    q[3 * b + 1] = r->s.centre[(size_t)(nb + b) * 3 * r->s.n + r->i];
-    q[3 * b + 2] = r->s.q[(size_t)b * 3 * r->s.n + r->i];
+  /* body b's centre and rotation (index b, the ground's at 0: none) */
+  double c[FB_MECH_MAX_BODIES][2] = {{0.0, 0.0}}, cs[FB_MECH_MAX_BODIES][2] = {{1.0, 0.0}};
+  for (int b = 0; b < nb && b + 1 < FB_MECH_MAX_BODIES; b++) {
+    const double a = r->s.q[(size_t)b * 3 * r->s.n + r->i];
+    c[b + 1][0] = r->s.centre[(size_t)b * 3 * r->s.n + r->i];
+    c[b + 1][1] = r->s.centre[(size_t)(nb + b) * 3 * r->s.n + r->i];
+    cs[b + 1][0] = cos(a), cs[b + 1][1] = sin(a);
   }
   double worst = 0.0;
   for (int j = 0; j < m->njoints; j++) {
     if ((j < FB_MECH_MAX_JOINTS && loose(r, j)) || m->joint[j].kind != FB_KIND_REVOLUTE) continue;
-    double p0[2], p1[2];
-    fb_planar_point(p0, m, q, m->joint[j].body[0], m->joint[j].point[0]);
-    fb_planar_point(p1, m, q, m->joint[j].body[1], m->joint[j].point[1]);
-    worst = fmax(worst, hypot(p0[0] - p1[0], p0[1] - p1[1]));
+    double p[2][2]; /* the joint's point on each body, in the world */
+    for (int k = 0; k < 2; k++) {
+      const int b = m->joint[j].body[k];
+      const double *s = m->joint[j].point[k], *u = cs[b];
+      p[k][0] = (u[0] * s[0] - u[1] * s[1]) + c[b][0]; /* fb_planar_point's order */
+      p[k][1] = (u[1] * s[0] + u[0] * s[1]) + c[b][1];
+    }
+    worst = fmax(worst, hypot(p[0][0] - p[1][0], p[0][1] - p[1][1]));
   }
   return worst;
 }

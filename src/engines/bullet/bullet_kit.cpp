@@ -205,9 +205,9 @@ fb_status add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
     ct.row->nrows = 0;
     k->w->add(ct.row);
   }
-  fb_contact_row u;
-  if (fb_contact_row_step(&u, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
-                          c->onset, c->persistence) != FB_OK)
+  fb_contact_row u = c->row; /* the kit's, when it mapped the law already */
+  if (!c->has_row && fb_contact_row_step(&u, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth,
+                                         c->rate, c->v0, c->onset, c->persistence) != FB_OK)
     return FB_OK; /* no row at this state (contact.h) */
   if (c->mapping == FB_MAPPING_MATCHED_STATIC && u.erp > 0.0 && !c->wall) {
     /* the penetration's drift over the step the row cannot see (rotation of

@@ -126,13 +126,17 @@ static void put(double *q, size_t n, size_t i, double x, double v, double h) {
   q[n + i] = v;
 }
 
-/* sample i of every moving body: angle unwrapped from the last one's */
-static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int nb, size_t i) {
+/* sample i of every moving body: angle unwrapped from the last one's;
+ * each body's pose and velocity also into state, rate (3 nb each; NULL:
+ * not kept), the clearance pipeline's */
+static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int nb, size_t i,
+                   double *state, double *rate) {
   const size_t n = s->n;
   s->t[i] = (double)i * s->h;
   for (int k = 0; k < nb; k++) {
     double pos[3], vel[3];
     b->body_state(w, k, pos, vel);
+    if (state) memcpy(state + 3 * k, pos, sizeof pos), memcpy(rate + 3 * k, vel, sizeof vel);
     double *q = s->q + (size_t)k * 3 * n;
     put(q, n, i, i == 0 ? pos[2] : q[i - 1] + remainder(pos[2] - q[i - 1], 2.0 * M_PI), vel[2],
         s->h);
@@ -223,14 +227,14 @@ static fb_status sample_step(fb_kit_runner *k, size_t i, fb_diag *diag) {
   fb_status st = FB_OK;
   if (i > 0) st = b->step(w, diag);
   if (st != FB_OK) return st;
-  sample(b, w, s, m->nbodies - 1, i);
   if (i > 0 && s->torque) loads(k, i); /* at the step's start: before the pipe reads anew */
+  sample(b, w, s, m->nbodies - 1, i, cl ? k->p.q : NULL, cl ? k->p.qd : NULL);
   if (i == 0 && s->torque && s->n == 1) { /* no step: no loads */
     s->torque[0] = 0.0;
     memset(s->reaction, 0, 3 * (size_t)m->njoints * sizeof *s->reaction);
   }
   if (!cl) return FB_OK;
-  fb_kit_pipe_read(&k->p, b, w, m, cl);
+  fb_kit_pipe_read(&k->p, m, cl);
   for (int j = 0; j < m->njoints; j++)
     if (cl->mask & (1u << j)) record(k, j, i);
   if (i + 1 < s->n) st = fb_kit_pipe_contacts(&k->p, b, w, m, cl, s->h, diag);

@@ -127,6 +127,10 @@ typedef struct {
                           wall's point under it) */
   double ecc_rate[2];  /* d(pin centre - hole centre)/dt [m/s] (a corner: its normal part,
                           rate n) */
+  int has_row;         /* 1: row holds the soft row the law and mapping give this contact
+                          (contact.h fb_contact_row_step, persistence included): the kit's,
+                          for a binding that takes rows (contact_rows) */
+  fb_contact_row row;  /* that row (ERP, CFM, depth, the spring and damper it stands for) */
 } fb_kit_contact;
 
 /* What a kit run keeps of one clearance joint: its law, and its columns
@@ -181,6 +185,14 @@ typedef struct {
                                (planar_guide.h: a, b, c [m]) */
   double friction;          /* [clearance] friction: Coulomb's coefficient mu at the contact
                                (0: frictionless) [-] */
+  fb_status (*mass_tensors)(double w[4][2][2], const fb_planar *m, const double *q,
+                            unsigned mask, fb_diag *diag);
+                            /* optional: the inverse-mass tensor [1/kg] at each of a four-joint
+                               mechanism's joints at the pose q (the drive held, the joints of
+                               mask left out) by its closed form (planar_case.h
+                               fb_planar_instance_mass: the four-bar's and slider-crank's);
+                               NULL: the planar core's factorisation (planar_mass.h), at most
+                               once a step */
 } fb_kit_clearance;
 
 /* One clearance joint for an engine that builds it as its own relation

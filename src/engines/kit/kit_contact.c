@@ -57,7 +57,10 @@ fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_plan
   p->q = calloc(2 * (size_t)nq, sizeof *p->q);
   if (!p->q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   p->qd = p->q + nq;
-  return guides ? fb_planar_cmass_new(&p->cm, m, p->off, diag) : FB_OK;
+  (void)guides;
+  /* the constraint set without the clearance joints, factorised at most
+   * once a step (fb_kit_pipe_contacts), for every joint's effective mass */
+  return cl->mask ? fb_planar_cmass_new(&p->cm, m, p->off, diag) : FB_OK;
 }
 
 void fb_kit_pipe_free(fb_kit_pipe *p) {
@@ -67,20 +70,13 @@ void fb_kit_pipe_free(fb_kit_pipe *p) {
   p->cm = NULL;
 }
 
-/* the coordinates now, from the engine */
-static void read_state(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m) {
-  for (int k = 0; k < m->nbodies - 1; k++) b->body_state(w, k, p->q + 3 * k, p->qd + 3 * k);
-}
-
 /* joint j's contact into *c when its pin presses into the hole (returns 1) */
 static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
                     const fb_kit_clearance *cl, int j) {
   const fb_planar_joint *pj = &m->joint[j];
   double xp[2], vp[2], xh[2], vh[2];
-  fb_planar_point(xp, m, p->q, pj->body[0], pj->point[0]);
-  fb_planar_point_velocity(vp, m, p->q, p->qd, pj->body[0], pj->point[0]);
-  fb_planar_point(xh, m, p->q, pj->body[1], pj->point[1]);
-  fb_planar_point_velocity(vh, m, p->q, p->qd, pj->body[1], pj->point[1]);
+  fb_planar_point_motion(xp, vp, m, p->q, p->qd, pj->body[0], pj->point[0]);
+  fb_planar_point_motion(xh, vh, m, p->q, p->qd, pj->body[1], pj->point[1]);
   const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
   const double delta = ecc - cl->radial_clearance;
   if (ecc > 0.0) p->rate[j] = (e[0] * (vp[0] - vh[0]) + e[1] * (vp[1] - vh[1])) / ecc;
@@ -115,9 +111,7 @@ static void corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], fb_kit_pi
   p->ecc[j][1] = tilt;
 }
 
-void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
-                      const fb_planar *m, const fb_kit_clearance *cl) {
-  read_state(p, b, w, m);
+void fb_kit_pipe_read(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl) {
   fb_kit_contact c;
   fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
   for (int j = 0; j < m->njoints; j++) {
@@ -126,20 +120,24 @@ void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
   }
 }
 
-/* the row the law and mapping hand the engine (contact.h): its h omega_c
- * noted (joint j's and cl's h_omega_max) and added to the slot's contact
- * phase *phase (a step without a row sets it to 0); the matched mapping's aliasing
+/* the row the law and mapping hand the engine (contact.h), kept in c for
+ * the binding: its h omega_c noted (joint j's and cl's h_omega_max) and
+ * added to the slot's contact phase *phase (a step without a row sets it
+ * to 0); the matched mapping's aliasing
  * stop: a row whose damped frequency passes FB_MATCHED_ALIAS_BOUND per
  * step has lost its spring's meaning; FB_ERR_NUMERIC naming the largest
  * usable step, its omega_d h in cl->aliased_omega_d_h */
-static fb_status note_row(const fb_kit_contact *c, const char *joint, fb_kit_clearance *cl,
-                          int j, double *phase, fb_diag *diag) {
+static fb_status note_row(fb_kit_contact *c, const char *joint, fb_kit_clearance *cl, int j,
+                          double *phase, fb_diag *diag) {
   fb_contact_row row;
+  c->has_row = 0;
   if (fb_contact_row_step(&row, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
                           c->onset, c->persistence) != FB_OK) {
     *phase = 0.0; /* a step without a row ends the contact's phase */
     return FB_OK;
   }
+  c->row = row; /* the binding's, so it maps the law once */
+  c->has_row = 1;
   const double hw = fb_contact_h_omega(c->h, row.kp, c->m_eff);
   *phase += hw;
   fb_kit_joint_record *r = &cl->joint[j];
@@ -215,6 +213,33 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
   return FB_OK;
 }
 
+/* the constraint set factorised at the state last read, once a step */
+static fb_status factored(fb_kit_pipe *p, fb_diag *diag) {
+  if (p->factored) return FB_OK;
+  fb_status st = fb_planar_cmass_factor(p->cm, p->q, FB_EFFECTIVE_MASS_REG, diag);
+  p->factored = st == FB_OK;
+  return st;
+}
+
+/* clearance joint j's inverse-mass tensor w [1/kg] at the state last read:
+ * the mechanism's closed form when the run has one (all four joints' at
+ * once, once a step), else the factorised constraint set's */
+static fb_status tensor(double w[2][2], fb_kit_pipe *p, const fb_planar *m,
+                        const fb_kit_clearance *cl, int j, fb_diag *diag) {
+  if (cl->mass_tensors && j < 4) {
+    if (!p->closed) {
+      fb_status st = cl->mass_tensors(p->w4, m, p->q, cl->mask, diag);
+      if (st != FB_OK) return st;
+      p->closed = 1;
+    }
+    memcpy(w, p->w4[j], sizeof p->w4[j]);
+    return FB_OK;
+  }
+  fb_status st = factored(p, diag);
+  if (st == FB_OK) fb_planar_cmass_tensor(p->cm, w, j, p->q);
+  return st;
+}
+
 /* slider joint j's four corners, each a contact of its own slot: the
  * slider the pin, the guide the hole, the point on the wall under the
  * corner, the face's share of the effective mass (planar_guide.h) */
@@ -226,7 +251,7 @@ static fb_status guide_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w
   double mass[FB_PLANAR_GUIDE_CORNERS] = {0.0}, alone[FB_PLANAR_GUIDE_CORNERS] = {0.0};
   corners(gc, p, m, cl, j);
   if (p->pen[j] > 0.0) {
-    fb_status st = fb_planar_cmass_factor(p->cm, p->q, FB_EFFECTIVE_MASS_REG, diag);
+    fb_status st = factored(p, diag);
     if (st != FB_OK) return st;
     fb_planar_guide_masses(mass, alone, p->cm, m, j, gc, p->q);
   }
@@ -248,6 +273,7 @@ static fb_status guide_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w
 fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
                                const fb_planar *m, fb_kit_clearance *cl, double h,
                                fb_diag *diag) {
+  p->factored = p->closed = 0; /* the state was read anew */
   for (int j = 0; j < m->njoints; j++) {
     if (!p->off[j]) continue;
     if (b->add_clearance && !b->add_contact) { /* the engine's own relation */
@@ -264,7 +290,7 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     double me = 0.0;
     if (in) {
       double wi[2][2];
-      if ((st = fb_planar_effective_mass_tensor(wi, m, p->q, p->off, j, diag)) != FB_OK) return st;
+      if ((st = tensor(wi, p, m, cl, j, diag)) != FB_OK) return st;
       me = fb_effective_mass_along(wi, c.normal);
     }
     if ((st = hand(p, b, w, m, cl, j, j, &c, in, me, h, diag)) != FB_OK) return st;

@@ -28,8 +28,13 @@ typedef struct {
   double ecc[FB_PLANAR_SPEC_MAX_JOINTS][2];   /* eccentricity pin - hole at the last read [m]
                                                  (a slider: its centre across the slide [m],
                                                  its tilt [rad]) */
-  fb_planar_cmass *cm;                        /* a slider's corners' effective masses (NULL:
-                                                 no prismatic clearance joint) */
+  fb_planar_cmass *cm;                        /* the joints but the clearance ones, for every
+                                                 contact's effective mass (NULL: no clearance
+                                                 joint) */
+  int factored;                               /* 1: cm is factorised at the state last read */
+  int closed;                                 /* 1: w4 holds the closed form at that state */
+  double w4[4][2][2];                         /* the closed form's tensors at that state
+                                                 (fb_kit_clearance.mass_tensors) [1/kg] */
 } fb_kit_pipe;
 
 /* Sets p up for m's clearance joints cl->mask in b's engine. Errors:
@@ -42,10 +47,10 @@ fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_plan
                           const fb_kit_clearance *cl, fb_diag *diag);
 void fb_kit_pipe_free(fb_kit_pipe *p);
 
-/* Reads the bodies' states from the engine and every clearance joint's
- * penetration and eccentricity (p->pen, p->ecc). */
-void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
-                        const fb_planar *m, const fb_kit_clearance *cl);
+/* Every clearance joint's penetration and eccentricity (p->pen, p->ecc)
+ * at the bodies' states the caller put in p->q and p->qd (the engine's, as
+ * the kit's sample read them). */
+void fb_kit_pipe_read(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl);
 
 /* Every clearance joint's contact at the state last read, handed to b's
  * add_contact for the coming step of h [s]; counts contact steps and

@@ -60,6 +60,9 @@ typedef struct {
   double force_pin[FB_KIT_SLOTS][2]; /* the last step's force on the pin's body [N] */
   unsigned char pin_ground[FB_KIT_SLOTS]; /* 1: the slot's pin is the ground's (ODE reverses
                                              the joint: its feedback's body 1 is the hole's) */
+  int slot[FB_KIT_SLOTS], nslots;         /* the slots with a row this step, and the last
+                                             step's forces to clear */
+  int last[FB_KIT_SLOTS], nlast;
 } ode_kit;
 
 static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
@@ -194,9 +197,10 @@ static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_dia
   ode_kit *k = w;
   dContact ct;
   memset(&ct, 0, sizeof ct);
-  fb_contact_row used;
-  if (!fb_ode_soft_contact(&ct, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate, c->v0,
-                           c->onset, c->persistence, c->friction, &used))
+  fb_contact_row used = c->row; /* the kit's, when it mapped the law already */
+  if (c->has_row) fb_ode_soft_fill(&ct, &used, c->friction);
+  else if (!fb_ode_soft_contact(&ct, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate,
+                                c->v0, c->onset, c->persistence, c->friction, &used))
     return FB_OK;
   if (c->mapping == FB_MAPPING_MATCHED_STATIC && used.erp > 0.0 && !c->wall) {
     /* the row's lambda = a d_n + b u: handing it d_n + drift / ERP makes its
@@ -218,6 +222,7 @@ static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_dia
   dJointSetFeedback(k->cj[j], &k->fb[j]);
   k->share[j] = used.step_share;
   k->pin_ground[j] = c->pin == FB_KIT_GROUND;
+  k->slot[k->nslots++] = j;
   return FB_OK;
 }
 
@@ -230,15 +235,24 @@ static void kit_contact_force_vec(const void *w, int j, double f[2]) {
 }
 
 /* the contact forces the step left (on the pin: ODE's body 1 of each row,
- * the hole's when the pin is the ground's) */
+ * the hole's when the pin is the ground's), over the slots that had a row;
+ * the slots of the step before, none this step, cleared */
 static void contact_forces(ode_kit *k) {
-  for (int j = 0; j < FB_KIT_SLOTS; j++) {
-    const double s = k->cj[j] ? (k->pin_ground[j] ? -k->share[j] : k->share[j]) : 0.0;
+  for (int i = 0; i < k->nlast; i++) {
+    const int j = k->last[i];
+    k->force[j] = k->force_pin[j][0] = k->force_pin[j][1] = 0.0;
+  }
+  for (int i = 0; i < k->nslots; i++) {
+    const int j = k->slot[i];
+    const double s = k->pin_ground[j] ? -k->share[j] : k->share[j];
     k->force[j] = fabs(s) * hypot(k->fb[j].f1[0], k->fb[j].f1[1]);
     k->force_pin[j][0] = s * k->fb[j].f1[0];
     k->force_pin[j][1] = s * k->fb[j].f1[1];
     k->cj[j] = 0;
+    k->last[i] = j;
   }
+  k->nlast = k->nslots;
+  k->nslots = 0;
   dJointGroupEmpty(k->contacts);
 }
 

@@ -79,4 +79,17 @@ fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double den
 fb_status fb_planar_of_case(fb_planar **out, const fb_case *c, const fb_linkage *lengths,
                             fb_diag *diag);
 
+/* The four-bar's or slider-crank's inverse-mass tensor at each of its four
+ * joints (w, 4 x 2 x 2 [1/kg]) with the drive held, at the pose q
+ * (fb_planar_nq) of its instance m (fb_planar_fourbar or
+ * fb_planar_slider_crank: bodies crank, coupler, follower or slider; joints
+ * in fb_mech_desc's order), the joints of clearance_mask (bit j) left out:
+ * effective_mass.h's closed form (fb_effective_mass_tensor) on the bodies'
+ * centres and each joint's point on its first moving body (a clearance
+ * joint's pin), the prismatic joint a guide along x. Errors: FB_ERR_ARG
+ * when m is not such an instance (3 moving bodies, 4 joints); those of
+ * fb_effective_mass_tensor. */
+fb_status fb_planar_instance_mass(double w[4][2][2], const fb_planar *m, const double *q,
+                                  unsigned clearance_mask, fb_diag *diag);
+
 #endif

@@ -42,6 +42,18 @@ void fb_planar_point_velocity(double out[2], const fb_planar *m, const double *q
   out[1] = qd[3 * (b - 1) + 1] + w * as[0];
 }
 
+void fb_planar_point_motion(double x[2], double v[2], const fb_planar *m, const double *q,
+                            const double *qd, int b, const double s[2]) {
+  (void)m;
+  double as[2];
+  fb_planar_rotate(as, fb_planar_angle(q, b), s);
+  x[0] = as[0] + (b ? q[3 * (b - 1)] : 0.0);
+  x[1] = as[1] + (b ? q[3 * (b - 1) + 1] : 0.0);
+  const double w = b ? qd[3 * (b - 1) + 2] : 0.0;
+  v[0] = b ? qd[3 * (b - 1)] - w * as[1] : 0.0;
+  v[1] = b ? qd[3 * (b - 1) + 1] + w * as[0] : 0.0;
+}
+
 void fb_planar_point_jacobian(double *rows, const fb_planar *m, const double *q, int b,
                               const double s[2], double sign) {
   if (!b) return;

@@ -65,6 +65,12 @@ double fb_planar_angle(const double *q, int b);
 void fb_planar_point(double out[2], const fb_planar *m, const double *q, int b,
                      const double s[2]);
 
+/* World position x [m] and velocity v [m/s] (2 each) of point s of body b
+ * at q, qd: fb_planar_point and fb_planar_point_velocity in one (the
+ * body's rotation formed once). */
+void fb_planar_point_motion(double x[2], double v[2], const fb_planar *m, const double *q,
+                            const double *qd, int b, const double s[2]);
+
 /* World velocity of point s of body b at q, qd [m/s] into out (2). */
 void fb_planar_point_velocity(double out[2], const fb_planar *m, const double *q,
                               const double *qd, int b, const double s[2]);

@@ -6,7 +6,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "effective_mass.h"
 #include "linkage.h"
+#include "planar_constraints.h"
 #include "slider_crank.h"
 
 /* a moving body of fb_mech_desc d (index i) at centre c and angle a */
@@ -90,4 +92,29 @@ fb_status fb_planar_slider_crank(fb_planar **out, const fb_linkage *lk,
                          {st.b, st.c, link[1].com_fraction, st.coupler_angle},
                          {st.c, st.c, 0.0, 0.0}};
   return instance(out, &fb_mech_slider_crank, link, la, at, diag);
+}
+
+fb_status fb_planar_instance_mass(double w[4][2][2], const fb_planar *m, const double *q,
+                                  unsigned clearance_mask, fb_diag *diag) {
+  if (m->nbodies != 4 || m->njoints != 4)
+    return fb_diag_set(diag, FB_ERR_ARG, "the closed-form effective mass takes a four-bar or a "
+                       "slider-crank (3 moving bodies, 4 joints), not %d and %d",
+                       m->nbodies - 1, m->njoints);
+  fb_mechanism mc;
+  memset(&mc, 0, sizeof mc);
+  for (int i = 0; i < 3; i++) {
+    mc.mass[i] = m->body[i + 1].mass;
+    mc.inertia[i] = m->body[i + 1].inertia;
+    mc.com[i][0] = q[3 * i];
+    mc.com[i][1] = q[3 * i + 1];
+  }
+  for (int j = 0; j < 4; j++) {
+    const fb_planar_joint *pj = &m->joint[j];
+    const int k = pj->body[0] == FB_PLANAR_GROUND; /* its first moving body's side */
+    fb_planar_point(mc.joint[j], m, q, pj->body[k], pj->point[k]);
+    if (pj->kind == FB_KIND_PRISMATIC) mc.prismatic_mask |= 1 << j;
+  }
+  mc.clearance_mask = (int)(clearance_mask & 0xfu);
+  mc.crank_driven = m->drive >= 0;
+  return fb_effective_mass_tensor(w, &mc, diag);
 }

@@ -10,6 +10,7 @@
 
 #include "casefile.h"
 #include "casefile_planar_free.h"
+#include "names.h"
 #include "planar_case.h"
 #include "planar_check.h"
 #include "units.h"
@@ -319,6 +320,96 @@ static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, 
   return FB_OK;
 }
 
+/* ---- the names' rule ------------------------------------------------------ */
+
+/* one name the case gives: its kind and the entry that first gives it
+ * (NULL for the fixed body, ground) */
+typedef struct {
+  const char *kind, *name;
+  const entry *at;
+} case_name;
+
+/* 1 when entry x, a joint's bodies key, names body name */
+static int bodies_names(const entry *x, const char *name) {
+  if (!prefixed(x->section, JOINT_PREFIX) || strcmp(x->key, "bodies") != 0) return 0;
+  char buf[sizeof x->value];
+  snprintf(buf, sizeof buf, "%s", x->value);
+  char *save = NULL;
+  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save))
+    if (strcmp(trim(tok), name) == 0) return 1;
+  return 0;
+}
+
+/* Every name the case gives, of every kind, each with the entry that first
+ * gives it, in the order of the file: the one list the names' rule runs
+ * over (fb_name_clash, names.h). A kind of name the description adds
+ * (points, springs, loads) is listed here. Returns how many (at most max). */
+static int case_names(case_name *out, int max, const fb_planar_spec *s, const entry *e, int n) {
+  int k = 0;
+  out[k++] = (case_name){"body", "ground", NULL};
+  const entry *joint_at[FB_PLANAR_SPEC_MAX_JOINTS];
+  for (int j = 0; j < s->njoints; j++) joint_at[j] = first_of(e, n, JOINT_PREFIX, s->joint[j].name);
+  for (int i = 0; i < n && k < max; i++) {
+    const entry *x = &e[i];
+    for (int b = 1; b < s->nbodies && k < max; b++) {
+      const char *nm = s->body[b].name;
+      char sec[sizeof x->section];
+      snprintf(sec, sizeof sec, "%s%s", BODY_PREFIX, nm);
+      if (strcmp(x->section, sec) != 0 && !bodies_names(x, nm)) continue;
+      int seen = 0;
+      for (int q = 0; q < k; q++)
+        seen |= strcmp(out[q].kind, "body") == 0 && strcmp(out[q].name, nm) == 0;
+      if (!seen) out[k++] = (case_name){"body", nm, x};
+    }
+    for (int j = 0; j < s->njoints && k < max; j++)
+      if (joint_at[j] == x)
+        out[k++] = (case_name){"joint", s->joint[j].name, x};
+  }
+  return k;
+}
+
+/* "[section]" where entry x gives name (of kind), "[section] bodies" when
+ * a joint's bodies key gives a body */
+static const char *given_in(char *buf, size_t size, const entry *x, const char *kind) {
+  const int key = strcmp(kind, "body") == 0 && strcmp(x->key, "bodies") == 0;
+  snprintf(buf, size, "[%s]%s", x->section, key ? " bodies" : "");
+  return buf;
+}
+
+/* The names' rule (names.h): no two names of the case, of any kind, with
+ * one column and key word, and no fixed word; the later name is refused,
+ * with the earlier named beside it. */
+static fb_status names_one_word(const fb_planar_spec *s, const entry *e, int n, fb_diag *diag) {
+  enum { MAX = FB_PLANAR_SPEC_MAX_BODIES + 1 + FB_PLANAR_SPEC_MAX_JOINTS };
+  case_name list[MAX];
+  const char *names[MAX];
+  const int count = case_names(list, MAX, s, e, n);
+  char here[sizeof e->section + 16], there[sizeof e->origin + sizeof e->section + 32];
+  char word[FB_PLANAR_NAME_SIZE];
+  for (int k = 0; k < count; k++) {
+    const case_name *c = &list[k];
+    const char *what = NULL;
+    if (c->at && fb_name_fixed(c->name, &what))
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: %s: %s '%s': its columns would repeat %s; "
+                         "give it another name", c->at->origin,
+                         given_in(here, sizeof here, c->at, c->kind), c->kind, c->name, what);
+    const int q = fb_name_clash(names, k, c->name);
+    names[k] = c->name;
+    if (q < 0 || !c->at) continue;
+    const case_name *p = &list[q];
+    if (p->at)
+      snprintf(there, sizeof there, " (%s: %s)", p->at->origin,
+               given_in(here, sizeof here, p->at, p->kind));
+    else
+      snprintf(there, sizeof there, " (the fixed body)");
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: %s: %s '%s' and %s '%s'%s both write '%s': %s",
+                       c->at->origin, given_in(here, sizeof here, c->at, c->kind), c->kind,
+                       c->name, p->kind, p->name, there, fb_name_word(word, sizeof word, c->name),
+                       FB_NAME_RULE);
+  }
+  return FB_OK;
+}
+
 /* the joints named in list ("none" or NAME, NAME, ...) as a mask, each
  * checked by rule (1: revolute) */
 static fb_status joint_names(int *mask, const fb_planar_spec *s, const entry *e, int single,
@@ -391,7 +482,8 @@ static void summary(char *buf, size_t size, const fb_planar *m) {
 
 fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const char *path, int run,
                                     fb_diag *diag) {
-  fb_status st = sections_whole(&c->planar, e, n, path, diag);
+  fb_status st = names_one_word(&c->planar, e, n, diag);
+  if (st == FB_OK) st = sections_whole(&c->planar, e, n, path, diag);
   if (st == FB_OK) st = drive_and_clearance(c, e, n, path, diag);
   if (st != FB_OK) return st;
   fb_planar *m;

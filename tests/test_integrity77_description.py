@@ -8,7 +8,9 @@ ones:
     to each other name's column and key word (its '-' and '_' swapped, or the
     name itself for a name of another kind) is refused, and so is the fixed
     word 'drive'; and the shipped cases' own columns and keys (analytic.csv's
-    header, every object of summary.json) hold each name once.
+    header, every object of summary.json) hold each name once;
+  - a clearance joint listed twice is refused on a planar case as on the
+    four-bar.
 report.html's treatment of names as data (__proto__ and its kin) is
 tests/test_report_html.js's. Usage: test_integrity77_description.py
 PATH_TO_FOURBAR [TEST...]."""
@@ -245,6 +247,20 @@ def test_generated_columns_and_keys_hold_each_name_once():
                 if twice:
                     bad.append("%s: %s.csv repeats columns %s" % (base, m["name"], twice))
     check(not bad, "; ".join(bad))
+
+
+# ==== the same rule as the four-bar ===================================================
+
+@test
+def test_clearance_joint_listed_twice_refused():
+    rc4, err4, _ = load(None, "clearance.joints=crank-coupler,crank-coupler")
+    rc, err, wrote = load(sixbar, "clearance.joints=rod-output,rod-output")
+    check(rc4 == 2 and "names crank-coupler twice; give each joint once" in err4,
+          "the four-bar refuses it: %d %s" % (rc4, err4))
+    check(rc == 2 and "names rod-output twice; give each joint once" in err
+          and not wrote, "a planar case refuses it as the four-bar: %d %s" % (rc, err))
+    rc, err, _ = load(sixbar, "clearance.joints=rod-output,,crank-coupler")
+    check(rc == 2 and "an empty item in the list" in err, "an empty item too: %d %s" % (rc, err))
 
 
 # ---- the runner ----------------------------------------------------------------------

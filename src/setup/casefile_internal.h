@@ -114,6 +114,17 @@ typedef struct {
  * or a series format this build lacks. */
 fb_status fb_casefile_apply(fb_case *c, const entry *e, fb_diag *diag);
 
+/* A comma list of joint names, e's value, into *mask over the mechanism's
+ * joints names[0 .. n-1] (bit j for names[j]), *count items: one rule for
+ * every mechanism's list ([clearance] joints of a four-bar, a slider-crank
+ * or a planar case; a planar case's [drive] joint). "none" is no joint.
+ * Returns FB_OK; FB_ERR_PARSE with diag filled (file, line, key, value, rule)
+ * for an empty item or a joint given twice; FB_ERR_ARG with the item in
+ * unknown (size bytes) and diag untouched for a name that is not a joint:
+ * the caller's message names the choices. */
+fb_status fb_casefile_joint_list(const entry *e, const char *const *names, int n, int *mask,
+                                 int *count, char *unknown, size_t size, fb_diag *diag);
+
 /* s without the blanks (spaces, tabs) around it: s is cut at its end, the
  * result points into it. */
 static inline char *trim(char *s) {

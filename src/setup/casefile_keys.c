@@ -181,8 +181,8 @@ static const key_spec keys[] = {
      "maximum, 29 um diametral)"},
 
     {"clearance", "joints", K_JOINTS, OFF(clearance.mask), 0, 0, 0, 0, 0, "-", "crank-coupler",
-     "joint names: ground-crank, crank-coupler, coupler-follower, follower-ground, or none "
-     "(a slider-crank: coupler-slider or none)",
+     "joint names, each once: ground-crank, crank-coupler, coupler-follower, follower-ground, "
+     "or none (a slider-crank: coupler-slider or none; a planar case: its own joints)",
      "joints modelled as a pin in a hole (the *-clearance-* models); the others stay ideal "
      "hinges and get no contact geometry; a slider-crank's default is its piston pin, "
      "coupler-slider"},

@@ -410,36 +410,32 @@ static fb_status names_one_word(const fb_planar_spec *s, const entry *e, int n, 
   return FB_OK;
 }
 
-/* the joints named in list ("none" or NAME, NAME, ...) as a mask, each
- * checked by rule (1: revolute) */
+/* the joints named in list ("none" or NAME, NAME, ...) as a mask, by the
+ * rule every mechanism's list follows (fb_casefile_joint_list); single: one
+ * revolute joint (the drive) */
 static fb_status joint_names(int *mask, const fb_planar_spec *s, const entry *e, int single,
                              fb_diag *diag) {
-  char buf[sizeof e->value], known[1024] = "";
-  for (int j = 0; j < s->njoints; j++)
+  char known[1024] = "", tok[sizeof e->value];
+  const char *names[FB_PLANAR_SPEC_MAX_JOINTS];
+  for (int j = 0; j < s->njoints; j++) {
+    names[j] = s->joint[j].name;
     snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", j ? ", " : "",
              s->joint[j].name);
-  *mask = 0;
-  snprintf(buf, sizeof buf, "%s", e->value);
-  if (!single && strcmp(trim(buf), "none") == 0) return FB_OK;
-  int count = 0;
-  char *save = NULL;
-  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save), count++) {
-    const char *name = trim(tok);
-    int found = -1;
-    for (int j = 0; j < s->njoints; j++)
-      if (strcmp(s->joint[j].name, name) == 0) found = j;
-    if (found < 0)
-      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: '%s' is not a joint of the case "
-                         "(joints: %s)", e->origin, e->section, e->key, name, known);
-    if (single && s->joint[found].kind != FB_KIND_REVOLUTE)
-      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: joint '%s' is prismatic; the drive "
-                         "turns a revolute joint at speed_rpm", e->origin, e->section, e->key,
-                         name);
-    *mask |= 1 << found;
   }
+  int count = 0;
+  fb_status st = fb_casefile_joint_list(e, names, s->njoints, mask, &count, tok, sizeof tok, diag);
+  if (st == FB_ERR_ARG)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: '%s' is not a joint of the case "
+                       "(joints: %s)", e->origin, e->section, e->key, tok, known);
+  if (st != FB_OK) return st;
   if (single && count != 1)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': name one joint (joints: %s)",
                        e->origin, e->section, e->key, e->value, known);
+  for (int j = 0; single && j < s->njoints; j++)
+    if ((*mask & (1 << j)) && s->joint[j].kind != FB_KIND_REVOLUTE)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: joint '%s' is prismatic; the drive "
+                         "turns a revolute joint at speed_rpm", e->origin, e->section, e->key,
+                         s->joint[j].name);
   return FB_OK;
 }
 

@@ -9,6 +9,8 @@ ones:
     name itself for a name of another kind) is refused, and so is the fixed
     word 'drive'; and the shipped cases' own columns and keys (analytic.csv's
     header, every object of summary.json) hold each name once;
+  - run.revolutions = 1 with peaks = steady, and an h_s longer than the run,
+    are refused on a planar case by the four-bar's rule;
   - a clearance joint listed twice is refused on a planar case as on the
     four-bar.
 report.html's treatment of names as data (__proto__ and its kin) is
@@ -250,6 +252,33 @@ def test_generated_columns_and_keys_hold_each_name_once():
 
 
 # ==== the same rule as the four-bar ===================================================
+
+@test
+def test_one_revolution_with_steady_peaks_refused():
+    rc4, err4, _ = load(None, "run.revolutions=1")
+    rc, err, wrote = load(sixbar, "run.revolutions=1")
+    want = "[run] revolutions = 1: the steady peak window starts after the first revolution"
+    check(rc4 == 2 and want in err4, "the four-bar refuses it: %d %s" % (rc4, err4))
+    check(rc == 2 and want in err and not wrote and "--set #" in err,
+          "a planar case refuses it as the four-bar does, naming where it was given: %d %s" % (
+              rc, err))
+    rc, err, _ = load(sixbar, "run.revolutions=1", "run.peaks=all")
+    check(rc == 0, "with peaks = all one revolution runs: %d %s" % (rc, err[-300:]))
+
+
+@test
+def test_step_longer_than_the_run_refused():
+    want = "the step size must be positive and smaller than the run"
+    rc4, err4, _ = load(None, "solver.h_s=1")
+    rc, err, wrote = load(sixbar, "solver.h_s=1")
+    check(rc4 == 2 and want in err4, "the four-bar refuses it: %d %s" % (rc4, err4))
+    check(rc == 2 and want in err and "[solver] h_s = 1" in err and not wrote,
+          "a planar case refuses it as the four-bar does: %d %s" % (rc, err))
+    rc, _, err = run("run", guide, "--no-figures", "--set", "solver.h_s=0.5", "--out",
+                     os.path.join(tmp, "hs_guide"))
+    check(rc == 2 and want in err and "[run] duration_s = 0.2" in err,
+          "an undriven case: against its duration_s: %d %s" % (rc, err))
+
 
 @test
 def test_clearance_joint_listed_twice_refused():

@@ -9,6 +9,8 @@ ones:
     name itself for a name of another kind) is refused, and so is the fixed
     word 'drive'; and the shipped cases' own columns and keys (analytic.csv's
     header, every object of summary.json) hold each name once;
+  - a zero-length link (a joint on the ground pivot, the crank's mass given)
+    is refused by the rule and words of the four-bar's crank_mm = 0;
   - run.revolutions = 1 with peaks = steady, and an h_s longer than the run,
     are refused on a planar case by the four-bar's rule;
   - a clearance joint listed twice is refused on a planar case as on the
@@ -252,6 +254,30 @@ def test_generated_columns_and_keys_hold_each_name_once():
 
 
 # ==== the same rule as the four-bar ===================================================
+
+@test
+def test_zero_length_link_refused_as_crank_mm_0():
+    """a joint on top of the ground pivot, the crank's mass given: refused by
+    the four-bar's rule for crank_mm = 0, in its words"""
+    rc4, err4, _ = load(None, "linkage.crank_mm=0")
+    check(rc4 == 2, "the four-bar refuses crank_mm = 0: %d %s" % (rc4, err4))
+    text = open(template).read()
+    check("[body.crank]\nmass_kg" in text, "the template gives the crank's mass (precondition)")
+    rc, err, wrote = load(template, "joint.crank-coupler.at_mm=0,0")
+    check(rc == 2 and not wrote and "[joint.crank-coupler] at_mm = 0,0" in err
+          and "body 'crank'" in err and rule_of(err) == rule_of(err4),
+          "refused, naming the key, the body and the four-bar's rule (%s): %d %s" % (
+              rule_of(err4), rc, err))
+    for sets, why in ((["joint.crank-coupler.at_mm=0.0005,0"], "a link of 0.0005 mm"),
+                      (["joint.crank-coupler.at_mm=100000,0", "joint.ground-crank.at_mm=-300,0"],
+                       "body 'crank' has a link of 100300 mm")):
+        rc, err, _ = load(template, *sets)
+        check(rc == 2 and why in err and rule_of(err) == rule_of(err4),
+              "%s refused by the same rule: %d %s" % (sets, rc, err))
+    rc, err, _ = load(template, "joint.follower-ground.at_mm=0,0")
+    check(rc == 2 and "the ground has a link of 0 mm" in err and rule_of(err) == rule_of(err4),
+          "the ground's pivots at one point (ground_mm = 0): %d %s" % (rc, err))
+
 
 @test
 def test_one_revolution_with_steady_peaks_refused():

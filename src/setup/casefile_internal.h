@@ -63,6 +63,15 @@ typedef struct {
 } key_spec;
 
 #define OFF(field) offsetof(fb_case, field)
+
+/* A link's length [mm]: a four-bar's or slider-crank's [linkage] crank_mm,
+ * coupler_mm, follower_mm, ground_mm, and the distance between two
+ * revolute joints of one body of a planar case (casefile_planar.c): one
+ * rule for every mechanism. Outside it ODE's closed-loop solve degenerates
+ * and the mechanism is no linkage this program models (issue 13). */
+#define FB_LINK_MM_MIN 1e-3
+#define FB_LINK_MM_MAX 1e5
+#define LEN_RULE "a link length must be positive, from 0.001 mm to 1e5 mm (1 um to 100 m)"
 #define MASS_RULE "a mass must be positive, from 1e-6 kg to 1e4 kg (1 mg to 10 t)"
 
 /* run by default, after the key's default list, when a case has clearance

@@ -320,6 +320,58 @@ static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, 
   return FB_OK;
 }
 
+/* Every link of the description is a link length the four-bar takes
+ * (LEN_RULE, as [linkage] crank_mm: one rule): a body's revolute joints two
+ * by two are the same point (a compound hinge, FB_PLANAR_SAME_POINT_M), or
+ * FB_LINK_MM_MIN to FB_LINK_MM_MAX apart; and a body with two or more
+ * revolute joints, the ground too, has them at two points at least (all at
+ * one point, it is a link of length 0: a crank whose joints meet turns
+ * nothing). A prismatic joint's position is a point of its slide line, not
+ * of a link: it takes no part. The later joint's at_mm is named. */
+static fb_status links_whole(const fb_planar_spec *s, const entry *e, int n, fb_diag *diag) {
+  for (int b = 0; b < s->nbodies; b++) {
+    int rev[FB_PLANAR_SPEC_MAX_JOINTS], nr = 0;
+    for (int j = 0; j < s->njoints; j++)
+      if (s->joint[j].kind == FB_KIND_REVOLUTE &&
+          (s->joint[j].body[0] == b || s->joint[j].body[1] == b))
+        rev[nr++] = j;
+    int bad[2] = {-1, -1};
+    double len = 0.0, far = 0.0;
+    for (int i = 0; i < nr && bad[0] < 0; i++)
+      for (int k = i + 1; k < nr && bad[0] < 0; k++) {
+        const double *p = s->joint[rev[i]].at, *q = s->joint[rev[k]].at;
+        const double d = hypot(q[0] - p[0], q[1] - p[1]);
+        far = fmax(far, d);
+        const int same = d < FB_PLANAR_SAME_POINT_M;
+        if (!same && !(d >= FB_LINK_MM_MIN * FB_M_PER_MM && d <= FB_LINK_MM_MAX * FB_M_PER_MM)) {
+          bad[0] = rev[i], bad[1] = rev[k];
+          len = d;
+        }
+      }
+    if (bad[0] < 0 && nr >= 2 && far < FB_PLANAR_SAME_POINT_M) {
+      bad[0] = rev[0], bad[1] = rev[1]; /* every joint at one point: a link of length 0 */
+      len = far;
+    }
+    if (bad[0] < 0) continue;
+    char sec0[sizeof e->section], sec1[sizeof e->section];
+    snprintf(sec0, sizeof sec0, "%s%s", JOINT_PREFIX, s->joint[bad[0]].name);
+    snprintf(sec1, sizeof sec1, "%s%s", JOINT_PREFIX, s->joint[bad[1]].name);
+    const entry *a0 = entry_of(e, n, sec0, "at_mm"), *a1 = entry_of(e, n, sec1, "at_mm");
+    if (a0 > a1) { /* the later of the two named first */
+      const entry *t = a0;
+      a0 = a1, a1 = t;
+    }
+    char body[FB_PLANAR_NAME_SIZE + 16];
+    snprintf(body, sizeof body, b ? "body '%s'" : "the ground", s->body[b].name);
+    const char *one = far < FB_PLANAR_SAME_POINT_M ? " (its revolute joints all at one point)" : "";
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] at_mm = %s: %s has a link of %s mm between "
+                       "this joint and [%s] at_mm = %s%s: %s", a1->origin, a1->section,
+                       a1->value, body, FB_NUM(len / FB_M_PER_MM), a0->section, a0->value, one,
+                       LEN_RULE);
+  }
+  return FB_OK;
+}
+
 /* ---- the names' rule ------------------------------------------------------ */
 
 /* one name the case gives: its kind and the entry that first gives it
@@ -480,6 +532,7 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
                                     fb_diag *diag) {
   fb_status st = names_one_word(&c->planar, e, n, diag);
   if (st == FB_OK) st = sections_whole(&c->planar, e, n, path, diag);
+  if (st == FB_OK) st = links_whole(&c->planar, e, n, diag);
   if (st == FB_OK) st = drive_and_clearance(c, e, n, path, diag);
   if (st != FB_OK) return st;
   fb_planar *m;

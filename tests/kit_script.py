@@ -165,7 +165,7 @@ class KitChecks:
         naming word and the largest usable step), the ideal one runs, the
         run goes on; returns the models by name (or False)"""
         m = self.run(self.six, "stop-" + model, "run.models=%s,%s" % (model, self.ideal),
-                     "run.revolutions=1", "solver.h_s=1e-5")
+                     "run.revolutions=1", "run.peaks=all", "solver.h_s=1e-5")
         if m:
             o = m[model]
             self.check(o["status"] == "failed" and word in o.get("stop", "") and

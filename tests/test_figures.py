@@ -464,10 +464,14 @@ def check_run(tag, out, rc, bodies, joints, expect):
     lib = {"uPlot.iife.min.js", "uPlot.min.css"} <= files
     check(lib or "npm ci" in rc.stderr, "the charting library copied, or the run says how to get it")
     data = open(os.path.join(out, "report-data.js")).read()
-    head, tail = "window.FOURBAR_DATA = ", ";\nwindow.FOURBAR_DATA.summary = "
+    # two values, each JSON text read by JSON.parse(String.raw`...`): a key
+    # "__proto__" stays a key (an object literal would take it for the prototype)
+    head, tail = "window.FOURBAR_DATA = JSON.parse(String.raw`", "`);\nwindow.FOURBAR_DATA.summary = "
     i, k = data.index(head), data.index(tail)
     rdata = json.loads(data[i + len(head):k])
-    check(json.loads(data[k + len(tail):].rstrip().rstrip(";")) == summary,
+    rest = data[k + len(tail):].rstrip()
+    check(rest.startswith("JSON.parse(String.raw`") and rest.endswith("`);")
+          and json.loads(rest[len("JSON.parse(String.raw`"):-len("`);")]) == summary,
           "report-data.js carries summary.json's value, equal number for number")
     check(all(ord(ch) < 128 for ch in data) and "</" not in data, "report-data.js is ASCII with '/' escaped")
     for m in rdata["models"]:

@@ -72,6 +72,15 @@ static void test_refusals(void **state) {
   assert_int_equal(fb_planar_add_body(m, "rod", 1, 1, c, 0, 0, &d), -1); /* taken */
   assert_non_null(strstr(d.msg, "named twice"));
   assert_int_equal(fb_planar_add_body(m, "ground", 1, 1, c, 0, 0, &d), -1);
+  /* one word in CSV columns and JSON keys ('-' as '_', names.h), across kinds */
+  assert_int_equal(fb_planar_add_joint(m, "crank_rod", FB_KIND_REVOLUTE, 1, 2, c, 0, &d), -1);
+  assert_non_null(strstr(d.msg, "joint 'crank_rod' and joint 'crank-rod' both write one word"));
+  assert_int_equal(fb_planar_add_body(m, "crank-rod", 1, 1, c, 0, 0, &d), -1);
+  assert_non_null(strstr(d.msg, "body 'crank-rod' and joint 'crank-rod'"));
+  assert_int_equal(fb_planar_add_joint(m, "rod", FB_KIND_REVOLUTE, 1, 2, c, 0, &d), -1);
+  assert_non_null(strstr(d.msg, "joint 'rod' and body 'rod'"));
+  assert_int_equal(fb_planar_add_body(m, "drive", 1, 1, c, 0, 0, &d), -1); /* drive_angle_rad */
+  assert_non_null(strstr(d.msg, "drive_angle_rad"));
   assert_int_equal(fb_planar_add_body(m, "", 1, 1, c, 0, 0, &d), -1);
   assert_int_equal(fb_planar_add_joint(m, "x", FB_KIND_REVOLUTE, 1, 1, c, 0, &d), -1);
   assert_non_null(strstr(d.msg, "two different bodies"));

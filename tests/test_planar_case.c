@@ -294,6 +294,33 @@ static void test_bad_sections(void **state) {
 
 static void test_bad_mechanisms(void **state) {
   (void)state;
+  /* a zero-length link (the crank's joints at one point, its mass given) and
+   * a 0.5 um one: the four-bar's rule for crank_mm (LEN_RULE), at the later
+   * joint's at_mm (line 8) */
+  expect_error("[linkage]\ntype = planar\n[joint.a]\nbodies = ground, crank\nat_mm = 0, 0\n"
+               "[joint.b]\nbodies = crank, coupler\nat_mm = 0, 0\n"
+               "[joint.c]\nbodies = coupler, follower\nat_mm = 100, 120\n"
+               "[joint.d]\nbodies = follower, ground\nat_mm = 150, 0\n"
+               "[body.crank]\nmass_kg = 0.1\ninertia_kg_mm2 = 10\n" DRIVE, FB_ERR_RANGE,
+               (const char *[]){"@8", "[joint.b] at_mm = 0, 0", "body 'crank' has a link of 0 mm",
+                                "a link length must be positive, from 0.001 mm", NULL});
+  expect_error("[linkage]\ntype = planar\n[joint.a]\nbodies = ground, crank\nat_mm = 0, 0\n"
+               "[joint.b]\nbodies = crank, coupler\nat_mm = 0.0005, 0\n"
+               "[joint.c]\nbodies = coupler, follower\nat_mm = 100, 120\n"
+               "[joint.d]\nbodies = follower, ground\nat_mm = 150, 0\n" DRIVE, FB_ERR_RANGE,
+               (const char *[]){"@8", "a link of 0.0005 mm", NULL});
+  /* a compound hinge is no zero-length link: the follower's joints c and e
+   * at one pin C (coupler, follower and arm meet there), its d elsewhere */
+  {
+    fb_case c;
+    fb_diag d;
+    char path[64];
+    if (load_text(&c, HEAD "[joint.e]\nbodies = follower, arm\nat_mm = 100, 120\n"
+                           "[joint.f]\nbodies = arm, link\nat_mm = 150, 250\n"
+                           "[joint.g]\nbodies = link, ground\nat_mm = 260, 120\n" DRIVE,
+                  1, path, &d) != FB_OK)
+      fail_msg("a compound hinge: %s", d.msg);
+  }
   /* a body at one point has no bar */
   expect_error(HEAD "[joint.e]\nbodies = follower, pin\nat_mm = 150, 0\n" DRIVE, FB_ERR_ARG,
                (const char *[]){"@16", "body 'pin' has one joint point", "mass_kg", NULL});

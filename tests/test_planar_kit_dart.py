@@ -175,7 +175,8 @@ if rc == 0:
 # 2. the clearance models against the reference of the same law, impact by impact
 rc, _, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
                 "run.models=dart-clearance-impact,reference,dart-clearance-restitution,"
-                "reference-restitution", "--set", "run.revolutions=1", "--set", "solver.h_s=2e-6",
+                "reference-restitution", "--set", "run.revolutions=1", "--set", "run.peaks=all",
+                "--set", "solver.h_s=2e-6",
                 "--out", os.path.join(tmp, "clear"), "--no-figures", "--no-report")
 check(rc == 0, "the planar four-bar runs the DART clearance models (%s)" % se.strip()[-300:])
 if rc == 0:

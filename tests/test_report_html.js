@@ -32,6 +32,9 @@
  * names its own bodies and clearance joint: a panel per moving body, the
  * rod-output joint's force and penetration, the headline rows equal to
  * summary.json's bodies.<NAME> peaks, no "follower";
+ * bodies and joints named __proto__, constructor, prototype and
+ * hasOwnProperty (and toString, valueOf, ...) are data: their panels,
+ * headline rows and every summary.json value of theirs on the page;
  * and a run without the charting library ($FOURBAR_UPLOT_DIR pointing at
  * nothing) loads with no error, says how to get the charts, lists the
  * impacts and the numbers.
@@ -81,7 +84,8 @@ function check(ok, what) {
 const work = path.join(buildRoot, 'report-html-test');
 fs.rmSync(work, { recursive: true, force: true });
 fs.mkdirSync(work, { recursive: true });
-const nasty = path.join(work, 'paper <img src=x onerror="window.__pwned=1"> &amp; <b>.ini');
+/* markup, and what a template literal would run (report-data.js's JSON.parse(String.raw`...`)) */
+const nasty = path.join(work, 'paper <img src=x onerror="window.__pwned=1"> &amp; <b> `${window.__pwned=2}`.ini');
 fs.copyFileSync(path.join(root, 'cases', 'paper_crank_rocker.ini'), nasty);
 const out = path.join(work, 'run');
 execFileSync(fourbar, ['run', nasty, '--out', out, '--no-figures',
@@ -117,7 +121,7 @@ function flatten(v, p, outList) {
     check(await page.evaluate(() => window.fourbarReport.charts), 'charts drawn (uPlot loaded)');
     check(await page.evaluate(() => window.__pwned === undefined), 'the case file name ran as script');
     const meta = await page.textContent('#meta');
-    check(meta.includes('<img src=x onerror="window.__pwned=1"> &amp; <b>'), 'the case file name shown as text: ' + meta);
+    check(meta.includes('<img src=x onerror="window.__pwned=1"> &amp; <b> `${window.__pwned=2}`'), 'the case file name shown as text: ' + meta);
 
     /* 2. each panel has data */
     const panels = await page.evaluate(() => window.fourbarReport.panels());
@@ -402,6 +406,61 @@ function flatten(v, p, outList) {
     }
     check(!/follower/i.test(await page4.evaluate(() => document.body.innerText)), 'six-bar: the page names no follower');
     await page4.close();
+
+    /* names are data (docs/report.md, Safety): bodies and joints named
+     * __proto__, constructor, prototype and hasOwnProperty (each as a body
+     * and as a joint, in two runs of the paper's four-bar as a planar case)
+     * are keys like any other: each body has its panels and its headline
+     * rows, and every summary.json value of theirs is in the page's tables */
+    const namesAsData = [[['__proto__', 'constructor', 'prototype'], ['hasOwnProperty', 'toString', 'valueOf', 'isPrototypeOf']],
+      [['hasOwnProperty', 'toString', 'valueOf'], ['__proto__', 'constructor', 'prototype', 'propertyIsEnumerable']]];
+    for (const [b, j] of namesAsData) {
+      const text = '[case]\nname = names\n[linkage]\ntype = planar\n' +
+        '[joint.' + j[0] + ']\nbodies = ground, ' + b[0] + '\nat_mm = 0, 0\n' +
+        '[joint.' + j[1] + ']\nbodies = ' + b[0] + ', ' + b[1] + '\nat_mm = 108, 0\n' +
+        '[joint.' + j[2] + ']\nbodies = ' + b[1] + ', ' + b[2] + '\nat_mm = 197.760650684931, 264.589088188870\n' +
+        '[joint.' + j[3] + ']\nbodies = ' + b[2] + ', ground\nat_mm = 254, 0\n' +
+        b.map((n, i) => '[body.' + n + ']\nmass_kg = ' + [0.12, 0.29, 0.28][i] + '\ninertia_kg_mm2 = ' +
+          [173.92, 2070.46, 1988.39][i] + '\n').join('') +
+        '[drive]\njoint = ' + j[0] + '\nspeed_rpm = 1000\ndirection = cw\n';
+      const tag = b[0].replace(/_/g, '');
+      const caseFile = path.join(work, 'names_' + tag + '.ini');
+      fs.writeFileSync(caseFile, text);
+      const nd = path.join(work, 'names_' + tag);
+      execFileSync(fourbar, ['run', caseFile, '--out', nd, '--no-figures', '--set', 'run.revolutions=2'],
+        { stdio: ['ignore', 'ignore', 'inherit'] });
+      const ns = JSON.parse(fs.readFileSync(path.join(nd, 'summary.json'), 'utf8'));
+      const pageN = await browser.newPage({ viewport: { width: FB_VIEW_W, height: FB_VIEW_H } });
+      const errorsN = [];
+      pageN.on('console', (m) => { if (m.type() === 'error') errorsN.push('console: ' + m.text()); });
+      pageN.on('pageerror', (e) => errorsN.push('page error: ' + e.message));
+      await pageN.goto('file://' + path.join(nd, 'report.html'));
+      await pageN.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
+      await pageN.waitForTimeout(300);
+      check(errorsN.length === 0, 'names ' + b.join(',') + ': no console error: ' + errorsN.join('; '));
+      const ids = (await pageN.evaluate(() => window.fourbarReport.panels())).map((p) => p.id);
+      check(b.every((n) => ids.includes(n + '_alpha') && ids.includes(n + '_omega')),
+        'names ' + b.join(',') + ': a panel per body: ' + ids.join(', '));
+      const headN = await pageN.$$eval('#summary_head tr', (trs) => trs.map((tr) => Array.from(tr.cells).map((c) =>
+        [c.textContent, c.dataset.key])));
+      const rowsN = new Map(headN.map((r) => [r[0][0], r.slice(1)]));
+      for (const n of b) {
+        const row = rowsN.get(n + ' omega max [rad/s]') || [];
+        check(row.length === 1 && row[0][1] === 'bodies.' + n + '.omega_max_rad_s' &&
+          Number(row[0][0]) === ns.models[0].bodies[n].omega_max_rad_s,
+        'names: headline row "' + n + ' omega max" shows summary.json\'s value: ' + JSON.stringify(row));
+      }
+      const cellsN = await pageN.$$eval('#summary_models td[data-key]', (tds) => tds.map((td) => [td.dataset.key, td.textContent]));
+      const byKeyN = new Map(cellsN);
+      const flatN = flatten(ns.models[0], '', []);
+      const named = flatN.filter(([k]) => b.some((n) => k.startsWith('bodies.' + n + '.')) ||
+        j.some((n) => k === 'loads.reaction_max_n.' + n));
+      const missing = named.filter(([k, v]) => Number(byKeyN.get(k)) !== v).map(([k]) => k);
+      check(named.length === 4 * b.length + j.length && missing.length === 0,
+        'names ' + b.join(',') + ' / ' + j.join(',') + ': every value of theirs in the tables (' + named.length +
+        ' of ' + (4 * b.length + j.length) + '; missing ' + missing.join(', ') + ')');
+      await pageN.close();
+    }
 
     /* without the charting library: the page loads with no error, says how
      * to get the charts, and still lists the impacts and the numbers */

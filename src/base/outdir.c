@@ -30,27 +30,97 @@ typedef struct {
 
 static cleanup_slot slots[CLEANUP_SLOTS];
 
-/* Removes the regular files of a flat folder, then the folder, with system
- * calls only (safe in a signal handler). Subfolders are left (rmdir fails). */
-static void remove_flat(const char *dir) {
-  int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd >= 0) {
-    char buf[8192];
-    long n;
-    while ((n = syscall(SYS_getdents64, fd, buf, sizeof buf)) > 0) {
-      for (long off = 0; off < n;) {
-        /* struct linux_dirent64: ino (8), off (8), reclen (2), type (1), name */
-        unsigned short reclen;
-        memcpy(&reclen, buf + off + 16, sizeof reclen);
-        const char *name = buf + off + 19;
-        if (!(name[0] == '.' && (name[1] == '\0' || (name[1] == '.' && name[2] == '\0'))))
-          unlinkat(fd, name, 0);
-        off += reclen;
-      }
-    }
-    close(fd);
+/* The mark of a folder this program made beside an output folder (its
+ * staging folder, or the old set it moves aside before removing it): a file
+ * .fourbar-own.<pid> inside it, <pid> the maker's. Only a folder holding
+ * the mark of the process it is removed for loses its files: a name proves
+ * nothing (a user's folder, or a symbolic link to one, may be called
+ * .<out>.staging.<pid>). */
+#define OWN_MARK ".fourbar-own."
+
+/* the mark's name for pid into buf (32 bytes), with system-call-free code
+ * only (it runs in a signal handler) */
+static void mark_name(char buf[32], long pid) {
+  char num[24];
+  int k = (int)sizeof num - 1;
+  num[k] = '\0';
+  do num[--k] = (char)('0' + pid % 10), pid /= 10; while (pid > 0 && k > 0);
+  const size_t l = sizeof OWN_MARK - 1;
+  memcpy(buf, OWN_MARK, l);
+  memcpy(buf + l, num + k, sizeof num - (size_t)k);
+}
+
+/* Puts this process's mark into the folder dir (never through a link).
+ * Returns 0, or -1 with errno set. */
+static int mark_put(const char *dir) {
+  char name[32];
+  mark_name(name, (long)getpid());
+  const int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (dfd < 0) return -1;
+  const int fd = openat(dfd, name, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  const int e = errno;
+  close(dfd);
+  if (fd < 0 && e != EEXIST) {
+    errno = e;
+    return -1;
   }
-  rmdir(dir);
+  if (fd >= 0) close(fd);
+  return 0;
+}
+
+/* Removes pid's mark from dir (once dir is the result folder again). */
+static void mark_drop(const char *dir, long pid) {
+  char name[32];
+  mark_name(name, pid);
+  const int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (dfd < 0) return;
+  unlinkat(dfd, name, 0);
+  close(dfd);
+}
+
+/* 1 when the open folder dfd is one pid made: a real folder owned by this
+ * user holding pid's mark, a regular file owned by this user */
+static int made_by(int dfd, long pid) {
+  struct stat sb;
+  if (fstat(dfd, &sb) != 0 || !S_ISDIR(sb.st_mode) || sb.st_uid != geteuid()) return 0;
+  char name[32];
+  mark_name(name, pid);
+  return fstatat(dfd, name, &sb, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(sb.st_mode) &&
+         sb.st_uid == geteuid();
+}
+
+/* Removes the files of a flat folder pid made (made_by), then the folder,
+ * with system calls only (safe in a signal handler). The folder is opened
+ * without following a link, and its entries are unlinked through that open
+ * folder, so nothing outside it is touched; a link inside loses the link
+ * only. A folder without pid's mark is left whole; subfolders are left
+ * (the rmdir then fails). */
+static void remove_flat(const char *dir, long pid) {
+  const int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return;
+  if (!made_by(fd, pid)) {
+    close(fd);
+    return;
+  }
+  char buf[8192], mark[32];
+  mark_name(mark, pid);
+  long n;
+  while ((n = syscall(SYS_getdents64, fd, buf, sizeof buf)) > 0) {
+    for (long off = 0; off < n;) {
+      /* struct linux_dirent64: ino (8), off (8), reclen (2), type (1), name */
+      unsigned short reclen;
+      memcpy(&reclen, buf + off + 16, sizeof reclen);
+      const char *name = buf + off + 19;
+      /* the mark last: a folder interrupted here is still recognised as ours */
+      if (!(name[0] == '.' && (name[1] == '\0' || (name[1] == '.' && name[2] == '\0'))) &&
+          strcmp(name, mark) != 0)
+        unlinkat(fd, name, 0);
+      off += reclen;
+    }
+  }
+  unlinkat(fd, mark, 0);
+  close(fd);
+  rmdir(dir); /* a link put in its place meanwhile: ENOTDIR, nothing removed */
 }
 
 /* the children (gnuplot, drawing figures side by side) writing into a
@@ -119,7 +189,7 @@ static void on_signal(int sig) {
   }
   for (int k = 0; k < CLEANUP_SLOTS; k++) {
     if (!slots[k].used || slots[k].owner != me) continue;
-    if (slots[k].is_dir) remove_flat(slots[k].path);
+    if (slots[k].is_dir) remove_flat(slots[k].path, (long)me);
     else unlink(slots[k].path);
   }
   if (note_owner == me) write_note(sig);
@@ -257,9 +327,14 @@ static int pid_gone(long pid) { return pid > 0 && kill((pid_t)pid, 0) != 0 && er
  * program writes, else 0:
  *   <result file>.tmp.<pid>.XXXXXX  (fileio.c: mkstemp's six characters)
  *   .figure.tmp.<pid>.<serial>.svg|png  (figures.c: gnuplot's output)
+ *   .fourbar-own.<pid>  (the mark of a folder this program made, OWN_MARK:
+ *                        left in a result folder by a writer killed within
+ *                        its commit)
  * A user's file that merely contains ".tmp.<number>." is none of these. */
 long fb_outdir_temp_pid(const char *name) {
   const size_t n = strlen(name);
+  if (strncmp(name, OWN_MARK, sizeof OWN_MARK - 1) == 0)
+    return pid_in(name + sizeof OWN_MARK - 1, n - (sizeof OWN_MARK - 1));
   if (strncmp(name, ".figure.tmp.", 12) == 0) {
     const char *p = name + 12, *d1 = strchr(p, '.');
     const char *d2 = d1 ? strchr(d1 + 1, '.') : NULL;
@@ -292,6 +367,38 @@ static int beside_name(const char *name, const char *base, const char *kind, lon
   if (strncmp(name, prefix, l) != 0) return 0;
   *pid = pid_in(name + l, strlen(name + l));
   return *pid > 0;
+}
+
+/* What a killed writer (its PID gone) left beside the folder. With
+ * restore = 1: an old set it had moved aside (.<base>.old.<pid>) is moved
+ * back when the folder is not there (the writer died between the two
+ * renames of fb_outdir_commit), so a user's files in it are not lost. With
+ * restore = 0: its staging and old folders are removed. Either only for a
+ * folder holding its maker's mark (made_by): a link, or a folder fourbar did
+ * not make, is left as it is whatever its name. */
+static void leftovers(const char *parent, const char *base, const char *target, int restore) {
+  DIR *d = opendir(parent);
+  if (!d) return;
+  struct dirent *e;
+  while ((e = readdir(d))) {
+    long pid = 0;
+    const int old = beside_name(e->d_name, base, "old", &pid);
+    if (!old && (restore || !beside_name(e->d_name, base, "staging", &pid))) continue;
+    if (!pid_gone(pid)) continue; /* a live writer's (it holds the lock: never ours to take) */
+    char path[FB_OUTDIR_PATH + NAME_MAX + 2];
+    snprintf(path, sizeof path, "%s/%s", parent, e->d_name);
+    if (!restore) {
+      remove_flat(path, pid);
+      continue;
+    }
+    struct stat sb;
+    if (lstat(target, &sb) == 0 || errno != ENOENT) continue;
+    const int fd = open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) continue;
+    if (made_by(fd, pid) && rename(path, target) == 0) mark_drop(target, pid);
+    close(fd);
+  }
+  closedir(d);
 }
 
 /* Checks the target may be used (replaced, with replace = 1), then removes
@@ -361,20 +468,7 @@ static fb_status clean_and_check(const fb_outdir *o, const char *parent, const c
     }
     closedir(d);
   }
-  d = opendir(parent);
-  if (d) {
-    struct dirent *e;
-    while ((e = readdir(d))) {
-      long pid = 0;
-      if (!beside_name(e->d_name, base, "staging", &pid) && !beside_name(e->d_name, base, "old", &pid))
-        continue;
-      if (!pid_gone(pid)) continue; /* a live writer's (it holds the lock: never ours to take) */
-      char path[FB_OUTDIR_PATH + NAME_MAX + 2];
-      snprintf(path, sizeof path, "%s/%s", parent, e->d_name);
-      remove_flat(path);
-    }
-    closedir(d);
-  }
+  leftovers(parent, base, o->target, 0);
   return FB_OK;
 }
 
@@ -503,6 +597,7 @@ fb_status fb_outdir_lock(fb_outdir *o, const char *dir, int replace, const char 
       return st;
     }
   }
+  leftovers(parent, base, o->target, 1);
   st = clean_and_check(o, parent, base, replace, diag);
   if (st == FB_OK && !replace) st = mkdir_p(o->target, diag);
   if (st != FB_OK) fb_outdir_release(o);
@@ -521,6 +616,13 @@ fb_status fb_outdir_stage(fb_outdir *o, fb_diag *diag) {
     o->stage[0] = '\0';
     return fb_diag_set(diag, FB_ERR_IO, "%s: cannot create the staging folder beside it: %s",
                        o->target, strerror(e));
+  }
+  if (mark_put(o->stage) != 0) {
+    const int e = errno;
+    rmdir(o->stage);
+    o->stage[0] = '\0';
+    return fb_diag_set(diag, FB_ERR_IO, "%s: cannot mark the staging folder beside it as "
+                       "fourbar's: %s", o->target, strerror(e));
   }
   stage_slot = fb_cleanup_add(o->stage, 1);
   return FB_OK;
@@ -615,30 +717,44 @@ fb_status fb_outdir_commit(fb_outdir *o, fb_diag *diag) {
   o->legacy = 0;
   const fb_status cst = carry_over(o, diag); /* also into a folder that is not there yet */
   if (cst != FB_OK) return cst;
+  const long me = (long)getpid();
   if (stat(o->target, &sb) != 0) {
     if (rename(o->stage, o->target) != 0)
       return fb_diag_set(diag, FB_ERR_IO, "%s: cannot move the results into place: %s", o->target,
                          strerror(errno));
-  } else if (renameat2(AT_FDCWD, o->stage, AT_FDCWD, o->target, RENAME_EXCHANGE) != 0) {
-    /* a file system without the exchange: the old set leaves, then the new arrives */
-    char old[FB_OUTDIR_PATH + 32];
-    char *slash = strrchr(o->target, '/');
-    snprintf(old, sizeof old, "%.*s/.%s.old.%ld", (int)(slash - o->target), o->target, slash + 1,
-             (long)getpid());
-    if (rename(o->target, old) != 0)
+  } else {
+    /* the old set is marked as this process's before it leaves the folder's
+     * name, so that it is removed (here, on a signal, or after a kill by the
+     * next writer) as a folder this program made, and nothing else is */
+    if (mark_put(o->target) != 0)
       return fb_diag_set(diag, FB_ERR_IO, "%s: cannot replace: %s", o->target, strerror(errno));
-    if (rename(o->stage, o->target) != 0) {
-      const int e = errno;
-      rename(old, o->target);
-      return fb_diag_set(diag, FB_ERR_IO, "%s: cannot replace: %s", o->target, strerror(e));
+    if (renameat2(AT_FDCWD, o->stage, AT_FDCWD, o->target, RENAME_EXCHANGE) != 0) {
+      /* a file system without the exchange: the old set leaves, then the new arrives */
+      char old[FB_OUTDIR_PATH + 32];
+      char *slash = strrchr(o->target, '/');
+      snprintf(old, sizeof old, "%.*s/.%s.old.%ld", (int)(slash - o->target), o->target,
+               slash + 1, me);
+      if (rename(o->target, old) != 0) {
+        const int e = errno;
+        mark_drop(o->target, me);
+        return fb_diag_set(diag, FB_ERR_IO, "%s: cannot replace: %s", o->target, strerror(e));
+      }
+      if (rename(o->stage, o->target) != 0) {
+        const int e = errno;
+        rename(old, o->target);
+        mark_drop(o->target, me);
+        return fb_diag_set(diag, FB_ERR_IO, "%s: cannot replace: %s", o->target, strerror(e));
+      }
+      mark_drop(o->target, me); /* the new set's: it is the result folder now */
+      remove_flat(old, me);
+      fb_cleanup_forget(stage_slot);
+      o->stage[0] = '\0';
+      return FB_OK;
     }
-    remove_flat(old);
-    fb_cleanup_forget(stage_slot);
-    o->stage[0] = '\0';
-    return FB_OK;
   }
+  mark_drop(o->target, me);
   /* after an exchange the staging name holds the old set */
-  remove_flat(o->stage);
+  remove_flat(o->stage, me);
   fb_cleanup_forget(stage_slot);
   o->stage[0] = '\0';
   return FB_OK;
@@ -646,7 +762,7 @@ fb_status fb_outdir_commit(fb_outdir *o, fb_diag *diag) {
 
 void fb_outdir_release(fb_outdir *o) {
   if (o->stage[0]) {
-    remove_flat(o->stage);
+    remove_flat(o->stage, (long)getpid());
     fb_cleanup_forget(stage_slot);
     o->stage[0] = '\0';
   }

@@ -7,10 +7,15 @@
  * holder. Every writer takes that lock: a whole-folder writer (run, sweep,
  * merge) exclusively, a writer of one part (a sweep shard) shared, plus a
  * lock of its own part. While holding the lock it removes what a killed
- * writer left behind: staging folders .<name>.staging.<pid> beside the
- * folder, and temporary files inside it, each only when its name has exactly
- * the form this program writes (fb_outdir_temp_pid) and its process is gone.
- * A folder that is refused loses nothing.
+ * writer left behind: staging and old folders .<name>.staging.<pid> and
+ * .<name>.old.<pid> beside the folder, and temporary files inside it, each
+ * only when its name has exactly the form this program writes
+ * (fb_outdir_temp_pid) and its process is gone. A name proves nothing by
+ * itself: a folder beside is emptied only when it is a real folder (never
+ * a symbolic link, nothing is followed), owned by this user, holding the
+ * mark .fourbar-own.<pid> its maker put in it; anything else is left as it
+ * is. An old set a writer killed within its commit had moved aside is moved
+ * back when the folder is missing. A folder that is refused loses nothing.
  *
  * A run then writes its whole result set into a staging folder beside the
  * target and swaps it in at the end (renameat2 RENAME_EXCHANGE, then the old
@@ -27,8 +32,9 @@
  * mount point or the current folder, and a symbolic link to nothing is
  * refused.
  *
- * On SIGINT, SIGTERM and SIGHUP the staging folder and registered temporary
- * files of this process are removed (async-signal-safe code only), a note
+ * On SIGINT, SIGTERM and SIGHUP the staging folder (when it still holds this
+ * process's mark) and registered temporary files of this process are
+ * removed (async-signal-safe code only), a note
  * (fb_cleanup_note) is written, then the signal takes its default action
  * (exit status 128 + the signal's number in a shell). */
 #ifndef FB_OUTDIR_H
@@ -79,7 +85,8 @@ fb_status fb_lock_take(const char *lock_path, const char *name, const char *what
                        fb_diag *diag);
 
 /* The PID named in a temporary file name of this program's exact forms
- * (<result file>.tmp.<pid>.XXXXXX, .figure.tmp.<pid>.<n>.svg|png), else 0. */
+ * (<result file>.tmp.<pid>.XXXXXX, .figure.tmp.<pid>.<n>.svg|png, and
+ * .fourbar-own.<pid>, the mark of a folder this program made), else 0. */
 long fb_outdir_temp_pid(const char *name);
 
 /* Creates the staging folder (o->stage) and registers it for removal on a

@@ -323,6 +323,16 @@ void fb_case_default(fb_case *c);
  * Errors: FB_ERR_RANGE, FB_ERR_ASSEMBLY, FB_ERR_ARG with the rule in diag. */
 fb_status fb_case_check(const fb_case *c, fb_diag *diag);
 
+/* The rules of the run's keys that every mechanism has, one place for the
+ * four-bar, the slider-crank (fb_case_check calls it) and a planar case
+ * (casefile.c calls it after its description checks): [solver] h_max_s not
+ * below h_min_s for an adaptive step; h_s positive, shorter than the run
+ * and at most 1e9 steps of it; [run] revolutions at least 2 when the peaks
+ * are the steady window's (peaks = steady, which starts after the first
+ * revolution), for a case with a drive. Errors: FB_ERR_RANGE naming the
+ * keys, their values and the rule. */
+fb_status fb_case_check_run(const fb_case *c, fb_diag *diag);
+
 /* The mechanism the case describes (mechanism.h), chosen by its [linkage]
  * type: fb_mech_fourbar or fb_mech_slider_crank. */
 const fb_mech_desc *fb_case_mech(const fb_case *c);

@@ -3,6 +3,7 @@
  * description, and the in-place passes over the columns (peak refinement,
  * attribution to the step start). */
 #include "series.h"
+#include "names.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -251,10 +252,7 @@ size_t fb_series_column_count(const fb_series *s) {
 }
 
 static const char *joint_word(const fb_series *s, int j, char *buf, size_t size) {
-  snprintf(buf, size, "%s", fb_mech_joint_name(mech_of(s), j));
-  for (char *p = buf; *p; p++)
-    if (*p == '-') *p = '_';
-  return buf;
+  return fb_name_word(buf, size, fb_mech_joint_name(mech_of(s), j));
 }
 
 const char *fb_series_column_name(const fb_series *s, size_t k, char *buf, size_t size) {

@@ -13,6 +13,7 @@
 #include "fileio.h"
 #include "outcome_text.h"
 #include "report_internal.h"
+#include "names.h"
 
 /* finite number or null */
 static json_t *num(double x) { return isfinite(x) ? json_real(x) : json_null(); }
@@ -135,10 +136,7 @@ json_t *fb_report_loads_of(const double *t, size_t n, double t_from, const doubl
 }
 
 const char *fb_report_joint_key(char *buf, size_t size, const char *joint) {
-  snprintf(buf, size, "%s", joint);
-  for (char *p = buf; *p; p++)
-    if (*p == '-') *p = '_';
-  return buf;
+  return fb_name_word(buf, size, joint);
 }
 
 json_t *fb_report_loads_json(const fb_series *s, double t_from) {

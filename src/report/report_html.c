@@ -362,6 +362,46 @@ static int write_json_value(FILE *f, const void *arg, size_t flags) {
   return json_dumpf(arg, f, flags | JSON_REAL_PRECISION(SERIES_DIGITS)) != 0 ? -1 : 0;
 }
 
+/* A stream through to the FILE cookie with '`' and '$' written as JSON's
+ * \u0060 and \u0024 (they occur in JSON text inside strings only): the
+ * JSON text then sits whole in a JavaScript template literal (String.raw),
+ * where those two are the only characters with a meaning. */
+static ssize_t raw_write(void *cookie, const char *buf, size_t n) {
+  FILE *f = cookie;
+  size_t from = 0;
+  for (size_t i = 0; i < n; i++)
+    if (buf[i] == '`' || buf[i] == '$') {
+      fwrite(buf + from, 1, i - from, f);
+      fputs(buf[i] == '`' ? "\\u0060" : "\\u0024", f);
+      from = i + 1;
+    }
+  fwrite(buf + from, 1, n - from, f);
+  return ferror(f) ? -1 : (ssize_t)n;
+}
+
+/* one JSON value into f as JSON.parse(String.raw`...`): JSON.parse, not an
+ * object literal, because a literal takes a key "__proto__" for the
+ * object's prototype (a body of that name would vanish), and JSON.parse
+ * keeps it as a key (names are data; the page copies every object into one
+ * without a prototype, report_page.js). Returns value's status, -1 on a
+ * failed write. */
+static int write_parsed(FILE *f, int (*value)(FILE *, const void *, size_t), const void *arg,
+                        size_t flags) {
+  cookie_io_functions_t io = {.write = raw_write};
+  FILE *g = fopencookie(f, "w", io);
+  if (!g) return -1;
+  fputs("JSON.parse(String.raw`", f);
+  const int w = value(g, arg, flags);
+  const int bad = fclose(g) != 0;
+  fputs("`)", f);
+  return w ? w : bad || ferror(f) ? -1 : 0;
+}
+
+/* summary.json's value, as it is written there (write_parsed's value) */
+static int write_summary_value(FILE *f, const void *arg, size_t flags) {
+  return json_dumpf(arg, f, flags | JSON_REAL_PRECISION(12)) != 0 ? -1 : 0;
+}
+
 /* writes report-data.js: the data value writes (0, -1 on a failed write,
  * -2 out of memory), then summary.json's value */
 static fb_status write_data(const char *dir, int (*value)(FILE *, const void *, size_t),
@@ -374,9 +414,9 @@ static fb_status write_data(const char *dir, int (*value)(FILE *, const void *, 
   /* JSON_ENSURE_ASCII | JSON_ESCAPE_SLASH: no "</script>", no U+2028 */
   const size_t flags = JSON_COMPACT | JSON_ENSURE_ASCII | JSON_ESCAPE_SLASH;
   fputs("/* fourbar run data for report.html (docs/report.md) */\nwindow.FOURBAR_DATA = ", out.f);
-  const int w = value(out.f, arg, flags);
+  const int w = write_parsed(out.f, value, arg, flags);
   fputs(";\nwindow.FOURBAR_DATA.summary = ", out.f);
-  int bad = w != 0 || json_dumpf(summary, out.f, flags | JSON_REAL_PRECISION(12)) != 0; /* as summary.json */
+  int bad = w != 0 || write_parsed(out.f, write_summary_value, summary, flags) != 0;
   fputs(";\n", out.f);
   if (bad) {
     fb_outfile_abort(&out);

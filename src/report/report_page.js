@@ -1,9 +1,20 @@
 /* fourbar report.html: the page's script (docs/report.md). Reads
  * window.FOURBAR_DATA (report-data.js); every text of the run reaches the
- * page through textContent, never as markup. */
+ * page through textContent, never as markup, and every name is data: the
+ * data's objects are copied into objects without a prototype (bare), and
+ * every table by name is one, so a body or joint named __proto__,
+ * constructor or hasOwnProperty is a key like any other. */
 (function () {
   'use strict';
-  var D = window.FOURBAR_DATA;
+  /* v with every object (not an array) copied into one without a prototype */
+  function bare(v) {
+    if (Array.isArray(v)) return v.map(bare);
+    if (v === null || typeof v !== 'object') return v;
+    var o = Object.create(null);
+    Object.keys(v).forEach(function (k) { o[k] = bare(v[k]); });
+    return o;
+  }
+  var D = window.FOURBAR_DATA ? bare(window.FOURBAR_DATA) : null;
   var $ = function (id) { return document.getElementById(id); };
   function el(tag, text, cls) {
     var e = document.createElement(tag);
@@ -16,7 +27,7 @@
   if (!charts) $('nocharts').style.display = 'block';
 
   /* ---- the run ------------------------------------------------------------ */
-  var S = D.summary || {};
+  var S = D.summary || Object.create(null);
   document.title = 'fourbar report: ' + D['case'];
   $('title').textContent = 'fourbar report: ' + D['case'];
   $('meta').textContent = (S.case_file ? S.case_file + ': ' : '') + D.speed_rpm.toFixed(0) + ' rpm ' +
@@ -243,7 +254,7 @@
   var impacts = [];
   D.models.forEach(function (m) { m.impacts.forEach(function (im) { impacts.push(im); }); });
   impacts.forEach(function (im, k) { im.index = k; });
-  var modelByName = {};
+  var modelByName = Object.create(null);
   D.models.forEach(function (m) { modelByName[m.name] = m; });
   /* the impact list's last columns: each output body's acceleration */
   var ihead = $('impacts').tHead.rows[0];
@@ -480,7 +491,7 @@
   function summaryTables() {
     var box = $('summary');
     box.textContent = '';
-    var run = {};
+    var run = Object.create(null);
     Object.keys(S).forEach(function (k) { if (k !== 'models') run[k] = S[k]; });
     var models = S.models || [];
     var flat = models.map(function (m) { return flatten(m, '', []); });

@@ -18,6 +18,7 @@
 #include "report_variants.h"
 #include "resolution.h"
 #include "start.h"
+#include "names.h"
 
 /* prose (report_common.h) */
 #define say fb_report_say
@@ -429,9 +430,7 @@ static void print_loads(FILE *f, const fb_run *r, int W) {
       const int n1 = dash ? (int)(dash - nm) : (int)strlen(nm);
       snprintf(top[j], sizeof top[j], "|R| %.*s-", n1, nm);
       snprintf(bottom[j], sizeof bottom[j], "%s N", dash ? dash + 1 : "");
-      snprintf(key[j], sizeof key[j], "%s", nm);
-      for (char *p = key[j]; *p; p++)
-        if (*p == '-') *p = '_';
+      fb_name_word(key[j], sizeof key[j], nm);
     }
     fprintf(f, "%-*s %10s %10s %12s %12s %12s %12s\n%-*s %10s %10s %12s %12s %12s %12s\n", W,
             "model", "torque max", "torque min", top[0], top[1], top[2], top[3], W, "", "N m",

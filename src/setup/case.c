@@ -11,6 +11,36 @@ void fb_case_grashof_text(const fb_case *c, char *out, size_t size) {
   fb_closed_form_of(c->mechanism)->class_text(c, out, size);
 }
 
+fb_status fb_case_check_run(const fb_case *c, fb_diag *diag) {
+  if (c->solver.h_mode == FB_STEP_ADAPTIVE && !(c->solver.h_max >= c->solver.h_min))
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "[solver] h_max_s = %g: the longest adaptive step must not be below "
+                       "h_min_s = %g",
+                       c->solver.h_max, c->solver.h_min);
+  const double dur = fb_case_duration(c);
+  /* the run's length as the case gives it: a time, or revolutions at a speed */
+  char run[160];
+  if (c->duration_s > 0.0) snprintf(run, sizeof run, "[run] duration_s = %g", c->duration_s);
+  else
+    snprintf(run, sizeof run, "[run] revolutions = %g at [drive] speed_rpm = %g", c->revolutions,
+             c->crank_speed * 60.0 / (2.0 * M_PI));
+  if (!(c->solver.h > 0.0) || c->solver.h >= dur)
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "[solver] h_s = %g: the step size must be positive and smaller than the "
+                       "run (%g s for %s)", c->solver.h, dur, run);
+  if (dur / c->solver.h > 1e9)
+    return fb_diag_set(diag, FB_ERR_RANGE, "[solver] h_s = %g over %g s (%s) is %.3g steps: "
+                       "more than 1e9 steps", c->solver.h, dur, run, dur / c->solver.h);
+  const int driven = !(c->planar.on && c->planar.undriven); /* a revolution to count */
+  if (driven && c->revolutions < 2.0 && c->peaks == FB_PEAKS_STEADY)
+    return fb_diag_set(diag, FB_ERR_RANGE,
+                       "[run] revolutions = %g: the steady peak window starts after the first "
+                       "revolution, so run at least 2, or take peaks over the whole run "
+                       "([run] peaks = all)",
+                       c->revolutions);
+  return FB_OK;
+}
+
 fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
   const fb_closed_form *cf = fb_closed_form_of(c->mechanism);
   fb_status st = cf->check_case(c, diag);
@@ -60,29 +90,7 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
                        "smaller than the pin radius, [pin] diameter_mm / 2 = %g mm",
                        c->radial_clearance * 1e6, 0.5 * c->pin_diameter * 1e3);
   if (cf->check_drivable && (st = cf->check_drivable(c, diag)) != FB_OK) return st;
-  if (c->solver.h_mode == FB_STEP_ADAPTIVE && !(c->solver.h_max >= c->solver.h_min))
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "[solver] h_max_s = %g: the longest adaptive step must not be below "
-                       "h_min_s = %g",
-                       c->solver.h_max, c->solver.h_min);
-  double dur = fb_case_duration(c);
-  if (!(c->solver.h > 0.0) || c->solver.h >= dur)
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "[solver] h_s = %g: the step size must be positive and smaller than the "
-                       "run (%g s for [run] revolutions = %g at [drive] speed_rpm = %g)",
-                       c->solver.h, dur, c->revolutions, c->crank_speed * 60.0 / (2.0 * M_PI));
-  if (dur / c->solver.h > 1e9)
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "[solver] h_s = %g over %g s ([run] revolutions = %g at [drive] "
-                       "speed_rpm = %g) is %.3g steps: more than 1e9 steps",
-                       c->solver.h, dur, c->revolutions, c->crank_speed * 60.0 / (2.0 * M_PI),
-                       dur / c->solver.h);
-  if (c->revolutions < 2.0 && c->peaks == FB_PEAKS_STEADY)
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "[run] revolutions = %g: the steady peak window starts after the first "
-                       "revolution, so run at least 2, or take peaks over the whole run "
-                       "([run] peaks = all)",
-                       c->revolutions);
+  if ((st = fb_case_check_run(c, diag)) != FB_OK) return st;
   if (c->clearance.penetration_limit < 0.0)
     return fb_diag_set(diag, FB_ERR_RANGE, "[clearance] penetration_limit_um = %g: must be >= 0",
                        c->clearance.penetration_limit * 1e6);

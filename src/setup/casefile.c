@@ -676,6 +676,31 @@ fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text
   return load(out, name, text, size, NULL, 0, 0, diag);
 }
 
+/* The message of a cross-key rule (inner, a case check's) into diag, with
+ * where each key it names was given (its last entry). Returns st. */
+static fb_status cross_key(const load_ctx *c, const char *path, fb_status st,
+                           const fb_diag *inner, fb_diag *diag) {
+  char where[FB_DIAG_SIZE] = "";
+  size_t l = 0;
+  for (int i = c->n - 1; i >= 0 && l + 1 < sizeof where; i--) {
+    const entry *e = &c->e[i];
+    char sk[160];
+    snprintf(sk, sizeof sk, " %s", e->key);
+    const char *at = strstr(inner->msg, sk);
+    const int named = at && (at[strlen(sk)] == ' ' || at[strlen(sk)] == '\0' ||
+                             at[strlen(sk)] == ',') &&
+                      strstr(inner->msg, e->section) != NULL;
+    int later = 0; /* only the entry that counts: the last for its key */
+    for (int q = i + 1; q < c->n; q++)
+      later |= strcmp(c->e[q].section, e->section) == 0 && strcmp(c->e[q].key, e->key) == 0;
+    if (named && !later)
+      l += (size_t)snprintf(where + l, sizeof where - l, "%s[%s] %s at %s", l ? "; " : "",
+                            e->section, e->key, e->origin);
+  }
+  return fb_diag_set(diag, st, "%s: %s%s%s%s", path ? path : "case", inner->msg,
+                     l ? " (given: " : "", where, l ? ")" : "");
+}
+
 static fb_status load(fb_case *out, const char *path, const char *text, size_t text_size,
                       const char *const *overrides, int n_overrides, int planar, fb_diag *diag) {
   fb_diag_clear(diag);
@@ -720,6 +745,9 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
     out->given[i] = entry_origin(c, fb_casefile_spec(i)->section, fb_casefile_spec(i)->key) != NULL;
   if (out->planar.on) { /* its sections, masses and checks are casefile_planar.c's */
     st = fb_casefile_planar_finish(out, c->e, c->n, path, planar, diag);
+    fb_diag inner; /* then the run's rules every mechanism shares */
+    if (st == FB_OK && (st = fb_case_check_run(out, &inner)) != FB_OK)
+      cross_key(c, path, st, &inner, diag);
     goto done;
   }
   if (!fb_casefile_given(out, "run", "models") && out->clearance.mask)
@@ -748,28 +776,7 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   {
     fb_diag inner;
     st = fb_case_check(out, &inner);
-    if (st != FB_OK) {
-      /* a cross-key rule: where each key it names was given (its last entry) */
-      char where[FB_DIAG_SIZE] = "";
-      size_t l = 0;
-      for (int i = c->n - 1; i >= 0 && l + 1 < sizeof where; i--) {
-        const entry *e = &c->e[i];
-        char sk[160];
-        snprintf(sk, sizeof sk, " %s", e->key);
-        const char *at = strstr(inner.msg, sk);
-        const int named = at && (at[strlen(sk)] == ' ' || at[strlen(sk)] == '\0' ||
-                                 at[strlen(sk)] == ',') &&
-                          strstr(inner.msg, e->section) != NULL;
-        int later = 0; /* only the entry that counts: the last for its key */
-        for (int q = i + 1; q < c->n; q++)
-          later |= strcmp(c->e[q].section, e->section) == 0 && strcmp(c->e[q].key, e->key) == 0;
-        if (named && !later)
-          l += (size_t)snprintf(where + l, sizeof where - l, "%s[%s] %s at %s", l ? "; " : "",
-                                e->section, e->key, e->origin);
-      }
-      fb_diag_set(diag, st, "%s: %s%s%s%s", path ? path : "case", inner.msg, l ? " (given: " : "",
-                  where, l ? ")" : "");
-    }
+    if (st != FB_OK) cross_key(c, path, st, &inner, diag);
   }
 done:
   free(c);

@@ -63,6 +63,15 @@ typedef struct {
 } key_spec;
 
 #define OFF(field) offsetof(fb_case, field)
+
+/* A link's length [mm]: a four-bar's or slider-crank's [linkage] crank_mm,
+ * coupler_mm, follower_mm, ground_mm, and the distance between two
+ * revolute joints of one body of a planar case (casefile_planar.c): one
+ * rule for every mechanism. Outside it ODE's closed-loop solve degenerates
+ * and the mechanism is no linkage this program models (issue 13). */
+#define FB_LINK_MM_MIN 1e-3
+#define FB_LINK_MM_MAX 1e5
+#define LEN_RULE "a link length must be positive, from 0.001 mm to 1e5 mm (1 um to 100 m)"
 #define MASS_RULE "a mass must be positive, from 1e-6 kg to 1e4 kg (1 mg to 10 t)"
 
 /* run by default, after the key's default list, when a case has clearance
@@ -113,6 +122,17 @@ typedef struct {
  * FB_ERR_RANGE for a value outside the row's range, FB_ERR_ARG for a model
  * or a series format this build lacks. */
 fb_status fb_casefile_apply(fb_case *c, const entry *e, fb_diag *diag);
+
+/* A comma list of joint names, e's value, into *mask over the mechanism's
+ * joints names[0 .. n-1] (bit j for names[j]), *count items: one rule for
+ * every mechanism's list ([clearance] joints of a four-bar, a slider-crank
+ * or a planar case; a planar case's [drive] joint). "none" is no joint.
+ * Returns FB_OK; FB_ERR_PARSE with diag filled (file, line, key, value, rule)
+ * for an empty item or a joint given twice; FB_ERR_ARG with the item in
+ * unknown (size bytes) and diag untouched for a name that is not a joint:
+ * the caller's message names the choices. */
+fb_status fb_casefile_joint_list(const entry *e, const char *const *names, int n, int *mask,
+                                 int *count, char *unknown, size_t size, fb_diag *diag);
 
 /* s without the blanks (spaces, tabs) around it: s is cut at its end, the
  * result points into it. */

@@ -21,7 +21,8 @@
 /* honest physical ranges (issue 13): outside them ODE's closed-loop solve
  * degenerates (dxNormalize4 aborts were measured at CFM 1e-18 and at
  * extreme mass ratios) and the mechanism is no four-bar this program models */
-#define LEN_RULE "a link length must be positive, from 0.001 mm to 1e5 mm (1 um to 100 m)"
+/* (LEN_RULE, FB_LINK_MM_MIN and _MAX: casefile_internal.h; a planar case's
+ * links follow them too) */
 #define TOL_RULE "a tolerance must be >= 0"
 /* (MASS_RULE: casefile_internal.h, the mass resolution says it too) */
 #define INERTIA_RULE "a moment of inertia must be positive, from 1e-6 to 1e12 kg mm^2"
@@ -93,14 +94,14 @@ static const key_spec keys[] = {
      "coupler_mm, offset_mm and [mass] slider_kg), or planar: any planar mechanism of one "
      "degree of freedom given by [joint.NAME] and [body.NAME] sections and [drive] joint "
      "(docs/planar.md; checked, not yet run)"},
-    {"linkage", "crank_mm", K_DOUBLE, OFF(nominal.length[FB_CRANK]), FB_M_PER_MM, 1e-3, 1e5, 0, 0, "mm",
-     "108", LEN_RULE, "basic crank length, A to B"},
-    {"linkage", "coupler_mm", K_DOUBLE, OFF(nominal.length[FB_COUPLER]), FB_M_PER_MM, 1e-3, 1e5, 0, 0,
-     "mm", "279.4", LEN_RULE, "basic coupler length, B to C"},
-    {"linkage", "follower_mm", K_DOUBLE, OFF(nominal.length[FB_FOLLOWER]), FB_M_PER_MM, 1e-3, 1e5, 0, 0,
-     "mm", "270.5", LEN_RULE, "basic follower (rocker) length, D to C"},
-    {"linkage", "ground_mm", K_DOUBLE, OFF(nominal.length[FB_GROUND]), FB_M_PER_MM, 1e-3, 1e5, 0, 0,
-     "mm", "254", LEN_RULE, "basic ground length, A to D along +x"},
+    {"linkage", "crank_mm", K_DOUBLE, OFF(nominal.length[FB_CRANK]), FB_M_PER_MM, FB_LINK_MM_MIN,
+     FB_LINK_MM_MAX, 0, 0, "mm", "108", LEN_RULE, "basic crank length, A to B"},
+    {"linkage", "coupler_mm", K_DOUBLE, OFF(nominal.length[FB_COUPLER]), FB_M_PER_MM, FB_LINK_MM_MIN,
+     FB_LINK_MM_MAX, 0, 0, "mm", "279.4", LEN_RULE, "basic coupler length, B to C"},
+    {"linkage", "follower_mm", K_DOUBLE, OFF(nominal.length[FB_FOLLOWER]), FB_M_PER_MM, FB_LINK_MM_MIN,
+     FB_LINK_MM_MAX, 0, 0, "mm", "270.5", LEN_RULE, "basic follower (rocker) length, D to C"},
+    {"linkage", "ground_mm", K_DOUBLE, OFF(nominal.length[FB_GROUND]), FB_M_PER_MM, FB_LINK_MM_MIN,
+     FB_LINK_MM_MAX, 0, 0, "mm", "254", LEN_RULE, "basic ground length, A to D along +x"},
     {"linkage", "offset_mm", K_DOUBLE, OFF(nominal.length[FB_LENGTH_OFFSET]), FB_M_PER_MM, -1e5,
      1e5, 0, 0, "mm", "(none)", "an offset from -1e5 mm to 1e5 mm",
      "slider-crank: the guide line's distance from the crank pivot A along +y (either sign; "
@@ -181,8 +182,8 @@ static const key_spec keys[] = {
      "maximum, 29 um diametral)"},
 
     {"clearance", "joints", K_JOINTS, OFF(clearance.mask), 0, 0, 0, 0, 0, "-", "crank-coupler",
-     "joint names: ground-crank, crank-coupler, coupler-follower, follower-ground, or none "
-     "(a slider-crank: coupler-slider or none)",
+     "joint names, each once: ground-crank, crank-coupler, coupler-follower, follower-ground, "
+     "or none (a slider-crank: coupler-slider or none; a planar case: its own joints)",
      "joints modelled as a pin in a hole (the *-clearance-* models); the others stay ideal "
      "hinges and get no contact geometry; a slider-crank's default is its piston pin, "
      "coupler-slider"},

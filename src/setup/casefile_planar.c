@@ -10,6 +10,7 @@
 
 #include "casefile.h"
 #include "casefile_planar_free.h"
+#include "names.h"
 #include "planar_case.h"
 #include "planar_check.h"
 #include "units.h"
@@ -319,36 +320,174 @@ static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, 
   return FB_OK;
 }
 
-/* the joints named in list ("none" or NAME, NAME, ...) as a mask, each
- * checked by rule (1: revolute) */
+/* Every link of the description is a link length the four-bar takes
+ * (LEN_RULE, as [linkage] crank_mm: one rule): a body's revolute joints two
+ * by two are the same point (a compound hinge, FB_PLANAR_SAME_POINT_M), or
+ * FB_LINK_MM_MIN to FB_LINK_MM_MAX apart; and a body with two or more
+ * revolute joints, the ground too, has them at two points at least (all at
+ * one point, it is a link of length 0: a crank whose joints meet turns
+ * nothing). A prismatic joint's position is a point of its slide line, not
+ * of a link: it takes no part. The later joint's at_mm is named. */
+static fb_status links_whole(const fb_planar_spec *s, const entry *e, int n, fb_diag *diag) {
+  for (int b = 0; b < s->nbodies; b++) {
+    int rev[FB_PLANAR_SPEC_MAX_JOINTS], nr = 0;
+    for (int j = 0; j < s->njoints; j++)
+      if (s->joint[j].kind == FB_KIND_REVOLUTE &&
+          (s->joint[j].body[0] == b || s->joint[j].body[1] == b))
+        rev[nr++] = j;
+    int bad[2] = {-1, -1};
+    double len = 0.0, far = 0.0;
+    for (int i = 0; i < nr && bad[0] < 0; i++)
+      for (int k = i + 1; k < nr && bad[0] < 0; k++) {
+        const double *p = s->joint[rev[i]].at, *q = s->joint[rev[k]].at;
+        const double d = hypot(q[0] - p[0], q[1] - p[1]);
+        far = fmax(far, d);
+        const int same = d < FB_PLANAR_SAME_POINT_M;
+        if (!same && !(d >= FB_LINK_MM_MIN * FB_M_PER_MM && d <= FB_LINK_MM_MAX * FB_M_PER_MM)) {
+          bad[0] = rev[i], bad[1] = rev[k];
+          len = d;
+        }
+      }
+    if (bad[0] < 0 && nr >= 2 && far < FB_PLANAR_SAME_POINT_M) {
+      bad[0] = rev[0], bad[1] = rev[1]; /* every joint at one point: a link of length 0 */
+      len = far;
+    }
+    if (bad[0] < 0) continue;
+    char sec0[sizeof e->section], sec1[sizeof e->section];
+    snprintf(sec0, sizeof sec0, "%s%s", JOINT_PREFIX, s->joint[bad[0]].name);
+    snprintf(sec1, sizeof sec1, "%s%s", JOINT_PREFIX, s->joint[bad[1]].name);
+    const entry *a0 = entry_of(e, n, sec0, "at_mm"), *a1 = entry_of(e, n, sec1, "at_mm");
+    if (a0 > a1) { /* the later of the two named first */
+      const entry *t = a0;
+      a0 = a1, a1 = t;
+    }
+    char body[FB_PLANAR_NAME_SIZE + 16];
+    snprintf(body, sizeof body, b ? "body '%s'" : "the ground", s->body[b].name);
+    const char *one = far < FB_PLANAR_SAME_POINT_M ? " (its revolute joints all at one point)" : "";
+    return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] at_mm = %s: %s has a link of %s mm between "
+                       "this joint and [%s] at_mm = %s%s: %s", a1->origin, a1->section,
+                       a1->value, body, FB_NUM(len / FB_M_PER_MM), a0->section, a0->value, one,
+                       LEN_RULE);
+  }
+  return FB_OK;
+}
+
+/* ---- the names' rule ------------------------------------------------------ */
+
+/* one name the case gives: its kind and the entry that first gives it
+ * (NULL for the fixed body, ground) */
+typedef struct {
+  const char *kind, *name;
+  const entry *at;
+} case_name;
+
+/* 1 when entry x, a joint's bodies key, names body name */
+static int bodies_names(const entry *x, const char *name) {
+  if (!prefixed(x->section, JOINT_PREFIX) || strcmp(x->key, "bodies") != 0) return 0;
+  char buf[sizeof x->value];
+  snprintf(buf, sizeof buf, "%s", x->value);
+  char *save = NULL;
+  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save))
+    if (strcmp(trim(tok), name) == 0) return 1;
+  return 0;
+}
+
+/* Every name the case gives, of every kind, each with the entry that first
+ * gives it, in the order of the file: the one list the names' rule runs
+ * over (fb_name_clash, names.h). A kind of name the description adds
+ * (points, springs, loads) is listed here. Returns how many (at most max). */
+static int case_names(case_name *out, int max, const fb_planar_spec *s, const entry *e, int n) {
+  int k = 0;
+  out[k++] = (case_name){"body", "ground", NULL};
+  const entry *joint_at[FB_PLANAR_SPEC_MAX_JOINTS];
+  for (int j = 0; j < s->njoints; j++) joint_at[j] = first_of(e, n, JOINT_PREFIX, s->joint[j].name);
+  for (int i = 0; i < n && k < max; i++) {
+    const entry *x = &e[i];
+    for (int b = 1; b < s->nbodies && k < max; b++) {
+      const char *nm = s->body[b].name;
+      char sec[sizeof x->section];
+      snprintf(sec, sizeof sec, "%s%s", BODY_PREFIX, nm);
+      if (strcmp(x->section, sec) != 0 && !bodies_names(x, nm)) continue;
+      int seen = 0;
+      for (int q = 0; q < k; q++)
+        seen |= strcmp(out[q].kind, "body") == 0 && strcmp(out[q].name, nm) == 0;
+      if (!seen) out[k++] = (case_name){"body", nm, x};
+    }
+    for (int j = 0; j < s->njoints && k < max; j++)
+      if (joint_at[j] == x)
+        out[k++] = (case_name){"joint", s->joint[j].name, x};
+  }
+  return k;
+}
+
+/* "[section]" where entry x gives name (of kind), "[section] bodies" when
+ * a joint's bodies key gives a body */
+static const char *given_in(char *buf, size_t size, const entry *x, const char *kind) {
+  const int key = strcmp(kind, "body") == 0 && strcmp(x->key, "bodies") == 0;
+  snprintf(buf, size, "[%s]%s", x->section, key ? " bodies" : "");
+  return buf;
+}
+
+/* The names' rule (names.h): no two names of the case, of any kind, with
+ * one column and key word, and no fixed word; the later name is refused,
+ * with the earlier named beside it. */
+static fb_status names_one_word(const fb_planar_spec *s, const entry *e, int n, fb_diag *diag) {
+  enum { MAX = FB_PLANAR_SPEC_MAX_BODIES + 1 + FB_PLANAR_SPEC_MAX_JOINTS };
+  case_name list[MAX];
+  const char *names[MAX];
+  const int count = case_names(list, MAX, s, e, n);
+  char here[sizeof e->section + 16], there[sizeof e->origin + sizeof e->section + 32];
+  char word[FB_PLANAR_NAME_SIZE];
+  for (int k = 0; k < count; k++) {
+    const case_name *c = &list[k];
+    const char *what = NULL;
+    if (c->at && fb_name_fixed(c->name, &what))
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: %s: %s '%s': its columns would repeat %s; "
+                         "give it another name", c->at->origin,
+                         given_in(here, sizeof here, c->at, c->kind), c->kind, c->name, what);
+    const int q = fb_name_clash(names, k, c->name);
+    names[k] = c->name;
+    if (q < 0 || !c->at) continue;
+    const case_name *p = &list[q];
+    if (p->at)
+      snprintf(there, sizeof there, " (%s: %s)", p->at->origin,
+               given_in(here, sizeof here, p->at, p->kind));
+    else
+      snprintf(there, sizeof there, " (the fixed body)");
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: %s: %s '%s' and %s '%s'%s both write '%s': %s",
+                       c->at->origin, given_in(here, sizeof here, c->at, c->kind), c->kind,
+                       c->name, p->kind, p->name, there, fb_name_word(word, sizeof word, c->name),
+                       FB_NAME_RULE);
+  }
+  return FB_OK;
+}
+
+/* the joints named in list ("none" or NAME, NAME, ...) as a mask, by the
+ * rule every mechanism's list follows (fb_casefile_joint_list); single: one
+ * revolute joint (the drive) */
 static fb_status joint_names(int *mask, const fb_planar_spec *s, const entry *e, int single,
                              fb_diag *diag) {
-  char buf[sizeof e->value], known[1024] = "";
-  for (int j = 0; j < s->njoints; j++)
+  char known[1024] = "", tok[sizeof e->value];
+  const char *names[FB_PLANAR_SPEC_MAX_JOINTS];
+  for (int j = 0; j < s->njoints; j++) {
+    names[j] = s->joint[j].name;
     snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", j ? ", " : "",
              s->joint[j].name);
-  *mask = 0;
-  snprintf(buf, sizeof buf, "%s", e->value);
-  if (!single && strcmp(trim(buf), "none") == 0) return FB_OK;
-  int count = 0;
-  char *save = NULL;
-  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save), count++) {
-    const char *name = trim(tok);
-    int found = -1;
-    for (int j = 0; j < s->njoints; j++)
-      if (strcmp(s->joint[j].name, name) == 0) found = j;
-    if (found < 0)
-      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: '%s' is not a joint of the case "
-                         "(joints: %s)", e->origin, e->section, e->key, name, known);
-    if (single && s->joint[found].kind != FB_KIND_REVOLUTE)
-      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: joint '%s' is prismatic; the drive "
-                         "turns a revolute joint at speed_rpm", e->origin, e->section, e->key,
-                         name);
-    *mask |= 1 << found;
   }
+  int count = 0;
+  fb_status st = fb_casefile_joint_list(e, names, s->njoints, mask, &count, tok, sizeof tok, diag);
+  if (st == FB_ERR_ARG)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: '%s' is not a joint of the case "
+                       "(joints: %s)", e->origin, e->section, e->key, tok, known);
+  if (st != FB_OK) return st;
   if (single && count != 1)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': name one joint (joints: %s)",
                        e->origin, e->section, e->key, e->value, known);
+  for (int j = 0; single && j < s->njoints; j++)
+    if ((*mask & (1 << j)) && s->joint[j].kind != FB_KIND_REVOLUTE)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: joint '%s' is prismatic; the drive "
+                         "turns a revolute joint at speed_rpm", e->origin, e->section, e->key,
+                         s->joint[j].name);
   return FB_OK;
 }
 
@@ -391,7 +530,9 @@ static void summary(char *buf, size_t size, const fb_planar *m) {
 
 fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const char *path, int run,
                                     fb_diag *diag) {
-  fb_status st = sections_whole(&c->planar, e, n, path, diag);
+  fb_status st = names_one_word(&c->planar, e, n, diag);
+  if (st == FB_OK) st = sections_whole(&c->planar, e, n, path, diag);
+  if (st == FB_OK) st = links_whole(&c->planar, e, n, diag);
   if (st == FB_OK) st = drive_and_clearance(c, e, n, path, diag);
   if (st != FB_OK) return st;
   fb_planar *m;

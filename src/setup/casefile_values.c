@@ -447,45 +447,62 @@ static fb_status apply_text(fb_case *c, const entry *e, const key_spec *k, void 
   return FB_ERR_ARG;
 }
 
+fb_status fb_casefile_joint_list(const entry *e, const char *const *names, int n, int *mask,
+                                 int *count, char *unknown, size_t size, fb_diag *diag) {
+  *mask = 0;
+  *count = 0;
+  char buf[sizeof e->value];
+  snprintf(buf, sizeof buf, "%s", e->value);
+  if (strcmp(trim(buf), "none") == 0) return FB_OK;
+  if (has_empty_item(e->value))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': an empty item in the list",
+                       e->origin, e->section, e->key, e->value);
+  char *save = NULL;
+  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    tok = trim(tok);
+    int j = -1;
+    for (int q = 0; q < n && q < 31; q++)
+      if (strcmp(tok, names[q]) == 0) j = q;
+    if (j < 0) {
+      snprintf(unknown, size, "%s", tok);
+      return FB_ERR_ARG;
+    }
+    if (*mask & (1 << j))
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': names %s twice; give each "
+                         "joint once", e->origin, e->section, e->key, e->value, tok);
+    *mask |= 1 << j;
+    (*count)++;
+  }
+  return FB_OK;
+}
+
 /* a comma-separated list: clearance joints (a bit mask) or models to run */
 static fb_status apply_list(fb_case *c, const entry *e, const key_spec *k, void *field,
                              fb_diag *diag) {
   switch (k->kind) {
     case K_JOINTS: {
-      if (has_empty_item(e->value))
-        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': an empty item in the list",
-                           e->origin, e->section, e->key, e->value);
-      char buf[sizeof e->value];
-      snprintf(buf, sizeof buf, "%s", e->value);
-      int mask = 0;
-      char *save = NULL;
-      if (strcmp(trim(buf), "none") != 0) {
-        for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-          tok = trim(tok);
-          int j = -1;
-          const fb_mech_desc *mech = fb_case_mech(c);
-          for (int q = 0; q < mech->njoints; q++)
-            if (strcmp(tok, mech->joint[q].name) == 0) j = q;
-          if (j < 0) { /* the case's own mechanism's joints, never another's */
-            char names[256] = "", pins[256] = "";
-            for (int q = 0; q < mech->njoints; q++) {
-              snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", q ? ", " : "",
-                       mech->joint[q].name);
-              if (mech->joint[q].clearance_ok)
-                snprintf(pins + strlen(pins), sizeof pins - strlen(pins), "%s%s",
-                         pins[0] ? ", " : "", mech->joint[q].name);
-            }
-            return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: '%s' is not a joint of a %s "
-                               "([linkage] type = %s), whose joints are %s; a clearance joint is "
-                               "one of %s (a comma list), or none", e->origin, e->section, e->key,
-                               tok, mech->type, mech->type, names, pins);
-          }
-          if (mask & (1 << j))
-            return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': names %s twice; give each "
-                               "joint once", e->origin, e->section, e->key, e->value, tok);
-          mask |= 1 << j;
+      const fb_mech_desc *mech = fb_case_mech(c);
+      const char *names[FB_MECH_MAX_JOINTS];
+      for (int q = 0; q < mech->njoints; q++) names[q] = mech->joint[q].name;
+      char tok[sizeof e->value];
+      int mask = 0, count = 0;
+      const fb_status st = fb_casefile_joint_list(e, names, mech->njoints, &mask, &count, tok,
+                                                  sizeof tok, diag);
+      if (st == FB_ERR_ARG) { /* the case's own mechanism's joints, never another's */
+        char all[256] = "", pins[256] = "";
+        for (int q = 0; q < mech->njoints; q++) {
+          snprintf(all + strlen(all), sizeof all - strlen(all), "%s%s", q ? ", " : "",
+                   mech->joint[q].name);
+          if (mech->joint[q].clearance_ok)
+            snprintf(pins + strlen(pins), sizeof pins - strlen(pins), "%s%s",
+                     pins[0] ? ", " : "", mech->joint[q].name);
         }
+        return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s: '%s' is not a joint of a %s "
+                           "([linkage] type = %s), whose joints are %s; a clearance joint is "
+                           "one of %s (a comma list), or none", e->origin, e->section, e->key,
+                           tok, mech->type, mech->type, all, pins);
       }
+      if (st != FB_OK) return st;
       *(int *)field = mask;
       return FB_OK;
     }

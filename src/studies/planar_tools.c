@@ -17,10 +17,6 @@
  * distances, a fourth is only counted (to refuse the body) */
 #define BODY_POINTS 4
 
-/* points closer than this are one joint point [m]: 1 nm, far below any
- * length a case gives (0.001 mm is the finest digit of at_mm worth giving) */
-#define SAME_POINT_M 1e-9
-
 static fb_status peaks_of(fb_planar_peaks *out, const fb_planar *m, double omega, fb_diag *diag) {
   fb_planar_kin *k;
   fb_status st = fb_planar_kin_new(&k, m, diag);
@@ -89,7 +85,7 @@ static int body_points(double p[BODY_POINTS][2], int joint[BODY_POINTS], const f
       const double *x = m->joint[j].point[s];
       int seen = 0;
       for (int i = 0; i < n && i < BODY_POINTS; i++)
-        seen |= hypot(x[0] - p[i][0], x[1] - p[i][1]) < SAME_POINT_M;
+        seen |= hypot(x[0] - p[i][0], x[1] - p[i][1]) < FB_PLANAR_SAME_POINT_M;
       if (seen) continue;
       if (n < BODY_POINTS) {
         p[n][0] = x[0];
@@ -196,7 +192,7 @@ static fb_planar *with_lengths(const fb_planar *m, const double *len) {
         if (m->joint[j].body[side] != b) continue;
         const double *o = m->joint[j].point[side];
         for (int i = 0; i < n; i++)
-          if (hypot(o[0] - p[i][0], o[1] - p[i][1]) < SAME_POINT_M) {
+          if (hypot(o[0] - p[i][0], o[1] - p[i][1]) < FB_PLANAR_SAME_POINT_M) {
             x->joint[j].point[side][0] = q[i][0];
             x->joint[j].point[side][1] = q[i][1];
           }

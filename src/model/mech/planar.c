@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "names.h"
+
 fb_planar *fb_planar_new(int max_bodies, int max_joints) {
   if (max_bodies < 1 || max_joints < 1) return NULL;
   fb_planar *m = calloc(1, sizeof *m);
@@ -32,16 +34,32 @@ void fb_planar_free(fb_planar *m) {
   free(m);
 }
 
-/* a name that is new, not empty and fits */
-static int name_ok(const char *name, const char *what, int taken, fb_diag *diag) {
+/* a name that is not empty, fits, and is new: no body or joint of m has
+ * its column and key word (names.h, one rule for every kind of name), and
+ * it is not a fixed word */
+static int name_ok(const fb_planar *m, const char *name, const char *what, fb_diag *diag) {
   if (!name || !*name || strlen(name) >= FB_PLANAR_NAME_SIZE) {
     fb_diag_set(diag, FB_ERR_ARG, "a %s name is 1 to %d characters", what,
                 FB_PLANAR_NAME_SIZE - 1);
     return 0;
   }
-  if (taken) {
-    fb_diag_set(diag, FB_ERR_ARG, "%s '%s' is named twice: give each %s a name of its own",
-                what, name, what);
+  const char *fixed_what = NULL;
+  if (fb_name_fixed(name, &fixed_what)) {
+    fb_diag_set(diag, FB_ERR_ARG, "%s '%s': its columns would repeat %s: give it another name",
+                what, name, fixed_what);
+    return 0;
+  }
+  for (int k = 0; k < m->nbodies + m->njoints; k++) {
+    const int body = k < m->nbodies;
+    const char *other = body ? m->body[k].name : m->joint[k - m->nbodies].name;
+    if (!fb_name_same_word(other, name)) continue;
+    const char *kind = body ? "body" : "joint";
+    if (strcmp(other, name) == 0 && strcmp(kind, what) == 0)
+      fb_diag_set(diag, FB_ERR_ARG, "%s '%s' is named twice: give each %s a name of its own",
+                  what, name, what);
+    else
+      fb_diag_set(diag, FB_ERR_ARG, "%s '%s' and %s '%s' both write one word: %s", what, name,
+                  kind, other, FB_NAME_RULE);
     return 0;
   }
   return 1;
@@ -55,7 +73,7 @@ static int refused(fb_status st) {
 
 int fb_planar_add_body(fb_planar *m, const char *name, double mass, double inertia,
                        const double centre[2], double angle0, int derived, fb_diag *diag) {
-  if (!name_ok(name, "body", name && fb_planar_find_body(m, name) >= 0, diag)) return -1;
+  if (!name_ok(m, name, "body", diag)) return -1;
   if (m->nbodies == m->cap_bodies)
     return refused(fb_diag_set(diag, FB_ERR_ARG, "body '%s': the description holds %d moving "
                                "bodies", name, m->cap_bodies - 1));
@@ -91,7 +109,7 @@ static void to_body(double out[2], const fb_planar *m, int b, const double v[2],
 
 int fb_planar_add_joint(fb_planar *m, const char *name, fb_joint_kind kind, int b0, int b1,
                         const double at[2], double axis_angle, fb_diag *diag) {
-  if (!name_ok(name, "joint", name && fb_planar_find_joint(m, name) >= 0, diag)) return -1;
+  if (!name_ok(m, name, "joint", diag)) return -1;
   if (m->njoints == m->cap_joints)
     return refused(fb_diag_set(diag, FB_ERR_ARG, "joint '%s': the description holds %d joints",
                                name, m->cap_joints));

@@ -91,8 +91,9 @@ void fb_planar_free(fb_planar *m);
  * [kg m^2], centre of mass centre (2) [m] and frame angle angle0 [rad],
  * all in the assembly configuration; derived: FB_PLANAR_DERIVED_* bits.
  * Returns its index (1, 2, ...), or -1 with diag filled: FB_ERR_ARG when
- * the name is empty, too long, "ground" or taken, or the description is
- * full; FB_ERR_RANGE when mass or inertia is not positive and finite. */
+ * the name is empty, too long, "ground", "drive" or taken (a body's or
+ * joint's name equal to it after '-' becomes '_': the rule of names.h),
+ * or the description is full; FB_ERR_RANGE when mass or inertia is not positive and finite. */
 int fb_planar_add_body(fb_planar *m, const char *name, double mass, double inertia,
                        const double centre[2], double angle0, int derived, fb_diag *diag);
 
@@ -103,7 +104,7 @@ int fb_planar_add_body(fb_planar *m, const char *name, double mass, double inert
  * frame are computed from the bodies' centres and angles, which must be
  * added first. A revolute joint may carry clearance, a prismatic one not.
  * Returns its index, or -1 with diag filled: FB_ERR_ARG when the name is
- * empty, too long or taken, a body index is out of range, b0 == b1 or the
+ * empty, too long, "drive" or taken (as for a body), a body index is out of range, b0 == b1 or the
  * description is full; FB_ERR_RANGE when at or the axis is not finite. */
 int fb_planar_add_joint(fb_planar *m, const char *name, fb_joint_kind kind, int b0, int b1,
                         const double at[2], double axis_angle, fb_diag *diag);

@@ -19,6 +19,12 @@
 #define FB_PLANAR_SPEC_MAX_JOINTS 31
 #define FB_PLANAR_SPEC_MAX_BODIES 31
 
+/* Two joint positions closer than this are one point [m] (a compound
+ * hinge): a position is typed to microns at best, and a bar shorter than
+ * 1 nm is no bar (the shortest link a case may give is 1 um,
+ * casefile_internal.h FB_LINK_MM_MIN). */
+#define FB_PLANAR_SAME_POINT_M 1e-9
+
 /* Which keys of a [joint.NAME] or [body.NAME] section were given (bits). */
 enum {
   FB_SPEC_JOINT_BODIES = 1, /* bodies = A, B */

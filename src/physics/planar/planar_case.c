@@ -13,11 +13,6 @@
 
 /* ---- a planar case's spec ---------------------------------------------- */
 
-/* Joint points of one body closer than this are one point [m]: a joint
- * position is typed to microns at best, and a bar shorter than 1 nm is no
- * bar. */
-#define SAME_POINT_M 1e-9
-
 /* body b's distinct joint points in order (its joints with the ground
  * first, then the file's); returns how many */
 static int body_points(double pts[][2], int max, const fb_planar_spec *s, int b) {
@@ -30,7 +25,7 @@ static int body_points(double pts[][2], int max, const fb_planar_spec *s, int b)
       if (!touches || grounded != (pass == 0)) continue;
       int seen = 0;
       for (int i = 0; i < n; i++)
-        seen |= hypot(pts[i][0] - jt->at[0], pts[i][1] - jt->at[1]) < SAME_POINT_M;
+        seen |= hypot(pts[i][0] - jt->at[0], pts[i][1] - jt->at[1]) < FB_PLANAR_SAME_POINT_M;
       if (!seen && n < max) {
         pts[n][0] = jt->at[0];
         pts[n][1] = jt->at[1];

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "units.h"
+#include "names.h"
 
 /* a panel's height [px] and the panels across */
 #define PANEL_PX 330
@@ -136,9 +137,7 @@ static fb_status contact(const fb_planar_run *r, const fb_planar_model *p, const
                          fb_diag *diag) {
   const char *joint = r->m->joint[p->ref.joint].name;
   char jcol[64], name[160], en[200], jn[160];
-  snprintf(jcol, sizeof jcol, "%s", joint);
-  for (char *c = jcol; *c; c++)
-    if (*c == '-') *c = '_';
+  fb_name_word(jcol, sizeof jcol, joint);
   snprintf(name, sizeof name, "contact_%s_%s", p->name, jcol);
   snprintf(file, fsize, "%.118s.%s", name, fig_ext(fmt));
   plot pl;

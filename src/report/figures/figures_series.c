@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "decimate.h"
+#include "names.h"
 
 /* crank angle in degrees in [0, 360) */
 double fig_crank_deg(double th) {
@@ -220,8 +221,5 @@ const char *fig_column(const fb_run *r, int k, int q, const char *word, char *ou
 const char *fig_joint(const fb_run *r, int j) { return fb_case_joint_name(&r->c, j); }
 
 const char *fig_joint_column(const fb_run *r, int j, char *out, size_t size) {
-  snprintf(out, size, "%s", fig_joint(r, j));
-  for (char *p = out; *p; p++)
-    if (*p == '-') *p = '_';
-  return out;
+  return fb_name_word(out, size, fig_joint(r, j));
 }

@@ -282,6 +282,19 @@ if both("paper_crank_rocker.ini", "ode-clearance-impact,bullet-clearance-impact"
         if model in models("mhand"):
             compare_impacts("m", "matched-static, " + model, "crank_coupler", h, model)
 
+# 5b. an engine whose clearance is a relation of its own (Siconos: the
+# unilateral constraint with Newton's law, collider native) runs its
+# native clearance model through the kit
+rc, so, _ = run("models", "--json")
+built = {m["name"] for m in json.loads(so)["models"] if m["available"]} if rc == 0 else set()
+if "siconos-clearance-newton" in built:
+    rc, _, se = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
+                    "run.models=siconos-clearance-newton", "--set", "run.ensemble=1", "--set",
+                    "run.revolutions=1", "--set", "run.peaks=all", "--set", "solver.builder=kit",
+                    "--out", os.path.join(tmp, "native"), "--no-figures", "--no-report")
+    check(rc == 0 and models("native")["siconos-clearance-newton"]["status"] == "ok",
+          "siconos-clearance-newton through the kit (%d, %s)" % (rc, se.strip()[-300:]))
+
 # 6. refusals name the key; the default is the hand-built world
 for model, key, word in (("ode-clearance-impact", "clearance.collider=faceted", "[clearance] collider"),
                          ("ode-clearance-impact", "solver.h_s=adaptive", "h_s = adaptive"),

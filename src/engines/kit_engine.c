@@ -73,7 +73,12 @@ static fb_status refuse(const fb_model_scene *sm, fb_diag *diag) {
                        "adaptive is the hand-built ODE world's; give a fixed step or auto, or "
                        "[solver] builder = hand", name);
   if (!sm->clearance_mask) return FB_OK;
-  if (sm->collider != FB_COLLIDER_EXACT)
+  /* the native collider of an engine whose clearance is a relation of its
+   * own (kit.h's add_clearance without add_contact: Siconos's unilateral
+   * constraint) is that relation */
+  const fb_kit_binding *b = binding_of(sm);
+  const int relation = b && b->add_clearance && !b->add_contact;
+  if (sm->collider != FB_COLLIDER_EXACT && !(sm->collider == FB_COLLIDER_NATIVE && relation))
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: the exact collider "
                        "only ([clearance] collider = exact)", name);
   return FB_OK;

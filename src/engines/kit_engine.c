@@ -430,42 +430,18 @@ static size_t adapter_steps(const void *self) { return ((const kit_run *)self)->
 
 static void adapter_destroy(void *self) { kit_run_free(self); }
 
-const fb_engine fb_engine_kit_adapter = {
-    .name = "kit",
-    .guarded = 1,
-    .step_values_lag = 0,
-    .refine_peaks = 1,
-    .create = adapter_create,
-    .step = adapter_step,
-    .stopped = adapter_stopped,
-    .sample = adapter_sample,
-    .contact = adapter_contact,
-    .provenance = adapter_provenance,
-    .drift = adapter_drift,
-    .steps = adapter_steps,
-    .destroy = adapter_destroy,
-    .refine = adapter_refine,
-};
+/* the adapter's ops, the same over every binding */
+#define KIT_ADAPTER_OPS                                                                           \
+  .name = "kit", .guarded = 1, .step_values_lag = 0, .refine_peaks = 1, .create = adapter_create, \
+  .step = adapter_step, .stopped = adapter_stopped, .sample = adapter_sample,                     \
+  .contact = adapter_contact, .provenance = adapter_provenance, .drift = adapter_drift,           \
+  .steps = adapter_steps, .destroy = adapter_destroy, .refine = adapter_refine
+
+const fb_engine fb_engine_kit_adapter = {KIT_ADAPTER_OPS};
 
 /* the adapter over a binding that reports joint reactions: the same, with
  * the load columns */
-static const fb_engine kit_adapter_loads = {
-    .name = "kit",
-    .guarded = 1,
-    .step_values_lag = 0,
-    .refine_peaks = 1,
-    .create = adapter_create,
-    .step = adapter_step,
-    .stopped = adapter_stopped,
-    .sample = adapter_sample,
-    .contact = adapter_contact,
-    .provenance = adapter_provenance,
-    .reactions = adapter_reactions,
-    .drift = adapter_drift,
-    .steps = adapter_steps,
-    .destroy = adapter_destroy,
-    .refine = adapter_refine,
-};
+static const fb_engine kit_adapter_loads = {KIT_ADAPTER_OPS, .reactions = adapter_reactions};
 
 int fb_engine_is_kit_adapter(const fb_engine *e) {
   return e == &fb_engine_kit_adapter || e == &kit_adapter_loads;

@@ -38,9 +38,9 @@ KIT_OMEGA_REL = 1e-4
 # rounded differently): omega peaks measured within 2.4e-12; 1e-9 leaves
 # room for that rounding over three revolutions.
 KIT_FOURBAR_OMEGA_REL = 1e-9
-# Alpha peaks: the kit's are (omega_{i+1} - omega_i) / h, the hand-built
-# model's qacc refined by a parabola about each spike; with Euler the two
-# are the same number but for rounding: measured 9.0e-10.
+# Alpha peaks: both MuJoCo's qacc at each sample's state (the kit's through
+# the binding's body_accel), unrefined; the same number but for the soft
+# loop's amplified rounding: measured 9.0e-10.
 KIT_FOURBAR_ALPHA_REL = 1e-7
 # A slider-crank at 3000 rpm, h = 1e-5 s: the rod's omega peaks against
 # the analytic, measured 3.6e-6 (ten times the six-bar's speed); the

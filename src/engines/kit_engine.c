@@ -11,7 +11,8 @@
  * force, penetration, eccentricity and contact state. The kit's series
  * already gives each step's acceleration and contact force to the sample
  * the step started from (kit.h), so the table asks no lag correction; its
- * spikes are refined as the hand-built engines' are.
+ * spikes are refined as the hand-built engines' are, but a binding's whose
+ * samples are the engine's own at each sample's state (body_accel).
  *
  * What the kit builds, and so what this adapter refuses (FB_ERR_ARG, the
  * model, the key and what to change): every clearance joint of the case
@@ -402,9 +403,14 @@ static void adapter_provenance(const void *self, int joint, fb_contact_provenanc
 
 /* the series' spikes refined as the hand-built engines' are, but the
  * contact force of a binding that sub-steps from its own largest force
- * between samples (series.h, fb_series_refine_peaks_max) */
+ * between samples (series.h, fb_series_refine_peaks_max); a binding whose
+ * samples are the engine's own at each sample's state (kit.h's
+ * body_accel: instantaneous accelerations, and the law's force there) lies
+ * on no step's difference: its spikes are its samples', as the hand-built
+ * MuJoCo world's */
 static void adapter_refine(const void *self, fb_series *s, double fraction, double t_split) {
   const kit_run *r = self;
+  if (binding_of(r->sm)->body_accel) return;
   fb_series_refine_peaks_max(s, fraction, t_split, r->force_max, r->s.n);
 }
 

@@ -117,11 +117,13 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
 
 /* sample i of one coordinate's column q (position x, rate v): the step
  * from t_{i-1} gives its acceleration to that sample's configuration (the
- * forces the engine solved there); the last sample keeps the one before */
-static void put(double *q, size_t n, size_t i, double x, double v, double h) {
+ * forces the engine solved there): *a, the engine's own there (kit.h's
+ * body_accel), or NULL: the step's difference; the last sample keeps the
+ * one before */
+static void put(double *q, size_t n, size_t i, double x, double v, double h, const double *a) {
   q[2 * n + i] = 0.0;
   q[i] = x;
-  if (i > 0) q[2 * n + i - 1] = (v - q[n + i - 1]) / h;
+  if (i > 0) q[2 * n + i - 1] = a ? *a : (v - q[n + i - 1]) / h;
   if (i > 0 && i == n - 1) q[2 * n + i] = q[2 * n + i - 1];
   q[n + i] = v;
 }
@@ -133,16 +135,18 @@ static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int
                    double *state, double *rate) {
   const size_t n = s->n;
   s->t[i] = (double)i * s->h;
+  const int own = i > 0 && b->body_accel; /* the engine's accelerations at sample i - 1 */
   for (int k = 0; k < nb; k++) {
-    double pos[3], vel[3];
+    double pos[3], vel[3], acc[3];
     b->body_state(w, k, pos, vel);
+    if (own) b->body_accel(w, k, acc);
     if (state) memcpy(state + 3 * k, pos, sizeof pos), memcpy(rate + 3 * k, vel, sizeof vel);
     double *q = s->q + (size_t)k * 3 * n;
     put(q, n, i, i == 0 ? pos[2] : q[i - 1] + remainder(pos[2] - q[i - 1], 2.0 * M_PI), vel[2],
-        s->h);
+        s->h, own ? &acc[2] : NULL);
     if (!s->centre) continue;
-    put(s->centre + (size_t)k * 3 * n, n, i, pos[0], vel[0], s->h);
-    put(s->centre + (size_t)(nb + k) * 3 * n, n, i, pos[1], vel[1], s->h);
+    put(s->centre + (size_t)k * 3 * n, n, i, pos[0], vel[0], s->h, own ? &acc[0] : NULL);
+    put(s->centre + (size_t)(nb + k) * 3 * n, n, i, pos[1], vel[1], s->h, own ? &acc[1] : NULL);
   }
 }
 

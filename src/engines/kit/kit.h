@@ -154,7 +154,8 @@ typedef struct {
   double m_eff_min, m_eff_max; /* out: its effective mass range over its contact steps [kg]
                                (valid when contact_steps > 0) */
   double h_omega_max;       /* out: the largest h omega_c = h sqrt(kp / m_eff) of the rows its
-                               law and the mapping gave (contact.h's row, as ODE's) [-] */
+                               law and the mapping gave (contact.h's row, as ODE's), or of
+                               the law's secant stiffness for a binding with explicit_law [-] */
   double erp_max, cfm_min;  /* out: the largest ERP [-] and smallest CFM [m/(N s)] of those rows
                                (valid when contact_steps > 0 and the binding takes rows:
                                contact_rows 1) */
@@ -290,6 +291,20 @@ typedef struct fb_kit_binding {
                                 contact (fb_kit_contact.friction: ODE's friction pyramid);
                                 0: a normal law only, and the kit refuses [clearance]
                                 friction > 0 naming the engine */
+  void (*body_accel)(const void *w, int b, double acc[3]);
+                             /* optional: body handle b's acceleration at the state the last
+                                step started from, as the engine solved it there with that
+                                step's contacts (instantaneous, not a difference): its centre
+                                of mass's along x and y [m/s^2] and its angular acceleration
+                                about +z [rad/s^2] (MuJoCo: the step's first forward pass);
+                                NULL: the kit takes the step's difference (v_{i+1} - v_i) / h
+                                (fb_kit_series) */
+  int explicit_law;          /* optional, with applied_force: 1 when the engine integrates the
+                                law's force explicitly at step h (MuJoCo's integrators): the
+                                kit reports each joint's h omega_c with the law's secant
+                                stiffness on the effective mass (fb_kit_joint_record
+                                h_omega_max, the hand-built MuJoCo world's figure); 0: none
+                                (an error-controlled integrator, Simbody) */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's
@@ -299,7 +314,8 @@ typedef struct fb_kit_binding {
  * is the step from t_i, (omega_{i+1} - omega_i) / h, the acceleration the
  * engine solved at sample i's configuration (series.h's
  * fb_series_attribute_to_step_start, as the engines' four-bar runs report
- * it); the last sample keeps the one before. */
+ * it), or the engine's own there where the binding gives it (body_accel);
+ * the last sample keeps the one before. */
 typedef struct {
   size_t n;
   double h;

@@ -153,6 +153,17 @@ static fb_status note_row(fb_kit_contact *c, const char *joint, fb_kit_clearance
   return fb_kit_alias_diag(diag, wdh, joint, c->h);
 }
 
+/* a law the engine integrates explicitly (kit.h's explicit_law): h omega_c
+ * with its secant stiffness at this depth on the contact's effective mass
+ * noted (joint j's and cl's h_omega_max) */
+static void note_secant(const fb_kit_contact *c, fb_kit_clearance *cl, int j) {
+  double kp, kd, depth;
+  fb_contact_linearize(&c->law, FB_MAPPING_SECANT, c->depth, c->rate, c->v0, &kp, &kd, &depth);
+  const double hw = fb_contact_h_omega(c->h, kp, c->m_eff);
+  cl->h_omega_max = fmax(cl->h_omega_max, hw);
+  cl->joint[j].h_omega_max = fmax(cl->joint[j].h_omega_max, hw);
+}
+
 /* joint j of an engine's own relation (add_clearance): its episode from
  * the force of the step just taken, at onset the rate before that step */
 static void native_episode(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
@@ -205,6 +216,7 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
   fb_status st = FB_OK;
   if (!b->applied_force && (st = note_row(c, m->joint[j].name, cl, j, &p->phase[k], diag)) != FB_OK)
     return st;
+  if (b->applied_force && b->explicit_law) note_secant(c, cl, j);
   if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
   note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, c->m_eff);
   note_mass(&r->m_eff_min, &r->m_eff_max, r->contact_steps, c->m_eff);

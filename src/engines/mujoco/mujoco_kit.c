@@ -38,6 +38,17 @@
  * wall's normal towards it, the force -F n on the slider at the corner and
  * +F n on the guide, in the same hook.
  *
+ * Samples and loads: a step starts with MuJoCo's forward pass at the state
+ * it starts from, with the step's contacts; MuJoCo's recursive Newton-Euler
+ * there (mj_rnePostConstraint) gives every body's acceleration (body_accel:
+ * instantaneous, as the four-bar's scene samples qacc) and every ideal
+ * joint's reaction (reactions: a tree joint's interaction force with its
+ * parent less the contacts' forces across it, which the hook applies as
+ * generalised forces, its moment at the joint's point, the flywheel's
+ * torque at the driven joint; a loop's its connect equality's force), kept
+ * before the integrator's stages overwrite them; h omega_c with the law's
+ * secant stiffness (explicit_law), as the four-bar's scene reports it.
+ *
  * Stops (FB_ERR_NUMERIC, a result): a contact whose h omega_c (the law's
  * tangent stiffness on the effective mass) exceeds the explicit
  * integrator's stability bound on an undamped spring (RK4 2 sqrt 2, Euler
@@ -75,6 +86,12 @@ typedef struct {
   int b0, b1;          /* kit handles */
   double at[2];        /* [m] */
   double axis[2];      /* unit, world, at assembly */
+  int side;            /* the body its reaction's moment is taken on: b1, or b0 when b1 is the
+                          ground (kit.h's reactions), as a MuJoCo body id once built */
+  double local[2];     /* the joint's point in that body's frame [m] */
+  int node;            /* a tree joint: its child node (parent node 0: the ground, b + 1
+                          handle b); a loop's: -1 */
+  int eq;              /* a loop's connect equality (MuJoCo's id), else -1 */
 } mk_joint;
 
 /* a contact slot (kit.h): a pin in its hole (its pin's and hole's
@@ -95,6 +112,8 @@ typedef struct {
   double aw[2], nw[2]; /* a wall: its point and its unit normal (towards the wall, the way
                           the corner penetrates) at assembly [m], [-] */
   double ln[2];        /* a wall's normal in the hole's (guide's) frame [-]; lh its point */
+  double f[2];         /* the force on the pin at the step's first forward pass [N] (0: none) */
+  double xp[3], xh[3]; /* where it acts on the pin and, opposite, on the hole [m] */
 } mk_contact;
 
 typedef struct {
@@ -113,6 +132,11 @@ typedef struct {
   int *bid;            /* (nb) MuJoCo body id of each handle */
   mk_contact ct[FB_KIT_SLOTS]; /* by the kit's contact slot */
   size_t steps;
+  int record;          /* 1: the hook keeps each contact's force (the step's first pass) */
+  double *acc;         /* (nb x 3) every body's acceleration at the last step's start:
+                          centre x, y [m/s^2], about +z [rad/s^2] (kit.h's body_accel) */
+  double *react;       /* (nj x 3) every ideal joint's reaction there (kit.h's reactions) */
+  double *frc;         /* ((nb + 1) x 6) MuJoCo's interaction forces less the contacts' */
 } mk_world;
 
 static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
@@ -123,14 +147,17 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
     k->joint = calloc(nj, sizeof *k->joint);
     k->parent = calloc(2 * (nb + 1) + nb, sizeof *k->parent);
     k->tree = calloc(nj, 1);
+    k->acc = calloc(3 * nb + 3 * nj + 6 * (nb + 1), sizeof *k->acc);
   }
-  if (!k || !k->body || !k->joint || !k->parent || !k->tree) {
-    if (k) free(k->body), free(k->joint), free(k->parent), free(k->tree);
+  if (!k || !k->body || !k->joint || !k->parent || !k->tree || !k->acc) {
+    if (k) free(k->body), free(k->joint), free(k->parent), free(k->tree), free(k->acc);
     free(k);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the MuJoCo world");
   }
   k->edge = k->parent + nb + 1;
   k->bid = k->edge + nb + 1;
+  k->react = k->acc + 3 * nb;
+  k->frc = k->react + 3 * nj;
   k->gravity = o->gravity;
   k->h = o->h;
   k->opts = o->c ? o->c->mujoco : fb_mujoco_opts_default();
@@ -149,7 +176,8 @@ static fb_status kit_add_body(void *w, const fb_kit_body *b, fb_diag *diag) {
 
 static fb_status add_joint(mk_world *k, int prismatic, int b0, int b1, const double at[2],
                            const double axis[2]) {
-  k->joint[k->nj++] = (mk_joint){prismatic, b0, b1, {at[0], at[1]}, {axis[0], axis[1]}};
+  k->joint[k->nj++] = (mk_joint){prismatic, b0, b1, {at[0], at[1]}, {axis[0], axis[1]},
+                                 b1 == FB_KIT_GROUND ? b0 : b1, {0.0, 0.0}, -1, -1};
   return FB_OK;
 }
 
@@ -186,6 +214,7 @@ static fb_status kit_close_loop(void *w, fb_diag *diag) {
           const int a = J->b0 + 1, b = J->b1 + 1, v = a == u ? b : a;
           if (J->prismatic != pass || (a != u && b != u) || k->parent[v] != -2) continue;
           k->parent[v] = u, k->edge[v] = j, k->tree[j] = 1, queue[tail++] = v;
+          k->joint[j].node = v;
         }
     }
     int v = 1;
@@ -362,6 +391,13 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
     c->pin = k->bid[c->pin];
     c->hole = c->hole == FB_KIT_GROUND ? 0 : k->bid[c->hole];
   }
+  for (int j = 0, e = 0; j < k->nj; j++) { /* each joint's point on its reaction's body */
+    mk_joint *J = &k->joint[j];
+    const double *p = pose(k, J->side + 1);
+    to_frame(J->local, p[2], J->at[0] - p[0], J->at[1] - p[1]);
+    J->side = k->bid[J->side];
+    if (!k->tree[j]) J->eq = e++; /* put_mjcf's order */
+  }
   mj_forward(k->m, k->d);
   return start_velocity(k, diag);
 }
@@ -389,7 +425,7 @@ static void kit_passive(void *ctx, const mjModel *m, mjData *d) {
   mk_world *k = ctx;
   const double zero[3] = {0.0, 0.0, 0.0};
   for (int j = 0; j < FB_KIT_SLOTS; j++) {
-    const mk_contact *c = &k->ct[j];
+    mk_contact *c = &k->ct[j];
     if (!c->in) continue;
     double xp[3], vp[3], xh[3], vh[3], n[2], depth;
     point_state(m, d, c->pin, c->lp, xp, vp);
@@ -417,6 +453,10 @@ static void kit_passive(void *ctx, const mjModel *m, mjData *d) {
     const double on_pin[3] = {-f * n[0], -f * n[1], 0.0}, on_hole[3] = {f * n[0], f * n[1], 0.0};
     mj_applyFT(m, d, on_pin, zero, xp, c->pin, d->qfrc_passive);
     if (c->hole > 0) mj_applyFT(m, d, on_hole, zero, xh, c->hole, d->qfrc_passive);
+    if (!k->record) continue;
+    c->f[0] = on_pin[0], c->f[1] = on_pin[1];
+    memcpy(c->xp, xp, sizeof xp);
+    memcpy(c->xh, xh, sizeof xh);
   }
 }
 
@@ -483,12 +523,87 @@ static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_dia
   return FB_OK;
 }
 
+/* force f (x, y) [N] at point x on body id b taken out of the interaction
+ * forces k->frc of b and its ancestors (MuJoCo's com-based torque:force at
+ * the root's subtree centre) */
+static void take_out(mk_world *k, int b, const double x[3], const double f[2]) {
+  const mjModel *m = k->m;
+  const double *c = k->d->subtree_com + 3 * m->body_rootid[b];
+  const double tz = (x[0] - c[0]) * f[1] - (x[1] - c[1]) * f[0];
+  for (int v = b; v > 0; v = m->body_parentid[v]) {
+    k->frc[6 * v + 2] -= tz;
+    k->frc[6 * v + 3] -= f[0];
+    k->frc[6 * v + 4] -= f[1];
+  }
+}
+
+/* ideal joint J's reaction into out (kit.h's reactions): a tree joint's
+ * the interaction force of its child (MuJoCo's mj_rnePostConstraint, less
+ * the contacts' forces across it, which the passive hook applies as
+ * generalised forces) with its moment taken at the joint's point, turned
+ * when the reaction's body is the parent; a loop's its connect
+ * equality's force (on its body1, efc_force), no moment */
+static void reaction(const mk_world *k, const mk_joint *J, double out[3]) {
+  const mjModel *m = k->m;
+  const mjData *d = k->d;
+  out[0] = out[1] = out[2] = 0.0;
+  if (J->node < 0) {
+    const double s = J->b0 == FB_KIT_GROUND ? 1.0 : -1.0; /* body1 is b0 unless b0 is the ground */
+    for (int i = 0; i < d->ne; i++)
+      if (d->efc_type[i] == mjCNSTR_EQUALITY && d->efc_id[i] == J->eq) {
+        out[0] = s * d->efc_force[i], out[1] = s * d->efc_force[i + 1];
+        return;
+      }
+    return;
+  }
+  const int child = k->bid[J->node - 1];
+  const double *f = k->frc + 6 * child, *c = d->subtree_com + 3 * m->body_rootid[child];
+  const double *o = d->xpos + 3 * J->side, *R = d->xmat + 9 * J->side;
+  const double x[2] = {o[0] + R[0] * J->local[0] + R[1] * J->local[1],
+                       o[1] + R[3] * J->local[0] + R[4] * J->local[1]};
+  const double s = J->b1 + 1 == J->node ? 1.0 : -1.0; /* the reaction's body the child */
+  out[0] = s * f[3];
+  out[1] = s * f[4];
+  out[2] = s * (f[2] + (c[0] - x[0]) * f[4] - (c[1] - x[1]) * f[3]);
+}
+
+/* the step's start, after its first forward pass: every body's
+ * acceleration and every ideal joint's reaction there, kept for
+ * body_accel and reactions (the integrator's stages overwrite MuJoCo's) */
+static void note_start(mk_world *k) {
+  const mjModel *m = k->m;
+  mjData *d = k->d;
+  mj_rnePostConstraint(m, d);
+  for (int b = 0; b < k->nb; b++) {
+    double a[6]; /* about the centre of mass (the body's frame): rotation, translation */
+    mj_objectAcceleration(m, d, mjOBJ_BODY, k->bid[b], a, 0);
+    /* MuJoCo's accelerations carry the world's -g (gravity as a frame acceleration) */
+    k->acc[3 * b] = a[3] + m->opt.gravity[0];
+    k->acc[3 * b + 1] = a[4] + m->opt.gravity[1];
+    k->acc[3 * b + 2] = a[2];
+  }
+  memcpy(k->frc, d->cfrc_int, 6 * (size_t)m->nbody * sizeof *k->frc);
+  for (int j = 0; j < FB_KIT_SLOTS; j++) {
+    const mk_contact *c = &k->ct[j];
+    if (!c->in || (c->f[0] == 0.0 && c->f[1] == 0.0)) continue;
+    const double back[2] = {-c->f[0], -c->f[1]};
+    take_out(k, c->pin, c->xp, c->f);
+    if (c->hole > 0) take_out(k, c->hole, c->xh, back);
+  }
+  for (int j = 0; j < k->nj; j++) reaction(k, &k->joint[j], k->react + 3 * j);
+}
+
 /* one step: the forward pass at the state now with the step's contacts,
- * MuJoCo's integrator, the new state's kinematics */
+ * its accelerations and reactions kept, MuJoCo's integrator, the new
+ * state's kinematics */
 static fb_status kit_step(void *w, fb_diag *diag) {
   mk_world *k = w;
   fb_mujoco_passive_on(k->m, kit_passive, k);
+  for (int j = 0; j < FB_KIT_SLOTS; j++) k->ct[j].f[0] = k->ct[j].f[1] = 0.0;
+  k->record = 1;
   mj_forward(k->m, k->d);
+  k->record = 0;
+  note_start(k);
   fb_mujoco_integrate(k->m, k->d, k->integrator);
   fb_mujoco_passive_off();
   for (int j = 0; j < FB_KIT_SLOTS; j++) k->ct[j].on = 0;
@@ -515,6 +630,16 @@ static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
   vel[2] = v[2];
 }
 
+static void kit_body_accel(const void *w, int b, double acc[3]) {
+  const mk_world *k = w;
+  memcpy(acc, k->acc + 3 * b, 3 * sizeof *acc);
+}
+
+static void kit_reactions(const void *w, int j, double out[3]) {
+  const mk_world *k = w;
+  memcpy(out, k->react + 3 * j, 3 * sizeof *out);
+}
+
 /* the built world's MJCF, the very text the kit compiled, with its start
  * (the velocities start_velocity fitted) as keyframe "start" */
 static fb_status kit_model_text(const void *w, char *buf, size_t size, fb_diag *diag) {
@@ -534,6 +659,7 @@ static void kit_world_free(void *w) {
   free(k->joint);
   free(k->parent);
   free(k->tree);
+  free(k->acc);
   free(k);
 }
 
@@ -552,4 +678,7 @@ const fb_kit_binding fb_mujoco_kit = {
     .world_free = kit_world_free,
     .applied_force = 1,
     .model_text = kit_model_text,
+    .reactions = kit_reactions,
+    .body_accel = kit_body_accel,
+    .explicit_law = 1,
 };

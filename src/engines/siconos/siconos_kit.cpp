@@ -721,6 +721,8 @@ const fb_kit_binding fb_siconos_kit = {
     NULL /* reactions: none reported */,
     NULL /* contact_force_vec: the normal force along the normal */,
     0 /* friction: add_clearance reads [clearance] friction itself */,
+    NULL /* body_accel: the step's difference */,
+    0 /* explicit_law: no applied force */,
 };
 
 } // extern "C"

@@ -570,4 +570,6 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     NULL, /* reactions: none reported */
     NULL, /* contact_force_vec: the normal force along the normal */
     0,    /* friction: a normal law only */
+    NULL, /* body_accel: the step's difference */
+    0,    /* explicit_law: an error-controlled integrator */
 };

@@ -27,6 +27,7 @@
 #include "iso286.h"
 #include "linkage.h"
 #include "model_table.h"
+#include "reference.h"
 #include "textsafe.h"
 #include "units.h"
 
@@ -773,6 +774,10 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   }
 done:
   free(c);
+  /* the environment's reference tolerance is input as the keys are: a
+   * value no run could take is refused with the case, never at run time */
+  double tol;
+  if (st == FB_OK) st = fb_reference_tolerance(&tol, diag);
   return st;
 }
 

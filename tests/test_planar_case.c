@@ -330,6 +330,23 @@ static void test_bad_mechanisms(void **state) {
   expect_error(HEAD "[joint.e]\nbodies = follower, extra\nat_mm = 120, 60\n"
                "[body.extra]\nmass_kg = 0.1\ninertia_kg_mm2 = 10\n" DRIVE, FB_ERR_ARG,
                (const char *[]){"2 degrees of freedom", NULL});
+  /* a clearance at the driven joint with an engine's clearance model,
+   * which the engine kit builds and the kit drives an ideal joint only:
+   * refused at load where the keys were given (it was refused at run time,
+   * after analytic, naming no line); analytic and the references take it */
+  expect_error(HEAD DRIVE "[clearance]\njoints = a\n[run]\nmodels = analytic, ode-clearance-impact\n",
+               FB_ERR_ARG,
+               (const char *[]){"@18", "[clearance] joints names 'a', the driven joint",
+                                "'ode-clearance-impact'", "engine kit", "[drive] joint at",
+                                "[run] models at", "@20", NULL});
+  {
+    fb_case c;
+    fb_diag d;
+    char path[64];
+    if (load_text(&c, HEAD DRIVE "[clearance]\njoints = a\n[run]\nmodels = analytic, reference\n",
+                  1, path, &d) != FB_OK)
+      fail_msg("analytic and reference with a clearance at the driven joint: %s", d.msg);
+  }
   /* a crank too long for its loop locks: the section of the joint it locks at */
   expect_error("[linkage]\ntype = planar\n"
                "[joint.a]\nbodies = ground, crank\nat_mm = 0, 0\n"

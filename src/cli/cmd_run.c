@@ -96,8 +96,13 @@ static int load_variants(fb_case *c, fb_case *variants, const char *case_path,
    * refused by its estimate always was; a scene the keys cannot make: 2) */
   fb_diag pre;
   int over_cost;
-  if (fb_run_preflight(c, &over_cost, &pre) != FB_OK)
-    return fb_cli_fail("run", over_cost ? 1 : 2, "%s: %s", case_path, pre.msg);
+  char where[FB_DIAG_SIZE];
+  if (fb_run_preflight(c, &over_cost, &pre) != FB_OK) {
+    /* a rule of the keys: where they were given, as a load says it */
+    const size_t l = fb_casefile_given_where(where, sizeof where, case_path, sets, nsets, pre.msg);
+    return fb_cli_fail("run", over_cost ? 1 : 2, "%s: %s%s%s%s", case_path, pre.msg,
+                       l ? " (given: " : "", where, l ? ")" : "");
+  }
   for (int v = 0; v < c->variant_count; v++)
     if (fb_run_preflight(&variants[v], &over_cost, &pre) != FB_OK)
       return fb_cli_fail("run", over_cost ? 1 : 2, "%s: variant %s (%s): %s", case_path,

@@ -326,8 +326,10 @@ int fb_cmd_run(int argc, char **argv) {
     snprintf(dir, sizeof dir, "results/%s", c.name);
   static char again[8192], command[8192];
   command_text(command, sizeof command, argc, argv);
+  fb_cli_command_line(again, sizeof again, argc, argv, NULL);
   if (c.planar.on)
-    return fb_cmd_run_planar(&c, case_path, dir, json, command, figures, fmt == FB_FIGURE_PNG, html);
+    return fb_cmd_run_planar(&c, case_path, dir, json, command, again, figures,
+                             fmt == FB_FIGURE_PNG, html);
   static fb_case variants[FB_MAX_VARIANTS];
   if ((rc = load_variants(&c, variants, case_path, sets, nsets, jobs)) != 0) return rc;
 
@@ -339,7 +341,6 @@ int fb_cmd_run(int argc, char **argv) {
   const int replaces = stat(prev_summary, &prev) == 0;
   /* figures need gnuplot: found out before the simulation, not after it */
   if (figures && fb_figures_check_gnuplot(&diag) != FB_OK) return fb_cli_fail("run", 1, "%s", diag.msg);
-  fb_cli_command_line(again, sizeof again, argc, argv, NULL);
   run_set w = {.dir = dir, .case_path = case_path, .command = command, .figures = figures,
                .html = html, .fmt = fmt};
   progress_state ps = {isatty(2) && !json};

@@ -9,6 +9,12 @@
 #include "model_table.h"
 #include "run.h"
 
+static double repeat_below = FB_BENCH_REPEAT_BELOW_S;
+
+double fb_bench_repeat_below_s(void) { return repeat_below; }
+
+void fb_bench_repeat_below(double seconds) { repeat_below = seconds; }
+
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);
@@ -116,7 +122,7 @@ static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, int max_reps
       stepping[q][rep] = q < timed ? mr->stepping_s : 0.0;
     }
     *reps = rep + 1;
-    if (rep == max_reps - 1 || walls[0][rep] + walls[1][rep] > FB_BENCH_REPEAT_BELOW_S) break;
+    if (rep == max_reps - 1 || walls[0][rep] + walls[1][rep] > repeat_below) break;
     fb_run_free(r);
   }
   return FB_OK;
@@ -538,13 +544,13 @@ static fb_status retime(fb_bench_row *rows, double from,
   int todo = 0;
   for (int i = 0; i < timings.n; i++) {
     const bench_timing *t = &timings.t[i];
-    todo += t->walls[0][0] + t->walls[1][0] <= FB_BENCH_REPEAT_BELOW_S;
+    todo += t->walls[0][0] + t->walls[1][0] <= repeat_below;
   }
   int done = 0;
   for (int round = 1; round < FB_BENCH_ROUNDS; round++)
     for (int i = 0; i < timings.n; i++) {
       bench_timing *t = &timings.t[i];
-      if (t->reps != round || t->walls[0][0] + t->walls[1][0] > FB_BENCH_REPEAT_BELOW_S) continue;
+      if (t->reps != round || t->walls[0][0] + t->walls[1][0] > repeat_below) continue;
       static fb_run r;
       double walls[2][3], setups[2][3], stepping[2][3];
       int reps;

@@ -132,6 +132,12 @@ double fb_bench_rel_parts(double *rel, const double *a, const double *b, int n);
  * costs compare with the exact collider's of the same runs). */
 #define FB_BENCH_ROUNDS 3
 #define FB_BENCH_REPEAT_BELOW_S 1.0
+/* The threshold the grids repeat below [s]: FB_BENCH_REPEAT_BELOW_S unless
+ * fb_bench_repeat_below set another (a test sets INFINITY, so that which
+ * rows repeat, and its verdict, does not hang on how long a run took on a
+ * machine others load). */
+double fb_bench_repeat_below_s(void);
+void fb_bench_repeat_below(double seconds);
 /* The share of the progress fraction the first pass reports (the rounds
  * time the timed models alone, without the reference or the step-halving
  * runs). */

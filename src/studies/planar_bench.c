@@ -299,7 +299,7 @@ static int run_grid(planar_bench *pb) {
   for (int i = 0; i < pb->n; i++) first_run(pb, i);
   for (int round = 1; round < FB_BENCH_ROUNDS; round++)
     for (int i = 0; i < pb->n; i++)
-      if (pb->pt[i].rounds == round && pb->pt[i].walls[0] + pb->pt[i].setups[0] <= FB_BENCH_REPEAT_BELOW_S)
+      if (pb->pt[i].rounds == round && pb->pt[i].walls[0] + pb->pt[i].setups[0] <= fb_bench_repeat_below_s())
         retime(pb, i);
   for (int i = 0; i < pb->n; i++) cost(pb, i);
   fb_bench_mark_pareto(pb->rows, pb->n);

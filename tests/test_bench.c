@@ -361,9 +361,10 @@ static void test_scaling_plan(void **state) {
     assert_true(fabs(b / a - 1.0) <= SCALING_STEPS_GROWTH_MAX);
   }
   assert_true(isnan(rows[2].reference_steps_per_rev) && rows[2].jobs == 1);
-  double bytes, est;
-  fb_tol_estimate(c.mechanism, 1000, 1, &bytes, &est);
-  assert_true(rows[3].estimate_s == est);
+  /* the Monte Carlo row's estimate is stackup's: 1000 samples at this
+   * case's measured cost per sample (a positive figure; its size is the
+   * machine's) */
+  assert_true(isfinite(rows[3].estimate_s) && rows[3].estimate_s > 0.0);
   fb_scaling_plan big = plan;
   big.nsamples = FB_SCALING_MAX_ROWS;
   assert_int_equal(fb_scaling_run(rows, &n, &c, &big, &d), FB_ERR_ARG);

@@ -17,6 +17,7 @@
 #include "report.h"
 #include "report_html.h"
 #include "run_folder.h"
+#include "work.h"
 
 #define MAX_SETS 256
 
@@ -66,17 +67,9 @@ static const char run_help[] =
     "Exit status: 0 ok (a model that stopped on numerical trouble says so in its\n"
     "status), 1 run failed, 2 bad input.\n";
 
-typedef struct {
-  int tty;
-} progress_state;
-
+/* each model's progress: the one progress line of long work (work.h) */
 static void progress(const char *model, double fraction, void *user) {
-  progress_state *p = user;
-  if (!p->tty) return;
-  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
-  fprintf(stderr, "  %-22s %3.0f%%", model, 100.0 * fraction);
-  if (fraction >= 1.0) fputc('\n', stderr);
-  fflush(stderr);
+  fb_progress_draw(user, model, fraction);
 }
 
 /* the case's variants ([variant.NAME]) loaded now, so a bad one fails before
@@ -343,7 +336,8 @@ int fb_cmd_run(int argc, char **argv) {
   if (figures && fb_figures_check_gnuplot(&diag) != FB_OK) return fb_cli_fail("run", 1, "%s", diag.msg);
   run_set w = {.dir = dir, .case_path = case_path, .command = command, .figures = figures,
                .html = html, .fmt = fmt};
-  progress_state ps = {isatty(2) && !json};
+  static fb_progress ps;
+  fb_progress_init(&ps, json);
   const fb_run_folder_job job = {.dir = dir, .c = &c, .variants = variants,
                                  .nvariants = c.variant_count, .progress = progress,
                                  .progress_user = &ps, .again = again, .write = write_set,

@@ -9,7 +9,9 @@
 
 #include "cli.h"
 #include "figures.h"
+#include "pilot.h"
 #include "run_folder.h"
+#include "work.h"
 #include "report_html_planar.h"
 #include "report_planar.h"
 
@@ -58,9 +60,26 @@ typedef struct {
   fb_diag write_diag; /* why the set was not written */
 } planar_job;
 
+/* long work said and bounded before it starts (work.h): the run's cost
+ * from two short runs of this case (pilot.h), in the folder's lifetime so
+ * that a signal meanwhile says what the folder keeps; a run refused by its
+ * estimate exits 1, as the four-bar's */
 static fb_status job_run(void *user, fb_diag *d) {
   planar_job *x = user;
-  return fb_planar_run_case(&x->r, x->c, d);
+  const fb_case *c = x->c;
+  fb_pilot p;
+  fb_status st = fb_pilot_case(&p, c, d);
+  if (st != FB_OK) return st;
+  char what[256], basis[96], est[48];
+  snprintf(what, sizeof what, "%d model%s over %.6g s ([run] revolutions = %g)", c->model_count,
+           c->model_count > 1 ? "s" : "", fb_case_duration(c), c->revolutions);
+  st = fb_work_bound(p.wall_s, c->max_wall_s, what, "lower [run] revolutions, raise [solver] h_s "
+                     "or run fewer [run] models", d);
+  if (st != FB_OK) return st;
+  snprintf(basis, sizeof basis, "from two short runs of it, which took %s",
+           fb_work_duration(est, sizeof est, p.pilot_cpu_s));
+  fb_work_note("run", what, p.cpu_s, basis, "", 0);
+  return fb_planar_run_case(&x->r, c, d);
 }
 
 static int job_write(const char *stage, void *user) {

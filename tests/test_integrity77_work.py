@@ -177,6 +177,123 @@ def missing_joint_said_as_a_missing_joint():
                                                    p.stderr))
 
 
+# ---- long work: estimated from the case, said, bounded, drawn -------------------
+
+def many_lengths():
+    """the six-bar with four dyads more (13 moving bodies, 34 lengths): each
+    dyad joins two binary bodies at a new point of each, its two links 400
+    mm long, longer than any distance between the points it joins turns,
+    so that it never folds or stretches"""
+    import math
+    text = open(sixbar).read()
+    joints = {m.group(1): (m.group(2), m.group(3), tuple(float(v) for v in m.group(4).split(",")))
+              for m in re.finditer(r"\[joint\.([^\]]+)\]\nbodies = (\w+), (\w+)\nat_mm = ([^\n]+)\n", text)}
+
+    def new_point(body, off=25.0):
+        a, b = [j[2] for j in joints.values() if body in (j[0], j[1])][:2]
+        dx, dy = b[0] - a[0], b[1] - a[1]
+        n = math.hypot(dx, dy)
+        return ((a[0] + b[0]) / 2 - dy / n * off, (a[1] + b[1]) / 2 + dx / n * off)
+
+    for k, (u, v) in enumerate((("crank", "output"), ("coupler", "rod"), ("dA1", "dB1"),
+                                ("dA2", "dB2")), 1):
+        P, Q = new_point(u), new_point(v)
+        d = math.hypot(Q[0] - P[0], Q[1] - P[1])
+        h = math.sqrt(400.0 ** 2 - (d / 2) ** 2)
+        ux, uy = (Q[0] - P[0]) / d, (Q[1] - P[1]) / d
+        R = ((P[0] + Q[0]) / 2 - uy * h, (P[1] + Q[1]) / 2 + ux * h)
+        a, b = "dA%d" % k, "dB%d" % k
+        for b0, b1, at in ((u, a, P), (a, b, R), (b, v, Q)):
+            joints["%s-%s" % (b0, b1)] = (b0, b1, at)
+            text += "[joint.%s-%s]\nbodies = %s, %s\nat_mm = %.6f, %.6f\n" % (b0, b1, b0, b1, at[0], at[1])
+    return write("many.ini", text.replace("name = watt_sixbar", "name = many_lengths"))
+
+
+@test
+def stackup_of_34_lengths_refused_before_its_corners():
+    """34 lengths announced 17,179,869,184 corners and started them: now
+    refused at once (beyond [run] max_wall_s), naming the methods that run"""
+    path = many_lengths()
+    p = run(["stackup", path, "--set", "tolerance.class=m"], timeout=120)
+    check(p.returncode == 2 and "2^34 = 17179869184 corners" in p.stderr and
+          "--method rss --method montecarlo" in p.stderr and "max_wall_s" in p.stderr,
+          "exit %d: %s" % (p.returncode, p.stderr))
+
+
+@test
+def every_long_part_bounded_by_max_wall_s():
+    """corners, a Monte Carlo (built-in and planar), a bench, a planar run:
+    refused before the work when estimated beyond [run] max_wall_s (exit 2;
+    a run exits 1, as the four-bar's refused run), the cheaper way named"""
+    sixm = ["--set", "tolerance.class=m"]
+    cases = (
+        (["stackup", sixbar, "--method", "corners", "--set", "run.max_wall_s=5"] + sixm, 2,
+         "1024 corners", "--method rss"),
+        (["stackup", sixbar, "--method", "montecarlo", "--samples", "20000",
+          "--set", "run.max_wall_s=5"] + sixm, 2, "20000 Monte Carlo samples", "fewer --samples"),
+        (["stackup", paper, "--method", "montecarlo", "--samples", "100000000",
+          "--set", "run.max_wall_s=5"], 2, "100000000 Monte Carlo samples", "fewer --samples"),
+        (["bench", paper, "--out", out("b1"), "--set", "run.max_wall_s=1"], 2,
+         "--grid default on paper_crank_rocker", "raise the limit"),
+        (["bench", planar4, "--out", out("b2"), "--set", "run.max_wall_s=1"], 2,
+         "--grid default on planar_fourbar", "raise the limit"),
+        (["run", planar4, "--out", out("r1"), "--set", "run.models=reference",
+          "--set", "run.revolutions=40", "--set", "run.max_wall_s=2"] + QUICK, 1,
+         "[run] revolutions = 40", "lower [run] revolutions"),
+    )
+    for args, code, what, instead in cases:
+        p = run(args, timeout=300)
+        check(p.returncode == code and what in p.stderr and instead in p.stderr and
+              "more than [run] max_wall_s" in p.stderr,
+              "%s: exit %d: %s" % (" ".join(args[:2]), p.returncode, p.stderr))
+    for d in ("b1", "b2", "r1"):
+        check(not os.path.exists(os.path.join(out(d), "bench.json")) and
+              not os.path.exists(os.path.join(out(d), "summary.json")), "%s was written" % d)
+
+
+@test
+def long_work_said_before_it_starts():
+    """a run estimated above 2 s says its estimate, from this case, first
+    (8 revolutions: about 6 s of CPU on the development machine, so that a
+    machine 3 times faster still estimates it above FB_WORK_NOTE_S)"""
+    p = run(["run", planar4, "--out", out("say"), "--set", "run.models=reference",
+             "--set", "run.revolutions=8"] + QUICK)
+    check(p.returncode == 0 and re.search(r"fourbar run: .*an estimated [0-9.]+ s of CPU "
+                                          r"\(from two short runs of it", p.stderr),
+          "exit %d: %s" % (p.returncode, p.stderr))
+
+
+def on_a_terminal(args, timeout=300):
+    """args run with stderr a terminal: what it drew"""
+    import pty
+    master, slave = pty.openpty()
+    p = subprocess.Popen([exe] + args, stdout=subprocess.DEVNULL, stderr=slave)
+    os.close(slave)
+    seen = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:
+            break
+        if not chunk:
+            break
+        seen += chunk
+    p.wait(timeout=timeout)
+    os.close(master)
+    return p.returncode, seen.decode(errors="replace")
+
+
+@test
+def progress_drawn_on_a_terminal():
+    """the corners and the planar bench drew nothing: one progress line,
+    fourbar run's, on a terminal, nothing in a pipe"""
+    rc, seen = on_a_terminal(["stackup", planar4, "--set", "tolerance.class=m", "--method",
+                              "corners"])
+    check(rc == 0 and "corners" in seen and "100 %" in seen, "stackup corners: %r" % seen[-300:])
+    p = run(["stackup", planar4, "--set", "tolerance.class=m", "--method", "corners"])
+    check(p.returncode == 0 and "\r" not in p.stderr, "in a pipe: %r" % p.stderr)
+
+
 def main():
     for fn in tests:
         try:

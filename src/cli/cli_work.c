@@ -66,7 +66,8 @@ int fb_cli_stackup_work(const fb_case *c, int mask, double rss_evals, double cor
     m += (size_t)snprintf(instead + m, sizeof instead - m, "%sfewer --samples (%.0f fit)",
                           m ? ", or " : "run ", fit);
   if (samples > 0.0 && jobs < FB_TOL_MAX_JOBS && m < sizeof instead)
-    snprintf(instead + m, sizeof instead - m, "%smore --jobs", m ? ", or " : "run ");
+    m += (size_t)snprintf(instead + m, sizeof instead - m, "%smore --jobs", m ? ", or " : "run ");
+  if (m == 0) snprintf(instead, sizeof instead, "the RSS band is the cheapest method");
   fb_diag d;
   if (fb_work_bound(wall, c->max_wall_s, what, instead, &d) != FB_OK)
     return fb_cli_fail("stackup", 2, "%s", d.msg);

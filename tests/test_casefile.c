@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "casefile.h"
+#include "casefile_internal.h"
 #include "fb_config.h"
 #include "fb_test.h"
 #include "model_table.h"
@@ -191,6 +192,57 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                (const char *[]){"--set", "section.key=value", NULL});
   expect_error(NULL, (const char *[]){"linkage.crank_mm=-1"}, 1, FB_ERR_RANGE,
                (const char *[]){"--set", "crank_mm = -1", "positive", NULL});
+}
+
+/* Every number key's refusal states the range its row holds (the table's
+ * lo, hi and open ends, in the key's file unit), whatever its rule's prose
+ * says: the injected-error scales once said "a scale must be positive" of
+ * a range (0, 1e6]. Generated over the table: for each K_DOUBLE and K_INT
+ * row, a value past each finite end (the end itself where it is open) is
+ * refused as out of range, and the message holds the range text. A planar
+ * row is tried on a planar case, the others on the default four-bar. */
+static void test_every_range_refusal_states_the_range(void **state) {
+  (void)state;
+  static const char planar_head[] =
+      "[linkage]\ntype = planar\n[joint.a]\nbodies = ground, crank\nat_mm = 0, 0\n"
+      "[joint.b]\nbodies = crank, rod\nat_mm = 50, 0\n[joint.c]\nbodies = rod, ground\n"
+      "at_mm = 100, 80\n[drive]\njoint = a\n";
+  int tried = 0;
+  for (int i = 0; i < fb_casefile_key_count(); i++) {
+    const key_spec *k = fb_casefile_spec(i);
+    if (k->kind != K_DOUBLE && k->kind != K_INT) continue;
+    char range[96];
+    fb_casefile_range_text(k, range, sizeof range);
+    for (int end = 0; end < 2; end++) {
+      const double b = end ? k->hi : k->lo;
+      if (!isfinite(b)) continue;
+      const int open = end ? k->hi_open : k->lo_open;
+      const double step = k->kind == K_INT ? 1.0 : fmax(1.0, fabs(b));
+      const double v = open && k->kind == K_DOUBLE ? b : b + (end ? step : -step);
+      char text[1024];
+      fb_case c;
+      fb_diag d;
+      for (int planar = 0; planar < 2; planar++) {
+        snprintf(text, sizeof text, "%s[%s]\n%s = %.17g\n", planar ? planar_head : "",
+                 k->section, k->key, v);
+        const fb_status st = fb_casefile_load_text(&c, "r.ini", text, strlen(text), &d);
+        if (st == FB_ERR_PARSE && strstr(d.msg, "unknown")) continue; /* the other kind's key */
+        if (st != FB_ERR_RANGE || !strstr(d.msg, range))
+          fail_msg("[%s] %s = %.17g: status %d, '%s' (the range %s not stated)", k->section,
+                   k->key, v, st, d.msg, range);
+        tried++;
+        break;
+      }
+    }
+  }
+  if (fb_test_verbose()) fprintf(stderr, "  %d ends of number keys refused with their range\n", tried);
+  assert_true(tried > 100);
+  /* the example: (0, 1e6] of the injected-error scales */
+  fb_case c;
+  fb_diag d;
+  const char *sets[] = {"clearance.engine_stiffness_scale=2e6"};
+  assert_int_equal(fb_casefile_load(&c, NULL, sets, 1, &d), FB_ERR_RANGE);
+  assert_non_null(strstr(d.msg, "(0, 1e6]"));
 }
 
 /* [run] start, pin_start, peaks and [clearance] penetration_limit_um: the
@@ -673,6 +725,7 @@ int main(void) {
       cmocka_unit_test(test_model_patterns),
       cmocka_unit_test(test_missing_file),
       cmocka_unit_test(test_bad_inputs_name_place_value_rule),
+      cmocka_unit_test(test_every_range_refusal_states_the_range),
       cmocka_unit_test(test_start_peaks_and_limit_keys),
       cmocka_unit_test(test_every_key_documented),
       cmocka_unit_test(test_shipped_cases_run_their_references),

@@ -97,7 +97,18 @@ ok 'refuses "not a regular file" timeout 20 "$exe" run "$tmp/fifo_base.ini" --ou
 ok 'refuses "not a regular file" timeout 20 "$exe" sweep "$tmp/fifo.ini" --out "$tmp/a7"' "7: a FIFO as the study file is refused at once (was a hang)"
 FOURBAR_REFERENCE_TOL=abc timeout 60 "$exe" run --set run.revolutions=2 --set run.models=reference --no-figures --out "$tmp/a7" >/dev/null 2>"$tmp/err"
 rc=$?
-ok '[ $rc -eq 1 ] && grep -q "FOURBAR_REFERENCE_TOL" "$tmp/err"' "7: FOURBAR_REFERENCE_TOL=abc is refused naming the variable (was a hang)"
+ok '[ $rc -eq 2 ] && grep -q "FOURBAR_REFERENCE_TOL" "$tmp/err"' "7: FOURBAR_REFERENCE_TOL=abc is refused naming the variable, as bad input (was a hang; then exit 1)"
+# every value no run can take, on the four-bar, a planar case and a sweep:
+# bad input (exit 2) with the rule, refused with the case before any work
+n7=0
+for v in abc 0 1e-14 1e-2 0x1p-30 inf nan -1e-9 ''; do
+  for what in "run --set run.models=reference" "run $here/../cases/templates/planar_fourbar.ini --set run.models=reference" "sweep $here/studies/tiny.ini"; do
+    n7=$((n7+1))
+    FOURBAR_REFERENCE_TOL=$v timeout 60 "$exe" $what --out "$tmp/a7e$n7" >/dev/null 2>"$tmp/err"
+    rc=$?
+    ok '[ $rc -eq 2 ] && grep -q "FOURBAR_REFERENCE_TOL = .*decimal number from 1e-13 to 0.001" "$tmp/err"' "7: FOURBAR_REFERENCE_TOL='$v' on fourbar ${what%% *} exits 2 naming the rule (rc $rc)"
+  done
+done
 
 # ---- 9. input parsing ------------------------------------------------------------
 printf '[linkage]\n\0crank_mm = 5\n' > "$tmp/nul.ini"
@@ -383,7 +394,7 @@ ok '! timeout 20 "$exe" run "${slow[@]}" --out "$tmp/dangling" 2>"$tmp/err" && g
 mkdir -p "$tmp/here13" && (cd "$tmp/here13" && "$exe" run "${tiny[@]}" --out . >/dev/null 2>"$tmp/err"; echo $? > "$tmp/rc13")
 ok '[ "$(cat "$tmp/rc13")" -ne 0 ] && [ -d "$tmp/here13" ] && grep -q "current folder" "$tmp/err"' "24.13: run --out . is refused (the shell's folder would be removed)"
 FOURBAR_REFERENCE_TOL=0x1p-30 "$exe" run --set run.revolutions=2 --set run.models=reference --no-figures --out "$tmp/a13" >/dev/null 2>"$tmp/err"
-ok '[ $? -eq 1 ] && grep -q "FOURBAR_REFERENCE_TOL = .0x1p-30.*decimal" "$tmp/err"' "24.13: FOURBAR_REFERENCE_TOL=0x1p-30 is refused by name as not decimal (was: read as hex)"
+ok '[ $? -eq 2 ] && grep -q "FOURBAR_REFERENCE_TOL = .0x1p-30.*decimal" "$tmp/err"' "24.13: FOURBAR_REFERENCE_TOL=0x1p-30 is refused by name as not decimal (was: read as hex)"
 if unshare -m true 2>/dev/null; then
   mkdir -p "$tmp/mnt13"
   unshare -m bash -c "mount -t tmpfs -o size=4m tmpfs '$tmp/mnt13' && '$exe' run ${tiny[*]} --out '$tmp/mnt13' >/dev/null 2>'$tmp/err'; echo \$? > '$tmp/rc13m'"

@@ -296,12 +296,52 @@ static void test_follow_locks(void **state) {
   fb_planar_free(m);
 }
 
+/* A mechanism that turns fully is followed over its revolution in a run's
+ * sample intervals, whatever the step: the drive angle of sample i is
+ * omega (i h), as the planar run computes it, so that an interval is a
+ * few whole continuation steps and a remainder of rounding (4e-16 rad at
+ * h = 5e-4 s, 1000 rpm: three steps of 1 degree short of 3 degrees),
+ * which the path once took as a step of its own and called a lock at
+ * -117 degrees. Every step from 1e-5 to 2e-3 s in steps of 1e-5 s (200
+ * runs of intervals from 0.06 to 12 degrees), at the paper's 1000 rpm,
+ * clockwise as cases/templates/planar_fourbar.ini. */
+static void test_follow_in_sample_steps(void **state) {
+  (void)state;
+  fb_case c = fb_test_paper_once();
+  c.crank_angle0 = 0.0; /* the template's assembly: the crank along +x */
+  fb_test_planar t = fb_test_planar_paper(&c, &c.nominal);
+  const double omega = -1000.0 * 2.0 * M_PI / 60.0;
+  double q[9], q0[9];
+  fb_planar_assembly(t.m, q0);
+  fb_diag d;
+  memcpy(q, q0, sizeof q);
+  assert_int_equal(fb_planar_position(t.k, q, 0.0, NULL, &d), FB_OK);
+  memcpy(q0, q, sizeof q);
+  int runs = 0;
+  for (int k = 1; k <= 200; k++) {
+    const double h = 1e-5 * k;
+    memcpy(q, q0, sizeof q);
+    double from = 0.0;
+    for (long i = 1; omega * (double)i * h >= -2.0 * M_PI; i++) {
+      const double to = omega * ((double)i * h);
+      fb_path_end end;
+      if (fb_planar_follow(t.k, q, from, to, NULL, &end, &d) != FB_OK)
+        fail_msg("h = %g s, sample %ld (%.6f to %.6f rad): %s", h, i, from, to, d.msg);
+      from = to;
+    }
+    runs++;
+  }
+  assert_int_equal(runs, 200);
+  fb_test_planar_free(&t);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_fourbar_peaks),
       cmocka_unit_test(test_slider_crank_peaks),
       cmocka_unit_test(test_sixbar_against_dyads),
       cmocka_unit_test(test_follow_locks),
+      cmocka_unit_test(test_follow_in_sample_steps),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

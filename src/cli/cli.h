@@ -4,6 +4,8 @@
 
 #include <stddef.h>
 
+#include "work.h"
+
 /* Prints "fourbar <cmd>: <message>" to stderr and returns exit status 2
  * (usage) or 1 (failure) as given. */
 int fb_cli_fail(const char *cmd, int status, const char *fmt, ...)
@@ -81,10 +83,11 @@ const char *fb_cli_baselines_dir(void);
 int fb_cmd_run(int argc, char **argv);
 /* fourbar run's part for a planar case c loaded from case_path (cmd_run_planar.c):
  * its models into folder dir, summary.json printed with json, command for
- * report.md; the figures unless figures is 0 (png 1: PNG, else SVG),
- * report.html unless html is 0. Returns the exit status. */
+ * report.md, again the command a signal's note says runs it again; the
+ * figures unless figures is 0 (png 1: PNG, else SVG), report.html unless
+ * html is 0. Returns the exit status. */
 int fb_cmd_run_planar(const struct fb_case_s *c, const char *case_path, const char *dir, int json,
-                      const char *command, int figures, int png, int html);
+                      const char *command, const char *again, int figures, int png, int html);
 int fb_cmd_kinematics(int argc, char **argv);
 /* kinematics, stackup and penalty's parts for a planar case c (its speed and
  * direction as the command resolved them; cmd_planar_tools.c): output on
@@ -96,11 +99,23 @@ typedef struct {
   size_t samples;      /* samples (>= 1) */
   unsigned long seed;  /* mt19937 seed */
   int jobs;            /* threads evaluating them */
-  void (*progress)(double fraction, void *user); /* the progress bar (cmd_stackup.c) */
-  void *user;
-  /* the cost note on stderr: samples, an estimated seconds [s] and bytes on jobs threads */
-  void (*note)(size_t samples, double seconds, double bytes, int jobs);
+  fb_progress *progress; /* the progress line (work.h) */
 } fb_cli_mc;
+/* A stack-up's work said before it starts and bounded by [run] max_wall_s
+ * (work.h; cli_work.c): rss_evals evaluations for the RSS band, corners
+ * (may be INFINITY) and, with FB_TOL_MONTECARLO in mask, mc's samples on
+ * its jobs (bytes of memory), each each [s] of CPU measured on case c;
+ * unit names an evaluation ("a revolution's peaks"). The Monte Carlo's
+ * estimate is said when long, or always with always. Returns 0, or the
+ * exit status having said why (2: beyond the limit, naming the cheaper
+ * methods and the option that runs it anyway). */
+int fb_cli_stackup_work(const struct fb_case_s *c, int mask, double rss_evals, double corners,
+                        const fb_cli_mc *mc, double each, double bytes, int always,
+                        const char *unit);
+/* fb_progress_draw as a progress callback of the studies (user: the line) */
+void fb_cli_progress_corners(double fraction, void *user);
+void fb_cli_progress_rss(double fraction, void *user);
+void fb_cli_progress_mc(double fraction, void *user);
 /* stackup: mask of FB_TOL_CORNERS (the worst case over every corner) and
  * FB_TOL_MONTECARLO (mc's samples); the RSS band always */
 int fb_cmd_stackup_planar(const struct fb_case_s *c, int mask, const fb_cli_mc *mc, int json);

@@ -103,8 +103,12 @@ static const char bench_help_grids[] =
     "results/<case>/; a run into the same folder keeps them); an existing file of\n"
     "those names that no fourbar bench wrote there is replaced only with --overwrite\n"
     "(docs/outputs.md, What fourbar replaces).\n"
-    "On a terminal a progress bar with the time left is drawn on stderr.\n"
-    "Exit status: 0 ok, 1 failed, 2 bad input.\n";
+    "Before the work the bench is estimated from this case's own runs (each run the\n"
+    "grid makes, run twice for a short time and extrapolated: about 5 % of the\n"
+    "bench), said on stderr when above 2 s, and refused beyond [run] max_wall_s\n"
+    "(--set run.max_wall_s=S) with exit 2. On a terminal a progress line with the\n"
+    "time left is drawn on stderr.\n"
+    "Exit status: 0 ok, 1 failed, 2 bad input or beyond [run] max_wall_s.\n";
 
 /* bench.svg (fb_bench_drawer) */
 static fb_status draw(const char *path, const char *case_name, const fb_bench_row *rows, int n,

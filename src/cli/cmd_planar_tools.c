@@ -20,16 +20,14 @@ int fb_cmd_kinematics_planar(const fb_case *c, int json) {
   return 0;
 }
 
-/* the Monte Carlo's cost said and bounded before anything runs, as the
- * four-bar's (montecarlo.h): 0, or the exit status */
-static int mc_cost(const fb_planar *m, int nl, const fb_cli_mc *mc) {
-  double bytes, seconds;
+/* the Monte Carlo's memory bounded before anything runs, as the
+ * four-bar's (montecarlo.h): 0, or the exit status; *bytes its estimate */
+static int mc_memory(double *bytes, const fb_planar_stackup *s, const fb_cli_mc *mc, double each) {
+  double seconds;
   fb_diag d;
-  fb_mc_estimate(FB_PLANAR_S_PER_SAMPLE, 4 * (m->nbodies - 1), nl, mc->samples, mc->jobs, &bytes,
-                 &seconds);
-  if (fb_mc_check_cost(mc->samples, bytes, seconds, &d) != FB_OK)
+  fb_mc_estimate(each, s->nout, s->nlengths, mc->samples, mc->jobs, bytes, &seconds);
+  if (fb_mc_check_cost(mc->samples, *bytes, seconds, &d) != FB_OK)
     return fb_cli_fail("stackup", 2, "%s", d.msg);
-  mc->note(mc->samples, seconds, bytes, mc->jobs);
   return 0;
 }
 
@@ -37,23 +35,37 @@ int fb_cmd_stackup_planar(const fb_case *c, int mask, const fb_cli_mc *mc, int j
   fb_planar *m;
   fb_diag d;
   if (fb_planar_of_case(&m, c, NULL, &d) != FB_OK) return fb_cli_fail("stackup", 1, "%s", d.msg);
-  const int nl = fb_planar_stackup_lengths(m), with_corners = (mask & FB_TOL_CORNERS) != 0;
-  if (with_corners && nl < 62 && (1ull << nl) > FB_PLANAR_CORNERS_NOTE)
-    fprintf(stderr, "fourbar stackup: %d lengths make %llu corners, each a revolution's peaks: "
-            "about %.0f s of CPU at the six-bar's cost per corner (--method rss skips them)\n", nl,
-            1ull << nl, (double)(1ull << nl) * FB_PLANAR_S_PER_CORNER);
-  /* (without a class the stack-up is refused below, before any cost) */
-  const int rc = (mask & FB_TOL_MONTECARLO) && c->tolerance_class ? mc_cost(m, nl, mc) : 0;
+  /* the lengths and the nominal outputs, timed: this case's cost of an
+   * evaluation, from which every part is estimated, said and bounded
+   * before it starts (work.h) */
+  static fb_planar_stackup s;
+  double each;
+  fb_status st = fb_planar_stackup_begin(&s, &each, c, m, &d);
+  if (st != FB_OK) {
+    fb_planar_free(m);
+    return fb_cli_fail("stackup", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
+  }
+  const int nl = s.nlengths;
+  const double corners = !(mask & FB_TOL_CORNERS) ? 0.0
+                         : nl > FB_PLANAR_CORNER_BITS ? INFINITY : ldexp(1.0, nl);
+  double bytes = 0.0;
+  int rc = (mask & FB_TOL_MONTECARLO) ? mc_memory(&bytes, &s, mc, each) : 0;
+  /* (a planar Monte Carlo says its estimate always: each sample is a
+   * revolution's peaks) */
+  if (!rc) rc = fb_cli_stackup_work(c, mask, 2.0 * nl, corners, mc, each, bytes, 1,
+                                    "a revolution's peaks");
   if (rc) {
+    fb_planar_stackup_free(&s);
     fb_planar_free(m);
     return rc;
   }
-  static fb_planar_stackup s;
-  fb_status st = fb_planar_stackup_run(&s, c, m, with_corners, &d);
+  st = fb_planar_stackup_rss(&s, c, m, fb_cli_progress_rss, mc->progress, &d);
+  if (st == FB_OK && (mask & FB_TOL_CORNERS))
+    st = fb_planar_stackup_corners(&s, c, m, fb_cli_progress_corners, mc->progress, &d);
   if (st == FB_OK && (mask & FB_TOL_MONTECARLO))
     st = fb_planar_stackup_montecarlo(&s, c, m, mc->samples, mc->seed,
                                       c->distribution ? FB_DIST_UNIFORM : FB_DIST_NORMAL, mc->jobs,
-                                      mc->progress, mc->user, &d);
+                                      fb_cli_progress_mc, mc->progress, &d);
   if (st != FB_OK) {
     fb_planar_stackup_free(&s);
     fb_planar_free(m);

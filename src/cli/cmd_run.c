@@ -17,6 +17,7 @@
 #include "report.h"
 #include "report_html.h"
 #include "run_folder.h"
+#include "work.h"
 
 #define MAX_SETS 256
 
@@ -66,17 +67,9 @@ static const char run_help[] =
     "Exit status: 0 ok (a model that stopped on numerical trouble says so in its\n"
     "status), 1 run failed, 2 bad input.\n";
 
-typedef struct {
-  int tty;
-} progress_state;
-
+/* each model's progress: the one progress line of long work (work.h) */
 static void progress(const char *model, double fraction, void *user) {
-  progress_state *p = user;
-  if (!p->tty) return;
-  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
-  fprintf(stderr, "  %-22s %3.0f%%", model, 100.0 * fraction);
-  if (fraction >= 1.0) fputc('\n', stderr);
-  fflush(stderr);
+  fb_progress_draw(user, model, fraction);
 }
 
 /* the case's variants ([variant.NAME]) loaded now, so a bad one fails before
@@ -96,8 +89,13 @@ static int load_variants(fb_case *c, fb_case *variants, const char *case_path,
    * refused by its estimate always was; a scene the keys cannot make: 2) */
   fb_diag pre;
   int over_cost;
-  if (fb_run_preflight(c, &over_cost, &pre) != FB_OK)
-    return fb_cli_fail("run", over_cost ? 1 : 2, "%s: %s", case_path, pre.msg);
+  char where[FB_DIAG_SIZE];
+  if (fb_run_preflight(c, &over_cost, &pre) != FB_OK) {
+    /* a rule of the keys: where they were given, as a load says it */
+    const size_t l = fb_casefile_given_where(where, sizeof where, case_path, sets, nsets, pre.msg);
+    return fb_cli_fail("run", over_cost ? 1 : 2, "%s: %s%s%s%s", case_path, pre.msg,
+                       l ? " (given: " : "", where, l ? ")" : "");
+  }
   for (int v = 0; v < c->variant_count; v++)
     if (fb_run_preflight(&variants[v], &over_cost, &pre) != FB_OK)
       return fb_cli_fail("run", over_cost ? 1 : 2, "%s: variant %s (%s): %s", case_path,
@@ -321,8 +319,10 @@ int fb_cmd_run(int argc, char **argv) {
     snprintf(dir, sizeof dir, "results/%s", c.name);
   static char again[8192], command[8192];
   command_text(command, sizeof command, argc, argv);
+  fb_cli_command_line(again, sizeof again, argc, argv, NULL);
   if (c.planar.on)
-    return fb_cmd_run_planar(&c, case_path, dir, json, command, figures, fmt == FB_FIGURE_PNG, html);
+    return fb_cmd_run_planar(&c, case_path, dir, json, command, again, figures,
+                             fmt == FB_FIGURE_PNG, html);
   static fb_case variants[FB_MAX_VARIANTS];
   if ((rc = load_variants(&c, variants, case_path, sets, nsets, jobs)) != 0) return rc;
 
@@ -334,10 +334,10 @@ int fb_cmd_run(int argc, char **argv) {
   const int replaces = stat(prev_summary, &prev) == 0;
   /* figures need gnuplot: found out before the simulation, not after it */
   if (figures && fb_figures_check_gnuplot(&diag) != FB_OK) return fb_cli_fail("run", 1, "%s", diag.msg);
-  fb_cli_command_line(again, sizeof again, argc, argv, NULL);
   run_set w = {.dir = dir, .case_path = case_path, .command = command, .figures = figures,
                .html = html, .fmt = fmt};
-  progress_state ps = {isatty(2) && !json};
+  static fb_progress ps;
+  fb_progress_init(&ps, json);
   const fb_run_folder_job job = {.dir = dir, .c = &c, .variants = variants,
                                  .nvariants = c.variant_count, .progress = progress,
                                  .progress_user = &ps, .again = again, .write = write_set,

@@ -1,13 +1,17 @@
 /* fourbar run on a planar case ([linkage] type = planar): its models on
  * the planar core (planar_run.h) into the output folder, whole or nothing
  * new (outdir.h), outputs by body name (report_planar.h), figures
- * (figures.h fb_figures_planar) and report.html (report_html_planar.h). */
+ * (figures.h fb_figures_planar) and report.html (report_html_planar.h),
+ * through the folder owner the four-bar's run uses (run_folder.h: the same
+ * note on a signal, the same kept files said). */
 #include <jansson.h>
 #include <stdio.h>
 
 #include "cli.h"
 #include "figures.h"
-#include "outdir.h"
+#include "pilot.h"
+#include "run_folder.h"
+#include "work.h"
 #include "report_html_planar.h"
 #include "report_planar.h"
 
@@ -46,48 +50,82 @@ static fb_status write_set(const char *stage, const fb_planar_run *r, const char
   return st;
 }
 
+/* the planar run as fb_folder_run's callbacks (run_folder.h) */
+typedef struct {
+  const fb_case *c;
+  const char *case_path, *command;
+  int figures, png, html;
+  int nfig, charts;   /* figures drawn; 1 when report.html has its charts */
+  fb_planar_run r;
+  fb_diag write_diag; /* why the set was not written */
+} planar_job;
+
+/* long work said and bounded before it starts (work.h): the run's cost
+ * from two short runs of this case (pilot.h), in the folder's lifetime so
+ * that a signal meanwhile says what the folder keeps; a run refused by its
+ * estimate exits 1, as the four-bar's */
+static fb_status job_run(void *user, fb_diag *d) {
+  planar_job *x = user;
+  const fb_case *c = x->c;
+  fb_pilot p;
+  fb_status st = fb_pilot_case(&p, c, d);
+  if (st != FB_OK) return st;
+  char what[256], basis[96], est[48];
+  snprintf(what, sizeof what, "%d model%s over %.6g s ([run] revolutions = %g)", c->model_count,
+           c->model_count > 1 ? "s" : "", fb_case_duration(c), c->revolutions);
+  st = fb_work_bound(p.wall_s, c->max_wall_s, what, "lower [run] revolutions, raise [solver] h_s "
+                     "or run fewer [run] models", d);
+  if (st != FB_OK) return st;
+  snprintf(basis, sizeof basis, "from two short runs of it, which took %s",
+           fb_work_duration(est, sizeof est, p.pilot_cpu_s));
+  fb_work_note("run", what, p.cpu_s, basis, "", 0);
+  return fb_planar_run_case(&x->r, c, d);
+}
+
+static int job_write(const char *stage, void *user) {
+  planar_job *x = user;
+  return write_set(stage, &x->r, x->case_path, x->command, x->figures, x->png, x->html, &x->nfig,
+                   &x->charts, &x->write_diag) != FB_OK;
+}
+
+static void job_discard(void *user) { fb_planar_run_free(&((planar_job *)user)->r); }
+
 int fb_cmd_run_planar(const fb_case *c, const char *case_path, const char *dir, int json,
-                      const char *command, int figures, int png, int html) {
+                      const char *command, const char *again, int figures, int png, int html) {
   int rc = refuse(c, case_path);
   if (rc) return rc;
   fb_diag d;
   /* figures need gnuplot: found out before the simulation, not after it */
   if (figures && fb_figures_check_gnuplot(&d) != FB_OK) return fb_cli_fail("run", 1, "%s", d.msg);
-  static fb_outdir od;
-  fb_status st = fb_outdir_lock(&od, dir, 1, NULL, &d);
-  if (st == FB_OK) st = fb_outdir_stage(&od, &d);
-  if (st != FB_OK) {
-    fb_outdir_release(&od);
-    return fb_cli_fail("run", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
+  static planar_job x;
+  x = (planar_job){.c = c, .case_path = case_path, .command = command, .figures = figures,
+                   .png = png, .html = html};
+  const fb_folder_job job = {dir, again, job_run, job_write, job_discard, &x};
+  int write_rc;
+  switch (fb_folder_run(&job, &write_rc, &d)) {
+    case FB_RUN_FOLDER_OK: break;
+    case FB_RUN_FOLDER_DIR: return fb_cli_fail("run", 1, "%s", d.msg);
+    case FB_RUN_FOLDER_BAD: return fb_cli_fail("run", 2, "%s", d.msg);
+    case FB_RUN_FOLDER_RUN: return fb_cli_fail("run", 1, "%s: %s", case_path, d.msg);
+    case FB_RUN_FOLDER_WRITE:
+      return fb_cli_fail("run", 1, "%s; %s keeps what it held", x.write_diag.msg, dir);
   }
-  static fb_planar_run r;
-  if (fb_planar_run_case(&r, c, &d) != FB_OK) {
-    fb_outdir_release(&od);
-    return fb_cli_fail("run", 1, "%s: %s", case_path, d.msg);
-  }
-  int nfig = 0, charts = 0;
-  st = write_set(od.stage, &r, case_path, command, figures, png, html, &nfig, &charts, &d);
-  if (st == FB_OK) st = fb_outdir_commit(&od, &d);
-  fb_outdir_release(&od);
-  if (st != FB_OK) {
-    fb_planar_run_free(&r);
-    return fb_cli_fail("run", 1, "%s; %s keeps what it held", d.msg, dir);
-  }
+  const fb_planar_run *r = &x.r;
   if (json) {
-    json_t *j = fb_report_planar_summary_json(&r, case_path);
+    json_t *j = fb_report_planar_summary_json(r, case_path);
     json_dumpf(j, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
     fputc('\n', stdout);
     json_decref(j);
   } else {
-    fb_report_planar_table(stdout, &r);
+    fb_report_planar_table(stdout, r);
     printf("wrote %s/summary.json, timing.json, %s, %d figures, report.md%s\n", dir,
-           c->series == FB_SERIES_CSV ? "one CSV per model" : "no time series", nfig,
+           c->series == FB_SERIES_CSV ? "one CSV per model" : "no time series", x.nfig,
            html ? " and report.html" : "");
   }
-  if (html && !charts)
+  if (html && !x.charts)
     fprintf(stderr, "fourbar run: note: %s/report.html has no charts: the charting library uPlot "
             "was not found (run npm ci in the fourbar source folder, or set FOURBAR_UPLOT_DIR)\n",
             dir);
-  fb_planar_run_free(&r);
+  fb_planar_run_free(&x.r);
   return 0;
 }

@@ -16,8 +16,6 @@
 #include "tables_stackup.h"
 #include "tolerance.h"
 
-/* a Monte Carlo estimated longer than this is announced on stderr [s] */
-#define STACKUP_NOTE_S 10.0
 #define MAX_SETS 256
 
 static const char stackup_help[] =
@@ -35,10 +33,10 @@ static const char stackup_help[] =
     "shown as '-' needs more samples.\n"    "A planar case ([linkage] type = planar, docs/planar.md): ISO 2768-1 ([tolerance]\n"
     "class) on each body's joint-to-joint distances; every moving body's omega and\n"
     "alpha extremes: sensitivities by central differences, the RSS band, the worst\n"
-    "case over every corner (2^n for n lengths: the six-bar's 10, 1024 corners, about\n"
-    "46 s), the Monte Carlo as above, each sample a revolution's peaks (about 48 ms\n"
-    "of CPU on the six-bar: 3000 samples by default, the fewest round number whose\n"
-    "tail quantiles' intervals are bounded, about 145 s; the estimate is printed).\n"
+    "case over every corner (2^n for n lengths: the six-bar's 10, 1024 corners), the\n"
+    "Monte Carlo as above (3000 samples by default, the fewest round number whose\n"
+    "tail quantiles' intervals are bounded), each evaluation a revolution's peaks\n"
+    "(about 50 ms of CPU on the six-bar).\n"
     "A slider-crank case ([linkage] type = slider-crank): over its crank, coupler\n"
     "and guide offset (8 corners), the outputs are the rod's (coupler_*) omega and\n"
     "alpha peaks, the slider's velocity [m/s] and acceleration [m/s^2] peaks\n"
@@ -54,45 +52,12 @@ static const char stackup_help[] =
     "  --json      one JSON object on standard output (keys: docs/commands.md,\n"
     "              stackup)\n"
     "  CASE        default: the paper's case, cases/paper_crank_rocker.ini\n"
-    "A progress bar goes to standard error on a terminal only.\n"
-    "Exit status: 0 ok, 1 failed, 2 bad input.\n";
-
-/* progress bar on a terminal (quiet otherwise): redrawn at most every 0.1 s */
-typedef struct {
-  int on;         /* standard error is a terminal and the output is text */
-  size_t samples; /* total */
-  double t0;      /* start [s]; 0: at the first call (a planar case's, after its corners) */
-  double last;    /* last redraw [s] */
-} progress_bar;
-
-static void progress(double fraction, void *user) {
-  progress_bar *b = user;
-  if (!b->on) return;
-  const double now = fb_clock_s();
-  if (b->t0 == 0.0) b->t0 = now;
-  if (fraction < 1.0 && now - b->last < 0.1) return;
-  b->last = now;
-  enum { W = 30 };
-  char bar[W + 1];
-  const int full = (int)(fraction * W);
-  for (int i = 0; i < W; i++) bar[i] = i < full ? '#' : '-';
-  bar[W] = 0;
-  const double el = now - b->t0;
-  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
-  fprintf(stderr, "  Monte Carlo [%s] %3.0f%%  %zu/%zu  %.1f s", bar, 100.0 * fraction,
-          (size_t)(fraction * (double)b->samples), b->samples, el);
-  if (fraction > 0.0 && fraction < 1.0) fprintf(stderr, ", %.1f s left ", el * (1.0 - fraction) / fraction);
-  else fputs("              ", stderr);
-  if (fraction >= 1.0) fputc('\n', stderr);
-  fflush(stderr);
-}
-
-/* the cost note on stderr (fb_cli_mc's note) */
-static void note(size_t samples, double seconds, double bytes, int jobs) {
-  fprintf(stderr, "fourbar stackup: %zu Monte Carlo samples: an estimated %.3g s and %.3g GB "
-          "with %d job%s (--jobs J divides the time)\n", samples, seconds, bytes / 1e9, jobs,
-          jobs > 1 ? "s" : "");
-}
+    "Before the work: the cost of one evaluation of this case is measured (its\n"
+    "outputs at the nominal lengths), the corners, RSS and samples are estimated from\n"
+    "it and said on standard error when above 2 s; work estimated beyond [run]\n"
+    "max_wall_s (--set run.max_wall_s=S) is refused with exit 2, naming the cheaper\n"
+    "methods. A progress line goes to standard error on a terminal only.\n"
+    "Exit status: 0 ok, 1 failed, 2 bad input or beyond [run] max_wall_s.\n";
 
 int fb_cmd_stackup(int argc, char **argv) {
   static const struct option opts[] = {{"method", required_argument, 0, 'm'},
@@ -147,23 +112,27 @@ int fb_cmd_stackup(int argc, char **argv) {
   int rc = fb_cli_load_case("stackup", argc, argv, optind, sets, nsets, &c, case_path, sizeof case_path);
   if (rc) return rc;
   if (samples == 0) samples = c.planar.on ? FB_PLANAR_MC_SAMPLES : 10000;
-  progress_bar bar = {isatty(2) && !json, (size_t)samples, 0.0, 0.0};
+  static fb_progress bar;
+  fb_progress_init(&bar, json);
+  const fb_cli_mc mc = {(size_t)samples, (unsigned long)seed, (int)jobs, &bar};
   if (c.planar.on) /* over its bodies' lengths (planar_tools.h) */
-    return fb_cmd_stackup_planar(&c, mask, &(fb_cli_mc){(size_t)samples, (unsigned long)seed,
-                                                         (int)jobs, progress, &bar, note}, json);
-  /* a long Monte Carlo says what it will cost before it starts */
-  if (mask & FB_TOL_MONTECARLO) {
-    if (fb_tol_check_cost(c.mechanism, (size_t)samples, (int)jobs, &d) != FB_OK)
-      return fb_cli_fail("stackup", 2, "%s", d.msg);
-    double bytes, seconds;
-    fb_tol_estimate(c.mechanism, (size_t)samples, (int)jobs, &bytes, &seconds);
-    if (seconds > STACKUP_NOTE_S) note((size_t)samples, seconds, bytes, (int)jobs);
-  }
+    return fb_cmd_stackup_planar(&c, mask, &mc, json);
+  /* the work said and bounded before it starts, from this case's own cost
+   * of an evaluation (a corner or a sample: its outputs and their peaks) */
+  double each;
+  if (fb_tol_eval_cost(&each, NULL, &c, &d) != FB_OK) return fb_cli_fail("stackup", 1, "%s", d.msg);
+  if ((mask & FB_TOL_MONTECARLO) && fb_tol_check_cost(each, (size_t)samples, (int)jobs, &d) != FB_OK)
+    return fb_cli_fail("stackup", 2, "%s", d.msg);
+  const double corners = (mask & FB_TOL_CORNERS) ? ldexp(1.0, fb_case_mech(&c)->nlengths) : 0.0;
+  double bytes, seconds;
+  fb_tol_estimate(each, (size_t)samples, (int)jobs, &bytes, &seconds);
+  if ((rc = fb_cli_stackup_work(&c, mask, 0.0, corners, &mc, each, bytes, 0,
+                                "the outputs' peaks")) != 0)
+    return rc;
   static fb_stackup_result r;
-  bar.t0 = fb_clock_s();
   fb_status st = fb_tol_analyse_jobs(&r, &c, mask, (size_t)samples, (unsigned long)seed,
                                      c.distribution ? FB_DIST_UNIFORM : FB_DIST_NORMAL, (int)jobs,
-                                     progress, &bar, &d);
+                                     fb_cli_progress_mc, &bar, &d);
   if (st != FB_OK) return fb_cli_fail("stackup", 1, "%s", d.msg);
   if (json) fb_report_stackup_json(stdout, &r, &c, mask, (unsigned long)seed, (int)jobs);
   else fb_report_stackup_text(stdout, &r, &c, mask);

@@ -77,8 +77,6 @@ typedef struct fb_closed_form {
   /* their exact sensitivities to each length [unit/m] (fb_tol_sensitivities_of) */
   fb_status (*tol_sensitivities)(double out[FB_TOL_NOUT][FB_LINK_COUNT], const fb_linkage *lk,
                                  fb_branch branch, double omega2, fb_diag *diag);
-  double mc_s_per_sample;        /* Monte Carlo wall time per sample and job [s]
-                                    (fb_tol_estimate; tolerance.h's measured constants) */
   /* ---- contact and reference ---- */
   const char *paper_refusal;     /* NULL: the paper's Tables I to III recipe applies
                                     (penalty.h); else why it does not, for the user */

@@ -317,7 +317,6 @@ static fb_status check_drivable_case(const fb_case *c, fb_diag *diag) {
   return check_drivable(&su, "stack-up", diag);
 }
 
-/* Monte Carlo time per sample: tolerance.h FB_TOL_S_PER_SAMPLE */
 const fb_closed_form fb_closed_form_fourbar = {
     .solve = solve,
     .check_lengths = fb_linkage_check,
@@ -331,7 +330,6 @@ const fb_closed_form fb_closed_form_fourbar = {
     .tol_names = out_names,
     .tol_outputs = fb_tol_outputs,
     .tol_sensitivities = fb_tol_sensitivities,
-    .mc_s_per_sample = FB_TOL_S_PER_SAMPLE,
     .paper_refusal = NULL,
     .ideal_reference = 1,
     .reference_model = NULL,

@@ -410,7 +410,6 @@ static fb_status check_options(const fb_case *c, fb_diag *diag) {
   return FB_OK;
 }
 
-/* Monte Carlo time per sample: tolerance.h FB_TOL_S_PER_SAMPLE_SLIDER_CRANK */
 const fb_closed_form fb_closed_form_slider_crank = {
     .solve = solve,
     .check_lengths = check_lengths,
@@ -424,7 +423,6 @@ const fb_closed_form fb_closed_form_slider_crank = {
     .tol_names = sc_out_names,
     .tol_outputs = tol_outputs,
     .tol_sensitivities = sc_sensitivities,
-    .mc_s_per_sample = FB_TOL_S_PER_SAMPLE_SLIDER_CRANK,
     .paper_refusal =
         "the paper's Tables I to III are its four-bar's recipe (F = k max|alpha| of the "
         "four-bar's two rocking links, with the paper's constants): they do not apply to a "

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "closed_form.h"
+#include "work.h"
 #include "montecarlo.h"
 
 const char *fb_tol_output_name_of(fb_mech_type t, int i) {
@@ -183,13 +184,23 @@ fb_status fb_tol_resolve_worst(fb_case *c, fb_diag *diag) {
   return FB_OK;
 }
 
-void fb_tol_estimate(fb_mech_type t, size_t samples, int jobs, double *bytes, double *seconds) {
-  fb_mc_estimate(fb_closed_form_of(t)->mc_s_per_sample, FB_TOL_NOUT, FB_LINK_COUNT, samples, jobs,
-                 bytes, seconds);
+/* one evaluation of the outputs at the nominal lengths (fb_work_eval) */
+static fb_status nominal_eval(void *ctx, fb_diag *diag) {
+  const fb_case *c = ctx;
+  double out[FB_TOL_NOUT];
+  return fb_tol_outputs_of(out, c->mechanism, &c->nominal, c->branch, fb_case_omega2(c), diag);
 }
 
-fb_status fb_tol_check_cost(fb_mech_type t, size_t samples, int jobs, fb_diag *diag) {
+fb_status fb_tol_eval_cost(double *s_per_eval, int *evals, const fb_case *c, fb_diag *diag) {
+  return fb_work_probe(s_per_eval, evals, nominal_eval, (void *)c, diag);
+}
+
+void fb_tol_estimate(double s_per_sample, size_t samples, int jobs, double *bytes, double *seconds) {
+  fb_mc_estimate(s_per_sample, FB_TOL_NOUT, FB_LINK_COUNT, samples, jobs, bytes, seconds);
+}
+
+fb_status fb_tol_check_cost(double s_per_sample, size_t samples, int jobs, fb_diag *diag) {
   double bytes, seconds;
-  fb_tol_estimate(t, samples, jobs, &bytes, &seconds);
+  fb_tol_estimate(s_per_sample, samples, jobs, &bytes, &seconds);
   return fb_mc_check_cost(samples, bytes, seconds, diag);
 }

@@ -158,17 +158,6 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
  * threads (1 .. FB_TOL_MAX_JOBS): the same numbers for every jobs. progress
  * is called from the calling thread. Errors: those of fb_tol_analyse (the
  * lowest failing sample is the one named); FB_ERR_ARG for jobs out of range. */
-/* Monte Carlo cost per sample and job [s], for the up-front estimate: 11.8
- * us of CPU time measured (fourbar stackup --method montecarlo --samples
- * 200000, paper case, 1 job: 2.37 s; issue 54 found 30 us estimated against
- * 11.4 us measured at 1e6 samples), rounded up. */
-#define FB_TOL_S_PER_SAMPLE 15e-6
-/* The slider-crank's: 280 us of CPU time measured (fourbar stackup
- * --method montecarlo --samples 2000, cases/slider_crank_flores.ini with
- * offset 5 mm, 1 job: 0.58 s): its peaks are a grid of
- * FB_ANALYTIC_PEAK_SAMPLES crank angles and Brent (mech_kinematics.h),
- * rounded up. */
-#define FB_TOL_S_PER_SAMPLE_SLIDER_CRANK 350e-6
 /* The program's own resident memory before any sample: measured 29.2 MB
  * (fourbar stackup --method montecarlo --samples 100), and 6 MB beyond the
  * samples' own at 1e6 (147.3 MB peak: 29.2 + 112 + 6); rounded up. */
@@ -176,15 +165,23 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
 /* Share of the machine's memory a Monte Carlo run may reserve. */
 #define FB_TOL_MEMORY_FRACTION 0.5
 
+/* CPU time [s] of one evaluation of case c's stack-up outputs (what each
+ * corner and each Monte Carlo sample evaluates: its closed form's outputs
+ * and their peaks at the nominal lengths), measured on c itself by the
+ * probe of work.h (fb_work_probe); *evals (may be NULL) the evaluations it
+ * made. Errors: those of the outputs (fb_tol_outputs_of). */
+fb_status fb_tol_eval_cost(double *s_per_eval, int *evals, const fb_case *c, fb_diag *diag);
+
 /* Estimated memory [bytes] and wall time [s] of a Monte Carlo analysis of
- * samples samples of mechanism t on jobs threads (the samples and their
- * outputs are kept for the quantiles, over the program's own memory). */
-void fb_tol_estimate(fb_mech_type t, size_t samples, int jobs, double *bytes, double *seconds);
+ * samples samples, each s_per_sample [s] of CPU (fb_tol_eval_cost), on jobs
+ * threads (the samples and their outputs are kept for the quantiles, over
+ * the program's own memory). */
+void fb_tol_estimate(double s_per_sample, size_t samples, int jobs, double *bytes, double *seconds);
 
 /* Refuses, before anything is reserved, a Monte Carlo analysis whose memory
  * estimate passes FB_TOL_MEMORY_FRACTION of this machine's memory.
  * Errors: FB_ERR_RANGE naming the samples, the estimate and what to lower. */
-fb_status fb_tol_check_cost(fb_mech_type t, size_t samples, int jobs, fb_diag *diag);
+fb_status fb_tol_check_cost(double s_per_sample, size_t samples, int jobs, fb_diag *diag);
 
 fb_status fb_tol_analyse_jobs(fb_stackup_result *out, const fb_case *c, int mask, size_t samples,
                               unsigned long seed, fb_distribution dist, int jobs,

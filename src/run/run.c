@@ -442,11 +442,35 @@ static double h_omega_c_max(const fb_run *r) {
   return w;
 }
 
+/* the models the engine kit builds (fb_engine_runner) against a clearance
+ * at the driven joint, the joint between the ground and the input body
+ * (fb_model_clearance_at_drive) */
+static fb_status clearance_at_drive(const fb_case *c, fb_diag *diag) {
+  const fb_mech_desc *mech = fb_case_mech(c);
+  for (int j = 0; j < mech->njoints; j++) {
+    const fb_mech_joint *jt = &mech->joint[j];
+    const int driven = (jt->body[0] == mech->input || jt->body[1] == mech->input) &&
+                       (mech->body[jt->body[0]].motion == FB_MOTION_FIXED ||
+                        mech->body[jt->body[1]].motion == FB_MOTION_FIXED);
+    if (!driven || !((c->clearance.mask >> j) & 1)) continue;
+    for (int i = 0; i < c->model_count; i++) {
+      const fb_model *m = fb_model_find(c->models[i]);
+      const fb_engine *e = m ? fb_engine_get(m->engine, NULL) : NULL;
+      const int kit = e && fb_engine_runner(e, c, NULL) == &fb_engine_kit_adapter;
+      fb_status st = m ? fb_model_clearance_at_drive(m, kit, jt->name, diag) : FB_OK;
+      if (st != FB_OK) return st;
+    }
+  }
+  return FB_OK;
+}
+
 fb_status fb_run_preflight(const fb_case *c, int *over_cost, fb_diag *diag) {
   *over_cost = 0;
+  fb_status st = clearance_at_drive(c, diag);
+  if (st != FB_OK) return st;
   fb_scene *def = malloc(sizeof *def);
   if (!def) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  fb_status st = check_cost_resolved(c, over_cost, NULL, diag);
+  st = check_cost_resolved(c, over_cost, NULL, diag);
   if (st == FB_OK) st = fb_scene_from_case(def, c, diag);
   free(def);
   return st;

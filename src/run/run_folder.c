@@ -25,8 +25,7 @@ static void say_kept(const fb_outdir *od, const char *esc_dir) {
             FB_MANIFEST_NAME, names);
 }
 
-fb_run_folder_result fb_run_into_folder(fb_run *r, const fb_run_folder_job *j, int *write_rc,
-                                        fb_diag *diag) {
+fb_run_folder_result fb_folder_run(const fb_folder_job *j, int *write_rc, fb_diag *diag) {
   *write_rc = 0;
   /* one writer per folder; the whole set goes to a staging folder beside it,
    * swapped in at the end (outdir.h): both checked before any simulation */
@@ -47,21 +46,14 @@ fb_run_folder_result fb_run_into_folder(fb_run *r, const fb_run_folder_job *j, i
   snprintf(note_tail, sizeof note_tail, "; to run it again: %s", j->again);
   fb_cleanup_note("fourbar run: stopped", note_text, NULL, note_tail);
 
-  st = fb_run_case(r, j->c, j->progress, j->progress_user, diag);
-  if (st == FB_OK) {
-    const double tv = fb_clock_s();
-    st = fb_run_variants(r, j->variants, j->nvariants, j->progress, j->progress_user, diag);
-    r->variants_s = fb_clock_s() - tv;
-    if (st != FB_OK) fb_run_free(r);
-  }
+  st = j->run(j->user, diag);
   if (st != FB_OK) {
     fb_outdir_release(&od);
     return FB_RUN_FOLDER_RUN;
   }
-  if (j->after_run) j->after_run(r, j->write_user);
-  *write_rc = j->write(od.stage, r, j->write_user);
+  *write_rc = j->write(od.stage, j->user);
   if (*write_rc) {
-    fb_run_free(r);
+    j->discard(j->user);
     fb_outdir_release(&od);
     return FB_RUN_FOLDER_WRITE;
   }
@@ -73,8 +65,42 @@ fb_run_folder_result fb_run_into_folder(fb_run *r, const fb_run_folder_job *j, i
   }
   fb_outdir_release(&od);
   if (st != FB_OK) {
-    fb_run_free(r);
+    j->discard(j->user);
     return FB_RUN_FOLDER_DIR;
   }
   return FB_RUN_FOLDER_OK;
+}
+
+/* fb_run_into_folder's job as fb_folder_run's callbacks */
+typedef struct {
+  fb_run *r;
+  const fb_run_folder_job *j;
+} case_job;
+
+static fb_status case_run(void *user, fb_diag *diag) {
+  case_job *x = user;
+  const fb_run_folder_job *j = x->j;
+  fb_status st = fb_run_case(x->r, j->c, j->progress, j->progress_user, diag);
+  if (st == FB_OK) {
+    const double tv = fb_clock_s();
+    st = fb_run_variants(x->r, j->variants, j->nvariants, j->progress, j->progress_user, diag);
+    x->r->variants_s = fb_clock_s() - tv;
+    if (st != FB_OK) fb_run_free(x->r);
+  }
+  if (st == FB_OK && j->after_run) j->after_run(x->r, j->write_user);
+  return st;
+}
+
+static int case_write(const char *stage, void *user) {
+  case_job *x = user;
+  return x->j->write(stage, x->r, x->j->write_user);
+}
+
+static void case_discard(void *user) { fb_run_free(((case_job *)user)->r); }
+
+fb_run_folder_result fb_run_into_folder(fb_run *r, const fb_run_folder_job *j, int *write_rc,
+                                        fb_diag *diag) {
+  case_job x = {r, j};
+  const fb_folder_job fj = {j->dir, j->again, case_run, case_write, case_discard, &x};
+  return fb_folder_run(&fj, write_rc, diag);
 }

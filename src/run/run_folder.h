@@ -57,4 +57,23 @@ typedef enum {
 fb_run_folder_result fb_run_into_folder(fb_run *r, const fb_run_folder_job *j, int *write_rc,
                                         fb_diag *diag);
 
+/* Any run into its folder, as fb_run_into_folder (which is this with the
+ * four-bar's run): dir locked and staged, the note a signal prints (what
+ * dir keeps, the command again that runs it again), then run (user's
+ * simulation; its error: FB_RUN_FOLDER_RUN, nothing to discard), write
+ * (the set into the staging folder; non-zero: FB_RUN_FOLDER_WRITE, the
+ * run discarded), the swap (the old folder's files no run wrote kept and
+ * said), discard on a failed swap. A planar case's run uses it too
+ * (cmd_run_planar.c), so that both say the same on a signal. */
+typedef struct {
+  const char *dir;   /* the output folder, replaced whole */
+  const char *again; /* the command that runs it again, quoted for a shell (copied) */
+  fb_status (*run)(void *user, fb_diag *diag);
+  int (*write)(const char *stage, void *user);
+  void (*discard)(void *user); /* frees what run made, after a failed write or swap */
+  void *user;
+} fb_folder_job;
+
+fb_run_folder_result fb_folder_run(const fb_folder_job *j, int *write_rc, fb_diag *diag);
+
 #endif

@@ -27,6 +27,7 @@
 #include "iso286.h"
 #include "linkage.h"
 #include "model_table.h"
+#include "reference.h"
 #include "textsafe.h"
 #include "units.h"
 
@@ -656,6 +657,46 @@ fb_status fb_casefile_load_variant(fb_case *out, const char *path, const char *c
 static fb_status load(fb_case *out, const char *path, const char *text, size_t text_size,
                       const char *const *overrides, int n_overrides, int planar, fb_diag *diag);
 
+/* "[section] key at origin; ..." into where for every key message msg
+ * names ("[section] ... key" followed by a blank, a comma or its end), the
+ * entry that counts (the last for its key); returns its length (0: none) */
+static size_t given_where(char *where, size_t size, const load_ctx *c, const char *msg) {
+  size_t l = 0;
+  where[0] = '\0';
+  for (int i = c->n - 1; i >= 0 && l + 1 < size; i--) {
+    const entry *e = &c->e[i];
+    char sk[160];
+    snprintf(sk, sizeof sk, " %s", e->key);
+    const char *at = strstr(msg, sk);
+    const int named = at && (at[strlen(sk)] == ' ' || at[strlen(sk)] == '\0' ||
+                             at[strlen(sk)] == ',') &&
+                      strstr(msg, e->section) != NULL;
+    int later = 0; /* only the entry that counts: the last for its key */
+    for (int q = i + 1; q < c->n; q++)
+      later |= strcmp(c->e[q].section, e->section) == 0 && strcmp(c->e[q].key, e->key) == 0;
+    if (named && !later)
+      l += (size_t)snprintf(where + l, size - l, "%s[%s] %s at %s", l ? "; " : "", e->section,
+                            e->key, e->origin);
+  }
+  return l < size ? l : size - 1;
+}
+
+size_t fb_casefile_given_where(char *where, size_t size, const char *path,
+                               const char *const *overrides, int n_overrides, const char *msg) {
+  where[0] = '\0';
+  load_ctx *c = calloc(1, sizeof *c);
+  if (!c) return 0;
+  fb_diag d;
+  c->path = path;
+  c->diag = &d;
+  c->status = FB_OK;
+  fb_status st = path ? read_file_entries(c, path, 0, &d, NULL, 0) : FB_OK;
+  for (int i = 0; i < n_overrides && st == FB_OK; i++) st = parse_override(c, overrides[i], i);
+  const size_t l = st == FB_OK ? given_where(where, size, c, msg) : 0;
+  free(c);
+  return l;
+}
+
 fb_status fb_casefile_load(fb_case *out, const char *path, const char *const *overrides,
                            int n_overrides, fb_diag *diag) {
   return load(out, path, NULL, 0, overrides, n_overrides, 0, diag);
@@ -680,23 +721,8 @@ fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text
  * where each key it names was given (its last entry). Returns st. */
 static fb_status cross_key(const load_ctx *c, const char *path, fb_status st,
                            const fb_diag *inner, fb_diag *diag) {
-  char where[FB_DIAG_SIZE] = "";
-  size_t l = 0;
-  for (int i = c->n - 1; i >= 0 && l + 1 < sizeof where; i--) {
-    const entry *e = &c->e[i];
-    char sk[160];
-    snprintf(sk, sizeof sk, " %s", e->key);
-    const char *at = strstr(inner->msg, sk);
-    const int named = at && (at[strlen(sk)] == ' ' || at[strlen(sk)] == '\0' ||
-                             at[strlen(sk)] == ',') &&
-                      strstr(inner->msg, e->section) != NULL;
-    int later = 0; /* only the entry that counts: the last for its key */
-    for (int q = i + 1; q < c->n; q++)
-      later |= strcmp(c->e[q].section, e->section) == 0 && strcmp(c->e[q].key, e->key) == 0;
-    if (named && !later)
-      l += (size_t)snprintf(where + l, sizeof where - l, "%s[%s] %s at %s", l ? "; " : "",
-                            e->section, e->key, e->origin);
-  }
+  char where[FB_DIAG_SIZE];
+  const size_t l = given_where(where, sizeof where, c, inner->msg);
   return fb_diag_set(diag, st, "%s: %s%s%s%s", path ? path : "case", inner->msg,
                      l ? " (given: " : "", where, l ? ")" : "");
 }
@@ -780,6 +806,10 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
   }
 done:
   free(c);
+  /* the environment's reference tolerance is input as the keys are: a
+   * value no run could take is refused with the case, never at run time */
+  double tol;
+  if (st == FB_OK) st = fb_reference_tolerance(&tol, diag);
   return st;
 }
 

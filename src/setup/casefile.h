@@ -73,6 +73,15 @@ int fb_casefile_underflows(const char *text);
 fb_status fb_casefile_check_range(const char *section, const char *key, double value,
                                   const char *origin, fb_diag *diag);
 
+/* Where the keys message msg names were given in case file path (its
+ * bases included) and overrides (--set): "[section] key at file:line; ..."
+ * into where (size bytes), the entry that counts for each; returns its
+ * length, 0 when msg names none (or the file cannot be read again). For a
+ * rule checked after the load (the scene, a run's preflight), so that its
+ * refusal says where to edit as a load's does. */
+size_t fb_casefile_given_where(char *where, size_t size, const char *path,
+                               const char *const *overrides, int n_overrides, const char *msg);
+
 /* 1 when name is a valid case or study name: 1 to FB_NAME_SIZE - 1
  * characters from letters, digits, '-', '_' and '.', not starting with '.'
  * (it becomes a folder name and enters figure titles), else 0. */

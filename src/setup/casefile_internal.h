@@ -81,6 +81,12 @@ typedef struct {
 #define FB_CLEARANCE_DEFAULT_MODELS \
   "ode-clearance-impact, ode-clearance-restitution, reference, reference-restitution"
 
+/* The range row k allows, in its file unit, into buf: "[lo, hi]" with
+ * "(" or ")" for an open end, "> lo" (">=") or "< hi" ("<=") with one end
+ * infinite; bounds as %g without the exponent's sign and zeros ("1e6").
+ * Returns buf. Every refusal of a number outside the range states it. */
+const char *fb_casefile_range_text(const key_spec *k, char *buf, size_t size);
+
 /* Row i of the key table (0 .. fb_casefile_key_count() - 1), NULL outside. */
 const key_spec *fb_casefile_spec(int i);
 

@@ -230,15 +230,15 @@ static const key_spec keys[] = {
      "model's validity\""},
 
     {"clearance", "stiffness_scale", K_DOUBLE, OFF(clearance.stiffness_scale), 1.0, 0, 1e6, 1, 0,
-     "-", "1", "a scale must be positive", "multiplies the contact stiffness from any penalty source"},
+     "-", "1", "a scale must lie in (0, 1e6]", "multiplies the contact stiffness from any penalty source"},
     {"clearance", "engine_stiffness_scale", K_DOUBLE, OFF(clearance.engine_stiffness_scale), 1.0,
-     0, 1e6, 1, 0, "-", "1", "a scale must be positive",
+     0, 1e6, 1, 0, "-", "1", "a scale must lie in (0, 1e6]",
      "an injected error: multiplies, after stiffness_scale, the contact stiffness every engine "
      "model gets, not the references' (would the verdict notice? docs/verdicts.md); the "
      "restitution law's damper follows the scaled stiffness unless engine_damping_scale is "
      "given; a rigid model (siconos-clearance-newton) has no stiffness to scale"},
     {"clearance", "engine_damping_scale", K_DOUBLE, OFF(clearance.engine_damping_scale), 1.0, 0,
-     1e6, 1, 0, "-", "1", "a scale must be positive",
+     1e6, 1, 0, "-", "1", "a scale must lie in (0, 1e6]",
      "an injected error: multiplies the damper every engine model gets, not the references' "
      "(the impact law's c_max; when given, the restitution law's damper 2 zeta sqrt(p m_eff) of "
      "the case's stiffness); a rigid model's Newton restitution is not a damper and is kept"},

@@ -10,6 +10,7 @@
 
 #include "casefile.h"
 #include "casefile_planar_free.h"
+#include "model_table.h"
 #include "names.h"
 #include "planar_case.h"
 #include "planar_check.h"
@@ -515,6 +516,35 @@ static fb_status drive_and_clearance(fb_case *c, const entry *e, int n, const ch
   return st == FB_OK ? fb_casefile_planar_guides(c, e, n, path, diag) : st;
 }
 
+/* the last entry of [section] key (a --set after the file's), NULL: none */
+static const entry *last_of(const entry *e, int n, const char *section, const char *key) {
+  const entry *at = NULL;
+  for (int i = 0; i < n; i++)
+    if (strcmp(e[i].section, section) == 0 && strcmp(e[i].key, key) == 0) at = &e[i];
+  return at;
+}
+
+/* An engine's clearance model of a planar case is built by the engine kit
+ * (fb_model_clearance_at_drive's rule): a clearance at the driven joint
+ * with such a model in [run] models is refused here, where both keys were
+ * given, never at run time after the other models. */
+static fb_status clearance_at_drive(const fb_case *c, const entry *e, int n, const char *path,
+                                    fb_diag *diag) {
+  const fb_planar_spec *s = &c->planar;
+  if (s->undriven || s->drive < 0 || !((c->clearance.mask >> s->drive) & 1)) return FB_OK;
+  for (int i = 0; i < c->model_count; i++) {
+    const fb_model *m = fb_model_find(c->models[i]);
+    fb_diag inner;
+    if (!m || fb_model_clearance_at_drive(m, 1, s->joint[s->drive].name, &inner) == FB_OK) continue;
+    const entry *cl = last_of(e, n, "clearance", "joints"), *md = last_of(e, n, "run", "models");
+    const entry *dr = last_of(e, n, "drive", "joint");
+    return fb_diag_set(diag, FB_ERR_ARG, "%s: %s (given: [drive] joint at %s; [run] models at %s)",
+                       cl ? cl->origin : path ? path : "case", inner.msg, dr ? dr->origin : "?",
+                       md ? md->origin : "its default");
+  }
+  return FB_OK;
+}
+
 /* one line on a checked description, for the refusal */
 static void summary(char *buf, size_t size, const fb_planar *m) {
   char derived[256] = "";
@@ -551,6 +581,8 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
     c->model_count = 1; /* an undriven one has no ideal motion to follow: its reference */
     snprintf(c->models[0], sizeof c->models[0], "%s", c->planar.undriven ? "reference" : "analytic");
   }
+  st = clearance_at_drive(c, e, n, path, diag);
+  if (st != FB_OK) return st;
   if (run) return FB_OK;
   return fb_diag_set(diag, FB_ERR_ARG,
                      "%s: [linkage] type = planar: the description checks (%s), but this command "

@@ -122,15 +122,61 @@ int fb_casefile_decimal(const char *text, double *out) {
   return 1;
 }
 
+/* a bound as a rule writes it: %g without the exponent's sign and zeros
+ * ("1e+06" -> "1e6", "1e-06" -> "1e-6") */
+static void bound_text(char *buf, size_t size, double x) {
+  char t[32];
+  snprintf(t, sizeof t, "%g", x);
+  char *e = strchr(t, 'e');
+  if (e) {
+    const char *d = e + 1;
+    const int neg = *d == '-';
+    if (*d == '+' || *d == '-') d++;
+    while (*d == '0' && d[1]) d++;
+    snprintf(buf, size, "%.*se%s%s", (int)(e - t), t, neg ? "-" : "", d);
+  } else {
+    snprintf(buf, size, "%s", t);
+  }
+}
+
+const char *fb_casefile_range_text(const key_spec *k, char *buf, size_t size) {
+  char lo[32], hi[32];
+  bound_text(lo, sizeof lo, k->lo);
+  bound_text(hi, sizeof hi, k->hi);
+  const int has_lo = isfinite(k->lo), has_hi = isfinite(k->hi);
+  if (has_lo && has_hi)
+    snprintf(buf, size, "%s%s, %s%s", k->lo_open ? "(" : "[", lo, hi, k->hi_open ? ")" : "]");
+  else if (has_lo)
+    snprintf(buf, size, "%s %s", k->lo_open ? ">" : ">=", lo);
+  else if (has_hi)
+    snprintf(buf, size, "%s %s", k->hi_open ? "<" : "<=", hi);
+  else
+    snprintf(buf, size, "any finite number");
+  return buf;
+}
+
+/* the row's rule and, unless the rule states it in these words, its range
+ * in the key's file unit: the refusal of a number says the range the
+ * table holds, never only the rule's prose */
+static const char *rule_and_range(const key_spec *k, char *buf, size_t size) {
+  char range[96];
+  fb_casefile_range_text(k, range, sizeof range);
+  if (strstr(k->rule, range)) snprintf(buf, size, "%s", k->rule);
+  else snprintf(buf, size, "%s (allowed: %s%s%s)", k->rule, range,
+                strcmp(k->unit, "-") ? " " : "", strcmp(k->unit, "-") ? k->unit : "");
+  return buf;
+}
+
 fb_status fb_casefile_check_range(const char *section, const char *key, double value,
                                   const char *origin, fb_diag *diag) {
   const key_spec *k = fb_casefile_spec_find(section, key);
   if (!k) return FB_OK;
   const int bad_lo = k->lo_open ? !(value > k->lo) : !(value >= k->lo);
   const int bad_hi = k->hi_open ? !(value < k->hi) : !(value <= k->hi);
+  char rule[FB_DIAG_SIZE / 2];
   if (bad_lo || bad_hi || !isfinite(value))
     return fb_diag_set(diag, FB_ERR_RANGE, "%s = %s: %s (as [%s] %s)", origin, FB_NUM(value),
-                       k->rule, section, key);
+                       rule_and_range(k, rule, sizeof rule), section, key);
   return FB_OK;
 }
 
@@ -162,9 +208,10 @@ static fb_status parse_double(const entry *e, const key_spec *k, double *out, fb
                        e->key, e->value, k->unit);
   int bad_lo = k->lo_open ? !(v > k->lo) : !(v >= k->lo);
   int bad_hi = k->hi_open ? !(v < k->hi) : !(v <= k->hi);
+  char rule[FB_DIAG_SIZE / 2];
   if (bad_lo || bad_hi)
     return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = %s: %s", e->origin, e->section,
-                       e->key, e->value, k->rule);
+                       e->key, e->value, rule_and_range(k, rule, sizeof rule));
   *out = v;
   return FB_OK;
 }
@@ -218,9 +265,10 @@ static fb_status apply_number(fb_case *c, const entry *e, const key_spec *k, voi
         *(unsigned long *)field = (unsigned long)n;
         return FB_OK;
       }
+      char rule[FB_DIAG_SIZE / 2];
       if ((double)n < k->lo || (double)n > k->hi)
         return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = %s: %s", e->origin, e->section,
-                           e->key, e->value, k->rule);
+                           e->key, e->value, rule_and_range(k, rule, sizeof rule));
       if (k->offset == OFF(revolutions))
         *(double *)field = (double)n;
       else

@@ -540,3 +540,14 @@ const fb_model *fb_model_reference_of(const fb_model *m) { return fb_model_find(
 const fb_model *fb_model_ideal_of(const fb_model *m) { return fb_model_find(m->spikes_vs); }
 
 const fb_model *fb_model_partner_of(const fb_model *m) { return fb_model_find(m->partner); }
+
+fb_status fb_model_clearance_at_drive(const fb_model *m, int kit_built, const char *joint,
+                                      fb_diag *diag) {
+  if (!kit_built || !fb_engine_steps_world(m->engine) || m->joints != FB_JOINTS_CLEARANCE)
+    return FB_OK;
+  return fb_diag_set(diag, FB_ERR_ARG,
+                     "[clearance] joints names '%s', the driven joint, and [run] models runs "
+                     "'%s', which the engine kit builds: the kit drives an ideal joint only; put "
+                     "the clearance at another joint, or run the models that take it there "
+                     "(analytic, the references, a hand-built engine model)", joint, m->name);
+}

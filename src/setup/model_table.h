@@ -195,6 +195,17 @@ const fb_model *fb_model_match(fb_engine_id engine, fb_lengths_kind lengths, fb_
 /* The row of m's reference model, or NULL (m->reference). */
 const fb_model *fb_model_reference_of(const fb_model *m);
 
+/* The engine kit drives an ideal joint only (src/engines/kit/kit.c): model
+ * m, built by the kit (kit_built: every engine model of a planar case; a
+ * four-bar's or slider-crank's with [solver] builder = kit, or of an engine
+ * without a world of its own), cannot have a clearance at the driven joint
+ * (named joint). FB_OK when it can (an ideal model, analytic, the
+ * references, a hand-built engine model); else FB_ERR_ARG, the rule in
+ * diag, naming [clearance] joints and [run] models for the caller to say
+ * where they were given. */
+fb_status fb_model_clearance_at_drive(const fb_model *m, int kit_built, const char *joint,
+                                      fb_diag *diag);
+
 /* The row of the ideal model m's spike ratios divide by, or NULL (m->spikes_vs). */
 const fb_model *fb_model_ideal_of(const fb_model *m);
 

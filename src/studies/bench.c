@@ -7,7 +7,38 @@
 
 #include "engine.h"
 #include "model_table.h"
+#include "pilot.h"
 #include "run.h"
+
+static double repeat_below = FB_BENCH_REPEAT_BELOW_S;
+
+double fb_bench_repeat_below_s(void) { return repeat_below; }
+
+void fb_bench_repeat_below(double seconds) { repeat_below = seconds; }
+
+/* The estimate pass (fb_bench_estimate): the grids walked as the bench
+ * walks them, every run replaced by its case's pilot (pilot.h), whose
+ * extrapolated CPU time is counted as often as the bench would run it
+ * (its repeats by the same rule, read from the extrapolated wall times);
+ * no row is made. */
+static struct {
+  int on;
+  double cpu;   /* the runs' CPU time, extrapolated [s] */
+  double pilot; /* what the pilots cost [s] */
+} plan;
+
+/* the CPU time of the last planned configuration's timed models alone
+ * (timed_runs): what each later round of its timing costs [s] */
+static double plan_timed_cpu;
+
+/* case k's cost into *p, counted reps times */
+static fb_status plan_run(fb_pilot *p, const fb_case *k, int reps, fb_diag *diag) {
+  fb_status st = fb_pilot_case(p, k, diag);
+  if (st != FB_OK) return st;
+  plan.cpu += reps * p->cpu_s;
+  plan.pilot += p->pilot_cpu_s;
+  return FB_OK;
+}
 
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
@@ -80,6 +111,10 @@ static fb_status halving(fb_bench_row *rows, int nrows, const int *idx, const in
   k2.solver.h = 0.5 * k->solver.h;
   k2.solver.h_mode = FB_STEP_FIXED;
   if (k2.model_count > 2) k2.model_count = 2; /* the reference is not needed */
+  if (plan.on) {
+    fb_pilot p;
+    return plan_run(&p, &k2, 1, diag);
+  }
   static fb_run r2;
   fb_status st = fb_run_case(&r2, &k2, NULL, NULL, diag);
   if (st != FB_OK) return st;
@@ -106,6 +141,29 @@ static fb_status halving(fb_bench_row *rows, int nrows, const int *idx, const in
 static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, int max_reps,
                             double walls[2][3], double setups[2][3], double stepping[2][3],
                             int *reps, fb_diag *diag) {
+  if (plan.on) { /* its pilot, counted as often as the repeat rule would run it */
+    fb_pilot p;
+    fb_status st = fb_pilot_case(&p, k, diag);
+    if (st != FB_OK) return st;
+    double first = 0.0;
+    for (int q = 0; q < 2; q++) {
+      walls[q][0] = q < timed && q < p.n ? p.model_s[q] : 0.0;
+      setups[q][0] = q < timed && q < p.n ? p.setup_s[q] : 0.0;
+      stepping[q][0] = walls[q][0];
+      first += walls[q][0];
+    }
+    *reps = 1;
+    plan.cpu += (first > repeat_below ? 1 : max_reps) * p.cpu_s;
+    plan.pilot += p.pilot_cpu_s;
+    /* the later rounds (retime) run the timed models alone: their share */
+    double all = 0.0, mine = 0.0;
+    for (int q = 0; q < p.n; q++) {
+      all += p.model_s[q] + p.setup_s[q];
+      if (q < timed) mine += p.model_s[q] + p.setup_s[q];
+    }
+    plan_timed_cpu = all > 0.0 ? p.cpu_s * mine / all : p.cpu_s;
+    return FB_OK;
+  }
   for (int rep = 0; rep < max_reps; rep++) {
     fb_status st = fb_run_case(r, k, NULL, NULL, diag);
     if (st != FB_OK) return st;
@@ -116,7 +174,7 @@ static fb_status timed_runs(fb_run *r, const fb_case *k, int timed, int max_reps
       stepping[q][rep] = q < timed ? mr->stepping_s : 0.0;
     }
     *reps = rep + 1;
-    if (rep == max_reps - 1 || walls[0][rep] + walls[1][rep] > FB_BENCH_REPEAT_BELOW_S) break;
+    if (rep == max_reps - 1 || walls[0][rep] + walls[1][rep] > repeat_below) break;
     fb_run_free(r);
   }
   return FB_OK;
@@ -136,6 +194,7 @@ typedef struct {
   double stepping[2][3]; /* of walls, the engine's stepping [s] */
   double samples[2];     /* output samples of each model's run [-] */
   int reps;
+  double plan_cpu;       /* the estimate pass: a later round's CPU time [s] */
 } bench_timing;
 
 /* the configurations bench_point has timed in this fb_bench_run (one bench
@@ -201,6 +260,14 @@ static fb_status bench_point(fb_bench_row *rows, int *n, fb_case *k, const char 
   static fb_run r;
   fb_status st0 = timed_runs(&r, k, tm.timed, 1, tm.walls, tm.setups, tm.stepping, &tm.reps, diag);
   if (st0 != FB_OK) return st0;
+  if (plan.on) { /* its later rounds and its step-halving run, counted */
+    tm.k = *k;
+    tm.k.model_count = tm.timed;
+    tm.plan_cpu = plan_timed_cpu;
+    st0 = timing_add(&tm, diag);
+    if (st0 == FB_OK && k->solver.h_mode == FB_STEP_FIXED) st0 = halving(NULL, 0, NULL, NULL, k, diag);
+    return st0;
+  }
   const int first = *n;
   int qs[2];
   for (int q = 0; q < (with_clearance ? 2 : 1); q++) {
@@ -343,6 +410,10 @@ static fb_status collider_run(fb_bench_row *rows, int *n, fb_engine_id e, const 
   static fb_run r;
   fb_status st = timed_runs(&r, &k, 2, 3, walls, setups, stepping, &reps, diag);
   if (st != FB_OK) return st;
+  if (plan.on) { /* its step-halving run, counted */
+    k.model_count = 2;
+    return halving(NULL, 0, NULL, NULL, &k, diag);
+  }
   const fb_model_result *ex = &r.model[0], *ref = &r.model[2];
   double us[2];
   for (int q = 0; q < 2; q++) {
@@ -538,13 +609,18 @@ static fb_status retime(fb_bench_row *rows, double from,
   int todo = 0;
   for (int i = 0; i < timings.n; i++) {
     const bench_timing *t = &timings.t[i];
-    todo += t->walls[0][0] + t->walls[1][0] <= FB_BENCH_REPEAT_BELOW_S;
+    todo += t->walls[0][0] + t->walls[1][0] <= repeat_below;
   }
   int done = 0;
   for (int round = 1; round < FB_BENCH_ROUNDS; round++)
     for (int i = 0; i < timings.n; i++) {
       bench_timing *t = &timings.t[i];
-      if (t->reps != round || t->walls[0][0] + t->walls[1][0] > FB_BENCH_REPEAT_BELOW_S) continue;
+      if (t->reps != round || t->walls[0][0] + t->walls[1][0] > repeat_below) continue;
+      if (plan.on) {
+        plan.cpu += t->plan_cpu;
+        t->reps = round + 1;
+        continue;
+      }
       static fb_run r;
       double walls[2][3], setups[2][3], stepping[2][3];
       int reps;
@@ -576,6 +652,23 @@ fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
   free(timings.t);
   memset(&timings, 0, sizeof timings);
   if (st == FB_OK) fb_bench_mark_pareto(rows, *n);
+  return st;
+}
+
+fb_status fb_bench_estimate(double *cpu_s, double *pilot_s, const fb_case *c, int grids,
+                            fb_diag *diag) {
+  static fb_bench_row rows[FB_BENCH_MAX_ROWS];
+  int n = 0;
+  plan.on = 1;
+  plan.cpu = plan.pilot = 0.0;
+  timings.n = 0;
+  fb_status st = bench_grids(rows, &n, c, grids, NULL, NULL, diag);
+  if (st == FB_OK) st = retime(rows, 1.0, NULL, NULL, diag);
+  free(timings.t);
+  memset(&timings, 0, sizeof timings);
+  plan.on = 0;
+  *cpu_s = plan.cpu;
+  if (pilot_s) *pilot_s = plan.pilot;
   return st;
 }
 

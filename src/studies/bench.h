@@ -132,6 +132,12 @@ double fb_bench_rel_parts(double *rel, const double *a, const double *b, int n);
  * costs compare with the exact collider's of the same runs). */
 #define FB_BENCH_ROUNDS 3
 #define FB_BENCH_REPEAT_BELOW_S 1.0
+/* The threshold the grids repeat below [s]: FB_BENCH_REPEAT_BELOW_S unless
+ * fb_bench_repeat_below set another (a test sets INFINITY, so that which
+ * rows repeat, and its verdict, does not hang on how long a run took on a
+ * machine others load). */
+double fb_bench_repeat_below_s(void);
+void fb_bench_repeat_below(double seconds);
 /* The share of the progress fraction the first pass reports (the rounds
  * time the timed models alone, without the reference or the step-halving
  * runs). */
@@ -152,6 +158,17 @@ double fb_bench_rel_parts(double *rel, const double *a, const double *b, int n);
  * row). Errors: those of fb_run_case. */
 fb_status fb_bench_run(fb_bench_row *rows, int *n, const fb_case *c, int grids,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag);
+
+/* The CPU time [s] fb_bench_run(c, grids) would take, estimated before it
+ * runs: the same grids walked, each run replaced by its case's pilot
+ * (pilot.h: two short runs of it, extrapolated) and counted as often as
+ * the bench would run it (its step-halving run, its repeats by the repeat
+ * rule read from the extrapolated wall times, the later rounds' timed
+ * models); *pilot_s (may be NULL) what the pilots cost. The peers and the
+ * scaling grid are not in it (fb_peers_estimate, fb_scaling_estimate).
+ * Errors: those of fb_run_case (a configuration that does not run). */
+fb_status fb_bench_estimate(double *cpu_s, double *pilot_s, const fb_case *c, int grids,
+                            fb_diag *diag);
 
 /* Marks rows on the Pareto front of their model: no other row of the same
  * model with a finite error is at least as cheap and as accurate, and

@@ -17,6 +17,7 @@
 #include "outcome_text.h"
 #include "scaling.h"
 #include "textsafe.h"
+#include "work.h"
 
 /* models by kind (ideal, clearance impact) and engine (each engine that steps
  * a world, in the order of their ids: ode, mujoco, bullet, simbody) */
@@ -74,25 +75,40 @@ static void print_config(const char *model, double target, const fb_bench_row *b
            b->h, b->error, b->wall_per_rev);
 }
 
-typedef struct {
-  int tty;   /* draw only on a terminal: quiet in pipes, logs and CI */
-  double t0; /* start [s] */
-} bench_progress;
+/* the bench's progress: the one progress line of long work (work.h) */
+static void progress(double f, void *user) { fb_progress_draw(user, "bench", f); }
+static void peers_progress(double f, void *user) { fb_progress_draw(user, "bench: peers", f); }
 
-/* "bench [#####     ]  42 % of 64 configurations, 25 s, about 35 s left" */
-static void progress(double f, void *user) {
-  const bench_progress *p = user;
-  if (!p->tty) return;
-  const double el = fb_clock_s() - p->t0;
-  char bar[21];
-  for (int k = 0; k < 20; k++) bar[k] = k < (int)(20.0 * f) ? '#' : ' ';
-  bar[20] = '\0';
-  fputc('\r', fb_text_raw_stderr()); /* ours: never escaped */
-  fprintf(stderr, "  bench [%s] %3.0f %%, %.0f s", bar, 100.0 * f, el);
-  if (f > 0.0 && f < 1.0) fprintf(stderr, ", about %.0f s left ", el * (1.0 - f) / f);
-  else fprintf(stderr, "               ");
-  if (f >= 1.0) fputc('\n', stderr);
-  fflush(stderr);
+int fb_bench_work(const fb_bench_opts *o, double cpu_s, double pilot_s, const char *instead) {
+  char what[160], basis[160], est[48];
+  snprintf(what, sizeof what, "--grid %s on %s", o->grid_name, o->c->name);
+  fb_diag d;
+  /* one process, one run after the other: its wall time is its CPU time */
+  if (fb_work_bound(cpu_s, o->c->max_wall_s, what,
+                    instead ? instead : "its runs have no shorter form", &d) != FB_OK)
+    return fb_study_fail("bench", 2, "%s", d.msg);
+  snprintf(basis, sizeof basis, "from two short runs of each of this case's runs, which took %s",
+           fb_work_duration(est, sizeof est, pilot_s));
+  fb_work_note("bench", what, cpu_s, basis, "", 0);
+  return 0;
+}
+
+/* the four-bar's bench said and bounded before it starts: 0 or the exit status */
+static int study_work(const fb_bench_opts *o) {
+  double cpu = 0.0, pilot = 0.0, x, px;
+  fb_diag d;
+  fb_status st = fb_bench_estimate(&x, &px, o->c, o->grids & ~(FB_BENCH_PEERS | FB_BENCH_SCALING), &d);
+  cpu += x, pilot += px;
+  if (st == FB_OK && (o->grids & FB_BENCH_PEERS) &&
+      (st = fb_peers_estimate(&x, &px, o->c, NULL, &d)) == FB_OK)
+    cpu += x, pilot += px;
+  if (st == FB_OK && (o->grids & FB_BENCH_SCALING) &&
+      (st = fb_scaling_estimate(&x, &px, o->c, &fb_scaling_default, &d)) == FB_OK)
+    cpu += x, pilot += px;
+  if (st != FB_OK) return fb_study_fail("bench", 1, "%s", d.msg);
+  const int smaller = o->grids != (FB_BENCH_DEFAULT | FB_BENCH_PEERS) && o->grids != FB_BENCH_PEERS;
+  return fb_bench_work(o, cpu, pilot, smaller ? "run a smaller --grid (default, peers, frontier)"
+                                              : NULL);
 }
 
 /* bench.csv: one line per row; returns the exit status */
@@ -456,17 +472,21 @@ int fb_bench_write_json_svg(const fb_bench_opts *o, json_t *j, const fb_bench_ro
 int fb_bench_study(const fb_bench_opts *o) {
   fb_diag d;
   if (fb_outdir_prepare(o->dir, &d) != FB_OK) return fb_study_fail("bench", 1, "%s", d.msg);
+  int rc = study_work(o);
+  if (rc) return rc;
   static fb_bench_row rows[FB_BENCH_MAX_ROWS];
   int n;
   const double t0 = fb_clock_s();
-  bench_progress bp = {isatty(2) && !o->json, t0};
+  static fb_progress bp;
+  fb_progress_init(&bp, o->json);
   if (fb_bench_run(rows, &n, o->c, o->grids & ~(FB_BENCH_PEERS | FB_BENCH_SCALING), progress, &bp,
                    &d) != FB_OK)
     return fb_study_fail("bench", 1, "%s", d.msg);
   /* the peers: each engine's bare program beside the harness (peers.h) */
   fb_peer_row peers[FB_PEERS_MAX];
   int npeers = 0;
-  if ((o->grids & FB_BENCH_PEERS) && fb_peers_run(peers, &npeers, o->c, NULL, NULL, NULL, &d) != FB_OK)
+  if ((o->grids & FB_BENCH_PEERS) &&
+      fb_peers_run(peers, &npeers, o->c, NULL, peers_progress, &bp, &d) != FB_OK)
     return fb_study_fail("bench", 1, "%s", d.msg);
   /* how the cost grows (scaling.h) */
   static fb_scaling_row scaling[FB_SCALING_MAX_ROWS];
@@ -488,7 +508,7 @@ int fb_bench_study(const fb_bench_opts *o) {
       br.ne++;
     }
   json_t *j;
-  int rc = write_files(&br, &j);
+  rc = write_files(&br, &j);
   if (rc) return rc;
   if (o->json) {
     json_dumpf(j, stdout, JSON_INDENT(2) | JSON_REAL_PRECISION(10));

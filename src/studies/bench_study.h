@@ -41,6 +41,14 @@ typedef struct {
   fb_bench_drawer draw;   /* draws bench.svg (a failure is a warning) */
 } fb_bench_opts;
 
+/* The bench o asks for, said before it starts and bounded (work.h): its
+ * CPU time cpu_s [s] (fb_bench_estimate, fb_peers_estimate,
+ * fb_scaling_estimate, or the planar bench's: pilots of this case's own
+ * runs), pilot_s what estimating it cost [s], on stderr when long; refused
+ * beyond the case's [run] max_wall_s with instead (the cheaper grids, or
+ * NULL). Returns 0 or the exit status (2: beyond the limit), said. */
+int fb_bench_work(const fb_bench_opts *o, double cpu_s, double pilot_s, const char *instead);
+
 /* Writes bench.json (j, through o->write_json; on failure j is freed)
  * and bench.svg (o->draw of rows[0..n) with marks; a failure is a
  * warning on stderr) into o->dir. Returns the exit status: 0 ok, 1

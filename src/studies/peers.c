@@ -1,6 +1,8 @@
 /* _GNU_SOURCE (meson.build): pipe2 */
 #include "peers.h"
 
+#include "pilot.h"
+
 #include <errno.h>
 #include <fcntl.h>
 #include <jansson.h>
@@ -177,11 +179,74 @@ static int has_peer(fb_engine_id id) {
 
 int fb_peers_build(fb_mech_type t) { return fb_mech_of(t)->peers_build; }
 
+/* the case of p's peer (its model alone, 2 revolutions at case c's step)
+ * into *k: 1 when it runs, else 0 with why in p->status */
+static int peer_case(fb_case *k, fb_peer_row *p, const fb_case *c, const char *dir) {
+  if (!p->model) {
+    snprintf(p->status, sizeof p->status, "no ideal nominal model for %s", p->engine);
+    return 0;
+  }
+  /* the bare programs (tests/peers) build the four-bar alone */
+  if (!fb_peers_build(c->mechanism)) {
+    snprintf(p->status, sizeof p->status, "not run: %s builds the four-bar only, not a %s",
+             p->peer, fb_case_mech(c)->type);
+    return 0;
+  }
+  char path[4400];
+  snprintf(path, sizeof path, "%s/%s", dir, p->peer);
+  if (access(path, X_OK) != 0) {
+    snprintf(p->status, sizeof p->status, "%.200s is not there: the peers are built with the tests "
+             "(meson setup -Dtests=enabled, ninja -C build); or set %s", path, FB_PEERS_ENV);
+    return 0;
+  }
+  *k = *c;
+  k->revolutions = 2;
+  k->model_count = 1;
+  snprintf(k->models[0], FB_NAME_SIZE, "%s", p->model->name);
+  return 1;
+}
+
+/* the row of engine e: its names and model, nothing measured */
+static void peer_row(fb_peer_row *p, fb_engine_id e) {
+  memset(p, 0, sizeof *p);
+  snprintf(p->engine, sizeof p->engine, "%s", fb_engine_name(e));
+  p->model = fb_model_match(e, FB_LENGTHS_NOMINAL, FB_JOINTS_IDEAL, FB_MODEL_LAW_NONE,
+                            FB_COLLIDER_NONE);
+  snprintf(p->peer, sizeof p->peer, "peer_%s", p->engine);
+  p->harness_over_bare = p->harness_per_rev = p->bare_per_rev = p->peak_rel = NAN;
+}
+
+static const char *peers_dir(const char *dir) {
+  if (!dir) dir = getenv(FB_PEERS_ENV);
+  return dir && *dir ? dir : FB_PEERS_DIR;
+}
+
+fb_status fb_peers_estimate(double *cpu_s, double *pilot_s, const fb_case *c, const char *dir,
+                            fb_diag *diag) {
+  *cpu_s = 0.0;
+  if (pilot_s) *pilot_s = 0.0;
+  dir = peers_dir(dir);
+  for (int e = 0; e < FB_ENGINE_COUNT; e++) {
+    if (!has_peer((fb_engine_id)e)) continue;
+    fb_peer_row p;
+    peer_row(&p, (fb_engine_id)e);
+    static fb_case k;
+    if (!peer_case(&k, &p, c, dir)) continue;
+    fb_pilot pl;
+    fb_status st = fb_pilot_case(&pl, &k, diag);
+    if (st != FB_OK) return st;
+    /* each round runs the harness's model and the bare program, which
+     * does no more than the model: counted as the harness twice */
+    *cpu_s += 2.0 * FB_PEER_ROUNDS * pl.cpu_s;
+    if (pilot_s) *pilot_s += pl.pilot_cpu_s;
+  }
+  return FB_OK;
+}
+
 fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *dir,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag) {
   *n = 0;
-  if (!dir) dir = getenv(FB_PEERS_ENV);
-  if (!dir || !*dir) dir = FB_PEERS_DIR;
+  dir = peers_dir(dir);
   int total = 0;
   for (int e = 0; e < FB_ENGINE_COUNT; e++) total += has_peer((fb_engine_id)e);
   int done = 0;
@@ -189,35 +254,11 @@ fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *
   for (int e = 0; e < FB_ENGINE_COUNT; e++) {
     if (!has_peer((fb_engine_id)e)) continue;
     fb_peer_row *p = &rows[(*n)++];
-    memset(p, 0, sizeof *p);
-    snprintf(p->engine, sizeof p->engine, "%s", fb_engine_name((fb_engine_id)e));
-    p->model = fb_model_match((fb_engine_id)e, FB_LENGTHS_NOMINAL, FB_JOINTS_IDEAL,
-                              FB_MODEL_LAW_NONE, FB_COLLIDER_NONE);
-    snprintf(p->peer, sizeof p->peer, "peer_%s", p->engine);
-    p->harness_over_bare = p->harness_per_rev = p->bare_per_rev = p->peak_rel = NAN;
-    if (!p->model) {
-      snprintf(p->status, sizeof p->status, "no ideal nominal model for %s", p->engine);
-      continue;
-    }
-    /* the bare programs (tests/peers) build the four-bar alone */
-    if (!fb_peers_build(c->mechanism)) {
-      snprintf(p->status, sizeof p->status, "not run: %s builds the four-bar only, not a %s",
-               p->peer, fb_case_mech(c)->type);
-      continue;
-    }
+    peer_row(p, (fb_engine_id)e);
+    static fb_case k;
+    if (!peer_case(&k, p, c, dir)) continue;
     char path[4400];
     snprintf(path, sizeof path, "%s/%s", dir, p->peer);
-    if (access(path, X_OK) != 0) {
-      snprintf(p->status, sizeof p->status, "%.200s is not there: the peers are built with the tests "
-               "(meson setup -Dtests=enabled, ninja -C build); or set %s", path, FB_PEERS_ENV);
-      continue;
-    }
-    /* the case of the peer: the model alone, 2 revolutions at the case's step */
-    static fb_case k;
-    k = *c;
-    k.revolutions = 2;
-    k.model_count = 1;
-    snprintf(k.models[0], FB_NAME_SIZE, "%s", p->model->name);
     static fb_run r;
     arglist args;
     double revs = 0.0;

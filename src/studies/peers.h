@@ -59,4 +59,12 @@ int fb_peers_build(fb_mech_type t);
 fb_status fb_peers_run(fb_peer_row *rows, int *n, const fb_case *c, const char *dir,
                        void (*progress)(double fraction, void *user), void *user, fb_diag *diag);
 
+/* The CPU time [s] fb_peers_run(c, dir) would take, estimated before it
+ * runs: each engine's harness case (its ideal nominal model, 2
+ * revolutions) by its pilot (pilot.h), counted twice per round (the bare
+ * program does no more than the model); *pilot_s (may be NULL) what the
+ * pilots cost. Errors: those of fb_run_case. */
+fb_status fb_peers_estimate(double *cpu_s, double *pilot_s, const fb_case *c, const char *dir,
+                            fb_diag *diag);
+
 #endif

@@ -13,7 +13,9 @@
 #include "fileio.h"
 #include "model_table.h"
 #include "numfmt.h"
+#include "pilot.h"
 #include "planar_run.h"
+#include "work.h"
 
 static const char *kinds[2] = {"ideal", "clearance-impact"};
 static const double targets[FB_BENCH_TARGETS] = {1e-2, 1e-3, 1e-4};
@@ -263,18 +265,49 @@ static void cost(planar_bench *pb, int i) {
   b->us_per_step = b->steps_taken > 0.0 ? 1e6 * pt->walls[pt->rounds / 2] / b->steps_taken : NAN;
 }
 
-/* the yardsticks' run: the analytic model and the references the rows name */
-static fb_status yardsticks(planar_bench *pb, fb_diag *diag) {
-  fb_case k = pb->base;
-  k.model_count = 0;
+/* the yardsticks' case: the analytic model and the references the rows name */
+static void yardstick_case(fb_case *k, const planar_bench *pb) {
+  *k = pb->base;
+  k->model_count = 0;
   for (int i = -1; i < pb->n; i++) {
     const char *name = i < 0 ? "analytic" : pb->pt[i].yardstick;
     int have = 0;
-    for (int q = 0; q < k.model_count; q++) have |= strcmp(k.models[q], name) == 0;
-    if (!have && k.model_count < FB_MAX_MODELS)
-      snprintf(k.models[k.model_count++], FB_NAME_SIZE, "%s", name);
+    for (int q = 0; q < k->model_count; q++) have |= strcmp(k->models[q], name) == 0;
+    if (!have && k->model_count < FB_MAX_MODELS)
+      snprintf(k->models[k->model_count++], FB_NAME_SIZE, "%s", name);
   }
+}
+
+static fb_status yardsticks(planar_bench *pb, fb_diag *diag) {
+  static fb_case k;
+  yardstick_case(&k, pb);
   return fb_planar_run_case(&pb->yard, &k, diag);
+}
+
+/* a row's first run is timed again in the later rounds (planar_bench.h) */
+static int repeats(double wall, double setup) { return wall + setup <= fb_bench_repeat_below_s(); }
+
+/* the bench said and bounded before it starts (bench_study.h): the
+ * yardsticks' case and each row's by their pilots (pilot.h), each row's
+ * later rounds by the same rule as the runs; 0 or the exit status. Each
+ * row's repeats are counted into *steps, for the progress */
+static int work(planar_bench *pb, int *steps) {
+  static fb_case k;
+  yardstick_case(&k, pb);
+  fb_pilot p;
+  fb_diag d;
+  if (fb_pilot_case(&p, &k, &d) != FB_OK) return fb_study_fail("bench", 1, "%s", d.msg);
+  double cpu = p.cpu_s, pilot = p.pilot_cpu_s;
+  *steps = pb->n;
+  for (int i = 0; i < pb->n; i++) {
+    /* a row that does not run (a prismatic clearance) is a row, not an error */
+    if (fb_pilot_case(&p, &pb->pt[i].k, &d) != FB_OK) continue;
+    const int later = repeats(p.model_s[0], p.setup_s[0]) ? FB_BENCH_ROUNDS - 1 : 0;
+    cpu += (1 + later) * p.cpu_s;
+    pilot += p.pilot_cpu_s;
+    *steps += later;
+  }
+  return fb_bench_work(pb->o, cpu, pilot, NULL);
 }
 
 /* the base case: 2 revolutions (the case's [run] revolutions when fewer)
@@ -289,18 +322,32 @@ static void base_case(fb_case *k, const fb_case *c) {
   k->solver.h_mode = FB_STEP_FIXED;
 }
 
-/* the runs: yardsticks, the first pass, the further rounds */
+/* the runs: yardsticks, the first pass, the further rounds, said and
+ * bounded before they start, drawn on a terminal */
 static int run_grid(planar_bench *pb) {
   fb_diag d;
   const double t0 = fb_clock_s();
   base_case(&pb->base, pb->o->c);
-  if (grid(pb, &d) != FB_OK || yardsticks(pb, &d) != FB_OK)
-    return fb_study_fail("bench", 1, "%s", d.msg);
-  for (int i = 0; i < pb->n; i++) first_run(pb, i);
+  if (grid(pb, &d) != FB_OK) return fb_study_fail("bench", 1, "%s", d.msg);
+  int steps = 1, done = 0;
+  const int rc = work(pb, &steps);
+  if (rc) return rc;
+  static fb_progress bar;
+  fb_progress_init(&bar, pb->o->json);
+  fb_progress_draw(&bar, "bench: yardsticks", 0.0);
+  if (yardsticks(pb, &d) != FB_OK) return fb_study_fail("bench", 1, "%s", d.msg);
+  fb_progress_draw(&bar, "bench: yardsticks", 1.0);
+  for (int i = 0; i < pb->n; i++) {
+    first_run(pb, i);
+    fb_progress_draw(&bar, "bench", (double)++done / steps);
+  }
   for (int round = 1; round < FB_BENCH_ROUNDS; round++)
     for (int i = 0; i < pb->n; i++)
-      if (pb->pt[i].rounds == round && pb->pt[i].walls[0] + pb->pt[i].setups[0] <= FB_BENCH_REPEAT_BELOW_S)
+      if (pb->pt[i].rounds == round && repeats(pb->pt[i].walls[0], pb->pt[i].setups[0])) {
         retime(pb, i);
+        fb_progress_draw(&bar, "bench", fmin((double)++done / steps, 0.999));
+      }
+  fb_progress_draw(&bar, "bench", 1.0);
   for (int i = 0; i < pb->n; i++) cost(pb, i);
   fb_bench_mark_pareto(pb->rows, pb->n);
   pb->wall = fb_clock_s() - t0;

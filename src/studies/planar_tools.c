@@ -12,6 +12,7 @@
 #include "planar_case.h"
 #include "planar_invdyn.h"
 #include "units.h"
+#include "work.h"
 
 /* joint points of one body the stack-up keeps: three vary by their
  * distances, a fourth is only counted (to refuse the body) */
@@ -219,8 +220,18 @@ static fb_status outputs_at(double *y, const fb_planar *m, const double *len, do
   return st;
 }
 
+/* progress (may be NULL) over n evaluations, k done */
+typedef struct {
+  void (*fn)(double fraction, void *user);
+  void *user;
+} tool_progress;
+
+static void step(const tool_progress *p, double k, double n) {
+  if (p && p->fn && n > 0.0) p->fn(k / n, p->user);
+}
+
 static fb_status sensitivities(fb_planar_stackup *s, const fb_planar *m, double *len, double *y,
-                               double omega, fb_diag *diag) {
+                               double omega, const tool_progress *pg, fb_diag *diag) {
   const int no = s->nout, nl = s->nlengths;
   fb_status st = FB_OK;
   for (int k = 0; k < nl && st == FB_OK; k++) {
@@ -233,6 +244,7 @@ static fb_status sensitivities(fb_planar_stackup *s, const fb_planar *m, double 
     for (int o = 0; o < no && st == FB_OK; o++)
       s->sens[o * nl + k] = (s->sens[o * nl + k] - y[o]) / (2.0 * FB_PLANAR_SENS_STEP);
     len[k] = l0;
+    step(pg, k + 1, nl);
   }
   for (int o = 0; o < no && st == FB_OK; o++) {
     double sum = 0.0;
@@ -271,7 +283,7 @@ static fb_status corner(fb_planar_stackup *s, const fb_planar *m, const char *at
 /* the worst case: every one of the 2^n corners, in the order of the binary
  * count (length k '+' where bit k is set) */
 static fb_status corners(fb_planar_stackup *s, const fb_planar *m, double *len, double *y,
-                         double omega, fb_diag *diag) {
+                         double omega, const tool_progress *pg, fb_diag *diag) {
   const int nl = s->nlengths, no = s->nout;
   if (nl > FB_PLANAR_CORNER_BITS)
     return fb_diag_set(diag, FB_ERR_RANGE, "%d lengths make 2^%d corners, more than a count "
@@ -284,13 +296,27 @@ static fb_status corners(fb_planar_stackup *s, const fb_planar *m, double *len, 
   for (unsigned long long mask = 0; mask < n && st == FB_OK; mask++) {
     for (int k = 0; k < nl; k++) at[k] = (mask >> k) & 1 ? '+' : '-';
     st = corner(s, m, at, len, y, omega, diag);
+    step(pg, (double)(mask + 1), (double)n);
   }
   free(at);
   return st;
 }
 
-fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
-                                int with_corners, fb_diag *diag) {
+/* the nominal outputs of s (fb_work_eval: the probe's evaluation) */
+typedef struct {
+  fb_planar_stackup *s;
+  const fb_planar *m;
+  double *len;
+  double omega;
+} nominal_ctx;
+
+static fb_status nominal_eval(void *ctx, fb_diag *diag) {
+  nominal_ctx *x = ctx;
+  return outputs_at(x->s->nominal, x->m, x->len, x->omega, diag);
+}
+
+fb_status fb_planar_stackup_begin(fb_planar_stackup *s, double *s_per_eval, const fb_case *c,
+                                  const fb_planar *m, fb_diag *diag) {
   memset(s, 0, sizeof *s);
   fb_status st = lengths_of(s, c, m, diag);
   if (st != FB_OK) {
@@ -301,9 +327,8 @@ fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb
   s->nout = no;
   s->nominal = calloc((size_t)no * (4 + (size_t)nl), sizeof *s->nominal);
   s->lo_at = calloc(2 * (size_t)no * ((size_t)nl + 1), 1);
-  double *len = malloc(((size_t)nl + (size_t)no) * sizeof *len);
-  if (!s->nominal || !s->lo_at || !len) {
-    free(len);
+  s->len = malloc(((size_t)nl + (size_t)no) * sizeof *s->len);
+  if (!s->nominal || !s->lo_at || !s->len) {
     fb_planar_stackup_free(s);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   }
@@ -312,13 +337,37 @@ fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb
   s->hi = s->lo + no;
   s->sens = s->hi + no;
   s->hi_at = s->lo_at + (size_t)no * ((size_t)nl + 1);
-  double *y = len + nl;
-  for (int k = 0; k < nl; k++) len[k] = s->length[k].nominal;
-  const double omega = fb_case_omega2(c);
-  st = outputs_at(s->nominal, m, len, omega, diag);
-  if (st == FB_OK) st = sensitivities(s, m, len, y, omega, diag);
-  if (st == FB_OK && with_corners) st = corners(s, m, len, y, omega, diag);
-  free(len);
+  for (int k = 0; k < nl; k++) s->len[k] = s->length[k].nominal;
+  /* the nominal outputs, timed: this case's cost of a corner or a sample */
+  nominal_ctx x = {s, m, s->len, fb_case_omega2(c)};
+  double each;
+  st = fb_work_probe(&each, NULL, nominal_eval, &x, diag);
+  if (s_per_eval) *s_per_eval = each;
+  if (st != FB_OK) fb_planar_stackup_free(s);
+  return st;
+}
+
+fb_status fb_planar_stackup_rss(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
+                                void (*progress)(double fraction, void *user), void *user,
+                                fb_diag *diag) {
+  const tool_progress pg = {progress, user};
+  return sensitivities(s, m, s->len, s->len + s->nlengths, fb_case_omega2(c), &pg, diag);
+}
+
+fb_status fb_planar_stackup_corners(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
+                                    void (*progress)(double fraction, void *user), void *user,
+                                    fb_diag *diag) {
+  const tool_progress pg = {progress, user};
+  fb_status st = corners(s, m, s->len, s->len + s->nlengths, fb_case_omega2(c), &pg, diag);
+  for (int k = 0; k < s->nlengths; k++) s->len[k] = s->length[k].nominal;
+  return st;
+}
+
+fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
+                                int with_corners, fb_diag *diag) {
+  fb_status st = fb_planar_stackup_begin(s, NULL, c, m, diag);
+  if (st == FB_OK) st = fb_planar_stackup_rss(s, c, m, NULL, NULL, diag);
+  if (st == FB_OK && with_corners) st = fb_planar_stackup_corners(s, c, m, NULL, NULL, diag);
   if (st != FB_OK) fb_planar_stackup_free(s);
   return st;
 }
@@ -397,6 +446,7 @@ fb_status fb_planar_stackup_montecarlo(fb_planar_stackup *s, const fb_case *c, c
 
 void fb_planar_stackup_free(fb_planar_stackup *s) {
   free(s->mc.out);
+  free(s->len);
   free(s->nominal);
   free(s->length);
   free(s->lo_at);

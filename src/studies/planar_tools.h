@@ -93,19 +93,36 @@ typedef struct {
   char *lo_at, *hi_at;     /* (nout x (nlengths + 1)): the corner of each, one '+' or '-'
                               per length in length[]'s order, NUL-terminated; "" when the
                               nominal itself is the extreme (no corner passed it) */
+  double *len;             /* scratch of an evaluation: lengths (nlengths), outputs (nout) */
   fb_mc_result mc;         /* the Monte Carlo (mc.samples 0: not run); mc.out (nout) */
   fb_distribution mc_dist; /* its distribution */
   unsigned long mc_seed;   /* its seed */
 } fb_planar_stackup;
 
-/* The stack-up of planar case c with description m (above); the worst
- * case over the corners when with_corners is 1.
+/* The stack-up of planar case c with description m (above), in three
+ * parts so that a command can say and bound the work before it starts:
+ * fb_planar_stackup_begin counts and tolerances the lengths and evaluates
+ * the nominal outputs, timed by the probe of work.h (*s_per_eval, may be
+ * NULL: the CPU time of one evaluation, a corner's or a sample's cost on
+ * this case); fb_planar_stackup_rss the sensitivities (2 evaluations per
+ * length) and the RSS band; fb_planar_stackup_corners the worst case over
+ * the 2^n corners (2^n evaluations). progress (may be NULL) gets each
+ * part's fraction done. fb_planar_stackup_run is the three, the corners
+ * when with_corners is 1.
  * Errors: FB_ERR_ARG when the case gives no [tolerance] class, or a body
  * has more than three distinct joint points (its distances over-determine
  * it), naming it; FB_ERR_RANGE beyond FB_PLANAR_CORNER_BITS lengths with
- * with_corners; those of iso2768 (a length below 0.5 mm) and of the
+ * the corners; those of iso2768 (a length below 0.5 mm) and of the
  * kinematics (a corner that does not close or turn, naming it);
- * FB_ERR_NOMEM. Free with fb_planar_stackup_free. */
+ * FB_ERR_NOMEM. Free with fb_planar_stackup_free (begin frees on error). */
+fb_status fb_planar_stackup_begin(fb_planar_stackup *s, double *s_per_eval, const fb_case *c,
+                                  const fb_planar *m, fb_diag *diag);
+fb_status fb_planar_stackup_rss(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
+                                void (*progress)(double fraction, void *user), void *user,
+                                fb_diag *diag);
+fb_status fb_planar_stackup_corners(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
+                                    void (*progress)(double fraction, void *user), void *user,
+                                    fb_diag *diag);
 fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
                                 int with_corners, fb_diag *diag);
 void fb_planar_stackup_free(fb_planar_stackup *s);
@@ -115,13 +132,7 @@ void fb_planar_stackup_free(fb_planar_stackup *s);
  * counted as its own, which fb_planar_stackup_run refuses). */
 int fb_planar_stackup_lengths(const fb_planar *m);
 
-/* Corners beyond which fourbar stackup says up front what the worst case
- * costs: 256 corners, about 12 s of CPU at the six-bar's 45 ms a corner
- * (5 moving bodies; 1024 corners measured 46 s). */
-#define FB_PLANAR_CORNERS_NOTE 256
-#define FB_PLANAR_S_PER_CORNER 0.045
-
-/* The Monte Carlo of stack-up s (fb_planar_stackup_run's, of case c and
+/* The Monte Carlo of stack-up s (fb_planar_stackup_begin's, of case c and
  * description m): `samples` samples from `seed` with distribution dist on
  * jobs threads, the same numbers for every jobs (montecarlo.h). Each sample
  * draws the moving bodies' lengths in length[]'s order, then the ground's
@@ -141,13 +152,6 @@ fb_status fb_planar_stackup_montecarlo(fb_planar_stackup *s, const fb_case *c, c
  * 95 % intervals are bounded on both sides (fb_tol_quantile_ranks; (1 -
  * 0.00135)^n <= 0.025 needs n >= 2731). */
 #define FB_PLANAR_MC_SAMPLES 3000
-/* CPU time of one sample [s], for the up-front estimate: a revolution's
- * peaks of the six-bar, 48.3 and 48.5 ms measured (user + sys of fourbar
- * stackup watt_sixbar --set tolerance.class=m --method montecarlo
- * --samples 200, 10.69 and 10.84 s, less --method rss's 1.05 and 1.13 s,
- * over 200), rounded up. */
-#define FB_PLANAR_S_PER_SAMPLE 0.05
-
 /* The name of stack-up output k ("<body>_omega_max_rad_s") into buf. */
 const char *fb_planar_output_name(char *buf, size_t size, const fb_planar *m, int k);
 

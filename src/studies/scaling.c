@@ -1,6 +1,8 @@
 /* fourbar bench --grid scaling (scaling.h) */
 #include "scaling.h"
 
+#include "pilot.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -59,8 +61,10 @@ static void run_row(fb_scaling_row *row, const fb_case *k) {
 static void monte_carlo_row(fb_scaling_row *row, const fb_case *c, size_t samples) {
   static fb_stackup_result out;
   fb_diag d;
-  double bytes;
-  fb_tol_estimate(c->mechanism, samples, row->jobs, &bytes, &row->estimate_s);
+  double bytes, each;
+  /* the estimate stackup says: this case's cost per sample, measured */
+  if (fb_tol_eval_cost(&each, NULL, c, &d) != FB_OK) each = NAN;
+  fb_tol_estimate(each, samples, row->jobs, &bytes, &row->estimate_s);
   const double w0 = fb_clock_s(), c0 = fb_clock_cpu_s();
   const fb_status st = fb_tol_analyse_jobs(&out, c, FB_TOL_MONTECARLO, samples, 1,
                                            c->distribution ? FB_DIST_UNIFORM : FB_DIST_NORMAL,
@@ -71,6 +75,38 @@ static void monte_carlo_row(fb_scaling_row *row, const fb_case *c, size_t sample
   snprintf(row->status, sizeof row->status, "%.250s", st == FB_OK ? "ok" : d.msg);
 }
 
+/* row i of plan p's runs (its revolutions, stiffness and ensemble rows, in
+ * that order) as its case *k, what it varies and its value and jobs */
+static void row_case(fb_case *k, const char **vary, double *value, int *jobs, const fb_case *c,
+                     const fb_scaling_plan *p, int i) {
+  *k = *c;
+  *jobs = 1;
+  if (i < p->nrevolutions) {
+    k->revolutions = p->revolutions[i];
+    k->model_count = 1;
+    snprintf(k->models[0], sizeof k->models[0], "reference");
+    k->ensemble = 1;
+    k->peaks = FB_PEAKS_ALL;
+    *vary = "revolutions";
+    *value = p->revolutions[i];
+    return;
+  }
+  i -= p->nrevolutions;
+  if (i < p->nstiffness) {
+    k->clearance.stiffness_scale = c->clearance.stiffness_scale * p->stiffness[i];
+    k->ensemble = 1;
+    *vary = "stiffness_scale";
+    *value = p->stiffness[i];
+    return;
+  }
+  i -= p->nstiffness;
+  k->ensemble = p->members[i];
+  k->jobs = p->jobs[i];
+  *jobs = p->jobs[i];
+  *vary = "ensemble";
+  *value = p->members[i];
+}
+
 fb_status fb_scaling_run(fb_scaling_row *rows, int *n, const fb_case *c, const fb_scaling_plan *p,
                          fb_diag *diag) {
   *n = 0;
@@ -79,30 +115,41 @@ fb_status fb_scaling_run(fb_scaling_row *rows, int *n, const fb_case *c, const f
                        FB_SCALING_MAX_ROWS);
   fb_case *k = malloc(sizeof *k);
   if (!k) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  for (int i = 0; i < p->nrevolutions; i++) {
-    *k = *c;
-    k->revolutions = p->revolutions[i];
-    k->model_count = 1;
-    snprintf(k->models[0], sizeof k->models[0], "reference");
-    k->ensemble = 1;
-    k->peaks = FB_PEAKS_ALL;
-    run_row(new_row(rows, n, "revolutions", p->revolutions[i], 1), k);
-  }
-  for (int i = 0; i < p->nstiffness; i++) {
-    *k = *c;
-    k->clearance.stiffness_scale = c->clearance.stiffness_scale * p->stiffness[i];
-    k->ensemble = 1;
-    run_row(new_row(rows, n, "stiffness_scale", p->stiffness[i], 1), k);
-  }
-  for (int i = 0; i < p->nensemble; i++) {
-    *k = *c;
-    k->ensemble = p->members[i];
-    k->jobs = p->jobs[i];
-    run_row(new_row(rows, n, "ensemble", p->members[i], p->jobs[i]), k);
+  for (int i = 0; i < p->nrevolutions + p->nstiffness + p->nensemble; i++) {
+    const char *vary;
+    double value;
+    int jobs;
+    row_case(k, &vary, &value, &jobs, c, p, i);
+    run_row(new_row(rows, n, vary, value, jobs), k);
   }
   for (int i = 0; i < p->nsamples; i++)
     monte_carlo_row(new_row(rows, n, "montecarlo_samples", p->samples[i], 1), c,
                     (size_t)p->samples[i]);
   free(k);
   return FB_OK;
+}
+
+fb_status fb_scaling_estimate(double *cpu_s, double *pilot_s, const fb_case *c,
+                              const fb_scaling_plan *p, fb_diag *diag) {
+  *cpu_s = 0.0;
+  if (pilot_s) *pilot_s = 0.0;
+  fb_case *k = malloc(sizeof *k);
+  if (!k) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_status st = FB_OK;
+  for (int i = 0; i < p->nrevolutions + p->nstiffness + p->nensemble && st == FB_OK; i++) {
+    const char *vary;
+    double value;
+    int jobs;
+    row_case(k, &vary, &value, &jobs, c, p, i);
+    fb_pilot pl;
+    st = fb_pilot_case(&pl, k, diag);
+    if (st != FB_OK) break; /* (the row would fail alone; the bench says so) */
+    *cpu_s += pl.cpu_s;
+    if (pilot_s) *pilot_s += pl.pilot_cpu_s;
+  }
+  free(k);
+  double each;
+  if (st == FB_OK && p->nsamples > 0 && (st = fb_tol_eval_cost(&each, NULL, c, diag)) == FB_OK)
+    for (int i = 0; i < p->nsamples; i++) *cpu_s += p->samples[i] * each;
+  return st;
 }

@@ -56,4 +56,11 @@ typedef struct {
 fb_status fb_scaling_run(fb_scaling_row *rows, int *n, const fb_case *c, const fb_scaling_plan *p,
                          fb_diag *diag);
 
+/* The CPU time [s] fb_scaling_run(c, p) would take, estimated before it
+ * runs: each run's case by its pilot (pilot.h), each Monte Carlo row by
+ * this case's cost per sample (fb_tol_eval_cost); *pilot_s (may be NULL)
+ * what the pilots cost. Errors: those of fb_run_case. */
+fb_status fb_scaling_estimate(double *cpu_s, double *pilot_s, const fb_case *c,
+                              const fb_scaling_plan *p, fb_diag *diag);
+
 #endif

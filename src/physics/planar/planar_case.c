@@ -9,6 +9,7 @@
 
 #include "bar_mass.h"
 #include "closed_form.h"
+#include "planar_check.h"
 #include "units.h"
 
 /* ---- a planar case's spec ---------------------------------------------- */
@@ -64,9 +65,29 @@ static bars_t bars_of(double pts[][2], int n, double w, double t, double rho) {
   return r;
 }
 
-/* body b of spec s into p: its mass properties given or derived */
+/* the joints of spec s at body b, and the first of them */
+static int body_joints(const fb_planar_spec *s, int b, int *first) {
+  int n = 0;
+  *first = -1;
+  for (int j = 0; j < s->njoints; j++)
+    if (s->joint[j].body[0] == b || s->joint[j].body[1] == b) {
+      if (!n) *first = j;
+      n++;
+    }
+  return n;
+}
+
+/* A body whose mass no bar gives: the unit body that stands in for it
+ * while the joints are counted (fb_planar_compile), never run. */
+#define STAND_IN_KG 1.0
+#define STAND_IN_KG_M2 1.0
+
+/* body b of spec s into p: its mass properties given or derived. A body
+ * with fewer than two joint points and no mass (or moment) given gets the
+ * stand-in, *pending = 1 and the refusal in diag, for the caller to give
+ * after the joints are counted. */
 static int compile_body(fb_planar *p, const fb_planar_spec *s, int b, double density,
-                        fb_diag *diag) {
+                        int *pending, fb_diag *diag) {
   const fb_planar_spec_body *sb = &s->body[b];
   double pts[FB_PLANAR_SPEC_MAX_JOINTS][2];
   const int n = body_points(pts, FB_PLANAR_SPEC_MAX_JOINTS, s, b);
@@ -78,12 +99,23 @@ static int compile_body(fb_planar *p, const fb_planar_spec *s, int b, double den
   const int given_m = sb->given & FB_SPEC_BODY_MASS, given_i = sb->given & FB_SPEC_BODY_INERTIA;
   const int given_c = sb->given & FB_SPEC_BODY_CENTRE;
   if (!has_bar && (!given_m || !given_i)) {
+    int first;
+    const int nj = body_joints(s, b, &first);
+    char has[FB_PLANAR_NAME_SIZE + 64];
+    if (nj == 0) snprintf(has, sizeof has, "no joint");
+    else if (nj == 1) snprintf(has, sizeof has, "one joint ('%s')", s->joint[first].name);
+    else snprintf(has, sizeof has, "%d joints at one point", nj);
     fb_diag_set(diag, FB_ERR_ARG,
                 "body '%s' has %s, so no bar to derive its %s from: give [body.%s] %s%s%s",
-                sb->name, n ? "one joint point (its joints coincide)" : "no joint",
-                given_m ? "moment of inertia" : "mass", sb->name, given_m ? "" : "mass_kg",
-                !given_m && !given_i ? " and " : "", given_i ? "" : "inertia_kg_mm2");
-    return -1;
+                sb->name, has, given_m ? "moment of inertia" : "mass", sb->name,
+                given_m ? "" : "mass_kg", !given_m && !given_i ? " and " : "",
+                given_i ? "" : "inertia_kg_mm2");
+    *pending = 1;
+    const double at[2] = {n ? pts[0][0] : 0.0, n ? pts[0][1] : 0.0};
+    fb_diag inner;
+    const int id = fb_planar_add_body(p, sb->name, STAND_IN_KG, STAND_IN_KG_M2, at, 0.0, 0, &inner);
+    if (id < 0) *diag = inner; /* (its name's refusal comes first) */
+    return id;
   }
   const double mass = given_m ? sb->mass : bars.mass;
   if (!given_m && !(mass >= FB_MASS_MIN_KG && mass <= FB_MASS_MAX_KG)) {
@@ -126,11 +158,22 @@ fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double den
   fb_planar *p = fb_planar_new(s->nbodies - 1, s->njoints);
   if (!p) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a description");
   fb_status rc = FB_OK;
-  for (int b = 1; b < s->nbodies && rc == FB_OK; b++)
-    if (compile_body(p, s, b, density, diag) < 0) {
+  /* a body whose mass no bar gives is refused after the joints are
+   * counted: a joint missing is said as such, not as that body's mass */
+  int pending_body = -1;
+  fb_diag pending;
+  for (int b = 1; b < s->nbodies && rc == FB_OK; b++) {
+    int lacks = 0;
+    fb_diag bd;
+    if (compile_body(p, s, b, density, &lacks, &bd) < 0) {
+      *diag = bd;
       where->body = b;
       rc = FB_ERR_ARG;
+    } else if (lacks && pending_body < 0) {
+      pending = bd;
+      pending_body = b;
     }
+  }
   for (int j = 0; j < s->njoints && rc == FB_OK; j++) {
     const fb_planar_spec_joint *sj = &s->joint[j];
     if (fb_planar_add_joint(p, sj->name, (fb_joint_kind)sj->kind, sj->body[0], sj->body[1],
@@ -143,6 +186,11 @@ fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double den
     rc = fb_diag_set(diag, FB_ERR_ARG, "no drive: name the driven joint in [drive] joint");
   if (rc == FB_OK && !s->undriven && (rc = fb_planar_set_drive(p, s->drive, diag)) != FB_OK)
     where->joint = s->drive;
+  if (rc == FB_OK && pending_body >= 0 && (rc = fb_planar_check_structure(p, where, diag)) == FB_OK) {
+    *diag = pending;
+    where->body = pending_body;
+    rc = FB_ERR_ARG;
+  }
   if (rc != FB_OK) {
     fb_planar_free(p);
     return rc;

@@ -246,7 +246,7 @@ static fb_status check_turn(const fb_planar *m, double *q, fb_planar_where *wher
   return rc;
 }
 
-fb_status fb_planar_check(const fb_planar *m, fb_planar_where *where, fb_diag *diag) {
+fb_status fb_planar_check_structure(const fb_planar *m, fb_planar_where *where, fb_diag *diag) {
   fb_planar_where none = {-1, -1};
   if (!where) where = &none;
   *where = none;
@@ -270,12 +270,20 @@ fb_status fb_planar_check(const fb_planar *m, fb_planar_where *where, fb_diag *d
                             : "it is over-constrained (a joint too many, or a body missing): "
                               "it could not move");
   }
+  return FB_OK;
+}
+
+fb_status fb_planar_check(const fb_planar *m, fb_planar_where *where, fb_diag *diag) {
+  fb_planar_where none = {-1, -1};
+  if (!where) where = &none;
+  fb_status rc = fb_planar_check_structure(m, where, diag);
+  if (rc != FB_OK) return rc;
   const int nq = fb_planar_nq(m);
   double *q = calloc((size_t)nq, sizeof *q);
   if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   fb_planar_assembly(m, q);
   /* an undriven description (a free start): the rank and the turn are the drive's */
-  fb_status rc = m->drive < 0 ? FB_OK : check_rank(m, q, where, diag);
+  rc = m->drive < 0 ? FB_OK : check_rank(m, q, where, diag);
   if (rc == FB_OK && m->drive >= 0) rc = check_turn(m, q, where, diag);
   free(q);
   return rc;

@@ -47,4 +47,10 @@
  * rule. */
 fb_status fb_planar_check(const fb_planar *m, fb_planar_where *where, fb_diag *diag);
 
+/* The first two checks alone (connected, one degree of freedom), which
+ * need no mass: fb_planar_compile runs them before it refuses a body whose
+ * mass no bar gives, so that a joint missing is said as such. Errors:
+ * FB_ERR_ARG, as fb_planar_check's. */
+fb_status fb_planar_check_structure(const fb_planar *m, fb_planar_where *where, fb_diag *diag);
+
 #endif

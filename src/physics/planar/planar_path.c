@@ -42,10 +42,14 @@ fb_status fb_planar_follow(fb_planar_kin *k, double *q, double from, double to, 
   int sign = 0, sign1 = 0;
   fb_status rc = unit_motion(k, v1, v2, q, &sign);
   while (rc == FB_OK && angle != to) {
+    /* the last step takes the rest: a remainder below FB_PLANAR_STEP_MIN
+     * (the rounding of from + steps against to) joins the step before it,
+     * never a step of its own that rounding alone would fail */
     const double left = to - angle, dir = left > 0.0 ? 1.0 : -1.0;
-    const double h = fabs(left) <= step ? left : dir * step;
+    const int last = fabs(left) <= step + FB_PLANAR_STEP_MIN;
+    const double h = last ? left : dir * step;
     predict(qn, q, v1, v2, h, n);
-    const double target = fabs(left) <= step ? to : angle + h;
+    const double target = last ? to : angle + h;
     int ok = fb_planar_position(k, qn, target, NULL, NULL) == FB_OK &&
              unit_motion(k, w1, w2, qn, &sign1) == FB_OK;
     if (ok) { /* the correction against the step's own motion */
@@ -53,7 +57,9 @@ fb_status fb_planar_follow(fb_planar_kin *k, double *q, double from, double to, 
       for (int i = 0; i < n; i++)
         corr = fmax(corr, fabs(qn[i] - (q[i] + v1[i] * h + 0.5 * v2[i] * h * h)) /
                               (i % 3 == 2 ? 1.0 : size));
-      ok = corr <= FB_PLANAR_JUMP * coord_norm(v1, n, size) * fabs(h);
+      /* (plus the positions' own closing tolerance: a correction at the
+       * rounding of a solution is no jump, however short the step) */
+      ok = corr <= FB_PLANAR_JUMP * coord_norm(v1, n, size) * fabs(h) + FB_PLANAR_CLOSE_TOL;
     }
     if (ok && sign1 == sign) {
       memcpy(q, qn, (size_t)n * sizeof *q);

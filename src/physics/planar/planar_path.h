@@ -5,12 +5,14 @@
  * drive speed (the analytic model's peaks of a planar case).
  *
  * A step is accepted when Newton converges, its correction to the
- * predictor stays within FB_PLANAR_JUMP of the step's own motion (no
- * jump to another assembly branch), and the sign of det Phi_q is the
- * step's start's (no singular position passed). Otherwise the step is
- * halved, down to FB_PLANAR_STEP_MIN: a path that cannot go on there is
- * locked (a toggle or dead position: no solution beyond it), or passes a
- * singular position (a change point), at that angle. */
+ * predictor stays within FB_PLANAR_JUMP of the step's own motion plus a
+ * solution's own rounding, FB_PLANAR_CLOSE_TOL (no jump to another
+ * assembly branch), and the sign of det Phi_q is the step's start's (no
+ * singular position passed). Otherwise the step is halved, down to
+ * FB_PLANAR_STEP_MIN: a path that cannot go on there is locked (a toggle
+ * or dead position: no solution beyond it), or passes a singular position
+ * (a change point), at that angle. The last step of a path takes the rest
+ * of it, a remainder shorter than FB_PLANAR_STEP_MIN included. */
 #ifndef FB_PLANAR_PATH_H
 #define FB_PLANAR_PATH_H
 

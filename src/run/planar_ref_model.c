@@ -9,7 +9,6 @@
 #include "peak_refine.h"
 #include "planar_case.h"
 #include "planar_free.h"
-#include "planar_invdyn.h"
 #include "planar_reference.h"
 #include "planar_run.h"
 #include "reference.h"
@@ -194,13 +193,13 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   fb_status st = clearance_joint(&q->joint, c, m, p->name, diag);
   if (st != FB_OK) return st;
   fb_planar_guide *guide = NULL;
-  double *omega0 = NULL, *fmax_j = malloc((size_t)m->njoints * sizeof *fmax_j);
+  double *omega0 = NULL;
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
-  st = fmax_j ? fb_planar_free_parts(&guide, &omega0, &free_law, c, m, q->joint, diag)
-              : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  if (st == FB_OK && !free_law) st = fb_planar_reaction_max(fmax_j, m, r->omega, c->gravity, diag);
-  q->force_work = st == FB_OK && !free_law ? fmax_j[q->joint] : 0.0;
-  free(fmax_j);
+  st = fb_planar_free_parts(&guide, &omega0, &free_law, c, m, q->joint, diag);
+  if (st == FB_OK && !free_law && !r->reaction_max)
+    st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': the joints' ideal reactions were not computed",
+                     p->name);
+  q->force_work = st == FB_OK && !free_law ? r->reaction_max[q->joint] : 0.0;
   if (st == FB_OK)
     st = fb_joint_law_at(&q->law, c, impact, q->force_work, m->joint[q->joint].name,
                          joint_mass(m, q->joint), diag);

@@ -88,7 +88,7 @@ static double refine_start(double *y, size_t k, void *p) {
  * neighbouring samples: the closed-form reference's rule (peak_refine.h),
  * so that both references' peaks are the same quantity. */
 static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *r,
-                   fb_planar_rel *d, const double *y, const double *z, double tol) {
+                   fb_planar_rel *d, const double *y, const double *z, double tol, int window) {
   const fb_planar *m = r->m;
   const int nb = m->nbodies - 1;
   int from = -1, to = 0; /* an undriven description has no driven body */
@@ -109,7 +109,7 @@ static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *
       nquant += 2;
     }
     const fb_peak_refine_ode ode = {(size_t)src.dim, nquant, refine_rhs, refine_eval,
-                                    refine_start, &src, p->h, tol};
+                                    refine_start, &src, p->h, tol, window};
     fb_peak_refine(cc, nc, col->t, p->n, fb_case_peak_window_from(&r->c), &ode);
   }
   free(ct);
@@ -150,7 +150,9 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
     col.force[i] = c->force;
     col.pen[i] = c->penetration;
   }
-  if (st == FB_OK) refine(&col, p, r, d, y, z, tol);
+  /* the check's window peaks alone are read (check_change): its start-up
+   * needs no refinement */
+  if (st == FB_OK) refine(&col, p, r, d, y, z, tol, !store);
   for (int k = 0; k < 4 * nb; k++) w[k] = k % 2 ? INFINITY : -INFINITY;
   w[4 * nb] = w[4 * nb + 1] = 0.0; /* force, penetration */
   for (size_t i = 0; i < n && st == FB_OK; i++) {

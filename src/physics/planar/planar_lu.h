@@ -18,10 +18,11 @@
  * are bounded by n^2, and the work of a refactorisation or a solve is
  * that of the factors' entries (linear in a chain's length).
  *
- * Why not a library: on these matrices (9 to 51 rows, 25 to 150 entries)
- * KLU's refactorisation and solve cost 2.7 to 2.8 times this one's, LAPACK's
- * banded dgbtrf and dgbtrs 10 times, GSL's dense LU 11 to 14 times
- * (tests/bench_planar_lu.c; docs/performance.md). */
+ * Why not a library: on these matrices (9 to 51 rows) a refactorisation
+ * and a solve by SuiteSparse's KLU cost about three times this one's, by
+ * LAPACK's banded or GSL's dense LU ten times or more, the calls' fixed
+ * work outweighing the products (tests/bench_planar_lu.c,
+ * docs/performance.md). */
 #ifndef FB_PLANAR_LU_H
 #define FB_PLANAR_LU_H
 

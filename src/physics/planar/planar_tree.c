@@ -64,6 +64,7 @@ struct fb_planar_tree {
    * and d = p_k - p_i */
   double *gp, *gb, *gax, *gd;
   double *ci, *ck, *cn, *cd;
+  double *cq;           /* (2 nbodies) fb_planar_tree_coords' trig */
   const double *cs;     /* the last pose's trig (fb_planar_tree_poses' cs) */
   /* Every joint revolute (the four-bar, the Watt six-bar, their chains):
    * the closure Jacobian in closed form. Column b's entry on cut joint c's
@@ -175,7 +176,7 @@ fb_status fb_planar_tree_new(fb_planar_tree **out, const fb_planar *m,
   t->free = free;
   t->order = malloc((5 * (size_t)nbod + 5 * (size_t)nj + 2 * (size_t)nb * ((size_t)nb + 1) + 2) *
                     sizeof *t->order);
-  t->x = calloc(3 * (size_t)nbod + 2 * (size_t)nj + 4 * (size_t)nbod + 1 + 8 * (size_t)nbod +
+  t->x = calloc(3 * (size_t)nbod + 2 * (size_t)nj + 4 * (size_t)nbod + 1 + 10 * (size_t)nbod +
                     8 * (size_t)nj, sizeof *t->x);
   if (!t->order || !t->x) {
     fb_planar_tree_free(t);
@@ -255,6 +256,7 @@ fb_status fb_planar_tree_new(fb_planar_tree **out, const fb_planar *m,
   t->ck = t->ci + 2 * nj;
   t->cn = t->ck + 2 * nj;
   t->cd = t->cn + 2 * nj;
+  t->cq = t->cd + 2 * nj;
   for (int b = 0; b < nbod; b++) t->th[b] = NAN; /* no anchor yet */
   t->nd = calloc((size_t)nb, sizeof *t->nd);
   t->cj = calloc((size_t)t->ncut + 1, sizeof *t->cj);
@@ -374,8 +376,7 @@ static void rotc(double out[2], const double *c, const double s[2]) {
 
 void fb_planar_tree_coords(const fb_planar_tree *t, double *u, double *r, const double *q) {
   const fb_planar *m = t->m;
-  double *cs = malloc(2 * (size_t)m->nbodies * sizeof *cs);
-  if (!cs) return;
+  double *cs = t->cq;
   fb_planar_sq_trig(cs, m, q);
   for (int b = 1; b < m->nbodies; b++) {
     const fb_planar_joint *jt = &m->joint[t->tj[b]];
@@ -403,7 +404,6 @@ void fb_planar_tree_coords(const fb_planar_tree *t, double *u, double *r, const 
                      (m->body[to].angle0 - m->body[from].angle0);
     }
   }
-  free(cs);
 }
 
 void fb_planar_tree_poses(fb_planar_tree *t, double *q, double *cs, const double *u,

@@ -41,14 +41,13 @@ struct fb_planar_rel {
   double *rr;             /* (nr x (nr + 1)) r', then the relative rates of V's columns (the
                              identity) */
   double *uc, *un;        /* (nu each) the last solved coordinates; Newton's */
-  double *ud, *udd0, *res; /* (nu each) u'; u''_0; the closure's residual or right-hand side */
+  double *udd0, *res;     /* (nu each) u''_0; the closure's residual or right-hand side */
   int have;               /* 1: uc, uw (U, u_t), udd0 hold a solved motion at (tc, rc) */
   double tc;              /* its time [s] */
   double *rc;             /* (nr) its relative coordinates */
   double *f;              /* (nr) the generalised forces in r */
   double *mr, *w, *chol;  /* (nr x nr) V^T M V, its inverse W, its Cholesky factor */
   double *rdd;            /* (nr) r'' of the last evaluation [physical units] */
-  double *ez;             /* (nr) kept zero: a unit relative rate in turn */
   fb_planar_rel_stats st;
 };
 
@@ -142,7 +141,7 @@ fb_status fb_planar_rel_new(fb_planar_rel **out, const fb_planar_dyn_model *mode
   int *pat = malloc(2 * (size_t)nnz * sizeof *pat);
   d->cj = malloc(((size_t)d->nc + (size_t)nu + 1) * sizeof *d->cj);
   d->mass = calloc((size_t)nq * (6 + (size_t)nr) + 2 * (size_t)m->nbodies +
-                       (size_t)nu * (2 * (size_t)nr + 7) + (size_t)nr * (8 + 4 * (size_t)nr),
+                       (size_t)nu * (2 * (size_t)nr + 6) + (size_t)nr * (7 + 4 * (size_t)nr),
                    sizeof *d->mass);
   if (!pat || !d->cj || !d->mass) rc = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   if (rc == FB_OK) {
@@ -170,7 +169,6 @@ fb_status fb_planar_rel_new(fb_planar_rel **out, const fb_planar_dyn_model *mode
   d->uw = p += (size_t)nu * (size_t)nr;
   d->uc = p += (size_t)nu * ((size_t)nr + 2);
   d->un = p += nu;
-  d->ud = p += nu;
   d->udd0 = p += nu;
   d->res = p += nu;
   d->rc = p += nu;
@@ -181,7 +179,6 @@ fb_status fb_planar_rel_new(fb_planar_rel **out, const fb_planar_dyn_model *mode
   d->unit = p += (size_t)nr * (size_t)nr;
   d->ru = p += nr;
   d->rdd = p += 2 * (size_t)nr;
-  d->ez = p += nr;
   d->rr = p += nr;
   for (int i = 0; i < nr; i++) d->rr[(size_t)(i + 1) * nr + i] = 1.0;
   for (int b = 1; b < m->nbodies; b++) {
@@ -189,9 +186,8 @@ fb_status fb_planar_rel_new(fb_planar_rel **out, const fb_planar_dyn_model *mode
     d->mass[3 * (b - 1) + 2] = m->body[b].inertia;
     d->grav[3 * (b - 1) + 1] = -m->body[b].mass * model->gravity;
   }
-  /* which tree coordinates are slides: a body whose tree joint is prismatic
-   * (the coordinates of the assembly tell: a slide is 0 there, an angle the
-   * body's angle0) */
+  /* which tree coordinates are slides (a prismatic tree joint's); the
+   * solved coordinates start at the assembly's */
   fb_planar_assembly(m, d->q);
   fb_planar_tree_coords(d->tree, d->uc, NULL, d->q);
   for (int b = 1; b < m->nbodies; b++) d->slide[b - 1] = fb_planar_tree_is_slide(d->tree, b);

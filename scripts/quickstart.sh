@@ -20,10 +20,11 @@ esac
 # every compiler and library the build enables (meson.build; tests/test_quickstart.py
 # fails when meson.build needs a package this list lacks): C, and C++ for the engines
 # written in C++ (Bullet, Simbody, Siconos); SDFormat 12 for the test that loads
-# fourbar export --format sdf (tests/test_export_sdf.cpp)
+# fourbar export --format sdf (tests/test_export_sdf.cpp); LAPACK and SuiteSparse's KLU
+# for the planar core's LU benchmark (tests/bench_planar_lu.c; the program needs neither)
 packages=(gcc g++ libc6-dev pkg-config meson ninja-build python3
           libode-dev libccd-dev libinih-dev libjansson-dev libcmocka-dev libgsl-dev gnuplot-nox parallel
-          libhdf5-dev python3-h5py libsdformat-dev)
+          libhdf5-dev python3-h5py libsdformat-dev liblapack-dev libsuitesparse-dev)
 # each engine's own packages: the this_packages line of src/engines/<name>/meson.build
 # (a list of quoted package names; read as text, never run)
 engine_packages=$(sed -n "s/^this_packages = \[\(.*\)\]\$/\1/p" src/engines/*/meson.build | tr -d "',")

@@ -8,7 +8,7 @@
  *               the core (Newton from the previous angle, then one LU);
  *   peaks       fb_analytic_peaks against fb_planar_peaks_of;
  *   rhs         one evaluation of the clearance right-hand side: the
- *               slider-crank's fb_sc_dyn_eval_at against fb_planar_dyn_eval
+ *               slider-crank's fb_sc_dyn_eval_at against fb_planar_rel_eval
  *               (reference.c's is static: its cost is in the next row);
  *   reference   the paper case's first revolution with clearance at
  *               crank-coupler (impact law) at the reference tolerance:
@@ -155,12 +155,13 @@ static void rhs(void) {
   if (fb_planar_slider_crank(&m, &lk, link, 0.0, NULL) != FB_OK) exit(1);
   unsigned char clear[4] = {0, 0, 1, 0};
   const fb_planar_dyn_model model = {m, clear, sm.law, sm.clearance, 1e-3, 9.81, 150.0, NULL, NULL};
-  fb_planar_dyn *dyn;
-  if (fb_planar_dyn_new(&dyn, &model, NULL) != FB_OK) exit(1);
-  double y0[4], y[18], dy[18];
+  fb_planar_rel *dyn;
+  if (fb_planar_rel_new(&dyn, &model, NULL) != FB_OK) exit(1);
+  double y0[4], z[4], dz[4];
   const double ecc[2] = {15e-6, 5e-6}; /* in contact: the law evaluated too */
   fb_sc_dyn_start(y0, &sm, ecc, NULL);
-  fb_planar_dyn_steady(y, dyn, NULL);
+  fb_planar_rel_steady(z, dyn, NULL);
+  z[0] = ecc[0] / fb_planar_size(m), z[1] = ecc[1] / fb_planar_size(m);
   enum { EVALS = 200000 };
   double closed = 1e30, core = 1e30;
   for (int r = 0; r < BEST_OF; r++) {
@@ -173,13 +174,13 @@ static void rhs(void) {
     closed = fmin(closed, cpu_s() - t0);
     t0 = cpu_s();
     for (int i = 0; i < EVALS; i++) {
-      fb_planar_dyn_eval(dyn, 1e-9 * i, y, dy, NULL);
-      sink = dy[14];
+      fb_planar_rel_eval(dyn, 1e-9 * i, z, dz, NULL);
+      sink = dz[3];
     }
     core = fmin(core, cpu_s() - t0);
   }
   row("slider-crank: clearance right-hand side", closed, core, "us", EVALS * 1e-6);
-  fb_planar_dyn_free(dyn);
+  fb_planar_rel_free(dyn);
   fb_planar_free(m);
 }
 
@@ -192,11 +193,10 @@ static void reference(const fb_case *c) {
   unsigned char clear[4] = {0, 1, 0, 0};
   const fb_planar_dyn_model model = {m, clear, law, c->radial_clearance, 1e-3, c->gravity,
                                      fb_case_omega2(c), NULL, NULL};
-  fb_planar_dyn *dyn;
-  if (fb_planar_dyn_new(&dyn, &model, NULL) != FB_OK) exit(1);
+  fb_planar_rel *dyn;
+  if (fb_planar_rel_new(&dyn, &model, NULL) != FB_OK) exit(1);
   const size_t n = (size_t)llround(fb_case_duration(c) / c->solver.h) + 1;
-  double *y = malloc(n * 18 * sizeof *y), y0[18];
-  fb_planar_dyn_steady(y0, dyn, NULL);
+  double *y = malloc(n * 18 * sizeof *y);
   double closed = 1e30, core = 1e30;
   size_t steps = 0;
   fb_planar_ref_stats st;
@@ -207,7 +207,7 @@ static void reference(const fb_case *c) {
     closed = fmin(closed, cpu_s() - t0);
     fb_series_free(&s);
     t0 = cpu_s();
-    if (fb_planar_ref_run(y, NULL, NULL, n, c->solver.h, y0, dyn, FB_REFERENCE_TOL, 1, &st, NULL) != FB_OK)
+    if (fb_planar_ref_run(y, NULL, NULL, NULL, n, c->solver.h, dyn, FB_REFERENCE_TOL, &st, NULL) != FB_OK)
       exit(1);
     core = fmin(core, cpu_s() - t0);
   }
@@ -215,7 +215,7 @@ static void reference(const fb_case *c) {
   printf("  (steps: reference.c %zu with its spike refinement, core %zu; core right-hand sides %zu)\n",
          steps, st.steps, st.evals);
   free(y);
-  fb_planar_dyn_free(dyn);
+  fb_planar_rel_free(dyn);
   fb_planar_free(m);
 }
 

@@ -558,13 +558,11 @@ with tempfile.TemporaryDirectory() as tmp:
           "slider-crank: report-data.js's output columns are the CSV's")
 
     # ---- a planar case: the Watt six-bar's own bodies and joint -----------
-    # analytic and its clearance reference (REF_TOL: seconds, not minutes,
-    # for its rattling pin; test_planar_run.py), two revolutions
+    # analytic and its clearance reference, two revolutions
     six_out = os.path.join(tmp, "sixbar")
     rc = subprocess.run([exe, "run", os.path.join(src, "cases", "watt_sixbar.ini"), "--out", six_out,
                          "--set", "run.models=analytic,reference-restitution", "--set", "solver.h_s=1e-4",
-                         "--set", "run.revolutions=2"], capture_output=True, text=True,
-                        env=dict(os.environ, FOURBAR_REFERENCE_TOL="1e-9"))
+                         "--set", "run.revolutions=2"], capture_output=True, text=True)
     check(rc.returncode == 0, "six-bar run exits 0: " + rc.stderr[-300:])
     if rc.returncode == 0:
         check_planar(six_out)

@@ -1,9 +1,9 @@
-/* The planar core's clearance right-hand side (planar_dynamics.h) and its
- * reference integration (planar_reference.h) against the closed-form
- * references: the four-bar's crank-coupler joint (reference.c, minimal
+/* The planar core's clearance right-hand side in absolute coordinates
+ * (planar_dynamics.h: the cross-check of the reference's relative form,
+ * tests/test_planar_relative.c) against the closed-form references: the four-bar's crank-coupler joint (reference.c, minimal
  * coordinates by Kane's method) and the slider-crank's piston pin
  * (slider_crank_dynamics.h). The same state gives the same accelerations
- * and contact force; integrated from the same start, the same motion.
+ * and contact force.
  *
  *            C                       the pin on the crank (body[0] of
  *           / \                      crank-coupler) moves in the hole at
@@ -24,8 +24,7 @@
 #include "fb_test.h"
 #include "linkage.h"
 #include "planar_case.h"
-#include "planar_kinematics.h"
-#include "planar_reference.h"
+#include "planar_dynamics.h"
 #include "reference.h"
 #include "slider_crank_dynamics.h"
 
@@ -40,21 +39,6 @@
  * largest difference is divided by its largest magnitude over the run:
  * 1e-9 holds (measured ~1e-11 to 1e-12, FB_TEST_VERBOSE). */
 #define RHS_REL_TOL 1e-9
-/* Integrated side by side over the paper case's first revolution
- * (FOLLOW_S, its impacts and the pin's ride along the wall) from the same
- * steady start, both with rk8pd at the reference tolerance 1e-12: they
- * differ by their integration errors, which the impacts amplify; the
- * clearance motion is chaotic over several revolutions (docs/chaos.md),
- * so the bound holds for this window, not for any length of run. Relative
- * to the largest |omega| of the window; measured 1.7e-12. */
-#define FOLLOW_S 0.059
-#define FOLLOW_REL_TOL 1e-8
-/* Drift of the constraints at an output sample with the projection: one
- * sample interval's (1e-5 s of rk8pd at 1e-12 on a mechanism of 0.3 m:
- * at most ~1e-12 m); measured 1.7e-16 m with, 5.3e-15 m without the
- * projection over the revolution. */
-#define DRIFT_TOL_M 1e-12
-
 static fb_case paper(const char **sets, int n) {
   fb_case c;
   fb_test_paper_case(&c, sets, n);
@@ -272,133 +256,11 @@ static void test_slider_crank_rhs(void **state) {
   fb_planar_free(m);
 }
 
-/* the core's reference integration against reference.c's over the first
- * revolution from the steady start, and the drift it projects away */
-static void test_fourbar_integration(void **state) {
-  (void)state;
-  const char *sets[] = {"run.revolutions=1", "run.peaks=all", "solver.h_s=1e-5"};
-  const fb_case c = paper(sets, 3);
-  const fb_contact_law law = law_of(FB_LAW_IMPACT);
-  fb_series s;
-  size_t steps;
-  fb_diag d;
-  if (fb_reference_run_tol(&s, &steps, &c, &law, 0, FB_REFERENCE_TOL, NULL, &d) != FB_OK)
-    fail_msg("%s", d.msg);
-  fourbar_core fc;
-  fourbar_core_new(&fc, &c, &law);
-  const size_t n = (size_t)(FOLLOW_S / c.solver.h) + 1;
-  assert_true(n <= s.n);
-  double *y = calloc(n * 18, sizeof *y);
-  double y0[18];
-  assert_int_equal(fb_planar_dyn_steady(y0, fc.dyn, &d), FB_OK);
-  fb_planar_ref_stats with, without;
-  assert_int_equal(fb_planar_ref_run(y, NULL, NULL, n, c.solver.h, y0, fc.dyn, FB_REFERENCE_TOL, 0,
-                                     &without, &d), FB_OK);
-  assert_int_equal(fb_planar_ref_run(y, NULL, NULL, n, c.solver.h, y0, fc.dyn, FB_REFERENCE_TOL, 1,
-                                     &with, &d), FB_OK);
-  double big = 0.0, diff = 0.0;
-  for (size_t k = 0; k < n; k++) {
-    big = fmax(big, fmax(fabs(s.coupler_omega[k]), fabs(s.follower_omega[k])));
-    diff = fmax(diff, fmax(fabs(y[k * 18 + 9 + 5] - s.coupler_omega[k]),
-                           fabs(y[k * 18 + 9 + 8] - s.follower_omega[k])));
-  }
-  if (fb_test_verbose())
-    fprintf(stderr, "  steps: core %zu (%zu evaluations), reference.c %zu (whole run)\n"
-            "  drift without projection %.3g m, %.3g m/s; with %.3g m, %.3g m/s\n",
-            with.steps, with.evals, steps, without.drift_q, without.drift_v, with.drift_q,
-            with.drift_v);
-  report_residual("core reference vs reference.c: omega (rel)", diff / big, FOLLOW_REL_TOL);
-  assert_true(diff / big <= FOLLOW_REL_TOL);
-  report_residual("position drift with projection [m]", with.drift_q, DRIFT_TOL_M);
-  assert_true(with.drift_q <= DRIFT_TOL_M);
-  assert_true(with.drift_q <= without.drift_q);
-  free(y);
-  fourbar_core_free(&fc);
-  fb_series_free(&s);
-}
-
-/* the six-bar with its clearance joint (rod-output, cases/watt_sixbar.ini)
- * in the limit of no clearance and a stiff law: a pin held in its hole by
- * a spring of SIXBAR_K (a restitution-law damper of cr 0.5) follows the
- * ideal motion to the spring's give, F / k ~ 1e-8 m against links of
- * 60 mm, so the output's omega to ~1e-7 of its peak (measured 1.5e-7);
- * 1e-5 leaves a factor of 60. Then with the case's clearance, a run whose
- * pin stays within the law's validity (penetration below the radial
- * clearance). */
-#define SIXBAR_K 1e9
-#define SIXBAR_LIMIT_REL 1e-5
-static void sixbar_run(double clearance, double *dev, double *pen_max) {
-  fb_case c;
-  fb_diag d;
-  if (fb_test_shipped_case_planar(&c, "watt_sixbar.ini", &d) != FB_OK) fail_msg("%s", d.msg);
-  fb_planar *m;
-  assert_int_equal(fb_planar_of_case(&m, &c, &c.nominal, &d), FB_OK);
-  unsigned char clear[7];
-  for (int j = 0; j < 7; j++) clear[j] = (c.clearance.mask >> j) & 1;
-  const int cj = fb_planar_find_joint(m, "rod-output");
-  assert_true(clear[cj]);
-  fb_contact_law law = fb_contact_law_default();
-  law.kind = FB_LAW_RESTITUTION;
-  law.stiffness = SIXBAR_K;
-  law.exponent = 1.0;
-  law.restitution = 0.5;
-  assert_int_equal(fb_contact_law_prepare(&law, NULL), FB_OK);
-  const double w = fb_case_omega2(&c);
-  const fb_planar_dyn_model model = {m, clear, law, clearance, 1e-3, c.gravity, w, NULL, NULL};
-  fb_planar_dyn *dyn;
-  assert_int_equal(fb_planar_dyn_new(&dyn, &model, &d), FB_OK);
-  enum { N = 1001 };
-  const double h = 2.0 * M_PI / fabs(w) / (N - 1);
-  static double y[N * 30];
-  static fb_planar_contact ct[N * 7];
-  double y0[30];
-  assert_int_equal(fb_planar_dyn_steady(y0, dyn, &d), FB_OK);
-  fb_planar_ref_stats st;
-  if (fb_planar_ref_run(y, NULL, ct, N, h, y0, dyn, 1e-10, 1, &st, &d) != FB_OK) fail_msg("%s", d.msg);
-  /* the ideal motion at the same drive angles */
-  fb_planar_kin *k;
-  assert_int_equal(fb_planar_kin_new(&k, m, &d), FB_OK);
-  double q[15], qd[15], big = 0.0, diff = 0.0;
-  fb_planar_assembly(m, q);
-  *pen_max = 0.0;
-  for (int i = 0; i < N; i++) {
-    assert_int_equal(fb_planar_position(k, q, w * h * i, NULL, &d), FB_OK);
-    const fb_planar_drive dr = {w * h * i, w, 0};
-    assert_int_equal(fb_planar_motion(k, qd, NULL, q, &dr, NULL, &d), FB_OK);
-    big = fmax(big, fabs(qd[14]));
-    diff = fmax(diff, fabs(y[i * 30 + 15 + 14] - qd[14])); /* the output's omega */
-    *pen_max = fmax(*pen_max, ct[i * 7 + cj].penetration);
-  }
-  *dev = diff / big;
-  if (fb_test_verbose())
-    fprintf(stderr, "  six-bar, clearance %g m: %zu steps, %zu evaluations, output omega off the "
-            "ideal by %.3g (rel), penetration up to %.3g m, drift %.3g m\n", clearance, st.steps,
-            st.evals, *dev, *pen_max, st.drift_q);
-  fb_planar_kin_free(k);
-  fb_planar_dyn_free(dyn);
-  fb_planar_free(m);
-}
-
-static void test_sixbar_clearance(void **state) {
-  (void)state;
-  double dev, pen;
-  sixbar_run(0.0, &dev, &pen);
-  report_residual("six-bar, no clearance: output omega vs ideal (rel)", dev, SIXBAR_LIMIT_REL);
-  assert_true(dev <= SIXBAR_LIMIT_REL);
-  fb_case c;
-  fb_diag d;
-  assert_int_equal(fb_test_shipped_case_planar(&c, "watt_sixbar.ini", &d), FB_OK);
-  sixbar_run(c.radial_clearance, &dev, &pen);
-  assert_true(pen < c.radial_clearance);
-}
-
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_fourbar_rhs_impact),
       cmocka_unit_test(test_fourbar_rhs_restitution),
       cmocka_unit_test(test_slider_crank_rhs),
-      cmocka_unit_test(test_fourbar_integration),
-      cmocka_unit_test(test_sixbar_clearance),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

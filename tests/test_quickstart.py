@@ -41,6 +41,8 @@ MESON_PACKAGES = {
     "dependency:cmocka": ["libcmocka-dev"],
     "dependency:hdf5": ["libhdf5-dev"],
     "dependency:sdformat12": ["libsdformat-dev"],
+    "dependency:lapack": ["liblapack-dev"],
+    "library:klu": ["libsuitesparse-dev"],
     "dependency:threads": ["libc6-dev"],
     "library:m": ["libc6-dev"],
     "program:python3": ["python3"],

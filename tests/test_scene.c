@@ -17,6 +17,7 @@
 
 #include "casefile.h"
 #include "fb_test.h"
+#include "mech_kinematics.h"
 #include "run.h"
 
 /* the acceptance bound on peak angular velocity at the default step */
@@ -243,6 +244,24 @@ static void test_engine_scales_leave_references_alone(void **state) {
   free(def);
 }
 
+/* The scene of a case computes its joints' largest ideal reactions once:
+ * the automatic step, the contact estimates, the joint laws and the scene
+ * ask for the same lengths' peaks (fb_mech_reaction_peaks keeps them). A
+ * gravity of its own keeps the kept results of other tests out. */
+static void test_reaction_peaks_once(void **state) {
+  (void)state;
+  const char *sets[] = {"environment.gravity_m_s2=9.80123"};
+  fb_case c;
+  fb_diag d;
+  assert_int_equal(fb_casefile_load(&c, paper_path, sets, 1, &d), FB_OK);
+  fb_scene *def = malloc(sizeof *def);
+  const long before = fb_mech_reaction_peaks_computed();
+  assert_int_equal(fb_scene_from_case(def, &c, &d), FB_OK);
+  assert_int_equal(fb_scene_from_case(def, &c, &d), FB_OK);
+  assert_int_equal(fb_mech_reaction_peaks_computed() - before, 1);
+  free(def);
+}
+
 int main(void) {
   const char *d = getenv("FOURBAR_CASES_DIR");
   snprintf(paper_path, sizeof paper_path, "%s/paper_crank_rocker.ini", d ? d : "cases");
@@ -255,6 +274,7 @@ int main(void) {
       cmocka_unit_test(test_adaptive_ideal_lands_on_the_grid),
       cmocka_unit_test(test_adaptive_refuses_other_colliders),
       cmocka_unit_test(test_engine_scales_leave_references_alone),
+      cmocka_unit_test(test_reaction_peaks_once),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -68,11 +68,19 @@ fb_status fb_mech_sample(fb_series *out, fb_mech_type t, const fb_linkage *lk, f
  * 2 pi k / n, per joint of the description into force_max[j] [N]: the
  * four-bar's fb_invdyn_peaks (lengths lk, branch, link[3]); the
  * slider-crank's pin forces (fb_slider_crank_invdyn_peaks) and at the
- * guide, slider-ground, the largest |N|.
+ * guide, slider-ground, the largest |N|. The last four sets of inputs'
+ * results are kept (per thread), and the same inputs return them: a
+ * case's setup asks for its peaks from several stages (the automatic
+ * step, the contact estimates, the joint laws, the scene, the preflight),
+ * each of the case's lengths (nominal, stack-up) computed once.
  * Errors: those of fb_invdyn_peaks or fb_slider_crank_invdyn_peaks. */
 fb_status fb_mech_reaction_peaks(double force_max[4], fb_mech_type t, const fb_linkage *lk,
                                  fb_branch branch, const fb_link_mass link[3], double gravity,
                                  double omega2, int n, fb_diag *diag);
+
+/* How many times this thread has computed reaction peaks (not returned
+ * them from the kept results): a count for tests. */
+long fb_mech_reaction_peaks_computed(void);
 
 /* The mechanism of type t at crank angle theta2 [rad] (its exact solution),
  * as effective_mass.h takes it: fb_mechanism_from_state for the four-bar,

@@ -107,7 +107,7 @@ int fb_peak_refine(fb_peak_refine_column *cols, int ncols, const double *t, size
   size_t split = n;
   for (int c = 0; c < ncols; c++) fb_largest_abs_split(big + 2 * c, &split, t, n, cols[c].v, t_split);
   double best[FB_PEAK_REFINE_MAX_QUANTITIES];
-  for (size_t k = 1; k + 1 < n; k++) {
+  for (size_t k = ode->window ? (split > 1 ? split : 1) : 1; k + 1 < n; k++) {
     const int part = k >= split;
     int any = 0;
     for (int c = 0; c < ncols; c++) {

@@ -53,6 +53,8 @@ typedef struct {
   void *ctx;
   double h;     /* sample spacing [s] > 0 */
   double tol;   /* rk8pd relative and absolute tolerance, as the reference's own */
+  int window;   /* 1: only the samples from t_split (a check integration, whose window
+                   peaks alone are read: its start-up's spikes need no refinement) */
 } fb_peak_refine_ode;
 
 /* One refined column: a spike maximum of v takes quantity qmax's largest

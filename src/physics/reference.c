@@ -283,7 +283,7 @@ static double refine_start(double *y, size_t k, void *p) {
 static void refine_peaks(fb_series *out, ref_ctx *r, double h, double tol, double t_split) {
   refine_src src = {r, out};
   const fb_peak_refine_ode ode = {4, REFINE_QUANTITIES, refine_rhs, refine_eval, refine_start,
-                                  &src, h, tol};
+                                  &src, h, tol, 0};
   fb_peak_refine_column cols[4] = {{out->contact[r->cj][FB_C_FORCE], 0, -1},
                                    {out->contact[r->cj][FB_C_PEN], 1, -1},
                                    {out->body[0][FB_Q_ACC], 2, 3},

@@ -13,7 +13,6 @@
 #include "kit.h"
 #include "model_table.h"
 #include "planar_free.h"
-#include "planar_invdyn.h"
 #include "planar_run.h"
 #include "planar_start.h"
 #include "scene.h"
@@ -112,22 +111,22 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
                        "= a revolute joint of the case), and the case names %d", p->name, n);
   /* a prismatic joint (a slider in its guide): the kit's corner contacts,
    * or refused by the kit naming the binding (kit_contact.h) */
-  double *omega0 = NULL, *most = malloc((size_t)m->njoints * sizeof *most);
+  double *omega0 = NULL;
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
-  fb_status st = most ? fb_planar_free_parts(guide, &omega0, &free_law, c, m, cj, diag)
-                      : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_status st = fb_planar_free_parts(guide, &omega0, &free_law, c, m, cj, diag);
   free(omega0); /* the start takes its own (fb_planar_run_kit) */
   cl->guide = *guide;
-  if (st == FB_OK && !free_law) st = fb_planar_reaction_max(most, m, r->omega, c->gravity, diag);
+  if (st == FB_OK && !free_law && !r->reaction_max)
+    st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': the joints' ideal reactions were not computed",
+                     p->name);
   const fb_planar_joint *j = &m->joint[cj];
   fb_kit_joint_record *rec = &cl->joint[cj];
   const double a = m->body[j->body[0]].mass, b = m->body[j->body[1]].mass;
   const double mass = a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b); /* joint_law.h */
-  p->ref.force_work = st == FB_OK && !free_law ? most[cj] : 0.0;
+  p->ref.force_work = st == FB_OK && !free_law ? r->reaction_max[cj] : 0.0;
   if (st == FB_OK)
     st = fb_joint_law_at(&rec->law, c, mt->law == FB_MODEL_LAW_IMPACT, p->ref.force_work, j->name,
                          mass, diag);
-  free(most);
   if (st != FB_OK) return st;
   /* an injected error (scene.c's rule): the engine's law, not the reference's */
   const fb_clearance *ci = &c->clearance;

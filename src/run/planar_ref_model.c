@@ -9,7 +9,6 @@
 #include "peak_refine.h"
 #include "planar_case.h"
 #include "planar_free.h"
-#include "planar_invdyn.h"
 #include "planar_reference.h"
 #include "planar_run.h"
 #include "reference.h"
@@ -44,31 +43,34 @@ typedef struct {
 
 /* the refinement's view of one integration (peak_refine.h) */
 typedef struct {
-  fb_planar_dyn *d;
+  fb_planar_rel *d;
   fb_planar_contact *ct; /* scratch (njoints) */
-  const double *y;       /* the samples' states (n x 2 nq) */
+  double *qdd;           /* scratch (nq) */
+  const double *z;       /* the samples' states (n x dim) */
+  const double *y;       /* the samples' positions and velocities (n x 2 nq) */
   double h;              /* sample spacing [s] */
-  int joint, nq, nb;     /* the clearance joint, coordinates, moving bodies */
+  int joint, nq, nb, dim; /* the clearance joint, coordinates, moving bodies, state size */
   int driven;            /* the moving body the drive turns from the ground (its alpha is
                             the drive's, zero: not refined), else -1 */
 } refine_src;
 
 static int refine_rhs(double t, const double y[], double dydt[], void *p) {
-  return fb_planar_dyn_rhs(t, y, dydt, ((const refine_src *)p)->d);
+  return fb_planar_rel_rhs(t, y, dydt, ((const refine_src *)p)->d);
 }
 
 /* peak_refine.h's eval: force, penetration, then alpha and -alpha of each
  * refined body */
 static void refine_eval(double *quant, double *dydt, double t, const double *y, void *p) {
   const refine_src *s = p;
-  const int ok = fb_planar_dyn_eval(s->d, t, y, dydt, s->ct) == FB_OK;
+  const int ok = fb_planar_rel_eval(s->d, t, y, dydt, s->ct) == FB_OK;
   const fb_planar_contact *c = &s->ct[s->joint];
+  if (ok) fb_planar_rel_motion(s->d, NULL, NULL, s->qdd);
   int n = 0;
   quant[n++] = ok ? c->force : -INFINITY;
   quant[n++] = ok ? c->penetration : -INFINITY;
   for (int b = 0; b < s->nb; b++) {
     if (b == s->driven) continue;
-    const double a = dydt[s->nq + 3 * b + 2];
+    const double a = s->qdd[3 * b + 2];
     quant[n++] = ok ? a : -INFINITY;
     quant[n++] = ok ? -a : -INFINITY;
   }
@@ -76,7 +78,8 @@ static void refine_eval(double *quant, double *dydt, double t, const double *y, 
 
 static double refine_start(double *y, size_t k, void *p) {
   const refine_src *s = p;
-  memcpy(y, s->y + k * (size_t)(2 * s->nq), (size_t)(2 * s->nq) * sizeof *y);
+  memcpy(y, s->z + k * (size_t)s->dim, (size_t)s->dim * sizeof *y);
+  fb_planar_rel_guess(s->d, s->y + k * (size_t)(2 * s->nq));
   return (double)k * s->h;
 }
 
@@ -85,15 +88,17 @@ static double refine_start(double *y, size_t k, void *p) {
  * neighbouring samples: the closed-form reference's rule (peak_refine.h),
  * so that both references' peaks are the same quantity. */
 static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *r,
-                   fb_planar_dyn *d, const double *y, double tol) {
+                   fb_planar_rel *d, const double *y, const double *z, double tol, int window) {
   const fb_planar *m = r->m;
   const int nb = m->nbodies - 1;
   int from = -1, to = 0; /* an undriven description has no driven body */
   if (m->drive >= 0) fb_planar_drive_bodies(m, &from, &to);
   fb_planar_contact *ct = malloc((size_t)m->njoints * sizeof *ct);
+  double *qdd = malloc((size_t)fb_planar_nq(m) * sizeof *qdd);
   fb_peak_refine_column *cc = malloc((size_t)(nb + 2) * sizeof *cc);
-  if (ct && cc) {
-    refine_src src = {d, ct, y, p->h, p->ref.joint, fb_planar_nq(m), nb, from == 0 ? to - 1 : -1};
+  if (ct && qdd && cc) {
+    refine_src src = {d, ct, qdd, z, y, p->h, p->ref.joint, fb_planar_nq(m), nb,
+                      fb_planar_rel_dim(d), from == 0 ? to - 1 : -1};
     int nc = 0, nquant = 2;
     cc[nc++] = (fb_peak_refine_column){col->force, 0, -1};
     cc[nc++] = (fb_peak_refine_column){col->pen, 1, -1};
@@ -103,34 +108,34 @@ static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *
                                          nquant + 1};
       nquant += 2;
     }
-    const fb_peak_refine_ode ode = {(size_t)(2 * src.nq), nquant, refine_rhs, refine_eval,
-                                    refine_start, &src, p->h, tol};
+    const fb_peak_refine_ode ode = {(size_t)src.dim, nquant, refine_rhs, refine_eval,
+                                    refine_start, &src, p->h, tol, window};
     fb_peak_refine(cc, nc, col->t, p->n, fb_case_peak_window_from(&r->c), &ode);
   }
   free(ct);
+  free(qdd);
   free(cc);
 }
 
 /* one integration at tol into the columns col (p's own when store, else
  * col's), its spikes refined; the window's peaks into w (4 per moving
  * body, then the force and the penetration) */
-static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r, fb_planar_dyn *d,
+static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r, fb_planar_rel *d,
                            double tol, size_t *steps, int store, fb_diag *diag) {
   const fb_planar *m = r->m;
-  const int nq = fb_planar_nq(m), nj = m->njoints, nb = m->nbodies - 1;
+  const int nq = fb_planar_nq(m), nj = m->njoints, nb = m->nbodies - 1, dim = fb_planar_rel_dim(d);
   const size_t n = p->n;
-  double *y = malloc(n * (size_t)(3 * nq) * sizeof *y);
+  double *y = malloc(n * (size_t)(3 * nq + dim) * sizeof *y);
   fb_planar_contact *ct = malloc(n * (size_t)nj * sizeof *ct);
-  double *y0 = malloc(2 * (size_t)nq * sizeof *y0);
   double *own = store ? NULL : malloc(n * (size_t)(3 + 3 * nb) * sizeof *own);
   columns col = store ? (columns){p->t, p->q, p->force, p->pen}
                       : (columns){own, own ? own + n : NULL, own ? own + n * (size_t)(1 + 3 * nb) : NULL,
                                   own ? own + n * (size_t)(2 + 3 * nb) : NULL};
-  fb_status st = y && ct && y0 && col.t ? fb_planar_dyn_steady(y0, d, diag)
-                                        : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n);
-  double *acc = y ? y + n * (size_t)(2 * nq) : NULL;
+  fb_status st = y && ct && col.t ? FB_OK
+                                  : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n);
+  double *acc = y ? y + n * (size_t)(2 * nq) : NULL, *z = y ? acc + n * (size_t)nq : NULL;
   fb_planar_ref_stats stats = {0};
-  if (st == FB_OK) st = fb_planar_ref_run(y, acc, ct, n, p->h, y0, d, tol, 1, &stats, diag);
+  if (st == FB_OK) st = fb_planar_ref_run(y, acc, ct, z, n, p->h, d, tol, &stats, diag);
   *steps = stats.steps;
   for (size_t i = 0; i < n && st == FB_OK; i++) {
     const fb_planar_contact *c = &ct[i * (size_t)nj + (size_t)p->ref.joint];
@@ -145,7 +150,9 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
     col.force[i] = c->force;
     col.pen[i] = c->penetration;
   }
-  if (st == FB_OK) refine(&col, p, r, d, y, tol);
+  /* the check's window peaks alone are read (check_change): its start-up
+   * needs no refinement */
+  if (st == FB_OK) refine(&col, p, r, d, y, z, tol, !store);
   for (int k = 0; k < 4 * nb; k++) w[k] = k % 2 ? INFINITY : -INFINITY;
   w[4 * nb] = w[4 * nb + 1] = 0.0; /* force, penetration */
   for (size_t i = 0; i < n && st == FB_OK; i++) {
@@ -162,39 +169,7 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
   }
   free(y);
   free(ct);
-  free(y0);
   free(own);
-  return st;
-}
-
-/* The planar case's description with its origin at the revolute clearance
- * joint j's assembly position (into *out; NULL, nothing to do, for another
- * case or joint kind): the same dynamics (a translation; gravity is
- * uniform), integrated where the pin's and the hole's absolute positions
- * carry the rounding of their distance from that joint rather than from
- * the case's origin. The integrator's state holds a position x to
- * |x| eps; at the contact's stiffness that rounding is force noise the
- * step control resolves below some tolerance: on the Watt six-bar (pin at
- * (200, 60) mm, penetrations ~4e-8 m) the check integration at 1e-11 took
- * 181351 steps over two revolutions about the case's origin and 104946
- * about the pin (67k at 1e-9 either way; an 8th-order method's 100-fold
- * tighter tolerance alone costs 1.33^2), and its window peaks moved
- * 0.034 against 0.0061 between 1e-9 and 1e-11. */
-static fb_status about_joint(fb_planar **out, const fb_case *c, const fb_planar *m, int j,
-                             fb_diag *diag) {
-  *out = NULL;
-  if (!c->planar.on || m->joint[j].kind != FB_KIND_REVOLUTE) return FB_OK;
-  fb_planar_spec *s = malloc(sizeof *s);
-  if (!s) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  *s = c->planar;
-  const double o[2] = {s->joint[j].at[0], s->joint[j].at[1]};
-  for (int k = 0; k < s->njoints; k++)
-    for (int i = 0; i < 2; i++) s->joint[k].at[i] -= o[i];
-  for (int b = 0; b < s->nbodies; b++)
-    if (s->body[b].given & FB_SPEC_BODY_CENTRE)
-      for (int i = 0; i < 2; i++) s->body[b].centre[i] -= o[i];
-  const fb_status st = fb_planar_compile(out, s, c->density, NULL, diag);
-  free(s);
   return st;
 }
 
@@ -220,13 +195,13 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   fb_status st = clearance_joint(&q->joint, c, m, p->name, diag);
   if (st != FB_OK) return st;
   fb_planar_guide *guide = NULL;
-  double *omega0 = NULL, *fmax_j = malloc((size_t)m->njoints * sizeof *fmax_j);
+  double *omega0 = NULL;
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
-  st = fmax_j ? fb_planar_free_parts(&guide, &omega0, &free_law, c, m, q->joint, diag)
-              : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  if (st == FB_OK && !free_law) st = fb_planar_reaction_max(fmax_j, m, r->omega, c->gravity, diag);
-  q->force_work = st == FB_OK && !free_law ? fmax_j[q->joint] : 0.0;
-  free(fmax_j);
+  st = fb_planar_free_parts(&guide, &omega0, &free_law, c, m, q->joint, diag);
+  if (st == FB_OK && !free_law && !r->reaction_max)
+    st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': the joints' ideal reactions were not computed",
+                     p->name);
+  q->force_work = st == FB_OK && !free_law ? r->reaction_max[q->joint] : 0.0;
   if (st == FB_OK)
     st = fb_joint_law_at(&q->law, c, impact, q->force_work, m->joint[q->joint].name,
                          joint_mass(m, q->joint), diag);
@@ -255,14 +230,10 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   p->pen = p->force + p->n;
   clear[q->joint] = 1;
   /* v0 of the hysteresis laws: fixed, as reference.c's */
-  /* the description about a revolute clearance joint, owned (a guide's
-   * corners are placed on m's axes, so a prismatic joint stays put) */
-  fb_planar *about = NULL;
-  if (st == FB_OK) st = about_joint(&about, c, m, q->joint, diag);
-  const fb_planar_dyn_model model = {about ? about : m, clear, q->law, c->radial_clearance, 1e-3,
-                                     c->gravity, r->omega, guide, omega0};
-  fb_planar_dyn *d = NULL;
-  st = fb_planar_dyn_new(&d, &model, diag);
+  const fb_planar_dyn_model model = {m, clear, q->law, c->radial_clearance, 1e-3, c->gravity,
+                                     r->omega, guide, omega0};
+  fb_planar_rel *d = NULL;
+  st = fb_planar_rel_new(&d, &model, diag);
   const int nw = 4 * (m->nbodies - 1) + 2;
   double *w = malloc(2 * (size_t)nw * sizeof *w);
   if (st == FB_OK && !w) st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -289,8 +260,7 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
     q->converged = q->check_rel <= FB_UNCONVERGED_REL; /* unchecked (NaN): not converged */
   }
   free(w);
-  fb_planar_dyn_free(d);
-  fb_planar_free(about);
+  fb_planar_rel_free(d);
   free(clear);
   free(guide);
   free(omega0);

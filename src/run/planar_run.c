@@ -166,6 +166,19 @@ static void model_free(fb_planar_model *p) {
   memset(p, 0, sizeof *p);
 }
 
+/* r->reaction_max, once, when a driven case runs a model other than the
+ * analytic one (its clearance joint's law takes the joint's largest ideal
+ * reaction; an ideal engine model does not, and costs the computation
+ * only on a case that has no clearance model) */
+static fb_status reactions(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
+  int needed = 0;
+  for (int i = 0; i < c->model_count; i++) needed |= strcmp(c->models[i], "analytic") != 0;
+  if (!needed || c->planar.undriven || !c->clearance.mask) return FB_OK;
+  r->reaction_max = malloc((size_t)r->m->njoints * sizeof *r->reaction_max);
+  if (!r->reaction_max) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  return fb_planar_reaction_max(r->reaction_max, r->m, r->omega, c->gravity, diag);
+}
+
 fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
   memset(r, 0, sizeof *r);
   fb_status st = fb_planar_run_check(c, diag);
@@ -177,6 +190,7 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
   r->duration = fb_case_duration(c);
   /* the four-bar's window (run.c); an undriven case has no revolution */
   r->t_window = free ? 0.0 : fb_case_peak_window_from(c);
+  st = reactions(r, c, diag);
   for (int i = 0; i < c->model_count && st == FB_OK; i++) {
     fb_planar_model *p = &r->model[r->n++];
     snprintf(p->name, sizeof p->name, "%s", c->models[i]);
@@ -196,6 +210,8 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
 void fb_planar_run_free(fb_planar_run *r) {
   for (int i = 0; i < r->n; i++) model_free(&r->model[i]);
   fb_planar_free(r->m);
+  free(r->reaction_max);
+  r->reaction_max = NULL;
   r->m = NULL;
   r->n = 0;
 }

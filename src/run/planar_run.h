@@ -128,6 +128,10 @@ typedef struct {
   double omega;            /* the drive's signed speed [rad/s] */
   double duration;         /* simulated time [s] */
   double t_window;         /* a reference's peaks are over t >= t_window [s] */
+  double *reaction_max;    /* (njoints) every joint's largest ideal reaction over a revolution
+                              [N] (fb_planar_reaction_max), computed once for the models whose
+                              contact law takes it (a driven case's references and engines'
+                              clearance models); NULL when none does */
   int n;                   /* models run */
   fb_planar_model model[FB_MAX_MODELS];
 } fb_planar_run;

@@ -1,10 +1,14 @@
-/* The reference's right-hand side for a planar description with revolute
- * clearance joints: any of its revolute joints (clearance[j] = 1) is taken
- * out of the constraint set and becomes a pin in a hole, whose contact law
+/* The clearance dynamics of a planar description in absolute coordinates:
+ * any of its revolute joints (clearance[j] = 1) is taken out of the
+ * constraint set and becomes a pin in a hole, whose contact law
  * (contact.h) acts along the eccentricity; the other joints and the drive
- * hold. The engine-free yardstick of a clearance model for any mechanism,
- * as reference.h is for the four-bar's crank-coupler joint and
- * slider_crank_dynamics.h for the slider-crank's piston pin.
+ * hold. The model (fb_planar_dyn_model) of the engine-free yardstick of a
+ * clearance model for any mechanism, as reference.h is for the four-bar's
+ * crank-coupler joint and slider_crank_dynamics.h for the slider-crank's
+ * piston pin. The reference integrates it in relative coordinates
+ * (planar_relative.h); this absolute form is that one's cross-check (an
+ * independent path, a Schur complement in every body's coordinates, to
+ * the same equations) and its steady start.
  *
  * State y = (q, q') in absolute coordinates (2 nq). At each evaluation:
  *   contact   at each clearance joint j (pin on body[0], hole on body[1],
@@ -19,9 +23,10 @@
  *             joints left and the drive at phi(t) = omega t), solved by the
  *             Schur complement of planar_mass.h.
  * The constraints hold at the acceleration level only, so positions and
- * velocities drift from them at the integrator's error; the reference
- * integration (planar_reference.h) projects them back at every output
- * sample. */
+ * velocities integrated from it drift from them at the integrator's
+ * error; its contact geometry, p_pin - p_hole, carries the rounding of
+ * coordinates of the mechanism's size (~1e-17 m), which the contact's
+ * stiffness turns into force noise (planar_relative.h has neither). */
 #ifndef FB_PLANAR_DYNAMICS_H
 #define FB_PLANAR_DYNAMICS_H
 

@@ -4,8 +4,8 @@
  *
  * With the drive's row the Jacobian Phi_q is square, so the equations of
  * motion M q'' + Phi_q^T lambda = Q (Q: gravity, (0, -m g, 0) per body)
- * give the multipliers alone: Phi_q^T lambda = Q - M q'', solved by GSL's
- * LU of Phi_q^T. A joint's rows' -Phi_q^T lambda in one body's columns are
+ * give the multipliers alone: Phi_q^T lambda = Q - M q'', solved with the
+ * transpose of the kinematics' sparse LU of Phi_q (planar_lu.h). A joint's rows' -Phi_q^T lambda in one body's columns are
  * the force and moment (about its centre) the joint puts on that body
  * (Haug 1989, sec. 6.6: reaction forces from Lagrange multipliers;
  * Nikravesh 1988, sec. 6.4). The force on a joint's body[1] from its

@@ -2,21 +2,23 @@
  * (planar_kinematics.h). */
 #include "planar_kinematics.h"
 
-#include <gsl/gsl_blas.h>
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_linalg.h>
-#include <gsl/gsl_permute_vector.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "planar_lu.h"
+#include "planar_sparse.h"
 
 struct fb_planar_kin {
   const fb_planar *m;
   int n;                  /* coordinates = rows */
   double size;            /* fb_planar_size [m] */
-  double *jac;            /* n x n */
+  fb_planar_lu *lu;       /* the square set's Jacobian (planar_sparse.h), factorised */
+  double *cs;             /* (2 nbodies) the bodies' cosines and sines */
   double *phi, *rhs, *x;  /* n each */
-  gsl_permutation *perm;
+  double *scratch;        /* 5 n: fb_planar_kin_scratch */
+  double *mult;           /* 2 n: fb_planar_kin_jacobian's caller's multipliers */
+  int *col, *rowptr;      /* the pattern: entry e's column; row r's entries from rowptr[r] */
 };
 
 fb_status fb_planar_kin_new(fb_planar_kin **out, const fb_planar *m, fb_diag *diag) {
@@ -31,34 +33,62 @@ fb_status fb_planar_kin_new(fb_planar_kin **out, const fb_planar *m, fb_diag *di
                        "3 (n - 1) - 2 j = 3 x %d - 2 x %d; one drive moves a mechanism of 1",
                        f, m->nbodies - 1, m->njoints);
   fb_planar_kin *k = calloc(1, sizeof *k);
-  const int n = fb_planar_nq(m);
-  if (k) {
+  const int n = fb_planar_nq(m), nnz = fb_planar_sq_nnz(m, m->drive);
+  int *pat = malloc(2 * (size_t)nnz * sizeof *pat);
+  fb_status rc = k && pat ? FB_OK : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  if (rc == FB_OK) {
     k->m = m;
     k->n = n;
     k->size = fb_planar_size(m);
-    k->jac = calloc((size_t)n * (size_t)n, sizeof *k->jac);
-    k->phi = calloc((size_t)n, sizeof *k->phi);
-    k->rhs = calloc((size_t)n, sizeof *k->rhs);
-    k->x = calloc((size_t)n, sizeof *k->x);
-    k->perm = gsl_permutation_alloc((size_t)n);
+    fb_planar_sq_pattern(m, m->drive, pat, pat + nnz);
+    rc = fb_planar_lu_new(&k->lu, n, nnz, pat, pat + nnz, diag);
   }
-  if (!k || !k->jac || !k->phi || !k->rhs || !k->x || !k->perm) {
-    fb_planar_kin_free(k);
-    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the kinematics of %d coordinates",
+  if (rc == FB_OK) {
+    k->cs = calloc(2 * (size_t)m->nbodies, sizeof *k->cs);
+    k->phi = calloc(10 * (size_t)n, sizeof *k->phi);
+    k->col = malloc(((size_t)nnz + (size_t)n + 1) * sizeof *k->col);
+    if (!k->cs || !k->phi || !k->col)
+      rc = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the kinematics of %d coordinates",
                        n);
   }
+  if (rc == FB_OK) { /* the pattern is row by row (planar_sparse.h) */
+    k->rowptr = k->col + nnz;
+    memcpy(k->col, pat + nnz, (size_t)nnz * sizeof *k->col);
+    for (int r = 0, e = 0; r <= n; r++) {
+      while (e < nnz && pat[e] < r) e++;
+      k->rowptr[r] = e;
+    }
+  }
+  free(pat);
+  if (rc != FB_OK) {
+    fb_planar_kin_free(k);
+    return rc;
+  }
+  k->rhs = k->phi + n;
+  k->x = k->rhs + n;
+  k->scratch = k->x + n;
+  k->mult = k->scratch + 5 * n;
   *out = k;
   return FB_OK;
 }
 
 void fb_planar_kin_free(fb_planar_kin *k) {
   if (!k) return;
-  free(k->jac);
+  fb_planar_lu_free(k->lu);
+  free(k->cs);
   free(k->phi);
-  free(k->rhs);
-  free(k->x);
-  if (k->perm) gsl_permutation_free(k->perm);
+  free(k->col);
   free(k);
+}
+
+double *fb_planar_kin_scratch(fb_planar_kin *k) { return k->scratch; }
+
+const double *fb_planar_kin_jacobian(fb_planar_kin *k, const int **col, const int **rowptr,
+                                     double **mult) {
+  *col = k->col;
+  *rowptr = k->rowptr;
+  if (mult) *mult = k->mult;
+  return fb_planar_lu_values(k->lu);
 }
 
 /* 1 when row i of the full set (every joint, then the drive) is an angle:
@@ -80,40 +110,27 @@ static double scaled_norm(const fb_planar_kin *k, const double *v, int coords) {
   return big;
 }
 
-/* factorises the Jacobian at q (held in k->jac); 0 when singular */
-static int factorise(fb_planar_kin *k, int *sign) {
-  gsl_matrix_view a = gsl_matrix_view_array(k->jac, (size_t)k->n, (size_t)k->n);
-  int s = 0;
-  gsl_error_handler_t *old = gsl_set_error_handler_off();
-  const int rc = gsl_linalg_LU_decomp(&a.matrix, k->perm, &s);
-  gsl_set_error_handler(old);
-  if (rc != GSL_SUCCESS) return 0;
-  for (int i = 0; i < k->n; i++)
-    if (!(fabs(k->jac[i * k->n + i]) > 0.0) || !isfinite(k->jac[i * k->n + i])) return 0;
-  if (sign) *sign = gsl_linalg_LU_sgndet(&a.matrix, s) < 0 ? -1 : 1;
+/* Phi at q with the drive at angle into k->phi (k->cs: q's trig) */
+static void residual(fb_planar_kin *k, const double *q, double angle) {
+  fb_planar_sq_phi(k->phi, k->m, k->m->drive, q, k->cs);
+  k->phi[k->n - 1] -= angle;
+}
+
+/* factorises the Jacobian at q (k->cs: q's trig); 0 when singular */
+static int factorise(fb_planar_kin *k, const double *q, int *sign) {
+  fb_planar_sq_values(fb_planar_lu_values(k->lu), k->m, k->m->drive, q, k->cs);
+  if (!fb_planar_lu_factor(k->lu)) return 0;
+  if (sign) *sign = fb_planar_lu_sign(k->lu);
   return 1;
 }
 
-/* x = J^-1 rhs with the factorised Jacobian */
-static void solve(fb_planar_kin *k, const double *rhs, double *x) {
-  gsl_matrix_view a = gsl_matrix_view_array(k->jac, (size_t)k->n, (size_t)k->n);
-  gsl_vector_const_view b = gsl_vector_const_view_array(rhs, (size_t)k->n);
-  gsl_vector_view xv = gsl_vector_view_array(x, (size_t)k->n);
-  gsl_linalg_LU_solve(&a.matrix, k->perm, &b.vector, &xv.vector);
-}
-
 void fb_planar_kin_solve_transposed(fb_planar_kin *k, const double *rhs, double *x) {
-  gsl_matrix_view a = gsl_matrix_view_array(k->jac, (size_t)k->n, (size_t)k->n);
-  gsl_vector_view xv = gsl_vector_view_array(x, (size_t)k->n);
-  memcpy(x, rhs, (size_t)k->n * sizeof *x);
-  gsl_blas_dtrsv(CblasUpper, CblasTrans, CblasNonUnit, &a.matrix, &xv.vector); /* U^T y = rhs */
-  gsl_blas_dtrsv(CblasLower, CblasTrans, CblasUnit, &a.matrix, &xv.vector);    /* L^T z = y */
-  gsl_permute_vector_inverse(k->perm, &xv.vector);                              /* P x = z */
+  fb_planar_lu_solve_transposed(k->lu, rhs, x);
 }
 
-int fb_planar_worst_joint(fb_planar_kin *k, const double *q, double angle, double *residual) {
-  const fb_planar_drive d = {angle, 0.0, 0.0};
-  fb_planar_constraints(k->phi, NULL, NULL, k->m, NULL, &d, q, NULL);
+int fb_planar_worst_joint(fb_planar_kin *k, const double *q, double angle, double *residual_out) {
+  fb_planar_sq_trig(k->cs, k->m, q);
+  residual(k, q, angle);
   int worst = -1;
   double big = fabs(k->phi[k->n - 1]);
   for (int j = 0; j < k->m->njoints; j++) {
@@ -126,9 +143,9 @@ int fb_planar_worst_joint(fb_planar_kin *k, const double *q, double angle, doubl
       worst = j;
     }
   }
-  if (residual) *residual = worst >= 0 && k->m->joint[worst].kind == FB_KIND_REVOLUTE
-                                ? big * k->size
-                                : big;
+  if (residual_out) *residual_out = worst >= 0 && k->m->joint[worst].kind == FB_KIND_REVOLUTE
+                                    ? big * k->size
+                                    : big;
   return worst;
 }
 
@@ -149,22 +166,23 @@ static fb_status not_closed(fb_planar_kin *k, const double *q, double angle, con
 
 fb_status fb_planar_position(fb_planar_kin *k, double *q, double angle, int *iterations,
                              fb_diag *diag) {
-  const fb_planar_drive d = {angle, 0.0, 0.0};
   int it = 0, last = 0;
   for (; it < FB_PLANAR_NEWTON_MAX && !last; it++) {
-    fb_planar_constraints(k->phi, k->jac, NULL, k->m, NULL, &d, q, NULL);
+    fb_planar_sq_trig(k->cs, k->m, q);
+    residual(k, q, angle);
     if (!(scaled_norm(k, k->phi, 0) < 1e3)) break; /* diverged (or not finite) */
-    if (!factorise(k, NULL)) {
+    if (!factorise(k, q, NULL)) {
       if (iterations) *iterations = it;
       return not_closed(k, q, angle, "singular Jacobian", diag);
     }
     for (int i = 0; i < k->n; i++) k->rhs[i] = -k->phi[i];
-    solve(k, k->rhs, k->x);
+    fb_planar_lu_solve(k->lu, k->rhs, k->x);
     for (int i = 0; i < k->n; i++) q[i] += k->x[i];
     last = scaled_norm(k, k->x, 1) <= FB_PLANAR_NEWTON_STOP;
   }
   if (iterations) *iterations = it;
-  fb_planar_constraints(k->phi, NULL, NULL, k->m, NULL, &d, q, NULL);
+  fb_planar_sq_trig(k->cs, k->m, q);
+  residual(k, q, angle);
   int finite = 1;
   for (int i = 0; i < k->n; i++) finite &= isfinite(q[i]) != 0;
   if (!finite) return not_closed(k, q, angle, "Newton diverged", diag);
@@ -176,17 +194,18 @@ fb_status fb_planar_position(fb_planar_kin *k, double *q, double angle, int *ite
 
 fb_status fb_planar_motion(fb_planar_kin *k, double *qd, double *qdd, const double *q,
                            const fb_planar_drive *d, int *sign, fb_diag *diag) {
-  fb_planar_constraints(NULL, k->jac, NULL, k->m, NULL, d, q, NULL);
-  if (!factorise(k, sign))
+  fb_planar_sq_trig(k->cs, k->m, q);
+  if (!factorise(k, q, sign))
     return fb_diag_set(diag, FB_ERR_ASSEMBLY, "the Jacobian is singular: the mechanism is at a "
                        "locked or change-point position, where its velocities are undefined");
   double *v = qd ? qd : k->x;
   memset(k->rhs, 0, (size_t)k->n * sizeof *k->rhs);
   k->rhs[k->n - 1] = d->omega;
-  solve(k, k->rhs, v);
+  fb_planar_lu_solve(k->lu, k->rhs, v);
   if (qdd) {
-    fb_planar_constraints(NULL, NULL, k->rhs, k->m, NULL, d, q, v);
-    solve(k, k->rhs, qdd);
+    fb_planar_sq_gamma(k->rhs, k->m, k->m->drive, q, v, k->cs);
+    k->rhs[k->n - 1] = d->alpha;
+    fb_planar_lu_solve(k->lu, k->rhs, qdd);
   }
   return FB_OK;
 }

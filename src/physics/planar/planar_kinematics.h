@@ -9,8 +9,8 @@
  *   position      Phi(q, phi) = 0        Newton: Phi_q dq = -Phi, q += dq
  *   velocity      Phi_q q'  = (0, .., 0, phi')
  *   acceleration  Phi_q q'' = gamma(q, q') (planar_constraints.h)
- * each solved by GSL's LU decomposition with partial pivoting
- * (gsl_linalg_LU_decomp, _solve). Newton stops one step after its
+ * each solved by the sparse LU of the square set (planar_sparse.h,
+ * planar_lu.h), refactorised in its pivot order. Newton stops one step after its
  * correction falls below FB_PLANAR_NEWTON_STOP (scaled: lengths by the
  * description's size, fb_planar_size, angles in radians), which leaves the residual at the
  * rounding level of the equations (quadratic convergence: the step after a
@@ -72,12 +72,24 @@ fb_status fb_planar_position(fb_planar_kin *k, double *q, double angle, int *ite
 fb_status fb_planar_motion(fb_planar_kin *k, double *qd, double *qdd, const double *q,
                            const fb_planar_drive *d, int *sign, fb_diag *diag);
 
-/* x = Phi_q^-T rhs (fb_planar_nq each) with the LU of Phi_q(q) that the
- * last successful fb_planar_motion(k, ..., q, ...) left in k (P Phi_q =
- * L U, so Phi_q^T = U^T L^T P: two triangular solves and the permutation),
- * no second factorisation: the Lagrange multipliers of planar_invdyn.h's
- * fb_planar_invdyn_kin. */
+/* x = Phi_q^-T rhs (fb_planar_nq each) with the factorisation of Phi_q(q)
+ * that the last successful fb_planar_motion(k, ..., q, ...) left in k
+ * (planar_lu.h's transposed solve), no second factorisation: the Lagrange
+ * multipliers of planar_invdyn.h's fb_planar_invdyn_kin. */
 void fb_planar_kin_solve_transposed(fb_planar_kin *k, const double *rhs, double *x);
+
+/* Room for 5 fb_planar_nq values that k owns (planar_path.c's predictor
+ * and trial motion, so that following a path allocates nothing). */
+double *fb_planar_kin_scratch(fb_planar_kin *k);
+
+/* The Jacobian Phi_q of the last factorisation (fb_planar_motion's q),
+ * the square set of planar_sparse.h: its values (returned), each entry's
+ * column (*col) and each row's first entry (*rowptr, n + 1: row r's
+ * entries are rowptr[r] .. rowptr[r + 1] - 1); *mult (may be NULL): room
+ * for 2 n values k owns (planar_invdyn.c's right-hand side and
+ * multipliers). */
+const double *fb_planar_kin_jacobian(fb_planar_kin *k, const int **col, const int **rowptr,
+                                     double **mult);
 
 /* The joint whose rows hold the largest scaled residual of Phi at q and
  * that residual [m] (lengths) or [rad]; -1 for the drive's row. */

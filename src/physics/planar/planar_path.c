@@ -34,8 +34,7 @@ fb_status fb_planar_follow(fb_planar_kin *k, double *q, double from, double to, 
   const fb_planar *m = fb_planar_kin_mech(k);
   const int n = fb_planar_nq(m);
   const double size = fb_planar_size(m);
-  double *buf = calloc(5 * (size_t)n, sizeof *buf);
-  if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  double *buf = fb_planar_kin_scratch(k);
   double *v1 = buf, *v2 = buf + n, *qn = buf + 2 * n, *w1 = buf + 3 * n, *w2 = buf + 4 * n;
   *end = FB_PATH_OK;
   double angle = from, step = FB_PLANAR_STEP_MAX;
@@ -57,8 +56,8 @@ fb_status fb_planar_follow(fb_planar_kin *k, double *q, double from, double to, 
       for (int i = 0; i < n; i++)
         corr = fmax(corr, fabs(qn[i] - (q[i] + v1[i] * h + 0.5 * v2[i] * h * h)) /
                               (i % 3 == 2 ? 1.0 : size));
-      /* (plus the positions' own closing tolerance: a correction at the
-       * rounding of a solution is no jump, however short the step) */
+      /* a correction within the closing tolerance is rounding, not a jump
+       * (a step of 1e-17 rad, where (to - from) / step rounds up, is one) */
       ok = corr <= FB_PLANAR_JUMP * coord_norm(v1, n, size) * fabs(h) + FB_PLANAR_CLOSE_TOL;
     }
     if (ok && sign1 == sign) {
@@ -87,7 +86,6 @@ fb_status fb_planar_follow(fb_planar_kin *k, double *q, double from, double to, 
     for (int i = 0; i < n; i++)
       if (!isfinite(q[i])) rc = fb_diag_set(diag, FB_ERR_NUMERIC, "non-finite position");
   if (reached) *reached = angle;
-  free(buf);
   return rc;
 }
 

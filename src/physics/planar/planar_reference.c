@@ -1,4 +1,4 @@
-/* The planar reference integration with projection (planar_reference.h). */
+/* The planar reference integration (planar_reference.h). */
 #include "planar_reference.h"
 
 #include <gsl/gsl_errno.h>
@@ -7,37 +7,25 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* counts the right-hand side's evaluations */
-typedef struct {
-  fb_planar_dyn *d;
-  size_t evals;
-} counted;
-
-static int rhs(double t, const double y[], double dydt[], void *p) {
-  counted *c = p;
-  c->evals++;
-  return fb_planar_dyn_rhs(t, y, dydt, c->d);
-}
-
-fb_status fb_planar_ref_run(double *y, double *acc, fb_planar_contact *contact, size_t n,
-                            double h, const double *y0, fb_planar_dyn *d, double tol,
-                            int project, fb_planar_ref_stats *stats, fb_diag *diag) {
+fb_status fb_planar_ref_run(double *y, double *acc, fb_planar_contact *contact, double *z,
+                            size_t n, double h, fb_planar_rel *d, double tol,
+                            fb_planar_ref_stats *stats, fb_diag *diag) {
   if (!(tol >= 1e-13 && tol <= 1e-3) || !(h > 0.0) || n < 1)
     return fb_diag_set(diag, FB_ERR_RANGE, "tolerance %g in [1e-13, 1e-3], step %g s > 0 and "
                        "%zu samples >= 1", tol, h, n);
-  const fb_planar_dyn_model *model = fb_planar_dyn_model_of(d);
-  const int nq = fb_planar_dyn_nq(d), ns = 2 * nq, nj = model->mech->njoints;
-  double *state = calloc(4 * (size_t)ns, sizeof *state);
+  const fb_planar_dyn_model *model = fb_planar_rel_model_of(d);
+  const int nq = fb_planar_rel_nq(d), dim = fb_planar_rel_dim(d), nj = model->mech->njoints;
+  double *state = calloc(2 * (size_t)dim, sizeof *state);
   if (!state) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  double *copy = state + ns, *dydt = copy + ns;
-  memcpy(state, y0, (size_t)ns * sizeof *state);
-  counted cnt = {d, 0};
-  gsl_odeiv2_system sys = {rhs, NULL, (size_t)ns, &cnt};
+  double *dzdt = state + dim;
+  fb_status rc = fb_planar_rel_steady(state, d, diag);
+  const long evals0 = fb_planar_rel_stats_of(d).evals;
+  gsl_odeiv2_system sys = {fb_planar_rel_rhs, NULL, (size_t)dim, d};
   gsl_error_handler_t *old = gsl_set_error_handler_off();
   gsl_odeiv2_driver *drv =
       gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, h * 1e-3, tol, tol);
-  fb_planar_ref_stats st = {0, 0, 0.0, 0.0};
-  fb_status rc = drv ? FB_OK : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_planar_ref_stats st = {0, 0, 0.0};
+  if (rc == FB_OK && !drv) rc = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   const size_t budget = n * FB_PLANAR_REF_STEPS_PER_SAMPLE;
   double t = 0.0;
   for (size_t k = 0; k < n && rc == FB_OK; k++) {
@@ -52,31 +40,23 @@ fb_status fb_planar_ref_run(double *y, double *acc, fb_planar_contact *contact, 
         break;
       }
     }
-    /* the drift since the last projection, and the projection */
-    const fb_planar_drive dr = {model->omega * tk, model->omega, 0.0};
-    double dq, dv;
-    memcpy(copy, state, (size_t)ns * sizeof *copy);
-    rc = fb_planar_cmass_project(fb_planar_dyn_cmass(d), copy, copy + nq, &dr, &dq, &dv, diag);
-    if (rc != FB_OK) break;
-    st.drift_q = fmax(st.drift_q, dq);
-    st.drift_v = fmax(st.drift_v, dv);
-    if (project && k > 0) {
-      memcpy(state, copy, (size_t)ns * sizeof *state);
-      gsl_odeiv2_driver_reset(drv);
-    }
-    if (fb_planar_dyn_eval(d, tk, state, dydt, contact ? contact + k * (size_t)nj : NULL) != FB_OK) {
-      rc = fb_diag_set(diag, FB_ERR_NUMERIC, "planar reference: the constraints are singular at "
-                       "t = %.9g s", tk);
+    /* the sample: the motion and contact at the state */
+    if (fb_planar_rel_eval(d, tk, state, dzdt, contact ? contact + k * (size_t)nj : NULL) !=
+        FB_OK) {
+      rc = fb_diag_set(diag, FB_ERR_NUMERIC, "planar reference: the positions cannot be solved "
+                       "at t = %.9g s", tk);
       break;
     }
-    memcpy(y + k * (size_t)ns, state, (size_t)ns * sizeof *y);
-    if (acc) memcpy(acc + k * (size_t)nq, dydt + nq, (size_t)nq * sizeof *acc);
-    for (int i = 0; i < ns; i++)
+    st.closure = fmax(st.closure, fb_planar_rel_closure(d));
+    fb_planar_rel_motion(d, y + k * (size_t)(2 * nq), y + k * (size_t)(2 * nq) + nq,
+                         acc ? acc + k * (size_t)nq : NULL);
+    if (z) memcpy(z + k * (size_t)dim, state, (size_t)dim * sizeof *z);
+    for (int i = 0; i < dim; i++)
       if (!isfinite(state[i]))
         rc = fb_diag_set(diag, FB_ERR_NUMERIC, "planar reference: non-finite state at t = %.9g s",
                          tk);
   }
-  st.evals = cnt.evals;
+  st.evals = (size_t)(fb_planar_rel_stats_of(d).evals - evals0);
   if (stats) *stats = st;
   if (drv) gsl_odeiv2_driver_free(drv);
   gsl_set_error_handler(old);

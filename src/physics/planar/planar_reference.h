@@ -1,27 +1,23 @@
 /* The reference integration of a planar description with clearance joints
- * (planar_dynamics.h): GSL's rk8pd (gsl_odeiv2_step_rk8pd) at relative and
- * absolute tolerance tol, as reference.h, on the index-1 DAE in absolute
- * coordinates, with the state projected back onto the constraints at every
- * output sample.
+ * (planar_relative.h): GSL's rk8pd (gsl_odeiv2_step_rk8pd) at relative and
+ * absolute tolerance tol, as reference.h, on the clearance joints'
+ * relative coordinates (and an undriven description's free coordinate),
+ * sampled every h.
  *
- * The choice (docs/planar.md): the augmented (index-1) system is general
- * and needs no Newton solve inside the right-hand side, where coordinate
- * partitioning would solve the dependent coordinates at every one of
- * rk8pd's 13 evaluations per step and switch partitions near singular
- * positions. Its cost is drift: the position and velocity constraints are
- * not integrated, only their second derivative, so they drift at the
- * integrator's error. Projection (mass-weighted least squares,
- * fb_planar_cmass_project) at each output sample removes it without
- * changing the dynamics between samples, as a Baumgarte term would (whose
- * gains depend on the step). tests/test_planar_dynamics.c measures the
- * drift with and without the projection and the agreement with the
- * closed-form references (reference.h, slider_crank_dynamics.h). */
+ * The state is what the contact law reads (the pins' eccentricities, a
+ * slider's tilt and offset), in metres and radians of the clearance's
+ * size: the step control sees the contact's motion at its own scale, with
+ * no rounding of the mechanism's size in it, and the joints that hold are
+ * solved at every evaluation, so positions and velocities keep them to
+ * the rounding level with no projection. tests/test_planar_relative.c
+ * measures both and the agreement with the closed-form references
+ * (reference.h, slider_crank_dynamics.h). */
 #ifndef FB_PLANAR_REFERENCE_H
 #define FB_PLANAR_REFERENCE_H
 
 #include <stddef.h>
 
-#include "planar_dynamics.h"
+#include "planar_relative.h"
 
 /* Accepted rk8pd steps allowed per output sample on average
  * (FB_REFERENCE_STEPS_PER_SAMPLE's reason, reference.h). */
@@ -31,22 +27,19 @@
 typedef struct {
   size_t steps;   /* accepted integrator steps */
   size_t evals;   /* right-hand side evaluations */
-  double drift_q; /* largest |Phi| of the joints' length rows at a sample, before its
-                     projection [m] */
-  double drift_v; /* largest |G q' - nu| of those rows at a sample, before its projection [m/s] */
+  double closure; /* largest |Phi| of the joints that hold at a sample, lengths only [m] */
 } fb_planar_ref_stats;
 
-/* Integrates d from y0 (2 nq, at t = 0) and samples at t = k h,
- * k = 0 .. n - 1: y (n x 2 nq: q, q'), acc (n x nq: q''; may be NULL) and
- * contact (n x njoints; may be NULL). project: 1 projects the state onto
- * the constraints at every sample (the reference), 0 only measures how far
- * it is (the drift without projection). stats (may be NULL).
+/* Integrates d from its steady start (fb_planar_rel_steady, t = 0) and
+ * samples at t = k h, k = 0 .. n - 1: y (n x 2 nq: q, q'), acc (n x nq:
+ * q''; may be NULL), contact (n x njoints; may be NULL) and z (n x dim:
+ * the state; may be NULL). stats (may be NULL).
  * Errors: FB_ERR_RANGE for tol outside [1e-13, 1e-3], h <= 0 or n < 1;
  * FB_ERR_NUMERIC when the integrator fails, the step budget runs out or
- * the constraint set turns singular (message names the time; the samples
- * before are kept); FB_ERR_NOMEM. */
-fb_status fb_planar_ref_run(double *y, double *acc, fb_planar_contact *contact, size_t n,
-                            double h, const double *y0, fb_planar_dyn *d, double tol,
-                            int project, fb_planar_ref_stats *stats, fb_diag *diag);
+ * the positions cannot be solved (message names the time; the samples
+ * before are kept); those of fb_planar_rel_steady; FB_ERR_NOMEM. */
+fb_status fb_planar_ref_run(double *y, double *acc, fb_planar_contact *contact, double *z,
+                            size_t n, double h, fb_planar_rel *d, double tol,
+                            fb_planar_ref_stats *stats, fb_diag *diag);
 
 #endif

@@ -302,8 +302,8 @@ check(rc == 2 and "physical" in se, "paper mode on a planar case is refused (%s)
 
 # a planar case without [run] models runs analytic alone (the template)
 rc, so, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                 "run.revolutions=1", "--no-figures", "--no-report", "--series", "none", "--out",
-                 os.path.join(tmp, "tpl"))
+                 "run.revolutions=1", "--set", "run.peaks=all", "--no-figures", "--no-report", "--series",
+                 "none", "--out", os.path.join(tmp, "tpl"))
 check(rc == 0 and [x["name"] for x in summary_of(os.path.join(tmp, "tpl"))["models"]] == ["analytic"],
       "a planar case without [run] models runs analytic alone (%s)" % se.strip()[-200:])
 

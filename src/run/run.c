@@ -456,7 +456,7 @@ static fb_status clearance_at_drive(const fb_case *c, fb_diag *diag) {
     for (int i = 0; i < c->model_count; i++) {
       const fb_model *m = fb_model_find(c->models[i]);
       const fb_engine *e = m ? fb_engine_get(m->engine, NULL) : NULL;
-      const int kit = e && fb_engine_runner(e, c, NULL) == &fb_engine_kit_adapter;
+      const int kit = e && fb_engine_is_kit_adapter(fb_engine_runner(e, c, NULL));
       fb_status st = m ? fb_model_clearance_at_drive(m, kit, jt->name, diag) : FB_OK;
       if (st != FB_OK) return st;
     }

@@ -87,6 +87,13 @@ typedef struct {
  * Returns buf. Every refusal of a number outside the range states it. */
 const char *fb_casefile_range_text(const key_spec *k, char *buf, size_t size);
 
+/* Row k's rule and, unless the rule states it in those words, its range in
+ * the key's file unit ("RULE (allowed: [lo, hi] unit)") into buf: what a
+ * refusal of a number outside the row says, the key's own refusal and any
+ * other that applies the key's rule (a planar link, [linkage] crank_mm's).
+ * Returns buf. */
+const char *fb_casefile_rule_text(const key_spec *k, char *buf, size_t size);
+
 /* Row i of the key table (0 .. fb_casefile_key_count() - 1), NULL outside. */
 const key_spec *fb_casefile_spec(int i);
 

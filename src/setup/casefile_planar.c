@@ -365,10 +365,12 @@ static fb_status links_whole(const fb_planar_spec *s, const entry *e, int n, fb_
     char body[FB_PLANAR_NAME_SIZE + 16];
     snprintf(body, sizeof body, b ? "body '%s'" : "the ground", s->body[b].name);
     const char *one = far < FB_PLANAR_SAME_POINT_M ? " (its revolute joints all at one point)" : "";
+    char rule[FB_DIAG_SIZE / 2]; /* [linkage] crank_mm's refusal, word for word */
+    fb_casefile_rule_text(fb_casefile_spec_find("linkage", "crank_mm"), rule, sizeof rule);
     return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] at_mm = %s: %s has a link of %s mm between "
                        "this joint and [%s] at_mm = %s%s: %s", a1->origin, a1->section,
                        a1->value, body, FB_NUM(len / FB_M_PER_MM), a0->section, a0->value, one,
-                       LEN_RULE);
+                       rule);
   }
   return FB_OK;
 }

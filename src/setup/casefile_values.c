@@ -155,10 +155,7 @@ const char *fb_casefile_range_text(const key_spec *k, char *buf, size_t size) {
   return buf;
 }
 
-/* the row's rule and, unless the rule states it in these words, its range
- * in the key's file unit: the refusal of a number says the range the
- * table holds, never only the rule's prose */
-static const char *rule_and_range(const key_spec *k, char *buf, size_t size) {
+const char *fb_casefile_rule_text(const key_spec *k, char *buf, size_t size) {
   char range[96];
   fb_casefile_range_text(k, range, sizeof range);
   if (strstr(k->rule, range)) snprintf(buf, size, "%s", k->rule);
@@ -176,7 +173,7 @@ fb_status fb_casefile_check_range(const char *section, const char *key, double v
   char rule[FB_DIAG_SIZE / 2];
   if (bad_lo || bad_hi || !isfinite(value))
     return fb_diag_set(diag, FB_ERR_RANGE, "%s = %s: %s (as [%s] %s)", origin, FB_NUM(value),
-                       rule_and_range(k, rule, sizeof rule), section, key);
+                       fb_casefile_rule_text(k, rule, sizeof rule), section, key);
   return FB_OK;
 }
 
@@ -211,7 +208,7 @@ static fb_status parse_double(const entry *e, const key_spec *k, double *out, fb
   char rule[FB_DIAG_SIZE / 2];
   if (bad_lo || bad_hi)
     return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = %s: %s", e->origin, e->section,
-                       e->key, e->value, rule_and_range(k, rule, sizeof rule));
+                       e->key, e->value, fb_casefile_rule_text(k, rule, sizeof rule));
   *out = v;
   return FB_OK;
 }
@@ -268,7 +265,7 @@ static fb_status apply_number(fb_case *c, const entry *e, const key_spec *k, voi
       char rule[FB_DIAG_SIZE / 2];
       if ((double)n < k->lo || (double)n > k->hi)
         return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = %s: %s", e->origin, e->section,
-                           e->key, e->value, rule_and_range(k, rule, sizeof rule));
+                           e->key, e->value, fb_casefile_rule_text(k, rule, sizeof rule));
       if (k->offset == OFF(revolutions))
         *(double *)field = (double)n;
       else

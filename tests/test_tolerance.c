@@ -378,7 +378,7 @@ static void test_monte_carlo_estimate(void **state) {
   double each, bytes, seconds;
   int evals = 0;
   fb_diag d;
-  if (fb_tol_eval_cost(&each, &evals, &paper, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_tol_eval_cost(&each, &evals, 0.0, &paper, &d) != FB_OK) fail_msg("%s", d.msg);
   assert_true(evals >= FB_WORK_PROBE_MIN && evals <= FB_WORK_PROBE_MAX);
   assert_true(isfinite(each) && each > 0.0);
   fb_tol_estimate(each, 1000000, 1, &bytes, &seconds);
@@ -394,11 +394,34 @@ static void test_monte_carlo_estimate(void **state) {
               bytes <= MC_ESTIMATE_OVER_MEASURED_MAX * MC_1E6_MEASURED_BYTES);
 }
 
+/* The probe for long work (work.h): work estimated above FB_WORK_NOTE_S
+ * is probed in further windows up to FB_WORK_PROBE_SHARE of its estimate
+ * and FB_WORK_PROBE_LONG_S, and the fastest window kept, never above the
+ * first window's mean. Counts only: a million samples of the paper case
+ * (about 15 s) probe more evaluations than work of unknown size, and no
+ * more than FB_WORK_PROBE_MAX. */
+static void test_probe_for_long_work(void **state) {
+  (void)state;
+  double short_each, long_each;
+  int short_evals = 0, long_evals = 0;
+  fb_diag d;
+  if (fb_tol_eval_cost(&short_each, &short_evals, 0.0, &paper, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_tol_eval_cost(&long_each, &long_evals, 1e6, &paper, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_test_verbose())
+    fprintf(stderr, "  unknown work: %d evaluations, %.3g s each; 1e6 samples: %d, %.3g s each\n",
+            short_evals, short_each, long_evals, long_each);
+  assert_true(1e6 * short_each > FB_WORK_NOTE_S); /* precondition: long work */
+  assert_true(long_evals > short_evals);
+  assert_true(long_evals <= FB_WORK_PROBE_MAX);
+  assert_true(isfinite(long_each) && long_each > 0.0);
+}
+
 int main(void) {
   fb_test_paper_case(&paper, NULL, 0);
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_sensitivities_vs_finite_differences),
       cmocka_unit_test(test_monte_carlo_estimate),
+      cmocka_unit_test(test_probe_for_long_work),
       cmocka_unit_test(test_rss_inside_corners_and_mc_converges),
       cmocka_unit_test(test_same_seed_same_numbers),
       cmocka_unit_test(test_quantiles_equal_recorded),

@@ -16,19 +16,41 @@ double fb_work_cpu_s(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-fb_status fb_work_probe(double *s_per_eval, int *evals, fb_work_eval eval, void *ctx,
+/* one window of the probe: eval until FB_WORK_PROBE_S of CPU (bounds of
+ * work.h); its mean into *each, its calls added to *calls, its time to *spent */
+static fb_status window(double *each, int *calls, double *spent, fb_work_eval eval, void *ctx,
                         fb_diag *diag) {
   const double t0 = fb_work_cpu_s();
   int n = 0;
-  double spent = 0.0;
-  while (n < FB_WORK_PROBE_MIN || (spent < FB_WORK_PROBE_S && n < FB_WORK_PROBE_MAX)) {
+  double w = 0.0;
+  while (n < FB_WORK_PROBE_MIN || (w < FB_WORK_PROBE_S && n < FB_WORK_PROBE_MAX)) {
     const fb_status st = eval(ctx, diag);
     if (st != FB_OK) return st;
     n++;
-    spent = fb_work_cpu_s() - t0;
+    w = fb_work_cpu_s() - t0;
   }
-  *s_per_eval = spent / n;
-  if (evals) *evals = n;
+  *each = w / n;
+  *calls += n;
+  *spent += w;
+  return FB_OK;
+}
+
+fb_status fb_work_probe(double *s_per_eval, int *evals, double units, fb_work_eval eval,
+                        void *ctx, fb_diag *diag) {
+  int calls = 0;
+  double spent = 0.0, best;
+  fb_status st = window(&best, &calls, &spent, eval, ctx, diag);
+  if (st != FB_OK) return st;
+  if (units > 0.0 && units * best > FB_WORK_NOTE_S) {
+    const double budget = fmin(FB_WORK_PROBE_SHARE * units * best, FB_WORK_PROBE_LONG_S);
+    while (spent < budget && calls < FB_WORK_PROBE_MAX) {
+      double each;
+      if ((st = window(&each, &calls, &spent, eval, ctx, diag)) != FB_OK) return st;
+      best = fmin(best, each);
+    }
+  }
+  *s_per_eval = best;
+  if (evals) *evals = calls;
   return FB_OK;
 }
 

@@ -23,6 +23,16 @@
 #define FB_WORK_PROBE_S 0.01
 #define FB_WORK_PROBE_MIN 1
 #define FB_WORK_PROBE_MAX 100000
+/* Work the first window estimates above FB_WORK_NOTE_S is probed further,
+ * in windows of FB_WORK_PROBE_S, for this share of its estimate (2 %: the
+ * probe a small part of the work it times) ... */
+#define FB_WORK_PROBE_SHARE 0.02
+/* ... and at most this much CPU time [s]: a process's first few tenths of
+ * a second can run at half speed (measured on the development machine, a
+ * virtual one: the paper case's evaluation 30 us in a process's first
+ * 0.2 s, 15 us after 0.3 s of other work), so the long probe outlasts
+ * that and keeps its fastest window. */
+#define FB_WORK_PROBE_LONG_S 0.5
 
 /* CPU time of this process, every thread, not its children [s]
  * (CLOCK_PROCESS_CPUTIME_ID: nanoseconds): differences time a probe. */
@@ -33,10 +43,15 @@ typedef fb_status (*fb_work_eval)(void *ctx, fb_diag *diag);
 
 /* The CPU time of one evaluation [s] into *s_per_eval: eval called until
  * the probe has spent FB_WORK_PROBE_S of CPU (FB_WORK_PROBE_MIN to
- * FB_WORK_PROBE_MAX calls), the mean; *evals (may be NULL) the calls.
+ * FB_WORK_PROBE_MAX calls), the mean; when units (the evaluations the work
+ * will make; 0: not known) times that exceeds FB_WORK_NOTE_S, more windows
+ * of FB_WORK_PROBE_S each, until the probe has spent FB_WORK_PROBE_SHARE of
+ * the estimate (FB_WORK_PROBE_LONG_S at most), and the fastest window's
+ * mean: whatever slows an evaluation (the process's start, other load)
+ * slows a window, never speeds it. *evals (may be NULL) the calls.
  * Errors: eval's, at once. */
-fb_status fb_work_probe(double *s_per_eval, int *evals, fb_work_eval eval, void *ctx,
-                        fb_diag *diag);
+fb_status fb_work_probe(double *s_per_eval, int *evals, double units, fb_work_eval eval,
+                        void *ctx, fb_diag *diag);
 
 /* Seconds as a person reads them: "0.8 s", "46 s", "12 min", "3.4 h",
  * "2.1 days", "24 years" (beyond a year the figure stays in years). */

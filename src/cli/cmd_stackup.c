@@ -119,11 +119,13 @@ int fb_cmd_stackup(int argc, char **argv) {
     return fb_cmd_stackup_planar(&c, mask, &mc, json);
   /* the work said and bounded before it starts, from this case's own cost
    * of an evaluation (a corner or a sample: its outputs and their peaks) */
+  const double corners = (mask & FB_TOL_CORNERS) ? ldexp(1.0, fb_case_mech(&c)->nlengths) : 0.0;
   double each;
-  if (fb_tol_eval_cost(&each, NULL, &c, &d) != FB_OK) return fb_cli_fail("stackup", 1, "%s", d.msg);
+  if (fb_tol_eval_cost(&each, NULL, corners + ((mask & FB_TOL_MONTECARLO) ? samples : 0.0), &c,
+                       &d) != FB_OK)
+    return fb_cli_fail("stackup", 1, "%s", d.msg);
   if ((mask & FB_TOL_MONTECARLO) && fb_tol_check_cost(each, (size_t)samples, (int)jobs, &d) != FB_OK)
     return fb_cli_fail("stackup", 2, "%s", d.msg);
-  const double corners = (mask & FB_TOL_CORNERS) ? ldexp(1.0, fb_case_mech(&c)->nlengths) : 0.0;
   double bytes, seconds;
   fb_tol_estimate(each, (size_t)samples, (int)jobs, &bytes, &seconds);
   if ((rc = fb_cli_stackup_work(&c, mask, 0.0, corners, &mc, each, bytes, 0,

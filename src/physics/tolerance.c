@@ -191,8 +191,9 @@ static fb_status nominal_eval(void *ctx, fb_diag *diag) {
   return fb_tol_outputs_of(out, c->mechanism, &c->nominal, c->branch, fb_case_omega2(c), diag);
 }
 
-fb_status fb_tol_eval_cost(double *s_per_eval, int *evals, const fb_case *c, fb_diag *diag) {
-  return fb_work_probe(s_per_eval, evals, nominal_eval, (void *)c, diag);
+fb_status fb_tol_eval_cost(double *s_per_eval, int *evals, double units, const fb_case *c,
+                           fb_diag *diag) {
+  return fb_work_probe(s_per_eval, evals, units, nominal_eval, (void *)c, diag);
 }
 
 void fb_tol_estimate(double s_per_sample, size_t samples, int jobs, double *bytes, double *seconds) {

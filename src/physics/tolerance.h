@@ -168,9 +168,11 @@ fb_status fb_tol_analyse(fb_stackup_result *out, const fb_case *c, int mask, siz
 /* CPU time [s] of one evaluation of case c's stack-up outputs (what each
  * corner and each Monte Carlo sample evaluates: its closed form's outputs
  * and their peaks at the nominal lengths), measured on c itself by the
- * probe of work.h (fb_work_probe); *evals (may be NULL) the evaluations it
- * made. Errors: those of the outputs (fb_tol_outputs_of). */
-fb_status fb_tol_eval_cost(double *s_per_eval, int *evals, const fb_case *c, fb_diag *diag);
+ * probe of work.h (fb_work_probe, for work of units evaluations; 0: not
+ * known); *evals (may be NULL) the evaluations it made. Errors: those of
+ * the outputs (fb_tol_outputs_of). */
+fb_status fb_tol_eval_cost(double *s_per_eval, int *evals, double units, const fb_case *c,
+                           fb_diag *diag);
 
 /* Estimated memory [bytes] and wall time [s] of a Monte Carlo analysis of
  * samples samples, each s_per_sample [s] of CPU (fb_tol_eval_cost), on jobs

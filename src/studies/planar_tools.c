@@ -315,8 +315,8 @@ static fb_status nominal_eval(void *ctx, fb_diag *diag) {
   return outputs_at(x->s->nominal, x->m, x->len, x->omega, diag);
 }
 
-fb_status fb_planar_stackup_begin(fb_planar_stackup *s, double *s_per_eval, const fb_case *c,
-                                  const fb_planar *m, fb_diag *diag) {
+fb_status fb_planar_stackup_begin(fb_planar_stackup *s, double *s_per_eval, double units,
+                                  const fb_case *c, const fb_planar *m, fb_diag *diag) {
   memset(s, 0, sizeof *s);
   fb_status st = lengths_of(s, c, m, diag);
   if (st != FB_OK) {
@@ -341,7 +341,7 @@ fb_status fb_planar_stackup_begin(fb_planar_stackup *s, double *s_per_eval, cons
   /* the nominal outputs, timed: this case's cost of a corner or a sample */
   nominal_ctx x = {s, m, s->len, fb_case_omega2(c)};
   double each;
-  st = fb_work_probe(&each, NULL, nominal_eval, &x, diag);
+  st = fb_work_probe(&each, NULL, units, nominal_eval, &x, diag);
   if (s_per_eval) *s_per_eval = each;
   if (st != FB_OK) fb_planar_stackup_free(s);
   return st;
@@ -365,7 +365,7 @@ fb_status fb_planar_stackup_corners(fb_planar_stackup *s, const fb_case *c, cons
 
 fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
                                 int with_corners, fb_diag *diag) {
-  fb_status st = fb_planar_stackup_begin(s, NULL, c, m, diag);
+  fb_status st = fb_planar_stackup_begin(s, NULL, 0.0, c, m, diag);
   if (st == FB_OK) st = fb_planar_stackup_rss(s, c, m, NULL, NULL, diag);
   if (st == FB_OK && with_corners) st = fb_planar_stackup_corners(s, c, m, NULL, NULL, diag);
   if (st != FB_OK) fb_planar_stackup_free(s);

@@ -104,7 +104,7 @@ typedef struct {
  * fb_planar_stackup_begin counts and tolerances the lengths and evaluates
  * the nominal outputs, timed by the probe of work.h (*s_per_eval, may be
  * NULL: the CPU time of one evaluation, a corner's or a sample's cost on
- * this case); fb_planar_stackup_rss the sensitivities (2 evaluations per
+ * this case, probed for work of units evaluations, 0: not known); fb_planar_stackup_rss the sensitivities (2 evaluations per
  * length) and the RSS band; fb_planar_stackup_corners the worst case over
  * the 2^n corners (2^n evaluations). progress (may be NULL) gets each
  * part's fraction done. fb_planar_stackup_run is the three, the corners
@@ -115,8 +115,8 @@ typedef struct {
  * the corners; those of iso2768 (a length below 0.5 mm) and of the
  * kinematics (a corner that does not close or turn, naming it);
  * FB_ERR_NOMEM. Free with fb_planar_stackup_free (begin frees on error). */
-fb_status fb_planar_stackup_begin(fb_planar_stackup *s, double *s_per_eval, const fb_case *c,
-                                  const fb_planar *m, fb_diag *diag);
+fb_status fb_planar_stackup_begin(fb_planar_stackup *s, double *s_per_eval, double units,
+                                  const fb_case *c, const fb_planar *m, fb_diag *diag);
 fb_status fb_planar_stackup_rss(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
                                 void (*progress)(double fraction, void *user), void *user,
                                 fb_diag *diag);

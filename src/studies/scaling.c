@@ -63,7 +63,7 @@ static void monte_carlo_row(fb_scaling_row *row, const fb_case *c, size_t sample
   fb_diag d;
   double bytes, each;
   /* the estimate stackup says: this case's cost per sample, measured */
-  if (fb_tol_eval_cost(&each, NULL, c, &d) != FB_OK) each = NAN;
+  if (fb_tol_eval_cost(&each, NULL, (double)samples, c, &d) != FB_OK) each = NAN;
   fb_tol_estimate(each, samples, row->jobs, &bytes, &row->estimate_s);
   const double w0 = fb_clock_s(), c0 = fb_clock_cpu_s();
   const fb_status st = fb_tol_analyse_jobs(&out, c, FB_TOL_MONTECARLO, samples, 1,
@@ -149,7 +149,7 @@ fb_status fb_scaling_estimate(double *cpu_s, double *pilot_s, const fb_case *c,
   }
   free(k);
   double each;
-  if (st == FB_OK && p->nsamples > 0 && (st = fb_tol_eval_cost(&each, NULL, c, diag)) == FB_OK)
+  if (st == FB_OK && p->nsamples > 0 && (st = fb_tol_eval_cost(&each, NULL, 0.0, c, diag)) == FB_OK)
     for (int i = 0; i < p->nsamples; i++) *cpu_s += p->samples[i] * each;
   return st;
 }

@@ -48,8 +48,8 @@
 // velocity and position problems, the iteration counters).
 //
 // Oracle: the example's .ref, 2001 rows of 35 columns, read from the
-// folder argv[1] (meson passes external/siconos_slider_crank in the clone;
-// $FOURBAR_SICONOS_REF_DIR overrides it): no value of it is in this
+// folder argv[1] (meson passes external/siconos_slider_crank in the clone,
+// else ../shared/siconos beside it; $FOURBAR_SICONOS_REF_DIR overrides it): no value of it is in this
 // repository. Absent: skipped (exit 77), never passed. Every column must
 // agree to REF_TOL over every row; the column, row and values of the
 // first departure are printed otherwise. With -o FILE the reproduction's

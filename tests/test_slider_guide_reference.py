@@ -10,13 +10,14 @@ at e = 0.4 on each of the slider's four corners, frictionless), against
    first contact (no contact force acts before it, so the motion is the
    free one);
 2. Siconos's own output, the example's .ref (read from
-   external/siconos_slider_crank or $FOURBAR_SICONOS_REF_DIR; absent: those
+   $FOURBAR_SICONOS_REF_DIR, else REF_DIR, else the clone's
+   external/siconos_slider_crank; absent: those
    checks are skipped and said so, the others still run), at stated times,
    each difference bounded with its reason;
 3. the case file's rules (a free start's and a guide's keys): each bad
    input refused with its file, line, key, value and rule.
 
-Usage: test_slider_guide_reference.py PATH_TO_FOURBAR. Prints "N passed,
+Usage: test_slider_guide_reference.py PATH_TO_FOURBAR [REF_DIR]. Prints "N passed,
 N failed"; exit 1 on any failure."""
 import csv, json, math, os, sys, tempfile
 
@@ -97,8 +98,8 @@ def lagrangian_rk4(t_end, h):
 
 
 def read_ref():
-    folder = os.environ.get("FOURBAR_SICONOS_REF_DIR") or os.path.join(
-        root, "external", "siconos_slider_crank")
+    folder = os.environ.get("FOURBAR_SICONOS_REF_DIR") or (
+        sys.argv[2] if len(sys.argv) > 2 else os.path.join(root, "external", "siconos_slider_crank"))
     path = os.path.join(folder, REF_NAME)
     if not os.path.exists(path):
         print("SKIP (the .ref checks): no %s (docs/models.md says how to fetch it)" % path)

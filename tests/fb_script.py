@@ -24,6 +24,51 @@ class Tally:
         return 1 if self.failed else 0
 
 
+class Fail(Exception):
+    """a failed check of a Suite's test: its message says what failed"""
+
+
+class Suite:
+    """Named tests that each stop at their first failed check: @suite.test
+    registers one, suite.check(ok, what) raises Fail(what) when ok is false,
+    suite.main(only, tmp) runs those named in only (all when empty), prints
+    "FAIL: name: what" for each failure (a test's crash is a failure, with
+    its exception) and "N passed, N failed", removes the folder tmp when
+    every test passed (kept to look at otherwise) and returns the exit
+    status."""
+
+    def __init__(self):
+        self.tests = []
+
+    def test(self, fn):
+        self.tests.append(fn)
+        return fn
+
+    @staticmethod
+    def check(ok, what):
+        if not ok:
+            raise Fail(what)
+
+    def main(self, only=(), tmp=None):
+        import shutil
+        only = set(only)
+        ran = [t for t in self.tests if not only or t.__name__ in only]
+        failures = []
+        for t in ran:
+            try:
+                t()
+            except Fail as e:
+                failures.append(t.__name__)
+                print("FAIL: %s: %s" % (t.__name__, e))
+            except Exception as e:  # a crash of the test is a failure too, with its reason
+                failures.append(t.__name__)
+                print("FAIL: %s: %s: %s" % (t.__name__, type(e).__name__, e))
+        print("%d passed, %d failed" % (len(ran) - len(failures), len(failures)))
+        if tmp and not failures:
+            shutil.rmtree(tmp, ignore_errors=True)
+        return 1 if failures else 0
+
+
 def run(exe, cwd, *args, env=None):
     """the program's exit status, standard output and standard error"""
     r = subprocess.run([exe] + list(args), capture_output=True, text=True, cwd=cwd, timeout=600,

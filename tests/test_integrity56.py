@@ -12,6 +12,9 @@ Nothing here fails on wall time: a timeout only turns a hang into a failure.
 Usage: test_integrity56.py PATH_TO_FOURBAR. Prints one line per failed test
 and a "N passed, N failed" line (tests, not checks); exit 1 on any failure."""
 import glob, json, os, pathlib, signal, stat, subprocess, sys, tempfile, time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
 import xml.etree.ElementTree as ET
 
 exe = os.path.abspath(sys.argv[1])
@@ -22,21 +25,8 @@ slider = os.path.join(cases, "slider_crank_flores.ini")
 template = os.path.join(cases, "templates", "slider_crank.ini")
 tmp = tempfile.mkdtemp(prefix="fourbar-integrity56-")
 TINY = ["--set", "run.revolutions=2", "--set", "run.models=analytic", "--no-figures"]
-tests, failures = [], []
-
-
-def test(fn):
-    tests.append(fn)
-    return fn
-
-
-class Fail(Exception):
-    pass
-
-
-def check(ok, what):
-    if not ok:
-        raise Fail(what)
+suite = fb_script.Suite()  # the runner these scripts share (fb_script.py)
+test, check = suite.test, suite.check
 
 
 def run(*args, cwd=tmp, timeout=900, env=None):
@@ -550,18 +540,4 @@ def test_long_option_prefix_refused():
 
 
 # ---- the runner ----------------------------------------------------------------------
-only = set(sys.argv[2:])
-for t in tests:
-    if only and t.__name__ not in only:
-        continue
-    try:
-        t()
-    except Fail as e:
-        failures.append(t.__name__)
-        print("FAIL: %s: %s" % (t.__name__, e))
-    except Exception as e:  # a crash of the test is a failure too, with its reason
-        failures.append(t.__name__)
-        print("FAIL: %s: %s: %s" % (t.__name__, type(e).__name__, e))
-ran = len([t for t in tests if not only or t.__name__ in only])
-print("%d passed, %d failed" % (ran - len(failures), len(failures)))
-sys.exit(1 if failures else 0)
+sys.exit(suite.main(sys.argv[2:], tmp))

@@ -20,6 +20,9 @@ tests/test_report_html.js's. Usage: test_integrity77_description.py
 PATH_TO_FOURBAR [TEST...]."""
 import collections, csv, json, os, pathlib, re, shutil, subprocess, sys, tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
+
 exe = os.path.abspath(sys.argv[1])
 here = os.path.dirname(os.path.abspath(__file__))
 cases = os.path.normpath(os.path.join(here, "..", "cases"))
@@ -31,21 +34,8 @@ tmp = tempfile.mkdtemp(prefix="fourbar-integrity77d-")
 # a short run: enough for every column and key, refused or not before any work
 QUICK = ["--set", "run.models=analytic", "--no-figures"]
 RULE = "a name's '-' is written '_' in CSV columns and JSON keys"
-tests, failures = [], []
-
-
-def test(fn):
-    tests.append(fn)
-    return fn
-
-
-class Fail(Exception):
-    pass
-
-
-def check(ok, what):
-    if not ok:
-        raise Fail(what)
+suite = fb_script.Suite()  # the runner these scripts share (fb_script.py)
+test, check = suite.test, suite.check
 
 
 def run(*args, timeout=600):
@@ -319,20 +309,4 @@ def test_clearance_joint_listed_twice_refused():
 
 
 # ---- the runner ----------------------------------------------------------------------
-only = set(sys.argv[2:])
-for t in tests:
-    if only and t.__name__ not in only:
-        continue
-    try:
-        t()
-    except Fail as e:
-        failures.append(t.__name__)
-        print("FAIL: %s: %s" % (t.__name__, e))
-    except Exception as e:  # a crash of the test is a failure too, with its reason
-        failures.append(t.__name__)
-        print("FAIL: %s: %s: %s" % (t.__name__, type(e).__name__, e))
-ran = len([t for t in tests if not only or t.__name__ in only])
-print("%d passed, %d failed" % (ran - len(failures), len(failures)))
-if not failures:
-    shutil.rmtree(tmp, ignore_errors=True)
-sys.exit(1 if failures else 0)
+sys.exit(suite.main(sys.argv[2:], tmp))

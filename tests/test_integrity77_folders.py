@@ -19,6 +19,9 @@ removed. Nothing here fails on wall time: a timeout only turns a hang into
 a failure. Usage: test_integrity77_folders.py PATH_TO_FOURBAR [TEST...]."""
 import os, pathlib, shutil, signal, subprocess, sys, tempfile, time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
+
 exe = os.path.abspath(sys.argv[1])
 here = os.path.dirname(os.path.abspath(__file__))
 cases = os.path.normpath(os.path.join(here, "..", "cases"))
@@ -29,21 +32,8 @@ planar4 = os.path.join(cases, "templates", "planar_fourbar.ini")
 tiny = os.path.join(here, "studies", "tiny.ini")
 tmp = tempfile.mkdtemp(prefix="fourbar-integrity77f-")
 RUN = ["--set", "run.revolutions=2", "--set", "run.models=analytic", "--no-figures"]
-tests, failures = [], []
-
-
-def test(fn):
-    tests.append(fn)
-    return fn
-
-
-class Fail(Exception):
-    pass
-
-
-def check(ok, what):
-    if not ok:
-        raise Fail(what)
+suite = fb_script.Suite()  # the runner these scripts share (fb_script.py)
+test, check = suite.test, suite.check
 
 
 def run(*args, cwd=tmp, timeout=1200):
@@ -244,20 +234,4 @@ def test_killed_runs_leftovers_still_removed():
 
 
 # ---- the runner ----------------------------------------------------------------------
-only = set(sys.argv[2:])
-for t in tests:
-    if only and t.__name__ not in only:
-        continue
-    try:
-        t()
-    except Fail as e:
-        failures.append(t.__name__)
-        print("FAIL: %s: %s" % (t.__name__, e))
-    except Exception as e:  # a crash of the test is a failure too, with its reason
-        failures.append(t.__name__)
-        print("FAIL: %s: %s: %s" % (t.__name__, type(e).__name__, e))
-ran = len([t for t in tests if not only or t.__name__ in only])
-print("%d passed, %d failed" % (ran - len(failures), len(failures)))
-if not failures:
-    shutil.rmtree(tmp, ignore_errors=True)
-sys.exit(1 if failures else 0)
+sys.exit(suite.main(sys.argv[2:], tmp))

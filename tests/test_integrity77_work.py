@@ -19,6 +19,9 @@ test and a "N passed, N failed" line (tests, not checks); exit 1 on any
 failure."""
 import os, re, shutil, signal, subprocess, sys, tempfile, time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
+
 exe = os.path.abspath(sys.argv[1])
 here = os.path.dirname(os.path.abspath(__file__))
 cases = os.path.normpath(os.path.join(here, "..", "cases"))
@@ -27,21 +30,8 @@ planar4 = os.path.join(cases, "templates", "planar_fourbar.ini")
 sixbar = os.path.join(cases, "watt_sixbar.ini")
 tmp = tempfile.mkdtemp(prefix="fourbar-integrity77-")
 QUICK = ["--no-figures", "--no-report"]
-tests, failures = [], []
-
-
-def test(fn):
-    tests.append(fn)
-    return fn
-
-
-class Fail(Exception):
-    pass
-
-
-def check(ok, what):
-    if not ok:
-        raise Fail(what)
+suite = fb_script.Suite()  # the runner these scripts share (fb_script.py)
+test, check = suite.test, suite.check
 
 
 def run(args, timeout=600, env=None):
@@ -296,20 +286,5 @@ def progress_drawn_on_a_terminal():
     check(p.returncode == 0 and "\r" not in p.stderr, "in a pipe: %r" % p.stderr)
 
 
-def main():
-    for fn in tests:
-        try:
-            fn()
-        except Fail as e:
-            failures.append(fn.__name__)
-            print("FAIL %s: %s" % (fn.__name__, e))
-        except subprocess.TimeoutExpired as e:
-            failures.append(fn.__name__)
-            print("FAIL %s: timed out: %s" % (fn.__name__, e))
-    print("%d passed, %d failed" % (len(tests) - len(failures), len(failures)))
-    shutil.rmtree(tmp, ignore_errors=True)
-    sys.exit(1 if failures else 0)
-
-
 if __name__ == "__main__":
-    main()
+    sys.exit(suite.main(sys.argv[2:], tmp))

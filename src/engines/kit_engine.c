@@ -44,6 +44,7 @@ typedef struct {
   fb_kit_series s;     /* t, q, centre (n each) */
   double *col[FB_MECH_MAX_JOINTS]; /* clearance joint j's force, penetration, ecc x, ecc y,
                           state (FB_CONTACT_COLS x n; series.h FB_C_*), NULL: an ideal joint */
+  double *cols;        /* the block the clearance joints' col[] point into (owned) */
   double *force_max;   /* (FB_MECH_MAX_JOINTS x n): a sub-stepping binding's largest force of
                           each step per clearance joint, NULL: none */
   double *loads;       /* ((1 + 3 njoints) x n): the drive torque and every joint's reaction
@@ -157,7 +158,7 @@ static void kit_run_free(kit_run *r) {
   fb_kit_close(r->kit);
   fb_planar_free(r->m);
   free(r->s.t);
-  free(r->col[0]);
+  free(r->cols);
   free(r->force_max);
   free(r->loads);
   free(r);
@@ -208,6 +209,7 @@ static fb_status alloc_run(kit_run *r, size_t n, int nb, int sub_steps, fb_diag 
     free(col);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu kit samples", n);
   }
+  r->cols = col;
   for (int j = 0, k = 0; j < FB_MECH_MAX_JOINTS; j++)
     if (loose(r, j)) r->col[j] = col + (size_t)(k++) * FB_CONTACT_COLS * n;
   r->s.q = r->s.t + n;

@@ -6,8 +6,8 @@
 # changed at a time, and draws docs/siconos_kit_guide.svg with gnuplot: each
 # run's crank angle minus the .ref's against time (log scale).
 #   bash scripts/siconos_kit_guide.sh [OUT_DIR]   (default results/siconos_kit_guide)
-# The .ref is read from $FOURBAR_SICONOS_REF_DIR, else external/siconos_slider_crank
-# in the clone, else ../shared/siconos (docs/models.md says where to fetch it).
+# The .ref is read from external/siconos_slider_crank in the clone, or
+# $FOURBAR_SICONOS_REF_DIR (docs/models.md says where to fetch it).
 # Costs about 1.5 s of CPU.
 set -euo pipefail
 cd "$(dirname "$0")/.."

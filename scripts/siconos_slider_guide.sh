@@ -7,9 +7,8 @@
 # reproduction, and its difference from the .ref (whose own values are not
 # drawn: they stay out of the repository).
 #   bash scripts/siconos_slider_guide.sh [OUT_DIR]   (default results/siconos_slider_guide)
-# The reference output is read from $FOURBAR_SICONOS_REF_DIR, else
-# external/siconos_slider_crank in the clone, else ../shared/siconos
-# (docs/models.md says where to fetch it).
+# The reference output is read from external/siconos_slider_crank in the
+# clone, or $FOURBAR_SICONOS_REF_DIR (docs/models.md says where to fetch it).
 # Costs under a second.
 set -euo pipefail
 cd "$(dirname "$0")/.."

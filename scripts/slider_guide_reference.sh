@@ -7,8 +7,8 @@
 # and the example's .ref: the crank's angle and the slider's tilt against
 # time, ours over theirs, and the crank's difference.
 #   bash scripts/slider_guide_reference.sh [OUT_DIR]   (default results/slider_guide_reference)
-# The .ref is read from $FOURBAR_SICONOS_REF_DIR, else external/siconos_slider_crank
-# in the clone, else ../shared/siconos (docs/models.md says where to fetch it).
+# The .ref is read from external/siconos_slider_crank in the clone, or
+# $FOURBAR_SICONOS_REF_DIR (docs/models.md says where to fetch it).
 # Costs about 3 s of CPU.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -42,7 +42,7 @@ int fb_cmd_stackup_planar(const fb_case *c, int mask, const fb_cli_mc *mc, int j
   double each;
   const int nl0 = fb_planar_stackup_lengths(m); /* the evaluations the probe times */
   const double units = 2.0 * nl0 +
-                       ((mask & FB_TOL_CORNERS) ? ldexp(1.0, nl0 < 62 ? nl0 : 62) : 0.0) +
+                       ((mask & FB_TOL_CORNERS) ? ldexp(1.0, nl0) : 0.0) +
                        ((mask & FB_TOL_MONTECARLO) ? (double)mc->samples : 0.0);
   fb_status st = fb_planar_stackup_begin(&s, &each, units, c, m, &d);
   if (st != FB_OK) {

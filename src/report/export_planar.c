@@ -13,23 +13,12 @@
 /* the model the planar export writes: the one mujoco-ideal-nominal runs */
 #define PLANAR_MJCF_MODEL "mujoco-ideal-nominal"
 
-/* the leading comment: what the file is, the description's names of the
- * kit's bodies b<k> and joints j<k>, the start, the step */
-static void put_names(fb_text *t, const fb_case *c, const fb_planar *m, double h) {
-  char names[2048];
-  size_t n = 0;
-  names[0] = '\0';
-  for (int b = 1; b < m->nbodies && n < sizeof names; b++)
-    n += (size_t)snprintf(names + n, sizeof names - n, "%sbody b%d is %s", b > 1 ? ", " : "",
-                          b - 1, m->body[b].name);
-  for (int j = 0; j < m->njoints && n < sizeof names; j++)
-    n += (size_t)snprintf(names + n, sizeof names - n, ", joint j%d is %s", j, m->joint[j].name);
-  fb_text_comment(t, "fourbar export of case %s ([linkage] type = planar), the ideal mechanism as "
-                  "model %s builds it (docs/contact-params.md): %s (a joint not among the <joint> "
-                  "elements closes a loop as an equality connect). Start: keyframe \"start\" "
-                  "(mj_resetDataKeyframe), the assembly with the drive's velocities; the drive "
-                  "joint %s holds %.6g rad/s through its armature (a flywheel). Step %.4g s.",
-                  c->name, PLANAR_MJCF_MODEL, names, m->joint[m->drive].name, fb_case_omega2(c), h);
+/* the leading comment: what the file is (the MuJoCo binding's own comment
+ * follows: names, start, drive and step, mujoco_kit.c) */
+static void put_header(fb_text *t, const fb_case *c) {
+  fb_text_comment(t, "fourbar export of case %s ([linkage] type = planar): the ideal mechanism "
+                  "as model %s builds it (docs/contact-params.md), for MuJoCo 2.2 and 3.x.",
+                  c->name, PLANAR_MJCF_MODEL);
   fb_text_put(t, "\n");
 }
 
@@ -48,9 +37,10 @@ fb_status fb_export_planar_mjcf(char *buf, size_t size, const fb_case *c, int id
   fb_status st = fb_planar_of_case(&m, c, NULL, diag);
   if (st != FB_OK) return st;
   const double h = fb_planar_run_step(c);
-  const fb_kit_world o = {c->gravity, h, &c->solver, m->nbodies - 1, m->njoints, c, NULL, NULL};
+  const fb_kit_world o = {.gravity = c->gravity, .h = h, .solver = &c->solver,
+                          .nbodies = m->nbodies - 1, .njoints = m->njoints, .c = c};
   fb_text t = {buf, size, 0, 0};
-  put_names(&t, c, m, h);
+  put_header(&t, c);
   if (t.overflow) st = fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than %zu bytes", size);
   if (st == FB_OK) st = fb_kit_model_text(b, m, fb_case_omega2(c), &o, buf + t.len, size - t.len, diag);
   fb_planar_free(m);

@@ -174,8 +174,9 @@ static fb_status free_start(double **y0, const fb_planar_run *r, const fb_kit_cl
 fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
   const fb_model *mt = fb_model_find(p->name);
   const fb_kit_binding *b = fb_planar_kit_of(p->name);
-  fb_kit_world o = {r->c.gravity, p->h, &r->c.solver, r->m->nbodies - 1, r->m->njoints,
-                    &r->c, NULL, NULL}; /* the assembly start */
+  fb_kit_world o = {.gravity = r->c.gravity, .h = p->h, .solver = &r->c.solver,
+                    .nbodies = r->m->nbodies - 1, .njoints = r->m->njoints,
+                    .c = &r->c}; /* the assembly start */
   fb_kit_series s = {.n = p->n, .h = p->h, .t = p->t, .q = p->q}; /* no centres */
   /* a binding that reports joint reactions gives the analytic model's load
    * columns (planar_run.h's torque and reaction) */

@@ -91,6 +91,10 @@ typedef struct {
   dk_contact ct[FB_PLANAR_SPEC_MAX_JOINTS];
   double fmax[FB_PLANAR_SPEC_MAX_JOINTS]; /* the largest force applied over the last step's
                                              sub-steps [N] (contact_force_max) */
+  fb_kit_world o;              /* the walk's settings: names, drive (kit.h) */
+  int nj;                      /* ideal joints added */
+  int ends[FB_PLANAR_SPEC_MAX_JOINTS][2];     /* their body handles */
+  unsigned char slide[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: prismatic */
 } dk_world;
 
 static fb_status dart_error(fb_status st, const char *what, const char *err, fb_diag *diag) {
@@ -109,6 +113,7 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
   }
   k->h = o->h;
   k->nsub = 1;
+  k->o = *o;
   *out = k;
   return FB_OK;
 }
@@ -123,8 +128,13 @@ static fb_status kit_add_body(void *w, const fb_kit_body *b, fb_diag *diag) {
 static fb_status add_joint(void *w, int prismatic, int b0, int b1, const double at[2],
                            const double axis[2], fb_diag *diag) {
   char err[FB_DIAG_SIZE];
+  dk_world *k = w;
+  if (k->nj >= FB_PLANAR_SPEC_MAX_JOINTS)
+    return fb_diag_set(diag, FB_ERR_RANGE, "the DART kit takes %d joints at most",
+                       FB_PLANAR_SPEC_MAX_JOINTS);
   if (fb_dart_add_joint(dart(w), prismatic, b0, b1, at, axis, err, sizeof err) != 0)
     return dart_error(FB_ERR_NOMEM, "joint", err, diag);
+  k->ends[k->nj][0] = b0, k->ends[k->nj][1] = b1, k->slide[k->nj++] = (unsigned char)prismatic;
   return FB_OK;
 }
 
@@ -138,9 +148,19 @@ static fb_status kit_add_prismatic(void *w, int b0, int b1, const double at[2],
   return add_joint(w, 1, b0, b1, at, axis, diag);
 }
 
+/* the tree (fb_kit_tree: the drive, the prismatic joints, then the
+ * revolute ones in the order added), then the skeleton */
 static fb_status kit_close_loop(void *w, fb_diag *diag) {
   char err[FB_DIAG_SIZE];
-  if (fb_dart_build(dart(w), err, sizeof err) != 0)
+  dk_world *k = w;
+  unsigned char tree[FB_PLANAR_SPEC_MAX_JOINTS];
+  const int cut = fb_kit_tree(&k->o, k->nj, (const int (*)[2])k->ends, k->slide, NULL, tree);
+  if (cut >= 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "DART cannot close a loop at prismatic joint '%s': "
+                       "it closes a loop at a pin (BallJointConstraint), and the description's "
+                       "prismatic joints (with the drive) form a loop, so one of them must close "
+                       "it; make one of that loop's joints revolute", fb_kit_joint_name(&k->o, cut));
+  if (fb_dart_build(dart(w), tree, err, sizeof err) != 0)
     return dart_error(FB_ERR_ARG, "skeleton", err, diag);
   return FB_OK;
 }

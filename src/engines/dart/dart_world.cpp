@@ -141,26 +141,6 @@ extern "C" int fb_dart_add_joint(fb_dart_world *w, int prismatic, int b0, int b1
 
 namespace {
 
-// the spanning forest: prismatic joints first, then revolute ones, each in
-// the order added; a joint whose bodies are joined already closes a loop
-void choose_tree(fb_dart_world *w) {
-  const int nb = (int)w->body.size();
-  std::vector<int> set((size_t)nb + 1);
-  std::iota(set.begin(), set.end(), 0);
-  auto find = [&set](int i) {
-    while (set[(size_t)i] != i) i = set[(size_t)i] = set[(size_t)set[(size_t)i]];
-    return i;
-  };
-  for (int pass = 1; pass >= 0; pass--)
-    for (Joint &j : w->joint) {
-      if (j.prismatic != pass) continue;
-      const int a = find(j.b[0] < 0 ? nb : j.b[0]), b = find(j.b[1] < 0 ? nb : j.b[1]);
-      if (a == b) continue;
-      set[(size_t)a] = b;
-      j.tree = 1;
-    }
-}
-
 // the joint properties common to every kind: its frame at world point at,
 // aligned with the world at assembly, fixed in the parent and in the child
 template <class P> void place(P &p, const Body *parent, const Body &child, const double at[2]) {
@@ -257,16 +237,18 @@ void grow(fb_dart_world *w) {
 
 } // namespace
 
-extern "C" int fb_dart_build(fb_dart_world *w, char *err, size_t size) {
+extern "C" int fb_dart_build(fb_dart_world *w, const unsigned char *tree, char *err,
+                             size_t size) {
   try {
-    choose_tree(w);
-    for (size_t j = 0; j < w->joint.size(); j++)
+    for (size_t j = 0; j < w->joint.size(); j++) {
+      w->joint[j].tree = tree[j];
       if (!w->joint[j].tree && w->joint[j].prismatic) {
         char m[160];
         std::snprintf(m, sizeof m, "DART closes a loop at a revolute joint only "
                       "(BallJointConstraint), and joint %zu, which closes one, is prismatic", j);
         return fail(err, size, m);
       }
+    }
     grow(w);
     w->world->addSkeleton(w->skel);
     // every loop closed at its pin, as examples/rigid_loop closes its chain

@@ -8,10 +8,9 @@
  * along an in-plane axis, PlanarJoint x, y, theta for a body no joint
  * holds); a loop is closed by a constraint of DART's constraint solver
  * (BallJointConstraint at the pin, as examples/rigid_loop closes its
- * chain). fb_dart_build chooses the tree: prismatic joints first, then
- * revolute ones, in the description's order, each joint that would close
- * a cycle becoming a loop constraint (which must therefore be a revolute
- * joint). The world steps by semi-implicit Euler with velocity-level
+ * chain). fb_dart_build takes the tree its caller chose (the kit's
+ * fb_kit_tree), each joint out of it becoming a loop constraint (which
+ * must therefore be a revolute joint). The world steps by semi-implicit Euler with velocity-level
  * impulses (World::step); the drive is a SERVO actuator, a velocity
  * motor the constraint solver keeps at its command within the force limit.
  * SI throughout; bodies and joints are numbered in the order added, the
@@ -57,10 +56,11 @@ int fb_dart_add_body(fb_dart_world *w, double mass, double inertia, const double
 int fb_dart_add_joint(fb_dart_world *w, int prismatic, int b0, int b1, const double at[2],
                       const double axis[2], char *err, size_t size);
 
-/* Builds the skeleton from the bodies and joints added (the tree, its
- * joints' start velocities, the loop constraints). Errors: a loop closed
- * at a prismatic joint; DART's exceptions. */
-int fb_dart_build(fb_dart_world *w, char *err, size_t size);
+/* Builds the skeleton from the bodies and joints added: tree[j] 1 for a
+ * joint of the tree, 0 for one that closes a loop (its constraint); the
+ * tree's joints' start velocities. Errors: a loop closed at a prismatic
+ * joint; DART's exceptions. */
+int fb_dart_build(fb_dart_world *w, const unsigned char *tree, char *err, size_t size);
 
 /* Drives joint j (its index among those added) at rate [rad/s] of body b1
  * relative to body b0. Errors: j not a revolute joint of the tree. */

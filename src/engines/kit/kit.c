@@ -57,6 +57,67 @@ static void slide_axis(double axis[2], const fb_planar *m, const double *q, int 
                    pj->axis);
 }
 
+/* description joint index of the joint added at place (mask's joints
+ * not added), or -1 */
+static int joint_at(const fb_planar *m, unsigned mask, int place) {
+  for (int j = 0, added = 0; m && j < m->njoints; j++) {
+    if (mask & (1u << j)) continue;
+    if (added++ == place) return j;
+  }
+  return -1;
+}
+
+/* the driven joint's place among the joints added, -1: none (undriven,
+ * or clearance at the driven joint) */
+static int drive_place(const fb_planar *m, unsigned mask) {
+  if (m->drive < 0 || (mask & (1u << m->drive))) return -1;
+  int place = 0;
+  for (int j = 0; j < m->drive; j++) place += !(mask & (1u << j));
+  return place;
+}
+
+const char *fb_kit_joint_name(const fb_kit_world *o, int place) {
+  const int j = o->mech && place >= 0 ? joint_at(o->mech, o->mask, place) : -1;
+  return j < 0 ? "?" : o->mech->joint[j].name;
+}
+
+const char *fb_kit_body_name(const fb_kit_world *o, int b) {
+  if (!o->mech || b < FB_KIT_GROUND || b + 1 >= o->mech->nbodies) return "?";
+  return o->mech->body[b == FB_KIT_GROUND ? FB_PLANAR_GROUND : b + 1].name;
+}
+
+/* node i's root in a union-find forest, halving the path */
+static int root_of(int *set, int i) {
+  while (set[i] != i) i = set[i] = set[set[i]];
+  return i;
+}
+
+int fb_kit_tree(const fb_kit_world *o, int njoints, const int (*ends)[2],
+                const unsigned char *prismatic, const int *order, unsigned char *tree) {
+  int set[FB_PLANAR_SPEC_MAX_BODIES + 1], nodes = 1; /* the ground and every moving body */
+  for (int j = 0; j < njoints; j++) {
+    tree[j] = 0;
+    nodes = ends[j][0] + 2 > nodes ? ends[j][0] + 2 : nodes;
+    nodes = ends[j][1] + 2 > nodes ? ends[j][1] + 2 : nodes;
+  }
+  if (o->mech && o->mech->nbodies > nodes) nodes = o->mech->nbodies;
+  if (nodes > FB_PLANAR_SPEC_MAX_BODIES + 1) nodes = FB_PLANAR_SPEC_MAX_BODIES + 1;
+  for (int i = 0; i < nodes; i++) set[i] = i;
+  for (int pass = 0; pass < 3; pass++) /* the drive, the prismatic joints, the revolute ones */
+    for (int r = 0; r < njoints; r++) {
+      const int j = order ? order[r] : r;
+      const int group = j == o->drive ? 0 : prismatic[j] ? 1 : 2;
+      if (group != pass) continue;
+      const int a = root_of(set, ends[j][0] + 1), b = root_of(set, ends[j][1] + 1);
+      if (a == b) continue;
+      set[a] = b;
+      tree[j] = 1;
+    }
+  for (int j = 0; j < njoints; j++)
+    if (!tree[j] && prismatic[j]) return j;
+  return -1;
+}
+
 /* the walk: bodies at q (the start's coordinates; moved: not the
  * assembly), joints (but the clearance joints of mask), loop closure,
  * drive */
@@ -158,6 +219,7 @@ struct fb_kit_runner {
   fb_kit_clearance *cl;  /* NULL: every joint ideal */
   fb_kit_series *s;
   fb_kit_pipe p;         /* the clearance pipeline's state between steps */
+  fb_kit_world o;        /* the caller's world settings, the walk's fields set (kit.h) */
   size_t i;              /* samples filled */
   fb_status st;          /* FB_OK, or what stopped the run (sticky) */
 };
@@ -276,7 +338,11 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
                      "([drive] joint = none) needs its start velocities (the case's "
                      "initial_omega_rad_s, fb_kit_world's qd0)", b->engine);
   else st = start_velocities(qd, m, omega, diag);
-  if (st == FB_OK) st = b->world_new(&k->w, o, diag);
+  k->o = *o;
+  k->o.mech = m;
+  k->o.mask = mask;
+  k->o.drive = drive_place(m, mask);
+  if (st == FB_OK) st = b->world_new(&k->w, &k->o, diag);
   if (st == FB_OK) st = build(b, k->w, m, omega, q, qd, o->q0 != NULL, cl, diag);
   free(q);
   const fb_kit_clearance none = {0};
@@ -324,8 +390,10 @@ fb_status fb_kit_model_text(const fb_kit_binding *b, const fb_planar *m, double 
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding writes no model file",
                        b->engine);
   fb_kit_series none = {0}; /* opened, never advanced: no sample is taken */
+  fb_kit_world file = *o;
+  file.model_file = 1;
   fb_kit_runner *k;
-  fb_status st = fb_kit_open(&k, b, m, omega, o, NULL, &none, diag);
+  fb_status st = fb_kit_open(&k, b, m, omega, &file, NULL, &none, diag);
   if (st == FB_OK) st = b->model_text(k->w, buf, size, diag);
   fb_kit_close(k);
   return st;

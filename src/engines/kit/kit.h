@@ -82,7 +82,41 @@ typedef struct {
                                 [m], theta [rad] per moving body and their rates, the
                                 ideal joints placed where their body[0] puts them (a start
                                 with a clearance joint's pin off its hole's centre) */
+  int model_file;            /* 1: the world is built to be written as the engine's own model
+                                file for a user (fb_kit_model_text): a binding may choose
+                                settings that hold at a user's step rather than the run's */
+  /* set by the walk (fb_kit_open) whatever the caller gave, for a binding's
+   * names and its tree (fb_kit_joint_name, fb_kit_body_name, fb_kit_tree): */
+  const fb_planar *mech;     /* the description built */
+  unsigned mask;             /* its clearance joints (bit j: joint j, not added as a joint) */
+  int drive;                 /* the driven joint's place among the joints added (add_drive's
+                                joint), -1: undriven or clearance at the driven joint */
 } fb_kit_world;
+
+/* The description's name of the joint added at place (0 .., the order
+ * add_revolute and add_prismatic were called, clearance joints left out),
+ * or "?" when o->mech is not set or place is out of range. */
+const char *fb_kit_joint_name(const fb_kit_world *o, int place);
+
+/* The description's name of body handle b ("ground" for FB_KIT_GROUND),
+ * or "?" when o->mech is not set or b is out of range. */
+const char *fb_kit_body_name(const fb_kit_world *o, int b);
+
+/* The spanning forest an engine that builds its joints as a tree keeps
+ * (MuJoCo, Simbody, DART: a tree of joints from the ground, each other
+ * joint closing a loop as a constraint at a pin): Kruskal's forest over the
+ * ground (node 0) and the moving bodies (handle b: node b + 1), taking the
+ * joints in turn: the driven joint o->drive (a tree joint carries the
+ * drive), the prismatic joints (a loop closes at a pin), then the revolute
+ * ones, each group in the engine's preferred order `order` (njoints places,
+ * a permutation; NULL: the order added). ends[j] are joint place j's body
+ * handles, prismatic[j] 1 for a slide. tree[j] (njoints) is set to 1 for a
+ * tree joint, 0 for one that closes a loop. Returns -1, or the place of
+ * the first prismatic joint that closes a loop all the same (the
+ * description's prismatic joints, with the drive, form a loop among
+ * themselves): the engine's refusal names it (fb_kit_joint_name). */
+int fb_kit_tree(const fb_kit_world *o, int njoints, const int (*ends)[2],
+                const unsigned char *prismatic, const int *order, unsigned char *tree);
 
 /* One moving body at the start. */
 typedef struct {

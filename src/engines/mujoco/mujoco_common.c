@@ -38,3 +38,16 @@ void fb_mujoco_loop_solref(const fb_mujoco_opts *o, double h, double sr[2]) {
   sr[0] = -(o->loop_stiffness > 0.0 ? o->loop_stiffness : 1.0 / (h * h));
   sr[1] = -(o->loop_damping > 0.0 ? o->loop_damping : 1.0 / h);
 }
+
+int fb_mujoco_export_integrator(const fb_mujoco_opts *o) {
+  return o->integrator == FB_MUJOCO_AUTO ? FB_MUJOCO_RK4 : o->integrator;
+}
+
+void fb_mujoco_export_loop_solref(const fb_mujoco_opts *o, int integrator, double h,
+                                  double sr[2]) {
+  fb_mujoco_loop_solref(o, h, sr);
+  if (o->loop_stiffness > 0.0 || o->loop_damping > 0.0) return;
+  sr[0] = 2.0 * h;
+  sr[1] = integrator == FB_MUJOCO_RK4 ? FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_RK4
+                                      : FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_EULER;
+}

@@ -126,6 +126,7 @@ typedef struct {
                           planar freedom from the world) */
   unsigned char *tree; /* (nj) 1: a tree joint; 0: closes a loop */
   int drive;           /* the driven joint */
+  double drive_qvel;   /* its qvel at the drive's rate [rad/s] (its hinge's sense) */
   int integrator;      /* fb_mujoco_integrator, resolved */
   mjModel *m;
   mjData *d;
@@ -137,6 +138,7 @@ typedef struct {
                           centre x, y [m/s^2], about +z [rad/s^2] (kit.h's body_accel) */
   double *react;       /* (nj x 3) every ideal joint's reaction there (kit.h's reactions) */
   double *frc;         /* ((nb + 1) x 6) MuJoCo's interaction forces less the contacts' */
+  fb_kit_world o;      /* the walk's settings: names, drive, model_file (kit.h) */
 } mk_world;
 
 static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
@@ -163,6 +165,7 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
   k->opts = o->c ? o->c->mujoco : fb_mujoco_opts_default();
   k->nj_all = o->njoints;
   k->drive = -1;
+  k->o = *o;
   *out = k;
   return FB_OK;
 }
@@ -193,40 +196,77 @@ static fb_status kit_add_prismatic(void *w, int b0, int b1, const double at[2],
   return add_joint(w, 1, b0, b1, at, axis);
 }
 
-/* the tree, breadth first from the ground: at each body its joints to
- * bodies not yet reached, prismatic ones first (MuJoCo closes a loop at a
- * revolute joint only); a body no ideal joint reaches hangs from the world
- * with planar freedom */
-static fb_status kit_close_loop(void *w, fb_diag *diag) {
-  mk_world *k = w;
+/* the joints in breadth-first order from the ground (at each body its
+ * prismatic joints, then its revolute ones; the four-bar's tree), every
+ * joint once: the order fb_kit_tree takes each group in */
+static void bfs_order(const mk_world *k, int *order) {
   const int nn = k->nb + 1;
-  int *queue = malloc((size_t)nn * sizeof *queue), head = 0, tail = 0;
-  if (!queue) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  for (int v = 0; v < nn; v++) k->parent[v] = -2; /* not reached */
-  k->parent[0] = -1;
-  queue[tail++] = 0;
-  for (;;) {
+  int queue[FB_PLANAR_SPEC_MAX_BODIES + 1], head = 0, tail = 0, n = 0;
+  unsigned char seen[FB_PLANAR_SPEC_MAX_BODIES + 1] = {0}, listed[FB_PLANAR_SPEC_MAX_JOINTS] = {0};
+  for (int start = 0; start < nn; start++) {
+    if (seen[start]) continue;
+    seen[start] = 1, queue[tail++] = start;
     while (head < tail) {
       const int u = queue[head++];
       for (int pass = 1; pass >= 0; pass--)
         for (int j = 0; j < k->nj; j++) {
           const mk_joint *J = &k->joint[j];
           const int a = J->b0 + 1, b = J->b1 + 1, v = a == u ? b : a;
-          if (J->prismatic != pass || (a != u && b != u) || k->parent[v] != -2) continue;
-          k->parent[v] = u, k->edge[v] = j, k->tree[j] = 1, queue[tail++] = v;
-          k->joint[j].node = v;
+          if (J->prismatic != pass || (a != u && b != u) || listed[j]) continue;
+          listed[j] = 1, order[n++] = j;
+          if (!seen[v]) seen[v] = 1, queue[tail++] = v;
         }
+    }
+  }
+}
+
+/* the tree (fb_kit_tree: the drive, the prismatic joints, then the
+ * revolute ones, each group breadth first from the ground), then its
+ * parent links outwards from the ground; a body no ideal joint reaches
+ * hangs from the world with planar freedom. MuJoCo's connect equality
+ * closes a loop at a pin only: a prismatic joint left out is refused */
+static fb_status kit_close_loop(void *w, fb_diag *diag) {
+  mk_world *k = w;
+  const int nn = k->nb + 1;
+  if (nn > FB_PLANAR_SPEC_MAX_BODIES + 1 || k->nj > FB_PLANAR_SPEC_MAX_JOINTS)
+    return fb_diag_set(diag, FB_ERR_RANGE, "the MuJoCo kit takes %d bodies and %d joints at most",
+                       FB_PLANAR_SPEC_MAX_BODIES, FB_PLANAR_SPEC_MAX_JOINTS);
+  for (int b = 0; b < k->nb; b++)
+    if (strcmp(fb_kit_body_name(&k->o, b), "world") == 0)
+      return fb_diag_set(diag, FB_ERR_ARG, "body 'world': MuJoCo names its own world body so; "
+                         "give the body another name");
+  int order[FB_PLANAR_SPEC_MAX_JOINTS], ends[FB_PLANAR_SPEC_MAX_JOINTS][2];
+  unsigned char slide[FB_PLANAR_SPEC_MAX_JOINTS];
+  for (int j = 0; j < k->nj; j++)
+    ends[j][0] = k->joint[j].b0, ends[j][1] = k->joint[j].b1, slide[j] = (unsigned char)k->joint[j].prismatic;
+  bfs_order(k, order);
+  const int cut = fb_kit_tree(&k->o, k->nj, (const int (*)[2])ends, slide, order, k->tree);
+  if (cut >= 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "MuJoCo cannot close a loop at prismatic joint '%s': "
+                       "its connect equality holds a pin, and the description's prismatic joints "
+                       "(with the drive) form a loop, so one of them must close it; make one "
+                       "of that loop's joints revolute", fb_kit_joint_name(&k->o, cut));
+  int queue[FB_PLANAR_SPEC_MAX_BODIES + 1], head = 0, tail = 0;
+  for (int v = 0; v < nn; v++) k->parent[v] = -2; /* not reached */
+  k->parent[0] = -1;
+  queue[tail++] = 0;
+  for (;;) {
+    while (head < tail) {
+      const int u = queue[head++];
+      for (int r = 0; r < k->nj; r++) {
+        const int j = order[r];
+        const mk_joint *J = &k->joint[j];
+        const int a = J->b0 + 1, b = J->b1 + 1, v = a == u ? b : a;
+        if (!k->tree[j] || (a != u && b != u) || k->parent[v] != -2) continue;
+        k->parent[v] = u, k->edge[v] = j, queue[tail++] = v;
+        k->joint[j].node = v;
+      }
     }
     int v = 1;
     while (v < nn && k->parent[v] != -2) v++;
     if (v == nn) break;
     k->parent[v] = 0, k->edge[v] = -1, queue[tail++] = v;
   }
-  free(queue);
-  for (int j = 0; j < k->nj; j++)
-    if (!k->tree[j] && k->joint[j].prismatic)
-      return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit closes a loop at a revolute joint "
-                         "only, and the %d-th joint added (prismatic) closes one", j + 1);
   return FB_OK;
 }
 
@@ -245,18 +285,19 @@ static void to_frame(double out[2], double a, double x, double y) {
 /* node v's own joint(s): planar freedom, or its tree joint in its frame */
 static void put_joints(fb_text *t, const mk_world *k, int v) {
   const double *p = pose(k, v);
-  if (k->edge[v] < 0) {
-    fb_text_put(t, "<joint name=\"b%d_x\" type=\"slide\" axis=\"1 0 0\"/>"
-                "<joint name=\"b%d_y\" type=\"slide\" axis=\"0 1 0\"/>"
-                "<joint name=\"b%d_z\" type=\"hinge\" axis=\"0 0 1\"/>\n", v - 1, v - 1, v - 1);
+  if (k->edge[v] < 0) { /* "body:x": ':' is in no description's name */
+    const char *n = fb_kit_body_name(&k->o, v - 1);
+    fb_text_put(t, "<joint name=\"%s:x\" type=\"slide\" axis=\"1 0 0\"/>"
+                "<joint name=\"%s:y\" type=\"slide\" axis=\"0 1 0\"/>"
+                "<joint name=\"%s:z\" type=\"hinge\" axis=\"0 0 1\"/>\n", n, n, n);
     return;
   }
   const mk_joint *J = &k->joint[k->edge[v]];
   double at[2], ax[2];
   to_frame(at, p[2], J->at[0] - p[0], J->at[1] - p[1]);
   to_frame(ax, p[2], J->axis[0], J->axis[1]);
-  fb_text_put(t, "<joint name=\"j%d\" type=\"%s\" pos=\"%.17g %.17g 0\" axis=\"%.17g %.17g %d\"",
-              k->edge[v], J->prismatic ? "slide" : "hinge", at[0], at[1],
+  fb_text_put(t, "<joint name=\"%s\" type=\"%s\" pos=\"%.17g %.17g 0\" axis=\"%.17g %.17g %d\"",
+              fb_kit_joint_name(&k->o, k->edge[v]), J->prismatic ? "slide" : "hinge", at[0], at[1],
               J->prismatic ? ax[0] : 0.0, J->prismatic ? ax[1] : 0.0, !J->prismatic);
   if (k->edge[v] == k->drive) fb_text_put(t, " armature=\"%.17g\"", k->opts.drive_armature);
   fb_text_put(t, "/>\n");
@@ -270,9 +311,9 @@ static void put_body(fb_text *t, const mk_world *k, int v) {
   const fb_kit_body *b = &k->body[v - 1];
   double r[2];
   to_frame(r, q[2], p[0] - q[0], p[1] - q[1]);
-  fb_text_put(t, "<body name=\"b%d\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n"
+  fb_text_put(t, "<body name=\"%s\" pos=\"%.17g %.17g 0\" euler=\"0 0 %.17g\">\n"
               "<inertial pos=\"0 0 0\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n",
-              v - 1, r[0], r[1], p[2] - q[2], b->mass, 0.5 * b->inertia, 0.5 * b->inertia,
+              fb_kit_body_name(&k->o, v - 1), r[0], r[1], p[2] - q[2], b->mass, 0.5 * b->inertia, 0.5 * b->inertia,
               b->inertia);
   put_joints(t, k, v);
   for (int c = 1; c <= k->nb; c++)
@@ -288,8 +329,9 @@ static void put_connect(fb_text *t, const mk_world *k, const mk_joint *J, const 
   const double *p = pose(k, b1 + 1);
   double a[2];
   to_frame(a, p[2], J->at[0] - p[0], J->at[1] - p[1]);
-  fb_text_put(t, "<connect body1=\"b%d\"", b1);
-  if (b2 != FB_KIT_GROUND) fb_text_put(t, " body2=\"b%d\"", b2);
+  fb_text_put(t, "<connect name=\"%s\" body1=\"%s\"", fb_kit_joint_name(&k->o, (int)(J - k->joint)),
+              fb_kit_body_name(&k->o, b1));
+  if (b2 != FB_KIT_GROUND) fb_text_put(t, " body2=\"%s\"", fb_kit_body_name(&k->o, b2));
   fb_text_put(t, " anchor=\"%.17g %.17g 0\" solref=\"%.17g %.17g\" solimp=\"%.17g %.17g "
               FB_MUJOCO_SOLIMP_TAIL "\"/>\n", a[0], a[1], sr[0], sr[1], k->opts.loop_impedance,
               k->opts.loop_impedance);
@@ -298,17 +340,44 @@ static void put_connect(fb_text *t, const mk_world *k, const mk_joint *J, const 
 /* the model's MJCF; with qvel (nv), a keyframe "start" holding it (qpos
  * its default, 0: the assembly) */
 static void put_mjcf(fb_text *t, const mk_world *k, const double *qvel, int nv) {
-  fb_text_put(t, "<mujoco model=\"planar\">\n<compiler angle=\"radian\" inertiafromgeom=\"false\"/>"
+  if (k->o.model_file) /* a user's file: what it holds, at its top */
+    fb_text_comment(t, "Bodies and joints: the case's names (a joint not among the <joint> "
+                    "elements closes a loop as the equality connect of its name; a body no "
+                    "ideal joint holds has the slides NAME:x, NAME:y and the hinge NAME:z). "
+                    "Start: the bodies sit at the assembly, so qpos0 is the start "
+                    "configuration; keyframe \"start\" (mj_resetDataKeyframe(m, d, 0)) starts "
+                    "there at the drive's speed with every joint's start velocity, and a plain "
+                    "load (mj_resetData) starts there at rest. Drive: actuator \"drive\" on "
+                    "joint %s, torque kv (w + ctrl - qvel), w = %.9g rad/s its start rate, "
+                    "kv = armature / %.3g s (its armature, %.3g kg m^2, a flywheel): ctrl = 0 "
+                    "holds the case's speed, ctrl adds to it [rad/s]. Step: written at %.6g s, "
+                    "integrator %s; any timestep from that to %.3g s holds: the loops' solref "
+                    "is in the time-constant form, whose time constant MuJoCo raises to "
+                    "2 x timestep (refsafe), damping ratio %.2g for RK4 (%.2g for Euler or "
+                    "implicit).", k->drive >= 0 ? fb_kit_joint_name(&k->o, k->drive) : "none",
+                    k->drive_qvel, FB_MUJOCO_EXPORT_DRIVE_TAU_S, k->opts.drive_armature, k->h,
+                    fb_mujoco_integrator_xml(k->integrator), FB_MUJOCO_EXPORT_H_USER_MAX_S,
+                    FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_RK4, FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_EULER);
+  if (k->o.model_file) fb_text_put(t, "\n");
+  fb_text_put(t, "<mujoco model=\"%s\">\n<compiler angle=\"radian\" inertiafromgeom=\"false\"/>"
               "\n<option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\"/>\n"
-              "<worldbody>\n", k->h, -k->gravity, fb_mujoco_integrator_xml(k->integrator));
+              "<worldbody>\n", k->o.c && k->o.c->name[0] ? k->o.c->name : "planar", k->h,
+              -k->gravity, fb_mujoco_integrator_xml(k->integrator));
   for (int v = 1; v <= k->nb; v++)
     if (k->parent[v] == 0) put_body(t, k, v);
   fb_text_put(t, "</worldbody>\n<equality>\n");
   double sr[2];
-  fb_mujoco_loop_solref(&k->opts, k->h, sr);
+  if (k->o.model_file) fb_mujoco_export_loop_solref(&k->opts, k->integrator, k->h, sr);
+  else fb_mujoco_loop_solref(&k->opts, k->h, sr);
   for (int j = 0; j < k->nj; j++)
     if (!k->tree[j]) put_connect(t, k, &k->joint[j], sr);
   fb_text_put(t, "</equality>\n");
+  if (k->o.model_file && k->drive >= 0) { /* the export's velocity servo (mujoco_common.h) */
+    const double kv = k->opts.drive_armature / FB_MUJOCO_EXPORT_DRIVE_TAU_S;
+    fb_text_put(t, "<actuator>\n<general name=\"drive\" joint=\"%s\" gainprm=\"%.17g\" "
+                "biastype=\"affine\" biasprm=\"%.17g 0 %.17g\"/>\n</actuator>\n",
+                fb_kit_joint_name(&k->o, k->drive), kv, kv * k->drive_qvel, -kv);
+  }
   if (qvel) {
     fb_text_put(t, "<keyframe>\n<key name=\"start\" time=\"0\" qvel=\"");
     for (int i = 0; i < nv; i++) fb_text_put(t, "%s%.17g", i ? " " : "", qvel[i]);
@@ -357,13 +426,17 @@ static fb_status start_velocity(mk_world *k, fb_diag *diag) {
 /* the flywheel on the driven joint, then the model: written, compiled, at
  * its start */
 static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
-  (void)rate; /* the start carries it (the kit's velocities); the flywheel keeps it */
+  /* the start carries the rate (the kit's velocities); the flywheel keeps
+   * it (a model file's servo too) */
   mk_world *k = w;
   if (joint >= k->nj || (joint >= 0 && !k->tree[joint])) /* -1: undriven (kit.h) */
-    return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit drives a joint of its tree only (the "
-                       "%d-th joint added closes a loop)", joint + 1);
+    return fb_diag_set(diag, FB_ERR_ARG, "the MuJoCo kit drives a joint of its tree only, and "
+                       "the driven joint '%s' closes a loop", fb_kit_joint_name(&k->o, joint));
   k->drive = joint;
-  k->integrator = fb_mujoco_integrator_resolve(&k->opts, k->nj < k->nj_all);
+  if (joint >= 0) /* the hinge's qvel: its child's rate relative to its parent */
+    k->drive_qvel = k->joint[joint].node - 1 == k->joint[joint].b1 ? rate : -rate;
+  k->integrator = k->o.model_file ? fb_mujoco_export_integrator(&k->opts)
+                                  : fb_mujoco_integrator_resolve(&k->opts, k->nj < k->nj_all);
   const size_t size = MK_MJCF_BASE + (size_t)(k->nb + k->nj) * MK_MJCF_PER_ITEM;
   char *buf = malloc(size);
   if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the MJCF text");
@@ -375,11 +448,7 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
   if (!k->m) return FB_ERR_ARG;
   if (!(k->d = mj_makeData(k->m)))
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for MuJoCo's data");
-  for (int b = 0; b < k->nb; b++) {
-    char name[16];
-    snprintf(name, sizeof name, "b%d", b);
-    k->bid[b] = mj_name2id(k->m, mjOBJ_BODY, name);
-  }
+  for (int b = 0; b < k->nb; b++) k->bid[b] = mj_name2id(k->m, mjOBJ_BODY, fb_kit_body_name(&k->o, b));
   for (int j = 0; j < FB_KIT_SLOTS; j++) {
     mk_contact *c = &k->ct[j];
     if (!c->in) continue;

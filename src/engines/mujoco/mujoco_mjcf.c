@@ -218,50 +218,8 @@ static void put_slider(text *t, const mj_def *def) {
 }
 
 /* ---- exported only: what a user may change --------------------------------
- * A user's first edit of the file is its <option timestep>: the drive and
- * the loop are written so that any step from the exported one to
- * EXPORT_H_USER_MAX_S holds (measured: docs/contact-params.md, "A MuJoCo
- * user at 2 ms"). */
-
-/* the largest step [s] the export is written for (MuJoCo's default step) */
-#define EXPORT_H_USER_MAX_S 2e-3
-
-/* the drive's time constant [s]: armature / kv. A speed error decays as
- * exp(-t / tau) at any step; h / tau = 0.2 at EXPORT_H_USER_MAX_S, inside
- * explicit Euler's and RK4's stability (2 and 2.78). A plain load starts
- * at rest and the drive spins the crank up to the case's speed within 1 %
- * in 4.6 tau */
-#define EXPORT_DRIVE_TAU_S 1e-2
-
-/* the loop's damping ratio in MuJoCo's time-constant form (solref = (tc,
- * dampratio)): MuJoCo raises tc to 2 h at a step h above tc / 2 (refsafe,
- * on by default in 2.2 and 3.x), which makes the loop's stiffness and
- * damping per step B h = 1, K h^2 = 1 / (4 dampratio^2) at any step.
- * Semi-implicit Euler (and implicit, the same for constraints): 0.5,
- * K h^2 = 1, its deadbeat update (the scene's own direct form (-1/h^2, -1/h));
- * RK4: 0.2, K h^2 = 6.25, the ratio at which RK4's update of the loop error
- * decays fastest (amplification 0.345 per step; unstable below 0.17). The
- * stiffer loop leaves 6.25 times less of the drift MuJoCo 2.2 to 3.6 leave
- * from the J-dot-v term their reference acceleration lacks (measured, paper
- * case at 2 ms: Euler 0.5 +9.1 %, RK4 0.2 +0.7 % on the follower's omega
- * peak) */
-#define EXPORT_LOOP_DAMPRATIO_EULER 0.5
-#define EXPORT_LOOP_DAMPRATIO_RK4 0.2
-
-/* the export's integrator: the case's [mujoco] integrator, auto resolved to
- * RK4 (its loop holds a 2 ms step within 1 %, measured above) */
-static int export_integrator(const fb_mujoco_opts *o) {
-  return o->integrator == FB_MUJOCO_AUTO ? FB_MUJOCO_RK4 : o->integrator;
-}
-
-/* the loop's solref in the time-constant form (exported, no [mujoco]
- * loop_stiffness_1_s2 or loop_damping_1_s in the case): tc = 2 hl, the
- * export's step (an adaptive run's longest), which MuJoCo raises to 2 h at
- * a user's longer step h */
-static void export_loop_solref(int integ, double hl, double sr[2]) {
-  sr[0] = 2.0 * hl;
-  sr[1] = integ == FB_MUJOCO_RK4 ? EXPORT_LOOP_DAMPRATIO_RK4 : EXPORT_LOOP_DAMPRATIO_EULER;
-}
+ * the step, the drive and the loop for a user's step: mujoco_common.h's
+ * export rule */
 
 /* exported: the header comment, at the top of the file: what the file is,
  * its start, its drive, the steps it holds. Its text holds no "--" (XML
@@ -277,26 +235,26 @@ static void put_header(text *t, const mj_def *def, int integ, double hl) {
       "  speed with every joint's start velocity. A plain load (mj_resetData)\n"
       "  starts there at rest, and the drive spins the crank up to the case's\n"
       "  speed (within 1 %% after %.3g s).\n",
-      st->crank_angle, 4.6 * EXPORT_DRIVE_TAU_S);
+      st->crank_angle, 4.6 * FB_MUJOCO_EXPORT_DRIVE_TAU_S);
   fb_text_put(t, "  Drive: actuator \"drive\" on joint %s, torque\n"
       "  kv (omega + ctrl - qvel), omega = %.9g rad/s the case's crank speed,\n"
       "  kv = armature / %.3g s: ctrl = 0 holds the case's speed, ctrl adds to it\n"
       "  [rad/s]. The crank's armature (%.3g kg m^2, a flywheel) keeps the speed\n"
       "  against the linkage's torques.\n",
-      joint_name(def, FB_JOINT_A), st->crank_omega, EXPORT_DRIVE_TAU_S, def->opts.drive_armature);
+      joint_name(def, FB_JOINT_A), st->crank_omega, FB_MUJOCO_EXPORT_DRIVE_TAU_S, def->opts.drive_armature);
   if (def->clearance_mask & (1 << FB_JOINT_C))
     fb_text_put(t, "  Step: written at %.6g s, integrator %s. The drive holds any timestep\n"
         "  from that to %.3g s (the loop is closed by the clearance joint below).\n",
-        hl, fb_mujoco_integrator_xml(integ), EXPORT_H_USER_MAX_S);
+        hl, fb_mujoco_integrator_xml(integ), FB_MUJOCO_EXPORT_H_USER_MAX_S);
   else
     fb_text_put(t, "  Step: written at %.6g s, integrator %s. Any timestep from that to\n"
         "  %.3g s holds: the loop's solref is in the time-constant form, whose time\n"
         "  constant MuJoCo raises to 2 x timestep (refsafe), damping ratio %.2g for\n"
         "  %s (%.2g for Euler or implicit). Omega peaks against the exact solution\n"
         "  at each step: fourbar's docs/contact-params.md.\n",
-        hl, fb_mujoco_integrator_xml(integ), EXPORT_H_USER_MAX_S,
-        integ == FB_MUJOCO_RK4 ? EXPORT_LOOP_DAMPRATIO_RK4 : EXPORT_LOOP_DAMPRATIO_EULER,
-        fb_mujoco_integrator_xml(integ), EXPORT_LOOP_DAMPRATIO_EULER);
+        hl, fb_mujoco_integrator_xml(integ), FB_MUJOCO_EXPORT_H_USER_MAX_S,
+        integ == FB_MUJOCO_RK4 ? FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_RK4 : FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_EULER,
+        fb_mujoco_integrator_xml(integ), FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_EULER);
   for (int j = 0; j < 4; j++) {
     if (!(def->clearance_mask & (1 << j))) continue;
     const fb_contact_law *law = &def->law[j];
@@ -317,12 +275,12 @@ static void put_header(text *t, const mj_def *def, int integ, double hl) {
  * speed: MuJoCo's general actuator with an affine bias, torque
  * kv (omega + ctrl - qvel), so that ctrl = 0, a plain load's, holds the
  * case's speed omega (a velocity actuator would hold ctrl); its gain
- * kv = armature / EXPORT_DRIVE_TAU_S, beside the flywheel armature the
+ * kv = armature / FB_MUJOCO_EXPORT_DRIVE_TAU_S, beside the flywheel armature the
  * scene's own models use; and a keyframe "start" with the start's
  * velocities (mj_resetDataKeyframe(m, d, 0)) */
 static void put_drive(text *t, const mj_def *def) {
   const fb_start_state st = def->start;
-  const double kv = def->opts.drive_armature / EXPORT_DRIVE_TAU_S;
+  const double kv = def->opts.drive_armature / FB_MUJOCO_EXPORT_DRIVE_TAU_S;
   fb_text_put(t, "  <actuator>\n    <general name=\"drive\" joint=\"%s\" gainprm=\"%.17g\" "
       "biastype=\"affine\" biasprm=\"%.17g 0 %.17g\"/>\n  </actuator>\n",
       joint_name(def, FB_JOINT_A), kv, kv * st.crank_omega, -kv);
@@ -357,7 +315,7 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   const double h = def->h;
   const int mask = def->clearance_mask;
   const int integ =
-      def->exported ? export_integrator(opts) : fb_mujoco_integrator_resolve(opts, mask);
+      def->exported ? fb_mujoco_export_integrator(opts) : fb_mujoco_integrator_resolve(opts, mask);
   /* the loop's default softness follows the step; an adaptive run's
    * steps reach h_max, so its loop is set for that one: the direct form
    * (-k, -damp); an export without the case's own loop keys, the
@@ -365,8 +323,7 @@ fb_status mujoco_write_mjcf(char *buf, size_t size, const mj_def *def, fb_diag *
   const double hl = def->adaptive ? def->h_max : h;
   double loop_sr[2];
   fb_mujoco_loop_solref(opts, hl, loop_sr);
-  if (def->exported && !(opts->loop_stiffness > 0.0) && !(opts->loop_damping > 0.0))
-    export_loop_solref(integ, hl, loop_sr);
+  if (def->exported) fb_mujoco_export_loop_solref(opts, integ, hl, loop_sr);
   text t = {buf, size, 0, 0};
   if (def->exported) put_header(&t, def, integ, hl);
   fb_text_put(&t, "<mujoco model=\"fourbar\">\n");

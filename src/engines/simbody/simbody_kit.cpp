@@ -124,12 +124,13 @@ struct Kit {
   const fb_planar *m;                 // the description (add_clearance)
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; // 1: a clearance joint
   int changed;                        // 1: a contact's law, v0 or hand-over changed
+  fb_kit_world o;                     // the walk's settings: names, drive (kit.h)
   std::unique_ptr<Integrator> integ;
   double h;
   int integrator;
   double accuracy;
   size_t steps;
-  Kit() : matter(system), forces(system), held(), cm(NULL), m(NULL), off(), changed(0), h(0),
+  Kit() : matter(system), forces(system), held(), cm(NULL), m(NULL), off(), changed(0), o(), h(0),
           integrator(0), accuracy(FB_SIMBODY_ACCURACY_DEFAULT), steps(0) {}
   ~Kit() { fb_planar_cmass_free(cm); }
   MobilizedBody &of(int b) { return b == FB_KIT_GROUND ? matter.Ground() : mob[b]; }
@@ -287,15 +288,10 @@ void mobilize(Kit *k, int jn, int parent, int c) {
   k->child[jn] = c;
 }
 
-// the root of node i's set (nodes: 0 the ground, b + 1 body handle b)
-int root_of(std::vector<int> &r, int i) {
-  while (r[i] != i) i = r[i] = r[r[i]];
-  return i;
-}
-
-// the tree's order of choice: slides, then joints at the ground, then the rest
+// the tree's order of choice within fb_kit_tree's groups (the drive, the
+// slides, the pins): joints at the ground, then the rest
 int rank_of(const KitJoint &j) {
-  return j.prismatic ? 0 : (j.b0 == FB_KIT_GROUND || j.b1 == FB_KIT_GROUND) ? 1 : 2;
+  return (j.b0 == FB_KIT_GROUND || j.b1 == FB_KIT_GROUND) ? 0 : 1;
 }
 
 // the initial mobilities from the bodies' assembly velocities (every q is 0
@@ -330,6 +326,7 @@ fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
   Force::UniformGravity(k->forces, k->matter, Vec3(0, -o->gravity, 0));
   Force::Custom(k->forces, new KitContact(k));
   k->h = o->h;
+  k->o = *o;
   if (o->c) {
     k->integrator = o->c->simbody.integrator;
     k->accuracy = o->c->simbody.accuracy;
@@ -363,14 +360,26 @@ fb_status kit_add_prismatic(void *w, int b0, int b1, const double at[2], const d
 fb_status kit_close_loop(void *w, fb_diag *diag) {
   Kit *k = kit(w);
   const int nb = (int)k->body.size(), nj = (int)k->joint.size();
-  std::vector<int> root((size_t)nb + 1);
-  for (int i = 0; i <= nb; i++) root[(size_t)i] = i;
-  for (int rank = 0; rank < 3; rank++)
-    for (KitJoint &j : k->joint) {
-      if (rank_of(j) != rank) continue;
-      const int a = root_of(root, j.b0 + 1), b = root_of(root, j.b1 + 1);
-      if (a != b) root[(size_t)a] = b, j.tree = 1;
-    }
+  if (nj > FB_PLANAR_SPEC_MAX_JOINTS)
+    return fb_diag_set(diag, FB_ERR_RANGE, "the Simbody kit takes %d joints at most",
+                       FB_PLANAR_SPEC_MAX_JOINTS);
+  int order[FB_PLANAR_SPEC_MAX_JOINTS] = {0}, ends[FB_PLANAR_SPEC_MAX_JOINTS][2] = {{0}}, n = 0;
+  unsigned char slide[FB_PLANAR_SPEC_MAX_JOINTS] = {0}, tree[FB_PLANAR_SPEC_MAX_JOINTS] = {0};
+  for (int rank = 0; rank < 2; rank++)
+    for (int jn = 0; jn < nj; jn++)
+      if (rank_of(k->joint[(size_t)jn]) == rank) order[n++] = jn;
+  for (int jn = 0; jn < nj; jn++) {
+    const KitJoint &j = k->joint[(size_t)jn];
+    ends[jn][0] = j.b0, ends[jn][1] = j.b1, slide[jn] = (unsigned char)j.prismatic;
+  }
+  const int cut = fb_kit_tree(&k->o, nj, ends, slide, order, tree);
+  if (cut >= 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "Simbody cannot close a loop at prismatic joint '%s': "
+                       "the Simbody kit cuts a loop at a pin (a Ball constraint), and the "
+                       "description's prismatic joints (with the drive) form a loop, so one of "
+                       "them must close it; make one of that loop's joints revolute",
+                       fb_kit_joint_name(&k->o, cut));
+  for (int jn = 0; jn < nj; jn++) k->joint[(size_t)jn].tree = tree[jn];
   try {
     k->mob.assign((size_t)nb, MobilizedBody());
     k->child.assign((size_t)nj, -1);
@@ -399,9 +408,6 @@ fb_status kit_close_loop(void *w, fb_diag *diag) {
     }
     for (const KitJoint &j : k->joint) {
       if (j.tree) continue;
-      if (j.prismatic)
-        return fb_diag_set(diag, FB_ERR_ARG, "the Simbody kit closes a loop at a revolute joint; "
-                           "this description's prismatic joints close one among themselves");
       Constraint::Ball(k->of(j.b0), local(k, j.b0, j.at), k->of(j.b1), local(k, j.b1, j.at));
     }
   } catch (const std::exception &ex) {
@@ -419,7 +425,8 @@ fb_status kit_add_drive(void *w, int jn, double rate, fb_diag *diag) {
   const bool prismatic = driven && k->joint[(size_t)jn].prismatic;
   if (driven && (prismatic || c < 0))
     return fb_diag_set(diag, FB_ERR_ARG, "the Simbody kit drives a revolute joint of its tree; "
-                       "the driven joint is %s", prismatic ? "prismatic" : "a loop's cut");
+                       "the driven joint '%s' is %s", fb_kit_joint_name(&k->o, jn),
+                       prismatic ? "prismatic" : "a loop's cut");
   try {
     if (driven)
       Motion::Custom(k->mob[(size_t)c],

@@ -8,7 +8,9 @@
 
 #include "fileio.h"
 #include "numfmt.h"
+#include "outcome_text.h"
 #include "report_internal.h"
+#include "resolution.h"
 #include "run.h"
 #include "series.h"
 #include "units.h"
@@ -79,6 +81,68 @@ static void clearance_json(json_t *e, const fb_planar_run *r, const fb_planar_mo
   json_object_set_new(e, "window_from_s", num(r->t_window));
 }
 
+/* an engine clearance model's h omega_c against the bound: 1 resolved, 0
+ * not (then *warn the four-bar's under-resolved warning, outcome_text.c,
+ * with the largest fixed step that keeps it), -1 not measured
+ * (planar_run.h's h_omega_max) */
+static int resolution(const fb_planar_run *r, const fb_planar_model *p, char *warn, size_t size) {
+  if (warn && size) warn[0] = '\0';
+  if (!isfinite(p->h_omega_max) || !(p->h_omega_max > 0.0)) return -1;
+  if (p->h_omega_max <= FB_H_OMEGA_C_BOUND) return 1;
+  fb_warning w = {.kind = FB_WARN_UNDER_RESOLVED, .value = p->h_omega_max,
+                  .limit = FB_H_OMEGA_C_BOUND, .ratio = M_PI / p->h_omega_max, .t = NAN,
+                  .h = p->h, .h_auto = FB_WARN_STEP_FIXED_ONLY};
+  snprintf(w.what, sizeof w.what, "%s", r->m->joint[p->ref.joint].name);
+  if (warn) fb_warning_text(warn, size, &w);
+  return 0;
+}
+
+/* summary.json's `contact` of an engine clearance model: its clearance
+ * joint's contact as the run met it, under the four-bar's keys
+ * (report_summary.c), and the largest fixed step that resolves it */
+static json_t *contact_json(const fb_planar_run *r, const fb_planar_model *p) {
+  char warn[512];
+  const int ok = resolution(r, p, warn, sizeof warn);
+  const double hw = p->h_omega_max;
+  json_t *o = json_object();
+  json_object_set_new(o, "joint", json_string(r->m->joint[p->ref.joint].name));
+  json_object_set_new(o, "law", json_string(fb_law_name(p->ref.law.kind)));
+  json_object_set_new(o, "effective_mass_kg",
+                      isfinite(p->m_eff_min) && isfinite(p->m_eff_max)
+                          ? json_pack("{s:f,s:f}", "min", p->m_eff_min, "max", p->m_eff_max)
+                          : json_null());
+  json_object_set_new(o, "h_omega_c_max", ok >= 0 ? num(hw) : json_null());
+  json_object_set_new(o, "h_omega_c_bound", num(FB_H_OMEGA_C_BOUND));
+  json_object_set_new(o, "contact_steps", json_integer((json_int_t)p->ref.steps));
+  json_object_set_new(o, "resolved", ok >= 0 ? json_boolean(ok) : json_null());
+  json_object_set_new(o, "resolving_step_s",
+                      ok >= 0 ? num(p->h * FB_H_OMEGA_C_BOUND / hw * FB_H_AUTO_MARGIN)
+                              : json_null());
+  json_object_set_new(o, "warning", ok == 0 ? json_string(warn) : json_null());
+  return json_pack("[o]", o);
+}
+
+/* summary.json's `step`: the step the models ran at and the largest
+ * h omega_c any engine's clearance model met (the four-bar's keys,
+ * report_chaos.c fb_report_step_json, as far as a planar run measures them) */
+static json_t *step_json(const fb_planar_run *r) {
+  double hw = NAN, h = fb_planar_run_step(&r->c);
+  for (int i = 0; i < r->n; i++)
+    if (isfinite(r->model[i].h_omega_max) && r->model[i].engine && r->model[i].force)
+      hw = isfinite(hw) ? fmax(hw, r->model[i].h_omega_max) : r->model[i].h_omega_max;
+  json_t *o = json_object();
+  json_object_set_new(o, "h_s", num(h));
+  json_object_set_new(o, "auto", json_boolean(r->c.solver.h_mode == FB_STEP_AUTO));
+  char rule[64];
+  snprintf(rule, sizeof rule, "one revolution / %g steps", FB_H_AUTO_STEPS_PER_REV);
+  json_object_set_new(o, "auto_rule", json_string(rule));
+  json_object_set_new(o, "h_omega_c_max", isfinite(hw) ? num(hw) : json_null());
+  json_object_set_new(o, "h_omega_c_bound", num(FB_H_OMEGA_C_BOUND));
+  json_object_set_new(o, "within_bound",
+                      isfinite(hw) ? json_boolean(hw <= FB_H_OMEGA_C_BOUND) : json_null());
+  return o;
+}
+
 static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
   const fb_planar_ref_result *q = &p->ref;
   char why[FB_DIAG_SIZE + 256];
@@ -141,6 +205,7 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
   json_object_set_new(o, "description", description_json(m));
   json_object_set_new(o, "drive_omega_rad_s", num(r->omega));
   json_object_set_new(o, "revolutions", num(r->c.revolutions));
+  json_object_set_new(o, "step", step_json(r));
   char injected[1024];
   json_object_set_new(o, "injected_error",
                       fb_report_injected_case_text(injected, sizeof injected, &r->c)
@@ -161,6 +226,7 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
       json_object_set_new(e, "force_max_n", num(p->ref.force_max));
       json_object_set_new(e, "penetration_max_m", num(p->ref.penetration_max));
       json_object_set_new(e, "contact_steps", json_integer((json_int_t)p->ref.steps));
+      json_object_set_new(e, "contact", contact_json(r, p));
     }
     if (p->engine && p->ref.failed) json_object_set_new(e, "stop", json_string(p->ref.stop));
     if (p->torque) json_object_set_new(e, "loads", loads_json(r, p));
@@ -295,6 +361,12 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
       fprintf(f, "verdict: %s%s%s (%s)\n", fb_verdict_name(p->verdict.word), basis ? ", " : "",
               basis ? basis : "", p->verdict.reason);
     }
+    char warn[512];
+    const int res = p->engine && p->force ? resolution(r, p, warn, sizeof warn) : -1;
+    if (res >= 0)
+      fprintf(f, "contact at '%s': largest h omega_c over %zu contact steps %.3g, bound %g: %s\n",
+              r->m->joint[p->ref.joint].name, p->ref.steps, p->h_omega_max, FB_H_OMEGA_C_BOUND,
+              res ? "resolved" : warn);
     fprintf(f, "| body | omega max [rad/s] | omega min [rad/s] | alpha max [rad/s^2] | "
                "alpha min [rad/s^2] |\n|---|---:|---:|---:|---:|\n");
     for (int b = 1; b < m->nbodies; b++) {

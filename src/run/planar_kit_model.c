@@ -207,6 +207,14 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   if (st == FB_OK) st = fb_kit_run(b, r->m, r->omega, &o, run_cl, &s, diag);
   free(y0);
   free(guide);
+  p->h_omega_max = p->m_eff_min = p->m_eff_max = NAN;
+  if (run_cl && p->force && (st == FB_OK || st == FB_ERR_NUMERIC)) { /* what the contact met */
+    const fb_kit_joint_record *k = &cl.joint[p->ref.joint];
+    if (k->contact_steps > 0) {
+      p->m_eff_min = k->m_eff_min, p->m_eff_max = k->m_eff_max;
+      if (b->contact_rows || b->explicit_law) p->h_omega_max = k->h_omega_max;
+    }
+  }
   p->setup_s = before + s.setup_s;
   for (size_t i = 0; i < p->n; i++) p->drive[i] = r->omega * p->t[i];
   if (st == FB_ERR_NUMERIC) { /* a stop (aliased, the engine's error) is a result, not an error */

@@ -110,6 +110,15 @@ typedef struct {
   double setup_s;          /* an engine's model: of wall_s, the set-up before its first step
                               (its clearance law, the columns, the engine's world built through
                               the kit: kit.h fb_kit_series.setup_s) [s]; 0 for the others */
+  double h_omega_max;      /* an engine's clearance model whose engine steps at h (its binding
+                              takes the law's rows or applies the law explicitly, kit.h's
+                              contact_rows, explicit_law): its clearance joint's largest
+                              h omega_c over its contact steps (fb_kit_joint_record) [-]; NaN:
+                              not measured (no contact step; an engine that controls its own
+                              steps: Simbody's error control, DART's sub-steps, Siconos's
+                              impulses; any other model) */
+  double m_eff_min, m_eff_max; /* an engine's clearance model: its clearance joint's effective
+                              mass range over its contact steps [kg]; NaN: none */
   double *force_max;       /* an engine's model whose binding sub-steps: its largest contact
                               force over the step from sample i [N] (n; kit.h's
                               fb_kit_joint_record.force_max), else NULL */

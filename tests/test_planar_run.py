@@ -225,6 +225,19 @@ check(rc == 2 and "ode-clearance-faceted" in se and "collider" in se and "issue"
 check(not os.path.exists(os.path.join(tmp, "x")), "and nothing is written")
 rc, _, se = run("run", six, "--series", "hdf5", "--out", os.path.join(tmp, "y"))
 check(rc == 2 and "hdf5" in se, "series = hdf5 on a planar case is refused (%d, %s)" % (rc, se.strip()))
+# an ensemble is refused, not run as one member with exit 0
+rc, _, se = run("run", six, "--set", "run.ensemble=4", "--set", "run.models=analytic",
+                "--out", os.path.join(tmp, "e"))
+check(rc == 2 and "[run] ensemble = 4" in se and not os.path.exists(os.path.join(tmp, "e")),
+      "an ensemble on a planar case is refused, nothing written (%d, %s)" % (rc, se.strip()))
+# the case's clearance joint, run in none of the models, is said
+rc, _, se = run("run", six, "--set", "run.models=analytic", "--set", "run.revolutions=2",
+                "--no-figures", "--no-report", "--out", os.path.join(tmp, "idle"))
+check(rc == 0 and "clearance joint 'rod-output' runs in none of the models" in se,
+      "a clearance joint no model runs is noted (%d, %s)" % (rc, se.strip()[-300:]))
+rc, _, se = run("run", six, "--set", "run.models=analytic,reference", "--set",
+                "run.revolutions=2", "--no-figures", "--no-report", "--out", os.path.join(tmp, "busy"))
+check(rc == 0 and "runs in none" not in se, "and not when a model runs it (%d)" % rc)
 
 # 5. fourbar kinematics on a planar case: the six-bar against the dyads,
 # the planar four-bar against the built-in four-bar's closed form

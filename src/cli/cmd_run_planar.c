@@ -6,9 +6,12 @@
  * note on a signal, the same kept files said). */
 #include <jansson.h>
 #include <stdio.h>
+#include <string.h>
 
+#include "casefile.h"
 #include "cli.h"
 #include "figures.h"
+#include "model_table.h"
 #include "pilot.h"
 #include "run_folder.h"
 #include "work.h"
@@ -24,8 +27,30 @@ static int refuse(const fb_case *c, const char *case_path) {
   if (c->series == FB_SERIES_HDF5)
     return fb_cli_fail("run", 2, "%s: [run] series = hdf5: a planar case's run writes csv or "
                        "none yet", case_path);
+  if (fb_casefile_given(c, "run", "ensemble") && c->ensemble > 1)
+    return fb_cli_fail("run", 2, "%s: [run] ensemble = %d: a planar case's run has no ensemble "
+                       "yet (a clearance model's verdict rests on its one run, basis pointwise); "
+                       "leave [run] ensemble at 1", case_path, c->ensemble);
   if (fb_planar_run_check(c, &d) != FB_OK) return fb_cli_fail("run", 2, "%s: %s", case_path, d.msg);
   return 0;
+}
+
+/* a note when the case's clearance joints run in none of its models (a
+ * planar case's default models are its ideal motion's) */
+static void note_idle_clearance(const fb_case *c) {
+  if (!c->clearance.mask) return;
+  for (int i = 0; i < c->model_count; i++) {
+    const fb_model *m = fb_model_find(c->models[i]);
+    if ((m && m->joints == FB_JOINTS_CLEARANCE) || strncmp(c->models[i], "reference", 9) == 0)
+      return;
+  }
+  for (int j = 0; j < c->planar.njoints; j++)
+    if (c->clearance.mask & (1 << j))
+      fprintf(stderr, "fourbar run: note: clearance joint '%s' runs in none of the models "
+              "([run] models%s: the ideal mechanism); name its clearance models to run it, e.g. "
+              "--set run.models=analytic,reference,ode-clearance-impact (fourbar models lists "
+              "them)\n", c->planar.joint[j].name,
+              fb_casefile_given(c, "run", "models") ? "" : " not given");
 }
 
 /* the run's set into the staging folder: figures, report.html, then the
@@ -94,6 +119,7 @@ int fb_cmd_run_planar(const fb_case *c, const char *case_path, const char *dir, 
                       const char *command, const char *again, int figures, int png, int html) {
   int rc = refuse(c, case_path);
   if (rc) return rc;
+  note_idle_clearance(c);
   fb_diag d;
   /* figures need gnuplot: found out before the simulation, not after it */
   if (figures && fb_figures_check_gnuplot(&d) != FB_OK) return fb_cli_fail("run", 1, "%s", d.msg);

@@ -7,6 +7,7 @@
  * docs/keys.md (fourbar keys writes the rows; scripts/keys_doc.sh). */
 #include "casefile.h"
 #include "casefile_internal.h"
+#include "casefile_planar.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -93,7 +94,7 @@ static const key_spec keys[] = {
      "(crank, coupler as the connecting rod, a slider on a guide along +x; keys crank_mm, "
      "coupler_mm, offset_mm and [mass] slider_kg), or planar: any planar mechanism of one "
      "degree of freedom given by [joint.NAME] and [body.NAME] sections and [drive] joint "
-     "(docs/planar.md; checked, not yet run)"},
+     "(docs/planar.md; their keys at the end of this table)"},
     {"linkage", "crank_mm", K_DOUBLE, OFF(nominal.length[FB_CRANK]), FB_M_PER_MM, FB_LINK_MM_MIN,
      FB_LINK_MM_MAX, 0, 0, "mm", "108", LEN_RULE, "basic crank length, A to B"},
     {"linkage", "coupler_mm", K_DOUBLE, OFF(nominal.length[FB_COUPLER]), FB_M_PER_MM, FB_LINK_MM_MIN,
@@ -398,6 +399,7 @@ void fb_casefile_write_keys(FILE *f) {
     fprintf(f, "| [%s] %s | %s | %s | %s | %s |\n", keys[i].section, keys[i].key, keys[i].unit,
             keys[i].def, keys[i].rule, keys[i].doc);
   }
+  fb_casefile_planar_write_keys(f); /* a planar case's description */
 }
 
 const key_spec *fb_casefile_spec(int i) { return i >= 0 && i < NKEYS ? &keys[i] : NULL; }

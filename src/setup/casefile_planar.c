@@ -20,6 +20,9 @@
 #define BODY_PREFIX "body."
 #define COORD_MAX_MM 1e5 /* a position's coordinates, as a link length's range: 100 m */
 #define COORD_RULE "a coordinate in mm from -1e5 to 1e5 (100 m)"
+#define POINT_RULE "two numbers x, y in mm (for example 120, -35.5), each " COORD_RULE
+#define AXIS_RULE "an angle from -360 to 360 deg, counter-clockwise from +x"
+#define HALF_RULE "a slider's half-size must be positive, from 0.001 mm to 1e5 mm"
 
 static int prefixed(const char *s, const char *prefix) {
   return strncmp(s, prefix, strlen(prefix)) == 0;
@@ -168,20 +171,45 @@ static fb_status joint_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   }
   if (strcmp(e->key, "axis_deg") == 0) {
     j->given |= FB_SPEC_JOINT_AXIS;
-    return number(e, e->value, -360.0, 360.0, FB_RAD_PER_DEG,
-                  "an angle from -360 to 360 deg, counter-clockwise from +x", &j->axis, diag);
+    return number(e, e->value, -360.0, 360.0, FB_RAD_PER_DEG, AXIS_RULE, &j->axis, diag);
   }
   if (strcmp(e->key, "slider_half_length_mm") == 0 || strcmp(e->key, "slider_half_height_mm") == 0) {
     const int len = strcmp(e->key, "slider_half_length_mm") == 0;
     j->given |= len ? FB_SPEC_JOINT_HALF_LENGTH : FB_SPEC_JOINT_HALF_HEIGHT;
-    return number(e, e->value, 1e-3, COORD_MAX_MM, FB_M_PER_MM,
-                  "a slider's half-size must be positive, from 0.001 mm to 1e5 mm",
+    return number(e, e->value, 1e-3, COORD_MAX_MM, FB_M_PER_MM, HALF_RULE,
                   len ? &j->half_length : &j->half_height, diag);
   }
   return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a joint has bodies, "
                      "at_mm, kind, axis_deg, slider_half_length_mm and slider_half_height_mm)",
                      e->origin, e->key, e->section);
 }
+
+/* a [body.NAME] section's numbers: key, bit, field, range, scale to SI,
+ * rule, and for fourbar keys their unit, default and meaning */
+static const struct {
+  const char *key;
+  int bit;
+  size_t offset;
+  double lo, hi, scale;
+  const char *rule, *unit, *def, *doc;
+} body_numbers[] = {
+    {"mass_kg", FB_SPEC_BODY_MASS, offsetof(fb_planar_spec_body, mass), FB_MASS_MIN_KG,
+     FB_MASS_MAX_KG, 1.0, MASS_RULE, "kg", "(derived)",
+     "the body's mass; without it (and inertia_kg_mm2, centre_mm) they are derived as bars of "
+     "[material] density_kg_m3 between its joint points (docs/planar.md, Masses derived as "
+     "bars)"},
+    {"inertia_kg_mm2", FB_SPEC_BODY_INERTIA, offsetof(fb_planar_spec_body, inertia), 1e-6, 1e12,
+     FB_KG_M2_PER_KG_MM2, "a moment of inertia must be positive, from 1e-6 to 1e12 kg mm^2",
+     "kg mm^2", "(derived)", "moment of inertia about +z through the body's centre of mass"},
+    {"width_mm", FB_SPEC_BODY_WIDTH, offsetof(fb_planar_spec_body, width), 1e-3, 1e5,
+     FB_M_PER_MM, "a bar width must be positive, from 0.001 mm to 1e5 mm", "mm", "20",
+     "the width of the bars a derived mass is made of"},
+    {"thickness_mm", FB_SPEC_BODY_THICK, offsetof(fb_planar_spec_body, thickness), 1e-3, 1e5,
+     FB_M_PER_MM, "a bar thickness must be positive, from 0.001 mm to 1e5 mm", "mm", "6.5",
+     "the thickness of the bars a derived mass is made of"},
+    {"initial_omega_rad_s", FB_SPEC_BODY_OMEGA0, offsetof(fb_planar_spec_body, omega0), -1e6,
+     1e6, 1.0, "an angular velocity from -1e6 to 1e6 rad/s, counter-clockwise positive", "rad/s",
+     "0", "an undriven case ([drive] joint = none): the body's angular velocity at the start"}};
 
 static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   const char *name = e->section + strlen(BODY_PREFIX);
@@ -200,29 +228,11 @@ static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
     b->given |= FB_SPEC_BODY_CENTRE;
     return point_mm(e, b->centre, diag);
   }
-  static const struct {
-    const char *key;
-    int bit;
-    size_t offset;
-    double lo, hi, scale;
-    const char *rule;
-  } keys[] = {
-      {"mass_kg", FB_SPEC_BODY_MASS, offsetof(fb_planar_spec_body, mass), FB_MASS_MIN_KG,
-       FB_MASS_MAX_KG, 1.0, MASS_RULE},
-      {"inertia_kg_mm2", FB_SPEC_BODY_INERTIA, offsetof(fb_planar_spec_body, inertia), 1e-6,
-       1e12, FB_KG_M2_PER_KG_MM2,
-       "a moment of inertia must be positive, from 1e-6 to 1e12 kg mm^2"},
-      {"width_mm", FB_SPEC_BODY_WIDTH, offsetof(fb_planar_spec_body, width), 1e-3, 1e5,
-       FB_M_PER_MM, "a bar width must be positive, from 0.001 mm to 1e5 mm"},
-      {"thickness_mm", FB_SPEC_BODY_THICK, offsetof(fb_planar_spec_body, thickness), 1e-3, 1e5,
-       FB_M_PER_MM, "a bar thickness must be positive, from 0.001 mm to 1e5 mm"},
-      {"initial_omega_rad_s", FB_SPEC_BODY_OMEGA0, offsetof(fb_planar_spec_body, omega0), -1e6,
-       1e6, 1.0, "an angular velocity from -1e6 to 1e6 rad/s, counter-clockwise positive"}};
-  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
-    if (strcmp(e->key, keys[i].key) == 0) {
-      b->given |= keys[i].bit;
-      return number(e, e->value, keys[i].lo, keys[i].hi, keys[i].scale, keys[i].rule,
-                    (double *)((char *)b + keys[i].offset), diag);
+  for (size_t i = 0; i < sizeof body_numbers / sizeof body_numbers[0]; i++)
+    if (strcmp(e->key, body_numbers[i].key) == 0) {
+      b->given |= body_numbers[i].bit;
+      return number(e, e->value, body_numbers[i].lo, body_numbers[i].hi, body_numbers[i].scale,
+                    body_numbers[i].rule, (double *)((char *)b + body_numbers[i].offset), diag);
     }
   return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a body has mass_kg, "
                      "inertia_kg_mm2, centre_mm, width_mm, thickness_mm and initial_omega_rad_s)",
@@ -591,4 +601,36 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
                      "does not run a planar case yet: fourbar run, kinematics, stackup, penalty, "
                      "bench and export (mjcf) do (docs/planar.md)",
                      path ? path : "case", line);
+}
+
+void fb_casefile_planar_write_keys(FILE *f) {
+  static const char *const joint_rows[][5] = {
+      {"bodies", "-", "(required)", "two different body names, ground or a body of the case",
+       "the two bodies the joint joins; a revolute clearance joint's pin is on the first, its "
+       "hole on the second; a joint's reaction is the force on the second from the first"},
+      {"at_mm", "mm", "(required)", POINT_RULE,
+       "where the joint is in the assembly configuration (both bodies' point)"},
+      {"kind", "-", "revolute", "revolute or prismatic",
+       "revolute: a pin, both bodies' points together; prismatic: a slide, the bodies keep "
+       "their relative angle and the second's point stays on the first's line along axis_deg"},
+      {"axis_deg", "deg", "(none)", AXIS_RULE,
+       "prismatic: the slide's direction in the assembly configuration; required there"},
+      {"slider_half_length_mm", "mm", "(none)", HALF_RULE,
+       "a prismatic joint named in [clearance] joints: the slider's half-length along the "
+       "slide (its corners meet the guide's walls); required there"},
+      {"slider_half_height_mm", "mm", "(none)", HALF_RULE,
+       "a prismatic joint named in [clearance] joints: the slider's half-height across the "
+       "slide; required there"}};
+  for (size_t i = 0; i < sizeof joint_rows / sizeof joint_rows[0]; i++)
+    fprintf(f, "| [joint.NAME] %s | %s | %s | %s | planar case: %s |\n", joint_rows[i][0],
+            joint_rows[i][1], joint_rows[i][2], joint_rows[i][3], joint_rows[i][4]);
+  fprintf(f, "| [body.NAME] centre_mm | mm | (derived) | %s | planar case: the body's centre of "
+          "mass in the assembly configuration |\n", POINT_RULE);
+  for (size_t i = 0; i < sizeof body_numbers / sizeof body_numbers[0]; i++)
+    fprintf(f, "| [body.NAME] %s | %s | %s | %s | planar case: %s |\n", body_numbers[i].key,
+            body_numbers[i].unit, body_numbers[i].def, body_numbers[i].rule, body_numbers[i].doc);
+  fprintf(f, "| [drive] joint | - | (required) | a revolute joint of the case, or none | planar "
+          "case: the joint the drive turns at speed_rpm in direction (its second body relative "
+          "to its first); none: an undriven case, moving from its bodies' initial_omega_rad_s "
+          "under gravity ([run] duration_s required) |\n");
 }

@@ -407,6 +407,42 @@ function flatten(v, p, outList) {
     check(!/follower/i.test(await page4.evaluate(() => document.body.innerText)), 'six-bar: the page names no follower');
     await page4.close();
 
+    /* an engine's clearance model of a planar case: its contact panels
+     * beside its reference's, its impacts listed, its contact figures in the
+     * headline rows (Simbody, whose error control runs the six-bar's pin at
+     * 1e-4 s; skipped without it) */
+    const have = JSON.parse(execFileSync(fourbar, ['models', '--json'], { encoding: 'utf8' })).models
+      .filter((m) => m.available).map((m) => m.name);
+    if (have.includes('simbody-clearance-restitution')) {
+      const sixE = path.join(work, 'sixbar_engine');
+      execFileSync(fourbar, ['run', path.join(root, 'cases', 'watt_sixbar.ini'), '--out', sixE, '--no-figures',
+        '--set', 'run.revolutions=2', '--set', 'solver.h_s=1e-4',
+        '--set', 'run.models=analytic,reference-restitution,simbody-clearance-restitution'],
+      { stdio: ['ignore', 'ignore', 'inherit'] });
+      const sE = JSON.parse(fs.readFileSync(path.join(sixE, 'summary.json'), 'utf8'));
+      const page5 = await browser.newPage({ viewport: { width: FB_VIEW_W, height: FB_VIEW_H } });
+      const errors5 = [];
+      page5.on('pageerror', (e) => errors5.push('page error: ' + e.message));
+      await page5.goto('file://' + path.join(sixE, 'report.html'));
+      await page5.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
+      await page5.waitForTimeout(300);
+      const p5 = await page5.evaluate(() => window.fourbarReport.panels());
+      const force = p5.find((p) => p.id === 'force_rod-output');
+      check(force && force.models.length === 2, 'six-bar engine: the rod-output force panel holds the reference and the ' +
+        'engine model: ' + (force ? force.models.join(', ') : 'no panel'));
+      const rows = (await page5.$$('#impacts tbody tr[data-index]')).length;
+      const note = await page5.$eval('#impactnote', (e) => e.textContent);
+      check(rows > 0 && !/No impact/.test(note), 'six-bar engine: impacts listed (' + rows + ' rows; note "' + note + '")');
+      const head5 = await page5.$$eval('#summary_head td[data-key]', (tds) =>
+        tds.map((td) => [td.dataset.model, td.dataset.key, td.textContent]));
+      const shownF = sE.models.filter((m) => m.force_max_n !== undefined).filter((m) =>
+        head5.some((c) => c[0] === m.name && c[1] === 'force_max_n' && Number(c[2]) === m.force_max_n));
+      check(shownF.length === 2, 'six-bar engine: the headline row "contact force max" shows both clearance models\' ' +
+        'force_max_n (' + shownF.length + ' of 2)');
+      check(errors5.length === 0, 'six-bar engine: no page error: ' + errors5.join('; '));
+      await page5.close();
+    }
+
     /* names are data (docs/report.md, Safety): bodies and joints named
      * __proto__, constructor, prototype and hasOwnProperty (each as a body
      * and as a joint, in two runs of the paper's four-bar as a planar case)

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "figures.h"
+#include "model_table.h"
 #include "report_html.h"
 #include "units.h"
 
@@ -52,7 +53,64 @@ static json_t *outputs_json(const fb_planar *m) {
   return a;
 }
 
-/* one model's data: its kept samples by body, a reference's joint columns */
+/* the largest-magnitude value of y over [i0, i1], its sign kept */
+static double largest(const double *y, size_t i0, size_t i1) {
+  double v = y[i0];
+  for (size_t i = i0; i <= i1; i++)
+    if (fabs(y[i]) > fabs(v)) v = y[i];
+  return v;
+}
+
+/* a clearance model's contact episodes (unbroken runs of positive
+ * penetration, planar_verdict.h's episodes, every touch listed) into the
+ * page's impact list, as the four-bar's (report_html.c): each its onset and
+ * end, the drive angle at onset, its largest force and penetration, every
+ * moving body's largest |alpha| over it and the few steps after (the
+ * rebound spike follows the force peak); their samples and
+ * FB_REPORT_IMPACT_PAD either side kept. Returns the episodes counted;
+ * *listed those listed (FB_REPORT_MAX_IMPACTS at most) */
+static size_t impacts_json(json_t *impacts, unsigned char *keep, const fb_planar_run *r,
+                           const fb_planar_model *p, size_t *listed) {
+  const fb_planar *m = r->m;
+  const size_t n = p->n;
+  size_t count = 0;
+  *listed = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (!(p->pen[i] > 0.0)) continue;
+    size_t i1 = i;
+    while (i1 + 1 < n && p->pen[i1 + 1] > 0.0) i1++;
+    count++;
+    if (*listed < FB_REPORT_MAX_IMPACTS) {
+      double fmax_n = 0.0, pmax = 0.0;
+      for (size_t k = i; k <= i1; k++) {
+        if (isfinite(p->force[k])) fmax_n = fmax(fmax_n, p->force[k]);
+        pmax = fmax(pmax, p->pen[k]);
+      }
+      const size_t a = i > FB_REPORT_IMPACT_PAD ? i - FB_REPORT_IMPACT_PAD : 0;
+      const size_t b = i1 + FB_REPORT_IMPACT_PAD < n ? i1 + FB_REPORT_IMPACT_PAD : n - 1;
+      for (size_t k = a; k <= b; k++) keep[k] = 1;
+      double deg = fmod(p->drive[i] * 180.0 / M_PI, 360.0);
+      deg = deg < 0.0 ? deg + 360.0 : deg;
+      json_t *im = json_pack("{s:s,s:s,s:f,s:f,s:f,s:f,s:f}", "model", p->name, "joint",
+                             m->joint[p->ref.joint].name, "t_s", p->t[i], "t_end_s", p->t[i1],
+                             "crank_angle_deg", deg, "force_n", fmax_n, "penetration_m", pmax);
+      const size_t a2 = i1 + 3 < n ? i1 + 3 : n - 1;
+      for (int body = 1; body < m->nbodies; body++) {
+        char col[96];
+        snprintf(col, sizeof col, "%s_alpha_rad_s2", m->body[body].name);
+        const double v = largest(p->q + ((size_t)(body - 1) * 3 + 2) * n, i, a2);
+        json_object_set_new(im, col, isfinite(v) ? json_real(v) : json_null());
+      }
+      json_array_append_new(impacts, im);
+      (*listed)++;
+    }
+    i = i1;
+  }
+  return count;
+}
+
+/* one model's data: its kept samples by body, a clearance model's joint
+ * columns and impacts (a reference's, an engine's through the kit) */
 static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
   const fb_planar *m = r->m;
   const size_t n = p->n;
@@ -60,17 +118,25 @@ static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
   if (!keep) return NULL;
   for (int b = 1; b < m->nbodies; b++)
     for (int k = 1; k <= 2; k++) keep_extremes(keep, p->q + ((size_t)(b - 1) * 3 + (size_t)k) * n, n);
-  if (p->reference && p->force) {
+  json_t *impacts = json_array();
+  size_t ne = 0, listed = 0;
+  if (p->force) {
     keep_extremes(keep, p->force, n);
     keep_extremes(keep, p->pen, n);
+    ne = impacts_json(impacts, keep, r, p, &listed);
   }
   if (n) keep[0] = keep[n - 1] = 1;
   size_t nk = 0;
   for (size_t i = 0; i < n; i++) nk += keep[i];
-  json_t *o = json_pack("{s:s,s:s,s:b,s:n,s:n,s:s,s:i,s:I,s:I}", "name", p->name, "engine",
-                        p->reference ? "reference" : "analytic", "clearance", p->reference,
-                        "reference", "ideal", "color", fb_figure_model_color(NULL, p->name),
-                        "dash", fb_figure_model_dash(NULL, p->name), "samples", (json_int_t)n,
+  /* an engine's clearance model is zoomed beside the reference of its law */
+  const fb_model *row = p->engine ? fb_model_find(p->name) : NULL;
+  const fb_model *ref = row ? fb_model_reference_of(row) : NULL;
+  json_t *o = json_pack("{s:s,s:s,s:b,s:s?,s:n,s:s,s:i,s:I,s:I}", "name", p->name, "engine",
+                        p->reference ? "reference" : p->engine ? "engine" : "analytic",
+                        "clearance", p->force != NULL, "reference",
+                        p->force && ref ? ref->name : NULL, "ideal", "color",
+                        fb_figure_model_color(NULL, p->name), "dash",
+                        fb_figure_model_dash(NULL, p->name), "samples", (json_int_t)n,
                         "kept", (json_int_t)nk);
   json_object_set_new(o, "t", kept(p->t, keep, n, 1.0));
   for (int b = 1; b < m->nbodies; b++) {
@@ -82,13 +148,14 @@ static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
     }
   }
   json_t *joints = json_array();
-  if (p->reference && p->force)
+  if (p->force)
     json_array_append_new(joints, json_pack("{s:s,s:i,s:i,s:o,s:o}", "joint",
-                                            m->joint[p->ref.joint].name, "impacts", 0, "listed", 0,
+                                            m->joint[p->ref.joint].name, "impacts", (int)ne,
+                                            "listed", (int)listed,
                                             "force_n", kept(p->force, keep, n, 1.0),
                                             "penetration_um", kept(p->pen, keep, n, 1.0 / FB_M_PER_UM)));
   json_object_set_new(o, "joints", joints);
-  json_object_set_new(o, "impacts", json_array());
+  json_object_set_new(o, "impacts", impacts);
   free(keep);
   return o;
 }

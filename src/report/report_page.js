@@ -506,6 +506,11 @@
     });
     head.push(['spikes.force_max_n', 'contact force max [N]'], ['spikes.penetration_max_m', 'penetration max [m]'],
       ['spikes.impacts', 'impacts (peak window)']);
+    /* a planar case's clearance models keep them at the model's top level */
+    [['force_max_n', 'contact force max [N]'], ['penetration_max_m', 'penetration max [m]'],
+      ['impacts_vs_reference.impacts', 'impacts (whole run)'], ['contact.0.h_omega_c_max', 'h omega_c max']].forEach(function (h) {
+      if (keys.indexOf(h[0]) >= 0) head.push(h);
+    });
     OUT.forEach(function (o) { head.push([o.summary[4], o.name + ' peak |' + o.symbol[2] + '| / ideal']); });
     var th0 = el('table'); th0.id = 'summary_head';
     var hr0 = el('tr'); hr0.appendChild(el('th', 'summary.json', 'name'));

@@ -11,6 +11,7 @@ class Tally:
 
     def __init__(self):
         self.passed = self.failed = 0
+        self.finished = False
 
     def check(self, ok, what):
         if ok:
@@ -21,6 +22,7 @@ class Tally:
 
     def done(self):
         print("%d passed, %d failed" % (self.passed, self.failed))
+        self.finished = True
         return 1 if self.failed else 0
 
 
@@ -99,11 +101,19 @@ def extreme(f, sign, tol=1e-12):
 
 def start(argv, prefix):
     """what a script test over the built program begins with: the program's
-    path (argv[1]), the cases/ folder, a tally and a scratch folder"""
-    import os, tempfile
+    path (argv[1]), the cases/ folder, a tally and a scratch folder; the
+    folder is removed at exit when the tally finished (done()) with no
+    failure, and kept to look at otherwise (a run's outputs are hundreds of
+    megabytes: left behind by every passing run, they fill the disk)"""
+    import atexit, os, shutil, tempfile
     here = os.path.dirname(os.path.abspath(__file__))
-    return (os.path.abspath(argv[1]), os.path.join(here, "..", "cases"), Tally(),
-            tempfile.mkdtemp(prefix=prefix))
+    tally, tmp = Tally(), tempfile.mkdtemp(prefix=prefix)
+
+    def tidy():
+        if tally.finished and not tally.failed:
+            shutil.rmtree(tmp, ignore_errors=True)
+    atexit.register(tidy)
+    return os.path.abspath(argv[1]), os.path.join(here, "..", "cases"), tally, tmp
 
 
 def start_case(argv, prefix, name):

@@ -172,6 +172,19 @@ void fb_planar_run_free(fb_planar_run *r);
  * of its law for a clearance one. fb_planar_run_case calls it. */
 void fb_planar_verdicts(fb_planar_run *r);
 
+/* The first impact of clearance model p (of run r) against reference ref's
+ * by the verdict's rule 1 (planar_verdict.h: each one's first contact
+ * episode whose peak force reaches FB_MATCHED_GRAZING_SHARE of the
+ * reference's largest, paired when their onsets lie within
+ * FB_IMPACT_MATCH_REV_FRACTION of a revolution), each peak taken over its
+ * own episode's samples, so that p and ref may be sampled at different
+ * steps (fourbar bench's rows against a reference run once): *force_rel
+ * and *pen_rel the relative errors of p's peak force and penetration
+ * (NaN when not paired, or when either stopped or has no contact column).
+ * Returns 1 when paired, else 0; -1 out of memory. */
+int fb_planar_first_impact(double *force_rel, double *pen_rel, const fb_planar_run *r,
+                           const fb_planar_model *p, const fb_planar_model *ref);
+
 /* The reference model p (its samples allocated, p->name set) of run r:
  * the impact law (impact = 1, "reference") or the restitution law
  * (planar_ref_model.c). Errors: FB_ERR_ARG without exactly one clearance

@@ -269,6 +269,39 @@ static void clearance(fb_planar_verdict *v, const fb_planar_run *r, const fb_pla
            v->matched_penetration_rel_max, FB_MATCHED_IMPACT_ERROR_BOUND);
 }
 
+/* the grazing floor of ref's episodes: FB_MATCHED_GRAZING_SHARE of its
+ * largest peak force [N]; -1 out of memory */
+static double grazing_floor(const fb_planar_model *ref) {
+  episode *b = NULL;
+  const int nb = episodes(&b, ref, 0.0);
+  double floor = 0.0;
+  for (int k = 0; k < nb; k++) floor = fmax(floor, b[k].force);
+  free(b);
+  return nb < 0 ? -1.0 : floor * FB_MATCHED_GRAZING_SHARE;
+}
+
+int fb_planar_first_impact(double *force_rel, double *pen_rel, const fb_planar_run *r,
+                           const fb_planar_model *p, const fb_planar_model *ref) {
+  *force_rel = *pen_rel = NAN;
+  if (!p->force || !ref->force || p->ref.failed || ref->ref.failed) return 0;
+  const double floor = grazing_floor(ref);
+  if (floor < 0.0) return -1;
+  episode *a = NULL, *b = NULL;
+  const int na = episodes(&a, p, floor), nb = episodes(&b, ref, floor);
+  int paired = 0;
+  if (na > 0 && nb > 0 &&
+      fabs(p->t[a[0].i0] - ref->t[b[0].i0]) <= FB_IMPACT_MATCH_REV_FRACTION * revolution(r, ref)) {
+    *force_rel = rel(peak(p->force, p->force_max, p->n, a[0].i0, a[0].i1, 1),
+                     peak(ref->force, NULL, ref->n, b[0].i0, b[0].i1, 0));
+    *pen_rel = rel(peak(p->pen, NULL, p->n, a[0].i0, a[0].i1, 1),
+                   peak(ref->pen, NULL, ref->n, b[0].i0, b[0].i1, 0));
+    paired = 1;
+  }
+  free(a);
+  free(b);
+  return na < 0 || nb < 0 ? -1 : paired;
+}
+
 /* the model of run r named name, or NULL */
 static const fb_planar_model *find(const fb_planar_run *r, const char *name) {
   for (int i = 0; name && i < r->n; i++)

@@ -11,6 +11,7 @@
 #include "clock.h"
 #include "engine.h"
 #include "fileio.h"
+#include "impact.h"
 #include "model_table.h"
 #include "numfmt.h"
 #include "pilot.h"
@@ -33,6 +34,10 @@ typedef struct {
   double walls[FB_BENCH_ROUNDS], setups[FB_BENCH_ROUNDS]; /* [s] */
   int rounds;
   double revs;                   /* revolutions simulated [-] */
+  double first_force, first_pen; /* a clearance row: its first impact's peak force and
+                                    penetration against the reference's, fourbar run's verdict
+                                    measure (planar_run.h fb_planar_first_impact) [-]; NaN:
+                                    unpaired or not a clearance row */
 } planar_point;
 
 typedef struct {
@@ -215,6 +220,7 @@ static void first_run(planar_bench *pb, int i) {
   fb_bench_row *b = &pb->rows[i];
   planar_point *pt = &pb->pt[i];
   for (int k = 0; k < FB_PLANAR_BENCH_BODIES; k++) pt->by_body[k] = NAN;
+  pt->first_force = pt->first_pen = NAN;
   static fb_planar_run r;
   fb_diag d;
   if (fb_planar_run_case(&r, &pt->k, &d) != FB_OK) { /* not built (a prismatic clearance) */
@@ -226,6 +232,8 @@ static void first_run(planar_bench *pb, int i) {
   else snprintf(pt->status, sizeof pt->status, "ok");
   if (!p->ref.failed && y)
     b->error = pt->kind ? clearance_error(pt, b, r.m, y, p) : ideal_error(pt, r.m, y, p);
+  if (!p->ref.failed && y && pt->kind) /* what fourbar run's verdict rests on first */
+    fb_planar_first_impact(&pt->first_force, &pt->first_pen, &r, p, y);
   pt->revs = r.duration * fabs(r.omega) / (2.0 * M_PI);
   pt->walls[0] = p->wall_s - p->setup_s;
   pt->setups[0] = p->setup_s;
@@ -374,7 +382,7 @@ static int write_csv(const planar_bench *pb) {
   if (fb_outfile_open(&f, path, &d) != FB_OK) return fb_study_fail("bench", 1, "%s", d.msg);
   fprintf(f.f, "model,engine,kind,yardstick,stepper,h_s,status,error,force_rel,penetration_rel,"
                "alpha_spike_rel,worst_body,wall_per_rev_s,setup_s,repeats,pareto,steps_taken,"
-               "us_per_step\n");
+               "us_per_step,first_impact_force_rel,first_impact_penetration_rel\n");
 #define CSV(x) FB_NUM_CELL("%.6g", (x), FB_NUM_NONE_CSV)
   for (int i = 0; i < pb->n; i++) {
     const fb_bench_row *b = &pb->rows[i];
@@ -382,9 +390,10 @@ static int write_csv(const planar_bench *pb) {
     fprintf(f.f, "%s,%s,%s,%s,%s,%g,\"%s\",%s,%s,%s,", b->model, b->engine, kinds[pt->kind],
             pt->yardstick, b->stepper, b->h, pt->status, CSV(b->error),
             CSV(b->part[FB_BENCH_PART_FORCE]), CSV(b->part[FB_BENCH_PART_PENETRATION]));
-    fprintf(f.f, "%s,%s,%s,%s,%d,%d,%.0f,%s\n", CSV(b->part[FB_BENCH_PART_ALPHA_COUPLER]),
+    fprintf(f.f, "%s,%s,%s,%s,%d,%d,%.0f,%s,", CSV(b->part[FB_BENCH_PART_ALPHA_COUPLER]),
             pt->worst_body, CSV(b->wall_per_rev), CSV(b->setup_s), b->repeats, b->pareto,
             b->steps_taken, CSV(b->us_per_step));
+    fprintf(f.f, "%s,%s\n", CSV(pt->first_force), CSV(pt->first_pen));
   }
 #undef CSV
   if (fb_outfile_commit(&f, &d) != FB_OK) return fb_study_fail("bench", 1, "%s", d.msg);
@@ -430,6 +439,19 @@ static json_t *row_json(const planar_bench *pb, int i) {
   json_object_set_new(o, "error_parts", parts);
   json_object_set_new(o, "error_by_body", bodies);
   json_object_set_new(o, "worst_body", json_string(pt->worst_body));
+  /* fourbar run's measure beside bench's: a clearance model's verdict rests
+   * first on its first impact within FB_FAITHFUL_PENETRATION_TOL */
+  const int paired = isfinite(pt->first_force) && isfinite(pt->first_pen);
+  json_object_set_new(o, "first_impact",
+                      pt->kind ? json_pack("{s:o,s:o,s:f,s:o}", "force_rel", num(pt->first_force),
+                                           "penetration_rel", num(pt->first_pen), "verdict_bound",
+                                           FB_FAITHFUL_PENETRATION_TOL, "within_verdict_bound",
+                                           paired ? json_boolean(fabs(pt->first_force) <=
+                                                                     FB_FAITHFUL_PENETRATION_TOL &&
+                                                                 fabs(pt->first_pen) <=
+                                                                     FB_FAITHFUL_PENETRATION_TOL)
+                                                  : json_null())
+                               : json_null());
   return o;
 }
 
@@ -498,20 +520,22 @@ static void print_rows(const planar_bench *pb) {
          "('P': Pareto front of its engine's model; error of an ideal row: omega peaks against "
          "the analytic; of a clearance row: the largest of its force, penetration and alpha "
          "spike errors against the reference of its law, body: the worst part's)\n\n"
-         "%-26s %-16s %9s %11s %10s %10s %10s %-10s %11s %10s  %s\n",
+         "%-26s %-16s %9s %11s %10s %10s %10s %-10s %11s %10s %10s %10s  %s\n",
          pb->o->c->name, pb->n, pb->wall, pb->base.revolutions,
          pb->base.revolutions == 1.0 ? "" : "s",
          pb->base.peaks == FB_PEAKS_ALL ? "over all of it" : "after the first", "model", "stepper", "h_s", "error", "force", "pen",
-         "alpha", "body", "s/rev", "setup s", "status");
+         "alpha", "body", "s/rev", "setup s", "1st force", "1st pen", "status");
   for (int i = 0; i < pb->n; i++) {
     const fb_bench_row *b = &pb->rows[i];
     const planar_point *pt = &pb->pt[i];
     char cell[5][16];
     const double v[5] = {b->error, b->part[0], b->part[1], b->part[2], b->wall_per_rev};
     for (int k = 0; k < 5; k++) snprintf(cell[k], sizeof cell[k], isfinite(v[k]) ? "%.3e" : "-", v[k]);
-    printf("%-26s %-16s %9.3g %11s %10s %10s %10s %-10s %11s %c %8s  %.60s\n", b->model,
-           b->stepper, b->h, cell[0], cell[1], cell[2], cell[3], pt->worst_body, cell[4],
-           b->pareto ? 'P' : ' ', FB_NUM_CELL("%.2e", b->setup_s, "-"), pt->status);
+    printf("%-26s %-16s %9.3g %11s %10s %10s %10s %-10s %11s %c %8s %10s %10s  %.60s\n",
+           b->model, b->stepper, b->h, cell[0], cell[1], cell[2], cell[3], pt->worst_body, cell[4],
+           b->pareto ? 'P' : ' ', FB_NUM_CELL("%.2e", b->setup_s, "-"),
+           FB_NUM_CELL("%+.2e", pt->first_force, "-"), FB_NUM_CELL("%+.2e", pt->first_pen, "-"),
+           pt->status);
   }
 }
 
@@ -525,9 +549,27 @@ static void print_cheapest(const planar_bench *pb) {
         if (!m) continue;
         const int i = fb_bench_cheapest(pb->rows, pb->n, m, targets[t]);
         if (i < 0) printf("  %-26s error <= %.0e: none in the grid\n", m->name, targets[t]);
-        else printf("  %-26s error <= %.0e: %s, h = %g s: %.3e at %.3e s/rev\n", m->name,
-                    targets[t], pb->rows[i].stepper, pb->rows[i].h, pb->rows[i].error,
-                    pb->rows[i].wall_per_rev);
+        else {
+          printf("  %-26s error <= %.0e: %s, h = %g s: %.3e at %.3e s/rev", m->name,
+                 targets[t], pb->rows[i].stepper, pb->rows[i].h, pb->rows[i].error,
+                 pb->rows[i].wall_per_rev);
+          const planar_point *pt = &pb->pt[i];
+          if (q == 1 && isfinite(pt->first_force) && isfinite(pt->first_pen))
+            printf("; first impact %+.2g force, %+.2g penetration: %s the bound %g of fourbar "
+                   "run's verdict%s", pt->first_force, pt->first_pen,
+                   fabs(pt->first_force) <= FB_FAITHFUL_PENETRATION_TOL &&
+                           fabs(pt->first_pen) <= FB_FAITHFUL_PENETRATION_TOL
+                       ? "within"
+                       : "beyond",
+                   FB_FAITHFUL_PENETRATION_TOL,
+                   fabs(pt->first_force) <= FB_FAITHFUL_PENETRATION_TOL &&
+                           fabs(pt->first_pen) <= FB_FAITHFUL_PENETRATION_TOL
+                       ? ""
+                       : " (it reads error there)");
+          else if (q == 1)
+            printf("; first impact unpaired: its run reads error");
+          printf("\n");
+        }
       }
       const int best = cheapest_across(pb, q, t);
       if (best >= 0)

@@ -54,6 +54,7 @@ int fb_cmd_keys(int argc, char **argv) {
   }
   if (argc > 1) return fb_cli_fail("keys", 2, "unexpected argument '%s'", argv[1]);
   fb_casefile_write_keys(stdout);
+  fb_casefile_planar_write_keys(stdout); /* a planar case's description, the same table */
   return 0;
 }
 

@@ -54,6 +54,12 @@ fb_status fb_casefile_load_text(fb_case *out, const char *name, const char *text
  * rule | meaning |" to f, for the documentation. */
 void fb_casefile_write_keys(FILE *f);
 
+/* Writes a planar case's description keys ([joint.NAME], [body.NAME],
+ * [drive] joint) as further rows of that table (its columns: key, unit,
+ * default, rule, meaning), their rules the strings the parser gives
+ * (casefile_planar.c). */
+void fb_casefile_planar_write_keys(FILE *f);
+
 /* Reads text (blanks around it allowed) as a decimal number: digits, sign,
  * point and exponent only, so 0x10, 0x1p3, inf and nan are not numbers;
  * nor is a non-zero number below the smallest normal double (1e-400 would

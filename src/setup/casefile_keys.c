@@ -7,7 +7,6 @@
  * docs/keys.md (fourbar keys writes the rows; scripts/keys_doc.sh). */
 #include "casefile.h"
 #include "casefile_internal.h"
-#include "casefile_planar.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -399,7 +398,6 @@ void fb_casefile_write_keys(FILE *f) {
     fprintf(f, "| [%s] %s | %s | %s | %s | %s |\n", keys[i].section, keys[i].key, keys[i].unit,
             keys[i].def, keys[i].rule, keys[i].doc);
   }
-  fb_casefile_planar_write_keys(f); /* a planar case's description */
 }
 
 const key_spec *fb_casefile_spec(int i) { return i >= 0 && i < NKEYS ? &keys[i] : NULL; }

@@ -25,8 +25,6 @@
 #ifndef FB_CASEFILE_PLANAR_H
 #define FB_CASEFILE_PLANAR_H
 
-#include <stdio.h>
-
 #include "casefile_internal.h"
 
 /* 1 when e is [linkage] type = planar. */
@@ -57,10 +55,5 @@ fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag);
  * file and line of the section concerned; FB_ERR_NOMEM. */
 fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const char *path, int run,
                                     fb_diag *diag);
-
-/* Writes the description's keys ([joint.NAME], [body.NAME], [drive] joint)
- * as rows of fourbar keys' Markdown table (casefile_keys.c's columns: key,
- * unit, default, rule, meaning), their rules the ones the parser gives. */
-void fb_casefile_planar_write_keys(FILE *f);
 
 #endif

@@ -224,6 +224,7 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
       p->peaks[k] = (fb_body_peaks){.omega_max = NAN, .omega_min = NAN, .alpha_max = NAN,
                                     .alpha_min = NAN};
     p->ref.force_max = p->ref.penetration_max = NAN;
+    p->ref.steps = cl.contact_steps; /* the contact steps before the stop */
     return FB_OK;
   }
   if (st != FB_OK) return st;

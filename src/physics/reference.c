@@ -284,10 +284,10 @@ static void refine_peaks(fb_series *out, ref_ctx *r, double h, double tol, doubl
   refine_src src = {r, out};
   const fb_peak_refine_ode ode = {4, REFINE_QUANTITIES, refine_rhs, refine_eval, refine_start,
                                   &src, h, tol, 0};
-  fb_peak_refine_column cols[4] = {{out->contact[r->cj][FB_C_FORCE], 0, -1},
-                                   {out->contact[r->cj][FB_C_PEN], 1, -1},
-                                   {out->body[0][FB_Q_ACC], 2, 3},
-                                   {out->body[1][FB_Q_ACC], 4, 5}};
+  fb_peak_refine_column cols[4] = {{out->contact[r->cj][FB_C_FORCE], 0, -1, 1},
+                                   {out->contact[r->cj][FB_C_PEN], 1, -1, 1},
+                                   {out->body[0][FB_Q_ACC], 2, 3, 0},
+                                   {out->body[1][FB_Q_ACC], 4, 5, 0}};
   fb_peak_refine(cols, 4, out->t, out->n, t_split, &ode);
 }
 

@@ -100,12 +100,12 @@ static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *
     refine_src src = {d, ct, qdd, z, y, p->h, p->ref.joint, fb_planar_nq(m), nb,
                       fb_planar_rel_dim(d), from == 0 ? to - 1 : -1};
     int nc = 0, nquant = 2;
-    cc[nc++] = (fb_peak_refine_column){col->force, 0, -1};
-    cc[nc++] = (fb_peak_refine_column){col->pen, 1, -1};
+    cc[nc++] = (fb_peak_refine_column){col->force, 0, -1, 1};
+    cc[nc++] = (fb_peak_refine_column){col->pen, 1, -1, 1};
     for (int b = 0; b < nb; b++) {
       if (b == src.driven) continue;
       cc[nc++] = (fb_peak_refine_column){col->q + ((size_t)b * 3 + FB_Q_ACC) * p->n, nquant,
-                                         nquant + 1};
+                                         nquant + 1, 0};
       nquant += 2;
     }
     const fb_peak_refine_ode ode = {(size_t)src.dim, nquant, refine_rhs, refine_eval,

@@ -748,11 +748,16 @@ void fb_bench_mark_pareto(fb_bench_row *rows, int n) {
   }
 }
 
-int fb_bench_cheapest(const fb_bench_row *rows, int n, const fb_model *model, double target) {
+int fb_bench_cheapest_of(const fb_bench_row *rows, int n, const fb_model *model, double target,
+                         const unsigned char *eligible) {
   int best = -1;
   for (int i = 0; i < n; i++)
-    if (rows[i].row == model && isfinite(rows[i].error) && rows[i].error <= target &&
-        (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev))
+    if (rows[i].row == model && (!eligible || eligible[i]) && isfinite(rows[i].error) &&
+        rows[i].error <= target && (best < 0 || rows[i].wall_per_rev < rows[best].wall_per_rev))
       best = i;
   return best;
+}
+
+int fb_bench_cheapest(const fb_bench_row *rows, int n, const fb_model *model, double target) {
+  return fb_bench_cheapest_of(rows, n, model, target, NULL);
 }

@@ -178,6 +178,13 @@ void fb_bench_mark_pareto(fb_bench_row *rows, int n);
 /* Index of the cheapest row of model meeting error <= target, -1 if none. */
 int fb_bench_cheapest(const fb_bench_row *rows, int n, const fb_model *model, double target);
 
+/* As fb_bench_cheapest, among the rows i with eligible[i] != 0 only (n
+ * entries; NULL: every row): a planar case's clearance row whose first
+ * impact is beyond fourbar run's verdict bound is not eligible, so that
+ * the configuration bench names reads ok in run. */
+int fb_bench_cheapest_of(const fb_bench_row *rows, int n, const fb_model *model, double target,
+                         const unsigned char *eligible);
+
 /* The models a bench of engine e measures: its ideal stack-up model
  * (*ideal) and its clearance impact model with the exact collider
  * (*clearance; for an engine without one, its first stack-up clearance

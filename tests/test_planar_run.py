@@ -390,6 +390,10 @@ check(rc != 0 and "paper" in se, "a planar reference refuses penalty = paper (%s
 # motions have parted, docs/chaos.md) are not compared.
 REF_PEAK_REL = 5e-5
 REF_SAMPLES_UNTIL_S = 0.05
+# Spikes held by the neighbouring sample in the other reference (below):
+# measured 2 (one tie's two samples, the force column) over 5000 samples;
+# more would say the two integrations part, not a tie between two samples.
+REF_SPIKES_MOVED = 4
 REF_SET = ("--set", "run.models=reference-restitution", "--set", "clearance.penalty=explicit",
            "--set", "clearance.penalty_n_m=3e9", "--set", "run.revolutions=2", "--set",
            "solver.h_s=1e-5", "--set", "tolerance.stackup=nominal", "--no-figures", "--no-report")
@@ -417,14 +421,28 @@ if rc1 == 0 and rc2 == 0:
             ("crank-coupler_penetration_m", "crank_coupler_penetration_m"),
             ("coupler_alpha_rad_s2", "coupler_alpha_rad_s2"),
             ("follower_alpha_rad_s2", "follower_alpha_rad_s2")]
+    # every impact's peak is refined (a contact's force and penetration at
+    # any size): where a peak lies between two samples of nearly equal raw
+    # values, which of them holds it turns on the two integrations' 1e-5
+    # differences (the planar four-bar's 376.00 N bump at 21.86 ms: the
+    # raw samples 375.58 and 375.58 N). Such a sample is compared by the
+    # largest of it and its neighbours, the same extreme on either sample.
     for pc, cc in cols:
         early = [(float(a[pc]), float(b[cc])) for a, b in zip(prow, crow)
                  if float(b["time_s"]) < REF_SAMPLES_UNTIL_S]
         big = max(abs(b) for _, b in early)
-        worst = max(abs(a - b) for a, b in early) / big
-        check(len(early) > 4000 and worst <= REF_PEAK_REL,
-              "%s sample by sample over t < %g s: %.2g of its largest (bound %g)"
-              % (pc, REF_SAMPLES_UNTIL_S, worst, REF_PEAK_REL))
+        worst, moved = 0.0, 0
+        for i, (a, b) in enumerate(early):
+            d = abs(a - b) / big
+            if d > REF_PEAK_REL and 0 < i < len(early) - 1:
+                near = early[i - 1:i + 2]
+                d = abs(max(x for x, _ in near) - max(y for _, y in near)) / big
+                moved += 1
+            worst = max(worst, d)
+        check(len(early) > 4000 and worst <= REF_PEAK_REL and moved <= REF_SPIKES_MOVED,
+              "%s sample by sample over t < %g s: %.2g of its largest (bound %g), %d spikes on "
+              "the neighbouring sample (at most %d)"
+              % (pc, REF_SAMPLES_UNTIL_S, worst, REF_PEAK_REL, moved, REF_SPIKES_MOVED))
 
 # 10. the planar reference's state is its clearance joint's eccentricity
 # (planar_relative.h), so a case moved far from its origin costs what it

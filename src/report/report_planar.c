@@ -173,13 +173,20 @@ static void engine_verdict_json(json_t *e, const fb_planar_model *p) {
   }
   json_object_set_new(
       e, "impacts_vs_reference",
-      json_pack("{s:i,s:i,s:i,s:o,s:o,s:o,s:o,s:o,s:o}", "impacts", v->impacts,
+      json_pack("{s:i,s:i,s:i,s:o,s:o,s:o,s:o,s:o,s:o,s:s,s:o}", "impacts", v->impacts,
                 "impacts_reference", v->impacts_reference, "matched", v->matched, "parts_s",
                 num(v->parts_s), "first_t_error_s", num(v->first_t_error_s), "first_force_rel",
                 num(v->first_force_rel), "first_penetration_rel", num(v->first_penetration_rel),
                 "matched_force_rel_max", v->matched ? num(v->matched_force_rel_max) : json_null(),
                 "matched_penetration_rel_max",
-                v->matched ? num(v->matched_penetration_rel_max) : json_null()));
+                v->matched ? num(v->matched_penetration_rel_max) : json_null(), "compared_at",
+                v->sampled ? "the same sample instants" : "continuous extremes",
+                "step_resolution",
+                v->sampled ? json_pack("{s:o,s:o}", "first_force_rel",
+                                       num(v->first_resolution_force_rel),
+                                       "first_penetration_rel",
+                                       num(v->first_resolution_penetration_rel))
+                           : json_null()));
 }
 
 /* an analytic model's load peaks over the window, under the four-bar's

@@ -150,6 +150,10 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
     col.force[i] = c->force;
     col.pen[i] = c->penetration;
   }
+  if (st == FB_OK && store) {
+    memcpy(p->force_sampled, col.force, n * sizeof *col.force);
+    memcpy(p->pen_sampled, col.pen, n * sizeof *col.pen);
+  }
   /* the check's window peaks alone are read (check_change): its start-up
    * needs no refinement */
   if (st == FB_OK) refine(&col, p, r, d, y, z, tol, !store);
@@ -220,7 +224,7 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   q->check_tol = fmax(q->tol / FB_REFERENCE_CHECK_FACTOR, FB_REFERENCE_TOL_MIN);
   q->check_rel = NAN;
   unsigned char *clear = calloc((size_t)m->njoints, 1);
-  p->force = malloc(2 * p->n * sizeof *p->force);
+  p->force = malloc(4 * p->n * sizeof *p->force);
   if (!clear || !p->force) {
     free(clear);
     free(guide);
@@ -228,6 +232,8 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   }
   p->pen = p->force + p->n;
+  p->force_sampled = p->force + 2 * p->n;
+  p->pen_sampled = p->force + 3 * p->n;
   clear[q->joint] = 1;
   /* v0 of the hysteresis laws: fixed, as reference.c's */
   const fb_planar_dyn_model model = {m, clear, q->law, c->radial_clearance, 1e-3, c->gravity,

@@ -94,7 +94,12 @@ typedef struct {
   int reference;           /* 1: a reference (ref holds its results; force, pen its columns) */
   int engine;              /* 1: an engine's model, built through the engine kit (kit.h) */
   fb_planar_ref_result ref;
-  double *force, *pen;     /* a reference's contact force [N] and penetration [m] (n) */
+  double *force, *pen;     /* a reference's contact force [N] and penetration [m] (n), each
+                              spike's sample holding its refined extreme (peak_refine.h);
+                              an engine's model's at its samples */
+  double *force_sampled, *pen_sampled; /* a reference's force and penetration at its samples,
+                              before the refinement: what a model sampling at the same
+                              instants sees of it (planar_verdict.c) (n); NULL for the others */
   fb_body_peaks *peaks;    /* per body of the description (nbodies; the ground's zero): omega
                               and alpha extremes over a revolution (analytic) or over the
                               window's samples (a reference) [rad/s, rad/s^2] */

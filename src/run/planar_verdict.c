@@ -62,16 +62,78 @@ static double peak(const double *y, const double *ymax, size_t n, size_t i0, siz
 
 static double rel(double x, double ref) { return (x - ref) / ref; }
 
-/* the model's and the reference's peak force and penetration over the span
- * of a pair of episodes together (a contact one integration splits in two
- * and the other does not is compared whole, as metrics.h pairs them): the
- * relative errors fr, pr */
-static void pair_errors(double *fr, double *pr, const fb_planar_model *p,
-                        const fb_planar_model *ref, const episode *a, const episode *b) {
-  const size_t i0 = a->i0 < b->i0 ? a->i0 : b->i0, i1 = a->i1 > b->i1 ? a->i1 : b->i1;
-  *fr = rel(peak(p->force, p->force_max, p->n, i0, i1, 1),
-            peak(ref->force, NULL, ref->n, i0, i1, 0));
-  *pr = rel(peak(p->pen, NULL, p->n, i0, i1, 1), peak(ref->pen, NULL, ref->n, i0, i1, 0));
+/* the samples of model x within [ta, tb] [s]: *i0 .. *i1; 0 when none */
+static int span(size_t *i0, size_t *i1, const fb_planar_model *x, double ta, double tb) {
+  const double slack = 1e-9 * x->h;
+  size_t i = 0;
+  while (i < x->n && x->t[i] < ta - slack) i++;
+  *i0 = i;
+  while (i < x->n && x->t[i] <= tb + slack) i++;
+  if (i == *i0) return 0;
+  *i1 = i - 1;
+  return 1;
+}
+
+/* the reference's sample stride at model p's instants: m when p's h is m
+ * times the reference's (both sample from t = 0), else 0 */
+static size_t stride_at(const fb_planar_model *p, const fb_planar_model *ref) {
+  const double m = round(p->h / ref->h);
+  return m >= 1.0 && fabs(p->h - m * ref->h) <= 1e-9 * p->h ? (size_t)m : 0;
+}
+
+/* the largest of the reference's column y over samples i0 .. i1 at model
+ * instants (every stride-th sample); -INFINITY when none */
+static double peak_at(const double *y, size_t i0, size_t i1, size_t stride) {
+  double v = -INFINITY;
+  for (size_t i = (i0 + stride - 1) / stride * stride; i <= i1; i += stride) v = fmax(v, y[i]);
+  return v;
+}
+
+/* One impact of model p against its partner in the reference, the rule
+ * every comparison of impacts takes (the first impact's, the matched
+ * ones', bench's first_impact), over the span of the two episodes together
+ * (a contact one integration splits in two and the other does not is
+ * compared whole, as metrics.h pairs them). Where the reference sampled at
+ * p's instants (its h divides p's; a run's models share one h): p's
+ * largest samples against the reference's largest at the same instants,
+ * before its refinement, both measured on the same footing however few
+ * samples an impact has (a model exact at its samples reads its own
+ * error, not the sampling's). Else the continuous extremes: p's refined by
+ * the parabola through its largest samples (and its sub-steps), the
+ * reference's refined (peak_refine.h). */
+typedef struct {
+  double force_rel, pen_rel;  /* the model's peak force and penetration against the
+                                 reference's [-] */
+  int sampled;                /* 1: compared at the same instants */
+  double res_force, res_pen;  /* sampled: the reference's peaks at those instants against its
+                                 continuous extremes, the step's resolution of this impact
+                                 (<= 0) [-]; NaN otherwise */
+} impact_cmp;
+
+static impact_cmp compare(const fb_planar_model *p, const fb_planar_model *ref,
+                          const episode *a, const episode *b) {
+  impact_cmp c = {NAN, NAN, 0, NAN, NAN};
+  const double ta = fmin(p->t[a->i0], ref->t[b->i0]), tb = fmax(p->t[a->i1], ref->t[b->i1]);
+  size_t p0, p1, r0, r1;
+  if (!span(&p0, &p1, p, ta, tb) || !span(&r0, &r1, ref, ta, tb)) return c;
+  const size_t stride = ref->force_sampled ? stride_at(p, ref) : 0;
+  const double rf = peak(ref->force, NULL, ref->n, r0, r1, 0);
+  const double rp = peak(ref->pen, NULL, ref->n, r0, r1, 0);
+  if (stride) {
+    const double sf = peak_at(ref->force_sampled, r0, r1, stride);
+    const double sp = peak_at(ref->pen_sampled, r0, r1, stride);
+    if (sf > 0.0 && sp > 0.0) {
+      c.sampled = 1;
+      c.force_rel = rel(peak(p->force, NULL, p->n, p0, p1, 0), sf);
+      c.pen_rel = rel(peak(p->pen, NULL, p->n, p0, p1, 0), sp);
+      c.res_force = rel(sf, rf);
+      c.res_pen = rel(sp, rp);
+      return c;
+    }
+  }
+  c.force_rel = rel(peak(p->force, p->force_max, p->n, p0, p1, 1), rf);
+  c.pen_rel = rel(peak(p->pen, NULL, p->n, p0, p1, 1), rp);
+  return c;
 }
 
 /* body b's angle at sample i (planar_run.h's layout) [rad] */
@@ -133,12 +195,15 @@ static void pair(fb_planar_verdict *v, const fb_planar_model *p, const fb_planar
       else j++;
       continue;
     }
-    double fr, pr;
-    pair_errors(&fr, &pr, p, ref, &a[i], &b[j]);
+    const impact_cmp c = compare(p, ref, &a[i], &b[j]);
+    const double fr = c.force_rel, pr = c.pen_rel;
     if (i == 0 && j == 0) {
       v->first_t_error_s = ta - tb;
       v->first_force_rel = fr;
       v->first_penetration_rel = pr;
+      v->sampled = c.sampled;
+      v->first_resolution_force_rel = c.res_force;
+      v->first_resolution_penetration_rel = c.res_pen;
     }
     v->matched_force_rel_max = fmax(v->matched_force_rel_max, fabs(fr));
     v->matched_penetration_rel_max = fmax(v->matched_penetration_rel_max, fabs(pr));
@@ -241,8 +306,9 @@ static void clearance(fb_planar_verdict *v, const fb_planar_run *r, const fb_pla
                FB_IMPACT_MATCH_REV_FRACTION, na, nb);
     else
       snprintf(v->reason, sizeof v->reason, "its first impact's peak force is %+.2g and peak "
-               "penetration %+.2g off %s's; the bound is %.2g", v->first_force_rel,
-               v->first_penetration_rel, ref->name, FB_FAITHFUL_PENETRATION_TOL);
+               "penetration %+.2g off %s's%s; the bound is %.2g", v->first_force_rel,
+               v->first_penetration_rel, ref->name,
+               v->sampled ? " at the same sample instants" : "", FB_FAITHFUL_PENETRATION_TOL);
     return;
   }
   if (!ref->ref.converged || isfinite(v->parts_s)) {
@@ -264,9 +330,10 @@ static void clearance(fb_planar_verdict *v, const fb_planar_run *r, const fb_pla
                      !(v->matched_penetration_rel_max <= FB_MATCHED_IMPACT_ERROR_BOUND);
   set(v, beyond ? FB_VERDICT_ERROR : FB_VERDICT_OK, FB_BASIS_POINTWISE);
   snprintf(v->reason, sizeof v->reason, "stays with %s: %d impacts matched (of %d and %d), "
-           "largest error %.2g in peak force, %.2g in peak penetration; the bound is %.2g",
+           "largest error %.2g in peak force, %.2g in peak penetration%s; the bound is %.2g",
            ref->name, v->matched, na, nb, v->matched_force_rel_max,
-           v->matched_penetration_rel_max, FB_MATCHED_IMPACT_ERROR_BOUND);
+           v->matched_penetration_rel_max, v->sampled ? " at the same sample instants" : "",
+           FB_MATCHED_IMPACT_ERROR_BOUND);
 }
 
 /* the grazing floor of ref's episodes: FB_MATCHED_GRAZING_SHARE of its
@@ -291,10 +358,9 @@ int fb_planar_first_impact(double *force_rel, double *pen_rel, const fb_planar_r
   int paired = 0;
   if (na > 0 && nb > 0 &&
       fabs(p->t[a[0].i0] - ref->t[b[0].i0]) <= FB_IMPACT_MATCH_REV_FRACTION * revolution(r, ref)) {
-    *force_rel = rel(peak(p->force, p->force_max, p->n, a[0].i0, a[0].i1, 1),
-                     peak(ref->force, NULL, ref->n, b[0].i0, b[0].i1, 0));
-    *pen_rel = rel(peak(p->pen, NULL, p->n, a[0].i0, a[0].i1, 1),
-                   peak(ref->pen, NULL, ref->n, b[0].i0, b[0].i1, 0));
+    const impact_cmp c = compare(p, ref, &a[0], &b[0]);
+    *force_rel = c.force_rel;
+    *pen_rel = c.pen_rel;
     paired = 1;
   }
   free(a);
@@ -317,6 +383,8 @@ void fb_planar_verdicts(fb_planar_run *r) {
     *v = (fb_planar_verdict){.judged = 1, .word = FB_VERDICT_UNCHECKED,
                              .first_t_error_s = NAN, .first_force_rel = NAN,
                              .first_penetration_rel = NAN, .parts_s = NAN,
+                             .first_resolution_force_rel = NAN,
+                             .first_resolution_penetration_rel = NAN,
                              .peak_rel_max = NAN};
     const fb_model *mt = fb_model_find(p->name);
     const fb_model *want = mt && p->force ? fb_model_reference_of(mt) : NULL;

@@ -62,6 +62,13 @@ typedef struct {
   double first_t_error_s;     /* the first impact's onset minus the reference's [s] */
   double first_force_rel;     /* its peak force against the reference's [-] */
   double first_penetration_rel; /* its peak penetration against the reference's [-] */
+  int sampled;                /* 1: its impacts compared with the reference's samples at the
+                                 same instants (planar_verdict.c compare), 0: with the
+                                 reference's continuous extremes */
+  double first_resolution_force_rel; /* sampled: the reference's first-impact peak force at
+                                 the model's instants against its continuous extreme, what the
+                                 step resolves of the impact (<= 0) [-]; NaN otherwise */
+  double first_resolution_penetration_rel; /* the same for the penetration [-] */
   double matched_force_rel_max; /* largest |force error| of the matched impacts [-] */
   double matched_penetration_rel_max; /* same for the penetration [-] */
   double peak_rel_max;        /* an ideal model's largest window-peak error [-] */

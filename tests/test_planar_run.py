@@ -310,6 +310,17 @@ if rc1 == 0 and rc2 == 0:
               "penalty %s: %.15g N, built-in %.15g N" % (r["joint"], a[r["joint"]]["force_n"], r["force_n"]))
 rc, so, se = run("penalty", six)
 check(rc == 0 and "| rod-output |" in so, "penalty on the six-bar has a row per revolute joint (%s)" % se.strip())
+check("no contact block here yet" in so and "h omega_c" in so,
+      "the six-bar's clearance joint: penalty says it has no contact block yet and where h "
+      "omega_c is (%s)" % so.strip()[-300:])
+rc, so, se = run("penalty", six, "--json")
+j = json.loads(so) if rc == 0 else {}
+check("contact" in j and j["contact"] is None and "fourbar run" in j.get("contact_note", ""),
+      "--json: contact null, contact_note says where to look (%s)" % so.strip()[-200:])
+rc, so, se = run("penalty", os.path.join(cases, "..", "tests", "cases", "quick_return.ini"), "--json")
+j = json.loads(so) if rc == 0 else {}
+check("contact" in j and "contact_note" not in j,
+      "a planar case without clearance joints has no contact note (%s)" % so.strip()[-200:])
 rc, _, se = run("penalty", six, "--mode", "paper")
 check(rc == 2 and "physical" in se, "paper mode on a planar case is refused (%s)" % se.strip())
 

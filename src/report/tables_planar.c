@@ -63,6 +63,9 @@ void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
   }
 }
 
+#define PLANAR_NO_CONTACT                                                                  \
+  "a planar case's clearance joints have no contact block here yet (laws, effective mass, omega_c and the automatic step are the four-bar's and slider-crank's): fourbar run prints each engine clearance model's largest h omega_c at its contacts and the step that would resolve them"
+
 void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
                               const fb_planar_penalty_row *rows, const int *n, const double *rpm,
                               int nspeeds, int json) {
@@ -88,9 +91,14 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
                 CELL(r->force), CELL(r->stiffness), CELL(r->penalty), CELL(p_mm),
                 CELL(r->approach / FB_M_PER_UM));
     }
+  /* the contact block (tables_penalty.c) takes the four-bar's and the
+   * slider-crank's contact estimate; a planar case says what it has instead */
   if (json)
-    dump(f, json_pack("{s:s,s:s,s:s,s:o}", "case", c->name, "mechanism", "planar", "mode",
-                      "physical", "rows", arr));
+    dump(f, json_pack("{s:s,s:s,s:s,s:o,s:n,s:s*}", "case", c->name, "mechanism", "planar", "mode",
+                      "physical", "rows", arr, "contact", "contact_note",
+                      c->clearance.mask ? PLANAR_NO_CONTACT : NULL));
+  else if (c->clearance.mask)
+    fputs("\n" PLANAR_NO_CONTACT "\n", f);
 }
 
 /* the stack-up's Monte Carlo keys of o (as fourbar stackup's on a

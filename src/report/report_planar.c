@@ -187,6 +187,17 @@ static void engine_verdict_json(json_t *e, const fb_planar_model *p) {
                                        "first_penetration_rel",
                                        num(v->first_resolution_penetration_rel))
                            : json_null()));
+  if (v->rigid) {
+    /* a rigid model's force is an impulse over a step: what it computes
+     * instead (planar_verdict.c rigid) */
+    json_t *o = json_object_get(e, "impacts_vs_reference");
+    json_object_set_new(o, "rigid", json_true());
+    json_object_set_new(o, "first_rebound_ratio", num(v->first_rebound_ratio));
+    json_object_set_new(o, "first_impulse_n_s", num(v->first_impulse_n_s));
+    json_object_set_new(o, "restitution", num(v->restitution));
+    json_object_set_new(o, "compared_at", json_string("rebound ratio against the law's cr"));
+    json_object_set_new(o, "step_resolution", json_null());
+  }
 }
 
 /* an analytic model's load peaks over the window, under the four-bar's

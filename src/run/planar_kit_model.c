@@ -142,12 +142,16 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   cl->pin_radius = 0.5 * c->pin_diameter;
   cl->impact_velocity_min = sc.impact_velocity_min;
   cl->friction = c->clearance.friction;
-  p->force = malloc(2 * p->n * sizeof *p->force);
+  /* a rigid model's eccentricity too: its verdict reads its rebound
+   * (planar_verdict.c) */
+  const int ecc = mt->rigid && j->kind != FB_KIND_PRISMATIC;
+  p->force = malloc((ecc ? 4 : 2) * p->n * sizeof *p->force);
   if (!p->force) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   p->pen = p->force + p->n;
-  for (size_t i = 0; i < 2 * p->n; i++) p->force[i] = NAN;
+  for (size_t i = 0; i < (ecc ? 4 : 2) * p->n; i++) p->force[i] = NAN;
   rec->force = p->force;
   rec->pen = p->pen;
+  if (ecc) rec->ecc = p->ecc = p->force + 2 * p->n;
   p->ref.joint = cj;
   p->ref.law = rec->law;
   return FB_OK;

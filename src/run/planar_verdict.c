@@ -267,11 +267,112 @@ static double revolution(const fb_planar_run *r, const fb_planar_model *ref) {
   return rate > 0.0 ? 2.0 * M_PI / rate : INFINITY;
 }
 
+/* |e| of a rigid model's pin at sample i [m] */
+static double ecc_norm(const fb_planar_model *p, size_t i) {
+  return hypot(p->ecc[i], p->ecc[p->n + i]);
+}
+
+/* the slope at time t of the quadratic through |e| at samples k .. k + 2 [m/s] */
+static double quad_slope_at(const fb_planar_model *p, size_t k, double t) {
+  const double t0 = p->t[k], t1 = p->t[k + 1], t2 = p->t[k + 2];
+  const double y0 = ecc_norm(p, k), y1 = ecc_norm(p, k + 1), y2 = ecc_norm(p, k + 2);
+  const double d01 = (y1 - y0) / (t1 - t0), d12 = (y2 - y1) / (t2 - t1);
+  const double a = (d12 - d01) / (t2 - t0), b = d01 + a * (t1 - t0);
+  return b + 2.0 * a * (t - t1);
+}
+
+/* A rigid model's first impact (the four-bar's rule, metrics.c's
+ * impulse_rebound): the impulse acts over the step after sample i, the
+ * first with a contact force; the rate of |e| into the wall from the
+ * quadratic through samples i - 2 .. i at t_i, out of it through i + 1 ..
+ * i + 3 at t_{i + 1}; the rebound ratio their ratio (NaN where the pin is
+ * not free before, or held on the wall after: a force at i + 1 .. i + 3).
+ * *impulse: the force over the impact's steps times h [N s]; returns i, or
+ * p->n when it has no impact. */
+static size_t rigid_first(double *rebound, double *impulse, const fb_planar_model *p) {
+  *rebound = NAN;
+  *impulse = 0.0;
+  size_t i = 0;
+  while (i < p->n && !(p->force[i] > 0.0)) i++;
+  if (i == p->n) return i;
+  for (size_t k = i; k < p->n && p->force[k] > 0.0; k++) *impulse += p->force[k] * p->h;
+  if (i < 2 || i + 4 > p->n) return i;
+  for (size_t k = i + 1; k <= i + 3; k++)
+    if (p->force[k] > 0.0) return i; /* held on the wall: no bounce */
+  const double u_in = quad_slope_at(p, i - 2, p->t[i]);
+  const double u_out = quad_slope_at(p, i + 1, p->t[i + 1]);
+  if (u_in > 0.0) *rebound = -u_out / u_in;
+  return i;
+}
+
+/* a rigid (impulsive) model against the penalty reference of its law: its
+ * force, an impulse over a step, grows without bound as the step shrinks
+ * and is never compared as a force; its first impact's onset pairs with
+ * the reference's, and its rebound ratio is held to the law's cr (the
+ * limit of the penalty reference's rebound as its penalty stiffens) within
+ * FB_MATCHED_IMPACT_ERROR_BOUND, the four-bar's rule (verdict_stats.c) */
+static void rigid(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_model *p,
+                  const fb_planar_model *ref) {
+  v->rigid = 1;
+  const double cr = v->restitution = r->c.clearance.restitution;
+  const size_t i = rigid_first(&v->first_rebound_ratio, &v->first_impulse_n_s, p);
+  episode *b = NULL;
+  const int nb = episodes(&b, ref, 0.0);
+  const double onset = nb > 0 ? ref->t[b[0].i0] : NAN;
+  free(b);
+  v->impacts_reference = nb > 0 ? nb : 0;
+  for (size_t k = 0; k < p->n; k++) /* its impacts: runs of a contact force */
+    if (p->force[k] > 0.0 && (k == 0 || !(p->force[k - 1] > 0.0))) v->impacts++;
+  v->parts_s = parts_at(r, p, ref);
+  if (i == p->n && nb <= 0) {
+    set(v, FB_VERDICT_OK, FB_BASIS_POINTWISE);
+    snprintf(v->reason, sizeof v->reason, "no impact, as %s", ref->name);
+    return;
+  }
+  v->first_t_error_s = i < p->n && nb > 0 ? p->t[i] - onset : NAN;
+  if (!(fabs(v->first_t_error_s) <= FB_IMPACT_MATCH_REV_FRACTION * revolution(r, ref))) {
+    set(v, FB_VERDICT_ERROR, FB_BASIS_POINTWISE);
+    snprintf(v->reason, sizeof v->reason, "its first impact has no partner in %s's within %.2g "
+             "of a revolution", ref->name, FB_IMPACT_MATCH_REV_FRACTION);
+    return;
+  }
+  const double worst = fabs(v->first_rebound_ratio / cr - 1.0);
+  if (!(worst <= FB_MATCHED_IMPACT_ERROR_BOUND)) {
+    set(v, isnan(worst) ? FB_VERDICT_WARN : FB_VERDICT_ERROR,
+        isnan(worst) ? FB_BASIS_NONE : FB_BASIS_POINTWISE);
+    if (isnan(worst))
+      snprintf(v->reason, sizeof v->reason, "a rigid model: its first impact's rebound is not "
+               "measured (the pin stays on the wall after it), and its force is an impulse over "
+               "a step, not compared with %s's", ref->name);
+    else
+      snprintf(v->reason, sizeof v->reason, "a rigid model: its first impact's rebound ratio "
+               "%.4g against the law's cr %.4g (the limit of %s's as its penalty stiffens) is "
+               "%.2g off; the bound is %.2g", v->first_rebound_ratio, cr, ref->name, worst,
+               FB_MATCHED_IMPACT_ERROR_BOUND);
+    return;
+  }
+  const int parts = isfinite(v->parts_s);
+  set(v, parts || !ref->ref.converged ? FB_VERDICT_WARN : FB_VERDICT_OK,
+      parts || !ref->ref.converged ? FB_BASIS_UNSETTLED : FB_BASIS_POINTWISE);
+  snprintf(v->reason, sizeof v->reason, "a rigid model: its first impact's rebound ratio %.4g "
+           "against the law's cr %.4g (the limit of %s's as its penalty stiffens), %.2g off "
+           "within %.2g; impulse %.4g N s; %s", v->first_rebound_ratio, cr, ref->name, worst,
+           FB_MATCHED_IMPACT_ERROR_BOUND, v->first_impulse_n_s,
+           parts ? "it parts from the reference later, and a planar run has no ensemble to "
+                   "decide on statistics yet"
+           : !ref->ref.converged ? "its reference's window peaks did not converge"
+                                 : "its motion stays with the reference's to the end");
+}
+
 static void clearance(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_model *p,
                       const fb_planar_model *ref) {
   if (ref->ref.failed) {
     set(v, FB_VERDICT_WARN, FB_BASIS_NONE);
     snprintf(v->reason, sizeof v->reason, "its reference %s stopped", ref->name);
+    return;
+  }
+  if (p->ecc) {
+    rigid(v, r, p, ref);
     return;
   }
   episode *a = NULL, *b = NULL;
@@ -385,7 +486,8 @@ void fb_planar_verdicts(fb_planar_run *r) {
                              .first_penetration_rel = NAN, .parts_s = NAN,
                              .first_resolution_force_rel = NAN,
                              .first_resolution_penetration_rel = NAN,
-                             .peak_rel_max = NAN};
+                             .peak_rel_max = NAN, .first_rebound_ratio = NAN,
+                             .first_impulse_n_s = NAN};
     const fb_model *mt = fb_model_find(p->name);
     const fb_model *want = mt && p->force ? fb_model_reference_of(mt) : NULL;
     const fb_planar_model *y = p->force ? find(r, want ? want->name : NULL) : find(r, "analytic");

@@ -72,6 +72,14 @@ typedef struct {
   double matched_force_rel_max; /* largest |force error| of the matched impacts [-] */
   double matched_penetration_rel_max; /* same for the penetration [-] */
   double peak_rel_max;        /* an ideal model's largest window-peak error [-] */
+  int rigid;                  /* 1: a rigid (impulsive) model: its force and penetration are
+                                 not compared; its first impact's rebound ratio against the
+                                 law's cr is */
+  double first_rebound_ratio; /* a rigid model's first rebound: the rate of |e| out of the
+                                 wall over the rate into it [-]; NaN: not measured */
+  double first_impulse_n_s;   /* a rigid model's first impact's impulse, its force over the
+                                 steps of the impact [N s] */
+  double restitution;         /* a rigid model: the law's cr its rebound is held to [-] */
 } fb_planar_verdict;
 
 #endif

@@ -139,30 +139,40 @@ if m:
 # measured 1.8e-4 at 5e-6 s, 2.9e-5 at 2e-6 s, 2.7e-4 at 1e-6 s; a tenth
 # of the 2 % bound, and 15 times below the loss it no longer counts.
 EXACT_AT_SAMPLES = 1e-3
-rc, so, se = fb_script.run(exe, tmp, "models", "--json")
-have = rc == 0 and "simbody-clearance-impact" in so
-if have:
-    out = os.path.join(tmp, "sixbar-simbody")
+BUILT = fb_script.run(exe, tmp, "models", "--json")[1]
+
+
+def sixbar(reference, model):
+    """model's summary.json entry from one revolution of the six-bar beside
+    reference (peaks over all of it); None when the model is not in this
+    build or the run failed"""
+    if model not in BUILT:
+        print("note: no %s in this build; its six-bar check is left out" % model)
+        return None
+    out = os.path.join(tmp, "sixbar-" + model)
     rc, _, se = fb_script.run(exe, tmp, "run", os.path.join(cases, "watt_sixbar.ini"), "--set",
-                              "run.models=reference,simbody-clearance-impact", "--set",
+                              "run.models=%s,%s" % (reference, model), "--set",
                               "run.revolutions=1", "--set", "run.peaks=all", "--out", out,
                               "--no-figures", "--no-report")
-    check(rc == 0, "the six-bar with Simbody runs (%s)" % se.strip()[-300:])
-    if rc == 0:
-        with open(os.path.join(out, "summary.json")) as f:
-            o = {x["name"]: x for x in json.load(f)["models"]}["simbody-clearance-impact"]
-        v = o.get("impacts_vs_reference", {})
-        res = v.get("step_resolution") or {}
-        check(v.get("compared_at") == "the same sample instants" and
-              abs(v.get("first_force_rel", 1.0)) <= EXACT_AT_SAMPLES and
-              abs(v.get("first_penetration_rel", 1.0)) <= EXACT_AT_SAMPLES,
-              "Simbody's first impact at the reference's instants within %g: %s"
-              % (EXACT_AT_SAMPLES, v))
-        check(res.get("first_penetration_rel", 0.0) < -10 * EXACT_AT_SAMPLES,
-              "while the step resolves the reference's own peak penetration to %s"
-              % res.get("first_penetration_rel"))
-else:
-    print("note: no Simbody in this build; its six-bar check is left out")
+    check(rc == 0, "the six-bar with %s runs (%s)" % (model, se.strip()[-300:]))
+    if rc != 0:
+        return None
+    with open(os.path.join(out, "summary.json")) as f:
+        return {x["name"]: x for x in json.load(f)["models"]}[model]
+
+
+o = sixbar("reference", "simbody-clearance-impact")
+if o:
+    v = o.get("impacts_vs_reference", {})
+    res = v.get("step_resolution") or {}
+    check(v.get("compared_at") == "the same sample instants" and
+          abs(v.get("first_force_rel", 1.0)) <= EXACT_AT_SAMPLES and
+          abs(v.get("first_penetration_rel", 1.0)) <= EXACT_AT_SAMPLES,
+          "Simbody's first impact at the reference's instants within %g: %s"
+          % (EXACT_AT_SAMPLES, v))
+    check(res.get("first_penetration_rel", 0.0) < -10 * EXACT_AT_SAMPLES,
+          "while the step resolves the reference's own peak penetration to %s"
+          % res.get("first_penetration_rel"))
 
 # 7. a rigid model is judged on what it computes: Siconos's Newton impact
 # on the six-bar, its force an impulse over a step (+97 % against the
@@ -172,26 +182,16 @@ else:
 # at 1e-6 s (Moreau-Jean's impact at the step's end); 1e-4 is twenty
 # times the first and catches a cr handed wrong by 1e-4.
 RIGID_REBOUND_REL = 1e-4
-if "siconos-clearance-newton" in fb_script.run(exe, tmp, "models", "--json")[1]:
-    out = os.path.join(tmp, "sixbar-siconos")
-    rc, _, se = fb_script.run(exe, tmp, "run", os.path.join(cases, "watt_sixbar.ini"), "--set",
-                              "run.models=reference-restitution,siconos-clearance-newton", "--set",
-                              "run.revolutions=1", "--set", "run.peaks=all", "--out", out,
-                              "--no-figures", "--no-report")
-    check(rc == 0, "the six-bar with Siconos runs (%s)" % se.strip()[-300:])
-    if rc == 0:
-        with open(os.path.join(out, "summary.json")) as f:
-            o = {x["name"]: x for x in json.load(f)["models"]}["siconos-clearance-newton"]
-        v = o.get("impacts_vs_reference", {})
-        rb, cr = v.get("first_rebound_ratio"), v.get("restitution")
-        check(v.get("rigid") is True and v.get("first_force_rel") is None and
-              v.get("first_penetration_rel") is None and "force" not in o.get("verdict_reason", "x"),
-              "Siconos's force is not compared: %s (%s)" % (v, o.get("verdict_reason")))
-        check(isinstance(rb, float) and cr == 0.3 and abs(rb / cr - 1.0) <= RIGID_REBOUND_REL and
-              o.get("verdict") != "error" and (v.get("first_impulse_n_s") or 0.0) > 0.0,
-              "its first rebound ratio %s against cr %s within %g, impulse %s N s: %s"
-              % (rb, cr, RIGID_REBOUND_REL, v.get("first_impulse_n_s"), o.get("verdict")))
-else:
-    print("note: no Siconos in this build; its six-bar check is left out")
+o = sixbar("reference-restitution", "siconos-clearance-newton")
+if o:
+    v = o.get("impacts_vs_reference", {})
+    rb, cr = v.get("first_rebound_ratio"), v.get("restitution")
+    check(v.get("rigid") is True and v.get("first_force_rel") is None and
+          v.get("first_penetration_rel") is None and "force" not in o.get("verdict_reason", "x"),
+          "Siconos's force is not compared: %s (%s)" % (v, o.get("verdict_reason")))
+    check(isinstance(rb, float) and cr == 0.3 and abs(rb / cr - 1.0) <= RIGID_REBOUND_REL and
+          o.get("verdict") != "error" and (v.get("first_impulse_n_s") or 0.0) > 0.0,
+          "its first rebound ratio %s against cr %s within %g, impulse %s N s: %s"
+          % (rb, cr, RIGID_REBOUND_REL, v.get("first_impulse_n_s"), o.get("verdict")))
 
 tally.done()

@@ -55,12 +55,12 @@ static const char penalty_help[] =
     "expected impact force is twice the largest ideal reaction at the stack-up\n"
     "corner's lengths (a load applied suddenly peaks at twice its static value);\n"
     "it sets the contact frequency omega_c and so the automatic step.\n"
-    "Then, for a four-bar or slider-crank case with clearance joints, the contact a\n"
-    "fourbar run of the case uses (the same code path: its laws, stiffness and\n"
-    "damping per joint, which lengths and which rule), the effective-mass range,\n"
-    "expected impact force and contact frequency, and the step [solver] h_s = auto\n"
-    "gives (JSON: \"contact\"); a planar case with clearance joints says it has none\n"
-    "yet (JSON: \"contact\" null and \"contact_note\").\n"
+    "Then, for a case with clearance joints, the contact a fourbar run of the case\n"
+    "uses (the same code path: its laws, stiffness and damping per joint, which\n"
+    "lengths and which rule), the effective-mass range, expected impact force and\n"
+    "contact frequency, and the step [solver] h_s = auto gives (JSON: \"contact\");\n"
+    "a planar case's pins at their nominal lengths, with the step that resolves\n"
+    "them (JSON: \"h_resolving_s\"; its h_s = auto does not take it yet).\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static int parse_speeds(const char *text, double *out, int *n) {

@@ -91,7 +91,12 @@ int fb_cmd_penalty_planar(const fb_case *c, const double *rpm, int nspeeds, int 
   for (int s = 0; s < nspeeds && st == FB_OK; s++)
     st = fb_planar_penalty_rows(rows + (size_t)s * (size_t)m->njoints, &n[s], c, m,
                                 rpm[s] * FB_RAD_S_PER_RPM, &d);
-  if (st == FB_OK) fb_report_planar_penalty(stdout, c, m, rows, n, rpm, nspeeds, json);
+  fb_planar_contact_estimate *est = malloc(2 * (size_t)m->njoints * sizeof *est);
+  int nest = 0;
+  if (st == FB_OK && !est) st = fb_diag_set(&d, FB_ERR_NOMEM, "out of memory");
+  if (st == FB_OK) st = fb_planar_contact_estimates(est, &nest, c, m, &d);
+  if (st == FB_OK) fb_report_planar_penalty(stdout, c, m, rows, n, rpm, nspeeds, est, nest, json);
+  free(est);
   free(rows);
   free(n);
   fb_planar_free(m);

@@ -6,6 +6,9 @@
 #include <math.h>
 
 #include "numfmt.h"
+#include "report_summary.h"
+#include "report_table.h"
+#include "resolution.h"
 #include "tables_stackup.h"
 #include "units.h"
 
@@ -63,12 +66,10 @@ void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
   }
 }
 
-#define PLANAR_NO_CONTACT                                                                  \
-  "a planar case's clearance joints have no contact block here yet (laws, effective mass, omega_c and the automatic step are the four-bar's and slider-crank's): fourbar run prints each engine clearance model's largest h omega_c at its contacts and the step that would resolve them"
-
 void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
                               const fb_planar_penalty_row *rows, const int *n, const double *rpm,
-                              int nspeeds, int json) {
+                              int nspeeds, const fb_planar_contact_estimate *est, int nest,
+                              int json) {
   json_t *arr = json ? json_array() : NULL;
   if (!json)
     fprintf(f, "%s: physical mode (largest ideal reaction over a revolution, Johnson's "
@@ -91,14 +92,48 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
                 CELL(r->force), CELL(r->stiffness), CELL(r->penalty), CELL(p_mm),
                 CELL(r->approach / FB_M_PER_UM));
     }
-  /* the contact block (tables_penalty.c) takes the four-bar's and the
-   * slider-crank's contact estimate; a planar case says what it has instead */
+  /* the contact block: each clearance pin under the two laws a run's
+   * models take (the four-bar's, tables_penalty.c) */
+  json_t *cj = json ? json_array() : NULL;
+  if (nest && !json)
+    fprintf(f, "\ncontact a fourbar run of %s uses (nominal lengths; physical: F_j = the joint's "
+            "largest inverse-dynamics reaction over a revolution, delta_j = Johnson's pin-in-hole "
+            "approach at F_j; impact law K = F_j / delta_j^n, restitution law p = dF/d delta at "
+            "F_j):\n", c->name);
+  for (int k = 0; k < nest; k++) {
+    const fb_planar_contact_estimate *e = &est[k];
+    const char *name = m->joint[e->joint].name;
+    if (json) {
+      json_t *o = fb_report_contact_law_json(name, &e->law, (fb_mapping)c->clearance.mapping);
+      json_object_set_new(o, "model", json_string(e->impact ? "clearance-impact"
+                                                            : "clearance-restitution"));
+      json_object_set_new(o, "effective_mass_estimate_kg",
+                          json_pack("{s:o,s:o}", "min", num(e->m_eff_min), "max",
+                                    num(e->m_eff_max)));
+      json_object_set_new(o, "force_expected_n", num(e->force_expected));
+      json_object_set_new(o, "reaction_n", num(e->reaction_max));
+      json_object_set_new(o, "omega_c_rad_s", num(e->omega_c));
+      json_object_set_new(o, "h_resolving_s", num(e->h_resolving));
+      json_array_append_new(cj, o);
+      continue;
+    }
+    fb_report_print_contact_law(f, name, &e->law, (fb_mapping)c->clearance.mapping);
+    fprintf(f, "  %-17s %-12s effective mass %.4g .. %.4g kg over a revolution, expected impact "
+            "force %.6g N (%g x the ideal reaction %.6g N), omega_c %.4g rad/s: h <= %.3g s "
+            "keeps h omega_c <= %g\n",
+            "", "", e->m_eff_min, e->m_eff_max, e->force_expected, FB_IMPACT_LOAD_FACTOR,
+            e->reaction_max, e->omega_c, e->h_resolving, FB_H_OMEGA_C_BOUND);
+  }
+  double h = INFINITY;
+  for (int k = 0; k < nest; k++) h = fmin(h, est[k].h_resolving);
+  if (nest && !json)
+    fprintf(f, "the step that resolves every clearance contact: %.3g s (a planar run's "
+            "[solver] h_s = auto does not take it yet: one revolution / 6000); fourbar run "
+            "prints each engine clearance model's largest h omega_c at its contacts\n", h);
   if (json)
-    dump(f, json_pack("{s:s,s:s,s:s,s:o,s:n,s:s*}", "case", c->name, "mechanism", "planar", "mode",
-                      "physical", "rows", arr, "contact", "contact_note",
-                      c->clearance.mask ? PLANAR_NO_CONTACT : NULL));
-  else if (c->clearance.mask)
-    fputs("\n" PLANAR_NO_CONTACT "\n", f);
+    dump(f, json_pack("{s:s,s:s,s:s,s:o,s:o,s:o}", "case", c->name, "mechanism", "planar", "mode",
+                      "physical", "rows", arr, "contact", cj, "h_resolving_s",
+                      nest ? num(h) : json_null()));
 }
 
 /* the stack-up's Monte Carlo keys of o (as fourbar stackup's on a

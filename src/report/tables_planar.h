@@ -19,10 +19,15 @@ void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
 /* penalty (physical mode), rows[s * m->njoints ..] of n[s] joints for the
  * speeds rpm[s], s < nspeeds: {"case", "mode": "physical", "rows":
  * [{"speed_rpm", "joint", "force_n", "stiffness_n_m", "penalty_n_m0_5",
- * "penalty_n_mm0_5", "approach_m"}]}; text: the same as a table. */
+ * "penalty_n_mm0_5", "approach_m"}], "contact": [one per clearance pin and
+ * law, est (nest): the law's keys (report_summary.h), "model",
+ * "effective_mass_estimate_kg": {"min", "max"}, "force_expected_n",
+ * "reaction_n", "omega_c_rad_s", "h_resolving_s"]}; text: the same as a
+ * table and a block. */
 void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
                               const fb_planar_penalty_row *rows, const int *n, const double *rpm,
-                              int nspeeds, int json);
+                              int nspeeds, const fb_planar_contact_estimate *est, int nest,
+                              int json);
 
 /* stackup: {"case", "mechanism": "planar", "lengths": [{"body", "from",
  * "to", "nominal_m", "plus_minus_m", "source"}], "corners": N (0: not

@@ -8,6 +8,12 @@
 #include <string.h>
 
 #include "contact.h"
+#include "effective_mass.h"
+#include "joint_law.h"
+#include "planar_kinematics.h"
+#include "planar_mass.h"
+#include "planar_path.h"
+#include "resolution.h"
 #include "iso2768.h"
 #include "planar_case.h"
 #include "planar_invdyn.h"
@@ -71,6 +77,74 @@ fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_ca
       out[(*n)++] = (fb_planar_penalty_row){j, f, kc, kc * pow(c->radial_clearance, 1.5), d};
   }
   free(fmax);
+  return st;
+}
+
+/* the effective-mass range of clearance joint j over a revolution and
+ * every direction: lo, hi [kg] */
+static fb_status m_eff_range(double *lo, double *hi, const fb_case *c, const fb_planar *m, int j,
+                             fb_diag *diag) {
+  const int nq = fb_planar_nq(m);
+  double *q = malloc((size_t)nq * sizeof *q);
+  unsigned char *off = calloc((size_t)m->njoints, 1);
+  fb_planar_kin *k = NULL;
+  fb_status st = q && off ? fb_planar_kin_new(&k, m, diag)
+                          : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int i = 0; i < m->njoints && off; i++)
+    off[i] = ((unsigned)c->clearance.mask >> i) & 1u;
+  *lo = INFINITY;
+  *hi = 0.0;
+  if (st == FB_OK) {
+    fb_planar_assembly(m, q);
+    st = fb_planar_position(k, q, 0.0, NULL, diag);
+  }
+  double from = 0.0;
+  for (int s = 0; s < FB_RESOLUTION_SAMPLES && st == FB_OK; s++) {
+    const double to = c->direction * 2.0 * M_PI * s / FB_RESOLUTION_SAMPLES;
+    fb_path_end end;
+    if (s > 0) st = fb_planar_follow(k, q, from, to, NULL, &end, diag);
+    from = to;
+    double w[2][2], a, b;
+    if (st == FB_OK) st = fb_planar_effective_mass_tensor(w, m, q, off, j, diag);
+    if (st != FB_OK) break;
+    fb_effective_mass_range(w, &a, &b);
+    *lo = fmin(*lo, a);
+    *hi = fmax(*hi, b);
+  }
+  fb_planar_kin_free(k);
+  free(q);
+  free(off);
+  return st;
+}
+
+fb_status fb_planar_contact_estimates(fb_planar_contact_estimate *out, int *n, const fb_case *c,
+                                      const fb_planar *m, fb_diag *diag) {
+  *n = 0;
+  if (!c->clearance.mask) return FB_OK;
+  double *most = malloc((size_t)m->njoints * sizeof *most);
+  if (!most) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_status st = fb_planar_reaction_max(most, m, c->direction * c->crank_speed, c->gravity, diag);
+  for (int j = 0; j < m->njoints && st == FB_OK; j++) {
+    if (!(((unsigned)c->clearance.mask >> j) & 1u) || m->joint[j].kind != FB_KIND_REVOLUTE) continue;
+    double lo, hi;
+    st = m_eff_range(&lo, &hi, c, m, j, diag);
+    /* the law's mass: the two bodies' reduced mass (joint_law.h) */
+    const double a = m->body[m->joint[j].body[0]].mass, b = m->body[m->joint[j].body[1]].mass;
+    const double mass = a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b);
+    for (int impact = 1; impact >= 0 && st == FB_OK; impact--) {
+      fb_planar_contact_estimate *e = &out[(*n)];
+      *e = (fb_planar_contact_estimate){.joint = j, .impact = impact, .m_eff_min = lo,
+                                        .m_eff_max = hi, .reaction_max = most[j]};
+      st = fb_joint_law_at(&e->law, c, impact, most[j], m->joint[j].name, mass, diag);
+      if (st != FB_OK) break;
+      e->force_expected = FB_IMPACT_LOAD_FACTOR * most[j];
+      e->stiffness_tangent = fb_contact_tangent_at_force(&e->law, e->force_expected);
+      e->omega_c = sqrt(e->stiffness_tangent / lo);
+      e->h_resolving = FB_H_OMEGA_C_BOUND / e->omega_c;
+      (*n)++;
+    }
+  }
+  free(most);
   return st;
 }
 

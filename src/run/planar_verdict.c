@@ -286,7 +286,9 @@ static double quad_slope_at(const fb_planar_model *p, size_t k, double t) {
  * first with a contact force; the rate of |e| into the wall from the
  * quadratic through samples i - 2 .. i at t_i, out of it through i + 1 ..
  * i + 3 at t_{i + 1}; the rebound ratio their ratio (NaN where the pin is
- * not free before, or held on the wall after: a force at i + 1 .. i + 3).
+ * held on the wall after it: a force at i + 1 .. i + 3; before i, the
+ * first impact's, it is free). metrics.c's quad_slope_at reads a series'
+ * eccentricity; this one a planar model's columns.
  * *impulse: the force over the impact's steps times h [N s]; returns i, or
  * p->n when it has no impact. */
 static size_t rigid_first(double *rebound, double *impulse, const fb_planar_model *p) {

@@ -94,6 +94,9 @@ static int refine_interval(double *best, const unsigned char *want, work *w, siz
     const double *ya = row(w->stop_y, w, j - 1), *fa = row(w->stop_f, w, j - 1);
     double *fb = row(w->stop_f, w, j);
     memcpy(row(w->stop_y, w, j), y, dim * sizeof *y);
+    /* the stop's quantities and rates fb, which the interpolant reads */
+    o->eval(stop_q + j * nq, fb, tb, y, o->ctx);
+    for (int m = 0; m < nq; m++) best[m] = fmax(best[m], stop_q[j * nq + m]);
     for (int i = 1; i < STRIDE; i++) {
       const double u = (double)i / STRIDE;
       const double h00 = (1 + 2 * u) * (1 - u) * (1 - u), h10 = u * (1 - u) * (1 - u);
@@ -104,8 +107,6 @@ static int refine_interval(double *best, const unsigned char *want, work *w, siz
       for (int m = 0; m < nq; m++)
         if (q[m] > between[m]) between[m] = q[m], best_at[m] = (j - 1) * STRIDE + i;
     }
-    o->eval(stop_q + j * nq, fb, tb, y, o->ctx);
-    for (int m = 0; m < nq; m++) best[m] = fmax(best[m], stop_q[j * nq + m]);
   }
   /* each wanted quantity's extreme, exactly: Brent's method (GSL) between
    * the stops beside its best stop, where that is a strict local maximum

@@ -13,6 +13,7 @@
 #include "kit.h"
 #include "model_table.h"
 #include "planar_free.h"
+#include "planar_mass.h"
 #include "planar_run.h"
 #include "planar_start.h"
 #include "scene.h"
@@ -121,8 +122,7 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
                      p->name);
   const fb_planar_joint *j = &m->joint[cj];
   fb_kit_joint_record *rec = &cl->joint[cj];
-  const double a = m->body[j->body[0]].mass, b = m->body[j->body[1]].mass;
-  const double mass = a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b); /* joint_law.h */
+  const double mass = fb_planar_joint_law_mass(m, cj);
   p->ref.force_work = st == FB_OK && !free_law ? r->reaction_max[cj] : 0.0;
   if (st == FB_OK)
     st = fb_joint_law_at(&rec->law, c, mt->law == FB_MODEL_LAW_IMPACT, p->ref.force_work, j->name,

@@ -9,6 +9,7 @@
 #include "peak_refine.h"
 #include "planar_case.h"
 #include "planar_free.h"
+#include "planar_mass.h"
 #include "planar_reference.h"
 #include "planar_run.h"
 #include "reference.h"
@@ -25,14 +26,6 @@ static fb_status clearance_joint(int *j, const fb_case *c, const fb_planar *m, c
   if (n == 1) return FB_OK;
   return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs one clearance joint ([clearance] joints "
                      "= a joint of the case), and the case names %d", model, n);
-}
-
-/* the mass the law starts from: the two bodies' reduced mass, the moving
- * one's at a ground joint (joint_law.c's rule); the damper then sits on
- * the effective mass at each evaluation (contact_mass.h) */
-static double joint_mass(const fb_planar *m, int j) {
-  const double a = m->body[m->joint[j].body[0]].mass, b = m->body[m->joint[j].body[1]].mass;
-  return a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b);
 }
 
 /* a reference's columns: time, every moving body's angle, omega, alpha
@@ -208,7 +201,7 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   q->force_work = st == FB_OK && !free_law ? r->reaction_max[q->joint] : 0.0;
   if (st == FB_OK)
     st = fb_joint_law_at(&q->law, c, impact, q->force_work, m->joint[q->joint].name,
-                         joint_mass(m, q->joint), diag);
+                         fb_planar_joint_law_mass(m, q->joint), diag);
   if (st == FB_OK) st = fb_reference_tolerance(&q->tol, diag);
   if (st != FB_OK) {
     free(guide);

@@ -128,9 +128,7 @@ fb_status fb_planar_contact_estimates(fb_planar_contact_estimate *out, int *n, c
     if (!(((unsigned)c->clearance.mask >> j) & 1u) || m->joint[j].kind != FB_KIND_REVOLUTE) continue;
     double lo, hi;
     st = m_eff_range(&lo, &hi, c, m, j, diag);
-    /* the law's mass: the two bodies' reduced mass (joint_law.h) */
-    const double a = m->body[m->joint[j].body[0]].mass, b = m->body[m->joint[j].body[1]].mass;
-    const double mass = a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b);
+    const double mass = fb_planar_joint_law_mass(m, j);
     for (int impact = 1; impact >= 0 && st == FB_OK; impact--) {
       fb_planar_contact_estimate *e = &out[(*n)];
       *e = (fb_planar_contact_estimate){.joint = j, .impact = impact, .m_eff_min = lo,

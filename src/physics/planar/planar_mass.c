@@ -274,3 +274,8 @@ void fb_planar_cmass_delassus(fb_planar_cmass *c, double *d, int k, const int *b
     }
   }
 }
+
+double fb_planar_joint_law_mass(const fb_planar *m, int j) {
+  const double a = m->body[m->joint[j].body[0]].mass, b = m->body[m->joint[j].body[1]].mass;
+  return a > 0.0 && b > 0.0 ? a * b / (a + b) : fmax(a, b);
+}

@@ -106,4 +106,10 @@ fb_status fb_planar_cmass_project(fb_planar_cmass *c, double *q, double *qd,
 fb_status fb_planar_effective_mass_tensor(double w[2][2], const fb_planar *m, const double *q,
                                           const unsigned char *off, int j, fb_diag *diag);
 
+/* The mass a clearance joint j's law starts from [kg]: its two bodies'
+ * reduced mass m_a m_b / (m_a + m_b), the moving body's mass at a ground
+ * joint (joint_law.h's rule); the damper then sits on the effective mass
+ * at each evaluation (contact_mass.h). */
+double fb_planar_joint_law_mass(const fb_planar *m, int j);
+
 #endif

@@ -62,7 +62,7 @@ static const char bench_help_planar[] =
 static const char bench_help_grids[] =
     "Speed against error on every engine: ODE's stepper (dWorldStep; dWorldQuickStep\n"
     "at 10, 20, 50 iterations) x step size (1e-3 to 1e-6 s, and auto: the largest\n"
-    "with h omega_c <= 0.5 at the stiffest contact) x mapping (secant, tangent,\n"
+    "with h x rate <= 0.5 at the fastest contact) x mapping (secant, tangent,\n"
     "matched) x world ERP/CFM, and (in builds with MuJoCo) MuJoCo's integrator\n"
     "(euler, implicit, rk4) x step size (1e-3 to 1e-6 s, 7 values), and (in builds\n"
     "with Bullet) Bullet's solver (sequential impulse at 10, 50, 100 iterations:\n"

@@ -243,6 +243,13 @@ static void law_parts(const fb_contact_law *l, double delta, double v0, double *
   if (slope) *slope = k;
 }
 
+double fb_contact_damping_at(const fb_contact_law *l, double delta, double v0) {
+  if (!(delta > 0.0)) return 0.0;
+  double fel, c;
+  law_parts(l, delta, v0, &fel, NULL, &c);
+  return c;
+}
+
 double fb_contact_force(const fb_contact_law *l, double delta, double ddot, double v0) {
   if (!(delta > 0.0)) return 0.0;
   double fel, c;

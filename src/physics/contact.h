@@ -143,6 +143,12 @@ double fb_contact_restitution_zeta(double cr);
  * h0 + (h1 - h0) z^2 (3 - 2 z), z = clamp(x / d_max, 0, 1). */
 double fb_contact_force(const fb_contact_law *law, double delta, double ddot, double v0);
 
+/* The coefficient of ddot in fb_contact_force at penetration delta [m] > 0
+ * and impact velocity v0 [m/s] > 0: the law's damper there [N s/m] (the
+ * impact law's c_max STEP(delta), the restitution law's 2 zeta sqrt(p m),
+ * the hysteresis laws' K delta^n chi / v0). */
+double fb_contact_damping_at(const fb_contact_law *law, double delta, double v0);
+
 /* ---- mapping into ODE ----------------------------------------------------- */
 
 /* ODE soft-constraint parameters of a spring kp [N/m] and damper kd [N s/m]

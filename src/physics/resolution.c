@@ -15,6 +15,25 @@ double fb_contact_tangent_at_force(const fb_contact_law *law, double force) {
   return n * pow(law->stiffness, 1.0 / n) * pow(force, (n - 1.0) / n);
 }
 
+void fb_contact_rates_at(fb_contact_rates *out, const fb_contact_law *law, double m_eff,
+                         double force) {
+  memset(out, 0, sizeof *out);
+  const double n = law->kind == FB_LAW_LINEAR || law->kind == FB_LAW_RESTITUTION ? 1.0
+                                                                                  : law->exponent;
+  out->stiffness_tangent = fb_contact_tangent_at_force(law, force);
+  out->omega_c = sqrt(out->stiffness_tangent / m_eff);
+  out->depth = pow(force / law->stiffness, 1.0 / n);
+  out->approach_speed = sqrt(2.0 * force * out->depth / ((n + 1.0) * m_eff));
+  fb_contact_law on = *law; /* the restitution damper is put on the effective mass */
+  on.mass = m_eff;
+  out->damper_rate = fb_contact_damping_at(&on, out->depth, out->approach_speed) / m_eff;
+  if (law->kind == FB_LAW_IMPACT && law->damping > 0.0)
+    out->ramp_rate = out->approach_speed / law->damping_depth;
+  out->rate = out->omega_c;
+  out->limit = "stiffness";
+  if (out->damper_rate > out->rate) out->rate = out->damper_rate, out->limit = "damper";
+}
+
 fb_status fb_contact_estimates(fb_contact_estimate est[4], const fb_case *c,
                                const fb_contact_law law[4], fb_diag *diag) {
   memset(est, 0, 4 * sizeof est[0]);
@@ -53,8 +72,9 @@ fb_status fb_contact_estimates(fb_contact_estimate est[4], const fb_case *c,
       continue;
     }
     est[j].force_expected = FB_IMPACT_LOAD_FACTOR * reaction[j];
-    est[j].stiffness_tangent = fb_contact_tangent_at_force(&law[j], est[j].force_expected);
-    est[j].omega_c = sqrt(est[j].stiffness_tangent / est[j].m_eff_min);
+    fb_contact_rates_at(&est[j].rates, &law[j], est[j].m_eff_min, est[j].force_expected);
+    est[j].stiffness_tangent = est[j].rates.stiffness_tangent;
+    est[j].omega_c = est[j].rates.omega_c;
   }
   return FB_OK;
 }
@@ -70,7 +90,7 @@ fb_status fb_step_auto(double *h, double *omega_c_max, const fb_case *c, fb_diag
       st = fb_contact_estimates(est, c, laws[model], diag);
       if (st != FB_OK) break;
       for (int j = 0; j < 4; j++)
-        if (c->clearance.mask & (1 << j)) wmax = fmax(wmax, est[j].omega_c);
+        if (c->clearance.mask & (1 << j)) wmax = fmax(wmax, est[j].rates.rate);
     }
     if (st != FB_OK) return st;
     if (wmax > 0.0) hv = fmin(hv, FB_H_OMEGA_C_BOUND / wmax);

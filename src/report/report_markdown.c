@@ -102,7 +102,7 @@ fb_status fb_report_write_markdown(const char *dir, const fb_run *r, const char 
                      (c->solver.h_mode == FB_STEP_DEFAULT && c->clearance.mask);
   fprintf(f, "| step size h | %.6g s (%s) | %s |\n", c->solver.h,
           c->solver.stepper == FB_STEPPER_WORLD ? "dWorldStep" : "dWorldQuickStep",
-          h_auto ? "auto: h omega_c <= 0.5 at the stiffest contact (fourbar penalty CASE)"
+          h_auto ? "auto: h x rate <= 0.5 at the fastest contact (fourbar penalty CASE)"
                  : given_src(c, "solver", "h_s", NULL));
   if (c->clearance.mask) {
     fprintf(f, "| clearance joints |");

@@ -134,16 +134,17 @@ void fb_report_penalty_contact_text(FILE *f, const fb_penalty_study *s) {
       const fb_contact_estimate *e = &s->est[m][j];
       fb_report_print_contact_law(f, fb_case_joint_name(c, j), &s->laws[m][j], s->mapping);
       fprintf(f, "  %-17s %-12s effective mass %.4g .. %.4g kg over a revolution, expected "
-              "impact force %.6g N (%g x the ideal reaction %.6g N), omega_c %.4g rad/s\n",
+              "impact force %.6g N (%g x the ideal reaction %.6g N), omega_c %.4g rad/s, "
+              "damper c / m_eff %.4g 1/s\n",
               "", "", e->m_eff_min, e->m_eff_max, e->force_expected, FB_IMPACT_LOAD_FACTOR,
-              e->force_expected / FB_IMPACT_LOAD_FACTOR, e->omega_c);
+              e->force_expected / FB_IMPACT_LOAD_FACTOR, e->omega_c, e->rates.damper_rate);
     }
   fprintf(f, "expected impact force: %g x the joint's largest ideal reaction at the stack-up "
           "lengths (a load applied suddenly peaks at twice its static value), at %.6g rpm; it "
           "sets omega_c = sqrt(k_t / m_eff_min)\n",
           FB_IMPACT_LOAD_FACTOR, c->crank_speed / FB_RAD_S_PER_RPM);
-  fprintf(f, "[solver] h_s = auto: h = %.4g s (h omega_c <= %g at the stiffest contact, omega_c "
-          "= %.4g rad/s; at most one revolution / %g)%s\n",
+  fprintf(f, "[solver] h_s = auto: h = %.4g s (h x rate <= %g at the fastest contact, its rate "
+          "(the larger of omega_c and c / m_eff) %.4g 1/s; at most one revolution / %g)%s\n",
           s->h_auto, FB_H_OMEGA_C_BOUND, s->omega_c, FB_H_AUTO_STEPS_PER_REV,
           c->solver.h_mode == FB_STEP_FIXED ? "; this case fixes h_s instead" : "");
 }

@@ -39,7 +39,8 @@ typedef struct {
                                               per joint */
   fb_contact_estimate est[2][4];           /* their estimates per joint */
   double h_auto;                           /* [solver] h_s = auto's step [s] */
-  double omega_c;                          /* its contact frequency [rad/s] */
+  double omega_c;                          /* its fastest contact's rate (resolution.h's
+                                              fb_contact_rates: omega_c or c / m_eff) [1/s] */
   fb_linkage stackup;                      /* the stack-up corner's lengths [m] */
   char corner[FB_LINK_COUNT + 1];          /* the corner as '-', '0', '+' per length of the
                                               mechanism's description */

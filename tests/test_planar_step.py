@@ -11,6 +11,15 @@ The case: cases/watt_sixbar.ini at its shipped h = 5e-6 s, where the
 rod-output pin's impacts (tangent stiffness about 2.75e9 N/m on about
 0.025 kg) give h omega_c of about 1.7, past the bound 0.5.
 
+Before any run, `[solver] h_s = auto` chooses the step from each
+clearance contact's estimate (src/physics/resolution.c, the four-bar's
+rule): h x rate = 0.5 at the fastest contact, the rate the larger of
+omega_c and the damper's c / m_eff. Its figures are checked against the
+case's own keys and fourbar penalty's estimate (another command's path to
+the same contact), and its formulas re-derived here: c / m_eff from
+damping_n_s_m, the approach speed from the energy of the undamped impact
+at the expected force.
+
 Usage: test_planar_step.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
 import json, os, re, sys
@@ -47,6 +56,63 @@ def run(out, models, *sets):
         return json.load(f), so
 
 
+def auto_step():
+    """h_s = auto: the step from the contacts, printed and in summary.json"""
+    rc, so, se = fb_script.run(exe, tmp, "penalty", SIX, "--json")
+    check(rc == 0, "penalty --json runs (%s)" % se.strip()[-300:])
+    if rc != 0:
+        return
+    pen = json.loads(so)
+    s, so = run("auto", "analytic", "solver.h_s=auto")
+    if not s:
+        return
+    st = s["step"]
+    ct = st.get("contact") or []
+    check(st["auto"] is True and len(ct) == 2,
+          "auto, one estimate per law at the one clearance joint: %s" % ct)
+    if len(ct) != 2:
+        return
+    h = st["h_s"]
+    check(fb_script.rel(h, min(c["h_resolving_s"] for c in ct)) <= SAME_REL
+          and fb_script.rel(st["auto_estimate_s"], h) <= SAME_REL
+          and fb_script.rel(s["models"][0]["h_s"], h) <= SAME_REL,
+          "the run's step %s is the smallest resolving step of its contacts" % h)
+    check(fb_script.rel(h, pen["h_resolving_s"]) <= SAME_REL,
+          "fourbar penalty's estimate gives the same step: %s" % pen["h_resolving_s"])
+    by_law = {c["law"]: c for c in ct}
+    imp = by_law.get("impact", {})
+    # the case's keys: damping_n_s_m = 5e3 on the impact law
+    DAMPING = 5e3
+    m = imp["effective_mass_kg"]["min"]
+    check(fb_script.rel(imp["damper_rate_1_s"], DAMPING / m) <= SAME_REL,
+          "impact law's damper rate %s = c / m_eff_min = %.12g" % (imp["damper_rate_1_s"], DAMPING / m))
+    # the undamped impact peaking at the expected force F: 1/2 m v^2 =
+    # F delta / (n + 1), delta = (F / K)^(1/n); K and n from penalty's law
+    law = next(c for c in pen["contact"] if c["model"] == "clearance-impact")
+    K, n, F = law["stiffness"], law["exponent"], imp["force_expected_n"]
+    v = (2.0 * F * (F / K) ** (1.0 / n) / ((n + 1.0) * m)) ** 0.5
+    check(fb_script.rel(imp["approach_speed_m_s"], v) <= SAME_REL,
+          "approach speed %s = %.12g from the impact's energy" % (imp["approach_speed_m_s"], v))
+    for c in ct:
+        rate = max(c["omega_c_rad_s"], c["damper_rate_1_s"])
+        check(fb_script.rel(c["rate_1_s"], rate) <= SAME_REL and c["h_rate"] <= BOUND * (1 + SAME_REL)
+              and c["resolved"] is True and c["warning"] is None,
+              "%s law: rate %s = max(omega_c, c / m_eff), h x rate %s within %g"
+              % (c["law"], c["rate_1_s"], c["h_rate"], BOUND))
+    check(max(c["h_rate"] for c in ct) >= BOUND * (1 - SAME_REL),
+          "the fastest contact sits at the bound")
+    check(re.search(r"step h = [0-9.e+-]+ s: auto", so) is not None
+          and so.count("contact at 'rod-output', ") >= 2, "the header prints the step and each contact")
+    # the shipped 5e-6 s: the impact law's contact under-resolved before the run
+    s, so = run("given", "analytic")
+    if s:
+        bad = [c for c in s["step"]["contact"] if not c["resolved"]]
+        check(any(c["law"] == "impact" and "h_s = auto" in (c["warning"] or "")
+                  and ("%.3g" % c["h_resolving_s"]) in c["warning"] for c in bad),
+              "at 5e-6 s the impact law's estimate warns with the step that resolves it: %s"
+              % [c["warning"] for c in bad])
+
+
 def available():
     rc, so, _ = fb_script.run(exe, tmp, "models", "--json")
     return {m["name"] for m in json.loads(so)["models"] if m["available"]} if rc == 0 else set()
@@ -54,6 +120,7 @@ def available():
 
 def main():
     have = available()
+    auto_step()
     s, so = run("coarse", "ode-clearance-impact")
     if s:
         m = s["models"][0]
@@ -82,7 +149,7 @@ def main():
         check("contact at 'rod-output': largest h omega_c" in so and "under-resolved" in so,
               "the printed table says it")
         # the advice followed as a user follows it: the step as printed
-        adv = re.search(r"h_s = ([0-9.eE+-]+) or smaller", w)
+        adv = re.search(r"fixed step of ([0-9.eE+-]+) s or smaller", w)
         check(adv is not None, "the warning gives a step")
         if adv:
             t, so2 = run("advised", "ode-clearance-impact", "solver.h_s=" + adv.group(1))

@@ -70,9 +70,7 @@ typedef struct {
 typedef enum {
   FB_WARN_STEP_FIXED = 0,       /* [solver] h_s = a number */
   FB_WARN_STEP_AUTO_CONTACT = 1, /* h_s = auto, set by the contact estimate (resolution.h) */
-  FB_WARN_STEP_AUTO_CAP = 2,     /* h_s = auto, set by its steps-per-revolution cap */
-  FB_WARN_STEP_FIXED_ONLY = 3    /* a planar case ([linkage] type = planar): its h_s = auto is
-                                    the steps-per-revolution cap, not from its contacts */
+  FB_WARN_STEP_AUTO_CAP = 2      /* h_s = auto, set by its steps-per-revolution cap */
 } fb_warning_step;
 
 #endif

@@ -60,7 +60,7 @@ static const char penalty_help[] =
     "lengths and which rule), the effective-mass range, expected impact force and\n"
     "contact frequency, and the step [solver] h_s = auto gives (JSON: \"contact\");\n"
     "a planar case's pins at their nominal lengths, with the step that resolves\n"
-    "them (JSON: \"h_resolving_s\"; its h_s = auto does not take it yet).\n"
+    "them (JSON: \"h_resolving_s\", the step its h_s = auto takes).\n"
     "Exit status: 0 ok, 1 failed, 2 bad input.\n";
 
 static int parse_speeds(const char *text, double *out, int *n) {

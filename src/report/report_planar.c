@@ -81,6 +81,15 @@ static void clearance_json(json_t *e, const fb_planar_run *r, const fb_planar_mo
   json_object_set_new(e, "window_from_s", num(r->t_window));
 }
 
+/* how the run's step was chosen, in the four-bar's warning's terms */
+static int step_kind(const fb_planar_run *r) {
+  if (!fb_planar_run_step_auto(&r->c)) return FB_WARN_STEP_FIXED;
+  for (int k = 0; k < r->nest; k++)
+    if (r->est[k].h_resolving <= fb_planar_run_step(&r->c) * (1.0 + 1e-12))
+      return FB_WARN_STEP_AUTO_CONTACT;
+  return FB_WARN_STEP_AUTO_CAP;
+}
+
 /* an engine clearance model's h omega_c against the bound: 1 resolved, 0
  * not (then *warn the four-bar's under-resolved warning, outcome_text.c,
  * with the largest fixed step that keeps it), -1 not measured
@@ -91,7 +100,7 @@ static int resolution(const fb_planar_run *r, const fb_planar_model *p, char *wa
   if (p->h_omega_max <= FB_H_OMEGA_C_BOUND) return 1;
   fb_warning w = {.kind = FB_WARN_UNDER_RESOLVED, .value = p->h_omega_max,
                   .limit = FB_H_OMEGA_C_BOUND, .ratio = M_PI / p->h_omega_max, .t = NAN,
-                  .h = p->h, .h_auto = FB_WARN_STEP_FIXED_ONLY};
+                  .h = p->h, .h_auto = step_kind(r)};
   snprintf(w.what, sizeof w.what, "%s", r->m->joint[p->ref.joint].name);
   if (warn) fb_warning_text(warn, size, &w);
   return 0;
@@ -122,7 +131,55 @@ static json_t *contact_json(const fb_planar_run *r, const fb_planar_model *p) {
   return json_pack("[o]", o);
 }
 
-/* summary.json's `step`: the step the models ran at and the largest
+/* a given step's warning on estimate e (empty when h resolves it), with
+ * the largest step that would */
+static void estimate_warning(char *warn, size_t size, const fb_planar_run *r,
+                             const fb_planar_contact_estimate *e) {
+  warn[0] = '\0';
+  const double hr = fb_planar_run_h_rate(r, e);
+  if (!(hr > FB_H_OMEGA_C_BOUND * (1.0 + 1e-12))) return;
+  snprintf(warn, size, "under-resolved before the run: h x %s = %.3g at the %s joint exceeds "
+           "%g; set [solver] h_s = auto, or a fixed step of %.3g s or smaller",
+           strcmp(e->rates.limit, "damper") == 0 ? "c/m_eff" : "omega_c", hr,
+           r->m->joint[e->joint].name, FB_H_OMEGA_C_BOUND, e->h_resolving);
+}
+
+/* one contact estimate of the run (planar_resolution.h) as the step's JSON */
+static json_t *estimate_json(const fb_planar_run *r, const fb_planar_contact_estimate *e) {
+  char warn[512];
+  estimate_warning(warn, sizeof warn, r, e);
+  const fb_contact_rates *q = &e->rates;
+  json_t *o = json_object();
+  json_object_set_new(o, "joint", json_string(r->m->joint[e->joint].name));
+  json_object_set_new(o, "law", json_string(fb_law_name(e->law.kind)));
+  json_object_set_new(o, "effective_mass_kg", json_pack("{s:o,s:o}", "min", num(e->m_eff_min),
+                                                        "max", num(e->m_eff_max)));
+  json_object_set_new(o, "force_expected_n", num(e->force_expected));
+  json_object_set_new(o, "omega_c_rad_s", num(q->omega_c));
+  json_object_set_new(o, "damper_rate_1_s", num(q->damper_rate));
+  json_object_set_new(o, "approach_speed_m_s", num(q->approach_speed));
+  json_object_set_new(o, "damper_ramp_rate_1_s", num(q->ramp_rate));
+  json_object_set_new(o, "rate_1_s", num(q->rate));
+  json_object_set_new(o, "rate_from", json_string(q->limit));
+  json_object_set_new(o, "h_resolving_s", num(e->h_resolving));
+  json_object_set_new(o, "h_rate", num(fb_planar_run_h_rate(r, e)));
+  json_object_set_new(o, "h_ramp_rate", num(fb_planar_run_step(&r->c) * q->ramp_rate));
+  json_object_set_new(o, "resolved", json_boolean(!(fb_planar_run_h_rate(r, e) >
+                                                    FB_H_OMEGA_C_BOUND * (1.0 + 1e-12))));
+  json_object_set_new(o, "warning", warn[0] ? json_string(warn) : json_null());
+  return o;
+}
+
+/* the step the estimates choose: their smallest h_resolving [s] (NAN: none) */
+static double estimates_step(const fb_planar_run *r) {
+  double h = NAN;
+  for (int k = 0; k < r->nest; k++)
+    h = isfinite(h) ? fmin(h, r->est[k].h_resolving) : r->est[k].h_resolving;
+  return h;
+}
+
+/* summary.json's `step`: the step the models ran at, how it was chosen,
+ * each clearance contact's estimate before the run, and the largest
  * h omega_c any engine's clearance model met (the four-bar's keys,
  * report_chaos.c fb_report_step_json, as far as a planar run measures them) */
 static json_t *step_json(const fb_planar_run *r) {
@@ -132,15 +189,50 @@ static json_t *step_json(const fb_planar_run *r) {
       hw = isfinite(hw) ? fmax(hw, r->model[i].h_omega_max) : r->model[i].h_omega_max;
   json_t *o = json_object();
   json_object_set_new(o, "h_s", num(h));
-  json_object_set_new(o, "auto", json_boolean(r->c.solver.h_mode == FB_STEP_AUTO));
-  char rule[64];
-  snprintf(rule, sizeof rule, "one revolution / %g steps", FB_H_AUTO_STEPS_PER_REV);
+  json_object_set_new(o, "auto", json_boolean(fb_planar_run_step_auto(&r->c)));
+  char rule[160];
+  snprintf(rule, sizeof rule, "h x rate <= %g at the fastest clearance contact (rate: omega_c "
+           "or the damper's c / m_eff), at most one revolution / %g steps", FB_H_OMEGA_C_BOUND,
+           FB_H_AUTO_STEPS_PER_REV);
   json_object_set_new(o, "auto_rule", json_string(rule));
+  json_object_set_new(o, "auto_estimate_s", num(estimates_step(r)));
+  json_t *ct = json_array();
+  for (int k = 0; k < r->nest; k++) json_array_append_new(ct, estimate_json(r, &r->est[k]));
+  json_object_set_new(o, "contact", ct);
   json_object_set_new(o, "h_omega_c_max", isfinite(hw) ? num(hw) : json_null());
   json_object_set_new(o, "h_omega_c_bound", num(FB_H_OMEGA_C_BOUND));
   json_object_set_new(o, "within_bound",
                       isfinite(hw) ? json_boolean(hw <= FB_H_OMEGA_C_BOUND) : json_null());
   return o;
+}
+
+/* the header's step lines: the step, how it was chosen, each clearance
+ * contact's rates and h times its rate */
+static void step_text(FILE *f, const fb_planar_run *r) {
+  const double h = fb_planar_run_step(&r->c);
+  if (fb_planar_run_step_auto(&r->c) && r->nest)
+    fprintf(f, "step h = %.4g s: auto, h x rate <= %g at the fastest clearance contact (at most "
+            "one revolution / %g)\n", h, FB_H_OMEGA_C_BOUND, FB_H_AUTO_STEPS_PER_REV);
+  else if (r->nest)
+    fprintf(f, "step h = %.4g s: [solver] h_s %s; the contacts' estimate resolves at "
+            "h <= %.4g s ([solver] h_s = auto)\n", h,
+            r->c.solver.h_mode == FB_STEP_DEFAULT ? "not given (the key's default)" : "as given",
+            estimates_step(r));
+  for (int k = 0; k < r->nest; k++) {
+    const fb_planar_contact_estimate *e = &r->est[k];
+    const fb_contact_rates *q = &e->rates;
+    char warn[512];
+    estimate_warning(warn, sizeof warn, r, e);
+    fprintf(f, "  contact at '%s', %s law: effective mass %.4g kg, expected force %.4g N, "
+            "omega_c %.4g rad/s, damper c/m_eff %.4g 1/s, h x rate %.3g (%s)%s%s",
+            r->m->joint[e->joint].name, fb_law_name(e->law.kind), e->m_eff_min,
+            e->force_expected, q->omega_c, q->damper_rate, fb_planar_run_h_rate(r, e), q->limit,
+            warn[0] ? ": " : "", warn);
+    if (q->ramp_rate > 0.0)
+      fprintf(f, "; damper ramp v_n/d_max %.4g 1/s at v_n %.3g m/s (h x ramp %.3g, reported)",
+              q->ramp_rate, q->approach_speed, h * q->ramp_rate);
+    fputc('\n', f);
+  }
 }
 
 static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
@@ -360,6 +452,7 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
           m->njoints);
   if (m->drive < 0) fprintf(f, "undriven (a free start)\n");
   else fprintf(f, "drive '%s' at %.6g rad/s\n", m->joint[m->drive].name, r->omega);
+  step_text(f, r);
   char injected[1024];
   if (fb_report_injected_case_text(injected, sizeof injected, &r->c)) fprintf(f, "%s\n", injected);
   for (int i = 0; i < r->n; i++) {

@@ -4,6 +4,7 @@
 
 #include <jansson.h>
 #include <math.h>
+#include <string.h>
 
 #include "numfmt.h"
 #include "report_summary.h"
@@ -113,22 +114,27 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
       json_object_set_new(o, "force_expected_n", num(e->force_expected));
       json_object_set_new(o, "reaction_n", num(e->reaction_max));
       json_object_set_new(o, "omega_c_rad_s", num(e->omega_c));
+      json_object_set_new(o, "damper_rate_1_s", num(e->rates.damper_rate));
+      json_object_set_new(o, "approach_speed_m_s", num(e->rates.approach_speed));
+      json_object_set_new(o, "damper_ramp_rate_1_s", num(e->rates.ramp_rate));
+      json_object_set_new(o, "rate_from", json_string(e->rates.limit));
       json_object_set_new(o, "h_resolving_s", num(e->h_resolving));
       json_array_append_new(cj, o);
       continue;
     }
     fb_report_print_contact_law(f, name, &e->law, (fb_mapping)c->clearance.mapping);
     fprintf(f, "  %-17s %-12s effective mass %.4g .. %.4g kg over a revolution, expected impact "
-            "force %.6g N (%g x the ideal reaction %.6g N), omega_c %.4g rad/s: h <= %.3g s "
-            "keeps h omega_c <= %g\n",
+            "force %.6g N (%g x the ideal reaction %.6g N), omega_c %.4g rad/s "
+            "and the damper's c / m_eff %.4g 1/s: h <= %.3g s keeps h x rate <= %g (the %s)\n",
             "", "", e->m_eff_min, e->m_eff_max, e->force_expected, FB_IMPACT_LOAD_FACTOR,
-            e->reaction_max, e->omega_c, e->h_resolving, FB_H_OMEGA_C_BOUND);
+            e->reaction_max, e->omega_c, e->rates.damper_rate, e->h_resolving,
+            FB_H_OMEGA_C_BOUND, strcmp(e->rates.limit, "damper") == 0 ? "damper" : "stiffness");
   }
   double h = INFINITY;
   for (int k = 0; k < nest; k++) h = fmin(h, est[k].h_resolving);
   if (nest && !json)
     fprintf(f, "the step that resolves every clearance contact: %.3g s (a planar run's "
-            "[solver] h_s = auto does not take it yet: one revolution / 6000); fourbar run "
+            "[solver] h_s = auto); fourbar run "
             "prints each engine clearance model's largest h omega_c at its contacts\n", h);
   if (json)
     dump(f, json_pack("{s:s,s:s,s:s,s:o,s:o,s:o}", "case", c->name, "mechanism", "planar", "mode",

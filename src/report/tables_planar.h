@@ -6,6 +6,7 @@
 
 #include <stdio.h>
 
+#include "planar_resolution.h"
 #include "planar_tools.h"
 
 /* kinematics: {"case", "mechanism": "planar", "drive", "speed_rpm",

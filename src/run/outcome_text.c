@@ -40,12 +40,6 @@ static void under_resolved_text(char *buf, size_t size, const fb_warning *w) {
                "smaller to keep it below",
                FB_H_AUTO_STEPS_PER_REV, w->h, h_fix);
       break;
-    case FB_WARN_STEP_FIXED_ONLY:
-      snprintf(buf, size,
-               "set [solver] h_s = %.2g or smaller to keep it below (on a planar case h_s = "
-               "auto is one revolution / %g steps, not chosen from its contacts)",
-               h_fix, FB_H_AUTO_STEPS_PER_REV);
-      break;
     default:
       snprintf(buf, size, "set [solver] h_s = auto, or a fixed step of %.2g s or smaller, to keep it below",
                h_fix);

@@ -11,6 +11,7 @@
 #include "planar_case.h"
 #include "planar_invdyn.h"
 #include "planar_path.h"
+#include "resolution.h"
 #include "series.h"
 
 int fb_planar_run_takes(const char *name) {
@@ -46,13 +47,22 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
 }
 
 /* the output grid's step [s]: [solver] h_s as given (1e-5 s by default),
- * an adaptive run's h_min_s; auto (which chooses from a contact, and an
- * analytic model has none): one revolution / 6000, auto's longest */
+ * an adaptive run's h_min_s; auto: the step the case file chose from its
+ * clearance contacts (casefile_planar.c, planar_resolution.h), one
+ * revolution / 6000 on a case without them */
 double fb_planar_run_step(const fb_case *c) {
   if (c->solver.h_mode == FB_STEP_ADAPTIVE) return c->solver.h_min;
-  if (c->solver.h_mode == FB_STEP_AUTO || !(c->solver.h > 0.0))
-    return 2.0 * M_PI / c->crank_speed / 6000.0;
+  if (!(c->solver.h > 0.0) || (c->solver.h_mode == FB_STEP_AUTO && !c->clearance.mask))
+    return 2.0 * M_PI / c->crank_speed / FB_H_AUTO_STEPS_PER_REV;
   return c->solver.h;
+}
+
+int fb_planar_run_step_auto(const fb_case *c) {
+  return !c->planar.undriven && c->solver.h_mode == FB_STEP_AUTO;
+}
+
+double fb_planar_run_h_rate(const fb_planar_run *r, const fb_planar_contact_estimate *e) {
+  return fb_planar_run_step(&r->c) * e->rates.rate;
 }
 
 /* every moving body's angle, omega and alpha at position q */
@@ -191,6 +201,11 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
   /* the four-bar's window (run.c); an undriven case has no revolution */
   r->t_window = free ? 0.0 : fb_case_peak_window_from(c);
   st = reactions(r, c, diag);
+  if (st == FB_OK && !free && c->clearance.mask) {
+    r->est = malloc(2 * (size_t)r->m->njoints * sizeof *r->est);
+    st = r->est ? fb_planar_contact_estimates(r->est, &r->nest, c, r->m, diag)
+                : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  }
   for (int i = 0; i < c->model_count && st == FB_OK; i++) {
     fb_planar_model *p = &r->model[r->n++];
     snprintf(p->name, sizeof p->name, "%s", c->models[i]);
@@ -212,6 +227,9 @@ void fb_planar_run_free(fb_planar_run *r) {
   fb_planar_free(r->m);
   free(r->reaction_max);
   r->reaction_max = NULL;
+  free(r->est);
+  r->est = NULL;
+  r->nest = 0;
   r->m = NULL;
   r->n = 0;
 }

@@ -57,6 +57,7 @@
 #include "contact.h"
 #include "metrics.h"
 #include "planar.h"
+#include "planar_resolution.h"
 #include "planar_verdict.h"
 
 /* The engines' models a planar case runs through the engine kit
@@ -149,9 +150,23 @@ typedef struct {
                               [N] (fb_planar_reaction_max), computed once for the models whose
                               contact law takes it (a driven case's references and engines'
                               clearance models); NULL when none does */
+  fb_planar_contact_estimate *est; /* (nest) every revolute clearance joint's contact under
+                              both laws before the run (planar_resolution.h): what the
+                              automatic step keeps, and what a given step resolves; NULL on
+                              an undriven case or one without clearance joints */
+  int nest;
   int n;                   /* models run */
   fb_planar_model model[FB_MAX_MODELS];
 } fb_planar_run;
+
+/* The step's resolution of contact estimate e [-]: h times the rate the
+ * step keeps (planar_resolution.h), within FB_H_OMEGA_C_BOUND when h
+ * resolves it. */
+double fb_planar_run_h_rate(const fb_planar_run *r, const fb_planar_contact_estimate *e);
+
+/* 1 when the run's step is [solver] h_s = auto on a driven case (chosen
+ * from its clearance contacts, planar_resolution.h, when it has any). */
+int fb_planar_run_step_auto(const fb_case *c);
 
 /* 1 when model name runs on a planar case (above). */
 int fb_planar_run_takes(const char *name);

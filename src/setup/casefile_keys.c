@@ -274,10 +274,11 @@ static const key_spec keys[] = {
 
     {"solver", "h_s", K_STEP, OFF(solver.h), 1.0, 0, 1, 1, 0, "s", "1e-5",
      "the step size must be positive (at most 1 s), auto or adaptive",
-     "step size h of the ODE models; auto: the largest with h omega_c <= 0.5 at the stiffest "
-     "contact, at most one revolution / 6000; adaptive: from h_min_s to h_max_s following the "
-     "contact (docs/step-size.md); not given: auto for a case with clearance joints, else the "
-     "default"},
+     "step size h of the ODE models; auto: the largest with h x rate <= 0.5 at the fastest "
+     "contact (rate: omega_c or the damper's c / m_eff), at most one revolution / 6000; "
+     "adaptive: from h_min_s to h_max_s following the contact (docs/step-size.md); not given: "
+     "auto for a four-bar or slider-crank with clearance joints, else the default (a planar "
+     "case: the default; auto there is chosen from its contacts as well)"},
     {"solver", "h_min_s", K_DOUBLE, OFF(solver.h_min), 1.0, 0, 1e-3, 1, 0, "s", "1e-6",
      "the shortest adaptive step must be positive, at most 1e-3 s",
      "h_s = adaptive: the shortest step, and the output grid's step"},

@@ -14,6 +14,7 @@
 #include "names.h"
 #include "planar_case.h"
 #include "planar_check.h"
+#include "planar_resolution.h"
 #include "units.h"
 
 #define JOINT_PREFIX "joint."
@@ -570,6 +571,20 @@ static void summary(char *buf, size_t size, const fb_planar *m) {
            derived[0] ? "; masses derived as bars: " : "", derived, derived[0] ? "" : "");
 }
 
+/* [solver] h_s = auto on a driven case with clearance joints: the step
+ * that resolves its clearance contacts (planar_resolution.h), into
+ * c->solver.h (h_mode kept: the case asked for auto). A planar case
+ * without h_s keeps the key's default step. */
+static fb_status step_auto(fb_case *c, const fb_planar *m, const char *path, fb_diag *diag) {
+  if (c->solver.h_mode != FB_STEP_AUTO || c->planar.undriven || !c->clearance.mask) return FB_OK;
+  fb_diag inner;
+  const fb_status st = fb_planar_step_auto(&c->solver.h, c, m, &inner);
+  if (st != FB_OK)
+    return fb_diag_set(diag, st, "%s: [solver] h_s = auto (the step from the clearance "
+                       "contacts): %s", path ? path : "case", inner.msg);
+  return FB_OK;
+}
+
 fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const char *path, int run,
                                     fb_diag *diag) {
   fb_status st = names_one_word(&c->planar, e, n, diag);
@@ -588,7 +603,9 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
                        origin_of(where, sizeof where, &c->planar, &w, e, n, path), inner.msg);
   char line[512];
   summary(line, sizeof line, m);
+  if (run) st = step_auto(c, m, path, diag);
   fb_planar_free(m);
+  if (st != FB_OK) return st;
   if (!fb_casefile_given(c, "run", "models")) { /* the models that run a planar case */
     c->model_count = 1; /* an undriven one has no ideal motion to follow: its reference */
     snprintf(c->models[0], sizeof c->models[0], "%s", c->planar.undriven ? "reference" : "analytic");

@@ -330,14 +330,16 @@ static int work(planar_bench *pb, int *steps) {
 }
 
 /* the base case: 2 revolutions (the case's [run] revolutions when fewer)
- * at a fixed step (the case's h_s; the planar run's own output step, a
- * revolution / 6000, where the case asks auto or adaptive) */
+ * at a fixed step (the case's h_s; the step auto chose from the contacts,
+ * planar_resolution.h; a revolution / 6000 where the case asks adaptive,
+ * or auto without clearance joints) */
 static void base_case(fb_case *k, const fb_case *c) {
   *k = *c;
   k->revolutions = fmin(c->revolutions, 2.0);
   k->duration_s = 0.0; /* by revolutions */
-  if (k->solver.h_mode != FB_STEP_FIXED || !(k->solver.h > 0.0))
-    k->solver.h = 2.0 * M_PI / c->crank_speed / 6000.0;
+  const int from_contacts = fb_planar_run_step_auto(c) && c->clearance.mask;
+  if (!from_contacts && (k->solver.h_mode != FB_STEP_FIXED || !(k->solver.h > 0.0)))
+    k->solver.h = 2.0 * M_PI / c->crank_speed / FB_H_AUTO_STEPS_PER_REV;
   k->solver.h_mode = FB_STEP_FIXED;
 }
 

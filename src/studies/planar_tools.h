@@ -72,34 +72,6 @@ typedef struct {
 fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_case *c,
                                  const fb_planar *m, double omega, fb_diag *diag);
 
-/* One clearance pin's contact under one law, before any run: the four-bar's
- * estimate (resolution.h) on a planar description. The effective mass
- * along every direction at the pin (fb_planar_effective_mass_tensor, the
- * clearance joints out of the set, the drive held) over
- * FB_RESOLUTION_SAMPLES drive angles of a revolution; the expected force
- * FB_IMPACT_LOAD_FACTOR x the joint's largest ideal reaction; omega_c =
- * sqrt(k_t / m_eff_min), k_t the law's tangent at that force; h_resolving
- * = FB_H_OMEGA_C_BOUND / omega_c, the step that resolves it. */
-typedef struct {
-  int joint;                 /* index in the description */
-  int impact;                /* 1: the impact law (*-clearance-impact), 0: the restitution law */
-  fb_contact_law law;        /* the law a run's models of that kind take (joint_law.h) */
-  double m_eff_min, m_eff_max; /* [kg] */
-  double reaction_max;       /* the joint's largest ideal reaction over a revolution [N] */
-  double force_expected;     /* [N] */
-  double stiffness_tangent;  /* [N/m] */
-  double omega_c;            /* [rad/s] */
-  double h_resolving;        /* [s] */
-} fb_planar_contact_estimate;
-
-/* The estimates of every revolute clearance joint of case c (description
- * m) under both laws, impact first (out: 2 m->njoints; *n receives their
- * number; a prismatic clearance joint has none). Errors: those of the
- * laws (joint_law.h), the kinematics, the inverse dynamics and the
- * effective mass. */
-fb_status fb_planar_contact_estimates(fb_planar_contact_estimate *out, int *n, const fb_case *c,
-                                      const fb_planar *m, fb_diag *diag);
-
 /* One toleranced length. */
 typedef struct {
   int body;                /* its body */

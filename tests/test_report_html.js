@@ -405,6 +405,11 @@ function flatten(v, p, outList) {
         'bodies.' + b + '.omega_max_rad_s (' + shown.length + ' of ' + sixSummary.models.length + ')');
     }
     check(!/follower/i.test(await page4.evaluate(() => document.body.innerText)), 'six-bar: the page names no follower');
+    /* the reference's pin: its orbit in its hole, as the four-bar's */
+    const orbit4 = await page4.textContent('#orbittitle');
+    check(orbit4.includes('reference-restitution') && orbit4.includes('rod-output') &&
+      await page4.evaluate(() => window.fourbarReport.orbitPoints()) > 0,
+      'six-bar: the orbit draws the reference\'s rod-output pin: ' + orbit4);
     await page4.close();
 
     /* an engine's clearance model of a planar case: its contact panels
@@ -439,6 +444,9 @@ function flatten(v, p, outList) {
         head5.some((c) => c[0] === m.name && c[1] === 'force_max_n' && Number(c[2]) === m.force_max_n));
       check(shownF.length === 2, 'six-bar engine: the headline row "contact force max" shows both clearance models\' ' +
         'force_max_n (' + shownF.length + ' of 2)');
+      const choices5 = await page5.$$eval('#omodel option', (os) => os.map((o) => o.textContent));
+      check(choices5.length === 2 && choices5.every((t) => t.endsWith(', rod-output')),
+        'six-bar engine: the orbit offers both clearance models\' pins: ' + choices5.join('; '));
       check(errors5.length === 0, 'six-bar engine: no page error: ' + errors5.join('; '));
       await page5.close();
     }

@@ -109,6 +109,22 @@ static size_t impacts_json(json_t *impacts, unsigned char *keep, const fb_planar
   return count;
 }
 
+/* a pin's orbit as the four-bar's page draws it (report_page.js): its
+ * eccentricity [um] and state at the kept samples (those of the bodies'
+ * and the contact's extremes: every impact is among them) (0 free flight,
+ * 1 in contact: a planar run does not tell an impact from continuous
+ * contact) */
+static void orbit_json(json_t *j, const fb_planar_model *p, const unsigned char *keep) {
+  const size_t n = p->n;
+  double *state = malloc((n ? n : 1) * sizeof *state);
+  if (!state) return; /* the page then draws no orbit */
+  for (size_t i = 0; i < n; i++) state[i] = p->pen[i] > 0.0 ? 1.0 : 0.0;
+  json_object_set_new(j, "ecc_x_um", kept(p->ecc, keep, n, 1.0 / FB_M_PER_UM));
+  json_object_set_new(j, "ecc_y_um", kept(p->ecc + n, keep, n, 1.0 / FB_M_PER_UM));
+  json_object_set_new(j, "state", kept(state, keep, n, 1.0));
+  free(state);
+}
+
 /* one model's data: its kept samples by body, a clearance model's joint
  * columns and impacts (a reference's, an engine's through the kit) */
 static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
@@ -148,12 +164,15 @@ static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
     }
   }
   json_t *joints = json_array();
-  if (p->force)
-    json_array_append_new(joints, json_pack("{s:s,s:i,s:i,s:o,s:o}", "joint",
-                                            m->joint[p->ref.joint].name, "impacts", (int)ne,
-                                            "listed", (int)listed,
-                                            "force_n", kept(p->force, keep, n, 1.0),
-                                            "penetration_um", kept(p->pen, keep, n, 1.0 / FB_M_PER_UM)));
+  if (p->force) {
+    json_t *j = json_pack("{s:s,s:i,s:i,s:o,s:o}", "joint", m->joint[p->ref.joint].name,
+                          "impacts", (int)ne, "listed", (int)listed, "force_n",
+                          kept(p->force, keep, n, 1.0), "penetration_um",
+                          kept(p->pen, keep, n, 1.0 / FB_M_PER_UM));
+    if (p->rigid) json_object_set_new(j, "force_is_impulse_over_h", json_true());
+    if (p->ecc) orbit_json(j, p, keep);
+    json_array_append_new(joints, j);
+  }
   json_object_set_new(o, "joints", joints);
   json_object_set_new(o, "impacts", impacts);
   free(keep);

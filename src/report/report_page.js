@@ -87,7 +87,10 @@
   D.models.forEach(function (m) { m.joints.forEach(function (j) { if (jointNames.indexOf(j.joint) < 0) jointNames.push(j.joint); }); });
   function jointOf(m, name) { for (var k = 0; k < m.joints.length; k++) if (m.joints[k].joint === name) return m.joints[k]; return null; }
   jointNames.forEach(function (jn) {
-    defs.push({ id: 'force_' + jn, title: jn + ' contact force on the pin', unit: 'N', get: function (m) { var j = jointOf(m, jn); return j && j.force_n; } });
+    /* a rigid (impulsive) model has no contact force: its column is each step's impulse over h */
+    var impulsive = D.models.filter(function (m) { var j = jointOf(m, jn); return j && j.force_is_impulse_over_h; }).map(function (m) { return m.name; });
+    var title = jn + ' contact force on the pin' + (impulsive.length ? ' (' + impulsive.join(', ') + ': impulse / h, not a force)' : '');
+    defs.push({ id: 'force_' + jn, title: title, unit: 'N', get: function (m) { var j = jointOf(m, jn); return j && j.force_n; } });
     defs.push({ id: 'penetration_' + jn, title: jn + ' penetration', unit: 'um', get: function (m) { var j = jointOf(m, jn); return j && j.penetration_um; } });
   });
   defs = defs.concat(omegaDefs);

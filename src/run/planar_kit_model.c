@@ -142,9 +142,10 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   cl->pin_radius = 0.5 * c->pin_diameter;
   cl->impact_velocity_min = sc.impact_velocity_min;
   cl->friction = c->clearance.friction;
-  /* a rigid model's eccentricity too: its verdict reads its rebound
-   * (planar_verdict.c) */
-  const int ecc = mt->rigid && j->kind != FB_KIND_PRISMATIC;
+  /* a pin's eccentricity too: report.html draws its orbit, and a rigid
+   * model's verdict reads its rebound (planar_verdict.c) */
+  const int ecc = j->kind != FB_KIND_PRISMATIC;
+  p->rigid = mt->rigid;
   p->force = malloc((ecc ? 4 : 2) * p->n * sizeof *p->force);
   if (!p->force) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   p->pen = p->force + p->n;

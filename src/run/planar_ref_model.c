@@ -142,6 +142,7 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
     if (store) p->drive[i] = r->omega * col.t[i];
     col.force[i] = c->force;
     col.pen[i] = c->penetration;
+    if (store && p->ecc) p->ecc[i] = c->ecc[0], p->ecc[n + i] = c->ecc[1];
   }
   if (st == FB_OK && store) {
     memcpy(p->force_sampled, col.force, n * sizeof *col.force);
@@ -217,7 +218,7 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   q->check_tol = fmax(q->tol / FB_REFERENCE_CHECK_FACTOR, FB_REFERENCE_TOL_MIN);
   q->check_rel = NAN;
   unsigned char *clear = calloc((size_t)m->njoints, 1);
-  p->force = malloc(4 * p->n * sizeof *p->force);
+  p->force = malloc(6 * p->n * sizeof *p->force);
   if (!clear || !p->force) {
     free(clear);
     free(guide);
@@ -227,6 +228,7 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   p->pen = p->force + p->n;
   p->force_sampled = p->force + 2 * p->n;
   p->pen_sampled = p->force + 3 * p->n;
+  if (m->joint[q->joint].kind == FB_KIND_REVOLUTE) p->ecc = p->force + 4 * p->n;
   clear[q->joint] = 1;
   /* v0 of the hysteresis laws: fixed, as reference.c's */
   const fb_planar_dyn_model model = {m, clear, q->law, c->radial_clearance, 1e-3, c->gravity,

@@ -98,9 +98,12 @@ typedef struct {
   double *force, *pen;     /* a reference's contact force [N] and penetration [m] (n), each
                               spike's sample holding its refined extreme (peak_refine.h);
                               an engine's model's at its samples */
-  double *ecc;              /* a rigid engine model's (fb_model.rigid) pin: its eccentricity,
-                              pin centre - hole centre, x at ecc[i], y at ecc[n + i] [m] (2 n;
-                              in force's block); NULL for the others */
+  double *ecc;              /* a revolute clearance joint's pin (a reference's, an engine's
+                              model's): its eccentricity, pin centre - hole centre, x at ecc[i],
+                              y at ecc[n + i] [m] (2 n; in force's block); NULL for the others
+                              (a slider in its guide) */
+  int rigid;                /* an engine's rigid (impulsive) clearance model (fb_model.rigid):
+                              its force column is the impulse over the step [N] */
   double *force_sampled, *pen_sampled; /* a reference's force and penetration at its samples,
                               before the refinement: what a model sampling at the same
                               instants sees of it (planar_verdict.c) (n); NULL for the others */

@@ -373,7 +373,7 @@ static void clearance(fb_planar_verdict *v, const fb_planar_run *r, const fb_pla
     snprintf(v->reason, sizeof v->reason, "its reference %s stopped", ref->name);
     return;
   }
-  if (p->ecc) {
+  if (p->rigid && p->ecc) {
     rigid(v, r, p, ref);
     return;
   }

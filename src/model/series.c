@@ -332,6 +332,12 @@ static double vertex(double ym, double y0, double yp, int sign) {
   return y0 - 0.125 * (yp - ym) * (yp - ym) / den;
 }
 
+double fb_series_quad_slope(const double t[3], const double y[3], double at) {
+  const double d01 = (y[1] - y[0]) / (t[1] - t[0]), d12 = (y[2] - y[1]) / (t[2] - t[1]);
+  const double a = (d12 - d01) / (t[2] - t[0]), b = d01 + a * (t[1] - t[0]);
+  return b + 2.0 * a * (at - t[1]);
+}
+
 double fb_series_refined(const double y[3], const double *ymax, int sign) {
   if (sign > 0 && ymax) return fmax(y[1], fmax(ymax[0], ymax[1]));
   return vertex(y[0], y[1], y[2], sign);

@@ -172,6 +172,11 @@ void fb_series_refine_peaks_max(fb_series *s, double fraction, double t_split,
  * peaks (planar_verdict.c) refine by; units those of y. */
 double fb_series_refined(const double y[3], const double *ymax, int sign);
 
+/* The slope at time at [s] of the quadratic through (t[k], y[k]), k = 0..2
+ * (t strictly increasing) [units of y per s]: a rigid contact's approach
+ * and rebound rates (metrics.c, planar_verdict.c). */
+double fb_series_quad_slope(const double t[3], const double y[3], double at);
+
 /* The refinement of one column v (n) at times t [s] as
  * fb_series_refine_peaks_max does it (vmax NULL: the parabola's vertex at
  * every spike), for a column held outside a series (a planar run's). */

@@ -147,11 +147,8 @@ static void first_rebound(fb_first_impact *out, const fb_series *s, int j, size_
 
 /* quadratic through |e| at samples k, k + 1, k + 2: its slope at time t */
 static double quad_slope_at(const fb_series *s, int j, size_t k, double t) {
-  const double t0 = s->t[k], t1 = s->t[k + 1], t2 = s->t[k + 2];
-  const double y0 = ecc_norm(s, j, k), y1 = ecc_norm(s, j, k + 1), y2 = ecc_norm(s, j, k + 2);
-  const double d01 = (y1 - y0) / (t1 - t0), d12 = (y2 - y1) / (t2 - t1);
-  const double a = (d12 - d01) / (t2 - t0), b = d01 + a * (t1 - t0);
-  return b + 2.0 * a * (t - t1);
+  const double y[3] = {ecc_norm(s, j, k), ecc_norm(s, j, k + 1), ecc_norm(s, j, k + 2)};
+  return fb_series_quad_slope(s->t + k, y, t);
 }
 
 /* a rigid contact's rebound (metrics.h): the impulse acts over the step

@@ -274,11 +274,8 @@ static double ecc_norm(const fb_planar_model *p, size_t i) {
 
 /* the slope at time t of the quadratic through |e| at samples k .. k + 2 [m/s] */
 static double quad_slope_at(const fb_planar_model *p, size_t k, double t) {
-  const double t0 = p->t[k], t1 = p->t[k + 1], t2 = p->t[k + 2];
-  const double y0 = ecc_norm(p, k), y1 = ecc_norm(p, k + 1), y2 = ecc_norm(p, k + 2);
-  const double d01 = (y1 - y0) / (t1 - t0), d12 = (y2 - y1) / (t2 - t1);
-  const double a = (d12 - d01) / (t2 - t0), b = d01 + a * (t1 - t0);
-  return b + 2.0 * a * (t - t1);
+  const double y[3] = {ecc_norm(p, k), ecc_norm(p, k + 1), ecc_norm(p, k + 2)};
+  return fb_series_quad_slope(p->t + k, y, t);
 }
 
 /* A rigid model's first impact (the four-bar's rule, metrics.c's
@@ -287,8 +284,8 @@ static double quad_slope_at(const fb_planar_model *p, size_t k, double t) {
  * quadratic through samples i - 2 .. i at t_i, out of it through i + 1 ..
  * i + 3 at t_{i + 1}; the rebound ratio their ratio (NaN where the pin is
  * held on the wall after it: a force at i + 1 .. i + 3; before i, the
- * first impact's, it is free). metrics.c's quad_slope_at reads a series'
- * eccentricity; this one a planar model's columns.
+ * first impact's, it is free; series.h fb_series_quad_slope, as
+ * metrics.c's).
  * *impulse: the force over the impact's steps times h [N s]; returns i, or
  * p->n when it has no impact. */
 static size_t rigid_first(double *rebound, double *impulse, const fb_planar_model *p) {

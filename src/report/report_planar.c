@@ -195,7 +195,9 @@ static json_t *step_json(const fb_planar_run *r) {
            "or the damper's c / m_eff), at most one revolution / %g steps", FB_H_OMEGA_C_BOUND,
            FB_H_AUTO_STEPS_PER_REV);
   json_object_set_new(o, "auto_rule", json_string(rule));
-  json_object_set_new(o, "auto_estimate_s", num(estimates_step(r)));
+  json_object_set_new(o, "auto_estimate_s", num(fb_planar_run_step_auto(&r->c)
+                                                     ? r->h_auto_estimate : estimates_step(r)));
+  json_object_set_new(o, "rechosen", json_integer(r->h_rechosen));
   json_t *ct = json_array();
   for (int k = 0; k < r->nest; k++) json_array_append_new(ct, estimate_json(r, &r->est[k]));
   json_object_set_new(o, "contact", ct);
@@ -210,7 +212,11 @@ static json_t *step_json(const fb_planar_run *r) {
  * contact's rates and h times its rate */
 static void step_text(FILE *f, const fb_planar_run *r) {
   const double h = fb_planar_run_step(&r->c);
-  if (fb_planar_run_step_auto(&r->c) && r->nest)
+  if (fb_planar_run_step_auto(&r->c) && r->nest && r->h_rechosen)
+    fprintf(f, "step h = %.4g s: auto, rechosen %d time%s from the estimate's %.4g s (an engine's "
+            "clearance model met h omega_c above %g)\n", h, r->h_rechosen,
+            r->h_rechosen > 1 ? "s" : "", r->h_auto_estimate, FB_H_OMEGA_C_BOUND);
+  else if (fb_planar_run_step_auto(&r->c) && r->nest)
     fprintf(f, "step h = %.4g s: auto, h x rate <= %g at the fastest clearance contact (at most "
             "one revolution / %g)\n", h, FB_H_OMEGA_C_BOUND, FB_H_AUTO_STEPS_PER_REV);
   else if (r->nest)

@@ -12,6 +12,7 @@
 #include "planar_invdyn.h"
 #include "planar_path.h"
 #include "resolution.h"
+#include "run.h"
 #include "series.h"
 
 int fb_planar_run_takes(const char *name) {
@@ -189,7 +190,7 @@ static fb_status reactions(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
   return fb_planar_reaction_max(r->reaction_max, r->m, r->omega, c->gravity, diag);
 }
 
-fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
+static fb_status run_once(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
   memset(r, 0, sizeof *r);
   fb_status st = fb_planar_run_check(c, diag);
   if (st != FB_OK) return st;
@@ -220,6 +221,36 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
   if (st == FB_OK) fb_planar_verdicts(r);
   else fb_planar_run_free(r);
   return st;
+}
+
+/* the largest h omega_c an engine's clearance model met at its contact
+ * steps (0: none measured) */
+static double h_omega_met(const fb_planar_run *r) {
+  double hw = 0.0;
+  for (int i = 0; i < r->n; i++)
+    if (r->model[i].engine && r->model[i].force && isfinite(r->model[i].h_omega_max))
+      hw = fmax(hw, r->model[i].h_omega_max);
+  return hw;
+}
+
+fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
+  fb_status st = run_once(r, c, diag);
+  if (st != FB_OK || !fb_planar_run_step_auto(c) || !c->clearance.mask) return st;
+  /* h_s = auto: the stiffest contact the run met decides, as the
+   * four-bar's (run.c): a run past the bound is redone at the step that
+   * keeps it, with the margin */
+  const double estimate = fb_planar_run_step(c);
+  for (int tries = 1; tries <= FB_H_AUTO_RETRIES; tries++) {
+    const double hw = h_omega_met(r);
+    if (!(hw > FB_H_OMEGA_C_BOUND)) break;
+    fb_case again = r->c;
+    again.solver.h = fb_planar_run_step(&r->c) * FB_H_OMEGA_C_BOUND / hw * FB_H_AUTO_MARGIN;
+    fb_planar_run_free(r);
+    if ((st = run_once(r, &again, diag)) != FB_OK) return st;
+    r->h_rechosen = tries;
+  }
+  r->h_auto_estimate = estimate;
+  return FB_OK;
 }
 
 void fb_planar_run_free(fb_planar_run *r) {

@@ -158,6 +158,10 @@ typedef struct {
                               automatic step keeps, and what a given step resolves; NULL on
                               an undriven case or one without clearance joints */
   int nest;
+  double h_auto_estimate;  /* h_s = auto: the step the estimates chose [s] (0 otherwise) */
+  int h_rechosen;          /* h_s = auto: times the run was redone at a smaller step because an
+                              engine's clearance model met h omega_c above the bound
+                              (FB_H_AUTO_RETRIES at most, run.h) */
   int n;                   /* models run */
   fb_planar_model model[FB_MAX_MODELS];
 } fb_planar_run;
@@ -186,6 +190,10 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag);
  * would hold more than FB_PLANAR_RUN_MAX_SAMPLES samples; FB_ERR_NOMEM.
  * On error *r holds nothing that needs freeing. */
 fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag);
+/* (With [solver] h_s = auto, a run in which an engine's clearance model met
+ * h omega_c above FB_H_OMEGA_C_BOUND is redone at h bound / h omega_c
+ * FB_H_AUTO_MARGIN, at most FB_H_AUTO_RETRIES times, as the four-bar's
+ * (run.h); r->c.solver.h is then the step it ran at.) */
 
 /* Most samples a planar model holds: 2e7 (at 5 moving bodies, 15 columns
  * of 8 bytes, 2.4 GB): beyond it a run is refused with the figure. */

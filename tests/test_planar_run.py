@@ -180,6 +180,12 @@ if rc == 0:
     check(rows and worst <= SAMPLE_REL, "analytic.csv's omega against the dyads, worst %.2e" % worst)
     for n in names:
         check("| %s |" % n in so, "the printed table has a row for %s" % n)
+    # the header's mass properties: summary.json's description, as used
+    for b in s.get("description", {}).get("bodies", []):
+        row = "| %s | %.6g | %.6g | %.6g | %.6g | %s |" % (
+            b["name"], b["mass_kg"], b["centre_m"][0], b["centre_m"][1], b["inertia_kg_m2"],
+            ", ".join(b["derived"]) or "none (given)")
+        check(row in so, "the header states %s's mass properties: %s" % (b["name"], row))
     check(os.path.exists(os.path.join(out, "report.md")) and
           "| ternary |" in open(os.path.join(out, "report.md")).read(), "report.md by body")
 

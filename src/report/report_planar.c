@@ -208,6 +208,24 @@ static json_t *step_json(const fb_planar_run *r) {
   return o;
 }
 
+/* the header's bodies: the mass properties the run used, each given or
+ * derived from the case's bars (summary.json's description.bodies) */
+static void bodies_text(FILE *f, const fb_planar *m) {
+  static const char *const what[] = {"mass", "inertia", "centre"};
+  fprintf(f, "| body | mass [kg] | centre x [m] | centre y [m] | inertia [kg m^2] | derived "
+             "from bars |\n|---|---:|---:|---:|---:|---|\n");
+  for (int b = 1; b < m->nbodies; b++) {
+    const fb_planar_body *p = &m->body[b];
+    char derived[64] = "";
+    for (int k = 0; k < 3; k++)
+      if (p->derived & (1 << k))
+        snprintf(derived + strlen(derived), sizeof derived - strlen(derived), "%s%s",
+                 derived[0] ? ", " : "", what[k]);
+    fprintf(f, "| %s | %.6g | %.6g | %.6g | %.6g | %s |\n", p->name, p->mass, p->centre[0],
+            p->centre[1], p->inertia, derived[0] ? derived : "none (given)");
+  }
+}
+
 /* the header's step lines: the step, how it was chosen, each clearance
  * contact's rates and h times its rate */
 static void step_text(FILE *f, const fb_planar_run *r) {
@@ -458,6 +476,7 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
           m->njoints);
   if (m->drive < 0) fprintf(f, "undriven (a free start)\n");
   else fprintf(f, "drive '%s' at %.6g rad/s\n", m->joint[m->drive].name, r->omega);
+  bodies_text(f, m);
   step_text(f, r);
   char injected[1024];
   if (fb_report_injected_case_text(injected, sizeof injected, &r->c)) fprintf(f, "%s\n", injected);

@@ -128,6 +128,42 @@ static void test_sixbar_loads_and_compiles(void **state) {
   fb_planar_free(m);
 }
 
+/* A body whose joint points lie on one bar (each within half the bar's
+ * width of the line through the two farthest apart) is that one bar, end
+ * to end: a lever with a pin in its middle is not a triangle of three
+ * bars. The six-bar's ternary (C, D, E) with C moved onto D-E, 9 mm off
+ * the line (inside the 20 mm bar's half width: one bar D-E), then 11 mm off
+ * (outside: the triangle). Compiled only: the moved C does not assemble. */
+static void test_collinear_points_are_one_bar(void **state) {
+  (void)state;
+  fb_case c;
+  fb_diag d;
+  if (fb_test_shipped_case_planar(&c, "watt_sixbar.ini", &d) != FB_OK) fail_msg("%s", d.msg);
+  const fb_bar bar = fb_bar_default();
+  const double *D = c.planar.joint[3].at, *E = c.planar.joint[4].at;
+  for (int off_mm = 9; off_mm <= 11; off_mm += 2) {
+    c.planar.joint[2].at[0] = 0.5 * (D[0] + E[0]);
+    c.planar.joint[2].at[1] = 0.5 * (D[1] + E[1]) + off_mm * 1e-3;
+    const double *C = c.planar.joint[2].at;
+    fb_planar *m;
+    if (fb_planar_compile(&m, &c.planar, c.density, NULL, &d) != FB_OK) fail_msg("%s", d.msg);
+    const int t = fb_planar_find_body(m, "ternary");
+    const double rwt = c.density * bar.width * bar.thickness, de = hypot(E[0] - D[0], E[1] - D[1]);
+    if (off_mm == 9) {
+      const double mass = rwt * de;
+      assert_near(m->body[t].mass, mass, BAR_REL * mass);
+      assert_near(m->body[t].centre[0], 0.5 * (D[0] + E[0]), BAR_REL);
+      assert_near(m->body[t].centre[1], 0.5 * (D[1] + E[1]), BAR_REL);
+      const double inertia = mass * (de * de + bar.width * bar.width) / 12.0;
+      assert_near(m->body[t].inertia, inertia, BAR_REL * inertia);
+    } else {
+      const double mass = rwt * (de + hypot(C[0] - D[0], C[1] - D[1]) + hypot(C[0] - E[0], C[1] - E[1]));
+      assert_near(m->body[t].mass, mass, BAR_REL * mass);
+    }
+    fb_planar_free(m);
+  }
+}
+
 /* every command's loader reads and checks a planar case, then refuses it */
 static void test_commands_refuse(void **state) {
   (void)state;
@@ -388,6 +424,7 @@ static void test_bad_mechanisms(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_sixbar_loads_and_compiles),
+      cmocka_unit_test(test_collinear_points_are_one_bar),
       cmocka_unit_test(test_commands_refuse),
       cmocka_unit_test(test_paper_fourbar_as_planar),
       cmocka_unit_test(test_planar_slider_crank),

@@ -36,13 +36,40 @@ static int body_points(double pts[][2], int max, const fb_planar_spec *s, int b)
   return n;
 }
 
-/* mass properties of the bars between every pair of the points */
+/* mass properties of the bars between every pair of the points, or of the
+ * one bar between the two farthest apart when every point lies on it
+ * (within half the bar's width of its line: a lever with a pin in its
+ * middle is one bar, not a triangle of three) */
 typedef struct {
   double mass, centre[2], inertia; /* [kg], [m], about centre [kg m^2] */
 } bars_t;
 
+/* 1 when the n >= 3 points lie on one bar of width w: each within w / 2
+ * of the line through the two farthest apart (*a, *b), which then span
+ * them all */
+static int on_one_bar(double pts[][2], int n, double w, int *a, int *b) {
+  double far = -1.0;
+  for (int i = 0; i < n; i++)
+    for (int k = i + 1; k < n; k++) {
+      const double l = hypot(pts[k][0] - pts[i][0], pts[k][1] - pts[i][1]);
+      if (l > far) far = l, *a = i, *b = k;
+    }
+  if (n < 3 || !(far > 0.0)) return 0;
+  const double u[2] = {(pts[*b][0] - pts[*a][0]) / far, (pts[*b][1] - pts[*a][1]) / far};
+  for (int i = 0; i < n; i++) {
+    const double d = fabs((pts[i][0] - pts[*a][0]) * u[1] - (pts[i][1] - pts[*a][1]) * u[0]);
+    if (d > 0.5 * w) return 0;
+  }
+  return 1;
+}
+
 static bars_t bars_of(double pts[][2], int n, double w, double t, double rho) {
   bars_t r = {0.0, {0.0, 0.0}, 0.0};
+  int a = 0, b = 1;
+  if (on_one_bar(pts, n, w, &a, &b)) { /* collinear points: one bar end to end */
+    double ends[2][2] = {{pts[a][0], pts[a][1]}, {pts[b][0], pts[b][1]}};
+    return bars_of(ends, 2, w, t, rho);
+  }
   for (int i = 0; i < n; i++)
     for (int k = i + 1; k < n; k++) {
       const double l = hypot(pts[k][0] - pts[i][0], pts[k][1] - pts[i][1]);

@@ -104,8 +104,37 @@ static int body_points(double p[BODY_POINTS][2], int joint[BODY_POINTS], const f
   return n;
 }
 
+/* 1 when body b of n points is a line (planar.h on_one_bar): its lengths
+ * are the distances along the line from its datum (line_frame), n - 1 of
+ * them */
+static int line_body(const fb_planar *m, int b, int n) { return n >= 3 && m->body[b].on_one_bar; }
+
+/* the number of body b's lengths at n points */
+static int body_lengths(const fb_planar *m, int b, int n) {
+  return line_body(m, b, n) ? n - 1 : n * (n - 1) / 2;
+}
+
+/* a line body's frame: its datum d, the first in order of the two points
+ * farthest apart (a lever's pivot and end: its datum the one listed
+ * first), u along the line towards the other, v across it; returns d */
+static int line_frame(double u[2], double v[2], double p[BODY_POINTS][2], int n) {
+  int d = 0, e = 1;
+  double far = -1.0;
+  for (int i = 0; i < n; i++)
+    for (int k = i + 1; k < n; k++) {
+      const double l = hypot(p[k][0] - p[i][0], p[k][1] - p[i][1]);
+      if (l > far) far = l, d = i, e = k;
+    }
+  u[0] = (p[e][0] - p[d][0]) / far;
+  u[1] = (p[e][1] - p[d][1]) / far;
+  v[0] = -u[1];
+  v[1] = u[0];
+  return d;
+}
+
 /* the lengths of every body, toleranced by the case's class: counted
- * first (each body of n points has n (n - 1) / 2), then filled */
+ * first (each body of n points has n (n - 1) / 2, a line body n - 1: each
+ * point's distance from the first along the line), then filled */
 static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
                             fb_diag *diag) {
   if (!c->tolerance_class)
@@ -120,7 +149,7 @@ static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_pla
       return fb_diag_set(diag, FB_ERR_ARG, "body '%s' has %d distinct joint points: its "
                          "distances over-determine it, and the stack-up varies bodies of 2 or "
                          "3 points", m->body[b].name, n);
-    count += n * (n - 1) / 2;
+    count += body_lengths(m, b, n);
   }
   s->length = calloc(count ? (size_t)count : 1, sizeof *s->length);
   if (!s->length) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -129,13 +158,18 @@ static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_pla
     double p[BODY_POINTS][2];
     int joint[BODY_POINTS];
     const int n = body_points(p, joint, m, b);
+    const int line = line_body(m, b, n);
+    double u[2] = {1.0, 0.0}, v[2];
+    const int d = line ? line_frame(u, v, p, n) : 0;
     for (int i = 0; i < n; i++)
       for (int k = i + 1; k < n; k++) {
+        if (line && i != d && k != d) continue; /* a line's lengths: from its datum */
         fb_planar_length *L = &s->length[s->nlengths++];
         L->body = b;
         L->joint[0] = joint[i];
         L->joint[1] = joint[k];
-        L->nominal = hypot(p[k][0] - p[i][0], p[k][1] - p[i][1]);
+        L->nominal = line ? fabs((p[k][0] - p[i][0]) * u[0] + (p[k][1] - p[i][1]) * u[1])
+                          : hypot(p[k][0] - p[i][0], p[k][1] - p[i][1]);
         fb_diag inner;
         if (fb_iso2768_linear(&L->plus_minus, c->tolerance_class, L->nominal, L->source,
                               sizeof L->source, &inner) != FB_OK)
@@ -153,16 +187,32 @@ int fb_planar_stackup_lengths(const fb_planar *m) {
     double p[BODY_POINTS][2];
     int joint[BODY_POINTS];
     const int n = body_points(p, joint, m, b);
-    count += n * (n - 1) / 2;
+    count += body_lengths(m, b, n);
   }
   return count;
 }
 
 /* body b's points rebuilt from its lengths len (in lengths_of's order from
  * index at): the first stays, the second along the nominal direction, the
- * third on the nominal side of the first two */
-static void rebuild(double q[3][2], double p[BODY_POINTS][2], int n, const double *len) {
+ * third on the nominal side of the first two; a line body's datum stays
+ * and each other point is at its length along the line from it, on its
+ * nominal side, its small offset across the line kept */
+static void rebuild(double q[3][2], double p[BODY_POINTS][2], int n, int line, const double *len) {
   memcpy(q, p, (size_t)n * sizeof q[0]);
+  if (line) {
+    double u[2], v[2];
+    const int d = line_frame(u, v, p, n);
+    for (int k = 0, at = 0; k < n; k++) {
+      if (k == d) continue;
+      const double dx = p[k][0] - p[d][0], dy = p[k][1] - p[d][1];
+      const double along = dx * u[0] + dy * u[1], across = dx * v[0] + dy * v[1];
+      const double l = along >= 0.0 ? len[at] : -len[at];
+      at++;
+      q[k][0] = p[d][0] + l * u[0] + across * v[0];
+      q[k][1] = p[d][1] + l * u[1] + across * v[1];
+    }
+    return;
+  }
   if (n < 2) return;
   const double d01 = hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
   const double u[2] = {(p[1][0] - p[0][0]) / d01, (p[1][1] - p[0][1]) / d01};
@@ -192,8 +242,8 @@ static fb_planar *with_lengths(const fb_planar *m, const double *len) {
     double p[BODY_POINTS][2], q[3][2];
     int joint[BODY_POINTS];
     const int n = body_points(p, joint, m, b);
-    rebuild(q, p, n, len + at);
-    at += n * (n - 1) / 2;
+    rebuild(q, p, n, line_body(m, b, n), len + at);
+    at += body_lengths(m, b, n);
     for (int j = 0; j < m->njoints; j++)
       for (int side = 0; side < 2; side++) {
         if (m->joint[j].body[side] != b) continue;

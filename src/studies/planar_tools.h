@@ -11,11 +11,14 @@
  * (contact.h), as fourbar penalty's physical rows.
  * Stack-up: the lengths are the distances between the distinct joint
  * points of each body (the ground's included): one for a binary link,
- * three for a ternary one; each toleranced by ISO 2768-1 ([tolerance]
- * class). A length changed moves its body's points: the body's first
- * point stays, its second moves along the nominal direction, a third is
- * the intersection of two circles on the nominal side; the mechanism then
- * closes by Newton at the assembly (planar_kinematics.h). Outputs: every
+ * three for a ternary one; a body whose points lie on one bar
+ * (planar.h on_one_bar) is a line: each point's distance along it from
+ * the first of its two farthest points, n - 1 of them; each toleranced by
+ * ISO 2768-1 ([tolerance] class). A length changed moves its body's
+ * points: the body's first point stays, its second moves along the
+ * nominal direction, a third is the intersection of two circles on the
+ * nominal side (a line's datum stays and the others move along it); the
+ * mechanism then closes by Newton at the assembly (planar_kinematics.h). Outputs: every
  * moving body's omega and alpha extremes. Sensitivities by central
  * differences (step FB_PLANAR_SENS_STEP), the RSS band nominal +-
  * sqrt(sum (S_k t_k)^2) (each t_k taken as 3 sigma, as tolerance.h),

@@ -52,6 +52,9 @@ typedef struct {
   double angle0;                  /* the body frame's x axis in the assembly configuration,
                                      counter-clockwise from +x [rad] */
   int derived;                    /* FB_PLANAR_DERIVED_* bits: what was derived, not given */
+  int on_one_bar;                 /* 1: three or more joint points on one bar of its section
+                                     (planar_case.c): one bar end to end for its mass, a line
+                                     for its stack-up's lengths; 0 otherwise */
 } fb_planar_body;
 
 /* One joint. */

@@ -170,7 +170,10 @@ static int compile_body(fb_planar *p, const fb_planar_spec *s, int b, double den
   const int derived = (given_m ? 0 : FB_PLANAR_DERIVED_MASS) |
                       (given_i ? 0 : FB_PLANAR_DERIVED_INERTIA) |
                       (given_c ? 0 : FB_PLANAR_DERIVED_CENTRE);
-  return fb_planar_add_body(p, sb->name, mass, inertia, c, angle0, derived, diag);
+  int ends[2];
+  const int id = fb_planar_add_body(p, sb->name, mass, inertia, c, angle0, derived, diag);
+  if (id >= 0) p->body[id].on_one_bar = on_one_bar(pts, n, w, &ends[0], &ends[1]);
+  return id;
 }
 
 fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double density,

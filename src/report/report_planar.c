@@ -131,13 +131,19 @@ static json_t *contact_json(const fb_planar_run *r, const fb_planar_model *p) {
   return json_pack("[o]", o);
 }
 
+/* 1 when the run's step resolves estimate e: h x rate within the bound
+ * (to rounding: auto sets h from the bound itself) */
+static int estimate_resolved(const fb_planar_run *r, const fb_planar_contact_estimate *e) {
+  return !(fb_planar_run_h_rate(r, e) > FB_H_OMEGA_C_BOUND * (1.0 + 1e-12));
+}
+
 /* a given step's warning on estimate e (empty when h resolves it), with
  * the largest step that would */
 static void estimate_warning(char *warn, size_t size, const fb_planar_run *r,
                              const fb_planar_contact_estimate *e) {
   warn[0] = '\0';
+  if (estimate_resolved(r, e)) return;
   const double hr = fb_planar_run_h_rate(r, e);
-  if (!(hr > FB_H_OMEGA_C_BOUND * (1.0 + 1e-12))) return;
   snprintf(warn, size, "under-resolved before the run: h x %s = %.3g at the %s joint exceeds "
            "%g; set [solver] h_s = auto, or a fixed step of %.3g s or smaller",
            strcmp(e->rates.limit, "damper") == 0 ? "c/m_eff" : "omega_c", hr,
@@ -164,8 +170,7 @@ static json_t *estimate_json(const fb_planar_run *r, const fb_planar_contact_est
   json_object_set_new(o, "h_resolving_s", num(e->h_resolving));
   json_object_set_new(o, "h_rate", num(fb_planar_run_h_rate(r, e)));
   json_object_set_new(o, "h_ramp_rate", num(fb_planar_run_step(&r->c) * q->ramp_rate));
-  json_object_set_new(o, "resolved", json_boolean(!(fb_planar_run_h_rate(r, e) >
-                                                    FB_H_OMEGA_C_BOUND * (1.0 + 1e-12))));
+  json_object_set_new(o, "resolved", json_boolean(estimate_resolved(r, e)));
   json_object_set_new(o, "warning", warn[0] ? json_string(warn) : json_null());
   return o;
 }

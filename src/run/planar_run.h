@@ -183,17 +183,17 @@ int fb_planar_run_takes(const char *name);
  * FB_PLANAR_ENGINE_FOLLOWUP). */
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag);
 
-/* Runs planar case c (c->planar.on) into *r (fb_planar_run_free).
+/* Runs planar case c (c->planar.on) into *r (fb_planar_run_free). With
+ * [solver] h_s = auto, a run in which an engine's clearance model met
+ * h omega_c above FB_H_OMEGA_C_BOUND is redone at h bound / h omega_c
+ * FB_H_AUTO_MARGIN, at most FB_H_AUTO_RETRIES times, as the four-bar's
+ * (run.h); r->c.solver.h is then the step it ran at.
  * Errors: those of fb_planar_run_check, fb_planar_of_case (the
  * description), fb_planar_kin_new, fb_planar_peaks_of and
  * fb_planar_follow (the drive cannot turn); FB_ERR_RANGE when the run
  * would hold more than FB_PLANAR_RUN_MAX_SAMPLES samples; FB_ERR_NOMEM.
  * On error *r holds nothing that needs freeing. */
 fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag);
-/* (With [solver] h_s = auto, a run in which an engine's clearance model met
- * h omega_c above FB_H_OMEGA_C_BOUND is redone at h bound / h omega_c
- * FB_H_AUTO_MARGIN, at most FB_H_AUTO_RETRIES times, as the four-bar's
- * (run.h); r->c.solver.h is then the step it ran at.) */
 
 /* Most samples a planar model holds: 2e7 (at 5 moving bodies, 15 columns
  * of 8 bytes, 2.4 GB): beyond it a run is refused with the figure. */

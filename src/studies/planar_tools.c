@@ -118,13 +118,8 @@ static int body_lengths(const fb_planar *m, int b, int n) {
  * farthest apart (a lever's pivot and end: its datum the one listed
  * first), u along the line towards the other, v across it; returns d */
 static int line_frame(double u[2], double v[2], double p[BODY_POINTS][2], int n) {
-  int d = 0, e = 1;
-  double far = -1.0;
-  for (int i = 0; i < n; i++)
-    for (int k = i + 1; k < n; k++) {
-      const double l = hypot(p[k][0] - p[i][0], p[k][1] - p[i][1]);
-      if (l > far) far = l, d = i, e = k;
-    }
+  int d, e;
+  const double far = fb_planar_farthest_pair((const double (*)[2])p, n, &d, &e);
   u[0] = (p[e][0] - p[d][0]) / far;
   u[1] = (p[e][1] - p[d][1]) / far;
   v[0] = -u[1];

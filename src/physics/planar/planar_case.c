@@ -44,16 +44,23 @@ typedef struct {
   double mass, centre[2], inertia; /* [kg], [m], about centre [kg m^2] */
 } bars_t;
 
-/* 1 when the n >= 3 points lie on one bar of width w: each within w / 2
- * of the line through the two farthest apart (*a, *b), which then span
- * them all */
-static int on_one_bar(double pts[][2], int n, double w, int *a, int *b) {
+double fb_planar_farthest_pair(const double (*pts)[2], int n, int *a, int *b) {
   double far = -1.0;
+  *a = 0;
+  *b = n > 1 ? 1 : 0;
   for (int i = 0; i < n; i++)
     for (int k = i + 1; k < n; k++) {
       const double l = hypot(pts[k][0] - pts[i][0], pts[k][1] - pts[i][1]);
       if (l > far) far = l, *a = i, *b = k;
     }
+  return far > 0.0 ? far : 0.0;
+}
+
+/* 1 when the n >= 3 points lie on one bar of width w: each within w / 2
+ * of the line through the two farthest apart (*a, *b), which then span
+ * them all */
+static int on_one_bar(double pts[][2], int n, double w, int *a, int *b) {
+  const double far = fb_planar_farthest_pair((const double (*)[2])pts, n, a, b);
   if (n < 3 || !(far > 0.0)) return 0;
   const double u[2] = {(pts[*b][0] - pts[*a][0]) / far, (pts[*b][1] - pts[*a][1]) / far};
   for (int i = 0; i < n; i++) {

@@ -71,6 +71,13 @@ fb_status fb_planar_slider_crank(fb_planar **out, const fb_linkage *lk,
 fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double density,
                             fb_planar_where *where, fb_diag *diag);
 
+/* The two of n points pts [m] (n x 2) farthest apart: their indices into
+ * *a < *b (0 and 1, or 0 and 0 for one point, when none is farther) and
+ * their distance [m] (0 for fewer than two distinct points). A body's
+ * points lie on one bar when each is within half the bar's width of the
+ * line through these two (planar.h on_one_bar). */
+double fb_planar_farthest_pair(const double (*pts)[2], int n, int *a, int *b);
+
 /* The description of case c's mechanism with link lengths lengths (the
  * nominal or a stack-up corner's; ignored for a planar case, whose
  * geometry is its joints'): fb_planar_compile for a planar case,

@@ -412,6 +412,46 @@ function flatten(v, p, outList) {
       'six-bar: the orbit draws the reference\'s rod-output pin: ' + orbit4);
     await page4.close();
 
+    /* a planar case's output points and slides (docs/planar.md, Points
+     * and slides): the developers' quick-return with a tool point on its
+     * ram: a panel per slide and per point's axis, none for the ram's
+     * angle (it never turns), and the headline rows from summary.json's
+     * slides.<joint> and points.<point>.x */
+    const qrCase = path.join(work, 'quick_return.ini');
+    fs.writeFileSync(qrCase, fs.readFileSync(path.join(root, 'tests', 'cases', 'quick_return.ini'), 'utf8') +
+      '\n[point.tool]\nbody = ram\nat_mm = 420, -30\n');
+    const qr = path.join(work, 'quick_return');
+    execFileSync(fourbar, ['run', qrCase, '--out', qr, '--no-figures', '--set', 'solver.h_s=1e-4',
+      '--set', 'run.models=analytic,ode-ideal-nominal'], { stdio: ['ignore', 'ignore', 'inherit'] });
+    const qrSummary = JSON.parse(fs.readFileSync(path.join(qr, 'summary.json'), 'utf8'));
+    const page6 = await browser.newPage({ viewport: { width: FB_VIEW_W, height: FB_VIEW_H } });
+    const errors6 = [];
+    page6.on('console', (m) => { if (m.type() === 'error') errors6.push('console: ' + m.text()); });
+    page6.on('pageerror', (e) => errors6.push('page error: ' + e.message));
+    await page6.goto('file://' + path.join(qr, 'report.html'));
+    await page6.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
+    await page6.waitForTimeout(300);
+    check(errors6.length === 0, 'quick-return: no console error on load: ' + errors6.join('; '));
+    const qrPanels = await page6.evaluate(() => window.fourbarReport.panels());
+    const qrIds = qrPanels.map((p) => p.id);
+    const wantQr = ['ram_guide_slide_a', 'ram_guide_slide_v', 'block_lever_slide_a', 'tool_a_x', 'tool_v_y', 'lever_alpha'];
+    check(wantQr.every((id) => qrIds.includes(id)) && !qrIds.includes('ram_alpha') && !qrIds.includes('ram_omega'),
+      'quick-return: panels of the slides and the tool point, none of the ram\'s angle: ' + qrIds.join(', '));
+    for (const p of qrPanels)
+      check(p.points > 0 && p.models.length === 2, 'quick-return: panel ' + p.id + ' has both models: ' + p.models.join(', '));
+    const qrHead = await page6.$$eval('#summary_head tr', (trs) => trs.map((tr) => Array.from(tr.cells).map((c) =>
+      [c.textContent, c.dataset.key, c.dataset.model])));
+    const qrRows = new Map(qrHead.map((r) => [r[0][0], r.slice(1)]));
+    for (const [label, key, get] of [['ram-guide slide v max [m/s]', 'slides.ram_guide.velocity_max_m_s',
+      (m) => m.slides.ram_guide.velocity_max_m_s], ['tool x a min [m/s^2]', 'points.tool.x.acceleration_min_m_s2',
+      (m) => m.points.tool.x.acceleration_min_m_s2]]) {
+      const row = qrRows.get(label) || [];
+      const shown = qrSummary.models.filter((m, i) => row[i] && row[i][1] === key && Number(row[i][0]) === get(m));
+      check(shown.length === qrSummary.models.length, 'quick-return: headline row "' + label + '" shows summary.json\'s ' +
+        key + ' (' + shown.length + ' of ' + qrSummary.models.length + ')');
+    }
+    await page6.close();
+
     /* an engine's clearance model of a planar case: its contact panels
      * beside its reference's, its impacts listed, its contact figures in the
      * headline rows (Simbody, whose error control runs the six-bar's pin at

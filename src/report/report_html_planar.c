@@ -6,10 +6,15 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "figures.h"
 #include "model_table.h"
+#include "names.h"
+#include "planar_outputs.h"
 #include "report_html.h"
+#include "report_internal.h"
+#include "report_planar_outputs.h"
 #include "units.h"
 
 /* sample i of column y: kept when it is a bucket's smallest or largest
@@ -35,11 +40,48 @@ static json_t *kept(const double *y, const unsigned char *keep, size_t n, double
   return a;
 }
 
-/* the page's outputs: every moving body, its columns, series keys and the
- * summary.json keys of its peaks (models[].bodies.<NAME>) */
+/* output c's series key in the page's data: the CSV column's word before
+ * its unit (ram_guide_slide_v, tool_a_x) */
+static const char *output_series(char *buf, size_t size, const fb_planar *m, int c) {
+  static const char *const unit[] = {"_m_s2", "_m_s", "_m"};
+  fb_report_planar_output_column(buf, size, m, c);
+  const size_t n = strlen(buf);
+  for (size_t k = 0; k < sizeof unit / sizeof unit[0]; k++) {
+    const size_t u = strlen(unit[k]);
+    if (n > u && strcmp(buf + n - u, unit[k]) == 0) {
+      buf[n - u] = '\0';
+      break;
+    }
+  }
+  return buf;
+}
+
+/* one translating output of the page: name, its position, velocity and
+ * acceleration columns c, c + dv, c + da, and the summary.json object of
+ * its slider keys (path) */
+static json_t *translating(const fb_planar *m, const char *name, int c, int dv, int da,
+                           const char *path) {
+  char col[3][FB_REPORT_JOINT_KEY_SIZE + 32], ser[2][FB_REPORT_JOINT_KEY_SIZE + 32];
+  fb_report_planar_output_column(col[0], sizeof col[0], m, c);
+  fb_report_planar_output_column(col[1], sizeof col[1], m, c + dv);
+  fb_report_planar_output_column(col[2], sizeof col[2], m, c + da);
+  output_series(ser[0], sizeof ser[0], m, c + dv);
+  output_series(ser[1], sizeof ser[1], m, c + da);
+  return json_pack("{s:s,s:b,s:[s,s,s],s:[s,s,s],s:[s,s,s],s:[n,s,s],s:[s+,s+,s+,s+,n]}",
+                   "name", name, "translates", 1, "symbol", "x", "v", "a", "unit", "m", "m/s",
+                   "m/s^2", "column", col[0], col[1], col[2], "series", ser[0], ser[1], "summary",
+                   path, ".velocity_max_m_s", path, ".velocity_min_m_s", path,
+                   ".acceleration_max_m_s2", path, ".acceleration_min_m_s2");
+}
+
+/* the page's outputs: every moving body that turns, its columns, series
+ * keys and the summary.json keys of its peaks (models[].bodies.<NAME>);
+ * then every output point's x and y and every prismatic joint's slide
+ * (models[].points.<point>.x, .y; models[].slides.<joint>) */
 static json_t *outputs_json(const fb_planar *m) {
   json_t *a = json_array();
   for (int b = 1; b < m->nbodies; b++) {
+    if (!fb_planar_body_turns(m, b)) continue; /* its angle is the ground's throughout */
     const char *n = m->body[b].name;
     json_array_append_new(
         a, json_pack("{s:s,s:b,s:[s,s,s],s:[s,s,s],s:[s+,s+,s+],s:[n,s+,s+],"
@@ -50,7 +92,32 @@ static json_t *outputs_json(const fb_planar *m) {
                      ".omega_max_rad_s", "bodies.", n, ".omega_min_rad_s", "bodies.", n,
                      ".alpha_max_rad_s2", "bodies.", n, ".alpha_min_rad_s2"));
   }
+  char word[FB_REPORT_JOINT_KEY_SIZE], name[FB_REPORT_JOINT_KEY_SIZE + 16],
+      path[FB_REPORT_JOINT_KEY_SIZE + 32];
+  for (int k = 0; k < m->npoints; k++)
+    for (int axis = 0; axis < 2; axis++) {
+      const int c = FB_PLANAR_POINT_QUANTITIES * k + axis;
+      snprintf(name, sizeof name, "%s %c", m->point[k].name, "xy"[axis]);
+      snprintf(path, sizeof path, "points.%s.%c", fb_name_word(word, sizeof word, m->point[k].name),
+               "xy"[axis]);
+      json_array_append_new(a, translating(m, name, c, 2, 4, path));
+    }
+  int c = FB_PLANAR_POINT_QUANTITIES * m->npoints;
+  for (int j = 0; j < m->njoints; j++) {
+    if (m->joint[j].kind != FB_KIND_PRISMATIC) continue;
+    snprintf(name, sizeof name, "%s slide", m->joint[j].name);
+    snprintf(path, sizeof path, "slides.%s", fb_name_word(word, sizeof word, m->joint[j].name));
+    json_array_append_new(a, translating(m, name, c, 1, 2, path));
+    c += FB_PLANAR_SLIDE_QUANTITIES;
+  }
   return a;
+}
+
+/* 1 when output column c is a velocity or an acceleration (the page's
+ * series): a point's quantities 2 to 5, a slide's 1 and 2 */
+static int output_rate(const fb_planar *m, int c) {
+  const int np = FB_PLANAR_POINT_QUANTITIES * m->npoints;
+  return c < np ? c % FB_PLANAR_POINT_QUANTITIES >= 2 : (c - np) % FB_PLANAR_SLIDE_QUANTITIES >= 1;
 }
 
 /* the largest-magnitude value of y over [i0, i1], its sign kept */
@@ -101,6 +168,13 @@ static size_t impacts_json(json_t *impacts, unsigned char *keep, const fb_planar
         const double v = largest(p->q + ((size_t)(body - 1) * 3 + 2) * n, i, a2);
         json_object_set_new(im, col, isfinite(v) ? json_real(v) : json_null());
       }
+      for (int c = 0; c < p->nout; c++) { /* the points' and slides' accelerations too */
+        if (!output_rate(m, c)) continue;
+        char col[FB_REPORT_JOINT_KEY_SIZE + 32];
+        fb_report_planar_output_column(col, sizeof col, m, c);
+        const double v = largest(p->out + (size_t)c * n, i, a2);
+        json_object_set_new(im, col, isfinite(v) ? json_real(v) : json_null());
+      }
       json_array_append_new(impacts, im);
       (*listed)++;
     }
@@ -134,6 +208,8 @@ static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
   if (!keep) return NULL;
   for (int b = 1; b < m->nbodies; b++)
     for (int k = 1; k <= 2; k++) keep_extremes(keep, p->q + ((size_t)(b - 1) * 3 + (size_t)k) * n, n);
+  for (int c = 0; c < p->nout; c++)
+    if (output_rate(m, c)) keep_extremes(keep, p->out + (size_t)c * n, n);
   json_t *impacts = json_array();
   size_t ne = 0, listed = 0;
   if (p->force) {
@@ -162,6 +238,11 @@ static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
       snprintf(name, sizeof name, "%s_%s", m->body[b].name, key[k]);
       json_object_set_new(o, name, kept(p->q + ((size_t)(b - 1) * 3 + (size_t)k) * n, keep, n, 1.0));
     }
+  }
+  for (int c = 0; c < p->nout; c++) {
+    if (!output_rate(m, c)) continue;
+    char key[FB_REPORT_JOINT_KEY_SIZE + 32];
+    json_object_set_new(o, output_series(key, sizeof key, m, c), kept(p->out + (size_t)c * n, keep, n, 1.0));
   }
   json_t *joints = json_array();
   if (p->force) {

@@ -10,6 +10,7 @@
 #include "numfmt.h"
 #include "outcome_text.h"
 #include "report_internal.h"
+#include "report_planar_outputs.h"
 #include "resolution.h"
 #include "run.h"
 #include "series.h"
@@ -369,6 +370,7 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
     }
     if (p->engine && p->ref.failed) json_object_set_new(e, "stop", json_string(p->ref.stop));
     if (p->torque) json_object_set_new(e, "loads", loads_json(r, p));
+    fb_report_planar_outputs_json(e, r, p);
     engine_verdict_json(e, p);
     json_array_append_new(models, e);
   }
@@ -433,6 +435,10 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
     fprintf(out.f, ",%s_force_n,%s_penetration_m", m->joint[p->ref.joint].name,
             m->joint[p->ref.joint].name);
   if (p->torque) loads_header(out.f, m);
+  for (int c = 0; c < p->nout; c++) {
+    char name[FB_REPORT_JOINT_KEY_SIZE + 32];
+    fprintf(out.f, ",%s", fb_report_planar_output_column(name, sizeof name, m, c));
+  }
   fputc('\n', out.f);
   const size_t every = r->c.series_every > 0 ? (size_t)r->c.series_every : 1;
   for (size_t i = 0; i < p->n; i += every) {
@@ -445,6 +451,7 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
       cell(out.f, p->pen[i], 0);
     }
     if (p->torque) loads_row(out.f, m, p, i);
+    for (int c = 0; c < p->nout; c++) cell(out.f, p->out[(size_t)c * p->n + i], 0);
     fputc('\n', out.f);
   }
   if (ferror(out.f)) {
@@ -518,6 +525,7 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
               FB_NUM_CELL("%.6g", k->alpha_max, FB_NUM_NONE_TABLE),
               FB_NUM_CELL("%.6g", k->alpha_min, FB_NUM_NONE_TABLE));
     }
+    fb_report_planar_outputs_table(f, r, p);
     if (p->torque) loads_table(f, r, p);
   }
 }

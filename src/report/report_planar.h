@@ -21,8 +21,9 @@
  * "drive_torque_abs_max_n_m" [N m], "reaction_max_n": {"<joint>": [N]}}
  * (the four-bar's keys, report_internal.h: the samples' extremes over
  * t >= the window's start, <joint> the joint's name with '-' as '_', in
- * the description's order)}]} (every moving body, in the description's
- * order). No wall time: two runs give the same bytes. */
+ * the description's order), and with output points or prismatic joints
+ * "points" and "slides" (report_planar_outputs.h)}]} (every moving body, in
+ * the description's order). No wall time: two runs give the same bytes. */
 json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_path);
 
 /* Writes DIR/summary.json, DIR/timing.json ({"case", "models": [{"name",
@@ -39,7 +40,8 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
  * from the first, about the joint's point on the second body (on the first
  * when the second is the ground) [N m]; a joint's force is on its second body even when
  * that is the ground (the four-bar's follower_ground columns, invdyn.h's D,
- * are the other way: on the follower from the ground); every [run] series_every-th
+ * are the other way: on the follower from the ground); then the output
+ * points' and slides' columns (report_planar_outputs.h); every [run] series_every-th
  * sample; none with [run] series = none) and DIR/report.md (the table
  * below, the command, and the nfig figures named in figures, each as an
  * image; none: "No figures were drawn."). Errors: FB_ERR_IO naming the file; FB_ERR_ARG
@@ -49,7 +51,8 @@ fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const 
                                  fb_diag *diag);
 
 /* The printed table: per model, one row per moving body with its omega
- * and alpha extremes [rad/s, rad/s^2]; the analytic model's load peaks
+ * and alpha extremes [rad/s, rad/s^2]; its points' and slides' extremes
+ * (report_planar_outputs.h); the analytic model's load peaks
  * (summary.json's loads): the drive torque's extremes [N m] and one row per
  * joint with its largest reaction [N]. */
 void fb_report_planar_table(FILE *f, const fb_planar_run *r);

@@ -182,7 +182,7 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   fb_kit_world o = {.gravity = r->c.gravity, .h = p->h, .solver = &r->c.solver,
                     .nbodies = r->m->nbodies - 1, .njoints = r->m->njoints,
                     .c = &r->c}; /* the assembly start */
-  fb_kit_series s = {.n = p->n, .h = p->h, .t = p->t, .q = p->q}; /* no centres */
+  fb_kit_series s = {.n = p->n, .h = p->h, .t = p->t, .q = p->q}; /* centres: below */
   /* a binding that reports joint reactions gives the analytic model's load
    * columns (planar_run.h's torque and reaction) */
   const size_t nl = (1 + 3 * (size_t)r->m->njoints) * p->n;
@@ -209,7 +209,16 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   if (st == FB_OK && r->m->drive < 0 && (st = free_start(&y0, r, run_cl, diag)) == FB_OK)
     o.qd0 = y0 + fb_planar_nq(r->m);
   const double before = fb_clock_s() - t0; /* the law, the columns, the start */
+  /* the output points and slides need the bodies' centres too */
+  if (st == FB_OK && p->out &&
+      !(s.centre = malloc(6 * (size_t)(r->m->nbodies - 1) * p->n * sizeof *s.centre)))
+    st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples' points", p->n);
+  for (size_t i = 0; s.centre && i < 6 * (size_t)(r->m->nbodies - 1) * p->n; i++)
+    s.centre[i] = NAN;
   if (st == FB_OK) st = fb_kit_run(b, r->m, r->omega, &o, run_cl, &s, diag);
+  if (s.centre && (st == FB_OK || st == FB_ERR_NUMERIC))
+    fb_planar_model_outputs_from(p, r->m, s.centre);
+  free(s.centre);
   free(y0);
   free(guide);
   p->h_omega_max = p->m_eff_min = p->m_eff_max = NAN;

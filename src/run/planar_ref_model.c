@@ -143,6 +143,9 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
     col.force[i] = c->force;
     col.pen[i] = c->penetration;
     if (store && p->ecc) p->ecc[i] = c->ecc[0], p->ecc[n + i] = c->ecc[1];
+    if (store) /* before the refinement: a point's motion at the sample's instant */
+      fb_planar_model_store_outputs(p, m, i, y + i * (size_t)(2 * nq),
+                                    y + i * (size_t)(2 * nq) + nq, acc + i * (size_t)nq);
   }
   if (st == FB_OK && store) {
     memcpy(p->force_sampled, col.force, n * sizeof *col.force);

@@ -10,6 +10,7 @@
 #include "model_table.h"
 #include "planar_case.h"
 #include "planar_invdyn.h"
+#include "planar_outputs.h"
 #include "planar_path.h"
 #include "resolution.h"
 #include "run.h"
@@ -66,7 +67,8 @@ double fb_planar_run_h_rate(const fb_planar_run *r, const fb_planar_contact_esti
   return fb_planar_run_step(&r->c) * e->rates.rate;
 }
 
-/* every moving body's angle, omega and alpha at position q */
+/* every moving body's angle, omega and alpha at position q, and the
+ * output points and slides there */
 static void store(fb_planar_model *p, const fb_planar *m, size_t i, const double *q,
                   const double *qd, const double *qdd) {
   for (int b = 1; b < m->nbodies; b++) {
@@ -74,6 +76,7 @@ static void store(fb_planar_model *p, const fb_planar *m, size_t i, const double
     const double v[3] = {q[a], qd[a], qdd[a]};
     for (int k = 0; k < 3; k++) p->q[((size_t)(b - 1) * 3 + (size_t)k) * p->n + i] = v[k];
   }
+  fb_planar_model_store_outputs(p, m, i, q, qd, qdd);
 }
 
 /* sample i's drive torque and joint reactions at the motion q, qdd that
@@ -144,6 +147,10 @@ static fb_status model_alloc(fb_planar_model *p, const fb_planar_run *r, fb_diag
   if (!p->peaks || !p->t) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", p->n);
   p->drive = p->t + p->n;
   p->q = p->drive + p->n;
+  p->nout = fb_planar_output_count(r->m);
+  if (p->nout > 0 && !(p->out = malloc((size_t)p->nout * p->n * sizeof *p->out)))
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples' points", p->n);
+  for (size_t i = 0; i < (size_t)p->nout * p->n; i++) p->out[i] = NAN;
   return FB_OK;
 }
 
@@ -174,6 +181,7 @@ static void model_free(fb_planar_model *p) {
   free(p->force);
   free(p->force_max);
   free(p->torque);
+  free(p->out);
   memset(p, 0, sizeof *p);
 }
 

@@ -18,8 +18,7 @@
  *              the restitution law of the case's [clearance] keys at the
  *              joint's largest ideal reaction, joint_law.h) integrated by
  *              rk8pd at FB_REFERENCE_TOL (planar_reference.h) from the
- *              steady start, about the clearance joint (the description
- *              translated there: planar_ref_model.c, about_joint), sampled
+ *              steady start, sampled
  *              every h, each spike sample holding the extreme between its
  *              neighbours (peak_refine.h, the closed-form reference's
  *              rule); its window peaks (t from fb_case_peak_window_from:
@@ -41,6 +40,8 @@
  *              step of h per sample; its window peaks as a reference's;
  *              its verdict against the analytic model (ideal) or the
  *              reference of its law (planar_verdict.h).
+ * Every model also samples the description's output points and every
+ * prismatic joint's slide (planar_outputs.h) into out, when it has any.
  * An undriven case ([drive] joint = none) runs the references only, from
  * its bodies' initial angular velocities (planar_free.h), its window the
  * whole run; a prismatic clearance joint is a slider in its guide.
@@ -140,6 +141,10 @@ typedef struct {
                               first (planar_invdyn.h, the four-bar's convention), force x
                               (k = 0) and y (k = 1) [N], moment about +z (k = 2) [N m]:
                               reaction[(3 j + k) n + i] (3 njoints n; alongside torque) */
+  double *out;             /* the description's output points and slides (planar_outputs.h),
+                              quantity c of fb_planar_outputs' row at out[c n + i]
+                              (nout n); NULL when it has neither */
+  int nout;                /* fb_planar_output_count of the description */
 } fb_planar_model;
 
 /* A planar case run. */
@@ -257,6 +262,18 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
  * h_s, h_min_s for an adaptive step, else (auto) a 6000th of a drive
  * revolution. */
 double fb_planar_run_step(const fb_case *c);
+
+/* Sample i of model p's output points and slides (p->out, when held) at
+ * the coordinates q, rates qd and accelerations qdd (planar_outputs.h). */
+void fb_planar_model_store_outputs(fb_planar_model *p, const fb_planar *m, size_t i,
+                                   const double *q, const double *qd, const double *qdd);
+
+/* Model p's rows of the output points and slides from its samples' body
+ * angles (p->q) and centres of mass (centre: x at centre[(b 3 + k) n + i],
+ * y at centre[(nb 3 + b 3 + k) n + i], body b = 0 .. nb - 1 the moving
+ * ones, k = FB_Q_POS, _VEL, _ACC; the engine kit's layout, kit.h) into
+ * p->out (held). */
+void fb_planar_model_outputs_from(fb_planar_model *p, const fb_planar *m, const double *centre);
 
 /* Model p's sample i of joint j's reaction (fb_planar_model.reaction):
  * force x (k = 0), y (k = 1) [N], its magnitude (k = 2) [N], the moment

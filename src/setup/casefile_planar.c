@@ -1,5 +1,5 @@
 /* A planar case's sections in the case-file reader (casefile_planar.h):
- * [joint.NAME], [body.NAME], [drive] joint and [clearance] joints read
+ * [joint.NAME], [body.NAME], [point.NAME], [drive] joint and [clearance] joints read
  * into fb_case.planar (model/mech/planar_spec.h), units converted to SI
  * here, then checked as a whole, compiled and checked by the planar core. */
 #include "casefile_planar.h"
@@ -19,6 +19,7 @@
 
 #define JOINT_PREFIX "joint."
 #define BODY_PREFIX "body."
+#define POINT_PREFIX "point."
 #define COORD_MAX_MM 1e5 /* a position's coordinates, as a link length's range: 100 m */
 #define COORD_RULE "a coordinate in mm from -1e5 to 1e5 (100 m)"
 #define POINT_RULE "two numbers x, y in mm (for example 120, -35.5), each " COORD_RULE
@@ -44,7 +45,9 @@ static int fourbar_key(const entry *e) {
 }
 
 int fb_casefile_planar_claims(const fb_case *c, const entry *e) {
-  if (prefixed(e->section, JOINT_PREFIX) || prefixed(e->section, BODY_PREFIX)) return 1;
+  if (prefixed(e->section, JOINT_PREFIX) || prefixed(e->section, BODY_PREFIX) ||
+      prefixed(e->section, POINT_PREFIX))
+    return 1;
   if (strcmp(e->section, "drive") == 0 && strcmp(e->key, "joint") == 0) return 1;
   if (!c->planar.on) return 0;
   if (strcmp(e->section, "clearance") == 0 && strcmp(e->key, "joints") == 0) return 1;
@@ -240,9 +243,48 @@ static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
                      e->origin, e->key, e->section);
 }
 
+/* the point named name in s (created at its first mention), or -1 when full */
+static int point_index(fb_planar_spec *s, const char *name) {
+  for (int k = 0; k < s->npoints; k++)
+    if (strcmp(s->point[k].name, name) == 0) return k;
+  if (s->npoints == FB_PLANAR_SPEC_MAX_POINTS) return -1;
+  fb_planar_spec_point *p = &s->point[s->npoints];
+  memset(p, 0, sizeof *p);
+  snprintf(p->name, sizeof p->name, "%s", name);
+  return s->npoints++;
+}
+
+/* a [point.NAME] section's keys: body = NAME, at_mm = x, y */
+static fb_status point_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
+  const char *name = e->section + strlen(POINT_PREFIX);
+  fb_status st = name_of(e, name, "point", diag);
+  if (st != FB_OK) return st;
+  const int k = point_index(s, name);
+  if (k < 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: more than %d points", e->origin,
+                       e->section, FB_PLANAR_SPEC_MAX_POINTS);
+  fb_planar_spec_point *p = &s->point[k];
+  if (strcmp(e->key, "body") == 0) {
+    char word[sizeof e->value];
+    snprintf(word, sizeof word, "%s", e->value);
+    const char *body = trim(word);
+    if ((st = name_of(e, body, "body", diag)) != FB_OK) return st;
+    snprintf(p->body, sizeof p->body, "%s", body);
+    p->given |= FB_SPEC_POINT_BODY;
+    return FB_OK;
+  }
+  if (strcmp(e->key, "at_mm") == 0) {
+    p->given |= FB_SPEC_POINT_AT;
+    return point_mm(e, p->at, diag);
+  }
+  return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a point has body and "
+                     "at_mm)", e->origin, e->key, e->section);
+}
+
 fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
   const int planar_section = prefixed(e->section, JOINT_PREFIX) ||
                              prefixed(e->section, BODY_PREFIX) ||
+                             prefixed(e->section, POINT_PREFIX) ||
                              strcmp(e->section, "drive") == 0;
   if (!c->planar.on && planar_section)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s describes a planar mechanism, but the "
@@ -250,6 +292,7 @@ fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
                        e->section, e->key, fb_case_mech(c)->type);
   if (prefixed(e->section, JOINT_PREFIX)) return joint_key(&c->planar, e, diag);
   if (prefixed(e->section, BODY_PREFIX)) return body_key(&c->planar, e, diag);
+  if (prefixed(e->section, POINT_PREFIX)) return point_key(&c->planar, e, diag);
   if (fourbar_key(e))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s is a four-bar or slider-crank key; a "
                        "planar case gives its geometry by [joint.NAME] at_mm and its masses by "
@@ -328,6 +371,31 @@ static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, 
                          "key", at ? at->origin : "case", at ? at->section : "body",
                          s->body[b].name);
     }
+  }
+  for (int k = 0; k < s->npoints; k++) {
+    const fb_planar_spec_point *p = &s->point[k];
+    const entry *at = first_of(e, n, POINT_PREFIX, p->name);
+    const char *miss = !(p->given & FB_SPEC_POINT_BODY) ? "body = NAME (the moving body it is a "
+                                                          "point of)"
+                       : !(p->given & FB_SPEC_POINT_AT) ? "at_mm = x, y (where it is in the "
+                                                          "assembly configuration)"
+                                                        : NULL;
+    if (miss)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] has no %s", at->origin, at->section, miss);
+    const entry *key = entry_of(e, n, at->section, "body");
+    if (strcmp(p->body, "ground") == 0)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] body = %s: the ground does not move; a "
+                         "point is on a moving body", key->origin, key->section, p->body);
+    int known = 0;
+    char bodies[1024] = "";
+    for (int b = 1; b < s->nbodies; b++) {
+      known |= strcmp(s->body[b].name, p->body) == 0;
+      snprintf(bodies + strlen(bodies), sizeof bodies - strlen(bodies), "%s%s", b > 1 ? ", " : "",
+               s->body[b].name);
+    }
+    if (!known)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] body = %s: not a moving body of the case "
+                         "(bodies: %s)", key->origin, key->section, p->body, bodies);
   }
   return FB_OK;
 }
@@ -430,6 +498,9 @@ static int case_names(case_name *out, int max, const fb_planar_spec *s, const en
     for (int j = 0; j < s->njoints && k < max; j++)
       if (joint_at[j] == x)
         out[k++] = (case_name){"joint", s->joint[j].name, x};
+    for (int p = 0; p < s->npoints && k < max; p++)
+      if (first_of(e, n, POINT_PREFIX, s->point[p].name) == x)
+        out[k++] = (case_name){"point", s->point[p].name, x};
   }
   return k;
 }
@@ -446,7 +517,7 @@ static const char *given_in(char *buf, size_t size, const entry *x, const char *
  * one column and key word, and no fixed word; the later name is refused,
  * with the earlier named beside it. */
 static fb_status names_one_word(const fb_planar_spec *s, const entry *e, int n, fb_diag *diag) {
-  enum { MAX = FB_PLANAR_SPEC_MAX_BODIES + 1 + FB_PLANAR_SPEC_MAX_JOINTS };
+  enum { MAX = FB_PLANAR_SPEC_MAX_BODIES + 1 + FB_PLANAR_SPEC_MAX_JOINTS + FB_PLANAR_SPEC_MAX_POINTS };
   case_name list[MAX];
   const char *names[MAX];
   const int count = case_names(list, MAX, s, e, n);
@@ -646,6 +717,11 @@ void fb_casefile_planar_write_keys(FILE *f) {
   for (size_t i = 0; i < sizeof body_numbers / sizeof body_numbers[0]; i++)
     fprintf(f, "| [body.NAME] %s | %s | %s | %s | planar case: %s |\n", body_numbers[i].key,
             body_numbers[i].unit, body_numbers[i].def, body_numbers[i].rule, body_numbers[i].doc);
+  fprintf(f, "| [point.NAME] body | - | (required) | a moving body of the case | planar case: "
+          "the body an output point is a point of; the run writes its position, velocity and "
+          "acceleration (columns NAME_x_m ... NAME_a_y_m_s2) and their extremes |\n");
+  fprintf(f, "| [point.NAME] at_mm | mm | (required) | %s | planar case: where the output point "
+          "is in the assembly configuration |\n", POINT_RULE);
   fprintf(f, "| [drive] joint | - | (required) | a revolute joint of the case, or none | planar "
           "case: the joint the drive turns at speed_rpm in direction (its second body relative "
           "to its first); none: an undriven case, moving from its bodies' initial_omega_rad_s "

@@ -31,6 +31,7 @@ void fb_planar_free(fb_planar *m) {
   if (!m) return;
   free(m->body);
   free(m->joint);
+  free(m->point);
   free(m);
 }
 
@@ -49,11 +50,13 @@ static int name_ok(const fb_planar *m, const char *name, const char *what, fb_di
                 what, name, fixed_what);
     return 0;
   }
-  for (int k = 0; k < m->nbodies + m->njoints; k++) {
-    const int body = k < m->nbodies;
-    const char *other = body ? m->body[k].name : m->joint[k - m->nbodies].name;
+  for (int k = 0; k < m->nbodies + m->njoints + m->npoints; k++) {
+    const int body = k < m->nbodies, joint = !body && k < m->nbodies + m->njoints;
+    const char *other = body    ? m->body[k].name
+                        : joint ? m->joint[k - m->nbodies].name
+                                : m->point[k - m->nbodies - m->njoints].name;
     if (!fb_name_same_word(other, name)) continue;
-    const char *kind = body ? "body" : "joint";
+    const char *kind = body ? "body" : joint ? "joint" : "point";
     if (strcmp(other, name) == 0 && strcmp(kind, what) == 0)
       fb_diag_set(diag, FB_ERR_ARG, "%s '%s' is named twice: give each %s a name of its own",
                   what, name, what);
@@ -135,6 +138,28 @@ int fb_planar_add_joint(fb_planar *m, const char *name, fb_joint_kind kind, int 
   else j->axis[0] = 1.0;
   j->clearance_ok = kind == FB_KIND_REVOLUTE;
   return m->njoints++;
+}
+
+int fb_planar_add_point(fb_planar *m, const char *name, int b, const double at[2], fb_diag *diag) {
+  if (!name_ok(m, name, "point", diag)) return -1;
+  if (b <= FB_PLANAR_GROUND || b >= m->nbodies)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "point '%s': body %d: a point is on a moving "
+                               "body of the description (1 .. %d); the ground's do not move",
+                               name, b, m->nbodies - 1));
+  if (!isfinite(at[0]) || !isfinite(at[1]))
+    return refused(fb_diag_set(diag, FB_ERR_RANGE, "point '%s': its position must be finite",
+                               name));
+  fb_planar_mark *grown = realloc(m->point, ((size_t)m->npoints + 1) * sizeof *grown);
+  if (!grown) return refused(fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for point '%s'", name));
+  m->point = grown;
+  fb_planar_mark *p = &m->point[m->npoints];
+  memset(p, 0, sizeof *p);
+  snprintf(p->name, sizeof p->name, "%s", name);
+  p->body = b;
+  p->at[0] = at[0];
+  p->at[1] = at[1];
+  to_body(p->point, m, b, at, 1);
+  return m->npoints++;
 }
 
 fb_status fb_planar_set_drive(fb_planar *m, int j, fb_diag *diag) {

@@ -71,6 +71,16 @@ typedef struct {
   int clearance_ok;               /* 1: may be a clearance joint (a revolute joint) */
 } fb_planar_joint;
 
+/* One output point ([point.NAME]): a point of a body whose motion the
+ * run reports (fb_planar_outputs, physics/planar/planar_outputs.h); it
+ * adds no mass and no constraint. */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE]; /* "tool" */
+  int body;                       /* the moving body it is a point of (index into body) */
+  double at[2];                   /* position in the assembly configuration [m] (2) */
+  double point[2];                /* the same point in the body's frame [m] (2) */
+} fb_planar_mark;
+
 /* A planar mechanism. */
 typedef struct {
   int nbodies;            /* bodies held, the ground (index 0) included */
@@ -80,6 +90,8 @@ typedef struct {
   fb_planar_body *body;   /* (nbodies) */
   fb_planar_joint *joint; /* (njoints) */
   int drive;              /* the driven joint (revolute), -1 before fb_planar_set_drive */
+  int npoints;            /* output points held (fb_planar_add_point) */
+  fb_planar_mark *point;  /* (npoints), NULL when none */
 } fb_planar;
 
 /* A description with the ground alone (named "ground"), room for
@@ -111,6 +123,14 @@ int fb_planar_add_body(fb_planar *m, const char *name, double mass, double inert
  * description is full; FB_ERR_RANGE when at or the axis is not finite. */
 int fb_planar_add_joint(fb_planar *m, const char *name, fb_joint_kind kind, int b0, int b1,
                         const double at[2], double axis_angle, fb_diag *diag);
+
+/* Adds output point name on moving body b at position at (2) [m] in the
+ * assembly configuration (its point in the body's frame computed from the
+ * body's centre and angle, which must be added first). Its name follows
+ * the bodies' and joints' rule (names.h). Returns its index (0, 1, ...),
+ * or -1 with diag filled: FB_ERR_ARG for a name refused as a body's, b
+ * not a moving body, FB_ERR_RANGE when at is not finite, FB_ERR_NOMEM. */
+int fb_planar_add_point(fb_planar *m, const char *name, int b, const double at[2], fb_diag *diag);
 
 /* Makes joint j the driven joint. Errors: FB_ERR_ARG when j is out of range
  * or not revolute. */

@@ -18,6 +18,9 @@
 
 #define FB_PLANAR_SPEC_MAX_JOINTS 31
 #define FB_PLANAR_SPEC_MAX_BODIES 31
+/* Output points ([point.NAME]): a tool tip, a coupler point, a ram's
+ * reference point or two per body of a six-bar. */
+#define FB_PLANAR_SPEC_MAX_POINTS 16
 
 /* Two joint positions closer than this are one point [m] (a compound
  * hinge): a position is typed to microns at best, and a bar shorter than
@@ -39,8 +42,19 @@ enum {
   FB_SPEC_BODY_CENTRE = 8,  /* centre_mm = x, y */
   FB_SPEC_BODY_WIDTH = 16,  /* width_mm */
   FB_SPEC_BODY_THICK = 32,  /* thickness_mm */
-  FB_SPEC_BODY_OMEGA0 = 64  /* initial_omega_rad_s */
+  FB_SPEC_BODY_OMEGA0 = 64, /* initial_omega_rad_s */
+  FB_SPEC_POINT_BODY = 1,   /* [point.NAME] body = NAME */
+  FB_SPEC_POINT_AT = 2      /* [point.NAME] at_mm = x, y */
 };
+
+/* One [point.NAME] section: an output point (planar.h fb_planar_mark). */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE]; /* NAME */
+  char body[FB_PLANAR_NAME_SIZE]; /* the body's name as given (resolved when the case is
+                                     finished: a body some joint joins) */
+  double at[2];                   /* assembly position [m] (2) */
+  int given;                      /* FB_SPEC_POINT_* bits */
+} fb_planar_spec_point;
 
 /* One [joint.NAME] section. */
 typedef struct {
@@ -78,6 +92,8 @@ typedef struct {
   fb_planar_spec_body body[FB_PLANAR_SPEC_MAX_BODIES + 1];
   int drive;                   /* [drive] joint: index into joint, -1 when not given */
   int undriven;                /* 1: [drive] joint = none (a free start, drive -1) */
+  int npoints;                 /* output points held, in file order */
+  fb_planar_spec_point point[FB_PLANAR_SPEC_MAX_POINTS];
 } fb_planar_spec;
 
 #endif

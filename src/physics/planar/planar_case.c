@@ -219,6 +219,11 @@ fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double den
       rc = FB_ERR_ARG;
     }
   }
+  for (int k = 0; k < s->npoints && rc == FB_OK; k++) { /* output points: no mass, no joint */
+    const fb_planar_spec_point *sp = &s->point[k];
+    if (fb_planar_add_point(p, sp->name, fb_planar_find_body(p, sp->body), sp->at, diag) < 0)
+      rc = FB_ERR_ARG;
+  }
   if (rc == FB_OK && s->drive < 0 && !s->undriven)
     rc = fb_diag_set(diag, FB_ERR_ARG, "no drive: name the driven joint in [drive] joint");
   if (rc == FB_OK && !s->undriven && (rc = fb_planar_set_drive(p, s->drive, diag)) != FB_OK)

@@ -63,7 +63,7 @@ fb_status fb_planar_slider_crank(fb_planar **out, const fb_linkage *lk,
                                  const fb_link_mass link[3], double theta0, fb_diag *diag);
 
 /* A planar case's spec compiled: its bodies (masses derived as bars where
- * not given, density [kg/m^3] the case's), joints and drive. *where names
+ * not given, density [kg/m^3] the case's), joints, output points and drive. *where names
  * the body or joint a failure is about (may be NULL).
  * Errors: FB_ERR_ARG (a body without a bar and without mass_kg or
  * inertia_kg_mm2; no drive), FB_ERR_RANGE (a derived mass outside the

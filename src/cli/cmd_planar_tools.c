@@ -14,7 +14,13 @@ int fb_cmd_kinematics_planar(const fb_case *c, int json) {
   fb_planar_peaks *p;
   fb_diag d;
   if (fb_planar_tool_peaks(&p, &m, c, &d) != FB_OK) return fb_cli_fail("kinematics", 1, "%s", d.msg);
-  fb_report_planar_kinematics(stdout, c, m, p, json);
+  static fb_planar_designer designer;
+  if (fb_planar_tool_designer(&designer, m, c, &d) != FB_OK) {
+    free(p);
+    fb_planar_free(m);
+    return fb_cli_fail("kinematics", 1, "%s", d.msg);
+  }
+  fb_report_planar_kinematics(stdout, c, m, p, &designer, json);
   free(p);
   fb_planar_free(m);
   return 0;

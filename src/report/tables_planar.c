@@ -6,6 +6,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "names.h"
 #include "numfmt.h"
 #include "report_summary.h"
 #include "report_table.h"
@@ -29,8 +30,91 @@ static const char *at(const char *a, const fb_planar_stackup *s, int i) {
   return a + (size_t)i * ((size_t)s->nlengths + 1);
 }
 
+#define QRR_IS "the slower stroke's time over the faster's at constant drive speed (>= 1)"
+#define MU_IS                                                                               \
+  "90 deg - |pressure angle| where a binary link drives another moving body: the angle "    \
+  "between the link's line and the velocity of the joint as a point of the driven body "    \
+  "(about its ground pivot, along its ground guide, else its own motion); undefined "       \
+  "elsewhere"
+
+/* {"x_m", "drive_angle_rad"} of a dead centre */
+static json_t *dead_centre(double x, double at) {
+  return json_pack("{s:o,s:o}", "x_m", num(x), "drive_angle_rad", num(at));
+}
+
+/* the designer's slides and transmission angles into o (kinematics --json) */
+static void designer_json(json_t *o, const fb_planar *m, const fb_planar_designer *d) {
+  json_t *slides = json_object(), *mu = json_object();
+  char word[FB_PLANAR_NAME_SIZE];
+  for (int i = 0; i < d->nslides; i++) {
+    const fb_planar_slide_kin *k = &d->slide[i];
+    json_t *e = json_object();
+    json_object_set_new(e, "stroke_m", num(k->stroke));
+    json_object_set_new(e, "dead_centre_outer", dead_centre(k->pos.max, k->pos.at_max));
+    json_object_set_new(e, "dead_centre_inner", dead_centre(k->pos.min, k->pos.at_min));
+    json_object_set_new(e, "quick_return_ratio", num(k->quick_return_ratio));
+    json_object_set_new(e, "quick_return_ratio_is", json_string(QRR_IS));
+    json_object_set_new(e, "outstroke", json_pack("{s:o,s:o}", "drive_angle_rad",
+                                                  num(k->outstroke_angle), "time_s",
+                                                  num(k->outstroke_time)));
+    json_object_set_new(e, "return", json_pack("{s:o,s:o}", "drive_angle_rad",
+                                               num(k->return_angle), "time_s",
+                                               num(k->return_time)));
+    const double v[6] = {k->pos.max, k->pos.min, k->vel.max, k->vel.min, k->acc.max, k->acc.min};
+    static const char *const key[6] = {"position_max_m", "position_min_m", "velocity_max_m_s",
+                                       "velocity_min_m_s", "acceleration_max_m_s2",
+                                       "acceleration_min_m_s2"};
+    for (int x = 0; x < 6; x++) json_object_set_new(e, key[x], num(v[x]));
+    json_object_set_new(slides, fb_name_word(word, sizeof word, m->joint[k->joint].name), e);
+  }
+  for (int i = 0; i < d->ntransmissions; i++) {
+    const fb_planar_transmission_kin *t = &d->transmission[i];
+    const double deg = 1.0 / FB_RAD_PER_DEG;
+    json_object_set_new(
+        mu, fb_name_word(word, sizeof word, m->joint[t->at.joint].name),
+        json_pack("{s:s,s:s,s:o,s:o,s:{s:o,s:o}}", "link", m->body[t->at.link].name, "driven",
+                  m->body[t->at.driven].name, "transmission_angle_min_deg", num(t->mu.min * deg),
+                  "transmission_angle_max_deg", num(t->mu.max * deg), "at_drive_angle_rad", "min",
+                  num(t->mu.at_min), "max", num(t->mu.at_max)));
+  }
+  json_object_set_new(o, "slides", slides);
+  json_object_set_new(o, "transmission", mu);
+  json_object_set_new(o, "transmission_angle_is", json_string(MU_IS));
+}
+
+/* the designer's slides and transmission angles as text */
+static void designer_text(FILE *f, const fb_planar *m, const fb_planar_designer *d) {
+  const double deg = 1.0 / FB_RAD_PER_DEG;
+  for (int i = 0; i < d->nslides; i++) {
+    const fb_planar_slide_kin *k = &d->slide[i];
+    fprintf(f, "slide '%s': stroke %.6f mm between the dead centres:\n"
+               "  outer %.6f mm at drive angle %.4f deg\n  inner %.6f mm at drive angle %.4f deg\n"
+               "quick-return ratio %.6f (slower stroke's time over the faster's): outstroke "
+               "(inner to outer) %.4f deg of drive, %.6g s; return %.4f deg, %.6g s\n"
+               "  velocity %s to %s m/s, acceleration %s to %s m/s^2\n",
+            m->joint[k->joint].name, k->stroke * 1e3, k->pos.max * 1e3, k->pos.at_max * deg,
+            k->pos.min * 1e3, k->pos.at_min * deg, k->quick_return_ratio,
+            k->outstroke_angle * deg, k->outstroke_time, k->return_angle * deg, k->return_time,
+            CELL(k->vel.min), CELL(k->vel.max), CELL(k->acc.min), CELL(k->acc.max));
+  }
+  if (d->ntransmissions == 0) {
+    fprintf(f, "transmission angle: undefined (no binary link drives another moving body)\n");
+    return;
+  }
+  fprintf(f, "transmission angle (90 deg - |pressure angle| where a binary link drives a body):\n"
+             "| joint | link | driven | min [deg] | at [deg] | max [deg] | at [deg] |\n"
+             "|---|---|---|---:|---:|---:|---:|\n");
+  for (int i = 0; i < d->ntransmissions; i++) {
+    const fb_planar_transmission_kin *t = &d->transmission[i];
+    fprintf(f, "| %s | %s | %s | %.4f | %.2f | %.4f | %.2f |\n", m->joint[t->at.joint].name,
+            m->body[t->at.link].name, m->body[t->at.driven].name, t->mu.min * deg,
+            t->mu.at_min * deg, t->mu.max * deg, t->mu.at_max * deg);
+  }
+}
+
 void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
-                                 const fb_planar_peaks *p, int json) {
+                                 const fb_planar_peaks *p, const fb_planar_designer *d,
+                                 int json) {
   if (json) {
     json_t *o = json_object(), *bodies = json_object();
     json_object_set_new(o, "case", json_string(c->name));
@@ -49,6 +133,7 @@ void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
       json_object_set_new(bodies, m->body[b].name, e);
     }
     json_object_set_new(o, "bodies", bodies);
+    designer_json(o, m, d);
     dump(f, o);
     return;
   }
@@ -65,6 +150,7 @@ void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
             CELL(k->omega_max), k->where[0] * deg, CELL(k->omega_min), k->where[1] * deg,
             CELL(k->alpha_max), k->where[2] * deg, CELL(k->alpha_min), k->where[3] * deg);
   }
+  designer_text(f, m, d);
 }
 
 void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,

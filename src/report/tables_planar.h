@@ -12,10 +12,21 @@
 /* kinematics: {"case", "mechanism": "planar", "drive", "speed_rpm",
  * "bodies": {"<body>": {"omega_max_rad_s", "omega_min_rad_s",
  * "alpha_max_rad_s2", "alpha_min_rad_s2", "at_drive_angle_rad":
- * {"omega_max", "omega_min", "alpha_max", "alpha_min"}}}}; text: one row
- * per moving body. */
+ * {"omega_max", "omega_min", "alpha_max", "alpha_min"}}}, "slides":
+ * {"<joint>": {"stroke_m", "dead_centre_outer": {"x_m", "drive_angle_rad"},
+ * "dead_centre_inner", "quick_return_ratio", "quick_return_ratio_is",
+ * "outstroke": {"drive_angle_rad", "time_s"}, "return", and the slider's
+ * extreme keys position_max_m ... acceleration_min_m_s2}} (x_m the slide,
+ * planar_outputs.h), "transmission": {"<joint>": {"link", "driven",
+ * "transmission_angle_min_deg", "transmission_angle_max_deg",
+ * "at_drive_angle_rad": {"min", "max"}}} (planar_transmission.h; {} when
+ * undefined), "transmission_angle_is"} (d from fb_planar_tool_designer;
+ * <joint> its name with '-' as '_'); text: one row per moving body, then
+ * each slide's stroke, dead centres and quick-return ratio and the
+ * transmission angles' table (or that it is undefined). */
 void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
-                                 const fb_planar_peaks *p, int json);
+                                 const fb_planar_peaks *p, const fb_planar_designer *d,
+                                 int json);
 
 /* penalty (physical mode), rows[s * m->njoints ..] of n[s] joints for the
  * speeds rpm[s], s < nspeeds: {"case", "mode": "physical", "rows":

@@ -12,6 +12,7 @@
 #include "joint_law.h"
 #include "planar_kinematics.h"
 #include "planar_mass.h"
+#include "planar_outputs.h"
 #include "planar_path.h"
 #include "resolution.h"
 #include "iso2768.h"
@@ -47,6 +48,75 @@ fb_status fb_planar_tool_peaks(fb_planar_peaks **out, fb_planar **m, const fb_ca
     fb_planar_free(*m);
     *m = NULL;
   }
+  return st;
+}
+
+/* ---- a designer's outputs ------------------------------------------------ */
+
+/* fb_planar_quantity of the slides: index i is slide i / 3's quantity
+ * i % 3 (planar_outputs.h's row) */
+static double slide_quantity(const fb_planar *m, const double *q, const double *qd,
+                             const double *qdd, const double *w1, int i, void *ctx) {
+  (void)w1;
+  double *row = ctx;
+  fb_planar_outputs(row, m, q, qd, qdd);
+  return row[FB_PLANAR_POINT_QUANTITIES * m->npoints + i];
+}
+
+/* fb_planar_quantity of the transmission angles: index i is ctx's i-th */
+static double transmission_quantity(const fb_planar *m, const double *q, const double *qd,
+                                    const double *qdd, const double *w1, int i, void *ctx) {
+  (void)qd, (void)qdd;
+  const fb_planar_transmission *t = ctx;
+  return fb_planar_transmission_angle(m, &t[i], q, w1);
+}
+
+/* the drive's turn from angle a to angle b in the direction it runs
+ * (omega's sign) [rad], in [0, 2 pi) */
+static double turn(double a, double b, double omega) {
+  const double d = omega >= 0.0 ? b - a : a - b;
+  return fmod(fmod(d, 2.0 * M_PI) + 2.0 * M_PI, 2.0 * M_PI);
+}
+
+fb_status fb_planar_tool_designer(fb_planar_designer *out, const fb_planar *m, const fb_case *c,
+                                  fb_diag *diag) {
+  memset(out, 0, sizeof *out);
+  if (m->drive < 0) return FB_OK;
+  const double omega = fb_case_omega2(c);
+  fb_planar_transmission t[2 * FB_PLANAR_SPEC_MAX_JOINTS];
+  out->ntransmissions = fb_planar_transmissions(t, 2 * FB_PLANAR_SPEC_MAX_JOINTS, m);
+  const int ns = fb_planar_slide_count(m);
+  if (ns == 0 && out->ntransmissions == 0) return FB_OK;
+  fb_planar_kin *k;
+  fb_status st = fb_planar_kin_new(&k, m, diag);
+  if (st != FB_OK) return st;
+  double *row = malloc(((size_t)fb_planar_output_count(m) + 1) * sizeof *row);
+  fb_planar_extreme *e = malloc((3 * (size_t)ns + (size_t)out->ntransmissions + 1) * sizeof *e);
+  if (!row || !e) st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  if (st == FB_OK && ns > 0) st = fb_planar_extremes_of(e, 3 * ns, slide_quantity, row, k, omega, diag);
+  if (st == FB_OK && out->ntransmissions > 0)
+    st = fb_planar_extremes_of(e + 3 * ns, out->ntransmissions, transmission_quantity, t, k, omega,
+                               diag);
+  for (int j = 0, s = 0; st == FB_OK && j < m->njoints; j++) {
+    if (m->joint[j].kind != FB_KIND_PRISMATIC) continue;
+    fb_planar_slide_kin *sk = &out->slide[out->nslides++];
+    sk->joint = j;
+    sk->pos = e[3 * s], sk->vel = e[3 * s + 1], sk->acc = e[3 * s + 2];
+    sk->stroke = sk->pos.max - sk->pos.min;
+    sk->outstroke_angle = turn(sk->pos.at_min, sk->pos.at_max, omega);
+    sk->return_angle = 2.0 * M_PI - sk->outstroke_angle;
+    sk->outstroke_time = sk->outstroke_angle / fabs(omega);
+    sk->return_time = sk->return_angle / fabs(omega);
+    sk->quick_return_ratio = fmax(sk->outstroke_angle, sk->return_angle) /
+                             fmin(sk->outstroke_angle, sk->return_angle);
+    s++;
+  }
+  for (int i = 0; st == FB_OK && i < out->ntransmissions; i++)
+    out->transmission[i] = (fb_planar_transmission_kin){t[i], e[3 * ns + i]};
+  if (st != FB_OK) memset(out, 0, sizeof *out);
+  free(row);
+  free(e);
+  fb_planar_kin_free(k);
   return st;
 }
 

@@ -39,12 +39,49 @@
 #include "montecarlo.h"
 #include "planar.h"
 #include "planar_path.h"
+#include "planar_spec.h"
+#include "planar_transmission.h"
 
 /* Central-difference step of a sensitivity [m]: 1 um. The truncation
  * error is O(step^2) of the output's curvature in the length (1e-12 of it
  * relative), the rounding error the peaks' ~1e-15 over the step, 1e-9 of
  * the output per metre: both below the printed digits. */
 #define FB_PLANAR_SENS_STEP 1e-6
+
+/* A prismatic joint's slide over a revolution (planar_outputs.h): its
+ * extremes, dead centres and strokes at constant drive speed. */
+typedef struct {
+  int joint;                         /* the prismatic joint */
+  fb_planar_extreme pos, vel, acc;   /* slide [m], its rate [m/s], acceleration [m/s^2]; the
+                                        outer dead centre is pos.max at pos.at_max, the inner
+                                        pos.min at pos.at_min */
+  double stroke;                     /* pos.max - pos.min [m] */
+  double outstroke_angle, return_angle; /* the drive's turn from the inner dead centre to the
+                                        outer (outstroke) and back (return) [rad] */
+  double outstroke_time, return_time; /* the same at the drive's speed [s] */
+  double quick_return_ratio;         /* the slower stroke's time over the faster's (>= 1) [-] */
+} fb_planar_slide_kin;
+
+/* A transmission angle's extremes over a revolution (planar_transmission.h). */
+typedef struct {
+  fb_planar_transmission at;
+  fb_planar_extreme mu; /* [rad] */
+} fb_planar_transmission_kin;
+
+/* What fourbar kinematics tells a designer beyond the bodies' peaks. */
+typedef struct {
+  int nslides;
+  fb_planar_slide_kin slide[FB_PLANAR_SPEC_MAX_JOINTS];
+  int ntransmissions;
+  fb_planar_transmission_kin transmission[2 * FB_PLANAR_SPEC_MAX_JOINTS];
+} fb_planar_designer;
+
+/* Every prismatic joint's slide and every transmission angle of
+ * description m over a revolution at planar case c's signed speed
+ * (fb_planar_extremes_of). An undriven description has none.
+ * Errors: those of fb_planar_kin_new and fb_planar_extremes_of. */
+fb_status fb_planar_tool_designer(fb_planar_designer *out, const fb_planar *m, const fb_case *c,
+                                  fb_diag *diag);
 
 /* Every moving body's peaks of planar case c (its description *m, which
  * the caller frees with fb_planar_free) at the case's signed speed:

@@ -101,11 +101,27 @@ typedef struct {
   const double *q0, *v1, *v2;
   double *q, *w1, *w2; /* scratch (n each) */
   double fallback;     /* the sample's own value, where a solve fails */
+  fb_planar_quantity f; /* a quantity of fb_planar_extremes_of (b its index), else NULL:
+                           body b's omega or alpha */
+  void *ctx;
+  double *qd, *qdd;    /* scratch (n each) for f */
 } extreme_fn;
 
 static double body_value(const double *w1, const double *w2, int b, int which, double omega) {
   const int c = 3 * (b - 1) + 2;
   return which == 0 ? w1[c] * omega : w2[c] * omega * omega;
+}
+
+/* quantity f's index i at the position q with the unit motion w1, w2 at
+ * drive speed omega (qd, qdd scratch) */
+static double quantity_value(fb_planar_quantity f, void *ctx, int i, fb_planar_kin *k,
+                             const double *q, const double *w1, const double *w2, double omega,
+                             double *qd, double *qdd, int n) {
+  for (int c = 0; c < n; c++) {
+    qd[c] = w1[c] * omega;
+    qdd[c] = w2[c] * omega * omega;
+  }
+  return f(fb_planar_kin_mech(k), q, qd, qdd, w1, i, ctx);
 }
 
 static double extreme_eval(double angle, void *p) {
@@ -114,6 +130,11 @@ static double extreme_eval(double angle, void *p) {
   if (fb_planar_position(e->k, e->q, angle, NULL, NULL) != FB_OK ||
       unit_motion(e->k, e->w1, e->w2, e->q, NULL) != FB_OK)
     return e->fallback;
+  if (e->f) {
+    const double v = quantity_value(e->f, e->ctx, e->b, e->k, e->q, e->w1, e->w2, e->omega,
+                                    e->qd, e->qdd, e->n);
+    return isfinite(v) ? e->sense * v : e->fallback;
+  }
   return e->sense * body_value(e->w1, e->w2, e->b, e->which, e->omega);
 }
 
@@ -146,6 +167,24 @@ static double refine(extreme_fn *e, double da, double *at) {
   return best;
 }
 
+/* the revolution's samples of fb_planar_peaks_of: positions and unit
+ * motions at FB_PLANAR_PEAK_SAMPLES drive angles (buf: 3 ns n) */
+static fb_status revolution(double *qs, double *v1s, double *v2s, double *q, fb_planar_kin *k,
+                            fb_diag *diag) {
+  const fb_planar *m = fb_planar_kin_mech(k);
+  const int n = fb_planar_nq(m), ns = FB_PLANAR_PEAK_SAMPLES;
+  const double da = 2.0 * M_PI / ns;
+  fb_planar_assembly(m, q);
+  fb_status rc = fb_planar_position(k, q, 0.0, NULL, diag);
+  for (int i = 0; i < ns && rc == FB_OK; i++) {
+    fb_path_end end;
+    if (i > 0) rc = fb_planar_follow(k, q, (i - 1) * da, i * da, NULL, &end, diag);
+    if (rc == FB_OK) rc = unit_motion(k, v1s + (size_t)i * n, v2s + (size_t)i * n, q, NULL);
+    memcpy(qs + (size_t)i * n, q, (size_t)n * sizeof *q);
+  }
+  return rc;
+}
+
 fb_status fb_planar_peaks_of(fb_planar_peaks *out, fb_planar_kin *k, double omega,
                              fb_diag *diag) {
   const fb_planar *m = fb_planar_kin_mech(k);
@@ -155,17 +194,9 @@ fb_status fb_planar_peaks_of(fb_planar_peaks *out, fb_planar_kin *k, double omeg
   if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %d samples", ns);
   double *qs = buf, *v1s = qs + (size_t)n * ns, *v2s = v1s + (size_t)n * ns;
   double *scratch = v2s + (size_t)n * ns;
-  double *q = scratch;
-  fb_planar_assembly(m, q);
-  fb_status rc = fb_planar_position(k, q, 0.0, NULL, diag);
   const double da = 2.0 * M_PI / ns;
   gsl_error_handler_t *old = gsl_set_error_handler_off();
-  for (int i = 0; i < ns && rc == FB_OK; i++) {
-    fb_path_end end;
-    if (i > 0) rc = fb_planar_follow(k, q, (i - 1) * da, i * da, NULL, &end, diag);
-    if (rc == FB_OK) rc = unit_motion(k, v1s + (size_t)i * n, v2s + (size_t)i * n, q, NULL);
-    memcpy(qs + (size_t)i * n, q, (size_t)n * sizeof *q);
-  }
+  fb_status rc = revolution(qs, v1s, v2s, scratch, k, diag);
   for (int b = 1; b < m->nbodies && rc == FB_OK; b++)
     for (int x = 0; x < 4; x++) { /* omega max, min, alpha max, min */
       const int which = x / 2;
@@ -177,7 +208,7 @@ fb_status fb_planar_peaks_of(fb_planar_peaks *out, fb_planar_kin *k, double omeg
           best = i;
       extreme_fn e = {k, n, b, which, sense, omega, best * da, qs + (size_t)best * n,
                       v1s + (size_t)best * n, v2s + (size_t)best * n, scratch,
-                      scratch + n, scratch + 2 * n, 0.0};
+                      scratch + n, scratch + 2 * n, 0.0, NULL, NULL, NULL, NULL};
       e.fallback = sense * body_value(e.v1, e.v2, b, which, omega);
       double at;
       const double v = sense * refine(&e, da, &at);
@@ -186,6 +217,45 @@ fb_status fb_planar_peaks_of(fb_planar_peaks *out, fb_planar_kin *k, double omeg
       *slot[x] = v;
       out[b].where[x] = fmod(at + 2.0 * M_PI, 2.0 * M_PI);
     }
+  gsl_set_error_handler(old);
+  free(buf);
+  return rc;
+}
+
+fb_status fb_planar_extremes_of(fb_planar_extreme *out, int nf, fb_planar_quantity f, void *ctx,
+                                fb_planar_kin *k, double omega, fb_diag *diag) {
+  const fb_planar *m = fb_planar_kin_mech(k);
+  const int n = fb_planar_nq(m), ns = FB_PLANAR_PEAK_SAMPLES;
+  double *buf = calloc((size_t)n * (3 * (size_t)ns + 5) + (size_t)ns, sizeof *buf);
+  if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %d samples", ns);
+  double *qs = buf, *v1s = qs + (size_t)n * ns, *v2s = v1s + (size_t)n * ns;
+  double *scratch = v2s + (size_t)n * ns, *vals = scratch + 5 * (size_t)n;
+  const double da = 2.0 * M_PI / ns;
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  fb_status rc = revolution(qs, v1s, v2s, scratch, k, diag);
+  for (int x = 0; x < nf && rc == FB_OK; x++) {
+    for (int i = 0; i < ns; i++)
+      vals[i] = quantity_value(f, ctx, x, k, qs + (size_t)i * n, v1s + (size_t)i * n,
+                               v2s + (size_t)i * n, omega, scratch + 3 * n, scratch + 4 * n, n);
+    fb_planar_extreme *o = &out[x];
+    *o = (fb_planar_extreme){NAN, NAN, NAN, NAN};
+    for (int side = 0; side < 2; side++) { /* max, then min */
+      const double sense = side ? 1.0 : -1.0;
+      int best = -1;
+      for (int i = 0; i < ns; i++)
+        if (isfinite(vals[i]) && (best < 0 || sense * vals[i] < sense * vals[best])) best = i;
+      if (best < 0) continue; /* undefined over the whole revolution */
+      extreme_fn e = {k, n, x, 0, sense, omega, best * da, qs + (size_t)best * n,
+                      v1s + (size_t)best * n, v2s + (size_t)best * n, scratch, scratch + n,
+                      scratch + 2 * n, sense * vals[best], f, ctx, scratch + 3 * n,
+                      scratch + 4 * n};
+      double at;
+      const double v = sense * refine(&e, da, &at);
+      at = fmod(at + 2.0 * M_PI, 2.0 * M_PI);
+      if (side) o->min = v, o->at_min = at;
+      else o->max = v, o->at_max = at;
+    }
+  }
   gsl_set_error_handler(old);
   free(buf);
   return rc;

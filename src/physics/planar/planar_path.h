@@ -80,4 +80,26 @@ typedef struct {
 fb_status fb_planar_peaks_of(fb_planar_peaks *out, fb_planar_kin *k, double omega,
                              fb_diag *diag);
 
+/* A quantity of the motion at constant drive speed: index i of a family,
+ * at the position q, rates qd and accelerations qdd of description m
+ * (fb_planar_nq each), w1 = dq/d(drive angle); NaN where it is undefined
+ * there. */
+typedef double (*fb_planar_quantity)(const fb_planar *m, const double *q, const double *qd,
+                                     const double *qdd, const double *w1, int i, void *ctx);
+
+/* One quantity's extremes over a revolution. */
+typedef struct {
+  double max, min;       /* in the quantity's unit; NaN when it is undefined throughout */
+  double at_max, at_min; /* the drive's angle of each from the assembly configuration [rad]
+                            in [0, 2 pi) */
+} fb_planar_extreme;
+
+/* The extremes of quantities f(.., i, ctx), i < nf, into out[i] over one
+ * revolution of the drive at constant signed speed omega [rad/s], as
+ * fb_planar_peaks_of finds a body's: the FB_PLANAR_PEAK_SAMPLES angles,
+ * then each sampled extreme refined by Brent (samples where f is NaN
+ * left out). Errors: those of fb_planar_follow; FB_ERR_NOMEM. */
+fb_status fb_planar_extremes_of(fb_planar_extreme *out, int nf, fb_planar_quantity f, void *ctx,
+                                fb_planar_kin *k, double omega, fb_diag *diag);
+
 #endif

@@ -5,11 +5,14 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "bar_mass.h"
 #include "closed_form.h"
 #include "planar_check.h"
+#include "planar_outputs.h"
+#include "planar_path.h"
 #include "units.h"
 
 /* ---- a planar case's spec ---------------------------------------------- */
@@ -33,6 +36,55 @@ static int body_points(double pts[][2], int max, const fb_planar_spec *s, int b)
         n++;
       }
     }
+  return n;
+}
+
+/* The guide of prismatic joint jt (planar_outputs.h's rule): the ground
+ * when either body is, else its first body, which carries the slot. */
+static int guide_of(const fb_planar_spec_joint *jt) {
+  if (jt->body[0] == FB_PLANAR_GROUND || jt->body[1] == FB_PLANAR_GROUND) return FB_PLANAR_GROUND;
+  return jt->body[0];
+}
+
+/* A slot's travel: the ends of the slider's point's path along each
+ * prismatic joint's axis over a drive revolution, in the assembly
+ * configuration's world frame [m] (travel[j][k], k = 0, 1; NaN: not known,
+ * the joint's position counts where the assembly puts it). */
+typedef double travel_t[2][2];
+
+/* body b's material points: its distinct joint points (body_points), a
+ * slot it carries (a prismatic joint it guides) taken as its travel's two
+ * ends instead of where the assembly puts the slider, when travel knows
+ * them (NULL: none); returns how many */
+static int material_points(double pts[][2], int max, const fb_planar_spec *s, int b,
+                           const travel_t *travel) {
+  int n = body_points(pts, max, s, b);
+  for (int j = 0; travel && j < s->njoints; j++) {
+    const fb_planar_spec_joint *jt = &s->joint[j];
+    if (jt->kind != FB_KIND_PRISMATIC || guide_of(jt) != b || !isfinite(travel[j][0][0])) continue;
+    int shared = 0; /* another joint of b at the slot's point keeps it */
+    for (int k = 0; k < s->njoints; k++)
+      shared |= k != j && (s->joint[k].body[0] == b || s->joint[k].body[1] == b) &&
+                hypot(s->joint[k].at[0] - jt->at[0], s->joint[k].at[1] - jt->at[1]) <
+                    FB_PLANAR_SAME_POINT_M;
+    for (int i = 0; i < n && !shared; i++)
+      if (hypot(pts[i][0] - jt->at[0], pts[i][1] - jt->at[1]) < FB_PLANAR_SAME_POINT_M) {
+        memmove(pts[i], pts[i + 1], (size_t)(n - i - 1) * sizeof pts[0]);
+        n--;
+        break;
+      }
+    for (int e = 0; e < 2; e++) {
+      int seen = 0;
+      for (int i = 0; i < n; i++)
+        seen |= hypot(pts[i][0] - travel[j][e][0], pts[i][1] - travel[j][e][1]) <
+                FB_PLANAR_SAME_POINT_M;
+      if (!seen && n < max) {
+        pts[n][0] = travel[j][e][0];
+        pts[n][1] = travel[j][e][1];
+        n++;
+      }
+    }
+  }
   return n;
 }
 
@@ -121,14 +173,15 @@ static int body_joints(const fb_planar_spec *s, int b, int *first) {
  * stand-in, *pending = 1 and the refusal in diag, for the caller to give
  * after the joints are counted. */
 static int compile_body(fb_planar *p, const fb_planar_spec *s, int b, double density,
-                        int *pending, fb_diag *diag) {
+                        const travel_t *travel, int *pending, fb_diag *diag) {
   const fb_planar_spec_body *sb = &s->body[b];
-  double pts[FB_PLANAR_SPEC_MAX_JOINTS][2];
+  double pts[FB_PLANAR_SPEC_MAX_JOINTS][2], mat[FB_PLANAR_SPEC_MAX_JOINTS + 2][2];
   const int n = body_points(pts, FB_PLANAR_SPEC_MAX_JOINTS, s, b);
+  const int nm = material_points(mat, FB_PLANAR_SPEC_MAX_JOINTS + 2, s, b, travel);
   const fb_bar def = fb_bar_default();
   const double w = sb->given & FB_SPEC_BODY_WIDTH ? sb->width : def.width;
   const double t = sb->given & FB_SPEC_BODY_THICK ? sb->thickness : def.thickness;
-  const bars_t bars = bars_of(pts, n, w, t, density);
+  const bars_t bars = bars_of(mat, nm, w, t, density);
   const int has_bar = n >= 2;
   const int given_m = sb->given & FB_SPEC_BODY_MASS, given_i = sb->given & FB_SPEC_BODY_INERTIA;
   const int given_c = sb->given & FB_SPEC_BODY_CENTRE;
@@ -183,8 +236,10 @@ static int compile_body(fb_planar *p, const fb_planar_spec *s, int b, double den
   return id;
 }
 
-fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double density,
-                            fb_planar_where *where, fb_diag *diag) {
+/* fb_planar_compile with the slots' travel (NULL: where the assembly puts
+ * the sliders) */
+static fb_status compile(fb_planar **out, const fb_planar_spec *s, double density,
+                         const travel_t *travel, fb_planar_where *where, fb_diag *diag) {
   *out = NULL;
   fb_planar_where none = {-1, -1};
   if (!where) where = &none;
@@ -202,7 +257,7 @@ fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double den
   for (int b = 1; b < s->nbodies && rc == FB_OK; b++) {
     int lacks = 0;
     fb_diag bd;
-    if (compile_body(p, s, b, density, &lacks, &bd) < 0) {
+    if (compile_body(p, s, b, density, travel, &lacks, &bd) < 0) {
       *diag = bd;
       where->body = b;
       rc = FB_ERR_ARG;
@@ -239,6 +294,84 @@ fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double den
   }
   *out = p;
   return FB_OK;
+}
+
+/* the slide quantity of fb_planar_extremes_of: slide i's position */
+static double slide_position(const fb_planar *m, const double *q, const double *qd,
+                             const double *qdd, const double *w1, int i, void *ctx) {
+  (void)w1;
+  double *row = ctx;
+  fb_planar_outputs(row, m, q, qd, qdd);
+  return row[FB_PLANAR_POINT_QUANTITIES * m->npoints + FB_PLANAR_SLIDE_QUANTITIES * i];
+}
+
+/* 1 when some body of s derives a mass property and guides a prismatic
+ * joint (carries a slot): its bars then take the slot's travel */
+static int slot_derived(const fb_planar_spec *s) {
+  for (int j = 0; j < s->njoints; j++) {
+    const int g = guide_of(&s->joint[j]);
+    if (s->joint[j].kind != FB_KIND_PRISMATIC || g == FB_PLANAR_GROUND) continue;
+    const int all = FB_SPEC_BODY_MASS | FB_SPEC_BODY_INERTIA | FB_SPEC_BODY_CENTRE;
+    if ((s->body[g].given & all) != all) return 1;
+  }
+  return 0;
+}
+
+/* every slot's travel over a drive revolution of m (compiled from s with
+ * the sliders where the assembly puts them) into travel; FB_OK with
+ * travel left NaN when m does not turn a revolution (its own checks say
+ * why) */
+static fb_status slot_travel(travel_t *travel, const fb_planar *m, const fb_planar_spec *s,
+                             fb_diag *diag) {
+  const int ns = fb_planar_slide_count(m), nq = fb_planar_nq(m);
+  for (int j = 0; j < s->njoints; j++) travel[j][0][0] = NAN;
+  fb_planar_kin *k;
+  fb_diag inner;
+  if (fb_planar_kin_new(&k, m, &inner) != FB_OK) return FB_OK;
+  double *row = malloc(((size_t)fb_planar_output_count(m) + 1) * sizeof *row);
+  double *q = calloc(3 * (size_t)nq + 1, sizeof *q);
+  fb_planar_extreme *e = malloc(((size_t)ns + 1) * sizeof *e);
+  fb_status st = row && q && e ? FB_OK : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  /* any speed: positions do not depend on it */
+  if (st == FB_OK && fb_planar_extremes_of(e, ns, slide_position, row, k, 1.0, &inner) == FB_OK) {
+    fb_planar_assembly(m, q);
+    fb_planar_outputs(row, m, q, q + nq, q + 2 * nq); /* the slides at the assembly */
+    for (int j = 0, i = 0; j < m->njoints; j++) {
+      if (m->joint[j].kind != FB_KIND_PRISMATIC) continue;
+      const double s0 = row[FB_PLANAR_POINT_QUANTITIES * m->npoints + FB_PLANAR_SLIDE_QUANTITIES * i];
+      const double u[2] = {cos(s->joint[j].axis), sin(s->joint[j].axis)};
+      const double end[2] = {e[i].min, e[i].max};
+      for (int x = 0; x < 2 && isfinite(end[0]) && isfinite(end[1]); x++) {
+        travel[j][x][0] = s->joint[j].at[0] + (end[x] - s0) * u[0];
+        travel[j][x][1] = s->joint[j].at[1] + (end[x] - s0) * u[1];
+      }
+      i++;
+    }
+  }
+  free(row);
+  free(q);
+  free(e);
+  fb_planar_kin_free(k);
+  return st;
+}
+
+fb_status fb_planar_compile(fb_planar **out, const fb_planar_spec *s, double density,
+                            fb_planar_where *where, fb_diag *diag) {
+  fb_status st = compile(out, s, density, NULL, where, diag);
+  if (st != FB_OK || s->undriven || !slot_derived(s)) return st;
+  /* a slot's material spans its slider's travel over a revolution, not
+   * the point where the assembly puts the slider: compiled again with it */
+  travel_t travel[FB_PLANAR_SPEC_MAX_JOINTS];
+  st = slot_travel(travel, *out, s, diag);
+  int known = 0;
+  for (int j = 0; j < s->njoints; j++) known |= isfinite(travel[j][0][0]);
+  fb_planar *again = NULL;
+  if (st == FB_OK && known) st = compile(&again, s, density, (const travel_t *)travel, where, diag);
+  if (st != FB_OK || again) {
+    fb_planar_free(*out);
+    *out = again;
+  }
+  return st;
 }
 
 fb_status fb_planar_of_case(fb_planar **out, const fb_case *c, const fb_linkage *lengths,

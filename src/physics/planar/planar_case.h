@@ -29,7 +29,13 @@
  * in proportion (as fb_bar_fill does); a given centre moves the derived
  * moment to it (parallel axes). A body with one distinct joint point (a
  * slider) has no bar: it needs mass_kg and inertia_kg_mm2, and its centre
- * defaults to that point. A body's frame angle is the direction from its
+ * defaults to that point. A body that guides a prismatic joint (carries
+ * its slot) counts, instead of the slider's point in the assembly, the two
+ * ends of the slider's travel along the slot over a drive revolution
+ * (fb_planar_compile compiles once, finds the travel with
+ * planar_path.h's fb_planar_extremes_of, and compiles again), so that a
+ * derived mass does not depend on the assembly pose; an undriven
+ * description keeps the assembly's point. A body's frame angle is the direction from its
  * first joint point to its second (its joint with the ground first, then
  * in file order; 0 with one point), so a binary link's angle is the
  * four-bar's link angle. */

@@ -304,6 +304,10 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
     mc_json(o, s);
     json_object_set_new(o, "lengths", lengths);
     json_object_set_new(o, "corners", json_integer(s->corners));
+    json_object_set_new(o, "corners_unassembled", json_integer(s->corners_unassembled));
+    json_object_set_new(o, "corners_unassembled_first", s->corners_unassembled
+                                                            ? json_string(s->unassembled_first)
+                                                            : json_null());
     json_object_set_new(o, "outputs", outs);
     dump(f, o);
     return;
@@ -317,9 +321,15 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
             m->joint[L->joint[0]].name, m->joint[L->joint[1]].name, L->nominal / FB_M_PER_MM,
             L->plus_minus / FB_M_PER_MM, L->source);
   }
+  if (s->corners_unassembled)
+    fprintf(f, "\n%lld of the %lld corners cannot assemble or turn a revolution, so the worst "
+            "case is over the other %lld (the first: %s)", s->corners_unassembled,
+            s->corners + s->corners_unassembled, s->corners, s->unassembled_first);
   if (s->corners)
-    fprintf(f, "\nworst case over all %lld corners (at: one sign per length, in the order above); "
-            "RSS band 3 sigma\n", s->corners);
+    fprintf(f, "\nworst case over %s %lld corners (at: one sign per length, in the order above); "
+            "RSS band 3 sigma\n", s->corners_unassembled ? "the" : "all", s->corners);
+  else if (s->corners_unassembled)
+    fprintf(f, "\nno corner assembles; RSS band 3 sigma\n");
   else
     fprintf(f, "\nworst case not run (--method corners runs its %.0f corners); RSS band 3 sigma\n",
             pow(2.0, s->nlengths));

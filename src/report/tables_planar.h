@@ -43,7 +43,9 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
 
 /* stackup: {"case", "mechanism": "planar", "lengths": [{"body", "from",
  * "to", "nominal_m", "plus_minus_m", "source"}], "corners": N (0: not
- * run), "outputs": [{"name", "nominal", "sensitivity_per_m": [one per
+ * run), "corners_unassembled" (corners that cannot assemble or turn,
+ * counted and left out of the worst case), "corners_unassembled_first"
+ * (the first of them and why, or null), "outputs": [{"name", "nominal", "sensitivity_per_m": [one per
  * length, in their order], "rss": {"low", "high"}, "corners": {"min",
  * "max"} or null, "montecarlo": {"q00135", "q50", "q99865", "mean", "std",
  * "q00135_ci_lo", ... "q99865_ci_hi"} or null}], "distribution",

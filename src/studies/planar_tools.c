@@ -261,8 +261,10 @@ int fb_planar_stackup_lengths(const fb_planar *m) {
  * index at): the first stays, the second along the nominal direction, the
  * third on the nominal side of the first two; a line body's datum stays
  * and each other point is at its length along the line from it, on its
- * nominal side, its small offset across the line kept */
-static void rebuild(double q[3][2], double p[BODY_POINTS][2], int n, int line, const double *len) {
+ * nominal side, its small offset across the line kept. Returns 0 when the
+ * three lengths of a triangle do not close one (a length longer than the
+ * other two's sum), else 1. */
+static int rebuild(double q[3][2], double p[BODY_POINTS][2], int n, int line, const double *len) {
   memcpy(q, p, (size_t)n * sizeof q[0]);
   if (line) {
     double u[2], v[2];
@@ -276,26 +278,32 @@ static void rebuild(double q[3][2], double p[BODY_POINTS][2], int n, int line, c
       q[k][0] = p[d][0] + l * u[0] + across * v[0];
       q[k][1] = p[d][1] + l * u[1] + across * v[1];
     }
-    return;
+    return 1;
   }
-  if (n < 2) return;
+  if (n < 2) return 1;
   const double d01 = hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
   const double u[2] = {(p[1][0] - p[0][0]) / d01, (p[1][1] - p[0][1]) / d01};
   q[1][0] = p[0][0] + len[0] * u[0];
   q[1][1] = p[0][1] + len[0] * u[1];
-  if (n < 3) return;
+  if (n < 3) return 1;
   const double l02 = len[1], l12 = len[2], d = len[0];
   const double a = (l02 * l02 - l12 * l12 + d * d) / (2.0 * d);
-  const double h = sqrt(fmax(l02 * l02 - a * a, 0.0));
+  const double h2 = l02 * l02 - a * a;
+  if (h2 < 0.0) return 0; /* no triangle: never clamped to a flat one */
+  const double h = sqrt(h2);
   const double side = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) -
                       (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
   const double sg = side >= 0.0 ? 1.0 : -1.0;
   q[2][0] = q[0][0] + a * u[0] - sg * h * u[1];
   q[2][1] = q[0][1] + a * u[1] + sg * h * u[0];
+  return 1;
 }
 
-/* a copy of m with the lengths len (s->nlengths) */
-static fb_planar *with_lengths(const fb_planar *m, const double *len) {
+/* a copy of m with the lengths len (s->nlengths); NULL out of memory, or
+ * with *open the first body whose triangle the lengths do not close (-1:
+ * every one closes) */
+static fb_planar *with_lengths(const fb_planar *m, const double *len, int *open) {
+  *open = -1;
   fb_planar *x = fb_planar_new(m->nbodies - 1, m->njoints);
   if (!x) return NULL;
   memcpy(x->body, m->body, (size_t)m->nbodies * sizeof *m->body);
@@ -307,7 +315,7 @@ static fb_planar *with_lengths(const fb_planar *m, const double *len) {
     double p[BODY_POINTS][2], q[3][2];
     int joint[BODY_POINTS];
     const int n = body_points(p, joint, m, b);
-    rebuild(q, p, n, line_body(m, b, n), len + at);
+    if (!rebuild(q, p, n, line_body(m, b, n), len + at) && *open < 0) *open = b;
     at += body_lengths(m, b, n);
     for (int j = 0; j < m->njoints; j++)
       for (int side = 0; side < 2; side++) {
@@ -326,10 +334,14 @@ static fb_planar *with_lengths(const fb_planar *m, const double *len) {
 /* the outputs (4 per moving body) of m with lengths len into y */
 static fb_status outputs_at(double *y, const fb_planar *m, const double *len, double omega,
                             fb_diag *diag) {
-  fb_planar *x = with_lengths(m, len);
+  int open;
   fb_planar_peaks *pk = calloc((size_t)m->nbodies, sizeof *pk);
-  fb_status st = x && pk ? peaks_of(pk, x, omega, diag)
-                         : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_planar *x = with_lengths(m, len, &open);
+  fb_status st = !x || !pk ? fb_diag_set(diag, FB_ERR_NOMEM, "out of memory")
+                 : open >= 0 ? fb_diag_set(diag, FB_ERR_ASSEMBLY, "body '%s': its three joint "
+                                           "distances close no triangle (one is longer than "
+                                           "the other two together)", m->body[open].name)
+                             : peaks_of(pk, x, omega, diag);
   for (int b = 1; b < m->nbodies && st == FB_OK; b++) {
     y[4 * (b - 1) + 0] = pk[b].omega_max;
     y[4 * (b - 1) + 1] = pk[b].omega_min;
@@ -384,6 +396,12 @@ static fb_status corner(fb_planar_stackup *s, const fb_planar *m, const char *at
     len[k] = s->length[k].nominal + (at[k] == '+' ? 1.0 : -1.0) * s->length[k].plus_minus;
   fb_diag inner;
   const fb_status st = outputs_at(y, m, len, omega, &inner);
+  if (st == FB_ERR_ASSEMBLY) { /* a mechanism that cannot exist: counted, not evaluated */
+    if (s->corners_unassembled++ == 0)
+      snprintf(s->unassembled_first, sizeof s->unassembled_first, "corner %.300s: %.600s", at,
+               inner.msg);
+    return FB_OK;
+  }
   if (st != FB_OK)
     return fb_diag_set(diag, st, "corner %s (one sign per length, in the table's "
                        "order): %s", at, inner.msg);

@@ -130,6 +130,10 @@ typedef struct {
   double *sens;            /* (nout x nlengths) [unit/m] */
   double *rss_half;        /* (nout) */
   long long corners;       /* corners evaluated (0: the worst case was not asked for) */
+  long long corners_unassembled; /* corners that cannot assemble or turn a revolution (a
+                              triangle its lengths do not close, a drive that locks): counted,
+                              not evaluated; lo, hi are over the others */
+  char unassembled_first[FB_DIAG_SIZE]; /* the first of them and why ("" when none) */
   double *lo, *hi;         /* (nout) over the corners */
   char *lo_at, *hi_at;     /* (nout x (nlengths + 1)): the corner of each, one '+' or '-'
                               per length in length[]'s order, NUL-terminated; "" when the
@@ -154,7 +158,9 @@ typedef struct {
  * has more than three distinct joint points (its distances over-determine
  * it), naming it; FB_ERR_RANGE beyond FB_PLANAR_CORNER_BITS lengths with
  * the corners; those of iso2768 (a length below 0.5 mm) and of the
- * kinematics (a corner that does not close or turn, naming it);
+ * kinematics (the nominal mechanism or a sensitivity's that does not close
+ * or turn, naming it; a corner that does not is counted in
+ * corners_unassembled, and the stack-up goes on);
  * FB_ERR_NOMEM. Free with fb_planar_stackup_free (begin frees on error). */
 fb_status fb_planar_stackup_begin(fb_planar_stackup *s, double *s_per_eval, double units,
                                   const fb_case *c, const fb_planar *m, fb_diag *diag);

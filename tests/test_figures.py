@@ -557,6 +557,41 @@ with tempfile.TemporaryDirectory() as tmp:
               for columns in [next(csv.reader(open(os.path.join(sc_out, "analytic.csv"))))]),
           "slider-crank: report-data.js's output columns are the CSV's")
 
+    # ---- a planar case with slides: the developers' quick-return ---------
+    # its ram (kept from turning by its guide) has no angle panel, and
+    # slides.svg draws each prismatic joint's slide [mm], rate and
+    # acceleration, every curve's extremes the CSV's over the window
+    qr_out = os.path.join(tmp, "quick_return")
+    rc = subprocess.run([exe, "run", os.path.join(src, "tests", "cases", "quick_return.ini"), "--out",
+                         qr_out, "--no-report", "--set", "run.models=analytic,ode-ideal-nominal",
+                         "--set", "solver.h_s=1e-4"], capture_output=True, text=True)
+    check(rc.returncode == 0, "quick-return run exits 0: " + rc.stderr[-300:])
+    if rc.returncode == 0:
+        qr_manifest = json.load(open(os.path.join(qr_out, "figures.json")))["figures"]
+        check([f["file"] for f in qr_manifest] == ["omega.svg", "alpha.svg", "slides.svg"],
+              "quick-return: figures %s" % [f["file"] for f in qr_manifest])
+        for fig in qr_manifest:
+            panels = []
+            for c in fig["curves"]:
+                if c["panel"] not in panels:
+                    panels.append(c["panel"])
+            want = (["block-lever", "ram-guide"] if fig["file"] == "slides.svg"
+                    else ["crank", "block", "lever", "link"])
+            check(panels == want, "quick-return %s: panels %s, expected %s" % (fig["file"], panels, want))
+        qr_slides = [f for f in qr_manifest if f["file"] == "slides.svg"]
+        qr_tables = {}
+        for c in (qr_slides[0]["curves"] if qr_slides else []):
+            if c["csv"] not in qr_tables:
+                qr_tables[c["csv"]] = list(csv.DictReader(open(os.path.join(qr_out, c["csv"]))))
+            r = qr_tables[c["csv"]]
+            scale = 1e3 if c["column"].endswith("_slide_m") else 1.0  # drawn in mm
+            ys = [float(x[c["column"]]) * scale for x in r
+                  if c["time_from_s"] <= float(x["time_s"]) <= c["time_to_s"]]
+            check(c["points"] > 0 and ys and abs(min(ys) - c["y_min"]) <= REL_TOL * max(1.0, abs(c["y_min"]))
+                  and abs(max(ys) - c["y_max"]) <= REL_TOL * max(1.0, abs(c["y_max"])),
+                  "quick-return slides.svg %s %s: extremes %s..%s, CSV %s..%s" %
+                  (c["model"], c["column"], c.get("y_min"), c.get("y_max"), min(ys or [0]), max(ys or [0])))
+
     # ---- a planar case: the Watt six-bar's own bodies and joint -----------
     # analytic and its clearance reference, two revolutions
     six_out = os.path.join(tmp, "sixbar")

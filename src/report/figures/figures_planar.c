@@ -1,8 +1,10 @@
 /* The figures of a planar case's run (figures.h fb_figures_planar), by
  * the description's body and joint names: omega.<ext> and alpha.<ext>, one
- * panel per moving body, every model overlaid against the drive angle over
- * the peak window; contact_<model>_<joint>.<ext> for each reference's
- * clearance joint; figures.json. The samples go through the same
+ * panel per moving body that turns, every model overlaid against the drive
+ * angle over the peak window; slides.<ext>, each prismatic joint's slide,
+ * its rate and acceleration (planar_outputs.h), when the description has
+ * one; contact_<model>_<joint>.<ext> for each reference's clearance joint;
+ * figures.json. The samples go through the same
  * datablocks as a four-bar's (fig_datablock on a view of the model's
  * columns: min/max decimation per pixel column, so spikes survive). */
 #include "figures_internal.h"
@@ -13,8 +15,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "units.h"
 #include "names.h"
+#include "planar_outputs.h"
+#include "report_planar_outputs.h"
+#include "units.h"
 
 /* a panel's height [px] and the panels across */
 #define PANEL_PX 330
@@ -59,7 +63,10 @@ static json_t *curve(const fb_planar_model *p, const char *column, const char *p
 static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
                              int alpha, json_t *figs, fb_diag *diag) {
   const fb_planar *m = r->m;
-  const int nb = m->nbodies - 1, rows = (nb + ACROSS - 1) / ACROSS, k = alpha ? 2 : 1;
+  int turning[FB_PLANAR_SPEC_MAX_BODIES + 1], nb = 0; /* a ram's angle is the ground's: no panel */
+  for (int b = 1; b < m->nbodies && nb <= FB_PLANAR_SPEC_MAX_BODIES; b++)
+    if (fb_planar_body_turns(m, b)) turning[nb++] = b;
+  const int rows = (nb + ACROSS - 1) / ACROSS, k = alpha ? 2 : 1;
   static const char *const suffix[3] = {"angle_rad", "omega_rad_s", "alpha_rad_s2"};
   const char *name = alpha ? "alpha" : "omega";
   plot pl;
@@ -76,7 +83,8 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
           fig_esc(r->c.name, en, sizeof en), alpha ? "angular acceleration" : "angular velocity",
           fig_esc(m->joint[m->drive].name, mn, sizeof mn), r->c.direction < 0 ? "cw" : "ccw",
           r->c.direction < 0 ? "right to left" : "left to right", t0, t1);
-  for (int b = 1; b <= nb; b++) {
+  for (int nth = 0; nth < nb; nth++) {
+    const int b = turning[nth];
     double lo_all = 0.0, hi_all = 0.0;
     int any = 0;
     snprintf(col, sizeof col, "%s_%s", m->body[b].name, suffix[k]);
@@ -91,7 +99,7 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
       if (pts) lo_all = any ? fmin(lo_all, lo) : lo, hi_all = any ? fmax(hi_all, hi) : hi, any = 1;
       json_array_append_new(curves, curve(p, col, m->body[b].name, pts, lo, hi, t0, t1));
     }
-    if (b == 2) fprintf(pl.p, "unset key\n"); /* one legend, in the first panel */
+    if (nth == 1) fprintf(pl.p, "unset key\n"); /* one legend, in the first panel */
     if (alpha) {
       fig_symlog_axis(&pl, fmin(lo_all, 0.0), fmax(hi_all, 0.0), NULL);
     } else if (any && hi_all - lo_all <= FLAT_REL * fmax(fabs(lo_all), fabs(hi_all))) {
@@ -125,6 +133,87 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
     fig_manifest_add(figs, file, alpha ? "angular acceleration of every moving body against the "
                      "drive angle" : "angular velocity of every moving body against the drive "
                      "angle", curves);
+  else
+    json_decref(curves);
+  return st;
+}
+
+/* slides.<ext>: every prismatic joint's slide [mm], its rate [m/s] and
+ * acceleration [m/s^2, symlog] against the drive angle, a row per joint,
+ * every model overlaid */
+static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
+                        json_t *figs, fb_diag *diag) {
+  const fb_planar *m = r->m;
+  const int ns = fb_planar_slide_count(m);
+  plot pl;
+  fb_status st = fig_plot_open(&pl, dir, "slides", fmt, 1400, 60 + PANEL_PX * ns, diag);
+  if (st != FB_OK) return st;
+  pl.columns /= 3;
+  double t0, t1;
+  window_of(r, &t0, &t1);
+  json_t *curves = json_array();
+  char en[200], mn[160], sp[96], col[128];
+  fprintf(pl.p, "set multiplot layout %d,3 title '%s: slides against the drive angle, t = %.4g "
+          "to %.4g s'\nset xrange [0:360]\nset xtics 60\nset xlabel 'drive angle [deg]'\n"
+          "set key inside top right box opaque font ',8'\n", ns,
+          fig_esc(r->c.name, en, sizeof en), t0, t1);
+  static const char *const what[3] = {"slide [mm]", "slide rate [m/s]",
+                                       "slide acceleration [m/s^2, symlog]"};
+  double *mm = malloc((r->n && r->model[0].n ? r->model[0].n : 1) * sizeof *mm);
+  const int np = FB_PLANAR_POINT_QUANTITIES * m->npoints;
+  int panel = 0;
+  for (int j = 0, si = 0; j < m->njoints && mm; j++) {
+    if (m->joint[j].kind != FB_KIND_PRISMATIC) continue;
+    for (int q = 0; q < 3; q++, panel++) {
+      const int c = np + FB_PLANAR_SLIDE_QUANTITIES * si + q;
+      fb_report_planar_output_column(col, sizeof col, m, c);
+      double lo_all = 0.0, hi_all = 0.0;
+      int any = 0;
+      for (int i = 0; i < r->n; i++) {
+        const fb_planar_model *p = &r->model[i];
+        const fb_series v = view_of(p);
+        const double *y = p->out ? p->out + (size_t)c * p->n : NULL;
+        if (y && q == 0) { /* the slide in mm */
+          double *grown = realloc(mm, (p->n ? p->n : 1) * sizeof *mm);
+          if (!grown) break;
+          mm = grown;
+          for (size_t x = 0; x < p->n; x++) mm[x] = y[x] / FB_M_PER_MM;
+          y = mm;
+        }
+        char dname[32];
+        snprintf(dname, sizeof dname, "s%d_%d", i, panel);
+        double lo = NAN, hi = NAN;
+        const int pts = y ? fig_datablock(&pl, dname, &v, y, t0, t1, &lo, &hi) : 0;
+        if (pts) lo_all = any ? fmin(lo_all, lo) : lo, hi_all = any ? fmax(hi_all, hi) : hi, any = 1;
+        json_array_append_new(curves, curve(p, col, m->joint[j].name, pts, lo, hi, t0, t1));
+      }
+      if (panel == 1) fprintf(pl.p, "unset key\n");
+      if (q == 2) fig_symlog_axis(&pl, fmin(lo_all, 0.0), fmax(hi_all, 0.0), NULL);
+      else fprintf(pl.p, "unset nonlinear y\nset ytics autofreq\nset autoscale y\n");
+      fprintf(pl.p, "set title '%s'\nset ylabel '%s'\n", fig_esc(m->joint[j].name, en, sizeof en),
+              what[q]);
+      if (!any) {
+        fprintf(pl.p, "set label 1 'no samples in the window' at graph 0.5,0.5 center\n"
+                      "plot NaN notitle\nunset label 1\n");
+        continue;
+      }
+      fprintf(pl.p, "plot ");
+      for (int i = 0; i < r->n; i++)
+        fprintf(pl.p, "%s$s%d_%d using 1:2 with lines %s title '%s'", i ? ", " : "", i, panel,
+                fig_style_spec(NULL, r->model[i].name, sp, sizeof sp),
+                fig_esc(r->model[i].name, mn, sizeof mn));
+      fprintf(pl.p, "\n");
+    }
+    si++;
+  }
+  free(mm);
+  fprintf(pl.p, "unset multiplot\n");
+  st = fig_plot_close(&pl, diag);
+  char file[128];
+  snprintf(file, sizeof file, "slides.%s", fig_ext(fmt));
+  if (st == FB_OK)
+    fig_manifest_add(figs, file, "every prismatic joint's slide, its rate and acceleration "
+                     "against the drive angle", curves);
   else
     json_decref(curves);
   return st;
@@ -193,6 +282,10 @@ fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_f
   for (int alpha = 0; alpha < 2 && st == FB_OK && driven; alpha++) {
     st = omega_alpha(r, dir, fmt, alpha, figs, diag);
     if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s.%s", alpha ? "alpha" : "omega", fig_ext(fmt));
+  }
+  if (st == FB_OK && driven && fb_planar_slide_count(r->m) > 0) {
+    st = slides(r, dir, fmt, figs, diag);
+    if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "slides.%s", fig_ext(fmt));
   }
   for (int i = 0; i < r->n && st == FB_OK && driven; i++) {
     if (!r->model[i].reference || !r->model[i].force) continue;

@@ -135,6 +135,9 @@ function flatten(v, p, outList) {
         'panel ' + p.id + ' shows every model that has the column: ' + p.models.join(', '));
     }
     check(await page.evaluate(() => window.fourbarReport.orbitPoints()) > 0, 'the orbit draws');
+    const legend1 = await page.textContent('#orbitlegend');
+    check(legend1.includes('impact') && legend1.includes('continuous contact'),
+      'the four-bar\'s orbit legend names its three states: ' + legend1);
 
     /* 3. a click on the largest impact of ode-clearance-impact zooms to it */
     await page.selectOption('#imodel', 'ode-clearance-impact');
@@ -410,6 +413,10 @@ function flatten(v, p, outList) {
     check(orbit4.includes('reference-restitution') && orbit4.includes('rod-output') &&
       await page4.evaluate(() => window.fourbarReport.orbitPoints()) > 0,
       'six-bar: the orbit draws the reference\'s rod-output pin: ' + orbit4);
+    /* a planar run tells free flight from contact only: its legend says so */
+    const legend4 = await page4.textContent('#orbitlegend');
+    check(legend4.includes('free flight') && legend4.includes('in contact') && !legend4.includes('impact'),
+      'six-bar: the orbit legend names free flight and in contact, no impact: ' + legend4);
     await page4.close();
 
     /* a planar case's output points and slides (docs/planar.md, Points

@@ -270,6 +270,8 @@ fb_status fb_report_html_write_planar(const char *dir, const fb_planar_run *r,
                         r->n ? r->model[0].h : c->solver.h);
   json_t *models = json_array();
   json_object_set_new(d, "outputs", outputs_json(r->m));
+  /* a planar pin's orbit tells free flight from contact only (orbit_json) */
+  json_object_set_new(d, "orbit_states", json_pack("[s,s]", "free flight", "in contact"));
   for (int i = 0; i < r->n; i++) {
     json_t *m = model_json(r, &r->model[i]);
     if (!m) {

@@ -333,7 +333,10 @@
   }
 
   /* ---- orbit ------------------------------------------------------------- */
-  var stateColor = ['#2a9d8f', '#e63946', '#1d3557'], stateName = ['free flight', 'impact', 'continuous contact'];
+  /* a pin's states: the four-bar's three, or the data's own names (a planar
+   * run tells free flight from contact only: 0 free flight, 1 in contact) */
+  var stateColor = ['#2a9d8f', '#e63946', '#1d3557'];
+  var stateName = Array.isArray(D.orbit_states) ? D.orbit_states.slice(0, 3).map(String) : ['free flight', 'impact', 'continuous contact'];
   var orbitChoices = [];
   D.models.forEach(function (m) { m.joints.forEach(function (j) { if (j.ecc_x_um && j.ecc_x_um.length) orbitChoices.push({ m: m, j: j }); }); });
   var omodel = $('omodel');

@@ -30,8 +30,9 @@ void fb_contact_rates_at(fb_contact_rates *out, const fb_contact_law *law, doubl
   if (law->kind == FB_LAW_IMPACT && law->damping > 0.0)
     out->ramp_rate = out->approach_speed / law->damping_depth;
   out->rate = out->omega_c;
-  out->limit = "stiffness";
-  if (out->damper_rate > out->rate) out->rate = out->damper_rate, out->limit = "damper";
+  out->by_damper = out->damper_rate > out->rate;
+  if (out->by_damper) out->rate = out->damper_rate;
+  out->limit = out->by_damper ? "damper" : "stiffness";
 }
 
 fb_status fb_contact_estimates(fb_contact_estimate est[4], const fb_case *c,

@@ -77,7 +77,8 @@ typedef struct {
   double ramp_rate;         /* v_n / d_max [1/s] of the impact law's damper (0 for others):
                                reported, not kept (above) */
   double rate;              /* the larger of omega_c and damper_rate: the step's [1/s] */
-  const char *limit;        /* which one: "stiffness" or "damper" */
+  int by_damper;            /* 1: the damper's rate is the larger (rate = damper_rate) */
+  const char *limit;        /* which one in words, for the outputs: "stiffness" or "damper" */
 } fb_contact_rates;
 
 /* The rates of law on effective mass m_eff [kg] > 0 at the expected impact

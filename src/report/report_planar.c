@@ -147,7 +147,7 @@ static void estimate_warning(char *warn, size_t size, const fb_planar_run *r,
   const double hr = fb_planar_run_h_rate(r, e);
   snprintf(warn, size, "under-resolved before the run: h x %s = %.3g at the %s joint exceeds "
            "%g; set [solver] h_s = auto, or a fixed step of %.3g s or smaller",
-           strcmp(e->rates.limit, "damper") == 0 ? "c/m_eff" : "omega_c", hr,
+           e->rates.by_damper ? "c/m_eff" : "omega_c", hr,
            r->m->joint[e->joint].name, FB_H_OMEGA_C_BOUND, e->h_resolving);
 }
 

@@ -214,7 +214,7 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
             "and the damper's c / m_eff %.4g 1/s: h <= %.3g s keeps h x rate <= %g (the %s)\n",
             "", "", e->m_eff_min, e->m_eff_max, e->force_expected, FB_IMPACT_LOAD_FACTOR,
             e->reaction_max, e->omega_c, e->rates.damper_rate, e->h_resolving,
-            FB_H_OMEGA_C_BOUND, strcmp(e->rates.limit, "damper") == 0 ? "damper" : "stiffness");
+            FB_H_OMEGA_C_BOUND, e->rates.limit);
   }
   double h = INFINITY;
   for (int k = 0; k < nest; k++) h = fmin(h, est[k].h_resolving);

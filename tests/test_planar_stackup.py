@@ -265,4 +265,24 @@ rc, so, se = fb_script.run(exe, tmp, "stackup", six, "--set", "tolerance.class=v
 check(rc == 0 and "cannot assemble or turn a revolution" in so,
       "the table says how many corners cannot assemble (%s)" % so[-400:])
 
+# and a Monte Carlo sample that cannot assemble is counted and left out,
+# the statistics over the others, the same on one thread and on two
+V_SAMPLES = 120
+mcv = {}
+for jobs in ("1", "2"):
+    rc, so, se = fb_script.run(exe, tmp, "stackup", six, "--set", "tolerance.class=v", "--method",
+                               "montecarlo", "--samples", str(V_SAMPLES), "--jobs", jobs, "--json")
+    check(rc == 0, "class v Monte Carlo on the six-bar runs, --jobs %s (%s)" % (jobs, se.strip()[-300:]))
+    if rc == 0:
+        mcv[jobs] = json.loads(so)
+if len(mcv) == 2:
+    v = mcv["1"]
+    check(v["samples"] + v["samples_unassembled"] == V_SAMPLES and v["samples_unassembled"] > 0 and
+          "close no triangle" in (v["samples_unassembled_first"] or ""),
+          "class v Monte Carlo: %d samples counted, %d left out of %d (%r)" %
+          (v["samples"], v["samples_unassembled"], V_SAMPLES, v["samples_unassembled_first"]))
+    same = all(a["montecarlo"] == b["montecarlo"] for a, b in zip(v["outputs"], mcv["2"]["outputs"]))
+    check(same and v["samples_unassembled"] == mcv["2"]["samples_unassembled"],
+          "class v Monte Carlo: --jobs 1 and 2 give the same quantiles and the same count")
+
 sys.exit(tally.done())

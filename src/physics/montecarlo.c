@@ -37,6 +37,9 @@ typedef struct {
   atomic_size_t next;   /* next block's first sample */
   atomic_size_t done;   /* samples evaluated */
   atomic_size_t failed; /* lowest failing sample, or SIZE_MAX */
+  atomic_size_t unassembled; /* samples left out (fb_mc_problem.count_unassembled) */
+  size_t unassembled_first;  /* the lowest of them (under lock), SIZE_MAX if none */
+  char unassembled_msg[FB_DIAG_SIZE];
   atomic_int slot;      /* next thread's row of o */
   pthread_mutex_t lock; /* guards err */
   fb_status err_st;
@@ -57,6 +60,17 @@ static void *mc_worker(void *arg) {
     for (size_t n = b0; n < b1; n++) {
       fb_diag inner;
       fb_status st = w->p->eval(o, w->len + (size_t)nl * n, w->p->ctx, &inner);
+      if (st == FB_ERR_ASSEMBLY && w->p->count_unassembled) { /* counted, left out */
+        atomic_fetch_add(&w->unassembled, 1);
+        pthread_mutex_lock(&w->lock);
+        if (n < w->unassembled_first) {
+          w->unassembled_first = n;
+          snprintf(w->unassembled_msg, sizeof w->unassembled_msg, "%s", inner.msg);
+        }
+        pthread_mutex_unlock(&w->lock);
+        for (int i = 0; i < no; i++) w->v[(size_t)i * w->samples + n] = NAN;
+        continue;
+      }
       if (st != FB_OK) {
         pthread_mutex_lock(&w->lock);
         if (n < w->err_at) {
@@ -142,14 +156,26 @@ static void evaluate(mc_work *w, int jobs, void (*progress)(double fraction, voi
   for (int i = 0; i < started; i++) pthread_join(th[i], NULL);
 }
 
-/* each output's statistics from its column of v (sorted in place) */
+/* each output's statistics from its column of v (sorted in place) over
+ * the samples evaluated: a sample left out (NaN in every column) is
+ * dropped first, keeping the order; samples then counts the others */
 static void statistics(fb_mc_result *r, double *v, int nout, size_t samples) {
+  const size_t drawn = samples;
+  size_t kept = 0;
+  for (size_t n = 0; n < drawn; n++) {
+    int left_out = 1;
+    for (int i = 0; i < nout; i++) left_out &= isnan(v[(size_t)i * drawn + n]);
+    if (left_out) continue;
+    for (int i = 0; i < nout; i++) v[(size_t)i * drawn + kept] = v[(size_t)i * drawn + n];
+    kept++;
+  }
+  samples = kept;
   r->ci_level = FB_TOL_CI_LEVEL;
   for (int j = 0; j < FB_MC_NQ; j++)
     fb_tol_quantile_ranks(samples, fb_mc_quantile_p[j], FB_TOL_CI_LEVEL, &r->q_rank[j][0],
                           &r->q_rank[j][1]);
   for (int i = 0; i < nout; i++) {
-    double *col = v + (size_t)i * samples;
+    double *col = v + (size_t)i * drawn;
     fb_mc_output *o = &r->out[i];
     o->mean = gsl_stats_mean(col, 1, samples);
     o->std = samples > 1 ? gsl_stats_sd(col, 1, samples) : 0.0;
@@ -188,7 +214,8 @@ fb_status fb_mc_run(fb_mc_result *r, const fb_mc_problem *p, size_t samples, uns
   mc_work w;
   memset(&w, 0, sizeof w);
   w.p = p, w.samples = samples, w.block = block, w.len = len, w.v = v, w.o = o;
-  w.err_st = FB_OK, w.err_at = SIZE_MAX;
+  w.err_st = FB_OK, w.err_at = SIZE_MAX, w.unassembled_first = SIZE_MAX;
+  atomic_init(&w.unassembled, 0);
   atomic_init(&w.next, 0);
   atomic_init(&w.done, 0);
   atomic_init(&w.failed, SIZE_MAX);
@@ -197,10 +224,18 @@ fb_status fb_mc_run(fb_mc_result *r, const fb_mc_problem *p, size_t samples, uns
   evaluate(&w, jobs, progress, user);
   pthread_mutex_destroy(&w.lock);
   fb_status st = FB_OK;
+  r->unassembled = atomic_load(&w.unassembled);
+  r->unassembled_first = w.unassembled_first;
+  snprintf(r->unassembled_msg, sizeof r->unassembled_msg, "%s", w.unassembled_msg);
   if (w.err_st != FB_OK) {
     r->failed_at = w.err_at;
     if (r->failed_len) memcpy(r->failed_len, len + nl * w.err_at, nl * sizeof *len);
     st = fb_diag_set(diag, w.err_st, "%s", w.err_msg);
+  } else if (r->unassembled == samples) {
+    r->failed_at = w.unassembled_first;
+    if (r->failed_len) memcpy(r->failed_len, len + nl * w.unassembled_first, nl * sizeof *len);
+    st = fb_diag_set(diag, FB_ERR_ASSEMBLY, "none of the %zu samples assembles (the first: %s)",
+                     samples, w.unassembled_msg);
   } else {
     statistics(r, v, p->nout, samples);
     r->jobs = jobs;

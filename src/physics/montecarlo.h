@@ -45,6 +45,10 @@ typedef struct {
   size_t block;             /* samples per block a thread takes; 0: 256 (about 1 ms of
                                the four-bar's closed form); 1 for a costly evaluation, so
                                that the progress moves and the threads share evenly */
+  int count_unassembled;    /* 1: a sample whose evaluation returns FB_ERR_ASSEMBLY (a
+                               mechanism its lengths cannot assemble or turn) is counted
+                               (fb_mc_result.unassembled) and left out of the statistics,
+                               which are over the others; 0: it stops the run as any error */
 } fb_mc_problem;
 
 /* One output's statistics. */
@@ -66,6 +70,10 @@ typedef struct {
   double wall_s;                /* wall time, drawing to statistics [s] */
   size_t failed_at;             /* the lowest failing sample (0-based), SIZE_MAX if none */
   double *failed_len;           /* NULL, or the caller's (nlengths): that sample's lengths */
+  size_t unassembled;           /* with count_unassembled: samples left out (samples counts
+                                   the others) */
+  size_t unassembled_first;     /* the lowest of them (0-based), SIZE_MAX if none */
+  char unassembled_msg[FB_DIAG_SIZE]; /* its evaluation's message ("" if none) */
 } fb_mc_result;
 
 /* Runs p over `samples` samples (>= 1) from `seed` with distribution dist

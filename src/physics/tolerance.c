@@ -62,7 +62,7 @@ static fb_status monte_carlo(fb_stackup_result *out, const fb_case *c, size_t sa
                              void (*progress)(double fraction, void *user), void *user,
                              fb_diag *diag) {
   const fb_mc_problem p = {fb_case_mech(c)->nlengths, c->nominal.length, c->plus_minus,
-                           FB_TOL_NOUT, mc_eval, (void *)c, 0};
+                           FB_TOL_NOUT, mc_eval, (void *)c, 0, 0};
   fb_mc_output o[FB_TOL_NOUT];
   double failed[FB_LINK_COUNT];
   fb_mc_result r = {.out = o, .failed_len = failed};

@@ -238,6 +238,9 @@ static void mc_json(json_t *o, const fb_planar_stackup *s) {
   json_object_set_new(o, "seed", json_integer((json_int_t)s->mc_seed));
   json_object_set_new(o, "jobs", json_integer(s->mc.jobs));
   json_object_set_new(o, "montecarlo_wall_s", json_real(s->mc.wall_s));
+  json_object_set_new(o, "samples_unassembled", json_integer((json_int_t)s->mc.unassembled));
+  json_object_set_new(o, "samples_unassembled_first",
+                      s->mc.unassembled ? json_string(s->mc.unassembled_msg) : json_null());
   if (s->mc.samples)
     json_object_set_new(o, "quantile_ci", fb_report_mc_ci_json(s->mc.q_rank, s->mc.ci_level));
 }
@@ -263,6 +266,10 @@ static void mc_text(FILE *f, const fb_planar *m, const fb_planar_stackup *s) {
     fprintf(f, "('-': %zu samples cannot bound that side of a tail quantile at this level; use "
             "more samples)\n", s->mc.samples);
   fb_report_mc_footer(f, s->mc.samples, s->mc_dist == FB_DIST_UNIFORM, s->mc.jobs, s->mc.wall_s);
+  if (s->mc.unassembled)
+    fprintf(f, "%zu more samples cannot assemble or turn a revolution and are left out of the "
+            "statistics, which are over the %zu that do (the first, sample %zu: %s)\n",
+            s->mc.unassembled, s->mc.samples, s->mc.unassembled_first, s->mc.unassembled_msg);
 }
 
 void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,

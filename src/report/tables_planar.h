@@ -49,7 +49,10 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
  * length, in their order], "rss": {"low", "high"}, "corners": {"min",
  * "max"} or null, "montecarlo": {"q00135", "q50", "q99865", "mean", "std",
  * "q00135_ci_lo", ... "q99865_ci_hi"} or null}], "distribution",
- * "samples" (0: not run), "seed", "jobs", "montecarlo_wall_s",
+ * "samples" (0: not run; those that assemble), "samples_unassembled"
+ * (samples that cannot assemble or turn, left out of the statistics),
+ * "samples_unassembled_first" (the first one's reason, or null), "seed",
+ * "jobs", "montecarlo_wall_s",
  * "quantile_ci" (when run; tables_stackup.h)}; text: the lengths, then one
  * row per output (with mc 0.135%, mc 50%, mc 99.865% when run), then the
  * quantiles' intervals. */

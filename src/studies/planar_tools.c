@@ -558,7 +558,8 @@ fb_status fb_planar_stackup_montecarlo(fb_planar_stackup *s, const fb_case *c, c
     pm[k] = s->length[slot[k]].plus_minus;
   }
   const mc_ctx x = {m, slot, nl, fb_case_omega2(c)};
-  const fb_mc_problem p = {nl, nominal, pm, s->nout, mc_eval, (void *)&x, 1};
+  /* a sample that cannot assemble or turn is counted, not clamped or run */
+  const fb_mc_problem p = {nl, nominal, pm, s->nout, mc_eval, (void *)&x, 1, 1};
   s->mc.failed_len = failed;
   s->mc_dist = dist;
   s->mc_seed = seed;

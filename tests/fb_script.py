@@ -178,3 +178,29 @@ models = %s
 def summary_models(folder):
     """a run folder's summary.json models by name (models, by another name)"""
     return models(folder)
+
+
+# The developers' Whitworth quick-return (tests/cases/quick_return.ini): its
+# crank [m] about O2, O2 that far above the slotted lever's pivot O4 at the
+# origin, the lever's end at LEVER from O4, the link from it to the ram's
+# pin on the x axis, the drive at 400 rpm.
+QR_CRANK, QR_O2O4, QR_LEVER, QR_LINK = 0.08, 0.04, 0.1, 0.3
+QR_OMEGA = 400 * 2 * math.pi / 60
+
+
+def quick_return_position(theta):
+    """the quick-return's closed form at drive angle theta [rad] (complex-safe,
+    for complex-step derivatives): the block's distance from O4 along the
+    slot, the lever's end E (x, y) and the ram's pin x [m]"""
+    import cmath
+    bx, by = QR_CRANK * cmath.cos(theta), QR_O2O4 + QR_CRANK * cmath.sin(theta)
+    rb = cmath.sqrt(bx * bx + by * by)
+    ex, ey = QR_LEVER * bx / rb, QR_LEVER * by / rb
+    return rb, ex, ey, ex + cmath.sqrt(QR_LINK * QR_LINK - ey * ey)
+
+
+def quick_return_rate(theta):
+    """d/dt of quick_return_position at the drive's speed, by complex step
+    (exact to rounding) [m/s]"""
+    h = 1e-30
+    return [(v.imag / h) * QR_OMEGA for v in quick_return_position(complex(theta, h))]

@@ -28,7 +28,7 @@ wherever a binary link drives another moving body.
 
 Usage: test_planar_designer.py PATH_TO_FOURBAR [TEST ...]. Prints "N
 passed, N failed"; exit 1 on any failure."""
-import cmath, json, math, os, sys, tempfile
+import json, math, os, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
@@ -79,21 +79,13 @@ def kinematics(case, *flags):
     return json.loads(so)
 
 
-R_CRANK, O2O4, LEVER, LINK = 0.08, 0.04, 0.1, 0.3
-OMEGA = 400 * 2 * math.pi / 60
-
-
-def ram_x(theta):
-    """the ram's pin x at drive angle theta (complex-safe)"""
-    bx, by = R_CRANK * cmath.cos(theta), O2O4 + R_CRANK * cmath.sin(theta)
-    rb = cmath.sqrt(bx * bx + by * by)
-    ex, ey = LEVER * bx / rb, LEVER * by / rb
-    return ex + cmath.sqrt(LINK * LINK - ey * ey)
+R_CRANK, O2O4, LEVER, LINK = (fb_script.QR_CRANK, fb_script.QR_O2O4, fb_script.QR_LEVER,
+                               fb_script.QR_LINK)
+OMEGA = fb_script.QR_OMEGA
 
 
 def ram_v(theta):
-    h = 1e-30
-    return ram_x(complex(theta, h)).imag / h * OMEGA
+    return fb_script.quick_return_rate(theta)[3]
 
 
 @suite.test

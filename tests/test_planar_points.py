@@ -28,7 +28,7 @@ models[].slides.
 
 Usage: test_planar_points.py PATH_TO_FOURBAR [TEST ...]. Prints "N passed,
 N failed"; exit 1 on any failure."""
-import cmath, csv, json, math, os, sys, tempfile
+import csv, json, math, os, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
@@ -104,27 +104,13 @@ def with_points(src, dst, text):
 
 # ---- 1. the quick-return's closed form -------------------------------------
 
-R_CRANK, O2_Y, LEVER, LINK = 0.08, 0.04, 0.1, 0.3
-OMEGA = 400 * 2 * math.pi / 60
-
-
-def qr_position(theta):
-    """the block's distance from O4 along the slot, the lever's end E and the
-    ram's pin x at drive angle theta (complex-safe)"""
-    bx, by = R_CRANK * cmath.cos(theta), O2_Y + R_CRANK * cmath.sin(theta)
-    rb = cmath.sqrt(bx * bx + by * by)
-    ex, ey = LEVER * bx / rb, LEVER * by / rb
-    return rb, ex, ey, ex + cmath.sqrt(LINK * LINK - ey * ey)
-
-
-def qr_rate(theta):
-    """d/dt of qr_position by complex step (exact to rounding)"""
-    h = 1e-30
-    return [(v.imag / h) * OMEGA for v in qr_position(complex(theta, h))]
+LEVER = fb_script.QR_LEVER
+OMEGA = fb_script.QR_OMEGA
+qr_rate = fb_script.quick_return_rate
 
 
 def qr_motion(theta):
-    x = [v.real for v in qr_position(theta)]
+    x = [v.real for v in fb_script.quick_return_position(theta)]
     v = qr_rate(theta)
     up, dn = qr_rate(theta + DTHETA), qr_rate(theta - DTHETA)
     a = [(u - d) / (2 * DTHETA) * OMEGA for u, d in zip(up, dn)]

@@ -18,9 +18,11 @@ wherever a binary link drives another moving body.
 3. The paper's four-bar written as a planar case
    (cases/templates/planar_fourbar.ini) against the built-in four-bar's
    transmission angle range (its angle BCD stays below 90 deg).
-4. A mechanism with no binary link driving a body says the angle is
+4. An output point's extremes over a revolution: a tool point on the
+   quick-return's ram moves with the ram's slide, 33.909 mm ahead.
+5. A mechanism with no binary link driving a body says the angle is
    undefined; the keys are there with the description's names.
-5. Masses from material whatever the pose: the quick-return written in a
+6. Masses from material whatever the pose: the quick-return written in a
    second assembly pose (crank at -90 deg) derives the same masses and
    moments (its slotted lever's bar spans the block's travel over a
    revolution, not where the assembly puts the block), and its analytic
@@ -163,6 +165,27 @@ def fourbar_equals_builtin():
         check(fb_script.rel(t["coupler_follower"][key], b[key]) <= BUILTIN_REL,
               "%s %r against the built-in's %r" % (key, t["coupler_follower"][key], b[key]))
     check(p["slides"] == {}, "a four-bar has no slides: %r" % p["slides"])
+
+
+@suite.test
+def points_over_a_revolution():
+    case = os.path.join(TMP, "qr-tool.ini")
+    with open(QR) as f:
+        text = f.read()
+    with open(case, "w") as f:
+        f.write(text + "\n[point.tool]\nbody = ram\nat_mm = 420, -30\n")
+    k = kinematics(case)
+    t, s = k["points"]["tool"], k["slides"]["ram_guide"]
+    dx = 0.420 - 0.386090658584
+    for key, shift in (("position_max_m", dx), ("position_min_m", dx), ("velocity_max_m_s", 0.0),
+                       ("velocity_min_m_s", 0.0), ("acceleration_max_m_s2", 0.0),
+                       ("acceleration_min_m_s2", 0.0)):
+        check(abs(t["x"][key] - (s[key] + shift)) <= BUILTIN_REL * max(1.0, abs(s[key])),
+              "points.tool.x.%s %r against the ram's slide %r + %r" % (key, t["x"][key], s[key], shift))
+    check(t["y"]["position_max_m"] == t["y"]["position_min_m"] == -0.03 and
+          t["y"]["velocity_max_m_s"] == 0.0, "the tool's y stays at -30 mm: %r" % t["y"])
+    check(fb_script.rel(t["speed_max_m_s"], s["velocity_max_m_s"]) <= BUILTIN_REL,
+          "the tool's speed max %r is the ram's %r" % (t["speed_max_m_s"], s["velocity_max_m_s"]))
 
 
 @suite.test

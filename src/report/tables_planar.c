@@ -77,6 +77,24 @@ static void designer_json(json_t *o, const fb_planar *m, const fb_planar_designe
                   "transmission_angle_max_deg", num(t->mu.max * deg), "at_drive_angle_rad", "min",
                   num(t->mu.at_min), "max", num(t->mu.at_max)));
   }
+  json_t *points = json_object();
+  for (int i = 0; i < d->npoints; i++) {
+    const fb_planar_point_kin *k = &d->point[i];
+    json_t *e = json_object();
+    for (int axis = 0; axis < 2; axis++) {
+      const fb_planar_extreme *x = &k->q[axis], *v = &k->q[2 + axis], *a = &k->q[4 + axis];
+      json_object_set_new(e, axis ? "y" : "x",
+                          json_pack("{s:o,s:o,s:o,s:o,s:o,s:o}", "position_max_m", num(x->max),
+                                    "position_min_m", num(x->min), "velocity_max_m_s",
+                                    num(v->max), "velocity_min_m_s", num(v->min),
+                                    "acceleration_max_m_s2", num(a->max),
+                                    "acceleration_min_m_s2", num(a->min)));
+    }
+    json_object_set_new(e, "speed_max_m_s", num(k->speed.max));
+    json_object_set_new(e, "acceleration_max_m_s2", num(k->accel.max));
+    json_object_set_new(points, fb_name_word(word, sizeof word, m->point[i].name), e);
+  }
+  json_object_set_new(o, "points", points);
   json_object_set_new(o, "slides", slides);
   json_object_set_new(o, "transmission", mu);
   json_object_set_new(o, "transmission_angle_is", json_string(MU_IS));
@@ -85,6 +103,15 @@ static void designer_json(json_t *o, const fb_planar *m, const fb_planar_designe
 /* the designer's slides and transmission angles as text */
 static void designer_text(FILE *f, const fb_planar *m, const fb_planar_designer *d) {
   const double deg = 1.0 / FB_RAD_PER_DEG;
+  if (d->npoints > 0)
+    fprintf(f, "| point | x min [m] | x max [m] | y min [m] | y max [m] | speed max [m/s] | at [deg] "
+               "| acceleration max [m/s^2] | at [deg] |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (int i = 0; i < d->npoints; i++) {
+    const fb_planar_point_kin *k = &d->point[i];
+    fprintf(f, "| %s | %s | %s | %s | %s | %s | %.2f | %s | %.2f |\n", m->point[i].name,
+            CELL(k->q[0].min), CELL(k->q[0].max), CELL(k->q[1].min), CELL(k->q[1].max),
+            CELL(k->speed.max), k->speed.at_max * deg, CELL(k->accel.max), k->accel.at_max * deg);
+  }
   for (int i = 0; i < d->nslides; i++) {
     const fb_planar_slide_kin *k = &d->slide[i];
     fprintf(f, "slide '%s': stroke %.6f mm between the dead centres:\n"

@@ -20,6 +20,9 @@
  * planar_outputs.h), "transmission": {"<joint>": {"link", "driven",
  * "transmission_angle_min_deg", "transmission_angle_max_deg",
  * "at_drive_angle_rad": {"min", "max"}}} (planar_transmission.h; {} when
+ * undefined), "points": {"<point>": {"x", "y" (each with the slider's
+ * extreme keys), "speed_max_m_s", "acceleration_max_m_s2"}} (summary.json's
+ * keys over a revolution; {} when
  * undefined), "transmission_angle_is"} (d from fb_planar_tool_designer;
  * <joint> its name with '-' as '_'); text: one row per moving body, then
  * each slide's stroke, dead centres and quick-return ratio and the

@@ -63,6 +63,18 @@ static double slide_quantity(const fb_planar *m, const double *q, const double *
   return row[FB_PLANAR_POINT_QUANTITIES * m->npoints + i];
 }
 
+/* fb_planar_quantity of the output points: index i is point i / 8's
+ * quantity i % 8, its six (planar_outputs.h's row), then |v| and |a| */
+static double point_quantity(const fb_planar *m, const double *q, const double *qd,
+                             const double *qdd, const double *w1, int i, void *ctx) {
+  (void)w1;
+  double *row = ctx;
+  fb_planar_outputs(row, m, q, qd, qdd);
+  const double *p = row + FB_PLANAR_POINT_QUANTITIES * (i / 8);
+  const int k = i % 8;
+  return k < 6 ? p[k] : k == 6 ? hypot(p[2], p[3]) : hypot(p[4], p[5]);
+}
+
 /* fb_planar_quantity of the transmission angles: index i is ctx's i-th */
 static double transmission_quantity(const fb_planar *m, const double *q, const double *qd,
                                     const double *qdd, const double *w1, int i, void *ctx) {
@@ -85,13 +97,14 @@ fb_status fb_planar_tool_designer(fb_planar_designer *out, const fb_planar *m, c
   const double omega = fb_case_omega2(c);
   fb_planar_transmission t[2 * FB_PLANAR_SPEC_MAX_JOINTS];
   out->ntransmissions = fb_planar_transmissions(t, 2 * FB_PLANAR_SPEC_MAX_JOINTS, m);
-  const int ns = fb_planar_slide_count(m);
-  if (ns == 0 && out->ntransmissions == 0) return FB_OK;
+  const int ns = fb_planar_slide_count(m), np = m->npoints;
+  if (ns == 0 && np == 0 && out->ntransmissions == 0) return FB_OK;
   fb_planar_kin *k;
   fb_status st = fb_planar_kin_new(&k, m, diag);
   if (st != FB_OK) return st;
   double *row = malloc(((size_t)fb_planar_output_count(m) + 1) * sizeof *row);
-  fb_planar_extreme *e = malloc((3 * (size_t)ns + (size_t)out->ntransmissions + 1) * sizeof *e);
+  fb_planar_extreme *e = malloc((3 * (size_t)ns + (size_t)out->ntransmissions + 8 * (size_t)np + 1) *
+                                sizeof *e);
   if (!row || !e) st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   if (st == FB_OK && ns > 0) st = fb_planar_extremes_of(e, 3 * ns, slide_quantity, row, k, omega, diag);
   if (st == FB_OK && out->ntransmissions > 0)
@@ -113,6 +126,13 @@ fb_status fb_planar_tool_designer(fb_planar_designer *out, const fb_planar *m, c
   }
   for (int i = 0; st == FB_OK && i < out->ntransmissions; i++)
     out->transmission[i] = (fb_planar_transmission_kin){t[i], e[3 * ns + i]};
+  fb_planar_extreme *pe = e ? e + 3 * ns + out->ntransmissions : NULL;
+  if (st == FB_OK && np > 0) st = fb_planar_extremes_of(pe, 8 * np, point_quantity, row, k, omega, diag);
+  for (int i = 0; st == FB_OK && i < np && i < FB_PLANAR_SPEC_MAX_POINTS; i++) {
+    fb_planar_point_kin *pk = &out->point[out->npoints++];
+    for (int x = 0; x < FB_PLANAR_POINT_QUANTITIES; x++) pk->q[x] = pe[8 * i + x];
+    pk->speed = pe[8 * i + 6], pk->accel = pe[8 * i + 7];
+  }
   if (st != FB_OK) memset(out, 0, sizeof *out);
   free(row);
   free(e);

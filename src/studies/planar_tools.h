@@ -38,6 +38,7 @@
 #include "contact.h"
 #include "montecarlo.h"
 #include "planar.h"
+#include "planar_outputs.h"
 #include "planar_path.h"
 #include "planar_spec.h"
 #include "planar_transmission.h"
@@ -68,16 +69,25 @@ typedef struct {
   fb_planar_extreme mu; /* [rad] */
 } fb_planar_transmission_kin;
 
+/* An output point's motion over a revolution (planar_outputs.h). */
+typedef struct {
+  fb_planar_extreme q[FB_PLANAR_POINT_QUANTITIES]; /* x, y [m], v_x, v_y [m/s], a_x, a_y
+                                                      [m/s^2] */
+  fb_planar_extreme speed, accel;                   /* |v| [m/s], |a| [m/s^2] */
+} fb_planar_point_kin;
+
 /* What fourbar kinematics tells a designer beyond the bodies' peaks. */
 typedef struct {
+  int npoints;
+  fb_planar_point_kin point[FB_PLANAR_SPEC_MAX_POINTS];
   int nslides;
   fb_planar_slide_kin slide[FB_PLANAR_SPEC_MAX_JOINTS];
   int ntransmissions;
   fb_planar_transmission_kin transmission[2 * FB_PLANAR_SPEC_MAX_JOINTS];
 } fb_planar_designer;
 
-/* Every prismatic joint's slide and every transmission angle of
- * description m over a revolution at planar case c's signed speed
+/* Every output point's motion, every prismatic joint's slide and every
+ * transmission angle of description m over a revolution at planar case c's signed speed
  * (fb_planar_extremes_of). An undriven description has none.
  * Errors: those of fb_planar_kin_new and fb_planar_extremes_of. */
 fb_status fb_planar_tool_designer(fb_planar_designer *out, const fb_planar *m, const fb_case *c,

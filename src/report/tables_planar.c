@@ -119,8 +119,8 @@ static void designer_text(FILE *f, const fb_planar *m, const fb_planar_designer 
                "quick-return ratio %.6f (slower stroke's time over the faster's): outstroke "
                "(inner to outer) %.4f deg of drive, %.6g s; return %.4f deg, %.6g s\n"
                "  velocity %s to %s m/s, acceleration %s to %s m/s^2\n",
-            m->joint[k->joint].name, k->stroke * 1e3, k->pos.max * 1e3, k->pos.at_max * deg,
-            k->pos.min * 1e3, k->pos.at_min * deg, k->quick_return_ratio,
+            m->joint[k->joint].name, k->stroke / FB_M_PER_MM, k->pos.max / FB_M_PER_MM,
+            k->pos.at_max * deg, k->pos.min / FB_M_PER_MM, k->pos.at_min * deg, k->quick_return_ratio,
             k->outstroke_angle * deg, k->outstroke_time, k->return_angle * deg, k->return_time,
             CELL(k->vel.min), CELL(k->vel.max), CELL(k->acc.min), CELL(k->acc.max));
   }

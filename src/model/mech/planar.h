@@ -143,6 +143,16 @@ fb_status fb_planar_set_drive(fb_planar *m, int j, fb_diag *diag);
  * to *from. Requires a drive. */
 void fb_planar_drive_bodies(const fb_planar *m, int *from, int *to);
 
+/* Which of a prismatic joint's bodies b0, b1 (its body[0], body[1]) is
+ * its guide, the body that carries the slot: 1 when b1 is the ground, 0
+ * otherwise (the ground when either is, else the first). The one rule of
+ * the slide's datum (planar_outputs.h) and of a slot's material
+ * (planar_case.h). */
+static inline int fb_planar_guide_side(int b0, int b1) {
+  (void)b0;
+  return b1 == FB_PLANAR_GROUND ? 1 : 0;
+}
+
 /* Index of the body or joint named name, or -1. */
 int fb_planar_find_body(const fb_planar *m, const char *name);
 int fb_planar_find_joint(const fb_planar *m, const char *name);

@@ -39,11 +39,10 @@ static int body_points(double pts[][2], int max, const fb_planar_spec *s, int b)
   return n;
 }
 
-/* The guide of prismatic joint jt (planar_outputs.h's rule): the ground
- * when either body is, else its first body, which carries the slot. */
+/* The guide of prismatic joint jt, the body that carries the slot
+ * (planar.h fb_planar_guide_side) */
 static int guide_of(const fb_planar_spec_joint *jt) {
-  if (jt->body[0] == FB_PLANAR_GROUND || jt->body[1] == FB_PLANAR_GROUND) return FB_PLANAR_GROUND;
-  return jt->body[0];
+  return jt->body[fb_planar_guide_side(jt->body[0], jt->body[1])];
 }
 
 /* A slot's travel: the ends of the slider's point's path along each

@@ -36,9 +36,9 @@ static void point_motion(double x[2], double v[2], double a[2], const double *q,
 int fb_planar_slide_guide(const fb_planar *m, int j, double datum[2]) {
   const fb_planar_joint *pj = &m->joint[j];
   datum[0] = datum[1] = 0.0;
-  if (pj->body[1] == FB_PLANAR_GROUND) return 1;
-  if (pj->body[0] == FB_PLANAR_GROUND) return 0;
-  const int g = pj->body[0];
+  const int side = fb_planar_guide_side(pj->body[0], pj->body[1]);
+  if (pj->body[side] == FB_PLANAR_GROUND) return side;
+  const int g = pj->body[side];
   int first = -1; /* the guide's joint with the ground, else its first joint */
   for (int k = 0; k < m->njoints && first < 0; k++)
     if ((m->joint[k].body[0] == g || m->joint[k].body[1] == g) &&
@@ -47,10 +47,10 @@ int fb_planar_slide_guide(const fb_planar *m, int j, double datum[2]) {
   for (int k = 0; k < m->njoints && first < 0; k++)
     if (m->joint[k].body[0] == g || m->joint[k].body[1] == g) first = k;
   const fb_planar_joint *f = &m->joint[first];
-  const int side = f->body[0] == g ? 0 : 1;
-  datum[0] = f->point[side][0];
-  datum[1] = f->point[side][1];
-  return 0;
+  const int at = f->body[0] == g ? 0 : 1;
+  datum[0] = f->point[at][0];
+  datum[1] = f->point[at][1];
+  return side;
 }
 
 /* prismatic joint j's slide, its rate and acceleration into out (3) */

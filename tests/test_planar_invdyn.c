@@ -58,7 +58,7 @@ static void test_fourbar(void **state) {
     /* the same multipliers through the LU fb_planar_motion has just left */
     fb_planar_reaction rk[4];
     double torque_k;
-    assert_int_equal(fb_planar_invdyn_kin(rk, &torque_k, t.k, q, qdd, c.gravity, &d), FB_OK);
+    assert_int_equal(fb_planar_invdyn_kin(rk, &torque_k, t.k, q, qd, qdd, c.gravity, &d), FB_OK);
     for (int j = 0; j < 4; j++)
       for (int a = 0; a < 2; a++) kin_worst = fmax(kin_worst, fabs(rk[j].force[a] - r[j].force[a]));
     kin_worst = fmax(kin_worst, fabs(torque_k - torque) / 0.1);

@@ -29,6 +29,11 @@ fb_status fb_export_planar_mjcf(char *buf, size_t size, const fb_case *c, int id
                        "planar) writes its ideal mechanism only: MuJoCo's clearance models of a "
                        "planar case apply the law through the passive-force hook, which no MJCF "
                        "holds; give --ideal, or run the clearance models by fourbar run");
+  char loaded[2 * FB_PLANAR_NAME_SIZE];
+  if (fb_planar_spec_loaded(&c->planar, loaded, sizeof loaded))
+    return fb_diag_set(diag, FB_ERR_ARG, "%s: the MJCF export does not carry a case's springs "
+                       "and loads yet; export the case without its [spring.*] and [load.*] "
+                       "sections", loaded);
   const struct fb_kit_binding *b = fb_planar_kit_of(PLANAR_MJCF_MODEL);
   if (!b || !b->model_text)
     return fb_diag_set(diag, FB_ERR_ARG, "the MJCF export needs MuJoCo in the build: "

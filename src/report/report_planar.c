@@ -43,6 +43,31 @@ static json_t *description_json(const fb_planar *m) {
   }
   json_object_set_new(d, "bodies", bodies);
   json_object_set_new(d, "joints", joints);
+  json_t *springs = json_array(), *loads = json_array();
+  for (int k = 0; k < m->nsprings; k++) {
+    const fb_planar_spring *q = &m->spring[k];
+    double a[2], b[2];
+    fb_planar_at_assembly(a, m, q->body[0], q->point[0]);
+    fb_planar_at_assembly(b, m, q->body[1], q->point[1]);
+    json_array_append_new(
+        springs, json_pack("{s:s,s:[s,s],s:o,s:o,s:o,s:o,s:o}", "name", q->name, "bodies",
+                           m->body[q->body[0]].name, m->body[q->body[1]].name, "at_a_m", pair(a),
+                           "at_b_m", pair(b), "stiffness_n_m", num(q->stiffness), "free_length_m",
+                           num(q->free_length), "damping_n_s_m", num(q->damping)));
+  }
+  static const char *const active[] = {"always", "outstroke", "return"};
+  for (int k = 0; k < m->nloads; k++) {
+    const fb_planar_load *q = &m->load[k];
+    double at[2];
+    fb_planar_at_assembly(at, m, q->body, q->point);
+    json_array_append_new(
+        loads, json_pack("{s:s,s:s,s:o,s:o,s:o,s:s,s:o}", "name", q->name, "body",
+                         m->body[q->body].name, "at_m", pair(at), "force_n", pair(q->force),
+                         "torque_n_m", num(q->torque), "active", active[q->active], "stroke_joint",
+                         q->stroke >= 0 ? json_string(m->joint[q->stroke].name) : json_null()));
+  }
+  json_object_set_new(d, "springs", springs);
+  json_object_set_new(d, "loads", loads);
   json_object_set_new(d, "drive", m->drive >= 0 ? json_string(m->joint[m->drive].name)
                                                  : json_null()); /* undriven */
   return d;
@@ -229,6 +254,27 @@ static void bodies_text(FILE *f, const fb_planar *m) {
                  derived[0] ? ", " : "", what[k]);
     fprintf(f, "| %s | %.6g | %.6g | %.6g | %.6g | %s |\n", p->name, p->mass, p->centre[0],
             p->centre[1], p->inertia, derived[0] ? derived : "none (given)");
+  }
+  if (m->nsprings)
+    fprintf(f, "| spring | bodies | stiffness [N/m] | free length [m] | damping [N s/m] |\n"
+               "|---|---|---:|---:|---:|\n");
+  for (int k = 0; k < m->nsprings; k++) {
+    const fb_planar_spring *q = &m->spring[k];
+    fprintf(f, "| %s | %s, %s | %.6g | %.6g | %.6g |\n", q->name, m->body[q->body[0]].name,
+            m->body[q->body[1]].name, q->stiffness, q->free_length, q->damping);
+  }
+  if (m->nloads)
+    fprintf(f, "| load | body | force x [N] | force y [N] | torque [N m] | acts |\n"
+               "|---|---|---:|---:|---:|---|\n");
+  for (int k = 0; k < m->nloads; k++) {
+    const fb_planar_load *q = &m->load[k];
+    char acts[2 * FB_PLANAR_NAME_SIZE + 32] = "always";
+    if (q->stroke >= 0)
+      snprintf(acts, sizeof acts, "%s of %s", q->active == FB_PLANAR_LOAD_OUTSTROKE ? "outstroke"
+                                                                                    : "return",
+               m->joint[q->stroke].name);
+    fprintf(f, "| %s | %s | %.6g | %.6g | %.6g | %s |\n", q->name, m->body[q->body].name,
+            q->force[0], q->force[1], q->torque, acts);
   }
 }
 

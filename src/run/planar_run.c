@@ -79,14 +79,14 @@ static void store(fb_planar_model *p, const fb_planar *m, size_t i, const double
   fb_planar_model_store_outputs(p, m, i, q, qd, qdd);
 }
 
-/* sample i's drive torque and joint reactions at the motion q, qdd that
+/* sample i's drive torque and joint reactions at the motion q, qd, qdd that
  * fb_planar_motion(k) has just solved (planar_invdyn.h, with its LU), rx a
  * scratch row of the joints' reactions */
 static fb_status store_loads(fb_planar_model *p, const fb_planar_run *r, fb_planar_kin *k,
                              size_t i, fb_planar_reaction *rx, const double *q,
-                             const double *qdd, fb_diag *diag) {
+                             const double *qd, const double *qdd, fb_diag *diag) {
   const fb_planar *m = r->m;
-  fb_status st = fb_planar_invdyn_kin(rx, &p->torque[i], k, q, qdd, r->c.gravity, diag);
+  fb_status st = fb_planar_invdyn_kin(rx, &p->torque[i], k, q, qd, qdd, r->c.gravity, diag);
   for (int j = 0; j < m->njoints && st == FB_OK; j++) {
     const double v[3] = {rx[j].force[0], rx[j].force[1], rx[j].moment};
     for (int c = 0; c < 3; c++) p->reaction[((size_t)j * 3 + (size_t)c) * p->n + i] = v[c];
@@ -123,7 +123,7 @@ static fb_status sample(fb_planar_model *p, fb_planar_kin *k, const fb_planar_ru
     p->t[i] = t;
     p->drive[i] = angle;
     if (st == FB_OK) store(p, m, i, q, qd, qdd);
-    if (st == FB_OK) st = store_loads(p, r, k, i, rx, q, qdd, diag);
+    if (st == FB_OK) st = store_loads(p, r, k, i, rx, q, qd, qdd, diag);
   }
   free(q);
   free(rx);

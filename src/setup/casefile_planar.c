@@ -1,5 +1,6 @@
 /* A planar case's sections in the case-file reader (casefile_planar.h):
- * [joint.NAME], [body.NAME], [point.NAME], [drive] joint and [clearance] joints read
+ * [joint.NAME], [body.NAME], [point.NAME], [spring.NAME], [load.NAME], [drive] joint
+ * and [clearance] joints read
  * into fb_case.planar (model/mech/planar_spec.h), units converted to SI
  * here, then checked as a whole, compiled and checked by the planar core. */
 #include "casefile_planar.h"
@@ -10,6 +11,8 @@
 
 #include "casefile.h"
 #include "casefile_planar_free.h"
+#include "casefile_planar_loads.h"
+#include "casefile_planar_values.h"
 #include "model_table.h"
 #include "names.h"
 #include "planar_case.h"
@@ -20,9 +23,8 @@
 #define JOINT_PREFIX "joint."
 #define BODY_PREFIX "body."
 #define POINT_PREFIX "point."
-#define COORD_MAX_MM 1e5 /* a position's coordinates, as a link length's range: 100 m */
-#define COORD_RULE "a coordinate in mm from -1e5 to 1e5 (100 m)"
-#define POINT_RULE "two numbers x, y in mm (for example 120, -35.5), each " COORD_RULE
+#define SPRING_PREFIX "spring."
+#define LOAD_PREFIX "load."
 #define AXIS_RULE "an angle from -360 to 360 deg, counter-clockwise from +x"
 #define HALF_RULE "a slider's half-size must be positive, from 0.001 mm to 1e5 mm"
 
@@ -44,10 +46,14 @@ static int fourbar_key(const entry *e) {
          strcmp(e->key + n - s, "_plus_minus_mm") == 0;
 }
 
+/* a section only a planar description has */
+static int description_section(const entry *e) {
+  return prefixed(e->section, JOINT_PREFIX) || prefixed(e->section, BODY_PREFIX) ||
+         prefixed(e->section, POINT_PREFIX) || fb_casefile_planar_loads_section(e);
+}
+
 int fb_casefile_planar_claims(const fb_case *c, const entry *e) {
-  if (prefixed(e->section, JOINT_PREFIX) || prefixed(e->section, BODY_PREFIX) ||
-      prefixed(e->section, POINT_PREFIX))
-    return 1;
+  if (description_section(e)) return 1;
   if (strcmp(e->section, "drive") == 0 && strcmp(e->key, "joint") == 0) return 1;
   if (!c->planar.on) return 0;
   if (strcmp(e->section, "clearance") == 0 && strcmp(e->key, "joints") == 0) return 1;
@@ -56,45 +62,9 @@ int fb_casefile_planar_claims(const fb_case *c, const entry *e) {
 
 /* ---- values -------------------------------------------------------------- */
 
-/* a name of a joint or body: the case-name characters, 1 to 43 of them */
-static fb_status name_of(const entry *e, const char *name, const char *what, fb_diag *diag) {
-  if (!fb_casefile_name_ok(name) || strlen(name) >= FB_PLANAR_NAME_SIZE)
-    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: '%s': a %s name is 1 to %d characters "
-                       "from letters, digits, '-', '_' and '.', not starting with '.'",
-                       e->origin, e->section, name, what, FB_PLANAR_NAME_SIZE - 1);
-  return FB_OK;
-}
 
-/* one number of key e in [lo, hi] (file units) times scale into *out */
-static fb_status number(const entry *e, const char *text, double lo, double hi, double scale,
-                        const char *rule, double *out, fb_diag *diag) {
-  double v;
-  if (!fb_casefile_decimal(text, &v))
-    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': not a decimal number (%s)",
-                       e->origin, e->section, e->key, e->value, rule);
-  if (!(v >= lo && v <= hi))
-    return fb_diag_set(diag, FB_ERR_RANGE, "%s: [%s] %s = %s: %s", e->origin, e->section,
-                       e->key, e->value, rule);
-  *out = v * scale;
-  return FB_OK;
-}
 
-/* "x, y" in mm into out [m] */
-static fb_status point_mm(const entry *e, double out[2], fb_diag *diag) {
-  char buf[sizeof e->value];
-  snprintf(buf, sizeof buf, "%s", e->value);
-  char *comma = strchr(buf, ',');
-  if (!comma || strchr(comma + 1, ','))
-    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': expected two numbers x, y in "
-                       "mm (for example 120, -35.5)", e->origin, e->section, e->key, e->value);
-  *comma = '\0';
-  fb_status st = number(e, trim(buf), -COORD_MAX_MM, COORD_MAX_MM, FB_M_PER_MM, COORD_RULE,
-                        &out[0], diag);
-  if (st == FB_OK)
-    st = number(e, trim(comma + 1), -COORD_MAX_MM, COORD_MAX_MM, FB_M_PER_MM, COORD_RULE,
-                &out[1], diag);
-  return st;
-}
+
 
 /* the body named name in s (created at its first mention), or -1 when full */
 static int body_index(fb_planar_spec *s, const char *name) {
@@ -136,7 +106,7 @@ static fb_status joint_bodies(fb_planar_spec *s, fb_planar_spec_joint *j, const 
   *comma = '\0';
   const char *name[2] = {trim(buf), trim(comma + 1)};
   for (int k = 0; k < 2; k++) {
-    fb_status st = name_of(e, name[k], "body", diag);
+    fb_status st = fb_planar_key_name(e, name[k], "body", diag);
     if (st != FB_OK) return st;
   }
   if (strcmp(name[0], name[1]) == 0)
@@ -152,7 +122,7 @@ static fb_status joint_bodies(fb_planar_spec *s, fb_planar_spec_joint *j, const 
 
 static fb_status joint_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   const char *name = e->section + strlen(JOINT_PREFIX);
-  fb_status st = name_of(e, name, "joint", diag);
+  fb_status st = fb_planar_key_name(e, name, "joint", diag);
   if (st != FB_OK) return st;
   const int ji = joint_index(s, name);
   if (ji < 0)
@@ -162,7 +132,7 @@ static fb_status joint_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   if (strcmp(e->key, "bodies") == 0) return joint_bodies(s, j, e, diag);
   if (strcmp(e->key, "at_mm") == 0) {
     j->given |= FB_SPEC_JOINT_AT;
-    return point_mm(e, j->at, diag);
+    return fb_planar_key_point(e, j->at, diag);
   }
   if (strcmp(e->key, "kind") == 0) {
     j->given |= FB_SPEC_JOINT_KIND;
@@ -175,12 +145,12 @@ static fb_status joint_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   }
   if (strcmp(e->key, "axis_deg") == 0) {
     j->given |= FB_SPEC_JOINT_AXIS;
-    return number(e, e->value, -360.0, 360.0, FB_RAD_PER_DEG, AXIS_RULE, &j->axis, diag);
+    return fb_planar_key_number(e, e->value, -360.0, 360.0, FB_RAD_PER_DEG, AXIS_RULE, &j->axis, diag);
   }
   if (strcmp(e->key, "slider_half_length_mm") == 0 || strcmp(e->key, "slider_half_height_mm") == 0) {
     const int len = strcmp(e->key, "slider_half_length_mm") == 0;
     j->given |= len ? FB_SPEC_JOINT_HALF_LENGTH : FB_SPEC_JOINT_HALF_HEIGHT;
-    return number(e, e->value, 1e-3, COORD_MAX_MM, FB_M_PER_MM, HALF_RULE,
+    return fb_planar_key_number(e, e->value, 1e-3, FB_PLANAR_COORD_MAX_MM, FB_M_PER_MM, HALF_RULE,
                   len ? &j->half_length : &j->half_height, diag);
   }
   return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a joint has bodies, "
@@ -217,7 +187,7 @@ static const struct {
 
 static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   const char *name = e->section + strlen(BODY_PREFIX);
-  fb_status st = name_of(e, name, "body", diag);
+  fb_status st = fb_planar_key_name(e, name, "body", diag);
   if (st != FB_OK) return st;
   if (strcmp(name, "ground") == 0)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: the ground is fixed and has no mass "
@@ -230,12 +200,12 @@ static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   b->given |= FB_SPEC_BODY_SECTION;
   if (strcmp(e->key, "centre_mm") == 0) {
     b->given |= FB_SPEC_BODY_CENTRE;
-    return point_mm(e, b->centre, diag);
+    return fb_planar_key_point(e, b->centre, diag);
   }
   for (size_t i = 0; i < sizeof body_numbers / sizeof body_numbers[0]; i++)
     if (strcmp(e->key, body_numbers[i].key) == 0) {
       b->given |= body_numbers[i].bit;
-      return number(e, e->value, body_numbers[i].lo, body_numbers[i].hi, body_numbers[i].scale,
+      return fb_planar_key_number(e, e->value, body_numbers[i].lo, body_numbers[i].hi, body_numbers[i].scale,
                     body_numbers[i].rule, (double *)((char *)b + body_numbers[i].offset), diag);
     }
   return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a body has mass_kg, "
@@ -257,7 +227,7 @@ static int point_index(fb_planar_spec *s, const char *name) {
 /* a [point.NAME] section's keys: body = NAME, at_mm = x, y */
 static fb_status point_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   const char *name = e->section + strlen(POINT_PREFIX);
-  fb_status st = name_of(e, name, "point", diag);
+  fb_status st = fb_planar_key_name(e, name, "point", diag);
   if (st != FB_OK) return st;
   const int k = point_index(s, name);
   if (k < 0)
@@ -268,24 +238,26 @@ static fb_status point_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
     char word[sizeof e->value];
     snprintf(word, sizeof word, "%s", e->value);
     const char *body = trim(word);
-    if ((st = name_of(e, body, "body", diag)) != FB_OK) return st;
+    if ((st = fb_planar_key_name(e, body, "body", diag)) != FB_OK) return st;
     snprintf(p->body, sizeof p->body, "%s", body);
     p->given |= FB_SPEC_POINT_BODY;
     return FB_OK;
   }
   if (strcmp(e->key, "at_mm") == 0) {
     p->given |= FB_SPEC_POINT_AT;
-    return point_mm(e, p->at, diag);
+    return fb_planar_key_point(e, p->at, diag);
   }
   return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a point has body and "
                      "at_mm)", e->origin, e->key, e->section);
 }
 
+
+
+
+
+
 fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
-  const int planar_section = prefixed(e->section, JOINT_PREFIX) ||
-                             prefixed(e->section, BODY_PREFIX) ||
-                             prefixed(e->section, POINT_PREFIX) ||
-                             strcmp(e->section, "drive") == 0;
+  const int planar_section = description_section(e) || strcmp(e->section, "drive") == 0;
   if (!c->planar.on && planar_section)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s describes a planar mechanism, but the "
                        "case is a %s: set [linkage] type = planar (docs/planar.md)", e->origin,
@@ -293,6 +265,7 @@ fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
   if (prefixed(e->section, JOINT_PREFIX)) return joint_key(&c->planar, e, diag);
   if (prefixed(e->section, BODY_PREFIX)) return body_key(&c->planar, e, diag);
   if (prefixed(e->section, POINT_PREFIX)) return point_key(&c->planar, e, diag);
+  if (fb_casefile_planar_loads_section(e)) return fb_casefile_planar_loads_take(&c->planar, e, diag);
   if (fourbar_key(e))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s is a four-bar or slider-crank key; a "
                        "planar case gives its geometry by [joint.NAME] at_mm and its masses by "
@@ -302,29 +275,15 @@ fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
 
 /* ---- the sections as a whole -------------------------------------------- */
 
-/* the first entry of section sec, or NULL */
-static const entry *first_of(const entry *e, int n, const char *prefix, const char *name) {
-  char sec[sizeof e->section];
-  snprintf(sec, sizeof sec, "%s%s", prefix, name);
-  for (int i = 0; i < n; i++)
-    if (strcmp(e[i].section, sec) == 0) return &e[i];
-  return NULL;
-}
 
-/* the entry of [section] key, or NULL */
-static const entry *entry_of(const entry *e, int n, const char *section, const char *key) {
-  for (int i = 0; i < n; i++)
-    if (strcmp(e[i].section, section) == 0 && strcmp(e[i].key, key) == 0) return &e[i];
-  return NULL;
-}
 
 /* where body b is described: its [body.NAME] section, else the first joint
  * naming it */
 static const entry *body_origin(const fb_planar_spec *s, int b, const entry *e, int n) {
-  const entry *at = first_of(e, n, BODY_PREFIX, s->body[b].name);
+  const entry *at = fb_planar_entry_first(e, n, BODY_PREFIX, s->body[b].name);
   for (int j = 0; j < s->njoints && !at; j++)
     if (s->joint[j].body[0] == b || s->joint[j].body[1] == b)
-      at = first_of(e, n, JOINT_PREFIX, s->joint[j].name);
+      at = fb_planar_entry_first(e, n, JOINT_PREFIX, s->joint[j].name);
   return at;
 }
 
@@ -332,7 +291,7 @@ static const entry *body_origin(const fb_planar_spec *s, int b, const entry *e, 
 static const char *origin_of(char *buf, size_t size, const fb_planar_spec *s,
                              const fb_planar_where *w, const entry *e, int n, const char *path) {
   const entry *at = NULL;
-  if (w->joint >= 0 && w->joint < s->njoints) at = first_of(e, n, JOINT_PREFIX, s->joint[w->joint].name);
+  if (w->joint >= 0 && w->joint < s->njoints) at = fb_planar_entry_first(e, n, JOINT_PREFIX, s->joint[w->joint].name);
   else if (w->body > 0 && w->body < s->nbodies) at = body_origin(s, w->body, e, n);
   if (at) snprintf(buf, size, "%s: [%s]", at->origin, at->section);
   else snprintf(buf, size, "%s", path ? path : "case");
@@ -349,7 +308,7 @@ static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, 
                        path ? path : "case");
   for (int j = 0; j < s->njoints; j++) {
     const fb_planar_spec_joint *sj = &s->joint[j];
-    const entry *at = first_of(e, n, JOINT_PREFIX, sj->name);
+    const entry *at = fb_planar_entry_first(e, n, JOINT_PREFIX, sj->name);
     const char *miss = !(sj->given & FB_SPEC_JOINT_BODIES) ? "bodies = A, B"
                        : !(sj->given & FB_SPEC_JOINT_AT)   ? "at_mm = x, y"
                        : sj->kind == FB_KIND_PRISMATIC && !(sj->given & FB_SPEC_JOINT_AXIS)
@@ -366,7 +325,7 @@ static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, 
     int joined = 0;
     for (int j = 0; j < s->njoints; j++) joined |= s->joint[j].body[0] == b || s->joint[j].body[1] == b;
     if (!joined) {
-      const entry *at = first_of(e, n, BODY_PREFIX, s->body[b].name);
+      const entry *at = fb_planar_entry_first(e, n, BODY_PREFIX, s->body[b].name);
       return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: no joint names body '%s' in its bodies "
                          "key", at ? at->origin : "case", at ? at->section : "body",
                          s->body[b].name);
@@ -374,7 +333,7 @@ static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, 
   }
   for (int k = 0; k < s->npoints; k++) {
     const fb_planar_spec_point *p = &s->point[k];
-    const entry *at = first_of(e, n, POINT_PREFIX, p->name);
+    const entry *at = fb_planar_entry_first(e, n, POINT_PREFIX, p->name);
     const char *miss = !(p->given & FB_SPEC_POINT_BODY) ? "body = NAME (the moving body it is a "
                                                           "point of)"
                        : !(p->given & FB_SPEC_POINT_AT) ? "at_mm = x, y (where it is in the "
@@ -382,7 +341,7 @@ static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, 
                                                         : NULL;
     if (miss)
       return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] has no %s", at->origin, at->section, miss);
-    const entry *key = entry_of(e, n, at->section, "body");
+    const entry *key = fb_planar_entry_of(e, n, at->section, "body");
     if (strcmp(p->body, "ground") == 0)
       return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] body = %s: the ground does not move; a "
                          "point is on a moving body", key->origin, key->section, p->body);
@@ -399,6 +358,9 @@ static fb_status sections_whole(const fb_planar_spec *s, const entry *e, int n, 
   }
   return FB_OK;
 }
+
+
+
 
 /* Every link of the description is a link length the four-bar takes
  * (LEN_RULE, as [linkage] crank_mm: one rule): a body's revolute joints two
@@ -436,7 +398,7 @@ static fb_status links_whole(const fb_planar_spec *s, const entry *e, int n, fb_
     char sec0[sizeof e->section], sec1[sizeof e->section];
     snprintf(sec0, sizeof sec0, "%s%s", JOINT_PREFIX, s->joint[bad[0]].name);
     snprintf(sec1, sizeof sec1, "%s%s", JOINT_PREFIX, s->joint[bad[1]].name);
-    const entry *a0 = entry_of(e, n, sec0, "at_mm"), *a1 = entry_of(e, n, sec1, "at_mm");
+    const entry *a0 = fb_planar_entry_of(e, n, sec0, "at_mm"), *a1 = fb_planar_entry_of(e, n, sec1, "at_mm");
     if (a0 > a1) { /* the later of the two named first */
       const entry *t = a0;
       a0 = a1, a1 = t;
@@ -482,7 +444,7 @@ static int case_names(case_name *out, int max, const fb_planar_spec *s, const en
   int k = 0;
   out[k++] = (case_name){"body", "ground", NULL};
   const entry *joint_at[FB_PLANAR_SPEC_MAX_JOINTS];
-  for (int j = 0; j < s->njoints; j++) joint_at[j] = first_of(e, n, JOINT_PREFIX, s->joint[j].name);
+  for (int j = 0; j < s->njoints; j++) joint_at[j] = fb_planar_entry_first(e, n, JOINT_PREFIX, s->joint[j].name);
   for (int i = 0; i < n && k < max; i++) {
     const entry *x = &e[i];
     for (int b = 1; b < s->nbodies && k < max; b++) {
@@ -499,8 +461,14 @@ static int case_names(case_name *out, int max, const fb_planar_spec *s, const en
       if (joint_at[j] == x)
         out[k++] = (case_name){"joint", s->joint[j].name, x};
     for (int p = 0; p < s->npoints && k < max; p++)
-      if (first_of(e, n, POINT_PREFIX, s->point[p].name) == x)
+      if (fb_planar_entry_first(e, n, POINT_PREFIX, s->point[p].name) == x)
         out[k++] = (case_name){"point", s->point[p].name, x};
+    for (int p = 0; p < s->nsprings && k < max; p++)
+      if (fb_planar_entry_first(e, n, SPRING_PREFIX, s->spring[p].name) == x)
+        out[k++] = (case_name){"spring", s->spring[p].name, x};
+    for (int p = 0; p < s->nloads && k < max; p++)
+      if (fb_planar_entry_first(e, n, LOAD_PREFIX, s->load[p].name) == x)
+        out[k++] = (case_name){"load", s->load[p].name, x};
   }
   return k;
 }
@@ -517,7 +485,10 @@ static const char *given_in(char *buf, size_t size, const entry *x, const char *
  * one column and key word, and no fixed word; the later name is refused,
  * with the earlier named beside it. */
 static fb_status names_one_word(const fb_planar_spec *s, const entry *e, int n, fb_diag *diag) {
-  enum { MAX = FB_PLANAR_SPEC_MAX_BODIES + 1 + FB_PLANAR_SPEC_MAX_JOINTS + FB_PLANAR_SPEC_MAX_POINTS };
+  enum {
+    MAX = FB_PLANAR_SPEC_MAX_BODIES + 1 + FB_PLANAR_SPEC_MAX_JOINTS + FB_PLANAR_SPEC_MAX_POINTS +
+          FB_PLANAR_SPEC_MAX_SPRINGS + FB_PLANAR_SPEC_MAX_LOADS
+  };
   case_name list[MAX];
   const char *names[MAX];
   const int count = case_names(list, MAX, s, e, n);
@@ -580,7 +551,7 @@ static fb_status joint_names(int *mask, const fb_planar_spec *s, const entry *e,
 static fb_status drive_and_clearance(fb_case *c, const entry *e, int n, const char *path,
                                      fb_diag *diag) {
   fb_planar_spec *s = &c->planar;
-  const entry *dr = entry_of(e, n, "drive", "joint");
+  const entry *dr = fb_planar_entry_of(e, n, "drive", "joint");
   if (!dr)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [linkage] type = planar needs [drive] joint = "
                        "NAME, the revolute joint the drive turns", path ? path : "case");
@@ -593,20 +564,13 @@ static fb_status drive_and_clearance(fb_case *c, const entry *e, int n, const ch
   if (st != FB_OK) return st;
   for (s->drive = 0; !s->undriven && !(mask & (1 << s->drive)); s->drive++) continue;
   if (s->undriven) s->drive = -1;
-  const entry *cl = entry_of(e, n, "clearance", "joints");
+  const entry *cl = fb_planar_entry_of(e, n, "clearance", "joints");
   c->clearance.mask = 0; /* a planar case's default: no clearance joint */
   st = cl ? joint_names(&c->clearance.mask, s, cl, 0, diag) : FB_OK;
   if (st == FB_OK) st = fb_casefile_planar_free(c, e, n, path, diag);
   return st == FB_OK ? fb_casefile_planar_guides(c, e, n, path, diag) : st;
 }
 
-/* the last entry of [section] key (a --set after the file's), NULL: none */
-static const entry *last_of(const entry *e, int n, const char *section, const char *key) {
-  const entry *at = NULL;
-  for (int i = 0; i < n; i++)
-    if (strcmp(e[i].section, section) == 0 && strcmp(e[i].key, key) == 0) at = &e[i];
-  return at;
-}
 
 /* An engine's clearance model of a planar case is built by the engine kit
  * (fb_model_clearance_at_drive's rule): a clearance at the driven joint
@@ -620,14 +584,15 @@ static fb_status clearance_at_drive(const fb_case *c, const entry *e, int n, con
     const fb_model *m = fb_model_find(c->models[i]);
     fb_diag inner;
     if (!m || fb_model_clearance_at_drive(m, 1, s->joint[s->drive].name, &inner) == FB_OK) continue;
-    const entry *cl = last_of(e, n, "clearance", "joints"), *md = last_of(e, n, "run", "models");
-    const entry *dr = last_of(e, n, "drive", "joint");
+    const entry *cl = fb_planar_entry_last(e, n, "clearance", "joints"), *md = fb_planar_entry_last(e, n, "run", "models");
+    const entry *dr = fb_planar_entry_last(e, n, "drive", "joint");
     return fb_diag_set(diag, FB_ERR_ARG, "%s: %s (given: [drive] joint at %s; [run] models at %s)",
                        cl ? cl->origin : path ? path : "case", inner.msg, dr ? dr->origin : "?",
                        md ? md->origin : "its default");
   }
   return FB_OK;
 }
+
 
 /* one line on a checked description, for the refusal */
 static void summary(char *buf, size_t size, const fb_planar *m) {
@@ -661,6 +626,7 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
   fb_status st = names_one_word(&c->planar, e, n, diag);
   if (st == FB_OK) st = sections_whole(&c->planar, e, n, path, diag);
   if (st == FB_OK) st = links_whole(&c->planar, e, n, diag);
+  if (st == FB_OK) st = fb_casefile_planar_loads_whole(&c->planar, e, n, diag);
   if (st == FB_OK) st = drive_and_clearance(c, e, n, path, diag);
   if (st != FB_OK) return st;
   fb_planar *m;
@@ -682,6 +648,7 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
     snprintf(c->models[0], sizeof c->models[0], "%s", c->planar.undriven ? "reference" : "analytic");
   }
   st = clearance_at_drive(c, e, n, path, diag);
+  if (st == FB_OK) st = fb_casefile_planar_loads_applied(c, e, n, diag);
   if (st != FB_OK) return st;
   if (run) return FB_OK;
   return fb_diag_set(diag, FB_ERR_ARG,
@@ -696,7 +663,7 @@ void fb_casefile_planar_write_keys(FILE *f) {
       {"bodies", "-", "(required)", "two different body names, ground or a body of the case",
        "the two bodies the joint joins; a revolute clearance joint's pin is on the first, its "
        "hole on the second; a joint's reaction is the force on the second from the first"},
-      {"at_mm", "mm", "(required)", POINT_RULE,
+      {"at_mm", "mm", "(required)", FB_PLANAR_POINT_RULE,
        "where the joint is in the assembly configuration (both bodies' point)"},
       {"kind", "-", "revolute", "revolute or prismatic",
        "revolute: a pin, both bodies' points together; prismatic: a slide, the bodies keep "
@@ -713,7 +680,7 @@ void fb_casefile_planar_write_keys(FILE *f) {
     fprintf(f, "| [joint.NAME] %s | %s | %s | %s | planar case: %s |\n", joint_rows[i][0],
             joint_rows[i][1], joint_rows[i][2], joint_rows[i][3], joint_rows[i][4]);
   fprintf(f, "| [body.NAME] centre_mm | mm | (derived) | %s | planar case: the body's centre of "
-          "mass in the assembly configuration |\n", POINT_RULE);
+          "mass in the assembly configuration |\n", FB_PLANAR_POINT_RULE);
   for (size_t i = 0; i < sizeof body_numbers / sizeof body_numbers[0]; i++)
     fprintf(f, "| [body.NAME] %s | %s | %s | %s | planar case: %s |\n", body_numbers[i].key,
             body_numbers[i].unit, body_numbers[i].def, body_numbers[i].rule, body_numbers[i].doc);
@@ -721,7 +688,8 @@ void fb_casefile_planar_write_keys(FILE *f) {
           "the body an output point is a point of; the run writes its position, velocity and "
           "acceleration (columns NAME_x_m ... NAME_a_y_m_s2) and their extremes |\n");
   fprintf(f, "| [point.NAME] at_mm | mm | (required) | %s | planar case: where the output point "
-          "is in the assembly configuration |\n", POINT_RULE);
+          "is in the assembly configuration |\n", FB_PLANAR_POINT_RULE);
+  fb_casefile_planar_loads_write_keys(f);
   fprintf(f, "| [drive] joint | - | (required) | a revolute joint of the case, or none | planar "
           "case: the joint the drive turns at speed_rpm in direction (its second body relative "
           "to its first); none: an undriven case, moving from its bodies' initial_omega_rad_s "

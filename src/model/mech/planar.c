@@ -32,6 +32,8 @@ void fb_planar_free(fb_planar *m) {
   free(m->body);
   free(m->joint);
   free(m->point);
+  free(m->spring);
+  free(m->load);
   free(m);
 }
 
@@ -110,6 +112,15 @@ static void to_body(double out[2], const fb_planar *m, int b, const double v[2],
   out[1] = -s * d[0] + c * d[1];
 }
 
+void fb_planar_at_assembly(double out[2], const fb_planar *m, int b, const double p[2]) {
+  const fb_planar_body *bb = &m->body[b];
+  const double c = cos(bb->angle0), s = sin(bb->angle0);
+  const double o[2] = {b == FB_PLANAR_GROUND ? 0.0 : bb->centre[0],
+                       b == FB_PLANAR_GROUND ? 0.0 : bb->centre[1]};
+  out[0] = o[0] + c * p[0] - s * p[1];
+  out[1] = o[1] + s * p[0] + c * p[1];
+}
+
 int fb_planar_add_joint(fb_planar *m, const char *name, fb_joint_kind kind, int b0, int b1,
                         const double at[2], double axis_angle, fb_diag *diag) {
   if (!name_ok(m, name, "joint", diag)) return -1;
@@ -160,6 +171,77 @@ int fb_planar_add_point(fb_planar *m, const char *name, int b, const double at[2
   p->at[1] = at[1];
   to_body(p->point, m, b, at, 1);
   return m->npoints++;
+}
+
+/* name fits a spring's or load's name (they write no column) */
+static int short_name(const char *name, const char *what, fb_diag *diag) {
+  if (name && *name && strlen(name) < FB_PLANAR_NAME_SIZE) return 1;
+  fb_diag_set(diag, FB_ERR_ARG, "a %s name is 1 to %d characters", what, FB_PLANAR_NAME_SIZE - 1);
+  return 0;
+}
+
+int fb_planar_add_spring(fb_planar *m, const char *name, int b0, int b1, const double at[2][2],
+                         double stiffness, double free_length, double damping, fb_diag *diag) {
+  if (!short_name(name, "spring", diag)) return -1;
+  if (b0 < 0 || b0 >= m->nbodies || b1 < 0 || b1 >= m->nbodies || b0 == b1)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "spring '%s': bodies %d and %d: a spring "
+                               "joins two different bodies of the description (0 .. %d)",
+                               name, b0, b1, m->nbodies - 1));
+  const double nums[6] = {at[0][0], at[0][1], at[1][0], at[1][1], stiffness, damping};
+  for (int k = 0; k < 6; k++)
+    if (!isfinite(nums[k]) || (k >= 4 && nums[k] < 0.0) || !isfinite(free_length))
+      return refused(fb_diag_set(diag, FB_ERR_RANGE, "spring '%s': its ends must be finite and "
+                                 "its stiffness, free length and damping finite and not "
+                                 "negative", name));
+  const double l0 = hypot(at[1][0] - at[0][0], at[1][1] - at[0][1]);
+  if (l0 < FB_PLANAR_SPRING_MIN_M)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "spring '%s': its ends meet in the assembly "
+                               "(%g m apart): it has no line to pull along", name, l0));
+  fb_planar_spring *grown = realloc(m->spring, ((size_t)m->nsprings + 1) * sizeof *grown);
+  if (!grown) return refused(fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for spring '%s'", name));
+  m->spring = grown;
+  fb_planar_spring *p = &m->spring[m->nsprings];
+  memset(p, 0, sizeof *p);
+  snprintf(p->name, sizeof p->name, "%s", name);
+  p->body[0] = b0;
+  p->body[1] = b1;
+  to_body(p->point[0], m, b0, at[0], 1);
+  to_body(p->point[1], m, b1, at[1], 1);
+  p->stiffness = stiffness;
+  p->free_length = free_length < 0.0 ? l0 : free_length;
+  p->damping = damping;
+  return m->nsprings++;
+}
+
+int fb_planar_add_load(fb_planar *m, const char *name, int b, const double at[2],
+                       const double force[2], double torque, int active, int stroke,
+                       fb_diag *diag) {
+  if (!short_name(name, "load", diag)) return -1;
+  if (b <= FB_PLANAR_GROUND || b >= m->nbodies)
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "load '%s': body %d: a load acts on a moving "
+                               "body of the description (1 .. %d)", name, b, m->nbodies - 1));
+  if (!isfinite(at[0]) || !isfinite(at[1]) || !isfinite(force[0]) || !isfinite(force[1]) ||
+      !isfinite(torque))
+    return refused(fb_diag_set(diag, FB_ERR_RANGE, "load '%s': its point, force and torque must "
+                               "be finite", name));
+  const int follows = active != FB_PLANAR_LOAD_ALWAYS;
+  if (follows && (stroke < 0 || stroke >= m->njoints || m->joint[stroke].kind != FB_KIND_PRISMATIC))
+    return refused(fb_diag_set(diag, FB_ERR_ARG, "load '%s': a load on one stroke follows a "
+                               "prismatic joint's slide (joint %d is none)", name, stroke));
+  fb_planar_load *grown = realloc(m->load, ((size_t)m->nloads + 1) * sizeof *grown);
+  if (!grown) return refused(fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for load '%s'", name));
+  m->load = grown;
+  fb_planar_load *p = &m->load[m->nloads];
+  memset(p, 0, sizeof *p);
+  snprintf(p->name, sizeof p->name, "%s", name);
+  p->body = b;
+  to_body(p->point, m, b, at, 1);
+  p->force[0] = force[0];
+  p->force[1] = force[1];
+  p->torque = torque;
+  p->active = active;
+  p->stroke = follows ? stroke : -1;
+  return m->nloads++;
 }
 
 fb_status fb_planar_set_drive(fb_planar *m, int j, fb_diag *diag) {

@@ -33,6 +33,11 @@
  * fits inih's 49 characters (setup/ini_lines.h) with "joint." before it. */
 #define FB_PLANAR_NAME_SIZE 44
 
+/* A spring's ends closer than this in the assembly meet [m]: the line
+ * its force acts along is not defined (FB_PLANAR_SAME_POINT_M's scale,
+ * planar_spec.h: a position typed to microns at best). */
+#define FB_PLANAR_SPRING_MIN_M 1e-9
+
 /* Index of the ground in fb_planar.body. */
 #define FB_PLANAR_GROUND 0
 
@@ -81,6 +86,42 @@ typedef struct {
   double point[2];                /* the same point in the body's frame [m] (2) */
 } fb_planar_mark;
 
+/* One linear spring-damper ([spring.NAME]) between a point of body[0]
+ * and a point of body[1] (either may be the ground): along the line from
+ * its end on body[0] to its end on body[1], of length l, it pulls the ends
+ * together with the tension f = stiffness (l - free_length) + damping l'
+ * (negative: it pushes them apart); potential energy
+ * 1/2 stiffness (l - free_length)^2. */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE]; /* "return-spring" */
+  int body[2];                    /* its bodies (indices into fb_planar.body) */
+  double point[2][2];             /* its end on body[k] in that body's frame [m] (2 x 2) */
+  double stiffness;               /* [N/m] >= 0 */
+  double free_length;             /* [m] >= 0 */
+  double damping;                 /* [N s/m] >= 0 */
+} fb_planar_spring;
+
+/* When a load acts (fb_planar_load.active). */
+enum {
+  FB_PLANAR_LOAD_ALWAYS = 0,
+  FB_PLANAR_LOAD_OUTSTROKE = 1, /* while its stroke joint's slide rate is positive */
+  FB_PLANAR_LOAD_RETURN = 2     /* while it is negative */
+};
+
+/* One constant load ([load.NAME]) on a moving body: a force in the world
+ * frame at a point of the body and a torque about +z, acting always or on
+ * one stroke of a prismatic joint (the slide of planar_outputs.h, its
+ * rate's sign). */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE]; /* "cutting" */
+  int body;                       /* the moving body it acts on */
+  double point[2];                /* its point of application in the body's frame [m] (2) */
+  double force[2];                /* world frame [N] (2) */
+  double torque;                  /* about +z [N m] */
+  int active;                     /* FB_PLANAR_LOAD_* */
+  int stroke;                     /* the prismatic joint whose stroke it follows; -1: always */
+} fb_planar_load;
+
 /* A planar mechanism. */
 typedef struct {
   int nbodies;            /* bodies held, the ground (index 0) included */
@@ -92,6 +133,10 @@ typedef struct {
   int drive;              /* the driven joint (revolute), -1 before fb_planar_set_drive */
   int npoints;            /* output points held (fb_planar_add_point) */
   fb_planar_mark *point;  /* (npoints), NULL when none */
+  int nsprings;           /* springs held (fb_planar_add_spring) */
+  fb_planar_spring *spring; /* (nsprings), NULL when none */
+  int nloads;             /* loads held (fb_planar_add_load) */
+  fb_planar_load *load;   /* (nloads), NULL when none */
 } fb_planar;
 
 /* A description with the ground alone (named "ground"), room for
@@ -132,6 +177,26 @@ int fb_planar_add_joint(fb_planar *m, const char *name, fb_joint_kind kind, int 
  * not a moving body, FB_ERR_RANGE when at is not finite, FB_ERR_NOMEM. */
 int fb_planar_add_point(fb_planar *m, const char *name, int b, const double at[2], fb_diag *diag);
 
+/* Adds spring name between bodies b0 and b1 (either may be the ground,
+ * not both the same) with ends at[0] on b0 and at[1] on b1 (2 x 2) [m] in
+ * the assembly configuration, stiffness [N/m], free_length [m] (negative:
+ * the assembly distance) and damping [N s/m]. Returns its index, or -1
+ * with diag filled: FB_ERR_ARG for a body out of range, b0 == b1, ends
+ * that meet in the assembly (no line to pull along), FB_ERR_RANGE for a
+ * number not finite or negative, FB_ERR_NOMEM. */
+int fb_planar_add_spring(fb_planar *m, const char *name, int b0, int b1, const double at[2][2],
+                         double stiffness, double free_length, double damping, fb_diag *diag);
+
+/* Adds load name on moving body b at point at (2) [m] in the assembly
+ * configuration: force (2) [N] in the world frame, torque [N m] about +z,
+ * active FB_PLANAR_LOAD_* following prismatic joint stroke (-1 with
+ * FB_PLANAR_LOAD_ALWAYS). Returns its index, or -1 with diag filled:
+ * FB_ERR_ARG for b not a moving body or stroke not a prismatic joint,
+ * FB_ERR_RANGE for a number not finite, FB_ERR_NOMEM. */
+int fb_planar_add_load(fb_planar *m, const char *name, int b, const double at[2],
+                       const double force[2], double torque, int active, int stroke,
+                       fb_diag *diag);
+
 /* Makes joint j the driven joint. Errors: FB_ERR_ARG when j is out of range
  * or not revolute. */
 fb_status fb_planar_set_drive(fb_planar *m, int j, fb_diag *diag);
@@ -171,6 +236,10 @@ int fb_planar_gruebler(const fb_planar *m);
  * position from the mean of them all, at least 1 mm (the scale of the
  * core's length tolerances). */
 double fb_planar_size(const fb_planar *m);
+
+/* Point p (2) [m] of body b's frame where the assembly puts it, in the
+ * world [m] (out, 2): the ground's points are world points. */
+void fb_planar_at_assembly(double out[2], const fb_planar *m, int b, const double p[2]);
 
 /* The coordinates of the assembly configuration into q (fb_planar_nq):
  * every moving body at (centre, angle0). */

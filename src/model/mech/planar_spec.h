@@ -1,5 +1,6 @@
-/* What a planar case file says ([linkage] type = planar): its [joint.NAME]
- * and [body.NAME] sections and [drive] joint, as read, in SI, before any
+/* What a planar case file says ([linkage] type = planar): its [joint.NAME],
+ * [body.NAME], [point.NAME], [spring.NAME] and [load.NAME] sections and
+ * [drive] joint, as read, in SI, before any
  * derivation (model floor: plain data held by the case, copied with it).
  * The description the core computes on (planar.h) is built from it at run
  * time, sized by its content (physics/planar/planar_case.h,
@@ -14,6 +15,8 @@
 #ifndef FB_PLANAR_SPEC_H
 #define FB_PLANAR_SPEC_H
 
+#include <stdio.h>
+
 #include "planar.h"
 
 #define FB_PLANAR_SPEC_MAX_JOINTS 31
@@ -21,6 +24,10 @@
 /* Output points ([point.NAME]): a tool tip, a coupler point, a ram's
  * reference point or two per body of a six-bar. */
 #define FB_PLANAR_SPEC_MAX_POINTS 16
+/* Springs ([spring.NAME]) and loads ([load.NAME]): a return spring or two
+ * and a working load per stroke are what a case describes by hand. */
+#define FB_PLANAR_SPEC_MAX_SPRINGS 16
+#define FB_PLANAR_SPEC_MAX_LOADS 16
 
 /* Two joint positions closer than this are one point [m] (a compound
  * hinge): a position is typed to microns at best, and a bar shorter than
@@ -44,8 +51,43 @@ enum {
   FB_SPEC_BODY_THICK = 32,  /* thickness_mm */
   FB_SPEC_BODY_OMEGA0 = 64, /* initial_omega_rad_s */
   FB_SPEC_POINT_BODY = 1,   /* [point.NAME] body = NAME */
-  FB_SPEC_POINT_AT = 2      /* [point.NAME] at_mm = x, y */
+  FB_SPEC_POINT_AT = 2,     /* [point.NAME] at_mm = x, y */
+  FB_SPEC_SPRING_BODIES = 1, /* [spring.NAME] bodies = A, B */
+  FB_SPEC_SPRING_AT_A = 2,   /* at_a_mm */
+  FB_SPEC_SPRING_AT_B = 4,   /* at_b_mm */
+  FB_SPEC_SPRING_STIFF = 8,  /* stiffness_n_m */
+  FB_SPEC_SPRING_FREE = 16,  /* free_length_mm */
+  FB_SPEC_SPRING_DAMP = 32,  /* damping_n_s_m */
+  FB_SPEC_LOAD_BODY = 1,     /* [load.NAME] body = NAME */
+  FB_SPEC_LOAD_AT = 2,       /* at_mm */
+  FB_SPEC_LOAD_FORCE = 4,    /* force_n = fx, fy */
+  FB_SPEC_LOAD_TORQUE = 8,   /* torque_n_m */
+  FB_SPEC_LOAD_ACTIVE = 16   /* active */
 };
+
+/* One [spring.NAME] section: a linear spring-damper (planar.h
+ * fb_planar_spring). */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE];    /* NAME */
+  char body[2][FB_PLANAR_NAME_SIZE]; /* its bodies' names as given (ground allowed) */
+  double at[2][2];                   /* its ends on body[0] and body[1], assembly [m] (2 x 2) */
+  double stiffness;                  /* [N/m] */
+  double free_length;                /* [m] when given */
+  double damping;                    /* [N s/m] (0 unless given) */
+  int given;                         /* FB_SPEC_SPRING_* bits */
+} fb_planar_spec_spring;
+
+/* One [load.NAME] section: a constant load (planar.h fb_planar_load). */
+typedef struct {
+  char name[FB_PLANAR_NAME_SIZE]; /* NAME */
+  char body[FB_PLANAR_NAME_SIZE]; /* the moving body's name as given */
+  double at[2];                   /* point of application, assembly [m] (2) */
+  double force[2];                /* world frame [N] (2) (0 unless given) */
+  double torque;                  /* about +z [N m] (0 unless given) */
+  int active;                     /* FB_PLANAR_LOAD_* (always unless given) */
+  int stroke;                     /* the prismatic joint it follows (index into joint), -1 */
+  int given;                      /* FB_SPEC_LOAD_* bits */
+} fb_planar_spec_load;
 
 /* One [point.NAME] section: an output point (planar.h fb_planar_mark). */
 typedef struct {
@@ -94,6 +136,20 @@ typedef struct {
   int undriven;                /* 1: [drive] joint = none (a free start, drive -1) */
   int npoints;                 /* output points held, in file order */
   fb_planar_spec_point point[FB_PLANAR_SPEC_MAX_POINTS];
+  int nsprings;                /* springs held, in file order */
+  fb_planar_spec_spring spring[FB_PLANAR_SPEC_MAX_SPRINGS];
+  int nloads;                  /* loads held, in file order */
+  fb_planar_spec_load load[FB_PLANAR_SPEC_MAX_LOADS];
 } fb_planar_spec;
+
+/* The first of s's springs and loads as its section, "[spring.NAME]" or
+ * "[load.NAME]", into buf (size); NULL when it has neither: what a
+ * command that does not apply them names when it refuses the case. */
+static inline const char *fb_planar_spec_loaded(const fb_planar_spec *s, char *buf, size_t size) {
+  if (s->nsprings) snprintf(buf, size, "[spring.%s]", s->spring[0].name);
+  else if (s->nloads) snprintf(buf, size, "[load.%s]", s->load[0].name);
+  else return NULL;
+  return buf;
+}
 
 #endif

@@ -278,6 +278,20 @@ static fb_status compile(fb_planar **out, const fb_planar_spec *s, double densit
     if (fb_planar_add_point(p, sp->name, fb_planar_find_body(p, sp->body), sp->at, diag) < 0)
       rc = FB_ERR_ARG;
   }
+  for (int k = 0; k < s->nsprings && rc == FB_OK; k++) { /* springs and loads: no constraint */
+    const fb_planar_spec_spring *sp = &s->spring[k];
+    const double l0 = sp->given & FB_SPEC_SPRING_FREE ? sp->free_length : -1.0;
+    if (fb_planar_add_spring(p, sp->name, fb_planar_find_body(p, sp->body[0]),
+                             fb_planar_find_body(p, sp->body[1]), sp->at, sp->stiffness, l0,
+                             sp->damping, diag) < 0)
+      rc = FB_ERR_ARG;
+  }
+  for (int k = 0; k < s->nloads && rc == FB_OK; k++) {
+    const fb_planar_spec_load *sl = &s->load[k];
+    if (fb_planar_add_load(p, sl->name, fb_planar_find_body(p, sl->body), sl->at, sl->force,
+                           sl->torque, sl->active, sl->stroke, diag) < 0)
+      rc = FB_ERR_ARG;
+  }
   if (rc == FB_OK && s->drive < 0 && !s->undriven)
     rc = fb_diag_set(diag, FB_ERR_ARG, "no drive: name the driven joint in [drive] joint");
   if (rc == FB_OK && !s->undriven && (rc = fb_planar_set_drive(p, s->drive, diag)) != FB_OK)

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "planar_loads.h"
 #include "planar_path.h"
 
 /* the force and moment about its centre that rows r, r + 1 with
@@ -20,15 +21,18 @@ static void on_body(double f[3], const double *val, const int *col, const int *r
       if (col[e] / 3 == b - 1) f[col[e] % 3] -= val[e] * lam[r + i];
 }
 
-/* Q - M q'' of m at the accelerations qdd into rhs (fb_planar_nq) */
-static void applied_less_inertial(double *rhs, const fb_planar *m, const double *qdd,
-                                  double gravity) {
+/* Q - M q'' of m at q, qd and the accelerations qdd into rhs
+ * (fb_planar_nq): gravity, springs and loads (planar_loads.h) less the
+ * bodies' inertia */
+static void applied_less_inertial(double *rhs, const fb_planar *m, const double *q,
+                                  const double *qd, const double *qdd, double gravity) {
+  fb_planar_applied(rhs, m, q, qd, gravity);
   for (int b = 1; b < m->nbodies; b++) {
     const fb_planar_body *bb = &m->body[b];
     const int c = 3 * (b - 1);
-    rhs[c] = -bb->mass * qdd[c];
-    rhs[c + 1] = -bb->mass * gravity - bb->mass * qdd[c + 1];
-    rhs[c + 2] = -bb->inertia * qdd[c + 2];
+    rhs[c] -= bb->mass * qdd[c];
+    rhs[c + 1] -= bb->mass * qdd[c + 1];
+    rhs[c + 2] -= bb->inertia * qdd[c + 2];
   }
 }
 
@@ -48,25 +52,25 @@ fb_status fb_planar_invdyn(fb_planar_reaction *out, double *drive_torque, const 
   fb_planar_kin *k;
   st = fb_planar_kin_new(&k, m, diag);
   if (st != FB_OK) return st;
-  (void)qd; /* the velocities enter through q'' alone */
   const fb_planar_drive d = {0.0, 0.0, 0.0};
   if (fb_planar_motion(k, NULL, NULL, q, &d, NULL, NULL) != FB_OK)
     st = fb_diag_set(diag, FB_ERR_ASSEMBLY, "inverse dynamics: the Jacobian is singular (a "
                      "locked position): the reactions are not determined there");
-  if (st == FB_OK) st = fb_planar_invdyn_kin(out, drive_torque, k, q, qdd, gravity, diag);
+  if (st == FB_OK) st = fb_planar_invdyn_kin(out, drive_torque, k, q, qd, qdd, gravity, diag);
   fb_planar_kin_free(k);
   return st;
 }
 
 fb_status fb_planar_invdyn_kin(fb_planar_reaction *out, double *drive_torque, fb_planar_kin *k,
-                               const double *q, const double *qdd, double gravity, fb_diag *diag) {
+                               const double *q, const double *qd, const double *qdd,
+                               double gravity, fb_diag *diag) {
   const fb_planar *m = fb_planar_kin_mech(k);
   const int n = fb_planar_nq(m);
   const int *col, *rowptr;
   double *rhs;
   const double *val = fb_planar_kin_jacobian(k, &col, &rowptr, &rhs);
   double *lam = rhs + n;
-  applied_less_inertial(rhs, m, qdd, gravity);
+  applied_less_inertial(rhs, m, q, qd, qdd, gravity);
   fb_planar_kin_solve_transposed(k, rhs, lam);
   for (int i = 0; i < n; i++)
     if (!isfinite(lam[i]))
@@ -112,7 +116,7 @@ fb_status fb_planar_reaction_max(double *most, const fb_planar *m, double omega,
     if (i > 0) st = fb_planar_follow(k, q, (i - 1) * da, i * da, NULL, &end, diag);
     const fb_planar_drive d = {i * da, omega, 0.0};
     if (st == FB_OK) st = fb_planar_motion(k, qd, qdd, q, &d, NULL, diag);
-    if (st == FB_OK) st = fb_planar_invdyn_kin(r, NULL, k, q, qdd, gravity, diag);
+    if (st == FB_OK) st = fb_planar_invdyn_kin(r, NULL, k, q, qd, qdd, gravity, diag);
     for (int j = 0; j < nj && st == FB_OK; j++)
       most[j] = fmax(most[j], hypot(r[j].force[0], r[j].force[1]));
   }

@@ -1,9 +1,11 @@
 /* Inverse dynamics of a planar description: the joint reactions and the
  * drive torque that make its rigid bodies follow a motion (q, q', q''),
- * gravity included, from the Lagrange multipliers of its constraints.
+ * gravity, springs and loads included, from the Lagrange multipliers of
+ * its constraints.
  *
  * With the drive's row the Jacobian Phi_q is square, so the equations of
- * motion M q'' + Phi_q^T lambda = Q (Q: gravity, (0, -m g, 0) per body)
+ * motion M q'' + Phi_q^T lambda = Q (Q: gravity, (0, -m g, 0) per body,
+ * with the springs' and loads' generalised forces, planar_loads.h)
  * give the multipliers alone: Phi_q^T lambda = Q - M q'', solved with the
  * transpose of the kinematics' sparse LU of Phi_q (planar_lu.h). A joint's rows' -Phi_q^T lambda in one body's columns are
  * the force and moment (about its centre) the joint puts on that body
@@ -37,14 +39,15 @@ fb_status fb_planar_invdyn(fb_planar_reaction *out, double *drive_torque, const 
                            const double *q, const double *qd, const double *qdd, double gravity,
                            fb_diag *diag);
 
-/* fb_planar_invdyn's reactions and drive torque at the motion q, qdd, with
+/* fb_planar_invdyn's reactions and drive torque at the motion q, qd, qdd, with
  * the LU of Phi_q(q) that the last successful fb_planar_motion(k, ..., q,
  * ...) left in k (fb_planar_kin_solve_transposed): no factorisation of its
  * own. The same multipliers to the rounding level (the two solves' roundings
  * differ). Errors: FB_ERR_ASSEMBLY when a multiplier is not finite;
  * FB_ERR_NOMEM. */
 fb_status fb_planar_invdyn_kin(fb_planar_reaction *out, double *drive_torque, fb_planar_kin *k,
-                               const double *q, const double *qdd, double gravity, fb_diag *diag);
+                               const double *q, const double *qd, const double *qdd,
+                               double gravity, fb_diag *diag);
 
 /* Every joint's largest reaction magnitude |force| over a revolution of
  * the drive at constant signed speed omega [rad/s] from the assembly

@@ -15,7 +15,7 @@ int fb_planar_output_count(const fb_planar *m) {
 }
 
 /* the world position, velocity and acceleration of point s of body b
- * (the ground's: s itself, at rest) */
+ * (the ground's: s itself, at rest); qdd NULL: accelerations zero */
 static void point_motion(double x[2], double v[2], double a[2], const double *q,
                          const double *qd, const double *qdd, int b, const double s[2]) {
   if (b == FB_PLANAR_GROUND) {
@@ -26,11 +26,12 @@ static void point_motion(double x[2], double v[2], double a[2], const double *q,
   const int i = 3 * (b - 1);
   const double c = cos(q[i + 2]), sn = sin(q[i + 2]);
   const double r[2] = {c * s[0] - sn * s[1], sn * s[0] + c * s[1]}; /* A s */
-  const double w = qd[i + 2], al = qdd[i + 2];
+  const double w = qd[i + 2], al = qdd ? qdd[i + 2] : 0.0;
+  const double ax = qdd ? qdd[i] : 0.0, ay = qdd ? qdd[i + 1] : 0.0;
   x[0] = q[i] + r[0], x[1] = q[i + 1] + r[1];
   v[0] = qd[i] - w * r[1], v[1] = qd[i + 1] + w * r[0];
-  a[0] = qdd[i] - al * r[1] - w * w * r[0];
-  a[1] = qdd[i + 1] + al * r[0] - w * w * r[1];
+  a[0] = ax - al * r[1] - w * w * r[0];
+  a[1] = ay + al * r[0] - w * w * r[1];
 }
 
 int fb_planar_slide_guide(const fb_planar *m, int j, double datum[2]) {
@@ -53,7 +54,8 @@ int fb_planar_slide_guide(const fb_planar *m, int j, double datum[2]) {
   return side;
 }
 
-/* prismatic joint j's slide, its rate and acceleration into out (3) */
+/* prismatic joint j's slide, its rate and acceleration into out (3);
+ * qdd NULL: the acceleration is not meaningful */
 static void slide(double out[3], const fb_planar *m, int j, const double *q, const double *qd,
                   const double *qdd) {
   const fb_planar_joint *pj = &m->joint[j];
@@ -66,7 +68,7 @@ static void slide(double out[3], const fb_planar *m, int j, const double *q, con
   const int b0 = pj->body[0];
   const double th = b0 == FB_PLANAR_GROUND ? 0.0 : q[3 * (b0 - 1) + 2];
   const double w = g == FB_PLANAR_GROUND ? 0.0 : qd[3 * (g - 1) + 2];
-  const double al = g == FB_PLANAR_GROUND ? 0.0 : qdd[3 * (g - 1) + 2];
+  const double al = g == FB_PLANAR_GROUND || !qdd ? 0.0 : qdd[3 * (g - 1) + 2];
   const double c = cos(th), sn = sin(th);
   const double u[2] = {c * pj->axis[0] - sn * pj->axis[1], sn * pj->axis[0] + c * pj->axis[1]};
   const double up[2] = {-u[1], u[0]};
@@ -77,6 +79,12 @@ static void slide(double out[3], const fb_planar *m, int j, const double *q, con
   out[1] = rv[0] * u[0] + rv[1] * u[1] + w * (r[0] * up[0] + r[1] * up[1]);
   out[2] = ra[0] * u[0] + ra[1] * u[1] + 2.0 * w * (rv[0] * up[0] + rv[1] * up[1]) +
            r[0] * (al * up[0] - w * w * u[0]) + r[1] * (al * up[1] - w * w * u[1]);
+}
+
+double fb_planar_slide_rate(const fb_planar *m, int j, const double *q, const double *qd) {
+  double out[3];
+  slide(out, m, j, q, qd, NULL);
+  return out[1];
 }
 
 void fb_planar_outputs(double *out, const fb_planar *m, const double *q, const double *qd,

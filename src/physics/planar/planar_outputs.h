@@ -44,6 +44,11 @@ int fb_planar_output_count(const fb_planar *m);
 void fb_planar_outputs(double *out, const fb_planar *m, const double *q, const double *qd,
                        const double *qdd);
 
+/* Prismatic joint j's slide rate [m/s] at the coordinates q and their
+ * rates qd (each fb_planar_nq(m)): s' above, the sign that tells an
+ * outstroke (positive) from a return. */
+double fb_planar_slide_rate(const fb_planar *m, int j, const double *q, const double *qd);
+
 /* Prismatic joint j's guide (0 or 1, an index into its body[]) and datum
  * in the guide's frame [m] (2) (above). */
 int fb_planar_slide_guide(const fb_planar *m, int j, double datum[2]);

@@ -1,0 +1,355 @@
+#!/usr/bin/env python3
+"""A planar case's springs ([spring.NAME]) and loads ([load.NAME]) in the
+analytic model's inverse dynamics: the drive torque and the reactions
+under them, with gravity.
+
+1. The power balance, sample by sample, from the run's own columns: with
+   an output point at every moving body's centre of mass and at every
+   spring end and load point (each point's position, velocity and
+   acceleration are columns), the drive's power T omega plus gravity's,
+   the loads' and the springs' (minus the dampers' dissipation) equals
+   the kinetic energy's rate, sum m v.a + I omega alpha. Written here from
+   the columns alone (no generalised force of the program's), on the
+   Watt six-bar (cases/watt_sixbar.ini) with a spring-damper between two
+   moving bodies, a spring to the ground and a force and a torque, and on
+   the developers' quick-return (tests/cases/quick_return.ini) with a
+   return spring and a cutting force on the ram's outstroke.
+2. A load on one stroke acts on that stroke only: the quick-return's drive
+   torque with and without its cutting force differs by F v / omega (the
+   force's virtual power over the drive's speed) where the ram's slide
+   rate is positive, and by nothing where it is negative.
+3. A spring at its free length in the assembly and a load of zero change
+   nothing: the drive torque equals the unloaded case's.
+4. The refusals: a spring whose ends meet, on an unknown body, without its
+   stiffness; a load on the ground, without a point for its force, with
+   nothing to apply, on a stroke of a case with no prismatic joint, with an
+   unknown activity; a model other than the analytic one; an undriven
+   case; the bench and the MJCF export of a case with loads.
+
+Usage: test_planar_applied.py PATH_TO_FOURBAR [TEST ...]. Prints "N passed,
+N failed"; exit 1 on any failure."""
+import csv, json, math, os, sys, tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EXE = os.path.abspath(sys.argv[1])
+CASES = os.path.join(HERE, "..", "cases")
+QR = os.path.join(HERE, "cases", "quick_return.ini")
+SIXBAR = os.path.join(CASES, "watt_sixbar.ini")
+TMP = tempfile.mkdtemp(prefix="fourbar-planar-applied-")
+suite = fb_script.Suite()
+check = suite.check
+
+G = 9.80665  # [environment] gravity_m_s2's default
+# The balance's terms come from the CSV's 12 significant digits: a term of
+# P watts carries about 5e-13 P of rounding, and the largest here (the
+# ram's m v.a, 2 kg x 8.7 m/s x 540 m/s^2 = 9.4 kW) over the drive's 41.9
+# rad/s is 1e-10 N m, against a torque range of about 400 N m (2.5e-13 of
+# it); the six-bar's terms are smaller still. The core's motion is exact to
+# its Newton tolerance (1e-12 of the size). Measured worst: 7.8e-12 of the
+# range (six-bar), 2.4e-12 (quick-return). The issue's bound 1e-9 leaves a
+# hundredfold and fails on any missing or misplaced term (the dampers
+# alone move the balance by 1e-4 of the range, a force at the wrong point
+# by more).
+BALANCE_REL = 1e-9
+# Two runs of one motion differ only by their loads' terms: where the
+# cutting force is off the torques are equal to the CSV's digits (5e-13
+# of a value); where it is on they differ by F v / omega to the same.
+# Measured worst: 2.9e-12 of the range; 1e-9 as above.
+STROKE_REL = 1e-9
+
+
+def run(*args):
+    return fb_script.run(EXE, HERE, *args)
+
+
+def columns(path):
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    head = rows[0]
+    return {h: [float(r[k]) for r in rows[1:]] for k, h in enumerate(head)}
+
+
+def append(src, dst, text):
+    with open(src) as f:
+        body = f.read()
+    with open(dst, "w") as f:
+        f.write(body + "\n" + text)
+
+
+def analytic(case, out, *sets):
+    args = ["run", case, "--out", out, "--no-figures", "--no-report",
+            "--set", "run.models=analytic", "--set", "run.revolutions=2"]
+    for s in sets:
+        args += ["--set", s]
+    rc, so, se = run(*args)
+    check(rc == 0, "%s: exit %d: %s" % (os.path.basename(case), rc, se[-600:]))
+    with open(os.path.join(out, "summary.json")) as f:
+        return columns(os.path.join(out, "analytic.csv")), json.load(f)
+
+
+def centre_points(case, name):
+    """[point.cm_BODY] at every moving body's centre of mass, from a first
+    run's summary.json description (derived masses' centres included)"""
+    _, s = analytic(case, os.path.join(TMP, name + "-bodies"))
+    bodies = s["description"]["bodies"]
+    text = ""
+    for b in bodies:
+        if b["name"] == "ground":
+            continue
+        x, y = (v * 1e3 for v in b["centre_m"])
+        text += "[point.cm_%s]\nbody = %s\nat_mm = %.12g, %.12g\n" % (b["name"], b["name"], x, y)
+    return bodies, text
+
+
+def point(cols, name, i):
+    """point name's position, velocity and acceleration at sample i"""
+    return ([cols["%s_x_m" % name][i], cols["%s_y_m" % name][i]],
+            [cols["%s_v_x_m_s" % name][i], cols["%s_v_y_m_s" % name][i]],
+            [cols["%s_a_x_m_s2" % name][i], cols["%s_a_y_m_s2" % name][i]])
+
+
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1]
+
+
+def balance(cols, bodies, driven, springs, forces, torques):
+    """the worst |power residual / omega| over the samples, and the drive
+    torque's range. springs: (end a, end b, k, l0, c), an end a point name
+    or a fixed (x, y); forces: (point, (fx, fy), active(cols, i));
+    torques: (body, t)"""
+    n = len(cols["time_s"])
+    worst = 0.0
+    for i in range(n):
+        rate = 0.0  # dT/dt
+        grav = 0.0
+        for b in bodies:
+            if b["name"] == "ground":
+                continue
+            x, v, a = point(cols, "cm_" + b["name"], i)
+            w = cols["%s_omega_rad_s" % b["name"]][i]
+            al = cols["%s_alpha_rad_s2" % b["name"]][i]
+            rate += b["mass_kg"] * dot(v, a) + b["inertia_kg_m2"] * w * al
+            grav -= b["mass_kg"] * G * v[1]
+        spring = 0.0  # the springs' power on the bodies: -(dV/dt + c l'^2)
+        for ea, eb, k, l0, c in springs:
+            pa, va = (ea, (0.0, 0.0)) if isinstance(ea, tuple) else point(cols, ea, i)[:2]
+            pb, vb = point(cols, eb, i)[:2]
+            d = [pb[0] - pa[0], pb[1] - pa[1]]
+            l = math.hypot(*d)
+            ld = dot(d, [vb[0] - va[0], vb[1] - va[1]]) / l
+            spring -= (k * (l - l0) + c * ld) * ld
+        load = 0.0
+        for p, f, active in forces:
+            if active(cols, i):
+                load += dot(f, point(cols, p, i)[1])
+        for b, t in torques:
+            load += t * cols["%s_omega_rad_s" % b][i]
+        w = cols["%s_omega_rad_s" % driven][i]
+        drive = cols["drive_torque_n_m"][i] * w
+        worst = max(worst, abs(drive + grav + spring + load - rate) / abs(w))
+    tq = cols["drive_torque_n_m"]
+    return worst, max(tq) - min(tq)
+
+
+# ---- 1. the power balance ----------------------------------------------------
+
+SIX_LOADS = """[spring.coupler-output]
+bodies = coupler, output
+at_a_mm = 65, 80
+at_b_mm = 230, 20
+stiffness_n_m = 3000
+free_length_mm = 150
+damping_n_s_m = 4
+[spring.anchor]
+bodies = ground, ternary
+at_a_mm = 150, -80
+at_b_mm = 190, 0
+stiffness_n_m = 1500
+[load.press]
+body = output
+at_mm = 240, 60
+force_n = 30, -80
+torque_n_m = 1.5
+[point.sp_coupler]
+body = coupler
+at_mm = 65, 80
+[point.sp_output]
+body = output
+at_mm = 230, 20
+[point.sp_ternary]
+body = ternary
+at_mm = 190, 0
+[point.press_at]
+body = output
+at_mm = 240, 60
+"""
+
+
+@suite.test
+def power_balance_sixbar():
+    base = os.path.join(TMP, "six-cm.ini")
+    bodies, cm = centre_points(SIXBAR, "six")
+    case = os.path.join(TMP, "six-loads.ini")
+    append(SIXBAR, case, cm + SIX_LOADS)
+    cols, s = analytic(case, os.path.join(TMP, "six"))
+    l_anchor = math.hypot(190 - 150, 0 + 80) * 1e-3  # the assembly distance: its free length
+    worst, span = balance(
+        cols, bodies, "crank",
+        [("sp_coupler", "sp_output", 3000.0, 0.150, 4.0),
+         ((0.150, -0.080), "sp_ternary", 1500.0, l_anchor, 0.0)],
+        [("press_at", (30.0, -80.0), lambda c, i: True)],
+        [("output", 1.5)])
+    print("six-bar: power balance worst %.3g N m of a torque range %.6g N m (%.3g)"
+          % (worst, span, worst / span))
+    check(worst <= BALANCE_REL * span, "six-bar: %.3g of the range" % (worst / span))
+    # the loads move the torque: without them it is another curve
+    append(SIXBAR, base, cm)
+    plain, _ = analytic(base, os.path.join(TMP, "six-plain"))
+    moved = max(abs(a - b) for a, b in zip(cols["drive_torque_n_m"], plain["drive_torque_n_m"]))
+    check(moved > 1e-3 * span, "six-bar: the loads move the torque by %.3g only" % moved)
+
+
+QR_LOADS = """[spring.return]
+bodies = ground, lever
+at_a_mm = 0, -60
+at_b_mm = 89.4427191, 44.7213595
+stiffness_n_m = 2000
+damping_n_s_m = 5
+[load.cutting]
+body = ram
+at_mm = 420, 20
+force_n = -500, 0
+active = outstroke
+[point.sp_lever]
+body = lever
+at_mm = 89.4427191, 44.7213595
+[point.tool]
+body = ram
+at_mm = 420, 20
+"""
+
+
+def outstroke(c, i):
+    return c["ram_guide_slide_v_m_s"][i] > 0.0
+
+
+@suite.test
+def power_balance_quick_return():
+    bodies, cm = centre_points(QR, "qr")
+    case = os.path.join(TMP, "qr-loads.ini")
+    append(QR, case, cm + QR_LOADS)
+    cols, s = analytic(case, os.path.join(TMP, "qr"))
+    l0 = math.hypot(89.4427191, 44.7213595 + 60) * 1e-3
+    sp, ld = s["description"]["springs"], s["description"]["loads"]
+    check(len(sp) == 1 and abs(sp[0]["free_length_m"] - l0) < 1e-12 and
+          sp[0]["bodies"] == ["ground", "lever"], "summary.json springs: %r" % sp)
+    check(len(ld) == 1 and ld[0]["stroke_joint"] == "ram-guide" and ld[0]["active"] == "outstroke"
+          and max(abs(a - b) for a, b in zip(ld[0]["at_m"], [0.42, 0.02])) < 1e-12,
+          "summary.json loads: %r" % ld)
+    worst, span = balance(cols, bodies, "crank",
+                          [((0.0, -0.060), "sp_lever", 2000.0, l0, 5.0)],
+                          [("tool", (-500.0, 0.0), outstroke)], [])
+    print("quick-return: power balance worst %.3g N m of a torque range %.6g N m (%.3g)"
+          % (worst, span, worst / span))
+    check(worst <= BALANCE_REL * span, "quick-return: %.3g of the range" % (worst / span))
+
+
+# ---- 2. one stroke -------------------------------------------------------------
+
+@suite.test
+def load_on_one_stroke():
+    cut = os.path.join(TMP, "qr-cut.ini")
+    append(QR, cut, "[load.cutting]\nbody = ram\nat_mm = 420, 20\nforce_n = -500, 0\n"
+           "active = outstroke\n")
+    loaded, _ = analytic(cut, os.path.join(TMP, "qr-cut"))
+    plain, _ = analytic(QR, os.path.join(TMP, "qr-plain"))
+    omega = loaded["crank_omega_rad_s"][0]
+    span = max(plain["drive_torque_n_m"]) - min(plain["drive_torque_n_m"])
+    on = off = 0
+    worst = 0.0
+    for i, v in enumerate(loaded["ram_guide_slide_v_m_s"]):
+        d = loaded["drive_torque_n_m"][i] - plain["drive_torque_n_m"][i]
+        want = 500.0 * v / omega if v > 0.0 else 0.0  # -F v / omega, F = -500 N along +x
+        on += v > 0.0
+        off += v < 0.0
+        worst = max(worst, abs(d - want))
+    print("one stroke: %d samples on, %d off, worst %.3g N m (%.3g of the range)"
+          % (on, off, worst, worst / span))
+    check(on > 1000 and off > 1000, "samples on %d, off %d" % (on, off))
+    check(worst <= STROKE_REL * span, "one stroke: %.3g of the range" % (worst / span))
+
+
+# ---- 3. nothing applied --------------------------------------------------------
+
+@suite.test
+def idle_spring_and_zero_load():
+    case = os.path.join(TMP, "qr-idle.ini")
+    append(QR, case, "[spring.idle]\nbodies = ground, lever\nat_a_mm = 0, -60\n"
+           "at_b_mm = 89.4427191, 44.7213595\nstiffness_n_m = 0\n"
+           "[load.none]\nbody = link\nat_mm = 200, 20\nforce_n = 0, 0\n")
+    idle, _ = analytic(case, os.path.join(TMP, "qr-idle"))
+    plain, _ = analytic(QR, os.path.join(TMP, "qr-plain2"))
+    check(idle["drive_torque_n_m"] == plain["drive_torque_n_m"],
+          "a spring of zero stiffness and a zero load changed the torque")
+
+
+# ---- 4. refusals -----------------------------------------------------------------
+
+@suite.test
+def refusals():
+    bad = [
+        ("[spring.s]\nbodies = ground, lever\nat_a_mm = 1, 2\nat_b_mm = 1, 2\n"
+         "stiffness_n_m = 10\n", "ends meet"),
+        ("[spring.s]\nbodies = ground, wheel\nat_a_mm = 1, 2\nat_b_mm = 3, 2\n"
+         "stiffness_n_m = 10\n", "'wheel' is not a body of the case"),
+        ("[spring.s]\nbodies = ground, lever\nat_a_mm = 1, 2\nat_b_mm = 3, 2\n",
+         "has no stiffness_n_m"),
+        ("[spring.s]\nbodies = ground, lever\nat_a_mm = 1, 2\nat_b_mm = 3, 2\n"
+         "stiffness_n_m = -1\n", "from 0 to 1e12 N/m"),
+        ("[load.l]\nbody = ground\nat_mm = 1, 2\nforce_n = 1, 0\n", "ground does not move"),
+        ("[load.l]\nbody = ram\nforce_n = 1, 0\n", "has no at_mm"),
+        ("[load.l]\nbody = ram\nat_mm = 1, 2\n", "loads nothing"),
+        ("[load.l]\nbody = ram\ntorque_n_m = 1\nactive = sometimes\n", "always, outstroke"),
+        ("[load.l]\nbody = ram\nat_mm = 1, 2\nforce_n = 1\n", "expected two numbers fx, fy"),
+        ("[load.ram_guide]\nbody = ram\ntorque_n_m = 1\n", "both write"),
+        ("[load.l]\nbody = ram\ntorque_n_m = 1\nspeed = 3\n", "unknown key 'speed'"),
+        ("[load.l]\nbody = ram\ntorque_n_m = 1\n[run]\nmodels = analytic, reference\n",
+         "model 'reference'"),
+    ]
+    for k, (text, words) in enumerate(bad):
+        case = os.path.join(TMP, "bad%d.ini" % k)
+        append(QR, case, text)
+        out = os.path.join(TMP, "bad%d" % k)
+        rc, so, se = run("run", case, "--out", out, "--no-figures")
+        check(rc == 2 and words in se and "bad%d.ini" % k in se,
+              "%r: exit %d, %r" % (text, rc, se[-300:]))
+        check(not os.path.exists(out), "%r left a folder" % text)
+    # a stroke on a mechanism with no prismatic joint
+    case = os.path.join(TMP, "six-stroke.ini")
+    append(SIXBAR, case, "[load.l]\nbody = output\ntorque_n_m = 1\nactive = return\n")
+    rc, so, se = run("run", case, "--out", os.path.join(TMP, "six-stroke"),
+                     "--set", "run.models=analytic")
+    check(rc == 2 and "no prismatic joint" in se, "stroke without a slide: %d %r" % (rc, se[-300:]))
+    # the commands that do not apply loads yet
+    case = os.path.join(TMP, "qr-torque.ini")
+    append(QR, case, "[load.l]\nbody = link\ntorque_n_m = 1\n")
+    rc, so, se = run("bench", case, "--out", os.path.join(TMP, "bench"))
+    check(rc == 2 and "[load.l]" in se and "engine models" in se,
+          "bench: exit %d %r" % (rc, se[-300:]))
+    rc, so, se = run("export", case, "--format", "mjcf", "--ideal", "--out",
+                     os.path.join(TMP, "x.xml"))
+    check(rc != 0 and "[load.l]" in se and not os.path.exists(os.path.join(TMP, "x.xml")),
+          "export: exit %d %r" % (rc, se[-300:]))
+    # an undriven case
+    case = os.path.join(TMP, "qr-free.ini")
+    append(QR, case, "[load.l]\nbody = link\ntorque_n_m = 1\n")
+    rc, so, se = run("run", case, "--out", os.path.join(TMP, "free"),
+                     "--set", "drive.joint=none", "--set", "run.duration_s=0.01")
+    check(rc == 2 and "undriven" in se and "[load.l]" in se,
+          "undriven: exit %d %r" % (rc, se[-300:]))
+
+
+sys.exit(suite.main(sys.argv[2:], TMP))

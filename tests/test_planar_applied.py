@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A planar case's springs ([spring.NAME]) and loads ([load.NAME]) in the
-analytic model's inverse dynamics: the drive torque and the reactions
-under them, with gravity.
+analytic model's inverse dynamics (the drive torque and the reactions
+under them, with gravity) and in the references' forward dynamics.
 
 1. The power balance, sample by sample, from the run's own columns: with
    an output point at every moving body's centre of mass and at every
@@ -20,11 +20,13 @@ under them, with gravity.
    rate is positive, and by nothing where it is negative.
 3. A spring at its free length in the assembly and a load of zero change
    nothing: the drive torque equals the unloaded case's.
-4. The refusals: a spring whose ends meet, on an unknown body, without its
+4. The reference applies them too: the six-bar braked at its output keeps
+   its clearance pin on the wall, carrying the ideal reaction.
+5. The refusals: a spring whose ends meet, on an unknown body, without its
    stiffness; a load on the ground, without a point for its force, with
    nothing to apply, on a stroke of a case with no prismatic joint, with an
-   unknown activity; a model other than the analytic one; an undriven
-   case; the bench and the MJCF export of a case with loads.
+   unknown activity; an engine's model; the bench and the MJCF export of a
+   case with loads.
 
 Usage: test_planar_applied.py PATH_TO_FOURBAR [TEST ...]. Prints "N passed,
 N failed"; exit 1 on any failure."""
@@ -257,6 +259,20 @@ def power_balance_quick_return():
     check(worst <= BALANCE_REL * span, "quick-return: %.3g of the range" % (worst / span))
 
 
+# The six-bar braked at its output (a torque of -3 N m) presses its
+# rod-output pin into the wall all the time: the reference (the impact law
+# at the case's contact) keeps it in contact over the whole second
+# revolution, and its contact force, centred on the ideal reaction, carries
+# the vibration its start-up impact leaves (the pin starts centred and
+# falls onto the wall): the force's mean over the second revolution lies
+# 1.5 % above the analytic reaction's mean (measured, both laws; 2.1 % at
+# 20 ms, decaying). Without the brake the same pin separates (935 samples
+# of the second revolution out of contact) and carries 0.8 N, not 48 N, so
+# a reference that dropped the load is 98 % off. 3 % holds the measured
+# offset twice.
+BRAKED_MEAN_REL = 0.03
+
+
 # ---- 2. one stroke -------------------------------------------------------------
 
 @suite.test
@@ -296,7 +312,34 @@ def idle_spring_and_zero_load():
           "a spring of zero stiffness and a zero load changed the torque")
 
 
-# ---- 4. refusals -----------------------------------------------------------------
+# ---- 4. the reference under a load -----------------------------------------------
+
+@suite.test
+def reference_under_a_brake():
+    case = os.path.join(TMP, "six-brake.ini")
+    append(SIXBAR, case, "[load.brake]\nbody = output\ntorque_n_m = -3\n")
+    out = os.path.join(TMP, "six-brake")
+    rc, so, se = run("run", case, "--out", out, "--no-figures", "--no-report",
+                     "--set", "run.models=analytic,reference", "--set", "run.revolutions=2")
+    check(rc == 0, "braked six-bar: exit %d: %s" % (rc, se[-600:]))
+    a = columns(os.path.join(out, "analytic.csv"))
+    r = columns(os.path.join(out, "reference.csv"))
+    n = len(r["time_s"])
+    i0 = n // 2
+    fr, fa = r["rod-output_force_n"][i0:], a["rod_output_reaction_n"][i0:]
+    out_of_contact = sum(1 for f in fr if not f > 0.0)
+    mean_r, mean_a = sum(fr) / len(fr), sum(fa) / len(fa)
+    print("braked six-bar: %d samples out of contact; contact force mean %.4g N, ideal "
+          "reaction mean %.4g N (%.3g)" % (out_of_contact, mean_r, mean_a,
+                                           mean_r / mean_a - 1.0))
+    check(out_of_contact == 0, "%d samples out of contact" % out_of_contact)
+    check(abs(mean_r / mean_a - 1.0) <= BRAKED_MEAN_REL,
+          "contact force mean %.4g N against %.4g N" % (mean_r, mean_a))
+    verdict = fb_script.models(out)["reference"]["verdict"]
+    check(verdict == "ok", "the braked reference's verdict: %s" % verdict)
+
+
+# ---- 5. refusals -----------------------------------------------------------------
 
 @suite.test
 def refusals():
@@ -316,8 +359,8 @@ def refusals():
         ("[load.l]\nbody = ram\nat_mm = 1, 2\nforce_n = 1\n", "expected two numbers fx, fy"),
         ("[load.ram_guide]\nbody = ram\ntorque_n_m = 1\n", "both write"),
         ("[load.l]\nbody = ram\ntorque_n_m = 1\nspeed = 3\n", "unknown key 'speed'"),
-        ("[load.l]\nbody = ram\ntorque_n_m = 1\n[run]\nmodels = analytic, reference\n",
-         "model 'reference'"),
+        ("[load.l]\nbody = ram\ntorque_n_m = 1\n[run]\nmodels = analytic, ode-ideal-nominal\n",
+         "model 'ode-ideal-nominal'"),
     ]
     for k, (text, words) in enumerate(bad):
         case = os.path.join(TMP, "bad%d.ini" % k)
@@ -343,13 +386,6 @@ def refusals():
                      os.path.join(TMP, "x.xml"))
     check(rc != 0 and "[load.l]" in se and not os.path.exists(os.path.join(TMP, "x.xml")),
           "export: exit %d %r" % (rc, se[-300:]))
-    # an undriven case
-    case = os.path.join(TMP, "qr-free.ini")
-    append(QR, case, "[load.l]\nbody = link\ntorque_n_m = 1\n")
-    rc, so, se = run("run", case, "--out", os.path.join(TMP, "free"),
-                     "--set", "drive.joint=none", "--set", "run.duration_s=0.01")
-    check(rc == 2 and "undriven" in se and "[load.l]" in se,
-          "undriven: exit %d %r" % (rc, se[-300:]))
 
 
 sys.exit(suite.main(sys.argv[2:], TMP))

@@ -230,6 +230,60 @@ static void test_forms_prismatic(void **state) {
   fb_planar_free(m);
 }
 
+/* springs and loads (planar_loads.h) in both forms: the six-bar with a
+ * damped spring between two moving bodies, one to the ground, a force
+ * and a torque; a slider-crank with a load on its slider's outstroke and
+ * a spring on its rod */
+static void test_forms_loaded(void **state) {
+  (void)state;
+  fb_case c;
+  fb_diag d;
+  fb_planar *m;
+  if (fb_test_shipped_case_planar(&c, "watt_sixbar.ini", &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(fb_planar_of_case(&m, &c, &c.nominal, &d), FB_OK);
+  const int coupler = fb_planar_find_body(m, "coupler"), output = fb_planar_find_body(m, "output");
+  const int ternary = fb_planar_find_body(m, "ternary");
+  const double ends[2][2] = {{0.065, 0.080}, {0.230, 0.020}};
+  const double anchor[2][2] = {{0.150, -0.080}, {0.190, 0.0}};
+  const double at[2] = {0.240, 0.060}, force[2] = {30.0, -80.0};
+  assert_true(fb_planar_add_spring(m, "s1", coupler, output, ends, 3e3, 0.15, 4.0, &d) >= 0);
+  assert_true(fb_planar_add_spring(m, "s2", 0, ternary, anchor, 1.5e3, -1.0, 0.0, &d) >= 0);
+  assert_true(fb_planar_add_load(m, "l1", output, at, force, 1.5, FB_PLANAR_LOAD_ALWAYS, -1,
+                                 &d) >= 0);
+  unsigned char six[7] = {0};
+  six[fb_planar_find_joint(m, "rod-output")] = 1;
+  for (int k = 0; k < 2; k++) {
+    const fb_planar_dyn_model model = {m, six, law_of(k ? FB_LAW_RESTITUTION : FB_LAW_IMPACT,
+                                                      k ? 1e9 : 5e10),
+                                       c.radial_clearance, 1e-3, c.gravity, fb_case_omega2(&c),
+                                       NULL, NULL};
+    const forms f = compare(&model, 300, 2.0 * c.radial_clearance, 0.2);
+    check_forms(k ? "six-bar loaded, restitution" : "six-bar loaded, impact", &f);
+  }
+  fb_planar_free(m);
+  fb_link_mass link[3] = {{0.2, 1e-4, 0, 0, 0.4}, {0.5, 2e-3, 0, 0, 0.4}, {0.6, 1e-5, 0, 0, 0}};
+  const fb_linkage lk = {{0.05, 0.2, 0.01, 0}};
+  assert_int_equal(fb_planar_slider_crank(&m, &lk, link, 0.3, &d), FB_OK);
+  int slide = -1, rod = -1;
+  for (int j = 0; j < m->njoints; j++)
+    if (m->joint[j].kind == FB_KIND_PRISMATIC) slide = j;
+  const int slider = m->joint[slide].body[m->joint[slide].body[0] == 0 ? 1 : 0];
+  for (int b = 1; b < m->nbodies; b++)
+    if (b != slider && m->body[b].mass > 0.4) rod = b;
+  assert_true(slide >= 0 && rod > 0);
+  const double pull[2][2] = {{0.1, 0.1}, {m->body[rod].centre[0], m->body[rod].centre[1]}};
+  const double push[2] = {-400.0, 0.0};
+  assert_true(fb_planar_add_spring(m, "s", 0, rod, pull, 2e3, 0.05, 3.0, &d) >= 0);
+  assert_true(fb_planar_add_load(m, "cut", slider, m->body[slider].centre, push, 0.0,
+                                 FB_PLANAR_LOAD_OUTSTROKE, slide, &d) >= 0);
+  unsigned char clear[4] = {0, 0, 1, 0};
+  const fb_planar_dyn_model model = {m, clear, law_of(FB_LAW_RESTITUTION, 1e9), 20e-6, 1e-3,
+                                     9.81, 150.0, NULL, NULL};
+  const forms f = compare(&model, 300, 40e-6, 0.3);
+  check_forms("slider-crank loaded on its outstroke", &f);
+  fb_planar_free(m);
+}
+
 /* the reference integration against reference.c over the paper case's
  * first revolution from the steady start */
 static void test_fourbar_integration(void **state) {
@@ -351,6 +405,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_forms_revolute),
       cmocka_unit_test(test_forms_prismatic),
+      cmocka_unit_test(test_forms_loaded),
       cmocka_unit_test(test_fourbar_integration),
       cmocka_unit_test(test_sixbar_clearance),
   };

@@ -26,8 +26,8 @@ fb_status fb_casefile_planar_loads_whole(fb_planar_spec *s, const entry *e, int 
                                          fb_diag *diag);
 
 /* Refuses (FB_ERR_ARG) what does not apply springs and loads yet when c
- * has any: an undriven case, a model other than the analytic one in
- * [run] models. */
+ * has any: an engine's model in [run] models (the analytic model and the
+ * references apply them). */
 fb_status fb_casefile_planar_loads_applied(const fb_case *c, const entry *e, int n,
                                            fb_diag *diag);
 

@@ -10,6 +10,7 @@
 #include "contact_mass.h"
 #include "effective_mass.h"
 #include "planar_kinematics.h"
+#include "planar_loads.h"
 #include "planar_start.h"
 
 struct fb_planar_dyn {
@@ -133,11 +134,7 @@ fb_status fb_planar_dyn_eval(fb_planar_dyn *d, double t, const double *y, double
   const int nq = d->nq;
   const double *q = y, *qd = y + nq;
   if (fb_planar_cmass_factor(d->cmass, q, 0.0, NULL) != FB_OK) return FB_ERR_NUMERIC;
-  for (int b = 1; b < m->nbodies; b++) {
-    d->force[3 * (b - 1)] = 0.0;
-    d->force[3 * (b - 1) + 1] = -m->body[b].mass * d->model.gravity;
-    d->force[3 * (b - 1) + 2] = 0.0;
-  }
+  fb_planar_applied(d->force, m, q, qd, d->model.gravity); /* gravity, springs, loads */
   for (int j = 0; j < m->njoints; j++)
     if (d->model.clearance[j])
       (m->joint[j].kind == FB_KIND_PRISMATIC ? guide_at : contact_at)(

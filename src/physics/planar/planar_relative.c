@@ -10,6 +10,7 @@
 #include "contact_mass.h"
 #include "effective_mass.h"
 #include "planar_kinematics.h"
+#include "planar_loads.h"
 #include "planar_lu.h"
 #include "planar_sparse.h"
 #include "planar_start.h"
@@ -31,7 +32,10 @@ struct fb_planar_rel {
                              length [m], 1 for an angle [rad] */
   double tau;             /* the state's unit of time [s] (fb_planar_rel_time_unit) */
   double *ru;             /* (2 nr) the state in physical units: r, r' */
-  double *mass, *grav;    /* (nq each) the diagonal of M; gravity's generalised force */
+  double *mass, *grav;    /* (nq each) the diagonal of M; the applied generalised force:
+                             gravity's, with the springs' and loads' at each evaluation when
+                             the description has them (loaded) */
+  int loaded;             /* fb_planar_has_loads */
   double *q, *cs;         /* (nq; 2 nbodies) position, the bodies' cosines and sines */
   double *qd, *qdd0, *qb; /* (nq each) q'; q''_0; the velocities' products (tree_bias) */
   double *v;              /* (nq x nr, column i at v + i nq) V = dq / dr, q' just before it */
@@ -186,6 +190,7 @@ fb_status fb_planar_rel_new(fb_planar_rel **out, const fb_planar_dyn_model *mode
     d->mass[3 * (b - 1) + 2] = m->body[b].inertia;
     d->grav[3 * (b - 1) + 1] = -m->body[b].mass * model->gravity;
   }
+  d->loaded = fb_planar_has_loads(m);
   /* which tree coordinates are slides (a prismatic tree joint's); the
    * solved coordinates start at the assembly's */
   fb_planar_assembly(m, d->q);
@@ -435,6 +440,7 @@ fb_status fb_planar_rel_eval(fb_planar_rel *d, double t, const double *z, double
   fb_planar_tree_bias(d->tree, d->qb, d->res, d->qd, ud, rd);
   fb_planar_lu_solve(d->lu, d->res, d->udd0);
   fb_planar_tree_rates(d->tree, d->qdd0, d->udd0, NULL);
+  if (d->loaded) fb_planar_applied(d->grav, m, d->q, d->qd, d->model.gravity);
   for (int k = 0; k < nq; k++) {
     d->qdd0[k] += d->qb[k];
     d->qb[k] = d->grav[k] - d->mass[k] * d->qdd0[k];

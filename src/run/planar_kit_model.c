@@ -68,6 +68,20 @@ const char *fb_planar_kit_refusal(const char *name) {
   return kit_of(name, &why) ? NULL : why;
 }
 
+int fb_planar_kit_applies_loads(const char *name) {
+  const fb_kit_binding *b = fb_planar_kit_of(name);
+  return b && b->apply_wrench;
+}
+
+const char *fb_planar_kit_loaded_models(char *buf, size_t size) {
+  size_t n = 0;
+  buf[0] = '\0';
+  for (int i = 0; i < fb_model_count && n < size; i++)
+    if (fb_planar_kit_applies_loads(fb_models[i].name))
+      n += (size_t)snprintf(buf + n, size - n, "%s%s", n ? ", " : "", fb_models[i].name);
+  return buf;
+}
+
 const char *fb_planar_kit_models(char *buf, size_t size) {
   size_t n = 0;
   buf[0] = '\0';

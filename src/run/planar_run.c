@@ -38,6 +38,15 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
                          "case is undriven ([drive] joint = none); it runs: reference, "
                          "reference-restitution and the engines' models", name);
     const char *why = fb_planar_run_refusal(name);
+    char loaded[2 * FB_PLANAR_NAME_SIZE];
+    if (!why && fb_planar_spec_loaded(&c->planar, loaded, sizeof loaded) &&
+        fb_planar_kit_of(name) && !fb_planar_kit_applies_loads(name)) {
+      char kit[2048];
+      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s': %s: its engine's binding does "
+                         "not apply springs and loads yet; the models that do: analytic, "
+                         "reference, reference-restitution, %s", name, loaded,
+                         fb_planar_kit_loaded_models(kit, sizeof kit));
+    }
     if (!why) continue;
     char kit[2048];
     fb_planar_kit_models(kit, sizeof kit);

@@ -249,6 +249,14 @@ const char *fb_planar_run_refusal(const char *name);
  * fb_planar_kit_of builds it (planar_kit_model.c). */
 const char *fb_planar_kit_refusal(const char *name);
 
+/* 1 when engine model name's binding applies a description's springs and
+ * loads (kit.h apply_wrench); 0 otherwise. */
+int fb_planar_kit_applies_loads(const char *name);
+
+/* The engine models whose bindings apply springs and loads, comma-separated,
+ * into buf (size); returns buf. */
+const char *fb_planar_kit_loaded_models(char *buf, size_t size);
+
 /* Engine model p (its samples allocated, p->name one fb_planar_kit_of
  * takes) of run r through the engine kit: the description built in the
  * engine, one engine step of h per sample, the window peaks; a clearance

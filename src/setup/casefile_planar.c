@@ -648,7 +648,6 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
     snprintf(c->models[0], sizeof c->models[0], "%s", c->planar.undriven ? "reference" : "analytic");
   }
   st = clearance_at_drive(c, e, n, path, diag);
-  if (st == FB_OK) st = fb_casefile_planar_loads_applied(c, e, n, diag);
   if (st != FB_OK) return st;
   if (run) return FB_OK;
   return fb_diag_set(diag, FB_ERR_ARG,

@@ -5,7 +5,6 @@
 #include <string.h>
 
 #include "casefile_planar_values.h"
-#include "model_table.h"
 #include "units.h"
 
 #define SPRING_PREFIX "spring."
@@ -255,30 +254,6 @@ fb_status fb_casefile_planar_loads_whole(fb_planar_spec *s, const entry *e, int 
   return FB_OK;
 }
 
-/* A case's springs and loads act in the analytic model's inverse dynamics
- * and the references' forward dynamics, not yet in the engines' models:
- * an engine model in [run] models is refused here, naming the section and
- * where the models were given. */
-fb_status fb_casefile_planar_loads_applied(const fb_case *c, const entry *e, int n,
-                                           fb_diag *diag) {
-  const fb_planar_spec *s = &c->planar;
-  char what[2 * FB_PLANAR_NAME_SIZE];
-  if (!fb_planar_spec_loaded(s, what, sizeof what)) return FB_OK;
-  const entry *at = s->nsprings ? fb_planar_entry_first(e, n, SPRING_PREFIX, s->spring[0].name)
-                                : fb_planar_entry_first(e, n, LOAD_PREFIX, s->load[0].name);
-  for (int i = 0; i < c->model_count; i++) {
-    const fb_model *md = fb_model_find(c->models[i]);
-    if (!md || md->engine == FB_ENGINE_ANALYTIC || md->engine == FB_ENGINE_REFERENCE) continue;
-    const entry *at_models = fb_planar_entry_last(e, n, "run", "models");
-    return fb_diag_set(diag, FB_ERR_ARG, "%s: %s: model '%s' (%s [run] models) does not apply "
-                       "springs and loads yet: the engines' models do not take them; the "
-                       "analytic model (inverse dynamics at the drive's speed) and the "
-                       "references (reference, reference-restitution) do", at->origin, what,
-                       c->models[i], at_models ? at_models->origin : "the default");
-  }
-  return FB_OK;
-}
-
 fb_status fb_casefile_planar_loads_take(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   return prefixed(e->section, SPRING_PREFIX) ? spring_key(s, e, diag) : load_key(s, e, diag);
 }
@@ -297,8 +272,8 @@ void fb_casefile_planar_loads_write_keys(FILE *f) {
        "its length without force"},
       {"damping_n_s_m", "N s/m", "0", DAMP_RULE, "its damping along its line"}};
   for (size_t i = 0; i < sizeof spring_rows / sizeof spring_rows[0]; i++)
-    fprintf(f, "| [spring.NAME] %s | %s | %s | %s | planar case: %s; in the analytic model and "
-            "the references, not yet the engines' models |\n", spring_rows[i][0],
+    fprintf(f, "| [spring.NAME] %s | %s | %s | %s | planar case: %s; in the analytic model, "
+            "the references and the ODE and MuJoCo models |\n", spring_rows[i][0],
             spring_rows[i][1], spring_rows[i][2], spring_rows[i][3], spring_rows[i][4]);
   static const char *const load_rows[][5] = {
       {"body", "-", "(required)", "a moving body of the case", "the body a constant load acts on"},
@@ -310,7 +285,7 @@ void fb_casefile_planar_loads_write_keys(FILE *f) {
        "when it acts: on every sample, or on one stroke of the prismatic joint its body slides "
        "in (else the case's one prismatic joint on a ground guide)"}};
   for (size_t i = 0; i < sizeof load_rows / sizeof load_rows[0]; i++)
-    fprintf(f, "| [load.NAME] %s | %s | %s | %s | planar case: %s; in the analytic model and "
-            "the references, not yet the engines' models |\n", load_rows[i][0], load_rows[i][1],
+    fprintf(f, "| [load.NAME] %s | %s | %s | %s | planar case: %s; in the analytic model, "
+            "the references and the ODE and MuJoCo models |\n", load_rows[i][0], load_rows[i][1],
             load_rows[i][2], load_rows[i][3], load_rows[i][4]);
 }

@@ -25,12 +25,6 @@ fb_status fb_casefile_planar_loads_take(fb_planar_spec *s, const entry *e, fb_di
 fb_status fb_casefile_planar_loads_whole(fb_planar_spec *s, const entry *e, int n,
                                          fb_diag *diag);
 
-/* Refuses (FB_ERR_ARG) what does not apply springs and loads yet when c
- * has any: an engine's model in [run] models (the analytic model and the
- * references apply them). */
-fb_status fb_casefile_planar_loads_applied(const fb_case *c, const entry *e, int n,
-                                           fb_diag *diag);
-
 /* The keys' rows of docs/keys.md for both sections. */
 void fb_casefile_planar_loads_write_keys(FILE *f);
 

@@ -10,6 +10,7 @@
 #include "kit_contact.h"
 #include "planar_constraints.h"
 #include "planar_kinematics.h"
+#include "planar_loads.h"
 #include "series.h"
 
 /* qd: every moving body's velocity at the assembly configuration with the
@@ -222,7 +223,20 @@ struct fb_kit_runner {
   fb_kit_world o;        /* the caller's world settings, the walk's fields set (kit.h) */
   size_t i;              /* samples filled */
   fb_status st;          /* FB_OK, or what stopped the run (sticky) */
+  double *lq;            /* (3 nq) a description with springs or loads: the state a step
+                            starts from (q, q') and their generalised forces; NULL: none */
 };
+
+/* the springs' and loads' forces on every moving body over the coming
+ * step, from the state it starts from (kit.h apply_wrench) */
+static void wrenches(fb_kit_runner *k) {
+  const fb_planar *m = k->m;
+  const int nq = fb_planar_nq(m), nb = m->nbodies - 1;
+  double *q = k->lq, *qd = q + nq, *f = qd + nq;
+  for (int b = 0; b < nb; b++) k->b->body_state(k->w, b, q + 3 * b, qd + 3 * b);
+  fb_planar_applied(f, m, q, qd, 0.0); /* gravity: the engine's own */
+  for (int b = 0; b < nb; b++) k->b->apply_wrench(k->w, b, f + 3 * b);
+}
 
 /* clearance joint j's columns at sample i (kit.h, fb_kit_joint_record):
  * the step just taken gives its force, largest force and contact state to
@@ -299,6 +313,7 @@ static fb_status sample_step(fb_kit_runner *k, size_t i, fb_diag *diag) {
     s->torque[0] = 0.0;
     memset(s->reaction, 0, 3 * (size_t)m->njoints * sizeof *s->reaction);
   }
+  if (k->lq && i + 1 < s->n) wrenches(k);
   if (!cl) return FB_OK;
   fb_kit_pipe_read(&k->p, m, cl);
   for (int j = 0; j < m->njoints; j++)
@@ -315,6 +330,9 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   if (mask && !b->add_contact && !(b->add_clearance && b->contact_force))
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
                        b->engine);
+  if (fb_planar_has_loads(m) && !b->apply_wrench)
+    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding applies no springs or loads "
+                       "yet", b->engine);
   if (s->torque && !b->reactions)
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding reports no joint reactions",
                        b->engine);
@@ -347,6 +365,8 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   free(q);
   const fb_kit_clearance none = {0};
   if (st == FB_OK) st = fb_kit_pipe_new(&k->p, b, m, cl ? cl : &none, diag);
+  if (st == FB_OK && fb_planar_has_loads(m) && !(k->lq = malloc(3 * (size_t)nq * sizeof *k->lq)))
+    st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   if (st != FB_OK) {
     fb_kit_close(k);
     return st;
@@ -371,6 +391,7 @@ void fb_kit_close(fb_kit_runner *k) {
   if (!k) return;
   fb_kit_pipe_free(&k->p);
   if (k->w) k->b->world_free(k->w);
+  free(k->lq);
   free(k);
 }
 

@@ -339,6 +339,14 @@ typedef struct fb_kit_binding {
                                 stiffness on the effective mass (fb_kit_joint_record
                                 h_omega_max, the hand-built MuJoCo world's figure); 0: none
                                 (an error-controlled integrator, Simbody) */
+  void (*apply_wrench)(void *w, int b, const double f[3]);
+                             /* optional: the force (x, y) [N] at body handle b's centre of
+                                mass and the torque about +z [N m] that act on it over the
+                                coming step, replacing the last step's: the kit hands every
+                                moving body its springs' and loads' (planar_loads.h, gravity
+                                left to the engine) from the state each step starts from;
+                                NULL: the kit refuses a description with springs or loads,
+                                naming the engine */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

@@ -699,6 +699,15 @@ static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
   vel[2] = v[2];
 }
 
+/* xfrc_applied: a force and torque in the world frame at the body's
+ * centre of mass, kept until set again */
+static void kit_apply_wrench(void *w, int b, const double f[3]) {
+  mk_world *k = w;
+  double *x = k->d->xfrc_applied + 6 * k->bid[b];
+  x[0] = f[0], x[1] = f[1], x[2] = 0.0;
+  x[3] = 0.0, x[4] = 0.0, x[5] = f[2];
+}
+
 static void kit_body_accel(const void *w, int b, double acc[3]) {
   const mk_world *k = w;
   memcpy(acc, k->acc + 3 * b, 3 * sizeof *acc);
@@ -750,4 +759,5 @@ const fb_kit_binding fb_mujoco_kit = {
     .reactions = kit_reactions,
     .body_accel = kit_body_accel,
     .explicit_law = 1,
+    .apply_wrench = kit_apply_wrench,
 };

@@ -319,6 +319,13 @@ static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
   vel[2] = om[2];
 }
 
+/* ODE clears a body's force and torque accumulators after each step */
+static void kit_apply_wrench(void *w, int b, const double f[3]) {
+  ode_kit *k = w;
+  dBodyAddForce(k->body[b], f[0], f[1], 0.0);
+  dBodyAddTorque(k->body[b], 0.0, 0.0, f[2]);
+}
+
 static void kit_world_free(void *w) {
   ode_kit *k = w;
   if (k->broken) {
@@ -352,4 +359,5 @@ const fb_kit_binding fb_ode_kit = {
     .reactions = kit_reactions,
     .contact_force_vec = kit_contact_force_vec,
     .friction = 1,
+    .apply_wrench = kit_apply_wrench,
 };

@@ -723,6 +723,7 @@ const fb_kit_binding fb_siconos_kit = {
     0 /* friction: add_clearance reads [clearance] friction itself */,
     NULL /* body_accel: the step's difference */,
     0 /* explicit_law: no applied force */,
+    NULL /* apply_wrench: springs and loads not applied yet */,
 };
 
 } // extern "C"

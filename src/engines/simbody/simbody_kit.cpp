@@ -579,4 +579,5 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     0,    /* friction: a normal law only */
     NULL, /* body_accel: the step's difference */
     0,    /* explicit_law: an error-controlled integrator */
+    NULL, /* apply_wrench: springs and loads not applied yet */
 };

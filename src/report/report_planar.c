@@ -68,6 +68,11 @@ static json_t *description_json(const fb_planar *m) {
   }
   json_object_set_new(d, "springs", springs);
   json_object_set_new(d, "loads", loads);
+  json_object_set_new(d, "torque_drive",
+                      m->torque_joint >= 0
+                          ? json_pack("{s:s,s:o}", "joint", m->joint[m->torque_joint].name,
+                                      "torque_n_m", num(m->drive_torque))
+                          : json_null());
   json_object_set_new(d, "drive", m->drive >= 0 ? json_string(m->joint[m->drive].name)
                                                  : json_null()); /* undriven */
   return d;
@@ -263,6 +268,11 @@ static void bodies_text(FILE *f, const fb_planar *m) {
     fprintf(f, "| %s | %s, %s | %.6g | %.6g | %.6g |\n", q->name, m->body[q->body[0]].name,
             m->body[q->body[1]].name, q->stiffness, q->free_length, q->damping);
   }
+  if (m->torque_joint >= 0)
+    fprintf(f, "torque drive: %.6g N m on joint '%s' (+ on %s, - on %s), its speed from the "
+               "dynamics\n", m->drive_torque, m->joint[m->torque_joint].name,
+            m->body[m->joint[m->torque_joint].body[1]].name,
+            m->body[m->joint[m->torque_joint].body[0]].name);
   if (m->nloads)
     fprintf(f, "| load | body | force x [N] | force y [N] | torque [N m] | acts |\n"
                "|---|---|---:|---:|---:|---|\n");
@@ -532,7 +542,9 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
   const fb_planar *m = r->m;
   fprintf(f, "case %s: planar, %d moving bodies, %d joints, ", r->c.name, m->nbodies - 1,
           m->njoints);
-  if (m->drive < 0) fprintf(f, "undriven (a free start)\n");
+  if (m->drive < 0 && m->torque_joint >= 0)
+    fprintf(f, "driven by a torque at '%s'\n", m->joint[m->torque_joint].name);
+  else if (m->drive < 0) fprintf(f, "undriven (a free start)\n");
   else fprintf(f, "drive '%s' at %.6g rad/s\n", m->joint[m->drive].name, r->omega);
   bodies_text(f, m);
   step_text(f, r);

@@ -27,7 +27,9 @@ fb_status fb_planar_free_parts(fb_planar_guide **guide, double **omega0, int *ne
 
 /* *omega0 (nbodies [rad/s], the ground's 0; owned by the caller, free())
  * = each body's [body.NAME] initial_omega_rad_s of case c, by m's body
- * names: an undriven case's free start (planar_start.h), whatever its
+ * names, or with a torque drive (planar.h torque_joint) each body's rate
+ * in the motion that turns the drive's joint at [drive] speed0_rpm from
+ * the assembly (the kinematics, planar_kinematics.h; their errors): an undriven case's free start (planar_start.h), whatever its
  * joints. Errors: FB_ERR_NOMEM. */
 fb_status fb_planar_free_omega0(double **omega0, const fb_case *c, const fb_planar *m,
                                 fb_diag *diag);

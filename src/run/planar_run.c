@@ -34,9 +34,12 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < c->model_count; i++) {
     const char *name = c->models[i];
     if (c->planar.undriven && strcmp(name, "analytic") == 0) /* the kit's start is free */
-      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' follows the drive, and the "
-                         "case is undriven ([drive] joint = none); it runs: reference, "
-                         "reference-restitution and the engines' models", name);
+      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' follows a drive at constant "
+                         "speed, and the case is %s; it runs: reference, "
+                         "reference-restitution and the engines' models", name,
+                         c->planar.torque_joint >= 0 ? "driven by a torque ([drive] torque_n_m: "
+                                                       "its speed follows from the dynamics)"
+                                                     : "undriven ([drive] joint = none)");
     const char *why = fb_planar_run_refusal(name);
     char loaded[2 * FB_PLANAR_NAME_SIZE];
     if (!why && fb_planar_spec_loaded(&c->planar, loaded, sizeof loaded) &&

@@ -52,9 +52,15 @@ static int description_section(const entry *e) {
          prefixed(e->section, POINT_PREFIX) || fb_casefile_planar_loads_section(e);
 }
 
+/* a [drive] key of a planar case's own: the joint, a torque drive's */
+static int torque_drive_key(const char *key) {
+  return strcmp(key, "joint") == 0 || strcmp(key, "torque_n_m") == 0 ||
+         strcmp(key, "speed0_rpm") == 0;
+}
+
 int fb_casefile_planar_claims(const fb_case *c, const entry *e) {
   if (description_section(e)) return 1;
-  if (strcmp(e->section, "drive") == 0 && strcmp(e->key, "joint") == 0) return 1;
+  if (strcmp(e->section, "drive") == 0 && torque_drive_key(e->key)) return 1;
   if (!c->planar.on) return 0;
   if (strcmp(e->section, "clearance") == 0 && strcmp(e->key, "joints") == 0) return 1;
   return fb_casefile_planar_type(e) || fourbar_key(e);
@@ -266,6 +272,14 @@ fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
   if (prefixed(e->section, BODY_PREFIX)) return body_key(&c->planar, e, diag);
   if (prefixed(e->section, POINT_PREFIX)) return point_key(&c->planar, e, diag);
   if (fb_casefile_planar_loads_section(e)) return fb_casefile_planar_loads_take(&c->planar, e, diag);
+  if (strcmp(e->section, "drive") == 0 && strcmp(e->key, "torque_n_m") == 0) {
+    c->planar.torque_drive = 1; /* the joint: [drive] joint, when the case is finished */
+    return fb_planar_key_number(e, e->value, -1e9, 1e9, 1.0, "a torque from -1e9 to 1e9 N m, "
+                                "counter-clockwise positive", &c->planar.drive_torque, diag);
+  }
+  if (strcmp(e->section, "drive") == 0 && strcmp(e->key, "speed0_rpm") == 0)
+    return fb_planar_key_number(e, e->value, -1e6, 1e6, FB_RAD_S_PER_RPM, "a speed from -1e6 to "
+                                "1e6 rpm, counter-clockwise positive", &c->planar.speed0, diag);
   if (fourbar_key(e))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s is a four-bar or slider-crank key; a "
                        "planar case gives its geometry by [joint.NAME] at_mm and its masses by "
@@ -547,6 +561,48 @@ static fb_status joint_names(int *mask, const fb_planar_spec *s, const entry *e,
   return FB_OK;
 }
 
+/* [drive] torque_n_m: the joint [drive] joint names turned by a torque,
+ * the description undriven (its speed from the dynamics, its start at
+ * speed0_rpm); speed_rpm, direction and bodies' initial_omega_rad_s are
+ * refused beside it, speed0_rpm without it */
+static fb_status torque_drive(fb_planar_spec *s, const entry *e, int n, const entry *dr,
+                              fb_diag *diag) {
+  s->torque_joint = -1;
+  const entry *tq = fb_planar_entry_last(e, n, "drive", "torque_n_m");
+  const entry *w0 = fb_planar_entry_last(e, n, "drive", "speed0_rpm");
+  if (!tq && w0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [drive] speed0_rpm = %s: the start speed of a "
+                       "torque drive; give [drive] torque_n_m (a speed drive starts at its "
+                       "speed_rpm)", w0->origin, w0->value);
+  if (!tq) return FB_OK;
+  if (s->undriven)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [drive] torque_n_m = %s: the torque turns the "
+                       "joint [drive] joint names, and %s: [drive] joint = none names none",
+                       tq->origin, tq->value, dr->origin);
+  static const char *const speed_keys[] = {"speed_rpm", "direction"};
+  for (int k = 0; k < 2; k++) {
+    const entry *x = fb_planar_entry_last(e, n, "drive", speed_keys[k]);
+    if (x)
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [drive] %s = %s: a torque drive (%s: [drive] "
+                         "torque_n_m = %s) sets no speed, the dynamics do; remove it (speed0_rpm "
+                         "gives the start speed)", x->origin, speed_keys[k], x->value, tq->origin,
+                         tq->value);
+  }
+  for (int b = 1; b < s->nbodies; b++)
+    if (s->body[b].given & FB_SPEC_BODY_OMEGA0) {
+      char sec[sizeof e->section];
+      snprintf(sec, sizeof sec, "body.%s", s->body[b].name);
+      const entry *x = fb_planar_entry_last(e, n, sec, "initial_omega_rad_s");
+      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] initial_omega_rad_s: a torque drive's "
+                         "start is [drive] speed0_rpm, every body's rate following from it; "
+                         "remove it", x ? x->origin : "case", sec);
+    }
+  s->torque_joint = s->drive;
+  s->drive = -1;
+  s->undriven = 1;
+  return FB_OK;
+}
+
 /* the drive and the clearance joints, by name */
 static fb_status drive_and_clearance(fb_case *c, const entry *e, int n, const char *path,
                                      fb_diag *diag) {
@@ -564,6 +620,7 @@ static fb_status drive_and_clearance(fb_case *c, const entry *e, int n, const ch
   if (st != FB_OK) return st;
   for (s->drive = 0; !s->undriven && !(mask & (1 << s->drive)); s->drive++) continue;
   if (s->undriven) s->drive = -1;
+  if ((st = torque_drive(s, e, n, dr, diag)) != FB_OK) return st;
   const entry *cl = fb_planar_entry_of(e, n, "clearance", "joints");
   c->clearance.mask = 0; /* a planar case's default: no clearance joint */
   st = cl ? joint_names(&c->clearance.mask, s, cl, 0, diag) : FB_OK;
@@ -693,4 +750,13 @@ void fb_casefile_planar_write_keys(FILE *f) {
           "case: the joint the drive turns at speed_rpm in direction (its second body relative "
           "to its first); none: an undriven case, moving from its bodies' initial_omega_rad_s "
           "under gravity ([run] duration_s required) |\n");
+  fprintf(f, "| [drive] torque_n_m | N m | (none: a speed drive) | a torque from -1e9 to 1e9 N m, "
+          "counter-clockwise positive | planar case: the joint [drive] joint names turned by a "
+          "constant torque instead of a speed: +T on its second body, -T on its first; "
+          "speed_rpm, direction and bodies' initial_omega_rad_s are refused beside it, [run] "
+          "duration_s is required and the analytic model does not run (the speed follows from "
+          "the dynamics) |\n");
+  fprintf(f, "| [drive] speed0_rpm | rpm | 0 | a speed from -1e6 to 1e6 rpm | planar case with "
+          "[drive] torque_n_m: the joint's second body's speed relative to its first at the "
+          "start, every body's rate following from it |\n");
 }

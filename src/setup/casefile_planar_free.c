@@ -29,15 +29,19 @@ fb_status fb_casefile_planar_free(const fb_case *c, const entry *e, int n, const
     }
     return FB_OK;
   }
+  const int torque = s->torque_joint >= 0; /* a torque drive: undriven, with a torque */
+  const char *what = torque ? "a torque-driven case ([drive] torque_n_m)"
+                            : "an undriven case ([drive] joint = none)";
   const entry *st = find(e, n, "run", "start");
   if (st)
-    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [run] start = %s: an undriven case ([drive] "
-                       "joint = none) starts from its bodies' [body.NAME] initial_omega_rad_s; "
-                       "remove [run] start (the driven start's key)", st->origin, st->value);
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [run] start = %s: %s starts from %s; remove "
+                       "[run] start (the speed drive's start key)", st->origin, st->value, what,
+                       torque ? "[drive] speed0_rpm" : "its bodies' [body.NAME] "
+                                                       "initial_omega_rad_s");
   if (!find(e, n, "run", "duration_s"))
-    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [drive] joint = none needs [run] duration_s, "
-                       "the simulated time in s (an undriven case has no revolution to count)",
-                       file);
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: %s needs [run] duration_s, the simulated time "
+                       "in s (its speed follows from the dynamics: no revolution to count)",
+                       file, what);
   return FB_OK;
 }
 

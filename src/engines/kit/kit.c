@@ -291,6 +291,10 @@ static void loads(fb_kit_runner *k, size_t i) {
       if (i + 1 == n) col[i] = r[c];
     }
   }
+  if (m->torque_joint >= 0) { /* a torque drive: its torque on the body it turns */
+    const fb_planar_joint *jt = &m->joint[m->torque_joint];
+    torque = jt->body[1] != FB_PLANAR_GROUND ? m->drive_torque : -m->drive_torque;
+  }
   s->torque[i - 1] = torque;
   if (i + 1 == n) s->torque[i] = torque;
 }

@@ -24,6 +24,7 @@ fb_planar *fb_planar_new(int max_bodies, int max_joints) {
   m->nbodies = 1;
   snprintf(m->body[FB_PLANAR_GROUND].name, FB_PLANAR_NAME_SIZE, "ground");
   m->drive = -1;
+  m->torque_joint = -1;
   return m;
 }
 
@@ -242,6 +243,17 @@ int fb_planar_add_load(fb_planar *m, const char *name, int b, const double at[2]
   p->active = active;
   p->stroke = follows ? stroke : -1;
   return m->nloads++;
+}
+
+fb_status fb_planar_set_drive_torque(fb_planar *m, int j, double torque, fb_diag *diag) {
+  if (j < 0 || j >= m->njoints || m->joint[j].kind != FB_KIND_REVOLUTE || m->drive >= 0)
+    return fb_diag_set(diag, FB_ERR_ARG, "a torque drive turns a revolute joint of an "
+                       "undriven description (joint %d)", j);
+  if (!isfinite(torque))
+    return fb_diag_set(diag, FB_ERR_RANGE, "drive torque %g N m: not finite", torque);
+  m->torque_joint = j;
+  m->drive_torque = torque;
+  return FB_OK;
 }
 
 fb_status fb_planar_set_drive(fb_planar *m, int j, fb_diag *diag) {

@@ -137,6 +137,10 @@ typedef struct {
   fb_planar_spring *spring; /* (nsprings), NULL when none */
   int nloads;             /* loads held (fb_planar_add_load) */
   fb_planar_load *load;   /* (nloads), NULL when none */
+  int torque_joint;       /* a torque drive: the revolute joint it turns (drive -1), -1: none
+                             (fb_planar_set_drive_torque) */
+  double drive_torque;    /* its torque: +T on the joint's body[1], -T on its body[0], about
+                             +z [N m] */
 } fb_planar;
 
 /* A description with the ground alone (named "ground"), room for
@@ -200,6 +204,13 @@ int fb_planar_add_load(fb_planar *m, const char *name, int b, const double at[2]
 /* Makes joint j the driven joint. Errors: FB_ERR_ARG when j is out of range
  * or not revolute. */
 fb_status fb_planar_set_drive(fb_planar *m, int j, fb_diag *diag);
+
+/* Makes revolute joint j a torque drive of torque [N m] (+torque on its
+ * body[1], -torque on its body[0], about +z) in an undriven description
+ * (no speed drive). Errors: FB_ERR_ARG when j is out of range or not
+ * revolute, or m has a speed drive; FB_ERR_RANGE when torque is not
+ * finite. */
+fb_status fb_planar_set_drive_torque(fb_planar *m, int j, double torque, fb_diag *diag);
 
 /* The bodies the drive turns: *from (the ground when the driven joint
  * touches it) and *to, the body whose angle relative to *from the drive

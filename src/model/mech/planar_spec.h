@@ -133,7 +133,17 @@ typedef struct {
                                   first mention */
   fb_planar_spec_body body[FB_PLANAR_SPEC_MAX_BODIES + 1];
   int drive;                   /* [drive] joint: index into joint, -1 when not given */
-  int undriven;                /* 1: [drive] joint = none (a free start, drive -1) */
+  int undriven;                /* 1: [drive] joint = none, or a torque drive (a free start,
+                                  drive -1) */
+  int torque_drive;            /* 1: [drive] torque_n_m given: the joint [drive] joint names
+                                  is driven by a torque, not a speed */
+  int torque_joint;            /* that joint (index into joint), set when the case is
+                                  finished; -1: no torque drive */
+  double drive_torque;         /* [drive] torque_n_m [N m]: +T on the joint's second body, -T
+                                  on its first, about +z */
+  double speed0;               /* [drive] speed0_rpm [rad/s]: the joint's second body's
+                                  angular rate relative to its first at the start (0 unless
+                                  given) */
   int npoints;                 /* output points held, in file order */
   fb_planar_spec_point point[FB_PLANAR_SPEC_MAX_POINTS];
   int nsprings;                /* springs held, in file order */

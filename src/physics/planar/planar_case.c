@@ -296,6 +296,9 @@ static fb_status compile(fb_planar **out, const fb_planar_spec *s, double densit
     rc = fb_diag_set(diag, FB_ERR_ARG, "no drive: name the driven joint in [drive] joint");
   if (rc == FB_OK && !s->undriven && (rc = fb_planar_set_drive(p, s->drive, diag)) != FB_OK)
     where->joint = s->drive;
+  if (rc == FB_OK && s->torque_drive && s->torque_joint >= 0 &&
+      (rc = fb_planar_set_drive_torque(p, s->torque_joint, s->drive_torque, diag)) != FB_OK)
+    where->joint = s->torque_joint;
   if (rc == FB_OK && pending_body >= 0 && (rc = fb_planar_check_structure(p, where, diag)) == FB_OK) {
     *diag = pending;
     where->body = pending_body;

@@ -5,7 +5,9 @@
 
 #include "planar_outputs.h"
 
-int fb_planar_has_loads(const fb_planar *m) { return m->nsprings > 0 || m->nloads > 0; }
+int fb_planar_has_loads(const fb_planar *m) {
+  return m->nsprings > 0 || m->nloads > 0 || m->torque_joint >= 0;
+}
 
 /* world position p and velocity v of point s of body b (the ground's: s) */
 static void point_at(double p[2], double v[2], const double *q, const double *qd, int b,
@@ -85,5 +87,10 @@ void fb_planar_applied(double *Q, const fb_planar *m, const double *q, const dou
     point_at(p, v, q, qd, ld->body, ld->point);
     push(Q, q, ld->body, p, ld->force);
     Q[3 * (ld->body - 1) + 2] += ld->torque;
+  }
+  if (m->torque_joint >= 0) { /* the torque drive: +T on body[1], -T on body[0] */
+    const fb_planar_joint *jt = &m->joint[m->torque_joint];
+    if (jt->body[1] != FB_PLANAR_GROUND) Q[3 * (jt->body[1] - 1) + 2] += m->drive_torque;
+    if (jt->body[0] != FB_PLANAR_GROUND) Q[3 * (jt->body[0] - 1) + 2] -= m->drive_torque;
   }
 }

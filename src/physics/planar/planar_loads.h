@@ -11,7 +11,8 @@
  * body's centre. A spring of ends a (on body[0]) and b (on body[1]), of
  * length l = |b - a| and unit direction u = (b - a) / l, has the tension
  * f = k (l - l0) + c l', l' = u . (v_b - v_a): -f u acts at b, +f u at a.
- * A load on one stroke acts while its prismatic joint's slide rate
+ * A torque drive (planar.h torque_joint) puts +T on its joint's body[1]
+ * and -T on its body[0]. A load on one stroke acts while its prismatic joint's slide rate
  * (planar_outputs.h) has the stroke's sign (outstroke: positive, return:
  * negative), and not at all at a dead centre, where the rate is zero. */
 #ifndef FB_PLANAR_LOADS_H
@@ -19,11 +20,11 @@
 
 #include "planar.h"
 
-/* 1 when m has springs or loads (gravity aside). */
+/* 1 when m has springs, loads or a torque drive (gravity aside). */
 int fb_planar_has_loads(const fb_planar *m);
 
 /* The generalised applied forces of gravity [m/s^2, >= 0, along -y],
- * m's springs and its loads at the coordinates q and their rates qd
+ * m's springs, its loads and its torque drive at the coordinates q and their rates qd
  * (each fb_planar_nq(m)) into Q (fb_planar_nq(m)): N on the x, y rows,
  * N m on the theta rows. */
 void fb_planar_applied(double *Q, const fb_planar *m, const double *q, const double *qd,

@@ -124,6 +124,23 @@ def start_case(argv, prefix, name):
     return exe, tally, tally.check, tmp, os.path.join(cases, name)
 
 
+def columns(path):
+    """a CSV's columns by name, each a list of floats (an empty cell: nan)"""
+    import csv
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    head = rows[0]
+    return {h: [float(r[k]) if r[k] else float("nan") for r in rows[1:]] for k, h in enumerate(head)}
+
+
+def case_with(src, dst, text):
+    """case file dst: case file src with text after it (more sections)"""
+    with open(src) as f:
+        body = f.read()
+    with open(dst, "w") as f:
+        f.write(body + "\n" + text)
+
+
 def rel(p, q):
     """|p - q| relative to |q|"""
     return abs(p - q) / max(abs(q), 1e-300)

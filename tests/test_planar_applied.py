@@ -39,7 +39,7 @@ under them, with gravity) and in the references' forward dynamics.
 
 Usage: test_planar_applied.py PATH_TO_FOURBAR [TEST ...]. Prints "N passed,
 N failed"; exit 1 on any failure."""
-import csv, json, math, os, sys, tempfile
+import json, math, os, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
@@ -76,18 +76,10 @@ def run(*args):
     return fb_script.run(EXE, HERE, *args)
 
 
-def columns(path):
-    with open(path) as f:
-        rows = list(csv.reader(f))
-    head = rows[0]
-    return {h: [float(r[k]) for r in rows[1:]] for k, h in enumerate(head)}
+columns = fb_script.columns
 
 
-def append(src, dst, text):
-    with open(src) as f:
-        body = f.read()
-    with open(dst, "w") as f:
-        f.write(body + "\n" + text)
+append = fb_script.case_with
 
 
 def analytic(case, out, *sets):

@@ -29,7 +29,7 @@ models[].slides.
 
 Usage: test_planar_points.py PATH_TO_FOURBAR [TEST ...]. Prints "N passed,
 N failed"; exit 1 on any failure."""
-import csv, json, math, os, sys, tempfile
+import json, math, os, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
@@ -90,18 +90,10 @@ def run(*args):
     return fb_script.run(EXE, HERE, *args)
 
 
-def columns(path):
-    with open(path) as f:
-        rows = list(csv.reader(f))
-    head = rows[0]
-    return {h: [float(r[k]) if r[k] else float("nan") for r in rows[1:]] for k, h in enumerate(head)}
+columns = fb_script.columns
 
 
-def with_points(src, dst, text):
-    with open(src) as f:
-        body = f.read()
-    with open(dst, "w") as f:
-        f.write(body + "\n" + text)
+with_points = fb_script.case_with
 
 
 # ---- 1. the quick-return's closed form -------------------------------------

@@ -73,22 +73,24 @@ int fb_planar_kit_applies_loads(const char *name) {
   return b && b->apply_wrench;
 }
 
-const char *fb_planar_kit_loaded_models(char *buf, size_t size) {
+/* the models that take(name), comma-separated, into buf (size) */
+static const char *models_that(char *buf, size_t size, int (*take)(const char *name)) {
   size_t n = 0;
   buf[0] = '\0';
   for (int i = 0; i < fb_model_count && n < size; i++)
-    if (fb_planar_kit_applies_loads(fb_models[i].name))
+    if (take(fb_models[i].name))
       n += (size_t)snprintf(buf + n, size - n, "%s%s", n ? ", " : "", fb_models[i].name);
   return buf;
 }
 
+static int kit_builds(const char *name) { return fb_planar_kit_of(name) != NULL; }
+
 const char *fb_planar_kit_models(char *buf, size_t size) {
-  size_t n = 0;
-  buf[0] = '\0';
-  for (int i = 0; i < fb_model_count && n < size; i++)
-    if (fb_planar_kit_of(fb_models[i].name))
-      n += (size_t)snprintf(buf + n, size - n, "%s%s", n ? ", " : "", fb_models[i].name);
-  return buf;
+  return models_that(buf, size, kit_builds);
+}
+
+const char *fb_planar_kit_loaded_models(char *buf, size_t size) {
+  return models_that(buf, size, fb_planar_kit_applies_loads);
 }
 
 /* every moving body's omega and alpha extremes over the samples at

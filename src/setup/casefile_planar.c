@@ -103,21 +103,9 @@ static int joint_index(fb_planar_spec *s, const char *name) {
 /* bodies = A, B */
 static fb_status joint_bodies(fb_planar_spec *s, fb_planar_spec_joint *j, const entry *e,
                               fb_diag *diag) {
-  char buf[sizeof e->value];
-  snprintf(buf, sizeof buf, "%s", e->value);
-  char *comma = strchr(buf, ',');
-  if (!comma || strchr(comma + 1, ','))
-    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies = '%s': expected two body names "
-                       "A, B (ground: the fixed body)", e->origin, e->section, e->value);
-  *comma = '\0';
-  const char *name[2] = {trim(buf), trim(comma + 1)};
-  for (int k = 0; k < 2; k++) {
-    fb_status st = fb_planar_key_name(e, name[k], "body", diag);
-    if (st != FB_OK) return st;
-  }
-  if (strcmp(name[0], name[1]) == 0)
-    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies = '%s': a joint connects two "
-                       "different bodies", e->origin, e->section, e->value);
+  char name[2][FB_PLANAR_NAME_SIZE];
+  fb_status st = fb_planar_key_two_bodies(e, "a joint", name, diag);
+  if (st != FB_OK) return st;
   for (int k = 0; k < 2; k++)
     if ((j->body[k] = body_index(s, name[k])) < 0)
       return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies: more than %d moving bodies",
@@ -219,23 +207,13 @@ static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
                      e->origin, e->key, e->section);
 }
 
-/* the point named name in s (created at its first mention), or -1 when full */
-static int point_index(fb_planar_spec *s, const char *name) {
-  for (int k = 0; k < s->npoints; k++)
-    if (strcmp(s->point[k].name, name) == 0) return k;
-  if (s->npoints == FB_PLANAR_SPEC_MAX_POINTS) return -1;
-  fb_planar_spec_point *p = &s->point[s->npoints];
-  memset(p, 0, sizeof *p);
-  snprintf(p->name, sizeof p->name, "%s", name);
-  return s->npoints++;
-}
-
 /* a [point.NAME] section's keys: body = NAME, at_mm = x, y */
 static fb_status point_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   const char *name = e->section + strlen(POINT_PREFIX);
   fb_status st = fb_planar_key_name(e, name, "point", diag);
   if (st != FB_OK) return st;
-  const int k = point_index(s, name);
+  const int k = fb_planar_named(s->point, sizeof s->point[0], &s->npoints,
+                                FB_PLANAR_SPEC_MAX_POINTS, name);
   if (k < 0)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: more than %d points", e->origin,
                        e->section, FB_PLANAR_SPEC_MAX_POINTS);

@@ -32,40 +32,19 @@ static fb_status body_word(const entry *e, const char *text, char out[FB_PLANAR_
   return st;
 }
 
-/* the spring named name in s (created at its first mention), or -1 when full */
-static int spring_index(fb_planar_spec *s, const char *name) {
-  for (int k = 0; k < s->nsprings; k++)
-    if (strcmp(s->spring[k].name, name) == 0) return k;
-  if (s->nsprings == FB_PLANAR_SPEC_MAX_SPRINGS) return -1;
-  fb_planar_spec_spring *p = &s->spring[s->nsprings];
-  memset(p, 0, sizeof *p);
-  snprintf(p->name, sizeof p->name, "%s", name);
-  return s->nsprings++;
-}
-
 /* a [spring.NAME] section's keys */
 static fb_status spring_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   const char *name = e->section + strlen(SPRING_PREFIX);
   fb_status st = fb_planar_key_name(e, name, "spring", diag);
   if (st != FB_OK) return st;
-  const int k = spring_index(s, name);
+  const int k = fb_planar_named(s->spring, sizeof s->spring[0], &s->nsprings,
+                                FB_PLANAR_SPEC_MAX_SPRINGS, name);
   if (k < 0)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: more than %d springs", e->origin,
                        e->section, FB_PLANAR_SPEC_MAX_SPRINGS);
   fb_planar_spec_spring *p = &s->spring[k];
   if (strcmp(e->key, "bodies") == 0) {
-    char buf[sizeof e->value];
-    snprintf(buf, sizeof buf, "%s", e->value);
-    char *comma = strchr(buf, ',');
-    if (!comma || strchr(comma + 1, ','))
-      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies = '%s': expected two body names "
-                         "A, B (ground: the fixed body)", e->origin, e->section, e->value);
-    *comma = '\0';
-    if ((st = body_word(e, trim(buf), p->body[0], diag)) != FB_OK) return st;
-    if ((st = body_word(e, trim(comma + 1), p->body[1], diag)) != FB_OK) return st;
-    if (strcmp(p->body[0], p->body[1]) == 0)
-      return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies = '%s': a spring joins two "
-                         "different bodies", e->origin, e->section, e->value);
+    if ((st = fb_planar_key_two_bodies(e, "a spring", p->body, diag)) != FB_OK) return st;
     p->given |= FB_SPEC_SPRING_BODIES;
     return FB_OK;
   }
@@ -91,24 +70,13 @@ static fb_status spring_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
                      e->origin, e->key, e->section);
 }
 
-/* the load named name in s (created at its first mention), or -1 when full */
-static int load_index(fb_planar_spec *s, const char *name) {
-  for (int k = 0; k < s->nloads; k++)
-    if (strcmp(s->load[k].name, name) == 0) return k;
-  if (s->nloads == FB_PLANAR_SPEC_MAX_LOADS) return -1;
-  fb_planar_spec_load *p = &s->load[s->nloads];
-  memset(p, 0, sizeof *p);
-  snprintf(p->name, sizeof p->name, "%s", name);
-  p->stroke = -1;
-  return s->nloads++;
-}
-
 /* a [load.NAME] section's keys */
 static fb_status load_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   const char *name = e->section + strlen(LOAD_PREFIX);
   fb_status st = fb_planar_key_name(e, name, "load", diag);
   if (st != FB_OK) return st;
-  const int k = load_index(s, name);
+  const int k = fb_planar_named(s->load, sizeof s->load[0], &s->nloads,
+                                FB_PLANAR_SPEC_MAX_LOADS, name);
   if (k < 0)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: more than %d loads", e->origin,
                        e->section, FB_PLANAR_SPEC_MAX_LOADS);

@@ -75,3 +75,35 @@ const entry *fb_planar_entry_last(const entry *e, int n, const char *section, co
     if (strcmp(e[i].section, section) == 0 && strcmp(e[i].key, key) == 0) at = &e[i];
   return at;
 }
+
+fb_status fb_planar_key_two_bodies(const entry *e, const char *what,
+                                   char out[2][FB_PLANAR_NAME_SIZE], fb_diag *diag) {
+  char buf[sizeof e->value];
+  snprintf(buf, sizeof buf, "%s", e->value);
+  char *comma = strchr(buf, ',');
+  if (!comma || strchr(comma + 1, ','))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies = '%s': expected two body names "
+                       "A, B (ground: the fixed body)", e->origin, e->section, e->value);
+  *comma = '\0';
+  const char *name[2] = {trim(buf), trim(comma + 1)};
+  for (int k = 0; k < 2; k++) {
+    fb_status st = fb_planar_key_name(e, name[k], "body", diag);
+    if (st != FB_OK) return st;
+    snprintf(out[k], FB_PLANAR_NAME_SIZE, "%s", name[k]);
+  }
+  if (strcmp(name[0], name[1]) == 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] bodies = '%s': %s joins two different "
+                       "bodies", e->origin, e->section, e->value, what);
+  return FB_OK;
+}
+
+int fb_planar_named(void *items, size_t size, int *count, int max, const char *name) {
+  char *at = items;
+  for (int k = 0; k < *count; k++)
+    if (strcmp(at + (size_t)k * size, name) == 0) return k;
+  if (*count == max) return -1;
+  char *p = at + (size_t)*count * size;
+  memset(p, 0, size);
+  snprintf(p, FB_PLANAR_NAME_SIZE, "%s", name);
+  return (*count)++;
+}

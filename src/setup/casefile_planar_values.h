@@ -35,6 +35,19 @@ fb_status fb_planar_key_pair(const entry *e, double lo, double hi, double scale,
  * FB_PLANAR_COORD_MAX_MM. Errors: as fb_planar_key_number. */
 fb_status fb_planar_key_point(const entry *e, double out[2], fb_diag *diag);
 
+/* Key e's value "A, B": two different body names into out (2 x
+ * FB_PLANAR_NAME_SIZE); what joins them ("a joint", "a spring") for the
+ * refusal. Errors: FB_ERR_PARSE (not two names, a name refused, the same
+ * name twice). */
+fb_status fb_planar_key_two_bodies(const entry *e, const char *what,
+                                   char out[2][FB_PLANAR_NAME_SIZE], fb_diag *diag);
+
+/* The index of the item named name among the *count items of size bytes
+ * at items, each beginning with its name (char[FB_PLANAR_NAME_SIZE]: the
+ * spec's points, springs and loads); when none is, a new one at the end,
+ * zeroed and named (*count grows), or -1 when max are held. */
+int fb_planar_named(void *items, size_t size, int *count, int max, const char *name);
+
 /* The first entry of section prefix + name among e[0 .. n-1], or NULL. */
 const entry *fb_planar_entry_first(const entry *e, int n, const char *prefix, const char *name);
 

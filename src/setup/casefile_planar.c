@@ -139,13 +139,14 @@ static fb_status joint_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   }
   if (strcmp(e->key, "axis_deg") == 0) {
     j->given |= FB_SPEC_JOINT_AXIS;
-    return fb_planar_key_number(e, e->value, -360.0, 360.0, FB_RAD_PER_DEG, AXIS_RULE, &j->axis, diag);
+    return fb_planar_key_number(e, e->value, -360.0, 360.0, FB_RAD_PER_DEG, AXIS_RULE, &j->axis,
+                                diag);
   }
   if (strcmp(e->key, "slider_half_length_mm") == 0 || strcmp(e->key, "slider_half_height_mm") == 0) {
     const int len = strcmp(e->key, "slider_half_length_mm") == 0;
     j->given |= len ? FB_SPEC_JOINT_HALF_LENGTH : FB_SPEC_JOINT_HALF_HEIGHT;
-    return fb_planar_key_number(e, e->value, 1e-3, FB_PLANAR_COORD_MAX_MM, FB_M_PER_MM, HALF_RULE,
-                  len ? &j->half_length : &j->half_height, diag);
+    return fb_planar_key_number(e, e->value, 1e-3, FB_PLANAR_COORD_MAX_MM, FB_M_PER_MM,
+                                HALF_RULE, len ? &j->half_length : &j->half_height, diag);
   }
   return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a joint has bodies, "
                      "at_mm, kind, axis_deg, slider_half_length_mm and slider_half_height_mm)",
@@ -199,8 +200,9 @@ static fb_status body_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   for (size_t i = 0; i < sizeof body_numbers / sizeof body_numbers[0]; i++)
     if (strcmp(e->key, body_numbers[i].key) == 0) {
       b->given |= body_numbers[i].bit;
-      return fb_planar_key_number(e, e->value, body_numbers[i].lo, body_numbers[i].hi, body_numbers[i].scale,
-                    body_numbers[i].rule, (double *)((char *)b + body_numbers[i].offset), diag);
+      return fb_planar_key_number(e, e->value, body_numbers[i].lo, body_numbers[i].hi,
+                                  body_numbers[i].scale, body_numbers[i].rule,
+                                  (double *)((char *)b + body_numbers[i].offset), diag);
     }
   return fb_diag_set(diag, FB_ERR_PARSE, "%s: unknown key '%s' in [%s] (a body has mass_kg, "
                      "inertia_kg_mm2, centre_mm, width_mm, thickness_mm and initial_omega_rad_s)",
@@ -249,7 +251,8 @@ fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
   if (prefixed(e->section, JOINT_PREFIX)) return joint_key(&c->planar, e, diag);
   if (prefixed(e->section, BODY_PREFIX)) return body_key(&c->planar, e, diag);
   if (prefixed(e->section, POINT_PREFIX)) return point_key(&c->planar, e, diag);
-  if (fb_casefile_planar_loads_section(e)) return fb_casefile_planar_loads_take(&c->planar, e, diag);
+  if (fb_casefile_planar_loads_section(e))
+    return fb_casefile_planar_loads_take(&c->planar, e, diag);
   if (strcmp(e->section, "drive") == 0 && strcmp(e->key, "torque_n_m") == 0) {
     c->planar.torque_drive = 1; /* the joint: [drive] joint, when the case is finished */
     return fb_planar_key_number(e, e->value, -1e9, 1e9, 1.0, "a torque from -1e9 to 1e9 N m, "
@@ -283,7 +286,8 @@ static const entry *body_origin(const fb_planar_spec *s, int b, const entry *e, 
 static const char *origin_of(char *buf, size_t size, const fb_planar_spec *s,
                              const fb_planar_where *w, const entry *e, int n, const char *path) {
   const entry *at = NULL;
-  if (w->joint >= 0 && w->joint < s->njoints) at = fb_planar_entry_first(e, n, JOINT_PREFIX, s->joint[w->joint].name);
+  if (w->joint >= 0 && w->joint < s->njoints)
+    at = fb_planar_entry_first(e, n, JOINT_PREFIX, s->joint[w->joint].name);
   else if (w->body > 0 && w->body < s->nbodies) at = body_origin(s, w->body, e, n);
   if (at) snprintf(buf, size, "%s: [%s]", at->origin, at->section);
   else snprintf(buf, size, "%s", path ? path : "case");
@@ -390,7 +394,8 @@ static fb_status links_whole(const fb_planar_spec *s, const entry *e, int n, fb_
     char sec0[sizeof e->section], sec1[sizeof e->section];
     snprintf(sec0, sizeof sec0, "%s%s", JOINT_PREFIX, s->joint[bad[0]].name);
     snprintf(sec1, sizeof sec1, "%s%s", JOINT_PREFIX, s->joint[bad[1]].name);
-    const entry *a0 = fb_planar_entry_of(e, n, sec0, "at_mm"), *a1 = fb_planar_entry_of(e, n, sec1, "at_mm");
+    const entry *a0 = fb_planar_entry_of(e, n, sec0, "at_mm");
+    const entry *a1 = fb_planar_entry_of(e, n, sec1, "at_mm");
     if (a0 > a1) { /* the later of the two named first */
       const entry *t = a0;
       a0 = a1, a1 = t;
@@ -436,7 +441,8 @@ static int case_names(case_name *out, int max, const fb_planar_spec *s, const en
   int k = 0;
   out[k++] = (case_name){"body", "ground", NULL};
   const entry *joint_at[FB_PLANAR_SPEC_MAX_JOINTS];
-  for (int j = 0; j < s->njoints; j++) joint_at[j] = fb_planar_entry_first(e, n, JOINT_PREFIX, s->joint[j].name);
+  for (int j = 0; j < s->njoints; j++)
+    joint_at[j] = fb_planar_entry_first(e, n, JOINT_PREFIX, s->joint[j].name);
   for (int i = 0; i < n && k < max; i++) {
     const entry *x = &e[i];
     for (int b = 1; b < s->nbodies && k < max; b++) {
@@ -619,7 +625,8 @@ static fb_status clearance_at_drive(const fb_case *c, const entry *e, int n, con
     const fb_model *m = fb_model_find(c->models[i]);
     fb_diag inner;
     if (!m || fb_model_clearance_at_drive(m, 1, s->joint[s->drive].name, &inner) == FB_OK) continue;
-    const entry *cl = fb_planar_entry_last(e, n, "clearance", "joints"), *md = fb_planar_entry_last(e, n, "run", "models");
+    const entry *cl = fb_planar_entry_last(e, n, "clearance", "joints");
+    const entry *md = fb_planar_entry_last(e, n, "run", "models");
     const entry *dr = fb_planar_entry_last(e, n, "drive", "joint");
     return fb_diag_set(diag, FB_ERR_ARG, "%s: %s (given: [drive] joint at %s; [run] models at %s)",
                        cl ? cl->origin : path ? path : "case", inner.msg, dr ? dr->origin : "?",

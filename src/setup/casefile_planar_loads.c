@@ -59,7 +59,8 @@ static fb_status spring_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   }
   if (strcmp(e->key, "free_length_mm") == 0) {
     p->given |= FB_SPEC_SPRING_FREE;
-    return fb_planar_key_number(e, e->value, 0.0, FB_PLANAR_COORD_MAX_MM, FB_M_PER_MM, FREE_RULE, &p->free_length, diag);
+    return fb_planar_key_number(e, e->value, 0.0, FB_PLANAR_COORD_MAX_MM, FB_M_PER_MM, FREE_RULE,
+                                &p->free_length, diag);
   }
   if (strcmp(e->key, "damping_n_s_m") == 0) {
     p->given |= FB_SPEC_SPRING_DAMP;
@@ -93,8 +94,8 @@ static fb_status load_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
   }
   if (strcmp(e->key, "force_n") == 0) {
     p->given |= FB_SPEC_LOAD_FORCE;
-    return fb_planar_key_pair(e, -1e9, 1e9, 1.0, FORCE_RULE, "fx, fy in N (for example -250, 0)", p->force,
-                diag);
+    return fb_planar_key_pair(e, -1e9, 1e9, 1.0, FORCE_RULE, "fx, fy in N (for example -250, 0)",
+                              p->force, diag);
   }
   if (strcmp(e->key, "torque_n_m") == 0) {
     p->given |= FB_SPEC_LOAD_TORQUE;

@@ -7,7 +7,8 @@
 #include "casefile.h"
 #include "units.h"
 
-/* a name of a joint or body: the case-name characters, 1 to 43 of them */
+/* a name of a section (a joint, body, point, spring or load) or a body:
+ * the case-name characters, 1 to 43 of them */
 fb_status fb_planar_key_name(const entry *e, const char *name, const char *what, fb_diag *diag) {
   if (!fb_casefile_name_ok(name) || strlen(name) >= FB_PLANAR_NAME_SIZE)
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s]: '%s': a %s name is 1 to %d characters "
@@ -17,8 +18,8 @@ fb_status fb_planar_key_name(const entry *e, const char *name, const char *what,
 }
 
 /* one number of key e in [lo, hi] (file units) times scale into *out */
-fb_status fb_planar_key_number(const entry *e, const char *text, double lo, double hi, double scale,
-                        const char *rule, double *out, fb_diag *diag) {
+fb_status fb_planar_key_number(const entry *e, const char *text, double lo, double hi,
+                               double scale, const char *rule, double *out, fb_diag *diag) {
   double v;
   if (!fb_casefile_decimal(text, &v))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s = '%s': not a decimal number (%s)",
@@ -33,7 +34,7 @@ fb_status fb_planar_key_number(const entry *e, const char *text, double lo, doub
 /* "a, b", each in [lo, hi] (file units) times scale, into out; what: the
  * pair's words for the refusal ("x, y in mm (for example 120, -35.5)") */
 fb_status fb_planar_key_pair(const entry *e, double lo, double hi, double scale, const char *rule,
-                      const char *what, double out[2], fb_diag *diag) {
+                             const char *what, double out[2], fb_diag *diag) {
   char buf[sizeof e->value];
   snprintf(buf, sizeof buf, "%s", e->value);
   char *comma = strchr(buf, ',');
@@ -42,14 +43,16 @@ fb_status fb_planar_key_pair(const entry *e, double lo, double hi, double scale,
                        e->origin, e->section, e->key, e->value, what);
   *comma = '\0';
   fb_status st = fb_planar_key_number(e, trim(buf), lo, hi, scale, rule, &out[0], diag);
-  if (st == FB_OK) st = fb_planar_key_number(e, trim(comma + 1), lo, hi, scale, rule, &out[1], diag);
+  if (st == FB_OK)
+    st = fb_planar_key_number(e, trim(comma + 1), lo, hi, scale, rule, &out[1], diag);
   return st;
 }
 
 /* "x, y" in mm into out [m] */
 fb_status fb_planar_key_point(const entry *e, double out[2], fb_diag *diag) {
-  return fb_planar_key_pair(e, -FB_PLANAR_COORD_MAX_MM, FB_PLANAR_COORD_MAX_MM, FB_M_PER_MM, FB_PLANAR_COORD_RULE,
-              "x, y in mm (for example 120, -35.5)", out, diag);
+  return fb_planar_key_pair(e, -FB_PLANAR_COORD_MAX_MM, FB_PLANAR_COORD_MAX_MM, FB_M_PER_MM,
+                            FB_PLANAR_COORD_RULE, "x, y in mm (for example 120, -35.5)", out,
+                            diag);
 }
 
 /* the first entry of section sec, or NULL */

@@ -263,6 +263,14 @@ void body_state(const void *w, int b, double pos[3], double vel[3]) {
   vel[2] = r->getAngularVelocity()[2];
 }
 
+// the force at the body's centre of mass and the torque for the coming
+// step: stepSimulation clears both after it (clearForces)
+void apply_wrench(void *w, int b, const double f[3]) {
+  btRigidBody *r = static_cast<Kit *>(w)->body[b];
+  r->applyCentralForce(btVector3(f[0], f[1], 0.0));
+  r->applyTorque(btVector3(0.0, 0.0, f[2]));
+}
+
 void world_free(void *w) {
   Kit *k = static_cast<Kit *>(w);
   btDiscreteDynamicsWorld &world = k->w->world;
@@ -297,6 +305,7 @@ constexpr fb_kit_binding binding() {
   b.body_state = body_state;
   b.world_free = world_free;
   b.contact_rows = 1;
+  b.apply_wrench = apply_wrench;
   return b;
 }
 

@@ -33,6 +33,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "contact.h"
 #include "contact_mass.h"
@@ -95,6 +96,8 @@ typedef struct {
   int nj;                      /* ideal joints added */
   int ends[FB_PLANAR_SPEC_MAX_JOINTS][2];     /* their body handles */
   unsigned char slide[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: prismatic */
+  double *wrench;              /* (3 per body) the springs' and loads' force and torque of the
+                                  coming step (apply_wrench), NULL: none handed */
 } dk_world;
 
 static fb_status dart_error(fb_status st, const char *what, const char *err, fb_diag *diag) {
@@ -301,6 +304,8 @@ static fb_status kit_step(void *w, fb_diag *diag) {
   for (int i = 0; i < n && st == FB_OK; i++) {
     if (k->m && i > 0) read_state(k); /* the first sub-step's state is read above */
     if (k->m) apply_contacts(k);
+    for (int b = 0; k->wrench && b < k->o.nbodies; b++) /* every sub-step: DART clears them */
+      fb_dart_add_wrench(k->dart, b, k->wrench + 3 * b);
     if (fb_dart_step(k->dart, err, sizeof err) != 0)
       st = dart_error(FB_ERR_NUMERIC, "step", err, diag);
   }
@@ -318,10 +323,18 @@ static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
   fb_dart_body_state(((const dk_world *)w)->dart, b, pos, vel);
 }
 
+/* kept for every sub-step of the coming step (kit_step) */
+static void kit_apply_wrench(void *w, int b, const double f[3]) {
+  dk_world *k = w;
+  if (!k->wrench) k->wrench = calloc(3 * (size_t)k->o.nbodies, sizeof *k->wrench);
+  if (k->wrench) memcpy(k->wrench + 3 * b, f, 3 * sizeof *f);
+}
+
 static void kit_world_free(void *w) {
   dk_world *k = w;
   if (!k) return;
   fb_dart_world_free(k->dart);
+  free(k->wrench);
   free(k->q);
   free(k);
 }
@@ -342,4 +355,5 @@ const fb_kit_binding fb_dart_kit = {
     .world_free = kit_world_free,
     .add_clearance = kit_add_clearance,
     .contact_force_max = kit_contact_force_max,
+    .apply_wrench = kit_apply_wrench,
 };

@@ -290,6 +290,12 @@ extern "C" void fb_dart_add_force(fb_dart_world *w, int pin, int hole, const dou
   if (hole >= 0) w->body[(size_t)hole].node->addExtForce(-force, at, false, false);
 }
 
+extern "C" void fb_dart_add_wrench(fb_dart_world *w, int b, const double f[3]) {
+  BodyNode *n = w->body[(size_t)b].node; // its frame's origin is its centre of mass
+  n->addExtForce(Vector3d(f[0], f[1], 0.0), Vector3d::Zero(), false, true);
+  n->addExtTorque(Vector3d(0.0, 0.0, f[2]), false);
+}
+
 extern "C" void fb_dart_set_step(fb_dart_world *w, double h) { w->world->setTimeStep(h); }
 
 extern "C" int fb_dart_step(fb_dart_world *w, char *err, size_t size) {

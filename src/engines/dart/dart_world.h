@@ -71,6 +71,11 @@ int fb_dart_drive(fb_dart_world *w, int j, double rate, char *err, size_t size);
  * force, BodyNode::addExtForce). */
 void fb_dart_add_force(fb_dart_world *w, int pin, int hole, const double p[2], const double f[2]);
 
+/* A force (f[0], f[1]) [N] at body b's centre of mass and a torque f[2]
+ * about +z [N m] for the coming World::step (fb_dart_step clears every
+ * external force after it). */
+void fb_dart_add_wrench(fb_dart_world *w, int b, const double f[3]);
+
 /* Sets the step of the coming World::step calls to h [s] (World::setTimeStep:
  * the skeleton's and the constraint solver's). */
 void fb_dart_set_step(fb_dart_world *w, double h);

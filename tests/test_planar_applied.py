@@ -416,18 +416,18 @@ TORQUE_N_M = 0.01
 # at a constant speed). ODE's and Bullet's first sample is the step's
 # difference, off by about h alpha'/2; MuJoCo's its first forward pass.
 # Measured: 3.4e-6 (ODE), 1.5e-5 (MuJoCo), 1.1e-8 (Bullet), 1.5e-10
-# (DART); a torque on the wrong body or with the wrong sign is off by its
-# whole size.
+# (DART), 2.9e-9 (Simbody); a torque on the wrong body or with the wrong
+# sign is off by its whole size.
 TORQUE_ALPHA_REL = 1e-4
 # Without gravity, springs or dampers the kinetic energy gains the
 # torque's work T (phi(t) - phi(0)) exactly: the engines' integration
 # error over 0.5 s from 60 rpm to 300 rpm at h = 1e-5 s. Measured worst:
-# 2.0e-5 (ODE and Bullet), 3.3e-4 (MuJoCo), 5.9e-4 (DART) of the work
-# (0.12 J). 2e-3 of it holds each threefold; a torque missing or on the
+# 2.0e-5 (ODE and Bullet), 3.3e-4 (MuJoCo), 5.9e-4 (DART), 7.4e-12
+# (Simbody, error-controlled) of the work (0.12 J). 2e-3 of it holds each threefold; a torque missing or on the
 # wrong body misses the work by its whole size.
 TORQUE_ENERGY_REL = 2e-3
 TORQUE_ENGINES = ("ode-ideal-nominal", "mujoco-ideal-nominal", "bullet-ideal-nominal",
-                  "dart-ideal-nominal")
+                  "dart-ideal-nominal", "simbody-ideal-nominal")
 
 
 def kinetic(c, bodies, i):
@@ -554,8 +554,8 @@ def refusals():
         ("[load.l]\nbody = ram\nat_mm = 1, 2\nforce_n = 1\n", "expected two numbers fx, fy"),
         ("[load.ram_guide]\nbody = ram\ntorque_n_m = 1\n", "both write"),
         ("[load.l]\nbody = ram\ntorque_n_m = 1\nspeed = 3\n", "unknown key 'speed'"),
-        ("[load.l]\nbody = ram\ntorque_n_m = 1\n[run]\nmodels = analytic, simbody-ideal-nominal\n",
-         "'simbody-ideal-nominal': [load.l]: its engine's binding does not apply springs"),
+        ("[load.l]\nbody = ram\ntorque_n_m = 1\n[run]\nmodels = analytic, siconos-ideal-nominal\n",
+         "'siconos-ideal-nominal': [load.l]: its engine's binding does not apply springs"),
     ]
     for k, (text, words) in enumerate(bad):
         case = os.path.join(TMP, "bad%d.ini" % k)

@@ -123,7 +123,12 @@ struct Kit {
   fb_planar_cmass *cm;                // a slider's corners' effective masses (planar_mass.h)
   const fb_planar *m;                 // the description (add_clearance)
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; // 1: a clearance joint
-  int changed;                        // 1: a contact's law, v0 or hand-over changed
+  int changed;                        // 1: a contact's law, v0 or hand-over changed, or the
+                                      // applied wrenches
+  std::vector<double> wrench;         // 3 per handle: the springs' and loads' force at the
+                                      // centre of mass and torque over the step (apply_wrench);
+                                      // empty: none
+  int rewrench = 0;                   // 1: wrench changed since the state's forces were cached
   fb_kit_world o;                     // the walk's settings: names, drive (kit.h)
   std::unique_ptr<Integrator> integ;
   double h;
@@ -237,6 +242,13 @@ void KitContact::calcForce(const State &state, Vector_<SpatialVec> &bodyForces, 
     const fb_contact_law law = law_at(k_, state, c, n);
     const double f = fb_contact_force(&law, depth, rate, v0);
     if (f > 0.0) apply_contact(state, pin, c.pin_at, hole, c.hole_at, f, n, bodyForces);
+  }
+  for (size_t b = 0; 3 * b < k_->wrench.size(); b++) { // held over the step (apply_wrench)
+    const MobilizedBody &mb = k_->of((int)b);
+    const double *f = &k_->wrench[3 * b];
+    mb.applyForceToBodyPoint(state, mb.getBodyMassCenterStation(state), Vec3(f[0], f[1], 0.0),
+                             bodyForces);
+    mb.applyBodyTorque(state, Vec3(0.0, 0.0, f[2]), bodyForces);
   }
 }
 
@@ -501,6 +513,15 @@ fb_status kit_add_contact(void *w, int jn, const fb_kit_contact *c, fb_diag *dia
   return FB_OK;
 }
 
+// the force element's wrench for the coming step; the integrator's
+// derivative at the step's start is evaluated again (changed)
+void kit_apply_wrench(void *w, int b, const double f[3]) {
+  Kit *k = kit(w);
+  if (k->wrench.empty()) k->wrench.assign(3 * k->body.size(), 0.0);
+  for (int i = 0; i < 3; i++) k->wrench[3 * (size_t)b + (size_t)i] = f[i];
+  k->changed = k->rewrench = 1;
+}
+
 fb_status kit_step(void *w, fb_diag *diag) {
   Kit *k = kit(w);
   for (const Held &c : k->held) k->changed |= c.on != c.on_last;
@@ -508,6 +529,9 @@ fb_status kit_step(void *w, fb_diag *diag) {
   try {
     // the force element changed at this step's start: the integrator's
     // derivative there is evaluated again
+    // the wrench lives outside the State: its cached forces go stale
+    if (k->rewrench) k->integ->updAdvancedState().invalidateAllCacheAtOrAbove(Stage::Dynamics);
+    k->rewrench = 0;
     if (k->changed) k->integ->reinitialize(Stage::Dynamics, false);
     k->changed = 0;
     for (int tries = 0; k->integ->getTime() < t1 && tries < 3; tries++) {
@@ -579,5 +603,5 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     0,    /* friction: a normal law only */
     NULL, /* body_accel: the step's difference */
     0,    /* explicit_law: an error-controlled integrator */
-    NULL, /* apply_wrench: springs and loads not applied yet */
+    fb_simbody::kit_apply_wrench,
 };

@@ -3,36 +3,11 @@
 
 #include <math.h>
 
+#include "planar_constraints.h"
 #include "planar_outputs.h"
 
 int fb_planar_has_loads(const fb_planar *m) {
   return m->nsprings > 0 || m->nloads > 0 || m->torque_joint >= 0;
-}
-
-/* world position p and velocity v of point s of body b (the ground's: s) */
-static void point_at(double p[2], double v[2], const double *q, const double *qd, int b,
-                     const double s[2]) {
-  if (b == FB_PLANAR_GROUND) {
-    p[0] = s[0], p[1] = s[1];
-    v[0] = v[1] = 0.0;
-    return;
-  }
-  const int i = 3 * (b - 1);
-  const double c = cos(q[i + 2]), sn = sin(q[i + 2]);
-  const double r[2] = {c * s[0] - sn * s[1], sn * s[0] + c * s[1]};
-  const double w = qd ? qd[i + 2] : 0.0;
-  p[0] = q[i] + r[0], p[1] = q[i + 1] + r[1];
-  v[0] = (qd ? qd[i] : 0.0) - w * r[1];
-  v[1] = (qd ? qd[i + 1] : 0.0) + w * r[0];
-}
-
-/* force f at world point p on body b into Q (the ground takes nothing) */
-static void push(double *Q, const double *q, int b, const double p[2], const double f[2]) {
-  if (b == FB_PLANAR_GROUND) return;
-  const int i = 3 * (b - 1);
-  Q[i] += f[0];
-  Q[i + 1] += f[1];
-  Q[i + 2] += (p[0] - q[i]) * f[1] - (p[1] - q[i + 1]) * f[0];
 }
 
 /* spring s's ends, unit direction u (a to b; zero when they meet) and
@@ -41,8 +16,8 @@ static void spring_at(double pa[2], double pb[2], double u[2], double out[3], co
                       int s, const double *q, const double *qd) {
   const fb_planar_spring *sp = &m->spring[s];
   double va[2], vb[2];
-  point_at(pa, va, q, qd, sp->body[0], sp->point[0]);
-  point_at(pb, vb, q, qd, sp->body[1], sp->point[1]);
+  fb_planar_point_motion(pa, va, m, q, qd, sp->body[0], sp->point[0]);
+  fb_planar_point_motion(pb, vb, m, q, qd, sp->body[1], sp->point[1]);
   const double d[2] = {pb[0] - pa[0], pb[1] - pa[1]}, l = hypot(d[0], d[1]);
   u[0] = l > 0.0 ? d[0] / l : 0.0;
   u[1] = l > 0.0 ? d[1] / l : 0.0;
@@ -77,15 +52,15 @@ void fb_planar_applied(double *Q, const fb_planar *m, const double *q, const dou
     double pa[2], pb[2], u[2], st[3];
     spring_at(pa, pb, u, st, m, s, q, qd);
     const double fa[2] = {st[2] * u[0], st[2] * u[1]}, fb[2] = {-fa[0], -fa[1]};
-    push(Q, q, m->spring[s].body[0], pa, fa);
-    push(Q, q, m->spring[s].body[1], pb, fb);
+    fb_planar_add_force(Q, q, m->spring[s].body[0], pa, fa);
+    fb_planar_add_force(Q, q, m->spring[s].body[1], pb, fb);
   }
   for (int l = 0; l < m->nloads; l++) {
     if (!fb_planar_load_acts(m, l, q, qd)) continue;
     const fb_planar_load *ld = &m->load[l];
-    double p[2], v[2];
-    point_at(p, v, q, qd, ld->body, ld->point);
-    push(Q, q, ld->body, p, ld->force);
+    double p[2];
+    fb_planar_point(p, m, q, ld->body, ld->point);
+    fb_planar_add_force(Q, q, ld->body, p, ld->force);
     Q[3 * (ld->body - 1) + 2] += ld->torque;
   }
   if (m->torque_joint >= 0) { /* the torque drive: +T on body[1], -T on body[0] */

@@ -29,7 +29,12 @@ under them, with gravity) and in the references' forward dynamics.
    (virtual work, from the analytic model's velocity ratios); without
    gravity the kinetic energy gains the torque's work; with a loose pin
    the reference and ODE's clearance model never gain more than it.
-7. The refusals: a spring whose ends meet, on an unknown body, without its
+7. With no clearance joint, `reference` integrates the ideal mechanism
+   under its torque: its kinetic energy gains the torque's work, from rest
+   its alpha(0) is T / I_eff, and the engines' ideal models take it as
+   their yardstick; it refuses a speed drive (the kinematics are the
+   analytic model's) and the restitution law (no joint to act at).
+8. The refusals: a spring whose ends meet, on an unknown body, without its
    stiffness; a load on the ground, without a point for its force, with
    nothing to apply, on a stroke of a case with no prismatic joint, with an
    unknown activity; an engine model whose binding does not apply them;
@@ -534,7 +539,79 @@ models = reference-restitution, ode-clearance-restitution
               "%s: energy gained %.6g J, work %.6g J" % (m, gain, work))
 
 
-# ---- 7. refusals -----------------------------------------------------------------
+# ---- 7. the ideal mechanism's reference --------------------------------------------
+
+# With no clearance joint, `reference` integrates the ideal mechanism under its
+# torque (rk8pd at 1e-12 on the one free coordinate). Its kinetic energy gains
+# the torque's work (0.12 J over 0.5 s) to the integrator's and the CSV's
+# rounding: measured 7.4e-12 of the work; from rest its alpha(0) is T / I_eff
+# to 1.5e-13. 1e-9 leaves a hundredfold and fails on a torque or an inertia
+# term wrong by any visible share.
+IDEAL_ENERGY_REL = 1e-9
+IDEAL_ALPHA_REL = 1e-9
+
+
+@suite.test
+def ideal_reference():
+    models = ("ode-ideal-nominal", "mujoco-ideal-nominal")
+    case = torque_case("fourbar-ideal", "torque_n_m = %g\nspeed0_rpm = 60\n" % TORQUE_N_M,
+                       "[run]\nduration_s = 0.5\nmodels = reference, %s\n" % ", ".join(models))
+    out = os.path.join(TMP, "fourbar-ideal")
+    rc, so, se = run("run", case, "--out", out, "--no-figures", "--no-report")
+    check(rc == 0, "ideal reference: exit %d: %s" % (rc, se[-600:]))
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    bodies = s["description"]["bodies"]
+    by = {m["name"]: m for m in s["models"]}
+    ref = by["reference"]
+    check(ref["verdict"] == "ok" and ref["clearance_joints"] == [] and ref["law"] is None
+          and ref["force_max_n"] is None, "the ideal reference's keys: %r" % ref)
+    c = columns(os.path.join(out, "reference.csv"))
+    check(not any(k.endswith("_force_n") for k in c), "an ideal reference has no contact column")
+    k0, phi0 = kinetic(c, bodies, 0), c["crank_angle_rad"][0]
+    work = TORQUE_N_M * (c["crank_angle_rad"][-1] - phi0)
+    worst = max(abs(kinetic(c, bodies, i) - k0 - TORQUE_N_M * (c["crank_angle_rad"][i] - phi0))
+                for i in range(0, len(c["time_s"]), 50))
+    print("reference: work %.6g J, energy balance worst %.3g J (%.2g)" % (work, worst, worst / work))
+    check(worst <= IDEAL_ENERGY_REL * work, "reference: %.3g of the work" % (worst / work))
+    for m in models:  # each engine's ideal model has the reference as its yardstick
+        v = by[m]
+        print("%s: %s (%s)" % (m, v["verdict"], v["verdict_reason"]))
+        check(v["verdict"] == "ok" and v["verdict_basis"] == "pointwise"
+              and "against the ideal reference" in v["verdict_reason"]
+              and v["peak_error_max_rel"] < 1e-2, "%s: %r" % (m, v))
+    # from rest: alpha(0) = T / I_eff, I_eff from the analytic model's velocity ratios
+    speed = torque_case("fourbar-speed1", "speed_rpm = 60\n", "[run]\nmodels = analytic\n")
+    a, sa = analytic(speed, os.path.join(TMP, "fourbar-speed1"))
+    w = a["crank_omega_rad_s"][0]
+    i_eff = sum(b["mass_kg"] * (a["cm_%s_v_x_m_s" % b["name"]][0] ** 2 +
+                                a["cm_%s_v_y_m_s" % b["name"]][0] ** 2) +
+                b["inertia_kg_m2"] * a["%s_omega_rad_s" % b["name"]][0] ** 2
+                for b in sa["description"]["bodies"] if b["name"] != "ground") / w ** 2
+    case = torque_case("fourbar-ideal0", "torque_n_m = %g\n" % TORQUE_N_M,
+                       "[run]\nduration_s = 0.01\n")  # the default model: reference
+    out = os.path.join(TMP, "fourbar-ideal0")
+    rc, so, se = run("run", case, "--out", out, "--no-figures", "--no-report")
+    check(rc == 0, "ideal reference from rest: exit %d: %s" % (rc, se[-600:]))
+    got = columns(os.path.join(out, "reference.csv"))["crank_alpha_rad_s2"][0]
+    want = TORQUE_N_M / i_eff
+    print("reference: alpha(0) %.12g, T / I_eff %.12g (%.2g)" % (got, want, got / want - 1))
+    check(abs(got / want - 1) <= IDEAL_ALPHA_REL, "alpha(0) %.12g against %.12g" % (got, want))
+    # what it refuses: a speed drive (the kinematics are the analytic model's), and the
+    # restitution law with no joint to act at
+    for k, (drive, model, words) in enumerate([
+            ("speed_rpm = 60\n", "reference", "its kinematics, which the analytic model"),
+            ("torque_n_m = 1\n", "reference-restitution", "no [clearance] joint for the "
+             "restitution law")]):
+        case = torque_case("ideal-bad%d" % k, drive, "[run]\nduration_s = 0.1\nmodels = %s\n"
+                           % model)
+        out = os.path.join(TMP, "ideal-bad%d" % k)
+        rc, so, se = run("run", case, "--out", out)
+        check(rc == 2 and words in se and not os.path.exists(out),
+              "%s: exit %d %r" % (model, rc, se[-300:]))
+
+
+# ---- 8. refusals -----------------------------------------------------------------
 
 @suite.test
 def refusals():

@@ -326,7 +326,13 @@ static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_mo
   char why[FB_DIAG_SIZE + 256];
   json_object_set_new(e, "verdict", json_string(verdict_of(p, why, sizeof why)));
   json_object_set_new(e, "verdict_reason", json_string(why));
-  clearance_json(e, r, p);
+  if (q->joint >= 0) {
+    clearance_json(e, r, p);
+  } else { /* the ideal mechanism's (planar_run.h): no joint, no law */
+    json_object_set_new(e, "clearance_joints", json_array());
+    json_object_set_new(e, "law", json_null());
+    json_object_set_new(e, "window_from_s", num(r->t_window));
+  }
   json_object_set_new(e, "force_max_n", q->failed ? json_null() : num(q->force_max));
   json_object_set_new(e, "penetration_max_m", q->failed ? json_null() : num(q->penetration_max));
   json_object_set_new(e, "error_estimate",
@@ -557,9 +563,14 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
       char why[FB_DIAG_SIZE + 256];
       const char *v = verdict_of(p, why, sizeof why);
       char work[96]; /* an explicit law has no working force (planar_free.h) */
-      if (p->ref.force_work > 0.0) snprintf(work, sizeof work, "working force %.4g N", p->ref.force_work);
+      if (p->ref.joint < 0) /* the ideal mechanism (planar_run.h) */
+        fprintf(f, "ideal mechanism (no clearance joint): its forward dynamics under the "
+                "case's loads, rk8pd at tolerance %.2g; peaks over t >= %.4g s\nverdict: %s (%s)\n",
+                p->ref.tol, r->t_window, v, why);
+      else if (p->ref.force_work > 0.0) snprintf(work, sizeof work, "working force %.4g N", p->ref.force_work);
       else snprintf(work, sizeof work, "no working force: its stiffness given, penalty = explicit");
-      fprintf(f, "clearance at '%s' (%s law, %s): peaks over t >= %.4g s; "
+      if (p->ref.joint >= 0)
+        fprintf(f, "clearance at '%s' (%s law, %s): peaks over t >= %.4g s; "
               "contact force max %s N, penetration max %s um\nverdict: %s (%s)\n",
               r->m->joint[p->ref.joint].name, p->ref.law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
               work, r->t_window, FB_NUM_CELL("%.6g", p->ref.failed ? NAN : p->ref.force_max, FB_NUM_NONE_TABLE),

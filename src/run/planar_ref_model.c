@@ -1,5 +1,6 @@
 /* A planar case's reference models (planar_run.h): the clearance joint's
- * dynamics on the planar core, and its check integration. */
+ * dynamics on the planar core, or an undriven case's ideal mechanism's
+ * when it has no clearance joint, and its check integration. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,11 +57,11 @@ static int refine_rhs(double t, const double y[], double dydt[], void *p) {
 static void refine_eval(double *quant, double *dydt, double t, const double *y, void *p) {
   const refine_src *s = p;
   const int ok = fb_planar_rel_eval(s->d, t, y, dydt, s->ct) == FB_OK;
-  const fb_planar_contact *c = &s->ct[s->joint];
+  const fb_planar_contact *c = s->joint >= 0 ? &s->ct[s->joint] : NULL; /* NULL: ideal */
   if (ok) fb_planar_rel_motion(s->d, NULL, NULL, s->qdd);
   int n = 0;
-  quant[n++] = ok ? c->force : -INFINITY;
-  quant[n++] = ok ? c->penetration : -INFINITY;
+  quant[n++] = ok && c ? c->force : -INFINITY;
+  quant[n++] = ok && c ? c->penetration : -INFINITY;
   for (int b = 0; b < s->nb; b++) {
     if (b == s->driven) continue;
     const double a = s->qdd[3 * b + 2];
@@ -93,8 +94,10 @@ static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *
     refine_src src = {d, ct, qdd, z, y, p->h, p->ref.joint, fb_planar_nq(m), nb,
                       fb_planar_rel_dim(d), from == 0 ? to - 1 : -1};
     int nc = 0, nquant = 2;
-    cc[nc++] = (fb_peak_refine_column){col->force, 0, -1, 1};
-    cc[nc++] = (fb_peak_refine_column){col->pen, 1, -1, 1};
+    if (p->ref.joint >= 0) { /* an ideal mechanism has no contact to refine */
+      cc[nc++] = (fb_peak_refine_column){col->force, 0, -1, 1};
+      cc[nc++] = (fb_peak_refine_column){col->pen, 1, -1, 1};
+    }
     for (int b = 0; b < nb; b++) {
       if (b == src.driven) continue;
       cc[nc++] = (fb_peak_refine_column){col->q + ((size_t)b * 3 + FB_Q_ACC) * p->n, nquant,
@@ -112,7 +115,8 @@ static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *
 
 /* one integration at tol into the columns col (p's own when store, else
  * col's), its spikes refined; the window's peaks into w (4 per moving
- * body, then the force and the penetration) */
+ * body, then the force and the penetration: 0 for the ideal mechanism,
+ * p->ref.joint < 0, whose force and penetration columns are scratch) */
 static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r, fb_planar_rel *d,
                            double tol, size_t *steps, int store, fb_diag *diag) {
   const fb_planar *m = r->m;
@@ -120,18 +124,21 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
   const size_t n = p->n;
   double *y = malloc(n * (size_t)(3 * nq + dim) * sizeof *y);
   fb_planar_contact *ct = malloc(n * (size_t)nj * sizeof *ct);
-  double *own = store ? NULL : malloc(n * (size_t)(3 + 3 * nb) * sizeof *own);
-  columns col = store ? (columns){p->t, p->q, p->force, p->pen}
+  const int ideal = p->ref.joint < 0;
+  double *own = store && !ideal ? NULL : malloc(n * (size_t)(3 + 3 * nb) * sizeof *own);
+  columns col = store ? (columns){p->t, p->q, ideal ? own : p->force,
+                                  ideal && own ? own + n : p->pen}
                       : (columns){own, own ? own + n : NULL, own ? own + n * (size_t)(1 + 3 * nb) : NULL,
                                   own ? own + n * (size_t)(2 + 3 * nb) : NULL};
-  fb_status st = y && ct && col.t ? FB_OK
+  fb_status st = y && ct && col.t && col.force ? FB_OK
                                   : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n);
   double *acc = y ? y + n * (size_t)(2 * nq) : NULL, *z = y ? acc + n * (size_t)nq : NULL;
   fb_planar_ref_stats stats = {0};
   if (st == FB_OK) st = fb_planar_ref_run(y, acc, ct, z, n, p->h, d, tol, &stats, diag);
   *steps = stats.steps;
   for (size_t i = 0; i < n && st == FB_OK; i++) {
-    const fb_planar_contact *c = &ct[i * (size_t)nj + (size_t)p->ref.joint];
+    const fb_planar_contact none = {{0.0, 0.0}, 0.0, 0.0, 0.0, 0.0};
+    const fb_planar_contact *c = ideal ? &none : &ct[i * (size_t)nj + (size_t)p->ref.joint];
     for (int b = 0; b < nb; b++) {
       const int a = 3 * b + 2;
       const double v[3] = {y[i * (size_t)(2 * nq) + (size_t)a],
@@ -147,7 +154,7 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
       fb_planar_model_store_outputs(p, m, i, y + i * (size_t)(2 * nq),
                                     y + i * (size_t)(2 * nq) + nq, acc + i * (size_t)nq);
   }
-  if (st == FB_OK && store) {
+  if (st == FB_OK && store && !ideal) {
     memcpy(p->force_sampled, col.force, n * sizeof *col.force);
     memcpy(p->pen_sampled, col.pen, n * sizeof *col.pen);
   }
@@ -187,23 +194,46 @@ static double check_change(const double *w, const double *v, int nb) {
   return worst;
 }
 
+const char *fb_planar_ref_ideal_refusal(const fb_case *c, const char *model) {
+  if (c->clearance.mask) return NULL;
+  if (strcmp(model, "reference-restitution") == 0)
+    return "the case has no [clearance] joint for the restitution law to act at; 'reference' "
+           "integrates its ideal mechanism";
+  if (!c->planar.undriven)
+    return "the case has no [clearance] joint and its drive turns at constant speed, so the "
+           "ideal mechanism's motion is its kinematics, which the analytic model gives exactly; "
+           "a reference integrates an ideal mechanism that is undriven ([drive] joint = none) "
+           "or driven by a torque ([drive] torque_n_m)";
+  return NULL;
+}
+
 fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, int impact,
                                   fb_diag *diag) {
   const fb_planar *m = r->m;
   const fb_case *c = &r->c;
   fb_planar_ref_result *q = &p->ref;
   p->reference = 1;
-  fb_status st = clearance_joint(&q->joint, c, m, p->name, diag);
+  /* no clearance joint: the ideal mechanism (fb_planar_ref_ideal_refusal) */
+  const int ideal = !c->clearance.mask;
+  fb_status st = FB_OK;
+  if (ideal) {
+    q->joint = -1;
+    const char *why = fb_planar_ref_ideal_refusal(c, p->name);
+    if (why) st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': %s", p->name, why);
+  } else {
+    st = clearance_joint(&q->joint, c, m, p->name, diag);
+  }
   if (st != FB_OK) return st;
   fb_planar_guide *guide = NULL;
   double *omega0 = NULL;
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
-  st = fb_planar_free_parts(&guide, &omega0, &free_law, c, m, q->joint, diag);
-  if (st == FB_OK && !free_law && !r->reaction_max)
+  if (ideal) st = fb_planar_free_omega0(&omega0, c, m, diag);
+  else st = fb_planar_free_parts(&guide, &omega0, &free_law, c, m, q->joint, diag);
+  if (st == FB_OK && !ideal && !free_law && !r->reaction_max)
     st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': the joints' ideal reactions were not computed",
                      p->name);
-  q->force_work = st == FB_OK && !free_law ? r->reaction_max[q->joint] : 0.0;
-  if (st == FB_OK)
+  q->force_work = st == FB_OK && !ideal && !free_law ? r->reaction_max[q->joint] : 0.0;
+  if (st == FB_OK && !ideal)
     st = fb_joint_law_at(&q->law, c, impact, q->force_work, m->joint[q->joint].name,
                          fb_planar_joint_law_mass(m, q->joint), diag);
   if (st == FB_OK) st = fb_reference_tolerance(&q->tol, diag);
@@ -221,18 +251,20 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   q->check_tol = fmax(q->tol / FB_REFERENCE_CHECK_FACTOR, FB_REFERENCE_TOL_MIN);
   q->check_rel = NAN;
   unsigned char *clear = calloc((size_t)m->njoints, 1);
-  p->force = malloc(6 * p->n * sizeof *p->force);
-  if (!clear || !p->force) {
+  p->force = ideal ? NULL : malloc(6 * p->n * sizeof *p->force);
+  if (!clear || (!ideal && !p->force)) {
     free(clear);
     free(guide);
     free(omega0);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   }
-  p->pen = p->force + p->n;
-  p->force_sampled = p->force + 2 * p->n;
-  p->pen_sampled = p->force + 3 * p->n;
-  if (m->joint[q->joint].kind == FB_KIND_REVOLUTE) p->ecc = p->force + 4 * p->n;
-  clear[q->joint] = 1;
+  if (!ideal) {
+    p->pen = p->force + p->n;
+    p->force_sampled = p->force + 2 * p->n;
+    p->pen_sampled = p->force + 3 * p->n;
+    if (m->joint[q->joint].kind == FB_KIND_REVOLUTE) p->ecc = p->force + 4 * p->n;
+    clear[q->joint] = 1;
+  }
   /* v0 of the hysteresis laws: fixed, as reference.c's */
   const fb_planar_dyn_model model = {m, clear, q->law, c->radial_clearance, 1e-3, c->gravity,
                                      r->omega, guide, omega0};
@@ -258,8 +290,8 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
       p->peaks[b] = (fb_body_peaks){.omega_max = x[0], .omega_min = x[1], .alpha_max = x[2],
                                     .alpha_min = x[3]};
     }
-    q->force_max = w[nw - 2];
-    q->penetration_max = w[nw - 1];
+    q->force_max = ideal ? NAN : w[nw - 2];
+    q->penetration_max = ideal ? NAN : w[nw - 1];
     if (fb_planar_ref_checked(q)) q->check_rel = check_change(w, w + nw, m->nbodies - 1);
     q->converged = q->check_rel <= FB_UNCONVERGED_REL; /* unchecked (NaN): not converged */
   }

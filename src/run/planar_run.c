@@ -40,6 +40,9 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
                          c->planar.torque_joint >= 0 ? "driven by a torque ([drive] torque_n_m: "
                                                        "its speed follows from the dynamics)"
                                                      : "undriven ([drive] joint = none)");
+    const char *ideal = strncmp(name, "reference", 9) == 0 ? fb_planar_ref_ideal_refusal(c, name)
+                                                           : NULL;
+    if (ideal) return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s': %s", name, ideal);
     const char *why = fb_planar_run_refusal(name);
     char loaded[2 * FB_PLANAR_NAME_SIZE];
     if (!why && fb_planar_spec_loaded(&c->planar, loaded, sizeof loaded) &&

@@ -42,9 +42,12 @@
  *              reference of its law (planar_verdict.h).
  * Every model also samples the description's output points and every
  * prismatic joint's slide (planar_outputs.h) into out, when it has any.
- * An undriven case ([drive] joint = none) runs the references only, from
- * its bodies' initial angular velocities (planar_free.h), its window the
- * whole run; a prismatic clearance joint is a slider in its guide.
+ * An undriven case ([drive] joint = none, or a torque drive) runs the
+ * references and the engines' models, from its bodies' initial angular
+ * velocities (planar_free.h), its window the whole run; with no clearance
+ * joint, `reference` is its ideal mechanism's forward dynamics and the
+ * engines' ideal models' yardstick. A prismatic clearance joint is a
+ * slider in its guide.
  * Every other model (another engine's, a stack-up's, a clearance model's)
  * is refused by name: the engines build the rest of a planar case with the
  * engine kit (issue 58). A planar case that lists no [run] models runs
@@ -226,9 +229,20 @@ int fb_planar_first_impact(double *force_rel, double *pen_rel, const fb_planar_r
 
 /* The reference model p (its samples allocated, p->name set) of run r:
  * the impact law (impact = 1, "reference") or the restitution law
- * (planar_ref_model.c). Errors: FB_ERR_ARG without exactly one clearance
- * joint; those of joint_law.h, planar_invdyn.h and planar_dynamics.h. An
- * integration that fails is a result (p->ref.failed), not an error. */
+ * (planar_ref_model.c) at the case's one clearance joint; with none, the
+ * ideal mechanism's forward dynamics under its loads, springs and
+ * gravity (p->ref.joint = -1, no force or penetration columns), an
+ * undriven or torque-driven case's yardstick. Errors: FB_ERR_ARG with
+ * more than one clearance joint, or where fb_planar_ref_ideal_refusal
+ * refuses; those of joint_law.h, planar_invdyn.h and planar_dynamics.h.
+ * An integration that fails is a result (p->ref.failed), not an error. */
+/* Why reference model `model` cannot run case c when c has no clearance
+ * joint (the text after "model 'NAME': "), or NULL when it can or c has
+ * one: a speed-driven mechanism's ideal motion is its kinematics (the
+ * analytic model, exact), and the restitution law has no contact to act
+ * at. */
+const char *fb_planar_ref_ideal_refusal(const fb_case *c, const char *model);
+
 fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, int impact,
                                   fb_diag *diag);
 

@@ -217,7 +217,8 @@ static void set(fb_planar_verdict *v, fb_verdict_word w, fb_verdict_basis b) {
   v->basis = b;
 }
 
-/* an ideal model against the analytic's peaks (planar_verdict.h) */
+/* an ideal model against its yardstick's peaks, a's: the analytic model's,
+ * or an undriven case's ideal reference's (planar_verdict.h) */
 static void ideal(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_model *p,
                   const fb_planar_model *a) {
   const int nb = r->m->nbodies;
@@ -245,8 +246,9 @@ static void ideal(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_
   v->peak_rel_max = worst;
   const int beyond = !(worst <= FB_IDEAL_PEAK_ERROR_BOUND);
   set(v, beyond ? FB_VERDICT_WARN : FB_VERDICT_OK, FB_BASIS_POINTWISE);
-  snprintf(v->reason, sizeof v->reason, "window peaks against the analytic: largest error %.2g "
-           "of the body's extremes (%s); the bound is %.2g", worst, r->m->body[at].name,
+  snprintf(v->reason, sizeof v->reason, "window peaks against the %s: largest error %.2g "
+           "of the body's extremes (%s); the bound is %.2g",
+           a->reference ? "ideal reference" : "analytic", worst, r->m->body[at].name,
            FB_IDEAL_PEAK_ERROR_BOUND);
 }
 
@@ -490,18 +492,26 @@ void fb_planar_verdicts(fb_planar_run *r) {
     const fb_model *mt = fb_model_find(p->name);
     const fb_model *want = mt && p->force ? fb_model_reference_of(mt) : NULL;
     const fb_planar_model *y = p->force ? find(r, want ? want->name : NULL) : find(r, "analytic");
+    if (!p->force && !y) { /* an undriven case's ideal reference (planar_run.h) */
+      const fb_planar_model *ir = find(r, "reference");
+      y = ir && ir->ref.joint < 0 ? ir : NULL;
+    }
     if (p->ref.failed) {
       set(v, FB_VERDICT_WARN, FB_BASIS_NONE);
       snprintf(v->reason, sizeof v->reason, "it stopped: %.300s", p->ref.stop);
     } else if (!y) {
       snprintf(v->reason, sizeof v->reason, "nothing to compare with: the run has no %s",
-               p->force ? (want ? want->name : "reference of its law") : "analytic");
+               p->force ? (want ? want->name : "reference of its law")
+                        : r->m->drive >= 0 ? "analytic" : "reference (the ideal mechanism's)");
     } else if (p->force && r->c.clearance.friction > 0.0) { /* as the four-bar's (report_chaos.c) */
       snprintf(v->reason, sizeof v->reason, "no reference: %s is frictionless ([clearance] "
                "friction = %g)", y->name, r->c.clearance.friction);
     } else if (p->force && !(revolution(r, y) < INFINITY)) { /* impacts pair within a share of it */
       snprintf(v->reason, sizeof v->reason, "an undriven case in which no body of %s turns: "
                "impacts are paired within a share of a revolution, and it has none", y->name);
+    } else if (!p->force && y->ref.failed) {
+      set(v, FB_VERDICT_WARN, FB_BASIS_NONE);
+      snprintf(v->reason, sizeof v->reason, "its yardstick %s stopped", y->name);
     } else if (p->force) {
       clearance(v, r, p, y);
     } else {

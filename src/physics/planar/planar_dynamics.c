@@ -40,7 +40,9 @@ fb_status fb_planar_dyn_new(fb_planar_dyn **out, const fb_planar_dyn_model *mode
                        "%g m/s, drive speed %g rad/s: the first two must be >= 0, v0 > 0, all "
                        "finite", model->radial_clearance, model->gravity,
                        model->impact_velocity, model->omega);
-  fb_status rc = fb_contact_law_check(&model->law, diag);
+  int any = 0; /* an ideal mechanism (no clearance joint) has no law to check */
+  for (int j = 0; j < m->njoints; j++) any |= model->clearance[j] != 0;
+  fb_status rc = any ? fb_contact_law_check(&model->law, diag) : FB_OK;
   if (rc != FB_OK) return rc;
   fb_planar_dyn *d = calloc(1, sizeof *d);
   if (!d) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");

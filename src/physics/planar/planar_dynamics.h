@@ -39,7 +39,8 @@ typedef struct {
   const fb_planar *mech;           /* the description (outlives the model) */
   const unsigned char *clearance;  /* (njoints) 1: a revolute clearance joint */
   fb_contact_law law;              /* normal-force law at every clearance joint (prepared:
-                                      fb_contact_law_prepare) */
+                                      fb_contact_law_prepare); not read, nor checked, when
+                                      no joint has clearance (the ideal mechanism) */
   double radial_clearance;         /* c = R_hole - R_pin [m] >= 0 */
   double impact_velocity;          /* v0 of the hysteresis laws [m/s] > 0 (fixed, as reference.c) */
   double gravity;                  /* along -y [m/s^2] */

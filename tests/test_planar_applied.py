@@ -37,10 +37,10 @@ under them, with gravity) and in the references' forward dynamics.
 8. The refusals: a spring whose ends meet, on an unknown body, without its
    stiffness; a load on the ground, without a point for its force, with
    nothing to apply, on a stroke of a case with no prismatic joint, with an
-   unknown activity; an engine model whose binding does not apply them;
-   the bench and the MJCF export of a case with loads; a torque drive
-   with a speed, without a joint or a duration, with the analytic model
-   or a body's initial rate, a start speed without a torque.
+   unknown activity; Siconos's angle coordinates with loads; the MJCF
+   export of a case with loads; a torque drive with a speed, without a
+   joint or a duration, with the analytic model or a body's initial rate,
+   a start speed without a torque.
 
 Usage: test_planar_applied.py PATH_TO_FOURBAR [TEST ...]. Prints "N passed,
 N failed"; exit 1 on any failure."""
@@ -421,18 +421,23 @@ TORQUE_N_M = 0.01
 # at a constant speed). ODE's and Bullet's first sample is the step's
 # difference, off by about h alpha'/2; MuJoCo's its first forward pass.
 # Measured: 3.4e-6 (ODE), 1.5e-5 (MuJoCo), 1.1e-8 (Bullet), 1.5e-10
-# (DART), 2.9e-9 (Simbody); a torque on the wrong body or with the wrong
-# sign is off by its whole size.
+# (DART), 2.9e-9 (Simbody), 1.5e-13 (Siconos); a torque on the wrong body
+# or with the wrong sign is off by its whole size.
 TORQUE_ALPHA_REL = 1e-4
 # Without gravity, springs or dampers the kinetic energy gains the
 # torque's work T (phi(t) - phi(0)) exactly: the engines' integration
 # error over 0.5 s from 60 rpm to 300 rpm at h = 1e-5 s. Measured worst:
 # 2.0e-5 (ODE and Bullet), 3.3e-4 (MuJoCo), 5.9e-4 (DART), 7.4e-12
-# (Simbody, error-controlled) of the work (0.12 J). 2e-3 of it holds each threefold; a torque missing or on the
-# wrong body misses the work by its whole size.
+# (Simbody, error-controlled) of the work (0.12 J). 2e-3 of it holds each
+# threefold; a torque missing or on the wrong body misses the work by its
+# whole size. Siconos's Moreau-Jean scheme (theta 0.5, the joints as
+# velocity-level bilateral relations, the torque held over each step) is
+# first order here: 2.7e-3, its own bound 1e-2 (still a hundredth of a
+# missing torque's error).
 TORQUE_ENERGY_REL = 2e-3
+TORQUE_ENERGY_REL_OF = {"siconos-ideal-nominal": 1e-2}
 TORQUE_ENGINES = ("ode-ideal-nominal", "mujoco-ideal-nominal", "bullet-ideal-nominal",
-                  "dart-ideal-nominal", "simbody-ideal-nominal")
+                  "dart-ideal-nominal", "simbody-ideal-nominal", "siconos-ideal-nominal")
 
 
 def kinetic(c, bodies, i):
@@ -503,7 +508,8 @@ def torque_drive_energy():
         worst = max(abs(kinetic(c, bodies, i) - k0 - TORQUE_N_M * (c["crank_angle_rad"][i] - phi0))
                     for i in range(0, n, 50))
         print("%s: work %.6g J, energy balance worst %.3g J (%.2g)" % (m, work, worst, worst / work))
-        check(worst <= TORQUE_ENERGY_REL * work, "%s: %.3g of the work" % (m, worst / work))
+        bound = TORQUE_ENERGY_REL_OF.get(m, TORQUE_ENERGY_REL)
+        check(worst <= bound * work, "%s: %.3g of the work" % (m, worst / work))
 
 
 @suite.test
@@ -631,8 +637,6 @@ def refusals():
         ("[load.l]\nbody = ram\nat_mm = 1, 2\nforce_n = 1\n", "expected two numbers fx, fy"),
         ("[load.ram_guide]\nbody = ram\ntorque_n_m = 1\n", "both write"),
         ("[load.l]\nbody = ram\ntorque_n_m = 1\nspeed = 3\n", "unknown key 'speed'"),
-        ("[load.l]\nbody = ram\ntorque_n_m = 1\n[run]\nmodels = analytic, siconos-ideal-nominal\n",
-         "'siconos-ideal-nominal': [load.l]: its engine's binding does not apply springs"),
     ]
     for k, (text, words) in enumerate(bad):
         case = os.path.join(TMP, "bad%d.ini" % k)
@@ -642,6 +646,15 @@ def refusals():
         check(rc == 2 and words in se and "bad%d.ini" % k in se,
               "%r: exit %d, %r" % (text, rc, se[-300:]))
         check(not os.path.exists(out), "%r left a folder" % text)
+    # Siconos's angle coordinates take no applied force (refused when its world is built,
+    # as its other coordinate rules are: tests/test_siconos_kit_guide.py)
+    case = os.path.join(TMP, "siconos-angles.ini")
+    append(QR, case, "[load.l]\nbody = link\ntorque_n_m = 1\n[siconos]\ncoordinates = angles\n"
+           "[run]\nmodels = analytic, siconos-ideal-nominal\n")
+    out = os.path.join(TMP, "siconos-angles")
+    rc, so, se = run("run", case, "--out", out, "--no-figures")
+    check(rc != 0 and "applied in the absolute coordinates only" in se
+          and not os.path.exists(out), "siconos angles with loads: %d %r" % (rc, se[-300:]))
     # a torque drive's keys
     for k, (drive, extra, words) in enumerate([
             ("torque_n_m = 1\nspeed_rpm = 60\n", "[run]\nduration_s = 0.1\n", "sets no speed"),
@@ -666,12 +679,9 @@ def refusals():
     rc, so, se = run("run", case, "--out", os.path.join(TMP, "six-stroke"),
                      "--set", "run.models=analytic")
     check(rc == 2 and "no prismatic joint" in se, "stroke without a slide: %d %r" % (rc, se[-300:]))
-    # the commands that do not apply loads yet
+    # the export, which does not write loads yet
     case = os.path.join(TMP, "qr-torque.ini")
     append(QR, case, "[load.l]\nbody = link\ntorque_n_m = 1\n")
-    rc, so, se = run("bench", case, "--out", os.path.join(TMP, "bench"))
-    check(rc == 2 and "[load.l]" in se and "engine's models" in se,
-          "bench: exit %d %r" % (rc, se[-300:]))
     rc, so, se = run("export", case, "--format", "mjcf", "--ideal", "--out",
                      os.path.join(TMP, "x.xml"))
     check(rc != 0 and "[load.l]" in se and not os.path.exists(os.path.join(TMP, "x.xml")),

@@ -70,7 +70,7 @@ const char *fb_planar_kit_refusal(const char *name) {
 
 int fb_planar_kit_applies_loads(const char *name) {
   const fb_kit_binding *b = fb_planar_kit_of(name);
-  return b && b->apply_wrench;
+  return b && (b->apply_wrench || b->loads_from_state);
 }
 
 /* the models that take(name), comma-separated, into buf (size) */

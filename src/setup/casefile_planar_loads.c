@@ -242,7 +242,7 @@ void fb_casefile_planar_loads_write_keys(FILE *f) {
       {"damping_n_s_m", "N s/m", "0", DAMP_RULE, "its damping along its line"}};
   for (size_t i = 0; i < sizeof spring_rows / sizeof spring_rows[0]; i++)
     fprintf(f, "| [spring.NAME] %s | %s | %s | %s | planar case: %s; in the analytic model, "
-            "the references and every engine's models but Siconos's |\n", spring_rows[i][0],
+            "the references and every engine's models |\n", spring_rows[i][0],
             spring_rows[i][1], spring_rows[i][2], spring_rows[i][3], spring_rows[i][4]);
   static const char *const load_rows[][5] = {
       {"body", "-", "(required)", "a moving body of the case", "the body a constant load acts on"},
@@ -255,6 +255,6 @@ void fb_casefile_planar_loads_write_keys(FILE *f) {
        "in (else the case's one prismatic joint on a ground guide)"}};
   for (size_t i = 0; i < sizeof load_rows / sizeof load_rows[0]; i++)
     fprintf(f, "| [load.NAME] %s | %s | %s | %s | planar case: %s; in the analytic model, "
-            "the references and every engine's models but Siconos's |\n", load_rows[i][0],
+            "the references and every engine's models |\n", load_rows[i][0],
             load_rows[i][1], load_rows[i][2], load_rows[i][3], load_rows[i][4]);
 }

@@ -334,7 +334,7 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   if (mask && !b->add_contact && !(b->add_clearance && b->contact_force))
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding has no clearance contact yet",
                        b->engine);
-  if (fb_planar_has_loads(m) && !b->apply_wrench)
+  if (fb_planar_has_loads(m) && !b->apply_wrench && !b->loads_from_state)
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding applies no springs or loads "
                        "yet", b->engine);
   if (s->torque && !b->reactions)
@@ -369,7 +369,7 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   free(q);
   const fb_kit_clearance none = {0};
   if (st == FB_OK) st = fb_kit_pipe_new(&k->p, b, m, cl ? cl : &none, diag);
-  if (st == FB_OK && fb_planar_has_loads(m) && !(k->lq = malloc(3 * (size_t)nq * sizeof *k->lq)))
+  if (st == FB_OK && fb_planar_has_loads(m) && !b->loads_from_state && !(k->lq = malloc(3 * (size_t)nq * sizeof *k->lq)))
     st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   if (st != FB_OK) {
     fb_kit_close(k);

@@ -346,7 +346,15 @@ typedef struct fb_kit_binding {
                                 moving body its springs' and loads' (planar_loads.h, gravity
                                 left to the engine) from the state each step starts from;
                                 NULL: the kit refuses a description with springs or loads,
-                                naming the engine */
+                                naming the engine (unless loads_from_state) */
+  int loads_from_state;      /* optional: 1 when the binding's own force element evaluates the
+                                springs' and loads' forces at every evaluation of its
+                                integrator, from the state it is given (planar_loads.h
+                                fb_planar_applied on its bodies' states, o->mech's
+                                description): the forces then follow the motion inside a
+                                step, and an error-controlled integrator keeps its order,
+                                where a wrench held over the step makes it first order in
+                                h; the kit calls no apply_wrench. 0: apply_wrench */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

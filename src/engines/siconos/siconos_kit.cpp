@@ -41,6 +41,7 @@
 #include <vector>
 
 extern "C" {
+#include "planar_loads.h"
 #include "siconos_kit.h"
 }
 #include "siconos_angles.hpp"
@@ -515,6 +516,12 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
   w->newton = o->c ? o->c->siconos.newton : FB_SICONOS_NEWTON_CONVERGED;
   w->c = o->c;
   w->friction = o->c ? o->c->clearance.friction : 0.0;
+  if (w->coordinates == FB_SICONOS_ANGLES && o->mech && fb_planar_has_loads(o->mech)) {
+    delete w;
+    return fb_diag_set(diag, FB_ERR_ARG, "[siconos] coordinates = angles: springs, loads and a "
+                       "torque drive are applied in the absolute coordinates only (each body's "
+                       "external force); give [siconos] coordinates = absolute");
+  }
   *out = w;
   return FB_OK;
 }
@@ -676,6 +683,22 @@ static fb_status kit_step(void *vw, fb_diag *diag) {
   return nx;
 }
 
+// the springs', loads' and torque drive's force at body handle b's centre
+// of mass and torque for the coming step (kit.h apply_wrench): its
+// Lagrangian system's external force, the weight beside it, held over the
+// step as Moreau-Jean holds a constant fExt (coordinates = absolute; the
+// angles' refuse a description with loads at kit_world_new)
+static void kit_apply_wrench(void *vw, int b, const double f[3]) {
+  World *w = static_cast<World *>(vw);
+  if (!w->built || w->coordinates != FB_SICONOS_ABSOLUTE) return;
+  const int d = w->ds_of[(size_t)b];
+  if (d < 0) return; // the prescribed body: its motion is given
+  SiconosVector &fe = *w->ds[(size_t)d]->fExt();
+  fe.setValue(0, f[0]);
+  fe.setValue(1, f[1] - w->body[(size_t)b].m * w->grav);
+  fe.setValue(2, f[2]);
+}
+
 static double kit_contact_force(const void *vw, int k) {
   return static_cast<const World *>(vw)->force[k];
 }
@@ -723,7 +746,8 @@ const fb_kit_binding fb_siconos_kit = {
     0 /* friction: add_clearance reads [clearance] friction itself */,
     NULL /* body_accel: the step's difference */,
     0 /* explicit_law: no applied force */,
-    NULL /* apply_wrench: springs and loads not applied yet */,
+    kit_apply_wrench,
+    0 /* loads_from_state: none */,
 };
 
 } // extern "C"

@@ -60,6 +60,7 @@
 extern "C" {
 #include "contact_mass.h"
 #include "effective_mass.h"
+#include "planar_loads.h"
 #include "planar_mass.h"
 #include "simbody_kit.h"
 }
@@ -123,12 +124,10 @@ struct Kit {
   fb_planar_cmass *cm;                // a slider's corners' effective masses (planar_mass.h)
   const fb_planar *m;                 // the description (add_clearance)
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; // 1: a clearance joint
-  int changed;                        // 1: a contact's law, v0 or hand-over changed, or the
-                                      // applied wrenches
-  std::vector<double> wrench;         // 3 per handle: the springs' and loads' force at the
-                                      // centre of mass and torque over the step (apply_wrench);
-                                      // empty: none
-  int rewrench = 0;                   // 1: wrench changed since the state's forces were cached
+  int changed;                        // 1: a contact's law, v0 or hand-over changed
+  mutable std::vector<double> lq;     // the springs' and loads' workspace (3 nq: q, q' and
+                                      // their generalised forces, planar_loads.h); empty:
+                                      // the description has none
   fb_kit_world o;                     // the walk's settings: names, drive (kit.h)
   std::unique_ptr<Integrator> integ;
   double h;
@@ -243,12 +242,31 @@ void KitContact::calcForce(const State &state, Vector_<SpatialVec> &bodyForces, 
     const double f = fb_contact_force(&law, depth, rate, v0);
     if (f > 0.0) apply_contact(state, pin, c.pin_at, hole, c.hole_at, f, n, bodyForces);
   }
-  for (size_t b = 0; 3 * b < k_->wrench.size(); b++) { // held over the step (apply_wrench)
-    const MobilizedBody &mb = k_->of((int)b);
-    const double *f = &k_->wrench[3 * b];
-    mb.applyForceToBodyPoint(state, mb.getBodyMassCenterStation(state), Vec3(f[0], f[1], 0.0),
-                             bodyForces);
-    mb.applyBodyTorque(state, Vec3(0.0, 0.0, f[2]), bodyForces);
+  if (k_->lq.empty()) return;
+  // the springs', loads' and torque drive's forces at this evaluation's
+  // state (kit.h loads_from_state): each body's pose and rates in the
+  // description's coordinates (its mass centre and angle, as
+  // kit_body_state reads them), their generalised forces (planar_loads.h,
+  // gravity the engine's own) applied at the centre and as a torque
+  const size_t nb = k_->body.size(), nq = 3 * nb;
+  double *q = k_->lq.data(), *qd = q + nq, *f = qd + nq;
+  for (size_t b = 0; b < nb; b++) {
+    const MobilizedBody &mb = k_->mob[b];
+    const Vec3 p = mb.getBodyOriginLocation(state), v = mb.getBodyOriginVelocity(state);
+    const Rotation &R = mb.getBodyRotation(state);
+    q[3 * b] = p[0];
+    q[3 * b + 1] = p[1];
+    q[3 * b + 2] = std::atan2(R[1][0], R[0][0]);
+    qd[3 * b] = v[0];
+    qd[3 * b + 1] = v[1];
+    qd[3 * b + 2] = mb.getBodyAngularVelocity(state)[2];
+  }
+  fb_planar_applied(f, k_->o.mech, q, qd, 0.0);
+  for (size_t b = 0; b < nb; b++) {
+    const MobilizedBody &mb = k_->mob[b];
+    mb.applyForceToBodyPoint(state, mb.getBodyMassCenterStation(state),
+                             Vec3(f[3 * b], f[3 * b + 1], 0.0), bodyForces);
+    mb.applyBodyTorque(state, Vec3(0.0, 0.0, f[3 * b + 2]), bodyForces);
   }
 }
 
@@ -345,6 +363,13 @@ fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
   }
   k->body.reserve((size_t)o->nbodies);
   k->joint.reserve((size_t)o->njoints);
+  try {
+    if (o->mech && fb_planar_has_loads(o->mech))
+      k->lq.assign(3 * (size_t)fb_planar_nq(o->mech), 0.0);
+  } catch (const std::bad_alloc &) {
+    delete k;
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Simbody world");
+  }
   *out = k;
   return FB_OK;
 }
@@ -513,15 +538,6 @@ fb_status kit_add_contact(void *w, int jn, const fb_kit_contact *c, fb_diag *dia
   return FB_OK;
 }
 
-// the force element's wrench for the coming step; the integrator's
-// derivative at the step's start is evaluated again (changed)
-void kit_apply_wrench(void *w, int b, const double f[3]) {
-  Kit *k = kit(w);
-  if (k->wrench.empty()) k->wrench.assign(3 * k->body.size(), 0.0);
-  for (int i = 0; i < 3; i++) k->wrench[3 * (size_t)b + (size_t)i] = f[i];
-  k->changed = k->rewrench = 1;
-}
-
 fb_status kit_step(void *w, fb_diag *diag) {
   Kit *k = kit(w);
   for (const Held &c : k->held) k->changed |= c.on != c.on_last;
@@ -529,9 +545,6 @@ fb_status kit_step(void *w, fb_diag *diag) {
   try {
     // the force element changed at this step's start: the integrator's
     // derivative there is evaluated again
-    // the wrench lives outside the State: its cached forces go stale
-    if (k->rewrench) k->integ->updAdvancedState().invalidateAllCacheAtOrAbove(Stage::Dynamics);
-    k->rewrench = 0;
     if (k->changed) k->integ->reinitialize(Stage::Dynamics, false);
     k->changed = 0;
     for (int tries = 0; k->integ->getTime() < t1 && tries < 3; tries++) {
@@ -603,5 +616,6 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     0,    /* friction: a normal law only */
     NULL, /* body_accel: the step's difference */
     0,    /* explicit_law: an error-controlled integrator */
-    fb_simbody::kit_apply_wrench,
+    NULL, /* apply_wrench: the force element evaluates them itself */
+    1,    /* loads_from_state: at every stage of the integrator, from its state */
 };

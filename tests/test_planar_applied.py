@@ -75,6 +75,11 @@ BALANCE_REL = 1e-9
 # of a value); where it is on they differ by F v / omega to the same.
 # Measured worst: 2.9e-12 of the range; 1e-9 as above.
 STROKE_REL = 1e-9
+# A spring's columns (its length, length rate and tension) against the
+# same from its end points' columns: both from the CSV's 12 digits, the
+# rate relative to itself plus 1 mm/s (it crosses zero). 1e-9 fails on a
+# wrong end, free length or damping.
+SPRING_COLUMN_REL = 1e-9
 
 
 def run(*args):
@@ -213,6 +218,29 @@ def power_balance_sixbar():
     print("six-bar: power balance worst %.3g N m of a torque range %.6g N m (%.3g)"
           % (worst, span, worst / span))
     check(worst <= BALANCE_REL * span, "six-bar: %.3g of the range" % (worst / span))
+    # each spring's columns: its length and rate from its end points' columns, its
+    # tension by its law, sample by sample
+    for name, ea, eb, k, l0, c in (("coupler_output", "sp_coupler", "sp_output", 3000.0, 0.150,
+                                    4.0),
+                                   ("anchor", (0.150, -0.080), "sp_ternary", 1500.0, l_anchor,
+                                    0.0)):
+        t = cols[name + "_tension_n"]
+        scale = max(abs(x) for x in t)
+        bad = 0.0
+        for i in range(len(t)):
+            pa, va = (ea, (0.0, 0.0)) if isinstance(ea, tuple) else point(cols, ea, i)[:2]
+            pb, vb = point(cols, eb, i)[:2]
+            d = [pb[0] - pa[0], pb[1] - pa[1]]
+            ln = math.hypot(*d)
+            ld = dot(d, [vb[0] - va[0], vb[1] - va[1]]) / ln
+            bad = max(bad, abs(cols[name + "_length_m"][i] - ln) / ln,
+                      abs(cols[name + "_length_v_m_s"][i] - ld) / (abs(ld) + 1e-3),
+                      abs(t[i] - (k * (ln - l0) + c * ld)) / scale)
+        print("six-bar: spring %s's columns against its end points: %.3g" % (name, bad))
+        check(bad <= SPRING_COLUMN_REL, "spring %s's columns: %.3g" % (name, bad))
+        check(s["models"][0]["springs"][name]["tension_max_n"] == max(t) or
+              abs(s["models"][0]["springs"][name]["tension_max_n"] / max(t) - 1) < 1e-11,
+              "spring %s: summary.json's tension_max_n" % name)
     # the loads move the torque: without them it is another curve
     append(SIXBAR, base, cm)
     plain, _ = analytic(base, os.path.join(TMP, "six-plain"))

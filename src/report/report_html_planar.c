@@ -114,9 +114,11 @@ static json_t *outputs_json(const fb_planar *m) {
 }
 
 /* 1 when output column c is a velocity or an acceleration (the page's
- * series): a point's quantities 2 to 5, a slide's 1 and 2 */
+ * series): a point's quantities 2 to 5, a slide's 1 and 2 (a spring's
+ * columns are the CSV's and summary.json's, not the page's) */
 static int output_rate(const fb_planar *m, int c) {
   const int np = FB_PLANAR_POINT_QUANTITIES * m->npoints;
+  if (c >= fb_planar_output_count(m)) return 0; /* a spring's (planar_run.h out) */
   return c < np ? c % FB_PLANAR_POINT_QUANTITIES >= 2 : (c - np) % FB_PLANAR_SLIDE_QUANTITIES >= 1;
 }
 

@@ -7,6 +7,7 @@
 
 #include "names.h"
 #include "numfmt.h"
+#include "planar_loads.h"
 #include "planar_outputs.h"
 #include "report_common.h"
 #include "report_internal.h"
@@ -16,8 +17,16 @@ const char *fb_report_planar_output_column(char *buf, size_t size, const fb_plan
       "x_m", "y_m", "v_x_m_s", "v_y_m_s", "a_x_m_s2", "a_y_m_s2"};
   static const char *const slide_suffix[FB_PLANAR_SLIDE_QUANTITIES] = {
       "slide_m", "slide_v_m_s", "slide_a_m_s2"};
+  static const char *const spring_suffix[FB_PLANAR_SPRING_QUANTITIES] = {
+      "length_m", "length_v_m_s", "tension_n"};
   char word[FB_REPORT_JOINT_KEY_SIZE];
   const int np = FB_PLANAR_POINT_QUANTITIES * m->npoints;
+  const int ns = fb_planar_output_count(m); /* then the springs' (planar_run.h out) */
+  if (c >= ns && c < ns + FB_PLANAR_SPRING_QUANTITIES * m->nsprings) {
+    fb_name_word(word, sizeof word, m->spring[(c - ns) / FB_PLANAR_SPRING_QUANTITIES].name);
+    snprintf(buf, size, "%s_%s", word, spring_suffix[(c - ns) % FB_PLANAR_SPRING_QUANTITIES]);
+    return buf;
+  }
   if (c < np) {
     fb_name_word(word, sizeof word, m->point[c / FB_PLANAR_POINT_QUANTITIES].name);
     snprintf(buf, size, "%s_%s", word, point_suffix[c % FB_PLANAR_POINT_QUANTITIES]);
@@ -34,6 +43,8 @@ const char *fb_report_planar_output_column(char *buf, size_t size, const fb_plan
   snprintf(buf, size, "output_%d", c);
   return buf;
 }
+
+static json_t *num_or_null(double x) { return isfinite(x) ? json_real(x) : json_null(); }
 
 /* the extremes of output columns c (position), c + dv (its rate) and
  * c + da (its acceleration) over the window's samples, as a slider's */
@@ -88,6 +99,17 @@ void fb_report_planar_outputs_json(json_t *e, const fb_planar_run *r, const fb_p
   }
   json_object_set_new(e, "points", points);
   json_object_set_new(e, "slides", slides);
+  if (m->nsprings == 0) return;
+  json_t *springs = json_object();
+  for (int k = 0; k < m->nsprings; k++, c += FB_PLANAR_SPRING_QUANTITIES) {
+    const fb_body_peaks s = extremes(r, p, c, 1, 2); /* length, its rate, the tension */
+    json_object_set_new(springs, fb_name_word(word, sizeof word, m->spring[k].name),
+                        json_pack("{s:o,s:o,s:o,s:o}", "length_min_m", num_or_null(s.pos_min),
+                                  "length_max_m", num_or_null(s.pos_max), "tension_min_n",
+                                  num_or_null(s.alpha_min), "tension_max_n",
+                                  num_or_null(s.alpha_max)));
+  }
+  json_object_set_new(e, "springs", springs);
 }
 
 void fb_report_planar_outputs_table(FILE *f, const fb_planar_run *r, const fb_planar_model *p) {
@@ -124,5 +146,16 @@ void fb_report_planar_outputs_table(FILE *f, const fb_planar_run *r, const fb_pl
             FB_NUM_CELL("%.6g", s.alpha_min, FB_NUM_NONE_TABLE),
             FB_NUM_CELL("%.6g", s.alpha_max, FB_NUM_NONE_TABLE));
     c += FB_PLANAR_SLIDE_QUANTITIES;
+  }
+  if (m->nsprings > 0)
+    fprintf(f, "| spring | length min [m] | length max [m] | tension min [N] | "
+               "tension max [N] |\n|---|---:|---:|---:|---:|\n");
+  for (int k = 0; k < m->nsprings; k++, c += FB_PLANAR_SPRING_QUANTITIES) {
+    const fb_body_peaks s = extremes(r, p, c, 1, 2);
+    fprintf(f, "| %s | %s | %s | %s | %s |\n", m->spring[k].name,
+            FB_NUM_CELL("%.6g", s.pos_min, FB_NUM_NONE_TABLE),
+            FB_NUM_CELL("%.6g", s.pos_max, FB_NUM_NONE_TABLE),
+            FB_NUM_CELL("%.6g", s.alpha_min, FB_NUM_NONE_TABLE),
+            FB_NUM_CELL("%.6g", s.alpha_max, FB_NUM_NONE_TABLE));
   }
 }

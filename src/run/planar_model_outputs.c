@@ -1,9 +1,10 @@
-/* A planar model's output points and slides from its samples
+/* A planar model's output points, slides and springs from its samples
  * (planar_run.h's out, planar_outputs.h): the analytic model's and a
  * reference's from their coordinates, an engine's from the kit's angles and
  * centres. */
 #include <math.h>
 
+#include "planar_loads.h"
 #include "planar_outputs.h"
 #include "planar_run.h"
 #include "planar_spec.h"
@@ -11,9 +12,13 @@
 void fb_planar_model_store_outputs(fb_planar_model *p, const fb_planar *m, size_t i,
                                    const double *q, const double *qd, const double *qdd) {
   double row[FB_PLANAR_POINT_QUANTITIES * FB_PLANAR_SPEC_MAX_POINTS +
-             FB_PLANAR_SLIDE_QUANTITIES * FB_PLANAR_SPEC_MAX_JOINTS];
+             FB_PLANAR_SLIDE_QUANTITIES * FB_PLANAR_SPEC_MAX_JOINTS +
+             FB_PLANAR_SPRING_QUANTITIES * FB_PLANAR_SPEC_MAX_SPRINGS];
   if (!p->out || p->nout > (int)(sizeof row / sizeof row[0])) return;
   fb_planar_outputs(row, m, q, qd, qdd);
+  const int no = fb_planar_output_count(m);
+  for (int k = 0; no + FB_PLANAR_SPRING_QUANTITIES * k < p->nout; k++)
+    fb_planar_spring_state(row + no + FB_PLANAR_SPRING_QUANTITIES * k, m, k, q, qd);
   for (int c = 0; c < p->nout; c++) p->out[(size_t)c * p->n + i] = row[c];
 }
 

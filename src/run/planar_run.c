@@ -10,6 +10,7 @@
 #include "model_table.h"
 #include "planar_case.h"
 #include "planar_invdyn.h"
+#include "planar_loads.h"
 #include "planar_outputs.h"
 #include "planar_path.h"
 #include "resolution.h"
@@ -162,7 +163,7 @@ static fb_status model_alloc(fb_planar_model *p, const fb_planar_run *r, fb_diag
   if (!p->peaks || !p->t) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", p->n);
   p->drive = p->t + p->n;
   p->q = p->drive + p->n;
-  p->nout = fb_planar_output_count(r->m);
+  p->nout = fb_planar_output_count(r->m) + FB_PLANAR_SPRING_QUANTITIES * r->m->nsprings;
   if (p->nout > 0 && !(p->out = malloc((size_t)p->nout * p->n * sizeof *p->out)))
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples' points", p->n);
   for (size_t i = 0; i < (size_t)p->nout * p->n; i++) p->out[i] = NAN;

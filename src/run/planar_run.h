@@ -145,9 +145,11 @@ typedef struct {
                               (k = 0) and y (k = 1) [N], moment about +z (k = 2) [N m]:
                               reaction[(3 j + k) n + i] (3 njoints n; alongside torque) */
   double *out;             /* the description's output points and slides (planar_outputs.h),
-                              quantity c of fb_planar_outputs' row at out[c n + i]
-                              (nout n); NULL when it has neither */
-  int nout;                /* fb_planar_output_count of the description */
+                              quantity c of fb_planar_outputs' row at out[c n + i], then
+                              each spring's fb_planar_spring_state (planar_loads.h)
+                              (nout n); NULL when it has none of them */
+  int nout;                /* fb_planar_output_count of the description plus
+                              FB_PLANAR_SPRING_QUANTITIES per spring */
 } fb_planar_model;
 
 /* A planar case run. */

@@ -31,7 +31,9 @@ void fb_planar_applied(double *Q, const fb_planar *m, const double *q, const dou
                        double gravity);
 
 /* Spring s of m at q, qd: its length [m], length rate [m/s] and tension
- * [N] (positive pulls its ends together) into out (3). */
+ * [N] (positive pulls its ends together) into out
+ * (FB_PLANAR_SPRING_QUANTITIES). */
+#define FB_PLANAR_SPRING_QUANTITIES 3
 void fb_planar_spring_state(double out[3], const fb_planar *m, int s, const double *q,
                             const double *qd);
 

@@ -486,24 +486,36 @@ def torque_case(name, drive, extra=""):
     return path
 
 
-@suite.test
-def torque_drive_from_rest():
-    speed = torque_case("fourbar-speed", "speed_rpm = 60\n", "[run]\nmodels = analytic\n")
-    a, s = analytic(speed, os.path.join(TMP, "fourbar-speed"))
-    bodies = s["description"]["bodies"]
+def alpha_from_rest(name):
+    """T / I_eff of the torque four-bar at its assembly, I_eff by virtual work
+    from the analytic model's velocity ratios at a constant speed"""
+    speed = torque_case(name, "speed_rpm = 60\n", "[run]\nmodels = analytic\n")
+    a, s = analytic(speed, os.path.join(TMP, name))
     w = a["crank_omega_rad_s"][0]
     i_eff = sum(b["mass_kg"] * (a["cm_%s_v_x_m_s" % b["name"]][0] ** 2 +
                                 a["cm_%s_v_y_m_s" % b["name"]][0] ** 2) +
                 b["inertia_kg_m2"] * a["%s_omega_rad_s" % b["name"]][0] ** 2
-                for b in bodies if b["name"] != "ground") / w ** 2
-    want = TORQUE_N_M / i_eff
-    case = torque_case("fourbar-torque0", "torque_n_m = %g\n" % TORQUE_N_M,
-                       "[run]\nduration_s = 0.01\nmodels = %s\n" % ", ".join(TORQUE_ENGINES))
-    out = os.path.join(TMP, "fourbar-torque0")
-    rc, so, se = run("run", case, "--out", out, "--no-figures", "--no-report")
-    check(rc == 0, "torque drive from rest: exit %d: %s" % (rc, se[-600:]))
+                for b in s["description"]["bodies"] if b["name"] != "ground") / w ** 2
+    return TORQUE_N_M / i_eff
+
+
+def torque_run(name, drive, extra):
+    """the torque four-bar's run folder and summary.json, drive and extra
+    as torque_case's"""
+    out = os.path.join(TMP, name)
+    rc, so, se = run("run", torque_case(name, drive, extra), "--out", out, "--no-figures",
+                     "--no-report")
+    check(rc == 0, "%s: exit %d: %s" % (name, rc, se[-600:]))
     with open(os.path.join(out, "summary.json")) as f:
-        td = json.load(f)["description"]["torque_drive"]
+        return out, json.load(f)
+
+
+@suite.test
+def torque_drive_from_rest():
+    want = alpha_from_rest("fourbar-speed")
+    out, s = torque_run("fourbar-torque0", "torque_n_m = %g\n" % TORQUE_N_M,
+                        "[run]\nduration_s = 0.01\nmodels = %s\n" % ", ".join(TORQUE_ENGINES))
+    td = s["description"]["torque_drive"]
     check(td == {"joint": "ground-crank", "torque_n_m": TORQUE_N_M}, "torque_drive: %r" % td)
     for m in TORQUE_ENGINES:
         c = columns(os.path.join(out, m + ".csv"))
@@ -588,13 +600,8 @@ IDEAL_ALPHA_REL = 1e-9
 @suite.test
 def ideal_reference():
     models = ("ode-ideal-nominal", "mujoco-ideal-nominal")
-    case = torque_case("fourbar-ideal", "torque_n_m = %g\nspeed0_rpm = 60\n" % TORQUE_N_M,
-                       "[run]\nduration_s = 0.5\nmodels = reference, %s\n" % ", ".join(models))
-    out = os.path.join(TMP, "fourbar-ideal")
-    rc, so, se = run("run", case, "--out", out, "--no-figures", "--no-report")
-    check(rc == 0, "ideal reference: exit %d: %s" % (rc, se[-600:]))
-    with open(os.path.join(out, "summary.json")) as f:
-        s = json.load(f)
+    out, s = torque_run("fourbar-ideal", "torque_n_m = %g\nspeed0_rpm = 60\n" % TORQUE_N_M,
+                        "[run]\nduration_s = 0.5\nmodels = reference, %s\n" % ", ".join(models))
     bodies = s["description"]["bodies"]
     by = {m["name"]: m for m in s["models"]}
     ref = by["reference"]
@@ -614,21 +621,11 @@ def ideal_reference():
         check(v["verdict"] == "ok" and v["verdict_basis"] == "pointwise"
               and "against the ideal reference" in v["verdict_reason"]
               and v["peak_error_max_rel"] < 1e-2, "%s: %r" % (m, v))
-    # from rest: alpha(0) = T / I_eff, I_eff from the analytic model's velocity ratios
-    speed = torque_case("fourbar-speed1", "speed_rpm = 60\n", "[run]\nmodels = analytic\n")
-    a, sa = analytic(speed, os.path.join(TMP, "fourbar-speed1"))
-    w = a["crank_omega_rad_s"][0]
-    i_eff = sum(b["mass_kg"] * (a["cm_%s_v_x_m_s" % b["name"]][0] ** 2 +
-                                a["cm_%s_v_y_m_s" % b["name"]][0] ** 2) +
-                b["inertia_kg_m2"] * a["%s_omega_rad_s" % b["name"]][0] ** 2
-                for b in sa["description"]["bodies"] if b["name"] != "ground") / w ** 2
-    case = torque_case("fourbar-ideal0", "torque_n_m = %g\n" % TORQUE_N_M,
-                       "[run]\nduration_s = 0.01\n")  # the default model: reference
-    out = os.path.join(TMP, "fourbar-ideal0")
-    rc, so, se = run("run", case, "--out", out, "--no-figures", "--no-report")
-    check(rc == 0, "ideal reference from rest: exit %d: %s" % (rc, se[-600:]))
+    # from rest: alpha(0) = T / I_eff
+    want = alpha_from_rest("fourbar-speed1")
+    out, _ = torque_run("fourbar-ideal0", "torque_n_m = %g\n" % TORQUE_N_M,
+                        "[run]\nduration_s = 0.01\n")  # the default model: reference
     got = columns(os.path.join(out, "reference.csv"))["crank_alpha_rad_s2"][0]
-    want = TORQUE_N_M / i_eff
     print("reference: alpha(0) %.12g, T / I_eff %.12g (%.2g)" % (got, want, got / want - 1))
     check(abs(got / want - 1) <= IDEAL_ALPHA_REL, "alpha(0) %.12g against %.12g" % (got, want))
     # what it refuses: a speed drive (the kinematics are the analytic model's), and the

@@ -200,10 +200,12 @@ int fb_cli_case_file(const char *cmd, const char *path, const char *const *sets,
   if ((runs_planar(cmd) ? fb_casefile_load_planar : fb_casefile_load)(c, path, sets, nsets, &d) !=
       FB_OK)
     return fb_cli_fail(cmd, 2, "%s", d.msg);
+  const int torque = c->planar.torque_joint >= 0;
   if (c->planar.undriven && strcmp(cmd, "run") != 0) /* the others follow or load a drive */
-    return fb_cli_fail(cmd, 2, "%s: [drive] joint = none: an undriven case runs by fourbar run "
-                       "only (its references from the bodies' initial_omega_rad_s); %s follows "
-                       "a drive", path, cmd);
+    return fb_cli_fail(cmd, 2, "%s: %s: an undriven case runs by fourbar run only (its reference "
+                       "and the engines' models, from %s); %s follows a drive at constant speed",
+                       path, torque ? "[drive] torque_n_m" : "[drive] joint = none",
+                       torque ? "[drive] speed0_rpm" : "the bodies' initial_omega_rad_s", cmd);
   /* values within the rules yet unlikely to be meant: said, and run as given */
   char notes[8][FB_DIAG_SIZE];
   const int n = fb_casefile_plausibility(c, notes, 8);

@@ -41,8 +41,14 @@ static fb_series view_of(const fb_planar_model *p) {
 }
 
 /* the figures' window [t0, t1]: the revolution from the peak window's
- * start, or the run's first when the run ends before it */
+ * start, or the run's first when the run ends before it; an undriven
+ * run's (its figures against time) the whole run */
 static void window_of(const fb_planar_run *r, double *t0, double *t1) {
+  if (r->m->drive < 0) {
+    *t0 = 0.0;
+    *t1 = r->duration;
+    return;
+  }
   const double period = 2.0 * M_PI / r->c.crank_speed;
   *t0 = r->t_window + period <= r->duration * (1.0 + 1e-9) ? r->t_window : 0.0;
   *t1 = *t0 + period;
@@ -59,7 +65,8 @@ static json_t *curve(const fb_planar_model *p, const char *column, const char *p
   return c;
 }
 
-/* omega.<ext> (alpha 0) or alpha.<ext> (alpha 1, symlog axis per panel) */
+/* omega.<ext> (alpha 0) or alpha.<ext> (alpha 1, symlog axis per panel),
+ * against the drive angle, or an undriven run's against time */
 static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
                              int alpha, json_t *figs, fb_diag *diag) {
   const fb_planar *m = r->m;
@@ -77,12 +84,20 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
   window_of(r, &t0, &t1);
   json_t *curves = json_array();
   char en[200], mn[160], sp[96], col[96];
-  fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against the drive angle (%s, %s: runs "
-          "%s), t = %.4g to %.4g s'\nset xrange [0:360]\nset xtics 60\nset xlabel 'drive angle "
-          "[deg]'\nset key inside top right box opaque font ',8'\n", rows, ACROSS,
-          fig_esc(r->c.name, en, sizeof en), alpha ? "angular acceleration" : "angular velocity",
-          fig_esc(m->joint[m->drive].name, mn, sizeof mn), r->c.direction < 0 ? "cw" : "ccw",
-          r->c.direction < 0 ? "right to left" : "left to right", t0, t1);
+  const int timed = m->drive < 0; /* undriven: no drive angle to draw against */
+  if (timed)
+    fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against time (%s), t = %.4g to "
+            "%.4g s'\nset autoscale x\nset xtics autofreq\nset xlabel 'time [ms]'\nset key "
+            "inside top right box opaque font ',8'\n", rows, ACROSS,
+            fig_esc(r->c.name, en, sizeof en), alpha ? "angular acceleration" : "angular velocity",
+            m->torque_joint >= 0 ? "driven by a torque" : "undriven", t0, t1);
+  else
+    fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against the drive angle (%s, %s: "
+            "runs %s), t = %.4g to %.4g s'\nset xrange [0:360]\nset xtics 60\nset xlabel "
+            "'drive angle [deg]'\nset key inside top right box opaque font ',8'\n", rows, ACROSS,
+            fig_esc(r->c.name, en, sizeof en), alpha ? "angular acceleration" : "angular velocity",
+            fig_esc(m->joint[m->drive].name, mn, sizeof mn), r->c.direction < 0 ? "cw" : "ccw",
+            r->c.direction < 0 ? "right to left" : "left to right", t0, t1);
   for (int nth = 0; nth < nb; nth++) {
     const int b = turning[nth];
     double lo_all = 0.0, hi_all = 0.0;
@@ -94,8 +109,9 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
       char dname[32];
       snprintf(dname, sizeof dname, "m%d_%d", i, b);
       double lo = NAN, hi = NAN;
-      const int pts = fig_datablock(&pl, dname, &v, p->q + ((size_t)(b - 1) * 3 + (size_t)k) * p->n,
-                                    t0, t1, &lo, &hi);
+      const int pts = fig_datablock_x(&pl, dname, &v,
+                                      p->q + ((size_t)(b - 1) * 3 + (size_t)k) * p->n, t0, t1,
+                                      timed, &lo, &hi);
       if (pts) lo_all = any ? fmin(lo_all, lo) : lo, hi_all = any ? fmax(hi_all, hi) : hi, any = 1;
       json_array_append_new(curves, curve(p, col, m->body[b].name, pts, lo, hi, t0, t1));
     }
@@ -130,9 +146,15 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
   char file[128];
   snprintf(file, sizeof file, "%s.%s", name, fig_ext(fmt));
   if (st == FB_OK)
-    fig_manifest_add(figs, file, alpha ? "angular acceleration of every moving body against the "
-                     "drive angle" : "angular velocity of every moving body against the drive "
-                     "angle", curves);
+    fig_manifest_add(figs, file, alpha ? (timed ? "angular acceleration of every moving body "
+                                                 "against time"
+                                               : "angular acceleration of every moving body "
+                                                 "against the drive angle")
+                                       : (timed ? "angular velocity of every moving body against "
+                                                  "time"
+                                                : "angular velocity of every moving body against "
+                                                  "the drive angle"),
+                     curves);
   else
     json_decref(curves);
   return st;
@@ -276,10 +298,11 @@ fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_f
   json_t *figs = json_array();
   fb_status st = FB_OK;
   fig_batch_begin(); /* the figures drawn side by side */
-  /* every figure is against the drive angle: an undriven case (a free
-   * start, r->m->drive < 0) has none to draw against, and lists none */
+  /* the figures are against the drive angle; an undriven case's (a free
+   * start or a torque drive, r->m->drive < 0) omega and alpha against
+   * time, and no other yet */
   const int driven = r->m->drive >= 0;
-  for (int alpha = 0; alpha < 2 && st == FB_OK && driven; alpha++) {
+  for (int alpha = 0; alpha < 2 && st == FB_OK; alpha++) {
     st = omega_alpha(r, dir, fmt, alpha, figs, diag);
     if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s.%s", alpha ? "alpha" : "omega", fig_ext(fmt));
   }

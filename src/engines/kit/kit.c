@@ -369,7 +369,8 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   free(q);
   const fb_kit_clearance none = {0};
   if (st == FB_OK) st = fb_kit_pipe_new(&k->p, b, m, cl ? cl : &none, diag);
-  if (st == FB_OK && fb_planar_has_loads(m) && !b->loads_from_state && !(k->lq = malloc(3 * (size_t)nq * sizeof *k->lq)))
+  const int held = fb_planar_has_loads(m) && !b->loads_from_state; /* apply_wrench's state */
+  if (st == FB_OK && held && !(k->lq = malloc(3 * (size_t)nq * sizeof *k->lq)))
     st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   if (st != FB_OK) {
     fb_kit_close(k);

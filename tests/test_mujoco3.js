@@ -94,7 +94,8 @@ const REFERENCE_H_MIN_S = 1e-6;
 const STEPS_MAX = 4e5;
 /* the shipped cases `fourbar export` refuses, and the words it must say */
 const REFUSED = { 'press_fit.ini': 'interference fit',
-                  'slider_guide_flores_leine_glocker.ini': 'joint = none' };
+                  'slider_guide_flores_leine_glocker.ini': 'joint = none',
+                  'andrews_squeezer.ini': 'torque_n_m' };
 /* planar cases ([linkage] type = planar): --ideal writes the MJCF MuJoCo's
  * kit binding runs; without it a case with a clearance joint is refused
  * naming --ideal (the law is MuJoCo's passive-force hook, no MJCF) */

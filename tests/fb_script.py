@@ -153,12 +153,13 @@ def models(folder):
         return {m["name"]: m for m in json.load(f)["models"]}
 
 
-def planar_slider_crank(path, models):
-    """writes a planar case (docs/planar.md) of an in-line slider-crank to
-    path: crank 50 mm at 30 degrees, rod 120 mm, the slider on the x axis
-    on a prismatic joint, 3000 rpm; [run] models = models"""
+def planar_slider_crank(path, models, offset_mm=0.0, rod="rod", extra=""):
+    """writes a planar case (docs/planar.md) of a slider-crank to path:
+    crank 50 mm at 30 degrees, rod 120 mm (its body named rod), the slider
+    on a prismatic joint along x at offset_mm above the crank's pivot,
+    3000 rpm; [run] models = models; extra appended (sections of its own)"""
     c = (43.30127018922193, 25.0)
-    sx = c[0] + (120.0 ** 2 - 25.0 ** 2) ** 0.5
+    sx = c[0] + (120.0 ** 2 - (offset_mm - c[1]) ** 2) ** 0.5
     with open(path, "w") as f:
         f.write("""[case]
 name = planar_slider
@@ -167,15 +168,15 @@ type = planar
 [joint.ground-crank]
 bodies = ground, crank
 at_mm = 0, 0
-[joint.crank-rod]
-bodies = crank, rod
-at_mm = %.12f, %.12f
-[joint.rod-slider]
-bodies = rod, slider
-at_mm = %.12f, 0
+[joint.crank-%(rod)s]
+bodies = crank, %(rod)s
+at_mm = %(cx).12f, %(cy).12f
+[joint.%(rod)s-slider]
+bodies = %(rod)s, slider
+at_mm = %(sx).12f, %(e).12f
 [joint.slider-ground]
 bodies = slider, ground
-at_mm = %.12f, 0
+at_mm = %(sx).12f, %(e).12f
 kind = prismatic
 axis_deg = 0
 [body.slider]
@@ -188,8 +189,8 @@ speed_rpm = 3000
 fit = 10H7/g6
 length_mm = 13
 [run]
-models = %s
-""" % (c[0], c[1], sx, sx, models))
+models = %(models)s
+""" % {"rod": rod, "cx": c[0], "cy": c[1], "sx": sx, "e": offset_mm, "models": models} + extra)
 
 
 def summary_models(folder):

@@ -132,6 +132,36 @@ static void test_general_tolerances(void **state) {
   assert_int_equal(fb_iso2768_linear(&pm, 'm', 0.2e-3, NULL, 0, &d), FB_ERR_RANGE);
 }
 
+/* ISO 2768-1:1989 Table 3 (angular dimensions), by the shorter leg:
+ * f and m 1 deg, 30', 20', 10', 5'; c 1 deg 30', 1 deg, 30', 15', 10';
+ * v 3 deg, 2 deg, 1 deg, 30', 20' (up to 10, 50, 120, 400 mm, over 400),
+ * each range's upper limit inclusive */
+static void test_angular_tolerances(void **state) {
+  (void)state;
+  const struct {
+    char cls;
+    double mm, minutes;
+  } t[] = {{'m', 0.1, 60},  {'m', 10, 60},   {'m', 10.01, 30}, {'m', 50, 30}, {'m', 50.01, 20},
+           {'m', 120, 20},  {'m', 120.01, 10}, {'m', 400, 10}, {'m', 400.01, 5}, {'m', 1e4, 5},
+           {'f', 80, 20},   {'c', 5, 90},    {'c', 30, 60},    {'c', 100, 30}, {'c', 200, 15},
+           {'c', 500, 10},  {'v', 5, 180},   {'v', 30, 120},   {'v', 100, 60}, {'v', 200, 30},
+           {'v', 500, 20}};
+  for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+    double pm;
+    fb_diag d;
+    char clause[96];
+    if (fb_iso2768_angular(&pm, t[i].cls, t[i].mm * 1e-3, clause, sizeof clause, &d) != FB_OK)
+      fail_msg("%c %g mm: %s", t[i].cls, t[i].mm, d.msg);
+    assert_near(pm * 180.0 / M_PI * 60.0, t[i].minutes, 1e-9);
+    assert_non_null(strstr(clause, "Table 3"));
+  }
+  double pm;
+  fb_diag d;
+  assert_int_equal(fb_iso2768_angular(&pm, 'x', 0.1, NULL, 0, &d), FB_ERR_RANGE);
+  assert_int_equal(fb_iso2768_angular(&pm, 'm', 0.0, NULL, 0, &d), FB_ERR_RANGE);
+  assert_non_null(strstr(d.msg, "positive"));
+}
+
 /* the standard's refusals, each with its rule in the message */
 static void test_iso286_refusals(void **state) {
   (void)state;
@@ -377,6 +407,7 @@ int main(void) {
       cmocka_unit_test(test_fits),
       cmocka_unit_test(test_bad_fits_name_value_and_range),
       cmocka_unit_test(test_general_tolerances),
+      cmocka_unit_test(test_angular_tolerances),
       cmocka_unit_test(test_iso286_refusals),
       cmocka_unit_test(test_every_letter),
       cmocka_unit_test(test_table_follows_annex_a_formulae),

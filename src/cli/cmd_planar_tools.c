@@ -55,9 +55,9 @@ int fb_cmd_stackup_planar(const fb_case *c, int mask, const fb_cli_mc *mc, int j
     fb_planar_free(m);
     return fb_cli_fail("stackup", st == FB_ERR_ARG ? 2 : 1, "%s", d.msg);
   }
-  const int nl = s.nlengths;
+  const int nl = s.nlengths, nv = fb_planar_stackup_varied(&s);
   const double corners = !(mask & FB_TOL_CORNERS) ? 0.0
-                         : nl > FB_PLANAR_CORNER_BITS ? INFINITY : ldexp(1.0, nl);
+                         : nv > FB_PLANAR_CORNER_BITS ? INFINITY : ldexp(1.0, nv);
   double bytes = 0.0;
   int rc = (mask & FB_TOL_MONTECARLO) ? mc_memory(&bytes, &s, mc, each) : 0;
   /* (a planar Monte Carlo says its estimate always: each sample is a

@@ -15,14 +15,19 @@ static const double table[4][N_RANGES] = {
 };
 static const char classes[4] = {'f', 'm', 'c', 'v'};
 
+/* the row of class cls in the tables, or -1 with diag filled */
+static int class_row(char cls, fb_diag *diag) {
+  for (int i = 0; i < 4; i++)
+    if (classes[i] == cls) return i;
+  fb_diag_set(diag, FB_ERR_RANGE, "general tolerance class '%c': ISO 2768-1 classes are f, m, c, "
+              "v", cls);
+  return -1;
+}
+
 fb_status fb_iso2768_linear(double *plus_minus, char cls, double size, char *clause,
                             size_t clause_size, fb_diag *diag) {
-  int c = -1;
-  for (int i = 0; i < 4; i++)
-    if (classes[i] == cls) c = i;
-  if (c < 0)
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "general tolerance class '%c': ISO 2768-1 classes are f, m, c, v", cls);
+  const int c = class_row(cls, diag);
+  if (c < 0) return FB_ERR_RANGE;
   const double mm = size * 1e3;
   char num[32];
   if (!(mm >= 0.5 * (1 - 1e-12)) || mm > 4000.0 * (1 + 1e-12))
@@ -40,5 +45,40 @@ fb_status fb_iso2768_linear(double *plus_minus, char cls, double size, char *cla
   if (clause)
     snprintf(clause, clause_size, "ISO 2768-1 class %c, %s %g up to %g mm", cls,
              r == 0 ? "from" : "over", lower_mm[r], upper_mm[r]);
+  return FB_OK;
+}
+
+#define N_LEGS 5
+/* ISO 2768-1 Table 3's shorter-leg ranges [mm] (the last open above) */
+static const double leg_upper_mm[N_LEGS - 1] = {10, 50, 120, 400};
+/* ISO 2768-1 Table 3 [minutes of arc] */
+static const double angular_min[4][N_LEGS] = {
+    {60, 30, 20, 10, 5},  /* f */
+    {60, 30, 20, 10, 5},  /* m */
+    {90, 60, 30, 15, 10}, /* c */
+    {180, 120, 60, 30, 20}, /* v */
+};
+
+fb_status fb_iso2768_angular(double *plus_minus, char cls, double leg, char *clause,
+                             size_t clause_size, fb_diag *diag) {
+  const int c = class_row(cls, diag);
+  if (c < 0) return FB_ERR_RANGE;
+  char num[32];
+  if (!(leg > 0.0) || !isfinite(leg))
+    return fb_diag_set(diag, FB_ERR_RANGE, "shorter leg %s mm: an angle's leg must be positive "
+                       "and finite", fb_diag_number(num, sizeof num, leg * 1e3));
+  const double mm = leg * 1e3;
+  int r = 0;
+  while (r < N_LEGS - 1 && mm > leg_upper_mm[r] * (1 + 1e-12)) r++;
+  *plus_minus = angular_min[c][r] / 60.0 * M_PI / 180.0;
+  if (clause) {
+    if (r == 0)
+      snprintf(clause, clause_size, "ISO 2768-1 Table 3 class %c, shorter leg up to 10 mm", cls);
+    else if (r == N_LEGS - 1)
+      snprintf(clause, clause_size, "ISO 2768-1 Table 3 class %c, shorter leg over 400 mm", cls);
+    else
+      snprintf(clause, clause_size, "ISO 2768-1 Table 3 class %c, shorter leg over %g up to %g mm",
+               cls, leg_upper_mm[r - 1], leg_upper_mm[r]);
+  }
   return FB_OK;
 }

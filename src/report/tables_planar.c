@@ -299,6 +299,23 @@ static void mc_text(FILE *f, const fb_planar *m, const fb_planar_stackup *s) {
             s->mc.unassembled, s->mc.samples, s->mc.unassembled_first, s->mc.unassembled_msg);
 }
 
+/* fb_planar_dim_kind's names in JSON and the table */
+static const char *const DIM_KIND[] = {"distance", "offset", "angle"};
+
+/* dimension L of m as JSON: a distance's or an offset's nominal_m and
+ * plus_minus_m, an angle's nominal_rad and plus_minus_rad */
+static json_t *length_json(const fb_planar *m, const fb_planar_length *L) {
+  const int angle = L->kind == FB_PLANAR_DIM_ANGLE;
+  json_t *o = json_pack("{s:s,s:s,s:o,s:s}", "body", m->body[L->body].name, "kind",
+                        DIM_KIND[L->kind], "from",
+                        L->joint[0] >= 0 ? json_string(m->joint[L->joint[0]].name) : json_null(),
+                        "to", m->joint[L->joint[1]].name);
+  json_object_set_new(o, angle ? "nominal_rad" : "nominal_m", num(L->nominal));
+  json_object_set_new(o, angle ? "plus_minus_rad" : "plus_minus_m", num(L->plus_minus));
+  json_object_set_new(o, "source", json_string(L->source));
+  return o;
+}
+
 void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
                               const fb_planar_stackup *s, int json) {
   char name[128];
@@ -306,23 +323,19 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
     json_t *o = json_object(), *lengths = json_array(), *outs = json_array();
     json_object_set_new(o, "case", json_string(c->name));
     json_object_set_new(o, "mechanism", json_string("planar"));
-    for (int k = 0; k < s->nlengths; k++) {
-      const fb_planar_length *L = &s->length[k];
-      json_array_append_new(lengths, json_pack("{s:s,s:s,s:s,s:o,s:o,s:s}", "body",
-                                               m->body[L->body].name, "from",
-                                               m->joint[L->joint[0]].name, "to",
-                                               m->joint[L->joint[1]].name, "nominal_m",
-                                               num(L->nominal), "plus_minus_m",
-                                               num(L->plus_minus), "source", L->source));
-    }
+    for (int k = 0; k < s->nlengths; k++) json_array_append_new(lengths, length_json(m, &s->length[k]));
     for (int i = 0; i < s->nout; i++) {
-      json_t *sens = json_array();
-      for (int k = 0; k < s->nlengths; k++)
-        json_array_append_new(sens, num(s->sens[i * s->nlengths + k]));
+      json_t *per_m = json_array(), *per_rad = json_array();
+      for (int k = 0; k < s->nlengths; k++) {
+        const int angle = s->length[k].kind == FB_PLANAR_DIM_ANGLE;
+        json_array_append_new(per_m, angle ? json_null() : num(s->sens[i * s->nlengths + k]));
+        json_array_append_new(per_rad, angle ? num(s->sens[i * s->nlengths + k]) : json_null());
+      }
       json_array_append_new(
-          outs, json_pack("{s:s,s:o,s:o,s:{s:o,s:o},s:o}", "name",
+          outs, json_pack("{s:s,s:o,s:o,s:o,s:{s:o,s:o},s:o}", "name",
                           fb_planar_output_name(name, sizeof name, m, i), "nominal",
-                          num(s->nominal[i]), "sensitivity_per_m", sens, "rss", "low",
+                          num(s->nominal[i]), "sensitivity_per_m", per_m, "sensitivity_per_rad",
+                          per_rad, "rss", "low",
                           num(s->nominal[i] - s->rss_half[i]), "high",
                           num(s->nominal[i] + s->rss_half[i]), "corners",
                           s->corners ? json_pack("{s:o,s:o,s:s,s:s}", "min", num(s->lo[i]),
@@ -346,14 +359,17 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
     dump(f, o);
     return;
   }
-  fprintf(f, "%s: planar, %d lengths (each body's joint-to-joint distances)\n| body | from | to | "
-          "nominal [mm] | +- [mm] | source |\n|---|---|---|---:|---:|---|\n", c->name,
-          s->nlengths);
+  fprintf(f, "%s: planar, %d dimensions (each body's joint-to-joint distances, a slot's or "
+          "guide's offset and angle)\n| body | dimension | from | to | nominal | +- | source |\n"
+          "|---|---|---|---|---:|---:|---|\n", c->name, s->nlengths);
   for (int k = 0; k < s->nlengths; k++) {
     const fb_planar_length *L = &s->length[k];
-    fprintf(f, "| %s | %s | %s | %.6g | %.4g | %s |\n", m->body[L->body].name,
-            m->joint[L->joint[0]].name, m->joint[L->joint[1]].name, L->nominal / FB_M_PER_MM,
-            L->plus_minus / FB_M_PER_MM, L->source);
+    const int angle = L->kind == FB_PLANAR_DIM_ANGLE;
+    const double unit = angle ? M_PI / 180.0 : FB_M_PER_MM;
+    fprintf(f, "| %s | %s | %s | %s | %.6g %s | %.4g %s | %s |\n", m->body[L->body].name,
+            DIM_KIND[L->kind], L->joint[0] >= 0 ? m->joint[L->joint[0]].name : "+x",
+            m->joint[L->joint[1]].name, L->nominal / unit, angle ? "deg" : "mm",
+            L->plus_minus / unit, angle ? "deg" : "mm", L->source);
   }
   if (s->corners_unassembled)
     fprintf(f, "\n%lld of the %lld corners cannot assemble or turn a revolution, so the worst "
@@ -366,7 +382,7 @@ void fb_report_planar_stackup(FILE *f, const fb_case *c, const fb_planar *m,
     fprintf(f, "\nno corner assembles; RSS band 3 sigma\n");
   else
     fprintf(f, "\nworst case not run (--method corners runs its %.0f corners); RSS band 3 sigma\n",
-            pow(2.0, s->nlengths));
+            pow(2.0, fb_planar_stackup_varied(s)));
   const int mc = s->mc.samples > 0;
   fprintf(f, "| output | nominal | RSS low | RSS high | corners min | at | corners max | at |%s\n"
           "|---|---:|---:|---:|---:|---|---:|---|%s\n",

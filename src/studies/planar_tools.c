@@ -172,191 +172,39 @@ fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_ca
 
 /* ---- stack-up ------------------------------------------------------------ */
 
-/* the distinct joint points of body b in its frame (at most BODY_POINTS
- * kept; the count returned may exceed it), with one joint at each */
-static int body_points(double p[BODY_POINTS][2], int joint[BODY_POINTS], const fb_planar *m, int b) {
-  int n = 0;
-  for (int j = 0; j < m->njoints; j++)
-    for (int s = 0; s < 2; s++) {
-      if (m->joint[j].body[s] != b) continue;
-      const double *x = m->joint[j].point[s];
-      int seen = 0;
-      for (int i = 0; i < n && i < BODY_POINTS; i++)
-        seen |= hypot(x[0] - p[i][0], x[1] - p[i][1]) < FB_PLANAR_SAME_POINT_M;
-      if (seen) continue;
-      if (n < BODY_POINTS) {
-        p[n][0] = x[0];
-        p[n][1] = x[1];
-        joint[n] = j;
-      }
-      n++;
-    }
-  return n;
-}
-
-/* 1 when body b of n points is a line (planar.h on_one_bar): its lengths
- * are the distances along the line from its datum (line_frame), n - 1 of
- * them */
-static int line_body(const fb_planar *m, int b, int n) { return n >= 3 && m->body[b].on_one_bar; }
-
-/* the number of body b's lengths at n points */
-static int body_lengths(const fb_planar *m, int b, int n) {
-  return line_body(m, b, n) ? n - 1 : n * (n - 1) / 2;
-}
-
-/* a line body's frame: its datum d, the first in order of the two points
- * farthest apart (a lever's pivot and end: its datum the one listed
- * first), u along the line towards the other, v across it; returns d */
-static int line_frame(double u[2], double v[2], double p[BODY_POINTS][2], int n) {
-  int d, e;
-  const double far = fb_planar_farthest_pair((const double (*)[2])p, n, &d, &e);
-  u[0] = (p[e][0] - p[d][0]) / far;
-  u[1] = (p[e][1] - p[d][1]) / far;
-  v[0] = -u[1];
-  v[1] = u[0];
-  return d;
-}
-
-/* the lengths of every body, toleranced by the case's class: counted
- * first (each body of n points has n (n - 1) / 2, a line body n - 1: each
- * point's distance from the first along the line), then filled */
+/* the dimensions of every body, toleranced by the case's class (the
+ * angles' legs from the slides' travel over a revolution) */
 static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_planar *m,
                             fb_diag *diag) {
   if (!c->tolerance_class)
     return fb_diag_set(diag, FB_ERR_ARG, "a planar case's stack-up needs [tolerance] class "
-                       "(f, m, c or v: ISO 2768-1 on each joint-to-joint distance)");
-  int count = 0;
-  for (int b = 0; b < m->nbodies; b++) {
-    double p[BODY_POINTS][2];
-    int joint[BODY_POINTS];
-    const int n = body_points(p, joint, m, b);
-    if (n > 3)
-      return fb_diag_set(diag, FB_ERR_ARG, "body '%s' has %d distinct joint points: its "
-                         "distances over-determine it, and the stack-up varies bodies of 2 or "
-                         "3 points", m->body[b].name, n);
-    count += body_lengths(m, b, n);
-  }
+                       "(f, m, c or v: ISO 2768-1 on each joint-to-joint distance, a slot's or "
+                       "guide's offset and angle)");
+  const int count = fb_planar_dims_count(m);
   s->length = calloc(count ? (size_t)count : 1, sizeof *s->length);
-  if (!s->length) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  s->nlengths = 0;
-  for (int b = 0; b < m->nbodies; b++) {
-    double p[BODY_POINTS][2];
-    int joint[BODY_POINTS];
-    const int n = body_points(p, joint, m, b);
-    const int line = line_body(m, b, n);
-    double u[2] = {1.0, 0.0}, v[2];
-    const int d = line ? line_frame(u, v, p, n) : 0;
-    for (int i = 0; i < n; i++)
-      for (int k = i + 1; k < n; k++) {
-        if (line && i != d && k != d) continue; /* a line's lengths: from its datum */
-        fb_planar_length *L = &s->length[s->nlengths++];
-        L->body = b;
-        L->joint[0] = joint[i];
-        L->joint[1] = joint[k];
-        L->nominal = line ? fabs((p[k][0] - p[i][0]) * u[0] + (p[k][1] - p[i][1]) * u[1])
-                          : hypot(p[k][0] - p[i][0], p[k][1] - p[i][1]);
-        fb_diag inner;
-        if (fb_iso2768_linear(&L->plus_minus, c->tolerance_class, L->nominal, L->source,
-                              sizeof L->source, &inner) != FB_OK)
-          return fb_diag_set(diag, FB_ERR_RANGE, "body '%s', '%s' to '%s' (%.6g mm): %s",
-                             m->body[b].name, m->joint[joint[i]].name, m->joint[joint[k]].name,
-                             L->nominal / FB_M_PER_MM, inner.msg);
-      }
-  }
-  return FB_OK;
+  double *travel = calloc((size_t)m->njoints + 1, sizeof *travel);
+  fb_planar_designer *des = fb_planar_slide_count(m) ? malloc(sizeof *des) : NULL;
+  fb_status st = !s->length || !travel || (fb_planar_slide_count(m) && !des)
+                     ? fb_diag_set(diag, FB_ERR_NOMEM, "out of memory")
+                     : FB_OK;
+  if (st == FB_OK && des) st = fb_planar_tool_designer(des, m, c, diag);
+  for (int i = 0; st == FB_OK && des && i < des->nslides; i++)
+    travel[des->slide[i].joint] = des->slide[i].stroke;
+  if (st == FB_OK)
+    st = fb_planar_dims(s->length, &s->nlengths, m, c->tolerance_class, travel, diag);
+  free(travel);
+  free(des);
+  return st;
 }
 
-int fb_planar_stackup_lengths(const fb_planar *m) {
-  int count = 0;
-  for (int b = 0; b < m->nbodies; b++) {
-    double p[BODY_POINTS][2];
-    int joint[BODY_POINTS];
-    const int n = body_points(p, joint, m, b);
-    count += body_lengths(m, b, n);
-  }
-  return count;
-}
-
-/* body b's points rebuilt from its lengths len (in lengths_of's order from
- * index at): the first stays, the second along the nominal direction, the
- * third on the nominal side of the first two; a line body's datum stays
- * and each other point is at its length along the line from it, on its
- * nominal side, its small offset across the line kept. Returns 0 when the
- * three lengths of a triangle do not close one (a length longer than the
- * other two's sum), else 1. */
-static int rebuild(double q[3][2], double p[BODY_POINTS][2], int n, int line, const double *len) {
-  memcpy(q, p, (size_t)n * sizeof q[0]);
-  if (line) {
-    double u[2], v[2];
-    const int d = line_frame(u, v, p, n);
-    for (int k = 0, at = 0; k < n; k++) {
-      if (k == d) continue;
-      const double dx = p[k][0] - p[d][0], dy = p[k][1] - p[d][1];
-      const double along = dx * u[0] + dy * u[1], across = dx * v[0] + dy * v[1];
-      const double l = along >= 0.0 ? len[at] : -len[at];
-      at++;
-      q[k][0] = p[d][0] + l * u[0] + across * v[0];
-      q[k][1] = p[d][1] + l * u[1] + across * v[1];
-    }
-    return 1;
-  }
-  if (n < 2) return 1;
-  const double d01 = hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
-  const double u[2] = {(p[1][0] - p[0][0]) / d01, (p[1][1] - p[0][1]) / d01};
-  q[1][0] = p[0][0] + len[0] * u[0];
-  q[1][1] = p[0][1] + len[0] * u[1];
-  if (n < 3) return 1;
-  const double l02 = len[1], l12 = len[2], d = len[0];
-  const double a = (l02 * l02 - l12 * l12 + d * d) / (2.0 * d);
-  const double h2 = l02 * l02 - a * a;
-  if (h2 < 0.0) return 0; /* no triangle: never clamped to a flat one */
-  const double h = sqrt(h2);
-  const double side = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) -
-                      (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
-  const double sg = side >= 0.0 ? 1.0 : -1.0;
-  q[2][0] = q[0][0] + a * u[0] - sg * h * u[1];
-  q[2][1] = q[0][1] + a * u[1] + sg * h * u[0];
-  return 1;
-}
-
-/* a copy of m with the lengths len (s->nlengths); NULL out of memory, or
- * with *open the first body whose triangle the lengths do not close (-1:
- * every one closes) */
-static fb_planar *with_lengths(const fb_planar *m, const double *len, int *open) {
-  *open = -1;
-  fb_planar *x = fb_planar_new(m->nbodies - 1, m->njoints);
-  if (!x) return NULL;
-  memcpy(x->body, m->body, (size_t)m->nbodies * sizeof *m->body);
-  memcpy(x->joint, m->joint, (size_t)m->njoints * sizeof *m->joint);
-  x->nbodies = m->nbodies;
-  x->njoints = m->njoints;
-  x->drive = m->drive;
-  for (int b = 0, at = 0; b < m->nbodies; b++) {
-    double p[BODY_POINTS][2], q[3][2];
-    int joint[BODY_POINTS];
-    const int n = body_points(p, joint, m, b);
-    if (!rebuild(q, p, n, line_body(m, b, n), len + at) && *open < 0) *open = b;
-    at += body_lengths(m, b, n);
-    for (int j = 0; j < m->njoints; j++)
-      for (int side = 0; side < 2; side++) {
-        if (m->joint[j].body[side] != b) continue;
-        const double *o = m->joint[j].point[side];
-        for (int i = 0; i < n; i++)
-          if (hypot(o[0] - p[i][0], o[1] - p[i][1]) < FB_PLANAR_SAME_POINT_M) {
-            x->joint[j].point[side][0] = q[i][0];
-            x->joint[j].point[side][1] = q[i][1];
-          }
-      }
-  }
-  return x;
-}
+int fb_planar_stackup_lengths(const fb_planar *m) { return fb_planar_dims_count(m); }
 
 /* the outputs (4 per moving body) of m with lengths len into y */
-static fb_status outputs_at(double *y, const fb_planar *m, const double *len, double omega,
-                            fb_diag *diag) {
+static fb_status outputs_at(double *y, const fb_planar *m, const fb_planar_stackup *s,
+                            const double *len, double omega, fb_diag *diag) {
   int open;
   fb_planar_peaks *pk = calloc((size_t)m->nbodies, sizeof *pk);
-  fb_planar *x = with_lengths(m, len, &open);
+  fb_planar *x = fb_planar_dims_apply(m, s->length, s->nlengths, len, &open);
   fb_status st = !x || !pk ? fb_diag_set(diag, FB_ERR_NOMEM, "out of memory")
                  : open >= 0 ? fb_diag_set(diag, FB_ERR_ASSEMBLY, "body '%s': its three joint "
                                            "distances close no triangle (one is longer than "
@@ -389,13 +237,14 @@ static fb_status sensitivities(fb_planar_stackup *s, const fb_planar *m, double 
   fb_status st = FB_OK;
   for (int k = 0; k < nl && st == FB_OK; k++) {
     const double l0 = len[k];
-    len[k] = l0 + FB_PLANAR_SENS_STEP;
-    st = outputs_at(y, m, len, omega, diag);
+    const double h = s->length[k].step;
+    len[k] = l0 + h;
+    st = outputs_at(y, m, s, len, omega, diag);
     for (int o = 0; o < no && st == FB_OK; o++) s->sens[o * nl + k] = y[o];
-    len[k] = l0 - FB_PLANAR_SENS_STEP;
-    if (st == FB_OK) st = outputs_at(y, m, len, omega, diag);
+    len[k] = l0 - h;
+    if (st == FB_OK) st = outputs_at(y, m, s, len, omega, diag);
     for (int o = 0; o < no && st == FB_OK; o++)
-      s->sens[o * nl + k] = (s->sens[o * nl + k] - y[o]) / (2.0 * FB_PLANAR_SENS_STEP);
+      s->sens[o * nl + k] = (s->sens[o * nl + k] - y[o]) / (2.0 * h);
     len[k] = l0;
     step(pg, k + 1, nl);
   }
@@ -407,15 +256,16 @@ static fb_status sensitivities(fb_planar_stackup *s, const fb_planar *m, double 
   return st;
 }
 
-/* the corner `at` ('+' or '-' per length) evaluated: its outputs widen
+/* the corner `at` ('+' or '-' per length, '0' for one toleranced 0) evaluated: its outputs widen
  * lo, hi and record it as the corner of each extreme they pass */
 static fb_status corner(fb_planar_stackup *s, const fb_planar *m, const char *at, double *len,
                         double *y, double omega, fb_diag *diag) {
   const int nl = s->nlengths;
   for (int k = 0; k < nl; k++)
-    len[k] = s->length[k].nominal + (at[k] == '+' ? 1.0 : -1.0) * s->length[k].plus_minus;
+    len[k] = s->length[k].nominal + (at[k] == '+' ? 1.0 : at[k] == '-' ? -1.0 : 0.0) *
+                                        s->length[k].plus_minus;
   fb_diag inner;
-  const fb_status st = outputs_at(y, m, len, omega, &inner);
+  const fb_status st = outputs_at(y, m, s, len, omega, &inner);
   if (st == FB_ERR_ASSEMBLY) { /* a mechanism that cannot exist: counted, not evaluated */
     if (s->corners_unassembled++ == 0)
       snprintf(s->unassembled_first, sizeof s->unassembled_first, "corner %.300s: %.600s", at,
@@ -439,21 +289,30 @@ static fb_status corner(fb_planar_stackup *s, const fb_planar *m, const char *at
   return FB_OK;
 }
 
-/* the worst case: every one of the 2^n corners, in the order of the binary
- * count (length k '+' where bit k is set) */
+int fb_planar_stackup_varied(const fb_planar_stackup *s) {
+  int n = 0;
+  for (int k = 0; k < s->nlengths; k++) n += s->length[k].plus_minus > 0.0;
+  return n;
+}
+
+/* the worst case: every one of the 2^n corners of the n dimensions with a
+ * tolerance, in the order of the binary count (the i-th of them '+' where
+ * bit i is set; a dimension toleranced 0 at '0') */
 static fb_status corners(fb_planar_stackup *s, const fb_planar *m, double *len, double *y,
                          double omega, const tool_progress *pg, fb_diag *diag) {
-  const int nl = s->nlengths, no = s->nout;
-  if (nl > FB_PLANAR_CORNER_BITS)
-    return fb_diag_set(diag, FB_ERR_RANGE, "%d lengths make 2^%d corners, more than a count "
-                       "of 2^%d holds: run --method rss", nl, nl, FB_PLANAR_CORNER_BITS);
+  const int nl = s->nlengths, no = s->nout, nv = fb_planar_stackup_varied(s);
+  if (nv > FB_PLANAR_CORNER_BITS)
+    return fb_diag_set(diag, FB_ERR_RANGE, "%d toleranced dimensions make 2^%d corners, more "
+                       "than a count of 2^%d holds: run --method rss", nv, nv,
+                       FB_PLANAR_CORNER_BITS);
   char *at = calloc((size_t)nl + 1, 1);
   if (!at) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   for (int o = 0; o < no; o++) s->lo[o] = s->hi[o] = s->nominal[o];
   fb_status st = FB_OK;
-  const unsigned long long n = 1ull << nl;
+  const unsigned long long n = 1ull << nv;
   for (unsigned long long mask = 0; mask < n && st == FB_OK; mask++) {
-    for (int k = 0; k < nl; k++) at[k] = (mask >> k) & 1 ? '+' : '-';
+    for (int k = 0, i = 0; k < nl; k++)
+      at[k] = !(s->length[k].plus_minus > 0.0) ? '0' : (mask >> i++) & 1 ? '+' : '-';
     st = corner(s, m, at, len, y, omega, diag);
     step(pg, (double)(mask + 1), (double)n);
   }
@@ -471,7 +330,7 @@ typedef struct {
 
 static fb_status nominal_eval(void *ctx, fb_diag *diag) {
   nominal_ctx *x = ctx;
-  return outputs_at(x->s->nominal, x->m, x->len, x->omega, diag);
+  return outputs_at(x->s->nominal, x->m, x->s, x->len, x->omega, diag);
 }
 
 fb_status fb_planar_stackup_begin(fb_planar_stackup *s, double *s_per_eval, double units,
@@ -537,6 +396,7 @@ fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb
  * draw, the drive speed */
 typedef struct {
   const fb_planar *m;
+  const fb_planar_stackup *s;
   const int *slot; /* (nlengths) */
   int nlengths;
   double omega;    /* [rad/s] */
@@ -549,7 +409,7 @@ static fb_status mc_eval(double *out, const double *len, void *ctx, fb_diag *dia
   double *at = malloc((size_t)x->nlengths * sizeof *at);
   if (!at) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   for (int k = 0; k < x->nlengths; k++) at[x->slot[k]] = len[k];
-  const fb_status st = outputs_at(out, x->m, at, x->omega, diag);
+  const fb_status st = outputs_at(out, x->m, x->s, at, x->omega, diag);
   free(at);
   return st;
 }
@@ -577,7 +437,7 @@ fb_status fb_planar_stackup_montecarlo(fb_planar_stackup *s, const fb_case *c, c
     nominal[k] = s->length[slot[k]].nominal;
     pm[k] = s->length[slot[k]].plus_minus;
   }
-  const mc_ctx x = {m, slot, nl, fb_case_omega2(c)};
+  const mc_ctx x = {m, s, slot, nl, fb_case_omega2(c)};
   /* a sample that cannot assemble or turn is counted, not clamped or run */
   const fb_mc_problem p = {nl, nominal, pm, s->nout, mc_eval, (void *)&x, 1, 1};
   s->mc.failed_len = failed;

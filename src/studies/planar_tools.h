@@ -9,18 +9,13 @@
  * gravity included), then Johnson's pin-in-hole
  * stiffness Kc, the penalty P = Kc c^1.5 and the approach at that force
  * (contact.h), as fourbar penalty's physical rows.
- * Stack-up: the lengths are the distances between the distinct joint
- * points of each body (the ground's included): one for a binary link,
- * three for a ternary one; a body whose points lie on one bar
- * (planar.h on_one_bar) is a line: each point's distance along it from
- * the first of its two farthest points, n - 1 of them; each toleranced by
- * ISO 2768-1 ([tolerance] class). A length changed moves its body's
- * points: the body's first point stays, its second moves along the
- * nominal direction, a third is the intersection of two circles on the
- * nominal side (a line's datum stays and the others move along it); the
+ * Stack-up: the dimensions of planar_dims.h (each body's distances
+ * between revolute points, each slot's or guide's offset and angle), each
+ * toleranced by ISO 2768-1 ([tolerance] class) and applied to a copy of the
+ * description (fb_planar_dims_apply); the
  * mechanism then closes by Newton at the assembly (planar_kinematics.h). Outputs: every
  * moving body's omega and alpha extremes. Sensitivities by central
- * differences (step FB_PLANAR_SENS_STEP), the RSS band nominal +-
+ * differences (each dimension's step), the RSS band nominal +-
  * sqrt(sum (S_k t_k)^2) (each t_k taken as 3 sigma, as tolerance.h),
  * and the worst case over every one of the 2^n corners (every length at
  * nominal +- t_k), as many as the description's lengths make: the
@@ -38,16 +33,11 @@
 #include "contact.h"
 #include "montecarlo.h"
 #include "planar.h"
+#include "planar_dims.h"
 #include "planar_outputs.h"
 #include "planar_path.h"
 #include "planar_spec.h"
 #include "planar_transmission.h"
-
-/* Central-difference step of a sensitivity [m]: 1 um. The truncation
- * error is O(step^2) of the output's curvature in the length (1e-12 of it
- * relative), the rounding error the peaks' ~1e-15 over the step, 1e-9 of
- * the output per metre: both below the printed digits. */
-#define FB_PLANAR_SENS_STEP 1e-6
 
 /* A prismatic joint's slide over a revolution (planar_outputs.h): its
  * extremes, dead centres and strokes at constant drive speed. */
@@ -122,22 +112,13 @@ typedef struct {
 fb_status fb_planar_penalty_rows(fb_planar_penalty_row *out, int *n, const fb_case *c,
                                  const fb_planar *m, double omega, fb_diag *diag);
 
-/* One toleranced length. */
-typedef struct {
-  int body;                /* its body */
-  int joint[2];            /* the joints at its two ends */
-  double nominal;          /* [m] */
-  double plus_minus;       /* ISO 2768-1 deviation [m] */
-  char source[64];         /* "ISO 2768-1 class m, over 30 up to 120 mm" */
-} fb_planar_length;
-
 /* A stack-up of a planar case. */
 typedef struct {
   int nlengths;
   fb_planar_length *length; /* (nlengths), counted from the description */
   int nout;                /* 4 per moving body: omega max, min, alpha max, min */
   double *nominal;         /* (nout) */
-  double *sens;            /* (nout x nlengths) [unit/m] */
+  double *sens;            /* (nout x nlengths) [output unit per the dimension's: m or rad] */
   double *rss_half;        /* (nout) */
   long long corners;       /* corners evaluated (0: the worst case was not asked for) */
   long long corners_unassembled; /* corners that cannot assemble or turn a revolution (a
@@ -146,7 +127,7 @@ typedef struct {
   char unassembled_first[FB_DIAG_SIZE]; /* the first of them and why ("" when none) */
   double *lo, *hi;         /* (nout) over the corners */
   char *lo_at, *hi_at;     /* (nout x (nlengths + 1)): the corner of each, one '+' or '-'
-                              per length in length[]'s order, NUL-terminated; "" when the
+                              ('0': toleranced 0) per length in length[]'s order, NUL-terminated; "" when the
                               nominal itself is the extreme (no corner passed it) */
   double *len;             /* scratch of an evaluation: lengths (nlengths), outputs (nout) */
   fb_mc_result mc;         /* the Monte Carlo (mc.samples 0: not run); mc.out (nout) */
@@ -165,7 +146,7 @@ typedef struct {
  * part's fraction done. fb_planar_stackup_run is the three, the corners
  * when with_corners is 1.
  * Errors: FB_ERR_ARG when the case gives no [tolerance] class, or a body
- * has more than three distinct joint points (its distances over-determine
+ * has more than three distinct revolute points (its distances over-determine
  * it), naming it; FB_ERR_RANGE beyond FB_PLANAR_CORNER_BITS lengths with
  * the corners; those of iso2768 (a length below 0.5 mm) and of the
  * kinematics (the nominal mechanism or a sensitivity's that does not close
@@ -184,7 +165,11 @@ fb_status fb_planar_stackup_run(fb_planar_stackup *s, const fb_case *c, const fb
                                 int with_corners, fb_diag *diag);
 void fb_planar_stackup_free(fb_planar_stackup *s);
 
-/* The number of lengths the stack-up of m varies (each body's n distinct
+/* The number of s's dimensions with a tolerance (above 0): the corners
+ * are 2^this. */
+int fb_planar_stackup_varied(const fb_planar_stackup *s);
+
+/* The number of dimensions the stack-up of m varies (each body's n distinct
  * joint points give n (n - 1) / 2; a body of more than three points
  * counted as its own, which fb_planar_stackup_run refuses). */
 int fb_planar_stackup_lengths(const fb_planar *m);

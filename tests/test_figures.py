@@ -592,6 +592,48 @@ with tempfile.TemporaryDirectory() as tmp:
                   "quick-return slides.svg %s %s: extremes %s..%s, CSV %s..%s" %
                   (c["model"], c["column"], c.get("y_min"), c.get("y_max"), min(ys or [0]), max(ys or [0])))
 
+    # (an engine's joints hold the ram to its guide within its constraint
+    # error: ODE's at h = 1e-4 s moves the point by 3.2e-8 mm)
+    RAM_HEIGHT_MM = 1e-6
+    # ---- output points: points.svg draws each point's path (y against x,
+    # in mm) over a revolution, every model overlaid; each curve's y
+    # extremes are the CSV's over the window, and a point of the ram (which
+    # only translates) draws a horizontal line: its y span is zero
+    pt_case = os.path.join(tmp, "quick_return_points.ini")
+    with open(pt_case, "w") as f:
+        f.write(open(os.path.join(src, "tests", "cases", "quick_return.ini")).read() +
+                "\n[point.tool]\nbody = ram\nat_mm = 420, -30\n"
+                "[point.lever-mid]\nbody = lever\nat_mm = 44.72135955, 22.36067977\n")
+    pt_out = os.path.join(tmp, "quick_return_points")
+    rc = subprocess.run([exe, "run", pt_case, "--out", pt_out, "--no-report", "--set",
+                         "run.models=analytic,ode-ideal-nominal", "--set", "solver.h_s=1e-4"],
+                        capture_output=True, text=True)
+    check(rc.returncode == 0, "quick-return with points runs: " + rc.stderr[-300:])
+    if rc.returncode == 0:
+        pt_manifest = json.load(open(os.path.join(pt_out, "figures.json")))["figures"]
+        check([f["file"] for f in pt_manifest] == ["omega.svg", "alpha.svg", "slides.svg", "points.svg"],
+              "points: figures %s" % [f["file"] for f in pt_manifest])
+        pts = [f for f in pt_manifest if f["file"] == "points.svg"]
+        curves = pts[0]["curves"] if pts else []
+        check([(c["panel"], c["model"]) for c in curves] ==
+              [("tool", "analytic"), ("tool", "ode-ideal-nominal"),
+               ("lever-mid", "analytic"), ("lever-mid", "ode-ideal-nominal")],
+              "points.svg: a panel per point, every model: %s" % [(c["panel"], c["model"]) for c in curves])
+        for c in curves:
+            rows = [x for x in csv.DictReader(open(os.path.join(pt_out, c["csv"])))
+                    if c["time_from_s"] <= float(x["time_s"]) <= c["time_to_s"]]
+            ys = [float(x[c["column"]]) * 1e3 for x in rows]
+            check(0 < c["points"] <= len(rows) and ys and
+                  abs(min(ys) - c["y_min"]) <= REL_TOL * max(1.0, abs(c["y_min"])) and
+                  abs(max(ys) - c["y_max"]) <= REL_TOL * max(1.0, abs(c["y_max"])),
+                  "points.svg %s %s: %s of %d samples drawn, y %s..%s mm, CSV %s..%s" %
+                  (c["model"], c["column"], c["points"], len(rows), c.get("y_min"), c.get("y_max"),
+                   min(ys or [0]), max(ys or [0])))
+            if c["panel"] == "tool":
+                check(abs(c["y_max"] - c["y_min"]) <= RAM_HEIGHT_MM,
+                      "points.svg: the ram's point %s stays at one height: %s..%s mm"
+                      % (c["model"], c["y_min"], c["y_max"]))
+
     # ---- a planar case: the Watt six-bar's own bodies and joint -----------
     # analytic and its clearance reference, two revolutions
     six_out = os.path.join(tmp, "sixbar")

@@ -3,7 +3,9 @@
  * panel per moving body that turns, every model overlaid against the drive
  * angle over the peak window; slides.<ext>, each prismatic joint's slide,
  * its rate and acceleration (planar_outputs.h), when the description has
- * one; contact_<model>_<joint>.<ext> for each reference's clearance joint;
+ * one; points.<ext>, each output point's path (y against x: a coupler
+ * curve), when it has one; contact_<model>_<joint>.<ext> for each
+ * reference's clearance joint;
  * figures.json. The samples go through the same
  * datablocks as a four-bar's (fig_datablock on a view of the model's
  * columns: min/max decimation per pixel column, so spikes survive). */
@@ -15,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "decimate.h"
 #include "names.h"
 #include "planar_outputs.h"
 #include "report_planar_outputs.h"
@@ -241,6 +244,113 @@ static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_forma
   return st;
 }
 
+/* the samples of model p in [t0, t1]: their first index and count */
+static size_t window_samples(const fb_planar_model *p, double t0, double t1, size_t *count) {
+  size_t i0 = 0;
+  while (i0 < p->n && p->t[i0] < t0) i0++;
+  size_t i1 = i0;
+  while (i1 < p->n && p->t[i1] <= t1) i1++;
+  *count = i1 - i0;
+  return i0;
+}
+
+/* points.<ext>: every output point's path over the window, y against x
+ * [mm] on equal axes (a coupler curve), a panel per point, every model
+ * overlaid, each path decimated to the pixels it crosses (decimate.h) */
+static fb_status points(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
+                        json_t *figs, fb_diag *diag) {
+  const fb_planar *m = r->m;
+  const int np = m->npoints, rows = (np + ACROSS - 1) / ACROSS;
+  plot pl;
+  fb_status st = fig_plot_open(&pl, dir, "points", fmt, 1400, 60 + 2 * PANEL_PX * rows, diag);
+  if (st != FB_OK) return st;
+  double t0, t1;
+  window_of(r, &t0, &t1);
+  json_t *curves = json_array();
+  char en[200], mn[160], sp[96], col[128];
+  fprintf(pl.p, "set multiplot layout %d,%d title '%s: output points%s, t = %.4g to %.4g s'\n"
+          "set size ratio -1\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
+          "set key inside top right box opaque font ',8'\n", rows, np < ACROSS ? np : ACROSS,
+          fig_esc(r->c.name, en, sizeof en), m->drive >= 0 ? " over a revolution" : "", t0, t1);
+  for (int k = 0; k < np && st == FB_OK; k++) {
+    const int cx = FB_PLANAR_POINT_QUANTITIES * k, cy = cx + 1;
+    /* the panel's extent over every model, for the pixel the paths are
+     * decimated to */
+    double span = 0.0;
+    for (int i = 0; i < r->n; i++) {
+      const fb_planar_model *p = &r->model[i];
+      size_t count;
+      const size_t i0 = window_samples(p, t0, t1, &count);
+      if (!p->out || !count) continue;
+      double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+      for (size_t x = i0; x < i0 + count; x++)
+        for (int a = 0; a < 2; a++) {
+          const double v = p->out[(size_t)(a ? cy : cx) * p->n + x];
+          lo[a] = fmin(lo[a], v), hi[a] = fmax(hi[a], v);
+        }
+      span = fmax(span, fmax(hi[0] - lo[0], hi[1] - lo[1]) / FB_M_PER_MM);
+    }
+    const double cell = (span > 0.0 ? span : 1.0) / (double)(pl.columns / ACROSS);
+    int drawn = 0;
+    for (int i = 0; i < r->n; i++) {
+      const fb_planar_model *p = &r->model[i];
+      size_t count;
+      const size_t i0 = window_samples(p, t0, t1, &count);
+      double *xy = p->out && count ? malloc(2 * count * sizeof *xy) : NULL;
+      size_t *keep = xy ? malloc(count * sizeof *keep) : NULL;
+      size_t kept = 0;
+      double ylo = NAN, yhi = NAN;
+      if (xy && keep) {
+        for (size_t x = 0; x < count; x++) {
+          xy[x] = p->out[(size_t)cx * p->n + i0 + x] / FB_M_PER_MM;
+          xy[count + x] = p->out[(size_t)cy * p->n + i0 + x] / FB_M_PER_MM;
+          ylo = x ? fmin(ylo, xy[count + x]) : xy[count + x];
+          yhi = x ? fmax(yhi, xy[count + x]) : xy[count + x];
+        }
+        kept = fb_decimate_path(xy, xy + count, NULL, count, cell, keep);
+      }
+      fprintf(pl.p, "$p%d_%d << EOD\n", i, k);
+      for (size_t q = 0; q < kept; q++)
+        fprintf(pl.p, "%.9g %.9g\n", xy[keep[q]], xy[count + keep[q]]);
+      fprintf(pl.p, "%sEOD\n", kept ? "" : "NaN NaN\n");
+      drawn += kept > 0;
+      fb_report_planar_output_column(col, sizeof col, m, cy); /* y, against x */
+      json_array_append_new(curves, curve(p, col, m->point[k].name, (int)kept, ylo, yhi, t0, t1));
+      free(xy);
+      free(keep);
+    }
+    if (k == 1) fprintf(pl.p, "unset key\n");
+    fprintf(pl.p, "set title '%s (on %s)'\n", fig_esc(m->point[k].name, en, sizeof en),
+            fig_esc(m->body[m->point[k].body].name, mn, sizeof mn));
+    if (!drawn) {
+      fprintf(pl.p, "set label 1 'no samples in the window' at graph 0.5,0.5 center\n"
+                    "plot NaN notitle\nunset label 1\n");
+      continue;
+    }
+    /* the references drawn last, over the engines' curves they judge */
+    fprintf(pl.p, "plot ");
+    for (int pass = 0, first = 1; pass < 2; pass++)
+      for (int i = 0; i < r->n; i++) {
+        if (!r->model[i].reference != !pass) continue;
+        fprintf(pl.p, "%s$p%d_%d using 1:2 with lines %s title '%s'", first ? "" : ", ", i, k,
+                fig_style_spec(NULL, r->model[i].name, sp, sizeof sp),
+                fig_esc(r->model[i].name, mn, sizeof mn));
+        first = 0;
+      }
+    fprintf(pl.p, "\n");
+  }
+  fprintf(pl.p, "unset multiplot\n");
+  st = fig_plot_close(&pl, diag);
+  char file[128];
+  snprintf(file, sizeof file, "points.%s", fig_ext(fmt));
+  if (st == FB_OK)
+    fig_manifest_add(figs, file, "every output point's path, y against x (a coupler curve)",
+                     curves);
+  else
+    json_decref(curves);
+  return st;
+}
+
 /* contact_<model>_<joint>.<ext>: a reference's contact force and
  * penetration at its clearance joint against the drive angle */
 static fb_status contact(const fb_planar_run *r, const fb_planar_model *p, const char *dir,
@@ -309,6 +419,10 @@ fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_f
   if (st == FB_OK && driven && fb_planar_slide_count(r->m) > 0) {
     st = slides(r, dir, fmt, figs, diag);
     if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "slides.%s", fig_ext(fmt));
+  }
+  if (st == FB_OK && r->m->npoints > 0) {
+    st = points(r, dir, fmt, figs, diag);
+    if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "points.%s", fig_ext(fmt));
   }
   for (int i = 0; i < r->n && st == FB_OK && driven; i++) {
     if (!r->model[i].reference || !r->model[i].force) continue;

@@ -305,18 +305,20 @@ def power_balance_quick_return():
 # a reference that dropped the load is 98 % off. 3 % holds the measured
 # offset twice.
 BRAKED_MEAN_REL = 0.03
-# An engine's ideal model under the same springs and loads (ODE's and
-# MuJoCo's bindings apply them at each step from the state it starts from)
+# An engine's ideal model under the same springs and loads (ODE's,
+# MuJoCo's and Bullet's bindings apply them at each step from the state it
+# starts from, and read their joints' reactions)
 # against the analytic model's drive torque and reactions over the second
 # revolution, as a share of each column's largest: the engines' own error
 # on a loaded mechanism, as tests/test_planar_loads.py's ENGINE_LOAD_REL
 # (1e-2, measured 2.8e-3 there without loads), plus the force held over a
 # step (its change over h = 1e-5 s: 3e-3 of a revolution). Measured worst:
-# 5.6e-4 (both engines' ternary-rod reaction), the drive torque 1.5e-4. A
+# 5.6e-4 (ODE's and MuJoCo's ternary-rod reaction; Bullet's 5.2e-4), the
+# drive torque 1.5e-4 (all three). A
 # binding that drops them is off by the loads' share of the column (ODE's
 # drive torque without them: 1.14 of the column).
 ENGINE_LOAD_REL = 1e-2
-ENGINES_WITH_LOADS = ("ode-ideal-nominal", "mujoco-ideal-nominal")
+ENGINES_WITH_LOADS = ("ode-ideal-nominal", "mujoco-ideal-nominal", "bullet-ideal-nominal")
 
 
 # ---- 2. one stroke -------------------------------------------------------------

@@ -80,6 +80,12 @@ JOINT_COLUMNS = ("reaction_x_n", "reaction_y_n", "reaction_n")
 # out. A sign turned, a body mixed up or the moment taken about another
 # point moves a column by its own size.
 ENGINE_LOAD_REL = 1e-2
+# A column that is zero in the analytic model (the planar slider-crank's
+# guide couple: the slider's centre is its joint's point) stays within
+# ZERO_MOMENT_N_M in an engine: Bullet's guide holds the slider's point to
+# its ERP's drift, and its 1000 N across 2.4e-8 m makes 2.4e-5 N m
+# (measured; ODE's is exactly 0).
+ZERO_MOMENT_N_M = 1e-4
 
 
 def run_case(path, out, *extra):
@@ -280,29 +286,30 @@ fb_script.planar_slider_crank(slider, "analytic")
 balance_case(slider, "slider")
 
 
-# 3. an engine's ideal model: ODE's joint reactions through the engine kit
-# against the analytic model's, sample by sample on the same grid
-def engine_loads(path, label):
-    out = os.path.join(tmp, label + "-ode")
-    rc, _, se = fb_script.run(exe, tmp, "run", path, "--set", "run.models=analytic,ode-ideal-nominal",
+# 3. an engine's ideal model: ODE's and Bullet's joint reactions through
+# the engine kit (each joint's feedback) against the analytic model's,
+# sample by sample on the same grid
+def engine_loads(path, label, model="ode-ideal-nominal"):
+    out = os.path.join(tmp, label + "-" + model)
+    rc, _, se = fb_script.run(exe, tmp, "run", path, "--set", "run.models=analytic," + model,
                               "--set", GRID, "--set", "run.revolutions=2", "--out", out,
                               "--no-figures", "--no-report")
-    check(rc == 0, "%s: analytic and ode-ideal-nominal run (%s)" % (label, se.strip()[-300:]))
+    check(rc == 0, "%s: analytic and %s run (%s)" % (label, model, se.strip()[-300:]))
     if rc != 0:
         return
     with open(os.path.join(out, "analytic.csv")) as f:
         arows = list(csv.DictReader(f))
-    with open(os.path.join(out, "ode-ideal-nominal.csv")) as f:
+    with open(os.path.join(out, model + ".csv")) as f:
         erows = list(csv.DictReader(f))
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
     want = load_columns(s["description"])
     ecols = without_outputs(erows[0])
-    check(ecols[-len(want):] == want, "%s: ode-ideal-nominal.csv has the analytic model's "
-          "load columns: %s" % (label, ecols[-len(want):]))
-    model = [m for m in s["models"] if m["name"] == "ode-ideal-nominal"][0]
-    check(set(model.get("loads") or {}) == set(s["models"][0].get("loads") or {}),
-          "%s: summary.json's loads for ode-ideal-nominal, the analytic model's keys" % label)
+    check(ecols[-len(want):] == want, "%s: %s.csv has the analytic model's "
+          "load columns: %s" % (label, model, ecols[-len(want):]))
+    m = [m for m in s["models"] if m["name"] == model][0]
+    check(set(m.get("loads") or {}) == set(s["models"][0].get("loads") or {}),
+          "%s: summary.json's loads for %s, the analytic model's keys" % (label, model))
     t0 = 2.0 * math.pi / abs(s["drive_omega_rad_s"])  # the second revolution: the start's step gone
     pairs = [(a, e) for a, e in zip(arows, erows) if float(a["time_s"]) >= t0]
     check(len(pairs) > 1000, "%s: the window after the first revolution has %d rows" % (label, len(pairs)))
@@ -311,16 +318,18 @@ def engine_loads(path, label):
             continue
         scale = max(abs(float(a[c])) for a, _ in pairs)
         if scale == 0.0:  # a column that is zero in the analytic model stays zero
-            check(all(float(e[c]) == 0.0 for _, e in pairs), "%s: %s stays 0" % (label, c))
+            most = max(abs(float(e[c])) for _, e in pairs)
+            check(most <= ZERO_MOMENT_N_M, "%s: %s's %s stays 0 (%.3g)" % (label, model, c, most))
             continue
         worst = max(abs(float(a[c]) - float(e[c])) for a, e in pairs) / scale
         if os.environ.get("FB_TEST_VERBOSE"):
-            print("%s ode-ideal-nominal %s: worst %.2e of %.6g" % (label, c, worst, scale))
-        check(worst <= ENGINE_LOAD_REL, "%s: ode-ideal-nominal's %s against the analytic: worst "
-              "%.2e of %.6g (bound %g)" % (label, c, worst, scale, ENGINE_LOAD_REL))
+            print("%s %s %s: worst %.2e of %.6g" % (label, model, c, worst, scale))
+        check(worst <= ENGINE_LOAD_REL, "%s: %s's %s against the analytic: worst "
+              "%.2e of %.6g (bound %g)" % (label, model, c, worst, scale, ENGINE_LOAD_REL))
 
 
-engine_loads(six, "six")
-engine_loads(slider, "slider")
+for engine_model in ("ode-ideal-nominal", "bullet-ideal-nominal"):
+    engine_loads(six, "six", engine_model)
+    engine_loads(slider, "slider", engine_model)
 
 sys.exit(tally.done())

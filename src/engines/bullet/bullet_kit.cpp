@@ -23,7 +23,10 @@
  * mass (fb_contact_row_step, the mapping ODE's contact uses), one
  * unilateral soft row on the hole wall along the normal into the pin
  * (bt_rows.h: solved as ODE's soft row, J v = ERP depth / h - CFM / h
- * lambda), its force the row's impulse times its step share over h. */
+ * lambda), its force the row's impulse times its step share over h.
+ * Reactions: every pin's, guide's and the drive's row keeps Bullet's joint
+ * feedback (btJointFeedback: the force and the torque about the centre of
+ * mass the rows applied over the step), turned to kit.h's convention. */
 #include <math.h>
 #include <stdio.h>
 
@@ -46,6 +49,10 @@ struct Joint {
   btRigidBody *a = nullptr, *b = nullptr;
   btVector3 la, lb; /* the pin's point on A and on B (the world's for the ground) [m] */
   int b0 = 0, b1 = 0; /* the kit's handles of the joint's bodies */
+  btJointFeedback fb;  /* what its rows applied over the last step */
+  btVector3 ls;        /* a guide's point on its slider, in the slider's frame [m] */
+  double lever[2] = {0.0, 0.0}; /* a guide's slider: centre of mass minus that point at the
+                                   last step's start [m] */
 };
 
 /* one clearance joint's soft row */
@@ -63,6 +70,8 @@ struct Kit {
   Joint joint[FB_PLANAR_SPEC_MAX_JOINTS];
   int njoints = 0;
   FbRows *drive = nullptr;
+  btJointFeedback drive_fb; /* the drive row's feedback */
+  int drive_joint = -1;     /* the driven joint (its place among the joints added) */
   Contact contact[FB_KIT_SLOTS]; /* by the kit's contact slot (a pin's, a slider's corner's) */
   size_t steps = 0;
 };
@@ -157,6 +166,8 @@ fb_status add_revolute(void *w, int b0, int b1, const double at[2], fb_diag *dia
   j.lb = j.b ? j.b->getCenterOfMassTransform().inverse() * p : p;
   j.pin = rows_between(k, a, a == b0 ? b1 : b0);
   j.pin->nrows = 2;
+  j.pin->setJointFeedback(&j.fb);
+  j.pin->enableFeedback(true);
   k->w->add(j.pin);
   return FB_OK;
 }
@@ -174,7 +185,11 @@ fb_status add_prismatic(void *w, int b0, int b1, const double at[2], const doubl
   btRigidBody *slider = bt_body(k, s), *on = bt_body(k, g);
   slider->setLinearFactor(btVector3(1, 1, 1));
   slider->setAngularFactor(btVector3(1, 1, 1));
-  j.guide = fb_bt_slider(on, frame_in(on, at, axis), *slider, frame_in(slider, at, axis), k->erp);
+  const btTransform fs = frame_in(slider, at, axis);
+  j.guide = fb_bt_slider(on, frame_in(on, at, axis), *slider, fs, k->erp);
+  j.ls = fs.getOrigin();
+  j.guide->setJointFeedback(&j.fb);
+  j.guide->enableFeedback(true);
   k->w->add(j.guide);
   return FB_OK;
 }
@@ -188,6 +203,9 @@ fb_status add_drive(void *w, int joint, double rate, fb_diag *diag) {
    * at -rate */
   k->drive = j.b1 == FB_KIT_GROUND ? rows_between(k, j.b0, j.b1) : rows_between(k, j.b1, j.b0);
   fb_bt_drive_row(k->drive, j.b1 == FB_KIT_GROUND ? -rate : rate, k->fmax, k->h);
+  k->drive->setJointFeedback(&k->drive_fb);
+  k->drive->enableFeedback(true);
+  k->drive_joint = joint;
   k->w->add(k->drive);
   return FB_OK;
 }
@@ -233,10 +251,16 @@ double contact_force(const void *w, int j) {
 fb_status step(void *w, fb_diag *diag) {
   Kit *k = static_cast<Kit *>(w);
   for (int i = 0; i < k->njoints; i++) {
-    const Joint &j = k->joint[i];
+    Joint &j = k->joint[i];
     if (j.pin)
       fb_bt_pin_rows(j.pin, fb_bt_world_point(j.a, j.la), fb_bt_world_point(j.b, j.lb), k->erp,
                      k->h);
+    if (j.guide) { /* the lever the guide's feedback torque is about, at the step's start */
+      const btRigidBody *r = bt_body(k, j.b1 == FB_KIT_GROUND ? j.b0 : j.b1);
+      const btVector3 g = r->getCenterOfMassPosition(), p = fb_bt_world_point(r, j.ls);
+      j.lever[0] = g[0] - p[0];
+      j.lever[1] = g[1] - p[1];
+    }
   }
   if (k->w->step(k->h))
     return fb_diag_set(diag, FB_ERR_NUMERIC, "bullet: the Dantzig MLCP solve failed at t = %.6g s "
@@ -250,6 +274,33 @@ fb_status step(void *w, fb_diag *diag) {
     ct.row->nrows = 0; /* until the kit hands the next step's contact */
   }
   return FB_OK;
+}
+
+/* ideal joint i's reaction over the last step (kit.h): the force on its
+ * body[1] from its body[0], and the moment about the joint's point on
+ * body[1] (body[0]'s when body[1] is the ground). A pin's rows act at the
+ * pin: its moment is the drive's torque on the driven joint, else 0. A
+ * guide's feedback on its slider (B) is a force and a torque about the
+ * slider's centre G: about the point P, T + (G - P) x F. Each taken with
+ * the sign of the side asked. */
+void reactions(const void *w, int i, double out[3]) {
+  const Kit *k = static_cast<const Kit *>(w);
+  const Joint &j = k->joint[i];
+  out[0] = out[1] = out[2] = 0.0;
+  if (j.pin) {
+    /* the rows' A is the moving body: body[0] unless it is the ground */
+    const double s = j.b0 == FB_KIT_GROUND ? 1.0 : -1.0;
+    out[0] = s * j.fb.m_appliedForceBodyA[0];
+    out[1] = s * j.fb.m_appliedForceBodyA[1];
+    if (i == k->drive_joint) /* the drive row's A: body[1], or body[0] on the ground */
+      out[2] = (j.b1 == FB_KIT_GROUND ? -1.0 : 1.0) * k->drive_fb.m_appliedTorqueBodyA[2];
+    return;
+  }
+  const btVector3 &f = j.fb.m_appliedForceBodyB, &t = j.fb.m_appliedTorqueBodyB;
+  const double s = j.b1 == FB_KIT_GROUND ? -1.0 : 1.0; /* the slider is body[1] unless ground */
+  out[0] = s * f[0];
+  out[1] = s * f[1];
+  out[2] = s * (t[2] + j.lever[0] * f[1] - j.lever[1] * f[0]);
 }
 
 void body_state(const void *w, int b, double pos[3], double vel[3]) {
@@ -306,6 +357,7 @@ constexpr fb_kit_binding binding() {
   b.world_free = world_free;
   b.contact_rows = 1;
   b.apply_wrench = apply_wrench;
+  b.reactions = reactions;
   return b;
 }
 

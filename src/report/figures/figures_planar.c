@@ -68,6 +68,23 @@ static json_t *curve(const fb_planar_model *p, const char *column, const char *p
   return c;
 }
 
+/* a panel's plot command: datablock $<prefix><i>_<panel> of every model i,
+ * in its model-table style, the references last so that they show over
+ * the engines' curves they judge */
+static void plot_models(const plot *pl, const fb_planar_run *r, char prefix, int panel) {
+  char sp[96], mn[160];
+  fprintf(pl->p, "plot ");
+  for (int pass = 0, first = 1; pass < 2; pass++)
+    for (int i = 0; i < r->n; i++) {
+      if (!r->model[i].reference != !pass) continue;
+      fprintf(pl->p, "%s$%c%d_%d using 1:2 with lines %s title '%s'", first ? "" : ", ", prefix, i,
+              panel, fig_style_spec(NULL, r->model[i].name, sp, sizeof sp),
+              fig_esc(r->model[i].name, mn, sizeof mn));
+      first = 0;
+    }
+  fprintf(pl->p, "\n");
+}
+
 /* omega.<ext> (alpha 0) or alpha.<ext> (alpha 1, symlog axis per panel),
  * against the drive angle, or an undriven run's against time */
 static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
@@ -86,7 +103,7 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
   double t0, t1;
   window_of(r, &t0, &t1);
   json_t *curves = json_array();
-  char en[200], mn[160], sp[96], col[96];
+  char en[200], mn[160], col[96];
   const int timed = m->drive < 0; /* undriven: no drive angle to draw against */
   if (timed)
     fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against time (%s), t = %.4g to "
@@ -137,12 +154,7 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
                     "plot NaN notitle\nunset label 1\n");
       continue;
     }
-    fprintf(pl.p, "plot ");
-    for (int i = 0; i < r->n; i++)
-      fprintf(pl.p, "%s$m%d_%d using 1:2 with lines %s title '%s'", i ? ", " : "", i, b,
-              fig_style_spec(NULL, r->model[i].name, sp, sizeof sp),
-              fig_esc(r->model[i].name, mn, sizeof mn));
-    fprintf(pl.p, "\n");
+    plot_models(&pl, r, 'm', b);
   }
   fprintf(pl.p, "unset multiplot\n");
   st = fig_plot_close(&pl, diag);
@@ -177,7 +189,7 @@ static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_forma
   double t0, t1;
   window_of(r, &t0, &t1);
   json_t *curves = json_array();
-  char en[200], mn[160], sp[96], col[128];
+  char en[200], col[128];
   fprintf(pl.p, "set multiplot layout %d,3 title '%s: slides against the drive angle, t = %.4g "
           "to %.4g s'\nset xrange [0:360]\nset xtics 60\nset xlabel 'drive angle [deg]'\n"
           "set key inside top right box opaque font ',8'\n", ns,
@@ -222,12 +234,7 @@ static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_forma
                       "plot NaN notitle\nunset label 1\n");
         continue;
       }
-      fprintf(pl.p, "plot ");
-      for (int i = 0; i < r->n; i++)
-        fprintf(pl.p, "%s$s%d_%d using 1:2 with lines %s title '%s'", i ? ", " : "", i, panel,
-                fig_style_spec(NULL, r->model[i].name, sp, sizeof sp),
-                fig_esc(r->model[i].name, mn, sizeof mn));
-      fprintf(pl.p, "\n");
+      plot_models(&pl, r, 's', panel);
     }
     si++;
   }
@@ -267,7 +274,7 @@ static fb_status points(const fb_planar_run *r, const char *dir, fb_figure_forma
   double t0, t1;
   window_of(r, &t0, &t1);
   json_t *curves = json_array();
-  char en[200], mn[160], sp[96], col[128];
+  char en[200], mn[160], col[128];
   fprintf(pl.p, "set multiplot layout %d,%d title '%s: output points%s, t = %.4g to %.4g s'\n"
           "set size ratio -1\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
           "set key inside top right box opaque font ',8'\n", rows, np < ACROSS ? np : ACROSS,
@@ -327,17 +334,7 @@ static fb_status points(const fb_planar_run *r, const char *dir, fb_figure_forma
                     "plot NaN notitle\nunset label 1\n");
       continue;
     }
-    /* the references drawn last, over the engines' curves they judge */
-    fprintf(pl.p, "plot ");
-    for (int pass = 0, first = 1; pass < 2; pass++)
-      for (int i = 0; i < r->n; i++) {
-        if (!r->model[i].reference != !pass) continue;
-        fprintf(pl.p, "%s$p%d_%d using 1:2 with lines %s title '%s'", first ? "" : ", ", i, k,
-                fig_style_spec(NULL, r->model[i].name, sp, sizeof sp),
-                fig_esc(r->model[i].name, mn, sizeof mn));
-        first = 0;
-      }
-    fprintf(pl.p, "\n");
+    plot_models(&pl, r, 'p', k);
   }
   fprintf(pl.p, "unset multiplot\n");
   st = fig_plot_close(&pl, diag);

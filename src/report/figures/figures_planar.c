@@ -70,9 +70,15 @@ static json_t *curve(const fb_planar_model *p, const char *column, const char *p
 
 /* a panel's plot command: datablock $<prefix><i>_<panel> of every model i,
  * in its model-table style, the references last so that they show over
- * the engines' curves they judge */
-static void plot_models(const plot *pl, const fb_planar_run *r, char prefix, int panel) {
+ * the engines' curves they judge; with no samples (any 0) a note, which
+ * gnuplot needs */
+static void plot_models(const plot *pl, const fb_planar_run *r, char prefix, int panel, int any) {
   char sp[96], mn[160];
+  if (!any) {
+    fprintf(pl->p, "set label 1 'no samples in the window' at graph 0.5,0.5 center\n"
+                   "plot NaN notitle\nunset label 1\n");
+    return;
+  }
   fprintf(pl->p, "plot ");
   for (int pass = 0, first = 1; pass < 2; pass++)
     for (int i = 0; i < r->n; i++) {
@@ -149,12 +155,7 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
     fig_esc(m->body[b].name, en, sizeof en);
     fprintf(pl.p, "set title '%s'\nset ylabel '%s %s [%s]'\n", en, en, alpha ? "alpha" : "omega",
             alpha ? "rad/s^2, symlog" : "rad/s");
-    if (!any) { /* no model has a sample in the window: a note, which gnuplot needs */
-      fprintf(pl.p, "set label 1 'no samples in the window' at graph 0.5,0.5 center\n"
-                    "plot NaN notitle\nunset label 1\n");
-      continue;
-    }
-    plot_models(&pl, r, 'm', b);
+    plot_models(&pl, r, 'm', b, any);
   }
   fprintf(pl.p, "unset multiplot\n");
   st = fig_plot_close(&pl, diag);
@@ -229,12 +230,7 @@ static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_forma
       else fprintf(pl.p, "unset nonlinear y\nset ytics autofreq\nset autoscale y\n");
       fprintf(pl.p, "set title '%s'\nset ylabel '%s'\n", fig_esc(m->joint[j].name, en, sizeof en),
               what[q]);
-      if (!any) {
-        fprintf(pl.p, "set label 1 'no samples in the window' at graph 0.5,0.5 center\n"
-                      "plot NaN notitle\nunset label 1\n");
-        continue;
-      }
-      plot_models(&pl, r, 's', panel);
+      plot_models(&pl, r, 's', panel, any);
     }
     si++;
   }
@@ -329,12 +325,7 @@ static fb_status points(const fb_planar_run *r, const char *dir, fb_figure_forma
     if (k == 1) fprintf(pl.p, "unset key\n");
     fprintf(pl.p, "set title '%s (on %s)'\n", fig_esc(m->point[k].name, en, sizeof en),
             fig_esc(m->body[m->point[k].body].name, mn, sizeof mn));
-    if (!drawn) {
-      fprintf(pl.p, "set label 1 'no samples in the window' at graph 0.5,0.5 center\n"
-                    "plot NaN notitle\nunset label 1\n");
-      continue;
-    }
-    plot_models(&pl, r, 'p', k);
+    plot_models(&pl, r, 'p', k, drawn);
   }
   fprintf(pl.p, "unset multiplot\n");
   st = fig_plot_close(&pl, diag);

@@ -307,18 +307,20 @@ def power_balance_quick_return():
 BRAKED_MEAN_REL = 0.03
 # An engine's ideal model under the same springs and loads (ODE's,
 # MuJoCo's and Bullet's bindings apply them at each step from the state it
-# starts from, and read their joints' reactions)
-# against the analytic model's drive torque and reactions over the second
-# revolution, as a share of each column's largest: the engines' own error
-# on a loaded mechanism, as tests/test_planar_loads.py's ENGINE_LOAD_REL
-# (1e-2, measured 2.8e-3 there without loads), plus the force held over a
-# step (its change over h = 1e-5 s: 3e-3 of a revolution). Measured worst:
-# 5.6e-4 (ODE's and MuJoCo's ternary-rod reaction; Bullet's 5.2e-4), the
-# drive torque 1.5e-4 (all three). A
-# binding that drops them is off by the loads' share of the column (ODE's
-# drive torque without them: 1.14 of the column).
-ENGINE_LOAD_REL = 1e-2
-ENGINES_WITH_LOADS = ("ode-ideal-nominal", "mujoco-ideal-nominal", "bullet-ideal-nominal")
+# starts from, Simbody's force element at every stage of its integrator,
+# and each reads its joints' reactions) against the analytic model's drive
+# torque and reactions over the second revolution but its last sample (the
+# step before's loads), as a share of each column's largest: the engines'
+# own error on a loaded mechanism, as tests/test_planar_loads.py's
+# ENGINE_LOAD_REL, plus the force held over a step (its change over h =
+# 1e-5 s: 3e-3 of a revolution). Measured worst: MuJoCo 3.7e-5 (ternary-rod),
+# ODE and Bullet 1.1e-5 (rod-output); Simbody 7.8e-12 (its error control:
+# ERROR_CONTROLLED_LOAD_REL). A binding that drops them is off by the loads'
+# share of the column (ODE's drive torque without them: 1.14 of the column).
+ENGINE_LOAD_REL = 1e-3
+ERROR_CONTROLLED_LOAD_REL = 1e-9
+ENGINES_WITH_LOADS = ("ode-ideal-nominal", "mujoco-ideal-nominal", "bullet-ideal-nominal",
+                      "simbody-ideal-nominal")
 
 
 # ---- 2. one stroke -------------------------------------------------------------
@@ -401,14 +403,15 @@ def engines_under_loads():
     a = columns(os.path.join(out, "analytic.csv"))
     names = [c for c in a if c == "drive_torque_n_m" or c.endswith("_reaction_n")]
     n = len(a["time_s"])
-    i0 = n // 2
+    i0, i1 = n // 2, n - 1  # (the last sample keeps the step before's loads)
     for model in ENGINES_WITH_LOADS:
         e = columns(os.path.join(out, model + ".csv"))
         for c in names:
-            scale = max(abs(x) for x in a[c][i0:])
-            worst = max(abs(x - y) for x, y in zip(a[c][i0:], e[c][i0:])) / scale
+            scale = max(abs(x) for x in a[c][i0:i1])
+            worst = max(abs(x - y) for x, y in zip(a[c][i0:i1], e[c][i0:i1])) / scale
             print("%s %s: worst %.2e of %.5g" % (model, c, worst, scale))
-            check(worst <= ENGINE_LOAD_REL, "%s's %s: %.2e of the column" % (model, c, worst))
+            bound = ERROR_CONTROLLED_LOAD_REL if model.startswith("simbody") else ENGINE_LOAD_REL
+            check(worst <= bound, "%s's %s: %.2e of the column (bound %g)" % (model, c, worst, bound))
 
 
 # ---- 6. a torque drive -----------------------------------------------------------

@@ -129,6 +129,12 @@ struct Kit {
                                       // their generalised forces, planar_loads.h); empty:
                                       // the description has none
   fb_kit_world o;                     // the walk's settings: names, drive (kit.h)
+  std::vector<ConstraintIndex> cut;   // by joint: a loop's cut's Ball (invalid: a mobilizer)
+  std::vector<double> react;          // by joint: its reaction at the last step's start (3 each,
+                                      // kit.h's reactions)
+  int drive_joint = -1;               // the driven joint (add_drive's index)
+  Vector_<SpatialVec> mob_reactions;  // the mobilizers' reactions (workspace)
+  Vector motion_forces;               // the prescribed motion's forces (workspace)
   std::unique_ptr<Integrator> integ;
   double h;
   int integrator;
@@ -443,9 +449,12 @@ fb_status kit_close_loop(void *w, fb_diag *diag) {
           Body::Rigid(MassProperties(kb.mass, Vec3(0), Inertia(kb.inertia))), Transform());
       k->planar.push_back(b);
     }
-    for (const KitJoint &j : k->joint) {
+    k->cut.assign((size_t)nj, ConstraintIndex());
+    for (int jn = 0; jn < nj; jn++) {
+      const KitJoint &j = k->joint[(size_t)jn];
       if (j.tree) continue;
-      Constraint::Ball(k->of(j.b0), local(k, j.b0, j.at), k->of(j.b1), local(k, j.b1, j.at));
+      k->cut[(size_t)jn] = Constraint::Ball(k->of(j.b0), local(k, j.b0, j.at), k->of(j.b1),
+                                            local(k, j.b1, j.at)).getConstraintIndex();
     }
   } catch (const std::exception &ex) {
     return fb_diag_set(diag, FB_ERR_NUMERIC, "Simbody refused the tree: %.600s", ex.what());
@@ -468,6 +477,8 @@ fb_status kit_add_drive(void *w, int jn, double rate, fb_diag *diag) {
     if (driven)
       Motion::Custom(k->mob[(size_t)c],
                      new SteadyAngle(0.0, c == k->joint[(size_t)jn].b1 ? rate : -rate));
+    k->drive_joint = jn;
+    k->react.assign(3 * k->joint.size(), 0.0);
     State state = k->system.realizeTopology();
     start_state(k, state);
     state.setTime(0.0);
@@ -538,6 +549,58 @@ fb_status kit_add_contact(void *w, int jn, const fb_kit_contact *c, fb_diag *dia
   return FB_OK;
 }
 
+// every ideal joint's reaction at the integrator's state (the step's
+// start; kit.h's convention: the force on body[1] from body[0], the moment
+// about the joint's point on body[1], body[0]'s when body[1] is the ground)
+// into k->react. A mobilizer's: Simbody's reaction on its child from its
+// parent at the child's M frame, the joint's point
+// (calcMobilizerReactionForces), turned to body[1]'s side; a Pin's moment
+// is the drive's torque on the driven joint (the prescribed motion's force,
+// findMotionForces, as the Simbody four-bar reads it), a Slider's the
+// reaction's couple, moved to the parent's point when body[1] is the
+// parent. A cut's: the Ball's on its body 2, body[1], negated
+// (getBallReactionForceOnBody2 is the reaction body 2 exerts; the
+// analytic model's reactions, tests/test_planar_loads.py, fix the sign),
+// no moment.
+void note_reactions(Kit *k) {
+  const State &state = k->integ->getState();
+  k->system.realize(state, Stage::Acceleration);
+  k->matter.calcMobilizerReactionForces(state, k->mob_reactions);
+  k->matter.findMotionForces(state, k->motion_forces);
+  for (size_t jn = 0; jn < k->joint.size(); jn++) {
+    const KitJoint &j = k->joint[jn];
+    double *r = &k->react[3 * jn];
+    r[0] = r[1] = r[2] = 0.0;
+    if (!j.tree) {
+      const Constraint::Ball &ball = Constraint::Ball::downcast(k->matter.getConstraint(k->cut[jn]));
+      const Vec3 f = k->of(j.b1).getBodyRotation(state) * ball.getBallReactionForceOnBody2(state);
+      r[0] = -f[0], r[1] = -f[1]; /* Simbody's reaction is body 2's on the constraint */
+      continue;
+    }
+    const int c = k->child[jn];
+    const MobilizedBody &mc = k->mob[(size_t)c];
+    const SpatialVec &sv = k->mob_reactions[mc.getMobilizedBodyIndex()];
+    const double s = c == j.b1 ? 1.0 : -1.0;
+    r[0] = s * sv[1][0], r[1] = s * sv[1][1];
+    if (j.prismatic) {
+      double moment = sv[0][2]; // on the child about its point
+      if (c != j.b1 && j.b1 != FB_KIT_GROUND) { // about the parent's point instead
+        const Vec3 d = mc.findStationLocationInGround(state, local(k, c, j.at)) -
+                       k->of(j.b1).findStationLocationInGround(state, local(k, j.b1, j.at));
+        moment += d[0] * sv[1][1] - d[1] * sv[1][0];
+      }
+      r[2] = s * moment;
+    } else if ((int)jn == k->drive_joint) {
+      r[2] = s * -k->motion_forces[mc.getFirstUIndex(state)];
+    }
+  }
+}
+
+void kit_reactions(const void *w, int jn, double out[3]) {
+  const double *r = &kit(w)->react[3 * (size_t)jn];
+  out[0] = r[0], out[1] = r[1], out[2] = r[2];
+}
+
 fb_status kit_step(void *w, fb_diag *diag) {
   Kit *k = kit(w);
   for (const Held &c : k->held) k->changed |= c.on != c.on_last;
@@ -547,6 +610,7 @@ fb_status kit_step(void *w, fb_diag *diag) {
     // derivative there is evaluated again
     if (k->changed) k->integ->reinitialize(Stage::Dynamics, false);
     k->changed = 0;
+    note_reactions(k);
     for (int tries = 0; k->integ->getTime() < t1 && tries < 3; tries++) {
       const Integrator::SuccessfulStepStatus st = k->integ->stepTo(t1);
       if (st == Integrator::ReachedStepLimit)
@@ -611,7 +675,7 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     NULL, /* model_text: no model file */
     NULL, /* contact_force_max: one force per step */
     0,    /* contact_rows: no constraint row */
-    NULL, /* reactions: none reported */
+    fb_simbody::kit_reactions,
     NULL, /* contact_force_vec: the normal force along the normal */
     0,    /* friction: a normal law only */
     NULL, /* body_accel: the step's difference */

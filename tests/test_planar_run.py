@@ -236,6 +236,8 @@ rc, _, se = run("run", six, "--set", "run.ensemble=4", "--set", "run.models=anal
                 "--out", os.path.join(tmp, "e"))
 check(rc == 2 and "[run] ensemble = 4" in se and not os.path.exists(os.path.join(tmp, "e")),
       "an ensemble on a planar case is refused, nothing written (%d, %s)" % (rc, se.strip()))
+check("(given: [run] ensemble at --set #1 'run.ensemble=4')" in se,
+      "the refusal says where the ensemble was given (%s)" % se.strip())
 # the case's clearance joint, run in none of the models, is said
 rc, _, se = run("run", six, "--set", "run.models=analytic", "--set", "run.revolutions=2",
                 "--no-figures", "--no-report", "--out", os.path.join(tmp, "idle"))

@@ -81,12 +81,14 @@ const char *fb_cli_cases_dir(void);
 const char *fb_cli_baselines_dir(void);
 
 int fb_cmd_run(int argc, char **argv);
-/* fourbar run's part for a planar case c loaded from case_path (cmd_run_planar.c):
+/* fourbar run's part for a planar case c loaded from case_path with the
+ * --set overrides sets (nsets; where a refused key was given) (cmd_run_planar.c):
  * its models into folder dir, summary.json printed with json, command for
  * report.md, again the command a signal's note says runs it again; the
  * figures unless figures is 0 (png 1: PNG, else SVG), report.html unless
  * html is 0. Returns the exit status. */
-int fb_cmd_run_planar(const struct fb_case_s *c, const char *case_path, const char *dir, int json,
+int fb_cmd_run_planar(const struct fb_case_s *c, const char *case_path,
+                      const char *const *sets, int nsets, const char *dir, int json,
                       const char *command, const char *again, int figures, int png, int html);
 int fb_cmd_kinematics(int argc, char **argv);
 /* kinematics, stackup and penalty's parts for a planar case c (its speed and

@@ -321,7 +321,7 @@ int fb_cmd_run(int argc, char **argv) {
   command_text(command, sizeof command, argc, argv);
   fb_cli_command_line(again, sizeof again, argc, argv, NULL);
   if (c.planar.on)
-    return fb_cmd_run_planar(&c, case_path, dir, json, command, again, figures,
+    return fb_cmd_run_planar(&c, case_path, sets, nsets, dir, json, command, again, figures,
                              fmt == FB_FIGURE_PNG, html);
   static fb_case variants[FB_MAX_VARIANTS];
   if ((rc = load_variants(&c, variants, case_path, sets, nsets, jobs)) != 0) return rc;

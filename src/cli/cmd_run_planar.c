@@ -18,19 +18,26 @@
 #include "report_html_planar.h"
 #include "report_planar.h"
 
-/* what fb_cmd_run_planar refuses before any work; 0 or the exit status */
-static int refuse(const fb_case *c, const char *case_path) {
+/* what fb_cmd_run_planar refuses before any work, with where the key was
+ * given (the case file's line or the --set); 0 or the exit status */
+static int refuse(const fb_case *c, const char *case_path, const char *const *sets, int nsets) {
   fb_diag d;
+  char msg[FB_DIAG_SIZE] = "", where[FB_DIAG_SIZE];
   if (c->variant_count > 0)
-    return fb_cli_fail("run", 2, "%s: [variant.%s]: a planar case's variants do not run yet; "
-                       "run the case with --set instead", case_path, c->variant[0].name);
+    return fb_cli_fail("run", 2, "%s: [variant.%s] (at %s): a planar case's variants do not run "
+                       "yet; run the case with --set instead", case_path, c->variant[0].name,
+                       c->variant[0].origin);
   if (c->series == FB_SERIES_HDF5)
-    return fb_cli_fail("run", 2, "%s: [run] series = hdf5: a planar case's run writes csv or "
-                       "none yet", case_path);
-  if (fb_casefile_given(c, "run", "ensemble") && c->ensemble > 1)
-    return fb_cli_fail("run", 2, "%s: [run] ensemble = %d: a planar case's run has no ensemble "
-                       "yet (a clearance model's verdict rests on its one run, basis pointwise); "
-                       "leave [run] ensemble at 1", case_path, c->ensemble);
+    snprintf(msg, sizeof msg, "[run] series = hdf5: a planar case's run writes csv or none yet");
+  else if (fb_casefile_given(c, "run", "ensemble") && c->ensemble > 1)
+    snprintf(msg, sizeof msg, "[run] ensemble = %d: a planar case's run has no ensemble yet (a "
+             "clearance model's verdict rests on its one run, basis pointwise); leave [run] "
+             "ensemble at 1", c->ensemble);
+  if (msg[0]) {
+    const size_t l = fb_casefile_given_where(where, sizeof where, case_path, sets, nsets, msg);
+    return fb_cli_fail("run", 2, "%s: %s%s%s%s", case_path, msg, l ? " (given: " : "", where,
+                       l ? ")" : "");
+  }
   if (fb_planar_run_check(c, &d) != FB_OK) return fb_cli_fail("run", 2, "%s: %s", case_path, d.msg);
   return 0;
 }
@@ -115,9 +122,10 @@ static int job_write(const char *stage, void *user) {
 
 static void job_discard(void *user) { fb_planar_run_free(&((planar_job *)user)->r); }
 
-int fb_cmd_run_planar(const fb_case *c, const char *case_path, const char *dir, int json,
-                      const char *command, const char *again, int figures, int png, int html) {
-  int rc = refuse(c, case_path);
+int fb_cmd_run_planar(const fb_case *c, const char *case_path, const char *const *sets, int nsets,
+                      const char *dir, int json, const char *command, const char *again,
+                      int figures, int png, int html) {
+  int rc = refuse(c, case_path, sets, nsets);
   if (rc) return rc;
   note_idle_clearance(c);
   fb_diag d;

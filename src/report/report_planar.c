@@ -562,19 +562,24 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
     if (p->reference) {
       char why[FB_DIAG_SIZE + 256];
       const char *v = verdict_of(p, why, sizeof why);
-      char work[96]; /* an explicit law has no working force (planar_free.h) */
-      if (p->ref.joint < 0) /* the ideal mechanism (planar_run.h) */
+      if (p->ref.joint < 0) { /* the ideal mechanism (planar_run.h) */
         fprintf(f, "ideal mechanism (no clearance joint): its forward dynamics under the "
                 "case's loads, rk8pd at tolerance %.2g; peaks over t >= %.4g s\nverdict: %s (%s)\n",
                 p->ref.tol, r->t_window, v, why);
-      else if (p->ref.force_work > 0.0) snprintf(work, sizeof work, "working force %.4g N", p->ref.force_work);
-      else snprintf(work, sizeof work, "no working force: its stiffness given, penalty = explicit");
-      if (p->ref.joint >= 0)
+      } else {
+        char work[96]; /* an explicit law has no working force (planar_free.h) */
+        if (p->ref.force_work > 0.0)
+          snprintf(work, sizeof work, "working force %.4g N", p->ref.force_work);
+        else
+          snprintf(work, sizeof work, "no working force: its stiffness given, penalty = explicit");
         fprintf(f, "clearance at '%s' (%s law, %s): peaks over t >= %.4g s; "
-              "contact force max %s N, penetration max %s um\nverdict: %s (%s)\n",
-              r->m->joint[p->ref.joint].name, p->ref.law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
-              work, r->t_window, FB_NUM_CELL("%.6g", p->ref.failed ? NAN : p->ref.force_max, FB_NUM_NONE_TABLE),
-              FB_NUM_CELL("%.4g", p->ref.failed ? NAN : p->ref.penetration_max / FB_M_PER_UM, FB_NUM_NONE_TABLE), v, why);
+                "contact force max %s N, penetration max %s um\nverdict: %s (%s)\n",
+                r->m->joint[p->ref.joint].name,
+                p->ref.law.kind == FB_LAW_IMPACT ? "impact" : "restitution", work, r->t_window,
+                FB_NUM_CELL("%.6g", p->ref.failed ? NAN : p->ref.force_max, FB_NUM_NONE_TABLE),
+                FB_NUM_CELL("%.4g", p->ref.failed ? NAN : p->ref.penetration_max / FB_M_PER_UM,
+                            FB_NUM_NONE_TABLE), v, why);
+      }
     }
     if (p->verdict.judged) {
       const char *basis = fb_verdict_basis_name(p->verdict.basis);

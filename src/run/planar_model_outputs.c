@@ -17,7 +17,7 @@ void fb_planar_model_store_outputs(fb_planar_model *p, const fb_planar *m, size_
   if (!p->out || p->nout > (int)(sizeof row / sizeof row[0])) return;
   fb_planar_outputs(row, m, q, qd, qdd);
   const int no = fb_planar_output_count(m);
-  for (int k = 0; no + FB_PLANAR_SPRING_QUANTITIES * k < p->nout; k++)
+  for (int k = 0; k < m->nsprings && no + FB_PLANAR_SPRING_QUANTITIES * (k + 1) <= p->nout; k++)
     fb_planar_spring_state(row + no + FB_PLANAR_SPRING_QUANTITIES * k, m, k, q, qd);
   for (int c = 0; c < p->nout; c++) p->out[(size_t)c * p->n + i] = row[c];
 }

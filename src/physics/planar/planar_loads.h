@@ -30,10 +30,12 @@ int fb_planar_has_loads(const fb_planar *m);
 void fb_planar_applied(double *Q, const fb_planar *m, const double *q, const double *qd,
                        double gravity);
 
+/* The quantities fb_planar_spring_state gives per spring. */
+#define FB_PLANAR_SPRING_QUANTITIES 3
+
 /* Spring s of m at q, qd: its length [m], length rate [m/s] and tension
  * [N] (positive pulls its ends together) into out
  * (FB_PLANAR_SPRING_QUANTITIES). */
-#define FB_PLANAR_SPRING_QUANTITIES 3
 void fb_planar_spring_state(double out[3], const fb_planar *m, int s, const double *q,
                             const double *qd);
 

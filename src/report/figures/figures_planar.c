@@ -161,16 +161,11 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
   st = fig_plot_close(&pl, diag);
   char file[128];
   snprintf(file, sizeof file, "%s.%s", name, fig_ext(fmt));
+  char title[128];
+  snprintf(title, sizeof title, "angular %s of every moving body against %s",
+           alpha ? "acceleration" : "velocity", timed ? "time" : "the drive angle");
   if (st == FB_OK)
-    fig_manifest_add(figs, file, alpha ? (timed ? "angular acceleration of every moving body "
-                                                 "against time"
-                                               : "angular acceleration of every moving body "
-                                                 "against the drive angle")
-                                       : (timed ? "angular velocity of every moving body against "
-                                                  "time"
-                                                : "angular velocity of every moving body against "
-                                                  "the drive angle"),
-                     curves);
+    fig_manifest_add(figs, file, title, curves);
   else
     json_decref(curves);
   return st;

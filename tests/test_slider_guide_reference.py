@@ -123,9 +123,10 @@ verdict = summary.get("models", [{}])[0].get("verdict") if summary else None
 check(verdict == "ok", "the reference's own check passes: verdict %s" % verdict)
 check("undriven" in so, "the printed header says the case is undriven: %r" % so[:200])
 figs = json.load(open(os.path.join(out, "figures.json")))["figures"] if rc == 0 else None
-check(figs is not None and [f["file"] for f in figs] == ["omega.svg", "alpha.svg"]
+check(figs is not None and [f["file"] for f in figs] == ["omega.svg", "alpha.svg", "slides.svg"]
       and all("against time" in f["title"] for f in figs),
-      "an undriven run draws omega and alpha against time, nothing against a drive angle: %r"
+      "an undriven run draws omega, alpha and the slide against time, nothing against a drive "
+      "angle: %r"
       % [(f.get("file"), f.get("title")) for f in figs or []])
 
 # the free start: the given rates, the slider still across the guide

@@ -172,8 +172,8 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
 }
 
 /* slides.<ext>: every prismatic joint's slide [mm], its rate [m/s] and
- * acceleration [m/s^2, symlog] against the drive angle, a row per joint,
- * every model overlaid */
+ * acceleration [m/s^2, symlog] against the drive angle (an undriven run's
+ * against time), a row per joint, every model overlaid */
 static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
                         json_t *figs, fb_diag *diag) {
   const fb_planar *m = r->m;
@@ -186,10 +186,12 @@ static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_forma
   window_of(r, &t0, &t1);
   json_t *curves = json_array();
   char en[200], col[128];
-  fprintf(pl.p, "set multiplot layout %d,3 title '%s: slides against the drive angle, t = %.4g "
-          "to %.4g s'\nset xrange [0:360]\nset xtics 60\nset xlabel 'drive angle [deg]'\n"
-          "set key inside top right box opaque font ',8'\n", ns,
-          fig_esc(r->c.name, en, sizeof en), t0, t1);
+  const int timed = m->drive < 0; /* undriven: against time, as omega and alpha */
+  fprintf(pl.p, "set multiplot layout %d,3 title '%s: slides against %s, t = %.4g to %.4g s'\n"
+          "%s\nset key inside top right box opaque font ',8'\n", ns,
+          fig_esc(r->c.name, en, sizeof en), timed ? "time" : "the drive angle", t0, t1,
+          timed ? "set autoscale x\nset xtics autofreq\nset xlabel 'time [ms]'"
+                : "set xrange [0:360]\nset xtics 60\nset xlabel 'drive angle [deg]'");
   static const char *const what[3] = {"slide [mm]", "slide rate [m/s]",
                                        "slide acceleration [m/s^2, symlog]"};
   double *mm = malloc((r->n && r->model[0].n ? r->model[0].n : 1) * sizeof *mm);
@@ -216,7 +218,7 @@ static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_forma
         char dname[32];
         snprintf(dname, sizeof dname, "s%d_%d", i, panel);
         double lo = NAN, hi = NAN;
-        const int pts = y ? fig_datablock(&pl, dname, &v, y, t0, t1, &lo, &hi) : 0;
+        const int pts = y ? fig_datablock_x(&pl, dname, &v, y, t0, t1, timed, &lo, &hi) : 0;
         if (pts) lo_all = any ? fmin(lo_all, lo) : lo, hi_all = any ? fmax(hi_all, hi) : hi, any = 1;
         json_array_append_new(curves, curve(p, col, m->joint[j].name, pts, lo, hi, t0, t1));
       }
@@ -235,8 +237,11 @@ static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_forma
   char file[128];
   snprintf(file, sizeof file, "slides.%s", fig_ext(fmt));
   if (st == FB_OK)
-    fig_manifest_add(figs, file, "every prismatic joint's slide, its rate and acceleration "
-                     "against the drive angle", curves);
+    fig_manifest_add(figs, file, timed ? "every prismatic joint's slide, its rate and "
+                                         "acceleration against time"
+                                       : "every prismatic joint's slide, its rate and "
+                                         "acceleration against the drive angle",
+                     curves);
   else
     json_decref(curves);
   return st;
@@ -392,14 +397,15 @@ fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_f
   fb_status st = FB_OK;
   fig_batch_begin(); /* the figures drawn side by side */
   /* the figures are against the drive angle; an undriven case's (a free
-   * start or a torque drive, r->m->drive < 0) omega and alpha against
-   * time, and no other yet */
+   * start or a torque drive, r->m->drive < 0) omega, alpha and slides
+   * against time, its points' paths over the whole run, and no contact
+   * figure yet */
   const int driven = r->m->drive >= 0;
   for (int alpha = 0; alpha < 2 && st == FB_OK; alpha++) {
     st = omega_alpha(r, dir, fmt, alpha, figs, diag);
     if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s.%s", alpha ? "alpha" : "omega", fig_ext(fmt));
   }
-  if (st == FB_OK && driven && fb_planar_slide_count(r->m) > 0) {
+  if (st == FB_OK && fb_planar_slide_count(r->m) > 0) {
     st = slides(r, dir, fmt, figs, diag);
     if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "slides.%s", fig_ext(fmt));
   }

@@ -7,6 +7,7 @@
 
 #include "iso2768.h"
 #include "planar_case.h"
+#include "planar_constraints.h"
 #include "planar_spec.h"
 #include "units.h"
 
@@ -84,12 +85,8 @@ static datum datum_of(const fb_planar *m, int b) {
   const int n = body_points(p, joint, m, b);
   datum d = {0, 0, {0, 0}, {1, 0}, -1, -1, 0.0};
   if (n < 1 || n > 3) return d;
-  int k = 0, e = 1;
-  if (line_body(m, b, n)) {
-    double v[2];
-    k = line_frame(d.dir, v, p, n);
-    fb_planar_farthest_pair((const double (*)[2])p, n, &k, &e);
-  }
+  int k = 0, e = 1; /* a line's datum and end as its rebuild keeps them (line_frame) */
+  if (line_body(m, b, n)) fb_planar_farthest_pair((const double (*)[2])p, n, &k, &e);
   d.has_point = 1;
   d.at[0] = p[k][0], d.at[1] = p[k][1];
   d.joint = joint[k];
@@ -105,12 +102,6 @@ static datum datum_of(const fb_planar *m, int b) {
   return d;
 }
 
-static void rotate(double out[2], double a, const double v[2]) {
-  const double c = cos(a), s = sin(a), x = v[0], y = v[1];
-  out[0] = c * x - s * y;
-  out[1] = s * x + c * y;
-}
-
 /* prismatic joint j's guide (its side and body), the line's point and
  * direction in the guide's frame */
 static int guide_line(double P[2], double a[2], const fb_planar *m, int j) {
@@ -118,7 +109,7 @@ static int guide_line(double P[2], double a[2], const fb_planar *m, int j) {
   const int side = fb_planar_guide_side(J->body[0], J->body[1]);
   const int g = J->body[side];
   P[0] = J->point[side][0], P[1] = J->point[side][1];
-  rotate(a, m->body[J->body[0]].angle0 - m->body[g].angle0, J->axis);
+  fb_planar_rotate(a, m->body[J->body[0]].angle0 - m->body[g].angle0, J->axis);
   return side;
 }
 
@@ -135,16 +126,18 @@ static double line_angle(const datum *d, const double a[2]) {
   return fabs(t) < 1e-15 ? 0.0 : t;
 }
 
+/* 1 when joint j is prismatic and body b guides it (fb_planar_guide_side) */
+static int guides(const fb_planar *m, int b, int j) {
+  const fb_planar_joint *J = &m->joint[j];
+  return J->kind == FB_KIND_PRISMATIC && J->body[fb_planar_guide_side(J->body[0], J->body[1])] == b;
+}
+
 /* the number of dimensions of body b's lines (offsets and angles) */
 static int line_dims(const fb_planar *m, int b) {
   const datum d = datum_of(m, b);
   int count = 0;
-  for (int j = 0; j < m->njoints; j++) {
-    const fb_planar_joint *J = &m->joint[j];
-    if (J->kind != FB_KIND_PRISMATIC || J->body[fb_planar_guide_side(J->body[0], J->body[1])] != b)
-      continue;
-    count += d.has_point + (d.has_point && d.has_dir);
-  }
+  for (int j = 0; j < m->njoints; j++)
+    if (guides(m, b, j)) count += d.has_point + (d.has_point && d.has_dir);
   return count;
 }
 
@@ -176,9 +169,7 @@ static fb_status lines_of(fb_planar_length *out, int *n, const fb_planar *m, int
   if (!d.has_point) return FB_OK;
   fb_diag inner;
   for (int j = 0; j < m->njoints; j++) {
-    const fb_planar_joint *J = &m->joint[j];
-    if (J->kind != FB_KIND_PRISMATIC || J->body[fb_planar_guide_side(J->body[0], J->body[1])] != b)
-      continue;
+    if (!guides(m, b, j)) continue;
     double P[2], a[2];
     guide_line(P, a, m, j);
     fb_planar_length *L = &out[(*n)++];
@@ -290,10 +281,10 @@ static void place_line(fb_planar *x, const fb_planar *m, int j, double off, doub
   const double along = (P[0] - d.at[0]) * a[0] + (P[1] - d.at[1]) * a[1];
   const double s = off0 < 0.0 ? -off : off;
   double a1[2];
-  rotate(a1, turn, a);
+  fb_planar_rotate(a1, turn, a);
   x->joint[j].point[side][0] = d.at[0] + along * a1[0] - s * a1[1];
   x->joint[j].point[side][1] = d.at[1] + along * a1[1] + s * a1[0];
-  rotate(x->joint[j].axis, turn, m->joint[j].axis);
+  fb_planar_rotate(x->joint[j].axis, turn, m->joint[j].axis);
 }
 
 fb_planar *fb_planar_dims_apply(const fb_planar *m, const fb_planar_length *dim, int n,

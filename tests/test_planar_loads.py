@@ -84,12 +84,30 @@ JOINT_COLUMNS = ("reaction_x_n", "reaction_y_n", "reaction_n")
 # ground-crank x).
 ENGINE_LOAD_REL = 1e-3
 ERROR_CONTROLLED_LOAD_REL = 1e-9
+# DART steps in joint coordinates (semi-implicit Euler on the tree, its
+# loops closed by impulses): its reactions are first order in h, where
+# ODE's are second (its six-bar's 6.6e-6 at h = 1e-5 s, 2.7e-5 at 2e-5 s). They are DART's own forces: each body's Newton-Euler balance
+# on DART's sampled motion holds to 9.3e-8 of the largest reaction, the
+# difference from the analytic model is its step's. Measured worst 8.6e-4
+# (the six-bar's output-ground x; 4.3e-4 and 1.7e-3 at h = 5e-6 and 2e-5 s),
+# 2.5e-4 (the slider-crank's drive torque); 2e-3 holds that twofold and
+# still fails a reaction read one sample late (3.5e-3).
+DART_LOAD_REL = 2e-3
+LOAD_REL_OF = {"simbody-ideal-nominal": ERROR_CONTROLLED_LOAD_REL,
+               "dart-ideal-nominal": DART_LOAD_REL}
 # A column that is zero in the analytic model (the planar slider-crank's
 # guide couple: the slider's centre is its joint's point) stays within
 # ZERO_MOMENT_N_M in an engine: Bullet's guide holds the slider's point to
 # its ERP's drift, and its 1000 N across 2.4e-8 m makes 2.4e-5 N m
 # (measured; ODE's is exactly 0).
 ZERO_MOMENT_N_M = 1e-4
+# DART closes the slider-crank's loop at the rod-slider pin with a
+# BallJointConstraint, whose drift (ERP 0.2: up to 5.6e-6 m) puts the pin's
+# 300 N that far from the slider's centre: measured 8.3e-4 N m, 3.4e-3 and
+# 2.1e-4 at ERP 0.05 and 0.8 (the drift's 1/ERP). 3e-3 N m holds it
+# threefold; the moment about the wrong point (the rod's centre, 5 cm off)
+# is 15 N m.
+ZERO_MOMENT_N_M_OF = {"dart-ideal-nominal": 3e-3}
 
 
 def run_case(path, out, *extra):
@@ -290,10 +308,11 @@ fb_script.planar_slider_crank(slider, "analytic")
 balance_case(slider, "slider")
 
 
-# 3. an engine's ideal model: ODE's, Bullet's and Simbody's joint
+# 3. an engine's ideal model: ODE's, Bullet's, Simbody's and DART's joint
 # reactions through the engine kit (each joint's feedback; Simbody's
-# mobilizers' and cut constraints' reactions) against the analytic
-# model's, sample by sample on the same grid
+# mobilizers' and cut constraints' reactions; DART's tree joints' wrenches
+# and loop pins' impulses) against the analytic model's, sample by sample
+# on the same grid
 def engine_loads(path, label, model="ode-ideal-nominal"):
     out = os.path.join(tmp, label + "-" + model)
     rc, _, se = fb_script.run(exe, tmp, "run", path, "--set", "run.models=analytic," + model,
@@ -325,17 +344,21 @@ def engine_loads(path, label, model="ode-ideal-nominal"):
         scale = max(abs(float(a[c])) for a, _ in pairs)
         if scale == 0.0:  # a column that is zero in the analytic model stays zero
             most = max(abs(float(e[c])) for _, e in pairs)
-            check(most <= ZERO_MOMENT_N_M, "%s: %s's %s stays 0 (%.3g)" % (label, model, c, most))
+            bound = ZERO_MOMENT_N_M_OF.get(model, ZERO_MOMENT_N_M)
+            if os.environ.get("FB_TEST_VERBOSE"):
+                print("%s %s %s: at most %.3g (zero in the analytic model)" % (label, model, c, most))
+            check(most <= bound, "%s: %s's %s stays 0 (%.3g, bound %g)" % (label, model, c, most, bound))
             continue
         worst = max(abs(float(a[c]) - float(e[c])) for a, e in pairs) / scale
         if os.environ.get("FB_TEST_VERBOSE"):
             print("%s %s %s: worst %.2e of %.6g" % (label, model, c, worst, scale))
-        bound = ERROR_CONTROLLED_LOAD_REL if model.startswith("simbody") else ENGINE_LOAD_REL
+        bound = LOAD_REL_OF.get(model, ENGINE_LOAD_REL)
         check(worst <= bound, "%s: %s's %s against the analytic: worst "
               "%.2e of %.6g (bound %g)" % (label, model, c, worst, scale, bound))
 
 
-for engine_model in ("ode-ideal-nominal", "bullet-ideal-nominal", "simbody-ideal-nominal"):
+for engine_model in ("ode-ideal-nominal", "bullet-ideal-nominal", "simbody-ideal-nominal",
+                     "dart-ideal-nominal"):
     engine_loads(six, "six", engine_model)
     engine_loads(slider, "slider", engine_model)
 

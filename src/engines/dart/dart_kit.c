@@ -28,7 +28,14 @@
  * the grid of h as before; the ideal models step unsplit. The largest
  * force of each step's sub-steps is the kit's contact_force_max: a spike
  * sample of the force takes the largest between its neighbours, as the
- * reference's (series.h, fb_series_refine_peaks_max). */
+ * reference's (series.h, fb_series_refine_peaks_max). Reactions (kit.h):
+ * each ideal joint's from DART after each World::step (dart_world.h,
+ * fb_dart_reaction: a tree joint's the wrench its child holds from its
+ * parent, the servo's torque included; a loop's pin its constraint's
+ * impulse over h), averaged over a sub-stepped step's sub-steps: the
+ * step's impulse over h, the mean force behind the kit's acceleration
+ * over the step (v_{i+1} - v_i) / h (the last sub-step's alone would be
+ * the step's end, not the sample it is written at). */
 #include "dart_kit.h"
 
 #include <math.h>
@@ -301,6 +308,7 @@ static fb_status kit_step(void *w, fb_diag *diag) {
   if (k->m && k->nsub < FB_DART_CLEARANCE_SUBSTEPS) k->nsub = FB_DART_CLEARANCE_SUBSTEPS;
   const int n = k->nsub;
   if (n > 1) fb_dart_set_step(k->dart, k->h / n);
+  fb_dart_reactions_clear(k->dart);
   for (int i = 0; i < n && st == FB_OK; i++) {
     if (k->m && i > 0) read_state(k); /* the first sub-step's state is read above */
     if (k->m) apply_contacts(k);
@@ -317,6 +325,11 @@ static fb_status kit_step(void *w, fb_diag *diag) {
 
 static double kit_contact_force_max(const void *w, int j) {
   return j >= 0 && j < FB_PLANAR_SPEC_MAX_JOINTS ? ((const dk_world *)w)->fmax[j] : 0.0;
+}
+
+/* ideal joint j's reaction over the last step (kit.h): its sub-steps' mean */
+static void kit_reactions(const void *w, int j, double out[3]) {
+  fb_dart_reaction(((const dk_world *)w)->dart, j, out);
 }
 
 static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
@@ -356,4 +369,5 @@ const fb_kit_binding fb_dart_kit = {
     .add_clearance = kit_add_clearance,
     .contact_force_max = kit_contact_force_max,
     .apply_wrench = kit_apply_wrench,
+    .reactions = kit_reactions,
 };

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <new>
 #include <numeric>
 #include <vector>
@@ -34,12 +35,31 @@ struct Body {
   int parent_joint = -1; // the tree joint that holds it (-1: a PlanarJoint root)
 };
 
+// a loop's pin: DART's BallJointConstraint, keeping the impulse the
+// constraint solver applies (its lambda, on body 1 along body 1's axes at
+// the step's start [N s]; BallJointConstraint keeps it private)
+class Pin : public dart::constraint::BallJointConstraint {
+public:
+  using BallJointConstraint::BallJointConstraint;
+  double lambda[3] = {0.0, 0.0, 0.0};
+
+protected:
+  void applyImpulse(double *l) override {
+    BallJointConstraint::applyImpulse(l);
+    lambda[0] = l[0], lambda[1] = l[1], lambda[2] = l[2];
+  }
+};
+
 struct Joint {
   int prismatic, b[2];
   double at[2], axis[2];
   int tree = 0;     // 1: a joint of the tree, 0: closes a loop
   int child = -1;   // the body it holds (a tree joint)
   dart::dynamics::Joint *dj = nullptr;
+  std::shared_ptr<Pin> pin; // a loop's constraint
+  int on = -1;              // the body whose point the moment is about: b[1], else b[0]
+  double local[2] = {0.0, 0.0}; // that point in that body's frame [m]
+  double sum[3] = {0.0, 0.0, 0.0}; // its reactions summed over the steps since the last clear
 };
 
 // a body's frame: at its centre of mass, turned by its angle
@@ -79,6 +99,8 @@ struct fb_dart_world {
   std::vector<Joint> joint;
   int loops = 0;
   double fmax = 0.0;
+  std::vector<double> start; // each body's pose at the last step's start (x, y, angle)
+  int steps = 0;             // steps since the last fb_dart_reactions_clear
 };
 
 extern "C" fb_dart_world *fb_dart_world_new(double g, double h, double erp,
@@ -131,7 +153,11 @@ extern "C" int fb_dart_add_joint(fb_dart_world *w, int prismatic, int b0, int b1
                                  const double at[2], const double axis[2], char *err,
                                  size_t size) {
   try {
-    Joint j{prismatic, {b0, b1}, {at[0], at[1]}, {axis[0], axis[1]}};
+    Joint j;
+    j.prismatic = prismatic;
+    j.b[0] = b0, j.b[1] = b1;
+    j.at[0] = at[0], j.at[1] = at[1];
+    j.axis[0] = axis[0], j.axis[1] = axis[1];
     w->joint.push_back(j);
     return 0;
   } catch (const std::exception &e) {
@@ -251,15 +277,21 @@ extern "C" int fb_dart_build(fb_dart_world *w, const unsigned char *tree, char *
     }
     grow(w);
     w->world->addSkeleton(w->skel);
+    w->start.assign(3 * w->body.size(), 0.0);
+    // the point each joint's moment is about (kit.h's reactions), fixed in its body
+    for (Joint &jt : w->joint) {
+      jt.on = jt.b[1] >= 0 ? jt.b[1] : jt.b[0];
+      const Vector3d p = pose(w->body[(size_t)jt.on]).inverse() * Vector3d(jt.at[0], jt.at[1], 0.0);
+      jt.local[0] = p[0], jt.local[1] = p[1];
+    }
     // every loop closed at its pin, as examples/rigid_loop closes its chain
-    for (const Joint &jt : w->joint) {
+    for (Joint &jt : w->joint) {
       if (jt.tree) continue;
       const Vector3d at(jt.at[0], jt.at[1], 0.0);
       BodyNode *a = jt.b[0] < 0 ? nullptr : w->body[(size_t)jt.b[0]].node;
       BodyNode *b = jt.b[1] < 0 ? nullptr : w->body[(size_t)jt.b[1]].node;
-      auto c = a && b ? std::make_shared<dart::constraint::BallJointConstraint>(a, b, at)
-                      : std::make_shared<dart::constraint::BallJointConstraint>(a ? a : b, at);
-      w->world->getConstraintSolver()->addConstraint(c);
+      jt.pin = a && b ? std::make_shared<Pin>(a, b, at) : std::make_shared<Pin>(a ? a : b, at);
+      w->world->getConstraintSolver()->addConstraint(jt.pin);
       w->loops++;
     }
     return 0;
@@ -296,14 +328,76 @@ extern "C" void fb_dart_add_wrench(fb_dart_world *w, int b, const double f[3]) {
   n->addExtTorque(Vector3d(0.0, 0.0, f[2]), false);
 }
 
+namespace {
+
+// body b's point at (x, y) in its frame, at pose q (x, y, angle) [m]
+void at_pose(const double q[3], const double l[2], double p[2]) {
+  const double c = std::cos(q[2]), s = std::sin(q[2]);
+  p[0] = q[0] + c * l[0] - s * l[1];
+  p[1] = q[1] + s * l[0] + c * l[1];
+}
+
+// joint jt's reaction over the step just taken (dart_world.h), from the
+// poses at its start: a tree joint's, the wrench its child's BodyNode
+// holds from its parent (getBodyForce: about the child's centre of mass
+// along its axes, the constraint impulses over the step included); a
+// pin's, its constraint's impulse on body 1 over the step
+void reaction(const fb_dart_world *w, const Joint &jt, double h, double out[3]) {
+  const double *q = w->start.data();
+  double f[2], m = 0.0;
+  int on; // the body the force (f, m) acts on
+  if (jt.pin) {
+    on = jt.b[0] >= 0 ? jt.b[0] : jt.b[1]; // body 1: body[0]'s node unless it is the ground
+    const double *p = q + 3 * on, c = std::cos(p[2]), s = std::sin(p[2]);
+    f[0] = (c * jt.pin->lambda[0] - s * jt.pin->lambda[1]) / h;
+    f[1] = (s * jt.pin->lambda[0] + c * jt.pin->lambda[1]) / h;
+  } else {
+    on = jt.child;
+    const Eigen::Vector6d &F = w->body[(size_t)on].node->getBodyForce(); // torque, force
+    const double *p = q + 3 * on, c = std::cos(p[2]), s = std::sin(p[2]);
+    f[0] = c * F[3] - s * F[4];
+    f[1] = s * F[3] + c * F[4];
+    double at[2]; // about the joint's point: M_P = M_G + (G - P) x f
+    at_pose(q + 3 * jt.on, jt.local, at);
+    m = F[2] + (p[0] - at[0]) * f[1] - (p[1] - at[1]) * f[0];
+  }
+  const double sign = on == jt.b[1] ? 1.0 : -1.0; // on body[1], from body[0]
+  out[0] = sign * f[0];
+  out[1] = sign * f[1];
+  out[2] = sign * m;
+}
+
+} // namespace
+
+extern "C" void fb_dart_reactions_clear(fb_dart_world *w) {
+  for (Joint &jt : w->joint) jt.sum[0] = jt.sum[1] = jt.sum[2] = 0.0;
+  w->steps = 0;
+}
+
+extern "C" void fb_dart_reaction(const fb_dart_world *w, int j, double out[3]) {
+  const Joint &jt = w->joint[(size_t)j];
+  for (int c = 0; c < 3; c++) out[c] = w->steps > 0 ? jt.sum[c] / w->steps : 0.0;
+}
+
 extern "C" void fb_dart_set_step(fb_dart_world *w, double h) { w->world->setTimeStep(h); }
 
 extern "C" int fb_dart_step(fb_dart_world *w, char *err, size_t size) {
   try {
+    for (size_t b = 0; b < w->body.size(); b++) { // the poses the reactions are read at
+      double v[3];
+      fb_dart_body_state(w, (int)b, &w->start[3 * b], v);
+    }
     // false: keep the servo's command (World::step(true) resets every
     // command after the step); the external forces are this step's alone
     w->world->step(false);
     w->skel->clearExternalForces();
+    const double h = w->world->getTimeStep();
+    for (Joint &jt : w->joint) {
+      double r[3];
+      reaction(w, jt, h, r);
+      for (int c = 0; c < 3; c++) jt.sum[c] += r[c];
+    }
+    w->steps++;
     const Eigen::VectorXd q = w->skel->getPositions(), v = w->skel->getVelocities();
     if (!q.allFinite() || !v.allFinite()) return fail(err, size, "DART's state is not finite");
     return 0;

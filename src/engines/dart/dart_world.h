@@ -80,9 +80,26 @@ void fb_dart_add_wrench(fb_dart_world *w, int b, const double f[3]);
  * the skeleton's and the constraint solver's). */
 void fb_dart_set_step(fb_dart_world *w, double h);
 
-/* One step of h (World::step); the external forces are cleared after it.
- * Errors: DART's exceptions, a non-finite state. */
+/* One step of h (World::step); the external forces are cleared after it;
+ * each joint's reaction over it is added to those fb_dart_reaction
+ * averages. Errors: DART's exceptions, a non-finite state. */
 int fb_dart_step(fb_dart_world *w, char *err, size_t size);
+
+/* Starts the steps fb_dart_reaction averages anew. */
+void fb_dart_reactions_clear(fb_dart_world *w);
+
+/* Joint j's (its index among those added) reaction, the mean over the
+ * steps since fb_dart_reactions_clear (0 before one), each step's taken at
+ * the poses it started from: the force on its body b1 from its body b0
+ * (x, y) [N] and the moment about +z at its point on b1 (on b0 when b1 is
+ * the ground) [N m]. A joint of the tree gives the wrench its child's
+ * BodyNode holds from its parent after the step (BodyNode::getBodyForce,
+ * which Joint::getWrenchToChildBodyNode turns to the joint's frame: the
+ * forward dynamics' transmitted force plus the constraint impulses over
+ * the step, the servo's included); a revolute joint's moment is so its
+ * coordinate's force, the drive's torque or 0. A loop's pin gives its
+ * BallJointConstraint's impulse over the step, no moment. */
+void fb_dart_reaction(const fb_dart_world *w, int j, double out[3]);
 
 /* Body b's pose (centre of mass x, y [m], angle [rad]) and velocity. */
 void fb_dart_body_state(const fb_dart_world *w, int b, double pos[3], double vel[3]);

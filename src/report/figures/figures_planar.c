@@ -91,6 +91,13 @@ static void plot_models(const plot *pl, const fb_planar_run *r, char prefix, int
   fprintf(pl->p, "\n");
 }
 
+/* the abscissa's gnuplot settings: the drive angle over a revolution
+ * [deg], or time [ms] (timed: an undriven run, fig_datablock_x) */
+static const char *x_axis(int timed) {
+  return timed ? "set autoscale x\nset xtics autofreq\nset xlabel 'time [ms]'\n"
+               : "set xrange [0:360]\nset xtics 60\nset xlabel 'drive angle [deg]'\n";
+}
+
 /* omega.<ext> (alpha 0) or alpha.<ext> (alpha 1, symlog axis per panel),
  * against the drive angle, or an undriven run's against time */
 static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_format fmt,
@@ -113,17 +120,16 @@ static fb_status omega_alpha(const fb_planar_run *r, const char *dir, fb_figure_
   const int timed = m->drive < 0; /* undriven: no drive angle to draw against */
   if (timed)
     fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against time (%s), t = %.4g to "
-            "%.4g s'\nset autoscale x\nset xtics autofreq\nset xlabel 'time [ms]'\nset key "
-            "inside top right box opaque font ',8'\n", rows, ACROSS,
+            "%.4g s'\n%sset key inside top right box opaque font ',8'\n", rows, ACROSS,
             fig_esc(r->c.name, en, sizeof en), alpha ? "angular acceleration" : "angular velocity",
-            m->torque_joint >= 0 ? "driven by a torque" : "undriven", t0, t1);
+            m->torque_joint >= 0 ? "driven by a torque" : "undriven", t0, t1, x_axis(1));
   else
     fprintf(pl.p, "set multiplot layout %d,%d title '%s: %s against the drive angle (%s, %s: "
-            "runs %s), t = %.4g to %.4g s'\nset xrange [0:360]\nset xtics 60\nset xlabel "
-            "'drive angle [deg]'\nset key inside top right box opaque font ',8'\n", rows, ACROSS,
-            fig_esc(r->c.name, en, sizeof en), alpha ? "angular acceleration" : "angular velocity",
+            "runs %s), t = %.4g to %.4g s'\n%sset key inside top right box opaque font ',8'\n",
+            rows, ACROSS, fig_esc(r->c.name, en, sizeof en),
+            alpha ? "angular acceleration" : "angular velocity",
             fig_esc(m->joint[m->drive].name, mn, sizeof mn), r->c.direction < 0 ? "cw" : "ccw",
-            r->c.direction < 0 ? "right to left" : "left to right", t0, t1);
+            r->c.direction < 0 ? "right to left" : "left to right", t0, t1, x_axis(0));
   for (int nth = 0; nth < nb; nth++) {
     const int b = turning[nth];
     double lo_all = 0.0, hi_all = 0.0;
@@ -188,10 +194,9 @@ static fb_status slides(const fb_planar_run *r, const char *dir, fb_figure_forma
   char en[200], col[128];
   const int timed = m->drive < 0; /* undriven: against time, as omega and alpha */
   fprintf(pl.p, "set multiplot layout %d,3 title '%s: slides against %s, t = %.4g to %.4g s'\n"
-          "%s\nset key inside top right box opaque font ',8'\n", ns,
+          "%sset key inside top right box opaque font ',8'\n", ns,
           fig_esc(r->c.name, en, sizeof en), timed ? "time" : "the drive angle", t0, t1,
-          timed ? "set autoscale x\nset xtics autofreq\nset xlabel 'time [ms]'"
-                : "set xrange [0:360]\nset xtics 60\nset xlabel 'drive angle [deg]'");
+          x_axis(timed));
   static const char *const what[3] = {"slide [mm]", "slide rate [m/s]",
                                        "slide acceleration [m/s^2, symlog]"};
   double *mm = malloc((r->n && r->model[0].n ? r->model[0].n : 1) * sizeof *mm);
@@ -377,11 +382,11 @@ static fb_status contact(const fb_planar_run *r, const fb_planar_model *p, const
   char sp[96];
   fig_style_spec(NULL, p->name, sp, sizeof sp);
   fprintf(pl.p, "set multiplot layout 2,1 title '%s: %s, clearance at %s, t = %.4g to %.4g s'\n"
-          "set xrange [0:360]\nset xtics 60\nset xlabel 'drive angle [deg]'\nunset key\n"
+          "%sunset key\n"
           "set title 'contact force on the pin'\nset ylabel 'force [N]'\nplot $c0 using 1:2 with "
           "lines %s\nset title 'penetration depth'\nset ylabel 'penetration [um]'\nplot $c1 using "
           "1:2 with lines %s\nunset multiplot\n", fig_esc(r->c.name, en, sizeof en), p->name,
-          fig_esc(joint, jn, sizeof jn), t0, t1, sp, sp);
+          fig_esc(joint, jn, sizeof jn), t0, t1, x_axis(0), sp, sp);
   st = fig_plot_close(&pl, diag);
   char title[256];
   snprintf(title, sizeof title, "%s: contact force and penetration at %s", p->name, joint);

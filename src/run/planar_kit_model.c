@@ -202,7 +202,8 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   /* a binding that reports joint reactions gives the analytic model's load
    * columns (planar_run.h's torque and reaction) */
   const size_t nl = (1 + 3 * (size_t)r->m->njoints) * p->n;
-  if (b->reactions && !(p->torque = calloc(nl, sizeof *p->torque)))
+  const int loads = b->reactions && (!b->reactions_in || b->reactions_in(&o));
+  if (loads && !(p->torque = calloc(nl, sizeof *p->torque)))
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples' loads", p->n);
   if (p->torque) s.torque = p->torque, s.reaction = p->reaction = p->torque + p->n;
   fb_kit_clearance cl = {0};

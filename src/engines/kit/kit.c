@@ -340,6 +340,9 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   if (s->torque && !b->reactions)
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding reports no joint reactions",
                        b->engine);
+  if (s->torque && mask && b->add_clearance && !b->add_contact && !b->clearance_reaction)
+    return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding reports no clearance joint's "
+                       "reaction", b->engine);
   const double t0 = fb_clock_s();
   fb_kit_runner *k = calloc(1, sizeof *k);
   const int nq = fb_planar_nq(m);

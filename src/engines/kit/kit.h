@@ -355,6 +355,21 @@ typedef struct fb_kit_binding {
                                 step, and an error-controlled integrator keeps its order,
                                 where a wrench held over the step makes it first order in
                                 h; the kit calls no apply_wrench. 0: apply_wrench */
+  int (*reactions_in)(const fb_kit_world *o);
+                             /* optional, with reactions: 0 when the world settings o build a
+                                world that holds its joints by no multipliers it can report
+                                (Siconos's angle coordinates: the tree's joints are its
+                                coordinates), whose model then has no load columns; NULL:
+                                every world reports them */
+  void (*clearance_reaction)(const void *w, int j, double out[3]);
+                             /* with reactions, add_clearance and no add_contact (required
+                                then): clearance joint j's (the description's index) reaction
+                                over the last step, as reactions gives an ideal joint's: the
+                                force on body[1] from body[0] (x, y) [N] and its moment about
+                                +z at the joint's point on body[1] (body[0]'s when body[1] is
+                                the ground) [N m], from the engine's own relation, whose
+                                contacts the kit does not hold (Siconos: a guide's corners'
+                                sum); NULL: the kit's contacts' (fb_kit_pipe_reaction) */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

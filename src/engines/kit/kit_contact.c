@@ -325,6 +325,11 @@ double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const vo
 
 void fb_kit_pipe_reaction(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
                           const fb_planar *m, int j, double out[3]) {
+  if (b->add_clearance && !b->add_contact) { /* the engine's own relation: its reaction */
+    out[0] = out[1] = out[2] = 0.0;
+    b->clearance_reaction(w, j, out);
+    return;
+  }
   const fb_planar_joint *pj = &m->joint[j];
   /* a revolute joint's pin is on body[0], its hole on body[1]: the force on
    * body[1] is minus the pin's; a guide's corners push the slider, its

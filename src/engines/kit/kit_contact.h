@@ -77,7 +77,9 @@ double fb_kit_pipe_force(const fb_kit_pipe *p, const fb_kit_binding *b, const vo
  * slider in its guide, the moment on body[1] about +z at the joint's point
  * on it [N m] (kit.h's fb_kit_series.reaction), from each slot's force
  * (the binding's vector, contact_force_vec, else the normal force along
- * the slot's normal) at the state last read (the step's start). */
+ * the slot's normal) at the state last read (the step's start); an engine
+ * that builds its own relation (add_clearance without add_contact) gives
+ * it whole (clearance_reaction, which fb_kit_open requires then). */
 void fb_kit_pipe_reaction(const fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
                           const fb_planar *m, int j, double out[3]);
 

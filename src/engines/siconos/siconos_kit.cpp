@@ -75,6 +75,7 @@ struct Joint {
   double c, e_n;       // clearance: radial clearance [m] (corner: b + c [m]), Newton's e_N [-]
   int k;               // clearance: the description's joint index
   double ul[2];        // corner: the slide's direction in body b[0]'s frame (nl its normal)
+  double o1[2];        // corner: the joint's point on body b[1] (the slider) in its frame
   double tau;          // corner: +1 the wall along +n, -1 the one along -n (planar_guide.h)
   double mu;           // corner: Coulomb's coefficient (0: frictionless, one row)
   int desc;            // the description's index of the joint
@@ -85,11 +86,16 @@ bool unilateral(const Joint &j) { return j.kind == GAP || j.kind == CORNER; }
 
 struct World;
 
+// the coordinates (x, y, theta) of a relation's two sides (0: none)
+struct Sides {
+  double q[2][3];
+};
+
 // a side of a relation at (q, t): the point's position p, its Jacobian
 // J = dp/dq_side (2 x 3), its time derivative pt, the body's angle th and
-// its time derivative tht
+// its time derivative tht, its centre of mass c (the ground's: 0)
 struct Pt {
-  double p[2], J[2][3], pt[2], th, tht;
+  double p[2], J[2][3], pt[2], th, tht, c[2];
 };
 
 // The kit's world
@@ -120,6 +126,10 @@ struct World {
   size_t k = 0;
   int info = 0;
   double force[FB_PLANAR_SPEC_MAX_JOINTS] = {0};
+  std::vector<double> react;   // (3 per joint entry) its reaction over the last step (reactions)
+  double clr[3 * FB_PLANAR_SPEC_MAX_JOINTS] = {0}; // (3 per description joint) a clearance
+                                                    // joint's, its relations' sum (reactions)
+  double presc_load[3] = {0, 0, 0}; // the prescribed body's springs' and loads' (apply_wrench)
   bool built = false;
 
   // body handle b's point r (its frame) at time t, its coordinates q (DS only)
@@ -143,13 +153,16 @@ struct World {
     const double s = std::sin(o.th), co = std::cos(o.th);
     const double rr[2] = {co * r[0] - s * r[1], s * r[0] + co * r[1]};
     o.p[0] = c[0] + rr[0], o.p[1] = c[1] + rr[1];
+    o.c[0] = c[0], o.c[1] = c[1];
     if (b == presc) {
       o.pt[0] = -omega * (o.p[1] - pivot[1]);
       o.pt[1] = omega * (o.p[0] - pivot[0]);
-    } else {
-      o.J[0][0] = 1.0, o.J[0][2] = -rr[1];
-      o.J[1][1] = 1.0, o.J[1][2] = rr[0];
     }
+    // dp/dq of the body's (x, y, theta), the prescribed body's too: its
+    // relations' Jacobians leave its columns out (KitR), its reaction takes
+    // them (kit_reactions)
+    o.J[0][0] = 1.0, o.J[0][2] = -rr[1];
+    o.J[1][1] = 1.0, o.J[1][2] = rr[0];
   }
 };
 
@@ -168,39 +181,57 @@ class KitR : public LagrangianRheonomousR {
     return jt.kind == GAP || jt.kind == DRIVE ? 1 : 2;
   }
   void computeh(double t, const BlockVector &q, BlockVector &, SiconosVector &y) override {
-    double f[2], J[2][6], ft[2];
-    eval(t, q, f, J, ft);
+    double f[2], G[2][2][3], ft[2];
+    eval(t, sides(q), f, G, ft);
     for (int i = 0; i < rows(); i++) y.setValue(i, f[i]);
   }
   void computeJachq(double t, const BlockVector &q, BlockVector &) override {
-    double f[2], J[2][6], ft[2];
-    eval(t, q, f, J, ft);
-    const int nc = (col_[0] >= 0) + (col_[1] >= 0);
+    double f[2], G[2][2][3], ft[2];
+    eval(t, sides(q), f, G, ft);
     for (int i = 0; i < rows(); i++)
-      for (int c = 0; c < 3 * nc; c++) _jachq->setValue(i, c, J[i][c]);
+      for (int k = 0; k < 2; k++)
+        for (int c = 0; col_[k] >= 0 && c < 3; c++) _jachq->setValue(i, col_[k] + c, G[i][k][c]);
   }
   void computehDot(double t, const BlockVector &q, BlockVector &) override {
-    double f[2], J[2][6], ft[2];
-    eval(t, q, f, J, ft);
+    double f[2], G[2][2][3], ft[2];
+    eval(t, sides(q), f, G, ft);
     for (int i = 0; i < rows(); i++) _hDot->setValue(i, ft[i]);
+  }
+  // the generalized force (x, y [N], the moment about the centre of mass
+  // [N m]) that multipliers lam (rows(), an impulse over the step h [N s])
+  // exert on side k's body, the ground's and the prescribed body's too,
+  // at side coordinates qs and time t; its side's point and centre in *at
+  void side_force(double t, const Sides &qs, const double *lam, double h, int k, double out[3],
+                  Pt *at) const {
+    double f[2], G[2][2][3], ft[2];
+    Pt s[2];
+    eval(t, qs, f, G, ft, s);
+    for (int c = 0; c < 3; c++) {
+      out[c] = 0.0;
+      for (int i = 0; i < rows(); i++) out[c] += G[i][k][c] * lam[i] / h;
+    }
+    *at = s[k];
   }
 
  private:
-  // f(q, t), J = df/dq over the linked systems' columns, ft = df/dt
-  void eval(double t, const BlockVector &q, double f[2], double J[2][6], double ft[2]) const {
+  // side k's coordinates (x, y, theta) from the block q (0 when it has none)
+  Sides sides(const BlockVector &q) const {
+    Sides qs = {};
+    for (int k = 0; k < 2; k++)
+      for (int i = 0; col_[k] >= 0 && i < 3; i++) qs.q[k][i] = q.getValue(col_[k] + i);
+    return qs;
+  }
+  // f(q, t), G[i][k] = df_i/dq_k over side k's coordinates (every side's,
+  // a side without a system's too), ft = df/dt; the sides' points in s
+  void eval(double t, const Sides &qs, double f[2], double G[2][2][3], double ft[2],
+            Pt *s_out = nullptr) const {
     const Joint &jt = w_->joint[j_];
     Pt s[2];
-    for (int k = 0; k < 2; k++) {
-      double qs[3] = {0, 0, 0};
-      for (int i = 0; col_[k] >= 0 && i < 3; i++) qs[i] = q.getValue(col_[k] + i);
-      w_->point(s[k], jt.b[k], jt.r[k], t, qs);
-    }
-    std::memset(J, 0, 2 * 6 * sizeof(double));
-    // add sign * row vector g (over side k's 3 coordinates) into J's row i
+    for (int k = 0; k < 2; k++) w_->point(s[k], jt.b[k], jt.r[k], t, qs.q[k]);
+    std::memset(G, 0, 2 * 2 * 3 * sizeof(double));
+    // add sign * row vector g (over side k's 3 coordinates) into G's row i
     auto put = [&](int i, int k, double sign, const double g[3]) {
-      if (col_[k] < 0) return;
-      const int off = col_[k] == 0 ? 0 : 3;
-      for (int c = 0; c < 3; c++) J[i][off + c] += sign * g[c];
+      for (int c = 0; c < 3; c++) G[i][k][c] += sign * g[c];
     };
     const double th_q[3] = {0, 0, 1};
     // row i = sign dir . (p1 - p0), dir (dl in body b[0]'s frame) turning with it
@@ -254,6 +285,7 @@ class KitR : public LagrangianRheonomousR {
       put(i, 0, -1.0, th_q);
       if (jt.kind == PRISMATIC) along(0, jt.nl, 1.0); // n0 . (p1 - p0), n0 turning with b[0]
     }
+    if (s_out) s_out[0] = s[0], s_out[1] = s[1];
   }
   const World *w_;
   int j_, col_[2];
@@ -501,6 +533,85 @@ fb_status guarded(fb_diag *diag, const char *what, F f) {
   return FB_OK;
 }
 
+// Every joint's reaction over the step just taken (kit.h reactions and
+// clearance_reaction), its mean force, into w->react (an ideal joint's) and
+// w->clr (a clearance joint's, its relations' sum: a guide's four corners):
+// a relation's, the generalized force its multipliers (the step's impulse
+// lambda(1), over h) exert on body[1] (on body[0], turned, when body[1] is
+// the ground; KitR::side_force) through the relation's Jacobian at the
+// step's end t, the state Moreau-Jean took it at (so the moments are those
+// the step applied), its moment moved from the body's centre to the joint's
+// point there (a corner's: the slider's point of the joint, not the corner);
+// a drive row's couple added to its joint's; the prescribed body's pivot (no
+// relation: its motion is exact) from that body's balance: the force, m
+// (v_end - v_start) / h less the others on it (a clearance joint's contact
+// too); the drive's torque, about the pivot, where the body's angular
+// momentum is constant and the pivot's force has no moment.
+void reactions(World *w, double t) {
+  w->react.assign(3 * w->joint.size(), 0.0);
+  std::fill(std::begin(w->clr), std::end(w->clr), 0.0);
+  double on_presc[3] = {0, 0, 0}; // the relations' force and moment about its centre
+  for (size_t i = 0; i < w->inter.size(); i++) {
+    const int j = w->inter_joint[i];
+    const Joint &jt = w->joint[(size_t)j];
+    const KitR &rel = static_cast<const KitR &>(*w->inter[i]->relation());
+    Sides qs = {};
+    for (int k = 0; k < 2; k++) {
+      const int d = jt.b[k] == FB_KIT_GROUND ? -1 : w->ds_of[(size_t)jt.b[k]];
+      for (int c = 0; d >= 0 && c < 3; c++) qs.q[k][c] = w->ds[(size_t)d]->q()->getValue(c);
+    }
+    double lam[2] = {0, 0};
+    for (int r = 0; r < rel.rows(); r++) lam[r] = w->inter[i]->lambda(1)->getValue(r);
+    for (int k = 0; k < 2; k++) {
+      if (jt.b[k] != w->presc) continue;
+      double q[3];
+      Pt at;
+      rel.side_force(t, qs, lam, w->h, k, q, &at);
+      for (int c = 0; c < 3; c++) on_presc[c] += q[c];
+    }
+    // the joint entry whose reaction it is: a drive row's, its revolute joint's
+    size_t e = (size_t)j;
+    for (size_t o = 0; jt.kind == DRIVE && o < w->joint.size(); o++)
+      if (w->joint[o].kind == REVOLUTE && w->joint[o].desc == jt.desc) e = o;
+    const int k = jt.b[1] != FB_KIT_GROUND ? 1 : 0;
+    const double sign = k == 1 ? 1.0 : -1.0;
+    double q[3];
+    Pt at;
+    rel.side_force(t, qs, lam, w->h, k, q, &at);
+    if (jt.kind == CORNER && k == 1) w->point(at, jt.b[1], jt.o1, t, qs.q[1]);
+    const double m = q[2] + (at.c[0] - at.p[0]) * q[1] - (at.c[1] - at.p[1]) * q[0];
+    double *to = unilateral(jt) ? w->clr + 3 * jt.k : &w->react[3 * e];
+    to[0] += sign * q[0];
+    to[1] += sign * q[1];
+    to[2] += sign * m;
+  }
+  if (w->presc < 0) return;
+  for (size_t j = 0; j < w->joint.size(); j++) {
+    const Joint &jt = w->joint[j];
+    const int s = jt.b[0] == FB_KIT_GROUND ? 1 : 0; // the prescribed body's side
+    if (jt.kind != REVOLUTE || jt.b[s] != w->presc || jt.b[1 - s] != FB_KIT_GROUND) continue;
+    const Body &B = w->body[(size_t)w->presc];
+    Pt g[2]; // its centre at the step's start and end
+    const double zero[2] = {0, 0};
+    w->point(g[0], w->presc, zero, t - w->h, nullptr);
+    w->point(g[1], w->presc, zero, t, nullptr);
+    // m (v_end - v_start) / h = F_pivot + the relations' + the weight + the loads'
+    const double f[2] = {B.m * (g[1].pt[0] - g[0].pt[0]) / w->h - on_presc[0] - w->presc_load[0],
+                         B.m * (g[1].pt[1] - g[0].pt[1]) / w->h - on_presc[1] + B.m * w->grav -
+                             w->presc_load[1]};
+    // about the pivot, its angular momentum (I + m r^2) omega constant: 0 = T + the
+    // relations' moments + the weight's and the loads' (the pivot's force has none)
+    const double r[2] = {g[1].p[0] - w->pivot[0], g[1].p[1] - w->pivot[1]}; // pivot to centre
+    const double fa[2] = {on_presc[0] + w->presc_load[0],
+                          on_presc[1] - B.m * w->grav + w->presc_load[1]};
+    const double torque = -(on_presc[2] + w->presc_load[2] + r[0] * fa[1] - r[1] * fa[0]);
+    const double sign = s == 1 ? 1.0 : -1.0; // on body[1] from body[0]
+    w->react[3 * j] = sign * f[0];
+    w->react[3 * j + 1] = sign * f[1];
+    w->react[3 * j + 2] = sign * torque;
+  }
+}
+
 } // namespace
 
 extern "C" {
@@ -578,6 +689,7 @@ static fb_status add_corners(World *w, int k, const fb_kit_clearance_joint *c, f
     const double p[2] = {c->at[0] + sigma * g.half_length * u[0] + tau * g.half_height * n[0],
                          c->at[1] + sigma * g.half_length * u[1] + tau * g.half_height * n[1]};
     Joint j = joint_at(w, CORNER, c->pin, c->hole, c->at);
+    j.o1[0] = j.r[1][0], j.o1[1] = j.r[1][1];
     local(w, c->hole, p, j.r[1]);
     j.nl[0] = c0 * n[0] + s0 * n[1], j.nl[1] = -s0 * n[0] + c0 * n[1];
     j.ul[0] = c0 * u[0] + s0 * u[1], j.ul[1] = -s0 * u[0] + c0 * u[1];
@@ -678,6 +790,7 @@ static fb_status kit_step(void *vw, fb_diag *diag) {
     const Joint &jt = w->joint[(size_t)w->inter_joint[i]];
     if (unilateral(jt)) w->force[jt.k] += w->inter[i]->lambda(1)->getValue(0) / w->h;
   }
+  if (!w->tree) reactions(w, (double)(w->k + 1) * w->h);
   const fb_status nx = guarded(diag, "step failed", [w] { w->sim->nextStep(); });
   w->k++;
   return nx;
@@ -692,15 +805,49 @@ static void kit_apply_wrench(void *vw, int b, const double f[3]) {
   World *w = static_cast<World *>(vw);
   if (!w->built || w->coordinates != FB_SICONOS_ABSOLUTE) return;
   const int d = w->ds_of[(size_t)b];
-  if (d < 0) return; // the prescribed body: its motion is given
+  if (d < 0) { // the prescribed body: its motion is given, its drive balances them (reactions)
+    for (int i = 0; i < 3; i++) w->presc_load[i] = f[i];
+    return;
+  }
   SiconosVector &fe = *w->ds[(size_t)d]->fExt();
   fe.setValue(0, f[0]);
   fe.setValue(1, f[1] - w->body[(size_t)b].m * w->grav);
   fe.setValue(2, f[2]);
 }
 
+// ideal joint k's (its place among the joints added) reaction over the last
+// step (kit.h): the walk's k-th bilateral joint entry (a drive row, added
+// after the walk, is in its joint's)
+static void kit_reactions(const void *vw, int k, double out[3]) {
+  const World *w = static_cast<const World *>(vw);
+  out[0] = out[1] = out[2] = 0.0;
+  int n = -1;
+  for (size_t j = 0; j < w->joint.size(); j++) {
+    const Joint &jt = w->joint[j];
+    if (unilateral(jt) || jt.kind == DRIVE || ++n != k) continue;
+    for (int c = 0; c < 3 && 3 * j + 2 < w->react.size(); c++) out[c] = w->react[3 * j + c];
+    return;
+  }
+}
+
+// clearance joint j's (the description's index) reaction over the last
+// step (kit.h clearance_reaction): its relations' (reactions)
+static void kit_clearance_reaction(const void *vw, int j, double out[3]) {
+  const World *w = static_cast<const World *>(vw);
+  for (int c = 0; c < 3; c++)
+    out[c] = j >= 0 && j < FB_PLANAR_SPEC_MAX_JOINTS ? w->clr[3 * j + c] : 0.0;
+}
+
+// reactions in absolute coordinates only: the angle coordinates' tree
+// joints are no relations (siconos_angles.hpp), so no multiplier holds them
+static int kit_reactions_in(const fb_kit_world *o) {
+  return !o->c || o->c->siconos.coordinates == FB_SICONOS_ABSOLUTE;
+}
+
+// clearance joint k's normal force over the last step (kit.h contact_force;
+// the kit asks at the joint's index, a guide's corners summed), 0 out of range
 static double kit_contact_force(const void *vw, int k) {
-  return static_cast<const World *>(vw)->force[k];
+  return k >= 0 && k < FB_PLANAR_SPEC_MAX_JOINTS ? static_cast<const World *>(vw)->force[k] : 0.0;
 }
 
 static void kit_body_state(const void *vw, int b, double pos[3], double vel[3]) {
@@ -741,13 +888,15 @@ const fb_kit_binding fb_siconos_kit = {
     NULL /* model_text: Siconos reads no model file */,
     NULL /* contact_force_max: an impulse per step, no sub-steps */,
     0 /* contact_rows: a unilateral relation, no soft row */,
-    NULL /* reactions: none reported */,
+    kit_reactions,
     NULL /* contact_force_vec: the normal force along the normal */,
     0 /* friction: add_clearance reads [clearance] friction itself */,
     NULL /* body_accel: the step's difference */,
     0 /* explicit_law: no applied force */,
     kit_apply_wrench,
     0 /* loads_from_state: none */,
+    kit_reactions_in,
+    kit_clearance_reaction,
 };
 
 } // extern "C"

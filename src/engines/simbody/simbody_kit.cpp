@@ -682,4 +682,6 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     0,    /* explicit_law: an error-controlled integrator */
     NULL, /* apply_wrench: the force element evaluates them itself */
     1,    /* loads_from_state: at every stage of the integrator, from its state */
+    NULL, /* reactions_in: every world reports them */
+    NULL, /* clearance_reaction: the kit's contacts (add_contact) */
 };

@@ -238,6 +238,20 @@ check(rc == 2 and "[run] ensemble = 4" in se and not os.path.exists(os.path.join
       "an ensemble on a planar case is refused, nothing written (%d, %s)" % (rc, se.strip()))
 check("(given: [run] ensemble at --set #1 'run.ensemble=4')" in se,
       "the refusal says where the ensemble was given (%s)" % se.strip())
+# h_s = adaptive with an engine model is refused (the kit steps at a fixed h:
+# it ran at h_min_s, silently); the analytic model alone samples its grid
+rc, _, se = run("run", six, "--set", "solver.h_s=adaptive", "--set",
+                "run.models=analytic,ode-clearance-impact", "--out", os.path.join(tmp, "ad"))
+check(rc == 2 and "[solver] h_s = adaptive with [run] models ode-clearance-impact" in se and
+      "[solver] h_s at --set #1 'solver.h_s=adaptive'" in se and
+      not os.path.exists(os.path.join(tmp, "ad")),
+      "h_s = adaptive with an engine model of a planar case is refused, where it was given, "
+      "nothing written (%d, %s)" % (rc, se.strip()))
+rc, _, se = run("run", six, "--set", "solver.h_s=adaptive", "--set", "run.models=analytic",
+                "--set", "run.revolutions=2", "--no-figures", "--no-report",
+                "--out", os.path.join(tmp, "ad-analytic"))
+check(rc == 0, "h_s = adaptive with the analytic model alone runs on h_min_s's grid (%d, %s)"
+      % (rc, se.strip()[-300:]))
 # the case's clearance joint, run in none of the models, is said
 rc, _, se = run("run", six, "--set", "run.models=analytic", "--set", "run.revolutions=2",
                 "--no-figures", "--no-report", "--out", os.path.join(tmp, "idle"))

@@ -38,7 +38,11 @@ static int refuse(const fb_case *c, const char *case_path, const char *const *se
     return fb_cli_fail("run", 2, "%s: %s%s%s%s", case_path, msg, l ? " (given: " : "", where,
                        l ? ")" : "");
   }
-  if (fb_planar_run_check(c, &d) != FB_OK) return fb_cli_fail("run", 2, "%s: %s", case_path, d.msg);
+  if (fb_planar_run_check(c, &d) != FB_OK) {
+    const size_t l = fb_casefile_given_where(where, sizeof where, case_path, sets, nsets, d.msg);
+    return fb_cli_fail("run", 2, "%s: %s%s%s%s", case_path, d.msg, l ? " (given: " : "", where,
+                       l ? ")" : "");
+  }
   return 0;
 }
 

@@ -34,6 +34,15 @@ const char *fb_planar_run_refusal(const char *name) {
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < c->model_count; i++) {
     const char *name = c->models[i];
+    /* the kit steps at a fixed h: an engine model would run at the grid's
+     * h_min_s, silently (the analytic model and the references sample the
+     * grid, which h_min_s sets) */
+    if (c->solver.h_mode == FB_STEP_ADAPTIVE && fb_planar_kit_of(name))
+      return fb_diag_set(diag, FB_ERR_ARG, "[solver] h_s = adaptive with [run] models %s: a "
+                         "planar case's engine models step at a fixed h through the engine kit "
+                         "(it would run at h_min_s = %g s, silently); give [solver] h_s = auto "
+                         "(chosen from the case's clearance contacts) or a step in s", name,
+                         c->solver.h_min);
     if (c->planar.undriven && strcmp(name, "analytic") == 0) /* the kit's start is free */
       return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' follows a drive at constant "
                          "speed, and the case is %s; it runs: reference, "

@@ -3,30 +3,15 @@
  * rate, the law mapped to one soft contact row (ode_contact.h) at the
  * effective mass along the normal, the drift correction of the
  * matched-static row, the contact joint on the hole wall; and what the other
- * colliders (ode_colliders.c) share: the row's provenance, the step's
- * effective mass and law, the pin in the hole's frame. Also the mechanism's
- * configuration for the effective mass and the ODE probe of it. */
+ * colliders (ode_colliders.c) are handed: the step's effective mass and
+ * law. Also the mechanism's configuration for the effective mass and the
+ * ODE probe of it. */
 #include <math.h>
 #include <string.h>
 
 #include "contact_mass.h"
 #include "ode_contact.h"
 #include "ode_world_internal.h"
-
-/* records one contact row of a clearance joint */
-void ode_note_row(ode_clearance *c, const fb_contact_row *u, double share, double mass, double h) {
-  fb_contact_provenance *p = &c->prov;
-  if (p->contact_steps == 0 || u->erp > p->erp_max) p->erp_max = u->erp;
-  if (p->contact_steps == 0 || u->cfm < p->cfm_min) p->cfm_min = u->cfm;
-  const double hw = fb_contact_h_omega(h, u->kp * share, mass); /* rows in parallel */
-  if (p->contact_steps == 0 || hw > p->h_omega_max) p->h_omega_max = hw;
-  if (hw > c->step_hw) c->step_hw = hw;
-  if (p->contact_steps == 0 || mass < p->mass_eff_min) p->mass_eff_min = mass;
-  if (p->contact_steps == 0 || mass > p->mass_eff_max) p->mass_eff_max = mass;
-  p->contact_steps++;
-  const double wdh = fb_contact_omega_d_h(h, u->kp * share, u->kd * share, mass);
-  if (wdh > c->step_wdh) c->step_wdh = wdh;
-}
 
 /* the effective mass of clearance joint j along unit n (pin minus hole
  * direction) [kg], from this step's inverse-mass tensor (effective_mass.h),
@@ -106,28 +91,13 @@ static double step_drift(const ode_clearance *c, const double n[2], const double
   return fb_contact_step_drift(n, dp, dq, ev, ecc, h);
 }
 
-/* pin centre relative to the hole centre, in the hole body's frame (the
- * world's for a ground hole) [m] */
-void ode_pin_in_hole_frame(const ode_clearance *c, double p[2]) {
-  dVector3 w, l;
-  dBodyGetRelPointPos(c->pin, c->pin_local[0], c->pin_local[1], c->pin_local[2], w);
-  if (c->hole) {
-    dBodyGetPosRelPoint(c->hole, w[0], w[1], w[2], l);
-    p[0] = l[0] - c->hole_local[0];
-    p[1] = l[1] - c->hole_local[1];
-  } else {
-    p[0] = w[0] - c->hole_local[0];
-    p[1] = w[1] - c->hole_local[1];
-  }
-}
-
 /* penetration of clearance joint c now [m]: into the faceted bore for the
  * libccd collider, |e| - c otherwise; 0 when free */
 double ode_clearance_penetration(const fb_ode_world *s, const ode_clearance *c) {
-  if (c->bore) {
+  if (c->gen.bore) {
     double p[2];
-    ode_pin_in_hole_frame(c, p);
-    return fb_ccd_bore_depth(c->bore, p);
+    ode_collider_pin_in_hole(&c->gen, p);
+    return fb_ccd_bore_depth(c->gen.bore, p);
   }
   double e[2], ev[2], num;
   ode_clearance_geometry(c, e, &num, ev);
@@ -173,7 +143,7 @@ void ode_exact_contact(fb_ode_world *s, int j) {
     ct.geom.depth = used.depth;
   }
   c->step_share = used.step_share;
-  ode_note_row(c, &used, 1.0, m_eff, s->h_now);
+  ode_note_row(&c->prov, &c->step_hw, &c->step_wdh, &used, 1.0, m_eff, s->h_now);
   /* hole centre + R_hole n, on the hole wall */
   const double r_hole = d->pin_radius + d->radial_clearance;
   dVector3 q;

@@ -1,201 +1,262 @@
-/* The ODE world's generic colliders, for comparison with the exact contact
- * (ode_world.h, "Faceted variant" and "libccd variant"): the faceted hole, a
- * ring of ODE boxes around an ODE cylinder collided by dCollide, and the
- * libccd bore (collide_ccd.h); each builds its geometry and hands ODE the
- * step's contact joints with the law's rows split over the contacts. */
+/* The generic colliders of a pin in its hole (ode_colliders.h). */
+#include "ode_colliders.h"
+
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
+#include "contact_mass.h"
 #include "ode_contact.h"
-#include "ode_world_internal.h"
 
-#define FACET_THICKNESS_M 2e-3 /* radial thickness of the ring's boxes */
-#define FACET_MAX_CONTACTS 64   /* contacts kept per joint and step */
+#define FACET_THICKNESS_M 2e-3 /* radial thickness of the ring's boxes and the bore's segments */
 
-/* builds the faceted hole and pin of clearance joint j */
-void ode_facet_create(fb_ode_world *s, int j) {
-  ode_clearance *c = &s->cl[j];
-  const fb_model_scene *d = &s->def;
-  const int n = d->faceted_n;
-  const double r_in = d->pin_radius + d->radial_clearance;
+/* g's pin centre or hole centre: the body's local point in the world (a
+ * ground's: the point itself) */
+static void world_point(dBodyID b, const double local[3], dVector3 out) {
+  if (b) {
+    dBodyGetRelPointPos(b, local[0], local[1], local[2], out);
+    return;
+  }
+  out[0] = local[0];
+  out[1] = local[1];
+  out[2] = local[2];
+}
+
+fb_status ode_collider_faceted(ode_collider *g, int n, double pin_radius, double hole_radius,
+                               double pin_length, fb_diag *diag) {
   const double t = FACET_THICKNESS_M;
-  const double w = 2.0 * (r_in + t) * tan(M_PI / n) * 1.001; /* closes the ring */
-  c->cyl = dCreateCylinder(0, d->pin_radius, d->pin_length);
-  dGeomSetBody(c->cyl, c->pin);
-  dGeomSetOffsetPosition(c->cyl, c->pin_local[0], c->pin_local[1], c->pin_local[2]);
-  c->boxes = calloc((size_t)n, sizeof(dGeomID));
-  c->ring = dHashSpaceCreate(0);
-  c->fbs = calloc(FACET_MAX_CONTACTS, sizeof(dJointFeedback));
+  const double w = 2.0 * (hole_radius + t) * tan(M_PI / n) * 1.001; /* closes the ring */
+  g->cyl = dCreateCylinder(0, pin_radius, pin_length);
+  g->ring = dHashSpaceCreate(0);
+  if (!g->cyl || !g->ring) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a ring");
+  if (g->pin) {
+    dGeomSetBody(g->cyl, g->pin);
+    dGeomSetOffsetPosition(g->cyl, g->pin_local[0], g->pin_local[1], g->pin_local[2]);
+  } else {
+    dGeomSetPosition(g->cyl, g->pin_local[0], g->pin_local[1], g->pin_local[2]);
+  }
   for (int k = 0; k < n; k++) {
     const double phi = 2.0 * M_PI * k / n;
-    dGeomID b = dCreateBox(c->ring, t, w, d->pin_length);
+    dGeomID b = dCreateBox(g->ring, t, w, pin_length);
     dMatrix3 R;
     dRFromAxisAndAngle(R, 0, 0, 1, phi);
-    const double cx = (r_in + 0.5 * t) * cos(phi), cy = (r_in + 0.5 * t) * sin(phi);
-    if (c->hole) {
-      dGeomSetBody(b, c->hole);
+    const double cx = (hole_radius + 0.5 * t) * cos(phi), cy = (hole_radius + 0.5 * t) * sin(phi);
+    if (g->hole) {
+      dGeomSetBody(b, g->hole);
       /* offsets are in the hole body's frame: the ring is centred on hole_local */
-      dGeomSetOffsetPosition(b, c->hole_local[0] + cx, c->hole_local[1] + cy, 0.0);
+      dGeomSetOffsetPosition(b, g->hole_local[0] + cx, g->hole_local[1] + cy, 0.0);
       dGeomSetOffsetRotation(b, R);
     } else {
-      dGeomSetPosition(b, c->hole_local[0] + cx, c->hole_local[1] + cy, 0.0);
+      dGeomSetPosition(b, g->hole_local[0] + cx, g->hole_local[1] + cy, 0.0);
       dGeomSetRotation(b, R);
     }
-    c->boxes[k] = b;
   }
-}
-
-void ode_facet_destroy(ode_clearance *c, int n) {
-  (void)n;
-  if (!c->boxes) return;
-  dSpaceDestroy(c->ring); /* destroys the boxes it holds (cleanup mode on) */
-  dGeomDestroy(c->cyl);
-  free(c->boxes);
-  free(c->fbs);
-}
-
-/* builds the libccd ring of clearance joint j */
-fb_status ode_ccd_create(fb_ode_world *s, int j, fb_diag *diag) {
-  const fb_model_scene *d = &s->def;
-  fb_ccd_bore_def bd = fb_ccd_bore_default();
-  bd.pin_radius = d->pin_radius;
-  bd.pin_length = d->pin_length;
-  bd.hole_radius = d->pin_radius + d->radial_clearance;
-  bd.shape = d->bore_ovality > 0.0 ? FB_BORE_ELLIPSE : FB_BORE_CIRCLE;
-  bd.ovality = d->bore_ovality;
-  bd.segments = d->ccd_segments;
-  bd.wall = FACET_THICKNESS_M;
-  fb_status st = fb_ccd_bore_create(&s->cl[j].bore, &bd, diag);
-  if (st != FB_OK) return st;
-  s->cl[j].fbs = calloc(FB_CCD_CONTACTS, sizeof(dJointFeedback));
-  if (!s->cl[j].fbs) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for contact feedback");
   return FB_OK;
 }
 
-typedef struct {
-  dContactGeom *g;
-  int n;
-} facet_hits;
+fb_status ode_collider_ccd(ode_collider *g, int segments, double ovality, double pin_radius,
+                           double hole_radius, double pin_length, fb_diag *diag) {
+  fb_ccd_bore_def bd = fb_ccd_bore_default();
+  bd.pin_radius = pin_radius;
+  bd.pin_length = pin_length;
+  bd.hole_radius = hole_radius;
+  bd.shape = ovality > 0.0 ? FB_BORE_ELLIPSE : FB_BORE_CIRCLE;
+  bd.ovality = ovality;
+  bd.segments = segments;
+  bd.wall = FACET_THICKNESS_M;
+  return fb_ccd_bore_create(&g->bore, &bd, diag);
+}
 
-/* broadphase callback: narrowphase of the pin against one box */
+void ode_collider_free(ode_collider *g) {
+  if (g->ring) dSpaceDestroy(g->ring); /* destroys the boxes it holds (cleanup mode on) */
+  if (g->cyl) dGeomDestroy(g->cyl);
+  fb_ccd_bore_destroy(g->bore);
+  g->ring = 0;
+  g->cyl = 0;
+  g->bore = NULL;
+}
+
+void ode_collider_pin_in_hole(const ode_collider *g, double p[2]) {
+  dVector3 w, l;
+  world_point(g->pin, g->pin_local, w);
+  if (g->hole) {
+    dBodyGetPosRelPoint(g->hole, w[0], w[1], w[2], l);
+    p[0] = l[0] - g->hole_local[0];
+    p[1] = l[1] - g->hole_local[1];
+  } else {
+    p[0] = w[0] - g->hole_local[0];
+    p[1] = w[1] - g->hole_local[1];
+  }
+}
+
+/* broadphase callback: narrowphase of the pin against one box, into the
+ * collider's hits */
 static void facet_near(void *data, dGeomID o1, dGeomID o2) {
-  facet_hits *h = data;
-  if (h->n >= FACET_MAX_CONTACTS) return;
-  h->n += dCollide(o1, o2, FACET_MAX_CONTACTS - h->n, &h->g[h->n], sizeof(dContactGeom));
+  ode_collider *g = data;
+  if (g->nhit >= ODE_FACET_CONTACTS) return;
+  g->nhit += dCollide(o1, o2, ODE_FACET_CONTACTS - g->nhit, &g->hit[g->nhit].geom, sizeof(ode_hit));
 }
 
-/* faceted: contact joints from ODE's collider for clearance joint j */
-void ode_facet_contacts(fb_ode_world *s, int j) {
-  ode_clearance *c = &s->cl[j];
-  const fb_model_scene *d = &s->def;
-  dContactGeom g[FACET_MAX_CONTACTS];
-  facet_hits hits = {g, 0};
-  dSpaceCollide2(c->cyl, (dGeomID)c->ring, &hits, facet_near);
-  const int n = hits.n;
-  c->nfb = 0;
-  if (n == 0) {
-    fb_episode_update(&c->ep, 0, 0.0, d->impact_velocity_min);
-    return;
-  }
-  for (int i = 0; i < n; i++) {
-    dBodyID p1 = dGeomGetBody(g[i].g1), p2 = dGeomGetBody(g[i].g2);
+/* the faceted ring's contacts: ODE's collider, each with its approach rate */
+static int facet_hits(ode_collider *g) {
+  dSpaceCollide2(g->cyl, (dGeomID)g->ring, g, facet_near);
+  for (int i = 0; i < g->nhit; i++) {
+    const dContactGeom *c = &g->hit[i].geom;
+    dBodyID p1 = dGeomGetBody(c->g1), p2 = dGeomGetBody(c->g2);
     dVector3 v1 = {0, 0, 0, 0}, v2 = {0, 0, 0, 0};
-    if (p1) dBodyGetPointVel(p1, g[i].pos[0], g[i].pos[1], g[i].pos[2], v1);
-    if (p2) dBodyGetPointVel(p2, g[i].pos[0], g[i].pos[1], g[i].pos[2], v2);
+    if (p1) dBodyGetPointVel(p1, c->pos[0], c->pos[1], c->pos[2], v1);
+    if (p2) dBodyGetPointVel(p2, c->pos[0], c->pos[1], c->pos[2], v2);
     /* normal points into body 1: approach rate along it */
-    const double ddot = (v2[0] - v1[0]) * g[i].normal[0] + (v2[1] - v1[1]) * g[i].normal[1] +
-                        (v2[2] - v1[2]) * g[i].normal[2];
-    if (i == 0) fb_episode_update(&c->ep, 1, ddot, d->impact_velocity_min);
-    /* the collider's normal points into the pin: the pin-minus-hole direction is -normal */
-    const double nn[2] = {-g[i].normal[0], -g[i].normal[1]};
-    const double m_eff = ode_step_effective_mass(s, j, nn);
-    const fb_contact_law law = ode_step_law(&d->law[j], m_eff);
-    dContact ct;
-    memset(&ct, 0, sizeof ct);
-    ct.geom = g[i];
-    fb_contact_row used;
-    if (!fb_ode_soft_contact(&ct, &law, d->mapping, d->solver.h, m_eff, n, g[i].depth, ddot,
-                             c->ep.v0, 0, c->persistence, d->friction, &used))
-      continue;
-    ode_note_row(c, &used, (double)n, m_eff, d->solver.h);
-    dJointID cj = dJointCreateContact(s->world, s->contacts, &ct);
-    dJointAttach(cj, p1, p2);
-    dJointSetFeedback(cj, &c->fbs[c->nfb++]);
+    g->hit[i].rate = (v2[0] - v1[0]) * c->normal[0] + (v2[1] - v1[1]) * c->normal[1] +
+                     (v2[2] - v1[2]) * c->normal[2];
   }
+  g->lead = 0; /* the episode follows the first contact */
+  return g->nhit;
 }
 
-/* libccd: contact joints from the generic collider for clearance joint j */
-void ode_ccd_contacts(fb_ode_world *s, int j) {
-  ode_clearance *c = &s->cl[j];
-  const fb_model_scene *d = &s->def;
+/* the bore's contacts from libccd (hole frame) in the world, each with its
+ * approach rate; the deepest leads */
+static int ccd_hits(ode_collider *g) {
   double p[2];
-  ode_pin_in_hole_frame(c, p);
+  ode_collider_pin_in_hole(g, p);
   fb_ccd_contact hit[FB_CCD_CONTACTS];
-  const int n = fb_ccd_bore_collide(c->bore, p, hit, FB_CCD_CONTACTS);
-  c->nfb = 0;
-  if (n == 0) {
-    fb_episode_update(&c->ep, 0, 0.0, d->impact_velocity_min);
-    return;
-  }
-  dVector3 nw[FB_CCD_CONTACTS], pw[FB_CCD_CONTACTS];
-  double rate[FB_CCD_CONTACTS] = {0}, sum = 0.0;
-  int deep = 0;
+  const int n = fb_ccd_bore_collide(g->bore, p, hit, FB_CCD_CONTACTS);
+  g->lead = 0;
   for (int i = 0; i < n; i++) {
     /* to the world: normal (pin into wall) and point */
-    if (c->hole) {
-      dBodyVectorToWorld(c->hole, hit[i].normal[0], hit[i].normal[1], 0.0, nw[i]);
-      dBodyGetRelPointPos(c->hole, c->hole_local[0] + hit[i].point[0],
-                          c->hole_local[1] + hit[i].point[1], c->hole_local[2], pw[i]);
+    dVector3 nw, pw;
+    if (g->hole) {
+      dBodyVectorToWorld(g->hole, hit[i].normal[0], hit[i].normal[1], 0.0, nw);
+      dBodyGetRelPointPos(g->hole, g->hole_local[0] + hit[i].point[0],
+                          g->hole_local[1] + hit[i].point[1], g->hole_local[2], pw);
     } else {
-      nw[i][0] = hit[i].normal[0];
-      nw[i][1] = hit[i].normal[1];
-      nw[i][2] = 0.0;
-      pw[i][0] = c->hole_local[0] + hit[i].point[0];
-      pw[i][1] = c->hole_local[1] + hit[i].point[1];
-      pw[i][2] = 0.0;
+      nw[0] = hit[i].normal[0];
+      nw[1] = hit[i].normal[1];
+      nw[2] = 0.0;
+      pw[0] = g->hole_local[0] + hit[i].point[0];
+      pw[1] = g->hole_local[1] + hit[i].point[1];
+      pw[2] = 0.0;
     }
     /* approach rate: pin velocity minus hole velocity at the point, along the normal */
-    dVector3 vp, vh = {0, 0, 0, 0};
-    dBodyGetPointVel(c->pin, pw[i][0], pw[i][1], pw[i][2], vp);
-    if (c->hole) dBodyGetPointVel(c->hole, pw[i][0], pw[i][1], pw[i][2], vh);
-    rate[i] = (vp[0] - vh[0]) * nw[i][0] + (vp[1] - vh[1]) * nw[i][1];
-    sum += hit[i].depth;
-    if (hit[i].depth > hit[deep].depth) deep = i;
+    dVector3 vp = {0, 0, 0, 0}, vh = {0, 0, 0, 0};
+    if (g->pin) dBodyGetPointVel(g->pin, pw[0], pw[1], pw[2], vp);
+    if (g->hole) dBodyGetPointVel(g->hole, pw[0], pw[1], pw[2], vh);
+    ode_hit *h = &g->hit[i];
+    memset(&h->geom, 0, sizeof h->geom);
+    h->rate = (vp[0] - vh[0]) * nw[0] + (vp[1] - vh[1]) * nw[1];
+    h->geom.depth = hit[i].depth;
+    for (int q = 0; q < 3; q++) {
+      h->geom.pos[q] = pw[q];
+      h->geom.normal[q] = -nw[q]; /* into the pin (body 1) */
+    }
+    if (hit[i].depth > hit[g->lead].depth) g->lead = i;
   }
-  fb_episode_update(&c->ep, 1, rate[deep], d->impact_velocity_min);
+  return g->nhit = n;
+}
+
+int ode_collider_hits(ode_collider *g) {
+  g->nhit = 0;
+  g->nfb = 0;
+  return g->bore ? ccd_hits(g) : facet_hits(g);
+}
+
+/* a contact joint of contact ct between bodies b1 and b2, with the next
+ * feedback */
+static void add_row(ode_collider *g, const ode_collider_step *x, const dContact *ct, dBodyID b1,
+                    dBodyID b2) {
+  dJointID cj = dJointCreateContact(x->world, x->group, ct);
+  dJointAttach(cj, b1, b2);
+  dJointSetFeedback(cj, &g->fb[g->nfb++]);
+}
+
+/* faceted: each contact its own row, at its own depth and effective mass */
+static void facet_rows(ode_collider *g, const ode_collider_step *x) {
+  const int n = g->nhit;
+  for (int i = 0; i < n; i++) {
+    const dContactGeom *c = &g->hit[i].geom;
+    /* the collider's normal points into the pin: the pin-minus-hole direction is -normal */
+    const double nn[2] = {-c->normal[0], -c->normal[1]};
+    const double m_eff = x->mass(x->user, nn);
+    const fb_contact_law law = fb_contact_law_on_mass(x->law, m_eff);
+    dContact ct;
+    memset(&ct, 0, sizeof ct);
+    ct.geom = *c;
+    fb_contact_row used;
+    if (!fb_ode_soft_contact(&ct, &law, x->mapping, x->h, m_eff, n, c->depth, g->hit[i].rate, x->v0,
+                             0, x->persistence, x->friction, &used))
+      continue;
+    x->note(x->user, &used, (double)n, m_eff);
+    add_row(g, x, &ct, dGeomGetBody(c->g1), dGeomGetBody(c->g2));
+  }
+}
+
+/* libccd: the deepest contact's row, shared by depth (or split by count) */
+static void ccd_rows(ode_collider *g, const ode_collider_step *x) {
+  const int n = g->nhit, deep = g->lead;
+  double sum = 0.0;
+  for (int i = 0; i < n; i++) sum += g->hit[i].geom.depth;
   /* the effective mass along the deepest contact's normal (pin into wall) */
-  const double n_deep[2] = {nw[deep][0], nw[deep][1]};
-  const double m_eff = ode_step_effective_mass(s, j, n_deep);
-  const fb_contact_law law = ode_step_law(&d->law[j], m_eff);
+  const double n_deep[2] = {-g->hit[deep].geom.normal[0], -g->hit[deep].geom.normal[1]};
+  const double m_eff = x->mass(x->user, n_deep);
+  const fb_contact_law law = fb_contact_law_on_mass(x->law, m_eff);
   /* the one row the exact collider would hand ODE at the deepest contact */
   fb_contact_row base;
-  const int have_row = fb_contact_map(&base, &law, d->mapping, d->solver.h, m_eff, 1,
-                                      hit[deep].depth, rate[deep], c->ep.v0, NULL) == FB_OK;
-  if (have_row && c->persistence > 0.0 && d->mapping == FB_MAPPING_MATCHED_STATIC)
-    fb_contact_row_static(&base, d->solver.h, m_eff, c->persistence);
+  const int have_row = fb_contact_map(&base, &law, x->mapping, x->h, m_eff, 1,
+                                      g->hit[deep].geom.depth, g->hit[deep].rate, x->v0,
+                                      NULL) == FB_OK;
+  if (have_row && x->persistence > 0.0 && x->mapping == FB_MAPPING_MATCHED_STATIC)
+    fb_contact_row_static(&base, x->h, m_eff, x->persistence);
   for (int i = 0; i < n; i++) {
+    const ode_hit *h = &g->hit[i];
     dContact ct;
     memset(&ct, 0, sizeof ct);
     fb_contact_row row = base;
-    if (d->ccd_split == 1) {
+    if (x->split == 1) {
       /* the faceted model's rule: own depth, spring divided by the count */
-      if (!fb_ode_soft_contact(&ct, &law, d->mapping, d->solver.h, m_eff, n, hit[i].depth,
-                               rate[i], c->ep.v0, 0, c->persistence, d->friction, &row))
+      if (!fb_ode_soft_contact(&ct, &law, x->mapping, x->h, m_eff, n, h->geom.depth, h->rate,
+                               x->v0, 0, x->persistence, x->friction, &row))
         continue;
     } else {
       /* share w of the row: a and b = 1/CFM scale by w, ERP = h a / b does not */
       if (!have_row) continue;
-      row.cfm = base.cfm * sum / hit[i].depth;
-      fb_ode_soft_fill(&ct, &row, d->friction);
+      row.cfm = base.cfm * sum / h->geom.depth;
+      fb_ode_soft_fill(&ct, &row, x->friction);
     }
-    ode_note_row(c, &row, d->ccd_split == 1 ? (double)n : 1.0, m_eff, d->solver.h);
+    x->note(x->user, &row, x->split == 1 ? (double)n : 1.0, m_eff);
     for (int q = 0; q < 3; q++) {
-      ct.geom.pos[q] = pw[i][q];
-      ct.geom.normal[q] = -nw[i][q]; /* into the pin (body 1) */
+      ct.geom.pos[q] = h->geom.pos[q];
+      ct.geom.normal[q] = h->geom.normal[q];
     }
-    dJointID cj = dJointCreateContact(s->world, s->contacts, &ct);
-    dJointAttach(cj, c->pin, c->hole);
-    dJointSetFeedback(cj, &c->fbs[c->nfb++]);
+    add_row(g, x, &ct, g->pin, g->hole);
   }
+}
+
+void ode_collider_rows(ode_collider *g, const ode_collider_step *x) {
+  g->nfb = 0;
+  if (g->bore) ccd_rows(g, x);
+  else facet_rows(g, x);
+}
+
+int ode_collider_force(ode_collider *g, double f[2]) {
+  f[0] = f[1] = 0.0;
+  for (int i = 0; i < g->nfb; i++) {
+    f[0] += g->fb[i].f1[0];
+    f[1] += g->fb[i].f1[1];
+  }
+  const int n = g->nfb;
+  g->nfb = 0;
+  return n;
+}
+
+void ode_note_row(fb_contact_provenance *p, double *step_hw, double *step_wdh,
+                  const fb_contact_row *u, double share, double mass, double h) {
+  if (p->contact_steps == 0 || u->erp > p->erp_max) p->erp_max = u->erp;
+  if (p->contact_steps == 0 || u->cfm < p->cfm_min) p->cfm_min = u->cfm;
+  const double hw = fb_contact_h_omega(h, u->kp * share, mass); /* rows in parallel */
+  if (p->contact_steps == 0 || hw > p->h_omega_max) p->h_omega_max = hw;
+  if (hw > *step_hw) *step_hw = hw;
+  if (p->contact_steps == 0 || mass < p->mass_eff_min) p->mass_eff_min = mass;
+  if (p->contact_steps == 0 || mass > p->mass_eff_max) p->mass_eff_max = mass;
+  p->contact_steps++;
+  const double wdh = fb_contact_omega_d_h(h, u->kp * share, u->kd * share, mass);
+  if (wdh > *step_wdh) *step_wdh = wdh;
 }

@@ -55,9 +55,10 @@ double ode_penetration_now(const fb_ode_world *s, int *joint) {
 void fb_ode_world_ccd_calls(const fb_ode_world *s, unsigned long *calls, unsigned long *contacts) {
   *calls = *contacts = 0;
   for (int j = 0; j < 4; j++) {
-    if (!s->cl[j].bore) continue;
-    *calls += fb_ccd_bore_calls(s->cl[j].bore);
-    *contacts += fb_ccd_bore_contacts(s->cl[j].bore);
+    const fb_ccd_bore *b = s->cl[j].gen.bore;
+    if (!b) continue;
+    *calls += fb_ccd_bore_calls(b);
+    *contacts += fb_ccd_bore_contacts(b);
   }
 }
 

@@ -12,6 +12,43 @@
 #include "ode_world_internal.h"
 #include "step_control.h"
 
+/* the hand-built world's effective mass and row record for a generic
+ * collider's rows (ode_colliders.h): clearance joint j of world s */
+typedef struct {
+  fb_ode_world *s;
+  int j;
+} generic_user;
+
+static double generic_mass(void *user, const double n[2]) {
+  const generic_user *u = user;
+  return ode_step_effective_mass(u->s, u->j, n);
+}
+
+static void generic_note(void *user, const fb_contact_row *row, double share, double mass) {
+  const generic_user *u = user;
+  ode_clearance *c = &u->s->cl[u->j];
+  ode_note_row(&c->prov, &c->step_hw, &c->step_wdh, row, share, mass, u->s->def.solver.h);
+}
+
+/* the faceted or libccd collider's contact rows of clearance joint j for
+ * this step: its hits, the episode they make (the lead hit's rate), the
+ * rows on the episode's onset rate */
+static void generic_contacts(fb_ode_world *s, int j) {
+  ode_clearance *c = &s->cl[j];
+  const fb_model_scene *d = &s->def;
+  const int n = ode_collider_hits(&c->gen);
+  fb_episode_update(&c->ep, n > 0, n > 0 ? c->gen.hit[c->gen.lead].rate : 0.0,
+                    d->impact_velocity_min);
+  if (n == 0) return;
+  generic_user u = {s, j};
+  const ode_collider_step x = {.world = s->world, .group = s->contacts, .mass = generic_mass,
+                               .note = generic_note, .user = &u, .law = &d->law[j],
+                               .mapping = d->mapping, .h = d->solver.h, .friction = d->friction,
+                               .persistence = c->persistence, .v0 = c->ep.v0,
+                               .split = d->ccd_split};
+  ode_collider_rows(&c->gen, &x);
+}
+
 /* one ODE step of size h from the state now (the step's contact rows,
  * dWorldStep or dWorldQuickStep, the forces and accelerations it left) */
 static fb_status world_step(fb_ode_world *s, double h, fb_diag *diag) {
@@ -24,10 +61,8 @@ static fb_status world_step(fb_ode_world *s, double h, fb_diag *diag) {
                          ? fb_contact_persistence(c->phase)
                          : 0.0;
     /* the joint's contact rows for this step, from its collider */
-    if (c->bore)
-      ode_ccd_contacts(s, j);
-    else if (s->def.faceted_n > 0)
-      ode_facet_contacts(s, j);
+    if (c->gen.bore || c->gen.ring)
+      generic_contacts(s, j);
     else
       ode_exact_contact(s, j);
     /* the contact's phase: a step without a row ends the contact */
@@ -38,7 +73,7 @@ static fb_status world_step(fb_ode_world *s, double h, fb_diag *diag) {
   for (int j = 0; j < 4; j++) {
     if (!fb_kit_aliased(s->def.mapping, s->cl[j].step_wdh)) continue;
     dJointGroupEmpty(s->contacts);
-    for (int q = 0; q < 4; q++) s->cl[q].cj = 0, s->cl[q].nfb = 0;
+    for (int q = 0; q < 4; q++) s->cl[q].cj = 0, s->cl[q].gen.nfb = 0;
     return fb_kit_alias_stop(&s->stop, j, s->cl[j].step_wdh, h, s->steps, diag);
   }
   const dReal *g1 = dBodyGetPosition(s->body[FB_CRANK]);
@@ -64,18 +99,14 @@ static fb_status world_step(fb_ode_world *s, double h, fb_diag *diag) {
   s->w_valid = 0; /* the bodies moved: the next step's tensors are its own */
   for (int j = 0; j < 4; j++) {
     ode_clearance *c = &s->cl[j];
-    if (s->def.faceted_n > 0 || c->bore) {
+    if (c->gen.bore || c->gen.ring) {
       /* force on the pin (body 1: dCollide(pin, box) keeps that order),
        * summed over the step's contacts */
-      double fx = 0.0, fy = 0.0;
-      for (int i = 0; i < c->nfb; i++) {
-        fx += c->fbs[i].f1[0];
-        fy += c->fbs[i].f1[1];
-      }
-      c->force = c->nfb ? hypot(fx, fy) : 0.0;
-      c->force_pin[0] = c->nfb ? fx : 0.0;
-      c->force_pin[1] = c->nfb ? fy : 0.0;
-      c->nfb = 0;
+      double f[2];
+      const int rows = ode_collider_force(&c->gen, f);
+      c->force = rows ? hypot(f[0], f[1]) : 0.0;
+      c->force_pin[0] = rows ? f[0] : 0.0;
+      c->force_pin[1] = rows ? f[1] : 0.0;
     } else {
       /* an onset row's impulse also covers the contact before the step (contact.h) */
       const double share = c->cj ? c->step_share : 0.0;

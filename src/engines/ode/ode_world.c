@@ -9,6 +9,7 @@
  * outputs in ode_sample.c. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "ode_env.h"
 #include "ode_world_internal.h"
@@ -61,6 +62,24 @@ double ode_body_coord(const fb_ode_world *s, int i) {
 double ode_body_rate(const fb_ode_world *s, int i) {
   return i == s->translating ? dBodyGetLinearVel(s->body[i])[0]
                              : dBodyGetAngularVel(s->body[i])[2];
+}
+
+/* the generic collider of clearance joint j (ode_colliders.h), the
+ * scene's: a ring of faceted_n boxes or a libccd bore of ccd_segments, on
+ * the joint's pin and hole */
+static fb_status generic_create(fb_ode_world *s, int j, fb_diag *diag) {
+  const fb_model_scene *d = &s->def;
+  ode_clearance *c = &s->cl[j];
+  ode_collider *g = &c->gen;
+  g->pin = c->pin;
+  g->hole = c->hole;
+  memcpy(g->pin_local, c->pin_local, sizeof g->pin_local);
+  memcpy(g->hole_local, c->hole_local, sizeof g->hole_local);
+  const double r_hole = d->pin_radius + d->radial_clearance;
+  if (d->faceted_n > 0)
+    return ode_collider_faceted(g, d->faceted_n, d->pin_radius, r_hole, d->pin_length, diag);
+  return ode_collider_ccd(g, d->ccd_segments, d->bore_ovality, d->pin_radius, r_hole,
+                          d->pin_length, diag);
 }
 
 fb_status fb_ode_world_create(fb_ode_world **out, const fb_model_scene *sm, fb_diag *diag) {
@@ -171,18 +190,14 @@ fb_status fb_ode_world_create(fb_ode_world **out, const fb_model_scene *sm, fb_d
     dJointSetHingeAxis(s->hinge[j], 0, 0, 1);
     dJointSetFeedback(s->hinge[j], &s->feedback[j]);
   }
-  if (def->faceted_n > 0)
-    for (int j = 0; j < 4; j++)
-      if (def->clearance_mask & (1 << j)) ode_facet_create(s, j);
-  if (def->ccd_segments > 0)
-    for (int j = 0; j < 4; j++) {
-      if (!(def->clearance_mask & (1 << j))) continue;
-      fb_status bst = ode_ccd_create(s, j, diag);
-      if (bst != FB_OK) {
-        fb_ode_world_destroy(s);
-        return bst;
-      }
+  for (int j = 0; j < 4 && (def->faceted_n > 0 || def->ccd_segments > 0); j++) {
+    if (!(def->clearance_mask & (1 << j))) continue;
+    fb_status bst = generic_create(s, j, diag);
+    if (bst != FB_OK) {
+      fb_ode_world_destroy(s);
+      return bst;
     }
+  }
   /* the drive: velocity motor on the ground-crank hinge, or an angular motor
    * on the crank when that joint has ode_clearance */
   if (s->hinge[0]) {
@@ -243,22 +258,12 @@ void fb_ode_world_destroy(fb_ode_world *s) {
      * never closed in this process; the project's own allocations are freed */
     fb_ode_quarantine(s->world);
     fb_ode_quarantine(s->contacts);
-    for (int j = 0; j < 4; j++) {
-      free(s->cl[j].boxes);
-      if (s->cl[j].bore) fb_ccd_bore_destroy(s->cl[j].bore);
-      free(s->cl[j].fbs);
-    }
+    for (int j = 0; j < 4; j++) fb_ccd_bore_destroy(s->cl[j].gen.bore);
     fb_load_scale_free(&s->ad.load);
     free(s);
     return;
   }
-  for (int j = 0; j < 4; j++) {
-    ode_facet_destroy(&s->cl[j], s->def.faceted_n);
-    if (s->cl[j].bore) {
-      fb_ccd_bore_destroy(s->cl[j].bore);
-      free(s->cl[j].fbs);
-    }
-  }
+  for (int j = 0; j < 4; j++) ode_collider_free(&s->cl[j].gen);
   dJointGroupDestroy(s->contacts);
   dWorldDestroy(s->world);
   fb_load_scale_free(&s->ad.load);

@@ -7,20 +7,21 @@
  *                    the law mapped to one soft row), the effective mass, the
  *                    probe
  *   ode_colliders.c  the faceted and libccd colliders, ODE's generic path
+ *                    (ode_colliders.h, shared with the engine kit's binding)
  *   ode_step.c       one step: each joint's contact rows, ODE's stepper, the
  *                    contact forces it left, the adaptive step
  *   ode_sample.c     what a step leaves: samples, penetration, drift, joint
  *                    reactions, counts and stops
  * Calls run one way: step -> world, sample, colliders, clearance; world ->
- * colliders; sample -> clearance; colliders -> clearance. */
+ * colliders; sample -> clearance, colliders; clearance -> colliders. */
 #ifndef FB_ODE_WORLD_INTERNAL_H
 #define FB_ODE_WORLD_INTERNAL_H
 
 #include <ode/ode.h>
 
-#include "collide_ccd.h"
 #include "episode.h"
 #include "load_scale.h"
+#include "ode_colliders.h"
 #include "ode_world.h"
 
 /* one clearance joint */
@@ -31,14 +32,10 @@ typedef struct {
   fb_episode ep;        /* contact episodes: state during the last step, impacts, v0 */
   dJointID cj;          /* contact joint of the last step, or 0 */
   dJointFeedback fb;
-  dGeomID cyl;          /* faceted: the pin */
-  dGeomID *boxes;       /* faceted: the ring (faceted_n) */
-  dSpaceID ring;        /* faceted: hash space holding the ring (broadphase) */
-  int nfb;              /* faceted: contact joints of the last step */
-  dJointFeedback *fbs;  /* faceted: their feedback (up to FACET_MAX_CONTACTS) */
+  ode_collider gen;     /* faceted or libccd: the generic collider (its pin, hole and centres
+                           these); unused by the exact one */
   double force;         /* contact force magnitude of the last step [N] */
   double force_pin[2];  /* contact force on the pin in the last step, x, y [N] */
-  fb_ccd_bore *bore;    /* ccd: the ring of segments (hole frame) */
   fb_contact_provenance prov; /* what its contact rows received */
   double step_share;    /* share of the last row's impulse that is its step's force (contact.h) */
   double step_wdh;      /* largest omega_d h of this step's rows [-] (contact.h) */
@@ -113,12 +110,6 @@ double ode_body_rate(const fb_ode_world *s, int i);
 
 /* ---- ode_clearance.c: the exact contact and what every collider shares ---- */
 
-/* records one contact row of a clearance joint: its ERP, CFM, h omega (the
- * row's spring kp share, rows in parallel) and omega_d h, effective mass
- * mass [kg], step h [s], into the joint's provenance and this step's extremes */
-void ode_note_row(ode_clearance *c, const fb_contact_row *u, double share, double mass,
-                  double h);
-
 /* the effective mass of clearance joint j along unit n [kg] (this step's
  * inverse-mass tensor, or the law's mass if it cannot be formed) */
 double ode_step_effective_mass(fb_ode_world *s, int j, const double n[2]);
@@ -130,30 +121,11 @@ fb_contact_law ode_step_law(const fb_contact_law *law, double m_eff);
  * relative velocity ev [m/s] of clearance joint c now */
 void ode_clearance_geometry(const ode_clearance *c, double e[2], double *ddot_num, double ev[2]);
 
-/* pin centre relative to the hole centre in the hole body's frame [m] */
-void ode_pin_in_hole_frame(const ode_clearance *c, double p[2]);
-
 /* penetration of clearance joint c now [m], 0 when free */
 double ode_clearance_penetration(const fb_ode_world *s, const ode_clearance *c);
 
 /* exact collider: the contact joint of clearance joint j for this step */
 void ode_exact_contact(fb_ode_world *s, int j);
-
-/* ---- ode_colliders.c: the faceted and libccd colliders ---- */
-
-/* faceted: builds the ring of faceted_n boxes and the pin's cylinder of
- * clearance joint j; frees them (n unused) */
-void ode_facet_create(fb_ode_world *s, int j);
-void ode_facet_destroy(ode_clearance *c, int n);
-
-/* libccd: builds the bore of clearance joint j. Errors: those of
- * fb_ccd_bore_create; FB_ERR_NOMEM */
-fb_status ode_ccd_create(fb_ode_world *s, int j, fb_diag *diag);
-
-/* the contact joints of clearance joint j for this step from ODE's collider
- * (faceted) or from libccd */
-void ode_facet_contacts(fb_ode_world *s, int j);
-void ode_ccd_contacts(fb_ode_world *s, int j);
 
 /* ---- ode_sample.c ---- */
 

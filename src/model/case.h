@@ -344,6 +344,14 @@ const char *fb_case_joint_name(const fb_case *c, int j);
 /* Signed crank speed omega2 [rad/s]: negative for a clockwise crank. */
 double fb_case_omega2(const fb_case *c);
 
+/* Boxes in the faceted collider's ring [-]: [clearance] segments when
+ * given, else faceted_n. */
+int fb_case_faceted_n(const fb_case *c);
+
+/* The libccd bore's ovality [m]: [clearance] ovality_um for bore =
+ * ellipse, else 0 (a circle). */
+double fb_case_bore_ovality(const fb_case *c);
+
 /* Link lengths at the case's stack-up corner [m]. */
 void fb_case_stackup_lengths(const fb_case *c, fb_linkage *out);
 

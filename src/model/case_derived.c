@@ -1,7 +1,7 @@
 /* The case's names and the quantities derived from its fields alone (the
  * model floor: data and what follows from it, no checks, no physics beyond
  * unit-free arithmetic): joint and value-source names, the crank's signed
- * speed, the stack-up corner's lengths, the run's duration, the
+ * speed, the generic colliders' ring and bore, the stack-up corner's lengths, the run's duration, the
  * penetration limit and the peak window (each engine's option names are
  * its opts_<name>.c). Declared in case.h;
  * the case's defaults and checks are setup/case.c. */
@@ -34,6 +34,14 @@ double fb_case_peak_window_from(const fb_case *c) {
 }
 
 double fb_case_omega2(const fb_case *c) { return c->direction * c->crank_speed; }
+
+int fb_case_faceted_n(const fb_case *c) {
+  return c->clearance.segments_given ? c->clearance.segments : c->clearance.faceted_n;
+}
+
+double fb_case_bore_ovality(const fb_case *c) {
+  return c->clearance.bore == FB_CASE_BORE_ELLIPSE ? c->clearance.ovality : 0.0;
+}
 
 void fb_case_stackup_lengths(const fb_case *c, fb_linkage *out) {
   for (int i = 0; i < FB_LINK_COUNT; i++)

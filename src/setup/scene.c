@@ -87,10 +87,9 @@ fb_status fb_scene_from_case(fb_scene *def, const fb_case *c, fb_diag *diag) {
     def->mapping = FB_MAPPING_MATCHED_STATIC;
   def->friction = r->clearance.friction;
   def->penetration_limit = fb_case_penetration_limit(r);
-  /* [clearance] segments, when given, sizes both generic rings */
-  def->faceted_n = r->clearance.segments_given ? r->clearance.segments : r->clearance.faceted_n;
+  def->faceted_n = fb_case_faceted_n(r);
   def->ccd_segments = r->clearance.segments;
-  def->bore_ovality = r->clearance.bore == FB_CASE_BORE_ELLIPSE ? r->clearance.ovality : 0.0;
+  def->bore_ovality = fb_case_bore_ovality(r);
   def->case_collider = fb_case_collider_of(r);
   def->crank_angle0 = r->crank_angle0;
   def->omega2 = fb_case_omega2(r);

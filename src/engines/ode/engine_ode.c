@@ -68,8 +68,7 @@ static double ode_cost_per_sample(const fb_model *m, const fb_case *c) {
                        : c->clearance.collider == FB_CASE_COLLIDER_CCD ? FB_COLLIDER_CCD
                                                                        : FB_COLLIDER_EXACT;
   if (clearance && collider == FB_COLLIDER_FACETED)
-    s += ODE_COST_FACETED_S +
-         ODE_COST_BOX_S * (c->clearance.segments_given ? c->clearance.segments : c->clearance.faceted_n);
+    s += ODE_COST_FACETED_S + ODE_COST_BOX_S * fb_case_faceted_n(c);
   if (clearance && collider == FB_COLLIDER_CCD)
     s += ODE_COST_CCD_S + ODE_COST_CCD_SEGMENT_S * c->clearance.segments;
   return s;

@@ -223,10 +223,10 @@ if rc == 0:
 
 # 4. what a planar case does not run yet: refused by name, exit 2
 six = os.path.join(cases, "watt_sixbar.ini")
-# (ODE's ideal and exact clearance models run through the engine kit:
-# tests/test_planar_kit.py)
-rc, _, se = run("run", six, "--set", "run.models=analytic,ode-clearance-faceted", "--out", os.path.join(tmp, "x"))
-check(rc == 2 and "ode-clearance-faceted" in se and "collider" in se and "issue" not in se,
+# (ODE's ideal and clearance models, every collider, run through the
+# engine kit: tests/test_planar_kit.py, tests/test_kit_adapter.py)
+rc, _, se = run("run", six, "--set", "run.models=analytic,ode-ideal-stackup", "--out", os.path.join(tmp, "x"))
+check(rc == 2 and "ode-ideal-stackup" in se and "stack-up" in se and "issue" not in se,
       "an engine's model on a planar case is refused with its reason (%d, %s)" % (rc, se.strip()))
 check(not os.path.exists(os.path.join(tmp, "x")), "and nothing is written")
 rc, _, se = run("run", six, "--series", "hdf5", "--out", os.path.join(tmp, "y"))

@@ -18,7 +18,9 @@
  * model, the key and what to change): every clearance joint of the case
  * (revolute ones, not the driven one), each with its own law, columns and
  * provenance, Coulomb friction where the binding applies it (kit.h); the
- * exact collider, a fixed or automatic step (not [solver] h_s = adaptive). Its start is the model's
+ * exact collider, or the faceted and libccd colliders where the binding
+ * builds them (kit.h's collide: ODE's), with the scene's rings; a fixed or
+ * automatic step (not [solver] h_s = adaptive). Its start is the model's
  * (start.h: [run] start and pin_start, an ensemble member's moved pin),
  * handed to the kit as the description's coordinates. Its joint reactions
  * and drive torque are the binding's where it reports them (the load
@@ -80,6 +82,9 @@ static fb_status refuse(const fb_model_scene *sm, fb_diag *diag) {
    * constraint) is that relation */
   const fb_kit_binding *b = binding_of(sm);
   const int relation = b && b->add_clearance && !b->add_contact;
+  /* a faceted or libccd collider is the binding's own (kit.h's collide):
+   * the kit refuses it for a binding without one */
+  if (sm->collider == FB_COLLIDER_FACETED || sm->collider == FB_COLLIDER_CCD) return FB_OK;
   if (sm->collider != FB_COLLIDER_EXACT && !(sm->collider == FB_COLLIDER_NATIVE && relation))
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: the exact collider "
                        "only ([clearance] collider = exact)", name);
@@ -283,7 +288,9 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
                                .pin_radius = sm->pin_radius,
                                .impact_velocity_min = sm->impact_velocity_min,
                                .aliased_joint = -1, .friction = sm->friction,
-                               .mass_tensors = fb_planar_instance_mass};
+                               .mass_tensors = fb_planar_instance_mass,
+                               .collider = {sm->collider, sm->faceted_n, sm->ccd_segments,
+                                            sm->bore_ovality, sm->ccd_split, sm->pin_length}};
     for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
       if (loose(r, j)) r->cl.joint[j] = joint_record(r, j);
   }

@@ -41,8 +41,8 @@ static const fb_kit_binding *kit_of(const char *name, const char **why) {
   }
   /* a clearance model (its lengths the stack-up corner's on a four-bar;
    * a planar case's are its joints', the nominal description the
-   * reference runs too): the exact pin in the hole, a law, and a binding
-   * that takes the contact */
+   * reference runs too): the exact pin in the hole (or a generic collider
+   * the binding builds), a law, and a binding that takes the contact */
   *why = "it has no contact law";
   if (m->law == FB_MODEL_LAW_NONE) return NULL;
   /* or the engine's own clearance relation built from the description's
@@ -53,12 +53,13 @@ static const fb_kit_binding *kit_of(const char *name, const char **why) {
            "four-bar's and slider-crank's own worlds only";
     return b->add_clearance && !b->add_contact ? b : NULL;
   }
-  *why = m->collider == FB_COLLIDER_EXACT
-             ? "its engine's binding takes no clearance contact"
-             : "its collider (a faceted or libccd bore) is built by the four-bar's and "
-               "slider-crank's own ODE world only; a planar case's clearance is the exact pin "
-               "in its hole";
-  return m->collider == FB_COLLIDER_EXACT && b->add_contact ? b : NULL;
+  /* the faceted and libccd colliders: the binding's own (kit.h collide) */
+  const int generic = m->collider == FB_COLLIDER_FACETED || m->collider == FB_COLLIDER_CCD;
+  *why = generic ? "its collider (a faceted ring or a libccd bore) is ODE's own, which its "
+                   "engine's binding does not build"
+                 : "its engine's binding takes no clearance contact";
+  if (generic && !b->collide) return NULL;
+  return (generic || m->collider == FB_COLLIDER_EXACT) && b->add_contact ? b : NULL;
 }
 
 const struct fb_kit_binding *fb_planar_kit_of(const char *name) { return kit_of(name, NULL); }
@@ -158,6 +159,11 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   cl->pin_radius = 0.5 * c->pin_diameter;
   cl->impact_velocity_min = sc.impact_velocity_min;
   cl->friction = c->clearance.friction;
+  /* the row's collider, or an ODE row's [clearance] collider (model_table.h),
+   * with the case's ring or bore */
+  cl->collider = (fb_kit_collider){fb_model_collider(mt, fb_case_collider_of(c)),
+                                   fb_case_faceted_n(c), c->clearance.segments,
+                                   fb_case_bore_ovality(c), 0, c->pin_length};
   /* a pin's eccentricity too: report.html draws its orbit, and a rigid
    * model's verdict reads its rebound (planar_verdict.c) */
   const int ecc = j->kind != FB_KIND_PRISMATIC;

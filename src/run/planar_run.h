@@ -28,7 +28,8 @@
  *              verdict "ok" when every window peak (omega, alpha of every
  *              body, the contact force) moves by at most FB_UNCONVERGED_REL,
  *              else "unconverged" (run.h's rule for a reference).
-  *   ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution
+  *   ode-ideal-nominal, ode-clearance-impact, ode-clearance-restitution,
+ *              ode-clearance-faceted, ode-clearance-ccd
  *              (fb_planar_kit_models lists them; fb_planar_kit_of says which models
  *              an engine with a binding of the engine kit builds)
  *              the description built in the engine through the kit
@@ -252,8 +253,9 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
  * case: an engine's ideal model of the nominal lengths whose engine table
  * has a binding, or its clearance model with the exact pin in the hole
  * and a law when the binding takes a contact (add_contact; on the
- * description's geometry, as the reference); NULL otherwise
- * (planar_kit_model.c). */
+ * description's geometry, as the reference), or with a faceted or libccd
+ * collider when the binding builds it (kit.h's collide: ODE's); NULL
+ * otherwise (planar_kit_model.c). */
 const struct fb_kit_binding *fb_planar_kit_of(const char *name);
 
 /* Why model name does not run on a planar case, in words a refusal can

@@ -319,7 +319,7 @@ static fb_status sample_step(fb_kit_runner *k, size_t i, fb_diag *diag) {
   }
   if (k->lq && i + 1 < s->n) wrenches(k);
   if (!cl) return FB_OK;
-  fb_kit_pipe_read(&k->p, m, cl);
+  fb_kit_pipe_read(&k->p, b, w, m, cl);
   for (int j = 0; j < m->njoints; j++)
     if (cl->mask & (1u << j)) record(k, j, i);
   if (i + 1 < s->n) st = fb_kit_pipe_contacts(&k->p, b, w, m, cl, s->h, diag);

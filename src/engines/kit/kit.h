@@ -20,8 +20,9 @@
  *                 the world at the assembly configuration)
  *   add_clearance optional: each clearance joint in its place, once: an
  *                 engine whose clearance is a relation of its own (no
- *                 add_contact), or one that evaluates the contact inside
- *                 its integrator (with add_contact)
+ *                 add_contact), one that evaluates the contact inside
+ *                 its integrator (with add_contact), or one whose own
+ *                 collider finds a pin's contacts (collide)
  *   close_loop    optional: an engine whose joints form a tree closes the
  *                 loops here (NULL: the engine's joints close them)
  *   hold_in_plane optional: a body that only clearance joints hold
@@ -32,7 +33,9 @@
  *                 start, its velocities fb_kit_world's qd0) gets joint -1
  *                 and rate 0: no drive, the walk's end all the same
  *   add_contact   before every step, each clearance joint in contact: the
- *                 contact the kit's pipeline computed (fb_kit_contact)
+ *                 contact the kit's pipeline computed (fb_kit_contact),
+ *                 after collide, for a binding's own collider, found
+ *                 contacts there
  *   step, body_state  advance h; read a body's pose and velocity
  *   contact_force optional: what the contact applied in the step
  * Bodies are named by the kit's handles: the ground is FB_KIT_GROUND, the
@@ -51,6 +54,7 @@
 
 #include "case.h"
 #include "contact.h"
+#include "model_table.h"
 #include "planar.h"
 #include "planar_guide.h"
 #include "status.h"
@@ -165,7 +169,44 @@ typedef struct {
                           (contact.h fb_contact_row_step, persistence included): the kit's,
                           for a binding that takes rows (contact_rows) */
   fb_contact_row row;  /* that row (ERP, CFM, depth, the spring and damper it stands for) */
+  double w_inv[2][2];  /* a pin's inverse-mass tensor W at the joint, the drive held: its
+                          effective mass along any unit n is 1 / (n^T W n)
+                          (effective_mass.h fb_effective_mass_along), for a binding's own
+                          collider, whose contacts have normals of their own (collide)
+                          [1/kg]; a corner's: 0 */
 } fb_kit_contact;
+
+/* What a run's pins are found in their holes on (fb_kit_clearance.collider):
+ * the kit's exact pin in its hole, or a generic collider the binding builds
+ * and runs (kit.h's collide): a ring of flat facets, or a bore of convex
+ * segments, each tangent to the hole's circle (or to an ellipse around it)
+ * on the hole's body, around a cylinder of the pin's radius and length on
+ * the pin's. */
+typedef struct {
+  fb_collider kind;   /* FB_COLLIDER_FACETED: the ring of facets; FB_COLLIDER_CCD: the bore of
+                         segments; any other (0): the exact pin in its hole */
+  int facets;         /* faceted: the ring's facets [-] (>= 3) */
+  int segments;       /* ccd: the bore's segments [-] (>= 8) */
+  double ovality;     /* ccd: the bore's diameter along the hole body's x axis less its
+                         diameter along y, an ellipse (0: a circle) [m] */
+  int split;          /* ccd: the law's rows over its contacts: 0 the deepest contact's row
+                         shared in proportion to depth, 1 each contact its own row, the
+                         spring divided by their count (the ring's rule) */
+  double pin_length;  /* the pin's length in its hole [m] */
+} fb_kit_collider;
+
+/* The rows a binding's own collider made of a pin's contact in its last
+ * add_contact (collided), for the kit's records of the joint. */
+typedef struct {
+  size_t rows;                 /* contact rows made [-] (0: none) */
+  double m_eff_min, m_eff_max; /* the range of their effective masses [kg] (rows > 0) */
+  double erp_max;              /* their largest ERP [-] */
+  double cfm_min;              /* their smallest CFM [m/(N s)] */
+  double h_omega_max;          /* their largest h omega_c, each row's spring kp times its share
+                                  of the law's (rows in parallel) [-] */
+  double omega_d_h_max;        /* their largest omega_d h, likewise: the matched mapping's
+                                  aliasing stop (contact.h) [-] */
+} fb_kit_rows;
 
 /* What a kit run keeps of one clearance joint: its law, and its columns
  * and figures (out). */
@@ -228,6 +269,8 @@ typedef struct {
                                fb_planar_instance_mass: the four-bar's and slider-crank's);
                                NULL: the planar core's factorisation (planar_mass.h), at most
                                once a step */
+  fb_kit_collider collider; /* what the pins' contacts are found on (0: the exact pin in its
+                               hole) */
 } fb_kit_clearance;
 
 /* One clearance joint for an engine that builds it as its own relation
@@ -370,6 +413,34 @@ typedef struct fb_kit_binding {
                                 the ground) [N m], from the engine's own relation, whose
                                 contacts the kit does not hold (Siconos: a guide's corners'
                                 sum); NULL: the kit's contacts' (fb_kit_pipe_reaction) */
+  int (*collide)(void *w, int k, double *rate);
+                             /* optional, with add_clearance and add_contact: the binding's own
+                                collider of a pin in its hole (fb_kit_clearance.collider),
+                                revolute clearance joint k, built by add_clearance: its
+                                contacts at the bodies' state now, kept for the add_contact
+                                that follows; returns how many (0: none), *rate the
+                                penetration rate its episode follows [m/s] (> 0
+                                approaching). The kit calls it for a joint whose exact
+                                penetration |e| - c is positive only: a ring or bore whose
+                                facets are tangent to the hole's circle (or to an ellipse
+                                around it) lies outside that circle, so the pin reaches it
+                                only once it leaves the circle. The contact's episode
+                                follows the collider's contacts; add_contact hands the
+                                engine a row per contact on the effective mass along the
+                                contact's own normal (fb_kit_contact.w_inv), the episode's
+                                onset rate v0 and the matched-static row's persistence the
+                                kit's. NULL: the kit refuses a collider but the exact one,
+                                naming the engine */
+  void (*collided)(const void *w, int k, fb_kit_rows *out);
+                             /* with collide (required then): the rows the last add_contact of
+                                clearance joint k made, for the joint's record (its contact
+                                steps count rows, as its provenance does) */
+  double (*penetration)(const void *w, int k);
+                             /* optional, with collide: the pin's depth into the hole its own
+                                collider builds at clearance joint k, at the bodies' state now
+                                [m] (0 when free), the joint's penetration column (a bore that
+                                is no circle lets the pin past the radial clearance untouched);
+                                NULL: the exact |e| - c */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

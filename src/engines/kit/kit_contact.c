@@ -23,6 +23,19 @@ static int is_guide(const fb_planar *m, int j) { return m->joint[j].kind == FB_K
 /* the contact slots of clearance joint j */
 static int slots(const fb_planar *m, int j) { return is_guide(m, j) ? FB_PLANAR_GUIDE_CORNERS : 1; }
 
+/* 1: cl's pins are found by a generic collider, not the exact pin in its
+ * hole (kit.h's fb_kit_collider) */
+static int generic(const fb_kit_clearance *cl) {
+  return cl->collider.kind == FB_COLLIDER_FACETED || cl->collider.kind == FB_COLLIDER_CCD;
+}
+
+/* 1: clearance joint j's contact is the binding's own collider's (kit.h
+ * collide): a pin in its hole, a generic collider */
+static int own_collider(const fb_kit_binding *b, const fb_planar *m, const fb_kit_clearance *cl,
+                        int j) {
+  return b->collide && generic(cl) && !is_guide(m, j);
+}
+
 /* prismatic clearance joint j: its guide's size (a binding that builds
  * its own clearance, add_clearance, refuses there what it cannot build) */
 static fb_status guide_ok(const fb_planar *m, const fb_kit_clearance *cl, int j, fb_diag *diag) {
@@ -39,6 +52,11 @@ fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_plan
     return fb_diag_set(diag, FB_ERR_ARG, "[clearance] friction = %g: the %s engine's clearance "
                        "contact is a normal law only, frictionless (ODE's applies friction); "
                        "give friction = 0", cl->friction, b->engine);
+  if (cl->mask && generic(cl) && !(b->collide && b->collided))
+    return fb_diag_set(diag, FB_ERR_ARG, "[clearance] collider = %s: the %s engine's binding "
+                       "finds a pin in its hole as the exact one only (it builds no collider of "
+                       "its own); give collider = exact",
+                       fb_collider_name(cl->collider.kind), b->engine);
   int guides = 0;
   for (int j = 0; j < m->njoints; j++) {
     if (!(cl->mask & (1u << j))) continue;
@@ -46,6 +64,13 @@ fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_plan
       return fb_diag_set(diag, FB_ERR_ARG, "clearance at joint '%s': the engine kit takes a pin "
                          "in a hole at a revolute joint, or a slider in its guide at a prismatic "
                          "one", m->joint[j].name);
+    if (is_guide(m, j) && generic(cl))
+      return fb_diag_set(diag, FB_ERR_ARG, "clearance at prismatic joint '%s' with [clearance] "
+                         "collider = %s: a slider in its guide is its four corners against the "
+                         "guide's flat walls, the kit's own contact; a ring of facets or a bore "
+                         "of segments is a pin's hole; a slider takes the exact collider",
+                         m->joint[j].name,
+                         fb_collider_name(cl->collider.kind));
     if (is_guide(m, j)) {
       fb_status st = guide_ok(m, cl, j, diag);
       if (st != FB_OK) return st;
@@ -111,12 +136,15 @@ static void corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], fb_kit_pi
   p->ecc[j][1] = tilt;
 }
 
-void fb_kit_pipe_read(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl) {
+void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m,
+                      const fb_kit_clearance *cl) {
   fb_kit_contact c;
   fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
   for (int j = 0; j < m->njoints; j++) {
     if (p->off[j] && is_guide(m, j)) corners(gc, p, m, cl, j);
     else if (p->off[j]) geometry(&c, p, m, cl, j);
+    /* a pin in the hole its binding's collider builds: its depth there */
+    if (p->off[j] && b->penetration && own_collider(b, m, cl, j)) p->pen[j] = b->penetration(w, j);
   }
 }
 
@@ -178,19 +206,46 @@ static void native_episode(fb_kit_pipe *p, const fb_kit_binding *b, const void *
   p->rate_before[j] = p->rate[j];
 }
 
-/* m_eff noted in the range [lo, hi] (count: the contact steps before it) */
-static void note_mass(double *lo, double *hi, size_t count, double m_eff) {
-  if (count == 0 || m_eff < *lo) *lo = m_eff;
-  if (count == 0 || m_eff > *hi) *hi = m_eff;
+/* the masses [m_lo, m_hi] noted in the range [lo, hi] (count: the contact
+ * steps before them) */
+static void note_mass(double *lo, double *hi, size_t count, double m_lo, double m_hi) {
+  if (count == 0 || m_lo < *lo) *lo = m_lo;
+  if (count == 0 || m_hi > *hi) *hi = m_hi;
+}
+
+/* what the binding's own collider made of clearance joint j's contact
+ * (slot k) in its add_contact: its rows noted as the kit notes its own
+ * (note_row), the contact's phase, the matched mapping's aliasing stop */
+static fb_status note_collided(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                               const fb_planar *m, fb_kit_clearance *cl, int j, int k, double h,
+                               fb_diag *diag) {
+  fb_kit_rows o;
+  b->collided(w, k, &o);
+  fb_kit_joint_record *r = &cl->joint[j];
+  p->phase[k] = o.h_omega_max > 0.0 ? p->phase[k] + o.h_omega_max : 0.0;
+  if (o.rows == 0) return FB_OK;
+  note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, o.m_eff_min, o.m_eff_max);
+  note_mass(&r->m_eff_min, &r->m_eff_max, r->contact_steps, o.m_eff_min, o.m_eff_max);
+  if (r->contact_steps == 0 || o.erp_max > r->erp_max) r->erp_max = o.erp_max;
+  if (r->contact_steps == 0 || o.cfm_min < r->cfm_min) r->cfm_min = o.cfm_min;
+  cl->h_omega_max = fmax(cl->h_omega_max, o.h_omega_max);
+  r->h_omega_max = fmax(r->h_omega_max, o.h_omega_max);
+  cl->contact_steps += o.rows;
+  r->contact_steps += o.rows;
+  if (!fb_kit_aliased(cl->mapping, o.omega_d_h_max)) return FB_OK;
+  cl->aliased_omega_d_h = o.omega_d_h_max;
+  cl->aliased_joint = j;
+  return fb_kit_alias_diag(diag, o.omega_d_h_max, m->joint[j].name, h);
 }
 
 /* contact slot k's episode (in: it presses), and when in, its contact
  * *c (its geometry filled; the effective mass me along its normal, else
  * the law's own mass) with clearance joint j's law on that mass, noted
- * and handed to b */
+ * and handed to b; the binding's own collider's contact (own) noted from
+ * the rows it made */
 static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb_planar *m,
                       fb_kit_clearance *cl, int j, int k, fb_kit_contact *c, int in, double me,
-                      double h, fb_diag *diag) {
+                      double h, int own, fb_diag *diag) {
   fb_kit_joint_record *r = &cl->joint[j];
   p->force[k] = 0.0;
   const int onset = in && !p->ep[k].in_contact, before = p->ep[k].impacts;
@@ -214,12 +269,16 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
       c->mapping == FB_MAPPING_MATCHED_STATIC ? fb_contact_persistence(p->phase[k]) : 0.0;
   p->force[k] = fb_contact_force(&c->law, c->depth, c->rate, c->v0);
   fb_status st = FB_OK;
+  if (own) { /* the rows are the collider's: noted from what it made */
+    if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
+    return note_collided(p, b, w, m, cl, j, k, h, diag);
+  }
   if (!b->applied_force && (st = note_row(c, m->joint[j].name, cl, j, &p->phase[k], diag)) != FB_OK)
     return st;
   if (b->applied_force && b->explicit_law) note_secant(c, cl, j);
   if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
-  note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, c->m_eff);
-  note_mass(&r->m_eff_min, &r->m_eff_max, r->contact_steps, c->m_eff);
+  note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, c->m_eff, c->m_eff);
+  note_mass(&r->m_eff_min, &r->m_eff_max, r->contact_steps, c->m_eff, c->m_eff);
   cl->contact_steps++;
   r->contact_steps++;
   return FB_OK;
@@ -276,7 +335,7 @@ static fb_status guide_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w
                         .wall = 1, .centre = {{gc[r].point[0], gc[r].point[1]}, {wall[0], wall[1]}},
                         .ecc_rate = {gc[r].rate * n[0], gc[r].rate * n[1]}};
     if (pj->body[0] == FB_PLANAR_GROUND) c.hole = FB_KIT_GROUND;
-    fb_status st = hand(p, b, w, m, cl, j, fb_kit_slot(j, r), &c, d > 0.0, mass[r], h, diag);
+    fb_status st = hand(p, b, w, m, cl, j, fb_kit_slot(j, r), &c, d > 0.0, mass[r], h, 0, diag);
     if (st != FB_OK) return st;
   }
   return FB_OK;
@@ -298,14 +357,18 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
       continue;
     }
     fb_kit_contact c;
-    const int in = geometry(&c, p, m, cl, j);
+    int in = geometry(&c, p, m, cl, j);
     double me = 0.0;
     if (in) {
-      double wi[2][2];
-      if ((st = tensor(wi, p, m, cl, j, diag)) != FB_OK) return st;
-      me = fb_effective_mass_along(wi, c.normal);
+      if ((st = tensor(c.w_inv, p, m, cl, j, diag)) != FB_OK) return st;
+      me = fb_effective_mass_along(c.w_inv, c.normal);
     }
-    if ((st = hand(p, b, w, m, cl, j, j, &c, in, me, h, diag)) != FB_OK) return st;
+    /* the binding's own collider: its contacts make the episode, and it
+     * has one only where the exact penetration is positive (kit.h's
+     * collide: the ring or bore lies outside the hole's circle) */
+    const int own = own_collider(b, m, cl, j);
+    if (in && own) in = b->collide(w, j, &c.rate) > 0;
+    if ((st = hand(p, b, w, m, cl, j, j, &c, in, me, h, own, diag)) != FB_OK) return st;
   }
   return FB_OK;
 }

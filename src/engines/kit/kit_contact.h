@@ -39,8 +39,10 @@ typedef struct {
 
 /* Sets p up for m's clearance joints cl->mask in b's engine. Errors:
  * FB_ERR_ARG (cl->friction not 0 with a binding whose add_contact applies
- * no friction, kit.h's friction member; a joint out of range, a revolute joint that may not carry
- * clearance, a prismatic one without cl->guide), those of
+ * no friction, kit.h's friction member; a generic collider, a ring or a
+ * bore (cl->collider), with a binding without collide, or at a prismatic
+ * joint, a slider in its guide; a joint out of range, a revolute joint that
+ * may not carry clearance, a prismatic one without cl->guide), those of
  * fb_planar_guide_check, FB_ERR_NOMEM (a binding's add_clearance, called
  * before, refuses what it cannot build). Free with fb_kit_pipe_free. */
 fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_planar *m,
@@ -49,15 +51,20 @@ void fb_kit_pipe_free(fb_kit_pipe *p);
 
 /* Every clearance joint's penetration and eccentricity (p->pen, p->ecc)
  * at the bodies' states the caller put in p->q and p->qd (the engine's, as
- * the kit's sample read them). */
-void fb_kit_pipe_read(fb_kit_pipe *p, const fb_planar *m, const fb_kit_clearance *cl);
+ * the kit's sample read them); a pin in the hole of b's own collider (kit.h
+ * collide) its depth there when b reports it (penetration, from world w). */
+void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m,
+                      const fb_kit_clearance *cl);
 
 /* Every clearance joint's contact at the state last read, handed to b's
  * add_contact for the coming step of h [s]; counts contact steps and
- * impact episodes into cl. A binding with its own clearance relation
- * (add_clearance) gets no contact: a step with a contact force
- * (contact_force > 0) is a contact step, an episode's onset rate the one
- * read before that step. Errors: FB_ERR_NUMERIC when a matched row
+ * impact episodes into cl. A pin whose contacts b's own collider finds
+ * (kit.h collide, cl->collider) is handed where its exact penetration is
+ * positive and the collider found contacts, its episode theirs, its
+ * record the rows they made (collided: contact steps count rows). A
+ * binding with its own clearance relation (add_clearance) gets no
+ * contact: a step with a contact force (contact_force > 0) is a contact
+ * step, an episode's onset rate the one read before that step. Errors: FB_ERR_NUMERIC when a matched row
  * would alias (contact.h, FB_MATCHED_ALIAS_BOUND: "aliased: ..." with
  * the largest usable step, the hand-built ODE world's stop; not for a
  * binding whose applied_force is 1); those of

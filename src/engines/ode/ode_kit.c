@@ -12,7 +12,14 @@
  * makes it (ode_clearance.c): the law mapped at the effective mass to ERP
  * and CFM (ode_contact.h), the matched-static row's drift correction, on
  * the hole wall, Coulomb friction at [clearance] friction, its force read
- * back from the row's feedback. The world's ERP,
+ * back from the row's feedback. With [clearance] collider = faceted or ccd
+ * (kit.h's fb_kit_collider) a pin's contacts are ODE's generic colliders'
+ * instead (ode_colliders.h, the hand-built world's): a ring of ODE boxes
+ * around an ODE cylinder, or the libccd bore, built on the joint's bodies
+ * by add_clearance; collide finds the contacts, add_contact hands a row per
+ * contact on the effective mass along its own normal (the kit's tensor
+ * fb_kit_contact.w_inv), split as the hand-built world splits them, and
+ * collided tells the kit the rows. The world's ERP,
  * CFM, stepper (dWorldStep or dWorldQuickStep with its iterations) and
  * seed are the case's [solver] keys, gravity along -y; each step runs
  * under ODE's fatal-error escape (ode_env.h). */
@@ -23,7 +30,9 @@
 
 #include <ode/ode.h>
 
+#include "effective_mass.h"
 #include "kit.h"
+#include "ode_colliders.h"
 #include "ode_contact.h"
 #include "ode_env.h"
 #include "ode_kit.h"
@@ -37,6 +46,18 @@ typedef struct {
                             joint's point on it [m] */
   dJointFeedback fb;     /* ODE's feedback of the last step */
 } ode_kit_joint;
+
+/* a pin whose contacts a generic collider finds (ode_colliders.h) */
+typedef struct {
+  ode_collider g;
+  fb_contact_law law;          /* the joint's law; its damper on each row's effective mass */
+  int split;                   /* the bore's rows: 0 by depth, 1 by count (fb_kit_collider) */
+  double w[2][2];              /* the inverse-mass tensor of the coming step [1/kg] */
+  double h;                    /* its step [s] */
+  fb_contact_provenance rows;  /* its rows (contact_steps: how many) */
+  double hw, wdh;              /* their largest h omega_c and omega_d h [-] */
+  double c;                    /* the radial clearance [m] */
+} ode_kit_gen;
 
 typedef struct {
   dWorldID world;
@@ -63,6 +84,8 @@ typedef struct {
   int slot[FB_KIT_SLOTS], nslots;         /* the slots with a row this step, and the last
                                              step's forces to clear */
   int last[FB_KIT_SLOTS], nlast;
+  ode_kit_gen *gen[FB_PLANAR_SPEC_MAX_JOINTS]; /* a pin's generic collider by its joint, NULL:
+                                                  the exact pin in its hole */
 } ode_kit;
 
 static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
@@ -186,6 +209,98 @@ static void point_drift(const ode_kit *k, int b, const double x[2], double h, do
   out[1] = cm1 * r[1] + sw * r[0];
 }
 
+/* clearance joint k's generic collider (kit.h's fb_kit_collider): a ring
+ * of boxes or a libccd bore on the hole's body around the pin's cylinder,
+ * their centres the joint's points in each body's frame; the exact pin in
+ * its hole (the kit's contact) otherwise, and a slider in its guide,
+ * whose collider the kit refuses */
+static fb_status kit_add_clearance(void *w, int k, const fb_kit_clearance_joint *c,
+                                   fb_diag *diag) {
+  ode_kit *kk = w;
+  const fb_kit_collider *col = &c->cl->collider;
+  if (c->kind != FB_KIND_REVOLUTE ||
+      (col->kind != FB_COLLIDER_FACETED && col->kind != FB_COLLIDER_CCD))
+    return FB_OK;
+  ode_kit_gen *q = calloc(1, sizeof *q);
+  if (!q) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for a collider");
+  kk->gen[k] = q;
+  const fb_planar_joint *pj = &c->m->joint[k];
+  q->g.pin = ode_body(kk, c->pin);
+  q->g.hole = ode_body(kk, c->hole);
+  for (int i = 0; i < 2; i++) {
+    q->g.pin_local[i] = pj->point[0][i];
+    q->g.hole_local[i] = pj->point[1][i];
+  }
+  q->law = c->law;
+  q->split = col->split;
+  q->c = c->radial_clearance;
+  const double r_hole = c->pin_radius + c->radial_clearance;
+  if (col->kind == FB_COLLIDER_FACETED)
+    return ode_collider_faceted(&q->g, col->facets, c->pin_radius, r_hole, col->pin_length, diag);
+  return ode_collider_ccd(&q->g, col->segments, col->ovality, c->pin_radius, r_hole,
+                          col->pin_length, diag);
+}
+
+/* clearance joint k's generic collider's contacts now (kit.h collide) */
+static int kit_collide(void *w, int k, double *rate) {
+  ode_kit_gen *q = ((ode_kit *)w)->gen[k];
+  const int n = ode_collider_hits(&q->g);
+  *rate = n > 0 ? q->g.hit[q->g.lead].rate : 0.0;
+  return n;
+}
+
+/* a row's effective mass along unit n from the kit's tensor, the law's own
+ * mass where it gives none (as the kit's and the hand-built world's) */
+static double gen_mass(void *user, const double n[2]) {
+  ode_kit_gen *q = user;
+  const double me = fb_effective_mass_along(q->w, n);
+  return isfinite(me) && me > 0.0 ? me : q->law.mass;
+}
+
+static void gen_note(void *user, const fb_contact_row *row, double share, double mass) {
+  ode_kit_gen *q = user;
+  ode_note_row(&q->rows, &q->hw, &q->wdh, row, share, mass, q->h);
+}
+
+/* the rows of joint j's generic collider's contacts (kit_collide) for the
+ * coming step, on the kit's episode and persistence */
+static fb_status gen_contact(ode_kit *k, int j, const fb_kit_contact *c) {
+  ode_kit_gen *q = k->gen[j];
+  memcpy(q->w, c->w_inv, sizeof q->w);
+  q->h = c->h;
+  memset(&q->rows, 0, sizeof q->rows);
+  q->hw = q->wdh = 0.0;
+  const ode_collider_step x = {.world = k->world, .group = k->contacts, .mass = gen_mass,
+                               .note = gen_note, .user = q, .law = &q->law,
+                               .mapping = c->mapping, .h = c->h, .friction = c->friction,
+                               .persistence = c->persistence, .v0 = c->v0, .split = q->split};
+  ode_collider_rows(&q->g, &x);
+  k->pin_ground[j] = c->pin == FB_KIT_GROUND;
+  k->slot[k->nslots++] = j;
+  return FB_OK;
+}
+
+/* the rows joint k's last add_contact made (kit.h collided) */
+static void kit_collided(const void *w, int k, fb_kit_rows *out) {
+  const ode_kit_gen *q = ((const ode_kit *)w)->gen[k];
+  const fb_contact_provenance *r = &q->rows;
+  *out = (fb_kit_rows){.rows = r->contact_steps, .m_eff_min = r->mass_eff_min,
+                       .m_eff_max = r->mass_eff_max, .erp_max = r->erp_max,
+                       .cfm_min = r->cfm_min, .h_omega_max = q->hw, .omega_d_h_max = q->wdh};
+}
+
+/* joint k's pin's depth into its collider's hole now (kit.h penetration):
+ * into the libccd bore, its closed form (fb_ccd_bore_depth); with the ring
+ * of boxes |e| - c, as the hand-built world reports them */
+static double kit_penetration(const void *w, int k) {
+  const ode_kit_gen *q = ((const ode_kit *)w)->gen[k];
+  double p[2];
+  ode_collider_pin_in_hole(&q->g, p);
+  if (q->g.bore) return fb_ccd_bore_depth(q->g.bore, p);
+  const double d = hypot(p[0], p[1]) - q->c;
+  return d > 0.0 ? d : 0.0;
+}
+
 /* the exact collider's row as ode_clearance.c makes it: the law mapped to
  * one soft contact row (ode_contact.h) at the effective mass (the
  * matched-static row blended by the contact's persistence, its depth
@@ -195,6 +310,7 @@ static void point_drift(const ode_kit *k, int b, const double x[2], double h, do
 static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
   (void)diag;
   ode_kit *k = w;
+  if (j < FB_PLANAR_SPEC_MAX_JOINTS && k->gen[j]) return gen_contact(k, j, c);
   dContact ct;
   memset(&ct, 0, sizeof ct);
   fb_contact_row used = c->row; /* the kit's, when it mapped the law already */
@@ -244,10 +360,13 @@ static void contact_forces(ode_kit *k) {
   }
   for (int i = 0; i < k->nslots; i++) {
     const int j = k->slot[i];
-    const double s = k->pin_ground[j] ? -k->share[j] : k->share[j];
-    k->force[j] = fabs(s) * hypot(k->fb[j].f1[0], k->fb[j].f1[1]);
-    k->force_pin[j][0] = s * k->fb[j].f1[0];
-    k->force_pin[j][1] = s * k->fb[j].f1[1];
+    ode_kit_gen *q = j < FB_PLANAR_SPEC_MAX_JOINTS ? k->gen[j] : NULL;
+    double f[2] = {k->fb[j].f1[0], k->fb[j].f1[1]}, share = k->share[j];
+    if (q) share = ode_collider_force(&q->g, f) > 0 ? 1.0 : 0.0; /* its rows' sum */
+    const double s = k->pin_ground[j] ? -share : share;
+    k->force[j] = fabs(s) * hypot(f[0], f[1]);
+    k->force_pin[j][0] = s * f[0];
+    k->force_pin[j][1] = s * f[1];
     k->cj[j] = 0;
     k->last[i] = j;
   }
@@ -328,6 +447,12 @@ static void kit_apply_wrench(void *w, int b, const double f[3]) {
 
 static void kit_world_free(void *w) {
   ode_kit *k = w;
+  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) { /* its geoms before the bodies */
+    if (!k->gen[j]) continue;
+    if (k->broken) fb_ccd_bore_destroy(k->gen[j]->g.bore); /* ODE's never touched again */
+    else ode_collider_free(&k->gen[j]->g);
+    free(k->gen[j]);
+  }
   if (k->broken) {
     fb_ode_quarantine(k->world); /* left mid-step: never touched again (ode_env.h) */
     fb_ode_quarantine(k->contacts);
@@ -360,4 +485,8 @@ const fb_kit_binding fb_ode_kit = {
     .contact_force_vec = kit_contact_force_vec,
     .friction = 1,
     .apply_wrench = kit_apply_wrench,
+    .add_clearance = kit_add_clearance,
+    .collide = kit_collide,
+    .collided = kit_collided,
+    .penetration = kit_penetration,
 };

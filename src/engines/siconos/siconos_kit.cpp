@@ -897,6 +897,9 @@ const fb_kit_binding fb_siconos_kit = {
     0 /* loads_from_state: none */,
     kit_reactions_in,
     kit_clearance_reaction,
+    NULL /* collide: no collider of its own */,
+    NULL /* collided */,
+    NULL /* penetration: the exact one */,
 };
 
 } // extern "C"

@@ -684,4 +684,7 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     1,    /* loads_from_state: at every stage of the integrator, from its state */
     NULL, /* reactions_in: every world reports them */
     NULL, /* clearance_reaction: the kit's contacts (add_contact) */
+    NULL, /* collide: no collider of its own */
+    NULL, /* collided */
+    NULL, /* penetration: the exact one */
 };

@@ -75,33 +75,17 @@ void mujoco_forward(fb_mujoco_scene *s) {
   mujoco_hook_off();
 }
 
+/* joint j's native contact (mujoco_common.h) */
+static fb_mujoco_native bore_of(const fb_mujoco_scene *s, int j) {
+  return (fb_mujoco_native){s->bore_tendon[j], s->site_pin[j], s->site_hole[j], s->pin_geom[j],
+                            s->ring_first[j], s->def.ring_n, s->hole_body[j]};
+}
+
 /* native contacts: the force on joint j's pin from MuJoCo's constraints of
- * this forward pass [N]: the bore tendon's limit force (efc_force of its
- * mjCNSTR_LIMIT_TENDON row, >= 0, along e), or |sum of f_n n| over the
- * contacts between the pin's sphere and the hole's ring */
+ * this forward pass [N] (fb_mujoco_native_force) */
 void mujoco_native_force(fb_mujoco_scene *s, int j) {
-  const mjModel *m = s->m;
-  const mjData *d = s->d;
-  if (s->bore_tendon[j] >= 0) {
-    double f = 0.0;
-    for (int i = 0; i < d->nefc; i++)
-      if (d->efc_type[i] == mjCNSTR_LIMIT_TENDON && d->efc_id[i] == s->bore_tendon[j])
-        f += d->efc_force[i];
-    s->cl[j].force = f;
-    return;
-  }
-  double f[2] = {0.0, 0.0};
-  for (int i = 0; i < d->ncon; i++) {
-    const mjContact *ct = &d->contact[i];
-    const int g1 = ct->geom1, g2 = ct->geom2;
-    const int other = g1 == s->pin_geom[j] ? g2 : (g2 == s->pin_geom[j] ? g1 : -1);
-    if (other < 0 || m->geom_bodyid[other] != s->hole_body[j]) continue;
-    mjtNum r[6];
-    mj_contactForce(m, d, i, r);
-    f[0] += r[0] * ct->frame[0];
-    f[1] += r[0] * ct->frame[1];
-  }
-  s->cl[j].force = hypot(f[0], f[1]);
+  const fb_mujoco_native b = bore_of(s, j);
+  s->cl[j].force = fb_mujoco_native_force(s->m, s->d, &b, NULL);
 }
 
 /* provenance of a step in contact at joint j: the effective mass along the
@@ -162,47 +146,20 @@ void mujoco_note_contact(fb_mujoco_scene *s, int j, double mass) {
 
 /* native contacts of joint j, once per step at the state of the last
  * forward pass (one step late; the effective mass m_eff along the pin's
- * eccentricity, mujoco_joint_effective_mass, changes over many steps):
- *
- * bore = tendon, the force form: the limit row's force is
- * f = (aref - a1) / R at MuJoCo's optimum (a1 the row's acceleration,
- * R = (1 - d)/d A, A = tendon_invweight0, MuJoCo's diagonal approximation of
- * the row's inverse mass; aref = -(s1 v + s0 r)/d from the direct solref
- * (-s0, -s1) and solimp d: mj_makeImpedance, engine_core_constraint.c of
- * 2.2.2), so solref = (-k (1 - d) A, -c (1 - d) A) gives
- * f = k delta + c ddot + d/((1 - d) A) d2delta/dt2: the law's spring and
- * damper whatever else pushes along e, plus a negligible inerter
- * (BORE_IMPEDANCE). c = 2 zeta sqrt(k m_eff), the damper ODE's world and the
- * reference put on the same mass. The form contact-params prints
- * (docs/contact-params.md: d -> 1, per unit of m_eff) gives the row the
- * acceleration aref whatever else pushes, so a steadily loaded contact
- * carries its load at no penetration (measured: -94 % in continuous contact,
- * 1190 contact episodes against the reference's 27).
- *
- * bore = facets (the study before the tendon): the direct form per unit of
- * m_eff at impedance d -> 1 (the loop's), solref = (-d k/m_eff, -c/m_eff),
- * since MuJoCo's K is s0/dmax^2 and the contact applies d K, written into the
- * pin's sphere and the hole's ring boxes. */
+ * eccentricity, mujoco_joint_effective_mass, changes over many steps): the
+ * law's spring and its damper c = 2 zeta sqrt(k m_eff), the damper ODE's
+ * world and the reference put on the same mass, as the solref of the bore
+ * (fb_mujoco_native_solref: the tendon's force form, the facets' direct
+ * form per unit of m_eff at the loop's impedance d -> 1). The form
+ * contact-params prints (docs/contact-params.md: d -> 1, per unit of
+ * m_eff) gives the tendon's row the acceleration aref whatever else
+ * pushes, so a steadily loaded contact carries its load at no penetration
+ * (measured: -94 % in continuous contact, 1190 contact episodes against
+ * the reference's 27). */
 void mujoco_native_solref_update(fb_mujoco_scene *s, int j) {
   if (s->bore_tendon[j] < 0 && (s->pin_geom[j] < 0 || s->ring_first[j] < 0)) return;
   const double me = mujoco_joint_effective_mass(s, s->m, s->d, j);
   if (!(me > 0.0) || !isfinite(me)) return;
-  const fb_contact_law *law = &s->def.law[j];
-  const double zeta = fb_contact_law_zeta(law);
-  mjModel *m = s->m;
-  if (s->bore_tendon[j] >= 0) {
-    const int t = s->bore_tendon[j];
-    const double keep = (1.0 - m->tendon_solimp_lim[mjNIMP * t]) * m->tendon_invweight0[t];
-    m->tendon_solref_lim[mjNREF * t] = -law->stiffness * keep;
-    m->tendon_solref_lim[mjNREF * t + 1] = -2.0 * zeta * sqrt(law->stiffness * me) * keep;
-    return;
-  }
-  const double d = s->def.opts.loop_impedance;
-  const double sr0 = -d * law->stiffness / me, sr1 = -2.0 * zeta * sqrt(law->stiffness / me);
-  m->geom_solref[2 * s->pin_geom[j]] = sr0;
-  m->geom_solref[2 * s->pin_geom[j] + 1] = sr1;
-  for (int q = 0; q < s->def.ring_n; q++) {
-    m->geom_solref[2 * (s->ring_first[j] + q)] = sr0;
-    m->geom_solref[2 * (s->ring_first[j] + q) + 1] = sr1;
-  }
+  const fb_mujoco_native b = bore_of(s, j);
+  fb_mujoco_native_solref(s->m, &b, &s->def.law[j], me, s->def.opts.loop_impedance);
 }

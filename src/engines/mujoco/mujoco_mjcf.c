@@ -97,103 +97,46 @@ static void put_inertial(text *t, const fb_link_mass *lm, double len) {
       lm->com_fraction * len, lm->mass, lm->inertia_long, it, lm->inertia);
 }
 
-/* radial thickness of a ring's boxes (as the ODE faceted collider) */
-#define RING_THICKNESS_M 2e-3
-
-/* native contact: the direct-form solref of the restitution law's spring
- * p [N/m] and damper c [N s/m] on its effective mass m: MuJoCo's direct
- * stiffness and damping are per unit mass (k = p/m [1/s^2], b = c/m [1/s]) */
-static void native_solref(const fb_contact_law *law, double *k, double *b) {
-  const double zeta = fb_contact_law_zeta(law);
-  const double c = 2.0 * zeta * sqrt(law->stiffness * law->mass);
-  *k = law->stiffness / law->mass;
-  *b = c / law->mass;
-}
-
-/* native contact geoms (bore = facets) of the joints whose pin (pin = 1) or hole (pin = 0)
- * lies on this body, at the given body-frame points: a sphere of the pin's
- * radius, or a ring of ring_n boxes whose inner faces are tangent to the
- * hole's circle. Pins collide with rings only (contype 1, conaffinity 2). */
+/* native contact geoms (bore = facets, mujoco_common.h) of the joints whose
+ * pin (pin = 1) or hole (pin = 0) lies on this body, at the given
+ * body-frame points */
 static void put_native(text *t, const mj_def *def, int j, int pin, double x, double y,
                        const char *ind) {
   if (!def->facets || !(def->clearance_mask & (1 << j))) return;
-  const char jn = (char)('A' + j);
-  double k, b;
-  native_solref(&def->law[j], &k, &b);
-  char contact[256];
-  snprintf(contact, sizeof contact,
-           "condim=\"1\" margin=\"0\" solref=\"%.17g %.17g\" solimp=\"%.17g %.17g " FB_MUJOCO_SOLIMP_TAIL
-           "\"",
-           -k, -b, def->opts.loop_impedance, def->opts.loop_impedance);
-  if (pin) {
-    fb_text_put(t, "%s<geom name=\"%c_pin_geom\" type=\"sphere\" size=\"%.17g\" pos=\"%.17g %.17g 0\" "
-           "contype=\"1\" conaffinity=\"0\" %s/>\n",
-        ind, jn, def->pin_radius, x, y, contact);
-    return;
-  }
-  const double r_in = def->pin_radius + def->radial_clearance;
-  const double th = RING_THICKNESS_M;
-  const double half_w = (r_in + th) * tan(M_PI / def->ring_n) * 1.001; /* closes the ring */
-  for (int q = 0; q < def->ring_n; q++) {
-    const double phi = 2.0 * M_PI * q / def->ring_n;
-    fb_text_put(t, "%s<geom type=\"box\" size=\"%.17g %.17g %.17g\" pos=\"%.17g %.17g 0\" "
-           "euler=\"0 0 %.17g\" contype=\"0\" conaffinity=\"1\" %s/>\n",
-        ind, 0.5 * th, half_w, 0.5 * def->pin_length, x + (r_in + 0.5 * th) * cos(phi),
-        y + (r_in + 0.5 * th) * sin(phi), phi, contact);
-  }
+  char name[16];
+  snprintf(name, sizeof name, "%c_pin_geom", (char)('A' + j));
+  fb_mujoco_put_facets(t, ind, pin ? name : NULL, pin, &def->law[j], def->opts.loop_impedance,
+                       def->pin_radius, def->radial_clearance, def->ring_n, def->pin_length, x, y);
 }
 
-/* native bore = tendon: the limit row's impedance, dmin = dmax = d. With
- * the solref of the force form (mujoco_native_solref_update) the row's force is
- * the law's k delta + c ddot plus an inerter d / ((1 - d) A) times the
- * penetration's acceleration, A MuJoCo's diagonal approximation of the
- * row's inverse mass: MuJoCo's smallest impedance (mjMINIMP, 1e-4) makes
- * the inerter 8e-6 kg here, 1e-4 of the smallest effective mass 0.09 kg.
- * Measured at the automatic step on cases/engines_restitution.ini, peak
- * force against the reference: +3.0 % at 1e-4, -1.6 % at 1e-3, -0.3 % at
- * 1e-2, +0.9 % at 0.1 (the sequence after revolution 1 is chaotic; the
- * first three impacts are within 0.5 % at each) */
-#define BORE_IMPEDANCE mjMINIMP
-
-/* native bore = tendon: each clearance joint's hole as MuJoCo's own
- * unilateral constraint with the law's geometry, a spatial tendon from the
- * hole's centre site to the pin's, whose length is the eccentricity |e|,
- * limited to [0, c] (c the radial clearance). MuJoCo adds a limit row when
- * |e| > c (mj_instantiateLimit, engine_core_constraint.c of 2.2.2: distance
- * c - |e|, Jacobian -d|e|/dq, force >= 0): the pin-in-hole contact along e
- * with depth |e| - c, solved with the loop closure by MuJoCo's constraint
- * solver. The lower limit 0 never acts (|e| >= 0, margin 0); at |e| = 0 the
- * tendon's direction is MuJoCo's (1, 0, 0) (mju_normalize3) and there is no
- * row. The solref written here is the force form (mujoco_native_solref_update) with
- * the law's reduced mass in place of MuJoCo's diagonal approximation,
- * which exists only once the model is compiled; the scene replaces it before
- * the first step. */
+/* native bore = tendon (mujoco_common.h): each clearance joint's hole as
+ * MuJoCo's own unilateral constraint with the law's geometry, a spatial
+ * tendon from the hole's centre site to the pin's, whose length is the
+ * eccentricity |e|, limited to [0, c]. The lower limit 0 never acts
+ * (|e| >= 0, margin 0); at |e| = 0 the tendon's direction is MuJoCo's
+ * (1, 0, 0) (mju_normalize3) and there is no row. The solref written here
+ * is the force form (fb_mujoco_bore_solref) with the law's reduced mass in
+ * place of MuJoCo's diagonal approximation, which exists only once the
+ * model is compiled; the scene replaces it before the first step in
+ * contact (mujoco_native_solref_update), an export with the compiled
+ * model's (fb_mujoco_export). */
 static void put_bore_tendons(text *t, const mj_def *def) {
   if (!def->native || def->facets || !def->clearance_mask) return;
   fb_text_put(t, "  <tendon>\n");
   for (int j = 0; j < 4; j++) {
     if (!(def->clearance_mask & (1 << j))) continue;
-    const char jn = (char)('A' + j);
     const fb_contact_law *law = &def->law[j];
-    const double zeta = fb_contact_law_zeta(law);
-    const double c = 2.0 * zeta * sqrt(law->stiffness * law->mass);
-    const double keep = (1.0 - BORE_IMPEDANCE) / law->mass;
-    double sr[2] = {-law->stiffness * keep, -c * keep};
+    double sr[2];
+    fb_mujoco_bore_solref(sr, law, law->mass, (1.0 - FB_MUJOCO_BORE_IMPEDANCE) / law->mass);
     if (def->exported && !isnan(def->bore_solref[j][0])) {
       sr[0] = def->bore_solref[j][0];
       sr[1] = def->bore_solref[j][1];
     }
-    if (def->exported)
-      fb_text_put(t, "    <spatial name=\"%s_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
-             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " FB_MUJOCO_SOLIMP_TAIL "\">\n",
-          joint_name(def, j), def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
-    else
-      fb_text_put(t, "    <spatial name=\"%c_bore\" limited=\"true\" range=\"0 %.17g\" margin=\"0\" "
-             "solreflimit=\"%.17g %.17g\" solimplimit=\"%.17g %.17g " FB_MUJOCO_SOLIMP_TAIL "\">\n",
-          jn, def->radial_clearance, sr[0], sr[1], BORE_IMPEDANCE, BORE_IMPEDANCE);
-    fb_text_put(t, "      <site site=\"%s\"/>\n      <site site=\"%s\"/>\n", site_name(def, j, 0),
-        site_name(def, j, 1));
-    fb_text_put(t, "    </spatial>\n");
+    char name[FB_XML_NAME + 8];
+    if (def->exported) snprintf(name, sizeof name, "%s_bore", joint_name(def, j));
+    else snprintf(name, sizeof name, "%c_bore", (char)('A' + j));
+    fb_mujoco_put_bore(t, "    ", name, def->radial_clearance, sr, site_name(def, j, 0),
+                       site_name(def, j, 1));
   }
   fb_text_put(t, "  </tendon>\n");
 }
@@ -431,10 +374,8 @@ fb_status fb_mujoco_export(char *buf, size_t size, const fb_model_scene *sm, fb_
     const int t = mj_name2id(m, mjOBJ_TENDON, name);
     if (t < 0) continue;
     const fb_contact_law *law = &d.law[j];
-    const double zeta = fb_contact_law_zeta(law);
-    const double keep = (1.0 - BORE_IMPEDANCE) * m->tendon_invweight0[t];
-    d.bore_solref[j][0] = -law->stiffness * keep;
-    d.bore_solref[j][1] = -2.0 * zeta * sqrt(law->stiffness * law->mass) * keep;
+    fb_mujoco_bore_solref(d.bore_solref[j], law, law->mass,
+                          (1.0 - FB_MUJOCO_BORE_IMPEDANCE) * m->tendon_invweight0[t]);
   }
   mj_deleteModel(m);
   return mujoco_write_mjcf(buf, size, &d, diag);

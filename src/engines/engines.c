@@ -2,7 +2,9 @@
  * registry of engines. Both compute exact or high-accuracy answers rather
  * than step a world: in create, the analytic engine samples the exact loop
  * solution over the run (analytic.h) and the reference engine integrates it
- * (GSL rk8pd with error control, reference.h); step then replays one sample. */
+ * (GSL rk8pd with error control, reference.h); step then replays one sample.
+ * And which of an engine's kit bindings builds a model's collider
+ * (fb_engine_kit_of). */
 #include "engine.h"
 
 #include <math.h>
@@ -36,6 +38,10 @@ const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag) {
   fb_diag_set(diag, FB_ERR_ARG, "engine '%s' is not part of this build%s%s", fb_engine_name(id),
               fb_engine_howto(id)[0] ? ": " : "", fb_engine_howto(id));
   return NULL;
+}
+
+const struct fb_kit_binding *fb_engine_kit_of(const fb_engine *e, fb_collider collider) {
+  return collider == FB_COLLIDER_NATIVE ? e->kit_native : e->kit;
 }
 
 fb_status fb_engine_advance(const fb_engine *e, void *self, double t, double h, fb_diag *diag) {

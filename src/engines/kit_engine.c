@@ -18,9 +18,11 @@
  * model, the key and what to change): every clearance joint of the case
  * (revolute ones, not the driven one), each with its own law, columns and
  * provenance, Coulomb friction where the binding applies it (kit.h); the
- * exact collider, or the faceted and libccd colliders where the binding
- * builds them (kit.h's collide: ODE's), with the scene's rings; a fixed or
- * automatic step (not [solver] h_s = adaptive). Its start is the model's
+ * exact collider, the faceted and libccd colliders where the binding
+ * builds them (kit.h's collide: ODE's), with the scene's rings, or the
+ * engine's native contact through its native binding (engine.h
+ * kit_native: MuJoCo's own constraint solver on the clearance, Siconos's
+ * relation); a fixed or automatic step (not [solver] h_s = adaptive). Its start is the model's
  * (start.h: [run] start and pin_start, an ensemble member's moved pin),
  * handed to the kit as the description's coordinates. Its joint reactions
  * and drive torque are the binding's where it reports them (the load
@@ -63,10 +65,11 @@ typedef struct {
   int translates[FB_MECH_MAX_OUTPUTS]; /* 1: output k's motion is its centre's x */
 } kit_run;
 
-/* the engine of model sm, which the runner picked for its binding */
+/* the binding of model sm's engine that builds its collider (the engine's
+ * native contact: its kit_native), which the runner picked */
 static const fb_kit_binding *binding_of(const fb_model_scene *sm) {
   const fb_engine *e = fb_engine_get(sm->model->engine, NULL);
-  return e ? e->kit : NULL;
+  return e ? fb_engine_kit_of(e, sm->collider) : NULL;
 }
 
 /* what the kit cannot build of model sm, as an error naming the key */
@@ -77,17 +80,16 @@ static fb_status refuse(const fb_model_scene *sm, fb_diag *diag) {
                        "adaptive is the hand-built ODE world's; give a fixed step or auto, or "
                        "[solver] builder = hand", name);
   if (!sm->clearance_mask) return FB_OK;
-  /* the native collider of an engine whose clearance is a relation of its
-   * own (kit.h's add_clearance without add_contact: Siconos's unilateral
-   * constraint) is that relation */
-  const fb_kit_binding *b = binding_of(sm);
-  const int relation = b && b->add_clearance && !b->add_contact;
-  /* a faceted or libccd collider is the binding's own (kit.h's collide):
-   * the kit refuses it for a binding without one */
+  /* the engine's native contact is its native binding's (engine.h
+   * kit_native: MuJoCo's own constraint solver, Siconos's relation); a
+   * faceted or libccd collider is the binding's own (kit.h's collide): the
+   * kit refuses it for a binding without one */
+  if (sm->collider == FB_COLLIDER_NATIVE && binding_of(sm)) return FB_OK;
   if (sm->collider == FB_COLLIDER_FACETED || sm->collider == FB_COLLIDER_CCD) return FB_OK;
-  if (sm->collider != FB_COLLIDER_EXACT && !(sm->collider == FB_COLLIDER_NATIVE && relation))
+  if (sm->collider != FB_COLLIDER_EXACT)
     return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: the exact collider "
-                       "only ([clearance] collider = exact)", name);
+                       "only ([clearance] collider = exact), or the engine's native contact "
+                       "where its binding builds it", name);
   return FB_OK;
 }
 

@@ -45,13 +45,12 @@ static const fb_kit_binding *kit_of(const char *name, const char **why) {
    * the binding builds), a law, and a binding that takes the contact */
   *why = "it has no contact law";
   if (m->law == FB_MODEL_LAW_NONE) return NULL;
-  /* or the engine's own clearance relation built from the description's
-   * joint (collider native, a binding with add_clearance: Siconos's
-   * unilateral constraint with Newton's law) */
+  /* or the engine's native contact, built by its native binding from the
+   * description's joint (engine.h kit_native: MuJoCo's own constraint
+   * solver, Siconos's unilateral constraint with Newton's law) */
   if (m->collider == FB_COLLIDER_NATIVE) {
-    *why = "its collider is the engine's native contact, which its binding builds for the "
-           "four-bar's and slider-crank's own worlds only";
-    return b->add_clearance && !b->add_contact ? b : NULL;
+    *why = "its collider is the engine's native contact, which no binding of its engine builds";
+    return fb_engine_kit_of(e, m->collider);
   }
   /* the faceted and libccd colliders: the binding's own (kit.h collide) */
   const int generic = m->collider == FB_COLLIDER_FACETED || m->collider == FB_COLLIDER_CCD;

@@ -317,8 +317,8 @@ static const key_spec keys[] = {
     {"solver", "builder", K_WORDS, OFF(solver.builder), 0, 0, 0, 0, 0, "-", "hand", "hand or kit",
      "who builds a four-bar or slider-crank model of an engine that has both: hand (the "
      "engine's own world) or kit (its engine-kit binding, through the kit adapter: the "
-     "colliders and friction its binding builds, ODE's all; a fixed or auto step; "
-     "docs/architecture.md); an engine with a binding alone always builds through the kit"},
+     "colliders, native contacts and friction its binding builds, ODE's all; a fixed or auto "
+     "step; docs/architecture.md); an engine with a binding alone always builds through the kit"},
 
     /* each engine's own section, in engine order (model/opts_<name>.h) */
 #define X(name) FB_OPTS_KEYS_##name(ENGINE_ROW)

@@ -232,11 +232,22 @@ typedef struct fb_engine {
                                        by the engine's own figures between samples
                                        (fb_series_refine_peaks_max: the kit adapter's
                                        sub-stepped force maxima); NULL: fb_series_refine_peaks */
+  const struct fb_kit_binding *kit_native; /* optional: the binding that builds a model whose
+                                       collider is the engine's native contact
+                                       (FB_COLLIDER_NATIVE: MuJoCo's own constraint solver on
+                                       the clearance, Siconos's unilateral relation), on a
+                                       planar case and through the kit adapter; it reports joint
+                                       reactions when kit does (the adapter's table follows
+                                       kit's); NULL: none */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:
  * FB_ERR_ARG). */
 const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag);
+
+/* The binding of engine e that builds a model with collider collider:
+ * e->kit_native for the engine's native contact, else e->kit (NULL: none). */
+const struct fb_kit_binding *fb_engine_kit_of(const fb_engine *e, fb_collider collider);
 
 /* The table that runs engine e's models on a four-bar or slider-crank
  * case c (model_run.c): e itself, or the kit adapter (fb_engine_kit_adapter,

@@ -35,7 +35,9 @@
  *   add_contact   before every step, each clearance joint in contact: the
  *                 contact the kit's pipeline computed (fb_kit_contact),
  *                 after collide, for a binding's own collider, found
- *                 contacts there
+ *                 contacts there; a binding with contact_always gets every
+ *                 revolute one off its hole's centre, in free flight too
+ *                 (depth <= 0)
  *   step, body_state  advance h; read a body's pose and velocity
  *   contact_force optional: what the contact applied in the step
  * Bodies are named by the kit's handles: the ground is FB_KIT_GROUND, the
@@ -336,9 +338,11 @@ typedef struct fb_kit_binding {
                                 add_contact still hands the law on the effective mass and
                                 the episode; c->m and c->cl outlive the world. NULL: the
                                 kit's contact every step only */
-  int applied_force;         /* optional: 1 when add_contact applies the law's force (no engine
-                                row, no [clearance] mapping; MuJoCo, Simbody): the matched
-                                row's aliasing stop is not the engine's, which names its own */
+  int applied_force;         /* optional: 1 when add_contact applies the law itself, not the
+                                kit's soft row (its force: MuJoCo's hook, Simbody; or the
+                                engine's own constraint set from it: MuJoCo's native contact;
+                                no [clearance] mapping): the matched row's aliasing stop is not
+                                the engine's, which names its own */
   fb_status (*model_text)(const void *w, char *buf, size_t size, fb_diag *diag);
                              /* optional: the built world (after add_drive) as the engine's
                                 own model file, its start in it, into buf (size bytes, NUL
@@ -441,6 +445,15 @@ typedef struct fb_kit_binding {
                                 [m] (0 when free), the joint's penetration column (a bore that
                                 is no circle lets the pin past the radial clearance untouched);
                                 NULL: the exact |e| - c */
+  int contact_always;        /* optional, with add_contact: 1 when the engine's own contact needs
+                                a revolute clearance joint's effective mass before every step,
+                                in free flight too (MuJoCo's native contact, whose stiffness
+                                and damper are set from it and whose row may open within a
+                                step): add_contact is then called for every such joint whose
+                                pin is off its hole's centre, in free flight with c->depth <= 0
+                                (its geometry, m_eff and law on it, onset 0; no episode, no
+                                contact step, no law's force noted); the force the kit reports
+                                is contact_force's, the engine's. 0: in contact only */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

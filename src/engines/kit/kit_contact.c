@@ -95,7 +95,9 @@ void fb_kit_pipe_free(fb_kit_pipe *p) {
   p->cm = NULL;
 }
 
-/* joint j's contact into *c when its pin presses into the hole (returns 1) */
+/* joint j's penetration, rate and eccentricity at the state read, and its
+ * contact into *c (depth <= 0: free flight) when the pin is off the
+ * hole's centre (returns 1; 0: on it, no normal) */
 static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
                     const fb_kit_clearance *cl, int j) {
   const fb_planar_joint *pj = &m->joint[j];
@@ -108,7 +110,7 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
   p->pen[j] = delta > 0.0 ? delta : 0.0;
   p->ecc[j][0] = e[0];
   p->ecc[j][1] = e[1];
-  if (!(delta > 0.0) || ecc == 0.0) return 0;
+  if (ecc == 0.0) return 0;
   const double n[2] = {e[0] / ecc, e[1] / ecc}, r = cl->pin_radius + cl->radial_clearance;
   *c = (fb_kit_contact){.pin = pj->body[0] - 1, .hole = pj->body[1] - 1,
                         .point = {xh[0] + r * n[0], xh[1] + r * n[1]}, .normal = {n[0], n[1]},
@@ -238,11 +240,28 @@ static fb_status note_collided(fb_kit_pipe *p, const fb_kit_binding *b, const vo
   return fb_kit_alias_diag(diag, o.omega_d_h_max, m->joint[j].name, h);
 }
 
+/* contact *c for the coming step of h: the effective mass me along its
+ * normal (else the law's own mass), clearance joint j's law on it, the
+ * episode's onset rate; its normal and point kept for slot k's reaction */
+static void on_mass(fb_kit_pipe *p, const fb_kit_clearance *cl, int j, int k, fb_kit_contact *c,
+                    double me, double h) {
+  c->m_eff = isfinite(me) && me > 0.0 ? me : cl->joint[j].law.mass;
+  if (!(c->m_alone > 0.0 && c->m_alone < c->m_eff)) c->m_alone = c->m_eff; /* a pin's */
+  c->law = fb_contact_law_on_mass(&cl->joint[j].law, c->m_eff);
+  c->v0 = p->ep[k].v0;
+  c->h = h;
+  c->friction = cl->friction;
+  p->normal[k][0] = c->normal[0], p->normal[k][1] = c->normal[1];
+  p->point[k][0] = c->point[0], p->point[k][1] = c->point[1];
+}
+
 /* contact slot k's episode (in: it presses), and when in, its contact
  * *c (its geometry filled; the effective mass me along its normal, else
  * the law's own mass) with clearance joint j's law on that mass, noted
  * and handed to b; the binding's own collider's contact (own) noted from
- * the rows it made */
+ * the rows it made; in free flight, to a binding that takes every step's
+ * (kit.h's contact_always), a pin's contact off its hole's centre with
+ * its effective mass (me > 0), neither noted nor counted */
 static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb_planar *m,
                       fb_kit_clearance *cl, int j, int k, fb_kit_contact *c, int in, double me,
                       double h, int own, fb_diag *diag) {
@@ -254,17 +273,14 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
   r->impacts += p->ep[k].impacts - before;
   if (!in) {
     p->phase[k] = 0.0;
-    return FB_OK;
+    if (!(b->contact_always && isfinite(me) && me > 0.0 && !c->wall)) return FB_OK;
+    on_mass(p, cl, j, k, c, me, h);
+    c->onset = 0;
+    c->persistence = 0.0;
+    return b->add_contact(w, k, c, diag);
   }
-  c->m_eff = isfinite(me) && me > 0.0 ? me : r->law.mass;
-  if (!(c->m_alone > 0.0 && c->m_alone < c->m_eff)) c->m_alone = c->m_eff; /* a pin's */
-  c->law = fb_contact_law_on_mass(&r->law, c->m_eff);
-  c->v0 = p->ep[k].v0;
+  on_mass(p, cl, j, k, c, me, h);
   c->onset = onset;
-  c->h = h;
-  c->friction = cl->friction;
-  p->normal[k][0] = c->normal[0], p->normal[k][1] = c->normal[1];
-  p->point[k][0] = c->point[0], p->point[k][1] = c->point[1];
   c->persistence =
       c->mapping == FB_MAPPING_MATCHED_STATIC ? fb_contact_persistence(p->phase[k]) : 0.0;
   p->force[k] = fb_contact_force(&c->law, c->depth, c->rate, c->v0);
@@ -356,10 +372,11 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
       if ((st = guide_contacts(p, b, w, m, cl, j, h, diag)) != FB_OK) return st;
       continue;
     }
-    fb_kit_contact c;
-    int in = geometry(&c, p, m, cl, j);
-    double me = 0.0;
-    if (in) {
+    fb_kit_contact c = {0};
+    const int off_centre = geometry(&c, p, m, cl, j);
+    int in = off_centre && c.depth > 0.0;
+    double me = 0.0; /* in free flight too for a binding that takes every step's */
+    if (in || (off_centre && b->contact_always)) {
       if ((st = tensor(c.w_inv, p, m, cl, j, diag)) != FB_OK) return st;
       me = fb_effective_mass_along(c.w_inv, c.normal);
     }

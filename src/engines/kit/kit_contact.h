@@ -57,14 +57,16 @@ void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, co
                       const fb_kit_clearance *cl);
 
 /* Every clearance joint's contact at the state last read, handed to b's
- * add_contact for the coming step of h [s]; counts contact steps and
- * impact episodes into cl. A pin whose contacts b's own collider finds
- * (kit.h collide, cl->collider) is handed where its exact penetration is
- * positive and the collider found contacts, its episode theirs, its
- * record the rows they made (collided: contact steps count rows). A
- * binding with its own clearance relation (add_clearance) gets no
- * contact: a step with a contact force (contact_force > 0) is a contact
- * step, an episode's onset rate the one read before that step. Errors: FB_ERR_NUMERIC when a matched row
+ * add_contact for the coming step of h [s] (a binding with contact_always:
+ * every revolute one off its hole's centre, in free flight too, with its
+ * effective mass); counts contact steps and impact episodes into cl. A pin
+ * whose contacts b's own collider finds (kit.h collide, cl->collider) is
+ * handed where its exact penetration is positive and the collider found
+ * contacts, its episode theirs, its record the rows they made (collided:
+ * contact steps count rows). A binding with its own clearance relation
+ * (add_clearance) gets no contact: a step with a contact force
+ * (contact_force > 0) is a contact step, an episode's onset rate the one
+ * read before that step. Errors: FB_ERR_NUMERIC when a matched row
  * would alias (contact.h, FB_MATCHED_ALIAS_BOUND: "aliased: ..." with
  * the largest usable step, the hand-built ODE world's stop; not for a
  * binding whose applied_force is 1); those of

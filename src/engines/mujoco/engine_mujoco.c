@@ -206,4 +206,5 @@ const fb_engine fb_engine_mujoco = {
     .mapping_text = mujoco_mapping_text,
     .bench = &mujoco_bench,
     .kit = &fb_mujoco_kit,
+    .kit_native = &fb_mujoco_kit_native,
 };

@@ -30,13 +30,15 @@
  * onset rate); a contact that starts within a step takes the last law and
  * its own rate, as the four-bar's hook does. The reported force is the
  * kit's (the law at each sample's state, as the four-bar's samples give
- * it). MuJoCo's own contact solver is not used. A slider in its guide (a
- * prismatic clearance joint) is four contact slots (kit.h), its corners
- * from add_clearance (planar_guide.h's geometry at the start): each the
- * corner on the slider against its wall on the guide, penetration
- * n . (corner - wall point), rate n . (v_corner - v_guide there), n the
- * wall's normal towards it, the force -F n on the slider at the corner and
- * +F n on the guide, in the same hook.
+ * it). MuJoCo's own contact solver is not used here; the native binding
+ * (fb_mujoco_kit_native, mujoco_kit_native.c) builds the same world with
+ * MuJoCo's own contact on each clearance joint in the hook's place. A
+ * slider in its guide (a prismatic clearance joint) is four contact slots
+ * (kit.h), its corners from add_clearance (planar_guide.h's geometry at
+ * the start): each the corner on the slider against its wall on the
+ * guide, penetration n . (corner - wall point), rate n . (v_corner -
+ * v_guide there), n the wall's normal towards it, the force -F n on the
+ * slider at the corner and +F n on the guide, in the same hook.
  *
  * Samples and loads: a step starts with MuJoCo's forward pass at the state
  * it starts from, with the step's contacts; MuJoCo's recursive Newton-Euler
@@ -59,12 +61,9 @@
 #include <string.h>
 
 #include "contact.h"
-#include "kit.h"
-#include "mujoco_common.h"
 #include "mujoco_kit.h"
+#include "mujoco_kit_internal.h"
 #include "mujoco_load.h"
-#include "planar_spec.h"
-#include "textbuf.h"
 
 /* h omega_c bounds of an explicitly integrated undamped spring: RK4's
  * stability region meets the imaginary axis at 2 sqrt 2; semi-implicit
@@ -80,66 +79,6 @@
 /* bytes of MJCF text: a body with its joints ~400, an equality ~250 */
 #define MK_MJCF_BASE 2048
 #define MK_MJCF_PER_ITEM 768
-
-typedef struct {
-  int prismatic;       /* 1: a slide along axis; 0: a hinge about +z */
-  int b0, b1;          /* kit handles */
-  double at[2];        /* [m] */
-  double axis[2];      /* unit, world, at assembly */
-  int side;            /* the body its reaction's moment is taken on: b1, or b0 when b1 is the
-                          ground (kit.h's reactions), as a MuJoCo body id once built */
-  double local[2];     /* the joint's point in that body's frame [m] */
-  int node;            /* a tree joint: its child node (parent node 0: the ground, b + 1
-                          handle b); a loop's: -1 */
-  int eq;              /* a loop's connect equality (MuJoCo's id), else -1 */
-} mk_joint;
-
-/* a contact slot (kit.h): a pin in its hole (its pin's and hole's
- * centres), or a slider's corner against its guide's wall (the corner on
- * the slider, the wall's point and normal on the guide), its law */
-typedef struct {
-  int in;              /* 1: a clearance joint's slot */
-  int on;              /* 1: the kit handed its contact for this step (law, v0) */
-  int pin, hole;       /* kit handles, then MuJoCo body ids (hole 0: the world) */
-  double at[2];        /* both centres at assembly [m] */
-  double lp[2], lh[2]; /* the pin's and the hole's centres in their bodies' frames [m] */
-  double c;            /* radial clearance [m] */
-  double v_min;        /* an onset slower than this is taken at it [m/s] (episode.h) */
-  double v0;           /* the step's onset rate [m/s] */
-  fb_contact_law law;  /* the law, its damper on the last effective mass the kit gave (before
-                          the first contact: on the law's own mass) */
-  int wall;            /* 1: a corner against a flat wall (planar_guide.h), else a pin */
-  double aw[2], nw[2]; /* a wall: its point and its unit normal (towards the wall, the way
-                          the corner penetrates) at assembly [m], [-] */
-  double ln[2];        /* a wall's normal in the hole's (guide's) frame [-]; lh its point */
-  double f[2];         /* the force on the pin at the step's first forward pass [N] (0: none) */
-  double xp[3], xh[3]; /* where it acts on the pin and, opposite, on the hole [m] */
-} mk_contact;
-
-typedef struct {
-  double gravity, h;
-  fb_mujoco_opts opts;
-  fb_kit_body *body;   /* (nb) */
-  mk_joint *joint;     /* (nj) the ideal joints, as added */
-  int nb, nj, nj_all;  /* bodies, ideal joints added, the description's joints */
-  int *parent, *edge;  /* per node (0 the ground, b + 1 handle b): parent node, tree joint (-1:
-                          planar freedom from the world) */
-  unsigned char *tree; /* (nj) 1: a tree joint; 0: closes a loop */
-  int drive;           /* the driven joint */
-  double drive_qvel;   /* its qvel at the drive's rate [rad/s] (its hinge's sense) */
-  int integrator;      /* fb_mujoco_integrator, resolved */
-  mjModel *m;
-  mjData *d;
-  int *bid;            /* (nb) MuJoCo body id of each handle */
-  mk_contact ct[FB_KIT_SLOTS]; /* by the kit's contact slot */
-  size_t steps;
-  int record;          /* 1: the hook keeps each contact's force (the step's first pass) */
-  double *acc;         /* (nb x 3) every body's acceleration at the last step's start:
-                          centre x, y [m/s^2], about +z [rad/s^2] (kit.h's body_accel) */
-  double *react;       /* (nj x 3) every ideal joint's reaction there (kit.h's reactions) */
-  double *frc;         /* ((nb + 1) x 6) MuJoCo's interaction forces less the contacts' */
-  fb_kit_world o;      /* the walk's settings: names, drive, model_file (kit.h) */
-} mk_world;
 
 static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
   mk_world *k = calloc(1, sizeof *k);
@@ -316,6 +255,7 @@ static void put_body(fb_text *t, const mk_world *k, int v) {
               fb_kit_body_name(&k->o, v - 1), r[0], r[1], p[2] - q[2], b->mass, 0.5 * b->inertia, 0.5 * b->inertia,
               b->inertia);
   put_joints(t, k, v);
+  if (k->native) mk_native_put_body(t, k, v);
   for (int c = 1; c <= k->nb; c++)
     if (k->parent[c] == v) put_body(t, k, c);
   fb_text_put(t, "</body>\n");
@@ -359,13 +299,19 @@ static void put_mjcf(fb_text *t, const mk_world *k, const double *qvel, int nv) 
                     fb_mujoco_integrator_xml(k->integrator), FB_MUJOCO_EXPORT_H_USER_MAX_S,
                     FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_RK4, FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_EULER);
   if (k->o.model_file) fb_text_put(t, "\n");
+  /* native facets: a pin and its hole on parent and child bodies collide
+   * only with filterparent off (the four-bar's scene does the same) */
   fb_text_put(t, "<mujoco model=\"%s\">\n<compiler angle=\"radian\" inertiafromgeom=\"false\"/>"
-              "\n<option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\"/>\n"
+              "\n<option timestep=\"%.17g\" gravity=\"0 %.17g 0\" integrator=\"%s\"%s\n"
               "<worldbody>\n", k->o.c && k->o.c->name[0] ? k->o.c->name : "planar", k->h,
-              -k->gravity, fb_mujoco_integrator_xml(k->integrator));
+              -k->gravity, fb_mujoco_integrator_xml(k->integrator),
+              k->native && k->facets ? "><flag filterparent=\"disable\"/></option>" : "/>");
+  if (k->native) mk_native_put_body(t, k, 0);
   for (int v = 1; v <= k->nb; v++)
     if (k->parent[v] == 0) put_body(t, k, v);
-  fb_text_put(t, "</worldbody>\n<equality>\n");
+  fb_text_put(t, "</worldbody>\n");
+  if (k->native) mk_native_put_tendons(t, k);
+  fb_text_put(t, "<equality>\n");
   double sr[2];
   if (k->o.model_file) fb_mujoco_export_loop_solref(&k->opts, k->integrator, k->h, sr);
   else fb_mujoco_loop_solref(&k->opts, k->h, sr);
@@ -437,7 +383,17 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
     k->drive_qvel = k->joint[joint].node - 1 == k->joint[joint].b1 ? rate : -rate;
   k->integrator = k->o.model_file ? fb_mujoco_export_integrator(&k->opts)
                                   : fb_mujoco_integrator_resolve(&k->opts, k->nj < k->nj_all);
-  const size_t size = MK_MJCF_BASE + (size_t)(k->nb + k->nj) * MK_MJCF_PER_ITEM;
+  for (int j = 0; j < FB_KIT_SLOTS; j++) { /* the contacts' points in their bodies' frames */
+    mk_contact *c = &k->ct[j];
+    if (!c->in) continue;
+    const double *p = pose(k, c->pin + 1), *q = pose(k, c->hole + 1);
+    const double *h = c->wall ? c->aw : c->at; /* the hole's point: a wall's, or the centre */
+    to_frame(c->lp, p[2], c->at[0] - p[0], c->at[1] - p[1]);
+    to_frame(c->lh, q[2], h[0] - q[0], h[1] - q[1]);
+    to_frame(c->ln, q[2], c->nw[0], c->nw[1]);
+  }
+  const size_t size = MK_MJCF_BASE + (size_t)(k->nb + k->nj) * MK_MJCF_PER_ITEM +
+                      (k->native ? mk_native_mjcf_bytes(k) : 0);
   char *buf = malloc(size);
   if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the MJCF text");
   fb_text t = {buf, size, 0, 0};
@@ -449,15 +405,11 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
   if (!(k->d = mj_makeData(k->m)))
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for MuJoCo's data");
   for (int b = 0; b < k->nb; b++) k->bid[b] = mj_name2id(k->m, mjOBJ_BODY, fb_kit_body_name(&k->o, b));
-  for (int j = 0; j < FB_KIT_SLOTS; j++) {
+  if (k->native) mk_native_bind(k); /* by the slots' kit handles */
+  for (int j = 0; j < FB_KIT_SLOTS; j++) { /* kit handles to MuJoCo's body ids */
     mk_contact *c = &k->ct[j];
     if (!c->in) continue;
-    const double *p = pose(k, c->pin + 1), *q = pose(k, c->hole + 1);
-    const double *h = c->wall ? c->aw : c->at; /* the hole's point: a wall's, or the centre */
-    to_frame(c->lp, p[2], c->at[0] - p[0], c->at[1] - p[1]);
-    to_frame(c->lh, q[2], h[0] - q[0], h[1] - q[1]);
-    to_frame(c->ln, q[2], c->nw[0], c->nw[1]);
-    c->pin = k->bid[c->pin];
+    c->pin = c->pin == FB_KIT_GROUND ? 0 : k->bid[c->pin];
     c->hole = c->hole == FB_KIT_GROUND ? 0 : k->bid[c->hole];
   }
   for (int j = 0, e = 0; j < k->nj; j++) { /* each joint's point on its reaction's body */
@@ -493,6 +445,7 @@ static void point_state(const mjModel *m, const mjData *d, int b, const double l
 static void kit_passive(void *ctx, const mjModel *m, mjData *d) {
   mk_world *k = ctx;
   const double zero[3] = {0.0, 0.0, 0.0};
+  if (k->native) return; /* MuJoCo's own constraint pushes (mujoco_kit_native.c) */
   for (int j = 0; j < FB_KIT_SLOTS; j++) {
     mk_contact *c = &k->ct[j];
     if (!c->in) continue;
@@ -539,9 +492,7 @@ static fb_status kit_add_clearance(void *w, int j, const fb_kit_clearance_joint 
   if (j < 0 || j >= FB_PLANAR_SPEC_MAX_JOINTS)
     return fb_diag_set(diag, FB_ERR_ARG, "clearance joint %d out of range", j);
   if (cj->kind != FB_KIND_PRISMATIC) {
-    k->ct[j] = (mk_contact){.in = 1, .pin = pin, .hole = hole, .at = {at[0], at[1]},
-                            .c = cl->radial_clearance, .v_min = cl->impact_velocity_min,
-                            .law = cj->law};
+    mk_pin_slot(&k->ct[j], cj);
     return FB_OK;
   }
   /* a slider in its guide (kit.h: pin the guide's handle, hole the
@@ -672,6 +623,7 @@ static fb_status kit_step(void *w, fb_diag *diag) {
   k->record = 1;
   mj_forward(k->m, k->d);
   k->record = 0;
+  if (k->native) mk_native_start(k); /* its forces, then its solref for the stages */
   note_start(k);
   fb_mujoco_integrate(k->m, k->d, k->integrator);
   fb_mujoco_passive_off();
@@ -741,23 +693,21 @@ static void kit_world_free(void *w) {
   free(k);
 }
 
-const fb_kit_binding fb_mujoco_kit = {
-    .engine = "mujoco",
-    .world_new = kit_world_new,
-    .add_body = kit_add_body,
-    .add_revolute = kit_add_revolute,
-    .add_prismatic = kit_add_prismatic,
-    .close_loop = kit_close_loop,
-    .add_drive = kit_add_drive,
-    .add_contact = kit_add_contact,
-    .add_clearance = kit_add_clearance,
-    .step = kit_step,
-    .body_state = kit_body_state,
-    .world_free = kit_world_free,
-    .applied_force = 1,
-    .model_text = kit_model_text,
-    .reactions = kit_reactions,
-    .body_accel = kit_body_accel,
-    .explicit_law = 1,
-    .apply_wrench = kit_apply_wrench,
-};
+/* the members the binding and its native one share */
+#define MK_BINDING                                                                               \
+  .engine = "mujoco", .world_new = kit_world_new, .add_body = kit_add_body,                      \
+  .add_revolute = kit_add_revolute, .add_prismatic = kit_add_prismatic,                          \
+  .close_loop = kit_close_loop, .add_drive = kit_add_drive, .step = kit_step,                    \
+  .body_state = kit_body_state, .world_free = kit_world_free, .applied_force = 1,                \
+  .model_text = kit_model_text, .reactions = kit_reactions, .body_accel = kit_body_accel,        \
+  .explicit_law = 1, .apply_wrench = kit_apply_wrench
+
+const fb_kit_binding fb_mujoco_kit = {MK_BINDING, .add_contact = kit_add_contact,
+                                      .add_clearance = kit_add_clearance};
+
+/* MuJoCo's native contact (mujoco-clearance-native; mujoco_kit_native.c):
+ * the kit hands every step's effective mass, MuJoCo reports the force */
+const fb_kit_binding fb_mujoco_kit_native = {
+    MK_BINDING, .add_contact = mk_native_add_contact, .add_clearance = mk_native_add_clearance,
+    .contact_force = mk_native_contact_force, .contact_force_vec = mk_native_contact_force_vec,
+    .contact_always = 1};

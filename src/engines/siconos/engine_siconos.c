@@ -139,4 +139,5 @@ const fb_engine fb_engine_siconos = {
     .cost_per_sample = siconos_cost_per_sample,
     .bench = &siconos_bench,
     .kit = &fb_siconos_kit,
+    .kit_native = &fb_siconos_kit, /* its clearance is its own relation (kit.h add_clearance) */
 };

@@ -900,6 +900,7 @@ const fb_kit_binding fb_siconos_kit = {
     NULL /* collide: no collider of its own */,
     NULL /* collided */,
     NULL /* penetration: the exact one */,
+    0 /* contact_always: no add_contact */,
 };
 
 } // extern "C"

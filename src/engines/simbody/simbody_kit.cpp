@@ -687,4 +687,5 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     NULL, /* collide: no collider of its own */
     NULL, /* collided */
     NULL, /* penetration: the exact one */
+    0,    /* contact_always: the law's contact in contact only */
 };

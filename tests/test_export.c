@@ -491,9 +491,9 @@ static void test_quick_return_export_holds(void **state) {
   planar_export_holds("../tests/cases/quick_return.ini", "quick_return", 2);
 }
 
-/* the clearance joint is not in an MJCF (MuJoCo's planar clearance models
- * apply the law through the passive-force hook): without --ideal the
- * export is refused naming the flag; SDF of a planar case is refused
+/* the clearance joint is not in a planar case's MJCF (its law comes from
+ * the ideal mechanism's reactions, which a run computes): without --ideal
+ * the export is refused naming the flag; SDF of a planar case is refused
  * naming the format and the case type */
 static void test_sixbar_refusals(void **state) {
   (void)state;

@@ -26,9 +26,10 @@ fb_status fb_export_planar_mjcf(char *buf, size_t size, const fb_case *c, int id
                                 fb_diag *diag) {
   if (!ideal && c->clearance.mask)
     return fb_diag_set(diag, FB_ERR_ARG, "the MJCF export of a planar case ([linkage] type = "
-                       "planar) writes its ideal mechanism only: MuJoCo's clearance models of a "
-                       "planar case apply the law through the passive-force hook, which no MJCF "
-                       "holds; give --ideal, or run the clearance models by fourbar run");
+                       "planar) writes its ideal mechanism only: a clearance joint's law comes "
+                       "from the ideal mechanism's largest reaction there, which a run computes "
+                       "and the export does not; give --ideal, or run the clearance models by "
+                       "fourbar run (mujoco-clearance-native: MuJoCo's own bore)");
   char loaded[2 * FB_PLANAR_NAME_SIZE];
   if (fb_planar_spec_loaded(&c->planar, loaded, sizeof loaded))
     return fb_diag_set(diag, FB_ERR_ARG, "%s: the MJCF export does not carry a case's springs "

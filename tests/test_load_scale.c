@@ -8,6 +8,7 @@
 
 #include "casefile.h"
 #include "fb_test.h"
+#include "fb_test_planar.h"
 #include "invdyn.h"
 #include "load_scale.h"
 
@@ -17,6 +18,17 @@
  * paper case; a table read one sample off measured 2.7e-2, so 1e-3 fails
  * it */
 #define TAU_REL_TOL 1e-3
+/* the planar core's table of a description against the closed form's
+ * reactions: the same inverse dynamics (tests/test_planar_invdyn.c: 1.2e-15),
+ * measured 3.7e-14 of the load; the core's position followed over 7200
+ * angles adds its Newton tolerance */
+#define PLANAR_LOAD_REL_TOL 1e-10
+/* the assembly's drive angle is the table's angle0, entry k at angle0 +
+ * 2 pi k / n: the planar table read as if entry 0 were at crank angle 0,
+ * 1 rad off, measured tau 61 times off and the load 23 times: an offset
+ * forgotten fails */
+#define PLANAR_ASSEMBLY_RAD 1.0
+
 /* without gravity every reaction is an inertial force, omega2^2 times a
  * function of the crank angle, so omega2 tau is independent of omega2:
  * rounding only */
@@ -143,6 +155,57 @@ static void test_crank_at_rest(void **state) {
   fb_load_scale_free(&ls);
 }
 
+/* the table of the paper's four-bar as a planar description assembled at
+ * 1 rad, both senses of rotation: each entry's tau against the closed
+ * form's finite difference at the entry's crank angle (the table's own
+ * angle0 + 2 pi k / n) and its load against the closed form's reaction
+ * there; a joint outside the mask has no table; an undriven description is
+ * refused */
+static void test_planar_table_matches_closed_form(void **state) {
+  (void)state;
+  fb_case c = paper;
+  c.crank_angle0 = PLANAR_ASSEMBLY_RAD;
+  fb_test_planar t = fb_test_planar_paper(&c, &c.nominal);
+  for (int sgn = -1; sgn <= 1; sgn += 2) {
+    const double w = sgn * 2.0 * M_PI * 1000.0 / 60.0;
+    fb_load_scale ls;
+    fb_diag d;
+    if (fb_load_scale_build_planar(&ls, t.m, c.gravity, w, 0x6u, 0.0, &d) != FB_OK)
+      fail_msg("%s", d.msg);
+    assert_rel(ls.angle0, PLANAR_ASSEMBLY_RAD, 1e-15);
+    double worst_tau = 0.0, worst_load = 0.0;
+    for (int k = 0; k < ls.n; k += 37) {
+      const double th = ls.angle0 + 2.0 * M_PI * k / ls.n;
+      for (int j = 1; j <= 2; j++) {
+        double tau, force;
+        fb_load_scale_at(&ls, j, th + 0.25 * 2.0 * M_PI / ls.n, &tau, &force);
+        worst_tau = fmax(worst_tau, fabs(tau / tau_oracle(&c, j, th, w) - 1.0));
+        fb_reactions r;
+        assert_int_equal(fb_invdyn_solve(&r, &c.nominal, c.branch, c.link, c.gravity, th, w, 0),
+                         FB_OK);
+        worst_load = fmax(worst_load, fabs(force / hypot(r.force[j][0], r.force[j][1]) - 1.0));
+      }
+    }
+    report_residual("planar table's tau against the closed form's", worst_tau, TAU_REL_TOL);
+    report_residual("planar table's load against the closed form's", worst_load,
+                    PLANAR_LOAD_REL_TOL);
+    assert_true(worst_tau < TAU_REL_TOL);
+    assert_true(worst_load < PLANAR_LOAD_REL_TOL);
+    assert_null(ls.ahead[0]);
+    assert_null(ls.ahead[3]);
+    fb_load_scale_free(&ls);
+  }
+  /* a torque drive has no constant speed to schedule by */
+  fb_load_scale ls;
+  fb_diag d;
+  const int drive = t.m->drive;
+  t.m->drive = -1;
+  assert_int_equal(fb_load_scale_build_planar(&ls, t.m, c.gravity, 1.0, 0x2u, 0.0, &d), FB_ERR_ARG);
+  t.m->drive = drive;
+  assert_int_equal(fb_load_scale_build_planar(&ls, t.m, c.gravity, 1.0, 0x20u, 0.0, &d), FB_ERR_ARG);
+  fb_test_planar_free(&t);
+}
+
 int main(void) {
   fb_test_paper_case(&paper, NULL, 0);
   const struct CMUnitTest tests[] = {
@@ -150,6 +213,7 @@ int main(void) {
       cmocka_unit_test(test_tau_scales_with_speed),
       cmocka_unit_test(test_lookahead_follows_the_crank),
       cmocka_unit_test(test_crank_at_rest),
+      cmocka_unit_test(test_planar_table_matches_closed_form),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -17,26 +17,33 @@
  * The adaptive step (step_control.h) uses it to shorten the step in
  * continuous contact ahead of such an event, from the crank angle alone:
  * an exogenous schedule that does not follow the contact's own ringing.
- * Pure tables over one crank revolution; SI units. */
+ * Pure tables over one revolution of the drive; SI units. */
 #ifndef FB_LOAD_SCALE_H
 #define FB_LOAD_SCALE_H
 
 #include "case.h"
 #include "linkage.h"
+#include "planar.h"
 
 /* Crank angles per revolution of the table: 7200 (0.05 degree; 8.3 us
  * apart at the paper's 1000 rpm, against the 160 us of its shortest
  * tau). */
 #define FB_LOAD_SCALE_SAMPLES 7200
 
-/* tau ahead of each crank angle for each joint of a mask. */
+/* Joints a table can hold: a planar description's (planar_spec.h). */
+#define FB_LOAD_SCALE_JOINTS FB_PLANAR_SPEC_MAX_JOINTS
+
+/* tau ahead of each drive angle for each joint of a mask. */
 typedef struct {
-  int n;               /* crank angles in the table [-] (FB_LOAD_SCALE_SAMPLES) */
-  double *ahead[4];    /* per joint: the smallest tau [s] over the crank angles the crank
-                          sweeps in the next lookahead seconds, at crank angle 2 pi k / n
+  int n;               /* drive angles in the table [-] (FB_LOAD_SCALE_SAMPLES) */
+  double angle0;       /* the drive angle of entry 0 [rad]: entry k is at angle0 + 2 pi k / n
+                          (0 for the closed forms' crank angle; a description's drive angle
+                          at its assembly for fb_load_scale_build_planar) */
+  double *ahead[FB_LOAD_SCALE_JOINTS]; /* per joint: the smallest tau [s] over the drive
+                          angles the drive sweeps in the next lookahead seconds, at entry k
                           (n); NULL for joints outside the mask */
-  double *force[4];    /* per joint: the largest |F| [N] over the same angles (n); NULL
-                          for joints outside the mask */
+  double *force[FB_LOAD_SCALE_JOINTS]; /* per joint: the largest |F| [N] over the same
+                          angles (n); NULL for joints outside the mask */
 } fb_load_scale;
 
 /* Builds the table for the joints in joint_mask (bit j: joint j, fb_joint)
@@ -62,9 +69,26 @@ fb_status fb_load_scale_build_mech(fb_load_scale *out, fb_mech_type t, const fb_
                                    double omega2, int joint_mask, double lookahead_s,
                                    fb_diag *diag);
 
-/* The table's tau ahead [s] and largest load ahead [N] of joint j at crank
- * angle theta [rad] (any value; taken modulo 2 pi); INFINITY and 0 for a
- * joint outside the mask. Either pointer may be NULL. */
+/* The same for any planar description m with a speed drive, from the
+ * planar core: its joints' reactions (planar_invdyn.h, gravity [m/s^2]
+ * along -y, springs and loads included) at FB_LOAD_SCALE_SAMPLES drive
+ * angles over a revolution followed from the assembly (planar_path.h),
+ * the drive at constant signed speed omega2 [rad/s]; the joints of mask
+ * (bit j: m's joint j, below FB_LOAD_SCALE_JOINTS); entry 0 at the
+ * assembly (angle0 the drive's angle there, theta_to0 - theta_from0,
+ * planar_constraints.h). For the four-bar's and slider-crank's
+ * descriptions the same table as fb_load_scale_build_mech's to the
+ * finite differences' truncation (tests/test_load_scale.c). Errors:
+ * FB_ERR_ARG (no speed drive, a joint of mask out of range), those of
+ * planar_path.h and fb_planar_invdyn (a drive that cannot turn a whole
+ * revolution); FB_ERR_NOMEM. */
+fb_status fb_load_scale_build_planar(fb_load_scale *out, const fb_planar *m, double gravity,
+                                     double omega2, unsigned mask, double lookahead_s,
+                                     fb_diag *diag);
+
+/* The table's tau ahead [s] and largest load ahead [N] of joint j at drive
+ * angle theta [rad] (any value: theta - angle0 taken modulo 2 pi); INFINITY
+ * and 0 for a joint outside the mask. Either pointer may be NULL. */
 void fb_load_scale_at(const fb_load_scale *ls, int j, double theta, double *tau, double *force);
 
 void fb_load_scale_free(fb_load_scale *ls);

@@ -96,32 +96,40 @@ fb_status fb_planar_invdyn_kin(fb_planar_reaction *out, double *drive_torque, fb
   return FB_OK;
 }
 
-fb_status fb_planar_reaction_max(double *most, const fb_planar *m, double omega, double gravity,
-                                 fb_diag *diag) {
+fb_status fb_planar_reactions_over(fb_planar_reaction *out, int n, const fb_planar *m,
+                                   double omega, double gravity, fb_diag *diag) {
   const int nq = fb_planar_nq(m), nj = m->njoints;
   double *q = malloc((3 * (size_t)nq) * sizeof *q);
-  fb_planar_reaction *r = malloc((size_t)nj * sizeof *r);
   fb_planar_kin *k = NULL;
-  fb_status st = q && r ? fb_planar_kin_new(&k, m, diag)
-                        : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  fb_status st = q ? fb_planar_kin_new(&k, m, diag) : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   double *qd = q + nq, *qdd = qd + nq;
   if (st == FB_OK) {
     fb_planar_assembly(m, q);
     st = fb_planar_position(k, q, 0.0, NULL, diag);
   }
-  for (int j = 0; j < nj; j++) most[j] = 0.0;
-  const double da = 2.0 * M_PI / FB_PLANAR_PEAK_SAMPLES;
-  for (int i = 0; i < FB_PLANAR_PEAK_SAMPLES && st == FB_OK; i++) {
+  const double da = 2.0 * M_PI / n;
+  for (int i = 0; i < n && st == FB_OK; i++) {
     fb_path_end end;
     if (i > 0) st = fb_planar_follow(k, q, (i - 1) * da, i * da, NULL, &end, diag);
     const fb_planar_drive d = {i * da, omega, 0.0};
     if (st == FB_OK) st = fb_planar_motion(k, qd, qdd, q, &d, NULL, diag);
-    if (st == FB_OK) st = fb_planar_invdyn_kin(r, NULL, k, q, qd, qdd, gravity, diag);
-    for (int j = 0; j < nj && st == FB_OK; j++)
-      most[j] = fmax(most[j], hypot(r[j].force[0], r[j].force[1]));
+    if (st == FB_OK)
+      st = fb_planar_invdyn_kin(out + (size_t)i * nj, NULL, k, q, qd, qdd, gravity, diag);
   }
   fb_planar_kin_free(k);
   free(q);
+  return st;
+}
+
+fb_status fb_planar_reaction_max(double *most, const fb_planar *m, double omega, double gravity,
+                                 fb_diag *diag) {
+  const int nj = m->njoints, n = FB_PLANAR_PEAK_SAMPLES;
+  fb_planar_reaction *r = malloc((size_t)n * (size_t)nj * sizeof *r);
+  fb_status st = r ? fb_planar_reactions_over(r, n, m, omega, gravity, diag)
+                   : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int j = 0; j < nj; j++) most[j] = 0.0;
+  for (size_t i = 0; i < (size_t)n * (size_t)nj && st == FB_OK; i++)
+    most[i % (size_t)nj] = fmax(most[i % (size_t)nj], hypot(r[i].force[0], r[i].force[1]));
   free(r);
   return st;
 }

@@ -49,6 +49,15 @@ fb_status fb_planar_invdyn_kin(fb_planar_reaction *out, double *drive_torque, fb
                                const double *q, const double *qd, const double *qdd,
                                double gravity, fb_diag *diag);
 
+/* Every joint's reaction over a revolution of the drive at constant signed
+ * speed omega [rad/s] from the assembly configuration (gravity [m/s^2]
+ * along -y): out (n x njoints) row i the reactions at drive angle
+ * 2 pi i / n, the positions followed from one angle to the next
+ * (planar_path.h). Errors: those of planar_path.h and fb_planar_invdyn;
+ * FB_ERR_NOMEM. */
+fb_status fb_planar_reactions_over(fb_planar_reaction *out, int n, const fb_planar *m,
+                                   double omega, double gravity, fb_diag *diag);
+
 /* Every joint's largest reaction magnitude |force| over a revolution of
  * the drive at constant signed speed omega [rad/s] from the assembly
  * configuration (FB_PLANAR_PEAK_SAMPLES drive angles followed by

@@ -22,7 +22,10 @@
  * builds them (kit.h's collide: ODE's), with the scene's rings, or the
  * engine's native contact through its native binding (engine.h
  * kit_native: MuJoCo's own constraint solver on the clearance, Siconos's
- * relation); a fixed or automatic step (not [solver] h_s = adaptive). Its start is the model's
+ * relation); a fixed or automatic step, or [solver] h_s = adaptive where
+ * the binding takes a step of any size (kit.h step_by; its schedule in
+ * persistent contact the mechanism's closed-form loads, load_scale.h;
+ * step_stats the kit's steps). Its start is the model's
  * (start.h: [run] start and pin_start, an ensemble member's moved pin),
  * handed to the kit as the description's coordinates. Its joint reactions
  * and drive torque are the binding's where it reports them (the load
@@ -41,6 +44,7 @@
 #include "kit.h"
 #include "planar_case.h"
 #include "planar_constraints.h"
+#include "step_control.h"
 
 typedef struct {
   const fb_model_scene *sm;
@@ -60,6 +64,8 @@ typedef struct {
   fb_stop stop;        /* why the kit stopped early (kind FB_STOP_NONE: it did not) */
   fb_kit_clearance cl; /* the clearance joints' laws, columns and counts (mask 0: none) */
   fb_kit_runner *kit;  /* the kit's run while it has samples to fill, else NULL */
+  fb_load_scale load;  /* [solver] h_s = adaptive: the clearance joints' ideal load time scale
+                          (load_scale.h, the mechanism's closed form), else empty */
   const char *engine;  /* the binding's engine */
   int out[FB_MECH_MAX_OUTPUTS], nout; /* the output bodies (fb_mech_outputs), once */
   int translates[FB_MECH_MAX_OUTPUTS]; /* 1: output k's motion is its centre's x */
@@ -75,10 +81,6 @@ static const fb_kit_binding *binding_of(const fb_model_scene *sm) {
 /* what the kit cannot build of model sm, as an error naming the key */
 static fb_status refuse(const fb_model_scene *sm, fb_diag *diag) {
   const char *name = sm->model->name;
-  if (sm->solver.h_mode == FB_STEP_ADAPTIVE)
-    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' through the engine kit: [solver] h_s = "
-                       "adaptive is the hand-built ODE world's; give a fixed step or auto, or "
-                       "[solver] builder = hand", name);
   if (!sm->clearance_mask) return FB_OK;
   /* the engine's native contact is its native binding's (engine.h
    * kit_native: MuJoCo's own constraint solver, Siconos's relation); a
@@ -163,6 +165,7 @@ static fb_status start_coordinates(double *q, double *qd, const fb_planar *m,
 static void kit_run_free(kit_run *r) {
   if (!r) return;
   fb_kit_close(r->kit);
+  fb_load_scale_free(&r->load);
   fb_planar_free(r->m);
   free(r->s.t);
   free(r->cols);
@@ -295,6 +298,14 @@ static fb_status adapter_create(void **self, const fb_model_scene *sm, fb_diag *
                                             sm->bore_ovality, sm->ccd_split, sm->pin_length}};
     for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
       if (loose(r, j)) r->cl.joint[j] = joint_record(r, j);
+    /* the adaptive step's schedule in persistent contact (step_control.h):
+     * the mechanism's closed-form loads, as the crank's angle indexes them */
+    if (sm->solver.h_mode == FB_STEP_ADAPTIVE && b->persistent_rule == FB_PERSIST_LOAD_SCHEDULE) {
+      st = fb_load_scale_build_mech(&r->load, sm->def->source.mechanism, &sm->lengths,
+                                    sm->branch, sm->link, sm->gravity, sm->omega2,
+                                    (int)r->mask, FB_STEP_LOAD_LOOKAHEAD * sm->solver.h_max, diag);
+      r->cl.load = &r->load;
+    }
   }
   fb_start_state start;
   if (st == FB_OK) st = fb_model_scene_start(&start, sm, diag);
@@ -442,6 +453,11 @@ static void adapter_reactions(const void *self, double force[4][2], double *driv
   *drive_torque = r->s.torque[r->i];
 }
 
+/* the engine steps the kit took (an adaptive run's sizes) */
+static void adapter_step_stats(const void *self, fb_step_stats *out) {
+  *out = ((const kit_run *)self)->s.stats;
+}
+
 /* the steps replayed (a model the harness stopped: those before its stop) */
 static size_t adapter_steps(const void *self) { return ((const kit_run *)self)->i; }
 
@@ -452,7 +468,8 @@ static void adapter_destroy(void *self) { kit_run_free(self); }
   .name = "kit", .guarded = 1, .step_values_lag = 0, .refine_peaks = 1, .create = adapter_create, \
   .step = adapter_step, .stopped = adapter_stopped, .sample = adapter_sample,                     \
   .contact = adapter_contact, .provenance = adapter_provenance, .drift = adapter_drift,           \
-  .steps = adapter_steps, .destroy = adapter_destroy, .refine = adapter_refine
+  .steps = adapter_steps, .destroy = adapter_destroy, .refine = adapter_refine,             \
+  .step_stats = adapter_step_stats
 
 const fb_engine fb_engine_kit_adapter = {KIT_ADAPTER_OPS};
 

@@ -51,6 +51,13 @@ fb_status fb_scene_set_start(fb_scene *def, double theta0, double omega2,
   return check_assembly(def, diag);
 }
 
+fb_mapping fb_case_contact_mapping(const fb_case *c) {
+  const fb_mapping m = (fb_mapping)c->clearance.mapping;
+  return c->solver.h_mode == FB_STEP_ADAPTIVE && m == FB_MAPPING_MATCHED
+             ? FB_MAPPING_MATCHED_STATIC
+             : m;
+}
+
 fb_status fb_scene_from_case(fb_scene *def, const fb_case *c, fb_diag *diag) {
   fb_scene_default(def);
   /* standards are applied by the case file; a "worst" stack-up becomes a
@@ -80,11 +87,7 @@ fb_status fb_scene_from_case(fb_scene *def, const fb_case *c, fb_diag *diag) {
   def->radial_clearance = r->radial_clearance;
   def->pin_radius = 0.5 * r->pin_diameter;
   def->pin_length = r->pin_length;
-  def->mapping = (fb_mapping)r->clearance.mapping;
-  /* the adaptive step's long steps in continuous contact need a row whose
-   * static stiffness does not depend on h: matched turns matched-static */
-  if (r->solver.h_mode == FB_STEP_ADAPTIVE && def->mapping == FB_MAPPING_MATCHED)
-    def->mapping = FB_MAPPING_MATCHED_STATIC;
+  def->mapping = fb_case_contact_mapping(r);
   def->friction = r->clearance.friction;
   def->penetration_limit = fb_case_penetration_limit(r);
   def->faceted_n = fb_case_faceted_n(r);

@@ -117,6 +117,12 @@ fb_status fb_model_scene_start(fb_start_state *out, const fb_model_scene *sm, fb
 /* Zeroes *def and sets the fields no case carries: impact_velocity_min. */
 void fb_scene_default(fb_scene *def);
 
+/* The ERP/CFM mapping case c's clearance contacts use ([clearance]
+ * mapping, contact.h): the adaptive step's long steps in continuous contact
+ * need a row whose static stiffness does not depend on h, so matched turns
+ * matched-static under [solver] h_s = adaptive. */
+fb_mapping fb_case_contact_mapping(const fb_case *c);
+
 /* Resolves case c once (see above) into *def. Laws are resolved only for
  * the laws the case's models use (a case of ideal models solves no inverse
  * dynamics). Errors: those of fb_case_check, fb_tol_resolve_worst and

@@ -7,7 +7,9 @@
 #include <string.h>
 
 #include "clock.h"
+#include "kit_adaptive.h"
 #include "kit_contact.h"
+#include "kit_record.h"
 #include "planar_constraints.h"
 #include "planar_kinematics.h"
 #include "planar_loads.h"
@@ -177,38 +179,62 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
   return b->add_drive(w, drive, rate, diag);
 }
 
-/* sample i of one coordinate's column q (position x, rate v): the step
- * from t_{i-1} gives its acceleration to that sample's configuration (the
- * forces the engine solved there): *a, the engine's own there (kit.h's
- * body_accel), or NULL: the step's difference; the last sample keeps the
- * one before */
-static void put(double *q, size_t n, size_t i, double x, double v, double h, const double *a) {
-  q[2 * n + i] = 0.0;
-  q[i] = x;
-  if (i > 0) q[2 * n + i - 1] = a ? *a : (v - q[n + i - 1]) / h;
-  if (i > 0 && i == n - 1) q[2 * n + i] = q[2 * n + i - 1];
-  q[n + i] = v;
+/* a step from sample i0 to sample i (i0 < i; i - i0 grid steps of the
+ * series' h, one but for an adaptive step), as the series records it: the
+ * step's length [s] and the share of it at sample u between them. An
+ * adaptive run's last step may end past the series' last sample, as it
+ * would go on (the samples inside it are written, not its end). */
+typedef struct {
+  size_t i0, i;
+  double h;
+} kit_span;
+
+static double share(const kit_span *sp, size_t u) {
+  return (double)(u - sp->i0) / (double)(sp->i - sp->i0);
 }
 
-/* sample i of every moving body: angle unwrapped from the last one's;
- * each body's pose and velocity also into state, rate (3 nb each; NULL:
- * not kept), the clearance pipeline's */
-static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int nb, size_t i,
-                   double *state, double *rate) {
-  const size_t n = s->n;
-  s->t[i] = (double)i * s->h;
-  const int own = i > 0 && b->body_accel; /* the engine's accelerations at sample i - 1 */
+/* sample sp->i of one coordinate's column q (position x, rate v) after
+ * the step sp: the step gives its acceleration to every sample from the
+ * one it started from, sp->i0, the configuration whose forces the engine
+ * solved: *a, the engine's own there (kit.h's body_accel), or NULL: the
+ * step's difference; the samples inside the step lie on the straight line
+ * between its ends; the last sample keeps the acceleration before it.
+ * Sample 0 (sp NULL) is the start, its acceleration set by its step. */
+static void put(double *q, size_t n, const kit_span *sp, double x, double v, const double *a) {
+  const size_t i = sp ? sp->i : 0;
+  if (i < n) q[2 * n + i] = 0.0, q[i] = x, q[n + i] = v;
+  if (!sp) return;
+  const size_t i0 = sp->i0;
+  const double acc = a ? *a : (v - q[n + i0]) / sp->h;
+  for (size_t u = i0; u < i && u < n; u++) q[2 * n + u] = acc;
+  for (size_t u = i0 + 1; u < i && u < n; u++) {
+    const double f = share(sp, u);
+    q[u] = q[i0] + f * (x - q[i0]);
+    q[n + u] = q[n + i0] + f * (v - q[n + i0]);
+  }
+  if (i == n - 1) q[2 * n + i] = q[2 * n + i - 1];
+}
+
+/* sample sp->i (sample 0: sp NULL) of every moving body and the samples
+ * inside its step: angle unwrapped from the step's start; each body's pose
+ * and velocity also into state, rate (3 nb each; NULL: not kept), the
+ * clearance pipeline's */
+static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int nb,
+                   const kit_span *sp, double *state, double *rate) {
+  const size_t n = s->n, i = sp ? sp->i : 0;
+  for (size_t u = sp ? sp->i0 + 1 : 0; u <= i && u < n; u++) s->t[u] = (double)u * s->h;
+  const int own = sp && b->body_accel; /* the engine's accelerations at the step's start */
   for (int k = 0; k < nb; k++) {
     double pos[3], vel[3], acc[3];
     b->body_state(w, k, pos, vel);
     if (own) b->body_accel(w, k, acc);
     if (state) memcpy(state + 3 * k, pos, sizeof pos), memcpy(rate + 3 * k, vel, sizeof vel);
     double *q = s->q + (size_t)k * 3 * n;
-    put(q, n, i, i == 0 ? pos[2] : q[i - 1] + remainder(pos[2] - q[i - 1], 2.0 * M_PI), vel[2],
-        s->h, own ? &acc[2] : NULL);
+    const double a = sp ? q[sp->i0] + remainder(pos[2] - q[sp->i0], 2.0 * M_PI) : pos[2];
+    put(q, n, sp, a, vel[2], own ? &acc[2] : NULL);
     if (!s->centre) continue;
-    put(s->centre + (size_t)k * 3 * n, n, i, pos[0], vel[0], s->h, own ? &acc[0] : NULL);
-    put(s->centre + (size_t)(nb + k) * 3 * n, n, i, pos[1], vel[1], s->h, own ? &acc[1] : NULL);
+    put(s->centre + (size_t)k * 3 * n, n, sp, pos[0], vel[0], own ? &acc[0] : NULL);
+    put(s->centre + (size_t)(nb + k) * 3 * n, n, sp, pos[1], vel[1], own ? &acc[1] : NULL);
   }
 }
 
@@ -221,7 +247,9 @@ struct fb_kit_runner {
   fb_kit_series *s;
   fb_kit_pipe p;         /* the clearance pipeline's state between steps */
   fb_kit_world o;        /* the caller's world settings, the walk's fields set (kit.h) */
-  size_t i;              /* samples filled */
+  fb_kit_adapt ad;       /* the adaptive step's state (ad.on 0: every step the series' h) */
+  int mc;                /* the coming step's grid steps */
+  size_t i;              /* samples filled; the coming step starts from sample i - 1 */
   fb_status st;          /* FB_OK, or what stopped the run (sticky) */
   double *lq;            /* (3 nq) a description with springs or loads: the state a step
                             starts from (q, q') and their generalised forces; NULL: none */
@@ -238,42 +266,54 @@ static void wrenches(fb_kit_runner *k) {
   for (int b = 0; b < nb; b++) k->b->apply_wrench(k->w, b, f + 3 * b);
 }
 
-/* clearance joint j's columns at sample i (kit.h, fb_kit_joint_record):
- * the step just taken gives its force, largest force and contact state to
- * the sample it started from, i - 1; the state read now its penetration
- * and eccentricity; the last sample keeps its step's force and state from
- * the one before */
-static void record(fb_kit_runner *k, int j, size_t i) {
+/* clearance joint j's columns at sample sp->i (kit.h,
+ * fb_kit_joint_record): the step sp gives its force, largest force and
+ * contact state to every sample from the one it started from; the state
+ * read now its penetration and eccentricity, those inside the step on the
+ * straight line from its start; the last sample keeps its step's force and
+ * state from the one before. Sample 0: sp NULL. */
+static void record(fb_kit_runner *k, int j, const kit_span *sp) {
   const fb_kit_binding *b = k->b;
-  const size_t n = k->s->n;
+  const size_t n = k->s->n, i = sp ? sp->i : 0;
   fb_kit_joint_record *r = &k->cl->joint[j];
-  if (i > 0) {
+  if (sp) {
     const double f = fb_kit_pipe_force(&k->p, b, k->w, k->m, j);
-    if (r->force) r->force[i - 1] = f;
-    if (r->force_max)
-      r->force_max[i - 1] = b->contact_force_max ? fmax(b->contact_force_max(k->w, j), f) : f;
-    if (r->state) /* the episode of the step from t_{i-1} */
-      r->state[i - 1] = f > 0.0 ? (double)fb_kit_pipe_state(&k->p, k->m, j) : FB_STATE_FREE;
+    const double fm = b->contact_force_max ? fmax(b->contact_force_max(k->w, j), f) : f;
+    /* the episode of the step from sp->i0 */
+    const double z = f > 0.0 ? (double)fb_kit_pipe_state(&k->p, k->m, j) : FB_STATE_FREE;
+    for (size_t u = sp->i0; u < i && u < n; u++) {
+      if (r->force) r->force[u] = f;
+      if (r->force_max) r->force_max[u] = fm;
+      if (r->state) r->state[u] = z;
+    }
   }
-  if (r->pen) r->pen[i] = k->p.pen[j];
-  if (r->ecc) r->ecc[i] = k->p.ecc[j][0], r->ecc[n + i] = k->p.ecc[j][1];
-  if (i + 1 < n) return;
+  if (r->pen && i < n) r->pen[i] = k->p.pen[j];
+  if (r->ecc && i < n) r->ecc[i] = k->p.ecc[j][0], r->ecc[n + i] = k->p.ecc[j][1];
+  for (size_t u = sp ? sp->i0 + 1 : i; u < i && u < n; u++) {
+    const double f = share(sp, u);
+    if (r->pen) r->pen[u] = r->pen[sp->i0] + f * (k->p.pen[j] - r->pen[sp->i0]);
+    for (int c = 0; r->ecc && c < 2; c++) {
+      double *e = r->ecc + (size_t)c * n;
+      e[u] = e[sp->i0] + f * (k->p.ecc[j][c] - e[sp->i0]);
+    }
+  }
+  if (i + 1 != n) return;
   if (r->force) r->force[i] = i > 0 ? r->force[i - 1] : 0.0;
   if (r->force_max) r->force_max[i] = r->force ? r->force[i] : 0.0;
   if (r->state) r->state[i] = i > 0 ? r->state[i - 1] : FB_STATE_FREE;
 }
 
-/* the joint reactions and the drive torque of the step just taken, at the
- * sample it started from (i - 1; the last sample keeps them): an ideal
+/* the joint reactions and the drive torque of step sp, at every sample
+ * from the one it started from (the last sample keeps them): an ideal
  * joint's from the binding (reactions, by its place among the joints
  * added), a clearance joint's from its contact at the state last read, the
  * step's start (fb_kit_pipe_reaction); the drive's torque on the driven
  * body, the driven joint's moment (kit.h's fb_kit_series) */
-static void loads(fb_kit_runner *k, size_t i) {
+static void loads(fb_kit_runner *k, const kit_span *sp) {
   const fb_kit_binding *b = k->b;
   const fb_planar *m = k->m;
   fb_kit_series *s = k->s;
-  const size_t n = s->n;
+  const size_t n = s->n, i = sp->i;
   const unsigned mask = k->cl ? k->cl->mask : 0u;
   double torque = 0.0;
   for (int j = 0, added = 0; j < m->njoints; j++) {
@@ -287,7 +327,7 @@ static void loads(fb_kit_runner *k, size_t i) {
     }
     for (int c = 0; c < 3; c++) {
       double *col = s->reaction + (size_t)(3 * j + c) * n;
-      col[i - 1] = r[c];
+      for (size_t u = sp->i0; u < i && u < n; u++) col[u] = r[c];
       if (i + 1 == n) col[i] = r[c];
     }
   }
@@ -295,35 +335,59 @@ static void loads(fb_kit_runner *k, size_t i) {
     const fb_planar_joint *jt = &m->joint[m->torque_joint];
     torque = jt->body[1] != FB_PLANAR_GROUND ? m->drive_torque : -m->drive_torque;
   }
-  s->torque[i - 1] = torque;
+  for (size_t u = sp->i0; u < i && u < n; u++) s->torque[u] = torque;
   if (i + 1 == n) s->torque[i] = torque;
 }
 
-/* sample i: the step to it (i > 0), its sample; before the next step the
- * clearance contacts, after it the step's contact force at the sample it
- * started from */
-static fb_status sample_step(fb_kit_runner *k, size_t i, fb_diag *diag) {
+/* after sample i (sp: the step to it; NULL for sample 0): the springs'
+ * and loads' forces, the clearance joints' columns, and before the next
+ * step its size (the adaptive step's) and the clearance contacts for it */
+static fb_status after_sample(fb_kit_runner *k, const kit_span *sp, fb_diag *diag) {
   const fb_kit_binding *b = k->b;
   const fb_planar *m = k->m;
   fb_kit_clearance *cl = k->cl;
   fb_kit_series *s = k->s;
-  void *w = k->w;
+  const size_t i = sp ? sp->i : 0;
+  if (k->lq && i + 1 < s->n) wrenches(k);
+  if (cl) {
+    fb_kit_pipe_read(&k->p, b, k->w, m, cl);
+    for (int j = 0; j < m->njoints; j++)
+      if (cl->mask & (1u << j)) record(k, j, sp);
+  }
+  if (i + 1 >= s->n) return FB_OK;
+  k->mc = 1;
   fb_status st = FB_OK;
-  if (i > 0) st = b->step(w, diag);
-  if (st != FB_OK) return st;
-  if (i > 0 && s->torque) loads(k, i); /* at the step's start: before the pipe reads anew */
-  sample(b, w, s, m->nbodies - 1, i, cl ? k->p.q : NULL, cl ? k->p.qd : NULL);
-  if (i == 0 && s->torque && s->n == 1) { /* no step: no loads */
+  if (k->ad.on && (st = fb_kit_adapt_multiple(&k->mc, &k->ad, &k->p, b, m, cl, diag)) != FB_OK)
+    return st;
+  if (cl) st = fb_kit_pipe_contacts(&k->p, b, k->w, m, cl, k->mc * s->h, diag);
+  return st;
+}
+
+/* sample 0, the start */
+static fb_status first_sample(fb_kit_runner *k, fb_diag *diag) {
+  const fb_planar *m = k->m;
+  fb_kit_series *s = k->s;
+  sample(k->b, k->w, s, m->nbodies - 1, NULL, k->cl ? k->p.q : NULL, k->cl ? k->p.qd : NULL);
+  if (s->torque && s->n == 1) { /* no step: no loads */
     s->torque[0] = 0.0;
     memset(s->reaction, 0, 3 * (size_t)m->njoints * sizeof *s->reaction);
   }
-  if (k->lq && i + 1 < s->n) wrenches(k);
-  if (!cl) return FB_OK;
-  fb_kit_pipe_read(&k->p, b, w, m, cl);
-  for (int j = 0; j < m->njoints; j++)
-    if (cl->mask & (1u << j)) record(k, j, i);
-  if (i + 1 < s->n) st = fb_kit_pipe_contacts(&k->p, b, w, m, cl, s->h, diag);
-  return st;
+  return after_sample(k, NULL, diag);
+}
+
+/* the coming step, from sample k->i - 1 over k->mc grid steps, and the
+ * samples it reaches: its end's and those inside it */
+static fb_status next_step(fb_kit_runner *k, fb_diag *diag) {
+  const fb_kit_binding *b = k->b;
+  fb_kit_series *s = k->s;
+  const kit_span sp = {k->i - 1, k->i - 1 + (size_t)k->mc, k->mc * s->h};
+  fb_status st = k->ad.on ? b->step_by(k->w, sp.h, diag) : b->step(k->w, diag);
+  if (st != FB_OK) return st;
+  fb_kit_stats_add(&s->stats, sp.h);
+  fb_kit_pipe_stepped(&k->p, b, k->w, sp.h);
+  if (s->torque) loads(k, &sp); /* at the step's start: before the pipe reads anew */
+  sample(b, k->w, s, k->m->nbodies - 1, &sp, k->cl ? k->p.q : NULL, k->cl ? k->p.qd : NULL);
+  return after_sample(k, &sp, diag);
 }
 
 fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_planar *m,
@@ -372,6 +436,7 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   free(q);
   const fb_kit_clearance none = {0};
   if (st == FB_OK) st = fb_kit_pipe_new(&k->p, b, m, cl ? cl : &none, diag);
+  if (st == FB_OK) st = fb_kit_adapt_open(&k->ad, &k->p, b, m, &k->o, cl, diag);
   const int held = fb_planar_has_loads(m) && !b->loads_from_state; /* apply_wrench's state */
   if (st == FB_OK && held && !(k->lq = malloc(3 * (size_t)nq * sizeof *k->lq)))
     st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -379,6 +444,7 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
     fb_kit_close(k);
     return st;
   }
+  s->stats = (fb_step_stats){0};
   s->setup_s = fb_clock_s() - t0;
   *out = k;
   return FB_OK;
@@ -388,9 +454,12 @@ fb_status fb_kit_advance(fb_kit_runner *k, size_t n, fb_diag *diag) {
   if (k->st != FB_OK)
     return fb_diag_set(diag, k->st, "the %s engine's kit run stopped at sample %zu", k->b->engine,
                        k->i);
-  for (; k->i < n && k->i < k->s->n; k->i++) {
-    fb_status st = sample_step(k, k->i, diag);
+  while (k->i < n && k->i < k->s->n) {
+    size_t to = k->i == 0 ? 1 : k->i + (size_t)k->mc;
+    if (to > k->s->n) to = k->s->n; /* an adaptive step past the last sample */
+    fb_status st = k->i == 0 ? first_sample(k, diag) : next_step(k, diag);
     if (st != FB_OK) return k->st = st;
+    k->i = to;
   }
   return FB_OK;
 }

@@ -57,6 +57,8 @@
 #include "case.h"
 #include "contact.h"
 #include "model_table.h"
+#include "engine.h"
+#include "load_scale.h"
 #include "planar.h"
 #include "planar_guide.h"
 #include "status.h"
@@ -176,6 +178,11 @@ typedef struct {
                           (effective_mass.h fb_effective_mass_along), for a binding's own
                           collider, whose contacts have normals of their own (collide)
                           [1/kg]; a corner's: 0 */
+  int mean_force;      /* 1: the adaptive step's rocking bound is on ([solver] rocking_h_omega
+                          > 0, step_control.h): row is the matched one throughout (persistence
+                          0) with the mean-force correction already in its depth
+                          (contact.h fb_contact_row_mean_force), which takes the place of the
+                          matched-static row's drift correction */
 } fb_kit_contact;
 
 /* What a run's pins are found in their holes on (fb_kit_clearance.collider):
@@ -273,6 +280,11 @@ typedef struct {
                                once a step */
   fb_kit_collider collider; /* what the pins' contacts are found on (0: the exact pin in its
                                hole) */
+  const fb_load_scale *load; /* optional: the ideal joint loads' time scale ahead, by the
+                               drive's angle theta_to - theta_from (load_scale.h), which the
+                               adaptive step follows in persistent contact with a binding whose
+                               persistent_rule is FB_PERSIST_LOAD_SCHEDULE; NULL: no schedule
+                               (that binding's adaptive step is refused) */
 } fb_kit_clearance;
 
 /* One clearance joint for an engine that builds it as its own relation
@@ -454,6 +466,20 @@ typedef struct fb_kit_binding {
                                 (its geometry, m_eff and law on it, onset 0; no episode, no
                                 contact step, no law's force noted); the force the kit reports
                                 is contact_force's, the engine's. 0: in contact only */
+  fb_status (*step_by)(void *w, double h, fb_diag *diag);
+                             /* optional: one step of h [s], a whole multiple of the world's
+                                o->h, the engine's own step at that size, for [solver] h_s =
+                                adaptive (the kit chooses each step's multiple, step_control.h,
+                                and samples inside it on the grid of o->h); NULL: the engine
+                                steps at o->h only, and the kit refuses an adaptive step naming
+                                the engine */
+  int persistent_rule;       /* with step_by: how the adaptive step is chosen in persistent
+                                contact (step_control.h fb_persistent_rule): from the ideal
+                                joint load ahead (FB_PERSIST_LOAD_SCHEDULE, an engine whose
+                                contact row's update depends on h: ODE's; needs
+                                fb_kit_clearance.load) or from the penetration's rate
+                                (FB_PERSIST_DEPTH_CHANGE, a law integrated explicitly:
+                                MuJoCo's) */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's
@@ -487,6 +513,9 @@ typedef struct {
   double setup_s; /* set by fb_kit_run: wall time of the set-up (the start's velocities, the
                      engine's world and the walk that builds it) [s]; the rest of the run is
                      the stepping and sampling (fourbar bench's cost splits there) */
+  fb_step_stats stats; /* set by the run: the engine's steps so far (engine.h: count,
+                     shortest and longest h and how many of each; every step h at a fixed
+                     step) */
 } fb_kit_series;
 
 /* Builds description m driven at omega [rad/s] in the engine of binding b

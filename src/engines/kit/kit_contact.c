@@ -140,6 +140,7 @@ static void corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], fb_kit_pi
 
 void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m,
                       const fb_kit_clearance *cl) {
+  p->factored = p->closed = 0; /* the state is read anew */
   fb_kit_contact c;
   fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
   for (int j = 0; j < m->njoints; j++) {
@@ -266,7 +267,7 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
                       fb_kit_clearance *cl, int j, int k, fb_kit_contact *c, int in, double me,
                       double h, int own, fb_diag *diag) {
   fb_kit_joint_record *r = &cl->joint[j];
-  p->force[k] = 0.0;
+  p->force[k] = p->omega_c[k] = 0.0;
   const int onset = in && !p->ep[k].in_contact, before = p->ep[k].impacts;
   fb_episode_update(&p->ep[k], in, in ? c->rate : 0.0, cl->impact_velocity_min);
   cl->impacts += p->ep[k].impacts - before;
@@ -281,8 +282,10 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
   }
   on_mass(p, cl, j, k, c, me, h);
   c->onset = onset;
-  c->persistence =
-      c->mapping == FB_MAPPING_MATCHED_STATIC ? fb_contact_persistence(p->phase[k]) : 0.0;
+  c->persistence = c->mapping == FB_MAPPING_MATCHED_STATIC && !p->rocking
+                       ? fb_contact_persistence(p->phase[k])
+                       : 0.0;
+  c->mean_force = p->rocking;
   p->force[k] = fb_contact_force(&c->law, c->depth, c->rate, c->v0);
   fb_status st = FB_OK;
   if (own) { /* the rows are the collider's: noted from what it made */
@@ -291,6 +294,10 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
   }
   if (!b->applied_force && (st = note_row(c, m->joint[j].name, cl, j, &p->phase[k], diag)) != FB_OK)
     return st;
+  if (p->rocking && c->has_row) { /* the matched row about the contact's mean force */
+    p->omega_c[k] = sqrt(c->row.kp / c->m_eff);
+    fb_contact_row_mean_force(&c->row, h, p->f_mean[k]);
+  }
   if (b->applied_force && b->explicit_law) note_secant(c, cl, j);
   if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
   note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, c->m_eff, c->m_eff);
@@ -360,7 +367,6 @@ static fb_status guide_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w
 fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
                                const fb_planar *m, fb_kit_clearance *cl, double h,
                                fb_diag *diag) {
-  p->factored = p->closed = 0; /* the state was read anew */
   for (int j = 0; j < m->njoints; j++) {
     if (!p->off[j]) continue;
     if (b->add_clearance && !b->add_contact) { /* the engine's own relation */
@@ -386,6 +392,47 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     const int own = own_collider(b, m, cl, j);
     if (in && own) in = b->collide(w, j, &c.rate) > 0;
     if ((st = hand(p, b, w, m, cl, j, j, &c, in, me, h, own, diag)) != FB_OK) return st;
+  }
+  return FB_OK;
+}
+
+void fb_kit_pipe_stepped(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, double h) {
+  if (!p->rocking) return;
+  for (int k = 0; k < FB_KIT_SLOTS; k++) {
+    const double f = b->contact_force ? b->contact_force(w, k) : p->force[k];
+    p->f_mean[k] = p->omega_c[k] > 0.0 ? fb_contact_mean_force_step(p->f_mean[k], f, h,
+                                                                     p->omega_c[k])
+                                       : 0.0;
+  }
+}
+
+fb_status fb_kit_pipe_step_joint(fb_step_joint *sj, int *impulsive, fb_kit_pipe *p,
+                                 const fb_kit_binding *b, const fb_planar *m,
+                                 const fb_kit_clearance *cl, int j, fb_diag *diag) {
+  const double *e = p->ecc[j], ecc = hypot(e[0], e[1]);
+  const double n[2] = {ecc > 0.0 ? e[0] / ecc : 1.0, ecc > 0.0 ? e[1] / ecc : 0.0};
+  *sj = (fb_step_joint){.rule = (fb_persistent_rule)b->persistent_rule, .tau_load = INFINITY,
+                        .delta = ecc - cl->radial_clearance, .ddot = ecc > 0.0 ? p->rate[j] : 0.0};
+  double w[2][2];
+  fb_status st = tensor(w, p, m, cl, j, diag);
+  if (st != FB_OK) return st;
+  const double me = fb_effective_mass_along(w, n);
+  sj->m_eff = isfinite(me) && me > 0.0 ? me : cl->joint[j].law.mass;
+  if (sj->delta > 0.0) {
+    sj->persistence = fb_contact_persistence(p->phase[j]);
+    if (b->contact_rows && cl->mapping == FB_MAPPING_MATCHED_STATIC && sj->persistence < 1.0)
+      *impulsive = 1;
+  }
+  if (p->rocking) { /* the rocking along the wall: the effective mass along the tangent */
+    const double t[2] = {-n[1], n[0]}, mt = fb_effective_mass_along(w, t);
+    sj->m_t = isfinite(mt) && mt > 0.0 ? mt : cl->joint[j].law.mass;
+    sj->ecc = ecc;
+  }
+  if (sj->rule == FB_PERSIST_LOAD_SCHEDULE && cl->load && m->drive >= 0) {
+    int from, to;
+    fb_planar_drive_bodies(m, &from, &to);
+    fb_load_scale_at(cl->load, j, fb_planar_angle(p->q, to) - fb_planar_angle(p->q, from),
+                     &sj->tau_load, &sj->load_force);
   }
   return FB_OK;
 }

@@ -10,6 +10,7 @@
 #include "kit.h"
 #include "planar_mass.h"
 #include "planar_spec.h"
+#include "step_control.h"
 
 /* What the pipeline keeps between steps. */
 typedef struct {
@@ -35,6 +36,13 @@ typedef struct {
   int closed;                                 /* 1: w4 holds the closed form at that state */
   double w4[4][2][2];                         /* the closed form's tensors at that state
                                                  (fb_kit_clearance.mass_tensors) [1/kg] */
+  int rocking;                                /* 1: the adaptive step's rocking bound is on:
+                                                 every row matched with the mean-force
+                                                 correction (fb_kit_contact.mean_force) */
+  double f_mean[FB_KIT_SLOTS];                /* rocking: each slot's mean force
+                                                 (contact.h fb_contact_mean_force_step) [N] */
+  double omega_c[FB_KIT_SLOTS];               /* rocking: the frequency of the slot's row this
+                                                 step, sqrt(kp / m_eff) (0: no row) [rad/s] */
 } fb_kit_pipe;
 
 /* Sets p up for m's clearance joints cl->mask in b's engine. Errors:
@@ -56,7 +64,8 @@ void fb_kit_pipe_free(fb_kit_pipe *p);
 void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m,
                       const fb_kit_clearance *cl);
 
-/* Every clearance joint's contact at the state last read, handed to b's
+/* Every clearance joint's contact at the state last read (the effective
+ * masses of the state fb_kit_pipe_read read last), handed to b's
  * add_contact for the coming step of h [s] (a binding with contact_always:
  * every revolute one off its hole's centre, in free flight too, with its
  * effective mass); counts contact steps and impact episodes into cl. A pin
@@ -74,6 +83,27 @@ void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, co
 fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
                                const fb_planar *m, fb_kit_clearance *cl, double h,
                                fb_diag *diag);
+
+/* After a step of h [s]: each slot's mean force under the rocking bound
+ * (p->rocking; contact.h fb_contact_mean_force_step from the force the
+ * binding reports, 0 for a slot without a row). */
+void fb_kit_pipe_stepped(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, double h);
+
+/* Revolute clearance joint j's contact state at the state last read, as
+ * the adaptive step takes it (step_control.h): penetration |e| - c (a gap
+ * below 0), its rate, the effective mass along e (along +x at e = 0),
+ * the persistence of its contact (contact.h, of its slot's phase; 0 out of
+ * contact), with p->rocking the effective mass along the wall and |e|;
+ * the rule b->persistent_rule and, for FB_PERSIST_LOAD_SCHEDULE, the
+ * load ahead from cl->load at the drive's angle theta_to - theta_from
+ * (load_scale.h). sj->dddot and sj->rocking_h_omega are left 0 for the
+ * caller. *impulsive is set to 1 (else left) when the joint penetrates
+ * with a matched-static row not yet persistent (a binding that takes
+ * rows: step_control.h fb_step_hold_in_impact). Errors: those of the
+ * effective mass (planar_mass.h). */
+fb_status fb_kit_pipe_step_joint(fb_step_joint *sj, int *impulsive, fb_kit_pipe *p,
+                                 const fb_kit_binding *b, const fb_planar *m,
+                                 const fb_kit_clearance *cl, int j, fb_diag *diag);
 
 /* The force of clearance joint j of m in the step just taken [N], over
  * its slots (a slider's four corners summed): the engine's

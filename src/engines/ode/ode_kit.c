@@ -37,6 +37,7 @@
 #include "ode_env.h"
 #include "ode_kit.h"
 #include "planar_spec.h"
+#include "step_control.h"
 
 /* what the binding keeps of an ideal joint for its reactions */
 typedef struct {
@@ -69,6 +70,7 @@ typedef struct {
   fb_stepper stepper;
   double fmax;     /* drive torque limit [N m] */
   size_t steps;
+  double t;        /* the time reached [s] */
   int broken;      /* an ODE error left the world mid-step */
   /* contacts by the kit's slot (kit.h: a pin's, or a slider's corner's):
    * this step's contact joint, its feedback, the share of its impulse that
@@ -86,6 +88,13 @@ typedef struct {
   int last[FB_KIT_SLOTS], nlast;
   ode_kit_gen *gen[FB_PLANAR_SPEC_MAX_JOINTS]; /* a pin's generic collider by its joint, NULL:
                                                   the exact pin in its hole */
+  /* the adaptive step with its rocking bound: the velocities carried
+   * across a change of step (carry) */
+  int rocking;     /* 1: [solver] h_s = adaptive with rocking_h_omega > 0 and clearance */
+  int driven;      /* the body the drive turns against the ground, -1: none */
+  double h_last;   /* the last step [s] (0 before the first) */
+  double (*v_start)[4]; /* (nbodies) each body's linear velocity (x, y, z) and angular rate
+                           about +z at the last step's start */
 } ode_kit;
 
 static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag) {
@@ -93,12 +102,15 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
   if (k) k->body = calloc((size_t)o->nbodies + 1, sizeof *k->body);
   if (k && k->body) k->joint = calloc((size_t)o->njoints + 1, sizeof *k->joint);
   if (k && k->joint) k->jk = calloc((size_t)o->njoints + 1, sizeof *k->jk);
-  if (!k || !k->body || !k->joint || !k->jk) {
-    if (k) free(k->body);
-    if (k) free(k->joint);
+  if (k && k->jk) k->v_start = calloc((size_t)o->nbodies + 1, sizeof *k->v_start);
+  if (!k || !k->body || !k->joint || !k->jk || !k->v_start) {
+    if (k) free(k->body), free(k->joint), free(k->jk);
     free(k);
     return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the ODE world");
   }
+  k->rocking = o->solver->h_mode == FB_STEP_ADAPTIVE && o->solver->rocking_h_omega > 0.0 &&
+               o->mask != 0u;
+  k->driven = -1;
   fb_ode_acquire();
   k->world = dWorldCreate();
   k->contacts = dJointGroupCreate(0);
@@ -180,6 +192,8 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
     return fb_diag_set(diag, FB_ERR_ARG, "the ODE kit drives a revolute joint only");
   dJointSetHingeParam(j, dParamVel, rate);
   dJointSetHingeParam(j, dParamFMax, k->fmax);
+  const ode_kit_joint *q = &k->jk[joint];
+  k->driven = q->b0 == FB_KIT_GROUND ? q->b1 : q->b1 == FB_KIT_GROUND ? q->b0 : -1;
   return FB_OK;
 }
 
@@ -318,7 +332,7 @@ static fb_status kit_add_contact(void *w, int j, const fb_kit_contact *c, fb_dia
   else if (!fb_ode_soft_contact(&ct, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth, c->rate,
                                 c->v0, c->onset, c->persistence, c->friction, &used))
     return FB_OK;
-  if (c->mapping == FB_MAPPING_MATCHED_STATIC && used.erp > 0.0 && !c->wall) {
+  if (c->mapping == FB_MAPPING_MATCHED_STATIC && used.erp > 0.0 && !c->wall && !c->mean_force) {
     /* the row's lambda = a d_n + b u: handing it d_n + drift / ERP makes its
      * b act on the penetration's true rate u + drift / h (contact.h) */
     double dp[2], dq[2];
@@ -405,25 +419,62 @@ static void kit_reactions(const void *w, int j, double out[3]) {
   out[2] = s * (t[2] + q->lever[0] * f[1] - q->lever[1] * f[0]);
 }
 
-static fb_status kit_step(void *w, fb_diag *diag) {
-  ode_kit *k = w;
+/* one step of h [s] */
+static fb_status step_of(ode_kit *k, double h, fb_diag *diag) {
   jmp_buf escape;
   if (setjmp(escape) != 0) {
     k->broken = 1;
     return fb_diag_set(diag, FB_ERR_NUMERIC, "ode-error: %s at t = %.6g s (step %zu)",
-                       fb_ode_last_error(), (double)k->steps * k->h, k->steps + 1);
+                       fb_ode_last_error(), k->t, k->steps + 1);
   }
   note_levers(k);
   fb_ode_escape = &escape;
-  const int ok = k->stepper == FB_STEPPER_WORLD ? dWorldStep(k->world, k->h)
-                                                : dWorldQuickStep(k->world, k->h);
+  const int ok = k->stepper == FB_STEPPER_WORLD ? dWorldStep(k->world, h)
+                                                : dWorldQuickStep(k->world, h);
   fb_ode_escape = NULL;
   contact_forces(k);
   if (!ok)
     return fb_diag_set(diag, FB_ERR_NOMEM, "ODE could not allocate memory for step %zu",
                        k->steps + 1);
   k->steps++;
+  k->t += h;
   return FB_OK;
+}
+
+static fb_status kit_step(void *w, fb_diag *diag) {
+  ode_kit *k = w;
+  return step_of(k, k->h, diag);
+}
+
+/* ODE's step moves positions as leapfrog does, its velocities acting as the
+ * half-step ones: v_{n+1} = v_n + h_n a_n. When the step changes from
+ * h_{n-1} to h_n, leapfrog's half-step velocity takes (h_{n-1} + h_n) / 2 of
+ * the acceleration, ODE's h_n: a first-order error at every change, which
+ * spoils the rocking's phase wherever the step follows the load
+ * (docs/step-size.md). Under the rocking bound, before a step of h that
+ * follows one of h_last, every body but the one the drive turns against
+ * the ground gets (h_last - h) / 2 times the last step's acceleration,
+ * (v now - v at its start) / h_last. */
+static void carry(ode_kit *k, double h) {
+  const double hl = k->h_last;
+  for (int b = 0; b < k->nbodies; b++) {
+    const dReal *v = dBodyGetLinearVel(k->body[b]), *om = dBodyGetAngularVel(k->body[b]);
+    double *s = k->v_start[b];
+    if (hl > 0.0 && fabs(h - hl) > 1e-9 * hl && b != k->driven) {
+      const double g = 0.5 * (hl - h) / hl;
+      dBodySetLinearVel(k->body[b], v[0] + g * (v[0] - s[0]), v[1] + g * (v[1] - s[1]), v[2]);
+      dBodySetAngularVel(k->body[b], om[0], om[1], om[2] + g * (om[2] - s[3]));
+    }
+    s[0] = v[0], s[1] = v[1], s[2] = v[2], s[3] = om[2];
+  }
+  k->h_last = h;
+}
+
+/* one step of h, a whole multiple of the world's (kit.h step_by) */
+static fb_status kit_step_by(void *w, double h, fb_diag *diag) {
+  ode_kit *k = w;
+  if (k->rocking) carry(k, h);
+  return step_of(k, h, diag);
 }
 
 static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
@@ -464,6 +515,7 @@ static void kit_world_free(void *w) {
   free(k->body);
   free(k->joint);
   free(k->jk);
+  free(k->v_start);
   free(k);
 }
 
@@ -489,4 +541,6 @@ const fb_kit_binding fb_ode_kit = {
     .collide = kit_collide,
     .collided = kit_collided,
     .penetration = kit_penetration,
+    .step_by = kit_step_by,
+    .persistent_rule = FB_PERSIST_LOAD_SCHEDULE,
 };

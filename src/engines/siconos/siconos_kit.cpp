@@ -901,6 +901,8 @@ const fb_kit_binding fb_siconos_kit = {
     NULL /* collided */,
     NULL /* penetration: the exact one */,
     0 /* contact_always: no add_contact */,
+    NULL /* step_by: Moreau-Jean at a fixed h */,
+    0 /* persistent_rule: no adaptive step */,
 };
 
 } // extern "C"

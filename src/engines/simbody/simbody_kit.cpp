@@ -688,4 +688,6 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     NULL, /* collided */
     NULL, /* penetration: the exact one */
     0,    /* contact_always: the law's contact in contact only */
+    NULL, /* step_by: its integrator controls its own steps inside each h */
+    0,    /* persistent_rule: no adaptive step */
 };

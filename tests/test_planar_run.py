@@ -238,15 +238,43 @@ check(rc == 2 and "[run] ensemble = 4" in se and not os.path.exists(os.path.join
       "an ensemble on a planar case is refused, nothing written (%d, %s)" % (rc, se.strip()))
 check("(given: [run] ensemble at --set #1 'run.ensemble=4')" in se,
       "the refusal says where the ensemble was given (%s)" % se.strip())
-# h_s = adaptive with an engine model is refused (the kit steps at a fixed h:
-# it ran at h_min_s, silently); the analytic model alone samples its grid
-rc, _, se = run("run", six, "--set", "solver.h_s=adaptive", "--set",
-                "run.models=analytic,ode-clearance-impact", "--out", os.path.join(tmp, "ad"))
-check(rc == 2 and "[solver] h_s = adaptive with [run] models ode-clearance-impact" in se and
-      "[solver] h_s at --set #1 'solver.h_s=adaptive'" in se and
-      not os.path.exists(os.path.join(tmp, "ad")),
-      "h_s = adaptive with an engine model of a planar case is refused, where it was given, "
-      "nothing written (%d, %s)" % (rc, se.strip()))
+# h_s = adaptive with an engine model whose binding steps at a fixed h is
+# refused (it would run at h_min_s, silently); so is one whose step in
+# persistent contact follows the loads of a drive at constant speed (ODE's)
+# on an undriven case; the analytic model alone samples its grid
+for models, extra, words in (("analytic,bullet-clearance-impact", (),
+                              "its engine's binding steps at a fixed h"),
+                             ("ode-clearance-impact", ("--set", "drive.joint=none", "--set",
+                                                       "run.duration_s=0.01"),
+                              "follows the ideal joint loads of a drive at constant speed")):
+    rc, _, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
+                    "solver.h_s=adaptive", "--set", "run.models=" + models, *extra,
+                    "--out", os.path.join(tmp, "ad"))
+    check(rc == 2 and "[solver] h_s = adaptive with [run] models " + models.split(",")[-1] in se
+          and words in se and "[solver] h_s at --set #1 'solver.h_s=adaptive'" in se and
+          not os.path.exists(os.path.join(tmp, "ad")),
+          "h_s = adaptive with %s is refused, where it was given, nothing written (%d, %s)"
+          % (models, rc, se.strip()))
+# ODE's clearance model follows it through the kit (kit.h step_by): its
+# steps from h_min_s to h_max_s in summary.json, the samples on h_min_s's
+# grid, the shortest steps through the impacts (the planar table of the
+# joint loads, load_scale.h, its schedule in persistent contact)
+rc, _, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
+                "solver.h_s=adaptive", "--set", "run.models=ode-clearance-impact", "--set",
+                "run.revolutions=2", "--no-figures", "--no-report",
+                "--out", os.path.join(tmp, "ad-ode"))
+check(rc == 0, "h_s = adaptive with ode-clearance-impact on a planar case runs (%d, %s)"
+      % (rc, se.strip()[-300:]))
+if rc == 0:
+    m = fb_script.models(os.path.join(tmp, "ad-ode"))["ode-clearance-impact"]
+    a = m.get("adaptive_steps") or {}
+    check(a.get("h_min_s") == m["h_s"] == 1e-6 and a.get("h_max_s") == 2e-5 and
+          a.get("h_min_count", 0) > 0 and 0 < a.get("steps_taken", 0) < m["steps"] / 2,
+          "its adaptive_steps: h_min_s on the grid (1e-6 s) at the impacts, up to h_max_s 2e-5 s, "
+          "fewer than half as many steps as samples (%s of %d)" % (a, m["steps"]))
+    t = fb_script.columns(os.path.join(tmp, "ad-ode", "ode-clearance-impact.csv"))["time_s"]
+    check(len(t) == m["steps"] and abs(t[-1] - (len(t) - 1) * 1e-6) < 1e-12,
+          "its samples every h_min_s (%d, last at %.9g s)" % (len(t), t[-1]))
 rc, _, se = run("run", six, "--set", "solver.h_s=adaptive", "--set", "run.models=analytic",
                 "--set", "run.revolutions=2", "--no-figures", "--no-report",
                 "--out", os.path.join(tmp, "ad-analytic"))

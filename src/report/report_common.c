@@ -43,6 +43,13 @@ json_t *fb_report_slider_peaks_json(const fb_body_peaks *p) {
   return o;
 }
 
+json_t *fb_report_adaptive_steps_json(const fb_step_stats *s) {
+  if (!s) return json_null();
+  return json_pack("{s:I,s:o,s:I,s:o,s:I}", "steps_taken", (json_int_t)s->steps, "h_min_s",
+                   num(s->h_min), "h_min_count", (json_int_t)s->n_h_min, "h_max_s",
+                   num(s->h_max), "h_max_count", (json_int_t)s->n_h_max);
+}
+
 /* prose: printf-formatted text wrapped at spaces to FB_TABLE_COLUMNS,
  * continuation lines indented by two spaces */
 void fb_report_say(FILE *f, const char *fmt, ...) {

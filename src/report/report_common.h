@@ -63,6 +63,13 @@ json_t *fb_report_bodies_json(const char *const *name, const fb_body_peaks *p, i
  * (new reference). */
 json_t *fb_report_slider_peaks_json(const fb_body_peaks *p);
 
+/* summary.json's models[].adaptive_steps: with [solver] h_s = adaptive,
+ * the engine's own steps (its "steps" counts the output grid's samples):
+ * {steps_taken, h_min_s, h_min_count, h_max_s, h_max_count} of *s
+ * (engine.h); null when s is NULL (a fixed step, or a model that does not
+ * step an engine). */
+json_t *fb_report_adaptive_steps_json(const fb_step_stats *s);
+
 /* Writes a JSON value to path atomically (indented, keys in insertion order).
  * Errors: FB_ERR_IO naming the file. */
 fb_status fb_report_write_json(const char *path, const json_t *j, fb_diag *diag);

@@ -292,7 +292,11 @@ static void bodies_text(FILE *f, const fb_planar *m) {
  * contact's rates and h times its rate */
 static void step_text(FILE *f, const fb_planar_run *r) {
   const double h = fb_planar_run_step(&r->c);
-  if (fb_planar_run_step_auto(&r->c) && r->nest && r->h_rechosen)
+  if (r->c.solver.h_mode == FB_STEP_ADAPTIVE)
+    fprintf(f, "step h = %.4g s: the output grid of [solver] h_s = adaptive (h_min_s); an "
+            "engine's model steps from h_min_s to h_max_s = %.4g s as its contacts ask "
+            "(summary.json models[].adaptive_steps)\n", h, r->c.solver.h_max);
+  else if (fb_planar_run_step_auto(&r->c) && r->nest && r->h_rechosen)
     fprintf(f, "step h = %.4g s: auto, rechosen %d time%s from the estimate's %.4g s (an engine's "
             "clearance model met h omega_c above %g)\n", h, r->h_rechosen,
             r->h_rechosen > 1 ? "s" : "", r->h_auto_estimate, FB_H_OMEGA_C_BOUND);
@@ -430,6 +434,9 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
       json_object_set_new(e, "contact_steps", json_integer((json_int_t)p->ref.steps));
       json_object_set_new(e, "contact", contact_json(r, p));
     }
+    if (p->engine)
+      json_object_set_new(e, "adaptive_steps",
+                          fb_report_adaptive_steps_json(p->has_step_stats ? &p->step_stats : NULL));
     if (p->engine && p->ref.failed) json_object_set_new(e, "stop", json_string(p->ref.stop));
     if (p->torque) json_object_set_new(e, "loads", loads_json(r, p));
     fb_report_planar_outputs_json(e, r, p);

@@ -213,16 +213,6 @@ static void verdict_json(json_t *o, const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "verdict_reason", json_string(why));
 }
 
-/* "adaptive_steps": with [solver] h_s = adaptive, the engine's own steps
- * ("steps" counts the output grid's samples); null otherwise */
-static json_t *adaptive_steps_json(const fb_model_run *run) {
-  if (!run->has_step_stats) return json_null();
-  return json_pack("{s:I,s:o,s:I,s:o,s:I}", "steps_taken", (json_int_t)run->step_stats.steps,
-                   "h_min_s", num(run->step_stats.h_min), "h_min_count",
-                   (json_int_t)run->step_stats.n_h_min, "h_max_s", num(run->step_stats.h_max),
-                   "h_max_count", (json_int_t)run->step_stats.n_h_max);
-}
-
 /* "peaks": the window's peaks and when they happened (null before the window) */
 static json_t *peaks_window_json(const fb_model_result *m, const fb_run *r, double t_end) {
   if (!m->has_peaks) return json_null();
@@ -460,7 +450,8 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   json_object_set_new(o, "verdict_test", fb_report_test_json(m));
   json_object_set_new(o, "h_s", num(run->h));
   json_object_set_new(o, "steps", json_integer((json_int_t)run->steps));
-  json_object_set_new(o, "adaptive_steps", adaptive_steps_json(run));
+  json_object_set_new(o, "adaptive_steps",
+                      fb_report_adaptive_steps_json(run->has_step_stats ? &run->step_stats : NULL));
   json_object_set_new(o, "lengths_m", lengths_json(r, &run->lengths));
   const char *name[FB_MECH_MAX_OUTPUTS];
   const int nb = output_names(r, name);

@@ -18,6 +18,7 @@
 #include "planar_start.h"
 #include "scene.h"
 #include "series.h"
+#include "step_control.h"
 
 /* the binding that builds model name on a planar case, else NULL with
  * *why (may be NULL) the reason, in words a refusal can quote */
@@ -153,7 +154,7 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   fb_scene sc;
   fb_scene_default(&sc);
   cl->mask = (unsigned)c->clearance.mask;
-  cl->mapping = (fb_mapping)c->clearance.mapping;
+  cl->mapping = fb_case_contact_mapping(c);
   cl->radial_clearance = c->radial_clearance;
   cl->pin_radius = 0.5 * c->pin_diameter;
   cl->impact_velocity_min = sc.impact_velocity_min;
@@ -222,6 +223,16 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   for (size_t i = 0; i < nq; i++) p->q[i] = NAN;
   fb_kit_clearance *run_cl = mt->joints == FB_JOINTS_CLEARANCE ? &cl : NULL;
   fb_status st = run_cl ? clearance(&cl, &guide, p, r, mt, diag) : FB_OK;
+  /* the adaptive step's schedule in persistent contact (step_control.h):
+   * the joints' ideal loads over a revolution of the drive */
+  fb_load_scale load = {0};
+  const int adaptive = r->c.solver.h_mode == FB_STEP_ADAPTIVE;
+  if (st == FB_OK && adaptive && run_cl && b->persistent_rule == FB_PERSIST_LOAD_SCHEDULE &&
+      r->m->drive >= 0 && r->m->torque_joint < 0) {
+    st = fb_load_scale_build_planar(&load, r->m, r->c.gravity, r->omega, cl.mask,
+                                    FB_STEP_LOAD_LOOKAHEAD * r->c.solver.h_max, diag);
+    cl.load = &load;
+  }
   /* a binding that sub-steps keeps its largest force of each step (the verdict's peaks) */
   if (st == FB_OK && p->force && b->contact_force_max &&
       !(cl.joint[p->ref.joint].force_max = p->force_max = calloc(p->n, sizeof *p->force_max)))
@@ -238,6 +249,9 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   for (size_t i = 0; s.centre && i < 6 * (size_t)(r->m->nbodies - 1) * p->n; i++)
     s.centre[i] = NAN;
   if (st == FB_OK) st = fb_kit_run(b, r->m, r->omega, &o, run_cl, &s, diag);
+  fb_load_scale_free(&load);
+  p->has_step_stats = adaptive;
+  p->step_stats = s.stats;
   if (s.centre && (st == FB_OK || st == FB_ERR_NUMERIC))
     fb_planar_model_outputs_from(p, r->m, s.centre);
   free(s.centre);

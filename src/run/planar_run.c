@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "clock.h"
+#include "kit.h"
 #include "model_table.h"
 #include "planar_case.h"
 #include "planar_invdyn.h"
@@ -16,6 +17,7 @@
 #include "resolution.h"
 #include "run.h"
 #include "series.h"
+#include "step_control.h"
 
 int fb_planar_run_takes(const char *name) {
   return strcmp(name, "analytic") == 0 || strcmp(name, "reference") == 0 ||
@@ -31,18 +33,36 @@ const char *fb_planar_run_refusal(const char *name) {
   return fb_planar_kit_refusal(name);
 }
 
+/* why engine model name of planar case c cannot follow [solver] h_s =
+ * adaptive through the engine kit (kit.h step_by, kit_adaptive.h), NULL
+ * when it can or is no engine model (the analytic model and the
+ * references sample the grid h_min_s sets) */
+static const char *adaptive_refusal(const fb_case *c, const char *name) {
+  const fb_kit_binding *b = fb_planar_kit_of(name);
+  if (!b) return NULL;
+  if (!b->step_by)
+    return "its engine's binding steps at a fixed h (it would run at h_min_s, silently)";
+  const fb_model *m = fb_model_find(name);
+  if (!m || m->joints != FB_JOINTS_CLEARANCE) return NULL;
+  for (int j = 0; j < c->planar.njoints; j++)
+    if ((c->clearance.mask & (1 << j)) && c->planar.joint[j].kind != FB_KIND_REVOLUTE)
+      return "the adaptive step follows a pin in its hole, and the case's clearance joint is a "
+             "slider in its guide";
+  if (b->persistent_rule == FB_PERSIST_LOAD_SCHEDULE && c->planar.undriven)
+    return "its engine's step in persistent contact follows the ideal joint loads of a drive at "
+           "constant speed, and the case has none";
+  return NULL;
+}
+
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < c->model_count; i++) {
     const char *name = c->models[i];
-    /* the kit steps at a fixed h: an engine model would run at the grid's
-     * h_min_s, silently (the analytic model and the references sample the
-     * grid, which h_min_s sets) */
-    if (c->solver.h_mode == FB_STEP_ADAPTIVE && fb_planar_kit_of(name))
-      return fb_diag_set(diag, FB_ERR_ARG, "[solver] h_s = adaptive with [run] models %s: a "
-                         "planar case's engine models step at a fixed h through the engine kit "
-                         "(it would run at h_min_s = %g s, silently); give [solver] h_s = auto "
-                         "(chosen from the case's clearance contacts) or a step in s", name,
-                         c->solver.h_min);
+    const char *adaptive = c->solver.h_mode == FB_STEP_ADAPTIVE ? adaptive_refusal(c, name)
+                                                                 : NULL;
+    if (adaptive)
+      return fb_diag_set(diag, FB_ERR_ARG, "[solver] h_s = adaptive with [run] models %s: %s; "
+                         "give [solver] h_s = auto (chosen from the case's clearance contacts) "
+                         "or a step in s", name, adaptive);
     if (c->planar.undriven && strcmp(name, "analytic") == 0) /* the kit's start is free */
       return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' follows a drive at constant "
                          "speed, and the case is %s; it runs: reference, "

@@ -60,6 +60,7 @@
 
 #include "case.h"
 #include "contact.h"
+#include "engine.h"
 #include "metrics.h"
 #include "planar.h"
 #include "planar_resolution.h"
@@ -136,6 +137,8 @@ typedef struct {
                               impulses; any other model) */
   double m_eff_min, m_eff_max; /* an engine's clearance model: its clearance joint's effective
                               mass range over its contact steps [kg]; NaN: none */
+  int has_step_stats;      /* 1: an engine's model under [solver] h_s = adaptive */
+  fb_step_stats step_stats; /* its engine steps (engine.h; the kit's fb_kit_series.stats) */
   double *force_max;       /* an engine's model whose binding sub-steps: its largest contact
                               force over the step from sample i [N] (n; kit.h's
                               fb_kit_joint_record.force_max), else NULL */

@@ -162,15 +162,15 @@ def compare_ideal(tag, name, keys_of):
                   % (name, body, key, a, b, bound))
 
 
-def compare_impacts(tag, name, joint, h, model="ode-clearance-impact"):
+def compare_impacts(tag, name, joint, h, model="ode-clearance-impact", bound=ADAPTER_FORCE_REL):
     a = impacts(tag + "hand", model, joint)
     b = impacts(tag + "kit", model, joint)
     check(len(a) >= 3 and len(b) >= 3, "%s: three impacts or more (%d, %d)" % (name, len(a), len(b)))
     for i, (p, q) in enumerate(zip(a[:3], b[:3])):
         check(abs(p[0] - q[0]) <= ONSET_STEPS * h, "%s impact %d onset: kit %.7g s, hand-built %.7g s"
               % (name, i + 1, q[0], p[0]))
-        check(rel(q[1], p[1]) <= ADAPTER_FORCE_REL, "%s impact %d force peak: kit %.9g N, hand-built "
-              "%.9g N (bound %g)" % (name, i + 1, q[1], p[1], ADAPTER_FORCE_REL))
+        check(rel(q[1], p[1]) <= bound, "%s impact %d force peak: kit %.9g N, hand-built "
+              "%.9g N (bound %g)" % (name, i + 1, q[1], p[1], bound))
 
 
 def keys(o, p=""):
@@ -344,6 +344,42 @@ for tag, case, extra in (("d", "paper_crank_rocker.ini", ()),
     grid = models(tag + "kit")["ode-clearance-impact"]["h_s"]
     compare_impacts(tag, "%s adaptive %s" % (case, " ".join(extra)),
                     "coupler_slider" if "slider" in case else "crank_coupler", grid)
+
+# MuJoCo's adaptive step through the kit (its binding's step_by, the
+# penetration-rate rule in persistent contact), against the reference: in
+# free flight the kit takes the effective mass at the pose it is at, where
+# the hand-built scene keeps its last contact's, and the contact's phase at
+# each step's start, so the two take nearly the same steps (measured 7,388
+# against 7,399 over 2 revolutions of the paper case; with the last
+# contact's mass the kit takes 7,399 too) but not the same trajectory:
+# their first three impacts against the reference, kit -0.23 %, +0.02 %,
+# -0.95 % in force, hand-built +1.07 %, +0.05 %, +0.37 %. Bound: about
+# twice the hand-built scene's worst.
+MUJOCO_ADAPTIVE_FIRST_IMPACTS_REL = 2e-2
+# Its crank keeps the drive's angle (its flywheel, [mujoco]
+# drive_armature_kg_m2): measured within 3.6e-8 rad of the analytic crank
+# over the run; steps the binding took at another size than the kit's put
+# the samples at other times, radians off.
+MUJOCO_ADAPTIVE_CRANK_RAD = 1e-6
+if "mujoco-clearance-impact" in built:
+    rc, _, se = run("run", os.path.join(cases, "engines.ini"), "--set",
+                    "run.models=mujoco-clearance-impact,reference", "--set", "solver.builder=kit",
+                    "--set", "solver.h_s=adaptive", "--set", "run.revolutions=2", "--out",
+                    os.path.join(tmp, "jkit"), "--no-figures", "--no-report", "--series", "none")
+    check(rc == 0, "MuJoCo adaptive through the kit runs (%s)" % se.strip()[-300:])
+    if rc == 0:
+        m = models("jkit")["mujoco-clearance-impact"]
+        a, fi = m["adaptive_steps"], m["error_vs_reference"]["first_impacts"]
+        check(a is not None and a["steps_taken"] < m["steps"] / 5 and a["h_min_s"] == m["h_s"],
+              "MuJoCo adaptive: on the grid, far fewer steps than samples (%s of %d)"
+              % (a, m["steps"]))
+        crank = m["error_vs_analytic"]["crank_angle_err_max_rad"]
+        check(crank <= MUJOCO_ADAPTIVE_CRANK_RAD, "MuJoCo adaptive: the crank at the drive's angle "
+              "at every sample, within %.3g rad (bound %g)" % (crank, MUJOCO_ADAPTIVE_CRANK_RAD))
+        worst = max(max(abs(x["force_max_rel"]), abs(x["penetration_max_rel"])) for x in fi)
+        check(len(fi) == 3 and worst <= MUJOCO_ADAPTIVE_FIRST_IMPACTS_REL,
+              "MuJoCo adaptive: the first three impacts within %g of the reference (%s)"
+              % (MUJOCO_ADAPTIVE_FIRST_IMPACTS_REL, fi))
 
 rc, _, se = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
                 "run.models=ode-ideal-nominal", "--set", "run.revolutions=1", "--set",

@@ -277,7 +277,7 @@ static const key_spec keys[] = {
      "step size h of the ODE models; auto: the largest with h x rate <= 0.5 at the fastest "
      "contact (rate: omega_c or the damper's c / m_eff), at most one revolution / 6000; "
      "adaptive: from h_min_s to h_max_s following the contact (docs/step-size.md; the ODE "
-     "models, and the four-bar's and slider-crank's MuJoCo models); not given: "
+     "and MuJoCo models); not given: "
      "auto for a four-bar or slider-crank with clearance joints, else the default (a planar "
      "case: the default; auto there is chosen from its contacts as well)"},
     {"solver", "h_min_s", K_DOUBLE, OFF(solver.h_min), 1.0, 0, 1e-3, 1, 0, "s", "1e-6",

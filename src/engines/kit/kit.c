@@ -249,6 +249,7 @@ struct fb_kit_runner {
   fb_kit_world o;        /* the caller's world settings, the walk's fields set (kit.h) */
   fb_kit_adapt ad;       /* the adaptive step's state (ad.on 0: every step the series' h) */
   int mc;                /* the coming step's grid steps */
+  kit_span last;         /* the last step (last.i 0 before the first) */
   size_t i;              /* samples filled; the coming step starts from sample i - 1 */
   fb_status st;          /* FB_OK, or what stopped the run (sticky) */
   double *lq;            /* (3 nq) a description with springs or loads: the state a step
@@ -375,6 +376,37 @@ static fb_status first_sample(fb_kit_runner *k, fb_diag *diag) {
   return after_sample(k, NULL, diag);
 }
 
+/* column x (n) inside step sp: on the straight line between its ends */
+static void line(double *x, const kit_span *sp) {
+  for (size_t u = sp->i0 + 1; u < sp->i; u++)
+    x[u] = x[sp->i0] + share(sp, u) * (x[sp->i] - x[sp->i0]);
+}
+
+/* a binding whose samples are the engine's own at each state (kit.h
+ * body_accel): the accelerations, contact forces and loads of the samples
+ * inside step sp on the straight line between its ends' (each end's its
+ * own), once the step after it has given its end's; its positions and
+ * rates are already (put) */
+static void inside_lines(fb_kit_runner *k, const kit_span *sp) {
+  fb_kit_series *s = k->s;
+  const size_t n = s->n;
+  if (!k->b->body_accel || sp->i - sp->i0 < 2 || sp->i >= n) return;
+  const int nb = k->m->nbodies - 1;
+  for (int b = 0; b < nb; b++) {
+    line(s->q + ((size_t)b * 3 + 2) * n, sp);
+    for (int c = 0; s->centre && c < 2; c++) line(s->centre + ((size_t)(c * nb + b) * 3 + 2) * n, sp);
+  }
+  for (int j = 0; k->cl && j < k->m->njoints; j++) {
+    const fb_kit_joint_record *r = &k->cl->joint[j];
+    if (!(k->cl->mask & (1u << j))) continue;
+    if (r->force) line(r->force, sp);
+    if (r->force_max) line(r->force_max, sp);
+  }
+  if (!s->torque) return;
+  line(s->torque, sp);
+  for (int c = 0; c < 3 * k->m->njoints; c++) line(s->reaction + (size_t)c * n, sp);
+}
+
 /* the coming step, from sample k->i - 1 over k->mc grid steps, and the
  * samples it reaches: its end's and those inside it */
 static fb_status next_step(fb_kit_runner *k, fb_diag *diag) {
@@ -387,7 +419,10 @@ static fb_status next_step(fb_kit_runner *k, fb_diag *diag) {
   fb_kit_pipe_stepped(&k->p, b, k->w, sp.h);
   if (s->torque) loads(k, &sp); /* at the step's start: before the pipe reads anew */
   sample(b, k->w, s, k->m->nbodies - 1, &sp, k->cl ? k->p.q : NULL, k->cl ? k->p.qd : NULL);
-  return after_sample(k, &sp, diag);
+  st = after_sample(k, &sp, diag);
+  if (k->last.i > 0) inside_lines(k, &k->last); /* its end's values are this step's start's */
+  k->last = sp;
+  return st;
 }
 
 fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_planar *m,
@@ -450,11 +485,19 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   return FB_OK;
 }
 
+/* the samples final so far: every one filled, but those inside the last
+ * step and its end where they wait for the next step's start (inside_lines:
+ * an adaptive run of a binding with body_accel) */
+static size_t final_samples(const fb_kit_runner *k) {
+  if (k->i < k->s->n && k->ad.on && k->b->body_accel && k->last.i > 0) return k->last.i0 + 1;
+  return k->i;
+}
+
 fb_status fb_kit_advance(fb_kit_runner *k, size_t n, fb_diag *diag) {
   if (k->st != FB_OK)
     return fb_diag_set(diag, k->st, "the %s engine's kit run stopped at sample %zu", k->b->engine,
                        k->i);
-  while (k->i < n && k->i < k->s->n) {
+  while (final_samples(k) < n && k->i < k->s->n) {
     size_t to = k->i == 0 ? 1 : k->i + (size_t)k->mc;
     if (to > k->s->n) to = k->s->n; /* an adaptive step past the last sample */
     fb_status st = k->i == 0 ? first_sample(k, diag) : next_step(k, diag);

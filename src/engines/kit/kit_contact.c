@@ -299,6 +299,11 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
     fb_contact_row_mean_force(&c->row, h, p->f_mean[k]);
   }
   if (b->applied_force && b->explicit_law) note_secant(c, cl, j);
+  if (b->applied_force) { /* the contact's phase from the law's tangent stiffness (contact.h) */
+    double kp, kd, depth;
+    fb_contact_linearize(&c->law, FB_MAPPING_TANGENT, c->depth, c->rate, c->v0, &kp, &kd, &depth);
+    p->phase[k] += fb_contact_h_omega(h, kp, c->m_eff);
+  }
   if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
   note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, c->m_eff, c->m_eff);
   note_mass(&r->m_eff_min, &r->m_eff_max, r->contact_steps, c->m_eff, c->m_eff);

@@ -17,7 +17,9 @@ typedef struct {
   fb_episode ep[FB_KIT_SLOTS];                /* per contact slot (kit.h, fb_kit_slot) */
   double force[FB_KIT_SLOTS];                 /* the law's force handed this step [N] */
   double phase[FB_KIT_SLOTS];                 /* contact phase: the sum of the slot's rows'
-                                                 h omega_c since its onset [rad] (contact.h) */
+                                                 h omega_c since its onset (a binding that
+                                                 applies the law's force: of its tangent
+                                                 stiffness) [rad] (contact.h) */
   double normal[FB_KIT_SLOTS][2];             /* the normal of the contact handed this step
                                                  (fb_kit_contact.normal) [-] */
   double point[FB_KIT_SLOTS][2];              /* its point on the hole's wall [m] */

@@ -64,6 +64,7 @@
 #include "mujoco_kit.h"
 #include "mujoco_kit_internal.h"
 #include "mujoco_load.h"
+#include "step_control.h"
 
 /* h omega_c bounds of an explicitly integrated undamped spring: RK4's
  * stability region meets the imaginary axis at 2 sqrt 2; semi-implicit
@@ -313,8 +314,12 @@ static void put_mjcf(fb_text *t, const mk_world *k, const double *qvel, int nv) 
   if (k->native) mk_native_put_tendons(t, k);
   fb_text_put(t, "<equality>\n");
   double sr[2];
-  if (k->o.model_file) fb_mujoco_export_loop_solref(&k->opts, k->integrator, k->h, sr);
-  else fb_mujoco_loop_solref(&k->opts, k->h, sr);
+  /* the loops' softness follows the step; an adaptive run's steps reach
+   * h_max, so its loops are set for that one, as the four-bar's scene does */
+  const int adaptive = !k->o.model_file && k->o.solver && k->o.solver->h_mode == FB_STEP_ADAPTIVE;
+  const double hl = adaptive ? k->o.solver->h_max : k->h;
+  if (k->o.model_file) fb_mujoco_export_loop_solref(&k->opts, k->integrator, hl, sr);
+  else fb_mujoco_loop_solref(&k->opts, hl, sr);
   for (int j = 0; j < k->nj; j++)
     if (!k->tree[j]) put_connect(t, k, &k->joint[j], sr);
   fb_text_put(t, "</equality>\n");
@@ -618,6 +623,7 @@ static void note_start(mk_world *k) {
  * state's kinematics */
 static fb_status kit_step(void *w, fb_diag *diag) {
   mk_world *k = w;
+  k->m->opt.timestep = k->h_now > 0.0 ? k->h_now : k->h;
   fb_mujoco_passive_on(k->m, kit_passive, k);
   for (int j = 0; j < FB_KIT_SLOTS; j++) k->ct[j].f[0] = k->ct[j].f[1] = 0.0;
   k->record = 1;
@@ -632,9 +638,17 @@ static fb_status kit_step(void *w, fb_diag *diag) {
   for (int i = 0; i < k->m->nv; i++)
     if (!isfinite(k->d->qvel[i]))
       return fb_diag_set(diag, FB_ERR_NUMERIC, "MuJoCo's state is not finite after step %zu "
-                         "(t = %.6g s)", k->steps, (double)k->steps * k->h);
+                         "(t = %.6g s)", k->steps, k->d->time);
   kinematics(k);
   return FB_OK;
+}
+
+/* one step of h, a whole multiple of the world's (kit.h step_by): MuJoCo's
+ * integrator at that timestep */
+static fb_status kit_step_by(void *w, double h, fb_diag *diag) {
+  mk_world *k = w;
+  k->h_now = h;
+  return kit_step(w, diag);
 }
 
 static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
@@ -703,7 +717,8 @@ static void kit_world_free(void *w) {
   .explicit_law = 1, .apply_wrench = kit_apply_wrench
 
 const fb_kit_binding fb_mujoco_kit = {MK_BINDING, .add_contact = kit_add_contact,
-                                      .add_clearance = kit_add_clearance};
+                                      .add_clearance = kit_add_clearance, .step_by = kit_step_by,
+                                      .persistent_rule = FB_PERSIST_DEPTH_CHANGE};
 
 /* MuJoCo's native contact (mujoco-clearance-native; mujoco_kit_native.c):
  * the kit hands every step's effective mass, MuJoCo reports the force */

@@ -62,6 +62,7 @@ typedef struct {
 /* the binding's world */
 typedef struct {
   double gravity, h;
+  double h_now;        /* the coming step's timestep (step_by; 0: h) [s] */
   fb_mujoco_opts opts;
   fb_kit_body *body;   /* (nb) */
   mk_joint *joint;     /* (nj) the ideal joints, as added */

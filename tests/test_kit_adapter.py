@@ -321,66 +321,6 @@ for model, key, word in (("simbody-clearance-impact", "solver.h_s=adaptive",
                     "--no-figures", "--no-report", "--series", "none")
     check(rc != 0 and word in se, "builder = kit with %s: refused naming '%s' (%s)"
           % (key, word, se.strip()[-200:]))
-# 9. ODE's adaptive step ([solver] h_s = adaptive, step_control.h) through
-# the kit (kit_adaptive.c, ode_kit.c's step_by): the hand-built world's
-# steps, one for one, and its first three impacts; with the rocking bound
-# (the matched row about its mean force, the velocities carried across a
-# change of step) too; the slider-crank's piston pin. Measured over 2
-# revolutions: steps taken equal (paper case 8607, with the rocking bound
-# 23869; the slider-crank 6477), the impacts' forces within 1e-10.
-ADAPTIVE_STEPS_REL = 1e-3
-for tag, case, extra in (("d", "paper_crank_rocker.ini", ()),
-                         ("r", "paper_crank_rocker.ini", ("--set", "solver.rocking_h_omega=0.1")),
-                         ("c", "slider_crank_flores.ini", ())):
-    if not both(case, "ode-clearance-impact", tag, "--set", "solver.h_s=adaptive", "--set",
-                "run.revolutions=2", *extra):
-        continue
-    ha, ka = (models(tag + b)["ode-clearance-impact"]["adaptive_steps"] for b in ("hand", "kit"))
-    check(ka is not None and rel(ka["steps_taken"], ha["steps_taken"]) <= ADAPTIVE_STEPS_REL and
-          ka["h_max_s"] == ha["h_max_s"] and ka["h_min_s"] == ha["h_min_s"],
-          "%s %s adaptive: the kit's steps %s, the hand-built world's %s" % (case, extra, ka, ha))
-    check(ka["steps_taken"] < models(tag + "kit")["ode-clearance-impact"]["steps"] / 2,
-          "%s adaptive: fewer than half as many steps as samples (%s)" % (case, ka))
-    grid = models(tag + "kit")["ode-clearance-impact"]["h_s"]
-    compare_impacts(tag, "%s adaptive %s" % (case, " ".join(extra)),
-                    "coupler_slider" if "slider" in case else "crank_coupler", grid)
-
-# MuJoCo's adaptive step through the kit (its binding's step_by, the
-# penetration-rate rule in persistent contact), against the reference: in
-# free flight the kit takes the effective mass at the pose it is at, where
-# the hand-built scene keeps its last contact's, and the contact's phase at
-# each step's start, so the two take nearly the same steps (measured 7,388
-# against 7,399 over 2 revolutions of the paper case; with the last
-# contact's mass the kit takes 7,399 too) but not the same trajectory:
-# their first three impacts against the reference, kit -0.23 %, +0.02 %,
-# -0.95 % in force, hand-built +1.07 %, +0.05 %, +0.37 %. Bound: about
-# twice the hand-built scene's worst.
-MUJOCO_ADAPTIVE_FIRST_IMPACTS_REL = 2e-2
-# Its crank keeps the drive's angle (its flywheel, [mujoco]
-# drive_armature_kg_m2): measured within 3.6e-8 rad of the analytic crank
-# over the run; steps the binding took at another size than the kit's put
-# the samples at other times, radians off.
-MUJOCO_ADAPTIVE_CRANK_RAD = 1e-6
-if "mujoco-clearance-impact" in built:
-    rc, _, se = run("run", os.path.join(cases, "engines.ini"), "--set",
-                    "run.models=mujoco-clearance-impact,reference", "--set", "solver.builder=kit",
-                    "--set", "solver.h_s=adaptive", "--set", "run.revolutions=2", "--out",
-                    os.path.join(tmp, "jkit"), "--no-figures", "--no-report", "--series", "none")
-    check(rc == 0, "MuJoCo adaptive through the kit runs (%s)" % se.strip()[-300:])
-    if rc == 0:
-        m = models("jkit")["mujoco-clearance-impact"]
-        a, fi = m["adaptive_steps"], m["error_vs_reference"]["first_impacts"]
-        check(a is not None and a["steps_taken"] < m["steps"] / 5 and a["h_min_s"] == m["h_s"],
-              "MuJoCo adaptive: on the grid, far fewer steps than samples (%s of %d)"
-              % (a, m["steps"]))
-        crank = m["error_vs_analytic"]["crank_angle_err_max_rad"]
-        check(crank <= MUJOCO_ADAPTIVE_CRANK_RAD, "MuJoCo adaptive: the crank at the drive's angle "
-              "at every sample, within %.3g rad (bound %g)" % (crank, MUJOCO_ADAPTIVE_CRANK_RAD))
-        worst = max(max(abs(x["force_max_rel"]), abs(x["penetration_max_rel"])) for x in fi)
-        check(len(fi) == 3 and worst <= MUJOCO_ADAPTIVE_FIRST_IMPACTS_REL,
-              "MuJoCo adaptive: the first three impacts within %g of the reference (%s)"
-              % (MUJOCO_ADAPTIVE_FIRST_IMPACTS_REL, fi))
-
 rc, _, se = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
                 "run.models=ode-ideal-nominal", "--set", "run.revolutions=1", "--set",
                 "run.peaks=all", "--out", os.path.join(tmp, "default"), "--no-figures",
@@ -627,5 +567,65 @@ if "mujoco-clearance-native" in built:
         compare_native("nc", "native tendon, paper case at coupler-follower", "coupler_follower",
                        NATIVE_FORCE_REL)
         compare_native_provenance("native tendon, paper case at coupler-follower", *pair)
+
+# 9. ODE's adaptive step ([solver] h_s = adaptive, step_control.h) through
+# the kit (kit_adaptive.c, ode_kit.c's step_by): the hand-built world's
+# steps, one for one, and its first three impacts; with the rocking bound
+# (the matched row about its mean force, the velocities carried across a
+# change of step) too; the slider-crank's piston pin. Measured over 2
+# revolutions: steps taken equal (paper case 8607, with the rocking bound
+# 23869; the slider-crank 6477), the impacts' forces within 1e-10.
+ADAPTIVE_STEPS_REL = 1e-3
+for tag, case, extra in (("d", "paper_crank_rocker.ini", ()),
+                         ("r", "paper_crank_rocker.ini", ("--set", "solver.rocking_h_omega=0.1")),
+                         ("c", "slider_crank_flores.ini", ())):
+    if not both(case, "ode-clearance-impact", tag, "--set", "solver.h_s=adaptive", "--set",
+                "run.revolutions=2", *extra):
+        continue
+    ha, ka = (models(tag + b)["ode-clearance-impact"]["adaptive_steps"] for b in ("hand", "kit"))
+    check(ka is not None and rel(ka["steps_taken"], ha["steps_taken"]) <= ADAPTIVE_STEPS_REL and
+          ka["h_max_s"] == ha["h_max_s"] and ka["h_min_s"] == ha["h_min_s"],
+          "%s %s adaptive: the kit's steps %s, the hand-built world's %s" % (case, extra, ka, ha))
+    check(ka["steps_taken"] < models(tag + "kit")["ode-clearance-impact"]["steps"] / 2,
+          "%s adaptive: fewer than half as many steps as samples (%s)" % (case, ka))
+    grid = models(tag + "kit")["ode-clearance-impact"]["h_s"]
+    compare_impacts(tag, "%s adaptive %s" % (case, " ".join(extra)),
+                    "coupler_slider" if "slider" in case else "crank_coupler", grid)
+
+# MuJoCo's adaptive step through the kit (its binding's step_by, the
+# penetration-rate rule in persistent contact), against the reference: in
+# free flight the kit takes the effective mass at the pose it is at, where
+# the hand-built scene keeps its last contact's, and the contact's phase at
+# each step's start, so the two take nearly the same steps (measured 7,388
+# against 7,399 over 2 revolutions of the paper case; with the last
+# contact's mass the kit takes 7,399 too) but not the same trajectory:
+# their first three impacts against the reference, kit -0.23 %, +0.02 %,
+# -0.95 % in force, hand-built +1.07 %, +0.05 %, +0.37 %. Bound: about
+# twice the hand-built scene's worst.
+MUJOCO_ADAPTIVE_FIRST_IMPACTS_REL = 2e-2
+# Its crank keeps the drive's angle (its flywheel, [mujoco]
+# drive_armature_kg_m2): measured within 3.6e-8 rad of the analytic crank
+# over the run; steps the binding took at another size than the kit's put
+# the samples at other times, radians off.
+MUJOCO_ADAPTIVE_CRANK_RAD = 1e-6
+if "mujoco-clearance-impact" in built:
+    rc, _, se = run("run", os.path.join(cases, "engines.ini"), "--set",
+                    "run.models=mujoco-clearance-impact,reference", "--set", "solver.builder=kit",
+                    "--set", "solver.h_s=adaptive", "--set", "run.revolutions=2", "--out",
+                    os.path.join(tmp, "jkit"), "--no-figures", "--no-report", "--series", "none")
+    check(rc == 0, "MuJoCo adaptive through the kit runs (%s)" % se.strip()[-300:])
+    if rc == 0:
+        m = models("jkit")["mujoco-clearance-impact"]
+        a, fi = m["adaptive_steps"], m["error_vs_reference"]["first_impacts"]
+        check(a is not None and a["steps_taken"] < m["steps"] / 5 and a["h_min_s"] == m["h_s"],
+              "MuJoCo adaptive: on the grid, far fewer steps than samples (%s of %d)"
+              % (a, m["steps"]))
+        crank = m["error_vs_analytic"]["crank_angle_err_max_rad"]
+        check(crank <= MUJOCO_ADAPTIVE_CRANK_RAD, "MuJoCo adaptive: the crank at the drive's angle "
+              "at every sample, within %.3g rad (bound %g)" % (crank, MUJOCO_ADAPTIVE_CRANK_RAD))
+        worst = max(max(abs(x["force_max_rel"]), abs(x["penetration_max_rel"])) for x in fi)
+        check(len(fi) == 3 and worst <= MUJOCO_ADAPTIVE_FIRST_IMPACTS_REL,
+              "MuJoCo adaptive: the first three impacts within %g of the reference (%s)"
+              % (MUJOCO_ADAPTIVE_FIRST_IMPACTS_REL, fi))
 
 sys.exit(tally.done())

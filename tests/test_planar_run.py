@@ -242,8 +242,10 @@ check("(given: [run] ensemble at --set #1 'run.ensemble=4')" in se,
 # refused (it would run at h_min_s, silently); so is one whose step in
 # persistent contact follows the loads of a drive at constant speed (ODE's)
 # on an undriven case; the analytic model alone samples its grid
-for models, extra, words in (("analytic,bullet-clearance-impact", (),
-                              "its engine's binding steps at a fixed h"),
+for models, extra, words in (("analytic,bullet-clearance-impact", (), "steps at a fixed h"),
+                             ("dart-clearance-impact", (), "its engine's binding steps at a fixed h"),
+                             ("ode-clearance-faceted", (),
+                              "the faceted and libccd colliders are not followed"),
                              ("ode-clearance-impact", ("--set", "drive.joint=none", "--set",
                                                        "run.duration_s=0.01"),
                               "follows the ideal joint loads of a drive at constant speed")):

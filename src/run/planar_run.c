@@ -39,11 +39,13 @@ const char *fb_planar_run_refusal(const char *name) {
  * references sample the grid h_min_s sets) */
 static const char *adaptive_refusal(const fb_case *c, const char *name) {
   const fb_kit_binding *b = fb_planar_kit_of(name);
-  if (!b) return NULL;
+  const fb_model *m = fb_model_find(name);
+  if (!b || !m) return NULL;
+  const char *model = fb_model_adaptive_refusal(m, fb_case_collider_of(c));
+  if (model) return model;
   if (!b->step_by)
     return "its engine's binding steps at a fixed h (it would run at h_min_s, silently)";
-  const fb_model *m = fb_model_find(name);
-  if (!m || m->joints != FB_JOINTS_CLEARANCE) return NULL;
+  if (m->joints != FB_JOINTS_CLEARANCE) return NULL;
   for (int j = 0; j < c->planar.njoints; j++)
     if ((c->clearance.mask & (1 << j)) && c->planar.joint[j].kind != FB_KIND_REVOLUTE)
       return "the adaptive step follows a pin in its hole, and the case's clearance joint is a "

@@ -16,6 +16,10 @@ fb_status fb_kit_adapt_open(fb_kit_adapt *a, fb_kit_pipe *p, const fb_kit_bindin
     return fb_diag_set(diag, FB_ERR_ARG, "[solver] h_s = adaptive: the %s engine's binding steps "
                        "at a fixed h; give a fixed step or auto", b->engine);
   const unsigned mask = cl ? cl->mask : 0u;
+  if (mask && (cl->collider.kind == FB_COLLIDER_FACETED || cl->collider.kind == FB_COLLIDER_CCD))
+    return fb_diag_set(diag, FB_ERR_ARG, "[solver] h_s = adaptive follows the exact pin in its "
+                       "hole; the %s collider's contacts are not followed: give a fixed step or "
+                       "auto", fb_collider_name(cl->collider.kind));
   for (int j = 0; j < m->njoints; j++)
     if ((mask & (1u << j)) && m->joint[j].kind != FB_KIND_REVOLUTE)
       return fb_diag_set(diag, FB_ERR_ARG, "[solver] h_s = adaptive follows a pin in its hole; "

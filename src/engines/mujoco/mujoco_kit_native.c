@@ -62,7 +62,7 @@ fb_status mk_native_add_clearance(void *w, int j, const fb_kit_clearance_joint *
   k->facets = k->opts.native_bore == FB_MUJOCO_BORE_FACETS;
   /* the four-bar scene's ring (scene.c): [clearance] segments, when given,
    * sizes it */
-  k->ring_n = !c ? 0 : c->clearance.segments_given ? c->clearance.segments : c->clearance.faceted_n;
+  k->ring_n = c ? fb_case_faceted_n(c) : 0;
   k->pin_length = c ? c->pin_length : 0.0;
   if (k->facets && k->ring_n < 3)
     return fb_diag_set(diag, FB_ERR_RANGE, "[clearance] faceted_n = %d: the ring of MuJoCo's "

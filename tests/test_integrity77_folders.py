@@ -15,7 +15,8 @@ the folder, pointing at a user's folder with files, and a user's real
 folder at a leftover name; every file survives. Then the examples: a
 SIGTERM after the staging folder was swapped for a link, an old set a
 killed writer moved aside is moved back, a killed run's leftovers are still
-removed. Nothing here fails on wall time: a timeout only turns a hang into
+removed, and an empty unmarked one too (a writer killed between its mkdir
+and its mark). Nothing here fails on wall time: a timeout only turns a hang into
 a failure. Usage: test_integrity77_folders.py PATH_TO_FOURBAR [TEST...]."""
 import os, pathlib, shutil, signal, subprocess, sys, tempfile, time
 
@@ -231,6 +232,28 @@ def test_killed_runs_leftovers_still_removed():
     rc, _, err = run("run", paper, *RUN, "--out", out)
     check(rc == 0 and not os.path.exists(stage) and os.path.isfile(os.path.join(out, "summary.json")),
           "the next run removes it: %d %s %s" % (rc, os.listdir(parent), err[-300:]))
+
+
+@test
+def test_empty_unmarked_leftovers_removed():
+    """a writer killed between its staging folder's mkdir and its mark
+    leaves an empty folder without the mark (the race the SIGKILL example
+    can hit on a loaded machine): the next run removes it, where an unmarked
+    folder with a file in it keeps the file"""
+    parent = os.path.join(tmp, "empty")
+    os.makedirs(parent)
+    out = os.path.join(parent, "out")
+    p = dead_pids(3)
+    empty = [os.path.join(parent, ".out.%s.%d" % (kind, pid))
+             for kind, pid in (("staging", p[0]), ("old", p[1]))]
+    for e in empty:
+        os.makedirs(e)
+    kept = user_folder(os.path.join(parent, ".out.staging.%d" % p[2]))
+    rc, _, err = run("run", paper, *RUN, "--out", out)
+    check(rc == 0, "the run: " + err[-300:])
+    check(not any(os.path.exists(e) for e in empty),
+          "the empty leftovers are removed: %s" % os.listdir(parent))
+    check(not lost(kept), "an unmarked folder with files keeps them: %s" % lost(kept))
 
 
 # ---- the runner ----------------------------------------------------------------------

@@ -93,13 +93,19 @@ static int made_by(int dfd, long pid) {
  * with system calls only (safe in a signal handler). The folder is opened
  * without following a link, and its entries are unlinked through that open
  * folder, so nothing outside it is touched; a link inside loses the link
- * only. A folder without pid's mark is left whole; subfolders are left
- * (the rmdir then fails). */
+ * only. A folder without pid's mark keeps its files: it is removed only
+ * when it is empty (a writer killed between the staging folder's mkdir and
+ * its mark, fb_outdir_stage, leaves one; rmdir takes nothing else, and a
+ * link put in its place fails it). Subfolders are left (the rmdir then
+ * fails). */
 static void remove_flat(const char *dir, long pid) {
   const int fd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0) return;
   if (!made_by(fd, pid)) {
+    struct stat sb;
+    const int mine = fstat(fd, &sb) == 0 && S_ISDIR(sb.st_mode) && sb.st_uid == geteuid();
     close(fd);
+    if (mine) rmdir(dir); /* ENOTEMPTY: a folder with anything in it stays whole */
     return;
   }
   char buf[8192], mark[32];

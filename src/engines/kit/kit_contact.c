@@ -141,14 +141,18 @@ static void corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], fb_kit_pi
 void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m,
                       const fb_kit_clearance *cl) {
   p->factored = p->closed = 0; /* the state is read anew */
-  fb_kit_contact c;
   fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
   for (int j = 0; j < m->njoints; j++) {
-    if (p->off[j] && is_guide(m, j)) corners(gc, p, m, cl, j);
-    else if (p->off[j]) geometry(&c, p, m, cl, j);
+    if (p->off[j] && is_guide(m, j)) {
+      corners(gc, p, m, cl, j);
+    } else if (p->off[j]) { /* kept for the coming step's contacts: the same state */
+      p->read[j] = (fb_kit_contact){0};
+      p->read_off_centre[j] = (unsigned char)geometry(&p->read[j], p, m, cl, j);
+    }
     /* a pin in the hole its binding's collider builds: its depth there */
     if (p->off[j] && b->penetration && own_collider(b, m, cl, j)) p->pen[j] = b->penetration(w, j);
   }
+  p->read_fresh = 1;
 }
 
 /* the row the law and mapping hand the engine (contact.h), kept in c for
@@ -383,8 +387,11 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
       if ((st = guide_contacts(p, b, w, m, cl, j, h, diag)) != FB_OK) return st;
       continue;
     }
+    /* the pin's geometry at the state last read (fb_kit_pipe_read), which
+     * no step has moved since */
     fb_kit_contact c = {0};
-    const int off_centre = geometry(&c, p, m, cl, j);
+    const int off_centre = p->read_fresh ? p->read_off_centre[j] : geometry(&c, p, m, cl, j);
+    if (p->read_fresh) c = p->read[j];
     int in = off_centre && c.depth > 0.0;
     double me = 0.0; /* in free flight too for a binding that takes every step's */
     if (in || (off_centre && b->contact_always)) {
@@ -398,6 +405,7 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     if (in && own) in = b->collide(w, j, &c.rate) > 0;
     if ((st = hand(p, b, w, m, cl, j, j, &c, in, me, h, own, diag)) != FB_OK) return st;
   }
+  p->read_fresh = 0;
   return FB_OK;
 }
 

@@ -45,6 +45,13 @@ typedef struct {
                                                  (contact.h fb_contact_mean_force_step) [N] */
   double omega_c[FB_KIT_SLOTS];               /* rocking: the frequency of the slot's row this
                                                  step, sqrt(kp / m_eff) (0: no row) [rad/s] */
+  fb_kit_contact read[FB_PLANAR_SPEC_MAX_JOINTS]; /* a pin's contact at the state last read,
+                                                 its geometry only (fb_kit_pipe_read), which
+                                                 the coming step's contacts start from */
+  unsigned char read_off_centre[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: that pin is off its hole's
+                                                 centre (read[j] has a normal) */
+  int read_fresh;                             /* 1: read[] is the state last read, not yet
+                                                 taken by fb_kit_pipe_contacts */
 } fb_kit_pipe;
 
 /* Sets p up for m's clearance joints cl->mask in b's engine. Errors:

@@ -152,7 +152,6 @@ void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, co
     /* a pin in the hole its binding's collider builds: its depth there */
     if (p->off[j] && b->penetration && own_collider(b, m, cl, j)) p->pen[j] = b->penetration(w, j);
   }
-  p->read_fresh = 1;
 }
 
 /* the row the law and mapping hand the engine (contact.h), kept in c for
@@ -389,9 +388,8 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     }
     /* the pin's geometry at the state last read (fb_kit_pipe_read), which
      * no step has moved since */
-    fb_kit_contact c = {0};
-    const int off_centre = p->read_fresh ? p->read_off_centre[j] : geometry(&c, p, m, cl, j);
-    if (p->read_fresh) c = p->read[j];
+    fb_kit_contact c = p->read[j];
+    const int off_centre = p->read_off_centre[j];
     int in = off_centre && c.depth > 0.0;
     double me = 0.0; /* in free flight too for a binding that takes every step's */
     if (in || (off_centre && b->contact_always)) {
@@ -405,7 +403,6 @@ fb_status fb_kit_pipe_contacts(fb_kit_pipe *p, const fb_kit_binding *b, void *w,
     if (in && own) in = b->collide(w, j, &c.rate) > 0;
     if ((st = hand(p, b, w, m, cl, j, j, &c, in, me, h, own, diag)) != FB_OK) return st;
   }
-  p->read_fresh = 0;
   return FB_OK;
 }
 

@@ -50,8 +50,6 @@ typedef struct {
                                                  the coming step's contacts start from */
   unsigned char read_off_centre[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: that pin is off its hole's
                                                  centre (read[j] has a normal) */
-  int read_fresh;                             /* 1: read[] is the state last read, not yet
-                                                 taken by fb_kit_pipe_contacts */
 } fb_kit_pipe;
 
 /* Sets p up for m's clearance joints cl->mask in b's engine. Errors:

@@ -173,19 +173,3 @@ class KitChecks:
                        % (model, word, o.get("stop")))
             self.check(m[self.ideal]["status"] == "ok", "the ideal model beside it runs")
         return m
-
-    def refused(self, name):
-        """name on the six-bar is refused (exit 2) with the reason fourbar
-        models --json gives and the ideal model that runs, nothing written"""
-        out = os.path.join(self.tmp, "no-" + name)
-        rc, so, _ = self.cmd("models", "--json")
-        why = {m["name"]: m.get("refused", {}).get("planar") for m in json.loads(so)["models"]
-               } if rc == 0 else {}
-        self.check(why.get(name), "fourbar models --json says why %s is not planar: %s"
-                   % (name, why.get(name)))
-        rc, _, se = self.cmd("run", self.six, "--set", "run.models=" + name, "--out", out)
-        self.check(rc == 2 and name in se and why.get(name) and why[name] in se and
-                   self.ideal in se and "issue" not in se,
-                   "%s on a planar case is refused with its reason and what runs (%d, %s)"
-                   % (name, rc, se.strip()))
-        self.check(not os.path.exists(out), "and nothing is written for %s" % name)

@@ -121,7 +121,4 @@ if si and six:
 # naming the largest usable step; the ideal model beside it runs
 kit.stops("bullet-clearance-impact", "aliased")
 
-# what the kit does not build: bullet-ideal-stackup refused naming issue 58
-kit.refused("bullet-ideal-stackup")
-
 kit.done()

@@ -221,13 +221,15 @@ if rc == 0:
           "the rod's bodies entry is its peaks")
     check(all(b.get("slider", {}).get(k) == 0.0 for k in PEAK_KEYS), "the slider's omega and alpha are 0")
 
-# 4. what a planar case does not run yet: refused by name, exit 2
+# 4. what a planar case cannot run as written: refused by name, exit 2
 six = os.path.join(cases, "watt_sixbar.ini")
 # (ODE's ideal and clearance models, every collider, run through the
-# engine kit: tests/test_planar_kit.py, tests/test_kit_adapter.py)
+# engine kit: tests/test_planar_kit.py, tests/test_kit_adapter.py; the
+# stack-up models: tests/test_planar_stackup_models.py)
 rc, _, se = run("run", six, "--set", "run.models=analytic,ode-ideal-stackup", "--out", os.path.join(tmp, "x"))
-check(rc == 2 and "ode-ideal-stackup" in se and "stack-up" in se and "issue" not in se,
-      "an engine's model on a planar case is refused with its reason (%d, %s)" % (rc, se.strip()))
+check(rc == 2 and "ode-ideal-stackup" in se and "[tolerance] class" in se and "issue" not in se,
+      "a stack-up model on a planar case without a tolerance class is refused with its reason "
+      "(%d, %s)" % (rc, se.strip()))
 check(not os.path.exists(os.path.join(tmp, "x")), "and nothing is written")
 rc, _, se = run("run", six, "--series", "hdf5", "--out", os.path.join(tmp, "y"))
 check(rc == 2 and "hdf5" in se, "series = hdf5 on a planar case is refused (%d, %s)" % (rc, se.strip()))

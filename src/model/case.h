@@ -51,12 +51,21 @@ typedef struct {
 /* Slots of fb_case.given: at least the key table's size (casefile.c asserts it). */
 #define FB_CASE_MAX_KEYS 192
 
+/* Most dimensions a planar case's stack-up corner names (one sign each):
+ * more than a description of FB_PLANAR_SPEC_MAX_BODIES bodies and
+ * FB_PLANAR_SPEC_MAX_JOINTS joints has (3 distances a body, an offset and
+ * an angle a prismatic joint: 31 x 3 + 31 x 2 = 155). */
+#define FB_STACKUP_PLANAR_MAX 192
+
 /* How the stack-up lengths are chosen from the nominal ones: each link at
  * nominal + corner * plus_minus, corner in {-1, 0, +1}. */
 typedef struct {
   int corner[FB_LINK_COUNT]; /* -1 minimum, 0 nominal, +1 maximum (4) */
   int worst;                 /* 1: corner still to be chosen as the worst for worst_output */
   int worst_output;          /* output index (tolerance.h) whose |value| the worst corner maximises */
+  char planar[FB_STACKUP_PLANAR_MAX + 1]; /* a planar case: one of + - 0 per dimension of its
+                                description (planar_dims.h, fourbar stackup's rows in order),
+                                set when the case is read (casefile_planar.c); "" otherwise */
 } fb_stackup;
 
 typedef enum { FB_STEPPER_WORLD = 0, FB_STEPPER_QUICK = 1 } fb_stepper;

@@ -13,6 +13,7 @@
 #include "kit.h"
 #include "model_table.h"
 #include "planar_free.h"
+#include "planar_kinematics.h"
 #include "planar_mass.h"
 #include "planar_run.h"
 #include "planar_start.h"
@@ -35,11 +36,7 @@ static const fb_kit_binding *kit_of(const char *name, const char **why) {
   *why = "its engine has no engine-kit binding, the way an engine builds a planar description";
   const fb_kit_binding *b = e->kit;
   if (!b) return NULL;
-  if (m->joints == FB_JOINTS_IDEAL) {
-    *why = "its lengths are a tolerance stack-up corner, which a planar case does not resolve "
-           "(fourbar stackup tolerates a planar case's bodies)";
-    return m->lengths == FB_LENGTHS_NOMINAL ? b : NULL;
-  }
+  if (m->joints == FB_JOINTS_IDEAL) return b; /* nominal or at the stack-up corner */
   /* a clearance model (its lengths the stack-up corner's on a four-bar;
    * a planar case's are its joints', the nominal description the
    * reference runs too): the exact pin in the hole (or a generic collider
@@ -198,6 +195,23 @@ static fb_status free_start(double **y0, const fb_planar_run *r, const fb_kit_cl
   return st;
 }
 
+/* *q0 (nq, owned: free()) = a stack-up model's start (p->m at the corner):
+ * its assembly pose, which the corner's lengths leave open, closed by
+ * Newton at the drive's start, as the analytic model's first sample */
+static fb_status closed_start(double **q0, const fb_planar *m, fb_diag *diag) {
+  fb_planar_kin *k;
+  fb_status st = fb_planar_kin_new(&k, m, diag);
+  if (st != FB_OK) return st;
+  *q0 = malloc((size_t)fb_planar_nq(m) * sizeof **q0);
+  if (!*q0) st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  if (st == FB_OK) {
+    fb_planar_assembly(m, *q0);
+    st = fb_planar_position(k, *q0, 0.0, NULL, diag);
+  }
+  fb_planar_kin_free(k);
+  return st;
+}
+
 fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
   const fb_model *mt = fb_model_find(p->name);
   const fb_kit_binding *b = fb_planar_kit_of(p->name);
@@ -241,6 +255,8 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
    * free start takes them (q0 NULL: the assembly itself) */
   if (st == FB_OK && r->m->drive < 0 && (st = free_start(&y0, r, run_cl, diag)) == FB_OK)
     o.qd0 = y0 + fb_planar_nq(r->m);
+  if (st == FB_OK && p->m != r->m && (st = closed_start(&y0, p->m, diag)) == FB_OK)
+    o.q0 = y0; /* a stack-up model: p->m's pose closed (a driven case: planar_run.c) */
   const double before = fb_clock_s() - t0; /* the law, the columns, the start */
   /* the output points and slides need the bodies' centres too */
   if (st == FB_OK && p->out &&
@@ -248,12 +264,12 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
     st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples' points", p->n);
   for (size_t i = 0; s.centre && i < 6 * (size_t)(r->m->nbodies - 1) * p->n; i++)
     s.centre[i] = NAN;
-  if (st == FB_OK) st = fb_kit_run(b, r->m, r->omega, &o, run_cl, &s, diag);
+  if (st == FB_OK) st = fb_kit_run(b, p->m, r->omega, &o, run_cl, &s, diag);
   fb_load_scale_free(&load);
   p->has_step_stats = adaptive;
   p->step_stats = s.stats;
   if (s.centre && (st == FB_OK || st == FB_ERR_NUMERIC))
-    fb_planar_model_outputs_from(p, r->m, s.centre);
+    fb_planar_model_outputs_from(p, p->m, s.centre);
   free(s.centre);
   free(y0);
   free(guide);

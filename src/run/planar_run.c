@@ -10,6 +10,7 @@
 #include "kit.h"
 #include "model_table.h"
 #include "planar_case.h"
+#include "planar_dims.h"
 #include "planar_invdyn.h"
 #include "planar_loads.h"
 #include "planar_outputs.h"
@@ -20,16 +21,13 @@
 #include "step_control.h"
 
 int fb_planar_run_takes(const char *name) {
-  return strcmp(name, "analytic") == 0 || strcmp(name, "reference") == 0 ||
-         strcmp(name, "reference-restitution") == 0 || fb_planar_kit_of(name) != NULL;
+  return strcmp(name, "analytic") == 0 || strcmp(name, "analytic-stackup") == 0 ||
+         strcmp(name, "reference") == 0 || strcmp(name, "reference-restitution") == 0 ||
+         fb_planar_kit_of(name) != NULL;
 }
 
 const char *fb_planar_run_refusal(const char *name) {
   if (fb_planar_run_takes(name)) return NULL;
-  const fb_model *m = fb_model_find(name);
-  if (m && (m->engine == FB_ENGINE_ANALYTIC || m->engine == FB_ENGINE_REFERENCE))
-    return "its lengths are a tolerance stack-up corner, which a planar case does not resolve "
-           "(fourbar stackup tolerates a planar case's bodies)";
   return fb_planar_kit_refusal(name);
 }
 
@@ -75,6 +73,14 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
     const char *ideal = strncmp(name, "reference", 9) == 0 ? fb_planar_ref_ideal_refusal(c, name)
                                                            : NULL;
     if (ideal) return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s': %s", name, ideal);
+    if (fb_model_ideal_stackup(name) && c->planar.undriven)
+      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' runs at the stack-up corner, "
+                         "whose loop closes at the drive's start, and the case has no drive "
+                         "at constant speed", name);
+    if (fb_model_ideal_stackup(name) && !c->tolerance_class)
+      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' runs at the stack-up corner "
+                         "[tolerance] stackup, and a planar case's dimensions need [tolerance] "
+                         "class (f, m, c or v: ISO 2768-1; fourbar stackup lists them)", name);
     const char *why = fb_planar_run_refusal(name);
     char loaded[2 * FB_PLANAR_NAME_SIZE];
     if (!why && fb_planar_spec_loaded(&c->planar, loaded, sizeof loaded) &&
@@ -132,7 +138,7 @@ static void store(fb_planar_model *p, const fb_planar *m, size_t i, const double
 static fb_status store_loads(fb_planar_model *p, const fb_planar_run *r, fb_planar_kin *k,
                              size_t i, fb_planar_reaction *rx, const double *q,
                              const double *qd, const double *qdd, fb_diag *diag) {
-  const fb_planar *m = r->m;
+  const fb_planar *m = p->m;
   fb_status st = fb_planar_invdyn_kin(rx, &p->torque[i], k, q, qd, qdd, r->c.gravity, diag);
   for (int j = 0; j < m->njoints && st == FB_OK; j++) {
     const double v[3] = {rx[j].force[0], rx[j].force[1], rx[j].moment};
@@ -146,7 +152,7 @@ static fb_status store_loads(fb_planar_model *p, const fb_planar_run *r, fb_plan
  * loads of each */
 static fb_status sample(fb_planar_model *p, fb_planar_kin *k, const fb_planar_run *r,
                         fb_diag *diag) {
-  const fb_planar *m = r->m;
+  const fb_planar *m = p->m;
   const int nq = fb_planar_nq(m);
   const size_t nj = (size_t)m->njoints;
   double *q = malloc(3 * (size_t)nq * sizeof *q);
@@ -203,7 +209,7 @@ static fb_status model_alloc(fb_planar_model *p, const fb_planar_run *r, fb_diag
 
 /* the analytic model: its peaks over a revolution and its samples */
 static fb_status analytic(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag) {
-  const fb_planar *m = r->m;
+  const fb_planar *m = p->m;
   const size_t nb = (size_t)m->nbodies;
   fb_planar_kin *k;
   fb_status st = fb_planar_kin_new(&k, m, diag);
@@ -238,11 +244,23 @@ static void model_free(fb_planar_model *p) {
  * only on a case that has no clearance model) */
 static fb_status reactions(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
   int needed = 0;
-  for (int i = 0; i < c->model_count; i++) needed |= strcmp(c->models[i], "analytic") != 0;
+  for (int i = 0; i < c->model_count; i++) /* analytic, analytic-stackup: none */
+    needed |= strncmp(c->models[i], "analytic", 8) != 0;
   if (!needed || c->planar.undriven || !c->clearance.mask) return FB_OK;
   r->reaction_max = malloc((size_t)r->m->njoints * sizeof *r->reaction_max);
   if (!r->reaction_max) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   return fb_planar_reaction_max(r->reaction_max, r->m, r->omega, c->gravity, diag);
+}
+
+/* r->stackup, once, when a stack-up model runs: the description at the
+ * case's corner (planar_dims.h), the angles' legs from the nominal
+ * mechanism's slides at the run's speed */
+static fb_status stackup(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
+  int needed = 0;
+  for (int i = 0; i < c->model_count; i++) needed |= fb_model_ideal_stackup(c->models[i]);
+  if (!needed) return FB_OK;
+  return fb_planar_dims_corner(&r->stackup, r->m, c->tolerance_class, r->omega,
+                               c->stackup.planar, diag);
 }
 
 static fb_status run_once(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
@@ -262,13 +280,15 @@ static fb_status run_once(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
     st = r->est ? fb_planar_contact_estimates(r->est, &r->nest, c, r->m, diag)
                 : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   }
+  if (st == FB_OK) st = stackup(r, c, diag);
   for (int i = 0; i < c->model_count && st == FB_OK; i++) {
     fb_planar_model *p = &r->model[r->n++];
     snprintf(p->name, sizeof p->name, "%s", c->models[i]);
+    p->m = fb_model_ideal_stackup(p->name) ? r->stackup : r->m;
     const double t0 = fb_clock_s();
     st = model_alloc(p, r, diag);
     if (st == FB_OK)
-      st = strcmp(p->name, "analytic") == 0 ? analytic(p, r, diag)
+      st = strncmp(p->name, "analytic", 8) == 0 ? analytic(p, r, diag)
            : fb_planar_kit_of(p->name) ? fb_planar_run_kit(p, r, diag)
                                        : fb_planar_run_reference(p, r, strcmp(p->name, "reference") == 0, diag);
     p->wall_s = fb_clock_s() - t0;
@@ -311,6 +331,8 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
 void fb_planar_run_free(fb_planar_run *r) {
   for (int i = 0; i < r->n; i++) model_free(&r->model[i]);
   fb_planar_free(r->m);
+  fb_planar_free(r->stackup);
+  r->stackup = NULL;
   free(r->reaction_max);
   r->reaction_max = NULL;
   free(r->est);

@@ -41,6 +41,14 @@
  *              step of h per sample; its window peaks as a reference's;
  *              its verdict against the analytic model (ideal) or the
  *              reference of its law (planar_verdict.h).
+ *   analytic-stackup, ode-ideal-stackup, ... (every engine's ideal
+ *              stack-up model with a binding)
+ *              the analytic model and the engines' ideal models at the
+ *              stack-up corner: the description's dimensions
+ *              (planar_dims.h, ISO 2768-1 [tolerance] class) at [tolerance]
+ *              stackup's signs, one per dimension (max: every one '+'), its
+ *              assembly closed by Newton at the drive's start; an engine's
+ *              verdict against analytic-stackup.
  * Every model also samples the description's output points and every
  * prismatic joint's slide (planar_outputs.h) into out, when it has any.
  * An undriven case ([drive] joint = none, or a torque drive) runs the
@@ -49,9 +57,9 @@
  * joint, `reference` is its ideal mechanism's forward dynamics and the
  * engines' ideal models' yardstick. A prismatic clearance joint is a
  * slider in its guide.
- * Every other model (another engine's, a stack-up's, a clearance model's)
- * is refused by name: the engines build the rest of a planar case with the
- * engine kit (issue 58). A planar case that lists no [run] models runs
+ * Every other model (an engine's without a binding, a clearance model
+ * its engine's binding cannot build) is refused by name, with the reason
+ * (fb_planar_run_refusal). A planar case that lists no [run] models runs
  * analytic. */
 #ifndef FB_PLANAR_RUN_H
 #define FB_PLANAR_RUN_H
@@ -100,6 +108,9 @@ typedef struct {
   char name[FB_NAME_SIZE]; /* "analytic", "reference", "reference-restitution" */
   int reference;           /* 1: a reference (ref holds its results; force, pen its columns) */
   int engine;              /* 1: an engine's model, built through the engine kit (kit.h) */
+  const fb_planar *m;      /* the description it ran: the run's, or at a stack-up model
+                              (analytic-stackup, *-ideal-stackup) the run's stackup (not
+                              owned) */
   fb_planar_ref_result ref;
   double *force, *pen;     /* a reference's contact force [N] and penetration [m] (n), each
                               spike's sample holding its refined extreme (peak_refine.h);
@@ -160,6 +171,9 @@ typedef struct {
 typedef struct {
   fb_case c;               /* the case as run */
   fb_planar *m;            /* its description (owned) */
+  fb_planar *stackup;      /* m at the stack-up corner [tolerance] stackup (fb_case's
+                              stackup.planar, planar_dims.h fb_planar_dims_corner) when a
+                              stack-up model runs, else NULL (owned) */
   double omega;            /* the drive's signed speed [rad/s] */
   double duration;         /* simulated time [s] */
   double t_window;         /* a reference's peaks are over t >= t_window [s] */

@@ -217,8 +217,9 @@ static void set(fb_planar_verdict *v, fb_verdict_word w, fb_verdict_basis b) {
   v->basis = b;
 }
 
-/* an ideal model against its yardstick's peaks, a's: the analytic model's,
- * or an undriven case's ideal reference's (planar_verdict.h) */
+/* an ideal model against its yardstick's peaks, a's: the analytic model's
+ * at its lengths (analytic, or analytic-stackup for a stack-up model), or
+ * an undriven case's ideal reference's (planar_verdict.h) */
 static void ideal(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_model *p,
                   const fb_planar_model *a) {
   const int nb = r->m->nbodies;
@@ -248,7 +249,7 @@ static void ideal(fb_planar_verdict *v, const fb_planar_run *r, const fb_planar_
   set(v, beyond ? FB_VERDICT_WARN : FB_VERDICT_OK, FB_BASIS_POINTWISE);
   snprintf(v->reason, sizeof v->reason, "window peaks against the %s: largest error %.2g "
            "of the body's extremes (%s); the bound is %.2g",
-           a->reference ? "ideal reference" : "analytic", worst, r->m->body[at].name,
+           a->reference ? "ideal reference" : a->name, worst, r->m->body[at].name,
            FB_IDEAL_PEAK_ERROR_BOUND);
 }
 
@@ -491,7 +492,9 @@ void fb_planar_verdicts(fb_planar_run *r) {
                              .first_impulse_n_s = NAN};
     const fb_model *mt = fb_model_find(p->name);
     const fb_model *want = mt && p->force ? fb_model_reference_of(mt) : NULL;
-    const fb_planar_model *y = p->force ? find(r, want ? want->name : NULL) : find(r, "analytic");
+    /* an ideal model's yardstick: the analytic model at its lengths */
+    const char *analytic = fb_model_ideal_stackup(p->name) ? "analytic-stackup" : "analytic";
+    const fb_planar_model *y = p->force ? find(r, want ? want->name : NULL) : find(r, analytic);
     if (!p->force && !y) { /* an undriven case's ideal reference (planar_run.h) */
       const fb_planar_model *ir = find(r, "reference");
       y = ir && ir->ref.joint < 0 ? ir : NULL;
@@ -502,7 +505,7 @@ void fb_planar_verdicts(fb_planar_run *r) {
     } else if (!y) {
       snprintf(v->reason, sizeof v->reason, "nothing to compare with: the run has no %s",
                p->force ? (want ? want->name : "reference of its law")
-                        : r->m->drive >= 0 ? "analytic" : "reference (the ideal mechanism's)");
+                        : r->m->drive >= 0 ? analytic : "reference (the ideal mechanism's)");
     } else if (p->force && r->c.clearance.friction > 0.0) { /* as the four-bar's (report_chaos.c) */
       snprintf(v->reason, sizeof v->reason, "no reference: %s is frictionless ([clearance] "
                "friction = %g)", y->name, r->c.clearance.friction);

@@ -128,10 +128,13 @@ static const key_spec keys[] = {
      "ISO 2768-1 general tolerance class for every link without an explicit "
      "<link>_plus_minus_mm"},
     {"tolerance", "stackup", K_STACKUP, OFF(stackup), 0, 0, 0, 0, 0, "-", "max",
-     "nominal, max, min, worst, or 4 characters from + - 0",
+     "nominal, max, min, worst, or 4 characters from + - 0; a planar case: nominal, max, "
+     "min, or one of + - 0 per dimension",
      "stack-up corner for the *-stackup models: every link at max or min, one "
      "character per link in the order crank, coupler, follower, ground (e.g. +-+-), or "
-     "worst: the corner that maximises |worst_output|"},
+     "worst: the corner that maximises |worst_output|; a planar case: one character per "
+     "dimension of its description in the order fourbar stackup lists them (with "
+     "[tolerance] class)"},
     {"tolerance", "worst_output", K_OUTPUT, OFF(stackup.worst_output), 0, 0, 0, 0, 0, "-",
      "coupler_omega_max", "a stack-up output name (fourbar stackup --help)",
      "output whose magnitude the worst corner maximises"},

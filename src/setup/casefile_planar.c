@@ -17,6 +17,7 @@
 #include "names.h"
 #include "planar_case.h"
 #include "planar_check.h"
+#include "planar_dims.h"
 #include "planar_resolution.h"
 #include "units.h"
 
@@ -58,11 +59,17 @@ static int torque_drive_key(const char *key) {
          strcmp(key, "speed0_rpm") == 0;
 }
 
+/* [tolerance] stackup, which a planar case reads as one sign per dimension */
+static int stackup_key(const entry *e) {
+  return strcmp(e->section, "tolerance") == 0 && strcmp(e->key, "stackup") == 0;
+}
+
 int fb_casefile_planar_claims(const fb_case *c, const entry *e) {
   if (description_section(e)) return 1;
   if (strcmp(e->section, "drive") == 0 && torque_drive_key(e->key)) return 1;
   if (!c->planar.on) return 0;
   if (strcmp(e->section, "clearance") == 0 && strcmp(e->key, "joints") == 0) return 1;
+  if (stackup_key(e)) return 1;
   return fb_casefile_planar_type(e) || fourbar_key(e);
 }
 
@@ -242,6 +249,32 @@ static fb_status point_key(fb_planar_spec *s, const entry *e, fb_diag *diag) {
 
 
 
+_Static_assert(FB_STACKUP_PLANAR_MAX >= 3 * FB_PLANAR_SPEC_MAX_BODIES + 2 * FB_PLANAR_SPEC_MAX_JOINTS,
+               "a planar stack-up corner holds every dimension of the largest description");
+
+/* what a planar case's [tolerance] stackup may be */
+#define STACKUP_RULE "nominal, max, min, or one of + - 0 per dimension in fourbar stackup's " \
+                     "order (a planar case)"
+
+/* [tolerance] stackup on a planar case: a word or the signs, kept as
+ * written until the description counts its dimensions (stackup_whole) */
+static fb_status stackup_take(fb_case *c, const entry *e, fb_diag *diag) {
+  if (strcmp(e->value, "worst") == 0)
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [tolerance] stackup = worst: a planar case has no "
+                       "one worst output; give the corner as one sign per dimension: fourbar "
+                       "stackup's table names each output's worst corner in its 'at' columns",
+                       e->origin);
+  const size_t n = strlen(e->value);
+  const int word = strcmp(e->value, "nominal") == 0 || strcmp(e->value, "max") == 0 ||
+                   strcmp(e->value, "min") == 0;
+  if (!word && (n == 0 || n > FB_STACKUP_PLANAR_MAX || strspn(e->value, "+-0") != n))
+    return fb_diag_set(diag, FB_ERR_PARSE, "%s: [tolerance] stackup = '%s': must be "
+                       STACKUP_RULE, e->origin, e->value);
+  snprintf(c->stackup.planar, sizeof c->stackup.planar, "%.*s",
+           (int)sizeof c->stackup.planar - 1, e->value);
+  return FB_OK;
+}
+
 fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
   const int planar_section = description_section(e) || strcmp(e->section, "drive") == 0;
   if (!c->planar.on && planar_section)
@@ -261,6 +294,7 @@ fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag) {
   if (strcmp(e->section, "drive") == 0 && strcmp(e->key, "speed0_rpm") == 0)
     return fb_planar_key_number(e, e->value, -1e6, 1e6, FB_RAD_S_PER_RPM, "a speed from -1e6 to "
                                 "1e6 rpm, counter-clockwise positive", &c->planar.speed0, diag);
+  if (stackup_key(e)) return stackup_take(c, e, diag);
   if (fourbar_key(e))
     return fb_diag_set(diag, FB_ERR_PARSE, "%s: [%s] %s is a four-bar or slider-crank key; a "
                        "planar case gives its geometry by [joint.NAME] at_mm and its masses by "
@@ -653,6 +687,32 @@ static void summary(char *buf, size_t size, const fb_planar *m) {
  * that resolves its clearance contacts (planar_resolution.h), into
  * c->solver.h (h_mode kept: the case asked for auto). A planar case
  * without h_s keeps the key's default step. */
+/* c->stackup.planar: the corner as one sign per dimension of m, a word
+ * (max when not given, as the four-bar's) spelled out */
+static fb_status stackup_whole(fb_case *c, const fb_planar *m, const entry *e, int n,
+                               fb_diag *diag) {
+  char *s = c->stackup.planar;
+  const int dims = fb_planar_dims_count(m);
+  if (dims > FB_STACKUP_PLANAR_MAX) /* case.h's bound holds every description */
+    return fb_diag_set(diag, FB_ERR_RANGE, "the description has %d stack-up dimensions, more "
+                       "than %d", dims, FB_STACKUP_PLANAR_MAX);
+  const char sign = !s[0] || strcmp(s, "max") == 0 ? '+' : strcmp(s, "min") == 0 ? '-'
+                    : strcmp(s, "nominal") == 0    ? '0' : 0;
+  if (sign) {
+    memset(s, sign, (size_t)dims);
+    s[dims] = '\0';
+    return FB_OK;
+  }
+  if ((int)strlen(s) == dims) return FB_OK;
+  const entry *at = NULL;
+  for (int i = 0; i < n; i++)
+    if (stackup_key(&e[i])) at = &e[i]; /* the last given wins, as every key's */
+  return fb_diag_set(diag, FB_ERR_PARSE, "%s: [tolerance] stackup = '%s': %d signs, and the "
+                     "description has %d dimensions: give one of + - 0 for each, in the order "
+                     "fourbar stackup lists them (or nominal, max, min)",
+                     at ? at->origin : "case", s, (int)strlen(s), dims);
+}
+
 static fb_status step_auto(fb_case *c, const fb_planar *m, const char *path, fb_diag *diag) {
   if (c->solver.h_mode != FB_STEP_AUTO || c->planar.undriven || !c->clearance.mask) return FB_OK;
   fb_diag inner;
@@ -682,6 +742,11 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
                        origin_of(where, sizeof where, &c->planar, &w, e, n, path), inner.msg);
   char line[512];
   summary(line, sizeof line, m);
+  st = stackup_whole(c, m, e, n, diag);
+  if (st != FB_OK) {
+    fb_planar_free(m);
+    return st;
+  }
   if (run) st = step_auto(c, m, path, diag);
   fb_planar_free(m);
   if (st != FB_OK) return st;

@@ -493,6 +493,11 @@ fb_status fb_model_lookup(const fb_model **out, const char *name, fb_diag *diag)
                      fb_model_list(known, sizeof known));
 }
 
+int fb_model_ideal_stackup(const char *name) {
+  const fb_model *m = fb_model_find(name);
+  return m && m->lengths == FB_LENGTHS_STACKUP && m->joints == FB_JOINTS_IDEAL;
+}
+
 int fb_model_has_clearance(const fb_model *m) { return m->joints == FB_JOINTS_CLEARANCE; }
 
 fb_collider fb_case_collider_of(const fb_case *c) {

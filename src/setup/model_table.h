@@ -173,6 +173,11 @@ const char *fb_model_list(char *buf, size_t size);
 /* 1 when the model has clearance joints (and so contact columns and spikes). */
 int fb_model_has_clearance(const fb_model *m);
 
+/* 1 when model name is an ideal model at the stack-up lengths
+ * (analytic-stackup, *-ideal-stackup: what a planar case runs at its
+ * stack-up corner, run/planar_run.h), else 0 (an unknown name too). */
+int fb_model_ideal_stackup(const char *name);
+
 /* The model table's collider for [clearance] collider of case c. */
 fb_collider fb_case_collider_of(const fb_case *c);
 

@@ -180,21 +180,8 @@ static fb_status lengths_of(fb_planar_stackup *s, const fb_case *c, const fb_pla
     return fb_diag_set(diag, FB_ERR_ARG, "a planar case's stack-up needs [tolerance] class "
                        "(f, m, c or v: ISO 2768-1 on each joint-to-joint distance, a slot's or "
                        "guide's offset and angle)");
-  const int count = fb_planar_dims_count(m);
-  s->length = calloc(count ? (size_t)count : 1, sizeof *s->length);
-  double *travel = calloc((size_t)m->njoints + 1, sizeof *travel);
-  fb_planar_designer *des = fb_planar_slide_count(m) ? malloc(sizeof *des) : NULL;
-  fb_status st = !s->length || !travel || (fb_planar_slide_count(m) && !des)
-                     ? fb_diag_set(diag, FB_ERR_NOMEM, "out of memory")
-                     : FB_OK;
-  if (st == FB_OK && des) st = fb_planar_tool_designer(des, m, c, diag);
-  for (int i = 0; st == FB_OK && des && i < des->nslides; i++)
-    travel[des->slide[i].joint] = des->slide[i].stroke;
-  if (st == FB_OK)
-    st = fb_planar_dims(s->length, &s->nlengths, m, c->tolerance_class, travel, diag);
-  free(travel);
-  free(des);
-  return st;
+  return fb_planar_dims_toleranced(&s->length, &s->nlengths, m, c->tolerance_class,
+                                   fb_case_omega2(c), diag);
 }
 
 int fb_planar_stackup_lengths(const fb_planar *m) { return fb_planar_dims_count(m); }
@@ -261,9 +248,7 @@ static fb_status sensitivities(fb_planar_stackup *s, const fb_planar *m, double 
 static fb_status corner(fb_planar_stackup *s, const fb_planar *m, const char *at, double *len,
                         double *y, double omega, fb_diag *diag) {
   const int nl = s->nlengths;
-  for (int k = 0; k < nl; k++)
-    len[k] = s->length[k].nominal + (at[k] == '+' ? 1.0 : at[k] == '-' ? -1.0 : 0.0) *
-                                        s->length[k].plus_minus;
+  fb_planar_dims_at(len, s->length, nl, at);
   fb_diag inner;
   const fb_status st = outputs_at(y, m, s, len, omega, &inner);
   if (st == FB_ERR_ASSEMBLY) { /* a mechanism that cannot exist: counted, not evaluated */

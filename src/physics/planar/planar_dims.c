@@ -3,11 +3,15 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "iso2768.h"
 #include "planar_case.h"
 #include "planar_constraints.h"
+#include "planar_kinematics.h"
+#include "planar_outputs.h"
+#include "planar_path.h"
 #include "planar_spec.h"
 #include "units.h"
 
@@ -323,4 +327,111 @@ fb_planar *fb_planar_dims_apply(const fb_planar *m, const fb_planar_length *dim,
     place_line(x, m, dim[k].joint[1], len[k], turn ? len[k + 1] - dim[k + 1].nominal : 0.0);
   }
   return x;
+}
+
+void fb_planar_dims_at(double *len, const fb_planar_length *dim, int n, const char *at) {
+  for (int k = 0; k < n; k++)
+    len[k] = dim[k].nominal +
+             (at[k] == '+' ? 1.0 : at[k] == '-' ? -1.0 : 0.0) * dim[k].plus_minus;
+}
+
+/* fb_planar_quantity of the slides' positions: index i is slide i's
+ * (planar_outputs.h's row: 3 per slide after the points' 6) */
+static double slide_position(const fb_planar *m, const double *q, const double *qd,
+                             const double *qdd, const double *w1, int i, void *ctx) {
+  (void)w1;
+  double *row = ctx;
+  fb_planar_outputs(row, m, q, qd, qdd);
+  return row[FB_PLANAR_POINT_QUANTITIES * m->npoints + 3 * i];
+}
+
+fb_status fb_planar_slide_travel(double *travel, const fb_planar *m, double omega,
+                                 fb_diag *diag) {
+  for (int j = 0; j < m->njoints; j++) travel[j] = 0.0;
+  const int ns = fb_planar_slide_count(m);
+  if (m->drive < 0 || ns == 0) return FB_OK;
+  fb_planar_kin *k;
+  fb_status st = fb_planar_kin_new(&k, m, diag);
+  if (st != FB_OK) return st;
+  double *row = malloc(((size_t)fb_planar_output_count(m) + 1) * sizeof *row);
+  fb_planar_extreme *e = malloc((size_t)ns * sizeof *e);
+  st = row && e ? fb_planar_extremes_of(e, ns, slide_position, row, k, omega, diag)
+                : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int j = 0, s = 0; st == FB_OK && j < m->njoints; j++)
+    if (m->joint[j].kind == FB_KIND_PRISMATIC) travel[j] = e[s].max - e[s].min, s++;
+  free(row);
+  free(e);
+  fb_planar_kin_free(k);
+  return st;
+}
+
+fb_status fb_planar_dims_toleranced(fb_planar_length **out, int *n, const fb_planar *m, char cls,
+                                    double omega, fb_diag *diag) {
+  *n = 0;
+  const int count = fb_planar_dims_count(m);
+  *out = calloc(count ? (size_t)count : 1, sizeof **out);
+  double *travel = calloc((size_t)m->njoints + 1, sizeof *travel);
+  fb_status st = *out && travel ? fb_planar_slide_travel(travel, m, omega, diag)
+                                : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  if (st == FB_OK) st = fb_planar_dims(*out, n, m, cls, travel, diag);
+  free(travel);
+  if (st != FB_OK) {
+    free(*out);
+    *out = NULL;
+    *n = 0;
+  }
+  return st;
+}
+
+/* what fb_planar_dims_apply does not carry: x takes m's output points,
+ * springs, loads and torque drive (each in its body's frame, as m's);
+ * 0 out of memory */
+static int copy_rest(fb_planar *x, const fb_planar *m) {
+  x->torque_joint = m->torque_joint;
+  x->drive_torque = m->drive_torque;
+  if (m->npoints && !(x->point = malloc((size_t)m->npoints * sizeof *x->point))) return 0;
+  if (m->nsprings && !(x->spring = malloc((size_t)m->nsprings * sizeof *x->spring))) return 0;
+  if (m->nloads && !(x->load = malloc((size_t)m->nloads * sizeof *x->load))) return 0;
+  if (m->npoints) memcpy(x->point, m->point, (size_t)m->npoints * sizeof *x->point);
+  if (m->nsprings) memcpy(x->spring, m->spring, (size_t)m->nsprings * sizeof *x->spring);
+  if (m->nloads) memcpy(x->load, m->load, (size_t)m->nloads * sizeof *x->load);
+  x->npoints = m->npoints;
+  x->nsprings = m->nsprings;
+  x->nloads = m->nloads;
+  return 1;
+}
+
+fb_status fb_planar_dims_corner(fb_planar **out, const fb_planar *m, char cls, double omega,
+                                const char *at, fb_diag *diag) {
+  *out = NULL;
+  fb_planar_length *dim;
+  int n;
+  fb_status st = fb_planar_dims_toleranced(&dim, &n, m, cls, omega, diag);
+  if (st != FB_OK) return st;
+  if ((int)strlen(at) != n) {
+    free(dim);
+    return fb_diag_set(diag, FB_ERR_ARG, "[tolerance] stackup = '%s': %d signs for the "
+                       "description's %d dimensions (fourbar stackup lists them in order)",
+                       at, (int)strlen(at), n);
+  }
+  double *len = malloc((n ? (size_t)n : 1) * sizeof *len);
+  if (!len) {
+    free(dim);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  }
+  fb_planar_dims_at(len, dim, n, at);
+  int open;
+  *out = fb_planar_dims_apply(m, dim, n, len, &open);
+  if (*out && (open >= 0 || !copy_rest(*out, m))) {
+    fb_planar_free(*out);
+    *out = NULL;
+  }
+  if (open < 0) st = *out ? FB_OK : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  else
+    st = fb_diag_set(diag, FB_ERR_ASSEMBLY, "[tolerance] stackup = '%s': body '%s': its three "
+                     "joint distances close no triangle (one is longer than the other two "
+                     "together)", at, m->body[open].name);
+  free(len);
+  free(dim);
+  return st;
 }

@@ -1,4 +1,4 @@
-/* The dimensions a planar stack-up tolerances (studies floor): what a
+/* The dimensions a planar stack-up tolerances (physics floor, planar core): what a
  * designer writes on each body's drawing, listed from a description and
  * applied to a copy of it.
  *
@@ -87,5 +87,38 @@ fb_status fb_planar_dims(fb_planar_length *out, int *n, const fb_planar *m, char
  * with fb_planar_free. */
 fb_planar *fb_planar_dims_apply(const fb_planar *m, const fb_planar_length *dim, int n,
                                 const double *len, int *open);
+
+/* len[k] = dim[k]'s length at corner sign at[k] (n of each): nominal +
+ * plus_minus for '+', nominal - plus_minus for '-', nominal for '0'. */
+void fb_planar_dims_at(double *len, const fb_planar_length *dim, int n, const char *at);
+
+/* travel[j] (m->njoints of them) = prismatic joint j's slide travel over
+ * a revolution of the drive at signed speed omega [rad/s]: its position's
+ * largest less its smallest (planar_outputs.h's slide, planar_path.h
+ * fb_planar_extremes_of) [m]; 0 for a revolute joint, and for every joint
+ * of an undriven m. Errors: those of fb_planar_kin_new and
+ * fb_planar_extremes_of. */
+fb_status fb_planar_slide_travel(double *travel, const fb_planar *m, double omega,
+                                 fb_diag *diag);
+
+/* *out (*n of them, owned: free()) = m's dimensions toleranced by ISO
+ * 2768-1 class cls (fb_planar_dims), the angles' legs from the slides'
+ * travel at signed drive speed omega [rad/s] (fb_planar_slide_travel).
+ * Errors: those two functions'; FB_ERR_NOMEM. */
+fb_status fb_planar_dims_toleranced(fb_planar_length **out, int *n, const fb_planar *m, char cls,
+                                    double omega, fb_diag *diag);
+
+/* *out (owned: fb_planar_free) = m at the stack-up corner at: one of '+'
+ * (nominal + plus_minus), '-' (nominal - plus_minus), '0' (nominal) per
+ * dimension of fb_planar_dims_toleranced(m, cls, omega), in its order
+ * (fourbar stackup's table's rows); the copy keeps m's output points,
+ * springs, loads and drive, each in its body's frame, and its assembly
+ * pose (which the corner's lengths open: planar_kinematics.h's
+ * fb_planar_position closes it). Errors: FB_ERR_ARG when strlen(at) is not
+ * the dimensions' count; FB_ERR_ASSEMBLY when a body's three distances
+ * close no triangle, naming the body; those of fb_planar_dims_toleranced;
+ * FB_ERR_NOMEM. */
+fb_status fb_planar_dims_corner(fb_planar **out, const fb_planar *m, char cls, double omega,
+                                const char *at, fb_diag *diag);
 
 #endif

@@ -271,9 +271,10 @@ typedef struct {
   double friction;          /* [clearance] friction: Coulomb's coefficient mu at the contact
                                (0: frictionless) [-] */
   fb_status (*mass_tensors)(double w[4][2][2], const fb_planar *m, const double *q,
-                            unsigned mask, fb_diag *diag);
+                            const double (*cs)[2], unsigned mask, fb_diag *diag);
                             /* optional: the inverse-mass tensor [1/kg] at each of a four-joint
-                               mechanism's joints at the pose q (the drive held, the joints of
+                               mechanism's joints at the pose q (every body's cos, sin there:
+                               cs, fb_planar_rotations; the drive held, the joints of
                                mask left out) by its closed form (planar_case.h
                                fb_planar_instance_mass: the four-bar's and slider-crank's);
                                NULL: the planar core's factorisation (planar_mass.h), at most

@@ -102,8 +102,8 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
                     const fb_kit_clearance *cl, int j) {
   const fb_planar_joint *pj = &m->joint[j];
   double xp[2], vp[2], xh[2], vh[2];
-  fb_planar_point_motion(xp, vp, m, p->q, p->qd, pj->body[0], pj->point[0]);
-  fb_planar_point_motion(xh, vh, m, p->q, p->qd, pj->body[1], pj->point[1]);
+  fb_planar_point_motion_at(xp, vp, p->q, p->qd, pj->body[0], pj->point[0], p->cs[pj->body[0]]);
+  fb_planar_point_motion_at(xh, vh, p->q, p->qd, pj->body[1], pj->point[1], p->cs[pj->body[1]]);
   const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
   const double delta = ecc - cl->radial_clearance;
   if (ecc > 0.0) p->rate[j] = (e[0] * (vp[0] - vh[0]) + e[1] * (vp[1] - vh[1])) / ecc;
@@ -141,6 +141,7 @@ static void corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], fb_kit_pi
 void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m,
                       const fb_kit_clearance *cl) {
   p->factored = p->closed = 0; /* the state is read anew */
+  if (cl->mask) fb_planar_rotations(p->cs, m, p->q);
   fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
   for (int j = 0; j < m->njoints; j++) {
     if (p->off[j] && is_guide(m, j)) {
@@ -330,7 +331,7 @@ static fb_status tensor(double w[2][2], fb_kit_pipe *p, const fb_planar *m,
                         const fb_kit_clearance *cl, int j, fb_diag *diag) {
   if (cl->mass_tensors && j < 4) {
     if (!p->closed) {
-      fb_status st = cl->mass_tensors(p->w4, m, p->q, cl->mask, diag);
+      fb_status st = cl->mass_tensors(p->w4, m, p->q, (const double(*)[2])p->cs, cl->mask, diag);
       if (st != FB_OK) return st;
       p->closed = 1;
     }

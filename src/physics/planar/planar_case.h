@@ -99,10 +99,12 @@ fb_status fb_planar_of_case(fb_planar **out, const fb_case *c, const fb_linkage 
  * in fb_mech_desc's order), the joints of clearance_mask (bit j) left out:
  * effective_mass.h's closed form (fb_effective_mass_tensor) on the bodies'
  * centres and each joint's point on its first moving body (a clearance
- * joint's pin), the prismatic joint a guide along x. Errors: FB_ERR_ARG
+ * joint's pin) placed with the bodies' rotations cs (m->nbodies x 2: cos,
+ * sin at q, planar_constraints.h fb_planar_rotations; NULL: formed here),
+ * the prismatic joint a guide along x. Errors: FB_ERR_ARG
  * when m is not such an instance (3 moving bodies, 4 joints); those of
  * fb_effective_mass_tensor. */
 fb_status fb_planar_instance_mass(double w[4][2][2], const fb_planar *m, const double *q,
-                                  unsigned clearance_mask, fb_diag *diag);
+                                  const double (*cs)[2], unsigned clearance_mask, fb_diag *diag);
 
 #endif

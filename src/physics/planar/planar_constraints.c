@@ -15,19 +15,37 @@ double fb_planar_angle(const double *q, int b) { return b ? q[3 * (b - 1) + 2] :
 
 static double rate_of(const double *qd, int b) { return b ? qd[3 * (b - 1) + 2] : 0.0; }
 
-void fb_planar_rotate(double out[2], double theta, const double s[2]) {
-  const double c = cos(theta), sn = sin(theta);
+/* out = [c -sn; sn c] s, the one formula of a rotation */
+static void turn(double out[2], double c, double sn, const double s[2]) {
   out[0] = c * s[0] - sn * s[1];
   out[1] = sn * s[0] + c * s[1];
+}
+
+void fb_planar_rotate(double out[2], double theta, const double s[2]) {
+  turn(out, cos(theta), sin(theta), s);
+}
+
+void fb_planar_rotations(double (*cs)[2], const fb_planar *m, const double *q) {
+  for (int b = 0; b < m->nbodies; b++) {
+    const double a = fb_planar_angle(q, b);
+    cs[b][0] = cos(a);
+    cs[b][1] = sin(a);
+  }
+}
+
+void fb_planar_point_at(double out[2], const double *q, int b, const double s[2],
+                        const double cs[2]) {
+  double as[2];
+  turn(as, cs[0], cs[1], s);
+  out[0] = as[0] + (b ? q[3 * (b - 1)] : 0.0);
+  out[1] = as[1] + (b ? q[3 * (b - 1) + 1] : 0.0);
 }
 
 void fb_planar_point(double out[2], const fb_planar *m, const double *q, int b,
                      const double s[2]) {
   (void)m;
-  double as[2];
-  fb_planar_rotate(as, fb_planar_angle(q, b), s);
-  out[0] = as[0] + (b ? q[3 * (b - 1)] : 0.0);
-  out[1] = as[1] + (b ? q[3 * (b - 1) + 1] : 0.0);
+  const double a = fb_planar_angle(q, b), cs[2] = {cos(a), sin(a)};
+  fb_planar_point_at(out, q, b, s, cs);
 }
 
 void fb_planar_point_velocity(double out[2], const fb_planar *m, const double *q,
@@ -45,8 +63,14 @@ void fb_planar_point_velocity(double out[2], const fb_planar *m, const double *q
 void fb_planar_point_motion(double x[2], double v[2], const fb_planar *m, const double *q,
                             const double *qd, int b, const double s[2]) {
   (void)m;
+  const double a = fb_planar_angle(q, b), cs[2] = {cos(a), sin(a)};
+  fb_planar_point_motion_at(x, v, q, qd, b, s, cs);
+}
+
+void fb_planar_point_motion_at(double x[2], double v[2], const double *q, const double *qd,
+                               int b, const double s[2], const double cs[2]) {
   double as[2];
-  fb_planar_rotate(as, fb_planar_angle(q, b), s);
+  turn(as, cs[0], cs[1], s);
   x[0] = as[0] + (b ? q[3 * (b - 1)] : 0.0);
   x[1] = as[1] + (b ? q[3 * (b - 1) + 1] : 0.0);
   const double w = b ? qd[3 * (b - 1) + 2] : 0.0;

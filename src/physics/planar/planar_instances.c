@@ -95,7 +95,7 @@ fb_status fb_planar_slider_crank(fb_planar **out, const fb_linkage *lk,
 }
 
 fb_status fb_planar_instance_mass(double w[4][2][2], const fb_planar *m, const double *q,
-                                  unsigned clearance_mask, fb_diag *diag) {
+                                  const double (*cs)[2], unsigned clearance_mask, fb_diag *diag) {
   if (m->nbodies != 4 || m->njoints != 4)
     return fb_diag_set(diag, FB_ERR_ARG, "the closed-form effective mass takes a four-bar or a "
                        "slider-crank (3 moving bodies, 4 joints), not %d and %d",
@@ -111,7 +111,8 @@ fb_status fb_planar_instance_mass(double w[4][2][2], const fb_planar *m, const d
   for (int j = 0; j < 4; j++) {
     const fb_planar_joint *pj = &m->joint[j];
     const int k = pj->body[0] == FB_PLANAR_GROUND; /* its first moving body's side */
-    fb_planar_point(mc.joint[j], m, q, pj->body[k], pj->point[k]);
+    if (cs) fb_planar_point_at(mc.joint[j], q, pj->body[k], pj->point[k], cs[pj->body[k]]);
+    else fb_planar_point(mc.joint[j], m, q, pj->body[k], pj->point[k]);
     if (pj->kind == FB_KIND_PRISMATIC) mc.prismatic_mask |= 1 << j;
   }
   mc.clearance_mask = (int)(clearance_mask & 0xfu);

@@ -71,7 +71,7 @@ static const fb_model *planar_model(fb_engine_id e, int q) {
   for (int i = 0; i < fb_model_count; i++) {
     const fb_model *m = &fb_models[i];
     if (m->engine != e || !fb_planar_kit_of(m->name)) continue;
-    if (q == 0 && m->joints == FB_JOINTS_IDEAL) return m;
+    if (q == 0 && m->joints == FB_JOINTS_IDEAL && m->lengths == FB_LENGTHS_NOMINAL) return m;
     if (q == 1 && m->joints == FB_JOINTS_CLEARANCE && m->law == FB_MODEL_LAW_IMPACT &&
         fb_model_reference_of(m))
       return m;

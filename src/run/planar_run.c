@@ -20,10 +20,16 @@
 #include "series.h"
 #include "step_control.h"
 
+/* 1: model name is the analytic model at some lengths (analytic,
+ * analytic-stackup), no dynamics of its own */
+static int analytic_model(const char *name) {
+  const fb_model *m = fb_model_find(name);
+  return m && m->engine == FB_ENGINE_ANALYTIC;
+}
+
 int fb_planar_run_takes(const char *name) {
-  return strcmp(name, "analytic") == 0 || strcmp(name, "analytic-stackup") == 0 ||
-         strcmp(name, "reference") == 0 || strcmp(name, "reference-restitution") == 0 ||
-         fb_planar_kit_of(name) != NULL;
+  return analytic_model(name) || strcmp(name, "reference") == 0 ||
+         strcmp(name, "reference-restitution") == 0 || fb_planar_kit_of(name) != NULL;
 }
 
 const char *fb_planar_run_refusal(const char *name) {
@@ -244,8 +250,7 @@ static void model_free(fb_planar_model *p) {
  * only on a case that has no clearance model) */
 static fb_status reactions(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
   int needed = 0;
-  for (int i = 0; i < c->model_count; i++) /* analytic, analytic-stackup: none */
-    needed |= strncmp(c->models[i], "analytic", 8) != 0;
+  for (int i = 0; i < c->model_count; i++) needed |= !analytic_model(c->models[i]);
   if (!needed || c->planar.undriven || !c->clearance.mask) return FB_OK;
   r->reaction_max = malloc((size_t)r->m->njoints * sizeof *r->reaction_max);
   if (!r->reaction_max) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
@@ -288,7 +293,7 @@ static fb_status run_once(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
     const double t0 = fb_clock_s();
     st = model_alloc(p, r, diag);
     if (st == FB_OK)
-      st = strncmp(p->name, "analytic", 8) == 0 ? analytic(p, r, diag)
+      st = analytic_model(p->name) ? analytic(p, r, diag)
            : fb_planar_kit_of(p->name) ? fb_planar_run_kit(p, r, diag)
                                        : fb_planar_run_reference(p, r, strcmp(p->name, "reference") == 0, diag);
     p->wall_s = fb_clock_s() - t0;

@@ -683,10 +683,6 @@ static void summary(char *buf, size_t size, const fb_planar *m) {
            derived[0] ? "; masses derived as bars: " : "", derived, derived[0] ? "" : "");
 }
 
-/* [solver] h_s = auto on a driven case with clearance joints: the step
- * that resolves its clearance contacts (planar_resolution.h), into
- * c->solver.h (h_mode kept: the case asked for auto). A planar case
- * without h_s keeps the key's default step. */
 /* c->stackup.planar: the corner as one sign per dimension of m, a word
  * (max when not given, as the four-bar's) spelled out */
 static fb_status stackup_whole(fb_case *c, const fb_planar *m, const entry *e, int n,
@@ -713,6 +709,10 @@ static fb_status stackup_whole(fb_case *c, const fb_planar *m, const entry *e, i
                      at ? at->origin : "case", s, (int)strlen(s), dims);
 }
 
+/* [solver] h_s = auto on a driven case with clearance joints: the step
+ * that resolves its clearance contacts (planar_resolution.h), into
+ * c->solver.h (h_mode kept: the case asked for auto). A planar case
+ * without h_s keeps the key's default step. */
 static fb_status step_auto(fb_case *c, const fb_planar *m, const char *path, fb_diag *diag) {
   if (c->solver.h_mode != FB_STEP_AUTO || c->planar.undriven || !c->clearance.mask) return FB_OK;
   fb_diag inner;

@@ -274,7 +274,7 @@ typedef struct {
                             const double (*cs)[2], unsigned mask, fb_diag *diag);
                             /* optional: the inverse-mass tensor [1/kg] at each of a four-joint
                                mechanism's joints at the pose q (every body's cos, sin there:
-                               cs, fb_planar_rotations; the drive held, the joints of
+                               cs, fb_planar_rotation; the drive held, the joints of
                                mask left out) by its closed form (planar_case.h
                                fb_planar_instance_mass: the four-bar's and slider-crank's);
                                NULL: the planar core's factorisation (planar_mass.h), at most

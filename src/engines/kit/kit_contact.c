@@ -95,6 +95,17 @@ void fb_kit_pipe_free(fb_kit_pipe *p) {
   p->cm = NULL;
 }
 
+_Static_assert(FB_PLANAR_SPEC_MAX_BODIES + 1 <= 64, "fb_kit_pipe.rotated has a bit per body");
+
+/* body b's cos, sin at the state read (fb_kit_pipe.cs), formed once */
+static const double *rotation(fb_kit_pipe *p, int b) {
+  if (!(p->rotated & (1ull << b))) {
+    fb_planar_rotation(p->cs[b], p->q, b);
+    p->rotated |= 1ull << b;
+  }
+  return p->cs[b];
+}
+
 /* joint j's penetration, rate and eccentricity at the state read, and its
  * contact into *c (depth <= 0: free flight) when the pin is off the
  * hole's centre (returns 1; 0: on it, no normal) */
@@ -102,8 +113,10 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
                     const fb_kit_clearance *cl, int j) {
   const fb_planar_joint *pj = &m->joint[j];
   double xp[2], vp[2], xh[2], vh[2];
-  fb_planar_point_motion_at(xp, vp, p->q, p->qd, pj->body[0], pj->point[0], p->cs[pj->body[0]]);
-  fb_planar_point_motion_at(xh, vh, p->q, p->qd, pj->body[1], pj->point[1], p->cs[pj->body[1]]);
+  fb_planar_point_motion_at(xp, vp, p->q, p->qd, pj->body[0], pj->point[0],
+                            rotation(p, pj->body[0]));
+  fb_planar_point_motion_at(xh, vh, p->q, p->qd, pj->body[1], pj->point[1],
+                            rotation(p, pj->body[1]));
   const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
   const double delta = ecc - cl->radial_clearance;
   if (ecc > 0.0) p->rate[j] = (e[0] * (vp[0] - vh[0]) + e[1] * (vp[1] - vh[1])) / ecc;
@@ -141,7 +154,7 @@ static void corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], fb_kit_pi
 void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m,
                       const fb_kit_clearance *cl) {
   p->factored = p->closed = 0; /* the state is read anew */
-  if (cl->mask) fb_planar_rotations(p->cs, m, p->q);
+  p->rotated = 0;
   fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
   for (int j = 0; j < m->njoints; j++) {
     if (p->off[j] && is_guide(m, j)) {
@@ -331,6 +344,7 @@ static fb_status tensor(double w[2][2], fb_kit_pipe *p, const fb_planar *m,
                         const fb_kit_clearance *cl, int j, fb_diag *diag) {
   if (cl->mass_tensors && j < 4) {
     if (!p->closed) {
+      for (int b = 0; b < m->nbodies; b++) rotation(p, b);
       fb_status st = cl->mass_tensors(p->w4, m, p->q, (const double(*)[2])p->cs, cl->mask, diag);
       if (st != FB_OK) return st;
       p->closed = 1;

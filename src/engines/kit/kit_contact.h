@@ -26,10 +26,12 @@ typedef struct {
   double pen[FB_PLANAR_SPEC_MAX_JOINTS];      /* penetration at the step's start [m] */
   unsigned char off[FB_PLANAR_SPEC_MAX_JOINTS]; /* 1: a clearance joint (no ideal joint) */
   double *q, *qd;                             /* the core's coordinates and rates (nq each) */
-  double cs[FB_PLANAR_SPEC_MAX_BODIES + 1][2]; /* every body's cos, sin at the state last read
-                                                 (fb_planar_rotations): the pins' points and
-                                                 the closed form's joints placed without a
-                                                 sin/cos of their own */
+  double cs[FB_PLANAR_SPEC_MAX_BODIES + 1][2]; /* body b's cos, sin at the state last read
+                                                 (fb_planar_rotation), formed at its first use
+                                                 since the read (bit b of rotated): the pins'
+                                                 points and the closed form's joints placed
+                                                 without a sin/cos of their own */
+  unsigned long long rotated;                 /* bit b: cs[b] is the state last read's */
   double rate[FB_PLANAR_SPEC_MAX_JOINTS];     /* penetration rate at the state last read [m/s] */
   double rate_before[FB_PLANAR_SPEC_MAX_JOINTS]; /* the one read before it [m/s] */
   double ecc[FB_PLANAR_SPEC_MAX_JOINTS][2];   /* eccentricity pin - hole at the last read [m]

@@ -100,7 +100,7 @@ fb_status fb_planar_of_case(fb_planar **out, const fb_case *c, const fb_linkage 
  * effective_mass.h's closed form (fb_effective_mass_tensor) on the bodies'
  * centres and each joint's point on its first moving body (a clearance
  * joint's pin) placed with the bodies' rotations cs (m->nbodies x 2: cos,
- * sin at q, planar_constraints.h fb_planar_rotations; NULL: formed here),
+ * sin at q, planar_constraints.h fb_planar_rotation; NULL: formed here),
  * the prismatic joint a guide along x. Errors: FB_ERR_ARG
  * when m is not such an instance (3 moving bodies, 4 joints); those of
  * fb_effective_mass_tensor. */

@@ -25,12 +25,10 @@ void fb_planar_rotate(double out[2], double theta, const double s[2]) {
   turn(out, cos(theta), sin(theta), s);
 }
 
-void fb_planar_rotations(double (*cs)[2], const fb_planar *m, const double *q) {
-  for (int b = 0; b < m->nbodies; b++) {
-    const double a = fb_planar_angle(q, b);
-    cs[b][0] = cos(a);
-    cs[b][1] = sin(a);
-  }
+void fb_planar_rotation(double cs[2], const double *q, int b) {
+  const double a = fb_planar_angle(q, b);
+  cs[0] = b ? cos(a) : 1.0; /* the ground's: cos 0, sin 0 exactly */
+  cs[1] = b ? sin(a) : 0.0;
 }
 
 void fb_planar_point_at(double out[2], const double *q, int b, const double s[2],
@@ -44,7 +42,8 @@ void fb_planar_point_at(double out[2], const double *q, int b, const double s[2]
 void fb_planar_point(double out[2], const fb_planar *m, const double *q, int b,
                      const double s[2]) {
   (void)m;
-  const double a = fb_planar_angle(q, b), cs[2] = {cos(a), sin(a)};
+  double cs[2];
+  fb_planar_rotation(cs, q, b);
   fb_planar_point_at(out, q, b, s, cs);
 }
 
@@ -63,7 +62,8 @@ void fb_planar_point_velocity(double out[2], const fb_planar *m, const double *q
 void fb_planar_point_motion(double x[2], double v[2], const fb_planar *m, const double *q,
                             const double *qd, int b, const double s[2]) {
   (void)m;
-  const double a = fb_planar_angle(q, b), cs[2] = {cos(a), sin(a)};
+  double cs[2];
+  fb_planar_rotation(cs, q, b);
   fb_planar_point_motion_at(x, v, q, qd, b, s, cs);
 }
 

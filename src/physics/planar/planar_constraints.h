@@ -71,12 +71,12 @@ void fb_planar_point(double out[2], const fb_planar *m, const double *q, int b,
 void fb_planar_point_motion(double x[2], double v[2], const fb_planar *m, const double *q,
                             const double *qd, int b, const double s[2]);
 
-/* Every body's rotation at q: cs[b] = (cos, sin) of body b's angle, b <
- * m->nbodies (the ground's (1, 0)). A caller that places several points
- * at one q forms each body's rotation once and hands its row to the _at
- * functions below, which give fb_planar_point's and
- * fb_planar_point_motion's numbers to the last bit. */
-void fb_planar_rotations(double (*cs)[2], const fb_planar *m, const double *q);
+/* Body b's rotation at q: cs (2) = (cos, sin) of its angle [-] (the
+ * ground's (1, 0)). A caller that places several points of a body at one
+ * q forms its rotation once and hands it to the _at functions below,
+ * which give fb_planar_point's and fb_planar_point_motion's numbers to the
+ * last bit. */
+void fb_planar_rotation(double cs[2], const double *q, int b);
 
 /* fb_planar_point with body b's rotation cs (2: its cos, sin at q). */
 void fb_planar_point_at(double out[2], const double *q, int b, const double s[2],

@@ -22,8 +22,6 @@
 #include "fb_config.h"
 #include "fb_test.h"
 #include "impact.h"
-#include "impact_bullet.h"
-#include "impact_ode.h"
 #include "outcome_text.h"
 #include "report.h"
 #include "run.h"
@@ -303,6 +301,17 @@ static void test_reactions_match_inverse_dynamics(void **state) {
 }
 
 #if FB_HAVE_BULLET /* used only by the single-impact test of builds with Bullet */
+/* engine id's single impact of d as fourbar impact runs it (its table's
+ * law: the world its kit binding builds), Bullet's settings bt */
+static fb_status engine_impact(fb_engine_id id, fb_impact_result *out, const fb_impact_def *d,
+                               const fb_bullet_opts *bt) {
+  const fb_engine *e = fb_engine_get(id, NULL);
+  assert_non_null(e);
+  assert_non_null(e->impact);
+  fb_impact_opts o = {.bullet = *bt};
+  return e->impact->law(out, d, &o, NULL);
+}
+
 static fb_impact_def impact_def(fb_law_kind kind) {
   fb_impact_def d;
   memset(&d, 0, sizeof d);
@@ -332,14 +341,14 @@ static void test_single_impact_matched_and_own_conversion(void **state) {
     d.h = IMPACT_H_OMEGA * ref.contact_duration / M_PI;
     fb_bullet_opts o = fb_bullet_opts_default();
     d.mapping = FB_MAPPING_MATCHED;
-    assert_int_equal(fb_impact_ode(&ode, &d, NULL), FB_OK);
-    assert_int_equal(fb_impact_bullet(&bt, &d, &o, NULL), FB_OK);
+    assert_int_equal(engine_impact(FB_ENGINE_ODE, &ode, &d, &o), FB_OK);
+    assert_int_equal(engine_impact(FB_ENGINE_BULLET, &bt, &d, &o), FB_OK);
     fb_bullet_opts o_si = o;
     o_si.solver = FB_BULLET_SEQUENTIAL_IMPULSE;
-    assert_int_equal(fb_impact_bullet(&si, &d, &o_si, NULL), FB_OK);
+    assert_int_equal(engine_impact(FB_ENGINE_BULLET, &si, &d, &o_si), FB_OK);
     d.mapping = FB_MAPPING_SECANT; /* Bullet's own k, c -> ERP, CFM */
-    assert_int_equal(fb_impact_bullet(&own, &d, &o, NULL), FB_OK);
-    assert_int_equal(fb_impact_ode(&ode_own, &d, NULL), FB_OK);
+    assert_int_equal(engine_impact(FB_ENGINE_BULLET, &own, &d, &o), FB_OK);
+    assert_int_equal(engine_impact(FB_ENGINE_ODE, &ode_own, &d, &o), FB_OK);
     const double er = (bt.restitution - ref.restitution) / ref.restitution;
     const double ep = (bt.penetration_max - ref.penetration_max) / ref.penetration_max;
     const double eo = (own.restitution - ref.restitution) / ref.restitution;

@@ -1,6 +1,7 @@
 /* Single-impact fidelity: the reference integration against closed forms,
  * the damping laws' achieved restitution against docs/contact.md's table, and ODE
- * with ERP/CFM mapped every step against both.
+ * with ERP/CFM mapped every step against both, its world built by ODE's kit
+ * binding (kit_impact.h) as fourbar impact builds it.
  *
  *      v0 |
  *         v
@@ -10,7 +11,8 @@
 
 #include "fb_test.h"
 #include "impact.h"
-#include "impact_ode.h"
+#include "kit_impact.h"
+#include "ode_kit.h"
 
 /* rk8pd at relative tolerance 1e-12, peaks by parabola through samples at
  * T/4000: interpolation error (T/4000)^3-ish, far below 1e-7 */
@@ -97,13 +99,41 @@ static void test_damping_laws_restitution_table(void **state) {
   report_residual("restitution vs docs/contact.md table", worst, TABLE_TOL);
 }
 
+/* the single impact and the static load in ODE, as fourbar impact runs them */
+static fb_status ode_impact(fb_impact_result *out, const fb_impact_def *d) {
+  return fb_kit_impact(out, &fb_ode_kit, d, NULL, NULL);
+}
+
+static fb_status ode_static(double *penetration, const fb_impact_def *d, double load,
+                            double duration) {
+  return fb_kit_impact_static(penetration, &fb_ode_kit, d, load, duration, NULL, NULL);
+}
+
+/* a binding that applies no soft row (no add_contact) or no load is refused
+ * by name, not run */
+static void test_binding_without_a_row_is_refused(void **state) {
+  (void)state;
+  fb_impact_def d = base(FB_LAW_HERTZ, 1.0);
+  fb_impact_result o;
+  const fb_kit_binding none = {.engine = "nothing"};
+  fb_diag dg = {0};
+  assert_int_equal(fb_kit_impact(&o, &none, &d, NULL, &dg), FB_ERR_ARG);
+  assert_non_null(strstr(dg.msg, "nothing"));
+  fb_kit_binding no_load = fb_ode_kit;
+  no_load.apply_wrench = NULL;
+  double pen;
+  assert_int_equal(fb_kit_impact_static(&pen, &no_load, &d, 1.0, 1e-3, NULL, &dg), FB_ERR_ARG);
+  assert_non_null(strstr(dg.msg, "no load"));
+  assert_true(isnan(pen));
+}
+
 static double rel(double x, double ref) { return fabs(x - ref) / fabs(ref); }
 
 static void test_ode_undamped_hertz_vs_closed_form(void **state) {
   (void)state;
   fb_impact_def d = base(FB_LAW_HERTZ, 1.0);
   fb_impact_result o, c;
-  assert_int_equal(fb_impact_ode(&o, &d, NULL), FB_OK);
+  assert_int_equal(ode_impact(&o, &d), FB_OK);
   assert_true(fb_impact_closed_form(&c, &d));
   report_residual("ODE hertz penetration", rel(o.penetration_max, c.penetration_max), ODE_PENETRATION_REL_TOL);
   report_residual("ODE hertz duration", rel(o.contact_duration, c.contact_duration), ODE_DURATION_REL_TOL);
@@ -111,7 +141,7 @@ static void test_ode_undamped_hertz_vs_closed_form(void **state) {
   assert_true(rel(o.contact_duration, c.contact_duration) < ODE_DURATION_REL_TOL);
   /* the tangent mapping meets the same bounds */
   d.mapping = FB_MAPPING_TANGENT;
-  assert_int_equal(fb_impact_ode(&o, &d, NULL), FB_OK);
+  assert_int_equal(ode_impact(&o, &d), FB_OK);
   assert_true(rel(o.penetration_max, c.penetration_max) < ODE_PENETRATION_REL_TOL);
   assert_true(rel(o.contact_duration, c.contact_duration) < ODE_DURATION_REL_TOL);
 }
@@ -129,7 +159,7 @@ static void test_ode_restitution_of_each_law(void **state) {
     d.h = fb_impact_duration_estimate(&d) / STEPS_PER_CONTACT;
     fb_impact_result o, r;
     assert_int_equal(fb_impact_reference(&r, &d, NULL), FB_OK);
-    assert_int_equal(fb_impact_ode(&o, &d, NULL), FB_OK);
+    assert_int_equal(ode_impact(&o, &d), FB_OK);
     char name[96];
     snprintf(name, sizeof name, "ODE restitution, %s", fb_law_name((fb_law_kind)k));
     report_residual(name, rel(o.restitution, r.restitution), ODE_RESTITUTION_REL_TOL);
@@ -145,9 +175,9 @@ static void test_ode_error_grows_with_h_omega(void **state) {
   fb_impact_result a, b;
   const double t = fb_impact_duration_estimate(&d);
   d.h = t / 1000.0;
-  assert_int_equal(fb_impact_ode(&a, &d, NULL), FB_OK);
+  assert_int_equal(ode_impact(&a, &d), FB_OK);
   d.h = t / 100.0;
-  assert_int_equal(fb_impact_ode(&b, &d, NULL), FB_OK);
+  assert_int_equal(ode_impact(&b, &d), FB_OK);
   double ratio = (1.0 - b.restitution) / (1.0 - a.restitution);
   report_residual("restitution loss ratio, 10x step", ratio, 10.0);
   assert_true(ratio > 8.0 && ratio < 12.0);
@@ -171,9 +201,9 @@ static void test_ode_matched_mapping_at_h_omega_0_1(void **state) {
     assert_int_equal(fb_impact_reference(&r, &d, NULL), FB_OK);
     d.h = MATCHED_H_OMEGA * r.contact_duration / M_PI;
     d.mapping = FB_MAPPING_MATCHED;
-    assert_int_equal(fb_impact_ode(&o, &d, NULL), FB_OK);
+    assert_int_equal(ode_impact(&o, &d), FB_OK);
     d.mapping = FB_MAPPING_SECANT;
-    assert_int_equal(fb_impact_ode(&today, &d, NULL), FB_OK);
+    assert_int_equal(ode_impact(&today, &d), FB_OK);
     const double tol = kinds[i] == FB_LAW_LANKARANI_NIKRAVESH ? MATCHED_LN_REL_TOL : MATCHED_REL_TOL;
     char name[96];
     snprintf(name, sizeof name, "matched restitution, %s", fb_law_name(kinds[i]));
@@ -228,9 +258,9 @@ static void test_matched_static_rests_at_the_law_depth(void **state) {
       d.h = hws[j] / w;
       double pen, pen_matched;
       d.mapping = FB_MAPPING_MATCHED_STATIC;
-      assert_int_equal(fb_impact_ode_static(&pen, &d, load, STATIC_SETTLE_PERIODS / w, NULL), FB_OK);
+      assert_int_equal(ode_static(&pen, &d, load, STATIC_SETTLE_PERIODS / w), FB_OK);
       d.mapping = FB_MAPPING_MATCHED;
-      assert_int_equal(fb_impact_ode_static(&pen_matched, &d, load, STATIC_SETTLE_PERIODS / w, NULL),
+      assert_int_equal(ode_static(&pen_matched, &d, load, STATIC_SETTLE_PERIODS / w),
                        FB_OK);
       char name[96];
       snprintf(name, sizeof name, "matched-static depth / (F/k), zeta %.2g, h omega %.2g",
@@ -271,9 +301,9 @@ static void test_matched_static_single_impact(void **state) {
     assert_int_equal(fb_impact_reference(&r, &d, NULL), FB_OK);
     d.h = MATCHED_H_OMEGA * r.contact_duration / M_PI;
     d.mapping = FB_MAPPING_MATCHED_STATIC;
-    assert_int_equal(fb_impact_ode(&o, &d, NULL), FB_OK);
+    assert_int_equal(ode_impact(&o, &d), FB_OK);
     d.mapping = FB_MAPPING_MATCHED;
-    assert_int_equal(fb_impact_ode(&mt, &d, NULL), FB_OK);
+    assert_int_equal(ode_impact(&mt, &d), FB_OK);
     char name[96];
     snprintf(name, sizeof name, "matched-static restitution, %s cr %g", fb_law_name(kinds[i]),
              crs[i]);
@@ -287,6 +317,7 @@ static void test_matched_static_single_impact(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_reference_matches_closed_forms),
+      cmocka_unit_test(test_binding_without_a_row_is_refused),
       cmocka_unit_test(test_damping_laws_restitution_table),
       cmocka_unit_test(test_ode_undamped_hertz_vs_closed_form),
       cmocka_unit_test(test_ode_restitution_of_each_law),

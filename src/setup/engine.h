@@ -114,7 +114,8 @@ typedef struct {
    * clearance joints map it (d->mapping; ODE also d->stepper); o: the
    * engine's own settings. Errors: those of fb_impact_check, FB_ERR_NUMERIC
    * on a non-finite state or a body still in contact after 100 estimated
-   * contact durations (ODE: impact_ode.h; Bullet: impact_bullet.h). */
+   * contact durations (ODE, Bullet: the world their kit binding builds,
+   * kit_impact.h fb_kit_impact). */
   fb_status (*law)(fb_impact_result *out, const fb_impact_def *d, const fb_impact_opts *o,
                    fb_diag *diag);
   /* one fixed row r (ODE: impact_ode.h, fb_impact_ode_row; MuJoCo:

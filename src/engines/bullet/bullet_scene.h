@@ -135,7 +135,8 @@ void fb_bullet_scene_destroy(fb_bullet_scene *s);
 /* Bullet's version number (btGetVersion(): 324 for 3.24). */
 int fb_bullet_version(void);
 
-/* fb_impact_bullet, the single impact in Bullet, is declared in impact_bullet.h. */
+/* The single impact in Bullet is the kit binding's (kit_impact.h); through
+ * Bullet's own contact, impact_bullet.h. */
 
 #ifdef __cplusplus
 }

@@ -1,11 +1,13 @@
 /* The Bullet engine behind the engine interface (engine.h): thin wrappers
  * over the Bullet scene (bullet_scene.h, C++ behind C linkage). */
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "bullet_kit.h"
 #include "bullet_scene.h"
 #include "engine.h"
 #include "impact_bullet.h"
+#include "kit_impact.h"
 
 static fb_status bullet_create(void **self, const fb_model_scene *sm, fb_diag *diag) {
   fb_bullet_scene *s = NULL;
@@ -64,10 +66,16 @@ static void bullet_peer_args(const fb_model_scene *sm, double h, fb_engine_put_a
   fb_engine_put_number(put, a, "fmax", sm->solver.drive_torque_max);
 }
 
-/* the single impact (impact_bullet.h) */
+/* the single impact through Bullet's kit binding (kit_impact.h), its
+ * solver and iterations o's, handed as a case's [bullet] options */
 static fb_status bullet_impact_law(fb_impact_result *out, const fb_impact_def *d,
                                    const fb_impact_opts *o, fb_diag *diag) {
-  return fb_impact_bullet(out, d, &o->bullet, diag);
+  fb_case *c = calloc(1, sizeof *c);
+  if (!c) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the Bullet impact");
+  c->bullet = o->bullet;
+  const fb_status st = fb_kit_impact(out, &fb_bullet_kit, d, c, diag);
+  free(c);
+  return st;
 }
 
 static fb_status bullet_impact_row(fb_impact_result *out, const fb_impact_row *r,

@@ -1,8 +1,9 @@
-/* The single impact in Bullet (impact_bullet.cpp; only in builds with
- * Bullet, FB_HAVE_BULLET): one body meets the ground, no gravity. Reached
- * from above the engines through the Bullet engine table's impact op
- * (engine.h, fb_engine_impact: law is fb_impact_bullet, row is
- * fb_impact_bullet_contact); the tests call these directly. */
+/* The single impact through Bullet's own contact (impact_bullet.cpp; only
+ * in builds with Bullet, FB_HAVE_BULLET): one body meets the ground, no
+ * gravity. Reached from above the engines through the Bullet engine
+ * table's impact op (engine.h, fb_engine_impact: row is
+ * fb_impact_bullet_contact; law is the kit binding's, kit_impact.h); the
+ * tests call it directly. */
 #ifndef FB_IMPACT_BULLET_H
 #define FB_IMPACT_BULLET_H
 
@@ -13,23 +14,7 @@ extern "C" {
 
 #include "impact.h"
 
-/* Bullet (src/engines/bullet/impact_bullet.cpp; only in builds with Bullet,
- * FB_HAVE_BULLET): one free body of mass d->mass
- * meets the ground through the same soft row as the clearance joints
- * (one row per step in contact, ERP/CFM of fb_contact_row_step with
- * d->mapping on the body's mass), solved by bt->solver with bt->iterations.
- * d->mapping = FB_MAPPING_SECANT (or tangent) on a linear or restitution law
- * is exactly Bullet's own conversion of a contact stiffness k and damping c
- * (btSequentialImpulseConstraintSolver::setupContactConstraint with
- * BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING: erp = h k / (h k + c),
- * cfm = 1 / (h k + c)); FB_MAPPING_MATCHED the project's matched row.
- * d->stepper and d->quick_iterations are not used. Errors: those of
- * fb_impact_check; FB_ERR_NUMERIC on a non-finite state or when the body has
- * not left the contact after 100 estimated contact durations. */
-fb_status fb_impact_bullet(fb_impact_result *out, const fb_impact_def *d,
-                           const fb_bullet_opts *bt, fb_diag *diag);
-
-/* The same impact through Bullet's own contact (builds with Bullet,
+/* One body's impact through Bullet's own contact (builds with Bullet,
  * FB_HAVE_BULLET; src/engines/bullet/impact_bullet.cpp): a sphere of mass [kg] meets
  * a static plane at speed [m/s] (no gravity, frictionless, restitution 0),
  * the sphere's btCollisionObject::setContactStiffnessAndDamping(stiffness

@@ -4,6 +4,7 @@
 
 #include "engine.h"
 #include "impact_ode.h"
+#include "kit_impact.h"
 #include "ode_kit.h"
 #include "ode_world.h"
 
@@ -84,11 +85,11 @@ static void ode_peer_args(const fb_model_scene *sm, double h, fb_engine_put_arg 
   fb_engine_put_number(put, a, "iterations", sm->solver.quick_iterations);
 }
 
-/* the single impact (impact_ode.h) */
+/* the single impact through ODE's kit binding (kit_impact.h) */
 static fb_status ode_impact_law(fb_impact_result *out, const fb_impact_def *d,
                                 const fb_impact_opts *o, fb_diag *diag) {
   (void)o;
-  return fb_impact_ode(out, d, diag);
+  return fb_kit_impact(out, &fb_ode_kit, d, NULL, diag);
 }
 
 static fb_status ode_impact_row(fb_impact_result *out, const fb_impact_row *r, fb_diag *diag) {

@@ -1,4 +1,5 @@
-/* The single impact in ODE (see impact_ode.h); it owns its own world. */
+/* A fixed contact row's single impact in ODE (see impact_ode.h); it owns
+ * its own world. */
 #include <math.h>
 #include <ode/ode.h>
 #include <string.h>
@@ -11,196 +12,26 @@
 /* one step under the ODE error guard (ode_env.h): 1 stepped, 0 ODE could
  * not allocate, -1 ODE's own fatal check fired (the world is then left
  * mid-step and must not be touched again) */
-static int guarded_step(dWorldID world, int quick, double h) {
+static int guarded_step(dWorldID world, double h) {
   jmp_buf escape;
   if (setjmp(escape) != 0) return -1;
   fb_ode_escape = &escape;
-  const int ok = quick ? dWorldQuickStep(world, h) : dWorldStep(world, h);
+  const int ok = dWorldStep(world, h);
   fb_ode_escape = NULL;
   return ok ? 1 : 0;
 }
 
-/* the impact's world: no gravity, one body of mass d->mass (a sphere's
+/* the impact's world: no gravity, one body of mass [kg] (a sphere's
  * inertia, which a normal contact never uses), a joint group for contacts */
-static void impact_world(const fb_impact_def *d, dWorldID *world, dJointGroupID *group,
-                         dBodyID *body) {
+static void impact_world(double mass, dWorldID *world, dJointGroupID *group, dBodyID *body) {
   *world = dWorldCreate();
   dWorldSetGravity(*world, 0, 0, 0);
-  dWorldSetQuickStepNumIterations(*world, d->quick_iterations);
   dRandSetSeed(1);
   *group = dJointGroupCreate(0);
   *body = dBodyCreate(*world);
-  dMass mass;
-  dMassSetSphereTotal(&mass, d->mass, 0.01);
-  dBodySetMass(*body, &mass);
-}
-
-fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag) {
-  memset(out, 0, sizeof *out);
-  fb_status st = fb_impact_check(d, diag);
-  if (st != FB_OK) return st;
-  double t_wall = fb_clock_s();
-  fb_contact_law law = d->law;
-  law.mass = d->mass;
-  fb_contact_law_prepare(&law, NULL); /* zeta solved once, not on every step */
-  const double T = fb_impact_duration_estimate(d);
-  const size_t max_steps = (size_t)ceil(100.0 * T / d->h) + 10;
-
-  fb_ode_acquire();
-  dWorldID world;
-  dJointGroupID group;
-  dBodyID body;
-  impact_world(d, &world, &group, &body);
-  dBodySetPosition(body, 0, 0, 0); /* touching: penetration 0 */
-  dBodySetLinearVel(body, 0, 0, -d->speed);
-
-  double v0 = -1.0; /* approach speed at first contact */
-  int broken = 0;
-  fb_impact_tally tally = {0, 0, 0.0, 0.0};
-  double phase = 0.0; /* contact phase so far [rad] (matched-static, contact.h) */
-  size_t k;
-  dJointFeedback fb;
-  for (k = 0; k < max_steps && !tally.done; k++) {
-    const dReal *p = dBodyGetPosition(body);
-    const dReal *v = dBodyGetLinearVel(body);
-    const double delta = -p[2], ddot = -v[2];
-    dJointID cj = 0;
-    double share = 1.0;
-    if (delta > 0.0) {
-      const int onset = v0 < 0.0;
-      if (onset) v0 = ddot;
-      dContact c;
-      memset(&c, 0, sizeof c);
-      fb_contact_row row;
-      /* a single body: its mass is the effective mass along the normal */
-      if (fb_ode_soft_contact(&c, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, onset,
-                              fb_contact_persistence(phase), 0.0, &row)) {
-        share = row.step_share;
-        phase += fb_contact_h_omega(d->h, row.kp, d->mass);
-        c.geom.pos[0] = p[0];
-        c.geom.pos[1] = p[1];
-        c.geom.pos[2] = 0.0;
-        c.geom.normal[2] = 1.0; /* into body 1: moving it along +z removes the depth */
-        cj = dJointCreateContact(world, group, &c);
-        dJointAttach(cj, body, 0);
-        dJointSetFeedback(cj, &fb);
-      }
-    }
-    const int ok = guarded_step(world, d->stepper != FB_STEPPER_WORLD, d->h);
-    if (ok < 0) {
-      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE impact: ode-error: %s at step %zu",
-                       fb_ode_last_error(), k + 1);
-      broken = 1;
-      break;
-    }
-    if (!ok) {
-      st = fb_diag_set(diag, FB_ERR_NOMEM, "ODE step %zu failed to allocate", k + 1);
-      break;
-    }
-    double force = cj ? share * fb.f1[2] : 0.0;
-    dJointGroupEmpty(group);
-    const double t1 = (double)(k + 1) * d->h;
-    const double depth_now = -dBodyGetPosition(body)[2];
-    if (!isfinite(depth_now) || !isfinite(force)) {
-      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE impact: non-finite state at t = %g s", t1);
-      break;
-    }
-    fb_impact_tally_force(&tally, out, t1, d->h, depth_now, force, dBodyGetLinearVel(body)[2]);
-  }
-  out->steps = k;
-  out->contact_duration = tally.t_end;
-  if (broken) { /* kept, never touched again (ode_env.h) */
-    fb_ode_quarantine(world);
-    fb_ode_quarantine(group);
-    out->wall_s = fb_clock_s() - t_wall;
-    return st;
-  }
-  out->restitution = dBodyGetLinearVel(body)[2] / d->speed;
-  dJointGroupDestroy(group);
-  dWorldDestroy(world);
-  fb_ode_release();
-  if (st == FB_OK && !tally.done)
-    st = fb_diag_set(diag, FB_ERR_NUMERIC,
-                     "ODE impact: the body has not left the contact after %zu steps (%g s)", k,
-                     (double)k * d->h);
-  out->wall_s = fb_clock_s() - t_wall;
-  return st;
-}
-
-fb_status fb_impact_ode_static(double *penetration, const fb_impact_def *d, double load,
-                               double duration, fb_diag *diag) {
-  *penetration = NAN;
-  fb_status st = fb_impact_check(d, diag);
-  if (st != FB_OK) return st;
-  if (!(load > 0.0) || !isfinite(load) || !(duration > 0.0) || !isfinite(duration))
-    return fb_diag_set(diag, FB_ERR_RANGE,
-                       "static load %g N over %g s: need a positive, finite load and duration",
-                       load, duration);
-  fb_contact_law law = d->law;
-  law.mass = d->mass;
-  fb_contact_law_prepare(&law, NULL);
-  const size_t steps = (size_t)ceil(duration / d->h);
-
-  fb_ode_acquire();
-  dWorldID world;
-  dJointGroupID group;
-  dBodyID body;
-  impact_world(d, &world, &group, &body);
-  dBodySetPosition(body, 0, 0, 0); /* touching, at rest: the load is applied suddenly */
-  double v0 = -1.0, phase = 0.0;
-  int broken = 0;
-  for (size_t k = 0; k < steps; k++) {
-    const dReal *p = dBodyGetPosition(body);
-    const dReal *v = dBodyGetLinearVel(body);
-    const double delta = -p[2], ddot = -v[2];
-    if (delta > 0.0) {
-      const int onset = v0 < 0.0;
-      if (onset) v0 = fmax(ddot, 1e-300);
-      dContact c;
-      memset(&c, 0, sizeof c);
-      fb_contact_row row;
-      if (fb_ode_soft_contact(&c, &law, d->mapping, d->h, d->mass, 1, delta, ddot, v0, onset,
-                              fb_contact_persistence(phase), 0.0, &row)) {
-        phase += fb_contact_h_omega(d->h, row.kp, d->mass);
-        c.geom.pos[0] = p[0];
-        c.geom.pos[1] = p[1];
-        c.geom.normal[2] = 1.0; /* into body 1 */
-        dJointID cj = dJointCreateContact(world, group, &c);
-        dJointAttach(cj, body, 0);
-      }
-    } else {
-      v0 = -1.0; /* left the contact: the next one is a new contact */
-      phase = 0.0;
-    }
-    dBodyAddForce(body, 0, 0, -load);
-    const int ok = guarded_step(world, d->stepper != FB_STEPPER_WORLD, d->h);
-    if (ok < 0) {
-      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE static load: ode-error: %s at step %zu",
-                       fb_ode_last_error(), k + 1);
-      broken = 1;
-      break;
-    }
-    dJointGroupEmpty(group);
-    if (!ok) {
-      st = fb_diag_set(diag, FB_ERR_NOMEM, "ODE step %zu failed to allocate", k + 1);
-      break;
-    }
-    if (!isfinite(dBodyGetPosition(body)[2])) {
-      st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE static load: non-finite state at step %zu",
-                       k + 1);
-      break;
-    }
-  }
-  if (broken) {
-    fb_ode_quarantine(world);
-    fb_ode_quarantine(group);
-    return st;
-  }
-  if (st == FB_OK) *penetration = -dBodyGetPosition(body)[2];
-  dJointGroupDestroy(group);
-  dWorldDestroy(world);
-  fb_ode_release();
-  return st;
+  dMass m;
+  dMassSetSphereTotal(&m, mass, 0.01);
+  dBodySetMass(*body, &m);
 }
 
 fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, double h, double erp,
@@ -224,15 +55,11 @@ fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, do
     return fb_diag_set(diag, FB_ERR_RANGE, "ODE row impact: %g steps of %g s: more than %g",
                        steps_max, h, FB_IMPACT_MAX_STEPS);
   const double t_wall = fb_clock_s();
-  fb_impact_def d;
-  memset(&d, 0, sizeof d);
-  d.mass = mass;
-  d.quick_iterations = 20;
   fb_ode_acquire();
   dWorldID world;
   dJointGroupID group;
   dBodyID body;
-  impact_world(&d, &world, &group, &body);
+  impact_world(mass, &world, &group, &body);
   dWorldSetContactMaxCorrectingVel(world, isfinite(max_vel) ? max_vel : dInfinity);
   dWorldSetContactSurfaceLayer(world, 0.0);
   dBodySetPosition(body, 0, 0, t_free * speed);
@@ -260,7 +87,7 @@ fb_status fb_impact_ode_row(fb_impact_result *out, double mass, double speed, do
       dJointAttach(cj, body, 0);
       dJointSetFeedback(cj, &fb);
     }
-    const int ok = guarded_step(world, 0, h);
+    const int ok = guarded_step(world, h);
     if (ok < 0) {
       st = fb_diag_set(diag, FB_ERR_NUMERIC, "ODE row impact: ode-error: %s at step %zu",
                        fb_ode_last_error(), k + 1);

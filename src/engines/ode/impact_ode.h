@@ -1,33 +1,13 @@
-/* The single impact in ODE (impact_ode.c): one free body meets the ground
- * plane, no gravity, in a world of its own. Reached from above the engines
- * through the ODE engine table's impact op (engine.h, fb_engine_impact: law
- * is fb_impact_ode, row is fb_impact_ode_row); the tests call these
- * directly. */
+/* A fixed contact row's single impact in ODE (impact_ode.c): one free body
+ * meets the ground plane, no gravity, in a world of its own, with the ERP
+ * and CFM a user pastes into ODE. Reached from above the engines through
+ * the ODE engine table's impact op (engine.h, fb_engine_impact: row is
+ * fb_impact_ode_row; law is the kit binding's, kit_impact.h); the tests
+ * call it directly. */
 #ifndef FB_IMPACT_ODE_H
 #define FB_IMPACT_ODE_H
 
 #include "impact.h"
-
-/* ODE: a free body meets the ground plane; every step in contact creates one
- * contact joint with soft ERP/CFM from fb_contact_linearize and
- * fb_contact_erp_cfm (dContactSoftERP | dContactSoftCFM, no bounce,
- * frictionless; contact max-correcting velocity and surface layer left at
- * their defaults, infinite and 0). Force from dJointGetFeedback.
- * Errors: FB_ERR_NUMERIC on a non-finite state or when the body has not left
- * the contact after 100 estimated contact durations. */
-fb_status fb_impact_ode(fb_impact_result *out, const fb_impact_def *d, fb_diag *diag);
-
-/* ODE under a sustained load: the body of d (mass, law, step, stepper,
- * mapping; d->speed is not used) rests touching the contact at t = 0 and a
- * constant force load [N] presses it in from then on, for duration [s]
- * (ceil(duration / h) steps). *penetration receives the depth at the end
- * [m]: the law's static penetration F^-1(load) once the motion has died
- * out, for a row whose sustained-load stiffness is the law's (secant,
- * tangent, matched-static), and load / a for a matched row
- * (fb_contact_row_static). Errors: FB_ERR_RANGE for a bad d, load or
- * duration; FB_ERR_NUMERIC on a non-finite state or an ODE fatal check. */
-fb_status fb_impact_ode_static(double *penetration, const fb_impact_def *d, double load,
-                               double duration, fb_diag *diag);
 
 /* One body of mass [kg] meets the ground plane at speed [m/s] (no gravity)
  * with one FIXED contact row, as a user pastes it into an engine: ODE with

@@ -1,6 +1,7 @@
 /* The one place an ODE soft contact is filled from a contact law: used by the
  * exact and the faceted clearance colliders (ode_clearance.c, ode_colliders.c)
- * and by the single impact (impact_ode.c). Private to src/engines/ode
+ * and by the kit binding (ode_kit.c), whose world the single impact uses
+ * too (kit_impact.h). Private to src/engines/ode
  * (includes ODE's header). */
 #ifndef FB_ODE_CONTACT_H
 #define FB_ODE_CONTACT_H

@@ -17,7 +17,8 @@
 #include "impact.h"
 #include "impact_bullet.h"
 #include "impact_mujoco.h"
-#include "impact_ode.h"
+#include "kit_impact.h"
+#include "ode_kit.h"
 #include "resolution.h"
 
 /* the issue's acceptance bounds: restitution within 1 %, peak penetration
@@ -80,6 +81,30 @@ static fb_linear_contact single(void) {
   return lc;
 }
 
+/* a fixed row's single impact in ODE, as contact-params verifies it (the
+ * world ODE's kit binding builds) */
+static fb_status ode_row(fb_impact_result *out, double mass, double speed, double h, double erp,
+                         double cfm, double max_vel, double t_max, double onset_phase,
+                         fb_diag *diag) {
+  return fb_kit_impact_row(out, &fb_ode_kit, mass, speed, h, erp, cfm, max_vel, t_max,
+                           onset_phase, diag);
+}
+
+/* a binding without ODE's correcting speed limit is refused a finite one by
+ * name, not run without it */
+static void test_fixed_row_needs_the_speed_limit(void **state) {
+  (void)state;
+  fb_kit_binding no_limit = fb_ode_kit;
+  no_limit.contact_speed_limit = 0;
+  fb_impact_result r;
+  fb_diag d;
+  assert_int_equal(fb_kit_impact_row(&r, &no_limit, 0.1, V, 1e-5, 0.2, 1e-7, 0.01, 0.01, 0.0, &d),
+                   FB_ERR_ARG);
+  assert_non_null(strstr(d.msg, "max_vel 0.01 m/s"));
+  assert_int_equal(fb_kit_impact_row(&r, &no_limit, 0.1, V, 1e-5, 0.2, 1e-7, INFINITY, 0.01, 0.0,
+                                     &d), FB_OK);
+}
+
 static void test_ode_and_gazebo_single_impact(void **state) {
   (void)state;
   fb_linear_contact lc = single();
@@ -90,8 +115,8 @@ static void test_ode_and_gazebo_single_impact(void **state) {
   assert_int_equal(fb_params_ode_matched(&lc, &matched, &d), FB_OK);
   assert_int_equal(fb_params_ode_standard(&lc, &standard, &d), FB_OK);
   fb_impact_result r;
-  assert_int_equal(fb_impact_ode_row(&r, lc.m, V, lc.h, matched.erp, matched.cfm, INFINITY,
-                                     t.t_max, 0.0, &d), FB_OK);
+  assert_int_equal(ode_row(&r, lc.m, V, lc.h, matched.erp, matched.cfm, INFINITY, t.t_max,
+                           0.0, &d), FB_OK);
   expect_close("ode matched", &r, &t);
   /* Gazebo: kp, kd printed, then Gazebo's own formula back to ERP/CFM */
   fb_spring_damper gz;
@@ -100,15 +125,15 @@ static void test_ode_and_gazebo_single_impact(void **state) {
   assert_near(gz_row.erp, matched.erp, ROUND_TRIP_REL_TOL * matched.erp);
   assert_near(gz_row.cfm, matched.cfm, ROUND_TRIP_REL_TOL * matched.cfm);
   const double speed_needed = fb_params_correcting_velocity(&matched, lc.h, t.ref.penetration_max);
-  assert_int_equal(fb_impact_ode_row(&r, lc.m, V, lc.h, gz_row.erp, gz_row.cfm,
-                                     1.01 * speed_needed, t.t_max, 0.0, &d), FB_OK);
+  assert_int_equal(ode_row(&r, lc.m, V, lc.h, gz_row.erp, gz_row.cfm, 1.01 * speed_needed,
+                           t.t_max, 0.0, &d), FB_OK);
   expect_close("gazebo kp/kd (max_vel just enough)", &r, &t);
   /* the standard row (what the kp/kd formula gives from k and c) loses */
-  assert_int_equal(fb_impact_ode_row(&r, lc.m, V, lc.h, standard.erp, standard.cfm, INFINITY,
-                                     t.t_max, 0.0, &d), FB_OK);
+  assert_int_equal(ode_row(&r, lc.m, V, lc.h, standard.erp, standard.cfm, INFINITY, t.t_max,
+                           0.0, &d), FB_OK);
   assert_true(rel(r.restitution, t.ref.restitution) < -STANDARD_LOSS_MIN);
   /* Gazebo's default max_vel 0.01 m/s cuts the spring: the body sinks */
-  (void)fb_impact_ode_row(&r, lc.m, V, lc.h, gz_row.erp, gz_row.cfm, 0.01, t.t_max, 0.0, &d);
+  (void)ode_row(&r, lc.m, V, lc.h, gz_row.erp, gz_row.cfm, 0.01, t.t_max, 0.0, &d);
   assert_true(r.penetration_max > (1.0 + MASS_MISMATCH_LOSS_MIN) * t.ref.penetration_max);
 }
 
@@ -129,7 +154,7 @@ static void test_ode_over_the_mass_range(void **state) {
     fb_linear_contact lc = {K, c, masses[i], h};
     target t = law_impact(&lc);
     fb_impact_result r;
-    assert_int_equal(fb_impact_ode_row(&r, lc.m, V, h, row.erp, row.cfm, INFINITY, t.t_max, 0.0, &d),
+    assert_int_equal(ode_row(&r, lc.m, V, h, row.erp, row.cfm, INFINITY, t.t_max, 0.0, &d),
                      FB_OK);
     expect_close(i ? "ode matched at 0.95 kg" : "ode matched at 0.09 kg", &r, &t);
   }
@@ -447,6 +472,7 @@ static void test_failed_row_counts(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_fixed_row_needs_the_speed_limit),
       cmocka_unit_test(test_ode_and_gazebo_single_impact),
       cmocka_unit_test(test_ode_over_the_mass_range),
       cmocka_unit_test(test_mujoco_forms),

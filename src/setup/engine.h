@@ -118,7 +118,7 @@ typedef struct {
    * kit_impact.h fb_kit_impact). */
   fb_status (*law)(fb_impact_result *out, const fb_impact_def *d, const fb_impact_opts *o,
                    fb_diag *diag);
-  /* one fixed row r (ODE: impact_ode.h, fb_impact_ode_row; MuJoCo:
+  /* one fixed row r (ODE: its kit binding, kit_impact.h fb_kit_impact_row; MuJoCo:
    * impact_mujoco.h; Bullet: impact_bullet.h, fb_impact_bullet_contact).
    * Errors: FB_ERR_RANGE (bad parameter or onset phase), FB_ERR_NUMERIC (a
    * non-finite state, still in contact at t_max), FB_ERR_NOMEM. */

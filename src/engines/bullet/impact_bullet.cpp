@@ -1,5 +1,6 @@
 /* The single impact through Bullet's own contact (impact_bullet.h,
- * fb_impact_bullet_contact): the counterpart of impact_ode.c's fixed row. */
+ * fb_impact_bullet_contact): the counterpart of ODE's fixed row through its
+ * kit binding (kit_impact.h fb_kit_impact_row). */
 #include <math.h>
 #include <string.h>
 

@@ -90,6 +90,13 @@ typedef struct {
                                 [m], theta [rad] per moving body and their rates, the
                                 ideal joints placed where their body[0] puts them (a start
                                 with a clearance joint's pin off its hole's centre) */
+  double contact_speed_max;  /* optional: the largest speed [m/s] at which the engine's contact
+                                rows may push bodies apart to remove a depth (ODE's
+                                contact_max_correcting_vel; 0: the engine's default,
+                                unlimited): the single impact's fixed row (kit_impact.h) sets
+                                it, as a user's world does; a mechanism's run leaves it 0. A
+                                binding whose engine has no such limit reads 0 only
+                                (fb_kit_impact_row refuses it otherwise) */
   int model_file;            /* 1: the world is built to be written as the engine's own model
                                 file for a user (fb_kit_model_text): a binding may choose
                                 settings that hold at a user's step rather than the run's */
@@ -481,6 +488,8 @@ typedef struct fb_kit_binding {
                                 fb_kit_clearance.load) or from the penetration's rate
                                 (FB_PERSIST_DEPTH_CHANGE, a law integrated explicitly:
                                 MuJoCo's) */
+  int contact_speed_limit;   /* optional: 1 when world_new honours fb_kit_world's
+                                contact_speed_max (ODE's); 0: the kit refuses a finite one */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

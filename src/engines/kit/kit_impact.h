@@ -50,4 +50,26 @@ fb_status fb_kit_impact_static(double *penetration, const fb_kit_binding *b,
                                const fb_impact_def *d, double load, double duration,
                                const fb_case *c, fb_diag *diag);
 
+/* One body of mass [kg] meets the wall at speed [m/s] (no gravity) with one
+ * FIXED soft contact row, as a user pastes it into an engine: ERP erp [-]
+ * and CFM cfm [m/(N s)] handed to the binding as the row (fb_kit_contact
+ * has_row, depth the body's, frictionless), the world's contact correcting
+ * speed limit speed_max [m/s] (ODE's contact_max_correcting_vel; INFINITY:
+ * the engine's own, unlimited), step h [s] (ODE: dWorldStep); a row is
+ * made whenever the depth is >= 0 (touching counts, as ODE's colliders
+ * report it), and the bookkeeping is fb_impact_tally_depth's. Runs until
+ * the body leaves or t_max [s]. onset_phase in [0, 1): where inside a step
+ * the contact begins; 0: the body touches at t = 0; p > 0: it starts
+ * (1 - p) h of free flight short of the crossing, so the first step that
+ * sees the contact sees the depth p h v (times and depths are reported
+ * from the crossing). b needs add_contact, contact_force and contact_rows,
+ * and contact_speed_limit for a finite speed_max. Errors: FB_ERR_RANGE
+ * (bad parameter or onset_phase, more than FB_IMPACT_MAX_STEPS steps),
+ * FB_ERR_ARG (a binding without those), the binding's (FB_ERR_NUMERIC for
+ * an engine error), FB_ERR_NUMERIC (non-finite state, still in contact at
+ * t_max), FB_ERR_NOMEM. */
+fb_status fb_kit_impact_row(fb_impact_result *out, const fb_kit_binding *b, double mass,
+                            double speed, double h, double erp, double cfm, double speed_max,
+                            double t_max, double onset_phase, fb_diag *diag);
+
 #endif

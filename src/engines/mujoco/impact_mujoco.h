@@ -11,7 +11,7 @@
  * a sphere of mass [kg] on a vertical slide joint meets a plane, both geoms
  * with the given solref and solimp (condim 1: frictionless), Euler
  * integrator, step h [s], no gravity.
- * onset_phase as for fb_impact_ode_row (impact_ode.h). Errors:
+ * onset_phase as for fb_kit_impact_row (kit_impact.h). Errors:
  * FB_ERR_RANGE (bad parameter or onset_phase), FB_ERR_NUMERIC, FB_ERR_NOMEM. */
 fb_status fb_impact_mujoco(fb_impact_result *out, double mass, double speed, double h,
                            const double solref[2], const double solimp[5], double t_max,

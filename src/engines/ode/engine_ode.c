@@ -3,7 +3,6 @@
 #include <stdio.h>
 
 #include "engine.h"
-#include "impact_ode.h"
 #include "kit_impact.h"
 #include "ode_kit.h"
 #include "ode_world.h"
@@ -92,9 +91,11 @@ static fb_status ode_impact_law(fb_impact_result *out, const fb_impact_def *d,
   return fb_kit_impact(out, &fb_ode_kit, d, NULL, diag);
 }
 
+/* a fixed row's single impact through ODE's kit binding (kit_impact.h): its
+ * ERP and CFM, ODE's contact_max_correcting_vel */
 static fb_status ode_impact_row(fb_impact_result *out, const fb_impact_row *r, fb_diag *diag) {
-  return fb_impact_ode_row(out, r->mass, r->speed, r->h, r->ode.erp, r->ode.cfm, r->max_vel,
-                           r->t_max, r->onset_phase, diag);
+  return fb_kit_impact_row(out, &fb_ode_kit, r->mass, r->speed, r->h, r->ode.erp, r->ode.cfm,
+                           r->max_vel, r->t_max, r->onset_phase, diag);
 }
 
 /* ---- ODE's rows of fourbar bench (engine_bench.h) ---- */

@@ -2,7 +2,7 @@
  * dCloseODE on last release, and ODE's error, debug and message handlers
  * routed to the project's stderr reporting with a "fourbar: ODE" prefix.
  * Only files that build or step ODE worlds (ode_world.c, ode_step.c,
- * ode_kit.c, impact_ode.c) use it. */
+ * ode_kit.c) use it. */
 #ifndef FB_ODE_ENV_H
 #define FB_ODE_ENV_H
 

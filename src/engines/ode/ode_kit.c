@@ -119,6 +119,7 @@ static fb_status kit_world_new(void **out, const fb_kit_world *o, fb_diag *diag)
   dWorldSetCFM(k->world, o->solver->world_cfm);
   dWorldSetQuickStepNumIterations(k->world, o->solver->quick_iterations);
   dRandSetSeed(o->solver->seed);
+  if (o->contact_speed_max > 0.0) dWorldSetContactMaxCorrectingVel(k->world, o->contact_speed_max);
   k->h = o->h;
   k->stepper = o->solver->stepper;
   k->fmax = o->solver->drive_torque_max;
@@ -533,6 +534,7 @@ const fb_kit_binding fb_ode_kit = {
     .body_state = kit_body_state,
     .world_free = kit_world_free,
     .contact_rows = 1,
+    .contact_speed_limit = 1,
     .reactions = kit_reactions,
     .contact_force_vec = kit_contact_force_vec,
     .friction = 1,

@@ -903,6 +903,7 @@ const fb_kit_binding fb_siconos_kit = {
     0 /* contact_always: no add_contact */,
     NULL /* step_by: Moreau-Jean at a fixed h */,
     0 /* persistent_rule: no adaptive step */,
+    0 /* contact_speed_limit: no fixed row's world */,
 };
 
 } // extern "C"

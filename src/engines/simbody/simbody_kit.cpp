@@ -690,4 +690,5 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     0,    /* contact_always: the law's contact in contact only */
     NULL, /* step_by: its integrator controls its own steps inside each h */
     0,    /* persistent_rule: no adaptive step */
+    0,    /* contact_speed_limit: no fixed row's world */
 };

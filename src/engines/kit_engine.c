@@ -33,8 +33,8 @@
  * effective mass range, the largest h omega_c, ERP and smallest CFM of
  * the law's rows (ERP and CFM those of a binding that takes rows, else
  * NaN) and the contact steps; its
- * drift is the largest separation of an ideal revolute joint's two points
- * over the samples replayed [m]. */
+ * drift is the kit's: the largest separation of an ideal revolute joint's
+ * two points at each step's end (kit.h fb_kit_series.drift) [m]. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -212,7 +212,7 @@ static fb_status alloc_run(kit_run *r, size_t n, int nb, int sub_steps, fb_diag 
   int nj = 0;
   for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) nj += loose(r, j);
   r->s.n = n;
-  r->s.t = malloc((1 + (size_t)nb * 9) * n * sizeof *r->s.t);
+  r->s.t = malloc((2 + (size_t)nb * 9) * n * sizeof *r->s.t);
   double *col = nj ? calloc((size_t)nj * FB_CONTACT_COLS * n, sizeof *col) : NULL;
   if (nj && sub_steps) r->force_max = calloc((size_t)FB_MECH_MAX_JOINTS * n, sizeof *r->force_max);
   if (!r->s.t || (nj && !col) || (nj && sub_steps && !r->force_max)) {
@@ -224,6 +224,7 @@ static fb_status alloc_run(kit_run *r, size_t n, int nb, int sub_steps, fb_diag 
     if (loose(r, j)) r->col[j] = col + (size_t)(k++) * FB_CONTACT_COLS * n;
   r->s.q = r->s.t + n;
   r->s.centre = r->s.q + (size_t)nb * 3 * n;
+  r->s.drift = r->s.centre + (size_t)nb * 6 * n;
   for (size_t i = 0; i < n; i++) r->s.t[i] = NAN;
   return FB_OK;
 }
@@ -382,32 +383,11 @@ static void adapter_contact(const void *self, fb_engine_contact *out) {
   }
 }
 
-/* the largest separation of an ideal revolute joint's two points now [m] */
+/* the largest separation of an ideal revolute joint's two points now [m]
+ * (the kit's, kit.h fb_kit_series.drift) */
 static double adapter_drift(const void *self) {
   const kit_run *r = self;
-  const fb_planar *m = r->m;
-  const int nb = m->nbodies - 1;
-  /* body b's centre and rotation (index b, the ground's at 0: none) */
-  double c[FB_MECH_MAX_BODIES][2] = {{0.0, 0.0}}, cs[FB_MECH_MAX_BODIES][2] = {{1.0, 0.0}};
-  for (int b = 0; b < nb && b + 1 < FB_MECH_MAX_BODIES; b++) {
-    const double a = r->s.q[(size_t)b * 3 * r->s.n + r->i];
-    c[b + 1][0] = r->s.centre[(size_t)b * 3 * r->s.n + r->i];
-    c[b + 1][1] = r->s.centre[(size_t)(nb + b) * 3 * r->s.n + r->i];
-    cs[b + 1][0] = cos(a), cs[b + 1][1] = sin(a);
-  }
-  double worst = 0.0;
-  for (int j = 0; j < m->njoints; j++) {
-    if ((j < FB_MECH_MAX_JOINTS && loose(r, j)) || m->joint[j].kind != FB_KIND_REVOLUTE) continue;
-    double p[2][2]; /* the joint's point on each body, in the world */
-    for (int k = 0; k < 2; k++) {
-      const int b = m->joint[j].body[k];
-      const double *s = m->joint[j].point[k], *u = cs[b];
-      p[k][0] = (u[0] * s[0] - u[1] * s[1]) + c[b][0]; /* fb_planar_point's order */
-      p[k][1] = (u[1] * s[0] + u[0] * s[1]) + c[b][1];
-    }
-    worst = fmax(worst, hypot(p[0][0] - p[1][0], p[0][1] - p[1][1]));
-  }
-  return worst;
+  return r->s.drift[r->i];
 }
 
 /* the kit's figures of a clearance joint over the whole run (ERP and

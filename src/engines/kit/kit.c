@@ -215,6 +215,11 @@ static void put(double *q, size_t n, const kit_span *sp, double x, double v, con
   if (i == n - 1) q[2 * n + i] = q[2 * n + i - 1];
 }
 
+/* an angle's change d [rad] brought into [-pi, pi]: remainder(d, 2 pi),
+ * which is d itself (exactly: n = 0 in d - n 2 pi, a tie to even) where
+ * |d| <= pi, as a step's turn almost always is; the call only where not */
+static double turn_from(double d) { return fabs(d) <= M_PI ? d : remainder(d, 2.0 * M_PI); }
+
 /* sample sp->i (sample 0: sp NULL) of every moving body and the samples
  * inside its step: angle unwrapped from the step's start; each body's pose
  * and velocity also into state, rate (3 nb each; NULL: not kept), the
@@ -230,7 +235,7 @@ static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int
     if (own) b->body_accel(w, k, acc);
     if (state) memcpy(state + 3 * k, pos, sizeof pos), memcpy(rate + 3 * k, vel, sizeof vel);
     double *q = s->q + (size_t)k * 3 * n;
-    const double a = sp ? q[sp->i0] + remainder(pos[2] - q[sp->i0], 2.0 * M_PI) : pos[2];
+    const double a = sp ? q[sp->i0] + turn_from(pos[2] - q[sp->i0]) : pos[2];
     put(q, n, sp, a, vel[2], own ? &acc[2] : NULL);
     if (!s->centre) continue;
     put(s->centre + (size_t)k * 3 * n, n, sp, pos[0], vel[0], own ? &acc[0] : NULL);
@@ -340,9 +345,38 @@ static void loads(fb_kit_runner *k, const kit_span *sp) {
   if (i + 1 == n) s->torque[i] = torque;
 }
 
+/* the loop-closure drift at sample sp->i (sample 0: sp NULL) into
+ * s->drift (kit.h): the largest separation of an ideal revolute joint's two
+ * points at the state read (k->p.q), each body's rotation formed once a
+ * read (the clearance contacts' and closed form's too); the samples inside
+ * the step on the straight line from its start */
+static void drift_at(fb_kit_runner *k, const kit_span *sp) {
+  const fb_planar *m = k->m;
+  fb_kit_series *s = k->s;
+  const size_t n = s->n, i = sp ? sp->i : 0;
+  const unsigned mask = k->cl ? k->cl->mask : 0u;
+  double worst2 = 0.0; /* the largest squared separation [m^2] */
+  for (int j = 0; j < m->njoints; j++) {
+    const fb_planar_joint *pj = &m->joint[j];
+    if ((mask & (1u << j)) || pj->kind != FB_KIND_REVOLUTE) continue;
+    double x[2][2];
+    for (int e = 0; e < 2; e++)
+      fb_planar_point_at(x[e], k->p.q, pj->body[e], pj->point[e],
+                         fb_kit_pipe_rotation(&k->p, pj->body[e]));
+    const double dx = x[0][0] - x[1][0], dy = x[0][1] - x[1][1], d2 = dx * dx + dy * dy;
+    if (d2 > worst2) worst2 = d2;
+  }
+  const double worst = sqrt(worst2);
+  if (i < n) s->drift[i] = worst;
+  if (!sp) return;
+  const double d0 = s->drift[sp->i0];
+  for (size_t u = sp->i0 + 1; u < i && u < n; u++) s->drift[u] = d0 + share(sp, u) * (worst - d0);
+}
+
 /* after sample i (sp: the step to it; NULL for sample 0): the springs'
- * and loads' forces, the clearance joints' columns, and before the next
- * step its size (the adaptive step's) and the clearance contacts for it */
+ * and loads' forces, the clearance joints' columns, the drift, and before
+ * the next step its size (the adaptive step's) and the clearance contacts
+ * for it */
 static fb_status after_sample(fb_kit_runner *k, const kit_span *sp, fb_diag *diag) {
   const fb_kit_binding *b = k->b;
   const fb_planar *m = k->m;
@@ -354,7 +388,10 @@ static fb_status after_sample(fb_kit_runner *k, const kit_span *sp, fb_diag *dia
     fb_kit_pipe_read(&k->p, b, k->w, m, cl);
     for (int j = 0; j < m->njoints; j++)
       if (cl->mask & (1u << j)) record(k, j, sp);
+  } else {
+    k->p.rotated = 0; /* sample() wrote the state anew (kept for the drift) */
   }
+  if (s->drift) drift_at(k, sp);
   if (i + 1 >= s->n) return FB_OK;
   k->mc = 1;
   fb_status st = FB_OK;
@@ -364,11 +401,16 @@ static fb_status after_sample(fb_kit_runner *k, const kit_span *sp, fb_diag *dia
   return st;
 }
 
+/* 1: the samples' states go to the pipeline's q, qd (the clearance
+ * contacts read them; the drift is taken there) */
+static int kept(const fb_kit_runner *k) { return k->cl || k->s->drift; }
+
 /* sample 0, the start */
 static fb_status first_sample(fb_kit_runner *k, fb_diag *diag) {
   const fb_planar *m = k->m;
   fb_kit_series *s = k->s;
-  sample(k->b, k->w, s, m->nbodies - 1, NULL, k->cl ? k->p.q : NULL, k->cl ? k->p.qd : NULL);
+  sample(k->b, k->w, s, m->nbodies - 1, NULL, kept(k) ? k->p.q : NULL,
+         kept(k) ? k->p.qd : NULL);
   if (s->torque && s->n == 1) { /* no step: no loads */
     s->torque[0] = 0.0;
     memset(s->reaction, 0, 3 * (size_t)m->njoints * sizeof *s->reaction);
@@ -418,7 +460,8 @@ static fb_status next_step(fb_kit_runner *k, fb_diag *diag) {
   fb_kit_stats_add(&s->stats, sp.h);
   fb_kit_pipe_stepped(&k->p, b, k->w, sp.h);
   if (s->torque) loads(k, &sp); /* at the step's start: before the pipe reads anew */
-  sample(b, k->w, s, k->m->nbodies - 1, &sp, k->cl ? k->p.q : NULL, k->cl ? k->p.qd : NULL);
+  sample(b, k->w, s, k->m->nbodies - 1, &sp, kept(k) ? k->p.q : NULL,
+         kept(k) ? k->p.qd : NULL);
   st = after_sample(k, &sp, diag);
   if (k->last.i > 0) inside_lines(k, &k->last); /* its end's values are this step's start's */
   k->last = sp;

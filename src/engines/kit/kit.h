@@ -520,6 +520,11 @@ typedef struct {
                        reaction[(3 j + k) n + i] (planar_invdyn.h's convention); a clearance
                        joint's: its contact's force on the hole's body from the pin's, no
                        moment */
+  double *drift;    /* optional (n), NULL: not kept: the largest separation of an ideal
+                       revolute joint's two points (its body[0]'s and body[1]'s) at sample
+                       i [m], the loop-closure drift, at the state the engine reports at
+                       each step's end (the samples inside an adaptive step on the straight
+                       line between its ends) */
   double setup_s; /* set by fb_kit_run: wall time of the set-up (the start's velocities, the
                      engine's world and the walk that builds it) [s]; the rest of the run is
                      the stepping and sampling (fourbar bench's cost splits there) */

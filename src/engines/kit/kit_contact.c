@@ -97,8 +97,7 @@ void fb_kit_pipe_free(fb_kit_pipe *p) {
 
 _Static_assert(FB_PLANAR_SPEC_MAX_BODIES + 1 <= 64, "fb_kit_pipe.rotated has a bit per body");
 
-/* body b's cos, sin at the state read (fb_kit_pipe.cs), formed once */
-static const double *rotation(fb_kit_pipe *p, int b) {
+const double *fb_kit_pipe_rotation(fb_kit_pipe *p, int b) {
   if (!(p->rotated & (1ull << b))) {
     fb_planar_rotation(p->cs[b], p->q, b);
     p->rotated |= 1ull << b;
@@ -114,9 +113,9 @@ static int geometry(fb_kit_contact *c, fb_kit_pipe *p, const fb_planar *m,
   const fb_planar_joint *pj = &m->joint[j];
   double xp[2], vp[2], xh[2], vh[2];
   fb_planar_point_motion_at(xp, vp, p->q, p->qd, pj->body[0], pj->point[0],
-                            rotation(p, pj->body[0]));
+                            fb_kit_pipe_rotation(p, pj->body[0]));
   fb_planar_point_motion_at(xh, vh, p->q, p->qd, pj->body[1], pj->point[1],
-                            rotation(p, pj->body[1]));
+                            fb_kit_pipe_rotation(p, pj->body[1]));
   const double e[2] = {xp[0] - xh[0], xp[1] - xh[1]}, ecc = hypot(e[0], e[1]);
   const double delta = ecc - cl->radial_clearance;
   if (ecc > 0.0) p->rate[j] = (e[0] * (vp[0] - vh[0]) + e[1] * (vp[1] - vh[1])) / ecc;
@@ -303,7 +302,8 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
                        ? fb_contact_persistence(p->phase[k])
                        : 0.0;
   c->mean_force = p->rocking;
-  p->force[k] = fb_contact_force(&c->law, c->depth, c->rate, c->v0);
+  if (!b->contact_force) /* the law's force is the kit's figure for a binding without one */
+    p->force[k] = fb_contact_force(&c->law, c->depth, c->rate, c->v0);
   fb_status st = FB_OK;
   if (own) { /* the rows are the collider's: noted from what it made */
     if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
@@ -344,7 +344,7 @@ static fb_status tensor(double w[2][2], fb_kit_pipe *p, const fb_planar *m,
                         const fb_kit_clearance *cl, int j, fb_diag *diag) {
   if (cl->mass_tensors && j < 4) {
     if (!p->closed) {
-      for (int b = 0; b < m->nbodies; b++) rotation(p, b);
+      for (int b = 0; b < m->nbodies; b++) fb_kit_pipe_rotation(p, b);
       fb_status st = cl->mass_tensors(p->w4, m, p->q, (const double(*)[2])p->cs, cl->mask, diag);
       if (st != FB_OK) return st;
       p->closed = 1;

@@ -70,6 +70,12 @@ fb_status fb_kit_pipe_new(fb_kit_pipe *p, const fb_kit_binding *b, const fb_plan
                           const fb_kit_clearance *cl, fb_diag *diag);
 void fb_kit_pipe_free(fb_kit_pipe *p);
 
+/* Body b's (0: the ground, 1 ..: the description's) cos and sin at the
+ * state last read, p->q (fb_kit_pipe.cs): formed at its first use since
+ * p->rotated was cleared (fb_kit_pipe_read clears it), by the planar core's
+ * fb_planar_rotation, then kept. */
+const double *fb_kit_pipe_rotation(fb_kit_pipe *p, int b);
+
 /* Every clearance joint's penetration and eccentricity (p->pen, p->ecc)
  * at the bodies' states the caller put in p->q and p->qd (the engine's, as
  * the kit's sample read them); a pin in the hole of b's own collider (kit.h

@@ -73,6 +73,8 @@ struct Kit {
   btJointFeedback drive_fb; /* the drive row's feedback */
   int drive_joint = -1;     /* the driven joint (its place among the joints added) */
   Contact contact[FB_KIT_SLOTS]; /* by the kit's contact slot (a pin's, a slider's corner's) */
+  int used[FB_KIT_SLOTS];        /* the slots whose row exists, in the order made */
+  int nused = 0;
   size_t steps = 0;
 };
 
@@ -210,6 +212,27 @@ fb_status add_drive(void *w, int joint, double rate, fb_diag *diag) {
   return FB_OK;
 }
 
+/* contact slot j's row between the pin's and the hole's bodies (the hole
+ * is A when the pin is the ground's), made once and kept in the world */
+void make_row(Kit *k, int j, int pin, int hole) {
+  Contact &ct = k->contact[j];
+  if (ct.row) return;
+  ct.row = pin == FB_KIT_GROUND ? rows_between(k, hole, pin) : rows_between(k, pin, hole);
+  ct.row->nrows = 0;
+  k->w->add(ct.row);
+  k->used[k->nused++] = j;
+}
+
+/* a revolute clearance joint's row made in the joint's place among the
+ * constraints, as the hand-built four-bar's (bullet_scene.cpp): Bullet's
+ * solver takes its rows in that order (a slider's corners get theirs at
+ * their first contact) */
+fb_status add_clearance(void *w, int j, const fb_kit_clearance_joint *c, fb_diag *diag) {
+  (void)diag;
+  if (c->kind == FB_KIND_REVOLUTE) make_row(static_cast<Kit *>(w), j, c->pin, c->hole);
+  return FB_OK;
+}
+
 /* the four-bar's clearance row (bullet_scene.cpp): the law's row of the
  * step at the effective mass, on the hole wall, along -n into the pin (the
  * hole is A, along +n, when the pin is the ground's) */
@@ -218,11 +241,7 @@ fb_status add_contact(void *w, int j, const fb_kit_contact *c, fb_diag *diag) {
   Kit *k = static_cast<Kit *>(w);
   Contact &ct = k->contact[j];
   const int ground_pin = c->pin == FB_KIT_GROUND;
-  if (!ct.row) {
-    ct.row = ground_pin ? rows_between(k, c->hole, c->pin) : rows_between(k, c->pin, c->hole);
-    ct.row->nrows = 0;
-    k->w->add(ct.row);
-  }
+  make_row(k, j, c->pin, c->hole);
   fb_contact_row u = c->row; /* the kit's, when it mapped the law already */
   if (!c->has_row && fb_contact_row_step(&u, &c->law, c->mapping, c->h, c->m_eff, 1, c->depth,
                                          c->rate, c->v0, c->onset, c->persistence) != FB_OK)
@@ -267,9 +286,8 @@ fb_status step(void *w, fb_diag *diag) {
                        "(step %zu); [bullet] solver = sequential-impulse runs the iterative "
                        "solver on purpose", (double)k->steps * k->h, k->steps + 1);
   k->steps++;
-  for (int i = 0; i < FB_KIT_SLOTS; i++) {
-    Contact &ct = k->contact[i];
-    if (!ct.row) continue;
+  for (int u = 0; u < k->nused; u++) {
+    Contact &ct = k->contact[k->used[u]];
     ct.force = ct.row->nrows ? ct.share * ct.row->getAppliedImpulse() / k->h : 0.0;
     ct.row->nrows = 0; /* until the kit hands the next step's contact */
   }
@@ -351,6 +369,7 @@ constexpr fb_kit_binding binding() {
   b.add_prismatic = add_prismatic;
   b.add_drive = add_drive;
   b.add_contact = add_contact;
+  b.add_clearance = add_clearance;
   b.contact_force = contact_force;
   b.step = step;
   b.body_state = body_state;

@@ -414,6 +414,7 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
   for (int j = 0; j < FB_KIT_SLOTS; j++) { /* kit handles to MuJoCo's body ids */
     mk_contact *c = &k->ct[j];
     if (!c->in) continue;
+    k->used[k->nused++] = j;
     c->pin = c->pin == FB_KIT_GROUND ? 0 : k->bid[c->pin];
     c->hole = c->hole == FB_KIT_GROUND ? 0 : k->bid[c->hole];
   }
@@ -451,9 +452,8 @@ static void kit_passive(void *ctx, const mjModel *m, mjData *d) {
   mk_world *k = ctx;
   const double zero[3] = {0.0, 0.0, 0.0};
   if (k->native) return; /* MuJoCo's own constraint pushes (mujoco_kit_native.c) */
-  for (int j = 0; j < FB_KIT_SLOTS; j++) {
-    mk_contact *c = &k->ct[j];
-    if (!c->in) continue;
+  for (int u = 0; u < k->nused; u++) {
+    mk_contact *c = &k->ct[k->used[u]];
     double xp[3], vp[3], xh[3], vh[3], n[2], depth;
     point_state(m, d, c->pin, c->lp, xp, vp);
     point_state(m, d, c->hole, c->lh, xh, vh);
@@ -608,9 +608,9 @@ static void note_start(mk_world *k) {
     k->acc[3 * b + 2] = a[2];
   }
   memcpy(k->frc, d->cfrc_int, 6 * (size_t)m->nbody * sizeof *k->frc);
-  for (int j = 0; j < FB_KIT_SLOTS; j++) {
-    const mk_contact *c = &k->ct[j];
-    if (!c->in || (c->f[0] == 0.0 && c->f[1] == 0.0)) continue;
+  for (int u = 0; u < k->nused; u++) {
+    const mk_contact *c = &k->ct[k->used[u]];
+    if (c->f[0] == 0.0 && c->f[1] == 0.0) continue;
     const double back[2] = {-c->f[0], -c->f[1]};
     take_out(k, c->pin, c->xp, c->f);
     if (c->hole > 0) take_out(k, c->hole, c->xh, back);
@@ -618,28 +618,49 @@ static void note_start(mk_world *k) {
   for (int j = 0; j < k->nj; j++) reaction(k, &k->joint[j], k->react + 3 * j);
 }
 
+/* the state a step reached, read by body_state: MuJoCo's position stage
+ * as mj_forwardSkip runs it (mj_fwdPosition: the bodies' poses, the mass
+ * matrix, the constraints; the position sensors, the energy when enabled),
+ * which the next step's forward pass then skips, and the bodies'
+ * velocities (mj_comVel). Nothing the position stage reads changes between
+ * two steps (the hook, add_contact and apply_wrench act in the velocity and
+ * acceleration stages; the native contact's solref is set after a step's
+ * first pass), but the timestep (step_by), at which it runs again. */
+static void after_step(mk_world *k) {
+  mj_fwdPosition(k->m, k->d);
+  mj_sensorPos(k->m, k->d);
+  if (k->m->opt.enableflags & mjENBL_ENERGY) mj_energyPos(k->m, k->d);
+  mj_comVel(k->m, k->d);
+  k->pos_ready = k->m->opt.timestep;
+}
+
 /* one step: the forward pass at the state now with the step's contacts,
  * its accelerations and reactions kept, MuJoCo's integrator, the new
- * state's kinematics */
+ * state's position stage and velocities (after_step) */
 static fb_status kit_step(void *w, fb_diag *diag) {
   mk_world *k = w;
   k->m->opt.timestep = k->h_now > 0.0 ? k->h_now : k->h;
   fb_mujoco_passive_on(k->m, kit_passive, k);
-  for (int j = 0; j < FB_KIT_SLOTS; j++) k->ct[j].f[0] = k->ct[j].f[1] = 0.0;
+  for (int u = 0; u < k->nused; u++) k->ct[k->used[u]].f[0] = k->ct[k->used[u]].f[1] = 0.0;
   k->record = 1;
-  mj_forward(k->m, k->d);
+  /* the position stage at this state ran at the last step's end (after_step)
+   * with nothing of it changed since: the forward pass from the velocity
+   * stage on, the very numbers mj_forward gives */
+  if (k->pos_ready == k->m->opt.timestep) mj_forwardSkip(k->m, k->d, mjSTAGE_POS, 0);
+  else mj_forward(k->m, k->d);
+  k->pos_ready = 0.0;
   k->record = 0;
   if (k->native) mk_native_start(k); /* its forces, then its solref for the stages */
   note_start(k);
   fb_mujoco_integrate(k->m, k->d, k->integrator);
   fb_mujoco_passive_off();
-  for (int j = 0; j < FB_KIT_SLOTS; j++) k->ct[j].on = 0;
+  for (int u = 0; u < k->nused; u++) k->ct[k->used[u]].on = 0;
   k->steps++;
   for (int i = 0; i < k->m->nv; i++)
     if (!isfinite(k->d->qvel[i]))
       return fb_diag_set(diag, FB_ERR_NUMERIC, "MuJoCo's state is not finite after step %zu "
                          "(t = %.6g s)", k->steps, k->d->time);
-  kinematics(k);
+  after_step(k);
   return FB_OK;
 }
 

@@ -77,8 +77,11 @@ typedef struct {
   mjData *d;
   int *bid;            /* (nb) MuJoCo body id of each handle */
   mk_contact ct[FB_KIT_SLOTS]; /* by the kit's contact slot */
+  int used[FB_KIT_SLOTS], nused; /* the slots in use (ct[].in), ascending: the step's loops */
   size_t steps;
   int record;          /* 1: the hook keeps each contact's force (the step's first pass) */
+  double pos_ready;    /* the timestep [s] at which the last step's end ran MuJoCo's position
+                          stage (after_step); 0: the next step runs the whole forward pass */
   double *acc;         /* (nb x 3) every body's acceleration at the last step's start:
                           centre x, y [m/s^2], about +z [rad/s^2] (kit.h's body_accel) */
   double *react;       /* (nj x 3) every ideal joint's reaction there (kit.h's reactions) */

@@ -429,12 +429,28 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
   return start_velocity(k, diag);
 }
 
+/* body id's spatial motion (rotation, translation) at its centre of mass
+ * in the world frame from one of MuJoCo's com-based vectors cx (6 per
+ * body: d->cvel, d->cacc): the translation less (centre - the subtree's
+ * centre of mass) x the rotation, the arithmetic of mj_objectVelocity's
+ * world-frame transform (mju_transformSpatial), in the same order, so the
+ * same doubles, without its per-call set-up */
+static void com_motion(const mjModel *m, const mjData *d, const mjtNum *cx, int id, double out[6]) {
+  const mjtNum *v = cx + 6 * id, *p = d->xipos + 3 * id;
+  const mjtNum *c = d->subtree_com + 3 * m->body_rootid[id];
+  const double dif[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+  out[0] = v[0], out[1] = v[1], out[2] = v[2];
+  out[3] = v[3] - (dif[1] * v[2] - dif[2] * v[1]);
+  out[4] = v[4] - (dif[2] * v[0] - dif[0] * v[2]);
+  out[5] = v[5] - (dif[0] * v[1] - dif[1] * v[0]);
+}
+
 /* body b's point at local (its frame) in the world, and its velocity */
 static void point_state(const mjModel *m, const mjData *d, int b, const double local[2],
                         double x[3], double v[3]) {
   const double *o = d->xpos + 3 * b, *R = d->xmat + 9 * b;
   double vel[6]; /* rotation, translation at the centre of mass (the frame's origin) */
-  mj_objectVelocity(m, d, mjOBJ_BODY, b, vel, 0);
+  com_motion(m, d, d->cvel, b, vel);
   for (int i = 0; i < 3; i++) x[i] = o[i] + R[3 * i] * local[0] + R[3 * i + 1] * local[1];
   const double r[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
   v[0] = vel[3] + vel[1] * r[2] - vel[2] * r[1];
@@ -600,8 +616,15 @@ static void note_start(mk_world *k) {
   mjData *d = k->d;
   mj_rnePostConstraint(m, d);
   for (int b = 0; b < k->nb; b++) {
-    double a[6]; /* about the centre of mass (the body's frame): rotation, translation */
-    mj_objectAcceleration(m, d, mjOBJ_BODY, k->bid[b], a, 0);
+    /* about the centre of mass (the body's frame): rotation, translation,
+     * the latter with vel_rot x vel_tran added, as mj_objectAcceleration
+     * gives them in the world frame */
+    double a[6], v[6];
+    com_motion(m, d, d->cvel, k->bid[b], v);
+    com_motion(m, d, d->cacc, k->bid[b], a);
+    a[3] += v[1] * v[5] - v[2] * v[4];
+    a[4] += v[2] * v[3] - v[0] * v[5];
+    a[5] += v[0] * v[4] - v[1] * v[3];
     /* MuJoCo's accelerations carry the world's -g (gravity as a frame acceleration) */
     k->acc[3 * b] = a[3] + m->opt.gravity[0];
     k->acc[3 * b + 1] = a[4] + m->opt.gravity[1];
@@ -677,7 +700,7 @@ static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
   const int id = k->bid[b];
   const double *x = k->d->xpos + 3 * id, *R = k->d->xmat + 9 * id;
   double v[6];
-  mj_objectVelocity(k->m, k->d, mjOBJ_BODY, id, v, 0);
+  com_motion(k->m, k->d, k->d->cvel, id, v);
   pos[0] = x[0];
   pos[1] = x[1];
   pos[2] = atan2(R[3], R[0]);

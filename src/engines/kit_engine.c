@@ -205,14 +205,18 @@ static void kit_stopped_at(kit_run *r, double wdh, double h, const fb_diag *diag
   }
 }
 
-/* the storage of a run of n samples of nb moving bodies: the series, and
- * each clearance joint's columns (sub_steps: a binding that sub-steps,
- * with its largest force of each step) */
+/* the storage of a run of n samples of nb moving bodies: the series (the
+ * bodies' centres only where an output translates: body_value reads them
+ * there alone, and 18 columns more written at every sample of a four-bar
+ * cost the engine's own step its cache), and each clearance joint's
+ * columns (sub_steps: a binding that sub-steps, with its largest force of
+ * each step) */
 static fb_status alloc_run(kit_run *r, size_t n, int nb, int sub_steps, fb_diag *diag) {
-  int nj = 0;
+  int nj = 0, centre = 0;
   for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) nj += loose(r, j);
+  for (int k = 0; k < r->nout; k++) centre |= r->translates[k];
   r->s.n = n;
-  r->s.t = malloc((2 + (size_t)nb * 9) * n * sizeof *r->s.t);
+  r->s.t = malloc((2 + (size_t)nb * (centre ? 9 : 3)) * n * sizeof *r->s.t);
   double *col = nj ? calloc((size_t)nj * FB_CONTACT_COLS * n, sizeof *col) : NULL;
   if (nj && sub_steps) r->force_max = calloc((size_t)FB_MECH_MAX_JOINTS * n, sizeof *r->force_max);
   if (!r->s.t || (nj && !col) || (nj && sub_steps && !r->force_max)) {
@@ -223,8 +227,8 @@ static fb_status alloc_run(kit_run *r, size_t n, int nb, int sub_steps, fb_diag 
   for (int j = 0, k = 0; j < FB_MECH_MAX_JOINTS; j++)
     if (loose(r, j)) r->col[j] = col + (size_t)(k++) * FB_CONTACT_COLS * n;
   r->s.q = r->s.t + n;
-  r->s.centre = r->s.q + (size_t)nb * 3 * n;
-  r->s.drift = r->s.centre + (size_t)nb * 6 * n;
+  r->s.centre = centre ? r->s.q + (size_t)nb * 3 * n : NULL;
+  r->s.drift = r->s.q + (size_t)nb * (centre ? 9 : 3) * n;
   for (size_t i = 0; i < n; i++) r->s.t[i] = NAN;
   return FB_OK;
 }

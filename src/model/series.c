@@ -173,9 +173,10 @@ fb_status fb_series_push(fb_series *s, const fb_sample *x) {
     if (st != FB_OK) return st;
   }
   const int nj = mech_of(s)->njoints;
+  const size_t nout = output_count(s); /* once a sample: a walk of the description */
   s->t[s->n] = x->t;
   s->crank_angle[s->n] = x->crank_angle;
-  for (size_t b = 0; b < output_count(s); b++)
+  for (size_t b = 0; b < nout; b++)
     for (int q = 0; q < 3; q++) s->body[b][q][s->n] = x->body[b][q];
   for (int j = 0; j < nj; j++)
     if (s->contact_mask & (1 << j))

@@ -3,6 +3,7 @@
 #include "kit.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -193,6 +194,12 @@ static double share(const kit_span *sp, size_t u) {
   return (double)(u - sp->i0) / (double)(sp->i - sp->i0);
 }
 
+/* where the series s keeps its samples (kit.h fb_kit_series.window): a
+ * column's length, and the mask that takes sample u to its index, u &
+ * mask (all ones when every sample is kept) */
+static size_t column_length(const fb_kit_series *s) { return s->window ? s->window : s->n; }
+static size_t index_mask(const fb_kit_series *s) { return s->window ? s->window - 1 : SIZE_MAX; }
+
 /* sample sp->i of one coordinate's column q (position x, rate v) after
  * the step sp: the step gives its acceleration to every sample from the
  * one it started from, sp->i0, the configuration whose forces the engine
@@ -200,19 +207,22 @@ static double share(const kit_span *sp, size_t u) {
  * step's difference; the samples inside the step lie on the straight line
  * between its ends; the last sample keeps the acceleration before it.
  * Sample 0 (sp NULL) is the start, its acceleration set by its step. */
-static void put(double *q, size_t n, const kit_span *sp, double x, double v, const double *a) {
-  const size_t i = sp ? sp->i : 0;
-  if (i < n) q[2 * n + i] = 0.0, q[i] = x, q[n + i] = v;
+static void put(double *q, const fb_kit_series *s, const kit_span *sp, double x, double v,
+                const double *a) {
+  const size_t n = s->n, L = column_length(s), M = index_mask(s), i = sp ? sp->i : 0;
+  double *qv = q + L, *qa = q + 2 * L;
+  if (i < n) qa[i & M] = 0.0, q[i & M] = x, qv[i & M] = v;
   if (!sp) return;
   const size_t i0 = sp->i0;
-  const double acc = a ? *a : (v - q[n + i0]) / sp->h;
-  for (size_t u = i0; u < i && u < n; u++) q[2 * n + u] = acc;
+  const double x0 = q[i0 & M], v0 = qv[i0 & M];
+  const double acc = a ? *a : (v - v0) / sp->h;
+  for (size_t u = i0; u < i && u < n; u++) qa[u & M] = acc;
   for (size_t u = i0 + 1; u < i && u < n; u++) {
     const double f = share(sp, u);
-    q[u] = q[i0] + f * (x - q[i0]);
-    q[n + u] = q[n + i0] + f * (v - q[n + i0]);
+    q[u & M] = x0 + f * (x - x0);
+    qv[u & M] = v0 + f * (v - v0);
   }
-  if (i == n - 1) q[2 * n + i] = q[2 * n + i - 1];
+  if (i == n - 1) qa[i & M] = qa[(i - 1) & M];
 }
 
 /* an angle's change d [rad] brought into [-pi, pi]: remainder(d, 2 pi),
@@ -226,20 +236,20 @@ static double turn_from(double d) { return fabs(d) <= M_PI ? d : remainder(d, 2.
  * clearance pipeline's */
 static void sample(const fb_kit_binding *b, const void *w, fb_kit_series *s, int nb,
                    const kit_span *sp, double *state, double *rate) {
-  const size_t n = s->n, i = sp ? sp->i : 0;
-  for (size_t u = sp ? sp->i0 + 1 : 0; u <= i && u < n; u++) s->t[u] = (double)u * s->h;
+  const size_t n = s->n, L = column_length(s), M = index_mask(s), i = sp ? sp->i : 0;
+  for (size_t u = sp ? sp->i0 + 1 : 0; u <= i && u < n; u++) s->t[u & M] = (double)u * s->h;
   const int own = sp && b->body_accel; /* the engine's accelerations at the step's start */
   for (int k = 0; k < nb; k++) {
     double pos[3], vel[3], acc[3];
     b->body_state(w, k, pos, vel);
     if (own) b->body_accel(w, k, acc);
     if (state) memcpy(state + 3 * k, pos, sizeof pos), memcpy(rate + 3 * k, vel, sizeof vel);
-    double *q = s->q + (size_t)k * 3 * n;
-    const double a = sp ? q[sp->i0] + turn_from(pos[2] - q[sp->i0]) : pos[2];
-    put(q, n, sp, a, vel[2], own ? &acc[2] : NULL);
+    double *q = s->q + (size_t)k * 3 * L;
+    const double a = sp ? q[sp->i0 & M] + turn_from(pos[2] - q[sp->i0 & M]) : pos[2];
+    put(q, s, sp, a, vel[2], own ? &acc[2] : NULL);
     if (!s->centre) continue;
-    put(s->centre + (size_t)k * 3 * n, n, sp, pos[0], vel[0], own ? &acc[0] : NULL);
-    put(s->centre + (size_t)(nb + k) * 3 * n, n, sp, pos[1], vel[1], own ? &acc[1] : NULL);
+    put(s->centre + (size_t)k * 3 * L, s, sp, pos[0], vel[0], own ? &acc[0] : NULL);
+    put(s->centre + (size_t)(nb + k) * 3 * L, s, sp, pos[1], vel[1], own ? &acc[1] : NULL);
   }
 }
 
@@ -256,6 +266,7 @@ struct fb_kit_runner {
   int mc;                /* the coming step's grid steps */
   kit_span last;         /* the last step (last.i 0 before the first) */
   size_t i;              /* samples filled; the coming step starts from sample i - 1 */
+  size_t written;        /* samples whose time and motion are written (fb_kit_written) */
   fb_status st;          /* FB_OK, or what stopped the run (sticky) */
   double *lq;            /* (3 nq) a description with springs or loads: the state a step
                             starts from (q, q') and their generalised forces; NULL: none */
@@ -280,7 +291,8 @@ static void wrenches(fb_kit_runner *k) {
  * state from the one before. Sample 0: sp NULL. */
 static void record(fb_kit_runner *k, int j, const kit_span *sp) {
   const fb_kit_binding *b = k->b;
-  const size_t n = k->s->n, i = sp ? sp->i : 0;
+  const fb_kit_series *s = k->s;
+  const size_t n = s->n, L = column_length(s), M = index_mask(s), i = sp ? sp->i : 0;
   fb_kit_joint_record *r = &k->cl->joint[j];
   if (sp) {
     const double f = fb_kit_pipe_force(&k->p, b, k->w, k->m, j);
@@ -288,25 +300,25 @@ static void record(fb_kit_runner *k, int j, const kit_span *sp) {
     /* the episode of the step from sp->i0 */
     const double z = f > 0.0 ? (double)fb_kit_pipe_state(&k->p, k->m, j) : FB_STATE_FREE;
     for (size_t u = sp->i0; u < i && u < n; u++) {
-      if (r->force) r->force[u] = f;
-      if (r->force_max) r->force_max[u] = fm;
-      if (r->state) r->state[u] = z;
+      if (r->force) r->force[u & M] = f;
+      if (r->force_max) r->force_max[u & M] = fm;
+      if (r->state) r->state[u & M] = z;
     }
   }
-  if (r->pen && i < n) r->pen[i] = k->p.pen[j];
-  if (r->ecc && i < n) r->ecc[i] = k->p.ecc[j][0], r->ecc[n + i] = k->p.ecc[j][1];
+  if (r->pen && i < n) r->pen[i & M] = k->p.pen[j];
+  if (r->ecc && i < n) r->ecc[i & M] = k->p.ecc[j][0], r->ecc[L + (i & M)] = k->p.ecc[j][1];
   for (size_t u = sp ? sp->i0 + 1 : i; u < i && u < n; u++) {
     const double f = share(sp, u);
-    if (r->pen) r->pen[u] = r->pen[sp->i0] + f * (k->p.pen[j] - r->pen[sp->i0]);
+    if (r->pen) r->pen[u & M] = r->pen[sp->i0 & M] + f * (k->p.pen[j] - r->pen[sp->i0 & M]);
     for (int c = 0; r->ecc && c < 2; c++) {
-      double *e = r->ecc + (size_t)c * n;
-      e[u] = e[sp->i0] + f * (k->p.ecc[j][c] - e[sp->i0]);
+      double *e = r->ecc + (size_t)c * L;
+      e[u & M] = e[sp->i0 & M] + f * (k->p.ecc[j][c] - e[sp->i0 & M]);
     }
   }
   if (i + 1 != n) return;
-  if (r->force) r->force[i] = i > 0 ? r->force[i - 1] : 0.0;
-  if (r->force_max) r->force_max[i] = r->force ? r->force[i] : 0.0;
-  if (r->state) r->state[i] = i > 0 ? r->state[i - 1] : FB_STATE_FREE;
+  if (r->force) r->force[i & M] = i > 0 ? r->force[(i - 1) & M] : 0.0;
+  if (r->force_max) r->force_max[i & M] = r->force ? r->force[i & M] : 0.0;
+  if (r->state) r->state[i & M] = i > 0 ? r->state[(i - 1) & M] : FB_STATE_FREE;
 }
 
 /* the joint reactions and the drive torque of step sp, at every sample
@@ -319,7 +331,7 @@ static void loads(fb_kit_runner *k, const kit_span *sp) {
   const fb_kit_binding *b = k->b;
   const fb_planar *m = k->m;
   fb_kit_series *s = k->s;
-  const size_t n = s->n, i = sp->i;
+  const size_t n = s->n, L = column_length(s), M = index_mask(s), i = sp->i;
   const unsigned mask = k->cl ? k->cl->mask : 0u;
   double torque = 0.0;
   for (int j = 0, added = 0; j < m->njoints; j++) {
@@ -332,17 +344,17 @@ static void loads(fb_kit_runner *k, const kit_span *sp) {
       torque = m->joint[j].body[1] == to ? r[2] : -r[2];
     }
     for (int c = 0; c < 3; c++) {
-      double *col = s->reaction + (size_t)(3 * j + c) * n;
-      for (size_t u = sp->i0; u < i && u < n; u++) col[u] = r[c];
-      if (i + 1 == n) col[i] = r[c];
+      double *col = s->reaction + (size_t)(3 * j + c) * L;
+      for (size_t u = sp->i0; u < i && u < n; u++) col[u & M] = r[c];
+      if (i + 1 == n) col[i & M] = r[c];
     }
   }
   if (m->torque_joint >= 0) { /* a torque drive: its torque on the body it turns */
     const fb_planar_joint *jt = &m->joint[m->torque_joint];
     torque = jt->body[1] != FB_PLANAR_GROUND ? m->drive_torque : -m->drive_torque;
   }
-  for (size_t u = sp->i0; u < i && u < n; u++) s->torque[u] = torque;
-  if (i + 1 == n) s->torque[i] = torque;
+  for (size_t u = sp->i0; u < i && u < n; u++) s->torque[u & M] = torque;
+  if (i + 1 == n) s->torque[i & M] = torque;
 }
 
 /* the loop-closure drift at sample sp->i (sample 0: sp NULL) into
@@ -353,7 +365,7 @@ static void loads(fb_kit_runner *k, const kit_span *sp) {
 static void drift_at(fb_kit_runner *k, const kit_span *sp) {
   const fb_planar *m = k->m;
   fb_kit_series *s = k->s;
-  const size_t n = s->n, i = sp ? sp->i : 0;
+  const size_t n = s->n, M = index_mask(s), i = sp ? sp->i : 0;
   const unsigned mask = k->cl ? k->cl->mask : 0u;
   double worst2 = 0.0; /* the largest squared separation [m^2] */
   for (int j = 0; j < m->njoints; j++) {
@@ -367,10 +379,11 @@ static void drift_at(fb_kit_runner *k, const kit_span *sp) {
     if (d2 > worst2) worst2 = d2;
   }
   const double worst = sqrt(worst2);
-  if (i < n) s->drift[i] = worst;
+  if (i < n) s->drift[i & M] = worst;
   if (!sp) return;
-  const double d0 = s->drift[sp->i0];
-  for (size_t u = sp->i0 + 1; u < i && u < n; u++) s->drift[u] = d0 + share(sp, u) * (worst - d0);
+  const double d0 = s->drift[sp->i0 & M];
+  for (size_t u = sp->i0 + 1; u < i && u < n; u++)
+    s->drift[u & M] = d0 + share(sp, u) * (worst - d0);
 }
 
 /* after sample i (sp: the step to it; NULL for sample 0): the springs'
@@ -411,17 +424,19 @@ static fb_status first_sample(fb_kit_runner *k, fb_diag *diag) {
   fb_kit_series *s = k->s;
   sample(k->b, k->w, s, m->nbodies - 1, NULL, kept(k) ? k->p.q : NULL,
          kept(k) ? k->p.qd : NULL);
+  k->written = 1;
   if (s->torque && s->n == 1) { /* no step: no loads */
     s->torque[0] = 0.0;
-    memset(s->reaction, 0, 3 * (size_t)m->njoints * sizeof *s->reaction);
+    for (int c = 0; c < 3 * m->njoints; c++) s->reaction[(size_t)c * column_length(s)] = 0.0;
   }
   return after_sample(k, NULL, diag);
 }
 
-/* column x (n) inside step sp: on the straight line between its ends */
-static void line(double *x, const kit_span *sp) {
+/* column x inside step sp (index mask M): on the straight line between
+ * its ends */
+static void line(double *x, size_t M, const kit_span *sp) {
   for (size_t u = sp->i0 + 1; u < sp->i; u++)
-    x[u] = x[sp->i0] + share(sp, u) * (x[sp->i] - x[sp->i0]);
+    x[u & M] = x[sp->i0 & M] + share(sp, u) * (x[sp->i & M] - x[sp->i0 & M]);
 }
 
 /* a binding whose samples are the engine's own at each state (kit.h
@@ -431,22 +446,23 @@ static void line(double *x, const kit_span *sp) {
  * rates are already (put) */
 static void inside_lines(fb_kit_runner *k, const kit_span *sp) {
   fb_kit_series *s = k->s;
-  const size_t n = s->n;
+  const size_t n = s->n, L = column_length(s), M = index_mask(s);
   if (!k->b->body_accel || sp->i - sp->i0 < 2 || sp->i >= n) return;
   const int nb = k->m->nbodies - 1;
   for (int b = 0; b < nb; b++) {
-    line(s->q + ((size_t)b * 3 + 2) * n, sp);
-    for (int c = 0; s->centre && c < 2; c++) line(s->centre + ((size_t)(c * nb + b) * 3 + 2) * n, sp);
+    line(s->q + ((size_t)b * 3 + 2) * L, M, sp);
+    for (int c = 0; s->centre && c < 2; c++)
+      line(s->centre + ((size_t)(c * nb + b) * 3 + 2) * L, M, sp);
   }
   for (int j = 0; k->cl && j < k->m->njoints; j++) {
     const fb_kit_joint_record *r = &k->cl->joint[j];
     if (!(k->cl->mask & (1u << j))) continue;
-    if (r->force) line(r->force, sp);
-    if (r->force_max) line(r->force_max, sp);
+    if (r->force) line(r->force, M, sp);
+    if (r->force_max) line(r->force_max, M, sp);
   }
   if (!s->torque) return;
-  line(s->torque, sp);
-  for (int c = 0; c < 3 * k->m->njoints; c++) line(s->reaction + (size_t)c * n, sp);
+  line(s->torque, M, sp);
+  for (int c = 0; c < 3 * k->m->njoints; c++) line(s->reaction + (size_t)c * L, M, sp);
 }
 
 /* the coming step, from sample k->i - 1 over k->mc grid steps, and the
@@ -462,6 +478,7 @@ static fb_status next_step(fb_kit_runner *k, fb_diag *diag) {
   if (s->torque) loads(k, &sp); /* at the step's start: before the pipe reads anew */
   sample(b, k->w, s, k->m->nbodies - 1, &sp, kept(k) ? k->p.q : NULL,
          kept(k) ? k->p.qd : NULL);
+  k->written = sp.i < s->n ? sp.i + 1 : s->n;
   st = after_sample(k, &sp, diag);
   if (k->last.i > 0) inside_lines(k, &k->last); /* its end's values are this step's start's */
   k->last = sp;
@@ -485,6 +502,10 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   if (s->torque && mask && b->add_clearance && !b->add_contact && !b->clearance_reaction)
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding reports no clearance joint's "
                        "reaction", b->engine);
+  const size_t window = fb_kit_window(o);
+  if (s->window && (s->window & (s->window - 1) || s->window < window))
+    return fb_diag_set(diag, FB_ERR_ARG, "a kit series' window of %zu samples: it must be a power "
+                       "of two of at least %zu (fb_kit_window)", s->window, window);
   const double t0 = fb_clock_s();
   fb_kit_runner *k = calloc(1, sizeof *k);
   const int nq = fb_planar_nq(m);
@@ -528,6 +549,17 @@ fb_status fb_kit_open(fb_kit_runner **out, const fb_kit_binding *b, const fb_pla
   return FB_OK;
 }
 
+size_t fb_kit_window(const fb_kit_world *o) {
+  /* after fb_kit_advance(k, j) a reader needs samples j - 3 on; the kit
+   * writes up to two steps ahead of the last final sample (an adaptive
+   * run whose samples inside a step wait for the next, inside_lines) and
+   * reads back to the start of the step before */
+  const size_t need = 2 * (size_t)fb_kit_adapt_m_max(o) + 4;
+  size_t w = 1;
+  while (w < need) w *= 2;
+  return w;
+}
+
 /* the samples final so far: every one filled, but those inside the last
  * step and its end where they wait for the next step's start (inside_lines:
  * an adaptive run of a binding with body_accel) */
@@ -549,6 +581,8 @@ fb_status fb_kit_advance(fb_kit_runner *k, size_t n, fb_diag *diag) {
   }
   return FB_OK;
 }
+
+size_t fb_kit_written(const fb_kit_runner *k) { return k->written; }
 
 void fb_kit_close(fb_kit_runner *k) {
   if (!k) return;

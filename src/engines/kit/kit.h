@@ -500,10 +500,20 @@ typedef struct fb_kit_binding {
  * engine solved at sample i's configuration (series.h's
  * fb_series_attribute_to_step_start, as the engines' four-bar runs report
  * it), or the engine's own there where the binding gives it (body_accel);
- * the last sample keeps the one before. */
+ * the last sample keeps the one before. With a window (below), every
+ * column here and in the clearance joints' records (fb_kit_joint_record)
+ * is window long instead of n and sample i sits at index i & (window - 1)
+ * in it: q[(b * 3 + k) * window + (i & (window - 1))]. */
 typedef struct {
   size_t n;
   double h;
+  size_t window;  /* optional, 0: every sample kept, each column n long; else a power of two
+                     of at least fb_kit_window(o): the columns keep the last window samples,
+                     for a caller that reads each sample once, just behind the kit (the kit
+                     adapter: a run's columns then stay in the cache the engine's own step
+                     works in, instead of growing by megabytes); after fb_kit_advance(k, j)
+                     samples j - 3 (or 0) up to the last filled are there. FB_ERR_ARG from
+                     fb_kit_open for another window */
   double *t;
   double *q;
   double *centre; /* optional ((bodies x 3) x n), NULL: not kept: body handle b's centre of
@@ -557,12 +567,22 @@ fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
  * frees the world (NULL is ignored). Opened, advanced to s->n and closed,
  * it is fb_kit_run, the same numbers. After an error, fb_kit_advance
  * fills nothing more (FB_ERR_NUMERIC etc. again); the samples reached are
- * those with a finite s->t when s->t was filled with NaN first. */
+ * those with a finite s->t when s->t was filled with NaN first, as many as
+ * fb_kit_written gives (samples 0 to fb_kit_written(k) - 1 have their time
+ * and motion; with a window, the only way to tell). */
 typedef struct fb_kit_runner fb_kit_runner;
+
+/* The smallest window (fb_kit_series.window) a run with world settings o
+ * can keep: a power of two of at least 2 m + 4 samples, m its longest
+ * step in grid steps (kit_adaptive.h fb_kit_adapt_m_max: 1 at a fixed
+ * step) [-]. */
+size_t fb_kit_window(const fb_kit_world *o);
+
 fb_status fb_kit_open(fb_kit_runner **k, const fb_kit_binding *b, const fb_planar *m,
                       double omega, const fb_kit_world *o, fb_kit_clearance *cl,
                       fb_kit_series *s, fb_diag *diag);
 fb_status fb_kit_advance(fb_kit_runner *k, size_t n, fb_diag *diag);
+size_t fb_kit_written(const fb_kit_runner *k);
 void fb_kit_close(fb_kit_runner *k);
 
 /* Builds description m driven at omega [rad/s] in the engine of binding b

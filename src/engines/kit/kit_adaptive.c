@@ -6,6 +6,13 @@
 
 #include "contact_mass.h"
 
+int fb_kit_adapt_m_max(const fb_kit_world *o) {
+  const fb_solver *sv = o->solver;
+  if (!sv || sv->h_mode != FB_STEP_ADAPTIVE) return 1;
+  const int m = (int)floor(sv->h_max / o->h * (1.0 + 1e-9));
+  return m < 1 ? 1 : m;
+}
+
 fb_status fb_kit_adapt_open(fb_kit_adapt *a, fb_kit_pipe *p, const fb_kit_binding *b,
                             const fb_planar *m, const fb_kit_world *o,
                             const fb_kit_clearance *cl, fb_diag *diag) {
@@ -34,8 +41,7 @@ fb_status fb_kit_adapt_open(fb_kit_adapt *a, fb_kit_pipe *p, const fb_kit_bindin
   a->h_grid = o->h;
   a->h_max = sv->h_max;
   a->accuracy = sv->accuracy;
-  a->m_max = (int)floor(sv->h_max / o->h * (1.0 + 1e-9));
-  if (a->m_max < 1) a->m_max = 1;
+  a->m_max = fb_kit_adapt_m_max(o);
   a->m_prev = 1;
   a->rocking_h_omega = mask ? sv->rocking_h_omega : 0.0;
   p->rocking = a->rocking_h_omega > 0.0;

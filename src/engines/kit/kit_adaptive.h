@@ -39,6 +39,11 @@ fb_status fb_kit_adapt_open(fb_kit_adapt *a, fb_kit_pipe *p, const fb_kit_bindin
                             const fb_planar *m, const fb_kit_world *o,
                             const fb_kit_clearance *cl, fb_diag *diag);
 
+/* The longest step a run with world settings o takes, in grid steps of
+ * o->h: floor(h_max / h) for [solver] h_s = adaptive (at least 1), 1 for
+ * a fixed step [-]. */
+int fb_kit_adapt_m_max(const fb_kit_world *o);
+
 /* The coming step's grid steps (>= 1, at most a->m_max) from every
  * clearance joint's contact at the state p last read (step_control.h:
  * the shortest step any joint asks for, held inside an impact, ramped);

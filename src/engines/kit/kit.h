@@ -225,7 +225,9 @@ typedef struct {
 } fb_kit_rows;
 
 /* What a kit run keeps of one clearance joint: its law, and its columns
- * and figures (out). */
+ * and figures (out). Each column is n long, indexed by sample, or with a
+ * window (fb_kit_series.window) window long, sample i at i & (window - 1)
+ * (ecc's y then at ecc[window + (i & (window - 1))]). */
 typedef struct {
   fb_contact_law law;       /* its law (joint_law.h), its damper put on m_eff each step */
   double *force;            /* optional (n), NULL: not kept: its contact force over the step

@@ -584,6 +584,8 @@ fb_status fb_kit_open(fb_kit_runner **k, const fb_kit_binding *b, const fb_plana
                       double omega, const fb_kit_world *o, fb_kit_clearance *cl,
                       fb_kit_series *s, fb_diag *diag);
 fb_status fb_kit_advance(fb_kit_runner *k, size_t n, fb_diag *diag);
+/* the samples of k's run whose time and motion are written [-]: those
+ * filled, and after a stop the ones its last step wrote before it */
 size_t fb_kit_written(const fb_kit_runner *k);
 void fb_kit_close(fb_kit_runner *k);
 

@@ -359,6 +359,9 @@ static void test_export_notes_an_unresolved_contact(void **state) {
  * body: the six-bar -0.035 % and +0.23 %, the quick-return -0.09 % and
  * -0.57 %; a 2 ms step turns its lever by up to 0.17 rad) */
 #define PLANAR_USER_STEP_REL_TOL 1e-2
+/* a step that resolves the six-bar's contact (its header's rule: 2.97e-6 s
+ * or smaller at the rod-output joint's smallest effective mass) [s] */
+#define SIXBAR_RESOLVED_H_S "2e-6"
 /* the case's revolutions here: two (the first the run-in, peaks over the
  * second, the harness's window) */
 static const char *const sets[] = {"run.models=analytic", "run.revolutions=2"};
@@ -491,17 +494,89 @@ static void test_quick_return_export_holds(void **state) {
   planar_export_holds("../tests/cases/quick_return.ini", "quick_return", 2);
 }
 
-/* the clearance joint is not in a planar case's MJCF (its law comes from
- * the ideal mechanism's reactions, which a run computes): without --ideal
- * the export is refused naming the flag; SDF of a planar case is refused
- * naming the format and the case type */
+/* the six-bar's clearance export (rod-output as MuJoCo's bore, model
+ * mujoco-clearance-native's law) at a step that resolves its contact: the
+ * case's names on the tendon and its sites, no note; its peak tendon-limit
+ * force over two revolutions from keyframe "start" in MuJoCo's own
+ * loader and stepper against reference-restitution's over the same two
+ * revolutions from the same start (the four-bar's bound,
+ * CLEARANCE_FORCE_REL_TOL) */
+static void test_sixbar_clearance_export_force(void **state) {
+  (void)state;
+  static fb_case c;
+  static fb_planar_run r;
+  fb_diag d;
+  char path[4096];
+  const char *dir = getenv("FOURBAR_CASES_DIR");
+  snprintf(path, sizeof path, "%s/watt_sixbar.ini", dir ? dir : "cases");
+  const char *fine[] = {"run.models=reference-restitution", "run.revolutions=2",
+                        "solver.h_s=" SIXBAR_RESOLVED_H_S};
+  if (fb_casefile_load_planar(&c, path, fine, 3, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(fb_export_mjcf(planar_text, sizeof planar_text, &c, 0, &d), FB_OK);
+  assert_string_equal(d.msg, "");
+  comment_is_xml(planar_text);
+  assert_non_null(strstr(planar_text, "model mujoco-clearance-native"));
+  assert_non_null(strstr(planar_text, "does not follow timestep"));
+  mjModel *m = load(planar_text);
+  assert_true(mj_name2id(m, mjOBJ_TENDON, "rod-output_bore") >= 0);
+  assert_true(mj_name2id(m, mjOBJ_SITE, "rod-output_pin") >= 0);
+  assert_true(mj_name2id(m, mjOBJ_SITE, "rod-output_hole") >= 0);
+  assert_true(mj_name2id(m, mjOBJ_EQUALITY, "rod-output") < 0); /* the bore, not a loop */
+  mjData *x = mj_makeData(m);
+  mj_resetDataKeyframe(m, x, 0);
+  const long steps = lround(REVOLUTIONS * 2.0 * M_PI / fabs(fb_case_omega2(&c)) / m->opt.timestep);
+  double fmax_file = 0.0;
+  for (long k = 0; k < steps; k++) {
+    mj_step(m, x);
+    mj_forward(m, x); /* efc_force at the state reached */
+    fmax_file = fmax(fmax_file, bore_force(m, x));
+    if (!isfinite(x->qvel[0])) fail_msg("the six-bar's clearance export diverged at step %ld", k);
+  }
+  for (int i = 0; i < mjNWARNING; i++)
+    if (x->warning[i].number) fail_msg("MuJoCo warning %d (%d times)", i, x->warning[i].number);
+  mj_deleteData(x);
+  mj_deleteModel(m);
+  if (fb_planar_run_case(&r, &c, &d) != FB_OK) fail_msg("%s", d.msg);
+  const fb_planar_model *ref = model_of(&r, "reference-restitution");
+  assert_false(ref->ref.failed);
+  double fref = 0.0;
+  for (size_t i = 0; i < ref->n; i++)
+    if (isfinite(ref->force[i])) fref = fmax(fref, ref->force[i]);
+  fb_planar_run_free(&r);
+  const double rel = (fmax_file - fref) / fref;
+  if (fb_test_verbose())
+    fprintf(stderr, "  six-bar clearance export peak force %.6g N, reference %.6g N: %+.3e\n",
+            fmax_file, fref, rel);
+  if (!(fabs(rel) <= CLEARANCE_FORCE_REL_TOL))
+    fail_msg("the six-bar's exported peak contact force %.6g N against the reference's %.6g N "
+             "(%+.3e)", fmax_file, fref, rel);
+}
+
+/* SDF of a planar case is refused naming the format and the case type; a
+ * clearance export at the case's own step (5e-6 s: h omega_c 0.84 at the
+ * joint's smallest effective mass) is written with the note that its
+ * contact is not faithful there; a slider in its guide (a prismatic
+ * clearance joint) is no MuJoCo bore: refused naming --ideal */
 static void test_sixbar_refusals(void **state) {
   (void)state;
   static fb_case c;
   fb_diag d;
   planar_case(&c, "watt_sixbar.ini");
   assert_true(c.clearance.mask != 0);
-  assert_int_equal(fb_export_mjcf(planar_text, sizeof planar_text, &c, 0, &d), FB_ERR_ARG);
+  assert_int_equal(fb_export_mjcf(planar_text, sizeof planar_text, &c, 0, &d), FB_OK);
+  assert_non_null(strstr(d.msg, "rod-output: h x omega_c = 0.842 at h = 5e-06 s passes 0.5"));
+  assert_non_null(strstr(d.msg, "not faithful at this step"));
+  static fb_case q;
+  char path[4096];
+  const char *dir = getenv("FOURBAR_CASES_DIR");
+  snprintf(path, sizeof path, "%s/../tests/cases/quick_return.ini", dir ? dir : "cases");
+  const char *loose[] = {"clearance.joints=ram-guide", "joint.ram-guide.slider_half_length_mm=20",
+                         "joint.ram-guide.slider_half_height_mm=10",
+                         "clearance.guide_clearance_mm=0.05", "clearance.penalty=explicit",
+                         "clearance.penalty_n_m=1e8"};
+  if (fb_casefile_load_planar(&q, path, loose, 6, &d) != FB_OK) fail_msg("%s", d.msg);
+  assert_int_equal(fb_export_mjcf(planar_text, sizeof planar_text, &q, 0, &d), FB_ERR_ARG);
+  assert_non_null(strstr(d.msg, "ram-guide"));
   assert_non_null(strstr(d.msg, "--ideal"));
   assert_int_equal(fb_export_sdf(planar_text, sizeof planar_text, &c, 1, &d), FB_ERR_ARG);
   assert_non_null(strstr(d.msg, "--format sdf"));
@@ -519,6 +594,7 @@ int main(void) {
       cmocka_unit_test(test_export_notes_an_unresolved_contact),
       cmocka_unit_test(test_sixbar_export_holds),
       cmocka_unit_test(test_quick_return_export_holds),
+      cmocka_unit_test(test_sixbar_clearance_export_force),
       cmocka_unit_test(test_sixbar_refusals),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

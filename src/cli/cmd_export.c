@@ -41,10 +41,13 @@ static const char export_help[] =
     "model (bodies crank, coupler, slider; the slide slider-ground along +x; the\n"
     "piston pin coupler-slider, as a tendon limit when it carries clearance); sdf\n"
     "is refused (exit 2): the SDF world written is the four-bar's.\n"
-    "A planar case ([linkage] type = planar): mjcf --ideal writes the MJCF model\n"
-    "mujoco-ideal-nominal runs (bodies b0, b1, ..., joints j0, j1, ..., named in\n"
-    "the top comment by the case's names; keyframe \"start\"); its clearance joint\n"
-    "is not written (refused without --ideal), nor is sdf (exit 2).\n"
+    "A planar case ([linkage] type = planar): mjcf writes the MJCF model MuJoCo's\n"
+    "engine binding runs, bodies and joints by the case's names, keyframe \"start\":\n"
+    "with --ideal (or no clearance joint) mujoco-ideal-nominal's mechanism, else\n"
+    "mujoco-clearance-native's, each clearance pin the tendon JOINT_bore limited to\n"
+    "the radial clearance, its contact sized for the case's step (a warning when\n"
+    "that step does not resolve it; a slider in its guide is refused: give\n"
+    "--ideal); sdf is refused (exit 2).\n"
     "Exit status: 0 ok, 1 the file could not be written, 2 bad input.\n";
 
 /* generated text of the paper case: MJCF ~4 kB, SDF ~40 kB (a ring of 64

@@ -23,17 +23,21 @@
  * written, the command prints the note as a warning. */
 fb_status fb_export_mjcf(char *buf, size_t size, const fb_case *c, int ideal, fb_diag *diag);
 
-/* Writes planar case c's ([linkage] type = planar) ideal mechanism as MJCF
- * into buf (size bytes, NUL terminated): a leading comment naming the
- * bodies b<k> and joints j<k> by the description's names, then the text
- * MuJoCo's binding of the engine kit composes and runs as model
- * mujoco-ideal-nominal (mujoco_kit.c, fb_kit_model_text) at the case's
- * step (fb_planar_run_step), with keyframe "start" (the assembly and the
- * drive's velocities there). fb_export_mjcf's route for a planar case.
- * Errors: FB_ERR_ARG with ideal = 0 on a case with a clearance joint (the
- * law is MuJoCo's passive-force hook, not MJCF), or in a build without
- * MuJoCo; those of fb_planar_of_case and fb_kit_model_text. On FB_OK
- * diag->msg is empty. */
+/* Writes planar case c's ([linkage] type = planar) mechanism as MJCF into
+ * buf (size bytes, NUL terminated): a leading comment, then the text
+ * MuJoCo's binding of the engine kit composes and runs at the case's step
+ * (fb_planar_run_step; fb_planar_kit_model_text), bodies and joints by the
+ * case's names, keyframe "start" (the assembly and the drive's velocities
+ * there): with ideal = 1 or no clearance joint model mujoco-ideal-nominal's
+ * mechanism, else mujoco-clearance-native's with its bore as a limited
+ * tendon (its law as a run takes it: joint_law.h at the joint's largest
+ * ideal reaction). fb_export_mjcf's route for a planar case. Errors:
+ * FB_ERR_ARG for a case with springs or loads, a prismatic clearance joint
+ * without ideal (MuJoCo's bore is a pin's), or in a build without MuJoCo;
+ * those of fb_planar_kit_model_text. On FB_OK diag->msg is empty, or the
+ * note that a clearance joint's contact is beyond the planar run's
+ * resolution rule at the written step (planar_resolution.h: h x rate >
+ * FB_H_OMEGA_C_BOUND), naming the step that resolves it. */
 fb_status fb_export_planar_mjcf(char *buf, size_t size, const fb_case *c, int ideal,
                                 fb_diag *diag);
 

@@ -1,5 +1,7 @@
 /* fourbar export of a planar case (export.h): the MJCF the MuJoCo binding
- * of the engine kit composes and runs (mujoco_kit.c), written as it is. */
+ * of the engine kit composes and runs (mujoco_kit.c), written as it is:
+ * the ideal mechanism (mujoco-ideal-nominal), or with its clearance joints
+ * as MuJoCo's own bore (mujoco-clearance-native, mujoco_kit_native.c). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,49 +9,89 @@
 #include "export.h"
 #include "kit.h"
 #include "planar_case.h"
+#include "planar_resolution.h"
 #include "planar_run.h"
 #include "textbuf.h"
 
-/* the model the planar export writes: the one mujoco-ideal-nominal runs */
-#define PLANAR_MJCF_MODEL "mujoco-ideal-nominal"
+/* the models the planar export writes: the ideal mechanism, and the one
+ * whose clearance joints are MuJoCo's own contacts (an MJCF element) */
+#define PLANAR_MJCF_IDEAL "mujoco-ideal-nominal"
+#define PLANAR_MJCF_CLEARANCE "mujoco-clearance-native"
 
 /* the leading comment: what the file is (the MuJoCo binding's own comment
  * follows: names, start, drive and step, mujoco_kit.c) */
-static void put_header(fb_text *t, const fb_case *c) {
-  fb_text_comment(t, "fourbar export of case %s ([linkage] type = planar): the ideal mechanism "
-                  "as model %s builds it (docs/contact-params.md), for MuJoCo 2.2 and 3.x.",
-                  c->name, PLANAR_MJCF_MODEL);
+static void put_header(fb_text *t, const fb_case *c, const char *model) {
+  fb_text_comment(t, "fourbar export of case %s ([linkage] type = planar): the %s as model %s "
+                  "builds it (docs/contact-params.md), for MuJoCo 2.2 and 3.x.", c->name,
+                  strcmp(model, PLANAR_MJCF_IDEAL) == 0 ? "ideal mechanism"
+                                                        : "mechanism with its clearance joints",
+                  model);
   fb_text_put(t, "\n");
+}
+
+/* after a clearance export: diag->msg empty, or the note that a clearance
+ * joint's contact is beyond the run's resolution rule at the written step
+ * (planar_resolution.h: h times the contact's fastest rate at its smallest
+ * effective mass, restitution law, above FB_H_OMEGA_C_BOUND), naming the
+ * step that resolves it: the note a planar run's header gives */
+static void resolution_note(const fb_case *c, const fb_planar *m, double h, fb_diag *diag) {
+  diag->msg[0] = '\0';
+  if (c->planar.undriven) return;
+  fb_planar_contact_estimate *est = malloc(2 * (size_t)m->njoints * sizeof *est);
+  int n = 0;
+  fb_diag dg;
+  if (!est || fb_planar_contact_estimates(est, &n, c, m, &dg) != FB_OK) n = 0;
+  for (int i = 0; i < n; i++) {
+    const fb_planar_contact_estimate *e = &est[i];
+    const double hr = h * e->rates.rate;
+    if (e->impact || !(hr > FB_H_OMEGA_C_BOUND)) continue;
+    snprintf(diag->msg, sizeof diag->msg,
+             "%s: h x %s = %.3g at h = %.4g s passes %g, the bound a run holds its contacts to: "
+             "this contact is not faithful at this step; a fixed step of %.3g s or smaller "
+             "resolves it ([solver] h_s, or h_s = auto)", m->joint[e->joint].name,
+             e->rates.by_damper ? "c/m_eff" : "omega_c", hr, h, FB_H_OMEGA_C_BOUND,
+             e->h_resolving);
+    break;
+  }
+  free(est);
 }
 
 fb_status fb_export_planar_mjcf(char *buf, size_t size, const fb_case *c, int ideal,
                                 fb_diag *diag) {
-  if (!ideal && c->clearance.mask)
-    return fb_diag_set(diag, FB_ERR_ARG, "the MJCF export of a planar case ([linkage] type = "
-                       "planar) writes its ideal mechanism only: a clearance joint's law comes "
-                       "from the ideal mechanism's largest reaction there, which a run computes "
-                       "and the export does not; give --ideal, or run the clearance models by "
-                       "fourbar run (mujoco-clearance-native: MuJoCo's own bore)");
   char loaded[2 * FB_PLANAR_NAME_SIZE];
   if (fb_planar_spec_loaded(&c->planar, loaded, sizeof loaded))
     return fb_diag_set(diag, FB_ERR_ARG, "%s: the MJCF export does not carry a case's springs "
                        "and loads yet; export the case without its [spring.*] and [load.*] "
                        "sections", loaded);
-  const struct fb_kit_binding *b = fb_planar_kit_of(PLANAR_MJCF_MODEL);
+  const int clear = !ideal && c->clearance.mask;
+  const char *model = clear ? PLANAR_MJCF_CLEARANCE : PLANAR_MJCF_IDEAL;
+  const struct fb_kit_binding *b = fb_planar_kit_of(PLANAR_MJCF_IDEAL);
   if (!b || !b->model_text)
     return fb_diag_set(diag, FB_ERR_ARG, "the MJCF export needs MuJoCo in the build: "
                        "install libmujoco-dev and rebuild (bash scripts/quickstart.sh build)");
-  fb_planar *m = NULL;
-  fb_status st = fb_planar_of_case(&m, c, NULL, diag);
-  if (st != FB_OK) return st;
-  const double h = fb_planar_run_step(c);
-  const fb_kit_world o = {.gravity = c->gravity, .h = h, .solver = &c->solver,
-                          .nbodies = m->nbodies - 1, .njoints = m->njoints, .c = c};
+  fb_case *k = malloc(sizeof *k);
+  if (!k) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for the export");
+  *k = *c;
+  k->mujoco.native_bore = FB_MUJOCO_BORE_TENDON; /* the bore as an MJCF element, no hook */
   fb_text t = {buf, size, 0, 0};
-  put_header(&t, c);
+  put_header(&t, k, model);
+  fb_status st = FB_OK;
   if (t.overflow) st = fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than %zu bytes", size);
-  if (st == FB_OK) st = fb_kit_model_text(b, m, fb_case_omega2(c), &o, buf + t.len, size - t.len, diag);
-  fb_planar_free(m);
+  if (st == FB_OK) st = fb_planar_kit_model_text(buf + t.len, size - t.len, k, model,
+                                                 fb_planar_run_step(k), diag);
   if (st == FB_OK) diag->msg[0] = '\0';
+  if (st == FB_ERR_ARG && clear) { /* a joint the native bore cannot be */
+    const size_t len = strlen(diag->msg);
+    snprintf(diag->msg + len, sizeof diag->msg - len, "; fourbar export --ideal writes the "
+             "ideal mechanism");
+  }
+  if (st == FB_OK && clear) {
+    fb_planar *m = NULL;
+    if (fb_planar_of_case(&m, k, NULL, diag) == FB_OK)
+      resolution_note(k, m, fb_planar_run_step(k), diag);
+    else diag->msg[0] = '\0';
+    fb_planar_free(m);
+  }
+  free(k);
   return st;
 }

@@ -12,7 +12,9 @@
 #include "joint_law.h"
 #include "kit.h"
 #include "model_table.h"
+#include "planar_case.h"
 #include "planar_free.h"
+#include "planar_invdyn.h"
 #include "planar_kinematics.h"
 #include "planar_mass.h"
 #include "planar_run.h"
@@ -302,4 +304,44 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   }
   p->ref.steps = cl.contact_steps;
   return FB_OK;
+}
+
+fb_status fb_planar_kit_model_text(char *buf, size_t size, const fb_case *c, const char *name,
+                                   double h, fb_diag *diag) {
+  const fb_kit_binding *b = fb_planar_kit_of(name);
+  const fb_model *mt = fb_model_find(name);
+  if (!b || !mt)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' does not build a planar case in this build: "
+                       "%s", name, fb_planar_kit_refusal(name) ? fb_planar_kit_refusal(name) : "");
+  fb_planar_run *r = calloc(1, sizeof *r);
+  if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  r->c = *c;
+  fb_status st = fb_planar_of_case(&r->m, c, NULL, diag);
+  const int clear = mt->joints == FB_JOINTS_CLEARANCE;
+  if (st == FB_OK) r->omega = c->planar.undriven ? 0.0 : fb_case_omega2(c);
+  /* a clearance model's law takes its joint's largest ideal reaction, as a run's (planar_run.c) */
+  if (st == FB_OK && clear && !c->planar.undriven && c->clearance.mask) {
+    r->reaction_max = malloc((size_t)r->m->njoints * sizeof *r->reaction_max);
+    st = r->reaction_max ? fb_planar_reaction_max(r->reaction_max, r->m, r->omega, c->gravity, diag)
+                         : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  }
+  fb_planar_model *p = &r->model[0];
+  snprintf(p->name, sizeof p->name, "%s", name);
+  p->m = r->m;
+  p->n = 1; /* clearance() sizes its columns: no sample is taken */
+  p->h = h;
+  fb_kit_clearance cl = {0};
+  fb_planar_guide *guide = NULL;
+  if (st == FB_OK && clear) st = clearance(&cl, &guide, p, r, mt, diag);
+  const fb_kit_world o = {.gravity = c->gravity, .h = p->h, .solver = &r->c.solver,
+                          .nbodies = st == FB_OK ? r->m->nbodies - 1 : 0,
+                          .njoints = st == FB_OK ? r->m->njoints : 0, .c = &r->c};
+  if (st == FB_OK)
+    st = fb_kit_model_text(b, r->m, r->omega, &o, clear ? &cl : NULL, buf, size, diag);
+  free(p->force);
+  free(guide);
+  free(r->reaction_max);
+  fb_planar_free(r->m);
+  free(r);
+  return st;
 }

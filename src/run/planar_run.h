@@ -301,6 +301,17 @@ const char *fb_planar_kit_loaded_models(char *buf, size_t size);
  * exactly one clearance joint; those of joint_law.h and of fb_kit_run. */
 fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag);
 
+/* Engine model name's world of planar case c (a model fb_planar_kit_of
+ * builds; its clearance joints' laws as fb_planar_run_kit takes them: at
+ * each joint's largest ideal reaction over a revolution), built at step h
+ * [s] (a run's: fb_planar_run_step) and written as the engine's own model
+ * file into buf (size bytes, NUL terminated): kit.h fb_kit_model_text.
+ * Errors: FB_ERR_ARG when no binding builds the model (naming why) or
+ * it has no model file; those of the case's description, the laws
+ * (joint_law.h) and fb_kit_model_text; FB_ERR_NOMEM. */
+fb_status fb_planar_kit_model_text(char *buf, size_t size, const fb_case *c, const char *name,
+                                   double h, fb_diag *diag);
+
 /* The step h [s] of a planar case's samples and engine models: [solver]
  * h_s, h_min_s for an adaptive step, else (auto) a 6000th of a drive
  * revolution. */

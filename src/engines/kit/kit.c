@@ -603,7 +603,8 @@ fb_status fb_kit_run(const fb_kit_binding *b, const fb_planar *m, double omega,
 }
 
 fb_status fb_kit_model_text(const fb_kit_binding *b, const fb_planar *m, double omega,
-                            const fb_kit_world *o, char *buf, size_t size, fb_diag *diag) {
+                            const fb_kit_world *o, fb_kit_clearance *cl, char *buf, size_t size,
+                            fb_diag *diag) {
   if (!b->model_text)
     return fb_diag_set(diag, FB_ERR_ARG, "the %s engine's binding writes no model file",
                        b->engine);
@@ -611,7 +612,7 @@ fb_status fb_kit_model_text(const fb_kit_binding *b, const fb_planar *m, double 
   fb_kit_world file = *o;
   file.model_file = 1;
   fb_kit_runner *k;
-  fb_status st = fb_kit_open(&k, b, m, omega, &file, NULL, &none, diag);
+  fb_status st = fb_kit_open(&k, b, m, omega, &file, cl, &none, diag);
   if (st == FB_OK) st = b->model_text(k->w, buf, size, diag);
   fb_kit_close(k);
   return st;

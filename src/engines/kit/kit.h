@@ -590,13 +590,16 @@ size_t fb_kit_written(const fb_kit_runner *k);
 void fb_kit_close(fb_kit_runner *k);
 
 /* Builds description m driven at omega [rad/s] in the engine of binding b
- * (world settings o), every joint ideal, as fb_kit_run does before its
- * first step, and writes the built world as the engine's own model file
- * into buf (size bytes, NUL terminated) through b->model_text: the file
- * the engine itself runs, so that it and a kit run start alike. Errors:
- * FB_ERR_ARG when the binding has no model_text; those of the walk (as
- * fb_kit_run's) and of model_text; FB_ERR_NOMEM. */
+ * (world settings o), its clearance joints cl's (NULL: every joint ideal;
+ * else as fb_kit_run takes them, their laws set), as fb_kit_run does
+ * before its first step, and writes the built world as the engine's own
+ * model file into buf (size bytes, NUL terminated) through b->model_text:
+ * the file the engine itself runs, so that it and a kit run start alike.
+ * Errors: FB_ERR_ARG when the binding has no model_text; those of the walk
+ * (as fb_kit_run's: a clearance joint the binding cannot build is refused
+ * by its add_clearance) and of model_text; FB_ERR_NOMEM. */
 fb_status fb_kit_model_text(const fb_kit_binding *b, const fb_planar *m, double omega,
-                            const fb_kit_world *o, char *buf, size_t size, fb_diag *diag);
+                            const fb_kit_world *o, fb_kit_clearance *cl, char *buf, size_t size,
+                            fb_diag *diag);
 
 #endif

@@ -292,13 +292,17 @@ static void put_mjcf(fb_text *t, const mk_world *k, const double *qvel, int nv) 
                     "joint %s, torque kv (w + ctrl - qvel), w = %.9g rad/s its start rate, "
                     "kv = armature / %.3g s (its armature, %.3g kg m^2, a flywheel): ctrl = 0 "
                     "holds the case's speed, ctrl adds to it [rad/s]. Step: written at %.6g s, "
-                    "integrator %s; any timestep from that to %.3g s holds: the loops' solref "
+                    "integrator %s; the loops and the drive hold any timestep from that to "
+                    "%.3g s (a clearance joint's contact does not: below): the loops' solref "
                     "is in the time-constant form, whose time constant MuJoCo raises to "
                     "2 x timestep (refsafe), damping ratio %.2g for RK4 (%.2g for Euler or "
                     "implicit).", k->drive >= 0 ? fb_kit_joint_name(&k->o, k->drive) : "none",
                     k->drive_qvel, FB_MUJOCO_EXPORT_DRIVE_TAU_S, k->opts.drive_armature, k->h,
                     fb_mujoco_integrator_xml(k->integrator), FB_MUJOCO_EXPORT_H_USER_MAX_S,
                     FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_RK4, FB_MUJOCO_EXPORT_LOOP_DAMPRATIO_EULER);
+  if (k->o.model_file && k->native)
+    mk_native_put_comment(t, k, k->integrator == FB_MUJOCO_RK4 ? MK_RK4_H_OMEGA_MAX
+                                                               : MK_EULER_H_OMEGA_MAX);
   if (k->o.model_file) fb_text_put(t, "\n");
   /* native facets: a pin and its hole on parent and child bodies collide
    * only with filterparent off (the four-bar's scene does the same) */

@@ -129,6 +129,11 @@ size_t mk_native_mjcf_bytes(const mk_world *k);
  * slots' centres in their bodies' frames, lp and lh, set) */
 void mk_native_put_body(fb_text *t, const mk_world *k, int v);
 
+/* MJCF, a user's file (model_file): a comment on each native contact,
+ * its elements' names, its law and the largest step it holds (h omega_c
+ * at h_omega_max, the integrator's stability bound on an undamped spring) */
+void mk_native_put_comment(fb_text *t, const mk_world *k, double h_omega_max);
+
 /* MJCF: the bore tendons (bore = tendon), after the world body */
 void mk_native_put_tendons(fb_text *t, const mk_world *k);
 

@@ -99,12 +99,21 @@ size_t mk_native_mjcf_bytes(const mk_world *k) {
   return n;
 }
 
+/* the node (0: the world, b + 1: handle b) of a slot's body: a kit handle
+ * until the model is compiled, MuJoCo's body id after (kit_add_drive) */
+static int node_of(const mk_world *k, int body) {
+  if (!k->m) return body + 1;
+  for (int b = 0; b < k->nb; b++)
+    if (k->bid[b] == body) return b + 1;
+  return 0;
+}
+
 void mk_native_put_body(fb_text *t, const mk_world *k, int v) {
   char name[FB_PLANAR_NAME_SIZE + 16];
   for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) {
     const mk_contact *c = &k->ct[j];
     for (int pin = 1; c->in && pin >= 0; pin--) {
-      if ((pin ? c->pin : c->hole) + 1 != v) continue; /* node v: handle v - 1 */
+      if (node_of(k, pin ? c->pin : c->hole) != v) continue;
       const double *x = pin ? c->lp : c->lh;
       if (k->facets)
         fb_mujoco_put_facets(t, "", part(name, sizeof name, k, j, pin ? "pin_geom" : "ring"), pin,
@@ -117,6 +126,38 @@ void mk_native_put_body(fb_text *t, const mk_world *k, int v) {
   }
 }
 
+void mk_native_put_comment(fb_text *t, const mk_world *k, double h_omega_max) {
+  char name[FB_PLANAR_NAME_SIZE + 16];
+  for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) {
+    const mk_contact *c = &k->ct[j];
+    if (!c->in) continue;
+    const char *joint = k->o.mech->joint[j].name;
+    const double wc = sqrt(c->law.stiffness / c->law.mass);
+    fb_text_put(t, "\n");
+    if (k->facets)
+      fb_text_comment(t, "Clearance at %s: MuJoCo's own contact between the sphere %s on the "
+                      "pin's body and the ring of %d boxes (the first %s) on the hole's, radial "
+                      "clearance %.4g m.", joint, part(name, sizeof name, k, j, "pin_geom"),
+                      k->ring_n, part(name, sizeof name, k, j, "ring"), c->c);
+    else
+      fb_text_comment(t, "Clearance at %s: MuJoCo's own contact, the spatial tendon %s_bore from "
+                      "site %s_hole (the hole's centre) to site %s_pin (the pin's), its length "
+                      "the eccentricity, limited to the radial clearance %.4g m.", joint, joint,
+                      joint, joint, c->c);
+    fb_text_put(t, "\n");
+    fb_text_comment(t, "Its contact is the law of model mujoco-clearance-native: k = %.4g N/m, "
+                    "coefficient of restitution %.3g, the damper on the law's design mass %.4g kg "
+                    "(on that mass h omega_c = %.3g at the written step). It is sized for the "
+                    "written step and does not follow timestep: a step above about %.2g s (h "
+                    "omega_c %.3g there on that mass, %s's limit; less where the pin's effective "
+                    "mass is smaller) diverges. For a coarser step, fourbar contact-params given "
+                    "this k, coefficient of restitution and mass and that step gives the "
+                    "stiffest contact faithful at it.", c->law.stiffness, c->law.restitution,
+                    c->law.mass, k->h * wc, h_omega_max / wc, h_omega_max,
+                    fb_mujoco_integrator_xml(k->integrator));
+  }
+}
+
 void mk_native_put_tendons(fb_text *t, const mk_world *k) {
   if (k->facets) return;
   char name[FB_PLANAR_NAME_SIZE + 16], hole[FB_PLANAR_NAME_SIZE + 16], pin[FB_PLANAR_NAME_SIZE + 16];
@@ -125,9 +166,16 @@ void mk_native_put_tendons(fb_text *t, const mk_world *k) {
     const mk_contact *c = &k->ct[j];
     if (!c->in) continue;
     /* the force form on the law's own mass until the first step's solref
-     * (MuJoCo's A exists once the model compiles) */
+     * (MuJoCo's A exists once the model compiles); a user's file, written
+     * from the compiled model, has MuJoCo's diagonal approximation of the
+     * row's inverse mass (tendon_invweight0) with the damper on the law's
+     * design mass, as the four-bar's export (mujoco_mjcf.c) */
     double sr[2];
-    fb_mujoco_bore_solref(sr, &c->law, c->law.mass, (1.0 - FB_MUJOCO_BORE_IMPEDANCE) / c->law.mass);
+    const int tendon = k->nat[j].b.tendon;
+    const double keep = k->m && k->o.model_file && tendon >= 0
+                            ? (1.0 - FB_MUJOCO_BORE_IMPEDANCE) * k->m->tendon_invweight0[tendon]
+                            : (1.0 - FB_MUJOCO_BORE_IMPEDANCE) / c->law.mass;
+    fb_mujoco_bore_solref(sr, &c->law, c->law.mass, keep);
     fb_mujoco_put_bore(t, "", part(name, sizeof name, k, j, "bore"), c->c, sr,
                        part(hole, sizeof hole, k, j, "hole"), part(pin, sizeof pin, k, j, "pin"));
   }

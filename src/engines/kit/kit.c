@@ -402,7 +402,8 @@ static fb_status after_sample(fb_kit_runner *k, const kit_span *sp, fb_diag *dia
     for (int j = 0; j < m->njoints; j++)
       if (cl->mask & (1u << j)) record(k, j, sp);
   } else {
-    k->p.rotated = 0; /* sample() wrote the state anew (kept for the drift) */
+    fb_kit_pipe_rotations(&k->p, b, k->w, m); /* sample() wrote the state anew (kept for
+                                                 the drift) */
   }
   if (s->drift) drift_at(k, sp);
   if (i + 1 >= s->n) return FB_OK;

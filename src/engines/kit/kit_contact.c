@@ -105,6 +105,14 @@ const double *fb_kit_pipe_rotation(fb_kit_pipe *p, int b) {
   return p->cs[b];
 }
 
+void fb_kit_pipe_rotations(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                           const fb_planar *m) {
+  p->rotated = 0;
+  if (!b->body_rotation) return;
+  for (int k = 1; k < m->nbodies; k++) b->body_rotation(w, k - 1, p->cs[k]);
+  p->rotated = ((1ull << m->nbodies) - 1) & ~1ull; /* the ground's: at first use */
+}
+
 /* joint j's penetration, rate and eccentricity at the state read, and its
  * contact into *c (depth <= 0: free flight) when the pin is off the
  * hole's centre (returns 1; 0: on it, no normal) */
@@ -153,7 +161,7 @@ static void corners(fb_planar_guide_corner c[FB_PLANAR_GUIDE_CORNERS], fb_kit_pi
 void fb_kit_pipe_read(fb_kit_pipe *p, const fb_kit_binding *b, const void *w, const fb_planar *m,
                       const fb_kit_clearance *cl) {
   p->factored = p->closed = 0; /* the state is read anew */
-  p->rotated = 0;
+  fb_kit_pipe_rotations(p, b, w, m);
   fb_planar_guide_corner gc[FB_PLANAR_GUIDE_CORNERS];
   for (int j = 0; j < m->njoints; j++) {
     if (p->off[j] && is_guide(m, j)) {

@@ -72,9 +72,15 @@ void fb_kit_pipe_free(fb_kit_pipe *p);
 
 /* Body b's (0: the ground, 1 ..: the description's) cos and sin at the
  * state last read, p->q (fb_kit_pipe.cs): formed at its first use since
- * p->rotated was cleared (fb_kit_pipe_read clears it), by the planar core's
+ * the state was read (fb_kit_pipe_rotations), by the planar core's
  * fb_planar_rotation, then kept. */
 const double *fb_kit_pipe_rotation(fb_kit_pipe *p, int b);
+
+/* The state in p->q is read anew from world w: every moving body's cos
+ * and sin taken from binding b's body_rotation when it has one, else
+ * formed at first use (fb_kit_pipe_rotation). fb_kit_pipe_read calls it. */
+void fb_kit_pipe_rotations(fb_kit_pipe *p, const fb_kit_binding *b, const void *w,
+                           const fb_planar *m);
 
 /* Every clearance joint's penetration and eccentricity (p->pen, p->ecc)
  * at the bodies' states the caller put in p->q and p->qd (the engine's, as

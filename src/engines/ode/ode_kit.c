@@ -490,6 +490,15 @@ static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
   vel[2] = om[2];
 }
 
+/* cos and sin of the body's angle as ODE holds it: its rotation matrix's
+ * first column (R is 3 x 4, row-major), the atan2 body_state takes */
+static void kit_body_rotation(const void *w, int b, double cs[2]) {
+  const ode_kit *k = w;
+  const dReal *R = dBodyGetRotation(k->body[b]);
+  cs[0] = R[0];
+  cs[1] = R[4];
+}
+
 /* ODE clears a body's force and torque accumulators after each step */
 static void kit_apply_wrench(void *w, int b, const double f[3]) {
   ode_kit *k = w;
@@ -532,6 +541,7 @@ const fb_kit_binding fb_ode_kit = {
     .contact_force = kit_contact_force,
     .step = kit_step,
     .body_state = kit_body_state,
+    .body_rotation = kit_body_rotation,
     .world_free = kit_world_free,
     .contact_rows = 1,
     .contact_speed_limit = 1,

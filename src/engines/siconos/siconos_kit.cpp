@@ -904,6 +904,7 @@ const fb_kit_binding fb_siconos_kit = {
     NULL /* step_by: Moreau-Jean at a fixed h */,
     0 /* persistent_rule: no adaptive step */,
     0 /* contact_speed_limit: no fixed row's world */,
+    NULL /* body_rotation: from the angle */,
 };
 
 } // extern "C"

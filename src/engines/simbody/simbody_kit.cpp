@@ -691,4 +691,5 @@ extern "C" const fb_kit_binding fb_simbody_kit = {
     NULL, /* step_by: its integrator controls its own steps inside each h */
     0,    /* persistent_rule: no adaptive step */
     0,    /* contact_speed_limit: no fixed row's world */
+    NULL, /* body_rotation: from the angle */
 };

@@ -369,13 +369,17 @@ static const char *const sets[] = {"run.models=analytic", "run.revolutions=2"};
 static char planar_text[1 << 20];
 static char planar_edited[1 << 20];
 
-static void planar_case(fb_case *c, const char *file) {
+/* planar case file (under the shipped cases' folder) into *c with the
+ * --set values set[n] */
+static void planar_case_with(fb_case *c, const char *file, const char *const *set, int n) {
   char path[4096];
   const char *dir = getenv("FOURBAR_CASES_DIR");
   snprintf(path, sizeof path, "%s/%s", dir ? dir : "cases", file);
   fb_diag d;
-  if (fb_casefile_load_planar(c, path, sets, 2, &d) != FB_OK) fail_msg("%s", d.msg);
+  if (fb_casefile_load_planar(c, path, set, n, &d) != FB_OK) fail_msg("%s", d.msg);
 }
+
+static void planar_case(fb_case *c, const char *file) { planar_case_with(c, file, sets, 2); }
 
 /* r's model named name */
 static const fb_planar_model *model_of(const fb_planar_run *r, const char *name) {
@@ -506,12 +510,9 @@ static void test_sixbar_clearance_export_force(void **state) {
   static fb_case c;
   static fb_planar_run r;
   fb_diag d;
-  char path[4096];
-  const char *dir = getenv("FOURBAR_CASES_DIR");
-  snprintf(path, sizeof path, "%s/watt_sixbar.ini", dir ? dir : "cases");
   const char *fine[] = {"run.models=reference-restitution", "run.revolutions=2",
                         "solver.h_s=" SIXBAR_RESOLVED_H_S};
-  if (fb_casefile_load_planar(&c, path, fine, 3, &d) != FB_OK) fail_msg("%s", d.msg);
+  planar_case_with(&c, "watt_sixbar.ini", fine, 3);
   assert_int_equal(fb_export_mjcf(planar_text, sizeof planar_text, &c, 0, &d), FB_OK);
   assert_string_equal(d.msg, "");
   comment_is_xml(planar_text);
@@ -567,14 +568,11 @@ static void test_sixbar_refusals(void **state) {
   assert_non_null(strstr(d.msg, "rod-output: h x omega_c = 0.842 at h = 5e-06 s passes 0.5"));
   assert_non_null(strstr(d.msg, "not faithful at this step"));
   static fb_case q;
-  char path[4096];
-  const char *dir = getenv("FOURBAR_CASES_DIR");
-  snprintf(path, sizeof path, "%s/../tests/cases/quick_return.ini", dir ? dir : "cases");
   const char *loose[] = {"clearance.joints=ram-guide", "joint.ram-guide.slider_half_length_mm=20",
                          "joint.ram-guide.slider_half_height_mm=10",
                          "clearance.guide_clearance_mm=0.05", "clearance.penalty=explicit",
                          "clearance.penalty_n_m=1e8"};
-  if (fb_casefile_load_planar(&q, path, loose, 6, &d) != FB_OK) fail_msg("%s", d.msg);
+  planar_case_with(&q, "../tests/cases/quick_return.ini", loose, 6);
   assert_int_equal(fb_export_mjcf(planar_text, sizeof planar_text, &q, 0, &d), FB_ERR_ARG);
   assert_non_null(strstr(d.msg, "ram-guide"));
   assert_non_null(strstr(d.msg, "--ideal"));

@@ -8,6 +8,7 @@
 
 #include "export.h"
 #include "kit.h"
+#include "model_table.h"
 #include "planar_case.h"
 #include "planar_resolution.h"
 #include "planar_run.h"
@@ -29,14 +30,17 @@ static void put_header(fb_text *t, const fb_case *c, const char *model) {
   fb_text_put(t, "\n");
 }
 
-/* after a clearance export: diag->msg empty, or the note that a clearance
- * joint's contact is beyond the run's resolution rule at the written step
- * (planar_resolution.h: h times the contact's fastest rate at its smallest
- * effective mass, restitution law, above FB_H_OMEGA_C_BOUND), naming the
- * step that resolves it: the note a planar run's header gives */
-static void resolution_note(const fb_case *c, const fb_planar *m, double h, fb_diag *diag) {
+/* after a clearance export of model: diag->msg empty, or the note that a
+ * clearance joint's contact is beyond the run's resolution rule at the
+ * written step (planar_resolution.h: h times the contact's fastest rate at
+ * its smallest effective mass, under the model's law, above
+ * FB_H_OMEGA_C_BOUND), naming the step that resolves it: the note a planar
+ * run's header gives */
+static void resolution_note(const fb_case *c, const fb_planar *m, const char *model, double h,
+                            fb_diag *diag) {
   diag->msg[0] = '\0';
   if (c->planar.undriven) return;
+  const int impact = fb_model_find(model)->law == FB_MODEL_LAW_IMPACT;
   fb_planar_contact_estimate *est = malloc(2 * (size_t)m->njoints * sizeof *est);
   int n = 0;
   fb_diag dg;
@@ -44,7 +48,7 @@ static void resolution_note(const fb_case *c, const fb_planar *m, double h, fb_d
   for (int i = 0; i < n; i++) {
     const fb_planar_contact_estimate *e = &est[i];
     const double hr = h * e->rates.rate;
-    if (e->impact || !(hr > FB_H_OMEGA_C_BOUND)) continue;
+    if (e->impact != impact || !(hr > FB_H_OMEGA_C_BOUND)) continue;
     snprintf(diag->msg, sizeof diag->msg,
              "%s: h x %s = %.3g at h = %.4g s passes %g, the bound a run holds its contacts to: "
              "this contact is not faithful at this step; a fixed step of %.3g s or smaller "
@@ -88,7 +92,7 @@ fb_status fb_export_planar_mjcf(char *buf, size_t size, const fb_case *c, int id
   if (st == FB_OK && clear) {
     fb_planar *m = NULL;
     if (fb_planar_of_case(&m, k, NULL, diag) == FB_OK)
-      resolution_note(k, m, fb_planar_run_step(k), diag);
+      resolution_note(k, m, model, fb_planar_run_step(k), diag);
     else diag->msg[0] = '\0';
     fb_planar_free(m);
   }

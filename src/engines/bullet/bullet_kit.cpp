@@ -332,6 +332,14 @@ void body_state(const void *w, int b, double pos[3], double vel[3]) {
   vel[2] = r->getAngularVelocity()[2];
 }
 
+/* cos and sin of the body's angle as Bullet holds it: its basis's first
+ * column, the atan2 body_state takes (fb_bt_body_angle) */
+void body_rotation(const void *w, int b, double cs[2]) {
+  const btMatrix3x3 &R = static_cast<const Kit *>(w)->body[b]->getCenterOfMassTransform().getBasis();
+  cs[0] = R[0][0];
+  cs[1] = R[1][0];
+}
+
 // the force at the body's centre of mass and the torque for the coming
 // step: stepSimulation clears both after it (clearForces)
 void apply_wrench(void *w, int b, const double f[3]) {
@@ -377,6 +385,7 @@ constexpr fb_kit_binding binding() {
   b.contact_rows = 1;
   b.apply_wrench = apply_wrench;
   b.reactions = reactions;
+  b.body_rotation = body_rotation;
   return b;
 }
 

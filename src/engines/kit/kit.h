@@ -495,10 +495,10 @@ typedef struct fb_kit_binding {
   void (*body_rotation)(const void *w, int b, double cs[2]);
                              /* optional: body b's (a handle) cos and sin of its angle
                                 about +z as the engine holds its orientation (ODE's rotation
-                                matrix), at the state body_state reads: the clearance
-                                pipeline's and the drift's points take them in place of the
-                                cosine and sine of body_state's angle, which that angle
-                                came from; NULL: those */
+                                matrix, Bullet's basis, MuJoCo's xmat), at the state
+                                body_state reads: the clearance pipeline's and the drift's
+                                points take them in place of the cosine and sine of
+                                body_state's angle, which that angle came from; NULL: those */
 } fb_kit_binding;
 
 /* Where a kit run writes: n samples every h from t = 0; body handle b's

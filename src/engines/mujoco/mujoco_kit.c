@@ -713,6 +713,15 @@ static void kit_body_state(const void *w, int b, double pos[3], double vel[3]) {
   vel[2] = v[2];
 }
 
+/* cos and sin of the body's angle as MuJoCo holds it: the first column of
+ * its orientation xmat (row-major 3 x 3), the atan2 kit_body_state takes */
+static void kit_body_rotation(const void *w, int b, double cs[2]) {
+  const mk_world *k = w;
+  const double *R = k->d->xmat + 9 * k->bid[b];
+  cs[0] = R[0];
+  cs[1] = R[3];
+}
+
 /* xfrc_applied: a force and torque in the world frame at the body's
  * centre of mass, kept until set again */
 static void kit_apply_wrench(void *w, int b, const double f[3]) {
@@ -762,7 +771,7 @@ static void kit_world_free(void *w) {
   .close_loop = kit_close_loop, .add_drive = kit_add_drive, .step = kit_step,                    \
   .body_state = kit_body_state, .world_free = kit_world_free, .applied_force = 1,                \
   .model_text = kit_model_text, .reactions = kit_reactions, .body_accel = kit_body_accel,        \
-  .explicit_law = 1, .apply_wrench = kit_apply_wrench
+  .explicit_law = 1, .apply_wrench = kit_apply_wrench, .body_rotation = kit_body_rotation
 
 const fb_kit_binding fb_mujoco_kit = {MK_BINDING, .add_contact = kit_add_contact,
                                       .add_clearance = kit_add_clearance, .step_by = kit_step_by,

@@ -139,6 +139,35 @@ def test_export_out_folder_and_empty_exit_2():
 
 
 @test
+def test_export_set_is_an_edited_copy():
+    """export --set K=V writes what the export of a copy with K = V writes:
+    the four-bar and a planar case with a clearance pin (the six-bar, whose
+    contact is sized for the step); a --set breaking a key's rule is refused
+    like run's, exit 2, naming the key, nothing written"""
+    sixbar = os.path.join(cases, "watt_sixbar.ini")
+    for case, key, value in ((paper, "h_s", "2e-6"), (sixbar, "h_s", "2e-6")):
+        text = read(case)
+        check("\nh_s = " in text, "%s sets h_s (the copy edits that line)" % case)
+        copy = write("ex/set/" + os.path.basename(case),
+                     "\n".join("h_s = " + value if l.startswith("h_s =") else l
+                               for l in text.split("\n")))
+        rc, mine, err = run("export", copy, "--format", "mjcf")
+        rc2, theirs, err2 = run("export", case, "--format", "mjcf", "--set", "solver.h_s=" + value)
+        # the only line that may differ: the comment naming the case file's path
+        strip = lambda t: [l for l in t.split("\n") if copy not in l and case not in l]
+        check(rc == 0 and rc2 == 0 and strip(mine) == strip(theirs) and mine != "",
+              "%s: export --set solver.h_s=%s equals the edited copy's: %d %d %s %s"
+              % (case, value, rc, rc2, err[-200:], err2[-200:]))
+        rc, base, _ = run("export", case, "--format", "mjcf")
+        check(rc == 0 and strip(base) != strip(theirs),
+              "%s: the step moved the export (its contact is sized for it)" % case)
+    out = os.path.join(tmp, "ex", "set", "bad.xml")
+    rc, so, err = run("export", paper, "--format", "mjcf", "--set", "solver.h_s=-1", "--out", out)
+    check(rc == 2 and "h_s" in err and not os.path.exists(out),
+          "a bad --set: exit 2 naming the key, nothing written: %d %s" % (rc, err))
+
+
+@test
 def test_run_out_not_a_folder_exit_2():
     f = write("ro/file.txt", "mine\n")
     fifo = os.path.join(tmp, "ro", "fifo")

@@ -12,7 +12,7 @@
 
 static const char export_help[] =
     "usage: fourbar export CASE --format mjcf|sdf [--ideal]\n"
-    "                      [--out FILE [--overwrite]]\n"
+    "                      [--set section.key=value]... [--out FILE [--overwrite]]\n"
     "\n"
     "The case's mechanism in a user's own model format, with its masses and\n"
     "inertias, the start, and each clearance joint as the contact the project\n"
@@ -33,6 +33,9 @@ static const char export_help[] =
     "  CASE       a case file, or a shipped case's name (paper_crank_rocker)\n"
     "  --format   mjcf or sdf\n"
     "  --ideal    the ideal mechanism (no clearance), whatever the case has\n"
+    "  --set K=V  override case key K (section.key) with V before exporting, as\n"
+    "             fourbar run takes it, e.g. --set solver.h_s=1e-6 (the step the\n"
+    "             model's contacts are sized for) or --set pin.radial_clearance_um=50\n"
     "  --out      write FILE (whole, or not at all) instead of standard output;\n"
     "             never a folder, a link, a FIFO, a device or the case file itself\n"
     "  --overwrite  replace FILE when it exists (without it an existing FILE is\n"
@@ -54,15 +57,20 @@ static const char export_help[] =
  * boxes per clearance joint) */
 #define EXPORT_SIZE (1 << 20)
 
+/* --set overrides, as many as fourbar run takes */
+#define MAX_SETS 256
+
 int fb_cmd_export(int argc, char **argv) {
   static const struct option opts[] = {{"format", required_argument, 0, 'f'},
                                        {"out", required_argument, 0, 'o'},
                                        {"ideal", no_argument, 0, 'i'},
                                        {"overwrite", no_argument, 0, 'w'},
+                                       {"set", required_argument, 0, 's'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *P = "export", *format = NULL, *out = NULL;
-  int ch, ideal = 0, overwrite = 0;
+  int ch, ideal = 0, overwrite = 0, nsets = 0;
+  const char *sets[MAX_SETS];
   optind = 1;
   while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
@@ -70,6 +78,10 @@ int fb_cmd_export(int argc, char **argv) {
       case 'o': out = optarg; break;
       case 'i': ideal = 1; break;
       case 'w': overwrite = 1; break;
+      case 's':
+        if (nsets == MAX_SETS) return fb_cli_fail(P, 2, "more than %d --set", MAX_SETS);
+        sets[nsets++] = optarg;
+        break;
       case 'h': fputs(export_help, stdout); return 0;
       default: return fb_cli_fail(P, 2, "unknown option '%s'; see fourbar export --help",
                                   argv[optind - 1]);
@@ -89,7 +101,7 @@ int fb_cmd_export(int argc, char **argv) {
   fb_diag d;
   if (out && fb_outpath_check(out, &rule, NULL, &d) != FB_OK) return fb_cli_fail(P, 2, "%s", d.msg);
   static fb_case cs;
-  if (fb_cli_case_file(P, path, NULL, 0, &cs) != 0) return 2;
+  if (fb_cli_case_file(P, path, sets, nsets, &cs) != 0) return 2;
   char *text = malloc(EXPORT_SIZE);
   if (!text) return fb_cli_fail(P, 1, "out of memory");
   fb_status st = sdf ? fb_export_sdf(text, EXPORT_SIZE, &cs, ideal, &d)

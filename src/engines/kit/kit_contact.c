@@ -265,6 +265,15 @@ static fb_status note_collided(fb_kit_pipe *p, const fb_kit_binding *b, const vo
   return fb_kit_alias_diag(diag, o.omega_d_h_max, m->joint[j].name, h);
 }
 
+/* a contact step of clearance joint record r (of cl) on effective mass
+ * m_eff [kg]: counted, its mass in the ranges */
+static void count_step(fb_kit_clearance *cl, fb_kit_joint_record *r, double m_eff) {
+  note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, m_eff, m_eff);
+  note_mass(&r->m_eff_min, &r->m_eff_max, r->contact_steps, m_eff, m_eff);
+  cl->contact_steps++;
+  r->contact_steps++;
+}
+
 /* contact *c for the coming step of h: the effective mass me along its
  * normal (else the law's own mass), clearance joint j's law on it, the
  * episode's onset rate; its normal and point kept for slot k's reaction */
@@ -317,8 +326,11 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
     if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
     return note_collided(p, b, w, m, cl, j, k, h, diag);
   }
-  if (!b->applied_force && (st = note_row(c, m->joint[j].name, cl, j, &p->phase[k], diag)) != FB_OK)
+  if (!b->applied_force && (st = note_row(c, m->joint[j].name, cl, j, &p->phase[k], diag)) != FB_OK) {
+    count_step(cl, r, c->m_eff); /* the refused row's step is in the stop's provenance, as its
+                                    h omega_c is (run.c's under-resolved warning reads both) */
     return st;
+  }
   if (p->rocking && c->has_row) { /* the matched row about the contact's mean force */
     p->omega_c[k] = sqrt(c->row.kp / c->m_eff);
     fb_contact_row_mean_force(&c->row, h, p->f_mean[k]);
@@ -330,10 +342,7 @@ static fb_status hand(fb_kit_pipe *p, const fb_kit_binding *b, void *w, const fb
     p->phase[k] += fb_contact_h_omega(h, kp, c->m_eff);
   }
   if ((st = b->add_contact(w, k, c, diag)) != FB_OK) return st;
-  note_mass(&cl->m_eff_min, &cl->m_eff_max, cl->contact_steps, c->m_eff, c->m_eff);
-  note_mass(&r->m_eff_min, &r->m_eff_max, r->contact_steps, c->m_eff, c->m_eff);
-  cl->contact_steps++;
-  r->contact_steps++;
+  count_step(cl, r, c->m_eff);
   return FB_OK;
 }
 

@@ -22,7 +22,7 @@ rounding until a chaotic impact sequence amplifies it.
 5. Coulomb friction at a pin (ODE) and the matched-static mapping (ODE,
    Bullet): the first three impacts.
 6. What the kit does not build is refused naming the key to change; the
-   default builder is the hand-built world.
+   default builder (auto) is ODE's binding and Bullet's hand-built world.
 7. ODE's faceted ring and libccd bore (ODE's generic colliders, built by
    its binding): on the paper case and the slider-crank, each collider's
    first three impacts, its contact rows and its penetration against the
@@ -311,26 +311,40 @@ if "siconos-clearance-newton" in built:
     check(rc == 0 and models("native")["siconos-clearance-newton"]["status"] == "ok",
           "siconos-clearance-newton through the kit (%d, %s)" % (rc, se.strip()[-300:]))
 
-# 6. refusals name the key; the default is the hand-built world
+# 6. refusals name the key; the default builder is auto
 for model, key, word in (("simbody-clearance-impact", "solver.h_s=adaptive",
                           "binding steps at a fixed h"),
                          ("bullet-clearance-impact", "clearance.friction=0.1", "[clearance] friction"),
-                         ("ode-clearance-impact", "solver.builder=bogus", "must be hand or kit")):
+                         ("ode-clearance-impact", "solver.builder=bogus", "must be auto, hand or kit")):
     rc, _, se = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
                     "run.models=" + model, "--set", "run.ensemble=1", "--set",
                     "solver.builder=kit", "--set", key, "--out", os.path.join(tmp, "refused"),
                     "--no-figures", "--no-report", "--series", "none")
     check(rc != 0 and word in se, "builder = kit with %s: refused naming '%s' (%s)"
           % (key, word, se.strip()[-200:]))
-rc, _, se = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
-                "run.models=ode-ideal-nominal", "--set", "run.revolutions=1", "--set",
-                "run.peaks=all", "--out", os.path.join(tmp, "default"), "--no-figures",
-                "--no-report")
-if rc == 0:
-    head, _ = series("default", "ode-ideal-nominal")
-    check("drive_torque_n_m" in head, "no builder given: the hand-built world (its load columns)")
-else:
-    check(False, "the default build runs (%s)" % se.strip()[-300:])
+# the default builder (auto): ODE's four-bar through its binding (the run's
+# series equal builder = kit's to the byte, and not the hand-built world's:
+# its load columns lead by a sample), Bullet's through its own world
+for model, same, other in (("ode-clearance-impact", "kit", "hand"),
+                           ("bullet-clearance-impact", "hand", "kit")):
+    if model not in built:
+        continue
+    text = {}
+    for b in ("auto", None, same, other):
+        out = "default-%s-%s" % (model, b)
+        rc, _, se = run("run", os.path.join(cases, "paper_crank_rocker.ini"), "--set",
+                        "run.models=" + model, "--set", "run.revolutions=1", "--set",
+                        "run.peaks=all", "--set", "run.ensemble=1", "--out",
+                        os.path.join(tmp, out), "--no-figures", "--no-report",
+                        *(("--set", "solver.builder=" + b) if b else ()))
+        check(rc == 0, "%s with builder %s runs (%s)" % (model, b, se.strip()[-300:]))
+        if rc == 0:
+            with open(os.path.join(tmp, out, model + ".csv")) as f:
+                text[b] = f.read()
+    if len(text) == 4:
+        check(text[None] == text["auto"] == text[same] != text[other],
+              "%s: no builder given is auto, auto is %s (series equal to the byte), not %s"
+              % (model, same, other))
 
 # 7. ODE's generic colliders through its binding: the same ODE geoms (a
 # ring of boxes, dCollide) or libccd bore on the same bodies, their rows

@@ -487,7 +487,15 @@ int fb_engine_is_kit_adapter(const fb_engine *e) {
 }
 
 const fb_engine *fb_engine_runner(const fb_engine *e, const fb_case *c, fb_diag *diag) {
-  if (e->kit && (!e->create || c->solver.builder == FB_BUILDER_KIT))
+  /* auto: the kit where the engine's table says so and the kit builds the
+   * case (it drives an ideal joint only: a clearance at the driven joint
+   * keeps the engine's own world, which drives the crank by an angular
+   * motor) */
+  const int driven = fb_mech_driven_joint(fb_case_mech(c));
+  const int drive_free = driven < 0 || !((c->clearance.mask >> driven) & 1);
+  const int kit = c->solver.builder == FB_BUILDER_KIT ||
+                  (c->solver.builder == FB_BUILDER_AUTO && e->kit_default && drive_free);
+  if (e->kit && (!e->create || kit))
     return e->kit->reactions ? &kit_adapter_loads : &fb_engine_kit_adapter;
   if (e->create) return e;
   fb_diag_set(diag, FB_ERR_ARG, "engine '%s' has neither models of its own nor an engine-kit "

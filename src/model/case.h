@@ -166,9 +166,10 @@ typedef struct {
 } fb_solver;
 
 /* Who builds a four-bar or slider-crank model of an engine that has both
- * ([solver] builder): its own hand-built world, or its engine-kit binding
- * through the kit adapter (engine.h fb_engine_runner). */
-typedef enum { FB_BUILDER_HAND = 0, FB_BUILDER_KIT = 1 } fb_builder;
+ * ([solver] builder): its own hand-built world, its engine-kit binding
+ * through the kit adapter, or (auto, the default) the one its engine table
+ * names (engine.h fb_engine.kit_default, fb_engine_runner). */
+typedef enum { FB_BUILDER_HAND = 0, FB_BUILDER_KIT = 1, FB_BUILDER_AUTO = 2 } fb_builder;
 
 /* Initial state of the moving bodies ([run] start; physics/start.h resolves it). */
 typedef enum {

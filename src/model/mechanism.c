@@ -103,6 +103,16 @@ int fb_mech_position_length(const fb_mech_desc *m) {
   return -1;
 }
 
+int fb_mech_driven_joint(const fb_mech_desc *m) {
+  for (int j = 0; j < m->njoints; j++) {
+    const int *b = m->joint[j].body;
+    if ((b[0] == m->input || b[1] == m->input) &&
+        (m->body[b[0]].motion == FB_MOTION_FIXED || m->body[b[1]].motion == FB_MOTION_FIXED))
+      return j;
+  }
+  return -1;
+}
+
 const char *fb_mech_joint_name(const fb_mech_desc *m, int j) {
   return (j >= 0 && j < m->njoints) ? m->joint[j].name : "?";
 }

@@ -153,6 +153,10 @@ int fb_mech_outputs(const fb_mech_desc *m, int out[FB_MECH_MAX_OUTPUTS]);
  * the slider-crank's offset, FB_LENGTH_OFFSET), or -1 when it has none. */
 int fb_mech_position_length(const fb_mech_desc *m);
 
+/* Index of m's driven joint: the joint between the input body (the crank)
+ * and a fixed body (the ground), where the drive acts; -1 when m has none. */
+int fb_mech_driven_joint(const fb_mech_desc *m);
+
 /* Name of joint j ("crank-coupler"), "?" when j is not one of m's joints. */
 const char *fb_mech_joint_name(const fb_mech_desc *m, int j);
 

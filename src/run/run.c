@@ -447,19 +447,14 @@ static double h_omega_c_max(const fb_run *r) {
  * (fb_model_clearance_at_drive) */
 static fb_status clearance_at_drive(const fb_case *c, fb_diag *diag) {
   const fb_mech_desc *mech = fb_case_mech(c);
-  for (int j = 0; j < mech->njoints; j++) {
-    const fb_mech_joint *jt = &mech->joint[j];
-    const int driven = (jt->body[0] == mech->input || jt->body[1] == mech->input) &&
-                       (mech->body[jt->body[0]].motion == FB_MOTION_FIXED ||
-                        mech->body[jt->body[1]].motion == FB_MOTION_FIXED);
-    if (!driven || !((c->clearance.mask >> j) & 1)) continue;
-    for (int i = 0; i < c->model_count; i++) {
-      const fb_model *m = fb_model_find(c->models[i]);
-      const fb_engine *e = m ? fb_engine_get(m->engine, NULL) : NULL;
-      const int kit = e && fb_engine_is_kit_adapter(fb_engine_runner(e, c, NULL));
-      fb_status st = m ? fb_model_clearance_at_drive(m, kit, jt->name, diag) : FB_OK;
-      if (st != FB_OK) return st;
-    }
+  const int j = fb_mech_driven_joint(mech);
+  if (j < 0 || !((c->clearance.mask >> j) & 1)) return FB_OK;
+  for (int i = 0; i < c->model_count; i++) {
+    const fb_model *m = fb_model_find(c->models[i]);
+    const fb_engine *e = m ? fb_engine_get(m->engine, NULL) : NULL;
+    const int kit = e && fb_engine_is_kit_adapter(fb_engine_runner(e, c, NULL));
+    fb_status st = m ? fb_model_clearance_at_drive(m, kit, mech->joint[j].name, diag) : FB_OK;
+    if (st != FB_OK) return st;
   }
   return FB_OK;
 }

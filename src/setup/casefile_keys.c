@@ -317,11 +317,16 @@ static const key_spec keys[] = {
      "peak the paper's case needs at 1000 rpm, so the crank speed is held exactly"},
     {"solver", "seed", K_ULONG, OFF(solver.seed), 0, 0, 0, 0, 0, "-", "1",
      "a non-negative integer", "seed of ODE's random generator (dRandSetSeed)"},
-    {"solver", "builder", K_WORDS, OFF(solver.builder), 0, 0, 0, 0, 0, "-", "hand", "hand or kit",
+    {"solver", "builder", K_WORDS, OFF(solver.builder), 0, 0, 0, 0, 0, "-", "auto",
+     "auto, hand or kit",
      "who builds a four-bar or slider-crank model of an engine that has both: hand (the "
-     "engine's own world) or kit (its engine-kit binding, through the kit adapter: the "
+     "engine's own world), kit (its engine-kit binding, through the kit adapter: the "
      "colliders, native contacts and friction its binding builds, ODE's all; a fixed or auto "
-     "step; docs/architecture.md); an engine with a binding alone always builds through the kit"},
+     "step; docs/architecture.md) or auto: the kit where the engine's binding builds "
+     "everything its own world does, at its cost and within the committed baselines (ODE's, "
+     "but with clearance at the driven joint, which the kit does not drive: ODE's own world), "
+     "else the engine's own world (MuJoCo's, Bullet's, Simbody's, Siconos's); an engine with "
+     "a binding alone (DART) always builds through the kit"},
 
     /* each engine's own section, in engine order (model/opts_<name>.h) */
 #define X(name) FB_OPTS_KEYS_##name(ENGINE_ROW)
@@ -417,7 +422,7 @@ typedef struct {
   const char *const *words;
 } engine_words_row;
 #define ENGINE_WORDS(sec, kind, key, field, words, ...) {#sec, key, words},
-static const char *const builder_words[] = {"hand", "kit", NULL}; /* fb_builder */
+static const char *const builder_words[] = {"hand", "kit", "auto", NULL}; /* fb_builder */
 static const engine_words_row engine_words[] = {
 #define X(name) FB_OPTS_KEYS_##name(ENGINE_WORDS)
     FB_ENGINE_OPTS_LIST

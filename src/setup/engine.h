@@ -240,6 +240,12 @@ typedef struct fb_engine {
                                        planar case and through the kit adapter; it reports joint
                                        reactions when kit does (the adapter's table follows
                                        kit's); NULL: none */
+  int kit_default;                  /* optional, with create and kit: 1 when the binding builds
+                                       every model the engine's own world does, at its cost and
+                                       within the committed baselines (docs/architecture.md):
+                                       [solver] builder = auto builds through the kit (but a
+                                       case with clearance at the driven joint, which the kit
+                                       does not drive); 0: through the engine's own world */
 } fb_engine;
 
 /* The engine for id, or NULL when this build has none (message in diag:
@@ -252,10 +258,10 @@ const struct fb_kit_binding *fb_engine_kit_of(const fb_engine *e, fb_collider co
 
 /* The table that runs engine e's models on a four-bar or slider-crank
  * case c (model_run.c): e itself, or the kit adapter (fb_engine_kit_adapter,
- * kit_engine.c) over e's engine-kit binding when e has no create of its own
- * or the case asks [solver] builder = kit and e has a binding (an engine
- * without one keeps its own). NULL with diag (FB_ERR_ARG) for an engine
- * with neither. */
+ * kit_engine.c) over e's engine-kit binding when e has no create of its
+ * own, or e has a binding and the case asks [solver] builder = kit, or
+ * auto (the default) with e->kit_default and no clearance at the driven
+ * joint (fb_mech_driven_joint); an engine without a binding keeps its own. NULL with diag (FB_ERR_ARG) for an engine with neither. */
 const fb_engine *fb_engine_runner(const fb_engine *e, const fb_case *c, fb_diag *diag);
 
 /* Steps instance self of engine e (step size h [s]) until its sampled time

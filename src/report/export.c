@@ -40,6 +40,7 @@ static void resolution_note(const fb_case *c, const fb_model_scene *sm, fb_diag 
     fb_cp_request_default(&q);
     q.h = sm->solver.h;
     q.engine_steps = 0;
+    q.rows_of = "ode"; /* read: whether the given contact is recommended */
     fb_cp_result *o = malloc(sizeof *o);
     fb_diag dg;
     if (!o) return;

@@ -490,17 +490,25 @@ static int row_specs(row_spec *s, const fb_cp_rows *rows, int recommended, int c
   return n;
 }
 
-int fb_cp_verify(fb_cp_step *st, double speed, int recommended) {
+/* fb_cp_verify's rows, or (engine not NULL) that engine's recommended
+ * rows alone */
+static int verify_rows(fb_cp_step *st, double speed, int recommended, const char *engine) {
   row_spec s[16];
-  const int ns = row_specs(s, &st->rows, recommended, 1);
+  const int ns = row_specs(s, &st->rows, recommended, !engine);
   int failed = 0;
   st->n_checks = 0;
-  for (int i = 0; i < ns; i++)
+  for (int i = 0; i < ns; i++) {
+    if (engine && strcmp(s[i].engine, engine) != 0) continue;
     for (int im = 0; im < st->rows.n_masses && st->n_checks < FB_CP_CHECKS_MAX; im++) {
       fb_cp_check *x = &st->checks[st->n_checks++];
       if (!check_row(x, &st->rows, &s[i], im, speed) && x->recommended) failed++;
     }
+  }
   return failed;
+}
+
+int fb_cp_verify(fb_cp_step *st, double speed, int recommended) {
+  return verify_rows(st, speed, recommended, NULL);
 }
 
 /* 1 when every recommended row of (k, c) at step h is faithful at every
@@ -709,9 +717,9 @@ fb_status fb_cp_run(fb_cp_result *o, const fb_cp_request *q, fb_diag *diag) {
   /* rows within the run's rule are verified and shown even when not
    * recommended (so the failure shows); beyond it they are not shown */
   if (r.verify && g->rows.h_omega_c <= FB_H_OMEGA_C_BOUND)
-    o->failed += fb_cp_verify(g, v, g->recommended);
+    o->failed += verify_rows(g, v, g->recommended, r.rows_of);
   /* at_step: the stiffest faithful contact of the same restitution at h */
-  if (r.verify && isfinite(o->largest_step)) {
+  if (r.verify && isfinite(o->largest_step) && !r.rows_of) {
     o->has_at_step = 1;
     if ((st = at_step(&o->at_step, &o->at_k, &o->at_c, o, &r, r.h, diag)) != FB_OK) return st;
     o->failed += fb_cp_verify(&o->at_step, v, 1);
@@ -751,6 +759,7 @@ fb_status fb_cp_case_step_check(fb_step_check *out, const fb_case *c, double h, 
     fb_cp_request_default(&q);
     q.h = h;
     q.engine_steps = 0;
+    q.rows_of = "ode"; /* read below: the largest faithful step and ODE's matched row */
     st = fb_cp_request_from_case(&q, c, j, diag);
     if (st == FB_OK) st = fb_cp_run(o, &q, diag);
     if (st != FB_OK) break;

@@ -120,6 +120,12 @@ typedef struct {
                             NULL: from the flags; messages then name the case's keys */
   int h_from_case;    /* 1: h is the case's [solver] h_s (no --h-s), the step fourbar run
                          takes */
+  const char *rows_of; /* NULL: the given contact's rows verified for every engine, the
+                          comparison forms too, and at_step searched; "ode" (a caller that
+                          reads the largest faithful step and ODE's matched row alone:
+                          fourbar run's step check, the export's note): ODE's recommended
+                          rows alone, no at_step. The largest faithful step is every
+                          engine's either way */
 } fb_cp_request;
 
 /* Defaults: restitution law, k = 1e7 N/m, cr 0.9, 0.1 kg, automatic step,

@@ -49,6 +49,10 @@ const char *fb_cli_case_path(char *out, size_t size, const char *arg);
 int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const char *const *sets,
                      int nsets, struct fb_case_s *c, char *path, size_t path_size);
 
+/* The --set overrides one command takes at most (run, bench, check, export,
+ * penalty, stackup): past it the command refuses, exit 2. */
+#define FB_CLI_MAX_SETS 256
+
 /* Loads the case file path with the --set overrides into c, the one way
  * every command loads a case: on error prints "fourbar <cmd>: <diagnostic>"
  * and returns exit status 2 (a planar case too, unless cmd runs one:

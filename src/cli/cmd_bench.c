@@ -12,8 +12,6 @@
 #include "planar_bench.h"
 #include "report.h"
 
-#define MAX_SETS 256
-
 static const char bench_help[] =
     "usage: fourbar bench [CASE] [--out DIR [--overwrite]] [--json]\n"
     "                     [--set section.key=value]...\n"
@@ -124,7 +122,7 @@ int fb_cmd_bench(int argc, char **argv) {
                                        {"overwrite", no_argument, 0, 'w'},
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
-  const char *out = NULL, *sets[MAX_SETS];
+  const char *out = NULL, *sets[FB_CLI_MAX_SETS];
   int nsets = 0, json = 0, overwrite = 0, ch, grids = FB_BENCH_DEFAULT | FB_BENCH_PEERS;
   const char *grid_name = "default";
   optind = 1;
@@ -132,7 +130,8 @@ int fb_cmd_bench(int argc, char **argv) {
     switch (ch) {
       case 'o': out = optarg; break;
       case 's':
-        if (nsets == MAX_SETS) return fb_cli_fail("bench", 2, "more than %d --set", MAX_SETS);
+        if (nsets == FB_CLI_MAX_SETS)
+          return fb_cli_fail("bench", 2, "more than %d --set", FB_CLI_MAX_SETS);
         sets[nsets++] = optarg;
         break;
       case 'j': json = 1; break;

@@ -9,8 +9,6 @@
 #include "cli.h"
 #include "report.h"
 
-#define MAX_SETS 256
-
 static const char check_help[] =
     "usage: fourbar check [--cases NAME,...] [--set section.key=value]... [--json]\n"
     "                     [--jobs J]\n"
@@ -46,14 +44,15 @@ int fb_cmd_check(int argc, char **argv) {
                                        {"help", no_argument, 0, 'h'},
                                        {0, 0, 0, 0}};
   const char *cases = NULL;
-  const char *sets[MAX_SETS];
+  const char *sets[FB_CLI_MAX_SETS];
   int nsets = 0, update = 0, cal = 0, json = 0, jobs = 1, ch;
   optind = 1;
   while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
       case 'c': cases = optarg; break;
       case 's':
-        if (nsets == MAX_SETS) return fb_cli_fail("check", 2, "more than %d --set", MAX_SETS);
+        if (nsets == FB_CLI_MAX_SETS)
+          return fb_cli_fail("check", 2, "more than %d --set", FB_CLI_MAX_SETS);
         sets[nsets++] = optarg;
         break;
       case 'u': update = 1; break;

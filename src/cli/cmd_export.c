@@ -57,9 +57,6 @@ static const char export_help[] =
  * boxes per clearance joint) */
 #define EXPORT_SIZE (1 << 20)
 
-/* --set overrides, as many as fourbar run takes */
-#define MAX_SETS 256
-
 int fb_cmd_export(int argc, char **argv) {
   static const struct option opts[] = {{"format", required_argument, 0, 'f'},
                                        {"out", required_argument, 0, 'o'},
@@ -70,7 +67,7 @@ int fb_cmd_export(int argc, char **argv) {
                                        {0, 0, 0, 0}};
   const char *P = "export", *format = NULL, *out = NULL;
   int ch, ideal = 0, overwrite = 0, nsets = 0;
-  const char *sets[MAX_SETS];
+  const char *sets[FB_CLI_MAX_SETS];
   optind = 1;
   while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
@@ -79,7 +76,8 @@ int fb_cmd_export(int argc, char **argv) {
       case 'i': ideal = 1; break;
       case 'w': overwrite = 1; break;
       case 's':
-        if (nsets == MAX_SETS) return fb_cli_fail(P, 2, "more than %d --set", MAX_SETS);
+        if (nsets == FB_CLI_MAX_SETS)
+          return fb_cli_fail(P, 2, "more than %d --set", FB_CLI_MAX_SETS);
         sets[nsets++] = optarg;
         break;
       case 'h': fputs(export_help, stdout); return 0;

@@ -16,7 +16,6 @@
 #define MAX_SPEEDS FB_PENALTY_SPEEDS_MAX
 /* the speeds of the paper's Tables I to III (--table) */
 #define PAPER_SPEEDS_RPM "100:1500:100"
-#define MAX_SETS 256
 
 static const char penalty_help[] =
     "usage: fourbar penalty [CASE] [--mode paper|physical]\n"
@@ -125,7 +124,7 @@ int fb_cmd_penalty(int argc, char **argv) {
   static double rpm[MAX_SPEEDS];
   int n = 0, json = 0, nsets = 0, ch, speeds_given = 0, overwrite = 0;
   const char *out_dir = NULL;
-  const char *sets[MAX_SETS];
+  const char *sets[FB_CLI_MAX_SETS];
   optind = 1;
   while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
@@ -157,7 +156,8 @@ int fb_cmd_penalty(int argc, char **argv) {
         }
         break;
       case 'S':
-        if (nsets == MAX_SETS) return fb_cli_fail("penalty", 2, "more than %d --set", MAX_SETS);
+        if (nsets == FB_CLI_MAX_SETS)
+          return fb_cli_fail("penalty", 2, "more than %d --set", FB_CLI_MAX_SETS);
         sets[nsets++] = optarg;
         break;
       case 'j': json = 1; break;

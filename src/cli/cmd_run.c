@@ -19,8 +19,6 @@
 #include "run_folder.h"
 #include "work.h"
 
-#define MAX_SETS 256
-
 static const char run_help[] =
     "usage: fourbar run [CASE] [--out DIR] [--set section.key=value]... [--json]\n"
     "                   [--no-figures] [--figure-format svg|png]\n"
@@ -262,7 +260,7 @@ int fb_cmd_run(int argc, char **argv) {
                                        {0, 0, 0, 0}};
   const char *out_dir = NULL;
   int jobs = 0; /* not given: fb_ensemble_default_jobs */
-  const char *sets[MAX_SETS + 1];
+  const char *sets[FB_CLI_MAX_SETS + 1];
   char series_set[64];
   int series_at = -1; /* the slot of --series in sets */
   int nsets = 0, json = 0, figures = 1, html = 1, ch;
@@ -272,7 +270,8 @@ int fb_cmd_run(int argc, char **argv) {
     switch (ch) {
       case 'o': out_dir = optarg; break;
       case 's':
-        if (nsets >= MAX_SETS) return fb_cli_fail("run", 2, "more than %d --set", MAX_SETS);
+        if (nsets >= FB_CLI_MAX_SETS)
+          return fb_cli_fail("run", 2, "more than %d --set", FB_CLI_MAX_SETS);
         sets[nsets++] = optarg;
         break;
       case 'j': json = 1; break;

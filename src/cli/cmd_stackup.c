@@ -16,8 +16,6 @@
 #include "tables_stackup.h"
 #include "tolerance.h"
 
-#define MAX_SETS 256
-
 static const char stackup_help[] =
     "usage: fourbar stackup [CASE] [--method corners|rss|montecarlo] [--samples N]\n"
     "                       [--seed S] [--jobs J] [--set section.key=value]...\n"
@@ -70,7 +68,7 @@ int fb_cmd_stackup(int argc, char **argv) {
                                        {0, 0, 0, 0}};
   int mask = 0, json = 0, nsets = 0, ch;
   double samples = 0, seed = 1, jobs = 1; /* samples 0: the mechanism's default */
-  const char *sets[MAX_SETS];
+  const char *sets[FB_CLI_MAX_SETS];
   optind = 1;
   while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
@@ -97,7 +95,8 @@ int fb_cmd_stackup(int argc, char **argv) {
                              FB_TOL_MAX_JOBS);
         break;
       case 'S':
-        if (nsets == MAX_SETS) return fb_cli_fail("stackup", 2, "more than %d --set", MAX_SETS);
+        if (nsets == FB_CLI_MAX_SETS)
+          return fb_cli_fail("stackup", 2, "more than %d --set", FB_CLI_MAX_SETS);
         sets[nsets++] = optarg;
         break;
       case 'j': json = 1; break;

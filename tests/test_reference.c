@@ -74,9 +74,10 @@ static void test_reference_converged_in_tolerance(void **state) {
 }
 
 /* A spike refined at an output step of 1e-5 s against the same spike at
- * 1e-6 s (reference.h, FB_REFERENCE_REFINE: the extreme over 64 points per
- * sample interval, every FB_REFERENCE_REFINE_STRIDE-th a stop of the
- * integration, the best of the others evaluated exactly). Measured on the
+ * 1e-6 s (peak_refine.h, FB_REFERENCE_REFINE: the two sample intervals
+ * re-integrated, every FB_REFERENCE_REFINE_STRIDE-th of 64 points per
+ * interval a stop of the integration, the extreme searched by Brent's
+ * method between the stops beside the best). Measured on the
  * paper case's window: force peak 7e-6 apart, coupler alpha minimum 4.6e-5
  * (unrefined, a spike sampled at 1e-5 s misses by up to 17.5 %); the bounds
  * are 7x and 4x that. */

@@ -23,7 +23,8 @@ typedef struct {
 static double *row(double *a, const work *w, int j) { return a + (size_t)j * w->ode->dim; }
 
 /* the exact value of every quantity at time tt of the interval starting at
- * t0: integrated from the last stop at or before it (q: nquant) */
+ * t0: integrated from the last stop at or before it, the first step tried
+ * the whole way (q: nquant) */
 static int exact_at(double *q, work *w, gsl_odeiv2_driver *drv, double t0, double tt) {
   const fb_peak_refine_ode *o = w->ode;
   const double dt = 2.0 * o->h * STRIDE / N;
@@ -31,7 +32,7 @@ static int exact_at(double *q, work *w, gsl_odeiv2_driver *drv, double t0, doubl
   j = j < 0 ? 0 : j >= STOPS ? STOPS - 1 : j;
   double t = t0 + dt * j;
   memcpy(w->y, row(w->stop_y, w, j), o->dim * sizeof *w->y);
-  gsl_odeiv2_driver_reset(drv);
+  if (tt > t) gsl_odeiv2_driver_reset_hstart(drv, tt - t);
   if (tt > t && gsl_odeiv2_driver_apply(drv, &t, tt, w->y) != GSL_SUCCESS) return 0;
   o->eval(q, w->di, tt, w->y, o->ctx);
   return 1;
@@ -76,8 +77,11 @@ static int refine_interval(double *best, const unsigned char *want, work *w, siz
   const double t0 = o->start(y, k - 1, o->ctx);
   double t = t0;
   gsl_odeiv2_system sys = {o->rhs, NULL, dim, o->ctx};
+  /* the first step tried is the way to the first stop (the control shrinks
+   * it where the tolerance asks): a start at 1e-3 h took four growing
+   * steps to reach a stop's spacing, in every interval */
   gsl_odeiv2_driver *drv =
-      gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, h * 1e-3, o->tol, o->tol);
+      gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, dx * STRIDE, o->tol, o->tol);
   if (!drv) return 0;
   gsl_odeiv2_driver_set_nmax(drv, 0);
   double q[FB_PEAK_REFINE_MAX_QUANTITIES], between[FB_PEAK_REFINE_MAX_QUANTITIES];

@@ -26,30 +26,37 @@
 #define FB_REFERENCE_REFINE 64
 #define FB_REFERENCE_REFINE_FRACTION 0.2
 /* Of those evaluation points, every FB_REFERENCE_REFINE_STRIDE-th is a stop
- * of the integration; the others are ranked on the cubic Hermite
- * interpolant of the stops' states and rates, and each quantity's best of
- * them evaluated exactly (fb_peak_refine): the same extremes as a stop at
- * every point (paper case: identical summary.json; rattling_pin,
- * slider_crank_flores, speed_3000rpm, restitution_0_3, engines_restitution:
- * within 3e-10, the integrator's own spread between two step sequences),
- * for 2 x 64 / 8 + at most one stop per quantity instead of 128.
- * Refinement was 65 % of a reference run's time on the paper case; the
- * reference with its check then ran in half the time (8 revolutions:
- * 0.79 s CPU against 1.55 s). */
-#define FB_REFERENCE_REFINE_STRIDE 8
+ * of the integration (4 stops over the two intervals, one every half
+ * sample); the others are ranked on the cubic Hermite interpolant of the
+ * stops' states and rates. A refined quantity's extreme is searched on the
+ * exact integration between the stops beside its best stop (below), so the
+ * stops need only bracket it: every stop forces an rk8pd step, and at 16
+ * stops (a stride of 8) the stops' integration cost more than the
+ * reference's own (paper case, 2 revolutions: refinement 702 M of the
+ * reference's 1,301 M instructions). At a stride of 32 the refined peaks
+ * of both references of the paper case, rattling_pin, slider_crank_flores,
+ * speed_3000rpm, restitution_0_3 and engines_restitution, and the six-bar's
+ * impacts 1 to 3, are those of a stride of 8 to 4e-10 (summary.json), the
+ * integrator's own spread between two step sequences. */
+#define FB_REFERENCE_REFINE_STRIDE 32
 
 /* The search for a refined quantity's extreme: Brent's method (GSL's
  * gsl_min) on the exact integration between the two stops beside its best
  * stop, at most FB_PEAK_REFINE_SEARCH evaluations, to a bracket of
  * FB_PEAK_REFINE_SEARCH_TOL of a grid spacing (2 h / (2
- * FB_REFERENCE_REFINE)). The grid's best point read the Watt six-bar's
- * second impact 2.5e-3 low (a force peak where the damper's ramp
- * saturates, sharper than the grid) and its first impact's penetration
- * 1.7e-3 low (the interpolant placed it 4 points off); the search finds
- * impacts 1 to 3 to 2e-9 of an independent model
- * (tests/test_sixbar_independent.py). */
+ * FB_REFERENCE_REFINE)); each evaluation integrates from the stop before
+ * it, its first step the whole way there. The grid's best point read the
+ * Watt six-bar's second impact 2.5e-3 low (a force peak where the damper's
+ * ramp saturates, sharper than the grid) and its first impact's
+ * penetration 1.7e-3 low (the interpolant placed it 4 points off); the
+ * search finds impacts 1 to 3 to 1.5e-9 of an independent model
+ * (tests/test_sixbar_independent.py). Brent's parabolic steps reach the
+ * extreme's value long before the bracket closes (paper case, 2,322
+ * searches: within 1e-11 after 2.3 evaluations on average, where closing
+ * a bracket of 1e-4 of a spacing took 11.8): at 1e-2 a search takes 7.0,
+ * and the paper case's refined columns move by at most 7e-11. */
 #define FB_PEAK_REFINE_SEARCH 20
-#define FB_PEAK_REFINE_SEARCH_TOL 1e-4
+#define FB_PEAK_REFINE_SEARCH_TOL 1e-2
 
 /* Most quantities one refinement ranks. */
 #define FB_PEAK_REFINE_MAX_QUANTITIES 64

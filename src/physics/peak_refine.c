@@ -11,6 +11,9 @@
 #include "series.h"
 
 enum { N = 2 * FB_REFERENCE_REFINE, STRIDE = FB_REFERENCE_REFINE_STRIDE, STOPS = N / STRIDE };
+/* the search's exact states an interval keeps, each a start for a later
+ * evaluation beyond it (the oldest replaced) */
+enum { KEPT = 2 * FB_PEAK_REFINE_SEARCH };
 
 /* the workspace of one interval's refinement */
 typedef struct {
@@ -18,22 +21,38 @@ typedef struct {
   double *stop_y, *stop_f; /* the stops' states and rates ((STOPS + 1) x dim) */
   double *y, *yi, *di;     /* a state, an interpolated state and its rates (dim each) */
   gsl_min_fminimizer *min; /* Brent's method */
+  double *kept_y;          /* the search's exact states (KEPT x dim) */
+  double kept_t[KEPT];     /* their times [s] */
+  int nkept, next;         /* states kept; the slot the next one takes */
 } work;
 
 static double *row(double *a, const work *w, int j) { return a + (size_t)j * w->ode->dim; }
 
 /* the exact value of every quantity at time tt of the interval starting at
- * t0: integrated from the last stop at or before it, the first step tried
- * the whole way (q: nquant) */
+ * t0 (q: nquant): integrated from the latest exact state at or before it, a
+ * stop or an earlier evaluation of the interval's search (Brent's points
+ * close in on the extreme: each then one short rk8pd step from the last,
+ * not several from a stop), the first step tried the whole way; the state
+ * reached is kept for the evaluations after it */
 static int exact_at(double *q, work *w, gsl_odeiv2_driver *drv, double t0, double tt) {
   const fb_peak_refine_ode *o = w->ode;
+  const size_t dim = o->dim;
   const double dt = 2.0 * o->h * STRIDE / N;
   int j = (int)floor((tt - t0) / dt);
   j = j < 0 ? 0 : j >= STOPS ? STOPS - 1 : j;
   double t = t0 + dt * j;
-  memcpy(w->y, row(w->stop_y, w, j), o->dim * sizeof *w->y);
-  if (tt > t) gsl_odeiv2_driver_reset_hstart(drv, tt - t);
-  if (tt > t && gsl_odeiv2_driver_apply(drv, &t, tt, w->y) != GSL_SUCCESS) return 0;
+  const double *from = row(w->stop_y, w, j);
+  for (int e = 0; e < w->nkept; e++)
+    if (w->kept_t[e] > t && w->kept_t[e] <= tt) t = w->kept_t[e], from = w->kept_y + e * dim;
+  memcpy(w->y, from, dim * sizeof *w->y);
+  if (tt > t) {
+    gsl_odeiv2_driver_reset_hstart(drv, tt - t);
+    if (gsl_odeiv2_driver_apply(drv, &t, tt, w->y) != GSL_SUCCESS) return 0;
+    memcpy(w->kept_y + w->next * dim, w->y, dim * sizeof *w->y);
+    w->kept_t[w->next] = tt;
+    w->next = (w->next + 1) % KEPT;
+    if (w->nkept < KEPT) w->nkept++;
+  }
   o->eval(q, w->di, tt, w->y, o->ctx);
   return 1;
 }
@@ -76,6 +95,7 @@ static int refine_interval(double *best, const unsigned char *want, work *w, siz
   double *y = w->y;
   const double t0 = o->start(y, k - 1, o->ctx);
   double t = t0;
+  w->nkept = w->next = 0; /* the search's states are this interval's */
   gsl_odeiv2_system sys = {o->rhs, NULL, dim, o->ctx};
   /* the first step tried is the way to the first stop (the control shrinks
    * it where the tolerance asks): a start at 1e-3 h took four growing
@@ -150,7 +170,7 @@ int fb_peak_refine(fb_peak_refine_column *cols, int ncols, const double *t, size
   if (n < 3 || ncols < 1) return 1;
   const size_t dim = ode->dim;
   double *big = malloc(2 * (size_t)ncols * sizeof *big);
-  double *ws = malloc((2 * (STOPS + 1) + 3) * dim * sizeof *ws);
+  double *ws = malloc((2 * (STOPS + 1) + 3 + KEPT) * dim * sizeof *ws);
   unsigned char *spike = malloc(2 * (size_t)ncols);
   gsl_min_fminimizer *min = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
   if (!big || !ws || !spike || !min || ode->nquant > FB_PEAK_REFINE_MAX_QUANTITIES) {
@@ -158,9 +178,11 @@ int fb_peak_refine(fb_peak_refine_column *cols, int ncols, const double *t, size
     if (min) gsl_min_fminimizer_free(min);
     return 0;
   }
-  work w = {ode, ws, ws + (STOPS + 1) * dim, ws + 2 * (STOPS + 1) * dim, NULL, NULL, min};
+  work w = {ode, ws, ws + (STOPS + 1) * dim, ws + 2 * (STOPS + 1) * dim, NULL, NULL, min,
+            NULL, {0}, 0, 0};
   w.yi = w.y + dim;
   w.di = w.yi + dim;
+  w.kept_y = w.di + dim;
   gsl_error_handler_t *old = gsl_set_error_handler_off();
   /* each spike against the largest of its own part of the run, the
    * start-up or the peak window (series.h fb_largest_abs_split) */

@@ -37,15 +37,26 @@
  * of both references of the paper case, rattling_pin, slider_crank_flores,
  * speed_3000rpm, restitution_0_3 and engines_restitution, and the six-bar's
  * impacts 1 to 3, are those of a stride of 8 to 4e-10 (summary.json), the
- * integrator's own spread between two step sequences. */
+ * integrator's own spread between two step sequences. The stride sits
+ * between two regimes: where the step resolves the contact (the paper
+ * case) rk8pd's own steps span samples and each stop forces one; where a
+ * pulse lasts a few samples (the oscillator of tests/test_peak_refine.c,
+ * 6 samples a period) the searches' evaluations take several steps each.
+ * Measured at strides 16, 32 and 64: the paper case's reference 1,046 M,
+ * 995 M and 972 M; the oscillator 343, 413 and 556 right-hand side
+ * evaluations a refined sample. */
 #define FB_REFERENCE_REFINE_STRIDE 32
 
 /* The search for a refined quantity's extreme: Brent's method (GSL's
  * gsl_min) on the exact integration between the two stops beside its best
  * stop, at most FB_PEAK_REFINE_SEARCH evaluations, to a bracket of
  * FB_PEAK_REFINE_SEARCH_TOL of a grid spacing (2 h / (2
- * FB_REFERENCE_REFINE)); each evaluation integrates from the stop before
- * it, its first step the whole way there. The grid's best point read the
+ * FB_REFERENCE_REFINE)); each evaluation integrates from the latest exact
+ * state before it (a stop, or an earlier evaluation: Brent's points close
+ * in, so each is then one short step), its first step the whole way there
+ * (an oscillator of 6 samples a period, tests/test_peak_refine.c: 413
+ * right-hand side evaluations a refined sample, 671 from the stops
+ * alone). The grid's best point read the
  * Watt six-bar's second impact 2.5e-3 low (a force peak where the damper's
  * ramp saturates, sharper than the grid) and its first impact's
  * penetration 1.7e-3 low (the interpolant placed it 4 points off); the

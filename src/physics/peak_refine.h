@@ -56,11 +56,10 @@
  * in, so each is then one short step), its first step the whole way there
  * (an oscillator of 6 samples a period, tests/test_peak_refine.c: 413
  * right-hand side evaluations a refined sample, 671 from the stops
- * alone). The grid's best point read the
- * Watt six-bar's second impact 2.5e-3 low (a force peak where the damper's
- * ramp saturates, sharper than the grid) and its first impact's
- * penetration 1.7e-3 low (the interpolant placed it 4 points off); the
- * search finds impacts 1 to 3 to 1.5e-9 of an independent model
+ * alone). The grid's best point read the Watt six-bar's second impact
+ * 2.5e-3 low (a force peak where the damper's ramp saturates, sharper than
+ * the grid) and its first impact's penetration 1.7e-3 low (the
+ * interpolant placed it 4 points off); the search finds impacts 1 to 3 to 1.5e-9 of an independent model
  * (tests/test_sixbar_independent.py). Brent's parabolic steps reach the
  * extreme's value long before the bracket closes (paper case, 2,322
  * searches: within 1e-11 after 2.3 evaluations on average, where closing

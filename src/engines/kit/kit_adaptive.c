@@ -19,10 +19,14 @@ fb_status fb_kit_adapt_open(fb_kit_adapt *a, fb_kit_pipe *p, const fb_kit_bindin
   memset(a, 0, sizeof *a);
   const fb_solver *sv = o->solver;
   if (!sv || sv->h_mode != FB_STEP_ADAPTIVE) return FB_OK;
+  const unsigned mask = cl ? cl->mask : 0u;
+  if (mask && cl->collider.kind == FB_COLLIDER_NATIVE)
+    return fb_diag_set(diag, FB_ERR_ARG, "[solver] h_s = adaptive follows the project's contact "
+                       "law at the exact pin; the %s engine's native contact is its own: give a "
+                       "fixed step or auto", b->engine);
   if (!b->step_by)
     return fb_diag_set(diag, FB_ERR_ARG, "[solver] h_s = adaptive: the %s engine's binding steps "
                        "at a fixed h; give a fixed step or auto", b->engine);
-  const unsigned mask = cl ? cl->mask : 0u;
   if (mask && (cl->collider.kind == FB_COLLIDER_FACETED || cl->collider.kind == FB_COLLIDER_CCD))
     return fb_diag_set(diag, FB_ERR_ARG, "[solver] h_s = adaptive follows the exact pin in its "
                        "hole; the %s collider's contacts are not followed: give a fixed step or "

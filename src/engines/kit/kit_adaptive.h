@@ -30,8 +30,9 @@ typedef struct {
  * grid's step o->h) and clearance joints cl (NULL: none); p->rocking is
  * set when the rocking bound applies. A fixed step leaves a->on 0.
  * Errors (FB_ERR_ARG, naming the engine and what to change): an adaptive
- * step with a binding without step_by; a faceted or libccd collider
- * (cl->collider: the rules follow the exact pin); a clearance joint at a prismatic
+ * step with a binding without step_by; a faceted or libccd collider, or
+ * the engine's native contact (cl->collider: the rules follow the exact
+ * pin under the project's law); a clearance joint at a prismatic
  * joint (the rules follow a pin in its hole); a binding whose
  * persistent_rule is FB_PERSIST_LOAD_SCHEDULE with clearance joints and no
  * cl->load. */

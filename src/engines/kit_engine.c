@@ -486,15 +486,18 @@ int fb_engine_is_kit_adapter(const fb_engine *e) {
   return e == &fb_engine_kit_adapter || e == &kit_adapter_loads;
 }
 
-const fb_engine *fb_engine_runner(const fb_engine *e, const fb_case *c, fb_diag *diag) {
-  /* auto: the kit where the engine's table says so and the kit builds the
-   * case (it drives an ideal joint only: a clearance at the driven joint
-   * keeps the engine's own world, which drives the crank by an angular
-   * motor) */
+const fb_engine *fb_engine_runner(const fb_engine *e, const fb_model *m, const fb_case *c,
+                                  fb_diag *diag) {
+  /* auto: the kit where the engine's table names the model's kind and the
+   * kit builds the case (it drives an ideal joint only: a clearance at the
+   * driven joint keeps the engine's own world, which drives the crank by an
+   * angular motor) */
   const int driven = fb_mech_driven_joint(fb_case_mech(c));
   const int drive_free = driven < 0 || !((c->clearance.mask >> driven) & 1);
+  const int kind = m->joints == FB_JOINTS_CLEARANCE ? FB_KIT_DEFAULT_CLEARANCE
+                                                     : FB_KIT_DEFAULT_IDEAL;
   const int kit = c->solver.builder == FB_BUILDER_KIT ||
-                  (c->solver.builder == FB_BUILDER_AUTO && e->kit_default && drive_free);
+                  (c->solver.builder == FB_BUILDER_AUTO && (e->kit_default & kind) && drive_free);
   if (e->kit && (!e->create || kit))
     return e->kit->reactions ? &kit_adapter_loads : &fb_engine_kit_adapter;
   if (e->create) return e;

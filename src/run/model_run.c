@@ -169,7 +169,7 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_mode
   fb_model_scene sm;
   fb_status st = fb_scene_select(&sm, def, m, diag);
   const fb_engine *e = st == FB_OK ? fb_engine_get(m->engine, diag) : NULL;
-  if (e) e = fb_engine_runner(e, &def->source, diag); /* its own, or its kit binding's */
+  if (e) e = fb_engine_runner(e, m, &def->source, diag); /* its own, or its kit binding's */
   if (st == FB_OK && !e) st = FB_ERR_ARG;
   if (st == FB_OK) {
     out->clearance_mask = sm.clearance_mask;

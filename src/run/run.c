@@ -201,7 +201,7 @@ static double sample_bytes(const fb_model *m, const fb_case *c) {
   for (int b = 0; b < mech->nbodies; b++) outputs += mech->body[b].output;
   for (int j = 0; j < mech->njoints; j++) joints += (c->clearance.mask >> j) & 1;
   const fb_engine *e = fb_engine_get(m->engine, NULL);
-  if (e) e = fb_engine_runner(e, c, NULL); /* the kit adapter keeps no loads */
+  if (e) e = fb_engine_runner(e, m, c, NULL); /* the kit adapter keeps no loads */
   double cols = 2.0 + 3.0 * outputs;
   if (m->joints == FB_JOINTS_CLEARANCE) cols += (double)(FB_CONTACT_COLS * joints);
   if (e && e->reactions) cols += 1.0 + 2.0 * mech->njoints;
@@ -234,7 +234,7 @@ void fb_run_estimate(const fb_case *c, double *bytes, double *seconds) {
     if (!m) continue;
     const int member = m->joints == FB_JOINTS_CLEARANCE || m->engine == FB_ENGINE_REFERENCE;
     const fb_engine *e = fb_engine_get(m->engine, NULL);
-    if (e) e = fb_engine_runner(e, c, NULL); /* the kit adapter holds its series too */
+    if (e) e = fb_engine_runner(e, m, c, NULL); /* the kit adapter holds its series too */
     /* an HDF5 series is built in memory before it is written (series_hdf5.c):
      * at most the samples' own size again; an engine that computes its
      * series in create (engine.h), or the kit adapter, holds its own beside the run's, and a
@@ -452,7 +452,7 @@ static fb_status clearance_at_drive(const fb_case *c, fb_diag *diag) {
   for (int i = 0; i < c->model_count; i++) {
     const fb_model *m = fb_model_find(c->models[i]);
     const fb_engine *e = m ? fb_engine_get(m->engine, NULL) : NULL;
-    const int kit = e && fb_engine_is_kit_adapter(fb_engine_runner(e, c, NULL));
+    const int kit = e && fb_engine_is_kit_adapter(fb_engine_runner(e, m, c, NULL));
     fb_status st = m ? fb_model_clearance_at_drive(m, kit, mech->joint[j].name, diag) : FB_OK;
     if (st != FB_OK) return st;
   }

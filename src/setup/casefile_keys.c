@@ -322,11 +322,12 @@ static const key_spec keys[] = {
      "who builds a four-bar or slider-crank model of an engine that has both: hand (the "
      "engine's own world), kit (its engine-kit binding, through the kit adapter: the "
      "colliders, native contacts and friction its binding builds, ODE's all; a fixed or auto "
-     "step; docs/architecture.md) or auto: the kit where the engine's binding builds "
-     "everything its own world does, at its cost and within the committed baselines (ODE's, "
-     "but with clearance at the driven joint, which the kit does not drive: ODE's own world), "
-     "else the engine's own world (MuJoCo's, Bullet's, Simbody's, Siconos's); an engine with "
-     "a binding alone (DART) always builds through the kit"},
+     "step; docs/architecture.md) or auto: the kit for the models whose every feature of the "
+     "engine's own world its binding builds, at its cost and within the committed baselines "
+     "(every ODE model, MuJoCo's clearance models), but with clearance at the driven joint, "
+     "which the kit does not drive (the engine's own world), else the engine's own world "
+     "(MuJoCo's ideal models, Bullet's, Simbody's, Siconos's); an engine with a binding alone "
+     "(DART) always builds through the kit"},
 
     /* each engine's own section, in engine order (model/opts_<name>.h) */
 #define X(name) FB_OPTS_KEYS_##name(ENGINE_ROW)

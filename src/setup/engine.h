@@ -240,13 +240,19 @@ typedef struct fb_engine {
                                        planar case and through the kit adapter; it reports joint
                                        reactions when kit does (the adapter's table follows
                                        kit's); NULL: none */
-  int kit_default;                  /* optional, with create and kit: 1 when the binding builds
-                                       every model the engine's own world does, at its cost and
-                                       within the committed baselines (docs/architecture.md):
-                                       [solver] builder = auto builds through the kit (but a
-                                       case with clearance at the driven joint, which the kit
-                                       does not drive); 0: through the engine's own world */
+  int kit_default;                  /* optional, with create and kit: the models [solver]
+                                       builder = auto builds through the kit, FB_KIT_DEFAULT_*
+                                       bits (below): those of a kind whose every feature of the
+                                       engine's own world the binding builds, at its cost and
+                                       within the committed baselines (docs/architecture.md);
+                                       never a case with clearance at the driven joint, which
+                                       the kit does not drive; 0: every model through the
+                                       engine's own world */
 } fb_engine;
+
+/* fb_engine.kit_default's bits: the ideal models (no clearance joint), the
+ * clearance models (any collider, the engine's native contact included). */
+enum { FB_KIT_DEFAULT_IDEAL = 1, FB_KIT_DEFAULT_CLEARANCE = 2, FB_KIT_DEFAULT_ALL = 3 };
 
 /* The engine for id, or NULL when this build has none (message in diag:
  * FB_ERR_ARG). */
@@ -256,13 +262,16 @@ const fb_engine *fb_engine_get(fb_engine_id id, fb_diag *diag);
  * e->kit_native for the engine's native contact, else e->kit (NULL: none). */
 const struct fb_kit_binding *fb_engine_kit_of(const fb_engine *e, fb_collider collider);
 
-/* The table that runs engine e's models on a four-bar or slider-crank
+/* The table that runs model m of engine e on a four-bar or slider-crank
  * case c (model_run.c): e itself, or the kit adapter (fb_engine_kit_adapter,
  * kit_engine.c) over e's engine-kit binding when e has no create of its
  * own, or e has a binding and the case asks [solver] builder = kit, or
- * auto (the default) with e->kit_default and no clearance at the driven
- * joint (fb_mech_driven_joint); an engine without a binding keeps its own. NULL with diag (FB_ERR_ARG) for an engine with neither. */
-const fb_engine *fb_engine_runner(const fb_engine *e, const fb_case *c, fb_diag *diag);
+ * auto (the default) where e->kit_default names m's kind (ideal or
+ * clearance) and the case has no clearance at the driven joint
+ * (fb_mech_driven_joint); an engine without a binding keeps its own. NULL
+ * with diag (FB_ERR_ARG) for an engine with neither. */
+const fb_engine *fb_engine_runner(const fb_engine *e, const fb_model *m, const fb_case *c,
+                                  fb_diag *diag);
 
 /* Steps instance self of engine e (step size h [s]) until its sampled time
  * reaches t - h/2 [s]. Errors: those of e->step. */

@@ -268,5 +268,5 @@ const fb_engine fb_engine_ode = {
      * joint (fb_engine_runner keeps the hand-built world there), at its cost
      * (callgrind 1.049x and 1.035x on the paper case's clearance and ideal
      * models) and within the committed baselines (docs/architecture.md) */
-    .kit_default = 1,
+    .kit_default = FB_KIT_DEFAULT_ALL,
 };

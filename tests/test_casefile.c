@@ -192,6 +192,14 @@ static void test_bad_inputs_name_place_value_rule(void **state) {
                (const char *[]){"--set", "section.key=value", NULL});
   expect_error(NULL, (const char *[]){"linkage.crank_mm=-1"}, 1, FB_ERR_RANGE,
                (const char *[]){"--set", "crank_mm = -1", "positive", NULL});
+  /* a value past the entry's room: its length, the limit, and the way a
+   * long list of models fits */
+  char long_set[400] = "run.models=";
+  for (int i = 0; i < 30; i++) strcat(long_set, "reference,");
+  strcat(long_set, "reference");
+  expect_error(NULL, (const char *[]){long_set}, 1, FB_ERR_PARSE,
+               (const char *[]){"--set #1", "the value holds 309 characters, at most 255",
+                                "by pattern", NULL});
 }
 
 /* Every number key's refusal states the range its row holds (the table's

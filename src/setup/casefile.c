@@ -420,8 +420,14 @@ static fb_status parse_override(load_ctx *c, const char *ov, int index) {
                        ov);
   char section[64], key[64], value[256];
   size_t ls = (size_t)(dot - ov), lk = (size_t)(eq - dot - 1);
-  if (ls >= sizeof section || lk >= sizeof key || strlen(eq + 1) >= sizeof value)
-    return fb_diag_set(c->diag, FB_ERR_PARSE, "--set '%s': too long", ov);
+  if (ls >= sizeof section || lk >= sizeof key)
+    return fb_diag_set(c->diag, FB_ERR_PARSE, "%s: a section or key name longer than %zu "
+                       "characters: no key is named so", origin, sizeof key - 1);
+  if (strlen(eq + 1) >= sizeof value)
+    return fb_diag_set(c->diag, FB_ERR_PARSE,
+                       "%s: the value holds %zu characters, at most %zu (a list of models can "
+                       "name them by pattern: run.models=*-clearance-impact,reference)",
+                       origin, strlen(eq + 1), sizeof value - 1);
   memcpy(section, ov, ls);
   section[ls] = '\0';
   memcpy(key, dot + 1, lk);

@@ -120,6 +120,8 @@ static void test_ideal_models_match_analytic(void **state) {
   for (int i = 0; i < 2; i++) {
     const fb_model_result *m = &r.model[i];
     assert_string_equal(fb_engine_name(m->run.model->engine), "mujoco");
+    /* [solver] builder = auto keeps MuJoCo's ideal models in its own scene */
+    assert_string_equal(m->run.builder, "hand");
     assert_true(m->has_error);
     const double wo = omega_peak_rel(&m->error), wa = alpha_peak_rel(&m->error);
     report_residual(m->run.name, 0, 0);
@@ -196,6 +198,12 @@ static void test_clearance_impact_matches_reference(void **state) {
    * summary.json keeps the contact keys with null figures and says so in
    * `mapping`; the printed table shows "-", never "nan" */
   json_t *sum = fb_report_summary_json(&r, NULL);
+  /* who built it: [solver] builder = auto takes MuJoCo's clearance models
+   * through its kit binding (the reference has no builder) */
+  json_t *models = json_object_get(sum, "models");
+  assert_string_equal(json_string_value(json_object_get(json_array_get(models, 0), "builder")),
+                      "kit");
+  assert_true(json_is_null(json_object_get(json_array_get(models, 1), "builder")));
   json_t *c0 = json_array_get(json_object_get(json_array_get(json_object_get(sum, "models"), 0),
                                               "contact"), 0);
   assert_non_null(c0);

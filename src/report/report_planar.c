@@ -425,6 +425,8 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
                           p->reference ? "reference" : p->engine ? "engine" : "analytic", "status",
                           p->ref.failed ? "failed" : "ok", "h_s", num(p->h), "steps",
                           (json_int_t)p->n);
+    /* an engine's model of a planar case is its kit binding's (planar_run.h) */
+    json_object_set_new(e, "builder", p->engine ? json_string("kit") : json_null());
     json_object_set_new(e, "bodies", fb_report_bodies_json(name, p->peaks + 1, m->nbodies - 1));
     if (p->reference) reference_json(e, r, p);
     if (p->engine && p->force) { /* an engine's clearance model (planar_run.h) */

@@ -441,6 +441,7 @@ static json_t *model_json(const fb_model_result *m, const fb_run *r) {
   const fb_model_run *run = &m->run;
   json_object_set_new(o, "name", json_string(run->name));
   json_object_set_new(o, "kind", json_string(fb_engine_name(run->model->engine)));
+  json_object_set_new(o, "builder", run->builder ? json_string(run->builder) : json_null());
   collider_json(o, run);
   verdict_json(o, m, r);
   json_object_set_new(o, "peaks_converged", fb_report_converged_json(m));

@@ -172,6 +172,8 @@ fb_status fb_model_run_one(fb_model_run *out, const fb_scene *def, const fb_mode
   if (e) e = fb_engine_runner(e, m, &def->source, diag); /* its own, or its kit binding's */
   if (st == FB_OK && !e) st = FB_ERR_ARG;
   if (st == FB_OK) {
+    if (m->engine != FB_ENGINE_ANALYTIC && m->engine != FB_ENGINE_REFERENCE)
+      out->builder = fb_engine_is_kit_adapter(e) ? "kit" : "hand";
     out->clearance_mask = sm.clearance_mask;
     out->collider = sm.clearance_mask ? sm.collider : FB_COLLIDER_NONE;
     out->segments = sm.collider == FB_COLLIDER_CCD ? sm.ccd_segments : sm.faceted_n;

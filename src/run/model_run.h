@@ -43,6 +43,9 @@ typedef struct {
   fb_series series;        /* samples at t = k h */
   double joint_drift_max;  /* ode: largest hinge anchor separation seen [m] */
   int clearance_mask;      /* bit j: joint j had clearance in this model */
+  const char *builder;     /* who built an engine's model ([solver] builder): "kit" (its
+                              engine-kit binding) or "hand" (the engine's own world); NULL for
+                              the analytic and reference models */
   fb_collider collider;    /* collider of its clearance joints (FB_COLLIDER_NONE without) */
   int segments;            /* faceted boxes or ccd segments of the ring [-]; 0 for the others */
   double bore_ovality;     /* ccd: the ellipse bore's diameter excess [m]; 0: circle */

@@ -17,7 +17,7 @@ drive angle and refined by golden-section search to 1e-12 rad.
 
 Usage: test_planar_run.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
-import csv, json, math, os, re, sys, tempfile
+import csv, json, math, os, re, shutil, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fb_script  # noqa: E402
@@ -240,6 +240,27 @@ check(rc == 2 and "[run] ensemble = 4" in se and not os.path.exists(os.path.join
       "an ensemble on a planar case is refused, nothing written (%d, %s)" % (rc, se.strip()))
 check("(given: [run] ensemble at --set #1 'run.ensemble=4')" in se,
       "the refusal says where the ensemble was given (%s)" % se.strip())
+# keys a planar case's run does not act on are refused by name, nothing
+# written: each ran with exit 0 and unchanged outputs before
+for kv, words in (("run.start=rest", "[run] start = rest"),
+                  ("run.pin_start=45", "[run] pin_start = angle"),
+                  ("run.pin_start=resting", "[run] pin_start = resting"),
+                  ("clearance.penetration_limit_um=0.001", "[clearance] penetration_limit_um = 0.001"),
+                  ("published.impact.coupler_omega_max_rad_s=99", "[published.*]"),
+                  ("published.source=X", "[published.*]"),
+                  ("solver.builder=hand", "[solver] builder = hand")):
+    out = os.path.join(tmp, "k")
+    rc, _, se = run("run", six, "--set", kv, "--set", "run.models=analytic", "--out", out)
+    check(rc == 2 and words in se and not os.path.exists(out),
+          "%s on a planar case is refused by name, nothing written (%d, %s)" % (kv, rc, se.strip()))
+# ... and their defaults, or values meaning the same, run
+for kv in ("run.start=steady", "run.pin_start=centred", "clearance.penetration_limit_um=none",
+           "solver.builder=kit"):
+    out = os.path.join(tmp, "k")
+    rc, _, se = run("run", six, "--set", kv, "--set", "run.models=analytic", "--set",
+                    "run.revolutions=2", "--no-figures", "--no-report", "--out", out)
+    check(rc == 0, "%s on a planar case runs (%d, %s)" % (kv, rc, se.strip()))
+    shutil.rmtree(out, ignore_errors=True)
 # h_s = adaptive with an engine model whose binding steps at a fixed h is
 # refused (it would run at h_min_s, silently); so is one whose step in
 # persistent contact follows the loads of a drive at constant speed (ODE's)

@@ -14,6 +14,8 @@
 #include "model_table.h"
 #include "pilot.h"
 #include "run_folder.h"
+#include "start.h"
+#include "variants.h"
 #include "work.h"
 #include "report_html_planar.h"
 #include "report_planar.h"
@@ -33,6 +35,27 @@ static int refuse(const fb_case *c, const char *case_path, const char *const *se
     snprintf(msg, sizeof msg, "[run] ensemble = %d: a planar case's run has no ensemble yet (a "
              "clearance model's verdict rests on its one run, basis pointwise); leave [run] "
              "ensemble at 1", c->ensemble);
+  else if (c->start != FB_START_STEADY)
+    snprintf(msg, sizeof msg, "[run] start = %s: a planar case starts every body on its ideal "
+             "motion (steady); give start = steady", fb_start_name(c->start));
+  else if (c->pin_start != FB_PIN_CENTRED)
+    snprintf(msg, sizeof msg, "[run] pin_start = %s: a planar case's clearance pins start "
+             "centred in their holes; give pin_start = centred", fb_pin_start_name(c->pin_start));
+  else if (fb_casefile_given(c, "clearance", "penetration_limit_um") &&
+           !c->clearance.penetration_unlimited)
+    snprintf(msg, sizeof msg, "[clearance] penetration_limit_um = %g: a planar case's run stops "
+             "no model at a penetration depth (its engines stop on a step they cannot take, its "
+             "references never); remove the key, or give none",
+             c->clearance.penetration_limit * 1e6);
+  else if (c->published_source[0] || fb_variants_published_any(&c->published[0]) ||
+           fb_variants_published_any(&c->published[1]))
+    snprintf(msg, sizeof msg, "[published.*]: published values are compared with a four-bar's "
+             "or slider-crank's output bodies, and a planar case's run prints none; remove the "
+             "[published.*] sections");
+  else if (c->solver.builder == FB_BUILDER_HAND)
+    snprintf(msg, sizeof msg, "[solver] builder = hand: a planar case's engine models are built "
+             "through their engine-kit bindings (no engine has a hand-built world of a planar "
+             "mechanism); give builder = auto or kit");
   if (msg[0]) {
     const size_t l = fb_casefile_given_where(where, sizeof where, case_path, sets, nsets, msg);
     return fb_cli_fail("run", 2, "%s: %s%s%s%s", case_path, msg, l ? " (given: " : "", where,

@@ -323,9 +323,10 @@ static const key_spec keys[] = {
      "engine's own world), kit (its engine-kit binding, through the kit adapter: the "
      "colliders, native contacts and friction its binding builds, ODE's all; a fixed or auto "
      "step; docs/architecture.md) or auto: the kit for the models whose every feature of the "
-     "engine's own world its binding builds, at its cost and within the committed baselines "
-     "(every ODE model, MuJoCo's clearance models), but with clearance at the driven joint, "
-     "which the kit does not drive (the engine's own world), else the engine's own world "
+     "engine's own world its binding builds within the committed baselines, at about its cost "
+     "(every ODE model; MuJoCo's clearance models, about half on the four-bar), but with "
+     "clearance at the driven joint, which the kit does not drive (the engine's own world), "
+     "else the engine's own world "
      "(MuJoCo's ideal models, Bullet's, Simbody's, Siconos's); an engine with a binding alone "
      "(DART) always builds through the kit"},
 

@@ -208,9 +208,11 @@ const fb_engine fb_engine_mujoco = {
     .kit = &fb_mujoco_kit,
     .kit_native = &fb_mujoco_kit_native,
     /* the kit builds MuJoCo's clearance models by default (its native contact
-     * through kit_native): their binding has every feature of the scene's,
-     * costs less a step and is nearer the reference (docs/architecture.md);
+     * through kit_native): their binding has every feature of the scene's
+     * (friction, which the scene ignored, it refuses), is nearer the
+     * reference and costs about half a step on the four-bar, whose scene
+     * closes its loop by a soft connect (the slider-crank's tree 1.16x);
      * the ideal models keep the scene, where the kit's sampling costs more
-     * (callgrind 1.17x on the paper case) */
+     * (callgrind 1.17x on the paper case; docs/architecture.md) */
     .kit_default = FB_KIT_DEFAULT_CLEARANCE,
 };

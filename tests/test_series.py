@@ -4,7 +4,8 @@ same run written as CSV and as HDF5 holds the same values (h5py reads the
 HDF5 file: full doubles; the CSV has 12 significant digits), the HDF5 file
 carries units and provenance as attributes and compressed chunked datasets,
 series_every keeps every N-th sample and every sample of an impact episode,
-and series = none writes no series. Needs h5py (Debian python3-h5py); exits
+and series = none writes no series; a planar case's series.h5 holds its
+CSV's columns and samples. Needs h5py (Debian python3-h5py); exits
 77 (skipped) without it, never passes. Usage: test_series.py PATH_TO_FOURBAR."""
 import csv, json, os, subprocess, sys, tempfile
 
@@ -107,6 +108,42 @@ with tempfile.TemporaryDirectory() as tmp:
         check(len(t) < n / 2, "series_every = %d writes fewer samples (%d of %d)" % (EVERY, len(t), n))
         check(np.array_equal(g["coupler_alpha_rad_s2"][:], a["coupler_alpha_rad_s2"][:][want]),
               "the kept samples hold the full run's values")
+    # a planar case (the Watt six-bar: body names, a clearance joint's
+    # force and penetration, the analytic model's loads) writes the same
+    # series.h5 layout, its CSV's columns and samples
+    six = os.path.join(os.environ.get("FOURBAR_CASES_DIR", "cases"), "watt_sixbar.ini")
+    PLANAR = ["run", six, "--no-figures", "--no-report", "--set", "run.revolutions=2",
+              "--set", "run.models=analytic,ode-clearance-impact"]
+    for name, extra in (("pcsv", []), ("ph5", ["--series", "hdf5"]),
+                        ("pevery", ["--series", "hdf5", "--set", "run.series_every=%d" % EVERY])):
+        p = subprocess.run([exe] + PLANAR + ["--out", tmp + "/" + name] + extra,
+                           capture_output=True, text=True)
+        check(p.returncode == 0, "planar %s: exit %d: %s" % (name, p.returncode, p.stderr))
+    check(os.path.exists(tmp + "/ph5/series.h5") and
+          not any(n.endswith(".csv") for n in os.listdir(tmp + "/ph5")),
+          "a planar case's series = hdf5 writes series.h5 and no CSV")
+    psum = json.load(open(tmp + "/ph5/summary.json"))
+    check(psum["series"]["format"] == "hdf5" and psum["series"]["every"] == 1,
+          "a planar summary.json names the format")
+    with h5py.File(tmp + "/ph5/series.h5", "r") as f:
+        check(sorted(f.keys()) == ["analytic", "ode-clearance-impact"], "planar: one group per model")
+        check(json.loads(f.attrs["summary_json"])["case"] == psum["case"],
+              "planar: the root holds summary.json")
+        check(f["ode-clearance-impact"].attrs["engine"] == "ode", "planar: the group's engine")
+        for model in f:
+            names, cols = read_csv("%s/pcsv/%s.csv" % (tmp, model))
+            g = f[model]
+            check(sorted(g.keys()) == sorted(names), "planar %s: the CSV's columns" % model)
+            check(all(same(g[n][:], cols[k]) for k, n in enumerate(names)),
+                  "planar %s: every dataset equals its CSV column" % model)
+        check("rod-output_force_n" in f["ode-clearance-impact"] and
+              "drive_torque_n_m" in f["analytic"], "planar: contact and load columns")
+        check(f["ode-clearance-impact"]["rod-output_force_n"].attrs["unit"] == "N" and
+              f["analytic"]["drive_torque_n_m"].attrs["unit"] == "N m", "planar: units")
+    with h5py.File(tmp + "/ph5/series.h5", "r") as full, h5py.File(tmp + "/pevery/series.h5", "r") as f:
+        tall, t = full["analytic"]["time_s"][:], f["analytic"]["time_s"][:]
+        check(np.array_equal(t, tall[::EVERY]) and f.attrs["series_every"] == EVERY,
+              "planar series_every keeps every N-th sample, as its CSV")
     p = subprocess.run([exe] + RUN + ["--out", tmp + "/bad", "--series", "xml"], capture_output=True, text=True)
     check(p.returncode == 2 and "csv, hdf5 or none" in p.stderr, "an unknown format is refused (exit 2)")
 

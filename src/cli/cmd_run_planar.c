@@ -29,9 +29,7 @@ static int refuse(const fb_case *c, const char *case_path, const char *const *se
     return fb_cli_fail("run", 2, "%s: [variant.%s] (at %s): a planar case's variants do not run "
                        "yet; run the case with --set instead", case_path, c->variant[0].name,
                        c->variant[0].origin);
-  if (c->series == FB_SERIES_HDF5)
-    snprintf(msg, sizeof msg, "[run] series = hdf5: a planar case's run writes csv or none yet");
-  else if (fb_casefile_given(c, "run", "ensemble") && c->ensemble > 1)
+  if (fb_casefile_given(c, "run", "ensemble") && c->ensemble > 1)
     snprintf(msg, sizeof msg, "[run] ensemble = %d: a planar case's run has no ensemble yet (a "
              "clearance model's verdict rests on its one run, basis pointwise); leave [run] "
              "ensemble at 1", c->ensemble);
@@ -180,8 +178,10 @@ int fb_cmd_run_planar(const fb_case *c, const char *case_path, const char *const
   } else {
     fb_report_planar_table(stdout, r);
     printf("wrote %s/summary.json, timing.json, %s, %d figures, report.md%s\n", dir,
-           c->series == FB_SERIES_CSV ? "one CSV per model" : "no time series", x.nfig,
-           html ? " and report.html" : "");
+           c->series == FB_SERIES_CSV    ? "one CSV per model"
+           : c->series == FB_SERIES_HDF5 ? "series.h5"
+                                         : "no time series",
+           x.nfig, html ? " and report.html" : "");
   }
   if (html && !x.charts)
     fprintf(stderr, "fourbar run: note: %s/report.html has no charts: the charting library uPlot "

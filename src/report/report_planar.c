@@ -14,6 +14,7 @@
 #include "resolution.h"
 #include "run.h"
 #include "series.h"
+#include "series_write.h"
 #include "units.h"
 
 /* finite number or null */
@@ -402,6 +403,10 @@ static json_t *loads_json(const fb_planar_run *r, const fb_planar_model *p) {
   return fb_report_loads_of(p->t, p->n, r->t_window, p->torque, m->njoints, joint, fx, fy);
 }
 
+/* the rule of the samples a planar run writes, in words (summary.json's
+ * "series", series.h5) */
+#define PLANAR_SERIES_RULE "every N-th sample (i mod N = 0)"
+
 json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_path) {
   const fb_planar *m = r->m;
   json_t *o = json_object(), *models = json_array();
@@ -412,6 +417,12 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
   json_object_set_new(o, "drive_omega_rad_s", num(r->omega));
   json_object_set_new(o, "revolutions", num(r->c.revolutions));
   json_object_set_new(o, "step", step_json(r));
+  json_object_set_new(o, "series",
+                      json_pack("{s:s,s:i,s:s}", "format",
+                                r->c.series == FB_SERIES_HDF5   ? "hdf5"
+                                : r->c.series == FB_SERIES_NONE ? "none"
+                                                                : "csv",
+                                "every", r->c.series_every, "rule", PLANAR_SERIES_RULE));
   char injected[1024];
   json_object_set_new(o, "injected_error",
                       fb_report_injected_case_text(injected, sizeof injected, &r->c)
@@ -470,66 +481,180 @@ static void cell(FILE *f, double x, int first) {
   if (isfinite(x)) fwrite(buf, 1, fb_numfmt_g12(buf, x), f);
 }
 
-/* the load columns' names: the four-bar's (series.h), then a prismatic
- * joint's couple */
-static void loads_header(FILE *f, const fb_planar *m) {
-  fputs(",drive_torque_n_m", f);
-  for (int j = 0; j < m->njoints; j++) {
-    char w[FB_REPORT_JOINT_KEY_SIZE];
-    fb_report_joint_key(w, sizeof w, m->joint[j].name);
-    fprintf(f, ",%s_reaction_x_n,%s_reaction_y_n,%s_reaction_n", w, w, w);
-    if (m->joint[j].kind == FB_KIND_PRISMATIC) fprintf(f, ",%s_reaction_moment_n_m", w);
+/* ---- a model's columns, as its CSV and the run's HDF5 file name them ---- */
+
+/* what column k of a model reads */
+typedef enum { COL_TIME, COL_DRIVE, COL_BODY, COL_FORCE, COL_PEN, COL_TORQUE, COL_REACTION,
+               COL_OUTPUT } col_kind;
+typedef struct {
+  col_kind kind;
+  int a, b; /* COL_BODY: body, quantity (angle, omega, alpha); COL_REACTION: joint, component
+               (x, y, magnitude, a prismatic joint's moment); COL_OUTPUT: output column */
+} col_def;
+
+/* a model of a run with its columns (fb_series_table's self) */
+typedef struct {
+  const fb_planar_run *r;
+  const fb_planar_model *p;
+  col_def *col;
+} model_cols;
+
+/* model p's columns into col (room for max_columns(r)): time, the drive's
+ * angle, every moving body's angle, omega and alpha, a clearance model's
+ * force and penetration at its joint, the analytic model's loads (the
+ * four-bar's names, series.h, then a prismatic joint's couple), the
+ * description's outputs; returns their number */
+static size_t columns(col_def *col, const fb_planar_run *r, const fb_planar_model *p) {
+  const fb_planar *m = r->m;
+  size_t n = 0;
+  col[n++] = (col_def){COL_TIME, 0, 0};
+  col[n++] = (col_def){COL_DRIVE, 0, 0};
+  for (int b = 1; b < m->nbodies; b++)
+    for (int k = 0; k < 3; k++) col[n++] = (col_def){COL_BODY, b, k};
+  if (p->force) {
+    col[n++] = (col_def){COL_FORCE, 0, 0};
+    col[n++] = (col_def){COL_PEN, 0, 0};
+  }
+  if (p->torque) {
+    col[n++] = (col_def){COL_TORQUE, 0, 0};
+    for (int j = 0; j < m->njoints; j++)
+      for (int k = 0; k < (m->joint[j].kind == FB_KIND_PRISMATIC ? 4 : 3); k++)
+        col[n++] = (col_def){COL_REACTION, j, k};
+  }
+  for (int c = 0; c < p->nout; c++) col[n++] = (col_def){COL_OUTPUT, c, 0};
+  return n;
+}
+
+static size_t max_columns(const fb_planar_run *r, const fb_planar_model *p) {
+  return 4 + 3 * (size_t)r->m->nbodies + 1 + 4 * (size_t)r->m->njoints + (size_t)p->nout;
+}
+
+static void column_name(const fb_series_table *t, size_t k, char *buf, size_t size) {
+  static const char *const body[3] = {"angle_rad", "omega_rad_s", "alpha_rad_s2"};
+  static const char *const reaction[4] = {"reaction_x_n", "reaction_y_n", "reaction_n",
+                                          "reaction_moment_n_m"};
+  const model_cols *mc = t->self;
+  const fb_planar *m = mc->r->m;
+  const col_def c = mc->col[k];
+  char w[FB_REPORT_JOINT_KEY_SIZE];
+  switch (c.kind) {
+    case COL_TIME: snprintf(buf, size, "time_s"); break;
+    case COL_DRIVE: snprintf(buf, size, "drive_angle_rad"); break;
+    case COL_BODY: snprintf(buf, size, "%s_%s", m->body[c.a].name, body[c.b]); break;
+    case COL_FORCE: snprintf(buf, size, "%s_force_n", m->joint[mc->p->ref.joint].name); break;
+    case COL_PEN:
+      snprintf(buf, size, "%s_penetration_m", m->joint[mc->p->ref.joint].name);
+      break;
+    case COL_TORQUE: snprintf(buf, size, "drive_torque_n_m"); break;
+    case COL_REACTION:
+      fb_report_joint_key(w, sizeof w, m->joint[c.a].name);
+      snprintf(buf, size, "%s_%s", w, reaction[c.b]);
+      break;
+    case COL_OUTPUT: fb_report_planar_output_column(buf, size, m, c.a); break;
   }
 }
 
-/* sample i's load cells, in loads_header's order */
-static void loads_row(FILE *f, const fb_planar *m, const fb_planar_model *p, size_t i) {
-  cell(f, p->torque[i], 0);
-  for (int j = 0; j < m->njoints; j++)
-    for (int k = 0; k < (m->joint[j].kind == FB_KIND_PRISMATIC ? 4 : 3); k++)
-      cell(f, fb_planar_model_reaction(p, j, k, i), 0);
+static double column_value(const fb_series_table *t, size_t k, size_t i) {
+  const model_cols *mc = t->self;
+  const fb_planar_model *p = mc->p;
+  const col_def c = mc->col[k];
+  switch (c.kind) {
+    case COL_TIME: return p->t[i];
+    case COL_DRIVE: return p->drive[i];
+    case COL_BODY: return fb_planar_model_value(mc->r, p, c.a, c.b, i);
+    case COL_FORCE: return p->force[i];
+    case COL_PEN: return p->pen[i];
+    case COL_TORQUE: return p->torque[i];
+    case COL_REACTION: return fb_planar_model_reaction(p, c.a, c.b, i);
+    case COL_OUTPUT: return p->out[(size_t)c.a * p->n + i];
+  }
+  return NAN;
+}
+
+/* model p of run r as a table over col (columns' room) */
+static fb_series_table model_table(model_cols *mc, col_def *col, const fb_planar_run *r,
+                                   const fb_planar_model *p) {
+  *mc = (model_cols){r, p, col};
+  const fb_model *fm = fb_model_find(p->name);
+  return (fb_series_table){p->name, fm ? fb_engine_name(fm->engine) : p->name,
+                           fm ? fm->summary : "", p->h, p->n, columns(col, r, p), mc,
+                           column_name, column_value};
+}
+
+/* the run's series step: every series_every-th sample, as in the CSV */
+static size_t series_every(const fb_planar_run *r) {
+  return r->c.series_every > 0 ? (size_t)r->c.series_every : 1;
 }
 
 static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_planar_model *p,
                            fb_diag *diag) {
-  static const char *const suffix[3] = {"angle_rad", "omega_rad_s", "alpha_rad_s2"};
   char path[4200];
   snprintf(path, sizeof path, "%s/%s.csv", dir, p->name);
+  col_def *col = malloc(max_columns(r, p) * sizeof *col);
+  if (!col) return fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory", path);
+  model_cols mc;
+  const fb_series_table t = model_table(&mc, col, r, p);
   fb_outfile out;
   fb_status st = fb_outfile_open(&out, path, diag);
-  if (st != FB_OK) return st;
-  const fb_planar *m = r->m;
-  fputs("time_s,drive_angle_rad", out.f);
-  for (int b = 1; b < m->nbodies; b++)
-    for (int k = 0; k < 3; k++) fprintf(out.f, ",%s_%s", m->body[b].name, suffix[k]);
-  if (p->force)
-    fprintf(out.f, ",%s_force_n,%s_penetration_m", m->joint[p->ref.joint].name,
-            m->joint[p->ref.joint].name);
-  if (p->torque) loads_header(out.f, m);
-  for (int c = 0; c < p->nout; c++) {
-    char name[FB_REPORT_JOINT_KEY_SIZE + 32];
-    fprintf(out.f, ",%s", fb_report_planar_output_column(name, sizeof name, m, c));
+  if (st != FB_OK) {
+    free(col);
+    return st;
+  }
+  for (size_t k = 0; k < t.ncols; k++) {
+    char name[FB_REPORT_JOINT_KEY_SIZE + 64];
+    column_name(&t, k, name, sizeof name);
+    fprintf(out.f, "%s%s", k ? "," : "", name);
   }
   fputc('\n', out.f);
-  const size_t every = r->c.series_every > 0 ? (size_t)r->c.series_every : 1;
-  for (size_t i = 0; i < p->n; i += every) {
-    cell(out.f, p->t[i], 1);
-    cell(out.f, p->drive[i], 0);
-    for (int b = 1; b < m->nbodies; b++)
-      for (int k = 0; k < 3; k++) cell(out.f, fb_planar_model_value(r, p, b, k, i), 0);
-    if (p->force) {
-      cell(out.f, p->force[i], 0);
-      cell(out.f, p->pen[i], 0);
-    }
-    if (p->torque) loads_row(out.f, m, p, i);
-    for (int c = 0; c < p->nout; c++) cell(out.f, p->out[(size_t)c * p->n + i], 0);
+  for (size_t i = 0; i < p->n; i += series_every(r)) {
+    for (size_t k = 0; k < t.ncols; k++) cell(out.f, column_value(&t, k, i), k == 0);
     fputc('\n', out.f);
   }
+  free(col);
   if (ferror(out.f)) {
     fb_outfile_abort(&out);
     return fb_diag_set(diag, FB_ERR_IO, "%s: write failed", path);
   }
   return fb_outfile_commit(&out, diag);
+}
+
+/* every model into DIR/series.h5 (series_write.h), the samples its CSV
+ * would hold, summary.json's text in the root's attributes */
+static fb_status write_hdf5(const char *dir, const fb_planar_run *r, const char *summary_json,
+                            fb_diag *diag) {
+  char path[4200];
+  snprintf(path, sizeof path, "%s/series.h5", dir);
+  const int n = r->n;
+  fb_series_table *t = calloc((size_t)(n > 0 ? n : 1), sizeof *t);
+  model_cols *mc = calloc((size_t)(n > 0 ? n : 1), sizeof *mc);
+  col_def **col = calloc((size_t)(n > 0 ? n : 1), sizeof *col);
+  unsigned char **keep = calloc((size_t)(n > 0 ? n : 1), sizeof *keep);
+  fb_status st = t && mc && col && keep ? FB_OK : FB_ERR_NOMEM;
+  for (int i = 0; i < n && st == FB_OK; i++) {
+    const fb_planar_model *p = &r->model[i];
+    col[i] = malloc(max_columns(r, p) * sizeof **col);
+    keep[i] = malloc(p->n ? p->n : 1);
+    if (!col[i] || !keep[i]) {
+      st = FB_ERR_NOMEM;
+      break;
+    }
+    for (size_t k = 0; k < p->n; k++) keep[i][k] = k % series_every(r) == 0;
+    t[i] = model_table(&mc[i], col[i], r, p);
+  }
+  if (st == FB_OK)
+    st = fb_series_write_hdf5_tables(path, r->c.name, (int)series_every(r), PLANAR_SERIES_RULE,
+                                     t, n, keep, summary_json, diag);
+  else
+    fb_diag_set(diag, st, "%s: out of memory", path);
+  for (int i = 0; col && keep && i < n; i++) {
+    free(col[i]);
+    free(keep[i]);
+  }
+  free(t);
+  free(mc);
+  free(col);
+  free(keep);
+  return st;
 }
 
 /* an analytic model's load peaks (loads_json) as the table's lines: the
@@ -643,9 +768,6 @@ static fb_status write_markdown(const char *dir, const fb_planar_run *r, const c
 fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const char *case_path,
                                  const char *command, char figures[][128], int nfig,
                                  fb_diag *diag) {
-  if (r->c.series == FB_SERIES_HDF5)
-    return fb_diag_set(diag, FB_ERR_ARG, "[run] series = hdf5: a planar case's run writes csv "
-                       "or none yet");
   char path[4200];
   fb_status st = FB_OK;
   for (int i = 0; i < r->n && st == FB_OK && r->c.series == FB_SERIES_CSV; i++)
@@ -654,6 +776,12 @@ fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const 
   snprintf(path, sizeof path, "%s/summary.json", dir);
   json_t *j = fb_report_planar_summary_json(r, case_path);
   st = fb_report_write_json(path, j, diag);
+  if (st == FB_OK && r->c.series == FB_SERIES_HDF5) {
+    char *text = json_dumps(j, JSON_INDENT(2) | JSON_REAL_PRECISION(12));
+    st = text ? write_hdf5(dir, r, text, diag)
+              : fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory", path);
+    free(text);
+  }
   json_decref(j);
   if (st != FB_OK) return st;
   snprintf(path, sizeof path, "%s/timing.json", dir);

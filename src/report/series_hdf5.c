@@ -70,18 +70,17 @@ static const char *unit_of(const char *name) {
 }
 
 /* one model's group: a dataset per column of the kept samples */
-static int write_group(hid_t file, const fb_model_run *run, const unsigned char *keep,
+static int write_group(hid_t file, const fb_series_table *t, const unsigned char *keep,
                        int every, double *buf) {
-  const fb_series *s = &run->series;
-  hid_t g = H5Gcreate2(file, run->name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t g = H5Gcreate2(file, t->model, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   if (g < 0) return -1;
   size_t kept = 0;
-  for (size_t i = 0; i < s->n; i++) kept += !keep || keep[i];
+  for (size_t i = 0; i < t->n; i++) kept += !keep || keep[i];
   int rc = 0;
-  rc |= attr_string(g, "engine", fb_engine_name(run->model->engine));
-  rc |= attr_string(g, "model_summary", run->model->summary);
-  rc |= attr_double(g, "h_s", run->h);
-  rc |= attr_long(g, "samples_run", (long long)s->n);
+  rc |= attr_string(g, "engine", t->engine);
+  rc |= attr_string(g, "model_summary", t->summary);
+  rc |= attr_double(g, "h_s", t->h);
+  rc |= attr_long(g, "samples_run", (long long)t->n);
   rc |= attr_long(g, "samples_written", (long long)kept);
   rc |= attr_long(g, "series_every", every);
   const hsize_t dims[1] = {kept};
@@ -91,14 +90,12 @@ static int write_group(hid_t file, const fb_model_run *run, const unsigned char 
   rc |= H5Pset_shuffle(dcpl) < 0;
   rc |= H5Pset_deflate(dcpl, FB_H5_DEFLATE) < 0;
   hid_t space = H5Screate_simple(1, dims, NULL);
-  const size_t nc = fb_series_column_count(s);
-  for (size_t k = 0; k < nc && !rc; k++) {
+  for (size_t k = 0; k < t->ncols && !rc; k++) {
     char name[96];
-    fb_series_column_name(s, k, name, sizeof name);
-    const double *col = fb_series_column(s, k);
+    t->name(t, k, name, sizeof name);
     size_t w = 0;
-    for (size_t i = 0; i < s->n; i++)
-      if (!keep || keep[i]) buf[w++] = col ? col[i] : fb_series_value(s, k, i);
+    for (size_t i = 0; i < t->n; i++)
+      if (!keep || keep[i]) buf[w++] = t->value(t, k, i);
     hid_t d = H5Dcreate2(g, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (d < 0) {
       rc = -1;
@@ -114,11 +111,13 @@ static int write_group(hid_t file, const fb_model_run *run, const unsigned char 
   return rc ? -1 : 0;
 }
 
-fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char *const *keep,
-                               const char *summary_json, fb_diag *diag) {
+fb_status fb_series_write_hdf5_tables(const char *path, const char *case_name, int every,
+                                      const char *rule, const fb_series_table *t, int n,
+                                      unsigned char *const *keep, const char *summary_json,
+                                      fb_diag *diag) {
   size_t most = 1;
-  for (int i = 0; i < r->n; i++)
-    if (r->model[i].run.series.n > most) most = r->model[i].run.series.n;
+  for (int i = 0; i < n; i++)
+    if (t[i].n > most) most = t[i].n;
   double *buf = malloc(most * sizeof *buf);
   if (!buf) return fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory", path);
   fb_outfile out;
@@ -141,15 +140,15 @@ fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char 
   rc |= file < 0;
   if (!rc) {
     rc |= attr_string(file, "fourbar_version", FB_PROJECT_VERSION);
-    rc |= attr_string(file, "case", r->c.name);
-    rc |= attr_long(file, "series_every", r->c.series_every);
-    rc |= attr_string(file, "series_rule", FB_SERIES_KEEP_RULE);
+    rc |= attr_string(file, "case", case_name);
+    rc |= attr_long(file, "series_every", every);
+    rc |= attr_string(file, "series_rule", rule);
     rc |= attr_string(file, "layout",
                       "one group per model; one float64 dataset per column, named as the "
                       "columns of <model>.csv, attribute unit (SI)");
     if (summary_json) rc |= attr_string(file, "summary_json", summary_json);
-    for (int i = 0; i < r->n && !rc; i++)
-      rc |= write_group(file, &r->model[i].run, keep ? keep[i] : NULL, r->c.series_every, buf);
+    for (int i = 0; i < n && !rc; i++)
+      rc |= write_group(file, &t[i], keep ? keep[i] : NULL, every, buf);
   }
   /* the finished file's bytes (H5Fget_file_image), then closed in memory */
   void *image = NULL;
@@ -178,4 +177,32 @@ fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char 
     return fb_diag_set(diag, FB_ERR_IO, "%s: write failed: %s", path, strerror(e ? e : EIO));
   }
   return fb_outfile_commit(&out, diag);
+}
+
+/* a run's model as a table: its series' columns (fb_series_column_name) */
+static void series_name(const fb_series_table *t, size_t k, char *buf, size_t size) {
+  fb_series_column_name(t->self, k, buf, size);
+}
+
+static double series_value(const fb_series_table *t, size_t k, size_t i) {
+  const fb_series *s = t->self;
+  const double *col = fb_series_column(s, k);
+  return col ? col[i] : fb_series_value(s, k, i);
+}
+
+fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char *const *keep,
+                               const char *summary_json, fb_diag *diag) {
+  fb_series_table *t = calloc((size_t)(r->n > 0 ? r->n : 1), sizeof *t);
+  if (!t) return fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory", path);
+  for (int i = 0; i < r->n; i++) {
+    const fb_model_run *run = &r->model[i].run;
+    t[i] = (fb_series_table){run->name, fb_engine_name(run->model->engine), run->model->summary,
+                             run->h, run->series.n, fb_series_column_count(&run->series),
+                             &run->series, series_name, series_value};
+  }
+  const fb_status st = fb_series_write_hdf5_tables(path, r->c.name, r->c.series_every,
+                                                   FB_SERIES_KEEP_RULE, t, r->n, keep,
+                                                   summary_json, diag);
+  free(t);
+  return st;
 }

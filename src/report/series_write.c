@@ -92,14 +92,26 @@ fb_status fb_series_write_csv(const char *path, const fb_series *s, const unsign
 }
 
 #if !FB_HAVE_HDF5
-fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char *const *keep,
-                               const char *summary_json, fb_diag *diag) {
-  (void)r;
+fb_status fb_series_write_hdf5_tables(const char *path, const char *case_name, int every,
+                                      const char *rule, const fb_series_table *t, int n,
+                                      unsigned char *const *keep, const char *summary_json,
+                                      fb_diag *diag) {
+  (void)case_name;
+  (void)every;
+  (void)rule;
+  (void)t;
+  (void)n;
   (void)keep;
   (void)summary_json;
   return fb_diag_set(diag, FB_ERR_ARG,
                      "%s: this fourbar was built without HDF5; install libhdf5-dev (Debian) "
                      "and rebuild (meson setup --reconfigure build -Dhdf5=enabled)",
                      path);
+}
+
+fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char *const *keep,
+                               const char *summary_json, fb_diag *diag) {
+  (void)r;
+  return fb_series_write_hdf5_tables(path, NULL, 1, NULL, NULL, 0, keep, summary_json, diag);
 }
 #endif

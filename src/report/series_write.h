@@ -32,6 +32,32 @@ size_t fb_series_keep(const fb_series *s, int every, unsigned char *keep);
 fb_status fb_series_write_csv(const char *path, const fb_series *s, const unsigned char *keep,
                               fb_diag *diag);
 
+/* One model's columns as a writer reads them, whatever holds them: n
+ * samples of ncols columns, column k named name(k) (the CSV's column
+ * names, SI unit in the name) with value(k, i) at sample i. */
+typedef struct fb_series_table {
+  const char *model;   /* the model's name: the HDF5 group */
+  const char *engine;  /* its engine's name (group attribute "engine") */
+  const char *summary; /* one line on the model (group attribute "model_summary") */
+  double h;            /* its step [s] */
+  size_t n;            /* samples run */
+  size_t ncols;        /* columns */
+  const void *self;    /* what name and value read */
+  void (*name)(const struct fb_series_table *t, size_t k, char *buf, size_t size);
+  double (*value)(const struct fb_series_table *t, size_t k, size_t i);
+} fb_series_table;
+
+/* Writes tables t[0..n) into one HDF5 file at path (atomically), as
+ * fb_series_write_hdf5 lays it out: the root's attributes "case" (case),
+ * "series_every" (every), "series_rule" (rule), "summary_json" (summary_json,
+ * NULL: none); keep[i] the samples of table i written (NULL, or a NULL
+ * entry: every sample). Errors: FB_ERR_IO naming the file, FB_ERR_NOMEM;
+ * FB_ERR_ARG in a build without HDF5 (FB_HAVE_HDF5 0). */
+fb_status fb_series_write_hdf5_tables(const char *path, const char *case_name, int every,
+                                      const char *rule, const fb_series_table *t, int n,
+                                      unsigned char *const *keep, const char *summary_json,
+                                      fb_diag *diag);
+
 /* Writes every model of r into one HDF5 file at path (atomically): a group
  * /<model name> per model holding one 1-D float64 dataset per column, named
  * as the CSV column, chunked and deflate-compressed, with attributes "unit"

@@ -42,10 +42,12 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
  * that is the ground (the four-bar's follower_ground columns, invdyn.h's D,
  * are the other way: on the follower from the ground); then the output
  * points' and slides' columns (report_planar_outputs.h); every [run] series_every-th
- * sample; none with [run] series = none) and DIR/report.md (the table
- * below, the command, and the nfig figures named in figures, each as an
- * image; none: "No figures were drawn."). Errors: FB_ERR_IO naming the file; FB_ERR_ARG
- * for [run] series = hdf5, which a planar run does not write yet. */
+ * sample; with [run] series = hdf5 the same columns and samples as
+ * DIR/series.h5, one group per model (series_write.h); none with [run]
+ * series = none) and DIR/report.md (the table below, the command, and the
+ * nfig figures named in figures, each as an image; none: "No figures were
+ * drawn."). Errors: FB_ERR_IO naming the file; FB_ERR_ARG for series =
+ * hdf5 in a build without HDF5; FB_ERR_NOMEM. */
 fb_status fb_report_planar_write(const char *dir, const fb_planar_run *r, const char *case_path,
                                  const char *command, char figures[][128], int nfig,
                                  fb_diag *diag);

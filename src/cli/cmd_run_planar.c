@@ -15,6 +15,7 @@
 #include "pilot.h"
 #include "run_folder.h"
 #include "start.h"
+#include "units.h"
 #include "variants.h"
 #include "work.h"
 #include "report_html_planar.h"
@@ -44,7 +45,7 @@ static int refuse(const fb_case *c, const char *case_path, const char *const *se
     snprintf(msg, sizeof msg, "[clearance] penetration_limit_um = %g: a planar case's run stops "
              "no model at a penetration depth (its engines stop on a step they cannot take, its "
              "references never); remove the key, or give none",
-             c->clearance.penetration_limit * 1e6);
+             c->clearance.penetration_limit / FB_M_PER_UM);
   else if (c->published_source[0] || fb_variants_published_any(&c->published[0]) ||
            fb_variants_published_any(&c->published[1]))
     snprintf(msg, sizeof msg, "[published.*]: published values are compared with a four-bar's "

@@ -142,6 +142,10 @@ json_t *fb_report_loads_of(const double *t, size_t n, double t_from, const doubl
   return o;
 }
 
+const char *fb_report_series_format_name(fb_series_format f) {
+  return f == FB_SERIES_HDF5 ? "hdf5" : f == FB_SERIES_NONE ? "none" : "csv";
+}
+
 const char *fb_report_joint_key(char *buf, size_t size, const char *joint) {
   return fb_name_word(buf, size, joint);
 }

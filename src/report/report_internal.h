@@ -48,4 +48,8 @@ json_t *fb_report_loads_of(const double *t, size_t n, double t_from, const doubl
  * "ground_crank"), into buf (size bytes, truncated to fit). Returns buf. */
 const char *fb_report_joint_key(char *buf, size_t size, const char *joint);
 
+/* [run] series as summary.json's "series" names it: "csv", "hdf5" or
+ * "none" (docs/series.md). */
+const char *fb_report_series_format_name(fb_series_format f);
+
 #endif

@@ -419,10 +419,8 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
   json_object_set_new(o, "step", step_json(r));
   json_object_set_new(o, "series",
                       json_pack("{s:s,s:i,s:s}", "format",
-                                r->c.series == FB_SERIES_HDF5   ? "hdf5"
-                                : r->c.series == FB_SERIES_NONE ? "none"
-                                                                : "csv",
-                                "every", r->c.series_every, "rule", PLANAR_SERIES_RULE));
+                                fb_report_series_format_name(r->c.series), "every",
+                                r->c.series_every, "rule", PLANAR_SERIES_RULE));
   char injected[1024];
   json_object_set_new(o, "injected_error",
                       fb_report_injected_case_text(injected, sizeof injected, &r->c)
@@ -578,7 +576,7 @@ static fb_series_table model_table(model_cols *mc, col_def *col, const fb_planar
   const fb_model *fm = fb_model_find(p->name);
   return (fb_series_table){p->name, fm ? fb_engine_name(fm->engine) : p->name,
                            fm ? fm->summary : "", p->h, p->n, columns(col, r, p), mc,
-                           column_name, column_value};
+                           column_name, column_value, NULL};
 }
 
 /* the run's series step: every series_every-th sample, as in the CSV */

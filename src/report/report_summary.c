@@ -555,10 +555,6 @@ static json_t *masses_json(const fb_case *c) {
   return o;
 }
 
-static const char *series_format_name(fb_series_format f) {
-  return f == FB_SERIES_HDF5 ? "hdf5" : f == FB_SERIES_NONE ? "none" : "csv";
-}
-
 json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   const fb_case *c = &r->c;
   json_t *o = json_object();
@@ -592,7 +588,7 @@ json_t *fb_report_summary_json(const fb_run *r, const char *case_path) {
   json_object_set_new(o, "stackup", stackup_json(c));
   json_object_set_new(o, "masses", masses_json(c));
   json_object_set_new(o, "series",
-                      json_pack("{s:s,s:i,s:s}", "format", series_format_name(c->series), "every",
+                      json_pack("{s:s,s:i,s:s}", "format", fb_report_series_format_name(c->series), "every",
                                 c->series_every, "rule", FB_SERIES_KEEP_RULE));
   json_object_set_new(o, "step", fb_report_step_json(r));
   json_object_set_new(o, "ensemble", fb_report_ensemble_run_json(r));

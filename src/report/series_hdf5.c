@@ -93,9 +93,10 @@ static int write_group(hid_t file, const fb_series_table *t, const unsigned char
   for (size_t k = 0; k < t->ncols && !rc; k++) {
     char name[96];
     t->name(t, k, name, sizeof name);
+    const double *col = t->column ? t->column(t, k) : NULL;
     size_t w = 0;
     for (size_t i = 0; i < t->n; i++)
-      if (!keep || keep[i]) buf[w++] = t->value(t, k, i);
+      if (!keep || keep[i]) buf[w++] = col ? col[i] : t->value(t, k, i);
     hid_t d = H5Dcreate2(g, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (d < 0) {
       rc = -1;
@@ -185,9 +186,11 @@ static void series_name(const fb_series_table *t, size_t k, char *buf, size_t si
 }
 
 static double series_value(const fb_series_table *t, size_t k, size_t i) {
-  const fb_series *s = t->self;
-  const double *col = fb_series_column(s, k);
-  return col ? col[i] : fb_series_value(s, k, i);
+  return fb_series_value(t->self, k, i);
+}
+
+static const double *series_column(const fb_series_table *t, size_t k) {
+  return fb_series_column(t->self, k);
 }
 
 fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char *const *keep,
@@ -198,7 +201,7 @@ fb_status fb_series_write_hdf5(const char *path, const fb_run *r, unsigned char 
     const fb_model_run *run = &r->model[i].run;
     t[i] = (fb_series_table){run->name, fb_engine_name(run->model->engine), run->model->summary,
                              run->h, run->series.n, fb_series_column_count(&run->series),
-                             &run->series, series_name, series_value};
+                             &run->series, series_name, series_value, series_column};
   }
   const fb_status st = fb_series_write_hdf5_tables(path, r->c.name, r->c.series_every,
                                                    FB_SERIES_KEEP_RULE, t, r->n, keep,

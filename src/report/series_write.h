@@ -45,6 +45,8 @@ typedef struct fb_series_table {
   const void *self;    /* what name and value read */
   void (*name)(const struct fb_series_table *t, size_t k, char *buf, size_t size);
   double (*value)(const struct fb_series_table *t, size_t k, size_t i);
+  const double *(*column)(const struct fb_series_table *t, size_t k); /* optional: column k's
+                          n values in a row, or NULL where it has none (value reads it) */
 } fb_series_table;
 
 /* Writes tables t[0..n) into one HDF5 file at path (atomically), as

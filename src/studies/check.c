@@ -1,6 +1,8 @@
 #include "check.h"
 
 #include "model_table.h"
+#include "planar_run.h"
+#include "run_case.h"
 #include "suggest.h"
 #include "resolution.h"
 #include "tolerance.h"
@@ -194,15 +196,52 @@ int fb_check_metric_name_ok(const char *name, const fb_mech_desc *mech, char *kn
   return 0;
 }
 
-static fb_status run_metrics(fb_metric *out, int *n, const fb_case *c, double *h_used,
-                             fb_diag *diag) {
+int fb_check_planar_metrics(const fb_planar_run *r, fb_metric *out, int max) {
+  const fb_planar *m = r->m;
+  int n = 0;
+  for (int i = 0; i < r->n; i++) {
+    const fb_planar_model *p = &r->model[i];
+    if (p->ref.failed) continue; /* a model that stopped: no peaks to hold */
+    for (int b = 1; b < m->nbodies; b++) {
+      const fb_body_peaks *k = &p->peaks[b];
+#define FB_CHECK_PLANAR_PEAK(field, key) n = add(out, n, max, p->name, m->body[b].name, key, k->field);
+      FB_BODY_PEAK_KEYS(FB_CHECK_PLANAR_PEAK)
+#undef FB_CHECK_PLANAR_PEAK
+    }
+    /* a clearance joint's contact: a reference's of its law, an engine's
+     * clearance model's (the ideal reference has none) */
+    if ((p->reference && p->ref.joint >= 0) || (p->engine && p->force)) {
+      n = add(out, n, max, p->name, "spikes", "force_max_n", p->ref.force_max);
+      n = add(out, n, max, p->name, "spikes", "penetration_max_m", p->ref.penetration_max);
+    }
+  }
+  return n;
+}
+
+fb_status fb_check_case_metrics(fb_metric *out, int *n, const fb_case *c,
+                                fb_progress_fn progress, void *user, double *h_used,
+                                fb_diag *diag) {
+  if (c->planar.on) {
+    static fb_planar_run pr;
+    const fb_status st = fb_planar_run_case(&pr, c, diag);
+    if (st != FB_OK) return st;
+    if (h_used) *h_used = fb_planar_run_step(&pr.c); /* auto resolved, and re-chosen if it was */
+    *n = fb_check_planar_metrics(&pr, out, FB_CHECK_MAX_METRICS);
+    fb_planar_run_free(&pr);
+    return FB_OK;
+  }
   static fb_run r;
-  fb_status st = fb_run_case(&r, c, NULL, NULL, diag);
+  const fb_status st = fb_run_case(&r, c, progress, user, diag);
   if (st != FB_OK) return st;
   if (h_used) *h_used = r.c.solver.h; /* auto resolved, and re-chosen if it was */
   *n = fb_check_metrics(&r, out, FB_CHECK_MAX_METRICS);
   fb_run_free(&r);
   return FB_OK;
+}
+
+static fb_status run_metrics(fb_metric *out, int *n, const fb_case *c, double *h_used,
+                             fb_diag *diag) {
+  return fb_check_case_metrics(out, n, c, NULL, NULL, h_used, diag);
 }
 
 static double find(const fb_metric *m, int n, const char *name, int *found) {
@@ -224,17 +263,25 @@ fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterminis
   if (st != FB_OK) return st;
   fb_case p = *c;
   /* the step the run used (auto resolved at the resolved corner, and
-   * re-chosen when the run passed its bound), a little smaller */
-  st = fb_tol_resolve_worst(&p, diag);
-  if (st != FB_OK) return st;
+   * re-chosen when the run passed its bound), a little smaller (a planar
+   * case has no worst corner to resolve: its stack-up is refused there) */
+  if (!c->planar.on) {
+    st = fb_tol_resolve_worst(&p, diag);
+    if (st != FB_OK) return st;
+  }
   p.solver.h = h_used * FB_CHECK_H_FACTOR;
   p.solver.h_mode = FB_STEP_FIXED;
   st = run_metrics(pert[0], &np[0], &p, NULL, diag);
   if (st != FB_OK) return st;
   p = *c;
-  p.crank_angle0 = c->crank_angle0 + FB_CHECK_ANGLE_NUDGE_RAD;
-  st = run_metrics(pert[1], &np[1], &p, NULL, diag);
-  if (st != FB_OK) return st;
+  if (c->planar.on) /* a description starts at its assembly: the drive's speed nudged */
+    p.crank_speed = c->crank_speed * (1.0 + FB_CHECK_SPEED_NUDGE_REL);
+  else
+    p.crank_angle0 = c->crank_angle0 + FB_CHECK_ANGLE_NUDGE_RAD;
+  if (!(c->planar.on && c->planar.undriven)) { /* an undriven case: no drive to nudge */
+    st = run_metrics(pert[1], &np[1], &p, NULL, diag);
+    if (st != FB_OK) return st;
+  }
   st = run_metrics(pert[2], &np[2], c, NULL, diag);
   if (st != FB_OK) return st;
   *nondeterministic = 0;

@@ -23,6 +23,7 @@
 #ifndef FB_CHECK_H
 #define FB_CHECK_H
 
+#include "planar_run.h"
 #include "run.h"
 
 #define FB_CHECK_MAX_METRICS 256
@@ -32,6 +33,11 @@
 #define FB_CHECK_CHAOTIC_REL 0.05    /* spread above this share of the value: chaotic */
 #define FB_CHECK_H_FACTOR 0.99       /* the "a little smaller" step */
 #define FB_CHECK_ANGLE_NUDGE_RAD 1e-12
+/* a planar case's drive speed, times 1 + this: a description starts at its
+ * assembly, so its start cannot be turned; over a run of a few revolutions
+ * the drive's angle moves by about 1e-11 rad, the built-ins' nudge's order
+ * [-] */
+#define FB_CHECK_SPEED_NUDGE_REL 1e-12
 
 /* A statistics metric's tolerance is this many times its ensemble_sd: the
  * standard deviation of the difference of the pooled statistic between two
@@ -66,6 +72,25 @@ int fb_check_metrics(const fb_run *r, fb_metric *out, int max);
  * out rather than find them missing from every baseline. */
 int fb_study_metrics(const fb_run *r, fb_metric *out, int max);
 
+/* Collects the metrics of planar run r (planar_run.h) into out (at most
+ * max); returns the count: each model's peaks of every moving body, named
+ * <model>.<body>.<key> by the description's body names (summary.json's
+ * models[].bodies), and each model with a clearance joint's contact (a
+ * reference of its law, an engine's clearance model) as
+ * <model>.spikes.force_max_n and <model>.spikes.penetration_max_m (its
+ * largest contact force [N] and penetration [m] in the window). A model
+ * that stopped gives none. */
+int fb_check_planar_metrics(const fb_planar_run *r, fb_metric *out, int max);
+
+/* Runs case c (a planar one by fourbar run's planar pipeline, else
+ * fb_run_case with progress and user) and collects its metrics into out
+ * (FB_CHECK_MAX_METRICS at most, the count into *n): fb_check_metrics or
+ * fb_check_planar_metrics. h_used (may be NULL) gets the step the run ran
+ * at [s]. Errors: those of fb_run_case and fb_planar_run_case. */
+fb_status fb_check_case_metrics(fb_metric *out, int *n, const fb_case *c,
+                                fb_progress_fn progress, void *user, double *h_used,
+                                fb_diag *diag);
+
 /* 1 when name is a metric a run of mechanism mech can give (<model>.<group>.
  * <key>, the names fb_study_metrics writes, in mech's names: a
  * slider-crank's slider.velocity_max_m_s, never follower.*, for a model
@@ -85,9 +110,12 @@ typedef struct {
 } fb_baseline_metric;
 
 /* Measures metrics and tolerances for case c (its own file and overrides
- * already applied): a base run and three perturbed runs. out gets n metrics.
+ * already applied): a base run and three perturbed runs (h times
+ * FB_CHECK_H_FACTOR; the crank's start moved by FB_CHECK_ANGLE_NUDGE_RAD,
+ * a planar case's drive speed by FB_CHECK_SPEED_NUDGE_REL, none on an
+ * undriven planar case; the run repeated). out gets n metrics.
  * *nondeterministic is set when the repeated run differs from the base.
- * Errors: those of fb_run_case. */
+ * Errors: those of fb_check_case_metrics. */
 fb_status fb_check_calibrate(fb_baseline_metric *out, int *n, int *nondeterministic,
                              const fb_case *c, fb_diag *diag);
 

@@ -9,8 +9,8 @@ make (no .fourbar-own.<pid> mark in it) keeps its files.
 
 Generated: for every command that writes a folder (run on the paper case,
 a slider-crank and a planar case, into a new and into an existing folder;
-penalty --out, mapping --out, bench --out on the four-bar and on a planar
-case, sweep, sweep --shard, merge), a link at every leftover name beside
+penalty --out, mapping --out, bench --out on the four-bar, penalty --out
+and bench --out on a planar case, sweep, sweep --shard, merge), a link at every leftover name beside
 the folder, pointing at a user's folder with files, and a user's real
 folder at a leftover name; every file survives. Then the examples: a
 SIGTERM after the staging folder was swapped for a link, an old set a
@@ -120,6 +120,7 @@ def writers():
         ("run planar", ["run", watt, "--set", "run.revolutions=2", "--no-figures", "--out", "OUT"],
          1, 0),
         ("penalty --out", ["penalty", "--out", "OUT"], 1, 1),
+        ("penalty --out, planar", ["penalty", watt, "--out", "OUT"], 1, 1),
         ("mapping --out", ["mapping", "--out", "OUT"], 1, 1),
         ("bench --out, four-bar (refused after the lock)", ["bench", paper, "--out", "OUT"], 2, 1),
         ("bench --out, planar", ["bench", planar4, "--set", "run.revolutions=1", "--set",

@@ -424,6 +424,31 @@ else:
     check(False, "penalty --json of the planar four-bar and the paper case at nominal lengths")
 rc, _, se = run("penalty", six, "--mode", "paper")
 check(rc == 2 and "physical" in se, "paper mode on a planar case is refused (%s)" % se.strip())
+# penalty --out on a planar case: the CSV's rows are --json's (two writers of
+# the same rows), a row per speed and revolute joint, and the figure has a
+# curve per joint in each of its four panels
+pen_out = os.path.join(tmp, "penalty_out")
+rc, so, se = run("penalty", six, "--speeds-rpm", "100,300,600", "--out", pen_out)
+check(rc == 0 and "wrote %s/penalty_physical.csv" % pen_out in so,
+      "penalty --out on the six-bar writes its files (%s)" % se.strip()[-300:])
+rc2, so2, _ = run("penalty", six, "--speeds-rpm", "100,300,600", "--json")
+if rc == 0 and rc2 == 0:
+    with open(os.path.join(pen_out, "penalty_physical.csv")) as f:
+        rows = list(csv.DictReader(f))
+    want = json.loads(so2)["rows"]
+    check(len(rows) == len(want) == 3 * 7, "penalty_physical.csv: %d rows, --json %d (3 speeds x "
+          "7 revolute joints)" % (len(rows), len(want)))
+    for a, b in zip(rows, want):
+        check(a["joint"] == b["joint"] and float(a["speed_rpm"]) == b["speed_rpm"] and
+              rel(float(a["force_n"]), b["force_n"]) <= 1e-11 and
+              rel(float(a["penalty_n_m0_5"]), b["penalty_n_m0_5"]) <= 1e-11 and
+              rel(float(a["penalty_n_mm0_5"]), b["penalty_n_mm0_5"]) <= 1e-11 and
+              rel(float(a["approach_um"]) * 1e-6, b["approach_m"]) <= 1e-11,
+              "penalty CSV row %s at %s rpm equals --json's" % (a["joint"], a["speed_rpm"]))
+    svg = open(os.path.join(pen_out, "penalty_physical.svg")).read()
+    check(svg.count("rod-output") >= 4 and svg.count("output-ground") >= 4 and
+          "drive speed [rpm]" in svg,
+          "penalty_physical.svg: every joint in each of the four panels, the drive's speed on x")
 
 # a planar case without [run] models runs analytic alone (the template)
 rc, so, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",

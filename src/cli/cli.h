@@ -125,7 +125,8 @@ void fb_cli_progress_mc(double fraction, void *user);
 /* stackup: mask of FB_TOL_CORNERS (the worst case over every corner) and
  * FB_TOL_MONTECARLO (mc's samples); the RSS band always */
 int fb_cmd_stackup_planar(const struct fb_case_s *c, int mask, const fb_cli_mc *mc, int json);
-int fb_cmd_penalty_planar(const struct fb_case_s *c, const double *rpm, int nspeeds, int json);
+int fb_cmd_penalty_planar(const struct fb_case_s *c, const double *rpm, int nspeeds, int json,
+                          const char *out_dir);
 int fb_cmd_keys(int argc, char **argv);
 int fb_cmd_models(int argc, char **argv);
 int fb_cmd_impact(int argc, char **argv);

@@ -41,7 +41,8 @@ static const char penalty_help[] =
     "  --table          the paper's speeds, 100:1500:100 rpm (its Tables I to III)\n"
     "  --out DIR        also write DIR/penalty_<mode>.csv and the figure\n"
     "                   DIR/penalty_<mode>.svg (force, stiffness, penalty, approach\n"
-    "                   against speed: the paper's Figures 2 to 4)\n"
+    "                   against speed: the paper's Figures 2 to 4); a planar\n"
+    "                   case: a row per speed and revolute joint, a curve per joint\n"
     "  --overwrite      replace those files when no fourbar penalty wrote them\n"
     "                   (without it such a file is refused, exit 2)\n"
     "  CASE             default: the paper's case\n"
@@ -182,15 +183,10 @@ int fb_cmd_penalty(int argc, char **argv) {
     n = 1;
   }
 
-  if (c.planar.on) { /* physical mode at every revolute joint (planar_tools.h) */
-    if (mode == FB_PENALTY_PAPER)
-      return fb_cli_fail("penalty", 2, "--mode paper: the paper's recipe is its four-bar's; a "
-                         "planar case runs physical mode");
-    if (out_dir)
-      return fb_cli_fail("penalty", 2, "--out: a planar case's penalty is printed (text or "
-                         "--json), not written yet");
-    return fb_cmd_penalty_planar(&c, rpm, n, json);
-  }
+  /* physical mode at every revolute joint of a planar case (planar_tools.h) */
+  if (c.planar.on && mode == FB_PENALTY_PAPER)
+    return fb_cli_fail("penalty", 2, "--mode paper: the paper's recipe is its four-bar's; a "
+                       "planar case runs physical mode");
   /* its files: checked and the folder locked before any work (fileio.h) */
   char csv[32], svg[32];
   snprintf(csv, sizeof csv, "penalty_%s.csv", mode == FB_PENALTY_PAPER ? "paper" : "physical");
@@ -202,7 +198,8 @@ int fb_cmd_penalty(int argc, char **argv) {
     fb_status ost = fb_outfiles_begin(&files, out_dir, "penalty", names, 2, &rule, &diag);
     if (ost != FB_OK) return fb_cli_fail("penalty", ost == FB_ERR_ARG ? 2 : 1, "%s", diag.msg);
   }
-  rc = penalty_out(&c, mode, rpm, n, json, out_dir);
+  rc = c.planar.on ? fb_cmd_penalty_planar(&c, rpm, n, json, out_dir)
+                   : penalty_out(&c, mode, rpm, n, json, out_dir);
   if (out_dir && fb_outfiles_end(&files, &diag) != FB_OK && !rc)
     return fb_cli_fail("penalty", 1, "%s", diag.msg);
   return rc;

@@ -87,7 +87,8 @@ int fb_cmd_stackup_planar(const fb_case *c, int mask, const fb_cli_mc *mc, int j
   return 0;
 }
 
-int fb_cmd_penalty_planar(const fb_case *c, const double *rpm, int nspeeds, int json) {
+int fb_cmd_penalty_planar(const fb_case *c, const double *rpm, int nspeeds, int json,
+                          const char *out_dir) {
   fb_planar *m;
   fb_diag d;
   if (fb_planar_of_case(&m, c, NULL, &d) != FB_OK) return fb_cli_fail("penalty", 1, "%s", d.msg);
@@ -102,6 +103,14 @@ int fb_cmd_penalty_planar(const fb_case *c, const double *rpm, int nspeeds, int 
   if (st == FB_OK && !est) st = fb_diag_set(&d, FB_ERR_NOMEM, "out of memory");
   if (st == FB_OK) st = fb_planar_contact_estimates(est, &nest, c, m, &d);
   if (st == FB_OK) fb_report_planar_penalty(stdout, c, m, rows, n, rpm, nspeeds, est, nest, json);
+  if (st == FB_OK && out_dir) { /* the folder prepared by the caller */
+    int figure_ok;
+    fb_diag fd;
+    st = fb_report_planar_penalty_files(out_dir, m, rows, n, rpm, nspeeds, &figure_ok, &fd, &d);
+    if (st == FB_OK && !figure_ok) fprintf(stderr, "fourbar penalty: warning: %s\n", fd.msg);
+    else if (st == FB_OK && !json)
+      printf("wrote %s/penalty_physical.csv and penalty_physical.svg\n", out_dir);
+  }
   free(est);
   free(rows);
   free(n);

@@ -3,6 +3,7 @@
 
 #include <jansson.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fileio.h"
@@ -59,42 +60,77 @@ void fb_report_penalty_table(FILE *f, const fb_penalty_study *s, const fb_case *
           mode == FB_PENALTY_PAPER ? "force F" : "reaction", force_is(mode));
 }
 
-fb_status fb_report_penalty_files(const char *out, const fb_penalty_study *s, int *figure_ok,
-                                  fb_diag *fig_diag, fb_diag *diag) {
-  enum { J = FB_PENALTY_PIN_JOINTS, N = FB_PENALTY_SPEEDS_MAX };
-  static double col_f[J][N], col_k[J][N], col_p[J][N], col_d[J][N], col_pm[J][N];
-  const int n = s->n_ok;
-  for (int i = 0; i < n; i++)
-    for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) {
-      const fb_penalty_row *r = &s->rows[i][j];
-      double p_mm;
-      penalty_units(r, s->mode, &p_mm, &col_pm[j][i]);
-      col_f[j][i] = r->force;
-      col_k[j][i] = r->stiffness;
-      col_p[j][i] = r->penalty;
-      col_d[j][i] = r->approach / FB_M_PER_UM;
-    }
-  const char *mname = mode_name(s->mode);
+fb_status fb_report_penalty_columns(const char *out, const char *mode, const char *speed, int n,
+                                    const double *rpm, int njoints, const char *const *joint,
+                                    const double *const *force, const double *const *stiffness,
+                                    const double *const *penalty_n_m0_5,
+                                    const double *const *approach_m, int *figure_ok,
+                                    fb_diag *fig_diag, fb_diag *diag) {
   char path[4096];
-  snprintf(path, sizeof path, "%s/penalty_%s.csv", out, mname);
+  snprintf(path, sizeof path, "%s/penalty_%s.csv", out, mode);
   fb_outfile of;
   fb_status st = fb_outfile_open(&of, path, diag);
   if (st != FB_OK) return st;
   fprintf(of.f, "speed_rpm,joint,force_n,stiffness_n_m,penalty_n_mm0_5,penalty_n_m0_5,approach_um\n");
   for (int i = 0; i < n; i++)
-    for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++)
-      fprintf(of.f, "%.10g,%s,%.12g,%.12g,%.12g,%.12g,%.12g\n", s->rpm[i],
-              joint_name(s, (fb_pin_joint)j), col_f[j][i], col_k[j][i],
-              col_pm[j][i] / sqrt(FB_M_PER_MM), col_pm[j][i], col_d[j][i]);
+    for (int j = 0; j < njoints; j++)
+      fprintf(of.f, "%.10g,%s,%.12g,%.12g,%.12g,%.12g,%.12g\n", rpm[i], joint[j], force[j][i],
+              stiffness[j][i], penalty_n_m0_5[j][i] / sqrt(FB_M_PER_MM), penalty_n_m0_5[j][i],
+              approach_m[j][i] / FB_M_PER_UM);
   if ((st = fb_outfile_commit(&of, diag)) != FB_OK) return st;
-  snprintf(path, sizeof path, "%s/penalty_%s.svg", out, mname);
-  const double *f2[2] = {col_f[0], col_f[1]}, *k2[2] = {col_k[0], col_k[1]};
-  const double *p2[2] = {col_p[0], col_p[1]}, *d2[2] = {col_d[0], col_d[1]};
-  const char *names[FB_PENALTY_PIN_JOINTS];
-  for (int j = 0; j < FB_PENALTY_PIN_JOINTS; j++) names[j] = joint_name(s, j);
-  *figure_ok = fb_figures_penalty(path, FB_FIGURE_SVG, mname, n, s->rpm, f2, k2, p2, d2, names,
-                                  fig_diag) == FB_OK;
+  /* the figure: P in the mode's unit (paper: N mm^0.5), the approach in um */
+  const int paper = strcmp(mode, "paper") == 0;
+  double *col = malloc(2 * (size_t)njoints * (size_t)(n ? n : 1) * sizeof *col);
+  const double **p = malloc(2 * (size_t)njoints * sizeof *p);
+  if (!col || !p) {
+    free(col);
+    free(p);
+    *figure_ok = 0;
+    fb_diag_set(fig_diag, FB_ERR_NOMEM, "out of memory for the penalty figure");
+    return FB_OK;
+  }
+  for (int j = 0; j < njoints; j++) {
+    double *pj = col + (size_t)(2 * j) * (size_t)n, *dj = pj + n;
+    for (int i = 0; i < n; i++) {
+      pj[i] = paper ? penalty_n_m0_5[j][i] / sqrt(FB_M_PER_MM) : penalty_n_m0_5[j][i];
+      dj[i] = approach_m[j][i] / FB_M_PER_UM;
+    }
+    p[j] = pj;
+    p[njoints + j] = dj;
+  }
+  snprintf(path, sizeof path, "%s/penalty_%s.svg", out, mode);
+  *figure_ok = fb_figures_penalty(path, FB_FIGURE_SVG, mode, speed, n, rpm, njoints, force,
+                                  stiffness, p, p + njoints, joint, fig_diag) == FB_OK;
+  free(col);
+  free(p);
   return FB_OK;
+}
+
+fb_status fb_report_penalty_files(const char *out, const fb_penalty_study *s, int *figure_ok,
+                                  fb_diag *fig_diag, fb_diag *diag) {
+  enum { J = FB_PENALTY_PIN_JOINTS, N = FB_PENALTY_SPEEDS_MAX };
+  static double col_f[J][N], col_k[J][N], col_pm[J][N], col_d[J][N];
+  const int n = s->n_ok;
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < J; j++) {
+      const fb_penalty_row *r = &s->rows[i][j];
+      double p_mm;
+      penalty_units(r, s->mode, &p_mm, &col_pm[j][i]);
+      col_f[j][i] = r->force;
+      col_k[j][i] = r->stiffness;
+      col_d[j][i] = r->approach;
+    }
+  const double *f[J], *k[J], *pm[J], *d[J];
+  const char *names[J];
+  for (int j = 0; j < J; j++) {
+    f[j] = col_f[j];
+    k[j] = col_k[j];
+    pm[j] = col_pm[j];
+    d[j] = col_d[j];
+    names[j] = joint_name(s, (fb_pin_joint)j);
+  }
+  return fb_report_penalty_columns(out, mode_name(s->mode), "crank speed", n, s->rpm, J, names,
+                                   f, k, pm, d, figure_ok, fig_diag, diag);
 }
 
 /* the rule that turned the case's penalty source into the laws' stiffness */

@@ -14,8 +14,24 @@
  * is. */
 void fb_report_penalty_table(FILE *f, const fb_penalty_study *s, const fb_case *c);
 
+/* Writes out/penalty_<mode>.csv (mode "paper" or "physical"; columns
+ * speed_rpm, joint, force_n, stiffness_n_m, penalty_n_mm0_5,
+ * penalty_n_m0_5, approach_um: a row per speed and joint) and the figure
+ * out/penalty_<mode>.svg (fb_figures_penalty, its axis named speed) from
+ * columns of n speeds rpm [rpm] per joint j < njoints named joint[j]:
+ * force[j] [N], stiffness[j] [N/m], penalty_n_m0_5[j] [N m^0.5],
+ * approach_m[j] [m]. The folder is prepared already. Errors: those of the
+ * CSV. A figure that fails is no error: *figure_ok 0 and why in
+ * fig_diag. */
+fb_status fb_report_penalty_columns(const char *out, const char *mode, const char *speed, int n,
+                                    const double *rpm, int njoints, const char *const *joint,
+                                    const double *const *force, const double *const *stiffness,
+                                    const double *const *penalty_n_m0_5,
+                                    const double *const *approach_m, int *figure_ok,
+                                    fb_diag *fig_diag, fb_diag *diag);
+
 /* Writes out/penalty_<mode>.csv and the figure out/penalty_<mode>.svg (the
- * folder prepared already). Errors: those of the CSV. A figure that fails
+ * folder prepared already) of study s (fb_report_penalty_columns). Errors: those of the CSV. A figure that fails
  * is no error: *figure_ok 0 and why in fig_diag. */
 fb_status fb_report_penalty_files(const char *out, const fb_penalty_study *s, int *figure_ok,
                                   fb_diag *fig_diag, fb_diag *diag);

@@ -4,6 +4,7 @@
 
 #include <jansson.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "names.h"
@@ -11,6 +12,7 @@
 #include "report_summary.h"
 #include "report_table.h"
 #include "resolution.h"
+#include "tables_penalty.h"
 #include "tables_stackup.h"
 #include "units.h"
 
@@ -178,6 +180,44 @@ void fb_report_planar_kinematics(FILE *f, const fb_case *c, const fb_planar *m,
             CELL(k->alpha_max), k->where[2] * deg, CELL(k->alpha_min), k->where[3] * deg);
   }
   designer_text(f, m, d);
+}
+
+fb_status fb_report_planar_penalty_files(const char *out, const fb_planar *m,
+                                         const fb_planar_penalty_row *rows, const int *n,
+                                         const double *rpm, int nspeeds, int *figure_ok,
+                                         fb_diag *fig_diag, fb_diag *diag) {
+  const int nj = nspeeds > 0 ? n[0] : 0; /* every revolute joint, at every speed */
+  for (int s = 1; s < nspeeds; s++)
+    if (n[s] != nj)
+      return fb_diag_set(diag, FB_ERR_ARG, "penalty rows: %d joints at %g rpm, %d at %g rpm",
+                         n[s], rpm[s], nj, rpm[0]);
+  const size_t ns = (size_t)(nspeeds ? nspeeds : 1);
+  double *col = malloc(4 * (size_t)(nj ? nj : 1) * ns * sizeof *col);
+  const double **c = malloc(4 * (size_t)(nj ? nj : 1) * sizeof *c);
+  const char **name = malloc((size_t)(nj ? nj : 1) * sizeof *name);
+  fb_status st = col && c && name ? FB_OK : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int k = 0; k < nj && st == FB_OK; k++) {
+    double *f = col + (size_t)(4 * k) * ns, *kc = f + ns, *p = kc + ns, *d = p + ns;
+    for (int s = 0; s < nspeeds; s++) {
+      const fb_planar_penalty_row *r = &rows[(size_t)s * (size_t)m->njoints + (size_t)k];
+      f[s] = r->force;
+      kc[s] = r->stiffness;
+      p[s] = r->penalty;
+      d[s] = r->approach;
+    }
+    c[k] = f;
+    c[nj + k] = kc;
+    c[2 * nj + k] = p;
+    c[3 * nj + k] = d;
+    name[k] = m->joint[rows[k].joint].name;
+  }
+  if (st == FB_OK)
+    st = fb_report_penalty_columns(out, "physical", "drive speed", nspeeds, rpm, nj, name, c,
+                                   c + nj, c + 2 * nj, c + 3 * nj, figure_ok, fig_diag, diag);
+  free(col);
+  free(c);
+  free(name);
+  return st;
 }
 
 void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,

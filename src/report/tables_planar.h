@@ -44,6 +44,17 @@ void fb_report_planar_penalty(FILE *f, const fb_case *c, const fb_planar *m,
                               int nspeeds, const fb_planar_contact_estimate *est, int nest,
                               int json);
 
+/* fourbar penalty --out on a planar case: out/penalty_physical.csv and
+ * out/penalty_physical.svg (tables_penalty.h fb_report_penalty_columns, a
+ * row per speed and revolute joint by its name) from the rows of
+ * fb_report_planar_penalty (n[s] joints at every speed s). Errors: those
+ * of the CSV; FB_ERR_ARG when the speeds' joints differ; FB_ERR_NOMEM. A
+ * figure that fails is no error: *figure_ok 0 and why in fig_diag. */
+fb_status fb_report_planar_penalty_files(const char *out, const fb_planar *m,
+                                         const fb_planar_penalty_row *rows, const int *n,
+                                         const double *rpm, int nspeeds, int *figure_ok,
+                                         fb_diag *fig_diag, fb_diag *diag);
+
 /* stackup: {"case", "mechanism": "planar", "lengths": [{"body", "from",
  * "to", "nominal_m", "plus_minus_m", "source"}], "corners": N (0: not
  * run), "corners_unassembled" (corners that cannot assemble or turn,

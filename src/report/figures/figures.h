@@ -72,14 +72,18 @@ fb_status fb_figures_finish(fb_diag *diag);
 fb_status fb_figures_check_gnuplot(fb_diag *diag);
 
 /* Draws penalty.<ext>: force, contact stiffness, penalty and approach against
- * crank speed for both joints (the paper's Figures 2 to 4), from columns of
- * equal length n: speed [rpm], then per joint (2) force [N], stiffness [N/m],
- * penalty, approach [um]; joint: their names ("crank-coupler",
- * "coupler-follower"). Errors as fb_figures_run. */
-fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char *mode, int n,
-                             const double *rpm, const double *force[2], const double *stiffness[2],
-                             const double *penalty[2], const double *approach_um[2],
-                             const char *const joint[2], fb_diag *diag);
+ * the drive's speed (speed: its name on the axis, "crank speed" or "drive
+ * speed") for every joint (the paper's Figures 2 to 4), from columns of
+ * equal length n: speed rpm [rpm], then per joint j < njoints force[j] [N],
+ * stiffness[j] [N/m], penalty[j] (the mode's unit: N mm^0.5 in paper
+ * mode, N m^0.5 otherwise), approach_um[j] [um]; joint[j] their names
+ * ("crank-coupler", "coupler-follower", a planar case's joint names).
+ * Errors as fb_figures_run. */
+fb_status fb_figures_penalty(const char *path, fb_figure_format fmt, const char *mode,
+                             const char *speed, int n, const double *rpm, int njoints, const double *const *force,
+                             const double *const *stiffness, const double *const *penalty,
+                             const double *const *approach_um, const char *const *joint,
+                             fb_diag *diag);
 
 /* Draws the ERP map over log10 stiffness x log10 step (heat map) with the
  * h omega = 1 contour and the ERP = 0.1 and 0.99 contours, to path. erp and

@@ -175,7 +175,8 @@ static void test_commands_refuse(void **state) {
   assert_non_null(strstr(d.msg, "the description checks (5 moving bodies, 7 joints"));
   assert_non_null(strstr(d.msg, "masses derived as bars: crank, coupler, ternary, rod, output"));
   assert_non_null(strstr(d.msg, "this command does not run a planar case yet: fourbar run, "
-                                 "kinematics, stackup, penalty, bench, check and export (mjcf) do"));
+                                 "kinematics, stackup, penalty, bench, check, contact-params --case and "
+                                 "export (mjcf) do"));
 }
 
 /* the paper's four-bar as a planar case (the shipped template) gives the

@@ -450,6 +450,74 @@ if rc == 0 and rc2 == 0:
           "drive speed [rpm]" in svg,
           "penalty_physical.svg: every joint in each of the four panels, the drive's speed on x")
 
+# contact-params --case on a planar case: the planar four-bar template's pin
+# against the paper case's at its nominal lengths (two implementations of
+# the effective mass and the expected force, the same verification after):
+# every number of --json within CP_REL. Measured 3.8e-10: the rows print 10
+# digits, and the effective masses are 1.1e-11 apart (ESTIMATE_REL above).
+CP_REL = 1e-9
+nominal = os.path.join(tmp, "paper_nominal.ini")
+with open(nominal, "w") as f:
+    f.write("[case]\nbase = %s\nname = paper_nominal\n[tolerance]\nstackup = nominal\n"
+            % os.path.abspath(os.path.join(cases, "paper_crank_rocker.ini")))
+rc1, so1, se1 = run("contact-params", "--case", os.path.join(cases, "templates", "planar_fourbar.ini"),
+                    "--h-s", "1e-5", "--json")
+rc2, so2, se2 = run("contact-params", "--case", nominal, "--h-s", "1e-5", "--json")
+check(rc1 == 0 and rc2 == 0, "contact-params --case: the planar four-bar and the paper case at "
+      "nominal lengths (%s %s)" % (se1.strip()[-200:], se2.strip()[-200:]))
+if rc1 == 0 and rc2 == 0:
+    apart = []
+
+    def walk(x, y, path):
+        if isinstance(x, dict):
+            for k in x:
+                if k == "file":
+                    continue
+                if k not in y:
+                    apart.append(path + k + " missing")
+                else:
+                    walk(x[k], y[k], path + k + ".")
+        elif isinstance(x, list):
+            if len(x) != len(y):
+                apart.append(path + " length")
+            for i, (u, v) in enumerate(zip(x, y)):
+                walk(u, v, "%s%d." % (path, i))
+        elif isinstance(x, float) and isinstance(y, (int, float)):
+            if rel(x, y) > CP_REL:
+                apart.append("%s %.12g %.12g" % (path, x, y))
+        elif x != y:
+            apart.append("%s %r %r" % (path, x, y))
+    a, b = json.loads(so1), json.loads(so2)
+    walk(a, b, "")
+    check(not apart and a["case"]["joint"] == "crank-coupler",
+          "contact-params of the planar four-bar equals the built-in's within %g: %s"
+          % (CP_REL, apart[:4]))
+# the six-bar: its one clearance pin by default, the case's step, and the
+# impact law linearised at the expected force fourbar penalty gives (K
+# delta^n at the operating point's penetration, printed to 10 digits)
+rc, so, se = run("contact-params", "--case", six, "--law", "hertz", "--json")
+rc2, so2, _ = run("penalty", six, "--json")
+if rc == 0 and rc2 == 0:
+    j = json.loads(so)
+    exp = [c for c in json.loads(so2)["contact"] if c["model"].endswith("clearance-impact")]
+    ct = j["contact"]
+    load = ct["stiffness"] * ct["operating_point"]["penetration_m"] ** ct["exponent"]
+    check(j["case"]["joint"] == "rod-output" and j["h_s"] == 5e-6 and len(exp) == 1 and
+          rel(load, exp[0]["force_expected_n"]) <= 1e-8 and
+          rel(j["mass_kg"]["min"], exp[0]["effective_mass_estimate_kg"]["min"]) <= 1e-9,
+          "the six-bar's contact-params: rod-output at h 5e-6 s, linearised at penalty's expected "
+          "force (%.10g N against %.10g N)" % (load, exp and exp[0]["force_expected_n"] or 0))
+else:
+    check(False, "contact-params --case and penalty --json on the six-bar (%s)" % se.strip()[-200:])
+rc, _, se = run("contact-params", "--case", six, "--joint", "crank-coupler")
+check(rc == 2 and "must be a clearance joint" in se and "rod-output" in se,
+      "contact-params --joint of a joint without clearance is refused naming the case's (%s)"
+      % se.strip())
+rc, _, se = run("contact-params", "--case", os.path.join(cases, "..", "tests", "cases",
+                                                          "quick_return.ini"))
+check(rc == 2 and "no clearance joint" in se,
+      "contact-params --case of a planar case without clearance is refused (%s)" % se.strip())
+
 # a planar case without [run] models runs analytic alone (the template)
 rc, so, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
                  "run.revolutions=1", "--set", "run.peaks=all", "--no-figures", "--no-report", "--series",

@@ -186,7 +186,7 @@ int fb_cli_load_case(const char *cmd, int argc, char **argv, int optind_, const 
 /* the commands that run a planar case ([linkage] type = planar,
  * docs/planar.md); the others refuse one after checking it */
 static const char *const planar_commands[] = {"run", "kinematics", "stackup", "penalty",
-                                               "bench", "export"};
+                                               "bench", "export", "contact-params"};
 
 static int runs_planar(const char *cmd) {
   for (size_t i = 0; i < sizeof planar_commands / sizeof planar_commands[0]; i++)

@@ -9,6 +9,7 @@
 
 #include "case.h"
 #include "casefile.h"
+#include "planar_case.h"
 #include "cli.h"
 #include "contact_params.h"
 #include "model_table.h"
@@ -69,8 +70,8 @@ static const char params_help[] =
     "                 its damper is not carried), the joint's effective-mass range\n"
     "                 over a revolution and every direction, and the run's step\n"
     "                 (unless --h-s)\n"
-    "  --joint        the case's clearance joint (crank-coupler, ...); needed when\n"
-    "                 the case has several\n"
+    "  --joint        the case's clearance joint by name (a planar case's: a\n"
+    "                 revolute one); needed when the case has several\n"
     "  --verify       verify (the default; kept for scripts)\n"
     "  --no-verify    skip the single impacts: no largest step, no at_step, rows\n"
     "                 held to the h omega_c rule only and marked unverified\n"
@@ -89,6 +90,49 @@ static int parse_mass(const char *s, fb_cp_request *q) {
 
 /* ---- flags ------------------------------------------------------------------ */
 
+/* the command's name in its messages */
+static const char *const P = "contact-params";
+
+/* --case on a planar case: the clearance joint (joint_arg, or the case's
+ * one) of its description into q; *jname its name (static). Returns 0 or
+ * the exit status, having said why. */
+static int request_planar(fb_cp_request *q, const fb_case *c, const char *path,
+                          const char *joint_arg, const char **jname) {
+  static char name[FB_NAME_SIZE];
+  fb_planar *m;
+  fb_diag d;
+  if (fb_planar_of_case(&m, c, NULL, &d) != FB_OK) return fb_cli_fail(P, 2, "%s", d.msg);
+  const unsigned mask = (unsigned)c->clearance.mask;
+  char names[512] = "";
+  int joint = -1, n = 0;
+  for (int j = 0; j < m->njoints; j++) {
+    if (joint_arg && strcmp(joint_arg, m->joint[j].name) == 0) joint = j;
+    if (!(mask & (1u << j))) continue;
+    if (!joint_arg) joint = j;
+    n++;
+    if (names[0]) strncat(names, ", ", sizeof names - strlen(names) - 1);
+    strncat(names, m->joint[j].name, sizeof names - strlen(names) - 1);
+  }
+  int rc = 0;
+  if (n == 0)
+    rc = fb_cli_fail(P, 2, "--case %s has no clearance joint ([clearance] joints): no contact to "
+                     "take", path);
+  else if (!joint_arg && n > 1)
+    rc = fb_cli_fail(P, 2, "--case %s has %d clearance joints (%s): name one with --joint", path, n,
+                     names);
+  else if (joint < 0 || !(mask & (1u << joint)))
+    rc = fb_cli_fail(P, 2, "--joint '%s': must be a clearance joint of the case ([clearance] "
+                     "joints): %s", joint_arg, names);
+  if (!rc && fb_cp_request_from_planar(q, c, m, joint, &d) != FB_OK)
+    rc = fb_cli_fail(P, 2, "--case %s: %s", path, d.msg);
+  if (!rc) {
+    snprintf(name, sizeof name, "%s", m->joint[joint].name);
+    *jname = name;
+  }
+  fb_planar_free(m);
+  return rc;
+}
+
 int fb_cmd_contact_params(int argc, char **argv) {
   static const struct option opts[] = {
       {"law", required_argument, 0, 'L'},       {"stiffness", required_argument, 0, 'k'},
@@ -103,7 +147,6 @@ int fb_cmd_contact_params(int argc, char **argv) {
   fb_cp_request_default(&q);
   int ch, json = 0, m_given = 0, k_given = 0, h_given = 0;
   const char *case_arg = NULL, *joint_arg = NULL;
-  const char *P = "contact-params";
   optind = 1;
   while ((ch = fb_cli_getopt(argc, argv, "h", opts)) != -1) {
     switch (ch) {
@@ -159,7 +202,11 @@ int fb_cmd_contact_params(int argc, char **argv) {
     fb_case cs;
     fb_diag cd;
     if (fb_cli_case_file(P, case_path, NULL, 0, &cs) != 0) return 2;
-    if (joint_arg) {
+    if (cs.planar.on) { /* a planar case: its description's clearance pins */
+      q.case_path = case_path;
+      const int rc = request_planar(&q, &cs, case_path, joint_arg, &jname);
+      if (rc) return rc;
+    } else if (joint_arg) {
       const fb_mech_desc *mech = fb_case_mech(&cs);
       char names[160] = "";
       for (int j = 0; j < mech->njoints; j++) {
@@ -179,10 +226,12 @@ int fb_cmd_contact_params(int argc, char **argv) {
         return fb_cli_fail(P, 2, "--case %s has %d clearance joints: name one with --joint",
                            case_path, n);
     }
-    if (joint >= 0) jname = fb_case_joint_name(&cs, joint);
-    q.case_path = case_path; /* messages name the case's keys, not flags never given */
-    if (fb_cp_request_from_case(&q, &cs, joint, &cd) != FB_OK)
-      return fb_cli_fail(P, 2, "--case %s: %s", case_path, cd.msg);
+    if (!cs.planar.on) {
+      if (joint >= 0) jname = fb_case_joint_name(&cs, joint);
+      q.case_path = case_path; /* messages name the case's keys, not flags never given */
+      if (fb_cp_request_from_case(&q, &cs, joint, &cd) != FB_OK)
+        return fb_cli_fail(P, 2, "--case %s: %s", case_path, cd.msg);
+    }
   }
   /* no step given: also the answers at MuJoCo's and Gazebo's default steps */
   q.engine_steps = !h_given;

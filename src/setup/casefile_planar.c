@@ -760,7 +760,7 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
   return fb_diag_set(diag, FB_ERR_ARG,
                      "%s: [linkage] type = planar: the description checks (%s), but this command "
                      "does not run a planar case yet: fourbar run, kinematics, stackup, penalty, "
-                     "bench, check and export (mjcf) do (docs/planar.md)",
+                     "bench, check, contact-params --case and export (mjcf) do (docs/planar.md)",
                      path ? path : "case", line);
 }
 

@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "engine.h"
+#include "planar_resolution.h"
+#include "planar_run.h"
 #include "resolution.h"
 #include "units.h"
 
@@ -633,6 +635,39 @@ fb_status fb_cp_request_from_case(fb_cp_request *q, const fb_case *c, int j, fb_
   if (isnan(q->h)) q->h = cc.h;
   if (!q->case_path) q->case_path = "(the case)"; /* the caller names the file */
   return FB_OK;
+}
+
+fb_status fb_cp_request_from_planar(fb_cp_request *q, const fb_case *c, const fb_planar *m, int j,
+                                    fb_diag *diag) {
+  fb_planar_contact_estimate *est = malloc(2 * (size_t)m->njoints * sizeof *est);
+  if (!est) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  int n = 0;
+  fb_status st = fb_planar_contact_estimates(est, &n, c, m, diag);
+  const int impact = q->law == FB_LAW_HERTZ;
+  const fb_planar_contact_estimate *e = NULL;
+  for (int k = 0; k < n && st == FB_OK; k++)
+    if (est[k].joint == j && est[k].impact == impact) e = &est[k];
+  if (st == FB_OK && !e)
+    st = fb_diag_set(diag, FB_ERR_ARG, "joint '%s' is not a revolute clearance joint of the case "
+                     "([clearance] joints): a pin in its hole is what the contact is taken from",
+                     m->joint[j].name);
+  if (st == FB_OK) {
+    if (impact) {
+      q->stiffness = e->law.stiffness;
+      q->exponent = e->law.exponent;
+      q->load = e->force_expected; /* the operating point: the joint's expected force */
+    } else {
+      q->stiffness = e->law.stiffness;
+      q->restitution = e->law.restitution;
+    }
+    q->mass_min = e->m_eff_min;
+    q->mass_max = e->m_eff_max;
+    q->h_from_case = isnan(q->h);
+    if (isnan(q->h)) q->h = fb_planar_run_step(c); /* the step a run of the case takes */
+    if (!q->case_path) q->case_path = "(the case)";
+  }
+  free(est);
+  return st;
 }
 
 fb_status fb_cp_run(fb_cp_result *o, const fb_cp_request *q, fb_diag *diag) {

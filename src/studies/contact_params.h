@@ -42,6 +42,7 @@
 #define FB_CONTACT_PARAMS_H
 
 #include "case.h"
+#include "planar.h"
 #include "contact.h"
 #include "engine_params.h"
 #include "impact.h"
@@ -255,6 +256,18 @@ typedef struct {
  * case's step when q->h is NAN. The other fields of q stay as given.
  * Errors: those of fb_case_contact_of. */
 fb_status fb_cp_request_from_case(fb_cp_request *q, const fb_case *c, int j, fb_diag *diag);
+
+/* As fb_cp_request_from_case for a planar case c (description m, a
+ * driven one) at its revolute clearance joint j (index in the
+ * description): the law a run's clearance-restitution or clearance-impact
+ * models take there, the pin's effective-mass range over a revolution and
+ * every direction and its expected force (planar_resolution.h
+ * fb_planar_contact_estimates, the estimate fourbar penalty prints); the
+ * case's step (h_s = auto: the one its run takes) when q->h is NAN.
+ * Errors: FB_ERR_ARG when j is not a revolute clearance joint of the case;
+ * those of fb_planar_contact_estimates; FB_ERR_NOMEM. */
+fb_status fb_cp_request_from_planar(fb_cp_request *q, const fb_case *c, const fb_planar *m, int j,
+                                    fb_diag *diag);
 
 /* The step h of case c as this verification sees it, for `fourbar run`'s
  * step line (run.h, fb_step_check): for every clearance joint, the

@@ -218,6 +218,54 @@ int fb_check_planar_metrics(const fb_planar_run *r, fb_metric *out, int max) {
   return n;
 }
 
+/* every metric name fb_check_planar_metrics can give for description m
+ * and model (its bodies' peaks, the contact's two), into names (at most
+ * max); returns how many */
+static int planar_metric_names(char names[][128], int max, const fb_planar *m, const char *model) {
+  static const char *const peak_keys[] = {
+#define FB_NAME_PEAK(field, key) key,
+      FB_BODY_PEAK_KEYS(FB_NAME_PEAK)
+#undef FB_NAME_PEAK
+  };
+  int n = 0;
+  for (int b = 1; b < m->nbodies; b++)
+    for (size_t k = 0; k < sizeof peak_keys / sizeof peak_keys[0] && n < max; k++)
+      snprintf(names[n++], 128, "%s.%s.%s", model, m->body[b].name, peak_keys[k]);
+  if (n < max) snprintf(names[n++], 128, "%s.spikes.force_max_n", model);
+  if (n < max) snprintf(names[n++], 128, "%s.spikes.penetration_max_m", model);
+  return n;
+}
+
+int fb_check_planar_metric_name_ok(const char *name, const fb_planar *m, char *known,
+                                   size_t size) {
+  const size_t l = strlen(name);
+  const int prefix = l && name[l - 1] == '*';
+  const size_t cmp = prefix ? l - 1 : l;
+  static char names[METRIC_NAMES_MAX][128];
+  int n = 0;
+  for (int k = 0; k < fb_model_count; k++)
+    if (fb_planar_run_takes(fb_models[k].name))
+      n += planar_metric_names(names + n, METRIC_NAMES_MAX - n, m, fb_models[k].name);
+  for (int k = 0; k < n; k++)
+    if (prefix ? strncmp(names[k], name, cmp) == 0 : strcmp(names[k], name) == 0) return 1;
+  if (known) {
+    static const char *list[METRIC_NAMES_MAX];
+    for (int k = 0; k < n; k++) list[k] = names[k];
+    const char *near = prefix ? NULL : fb_suggest(name, list, n);
+    size_t w = 0;
+    if (near) w = (size_t)snprintf(known, size, "did you mean %s? ", near);
+    w += (size_t)snprintf(known + w, w < size ? size - w : 0, "a planar case's metric is "
+                          "<model>.<body>.<key> (bodies");
+    for (int b = 1; b < m->nbodies && w < size; b++)
+      w += (size_t)snprintf(known + w, size - w, "%s %s", b > 1 ? "," : "", m->body[b].name);
+    if (w < size)
+      snprintf(known + w, size - w, "; keys omega_max_rad_s, omega_min_rad_s, alpha_max_rad_s2, "
+               "alpha_min_rad_s2) or <model>.spikes.force_max_n, penetration_max_m; <model> "
+               "one that runs a planar case (fourbar models lists them)");
+  }
+  return 0;
+}
+
 fb_status fb_check_case_metrics(fb_metric *out, int *n, const fb_case *c,
                                 fb_progress_fn progress, void *user, double *h_used,
                                 fb_diag *diag) {

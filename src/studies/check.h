@@ -99,6 +99,15 @@ fb_status fb_check_case_metrics(fb_metric *out, int *n, const fb_case *c,
  * name ("did you mean ...? ") and mech's groups and keys. */
 int fb_check_metric_name_ok(const char *name, const fb_mech_desc *mech, char *known, size_t size);
 
+/* As fb_check_metric_name_ok for a planar case of description m: 1 when
+ * name is a metric fb_check_planar_metrics can give for a model that runs
+ * a planar case (<model>.<body>.<key> by m's moving bodies' names,
+ * <model>.spikes.force_max_n or penetration_max_m), or, ending in '*', a
+ * prefix of one; else 0 with, in known (size bytes; may be NULL), the
+ * nearest name and the groups and keys. */
+int fb_check_planar_metric_name_ok(const char *name, const fb_planar *m, char *known,
+                                   size_t size);
+
 /* One baseline metric. */
 typedef struct {
   char name[128];

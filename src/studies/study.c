@@ -20,6 +20,8 @@ extern char **environ;
 #include "fileio.h"
 #include "ini_lines.h"
 #include "outcome_text.h"
+#include "planar_case.h"
+#include "planar_run.h"
 #include "units.h"
 
 /* ---- reading ---------------------------------------------------------------- */
@@ -257,10 +259,15 @@ static fb_status point_overrides(const fb_study *s, size_t i, char sets[][256], 
     const char *fixed[FB_STUDY_MAX_SETS];
     for (int k = 0; k < s->nsets; k++) fixed[k] = s->sets[k];
     fb_diag inner;
-    fb_status st = fb_casefile_load(&base, s->case_path, fixed, s->nsets, &inner);
+    fb_status st = fb_casefile_load_planar(&base, s->case_path, fixed, s->nsets, &inner);
     if (st != FB_OK)
       return fb_diag_set(diag, st, "%s: [study] case (with its set) does not load: %s", s->path,
                          inner.msg);
+    if (base.planar.on) /* its dimensions are its description's, not link lengths */
+      return fb_diag_set(diag, FB_ERR_ARG, "%s: [axis.%s] montecarlo samples the link lengths of "
+                         "the four-bar and the slider-crank; %s is a planar case, whose "
+                         "dimensions' Monte Carlo is fourbar stackup --montecarlo N", s->path,
+                         ax->name, s->case_path);
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
     if (!r) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
     gsl_rng_set(r, ax->seed * 1000003ul + (unsigned long)j);
@@ -402,6 +409,7 @@ fb_status fb_study_load_with_cases(fb_study *s, const char *path, const char *ca
   /* the corners of the grid must load: catches a wrong key before any run */
   size_t probe[2] = {0, s->points - 1};
   const fb_mech_desc *mech = NULL;
+  fb_planar *planar = NULL; /* a planar case's description: its metrics' names */
   for (int k = 0; k < 2; k++) {
     char sets[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8][256], axt[FB_STUDY_MAX_AXES][64];
     int n;
@@ -411,21 +419,31 @@ fb_status fb_study_load_with_cases(fb_study *s, const char *path, const char *ca
     for (int q = 0; q < n; q++) ov[q] = sets[q];
     fb_case cs;
     fb_diag inner;
-    st = fb_casefile_load(&cs, s->case_path, ov, n, &inner);
-    if (st != FB_OK)
+    st = fb_casefile_load_planar(&cs, s->case_path, ov, n, &inner);
+    if (st != FB_OK) {
+      fb_planar_free(planar);
       return fb_diag_set(diag, st, "%s: point %zu of the grid does not load: %s", path, probe[k], inner.msg);
+    }
     if (!mech) mech = fb_case_mech(&cs);
+    if (k == 0 && cs.planar.on && (st = fb_planar_of_case(&planar, &cs, NULL, &inner)) != FB_OK)
+      return fb_diag_set(diag, st, "%s: point 0's description: %s", path, inner.msg);
   }
   /* metric names and patterns: each must name a metric a run of the case's
    * mechanism can give (a slider-crank's slider.*, never follower.*) */
   for (int k = 0; k < s->nmetrics + s->nplot; k++) {
     const char *m = k < s->nmetrics ? s->metrics[k] : s->plot[k - s->nmetrics];
     char known[FB_DIAG_SIZE];
-    if (!fb_check_metric_name_ok(m, mech, known, sizeof known))
+    if (planar ? !fb_check_planar_metric_name_ok(m, planar, known, sizeof known)
+               : !fb_check_metric_name_ok(m, mech, known, sizeof known)) {
+      fb_planar_free(planar);
       return fb_diag_set(diag, FB_ERR_PARSE, "%s: [study] %s: '%s' names no metric of a %s ([linkage] "
                          "type = %s); %s (a trailing * matches a prefix)", path,
-                         k < s->nmetrics ? "metrics" : "plot", m, mech->type, mech->type, known);
+                         k < s->nmetrics ? "metrics" : "plot", m,
+                         planar ? "planar case" : mech->type, planar ? "planar" : mech->type,
+                         known);
+    }
   }
+  fb_planar_free(planar);
   return FB_OK;
 }
 
@@ -583,6 +601,31 @@ static int wanted(const fb_study *s, const char *name) {
   return 0;
 }
 
+/* a planar point's run (fourbar run's planar pipeline) into the row's
+ * metrics (fb_check_planar_metrics, as [study] metrics selects them) and
+ * status (size bytes: "ok", "run: ..." or every model that stopped) */
+static void planar_row(json_t *metrics, const fb_study *s, const fb_case *c, char *status,
+                       size_t size) {
+  static fb_planar_run pr;
+  fb_diag inner;
+  if (fb_planar_run_case(&pr, c, &inner) != FB_OK) {
+    snprintf(status, size, "run: %s", inner.msg);
+    return;
+  }
+  static fb_metric m[FB_CHECK_MAX_METRICS];
+  const int nm = fb_check_planar_metrics(&pr, m, FB_CHECK_MAX_METRICS);
+  for (int k = 0; k < nm; k++)
+    if (wanted(s, m[k].name)) /* not measured: null (docs/outputs.md), never a lost key */
+      json_object_set_new(metrics, m[k].name,
+                          isfinite(m[k].value) ? json_real(m[k].value) : json_null());
+  size_t l = 0;
+  for (int k = 0; k < pr.n; k++)
+    if (pr.model[k].ref.failed && l + 1 < size)
+      l += (size_t)snprintf(status + l, size - l, "%s%s: %s", l ? "; " : "", pr.model[k].name,
+                            pr.model[k].ref.stop);
+  fb_planar_run_free(&pr);
+}
+
 fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag) {
   char sets[FB_STUDY_MAX_SETS + FB_STUDY_MAX_AXES + 8][256], axt[FB_STUDY_MAX_AXES][64];
   int n;
@@ -609,8 +652,10 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
     for (int q = 0; q < n; q++) ov[q] = sets[q];
     fb_case c;
     static fb_run r;
-    if (fb_casefile_load(&c, s->case_path, ov, n, &inner) != FB_OK) {
+    if (fb_casefile_load_planar(&c, s->case_path, ov, n, &inner) != FB_OK) {
       snprintf(status, sizeof status, "case: %s", inner.msg);
+    } else if (c.planar.on) {
+      planar_row(metrics, s, &c, status, sizeof status);
     } else if (fb_run_case(&r, &c, NULL, NULL, &inner) != FB_OK) {
       snprintf(status, sizeof status, "run: %s", inner.msg);
     } else {
@@ -830,3 +875,4 @@ int fb_study_fail(const char *cmd, int status, const char *fmt, ...) {
   va_end(ap);
   return status;
 }
+

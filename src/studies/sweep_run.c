@@ -42,7 +42,7 @@ void fb_sweep_note_variants(const fb_study *s) {
   /* a point runs its case alone: said when the case has variants */
   static fb_case probe;
   fb_diag pd;
-  if (fb_casefile_load(&probe, s->case_path, NULL, 0, &pd) == FB_OK && probe.variant_count)
+  if (fb_casefile_load_planar(&probe, s->case_path, NULL, 0, &pd) == FB_OK && probe.variant_count)
     fprintf(stderr, "fourbar sweep: note: %s has %d [variant.*] section%s; a sweep runs each "
             "point's case alone, without them (fourbar run runs them)\n", s->case_path,
             probe.variant_count, probe.variant_count > 1 ? "s" : "");

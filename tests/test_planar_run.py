@@ -518,12 +518,30 @@ rc, _, se = run("contact-params", "--case", os.path.join(cases, "..", "tests", "
 check(rc == 2 and "no clearance joint" in se,
       "contact-params --case of a planar case without clearance is refused (%s)" % se.strip())
 
-# a planar case without [run] models runs analytic alone (the template)
-rc, so, se = run("run", os.path.join(cases, "templates", "planar_fourbar.ini"), "--set",
-                 "run.revolutions=1", "--set", "run.peaks=all", "--no-figures", "--no-report", "--series",
-                 "none", "--out", os.path.join(tmp, "tpl"))
-check(rc == 0 and [x["name"] for x in summary_of(os.path.join(tmp, "tpl"))["models"]] == ["analytic"],
-      "a planar case without [run] models runs analytic alone (%s)" % se.strip()[-200:])
+# a planar case without [run] models runs the four-bar's default rule on its
+# description: analytic and ode-ideal-nominal (and their stack-up models
+# with [tolerance] class), and with a clearance joint each clearance model
+# with its reference, so that no engine model is left without a yardstick
+DEFAULT_IDEAL = ["analytic", "ode-ideal-nominal"]
+DEFAULT_CLEARANCE = ["ode-clearance-impact", "ode-clearance-restitution", "reference",
+                     "reference-restitution"]
+qr_case = os.path.join(cases, "..", "tests", "cases", "quick_return.ini")
+for what, case, sets, want in (
+        ("the template (a clearance pin)", os.path.join(cases, "templates", "planar_fourbar.ini"),
+         (), DEFAULT_IDEAL + DEFAULT_CLEARANCE),
+        ("the quick-return (no clearance)", qr_case, (), DEFAULT_IDEAL),
+        ("the quick-return with [tolerance] class", qr_case, ("--set", "tolerance.class=m"),
+         ["analytic", "analytic-stackup", "ode-ideal-nominal", "ode-ideal-stackup"])):
+    out_d = os.path.join(tmp, "default_%d" % len(want) + ("c" if sets else ""))
+    rc, so, se = run("run", case, "--set", "run.revolutions=1", "--set", "run.peaks=all",
+                     *sets, "--no-figures", "--no-report", "--series", "none", "--out", out_d)
+    models = summary_of(out_d)["models"] if rc == 0 else []
+    check(rc == 0 and [x["name"] for x in models] == want,
+          "%s without [run] models runs %s (got %s; %s)" % (what, want, [x["name"] for x in models],
+                                                           se.strip()[-200:]))
+    check(all(x.get("verdict") not in (None, "unchecked") for x in models if x["kind"] == "engine"),
+          "%s: every default engine model has its yardstick (%s)"
+          % (what, [(x["name"], x.get("verdict")) for x in models if x["kind"] == "engine"]))
 
 # 8. the six-bar's clearance joint against its reference: the restitution
 # law at rod-output through the planar core's clearance dynamics, at the

@@ -518,8 +518,8 @@ function flatten(v, p, outList) {
       const caseFile = path.join(work, 'names_' + tag + '.ini');
       fs.writeFileSync(caseFile, text);
       const nd = path.join(work, 'names_' + tag);
-      execFileSync(fourbar, ['run', caseFile, '--out', nd, '--no-figures', '--set', 'run.revolutions=2'],
-        { stdio: ['ignore', 'ignore', 'inherit'] });
+      execFileSync(fourbar, ['run', caseFile, '--out', nd, '--no-figures', '--set', 'run.revolutions=2',
+        '--set', 'run.models=analytic'], { stdio: ['ignore', 'ignore', 'inherit'] });
       const ns = JSON.parse(fs.readFileSync(path.join(nd, 'summary.json'), 'utf8'));
       const pageN = await browser.newPage({ viewport: { width: FB_VIEW_W, height: FB_VIEW_H } });
       const errorsN = [];

@@ -60,7 +60,10 @@
  * Every other model (an engine's without a binding, a clearance model
  * its engine's binding cannot build) is refused by name, with the reason
  * (fb_planar_run_refusal). A planar case that lists no [run] models runs
- * analytic. */
+ * the four-bar's default rule on its description (casefile_planar.c:
+ * analytic and ode-ideal-nominal, or an undriven case's reference; their
+ * stack-up models with [tolerance] class; each clearance model with its
+ * reference when it has clearance joints). */
 #ifndef FB_PLANAR_RUN_H
 #define FB_PLANAR_RUN_H
 

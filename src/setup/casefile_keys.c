@@ -388,7 +388,9 @@ static const key_spec keys[] = {
      "analytic, analytic-stackup, ode-ideal-nominal, ode-ideal-stackup", "known model names",
      "models to run, comma-separated; a name with * is a pattern that adds every model "
      "of this build it matches (e.g. *-clearance-impact: every engine's); not given: the default list, and for a case with "
-     "clearance joints also " FB_CLEARANCE_DEFAULT_MODELS},
+     "clearance joints also " FB_CLEARANCE_DEFAULT_MODELS "; a planar case: analytic and "
+     "ode-ideal-nominal (undriven: reference), analytic-stackup and ode-ideal-stackup with "
+     "[tolerance] class, and the same clearance models"},
 };
 
 #define NKEYS ((int)(sizeof keys / sizeof keys[0]))

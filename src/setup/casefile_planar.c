@@ -723,6 +723,40 @@ static fb_status step_auto(fb_case *c, const fb_planar *m, const char *path, fb_
   return FB_OK;
 }
 
+/* The models a planar case runs when it lists no [run] models: the
+ * four-bar's rule ([run] models' row, casefile_keys.c) on the description.
+ * A driven case: analytic and ode-ideal-nominal, their stack-up models
+ * with [tolerance] class (refused without one); an undriven one, which has
+ * no ideal motion to follow: its reference (the ideal mechanism's forward
+ * dynamics without clearance joints, ode-ideal-nominal's yardstick then).
+ * With clearance joints also each clearance model with its reference
+ * (FB_CLEARANCE_DEFAULT_MODELS: ode-clearance-impact,
+ * ode-clearance-restitution, reference, reference-restitution). */
+static void default_models(fb_case *c) {
+  static const char *const clearance_models[] = {"ode-clearance-impact",
+                                                 "ode-clearance-restitution", "reference",
+                                                 "reference-restitution"};
+  const int clearance = c->clearance.mask != 0;
+  const char *list[8];
+  int n = 0;
+  if (c->planar.undriven) {
+    list[n++] = "reference";
+    if (!clearance) list[n++] = "ode-ideal-nominal";
+  } else {
+    list[n++] = "analytic";
+    if (fb_casefile_given(c, "tolerance", "class")) list[n++] = "analytic-stackup";
+    list[n++] = "ode-ideal-nominal";
+    if (fb_casefile_given(c, "tolerance", "class")) list[n++] = "ode-ideal-stackup";
+  }
+  for (size_t k = 0; clearance && k < sizeof clearance_models / sizeof clearance_models[0]; k++) {
+    int dup = 0;
+    for (int q = 0; q < n; q++) dup |= strcmp(list[q], clearance_models[k]) == 0;
+    if (!dup) list[n++] = clearance_models[k];
+  }
+  c->model_count = n;
+  for (int k = 0; k < n; k++) snprintf(c->models[k], sizeof c->models[k], "%s", list[k]);
+}
+
 fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const char *path, int run,
                                     fb_diag *diag) {
   fb_status st = names_one_word(&c->planar, e, n, diag);
@@ -750,10 +784,7 @@ fb_status fb_casefile_planar_finish(fb_case *c, const entry *e, int n, const cha
   if (run) st = step_auto(c, m, path, diag);
   fb_planar_free(m);
   if (st != FB_OK) return st;
-  if (!fb_casefile_given(c, "run", "models")) { /* the models that run a planar case */
-    c->model_count = 1; /* an undriven one has no ideal motion to follow: its reference */
-    snprintf(c->models[0], sizeof c->models[0], "%s", c->planar.undriven ? "reference" : "analytic");
-  }
+  if (!fb_casefile_given(c, "run", "models")) default_models(c);
   st = clearance_at_drive(c, e, n, path, diag);
   if (st != FB_OK) return st;
   if (run) return FB_OK;

@@ -47,7 +47,8 @@ fb_status fb_casefile_planar_take(fb_case *c, const entry *e, fb_diag *diag);
  * position (a prismatic joint its axis), each [body.NAME] a joint, the
  * drive and the clearance joints name joints; then the description is
  * compiled (masses derived as bars) and checked by the planar core.
- * A case without [run] models runs analytic (run/planar_run.h).
+ * A case without [run] models runs the four-bar's default rule on its
+ * description (casefile_planar.c default_models).
  * run: 1 for a caller that computes on a planar case
  * (fb_casefile_load_planar: fourbar run), 0 for the commands that do not
  * run one yet, which then refuse it after the checks pass.

@@ -81,8 +81,18 @@ fb_status fb_export_planar_mjcf(char *buf, size_t size, const fb_case *c, int id
   put_header(&t, k, model);
   fb_status st = FB_OK;
   if (t.overflow) st = fb_diag_set(diag, FB_ERR_RANGE, "MJCF text longer than %zu bytes", size);
-  if (st == FB_OK) st = fb_planar_kit_model_text(buf + t.len, size - t.len, k, model,
-                                                 fb_planar_run_step(k), diag);
+  /* the file's step: the case's; an ideal model has no contact to resolve,
+   * so where the case's step is chosen from its contacts (h_s = auto) it
+   * takes the step of a case without clearance joints (a revolution /
+   * FB_H_AUTO_STEPS_PER_REV), for which its loops' softness is written */
+  double h = fb_planar_run_step(k);
+  if (!clear && k->solver.h_mode == FB_STEP_AUTO) {
+    const int mask = k->clearance.mask;
+    k->clearance.mask = 0;
+    h = fb_planar_run_step(k);
+    k->clearance.mask = mask;
+  }
+  if (st == FB_OK) st = fb_planar_kit_model_text(buf + t.len, size - t.len, k, model, h, diag);
   if (st == FB_OK) diag->msg[0] = '\0';
   if (st == FB_ERR_ARG && clear) { /* a joint the native bore cannot be */
     const size_t len = strlen(diag->msg);

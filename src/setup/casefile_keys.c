@@ -281,8 +281,8 @@ static const key_spec keys[] = {
      "contact (rate: omega_c or the damper's c / m_eff), at most one revolution / 6000; "
      "adaptive: from h_min_s to h_max_s following the contact (docs/step-size.md; the ODE "
      "and MuJoCo models); not given: "
-     "auto for a four-bar or slider-crank with clearance joints, else the default (a planar "
-     "case: the default; auto there is chosen from its contacts as well)"},
+     "auto for a case with clearance joints (a driven one, for a planar case), else the "
+     "default"},
     {"solver", "h_min_s", K_DOUBLE, OFF(solver.h_min), 1.0, 0, 1e-3, 1, 0, "s", "1e-6",
      "the shortest adaptive step must be positive, at most 1e-3 s",
      "h_s = adaptive: the shortest step, and the output grid's step"},

@@ -709,12 +709,14 @@ static fb_status stackup_whole(fb_case *c, const fb_planar *m, const entry *e, i
                      at ? at->origin : "case", s, (int)strlen(s), dims);
 }
 
-/* [solver] h_s = auto on a driven case with clearance joints: the step
- * that resolves its clearance contacts (planar_resolution.h), into
- * c->solver.h (h_mode kept: the case asked for auto). A planar case
- * without h_s keeps the key's default step. */
+/* [solver] h_s = auto on a driven case with clearance joints, or h_s not
+ * given there (the four-bar's rule, scene.c): the step that resolves its
+ * clearance contacts (planar_resolution.h), into c->solver.h, h_mode auto.
+ * Without clearance joints a case without h_s keeps the key's default. */
 static fb_status step_auto(fb_case *c, const fb_planar *m, const char *path, fb_diag *diag) {
-  if (c->solver.h_mode != FB_STEP_AUTO || c->planar.undriven || !c->clearance.mask) return FB_OK;
+  if (c->planar.undriven || !c->clearance.mask) return FB_OK;
+  if (c->solver.h_mode == FB_STEP_DEFAULT) c->solver.h_mode = FB_STEP_AUTO;
+  if (c->solver.h_mode != FB_STEP_AUTO) return FB_OK;
   fb_diag inner;
   const fb_status st = fb_planar_step_auto(&c->solver.h, c, m, &inner);
   if (st != FB_OK)

@@ -22,14 +22,14 @@
 #include "report_planar.h"
 
 /* what fb_cmd_run_planar refuses before any work, with where the key was
- * given (the case file's line or the --set); 0 or the exit status */
-static int refuse(const fb_case *c, const char *case_path, const char *const *sets, int nsets) {
+ * given (the case file's line or the --set), naming variant v when the
+ * case is one (else NULL); 0 or the exit status */
+static int refuse(const fb_case *c, const char *case_path, const char *const *sets, int nsets,
+                  const fb_case_variant *v) {
+  char of[FB_DIAG_SIZE] = "";
+  if (v) snprintf(of, sizeof of, "variant %s (%s): ", v->name, v->origin);
   fb_diag d;
   char msg[FB_DIAG_SIZE] = "", where[FB_DIAG_SIZE];
-  if (c->variant_count > 0)
-    return fb_cli_fail("run", 2, "%s: [variant.%s] (at %s): a planar case's variants do not run "
-                       "yet; run the case with --set instead", case_path, c->variant[0].name,
-                       c->variant[0].origin);
   if (fb_casefile_given(c, "run", "ensemble") && c->ensemble > 1)
     snprintf(msg, sizeof msg, "[run] ensemble = %d: a planar case's run has no ensemble yet (a "
              "clearance model's verdict rests on its one run, basis pointwise); leave [run] "
@@ -57,13 +57,13 @@ static int refuse(const fb_case *c, const char *case_path, const char *const *se
              "mechanism); give builder = auto or kit");
   if (msg[0]) {
     const size_t l = fb_casefile_given_where(where, sizeof where, case_path, sets, nsets, msg);
-    return fb_cli_fail("run", 2, "%s: %s%s%s%s", case_path, msg, l ? " (given: " : "", where,
-                       l ? ")" : "");
+    return fb_cli_fail("run", 2, "%s: %s%s%s%s%s", case_path, of, msg, l ? " (given: " : "",
+                       where, l ? ")" : "");
   }
   if (fb_planar_run_check(c, &d) != FB_OK) {
     const size_t l = fb_casefile_given_where(where, sizeof where, case_path, sets, nsets, d.msg);
-    return fb_cli_fail("run", 2, "%s: %s%s%s%s", case_path, d.msg, l ? " (given: " : "", where,
-                       l ? ")" : "");
+    return fb_cli_fail("run", 2, "%s: %s%s%s%s%s", case_path, of, d.msg, l ? " (given: " : "",
+                       where, l ? ")" : "");
   }
   return 0;
 }
@@ -111,6 +111,7 @@ static fb_status write_set(const char *stage, const fb_planar_run *r, const char
 /* the planar run as fb_folder_run's callbacks (run_folder.h) */
 typedef struct {
   const fb_case *c;
+  const fb_case *variants;  /* the case's variants, loaded (c->variant_count) */
   const char *case_path, *command;
   int figures, png, html;
   int nfig, charts;   /* figures drawn; 1 when report.html has its charts */
@@ -128,16 +129,32 @@ static fb_status job_run(void *user, fb_diag *d) {
   fb_pilot p;
   fb_status st = fb_pilot_case(&p, c, d);
   if (st != FB_OK) return st;
+  for (int v = 0; v < c->variant_count; v++) { /* each variant is a run of its own */
+    fb_pilot pv;
+    fb_diag vd;
+    if ((st = fb_pilot_case(&pv, &x->variants[v], &vd)) != FB_OK)
+      return fb_diag_set(d, st, "variant %s: %s", c->variant[v].name, vd.msg);
+    p.wall_s += pv.wall_s;
+    p.cpu_s += pv.cpu_s;
+    p.pilot_cpu_s += pv.pilot_cpu_s;
+  }
   char what[256], basis[96], est[48];
-  snprintf(what, sizeof what, "%d model%s over %.6g s ([run] revolutions = %g)", c->model_count,
-           c->model_count > 1 ? "s" : "", fb_case_duration(c), c->revolutions);
+  snprintf(what, sizeof what, "%d model%s over %.6g s ([run] revolutions = %g)%s", c->model_count,
+           c->model_count > 1 ? "s" : "", fb_case_duration(c), c->revolutions,
+           c->variant_count ? " and its variants" : "");
   st = fb_work_bound(p.wall_s, c->max_wall_s, what, "lower [run] revolutions, raise [solver] h_s "
                      "or run fewer [run] models", d);
   if (st != FB_OK) return st;
   snprintf(basis, sizeof basis, "from two short runs of it, which took %s",
            fb_work_duration(est, sizeof est, p.pilot_cpu_s));
   fb_work_note("run", what, p.cpu_s, basis, "", 0);
-  return fb_planar_run_case(&x->r, c, d);
+  st = fb_planar_run_case(&x->r, c, d);
+  if (st == FB_OK && c->variant_count) {
+    fprintf(stderr, "fourbar run: %d variant%s of %s after its models\n", c->variant_count,
+            c->variant_count > 1 ? "s" : "", c->name);
+    st = fb_planar_run_variants(&x->r, x->variants, c->variant_count, d);
+  }
+  return st;
 }
 
 static int job_write(const char *stage, void *user) {
@@ -151,15 +168,23 @@ static void job_discard(void *user) { fb_planar_run_free(&((planar_job *)user)->
 int fb_cmd_run_planar(const fb_case *c, const char *case_path, const char *const *sets, int nsets,
                       const char *dir, int json, const char *command, const char *again,
                       int figures, int png, int html) {
-  int rc = refuse(c, case_path, sets, nsets);
+  int rc = refuse(c, case_path, sets, nsets, NULL);
   if (rc) return rc;
   note_idle_clearance(c);
   fb_diag d;
   /* figures need gnuplot: found out before the simulation, not after it */
   if (figures && fb_figures_check_gnuplot(&d) != FB_OK) return fb_cli_fail("run", 1, "%s", d.msg);
+  /* the variants loaded now: a bad one fails before any work */
+  static fb_case variants[FB_MAX_VARIANTS];
+  for (int v = 0; v < c->variant_count && v < FB_MAX_VARIANTS; v++) {
+    fb_diag vd;
+    if (fb_casefile_load_variant(&variants[v], case_path, sets, nsets, &c->variant[v], &vd) != FB_OK)
+      return fb_cli_fail("run", 2, "%s", vd.msg);
+    if ((rc = refuse(&variants[v], case_path, sets, nsets, &c->variant[v])) != 0) return rc;
+  }
   static planar_job x;
-  x = (planar_job){.c = c, .case_path = case_path, .command = command, .figures = figures,
-                   .png = png, .html = html};
+  x = (planar_job){.c = c, .variants = variants, .case_path = case_path, .command = command,
+                   .figures = figures, .png = png, .html = html};
   const fb_folder_job job = {dir, again, job_run, job_write, job_discard, &x};
   int write_rc;
   switch (fb_folder_run(&job, &write_rc, &d)) {

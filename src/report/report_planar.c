@@ -81,8 +81,7 @@ static json_t *description_json(const fb_planar *m) {
 
 /* a reference's verdict (planar_run.h): ok, unconverged, unchecked, or
  * failed */
-static const char *verdict_of(const fb_planar_model *p, char *why, size_t size) {
-  const fb_planar_ref_result *q = &p->ref;
+static const char *verdict_of(const fb_planar_ref_result *q, char *why, size_t size) {
   if (q->failed) {
     snprintf(why, size, "the integration stopped: %s", q->stop);
     return "failed";
@@ -329,7 +328,7 @@ static void step_text(FILE *f, const fb_planar_run *r) {
 static void reference_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
   const fb_planar_ref_result *q = &p->ref;
   char why[FB_DIAG_SIZE + 256];
-  json_object_set_new(e, "verdict", json_string(verdict_of(p, why, sizeof why)));
+  json_object_set_new(e, "verdict", json_string(verdict_of(&p->ref, why, sizeof why)));
   json_object_set_new(e, "verdict_reason", json_string(why));
   if (q->joint >= 0) {
     clearance_json(e, r, p);
@@ -403,6 +402,99 @@ static json_t *loads_json(const fb_planar_run *r, const fb_planar_model *p) {
   return fb_report_loads_of(p->t, p->n, r->t_window, p->torque, m->njoints, joint, fx, fy);
 }
 
+/* every moving body's peaks (peaks: per body of m, the ground's first) as
+ * a table */
+static void bodies_table(FILE *f, const fb_planar *m, const fb_body_peaks *peaks) {
+  fprintf(f, "| body | omega max [rad/s] | omega min [rad/s] | alpha max [rad/s^2] | "
+             "alpha min [rad/s^2] |\n|---|---:|---:|---:|---:|\n");
+  for (int b = 1; b < m->nbodies; b++) {
+    const fb_body_peaks *k = &peaks[b];
+    fprintf(f, "| %s | %s | %s | %s | %s |\n", m->body[b].name,
+            FB_NUM_CELL("%.6g", k->omega_max, FB_NUM_NONE_TABLE),
+            FB_NUM_CELL("%.6g", k->omega_min, FB_NUM_NONE_TABLE),
+            FB_NUM_CELL("%.6g", k->alpha_max, FB_NUM_NONE_TABLE),
+            FB_NUM_CELL("%.6g", k->alpha_min, FB_NUM_NONE_TABLE));
+  }
+}
+
+/* a variant's model's verdict and why (size bytes): an engine's against
+ * its yardstick, a reference's check; NULL for the analytic model */
+static const char *variant_verdict(const fb_planar_variant_model *q, char *why, size_t size) {
+  if (q->reference) return verdict_of(&q->ref, why, size);
+  if (q->engine && q->verdict.judged) {
+    snprintf(why, size, "%s", q->verdict.reason);
+    return fb_verdict_name(q->verdict.word);
+  }
+  if (q->engine && q->ref.failed) {
+    snprintf(why, size, "it stopped: %s", q->ref.stop);
+    return "failed";
+  }
+  return NULL;
+}
+
+/* the case's variants, each model's verdict, contact peaks and bodies */
+static void variants_table(FILE *f, const fb_planar_run *r) {
+  for (int v = 0; v < r->variant_count; v++) {
+    const fb_planar_variant *x = &r->variant[v];
+    fprintf(f, "\nvariant %s (%s%s%s; h = %.3g s)\n", x->def.name, x->def.set,
+            x->def.models[0] ? "; models " : "", x->def.models, x->h);
+    if (x->def.description[0]) fprintf(f, "%s\n", x->def.description);
+    for (int i = 0; i < x->n; i++) {
+      const fb_planar_variant_model *q = &x->model[i];
+      char why[FB_DIAG_SIZE + 256];
+      const char *word = variant_verdict(q, why, sizeof why);
+      fprintf(f, "\nvariant %s, model %s", x->def.name, q->name);
+      if (q->contact)
+        fprintf(f, ": contact force max %s N, penetration max %s um",
+                FB_NUM_CELL("%.6g", q->ref.failed ? NAN : q->ref.force_max, FB_NUM_NONE_TABLE),
+                FB_NUM_CELL("%.4g", q->ref.failed ? NAN : q->ref.penetration_max / FB_M_PER_UM,
+                            FB_NUM_NONE_TABLE));
+      fprintf(f, "\n");
+      if (word) fprintf(f, "verdict: %s (%s)\n", word, why);
+      bodies_table(f, r->m, q->peaks);
+    }
+  }
+}
+
+/* summary.json's variants: each variant's name, set, models key,
+ * description, step and models (name, kind, status, bodies, a contact's
+ * force_max_n and penetration_max_m, verdict and verdict_reason) */
+static json_t *variants_json(const fb_planar_run *r) {
+  json_t *a = json_array();
+  const char *name[FB_PLANAR_SPEC_MAX_BODIES];
+  for (int b = 1; b < r->m->nbodies; b++) name[b - 1] = r->m->body[b].name;
+  for (int v = 0; v < r->variant_count; v++) {
+    const fb_planar_variant *x = &r->variant[v];
+    json_t *o = json_object(), *models = json_array();
+    json_object_set_new(o, "name", json_string(x->def.name));
+    json_object_set_new(o, "set", json_string(x->def.set));
+    json_object_set_new(o, "models_key", x->def.models[0] ? json_string(x->def.models) : json_null());
+    json_object_set_new(o, "description", x->def.description[0] ? json_string(x->def.description)
+                                                                : json_null());
+    json_object_set_new(o, "h_s", num(x->h));
+    for (int i = 0; i < x->n; i++) {
+      const fb_planar_variant_model *q = &x->model[i];
+      char why[FB_DIAG_SIZE + 256];
+      const char *word = variant_verdict(q, why, sizeof why);
+      json_t *e = json_pack("{s:s,s:s,s:s}", "name", q->name, "kind",
+                            q->reference ? "reference" : q->engine ? "engine" : "analytic",
+                            "status", q->ref.failed ? "failed" : "ok");
+      json_object_set_new(e, "bodies", fb_report_bodies_json(name, q->peaks + 1, r->m->nbodies - 1));
+      if (q->contact) {
+        json_object_set_new(e, "force_max_n", q->ref.failed ? json_null() : num(q->ref.force_max));
+        json_object_set_new(e, "penetration_max_m",
+                            q->ref.failed ? json_null() : num(q->ref.penetration_max));
+      }
+      json_object_set_new(e, "verdict", word ? json_string(word) : json_null());
+      json_object_set_new(e, "verdict_reason", word ? json_string(why) : json_null());
+      json_array_append_new(models, e);
+    }
+    json_object_set_new(o, "models", models);
+    json_array_append_new(a, o);
+  }
+  return a;
+}
+
 /* the rule of the samples a planar run writes, in words (summary.json's
  * "series", series.h5) */
 #define PLANAR_SERIES_RULE "every N-th sample (i mod N = 0)"
@@ -455,6 +547,7 @@ json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_p
     json_array_append_new(models, e);
   }
   json_object_set_new(o, "models", models);
+  json_object_set_new(o, "variants", variants_json(r));
   return o;
 }
 
@@ -693,7 +786,7 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
     fprintf(f, "\nmodel %s (%zu samples every %.3g s)\n", p->name, p->n, p->h);
     if (p->reference) {
       char why[FB_DIAG_SIZE + 256];
-      const char *v = verdict_of(p, why, sizeof why);
+      const char *v = verdict_of(&p->ref, why, sizeof why);
       if (p->ref.joint < 0) { /* the ideal mechanism (planar_run.h) */
         fprintf(f, "ideal mechanism (no clearance joint): its forward dynamics under the "
                 "case's loads, rk8pd at tolerance %.2g; peaks over t >= %.4g s\nverdict: %s (%s)\n",
@@ -724,19 +817,11 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
       fprintf(f, "contact at '%s': largest h omega_c over %zu contact steps %.3g, bound %g: %s\n",
               r->m->joint[p->ref.joint].name, p->ref.steps, p->h_omega_max, FB_H_OMEGA_C_BOUND,
               res ? "resolved" : warn);
-    fprintf(f, "| body | omega max [rad/s] | omega min [rad/s] | alpha max [rad/s^2] | "
-               "alpha min [rad/s^2] |\n|---|---:|---:|---:|---:|\n");
-    for (int b = 1; b < m->nbodies; b++) {
-      const fb_body_peaks *k = &p->peaks[b];
-      fprintf(f, "| %s | %s | %s | %s | %s |\n", m->body[b].name,
-              FB_NUM_CELL("%.6g", k->omega_max, FB_NUM_NONE_TABLE),
-              FB_NUM_CELL("%.6g", k->omega_min, FB_NUM_NONE_TABLE),
-              FB_NUM_CELL("%.6g", k->alpha_max, FB_NUM_NONE_TABLE),
-              FB_NUM_CELL("%.6g", k->alpha_min, FB_NUM_NONE_TABLE));
-    }
+    bodies_table(f, m, p->peaks);
     fb_report_planar_outputs_table(f, r, p);
     if (p->torque) loads_table(f, r, p);
   }
+  variants_table(f, r);
 }
 
 static fb_status write_markdown(const char *dir, const fb_planar_run *r, const char *case_path,

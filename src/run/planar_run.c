@@ -335,6 +335,11 @@ fb_status fb_planar_run_case(fb_planar_run *r, const fb_case *c, fb_diag *diag) 
 
 void fb_planar_run_free(fb_planar_run *r) {
   for (int i = 0; i < r->n; i++) model_free(&r->model[i]);
+  for (int v = 0; v < r->variant_count; v++)
+    for (int i = 0; i < r->variant[v].n; i++) free(r->variant[v].model[i].peaks);
+  free(r->variant);
+  r->variant = NULL;
+  r->variant_count = 0;
   fb_planar_free(r->m);
   fb_planar_free(r->stackup);
   r->stackup = NULL;

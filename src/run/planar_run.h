@@ -170,6 +170,28 @@ typedef struct {
                               FB_PLANAR_SPRING_QUANTITIES per spring */
 } fb_planar_model;
 
+/* One model of a planar case's variant ([variant.NAME], case.h): what its
+ * summary and report keep of it, its series freed. */
+typedef struct {
+  char name[FB_NAME_SIZE];
+  int reference, engine;   /* as fb_planar_model's */
+  int contact;             /* 1: a clearance joint's contact (a reference of its law, an
+                              engine's clearance model): ref.force_max and ref.penetration_max
+                              are its peaks */
+  fb_planar_ref_result ref; /* as fb_planar_model's (a reference's check, an engine's stop) */
+  fb_planar_verdict verdict; /* an engine's model's */
+  fb_body_peaks *peaks;    /* per body of the description (nbodies; the ground's zero), as
+                              fb_planar_model's (owned) */
+} fb_planar_variant_model;
+
+/* One variant's run. */
+typedef struct {
+  fb_case_variant def;     /* name, set, models, description as the case gave them */
+  double h;                /* the step its models ran at [s] */
+  int n;                   /* models run */
+  fb_planar_variant_model model[FB_MAX_MODELS];
+} fb_planar_variant;
+
 /* A planar case run. */
 typedef struct {
   fb_case c;               /* the case as run */
@@ -195,7 +217,18 @@ typedef struct {
                               (FB_H_AUTO_RETRIES at most, run.h) */
   int n;                   /* models run */
   fb_planar_model model[FB_MAX_MODELS];
+  fb_planar_variant *variant; /* the case's variants run beside it (fb_planar_run_variants;
+                              variant_count of them, owned), NULL when none */
+  int variant_count;
 } fb_planar_run;
+
+/* Runs the n variant cases of run r (each from fb_casefile_load_variant of
+ * r->c's file, in r->c.variant order) with fb_planar_run_case, one at a
+ * time, and keeps each model's peaks, contact peaks, verdict and stop in
+ * r->variant (planar_variants.c). Errors: those of fb_planar_run_case,
+ * the message naming the variant (r keeps the variants run before);
+ * FB_ERR_NOMEM. */
+fb_status fb_planar_run_variants(fb_planar_run *r, const fb_case *cases, int n, fb_diag *diag);
 
 /* The step's resolution of contact estimate e [-]: h times the rate the
  * step keeps (planar_resolution.h), within FB_H_OMEGA_C_BOUND when h

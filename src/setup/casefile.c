@@ -652,8 +652,8 @@ fb_status fb_casefile_load_variant(fb_case *out, const char *path, const char *c
     snprintf(models, sizeof models, "run.models=%s", v->models);
     all[k++] = models;
   }
-  fb_diag inner;
-  st = fb_casefile_load(out, path, all, k, &inner);
+  fb_diag inner; /* a planar case's variant is a planar case (fourbar run runs both) */
+  st = fb_casefile_load_planar(out, path, all, k, &inner);
   if (st != FB_OK)
     return fb_diag_set(diag, st, "variant %s (%s): %s", v->name, v->origin, inner.msg);
   out->variant_count = 0; /* a variant runs no variants of its own */

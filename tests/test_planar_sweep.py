@@ -16,7 +16,9 @@ reference), its rows' metrics named by the description's bodies
    or Slurm), merged, give the whole sweep's rows number for number.
 4. Bad input, nothing run: a metric naming no body of the description
    (exit 2, the nearest name and the bodies said); a Monte Carlo axis on a
-   planar case (its dimensions' Monte Carlo is fourbar stackup's).
+   planar case (its dimensions' Monte Carlo is fourbar stackup's); a key a
+   planar run does not act on ([run] start = rest) refused in the point's
+   row, never ignored.
 
 Usage: test_planar_sweep.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
@@ -123,5 +125,18 @@ mc = study_file("bad_mc.ini", "[study]\nname = badmc\ncase = %s\n[axis.lengths]\
 rc, _, err = fb_script.run(exe, tmp, "sweep", mc, "--out", os.path.join(tmp, "bad2"))
 check(rc == 2 and "planar case" in err and "stackup --montecarlo" in err,
       "a Monte Carlo axis on a planar case is refused naming fourbar stackup: %s" % err.strip())
+
+# a key a planar run does not act on is refused at every point, never
+# ignored: the row says why (its status), as fourbar run would
+ign = study_file("ignored.ini", "[study]\nname = ignored\ncase = %s\nset = run.models=analytic; "
+                 "run.start=rest\n[axis.speed]\nkey = drive.speed_rpm\nvalues = 200\n"
+                 % os.path.join(cases, "watt_sixbar.ini"))
+ign_out = os.path.join(tmp, "ignored")
+rc, _, err = fb_script.run(exe, tmp, "sweep", ign, "--out", ign_out)
+got = rows_of(ign_out) if os.path.exists(os.path.join(ign_out, "points.jsonl")) else {}
+check(len(got) == 1 and got[0]["status"].startswith("run: [run] start = rest") and
+      not got[0]["metrics"],
+      "a point with [run] start = rest on a planar case is refused in its row: %s"
+      % [r["status"] for r in got.values()])
 
 sys.exit(tally.done())

@@ -29,37 +29,7 @@ static int refuse(const fb_case *c, const char *case_path, const char *const *se
   char of[FB_DIAG_SIZE] = "";
   if (v) snprintf(of, sizeof of, "variant %s (%s): ", v->name, v->origin);
   fb_diag d;
-  char msg[FB_DIAG_SIZE] = "", where[FB_DIAG_SIZE];
-  if (fb_casefile_given(c, "run", "ensemble") && c->ensemble > 1)
-    snprintf(msg, sizeof msg, "[run] ensemble = %d: a planar case's run has no ensemble yet (a "
-             "clearance model's verdict rests on its one run, basis pointwise); leave [run] "
-             "ensemble at 1", c->ensemble);
-  else if (c->start != FB_START_STEADY)
-    snprintf(msg, sizeof msg, "[run] start = %s: a planar case starts every body on its ideal "
-             "motion (steady); give start = steady", fb_start_name(c->start));
-  else if (c->pin_start != FB_PIN_CENTRED)
-    snprintf(msg, sizeof msg, "[run] pin_start = %s: a planar case's clearance pins start "
-             "centred in their holes; give pin_start = centred", fb_pin_start_name(c->pin_start));
-  else if (fb_casefile_given(c, "clearance", "penetration_limit_um") &&
-           !c->clearance.penetration_unlimited)
-    snprintf(msg, sizeof msg, "[clearance] penetration_limit_um = %g: a planar case's run stops "
-             "no model at a penetration depth (its engines stop on a step they cannot take, its "
-             "references never); remove the key, or give none",
-             c->clearance.penetration_limit / FB_M_PER_UM);
-  else if (c->published_source[0] || fb_variants_published_any(&c->published[0]) ||
-           fb_variants_published_any(&c->published[1]))
-    snprintf(msg, sizeof msg, "[published.*]: published values are compared with a four-bar's "
-             "or slider-crank's output bodies, and a planar case's run prints none; remove the "
-             "[published.*] sections");
-  else if (c->solver.builder == FB_BUILDER_HAND)
-    snprintf(msg, sizeof msg, "[solver] builder = hand: a planar case's engine models are built "
-             "through their engine-kit bindings (no engine has a hand-built world of a planar "
-             "mechanism); give builder = auto or kit");
-  if (msg[0]) {
-    const size_t l = fb_casefile_given_where(where, sizeof where, case_path, sets, nsets, msg);
-    return fb_cli_fail("run", 2, "%s: %s%s%s%s%s", case_path, of, msg, l ? " (given: " : "",
-                       where, l ? ")" : "");
-  }
+  char where[FB_DIAG_SIZE];
   if (fb_planar_run_check(c, &d) != FB_OK) {
     const size_t l = fb_casefile_given_where(where, sizeof where, case_path, sets, nsets, d.msg);
     return fb_cli_fail("run", 2, "%s: %s%s%s%s%s", case_path, of, d.msg, l ? " (given: " : "",
@@ -68,8 +38,8 @@ static int refuse(const fb_case *c, const char *case_path, const char *const *se
   return 0;
 }
 
-/* a note when the case's clearance joints run in none of its models (a
- * planar case's default models are its ideal motion's) */
+/* a note when the case's clearance joints run in none of the models it
+ * lists (its default models run them) */
 static void note_idle_clearance(const fb_case *c) {
   if (!c->clearance.mask) return;
   for (int i = 0; i < c->model_count; i++) {

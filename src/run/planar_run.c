@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "casefile.h"
 #include "clock.h"
 #include "kit.h"
 #include "model_table.h"
@@ -18,7 +19,10 @@
 #include "resolution.h"
 #include "run.h"
 #include "series.h"
+#include "start.h"
 #include "step_control.h"
+#include "units.h"
+#include "variants.h"
 
 /* 1: model name is the analytic model at some lengths (analytic,
  * analytic-stackup), no dynamics of its own */
@@ -60,7 +64,41 @@ static const char *adaptive_refusal(const fb_case *c, const char *name) {
   return NULL;
 }
 
+/* the keys a planar run does not act on, when given otherwise than their
+ * planar meaning: why, into msg (size bytes), or "" */
+static void keys_refused(char *msg, size_t size, const fb_case *c) {
+  msg[0] = '\0';
+  if (fb_casefile_given(c, "run", "ensemble") && c->ensemble > 1)
+    snprintf(msg, size, "[run] ensemble = %d: a planar case's run has no ensemble yet (a "
+             "clearance model's verdict rests on its one run, basis pointwise); leave [run] "
+             "ensemble at 1", c->ensemble);
+  else if (c->start != FB_START_STEADY)
+    snprintf(msg, size, "[run] start = %s: a planar case starts every body on its ideal "
+             "motion (steady); give start = steady", fb_start_name(c->start));
+  else if (c->pin_start != FB_PIN_CENTRED)
+    snprintf(msg, size, "[run] pin_start = %s: a planar case's clearance pins start "
+             "centred in their holes; give pin_start = centred", fb_pin_start_name(c->pin_start));
+  else if (fb_casefile_given(c, "clearance", "penetration_limit_um") &&
+           !c->clearance.penetration_unlimited)
+    snprintf(msg, size, "[clearance] penetration_limit_um = %g: a planar case's run stops "
+             "no model at a penetration depth (its engines stop on a step they cannot take, its "
+             "references never); remove the key, or give none",
+             c->clearance.penetration_limit / FB_M_PER_UM);
+  else if (c->published_source[0] || fb_variants_published_any(&c->published[0]) ||
+           fb_variants_published_any(&c->published[1]))
+    snprintf(msg, size, "[published.*]: published values are compared with a four-bar's "
+             "or slider-crank's output bodies, and a planar case's run prints none; remove the "
+             "[published.*] sections");
+  else if (c->solver.builder == FB_BUILDER_HAND)
+    snprintf(msg, size, "[solver] builder = hand: a planar case's engine models are built "
+             "through their engine-kit bindings (no engine has a hand-built world of a planar "
+             "mechanism); give builder = auto or kit");
+}
+
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
+  char refused[FB_DIAG_SIZE];
+  keys_refused(refused, sizeof refused, c);
+  if (refused[0]) return fb_diag_set(diag, FB_ERR_ARG, "%s", refused);
   for (int i = 0; i < c->model_count; i++) {
     const char *name = c->models[i];
     const char *adaptive = c->solver.h_mode == FB_STEP_ADAPTIVE ? adaptive_refusal(c, name)

@@ -242,9 +242,13 @@ int fb_planar_run_step_auto(const fb_case *c);
 /* 1 when model name runs on a planar case (above). */
 int fb_planar_run_takes(const char *name);
 
-/* The models of planar case c checked against what a planar case runs:
- * FB_ERR_ARG naming the first model it cannot run and why (an engine's:
- * FB_PLANAR_ENGINE_FOLLOWUP). */
+/* The models of planar case c checked against what a planar case runs,
+ * and its keys against what a planar run acts on: FB_ERR_ARG naming the
+ * first key given otherwise than a planar run can honour ([run] ensemble
+ * above 1, start other than steady, pin_start other than centred,
+ * [clearance] penetration_limit_um, [published.*], [solver] builder =
+ * hand; every command that runs a planar case refuses them) or the first
+ * model it cannot run and why (an engine's: FB_PLANAR_ENGINE_FOLLOWUP). */
 fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag);
 
 /* Runs planar case c (c->planar.on) into *r (fb_planar_run_free). With

@@ -144,6 +144,27 @@ static int metric_names(char names[][128], int max, const fb_mech_desc *mech, co
   return n;
 }
 
+/* 1 when name (ending in '*': a prefix of one) is among names[0 .. n);
+ * else 0 with "did you mean NEAREST? " (nothing for a prefix) at the start
+ * of known (size bytes; may be NULL), its length into *w */
+static int among(char names[][128], int n, const char *name, char *known, size_t size,
+                 size_t *w) {
+  const size_t l = strlen(name);
+  const int prefix = l && name[l - 1] == '*';
+  const size_t cmp = prefix ? l - 1 : l;
+  for (int k = 0; k < n; k++)
+    if (prefix ? strncmp(names[k], name, cmp) == 0 : strcmp(names[k], name) == 0) return 1;
+  *w = 0;
+  if (known && size) {
+    static const char *list[METRIC_NAMES_MAX];
+    for (int k = 0; k < n; k++) list[k] = names[k];
+    const char *near = prefix ? NULL : fb_suggest(name, list, n);
+    known[0] = '\0';
+    if (near) *w = (size_t)snprintf(known, size, "did you mean %s? ", near);
+  }
+  return 0;
+}
+
 int fb_check_metric_name_ok(const char *name, const fb_mech_desc *mech, char *known, size_t size) {
   const size_t l = strlen(name);
   const int prefix = l && name[l - 1] == '*';
@@ -167,15 +188,10 @@ int fb_check_metric_name_ok(const char *name, const fb_mech_desc *mech, char *kn
     if (fb_model_builds(&fb_models[m], type))
       n += metric_names(names + n, (int)(sizeof names / sizeof names[0]) - n, mech,
                         fb_models[m].name);
-  for (int k = 0; k < n; k++)
-    if (prefix ? strncmp(names[k], name, cmp) == 0 : strcmp(names[k], name) == 0) return 1;
+  size_t w;
+  if (among(names, n, name, known, size, &w)) return 1;
   if (known) {
-    /* the nearest name, then the groups and keys in the mechanism's names */
-    static const char *list[METRIC_NAMES_MAX];
-    for (int k = 0; k < n; k++) list[k] = names[k];
-    const char *near = prefix ? NULL : fb_suggest(name, list, n);
-    size_t w = 0;
-    if (near) w = (size_t)snprintf(known, size, "did you mean %s? ", near);
+    /* after the nearest name, the groups and keys in the mechanism's names */
     char own[32][128];
     const int no = metric_names(own, 32, mech, "M");
     const char *group = "";
@@ -238,22 +254,14 @@ static int planar_metric_names(char names[][128], int max, const fb_planar *m, c
 
 int fb_check_planar_metric_name_ok(const char *name, const fb_planar *m, char *known,
                                    size_t size) {
-  const size_t l = strlen(name);
-  const int prefix = l && name[l - 1] == '*';
-  const size_t cmp = prefix ? l - 1 : l;
   static char names[METRIC_NAMES_MAX][128];
   int n = 0;
   for (int k = 0; k < fb_model_count; k++)
     if (fb_planar_run_takes(fb_models[k].name))
       n += planar_metric_names(names + n, METRIC_NAMES_MAX - n, m, fb_models[k].name);
-  for (int k = 0; k < n; k++)
-    if (prefix ? strncmp(names[k], name, cmp) == 0 : strcmp(names[k], name) == 0) return 1;
+  size_t w;
+  if (among(names, n, name, known, size, &w)) return 1;
   if (known) {
-    static const char *list[METRIC_NAMES_MAX];
-    for (int k = 0; k < n; k++) list[k] = names[k];
-    const char *near = prefix ? NULL : fb_suggest(name, list, n);
-    size_t w = 0;
-    if (near) w = (size_t)snprintf(known, size, "did you mean %s? ", near);
     w += (size_t)snprintf(known + w, w < size ? size - w : 0, "a planar case's metric is "
                           "<model>.<body>.<key> (bodies");
     for (int b = 1; b < m->nbodies && w < size; b++)

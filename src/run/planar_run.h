@@ -106,7 +106,7 @@ static inline int fb_planar_ref_checked(const fb_planar_ref_result *q) {
   return q->check_tol < q->tol;
 }
 
-/* One planar model's result. */
+/* One planar model's result (fb_planar_model_has_contact below). */
 typedef struct {
   char name[FB_NAME_SIZE]; /* "analytic", "reference", "reference-restitution" */
   int reference;           /* 1: a reference (ref holds its results; force, pen its columns) */
@@ -191,6 +191,14 @@ typedef struct {
   int n;                   /* models run */
   fb_planar_variant_model model[FB_MAX_MODELS];
 } fb_planar_variant;
+
+/* 1 when model p ran a clearance joint's contact: a reference of its law
+ * (the ideal mechanism's has none), an engine's clearance model; its
+ * ref.force_max and ref.penetration_max are then the contact's window
+ * peaks [N, m]. */
+static inline int fb_planar_model_has_contact(const fb_planar_model *p) {
+  return (p->reference && p->ref.joint >= 0) || (p->engine && p->force);
+}
 
 /* A planar case run. */
 typedef struct {

@@ -34,7 +34,7 @@ fb_status fb_planar_run_variants(fb_planar_run *r, const fb_case *cases, int n, 
       memcpy(q->name, p->name, sizeof q->name);
       q->reference = p->reference;
       q->engine = p->engine;
-      q->contact = (p->reference && p->ref.joint >= 0) || (p->engine && p->force);
+      q->contact = fb_planar_model_has_contact(p);
       q->ref = p->ref;
       q->verdict = p->verdict;
       q->peaks = malloc(nb * sizeof *q->peaks);

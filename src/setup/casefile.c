@@ -31,10 +31,6 @@
 #include "textsafe.h"
 #include "units.h"
 
-/* run by default when a case has clearance joints and does not give [run]
- * models: FB_CLEARANCE_DEFAULT_MODELS (casefile_internal.h) */
-static const char *const clearance_default_models[] = {
-    "ode-clearance-impact", "ode-clearance-restitution", "reference", "reference-restitution"};
 
 /* ---- raw entries: what the file and --set said, with where -------------- */
 
@@ -783,9 +779,9 @@ static fb_status load(fb_case *out, const char *path, const char *text, size_t t
     goto done;
   }
   if (!fb_casefile_given(out, "run", "models") && out->clearance.mask)
-    for (size_t i = 0; i < sizeof clearance_default_models / sizeof clearance_default_models[0] &&
+    for (size_t i = 0; i < FB_CLEARANCE_DEFAULT_COUNT &&
                        out->model_count < FB_MAX_MODELS; i++)
-      snprintf(out->models[out->model_count++], FB_NAME_SIZE, "%s", clearance_default_models[i]);
+      snprintf(out->models[out->model_count++], FB_NAME_SIZE, "%s", fb_clearance_default_models[i]);
   if (!fb_casefile_given(out, "run", "models")) {
     /* the default list's models that build the case's mechanism (every one
        for a mechanism every model builds) */

@@ -80,6 +80,7 @@ typedef struct {
  * [run] models row documents this list, casefile.c runs it */
 #define FB_CLEARANCE_DEFAULT_MODELS \
   "ode-clearance-impact, ode-clearance-restitution, reference, reference-restitution"
+/* (the same list as names: model_table.h fb_clearance_default_models) */
 
 /* The range row k allows, in its file unit, into buf: "[lo, hi]" with
  * "(" or ")" for an open end, "> lo" (">=") or "< hi" ("<=") with one end

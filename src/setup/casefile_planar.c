@@ -735,9 +735,6 @@ static fb_status step_auto(fb_case *c, const fb_planar *m, const char *path, fb_
  * (FB_CLEARANCE_DEFAULT_MODELS: ode-clearance-impact,
  * ode-clearance-restitution, reference, reference-restitution). */
 static void default_models(fb_case *c) {
-  static const char *const clearance_models[] = {"ode-clearance-impact",
-                                                 "ode-clearance-restitution", "reference",
-                                                 "reference-restitution"};
   const int clearance = c->clearance.mask != 0;
   const char *list[8];
   int n = 0;
@@ -750,10 +747,10 @@ static void default_models(fb_case *c) {
     list[n++] = "ode-ideal-nominal";
     if (fb_casefile_given(c, "tolerance", "class")) list[n++] = "ode-ideal-stackup";
   }
-  for (size_t k = 0; clearance && k < sizeof clearance_models / sizeof clearance_models[0]; k++) {
+  for (size_t k = 0; clearance && k < FB_CLEARANCE_DEFAULT_COUNT; k++) {
     int dup = 0;
-    for (int q = 0; q < n; q++) dup |= strcmp(list[q], clearance_models[k]) == 0;
-    if (!dup) list[n++] = clearance_models[k];
+    for (int q = 0; q < n; q++) dup |= strcmp(list[q], fb_clearance_default_models[k]) == 0;
+    if (!dup) list[n++] = fb_clearance_default_models[k];
   }
   c->model_count = n;
   for (int k = 0; k < n; k++) snprintf(c->models[k], sizeof c->models[k], "%s", list[k]);

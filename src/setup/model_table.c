@@ -466,6 +466,9 @@ int fb_model_builds(const fb_model *m, fb_mech_type t) {
   return d->every_model_builds || names_hold(m->mechanisms, d->type);
 }
 
+const char *const fb_clearance_default_models[FB_CLEARANCE_DEFAULT_COUNT] = {
+    "ode-clearance-impact", "ode-clearance-restitution", "reference", "reference-restitution"};
+
 const fb_model *fb_model_find(const char *name) {
   if (!name) return NULL;
   for (int i = 0; i < fb_model_count; i++)

@@ -160,6 +160,14 @@ extern const int fb_model_count;
  * the others. */
 int fb_model_builds(const fb_model *m, fb_mech_type t);
 
+/* The models a case with clearance joints runs by default, after the
+ * [run] models key's default list, when it gives no [run] models: each
+ * clearance model with its reference (casefile_internal.h's
+ * FB_CLEARANCE_DEFAULT_MODELS says them in the key's row; the loaders,
+ * casefile.c and casefile_planar.c, run them). */
+#define FB_CLEARANCE_DEFAULT_COUNT 4
+extern const char *const fb_clearance_default_models[FB_CLEARANCE_DEFAULT_COUNT];
+
 /* The row named name, or NULL. */
 const fb_model *fb_model_find(const char *name);
 

@@ -224,9 +224,7 @@ int fb_check_planar_metrics(const fb_planar_run *r, fb_metric *out, int max) {
       FB_BODY_PEAK_KEYS(FB_CHECK_PLANAR_PEAK)
 #undef FB_CHECK_PLANAR_PEAK
     }
-    /* a clearance joint's contact: a reference's of its law, an engine's
-     * clearance model's (the ideal reference has none) */
-    if ((p->reference && p->ref.joint >= 0) || (p->engine && p->force)) {
+    if (fb_planar_model_has_contact(p)) {
       n = add(out, n, max, p->name, "spikes", "force_max_n", p->ref.force_max);
       n = add(out, n, max, p->name, "spikes", "penetration_max_m", p->ref.penetration_max);
     }

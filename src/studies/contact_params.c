@@ -652,12 +652,11 @@ fb_status fb_cp_request_from_planar(fb_cp_request *q, const fb_case *c, const fb
                      "([clearance] joints): a pin in its hole is what the contact is taken from",
                      m->joint[j].name);
   if (st == FB_OK) {
+    q->stiffness = e->law.stiffness;
     if (impact) {
-      q->stiffness = e->law.stiffness;
       q->exponent = e->law.exponent;
       q->load = e->force_expected; /* the operating point: the joint's expected force */
     } else {
-      q->stiffness = e->law.stiffness;
       q->restitution = e->law.restitution;
     }
     q->mass_min = e->m_eff_min;

@@ -320,7 +320,9 @@ kill -STOP $p1
 "$exe" sweep "$here/studies/tiny.ini" --shard 0/2 --out "$tmp/x6" >/dev/null 2>"$tmp/err"
 rc=$?
 kill -CONT $p1; wait $p1; rc1=$?
-ok '[ $rc -ne 0 ] && grep -q "PID $p1" "$tmp/err" && [ $rc1 -eq 0 ] && [ -s "$tmp/x6/summary.json" ]' "24.6: a shard sweep into a folder a run is writing is refused, the run finishes (was: its staging folder deleted)"
+# what each side did, said when the check fails (it failed once in CI, not since)
+why6="sweep exit $rc, run exit $rc1 (PID $p1), sweep said: $(head -c 400 "$tmp/err"); run folder: $(ls -A "$tmp/x6" 2>&1 | head -c 200)"
+ok '[ $rc -ne 0 ] && grep -q "PID $p1" "$tmp/err" && [ $rc1 -eq 0 ] && [ -s "$tmp/x6/summary.json" ]' "24.6: a shard sweep into a folder a run is writing is refused, the run finishes (was: its staging folder deleted); $why6"
 "$exe" sweep "$here/../cases/studies/mapping.ini" --shard 0/2 --out "$tmp/y6" >/dev/null 2>&1 &
 p1=$!
 wait_for '[ -s "$tmp/y6/points.shard-0-of-2.jsonl" ]'

@@ -154,7 +154,7 @@ static void rhs(void) {
   fb_planar *m;
   if (fb_planar_slider_crank(&m, &lk, link, 0.0, NULL) != FB_OK) exit(1);
   unsigned char clear[4] = {0, 0, 1, 0};
-  const fb_planar_dyn_model model = {m, clear, sm.law, sm.clearance, 1e-3, 9.81, 150.0, NULL, NULL};
+  const fb_planar_dyn_model model = {m, clear, sm.law, sm.clearance, 1e-3, 9.81, 150.0, NULL, NULL, NULL};
   fb_planar_rel *dyn;
   if (fb_planar_rel_new(&dyn, &model, NULL) != FB_OK) exit(1);
   double y0[4], z[4], dz[4];
@@ -192,7 +192,7 @@ static void reference(const fb_case *c) {
   if (fb_planar_of_case(&m, c, &lk, NULL) != FB_OK) exit(1);
   unsigned char clear[4] = {0, 1, 0, 0};
   const fb_planar_dyn_model model = {m, clear, law, c->radial_clearance, 1e-3, c->gravity,
-                                     fb_case_omega2(c), NULL, NULL};
+                                     fb_case_omega2(c), NULL, NULL, NULL};
   fb_planar_rel *dyn;
   if (fb_planar_rel_new(&dyn, &model, NULL) != FB_OK) exit(1);
   const size_t n = (size_t)llround(fb_case_duration(c) / c->solver.h) + 1;

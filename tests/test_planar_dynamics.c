@@ -124,7 +124,7 @@ static void fourbar_core_new(fourbar_core *fc, const fb_case *c, const fb_contac
   memset(fc->clear, 0, sizeof fc->clear);
   fc->clear[FB_JOINT_B] = 1;
   const fb_planar_dyn_model model = {fc->m, fc->clear, *law, c->radial_clearance, 1e-3,
-                                     c->gravity, fb_case_omega2(c), NULL, NULL};
+                                     c->gravity, fb_case_omega2(c), NULL, NULL, NULL};
   if (fb_planar_dyn_new(&fc->dyn, &model, &d) != FB_OK) fail_msg("%s", d.msg);
 }
 
@@ -221,7 +221,7 @@ static void test_slider_crank_rhs(void **state) {
   assert_int_equal(fb_planar_slider_crank(&m, &lk, link, sm.theta0, &d), FB_OK);
   unsigned char clear[4] = {0, 0, 1, 0};
   const fb_planar_dyn_model model = {m, clear, sm.law, sm.clearance, sm.impact_velocity,
-                                     sm.gravity, sm.omega2, NULL, NULL};
+                                     sm.gravity, sm.omega2, NULL, NULL, NULL};
   fb_planar_dyn *dyn;
   assert_int_equal(fb_planar_dyn_new(&dyn, &model, &d), FB_OK);
   const double a = lk.length[0], b = lk.length[1], f3 = link[1].com_fraction;

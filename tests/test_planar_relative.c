@@ -175,7 +175,7 @@ static void test_forms_revolute(void **state) {
     const fb_planar_dyn_model model = {m, clear, law_of(k ? FB_LAW_RESTITUTION : FB_LAW_IMPACT,
                                                         k ? 1e9 : 5e10),
                                        c.radial_clearance, 1e-3, c.gravity, fb_case_omega2(&c),
-                                       NULL, NULL};
+                                       NULL, NULL, NULL};
     const forms f = compare(&model, 300, 2.0 * c.radial_clearance, 0.5);
     check_forms(k ? "four-bar, restitution" : "four-bar, impact", &f);
   }
@@ -188,10 +188,70 @@ static void test_forms_revolute(void **state) {
     const fb_planar_dyn_model model = {m, six, law_of(k ? FB_LAW_RESTITUTION : FB_LAW_IMPACT,
                                                       k ? 1e9 : 5e10),
                                        c.radial_clearance, 1e-3, c.gravity, fb_case_omega2(&c),
-                                       NULL, NULL};
+                                       NULL, NULL, NULL};
     const forms f = compare(&model, 300, 2.0 * c.radial_clearance, 0.2);
     check_forms(k ? "six-bar, restitution" : "six-bar, impact", &f);
   }
+  /* two clearance joints, each with its own law (joint_law): one of each
+   * kind, so that a form reading the other joint's law would part */
+  six[fb_planar_find_joint(m, "ternary-rod")] = 1;
+  fb_contact_law own[7];
+  for (int j = 0; j < 7; j++) own[j] = law_of(FB_LAW_IMPACT, 5e10);
+  own[fb_planar_find_joint(m, "rod-output")] = law_of(FB_LAW_RESTITUTION, 1e9);
+  const fb_planar_dyn_model two = {m, six, law_of(FB_LAW_IMPACT, 1.0), c.radial_clearance, 1e-3,
+                                   c.gravity, fb_case_omega2(&c), NULL, NULL, own};
+  const forms f = compare(&two, 300, 2.0 * c.radial_clearance, 0.2);
+  check_forms("six-bar, two joints, a law each", &f);
+  fb_planar_free(m);
+}
+
+/* joint_law is read at each clearance joint: the six-bar with clearance at
+ * ternary-rod and rod-output, at one state with both pins pressed in, gives
+ * at each joint the force of its own law (against the same model with that
+ * law everywhere), and the shared law's where joint_law is NULL */
+static void test_joint_law_each(void **state) {
+  (void)state;
+  fb_case c;
+  fb_diag d;
+  if (fb_test_shipped_case_planar(&c, "watt_sixbar.ini", &d) != FB_OK) fail_msg("%s", d.msg);
+  fb_planar *m;
+  assert_int_equal(fb_planar_of_case(&m, &c, &c.nominal, &d), FB_OK);
+  const int a = fb_planar_find_joint(m, "ternary-rod"), b = fb_planar_find_joint(m, "rod-output");
+  unsigned char clear[7] = {0};
+  clear[a] = clear[b] = 1;
+  fb_contact_law own[7], la = law_of(FB_LAW_IMPACT, 5e10), lb = law_of(FB_LAW_IMPACT, 2e11);
+  for (int j = 0; j < 7; j++) own[j] = la;
+  own[b] = lb;
+  const double w = fb_case_omega2(&c);
+  const fb_planar_dyn_model mixed = {m, clear, la, c.radial_clearance, 1e-3, c.gravity, w, NULL,
+                                     NULL, own};
+  const fb_planar_dyn_model all_a = {m, clear, la, c.radial_clearance, 1e-3, c.gravity, w, NULL,
+                                     NULL, NULL};
+  const fb_planar_dyn_model all_b = {m, clear, lb, c.radial_clearance, 1e-3, c.gravity, w, NULL,
+                                     NULL, NULL};
+  const fb_planar_dyn_model *models[3] = {&mixed, &all_a, &all_b};
+  double force[3][2];
+  for (int k = 0; k < 3; k++) {
+    fb_planar_rel *rel;
+    if (fb_planar_rel_new(&rel, models[k], &d) != FB_OK) fail_msg("%s", d.msg);
+    const int dim = fb_planar_rel_dim(rel), nr = dim / 2;
+    double *z = calloc(2 * (size_t)dim, sizeof *z), *dz = z + dim;
+    fb_planar_contact ct[7];
+    assert_int_equal(fb_planar_rel_steady(z, rel, &d), FB_OK);
+    /* each pin 1.5 radial clearances from its hole's centre: pressed in */
+    for (int i = 0; i < nr; i++) z[i] = 0.0;
+    const double size = fb_planar_size(m);
+    z[0] = 1.5 * c.radial_clearance / size;
+    z[2] = 1.5 * c.radial_clearance / size;
+    assert_int_equal(fb_planar_rel_eval(rel, 0.0, z, dz, ct), FB_OK);
+    force[k][0] = ct[a].force, force[k][1] = ct[b].force;
+    free(z);
+    fb_planar_rel_free(rel);
+  }
+  assert_true(force[0][0] > 0.0 && force[0][1] > 0.0);
+  assert_true(force[0][0] == force[1][0]); /* ternary-rod: its own law, la */
+  assert_true(force[0][1] == force[2][1]); /* rod-output: its own law, lb */
+  assert_true(force[2][1] > 1.5 * force[1][1]); /* lb is 4x stiffer: the laws differ there */
   fb_planar_free(m);
 }
 
@@ -207,7 +267,7 @@ static void test_forms_prismatic(void **state) {
   assert_int_equal(fb_planar_slider_crank(&m, &lk, link, 0.3, &d), FB_OK);
   unsigned char clear[4] = {0, 0, 1, 0};
   const fb_planar_dyn_model model = {m, clear, law_of(FB_LAW_RESTITUTION, 1e9), 20e-6, 1e-3,
-                                     9.81, 150.0, NULL, NULL};
+                                     9.81, 150.0, NULL, NULL, NULL};
   forms f = compare(&model, 300, 40e-6, 0.3);
   check_forms("slider-crank, piston pin", &f);
   fb_planar_free(m);
@@ -224,7 +284,7 @@ static void test_forms_prismatic(void **state) {
                                 c.clearance.guide_clearance};
   double w0[4] = {0, 150.0, -75.0, 0};
   const fb_planar_dyn_model free_model = {m, gc, law_of(FB_LAW_RESTITUTION, 1e9), 0.0, 1e-3,
-                                          9.81, 0.0, guide, w0};
+                                          9.81, 0.0, guide, w0, NULL};
   f = compare(&free_model, 300, 2.0 * c.clearance.guide_clearance, 0.5);
   check_forms("slider in its guide, undriven", &f);
   fb_planar_free(m);
@@ -256,7 +316,7 @@ static void test_forms_loaded(void **state) {
     const fb_planar_dyn_model model = {m, six, law_of(k ? FB_LAW_RESTITUTION : FB_LAW_IMPACT,
                                                       k ? 1e9 : 5e10),
                                        c.radial_clearance, 1e-3, c.gravity, fb_case_omega2(&c),
-                                       NULL, NULL};
+                                       NULL, NULL, NULL};
     const forms f = compare(&model, 300, 2.0 * c.radial_clearance, 0.2);
     check_forms(k ? "six-bar loaded, restitution" : "six-bar loaded, impact", &f);
   }
@@ -278,7 +338,7 @@ static void test_forms_loaded(void **state) {
                                  FB_PLANAR_LOAD_OUTSTROKE, slide, &d) >= 0);
   unsigned char clear[4] = {0, 0, 1, 0};
   const fb_planar_dyn_model model = {m, clear, law_of(FB_LAW_RESTITUTION, 1e9), 20e-6, 1e-3,
-                                     9.81, 150.0, NULL, NULL};
+                                     9.81, 150.0, NULL, NULL, NULL};
   const forms f = compare(&model, 300, 40e-6, 0.3);
   check_forms("slider-crank loaded on its outstroke", &f);
   fb_planar_free(m);
@@ -303,7 +363,7 @@ static void test_fourbar_integration(void **state) {
   assert_int_equal(fb_planar_of_case(&m, &c, &lk, &d), FB_OK);
   unsigned char clear[4] = {0, 1, 0, 0};
   const fb_planar_dyn_model model = {m, clear, law, c.radial_clearance, 1e-3, c.gravity,
-                                     fb_case_omega2(&c), NULL, NULL};
+                                     fb_case_omega2(&c), NULL, NULL, NULL};
   fb_planar_rel *rel;
   assert_int_equal(fb_planar_rel_new(&rel, &model, &d), FB_OK);
   const size_t n = (size_t)(FOLLOW_S / c.solver.h) + 1;
@@ -354,7 +414,7 @@ static void sixbar_run(double clearance, double *dev, double *pen_max) {
   law.restitution = 0.5;
   assert_int_equal(fb_contact_law_prepare(&law, NULL), FB_OK);
   const double w = fb_case_omega2(&c);
-  const fb_planar_dyn_model model = {m, clear, law, clearance, 1e-3, c.gravity, w, NULL, NULL};
+  const fb_planar_dyn_model model = {m, clear, law, clearance, 1e-3, c.gravity, w, NULL, NULL, NULL};
   fb_planar_rel *rel;
   assert_int_equal(fb_planar_rel_new(&rel, &model, &d), FB_OK);
   enum { N = 1001 };
@@ -404,6 +464,7 @@ static void test_sixbar_clearance(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_forms_revolute),
+      cmocka_unit_test(test_joint_law_each),
       cmocka_unit_test(test_forms_prismatic),
       cmocka_unit_test(test_forms_loaded),
       cmocka_unit_test(test_fourbar_integration),

@@ -136,24 +136,27 @@ static double largest(const double *y, size_t i0, size_t i1) {
  * end, the drive angle at onset, its largest force and penetration, every
  * moving body's largest |alpha| over it and the few steps after (the
  * rebound spike follows the force peak); their samples and
- * FB_REPORT_IMPACT_PAD either side kept. Returns the episodes counted;
- * *listed those listed (FB_REPORT_MAX_IMPACTS at most) */
+ * FB_REPORT_IMPACT_PAD either side kept; at its clearance joint ct
+ * (fb_planar_model_contact). Returns the episodes counted; *listed those
+ * listed (FB_REPORT_MAX_IMPACTS at most) */
 static size_t impacts_json(json_t *impacts, unsigned char *keep, const fb_planar_run *r,
-                           const fb_planar_model *p, size_t *listed) {
+                           const fb_planar_model *p, const fb_planar_ref_joint *ct,
+                           size_t *listed) {
   const fb_planar *m = r->m;
   const size_t n = p->n;
+  const double *pen = ct->pen, *force = ct->force;
   size_t count = 0;
   *listed = 0;
   for (size_t i = 0; i < n; i++) {
-    if (!(p->pen[i] > 0.0)) continue;
+    if (!(pen[i] > 0.0)) continue;
     size_t i1 = i;
-    while (i1 + 1 < n && p->pen[i1 + 1] > 0.0) i1++;
+    while (i1 + 1 < n && pen[i1 + 1] > 0.0) i1++;
     count++;
     if (*listed < FB_REPORT_MAX_IMPACTS) {
       double fmax_n = 0.0, pmax = 0.0;
       for (size_t k = i; k <= i1; k++) {
-        if (isfinite(p->force[k])) fmax_n = fmax(fmax_n, p->force[k]);
-        pmax = fmax(pmax, p->pen[k]);
+        if (isfinite(force[k])) fmax_n = fmax(fmax_n, force[k]);
+        pmax = fmax(pmax, pen[k]);
       }
       const size_t a = i > FB_REPORT_IMPACT_PAD ? i - FB_REPORT_IMPACT_PAD : 0;
       const size_t b = i1 + FB_REPORT_IMPACT_PAD < n ? i1 + FB_REPORT_IMPACT_PAD : n - 1;
@@ -161,7 +164,7 @@ static size_t impacts_json(json_t *impacts, unsigned char *keep, const fb_planar
       double deg = fmod(p->drive[i] * 180.0 / M_PI, 360.0);
       deg = deg < 0.0 ? deg + 360.0 : deg;
       json_t *im = json_pack("{s:s,s:s,s:f,s:f,s:f,s:f,s:f}", "model", p->name, "joint",
-                             m->joint[p->ref.joint].name, "t_s", p->t[i], "t_end_s", p->t[i1],
+                             m->joint[ct->joint].name, "t_s", p->t[i], "t_end_s", p->t[i1],
                              "crank_angle_deg", deg, "force_n", fmax_n, "penetration_m", pmax);
       const size_t a2 = i1 + 3 < n ? i1 + 3 : n - 1;
       for (int body = 1; body < m->nbodies; body++) {
@@ -189,14 +192,15 @@ static size_t impacts_json(json_t *impacts, unsigned char *keep, const fb_planar
  * eccentricity [um] and state at the kept samples (those of the bodies'
  * and the contact's extremes: every impact is among them) (0 free flight,
  * 1 in contact: a planar run does not tell an impact from continuous
- * contact) */
-static void orbit_json(json_t *j, const fb_planar_model *p, const unsigned char *keep) {
+ * contact), at its clearance joint ct */
+static void orbit_json(json_t *j, const fb_planar_model *p, const fb_planar_ref_joint *ct,
+                       const unsigned char *keep) {
   const size_t n = p->n;
   double *state = malloc((n ? n : 1) * sizeof *state);
   if (!state) return; /* the page then draws no orbit */
-  for (size_t i = 0; i < n; i++) state[i] = p->pen[i] > 0.0 ? 1.0 : 0.0;
-  json_object_set_new(j, "ecc_x_um", kept(p->ecc, keep, n, 1.0 / FB_M_PER_UM));
-  json_object_set_new(j, "ecc_y_um", kept(p->ecc + n, keep, n, 1.0 / FB_M_PER_UM));
+  for (size_t i = 0; i < n; i++) state[i] = ct->pen[i] > 0.0 ? 1.0 : 0.0;
+  json_object_set_new(j, "ecc_x_um", kept(ct->ecc, keep, n, 1.0 / FB_M_PER_UM));
+  json_object_set_new(j, "ecc_y_um", kept(ct->ecc + n, keep, n, 1.0 / FB_M_PER_UM));
   json_object_set_new(j, "state", kept(state, keep, n, 1.0));
   free(state);
 }
@@ -213,11 +217,13 @@ static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
   for (int c = 0; c < p->nout; c++)
     if (output_rate(m, c)) keep_extremes(keep, p->out + (size_t)c * n, n);
   json_t *impacts = json_array();
-  size_t ne = 0, listed = 0;
-  if (p->force) {
-    keep_extremes(keep, p->force, n);
-    keep_extremes(keep, p->pen, n);
-    ne = impacts_json(impacts, keep, r, p, &listed);
+  const int ncl = fb_planar_model_contacts(p);
+  size_t ne[FB_PLANAR_REF_MAX_JOINTS] = {0}, listed[FB_PLANAR_REF_MAX_JOINTS] = {0};
+  for (int k = 0; k < ncl; k++) { /* each clearance joint's impacts, in turn */
+    const fb_planar_ref_joint ct = fb_planar_model_contact(p, k);
+    keep_extremes(keep, ct.force, n);
+    keep_extremes(keep, ct.pen, n);
+    ne[k] = impacts_json(impacts, keep, r, p, &ct, &listed[k]);
   }
   if (n) keep[0] = keep[n - 1] = 1;
   size_t nk = 0;
@@ -247,13 +253,14 @@ static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
     json_object_set_new(o, output_series(key, sizeof key, m, c), kept(p->out + (size_t)c * n, keep, n, 1.0));
   }
   json_t *joints = json_array();
-  if (p->force) {
-    json_t *j = json_pack("{s:s,s:i,s:i,s:o,s:o}", "joint", m->joint[p->ref.joint].name,
-                          "impacts", (int)ne, "listed", (int)listed, "force_n",
-                          kept(p->force, keep, n, 1.0), "penetration_um",
-                          kept(p->pen, keep, n, 1.0 / FB_M_PER_UM));
+  for (int k = 0; k < ncl; k++) {
+    const fb_planar_ref_joint ct = fb_planar_model_contact(p, k);
+    json_t *j = json_pack("{s:s,s:i,s:i,s:o,s:o}", "joint", m->joint[ct.joint].name,
+                          "impacts", (int)ne[k], "listed", (int)listed[k], "force_n",
+                          kept(ct.force, keep, n, 1.0), "penetration_um",
+                          kept(ct.pen, keep, n, 1.0 / FB_M_PER_UM));
     if (p->rigid) json_object_set_new(j, "force_is_impulse_over_h", json_true());
-    if (p->ecc) orbit_json(j, p, keep);
+    if (ct.ecc) orbit_json(j, p, &ct, keep);
     json_array_append_new(joints, j);
   }
   json_object_set_new(o, "joints", joints);

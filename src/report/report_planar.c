@@ -100,15 +100,33 @@ static const char *verdict_of(const fb_planar_ref_result *q, char *why, size_t s
  * check integration and verdict */
 /* a clearance model's joint and law (a reference's, or an engine's
  * through the engine kit, which takes the reference's law) */
+static json_t *law_json(const fb_contact_law *law, double force_work) {
+  return json_pack("{s:s,s:o,s:o,s:o,s:o}", "kind",
+                   law->kind == FB_LAW_IMPACT ? "impact" : "restitution", "stiffness",
+                   num(law->stiffness), "exponent", num(law->exponent), "restitution",
+                   num(law->restitution), "working_force_n", num(force_work));
+}
+
+/* a clearance model's joints and law: clearance_joints (every one), law
+ * (the first's), and for a reference per_joint: each joint's law, force
+ * and penetration peaks (force_max_n and penetration_max_m of the model
+ * are their largest) */
 static void clearance_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
   const fb_planar_ref_result *q = &p->ref;
-  json_object_set_new(e, "clearance_joints", json_pack("[s]", r->m->joint[q->joint].name));
-  json_object_set_new(e, "law", json_pack("{s:s,s:o,s:o,s:o,s:o}", "kind",
-                                          q->law.kind == FB_LAW_IMPACT ? "impact" : "restitution",
-                                          "stiffness", num(q->law.stiffness), "exponent",
-                                          num(q->law.exponent), "restitution",
-                                          num(q->law.restitution), "working_force_n",
-                                          num(q->force_work)));
+  json_t *names = json_array(), *each = json_array();
+  for (int k = 0; k < fb_planar_model_contacts(p); k++) {
+    const fb_planar_ref_joint a = fb_planar_model_contact(p, k);
+    json_array_append_new(names, json_string(r->m->joint[a.joint].name));
+    json_array_append_new(each, json_pack("{s:s,s:o,s:o,s:o}", "joint", r->m->joint[a.joint].name,
+                                          "law", law_json(&a.law, a.force_work), "force_max_n",
+                                          q->failed ? json_null() : num(a.force_max),
+                                          "penetration_max_m",
+                                          q->failed ? json_null() : num(a.penetration_max)));
+  }
+  json_object_set_new(e, "clearance_joints", names);
+  json_object_set_new(e, "law", law_json(&q->law, q->force_work));
+  if (p->reference) json_object_set_new(e, "per_joint", each);
+  else json_decref(each);
   json_object_set_new(e, "window_from_s", num(r->t_window));
 }
 
@@ -580,7 +598,8 @@ typedef enum { COL_TIME, COL_DRIVE, COL_BODY, COL_FORCE, COL_PEN, COL_TORQUE, CO
 typedef struct {
   col_kind kind;
   int a, b; /* COL_BODY: body, quantity (angle, omega, alpha); COL_REACTION: joint, component
-               (x, y, magnitude, a prismatic joint's moment); COL_OUTPUT: output column */
+               (x, y, magnitude, a prismatic joint's moment); COL_FORCE, COL_PEN: the
+               contact (fb_planar_model_contact); COL_OUTPUT: output column */
 } col_def;
 
 /* a model of a run with its columns (fb_series_table's self) */
@@ -592,7 +611,7 @@ typedef struct {
 
 /* model p's columns into col (room for max_columns(r)): time, the drive's
  * angle, every moving body's angle, omega and alpha, a clearance model's
- * force and penetration at its joint, the analytic model's loads (the
+ * force and penetration at each clearance joint, the analytic model's loads (the
  * four-bar's names, series.h, then a prismatic joint's couple), the
  * description's outputs; returns their number */
 static size_t columns(col_def *col, const fb_planar_run *r, const fb_planar_model *p) {
@@ -602,9 +621,9 @@ static size_t columns(col_def *col, const fb_planar_run *r, const fb_planar_mode
   col[n++] = (col_def){COL_DRIVE, 0, 0};
   for (int b = 1; b < m->nbodies; b++)
     for (int k = 0; k < 3; k++) col[n++] = (col_def){COL_BODY, b, k};
-  if (p->force) {
-    col[n++] = (col_def){COL_FORCE, 0, 0};
-    col[n++] = (col_def){COL_PEN, 0, 0};
+  for (int k = 0; k < fb_planar_model_contacts(p); k++) {
+    col[n++] = (col_def){COL_FORCE, k, 0};
+    col[n++] = (col_def){COL_PEN, k, 0};
   }
   if (p->torque) {
     col[n++] = (col_def){COL_TORQUE, 0, 0};
@@ -617,7 +636,8 @@ static size_t columns(col_def *col, const fb_planar_run *r, const fb_planar_mode
 }
 
 static size_t max_columns(const fb_planar_run *r, const fb_planar_model *p) {
-  return 4 + 3 * (size_t)r->m->nbodies + 1 + 4 * (size_t)r->m->njoints + (size_t)p->nout;
+  return 4 + 3 * (size_t)r->m->nbodies + 2 * (size_t)fb_planar_model_contacts(p) + 1 +
+         4 * (size_t)r->m->njoints + (size_t)p->nout;
 }
 
 static void column_name(const fb_series_table *t, size_t k, char *buf, size_t size) {
@@ -632,9 +652,12 @@ static void column_name(const fb_series_table *t, size_t k, char *buf, size_t si
     case COL_TIME: snprintf(buf, size, "time_s"); break;
     case COL_DRIVE: snprintf(buf, size, "drive_angle_rad"); break;
     case COL_BODY: snprintf(buf, size, "%s_%s", m->body[c.a].name, body[c.b]); break;
-    case COL_FORCE: snprintf(buf, size, "%s_force_n", m->joint[mc->p->ref.joint].name); break;
+    case COL_FORCE:
+      snprintf(buf, size, "%s_force_n", m->joint[fb_planar_model_contact(mc->p, c.a).joint].name);
+      break;
     case COL_PEN:
-      snprintf(buf, size, "%s_penetration_m", m->joint[mc->p->ref.joint].name);
+      snprintf(buf, size, "%s_penetration_m",
+               m->joint[fb_planar_model_contact(mc->p, c.a).joint].name);
       break;
     case COL_TORQUE: snprintf(buf, size, "drive_torque_n_m"); break;
     case COL_REACTION:
@@ -653,8 +676,8 @@ static double column_value(const fb_series_table *t, size_t k, size_t i) {
     case COL_TIME: return p->t[i];
     case COL_DRIVE: return p->drive[i];
     case COL_BODY: return fb_planar_model_value(mc->r, p, c.a, c.b, i);
-    case COL_FORCE: return p->force[i];
-    case COL_PEN: return p->pen[i];
+    case COL_FORCE: return fb_planar_model_contact(p, c.a).force[i];
+    case COL_PEN: return fb_planar_model_contact(p, c.a).pen[i];
     case COL_TORQUE: return p->torque[i];
     case COL_REACTION: return fb_planar_model_reaction(p, c.a, c.b, i);
     case COL_OUTPUT: return p->out[(size_t)c.a * p->n + i];
@@ -792,18 +815,22 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
                 "case's loads, rk8pd at tolerance %.2g; peaks over t >= %.4g s\nverdict: %s (%s)\n",
                 p->ref.tol, r->t_window, v, why);
       } else {
-        char work[96]; /* an explicit law has no working force (planar_free.h) */
-        if (p->ref.force_work > 0.0)
-          snprintf(work, sizeof work, "working force %.4g N", p->ref.force_work);
-        else
-          snprintf(work, sizeof work, "no working force: its stiffness given, penalty = explicit");
-        fprintf(f, "clearance at '%s' (%s law, %s): peaks over t >= %.4g s; "
-                "contact force max %s N, penetration max %s um\nverdict: %s (%s)\n",
-                r->m->joint[p->ref.joint].name,
-                p->ref.law.kind == FB_LAW_IMPACT ? "impact" : "restitution", work, r->t_window,
-                FB_NUM_CELL("%.6g", p->ref.failed ? NAN : p->ref.force_max, FB_NUM_NONE_TABLE),
-                FB_NUM_CELL("%.4g", p->ref.failed ? NAN : p->ref.penetration_max / FB_M_PER_UM,
-                            FB_NUM_NONE_TABLE), v, why);
+        for (int k = 0; k < p->ref.njoints; k++) { /* a line per clearance joint */
+          const fb_planar_ref_joint *a = &p->ref.at[k];
+          char work[96]; /* an explicit law has no working force (planar_free.h) */
+          if (a->force_work > 0.0)
+            snprintf(work, sizeof work, "working force %.4g N", a->force_work);
+          else
+            snprintf(work, sizeof work, "no working force: its stiffness given, penalty = explicit");
+          fprintf(f, "clearance at '%s' (%s law, %s): peaks over t >= %.4g s; "
+                  "contact force max %s N, penetration max %s um\n",
+                  r->m->joint[a->joint].name,
+                  a->law.kind == FB_LAW_IMPACT ? "impact" : "restitution", work, r->t_window,
+                  FB_NUM_CELL("%.6g", p->ref.failed ? NAN : a->force_max, FB_NUM_NONE_TABLE),
+                  FB_NUM_CELL("%.4g", p->ref.failed ? NAN : a->penetration_max / FB_M_PER_UM,
+                              FB_NUM_NONE_TABLE));
+        }
+        fprintf(f, "verdict: %s (%s)\n", v, why);
       }
     }
     if (p->verdict.judged) {

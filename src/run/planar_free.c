@@ -10,10 +10,13 @@
 static const char *const SOURCE[] = {"physical", "paper", "explicit", "goldsmith"};
 
 fb_status fb_planar_free_parts(fb_planar_guide **guide, double **omega0, int *needs_explicit,
-                               const fb_case *c, const fb_planar *m, int joint, fb_diag *diag) {
+                               const fb_case *c, const fb_planar *m, const unsigned char *clear,
+                               fb_diag *diag) {
   *guide = NULL;
   *omega0 = NULL;
-  const int prismatic = m->joint[joint].kind == FB_KIND_PRISMATIC, undriven = m->drive < 0;
+  int prismatic = 0;
+  const int undriven = m->drive < 0;
+  for (int j = 0; j < m->njoints; j++) prismatic |= clear[j] && m->joint[j].kind == FB_KIND_PRISMATIC;
   *needs_explicit = prismatic || undriven;
   if (*needs_explicit && c->clearance.penalty != FB_PENALTY_SOURCE_EXPLICIT)
     return fb_diag_set(diag, FB_ERR_ARG, "[clearance] penalty = %s: %s has no %s to take the "
@@ -26,10 +29,13 @@ fb_status fb_planar_free_parts(fb_planar_guide **guide, double **omega0, int *ne
   if (prismatic) {
     *guide = calloc((size_t)m->njoints, sizeof **guide);
     if (!*guide) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-    const int s = fb_planar_find_joint(m, m->joint[joint].name); /* the spec's joints are m's */
-    const fb_planar_spec_joint *sj = &c->planar.joint[s];
-    (*guide)[joint] = (fb_planar_guide){sj->half_length, sj->half_height,
-                                        c->clearance.guide_clearance};
+    for (int j = 0; j < m->njoints; j++) {
+      if (!clear[j] || m->joint[j].kind != FB_KIND_PRISMATIC) continue;
+      const int s = fb_planar_find_joint(m, m->joint[j].name); /* the spec's joints are m's */
+      const fb_planar_spec_joint *sj = &c->planar.joint[s];
+      (*guide)[j] = (fb_planar_guide){sj->half_length, sj->half_height,
+                                      c->clearance.guide_clearance};
+    }
   }
   return undriven ? fb_planar_free_omega0(omega0, c, m, diag) : FB_OK;
 }

@@ -16,14 +16,17 @@
 #include "planar.h"
 #include "planar_guide.h"
 
-/* What run needs for clearance joint `joint` of m, described by case c:
- * *guide (njoints, the joint's entry filled; NULL unless it is prismatic)
- * and *omega0 (nbodies [rad/s]; NULL unless m is undriven), owned by the
- * caller (free()); *needs_explicit 1 when the law must be explicit (above).
+/* What run needs for the clearance joints clear (njoints; 1 at each) of m,
+ * described by case c: *guide (njoints, each prismatic clearance joint's
+ * entry filled; NULL unless one is prismatic) and *omega0 (nbodies
+ * [rad/s]; NULL unless m is undriven), owned by the caller (free());
+ * *needs_explicit 1 when the law must be explicit (above: a prismatic one
+ * among them, or m undriven).
  * Errors: FB_ERR_ARG when the law must be explicit and the case's penalty
  * is another (the message names the key and the rule); FB_ERR_NOMEM. */
 fb_status fb_planar_free_parts(fb_planar_guide **guide, double **omega0, int *needs_explicit,
-                               const fb_case *c, const fb_planar *m, int joint, fb_diag *diag);
+                               const fb_case *c, const fb_planar *m, const unsigned char *clear,
+                               fb_diag *diag);
 
 /* *omega0 (nbodies [rad/s], the ground's 0; owned by the caller, free())
  * = each body's [body.NAME] initial_omega_rad_s of case c, by m's body

@@ -130,7 +130,9 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
    * or refused by the kit naming the binding (kit_contact.h) */
   double *omega0 = NULL;
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
-  fb_status st = fb_planar_free_parts(guide, &omega0, &free_law, c, m, cj, diag);
+  unsigned char one[FB_PLANAR_SPEC_MAX_JOINTS] = {0};
+  one[cj] = 1;
+  fb_status st = fb_planar_free_parts(guide, &omega0, &free_law, c, m, one, diag);
   free(omega0); /* the start takes its own (fb_planar_run_kit) */
   cl->guide = *guide;
   if (st == FB_OK && !free_law && !r->reaction_max)

@@ -17,22 +17,29 @@
 #include "run.h"
 #include "series.h"
 
-/* the case's one clearance joint into *j */
-static fb_status clearance_joint(int *j, const fb_case *c, const fb_planar *m, const char *model,
-                                 fb_diag *diag) {
+/* the case's clearance joints into q->at[].joint, q->njoints (in the
+ * description's order) */
+static fb_status clearance_joints(fb_planar_ref_result *q, const fb_case *c, const fb_planar *m,
+                                  const char *model, fb_diag *diag) {
   const unsigned mask = (unsigned)c->clearance.mask;
   int n = 0;
   for (int k = 0; k < m->njoints; k++)
-    if (mask & (1u << k)) *j = k, n++;
-  if (n == 1) return FB_OK;
-  return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs one clearance joint ([clearance] joints "
-                     "= a joint of the case), and the case names %d", model, n);
+    if (mask & (1u << k)) {
+      if (n == FB_PLANAR_REF_MAX_JOINTS)
+        return fb_diag_set(diag, FB_ERR_ARG, "model '%s' takes %d clearance joints at most "
+                           "([clearance] joints), and the case names more", model,
+                           FB_PLANAR_REF_MAX_JOINTS);
+      q->at[n++].joint = k;
+    }
+  q->njoints = n;
+  q->joint = n ? q->at[0].joint : -1;
+  return FB_OK;
 }
 
 /* a reference's columns: time, every moving body's angle, omega, alpha
- * (fb_planar_model's q layout), the clearance joint's force, penetration */
+ * (fb_planar_model's q layout), each clearance joint's force, penetration */
 typedef struct {
-  double *t, *q, *force, *pen;
+  double *t, *q, *force[FB_PLANAR_REF_MAX_JOINTS], *pen[FB_PLANAR_REF_MAX_JOINTS];
 } columns;
 
 /* the refinement's view of one integration (peak_refine.h) */
@@ -43,7 +50,8 @@ typedef struct {
   const double *z;       /* the samples' states (n x dim) */
   const double *y;       /* the samples' positions and velocities (n x 2 nq) */
   double h;              /* sample spacing [s] */
-  int joint, nq, nb, dim; /* the clearance joint, coordinates, moving bodies, state size */
+  const fb_planar_ref_result *ref; /* its clearance joints (ref->at[], ref->njoints) */
+  int nq, nb, dim;       /* coordinates, moving bodies, state size */
   int driven;            /* the moving body the drive turns from the ground (its alpha is
                             the drive's, zero: not refined), else -1 */
 } refine_src;
@@ -52,16 +60,18 @@ static int refine_rhs(double t, const double y[], double dydt[], void *p) {
   return fb_planar_rel_rhs(t, y, dydt, ((const refine_src *)p)->d);
 }
 
-/* peak_refine.h's eval: force, penetration, then alpha and -alpha of each
- * refined body */
+/* peak_refine.h's eval: each clearance joint's force and penetration,
+ * then alpha and -alpha of each refined body */
 static void refine_eval(double *quant, double *dydt, double t, const double *y, void *p) {
   const refine_src *s = p;
   const int ok = fb_planar_rel_eval(s->d, t, y, dydt, s->ct) == FB_OK;
-  const fb_planar_contact *c = s->joint >= 0 ? &s->ct[s->joint] : NULL; /* NULL: ideal */
   if (ok) fb_planar_rel_motion(s->d, NULL, NULL, s->qdd);
   int n = 0;
-  quant[n++] = ok && c ? c->force : -INFINITY;
-  quant[n++] = ok && c ? c->penetration : -INFINITY;
+  for (int k = 0; k < s->ref->njoints; k++) {
+    const fb_planar_contact *c = &s->ct[s->ref->at[k].joint];
+    quant[n++] = ok ? c->force : -INFINITY;
+    quant[n++] = ok ? c->penetration : -INFINITY;
+  }
   for (int b = 0; b < s->nb; b++) {
     if (b == s->driven) continue;
     const double a = s->qdd[3 * b + 2];
@@ -77,8 +87,9 @@ static double refine_start(double *y, size_t k, void *p) {
   return (double)k * s->h;
 }
 
-/* The samples at spikes of the force, penetration and every moving body's
- * alpha (but the driven one's) replaced by their extremes between the
+/* The samples at spikes of each clearance joint's force and penetration
+ * and every moving body's alpha (but the driven one's) replaced by their
+ * extremes between the
  * neighbouring samples: the closed-form reference's rule (peak_refine.h),
  * so that both references' peaks are the same quantity. */
 static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *r,
@@ -89,14 +100,15 @@ static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *
   if (m->drive >= 0) fb_planar_drive_bodies(m, &from, &to);
   fb_planar_contact *ct = malloc((size_t)m->njoints * sizeof *ct);
   double *qdd = malloc((size_t)fb_planar_nq(m) * sizeof *qdd);
-  fb_peak_refine_column *cc = malloc((size_t)(nb + 2) * sizeof *cc);
+  const int nj = p->ref.njoints; /* an ideal mechanism has no contact to refine */
+  fb_peak_refine_column *cc = malloc((size_t)(nb + 2 * nj) * sizeof *cc);
   if (ct && qdd && cc) {
-    refine_src src = {d, ct, qdd, z, y, p->h, p->ref.joint, fb_planar_nq(m), nb,
+    refine_src src = {d, ct, qdd, z, y, p->h, &p->ref, fb_planar_nq(m), nb,
                       fb_planar_rel_dim(d), from == 0 ? to - 1 : -1};
-    int nc = 0, nquant = 2;
-    if (p->ref.joint >= 0) { /* an ideal mechanism has no contact to refine */
-      cc[nc++] = (fb_peak_refine_column){col->force, 0, -1, 1};
-      cc[nc++] = (fb_peak_refine_column){col->pen, 1, -1, 1};
+    int nc = 0, nquant = 2 * nj;
+    for (int k = 0; k < nj; k++) {
+      cc[nc++] = (fb_peak_refine_column){col->force[k], 2 * k, -1, 1};
+      cc[nc++] = (fb_peak_refine_column){col->pen[k], 2 * k + 1, -1, 1};
     }
     for (int b = 0; b < nb; b++) {
       if (b == src.driven) continue;
@@ -113,32 +125,41 @@ static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *
   free(cc);
 }
 
+/* the size of integrate's window peaks: 4 per moving body, the largest
+ * force and penetration over the clearance joints, then each joint's */
+static int peaks_size(const fb_planar *m, const fb_planar_ref_result *q) {
+  return 4 * (m->nbodies - 1) + 2 + 2 * q->njoints;
+}
+
 /* one integration at tol into the columns col (p's own when store, else
- * col's), its spikes refined; the window's peaks into w (4 per moving
- * body, then the force and the penetration: 0 for the ideal mechanism,
- * p->ref.joint < 0, whose force and penetration columns are scratch) */
+ * scratch), its spikes refined; the window's peaks into w (peaks_size: the
+ * forces and penetrations 0 for the ideal mechanism, p->ref.njoints = 0) */
 static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r, fb_planar_rel *d,
                            double tol, size_t *steps, int store, fb_diag *diag) {
   const fb_planar *m = r->m;
   const int nq = fb_planar_nq(m), nj = m->njoints, nb = m->nbodies - 1, dim = fb_planar_rel_dim(d);
+  const int ncl = p->ref.njoints;
   const size_t n = p->n;
   double *y = malloc(n * (size_t)(3 * nq + dim) * sizeof *y);
   fb_planar_contact *ct = malloc(n * (size_t)nj * sizeof *ct);
-  const int ideal = p->ref.joint < 0;
-  double *own = store && !ideal ? NULL : malloc(n * (size_t)(3 + 3 * nb) * sizeof *own);
-  columns col = store ? (columns){p->t, p->q, ideal ? own : p->force,
-                                  ideal && own ? own + n : p->pen}
-                      : (columns){own, own ? own + n : NULL, own ? own + n * (size_t)(1 + 3 * nb) : NULL,
-                                  own ? own + n * (size_t)(2 + 3 * nb) : NULL};
-  fb_status st = y && ct && col.t && col.force ? FB_OK
+  /* scratch: the check's time, bodies and contacts (store: none) */
+  double *own = store ? NULL : malloc(n * (size_t)(1 + 3 * nb + 2 * ncl) * sizeof *own);
+  columns col = {0};
+  if (store) {
+    col.t = p->t, col.q = p->q;
+    for (int k = 0; k < ncl; k++) col.force[k] = p->ref.at[k].force, col.pen[k] = p->ref.at[k].pen;
+  } else if (own) {
+    col.t = own, col.q = own + n;
+    for (int k = 0; k < ncl; k++)
+      col.force[k] = own + n * (size_t)(1 + 3 * nb + 2 * k), col.pen[k] = col.force[k] + n;
+  }
+  fb_status st = y && ct && col.t ? FB_OK
                                   : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory for %zu samples", n);
   double *acc = y ? y + n * (size_t)(2 * nq) : NULL, *z = y ? acc + n * (size_t)nq : NULL;
   fb_planar_ref_stats stats = {0};
   if (st == FB_OK) st = fb_planar_ref_run(y, acc, ct, z, n, p->h, d, tol, &stats, diag);
   *steps = stats.steps;
   for (size_t i = 0; i < n && st == FB_OK; i++) {
-    const fb_planar_contact none = {{0.0, 0.0}, 0.0, 0.0, 0.0, 0.0};
-    const fb_planar_contact *c = ideal ? &none : &ct[i * (size_t)nj + (size_t)p->ref.joint];
     for (int b = 0; b < nb; b++) {
       const int a = 3 * b + 2;
       const double v[3] = {y[i * (size_t)(2 * nq) + (size_t)a],
@@ -147,22 +168,26 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
     }
     col.t[i] = (double)i * p->h;
     if (store) p->drive[i] = r->omega * col.t[i];
-    col.force[i] = c->force;
-    col.pen[i] = c->penetration;
-    if (store && p->ecc) p->ecc[i] = c->ecc[0], p->ecc[n + i] = c->ecc[1];
+    for (int k = 0; k < ncl; k++) {
+      const fb_planar_contact *c = &ct[i * (size_t)nj + (size_t)p->ref.at[k].joint];
+      col.force[k][i] = c->force;
+      col.pen[k][i] = c->penetration;
+      double *ecc = store ? p->ref.at[k].ecc : NULL;
+      if (ecc) ecc[i] = c->ecc[0], ecc[n + i] = c->ecc[1];
+    }
     if (store) /* before the refinement: a point's motion at the sample's instant */
       fb_planar_model_store_outputs(p, m, i, y + i * (size_t)(2 * nq),
                                     y + i * (size_t)(2 * nq) + nq, acc + i * (size_t)nq);
   }
-  if (st == FB_OK && store && !ideal) {
-    memcpy(p->force_sampled, col.force, n * sizeof *col.force);
-    memcpy(p->pen_sampled, col.pen, n * sizeof *col.pen);
+  for (int k = 0; k < ncl && st == FB_OK && store; k++) {
+    memcpy(p->ref.at[k].force_sampled, col.force[k], n * sizeof *col.force[k]);
+    memcpy(p->ref.at[k].pen_sampled, col.pen[k], n * sizeof *col.pen[k]);
   }
   /* the check's window peaks alone are read (check_change): its start-up
    * needs no refinement */
   if (st == FB_OK) refine(&col, p, r, d, y, z, tol, !store);
   for (int k = 0; k < 4 * nb; k++) w[k] = k % 2 ? INFINITY : -INFINITY;
-  w[4 * nb] = w[4 * nb + 1] = 0.0; /* force, penetration */
+  for (int k = 4 * nb; k < 4 * nb + 2 + 2 * ncl; k++) w[k] = 0.0; /* forces, penetrations */
   for (size_t i = 0; i < n && st == FB_OK; i++) {
     if (col.t[i] < r->t_window) continue;
     for (int b = 0; b < nb; b++) {
@@ -172,8 +197,13 @@ static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r
       w[4 * b + 2] = fmax(w[4 * b + 2], qb[FB_Q_ACC * n + i]);
       w[4 * b + 3] = fmin(w[4 * b + 3], qb[FB_Q_ACC * n + i]);
     }
-    w[4 * nb] = fmax(w[4 * nb], col.force[i]);
-    w[4 * nb + 1] = fmax(w[4 * nb + 1], col.pen[i]);
+    for (int k = 0; k < ncl; k++) {
+      double *x = w + 4 * nb + 2 + 2 * k;
+      x[0] = fmax(x[0], col.force[k][i]);
+      x[1] = fmax(x[1], col.pen[k][i]);
+      w[4 * nb] = fmax(w[4 * nb], x[0]);
+      w[4 * nb + 1] = fmax(w[4 * nb + 1], x[1]);
+    }
   }
   free(y);
   free(ct);
@@ -218,29 +248,62 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   fb_status st = FB_OK;
   if (ideal) {
     q->joint = -1;
+    q->njoints = 0;
     const char *why = fb_planar_ref_ideal_refusal(c, p->name);
     if (why) st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': %s", p->name, why);
   } else {
-    st = clearance_joint(&q->joint, c, m, p->name, diag);
+    st = clearance_joints(q, c, m, p->name, diag);
   }
   if (st != FB_OK) return st;
+  const int ncl = q->njoints;
+  unsigned char *clear = calloc((size_t)m->njoints, 1);
+  fb_contact_law *laws = calloc((size_t)m->njoints, sizeof *laws);
+  if (!clear || !laws) {
+    free(clear);
+    free(laws);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  }
+  for (int k = 0; k < ncl; k++) clear[q->at[k].joint] = 1;
   fb_planar_guide *guide = NULL;
   double *omega0 = NULL;
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
   if (ideal) st = fb_planar_free_omega0(&omega0, c, m, diag);
-  else st = fb_planar_free_parts(&guide, &omega0, &free_law, c, m, q->joint, diag);
+  else st = fb_planar_free_parts(&guide, &omega0, &free_law, c, m, clear, diag);
   if (st == FB_OK && !ideal && !free_law && !r->reaction_max)
     st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': the joints' ideal reactions were not computed",
                      p->name);
-  q->force_work = st == FB_OK && !ideal && !free_law ? r->reaction_max[q->joint] : 0.0;
-  if (st == FB_OK && !ideal)
-    st = fb_joint_law_at(&q->law, c, impact, q->force_work, m->joint[q->joint].name,
-                         fb_planar_joint_law_mass(m, q->joint), diag);
+  /* each clearance joint's law at its own working force and mass */
+  for (int k = 0; k < ncl && st == FB_OK; k++) {
+    fb_planar_ref_joint *a = &q->at[k];
+    a->force_work = !free_law ? r->reaction_max[a->joint] : 0.0;
+    st = fb_joint_law_at(&a->law, c, impact, a->force_work, m->joint[a->joint].name,
+                         fb_planar_joint_law_mass(m, a->joint), diag);
+    laws[a->joint] = a->law;
+  }
+  if (ncl) q->law = q->at[0].law, q->force_work = q->at[0].force_work;
   if (st == FB_OK) st = fb_reference_tolerance(&q->tol, diag);
+  /* its columns: a block of 6 n per clearance joint (force, penetration,
+   * both at the samples, a pin's eccentricity), the first's the model's */
+  p->force = ideal || st != FB_OK ? NULL : malloc(6 * p->n * (size_t)ncl * sizeof *p->force);
+  if (st == FB_OK && !ideal && !p->force) st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   if (st != FB_OK) {
+    free(clear);
+    free(laws);
     free(guide);
     free(omega0);
     return st;
+  }
+  for (int k = 0; k < ncl; k++) {
+    fb_planar_ref_joint *a = &q->at[k];
+    double *b = p->force + 6 * p->n * (size_t)k;
+    a->force = b, a->pen = b + p->n, a->force_sampled = b + 2 * p->n, a->pen_sampled = b + 3 * p->n;
+    a->ecc = m->joint[a->joint].kind == FB_KIND_REVOLUTE ? b + 4 * p->n : NULL;
+  }
+  if (ncl) {
+    p->pen = q->at[0].pen;
+    p->force_sampled = q->at[0].force_sampled;
+    p->pen_sampled = q->at[0].pen_sampled;
+    p->ecc = q->at[0].ecc;
   }
   /* the check: tighter by FB_REFERENCE_CHECK_FACTOR down to the floor; a
    * run already at the floor has none (run.c's rule for the four-bar's
@@ -250,27 +313,12 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
    * the force peak from 33.8 to 57.3 N) */
   q->check_tol = fmax(q->tol / FB_REFERENCE_CHECK_FACTOR, FB_REFERENCE_TOL_MIN);
   q->check_rel = NAN;
-  unsigned char *clear = calloc((size_t)m->njoints, 1);
-  p->force = ideal ? NULL : malloc(6 * p->n * sizeof *p->force);
-  if (!clear || (!ideal && !p->force)) {
-    free(clear);
-    free(guide);
-    free(omega0);
-    return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  }
-  if (!ideal) {
-    p->pen = p->force + p->n;
-    p->force_sampled = p->force + 2 * p->n;
-    p->pen_sampled = p->force + 3 * p->n;
-    if (m->joint[q->joint].kind == FB_KIND_REVOLUTE) p->ecc = p->force + 4 * p->n;
-    clear[q->joint] = 1;
-  }
   /* v0 of the hysteresis laws: fixed, as reference.c's */
   const fb_planar_dyn_model model = {m, clear, q->law, c->radial_clearance, 1e-3, c->gravity,
-                                     r->omega, guide, omega0};
+                                     r->omega, guide, omega0, ideal ? NULL : laws};
   fb_planar_rel *d = NULL;
   st = fb_planar_rel_new(&d, &model, diag);
-  const int nw = 4 * (m->nbodies - 1) + 2;
+  const int nw = peaks_size(m, q);
   double *w = malloc(2 * (size_t)nw * sizeof *w);
   if (st == FB_OK && !w) st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   if (st == FB_OK) st = integrate(w, p, r, d, q->tol, &q->steps, 1, diag);
@@ -285,19 +333,24 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
     p->peaks[b] = (fb_body_peaks){.omega_max = NAN, .omega_min = NAN, .alpha_max = NAN,
                                   .alpha_min = NAN};
   if (st == FB_OK && !q->failed) {
+    const int nb = m->nbodies - 1;
     for (int b = 1; b < m->nbodies; b++) {
       const double *x = w + 4 * (b - 1);
       p->peaks[b] = (fb_body_peaks){.omega_max = x[0], .omega_min = x[1], .alpha_max = x[2],
                                     .alpha_min = x[3]};
     }
-    q->force_max = ideal ? NAN : w[nw - 2];
-    q->penetration_max = ideal ? NAN : w[nw - 1];
-    if (fb_planar_ref_checked(q)) q->check_rel = check_change(w, w + nw, m->nbodies - 1);
+    q->force_max = ideal ? NAN : w[4 * nb];
+    q->penetration_max = ideal ? NAN : w[4 * nb + 1];
+    for (int k = 0; k < ncl; k++)
+      q->at[k].force_max = w[4 * nb + 2 + 2 * k], q->at[k].penetration_max = w[4 * nb + 3 + 2 * k];
+    if (fb_planar_ref_checked(q)) q->check_rel = check_change(w, w + nw, nb);
     q->converged = q->check_rel <= FB_UNCONVERGED_REL; /* unchecked (NaN): not converged */
   }
+  for (int k = 0; k < ncl && q->failed; k++) q->at[k].force_max = q->at[k].penetration_max = NAN;
   free(w);
   fb_planar_rel_free(d);
   free(clear);
+  free(laws);
   free(guide);
   free(omega0);
   return st;

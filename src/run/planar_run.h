@@ -83,15 +83,38 @@
  * Returns buf. */
 const char *fb_planar_kit_models(char *buf, size_t size);
 
-/* What a reference measured beyond its samples. */
+/* The clearance joints a reference takes at most (its [clearance] joints). */
+#define FB_PLANAR_REF_MAX_JOINTS 8
+
+/* A reference's contact at one of its clearance joints. */
 typedef struct {
   int joint;               /* the clearance joint (index in the description) */
+  fb_contact_law law;      /* its law as used (taken at its own working force and mass) */
+  double force_work;       /* the working force the law was taken at [N] */
+  double force_max;        /* its largest contact force in the window [N] */
+  double penetration_max;  /* its largest penetration in the window [m] */
+  double *force, *pen;     /* its contact force [N] and penetration [m] (n each), each spike's
+                              sample holding its refined extreme; in the model's block */
+  double *force_sampled, *pen_sampled; /* the same at the samples, before the refinement (n) */
+  double *ecc;             /* a pin's eccentricity, x at ecc[i], y at ecc[n + i] [m] (2 n);
+                              NULL for a slider in its guide */
+} fb_planar_ref_joint;
+
+/* What a reference measured beyond its samples. */
+typedef struct {
+  int joint;               /* the clearance joint (index in the description); a reference of
+                              several: the first of at[] */
   fb_contact_law law;      /* its law as used */
   double force_work;       /* the working force the law was taken at [N] */
   double tol, check_tol;   /* rk8pd tolerances of the run and its check [-] */
   size_t steps, check_steps; /* accepted steps of each */
-  double force_max;        /* largest contact force in the window [N] */
-  double penetration_max;  /* largest penetration in the window [m] */
+  double force_max;        /* largest contact force in the window [N] (over every clearance
+                              joint of a reference of several) */
+  double penetration_max;  /* largest penetration in the window [m] (likewise) */
+  int njoints;             /* a reference's clearance joints (at[], in the description's
+                              order; at[0] is joint above, its columns the model's force, pen,
+                              ...); 0 for the ideal mechanism's and for other models */
+  fb_planar_ref_joint at[FB_PLANAR_REF_MAX_JOINTS];
   double check_rel;        /* largest |relative change| of a window peak in the check, NaN
                               without one (fb_planar_ref_checked) [-] */
   int converged;           /* check_rel <= FB_UNCONVERGED_REL */
@@ -198,6 +221,22 @@ typedef struct {
  * peaks [N, m]. */
 static inline int fb_planar_model_has_contact(const fb_planar_model *p) {
   return (p->reference && p->ref.joint >= 0) || (p->engine && p->force);
+}
+
+/* Model p's clearance contacts: a reference's clearance joints
+ * (ref.njoints), an engine's clearance model's one, else 0. */
+static inline int fb_planar_model_contacts(const fb_planar_model *p) {
+  return p->reference ? p->ref.njoints : p->engine && p->force ? 1 : 0;
+}
+
+/* Model p's k-th clearance contact (k < fb_planar_model_contacts(p)): its
+ * joint, law, window peaks and columns (an engine's: its ref and columns;
+ * force_sampled, pen_sampled NULL). */
+static inline fb_planar_ref_joint fb_planar_model_contact(const fb_planar_model *p, int k) {
+  if (p->reference) return p->ref.at[k];
+  return (fb_planar_ref_joint){p->ref.joint, p->ref.law, p->ref.force_work, p->ref.force_max,
+                               p->ref.penetration_max, p->force, p->pen, p->force_sampled,
+                               p->pen_sampled, p->ecc};
 }
 
 /* A planar case run. */

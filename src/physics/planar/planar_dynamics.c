@@ -40,15 +40,17 @@ fb_status fb_planar_dyn_new(fb_planar_dyn **out, const fb_planar_dyn_model *mode
                        "%g m/s, drive speed %g rad/s: the first two must be >= 0, v0 > 0, all "
                        "finite", model->radial_clearance, model->gravity,
                        model->impact_velocity, model->omega);
-  int any = 0; /* an ideal mechanism (no clearance joint) has no law to check */
-  for (int j = 0; j < m->njoints; j++) any |= model->clearance[j] != 0;
-  fb_status rc = any ? fb_contact_law_check(&model->law, diag) : FB_OK;
-  if (rc != FB_OK) return rc;
+  /* an ideal mechanism (no clearance joint) has no law to check */
+  for (int j = 0; j < m->njoints; j++) {
+    if (!model->clearance[j]) continue;
+    const fb_status rc = fb_contact_law_check(fb_planar_dyn_law(model, j), diag);
+    if (rc != FB_OK) return rc;
+  }
   fb_planar_dyn *d = calloc(1, sizeof *d);
   if (!d) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   d->model = *model;
   d->nq = fb_planar_nq(m);
-  rc = fb_planar_cmass_new(&d->cmass, m, model->clearance, diag);
+  fb_status rc = fb_planar_cmass_new(&d->cmass, m, model->clearance, diag);
   if (rc == FB_OK) {
     d->force = calloc((size_t)d->nq, sizeof *d->force);
     d->gamma = calloc((size_t)fb_planar_cmass_rows(d->cmass), sizeof *d->gamma);
@@ -81,7 +83,7 @@ static void guide_at(fb_planar_dyn *d, int j, const double *q, const double *qd,
                      fb_planar_contact *out) {
   fb_planar_guide_state g;
   fb_planar_guide_contact(d->force, &g, d->cmass, d->model.mech, j, &d->model.guide[j],
-                          &d->model.law, d->model.impact_velocity, q, qd);
+                          fb_planar_dyn_law(&d->model, j), d->model.impact_velocity, q, qd);
   /* the slider's centre across the slide: the mean of its corners' y */
   fb_planar_contact s = {{0.25 * (g.gap[2] + g.gap[3] - g.gap[0] - g.gap[1]), g.tilt},
                          0.0, 0.0, 0.0, 0.0};
@@ -114,12 +116,13 @@ static void contact_at(fb_planar_dyn *d, int j, const double *q, const double *q
     const double n[2] = {e[0] / ecc, e[1] / ecc};
     c.rate = n[0] * (vp[0] - vh[0]) + n[1] * (vp[1] - vh[1]);
     if (delta > 0.0) {
-      if (fb_contact_law_wants_mass(&d->model.law)) {
+      const fb_contact_law *own = fb_planar_dyn_law(&d->model, j);
+      if (fb_contact_law_wants_mass(own)) {
         double w[2][2];
         fb_planar_cmass_tensor(d->cmass, w, j, q);
         c.effective_mass = fb_effective_mass_along(w, n);
       }
-      const fb_contact_law law = fb_contact_law_on_mass(&d->model.law, c.effective_mass);
+      const fb_contact_law law = fb_contact_law_on_mass(own, c.effective_mass);
       c.force = fb_contact_force(&law, delta, c.rate, d->model.impact_velocity);
       /* the pin pushes the hole along +n */
       const double fh[2] = {c.force * n[0], c.force * n[1]}, fp[2] = {-fh[0], -fh[1]};

@@ -39,8 +39,9 @@ typedef struct {
   const fb_planar *mech;           /* the description (outlives the model) */
   const unsigned char *clearance;  /* (njoints) 1: a revolute clearance joint */
   fb_contact_law law;              /* normal-force law at every clearance joint (prepared:
-                                      fb_contact_law_prepare); not read, nor checked, when
-                                      no joint has clearance (the ideal mechanism) */
+                                      fb_contact_law_prepare) unless joint_law gives each its
+                                      own; not read, nor checked, when no joint has
+                                      clearance (the ideal mechanism) */
   double radial_clearance;         /* c = R_hole - R_pin [m] >= 0 */
   double impact_velocity;          /* v0 of the hysteresis laws [m/s] > 0 (fixed, as reference.c) */
   double gravity;                  /* along -y [m/s^2] */
@@ -49,7 +50,16 @@ typedef struct {
                                       guide (planar_guide.h); NULL when none is one */
   const double *omega0;            /* an undriven description's initial angular velocities
                                       (nbodies) [rad/s] (planar_start.h); NULL: all 0 */
+  const fb_contact_law *joint_law; /* (njoints) each clearance joint's own law (prepared; read
+                                      at the clearance joints only), so that several joints
+                                      each take theirs (their working forces and masses
+                                      differ); NULL: law at every one */
 } fb_planar_dyn_model;
+
+/* The law at clearance joint j of model (its joint_law[j], else law). */
+static inline const fb_contact_law *fb_planar_dyn_law(const fb_planar_dyn_model *model, int j) {
+  return model->joint_law ? &model->joint_law[j] : &model->law;
+}
 
 /* One clearance joint's contact at an evaluation (a slider in its guide:
  * the deepest corner's, force the corners' sum, ecc the slider's offset

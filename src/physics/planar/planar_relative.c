@@ -330,10 +330,11 @@ static int spd_inverse(double *inv, double *l, const double *a, int n) {
 static double sigma_of(int k) { return k % 2 ? 1.0 : -1.0; }
 static double tau_of(int k) { return k < 2 ? 1.0 : -1.0; }
 
-/* a pin in its hole: r = e, rd = e' (2 each) at coordinates i0; the
- * generalised force added to d->f */
-static void pin(fb_planar_rel *d, int i0, const double *r, const double *rd,
+/* a pin in its hole (joint j): r = e, rd = e' (2 each) at coordinates i0;
+ * the generalised force added to d->f */
+static void pin(fb_planar_rel *d, int j, int i0, const double *r, const double *rd,
                 fb_planar_contact *out) {
+  const fb_contact_law *own = fb_planar_dyn_law(&d->model, j);
   const int nr = d->nr;
   const double e[2] = {r[i0], r[i0 + 1]};
   const double ecc = hypot(e[0], e[1]);
@@ -343,12 +344,12 @@ static void pin(fb_planar_rel *d, int i0, const double *r, const double *rd,
     const double n[2] = {e[0] / ecc, e[1] / ecc};
     c.rate = n[0] * rd[i0] + n[1] * rd[i0 + 1];
     if (delta > 0.0) {
-      if (fb_contact_law_wants_mass(&d->model.law)) {
+      if (fb_contact_law_wants_mass(own)) {
         double w[2][2] = {{d->w[i0 * nr + i0], d->w[i0 * nr + i0 + 1]},
                           {d->w[(i0 + 1) * nr + i0], d->w[(i0 + 1) * nr + i0 + 1]}};
         c.effective_mass = fb_effective_mass_along(w, n);
       }
-      const fb_contact_law law = fb_contact_law_on_mass(&d->model.law, c.effective_mass);
+      const fb_contact_law law = fb_contact_law_on_mass(own, c.effective_mass);
       c.force = fb_contact_force(&law, delta, c.rate, d->model.impact_velocity);
       d->f[i0] -= c.force * n[0];
       d->f[i0 + 1] -= c.force * n[1];
@@ -363,6 +364,7 @@ static void slider(fb_planar_rel *d, int j, int i0, const double *r, const doubl
                    fb_planar_contact *out) {
   const int nr = d->nr, nk = FB_PLANAR_GUIDE_CORNERS;
   const fb_planar_guide *g = &d->model.guide[j];
+  const fb_contact_law *own = fb_planar_dyn_law(&d->model, j);
   const double psi = r[i0], y = r[i0 + 1], sp = sin(psi), cp = cos(psi), hs = sin(0.5 * psi);
   double gap[FB_PLANAR_GUIDE_CORNERS], rate[FB_PLANAR_GUIDE_CORNERS], jac[FB_PLANAR_GUIDE_CORNERS][2];
   int deep = 0, on = 0;
@@ -377,7 +379,7 @@ static void slider(fb_planar_rel *d, int j, int i0, const double *r, const doubl
     on += gap[k] < 0.0;
   }
   double mass[FB_PLANAR_GUIDE_CORNERS] = {0, 0, 0, 0}, force = 0.0;
-  if (on && fb_contact_law_wants_mass(&d->model.law)) {
+  if (on && fb_contact_law_wants_mass(own)) {
     /* D = J W J^T over the joint's block of W; a corner's face's share */
     const double w00 = d->w[i0 * nr + i0], w01 = d->w[i0 * nr + i0 + 1];
     const double w11 = d->w[(i0 + 1) * nr + i0 + 1];
@@ -394,7 +396,7 @@ static void slider(fb_planar_rel *d, int j, int i0, const double *r, const doubl
   }
   for (int k = 0; k < nk; k++) {
     if (!(gap[k] < 0.0)) continue;
-    const fb_contact_law law = fb_contact_law_on_mass(&d->model.law, mass[k]);
+    const fb_contact_law law = fb_contact_law_on_mass(own, mass[k]);
     const double fk = fb_contact_force(&law, -gap[k], rate[k], d->model.impact_velocity);
     force += fk;
     d->f[i0] -= fk * jac[k][0];
@@ -483,7 +485,7 @@ fb_status fb_planar_rel_eval(fb_planar_rel *d, double t, const double *z, double
     if (m->joint[j].kind == FB_KIND_PRISMATIC)
       slider(d, j, 2 * c, r, rd, out);
     else
-      pin(d, 2 * c, r, rd, out);
+      pin(d, j, 2 * c, r, rd, out);
   }
   /* r'' = W f (q'' = q''_0 + V r'', fb_planar_rel_motion); the state's
    * rates in its units */

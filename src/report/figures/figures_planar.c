@@ -345,11 +345,12 @@ static fb_status points(const fb_planar_run *r, const char *dir, fb_figure_forma
 }
 
 /* contact_<model>_<joint>.<ext>: a reference's contact force and
- * penetration at its clearance joint against the drive angle */
-static fb_status contact(const fb_planar_run *r, const fb_planar_model *p, const char *dir,
-                         fb_figure_format fmt, json_t *figs, char *file, size_t fsize,
-                         fb_diag *diag) {
-  const char *joint = r->m->joint[p->ref.joint].name;
+ * penetration at its k-th clearance joint against the drive angle */
+static fb_status contact(const fb_planar_run *r, const fb_planar_model *p, int k_joint,
+                         const char *dir, fb_figure_format fmt, json_t *figs, char *file,
+                         size_t fsize, fb_diag *diag) {
+  const fb_planar_ref_joint *ct = &p->ref.at[k_joint];
+  const char *joint = r->m->joint[ct->joint].name;
   char jcol[64], name[160], en[200], jn[160];
   fb_name_word(jcol, sizeof jcol, joint);
   snprintf(name, sizeof name, "contact_%s_%s", p->name, jcol);
@@ -364,11 +365,11 @@ static fb_status contact(const fb_planar_run *r, const fb_planar_model *p, const
   static const char *const what[2] = {"force_n", "penetration_m"};
   double *um = NULL;
   for (int k = 0; k < 2; k++) {
-    const double *y = k ? p->pen : p->force;
+    const double *y = k ? ct->pen : ct->force;
     if (k) { /* the penetration drawn in um */
       um = malloc((p->n ? p->n : 1) * sizeof *um);
       if (!um) break;
-      for (size_t i = 0; i < p->n; i++) um[i] = p->pen[i] / FB_M_PER_UM;
+      for (size_t i = 0; i < p->n; i++) um[i] = ct->pen[i] / FB_M_PER_UM;
       y = um;
     }
     char dname[16], col[96];
@@ -420,9 +421,11 @@ fb_status fb_figures_planar(const fb_planar_run *r, const char *dir, fb_figure_f
   }
   for (int i = 0; i < r->n && st == FB_OK && driven; i++) {
     if (!r->model[i].reference || !r->model[i].force) continue;
-    char file[128];
-    st = contact(r, &r->model[i], dir, fmt, figs, file, sizeof file, diag);
-    if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s", file);
+    for (int k = 0; k < r->model[i].ref.njoints && st == FB_OK; k++) { /* one per joint */
+      char file[128];
+      st = contact(r, &r->model[i], k, dir, fmt, figs, file, sizeof file, diag);
+      if (st == FB_OK && *n < max) snprintf(names[(*n)++], 128, "%s", file);
+    }
   }
   return fig_batch_finish(st, figs, dir, diag);
 }

@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""A planar case with several clearance joints through its references
+(run/planar_ref_model.c: every [clearance] joint a pin in its hole or a
+slider in its guide, each with its own law; report_planar.c,
+report_html_planar.c, figures_planar.c: its columns, summary, page and
+figures per joint).
+
+1. Each joint its own law: the six-bar with clearance at ternary-rod and
+   rod-output takes at each joint the law the six-bar with clearance at
+   that joint alone takes (its working force and mass are the joint's:
+   the two laws' stiffnesses differ, by 1.56x).
+2. The summary is its columns: each joint's force_max_n and
+   penetration_max_m are the largest of its CSV columns over the window,
+   the model's force_max_n and penetration_max_m the largest over its
+   joints; clearance_joints lists both.
+3. A pin and a guide both loose (the slider-crank of Siconos's example
+   with its rod-slider pin loose too): both references run (exit 0), each
+   with a verdict, per joint columns; the page's data carries each joint's
+   impacts and the pin's orbit (a slider has none); one contact figure per
+   model and joint.
+4. The single-joint six-bar is what it was: its reference's per_joint is
+   its one joint, equal to the model's peaks (the committed baseline,
+   test_planar_baselines.py, holds its numbers).
+
+Usage: test_planar_clearance_joints.py PATH_TO_FOURBAR. Prints "N passed,
+N failed"; exit 1 on any failure."""
+import json, os, re, sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fb_script  # noqa: E402
+
+exe, cases, tally, tmp = fb_script.start(sys.argv, "fourbar-planar-joints-")
+check = tally.check
+
+# a peak read back from its CSV column against summary.json's: the CSV
+# prints 12 significant digits (%.12g), summary.json the double whole
+PRINTED_REL = 1e-11
+
+
+def summary(folder):
+    with open(os.path.join(folder, "summary.json")) as f:
+        return json.load(f)
+
+
+def write(name, text):
+    path = os.path.join(tmp, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+sixbar = os.path.join(cases, "watt_sixbar.ini")
+two = write("sixbar_two.ini", "[case]\nbase = %s\nname = sixbar_two\n[clearance]\n"
+            "joints = rod-output, ternary-rod\n" % sixbar)
+one = write("sixbar_ternary.ini", "[case]\nbase = %s\nname = sixbar_ternary\n[clearance]\n"
+            "joints = ternary-rod\n" % sixbar)
+
+runs = {}
+for name, case in (("two", two), ("one", one), ("shipped", sixbar)):
+    out = os.path.join(tmp, name)
+    rc, _, se = fb_script.run(exe, tmp, "run", case, "--set", "run.revolutions=2", "--set",
+                              "run.models=reference,reference-restitution", "--out", out,
+                              *(["--no-figures"] if name != "two" else []))
+    check(rc == 0, "%s: the six-bar's references run: exit %d, %s" % (name, rc, se.strip()[-300:]))
+    runs[name] = out if rc == 0 else None
+
+# 1. each joint's law is its own
+if runs["two"] and runs["one"] and runs["shipped"]:
+    two_m = {m["name"]: m for m in summary(runs["two"])["models"]}
+    one_m = {m["name"]: m for m in summary(runs["one"])["models"]}
+    shipped_m = {m["name"]: m for m in summary(runs["shipped"])["models"]}
+    for model in ("reference", "reference-restitution"):
+        each = {j["joint"]: j for j in two_m[model]["per_joint"]}
+        check(sorted(each) == ["rod-output", "ternary-rod"] and
+              sorted(two_m[model]["clearance_joints"]) == ["rod-output", "ternary-rod"],
+              "%s: clearance_joints and per_joint name both joints: %s"
+              % (model, two_m[model]["clearance_joints"]))
+        if sorted(each) != ["rod-output", "ternary-rod"]:
+            continue
+        alone = {"ternary-rod": one_m[model]["law"], "rod-output": shipped_m[model]["law"]}
+        for joint, law in alone.items():
+            got = each[joint]["law"]
+            check(got == law, "%s at %s: the law of that joint alone (stiffness %g, working "
+                  "force %g N), got %s" % (model, joint, law["stiffness"], law["working_force_n"],
+                                           got))
+        ratio = each["rod-output"]["law"]["stiffness"] / each["ternary-rod"]["law"]["stiffness"]
+        check(abs(ratio - 1.0) > 0.1, "%s: the two joints' laws differ (stiffness ratio %.3g)"
+              % (model, ratio))
+
+# 2. the summary's peaks are the columns'
+if runs["two"]:
+    s = summary(runs["two"])
+    for m in s["models"]:
+        if m["name"] == "analytic":
+            continue
+        col = fb_script.columns(os.path.join(runs["two"], m["name"] + ".csv"))
+        t = col["time_s"]
+        t0 = m["window_from_s"]
+        for j in m["per_joint"]:
+            for key, suffix in (("force_max_n", "_force_n"), ("penetration_max_m",
+                                                              "_penetration_m")):
+                name = j["joint"] + suffix
+                have = name in col
+                peak = max(v for v, ti in zip(col[name], t) if ti >= t0) if have else None
+                check(have and fb_script.rel(peak, j[key]) <= PRINTED_REL,
+                      "%s: %s's %s %s is its column %s's largest over the window (%s)"
+                      % (m["name"], j["joint"], key, j[key], name, peak))
+        for key in ("force_max_n", "penetration_max_m"):
+            largest = max(j[key] for j in m["per_joint"])
+            check(m[key] == largest, "%s: %s %s is the largest over its joints (%s)"
+                  % (m["name"], key, m[key], largest))
+    figs = sorted(f for f in os.listdir(runs["two"]) if f.startswith("contact_"))
+    want = sorted("contact_%s_%s.svg" % (m, j) for m in ("reference", "reference-restitution")
+                  for j in ("rod_output", "ternary_rod"))
+    check(figs == want, "a contact figure per model and joint: %s" % figs)
+
+# 3. a pin and a guide both loose
+guide = os.path.join(cases, "slider_guide_flores_leine_glocker.ini")
+both = write("pin_and_guide.ini", "[case]\nbase = %s\nname = pin_and_guide\n[clearance]\n"
+             "joints = guide, rod-slider\n[pin]\nradial_clearance_um = 100\n[solver]\n"
+             "h_s = 1e-5\n[run]\nduration_s = 0.05\nmodels = reference-restitution, reference\n"
+             % guide)
+out = os.path.join(tmp, "both")
+rc, so, se = fb_script.run(exe, tmp, "run", both, "--out", out)
+check(rc == 0, "a pin and a guide both loose: the references run: exit %d, %s"
+      % (rc, se.strip()[-300:]))
+if rc == 0:
+    s = summary(out)
+    for m in s["models"]:
+        check([j["joint"] for j in m["per_joint"]] == ["rod-slider", "guide"] and
+              m["verdict"] in ("ok", "unconverged"),
+              "%s: per_joint rod-slider and guide (the description's order), a verdict: %s, %s"
+              % (m["name"], [j["joint"] for j in m["per_joint"]], m["verdict"]))
+        head = fb_script.columns(os.path.join(out, m["name"] + ".csv")).keys()
+        want = ["rod-slider_force_n", "rod-slider_penetration_m", "guide_force_n",
+                "guide_penetration_m"]
+        check(all(w in head for w in want), "%s: each joint's force and penetration columns"
+              % m["name"])
+    text = open(os.path.join(out, "report-data.js")).read()
+    data = json.JSONDecoder().raw_decode(text[text.index("String.raw`") + 11:])[0]
+    for m in data["models"]:
+        joints = {j["joint"]: j for j in m["joints"]}
+        check(sorted(joints) == ["guide", "rod-slider"] and "ecc_x_um" in joints["rod-slider"]
+              and "ecc_x_um" not in joints["guide"] and
+              all(joints[j]["impacts"] > 0 for j in joints),
+              "report.html's data of %s: both joints, each with impacts, the pin's orbit only: %s"
+              % (m["name"], {j: (v["impacts"], "ecc_x_um" in v) for j, v in joints.items()}))
+        listed = {i["joint"] for i in data.get("impacts", []) if i["model"] == m["name"]} | \
+            {i["joint"] for i in m.get("impacts", [])}
+        check(listed == {"guide", "rod-slider"}, "the page's impact list of %s names both joints: %s"
+              % (m["name"], listed))
+    check(re.search(r"clearance at 'rod-slider'.*\n.*clearance at 'guide'", so) is not None,
+          "the run's header gives a line per clearance joint")
+
+# 4. one joint: per_joint is it
+if runs["shipped"]:
+    for m in summary(runs["shipped"])["models"]:
+        pj = m.get("per_joint", [])
+        check(len(pj) == 1 and pj[0]["joint"] == "rod-output" and
+              pj[0]["force_max_n"] == m["force_max_n"] and
+              pj[0]["penetration_max_m"] == m["penetration_max_m"] and pj[0]["law"] == m["law"],
+              "%s of the shipped six-bar: per_joint is its one joint, its peaks the model's"
+              % m["name"])
+
+sys.exit(tally.done())

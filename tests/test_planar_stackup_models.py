@@ -20,7 +20,17 @@ run/planar_run.h).
    its coupler's omega max nearer analytic-stackup's than analytic's by
    more than ENGINE_CORNER_FACTOR (it ran the corner, not the nominal
    mechanism).
-3. Bad input: a corner of the wrong length names both counts; `worst`, an
+3. The reference and the clearance models at the corner too, as the
+   four-bar's (their rows' lengths are stackup): with [tolerance] class the
+   planar four-bar's `reference` (crank-coupler loose) against the built-in
+   four-bar's `reference` at max, the same step: within
+   REFERENCE_CORNER_REL (a body's centre of mass is kept in its frame at a
+   planar corner, at its fraction of the link on the built-in), where the
+   planar reference of the nominal mechanism sits 10x that away or more
+   (the corner's own effect); without class both references run the
+   nominal mechanism alike (equal to NOMINAL_REFERENCE_REL); an engine's
+   clearance model at the corner keeps its verdict against it.
+4. Bad input: a corner of the wrong length names both counts; `worst`, an
    unknown sign, a stack-up model without [tolerance] class are refused
    (exit 2, nothing written); the four-bar's own rule (4 characters) is
    unchanged.
@@ -55,6 +65,19 @@ ENGINE_CORNER_FACTOR = 10.0
 # tolerances, 0.3 and 0.5 mm, on 108-280 mm links); far above
 # FOURBAR_PEAK_REL, so the control can fail.
 CORNER_MOVES_REL = 1e-5
+# The planar and built-in references at the stack-up corner max (class m),
+# h = 3.32e-6 s, 2 revolutions: the follower's omega max 80.68706 against
+# 80.69307 (7.4e-5), the force peak 2501.446 against 2502.321 N (3.5e-4):
+# the corner moves a link's joints, and its centre of mass stays in the
+# body's frame on a planar description but at its fraction of the link on
+# the built-in (the coupler's by 0.15 mm); the corner itself moves them by
+# 1.45e-3 and 4.6e-3 (80.576, 2513.787 at nominal).
+REFERENCE_CORNER_REL = {"omega": 2e-4, "force": 1e-3}
+# Both references of the nominal mechanism: the same equations in other
+# coordinates, 8e-12 apart in the force peak and equal to the printed
+# digits in omega (measured), far below the corner's bounds
+NOMINAL_REFERENCE_REL = 1e-9
+REFERENCE_STEP_S = "3.32e-6"
 PEAK_KEYS = ("omega_max_rad_s", "omega_min_rad_s", "alpha_max_rad_s2", "alpha_min_rad_s2")
 
 
@@ -124,7 +147,45 @@ if rc == 0:
               "%s ran the corner: coupler omega max %.9g, analytic-stackup %.9g, analytic %.9g"
               % (n, x, corner, nominal))
 
-# 3. bad input: exit 2, the rule, nothing written
+# 3. the references at the corner: planar against built-in
+def reference_peaks(ms):
+    m = ms.get("reference", {})
+    force = m.get("force_max_n", m.get("spikes", {}).get("force_max_n"))
+    return bodies(m).get("follower", {}).get("omega_max_rad_s"), force
+
+
+refs = {}
+for name, case, sets in (("built_max", paper, ("tolerance.stackup=max",)),
+                         ("built_nominal", paper, ("tolerance.stackup=nominal",)),
+                         ("planar_max", planar, ("tolerance.class=m",)),
+                         ("planar_nominal", planar, ())):
+    rc, se, ms, _ = run(case, "ref_" + name, "run.revolutions=2", "solver.h_s=" + REFERENCE_STEP_S,
+                        "run.models=reference" + (",ode-clearance-impact" if name == "planar_max"
+                                                  else ""), *sets)
+    check(rc == 0, "%s: the reference runs (%s)" % (name, se.strip()[-300:]))
+    refs[name] = (reference_peaks(ms), ms) if rc == 0 else None
+if all(refs.values()):
+    (wb, fb), _ = refs["built_max"]
+    (wp, fp), ms = refs["planar_max"]
+    (wn, fn), _ = refs["planar_nominal"]
+    (wbn, fbn), _ = refs["built_nominal"]
+    check(rel(wp, wb) <= REFERENCE_CORNER_REL["omega"] and rel(fp, fb) <= REFERENCE_CORNER_REL["force"],
+          "the planar reference at the corner is the built-in's at max: follower omega max %.9g "
+          "against %.9g (%.2g), force %.7g against %.7g N (%.2g)"
+          % (wp, wb, rel(wp, wb), fp, fb, rel(fp, fb)))
+    check(rel(wn, wb) > 5 * REFERENCE_CORNER_REL["omega"] and
+          rel(fn, fb) > 3 * REFERENCE_CORNER_REL["force"],
+          "control: the nominal mechanism's planar reference is not the corner's (%.2g, %.2g)"
+          % (rel(wn, wb), rel(fn, fb)))
+    check(rel(wn, wbn) <= NOMINAL_REFERENCE_REL and rel(fn, fbn) <= NOMINAL_REFERENCE_REL,
+          "without class both references run the nominal mechanism (%.2g, %.2g)"
+          % (rel(wn, wbn), rel(fn, fbn)))
+    m = ms.get("ode-clearance-impact", {})
+    check(m.get("verdict") == "ok" and "reference" in m.get("verdict_reason", ""),
+          "ode-clearance-impact at the corner: ok against the reference (%s: %s)"
+          % (m.get("verdict"), m.get("verdict_reason")))
+
+# 4. bad input: exit 2, the rule, nothing written
 BAD = ((("tolerance.class=m", "tolerance.stackup=+-", "run.models=analytic-stackup"),
         ("2 signs", "4 dimensions")),
        (("tolerance.class=m", "tolerance.stackup=worst", "run.models=analytic-stackup"),

@@ -118,7 +118,8 @@ static void window_peaks(fb_planar_model *p, const fb_planar_run *r) {
  * prismatic joint's guide (*guide, cl->guide, owned: free()), the columns */
 static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_planar_model *p,
                            const fb_planar_run *r, const fb_model *mt, fb_diag *diag) {
-  const fb_planar *m = r->m;
+  const fb_planar *m = p->m; /* the nominal description or its stack-up corner: the same joints */
+  const double *reaction_max = fb_planar_run_reaction_max(r, m);
   const fb_case *c = &r->c;
   int n = 0, cj = -1;
   for (int k = 0; k < m->njoints; k++)
@@ -135,13 +136,13 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   fb_status st = fb_planar_free_parts(guide, &omega0, &free_law, c, m, one, diag);
   free(omega0); /* the start takes its own (fb_planar_run_kit) */
   cl->guide = *guide;
-  if (st == FB_OK && !free_law && !r->reaction_max)
+  if (st == FB_OK && !free_law && !reaction_max)
     st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': the joints' ideal reactions were not computed",
                      p->name);
   const fb_planar_joint *j = &m->joint[cj];
   fb_kit_joint_record *rec = &cl->joint[cj];
   const double mass = fb_planar_joint_law_mass(m, cj);
-  p->ref.force_work = st == FB_OK && !free_law ? r->reaction_max[cj] : 0.0;
+  p->ref.force_work = st == FB_OK && !free_law ? reaction_max[cj] : 0.0;
   if (st == FB_OK)
     st = fb_joint_law_at(&rec->law, c, mt->law == FB_MODEL_LAW_IMPACT, p->ref.force_work, j->name,
                          mass, diag);
@@ -247,7 +248,7 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   const int adaptive = r->c.solver.h_mode == FB_STEP_ADAPTIVE;
   if (st == FB_OK && adaptive && run_cl && b->persistent_rule == FB_PERSIST_LOAD_SCHEDULE &&
       r->m->drive >= 0 && r->m->torque_joint < 0) {
-    st = fb_load_scale_build_planar(&load, r->m, r->c.gravity, r->omega, cl.mask,
+    st = fb_load_scale_build_planar(&load, p->m, r->c.gravity, r->omega, cl.mask,
                                     FB_STEP_LOAD_LOOKAHEAD * r->c.solver.h_max, diag);
     cl.load = &load;
   }

@@ -94,7 +94,7 @@ static double refine_start(double *y, size_t k, void *p) {
  * so that both references' peaks are the same quantity. */
 static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *r,
                    fb_planar_rel *d, const double *y, const double *z, double tol, int window) {
-  const fb_planar *m = r->m;
+  const fb_planar *m = p->m;
   const int nb = m->nbodies - 1;
   int from = -1, to = 0; /* an undriven description has no driven body */
   if (m->drive >= 0) fb_planar_drive_bodies(m, &from, &to);
@@ -136,7 +136,7 @@ static int peaks_size(const fb_planar *m, const fb_planar_ref_result *q) {
  * forces and penetrations 0 for the ideal mechanism, p->ref.njoints = 0) */
 static fb_status integrate(double *w, fb_planar_model *p, const fb_planar_run *r, fb_planar_rel *d,
                            double tol, size_t *steps, int store, fb_diag *diag) {
-  const fb_planar *m = r->m;
+  const fb_planar *m = p->m;
   const int nq = fb_planar_nq(m), nj = m->njoints, nb = m->nbodies - 1, dim = fb_planar_rel_dim(d);
   const int ncl = p->ref.njoints;
   const size_t n = p->n;
@@ -239,7 +239,7 @@ const char *fb_planar_ref_ideal_refusal(const fb_case *c, const char *model) {
 
 fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, int impact,
                                   fb_diag *diag) {
-  const fb_planar *m = r->m;
+  const fb_planar *m = p->m;
   const fb_case *c = &r->c;
   fb_planar_ref_result *q = &p->ref;
   p->reference = 1;
@@ -269,13 +269,14 @@ fb_status fb_planar_run_reference(fb_planar_model *p, const fb_planar_run *r, in
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
   if (ideal) st = fb_planar_free_omega0(&omega0, c, m, diag);
   else st = fb_planar_free_parts(&guide, &omega0, &free_law, c, m, clear, diag);
-  if (st == FB_OK && !ideal && !free_law && !r->reaction_max)
+  const double *reaction_max = fb_planar_run_reaction_max(r, m);
+  if (st == FB_OK && !ideal && !free_law && !reaction_max)
     st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': the joints' ideal reactions were not computed",
                      p->name);
   /* each clearance joint's law at its own working force and mass */
   for (int k = 0; k < ncl && st == FB_OK; k++) {
     fb_planar_ref_joint *a = &q->at[k];
-    a->force_work = !free_law ? r->reaction_max[a->joint] : 0.0;
+    a->force_work = !free_law ? reaction_max[a->joint] : 0.0;
     st = fb_joint_law_at(&a->law, c, impact, a->force_work, m->joint[a->joint].name,
                          fb_planar_joint_law_mass(m, a->joint), diag);
     laws[a->joint] = a->law;

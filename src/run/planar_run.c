@@ -295,12 +295,25 @@ static fb_status reactions(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
   return fb_planar_reaction_max(r->reaction_max, r->m, r->omega, c->gravity, diag);
 }
 
-/* r->stackup, once, when a stack-up model runs: the description at the
- * case's corner (planar_dims.h), the angles' legs from the nominal
- * mechanism's slides at the run's speed */
+/* 1 when model name runs at the stack-up corner on case c: an ideal
+ * stack-up model always (it needs [tolerance] class, fb_planar_run_check);
+ * any other model whose row takes the stack-up lengths (the clearance
+ * models, the references: model_table.h) when the case gives [tolerance]
+ * class on a driven case, as the four-bar's run them at its stack-up
+ * lengths (without tolerances they are its nominal ones, as here; an
+ * undriven case has no stack-up corner: its stack-up models are refused) */
+static int at_stackup(const char *name, const fb_case *c) {
+  const fb_model *row = fb_model_find(name);
+  return fb_model_ideal_stackup(name) || (c->tolerance_class && !c->planar.undriven && row &&
+                                          row->lengths == FB_LENGTHS_STACKUP);
+}
+
+/* r->stackup, once, when a model runs at the stack-up corner
+ * (at_stackup): the description at the case's corner (planar_dims.h),
+ * the angles' legs from the nominal mechanism's slides at the run's speed */
 static fb_status stackup(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
   int needed = 0;
-  for (int i = 0; i < c->model_count; i++) needed |= fb_model_ideal_stackup(c->models[i]);
+  for (int i = 0; i < c->model_count; i++) needed |= at_stackup(c->models[i], c);
   if (!needed) return FB_OK;
   return fb_planar_dims_corner(&r->stackup, r->m, c->tolerance_class, r->omega,
                                c->stackup.planar, diag);
@@ -324,10 +337,16 @@ static fb_status run_once(fb_planar_run *r, const fb_case *c, fb_diag *diag) {
                 : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   }
   if (st == FB_OK) st = stackup(r, c, diag);
+  if (st == FB_OK && r->stackup && r->reaction_max) { /* the same at the corner */
+    r->stackup_reaction_max = malloc((size_t)r->m->njoints * sizeof *r->stackup_reaction_max);
+    st = r->stackup_reaction_max
+             ? fb_planar_reaction_max(r->stackup_reaction_max, r->stackup, r->omega, c->gravity, diag)
+             : fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  }
   for (int i = 0; i < c->model_count && st == FB_OK; i++) {
     fb_planar_model *p = &r->model[r->n++];
     snprintf(p->name, sizeof p->name, "%s", c->models[i]);
-    p->m = fb_model_ideal_stackup(p->name) ? r->stackup : r->m;
+    p->m = at_stackup(p->name, c) ? r->stackup : r->m;
     const double t0 = fb_clock_s();
     st = model_alloc(p, r, diag);
     if (st == FB_OK)
@@ -383,6 +402,8 @@ void fb_planar_run_free(fb_planar_run *r) {
   r->stackup = NULL;
   free(r->reaction_max);
   r->reaction_max = NULL;
+  free(r->stackup_reaction_max);
+  r->stackup_reaction_max = NULL;
   free(r->est);
   r->est = NULL;
   r->nest = 0;

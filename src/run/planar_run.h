@@ -253,6 +253,8 @@ typedef struct {
                               [N] (fb_planar_reaction_max), computed once for the models whose
                               contact law takes it (a driven case's references and engines'
                               clearance models); NULL when none does */
+  double *stackup_reaction_max; /* (njoints) the same of stackup, when both are computed; else
+                              NULL (fb_planar_run_reaction_max) */
   fb_planar_contact_estimate *est; /* (nest) every revolute clearance joint's contact under
                               both laws before the run (planar_resolution.h): what the
                               automatic step keeps, and what a given step resolves; NULL on
@@ -268,6 +270,14 @@ typedef struct {
                               variant_count of them, owned), NULL when none */
   int variant_count;
 } fb_planar_run;
+
+/* The largest ideal reactions (njoints) [N] of description m of run r: the
+ * nominal description's (r->reaction_max) or the stack-up corner's
+ * (r->stackup_reaction_max); NULL when not computed. */
+static inline const double *fb_planar_run_reaction_max(const fb_planar_run *r,
+                                                       const fb_planar *m) {
+  return m == r->stackup && r->stackup ? r->stackup_reaction_max : r->reaction_max;
+}
 
 /* Runs the n variant cases of run r (each from fb_casefile_load_variant of
  * r->c's file, in r->c.variant order) with fb_planar_run_case, one at a

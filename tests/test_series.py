@@ -141,9 +141,50 @@ with tempfile.TemporaryDirectory() as tmp:
         check(f["ode-clearance-impact"]["rod-output_force_n"].attrs["unit"] == "N" and
               f["analytic"]["drive_torque_n_m"].attrs["unit"] == "N m", "planar: units")
     with h5py.File(tmp + "/ph5/series.h5", "r") as full, h5py.File(tmp + "/pevery/series.h5", "r") as f:
-        tall, t = full["analytic"]["time_s"][:], f["analytic"]["time_s"][:]
-        check(np.array_equal(t, tall[::EVERY]) and f.attrs["series_every"] == EVERY,
-              "planar series_every keeps every N-th sample, as its CSV")
+        # every N-th sample, the last, and every sample of an impact episode
+        # with one either side (the four-bar's rule: from the onset of
+        # penetration through compression and restitution, continuous
+        # contact after it every N-th; the rate from successive penetrations)
+        def impact_samples(pen):
+            out, inside, state, restituting = np.zeros(len(pen), bool), False, 0, False
+            for i, x in enumerate(pen):
+                if not x > 0:
+                    inside, state = False, 0
+                    continue
+                rate = x - (pen[i - 1] if i and pen[i - 1] > 0 else 0.0)
+                if not inside:
+                    inside, restituting, state = True, False, 1
+                elif state == 1:
+                    if rate < 0:
+                        restituting = True
+                    elif restituting:
+                        state = 2
+                out[i] = state == 1
+            return out
+
+        for model in ("analytic", "ode-clearance-impact"):
+            tall, t = full[model]["time_s"][:], f[model]["time_s"][:]
+            grid = np.zeros(len(tall), bool)
+            grid[::EVERY] = True
+            grid[-1] = True
+            want = grid.copy()
+            pen = full[model].get("rod-output_penetration_m")
+            if pen is not None:
+                on = impact_samples(pen[:])
+                want |= on
+                want[1:] |= on[:-1]
+                want[:-1] |= on[1:]
+            check(np.array_equal(t, tall[want]) and f.attrs["series_every"] == EVERY,
+                  "planar %s: series_every keeps every N-th sample, the last, and every impact "
+                  "whole (%d of %d)" % (model, len(t), len(tall)))
+            if pen is not None:
+                check((want & ~grid).sum() > 10,
+                      "planar %s: contact samples off the N-grid are kept (%d)"
+                      % (model, (want & ~grid).sum()))
+            if pen is not None:
+                check(len(t) < len(tall) / 2, "planar %s: continuous contact is thinned (%d of %d)"
+                      % (model, len(t), len(tall)))
+        check("impact episode" in f.attrs["series_rule"], "planar: the rule says so")
     p = subprocess.run([exe] + RUN + ["--out", tmp + "/bad", "--series", "xml"], capture_output=True, text=True)
     check(p.returncode == 2 and "csv, hdf5 or none" in p.stderr, "an unknown format is refused (exit 2)")
 

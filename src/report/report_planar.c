@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "episode.h"
 #include "fileio.h"
 #include "numfmt.h"
 #include "outcome_text.h"
@@ -515,7 +516,11 @@ static json_t *variants_json(const fb_planar_run *r) {
 
 /* the rule of the samples a planar run writes, in words (summary.json's
  * "series", series.h5) */
-#define PLANAR_SERIES_RULE "every N-th sample (i mod N = 0)"
+#define PLANAR_SERIES_RULE                                                                 \
+  "every N-th sample (i mod N = 0), the last sample, and every sample of an impact episode " \
+  "(at any clearance joint of the model: from the onset of positive penetration through "    \
+  "its compression and restitution, the rate taken from successive penetrations) with one " \
+  "sample either side; free flight and continuous contact are kept every N-th sample"
 
 json_t *fb_report_planar_summary_json(const fb_planar_run *r, const char *case_path) {
   const fb_planar *m = r->m;
@@ -700,18 +705,49 @@ static size_t series_every(const fb_planar_run *r) {
   return r->c.series_every > 0 ? (size_t)r->c.series_every : 1;
 }
 
+/* the samples model p writes (its CSV's rows, its series.h5 group's) into
+ * keep (p->n bytes, 1 kept), by PLANAR_SERIES_RULE: every impact whole,
+ * classified by the engines' episode rule (episode.h) from the penetration
+ * column (any onset an impact: vmin 0) */
+static void planar_keep(const fb_planar_run *r, const fb_planar_model *p, unsigned char *keep) {
+  const size_t n = p->n, every = series_every(r);
+  for (size_t i = 0; i < n; i++) keep[i] = (unsigned char)(i % every == 0);
+  if (n) keep[n - 1] = 1;
+  for (int k = 0; k < fb_planar_model_contacts(p) && every > 1; k++) {
+    const double *pen = fb_planar_model_contact(p, k).pen;
+    fb_episode ep;
+    memset(&ep, 0, sizeof ep);
+    for (size_t i = 0; i < n; i++) {
+      const int on = pen[i] > 0.0;
+      const double rate = i && on ? (pen[i] - (pen[i - 1] > 0.0 ? pen[i - 1] : 0.0)) / p->h : 0.0;
+      fb_episode_update(&ep, on, rate, 0.0);
+      if (ep.state != FB_STATE_IMPACT) continue;
+      keep[i] = 1;
+      if (i > 0) keep[i - 1] = 1;
+      if (i + 1 < n) keep[i + 1] = 1;
+    }
+  }
+}
+
 static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_planar_model *p,
                            fb_diag *diag) {
   char path[4200];
   snprintf(path, sizeof path, "%s/%s.csv", dir, p->name);
   col_def *col = malloc(max_columns(r, p) * sizeof *col);
-  if (!col) return fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory", path);
+  unsigned char *keep = malloc(p->n ? p->n : 1);
+  if (!col || !keep) {
+    free(col);
+    free(keep);
+    return fb_diag_set(diag, FB_ERR_NOMEM, "%s: out of memory", path);
+  }
+  planar_keep(r, p, keep);
   model_cols mc;
   const fb_series_table t = model_table(&mc, col, r, p);
   fb_outfile out;
   fb_status st = fb_outfile_open(&out, path, diag);
   if (st != FB_OK) {
     free(col);
+    free(keep);
     return st;
   }
   for (size_t k = 0; k < t.ncols; k++) {
@@ -720,11 +756,13 @@ static fb_status write_csv(const char *dir, const fb_planar_run *r, const fb_pla
     fprintf(out.f, "%s%s", k ? "," : "", name);
   }
   fputc('\n', out.f);
-  for (size_t i = 0; i < p->n; i += series_every(r)) {
+  for (size_t i = 0; i < p->n; i++) {
+    if (!keep[i]) continue;
     for (size_t k = 0; k < t.ncols; k++) cell(out.f, column_value(&t, k, i), k == 0);
     fputc('\n', out.f);
   }
   free(col);
+  free(keep);
   if (ferror(out.f)) {
     fb_outfile_abort(&out);
     return fb_diag_set(diag, FB_ERR_IO, "%s: write failed", path);
@@ -752,7 +790,7 @@ static fb_status write_hdf5(const char *dir, const fb_planar_run *r, const char 
       st = FB_ERR_NOMEM;
       break;
     }
-    for (size_t k = 0; k < p->n; k++) keep[i][k] = k % series_every(r) == 0;
+    planar_keep(r, p, keep[i]);
     t[i] = model_table(&mc[i], col[i], r, p);
   }
   if (st == FB_OK)

@@ -383,8 +383,9 @@ static const key_spec keys[] = {
      "model; needs a build with libhdf5) or none (docs/series.md)"},
     {"run", "series_every", K_INT, OFF(series_every), 0, 1, 1e9, 0, 0, "-", "1",
      "a whole number from 1 to 1000000000",
-     "write every N-th sample of the time series, and every sample of each impact episode "
-     "(contact state impact, with one sample either side)"},
+     "write every N-th sample of the time series, the last, and every sample of each impact "
+     "episode (contact state impact, with one sample either side; a planar case likewise, "
+     "its impacts told from continuous contact by its penetration column)"},
     {"run", "models", K_MODELS, OFF(models), 0, 0, 0, 0, 0, "-",
      "analytic, analytic-stackup, ode-ideal-nominal, ode-ideal-stackup", "known model names",
      "models to run, comma-separated; a name with * is a pattern that adds every model "

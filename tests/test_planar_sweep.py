@@ -19,6 +19,10 @@ reference), its rows' metrics named by the description's bodies
    planar case (its dimensions' Monte Carlo is fourbar stackup's); a key a
    planar run does not act on ([run] start = rest) refused in the point's
    row, never ignored.
+5. A row's warnings are the run's: ODE's clearance model of the six-bar at
+   h = 1e-5 s meets h omega_c above 0.5 at rod-output, and its row carries
+   the four-bar's under-resolved warning naming the model and the joint;
+   the analytic model's row at the same step carries none.
 
 Usage: test_planar_sweep.py PATH_TO_FOURBAR. Prints "N passed, N failed";
 exit 1 on any failure."""
@@ -138,5 +142,18 @@ check(len(got) == 1 and got[0]["status"].startswith("run: [run] start = rest") a
       not got[0]["metrics"],
       "a point with [run] start = rest on a planar case is refused in its row: %s"
       % [r["status"] for r in got.values()])
+
+# 5. warnings
+warned = study_file("warned.ini", "[study]\nname = warned\ncase = %s\nset = run.models=reference,"
+                    "ode-clearance-impact,analytic; run.revolutions=2; solver.h_s=1e-5\n"
+                    "[axis.speed]\nkey = drive.speed_rpm\nvalues = 300\n"
+                    % os.path.join(cases, "watt_sixbar.ini"))
+w_out = os.path.join(tmp, "warned")
+rc, _, err = fb_script.run(exe, tmp, "sweep", warned, "--out", w_out)
+got = rows_of(w_out) if os.path.exists(os.path.join(w_out, "points.jsonl")) else {}
+ws = got[0]["warnings"] if len(got) == 1 else []
+check(any(w.startswith("ode-clearance-impact: under-resolved") and "rod-output" in w for w in ws)
+      and not any(w.startswith("analytic") or w.startswith("reference") for w in ws),
+      "the row carries ODE's under-resolved contact and no other model's: %s" % ws)
 
 sys.exit(tally.done())

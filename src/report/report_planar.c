@@ -131,29 +131,14 @@ static void clearance_json(json_t *e, const fb_planar_run *r, const fb_planar_mo
   json_object_set_new(e, "window_from_s", num(r->t_window));
 }
 
-/* how the run's step was chosen, in the four-bar's warning's terms */
-static int step_kind(const fb_planar_run *r) {
-  if (!fb_planar_run_step_auto(&r->c)) return FB_WARN_STEP_FIXED;
-  for (int k = 0; k < r->nest; k++)
-    if (r->est[k].h_resolving <= fb_planar_run_step(&r->c) * (1.0 + 1e-12))
-      return FB_WARN_STEP_AUTO_CONTACT;
-  return FB_WARN_STEP_AUTO_CAP;
-}
-
-/* an engine clearance model's h omega_c against the bound: 1 resolved, 0
- * not (then *warn the four-bar's under-resolved warning, outcome_text.c,
- * with the largest fixed step that keeps it), -1 not measured
- * (planar_run.h's h_omega_max) */
+/* fb_planar_model_resolution with its warning in words (outcome_text.c)
+ * into warn (size bytes; empty unless 0 is returned) */
 static int resolution(const fb_planar_run *r, const fb_planar_model *p, char *warn, size_t size) {
   if (warn && size) warn[0] = '\0';
-  if (!isfinite(p->h_omega_max) || !(p->h_omega_max > 0.0)) return -1;
-  if (p->h_omega_max <= FB_H_OMEGA_C_BOUND) return 1;
-  fb_warning w = {.kind = FB_WARN_UNDER_RESOLVED, .value = p->h_omega_max,
-                  .limit = FB_H_OMEGA_C_BOUND, .ratio = M_PI / p->h_omega_max, .t = NAN,
-                  .h = p->h, .h_auto = step_kind(r)};
-  snprintf(w.what, sizeof w.what, "%s", r->m->joint[p->ref.joint].name);
-  if (warn) fb_warning_text(warn, size, &w);
-  return 0;
+  fb_warning w;
+  const int ok = fb_planar_model_resolution(r, p, &w);
+  if (ok == 0 && warn) fb_warning_text(warn, size, &w);
+  return ok;
 }
 
 /* summary.json's `contact` of an engine clearance model: its clearance

@@ -422,3 +422,24 @@ double fb_planar_model_reaction(const fb_planar_model *p, int j, int k, size_t i
   if (k == 2) return hypot(f[i], f[p->n + i]);
   return f[(size_t)(k == 3 ? 2 : k) * p->n + i];
 }
+
+/* how the run's step was chosen, in the four-bar's warning's terms */
+static int step_kind(const fb_planar_run *r) {
+  if (!fb_planar_run_step_auto(&r->c)) return FB_WARN_STEP_FIXED;
+  for (int k = 0; k < r->nest; k++)
+    if (r->est[k].h_resolving <= fb_planar_run_step(&r->c) * (1.0 + 1e-12))
+      return FB_WARN_STEP_AUTO_CONTACT;
+  return FB_WARN_STEP_AUTO_CAP;
+}
+
+int fb_planar_model_resolution(const fb_planar_run *r, const fb_planar_model *p, fb_warning *w) {
+  if (!isfinite(p->h_omega_max) || !(p->h_omega_max > 0.0)) return -1;
+  if (p->h_omega_max <= FB_H_OMEGA_C_BOUND) return 1;
+  if (w) {
+    *w = (fb_warning){.kind = FB_WARN_UNDER_RESOLVED, .value = p->h_omega_max,
+                      .limit = FB_H_OMEGA_C_BOUND, .ratio = M_PI / p->h_omega_max, .t = NAN,
+                      .h = p->h, .h_auto = step_kind(r)};
+    snprintf(w->what, sizeof w->what, "%s", r->m->joint[p->ref.joint].name);
+  }
+  return 0;
+}

@@ -271,6 +271,13 @@ typedef struct {
   int variant_count;
 } fb_planar_run;
 
+/* Engine clearance model p of run r against the step's bound on h omega_c
+ * (FB_H_OMEGA_C_BOUND): 1 resolved, 0 not (then *w, when not NULL, the
+ * four-bar's under-resolved warning, outcome.h, naming the joint, with the
+ * largest fixed step that keeps it), -1 not measured (its h_omega_max
+ * NaN: no contact step, or an engine that controls its own steps). */
+int fb_planar_model_resolution(const fb_planar_run *r, const fb_planar_model *p, fb_warning *w);
+
 /* The largest ideal reactions (njoints) [N] of description m of run r: the
  * nominal description's (r->reaction_max) or the stack-up corner's
  * (r->stackup_reaction_max); NULL when not computed. */

@@ -604,8 +604,8 @@ static int wanted(const fb_study *s, const char *name) {
 /* a planar point's run (fourbar run's planar pipeline) into the row's
  * metrics (fb_check_planar_metrics, as [study] metrics selects them) and
  * status (size bytes: "ok", "run: ..." or every model that stopped) */
-static void planar_row(json_t *metrics, const fb_study *s, const fb_case *c, char *status,
-                       size_t size) {
+static void planar_row(json_t *metrics, json_t *warnings, const fb_study *s, const fb_case *c,
+                       char *status, size_t size) {
   static fb_planar_run pr;
   fb_diag inner;
   if (fb_planar_run_case(&pr, c, &inner) != FB_OK) {
@@ -618,6 +618,15 @@ static void planar_row(json_t *metrics, const fb_study *s, const fb_case *c, cha
     if (wanted(s, m[k].name)) /* not measured: null (docs/outputs.md), never a lost key */
       json_object_set_new(metrics, m[k].name,
                           isfinite(m[k].value) ? json_real(m[k].value) : json_null());
+  /* every model's warning, "<model>: <warning>" as the four-bar's rows: an
+   * engine's clearance contact its step did not resolve */
+  for (int k = 0; k < pr.n; k++) {
+    fb_warning w;
+    if (fb_planar_model_resolution(&pr, &pr.model[k], &w) != 0) continue;
+    char wt[512], entry[FB_NAME_SIZE + 520];
+    snprintf(entry, sizeof entry, "%s: %s", pr.model[k].name, fb_warning_text(wt, sizeof wt, &w));
+    json_array_append_new(warnings, json_string(entry));
+  }
   size_t l = 0;
   for (int k = 0; k < pr.n; k++)
     if (pr.model[k].ref.failed && l + 1 < size)
@@ -655,7 +664,7 @@ fb_status fb_study_point(const fb_study *s, size_t i, char **line, fb_diag *diag
     if (fb_casefile_load_planar(&c, s->case_path, ov, n, &inner) != FB_OK) {
       snprintf(status, sizeof status, "case: %s", inner.msg);
     } else if (c.planar.on) {
-      planar_row(metrics, s, &c, status, sizeof status);
+      planar_row(metrics, warnings, s, &c, status, sizeof status);
     } else if (fb_run_case(&r, &c, NULL, NULL, &inner) != FB_OK) {
       snprintf(status, sizeof status, "run: %s", inner.msg);
     } else {

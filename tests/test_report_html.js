@@ -31,7 +31,10 @@
  * a planar case (cases/watt_sixbar.ini, analytic and reference-restitution)
  * names its own bodies and clearance joint: a panel per moving body, the
  * rod-output joint's force and penetration, the headline rows equal to
- * summary.json's bodies.<NAME> peaks, no "follower";
+ * summary.json's bodies.<NAME> peaks, no "follower"; its angles are the
+ * drive's; an undriven one (cases/slider_guide_flores_leine_glocker.ini, a
+ * slider in its guide) claims no speed, no radial clearance and no angle:
+ * no rpm in the header, no angle axis, "-" in the impact list's angle;
  * bodies and joints named __proto__, constructor, prototype and
  * hasOwnProperty (and toString, valueOf, ...) are data: their panels,
  * headline rows and every summary.json value of theirs on the page;
@@ -417,7 +420,34 @@ function flatten(v, p, outList) {
     const legend4 = await page4.textContent('#orbitlegend');
     check(legend4.includes('free flight') && legend4.includes('in contact') && !legend4.includes('impact'),
       'six-bar: the orbit legend names free flight and in contact, no impact: ' + legend4);
+    const angles4 = await page4.$$eval('#xmode option', (os) => os.map((o) => o.textContent));
+    check(angles4.join() === 'time [ms],drive angle [deg]' &&
+      (await page4.textContent('#angleth')) === 'drive angle [deg]',
+      'six-bar: the angle is the drive\'s: ' + angles4.join(', '));
     await page4.close();
+
+    /* an undriven planar case: no speed, no pin, no angle to claim */
+    const free = path.join(work, 'undriven');
+    execFileSync(fourbar, ['run', path.join(root, 'cases', 'slider_guide_flores_leine_glocker.ini'), '--out', free,
+      '--no-figures', '--set', 'run.duration_s=0.05'], { stdio: ['ignore', 'ignore', 'inherit'] });
+    const page5 = await browser.newPage({ viewport: { width: FB_VIEW_W, height: FB_VIEW_H } });
+    const errors5 = [];
+    page5.on('console', (m) => { if (m.type() === 'error') errors5.push('console: ' + m.text()); });
+    page5.on('pageerror', (e) => errors5.push('page error: ' + e.message));
+    await page5.goto('file://' + path.join(free, 'report.html'));
+    await page5.waitForFunction(() => window.fourbarReport !== undefined, null, { timeout: 30000 });
+    await page5.waitForTimeout(300);
+    const meta5 = await page5.textContent('#meta');
+    const modes5 = await page5.$$eval('#xmode option', (os) => os.map((o) => o.value));
+    const angleCells5 = await page5.$$eval('#impacts tbody tr', (trs) => trs.filter((tr) => tr.cells.length > 3)
+      .map((tr) => tr.cells[3].textContent));
+    check(errors5.length === 0 && !/rpm/.test(meta5) && meta5.includes('no drive at constant speed') &&
+      !/radial clearance/.test(meta5), 'undriven: the header claims no speed and no pin: ' + meta5 + ' ' +
+      errors5.join('; '));
+    check(modes5.join() === 'time', 'undriven: no angle axis: ' + modes5.join(', '));
+    check(angleCells5.length > 0 && angleCells5.every((c) => c === '-'),
+      'undriven: the impact list gives no drive angle: ' + angleCells5.slice(0, 3).join(', '));
+    await page5.close();
 
     /* a planar case's output points and slides (docs/planar.md, Points
      * and slides): the developers' quick-return with a tool point on its

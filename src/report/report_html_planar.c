@@ -163,9 +163,10 @@ static size_t impacts_json(json_t *impacts, unsigned char *keep, const fb_planar
       for (size_t k = a; k <= b; k++) keep[k] = 1;
       double deg = fmod(p->drive[i] * 180.0 / M_PI, 360.0);
       deg = deg < 0.0 ? deg + 360.0 : deg;
-      json_t *im = json_pack("{s:s,s:s,s:f,s:f,s:f,s:f,s:f}", "model", p->name, "joint",
+      json_t *im = json_pack("{s:s,s:s,s:f,s:f,s:o,s:f,s:f}", "model", p->name, "joint",
                              m->joint[ct->joint].name, "t_s", p->t[i], "t_end_s", p->t[i1],
-                             "crank_angle_deg", deg, "force_n", fmax_n, "penetration_m", pmax);
+                             "crank_angle_deg", m->drive >= 0 ? json_real(deg) : json_null(),
+                             "force_n", fmax_n, "penetration_m", pmax);
       const size_t a2 = i1 + 3 < n ? i1 + 3 : n - 1;
       for (int body = 1; body < m->nbodies; body++) {
         char col[96];
@@ -272,13 +273,20 @@ static json_t *model_json(const fb_planar_run *r, const fb_planar_model *p) {
 fb_status fb_report_html_write_planar(const char *dir, const fb_planar_run *r,
                                       const json_t *summary, int *charts, fb_diag *diag) {
   const fb_case *c = &r->c;
-  json_t *d = json_pack("{s:i,s:s,s:f,s:i,s:f,s:f,s:f,s:f}", "format", 1, "case", c->name,
+  int pins = 0; /* revolute clearance joints: the radial clearance is theirs */
+  for (int j = 0; j < r->m->njoints; j++)
+    pins += ((unsigned)c->clearance.mask & (1u << j)) && r->m->joint[j].kind == FB_KIND_REVOLUTE;
+  json_t *d = json_pack("{s:i,s:s,s:f,s:i,s:f,s:o,s:f,s:f}", "format", 1, "case", c->name,
                         "speed_rpm", c->crank_speed / FB_RAD_S_PER_RPM, "direction", c->direction,
                         "crank_angle0_deg", 0.0, "radial_clearance_um",
-                        c->radial_clearance / FB_M_PER_UM, "t_window_s", r->t_window, "h_s",
-                        r->n ? r->model[0].h : c->solver.h);
+                        pins ? json_real(c->radial_clearance / FB_M_PER_UM) : json_null(),
+                        "t_window_s", r->t_window, "h_s", r->n ? r->model[0].h : c->solver.h);
   json_t *models = json_array();
   json_object_set_new(d, "outputs", outputs_json(r->m));
+  /* the angle the page's x axis and impact list give: the drive's; an
+   * undriven case (a free start, a torque drive) has no constant speed */
+  json_object_set_new(d, "driven", json_boolean(r->m->drive >= 0));
+  json_object_set_new(d, "angle_name", json_string("drive"));
   /* a planar pin's orbit tells free flight from contact only (orbit_json) */
   json_object_set_new(d, "orbit_states", json_pack("[s,s]", "free flight", "in contact"));
   for (int i = 0; i < r->n; i++) {

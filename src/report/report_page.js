@@ -30,9 +30,15 @@
   var S = D.summary || Object.create(null);
   document.title = 'fourbar report: ' + D['case'];
   $('title').textContent = 'fourbar report: ' + D['case'];
-  $('meta').textContent = (S.case_file ? S.case_file + ': ' : '') + D.speed_rpm.toFixed(0) + ' rpm ' +
-    (D.direction > 0 ? 'ccw' : 'cw') + ', radial clearance ' + D.radial_clearance_um.toPrecision(4) +
-    ' um, step h = ' + D.h_s.toPrecision(4) + ' s, ' + D.models.length + ' models; peaks over t >= ' +
+  /* the angle the x axis and the impact list give: the crank's, a planar
+   * case's drive's; an undriven planar case has none (no constant speed) */
+  var angleName = D.angle_name || 'crank';
+  var driven = D.driven !== false;
+  $('meta').textContent = (S.case_file ? S.case_file + ': ' : '') +
+    (driven ? D.speed_rpm.toFixed(0) + ' rpm ' + (D.direction > 0 ? 'ccw' : 'cw')
+            : 'no drive at constant speed') +
+    (D.radial_clearance_um === null ? '' : ', radial clearance ' + D.radial_clearance_um.toPrecision(4) + ' um') +
+    ', step h = ' + D.h_s.toPrecision(4) + ' s, ' + D.models.length + ' models; peaks over t >= ' +
     (1e3 * D.t_window_s).toPrecision(5) + ' ms';
   var palette = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#17becf'];
   D.models.forEach(function (m, i) {
@@ -161,7 +167,7 @@
       div.appendChild(el('div', def.title + ' [' + def.unit + ']' + (def.acc && state.ymode === 'symlog' ? ' (symlog)' : ''), 'ptitle'));
       box.appendChild(div);
       var p = { def: def, models: ms, div: div, width: width - 80 };
-      var series = [{ label: state.xmode === 'time' ? 'time [ms]' : 'crank angle [deg]',
+      var series = [{ label: state.xmode === 'time' ? 'time [ms]' : angleName + ' angle [deg]',
         value: function (u, v) { return v === null || v === undefined ? '' : state.xmode === 'time' ? v.toFixed(6) : crankLabel(v) + ' (' + v.toFixed(3) + ' travelled)'; } }];
       ms.forEach(function (m) {
         series.push({ label: m.name, stroke: m.colorUsed, dash: m.dashUsed || undefined, width: yard(m) ? 1.4 : 2.6, spanGaps: true,
@@ -200,7 +206,7 @@
         cursor: { sync: { key: 'fourbar', setSeries: false }, drag: { x: true, y: false }, bind: { dblclick: function () { return null; } } },
         scales: { x: { time: false }, y: yscale },
         axes: [
-          { label: state.xmode === 'time' ? 'time [ms]' : 'crank angle [deg] (labels: the drive\'s angle, mod 360)',
+          { label: state.xmode === 'time' ? 'time [ms]' : angleName + ' angle [deg] (labels: the drive\'s angle, mod 360)',
             values: state.xmode === 'crank' ? function (u, vals) { return vals.map(crankLabel); } : undefined },
           symlog ? { label: def.unit, size: 70, splits: decades, filter: decadeLabels, values: function (u, vals) {
             return vals.map(function (v) { return v === null || v === undefined ? '' : v === 0 ? '0' : (v < 0 ? '-' : '') + '1e' + Math.round(Math.log10(Math.abs(v))); }); } }
@@ -350,7 +356,7 @@
     g.clearRect(0, 0, cv.width, cv.height);
     var c = orbitChoices[Number(omodel.value || 0)];
     cv.dataset.points = '0';
-    if (!c) { $('orbittitle').textContent = 'no clearance joint in this run'; return; }
+    if (!c) { $('orbittitle').textContent = 'no clearance pin in this run'; return; }
     var m = c.m, j = c.j, cl = D.radial_clearance_um;
     var i0 = Math.max(0, lowerBound(m.t, state.lo) - 1), i1 = Math.min(m.t.length, lowerBound(m.t, state.hi) + 1);
     var span = 1.35 * cl;
@@ -556,6 +562,10 @@
   }
 
   /* ---- controls ------------------------------------------------------------ */
+  /* the angle's words; no angle axis without a drive at constant speed */
+  $('xmode').querySelector('option[value=crank]').textContent = angleName + ' angle [deg]';
+  $('angleth').textContent = angleName + ' angle [deg]';
+  if (!driven) $('xmode').querySelector('option[value=crank]').remove();
   $('xmode').addEventListener('change', function () { state.xmode = this.value; build(); });
   $('ymode').addEventListener('change', function () { state.ymode = this.value; build(); });
   $('whole').addEventListener('click', function () { setRange(t0, t1); });

@@ -354,6 +354,10 @@ const char *fb_case_joint_name(const fb_case *c, int j);
 /* Signed crank speed omega2 [rad/s]: negative for a clockwise crank. */
 double fb_case_omega2(const fb_case *c);
 
+/* The number of joints [clearance] joints names (the bits of
+ * clearance.mask). */
+int fb_case_clearance_count(const fb_case *c);
+
 /* Boxes in the faceted collider's ring [-]: [clearance] segments when
  * given, else faceted_n. */
 int fb_case_faceted_n(const fb_case *c);

@@ -35,6 +35,12 @@ double fb_case_peak_window_from(const fb_case *c) {
 
 double fb_case_omega2(const fb_case *c) { return c->direction * c->crank_speed; }
 
+int fb_case_clearance_count(const fb_case *c) {
+  int n = 0;
+  for (unsigned m = (unsigned)c->clearance.mask; m; m &= m - 1) n++;
+  return n;
+}
+
 int fb_case_faceted_n(const fb_case *c) {
   return c->clearance.segments_given ? c->clearance.segments : c->clearance.faceted_n;
 }

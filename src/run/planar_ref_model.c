@@ -89,9 +89,9 @@ static double refine_start(double *y, size_t k, void *p) {
 
 /* The samples at spikes of each clearance joint's force and penetration
  * and every moving body's alpha (but the driven one's) replaced by their
- * extremes between the
- * neighbouring samples: the closed-form reference's rule (peak_refine.h),
- * so that both references' peaks are the same quantity. */
+ * extremes between the neighbouring samples: the closed-form reference's
+ * rule (peak_refine.h), so that both references' peaks are the same
+ * quantity. */
 static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *r,
                    fb_planar_rel *d, const double *y, const double *z, double tol, int window) {
   const fb_planar *m = p->m;

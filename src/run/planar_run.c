@@ -126,9 +126,9 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
                          "[tolerance] stackup, and a planar case's dimensions need [tolerance] "
                          "class (f, m, c or v: ISO 2768-1; fourbar stackup lists them)", name);
     const fb_model *row = fb_model_find(name);
-    int loose = 0; /* the case's clearance joints */
-    for (int j = 0; j < FB_PLANAR_SPEC_MAX_JOINTS; j++) loose += ((unsigned)c->clearance.mask >> j) & 1u;
-    if (fb_planar_kit_of(name) && row && fb_model_has_clearance(row) && loose > 1)
+    const int loose = fb_case_clearance_count(c);
+    if (fb_planar_kit_of(name) && row && fb_model_has_clearance(row) &&
+        loose > FB_PLANAR_KIT_CLEARANCE_JOINTS)
       return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s': an engine's clearance model of a "
                          "planar case takes one clearance joint, and [clearance] joints names %d; "
                          "the references take every one (reference, reference-restitution), or "

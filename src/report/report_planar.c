@@ -590,6 +590,7 @@ typedef struct {
   int a, b; /* COL_BODY: body, quantity (angle, omega, alpha); COL_REACTION: joint, component
                (x, y, magnitude, a prismatic joint's moment); COL_FORCE, COL_PEN: the
                contact (fb_planar_model_contact); COL_OUTPUT: output column */
+  const double *v; /* COL_FORCE, COL_PEN: the contact's column, found once (not per cell) */
 } col_def;
 
 /* a model of a run with its columns (fb_series_table's self) */
@@ -607,21 +608,22 @@ typedef struct {
 static size_t columns(col_def *col, const fb_planar_run *r, const fb_planar_model *p) {
   const fb_planar *m = r->m;
   size_t n = 0;
-  col[n++] = (col_def){COL_TIME, 0, 0};
-  col[n++] = (col_def){COL_DRIVE, 0, 0};
+  col[n++] = (col_def){COL_TIME, 0, 0, NULL};
+  col[n++] = (col_def){COL_DRIVE, 0, 0, NULL};
   for (int b = 1; b < m->nbodies; b++)
-    for (int k = 0; k < 3; k++) col[n++] = (col_def){COL_BODY, b, k};
+    for (int k = 0; k < 3; k++) col[n++] = (col_def){COL_BODY, b, k, NULL};
   for (int k = 0; k < fb_planar_model_contacts(p); k++) {
-    col[n++] = (col_def){COL_FORCE, k, 0};
-    col[n++] = (col_def){COL_PEN, k, 0};
+    const fb_planar_ref_joint ct = fb_planar_model_contact(p, k);
+    col[n++] = (col_def){COL_FORCE, k, 0, ct.force};
+    col[n++] = (col_def){COL_PEN, k, 0, ct.pen};
   }
   if (p->torque) {
-    col[n++] = (col_def){COL_TORQUE, 0, 0};
+    col[n++] = (col_def){COL_TORQUE, 0, 0, NULL};
     for (int j = 0; j < m->njoints; j++)
       for (int k = 0; k < (m->joint[j].kind == FB_KIND_PRISMATIC ? 4 : 3); k++)
-        col[n++] = (col_def){COL_REACTION, j, k};
+        col[n++] = (col_def){COL_REACTION, j, k, NULL};
   }
-  for (int c = 0; c < p->nout; c++) col[n++] = (col_def){COL_OUTPUT, c, 0};
+  for (int c = 0; c < p->nout; c++) col[n++] = (col_def){COL_OUTPUT, c, 0, NULL};
   return n;
 }
 
@@ -666,8 +668,8 @@ static double column_value(const fb_series_table *t, size_t k, size_t i) {
     case COL_TIME: return p->t[i];
     case COL_DRIVE: return p->drive[i];
     case COL_BODY: return fb_planar_model_value(mc->r, p, c.a, c.b, i);
-    case COL_FORCE: return fb_planar_model_contact(p, c.a).force[i];
-    case COL_PEN: return fb_planar_model_contact(p, c.a).pen[i];
+    case COL_FORCE:
+    case COL_PEN: return c.v[i];
     case COL_TORQUE: return p->torque[i];
     case COL_REACTION: return fb_planar_model_reaction(p, c.a, c.b, i);
     case COL_OUTPUT: return p->out[(size_t)c.a * p->n + i];

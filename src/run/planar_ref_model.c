@@ -42,87 +42,22 @@ typedef struct {
   double *t, *q, *force[FB_PLANAR_REF_MAX_JOINTS], *pen[FB_PLANAR_REF_MAX_JOINTS];
 } columns;
 
-/* the refinement's view of one integration (peak_refine.h) */
-typedef struct {
-  fb_planar_rel *d;
-  fb_planar_contact *ct; /* scratch (njoints) */
-  double *qdd;           /* scratch (nq) */
-  const double *z;       /* the samples' states (n x dim) */
-  const double *y;       /* the samples' positions and velocities (n x 2 nq) */
-  double h;              /* sample spacing [s] */
-  const fb_planar_ref_result *ref; /* its clearance joints (ref->at[], ref->njoints) */
-  int nq, nb, dim;       /* coordinates, moving bodies, state size */
-  int driven;            /* the moving body the drive turns from the ground (its alpha is
-                            the drive's, zero: not refined), else -1 */
-} refine_src;
-
-static int refine_rhs(double t, const double y[], double dydt[], void *p) {
-  return fb_planar_rel_rhs(t, y, dydt, ((const refine_src *)p)->d);
-}
-
-/* peak_refine.h's eval: each clearance joint's force and penetration,
- * then alpha and -alpha of each refined body */
-static void refine_eval(double *quant, double *dydt, double t, const double *y, void *p) {
-  const refine_src *s = p;
-  const int ok = fb_planar_rel_eval(s->d, t, y, dydt, s->ct) == FB_OK;
-  if (ok) fb_planar_rel_motion(s->d, NULL, NULL, s->qdd);
-  int n = 0;
-  for (int k = 0; k < s->ref->njoints; k++) {
-    const fb_planar_contact *c = &s->ct[s->ref->at[k].joint];
-    quant[n++] = ok ? c->force : -INFINITY;
-    quant[n++] = ok ? c->penetration : -INFINITY;
-  }
-  for (int b = 0; b < s->nb; b++) {
-    if (b == s->driven) continue;
-    const double a = s->qdd[3 * b + 2];
-    quant[n++] = ok ? a : -INFINITY;
-    quant[n++] = ok ? -a : -INFINITY;
-  }
-}
-
-static double refine_start(double *y, size_t k, void *p) {
-  const refine_src *s = p;
-  memcpy(y, s->z + k * (size_t)s->dim, (size_t)s->dim * sizeof *y);
-  fb_planar_rel_guess(s->d, s->y + k * (size_t)(2 * s->nq));
-  return (double)k * s->h;
-}
-
 /* The samples at spikes of each clearance joint's force and penetration
- * and every moving body's alpha (but the driven one's) replaced by their
- * extremes between the neighbouring samples: the closed-form reference's
- * rule (peak_refine.h), so that both references' peaks are the same
- * quantity. */
+ * and every moving body's alpha replaced by their extremes between the
+ * neighbouring samples: the closed-form reference's rule
+ * (planar_reference.h fb_planar_ref_refine), so that both references'
+ * peaks are the same quantity. */
 static void refine(columns *col, const fb_planar_model *p, const fb_planar_run *r,
                    fb_planar_rel *d, const double *y, const double *z, double tol, int window) {
-  const fb_planar *m = p->m;
-  const int nb = m->nbodies - 1;
-  int from = -1, to = 0; /* an undriven description has no driven body */
-  if (m->drive >= 0) fb_planar_drive_bodies(m, &from, &to);
-  fb_planar_contact *ct = malloc((size_t)m->njoints * sizeof *ct);
-  double *qdd = malloc((size_t)fb_planar_nq(m) * sizeof *qdd);
-  const int nj = p->ref.njoints; /* an ideal mechanism has no contact to refine */
-  fb_peak_refine_column *cc = malloc((size_t)(nb + 2 * nj) * sizeof *cc);
-  if (ct && qdd && cc) {
-    refine_src src = {d, ct, qdd, z, y, p->h, &p->ref, fb_planar_nq(m), nb,
-                      fb_planar_rel_dim(d), from == 0 ? to - 1 : -1};
-    int nc = 0, nquant = 2 * nj;
-    for (int k = 0; k < nj; k++) {
-      cc[nc++] = (fb_peak_refine_column){col->force[k], 2 * k, -1, 1};
-      cc[nc++] = (fb_peak_refine_column){col->pen[k], 2 * k + 1, -1, 1};
-    }
-    for (int b = 0; b < nb; b++) {
-      if (b == src.driven) continue;
-      cc[nc++] = (fb_peak_refine_column){col->q + ((size_t)b * 3 + FB_Q_ACC) * p->n, nquant,
-                                         nquant + 1, 0};
-      nquant += 2;
-    }
-    const fb_peak_refine_ode ode = {(size_t)src.dim, nquant, refine_rhs, refine_eval,
-                                    refine_start, &src, p->h, tol, window};
-    fb_peak_refine(cc, nc, col->t, p->n, fb_case_peak_window_from(&r->c), &ode);
-  }
-  free(ct);
-  free(qdd);
-  free(cc);
+  const int nb = p->m->nbodies - 1, nj = p->ref.njoints;
+  double **alpha = malloc((size_t)nb * sizeof *alpha);
+  if (!alpha) return; /* out of memory: nothing refined */
+  int joint[FB_PLANAR_REF_MAX_JOINTS];
+  for (int b = 0; b < nb; b++) alpha[b] = col->q + ((size_t)b * 3 + FB_Q_ACC) * p->n;
+  for (int k = 0; k < nj; k++) joint[k] = p->ref.at[k].joint;
+  const fb_planar_ref_columns rc = {col->t, alpha, nj, joint, col->force, col->pen};
+  fb_planar_ref_refine(&rc, p->n, p->h, d, y, z, tol, fb_case_peak_window_from(&r->c), window);
+  free(alpha);
 }
 
 /* the size of integrate's window peaks: 4 per moving body, the largest

@@ -25,7 +25,9 @@
 
 /* What a run measured. */
 typedef struct {
+  size_t samples; /* samples written (n, or those before the integration stopped) */
   size_t steps;   /* accepted integrator steps */
+  int budget;     /* 1: the integration stopped on its step budget */
   size_t evals;   /* right-hand side evaluations */
   double closure; /* largest |Phi| of the joints that hold at a sample, lengths only [m] */
 } fb_planar_ref_stats;
@@ -41,5 +43,30 @@ typedef struct {
 fb_status fb_planar_ref_run(double *y, double *acc, fb_planar_contact *contact, double *z,
                             size_t n, double h, fb_planar_rel *d, double tol,
                             fb_planar_ref_stats *stats, fb_diag *diag);
+
+/* The columns of a sampled reference its refinement rewrites
+ * (fb_planar_ref_refine). */
+typedef struct {
+  const double *t;       /* sample times [s] (n) */
+  double *const *alpha;  /* per moving body (the description's body b at b - 1): its angular
+                            acceleration [rad/s^2] (n), or NULL: not refined */
+  int njoints;           /* clearance joints refined */
+  const int *joint;      /* their indices in the description (njoints) */
+  double *const *force;  /* each one's contact force [N] (njoints x n) */
+  double *const *pen;    /* each one's penetration [m] (njoints x n) */
+} fb_planar_ref_columns;
+
+/* The samples at spikes of each clearance joint's force and penetration
+ * and every refined body's alpha (the driven body's is the drive's, zero:
+ * never) replaced by their extremes between the neighbouring samples
+ * (peak_refine.h, the closed-form reference's rule), re-integrating d
+ * from the run's samples: y (n x 2 nq: q, q') and z (n x dim: the
+ * states) as fb_planar_ref_run wrote them, n samples h [s] apart, at
+ * tolerance tol; spikes are measured in their part of the run, before or
+ * from t_split [s]; window 1 refines the samples from t_split alone (a
+ * check integration's). Out of memory: nothing refined. */
+void fb_planar_ref_refine(const fb_planar_ref_columns *col, size_t n, double h, fb_planar_rel *d,
+                          const double *y, const double *z, double tol, double t_split,
+                          int window);
 
 #endif

@@ -391,6 +391,83 @@ static void test_fourbar_integration(void **state) {
   fb_series_free(&s);
 }
 
+/* The built-in mechanism's reference on the planar core
+ * (reference.h fb_reference_run_planar: the path of a case with clearance
+ * at several pins) against reference.c's closed form at one pin, the
+ * paper case's first revolution, column by column: the same motion
+ * sampled into the same series by the two paths, each with its own
+ * refinement of the spikes (the same rule, peak_refine.h). Angles and
+ * omegas hold FOLLOW_REL_TOL (their integrations' difference, above;
+ * measured 3.4e-13); the contact columns and the alphas, relative to
+ * each column's largest, too (measured 2.2e-11: the refinement searches
+ * each spike's extreme to the integration's own accuracy, on either
+ * path); the state column is the same rule on the same forces: equal
+ * wherever the force is above SERIES_STATE_SHARE of its largest. */
+#define SERIES_CONTACT_REL_TOL FOLLOW_REL_TOL
+#define SERIES_STATE_SHARE 1e-6
+static double col_diff(const double *a, const double *b, size_t n, double *big) {
+  double d = 0.0;
+  *big = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    *big = fmax(*big, fmax(fabs(a[k]), fabs(b[k])));
+    d = fmax(d, fabs(a[k] - b[k]));
+  }
+  return d;
+}
+
+static void test_fourbar_series(void **state) {
+  (void)state;
+  const char *sets[] = {"run.revolutions=1", "run.peaks=all", "solver.h_s=1e-5"};
+  fb_case c;
+  fb_test_paper_case(&c, sets, 3);
+  fb_contact_law laws[FB_MECH_MAX_JOINTS];
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) laws[j] = law_of(FB_LAW_IMPACT, 5e10);
+  const int cj = fb_case_mech(&c)->reference_joint;
+  fb_series s, p;
+  size_t steps, psteps;
+  fb_diag d;
+  if (fb_reference_run_tol(&s, &steps, &c, &laws[cj], 0, FB_REFERENCE_TOL, NULL, &d) != FB_OK)
+    fail_msg("%s", d.msg);
+  if (fb_reference_run_planar(&p, &psteps, &c, laws, FB_REFERENCE_TOL, NULL, &d) != FB_OK)
+    fail_msg("%s", d.msg);
+  assert_int_equal(p.n, s.n);
+  assert_int_equal(p.contact_mask, s.contact_mask);
+  double big, diff;
+  diff = col_diff(p.t, s.t, s.n, &big);
+  assert_true(diff == 0.0);
+  diff = col_diff(p.crank_angle, s.crank_angle, s.n, &big);
+  assert_true(diff <= 1e-15 * big);
+  for (int o = 0; o < fb_series_output_count(&s); o++) {
+    const double tol[3] = {FOLLOW_REL_TOL, FOLLOW_REL_TOL, SERIES_CONTACT_REL_TOL};
+    const char *what[3] = {"angle", "omega", "alpha"};
+    for (int q = 0; q < 3; q++) {
+      diff = col_diff(p.body[o][q], s.body[o][q], s.n, &big);
+      char name[96];
+      snprintf(name, sizeof name, "planar path vs reference.c: output %d %s (rel)", o, what[q]);
+      report_residual(name, diff / big, tol[q]);
+      assert_true(diff / big <= tol[q]);
+    }
+  }
+  const double *fp = p.contact[cj][FB_C_FORCE], *fs = s.contact[cj][FB_C_FORCE];
+  for (int k = 0; k < FB_CONTACT_COLS - 1; k++) {
+    diff = col_diff(p.contact[cj][k], s.contact[cj][k], s.n, &big);
+    char name[96];
+    snprintf(name, sizeof name, "planar path vs reference.c: contact column %d (rel)", k);
+    report_residual(name, diff / big, SERIES_CONTACT_REL_TOL);
+    assert_true(diff / big <= SERIES_CONTACT_REL_TOL);
+  }
+  const double fmaxv = fb_series_largest_abs(fs, s.n);
+  size_t states = 0;
+  for (size_t k = 0; k < s.n; k++) {
+    if (!(fs[k] > SERIES_STATE_SHARE * fmaxv && fp[k] > SERIES_STATE_SHARE * fmaxv)) continue;
+    states++;
+    assert_true(p.contact[cj][FB_C_STATE][k] == s.contact[cj][FB_C_STATE][k]);
+  }
+  assert_true(states > 0); /* the run has impacts to classify */
+  fb_series_free(&s);
+  fb_series_free(&p);
+}
+
 /* the six-bar with its clearance joint (rod-output, cases/watt_sixbar.ini)
  * in the limit of no clearance and a stiff law: a pin held in its hole by
  * a spring of SIXBAR_K (a restitution-law damper of cr 0.5) follows the
@@ -468,6 +545,7 @@ int main(void) {
       cmocka_unit_test(test_forms_prismatic),
       cmocka_unit_test(test_forms_loaded),
       cmocka_unit_test(test_fourbar_integration),
+      cmocka_unit_test(test_fourbar_series),
       cmocka_unit_test(test_sixbar_clearance),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -358,6 +358,13 @@ double fb_case_omega2(const fb_case *c);
  * clearance.mask). */
 int fb_case_clearance_count(const fb_case *c);
 
+/* The clearance joint a built-in mechanism's clearance model is compared
+ * with its reference at (impacts matched, counted and reported): the
+ * description's reference_joint when it has clearance, else the first
+ * joint [clearance] joints names; -1 without clearance. The divergence
+ * watches every clearance joint (run/metrics.h fb_metrics_divergence). */
+int fb_case_compared_joint(const fb_case *c);
+
 /* Boxes in the faceted collider's ring [-]: [clearance] segments when
  * given, else faceted_n. */
 int fb_case_faceted_n(const fb_case *c);

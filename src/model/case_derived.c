@@ -41,6 +41,14 @@ int fb_case_clearance_count(const fb_case *c) {
   return n;
 }
 
+int fb_case_compared_joint(const fb_case *c) {
+  const int cj = fb_case_mech(c)->reference_joint;
+  if (c->clearance.mask & (1 << cj)) return cj;
+  for (int j = 0; j < FB_MECH_MAX_JOINTS; j++)
+    if (c->clearance.mask & (1 << j)) return j;
+  return -1;
+}
+
 int fb_case_faceted_n(const fb_case *c) {
   return c->clearance.segments_given ? c->clearance.segments : c->clearance.faceted_n;
 }

@@ -307,6 +307,22 @@ fb_status fb_reference_tolerance(double *tol, fb_diag *diag) {
   return FB_OK;
 }
 
+int fb_reference_contact_state(fb_contact_phase *p, double force, double force_prev) {
+  int state = FB_STATE_FREE;
+  if (force > 0.0) {
+    if (p->state == FB_STATE_FREE) {
+      state = FB_STATE_IMPACT;
+      p->restituting = 0;
+    } else {
+      state = p->state;
+      if (force - force_prev < 0.0) p->restituting = 1;
+      else if (p->restituting && state == FB_STATE_IMPACT) state = FB_STATE_CONTINUOUS;
+    }
+  }
+  p->state = state;
+  return state;
+}
+
 fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
                            const fb_contact_law *law, int ideal, fb_stop *stop, fb_diag *diag) {
   double tol;
@@ -331,10 +347,8 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   const char *cjn = fb_case_joint_name(c, cj);
   if (!ideal && c->clearance.mask != (1 << cj))
     return fb_diag_set(diag, FB_ERR_ARG,
-                       "[run] models names a reference model, whose dynamics cover clearance "
-                       "at the %s joint alone; [clearance] joints gives others: set "
-                       "joints = %s or drop reference and reference-restitution from models",
-                       cjn, cjn);
+                       "the closed-form reference covers clearance at the %s joint alone "
+                       "(fb_reference_run_joints takes the others)", cjn);
   const fb_closed_form *cf = fb_closed_form_of(c->mechanism);
   if (ideal && !cf->ideal_reference)
     return fb_diag_set(diag, FB_ERR_ARG, "the ideal reference integrates the four-bar only");
@@ -401,8 +415,7 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
   double t = 0.0; /* local time since the clock's start, the previous sample (clock_start) */
   size_t taken = 0;
   const size_t budget = (n + 1) * FB_REFERENCE_STEPS_PER_SAMPLE;
-  int prev_state = FB_STATE_FREE;
-  int restituting = 0;
+  fb_contact_phase phase = {FB_STATE_FREE, 0};
   for (size_t k = 0; k <= n; k++) {
     const double tk = (double)k * c->solver.h;
     /* the run's wall-time deadline ([run] max_wall_s, case.h) holds here too */
@@ -463,22 +476,8 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
     x.body[0][FB_Q_ACC] = a3;
     x.body[1][FB_Q_ACC] = a4;
     if (!ideal) {
-      /* contact state as the ODE scene classifies it, from the sampled rate */
-      /* the impact's phase from the force trend between samples (rising:
-       * compression, falling: restitution), as the scene does from the rate */
-      int state = FB_STATE_FREE;
-      if (r.force > 0.0) {
-        if (prev_state == FB_STATE_FREE) {
-          state = FB_STATE_IMPACT;
-          restituting = 0;
-        } else {
-          state = prev_state;
-          const double trend = r.force - out->contact[cj][FB_C_FORCE][out->n - 1];
-          if (trend < 0.0) restituting = 1;
-          else if (restituting && state == FB_STATE_IMPACT) state = FB_STATE_CONTINUOUS;
-        }
-      }
-      prev_state = state;
+      const int state = fb_reference_contact_state(
+          &phase, r.force, out->n ? out->contact[cj][FB_C_FORCE][out->n - 1] : 0.0);
       x.contact[cj][FB_C_FORCE] = r.force;
       x.contact[cj][FB_C_PEN] = r.pen;
       x.contact[cj][FB_C_EX] = r.ex;

@@ -97,7 +97,7 @@
  * the stop are kept in *out.
  * Samples at spikes hold the refined extreme (FB_REFERENCE_REFINE).
  * Errors: FB_ERR_ARG when the case has clearance at a joint other than
- * crank-coupler (no reference for it yet); FB_ERR_ASSEMBLY; FB_ERR_NUMERIC
+ * crank-coupler (fb_reference_run_joints takes those); FB_ERR_ASSEMBLY; FB_ERR_NUMERIC
  * when the integrator fails or the penetration passes the case's limit
  * (message names the time). */
 fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
@@ -108,6 +108,61 @@ fb_status fb_reference_run(fb_series *out, size_t *steps, const fb_case *c,
 fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
                                const fb_contact_law *law, int ideal, double tol, fb_stop *stop,
                                fb_diag *diag);
+
+/* The reference of a case with clearance at any of its mechanism's pins
+ * ([clearance] joints: one or several revolute joints), at relative and
+ * absolute tolerance tol (as fb_reference_run_tol), each clearance joint j
+ * with its own law law[j] (FB_MECH_MAX_JOINTS, indexed by the mechanism's
+ * joints; read at the clearance joints), into *out with the contact
+ * columns of every clearance joint. Clearance at the reference joint alone
+ * (the description's reference_joint): the closed form above
+ * (fb_reference_run_tol). Several: the mechanism's description at the
+ * stack-up lengths (planar_case.h fb_planar_of_case) integrated on the
+ * planar core in relative coordinates (planar_reference.h: rk8pd at tol,
+ * each pin's eccentricity in the state, every joint's law its own), from
+ * the steady start with every pin centred, the state the engines' scenes
+ * start from at [run] start = steady and pin_start = centred; each sample's
+ * output bodies' motion and each joint's force, penetration, eccentricity
+ * (pin centre - hole centre) and state (fb_reference_contact_state), the
+ * spikes refined by the same rule (planar_reference.h
+ * fb_planar_ref_refine); the penetration limit stops it as above (the
+ * samples before kept). tests/test_reference_joints.c holds it to the
+ * closed form at one joint.
+ * Errors: FB_ERR_ARG for several clearance joints with [run] start =
+ * rest or a pin_start other than centred, or a prismatic clearance joint
+ * (the message names the key); those of fb_reference_run_tol, of
+ * fb_planar_of_case and of the planar core; FB_ERR_NUMERIC as above. */
+fb_status fb_reference_run_joints(fb_series *out, size_t *steps, const fb_case *c,
+                                  const fb_contact_law law[FB_MECH_MAX_JOINTS], double tol,
+                                  fb_stop *stop, fb_diag *diag);
+
+/* What fb_reference_run_joints' planar path refuses, for case c's
+ * [clearance] joints (the reference joint alone, none, or a planar case,
+ * whose references the run floor integrates: FB_OK).
+ * Errors: FB_ERR_ARG as fb_reference_run_joints. */
+fb_status fb_reference_joints_check(const fb_case *c, fb_diag *diag);
+
+/* fb_reference_run_joints' planar path at any clearance joints, the
+ * reference joint alone too (its tests hold it to the closed form there).
+ * Errors: as fb_reference_run_joints. */
+fb_status fb_reference_run_planar(fb_series *out, size_t *steps, const fb_case *c,
+                                  const fb_contact_law law[FB_MECH_MAX_JOINTS], double tol,
+                                  fb_stop *stop, fb_diag *diag);
+
+/* The phase of one joint's contact across a reference's samples. */
+typedef struct {
+  int state;       /* the last sample's FB_STATE_* */
+  int restituting; /* 1: the force has fallen since the impact began */
+} fb_contact_phase;
+
+/* A reference's contact state at a sample of contact force force [N], the
+ * previous sample's force_prev [N] (read while in contact): free at zero
+ * force; an impact from the first sample in contact; continuous contact
+ * when the force rises again after it fell within the impact (the
+ * impact's phase from the force trend between samples, rising:
+ * compression, falling: restitution, as the ODE scene classifies it from
+ * the rate). Updates *p (start: {FB_STATE_FREE, 0}). */
+int fb_reference_contact_state(fb_contact_phase *p, double force, double force_prev);
 
 /* The tolerance fb_reference_run uses: FB_REFERENCE_TOL, or
  * FOURBAR_REFERENCE_TOL from the environment (convergence studies).

@@ -368,11 +368,7 @@ const char *fb_report_verdict_why(char *buf, size_t size, const fb_model_result 
     return fb_report_model_status(buf, size, m);
   if (m->run.clearance_mask && m->basis == FB_BASIS_NONE && !stopped) {
     const fb_model *want = fb_model_reference_of(m->run.model);
-    const int cj = fb_case_mech(&r->c)->reference_joint;
-    if (want && r->c.clearance.mask != (1 << cj))
-      snprintf(buf, size, "no reference: %s covers a clearance at the %s joint alone",
-               want->name, fb_case_joint_name(&r->c, cj));
-    else if (want && r->c.clearance.friction > 0.0)
+    if (want && r->c.clearance.friction > 0.0)
       snprintf(buf, size, "no reference: %s is frictionless ([clearance] friction = %g)",
                want->name, r->c.clearance.friction);
     else if (want)

@@ -34,8 +34,8 @@ static void set_counts(fb_impact_stats *s, int n) {
   for (int d = 0; d < NDIST; d++) dist_at(s, d)->n = n;
 }
 
-/* the joint whose impacts are counted: the one the reference integrates */
-static int counted_joint(const fb_run *r) { return fb_case_mech(&r->c)->reference_joint; }
+/* the joint whose impacts are counted: the compared one (fb_case_compared_joint) */
+static int counted_joint(const fb_run *r) { return fb_case_compared_joint(&r->c); }
 
 /* models whose impacts are counted: clearance models that reached their window */
 static int counted(const fb_model_result *m, int joint) {

@@ -197,7 +197,8 @@ typedef struct {
 
 /* Compares model series s with reference series r (same grid, from t = 0) at
  * clearance joint j: the first sample where the eccentricity vectors differ
- * by more than FB_DIVERGE_ECC_FRACTION x clearance [m] or the coupler angles
+ * by more than FB_DIVERGE_ECC_FRACTION x clearance [m] at any clearance joint
+ * both series hold (j, and the others of a case with several) or the coupler angles
  * by more than FB_DIVERGE_ANGLE_FRACTION x clearance / coupler_length [m],
  * and the impacts (a contact episode, one unbroken run of positive force,
  * with a sample in the impact state; peaks over the episode) before it, paired by time: both onset lists in

@@ -318,9 +318,9 @@ static void reference_estimate(fb_model_result *m, const fb_run *r) {
   size_t steps = 0;
   fb_stop stop;
   memset(&stop, 0, sizeof stop);
-  const int cj = fb_case_mech(&r->c)->reference_joint;
-  const fb_status ran = fb_reference_run_tol(&s, &steps, &sm.def->source, &sm.law[cj], 0, check,
-                                             &stop, &inner);
+  const int cj = fb_case_compared_joint(&r->c);
+  const fb_status ran = fb_reference_run_joints(&s, &steps, &sm.def->source, sm.law, check,
+                                                &stop, &inner);
   for (int j = 0; j < FB_MECH_MAX_JOINTS; j++) /* as its model's */
     s.impact_floor[j] = r->scene.impact_floor[j];
   if (ran == FB_OK &&
@@ -391,9 +391,9 @@ static fb_status run_once(fb_run *r, const fb_case *c, fb_progress_fn progress, 
     }
   }
   /* each exact-collider clearance model against the reference of its law,
-   * at the joint the reference integrates */
+   * at the compared joint (fb_case_compared_joint) */
   const double tc = fb_clock_s();
-  const int cj = fb_case_mech(c)->reference_joint;
+  const int cj = fb_case_compared_joint(c);
   for (int i = 0; i < r->n; i++) {
     fb_model_result *m = &r->model[i];
     const fb_model *want = fb_model_reference_of(m->run.model);

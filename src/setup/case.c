@@ -6,6 +6,7 @@
 
 #include "closed_form.h"
 #include "model_table.h"
+#include "reference.h"
 
 void fb_case_grashof_text(const fb_case *c, char *out, size_t size) {
   fb_closed_form_of(c->mechanism)->class_text(c, out, size);
@@ -112,6 +113,9 @@ fb_status fb_case_check(const fb_case *c, fb_diag *diag) {
       return fb_diag_set(diag, FB_ERR_ARG,
                          "model '%s' needs at least one clearance joint ([clearance] joints)",
                          c->models[i]);
+    if (m->engine == FB_ENGINE_REFERENCE && fb_model_has_clearance(m) &&
+        (st = fb_reference_joints_check(c, diag)) != FB_OK)
+      return st;
     /* h_s = adaptive follows the project's contact law through the exact
      * collider (ODE, MuJoCo): refused here, before anything runs, for a
      * model that would otherwise run at a fixed step or stop */

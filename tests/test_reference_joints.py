@@ -19,6 +19,12 @@ planar core, each pin with its own law), on cases/two_clearance_joints.ini
    reference, impacts matched at that joint).
 5. The shipped case: every clearance model has a verdict against its
    reference (none unchecked).
+6. Every engine's clearance model of it: Simbody's tree and Siconos's
+   relation take the crank-coupler pin alone in their own worlds, so
+   [solver] builder = auto builds them through the engine kit there (summary
+   builder "kit", a verdict against the reference); builder = hand refuses
+   naming the builder (the engine's own world, when it is built: exit 1).
+   Engines this build lacks are skipped.
 
 Usage: test_reference_joints.py PATH_TO_FOURBAR. Prints "N passed, N
 failed"; exit 1 on any failure."""
@@ -150,5 +156,32 @@ if rc == 0:
         if "clearance" in m["name"] or m["name"].startswith("reference"):
             check(m["verdict"] != "unchecked",
                   "%s has a verdict: %s (%s)" % (m["name"], m["verdict"], m["verdict_reason"]))
+
+# 6. the engines whose own world takes one pin, through the kit
+rc, so, _ = fb_script.run(exe, tmp, "models", "--json")
+built = {m["name"] for m in json.loads(so)["models"]} if rc == 0 else set()
+for model, ref in (("simbody-clearance-impact", "reference"),
+                   ("siconos-clearance-newton", "reference-restitution")):
+    if model not in built:
+        print("note: %s is not in this build: skipped" % model)
+        continue
+    out = os.path.join(tmp, model)
+    rc, _, se = fb_script.run(exe, tmp, "run", tcj, "--set", "run.models=%s,%s" % (model, ref),
+                              "--set", "run.duration_s=0.01", "--set", "run.peaks=all",
+                              "--set", "run.ensemble=1", "--no-figures", "--no-report",
+                              "--series", "none", "--out", out)
+    check(rc == 0, "%s on both pins runs (exit %d): %s" % (model, rc, se.strip()[-300:]))
+    if rc == 0:
+        m = fb_script.models(out)[model]
+        check(m["builder"] == "kit" and m["verdict"] != "unchecked",
+              "%s is built by the kit and measured against %s: builder %s, %s (%s)"
+              % (model, ref, m["builder"], m["verdict"], m["verdict_reason"]))
+    out = os.path.join(tmp, model + "-hand")
+    rc, _, se = fb_script.run(exe, tmp, "run", tcj, "--set", "run.models=%s" % model, "--set",
+                              "solver.builder=hand", "--set", "run.duration_s=0.01", "--set",
+                              "run.peaks=all", "--no-figures", "--out", out)
+    check(rc != 0 and "builder = auto or kit" in se,
+          "%s with builder = hand on both pins: refused, naming the builder (exit %d): %s"
+          % (model, rc, se.strip()[-300:]))
 
 sys.exit(tally.done())

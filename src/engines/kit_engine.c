@@ -488,16 +488,21 @@ int fb_engine_is_kit_adapter(const fb_engine *e) {
 
 const fb_engine *fb_engine_runner(const fb_engine *e, const fb_model *m, const fb_case *c,
                                   fb_diag *diag) {
-  /* auto: the kit where the engine's table names the model's kind and the
-   * kit builds the case (it drives an ideal joint only: a clearance at the
-   * driven joint keeps the engine's own world, which drives the crank by an
-   * angular motor) */
+  /* auto: the kit where the engine's table names the model's kind, or
+   * where the engine's own world takes one pin and the case looses
+   * others, and the kit builds the case (it drives an ideal joint only: a
+   * clearance at the driven joint keeps the engine's own world, which
+   * drives the crank by an angular motor) */
   const int driven = fb_mech_driven_joint(fb_case_mech(c));
   const int drive_free = driven < 0 || !((c->clearance.mask >> driven) & 1);
   const int kind = m->joints == FB_JOINTS_CLEARANCE ? FB_KIT_DEFAULT_CLEARANCE
                                                      : FB_KIT_DEFAULT_IDEAL;
+  /* the engine's own world takes one pin, the case has others */
+  const int pins = e->own_one_pin && m->joints == FB_JOINTS_CLEARANCE &&
+                   (c->clearance.mask & ~(1 << fb_case_mech(c)->reference_joint));
   const int kit = c->solver.builder == FB_BUILDER_KIT ||
-                  (c->solver.builder == FB_BUILDER_AUTO && (e->kit_default & kind) && drive_free);
+                  (c->solver.builder == FB_BUILDER_AUTO &&
+                   drive_free && ((e->kit_default & kind) || pins));
   if (e->kit && (!e->create || kit))
     return e->kit->reactions ? &kit_adapter_loads : &fb_engine_kit_adapter;
   if (e->create) return e;

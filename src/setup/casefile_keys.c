@@ -329,7 +329,9 @@ static const key_spec keys[] = {
      "(every ODE model; MuJoCo's clearance models, about half on the four-bar), but with "
      "clearance at the driven joint, which the kit does not drive (the engine's own world), "
      "else the engine's own world "
-     "(MuJoCo's ideal models, Bullet's, Simbody's, Siconos's); an engine with a binding alone "
+     "(MuJoCo's ideal models, Bullet's, Simbody's, Siconos's; but Simbody's and Siconos's "
+     "clearance models through the kit when [clearance] joints looses a pin other than "
+     "crank-coupler, which their own worlds do not take); an engine with a binding alone "
      "(DART) always builds through the kit"},
 
     /* each engine's own section, in engine order (model/opts_<name>.h) */

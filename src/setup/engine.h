@@ -248,6 +248,12 @@ typedef struct fb_engine {
                                        never a case with clearance at the driven joint, which
                                        the kit does not drive; 0: every model through the
                                        engine's own world */
+  int own_one_pin;                  /* optional, with create and kit: 1 when the engine's own
+                                       world takes clearance at the description's
+                                       reference_joint alone (Simbody's tree is cut there,
+                                       Siconos's relation written there): [solver] builder =
+                                       auto builds a clearance model of a case with clearance
+                                       at other joints through the kit, which takes any pins */
 } fb_engine;
 
 /* fb_engine.kit_default's bits: the ideal models (no clearance joint), the
@@ -268,7 +274,9 @@ const struct fb_kit_binding *fb_engine_kit_of(const fb_engine *e, fb_collider co
  * own, or e has a binding and the case asks [solver] builder = kit, or
  * auto (the default) where e->kit_default names m's kind (ideal or
  * clearance) and the case has no clearance at the driven joint
- * (fb_mech_driven_joint); an engine without a binding keeps its own. NULL
+ * (fb_mech_driven_joint), or m is a clearance model whose engine's own
+ * world takes one pin (own_one_pin) and the case has others; an engine
+ * without a binding keeps its own. NULL
  * with diag (FB_ERR_ARG) for an engine with neither. */
 const fb_engine *fb_engine_runner(const fb_engine *e, const fb_model *m, const fb_case *c,
                                   fb_diag *diag);

@@ -139,5 +139,6 @@ const fb_engine fb_engine_siconos = {
     .cost_per_sample = siconos_cost_per_sample,
     .bench = &siconos_bench,
     .kit = &fb_siconos_kit,
+    .own_one_pin = 1, /* the relation is written at the reference joint (siconos_scene.cpp) */
     .kit_native = &fb_siconos_kit, /* its clearance is its own relation (kit.h add_clearance) */
 };

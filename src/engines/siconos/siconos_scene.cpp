@@ -636,7 +636,8 @@ extern "C" fb_status fb_siconos_scene_create(fb_siconos_scene **out, const fb_mo
     const char *joint = sc ? "coupler-slider" : "crank-coupler";
     return fb_diag_set(diag, FB_ERR_ARG,
                        "model '%s': the Siconos model has clearance at the %s joint only; "
-                       "[clearance] joints names others: set joints = %s or drop the "
+                       "[clearance] joints names others: set [solver] builder = auto or kit "
+                       "(the engine kit takes any pins), joints = %s, or drop the "
                        "siconos-clearance-* models",
                        sm->model->name, joint, joint);
   }

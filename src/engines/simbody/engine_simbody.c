@@ -160,4 +160,5 @@ const fb_engine fb_engine_simbody = {
     .mapping_text = simbody_mapping_text,
     .bench = &simbody_bench,
     .kit = &fb_simbody_kit,
+    .own_one_pin = 1, /* the tree is cut at the reference joint (simbody_scene.cpp) */
 };

@@ -175,7 +175,8 @@ extern "C" fb_status fb_simbody_scene_create(fb_simbody_scene **out, const fb_mo
   if (sm->clearance_mask & ~(1 << cj))
     return fb_diag_set(diag, FB_ERR_ARG,
                        "model '%s': the Simbody tree is cut at the %s joint only; "
-                       "[clearance] joints names others: set joints = %s or drop the "
+                       "[clearance] joints names others: set [solver] builder = auto or kit "
+                       "(the engine kit takes any pins), joints = %s, or drop the "
                        "simbody-clearance-* models", sm->model->name, cut, cut);
   fb_start_state start;
   st = fb_model_scene_start(&start, sm, diag);

@@ -142,10 +142,14 @@ static fb_status build(const fb_kit_binding *b, void *w, const fb_planar *m, dou
     const int b0 = handle(pj->body[0]), b1 = handle(pj->body[1]);
     if (mask & (1u << j)) { /* a pin in a hole or a slider in its guide: the contact each
                                step, or the engine's relation */
-      fb_kit_clearance_joint cj = {b0, b1, {pj->at[0], pj->at[1]}, cl->radial_clearance,
-                                   cl->pin_radius, cl->joint[j].law.restitution,
-                                   cl->joint[j].law, m, cl, pj->kind, {0.0, 0.0},
-                                   {0.0, 0.0, 0.0}, cl->friction};
+      fb_kit_clearance_joint cj = {b0, b1, {pj->at[0], pj->at[1]}, {pj->at[0], pj->at[1]},
+                                   cl->radial_clearance, cl->pin_radius,
+                                   cl->joint[j].law.restitution, cl->joint[j].law, m, cl,
+                                   pj->kind, {0.0, 0.0}, {0.0, 0.0, 0.0}, cl->friction};
+      if (moved) { /* each side's point where its body puts it at the start */
+        fb_planar_point(cj.at, m, q, pj->body[0], pj->point[0]);
+        fb_planar_point(cj.at_hole, m, q, pj->body[1], pj->point[1]);
+      }
       if (pj->kind == FB_KIND_PRISMATIC) {
         slide_axis(cj.axis, m, q, moved, pj);
         if (cl->guide) cj.guide = cl->guide[j];

@@ -299,10 +299,15 @@ typedef struct {
 
 /* One clearance joint for an engine that builds it as its own relation
  * (add_clearance): the pin on body handle pin, the hole on body handle hole,
- * their centres together at the assembly position. */
+ * their centres where the start puts them (together at the assembly). */
 typedef struct {
   int pin, hole;            /* body handles (FB_KIT_GROUND: the ground) */
-  double at[2];             /* the joint's assembly position [m] */
+  double at[2];             /* the joint's position at the start where its body[0] puts it,
+                               the pin's centre (the assembly position when the world starts
+                               at the assembly) [m] */
+  double at_hole[2];        /* ... and where its body[1] puts it, the hole's centre: at but
+                               for a start with the pin off its hole's centre, or a stack-up
+                               corner whose assembly the start closed [m] */
   double radial_clearance;  /* c [m] */
   double pin_radius;        /* [m] */
   double restitution;       /* the law's coefficient of restitution cr, Newton's e_N [-] */

@@ -396,7 +396,7 @@ static fb_status kit_add_drive(void *w, int joint, double rate, fb_diag *diag) {
     mk_contact *c = &k->ct[j];
     if (!c->in) continue;
     const double *p = pose(k, c->pin + 1), *q = pose(k, c->hole + 1);
-    const double *h = c->wall ? c->aw : c->at; /* the hole's point: a wall's, or the centre */
+    const double *h = c->wall ? c->aw : c->ah; /* the hole's point: a wall's, or the centre */
     to_frame(c->lp, p[2], c->at[0] - p[0], c->at[1] - p[1]);
     to_frame(c->lh, q[2], h[0] - q[0], h[1] - q[1]);
     to_frame(c->ln, q[2], c->nw[0], c->nw[1]);

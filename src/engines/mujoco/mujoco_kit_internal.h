@@ -34,7 +34,9 @@ typedef struct {
   int in;              /* 1: a clearance joint's slot */
   int on;              /* 1: the kit handed its contact for this step (law, v0) */
   int pin, hole;       /* kit handles, then MuJoCo body ids (hole 0: the world) */
-  double at[2];        /* both centres at assembly [m] */
+  double at[2];        /* the pin's centre at the start [m] (kit.h fb_kit_clearance_joint.at) */
+  double ah[2];        /* the hole's centre at the start [m] (its at_hole; a slider's guide:
+                          unused, aw its wall's point) */
   double lp[2], lh[2]; /* the pin's and the hole's centres in their bodies' frames [m] */
   double c;            /* radial clearance [m] */
   double v_min;        /* an onset slower than this is taken at it [m/s] (episode.h) */
@@ -99,6 +101,7 @@ typedef struct {
  * its pin's and hole's handles and centre, the clearance and the law */
 static inline void mk_pin_slot(mk_contact *c, const fb_kit_clearance_joint *cj) {
   *c = (mk_contact){.in = 1, .pin = cj->pin, .hole = cj->hole, .at = {cj->at[0], cj->at[1]},
+                    .ah = {cj->at_hole[0], cj->at_hole[1]},
                     .c = cj->cl->radial_clearance, .v_min = cj->cl->impact_velocity_min,
                     .law = cj->law};
 }

@@ -493,8 +493,8 @@ fb_status kit_add_drive(void *w, int jn, double rate, fb_diag *diag) {
   return FB_OK;
 }
 
-// clearance joint jn of m: the pin and the hole, their centres at the
-// joint on assembly
+// clearance joint jn of m: the pin and the hole, their centres where the
+// start puts them (kit.h: at, at_hole; together at the assembly)
 fb_status kit_add_clearance(void *w, int jn, const fb_kit_clearance_joint *cj, fb_diag *diag) {
   const fb_planar *m = cj->m;
   const fb_kit_clearance *cl = cj->cl;
@@ -530,8 +530,8 @@ fb_status kit_add_clearance(void *w, int jn, const fb_kit_clearance_joint *cj, f
   hd.joint = 1;
   hd.pin = j.body[0] - 1; // kit.h's handles
   hd.hole = j.body[1] == FB_PLANAR_GROUND ? FB_KIT_GROUND : j.body[1] - 1;
-  hd.pin_at = local(k, hd.pin, j.at);
-  hd.hole_at = local(k, hd.hole, j.at);
+  hd.pin_at = local(k, hd.pin, cj->at); // where the start puts each side (kit.h)
+  hd.hole_at = local(k, hd.hole, cj->at_hole);
   hd.clearance = cl->radial_clearance;
   hd.v_min = cl->impact_velocity_min;
   hd.base = cj->law;

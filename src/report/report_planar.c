@@ -109,9 +109,9 @@ static json_t *law_json(const fb_contact_law *law, double force_work) {
 }
 
 /* a clearance model's joints and law: clearance_joints (every one), law
- * (the first's), and for a reference per_joint: each joint's law, force
- * and penetration peaks (force_max_n and penetration_max_m of the model
- * are their largest) */
+ * (the first's), and per_joint: each joint's law, force and penetration
+ * peaks (force_max_n and penetration_max_m of the model are their
+ * largest) */
 static void clearance_json(json_t *e, const fb_planar_run *r, const fb_planar_model *p) {
   const fb_planar_ref_result *q = &p->ref;
   json_t *names = json_array(), *each = json_array();
@@ -126,8 +126,7 @@ static void clearance_json(json_t *e, const fb_planar_run *r, const fb_planar_mo
   }
   json_object_set_new(e, "clearance_joints", names);
   json_object_set_new(e, "law", law_json(&q->law, q->force_work));
-  if (p->reference) json_object_set_new(e, "per_joint", each);
-  else json_decref(each);
+  json_object_set_new(e, "per_joint", each);
   json_object_set_new(e, "window_from_s", num(r->t_window));
 }
 
@@ -141,29 +140,36 @@ static int resolution(const fb_planar_run *r, const fb_planar_model *p, char *wa
   return ok;
 }
 
-/* summary.json's `contact` of an engine clearance model: its clearance
+/* summary.json's `contact` of an engine clearance model: each clearance
  * joint's contact as the run met it, under the four-bar's keys
  * (report_summary.c), and the largest fixed step that resolves it */
 static json_t *contact_json(const fb_planar_run *r, const fb_planar_model *p) {
-  char warn[512];
-  const int ok = resolution(r, p, warn, sizeof warn);
-  const double hw = p->h_omega_max;
-  json_t *o = json_object();
-  json_object_set_new(o, "joint", json_string(r->m->joint[p->ref.joint].name));
-  json_object_set_new(o, "law", json_string(fb_law_name(p->ref.law.kind)));
-  json_object_set_new(o, "effective_mass_kg",
-                      isfinite(p->m_eff_min) && isfinite(p->m_eff_max)
-                          ? json_pack("{s:f,s:f}", "min", p->m_eff_min, "max", p->m_eff_max)
-                          : json_null());
-  json_object_set_new(o, "h_omega_c_max", ok >= 0 ? num(hw) : json_null());
-  json_object_set_new(o, "h_omega_c_bound", num(FB_H_OMEGA_C_BOUND));
-  json_object_set_new(o, "contact_steps", json_integer((json_int_t)p->ref.steps));
-  json_object_set_new(o, "resolved", ok >= 0 ? json_boolean(ok) : json_null());
-  json_object_set_new(o, "resolving_step_s",
-                      ok >= 0 ? num(p->h * FB_H_OMEGA_C_BOUND / hw * FB_H_AUTO_MARGIN)
-                              : json_null());
-  json_object_set_new(o, "warning", ok == 0 ? json_string(warn) : json_null());
-  return json_pack("[o]", o);
+  json_t *all = json_array();
+  for (int k = 0; k < p->ref.njoints; k++) {
+    const fb_planar_ref_joint *a = &p->ref.at[k];
+    char warn[512] = "";
+    fb_warning w;
+    const int ok = fb_planar_model_joint_resolution(r, p, k, &w);
+    if (ok == 0) fb_warning_text(warn, sizeof warn, &w);
+    const double hw = a->h_omega_max;
+    json_t *o = json_object();
+    json_object_set_new(o, "joint", json_string(r->m->joint[a->joint].name));
+    json_object_set_new(o, "law", json_string(fb_law_name(a->law.kind)));
+    json_object_set_new(o, "effective_mass_kg",
+                        isfinite(a->m_eff_min) && isfinite(a->m_eff_max)
+                            ? json_pack("{s:f,s:f}", "min", a->m_eff_min, "max", a->m_eff_max)
+                            : json_null());
+    json_object_set_new(o, "h_omega_c_max", ok >= 0 ? num(hw) : json_null());
+    json_object_set_new(o, "h_omega_c_bound", num(FB_H_OMEGA_C_BOUND));
+    json_object_set_new(o, "contact_steps", json_integer((json_int_t)a->contact_steps));
+    json_object_set_new(o, "resolved", ok >= 0 ? json_boolean(ok) : json_null());
+    json_object_set_new(o, "resolving_step_s",
+                        ok >= 0 ? num(p->h * FB_H_OMEGA_C_BOUND / hw * FB_H_AUTO_MARGIN)
+                                : json_null());
+    json_object_set_new(o, "warning", ok == 0 ? json_string(warn) : json_null());
+    json_array_append_new(all, o);
+  }
+  return all;
 }
 
 /* 1 when the run's step resolves estimate e: h x rate within the bound
@@ -865,10 +871,22 @@ void fb_report_planar_table(FILE *f, const fb_planar_run *r) {
     }
     char warn[512];
     const int res = p->engine && p->force ? resolution(r, p, warn, sizeof warn) : -1;
-    if (res >= 0)
-      fprintf(f, "contact at '%s': largest h omega_c over %zu contact steps %.3g, bound %g: %s\n",
-              r->m->joint[p->ref.joint].name, p->ref.steps, p->h_omega_max, FB_H_OMEGA_C_BOUND,
-              res ? "resolved" : warn);
+    if (res >= 0) {
+      char at[512] = "";
+      size_t u = 0;
+      for (int k = 0; k < p->ref.njoints && u < sizeof at; k++)
+        u += (size_t)snprintf(at + u, sizeof at - u, "%s'%s'", k ? ", " : "",
+                              r->m->joint[p->ref.at[k].joint].name);
+      fprintf(f, "contact%s at %s: largest h omega_c over %zu contact steps %.3g, bound %g: %s\n",
+              p->ref.njoints > 1 ? "s" : "", at, p->ref.steps, p->h_omega_max,
+              FB_H_OMEGA_C_BOUND, res ? "resolved" : warn);
+    }
+    for (int k = 0; p->engine && p->force && p->ref.njoints > 1 && k < p->ref.njoints; k++)
+      fprintf(f, "clearance at '%s': contact force max %s N, penetration max %s um\n",
+              r->m->joint[p->ref.at[k].joint].name,
+              FB_NUM_CELL("%.6g", p->ref.failed ? NAN : p->ref.at[k].force_max, FB_NUM_NONE_TABLE),
+              FB_NUM_CELL("%.4g", p->ref.failed ? NAN : p->ref.at[k].penetration_max / FB_M_PER_UM,
+                          FB_NUM_NONE_TABLE));
     bodies_table(f, m, p->peaks);
     fb_report_planar_outputs_table(f, r, p);
     if (p->torque) loads_table(f, r, p);

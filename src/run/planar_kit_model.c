@@ -112,47 +112,76 @@ static void window_peaks(fb_planar_model *p, const fb_planar_run *r) {
   }
 }
 
-/* the clearance of model p: the case's one clearance joint, its law at the
- * joint's largest ideal reaction (as the reference takes it; a slider's
- * guide or an undriven case: the case's explicit law, planar_free.h), a
- * prismatic joint's guide (*guide, cl->guide, owned: free()), the columns */
+/* the clearance of model p: every clearance joint of the case, each with
+ * its law at the joint's largest ideal reaction (as the reference takes
+ * it; a slider's guide or an undriven case: the case's explicit law,
+ * planar_free.h) and its columns in p->ref.at[] (the first's p's force,
+ * pen, ecc), a prismatic joint's guide (*guide, cl->guide, owned: free()) */
 static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_planar_model *p,
                            const fb_planar_run *r, const fb_model *mt, fb_diag *diag) {
   const fb_planar *m = p->m; /* the nominal description or its stack-up corner: the same joints */
   const double *reaction_max = fb_planar_run_reaction_max(r, m);
   const fb_case *c = &r->c;
-  int n = 0, cj = -1;
+  fb_planar_ref_result *q = &p->ref;
+  unsigned char clear[FB_PLANAR_SPEC_MAX_JOINTS] = {0};
+  int n = 0;
   for (int k = 0; k < m->njoints; k++)
-    if ((unsigned)c->clearance.mask & (1u << k)) cj = k, n++;
-  if (n != 1)
-    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs one clearance joint ([clearance] joints "
-                       "= a revolute joint of the case), and the case names %d", p->name, n);
+    if ((unsigned)c->clearance.mask & (1u << k)) {
+      if (n == FB_PLANAR_REF_MAX_JOINTS)
+        return fb_diag_set(diag, FB_ERR_ARG, "model '%s' takes %d clearance joints at most "
+                           "([clearance] joints), and the case names more", p->name,
+                           FB_PLANAR_REF_MAX_JOINTS);
+      clear[k] = 1;
+      q->at[n++].joint = k;
+    }
+  if (n < 1)
+    return fb_diag_set(diag, FB_ERR_ARG, "model '%s' needs a clearance joint ([clearance] joints "
+                       "= a joint of the case)", p->name);
+  q->njoints = n;
   /* a prismatic joint (a slider in its guide): the kit's corner contacts,
    * or refused by the kit naming the binding (kit_contact.h) */
   double *omega0 = NULL;
   int free_law = 0; /* a slider's guide or an undriven case: the law is explicit */
-  unsigned char one[FB_PLANAR_SPEC_MAX_JOINTS] = {0};
-  one[cj] = 1;
-  fb_status st = fb_planar_free_parts(guide, &omega0, &free_law, c, m, one, diag);
+  fb_status st = fb_planar_free_parts(guide, &omega0, &free_law, c, m, clear, diag);
   free(omega0); /* the start takes its own (fb_planar_run_kit) */
   cl->guide = *guide;
   if (st == FB_OK && !free_law && !reaction_max)
     st = fb_diag_set(diag, FB_ERR_ARG, "model '%s': the joints' ideal reactions were not computed",
                      p->name);
-  const fb_planar_joint *j = &m->joint[cj];
-  fb_kit_joint_record *rec = &cl->joint[cj];
-  const double mass = fb_planar_joint_law_mass(m, cj);
-  p->ref.force_work = st == FB_OK && !free_law ? reaction_max[cj] : 0.0;
-  if (st == FB_OK)
-    st = fb_joint_law_at(&rec->law, c, mt->law == FB_MODEL_LAW_IMPACT, p->ref.force_work, j->name,
-                         mass, diag);
+  /* the columns: a block of 4 n per joint (force, penetration, a pin's
+   * eccentricity x and y); a pin's eccentricity too: report.html draws its
+   * orbit, and a rigid model's verdict reads its rebound (planar_verdict.c) */
+  p->rigid = mt->rigid;
+  p->force = st == FB_OK ? malloc(4 * p->n * (size_t)n * sizeof *p->force) : NULL;
+  if (st == FB_OK && !p->force) st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   if (st != FB_OK) return st;
+  for (size_t i = 0; i < 4 * p->n * (size_t)n; i++) p->force[i] = NAN;
   /* an injected error (scene.c's rule): the engine's law, not the reference's */
   const fb_clearance *ci = &c->clearance;
   const int damping_given = fb_casefile_given(c, "clearance", "engine_damping_scale");
-  if (ci->engine_stiffness_scale != 1.0 || ci->engine_damping_scale != 1.0 || damping_given)
-    fb_contact_law_scale(&rec->law, ci->engine_stiffness_scale, ci->engine_damping_scale,
-                         damping_given);
+  const int scaled = ci->engine_stiffness_scale != 1.0 || ci->engine_damping_scale != 1.0 ||
+                     damping_given;
+  for (int k = 0; k < n && st == FB_OK; k++) {
+    fb_planar_ref_joint *a = &q->at[k];
+    const fb_planar_joint *j = &m->joint[a->joint];
+    fb_kit_joint_record *rec = &cl->joint[a->joint];
+    a->force_work = !free_law ? reaction_max[a->joint] : 0.0;
+    st = fb_joint_law_at(&rec->law, c, mt->law == FB_MODEL_LAW_IMPACT, a->force_work, j->name,
+                         fb_planar_joint_law_mass(m, a->joint), diag);
+    if (st == FB_OK && scaled)
+      fb_contact_law_scale(&rec->law, ci->engine_stiffness_scale, ci->engine_damping_scale,
+                           damping_given);
+    a->law = rec->law;
+    a->force = p->force + 4 * p->n * (size_t)k;
+    a->pen = a->force + p->n;
+    a->ecc = j->kind != FB_KIND_PRISMATIC ? a->force + 2 * p->n : NULL;
+    a->force_sampled = a->pen_sampled = NULL;
+    a->force_max = a->penetration_max = NAN;
+    rec->force = a->force;
+    rec->pen = a->pen;
+    rec->ecc = a->ecc;
+  }
+  if (st != FB_OK) return st;
   fb_scene sc;
   fb_scene_default(&sc);
   cl->mask = (unsigned)c->clearance.mask;
@@ -166,19 +195,11 @@ static fb_status clearance(fb_kit_clearance *cl, fb_planar_guide **guide, fb_pla
   cl->collider = (fb_kit_collider){fb_model_collider(mt, fb_case_collider_of(c)),
                                    fb_case_faceted_n(c), c->clearance.segments,
                                    fb_case_bore_ovality(c), 0, c->pin_length};
-  /* a pin's eccentricity too: report.html draws its orbit, and a rigid
-   * model's verdict reads its rebound (planar_verdict.c) */
-  const int ecc = j->kind != FB_KIND_PRISMATIC;
-  p->rigid = mt->rigid;
-  p->force = malloc((ecc ? 4 : 2) * p->n * sizeof *p->force);
-  if (!p->force) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
-  p->pen = p->force + p->n;
-  for (size_t i = 0; i < (ecc ? 4 : 2) * p->n; i++) p->force[i] = NAN;
-  rec->force = p->force;
-  rec->pen = p->pen;
-  if (ecc) rec->ecc = p->ecc = p->force + 2 * p->n;
-  p->ref.joint = cj;
-  p->ref.law = rec->law;
+  p->pen = q->at[0].pen;
+  p->ecc = q->at[0].ecc;
+  q->joint = q->at[0].joint;
+  q->law = q->at[0].law;
+  q->force_work = q->at[0].force_work;
   return FB_OK;
 }
 
@@ -252,10 +273,14 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
                                     FB_STEP_LOAD_LOOKAHEAD * r->c.solver.h_max, diag);
     cl.load = &load;
   }
-  /* a binding that sub-steps keeps its largest force of each step (the verdict's peaks) */
-  if (st == FB_OK && p->force && b->contact_force_max &&
-      !(cl.joint[p->ref.joint].force_max = p->force_max = calloc(p->n, sizeof *p->force_max)))
+  /* a binding that sub-steps keeps its largest force of each step (the
+   * verdict's peaks), a block of n per clearance joint (the first's p's) */
+  const int ncl = p->force ? p->ref.njoints : 0;
+  if (st == FB_OK && ncl && b->contact_force_max &&
+      !(p->force_max = calloc(p->n * (size_t)ncl, sizeof *p->force_max)))
     st = fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
+  for (int k = 0; k < ncl && p->force_max; k++)
+    cl.joint[p->ref.at[k].joint].force_max = p->force_max + p->n * (size_t)k;
   /* undriven: the case's velocities at the assembly, as the reference's
    * free start takes them (q0 NULL: the assembly itself) */
   if (st == FB_OK && r->m->drive < 0 && (st = free_start(&y0, r, run_cl, diag)) == FB_OK)
@@ -279,12 +304,19 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
   free(y0);
   free(guide);
   p->h_omega_max = p->m_eff_min = p->m_eff_max = NAN;
-  if (run_cl && p->force && (st == FB_OK || st == FB_ERR_NUMERIC)) { /* what the contact met */
-    const fb_kit_joint_record *k = &cl.joint[p->ref.joint];
-    if (k->contact_steps > 0) {
-      p->m_eff_min = k->m_eff_min, p->m_eff_max = k->m_eff_max;
-      if (b->contact_rows || b->explicit_law) p->h_omega_max = k->h_omega_max;
-    }
+  /* what each contact met; the model's: the range over its joints' */
+  for (int q = 0; run_cl && q < ncl && (st == FB_OK || st == FB_ERR_NUMERIC); q++) {
+    const fb_kit_joint_record *k = &cl.joint[p->ref.at[q].joint];
+    fb_planar_ref_joint *a = &p->ref.at[q];
+    a->h_omega_max = a->m_eff_min = a->m_eff_max = NAN;
+    a->contact_steps = k->contact_steps;
+    if (!(k->contact_steps > 0)) continue;
+    a->m_eff_min = k->m_eff_min, a->m_eff_max = k->m_eff_max;
+    if (b->contact_rows || b->explicit_law) a->h_omega_max = k->h_omega_max;
+    p->m_eff_min = isnan(p->m_eff_min) ? k->m_eff_min : fmin(p->m_eff_min, k->m_eff_min);
+    p->m_eff_max = isnan(p->m_eff_max) ? k->m_eff_max : fmax(p->m_eff_max, k->m_eff_max);
+    if (!isnan(a->h_omega_max))
+      p->h_omega_max = isnan(p->h_omega_max) ? a->h_omega_max : fmax(p->h_omega_max, a->h_omega_max);
   }
   p->setup_s = before + s.setup_s;
   for (size_t i = 0; i < p->n; i++) p->drive[i] = r->omega * p->t[i];
@@ -295,15 +327,23 @@ fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag 
       p->peaks[k] = (fb_body_peaks){.omega_max = NAN, .omega_min = NAN, .alpha_max = NAN,
                                     .alpha_min = NAN};
     p->ref.force_max = p->ref.penetration_max = NAN;
+    for (int k = 0; k < ncl; k++) p->ref.at[k].force_max = p->ref.at[k].penetration_max = NAN;
     p->ref.steps = cl.contact_steps; /* the contact steps before the stop */
     return FB_OK;
   }
   if (st != FB_OK) return st;
   window_peaks(p, r);
-  for (size_t i = 0; p->force && i < p->n; i++) {
-    if (p->t[i] < r->t_window) continue;
-    p->ref.force_max = fmax(p->ref.force_max, p->force[i]);
-    p->ref.penetration_max = fmax(p->ref.penetration_max, p->pen[i]);
+  /* each clearance joint's window peaks, the model's the largest of them */
+  for (int k = 0; k < ncl; k++) {
+    fb_planar_ref_joint *a = &p->ref.at[k];
+    a->force_max = a->penetration_max = 0.0;
+    for (size_t i = 0; i < p->n; i++) {
+      if (p->t[i] < r->t_window) continue;
+      a->force_max = fmax(a->force_max, a->force[i]);
+      a->penetration_max = fmax(a->penetration_max, a->pen[i]);
+    }
+    p->ref.force_max = fmax(p->ref.force_max, a->force_max);
+    p->ref.penetration_max = fmax(p->ref.penetration_max, a->penetration_max);
   }
   p->ref.steps = cl.contact_steps;
   return FB_OK;

@@ -127,12 +127,9 @@ fb_status fb_planar_run_check(const fb_case *c, fb_diag *diag) {
                          "class (f, m, c or v: ISO 2768-1; fourbar stackup lists them)", name);
     const fb_model *row = fb_model_find(name);
     const int loose = fb_case_clearance_count(c);
-    if (fb_planar_kit_of(name) && row && fb_model_has_clearance(row) &&
-        loose > FB_PLANAR_KIT_CLEARANCE_JOINTS)
-      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s': an engine's clearance model of a "
-                         "planar case takes one clearance joint, and [clearance] joints names %d; "
-                         "the references take every one (reference, reference-restitution), or "
-                         "name one joint for the engines' models", name, loose);
+    if (row && fb_model_has_clearance(row) && loose > FB_PLANAR_REF_MAX_JOINTS)
+      return fb_diag_set(diag, FB_ERR_ARG, "[run] models: '%s' takes %d clearance joints at most, "
+                         "and [clearance] joints names %d", name, FB_PLANAR_REF_MAX_JOINTS, loose);
     const char *why = fb_planar_run_refusal(name);
     char loaded[2 * FB_PLANAR_NAME_SIZE];
     if (!why && fb_planar_spec_loaded(&c->planar, loaded, sizeof loaded) &&
@@ -440,14 +437,24 @@ static int step_kind(const fb_planar_run *r) {
   return FB_WARN_STEP_AUTO_CAP;
 }
 
-int fb_planar_model_resolution(const fb_planar_run *r, const fb_planar_model *p, fb_warning *w) {
-  if (!isfinite(p->h_omega_max) || !(p->h_omega_max > 0.0)) return -1;
-  if (p->h_omega_max <= FB_H_OMEGA_C_BOUND) return 1;
+int fb_planar_model_joint_resolution(const fb_planar_run *r, const fb_planar_model *p, int k,
+                                     fb_warning *w) {
+  const double hw = p->ref.at[k].h_omega_max;
+  if (!isfinite(hw) || !(hw > 0.0)) return -1;
+  if (hw <= FB_H_OMEGA_C_BOUND) return 1;
   if (w) {
-    *w = (fb_warning){.kind = FB_WARN_UNDER_RESOLVED, .value = p->h_omega_max,
-                      .limit = FB_H_OMEGA_C_BOUND, .ratio = M_PI / p->h_omega_max, .t = NAN,
-                      .h = p->h, .h_auto = step_kind(r)};
-    snprintf(w->what, sizeof w->what, "%s", r->m->joint[p->ref.joint].name);
+    *w = (fb_warning){.kind = FB_WARN_UNDER_RESOLVED, .value = hw, .limit = FB_H_OMEGA_C_BOUND,
+                      .ratio = M_PI / hw, .t = NAN, .h = p->h, .h_auto = step_kind(r)};
+    snprintf(w->what, sizeof w->what, "%s", r->m->joint[p->ref.at[k].joint].name);
   }
   return 0;
+}
+
+int fb_planar_model_resolution(const fb_planar_run *r, const fb_planar_model *p, fb_warning *w) {
+  int worst = -1;
+  for (int k = 0; k < p->ref.njoints; k++)
+    if (isfinite(p->ref.at[k].h_omega_max) &&
+        (worst < 0 || p->ref.at[k].h_omega_max > p->ref.at[worst].h_omega_max))
+      worst = k;
+  return worst < 0 ? -1 : fb_planar_model_joint_resolution(r, p, worst, w);
 }

@@ -36,8 +36,9 @@
  *              (src/engines/kit/kit.h: every body at its assembly pose
  *              with the drive's velocities there, the engine's own joints,
  *              loop closure, stepper and [solver] settings; a clearance
- *              model's one clearance joint a pin in its hole with the
- *              reference's law, the kit's contact pipeline), one engine
+ *              model's clearance joints each a pin in its hole (or a
+ *              slider in its guide) with the reference's law of that
+ *              joint, the kit's contact pipeline), one engine
  *              step of h per sample; its window peaks as a reference's;
  *              its verdict against the analytic model (ideal) or the
  *              reference of its law (planar_verdict.h).
@@ -98,6 +99,11 @@ typedef struct {
   double *force_sampled, *pen_sampled; /* the same at the samples, before the refinement (n) */
   double *ecc;             /* a pin's eccentricity, x at ecc[i], y at ecc[n + i] [m] (2 n);
                               NULL for a slider in its guide */
+  /* an engine's clearance model: what its contact met (kit.h's record) */
+  double h_omega_max;      /* largest h omega_c over its contact steps [-]; NaN: not measured
+                              (no contact step, or an engine that controls its own steps) */
+  double m_eff_min, m_eff_max; /* its effective mass range [kg]; NaN: no contact step */
+  size_t contact_steps;    /* steps with its contact */
 } fb_planar_ref_joint;
 
 /* What a reference measured beyond its samples. */
@@ -111,9 +117,10 @@ typedef struct {
   double force_max;        /* largest contact force in the window [N] (over every clearance
                               joint of a reference of several) */
   double penetration_max;  /* largest penetration in the window [m] (likewise) */
-  int njoints;             /* a reference's clearance joints (at[], in the description's
-                              order; at[0] is joint above, its columns the model's force, pen,
-                              ...); 0 for the ideal mechanism's and for other models */
+  int njoints;             /* a reference's or an engine's clearance model's clearance
+                              joints (at[], in the description's order; at[0] is joint above,
+                              its columns the model's force, pen, ...); 0 for the ideal
+                              mechanism's and for other models */
   fb_planar_ref_joint at[FB_PLANAR_REF_MAX_JOINTS];
   double check_rel;        /* largest |relative change| of a window peak in the check, NaN
                               without one (fb_planar_ref_checked) [-] */
@@ -223,20 +230,17 @@ static inline int fb_planar_model_has_contact(const fb_planar_model *p) {
   return (p->reference && p->ref.joint >= 0) || (p->engine && p->force);
 }
 
-/* Model p's clearance contacts: a reference's clearance joints
- * (ref.njoints), an engine's clearance model's one, else 0. */
+/* Model p's clearance contacts: a reference's or an engine's clearance
+ * model's clearance joints (ref.njoints), else 0. */
 static inline int fb_planar_model_contacts(const fb_planar_model *p) {
-  return p->reference ? p->ref.njoints : p->engine && p->force ? 1 : 0;
+  return p->reference || (p->engine && p->force) ? p->ref.njoints : 0;
 }
 
 /* Model p's k-th clearance contact (k < fb_planar_model_contacts(p)): its
- * joint, law, window peaks and columns (an engine's: its ref and columns;
- * force_sampled, pen_sampled NULL). */
+ * joint, law, window peaks and columns (an engine's force_sampled,
+ * pen_sampled NULL). */
 static inline fb_planar_ref_joint fb_planar_model_contact(const fb_planar_model *p, int k) {
-  if (p->reference) return p->ref.at[k];
-  return (fb_planar_ref_joint){p->ref.joint, p->ref.law, p->ref.force_work, p->ref.force_max,
-                               p->ref.penetration_max, p->force, p->pen, p->force_sampled,
-                               p->pen_sampled, p->ecc};
+  return p->ref.at[k];
 }
 
 /* A planar case run. */
@@ -272,10 +276,16 @@ typedef struct {
 } fb_planar_run;
 
 /* Engine clearance model p of run r against the step's bound on h omega_c
- * (FB_H_OMEGA_C_BOUND): 1 resolved, 0 not (then *w, when not NULL, the
- * four-bar's under-resolved warning, outcome.h, naming the joint, with the
- * largest fixed step that keeps it), -1 not measured (its h_omega_max
- * NaN: no contact step, or an engine that controls its own steps). */
+ * (FB_H_OMEGA_C_BOUND) at its k-th clearance joint (p->ref.at[k]): 1
+ * resolved, 0 not (then *w, when not NULL, the four-bar's under-resolved
+ * warning, outcome.h, naming the joint, with the largest fixed step that
+ * keeps it), -1 not measured (its h_omega_max NaN: no contact step, or an
+ * engine that controls its own steps). */
+int fb_planar_model_joint_resolution(const fb_planar_run *r, const fb_planar_model *p, int k,
+                                     fb_warning *w);
+
+/* fb_planar_model_resolution at the joint of p's largest h omega_c
+ * (p->h_omega_max, the model's over its joints). */
 int fb_planar_model_resolution(const fb_planar_run *r, const fb_planar_model *p, fb_warning *w);
 
 /* The largest ideal reactions (njoints) [N] of description m of run r: the
@@ -353,11 +363,11 @@ int fb_planar_first_impact(double *force_rel, double *pen_rel, const fb_planar_r
 
 /* The reference model p (its samples allocated, p->name set) of run r:
  * the impact law (impact = 1, "reference") or the restitution law
- * (planar_ref_model.c) at the case's one clearance joint; with none, the
+ * (planar_ref_model.c) at the case's clearance joints; with none, the
  * ideal mechanism's forward dynamics under its loads, springs and
  * gravity (p->ref.joint = -1, no force or penetration columns), an
  * undriven or torque-driven case's yardstick. Errors: FB_ERR_ARG with
- * more than one clearance joint, or where fb_planar_ref_ideal_refusal
+ * more than FB_PLANAR_REF_MAX_JOINTS clearance joints, or where fb_planar_ref_ideal_refusal
  * refuses; those of joint_law.h, planar_invdyn.h and planar_dynamics.h.
  * An integration that fails is a result (p->ref.failed), not an error. */
 /* Why reference model `model` cannot run case c when c has no clearance
@@ -399,10 +409,13 @@ const char *fb_planar_kit_loaded_models(char *buf, size_t size);
 /* Engine model p (its samples allocated, p->name one fb_planar_kit_of
  * takes) of run r through the engine kit: the description built in the
  * engine, one engine step of h per sample, the window peaks; a clearance
- * model's one clearance joint with the reference's law (p->ref.joint,
- * law, force_max, penetration_max; steps: the steps with a contact row)
- * and its force and penetration columns. Errors: FB_ERR_ARG without
- * exactly one clearance joint; those of joint_law.h and of fb_kit_run. */
+ * model's clearance joints each with the reference's law of that joint
+ * (p->ref.at[], njoints: each one's law, force_max, penetration_max and
+ * columns, the first's also p->ref.joint, law and p's force, pen, ecc;
+ * p->ref.force_max, penetration_max the largest over them; steps: the
+ * steps with a contact row). Errors: FB_ERR_ARG without a clearance joint
+ * or with more than FB_PLANAR_REF_MAX_JOINTS; those of joint_law.h and of
+ * fb_kit_run. */
 fb_status fb_planar_run_kit(fb_planar_model *p, const fb_planar_run *r, fb_diag *diag);
 
 /* Engine model name's world of planar case c (a model fb_planar_kit_of

@@ -188,10 +188,10 @@ static const key_spec keys[] = {
      "joint names, each once: ground-crank, crank-coupler, coupler-follower, follower-ground, "
      "or none (a slider-crank: coupler-slider or none; a planar case: its own joints)",
      "joints modelled as a pin in a hole (the *-clearance-* models); the others stay ideal "
-     "hinges and get no contact geometry; the references take every one (a planar case's up "
-     "to 8, a prismatic one as a slider in its guide; the four-bar's pins, with [run] start "
-     "= steady and pin_start = centred beyond crank-coupler alone), an engine's clearance "
-     "model of a planar case one; a slider-crank's default is its piston pin, coupler-slider"},
+     "hinges and get no contact geometry; a clearance model takes every one, each with its "
+     "own law (a planar case: up to 8, a prismatic one as a slider in its guide; the "
+     "four-bar's references with [run] start = steady and pin_start = centred beyond "
+     "crank-coupler alone); a slider-crank's default is its piston pin, coupler-slider"},
     {"clearance", "penalty", K_PENALTY, OFF(clearance.penalty), 0, 0, 0, 0, 0, "-", "physical",
      "physical, paper, explicit or goldsmith",
      "stiffness source: physical (Johnson line contact at the inverse-dynamics reaction), "

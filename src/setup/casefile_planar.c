@@ -747,12 +747,7 @@ static void default_models(fb_case *c) {
     list[n++] = "ode-ideal-nominal";
     if (fb_casefile_given(c, "tolerance", "class")) list[n++] = "ode-ideal-stackup";
   }
-  /* more clearance joints than an engine's clearance model of a planar
-   * case takes: the references alone (planar_run.c refuses the others) */
-  const int several = fb_case_clearance_count(c) > FB_PLANAR_KIT_CLEARANCE_JOINTS;
   for (size_t k = 0; clearance && k < FB_CLEARANCE_DEFAULT_COUNT; k++) {
-    const fb_model *row = fb_model_find(fb_clearance_default_models[k]);
-    if (several && row && row->engine != FB_ENGINE_REFERENCE) continue;
     int dup = 0;
     for (int q = 0; q < n; q++) dup |= strcmp(list[q], fb_clearance_default_models[k]) == 0;
     if (!dup) list[n++] = fb_clearance_default_models[k];

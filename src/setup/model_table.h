@@ -181,11 +181,6 @@ const char *fb_model_list(char *buf, size_t size);
 /* 1 when the model has clearance joints (and so contact columns and spikes). */
 int fb_model_has_clearance(const fb_model *m);
 
-/* The clearance joints an engine's clearance model of a planar case takes
- * (its kit model, run/planar_kit_model.c): one; a case naming more runs
- * them in its references alone (the default models; any other refused). */
-#define FB_PLANAR_KIT_CLEARANCE_JOINTS 1
-
 /* 1 when model name is an ideal model at the stack-up lengths
  * (analytic-stackup, *-ideal-stackup: what a planar case runs at its
  * stack-up corner, run/planar_run.h), else 0 (an unknown name too). */

@@ -121,7 +121,9 @@ fb_status fb_reference_run_tol(fb_series *out, size_t *steps, const fb_case *c,
  * planar core in relative coordinates (planar_reference.h: rk8pd at tol,
  * each pin's eccentricity in the state, every joint's law its own), from
  * the steady start with every pin centred, the state the engines' scenes
- * start from at [run] start = steady and pin_start = centred; each sample's
+ * start from at [run] start = steady and pin_start = centred (an ensemble
+ * member's pins moved by its pin_start_offset, as the scenes' are:
+ * planar_relative.h fb_planar_rel_steady_offset); each sample's
  * output bodies' motion and each joint's force, penetration, eccentricity
  * (pin centre - hole centre) and state (fb_reference_contact_state), the
  * spikes refined by the same rule (planar_reference.h

@@ -205,7 +205,10 @@ fb_status fb_reference_run_planar(fb_series *out, size_t *steps, const fb_case *
   }
   fb_planar_ref_stats ps = {0};
   if (st == FB_OK) {
-    st = fb_planar_ref_run(y, acc, ct, z, n, c->solver.h, d, tol, &ps, diag);
+    /* an ensemble member's pins moved as the scenes' are (start.h) */
+    const int moved = c->pin_start_offset[0] != 0.0 || c->pin_start_offset[1] != 0.0;
+    st = fb_planar_ref_run_offset(y, acc, ct, z, n, c->solver.h, d, tol,
+                                  moved ? c->pin_start_offset : NULL, &ps, diag);
     *steps = ps.steps;
     if (st == FB_ERR_NUMERIC) { /* the samples before are kept */
       planar_stop(stop, &ps, c, diag);

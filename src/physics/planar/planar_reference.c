@@ -12,6 +12,13 @@
 fb_status fb_planar_ref_run(double *y, double *acc, fb_planar_contact *contact, double *z,
                             size_t n, double h, fb_planar_rel *d, double tol,
                             fb_planar_ref_stats *stats, fb_diag *diag) {
+  return fb_planar_ref_run_offset(y, acc, contact, z, n, h, d, tol, NULL, stats, diag);
+}
+
+fb_status fb_planar_ref_run_offset(double *y, double *acc, fb_planar_contact *contact, double *z,
+                                   size_t n, double h, fb_planar_rel *d, double tol,
+                                   const double *offset, fb_planar_ref_stats *stats,
+                                   fb_diag *diag) {
   if (!(tol >= 1e-13 && tol <= 1e-3) || !(h > 0.0) || n < 1)
     return fb_diag_set(diag, FB_ERR_RANGE, "tolerance %g in [1e-13, 1e-3], step %g s > 0 and "
                        "%zu samples >= 1", tol, h, n);
@@ -20,7 +27,8 @@ fb_status fb_planar_ref_run(double *y, double *acc, fb_planar_contact *contact, 
   double *state = calloc(2 * (size_t)dim, sizeof *state);
   if (!state) return fb_diag_set(diag, FB_ERR_NOMEM, "out of memory");
   double *dzdt = state + dim;
-  fb_status rc = fb_planar_rel_steady(state, d, diag);
+  fb_status rc = offset ? fb_planar_rel_steady_offset(state, d, offset, diag)
+                        : fb_planar_rel_steady(state, d, diag);
   const long evals0 = fb_planar_rel_stats_of(d).evals;
   gsl_odeiv2_system sys = {fb_planar_rel_rhs, NULL, (size_t)dim, d};
   gsl_error_handler_t *old = gsl_set_error_handler_off();

@@ -44,6 +44,13 @@ fb_status fb_planar_ref_run(double *y, double *acc, fb_planar_contact *contact, 
                             size_t n, double h, fb_planar_rel *d, double tol,
                             fb_planar_ref_stats *stats, fb_diag *diag);
 
+/* fb_planar_ref_run from the steady start with every pin moved off its
+ * hole's centre by offset [m] (fb_planar_rel_steady_offset; NULL: none). */
+fb_status fb_planar_ref_run_offset(double *y, double *acc, fb_planar_contact *contact, double *z,
+                                   size_t n, double h, fb_planar_rel *d, double tol,
+                                   const double *offset, fb_planar_ref_stats *stats,
+                                   fb_diag *diag);
+
 /* The columns of a sampled reference its refinement rewrites
  * (fb_planar_ref_refine). */
 typedef struct {

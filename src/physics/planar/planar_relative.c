@@ -557,6 +557,15 @@ void fb_planar_rel_state_of(double *z, fb_planar_rel *d, const double *q, const 
   d->have = 0;
 }
 
+fb_status fb_planar_rel_steady_offset(double *z0, fb_planar_rel *d, const double offset[2],
+                                      fb_diag *diag) {
+  const fb_status rc = fb_planar_rel_steady(z0, d, diag);
+  for (int c = 0; c < d->nc && rc == FB_OK; c++)
+    if (d->m->joint[d->cj[c]].kind != FB_KIND_PRISMATIC)
+      z0[2 * c] += offset[0] / d->unit[2 * c], z0[2 * c + 1] += offset[1] / d->unit[2 * c + 1];
+  return rc;
+}
+
 fb_status fb_planar_rel_steady(double *z0, fb_planar_rel *d, fb_diag *diag) {
   const int nq = d->nq;
   double *y0 = malloc(2 * (size_t)nq * sizeof *y0);

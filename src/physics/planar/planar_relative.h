@@ -142,6 +142,13 @@ double fb_planar_rel_closure(fb_planar_rel *d);
  * there. Errors: those of the kinematics and the free start. */
 fb_status fb_planar_rel_steady(double *z0, fb_planar_rel *d, fb_diag *diag);
 
+/* fb_planar_rel_steady with every revolute clearance joint's pin moved off
+ * its hole's centre by offset [m] (x, y in the world: an ensemble member's
+ * perturbation, start.h's rule for every clearance joint), its relative
+ * rate zero. Errors: those of fb_planar_rel_steady. */
+fb_status fb_planar_rel_steady_offset(double *z0, fb_planar_rel *d, const double offset[2],
+                                      fb_diag *diag);
+
 /* The state z (dim) of an absolute motion q, qd (nq each) that keeps the
  * joints that hold: r = Phi_r(q), r' = G_r qd; the positions' guess for
  * the next evaluation set to q. */

@@ -39,7 +39,7 @@ exe, tally, check, tmp, tcj = fb_script.start_case(sys.argv, "fourbar-reference-
 # 1. ODE's first-order error in h, extrapolated: 2 F(h/2) - F(h) meets the
 # reference's peak to 1.6e-5, 5e-5 and 3.5e-4 at the crank-coupler pin's
 # first three impacts and 5e-5, 1.1e-4 at the coupler-follower pin's first
-# and third (measured), where ODE alone is off by up to 1.1 % at 5e-7 s; the
+# and third (measured), where ODE alone is off by up to 1.0 % at 5e-7 s; the
 # extrapolation leaves ODE's O(h^2) error and the samples' timing of the
 # peaks, so 5e-3
 RICHARDSON_REL = 5e-3
